@@ -1,0 +1,29 @@
+"""Exception types whose message is a single actionable line.
+
+Every error raised on bad *input* (files, values, model bundles) is a subclass of
+:class:`PdrlearnError`. The CLI prints ``error: <message>`` on stderr and exits 2, never a traceback.
+"""
+
+from __future__ import annotations
+
+
+class PdrlearnError(Exception):
+    """Base class: the message names the file/object and what to do about it."""
+
+    exit_code = 2
+
+    def __init__(self, message: str):
+        # Keep messages on one line, whatever the caller built.
+        super().__init__(" ".join(str(message).split()))
+
+
+class DataError(PdrlearnError, ValueError):
+    """A session folder, CSV file or array is missing, malformed or implausible."""
+
+
+class MissingSensorError(DataError):
+    """A method needs a sensor stream that the session does not have."""
+
+
+class ModelError(PdrlearnError):
+    """A model directory or bundle is missing, altered or from another schema version."""

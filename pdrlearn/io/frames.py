@@ -1,0 +1,90 @@
+"""Declared axis frames of a sensor unit and their mapping to the project's body frame.
+
+The project's **body frame** is FLU: x forward, y left, z up (right-handed). A unit's sensor frame is
+declared as a mapping from each sensor axis to a body direction, e.g. the thesis foot unit
+(x toward the toes, y along gravity at rest i.e. up, z to the right) is
+``AxisFrame(x="forward", y="up", z="right")``. Nothing is guessed: a session whose ``meta.json``
+declares no frame has ``frame=None`` and methods that need one say so.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+
+_DIRECTIONS = {
+    "forward": (1.0, 0.0, 0.0),
+    "backward": (-1.0, 0.0, 0.0),
+    "left": (0.0, 1.0, 0.0),
+    "right": (0.0, -1.0, 0.0),
+    "up": (0.0, 0.0, 1.0),
+    "down": (0.0, 0.0, -1.0),
+}
+
+
+@dataclass(frozen=True)
+class AxisFrame:
+    """Body direction (forward/backward/left/right/up/down) that each sensor axis points to."""
+
+    x: str
+    y: str
+    z: str
+
+    def __post_init__(self) -> None:
+        for axis in ("x", "y", "z"):
+            if getattr(self, axis) not in _DIRECTIONS:
+                raise DataError(
+                    f"axis frame: '{getattr(self, axis)}' for {axis} is not one of {', '.join(_DIRECTIONS)}"
+                )
+        if abs(np.linalg.det(self.matrix())) < 0.5:
+            raise DataError(f"axis frame {self.to_dict()} maps two axes to the same direction")
+
+    def matrix(self) -> np.ndarray:
+        """Rotation (3x3) taking sensor-axis vectors to body FLU vectors: ``v_body = R @ v_sensor``."""
+        return np.array([_DIRECTIONS[self.x], _DIRECTIONS[self.y], _DIRECTIONS[self.z]], dtype=float).T
+
+    @property
+    def right_handed(self) -> bool:
+        return bool(np.linalg.det(self.matrix()) > 0)
+
+    def to_dict(self) -> dict[str, str]:
+        return {"x": self.x, "y": self.y, "z": self.z}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> AxisFrame:
+        try:
+            return cls(x=str(d["x"]), y=str(d["y"]), z=str(d["z"]))
+        except KeyError as exc:
+            raise DataError(f"axis frame {d!r} lacks axis {exc.args[0]!r}") from None
+
+
+# Thesis ch.4 conventions (Figs. 28-29): foot y along gravity at rest, x toward the toes.
+THESIS_FOOT_FRAME = AxisFrame(x="forward", y="up", z="right")
+# Waist smartphone on the belt, screen facing away from the body, portrait: y up, z forward, x left.
+THESIS_WAIST_FRAME = AxisFrame(x="left", y="up", z="forward")
+
+# Known frames of converted public recordings (see ../shared/data/README.md and each meta.json).
+KNOWN_SOURCE_FRAMES: dict[str, dict[str, AxisFrame]] = {
+    # gaitmap foot sensor frame: x toward toes, y to the left (both feet), z up (not gravity aligned).
+    "gaitmap": {"foot": AxisFrame(x="forward", y="left", z="up")},
+    # Mobilise-D lower-back MM+: x up, y right, z forward.
+    "mobgap": {"waist": AxisFrame(x="up", y="right", z="forward")},
+}
+
+
+def frames_from_meta(meta: dict) -> dict[str, AxisFrame]:
+    """Frames per placement from ``meta.json``.
+
+    Uses the machine-readable ``frames`` entry when present; otherwise a known converted source
+    (``source_project`` starting with ``gaitmap`` or ``mobgap``). Returns ``{}`` when nothing is declared.
+    """
+    if isinstance(meta.get("frames"), dict):
+        return {placement: AxisFrame.from_dict(d) for placement, d in meta["frames"].items()}
+    source = str(meta.get("source_project", "")).lower()
+    for key, frames in KNOWN_SOURCE_FRAMES.items():
+        if source.startswith(key):
+            return dict(frames)
+    return {}

@@ -1,0 +1,246 @@
+"""PLASYS folder format (thesis ch.4.3.3): reader and writer.
+
+A session folder holds one CSV per sensor (``fAccelerometer.csv`` ... ``wBarometer.csv``) with header
+``timestamp,x,y,z`` (single-valued sensors: ``timestamp,x``), plus optional ``steps.csv``,
+``trajectory.csv``, other label CSVs (``ics.csv``, ``bouts.csv``, ``turns.csv`` ...) and ``meta.json``.
+
+Decision (docs/decisions.md D1): on disk, ``timestamp`` and every ``*_ms`` label column are
+**milliseconds**, as in the converted real recordings; in memory they are seconds (``*_s``). A
+``meta.json`` may declare ``"units": {"timestamp": "s ..."}`` (or ``"ns ..."``) for other files.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+import shutil
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+from pdrlearn.io.frames import frames_from_meta
+from pdrlearn.io.session import STEP_COLUMNS, Session, Stream
+from pdrlearn.io.sensors import SENSORS
+from pdrlearn.io.validate import check_columns, check_numeric, check_timestamps, check_units
+
+log = logging.getLogger(__name__)
+
+LABEL_FILES = ("steps", "trajectory")
+_TIME_SCALE = {"ms": 1e-3, "s": 1.0, "us": 1e-6, "ns": 1e-9}
+
+
+def _timestamp_scale(meta: dict) -> float:
+    unit = str(meta.get("units", {}).get("timestamp", "ms")).strip().split()[0].lower() if meta else "ms"
+    return _TIME_SCALE.get(unit, 1e-3)
+
+
+def _read_csv(path: Path) -> pd.DataFrame:
+    try:
+        df = pd.read_csv(path)
+    except pd.errors.EmptyDataError:
+        raise DataError(f"{path}: file is empty (no header); expected header timestamp,x,y,z") from None
+    except (pd.errors.ParserError, UnicodeDecodeError) as exc:
+        first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise DataError(f"{path}: not a valid CSV ({first}); fix or re-export the file") from None
+    df.columns = [str(c).strip() for c in df.columns]
+    return df
+
+
+def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale: float = 1e-3,
+                check_unit: bool = True) -> Stream:
+    """Read one sensor CSV into a :class:`Stream` (timestamps converted to seconds)."""
+    path = Path(path)
+    name = name or path.stem
+    if name not in SENSORS:
+        raise DataError(f"{path}: unknown sensor file; expected one of {', '.join(s + '.csv' for s in SENSORS)}")
+    spec = SENSORS[name]
+    if not path.is_file():
+        raise DataError(f"{path}: file not found")
+    df = _read_csv(path)
+    check_columns(df, ("timestamp", *spec.columns), str(path))
+    arr = check_numeric(df, ("timestamp", *spec.columns), str(path))
+    t = arr[:, 0] * time_scale
+    check_timestamps(t, str(path))
+    if check_unit:
+        check_units(spec, arr[:, 1:], str(path))
+    return Stream(name, t, arr[:, 1:])
+
+
+#: time columns (seconds) written back as ``*_ms`` when a table carries no record of its own.
+DEFAULT_TIME_COLUMNS = ("start_s", "end_s", "ic_s", "tc_s", "pre_ic_s", "fc_s")
+
+
+def _ms_to_s(df: pd.DataFrame, where: str) -> pd.DataFrame:
+    """Rename ``*_ms`` columns to ``*_s`` (seconds); other columns are kept untouched.
+
+    The converted names are recorded in ``df.attrs["time_columns"]`` so that the writer converts back
+    exactly those (a column already called ``duration_s`` stays as it is).
+    """
+    out = df.copy()
+    converted = []
+    for col in list(out.columns):
+        if col.endswith("_ms"):
+            converted.append(col[:-3] + "_s")
+            vals = pd.to_numeric(out[col], errors="coerce")
+            if vals.isna().sum() > out[col].isna().sum():
+                raise DataError(f"{where}: column {col} has non-numeric values; times must be numbers in ms")
+            out[col[:-3] + "_s"] = vals * 1e-3
+            out = out.drop(columns=col)
+    out = out[[c[:-3] + "_s" if c.endswith("_ms") else c for c in df.columns]]
+    out.attrs["time_columns"] = converted
+    return out
+
+
+def _s_to_ms(df: pd.DataFrame) -> pd.DataFrame:
+    """Inverse of :func:`_ms_to_s`, keeping the column order."""
+    time_cols = df.attrs.get("time_columns", DEFAULT_TIME_COLUMNS)
+    out = df.copy()
+    names = []
+    for col in df.columns:
+        if col in time_cols:
+            out[col] = np.round(pd.to_numeric(out[col], errors="coerce").to_numpy(dtype=float) * 1e3, 9)
+            names.append(col[:-2] + "_ms")
+        else:
+            names.append(col)
+    out.columns = names
+    return out
+
+
+def _read_steps(path: Path) -> pd.DataFrame:
+    df = _ms_to_s(_read_csv(path), str(path))
+    check_columns(df, STEP_COLUMNS, f"{path} (times in ms: start_ms,end_ms)")
+    se = check_numeric(df, STEP_COLUMNS, str(path))
+    bad = np.flatnonzero(se[:, 1] < se[:, 0])
+    if bad.size:
+        raise DataError(f"{path}: {bad.size} step(s) end before they start (first at line {bad[0] + 2})")
+    return df
+
+
+def _read_trajectory(path: Path, scale: float) -> pd.DataFrame:
+    df = _read_csv(path)
+    check_columns(df, ("timestamp", "x", "y", "z"), str(path))
+    arr = check_numeric(df, ("timestamp", "x", "y", "z"), str(path))
+    check_timestamps(arr[:, 0] * scale, str(path))
+    out = pd.DataFrame({"t": arr[:, 0] * scale, "x": arr[:, 1], "y": arr[:, 2], "z": arr[:, 3]})
+    for c in df.columns:
+        if c not in ("timestamp", "x", "y", "z"):
+            out[c] = df[c].to_numpy()
+    return out
+
+
+def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Session:
+    """Read a PLASYS session folder.
+
+    Raises
+    ------
+    DataError
+        A missing folder, no sensor file, a malformed CSV, non-numeric/NaN values, unsorted or duplicate
+        timestamps, implausible units, an empty file or a broken ``meta.json`` (one-line message).
+    """
+    folder = Path(folder)
+    if not folder.exists():
+        raise DataError(f"{folder}: session folder not found; pass a folder with fAccelerometer.csv etc.")
+    if not folder.is_dir():
+        raise DataError(f"{folder}: not a folder; pass the session folder, not a file")
+    meta: dict = {}
+    meta_path = folder / "meta.json"
+    if meta_path.exists():
+        try:
+            meta = json.loads(meta_path.read_text())
+        except json.JSONDecodeError as exc:
+            raise DataError(f"{meta_path}: invalid JSON (line {exc.lineno}); fix or delete the file") from None
+        if not isinstance(meta, dict):
+            raise DataError(f"{meta_path}: must hold a JSON object")
+    scale = _timestamp_scale(meta)
+    streams = {}
+    for name, spec in SENSORS.items():
+        p = folder / spec.filename
+        if p.exists():
+            streams[name] = read_stream(p, name, time_scale=scale, check_unit=check_units)
+    if not streams:
+        raise DataError(
+            f"{folder}: no sensor files found; expected at least one of "
+            f"{', '.join(s.filename for s in SENSORS.values())}"
+        )
+    steps = _read_steps(folder / "steps.csv") if (folder / "steps.csv").exists() else None
+    traj = _read_trajectory(folder / "trajectory.csv", scale) if (folder / "trajectory.csv").exists() else None
+    extras = {}
+    for p in sorted(folder.glob("*.csv")):
+        if p.stem in SENSORS or p.stem in LABEL_FILES:
+            continue
+        extras[p.stem] = _ms_to_s(_read_csv(p), str(p))
+    try:
+        frames = frames_from_meta(meta)
+    except DataError as exc:
+        raise DataError(f"{meta_path}: {exc}") from None
+    session = Session(name=str(meta.get("session", folder.name)), streams=streams, steps=steps,
+                      trajectory=traj, extras=extras, meta=meta, frames=frames)
+    for name, s in streams.items():
+        gaps = s.gaps()
+        if gaps:
+            log.info("%s/%s: %d gap(s), longest %.3f s", folder, name, len(gaps), max(g.duration_s for g in gaps))
+    return session
+
+
+def _fmt(x: np.ndarray) -> np.ndarray:
+    return np.array([repr(float(v)) for v in x], dtype=object)
+
+
+def _stream_frame(s: Stream, scale: float) -> pd.DataFrame:
+    data = {"timestamp": np.round(s.t / scale, 9)}
+    for j, c in enumerate(s.spec.columns):
+        data[c] = s.values[:, j]
+    return pd.DataFrame(data)
+
+
+def write_session(session: Session, folder: str | os.PathLike, *, overwrite: bool = False) -> Path:
+    """Write a session as a PLASYS folder, atomically (temporary folder + rename).
+
+    Values are written with full float64 precision (``repr``), so reading back reproduces them exactly;
+    timestamps are written in ms rounded to 1 ps.
+    """
+    folder = Path(folder)
+    if folder.exists() and not overwrite:
+        if any(folder.iterdir()):
+            raise DataError(f"{folder}: already exists and is not empty; choose another --out or remove it")
+    folder.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{folder.name}.", dir=folder.parent))
+    try:
+        meta = dict(session.meta)
+        meta.setdefault("session", session.name)
+        units = dict(meta.get("units", {}))
+        units["timestamp"] = "ms since the first sample"
+        meta["units"] = units
+        if session.frames:
+            meta["frames"] = {p: f.to_dict() for p, f in session.frames.items()}
+        scale = 1e-3
+        for name, s in session.streams.items():
+            _stream_frame(s, scale).to_csv(tmp / f"{name}.csv", index=False, float_format="%.17g")
+        if session.steps is not None:
+            _s_to_ms(session.steps).to_csv(tmp / "steps.csv", index=False)
+        if session.trajectory is not None:
+            tr = session.trajectory.copy()
+            tr.insert(0, "timestamp", np.round(tr.pop("t").to_numpy() / scale, 9))
+            tr.to_csv(tmp / "trajectory.csv", index=False, float_format="%.17g")
+        for k, df in session.extras.items():
+            _s_to_ms(df).to_csv(tmp / f"{k}.csv", index=False)
+        (tmp / "meta.json").write_text(json.dumps(meta, indent=2, default=_json_default) + "\n")
+        if folder.exists():
+            shutil.rmtree(folder)
+        os.replace(tmp, folder)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    return folder
+
+
+def _json_default(o):
+    if isinstance(o, np.generic):
+        return o.item()
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    raise TypeError(f"not JSON serialisable: {type(o).__name__}")

@@ -1,0 +1,166 @@
+"""Streaming parser of the foot unit's Bluetooth text protocol (thesis ch.4.2.3, Table 10).
+
+Each sampling period (50 ms, 20 Hz) the foot unit sends one *set*::
+
+    %$1 ax ay az$2 gx gy gz$3 fa$4 fb
+
+``%`` starts a set, ``$`` starts a measurement, the digit is the sensor type (Table 10: 1 accelerometer,
+2 gyroscope, 3 force A, 4 force B) and the numbers are separated by blanks or commas (force: ``x`` only).
+The protocol carries no timestamp: set *k* is stamped ``t0 + k / rate_hz``.
+
+Corrupted measurements (unknown type, wrong number of values, non-numeric text) are skipped and counted
+in :attr:`BluetoothParser.stats`; the set still advances the clock, so a corrupted set leaves a gap
+instead of shifting later samples.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from pdrlearn.io.session import Session, Stream
+from pdrlearn.io.sensors import PROTOCOL_TYPES, SENSORS
+
+FIRMWARE_RATE_HZ = 20.0  # thesis ch.4.2.3: sampling period 50 ms
+_SPLIT = re.compile(r"[\s,;]+")
+
+
+@dataclass
+class ProtocolStats:
+    sets: int = 0
+    measurements: int = 0
+    corrupted: int = 0
+    examples: list[str] = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        return {"sets": self.sets, "measurements": self.measurements, "corrupted": self.corrupted}
+
+
+@dataclass
+class Measurement:
+    t: float
+    sensor: str
+    values: tuple[float, ...]
+
+
+class BluetoothParser:
+    """Incremental parser: :meth:`feed` text chunks as they arrive, :meth:`close` at the end.
+
+    Parameters
+    ----------
+    rate_hz : sampling rate of the sets (default 20 Hz, thesis ch.4.2.3).
+    t0 : timestamp of the first set (s).
+    scales : optional per-sensor multiplicative factor to SI units, e.g.
+        ``{"fAccelerometer": 9.81 / 256}`` for raw ADXL345 counts (thesis eq. 24).
+    """
+
+    def __init__(self, *, rate_hz: float = FIRMWARE_RATE_HZ, t0: float = 0.0, scales: dict | None = None):
+        self.rate_hz = float(rate_hz)
+        self.t0 = float(t0)
+        self.scales = dict(scales or {})
+        self.stats = ProtocolStats()
+        self._buf = ""
+        self._started = False
+        self._data: dict[str, tuple[list[float], list[tuple[float, ...]]]] = {}
+
+    # -- parsing ----------------------------------------------------------------------------------
+    def _parse_set(self, body: str) -> list[Measurement]:
+        t = self.t0 + self.stats.sets / self.rate_hz
+        self.stats.sets += 1
+        out = []
+        for part in body.split("$")[1:] if "$" in body else ([body] if body.strip() else []):
+            tokens = [tok for tok in _SPLIT.split(part.strip()) if tok]
+            sensor = PROTOCOL_TYPES.get(int(tokens[0])) if tokens and tokens[0].isdigit() else None
+            n = SENSORS[sensor].n_axes if sensor else 0
+            try:
+                vals = tuple(float(x) for x in tokens[1:])
+            except ValueError:
+                vals = ()
+            if sensor is None or len(vals) != n or not all(np.isfinite(vals)):
+                self._corrupt(part)
+                continue
+            scale = self.scales.get(sensor, 1.0)
+            m = Measurement(t, sensor, tuple(v * scale for v in vals))
+            ts, vs = self._data.setdefault(sensor, ([], []))
+            if ts and ts[-1] == t:  # a second measurement of the same sensor in one set
+                self._corrupt(part)
+                continue
+            ts.append(t)
+            vs.append(m.values)
+            self.stats.measurements += 1
+            out.append(m)
+        return out
+
+    def _corrupt(self, text: str) -> None:
+        self.stats.corrupted += 1
+        if len(self.stats.examples) < 5:
+            self.stats.examples.append(text.strip()[:60])
+
+    def feed(self, chunk: str) -> list[Measurement]:
+        """Parse a chunk of received text; returns the measurements of every set completed by it."""
+        self._buf += chunk
+        out: list[Measurement] = []
+        while True:
+            i = self._buf.find("%")
+            if i < 0:
+                if not self._started and self._buf.strip():
+                    # text before the first '%' is not part of any set
+                    self._corrupt(self._buf)
+                    self._buf = ""
+                return out
+            head, rest = self._buf[:i], self._buf[i + 1:]
+            if self._started:
+                out.extend(self._parse_set(head))
+            elif head.strip():
+                self._corrupt(head)
+            self._started = True
+            self._buf = rest
+
+    def close(self) -> list[Measurement]:
+        """Flush the last set."""
+        out = self._parse_set(self._buf) if self._started and self._buf.strip() else []
+        self._buf = ""
+        return out
+
+    def parse(self, lines: Iterable[str]) -> Iterator[Measurement]:
+        for line in lines:
+            yield from self.feed(line)
+        yield from self.close()
+
+    # -- results ----------------------------------------------------------------------------------
+    def streams(self) -> dict[str, Stream]:
+        return {name: Stream(name, np.array(ts), np.array(vs)) for name, (ts, vs) in self._data.items() if ts}
+
+    def to_session(self, name: str = "bluetooth") -> Session:
+        from pdrlearn.io.frames import THESIS_FOOT_FRAME
+
+        return Session(name=name, streams=self.streams(),
+                       meta={"source": "bluetooth text protocol", "protocol_stats": self.stats.to_dict()},
+                       frames={"foot": THESIS_FOOT_FRAME})
+
+
+def parse_protocol(text: str | Iterable[str], **kwargs) -> tuple[Session, ProtocolStats]:
+    """Parse a whole protocol capture (a string or an iterable of lines)."""
+    parser = BluetoothParser(**kwargs)
+    for _ in parser.parse([text] if isinstance(text, str) else text):
+        pass
+    return parser.to_session(), parser.stats
+
+
+def format_protocol(session: Session, *, decimals: int = 6) -> Iterator[str]:
+    """Render a session's foot streams as protocol sets (one line per set), the inverse of the parser.
+
+    Streams are aligned by sample index; all foot streams must have the same length.
+    """
+    names = [n for n in PROTOCOL_TYPES.values() if n in session.streams]
+    inv = {v: k for k, v in PROTOCOL_TYPES.items()}
+    n = min(len(session.streams[nm]) for nm in names) if names else 0
+    for i in range(n):
+        parts = []
+        for nm in names:
+            vals = " ".join(f"{v:.{decimals}f}" for v in session.streams[nm].values[i])
+            parts.append(f"${inv[nm]} {vals}")
+        yield "%" + "".join(parts) + "\n"

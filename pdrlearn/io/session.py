@@ -1,0 +1,224 @@
+"""In-memory data model: :class:`Stream` (one sensor) and :class:`Session` (one recording).
+
+Units: timestamps in seconds (float64); values in SI units (m/s^2, rad/s, uT, hPa, force in N or
+normalised). Label tables use seconds too (``start_s``, ``end_s``, ``ic_s`` ...); on disk they are
+milliseconds (``start_ms`` ...), see :mod:`pdrlearn.io.plasys`.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError, MissingSensorError
+from pdrlearn.io.frames import AxisFrame
+from pdrlearn.io.sensors import SENSORS, SensorSpec
+
+#: Canonical columns of a steps table (seconds). Other columns are kept as they are.
+STEP_COLUMNS = ("start_s", "end_s")
+STEP_OPTIONAL = ("ic_s", "terrain", "direction", "length_m", "length_class")
+TERRAIN_CLASSES = ("flat", "up", "down")  # thesis ch.6.1
+DIRECTION_CLASSES = ("forward", "backward")  # thesis ch.6.2
+LENGTH_CLASSES = ("short", "normal", "long")  # thesis ch.6.3
+
+
+@dataclass
+class Gap:
+    """An interval between two consecutive samples longer than 1.5 nominal periods."""
+
+    start_s: float
+    duration_s: float
+
+
+@dataclass
+class Stream:
+    """One sensor's time series.
+
+    Parameters
+    ----------
+    name : PLASYS sensor name (``fAccelerometer`` ...), see :data:`pdrlearn.io.sensors.SENSORS`.
+    t : (n,) float64 timestamps in seconds, strictly increasing.
+    values : (n, k) float64 values in the sensor's SI unit.
+    """
+
+    name: str
+    t: np.ndarray
+    values: np.ndarray
+
+    def __post_init__(self) -> None:
+        self.t = np.asarray(self.t, dtype=np.float64)
+        v = np.asarray(self.values, dtype=np.float64)
+        self.values = v.reshape(-1, 1) if v.ndim == 1 else v
+        if self.values.shape[0] != self.t.shape[0]:
+            raise DataError(
+                f"{self.name}: {self.t.shape[0]} timestamps but {self.values.shape[0]} rows of values"
+            )
+        if self.values.shape[1] != self.spec.n_axes:
+            raise DataError(f"{self.name}: expected {self.spec.n_axes} value columns, got {self.values.shape[1]}")
+
+    @property
+    def spec(self) -> SensorSpec:
+        return SENSORS[self.name] if self.name in SENSORS else SensorSpec(self.name, "", "", self.values.shape[1], "")
+
+    @property
+    def placement(self) -> str:
+        return self.spec.placement
+
+    @property
+    def kind(self) -> str:
+        return self.spec.kind
+
+    @property
+    def unit(self) -> str:
+        return self.spec.unit
+
+    def __len__(self) -> int:
+        return int(self.t.shape[0])
+
+    @property
+    def period_s(self) -> float:
+        """Nominal sampling period: the median sample interval (s)."""
+        if len(self) < 2:
+            return float("nan")
+        return float(np.median(np.diff(self.t)))
+
+    @property
+    def rate_hz(self) -> float:
+        """Native rate (Hz) from the median sample interval."""
+        p = self.period_s
+        return float(1.0 / p) if p > 0 else float("nan")
+
+    @property
+    def duration_s(self) -> float:
+        return float(self.t[-1] - self.t[0]) if len(self) else 0.0
+
+    def gaps(self, factor: float = 1.5) -> list[Gap]:
+        """Intervals longer than ``factor`` nominal periods (dropped samples)."""
+        if len(self) < 3:
+            return []
+        dt = np.diff(self.t)
+        idx = np.flatnonzero(dt > factor * self.period_s)
+        return [Gap(float(self.t[i]), float(dt[i])) for i in idx]
+
+    def slice(self, t0: float, t1: float) -> Stream:
+        """Samples with ``t0 <= t < t1``."""
+        m = (self.t >= t0) & (self.t < t1)
+        return Stream(self.name, self.t[m], self.values[m])
+
+    def norm(self) -> np.ndarray:
+        """Euclidean norm of each sample (n,)."""
+        return np.linalg.norm(self.values, axis=1)
+
+    def copy(self) -> Stream:
+        return Stream(self.name, self.t.copy(), self.values.copy())
+
+
+@dataclass
+class Session:
+    """One recording: named sensor streams plus labels and metadata.
+
+    Attributes
+    ----------
+    name : session name (folder name on disk)
+    streams : sensor name -> :class:`Stream`; any may be missing
+    steps : steps table (``start_s``, ``end_s`` and, where known, ``ic_s``, ``terrain``, ``direction``,
+        ``length_m``, ``length_class`` ...) or ``None``
+    trajectory : ground-truth trajectory (``t``, ``x``, ``y``, ``z``; seconds and metres) or ``None``
+    extras : other label tables (``ics``, ``bouts``, ``turns`` ...) with times in seconds
+    meta : contents of ``meta.json``
+    frames : placement -> declared :class:`AxisFrame` (absent when not declared)
+    """
+
+    name: str
+    streams: dict[str, Stream] = field(default_factory=dict)
+    steps: pd.DataFrame | None = None
+    trajectory: pd.DataFrame | None = None
+    extras: dict[str, pd.DataFrame] = field(default_factory=dict)
+    meta: dict = field(default_factory=dict)
+    frames: dict[str, AxisFrame] = field(default_factory=dict)
+
+    # -- access -----------------------------------------------------------------------------------
+    def __getitem__(self, name: str) -> Stream:
+        return self.require(name)
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.streams
+
+    def has(self, *names: str) -> bool:
+        return all(n in self.streams for n in names)
+
+    def require(self, *names: str, purpose: str = "") -> Stream:
+        """Return the first named stream, raising :class:`MissingSensorError` if any is absent."""
+        missing = [n for n in names if n not in self.streams]
+        if missing:
+            what = f" needed by {purpose}" if purpose else ""
+            have = ", ".join(self.streams) or "none"
+            raise MissingSensorError(
+                f"session '{self.name}' has no {', '.join(missing)}{what} (it has: {have}); "
+                "record that sensor or choose a method that does not need it"
+            )
+        return self.streams[names[0]]
+
+    @property
+    def placements(self) -> list[str]:
+        return sorted({s.placement for s in self.streams.values() if s.placement})
+
+    def placement_streams(self, placement: str) -> dict[str, Stream]:
+        return {k: s for k, s in self.streams.items() if s.placement == placement}
+
+    @property
+    def t_start(self) -> float:
+        return min((float(s.t[0]) for s in self.streams.values() if len(s)), default=0.0)
+
+    @property
+    def t_end(self) -> float:
+        return max((float(s.t[-1]) for s in self.streams.values() if len(s)), default=0.0)
+
+    @property
+    def duration_s(self) -> float:
+        return self.t_end - self.t_start
+
+    def labelled(self, column: str) -> bool:
+        """True when the steps table has ``column`` with at least one non-missing value."""
+        return self.steps is not None and column in self.steps and self.steps[column].notna().any()
+
+    def copy(self) -> Session:
+        return copy.deepcopy(self)
+
+    def summary(self) -> dict:
+        """Machine-readable summary (the ``pdrlearn info --json`` contract)."""
+        sensors = {}
+        for name, s in self.streams.items():
+            gaps = s.gaps()
+            sensors[name] = {
+                "rate_hz": round(s.rate_hz, 4) if np.isfinite(s.rate_hz) else None,
+                "samples": len(s),
+                "duration_s": round(s.duration_s, 6),
+                "gaps": len(gaps),
+                "longest_gap_s": round(max((g.duration_s for g in gaps), default=0.0), 6),
+                "unit": s.unit,
+                "placement": s.placement,
+            }
+        labels: dict = {
+            "steps": None if self.steps is None else int(len(self.steps)),
+            "trajectory": None if self.trajectory is None else int(len(self.trajectory)),
+        }
+        if self.steps is not None:
+            for col in ("terrain", "direction", "length_class"):
+                if col in self.steps:
+                    labels[col] = {str(k): int(v) for k, v in self.steps[col].value_counts().items()}
+            if "length_m" in self.steps:
+                labels["length_m_known"] = int(self.steps["length_m"].notna().sum())
+        for k, df in self.extras.items():
+            labels[k] = int(len(df))
+        return {
+            "name": self.name,
+            "placements": self.placements,
+            "sensors": sensors,
+            "duration_s": round(self.duration_s, 6),
+            "frames": {p: f.to_dict() for p, f in self.frames.items()},
+            "labels": labels,
+        }

@@ -1,0 +1,98 @@
+"""Checks on raw sensor tables: each failure is a one-line :class:`DataError` naming the file and the fix."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+from pdrlearn.io.sensors import SensorSpec
+
+STANDARD_GRAVITY = 9.80665  # m/s^2 (thesis ch.4.2.1.1)
+
+
+def check_columns(df: pd.DataFrame, required: tuple[str, ...], where: str) -> None:
+    missing = [c for c in required if c not in df.columns]
+    if missing:
+        raise DataError(
+            f"{where}: missing column(s) {', '.join(missing)} (header is {','.join(map(str, df.columns))}; "
+            f"expected {','.join(required)})"
+        )
+
+
+def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str) -> np.ndarray:
+    """Return ``df[columns]`` as float64, failing on non-numeric, NaN or infinite values."""
+    out = df.loc[:, list(columns)].apply(pd.to_numeric, errors="coerce")
+    arr = out.to_numpy(dtype=np.float64)
+    bad = ~np.isfinite(arr)
+    if bad.any():
+        rows = np.flatnonzero(bad.any(axis=1))
+        raise DataError(
+            f"{where}: {len(rows)} row(s) with non-numeric, NaN or infinite values (first at line {rows[0] + 2}); "
+            "remove or repair those rows"
+        )
+    return arr
+
+
+def check_timestamps(t: np.ndarray, where: str) -> None:
+    """Timestamps must be strictly increasing (no duplicates, sorted)."""
+    if t.size == 0:
+        raise DataError(f"{where}: no samples (empty file); record data or remove the file")
+    dt = np.diff(t)
+    dup = np.flatnonzero(dt == 0)
+    if dup.size:
+        raise DataError(
+            f"{where}: {dup.size} duplicate timestamp(s) (first at line {dup[0] + 3}); drop the duplicated rows"
+        )
+    back = np.flatnonzero(dt < 0)
+    if back.size:
+        raise DataError(
+            f"{where}: timestamps go backwards {back.size} time(s) (first at line {back[0] + 3}); "
+            "sort the file by timestamp"
+        )
+
+
+def check_units(spec: SensorSpec, values: np.ndarray, where: str) -> None:
+    """Detect values recorded in the wrong unit from their magnitudes and say how to convert.
+
+    The limits are physical: gravity dominates the median accelerometer norm; a MEMS gyroscope's
+    full scale is 2000 deg/s = 34.9 rad/s (thesis Tables 5, 13); the Earth's field is 25-65 uT;
+    ambient pressure is 300-1100 hPa (thesis Table 17).
+    """
+    if values.size == 0:
+        return
+    if spec.kind == "accelerometer":
+        med = float(np.median(np.linalg.norm(values, axis=1)))
+        if 0.5 <= med <= 2.0:
+            raise DataError(
+                f"{where}: median |acc| is {med:.2f}, which looks like units of g; "
+                f"multiply by {STANDARD_GRAVITY} to get m/s^2"
+            )
+        if med > 200:
+            raise DataError(
+                f"{where}: median |acc| is {med:.0f}, which looks like raw counts or mm/s^2; "
+                "convert to m/s^2 (thesis eq. 24: counts / 256 * 9.81 for the ADXL345 at +-16 g)"
+            )
+        if not 4.0 <= med <= 25.0:
+            raise DataError(f"{where}: median |acc| is {med:.2f} m/s^2, implausible for a body-worn unit")
+    elif spec.kind == "gyroscope":
+        p99 = float(np.percentile(np.abs(values), 99))
+        if p99 > 40.0:
+            raise DataError(
+                f"{where}: 99th percentile |rate| is {p99:.0f}, beyond a 2000 deg/s gyroscope in rad/s; "
+                "the file looks like deg/s: multiply by pi/180"
+            )
+    elif spec.kind == "magnetometer":
+        med = float(np.median(np.linalg.norm(values, axis=1)))
+        if med < 1.0:
+            raise DataError(f"{where}: median |B| is {med:.3f}; looks like gauss or tesla: convert to uT")
+        if med > 5000.0:
+            raise DataError(f"{where}: median |B| is {med:.0f}; looks like nT: divide by 1000 to get uT")
+    elif spec.kind == "barometer":
+        med = float(np.median(values))
+        if med > 20000:
+            raise DataError(f"{where}: median pressure {med:.0f} looks like Pa; divide by 100 to get hPa")
+        if 30 <= med <= 110:
+            raise DataError(f"{where}: median pressure {med:.1f} looks like kPa; multiply by 10 to get hPa")
+        if not 300 <= med <= 1100:
+            raise DataError(f"{where}: median pressure {med:.1f} hPa is outside 300-1100 hPa (thesis Table 17)")
