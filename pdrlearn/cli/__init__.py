@@ -1,0 +1,61 @@
+"""The ``pdrlearn`` command line.
+
+Every subcommand lives in its own module of this package and exposes ``register(app)``; add the module
+name to :data:`COMMAND_MODULES` to make it appear. Bad input raises :class:`pdrlearn.PdrlearnError`,
+which :func:`main` prints as one ``error: ...`` line on stderr with a non-zero exit (no traceback).
+"""
+
+from __future__ import annotations
+
+import importlib
+import logging
+import sys
+
+import typer
+
+from pdrlearn.errors import PdrlearnError
+
+COMMAND_MODULES = ["data"]
+
+app = typer.Typer(
+    name="pdrlearn",
+    help="Step characterization and pedestrian dead reckoning with foot- and waist-worn IMUs (PLASYS).",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+
+@app.callback()
+def _root(verbose: bool = typer.Option(False, "--verbose", "-v", help="Log progress details to stderr.")):
+    logging.basicConfig(level=logging.INFO if verbose else logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
+
+
+for _name in COMMAND_MODULES:
+    importlib.import_module(f"pdrlearn.cli.{_name}").register(app)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Console-script entry point; returns the exit code."""
+    try:
+        app(args=argv, standalone_mode=False)
+    except PdrlearnError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return exc.exit_code
+    except typer.Exit as exc:  # explicit exits from commands
+        return int(exc.exit_code or 0)
+    except typer.Abort:
+        print("error: aborted", file=sys.stderr)
+        return 130
+    except Exception as exc:  # click usage errors and the like
+        import click
+
+        if isinstance(exc, click.ClickException):
+            exc.show()
+            return exc.exit_code
+        raise
+    return 0
+
+
+def run() -> None:  # pragma: no cover - thin wrapper for the console script
+    sys.exit(main())

@@ -1,0 +1,69 @@
+"""``pdrlearn info`` and ``pdrlearn plot``: inspect a session folder."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from pdrlearn.cli.common import json_safe, out_file, print_json
+
+
+def info(
+    session_dir: Path = typer.Argument(..., help="PLASYS session folder (fAccelerometer.csv, ...)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
+) -> None:
+    """Show sensors, rates, duration, gaps and labels of a session.
+
+    Examples:
+
+        pdrlearn info datasets/real/gaitmap_level_left
+
+        pdrlearn info out/sim/A --json
+    """
+    from pdrlearn.io import read_session
+
+    s = read_session(session_dir)
+    summary = s.summary()
+    if as_json:
+        print_json(json_safe(summary))
+        return
+    from rich.console import Console
+    from rich.table import Table
+
+    t = Table(title=f"session {summary['name']} — {summary['duration_s']:.1f} s")
+    for col in ("sensor", "placement", "rate (Hz)", "samples", "duration (s)", "gaps", "longest gap (s)"):
+        t.add_column(col)
+    for name, d in summary["sensors"].items():
+        t.add_row(name, d["placement"], f"{d['rate_hz']}", str(d["samples"]), f"{d['duration_s']:.2f}",
+                  str(d["gaps"]), f"{d['longest_gap_s']:.3f}")
+    c = Console()
+    c.print(t)
+    c.print(f"frames: {summary['frames'] or 'not declared'}")
+    c.print(f"labels: {summary['labels']}")
+
+
+def plot(
+    session_dir: Path = typer.Argument(..., help="PLASYS session folder."),
+    out: Path = typer.Option(..., "--out", "-o", help="PNG file to write."),
+    start: float = typer.Option(None, help="First second to show (default: whole session)."),
+    end: float = typer.Option(None, help="Last second to show."),
+) -> None:
+    """Plot every sensor stream with the labelled steps shaded.
+
+    Example:
+
+        pdrlearn plot datasets/real/gaitmap_stairs_up_left --out out/stairs.png --start 5 --end 12
+    """
+    from pdrlearn.io import read_session
+    from pdrlearn.plots import plot_session
+
+    out = out_file(out, (".png",))
+    s = read_session(session_dir)
+    plot_session(s, out, start=start, end=end)
+    typer.echo(str(out))
+
+
+def register(app: typer.Typer) -> None:
+    app.command("info")(info)
+    app.command("plot")(plot)
