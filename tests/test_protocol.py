@@ -1,0 +1,88 @@
+"""Bluetooth text protocol parser (thesis ch.4.2.3, Table 10)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from pdrlearn.io import BluetoothParser, format_protocol, parse_protocol
+from tests.test_io import make_session
+
+CLEAN = (
+    "%$1 0.1 9.8 0.2$2 0.01 -0.02 0.03$3 310.5$4 12.0\n"
+    "%$1 0.2 9.7 0.3$2 0.02 -0.01 0.04$3 300.0$4 20.0\n"
+    "%$1 0.3 9.6 0.4$2 0.03 0.00 0.05$3 290.0$4 25.0\n"
+)
+
+
+def test_parse_clean_stream():
+    session, stats = parse_protocol(CLEAN)
+    assert stats.sets == 3 and stats.measurements == 12 and stats.corrupted == 0
+    acc = session["fAccelerometer"]
+    np.testing.assert_allclose(acc.t, [0.0, 0.05, 0.1])  # 20 Hz (thesis ch.4.2.3)
+    np.testing.assert_allclose(acc.values[1], [0.2, 9.7, 0.3])
+    np.testing.assert_allclose(session["fForceB"].values[:, 0], [12.0, 20.0, 25.0])
+
+
+def test_corrupted_measurements_are_counted_and_skipped():
+    text = (
+        "garbage before start"
+        "%$1 0.1 9.8 0.2$2 0.01 -0.02 0.03$3 310.5$4 12.0"
+        "%$1 0.2 9.7$2 0.02 -0.01 0.04$9 1 2 3$4 abc"      # acc short, unknown type 9, force non-numeric
+        "%$1 0.3 9.6 0.4$2 0.03 0.00 0.05$3 290.0$4 25.0"
+        "%$1 0.4,9.5,0.5$1 0.4 9.5 0.5$3 1e400$4 1"         # commas ok, duplicate type, inf value
+    )
+    session, stats = parse_protocol(text)
+    assert stats.sets == 4
+    assert stats.corrupted == 1 + 3 + 2  # leading garbage; three in set 2; duplicate + inf in set 4
+    # the corrupted set still advances the clock: acc has a gap at t = 0.05
+    np.testing.assert_allclose(session["fAccelerometer"].t, [0.0, 0.1, 0.15])
+    np.testing.assert_allclose(session["fGyroscope"].t, [0.0, 0.05, 0.1])
+    assert session["fForceA"].t.tolist() == [0.0, 0.1]
+
+
+def test_raw_count_scaling():
+    session, _ = parse_protocol("%$1 0 256 0", scales={"fAccelerometer": 9.81 / 256})  # thesis eq. 24
+    np.testing.assert_allclose(session["fAccelerometer"].values[0], [0, 9.81, 0])
+
+
+def test_format_then_parse_round_trip():
+    s = make_session(n=30)
+    text = "".join(format_protocol(s, decimals=9))
+    parsed, stats = parse_protocol(text)
+    assert stats.corrupted == 0 and stats.sets == 30
+    for name in ("fAccelerometer", "fGyroscope", "fForceA", "fForceB"):
+        np.testing.assert_allclose(parsed[name].values, s[name].values, atol=1e-9)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.integers(min_value=1, max_value=40), min_size=1, max_size=30))
+def test_chunking_does_not_change_the_result(cuts):
+    text = CLEAN * 3 + "%$1 1 2$3 x"  # ends with a corrupted set
+    pos, chunks = 0, []
+    for c in cuts:
+        chunks.append(text[pos:pos + c])
+        pos += c
+    chunks.append(text[pos:])
+    p = BluetoothParser()
+    got = []
+    for ch in chunks:
+        got.extend(p.feed(ch))
+    got.extend(p.close())
+    whole, stats = parse_protocol(text)
+    assert p.stats.to_dict() == stats.to_dict()
+    assert len(got) == stats.measurements
+    np.testing.assert_allclose(p.streams()["fAccelerometer"].values, whole["fAccelerometer"].values)
+
+
+def test_empty_stream():
+    session, stats = parse_protocol("")
+    assert stats.sets == 0 and session.streams == {}
+
+
+@pytest.mark.parametrize("chunk", ["%", "%%%", "%$", "%$1"])
+def test_degenerate_sets_never_crash(chunk):
+    _, stats = parse_protocol(chunk)
+    assert stats.measurements == 0
