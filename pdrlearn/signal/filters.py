@@ -1,0 +1,128 @@
+"""Pure numerical kernels for signal conditioning: filters, magnitude, resampling, frames.
+
+Every function works along axis 0 (time) and takes rates in Hz, windows in seconds.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import signal as _sig
+
+from pdrlearn.errors import DataError
+
+
+def magnitude(v: np.ndarray) -> np.ndarray:
+    """Euclidean norm of each row of ``v`` ((n, k) -> (n,)); a 1-D input is returned as ``|v|``."""
+    a = np.asarray(v, dtype=np.float64)
+    if a.ndim == 1:
+        return np.abs(a)
+    return np.sqrt(np.einsum("ij,ij->i", a, a))
+
+
+def butter_sos(cutoff_hz: float, fs: float, *, order: int = 3, btype: str = "low") -> np.ndarray:
+    """Second-order sections of a Butterworth filter (thesis ch.5: 3rd order low-pass)."""
+    if not (np.isfinite(fs) and fs > 0):
+        raise DataError(f"low-pass filter: sampling rate {fs!r} Hz is not a positive number")
+    nyq = 0.5 * fs
+    if not (0 < cutoff_hz < nyq):
+        raise DataError(
+            f"low-pass filter: cutoff {cutoff_hz} Hz must be between 0 and the Nyquist rate {nyq:g} Hz; "
+            "lower the cutoff or resample the stream"
+        )
+    return _sig.butter(order, cutoff_hz / nyq, btype=btype, output="sos")
+
+
+def lowpass(x: np.ndarray, cutoff_hz: float, fs: float, *, order: int = 3,
+            causal: bool = False) -> np.ndarray:
+    """Butterworth low-pass along axis 0.
+
+    Parameters
+    ----------
+    x : (n,) or (n, k) samples
+    cutoff_hz : -3 dB cutoff (Hz)
+    fs : sampling rate (Hz)
+    order : filter order (thesis ch.5.1: third order)
+    causal : ``False`` -> zero-phase ``sosfiltfilt`` (offline); ``True`` -> ``sosfilt`` (streaming),
+        initialised at the first sample's steady state so a constant input passes unchanged.
+
+    Returns
+    -------
+    ndarray with the shape of ``x``. Inputs too short for the zero-phase padding are padded as much as
+    they allow; a 0- or 1-sample input is returned unchanged.
+    """
+    a = np.asarray(x, dtype=np.float64)
+    if a.shape[0] < 2:
+        return a.copy()
+    sos = butter_sos(cutoff_hz, fs, order=order)
+    if causal:
+        zi = _sig.sosfilt_zi(sos)  # (n_sections, 2)
+        shape = (sos.shape[0], 2) + (1,) * (a.ndim - 1)
+        zi = zi.reshape(shape) * a[0]
+        y, _ = _sig.sosfilt(sos, a, axis=0, zi=zi)
+        return y
+    default_pad = 3 * (2 * sos.shape[0] + 1)
+    padlen = min(default_pad, a.shape[0] - 1)
+    return _sig.sosfiltfilt(sos, a, axis=0, padlen=padlen)
+
+
+class CausalLowpass:
+    """Streaming Butterworth low-pass with state; ``push(chunk)`` gives the same output as
+    ``lowpass(whole, causal=True)`` whatever the chunking."""
+
+    def __init__(self, cutoff_hz: float, fs: float, *, order: int = 3):
+        self.sos = butter_sos(cutoff_hz, fs, order=order)
+        self._zi: np.ndarray | None = None
+
+    def push(self, x: np.ndarray) -> np.ndarray:
+        a = np.asarray(x, dtype=np.float64)
+        if a.shape[0] == 0:
+            return a.copy()
+        if self._zi is None:
+            zi = _sig.sosfilt_zi(self.sos)
+            self._zi = zi.reshape((self.sos.shape[0], 2) + (1,) * (a.ndim - 1)) * a[0]
+        y, self._zi = _sig.sosfilt(self.sos, a, axis=0, zi=self._zi)
+        return y
+
+
+def uniform_grid(t0: float, t1: float, rate_hz: float) -> np.ndarray:
+    """Timestamps ``t0, t0 + 1/rate, ...`` up to and including ``t1`` (within 1e-9 s)."""
+    if not (np.isfinite(rate_hz) and rate_hz > 0):
+        raise DataError(f"resample: rate {rate_hz!r} Hz is not a positive number")
+    n = int(np.floor((t1 - t0) * rate_hz + 1e-9)) + 1
+    return t0 + np.arange(max(n, 0)) / rate_hz
+
+
+def interp_rows(t_new: np.ndarray, t: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Linear interpolation of each column of ``values`` (n, k) at ``t_new``."""
+    v = np.asarray(values, dtype=np.float64)
+    v2 = v.reshape(v.shape[0], -1)
+    out = np.empty((t_new.shape[0], v2.shape[1]))
+    for j in range(v2.shape[1]):
+        out[:, j] = np.interp(t_new, t, v2[:, j])
+    return out.reshape((t_new.shape[0],) + v.shape[1:])
+
+
+def gravity_rotation(g_sensor: np.ndarray) -> np.ndarray:
+    """Minimal rotation ``R`` (3x3) with ``R @ g_sensor = [0, 0, |g|]`` (z up, gravity-aligned frame).
+
+    ``g_sensor`` is the specific force measured at rest (points up, magnitude ~9.81 m/s^2). The
+    rotation is the shortest one (axis ``g x z``, Rodrigues' formula), so the heading about z is kept
+    as close to the sensor's as possible. Raises :class:`DataError` for a zero or non-finite vector.
+    """
+    g = np.asarray(g_sensor, dtype=np.float64).reshape(3)
+    n = float(np.linalg.norm(g))
+    if not np.isfinite(n) or n < 1e-9:
+        raise DataError(f"gravity_rotation: gravity vector {g.tolist()} is zero or not finite; "
+                        "estimate it from a standstill period")
+    a = g / n
+    z = np.array([0.0, 0.0, 1.0])
+    c = float(a @ z)
+    v = np.cross(a, z)
+    s = float(np.linalg.norm(v))
+    if s < 1e-12:
+        if c > 0:
+            return np.eye(3)
+        return np.diag([1.0, -1.0, -1.0])  # 180 deg about x
+    k = v / s
+    kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + s * kx + (1 - c) * (kx @ kx)
