@@ -15,7 +15,7 @@ import typer
 
 from pdrlearn.errors import PdrlearnError
 
-COMMAND_MODULES = ["data"]
+COMMAND_MODULES = ["data", "report"]
 
 app = typer.Typer(
     name="pdrlearn",

@@ -1,0 +1,33 @@
+"""``pdrlearn report``: an HTML + Markdown report of a model directory or a results folder."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+
+def report(
+    source: Path = typer.Argument(..., help="Model directory (manifest.json) or a results folder "
+                                  "(evaluation.json, cohort_summary.csv, summary.json, PNG figures)."),
+    out: Path = typer.Option(..., "--out", "-o", help="Report folder to write (index.html + report.md)."),
+    title: str = typer.Option(None, help="Page title."),
+) -> None:
+    """Render accuracy tables, confusion matrices, trajectories and latency figures as one page.
+
+    The HTML is self-contained (images embedded, no network resources); report.md holds the same content.
+
+    Examples:
+
+        pdrlearn evaluate models/u1 sims/u1_test --report out/eval --json > out/eval/evaluation.json
+
+        pdrlearn report out/eval --out out/report
+    """
+    from pdrlearn.report import build_report
+
+    path = build_report(source, out, title=title)
+    typer.echo(str(path / "index.html"))
+
+
+def register(app: typer.Typer) -> None:
+    app.command("report")(report)

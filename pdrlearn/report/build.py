@@ -1,0 +1,191 @@
+"""Collect results from a folder and render them as HTML (self-contained) and Markdown."""
+
+from __future__ import annotations
+
+import base64
+import datetime as dt
+import html
+import json
+import os
+import shutil
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pandas as pd
+
+from pdrlearn.errors import DataError
+
+
+@dataclass
+class Section:
+    title: str
+    text: str = ""
+    tables: list[tuple[str, pd.DataFrame]] = field(default_factory=list)
+    images: list[tuple[str, Path]] = field(default_factory=list)
+
+
+def _read_json(p: Path) -> dict:
+    try:
+        return json.loads(p.read_text())
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        raise DataError(f"{p}: not valid JSON ({exc}); regenerate it") from None
+
+
+def _fmt(v) -> str:
+    if isinstance(v, float):
+        return f"{v:.4g}"
+    return str(v)
+
+
+def _flat_scalars(d: dict, prefix: str = "") -> dict:
+    """Flatten nested dicts of scalars into ``{"a.b": value}``."""
+    out = {}
+    for k, v in d.items():
+        key = f"{prefix}{k}"
+        if isinstance(v, dict):
+            out.update(_flat_scalars(v, key + "."))
+        elif isinstance(v, int | float | str | bool) or v is None:
+            out[key] = v
+    return out
+
+
+def _model_section(manifest: dict, root: Path) -> Section:
+    sec = Section("Model")
+    keys = ["user", "schema_version", "package_version", "created", "tasks", "units", "methods"]
+    info = {k: manifest[k] for k in keys if k in manifest}
+    sec.tables.append(("manifest", pd.DataFrame({"field": list(info), "value": [_fmt(v) for v in info.values()]})))
+    metrics = manifest.get("metrics") or manifest.get("cv_metrics") or {}
+    rows = [{"metric": k, "value": v} for k, v in _flat_scalars(metrics).items()]
+    if rows:
+        sec.tables.append(("cross-validation metrics", pd.DataFrame(rows)))
+    return sec
+
+
+def _evaluation_sections(ev: dict) -> list[Section]:
+    out = []
+    for task, d in (ev.get("tasks") or {}).items():
+        sec = Section(f"Evaluation — {task}")
+        head = {k: v for k, v in d.items() if not isinstance(v, dict | list)}
+        sec.text = ", ".join(f"{k} = {_fmt(v)}" for k, v in head.items())
+        methods = d.get("methods") or {}
+        rows = []
+        for m, md in methods.items():
+            row = {"method": m}
+            row.update({k: v for k, v in _flat_scalars(md).items()})
+            rows.append(row)
+        if rows:
+            sec.tables.append((f"{task}: accuracy per method", pd.DataFrame(rows)))
+        out.append(sec)
+    lat = ev.get("latency_ms")
+    if isinstance(lat, dict) and lat:
+        out.append(Section("Latency", tables=[("per-step latency (ms)",
+                                               pd.DataFrame([{"method": k, **(_flat_scalars(v) if isinstance(v, dict) else {"ms": v})}
+                                                             for k, v in lat.items()]))]))
+    return out
+
+
+def collect(source: str | os.PathLike) -> list[Section]:
+    """Gather report sections from a model directory or a results folder."""
+    root = Path(source)
+    if not root.exists():
+        raise DataError(f"{root}: not found; pass a model directory or a results folder")
+    if not root.is_dir():
+        raise DataError(f"{root}: not a folder; pass a model directory or a results folder")
+    sections: list[Section] = []
+    if (root / "manifest.json").exists():
+        sections.append(_model_section(_read_json(root / "manifest.json"), root))
+    for p in sorted(root.rglob("evaluation.json")):
+        sections.extend(_evaluation_sections(_read_json(p)))
+    for p in sorted(root.rglob("cohort_summary.csv")):
+        sections.append(Section(f"Cohort — {p.parent.name}", tables=[("per-user results", pd.read_csv(p))]))
+    tracks = sorted(root.rglob("summary.json"))
+    if tracks:
+        rows = []
+        for p in tracks:
+            d = _flat_scalars(_read_json(p))
+            rows.append({"run": str(p.parent.relative_to(root)) or ".", **d})
+        sections.append(Section("Tracking", tables=[("trajectory summaries", pd.DataFrame(rows))]))
+    images = sorted(root.rglob("*.png"))
+    if images:
+        by_kind: dict[str, list[Path]] = {}
+        for p in images:
+            name = p.stem.lower()
+            kind = ("Confusion matrices" if "confusion" in name else
+                    "Trajectories" if ("path" in name or "traj" in name) else
+                    "Step signals" if ("signal" in name or "class" in name) else
+                    "Latency" if "latency" in name else "Figures")
+            by_kind.setdefault(kind, []).append(p)
+        for kind, ps in by_kind.items():
+            sections.append(Section(kind, images=[(str(p.relative_to(root)), p) for p in ps]))
+    if not sections:
+        raise DataError(f"{root}: nothing to report (no manifest.json, evaluation.json, cohort_summary.csv, "
+                        "summary.json or PNG); run pdrlearn train/evaluate/track first")
+    return sections
+
+
+_CSS = """body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;color:#222}
+table{border-collapse:collapse;margin:.6em 0 1.4em}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}
+th{background:#f2f2f2}img{max-width:100%;border:1px solid #ddd;margin:4px 0}h2{border-bottom:2px solid #4a7;padding-bottom:2px}
+figure{margin:0 0 1em}figcaption{font-size:12px;color:#555}"""
+
+
+def _html(sections: list[Section], title: str) -> str:
+    parts = [f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{html.escape(title)}</title>"
+             f"<style>{_CSS}</style></head><body><h1>{html.escape(title)}</h1>"
+             f"<p>Generated {dt.datetime.now(dt.UTC).strftime('%Y-%m-%d %H:%M UTC')} by pdrlearn.</p>"]
+    for s in sections:
+        parts.append(f"<section><h2>{html.escape(s.title)}</h2>")
+        if s.text:
+            parts.append(f"<p>{html.escape(s.text)}</p>")
+        for caption, df in s.tables:
+            parts.append(f"<h3>{html.escape(caption)}</h3>")
+            parts.append(df.to_html(index=False, float_format=lambda v: f"{v:.4g}", border=0, na_rep="—"))
+        for caption, p in s.images:
+            b64 = base64.b64encode(p.read_bytes()).decode()
+            parts.append(f"<figure><img alt='{html.escape(caption)}' src='data:image/png;base64,{b64}'>"
+                         f"<figcaption>{html.escape(caption)}</figcaption></figure>")
+        parts.append("</section>")
+    parts.append("</body></html>")
+    return "\n".join(parts)
+
+
+def _markdown(sections: list[Section], title: str, image_names: dict[Path, str]) -> str:
+    lines = [f"# {title}", ""]
+    for s in sections:
+        lines += [f"## {s.title}", ""]
+        if s.text:
+            lines += [s.text, ""]
+        for caption, df in s.tables:
+            lines += [f"**{caption}**", "", df.to_markdown(index=False, floatfmt=".4g"), ""]
+        for caption, p in s.images:
+            lines += [f"![{caption}]({image_names[p]})", ""]
+    return "\n".join(lines)
+
+
+def build_report(source: str | os.PathLike, out: str | os.PathLike, *, title: str | None = None) -> Path:
+    """Write ``out/index.html`` (self-contained) and ``out/report.md`` (+ images); atomic. Returns ``out``."""
+    sections = collect(source)
+    out = Path(out)
+    if out.exists() and any(out.iterdir()) and not (out / "index.html").exists():
+        raise DataError(f"{out}: exists and is not a report folder; choose another --out")
+    title = title or f"pdrlearn report — {Path(source).resolve().name}"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
+    try:
+        names: dict[Path, str] = {}
+        (tmp / "img").mkdir()
+        for s in sections:
+            for _, p in s.images:
+                name = f"img/{len(names):03d}_{p.name}"
+                shutil.copyfile(p, tmp / name)
+                names[p] = name
+        (tmp / "index.html").write_text(_html(sections, title))
+        (tmp / "report.md").write_text(_markdown(sections, title, names))
+        if out.exists():
+            shutil.rmtree(out)
+        os.replace(tmp, out)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    return out
