@@ -1,0 +1,305 @@
+"""Absolute position fixes: the fix table, NMEA 0183 (GGA/RMC) and CSV readers.
+
+A *fix table* is a pandas DataFrame with one row per fix:
+
+``t`` (s, session clock), ``accuracy_m`` (m, reported horizontal accuracy: the radius that holds the true
+position with 68 % probability, the Android convention), and ``lat``/``lon`` (degrees, WGS-84) and/or
+``x``/``y`` (m, local ENU: east, north). :func:`to_local` adds ``x``/``y`` from ``lat``/``lon``.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.aid.geo import geodetic_to_enu
+from pdrlearn.errors import DataError
+
+log = logging.getLogger(__name__)
+
+#: Horizontal 68 % radius -> per-axis standard deviation: for a circular Gaussian, P(r <= 1.51 s) = 0.68.
+RADIUS68_PER_SIGMA = math.sqrt(-2.0 * math.log(1.0 - 0.68))
+#: User-equivalent range error (m) turning a GGA HDOP into an accuracy (decision, docs/decisions/aided.md).
+DEFAULT_UERE_M = 4.0
+#: Accuracy (m) given to an RMC fix that has no HDOP (no GGA at the same epoch).
+DEFAULT_RMC_ACCURACY_M = 10.0
+
+
+@dataclass
+class FixLog:
+    """Fixes read from a file plus what was skipped.
+
+    Attributes
+    ----------
+    fixes : the fix table (see module docstring), sorted by ``t``
+    stats : counters: ``lines``, ``sentences``, ``used``, ``bad_checksum``, ``empty`` (no position / invalid
+        status), ``malformed``, ``unsupported`` (other sentence types)
+    source : file the fixes came from
+    """
+
+    fixes: pd.DataFrame
+    stats: dict = field(default_factory=dict)
+    source: str = ""
+
+    def __len__(self) -> int:
+        return len(self.fixes)
+
+
+def sigma_from_accuracy(accuracy_m) -> np.ndarray:
+    """Per-axis standard deviation (m) of a fix whose reported 68 % horizontal radius is ``accuracy_m``."""
+    return np.asarray(accuracy_m, dtype=float) / RADIUS68_PER_SIGMA
+
+
+# -- NMEA 0183 ------------------------------------------------------------------------------------------
+def nmea_checksum(body: str) -> int:
+    """XOR of the characters between ``$`` and ``*`` (NMEA 0183)."""
+    c = 0
+    for ch in body:
+        c ^= ord(ch)
+    return c
+
+
+def _nmea_coord(value: str, hemi: str, deg_digits: int) -> float:
+    if not value or not hemi:
+        raise ValueError("empty coordinate")
+    deg = float(value[:deg_digits])
+    minutes = float(value[deg_digits:])
+    if minutes >= 60.0:
+        raise ValueError("minutes >= 60")
+    out = deg + minutes / 60.0
+    if hemi in ("S", "W"):
+        out = -out
+    elif hemi not in ("N", "E"):
+        raise ValueError(f"bad hemisphere {hemi!r}")
+    return out
+
+
+def _nmea_time(value: str) -> float:
+    if len(value) < 6:
+        raise ValueError("short time")
+    h, m, s = int(value[0:2]), int(value[2:4]), float(value[4:])
+    if h > 23 or m > 59 or s >= 61:
+        raise ValueError("bad time")
+    return h * 3600.0 + m * 60.0 + s
+
+
+def parse_nmea_lines(
+    lines,
+    *,
+    uere_m: float = DEFAULT_UERE_M,
+    rmc_accuracy_m: float = DEFAULT_RMC_ACCURACY_M,
+    t0_s: float = 0.0,
+    source: str = "<nmea>",
+) -> FixLog:
+    """Parse NMEA 0183 text lines into a :class:`FixLog`; never raises on a bad sentence.
+
+    Parameters
+    ----------
+    lines : iterable of str
+    uere_m : user-equivalent range error (m); accuracy = HDOP * ``uere_m`` for GGA fixes.
+    rmc_accuracy_m : accuracy (m) of an RMC fix without a GGA at the same epoch.
+    t0_s : session-clock time (s) given to the first valid fix; later fixes follow their UTC times.
+
+    Notes
+    -----
+    GGA and RMC of the same UTC epoch merge into one fix (GGA position and HDOP). Sentences with a wrong
+    or missing checksum, an invalid status (RMC ``V``, GGA quality 0) or empty position fields are skipped
+    and counted in ``stats``.
+    """
+    stats = dict(lines=0, sentences=0, used=0, bad_checksum=0, empty=0, malformed=0, unsupported=0)
+    epochs: dict[float, dict] = {}
+    order: list[float] = []
+    last_tod = None
+    rollover = 0.0
+    for raw in lines:
+        stats["lines"] += 1
+        line = raw.strip()
+        i = line.find("$")
+        if i < 0:
+            continue
+        line = line[i + 1 :]
+        stats["sentences"] += 1
+        if "*" not in line:
+            stats["bad_checksum"] += 1
+            continue
+        body, _, cks = line.partition("*")
+        try:
+            ok = int(cks[:2], 16) == nmea_checksum(body)
+        except ValueError:
+            ok = False
+        if not ok:
+            stats["bad_checksum"] += 1
+            continue
+        f = body.split(",")
+        kind = f[0][-3:]
+        if kind not in ("GGA", "RMC"):
+            stats["unsupported"] += 1
+            continue
+        try:
+            if kind == "GGA":
+                if len(f) < 9:
+                    raise ValueError("short GGA")
+                if not f[2] or not f[4] or f[6] in ("", "0"):
+                    stats["empty"] += 1
+                    continue
+                tod = _nmea_time(f[1])
+                lat, lon = _nmea_coord(f[2], f[3], 2), _nmea_coord(f[4], f[5], 3)
+                hdop = float(f[8]) if f[8] else float("nan")
+                rec = dict(lat=lat, lon=lon, accuracy_m=hdop * uere_m if hdop > 0 else float("nan"))
+            else:
+                if len(f) < 10:
+                    raise ValueError("short RMC")
+                if f[2] != "A" or not f[3] or not f[5]:
+                    stats["empty"] += 1
+                    continue
+                tod = _nmea_time(f[1])
+                lat, lon = _nmea_coord(f[3], f[4], 2), _nmea_coord(f[5], f[6], 3)
+                rec = dict(lat=lat, lon=lon, rmc=True)
+        except (ValueError, IndexError):
+            stats["malformed"] += 1
+            continue
+        if not (abs(lat) <= 90.0 and abs(lon) <= 180.0):
+            stats["malformed"] += 1
+            continue
+        # time of day -> continuous seconds (midnight rollover when the time jumps back by > 12 h)
+        if last_tod is not None and tod < last_tod - 43200.0:
+            rollover += 86400.0
+        last_tod = tod
+        key = round(tod + rollover, 3)
+        if key not in epochs:
+            epochs[key] = {}
+            order.append(key)
+        e = epochs[key]
+        if kind == "GGA" or "lat" not in e:
+            keep_acc = e.get("accuracy_m")
+            e.update(rec)
+            if kind == "RMC" and keep_acc is not None:
+                e["accuracy_m"] = keep_acc
+        if kind == "RMC":
+            e["rmc"] = True
+    rows = []
+    for k in order:
+        e = epochs[k]
+        acc = e.get("accuracy_m", float("nan"))
+        if not np.isfinite(acc):
+            acc = rmc_accuracy_m
+        rows.append((k, e["lat"], e["lon"], acc))
+    df = pd.DataFrame(rows, columns=["tabs", "lat", "lon", "accuracy_m"])
+    if len(df):
+        df = df.sort_values("tabs", kind="stable")
+        df.insert(0, "t", df["tabs"] - df["tabs"].iloc[0] + t0_s)
+        df = df.drop(columns="tabs").reset_index(drop=True)
+    else:
+        df = pd.DataFrame(columns=["t", "lat", "lon", "accuracy_m"], dtype=float)
+    stats["used"] = int(len(df))
+    skipped = stats["bad_checksum"] + stats["empty"] + stats["malformed"]
+    if skipped:
+        log.info(
+            "%s: skipped %d sentence(s) (%d bad checksum, %d empty fix, %d malformed)",
+            source,
+            skipped,
+            stats["bad_checksum"],
+            stats["empty"],
+            stats["malformed"],
+        )
+    return FixLog(df, stats, source)
+
+
+def read_nmea(path, **kwargs) -> FixLog:
+    """Read an NMEA 0183 log (GGA/RMC); see :func:`parse_nmea_lines` for the options."""
+    path = Path(path)
+    if not path.is_file():
+        raise DataError(f"{path}: no such NMEA file; pass the path of a .nmea/.txt log")
+    with open(path, encoding="ascii", errors="replace") as fh:
+        out = parse_nmea_lines(fh, source=str(path), **kwargs)
+    if not len(out):
+        raise DataError(
+            f"{path}: no valid GGA/RMC fix in {out.stats['sentences']} sentence(s) "
+            f"({out.stats['bad_checksum']} bad checksum, {out.stats['empty']} empty); "
+            "check that the file is an NMEA 0183 log with a position fix"
+        )
+    return out
+
+
+# -- CSV ---------------------------------------------------------------------------------------------
+def validate_fix_table(df: pd.DataFrame, source: str = "fix table") -> pd.DataFrame:
+    """Check a fix table (columns, finiteness, positive accuracy); return it sorted by ``t``."""
+    cols = set(df.columns)
+    has_geo, has_xy = {"lat", "lon"} <= cols, {"x", "y"} <= cols
+    missing = [c for c in ("t", "accuracy_m") if c not in cols]
+    if missing or not (has_geo or has_xy):
+        need = missing + ([] if has_geo or has_xy else ["lat+lon (or x+y)"])
+        raise DataError(
+            f"{source}: missing column(s) {', '.join(need)}; a fix CSV needs t, lat, lon, "
+            f"accuracy_m (or t, x, y, accuracy_m); it has: {', '.join(map(str, df.columns))}"
+        )
+    use = ["t", "accuracy_m"] + (["lat", "lon"] if has_geo else []) + (["x", "y"] if has_xy else [])
+    try:
+        vals = df[use].astype(float)
+    except (TypeError, ValueError):
+        raise DataError(
+            f"{source}: non-numeric values in {', '.join(use)}; fix or remove those rows"
+        ) from None
+    bad = ~np.isfinite(vals.to_numpy()).all(axis=1)
+    if bad.any():
+        row = int(np.flatnonzero(bad)[0])
+        raise DataError(
+            f"{source}: {int(bad.sum())} row(s) with NaN/inf (first: data row {row + 1}); "
+            "drop fixes without a position or accuracy"
+        )
+    if (vals["accuracy_m"] <= 0).any():
+        raise DataError(
+            f"{source}: accuracy_m must be > 0 m (a 68 % radius); found {float(vals['accuracy_m'].min())}"
+        )
+    if has_geo and ((vals["lat"].abs() > 90) | (vals["lon"].abs() > 180)).any():
+        raise DataError(f"{source}: lat/lon out of range; give degrees (WGS-84), not radians or metres")
+    out = df.copy()
+    out[use] = vals
+    return out.sort_values("t", kind="stable").reset_index(drop=True)
+
+
+def read_fix_csv(path) -> FixLog:
+    """Read a fix CSV with columns ``t, lat, lon, accuracy_m`` (or ``t, x, y, accuracy_m``)."""
+    path = Path(path)
+    if not path.is_file():
+        raise DataError(f"{path}: no such fix CSV; pass a file with columns t, lat, lon, accuracy_m")
+    try:
+        df = pd.read_csv(path)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
+        raise DataError(
+            f"{path}: not a readable CSV ({type(exc).__name__}); expected columns t, lat, lon, accuracy_m"
+        ) from None
+    df.columns = [str(c).strip() for c in df.columns]
+    if not len(df):
+        raise DataError(f"{path}: no fixes (empty table)")
+    df = validate_fix_table(df, str(path))
+    return FixLog(df, {"lines": int(len(df)), "used": int(len(df))}, str(path))
+
+
+def read_fixes(path, **nmea_options) -> FixLog:
+    """Read fixes from ``.csv`` (CSV reader) or anything else (NMEA 0183 reader)."""
+    path = Path(path)
+    if path.suffix.lower() == ".csv":
+        return read_fix_csv(path)
+    return read_nmea(path, **nmea_options)
+
+
+def to_local(fixes: pd.DataFrame, origin: tuple[float, float] | None = None) -> tuple[pd.DataFrame, tuple]:
+    """Return the fix table with ``x``/``y`` (m, ENU) and the origin used.
+
+    Fixes that already carry ``x``/``y`` are returned unchanged. Otherwise ``lat``/``lon`` are projected on
+    the tangent plane at ``origin`` (lat, lon in degrees); by default the first fix.
+    """
+    if {"x", "y"} <= set(fixes.columns):
+        return fixes, origin
+    if not len(fixes):
+        return fixes.assign(x=np.zeros(0), y=np.zeros(0)), origin
+    if origin is None:
+        origin = (float(fixes["lat"].iloc[0]), float(fixes["lon"].iloc[0]))
+    x, y = geodetic_to_enu(fixes["lat"].to_numpy(), fixes["lon"].to_numpy(), *origin)
+    return fixes.assign(x=x, y=y), origin
