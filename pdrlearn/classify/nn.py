@@ -1,0 +1,159 @@
+"""A one-hidden-layer neural network (torch) behind the scikit-learn protocol (thesis ch. 6.1.1.2, 6.2.1.2,
+6.3.1.2).
+
+Training runs in torch (CPU, one thread, seeded); the fitted weights are kept as numpy arrays so that
+prediction is a tiny pure-numpy kernel (fast per step, picklable, and easy to export to ONNX later).
+"""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+from scipy.special import softmax
+from sklearn.base import BaseEstimator, ClassifierMixin
+from sklearn.model_selection import train_test_split
+from sklearn.utils.multiclass import check_classification_targets
+from sklearn.utils.validation import check_is_fitted, validate_data
+
+from pdrlearn.errors import DataError
+
+log = logging.getLogger(__name__)
+
+#: Hidden neurons per task: terrain 144 (thesis ch. 6.1.1.2), direction 10 (thesis ch. 6.2.1.2),
+#: length 60 (thesis ch. 6.3.1.2).
+THESIS_HIDDEN = {"terrain": 144, "direction": 10, "length": 60}
+#: Learning rate of every network (thesis ch. 6.1.1.2, 6.2.1.2, 6.3.1.2).
+THESIS_LEARNING_RATE = 0.01
+DEFAULT_HIDDEN = 32
+
+
+def mlp_forward(X: np.ndarray, W1: np.ndarray, b1: np.ndarray, W2: np.ndarray, b2: np.ndarray) -> np.ndarray:
+    """Logits of a tanh one-hidden-layer network: ``tanh(X W1 + b1) W2 + b2`` -> ``(n, n_classes)``."""
+    return np.tanh(X @ W1 + b1) @ W2 + b2
+
+
+def train_mlp(X: np.ndarray, y: np.ndarray, n_classes: int, *, hidden: int, lr: float, max_epochs: int,
+              patience: int, X_val: np.ndarray | None, y_val: np.ndarray | None, weight_decay: float,
+              seed: int) -> tuple[list[np.ndarray], int]:
+    """Full-batch Adam training of a tanh MLP with early stopping on the validation loss.
+
+    Returns the best weights ``[W1, b1, W2, b2]`` (numpy, ``W`` as ``(in, out)``) and the best epoch.
+    """
+    import torch
+
+    threads = torch.get_num_threads()
+    torch.set_num_threads(1)  # tiny networks: thread start-up costs more than it saves
+    try:
+        with torch.random.fork_rng(devices=[]):
+            torch.manual_seed(seed)
+            net = torch.nn.Sequential(torch.nn.Linear(X.shape[1], hidden), torch.nn.Tanh(),
+                                      torch.nn.Linear(hidden, n_classes))
+            opt = torch.optim.Adam(net.parameters(), lr=lr, weight_decay=weight_decay)
+            loss_fn = torch.nn.CrossEntropyLoss()
+            xt, yt = torch.as_tensor(X, dtype=torch.float32), torch.as_tensor(y, dtype=torch.long)
+            has_val = X_val is not None and len(X_val) > 0
+            if has_val:
+                xv, yv = torch.as_tensor(X_val, dtype=torch.float32), torch.as_tensor(y_val, dtype=torch.long)
+            best, best_epoch, best_state, stale = np.inf, 0, None, 0
+            for epoch in range(1, max_epochs + 1):
+                opt.zero_grad()
+                loss = loss_fn(net(xt), yt)
+                loss.backward()
+                opt.step()
+                with torch.no_grad():
+                    monitor = float(loss_fn(net(xv), yv)) if has_val else float(loss)
+                if monitor < best - 1e-6:
+                    best, best_epoch, stale = monitor, epoch, 0
+                    best_state = [p.detach().clone() for p in net.parameters()]
+                else:
+                    stale += 1
+                    if stale >= patience:
+                        break
+            params = best_state if best_state is not None else [p.detach() for p in net.parameters()]
+    finally:
+        torch.set_num_threads(threads)
+    W1, b1, W2, b2 = (p.numpy().astype(np.float64) for p in params)
+    return [W1.T.copy(), b1, W2.T.copy(), b2], best_epoch
+
+
+class NNClassifier(ClassifierMixin, BaseEstimator):
+    """Small torch MLP classifier (one tanh hidden layer, softmax output).
+
+    Parameters
+    ----------
+    task : ``"terrain"`` / ``"direction"`` / ``"length"`` picks the thesis hidden size
+        (:data:`THESIS_HIDDEN`); ``None`` uses ``hidden`` or 32.
+    hidden : hidden neurons (overrides the task's size).
+    learning_rate : Adam step size (0.01, thesis ch. 6.1.1.2).
+    max_epochs : upper bound of full-batch epochs.
+    validation_fraction : share of the training steps held out (stratified) for early stopping;
+        0 trains on the training loss alone.
+    patience : epochs without validation improvement before stopping (the best epoch is kept).
+    weight_decay : L2 penalty of Adam.
+    random_state : seed of the split and the weight initialisation (same seed -> same network).
+
+    Attributes
+    ----------
+    classes_, coefs_ (``[W1, W2]``), intercepts_ (``[b1, b2]``), mean_, scale_ (input standardization),
+    n_epochs_ (best epoch).
+    """
+
+    def __init__(self, *, task: str | None = None, hidden: int | None = None,
+                 learning_rate: float = THESIS_LEARNING_RATE, max_epochs: int = 300,
+                 validation_fraction: float = 0.15, patience: int = 25, weight_decay: float = 1e-4,
+                 random_state: int | None = 0):
+        self.task = task
+        self.hidden = hidden
+        self.learning_rate = learning_rate
+        self.max_epochs = max_epochs
+        self.validation_fraction = validation_fraction
+        self.patience = patience
+        self.weight_decay = weight_decay
+        self.random_state = random_state
+
+    def _hidden(self) -> int:
+        if self.hidden is not None:
+            return int(self.hidden)
+        return THESIS_HIDDEN.get(self.task or "", DEFAULT_HIDDEN)
+
+    def fit(self, X, y):
+        X, y = validate_data(self, X, y, dtype=np.float64)
+        check_classification_targets(y)
+        self.classes_, yi = np.unique(y, return_inverse=True)
+        if len(self.classes_) < 2:
+            raise DataError(f"NNClassifier: only one class ({self.classes_[0]!r}); "
+                            "label steps of at least 2 classes")
+        self.mean_ = X.mean(axis=0)
+        std = X.std(axis=0)
+        self.scale_ = np.where(std > 0, std, 1.0)
+        Z = (X - self.mean_) / self.scale_
+        seed = 0 if self.random_state is None else int(self.random_state)
+        Xt, yt, Xv, yv = Z, yi, None, None
+        n_val = int(round(self.validation_fraction * len(Z)))
+        if n_val >= len(self.classes_) and len(Z) - n_val >= len(self.classes_):
+            counts = np.bincount(yi)
+            strat = yi if counts.min() >= 2 else None
+            Xt, Xv, yt, yv = train_test_split(Z, yi, test_size=n_val, stratify=strat, random_state=seed)
+        weights, self.n_epochs_ = train_mlp(
+            Xt, yt, len(self.classes_), hidden=self._hidden(), lr=self.learning_rate,
+            max_epochs=self.max_epochs, patience=self.patience, X_val=Xv, y_val=yv,
+            weight_decay=self.weight_decay, seed=seed)
+        self.coefs_ = [weights[0], weights[2]]
+        self.intercepts_ = [weights[1], weights[3]]
+        log.debug("NN: %d hidden, best epoch %d", self._hidden(), self.n_epochs_)
+        return self
+
+    def _logits(self, X) -> np.ndarray:
+        check_is_fitted(self)
+        X = validate_data(self, X, reset=False, dtype=np.float64)
+        Z = (X - self.mean_) / self.scale_
+        return mlp_forward(Z, self.coefs_[0], self.intercepts_[0], self.coefs_[1], self.intercepts_[1])
+
+    def predict_proba(self, X) -> np.ndarray:
+        """Softmax outputs ``(n, n_classes)``."""
+        return softmax(self._logits(X), axis=1)
+
+    def predict(self, X) -> np.ndarray:
+        logits = self._logits(X)
+        return self.classes_[np.argmax(logits, axis=1)]

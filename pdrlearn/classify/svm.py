@@ -1,0 +1,104 @@
+"""One-vs-rest support vector machines with the thesis kernels per task (thesis ch. 6.1.1.1, 6.2.1.1,
+6.3.1.1).
+
+Each class gets its own binary SVM (positive = that class) with its own kernel; a step goes to the class
+whose model gives the highest decision score (thesis ch. 6.1.1.1, "the index of the element with the
+highest score"). Features are standardized first (scikit-learn Pipeline).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import softmax
+from sklearn.base import BaseEstimator, ClassifierMixin, clone
+from sklearn.pipeline import make_pipeline
+from sklearn.preprocessing import StandardScaler
+from sklearn.svm import SVC
+from sklearn.utils.multiclass import check_classification_targets
+from sklearn.utils.validation import check_is_fitted, validate_data
+
+from pdrlearn.errors import DataError
+
+#: Kernel per class and task. Terrain: three one-vs-rest 3rd-order polynomial models (thesis ch. 6.1.1.1);
+#: direction: linear (thesis ch. 6.2.1.1); length: short rbf with automatic scale, normal 2nd-order
+#: polynomial, long linear (thesis ch. 6.3.1.1).
+THESIS_KERNELS: dict[str, dict[str, dict]] = {
+    "terrain": {c: {"kernel": "poly", "degree": 3} for c in ("flat", "up", "down")},
+    "direction": {c: {"kernel": "linear"} for c in ("forward", "backward")},
+    "length": {"short": {"kernel": "rbf"}, "normal": {"kernel": "poly", "degree": 2},
+               "long": {"kernel": "linear"}},
+}
+#: Kernel of a class the table does not name (and of every class when ``task`` is None).
+DEFAULT_KERNEL = {"kernel": "rbf"}
+
+
+def kernel_for(task: str | None, label) -> dict:
+    """SVC keyword arguments of the one-vs-rest model of ``label`` in ``task``."""
+    return dict(THESIS_KERNELS.get(task or "", {}).get(str(label), DEFAULT_KERNEL))
+
+
+class SVMClassifier(ClassifierMixin, BaseEstimator):
+    """One-vs-rest SVMs with per-class kernels behind one scikit-learn estimator.
+
+    Parameters
+    ----------
+    task : ``"terrain"``, ``"direction"``, ``"length"`` or ``None`` (rbf for every class).
+    C : soft-margin penalty of every binary model.
+    coef0 : independent term of the polynomial kernels; 1.0 gives MATLAB's ``(1 + x'y)^p`` form (decision
+        in docs/decisions/classifiers.md).
+    class_weight : ``"balanced"`` (each binary SVC balances its positive class against the rest), ``None``,
+        or a dict label -> weight applied as per-step weights.
+
+    Attributes
+    ----------
+    classes_ : labels; estimators_ : one fitted ``StandardScaler -> SVC`` pipeline per class;
+    kernels_ : the kernel settings used per class.
+    """
+
+    def __init__(self, *, task: str | None = None, C: float = 1.0, coef0: float = 1.0,
+                 class_weight: str | dict | None = "balanced"):
+        self.task = task
+        self.C = C
+        self.coef0 = coef0
+        self.class_weight = class_weight
+
+    def fit(self, X, y):
+        X, y = validate_data(self, X, y, dtype=np.float64)
+        check_classification_targets(y)
+        self.classes_ = np.unique(y)
+        if len(self.classes_) < 2:
+            raise DataError(f"SVMClassifier: only one class ({self.classes_[0]!r}); "
+                            "label steps of at least 2 classes")
+        sample_weight = None
+        if isinstance(self.class_weight, dict):  # per original class -> per step
+            sample_weight = np.array([self.class_weight.get(v, 1.0) for v in y], dtype=float)
+        binary_weight = self.class_weight if self.class_weight == "balanced" else None
+        self.kernels_ = {}
+        self.estimators_ = []
+        for c in self.classes_:  # one model per class, also for 2 classes (symmetric scores)
+            kw = kernel_for(self.task, c)
+            self.kernels_[str(c)] = kw
+            svc = SVC(C=self.C, coef0=self.coef0, gamma="scale", class_weight=binary_weight, **kw)
+            model = clone(make_pipeline(StandardScaler(), svc))
+            model.fit(X, (y == c).astype(int), svc__sample_weight=sample_weight)
+            self.estimators_.append(model)
+        return self
+
+    def decision_function(self, X) -> np.ndarray:
+        """One-vs-rest scores ``(n, n_classes)`` (for 2 classes, the score of ``classes_[1]``)."""
+        scores = self._scores(X)
+        return scores[:, 1] - scores[:, 0] if len(self.classes_) == 2 else scores
+
+    def _scores(self, X) -> np.ndarray:
+        check_is_fitted(self)
+        X = validate_data(self, X, reset=False, dtype=np.float64)
+        return np.column_stack([m.decision_function(X) for m in self.estimators_])
+
+    def predict(self, X) -> np.ndarray:
+        """Class of the model with the highest score (thesis ch. 6.1.1.1)."""
+        scores = self._scores(X)
+        return self.classes_[np.argmax(scores, axis=1)]
+
+    def predict_proba(self, X) -> np.ndarray:
+        """Softmax of the one-vs-rest scores (a confidence, not a calibrated probability)."""
+        return softmax(self._scores(X), axis=1)
