@@ -1,0 +1,310 @@
+"""Fixed-length step windows in a gravity-aligned, heading-aligned frame.
+
+:func:`step_windows` cuts every step of a steps table (``start_s``/``end_s``, labels or detector output)
+out of a :class:`~pdrlearn.io.Session`, rotates each unit's signals into the step's levelled frame and
+resamples each step to ``n_samples`` points. The result :class:`StepWindows` holds
+``X (n_steps, n_channels, n_samples)`` with the fixed channel layout :data:`CHANNELS`; channels of a
+sensor the session lacks are NaN (see ``available``).
+
+Step frame (right-handed): x = forward horizontal (direction of the step's line, toes side),
+y = left horizontal, z = up. See docs/features.md for the construction; summary:
+
+- foot: tilt from the rest specific force at the stance sample nearest the window's start
+  (:func:`pdrlearn.signal.gravity_rotation`), attitude propagated with the gyroscope through the swing,
+  the residual tilt seen at the stance near the window's end spread linearly over the step; forward =
+  principal horizontal axis of the step's acceleration, signed by the sensor's declared forward axis
+  (``session.frames["foot"]``) - so the features do not depend on the mounting pitch/roll/yaw.
+- waist: tilt from the mean specific force over the step (the pelvis never rests during walking),
+  forward = declared forward axis of the unit projected on the horizontal plane.
+- Vertical accelerations are specific force minus the rest |g| measured in the same window
+  (gravity removed, m/s^2; + = up); ``foot_acc_norm`` keeps gravity (|specific force|, m/s^2).
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+from pdrlearn.features import _kernels as K
+from pdrlearn.io.session import Session, Stream
+from pdrlearn.signal import gravity_rotation
+
+log = logging.getLogger(__name__)
+
+#: Sensor groups and their channels, in the order of :data:`CHANNELS` (after ``t_s``).
+GROUPS: dict[str, tuple[str, ...]] = {
+    "foot_acc": ("foot_acc_x", "foot_acc_y", "foot_acc_z", "foot_acc_norm"),  # m/s^2, z gravity removed
+    "foot_gyr": ("foot_gyr_x", "foot_gyr_y", "foot_gyr_z"),  # rad/s about forward/left/up
+    "force": ("force_a", "force_b"),  # heel (fForceA), toe (fForceB); sensor units (N or normalised)
+    "waist_acc": ("waist_acc_x", "waist_acc_y", "waist_acc_z"),  # m/s^2, z gravity removed
+    "waist_gyr": ("waist_gyr_x", "waist_gyr_y", "waist_gyr_z"),  # rad/s about forward/left/up
+    "waist_baro": ("waist_baro",),  # hPa relative to the step's first sample
+}
+
+#: Fixed channel layout of :attr:`StepWindows.X` (axis 1). ``t_s`` = time since the step start (s).
+CHANNELS: tuple[str, ...] = ("t_s",) + tuple(c for group in GROUPS.values() for c in group)
+CHANNEL_INDEX: dict[str, int] = {c: i for i, c in enumerate(CHANNELS)}
+
+#: Source streams of each sensor group.
+GROUP_STREAMS: dict[str, tuple[str, ...]] = {
+    "foot_acc": ("fAccelerometer",),
+    "foot_gyr": ("fGyroscope",),
+    "force": ("fForceA", "fForceB"),
+    "waist_acc": ("wAccelerometer",),
+    "waist_gyr": ("wGyroscope",),
+    "waist_baro": ("wBarometer",),
+}
+
+#: Classes of each task (thesis ch. 6.1-6.3) and the steps-table column holding them.
+TASK_CLASSES: dict[str, tuple[str, ...]] = {
+    "terrain": ("flat", "up", "down"),
+    "direction": ("forward", "backward"),
+    "length": ("short", "normal", "long"),
+}
+TASK_COLUMNS: dict[str, str] = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
+
+
+@dataclass
+class StepWindows:
+    """Fixed-length step windows.
+
+    Attributes
+    ----------
+    X : (n_steps, len(CHANNELS), n_samples) float64; channel ``t_s`` is the time since the step start (s)
+    durations_s : (n_steps,) step durations (s)
+    channels : the channel names (= :data:`CHANNELS`)
+    available : sensor groups (keys of :data:`GROUPS`) the session has; the others are NaN
+    steps : the steps table the windows were cut from (index reset)
+    session : name of the source session
+    """
+
+    X: np.ndarray
+    durations_s: np.ndarray
+    channels: tuple[str, ...] = CHANNELS
+    available: tuple[str, ...] = ()
+    steps: pd.DataFrame = field(default_factory=pd.DataFrame)
+    session: str = ""
+
+    def __len__(self) -> int:
+        return int(self.X.shape[0])
+
+    def channel(self, name: str) -> np.ndarray:
+        """Signal of one channel, (n_steps, n_samples)."""
+        return self.X[:, CHANNEL_INDEX[name], :]
+
+    def labels(self, task: str) -> tuple[np.ndarray, np.ndarray]:
+        """``(y, keep)`` for ``task``: see :func:`task_labels`."""
+        y, keep, _ = task_labels(self.steps, task, source=self.session)
+        return y, keep
+
+    def subset(self, mask: np.ndarray) -> StepWindows:
+        """Windows of the selected steps (boolean mask or index array)."""
+        return StepWindows(self.X[mask], self.durations_s[mask], self.channels, self.available,
+                           self.steps[mask].reset_index(drop=True) if len(self.steps) else self.steps,
+                           self.session)
+
+
+def task_labels(steps: pd.DataFrame, task: str, *,
+                source: str = "steps table") -> tuple[np.ndarray, np.ndarray, int]:
+    """Labels of ``task`` and which rows to keep.
+
+    Rows whose label is missing or not one of ``TASK_CLASSES[task]`` (e.g. ``unclear``) are skipped
+    and counted, not errors.
+
+    Returns
+    -------
+    y : (n_kept,) object array of class names
+    keep : (n_rows,) boolean mask of the kept rows
+    n_skipped : number of labelled rows skipped because their value is not a class of the task
+    """
+    if task not in TASK_CLASSES:
+        raise DataError(f"unknown task '{task}'; choose one of {', '.join(TASK_CLASSES)}")
+    col = TASK_COLUMNS[task]
+    if steps is None or col not in steps:
+        raise DataError(f"{source}: has no '{col}' column, so task '{task}' has no labels; "
+                        "label the steps or choose another task")
+    vals = steps[col]
+    keep = vals.isin(TASK_CLASSES[task]).to_numpy()
+    n_skipped = int((vals.notna() & ~vals.isin(TASK_CLASSES[task])).sum())
+    if n_skipped:
+        others = sorted(set(vals[vals.notna() & ~vals.isin(TASK_CLASSES[task])].astype(str)))
+        log.info("%s: skipped %d rows with %s values %s", source, n_skipped, col, others)
+    return vals[keep].to_numpy(dtype=object), keep, n_skipped
+
+
+# -- frames ---------------------------------------------------------------------------------------
+
+
+def _declared_forward(session: Session, placement: str) -> np.ndarray:
+    frame = session.frames.get(placement)
+    if frame is None:
+        raise DataError(
+            f"session '{session.name}' declares no axis frame for the {placement} unit; add "
+            f"'frames': {{'{placement}': {{'x': ..., 'y': ..., 'z': ...}}}} to its meta.json"
+        )
+    return frame.matrix().T @ np.array([1.0, 0.0, 0.0])  # sensor vector pointing body-forward
+
+
+def _segment(stream: Stream, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
+    """Samples covering [t0, t1] plus one sample on each side (for interpolation at the edges)."""
+    i0 = max(int(np.searchsorted(stream.t, t0, side="right")) - 1, 0)
+    i1 = min(int(np.searchsorted(stream.t, t1, side="left")) + 1, len(stream))
+    return stream.t[i0:i1], stream.values[i0:i1]
+
+
+def _interp(t_new: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
+    return np.stack([np.interp(t_new, t, v[:, j]) for j in range(v.shape[1])], axis=0)
+
+
+def _foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
+                   rest_search_s: float, heading: str) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
+    """Foot acc (n, 3; gravity removed), gyro (n, 3) in the step frame, and |acc| (n,)."""
+    n = acc.shape[0]
+    fs = 1.0 / float(np.median(np.diff(t))) if n > 1 else 1.0
+    m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
+    k0 = K.rest_index(acc, gyr, 0, m)
+    k1 = K.rest_index(acc, gyr, n - m, n)
+    h = max(0, int(round(0.02 * fs)))
+    g0 = acc[max(k0 - h, 0): k0 + h + 1].mean(axis=0)
+    g1 = acc[max(k1 - h, 0): k1 + h + 1].mean(axis=0)
+    r0 = gravity_rotation(g0)
+    if gyr is not None:
+        rot = K.propagate_attitude(gyr, np.diff(t), k0, r0)
+        rot = K.correct_tilt_drift(rot, g1, k0, k1)
+    else:
+        rot = np.broadcast_to(r0, (n, 3, 3))
+    a_lev = np.einsum("kij,kj->ki", rot, acc)
+    a_lev[:, 2] -= float(np.linalg.norm(g0))
+    ref = (rot[k0] @ forward_s)[:2]
+    if np.linalg.norm(ref) < 0.1:
+        raise DataError("foot unit: the declared forward axis points (nearly) vertically at rest; "
+                        "check the foot frame in meta.json")
+    ref = ref / np.linalg.norm(ref)
+    fwd = K.principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref
+    yaw = K.heading_rotation(fwd)
+    a_out = a_lev @ yaw.T
+    g_out = None if gyr is None else np.einsum("kij,kj->ki", rot, gyr) @ yaw.T
+    return a_out, g_out, np.linalg.norm(acc, axis=1)
+
+
+def _waist_levelled(acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray | None]:
+    g = acc.mean(axis=0)
+    r = gravity_rotation(g)
+    ref = (r @ forward_s)[:2]
+    if np.linalg.norm(ref) < 0.1:
+        raise DataError("waist unit: the declared forward axis points (nearly) vertically; "
+                        "check the waist frame in meta.json")
+    yaw = K.heading_rotation(ref / np.linalg.norm(ref))
+    rr = yaw @ r
+    a = acc @ rr.T
+    a[:, 2] -= float(np.linalg.norm(g))
+    return a, (None if gyr is None else gyr @ rr.T)
+
+
+# -- main entry point -----------------------------------------------------------------------------
+
+
+def _check_steps(steps: pd.DataFrame, session: Session) -> tuple[np.ndarray, np.ndarray]:
+    if steps is None or len(steps) == 0:
+        raise DataError(f"session '{session.name}': the steps table is empty; detect or label steps first")
+    for col in ("start_s", "end_s"):
+        if col not in steps:
+            raise DataError(f"session '{session.name}': steps table lacks column '{col}' (seconds)")
+    start = steps["start_s"].to_numpy(dtype=float)
+    end = steps["end_s"].to_numpy(dtype=float)
+    bad = ~(np.isfinite(start) & np.isfinite(end) & (end > start))
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise DataError(f"session '{session.name}': step {i} has start_s={start[i]!r}, end_s={end[i]!r}; "
+                        "every step needs finite times with end_s > start_s")
+    return start, end
+
+
+def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_samples: int = 40,
+                 heading: str = "pca", rest_search_s: float = 0.3) -> StepWindows:
+    """Cut, level and resample every step of ``steps`` to ``n_samples`` points.
+
+    Parameters
+    ----------
+    session : the recording; sensors it lacks give NaN channels (see ``StepWindows.available``)
+    steps : DataFrame with ``start_s``/``end_s`` (s; stance-to-stance windows); default ``session.steps``
+    n_samples : samples per resampled step (40 ~ a 1 s step at the PLASYS 20 Hz plus margin)
+    heading : ``"pca"`` (principal horizontal axis of the foot's acceleration, signed by the declared
+        forward axis: independent of the mounting yaw) or ``"declared"`` (declared forward axis only)
+    rest_search_s : the foot's rest sample is searched within this many seconds (at most a quarter of
+        the window) from each end of the step
+
+    Raises
+    ------
+    DataError : empty/invalid steps table, a step outside a present stream, NaN samples, no frame
+    """
+    if heading not in ("pca", "declared"):
+        raise DataError(f"step_windows: heading must be 'pca' or 'declared', not {heading!r}")
+    if n_samples < 6:
+        raise DataError(f"step_windows: n_samples={n_samples} is too small; use at least 6")
+    if steps is None:
+        steps = session.steps
+    start, end = _check_steps(steps, session)
+    available = tuple(g for g, names in GROUP_STREAMS.items() if session.has(*names))
+    if "foot_acc" not in available and "waist_acc" not in available:
+        from pdrlearn.errors import MissingSensorError
+
+        raise MissingSensorError(f"session '{session.name}' has neither fAccelerometer nor wAccelerometer; "
+                                 "step windows need at least one accelerometer")
+    for g in available:
+        for name in GROUP_STREAMS[g]:
+            s = session.streams[name]
+            if len(s) < 2:
+                raise DataError(f"session '{session.name}': stream {name} has fewer than 2 samples")
+            if not np.all(np.isfinite(s.values)):
+                raise DataError(f"session '{session.name}': stream {name} contains NaN/inf values; "
+                                "clean or interpolate it first")
+            if start.min() < s.t[0] - 0.5 or end.max() > s.t[-1] + 0.5:
+                raise DataError(f"session '{session.name}': steps span {start.min():.2f}-{end.max():.2f} s "
+                                f"but {name} covers {s.t[0]:.2f}-{s.t[-1]:.2f} s; align the clocks or "
+                                "drop the steps outside the recording")
+    fwd_foot = _declared_forward(session, "foot") if "foot_acc" in available else None
+    fwd_waist = _declared_forward(session, "waist") if "waist_acc" in available else None
+
+    n = len(start)
+    X = np.full((n, len(CHANNELS), n_samples), np.nan)
+    u = np.linspace(0.0, 1.0, n_samples)
+    for i in range(n):
+        t0, t1 = float(start[i]), float(end[i])
+        tg = t0 + (t1 - t0) * u
+        X[i, 0] = tg - t0
+        if fwd_foot is not None:
+            ta, acc = _segment(session.streams["fAccelerometer"], t0, t1)
+            gyr = None
+            if "foot_gyr" in available:
+                gyr = _interp(ta, *_segment(session.streams["fGyroscope"], t0, t1)).T
+            a, g, an = _foot_levelled(ta, acc, gyr, fwd_foot, rest_search_s=rest_search_s, heading=heading)
+            X[i, 1:4] = _interp(tg, ta, a)
+            X[i, 4] = np.interp(tg, ta, an)
+            if g is not None:
+                X[i, 5:8] = _interp(tg, ta, g)
+        if "force" in available:
+            for j, name in enumerate(("fForceA", "fForceB")):
+                tf, f = _segment(session.streams[name], t0, t1)
+                X[i, CHANNEL_INDEX["force_a"] + j] = np.interp(tg, tf, f[:, 0])
+        if fwd_waist is not None:
+            tw, wacc = _segment(session.streams["wAccelerometer"], t0, t1)
+            wgyr = None
+            if "waist_gyr" in available:
+                wgyr = _interp(tw, *_segment(session.streams["wGyroscope"], t0, t1)).T
+            a, g = _waist_levelled(wacc, wgyr, fwd_waist)
+            c = CHANNEL_INDEX["waist_acc_x"]
+            X[i, c:c + 3] = _interp(tg, tw, a)
+            if g is not None:
+                c = CHANNEL_INDEX["waist_gyr_x"]
+                X[i, c:c + 3] = _interp(tg, tw, g)
+        if "waist_baro" in available:
+            tb, b = _segment(session.streams["wBarometer"], t0, t1)
+            X[i, CHANNEL_INDEX["waist_baro"]] = np.interp(tg, tb, b[:, 0]) - np.interp(t0, tb, b[:, 0])
+    return StepWindows(X=X, durations_s=end - start, channels=CHANNELS, available=available,
+                       steps=steps.reset_index(drop=True).copy(), session=session.name)
