@@ -1,0 +1,163 @@
+"""Writing a model bundle atomically: ``manifest.json`` + ONNX + JSON/NPZ files, never pickle.
+
+Layout (see docs/deploying.md)::
+
+    BUNDLE_DIR/
+      manifest.json            schema, versions, user, tasks/classes/methods, sensors, rate, frames,
+                               displacement parameters, training summary, metrics, sha256 of every file
+      models/<task>_<method>_<unit>.onnx
+      params/<task>_<method>_<unit>.json | .npz   heuristic rules, DTW references
+
+The folder is first written to a temporary sibling, checked, then renamed into place, so a reader never
+sees a half-written bundle (decision E1).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import logging
+import os
+import shutil
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import onnx
+
+from pdrlearn.errors import ModelError
+from pdrlearn.runtime.bundle import (
+    MANIFEST,
+    REQUIRED_KEYS,
+    SCHEMA_NAME,
+    SCHEMA_VERSION,
+    load_bundle,
+    sha256_file,
+)
+
+log = logging.getLogger(__name__)
+
+
+def base_manifest(**fields) -> dict:
+    """A manifest skeleton with schema, versions and creation time; ``fields`` fill/override the rest."""
+    import pdrlearn
+
+    m = {
+        "schema": SCHEMA_NAME,
+        "schema_version": SCHEMA_VERSION,
+        "package_version": pdrlearn.__version__,
+        "created_utc": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+        "user": None,
+        "tasks": {},
+        "sampling": {},
+        "sensors": {"required": [], "optional": []},
+        "units": {},
+        "frames": {},
+        "displacement": {},
+        "training": {},
+        "metrics": {},
+    }
+    m.update(fields)
+    return m
+
+
+def _json_default(o):
+    if isinstance(o, np.generic):
+        return o.item()
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    if isinstance(o, Path):
+        return str(o)
+    raise TypeError(f"{type(o).__name__} is not JSON serializable")
+
+
+def _dump_json(obj, path: Path) -> None:
+    path.write_text(json.dumps(obj, indent=1, default=_json_default, allow_nan=False, sort_keys=False))
+
+
+def _check_rel(rel: str) -> None:
+    p = Path(rel)
+    if p.is_absolute() or ".." in p.parts or rel == MANIFEST:
+        raise ModelError(f"bundle file name '{rel}' must be a relative path inside the bundle")
+
+
+def write_bundle(out_dir: str | Path, manifest: dict, *,
+                 onnx_models: dict[str, onnx.ModelProto] | None = None,
+                 json_files: dict[str, dict] | None = None,
+                 npz_files: dict[str, dict[str, np.ndarray]] | None = None,
+                 overwrite: bool = False, verify: bool = True) -> Path:
+    """Write a bundle folder atomically and return its path.
+
+    Parameters
+    ----------
+    out_dir : target folder; must not exist (or be empty) unless ``overwrite``.
+    manifest : manifest fields (start from :func:`base_manifest`); ``files`` is filled here.
+    onnx_models : relative path -> ONNX model (each must pass ``onnx.checker.check_model``).
+    json_files : relative path -> JSON-serializable object (no NaN).
+    npz_files : relative path -> arrays (numeric dtypes only, so loading never needs pickle).
+    overwrite : replace an existing bundle.
+    verify : re-open the written bundle with :func:`pdrlearn.runtime.load_bundle` before the rename.
+
+    Raises
+    ------
+    ModelError : missing manifest keys, an invalid ONNX model, an object array, an existing target.
+    """
+    out = Path(out_dir)
+    if out.exists() and any(out.iterdir()) and not overwrite:
+        raise ModelError(f"{out}: folder exists and is not empty; choose another --out or pass --overwrite")
+    missing = [k for k in REQUIRED_KEYS if k != "files" and k not in manifest]
+    if missing:
+        raise ModelError(f"bundle manifest lacks {', '.join(missing)}; build it with base_manifest()")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.tmp-", dir=out.parent))
+    try:
+        files: dict[str, str] = {}
+        for rel, model in (onnx_models or {}).items():
+            _check_rel(rel)
+            try:
+                onnx.checker.check_model(model, full_check=True)
+            except Exception as exc:
+                raise ModelError(f"bundle file {rel}: ONNX checker failed ({exc})") from None
+            (tmp / rel).parent.mkdir(parents=True, exist_ok=True)
+            (tmp / rel).write_bytes(model.SerializeToString())
+        for rel, obj in (json_files or {}).items():
+            _check_rel(rel)
+            (tmp / rel).parent.mkdir(parents=True, exist_ok=True)
+            try:
+                _dump_json(obj, tmp / rel)
+            except ValueError as exc:
+                raise ModelError(f"bundle file {rel}: not strict JSON ({exc})") from None
+        for rel, arrays in (npz_files or {}).items():
+            _check_rel(rel)
+            arrs = {k: np.asarray(v) for k, v in arrays.items()}
+            bad = [k for k, v in arrs.items() if v.dtype.hasobject]
+            if bad:
+                raise ModelError(f"bundle file {rel}: arrays {bad} have object dtype (would need pickle)")
+            (tmp / rel).parent.mkdir(parents=True, exist_ok=True)
+            with open(tmp / rel, "wb") as f:
+                np.savez(f, **arrs)
+        for f in sorted(tmp.rglob("*")):
+            if f.is_file():
+                files[f.relative_to(tmp).as_posix()] = sha256_file(f)
+        full = dict(manifest)
+        full["files"] = files
+        _dump_json(full, tmp / MANIFEST)
+        if verify:
+            load_bundle(tmp, verify=True)
+        if out.exists():
+            old = out.with_name(f".{out.name}.old-{os.getpid()}")
+            os.replace(out, old)
+            os.replace(tmp, out)
+            shutil.rmtree(old, ignore_errors=True)
+        else:
+            os.replace(tmp, out)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    log.info("wrote bundle %s (%d files)", out, len(files))
+    return out
+
+
+def bundle_size_bytes(path: str | Path) -> int:
+    """Total size of a bundle folder in bytes."""
+    return sum(f.stat().st_size for f in Path(path).rglob("*") if f.is_file())

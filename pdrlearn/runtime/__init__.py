@@ -1,0 +1,9 @@
+"""Lean streaming runtime: load a model bundle and classify/track steps as samples arrive.
+
+Imports only numpy (and, lazily, onnxruntime — or OpenCV's dnn module for the network when onnxruntime
+is absent). Never torch, scikit-learn, scipy or pandas: ``tests/test_runtime_imports.py`` checks it.
+"""
+
+from pdrlearn.runtime.bundle import SCHEMA_VERSION, Bundle, OnnxModel, load_bundle, read_manifest
+
+__all__ = ["SCHEMA_VERSION", "Bundle", "OnnxModel", "load_bundle", "read_manifest"]

@@ -1,0 +1,258 @@
+"""Reading and verifying a model bundle (``manifest.json`` + ONNX + JSON/NPZ files).
+
+Imports only the standard library and numpy; onnxruntime (or OpenCV's dnn module as a fallback for
+plain networks) is imported lazily when a model is first run. Every check happens in
+:func:`load_bundle`, before the caller produces any output:
+
+* the folder and ``manifest.json`` exist and parse;
+* ``schema`` is ``pdrlearn-bundle`` and ``schema_version`` equals :data:`SCHEMA_VERSION`;
+* every file listed in ``manifest["files"]`` exists and has the recorded sha256 (no altered files);
+* no pickle ever: NPZ files are opened with ``allow_pickle=False``.
+
+:meth:`Bundle.check_streams` compares the data's sensors and rates with the manifest's.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import math
+from pathlib import Path
+
+import numpy as np
+
+from pdrlearn.errors import DataError, MissingSensorError, ModelError
+
+log = logging.getLogger(__name__)
+
+SCHEMA_NAME = "pdrlearn-bundle"
+#: Version of the bundle layout; a runtime reads exactly this version (decision E2, docs/decisions/export.md).
+SCHEMA_VERSION = 1
+MANIFEST = "manifest.json"
+#: Keys every manifest carries (see docs/deploying.md for their meaning).
+REQUIRED_KEYS = (
+    "schema", "schema_version", "package_version", "created_utc", "user", "tasks", "sampling", "sensors",
+    "units", "frames", "displacement", "training", "metrics", "files",
+)
+#: Relative tolerance between the manifest's sampling rate and the data's (decision E3).
+DEFAULT_RATE_TOLERANCE = 0.05
+
+
+def sha256_file(path: str | Path, *, chunk: int = 1 << 20) -> str:
+    """Hex sha256 digest of a file."""
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        while block := f.read(chunk):
+            h.update(block)
+    return h.hexdigest()
+
+
+class OnnxModel:
+    """One ONNX model of a bundle, run by onnxruntime (or ``cv2.dnn`` for a plain network).
+
+    Parameters
+    ----------
+    path : the ``.onnx`` file.
+    spec : its manifest entry: ``input`` (name), ``dtype`` (``float32``/``float64``), ``outputs``
+        (role -> output name; roles ``label``, ``scores``, ``proba``, ``logits``), ``classes``.
+    backend : ``"auto"`` (onnxruntime, else OpenCV for networks), ``"onnxruntime"`` or ``"opencv"``.
+    """
+
+    def __init__(self, path: Path, spec: dict, *, backend: str = "auto"):
+        self.path = Path(path)
+        self.spec = spec
+        self.input_name = spec.get("input", "X")
+        self.dtype = np.dtype(spec.get("dtype", "float32"))
+        self.outputs: dict[str, str] = dict(spec.get("outputs", {}))
+        self.backend = self._open(backend)
+
+    def _open(self, backend: str) -> str:
+        if backend in ("auto", "onnxruntime"):
+            try:
+                import onnxruntime as ort
+            except ImportError:
+                if backend == "onnxruntime":
+                    raise ModelError("onnxruntime is not installed; pip install onnxruntime") from None
+            else:
+                opts = ort.SessionOptions()
+                opts.intra_op_num_threads = 1  # one step at a time: threads only add latency
+                opts.inter_op_num_threads = 1
+                opts.log_severity_level = 3
+                self._sess = ort.InferenceSession(str(self.path), sess_options=opts,
+                                                  providers=["CPUExecutionProvider"])
+                self._names = [o.name for o in self._sess.get_outputs()]
+                return "onnxruntime"
+        # OpenCV fallback: plain networks only (the ai.onnx.ml SVM operators are not in cv2.dnn).
+        if self.spec.get("kind") != "network":
+            raise ModelError(f"{self.path.name}: needs onnxruntime (pip install onnxruntime); "
+                             "OpenCV's dnn module only runs the neural network")
+        try:
+            import cv2
+        except ImportError:
+            raise ModelError("neither onnxruntime nor opencv is installed; pip install onnxruntime") from None
+        self._net = cv2.dnn.readNetFromONNX(str(self.path))
+        self._names = list(self.outputs.values())
+        return "opencv"
+
+    def run(self, X: np.ndarray) -> dict[str, np.ndarray]:
+        """Run the model on ``(n, n_features)`` rows; returns role -> array."""
+        X = np.ascontiguousarray(X, dtype=self.dtype)
+        if X.ndim == 1:
+            X = X[None, :]
+        if self.backend == "onnxruntime":
+            values = self._sess.run(None, {self.input_name: X})
+            by_name = dict(zip(self._names, values, strict=True))
+        else:
+            self._net.setInput(X)
+            by_name = {self._names[0]: np.asarray(self._net.forward())}
+        return {role: by_name[name] for role, name in self.outputs.items() if name in by_name}
+
+
+class Bundle:
+    """A verified model bundle. Use :func:`load_bundle`.
+
+    Attributes
+    ----------
+    path : bundle folder; manifest : parsed ``manifest.json``.
+    """
+
+    def __init__(self, path: Path, manifest: dict, *, backend: str = "auto"):
+        self.path = path
+        self.manifest = manifest
+        self.backend = backend
+        self._models: dict[str, OnnxModel] = {}
+        self._cache: dict[str, object] = {}
+
+    # -- manifest shortcuts ------------------------------------------------------------------------
+    @property
+    def rate_hz(self) -> float:
+        return float(self.manifest["sampling"]["rate_hz"])
+
+    @property
+    def tasks(self) -> dict:
+        return self.manifest["tasks"]
+
+    def classes(self, task: str) -> list[str]:
+        return list(self.manifest["tasks"][task]["classes"])
+
+    # -- files --------------------------------------------------------------------------------------
+    def file(self, rel: str) -> Path:
+        if rel not in self.manifest["files"]:
+            raise ModelError(f"bundle {self.path}: manifest lists no file '{rel}'; re-export the bundle")
+        return self.path / rel
+
+    def model(self, rel: str, spec: dict) -> OnnxModel:
+        """The ONNX model stored as ``rel`` (opened once)."""
+        if rel not in self._models:
+            self._models[rel] = OnnxModel(self.file(rel), spec, backend=self.backend)
+        return self._models[rel]
+
+    def json(self, rel: str) -> dict:
+        if rel not in self._cache:
+            self._cache[rel] = json.loads(self.file(rel).read_text())
+        return self._cache[rel]  # type: ignore[return-value]
+
+    def npz(self, rel: str) -> dict[str, np.ndarray]:
+        if rel not in self._cache:
+            with np.load(self.file(rel), allow_pickle=False) as z:
+                self._cache[rel] = {k: z[k] for k in z.files}
+        return self._cache[rel]  # type: ignore[return-value]
+
+    # -- compatibility with data --------------------------------------------------------------------
+    def check_streams(self, rates_hz: dict[str, float], *, where: str = "data") -> None:
+        """Check that the data has the bundle's required sensors at its sampling rate.
+
+        Parameters
+        ----------
+        rates_hz : sensor name (``fAccelerometer`` ...) -> the data's rate (Hz); ``nan`` when unknown.
+        where : name of the data (session folder, stream) used in the messages.
+
+        Raises
+        ------
+        MissingSensorError : a required sensor is absent.
+        DataError : a sensor's rate differs from the manifest's by more than the tolerance.
+        """
+        required = list(self.manifest["sensors"].get("required", []))
+        missing = [s for s in required if s not in rates_hz]
+        if missing:
+            raise MissingSensorError(
+                f"{where} has no {', '.join(missing)}, which bundle {self.path.name} needs "
+                f"(it has: {', '.join(rates_hz) or 'none'}); record those sensors or export a bundle "
+                "for the sensors you have")
+        rate = self.rate_hz
+        tol = float(self.manifest["sampling"].get("rate_tolerance", DEFAULT_RATE_TOLERANCE))
+        used = required + list(self.manifest["sensors"].get("optional", []))
+        for name in used:
+            r = rates_hz.get(name)
+            if r is None or not math.isfinite(r):
+                continue
+            if abs(r - rate) > tol * rate:
+                raise DataError(
+                    f"{where}: {name} is sampled at {r:.4g} Hz but bundle {self.path.name} was trained at "
+                    f"{rate:.4g} Hz; resample the data to {rate:.4g} Hz or train a model at {r:.4g} Hz")
+
+
+def _fail(path: Path, msg: str) -> ModelError:
+    return ModelError(f"bundle {path}: {msg}")
+
+
+def read_manifest(path: str | Path) -> dict:
+    """Parse and check ``manifest.json`` of a bundle folder (schema and version, required keys)."""
+    path = Path(path)
+    if not path.is_dir():
+        raise _fail(path, "not a folder; give the folder written by 'pdrlearn export'")
+    mpath = path / MANIFEST
+    if not mpath.is_file():
+        raise _fail(path, f"no {MANIFEST}; give the folder written by 'pdrlearn export'")
+    try:
+        manifest = json.loads(mpath.read_text())
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        raise _fail(path, f"{MANIFEST} is not valid JSON ({exc}); re-export the bundle") from None
+    if not isinstance(manifest, dict) or manifest.get("schema") != SCHEMA_NAME:
+        raise _fail(path, f"{MANIFEST} is not a {SCHEMA_NAME} manifest; re-export with 'pdrlearn export'")
+    version = manifest.get("schema_version")
+    if version != SCHEMA_VERSION:
+        raise _fail(path, f"schema version {version!r}, but this runtime reads version {SCHEMA_VERSION}; "
+                          "re-export the model with this pdrlearn version")
+    missing = [k for k in REQUIRED_KEYS if k not in manifest]
+    if missing:
+        raise _fail(path, f"{MANIFEST} lacks {', '.join(missing)}; re-export the bundle")
+    return manifest
+
+
+def verify_files(path: Path, manifest: dict) -> None:
+    """Check that every listed file exists and has its recorded sha256."""
+    files = manifest["files"]
+    if not isinstance(files, dict) or not files:
+        raise _fail(path, f"{MANIFEST} lists no files; re-export the bundle")
+    for rel, digest in files.items():
+        f = path / rel
+        if Path(rel).is_absolute() or ".." in Path(rel).parts:
+            raise _fail(path, f"file entry '{rel}' points outside the bundle; re-export the bundle")
+        if not f.is_file():
+            raise _fail(path, f"file '{rel}' listed in {MANIFEST} is missing; copy the whole bundle folder")
+        if sha256_file(f) != digest:
+            raise _fail(path, f"file '{rel}' was altered (sha256 differs from {MANIFEST}); "
+                              "restore the original bundle or re-export it")
+
+
+def load_bundle(path: str | Path, *, verify: bool = True, backend: str = "auto") -> Bundle:
+    """Open a bundle folder, verifying schema, version and checksums first.
+
+    Parameters
+    ----------
+    path : bundle folder written by :func:`pdrlearn.export.write_bundle`.
+    verify : check every file's sha256 (default True).
+    backend : ``auto`` | ``onnxruntime`` | ``opencv`` (see :class:`OnnxModel`).
+
+    Raises
+    ------
+    ModelError : missing folder/manifest/file, altered file, other schema version.
+    """
+    path = Path(path)
+    manifest = read_manifest(path)
+    if verify:
+        verify_files(path, manifest)
+    log.info("bundle %s: user %s, tasks %s", path, manifest.get("user"), ", ".join(manifest["tasks"]))
+    return Bundle(path, manifest, backend=backend)
