@@ -172,7 +172,8 @@ def test_step_windows_layout_and_gravity_removed(level):
     assert np.isnan(w.channel("waist_acc_z")).all() and np.isnan(w.channel("force_a")).all()
     np.testing.assert_allclose(w.durations_s, level.steps["end_s"] - level.steps["start_s"])
     # at the window's ends the foot rests: levelled acceleration ~0 after removing gravity
-    ends = w.X[:, [CHANNEL_INDEX["foot_acc_x"], CHANNEL_INDEX["foot_acc_y"], CHANNEL_INDEX["foot_acc_z"]]][:, :, [0, -1]]
+    acc = [CHANNEL_INDEX[c] for c in ("foot_acc_x", "foot_acc_y", "foot_acc_z")]
+    ends = w.X[:, acc][:, :, [0, -1]]
     assert np.median(np.abs(ends)) < 1.0
     # forward walking: the integrated forward acceleration peaks positive (foot moves along +x)
     fwd = w.channel("foot_acc_x")
