@@ -197,6 +197,7 @@ def parse_nmea_lines(
     else:
         df = pd.DataFrame(columns=["t", "lat", "lon", "accuracy_m"], dtype=float)
     stats["used"] = int(len(df))
+    stats["first_utc_s"] = float(order[0]) if order else None
     skipped = stats["bad_checksum"] + stats["empty"] + stats["malformed"]
     if skipped:
         log.info(

@@ -1,0 +1,225 @@
+"""Sporadic absolute fixes with heading stretching (seed 004, Colombo et al. 2014), step-triggered.
+
+The planar position EKF (seed 004 eqs. 16-23) is driven by PDR steps; an external infrastructure is
+queried every ``period_s`` (T_p) only while the walker moves (eq. 19); between two adjustments the
+estimated path is linearly stretched onto the fixes (eqs. 24-26) and the stretched yaw (eq. 28) is fed
+back to the heading of the following steps. The per-sample version of the same EKF, with the attitude
+EKF and the hybrid-automaton velocity, is :class:`pdrlearn.aid.colombo.ColomboTracker`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.aid._kernels import kf_predict, kf_update, stretch_segment, wrap_angle
+from pdrlearn.aid.fixes import sigma_from_accuracy
+from pdrlearn.aid.gnss import check_steps
+from pdrlearn.errors import DataError
+
+#: Second EKF defaults (seed 004 Sec. V): P_p(0) = diag(0.1, 0.1) m^2, Q_c(0) = diag(0.0025, 0.0025) m^2.
+P_P0_M2 = 0.1
+Q_C_M2 = 0.0025
+
+
+class SporadicFixFusion:
+    """Position EKF with fixes every T_p seconds while moving, trajectory stretching and yaw feedback.
+
+    Parameters (keyword-only)
+    ----------
+    period_s : T_p, the infrastructure query period (s); seed 004 tests 1-16 s.
+    moving_gap_s : the walker counts as moving at a query instant when two steps are at most this far
+        apart (s) around it (the step-level form of the guard sigma_a > sigma_a_min of seed 004 eq. 19).
+    query_tolerance_s : the fix closest to the query instant must be at most this far from it (s).
+    sigma_length_rel, sigma_length_m, sigma_heading_rad : per-step process noise (see
+        :class:`~pdrlearn.aid.gnss.GnssPdrFusion`).
+    stretch : output the stretched trajectory between adjustments (seed 004 eq. 24).
+    yaw_feedback : ``"last"`` (the stretched yaw of the last step, seed 004 eq. 28 with j = 0),
+        ``"mean"`` (length-weighted mean correction over the segment) or ``None``.
+    heading_drift_rad : standard deviation (rad) of the heading-offset random walk per step.
+    initial_sigma_m : start standard deviation (m); default sqrt(P_p(0)) of seed 004.
+    fix_sigma_m : per-axis fix standard deviation (m); ``None`` = from each fix's ``accuracy_m``.
+    """
+
+    def __init__(
+        self,
+        *,
+        period_s: float = 8.0,
+        moving_gap_s: float = 1.5,
+        query_tolerance_s: float = 0.5,
+        sigma_length_rel: float = 0.05,
+        sigma_length_m: float = 0.02,
+        sigma_heading_rad: float = np.radians(5.0),
+        stretch: bool = True,
+        yaw_feedback: str | None = "last",
+        heading_drift_rad: float = np.radians(0.3),
+        initial_sigma_m: float = float(np.sqrt(P_P0_M2)),
+        fix_sigma_m: float | None = None,
+    ):
+        self.period_s = period_s
+        self.moving_gap_s = moving_gap_s
+        self.query_tolerance_s = query_tolerance_s
+        self.sigma_length_rel = sigma_length_rel
+        self.sigma_length_m = sigma_length_m
+        self.sigma_heading_rad = sigma_heading_rad
+        self.stretch = stretch
+        self.yaw_feedback = yaw_feedback
+        self.heading_drift_rad = heading_drift_rad
+        self.initial_sigma_m = initial_sigma_m
+        self.fix_sigma_m = fix_sigma_m
+
+    def get_params(self, deep: bool = True) -> dict:
+        return {
+            k: getattr(self, k)
+            for k in (
+                "period_s",
+                "moving_gap_s",
+                "query_tolerance_s",
+                "sigma_length_rel",
+                "sigma_length_m",
+                "sigma_heading_rad",
+                "stretch",
+                "yaw_feedback",
+                "heading_drift_rad",
+                "initial_sigma_m",
+                "fix_sigma_m",
+            )
+        }
+
+    def run(
+        self,
+        steps: pd.DataFrame,
+        fixes: pd.DataFrame | None,
+        *,
+        start_xy=(0.0, 0.0),
+        t_start: float | None = None,
+    ) -> SporadicFixFusion:
+        """Fuse steps with a fix stream (``t``, ``x``, ``y``, ``accuracy_m``); returns ``self``.
+
+        Results: ``trajectory_`` (``t``, ``x``, ``y`` = stretched where two adjustments bracket the step,
+        else real-time; ``x_rt``, ``y_rt`` real-time EKF; ``x_pdr``, ``y_pdr``; ``fix_used``),
+        ``stats_`` (queries, fixes used, missing, yaw corrections), ``heading_offset_rad_``.
+        """
+        if not self.period_s > 0:
+            raise DataError(f"SporadicFixFusion: period_s (T_p) must be > 0 s, got {self.period_s}")
+        if self.yaw_feedback not in ("last", "mean", None):
+            raise DataError(
+                f"SporadicFixFusion: yaw_feedback '{self.yaw_feedback}' unknown; use last, mean or None"
+            )
+        st = check_steps(steps)
+        fx = (
+            pd.DataFrame(columns=["t", "x", "y", "accuracy_m"], dtype=float)
+            if fixes is None
+            else fixes.sort_values("t", kind="stable").reset_index(drop=True)
+        )
+        ft, fxy = fx["t"].to_numpy(float), fx[["x", "y"]].to_numpy(float)
+        fsig = (
+            np.full(len(fx), self.fix_sigma_m)
+            if self.fix_sigma_m is not None
+            else sigma_from_accuracy(fx["accuracy_m"].to_numpy(float))
+        )
+        t0 = float(st["start_s"].iloc[0]) if t_start is None and len(st) else float(t_start or 0.0)
+        x = np.asarray(start_xy, float).copy()
+        P = np.eye(2) * self.initial_sigma_m**2
+        raw = x.copy()
+        offset, p_off = 0.0, 0.0  # heading offset fed back from the stretched yaw, and its variance
+        n = len(st)
+        out = np.zeros((n + 1, 6))  # x, y (stretched), x_rt, y_rt, x_pdr, y_pdr
+        out[0] = [x[0], x[1], x[0], x[1], raw[0], raw[1]]
+        used = np.zeros(n + 1, bool)
+        seg_inc: list[np.ndarray] = []
+        seg_rows: list[int] = []
+        seg_head: list[float] = []
+        anchor_xy, anchor_row, l_start = x.copy(), 0, np.zeros(2)
+        counts = dict(queries=0, fixes_used=0, fixes_missing=0, yaw_corrections=0, stops_skipped=0)
+        prev_t = t0
+        for k in range(n):
+            t_k = float(st.at[k, "end_s"])
+            length, heading = float(st.at[k, "length_m"]), float(st.at[k, "heading_rad"])
+            raw = raw + length * np.array([np.cos(heading), np.sin(heading)])
+            hc = heading + offset
+            x_prev = x
+            x, P = kf_predict(
+                x,
+                P,
+                length,
+                hc,
+                sigma_length_m=self.sigma_length_rel * abs(length) + self.sigma_length_m,
+                sigma_heading_rad=self.sigma_heading_rad,
+            )  # seed 004 eqs. 16-17
+            p_off += self.heading_drift_rad**2
+            seg_inc.append(x - x_prev)
+            seg_rows.append(k + 1)
+            seg_head.append(hc)
+            out[k + 1, 2:4] = x
+            out[k + 1, 4:6] = raw
+            # query instant i*T_p inside (prev_t, t_k] while moving (seed 004 eq. 19)
+            i_q = np.floor(t_k / self.period_s)
+            if i_q * self.period_s > prev_t:
+                moving = t_k - prev_t <= self.moving_gap_s
+                if not moving:
+                    counts["stops_skipped"] += 1
+                else:
+                    counts["queries"] += 1
+                    j = int(np.searchsorted(ft, t_k))
+                    best = [
+                        c
+                        for c in (j - 1, j)
+                        if 0 <= c < len(ft) and abs(ft[c] - t_k) <= self.query_tolerance_s
+                    ]
+                    if not best:
+                        counts["fixes_missing"] += 1
+                    else:
+                        c = min(best, key=lambda c: abs(ft[c] - t_k))
+                        z = fxy[c]
+                        l_end = z - x  # seed 004: l(k) = L_b(bar) - L_b(hat)
+                        inc = np.asarray(seg_inc)
+                        stretched, _, theta_bar = stretch_segment(inc, l_start, l_end)
+                        if self.stretch:
+                            out[seg_rows, 0:2] = anchor_xy + l_start + np.cumsum(stretched, axis=0)
+                        if self.yaw_feedback is not None and len(inc):
+                            lens = np.hypot(inc[:, 0], inc[:, 1])
+                            dth = wrap_angle(theta_bar - np.asarray(seg_head))
+                            chord = float(np.hypot(*np.sum(stretched, axis=0)))
+                            geo = 2.0 * fsig[c] ** 2 / max(chord, 0.5) ** 2
+                            if self.yaw_feedback == "last":
+                                innov, r = float(dth[-1]), self.sigma_heading_rad**2 + geo
+                            else:
+                                w = lens / max(lens.sum(), 1e-9)
+                                innov = float(np.arctan2(np.sum(w * np.sin(dth)), np.sum(w * np.cos(dth))))
+                                r = self.sigma_heading_rad**2 / len(inc) + geo
+                            gain = p_off / (p_off + r)
+                            offset = float(wrap_angle(offset + gain * innov))
+                            p_off *= 1.0 - gain
+                            counts["yaw_corrections"] += 1
+                        x, P, _, _ = kf_update(x, P, z, fsig[c : c + 1])  # seed 004 eqs. 20-22
+                        out[k + 1, 2:4] = x
+                        used[k + 1] = True
+                        counts["fixes_used"] += 1
+                        anchor_xy, anchor_row, l_start = x.copy(), k + 1, z - x
+                        seg_inc, seg_rows, seg_head = [], [], []
+            prev_t = t_k
+        # rows after the last adjustment (or all rows without stretching) keep the real-time estimate
+        tail = np.ones(n + 1, bool)
+        if self.stretch:
+            tail[: anchor_row + 1] = False
+            tail[0] = True
+        out[tail, 0:2] = out[tail, 2:4]
+        t = np.r_[t0, st["end_s"].to_numpy(float)]
+        self.trajectory_ = pd.DataFrame(
+            {
+                "t": t,
+                "x": out[:, 0],
+                "y": out[:, 1],
+                "x_rt": out[:, 2],
+                "y_rt": out[:, 3],
+                "x_pdr": out[:, 4],
+                "y_pdr": out[:, 5],
+                "fix_used": used,
+            }
+        )
+        dur = max(t[-1] - t0, 1e-9)
+        counts["queries_per_min"] = counts["queries"] / dur * 60.0
+        self.stats_ = counts
+        self.heading_offset_rad_ = offset
+        return self

@@ -1,0 +1,230 @@
+"""``aid_track``: absolute fixes applied to a PDR track (the ``pdrlearn track --gnss/--fixes`` options), and
+``plot_aided``: PDR-only, fixes and fused paths on one figure."""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.aid.fixes import FixLog, parse_nmea_lines, read_fix_csv, to_local
+from pdrlearn.aid.geo import enu_to_geodetic
+from pdrlearn.aid.gnss import GnssPdrFusion
+from pdrlearn.aid.sporadic import SporadicFixFusion
+from pdrlearn.errors import DataError
+from pdrlearn.io.session import Session
+from pdrlearn.track.base import TrackResult
+
+log = logging.getLogger(__name__)
+
+
+def _parse_start(start) -> tuple[float, float] | None:
+    if start is None:
+        return None
+    if isinstance(start, str):
+        try:
+            lat, lon = (float(v) for v in start.replace(";", ",").split(","))
+        except ValueError:
+            raise DataError(f"start '{start}': give 'LAT,LON' in degrees, e.g. 43.7696,11.2558") from None
+    else:
+        lat, lon = (float(v) for v in start)
+    return lat, lon
+
+
+def _load(path, session: Session) -> FixLog:
+    path = Path(path)
+    if path.suffix.lower() == ".csv":
+        return read_fix_csv(path)
+    if not path.is_file():
+        raise DataError(
+            f"{path}: no such fix file; pass an NMEA log (.nmea/.txt) or a CSV (t, lat, lon, accuracy_m)"
+        )
+    # NMEA times are UTC of day: mapped with the session's meta 'utc_start_s' (UTC seconds of day at the
+    # session clock's t_start) when known, else the first fix is taken at the session start
+    # (docs/decisions/aided.md).
+    with open(path, encoding="ascii", errors="replace") as fh:
+        out = parse_nmea_lines(fh, source=str(path), t0_s=0.0)
+    if not len(out):
+        raise DataError(
+            f"{path}: no valid GGA/RMC fix in {out.stats['sentences']} sentence(s) "
+            f"({out.stats['bad_checksum']} bad checksum, {out.stats['empty']} empty)"
+        )
+    t0 = session.t_start
+    utc0 = session.meta.get("utc_start_s") if isinstance(session.meta, dict) else None
+    if utc0 is not None:
+        t0 = session.t_start + out.stats["first_utc_s"] - float(utc0)
+    out.fixes["t"] = out.fixes["t"] + t0
+    return out
+
+
+def _steps_from_path(t: np.ndarray, x: np.ndarray, y: np.ndarray, steps: pd.DataFrame) -> pd.DataFrame:
+    """Steps whose lengths/headings reproduce a path (to chain a second filter after the first)."""
+    dx, dy = np.diff(x), np.diff(y)
+    out = steps[["start_s", "end_s"]].copy()
+    out["length_m"] = np.hypot(dx, dy)
+    out["heading_rad"] = np.arctan2(dy, dx)
+    return out
+
+
+def aid_track(
+    result: TrackResult,
+    session: Session,
+    *,
+    gnss_path=None,
+    gnss_period_s: float | None = None,
+    fixes_path=None,
+    fix_period_s: float | None = None,
+    start=None,
+) -> TrackResult:
+    """Fuse a PDR track with GNSS fixes (seed 001) and/or sporadic absolute fixes (seed 004).
+
+    Parameters
+    ----------
+    result : a pipeline's :class:`TrackResult` (steps with ``length_m``, ``heading_rad``).
+    session : the session the track came from (its clock; ``meta['utc_start_s']`` maps NMEA UTC times).
+    gnss_path : NMEA 0183 log or fix CSV for the GNSS/PDR Kalman filter.
+    gnss_period_s : ``None``/0 = best performance (every valid fix); > 0 = energy saving, receiver on every
+        ``gnss_period_s`` seconds (seed 001 uses 60 and 180 s).
+    fixes_path : fix CSV (``t, lat, lon, accuracy_m`` or ``t, x, y, accuracy_m``) of an external
+        infrastructure (cameras, beacons) for the sporadic-fix EKF with heading stretching.
+    fix_period_s : T_p (s), fixes used every T_p seconds while moving; ``None`` = the median fix interval.
+    start : start coordinate ``(lat, lon)`` or ``"lat,lon"`` (degrees): origin of the local frame, where
+        the track starts. Default: the first fix (the walk is assumed to start there).
+
+    Returns
+    -------
+    TrackResult with the fused trajectory (``x``, ``y``; ``x_pdr``, ``y_pdr`` = PDR only; ``lat``/``lon``
+    when the origin is geodetic) and ``info['aid']`` (fixes used/skipped, GNSS-on fraction, fix table).
+    """
+    if gnss_path is None and fixes_path is None:
+        raise DataError("aid_track: give gnss_path (--gnss) and/or fixes_path (--fixes)")
+    steps = result.steps
+    if steps is None or not len(steps):
+        raise DataError(f"session '{session.name}': the track has no steps, nothing to fuse with fixes")
+    origin = _parse_start(start)
+    traj0 = result.trajectory
+    t = (
+        np.r_[float(traj0["t"].iloc[0]), steps.sort_values("end_s")["end_s"].to_numpy(float)]
+        if len(traj0) == len(steps) + 1
+        else None
+    )
+    info: dict = {"origin": list(origin) if origin else None}
+    x0 = np.array([float(traj0["x"].iloc[0]), float(traj0["y"].iloc[0])]) if len(traj0) else np.zeros(2)
+    t_start = float(traj0["t"].iloc[0]) if len(traj0) else None
+    cur_steps = steps
+    fused = None
+    all_fixes = []
+    for kind, path in (("gnss", gnss_path), ("fixes", fixes_path)):
+        if path is None:
+            continue
+        flog = _load(path, session)
+        fx, origin = to_local(flog.fixes, origin)
+        info["origin"] = list(origin) if origin else None
+        sigma0 = (
+            1.0 if start is not None or "x" in flog.fixes.columns else float(fx["accuracy_m"].iloc[0]) / 1.51
+        )
+        if kind == "gnss":
+            mode = "saving" if gnss_period_s else "best"
+            f = GnssPdrFusion(mode=mode, period_s=float(gnss_period_s or 60.0), initial_sigma_m=sigma0)
+            f.run(cur_steps, fx, start_xy=x0, t_start=t_start)
+            info["gnss"] = {
+                "file": str(path),
+                "mode": mode,
+                "period_s": gnss_period_s,
+                **flog.stats,
+                **f.stats_,
+                "length_scale": f.scale_,
+                "heading_bias_deg": float(np.degrees(f.heading_bias_rad_)),
+            }
+        else:
+            tp = fix_period_s
+            if tp is None:
+                tp = float(np.median(np.diff(fx["t"].to_numpy()))) if len(fx) > 1 else 1.0
+            f = SporadicFixFusion(period_s=tp, initial_sigma_m=sigma0)
+            f.run(cur_steps, fx, start_xy=x0, t_start=t_start)
+            info["fixes"] = {
+                "file": str(path),
+                "period_s": tp,
+                **flog.stats,
+                **f.stats_,
+                "heading_offset_deg": float(np.degrees(f.heading_offset_rad_)),
+            }
+        tr = f.trajectory_
+        if fused is None:
+            fused = tr.copy()
+        else:
+            fused["x"], fused["y"] = tr["x"].to_numpy(), tr["y"].to_numpy()
+        cur_steps = _steps_from_path(
+            tr["t"].to_numpy(), tr["x"].to_numpy(), tr["y"].to_numpy(), check_sorted(steps)
+        )
+        all_fixes.append(fx.assign(source=kind))
+    out = pd.DataFrame({"t": fused["t"].to_numpy(), "x": fused["x"].to_numpy(), "y": fused["y"].to_numpy()})
+    out["z"] = traj0["z"].to_numpy() if "z" in traj0 and len(traj0) == len(out) else 0.0
+    out["x_pdr"], out["y_pdr"] = fused["x_pdr"].to_numpy(), fused["y_pdr"].to_numpy()
+    if t is not None and len(traj0) == len(out):  # keep the pipeline's own PDR path
+        out["x_pdr"], out["y_pdr"] = traj0["x"].to_numpy(), traj0["y"].to_numpy()
+    if "fix_used" in fused:
+        out["fix_used"] = fused["fix_used"].to_numpy()
+    if origin is not None:
+        out["lat"], out["lon"] = enu_to_geodetic(out["x"].to_numpy(), out["y"].to_numpy(), *origin)
+    fixes = pd.concat(all_fixes, ignore_index=True)
+    info["fix_table"] = {
+        c: np.round(fixes[c].to_numpy(float), 3).tolist() for c in ("t", "x", "y", "accuracy_m")
+    }
+    info["fix_table"]["source"] = fixes["source"].tolist()
+    new_info = dict(result.info)
+    new_info["aid"] = info
+    return TrackResult(result.steps.copy(), out, new_info)
+
+
+def check_sorted(steps: pd.DataFrame) -> pd.DataFrame:
+    return steps.sort_values("end_s", kind="stable").reset_index(drop=True)
+
+
+def plot_aided(
+    result: TrackResult, out, *, truth: pd.DataFrame | None = None, title: str | None = None
+) -> Path:
+    """Overlay PDR-only path, fixes and fused path (and the truth when given); PNG, atomic save."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from pdrlearn.plots import save_atomic
+
+    tr = result.trajectory
+    if "x_pdr" not in tr:
+        raise DataError("plot_aided: the track has no x_pdr/y_pdr columns; pass the result of aid_track")
+    fig, ax = plt.subplots(figsize=(7.5, 7.5))
+    if truth is not None:
+        ax.plot(truth["x"], truth["y"], color="0.3", lw=1.2, ls="--", label="truth")
+    ax.plot(tr["x_pdr"], tr["y_pdr"], color="tab:blue", lw=1.0, label="PDR only")
+    ft = result.info.get("aid", {}).get("fix_table")
+    if ft and len(ft["t"]):
+        src = np.asarray(ft["source"])
+        for s, colour in (("gnss", "tab:orange"), ("fixes", "tab:purple")):
+            m = src == s
+            if m.any():
+                ax.scatter(
+                    np.asarray(ft["x"])[m],
+                    np.asarray(ft["y"])[m],
+                    s=6,
+                    color=colour,
+                    alpha=0.5,
+                    label="GNSS fixes" if s == "gnss" else "absolute fixes",
+                )
+    ax.plot(tr["x"], tr["y"], color="tab:green", lw=1.4, label="fused")
+    if "fix_used" in tr:
+        u = tr["fix_used"].to_numpy(bool)
+        ax.scatter(tr["x"][u], tr["y"][u], s=18, facecolors="none", edgecolors="k", lw=0.6, label="fix used")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("east [m]")
+    ax.set_ylabel("north [m]")
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    ax.set_title(title or f"{result.info.get('pipeline', 'track')}: PDR, fixes and fused path")
+    save_atomic(fig, Path(out))
+    plt.close(fig)
+    return Path(out)
