@@ -1,0 +1,23 @@
+"""Displacement (thesis ch.7.2): ZUPT/ZARU strapdown integration, the white-noise-jerk Kalman filter,
+and the PLASYS step rules (terrain -> filter mode, direction -> sign, length class -> clamp, altitude)."""
+
+from pdrlearn.displace._kernels import (
+    altitude_change,
+    apply_direction,
+    clamp_length,
+    double_integrate,
+    strapdown,
+    stride_index,
+    terrain_distance,
+    wnj_displacement,
+    wnj_kalman,
+    wnj_matrices,
+)
+from pdrlearn.displace.foot import FootDisplacement, force_stance, inertial_stance, snap_to_rest
+from pdrlearn.displace.rules import THESIS_STEP_BOUNDS, StepRules, parse_bounds
+
+__all__ = [
+    "FootDisplacement", "StepRules", "THESIS_STEP_BOUNDS", "altitude_change", "apply_direction", "clamp_length",
+    "double_integrate", "force_stance", "inertial_stance", "parse_bounds", "snap_to_rest", "strapdown",
+    "stride_index", "terrain_distance", "wnj_displacement", "wnj_kalman", "wnj_matrices",
+]

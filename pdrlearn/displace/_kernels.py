@@ -1,0 +1,258 @@
+"""Pure numerical kernels of the displacement stage (thesis ch.7.2).
+
+Strides are processed as a padded batch: ``idx`` (B, L) holds the sample index of the j-th sample of
+stride b (clipped at its last sample) and ``mask`` (B, L) marks valid samples. Loops run over the
+sample position j only, so one hour of data costs a few dozen vectorised iterations.
+Units: m, s, m/s, m/s^2, rad, rad/s. Frames: body FLU, navigation = level frame whose x axis is the
+foot's forward direction at the stride start (yaw of the stride start = 0), z up.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+
+def stride_index(starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Padded sample indices (B, L) and validity mask (B, L) of strides ``starts[b]..ends[b]`` inclusive."""
+    starts = np.asarray(starts, dtype=np.int64)
+    ends = np.asarray(ends, dtype=np.int64)
+    if starts.size == 0:
+        return np.zeros((0, 1), dtype=np.int64), np.zeros((0, 1), dtype=bool)
+    L = int(np.max(ends - starts)) + 1
+    idx = starts[:, None] + np.arange(L)[None, :]
+    mask = idx <= ends[:, None]
+    return np.minimum(idx, ends[:, None]), mask
+
+
+def level_rotation(g_body: np.ndarray) -> Rotation:
+    """Minimal rotations (batch) taking each body gravity vector ``g_body`` (B, 3) to +z."""
+    g = np.asarray(g_body, dtype=float)
+    a = g / np.linalg.norm(g, axis=1, keepdims=True)
+    z = np.array([0.0, 0.0, 1.0])
+    axis = np.cross(a, z)
+    s = np.linalg.norm(axis, axis=1, keepdims=True)
+    ang = np.arctan2(s[:, 0], a @ z)
+    unit = np.where(s > 1e-12, axis / np.maximum(s, 1e-300), np.array([1.0, 0.0, 0.0]))
+    return Rotation.from_rotvec(unit * ang[:, None])
+
+
+def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float, idx: np.ndarray, mask: np.ndarray,
+              g_body: np.ndarray, gyro_bias: np.ndarray | None = None,
+              init: Rotation | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Rotate each stride's specific force into its navigation frame and remove gravity.
+
+    Parameters
+    ----------
+    acc, gyr : (n, 3) FLU specific force (m/s^2) and angular rate (rad/s)
+    dt : sample period (s)
+    idx, mask : from :func:`stride_index`
+    g_body : (B, 3) gravity as measured at each stride's start (its direction sets the initial attitude,
+        its norm is the local gravity that is removed, so a sensor scale error cancels)
+    gyro_bias : (B, 3) rate offset removed during each stride (ZARU), or None
+    init : initial attitude per stride (overrides the one from ``g_body``)
+
+    Returns
+    -------
+    a_nav : (B, L, 3) gravity-free acceleration in the navigation frame, zero on padded samples
+    yaw_change : (B,) change of the foot's heading over the stride (rad, CCW)
+    """
+    B, L = idx.shape
+    a_nav = np.zeros((B, L, 3))
+    if B == 0:
+        return a_nav, np.zeros(0)
+    rot = level_rotation(g_body) if init is None else init
+    gnorm = np.linalg.norm(g_body, axis=1)
+    bias = np.zeros((B, 3)) if gyro_bias is None else np.asarray(gyro_bias, dtype=float)
+    a_nav[:, 0] = rot.apply(acc[idx[:, 0]])
+    for j in range(1, L):
+        w = 0.5 * (gyr[idx[:, j - 1]] + gyr[idx[:, j]]) - bias
+        w = np.where(mask[:, j, None], w, 0.0)
+        rot = rot * Rotation.from_rotvec(w * dt)
+        a_nav[:, j] = rot.apply(acc[idx[:, j]])
+    a_nav[:, :, 2] -= gnorm[:, None]
+    a_nav[~mask] = 0.0
+    f = rot.apply(np.array([1.0, 0.0, 0.0]))
+    return a_nav, np.arctan2(f[:, 1], f[:, 0])
+
+
+def _cumtrapz(x: np.ndarray, dt: float) -> np.ndarray:
+    out = np.zeros_like(x)
+    out[:, 1:] = np.cumsum(0.5 * (x[:, 1:] + x[:, :-1]) * dt, axis=1)
+    return out
+
+
+def zupt_mask(stance: np.ndarray, idx: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """(B, L) samples of each stride where the velocity is known to be zero: its stance samples plus
+    its first and last sample (the stride runs from rest to rest)."""
+    B = idx.shape[0]
+    z = np.asarray(stance, dtype=bool)[idx] & mask
+    if B:
+        z[:, 0] = True
+        z[np.arange(B), mask.sum(axis=1) - 1] = True
+    return z
+
+
+def double_integrate(a_nav: np.ndarray, mask: np.ndarray, dt: float, *, zupt_end: bool = True,
+                     zupt: np.ndarray | None = None) -> np.ndarray:
+    """Displacement (B, 3) of each stride by double integration (equations of motion, thesis ch.7.2.1).
+
+    The velocity starts at zero (ZUPT at the stride start). With ``zupt_end`` the velocity found at the
+    zero-velocity samples ``zupt`` (B, L) (default: the first and last sample) is the velocity error
+    there; it is interpolated linearly in between and removed (ZUPT drift correction). Without
+    ``zupt_end`` only the start reset is applied (the traditional method).
+    """
+    B, L, _ = a_nav.shape
+    if B == 0:
+        return np.zeros((0, 3))
+    n = mask.sum(axis=1)
+    v = _cumtrapz(a_nav, dt)
+    if zupt_end:
+        if zupt is None:
+            v_end = v[np.arange(B), n - 1]
+            frac = np.minimum(np.arange(L)[None, :] / np.maximum(n - 1, 1)[:, None], 1.0)
+            v = v - frac[:, :, None] * v_end[:, None, :]
+        else:
+            j = np.arange(L)
+            for b in range(B):
+                jj = np.flatnonzero(zupt[b, : n[b]])
+                for c in range(3):
+                    v[b, : n[b], c] -= np.interp(j[: n[b]], jj, v[b, jj, c])
+    v[~mask] = 0.0
+    p = _cumtrapz(v, dt)
+    return p[np.arange(B), n - 1]
+
+
+def wnj_matrices(dt: float, sw: float) -> tuple[np.ndarray, np.ndarray]:
+    """Transition F (thesis eq. 53) and process noise Q (thesis eq. 54) of the white-noise-jerk model."""
+    T = dt
+    F = np.array([[1.0, T, T * T / 2], [0.0, 1.0, T], [0.0, 0.0, 1.0]])  # thesis eq. 53
+    Q = sw * np.array([[T**5 / 20, T**4 / 8, T**3 / 6],
+                       [T**4 / 8, T**3 / 3, T**2 / 2],
+                       [T**3 / 6, T**2 / 2, T]])  # thesis eq. 54
+    return F, Q
+
+
+def _scalar_update(x, P, h: int, z, r, active):
+    """Kalman update of state component ``h`` with measurement z (N,), variance r, where ``active``."""
+    s = P[:, h, h] + r
+    k = P[:, :, h] / s[:, None]
+    y = np.where(active, z - x[:, h], 0.0)
+    k = np.where(active[:, None], k, 0.0)
+    x = x + k * y[:, None]
+    P = P - k[:, :, None] * P[:, h, None, :]
+    return x, P
+
+
+def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1.8, r: float = 0.01,
+               zupt: bool = True, zupt_at: np.ndarray | None = None, r_zupt: float = 1e-6,
+               smooth: bool = True) -> np.ndarray:
+    """White-noise-jerk Kalman filter (state [d, v, a], thesis eq. 44-55) on a batch of signals.
+
+    Parameters
+    ----------
+    a_meas : (N, L) measured acceleration (m/s^2) of N independent signals (strides x axes)
+    mask : (N, L) valid samples (each signal starts at j = 0)
+    sw : power spectral density of the jerk (thesis ch.7.2.1: 1.8)
+    r : acceleration measurement variance (thesis eq. 55: 0.01)
+    zupt : add v = 0 pseudo-measurements (variance ``r_zupt``) at the samples ``zupt_at`` (N, L)
+        (default: the first and last valid sample, the foot at rest); with ``smooth`` the Rauch-Tung-Striebel pass carries that correction back
+        through the stride, which is the KF form of the ZUPT drift correction
+    smooth : run the RTS smoother (offline); ``False`` returns the causal filter
+
+    Returns
+    -------
+    states : (N, L, 3) distance (m), velocity (m/s), acceleration (m/s^2); the value at the last valid
+    sample of each signal is its displacement estimate
+    """
+    N, L = a_meas.shape
+    F, Q = wnj_matrices(dt, sw)
+    x = np.zeros((N, 3))
+    x[:, 2] = a_meas[:, 0]
+    P = np.tile(np.diag([1e-12, 1e-12 if zupt else 1e-4, r]), (N, 1, 1))
+    last = mask.sum(axis=1) - 1
+    if zupt_at is None:
+        zupt_at = np.zeros((N, L), dtype=bool)
+        zupt_at[np.arange(N), last] = True
+    xf = np.zeros((N, L, 3))
+    Pf = np.zeros((N, L, 3, 3))
+    xp = np.zeros((N, L, 3))
+    Pp = np.zeros((N, L, 3, 3))
+    xf[:, 0], Pf[:, 0], xp[:, 0], Pp[:, 0] = x, P, x, P
+    for j in range(1, L):
+        act = mask[:, j]
+        x = np.where(act[:, None], x @ F.T, x)
+        P = np.where(act[:, None, None], F @ P @ F.T + Q, P)
+        xp[:, j], Pp[:, j] = x, P
+        x, P = _scalar_update(x, P, 2, a_meas[:, j], r, act)  # thesis eq. 55
+        if zupt:
+            x, P = _scalar_update(x, P, 1, np.zeros(N), r_zupt, act & zupt_at[:, j])
+        xf[:, j], Pf[:, j] = x, P
+    if not smooth:
+        return xf
+    xs = xf.copy()
+    for j in range(L - 2, -1, -1):
+        act = mask[:, j + 1]
+        C = Pf[:, j] @ F.T @ np.linalg.inv(Pp[:, j + 1])
+        upd = xf[:, j] + np.einsum("nij,nj->ni", C, xs[:, j + 1] - xp[:, j + 1])
+        xs[:, j] = np.where(act[:, None], upd, xf[:, j])
+    return xs
+
+
+def wnj_displacement(a_nav: np.ndarray, mask: np.ndarray, dt: float, **kw) -> np.ndarray:
+    """Displacement (B, 3) of each stride from one white-noise-jerk filter per axis (thesis eq. 58-60)."""
+    B, L, _ = a_nav.shape
+    if B == 0:
+        return np.zeros((0, 3))
+    sig = np.transpose(a_nav, (0, 2, 1)).reshape(B * 3, L)
+    m = np.repeat(mask, 3, axis=0)
+    if kw.get("zupt_at") is not None:
+        kw["zupt_at"] = np.repeat(kw["zupt_at"], 3, axis=0)
+    states = wnj_kalman(sig, m, dt, **kw)
+    last = m.sum(axis=1) - 1
+    d = states[np.arange(B * 3), last, 0]
+    return d.reshape(B, 3)
+
+
+# --- M3 rules (thesis ch.7.2.2) -------------------------------------------------------------------
+
+def terrain_distance(disp: np.ndarray, terrain: np.ndarray, *, down_mode: str = "norm3") -> np.ndarray:
+    """Unsigned distance (m) of each stride from its displacement (B, 3) according to its terrain class.
+
+    flat/up: the displacement along the direction of travel (horizontal, the thesis' "x-axis" filter);
+    down: the norm of the three axes, thesis eq. 61 (``down_mode="horizontal"`` uses the flat rule).
+    """
+    horiz = np.hypot(disp[:, 0], disp[:, 1])
+    if down_mode == "horizontal":
+        return horiz
+    norm3 = np.linalg.norm(disp, axis=1)  # thesis eq. 61
+    return np.where(np.asarray(terrain) == "down", norm3, horiz)
+
+
+def apply_direction(distance: np.ndarray, direction: np.ndarray) -> np.ndarray:
+    """Sign of each distance set by its direction class; the class prevails (thesis ch.7.2.2)."""
+    d = np.abs(np.asarray(distance, dtype=float))
+    return np.where(np.asarray(direction) == "backward", -d, d)
+
+
+def clamp_length(distance: np.ndarray, length_class: np.ndarray,
+                 bounds: dict[str, tuple[float, float]]) -> np.ndarray:
+    """Clamp |distance| into the bounds of its length class, keeping the sign (thesis ch.7.2.2).
+
+    ``bounds`` maps a class to (min, max) in metres; unknown classes are left unchanged.
+    """
+    d = np.asarray(distance, dtype=float)
+    cls = np.asarray(length_class)
+    mag = np.abs(d)
+    out = mag.copy()
+    for name, (lo, hi) in bounds.items():
+        sel = cls == name
+        out[sel] = np.clip(mag[sel], lo, hi)
+    return np.where(d < 0, -out, out)
+
+
+def altitude_change(dz: np.ndarray, terrain: np.ndarray) -> np.ndarray:
+    """Altitude change (m) per stride: 0 on flat terrain, +|dz| up, -|dz| down (thesis ch.7.2.2)."""
+    t = np.asarray(terrain)
+    a = np.abs(np.asarray(dz, dtype=float))
+    return np.where(t == "up", a, np.where(t == "down", -a, 0.0))

@@ -1,0 +1,89 @@
+"""PLASYS step rules (thesis ch.7.2.2): terrain picks the distance, direction the sign, the length
+class clamps the distance, stairs give the altitude change."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.displace import _kernels as K
+from pdrlearn.errors import DataError
+
+#: Thesis ch.6.3 length classes (per step): short <= 0.30 m, normal 0.30-0.45 m, long > 0.45 m.
+#: The upper bound of "long" is open; 10 m stands for "no bound".
+THESIS_STEP_BOUNDS: dict[str, tuple[float, float]] = {
+    "short": (0.0, 0.30),  # thesis ch.6.3 / ch.7.2.2 ("corrected to 30cm")
+    "normal": (0.30, 0.45),  # thesis ch.6.3
+    "long": (0.46, 10.0),  # thesis ch.7.2.2 ("minimum value on which a Long step can fit, which is 46cm")
+}
+
+
+def parse_bounds(obj) -> dict[str, tuple[float, float]]:
+    """Length-class bounds from a manifest entry: ``{"short": [lo, hi], ...}`` or a list of edges
+    ``[e1, e2]`` (short < e1 <= normal < e2 <= long), in metres."""
+    if obj is None:
+        return dict(THESIS_STEP_BOUNDS)
+    if isinstance(obj, dict):
+        out = {}
+        for k, v in obj.items():
+            lo, hi = (float(x) if x is not None else np.inf for x in v)
+            out[str(k)] = (0.0 if not np.isfinite(lo) else lo, hi if np.isfinite(hi) else 10.0)
+        return out
+    edges = [float(e) for e in obj]
+    if len(edges) != 2 or not edges[0] < edges[1]:
+        raise DataError(f"length-class bounds {obj!r}: expected two increasing edges in metres")
+    return {"short": (0.0, edges[0]), "normal": (edges[0], edges[1]), "long": (edges[1], 10.0)}
+
+
+class StepRules:
+    """Apply the PLASYS rules to per-stride displacements.
+
+    Parameters
+    ----------
+    bounds : length class -> (min, max) in metres of the unit the displacement is measured for (a
+        foot-unit stride); default: the thesis step bounds scaled by ``bounds_scale``
+    bounds_scale : factor applied to the default bounds (2.0 turns thesis step bounds into stride bounds)
+    down_mode : ``"norm3"`` (thesis eq. 61) or ``"horizontal"`` for descending stairs
+    clamp, sign, altitude : switch each rule on/off (for ablations)
+    """
+
+    def __init__(self, *, bounds: dict[str, tuple[float, float]] | None = None, bounds_scale: float = 1.0,
+                 down_mode: str = "norm3", clamp: bool = True, sign: bool = True, altitude: bool = True):
+        if down_mode not in ("norm3", "horizontal"):
+            raise DataError(f"StepRules: down_mode '{down_mode}' is not 'norm3' or 'horizontal'")
+        self.bounds = bounds
+        self.bounds_scale = bounds_scale
+        self.down_mode = down_mode
+        self.clamp = clamp
+        self.sign = sign
+        self.altitude = altitude
+
+    def effective_bounds(self) -> dict[str, tuple[float, float]]:
+        if self.bounds is not None:
+            return dict(self.bounds)
+        return {k: (lo * self.bounds_scale, hi * self.bounds_scale) for k, (lo, hi) in THESIS_STEP_BOUNDS.items()}
+
+    def apply(self, disp: np.ndarray, classes: pd.DataFrame) -> pd.DataFrame:
+        """Per-stride ``length_m`` (signed) and ``dz_m`` from displacements (B, 3) and classes.
+
+        ``classes`` has ``terrain``, ``direction``, ``length_class`` (missing values: flat / the sign of
+        the estimate / no clamp).
+        """
+        disp = np.asarray(disp, dtype=float).reshape(-1, 3)
+        n = disp.shape[0]
+        if len(classes) != n:
+            raise DataError(f"StepRules: {n} displacements but {len(classes)} rows of classes")
+        terrain = classes.get("terrain", pd.Series(["flat"] * n)).fillna("flat").to_numpy()
+        dist = K.terrain_distance(disp, terrain, down_mode=self.down_mode)
+        est_sign = np.where(disp[:, 0] < 0, -1.0, 1.0)
+        length = dist * est_sign
+        if self.sign and "direction" in classes:
+            d = classes["direction"].to_numpy()
+            known = pd.notna(d)
+            length = np.where(known, K.apply_direction(length, np.where(known, d, "forward")), length)
+        if self.clamp and "length_class" in classes:
+            lc = classes["length_class"].fillna("").to_numpy()
+            length = K.clamp_length(length, lc, self.effective_bounds())
+        dz = K.altitude_change(disp[:, 2], terrain) if self.altitude else disp[:, 2].copy()
+        return pd.DataFrame({"length_m": length, "dz_m": dz, "raw_dx_m": disp[:, 0], "raw_dy_m": disp[:, 1],
+                             "raw_dz_m": disp[:, 2]})

@@ -1,0 +1,155 @@
+"""Pure numerical kernels of the orientation stage (thesis ch.7.1 and 7.2.1).
+
+All vectors are in the project's body frame FLU (x forward, y left, z up) unless said otherwise;
+angles in rad; headings in the ENU convention (0 = east, counter-clockwise positive).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.signal import lfilter
+
+
+def wrap_angle(a: np.ndarray | float) -> np.ndarray | float:
+    """Wrap angle(s) to [-pi, pi)."""
+    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
+
+
+def tilt_from_accel(acc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Roll and pitch (rad) of a FLU body from its specific force (m/s^2), thesis eq. 38/39.
+
+    Angles of the body-to-level rotation ``R = Ry(pitch) @ Rx(roll)``; at rest the body measures
+    ``g * (-sin(pitch), sin(roll) cos(pitch), cos(roll) cos(pitch))``. Eq. 38 carries over unchanged;
+    eq. 39 is written for the thesis foot frame (y up) and becomes ``atan2(y, z)`` in FLU (z up).
+    """
+    acc = np.atleast_2d(acc)
+    x, y, z = acc[:, 0], acc[:, 1], acc[:, 2]
+    pitch = np.arctan2(-x, np.hypot(y, z))  # thesis eq. 38
+    roll = np.arctan2(y, z)  # thesis eq. 39 (FLU axes)
+    return roll, pitch
+
+
+def level_axes(acc: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Unit up, level-forward and level-left vectors (body coordinates) from the gravity direction.
+
+    ``acc`` (n, 3) is the specific force (a low-passed accelerometer at the waist); ``up`` is its
+    direction, ``fwd`` the body x axis projected on the level plane, ``left = up x fwd``.
+    """
+    acc = np.atleast_2d(acc)
+    up = acc / np.linalg.norm(acc, axis=1, keepdims=True)
+    ex = np.array([1.0, 0.0, 0.0])
+    fwd = ex - up[:, :1] * up  # ex - (ex . up) up
+    fwd /= np.linalg.norm(fwd, axis=1, keepdims=True)
+    left = np.cross(up, fwd)
+    return up, fwd, left
+
+
+def tilt_compensated_heading(acc: np.ndarray, mag: np.ndarray) -> np.ndarray:
+    """ENU heading (rad, 0 = east, CCW) of the body's forward axis from accelerometer + magnetometer.
+
+    Thesis eq. 33-35 in vector form: the magnetic field is projected on the level forward (``M_x``) and
+    level left (``M_y``) axes, the tilt-compensated components of eq. 33/34; the compass angle
+    ``atan2(M_y, M_x)`` (eq. 35) is the angle from forward to magnetic north (CCW), so the forward axis
+    points ``pi/2 - atan2(M_y, M_x)`` from east. Magnetic north is taken as north (no declination).
+    """
+    _, fwd, left = level_axes(acc)
+    mag = np.atleast_2d(mag)
+    mx = np.einsum("ij,ij->i", mag, fwd)  # thesis eq. 33
+    my = np.einsum("ij,ij->i", mag, left)  # thesis eq. 34
+    return wrap_angle(np.pi / 2 - np.arctan2(my, mx))  # thesis eq. 35
+
+
+def yaw_rate(acc: np.ndarray, gyr: np.ndarray) -> np.ndarray:
+    """Rate of turn about the vertical (rad/s, CCW positive): gyroscope projected on the up direction."""
+    acc = np.atleast_2d(acc)
+    up = acc / np.linalg.norm(acc, axis=1, keepdims=True)
+    return np.einsum("ij,ij->i", np.atleast_2d(gyr), up)
+
+
+def phi_for_rate(dt: float, *, phi: float = 0.92, rate_hz: float = 20.0) -> float:
+    """Complementary-filter coefficient at sample period ``dt`` with the thesis time constant.
+
+    The thesis uses phi = 0.92 at 20 Hz (thesis ch.7.1), i.e. a time constant
+    ``tau = phi * dT / (1 - phi) = 0.575 s`` (thesis eq. 37); other rates keep ``tau``.
+    """
+    tau = phi * (1.0 / rate_hz) / (1.0 - phi)  # thesis eq. 37
+    return tau / (tau + dt)
+
+
+def complementary_filter(theta_ma: np.ndarray, rate: np.ndarray, dt: float, *, phi: float) -> np.ndarray:
+    """Complementary filter of an absolute angle and an angular rate (thesis eq. 36).
+
+    ``theta_k = phi * (theta_{k-1} + rate_k * dt) + (1 - phi) * theta_ma_k`` on the unwrapped
+    magnetometer angle; ``phi`` weights the gyroscope path (see docs/decisions/localization.md:
+    eq. 36 prints the weights the other way round, eq. 37 and the text fix them this way).
+    Returns the unwrapped filtered angle (rad).
+    """
+    theta_ma = np.unwrap(np.asarray(theta_ma, dtype=float))
+    if theta_ma.size == 0:
+        return theta_ma
+    u = phi * np.asarray(rate, dtype=float) * dt + (1.0 - phi) * theta_ma
+    zi = np.array([phi * theta_ma[0]])
+    out, _ = lfilter([1.0], [1.0, -phi], u, zi=zi)
+    return out
+
+
+def deadband(theta: np.ndarray, threshold: float) -> np.ndarray:
+    """Hold an angle until it moves more than ``threshold`` (rad) from the held value (thesis ch.7.1)."""
+    vals = np.asarray(theta, dtype=float).tolist()
+    out = np.empty(len(vals))
+    if not vals:
+        return out
+    held = vals[0]
+    for i, v in enumerate(vals):
+        if abs(v - held) > threshold:
+            held = v
+        out[i] = held
+    return out
+
+
+def angle_kalman(theta_meas: np.ndarray, rate: np.ndarray, dt: float, *, q_angle: float, q_bias: float,
+                 r: float, use_meas: np.ndarray | None = None,
+                 x0: tuple[float, float] = (0.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
+    """Two-state angle Kalman filter, state ``[theta, b]`` (thesis eq. 40-43).
+
+    Parameters
+    ----------
+    theta_meas : (n,) measured angle (rad), e.g. the accelerometer pitch (thesis eq. 41)
+    rate : (n,) gyroscope rate (rad/s), the control input ``u`` (thesis eq. 40)
+    dt : sample period (s)
+    q_angle, q_bias : process noise of angle and bias (thesis eq. 42)
+    r : measurement noise variance of the angle (rad^2, thesis eq. 43)
+    use_meas : (n,) bool; where False the measurement is skipped (e.g. foot in swing, accelerometer
+        not measuring gravity)
+
+    Returns
+    -------
+    theta, bias : (n,) filtered angle (rad) and gyroscope bias (rad/s)
+    """
+    z = np.asarray(theta_meas, dtype=float).tolist()
+    u = np.asarray(rate, dtype=float).tolist()
+    m = [True] * len(z) if use_meas is None else np.asarray(use_meas, dtype=bool).tolist()
+    th, b = float(x0[0]), float(x0[1])
+    p00, p01, p11 = 1.0, 0.0, 1.0
+    qa, qb = q_angle * dt, q_bias  # thesis eq. 42: Q = diag(sigma(wg) dT, sigma(b))
+    out_t = np.empty(len(z))
+    out_b = np.empty(len(z))
+    for k in range(len(z)):
+        # predict, thesis eq. 40: theta_k = theta_{k-1} - dT b_{k-1} + dT u_{k-1}
+        th = th + dt * (u[k] - b)
+        p00 = p00 - dt * (2 * p01 - dt * p11) + qa
+        p01 = p01 - dt * p11
+        p11 = p11 + qb
+        if m[k]:
+            # update with H = [1 0] (thesis eq. 41)
+            s = p00 + r
+            k0, k1 = p00 / s, p01 / s
+            y = z[k] - th
+            th += k0 * y
+            b += k1 * y
+            p11 -= k1 * p01
+            p01 -= k0 * p01
+            p00 -= k0 * p00
+        out_t[k] = th
+        out_b[k] = b
+    return out_t, out_b
