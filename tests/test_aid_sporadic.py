@@ -1,0 +1,101 @@
+"""Sporadic absolute fixes with stretching (seed 004), aid_track and plot_aided."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.aid._kernels import stretch_segment
+from pdrlearn.aid.fixgen import gnss_fixes, infrastructure_fixes, write_nmea
+from pdrlearn.aid.sporadic import SporadicFixFusion
+from pdrlearn.aid.synth import pdr_with_drift, position_errors, synthetic_walk
+from pdrlearn.aid.track import aid_track, plot_aided
+from pdrlearn.errors import DataError
+from pdrlearn.io.session import Session
+
+
+def test_stretching_equations_match_the_vector_form():
+    rng = np.random.default_rng(0)
+    inc = rng.normal(0.0, 0.3, (7, 2)) + [0.5, 0.2]
+    l0, l1 = np.array([0.02, -0.01]), np.array([0.4, -0.3])
+    st, scale, theta = stretch_segment(inc, l0, l1)
+    # eq. 26: every increment shifted by (l(k) - l(k-m)) / m, so the end lands on the last fix
+    assert st == pytest.approx(inc + (l1 - l0) / 7)
+    start_est = np.array([3.0, 4.0])
+    end_est = start_est + inc.sum(axis=0)
+    assert start_est + l0 + st.sum(axis=0) == pytest.approx(end_est + l1)
+    # eqs. 27-28 equal the norm and direction of the stretched increments
+    assert scale * np.hypot(inc[:, 0], inc[:, 1]) == pytest.approx(np.hypot(st[:, 0], st[:, 1]))
+    assert theta == pytest.approx(np.arctan2(st[:, 1], st[:, 0]))
+
+
+def test_fixes_queried_every_tp_only_while_moving():
+    steps_true, truth = synthetic_walk(2, length_m=400, stop_every_m=80.0)
+    pdr = pdr_with_drift(steps_true, 2)
+    fx = infrastructure_fixes(truth, seed=2)
+    f = SporadicFixFusion(period_s=4.0).run(pdr.steps, fx)
+    tr = f.trajectory_
+    t_used = tr["t"][tr["fix_used"]].to_numpy()
+    assert f.stats_["stops_skipped"] > 0  # T_p instants during stops were not queried
+    assert f.stats_["queries"] == f.stats_["fixes_used"]
+    # at most one adjustment per T_p window
+    assert len(np.unique(np.floor(t_used / 4.0))) == len(t_used)
+    # no adjustment at a step that follows a stop (the walker was still at the query instant)
+    gaps = np.diff(np.r_[0.0, pdr.steps["end_s"].to_numpy()])
+    after_stop = pdr.steps["end_s"].to_numpy()[gaps > 1.5]
+    assert not np.isin(after_stop, t_used).any()
+
+
+def test_stretched_error_small_and_yaw_feedback_helps_real_time():
+    steps_true, truth = synthetic_walk(5, length_m=300)
+    pdr = pdr_with_drift(steps_true, 5, heading_bias_deg=8.0)
+    fx = infrastructure_fixes(truth, seed=5)
+    e_pdr = np.sqrt(np.mean(position_errors(pdr.trajectory, truth) ** 2))
+    fb = SporadicFixFusion(period_s=8.0).run(pdr.steps, fx)
+    nofb = SporadicFixFusion(period_s=8.0, yaw_feedback=None).run(pdr.steps, fx)
+    e_st = position_errors(fb.trajectory_, truth)
+    rt = lambda f: np.sqrt(np.mean(position_errors(f.trajectory_, truth, xcol="x_rt", ycol="y_rt") ** 2))  # noqa: E731
+    assert np.sqrt(np.mean(e_st**2)) < 0.2 < e_pdr  # seed 004 Fig. 8: < 20 cm with stretching
+    assert rt(fb) < rt(nofb)
+    assert np.sqrt(np.mean(e_st**2)) <= rt(fb)
+
+
+def _walk_files(tmp_path):
+    steps_true, truth = synthetic_walk(3, length_m=600)
+    pdr = pdr_with_drift(steps_true, 3)
+    origin = (46.0667, 11.1500)
+    fx = gnss_fixes(truth, accuracy_m=5.0, origin=origin, seed=3)
+    nmea = write_nmea(fx, tmp_path / "walk.nmea")
+    inf = infrastructure_fixes(truth, rate_hz=5.0, seed=3)
+    inf.to_csv(tmp_path / "cams.csv", index=False)
+    return pdr, truth, nmea, tmp_path / "cams.csv", origin
+
+
+def test_aid_track_gnss_and_fixes(tmp_path):
+    pdr, truth, nmea, cams, origin = _walk_files(tmp_path)
+    ses = Session("synthetic")
+    e_pdr = np.sqrt(np.mean(position_errors(pdr.trajectory, truth) ** 2))
+    r = aid_track(pdr, ses, gnss_path=nmea, gnss_period_s=60, start=origin)
+    info = r.info["aid"]["gnss"]
+    assert info["mode"] == "saving" and 0 < info["gnss_on_fraction"] < 0.2 and info["fixes_used"] >= 5
+    assert {"x", "y", "x_pdr", "y_pdr", "lat", "lon"} <= set(r.trajectory.columns)
+    assert np.sqrt(np.mean(position_errors(r.trajectory, truth) ** 2)) < e_pdr
+    assert r.trajectory["x_pdr"].to_numpy() == pytest.approx(pdr.trajectory["x"].to_numpy())
+    r2 = aid_track(pdr, ses, fixes_path=cams, fix_period_s=8.0)
+    assert np.sqrt(np.mean(position_errors(r2.trajectory, truth) ** 2)) < 0.25
+    png = plot_aided(r2, tmp_path / "aided.png", truth=truth)
+    assert png.stat().st_size > 10_000
+
+
+def test_aid_track_bad_input(tmp_path):
+    pdr, _, _, _, _ = _walk_files(tmp_path)
+    ses = Session("synthetic")
+    with pytest.raises(DataError, match="gnss_path"):
+        aid_track(pdr, ses)
+    with pytest.raises(DataError, match="no such"):
+        aid_track(pdr, ses, gnss_path=tmp_path / "absent.nmea")
+    with pytest.raises(DataError, match="LAT,LON"):
+        aid_track(pdr, ses, gnss_path=tmp_path / "walk.nmea", start="north")
+    bad = tmp_path / "bad.csv"
+    pd.DataFrame({"t": [0.0], "lat": [46.0]}).to_csv(bad, index=False)
+    with pytest.raises(DataError, match="missing column"):
+        aid_track(pdr, ses, fixes_path=bad)
