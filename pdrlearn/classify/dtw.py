@@ -23,6 +23,7 @@ from sklearn.utils.validation import check_is_fitted, column_or_1d, validate_dat
 from pdrlearn.errors import DataError
 
 log = logging.getLogger(__name__)
+logging.getLogger("be.kuleuven.dtai.distance").setLevel(logging.WARNING)  # one INFO line per call otherwise
 
 #: References per class used by the thesis: terrain 108 = 3 x 36 (thesis ch. 6.1.2.2), direction
 #: 24 = 2 x 12 (thesis ch. 6.2.2.2), length 90 = 3 x 30 (thesis ch. 6.3.2.2).

@@ -1,0 +1,34 @@
+"""Step classifiers (thesis ch. 6): heuristic, heuristic fusion, DTW, SVM, NN, unit fusion; per-user
+training, model directories and evaluation.
+
+Main entry points: :func:`train_user` -> :class:`UserModel` (``.save(dir)``, ``.predict_steps(session,
+steps)``), :func:`load_model` (dir) -> :class:`UserModel`, :func:`evaluate_model`. The estimators
+:class:`DTWClassifier`, :class:`SVMClassifier`, :class:`NNClassifier`, :class:`UnitFusionClassifier`
+follow the scikit-learn protocol. Attributes are imported lazily (torch/sklearn load on first use).
+"""
+
+from __future__ import annotations
+
+import importlib
+
+_LAZY = {
+    "DTWClassifier": "pdrlearn.classify.dtw",
+    "SVMClassifier": "pdrlearn.classify.svm",
+    "NNClassifier": "pdrlearn.classify.nn",
+    "UnitFusionClassifier": "pdrlearn.classify.fusion",
+    "train_user": "pdrlearn.classify.training",
+    "UserModel": "pdrlearn.classify.training",
+    "TaskModel": "pdrlearn.classify.training",
+    "load_model": "pdrlearn.classify.model_dir",
+    "save_model": "pdrlearn.classify.model_dir",
+    "evaluate_model": "pdrlearn.classify.evaluation",
+}
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'pdrlearn.classify' has no attribute {name!r}")
+
+
+__all__ = sorted(_LAZY)

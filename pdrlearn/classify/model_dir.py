@@ -1,0 +1,211 @@
+"""The per-user model directory: ``manifest.json`` + one joblib file per fitted model.
+
+Layout (``SCHEMA_VERSION`` 1)::
+
+    MODEL_DIR/
+      manifest.json                      schema, versions, user, tasks/classes, units, feature spec,
+                                         n_samples, sampling rates, training summary, CV metrics, files
+      models/<task>__<method>__<unit>.joblib
+
+The directory is written to a temporary sibling and renamed into place, so a reader never sees a
+half-written model. The joblib files are for the training side (Python, scikit-learn, torch); the runtime
+bundle (ONNX, no pickles) is written by ``pdrlearn.export``. Every file's SHA-256 is in the manifest and
+checked on load.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import os
+import shutil
+import tempfile
+from pathlib import Path
+
+from pdrlearn.errors import ModelError
+
+log = logging.getLogger(__name__)
+
+SCHEMA_VERSION = 1
+MANIFEST = "manifest.json"
+
+
+def _sha256(path: Path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def feature_spec(est) -> dict:
+    """What an estimator computes from the step windows (transformer + params + feature names, DTW
+    signals, or its fused members)."""
+    from sklearn.pipeline import Pipeline
+
+    from pdrlearn.classify.fusion import UnitFusionClassifier
+
+    if isinstance(est, UnitFusionClassifier):
+        return {"fusion": "weighted soft vote",
+                "members": {name: feature_spec(e) for name, e, _ in est.units}}
+    if isinstance(est, Pipeline):
+        first = est.steps[0][1]
+        if est.steps[0][0] == "signals":
+            return {"dtw_signals": list(first.kw_args["names"]), "classifier": type(est.steps[-1][1]).__name__}
+        spec = {"transformer": type(first).__name__,
+                "params": {k: (list(v) if isinstance(v, tuple) else v) for k, v in first.get_params().items()},
+                "classifier": type(est.steps[-1][1]).__name__}
+        try:
+            spec["features"] = [str(n) for n in first.get_feature_names_out()]
+        except Exception:  # noqa: BLE001 - names are informative only
+            pass
+        return spec
+    return {"classifier": type(est).__name__}
+
+
+def manifest_of(model, files: dict[str, str]) -> dict:
+    """The manifest dictionary of a :class:`~pdrlearn.classify.training.UserModel`."""
+    import sklearn
+    import torch
+
+    import pdrlearn
+
+    tasks = {}
+    for name, tm in model.tasks.items():
+        tasks[name] = {
+            "classes": list(tm.classes),
+            "chosen": {"method": tm.chosen[0], "unit": tm.chosen[1]} if tm.chosen else None,
+            "models": {m: sorted(per) for m, per in tm.models.items()},
+            "cv": tm.cv,
+            "fusion_weights": tm.fusion_weights,
+            "skipped": tm.skipped,
+            "n_steps": tm.n_steps,
+            "n_skipped_labels": tm.n_skipped_labels,
+            "feature_spec": {m: {u: feature_spec(est) for u, est in per.items()} for m, per in tm.models.items()},
+        }
+    units = sorted({u for tm in model.tasks.values() for per in tm.models.values() for u in per})
+    return {
+        "schema_version": SCHEMA_VERSION,
+        "kind": "pdrlearn user model",
+        "package_version": pdrlearn.__version__,
+        "versions": {"scikit-learn": sklearn.__version__, "torch": torch.__version__,
+                     "numpy": __import__("numpy").__version__},
+        "user": model.user,
+        "created": model.created,
+        "tasks": tasks,
+        "units": units,
+        "n_samples": model.n_samples,
+        "sampling_rate_hz": model.sampling_rate_hz,
+        "training_data": model.data_summary,
+        "settings": model.settings,
+        "skipped": model.skipped,
+        "files": files,
+    }
+
+
+def save_model(model, path) -> Path:
+    """Write ``model`` to the directory ``path`` atomically (temp dir + rename); returns ``path``."""
+    import joblib
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.tmp-", dir=path.parent))
+    try:
+        (tmp / "models").mkdir()
+        files = {}
+        for task, tm in model.tasks.items():
+            for method, per in tm.models.items():
+                for unit, est in per.items():
+                    rel = f"models/{task}__{method}__{unit}.joblib"
+                    joblib.dump(est, tmp / rel)
+                    files[rel] = _sha256(tmp / rel)
+        manifest = manifest_of(model, files)
+        (tmp / MANIFEST).write_text(json.dumps(manifest, indent=2, allow_nan=False, default=_json_default))
+        old = None
+        if path.exists():
+            if not (path / MANIFEST).exists() and any(path.iterdir()):
+                raise ModelError(f"{path}: exists and is not a model directory; choose another --out")
+            old = path.with_name(f".{path.name}.old-{os.getpid()}")
+            path.rename(old)
+        tmp.rename(path)
+        if old is not None:
+            shutil.rmtree(old, ignore_errors=True)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    log.info("model written to %s (%d files)", path, len(files))
+    return path
+
+
+def _json_default(o):
+    import numpy as np
+
+    if isinstance(o, np.generic):
+        return o.item()
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    if isinstance(o, tuple):
+        return list(o)
+    return str(o)
+
+
+def read_manifest(path) -> dict:
+    """Read and validate ``manifest.json`` of a model directory (:class:`ModelError` on any problem)."""
+    path = Path(path)
+    if not path.is_dir():
+        raise ModelError(f"{path}: no such model directory; train one with 'pdrlearn train ... --out {path}'")
+    mf = path / MANIFEST
+    if not mf.is_file():
+        raise ModelError(f"{path}: missing {MANIFEST}; not a pdrlearn model directory (retrain it)")
+    try:
+        manifest = json.loads(mf.read_text())
+    except (OSError, json.JSONDecodeError) as exc:
+        raise ModelError(f"{mf}: unreadable manifest ({exc}); retrain the model") from None
+    if not isinstance(manifest, dict) or manifest.get("schema_version") != SCHEMA_VERSION:
+        got = manifest.get("schema_version") if isinstance(manifest, dict) else None
+        raise ModelError(f"{mf}: schema version {got!r}, this pdrlearn reads version {SCHEMA_VERSION}; "
+                         "retrain the model with this version")
+    for key in ("tasks", "files", "n_samples", "user"):
+        if key not in manifest:
+            raise ModelError(f"{mf}: missing key '{key}'; retrain the model")
+    return manifest
+
+
+def load_model(path):
+    """Load a model directory written by :meth:`UserModel.save` -> :class:`UserModel`.
+
+    Raises :class:`ModelError` (one line) for a missing directory/manifest/model file, a changed file
+    (SHA-256 mismatch) or another schema version.
+    """
+    import joblib
+
+    from pdrlearn.classify.training import TaskModel, UserModel
+
+    path = Path(path)
+    manifest = read_manifest(path)
+    models: dict[str, object] = {}
+    for rel, digest in manifest["files"].items():
+        f = path / rel
+        if not f.is_file():
+            raise ModelError(f"{path}: model file {rel} is missing; retrain the model")
+        if _sha256(f) != digest:
+            raise ModelError(f"{path}: model file {rel} was altered (checksum mismatch); retrain the model")
+        try:
+            models[rel] = joblib.load(f)
+        except Exception as exc:  # noqa: BLE001 - any unpickling failure is a model problem
+            raise ModelError(f"{f}: cannot be loaded ({type(exc).__name__}: {exc}); retrain the model") from None
+    tasks = {}
+    for name, t in manifest["tasks"].items():
+        tm = TaskModel(name, list(t["classes"]), cv=t.get("cv", {}), fusion_weights=t.get("fusion_weights", {}),
+                       skipped=t.get("skipped", []), n_steps=t.get("n_steps", 0),
+                       n_skipped_labels=t.get("n_skipped_labels", 0))
+        for method, units in t["models"].items():
+            for unit in units:
+                rel = f"models/{name}__{method}__{unit}.joblib"
+                if rel not in models:
+                    raise ModelError(f"{path}: manifest lists {method}/{unit} for {name} but not its file {rel}")
+                tm.models.setdefault(method, {})[unit] = models[rel]
+        chosen = t.get("chosen")
+        tm.chosen = (chosen["method"], chosen["unit"]) if chosen else None
+        tasks[name] = tm
+    return UserModel(user=manifest["user"], tasks=tasks, n_samples=int(manifest["n_samples"]),
+                     sampling_rate_hz=manifest.get("sampling_rate_hz", {}),
+                     data_summary=manifest.get("training_data", {}), settings=manifest.get("settings", {}),
+                     created=manifest.get("created", ""), skipped=manifest.get("skipped", []))

@@ -1,0 +1,461 @@
+"""Per-user training of every task x method x unit, cross-validated, with the best fused method chosen.
+
+:func:`train_user` reads labelled sessions, cuts fixed-length step windows
+(:func:`pdrlearn.features.step_windows`), and for each task trains the methods (heuristic, heuristic fusion,
+DTW, SVM, NN) on each unit (foot, waist) and fused across units. Every model is an estimator on the raw
+window array ``(steps, channels, samples)`` (features are computed inside its pipeline), so the same object
+classifies new steps. :class:`UserModel` holds the fitted models and the metrics; :meth:`UserModel.save` /
+:func:`pdrlearn.classify.model_dir.load_model` write/read the model directory.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+from sklearn.base import clone
+from sklearn.model_selection import StratifiedKFold
+from sklearn.pipeline import Pipeline
+from sklearn.preprocessing import FunctionTransformer
+
+from pdrlearn.classify.dtw import THESIS_REFERENCES_PER_CLASS, DTWClassifier
+from pdrlearn.classify.fusion import UnitFusionClassifier, align_proba, best_weights, soft_vote
+from pdrlearn.classify.nn import NNClassifier
+from pdrlearn.classify.svm import SVMClassifier
+from pdrlearn.errors import DataError, MissingSensorError, PdrlearnError
+
+log = logging.getLogger(__name__)
+
+TASKS = ("terrain", "direction", "length")
+METHODS = ("heuristic", "fusion", "dtw", "svm", "nn")
+UNITS = ("foot", "waist", "fused")
+#: Per-unit methods; "fusion" (heuristic fusion, thesis ch. 6.1.2.3) exists only fused.
+UNIT_METHODS = ("heuristic", "dtw", "svm", "nn")
+#: Fewest labelled steps per class for training and cross-validation (decision: docs/decisions/classifiers.md).
+MIN_STEPS_PER_CLASS = 5
+#: Tie-break order when two fused methods score alike (the thesis' best first, Tables 27, 28, 33).
+PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic")
+
+#: Step signals compared by DTW per task and unit: terrain foot accelerometer + gyroscope / waist
+#: accelerometer (thesis ch. 6.1.2.2); direction foot / waist forward acceleration (thesis ch. 6.2.2.2);
+#: length foot acceleration + force / pelvic rotation (thesis ch. 6.3.2.2, sensors of Tables 29-31).
+DTW_SIGNALS: dict[str, dict[str, tuple[str, ...]]] = {
+    "terrain": {"foot": ("foot_acc_v", "foot_pitch"), "waist": ("waist_acc_v",)},
+    "direction": {"foot": ("foot_acc_fwd",), "waist": ("waist_acc_fwd",)},
+    "length": {"foot": ("foot_acc_fwd", "force"), "waist": ("waist_yaw",)},
+}
+
+
+# --------------------------------------------------------------------------------------------------
+# model factories
+# --------------------------------------------------------------------------------------------------
+def select_signals(X: np.ndarray, *, names: Sequence[str]) -> np.ndarray:
+    """Derived step signals ``(steps, len(names), samples)`` of a window array, for DTW."""
+    from pdrlearn.features import as_windows, signal
+
+    arr = as_windows(X)
+    out = np.stack([signal(arr, n) for n in names], axis=1)
+    if not np.isfinite(out).all():
+        raise MissingSensorError(f"DTW signals {', '.join(names)}: the step windows lack (part of) them; "
+                                 "record the sensor or use another unit")
+    return out
+
+
+def _heuristic_module():
+    try:
+        from pdrlearn.classify import heuristic
+    except ImportError:  # part 1 of issue 5 not merged yet
+        return None
+    return heuristic
+
+
+def make_estimator(task: str, method: str, unit: str, *, seed: int = 0,
+                   weights: Sequence[float] | None = None):
+    """A fresh estimator on step-window arrays for ``task`` x ``method`` x ``unit``.
+
+    ``unit="fused"`` gives a :class:`UnitFusionClassifier` over the foot and waist models (``weights``
+    given, or learned on a validation split when ``None``), except for ``method="fusion"`` (heuristic
+    fusion with the thesis weights, thesis Table 26).
+    """
+    from pdrlearn.features import make_features
+
+    if method == "fusion" or (method == "heuristic" and unit != "fused"):
+        mod = _heuristic_module()
+        if mod is None:
+            raise MissingSensorError("heuristic classifiers (pdrlearn.classify.heuristic) are not available")
+        return mod.make_heuristic(task, unit=unit, fused=(method == "fusion"))
+    if unit == "fused":
+        if method == "heuristic":
+            raise DataError("heuristic has no fused unit; use method 'fusion' (heuristic fusion)")
+        members = [(u, make_estimator(task, method, u, seed=seed), slice(None)) for u in ("foot", "waist")]
+        return UnitFusionClassifier(members, weights=None if weights is None else list(weights),
+                                    random_state=seed)
+    if method == "svm":
+        return Pipeline([("features", make_features(task, unit, "svm")), ("clf", SVMClassifier(task=task))])
+    if method == "nn":
+        return Pipeline([("features", make_features(task, unit, "nn")),
+                         ("clf", NNClassifier(task=task, random_state=seed))])
+    if method == "dtw":
+        return Pipeline([("signals", FunctionTransformer(select_signals, kw_args={"names": DTW_SIGNALS[task][unit]})),
+                         ("clf", DTWClassifier(n_references=THESIS_REFERENCES_PER_CLASS[task], random_state=seed))])
+    raise DataError(f"unknown method '{method}'; choose from {', '.join(METHODS)}")
+
+
+# --------------------------------------------------------------------------------------------------
+# data
+# --------------------------------------------------------------------------------------------------
+@dataclass
+class TaskData:
+    """Labelled step windows of one task, pooled over sessions."""
+
+    task: str
+    X: np.ndarray
+    y: np.ndarray
+    session: np.ndarray  # session index per step
+    n_skipped: int = 0  # rows whose label is not a class of the task (e.g. 'unclear')
+
+
+def session_windows(sessions, *, n_samples: int):
+    """Step windows of every labelled step of every session (one :class:`StepWindows` per session)."""
+    from pdrlearn.features import step_windows
+
+    out = []
+    for s in sessions:
+        if s.steps is None or len(s.steps) == 0:
+            raise DataError(f"session '{s.name}' has no labelled steps (steps.csv); label the steps to train")
+        out.append(step_windows(s, s.steps, n_samples=n_samples))
+    return out
+
+
+def task_data(windows, task: str) -> TaskData | None:
+    """Pool the steps labelled for ``task``; ``None`` when no session has that label column."""
+    from pdrlearn.features import TASK_COLUMNS, task_labels
+
+    Xs, ys, sess, skipped = [], [], [], 0
+    for i, w in enumerate(windows):
+        if TASK_COLUMNS[task] not in w.steps or w.steps[TASK_COLUMNS[task]].notna().sum() == 0:
+            continue
+        y, keep, n_skip = task_labels(w.steps, task, source=f"session '{w.session}'")
+        skipped += n_skip
+        Xs.append(w.X[keep])
+        ys.append(y)
+        sess.append(np.full(len(y), i))
+    if not Xs:
+        return None
+    return TaskData(task, np.concatenate(Xs), np.concatenate(ys).astype(str), np.concatenate(sess), skipped)
+
+
+def check_classes(data: TaskData, *, min_per_class: int = MIN_STEPS_PER_CLASS) -> None:
+    """Raise :class:`DataError` for a missing class or a class with too few steps."""
+    from pdrlearn.features import TASK_CLASSES
+
+    counts = {c: int(np.sum(data.y == c)) for c in TASK_CLASSES[data.task]}
+    missing = [c for c, n in counts.items() if n == 0]
+    if missing:
+        have = ", ".join(f"{c}={n}" for c, n in counts.items() if n)
+        raise DataError(f"task {data.task}: no steps labelled {', '.join(repr(m) for m in missing)} "
+                        f"(labelled: {have or 'none'}); record and label steps of every class, at least "
+                        f"{min_per_class} each")
+    few = {c: n for c, n in counts.items() if n < min_per_class}
+    if few:
+        raise DataError(f"task {data.task}: too few steps for class(es) "
+                        f"{', '.join(f'{c} ({n})' for c, n in few.items())}; at least {min_per_class} "
+                        "labelled steps per class are needed")
+
+
+# --------------------------------------------------------------------------------------------------
+# metrics
+# --------------------------------------------------------------------------------------------------
+def class_metrics(y_true: np.ndarray, y_pred: np.ndarray, classes: Sequence[str]) -> dict:
+    """Accuracy, balanced accuracy, per-class recall ("accuracy per class" of thesis Tables 27, 28, 33)
+    and the confusion matrix (rows = true class, columns = predicted, in ``classes`` order)."""
+    from sklearn.metrics import confusion_matrix
+
+    y_true, y_pred = np.asarray(y_true).astype(str), np.asarray(y_pred).astype(str)
+    classes = [str(c) for c in classes]
+    per_class = {c: (float(np.mean(y_pred[y_true == c] == c)) if np.any(y_true == c) else None) for c in classes}
+    present = [v for v in per_class.values() if v is not None]
+    return {
+        "accuracy": float(np.mean(y_true == y_pred)) if len(y_true) else None,
+        "balanced_accuracy": float(np.mean(present)) if present else None,
+        "per_class": per_class,
+        "n_steps": int(len(y_true)),
+        "confusion": confusion_matrix(y_true, y_pred, labels=list(classes)).tolist(),
+    }
+
+
+def _score_key(metrics: dict, method: str) -> tuple:
+    return (-(metrics["balanced_accuracy"] or 0.0), -(metrics["accuracy"] or 0.0), PREFERENCE.index(method))
+
+
+# --------------------------------------------------------------------------------------------------
+# user model
+# --------------------------------------------------------------------------------------------------
+@dataclass
+class TaskModel:
+    """Fitted models of one task: ``models[method][unit]``, CV metrics, the chosen ``(method, unit)``."""
+
+    task: str
+    classes: list[str]
+    models: dict[str, dict[str, object]] = field(default_factory=dict)
+    cv: dict[str, dict[str, dict]] = field(default_factory=dict)
+    chosen: tuple[str, str] | None = None
+    fusion_weights: dict[str, list[float]] = field(default_factory=dict)
+    skipped: list[str] = field(default_factory=list)
+    n_steps: int = 0
+    n_skipped_labels: int = 0
+
+    def ranking(self) -> list[tuple[str, str]]:
+        """(method, unit) pairs from best to worst CV score."""
+        pairs = [(m, u) for m, per in self.cv.items() for u in per if u in self.models.get(m, {})]
+        return sorted(pairs, key=lambda p: _score_key(self.cv[p[0]][p[1]], p[0]))
+
+
+@dataclass
+class UserModel:
+    """A user's trained step classifiers (all tasks), with the training summary and CV metrics."""
+
+    user: str
+    tasks: dict[str, TaskModel]
+    n_samples: int = 40
+    sampling_rate_hz: dict[str, float] = field(default_factory=dict)
+    data_summary: dict = field(default_factory=dict)
+    settings: dict = field(default_factory=dict)
+    created: str = ""
+    skipped: list[str] = field(default_factory=list)
+
+    def save(self, path) -> None:
+        """Write the model directory atomically (see :mod:`pdrlearn.classify.model_dir`)."""
+        from pdrlearn.classify.model_dir import save_model
+
+        save_model(self, path)
+
+    def _pick(self, tm: TaskModel, windows, method: str | None, unit: str | None) -> tuple[str, str]:
+        """The chosen (method, unit), else the best-ranked one whose sensors the windows have."""
+        if method is not None or unit is not None:
+            m = method or (tm.chosen[0] if tm.chosen else None)
+            units = [unit] if unit else [u for mm, u in tm.ranking() if mm == m]
+            for u in units:
+                if u in tm.models.get(m, {}):
+                    return m, u
+            raise DataError(f"model task {tm.task}: no trained method {m!r} unit {unit!r}; trained: "
+                            f"{', '.join(f'{a}/{b}' for a, b in tm.ranking())}")
+        order = ([tm.chosen] if tm.chosen else []) + tm.ranking()
+        for m, u in order:
+            if _units_available(u, windows.available, m):
+                return m, u
+        raise MissingSensorError(f"session '{windows.session}' lacks the sensors of every {tm.task} model "
+                                 f"(it has {', '.join(windows.available) or 'none'})")
+
+    def predict_steps(self, session, steps: pd.DataFrame | None = None, *, tasks: Sequence[str] | None = None,
+                      method: str | None = None, unit: str | None = None) -> pd.DataFrame:
+        """Classify every step of ``steps`` (default ``session.steps``).
+
+        Returns a DataFrame (one row per step, same index as ``steps``) with, per trained task, the class
+        column (``terrain``, ``direction``, ``length_class``), the probabilities ``p_<task>_<class>`` and
+        ``method_<task>`` (``"<method>/<unit>"``). By default each task uses the model's chosen method, or,
+        when the session lacks one of its units, the best cross-validated method it can run.
+        """
+        from pdrlearn.features import TASK_COLUMNS, step_windows
+
+        steps = session.steps if steps is None else steps
+        windows = step_windows(session, steps, n_samples=self.n_samples)
+        out = pd.DataFrame(index=steps.index if steps is not None else None)
+        for col in ("start_s", "end_s"):
+            if col in steps:
+                out[col] = steps[col].to_numpy()
+        for task in tasks or list(self.tasks):
+            if task not in self.tasks:
+                raise DataError(f"model of user '{self.user}' has no {task} classifier; trained tasks: "
+                                f"{', '.join(self.tasks)}")
+            tm = self.tasks[task]
+            m, u = self._pick(tm, windows, method, unit)
+            est = tm.models[m][u]
+            proba = align_proba(est.predict_proba(windows.X), np.asarray(est.classes_).astype(str),
+                                np.asarray(tm.classes))
+            out[TASK_COLUMNS[task]] = np.asarray(tm.classes, dtype=object)[np.argmax(proba, axis=1)]
+            for j, c in enumerate(tm.classes):
+                out[f"p_{task}_{c}"] = proba[:, j]
+            out[f"method_{task}"] = f"{m}/{u}"
+        return out
+
+
+def _units_available(unit: str, available: Sequence[str], method: str) -> bool:
+    foot = "foot_acc" in available
+    waist = "waist_acc" in available
+    if unit == "foot":
+        return foot
+    if unit == "waist":
+        return waist
+    return foot and waist
+
+
+# --------------------------------------------------------------------------------------------------
+# training
+# --------------------------------------------------------------------------------------------------
+def _oof_proba(est, X, y, folds, classes) -> np.ndarray:
+    """Out-of-fold probabilities ``(n, n_classes)`` of ``est`` over ``folds``."""
+    P = np.zeros((len(y), len(classes)))
+    for tr, te in folds:
+        model = clone(est).fit(X[tr], y[tr])
+        P[te] = align_proba(model.predict_proba(X[te]), np.asarray(model.classes_).astype(str), classes)
+    return P
+
+
+def _split_units(units: Sequence[str]) -> tuple[list[str], bool]:
+    per_unit = [u for u in ("foot", "waist") if u in units]
+    return per_unit, "fused" in units
+
+
+def _check_choice(name: str, values: Sequence[str], allowed: Sequence[str]) -> list[str]:
+    values = [v.strip() for v in values if v.strip()]
+    bad = [v for v in values if v not in allowed]
+    if bad or not values:
+        raise DataError(f"unknown {name} {', '.join(bad) or '(none)'}; choose from {', '.join(allowed)}")
+    return values
+
+
+def train_task(data: TaskData, *, methods: Sequence[str], units: Sequence[str], cv: int, seed: int,
+               advance: Callable[[int], None] = lambda n=1: None) -> TaskModel:
+    """Cross-validate and fit every method x unit of one task (see :func:`train_user`)."""
+    from pdrlearn.features import TASK_CLASSES
+
+    classes = np.asarray(TASK_CLASSES[data.task])
+    tm = TaskModel(data.task, list(classes), n_steps=len(data.y), n_skipped_labels=data.n_skipped)
+    X, y = data.X, data.y
+    n_splits = int(min(cv, min(np.sum(y == c) for c in classes)))
+    if n_splits < cv:
+        log.warning("task %s: %d-fold CV instead of %d (smallest class has %d steps)", data.task, n_splits, cv,
+                    n_splits)
+    folds = list(StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y))
+    per_unit, want_fused = _split_units(units)
+    for method in methods:
+        oof: dict[str, np.ndarray] = {}
+        unit_list = [] if method == "fusion" else list(per_unit)
+        for unit in unit_list:
+            try:
+                est = make_estimator(data.task, method, unit, seed=seed)
+                est.fit(X, y)  # the final model first: fails fast on missing sensors
+            except MissingSensorError as exc:
+                tm.skipped.append(f"{method}/{unit}: {exc}")
+                log.info("task %s: skipped %s/%s: %s", data.task, method, unit, exc)
+                continue
+            t0 = time.perf_counter()
+            oof[unit] = _oof_proba(make_estimator(data.task, method, unit, seed=seed), X, y, folds, classes)
+            tm.models.setdefault(method, {})[unit] = est
+            tm.cv.setdefault(method, {})[unit] = dict(class_metrics(y, classes[oof[unit].argmax(1)], classes),
+                                                      cv_seconds=time.perf_counter() - t0, n_folds=n_splits)
+            advance(1)
+        if not want_fused:
+            continue
+        if method == "fusion":
+            try:
+                est = make_estimator(data.task, "fusion", "fused", seed=seed).fit(X, y)
+                P = _oof_proba(make_estimator(data.task, "fusion", "fused", seed=seed), X, y, folds, classes)
+            except MissingSensorError as exc:
+                tm.skipped.append(f"fusion/fused: {exc}")
+                continue
+            tm.models.setdefault("fusion", {})["fused"] = est
+            tm.cv.setdefault("fusion", {})["fused"] = dict(class_metrics(y, classes[P.argmax(1)], classes),
+                                                         n_folds=n_splits)
+            advance(1)
+        elif method != "heuristic" and {"foot", "waist"} <= set(oof):
+            # unit weights from the out-of-fold probabilities of the foot and waist models (decision in
+            # docs/decisions/classifiers.md), then the fused CV score of that soft vote
+            yi = np.array([list(classes).index(v) for v in y])
+            w = best_weights([oof["foot"], oof["waist"]], yi)
+            P = soft_vote([oof["foot"], oof["waist"]], w)
+            est = make_estimator(data.task, method, "fused", seed=seed, weights=w)
+            est.fit(X, y)
+            tm.models[method]["fused"] = est
+            tm.fusion_weights[method] = [float(v) for v in w]
+            tm.cv[method]["fused"] = dict(class_metrics(y, classes[P.argmax(1)], classes), n_folds=n_splits,
+                                          weights={"foot": float(w[0]), "waist": float(w[1])})
+            advance(1)
+        elif method != "heuristic":
+            tm.skipped.append(f"{method}/fused: needs both the foot and the waist unit")
+    fused = [(m, u) for m, u in tm.ranking() if u == "fused"]
+    ranking = tm.ranking()
+    tm.chosen = (fused or ranking or [None])[0]
+    if tm.chosen is None:
+        raise DataError(f"task {data.task}: no method could be trained ({'; '.join(tm.skipped)})")
+    return tm
+
+
+def train_user(sessions, *, tasks: Sequence[str] | None = None, methods: Sequence[str] | None = None,
+               units: Sequence[str] | None = None, cv: int = 10, seed: int = 0, n_samples: int = 40,
+               user: str | None = None, strict: bool | None = None,
+               advance: Callable[[int], None] = lambda n=1: None) -> UserModel:
+    """Train a user's step classifiers from labelled sessions.
+
+    Parameters
+    ----------
+    sessions : labelled :class:`~pdrlearn.io.Session` objects (``steps`` with ``start_s``/``end_s`` and
+        ``terrain`` / ``direction`` / ``length_class`` labels).
+    tasks, methods, units : subsets of :data:`TASKS`, :data:`METHODS`, :data:`UNITS` (default: all).
+    cv : folds of the stratified cross-validation that scores every model (thesis ch. 6: 10-fold);
+        reduced to the smallest class size when a class has fewer steps.
+    seed : seed of the folds, the DTW reference choice and the network initialisation.
+    n_samples : samples per resampled step window.
+    strict : raise on a task without labels / with a missing class. Default: strict when ``tasks`` is
+        given explicitly; otherwise such tasks are skipped and listed in ``UserModel.skipped``.
+
+    Returns
+    -------
+    :class:`UserModel` with, per task, the fitted models, CV metrics and the chosen fused method (the best
+    balanced CV accuracy among the fused models, or among all when only one unit was trained).
+    """
+    from datetime import UTC, datetime
+
+    import pdrlearn
+
+    if not sessions:
+        raise DataError("train: no sessions given; pass at least one labelled session folder")
+    strict = (tasks is not None) if strict is None else strict
+    tasks = _check_choice("task", tasks or TASKS, TASKS)
+    methods = _check_choice("method", methods or METHODS, METHODS)
+    units = _check_choice("unit", units or UNITS, UNITS)
+    if cv < 2:
+        raise DataError(f"train: cv={cv}; cross-validation needs at least 2 folds")
+    windows = session_windows(sessions, n_samples=n_samples)
+    out: dict[str, TaskModel] = {}
+    skipped: list[str] = []
+    for task in tasks:
+        data = task_data(windows, task)
+        try:
+            if data is None:
+                raise DataError(f"task {task}: no session has {task} labels; label the steps "
+                                f"('{ {'length': 'length_class'}.get(task, task)}' column) or drop the task")
+            check_classes(data)
+        except DataError as exc:
+            if strict:
+                raise
+            skipped.append(f"{task}: {exc}")
+            log.warning("skipped %s", exc)
+            continue
+        out[task] = train_task(data, methods=methods, units=units, cv=cv, seed=seed, advance=advance)
+    if not out:
+        raise DataError("train: nothing to train; " + " | ".join(skipped))
+    rates: dict[str, float] = {}
+    for s in sessions:
+        for name, st in s.streams.items():
+            rates.setdefault(name, round(float(st.rate_hz), 3))
+    summary = {"sessions": [s.name for s in sessions], "n_sessions": len(sessions), "steps": {}}
+    for t, m in out.items():
+        data = task_data(windows, t)
+        summary["steps"][t] = {"n_steps": m.n_steps, "n_skipped_labels": m.n_skipped_labels,
+                               "per_class": {c: int(np.sum(data.y == c)) for c in m.classes}}
+    return UserModel(
+        user=user or (sessions[0].meta.get("user") or sessions[0].meta.get("subject") or sessions[0].name),
+        tasks=out, n_samples=n_samples, sampling_rate_hz=rates, data_summary=summary,
+        settings={"cv": cv, "seed": seed, "methods": list(methods), "units": list(units),
+                  "min_steps_per_class": MIN_STEPS_PER_CLASS, "package_version": pdrlearn.__version__},
+        created=datetime.now(UTC).isoformat(timespec="seconds"), skipped=skipped)
+
+
+__all__ = ["TASKS", "METHODS", "UNITS", "MIN_STEPS_PER_CLASS", "DTW_SIGNALS", "make_estimator", "train_user",
+           "train_task", "UserModel", "TaskModel", "class_metrics", "PdrlearnError"]
