@@ -39,14 +39,18 @@ def test_nmea_bad_checksum_and_empty_fixes_are_skipped_and_counted():
     assert st["used"] == 2 and len(log) == 2
     f = log.fixes
     assert f["t"].tolist() == pytest.approx([100.0, 104.0])
-    assert f["lat"].iloc[0] == pytest.approx(48 + 7.038 / 60) and f["lon"].iloc[0] == pytest.approx(11 + 31.0 / 60)
+    assert f["lat"].iloc[0] == pytest.approx(48 + 7.038 / 60) and f["lon"].iloc[0] == pytest.approx(
+        11 + 31.0 / 60
+    )
     assert f["accuracy_m"].iloc[0] == pytest.approx(0.9 * 5.0)  # GGA merged with RMC keeps HDOP * UERE
     assert f["lat"].iloc[1] < 0 and f["lon"].iloc[1] < 0 and f["accuracy_m"].iloc[1] == 12.0
 
 
 def test_nmea_midnight_rollover():
-    lines = [_s("GPGGA,235959.00,4807.038,N,01131.000,E,1,08,1.0,545.4,M,46.9,M,,"),
-             _s("GPGGA,000001.00,4807.038,N,01131.000,E,1,08,1.0,545.4,M,46.9,M,,")]
+    lines = [
+        _s("GPGGA,235959.00,4807.038,N,01131.000,E,1,08,1.0,545.4,M,46.9,M,,"),
+        _s("GPGGA,000001.00,4807.038,N,01131.000,E,1,08,1.0,545.4,M,46.9,M,,"),
+    ]
     assert parse_nmea_lines(lines).fixes["t"].tolist() == pytest.approx([0.0, 2.0])
 
 
@@ -73,8 +77,9 @@ def test_generated_fixes_round_trip_through_nmea(tmp_path):
 
 def test_csv_reader_good_and_bad(tmp_path):
     good = tmp_path / "fixes.csv"
-    pd.DataFrame({"t": [2.0, 1.0], "lat": [45.0, 45.0001], "lon": [9.0, 9.0], "accuracy_m": [3.0, 4.0]}).to_csv(
-        good, index=False)
+    pd.DataFrame(
+        {"t": [2.0, 1.0], "lat": [45.0, 45.0001], "lon": [9.0, 9.0], "accuracy_m": [3.0, 4.0]}
+    ).to_csv(good, index=False)
     log = read_fix_csv(good)
     assert log.fixes["t"].tolist() == [1.0, 2.0]  # sorted by time
     miss = tmp_path / "missing.csv"
@@ -84,7 +89,8 @@ def test_csv_reader_good_and_bad(tmp_path):
     assert "missing.csv" in str(e.value) and "accuracy_m" in str(e.value) and "\n" not in str(e.value)
     nan = tmp_path / "nan.csv"
     pd.DataFrame({"t": [1.0, 2.0], "x": [0.0, np.nan], "y": [0.0, 1.0], "accuracy_m": [1.0, 1.0]}).to_csv(
-        nan, index=False)
+        nan, index=False
+    )
     with pytest.raises(DataError, match="NaN"):
         read_fix_csv(nan)
     neg = tmp_path / "neg.csv"
@@ -108,7 +114,9 @@ def test_local_tangent_plane_round_trip_and_scale():
 
 def test_gnss_noise_matches_reported_accuracy_and_outages():
     truth = pd.DataFrame({"t": [0.0, 4000.0], "x": [0.0, 0.0], "y": [0.0, 0.0]})
-    fx = gnss_fixes(truth, accuracy_m=5.0, accuracy_spread=0.0, correlation_s=0.0, outages=[(100, 200)], seed=1)
+    fx = gnss_fixes(
+        truth, accuracy_m=5.0, accuracy_spread=0.0, correlation_s=0.0, outages=[(100, 200)], seed=1
+    )
     r = np.hypot(fx["x"], fx["y"])
     assert np.mean(r <= fx["accuracy_m"]) == pytest.approx(0.68, abs=0.03)  # 68 % radius
     assert not ((fx["t"] >= 100) & (fx["t"] < 200)).any()

@@ -33,10 +33,17 @@ def test_kf_two_step_hand_computed():
 def test_fsm_transitions():
     kw = dict(period_s=60.0, ttff_s=2.0, max_on_s=30.0)
     assert fsm_next(OFF, mode="saving", t=59.0, switched_on_s=0, last_fix_s=0.0, fix_used=False, **kw) == OFF
-    assert fsm_next(OFF, mode="saving", t=60.0, switched_on_s=0, last_fix_s=0.0, fix_used=False, **kw) == ACQUIRING
-    assert fsm_next(ACQUIRING, mode="saving", t=61.0, switched_on_s=60, last_fix_s=0, fix_used=False, **kw) \
+    assert (
+        fsm_next(OFF, mode="saving", t=60.0, switched_on_s=0, last_fix_s=0.0, fix_used=False, **kw)
         == ACQUIRING
-    assert fsm_next(ACQUIRING, mode="saving", t=62.0, switched_on_s=60, last_fix_s=0, fix_used=False, **kw) == ON
+    )
+    assert (
+        fsm_next(ACQUIRING, mode="saving", t=61.0, switched_on_s=60, last_fix_s=0, fix_used=False, **kw)
+        == ACQUIRING
+    )
+    assert (
+        fsm_next(ACQUIRING, mode="saving", t=62.0, switched_on_s=60, last_fix_s=0, fix_used=False, **kw) == ON
+    )
     assert fsm_next(ON, mode="saving", t=63.0, switched_on_s=60, last_fix_s=0, fix_used=True, **kw) == OFF
     assert fsm_next(ON, mode="saving", t=90.0, switched_on_s=60, last_fix_s=0, fix_used=False, **kw) == OFF
     assert fsm_next(OFF, mode="best", t=0.0, switched_on_s=0, last_fix_s=0, fix_used=True, **kw) == ON
@@ -79,7 +86,9 @@ def test_fused_error_below_pdr_on_synthetic_walk():
     for mode, per in (("best", 60.0), ("saving", 60.0), ("off", 60.0)):
         f = GnssPdrFusion(mode=mode, period_s=per).run(pdr.steps, fx)
         rmse[mode] = float(np.sqrt(np.mean(position_errors(f.trajectory_, truth) ** 2)))
-        assert f.trajectory_[["x_pdr", "y_pdr"]].to_numpy() == pytest.approx(pdr.trajectory[["x", "y"]].to_numpy())
+        assert f.trajectory_[["x_pdr", "y_pdr"]].to_numpy() == pytest.approx(
+            pdr.trajectory[["x", "y"]].to_numpy()
+        )
     pdr_rmse = float(np.sqrt(np.mean(e_pdr**2)))
     assert rmse["off"] == pytest.approx(pdr_rmse, rel=1e-9)
     assert rmse["best"] < 0.5 * pdr_rmse and rmse["saving"] < pdr_rmse
