@@ -2,7 +2,7 @@
 
 import importlib
 
-PIPELINE_MODULES: list[str] = []
+PIPELINE_MODULES: list[str] = ["pdrlearn.track.waist"]
 
 for _m in PIPELINE_MODULES:
     importlib.import_module(_m)

@@ -1,0 +1,213 @@
+"""Waist-only dead-reckoning pipelines ``waist-pll`` (seed 000/001) and ``waist-pendulum`` (seed 003).
+
+Both share the AHRS (:mod:`pdrlearn.waist.ahrs`), the motion gate and the evaluation; they differ in
+the step events, the step length model and the heading:
+
+=================  ======================================  =========================================
+                   waist-pll (Basso 2017/2021)             waist-pendulum (Alvarez 2012)
+=================  ======================================  =========================================
+step events        PLL on vertical acceleration            IC from AP + vertical acceleration (FIR)
+step length        ``a f - b`` (piecewise linear in f)     ``K 2 sqrt(2 L h - h^2) + F``
+heading            A-HE tip-to-tail (or ellipse closed     vertical gyro, integrated on turning
+                   form) of the planar acceleration        strides (GMM on |MRZ|), bias removed
+=================  ======================================  =========================================
+"""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+from pdrlearn.io import Session
+from pdrlearn.track.base import TrackResult, register_pipeline
+from pdrlearn.waist import _kernels as K
+from pdrlearn.waist.ahrs import WaistIMU, waist_imu
+from pdrlearn.waist.events import WALK_THRESHOLD_MPS2, InitialContactDetector, steps_from_events, walking_gate
+from pdrlearn.waist.heading import TurnClassifier, gyro_headings, harmonic_headings
+from pdrlearn.waist.params import WaistParams, resolve_params
+from pdrlearn.waist.steplength import frequency_lengths, pendulum_h
+
+log = logging.getLogger(__name__)
+
+MAX_STEP_S = 1.5  # contacts further apart end a walking sequence (slow gait: steps up to ~1 s)
+
+
+def _sequences(steps: pd.DataFrame) -> list[np.ndarray]:
+    """Row indices of each walking sequence: consecutive rows with a next contact plus the closing row."""
+    seqs, cur = [], []
+    for i, hn in enumerate(steps["has_next"].to_numpy(bool)):
+        cur.append(i)
+        if not hn:
+            seqs.append(np.array(cur))
+            cur = []
+    if cur:
+        seqs.append(np.array(cur))
+    return seqs
+
+
+def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float) -> tuple[pd.DataFrame, str]:
+    """Step events of seed 000 (PLL peaks); falls back to the maxima of the zero-lag low-passed vertical
+    acceleration (the peaks the PLL locks on, seed 000 sec. II-C) when no PLL detector is installed."""
+    try:
+        from pdrlearn.steps import PLLStepDetector  # written by the step-detection module
+    except ImportError:
+        PLLStepDetector = None
+    if PLLStepDetector is not None:
+        try:
+            det = PLLStepDetector().detect(session)
+            st = getattr(det, "steps_", det)
+            if isinstance(st, pd.DataFrame) and "event_s" in st and len(st):
+                ev = np.sort(st["event_s"].to_numpy(float))
+                idx = np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t) - 1)
+                gate = walking_gate(imu, walk_threshold=walk_threshold)
+                idx = idx[gate[idx]]
+                return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector="pll"), ""
+        except (TypeError, AttributeError) as exc:  # interface mismatch: say so, use the fallback
+            log.warning("PLLStepDetector unusable here (%s); using vertical-acceleration peaks", exc)
+    gate = walking_gate(imu, walk_threshold=walk_threshold)
+    _, _, vmax = K.ic_offline(imu.acc_v, imu.acc_ap, imu.fs, gate=gate)
+    return (steps_from_events(imu.t, vmax, max_step_s=MAX_STEP_S, detector="vertical-peaks"),
+            "PLL step detector not available: steps at the maxima of the low-passed vertical acceleration")
+
+
+def _start(start) -> tuple[float, float, float]:
+    if start is None:
+        return 0.0, 0.0, 0.0
+    if isinstance(start, dict):
+        try:
+            return (float(start.get("x", 0.0)), float(start.get("y", 0.0)),
+                    float(start.get("heading_rad", start.get("heading", 0.0))))
+        except (TypeError, ValueError):
+            raise DataError(f"start {start!r}: x, y, heading_rad must be numbers") from None
+    raise DataError(f"start {start!r}: pass a dict with x, y (m) and heading_rad (rad)")
+
+
+def _result(steps: pd.DataFrame, lengths: np.ndarray, headings: np.ndarray, start, info: dict,
+            t0: float) -> TrackResult:
+    x0, y0, h0 = _start(start)
+    out = steps.copy()
+    out["length_m"] = lengths
+    out["heading_rad"] = np.angle(np.exp(1j * (headings + h0)))
+    out["dz_m"] = 0.0
+    dx = lengths * np.cos(headings + h0)
+    dy = lengths * np.sin(headings + h0)
+    traj = pd.DataFrame({"t": np.concatenate([[t0], out["end_s"].to_numpy(float)]),
+                         "x": x0 + np.concatenate([[0.0], np.cumsum(dx)]),
+                         "y": y0 + np.concatenate([[0.0], np.cumsum(dy)]),
+                         "z": 0.0})
+    return TrackResult(steps=out, trajectory=traj, info=info)
+
+
+def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
+    out = h.copy()
+    last = fallback
+    for i, v in enumerate(out):
+        if np.isfinite(v):
+            last = v
+        else:
+            out[i] = last
+    return out
+
+
+def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool = False,
+                heading: str | None = None) -> TrackResult:
+    """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
+
+    Parameters
+    ----------
+    params : PARAMS.json path, dict or :class:`WaistParams` from ``pdrlearn calibrate`` (None: defaults
+        from meta.json, with a warning)
+    start : dict ``x``, ``y`` (m), ``heading_rad`` (rad, ENU; 0 = east) of the start; default origin,
+        heading 0 = the unit's initial facing direction
+    realtime : pendulum only: the causal IC detector instead of the zero-lag offline one
+    heading : ``"ahe"`` (default of waist-pll), ``"ellipse"`` (seed 001 closed form) or ``"gyro"``
+        (default of waist-pendulum)
+    """
+    if pipeline not in ("waist-pll", "waist-pendulum"):
+        raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
+    p, warnings = resolve_params(session, params)
+    imu = waist_imu(session)
+    thr = p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None else WALK_THRESHOLD_MPS2
+    if pipeline == "waist-pendulum":
+        det = InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S).detect(imu)
+        steps = det.steps_
+        method = heading or "gyro"
+    else:
+        steps, note = _pll_steps(session, imu, thr)
+        if note:
+            warnings.append(note)
+        method = heading or "ahe"
+    if method not in ("ahe", "ellipse", "gyro"):
+        raise DataError(f"heading method '{method}' is not one of ahe, ellipse, gyro")
+    n = len(steps)
+    lengths = np.zeros(n)
+    headings = np.full(n, np.nan)
+    turning = np.zeros(n, dtype=int)
+    fs = imu.fs
+    idx = np.clip(np.round((steps["event_s"].to_numpy(float) - imu.t[0]) * fs).astype(int), 0, len(imu.t) - 1)
+    has_next = steps["has_next"].to_numpy(bool)
+    dur = (steps["end_s"] - steps["start_s"]).to_numpy(float)
+    freq = np.where(has_next & (dur > 0), 1.0 / np.where(dur > 0, dur, 1.0), np.nan)
+    if pipeline == "waist-pendulum":
+        fc_idx = np.round((steps["fc_s"].fillna(-1).to_numpy(float) - imu.t[0]) * fs).astype(int)
+        h = np.zeros(n)
+        for i in np.flatnonzero(has_next):
+            h[i] = pendulum_h(imu.acc_v, fs, idx[i], fc_idx[i], idx[i + 1])
+        lengths = np.where(has_next, K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m), 0.0)
+        steps = steps.assign(h_m=h)
+    else:
+        sigma = K.rolling_std(imu.acc_v, fs, causal=False)
+        running = K.motion_state(sigma[idx], walk_threshold=thr) == 2
+        lengths = np.where(has_next, frequency_lengths(np.nan_to_num(freq, nan=0.0), p, running=running), 0.0)
+    steps = steps.assign(frequency_hz=freq)
+    clf = TurnClassifier(**(p.turn_gmm or {})) if method == "gyro" else None
+    current = 0.0
+    for seq in _sequences(steps):
+        ev = steps["event_s"].to_numpy(float)[seq]
+        moving = seq[:-1] if len(seq) > 1 else seq[:0]
+        if len(moving) == 0:
+            headings[seq] = current
+            continue
+        if method == "gyro":
+            hd, tr = gyro_headings(imu, ev, classifier=clf, bias_rps=p.gyro_bias_rps, heading0=current)
+            turning[moving] = tr
+        else:
+            hd = _fill_nan_headings(harmonic_headings(imu, ev, method=method), current)
+        headings[moving] = hd
+        current = float(hd[-1])
+        headings[seq[-1]] = current
+    headings = _fill_nan_headings(headings, 0.0)
+    steps = steps.assign(turning=turning)
+    info = {
+        "pipeline": pipeline,
+        "method": {"steps": steps.attrs.get("detector", ""), "length": "pendulum" if pipeline ==
+                   "waist-pendulum" else "frequency", "heading": method},
+        "params": p.to_dict(),
+        "params_source": p.source,
+        "warnings": warnings,
+        "n_contacts": int(n),
+        "rate_hz": fs,
+    }
+    for w in warnings:
+        log.warning("%s: %s", session.name, w)
+    return _result(steps, lengths, headings, start, info, float(imu.t[0]))
+
+
+@register_pipeline("waist-pll")
+def waist_pll(session: Session, *, model=None, start=None, params=None, **opts) -> TrackResult:
+    """Seed 000 pipeline: PLL steps, step length linear in frequency, A-HE heading (``heading="ellipse"``
+    for the seed 001 closed form). ``model`` is unused (no step classifier)."""
+    return track_waist(session, pipeline="waist-pll", params=params, start=start, **opts)
+
+
+@register_pipeline("waist-pendulum")
+def waist_pendulum(session: Session, *, model=None, start=None, params=None, **opts) -> TrackResult:
+    """Seed 003 pipeline: IC/FC from waist acceleration (``realtime=True`` for the causal variant),
+    inverted-pendulum step length, gyroscope heading on turning strides."""
+    return track_waist(session, pipeline="waist-pendulum", params=params, start=start, **opts)
+
+
+__all__ = ["track_waist", "waist_pll", "waist_pendulum", "WaistParams"]

@@ -1,0 +1,394 @@
+"""Pure numerical kernels of the waist-only dead-reckoning pipelines (seeds 000, 001, 003).
+
+Every function is side-effect free, takes arrays along axis 0 = time, rates in Hz, windows in seconds,
+and returns new arrays. The classes in :mod:`pdrlearn.waist` hold parameters and results and call these.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import signal as _sig
+from scipy.ndimage import uniform_filter1d
+
+from pdrlearn.errors import DataError
+
+# --------------------------------------------------------------------------------------------------
+# motion gate (seed 000 sec. II-B)
+# --------------------------------------------------------------------------------------------------
+GATE_WINDOW_S = 2.0  # seed 000 sec. II-B: standard deviation over the last two seconds
+RUN_THRESHOLD_MPS2 = 5.0  # seed 000 sec. II-B: walking/running threshold on sigma_z
+
+
+def rolling_std(x: np.ndarray, fs: float, *, window_s: float = GATE_WINDOW_S,
+                causal: bool = True) -> np.ndarray:
+    """Standard deviation of ``x`` over a sliding window of ``window_s`` seconds.
+
+    ``causal=True`` uses the last ``window_s`` seconds (seed 000 sec. II-B, the real-time buffer);
+    ``False`` centres the window (offline).
+    """
+    x = np.asarray(x, dtype=np.float64)
+    w = max(3, int(round(window_s * fs)) | 1)  # odd length
+    origin = (w - 1) // 2 if causal else 0  # output[i] uses x[i - w + 1 .. i]
+    m = uniform_filter1d(x, w, mode="nearest", origin=origin)
+    m2 = uniform_filter1d(x * x, w, mode="nearest", origin=origin)
+    return np.sqrt(np.maximum(m2 - m * m, 0.0))
+
+
+def motion_state(sigma_z: np.ndarray, *, walk_threshold: float, run_threshold: float = RUN_THRESHOLD_MPS2
+                 ) -> np.ndarray:
+    """0 = stopped, 1 = walking, 2 = running from the rolling std of vertical acceleration (m/s^2)."""
+    s = np.asarray(sigma_z, dtype=np.float64)
+    return (s >= walk_threshold).astype(np.int8) + (s >= run_threshold).astype(np.int8)
+
+
+# --------------------------------------------------------------------------------------------------
+# zero-lag FIR filtering and gait events (seed 003 sec. 3.1)
+# --------------------------------------------------------------------------------------------------
+def fir_taps(cutoff_hz: float, fs: float, order: int) -> np.ndarray:
+    """Linear-phase (Hamming) low-pass FIR of ``order`` (``order + 1`` taps, order made even)."""
+    nyq = 0.5 * fs
+    if not 0 < cutoff_hz < nyq:
+        raise DataError(f"FIR low-pass: cutoff {cutoff_hz} Hz must lie in (0, {nyq:g}) Hz at {fs:g} Hz")
+    order = max(2, int(order) + (int(order) % 2))
+    return _sig.firwin(order + 1, cutoff_hz, fs=fs)
+
+
+def fir_zero_lag(x: np.ndarray, taps: np.ndarray) -> np.ndarray:
+    """Apply a symmetric FIR with its group delay removed (output aligned with the input), edges
+    padded by reflection."""
+    x = np.asarray(x, dtype=np.float64)
+    h = len(taps) // 2
+    if x.shape[0] == 0:
+        return x.copy()
+    xp = np.pad(x, (h, h), mode="reflect" if x.shape[0] > h else "edge")
+    return np.convolve(xp, taps, mode="valid")
+
+
+def fir_causal(x: np.ndarray, taps: np.ndarray) -> np.ndarray:
+    """Apply an FIR causally (output delayed by ``(len(taps) - 1) / 2`` samples), started at the first
+    sample's steady state."""
+    x = np.asarray(x, dtype=np.float64)
+    if x.shape[0] == 0:
+        return x.copy()
+    xp = np.concatenate([np.full(len(taps) - 1, x[0]), x])
+    return np.convolve(xp, taps, mode="valid")
+
+
+def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
+               cutoff_hz: float = 2.5, fir_order_s: float = 0.3, min_step_s: float = 0.3,
+               search_s: float = 0.25, fc_search_s: float = 0.25, min_peak_mps2: float = 0.1,
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
+
+    The vertical acceleration is low-passed with a zero-lag FIR (seed 003: order 30, 2.5 Hz, here the
+    order is ``fir_order_s`` seconds of samples so the filter is the same at every rate); each maximum of
+    it is one step. The IC is the maximum of the antero-posterior (AP) acceleration immediately before
+    the vertical maximum (the last local maximum within ``search_s``, decision W3), the FC the minimum
+    of AP acceleration just after it (within ``fc_search_s``).
+
+    Parameters
+    ----------
+    acc_v : (n,) vertical acceleration without gravity (m/s^2, up positive)
+    acc_ap : (n,) antero-posterior acceleration (m/s^2, forward positive)
+    fs : rate (Hz)
+    gate : (n,) bool, samples where the user moves; vertical maxima outside it are ignored
+    min_peak_mps2 : a vertical maximum must exceed this (filtered, m/s^2) to be a step
+
+    Returns
+    -------
+    ic, fc, vmax : sample indices (int arrays of equal length) of IC, FC and the vertical maximum.
+    """
+    v = np.asarray(acc_v, dtype=np.float64)
+    ap = np.asarray(acc_ap, dtype=np.float64)
+    taps = fir_taps(cutoff_hz, fs, int(round(fir_order_s * fs)))  # seed 003 sec. 3.1: order 30, 2.5 Hz
+    vf = fir_zero_lag(v - np.mean(v), taps)
+    peaks, _ = _sig.find_peaks(vf, height=min_peak_mps2, distance=max(1, int(round(min_step_s * fs))))
+    if gate is not None:
+        peaks = peaks[np.asarray(gate, dtype=bool)[peaks]]
+    ws = max(1, int(round(search_s * fs)))
+    wf = max(1, int(round(fc_search_s * fs)))
+    ic, fc = np.empty(len(peaks), dtype=int), np.empty(len(peaks), dtype=int)
+    for i, p in enumerate(peaks):
+        ic[i] = _nearest_local_max_before(ap, p, max(0, p - ws))
+        hi = min(len(ap), p + wf + 1)
+        fc[i] = p + int(np.argmin(ap[p:hi]))
+    return ic, fc, peaks
+
+
+def _nearest_local_max_before(x: np.ndarray, k: int, lo: int) -> int:
+    """Index of the last local maximum of ``x`` in ``[lo, k]`` (the global maximum there if none)."""
+    seg = x[lo:k + 1]
+    if seg.size < 3:
+        return lo + int(np.argmax(seg)) if seg.size else k
+    inner = np.flatnonzero((seg[1:-1] >= seg[:-2]) & (seg[1:-1] > seg[2:])) + 1
+    return lo + int(inner[-1]) if inner.size else lo + int(np.argmax(seg))
+
+
+def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
+                cutoff_hz: float = 2.5, fir_order: int = 11, search_s: float = 0.25,
+                min_step_s: float = 0.3, lobe_ratio: float = 2.0, fc_search_s: float = 0.25,
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Causal initial-contact detection (seed 003 sec. 3.1, real-time variant).
+
+    The AP acceleration passes an 11th-order causal FIR (seed 003 sec. 3.1); each positive-to-negative
+    zero crossing of its output is an IC candidate. The positive lobe before a true crossing is about as
+    long as the previous ones, a false crossing's lobe is much longer or shorter: a candidate is rejected
+    when its lobe duration differs from the running median of the accepted lobes by more than a factor
+    ``lobe_ratio`` (the threshold of seed 003, expressed as a ratio). The IC is the last local maximum
+    of the raw AP acceleration in the ``search_s`` window before the (delay-corrected) crossing; the FC
+    the minimum of AP acceleration in the ``fc_search_s`` after the IC's vertical maximum. Only samples
+    up to the crossing (plus ``fc_search_s`` for the FC) are used, so the IC is known one filter delay
+    after it happens.
+
+    Returns
+    -------
+    ic, fc, zc : sample indices of IC, FC and the (delayed) zero crossing that triggered the detection.
+    """
+    ap = np.asarray(acc_ap, dtype=np.float64)
+    v = np.asarray(acc_v, dtype=np.float64)
+    order = int(fir_order)
+    taps = _sig.firwin(order + 1, min(cutoff_hz, 0.45 * fs), fs=fs)
+    delay = order // 2
+    # causal mean removal: running mean over the last 2 s keeps the filter input centred
+    w = max(2, int(round(2.0 * fs)))
+    w |= 1
+    apc = ap - uniform_filter1d(ap, w, mode="nearest", origin=(w - 1) // 2)
+    y = fir_causal(apc, taps)
+    zc = np.flatnonzero((y[:-1] > 0) & (y[1:] <= 0)) + 1
+    up = np.flatnonzero((y[:-1] <= 0) & (y[1:] > 0)) + 1
+    gate_arr = None if gate is None else np.asarray(gate, dtype=bool)
+    lobes: list[float] = []
+    ic_l, fc_l, zc_l = [], [], []
+    ws = max(1, int(round(search_s * fs)))
+    wf = max(1, int(round(fc_search_s * fs)))
+    min_gap = int(round(min_step_s * fs))
+    for z in zc:
+        if gate_arr is not None and not gate_arr[z]:
+            continue
+        prev_up = up[up < z]
+        if prev_up.size == 0:
+            continue
+        lobe = (z - prev_up[-1]) / fs
+        if len(lobes) >= 3:
+            med = float(np.median(lobes[-8:]))
+            if not (med / lobe_ratio <= lobe <= med * lobe_ratio):
+                continue
+        zr = z - delay  # crossing time corrected for the FIR delay
+        ic = _nearest_local_max_before(ap, zr, max(0, zr - ws))
+        if ic_l and ic - ic_l[-1] < min_gap:
+            continue
+        lobes.append(lobe)
+        hi = min(len(v), ic + wf + 1)
+        vmax = ic + int(np.argmax(v[ic:hi])) if hi > ic else ic
+        fhi = min(len(ap), vmax + wf + 1)
+        fc_l.append(vmax + int(np.argmin(ap[vmax:fhi])) if fhi > vmax else vmax)
+        ic_l.append(ic)
+        zc_l.append(z)
+    return np.array(ic_l, dtype=int), np.array(fc_l, dtype=int), np.array(zc_l, dtype=int)
+
+
+# --------------------------------------------------------------------------------------------------
+# step length models
+# --------------------------------------------------------------------------------------------------
+def pendulum_length(h: np.ndarray, leg_m: float, *, k: float = 1.0, f: float = 0.0) -> np.ndarray:
+    """Modified inverted pendulum step length (seed 003 eq. 1): ``d = K * 2 sqrt(2 L h - h^2) + F``.
+
+    Parameters
+    ----------
+    h : vertical excursion of the waist during the step's single stance (m), clipped to ``[0, L]``
+    leg_m : leg length L (m); k : gain K (-); f : double-stance term F (m, about the foot length)
+    """
+    hh = np.clip(np.asarray(h, dtype=np.float64), 0.0, leg_m)
+    return k * 2.0 * np.sqrt(np.maximum(2.0 * leg_m * hh - hh * hh, 0.0)) + f
+
+
+def vertical_excursion(acc_v: np.ndarray, fs: float, i0: int, i1: int) -> float:
+    """Peak-to-peak vertical displacement (m) between samples ``i0`` and ``i1``.
+
+    Double integration of the vertical acceleration (gravity removed) with zero velocity at both ends
+    (seed 003 sec. 3.2: ZUPT at the IC) and equal height at both ends: the mean of the acceleration is
+    removed before the first integration and the linear drift of the position after the second.
+    """
+    a = np.asarray(acc_v[i0:i1 + 1], dtype=np.float64)
+    if a.size < 3:
+        return 0.0
+    dt = 1.0 / fs
+    a = a - a.mean()
+    vel = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] + a[:-1]) * dt)])
+    vel = vel - np.linspace(vel[0], vel[-1], vel.size)
+    pos = np.concatenate([[0.0], np.cumsum(0.5 * (vel[1:] + vel[:-1]) * dt)])
+    pos = pos - np.linspace(pos[0], pos[-1], pos.size)
+    return float(pos.max() - pos.min())
+
+
+def frequency_length(f_hz: np.ndarray, a: float, b: float) -> np.ndarray:
+    """Step length linear in step frequency (seed 001 eq. 23; seed 000 sec. II-D): ``SL = a f - b``."""
+    return a * np.asarray(f_hz, dtype=np.float64) - b
+
+
+def harmonic_mean_frequency(f_hz: np.ndarray) -> float:
+    """Average step frequency of a walk, ``(mean(1/f_k))^-1`` (seed 000 eq. 1)."""
+    f = np.asarray(f_hz, dtype=np.float64)
+    f = f[np.isfinite(f) & (f > 0)]
+    return float(1.0 / np.mean(1.0 / f)) if f.size else float("nan")
+
+
+# --------------------------------------------------------------------------------------------------
+# heading from the harmonics of planar acceleration (seed 000 sec. III, seed 001 sec. 2.2.3)
+# --------------------------------------------------------------------------------------------------
+def fourier_coefficients(t: np.ndarray, x: np.ndarray, t0: float, period: float, n_harmonics: int
+                         ) -> tuple[np.ndarray, np.ndarray]:
+    """Fourier coefficients over one period starting at ``t0`` (seed 000 sec. III; seed 001 eq. 8).
+
+    ``alpha_n = 2/T int x(t) cos(2 pi n (t - t0) / T) dt`` and likewise ``beta_n`` with sine, for
+    n = 1..``n_harmonics``; ``x`` may have several columns. Trapezoidal integration over the samples.
+
+    Returns
+    -------
+    alpha, beta : (n_harmonics, k) arrays.
+    """
+    t = np.asarray(t, dtype=np.float64)
+    x = np.asarray(x, dtype=np.float64).reshape(t.shape[0], -1)
+    tau = t - t0
+    alpha = np.empty((n_harmonics, x.shape[1]))
+    beta = np.empty_like(alpha)
+    for n in range(1, n_harmonics + 1):
+        w = 2.0 * np.pi * n / period
+        alpha[n - 1] = 2.0 / period * np.trapezoid(x * np.cos(w * tau)[:, None], t, axis=0)
+        beta[n - 1] = 2.0 / period * np.trapezoid(x * np.sin(w * tau)[:, None], t, axis=0)
+    return alpha, beta
+
+
+def forward_sign(direction: np.ndarray, alpha_h: np.ndarray, beta_h: np.ndarray, alpha_v: float,
+                 beta_v: float) -> float:
+    """+1 if ``direction`` points forward, -1 if backward, from the gait's phase (decision W2).
+
+    At step frequency the waist's forward acceleration leads its vertical acceleration by 0-90 deg
+    (inverted-pendulum gait: forward acceleration while the body falls before initial contact, vertical
+    maximum at the contact; seed 003 sec. 3.1: the AP maximum comes immediately before the vertical
+    maximum). The complex amplitudes of the projection on ``direction`` and of the vertical component
+    (``alpha - i beta``) give that lead; the direction is forward when the lead lies within +-90 deg of
+    45 deg.
+    """
+    d = np.asarray(direction, dtype=np.float64)
+    cf = complex(float(alpha_h @ d), -float(beta_h @ d))
+    cv = complex(alpha_v, -beta_v)
+    if abs(cf) < 1e-12 or abs(cv) < 1e-12:
+        return 1.0
+    lead = np.angle(cf / cv)
+    return 1.0 if np.cos(lead - np.pi / 4) >= 0 else -1.0
+
+
+def ellipse_axis(alpha: np.ndarray, beta: np.ndarray) -> np.ndarray:
+    """Major semi-axis of the first-harmonic ellipse ``a(t) = alpha cos(wt) + beta sin(wt)``.
+
+    Derivation (docs/decisions/waist.md W1, replacing seed 001 eq. 16-20):
+    ``|a|^2 = (|alpha|^2 + |beta|^2)/2 + (|alpha|^2 - |beta|^2)/2 cos 2wt + (alpha.beta) sin 2wt``, which is
+    largest at ``2wt* = atan2(alpha.beta, (|alpha|^2 - |beta|^2)/2)``; the axis is ``a(t*)``.
+    Returns the (2,) vector (zero for a circle: no preferred direction).
+    """
+    al = np.asarray(alpha, dtype=np.float64)
+    be = np.asarray(beta, dtype=np.float64)
+    a_coef = 0.5 * (al @ al - be @ be)
+    b_coef = float(al @ be)
+    if abs(a_coef) < 1e-15 and abs(b_coef) < 1e-15:
+        return np.zeros(2)
+    wt = 0.5 * np.arctan2(b_coef, a_coef)
+    return al * np.cos(wt) + be * np.sin(wt)
+
+
+def ellipse_direction(t: np.ndarray, a_h: np.ndarray, a_v: np.ndarray, t0: float, t1: float) -> float:
+    """Direction (rad, atan2(y, x) in the horizontal frame) of one step ``[t0, t1]`` from the first
+    harmonic of its planar acceleration (seed 001 sec. 2.2.3, eq. 10-13, closed form of decision W1),
+    the sign chosen by :func:`forward_sign`. NaN if the step has fewer than 4 samples."""
+    m = (t >= t0) & (t <= t1)
+    if m.sum() < 4:
+        return float("nan")
+    period = t1 - t0
+    alpha, beta = fourier_coefficients(t[m], np.column_stack([a_h[m], a_v[m]]), t0, period, 1)
+    axis = ellipse_axis(alpha[0, :2], beta[0, :2])
+    if not np.any(axis):
+        return float("nan")
+    axis = axis * forward_sign(axis, alpha[0, :2], beta[0, :2], alpha[0, 2], beta[0, 2])
+    return float(np.arctan2(axis[1], axis[0]))
+
+
+def tip_to_tail_direction(t: np.ndarray, a_h: np.ndarray, a_v: np.ndarray, t0: float, t1: float,
+                          t2: float, *, n_grid: int = 256) -> float:
+    """Direction (rad) of the step ``[t1, t2]`` from the tip-to-tail vector of the unbiased second-order
+    Fourier approximation of the planar acceleration over the stride ``[t0, t2]`` (seed 000 sec. III,
+    Algorithm 1 steps a-d).
+
+    The two largest local maxima of ``|a2(t)|`` inside the step are the tip and the tail; the vector
+    joining them is the step's line of motion, oriented forward by :func:`forward_sign` (the
+    acceleration phase = tip, decision W2) using the step-frequency (second) harmonic of the stride.
+    """
+    m = (t >= t0) & (t <= t2)
+    if m.sum() < 8 or not (t0 < t1 < t2):
+        return float("nan")
+    period = t2 - t0
+    alpha, beta = fourier_coefficients(t[m], np.column_stack([a_h[m], a_v[m]]), t0, period, 2)
+    tg = np.linspace(t1, t2, n_grid)
+    tau = tg - t0
+    approx = np.zeros((n_grid, 2))
+    for n in (1, 2):
+        w = 2.0 * np.pi * n / period
+        approx += np.outer(np.cos(w * tau), alpha[n - 1, :2]) + np.outer(np.sin(w * tau), beta[n - 1, :2])
+    mag = np.hypot(approx[:, 0], approx[:, 1])
+    # local maxima of the magnitude (the ends count when the curve is rising into / falling from them)
+    ext = np.concatenate([[-np.inf], mag, [-np.inf]])
+    peaks = np.flatnonzero((ext[1:-1] >= ext[:-2]) & (ext[1:-1] > ext[2:]))
+    if peaks.size >= 2:
+        top = np.sort(peaks[np.argsort(mag[peaks])[-2:]])
+        vec = approx[top[0]] - approx[top[1]]
+    else:  # degenerate: a single maximum; use the major axis of the step-frequency harmonic
+        vec = ellipse_axis(alpha[1, :2], beta[1, :2])
+    if not np.any(vec):
+        return float("nan")
+    vec = vec * forward_sign(vec, alpha[1, :2], beta[1, :2], alpha[1, 2], beta[1, 2])
+    return float(np.arctan2(vec[1], vec[0]))
+
+
+def circular_mean2(a: float, b: float) -> float:
+    """Mean direction of two angles (rad); the A-HE average of two consecutive steps (seed 000 Alg. 1e)."""
+    if not np.isfinite(a):
+        return b
+    if not np.isfinite(b):
+        return a
+    return float(np.arctan2(np.sin(a) + np.sin(b), np.cos(a) + np.cos(b)))
+
+
+# --------------------------------------------------------------------------------------------------
+# gyroscope heading (seed 003 sec. 3.3)
+# --------------------------------------------------------------------------------------------------
+def gyro_bias_360(t: np.ndarray, w_z: np.ndarray, *, turns: float = 1.0) -> float:
+    """Vertical gyro bias (rad/s) from a closed walk that turns ``turns`` full circles
+    (seed 003 eq. 2): ``b = (int w dt - 2 pi turns) / T``; ``turns`` is signed (+ = left, CCW)."""
+    t = np.asarray(t, dtype=np.float64)
+    w = np.asarray(w_z, dtype=np.float64)
+    if t.size < 2:
+        raise DataError("gyro bias calibration: need at least two gyroscope samples")
+    total = float(np.trapezoid(w, t))
+    return (total - 2.0 * np.pi * turns) / float(t[-1] - t[0])
+
+
+def mean_rate_per_stride(t: np.ndarray, w_z: np.ndarray, events: np.ndarray) -> np.ndarray:
+    """Mean vertical rate (rad/s) over the stride around each step (seed 003 sec. 3.3, MRZ without the
+    absolute value): for step ``k`` (``events[k]`` to ``events[k+1]``) the stride is
+    ``[events[k-1], events[k+1]]`` (clipped at the ends). Returns ``len(events) - 1`` values."""
+    ev = np.asarray(events, dtype=np.float64)
+    n = len(ev) - 1
+    out = np.full(max(n, 0), np.nan)
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (w_z[1:] + w_z[:-1]) * np.diff(t))])
+    for k in range(n):
+        a, b = ev[max(k - 1, 0)], ev[k + 1]
+        if b <= a:
+            continue
+        out[k] = (np.interp(b, t, cum) - np.interp(a, t, cum)) / (b - a)
+    return out
+
+
+def integrate_rate(t: np.ndarray, w_z: np.ndarray, t0: float, t1: float) -> float:
+    """Integral of ``w_z`` over ``[t0, t1]`` (rad), trapezoidal with interpolated ends."""
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (w_z[1:] + w_z[:-1]) * np.diff(t))])
+    return float(np.interp(t1, t, cum) - np.interp(t0, t, cum))

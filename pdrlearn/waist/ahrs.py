@@ -1,0 +1,123 @@
+"""Attitude of the waist unit and its data cast to a gravity-aligned navigation frame.
+
+Seed 000 sec. II-A and seed 001 sec. 2.2.1 cast the waist data to a global frame with an AHRS
+(seed 001: a Madgwick filter) before any gait analysis. We use the maintained ``ahrs`` package's
+Madgwick filter in its IMU form (accelerometer + gyroscope): the magnetometers of the recordings we
+have are uncalibrated (see ../shared/data/README.md), so the heading is relative to the start, not to
+magnetic north (docs/decisions/waist.md W5).
+
+Frames: the sensor axes are mapped to the body frame FLU with the session's declared
+``frames["waist"]``; the navigation frame has z up and x along the unit's initial forward direction
+(heading 0 = where the unit faced at the start, counter-clockwise positive).
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from pdrlearn.errors import DataError
+from pdrlearn.io import Session
+from pdrlearn.signal import gravity_rotation, interp_rows
+
+log = logging.getLogger(__name__)
+
+ACC, GYR = "wAccelerometer", "wGyroscope"
+MADGWICK_GAIN = 0.033  # Madgwick 2010 IMU gain (ahrs default), the filter seed 001 sec. 2.2.1 uses
+
+
+@dataclass
+class WaistIMU:
+    """Waist data in the navigation frame, one row per accelerometer sample.
+
+    Attributes
+    ----------
+    t : (n,) s; fs : rate (Hz)
+    acc_nav : (n, 3) specific force in the navigation frame (m/s^2; z up, includes gravity)
+    gyr_nav : (n, 3) angular rate in the navigation frame (rad/s); ``[:, 2]`` is the vertical rate
+    yaw : (n,) unit heading about the vertical (rad, unwrapped, 0 = initial facing direction)
+    acc_v : (n,) vertical acceleration without gravity (m/s^2, up +)
+    acc_h : (n, 2) horizontal acceleration in the navigation frame (m/s^2)
+    acc_ap, acc_ml : (n,) horizontal acceleration along / across the unit's current heading
+        (antero-posterior forward +, medio-lateral left +) (m/s^2)
+    """
+
+    t: np.ndarray
+    fs: float
+    acc_nav: np.ndarray
+    gyr_nav: np.ndarray
+    yaw: np.ndarray
+    acc_v: np.ndarray
+    acc_h: np.ndarray
+    acc_ap: np.ndarray
+    acc_ml: np.ndarray
+
+    @property
+    def w_z(self) -> np.ndarray:
+        return self.gyr_nav[:, 2]
+
+
+def _quat_wxyz_to_rotation(q: np.ndarray) -> Rotation:
+    return Rotation.from_quat(np.column_stack([q[:, 1:], q[:, :1]]))
+
+
+def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tuple[np.ndarray, np.ndarray,
+                                                                                      np.ndarray]:
+    """Waist accelerometer and gyroscope on the accelerometer's timestamps, in the body frame FLU.
+
+    Raises :class:`MissingSensorError` without them and :class:`DataError` for an undeclared frame,
+    NaN values or a recording shorter than 2 s.
+    """
+    session.require(ACC, GYR, purpose=purpose)
+    frame = session.frames.get("waist")
+    if frame is None:
+        raise DataError(f"session '{session.name}': the waist unit's axis frame is not declared; add "
+                        '"frames": {"waist": {"x": ..., "y": ..., "z": ...}} to its meta.json')
+    acc_s, gyr_s = session[ACC], session[GYR]
+    t = acc_s.t
+    if len(acc_s) < 2 or acc_s.duration_s < 2.0:
+        raise DataError(f"session '{session.name}': {ACC} covers {acc_s.duration_s:.2f} s; "
+                        "waist dead reckoning needs at least 2 s of data")
+    for s in (acc_s, gyr_s):
+        if not np.all(np.isfinite(s.values)):
+            raise DataError(f"session '{session.name}': {s.name} contains NaN or infinite values; "
+                            "clean or interpolate the recording first")
+    gyr = gyr_s.values
+    if len(gyr_s) != len(acc_s) or not np.allclose(gyr_s.t, t, atol=1e-6):
+        gyr = interp_rows(t, gyr_s.t, gyr_s.values)
+    r = frame.matrix()
+    return t, acc_s.values @ r.T, gyr @ r.T
+
+
+def waist_imu(session: Session, *, gain: float = MADGWICK_GAIN, init_s: float = 0.5) -> WaistIMU:
+    """Run the AHRS on a session's waist unit and return its data in the navigation frame.
+
+    Parameters
+    ----------
+    gain : Madgwick filter gain (-)
+    init_s : the initial attitude is the gravity direction averaged over the first ``init_s`` seconds
+    """
+    from ahrs.filters import Madgwick
+
+    t, acc, gyr = body_data(session)
+    fs = float(1.0 / np.median(np.diff(t)))
+    n0 = max(1, int(round(init_s * fs)))
+    r0 = Rotation.from_matrix(gravity_rotation(acc[:n0].mean(axis=0)))
+    x, y, z, w = r0.as_quat()
+    q = Madgwick(gyr=gyr, acc=acc, frequency=fs, gain=gain, q0=np.array([w, x, y, z])).Q
+    rot = _quat_wxyz_to_rotation(q)
+    acc_nav = rot.apply(acc)
+    gyr_nav = rot.apply(gyr)
+    fwd = rot.apply(np.tile([1.0, 0.0, 0.0], (len(t), 1)))
+    yaw = np.unwrap(np.arctan2(fwd[:, 1], fwd[:, 0]))
+    g = float(np.median(acc_nav[:, 2]))
+    acc_v = acc_nav[:, 2] - g
+    c, s = np.cos(yaw), np.sin(yaw)
+    ap = c * acc_nav[:, 0] + s * acc_nav[:, 1]
+    ml = -s * acc_nav[:, 0] + c * acc_nav[:, 1]
+    log.info("AHRS: %d samples at %.1f Hz, local gravity %.3f m/s^2", len(t), fs, g)
+    return WaistIMU(t=t, fs=fs, acc_nav=acc_nav, gyr_nav=gyr_nav, yaw=yaw, acc_v=acc_v,
+                    acc_h=acc_nav[:, :2].copy(), acc_ap=ap, acc_ml=ml)

@@ -1,0 +1,105 @@
+"""Metrics of a waist track against the references of a session (Mobilise-D style labels).
+
+- ``step_f1`` and IC timing: detected step events vs every reference initial contact
+  (``extras["ics"]``), scored with :func:`pdrlearn.steps.evaluate.score_events`. When the session has
+  reference walking bouts, only detections inside the bouts (+- the matching tolerance) are scored,
+  because the reference marks contacts only there (decision W9); ``step_f1_all`` scores the whole
+  recording.
+- ``distance_error_pct``: distance tracked inside the reference bouts (steps whose midpoint lies in a
+  bout) vs the bouts' total reference length; ``bout_distance_error_median_pct`` is the median of the
+  per-bout absolute errors.
+- ``stride_length_mae_m``: per reference stride, the sum of the tracked steps whose midpoint lies in it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.io import Session
+from pdrlearn.steps.evaluate import DEFAULT_TOLERANCE_S, score_events
+
+
+def reference_bouts(session: Session) -> pd.DataFrame | None:
+    """Reference walking bouts (``start_s``, ``end_s``, ``length_m``), one level only (``wb``)."""
+    b = session.extras.get("bouts")
+    if b is None or not {"start_s", "end_s", "length_m"} <= set(b.columns) or len(b) == 0:
+        return None
+    if "level" in b:
+        lv = b["level"].astype(str)
+        b = b[lv == ("wb" if (lv == "wb").any() else lv.iloc[0])]
+    return b.dropna(subset=["start_s", "end_s", "length_m"]).reset_index(drop=True)
+
+
+def _in_intervals(x: np.ndarray, starts: np.ndarray, ends: np.ndarray, pad: float = 0.0) -> np.ndarray:
+    m = np.zeros(len(x), dtype=bool)
+    for a, b in zip(starts, ends, strict=True):
+        m |= (x >= a - pad) & (x <= b + pad)
+    return m
+
+
+def step_metrics(steps: pd.DataFrame, session: Session, *, tolerance_s: float = DEFAULT_TOLERANCE_S) -> dict:
+    """``step_f1``, ``step_f1_all``, ``ic_timing_mean_ms``, ``ic_timing_sd_ms`` (empty dict without ICs)."""
+    ics = session.extras.get("ics")
+    if ics is None or "ic_s" not in ics:
+        return {}
+    ref = np.sort(ics["ic_s"].dropna().to_numpy(float))
+    ev = np.sort(steps["event_s"].to_numpy(float)) if len(steps) else np.zeros(0)
+    out = {"step_f1_all": score_events(ev, ref, tolerance_s=tolerance_s)["f1"]}
+    bouts = reference_bouts(session)
+    if bouts is not None:
+        ev = ev[_in_intervals(ev, bouts.start_s.to_numpy(), bouts.end_s.to_numpy(), tolerance_s)]
+    sc = score_events(ev, ref, tolerance_s=tolerance_s)
+    out.update(step_f1=sc["f1"], step_precision=sc["precision"], step_recall=sc["recall"],
+               ic_timing_mean_ms=1e3 * sc["timing_error_mean_s"],
+               ic_timing_sd_ms=1e3 * sc["timing_error_sd_s"],
+               n_detected=sc["count"], n_reference=sc["reference_count"])
+    return out
+
+
+def _mid(steps: pd.DataFrame) -> np.ndarray:
+    return 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
+
+
+def distance_metrics(steps: pd.DataFrame, session: Session) -> dict:
+    """``distance_error_pct`` (total over the bouts), per-bout errors and their median (empty without
+    bouts)."""
+    bouts = reference_bouts(session)
+    if bouts is None:
+        return {}
+    mid = _mid(steps)
+    lengths = steps["length_m"].abs().to_numpy(float)
+    per = []
+    for _, b in bouts.iterrows():
+        est = float(lengths[(mid >= b.start_s) & (mid <= b.end_s)].sum())
+        per.append({"start_s": float(b.start_s), "end_s": float(b.end_s), "reference_m": float(b.length_m),
+                    "tracked_m": est, "error_pct": 100.0 * (est - b.length_m) / b.length_m})
+    ref_total = float(bouts.length_m.sum())
+    est_total = float(sum(p["tracked_m"] for p in per))
+    return {"distance_error_pct": 100.0 * (est_total - ref_total) / ref_total,
+            "bout_distance_m": est_total, "bout_reference_m": ref_total,
+            "bout_distance_error_median_pct": float(np.median([abs(p["error_pct"]) for p in per])),
+            "bouts": per}
+
+
+def stride_metrics(steps: pd.DataFrame, session: Session) -> dict:
+    """``stride_length_mae_m`` over reference strides with a length (empty without them)."""
+    st = session.steps
+    if st is None or "length_m" not in st or not st["length_m"].notna().any():
+        return {}
+    st = st.dropna(subset=["length_m"])
+    mid = _mid(steps)
+    lengths = steps["length_m"].abs().to_numpy(float)
+    est = np.array([lengths[(mid >= r.start_s) & (mid <= r.end_s)].sum() for r in st.itertuples()])
+    err = est - st["length_m"].to_numpy(float)
+    return {"stride_length_mae_m": float(np.mean(np.abs(err))), "stride_length_bias_m": float(np.mean(err)),
+            "n_strides": int(len(err))}
+
+
+def waist_metrics(steps: pd.DataFrame, session: Session) -> dict:
+    """All of the above in one flat dict (``bouts`` = per-bout list)."""
+    out: dict = {}
+    out.update(step_metrics(steps, session))
+    out.update(distance_metrics(steps, session))
+    out.update(stride_metrics(steps, session))
+    return out

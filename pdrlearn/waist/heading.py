@@ -1,0 +1,172 @@
+"""Heading of waist steps: harmonic (seed 000 A-HE, seed 001 ellipse) and gyroscope (seed 003).
+
+Angles are radians in the navigation frame of :mod:`pdrlearn.waist.ahrs` (0 = initial facing,
+counter-clockwise positive).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from sklearn.base import BaseEstimator, ClassifierMixin
+from sklearn.mixture import GaussianMixture
+
+from pdrlearn.errors import DataError
+from pdrlearn.waist import _kernels as K
+from pdrlearn.waist.ahrs import WaistIMU
+
+# Prior straight/turning mixture on |MRZ| (rad/s) used before any fit (decision W7): straight strides
+# average close to zero (seed 003 Fig. 2: the peak near 0), turning strides spread over 0.2-0.9 rad/s.
+DEFAULT_TURN_GMM = {"means": [0.03, 0.45], "sds": [0.04, 0.25], "weights": [0.7, 0.3]}
+
+
+def harmonic_headings(imu: WaistIMU, events: np.ndarray, *, method: str = "ahe") -> np.ndarray:
+    """Per-step motion direction from the planar acceleration's harmonics.
+
+    Parameters
+    ----------
+    events : (m,) step boundary times (s), step ``k`` = ``[events[k], events[k+1]]``
+    method : ``"ahe"`` (seed 000 Alg. 1: tip-to-tail of the first two harmonics over the stride
+        ending with the step, averaged over the last two steps) or ``"ellipse"`` (seed 001: closed-form
+        first-harmonic ellipse axis of the step, averaged over two steps; decision W1)
+
+    Returns
+    -------
+    (m - 1,) directions (rad); NaN where undefined (first step of A-HE has no stride before it and
+    takes its own single-step estimate when the next one exists).
+    """
+    ev = np.asarray(events, dtype=np.float64)
+    n = len(ev) - 1
+    raw = np.full(max(n, 0), np.nan)
+    for k in range(n):
+        if method == "ahe":
+            if k == 0:
+                if n < 2:
+                    continue
+                raw[k] = K.tip_to_tail_direction(imu.t, imu.acc_h, imu.acc_v, ev[0], ev[1], ev[2])
+                continue
+            raw[k] = K.tip_to_tail_direction(imu.t, imu.acc_h, imu.acc_v, ev[k - 1], ev[k], ev[k + 1])
+        elif method == "ellipse":
+            raw[k] = K.ellipse_direction(imu.t, imu.acc_h, imu.acc_v, ev[k], ev[k + 1])
+        else:
+            raise DataError(f"harmonic heading: method '{method}' is not 'ahe' or 'ellipse'")
+    out = raw.copy()
+    for k in range(1, n):  # A-HE: average of the last two steps (seed 000 Alg. 1e; seed 001 sec. 2.2.3)
+        out[k] = K.circular_mean2(raw[k - 1], raw[k])
+    return out
+
+
+class TurnClassifier(ClassifierMixin, BaseEstimator):
+    """Straight (0) / turning (1) classifier of strides from |MRZ|, the absolute mean vertical rate over
+    the stride (seed 003 sec. 3.3), with a two-component Gaussian mixture.
+
+    ``fit(X)`` fits the mixture without labels (seed 003: fitted on one trial, validated on another);
+    ``fit(X, y)`` fits one Gaussian per labelled class. Before ``fit`` the prior of
+    :data:`DEFAULT_TURN_GMM` is used.
+
+    Parameters
+    ----------
+    means, sds, weights : starting / prior mixture (rad/s, rad/s, -), component 0 = straight
+    random_state : seed of the mixture fit
+    """
+
+    def __init__(self, *, means=None, sds=None, weights=None, random_state: int = 0):
+        self.means = means
+        self.sds = sds
+        self.weights = weights
+        self.random_state = random_state
+
+    def _prior(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        m = np.asarray(self.means if self.means is not None else DEFAULT_TURN_GMM["means"], float)
+        s = np.asarray(self.sds if self.sds is not None else DEFAULT_TURN_GMM["sds"], float)
+        w = np.asarray(self.weights if self.weights is not None else DEFAULT_TURN_GMM["weights"], float)
+        return m, s, w / w.sum()
+
+    @staticmethod
+    def _x(X) -> np.ndarray:
+        x = np.abs(np.asarray(X, dtype=np.float64)).reshape(-1)
+        if not np.all(np.isfinite(x)):
+            raise DataError("turn classifier: |MRZ| values contain NaN; drop undefined strides first")
+        return x
+
+    def fit(self, X, y=None) -> TurnClassifier:
+        x = self._x(X)
+        self.classes_ = np.array([0, 1])
+        if y is not None:
+            yy = np.asarray(y).astype(int).reshape(-1)
+            if yy.shape != x.shape or not set(np.unique(yy)) <= {0, 1}:
+                raise DataError("turn classifier: y must hold 0 (straight) / 1 (turning) for every X")
+            m0, s0, w0 = self._prior()
+            means, sds, ws = [], [], []
+            for c in (0, 1):
+                xc = x[yy == c]
+                means.append(xc.mean() if xc.size else m0[c])
+                sds.append(max(xc.std(), 1e-3) if xc.size > 1 else s0[c])
+                ws.append(xc.size if yy.size else w0[c])
+            self.means_, self.sds_ = np.array(means), np.array(sds)
+            self.weights_ = np.array(ws, float) / max(sum(ws), 1)
+            return self
+        m0, s0, w0 = self._prior()
+        if x.size < 4:
+            self.means_, self.sds_, self.weights_ = m0, s0, w0
+            return self
+        gmm = GaussianMixture(2, means_init=m0.reshape(-1, 1), weights_init=w0,
+                              precisions_init=(1.0 / s0 ** 2).reshape(-1, 1, 1),
+                              random_state=self.random_state).fit(x.reshape(-1, 1))
+        order = np.argsort(gmm.means_.ravel())
+        self.means_ = gmm.means_.ravel()[order]
+        self.sds_ = np.sqrt(gmm.covariances_.ravel())[order]
+        self.weights_ = gmm.weights_[order]
+        return self
+
+    def _params(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        if hasattr(self, "means_"):
+            return self.means_, self.sds_, self.weights_
+        return self._prior()
+
+    def predict_proba(self, X) -> np.ndarray:
+        x = self._x(X)
+        m, s, w = self._params()
+        logp = -0.5 * ((x[:, None] - m) / s) ** 2 - np.log(s) + np.log(w)
+        logp -= logp.max(axis=1, keepdims=True)
+        p = np.exp(logp)
+        return p / p.sum(axis=1, keepdims=True)
+
+    def predict(self, X) -> np.ndarray:
+        return (self.predict_proba(X)[:, 1] > 0.5).astype(int)
+
+    def to_dict(self) -> dict:
+        m, s, w = self._params()
+        return {"means": m.tolist(), "sds": s.tolist(), "weights": w.tolist()}
+
+
+def gyro_headings(imu: WaistIMU, events: np.ndarray, *, classifier: TurnClassifier | None = None,
+                  bias_rps: float = 0.0, heading0: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """Per-step heading from the vertical gyroscope, integrated only over turning strides
+    (seed 003 sec. 3.3).
+
+    Each step's stride mean rate is classified; the rate (minus ``bias_rps``, seed 003 eq. 2) is
+    integrated over the steps classified as turning and over the step before and after each of them
+    (seed 003: "integrate two straight steps occurring before and after a curved walking step").
+
+    Returns
+    -------
+    headings : (m - 1,) heading during each step (rad); turning : (m - 1,) 0/1 classification.
+    """
+    ev = np.asarray(events, dtype=np.float64)
+    n = len(ev) - 1
+    if n <= 0:
+        return np.zeros(0), np.zeros(0, dtype=int)
+    w = imu.w_z - bias_rps
+    mrz = K.mean_rate_per_stride(imu.t, w, ev)
+    clf = classifier if classifier is not None else TurnClassifier()
+    turning = clf.predict(np.nan_to_num(mrz))
+    integrate = turning.astype(bool).copy()
+    integrate[1:] |= turning[:-1].astype(bool)
+    integrate[:-1] |= turning[1:].astype(bool)
+    heading = np.empty(n)
+    h = heading0
+    for k in range(n):
+        if integrate[k]:
+            h += K.integrate_rate(imu.t, w, ev[k], ev[k + 1])
+        heading[k] = h
+    return heading, turning

@@ -1,0 +1,175 @@
+"""Per-user parameters of the waist pipelines: defaults from ``meta.json`` and JSON round-trip.
+
+A ``PARAMS.json`` written by ``pdrlearn calibrate`` holds a :class:`WaistParams`; without one the
+pipelines derive defaults from what the session's ``meta.json`` gives and say so in ``info["warnings"]``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import asdict, dataclass, field, fields
+from pathlib import Path
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.io import Session
+
+SCHEMA = "pdrlearn.waist-params/1"
+DEFAULT_HEIGHT_M = 1.70  # used only when meta.json gives no height (a warning says so)
+# Anthropometric ratios (Drillis & Contini 1966, as tabulated by Winter, Biomechanics of Human Movement):
+LEG_PER_HEIGHT = 0.53  # greater-trochanter height / body height
+FOOT_PER_HEIGHT = 0.152  # foot length / body height
+# Step length vs frequency default (decision W6): 0.415 x height at 1.8 Hz, slope 0.25 x height per Hz.
+STEP_PER_HEIGHT_AT_F0 = 0.415
+F0_HZ = 1.8  # seed 000 sec. II-C: free-running walking frequency 1.8 Hz
+SLOPE_PER_HEIGHT = 0.25
+RUN_STEP_PER_HEIGHT_AT_3HZ = 0.65
+RUN_SLOPE_PER_HEIGHT = 0.20
+
+
+@dataclass
+class WaistParams:
+    """Parameters of both waist pipelines (SI units).
+
+    leg_m : leg length L of the pendulum (m); k, f_m : pendulum gain K and double-stance term F (m)
+    (seed 003 eq. 1); a_walk, b_walk / a_run, b_run : ``SL = a f - b`` (m/Hz, m) for walking and running
+    (seed 001 eq. 23, piecewise per seed 000 sec. II-D); gyro_bias_rps : vertical gyro bias (rad/s,
+    seed 003 eq. 2); turn_gmm : ``{"means": [...], "sds": [...], "weights": [...]}`` of the straight /
+    turning classifier on |MRZ| (rad/s); walk_threshold_mps2 : motion gate; source : "defaults" or
+    "calibrated"; notes : how each value was obtained.
+    """
+
+    leg_m: float = float("nan")
+    k: float = 1.0  # seed 003 eq. 1 with K = 1 is the unmodified pendulum (Zijlstra & Hof 1997)
+    f_m: float = float("nan")
+    a_walk: float = float("nan")
+    b_walk: float = float("nan")
+    a_run: float = float("nan")
+    b_run: float = float("nan")
+    gyro_bias_rps: float = 0.0
+    turn_gmm: dict | None = None
+    walk_threshold_mps2: float | None = None
+    source: str = "defaults"
+    notes: list[str] = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        d = asdict(self)
+        d["schema"] = SCHEMA
+        return {k: (None if isinstance(v, float) and not np.isfinite(v) else v) for k, v in d.items()}
+
+    @classmethod
+    def from_dict(cls, d: dict, where: str = "params") -> WaistParams:
+        if not isinstance(d, dict):
+            raise DataError(f"{where}: waist parameters must be a JSON object")
+        names = {f.name for f in fields(cls)}
+        unknown = sorted(set(d) - names - {"schema", "pipeline", "fit"})
+        if unknown:
+            raise DataError(f"{where}: unknown waist parameter(s) {', '.join(unknown)}; "
+                            f"expected some of {', '.join(sorted(names))}")
+        kw = {}
+        for k, v in d.items():
+            if k not in names:
+                continue
+            if k in ("turn_gmm", "notes", "source"):
+                kw[k] = v
+                continue
+            if v is None:
+                kw[k] = float("nan") if k != "walk_threshold_mps2" else None
+                continue
+            try:
+                kw[k] = float(v)
+            except (TypeError, ValueError):
+                raise DataError(f"{where}: parameter {k}={v!r} is not a number") from None
+        return cls(**kw)
+
+    def save(self, path: str | os.PathLike, *, extra: dict | None = None) -> Path:
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        d = self.to_dict()
+        if extra:
+            d.update(extra)
+        tmp = path.with_suffix(path.suffix + ".tmp")
+        tmp.write_text(json.dumps(d, indent=2) + "\n")
+        os.replace(tmp, path)
+        return path
+
+
+def load_params(params) -> WaistParams | None:
+    """``None`` | :class:`WaistParams` | dict | path to a PARAMS.json -> :class:`WaistParams` or ``None``."""
+    if params is None or isinstance(params, WaistParams):
+        return params
+    if isinstance(params, dict):
+        return WaistParams.from_dict(params)
+    p = Path(params)
+    if not p.is_file():
+        raise DataError(f"{p}: parameter file not found; write one with 'pdrlearn calibrate'")
+    try:
+        d = json.loads(p.read_text())
+    except json.JSONDecodeError as exc:
+        raise DataError(f"{p}: invalid JSON (line {exc.lineno}); re-run 'pdrlearn calibrate'") from None
+    return WaistParams.from_dict(d, where=str(p))
+
+
+def _subject(meta: dict) -> dict:
+    sub = meta.get("subject")
+    return sub if isinstance(sub, dict) else {}
+
+
+def _meta_number(meta: dict, *keys: str) -> float | None:
+    for src in (_subject(meta), meta):
+        for k in keys:
+            v = src.get(k)
+            if isinstance(v, int | float) and np.isfinite(v) and v > 0:
+                return float(v)
+    return None
+
+
+def default_params(session: Session) -> tuple[WaistParams, list[str]]:
+    """Defaults from ``meta.json`` (height, sensor height / leg length, foot length) and the warnings
+    that say what was assumed."""
+    meta = session.meta or {}
+    warnings = ["no per-user calibration: step length from meta.json defaults "
+                "(run 'pdrlearn calibrate' on a walk of known length)"]
+    notes = []
+    height = _meta_number(meta, "height_m")
+    if height is None:
+        height = DEFAULT_HEIGHT_M
+        warnings.append(f"meta.json gives no subject height: assumed {DEFAULT_HEIGHT_M} m")
+    leg = _meta_number(meta, "leg_length_m", "sensor_height_m")
+    if leg is None:
+        leg = LEG_PER_HEIGHT * height
+        notes.append(f"leg length {leg:.3f} m = {LEG_PER_HEIGHT} x height")
+    else:
+        notes.append(f"leg length {leg:.3f} m from meta.json (leg_length_m or sensor_height_m)")
+    foot = _meta_number(meta, "foot_length_m")
+    if foot is None:
+        cm = _meta_number(meta, "foot_length_cm")
+        foot = cm / 100.0 if cm is not None else None
+    if foot is None:
+        foot = FOOT_PER_HEIGHT * height
+        notes.append(f"foot length {foot:.3f} m = {FOOT_PER_HEIGHT} x height")
+    a_w = SLOPE_PER_HEIGHT * height
+    b_w = a_w * F0_HZ - STEP_PER_HEIGHT_AT_F0 * height
+    a_r = RUN_SLOPE_PER_HEIGHT * height
+    b_r = a_r * 3.0 - RUN_STEP_PER_HEIGHT_AT_3HZ * height
+    notes.append(f"height {height:.2f} m -> SL = {a_w:.3f} f - {b_w:.3f} (walking)")
+    # seed 003 sec. 3.2: the double-stance displacement is constant and related to the foot size -> F
+    p = WaistParams(leg_m=leg, k=1.0, f_m=foot, a_walk=a_w, b_walk=b_w, a_run=a_r, b_run=b_r,
+                    source="defaults", notes=notes)
+    return p, warnings
+
+
+def resolve_params(session: Session, params) -> tuple[WaistParams, list[str]]:
+    """User parameters completed with the session's defaults for any value left undefined."""
+    user = load_params(params)
+    base, warnings = default_params(session)
+    if user is None:
+        return base, warnings
+    merged = WaistParams(**{f.name: getattr(user, f.name) for f in fields(WaistParams)})
+    for f in fields(WaistParams):
+        v = getattr(merged, f.name)
+        if isinstance(v, float) and not np.isfinite(v):
+            setattr(merged, f.name, getattr(base, f.name))
+    return merged, []

@@ -1,0 +1,96 @@
+"""Step length of waist steps and its per-user calibration (seed 000 sec. II-D, seed 001 eq. 23,
+seed 003 sec. 3.2)."""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.waist import _kernels as K
+from pdrlearn.waist.params import WaistParams
+
+log = logging.getLogger(__name__)
+
+#: seed 000 sec. II-D: linear ranges 1.5-2.2 Hz walking, 2.7-4.2 Hz running; the split between them
+RUN_SPLIT_HZ = 2.45
+MIN_SPREAD_HZ = 0.15  # fit a slope only when the calibration walks span this much frequency (decision W8)
+
+
+def pendulum_h(acc_v: np.ndarray, fs: float, i_ic: int, i_fc: int, i_next: int) -> float:
+    """Vertical excursion (m) of the single stance of a step: from the FC after its IC to the next IC
+    (seed 003 sec. 3.2); the whole step when the FC is not inside it."""
+    i0 = i_fc if i_ic < i_fc < i_next - 2 else i_ic
+    return K.vertical_excursion(acc_v, fs, i0, i_next)
+
+
+def frequency_lengths(f_hz: np.ndarray, p: WaistParams, *, running: np.ndarray | None = None) -> np.ndarray:
+    """Piecewise-linear step length (m) from step frequency (seed 000 sec. II-D): the walking line
+    below :data:`RUN_SPLIT_HZ` (or where ``running`` is False), the running line above."""
+    f = np.asarray(f_hz, dtype=np.float64)
+    run = f >= RUN_SPLIT_HZ if running is None else np.asarray(running, dtype=bool)
+    sl = np.where(run, K.frequency_length(f, p.a_run, p.b_run), K.frequency_length(f, p.a_walk, p.b_walk))
+    return np.clip(sl, 0.0, None)
+
+
+@dataclass
+class CalibrationWalk:
+    """One calibration walk: per-step features of the detected steps and the known distance (m).
+
+    ``f_hz`` step frequencies (frequency model); ``g`` = ``2 sqrt(2 L h - h^2)`` per step (pendulum)."""
+
+    distance_m: float
+    f_hz: np.ndarray
+    g: np.ndarray
+    name: str = ""
+
+
+def fit_frequency(walks: list[CalibrationWalk], p: WaistParams) -> tuple[float, float, str]:
+    """``(a, b)`` of ``SL = a f - b`` from walks of known length (seed 000 eq. 1-2 + least squares).
+
+    Each walk gives one point (harmonic-mean frequency, distance / steps). With points spanning at least
+    :data:`MIN_SPREAD_HZ` the line is the least-squares fit; otherwise the slope ``a`` is kept and only
+    the offset ``b`` is fitted (decision W8).
+    """
+    pts = [(K.harmonic_mean_frequency(w.f_hz), w.distance_m / len(w.f_hz)) for w in walks if len(w.f_hz)]
+    pts = [(f, s) for f, s in pts if np.isfinite(f)]
+    if not pts:
+        raise DataError("calibration: no steps detected in the calibration walks; check the recordings")
+    f = np.array([q[0] for q in pts])
+    sl = np.array([q[1] for q in pts])
+    n = np.array([len(w.f_hz) for w in walks if len(w.f_hz)], dtype=float)
+    if f.max() - f.min() >= MIN_SPREAD_HZ and len(pts) >= 2:
+        a, c = np.polyfit(f, sl, 1, w=np.sqrt(n))
+        return float(a), float(-c), f"least squares over {len(pts)} walks ({f.min():.2f}-{f.max():.2f} Hz)"
+    a = p.a_walk
+    b = float(np.sum(n * (a * f - sl)) / n.sum())
+    span = f.max() - f.min()
+    return float(a), b, f"offset only (walks span {span:.2f} Hz < {MIN_SPREAD_HZ} Hz; slope kept)"
+
+
+def fit_pendulum(walks: list[CalibrationWalk], p: WaistParams) -> tuple[float, float, str]:
+    """``(K, F)`` of seed 003 eq. 1 from walks of known length.
+
+    Each walk gives ``D = K sum(g) + F N``. With walks whose mean ``g`` differ by more than 10 % both are
+    fitted by least squares; otherwise ``F`` is kept at its default (foot length) and ``K`` fitted
+    (decision W8).
+    """
+    rows = [(w.g.sum(), len(w.g), w.distance_m) for w in walks if len(w.g)]
+    if not rows:
+        raise DataError("calibration: no steps detected in the calibration walks; check the recordings")
+    sg = np.array([r[0] for r in rows])
+    nn = np.array([r[1] for r in rows], float)
+    d = np.array([r[2] for r in rows])
+    mean_g = sg / nn
+    if len(rows) >= 2 and (mean_g.max() - mean_g.min()) > 0.1 * mean_g.mean():
+        (k, f), *_ = np.linalg.lstsq(np.column_stack([sg, nn]), d, rcond=None)
+        if k > 0 and f >= 0:
+            return float(k), float(f), f"K and F by least squares over {len(rows)} walks"
+    f = p.f_m
+    k = float(np.sum(d - f * nn) / np.sum(sg))
+    if not k > 0:
+        raise DataError("calibration: the known distance is shorter than the foot-length term of the "
+                        f"{int(nn.sum())} detected steps; check --distance")
+    return k, float(f), f"K only (F kept at {f:.3f} m; walks too similar to separate K and F)"
