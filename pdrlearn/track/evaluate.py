@@ -1,0 +1,137 @@
+"""Metrics of a :class:`~pdrlearn.track.base.TrackResult` against a session's ground truth.
+
+:func:`evaluate_track` is shared by every pipeline; each metric group is a small helper that adds keys
+to the result dictionary (add new ones, e.g. step F1 or bout distance, the same way).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.io.session import Session
+from pdrlearn.track.base import TrackResult
+
+
+def match_by_overlap(est: pd.DataFrame, ref: pd.DataFrame, *, min_iou: float = 0.5) -> list[tuple[int, int]]:
+    """Pairs (est row, ref row) whose ``[start_s, end_s]`` windows overlap best (IoU >= ``min_iou``);
+    each reference row is used at most once."""
+    if len(est) == 0 or len(ref) == 0:
+        return []
+    es, ee = est["start_s"].to_numpy(float), est["end_s"].to_numpy(float)
+    order = np.argsort(ref["start_s"].to_numpy(float), kind="stable")
+    rs, re = ref["start_s"].to_numpy(float)[order], ref["end_s"].to_numpy(float)[order]
+    cands = []
+    max_len = float(np.max(re - rs)) if len(rs) else 0.0
+    for i in range(len(es)):
+        lo = int(np.searchsorted(rs, es[i] - max_len, side="left"))
+        hi = int(np.searchsorted(rs, ee[i], side="right"))
+        for j in range(lo, hi):
+            inter = min(ee[i], re[j]) - max(es[i], rs[j])
+            if inter <= 0:
+                continue
+            iou = inter / (max(ee[i], re[j]) - min(es[i], rs[j]))
+            if iou >= min_iou:
+                cands.append((iou, i, j))
+    pairs, used_e, used_r = [], set(), set()
+    for _, i, j in sorted(cands, reverse=True):
+        if i not in used_e and j not in used_r:
+            pairs.append((i, int(order[j])))
+            used_e.add(i)
+            used_r.add(j)
+    return sorted(pairs)
+
+
+def path_length(traj: pd.DataFrame, *, min_spacing_s: float = 0.5) -> float:
+    """Horizontal length (m) of a trajectory sampled every ``min_spacing_s`` s (smooths body sway)."""
+    t = traj["t"].to_numpy(float)
+    if len(t) < 2:
+        return 0.0
+    grid = np.arange(t[0], t[-1], min_spacing_s)
+    grid = np.append(grid, t[-1])
+    x = np.interp(grid, t, traj["x"].to_numpy(float))
+    y = np.interp(grid, t, traj["y"].to_numpy(float))
+    return float(np.hypot(np.diff(x), np.diff(y)).sum())
+
+
+def _basic(result: TrackResult, out: dict) -> None:
+    tr = result.trajectory
+    out["distance_m"] = result.distance_m
+    out["n_steps"] = int(len(result.steps))
+    last = tr.iloc[-1] if len(tr) else None
+    out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
+    if last is not None and "lat" in tr:
+        out["final_position"].update(lat=float(last["lat"]), lon=float(last["lon"]))
+
+
+def _reference_distance(session: Session) -> tuple[float | None, str]:
+    st = session.steps
+    if st is not None and "length_m" in st and len(st) and st["length_m"].notna().all():
+        return float(st["length_m"].abs().sum()), "steps.csv length_m"
+    if session.trajectory is not None and len(session.trajectory) > 1:
+        return path_length(session.trajectory), "trajectory.csv path"
+    return None, ""
+
+
+def _ground_truth(result: TrackResult, session: Session, out: dict) -> None:
+    ref, source = _reference_distance(session)
+    if ref is None or ref <= 0:
+        return
+    out["distance_ref_m"] = ref
+    out["distance_ref_source"] = source
+    out["distance_error_pct"] = 100.0 * (out["distance_m"] - ref) / ref
+    gt = session.trajectory
+    tr = result.trajectory
+    if gt is not None and len(gt) > 1 and len(tr):
+        t0, t1 = float(tr["t"].iloc[0]), float(tr["t"].iloc[-1])
+        g = {c: gt[c].to_numpy(float) for c in ("t", "x", "y", "z")}
+        p0 = np.array([np.interp(t0, g["t"], g[c]) for c in ("x", "y", "z")])
+        p1 = np.array([np.interp(t1, g["t"], g[c]) for c in ("x", "y", "z")])
+        est = tr[["x", "y", "z"]].to_numpy(float)
+        d_true = p1 - p0
+        d_est = est[-1] - est[0]
+        out["final_position_error_m"] = float(np.hypot(*(d_est[:2] - d_true[:2])))
+        out["altitude_change_m"] = float(d_est[2])
+        out["altitude_change_ref_m"] = float(d_true[2])
+        if abs(d_true[2]) > 0.5:
+            out["altitude_error_pct"] = 100.0 * abs(d_est[2] - d_true[2]) / abs(d_true[2])
+
+
+def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
+    st = session.steps
+    if st is None or "length_m" not in st or not st["length_m"].notna().any() or not len(result.steps):
+        return
+    ref = st[st["length_m"].notna()].reset_index(drop=True)
+    pairs = match_by_overlap(result.steps, ref)
+    if not pairs:
+        return
+    ei, ri = np.array(pairs).T
+    e = result.steps["length_m"].to_numpy(float)[ei]
+    r = ref["length_m"].to_numpy(float)[ri]
+    err = np.abs(np.abs(e) - np.abs(r))
+    out["stride_length_matched"] = int(len(pairs))
+    out["stride_length_mae_m"] = float(err.mean())
+    out["stride_length_mae_pct"] = float(100.0 * np.mean(err / np.abs(r)))
+    if "turn" in ref:
+        turn = ref["turn"].astype(bool).to_numpy()[ri]
+        if (~turn).any():
+            out["stride_length_mae_pct_straight"] = float(100.0 * np.mean((err / np.abs(r))[~turn]))
+        if turn.any():
+            out["stride_length_mae_pct_turns"] = float(100.0 * np.mean((err / np.abs(r))[turn]))
+
+
+#: metric helpers run in order by :func:`evaluate_track`; append to extend.
+METRICS = [_basic, _ground_truth, _stride_lengths]
+
+
+def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:
+    """Summary metrics: ``distance_m``, ``n_steps``, ``final_position`` and, with ground truth,
+    ``distance_error_pct``, ``final_position_error_m`` (horizontal, start-aligned), altitude errors and
+    ``stride_length_mae_m`` / ``stride_length_mae_pct`` (strides matched by time overlap)."""
+    out: dict = {}
+    for fn in METRICS:
+        if fn is _basic:
+            fn(result, out)
+        elif session is not None:
+            fn(result, session, out)
+    return out

@@ -1,0 +1,52 @@
+"""Geodetic position update of thesis ch.7.2.1 (eq. 56/57) and the ``--start LAT,LON`` parser."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+
+EARTH_RADIUS_KM = 6371.0  # thesis ch.7.2.1 (R = 6371 km)
+
+
+def parse_start(text: str) -> tuple[float, float]:
+    """``"LAT,LON"`` in decimal degrees -> (lat, lon); a one-line DataError on anything else."""
+    parts = str(text).replace(";", ",").split(",")
+    try:
+        if len(parts) != 2:
+            raise ValueError
+        lat, lon = (float(p) for p in parts)
+    except ValueError:
+        raise DataError(f"--start '{text}': expected LAT,LON in decimal degrees, e.g. --start 41.178,-8.608") from None
+    if not (np.isfinite(lat) and np.isfinite(lon) and -90.0 <= lat <= 90.0 and -180.0 <= lon <= 180.0):
+        raise DataError(f"--start '{text}': latitude must be in [-90, 90] and longitude in [-180, 180] degrees")
+    return lat, lon
+
+
+def destination(lat_rad: float, lon_rad: float, azimuth_rad: float, distance_km: float) -> tuple[float, float]:
+    """New latitude/longitude (rad) after ``distance_km`` along ``azimuth_rad`` (clockwise from north).
+
+    Thesis eq. 56/57 on a sphere of radius 6371 km.
+    """
+    delta = distance_km / EARTH_RADIUS_KM  # angular distance d / R
+    lat2 = np.arcsin(np.sin(lat_rad) * np.cos(delta)
+                     + np.cos(lat_rad) * np.sin(delta) * np.cos(azimuth_rad))  # thesis eq. 56
+    lon2 = lon_rad + np.arctan2(np.sin(azimuth_rad) * np.sin(delta) * np.cos(lat_rad),
+                                np.cos(delta) - np.sin(lat_rad) * np.sin(lat2))  # thesis eq. 57
+    return float(lat2), float((lon2 + np.pi) % (2 * np.pi) - np.pi)
+
+
+def geodetic_track(start: tuple[float, float], length_m: np.ndarray, heading_rad: np.ndarray) -> np.ndarray:
+    """Latitude/longitude (degrees, (n + 1, 2)) after each step from a start coordinate (degrees).
+
+    ``length_m`` is the signed step length along ``heading_rad`` (ENU: 0 = east, CCW); the azimuth of
+    eq. 56/57 is clockwise from north, ``pi/2 - heading``; a negative length walks the opposite way.
+    """
+    lat, lon = np.radians(start[0]), np.radians(start[1])
+    out = np.empty((len(length_m) + 1, 2))
+    out[0] = start
+    for k, (d, h) in enumerate(zip(np.asarray(length_m, float), np.asarray(heading_rad, float), strict=True)):
+        az = np.pi / 2 - h + (np.pi if d < 0 else 0.0)
+        lat, lon = destination(lat, lon, az, abs(d) / 1000.0)
+        out[k + 1] = np.degrees(lat), np.degrees(lon)
+    return out

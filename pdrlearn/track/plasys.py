@@ -1,0 +1,259 @@
+"""The PLASYS tracking pipeline (thesis ch.7): methods M1, M2, M3 on a foot (+ waist) session.
+
+- **M1** (accelerometer): accelerometer step detection, attitude from the accelerometer at each stride
+  start, gyroscope integration without offset correction, double integration with the velocity reset at
+  each stride start only; heading from the foot's own yaw (foot unit only, as thesis ch.7.3.2).
+- **M2** (accelerometer + force): force-sensor stance (ZUPT at every stance sample, ZARU attitude reset),
+  setup-standstill gyroscope offset, the 2-state angle Kalman filter, the white-noise-jerk Kalman filter
+  (Sw = 1.8, R = 0.01) with RTS smoothing; heading from the waist complementary filter.
+- **M3** (PLASYS): M2 plus the step classes (model or ``oracle`` labels): terrain picks the distance
+  (horizontal for flat/up, 3-axis norm for down), direction fixes the sign, the length class clamps the
+  distance, stairs give the altitude change (thesis ch.7.2.2).
+"""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.displace import FootDisplacement, StepRules, force_stance, inertial_stance, parse_bounds
+from pdrlearn.errors import DataError, MissingSensorError, ModelError
+from pdrlearn.io.session import Session
+from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
+from pdrlearn.signal.conditioning import runs
+from pdrlearn.track.base import TrackResult, register_pipeline
+from pdrlearn.track.evaluate import match_by_overlap
+from pdrlearn.track.geodetic import geodetic_track
+
+log = logging.getLogger(__name__)
+
+METHODS: dict[str, dict] = {
+    "M1": {"detector": "AccelStepDetector", "integrator": "integration", "zupt_end": False, "gyro_bias": "none",
+           "attitude": "accel", "heading": "foot", "rules": False, "force": False},
+    "M2": {"detector": "AccelForceStepDetector", "integrator": "kalman", "zupt_end": True,
+           "gyro_bias": "standstill", "attitude": "kalman", "heading": "waist", "rules": False, "force": True},
+    "M3": {"detector": "AccelForceStepDetector", "integrator": "kalman", "zupt_end": True,
+           "gyro_bias": "standstill", "attitude": "kalman", "heading": "waist", "rules": True, "force": True},
+}
+
+
+def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3, min_swing_s: float = 0.2,
+                   merge_s: float = 0.1) -> pd.DataFrame:
+    """Strides of the foot unit from rest to rest: one row between consecutive stance runs.
+
+    Stance runs closer than ``merge_s`` s are merged; a swing shorter than ``min_swing_s`` s is not a
+    stride. A stride starts at the middle of the previous stance (at most ``max_rest_s`` before the
+    swing) and ends at the middle of the next stance (at most ``max_rest_s`` after it).
+    """
+    rr = runs(stance)
+    merged: list[list[int]] = []
+    for a, b in rr:
+        if merged and t[a] - t[merged[-1][1] - 1] <= merge_s:
+            merged[-1][1] = b
+        else:
+            merged.append([a, b])
+    rows = []
+    for (a0, b0), (a1, b1) in zip(merged[:-1], merged[1:], strict=True):
+        swing = t[a1] - t[b0 - 1]
+        if swing < min_swing_s:
+            continue
+        start = max(0.5 * (t[a0] + t[b0 - 1]), t[b0 - 1] - max_rest_s)
+        end = min(0.5 * (t[a1] + t[b1 - 1]), t[a1] + max_rest_s)
+        rows.append((start, end, t[a1], 1.0))
+    df = pd.DataFrame(rows, columns=["start_s", "end_s", "event_s", "confidence"])
+    df["unit"] = "foot"
+    df.attrs["detector"] = "stance"
+    return df
+
+
+def _detect_strides(session: Session, kind: str, steps: str, t: np.ndarray, stance: np.ndarray,
+                    warnings: list[str]) -> pd.DataFrame:
+    """Stride windows of the foot unit: ``steps`` = "detector" | "stance" | "labels"."""
+    if steps == "labels":
+        if session.steps is None or not len(session.steps):
+            raise DataError(f"session '{session.name}': steps='labels' but the session has no steps.csv")
+        df = session.steps[["start_s", "end_s"]].copy()
+        df["event_s"] = session.steps["ic_s"] if "ic_s" in session.steps else df["end_s"]
+        df["confidence"] = 1.0
+        df["unit"] = "foot"
+        return df
+    if steps == "detector":
+        try:
+            import pdrlearn.steps as steps_mod
+
+            det = getattr(steps_mod, kind)()
+            df = det.detect(session)
+            if len(df) and {"start_s", "end_s"} <= set(df.columns):
+                return df.reset_index(drop=True)
+            warnings.append(f"{kind} found no steps; using the stance segmentation")
+        except (ImportError, AttributeError):
+            warnings.append(f"pdrlearn.steps.{kind} not available; strides from the stance segmentation")
+        except MissingSensorError:
+            raise
+        except DataError as exc:
+            warnings.append(f"{kind} failed ({exc}); strides from the stance segmentation")
+    elif steps != "stance":
+        raise DataError(f"plasys: steps='{steps}' is not detector, stance or labels")
+    return stance_strides(t, stance)
+
+
+def oracle_classes(session: Session, steps: pd.DataFrame) -> pd.DataFrame:
+    """Classes of each stride from the session's own labels (matched by time overlap)."""
+    lab = session.steps
+    if lab is None or not any(c in lab for c in ("terrain", "direction", "length_class")):
+        raise DataError(f"session '{session.name}': model='oracle' needs labelled steps "
+                        "(steps.csv with terrain/direction/length_class)")
+    out = pd.DataFrame(index=range(len(steps)), columns=["terrain", "direction", "length_class"], dtype=object)
+    for i, j in match_by_overlap(steps, lab.reset_index(drop=True), min_iou=0.3):
+        for c in out.columns:
+            if c in lab:
+                out.at[i, c] = lab[c].iloc[j]
+    out["confidence"] = 1.0
+    return out
+
+
+def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.DataFrame, dict | None]:
+    """Classes from a trained model (object or model directory) and its length-class bounds, if any."""
+    if isinstance(model, str | Path):
+        from pdrlearn.classify import load_model
+
+        model = load_model(model)
+    pred = model.predict_steps(session, steps).reset_index(drop=True)
+    if len(pred) != len(steps):
+        raise ModelError(f"model predicted {len(pred)} rows for {len(steps)} strides")
+    bounds = None
+    for holder in (getattr(model, "settings", None) or {}, getattr(model, "data_summary", None) or {}):
+        for key in ("length_bounds_m", "length_bounds"):
+            if key in holder:
+                bounds = holder[key]
+    bounds = getattr(model, "length_bounds_m", bounds)
+    probs = [c for c in pred.columns if c.startswith("p_")]
+    if "confidence" not in pred:
+        pred["confidence"] = pred[probs].max(axis=1) if probs else 1.0
+    return pred, bounds
+
+
+def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
+    """Mean waist heading over each stride window (rad)."""
+    s = steps["start_s"].to_numpy(float)
+    e = steps["end_s"].to_numpy(float)
+    grid = s[:, None] + (e - s)[:, None] * np.linspace(0, 1, 9)[None, :]
+    return wh.heading_at(grid.ravel()).reshape(grid.shape).mean(axis=1)
+
+
+@register_pipeline("plasys")
+def track_plasys(session: Session, *, method: str = "M3", model=None, start=None, params=None,
+                 steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
+                 bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3", **opts) -> TrackResult:
+    """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
+
+    Parameters
+    ----------
+    method : "M1" | "M2" | "M3"
+    model : M3 classes source: a model directory / loaded model, or ``"oracle"`` (the session's labels)
+    start : (lat, lon) degrees -> ``lat``/``lon`` columns via thesis eq. 56/57
+    params : optional dict overriding :class:`FootDisplacement` settings
+    steps : "detector" (pdrlearn.steps detectors), "stance" (stance segmentation) or "labels"
+    heading : "waist" | "foot" (default per method; "foot" when there is no waist unit)
+    initial_heading : ENU heading (rad) at the start when the heading is relative (foot, or no magnetometer)
+    bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
+        (the foot unit measures strides = two steps, see docs/decisions/localization.md)
+    down_mode : "norm3" (thesis eq. 61) or "horizontal" for descending stairs
+    """
+    method = str(method).upper()
+    if method not in METHODS:
+        raise DataError(f"plasys: method '{method}' is not one of M1, M2, M3")
+    cfg = METHODS[method]
+    warnings: list[str] = []
+    foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
+    stance = None
+    if cfg["force"]:
+        stance = force_stance(session, foot.t)
+        if stance is None:
+            if method == "M2":
+                raise MissingSensorError(
+                    f"session '{session.name}' has no fForceA/fForceB needed by M2 (accelerometer + force); "
+                    "use --method M1 or M3, or record the force sensors")
+            warnings.append("no force sensors: stance from the accelerometer/gyroscope detector")
+    stance_source = "force" if stance is not None else "inertial"
+    if stance is None:
+        stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
+    kind = cfg["detector"] if stance_source == "force" or method == "M1" else "AccelStepDetector"
+    strides = _detect_strides(session, kind, steps, foot.t, stance, warnings).reset_index(drop=True)
+    if not len(strides):
+        raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?")
+    fd_kw = {k: cfg[k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
+    fd_kw.update(params or {})
+    fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)
+    warnings += fd.warnings_
+    disp = fd.disp_
+
+    classes = pd.DataFrame(index=range(len(strides)), columns=["terrain", "direction", "length_class"],
+                           dtype=object)
+    classes["confidence"] = strides.get("confidence", pd.Series(1.0, index=strides.index)).to_numpy()
+    model_bounds = None
+    if cfg["rules"]:
+        if model is None:
+            raise ModelError("M3 needs the step classes: pass a trained model directory (--model DIR, see "
+                             "`pdrlearn train`) or model='oracle' for labelled sessions; M1/M2 need no model")
+        if isinstance(model, str) and model == "oracle":
+            classes = oracle_classes(session, strides)
+        else:
+            classes, model_bounds = _model_classes(model, session, strides)
+    rules = StepRules(bounds=parse_bounds(bounds if bounds is not None else model_bounds)
+                      if (bounds is not None or model_bounds is not None) else None,
+                      bounds_scale=bounds_scale, down_mode=down_mode,
+                      clamp=cfg["rules"], sign=cfg["rules"], altitude=cfg["rules"])
+    if not cfg["rules"]:
+        classes["terrain"] = None
+    applied = rules.apply(disp, classes if cfg["rules"] else classes.assign(terrain="flat"))
+    length = applied["length_m"].to_numpy()
+    dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
+
+    has_waist = session.has("wAccelerometer", "wGyroscope") and "waist" in session.frames
+    hsrc = heading or cfg["heading"]
+    if hsrc == "waist" and not has_waist:
+        warnings.append("no waist unit: heading from the foot's own integrated yaw (relative to the start)")
+        hsrc = "foot"
+    lateral = np.arctan2(disp[:, 1], np.abs(disp[:, 0])) * np.where(disp[:, 0] < 0, -1.0, 1.0)
+    if hsrc == "waist":
+        wh = WaistHeading().fit_session(session)
+        warnings += wh.warnings_
+        head = _stride_heading(wh, strides)
+    elif hsrc == "foot":
+        head = fd.foot_heading(initial_heading) + lateral
+    else:
+        raise DataError(f"plasys: heading '{hsrc}' is not waist or foot")
+
+    table = strides[["start_s", "end_s"]].copy()
+    table["event_s"] = strides["event_s"] if "event_s" in strides else strides["end_s"]
+    table["length_m"] = length
+    table["heading_rad"] = wrap_angle(head)
+    table["dz_m"] = dz
+    for c in ("terrain", "direction", "length_class"):
+        table[c] = classes[c].to_numpy() if c in classes else None
+    table["confidence"] = classes["confidence"].to_numpy(float) if "confidence" in classes else 1.0
+    table["unit"] = "foot"
+
+    xyz = np.zeros((len(table) + 1, 3))
+    xyz[1:, 0] = np.cumsum(length * np.cos(head))
+    xyz[1:, 1] = np.cumsum(length * np.sin(head))
+    xyz[1:, 2] = np.cumsum(dz)
+    traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
+                         "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2]})
+    if start is not None:
+        ll = geodetic_track(tuple(start), length, head)
+        traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
+    info = {"pipeline": "plasys", "method": method, "heading_source": hsrc, "stance_source": stance_source,
+            "steps_source": strides.attrs.get("detector", steps), "classes_source":
+            ("oracle" if isinstance(model, str) and model == "oracle" else ("model" if cfg["rules"] else None)),
+            "length_bounds_m": rules.effective_bounds() if cfg["rules"] else None,
+            "settings": fd.__dict__ and {k: getattr(fd, k) for k in
+                                          ("integrator", "zupt_end", "gyro_bias", "attitude", "sw", "r")},
+            "warnings": warnings}
+    for w in warnings:
+        log.warning("%s: %s", session.name, w)
+    return TrackResult(steps=table, trajectory=traj, info=info)
