@@ -2,7 +2,7 @@
 
 import importlib
 
-PIPELINE_MODULES: list[str] = ["pdrlearn.track.waist"]
+PIPELINE_MODULES: list[str] = ["pdrlearn.track.waist", "pdrlearn.track.plasys"]
 
 for _m in PIPELINE_MODULES:
     importlib.import_module(_m)
