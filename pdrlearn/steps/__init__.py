@@ -1,0 +1,27 @@
+"""Step detection (thesis ch.5, seeds 000/001), unit clock alignment, stance-to-stance segmentation and
+event-level evaluation. See docs/steps.md."""
+
+from pdrlearn.steps.base import STEPS_COLUMNS, OnlineStepDetector, StepDetector, steps_frame
+from pdrlearn.steps.detectors import (
+    DETECTORS,
+    AccelForceStepDetector,
+    AccelStepDetector,
+    PelvicGyroStepDetector,
+    PLLStepDetector,
+    get_detector,
+)
+from pdrlearn.steps.evaluate import (
+    Reference,
+    in_intervals,
+    DEFAULT_TOLERANCE_S,
+    match_events,
+    reference_events,
+    score_events,
+    score_steps,
+)
+
+__all__ = [
+    "STEPS_COLUMNS", "OnlineStepDetector", "StepDetector", "steps_frame",
+    "DETECTORS", "AccelStepDetector", "AccelForceStepDetector", "PelvicGyroStepDetector", "PLLStepDetector",
+    "get_detector", "Reference", "in_intervals", "DEFAULT_TOLERANCE_S", "match_events", "reference_events", "score_events", "score_steps",
+]

@@ -1,0 +1,354 @@
+"""Pure numerical kernels of the step detectors.
+
+Each kernel has the form ``kernel(t, x..., state, params) -> (events, state)``: it consumes one chunk of
+samples, returns the events that became final in this chunk and the new state. Feeding a signal in one
+chunk or in many gives the same events (the detectors' online == offline guarantee), because every
+decision depends only on samples already seen plus a bounded look-ahead that is carried in the state.
+
+An event is a tuple ``(event_s, start_s, end_s, confidence, extra)`` with ``extra`` a dict of
+detector-specific columns. Times in seconds, accelerations in m/s^2, angular rates in rad/s.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
+
+Event = tuple[float, float, float, float, dict]
+
+
+# ---------------------------------------------------------------------------------------------------
+# trailing-window statistics with carried history (chunk-invariant)
+def trailing_window_std(x: np.ndarray, tail: np.ndarray, w: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Mean and standard deviation of the last ``w`` samples at each sample of ``x``.
+
+    ``tail`` holds the ``w - 1`` samples before ``x`` (from the previous chunk, or the first sample
+    repeated at the start). Returns ``(mean, std, new_tail)``; each window is computed on its own, so
+    the result does not depend on how the signal is chunked.
+    """
+    xp = np.concatenate([tail, x])
+    win = sliding_window_view(xp, w)
+    return win.mean(axis=1), win.std(axis=1), xp[len(xp) - (w - 1):] if w > 1 else xp[:0]
+
+
+# ---------------------------------------------------------------------------------------------------
+# swing bursts between still periods (foot accelerometer detector, thesis ch.5.1)
+@dataclass
+class BurstParams:
+    """Settings of :func:`burst_kernel` in samples (converted from seconds by the detector)."""
+
+    amp: float  # minimum max-min of the filtered magnitude inside a swing (m/s^2; thesis 1.7)
+    min_still_n: int  # still samples that end a swing
+    min_dur_s: float  # shortest swing (s)
+    max_dur_s: float  # longest swing (s); longer bursts are not steps (the thesis' 20-sample window)
+    min_stride_s: float  # two events closer than this are one stride (s)
+
+
+@dataclass
+class BurstState:
+    active: bool = False
+    i0_t: float = 0.0
+    mx: float = -math.inf
+    mx_t: float = 0.0
+    mn: float = math.inf
+    still_count: int = 0
+    last_t: float = math.nan
+    pending: Event | None = None  # last accepted stride, held back until min_stride_s has passed
+    pending_amp: float = 0.0
+
+
+def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstState,
+                 p: BurstParams) -> tuple[list[Event], BurstState]:
+    """Swing detection: a swing starts at the first non-still sample and ends after ``min_still_n``
+    still samples; it is a stride when the filtered magnitude ``a`` spans more than ``p.amp`` (thesis
+    ch.5.1 max - current > 1.7 m/s^2) and it lasts ``min_dur_s``..``max_dur_s``. The event is the
+    time of the largest filtered magnitude (the impact of the initial contact). Strides closer than
+    ``min_stride_s`` are merged, keeping the larger one.
+    """
+    out: list[Event] = []
+    s = state
+    tl, al, sl = t.tolist(), a.tolist(), still.tolist()
+    for ti, ai, si in zip(tl, al, sl, strict=True):
+        s.last_t = ti
+        if s.pending is not None and ti - s.pending[0] >= p.min_stride_s and not (
+                s.active and s.i0_t - s.pending[0] < p.min_stride_s):
+            out.append(s.pending)
+            s.pending = None
+        s.still_count = s.still_count + 1 if si else 0
+        if not s.active:
+            if not si:
+                s.active, s.i0_t, s.mx, s.mx_t, s.mn = True, ti, ai, ti, ai
+            continue
+        if ai > s.mx:
+            s.mx, s.mx_t = ai, ti
+        if ai < s.mn:
+            s.mn = ai
+        if s.still_count >= p.min_still_n:
+            s.active = False
+            dur = ti - s.i0_t
+            span = s.mx - s.mn
+            if span > p.amp and p.min_dur_s <= dur <= p.max_dur_s:
+                conf = min(1.0, span / (2.0 * p.amp))
+                ev: Event = (s.mx_t, s.i0_t, ti, conf, {"amplitude": span})
+                if s.pending is not None and ev[0] - s.pending[0] < p.min_stride_s:
+                    if span > s.pending_amp:  # merge: keep the larger burst, spanning both
+                        ev = (ev[0], s.pending[1], ev[2], conf, ev[4])
+                        s.pending, s.pending_amp = ev, span
+                    else:
+                        pe = s.pending
+                        s.pending = (pe[0], pe[1], ev[2], pe[3], pe[4])
+                else:
+                    if s.pending is not None:
+                        out.append(s.pending)
+                    s.pending, s.pending_amp = ev, span
+    return out, s
+
+
+def burst_flush(state: BurstState) -> list[Event]:
+    """Events still held back at the end of the signal (a swing still open is dropped)."""
+    out = [state.pending] if state.pending is not None else []
+    state.pending = None
+    return out
+
+
+# ---------------------------------------------------------------------------------------------------
+# force-gated stance detector (thesis ch.5.2)
+@dataclass
+class ForceParams:
+    amp: float  # max - min of the filtered acceleration during the swing (m/s^2; thesis ch.5.2: 1)
+    on_frac: float  # combined force above this fraction of its running maximum = stance
+    off_frac: float  # below this fraction = swing (hysteresis)
+    min_swing_s: float  # shortest swing (s)
+
+
+@dataclass
+class ForceState:
+    fmax: float = 0.0
+    stance: bool = True
+    swing_t0: float = math.nan
+    mx: float = -math.inf
+    mn: float = math.inf
+    last_event_t: float = math.nan
+
+
+def force_kernel(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: ForceState,
+                 p: ForceParams) -> tuple[list[Event], ForceState]:
+    """Thesis ch.5.2: while the combined heel+toe force is ~0 (swing) keep the max and min of the
+    filtered acceleration; at the stance onset count a step when max - min > ``p.amp``. The event is
+    the stance onset (initial contact); the window runs from the swing start to the stance onset."""
+    out: list[Event] = []
+    s = state
+    for ti, ai, fi in zip(t.tolist(), a.tolist(), f.tolist(), strict=True):
+        if fi > s.fmax:
+            s.fmax = fi
+        if s.stance:
+            if s.fmax > 0 and fi < p.off_frac * s.fmax:
+                s.stance, s.swing_t0, s.mx, s.mn = False, ti, ai, ai
+        else:
+            if ai > s.mx:
+                s.mx = ai
+            if ai < s.mn:
+                s.mn = ai
+            if fi > p.on_frac * s.fmax:
+                s.stance = True
+                span = s.mx - s.mn
+                if span > p.amp and ti - s.swing_t0 >= p.min_swing_s:
+                    out.append((ti, s.swing_t0, ti, min(1.0, span / (2.0 * p.amp)), {"amplitude": span}))
+                    s.last_event_t = ti
+    return out, s
+
+
+# ---------------------------------------------------------------------------------------------------
+# pelvic rotation lobes (thesis ch.5.3, eq. 27)
+@dataclass
+class PelvicParams:
+    threshold: float  # possible step above this yaw rate (rad/s; thesis ch.5.3: 0.11)
+    peak_window_s: float  # the peak is searched this long after the threshold crossing
+    amp_ref: float  # amplitude for P(A) = 100 % (rad/s; thesis: 0.20)
+    length_ref_s: float  # signal length for P(L) = 100 %
+    d1_s: float  # first delta taken this long after the peak
+    d1_ref: float  # rad/s (thesis: 0.05)
+    d2_s: float
+    d2_ref: float  # rad/s (thesis: 0.10)
+    weights: tuple[float, float, float, float]  # thesis eq. 27: 0.25, 0.10, 0.40, 0.25
+    p_min: float  # thesis: 75 %
+    max_lobe_s: float  # a lobe is closed after this long even without a sign change
+
+
+@dataclass
+class PelvicState:
+    active: bool = False
+    sign: float = 0.0
+    t_cross: float = 0.0
+    peak: float = 0.0
+    t_peak: float = 0.0
+    pending: list = field(default_factory=list)  # [t_cross, t_end, sign, peak, t_peak, v_d1, v_d2]
+    last_t: float = -math.inf
+
+
+def _prob(value: float, ref: float) -> float:
+    return max(0.0, min(1.0, value / ref)) if ref > 0 else 1.0
+
+
+def pelvic_score(amp: float, length_s: float, d1: float, d2: float, p: PelvicParams) -> float:
+    """Thesis eq. 27: P(S) = 0.25 P(A) + 0.10 P(L) + 0.40 P(D1) + 0.25 P(D2), each P = min(1, x/x_ref)."""
+    wa, wl, w1, w2 = p.weights
+    return (wa * _prob(amp, p.amp_ref) + wl * _prob(length_s, p.length_ref_s)
+            + w1 * _prob(d1, p.d1_ref) + w2 * _prob(d2, p.d2_ref))
+
+
+def pelvic_kernel(t: np.ndarray, w: np.ndarray, state: PelvicState,
+                  p: PelvicParams) -> tuple[list[Event], PelvicState]:
+    """Lobes of the filtered vertical (yaw) rate ``w``: a lobe opens when ``|w|`` exceeds the threshold,
+    its peak is the largest ``sign * w`` within ``peak_window_s`` of the crossing, and it closes at the
+    sign change (or ``max_lobe_s``). Once ``d2_s`` has passed after the peak its features are scored
+    with eq. 27 and the lobe is a step when P(S) > ``p_min``. Event = the peak time; the ``side`` column
+    is ``left`` for positive and ``right`` for negative lobes (thesis ch.5.3)."""
+    out: list[Event] = []
+    s = state
+    for ti, wi in zip(t.tolist(), w.tolist(), strict=True):
+        s.last_t = ti
+        # fill the delta samples of lobes waiting for their look-ahead
+        for c in s.pending:
+            if c[5] is None and ti >= c[4] + p.d1_s:
+                c[5] = c[2] * wi
+            if c[6] is None and ti >= c[4] + p.d2_s:
+                c[6] = c[2] * wi
+        while s.pending and s.pending[0][6] is not None and s.pending[0][1] is not None:
+            out.extend(_pelvic_decide(s.pending.pop(0), p))
+        if s.active:
+            v = s.sign * wi
+            if v > s.peak and ti - s.t_cross <= p.peak_window_s:
+                s.peak, s.t_peak = v, ti
+                s.pending[-1][3], s.pending[-1][4] = v, ti
+                s.pending[-1][5] = s.pending[-1][6] = None
+            if v <= 0 or ti - s.t_cross >= p.max_lobe_s:
+                s.active = False
+                s.pending[-1][1] = ti
+        if not s.active and abs(wi) > p.threshold:
+            s.active, s.sign, s.t_cross = True, (1.0 if wi > 0 else -1.0), ti
+            s.peak, s.t_peak = abs(wi), ti
+            s.pending.append([ti, None, s.sign, abs(wi), ti, None, None])
+    return out, s
+
+
+def _pelvic_decide(c: list, p: PelvicParams) -> list[Event]:
+    t_cross, t_end, sign, peak, t_peak, v1, v2 = c
+    if t_end is None:
+        t_end = t_peak
+    d1 = peak - v1 if v1 is not None else 0.0
+    d2 = peak - v2 if v2 is not None else 0.0
+    prob = pelvic_score(peak, t_end - t_cross, d1, d2, p)
+    if prob > p.p_min:
+        side = "left" if sign > 0 else "right"
+        return [(t_peak, t_cross, t_end, prob, {"side": side, "amplitude": peak})]
+    return []
+
+
+def pelvic_flush(state: PelvicState, p: PelvicParams) -> list[Event]:
+    """Score lobes still waiting at the end of the signal with the samples available."""
+    out: list[Event] = []
+    for c in state.pending:
+        if c[1] is None:
+            c[1] = state.last_t
+        out.extend(_pelvic_decide(c, p))
+    state.pending = []
+    return out
+
+
+# ---------------------------------------------------------------------------------------------------
+# phase-locked loop on vertical acceleration (seed 000 Sec. II-B, seed 001 Sec. 2.2.2)
+@dataclass
+class PLLParams:
+    f0_hz: float  # free-running frequency (seed 000/001: 1.8 Hz)
+    kp: float  # proportional gain (rad/s per unit phase-detector output)
+    ki: float  # integral gain (rad/s^2 per unit)
+    f_min_hz: float
+    f_max_hz: float
+    agc_tau_s: float  # time constant of the amplitude normalisation
+    gate_window_s: float  # activity window, centred on each peak (seed 001: 4 s)
+    gate_var: float  # minimum variance of vertical acceleration (m^2/s^4; seed 001: 1.5)
+
+
+@dataclass
+class PLLState:
+    theta: float = 0.0
+    integ: float = 0.0
+    power: float = math.nan
+    last_t: float = math.nan
+    last_peak_t: float = math.nan
+    buf_t: list = field(default_factory=list)
+    buf_v: list = field(default_factory=list)
+    pending: list = field(default_factory=list)  # [t_peak, freq_hz]
+
+
+def pll_kernel(t: np.ndarray, v: np.ndarray, state: PLLState, p: PLLParams) -> tuple[list[Event], PLLState]:
+    """Second-order PLL (multiplier phase detector + PI loop filter) locked on the vertical acceleration
+    ``v`` (gravity removed, m/s^2). Output ``cos(theta)``; a step is each peak of the output
+    (theta wraps past 2 pi), accepted when the variance of ``v`` over ``gate_window_s`` centred on the
+    peak exceeds ``gate_var`` (seed 001's activity gate). The step frequency is 1 / (time since the
+    previous peak) (seed 000: f_k = 1/T_k), or the loop frequency for the first peak."""
+    out: list[Event] = []
+    s = state
+    w_min, w_max = 2 * math.pi * p.f_min_hz, 2 * math.pi * p.f_max_hz
+    w0 = 2 * math.pi * p.f0_hz
+    half = 0.5 * p.gate_window_s
+    for ti, vi in zip(t.tolist(), v.tolist(), strict=True):
+        dt = ti - s.last_t if s.last_t == s.last_t else 0.0
+        s.last_t = ti
+        if s.power != s.power:
+            s.power = vi * vi
+        elif dt > 0:
+            a = math.exp(-dt / p.agc_tau_s)
+            s.power = a * s.power + (1 - a) * vi * vi
+        x = vi / math.sqrt(s.power) if s.power > 1e-12 else 0.0
+        x = max(-3.0, min(3.0, x))
+        pd = -x * math.sin(s.theta)
+        s.integ += p.ki * pd * dt
+        s.integ = max(w_min - w0, min(w_max - w0, s.integ))
+        omega = max(w_min, min(w_max, w0 + p.kp * pd + s.integ))
+        th_prev = s.theta
+        s.theta += omega * dt
+        if s.theta >= 2 * math.pi:
+            s.theta -= 2 * math.pi
+            frac = (2 * math.pi - th_prev) / (omega * dt) if omega * dt > 0 else 1.0
+            tp = ti - dt + frac * dt
+            freq = 1.0 / (tp - s.last_peak_t) if s.last_peak_t == s.last_peak_t else omega / (2 * math.pi)
+            s.pending.append([tp, freq, s.last_peak_t])
+            s.last_peak_t = tp
+        s.buf_t.append(ti)
+        s.buf_v.append(vi)
+        while s.pending and ti >= s.pending[0][0] + half:
+            out.extend(_pll_decide(s, s.pending.pop(0), p))
+        # keep only what the oldest pending peak (or the next one) can need
+        keep_from = (s.pending[0][0] if s.pending else ti) - half
+        if len(s.buf_t) > 64 and s.buf_t[32] < keep_from:
+            k = 0
+            while k < len(s.buf_t) and s.buf_t[k] < keep_from:
+                k += 1
+            del s.buf_t[:k]
+            del s.buf_v[:k]
+    return out, s
+
+
+def _pll_decide(s: PLLState, c: list, p: PLLParams) -> list[Event]:
+    tp, freq, prev = c
+    half = 0.5 * p.gate_window_s
+    vals = [v for tt, v in zip(s.buf_t, s.buf_v, strict=True) if tp - half <= tt <= tp + half]
+    if len(vals) < 2:
+        return []
+    var = float(np.var(np.asarray(vals)))
+    if var < p.gate_var:
+        return []
+    start = prev if prev == prev and tp - prev < 2.0 / p.f_min_hz else tp - 1.0 / max(freq, p.f_min_hz)
+    return [(tp, start, tp, min(1.0, var / (2 * p.gate_var)), {"step_freq_hz": freq})]
+
+
+def pll_flush(state: PLLState, p: PLLParams) -> list[Event]:
+    out: list[Event] = []
+    while state.pending:
+        out.extend(_pll_decide(state, state.pending.pop(0), p))
+    return out

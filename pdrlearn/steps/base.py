@@ -1,0 +1,160 @@
+"""The shared mechanism of every step detector: offline ``detect(session)`` and an online detector
+that consumes chunks of samples, both running the same pure kernel so that their results are identical.
+"""
+
+from __future__ import annotations
+
+import inspect
+import logging
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+from pdrlearn.io.session import Session, Stream
+from pdrlearn.signal.filters import interp_rows
+from pdrlearn.steps._kernels import Event
+
+log = logging.getLogger(__name__)
+
+#: columns of every detector's steps table (docs/architecture.md)
+STEPS_COLUMNS = ("start_s", "end_s", "event_s", "unit", "confidence")
+
+
+def steps_frame(events: list[Event], *, unit: str, detector: str, extra_columns: tuple[str, ...] = ()) -> pd.DataFrame:
+    """Build the steps table from kernel events (sorted by event time)."""
+    rows = sorted(events, key=lambda e: e[0])
+    data: dict[str, Any] = {
+        "start_s": np.array([e[1] for e in rows], dtype=float),
+        "end_s": np.array([e[2] for e in rows], dtype=float),
+        "event_s": np.array([e[0] for e in rows], dtype=float),
+        "unit": [unit] * len(rows),
+        "confidence": np.array([e[3] for e in rows], dtype=float),
+    }
+    for col in extra_columns:
+        data[col] = [e[4].get(col) for e in rows]
+    df = pd.DataFrame(data)
+    df.attrs["detector"] = detector
+    df.attrs["unit"] = unit
+    return df
+
+
+class OnlineStepDetector:
+    """Streaming detector: ``push(t_chunk, values_chunk)`` returns the steps that became final,
+    ``flush()`` the steps still held back at the end. Concatenating all returned tables equals
+    ``detector.detect(session)`` on the same samples, whatever the chunk sizes.
+
+    ``values_chunk`` has the columns described by the detector's ``input_columns``.
+    """
+
+    def __init__(self, detector: StepDetector, fs: float, **context):
+        if not (np.isfinite(fs) and fs > 0):
+            raise DataError(f"{detector.name}: sampling rate {fs!r} Hz is not a positive number")
+        self.detector = detector
+        self.fs = float(fs)
+        self._last_t = -np.inf
+        self._proc = detector._make_processor(self.fs, **context)
+
+    def push(self, t, values) -> pd.DataFrame:
+        t = np.asarray(t, dtype=np.float64).ravel()
+        v = np.asarray(values, dtype=np.float64)
+        if v.ndim == 1:
+            v = v.reshape(-1, 1)
+        n_in = len(self.detector.input_columns)
+        if v.shape != (t.shape[0], n_in):
+            raise DataError(
+                f"{self.detector.name} online: expected values of shape (n, {n_in}) "
+                f"({', '.join(self.detector.input_columns)}), got {v.shape} for {t.shape[0]} timestamps"
+            )
+        if t.size:
+            if not (np.all(np.isfinite(t)) and np.all(np.isfinite(v))):
+                raise DataError(f"{self.detector.name} online: NaN or inf in the pushed chunk; drop those samples")
+            if t[0] <= self._last_t or np.any(np.diff(t) <= 0):
+                raise DataError(f"{self.detector.name} online: timestamps must increase strictly across chunks")
+            self._last_t = float(t[-1])
+        events = self._proc.process(t, v) if t.size else []
+        return self.detector._frame(events)
+
+    def flush(self) -> pd.DataFrame:
+        return self.detector._frame(self._proc.flush())
+
+
+class StepDetector:
+    """Base class: subclasses set ``name``, ``unit``, ``input_columns``, ``extra_columns`` and implement
+    ``_inputs(session) -> (t, values, context)`` and ``_make_processor(fs, **context)``.
+
+    Settings are keyword-only ``__init__`` arguments stored as attributes (scikit-learn style;
+    :meth:`get_params` lists them). Windows and thresholds are in seconds / SI units.
+    """
+
+    name = "base"
+    unit = "foot"
+    input_columns: tuple[str, ...] = ()
+    extra_columns: tuple[str, ...] = ()
+
+    # -- parameters ------------------------------------------------------------------------------
+    @classmethod
+    def _param_names(cls) -> list[str]:
+        sig = inspect.signature(cls.__init__)
+        return [p.name for p in sig.parameters.values() if p.kind == p.KEYWORD_ONLY]
+
+    def get_params(self, deep: bool = True) -> dict:
+        return {k: getattr(self, k) for k in self._param_names()}
+
+    def set_params(self, **params) -> StepDetector:
+        for k, v in params.items():
+            if k not in self._param_names():
+                raise DataError(f"{self.name}: unknown parameter '{k}'; valid: {', '.join(self._param_names())}")
+            setattr(self, k, v)
+        return self
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({', '.join(f'{k}={v!r}' for k, v in self.get_params().items())})"
+
+    # -- running ---------------------------------------------------------------------------------
+    def _frame(self, events: list[Event]) -> pd.DataFrame:
+        return steps_frame(events, unit=self.unit, detector=self.name, extra_columns=self.extra_columns)
+
+    def _inputs(self, session: Session) -> tuple[np.ndarray, np.ndarray, dict]:
+        raise NotImplementedError
+
+    def _make_processor(self, fs: float, **context):
+        raise NotImplementedError
+
+    def online(self, fs: float, **context) -> OnlineStepDetector:
+        """A streaming detector for samples at ``fs`` Hz (``context``: e.g. ``gyro_bias`` for the pelvic
+        detector; :meth:`detect` computes it from the session)."""
+        return OnlineStepDetector(self, fs, **context)
+
+    def detect(self, session: Session) -> pd.DataFrame:
+        """Detect the steps of a whole session; returns the steps table (docs/architecture.md)."""
+        t, values, context = self._inputs(session)
+        if t.shape[0] < 2:
+            raise DataError(f"session '{session.name}': too few samples for {self.name} step detection")
+        fs = 1.0 / float(np.median(np.diff(t)))
+        det = self.online(fs, **context)
+        parts = [det.push(t, values), det.flush()]
+        df = pd.concat(parts, ignore_index=True) if any(len(p) for p in parts) else parts[0]
+        df.attrs["detector"] = self.name
+        df.attrs["unit"] = self.unit
+        df.attrs["rate_hz"] = fs
+        self.steps_ = df
+        log.info("%s on %s: %d steps", self.name, session.name, len(df))
+        return df
+
+
+def stream_on(session: Session, name: str, t: np.ndarray, *, purpose: str) -> np.ndarray:
+    """Values of stream ``name`` linearly interpolated at ``t`` (raises MissingSensorError if absent)."""
+    s: Stream = session.require(name, purpose=purpose)
+    check_stream(s, session)
+    if s.t.shape == t.shape and np.array_equal(s.t, t):
+        return s.values
+    return interp_rows(t, s.t, s.values)
+
+
+def check_stream(s: Stream, session: Session) -> None:
+    if len(s) < 2:
+        raise DataError(f"session '{session.name}': {s.name} has {len(s)} samples; record a longer session")
+    if not np.all(np.isfinite(s.values)):
+        raise DataError(f"session '{session.name}': {s.name} contains NaN/inf values; clean the file first")

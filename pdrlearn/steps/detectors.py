@@ -1,0 +1,385 @@
+"""The four step detectors: foot accelerometer (thesis ch.5.1), foot accelerometer + force sensors
+(ch.5.2), waist pelvic-rotation gyroscope (ch.5.3) and a phase-locked loop on the waist's vertical
+acceleration (seeds 000/001).
+
+Every setting is keyword-only, in seconds and SI units; thesis sample counts are converted at the
+thesis' 20 Hz (docs/decisions/steps.md). Detectors run at the session's native rate.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.io.session import Session
+from pdrlearn.signal.conditioning import G, calibrate_standstill
+from pdrlearn.signal.filters import CausalLowpass, magnitude
+from pdrlearn.steps._kernels import (
+    BurstParams,
+    BurstState,
+    ForceParams,
+    ForceState,
+    PelvicParams,
+    PelvicState,
+    PLLParams,
+    PLLState,
+    burst_flush,
+    burst_kernel,
+    force_kernel,
+    pelvic_flush,
+    pelvic_kernel,
+    pll_flush,
+    pll_kernel,
+    trailing_window_std,
+)
+from pdrlearn.steps.base import StepDetector, check_stream, stream_on
+
+log = logging.getLogger(__name__)
+
+THESIS_RATE_HZ = 20.0  # thesis ch.4.3: both BSUs sample at 20 Hz
+
+
+def _cutoff(cutoff_hz: float, fs: float) -> float:
+    """Keep a low-pass cutoff below 0.45 fs so that every detector also runs on low-rate streams."""
+    return min(cutoff_hz, 0.45 * fs)
+
+
+class _GravityTracker:
+    """Causal gravity direction from a slow low-pass of the accelerometer (works in any sensor frame)."""
+
+    def __init__(self, fs: float, cutoff_hz: float):
+        self.lp = CausalLowpass(_cutoff(cutoff_hz, fs), fs, order=2)
+
+    def push(self, acc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        g = self.lp.push(acc)
+        n = magnitude(g)
+        n = np.where(n > 1e-6, n, 1.0)
+        return g / n[:, None], n
+
+
+# ---------------------------------------------------------------------------------------------------
+class _AccelProcessor:
+    def __init__(self, det: AccelStepDetector, fs: float):
+        self.det = det
+        self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
+        self.w = max(2, int(round(det.still_window_s * fs)))
+        self.tail: np.ndarray | None = None
+        self.state = BurstState()
+        self.params = BurstParams(
+            amp=det.threshold, min_still_n=max(1, int(round(det.min_still_s * fs))),
+            min_dur_s=det.min_swing_s, max_dur_s=det.max_swing_s, min_stride_s=det.min_stride_s)
+
+    def process(self, t: np.ndarray, v: np.ndarray) -> list:
+        m = magnitude(v)
+        a = self.lp.push(m)
+        if self.tail is None:
+            self.tail = np.full(self.w - 1, m[0])
+        mean, std, self.tail = trailing_window_std(m, self.tail, self.w)
+        still = (std < self.det.still_std) & (np.abs(mean - self.det.gravity) < self.det.still_level_tol)
+        ev, self.state = burst_kernel(t, a, still, self.state, self.params)
+        return ev
+
+    def flush(self) -> list:
+        return burst_flush(self.state)
+
+
+class AccelStepDetector(StepDetector):
+    """Foot accelerometer step (stride) detector, thesis ch.5.1 (Fig. 48).
+
+    The acceleration magnitude is low-pass filtered (3rd-order Butterworth, causal); a stride is a swing
+    between two still periods of the foot in which the filtered magnitude rises and falls by more than
+    ``threshold`` (thesis: max - current > 1.7 m/s^2). One event per stride of the instrumented foot,
+    at the largest filtered magnitude (the impact after initial contact).
+
+    Parameters (keyword-only)
+    ----------
+    cutoff_hz : low-pass cutoff (Hz); the thesis gives only the order (decision: 3 Hz)
+    order : Butterworth order (thesis ch.5.1: 3)
+    threshold : minimum rise-and-fall of the filtered magnitude in a stride (m/s^2; thesis ch.5.1: 1.7)
+    still_window_s, still_std, still_level_tol : a sample is still when the raw magnitude over the last
+        ``still_window_s`` seconds has a standard deviation below ``still_std`` (m/s^2) and a mean within
+        ``still_level_tol`` (m/s^2) of ``gravity``
+    min_still_s : still time that ends a swing (s)
+    min_swing_s, max_swing_s : accepted swing durations (s)
+    min_stride_s : events closer than this are one stride (s). The thesis' 20-sample step period at
+        20 Hz (1.0 s) becomes this refractory time; decision: 0.6 s, the shortest walking stride
+    gravity : rest magnitude (m/s^2)
+    """
+
+    name = "accel"
+    unit = "foot"
+    input_columns = ("acc_x", "acc_y", "acc_z")
+    extra_columns = ("amplitude",)
+
+    def __init__(self, *, cutoff_hz: float = 3.0, order: int = 3, threshold: float = 1.7,  # thesis ch.5.1
+                 still_window_s: float = 0.15, still_std: float = 0.6, still_level_tol: float = 1.2,
+                 min_still_s: float = 0.05, min_swing_s: float = 0.2, max_swing_s: float = 2.5,
+                 min_stride_s: float = 0.6, gravity: float = G):
+        self.cutoff_hz = cutoff_hz
+        self.order = order
+        self.threshold = threshold
+        self.still_window_s = still_window_s
+        self.still_std = still_std
+        self.still_level_tol = still_level_tol
+        self.min_still_s = min_still_s
+        self.min_swing_s = min_swing_s
+        self.max_swing_s = max_swing_s
+        self.min_stride_s = min_stride_s
+        self.gravity = gravity
+
+    def _inputs(self, session: Session):
+        acc = session.require("fAccelerometer", purpose="the foot accelerometer step detector")
+        check_stream(acc, session)
+        return acc.t, acc.values, {}
+
+    def _make_processor(self, fs: float, **context):
+        return _AccelProcessor(self, fs)
+
+
+# ---------------------------------------------------------------------------------------------------
+class _ForceProcessor:
+    def __init__(self, det: AccelForceStepDetector, fs: float):
+        self.det = det
+        self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
+        self.state = ForceState()
+        self.params = ForceParams(amp=det.threshold, on_frac=det.force_on_frac, off_frac=det.force_off_frac,
+                                  min_swing_s=det.min_swing_s)
+
+    def process(self, t: np.ndarray, v: np.ndarray) -> list:
+        a = self.lp.push(magnitude(v[:, :3]))
+        f = v[:, 3] + v[:, 4]
+        ev, self.state = force_kernel(t, a, f, self.state, self.params)
+        return ev
+
+    def flush(self) -> list:
+        return []
+
+
+class AccelForceStepDetector(StepDetector):
+    """Foot accelerometer + heel/toe force sensors, thesis ch.5.2 (Fig. 51).
+
+    The combined force (heel + toe) marks the stance; during the swing the filtered acceleration's
+    maximum and minimum are kept and at the next stance onset a step is counted when max - min exceeds
+    ``threshold`` (thesis ch.5.2: 1). Event = stance onset (initial contact).
+
+    Parameters (keyword-only)
+    ----------
+    cutoff_hz, order : low-pass of the acceleration magnitude (thesis: 3rd order; decision: 3 Hz and the
+        orientation-free magnitude instead of the navigation-frame x-axis, docs/decisions/steps.md)
+    threshold : m/s^2 (thesis ch.5.2: 1)
+    force_on_frac, force_off_frac : stance when the combined force exceeds ``force_on_frac`` of its running
+        maximum, swing when it drops below ``force_off_frac`` ("different from zero", with hysteresis
+        against sensor noise; works for forces in N or normalised)
+    min_swing_s : shortest swing (s)
+    """
+
+    name = "accel-force"
+    unit = "foot"
+    input_columns = ("acc_x", "acc_y", "acc_z", "force_heel", "force_toe")
+    extra_columns = ("amplitude",)
+
+    def __init__(self, *, cutoff_hz: float = 3.0, order: int = 3, threshold: float = 1.0,  # thesis ch.5.2
+                 force_on_frac: float = 0.10, force_off_frac: float = 0.05, min_swing_s: float = 0.15):
+        self.cutoff_hz = cutoff_hz
+        self.order = order
+        self.threshold = threshold
+        self.force_on_frac = force_on_frac
+        self.force_off_frac = force_off_frac
+        self.min_swing_s = min_swing_s
+
+    def _inputs(self, session: Session):
+        purpose = "the accelerometer + force step detector (thesis ch.5.2; use --detector accel without force)"
+        session.require("fAccelerometer", "fForceA", "fForceB", purpose=purpose)
+        acc = session["fAccelerometer"]
+        check_stream(acc, session)
+        fa = stream_on(session, "fForceA", acc.t, purpose=purpose)
+        fb = stream_on(session, "fForceB", acc.t, purpose=purpose)
+        return acc.t, np.column_stack([acc.values, fa[:, 0], fb[:, 0]]), {}
+
+    def _make_processor(self, fs: float, **context):
+        return _ForceProcessor(self, fs)
+
+
+# ---------------------------------------------------------------------------------------------------
+class _PelvicProcessor:
+    def __init__(self, det: PelvicGyroStepDetector, fs: float, gyro_bias=None):
+        self.det = det
+        self.bias = np.zeros(3) if gyro_bias is None else np.asarray(gyro_bias, dtype=float).reshape(3)
+        self.grav = _GravityTracker(fs, det.gravity_cutoff_hz)
+        self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
+        self.state = PelvicState()
+        self.params = PelvicParams(
+            threshold=det.threshold, peak_window_s=det.peak_window_s, amp_ref=det.amp_ref,
+            length_ref_s=det.length_ref_s, d1_s=det.d1_s, d1_ref=det.d1_ref, d2_s=det.d2_s,
+            d2_ref=det.d2_ref, weights=tuple(det.weights), p_min=det.p_min, max_lobe_s=det.max_lobe_s)
+
+    def process(self, t: np.ndarray, v: np.ndarray) -> list:
+        up, _ = self.grav.push(v[:, 3:6])
+        yaw = np.einsum("ij,ij->i", v[:, :3] - self.bias, up)
+        w = self.lp.push(yaw)
+        ev, self.state = pelvic_kernel(t, w, self.state, self.params)
+        return ev
+
+    def flush(self) -> list:
+        return pelvic_flush(self.state, self.params)
+
+
+class PelvicGyroStepDetector(StepDetector):
+    """Waist gyroscope pelvic-rotation step detector, thesis ch.5.3 (Figs. 54-55, eq. 27).
+
+    The gyroscope offset (from the standstill calibration) is subtracted, the rate about the vertical
+    (gravity direction from a slow low-pass of the waist accelerometer, so any mounting works; the thesis
+    reads its x axis, vertical in its placement) is low-pass filtered, and each lobe above ``threshold``
+    is scored with P(S) = 0.25 P(A) + 0.10 P(L) + 0.40 P(D1) + 0.25 P(D2) (eq. 27); P(S) > 75 % is a step
+    (every step, both feet; positive lobes = left steps).
+
+    Time settings: the thesis gives 50 / 90 / 15 / 25 *samples*. At its 20 Hz they would be 2.5 / 4.5 /
+    0.75 / 1.25 s, longer than a step, which makes eq. 27 accept every lobe; decision
+    (docs/decisions/steps.md): the numbers are read as 100 Hz samples (0.5 / 0.9 / 0.15 / 0.25 s).
+    """
+
+    name = "pelvic-gyro"
+    unit = "waist"
+    input_columns = ("gyr_x", "gyr_y", "gyr_z", "acc_x", "acc_y", "acc_z")
+    extra_columns = ("side", "amplitude")
+
+    def __init__(self, *, cutoff_hz: float = 3.0, order: int = 3,  # thesis ch.5.3: 3rd-order low-pass
+                 threshold: float = 0.11,  # thesis ch.5.3
+                 peak_window_s: float = 0.5,  # thesis: 50 samples (decision: at 100 Hz)
+                 amp_ref: float = 0.20,  # thesis ch.5.3
+                 length_ref_s: float = 0.9,  # thesis: 90 samples
+                 d1_s: float = 0.15, d1_ref: float = 0.05,  # thesis: 15 samples, 0.05 rad/s
+                 d2_s: float = 0.25, d2_ref: float = 0.10,  # thesis: 25 samples, 0.10 rad/s
+                 weights: tuple[float, float, float, float] = (0.25, 0.10, 0.40, 0.25),  # thesis eq. 27
+                 p_min: float = 0.75,  # thesis ch.5.3: 75 %
+                 max_lobe_s: float = 1.0, gravity_cutoff_hz: float = 0.3, calibrate: bool = True):
+        self.cutoff_hz = cutoff_hz
+        self.order = order
+        self.threshold = threshold
+        self.peak_window_s = peak_window_s
+        self.amp_ref = amp_ref
+        self.length_ref_s = length_ref_s
+        self.d1_s = d1_s
+        self.d1_ref = d1_ref
+        self.d2_s = d2_s
+        self.d2_ref = d2_ref
+        self.weights = weights
+        self.p_min = p_min
+        self.max_lobe_s = max_lobe_s
+        self.gravity_cutoff_hz = gravity_cutoff_hz
+        self.calibrate = calibrate
+
+    def _inputs(self, session: Session):
+        purpose = "the pelvic-rotation step detector (waist gyroscope + accelerometer)"
+        session.require("wGyroscope", "wAccelerometer", purpose=purpose)
+        gyr = session["wGyroscope"]
+        check_stream(gyr, session)
+        acc = stream_on(session, "wAccelerometer", gyr.t, purpose=purpose)
+        bias = np.zeros(3)
+        if self.calibrate:
+            try:
+                bias = calibrate_standstill(session, units=("waist",))["waist"].gyro_bias
+            except DataError as exc:
+                log.warning("%s: no standstill calibration (%s); gyroscope offset taken as 0", session.name, exc)
+        self.gyro_bias_ = bias
+        return gyr.t, np.column_stack([gyr.values, acc]), {"gyro_bias": bias}
+
+    def _make_processor(self, fs: float, gyro_bias=None, **context):
+        return _PelvicProcessor(self, fs, gyro_bias=gyro_bias)
+
+
+# ---------------------------------------------------------------------------------------------------
+class _PLLProcessor:
+    def __init__(self, det: PLLStepDetector, fs: float):
+        self.det = det
+        self.grav = _GravityTracker(fs, det.gravity_cutoff_hz)
+        self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=2)
+        self.state = PLLState()
+        self.params = det.loop_params()
+
+    def process(self, t: np.ndarray, v: np.ndarray) -> list:
+        up, gnorm = self.grav.push(v)
+        vert = self.lp.push(np.einsum("ij,ij->i", v, up) - gnorm)
+        ev, self.state = pll_kernel(t, vert, self.state, self.params)
+        return ev
+
+    def flush(self) -> list:
+        return pll_flush(self.state, self.params)
+
+
+class PLLStepDetector(StepDetector):
+    """Phase-locked-loop step detector on the vertical acceleration (seed 000 Sec. II-B; seed 001 Sec. 2.2.2).
+
+    The waist acceleration is projected on the gravity direction (slow causal low-pass of the
+    accelerometer, so any mounting frame works), gravity is removed, the signal is low-pass filtered and
+    normalised by its running RMS, and a second-order PLL (multiplier phase detector, PI loop filter,
+    free-running at ``f0_hz``) locks on it. Each peak of the PLL's output sine is a step (both feet); the
+    steps table has ``step_freq_hz`` = 1 / time since the previous peak (seed 000: f_k = 1/T_k). Peaks are
+    kept only while walking: the vertical acceleration's variance over ``gate_window_s`` centred on the
+    peak must exceed ``gate_var`` (seed 001: 4 s window, 1.5 m^2/s^4), so the online detector reports a
+    step ``gate_window_s / 2`` after it.
+
+    Loop gains (decision): natural frequency ``loop_hz`` and damping ``damping`` of the linearised loop,
+    ``kp = 2 zeta wn / Kd``, ``ki = wn^2 / Kd`` with the phase-detector gain ``Kd = 1/sqrt(2)`` of a
+    unit-RMS sine input.
+    """
+
+    name = "pll"
+    unit = "waist"
+    input_columns = ("acc_x", "acc_y", "acc_z")
+    extra_columns = ("step_freq_hz",)
+
+    def __init__(self, *, f0_hz: float = 1.8,  # seed 000 Sec. II-B, seed 001 Sec. 2.2.2
+                 loop_hz: float = 0.4, damping: float = 0.707, f_min_hz: float = 0.8, f_max_hz: float = 3.2,
+                 cutoff_hz: float = 5.0, agc_tau_s: float = 1.0, gravity_cutoff_hz: float = 0.3,
+                 gate_window_s: float = 4.0, gate_var: float = 1.5,  # seed 001 Sec. 2.2.2
+                 placement: str = "waist"):
+        self.f0_hz = f0_hz
+        self.loop_hz = loop_hz
+        self.damping = damping
+        self.f_min_hz = f_min_hz
+        self.f_max_hz = f_max_hz
+        self.cutoff_hz = cutoff_hz
+        self.agc_tau_s = agc_tau_s
+        self.gravity_cutoff_hz = gravity_cutoff_hz
+        self.gate_window_s = gate_window_s
+        self.gate_var = gate_var
+        self.placement = placement
+
+    def loop_params(self) -> PLLParams:
+        kd = 1.0 / math.sqrt(2.0)
+        wn = 2 * math.pi * self.loop_hz
+        return PLLParams(f0_hz=self.f0_hz, kp=2 * self.damping * wn / kd, ki=wn * wn / kd,
+                         f_min_hz=self.f_min_hz, f_max_hz=self.f_max_hz, agc_tau_s=self.agc_tau_s,
+                         gate_window_s=self.gate_window_s, gate_var=self.gate_var)
+
+    def _inputs(self, session: Session):
+        name = {"waist": "wAccelerometer", "foot": "fAccelerometer"}.get(self.placement)
+        if name is None:
+            raise DataError(f"pll: placement '{self.placement}' must be 'waist' or 'foot'")
+        acc = session.require(name, purpose="the PLL step detector (vertical acceleration)")
+        check_stream(acc, session)
+        return acc.t, acc.values, {}
+
+    def _make_processor(self, fs: float, **context):
+        return _PLLProcessor(self, fs)
+
+
+DETECTORS: dict[str, type[StepDetector]] = {
+    "accel": AccelStepDetector,
+    "accel-force": AccelForceStepDetector,
+    "pelvic-gyro": PelvicGyroStepDetector,
+    "pll": PLLStepDetector,
+}
+
+
+def get_detector(name: str, **params) -> StepDetector:
+    """Detector by CLI name (``accel``, ``accel-force``, ``pelvic-gyro``, ``pll``)."""
+    try:
+        cls = DETECTORS[name]
+    except KeyError:
+        raise DataError(f"unknown step detector '{name}'; choose one of {', '.join(DETECTORS)}") from None
+    return cls(**params)

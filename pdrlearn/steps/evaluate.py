@@ -1,0 +1,209 @@
+"""Event-level evaluation of step detectors: one-to-one matching within a tolerance.
+
+Tolerance (docs/decisions/steps.md "Matching tolerance"): a detected event matches a reference event
+when ``|t_det - t_ref| <= tolerance_s`` (default 0.25 s = half of a 0.5 s step at a cadence of
+120 steps/min, so one detection can never sit within tolerance of two reference steps of a normal walk);
+pairs are matched greedily from the closest, each event at most once.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+from pdrlearn.io.session import Session
+
+DEFAULT_TOLERANCE_S = 0.25
+
+
+def match_events(detected: np.ndarray, reference: np.ndarray,
+                 tolerance_s: float | np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Indices ``(i_det, i_ref)`` into the *sorted* inputs of one-to-one matched pairs, closest first.
+
+    ``tolerance_s`` is a scalar or one tolerance per reference event (s).
+    """
+    d = np.sort(np.asarray(detected, dtype=float))
+    order_r = np.argsort(np.asarray(reference, dtype=float), kind="stable")
+    r = np.asarray(reference, dtype=float)[order_r]
+    tol = np.broadcast_to(np.asarray(tolerance_s, dtype=float), np.asarray(reference).shape)[order_r]
+    if d.size == 0 or r.size == 0:
+        return np.zeros(0, int), np.zeros(0, int)
+    tmax = float(tol.max())
+    lo = np.searchsorted(r, d - tmax, side="left")
+    hi = np.searchsorted(r, d + tmax, side="right")
+    pairs = [(abs(d[i] - r[j]), i, j) for i in range(d.size) for j in range(lo[i], hi[i])
+             if abs(d[i] - r[j]) <= tol[j]]
+    pairs.sort()
+    used_d: set[int] = set()
+    used_r: set[int] = set()
+    out_d, out_r = [], []
+    for _, i, j in pairs:
+        if i not in used_d and j not in used_r:
+            used_d.add(i)
+            used_r.add(j)
+            out_d.append(i)
+            out_r.append(j)
+    order = np.argsort(out_r)
+    return np.asarray(out_d, int)[order], np.asarray(out_r, int)[order]
+
+
+def score_events(detected_times, reference_times, *, tolerance_s: float = DEFAULT_TOLERANCE_S) -> dict:
+    """Precision, recall, F1, step-count error and timing error of detected events.
+
+    Parameters
+    ----------
+    detected_times, reference_times : event times (s)
+    tolerance_s : matching tolerance (s), see the module docstring
+
+    Returns
+    -------
+    dict with ``count``, ``reference_count``, ``true_positives``, ``false_positives``, ``false_negatives``,
+    ``precision``, ``recall``, ``f1``, ``count_error_pct`` (100 |n_det - n_ref| / n_ref, the thesis
+    Tables 20-21 measure), ``timing_error_mean_s`` and ``timing_error_sd_s`` (detected - reference over
+    matched pairs; NaN when none), ``tolerance_s``.
+    """
+    d = np.sort(np.asarray(detected_times, dtype=float).ravel())
+    r_in = np.asarray(reference_times, dtype=float).ravel()
+    tol = np.broadcast_to(np.asarray(tolerance_s, dtype=float), r_in.shape)
+    r = np.sort(r_in)
+    if not (np.all(np.isfinite(d)) and np.all(np.isfinite(r))):
+        raise DataError("score_events: event times contain NaN or inf; drop undefined events first")
+    if tol.size and not np.all(tol > 0):
+        raise DataError(f"score_events: tolerance {tolerance_s} s must be positive")
+    i_d, i_r = match_events(d, r_in, tol)
+    tp = int(i_d.size)
+    fp, fn = int(d.size - tp), int(r.size - tp)
+    precision = tp / d.size if d.size else float("nan")
+    recall = tp / r.size if r.size else float("nan")
+    f1 = 2 * tp / (d.size + r.size) if (d.size + r.size) else float("nan")
+    err = d[i_d] - r[i_r]
+    return {
+        "count": int(d.size),
+        "reference_count": int(r.size),
+        "true_positives": tp,
+        "false_positives": fp,
+        "false_negatives": fn,
+        "precision": float(precision),
+        "recall": float(recall),
+        "f1": float(f1),
+        "count_error_pct": float(100.0 * abs(d.size - r.size) / r.size) if r.size else float("nan"),
+        "timing_error_mean_s": float(err.mean()) if tp else float("nan"),
+        "timing_error_sd_s": float(err.std(ddof=1)) if tp > 1 else float("nan"),
+        "timing_error_abs_mean_s": float(np.abs(err).mean()) if tp else float("nan"),
+        "tolerance_s": float(np.max(tol)) if tol.size else float(np.asarray(tolerance_s).max()),
+    }
+
+
+@dataclass
+class Reference:
+    """Reference events of a session for one unit.
+
+    Attributes
+    ----------
+    times : (n,) reference event times (s)
+    tolerance_s : scalar or (n,) matching tolerance (s)
+    intervals : (k, 2) time intervals that the labels cover (s); detections outside are not scored
+    description : where the events come from
+    ground_truth : ``False`` for a segmentation (``source=detected``): scored by window, no timing error
+    """
+
+    times: np.ndarray
+    tolerance_s: float | np.ndarray
+    intervals: np.ndarray
+    description: str
+    ground_truth: bool = True
+
+
+def _span(times: np.ndarray, *more: np.ndarray) -> np.ndarray:
+    allv = np.concatenate([times, *more]) if more else times
+    return np.array([[float(allv.min()), float(allv.max())]])
+
+
+def reference_events(session: Session, unit: str, *, tolerance_s: float = DEFAULT_TOLERANCE_S) -> Reference | None:
+    """Reference events of ``session`` for a detector on ``unit`` (``None`` without labels).
+
+    - ``waist``: every initial contact of both feet (``extras["ics"].ic_s``) when present, else the steps
+      table as for the foot. Labelled intervals: the walking bouts (``extras["bouts"]``, level ``wb``)
+      when present, else first..last IC: the references label only walking bouts, and the steps a
+      subject takes outside them (turning on the spot, shuffling, the first/last steps) are unlabelled.
+    - ``foot``: one event per stride of the instrumented foot, ``steps.ic_s`` (plus a ``pre_ic_s`` earlier
+      than every ``ic_s``: the motion-captured initial contact that opens the first labelled stride),
+      else ``steps.start_s``. Labelled interval: first event .. last stride end.
+    - rows marked ``source == "detected"`` are a rest-based segmentation, NOT ground truth: a detection
+      matches a stride when it falls inside the stride's ``[start_s, end_s]`` window.
+    Every interval is widened by ``tolerance_s`` on both sides.
+    """
+    tol = float(tolerance_s)
+    if unit == "waist" and "ics" in session.extras and "ic_s" in session.extras["ics"]:
+        ics = np.sort(session.extras["ics"]["ic_s"].dropna().to_numpy(float))
+        if ics.size == 0:
+            return None
+        bouts = session.extras.get("bouts")
+        if bouts is not None and {"start_s", "end_s"} <= set(bouts.columns):
+            b = bouts[bouts["level"].astype(str) == "wb"] if "level" in bouts else bouts
+            iv = b[["start_s", "end_s"]].to_numpy(float)
+            desc = "extras['ics'].ic_s within extras['bouts'] (wb)"
+        else:
+            iv = _span(ics)
+            desc = "extras['ics'].ic_s"
+        return Reference(ics, tol, iv + [-tol, tol], desc)
+    st = session.steps
+    if st is None or len(st) == 0:
+        return None
+    se = st[["start_s", "end_s"]].to_numpy(float)
+    if "source" in st and (st["source"].astype(str) == "detected").all():
+        mid = se.mean(axis=1)
+        half = np.maximum(0.5 * (se[:, 1] - se[:, 0]), 1e-3)
+        return Reference(mid, half, _span(se[:, 0], se[:, 1]) + [-tol, tol],
+                         "steps.csv stride windows (source=detected: a rest-based segmentation, NOT ground truth)",
+                         ground_truth=False)
+    if "ic_s" in st and st["ic_s"].notna().any():
+        ev = st["ic_s"].dropna().to_numpy(float)
+        desc = "steps.ic_s"
+        if "pre_ic_s" in st and st["pre_ic_s"].notna().any():
+            pre = st["pre_ic_s"].dropna().to_numpy(float)
+            extra = pre[pre < ev.min() - 1e-9]
+            if extra.size:
+                ev = np.concatenate([extra, ev])
+                desc += " + first pre_ic_s"
+        ev = np.unique(ev)
+        return Reference(ev, tol, _span(ev, se[:, 1]) + [-tol, tol], desc)
+    ev = np.sort(se[:, 0])
+    return Reference(ev, tol, _span(ev, se[:, 1]) + [-tol, tol], "steps.start_s")
+
+
+def in_intervals(times: np.ndarray, intervals: np.ndarray) -> np.ndarray:
+    """Boolean mask of ``times`` inside any ``[a, b]`` row of ``intervals``."""
+    times = np.asarray(times, dtype=float)
+    m = np.zeros(times.shape, dtype=bool)
+    for a, b in np.asarray(intervals, dtype=float).reshape(-1, 2):
+        m |= (times >= a) & (times <= b)
+    return m
+
+
+def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = DEFAULT_TOLERANCE_S,
+                unit: str | None = None) -> dict | None:
+    """Score a detector's steps table against the session's labels (``None`` without labels).
+
+    Only detections inside the labelled intervals are scored (see :func:`reference_events`); the result
+    says how many were left out (``outside_labels``) and where the reference comes from (``reference``).
+    """
+    unit = unit or (str(steps["unit"].iloc[0]) if len(steps) else steps.attrs.get("unit", "foot"))
+    ref = reference_events(session, unit, tolerance_s=tolerance_s)
+    if ref is None:
+        return None
+    ev = steps["event_s"].to_numpy(float)
+    inside = in_intervals(ev, ref.intervals)
+    out = score_events(ev[inside], ref.times, tolerance_s=ref.tolerance_s)
+    out["tolerance_s"] = float(tolerance_s)
+    out["outside_labels"] = int((~inside).sum())
+    out["total_count"] = int(ev.size)
+    out["reference"] = ref.description
+    out["ground_truth"] = ref.ground_truth
+    if not ref.ground_truth:
+        for k in ("timing_error_mean_s", "timing_error_sd_s", "timing_error_abs_mean_s"):
+            out[k] = float("nan")
+    return out
