@@ -57,7 +57,8 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float) -> tuple[
         PLLStepDetector = None
     if PLLStepDetector is not None:
         try:
-            det = PLLStepDetector().detect(session)
+            # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
+            det = PLLStepDetector(gate_var=walk_threshold ** 2).detect(session)
             st = getattr(det, "steps_", det)
             if isinstance(st, pd.DataFrame) and "event_s" in st and len(st):
                 ev = np.sort(st["event_s"].to_numpy(float))

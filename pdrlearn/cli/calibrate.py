@@ -1,0 +1,49 @@
+"""``pdrlearn calibrate``: per-user step-length (and gyro-bias) parameters of the waist pipelines."""
+# ruff: noqa: B008  (typer declares options as call defaults)
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from pdrlearn.cli.common import json_safe, out_file, print_json
+
+
+def register(app: typer.Typer) -> None:
+    @app.command("calibrate")
+    def calibrate_cmd(
+        dirs: list[Path] = typer.Argument(..., help="Calibration session folder(s) of one user."),
+        pipeline: str = typer.Option("waist-pll", "--pipeline", "-p", help="waist-pll or waist-pendulum."),
+        distance: list[float] = typer.Option(None, "--distance", "-d",
+                                             help="Known walked length (m), one per folder; default: "
+                                                  "the folder's reference bouts (bouts.csv)."),
+        turns: float = typer.Option(None, "--turns",
+                                    help="Signed full turns walked (+1 = one left 360), to fit the gyro "
+                                         "bias (seed 003 eq. 2)."),
+        out: Path = typer.Option(..., "--out", "-o", help="PARAMS.json to write."),
+        as_json: bool = typer.Option(False, "--json", help="Print the parameters as JSON."),
+    ):
+        """Fit per-user waist step-length parameters from walks of known length.
+
+        Examples:
+
+          pdrlearn calibrate datasets/real/mobgap_HA001_Test5_Trial1 --pipeline waist-pendulum
+          --distance 5.01 --out p.json
+
+          pdrlearn calibrate walk1 walk2 --pipeline waist-pll -d 40 -d 60 --out p.json
+        """
+        from pdrlearn.io import read_session
+        from pdrlearn.waist.calibration import calibrate
+
+        out_file(out, (".json",))
+        sessions = [read_session(d) for d in dirs]
+        params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns)
+        params.save(out, extra={"pipeline": pipeline, "fit": [str(d) for d in dirs]})
+        d = params.to_dict()
+        if as_json:
+            print_json(json_safe({"out": str(out), "pipeline": pipeline, **d}))
+        else:
+            typer.echo(f"wrote {out}")
+            for n in d["notes"]:
+                typer.echo(f"  {n}")

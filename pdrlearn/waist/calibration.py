@@ -1,0 +1,96 @@
+"""Per-user calibration of the waist pipelines from walks of known length (seed 000 sec. II-D,
+seed 001 sec. 2.2.5, seed 003 sec. 3.2) and of the gyro bias from a 360-degree walk (seed 003 eq. 2)."""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.io import Session
+from pdrlearn.waist import _kernels as K
+from pdrlearn.waist.evaluate import reference_bouts
+from pdrlearn.waist.params import WaistParams, resolve_params
+from pdrlearn.waist.steplength import CalibrationWalk, fit_frequency, fit_pendulum
+
+log = logging.getLogger(__name__)
+
+
+def calibration_walks(session: Session, pipeline: str, *, distance_m: float | None = None,
+                      params=None) -> list[CalibrationWalk]:
+    """The walks of known length in ``session``.
+
+    With ``distance_m`` the whole session is one walk (all detected steps); otherwise each reference
+    walking bout (``bouts.csv``) is one walk with the steps whose midpoint lies in it.
+    """
+    from pdrlearn.track.waist import track_waist
+
+    p, _ = resolve_params(session, params)
+    res = track_waist(session, pipeline=pipeline, params=p)
+    st = res.steps[res.steps["has_next"]]
+    g = (K.pendulum_length(st["h_m"].to_numpy(float), p.leg_m, k=1.0, f=0.0) if "h_m" in st
+         else np.zeros(len(st)))
+    f = st["frequency_hz"].to_numpy(float)
+    mid = 0.5 * (st["start_s"].to_numpy(float) + st["end_s"].to_numpy(float))
+    if distance_m is not None:
+        if not (np.isfinite(distance_m) and distance_m > 0):
+            raise DataError(f"calibrate: --distance {distance_m} must be a positive number of metres")
+        return [CalibrationWalk(float(distance_m), f, g, session.name)]
+    bouts = reference_bouts(session)
+    if bouts is None:
+        raise DataError(f"session '{session.name}' has no bouts.csv with reference lengths; "
+                        "pass --distance METERS (the length walked in the recording)")
+    walks = []
+    for b in bouts.itertuples():
+        m = (mid >= b.start_s) & (mid <= b.end_s)
+        if m.any():
+            walks.append(CalibrationWalk(float(b.length_m), f[m], g[m], f"{session.name}@{b.start_s:.1f}s"))
+    return walks
+
+
+def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] | None = None,
+              turns: float | None = None, params=None) -> WaistParams:
+    """Fit the step-length parameters of ``pipeline`` (and, with ``turns``, the gyro bias).
+
+    Parameters
+    ----------
+    sessions : calibration recordings of one user
+    distances : known length (m) of each session; ``None`` -> the sessions' reference bouts
+    turns : signed number of full turns (+ = left) walked in each session, for the bias (seed 003 eq. 2)
+    """
+    if not sessions:
+        raise DataError("calibrate: give at least one session folder")
+    if distances is not None and len(distances) not in (1, len(sessions)):
+        raise DataError(f"calibrate: {len(distances)} --distance values for {len(sessions)} sessions; "
+                        "give one per session")
+    base, _ = resolve_params(sessions[0], params)
+    walks: list[CalibrationWalk] = []
+    for i, s in enumerate(sessions):
+        d = None if distances is None else distances[i if len(distances) > 1 else 0]
+        walks += calibration_walks(s, pipeline, distance_m=d, params=base)
+    out = WaistParams(**{k: v for k, v in base.to_dict().items() if k != "schema"})
+    out.notes = list(base.notes)
+    total = sum(w.distance_m for w in walks)
+    n_steps = sum(len(w.f_hz) for w in walks)
+    if pipeline == "waist-pendulum":
+        out.k, out.f_m, how = fit_pendulum(walks, base)
+    elif pipeline == "waist-pll":
+        out.a_walk, out.b_walk, how = fit_frequency(walks, base)
+    else:
+        raise DataError(f"calibrate: unknown pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
+    out.notes.append(f"{pipeline} step length calibrated on {len(walks)} walk(s), {n_steps} steps, "
+                     f"{total:.2f} m: {how}")
+    if turns is not None:
+        from pdrlearn.waist.ahrs import waist_imu
+
+        biases = []
+        for s in sessions:
+            imu = waist_imu(s)
+            biases.append(K.gyro_bias_360(imu.t, imu.w_z, turns=turns))
+        out.gyro_bias_rps = float(np.mean(biases))
+        out.notes.append(f"gyro bias {out.gyro_bias_rps:.5f} rad/s from {len(sessions)} walk(s) of "
+                         f"{turns:+g} turn(s) (seed 003 eq. 2)")
+    out.source = "calibrated"
+    log.info("calibrated %s: %s", pipeline, out.notes[-1])
+    return out
