@@ -1,0 +1,101 @@
+"""``pdrlearn track``: session -> trajectory.csv, steps.csv, path.png, summary.json."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import typer
+
+from pdrlearn.cli.common import json_safe, print_json
+from pdrlearn.errors import DataError
+
+
+def _write_csv(df, path: Path) -> None:
+    tmp = path.with_name(f".{path.name}.tmp")
+    df.to_csv(tmp, index=False, float_format="%.6f")
+    tmp.replace(path)
+
+
+def track(
+    session_dir: Path = typer.Argument(..., help="Session folder (PLASYS format)."),
+    out: Path = typer.Option(..., "--out", "-o", help="Output folder (created)."),
+    pipeline: str = typer.Option("plasys", help="Tracking pipeline: plasys, waist-pll, waist-pendulum."),
+    method: str = typer.Option("M3", help="PLASYS method: M1 (accelerometer), M2 (+ force), M3 (+ classes)."),
+    model: str = typer.Option(None, "--model", help="Trained model directory (M3); 'oracle' = the session's "
+                              "own step labels."),
+    start: str = typer.Option(None, "--start", help="Start coordinate LAT,LON (degrees) -> lat/lon columns."),
+    params: Path = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline."),
+    gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
+    gnss_period: float = typer.Option(None, "--gnss-period", help="Use a GNSS fix every S seconds."),
+    fixes: Path = typer.Option(None, "--fixes", help="Sporadic absolute fixes CSV for aiding."),
+    fix_period: float = typer.Option(None, "--fix-period", help="Use a fix every S seconds."),
+    as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
+) -> None:
+    """Track a session: per-step table, trajectory, path figure and summary (errors vs ground truth).
+
+    Examples:
+
+        pdrlearn track datasets/real/gaitmap_level_right --method M2 --out out/track
+
+        pdrlearn track out/sim/A --method M3 --model models/user1 --start 41.178,-8.608 --out out/A --json
+    """
+    from pdrlearn.io import read_session
+    from pdrlearn.track.base import get_pipeline
+    from pdrlearn.track.evaluate import evaluate_track
+    from pdrlearn.track.geodetic import parse_start
+    from pdrlearn.track.plots import plot_paths
+
+    start_ll = parse_start(start) if start is not None else None
+    par = None
+    if params is not None:
+        try:
+            par = json.loads(Path(params).read_text())
+        except (OSError, json.JSONDecodeError) as exc:
+            raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
+                            "pass the file written by `pdrlearn calibrate`") from None
+    session = read_session(session_dir)
+    fn = get_pipeline(pipeline)
+    kw = {"model": model, "start": start_ll, "params": par}
+    if pipeline == "plasys":
+        kw["method"] = method
+    result = fn(session, **kw)
+    if any(v is not None for v in (gnss, fixes)):
+        try:
+            from pdrlearn.aid import aid_track
+        except ImportError:
+            raise DataError("aiding (--gnss/--fixes) needs pdrlearn.aid.aid_track, which is not installed "
+                            "in this version; run without those options") from None
+        result = aid_track(result, session, gnss_path=gnss, gnss_period_s=gnss_period, fixes_path=fixes,
+                           fix_period_s=fix_period)
+    out.mkdir(parents=True, exist_ok=True)
+    traj = result.trajectory.copy()
+    for c in ("lat", "lon"):
+        if c not in traj:
+            traj[c] = float("nan")
+    _write_csv(traj, out / "trajectory.csv")
+    _write_csv(result.steps, out / "steps.csv")
+    plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, out / "path.png",
+               session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}")
+    summary = evaluate_track(result, session)
+    summary["session"] = session.name
+    summary["pipeline"] = pipeline
+    summary["info"] = result.info
+    summary = json_safe(json.loads(json.dumps(summary, default=lambda o: o.item() if hasattr(o, "item")
+                                              else str(o))))
+    (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    if as_json:
+        print_json(summary)
+        return
+    typer.echo(f"{session.name}: {summary['n_steps']} steps, {summary['distance_m']:.2f} m"
+               + (f", distance error {summary['distance_error_pct']:+.2f} %" if "distance_error_pct" in summary
+                  else "")
+               + (f", final position error {summary['final_position_error_m']:.2f} m"
+                  if "final_position_error_m" in summary else ""))
+    for w in result.info.get("warnings", []):
+        typer.echo(f"warning: {w}", err=True)
+    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, summary.json")
+
+
+def register(app: typer.Typer) -> None:
+    app.command("track")(track)
