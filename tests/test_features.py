@@ -223,7 +223,7 @@ def test_step_windows_waist_and_force_synthetic():
     assert set(w.available) == {"waist_acc", "force"}
     tg = steps["start_s"].to_numpy()[:, None] + w.channel("t_s")
     expect = 2.0 * np.sin(2 * np.pi * 2 * tg)
-    np.testing.assert_allclose(w.channel("waist_acc_z"), expect, atol=0.05)
+    np.testing.assert_allclose(w.channel("waist_acc_z"), expect, atol=0.1)  # box filter at the edges
     np.testing.assert_allclose(w.channel("force_b"), 0.5 * w.channel("force_a"), atol=1e-9)
     with pytest.raises(MissingSensorError, match="foot acc"):
         TerrainSVMFeatures(unit="both").fit_transform(w)

@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
+from scipy.ndimage import uniform_filter1d
 
 from pdrlearn.errors import DataError
 from pdrlearn.features import _kernels as K
@@ -157,6 +158,14 @@ def _segment(stream: Stream, t0: float, t1: float) -> tuple[np.ndarray, np.ndarr
 
 
 def _interp(t_new: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Resample the columns of ``v`` (n, k) at ``t_new``; when downsampling, each output sample is the
+    mean over its own interval first (box anti-alias filter, like the PLASYS firmware's 5-sample
+    averaging, thesis ch. 4.3.2), so impact peaks do not alias and 20/100/204.8 Hz data agree."""
+    if len(t_new) > 1 and len(t) > 2:
+        width = int(round((t_new[1] - t_new[0]) / float(np.median(np.diff(t)))))
+        width = 2 * (width // 2) + 1  # odd: a centred box, no half-sample delay
+        if width > 1:
+            v = uniform_filter1d(v, size=width, axis=0, mode="nearest")
     return np.stack([np.interp(t_new, t, v[:, j]) for j in range(v.shape[1])], axis=0)
 
 
@@ -285,13 +294,13 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
                 gyr = _interp(ta, *_segment(session.streams["fGyroscope"], t0, t1)).T
             a, g, an = _foot_levelled(ta, acc, gyr, fwd_foot, rest_search_s=rest_search_s, heading=heading)
             X[i, 1:4] = _interp(tg, ta, a)
-            X[i, 4] = np.interp(tg, ta, an)
+            X[i, 4] = _interp(tg, ta, an[:, None])[0]
             if g is not None:
                 X[i, 5:8] = _interp(tg, ta, g)
         if "force" in available:
             for j, name in enumerate(("fForceA", "fForceB")):
                 tf, f = _segment(session.streams[name], t0, t1)
-                X[i, CHANNEL_INDEX["force_a"] + j] = np.interp(tg, tf, f[:, 0])
+                X[i, CHANNEL_INDEX["force_a"] + j] = _interp(tg, tf, f)[0]
         if fwd_waist is not None:
             tw, wacc = _segment(session.streams["wAccelerometer"], t0, t1)
             wgyr = None

@@ -1,0 +1,144 @@
+"""Rule-table kernels shared by every heuristic classifier (thesis ch. 6.1.2.1, 6.3.2.1, eq. 28).
+
+A :class:`Rule` maps one scalar feature to a class value through ascending cut points
+(``thresholds``) and the class value of each interval (``classes``; e.g. ``C1`` = 1, ``C2.5`` = 2.5).
+A stage's result is ``R = sum(class_i * weight_i) / sum(weight_i)`` (thesis eq. 28; the thesis weights
+of a stage sum to 1, so the division only matters for subsets) rounded to the nearest class value.
+Pure functions; no estimator state.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Rule:
+    """One row of a thesis rule table.
+
+    Attributes
+    ----------
+    sensor : sensor group label (``foot_acc``, ``foot_gyr``, ``waist_acc``, ``force``, ``waist_gyr``)
+    number : the feature's number in its thesis table
+    feature : rule feature name (``"<signal>:<statistic>"``, :mod:`pdrlearn.features.rules`)
+    thresholds : ascending cut points in the feature's SI unit
+    classes : class value of each interval (``len(thresholds) + 1``)
+    weight : the rule's weight (thesis tables)
+    upper_closed : True when a value equal to a cut point falls in the lower interval (``<= t``)
+    source : citation of the row
+    confidence : optional rule feature (0..1) multiplying the weight per step (thesis eq. 32)
+    """
+
+    sensor: str
+    number: int
+    feature: str
+    thresholds: tuple[float, ...]
+    classes: tuple[float, ...]
+    weight: float
+    upper_closed: bool = True
+    source: str = ""
+    confidence: str = ""
+
+    def with_weight(self, weight: float) -> Rule:
+        return replace(self, weight=float(weight))
+
+    def to_dict(self) -> dict:
+        return {"sensor": self.sensor, "number": self.number, "feature": self.feature,
+                "thresholds": [float(t) for t in self.thresholds],
+                "classes": [float(c) for c in self.classes],
+                "weight": float(self.weight), "upper_closed": bool(self.upper_closed), "source": self.source,
+                "confidence": self.confidence}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> Rule:
+        return cls(sensor=d["sensor"], number=int(d["number"]), feature=d["feature"],
+                   thresholds=tuple(float(t) for t in d["thresholds"]),
+                   classes=tuple(float(c) for c in d["classes"]), weight=float(d["weight"]),
+                   upper_closed=bool(d["upper_closed"]), source=d.get("source", ""),
+                   confidence=d.get("confidence", ""))
+
+
+def apply_rule(values: np.ndarray, thresholds, classes, upper_closed: bool) -> np.ndarray:
+    """Class value of each feature value (n,)."""
+    side = "left" if upper_closed else "right"
+    idx = np.searchsorted(np.asarray(thresholds, dtype=float), values, side=side)
+    return np.asarray(classes, dtype=float)[idx]
+
+
+def stage_score(F: np.ndarray, rules: list[Rule], conf: np.ndarray | None = None) -> np.ndarray:
+    """Weighted class value ``R`` (thesis eq. 28) of each row of ``F`` (columns = ``rules`` in order).
+
+    ``conf`` (n, len(rules)) multiplies the weights per step (thesis eq. 32 decision fusion); a floor of
+    0.01 keeps the score defined when every source distrusts the step.
+    """
+    w = np.array([r.weight for r in rules], dtype=float)[None, :]
+    if conf is not None:
+        w = w * np.clip(conf, 0.01, None)
+    votes = np.column_stack([apply_rule(F[:, j], r.thresholds, r.classes, r.upper_closed)
+                             for j, r in enumerate(rules)])
+    return np.sum(votes * w, axis=1) / np.sum(w, axis=1)
+
+
+def memberships(score: np.ndarray, values: tuple[float, ...]) -> np.ndarray:
+    """Triangular memberships (n, k) of ``score`` to the integer class ``values`` (sum 1 inside the range).
+
+    ``max(0, 1 - |R - c|)``, scores outside the range clipped to it: the rounding rule of the thesis
+    picks the class of the largest membership.
+    """
+    v = np.asarray(values, dtype=float)
+    s = np.clip(score, v.min(), v.max())[:, None]
+    m = np.clip(1.0 - np.abs(s - v[None, :]), 0.0, None)
+    return m / m.sum(axis=1, keepdims=True)
+
+
+def _balanced_correct(pred: np.ndarray, target: np.ndarray, classes: np.ndarray) -> np.ndarray:
+    """Balanced accuracy of each row of ``pred`` (k, n); an intermediate value (C2.5) counts as
+    correct for both neighbours (|pred - target| < 0.75)."""
+    ok = np.abs(pred - target[None, :]) < 0.75
+    return np.mean([ok[:, target == c].mean(axis=1) for c in classes], axis=0)
+
+
+def rule_skill(values: np.ndarray, target: np.ndarray, rule: Rule) -> float:
+    """Balanced accuracy of ``rule`` alone on labelled values (class values in ``target``), 0..1."""
+    ok = np.isfinite(values) & np.isfinite(target)
+    values, target = values[ok], target[ok]
+    if len(values) == 0:
+        return float("nan")
+    pred = apply_rule(values, rule.thresholds, rule.classes, rule.upper_closed)[None, :]
+    return float(_balanced_correct(pred, target, np.unique(target))[0])
+
+
+def learn_thresholds(values: np.ndarray, target: np.ndarray, rule: Rule, *, max_candidates: int = 48
+                     ) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Cut points (and interval order) that make ``rule`` agree best with the labels.
+
+    The rule keeps its feature and its class values; the cut points are searched among midpoints of
+    quantiles of ``values`` and the interval order may be reversed (a sign convention differing from
+    the thesis'), maximising the balanced accuracy of the rule alone on ``target`` (class values).
+    Returns ``(thresholds, classes)``; the thesis' own when the data cannot decide (one class only).
+    """
+    classes_present = np.unique(target)
+    finite = np.isfinite(values)
+    values, target = values[finite], target[finite]
+    if len(classes_present) < 2 or len(values) < 2:
+        return rule.thresholds, rule.classes
+    q = np.unique(np.quantile(values, np.linspace(0, 1, max_candidates + 1)))
+    cands = 0.5 * (q[:-1] + q[1:]) if len(q) > 1 else q
+    k = len(rule.thresholds)
+    if k == 1:
+        combos = cands[:, None]
+    else:
+        i, j = np.triu_indices(len(cands), k=1)
+        combos = np.column_stack([cands[i], cands[j]])
+    best = (-1.0, rule.thresholds, rule.classes)
+    for order in (tuple(rule.classes), tuple(rule.classes[::-1])):
+        # predictions for all candidate threshold sets at once: (n_combos, n)
+        idx = (values[None, None, :] > combos[:, :, None]).sum(axis=1)
+        pred = np.asarray(order, dtype=float)[idx]
+        score = _balanced_correct(pred, target, classes_present)
+        b = int(np.argmax(score))
+        if score[b] > best[0] + 1e-12:
+            best = (float(score[b]), tuple(float(t) for t in combos[b]), order)
+    return best[1], best[2]

@@ -1,0 +1,120 @@
+"""Named scalar step features used by the heuristic rule tables (thesis Tables 22-24, 29-31, eq. 31-32).
+
+A rule feature is named ``"<signal>:<statistic>"`` (signals: :data:`pdrlearn.features.SIGNALS`).
+:class:`RuleFeatures` turns step windows into the matrix of the named features a rule table needs.
+Units: accelerations m/s^2, rates rad/s, forces in the sensor's unit, times s, integrals unit x s.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.features import _kernels as K
+from pdrlearn.features.transformers import _StepFeatures, signal, times
+
+_PEAK_STATS = ("min", "max", "t_min", "t_max", "dt_peaks", "abs_dt_peaks", "range", "peak_asym",
+               "sum_pos", "sum_neg", "pos_minus_neg", "duration")
+
+
+def half_balance(x: np.ndarray) -> np.ndarray:
+    """Thesis eq. 31 as a signed, scale-free number: ``(sum(first half) - sum(second half)) / sum(|x|)``.
+
+    Positive = forward step for the forward acceleration. The middle sample of an odd-length window is
+    counted in both halves, as eq. 31's sums both include ``i = n/2``.
+    """
+    m = x.shape[1]
+    first = x[:, : (m + 1) // 2].sum(axis=1)
+    second = x[:, m // 2:].sum(axis=1)
+    denom = np.abs(x).sum(axis=1)
+    return np.where(denom > 0, (first - second) / np.where(denom > 0, denom, 1.0), 0.0)
+
+
+def step_probability(x: np.ndarray) -> np.ndarray:
+    """Thesis eq. 32: ``100 - |max(acc) + min(acc)| * 20``, normalised to 0..1 (clipped).
+
+    A forward (backward) step's positive acceleration is followed (preceded) by a negative one of the
+    same magnitude; the more the peaks differ, the less the step is trusted. Acceleration in m/s^2.
+    """
+    p = 100.0 - np.abs(x.max(axis=1) + x.min(axis=1)) * 20.0  # thesis eq. 32
+    return np.clip(p / 100.0, 0.0, 1.0)
+
+
+def _stat(name: str) -> Callable[[np.ndarray, str], np.ndarray]:
+    if name in _PEAK_STATS:
+        return lambda X, sig: K.peak_stats(signal(X, sig), times(X))[name]
+    if name == "abs_peak_asym":
+        return lambda X, sig: np.abs(K.peak_stats(signal(X, sig), times(X))["peak_asym"])
+    if name == "half_balance":
+        return lambda X, sig: half_balance(signal(X, sig))
+    if name == "step_probability":
+        return lambda X, sig: step_probability(signal(X, sig))
+    if name in ("air_time", "time_to_peak", "peak_mean_4", "contact_force_2", "takeoff_force"):
+        return lambda X, sig: K.force_stats(signal(X, sig), times(X))[name]
+    if name in ("amplitude", "left", "right", "left_minus_right"):
+        def yaw_stat(X, sig):
+            ps = K.peak_stats(signal(X, sig), times(X))
+            left = ps["t_max"]
+            return {"amplitude": 0.5 * ps["range"], "left": left, "right": ps["duration"] - left,
+                    "left_minus_right": 2 * left - ps["duration"]}[name]
+        return yaw_stat
+    raise DataError(f"unknown rule statistic '{name}'")
+
+
+def _range_x_air_time(X: np.ndarray) -> np.ndarray:
+    """Thesis Table 30 #3: foot acceleration peak difference x time without force (m/s^2 x s)."""
+    rng = K.peak_stats(signal(X, "foot_acc_fwd"), times(X))["range"]
+    return rng * K.force_stats(signal(X, "force"), times(X))["air_time"]
+
+
+#: Features that combine two signals: name -> (signals, function).
+COMBINED: dict[str, tuple[tuple[str, ...], Callable[[np.ndarray], np.ndarray]]] = {
+    "foot_acc_fwd:range_x_air_time": (("foot_acc_fwd", "force"), _range_x_air_time),
+}
+
+
+def feature_signals(name: str) -> tuple[str, ...]:
+    """Signals a rule feature needs."""
+    if name in COMBINED:
+        return COMBINED[name][0]
+    sig, _, stat = name.partition(":")
+    if not stat:
+        raise DataError(f"rule feature '{name}' is not of the form '<signal>:<statistic>'")
+    return (sig,)
+
+
+def rule_features(X: np.ndarray, names) -> np.ndarray:
+    """Matrix (n_steps, len(names)) of the named rule features of windows ``X``."""
+    cols = []
+    for name in names:
+        if name in COMBINED:
+            cols.append(COMBINED[name][1](X))
+        else:
+            sig, _, stat = name.partition(":")
+            cols.append(_stat(stat)(X, sig))
+    return np.column_stack(cols)
+
+
+class RuleFeatures(_StepFeatures):
+    """Windows -> the named scalar features of a rule table (``names``, e.g. ``("foot_acc_v:min",)``)."""
+
+    task = "heuristic"
+
+    def __init__(self, *, names: tuple[str, ...] = ("foot_acc_v:min",), task: str = "heuristic"):
+        self.names = names
+        self.task = task
+
+    def _check_unit(self) -> None:
+        for n in self.names:
+            feature_signals(n)
+
+    def _signals(self):
+        return tuple(dict.fromkeys(s for n in self.names for s in feature_signals(n)))
+
+    def _names(self):
+        return list(self.names)
+
+    def _compute(self, X):
+        return rule_features(X, self.names)
