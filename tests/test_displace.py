@@ -1,0 +1,145 @@
+"""Displacement kernels on synthetic motion with a known answer, and the PLASYS rules (thesis ch.7.2)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+from scipy.spatial.transform import Rotation
+
+from pdrlearn.displace import (
+    StepRules,
+    THESIS_STEP_BOUNDS,
+    altitude_change,
+    apply_direction,
+    clamp_length,
+    double_integrate,
+    parse_bounds,
+    strapdown,
+    stride_index,
+    terrain_distance,
+    wnj_displacement,
+    wnj_kalman,
+    wnj_matrices,
+)
+from pdrlearn.errors import DataError
+
+G = 9.81
+
+
+def synthetic_stride(fs: float, D=(1.4, 0.05, 0.1), duration=1.2, pitch_amp=0.8, roll0=0.1):
+    """Minimum-jerk foot displacement D (m) over ``duration`` s with a pitch swing and a tilted mount.
+
+    Returns FLU specific force and body rates (what an IMU on the foot would read)."""
+    n = int(round(duration * fs)) + 1
+    t = np.arange(n) / fs
+    T = t[-1]
+    s = t / T
+    acc_true = ((60 * s - 180 * s**2 + 120 * s**3) / T**2)[:, None] * np.asarray(D)
+    th = pitch_amp * np.sin(np.pi * s) ** 2
+    thd = pitch_amp * 2 * np.sin(np.pi * s) * np.cos(np.pi * s) * np.pi / T
+    rots = Rotation.from_euler("y", th[:, None]) * Rotation.from_euler("x", roll0)
+    gyr = rots.inv().apply(np.column_stack([0 * t, thd, 0 * t]))
+    acc = rots.inv().apply(acc_true + np.array([0, 0, G]))
+    return acc, gyr, n
+
+
+@pytest.mark.parametrize("fs", [100.0, 204.8])
+def test_strapdown_integration_recovers_known_displacement(fs):
+    acc, gyr, n = synthetic_stride(fs)
+    idx, mask = stride_index(np.array([0]), np.array([n - 1]))
+    a_nav, yaw = strapdown(acc, gyr, 1 / fs, idx, mask, acc[[0]])
+    d1 = double_integrate(a_nav, mask, 1 / fs)
+    d2 = wnj_displacement(a_nav, mask, 1 / fs)
+    assert np.allclose(d1[0], [1.4, 0.05, 0.1], atol=0.005)
+    assert np.allclose(d2[0], [1.4, 0.05, 0.1], atol=0.005)
+    assert abs(yaw[0]) < 1e-9
+
+
+def test_zupt_removes_a_constant_accelerometer_bias():
+    fs = 100.0
+    acc, gyr, n = synthetic_stride(fs, pitch_amp=0.0, roll0=0.0)
+    a_bias = np.array([0.2, -0.1, 0.0])
+    idx, mask = stride_index(np.array([0]), np.array([n - 1]))
+    a_nav, _ = strapdown(acc + a_bias, gyr, 1 / fs, idx, mask, acc[[0]])
+    raw = double_integrate(a_nav, mask, 1 / fs, zupt_end=False)
+    fixed = double_integrate(a_nav, mask, 1 / fs, zupt_end=True)
+    assert abs(raw[0, 0] - 1.4) > 0.1
+    assert abs(fixed[0, 0] - 1.4) < 0.01
+
+
+def test_batch_of_strides_equals_single_strides():
+    fs = 100.0
+    a1, g1, n1 = synthetic_stride(fs, D=(1.4, 0.0, 0.0))
+    a2, g2, n2 = synthetic_stride(fs, D=(0.8, 0.1, -0.2), duration=0.9)
+    acc, gyr = np.vstack([a1, a2]), np.vstack([g1, g2])
+    idx, mask = stride_index(np.array([0, n1]), np.array([n1 - 1, n1 + n2 - 1]))
+    a_nav, _ = strapdown(acc, gyr, 1 / fs, idx, mask, acc[[0, n1]])
+    d = wnj_displacement(a_nav, mask, 1 / fs)
+    assert np.allclose(d, [[1.4, 0, 0], [0.8, 0.1, -0.2]], atol=0.005)
+
+
+def test_wnj_matrices_follow_thesis_eq_53_54():
+    F, Q = wnj_matrices(0.05, 1.8)
+    T = 0.05
+    assert np.allclose(F, [[1, T, T * T / 2], [0, 1, T], [0, 0, 1]])
+    assert Q[0, 0] == pytest.approx(1.8 * T**5 / 20)
+    assert Q[1, 2] == pytest.approx(1.8 * T**2 / 2)
+    assert np.allclose(Q, Q.T)
+
+
+def test_wnj_kalman_constant_acceleration_without_zupt():
+    fs, a = 50.0, 0.7
+    n = 101
+    meas = np.full((1, n), a)
+    states = wnj_kalman(meas, np.ones((1, n), bool), 1 / fs, zupt=False)
+    T = (n - 1) / fs
+    assert states[0, -1, 0] == pytest.approx(0.5 * a * T * T, rel=1e-3)
+    assert states[0, -1, 1] == pytest.approx(a * T, rel=1e-3)
+
+
+def test_direction_rule_sets_the_sign():
+    assert apply_direction(np.array([0.5, -0.5, 0.5, -0.5]),
+                           np.array(["forward", "forward", "backward", "backward"])).tolist() == [0.5, 0.5, -0.5, -0.5]
+
+
+def test_length_clamp_thesis_examples():
+    b = THESIS_STEP_BOUNDS
+    # thesis ch.7.2.2: 60 cm estimated, class Small -> 30 cm; 40 cm, class Long -> 46 cm
+    out = clamp_length(np.array([0.60, 0.40, 0.40, -0.60]), np.array(["short", "long", "normal", "short"]), b)
+    assert out.tolist() == pytest.approx([0.30, 0.46, 0.40, -0.30])
+    assert clamp_length(np.array([0.0]), np.array(["long"]), b)[0] == pytest.approx(0.46)
+
+
+def test_altitude_and_terrain_rules():
+    assert altitude_change(np.array([0.2, -0.2, 0.17, 0.3]), np.array(["flat", "up", "down", "up"])).tolist() == \
+        pytest.approx([0.0, 0.2, -0.17, 0.3])
+    disp = np.array([[0.6, 0.0, -0.34], [0.6, 0.0, 0.34]])
+    d = terrain_distance(disp, np.array(["down", "up"]))
+    assert d[0] == pytest.approx(np.hypot(0.6, 0.34))  # thesis eq. 61 on descending stairs
+    assert d[1] == pytest.approx(0.6)  # the horizontal ("x-axis") filter on ascending stairs
+
+
+def test_step_rules_on_constructed_strides():
+    disp = np.array([[1.2, 0.1, 0.0], [-0.5, 0.0, 0.0], [0.55, 0.02, 0.33], [0.2, 0.0, 0.0]])
+    classes = pd.DataFrame({"terrain": ["flat", "flat", "up", None],
+                            "direction": ["forward", "forward", "forward", "backward"],
+                            "length_class": ["long", "normal", None, "short"]})
+    out = StepRules(bounds_scale=2.0).apply(disp, classes)
+    assert out["length_m"].iloc[0] == pytest.approx(np.hypot(1.2, 0.1))  # inside long (>= 0.92)
+    assert out["length_m"].iloc[1] == pytest.approx(0.6)  # sign forward, clamped to normal [0.6, 0.9]
+    assert out["dz_m"].tolist() == pytest.approx([0.0, 0.0, 0.33, 0.0])
+    assert out["length_m"].iloc[3] == pytest.approx(-0.2)
+    off = StepRules(clamp=False, sign=False, altitude=False).apply(disp, classes)
+    assert off["length_m"].iloc[1] == pytest.approx(-0.5)
+
+
+def test_parse_bounds_and_errors():
+    assert parse_bounds([0.6, 0.9])["normal"] == (0.6, 0.9)
+    assert parse_bounds({"short": [0, 0.5], "long": [0.9, None]})["long"] == (0.9, 10.0)
+    with pytest.raises(DataError):
+        parse_bounds([0.9, 0.6])
+    with pytest.raises(DataError):
+        StepRules(down_mode="diagonal")
+    with pytest.raises(DataError):
+        StepRules().apply(np.zeros((2, 3)), pd.DataFrame({"terrain": ["flat"]}))
