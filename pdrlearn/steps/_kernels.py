@@ -271,6 +271,7 @@ class PLLParams:
     agc_tau_s: float  # time constant of the amplitude normalisation
     gate_window_s: float  # activity window, centred on each peak (seed 001: 4 s)
     gate_var: float  # minimum variance of vertical acceleration (m^2/s^4; seed 001: 1.5)
+    refine_frac: float  # event = largest vertical acceleration within +- refine_frac periods of the peak
 
 
 @dataclass
@@ -343,6 +344,13 @@ def _pll_decide(s: PLLState, c: list, p: PLLParams) -> list[Event]:
     var = float(np.var(np.asarray(vals)))
     if var < p.gate_var:
         return []
+    if p.refine_frac > 0:
+        r = p.refine_frac / max(freq, p.f_min_hz)
+        best, best_v = tp, -math.inf
+        for tt, v in zip(s.buf_t, s.buf_v, strict=True):
+            if tp - r <= tt <= tp + r and v > best_v:
+                best, best_v = tt, v
+        tp = best
     start = prev if prev == prev and tp - prev < 2.0 / p.f_min_hz else tp - 1.0 / max(freq, p.f_min_hz)
     return [(tp, start, tp, min(1.0, var / (2 * p.gate_var)), {"step_freq_hz": freq})]
 
