@@ -22,8 +22,17 @@ def synthetic_steps(n: int, seed: int, noise: float = 0.35):
     t = np.linspace(0, 1, 40)
     y = np.array(["flat", "up", "down"])[rng.integers(0, 3, n)]
     freq = {"flat": 1.0, "up": 1.35, "down": 1.7}
-    X = np.stack([np.stack([np.sin(2 * np.pi * freq[c] * t + rng.normal(0, 0.3)) + rng.normal(0, noise, 40)
-                            for _ in range(3)]) for c in y])
+    X = np.stack(
+        [
+            np.stack(
+                [
+                    np.sin(2 * np.pi * freq[c] * t + rng.normal(0, 0.3)) + rng.normal(0, noise, 40)
+                    for _ in range(3)
+                ]
+            )
+            for c in y
+        ]
+    )
     return X, y
 
 
@@ -37,13 +46,18 @@ def synthetic_features(n: int, seed: int, sep: float = 1.5, n_features: int = 12
     return X, y
 
 
-@pytest.mark.parametrize("est, xfail", [
-    (SVMClassifier(), {}),
-    (NNClassifier(max_epochs=30), {}),
-    (DTWClassifier(n_references=8), {}),
-    (UnitFusionClassifier([("a", LogisticRegression(), [0]), ("b", LogisticRegression(), [1])]),
-     {"check_fit2d_1feature": "units address columns 0 and 1; a 1-column X cannot feed them"}),
-])
+@pytest.mark.parametrize(
+    "est, xfail",
+    [
+        (SVMClassifier(), {}),
+        (NNClassifier(max_epochs=30), {}),
+        (DTWClassifier(n_references=8), {}),
+        (
+            UnitFusionClassifier([("a", LogisticRegression(), [0]), ("b", LogisticRegression(), [1])]),
+            {"check_fit2d_1feature": "units address columns 0 and 1; a 1-column X cannot feed them"},
+        ),
+    ],
+)
 def test_sklearn_estimator_checks(est, xfail):
     results = check_estimator(est, on_fail=None, expected_failed_checks=xfail)
     failed = [(r["check_name"], str(r["exception"])[:120]) for r in results if r["status"] == "failed"]

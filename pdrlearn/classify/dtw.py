@@ -63,8 +63,9 @@ def dtw_block(queries: np.ndarray, refs: np.ndarray, *, window: int | None) -> n
     if nq == 0 or nr == 0:
         return np.zeros((nq, nr))
     stacked = np.ascontiguousarray(np.concatenate([queries, refs], axis=0))
-    d = dtw_ndim.distance_matrix_fast(stacked, window=window, block=((0, nq), (nq, nq + nr)),
-                                      compact=True, parallel=False)
+    d = dtw_ndim.distance_matrix_fast(
+        stacked, window=window, block=((0, nq), (nq, nq + nr)), compact=True, parallel=False
+    )
     return np.asarray(d, dtype=np.float64).reshape(nq, nr)
 
 
@@ -105,8 +106,15 @@ def class_mean_distances(dist: np.ndarray, ref_labels: np.ndarray, n_classes: in
     return out
 
 
-def pruned_nearest_class(query: np.ndarray, lb: np.ndarray, refs: np.ndarray, ref_labels: np.ndarray,
-                         n_classes: int, *, window: int | None) -> tuple[int, int]:
+def pruned_nearest_class(
+    query: np.ndarray,
+    lb: np.ndarray,
+    refs: np.ndarray,
+    ref_labels: np.ndarray,
+    n_classes: int,
+    *,
+    window: int | None,
+) -> tuple[int, int]:
     """Class index with the lowest mean DTW distance, skipping classes pruned by their lower bounds.
 
     Classes are visited in order of their mean lower bound ``lb`` (``(n_refs,)``, from :func:`lb_keogh`);
@@ -152,8 +160,15 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
     :meth:`predict_proba`; channel_mean_, channel_std_ : ``(channels,)``.
     """
 
-    def __init__(self, *, n_references: int = 36, window: float | None = 0.1, standardize: bool = True,
-                 prune: bool = False, random_state: int | None = 0):
+    def __init__(
+        self,
+        *,
+        n_references: int = 36,
+        window: float | None = 0.1,
+        standardize: bool = True,
+        prune: bool = False,
+        random_state: int | None = 0,
+    ):
         self.n_references = n_references
         self.window = window
         self.standardize = standardize
@@ -164,8 +179,10 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
     def _validate(self, X, *, reset: bool) -> np.ndarray:
         X = validate_data(self, X, reset=reset, allow_nd=True, dtype=np.float64)
         if X.ndim not in (2, 3):
-            raise DataError(f"DTWClassifier: X must be (steps, channels, samples) or (steps, samples), "
-                            f"got shape {X.shape}")
+            raise DataError(
+                f"DTWClassifier: X must be (steps, channels, samples) or (steps, samples), "
+                f"got shape {X.shape}"
+            )
         return as_series(X)
 
     def _window_samples(self, n_samples: int) -> int | None:
@@ -249,12 +266,19 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
         upper, lower = self.envelope_
         for i, q in enumerate(S):
             lb = lb_keogh(q[None], upper, lower)[0]
-            out[i], c = pruned_nearest_class(q, lb, self.references_, self.reference_labels_,
-                                             len(self.classes_), window=self.window_samples_)
+            out[i], c = pruned_nearest_class(
+                q,
+                lb,
+                self.references_,
+                self.reference_labels_,
+                len(self.classes_),
+                window=self.window_samples_,
+            )
             computed += c
         if len(S):
-            log.debug("DTW: %.1f of %d references computed per step", computed / len(S),
-                      len(self.references_))
+            log.debug(
+                "DTW: %.1f of %d references computed per step", computed / len(S), len(self.references_)
+            )
         return self.classes_[out]
 
     def __sklearn_tags__(self):

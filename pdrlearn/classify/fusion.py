@@ -83,8 +83,15 @@ class UnitFusionClassifier(ClassifierMixin, BaseEstimator):
     unit_names_, validation_accuracy_ (per unit and ``"fused"``, when weights were learned).
     """
 
-    def __init__(self, units, *, weights=None, validation_size: float = 0.25, weight_step: float = 0.05,
-                 random_state: int | None = 0):
+    def __init__(
+        self,
+        units,
+        *,
+        weights=None,
+        validation_size: float = 0.25,
+        weight_step: float = 0.05,
+        random_state: int | None = 0,
+    ):
         self.units = units
         self.weights = weights
         self.validation_size = validation_size
@@ -105,12 +112,15 @@ class UnitFusionClassifier(ClassifierMixin, BaseEstimator):
         return [clone(est).fit(self._columns(X, cols), y) for _, est, cols in self.units]
 
     def _probas(self, estimators, X) -> list[np.ndarray]:
-        return [align_proba(est.predict_proba(self._columns(X, cols)), est.classes_, self.classes_)
-                for est, (_, _, cols) in zip(estimators, self.units, strict=True)]
+        return [
+            align_proba(est.predict_proba(self._columns(X, cols)), est.classes_, self.classes_)
+            for est, (_, _, cols) in zip(estimators, self.units, strict=True)
+        ]
 
     def fit(self, X, y):
         self._check_units()
-        X, y = validate_data(self, X, y, allow_nd=True, dtype=np.float64)
+        # NaN channels (a sensor the session lacks) are left to the unit models, which use their own columns
+        X, y = validate_data(self, X, y, allow_nd=True, dtype=np.float64, ensure_all_finite=False)
         check_classification_targets(y)
         self.classes_, y_idx = np.unique(y, return_inverse=True)
         self.unit_names_ = [name for name, _, _ in self.units]
@@ -145,7 +155,7 @@ class UnitFusionClassifier(ClassifierMixin, BaseEstimator):
     def unit_proba(self, X) -> dict[str, np.ndarray]:
         """Each unit's probabilities, aligned to :attr:`classes_`."""
         check_is_fitted(self)
-        X = validate_data(self, X, reset=False, allow_nd=True, dtype=np.float64)
+        X = validate_data(self, X, reset=False, allow_nd=True, dtype=np.float64, ensure_all_finite=False)
         return dict(zip(self.unit_names_, self._probas(self.estimators_, X), strict=True))
 
     def predict_proba(self, X) -> np.ndarray:

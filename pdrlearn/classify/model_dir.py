@@ -43,15 +43,22 @@ def feature_spec(est) -> dict:
     from pdrlearn.classify.fusion import UnitFusionClassifier
 
     if isinstance(est, UnitFusionClassifier):
-        return {"fusion": "weighted soft vote",
-                "members": {name: feature_spec(e) for name, e, _ in est.units}}
+        return {
+            "fusion": "weighted soft vote",
+            "members": {name: feature_spec(e) for name, e, _ in est.units},
+        }
     if isinstance(est, Pipeline):
         first = est.steps[0][1]
         if est.steps[0][0] == "signals":
-            return {"dtw_signals": list(first.kw_args["names"]), "classifier": type(est.steps[-1][1]).__name__}
-        spec = {"transformer": type(first).__name__,
-                "params": {k: (list(v) if isinstance(v, tuple) else v) for k, v in first.get_params().items()},
-                "classifier": type(est.steps[-1][1]).__name__}
+            return {
+                "dtw_signals": list(first.kw_args["names"]),
+                "classifier": type(est.steps[-1][1]).__name__,
+            }
+        spec = {
+            "transformer": type(first).__name__,
+            "params": {k: (list(v) if isinstance(v, tuple) else v) for k, v in first.get_params().items()},
+            "classifier": type(est.steps[-1][1]).__name__,
+        }
         try:
             spec["features"] = [str(n) for n in first.get_feature_names_out()]
         except Exception:  # noqa: BLE001 - names are informative only
@@ -78,15 +85,20 @@ def manifest_of(model, files: dict[str, str]) -> dict:
             "skipped": tm.skipped,
             "n_steps": tm.n_steps,
             "n_skipped_labels": tm.n_skipped_labels,
-            "feature_spec": {m: {u: feature_spec(est) for u, est in per.items()} for m, per in tm.models.items()},
+            "feature_spec": {
+                m: {u: feature_spec(est) for u, est in per.items()} for m, per in tm.models.items()
+            },
         }
     units = sorted({u for tm in model.tasks.values() for per in tm.models.values() for u in per})
     return {
         "schema_version": SCHEMA_VERSION,
         "kind": "pdrlearn user model",
         "package_version": pdrlearn.__version__,
-        "versions": {"scikit-learn": sklearn.__version__, "torch": torch.__version__,
-                     "numpy": __import__("numpy").__version__},
+        "versions": {
+            "scikit-learn": sklearn.__version__,
+            "torch": torch.__version__,
+            "numpy": __import__("numpy").__version__,
+        },
         "user": model.user,
         "created": model.created,
         "tasks": tasks,
@@ -160,8 +172,10 @@ def read_manifest(path) -> dict:
         raise ModelError(f"{mf}: unreadable manifest ({exc}); retrain the model") from None
     if not isinstance(manifest, dict) or manifest.get("schema_version") != SCHEMA_VERSION:
         got = manifest.get("schema_version") if isinstance(manifest, dict) else None
-        raise ModelError(f"{mf}: schema version {got!r}, this pdrlearn reads version {SCHEMA_VERSION}; "
-                         "retrain the model with this version")
+        raise ModelError(
+            f"{mf}: schema version {got!r}, this pdrlearn reads version {SCHEMA_VERSION}; "
+            "retrain the model with this version"
+        )
     for key in ("tasks", "files", "n_samples", "user"):
         if key not in manifest:
             raise ModelError(f"{mf}: missing key '{key}'; retrain the model")
@@ -190,22 +204,38 @@ def load_model(path):
         try:
             models[rel] = joblib.load(f)
         except Exception as exc:  # noqa: BLE001 - any unpickling failure is a model problem
-            raise ModelError(f"{f}: cannot be loaded ({type(exc).__name__}: {exc}); retrain the model") from None
+            raise ModelError(
+                f"{f}: cannot be loaded ({type(exc).__name__}: {exc}); retrain the model"
+            ) from None
     tasks = {}
     for name, t in manifest["tasks"].items():
-        tm = TaskModel(name, list(t["classes"]), cv=t.get("cv", {}), fusion_weights=t.get("fusion_weights", {}),
-                       skipped=t.get("skipped", []), n_steps=t.get("n_steps", 0),
-                       n_skipped_labels=t.get("n_skipped_labels", 0))
+        tm = TaskModel(
+            name,
+            list(t["classes"]),
+            cv=t.get("cv", {}),
+            fusion_weights=t.get("fusion_weights", {}),
+            skipped=t.get("skipped", []),
+            n_steps=t.get("n_steps", 0),
+            n_skipped_labels=t.get("n_skipped_labels", 0),
+        )
         for method, units in t["models"].items():
             for unit in units:
                 rel = f"models/{name}__{method}__{unit}.joblib"
                 if rel not in models:
-                    raise ModelError(f"{path}: manifest lists {method}/{unit} for {name} but not its file {rel}")
+                    raise ModelError(
+                        f"{path}: manifest lists {method}/{unit} for {name} but not its file {rel}"
+                    )
                 tm.models.setdefault(method, {})[unit] = models[rel]
         chosen = t.get("chosen")
         tm.chosen = (chosen["method"], chosen["unit"]) if chosen else None
         tasks[name] = tm
-    return UserModel(user=manifest["user"], tasks=tasks, n_samples=int(manifest["n_samples"]),
-                     sampling_rate_hz=manifest.get("sampling_rate_hz", {}),
-                     data_summary=manifest.get("training_data", {}), settings=manifest.get("settings", {}),
-                     created=manifest.get("created", ""), skipped=manifest.get("skipped", []))
+    return UserModel(
+        user=manifest["user"],
+        tasks=tasks,
+        n_samples=int(manifest["n_samples"]),
+        sampling_rate_hz=manifest.get("sampling_rate_hz", {}),
+        data_summary=manifest.get("training_data", {}),
+        settings=manifest.get("settings", {}),
+        created=manifest.get("created", ""),
+        skipped=manifest.get("skipped", []),
+    )

@@ -33,9 +33,20 @@ def mlp_forward(X: np.ndarray, W1: np.ndarray, b1: np.ndarray, W2: np.ndarray, b
     return np.tanh(X @ W1 + b1) @ W2 + b2
 
 
-def train_mlp(X: np.ndarray, y: np.ndarray, n_classes: int, *, hidden: int, lr: float, max_epochs: int,
-              patience: int, X_val: np.ndarray | None, y_val: np.ndarray | None, weight_decay: float,
-              seed: int) -> tuple[list[np.ndarray], int]:
+def train_mlp(
+    X: np.ndarray,
+    y: np.ndarray,
+    n_classes: int,
+    *,
+    hidden: int,
+    lr: float,
+    max_epochs: int,
+    patience: int,
+    X_val: np.ndarray | None,
+    y_val: np.ndarray | None,
+    weight_decay: float,
+    seed: int,
+) -> tuple[list[np.ndarray], int]:
     """Full-batch Adam training of a tanh MLP with early stopping on the validation loss.
 
     Returns the best weights ``[W1, b1, W2, b2]`` (numpy, ``W`` as ``(in, out)``) and the best epoch.
@@ -47,8 +58,9 @@ def train_mlp(X: np.ndarray, y: np.ndarray, n_classes: int, *, hidden: int, lr: 
     try:
         with torch.random.fork_rng(devices=[]):
             torch.manual_seed(seed)
-            net = torch.nn.Sequential(torch.nn.Linear(X.shape[1], hidden), torch.nn.Tanh(),
-                                      torch.nn.Linear(hidden, n_classes))
+            net = torch.nn.Sequential(
+                torch.nn.Linear(X.shape[1], hidden), torch.nn.Tanh(), torch.nn.Linear(hidden, n_classes)
+            )
             opt = torch.optim.Adam(net.parameters(), lr=lr, weight_decay=weight_decay)
             loss_fn = torch.nn.CrossEntropyLoss()
             xt, yt = torch.as_tensor(X, dtype=torch.float32), torch.as_tensor(y, dtype=torch.long)
@@ -99,10 +111,18 @@ class NNClassifier(ClassifierMixin, BaseEstimator):
     n_epochs_ (best epoch).
     """
 
-    def __init__(self, *, task: str | None = None, hidden: int | None = None,
-                 learning_rate: float = THESIS_LEARNING_RATE, max_epochs: int = 300,
-                 validation_fraction: float = 0.15, patience: int = 25, weight_decay: float = 1e-4,
-                 random_state: int | None = 0):
+    def __init__(
+        self,
+        *,
+        task: str | None = None,
+        hidden: int | None = None,
+        learning_rate: float = THESIS_LEARNING_RATE,
+        max_epochs: int = 300,
+        validation_fraction: float = 0.15,
+        patience: int = 25,
+        weight_decay: float = 1e-4,
+        random_state: int | None = 0,
+    ):
         self.task = task
         self.hidden = hidden
         self.learning_rate = learning_rate
@@ -122,8 +142,9 @@ class NNClassifier(ClassifierMixin, BaseEstimator):
         check_classification_targets(y)
         self.classes_, yi = np.unique(y, return_inverse=True)
         if len(self.classes_) < 2:
-            raise DataError(f"NNClassifier: only one class ({self.classes_[0]!r}); "
-                            "label steps of at least 2 classes")
+            raise DataError(
+                f"NNClassifier: only one class ({self.classes_[0]!r}); label steps of at least 2 classes"
+            )
         self.mean_ = X.mean(axis=0)
         std = X.std(axis=0)
         self.scale_ = np.where(std > 0, std, 1.0)
@@ -136,9 +157,18 @@ class NNClassifier(ClassifierMixin, BaseEstimator):
             strat = yi if counts.min() >= 2 else None
             Xt, Xv, yt, yv = train_test_split(Z, yi, test_size=n_val, stratify=strat, random_state=seed)
         weights, self.n_epochs_ = train_mlp(
-            Xt, yt, len(self.classes_), hidden=self._hidden(), lr=self.learning_rate,
-            max_epochs=self.max_epochs, patience=self.patience, X_val=Xv, y_val=yv,
-            weight_decay=self.weight_decay, seed=seed)
+            Xt,
+            yt,
+            len(self.classes_),
+            hidden=self._hidden(),
+            lr=self.learning_rate,
+            max_epochs=self.max_epochs,
+            patience=self.patience,
+            X_val=Xv,
+            y_val=yv,
+            weight_decay=self.weight_decay,
+            seed=seed,
+        )
         self.coefs_ = [weights[0], weights[2]]
         self.intercepts_ = [weights[1], weights[3]]
         log.debug("NN: %d hidden, best epoch %d", self._hidden(), self.n_epochs_)

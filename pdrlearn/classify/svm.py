@@ -25,8 +25,11 @@ from pdrlearn.errors import DataError
 THESIS_KERNELS: dict[str, dict[str, dict]] = {
     "terrain": {c: {"kernel": "poly", "degree": 3} for c in ("flat", "up", "down")},
     "direction": {c: {"kernel": "linear"} for c in ("forward", "backward")},
-    "length": {"short": {"kernel": "rbf"}, "normal": {"kernel": "poly", "degree": 2},
-               "long": {"kernel": "linear"}},
+    "length": {
+        "short": {"kernel": "rbf"},
+        "normal": {"kernel": "poly", "degree": 2},
+        "long": {"kernel": "linear"},
+    },
 }
 #: Kernel of a class the table does not name (and of every class when ``task`` is None).
 DEFAULT_KERNEL = {"kernel": "rbf"}
@@ -55,8 +58,14 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
     kernels_ : the kernel settings used per class.
     """
 
-    def __init__(self, *, task: str | None = None, C: float = 1.0, coef0: float = 1.0,
-                 class_weight: str | dict | None = "balanced"):
+    def __init__(
+        self,
+        *,
+        task: str | None = None,
+        C: float = 1.0,
+        coef0: float = 1.0,
+        class_weight: str | dict | None = "balanced",
+    ):
         self.task = task
         self.C = C
         self.coef0 = coef0
@@ -67,8 +76,9 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
         check_classification_targets(y)
         self.classes_ = np.unique(y)
         if len(self.classes_) < 2:
-            raise DataError(f"SVMClassifier: only one class ({self.classes_[0]!r}); "
-                            "label steps of at least 2 classes")
+            raise DataError(
+                f"SVMClassifier: only one class ({self.classes_[0]!r}); label steps of at least 2 classes"
+            )
         sample_weight = None
         if isinstance(self.class_weight, dict):  # per original class -> per step
             sample_weight = np.array([self.class_weight.get(v, 1.0) for v in y], dtype=float)

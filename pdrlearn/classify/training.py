@@ -35,7 +35,7 @@ METHODS = ("heuristic", "fusion", "dtw", "svm", "nn")
 UNITS = ("foot", "waist", "fused")
 #: Per-unit methods; "fusion" (heuristic fusion, thesis ch. 6.1.2.3) exists only fused.
 UNIT_METHODS = ("heuristic", "dtw", "svm", "nn")
-#: Fewest labelled steps per class for training and cross-validation (decision: docs/decisions/classifiers.md).
+#: Fewest labelled steps per class for training and CV (decision: docs/decisions/classifiers.md).
 MIN_STEPS_PER_CLASS = 5
 #: Tie-break order when two fused methods score alike (the thesis' best first, Tables 27, 28, 33).
 PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic")
@@ -60,8 +60,10 @@ def select_signals(X: np.ndarray, *, names: Sequence[str]) -> np.ndarray:
     arr = as_windows(X)
     out = np.stack([signal(arr, n) for n in names], axis=1)
     if not np.isfinite(out).all():
-        raise MissingSensorError(f"DTW signals {', '.join(names)}: the step windows lack (part of) them; "
-                                 "record the sensor or use another unit")
+        raise MissingSensorError(
+            f"DTW signals {', '.join(names)}: the step windows lack (part of) them; "
+            "record the sensor or use another unit"
+        )
     return out
 
 
@@ -73,8 +75,9 @@ def _heuristic_module():
     return heuristic
 
 
-def make_estimator(task: str, method: str, unit: str, *, seed: int = 0,
-                   weights: Sequence[float] | None = None):
+def make_estimator(
+    task: str, method: str, unit: str, *, seed: int = 0, weights: Sequence[float] | None = None
+):
     """A fresh estimator on step-window arrays for ``task`` x ``method`` x ``unit``.
 
     ``unit="fused"`` gives a :class:`UnitFusionClassifier` over the foot and waist models (``weights``
@@ -87,21 +90,30 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0,
         mod = _heuristic_module()
         if mod is None:
             raise MissingSensorError("heuristic classifiers (pdrlearn.classify.heuristic) are not available")
-        return mod.make_heuristic(task, unit=unit, fused=(method == "fusion"))
+        return mod.make_heuristic(task, "both" if method == "fusion" else unit)
     if unit == "fused":
         if method == "heuristic":
             raise DataError("heuristic has no fused unit; use method 'fusion' (heuristic fusion)")
         members = [(u, make_estimator(task, method, u, seed=seed), slice(None)) for u in ("foot", "waist")]
-        return UnitFusionClassifier(members, weights=None if weights is None else list(weights),
-                                    random_state=seed)
+        return UnitFusionClassifier(
+            members, weights=None if weights is None else list(weights), random_state=seed
+        )
     if method == "svm":
         return Pipeline([("features", make_features(task, unit, "svm")), ("clf", SVMClassifier(task=task))])
     if method == "nn":
-        return Pipeline([("features", make_features(task, unit, "nn")),
-                         ("clf", NNClassifier(task=task, random_state=seed))])
+        return Pipeline(
+            [
+                ("features", make_features(task, unit, "nn")),
+                ("clf", NNClassifier(task=task, random_state=seed)),
+            ]
+        )
     if method == "dtw":
-        return Pipeline([("signals", FunctionTransformer(select_signals, kw_args={"names": DTW_SIGNALS[task][unit]})),
-                         ("clf", DTWClassifier(n_references=THESIS_REFERENCES_PER_CLASS[task], random_state=seed))])
+        return Pipeline(
+            [
+                ("signals", FunctionTransformer(select_signals, kw_args={"names": DTW_SIGNALS[task][unit]})),
+                ("clf", DTWClassifier(n_references=THESIS_REFERENCES_PER_CLASS[task], random_state=seed)),
+            ]
+        )
     raise DataError(f"unknown method '{method}'; choose from {', '.join(METHODS)}")
 
 
@@ -117,6 +129,16 @@ class TaskData:
     y: np.ndarray
     session: np.ndarray  # session index per step
     n_skipped: int = 0  # rows whose label is not a class of the task (e.g. 'unclear')
+    foot: np.ndarray | None = None  # per step: its session has the foot accelerometer
+    waist: np.ndarray | None = None  # per step: its session has the waist accelerometer
+
+    def unit_mask(self, unit: str) -> np.ndarray:
+        """Steps whose session has the unit (``fused``: both units)."""
+        if unit == "foot":
+            return self.foot
+        if unit == "waist":
+            return self.waist
+        return self.foot & self.waist
 
 
 def session_windows(sessions, *, n_samples: int):
@@ -135,7 +157,7 @@ def task_data(windows, task: str) -> TaskData | None:
     """Pool the steps labelled for ``task``; ``None`` when no session has that label column."""
     from pdrlearn.features import TASK_COLUMNS, task_labels
 
-    Xs, ys, sess, skipped = [], [], [], 0
+    Xs, ys, sess, skipped, foot, waist = [], [], [], 0, [], []
     for i, w in enumerate(windows):
         if TASK_COLUMNS[task] not in w.steps or w.steps[TASK_COLUMNS[task]].notna().sum() == 0:
             continue
@@ -144,27 +166,48 @@ def task_data(windows, task: str) -> TaskData | None:
         Xs.append(w.X[keep])
         ys.append(y)
         sess.append(np.full(len(y), i))
+        foot.append(np.full(len(y), "foot_acc" in w.available))
+        waist.append(np.full(len(y), "waist_acc" in w.available))
     if not Xs:
         return None
-    return TaskData(task, np.concatenate(Xs), np.concatenate(ys).astype(str), np.concatenate(sess), skipped)
+    return TaskData(
+        task,
+        np.concatenate(Xs),
+        np.concatenate(ys).astype(str),
+        np.concatenate(sess),
+        skipped,
+        np.concatenate(foot),
+        np.concatenate(waist),
+    )
 
 
-def check_classes(data: TaskData, *, min_per_class: int = MIN_STEPS_PER_CLASS) -> None:
-    """Raise :class:`DataError` for a missing class or a class with too few steps."""
+def check_classes(
+    data: TaskData,
+    *,
+    min_per_class: int = MIN_STEPS_PER_CLASS,
+    y: np.ndarray | None = None,
+) -> None:
+    """Raise :class:`DataError` for a missing class or a class with too few steps (of ``y``, default
+    ``data.y``)."""
     from pdrlearn.features import TASK_CLASSES
 
-    counts = {c: int(np.sum(data.y == c)) for c in TASK_CLASSES[data.task]}
+    y = data.y if y is None else y
+    counts = {c: int(np.sum(y == c)) for c in TASK_CLASSES[data.task]}
     missing = [c for c, n in counts.items() if n == 0]
     if missing:
         have = ", ".join(f"{c}={n}" for c, n in counts.items() if n)
-        raise DataError(f"task {data.task}: no steps labelled {', '.join(repr(m) for m in missing)} "
-                        f"(labelled: {have or 'none'}); record and label steps of every class, at least "
-                        f"{min_per_class} each")
+        raise DataError(
+            f"task {data.task}: no steps labelled {', '.join(repr(m) for m in missing)} "
+            f"(labelled: {have or 'none'}); record and label steps of every class, at least "
+            f"{min_per_class} each"
+        )
     few = {c: n for c, n in counts.items() if n < min_per_class}
     if few:
-        raise DataError(f"task {data.task}: too few steps for class(es) "
-                        f"{', '.join(f'{c} ({n})' for c, n in few.items())}; at least {min_per_class} "
-                        "labelled steps per class are needed")
+        raise DataError(
+            f"task {data.task}: too few steps for class(es) "
+            f"{', '.join(f'{c} ({n})' for c, n in few.items())}; at least {min_per_class} "
+            "labelled steps per class are needed"
+        )
 
 
 # --------------------------------------------------------------------------------------------------
@@ -177,7 +220,9 @@ def class_metrics(y_true: np.ndarray, y_pred: np.ndarray, classes: Sequence[str]
 
     y_true, y_pred = np.asarray(y_true).astype(str), np.asarray(y_pred).astype(str)
     classes = [str(c) for c in classes]
-    per_class = {c: (float(np.mean(y_pred[y_true == c] == c)) if np.any(y_true == c) else None) for c in classes}
+    per_class = {
+        c: (float(np.mean(y_pred[y_true == c] == c)) if np.any(y_true == c) else None) for c in classes
+    }
     present = [v for v in per_class.values() if v is not None]
     return {
         "accuracy": float(np.mean(y_true == y_pred)) if len(y_true) else None,
@@ -242,17 +287,28 @@ class UserModel:
             for u in units:
                 if u in tm.models.get(m, {}):
                     return m, u
-            raise DataError(f"model task {tm.task}: no trained method {m!r} unit {unit!r}; trained: "
-                            f"{', '.join(f'{a}/{b}' for a, b in tm.ranking())}")
+            raise DataError(
+                f"model task {tm.task}: no trained method {m!r} unit {unit!r}; trained: "
+                f"{', '.join(f'{a}/{b}' for a, b in tm.ranking())}"
+            )
         order = ([tm.chosen] if tm.chosen else []) + tm.ranking()
         for m, u in order:
             if _units_available(u, windows.available, m):
                 return m, u
-        raise MissingSensorError(f"session '{windows.session}' lacks the sensors of every {tm.task} model "
-                                 f"(it has {', '.join(windows.available) or 'none'})")
+        raise MissingSensorError(
+            f"session '{windows.session}' lacks the sensors of every {tm.task} model "
+            f"(it has {', '.join(windows.available) or 'none'})"
+        )
 
-    def predict_steps(self, session, steps: pd.DataFrame | None = None, *, tasks: Sequence[str] | None = None,
-                      method: str | None = None, unit: str | None = None) -> pd.DataFrame:
+    def predict_steps(
+        self,
+        session,
+        steps: pd.DataFrame | None = None,
+        *,
+        tasks: Sequence[str] | None = None,
+        method: str | None = None,
+        unit: str | None = None,
+    ) -> pd.DataFrame:
         """Classify every step of ``steps`` (default ``session.steps``).
 
         Returns a DataFrame (one row per step, same index as ``steps``) with, per trained task, the class
@@ -270,13 +326,16 @@ class UserModel:
                 out[col] = steps[col].to_numpy()
         for task in tasks or list(self.tasks):
             if task not in self.tasks:
-                raise DataError(f"model of user '{self.user}' has no {task} classifier; trained tasks: "
-                                f"{', '.join(self.tasks)}")
+                raise DataError(
+                    f"model of user '{self.user}' has no {task} classifier; trained tasks: "
+                    f"{', '.join(self.tasks)}"
+                )
             tm = self.tasks[task]
             m, u = self._pick(tm, windows, method, unit)
             est = tm.models[m][u]
-            proba = align_proba(est.predict_proba(windows.X), np.asarray(est.classes_).astype(str),
-                                np.asarray(tm.classes))
+            proba = align_proba(
+                est.predict_proba(windows.X), np.asarray(est.classes_).astype(str), np.asarray(tm.classes)
+            )
             out[TASK_COLUMNS[task]] = np.asarray(tm.classes, dtype=object)[np.argmax(proba, axis=1)]
             for j, c in enumerate(tm.classes):
                 out[f"p_{task}_{c}"] = proba[:, j]
@@ -306,6 +365,18 @@ def _oof_proba(est, X, y, folds, classes) -> np.ndarray:
     return P
 
 
+def _folds(y: np.ndarray, cv: int, seed: int, task: str) -> list:
+    """Stratified, shuffled folds; fewer than ``cv`` when the smallest class has fewer steps."""
+    n_splits = int(min(cv, min(np.sum(y == c) for c in np.unique(y))))
+    if n_splits < cv:
+        log.warning(
+            "task %s: %d-fold CV instead of %d (smallest class has %d steps)", task, n_splits, cv, n_splits
+        )
+    return list(
+        StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y)
+    )
+
+
 def _split_units(units: Sequence[str]) -> tuple[list[str], bool]:
     per_unit = [u for u in ("foot", "waist") if u in units]
     return per_unit, "fused" in units
@@ -319,24 +390,44 @@ def _check_choice(name: str, values: Sequence[str], allowed: Sequence[str]) -> l
     return values
 
 
-def train_task(data: TaskData, *, methods: Sequence[str], units: Sequence[str], cv: int, seed: int,
-               advance: Callable[[int], None] = lambda n=1: None) -> TaskModel:
+def train_task(
+    data: TaskData,
+    *,
+    methods: Sequence[str],
+    units: Sequence[str],
+    cv: int,
+    seed: int,
+    advance: Callable[[int], None] = lambda n=1: None,
+) -> TaskModel:
     """Cross-validate and fit every method x unit of one task (see :func:`train_user`)."""
     from pdrlearn.features import TASK_CLASSES
 
     classes = np.asarray(TASK_CLASSES[data.task])
     tm = TaskModel(data.task, list(classes), n_steps=len(data.y), n_skipped_labels=data.n_skipped)
-    X, y = data.X, data.y
-    n_splits = int(min(cv, min(np.sum(y == c) for c in classes)))
-    if n_splits < cv:
-        log.warning("task %s: %d-fold CV instead of %d (smallest class has %d steps)", data.task, n_splits, cv,
-                    n_splits)
-    folds = list(StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y))
     per_unit, want_fused = _split_units(units)
+    subsets: dict[str, tuple[np.ndarray, list] | str] = {}  # unit -> (step mask, folds) or skip reason
+    for unit in [*per_unit, *(["fused"] if want_fused else [])]:
+        mask = data.unit_mask(unit)
+        if not mask.any():
+            subsets[unit] = f"no session has the {unit} unit" if unit != "fused" else "needs both units"
+            continue
+        try:
+            check_classes(data, y=data.y[mask])
+        except DataError as exc:
+            subsets[unit] = f"steps with the {unit} unit: {exc}"
+            continue
+        subsets[unit] = (mask, _folds(data.y[mask], cv, seed, data.task))
     for method in methods:
         oof: dict[str, np.ndarray] = {}
-        unit_list = [] if method == "fusion" else list(per_unit)
+        unit_list = ["fused"] if method == "fusion" else list(per_unit)
         for unit in unit_list:
+            if unit == "fused" and not want_fused:
+                continue
+            if isinstance(subsets.get(unit), str):
+                tm.skipped.append(f"{method}/{unit}: {subsets[unit]}")
+                continue
+            mask, folds = subsets[unit]
+            X, y = data.X[mask], data.y[mask]
             try:
                 est = make_estimator(data.task, method, unit, seed=seed)
                 est.fit(X, y)  # the final model first: fails fast on missing sensors
@@ -345,39 +436,45 @@ def train_task(data: TaskData, *, methods: Sequence[str], units: Sequence[str], 
                 log.info("task %s: skipped %s/%s: %s", data.task, method, unit, exc)
                 continue
             t0 = time.perf_counter()
-            oof[unit] = _oof_proba(make_estimator(data.task, method, unit, seed=seed), X, y, folds, classes)
+            P = _oof_proba(make_estimator(data.task, method, unit, seed=seed), X, y, folds, classes)
+            if mask.all():
+                oof[unit] = P
             tm.models.setdefault(method, {})[unit] = est
-            tm.cv.setdefault(method, {})[unit] = dict(class_metrics(y, classes[oof[unit].argmax(1)], classes),
-                                                      cv_seconds=time.perf_counter() - t0, n_folds=n_splits)
+            tm.cv.setdefault(method, {})[unit] = dict(
+                class_metrics(y, classes[P.argmax(1)], classes),
+                cv_seconds=time.perf_counter() - t0,
+                n_folds=len(folds),
+            )
             advance(1)
-        if not want_fused:
+        if not want_fused or method in ("fusion", "heuristic"):
             continue
-        if method == "fusion":
-            try:
-                est = make_estimator(data.task, "fusion", "fused", seed=seed).fit(X, y)
-                P = _oof_proba(make_estimator(data.task, "fusion", "fused", seed=seed), X, y, folds, classes)
-            except MissingSensorError as exc:
-                tm.skipped.append(f"fusion/fused: {exc}")
-                continue
-            tm.models.setdefault("fusion", {})["fused"] = est
-            tm.cv.setdefault("fusion", {})["fused"] = dict(class_metrics(y, classes[P.argmax(1)], classes),
-                                                         n_folds=n_splits)
-            advance(1)
-        elif method != "heuristic" and {"foot", "waist"} <= set(oof):
-            # unit weights from the out-of-fold probabilities of the foot and waist models (decision in
-            # docs/decisions/classifiers.md), then the fused CV score of that soft vote
-            yi = np.array([list(classes).index(v) for v in y])
-            w = best_weights([oof["foot"], oof["waist"]], yi)
-            P = soft_vote([oof["foot"], oof["waist"]], w)
-            est = make_estimator(data.task, method, "fused", seed=seed, weights=w)
-            est.fit(X, y)
-            tm.models[method]["fused"] = est
-            tm.fusion_weights[method] = [float(v) for v in w]
-            tm.cv[method]["fused"] = dict(class_metrics(y, classes[P.argmax(1)], classes), n_folds=n_splits,
-                                          weights={"foot": float(w[0]), "waist": float(w[1])})
-            advance(1)
-        elif method != "heuristic":
-            tm.skipped.append(f"{method}/fused: needs both the foot and the waist unit")
+        if isinstance(subsets.get("fused"), str) or not {"foot", "waist"} <= set(tm.models.get(method, {})):
+            tm.skipped.append(f"{method}/fused: needs a trained foot and waist model on the same steps")
+            continue
+        mask, folds = subsets["fused"]
+        X, y = data.X[mask], data.y[mask]
+        t0 = time.perf_counter()
+        if not {"foot", "waist"} <= set(oof):  # the units were trained on other step sets: redo on these
+            for unit in ("foot", "waist"):
+                oof[unit] = _oof_proba(
+                    make_estimator(data.task, method, unit, seed=seed), X, y, folds, classes
+                )
+        # unit weights from the out-of-fold probabilities of the foot and waist models (decision in
+        # docs/decisions/classifiers.md), then the fused CV score of that soft vote
+        yi = np.array([list(classes).index(v) for v in y])
+        w = best_weights([oof["foot"], oof["waist"]], yi)
+        P = soft_vote([oof["foot"], oof["waist"]], w)
+        est = make_estimator(data.task, method, "fused", seed=seed, weights=w)
+        est.fit(X, y)
+        tm.models[method]["fused"] = est
+        tm.fusion_weights[method] = [float(v) for v in w]
+        tm.cv[method]["fused"] = dict(
+            class_metrics(y, classes[P.argmax(1)], classes),
+            n_folds=len(folds),
+            weights={"foot": float(w[0]), "waist": float(w[1])},
+            cv_seconds=time.perf_counter() - t0,
+        )
+        advance(1)
     fused = [(m, u) for m, u in tm.ranking() if u == "fused"]
     ranking = tm.ranking()
     tm.chosen = (fused or ranking or [None])[0]
@@ -386,10 +483,19 @@ def train_task(data: TaskData, *, methods: Sequence[str], units: Sequence[str], 
     return tm
 
 
-def train_user(sessions, *, tasks: Sequence[str] | None = None, methods: Sequence[str] | None = None,
-               units: Sequence[str] | None = None, cv: int = 10, seed: int = 0, n_samples: int = 40,
-               user: str | None = None, strict: bool | None = None,
-               advance: Callable[[int], None] = lambda n=1: None) -> UserModel:
+def train_user(
+    sessions,
+    *,
+    tasks: Sequence[str] | None = None,
+    methods: Sequence[str] | None = None,
+    units: Sequence[str] | None = None,
+    cv: int = 10,
+    seed: int = 0,
+    n_samples: int = 40,
+    user: str | None = None,
+    strict: bool | None = None,
+    advance: Callable[[int], None] = lambda n=1: None,
+) -> UserModel:
     """Train a user's step classifiers from labelled sessions.
 
     Parameters
@@ -428,13 +534,15 @@ def train_user(sessions, *, tasks: Sequence[str] | None = None, methods: Sequenc
         data = task_data(windows, task)
         try:
             if data is None:
-                raise DataError(f"task {task}: no session has {task} labels; label the steps "
-                                f"('{ {'length': 'length_class'}.get(task, task)}' column) or drop the task")
+                raise DataError(
+                    f"task {task}: no session has {task} labels; label the steps "
+                    f"('{ {'length': 'length_class'}.get(task, task) }' column) or drop the task"
+                )
             check_classes(data)
         except DataError as exc:
             if strict:
                 raise
-            skipped.append(f"{task}: {exc}")
+            skipped.append(str(exc))
             log.warning("skipped %s", exc)
             continue
         out[task] = train_task(data, methods=methods, units=units, cv=cv, seed=seed, advance=advance)
@@ -447,15 +555,41 @@ def train_user(sessions, *, tasks: Sequence[str] | None = None, methods: Sequenc
     summary = {"sessions": [s.name for s in sessions], "n_sessions": len(sessions), "steps": {}}
     for t, m in out.items():
         data = task_data(windows, t)
-        summary["steps"][t] = {"n_steps": m.n_steps, "n_skipped_labels": m.n_skipped_labels,
-                               "per_class": {c: int(np.sum(data.y == c)) for c in m.classes}}
+        summary["steps"][t] = {
+            "n_steps": m.n_steps,
+            "n_skipped_labels": m.n_skipped_labels,
+            "per_class": {c: int(np.sum(data.y == c)) for c in m.classes},
+        }
     return UserModel(
         user=user or (sessions[0].meta.get("user") or sessions[0].meta.get("subject") or sessions[0].name),
-        tasks=out, n_samples=n_samples, sampling_rate_hz=rates, data_summary=summary,
-        settings={"cv": cv, "seed": seed, "methods": list(methods), "units": list(units),
-                  "min_steps_per_class": MIN_STEPS_PER_CLASS, "package_version": pdrlearn.__version__},
-        created=datetime.now(UTC).isoformat(timespec="seconds"), skipped=skipped)
+        tasks=out,
+        n_samples=n_samples,
+        sampling_rate_hz=rates,
+        data_summary=summary,
+        settings={
+            "cv": cv,
+            "seed": seed,
+            "methods": list(methods),
+            "units": list(units),
+            "min_steps_per_class": MIN_STEPS_PER_CLASS,
+            "package_version": pdrlearn.__version__,
+        },
+        created=datetime.now(UTC).isoformat(timespec="seconds"),
+        skipped=skipped,
+    )
 
 
-__all__ = ["TASKS", "METHODS", "UNITS", "MIN_STEPS_PER_CLASS", "DTW_SIGNALS", "make_estimator", "train_user",
-           "train_task", "UserModel", "TaskModel", "class_metrics", "PdrlearnError"]
+__all__ = [
+    "TASKS",
+    "METHODS",
+    "UNITS",
+    "MIN_STEPS_PER_CLASS",
+    "DTW_SIGNALS",
+    "make_estimator",
+    "train_user",
+    "train_task",
+    "UserModel",
+    "TaskModel",
+    "class_metrics",
+    "PdrlearnError",
+]

@@ -1,0 +1,217 @@
+"""Evaluate a user model on labelled sessions: accuracy per class x method x unit (the shape of thesis
+Tables 27, 28, 33), confusion matrices and per-step latency.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+from pathlib import Path
+
+import numpy as np
+
+from pdrlearn.errors import DataError, MissingSensorError
+
+log = logging.getLogger(__name__)
+
+#: Row order of the result tables (thesis Tables 27, 28, 33: per-unit methods, then the fused ones).
+ROW_ORDER = [
+    ("heuristic", "waist"),
+    ("heuristic", "foot"),
+    ("dtw", "waist"),
+    ("dtw", "foot"),
+    ("svm", "waist"),
+    ("svm", "foot"),
+    ("nn", "waist"),
+    ("nn", "foot"),
+    ("fusion", "fused"),
+    ("dtw", "fused"),
+    ("svm", "fused"),
+    ("nn", "fused"),
+]
+
+
+def step_latency_ms(est, X: np.ndarray, *, n: int = 20, repeat: int = 3) -> float:
+    """Median wall time (ms) of ``est.predict`` on one step (features + classification), over up to ``n``
+    steps, best of ``repeat`` calls each."""
+    times = []
+    for i in range(min(n, len(X))):
+        one = X[i : i + 1]
+        best = np.inf
+        for _ in range(repeat):
+            t0 = time.perf_counter()
+            est.predict(one)
+            best = min(best, time.perf_counter() - t0)
+        times.append(best)
+    return float(np.median(times) * 1e3) if times else float("nan")
+
+
+def evaluate_model(
+    model, sessions, *, report_dir: Path | None = None, latency: bool = True, latency_steps: int = 20
+) -> dict:
+    """Score every trained task x method x unit of ``model`` on the labelled steps of ``sessions``.
+
+    Returns
+    -------
+    ``{"user", "sessions", "tasks": {task: {"accuracy", "balanced_accuracy", "n_steps", "chosen",
+    "per_class", "confusion", "classes", "methods": {method: {"accuracy", "unit", "units": {unit:
+    {"accuracy", "balanced_accuracy", "per_class", "confusion", "latency_ms"}}}}, "skipped"}},
+    "windows_ms_per_step", "skipped"}``. ``methods.<m>.accuracy`` is the accuracy of that method's fused
+    model when it could run, else of its best-ranked unit. ``tasks.<t>.accuracy`` is the model's chosen
+    method (or, for sessions lacking one of its units, the best-ranked method they can run).
+    """
+    from pdrlearn.classify.training import class_metrics, session_windows, task_data
+
+    if not sessions:
+        raise DataError("evaluate: no sessions given; pass at least one labelled session folder")
+    t0 = time.perf_counter()
+    windows = session_windows(sessions, n_samples=model.n_samples)
+    n_total = sum(len(w) for w in windows)
+    windows_ms = (time.perf_counter() - t0) * 1e3 / max(n_total, 1)
+    available = set.intersection(*(set(w.available) for w in windows))
+    out: dict = {
+        "user": model.user,
+        "sessions": [s.name for s in sessions],
+        "tasks": {},
+        "windows_ms_per_step": windows_ms,
+        "skipped": [],
+    }
+    for task, tm in model.tasks.items():
+        data = task_data(windows, task)
+        if data is None or len(data.y) == 0:
+            out["skipped"].append(f"{task}: the sessions have no {task} labels")
+            continue
+        classes = list(tm.classes)
+        res: dict = {
+            "n_steps": int(len(data.y)),
+            "n_skipped_labels": data.n_skipped,
+            "classes": classes,
+            "methods": {},
+            "skipped": [],
+        }
+        preds: dict[tuple[str, str], np.ndarray] = {}
+        for method, per in tm.models.items():
+            units = {}
+            for unit, est in per.items():
+                try:
+                    y_pred = np.asarray(est.predict(data.X)).astype(str)
+                except MissingSensorError as exc:
+                    res["skipped"].append(f"{method}/{unit}: {exc}")
+                    continue
+                preds[(method, unit)] = y_pred
+                m = class_metrics(data.y, y_pred, classes)
+                m["latency_ms"] = step_latency_ms(est, data.X, n=latency_steps) if latency else None
+                units[unit] = m
+            if not units:
+                continue
+            ranked = [u for mm, u in tm.ranking() if mm == method and u in units]
+            best_unit = "fused" if "fused" in units else (ranked or sorted(units))[0]
+            res["methods"][method] = {
+                "accuracy": units[best_unit]["accuracy"],
+                "unit": best_unit,
+                "units": units,
+            }
+        order = ([tm.chosen] if tm.chosen else []) + tm.ranking()
+        chosen = next((p for p in order if p in preds), None)
+        if chosen is None:
+            out["skipped"].append(
+                f"{task}: no trained method can run on these sessions "
+                f"(they have {', '.join(sorted(available)) or 'no sensors'})"
+            )
+            continue
+        m = class_metrics(data.y, preds[chosen], classes)
+        res.update(
+            accuracy=m["accuracy"],
+            balanced_accuracy=m["balanced_accuracy"],
+            per_class=m["per_class"],
+            confusion=m["confusion"],
+            chosen={"method": chosen[0], "unit": chosen[1]},
+        )
+        out["tasks"][task] = res
+    if report_dir is not None:
+        write_report(out, Path(report_dir))
+    return out
+
+
+def results_table(task_result: dict) -> list[list[str]]:
+    """Rows ``[method, unit, per-class %..., all %, ms]`` in the order of thesis Tables 27/28/33."""
+    rows = []
+    methods = task_result["methods"]
+    pairs = [p for p in ROW_ORDER if p[0] in methods and p[1] in methods[p[0]]["units"]]
+    pairs += [(m, u) for m, d in methods.items() for u in d["units"] if (m, u) not in pairs]
+    for m, u in pairs:
+        r = methods[m]["units"][u]
+        pc = [
+            ("-" if r["per_class"][c] is None else f"{100 * r['per_class'][c]:.1f}")
+            for c in task_result["classes"]
+        ]
+        lat = r.get("latency_ms")
+        rows.append([m, u, *pc, f"{100 * r['accuracy']:.1f}", "-" if lat is None else f"{lat:.3f}"])
+    return rows
+
+
+def markdown_tables(result: dict) -> str:
+    """All tasks' result tables as Markdown."""
+    parts = []
+    for task, r in result["tasks"].items():
+        head = ["method", "unit", *[f"{c} %" for c in r["classes"]], "all %", "ms/step"]
+        lines = [
+            f"### {task} ({r['n_steps']} steps; chosen {r['chosen']['method']}/{r['chosen']['unit']}: "
+            f"{100 * r['accuracy']:.1f} %)",
+            "",
+            "| " + " | ".join(head) + " |",
+            "|" + "---|" * len(head),
+        ]
+        lines += ["| " + " | ".join(row) + " |" for row in results_table(r)]
+        parts.append("\n".join(lines))
+    return "\n\n".join(parts) + "\n"
+
+
+def plot_confusions(task: str, task_result: dict, out: Path) -> Path:
+    """One confusion-matrix panel per method x unit of a task (rows = true, columns = predicted)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from pdrlearn.plots import save_atomic
+
+    pairs = [(m, u) for m, d in task_result["methods"].items() for u in d["units"]]
+    ncol = min(4, max(1, len(pairs)))
+    nrow = int(np.ceil(len(pairs) / ncol))
+    fig, axes = plt.subplots(nrow, ncol, figsize=(3.2 * ncol, 3.0 * nrow), squeeze=False)
+    classes = task_result["classes"]
+    for ax in axes.ravel()[len(pairs) :]:
+        ax.axis("off")
+    for ax, (m, u) in zip(axes.ravel(), pairs, strict=False):
+        cm = np.asarray(task_result["methods"][m]["units"][u]["confusion"], dtype=float)
+        ax.imshow(cm, cmap="Blues")
+        for i in range(cm.shape[0]):
+            for j in range(cm.shape[1]):
+                ax.text(j, i, f"{int(cm[i, j])}", ha="center", va="center", fontsize=8)
+        ax.set_xticks(range(len(classes)), classes, fontsize=7)
+        ax.set_yticks(range(len(classes)), classes, fontsize=7)
+        acc = task_result["methods"][m]["units"][u]["accuracy"]
+        ax.set_title(f"{m}/{u}: {100 * acc:.1f} %", fontsize=8)
+        ax.set_xlabel("predicted", fontsize=7)
+        ax.set_ylabel("true", fontsize=7)
+    fig.suptitle(f"{task}: confusion matrices ({task_result['n_steps']} steps)")
+    fig.tight_layout()
+    save_atomic(fig, out)
+    plt.close(fig)
+    return out
+
+
+def write_report(result: dict, report_dir: Path) -> None:
+    """``report.json``, ``report.md`` (tables) and ``confusion_<task>.png`` into ``report_dir``."""
+    import json
+
+    from pdrlearn.cli.common import json_safe
+
+    report_dir.mkdir(parents=True, exist_ok=True)
+    (report_dir / "report.json").write_text(json.dumps(json_safe(result), indent=2))
+    (report_dir / "report.md").write_text(
+        f"# Step characterization of user {result['user']}\n\n" + markdown_tables(result)
+    )
+    for task, r in result["tasks"].items():
+        plot_confusions(task, r, report_dir / f"confusion_{task}.png")

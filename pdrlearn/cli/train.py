@@ -1,0 +1,187 @@
+"""``pdrlearn train`` and ``pdrlearn evaluate``: per-user step classifiers (thesis ch. 6)."""
+# ruff: noqa: B008  (typer options are declared as defaults)
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import typer
+
+from pdrlearn.cli.common import json_safe, print_json, progress
+from pdrlearn.errors import DataError
+
+
+def find_session_dirs(paths: list[Path]) -> list[Path]:
+    """Session folders among ``paths``: a folder with sensor CSVs is a session, otherwise its immediate
+    sub-folders that are sessions are used."""
+    from pdrlearn.io.sensors import SENSORS
+
+    def is_session(p: Path) -> bool:
+        return p.is_dir() and any((p / f"{name}.csv").is_file() for name in SENSORS)
+
+    out: list[Path] = []
+    for p in paths:
+        if not p.exists():
+            raise DataError(f"{p}: no such folder; pass PLASYS session folders or a folder of them")
+        if is_session(p):
+            out.append(p)
+            continue
+        subs = sorted(q for q in p.iterdir() if is_session(q)) if p.is_dir() else []
+        if not subs:
+            raise DataError(
+                f"{p}: neither a session folder (fAccelerometer.csv, ...) nor a folder of sessions"
+            )
+        out.extend(subs)
+    return out
+
+
+def _read_all(paths: list[Path]):
+    from pdrlearn.io import read_session
+
+    return [read_session(d) for d in find_session_dirs(paths)]
+
+
+def _split(value: str | None) -> list[str] | None:
+    return None if value is None else [v.strip() for v in value.split(",") if v.strip()]
+
+
+def train(
+    data_dirs: list[Path] = typer.Argument(..., help="Labelled session folders (or folders of sessions)."),
+    out: Path = typer.Option(..., "--out", "-o", help="Model directory to write (replaced atomically)."),
+    tasks: str = typer.Option(
+        None, help="Comma list of terrain,direction,length (default: what is labelled)."
+    ),
+    methods: str = typer.Option(None, help="Comma list of heuristic,fusion,dtw,svm,nn (default: all)."),
+    units: str = typer.Option(None, help="Comma list of foot,waist,fused (default: all the data allow)."),
+    cv: int = typer.Option(10, help="Folds of the stratified cross-validation (thesis: 10)."),
+    seed: int = typer.Option(0, help="Seed of folds, DTW references and network initialisation."),
+    user: str = typer.Option(None, help="User name stored in the manifest (default: from the data)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
+) -> None:
+    """Train a user's terrain / direction / length classifiers and save a model directory.
+
+    Every task x method x unit is scored by cross-validation; the best fused method per task is chosen.
+    Tasks without labels (or with a missing class) are skipped and listed, unless asked for with --tasks.
+
+    Examples:
+
+        pdrlearn train out/sim/calib_u1 --out models/u1
+
+        pdrlearn train datasets/real/gaitmap_level_left datasets/real/gaitmap_stairs_up_left \\
+            datasets/real/gaitmap_stairs_down_left --out models/gaitmap --tasks terrain --cv 5
+    """
+    from pdrlearn.classify.training import METHODS, TASKS, UNITS, train_user
+
+    sessions = _read_all(data_dirs)
+    t_list, m_list, u_list = _split(tasks), _split(methods), _split(units)
+    n_units = len(u_list or UNITS)
+    total = len(t_list or TASKS) * len(m_list or METHODS) * n_units
+    t0 = time.perf_counter()
+    with progress("training", total, enabled=not as_json) as advance:
+        model = train_user(
+            sessions, tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, user=user, advance=advance
+        )
+    seconds = time.perf_counter() - t0
+    model.save(out)
+    summary = {
+        "out": str(out),
+        "user": model.user,
+        "sessions": len(sessions),
+        "seconds": round(seconds, 2),
+        "skipped": model.skipped,
+        "tasks": {
+            t: {
+                "chosen": {"method": tm.chosen[0], "unit": tm.chosen[1]},
+                "n_steps": tm.n_steps,
+                "n_skipped_labels": tm.n_skipped_labels,
+                "cv": {m: {u: r["accuracy"] for u, r in per.items()} for m, per in tm.cv.items()},
+                "skipped": tm.skipped,
+            }
+            for t, tm in model.tasks.items()
+        },
+    }
+    if as_json:
+        print_json(json_safe(summary))
+        return
+    from rich.console import Console
+    from rich.table import Table
+
+    c = Console()
+    for t, tm in model.tasks.items():
+        tab = Table(
+            title=f"{t}: {tm.n_steps} steps, {tm.cv[tm.chosen[0]][tm.chosen[1]]['n_folds']}"
+            f"-fold CV accuracy (chosen: {tm.chosen[0]}/{tm.chosen[1]})"
+        )
+        tab.add_column("method")
+        for col in (*tm.classes, "all", "unit"):
+            tab.add_column(col)
+        for m, u in tm.ranking():
+            r = tm.cv[m][u]
+            tab.add_row(
+                m, *[f"{100 * r['per_class'][k]:.1f}" for k in tm.classes], f"{100 * r['accuracy']:.1f}", u
+            )
+        c.print(tab)
+        for s in tm.skipped:
+            c.print(f"  skipped {s}")
+        if tm.n_skipped_labels:
+            c.print(f"  ignored {tm.n_skipped_labels} step label(s) that are not {t} classes")
+    for s in model.skipped:
+        c.print(f"skipped task {s}")
+    c.print(f"model written to {out} ({seconds:.1f} s)")
+
+
+def evaluate(
+    model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train'."),
+    data_dirs: list[Path] = typer.Argument(..., help="Labelled session folders (or folders of sessions)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object (tasks.<task>.accuracy ...)."),
+    report: Path = typer.Option(None, "--report", help="Folder for report.md/json and confusion PNGs."),
+) -> None:
+    """Accuracy per class x method x unit (thesis Tables 27/28/33), confusion matrices, per-step latency.
+
+    Examples:
+
+        pdrlearn evaluate models/u1 out/sim/test_u1 --report out/eval_u1
+
+        pdrlearn evaluate models/u1 out/sim/test_u1 --json
+    """
+    from pdrlearn.classify import evaluate_model, load_model
+    from pdrlearn.classify.evaluation import results_table
+
+    model = load_model(model_dir)
+    sessions = _read_all(data_dirs)
+    result = evaluate_model(model, sessions, report_dir=report)
+    if not result["tasks"]:
+        raise DataError(
+            f"evaluate: the sessions have no labels for the model's tasks ({', '.join(model.tasks)}); "
+            + "; ".join(result["skipped"])
+        )
+    if as_json:
+        print_json(json_safe(result))
+        return
+    from rich.console import Console
+    from rich.table import Table
+
+    c = Console()
+    for task, r in result["tasks"].items():
+        tab = Table(
+            title=f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
+            f"{100 * r['accuracy']:.1f} %"
+        )
+        for col in ("method", "unit", *[f"{k} %" for k in r["classes"]], "all %", "ms/step"):
+            tab.add_column(col)
+        for row in results_table(r):
+            tab.add_row(*row)
+        c.print(tab)
+        for s in r["skipped"]:
+            c.print(f"  skipped {s}")
+    c.print(f"step windows: {result['windows_ms_per_step']:.3f} ms/step")
+    for s in result["skipped"]:
+        c.print(f"skipped {s}")
+    if report is not None:
+        c.print(f"report written to {report}")
+
+
+def register(app: typer.Typer) -> None:
+    app.command("train")(train)
+    app.command("evaluate")(evaluate)

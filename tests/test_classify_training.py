@@ -1,0 +1,183 @@
+"""Per-user training: train -> save -> load -> identical predictions, named errors, real foot terrain."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.classify import load_model, train_user
+from pdrlearn.classify.evaluation import evaluate_model, markdown_tables
+from pdrlearn.errors import DataError, ModelError
+from pdrlearn.io import AxisFrame, Session, Stream, read_session
+
+G = 9.80665
+FLU = AxisFrame(x="forward", y="left", z="up")
+
+
+def labelled_session(
+    seed: int = 0, n_per_class: int = 12, rate: float = 50.0, *, waist: bool = True, name: str = "synthetic"
+) -> Session:
+    """A hand-made labelled session: 1-s steps (0.3 s stance, 0.6 s swing) whose foot and waist signals
+    depend on the step's terrain, direction and length class (plus noise). Sensor axes = body FLU."""
+    rng = np.random.default_rng(seed)
+    terr = np.resize(["flat", "up", "down"], 3 * n_per_class)
+    dirs = np.resize(["forward", "forward", "backward"], len(terr))
+    lens = np.resize(["short", "normal", "long", "normal"], len(terr))
+    order = rng.permutation(len(terr))
+    terr, dirs, lens = terr[order], dirs[order], lens[order]
+    n_step = int(rate)
+    t = np.arange((len(terr) + 2) * n_step) / rate
+    facc = np.tile([0.0, 0.0, G], (len(t), 1))
+    fgyr = np.zeros((len(t), 3))
+    force = np.ones(len(t))
+    wacc = np.tile([0.0, 0.0, G], (len(t), 1))
+    wgyr = np.zeros((len(t), 3))
+    rows = []
+    for i, (te, di, le) in enumerate(zip(terr, dirs, lens, strict=True)):
+        k0 = (i + 1) * n_step
+        u = np.arange(n_step) / n_step
+        s = np.clip((u - 0.3) / 0.6, 0, 1)
+        swing = (u >= 0.3) & (u < 0.9)
+        amp = {"short": 0.6, "normal": 1.0, "long": 1.5}[le] * rng.uniform(0.9, 1.1)
+        sign = 1.0 if di == "forward" else -1.0
+        vert = {
+            "flat": 3 * np.sin(2 * np.pi * s),
+            "up": 5 * np.sin(np.pi * s),
+            "down": -5 * np.sin(np.pi * s),
+        }[te]
+        sl = slice(k0, k0 + n_step)
+        facc[sl, 0] += swing * sign * 6 * amp * np.sin(2 * np.pi * s)
+        facc[sl, 2] += swing * vert
+        fgyr[sl, 1] = swing * -4 * amp * np.sin(2 * np.pi * s)
+        force[sl] = np.where(swing, 0.0, 1.0 + 0.5 * amp * (u < 0.15))
+        wacc[sl, 2] += {"flat": 1.0, "up": 1.6, "down": 0.5}[te] * np.sin(2 * np.pi * u)
+        wacc[sl, 0] += sign * 0.8 * np.sin(2 * np.pi * u)
+        wgyr[sl, 2] = (1 if i % 2 else -1) * 0.4 * amp * np.sin(np.pi * u)
+        rows.append(
+            {"start_s": t[k0], "end_s": t[k0] + 1.0, "terrain": te, "direction": di, "length_class": le}
+        )
+    noise = lambda a, sd: a + rng.normal(0, sd, a.shape)  # noqa: E731
+    streams = {
+        "fAccelerometer": Stream("fAccelerometer", t, noise(facc, 0.3)),
+        "fGyroscope": Stream("fGyroscope", t, noise(fgyr, 0.05)),
+        "fForceA": Stream("fForceA", t, force),
+        "fForceB": Stream("fForceB", t, force * 0.5),
+    }
+    frames = {"foot": FLU}
+    if waist:
+        streams["wAccelerometer"] = Stream("wAccelerometer", t, noise(wacc, 0.3))
+        streams["wGyroscope"] = Stream("wGyroscope", t, noise(wgyr, 0.05))
+        frames["waist"] = FLU
+    return Session(name=name, streams=streams, steps=pd.DataFrame(rows), frames=frames)
+
+
+@pytest.fixture(scope="module")
+def trained(tmp_path_factory):
+    train = [labelled_session(1, 12), labelled_session(2, 12)]
+    model = train_user(train, methods=["dtw", "svm", "nn"], cv=3, seed=0)
+    path = tmp_path_factory.mktemp("model") / "u1"
+    model.save(path)
+    return model, path
+
+
+def test_train_save_load_identical_predictions(trained):
+    model, path = trained
+    test = labelled_session(9, 6)
+    loaded = load_model(path)
+    a, b = model.predict_steps(test, test.steps), loaded.predict_steps(test, test.steps)
+    pd.testing.assert_frame_equal(a, b)
+    assert {"terrain", "direction", "length_class", "p_terrain_up", "method_terrain"} <= set(a.columns)
+    np.testing.assert_allclose(a[[f"p_terrain_{c}" for c in ("flat", "up", "down")]].sum(axis=1), 1.0)
+    # held-out accuracy of the chosen methods is far above chance on these separable steps
+    for task, col in (("terrain", "terrain"), ("direction", "direction"), ("length", "length_class")):
+        assert np.mean(a[col] == test.steps[col]) > 0.8, task
+
+
+def test_manifest_contents(trained):
+    model, path = trained
+    m = json.loads((path / "manifest.json").read_text())
+    assert m["schema_version"] == 1 and m["n_samples"] == 40
+    assert m["tasks"]["terrain"]["classes"] == ["flat", "up", "down"]
+    assert m["tasks"]["length"]["chosen"]["unit"] == "fused"
+    assert set(m["tasks"]["direction"]["models"]["svm"]) == {"foot", "waist", "fused"}
+    assert "torch" in m["versions"] and m["training_data"]["steps"]["terrain"]["per_class"]["up"] == 24
+    spec = m["tasks"]["terrain"]["feature_spec"]["svm"]["foot"]
+    assert spec["transformer"] == "TerrainSVMFeatures" and len(spec["features"]) == 11
+    assert m["tasks"]["terrain"]["feature_spec"]["dtw"]["waist"]["dtw_signals"] == ["waist_acc_v"]
+    w = m["tasks"]["terrain"]["cv"]["svm"]["fused"]["weights"]
+    assert w["foot"] + w["waist"] == pytest.approx(1.0)
+
+
+def test_load_model_errors(trained, tmp_path):
+    _, path = trained
+    with pytest.raises(ModelError, match="no such model directory"):
+        load_model(tmp_path / "nope")
+    import shutil
+
+    bad = tmp_path / "bad"
+    shutil.copytree(path, bad)
+    m = json.loads((bad / "manifest.json").read_text())
+    m["schema_version"] = 99
+    (bad / "manifest.json").write_text(json.dumps(m))
+    with pytest.raises(ModelError, match="schema version 99"):
+        load_model(bad)
+    m["schema_version"] = 1
+    (bad / "manifest.json").write_text(json.dumps(m))
+    first = next(iter(m["files"]))
+    (bad / first).unlink()
+    with pytest.raises(ModelError, match="missing"):
+        load_model(bad)
+
+
+def test_evaluate_shape(trained):
+    model, _ = trained
+    r = evaluate_model(model, [labelled_session(5, 5)], latency_steps=3)
+    t = r["tasks"]["terrain"]
+    assert t["n_steps"] == 15 and 0 <= t["accuracy"] <= 1
+    assert set(t["methods"]) == {"dtw", "svm", "nn"} and t["methods"]["svm"]["unit"] == "fused"
+    assert t["methods"]["dtw"]["units"]["foot"]["latency_ms"] > 0
+    assert "| svm | fused |" in markdown_tables(r)
+
+
+def test_errors_are_named():
+    s = labelled_session(3, 12)
+    with pytest.raises(DataError, match="at least 5 labelled steps per class"):
+        few = s.copy()
+        few.steps = pd.concat(
+            [s.steps[s.steps.terrain != "down"], s.steps[s.steps.terrain == "down"].head(3)]
+        )
+        train_user([few], tasks=["terrain"], methods=["svm"], cv=3)
+    no_up = s.copy()
+    no_up.steps = s.steps[s.steps.terrain != "up"]
+    with pytest.raises(DataError, match="no steps labelled 'up'"):
+        train_user([no_up], tasks=["terrain"], methods=["svm"], cv=3)
+    unlabelled = s.copy()
+    unlabelled.steps = s.steps.drop(columns=["length_class"])
+    with pytest.raises(DataError, match="no session has length labels"):
+        train_user([unlabelled], tasks=["length"], methods=["svm"], cv=3)
+    with pytest.raises(DataError, match="unknown method"):
+        train_user([s], methods=["svm", "knn"])
+    # without --tasks the unlabelled task is skipped and reported
+    m = train_user([unlabelled], methods=["svm"], units=["foot"], cv=3)
+    assert "length" not in m.tasks and any("length" in x for x in m.skipped)
+
+
+def test_foot_only_sessions_train_foot_models():
+    s = labelled_session(4, 10, waist=False)
+    m = train_user([s], tasks=["terrain"], methods=["svm", "nn"], cv=3)
+    tm = m.tasks["terrain"]
+    assert set(tm.models["svm"]) == {"foot"} and tm.chosen[1] == "foot"
+    assert any("svm/fused" in x for x in tm.skipped)
+
+
+def test_real_gaitmap_terrain_cross_validated(real_dir):
+    names = ("level_left", "level_right", "stairs_up_left", "stairs_down_left")
+    sessions = [read_session(real_dir / f"gaitmap_{n}") for n in names]
+    m = train_user(sessions, methods=["svm"], cv=5, seed=0)
+    assert list(m.tasks) == ["terrain"]  # direction has only 'forward', length has no classes
+    tm = m.tasks["terrain"]
+    assert tm.n_skipped_labels == 1  # the 'unclear' stride
+    assert tm.cv["svm"]["foot"]["accuracy"] > 0.8  # chance (majority class) = 0.66
