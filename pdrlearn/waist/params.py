@@ -155,8 +155,11 @@ def default_params(session: Session) -> tuple[WaistParams, list[str]]:
     a_r = RUN_SLOPE_PER_HEIGHT * height
     b_r = a_r * 3.0 - RUN_STEP_PER_HEIGHT_AT_3HZ * height
     notes.append(f"height {height:.2f} m -> SL = {a_w:.3f} f - {b_w:.3f} (walking)")
-    # seed 003 sec. 3.2: the double-stance displacement is constant and related to the foot size -> F
-    p = WaistParams(leg_m=leg, k=1.0, f_m=foot, a_walk=a_w, b_walk=b_w, a_run=a_r, b_run=b_r,
+    # seed 003 sec. 3.2 relates F to the foot size for an h measured over the single stance; h is measured
+    # over the whole step here (decision W10), so F defaults to 0 (Zijlstra & Hof) and the foot length is
+    # only recorded in the notes
+    notes.append(f"foot length {foot:.3f} m (not used: F = 0 with whole-step h)")
+    p = WaistParams(leg_m=leg, k=1.0, f_m=0.0, a_walk=a_w, b_walk=b_w, a_run=a_r, b_run=b_r,
                     source="defaults", notes=notes)
     return p, warnings
 

@@ -19,10 +19,12 @@ RUN_SPLIT_HZ = 2.45
 MIN_SPREAD_HZ = 0.15  # fit a slope only when the calibration walks span this much frequency (decision W8)
 
 
-def pendulum_h(acc_v: np.ndarray, fs: float, i_ic: int, i_fc: int, i_next: int) -> float:
-    """Vertical excursion (m) of the single stance of a step: from the FC after its IC to the next IC
-    (seed 003 sec. 3.2); the whole step when the FC is not inside it."""
-    i0 = i_fc if i_ic < i_fc < i_next - 2 else i_ic
+def pendulum_h(acc_v: np.ndarray, fs: float, i_ic: int, i_fc: int, i_next: int, *,
+               single_stance: bool = False) -> float:
+    """Vertical excursion (m) of a step, IC to next IC (decision W10: the whole step, as Zijlstra & Hof,
+    because the waist FC estimate is too noisy); with ``single_stance`` from the FC after the IC to the
+    next IC as seed 003 sec. 3.2 describes (the whole step when the FC is not inside it)."""
+    i0 = i_fc if single_stance and i_ic < i_fc < i_next - 2 else i_ic
     return K.vertical_excursion(acc_v, fs, i0, i_next)
 
 

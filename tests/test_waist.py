@@ -1,0 +1,248 @@
+"""Waist-only dead reckoning (seeds 000, 001, 003): kernels, classifier, pipelines, CLI."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.errors import DataError, MissingSensorError
+from pdrlearn.io import AxisFrame, Session, Stream
+from pdrlearn.waist import TurnClassifier, waist_imu
+from pdrlearn.waist import _kernels as K
+from pdrlearn.waist.events import InitialContactDetector
+
+REAL = Path(__file__).resolve().parents[1] / "datasets" / "real"
+G = 9.81
+
+
+# ------------------------------------------------------------------ synthetic gait
+def synth_session(*, f_step=1.8, heading=0.3, duration=20.0, fs=100.0, lead=np.pi / 3, rest=3.0,
+                  turn_rate=0.0, name="synth") -> Session:
+    """Waist session in FLU walking at ``f_step`` with the body facing ``heading`` (rad) in the
+    navigation frame: vertical acceleration ``cos(w t)`` (max at each contact), forward acceleration
+    leading it by ``lead``, lateral sway at half the step frequency. ``rest`` s standing at both ends.
+    The unit yaw is ``heading + turn_rate * t``, the unit stays level, so the body frame = level frame."""
+    t = np.arange(0.0, duration, 1.0 / fs)
+    walking = (t >= rest) & (t <= duration - rest)
+    w = 2 * np.pi * f_step
+    tau = t - rest
+    av = np.where(walking, 2.0 * np.cos(w * tau), 0.0)
+    af = np.where(walking, 1.5 * np.cos(w * tau + lead), 0.0)
+    al = np.where(walking, 0.6 * np.sin(0.5 * w * tau), 0.0)
+    rng = np.random.default_rng(0)
+    acc = np.column_stack([af, al, G + av]) + rng.normal(0, 0.05, (t.size, 3))
+    gyr = np.column_stack([np.zeros(t.size), np.zeros(t.size), np.where(walking, turn_rate, 0.0)])
+    gyr += rng.normal(0, 0.005, gyr.shape)
+    s = Session(name=name, streams={"wAccelerometer": Stream("wAccelerometer", t, acc),
+                                    "wGyroscope": Stream("wGyroscope", t, gyr)},
+                meta={"subject": {"height_m": 1.75, "sensor_height_m": 0.95}},
+                frames={"waist": AxisFrame(x="forward", y="left", z="up")})
+    s.extras["contacts"] = pd.DataFrame({"ic_s": t[walking][0] + np.arange(0, duration, 1 / f_step)})
+    return s
+
+
+def _ellipse(theta, a_major, b_minor, phase, w=2 * np.pi, n=400):
+    t = np.linspace(0, 1, n, endpoint=False)
+    u = np.array([np.cos(theta), np.sin(theta)])
+    v = np.array([-np.sin(theta), np.cos(theta)])
+    a = np.outer(a_major * np.cos(w * t + phase), u) + np.outer(b_minor * np.sin(w * t + phase), v)
+    return t, a
+
+
+# ------------------------------------------------------------------ harmonic heading
+@pytest.mark.parametrize("theta", [0.0, 0.4, 1.2, 2.0, 2.9, -1.0])
+@pytest.mark.parametrize("phase", [0.0, 0.7, 2.5])
+def test_ellipse_axis_recovers_major_axis(theta, phase):
+    t, a = _ellipse(theta, 2.0, 0.7, phase)
+    alpha, beta = K.fourier_coefficients(np.append(t, 1.0), np.vstack([a, a[:1]]), 0.0, 1.0, 1)
+    axis = K.ellipse_axis(alpha[0], beta[0])
+    ang = np.arctan2(axis[1], axis[0])
+    diff = np.angle(np.exp(2j * (ang - theta))) / 2  # axis is a line: compare modulo pi
+    assert abs(diff) < 1e-3
+    assert np.linalg.norm(axis) == pytest.approx(2.0, rel=1e-3)
+
+
+def seed001_printed_axis(al, be, period=1.0):
+    """Seed 001 sec. 2.2.4 steps a-e as printed (eq. 16, 20, 21)."""
+    w = 2 * np.pi / period
+    A = be @ be - al @ al
+    B = al @ be
+    t = period / (4 * np.pi) * np.arctan(B / A)
+    if t < 0:
+        t += period / 4
+    if -4 * w ** 2 * (A * np.cos(2 * w * t) + B * np.sin(2 * w * t)) >= 0:
+        t += period / 4
+    return al * np.cos(w * t) + be * np.sin(w * t)
+
+
+@pytest.mark.parametrize("phase", [0.3, 1.9])  # (for some phases the printed steps happen to be right)
+def test_printed_seed001_formula_fails_where_derivation_holds(phase):
+    """Decision W1: the printed seed 001 procedure (A = |b|^2 - |a|^2: wrong sign and a factor 2) does not
+    land on the major axis of the ellipse; our derivation does."""
+    t, a = _ellipse(0.5, 2.0, 0.7, phase)
+    alpha, beta = K.fourier_coefficients(np.append(t, 1.0), np.vstack([a, a[:1]]), 0.0, 1.0, 1)
+    assert np.linalg.norm(seed001_printed_axis(alpha[0], beta[0])) < 0.95 * 2.0  # not the major axis
+    assert np.linalg.norm(K.ellipse_axis(alpha[0], beta[0])) == pytest.approx(2.0, rel=1e-3)
+
+
+@pytest.mark.parametrize("heading", [0.0, 0.8, 2.5, -2.0])
+@pytest.mark.parametrize("method", ["ahe", "ellipse"])
+def test_harmonic_heading_on_synthetic_gait(heading, method):
+    from pdrlearn.waist import harmonic_headings
+
+    s = synth_session(heading=heading)
+    imu = waist_imu(s)
+    # the unit faces +x of the navigation frame; rotate the horizontal acceleration by `heading`
+    c, sn = np.cos(heading), np.sin(heading)
+    imu.acc_h = imu.acc_h @ np.array([[c, sn], [-sn, c]])
+    ev = s.extras["contacts"]["ic_s"].to_numpy()
+    ev = ev[(ev > 4) & (ev < 16)]
+    h = harmonic_headings(imu, ev, method=method)
+    err = np.angle(np.exp(1j * (h[2:] - heading)))
+    assert np.all(np.abs(err) < np.radians(5))
+
+
+def test_forward_sign_flips_for_backward_phase():
+    s = synth_session(lead=np.pi / 3 + np.pi)  # forward acceleration in anti-phase = walking backward
+    imu = waist_imu(s)
+    ev = s.extras["contacts"]["ic_s"].to_numpy()
+    ev = ev[(ev > 4) & (ev < 16)]
+    d = K.ellipse_direction(imu.t, imu.acc_h, imu.acc_v, ev[2], ev[3])
+    assert abs(np.angle(np.exp(1j * (d - np.pi)))) < np.radians(10)
+
+
+# ------------------------------------------------------------------ step length
+def test_pendulum_formula_by_hand():
+    # d = K * 2 sqrt(2 L h - h^2) + F  (seed 003 eq. 1)
+    assert K.pendulum_length(np.array([0.05]), 1.0)[0] == pytest.approx(2 * np.sqrt(0.0975))
+    assert K.pendulum_length(np.array([0.04]), 0.9, k=1.1, f=0.2)[0] == pytest.approx(
+        1.1 * 2 * np.sqrt(2 * 0.9 * 0.04 - 0.04 ** 2) + 0.2)
+    assert K.pendulum_length(np.array([-0.01]), 0.9)[0] == 0.0
+
+
+def test_vertical_excursion_of_a_sine():
+    fs, f, amp = 100.0, 1.0, 0.03
+    t = np.arange(0, 1.0 + 1e-9, 1 / fs)
+    acc = -amp * (2 * np.pi * f) ** 2 * np.sin(2 * np.pi * f * t)  # z = amp sin(wt)
+    assert K.vertical_excursion(acc, fs, 0, len(t) - 1) == pytest.approx(2 * amp, rel=0.02)
+
+
+def test_frequency_model_and_mean_frequency():
+    assert K.frequency_length(np.array([2.0]), 0.4, 0.1)[0] == pytest.approx(0.7)
+    assert K.harmonic_mean_frequency(np.array([1.0, 2.0])) == pytest.approx(4 / 3)  # seed 000 eq. 1
+
+
+# ------------------------------------------------------------------ gyro heading
+def test_turn_classifier_gmm_unsupervised_and_supervised():
+    rng = np.random.default_rng(1)
+    def data(n):
+        x = np.concatenate([np.abs(rng.normal(0.02, 0.03, n)), rng.normal(0.6, 0.2, n // 3).clip(0.25)])
+        y = np.concatenate([np.zeros(n, int), np.ones(n // 3, int)])
+        return x, y
+    xtr, ytr = data(150)
+    xte, yte = data(150)
+    for clf in (TurnClassifier().fit(xtr), TurnClassifier().fit(xtr, ytr)):
+        assert (clf.predict(xte) == yte).mean() > 0.95  # measured on data it was not fitted on
+        assert clf.means_[1] > clf.means_[0]
+    assert TurnClassifier().predict([0.01, 0.8]).tolist() == [0, 1]  # prior before any fit
+    with pytest.raises(DataError):
+        TurnClassifier().fit([0.1, np.nan, 0.2, 0.3])
+
+
+def test_gyro_bias_360_recovers_bias():
+    t = np.linspace(0, 30, 3001)
+    w = 2 * np.pi / 30 + 0.01  # one left turn in 30 s plus 0.01 rad/s bias
+    assert K.gyro_bias_360(t, np.full_like(t, w), turns=1) == pytest.approx(0.01, abs=1e-6)
+
+
+def test_gyro_heading_integrates_turns_only():
+    from pdrlearn.waist import gyro_headings
+
+    s = synth_session(turn_rate=0.5, duration=12.0)
+    imu = waist_imu(s)
+    ev = s.extras["contacts"]["ic_s"].to_numpy()
+    ev = ev[(ev > 3.5) & (ev < 8.5)]
+    h, turning = gyro_headings(imu, ev)
+    assert turning.all()
+    assert h[-1] - h[0] == pytest.approx(0.5 * (ev[-1] - ev[1]), rel=0.1)
+    s2 = synth_session(turn_rate=0.0, duration=12.0)
+    h2, t2 = gyro_headings(waist_imu(s2), ev)
+    assert not t2.any() and np.all(h2 == 0.0)
+
+
+# ------------------------------------------------------------------ events
+@pytest.mark.parametrize("realtime", [False, True])
+def test_ic_detection_on_synthetic_signal(realtime):
+    from pdrlearn.steps.evaluate import score_events
+
+    s = synth_session(duration=20.0)
+    det = InitialContactDetector(realtime=realtime).detect(waist_imu(s))
+    ref = s.extras["contacts"]["ic_s"].to_numpy()
+    ref = ref[(ref > 3.5) & (ref < 16.5)]
+    ev = det.steps_["event_s"].to_numpy()
+    sc = score_events(ev[(ev > 3.5) & (ev < 16.5)], ref)
+    assert sc["f1"] > 0.95
+    # the synthetic IC is the vertical maximum; the AP maximum precedes it by lead / (2 pi f)
+    assert -0.2 < sc["timing_error_mean_s"] < 0.03
+
+
+@pytest.mark.parametrize("f_step", [1.2, 1.8, 2.4, 3.0])
+def test_pll_pipeline_locks_on_synthetic_gait(f_step):
+    from pdrlearn.track import get_pipeline
+
+    s = synth_session(f_step=f_step, duration=25.0)
+    res = get_pipeline("waist-pll")(s)
+    st = res.steps[(res.steps.event_s > 8) & (res.steps.event_s < 20) & res.steps.has_next]
+    assert len(st) >= 10
+    assert np.median(st["frequency_hz"]) == pytest.approx(f_step, rel=0.05)
+
+
+# ------------------------------------------------------------------ bad input
+def test_bad_input_errors():
+    s = synth_session()
+    del s.streams["wGyroscope"]
+    with pytest.raises(MissingSensorError):
+        waist_imu(s)
+    s = synth_session()
+    s.streams["wAccelerometer"].values[10, 0] = np.nan
+    with pytest.raises(DataError, match="NaN"):
+        waist_imu(s)
+    s = synth_session()
+    s.frames = {}
+    with pytest.raises(DataError, match="frame"):
+        waist_imu(s)
+    from pdrlearn.waist.params import load_params
+    with pytest.raises(DataError):
+        load_params({"k": "abc"})
+    with pytest.raises(DataError):
+        load_params("/nonexistent/params.json")
+
+
+# ------------------------------------------------------------------ real lower-back data
+@pytest.mark.skipif(not (REAL / "mobgap_HA001_Test5_Trial1").exists(), reason="real data not bundled")
+def test_real_calibrate_cli_then_track(tmp_path):
+    from pdrlearn.cli import main
+    from pdrlearn.io import read_session
+    from pdrlearn.track import get_pipeline
+    from pdrlearn.waist.evaluate import waist_metrics
+
+    out = tmp_path / "p.json"
+    rc = main(["calibrate", str(REAL / "mobgap_HA001_Test5_Trial1"), "--pipeline", "waist-pendulum",
+               "--out", str(out)])
+    assert rc == 0
+    params = json.loads(out.read_text())
+    assert params["source"] == "calibrated" and 0.5 < params["k"] < 2.0
+    test = read_session(REAL / "mobgap_HA001_Test5_Trial2")  # not used for the calibration
+    res = get_pipeline("waist-pendulum")(test, params=str(out))
+    m = waist_metrics(res.steps, test)
+    assert m["step_f1"] >= 0.95
+    assert abs(m["ic_timing_mean_ms"]) <= 40
+    assert abs(m["distance_error_pct"]) < 10
+    assert res.info["warnings"] == []
+    res0 = get_pipeline("waist-pendulum")(test)
+    assert any("no per-user calibration" in w for w in res0.info["warnings"])
+    assert main(["calibrate", str(tmp_path), "--pipeline", "waist-pll", "--out", str(out)]) == 2
