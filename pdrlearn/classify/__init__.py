@@ -22,6 +22,11 @@ _LAZY = {
     "load_model": "pdrlearn.classify.model_dir",
     "save_model": "pdrlearn.classify.model_dir",
     "evaluate_model": "pdrlearn.classify.evaluation",
+    "HeuristicTerrainClassifier": "pdrlearn.classify.heuristic",
+    "HeuristicDirectionClassifier": "pdrlearn.classify.heuristic",
+    "HeuristicLengthClassifier": "pdrlearn.classify.heuristic",
+    "HeuristicFusionClassifier": "pdrlearn.classify.heuristic",
+    "make_heuristic": "pdrlearn.classify.heuristic",
 }
 
 
