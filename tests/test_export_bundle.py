@@ -28,11 +28,15 @@ def _data(n=240, d=17, seed=0):
     return X, y
 
 
-@pytest.mark.parametrize("clf", [
-    OneVsRestClassifier(SVC(kernel="poly", degree=3, probability=True, random_state=0)),  # thesis terrain
-    SVC(kernel="linear", probability=True, random_state=0),  # thesis direction
-    OneVsRestClassifier(SVC(kernel="rbf")),  # no probabilities: decision scores only
-], ids=["ovr-poly-proba", "svc-linear-proba", "ovr-rbf-scores"])
+@pytest.mark.parametrize(
+    "clf",
+    [
+        OneVsRestClassifier(SVC(kernel="poly", degree=3, probability=True, random_state=0)),  # thesis terrain
+        SVC(kernel="linear", probability=True, random_state=0),  # thesis direction
+        OneVsRestClassifier(SVC(kernel="rbf")),  # no probabilities: decision scores only
+    ],
+    ids=["ovr-poly-proba", "svc-linear-proba", "ovr-rbf-scores"],
+)
 def test_sklearn_pipeline_onnx_matches_predict_and_proba(clf):
     X, y = _data()
     est = make_pipeline(StandardScaler(), clf).fit(X[:160], y[:160])
@@ -65,13 +69,25 @@ def _small_bundle(tmp_path, **kw):
     X, y = _data()
     est = make_pipeline(StandardScaler(), SVC(kernel="linear", probability=True, random_state=0)).fit(X, y)
     model, spec = sklearn_to_onnx(est, X.shape[1])
-    man = base_manifest(user="u1", tasks={"terrain": {"classes": list(est.classes_), "models": {
-        "svm": {"file": "models/terrain_svm_foot.onnx", **spec}}}},
-        sampling={"rate_hz": 20.0}, sensors={"required": ["fAccelerometer", "fGyroscope"], "optional": []})
-    out = write_bundle(tmp_path / "b", man, onnx_models={"models/terrain_svm_foot.onnx": model},
-                       json_files={"params/heuristic.json": {"a": 1.5}},
-                       npz_files={"params/dtw.npz": {"refs": np.ones((3, 40, 2)), "labels": np.arange(3)}},
-                       **kw)
+    man = base_manifest(
+        user="u1",
+        tasks={
+            "terrain": {
+                "classes": list(est.classes_),
+                "models": {"svm": {"file": "models/terrain_svm_foot.onnx", **spec}},
+            }
+        },
+        sampling={"rate_hz": 20.0},
+        sensors={"required": ["fAccelerometer", "fGyroscope"], "optional": []},
+    )
+    out = write_bundle(
+        tmp_path / "b",
+        man,
+        onnx_models={"models/terrain_svm_foot.onnx": model},
+        json_files={"params/heuristic.json": {"a": 1.5}},
+        npz_files={"params/dtw.npz": {"refs": np.ones((3, 40, 2)), "labels": np.arange(3)}},
+        **kw,
+    )
     return out, est, X
 
 
@@ -79,7 +95,10 @@ def test_write_and_load_round_trip(tmp_path):
     out, est, X = _small_bundle(tmp_path)
     b = load_bundle(out)
     assert b.manifest["schema_version"] == 1 and set(b.manifest["files"]) == {
-        "models/terrain_svm_foot.onnx", "params/heuristic.json", "params/dtw.npz"}
+        "models/terrain_svm_foot.onnx",
+        "params/heuristic.json",
+        "params/dtw.npz",
+    }
     spec = b.tasks["terrain"]["models"]["svm"]
     r = b.model(spec["file"], spec).run(X[:5])
     np.testing.assert_array_equal(r["label"].astype(str), est.predict(X[:5]))

@@ -81,11 +81,16 @@ def _check_rel(rel: str) -> None:
         raise ModelError(f"bundle file name '{rel}' must be a relative path inside the bundle")
 
 
-def write_bundle(out_dir: str | Path, manifest: dict, *,
-                 onnx_models: dict[str, onnx.ModelProto] | None = None,
-                 json_files: dict[str, dict] | None = None,
-                 npz_files: dict[str, dict[str, np.ndarray]] | None = None,
-                 overwrite: bool = False, verify: bool = True) -> Path:
+def write_bundle(
+    out_dir: str | Path,
+    manifest: dict,
+    *,
+    onnx_models: dict[str, onnx.ModelProto] | None = None,
+    json_files: dict[str, dict] | None = None,
+    npz_files: dict[str, dict[str, np.ndarray]] | None = None,
+    overwrite: bool = False,
+    verify: bool = True,
+) -> Path:
     """Write a bundle folder atomically and return its path.
 
     Parameters

@@ -62,8 +62,12 @@ def _convert(est, n_features: int, dtype: str, options: dict):
     tt = DoubleTensorType if dtype == "float64" else FloatTensorType
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return to_onnx(est, initial_types=[("X", tt([None, n_features]))], options=options,
-                       target_opset={"": OPSET, "ai.onnx.ml": ML_OPSET})
+        return to_onnx(
+            est,
+            initial_types=[("X", tt([None, n_features]))],
+            options=options,
+            target_opset={"": OPSET, "ai.onnx.ml": ML_OPSET},
+        )
 
 
 def _merge(scores_model: onnx.ModelProto, proba_model: onnx.ModelProto) -> onnx.ModelProto:
@@ -79,14 +83,16 @@ def _merge(scores_model: onnx.ModelProto, proba_model: onnx.ModelProto) -> onnx.
     opsets = {o.domain: o.version for o in scores_model.opset_import}
     for o in proba_model.opset_import:
         opsets[o.domain] = max(opsets.get(o.domain, 0), o.version)
-    m = onnx.helper.make_model(g, opset_imports=[onnx.helper.make_opsetid(d, v) for d, v in opsets.items()],
-                               producer_name="pdrlearn")
+    m = onnx.helper.make_model(
+        g, opset_imports=[onnx.helper.make_opsetid(d, v) for d, v in opsets.items()], producer_name="pdrlearn"
+    )
     m.ir_version = scores_model.ir_version
     return m
 
 
-def sklearn_to_onnx(est, n_features: int, *, dtype: str = "float64", name: str = "model"
-                    ) -> tuple[onnx.ModelProto, dict]:
+def sklearn_to_onnx(
+    est, n_features: int, *, dtype: str = "float64", name: str = "model"
+) -> tuple[onnx.ModelProto, dict]:
     """Convert a fitted scikit-learn classifier or pipeline (scaler + SVC / one-vs-rest SVC ...).
 
     Parameters
@@ -117,8 +123,9 @@ def sklearn_to_onnx(est, n_features: int, *, dtype: str = "float64", name: str =
         else:
             scores = _convert(est, n_features, dtype, {id(est): zip_opt})
     except Exception as exc:  # skl2onnx raises many types for unsupported constructs
-        raise ModelError(f"{name}: skl2onnx cannot convert {type(final).__name__} ({exc}); "
-                         "see docs/decisions/export.md") from None
+        raise ModelError(
+            f"{name}: skl2onnx cannot convert {type(final).__name__} ({exc}); see docs/decisions/export.md"
+        ) from None
     outputs = {"label": scores.graph.output[0].name}
     second = scores.graph.output[1].name if len(scores.graph.output) > 1 else None
     if has_dec and second:
@@ -132,8 +139,15 @@ def sklearn_to_onnx(est, n_features: int, *, dtype: str = "float64", name: str =
     elif proba_ok and second:
         outputs["proba"] = second
     onnx.checker.check_model(model, full_check=True)
-    spec = {"kind": "sklearn", "estimator": type(final).__name__, "input": "X", "dtype": dtype,
-            "n_features": int(n_features), "outputs": outputs, "classes": classes}
+    spec = {
+        "kind": "sklearn",
+        "estimator": type(final).__name__,
+        "input": "X",
+        "dtype": dtype,
+        "n_features": int(n_features),
+        "outputs": outputs,
+        "classes": classes,
+    }
     return model, spec
 
 
@@ -148,8 +162,15 @@ def _proba_available(final) -> bool:
     return True
 
 
-def torch_to_onnx(module, n_features: int, *, classes: list[str], softmax: bool = True,
-                  name: str = "network") -> tuple[onnx.ModelProto, dict]:
+def torch_to_onnx(
+    module,
+    n_features: int,
+    *,
+    classes: list[str],
+    softmax: bool = True,
+    name: str = "network",
+    dtype: str = "float32",
+) -> tuple[onnx.ModelProto, dict]:
     """Export a torch network ``(batch, n_features) -> (batch, n_classes)`` logits (opset 17, dynamic batch).
 
     Parameters
@@ -157,6 +178,8 @@ def torch_to_onnx(module, n_features: int, *, classes: list[str], softmax: bool 
     module : ``torch.nn.Module`` returning logits.
     classes : class labels in the order of the output columns.
     softmax : append a softmax so the graph also outputs probabilities (role ``proba``).
+    dtype : ``float32`` (runs in OpenCV's dnn fallback too) or ``float64`` (the module is converted to
+        double; parity with a float64 numpy network to ~1e-12, decision E4).
     """
     import torch
 
@@ -170,6 +193,8 @@ def torch_to_onnx(module, n_features: int, *, classes: list[str], softmax: bool 
             return logits, torch.softmax(logits, dim=1)
 
     net = _WithProba(module) if softmax else module
+    tdt = torch.float64 if dtype == "float64" else torch.float32
+    net = net.to(tdt)
     was_training = module.training
     module.eval()
     out_names = ["logits", "proba"] if softmax else ["logits"]
@@ -177,23 +202,43 @@ def torch_to_onnx(module, n_features: int, *, classes: list[str], softmax: bool 
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            torch.onnx.export(net, (torch.zeros(2, n_features, dtype=torch.float32),), f,
-                              input_names=["X"], output_names=out_names, opset_version=OPSET,
-                              dynamic_axes={"X": {0: "batch"}, **{o: {0: "batch"} for o in out_names}},
-                              dynamo=False)
+            torch.onnx.export(
+                net,
+                (torch.zeros(2, n_features, dtype=tdt),),
+                f,
+                input_names=["X"],
+                output_names=out_names,
+                opset_version=OPSET,
+                dynamic_axes={"X": {0: "batch"}, **{o: {0: "batch"} for o in out_names}},
+                dynamo=False,
+            )
     except Exception as exc:
         raise ModelError(f"{name}: torch.onnx.export failed ({exc})") from None
     finally:
         module.train(was_training)
     model = onnx.load_from_string(f.getvalue())
     onnx.checker.check_model(model, full_check=True)
-    spec = {"kind": "network", "input": "X", "dtype": "float32", "n_features": int(n_features),
-            "outputs": {o: o for o in out_names}, "classes": [str(c) for c in classes]}
+    spec = {
+        "kind": "network",
+        "input": "X",
+        "dtype": dtype,
+        "n_features": int(n_features),
+        "outputs": {o: o for o in out_names},
+        "classes": [str(c) for c in classes],
+    }
     return model, spec
 
 
-def check_parity(model: onnx.ModelProto, spec: dict, est_predict, est_proba, X: np.ndarray, *,
-                 atol: float = 1e-5, name: str = "model") -> dict:
+def check_parity(
+    model: onnx.ModelProto,
+    spec: dict,
+    est_predict,
+    est_proba,
+    X: np.ndarray,
+    *,
+    atol: float = 1e-5,
+    name: str = "model",
+) -> dict:
     """Compare the ONNX graph with the source estimator on ``X``; returns a summary, raises on mismatch.
 
     ``est_predict`` / ``est_proba`` are callables of the training side (``est_proba`` may be None).
@@ -215,6 +260,95 @@ def check_parity(model: onnx.ModelProto, spec: dict, est_predict, est_proba, X: 
         d = np.abs(out[spec["outputs"]["proba"]] - est_proba(X))
         res["proba_max_abs_diff"] = float(d.max()) if d.size else 0.0
     if res["label_agreement"] < 1.0 or res.get("proba_max_abs_diff", 0.0) > atol:
-        raise ModelError(f"{name}: ONNX export differs from the trained model ({res}); "
-                         "see docs/decisions/export.md")
+        raise ModelError(
+            f"{name}: ONNX export differs from the trained model ({res}); see docs/decisions/export.md"
+        )
     return res
+
+
+def _decision_column(model: onnx.ModelProto, est, n_features: int, dtype: str, *, name: str) -> int:
+    """Which column of a binary SVM graph's score output equals ``est.decision_function``.
+
+    skl2onnx's two-column output of a binary SVC is not documented; it is probed on random inputs
+    around the scaler's mean (decision E4) and a mismatch is a :class:`ModelError`.
+    """
+    import onnxruntime as ort
+
+    scaler = est.steps[0][1] if hasattr(est, "steps") else None
+    rng = np.random.default_rng(0)
+    Z = rng.normal(size=(16, n_features))
+    if scaler is not None and hasattr(scaler, "mean_"):
+        Z = Z * scaler.scale_ + scaler.mean_
+    sess = ort.InferenceSession(model.SerializeToString(), providers=["CPUExecutionProvider"])
+    out = sess.run(None, {"X": Z.astype(dtype)})[1]
+    want = est.decision_function(Z)
+    for j in range(out.shape[1]):
+        if np.allclose(out[:, j], want, rtol=1e-4, atol=1e-5):
+            return j
+    raise ModelError(
+        f"{name}: the ONNX SVM scores do not reproduce decision_function; see docs/decisions/export.md"
+    )
+
+
+def ovr_scores_to_onnx(
+    binaries: list, classes: list[str], n_features: int, *, dtype: str = "float64", name: str = "svm"
+) -> tuple[onnx.ModelProto, dict]:
+    """One graph for a list of binary one-vs-rest pipelines (scaler + SVC, one per class).
+
+    skl2onnx cannot convert the project's :class:`pdrlearn.classify.svm.SVMClassifier` (a custom
+    estimator), so each class's binary pipeline is converted (its decision value is one column of
+    the SVM operator's two-column output, found by :func:`_decision_column`), the columns are
+    concatenated into ``scores`` ``(n, n_classes)``, and ``proba = softmax(scores)`` as in
+    ``SVMClassifier.predict_proba`` (decision E4).
+    """
+    from onnx import TensorProto, helper, numpy_helper
+
+    nodes, inits, opsets = [], [], {}
+    cols = []
+    ir = None
+    for k, est in enumerate(binaries):
+        view = _decision_view(est)
+        m = _convert(view, n_features, dtype, {id(view): {"zipmap": False}})
+        j = _decision_column(m, est, n_features, dtype, name=f"{name} class {classes[k]}")
+        ir = m.ir_version
+        m = onnx.compose.add_prefix(m, f"c{k}_", rename_inputs=False)
+        nodes += list(m.graph.node)
+        inits += list(m.graph.initializer)
+        for o in m.opset_import:
+            opsets[o.domain] = max(opsets.get(o.domain, 0), o.version)
+        out = m.graph.output[1].name
+        col = f"col{k}"
+        nodes.append(helper.make_node("Slice", [out, f"start{j}", f"end{j}", "one_axis"], [col]))
+        cols.append(col)
+    inits += [numpy_helper.from_array(np.array([j], dtype=np.int64), f"start{j}") for j in (0, 1)]
+    inits += [numpy_helper.from_array(np.array([j + 1], dtype=np.int64), f"end{j}") for j in (0, 1)]
+    inits.append(numpy_helper.from_array(np.array([1], dtype=np.int64), "one_axis"))
+    elem = TensorProto.DOUBLE if dtype == "float64" else TensorProto.FLOAT
+    nodes.append(helper.make_node("Concat", cols, ["scores_raw"], axis=1))
+    nodes.append(helper.make_node("Cast", ["scores_raw"], ["scores"], to=elem))
+    nodes.append(helper.make_node("Softmax", ["scores"], ["proba"], axis=1))
+    g = helper.make_graph(
+        nodes,
+        name,
+        [helper.make_tensor_value_info("X", elem, [None, n_features])],
+        [
+            helper.make_tensor_value_info("scores", elem, [None, len(binaries)]),
+            helper.make_tensor_value_info("proba", elem, [None, len(binaries)]),
+        ],
+        initializer=inits,
+    )
+    model = helper.make_model(
+        g, opset_imports=[helper.make_opsetid(d, v) for d, v in opsets.items()], producer_name="pdrlearn"
+    )
+    model.ir_version = ir
+    onnx.checker.check_model(model, full_check=True)
+    spec = {
+        "kind": "sklearn",
+        "estimator": "SVMClassifier (one-vs-rest)",
+        "input": "X",
+        "dtype": dtype,
+        "n_features": int(n_features),
+        "outputs": {"scores": "scores", "proba": "proba"},
+        "classes": [str(c) for c in classes],
+    }
+    return model, spec

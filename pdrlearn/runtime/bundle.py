@@ -32,8 +32,20 @@ SCHEMA_VERSION = 1
 MANIFEST = "manifest.json"
 #: Keys every manifest carries (see docs/deploying.md for their meaning).
 REQUIRED_KEYS = (
-    "schema", "schema_version", "package_version", "created_utc", "user", "tasks", "sampling", "sensors",
-    "units", "frames", "displacement", "training", "metrics", "files",
+    "schema",
+    "schema_version",
+    "package_version",
+    "created_utc",
+    "user",
+    "tasks",
+    "sampling",
+    "sensors",
+    "units",
+    "frames",
+    "displacement",
+    "training",
+    "metrics",
+    "files",
 )
 #: Relative tolerance between the manifest's sampling rate and the data's (decision E3).
 DEFAULT_RATE_TOLERANCE = 0.05
@@ -79,14 +91,17 @@ class OnnxModel:
                 opts.intra_op_num_threads = 1  # one step at a time: threads only add latency
                 opts.inter_op_num_threads = 1
                 opts.log_severity_level = 3
-                self._sess = ort.InferenceSession(str(self.path), sess_options=opts,
-                                                  providers=["CPUExecutionProvider"])
+                self._sess = ort.InferenceSession(
+                    str(self.path), sess_options=opts, providers=["CPUExecutionProvider"]
+                )
                 self._names = [o.name for o in self._sess.get_outputs()]
                 return "onnxruntime"
         # OpenCV fallback: plain networks only (the ai.onnx.ml SVM operators are not in cv2.dnn).
         if self.spec.get("kind") != "network":
-            raise ModelError(f"{self.path.name}: needs onnxruntime (pip install onnxruntime); "
-                             "OpenCV's dnn module only runs the neural network")
+            raise ModelError(
+                f"{self.path.name}: needs onnxruntime (pip install onnxruntime); "
+                "OpenCV's dnn module only runs the neural network"
+            )
         try:
             import cv2
         except ImportError:
@@ -179,7 +194,8 @@ class Bundle:
             raise MissingSensorError(
                 f"{where} has no {', '.join(missing)}, which bundle {self.path.name} needs "
                 f"(it has: {', '.join(rates_hz) or 'none'}); record those sensors or export a bundle "
-                "for the sensors you have")
+                "for the sensors you have"
+            )
         rate = self.rate_hz
         tol = float(self.manifest["sampling"].get("rate_tolerance", DEFAULT_RATE_TOLERANCE))
         used = required + list(self.manifest["sensors"].get("optional", []))
@@ -190,7 +206,8 @@ class Bundle:
             if abs(r - rate) > tol * rate:
                 raise DataError(
                     f"{where}: {name} is sampled at {r:.4g} Hz but bundle {self.path.name} was trained at "
-                    f"{rate:.4g} Hz; resample the data to {rate:.4g} Hz or train a model at {r:.4g} Hz")
+                    f"{rate:.4g} Hz; resample the data to {rate:.4g} Hz or train a model at {r:.4g} Hz"
+                )
 
 
 def _fail(path: Path, msg: str) -> ModelError:
@@ -213,8 +230,11 @@ def read_manifest(path: str | Path) -> dict:
         raise _fail(path, f"{MANIFEST} is not a {SCHEMA_NAME} manifest; re-export with 'pdrlearn export'")
     version = manifest.get("schema_version")
     if version != SCHEMA_VERSION:
-        raise _fail(path, f"schema version {version!r}, but this runtime reads version {SCHEMA_VERSION}; "
-                          "re-export the model with this pdrlearn version")
+        raise _fail(
+            path,
+            f"schema version {version!r}, but this runtime reads version {SCHEMA_VERSION}; "
+            "re-export the model with this pdrlearn version",
+        )
     missing = [k for k in REQUIRED_KEYS if k not in manifest]
     if missing:
         raise _fail(path, f"{MANIFEST} lacks {', '.join(missing)}; re-export the bundle")
@@ -233,8 +253,11 @@ def verify_files(path: Path, manifest: dict) -> None:
         if not f.is_file():
             raise _fail(path, f"file '{rel}' listed in {MANIFEST} is missing; copy the whole bundle folder")
         if sha256_file(f) != digest:
-            raise _fail(path, f"file '{rel}' was altered (sha256 differs from {MANIFEST}); "
-                              "restore the original bundle or re-export it")
+            raise _fail(
+                path,
+                f"file '{rel}' was altered (sha256 differs from {MANIFEST}); "
+                "restore the original bundle or re-export it",
+            )
 
 
 def load_bundle(path: str | Path, *, verify: bool = True, backend: str = "auto") -> Bundle:

@@ -1,0 +1,268 @@
+"""Export a trained per-user model directory (``pdrlearn train --out MODEL_DIR``) as a runtime bundle.
+
+Reads the model with :func:`pdrlearn.classify.model_dir.load_model`; converts every exported
+task x method x unit: SVM (per-class scaler + SVC pipelines -> one ONNX graph), NN (torch -> ONNX),
+DTW (reference steps -> NPZ), unit fusion (weights in the manifest, members as above). Feature
+transformers become *recipes* (JSON lists) that :mod:`pdrlearn.runtime.features` evaluates.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+
+from pdrlearn.errors import ModelError
+from pdrlearn.export.bundle import base_manifest, write_bundle
+from pdrlearn.export.onnx_convert import ovr_scores_to_onnx, torch_to_onnx
+
+log = logging.getLogger(__name__)
+
+#: Thesis frames of the PLASYS units (thesis ch.4, Figs. 28-29; docs/decisions.md D2), the bundle default.
+DEFAULT_FRAMES = {
+    "foot": {"x": "forward", "y": "up", "z": "right"},
+    "waist": {"x": "left", "y": "up", "z": "forward"},
+}
+#: Sensors of each unit (thesis ch.4.3.3).
+UNIT_SENSORS = {"foot": ["fAccelerometer", "fGyroscope"], "waist": ["wAccelerometer", "wGyroscope"]}
+OPTIONAL_SENSORS = ["fForceA", "fForceB", "wMagneticField", "wBarometer"]
+
+
+def feature_recipe(transformer) -> list:
+    """The runtime recipe of a feature transformer of :mod:`pdrlearn.features.transformers`."""
+    from pdrlearn.features import transformers as T
+
+    name = type(transformer).__name__
+    if isinstance(transformer, T.TerrainSVMFeatures):
+        return [["peak", sig, stat] for sig, stat in transformer._spec()]
+    if isinstance(transformer, T.SegmentFeatures):
+        return [["segments", c, int(transformer.n_segments)] for c in transformer.channels]
+    if isinstance(transformer, T.DirectionFeatures):
+        out = [["segments", transformer._acc(), int(transformer.n_segments)]]
+        return out + ([["yaw_sign"]] if transformer.unit != "foot" else [])
+    if isinstance(transformer, T.LengthFeatures):
+        out = []
+        if transformer.unit != "waist":
+            out.append(["segments", "foot_acc_fwd", int(transformer.n_segments)])
+            out += [["force", s, float(transformer.zero_fraction)] for s in T.LENGTH_FORCE_STATS]
+        if transformer.unit != "foot":
+            out += [["yaw", s] for s in T.LENGTH_WAIST_STATS]
+        return out
+    raise ModelError(f"feature transformer {name} has no runtime recipe; see docs/decisions/export.md")
+
+
+class _Collector:
+    """Accumulates the ONNX / NPZ files of a bundle while entries are built."""
+
+    def __init__(self):
+        self.onnx: dict = {}
+        self.npz: dict = {}
+
+    def entry(self, est, stem: str) -> dict:
+        from sklearn.pipeline import Pipeline
+
+        from pdrlearn.classify.dtw import DTWClassifier
+        from pdrlearn.classify.fusion import UnitFusionClassifier
+        from pdrlearn.classify.nn import NNClassifier
+        from pdrlearn.classify.svm import SVMClassifier
+
+        if isinstance(est, UnitFusionClassifier):
+            members = {
+                u: self.entry(e, f"{stem}_{u}") for u, e in zip(est.unit_names_, est.estimators_, strict=True)
+            }
+            return {
+                "type": "fusion",
+                "weights": [float(w) for w in est.weights_],
+                "members": members,
+                "classes": [str(c) for c in est.classes_],
+            }
+        if not isinstance(est, Pipeline):
+            raise ModelError(
+                f"{stem}: {type(est).__name__} cannot be exported yet (see docs/decisions/export.md)"
+            )
+        first, clf = est.steps[0][1], est.steps[-1][1]
+        classes = [str(c) for c in clf.classes_]
+        if isinstance(clf, DTWClassifier):
+            rel = f"params/{stem}.npz"
+            self.npz[rel] = {
+                "references": clf.references_,
+                "reference_labels": clf.reference_labels_.astype(np.int64),
+                "channel_mean": clf.channel_mean_,
+                "channel_std": clf.channel_std_,
+            }
+            return {
+                "type": "dtw",
+                "file": rel,
+                "signals": list(first.kw_args["names"]),
+                "window": clf.window_samples_,
+                "temperature": float(clf.temperature_),
+                "classes": classes,
+                "n_references": int(len(clf.references_)),
+            }
+        recipe = feature_recipe(first)
+        n_features = int(clf.n_features_in_)
+        rel = f"models/{stem}.onnx"
+        if isinstance(clf, SVMClassifier):
+            model, spec = ovr_scores_to_onnx(clf.estimators_, classes, n_features, name=stem)
+        elif isinstance(clf, NNClassifier):
+            model, spec = torch_to_onnx(
+                _nn_module(clf), n_features, classes=classes, name=stem, dtype="float64"
+            )
+        else:
+            raise ModelError(f"{stem}: classifier {type(clf).__name__} cannot be exported yet")
+        self.onnx[rel] = model
+        return {"type": "onnx", "file": rel, "features": recipe, **spec}
+
+
+def _nn_module(clf):
+    """A torch module equal to ``NNClassifier._logits``: standardize, tanh hidden layer, linear output."""
+    import torch
+
+    class MLP(torch.nn.Module):
+        def __init__(self):
+            super().__init__()
+            f32 = torch.float64
+            self.register_buffer("mean", torch.tensor(clf.mean_, dtype=f32))
+            self.register_buffer("scale", torch.tensor(clf.scale_, dtype=f32))
+            self.hidden = torch.nn.Linear(*clf.coefs_[0].shape)
+            self.out = torch.nn.Linear(*clf.coefs_[1].shape)
+            with torch.no_grad():
+                self.hidden.weight.copy_(torch.tensor(clf.coefs_[0].T, dtype=f32))
+                self.hidden.bias.copy_(torch.tensor(clf.intercepts_[0], dtype=f32))
+                self.out.weight.copy_(torch.tensor(clf.coefs_[1].T, dtype=f32))
+                self.out.bias.copy_(torch.tensor(clf.intercepts_[1], dtype=f32))
+
+        def forward(self, x):
+            return self.out(torch.tanh(self.hidden((x - self.mean) / self.scale)))
+
+    return MLP().eval()
+
+
+def _units_of(entry: dict, unit: str) -> set[str]:
+    if entry["type"] == "fusion":
+        return set().union(*(_units_of(e, u) for u, e in entry["members"].items()))
+    return {unit}
+
+
+def export_model(
+    model_dir: str | Path,
+    out_dir: str | Path,
+    *,
+    methods: Sequence[str] | None = None,
+    frames: dict | None = None,
+    displacement: dict | None = None,
+    overwrite: bool = False,
+    model=None,
+) -> Path:
+    """Write the runtime bundle of a trained model directory.
+
+    Parameters
+    ----------
+    model_dir : folder written by ``pdrlearn train`` (read with ``load_model``); or pass ``model``.
+    out_dir : bundle folder to create (atomically).
+    methods : methods to export for every task (all their units); default: each task's chosen
+        method/unit only (the smallest bundle that classifies like ``UserModel.predict_steps``).
+    frames : placement -> ``{"x": ..., "y": ..., "z": ...}`` axis frames of the data the bundle will
+        see (default: the thesis frames).
+    displacement : displacement parameters (default:
+        :data:`pdrlearn.runtime.tracker.DEFAULT_DISPLACEMENT`).
+    """
+    from pdrlearn.classify.model_dir import load_model, read_manifest
+    from pdrlearn.features import CHANNELS
+    from pdrlearn.features.transformers import SIGNALS
+    from pdrlearn.runtime.tracker import DEFAULT_DISPLACEMENT
+
+    if model is None:
+        model = load_model(model_dir)
+        src_manifest = read_manifest(model_dir)
+    else:
+        src_manifest = {}
+    col = _Collector()
+    tasks: dict = {}
+    used_units: set[str] = set()
+    skipped: list[str] = []
+    for task, tm in model.tasks.items():
+        chosen = tm.chosen
+        if methods:
+            wanted = [(m, u) for m in methods for u in tm.models.get(m, {})]
+        else:
+            wanted = [chosen] if chosen else []
+        entries: dict = {}
+        for m, u in wanted:
+            try:
+                e = col.entry(tm.models[m][u], f"{task}_{m}_{u}")
+            except ModelError as exc:
+                skipped.append(f"{task} {m}/{u}: {exc}")
+                log.warning("skipped %s %s/%s: %s", task, m, u, exc)
+                continue
+            entries.setdefault(m, {})[u] = e
+        if not entries:
+            skipped.append(f"{task}: nothing exportable")
+            continue
+        exp_chosen = (
+            {"method": chosen[0], "unit": chosen[1]}
+            if chosen and chosen[1] in entries.get(chosen[0], {})
+            else {"method": next(iter(entries)), "unit": next(iter(next(iter(entries.values()))))}
+        )
+        for per in entries.values():
+            for u, e in per.items():
+                used_units |= _units_of(e, u)
+        tasks[task] = {
+            "classes": list(tm.classes),
+            "chosen": exp_chosen,
+            "methods": entries,
+            "cv": {
+                m: {
+                    u: {
+                        k: v
+                        for k, v in met.items()
+                        if k in ("accuracy", "balanced_accuracy", "per_class", "n_steps")
+                    }
+                    for u, met in per.items()
+                }
+                for m, per in tm.cv.items()
+            },
+        }
+    if not tasks:
+        raise ModelError(f"{model_dir}: no task could be exported ({'; '.join(skipped)})")
+    rates = {k: float(v) for k, v in (model.sampling_rate_hz or {}).items()}
+    core = [s for u in sorted(used_units) for s in UNIT_SENSORS[u]]
+    rate = float(np.median([rates[s] for s in core if s in rates])) if any(s in rates for s in core) else 20.0
+    manifest = base_manifest(
+        user=model.user,
+        tasks=tasks,
+        sampling={"rate_hz": rate, "rate_tolerance": 0.05, "source_rates_hz": rates},
+        sensors={"required": core, "optional": [s for s in OPTIONAL_SENSORS if s in rates]},
+        units={
+            "fAccelerometer": "m/s^2",
+            "fGyroscope": "rad/s",
+            "fForceA": "N",
+            "fForceB": "N",
+            "wAccelerometer": "m/s^2",
+            "wGyroscope": "rad/s",
+            "wMagneticField": "uT",
+            "wBarometer": "hPa",
+            "time": "s",
+        },
+        frames=frames or {u: DEFAULT_FRAMES[u] for u in sorted(used_units)},
+        features={
+            "n_samples": int(model.n_samples),
+            "heading": "pca",
+            "rest_search_s": 0.3,
+            "channels": list(CHANNELS),
+            "signals": {k: [list(v[0]), float(v[1])] for k, v in SIGNALS.items()},
+        },
+        displacement=dict(displacement or DEFAULT_DISPLACEMENT),
+        training={
+            "data": model.data_summary,
+            "settings": model.settings,
+            "model_created": model.created,
+            "source_model_dir": str(model_dir) if model_dir else None,
+            "source_package_version": src_manifest.get("package_version"),
+        },
+        metrics={t: v["cv"] for t, v in tasks.items()},
+        export={"methods": list(methods) if methods else "chosen", "skipped": skipped},
+    )
+    return write_bundle(out_dir, manifest, onnx_models=col.onnx, npz_files=col.npz, overwrite=overwrite)

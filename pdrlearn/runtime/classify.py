@@ -1,0 +1,108 @@
+"""Step classifiers of a bundle: ONNX models on feature recipes, DTW references, unit fusion.
+
+A task's manifest entry names its ``classes`` (the output order), the ``chosen`` ``{method, unit}`` and
+``methods[method][unit]`` model entries:
+
+* ``{"type": "onnx", "file", "features": recipe, "outputs": {"proba": ...}, "classes", ...}``
+* ``{"type": "dtw", "file": npz, "signals": [...], "window", "temperature", "classes"}``
+* ``{"type": "fusion", "weights": [...], "members": {unit: entry}, "classes"}``
+
+Class = argmax of the probabilities aligned to the task's classes, as on the training side
+(:meth:`pdrlearn.classify.training.UserModel.predict_steps`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.errors import ModelError
+from pdrlearn.runtime import _kernels as K
+from pdrlearn.runtime.bundle import Bundle
+from pdrlearn.runtime.features import compute_features
+
+
+def align(proba: np.ndarray, model_classes, classes) -> np.ndarray:
+    """Re-order a model's probability columns to ``classes`` (absent classes get 0)."""
+    out = np.zeros((proba.shape[0], len(classes)))
+    index = {c: i for i, c in enumerate(classes)}
+    for j, c in enumerate(model_classes):
+        out[:, index[c]] = proba[:, j]
+    return out
+
+
+class RuntimeModel:
+    """One model entry of a bundle; :meth:`proba` maps windows ``(n, channels, samples)`` to
+    probabilities ``(n, len(classes))`` in the entry's class order."""
+
+    def __init__(self, bundle: Bundle, entry: dict, feature_ctx: dict):
+        self.entry = entry
+        self.type = entry.get("type")
+        self.classes = list(entry["classes"])
+        self.ctx = feature_ctx
+        if self.type == "onnx":
+            self.model = bundle.model(entry["file"], entry)
+        elif self.type == "dtw":
+            z = bundle.npz(entry["file"])
+            self.refs = np.ascontiguousarray(z["references"])
+            self.ref_labels = z["reference_labels"].astype(int)
+            self.mean, self.std = z["channel_mean"], z["channel_std"]
+            self.window = None if entry.get("window") is None else int(entry["window"])
+            self.temperature = float(entry["temperature"])
+        elif self.type == "fusion":
+            self.members = [RuntimeModel(bundle, e, feature_ctx) for e in entry["members"].values()]
+            self.weights = np.asarray(entry["weights"], dtype=float)
+        else:
+            raise ModelError(f"bundle {bundle.path.name}: unknown model type {self.type!r}; re-export it")
+
+    def proba(self, W: np.ndarray) -> np.ndarray:
+        if self.type == "onnx":
+            F = compute_features(W, self.entry["features"], **self.ctx)
+            out = self.model.run(F)
+            if "proba" in out:
+                return np.asarray(out["proba"], dtype=np.float64)
+            return K.softmax(np.asarray(out["logits"], dtype=np.float64))
+        if self.type == "dtw":
+            S = compute_features(W, [["signals", self.entry["signals"]]], **self.ctx)
+            S = (np.transpose(S, (0, 2, 1)) - self.mean) / self.std  # (n, samples, channels)
+            n_cls = len(self.classes)
+            out = np.empty((len(S), n_cls))
+            for i, q in enumerate(S):
+                d = K.dtw_to_refs(q, self.refs, self.window)
+                out[i] = [d[self.ref_labels == k].mean() for k in range(n_cls)]
+            return K.softmax(-out / self.temperature)
+        probas = [align(m.proba(W), m.classes, self.classes) for m in self.members]
+        return K.soft_vote(probas, self.weights)
+
+
+class TaskClassifier:
+    """The bundle's classifier of one task (its chosen method/unit unless another is asked for)."""
+
+    def __init__(
+        self,
+        bundle: Bundle,
+        task: str,
+        feature_ctx: dict,
+        *,
+        method: str | None = None,
+        unit: str | None = None,
+    ):
+        spec = bundle.tasks[task]
+        self.task = task
+        self.classes = list(spec["classes"])
+        chosen = spec.get("chosen") or {}
+        method = method or chosen.get("method")
+        unit = unit or chosen.get("unit")
+        methods = spec["methods"]
+        if method not in methods or unit not in methods[method]:
+            have = ", ".join(f"{m}/{u}" for m, per in methods.items() for u in per)
+            raise ModelError(
+                f"bundle {bundle.path.name}: task {task} has no {method}/{unit} model "
+                f"(it has {have}); export it with --methods"
+            )
+        self.method, self.unit = method, unit
+        self.model = RuntimeModel(bundle, methods[method][unit], feature_ctx)
+
+    def predict(self, W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(classes (n,), probabilities (n, n_classes))`` for windows ``W``."""
+        p = align(self.model.proba(W), self.model.classes, self.classes)
+        return np.asarray(self.classes, dtype=object)[np.argmax(p, axis=1)], p

@@ -1,0 +1,185 @@
+"""Step windows and feature recipes, numpy only.
+
+:func:`step_window` builds one step's window ``(len(channels), n_samples)`` in the channel layout that
+the bundle's manifest records (``features.channels``), the same construction as
+:func:`pdrlearn.features.step_windows` (levelled, heading-aligned, gravity removed, resampled).
+:func:`compute_features` evaluates a feature *recipe* written by the exporter: a list of
+``["peak", signal, stat]``, ``["segments", signal, n_segments]``, ``["force", stat, zero_fraction]``,
+``["yaw_sign"]``, ``["yaw", stat]`` items whose columns are concatenated in order.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.runtime import _kernels as K
+
+#: source streams of each channel group (the PLASYS file names, thesis ch. 4.3.3)
+GROUP_STREAMS = {
+    "foot_acc": ("fAccelerometer",),
+    "foot_gyr": ("fGyroscope",),
+    "force": ("fForceA", "fForceB"),
+    "waist_acc": ("wAccelerometer",),
+    "waist_gyr": ("wGyroscope",),
+    "waist_baro": ("wBarometer",),
+}
+
+
+def _segment(t: np.ndarray, v: np.ndarray, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
+    i0 = max(int(np.searchsorted(t, t0, side="right")) - 1, 0)
+    i1 = min(int(np.searchsorted(t, t1, side="left")) + 1, len(t))
+    return t[i0:i1], v[i0:i1]
+
+
+def _interp(tq: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
+    return np.stack([np.interp(tq, t, v[:, j]) for j in range(v.shape[1])], axis=0)
+
+
+def foot_levelled(t, acc, gyr, forward_s, *, rest_search_s: float, heading: str):
+    """Foot acceleration (gravity removed) and rate in the step frame, and |acc| (see features/windows)."""
+    n = acc.shape[0]
+    fs = 1.0 / float(np.median(np.diff(t))) if n > 1 else 1.0
+    m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
+    k0 = K.rest_index(acc, gyr, 0, m)
+    k1 = K.rest_index(acc, gyr, n - m, n)
+    h = max(0, int(round(0.02 * fs)))
+    g0 = acc[max(k0 - h, 0) : k0 + h + 1].mean(axis=0)
+    g1 = acc[max(k1 - h, 0) : k1 + h + 1].mean(axis=0)
+    r0 = K.gravity_rotation(g0)
+    if gyr is not None:
+        rot = K.correct_tilt_drift(K.propagate_attitude(gyr, np.diff(t), k0, r0), g1, k0, k1)
+    else:
+        rot = np.broadcast_to(r0, (n, 3, 3))
+    a_lev = np.einsum("kij,kj->ki", rot, acc)
+    a_lev[:, 2] -= float(np.linalg.norm(g0))
+    ref = (rot[k0] @ forward_s)[:2]
+    if np.linalg.norm(ref) < 0.1:
+        raise DataError(
+            "foot unit: the declared forward axis points (nearly) vertically at rest; "
+            "check the foot frame of the bundle"
+        )
+    ref = ref / np.linalg.norm(ref)
+    yaw = K.heading_rotation(K.principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
+    g_out = None if gyr is None else np.einsum("kij,kj->ki", rot, gyr) @ yaw.T
+    return a_lev @ yaw.T, g_out, np.linalg.norm(acc, axis=1)
+
+
+def waist_levelled(acc, gyr, forward_s):
+    g = acc.mean(axis=0)
+    r = K.gravity_rotation(g)
+    ref = (r @ forward_s)[:2]
+    if np.linalg.norm(ref) < 0.1:
+        raise DataError("waist unit: the declared forward axis points (nearly) vertically; check the frame")
+    rr = K.heading_rotation(ref / np.linalg.norm(ref)) @ r
+    a = acc @ rr.T
+    a[:, 2] -= float(np.linalg.norm(g))
+    return a, (None if gyr is None else gyr @ rr.T)
+
+
+def step_window(
+    streams: dict[str, tuple[np.ndarray, np.ndarray]],
+    t0: float,
+    t1: float,
+    *,
+    channels: list[str],
+    forward: dict[str, np.ndarray],
+    n_samples: int = 40,
+    heading: str = "pca",
+    rest_search_s: float = 0.3,
+) -> np.ndarray:
+    """One step's window ``(len(channels), n_samples)``; channels of absent sensors are NaN.
+
+    Parameters
+    ----------
+    streams : sensor name -> ``(t (n,) s, values (n, k))`` covering ``[t0, t1]``.
+    t0, t1 : step start and end (s).
+    channels : channel layout (manifest ``features.channels``; first is ``t_s``).
+    forward : placement -> sensor-frame vector pointing body-forward (from the declared frame).
+    """
+    ci = {c: i for i, c in enumerate(channels)}
+    X = np.full((len(channels), n_samples), np.nan)
+    tg = t0 + (t1 - t0) * np.linspace(0.0, 1.0, n_samples)
+    X[0] = tg - t0
+    has = {g for g, names in GROUP_STREAMS.items() if all(nm in streams for nm in names)}
+    if "foot_acc" in has and "foot" in forward:
+        ta, acc = _segment(*streams["fAccelerometer"], t0, t1)
+        gyr = _interp(ta, *_segment(*streams["fGyroscope"], t0, t1)).T if "foot_gyr" in has else None
+        a, g, an = foot_levelled(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s, heading=heading)
+        c = ci["foot_acc_x"]
+        X[c : c + 3] = _interp(tg, ta, a)
+        X[ci["foot_acc_norm"]] = np.interp(tg, ta, an)
+        if g is not None:
+            c = ci["foot_gyr_x"]
+            X[c : c + 3] = _interp(tg, ta, g)
+    if "force" in has:
+        for j, name in enumerate(("fForceA", "fForceB")):
+            tf, f = _segment(*streams[name], t0, t1)
+            X[ci["force_a"] + j] = np.interp(tg, tf, f[:, 0])
+    if "waist_acc" in has and "waist" in forward:
+        tw, wacc = _segment(*streams["wAccelerometer"], t0, t1)
+        wgyr = _interp(tw, *_segment(*streams["wGyroscope"], t0, t1)).T if "waist_gyr" in has else None
+        a, g = waist_levelled(wacc, wgyr, forward["waist"])
+        c = ci["waist_acc_x"]
+        X[c : c + 3] = _interp(tg, tw, a)
+        if g is not None:
+            c = ci["waist_gyr_x"]
+            X[c : c + 3] = _interp(tg, tw, g)
+    if "waist_baro" in has:
+        tb, b = _segment(*streams["wBarometer"], t0, t1)
+        X[ci["waist_baro"]] = np.interp(tg, tb, b[:, 0]) - np.interp(t0, tb, b[:, 0])
+    return X
+
+
+def signal(W: np.ndarray, name: str, signals: dict, channel_index: dict) -> np.ndarray:
+    """Derived signal (rows = steps) from the manifest's signal table ``name -> [[channels], sign]``."""
+    chans, sign = signals[name][0], float(signals[name][1])
+    out = W[:, channel_index[chans[0]], :].copy()
+    for c in chans[1:]:
+        out += W[:, channel_index[c], :]
+    return sign * out
+
+
+def compute_features(W: np.ndarray, recipe: list, *, signals: dict, channel_index: dict) -> np.ndarray:
+    """Feature matrix ``(n_steps, n_features)`` of windows ``W (n_steps, channels, samples)``."""
+    t = W[:, 0, :]
+    cols: list[np.ndarray] = []
+    peak_cache: dict[str, dict] = {}
+
+    def sig(name):
+        return signal(W, name, signals, channel_index)
+
+    def peaks(name):
+        if name not in peak_cache:
+            peak_cache[name] = K.peak_stats(sig(name), t)
+        return peak_cache[name]
+
+    for item in recipe:
+        op = item[0]
+        if op == "peak":
+            cols.append(peaks(item[1])[item[2]][:, None])
+        elif op == "segments":
+            cols.append(K.segment_stats(sig(item[1]), t, int(item[2])))
+        elif op == "force":
+            fs = K.force_stats(sig("force"), t, zero_fraction=float(item[2]))
+            cols.append(fs[item[1]][:, None])
+        elif op == "yaw_sign":
+            dt = np.gradient(t, axis=1)
+            cols.append((np.sum(sig("waist_yaw") * dt, axis=1) > 0).astype(float)[:, None])
+        elif op == "yaw":
+            ps = peaks("waist_yaw")
+            val = {
+                "amplitude": 0.5 * ps["range"],
+                "duration": ps["duration"],
+                "left": ps["t_max"],
+                "right": ps["duration"] - ps["t_max"],
+            }[item[1]]
+            cols.append(val[:, None])
+        elif op == "signals":  # DTW step signals (steps, len(names), samples)
+            return np.stack([sig(n) for n in item[1]], axis=1)
+        else:
+            raise DataError(f"bundle feature recipe: unknown operation {op!r}; re-export with this version")
+    F = np.hstack(cols)
+    if not np.isfinite(F).all():
+        raise DataError("step features are NaN: the stream lacks a sensor the model needs")
+    return F

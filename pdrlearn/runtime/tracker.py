@@ -1,0 +1,306 @@
+"""Streaming tracker: ``Tracker(bundle).push(samples) -> new steps`` with bounded state.
+
+Samples arrive per sensor (``{"fAccelerometer": (t, values), ...}``) or as Bluetooth-protocol
+measurements (objects with ``t``, ``sensor``, ``values``). The tracker keeps at most
+``buffer_s`` seconds per sensor, detects foot stances online, and for every stance-to-stance step:
+builds the step window, classifies it with each task's model, estimates its displacement with the
+PLASYS rules and updates heading and position.
+
+Displacement (decision E6, docs/decisions/export.md): the step window's levelled, gravity-removed foot
+acceleration is integrated twice with a zero-velocity update at both stances (linear velocity-drift
+removal, thesis ch.7.2 ZUPT); terrain ``down`` uses the 3-axis norm, otherwise the horizontal distance
+(thesis eq. 61); direction ``backward`` makes it negative; the length class clamps it to its bounds
+(thesis ch.6.3 / ch.7.2.2); on stairs the vertical displacement is the altitude change. Heading =
+previous heading + the integral of the vertical angular rate over the step (waist unit when present,
+else the foot).
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.runtime.bundle import Bundle, load_bundle
+from pdrlearn.runtime.classify import TaskClassifier
+from pdrlearn.runtime.features import step_window
+
+log = logging.getLogger(__name__)
+
+#: Default displacement parameters written into bundles. Bounds are per foot-unit *stride* = 2 x the
+#: thesis step bounds (thesis ch.6.3: short <= 0.30 m, normal 0.30-0.45 m, long > 0.45 m; ch.7.2.2: a long
+#: step is at least 0.46 m).
+DEFAULT_DISPLACEMENT = {
+    "unit": "foot stride",
+    "length_bounds_m": {"short": [0.0, 0.60], "normal": [0.60, 0.90], "long": [0.92, 20.0]},
+    "down_mode": "norm3",  # thesis eq. 61: 3-axis norm on descending stairs
+    "stance_gyro_rad_s": 0.8,  # decision E7: stance = foot rate below this for >= min_stance_s
+    "min_stance_s": 0.1,
+    "min_step_s": 0.3,
+    "max_step_s": 3.0,
+    "initial_heading_rad": 0.0,
+}
+_DIRECTIONS = {
+    "forward": (1, 0, 0),
+    "backward": (-1, 0, 0),
+    "left": (0, 1, 0),
+    "right": (0, -1, 0),
+    "up": (0, 0, 1),
+    "down": (0, 0, -1),
+}
+
+
+def forward_vector(frame: dict) -> np.ndarray:
+    """Sensor-frame vector pointing body-forward for a declared frame ``{"x": "forward", ...}``."""
+    try:
+        R = np.array([_DIRECTIONS[frame["x"]], _DIRECTIONS[frame["y"]], _DIRECTIONS[frame["z"]]], float).T
+    except KeyError as exc:
+        raise DataError(
+            f"axis frame {frame!r}: unknown or missing axis {exc}; use forward/backward/left/"
+            "right/up/down for x, y and z"
+        ) from None
+    return R.T @ np.array([1.0, 0.0, 0.0])
+
+
+@dataclass
+class Step:
+    """One step emitted by :meth:`Tracker.push` (times s, lengths m, angles rad, ENU position m)."""
+
+    start_s: float
+    end_s: float
+    classes: dict[str, str] = field(default_factory=dict)
+    proba: dict[str, dict[str, float]] = field(default_factory=dict)
+    length_m: float = 0.0
+    dz_m: float = 0.0
+    heading_rad: float = 0.0
+    x: float = 0.0
+    y: float = 0.0
+    z: float = 0.0
+
+    def to_dict(self) -> dict:
+        return {
+            "start_s": self.start_s,
+            "end_s": self.end_s,
+            **self.classes,
+            **{f"p_{t}_{c}": v for t, p in self.proba.items() for c, v in p.items()},
+            "length_m": self.length_m,
+            "dz_m": self.dz_m,
+            "heading_rad": self.heading_rad,
+            "x": self.x,
+            "y": self.y,
+            "z": self.z,
+        }
+
+
+def step_displacement(W: np.ndarray, ci: dict, classes: dict[str, str], params: dict) -> tuple[float, float]:
+    """Signed length (m) and altitude change (m) of one step window ``W (channels, samples)``."""
+    t = W[ci["t_s"]]
+    a = W[[ci["foot_acc_x"], ci["foot_acc_y"], ci["foot_acc_z"]]].T
+    dt = np.diff(t)[:, None]
+    v = np.vstack([np.zeros((1, 3)), np.cumsum(0.5 * (a[1:] + a[:-1]) * dt, axis=0)])
+    v -= np.linspace(0.0, 1.0, len(t))[:, None] * v[-1]  # ZUPT at both stances (thesis ch.7.2)
+    d = np.sum(0.5 * (v[1:] + v[:-1]) * dt, axis=0)
+    terrain = classes.get("terrain", "flat")
+    dist = (
+        float(np.linalg.norm(d))
+        if terrain == "down" and params.get("down_mode") == "norm3"
+        else float(np.hypot(d[0], d[1]))
+    )  # thesis eq. 61
+    lc = classes.get("length")
+    bounds = params.get("length_bounds_m", {})
+    if lc in bounds:
+        lo, hi = bounds[lc]
+        dist = float(np.clip(dist, lo, hi))  # length class clamps (thesis ch.7.2.2)
+    if classes.get("direction") == "backward" or ("direction" not in classes and d[0] < 0):
+        dist = -dist
+    dz = float(d[2]) if terrain in ("up", "down") else 0.0  # altitude change only on stairs
+    return dist, dz
+
+
+class Tracker:
+    """Classify and track steps as samples stream in (numpy + onnxruntime only).
+
+    Parameters
+    ----------
+    bundle : a :class:`Bundle` or the path of a bundle folder (verified on load).
+    frames : placement -> declared axis frame of the incoming data (default: the bundle's).
+    tasks : tasks to classify (default: every task in the bundle).
+    methods : task -> ``"method/unit"`` to use instead of the bundle's chosen one.
+    start : initial ENU position (m) and ``heading_rad`` override.
+    buffer_s : seconds of samples kept per sensor (bounded state).
+    """
+
+    def __init__(
+        self,
+        bundle: Bundle | str | Path,
+        *,
+        frames: dict | None = None,
+        tasks=None,
+        methods: dict[str, str] | None = None,
+        start=(0.0, 0.0, 0.0),
+        heading_rad: float | None = None,
+        buffer_s: float = 8.0,
+    ):
+        self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
+        m = self.bundle.manifest
+        fm = m["features"]
+        self.channels = list(fm["channels"])
+        self.ci = {c: i for i, c in enumerate(self.channels)}
+        self.n_samples = int(fm["n_samples"])
+        self.heading_mode = fm.get("heading", "pca")
+        self.rest_search_s = float(fm.get("rest_search_s", 0.3))
+        frames = frames or m["frames"]
+        self.forward = {p: forward_vector(f) for p, f in frames.items()}
+        ctx = {"signals": fm["signals"], "channel_index": self.ci}
+        self.classifiers: dict[str, TaskClassifier] = {}
+        for task in tasks or list(self.bundle.tasks):
+            mu = (methods or {}).get(task)
+            meth, unit = mu.split("/") if mu else (None, None)
+            self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit)
+        self.params = dict(m["displacement"])
+        self.rate_hz = self.bundle.rate_hz
+        self.buffer_s = float(buffer_s)
+        self._buf: dict[str, list] = {}
+        self.position = np.asarray(start, dtype=float).copy()
+        self.heading = float(
+            self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad
+        )
+        self._stance_start: float | None = None
+        self._last_still = -np.inf
+        self._last_boundary: float | None = None
+        self._det_t = -np.inf
+        self.n_steps = 0
+
+    # -- classification of given windows (also used by the parity tests) ----------------------------
+    def classify(self, W: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+        """Task -> (classes (n,), probabilities (n, n_classes)) for windows ``W (n, channels, samples)``."""
+        return {task: clf.predict(W) for task, clf in self.classifiers.items()}
+
+    def window(self, t0: float, t1: float) -> np.ndarray:
+        """The step window of ``[t0, t1]`` from the buffered samples."""
+        streams = {k: self._stream(k) for k in self._buf}
+        return step_window(
+            streams,
+            t0,
+            t1,
+            channels=self.channels,
+            forward=self.forward,
+            n_samples=self.n_samples,
+            heading=self.heading_mode,
+            rest_search_s=self.rest_search_s,
+        )
+
+    # -- streaming ------------------------------------------------------------------------------------
+    def _stream(self, name: str) -> tuple[np.ndarray, np.ndarray]:
+        parts = self._buf[name]
+        if len(parts) > 1:
+            parts[:] = [(np.concatenate([p[0] for p in parts]), np.vstack([p[1] for p in parts]))]
+        return parts[0]
+
+    def _append(self, name: str, t, v) -> None:
+        t = np.asarray(t, dtype=np.float64).reshape(-1)
+        v = np.asarray(v, dtype=np.float64)
+        v = v.reshape(len(t), -1)
+        if len(t) == 0:
+            return
+        if not (np.isfinite(t).all() and np.isfinite(v).all()):
+            raise DataError(f"{name}: pushed samples contain NaN/inf; clean the stream before tracking")
+        parts = self._buf.setdefault(name, [])
+        if parts and t[0] <= parts[-1][0][-1]:
+            raise DataError(
+                f"{name}: pushed timestamps go back in time ({t[0]:.3f} s after "
+                f"{parts[-1][0][-1]:.3f} s); push samples in time order"
+            )
+        parts.append((t, v))
+
+    def push(self, samples) -> list[Step]:
+        """Add samples; returns the steps completed by them (possibly none).
+
+        ``samples`` : mapping sensor name -> ``(t (n,) s, values (n, k))``, or an iterable of
+        measurements with ``t``, ``sensor`` and ``values`` attributes (the Bluetooth parser's output).
+        """
+        if isinstance(samples, dict):
+            for name, (t, v) in samples.items():
+                self._append(name, t, v)
+        else:
+            grouped: dict[str, tuple[list, list]] = {}
+            for mm in samples:
+                ts, vs = grouped.setdefault(mm.sensor, ([], []))
+                ts.append(mm.t)
+                vs.append(mm.values)
+            for name, (ts, vs) in grouped.items():
+                self._append(name, ts, vs)
+        steps = self._detect()
+        self._trim()
+        return steps
+
+    def _detect(self) -> list[Step]:
+        if "fGyroscope" not in self._buf or "fAccelerometer" not in self._buf:
+            return []
+        t, g = self._stream("fGyroscope")
+        new = t > self._det_t
+        if not new.any():
+            return []
+        thr = float(self.params["stance_gyro_rad_s"])
+        still = np.linalg.norm(g[new], axis=1) < thr
+        out = []
+        for ti, s in zip(t[new], still, strict=True):
+            if s:
+                if self._stance_start is None:
+                    self._stance_start = float(ti)
+                self._last_still = float(ti)
+                continue
+            if self._stance_start is not None:
+                if self._last_still - self._stance_start >= float(self.params["min_stance_s"]):
+                    mid = 0.5 * (self._stance_start + self._last_still)
+                    st = self._boundary(mid)
+                    if st is not None:
+                        out.append(st)
+                self._stance_start = None
+        self._det_t = float(t[-1])
+        return out
+
+    def _boundary(self, mid: float) -> Step | None:
+        prev, self._last_boundary = self._last_boundary, mid
+        if prev is None:
+            return None
+        dur = mid - prev
+        if not (float(self.params["min_step_s"]) <= dur <= float(self.params["max_step_s"])):
+            return None
+        return self.process_step(prev, mid)
+
+    def process_step(self, t0: float, t1: float) -> Step:
+        """Classify, measure and place the step ``[t0, t1]`` (s) from the buffered samples."""
+        W = self.window(t0, t1)
+        res = self.classify(W[None])
+        classes = {task: str(c[0]) for task, (c, _) in res.items()}
+        proba = {
+            task: {cl: float(v) for cl, v in zip(self.classifiers[task].classes, p[0], strict=True)}
+            for task, (_, p) in res.items()
+        }
+        length, dz = step_displacement(W, self.ci, classes, self.params)
+        yaw_ch = "waist_gyr_z" if np.isfinite(W[self.ci["waist_gyr_z"]]).all() else "foot_gyr_z"
+        if np.isfinite(W[self.ci[yaw_ch]]).all():
+            tt = W[self.ci["t_s"]]
+            r = W[self.ci[yaw_ch]]
+            self.heading += float(np.sum(0.5 * (r[1:] + r[:-1]) * np.diff(tt)))
+        self.position += (length * np.cos(self.heading), length * np.sin(self.heading), dz)
+        self.n_steps += 1
+        return Step(t0, t1, classes, proba, length, dz, self.heading, *map(float, self.position))
+
+    def _trim(self) -> None:
+        """Drop samples older than both the last step boundary (minus a margin) and ``buffer_s``."""
+        latest = max((p[-1][0][-1] for p in self._buf.values() if p), default=None)
+        if latest is None:
+            return
+        keep_from = latest - self.buffer_s
+        if self._last_boundary is not None:  # the next step starts at the last boundary
+            keep_from = max(keep_from, self._last_boundary - 1.0)
+        for name in self._buf:
+            t, v = self._stream(name)
+            i = int(np.searchsorted(t, keep_from))
+            if i > 0:
+                self._buf[name][:] = [(t[i:], v[i:])] if i < len(t) else [(t[-1:], v[-1:])]

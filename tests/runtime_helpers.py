@@ -1,0 +1,120 @@
+"""A small synthetic two-unit session with labelled stance-to-stance steps (for export/runtime tests).
+
+Not a gait model: each stride is a 0.4 s stance (still foot) and a 0.6 s swing whose foot pitch rate,
+forward and vertical accelerations depend on the step's terrain / direction / length class, so every
+task is learnable. 20 Hz like the PLASYS firmware (thesis ch.4.2.3).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.io import THESIS_FOOT_FRAME, THESIS_WAIST_FRAME, Session, Stream
+
+G = 9.80665
+TERRAIN = ("flat", "up", "down")
+DIRECTION = ("forward", "backward")
+LENGTH = ("short", "normal", "long")
+
+
+def synthetic_session(
+    n_steps: int = 90,
+    *,
+    seed: int = 0,
+    rate_hz: float = 20.0,
+    name: str = "synth",
+    turn_rad_per_step: float = 0.0,
+) -> Session:
+    rng = np.random.default_rng(seed)
+    stance, swing = 0.4, 0.6
+    n_st, n_sw = int(round(stance * rate_hz)), int(round(swing * rate_hz))
+    fa, fg, wa, wg = [], [], [], []
+    t = 0.0
+    dt = 1.0 / rate_hz
+    labels = [(TERRAIN[i % 3], DIRECTION[(i // 3) % 2], LENGTH[(i // 6) % 3]) for i in range(n_steps)]
+    rng.shuffle(labels)
+    mids = []
+    for ter, dirn, ln in labels:
+        # stance: foot still (thesis foot frame: y up), small noise
+        a_st = np.tile([0.0, G, 0.0], (n_st, 1)) + rng.normal(0, 0.03, (n_st, 3))
+        g_st = rng.normal(0, 0.02, (n_st, 3))
+        mids.append(t + (n_st // 2) * dt)
+        u = np.linspace(0, 1, n_sw)
+        amp = {"short": 1.5, "normal": 2.5, "long": 3.5}[ln] * (1 if dirn == "forward" else -1)
+        vert = {"flat": 0.0, "up": 2.0, "down": -2.0}[ter]
+        fwd = amp * np.sin(2 * np.pi * u) * (1 + rng.normal(0, 0.05))
+        up = vert * np.sin(np.pi * u) + 1.0 * np.sin(2 * np.pi * u)
+        pitch = -(3.0 + abs(amp)) * np.sin(2 * np.pi * u) + (0.8 * vert) * np.sin(np.pi * u)
+        a_sw = np.column_stack([fwd, G + up, rng.normal(0, 0.05, n_sw)]) + rng.normal(0, 0.05, (n_sw, 3))
+        g_sw = np.column_stack(
+            [
+                rng.normal(0, 0.05, n_sw),
+                turn_rad_per_step / swing + rng.normal(0, 0.01, n_sw),
+                pitch + rng.normal(0, 0.05, n_sw),
+            ]
+        )
+        fa += [a_st, a_sw]
+        fg += [g_st, g_sw]
+        n = n_st + n_sw
+        uu = np.linspace(0, 2 * np.pi, n)
+        # waist (thesis waist frame: x left, y up, z forward)
+        wa.append(
+            np.column_stack(
+                [
+                    0.3 * np.sin(uu),
+                    G + 0.5 * vert * np.sin(uu / 2) + 0.8 * np.sin(2 * uu),
+                    0.5 * amp * np.sin(uu),
+                ]
+            )
+            + rng.normal(0, 0.05, (n, 3))
+        )
+        wg.append(
+            np.column_stack(
+                [
+                    rng.normal(0, 0.05, n),
+                    (0.3 if dirn == "forward" else -0.3) * np.sin(uu)
+                    + 0.2 * amp * np.cos(uu)
+                    + turn_rad_per_step / (n * dt),
+                    rng.normal(0, 0.05, n),
+                ]
+            )
+        )
+        t += n * dt
+    # final stance so the last step ends in a rest
+    fa.append(np.tile([0.0, G, 0.0], (n_st, 1)))
+    fg.append(np.zeros((n_st, 3)))
+    wa.append(np.tile([0.0, G, 0.0], (n_st, 1)))
+    wg.append(np.zeros((n_st, 3)))
+    mids.append(t + (n_st // 2) * dt)
+    fa, fg, wa, wg = map(np.vstack, (fa, fg, wa, wg))
+    ts = np.arange(len(fa)) * dt
+    still = np.linalg.norm(fg, axis=1) < 0.5
+    heel = np.where(still, 400.0, 0.0) + rng.normal(0, 2.0, len(ts)).clip(0)
+    toe = np.roll(heel, 2)
+    baro = 1013.0 + rng.normal(0, 0.01, len(ts))
+    steps = pd.DataFrame(
+        {
+            "start_s": mids[:-1],
+            "end_s": mids[1:],
+            "terrain": [lab[0] for lab in labels],
+            "direction": [lab[1] for lab in labels],
+            "length_class": [lab[2] for lab in labels],
+        }
+    )
+    streams = {
+        "fAccelerometer": Stream("fAccelerometer", ts, fa),
+        "fGyroscope": Stream("fGyroscope", ts, fg),
+        "wAccelerometer": Stream("wAccelerometer", ts, wa),
+        "wGyroscope": Stream("wGyroscope", ts, wg),
+        "fForceA": Stream("fForceA", ts, heel),
+        "fForceB": Stream("fForceB", ts, toe),
+        "wBarometer": Stream("wBarometer", ts, baro),
+    }
+    return Session(
+        name=name,
+        streams=streams,
+        steps=steps,
+        meta={"user": "synthetic"},
+        frames={"foot": THESIS_FOOT_FRAME, "waist": THESIS_WAIST_FRAME},
+    )
