@@ -120,3 +120,75 @@ def position_errors(
     tx = np.interp(t, truth["t"].to_numpy(float), truth["x"].to_numpy(float))
     ty = np.interp(t, truth["t"].to_numpy(float), truth["y"].to_numpy(float))
     return np.hypot(trajectory[xcol].to_numpy(float) - tx, trajectory[ycol].to_numpy(float) - ty)
+
+
+def synthetic_waist_session(
+    seed: int = 0,
+    *,
+    duration_s: float = 60.0,
+    rate_hz: float = 100.0,
+    speed_ms: float = 1.2,
+    step_freq_hz: float = 1.9,
+    gyro_bias_rads: float = 0.003,
+):
+    """A level waist IMU (FLU axes) walking straights and turns with stops: ``(Session, truth)``.
+
+    The forward speed oscillates by +-0.1 m/s at the step frequency (the alternate acceleration pattern
+    of seed 004 Sec. III-C) and ramps up/down over about two steps (1 s) at the start/end of each bout.
+    Sensor noise: accelerometer 0.05 m/s^2, gyroscope 0.005 rad/s plus a constant bias, magnetometer 0.5 uT.
+    ``truth`` has ``t``, ``x``, ``y``, ``z``, ``v``, ``yaw`` per sample.
+    """
+    from pdrlearn.io.frames import AxisFrame
+    from pdrlearn.io.session import Session, Stream
+
+    rng = np.random.default_rng(seed)
+    n = int(duration_s * rate_hz)
+    t = np.arange(n) / rate_hz
+    # bouts: walk 8-20 s, stop 2-5 s
+    walking = np.zeros(n, bool)
+    k = int(1.5 * rate_hz)
+    while k < n:
+        w = int(rng.uniform(8.0, 20.0) * rate_hz)
+        walking[k : k + w] = True
+        k += w + int(rng.uniform(2.0, 5.0) * rate_hz)
+    ramp = np.convolve(walking.astype(float), np.ones(int(rate_hz)) / rate_hz, mode="same")
+    v = ramp * (speed_ms + 0.1 * np.sin(2 * np.pi * step_freq_hz * t))
+    a_fwd = np.gradient(v, 1.0 / rate_hz)
+    yaw_rate = np.zeros(n)
+    k = 0
+    while k < n:  # turns of 45-120 deg at 0.6 rad/s while walking, every 5-10 s
+        k += int(rng.uniform(5.0, 10.0) * rate_hz)
+        ang = rng.choice([-1, 1]) * rng.uniform(np.radians(45), np.radians(120))
+        m = int(abs(ang) / 0.6 * rate_hz)
+        yaw_rate[k : k + m] = np.sign(ang) * 0.6 * walking[k : k + m]
+        k += m
+    yaw = rng.uniform(-np.pi, np.pi) + np.cumsum(yaw_rate) / rate_hz
+    x = np.cumsum(v * np.cos(yaw)) / rate_hz
+    y = np.cumsum(v * np.sin(yaw)) / rate_hz
+    a_lat = v * yaw_rate  # centripetal, body left
+    acc = np.column_stack([a_fwd, a_lat, np.full(n, 9.8)]) + 0.05 * rng.standard_normal((n, 3))
+    gyr = (
+        np.column_stack([np.zeros(n), np.zeros(n), yaw_rate])
+        + gyro_bias_rads
+        + 0.005 * rng.standard_normal((n, 3))
+    )
+    m_w = np.array([0.0, 22.0, -40.0])  # ENU field (uT): north and downward dip
+    mag = np.column_stack(
+        [
+            np.cos(yaw) * m_w[0] + np.sin(yaw) * m_w[1],
+            -np.sin(yaw) * m_w[0] + np.cos(yaw) * m_w[1],
+            np.full(n, m_w[2]),
+        ]
+    ) + 0.5 * rng.standard_normal((n, 3))
+    ses = Session(
+        f"synthetic-waist-{seed}",
+        streams={
+            "wAccelerometer": Stream("wAccelerometer", t, acc),
+            "wGyroscope": Stream("wGyroscope", t, gyr),
+            "wMagneticField": Stream("wMagneticField", t, mag),
+        },
+        frames={"waist": AxisFrame(x="forward", y="left", z="up")},
+    )
+    truth = pd.DataFrame({"t": t, "x": x, "y": y, "z": np.zeros(n), "v": v, "yaw": yaw})
+    ses.trajectory = truth[["t", "x", "y", "z"]]
+    return ses, truth
