@@ -24,10 +24,9 @@ def _parse_start(start) -> tuple[float, float] | None:
     if start is None:
         return None
     if isinstance(start, str):
-        try:
-            lat, lon = (float(v) for v in start.replace(";", ",").split(","))
-        except ValueError:
-            raise DataError(f"start '{start}': give 'LAT,LON' in degrees, e.g. 43.7696,11.2558") from None
+        from pdrlearn.track.geodetic import parse_start
+
+        lat, lon = parse_start(start)
     else:
         lat, lon = (float(v) for v in start)
     return lat, lon
@@ -103,6 +102,19 @@ def aid_track(
     steps = result.steps
     if steps is None or not len(steps):
         raise DataError(f"session '{session.name}': the track has no steps, nothing to fuse with fixes")
+    warnings = []
+    if {"length_m", "heading_rad"} <= set(steps.columns):
+        bad = ~np.isfinite(steps[["length_m", "heading_rad"]].to_numpy(float)).all(axis=1)
+        if bad.any():
+            warnings.append(f"aid: {int(bad.sum())} step(s) without length/heading ignored by the fusion")
+            steps = steps[~bad].reset_index(drop=True)
+            result = TrackResult(
+                steps,
+                result.trajectory.iloc[np.r_[0, np.flatnonzero(~bad) + 1]].reset_index(drop=True)
+                if len(result.trajectory) == len(bad) + 1
+                else result.trajectory,
+                result.info,
+            )
     origin = _parse_start(start)
     traj0 = result.trajectory
     t = (
@@ -176,6 +188,8 @@ def aid_track(
     info["fix_table"]["source"] = fixes["source"].tolist()
     new_info = dict(result.info)
     new_info["aid"] = info
+    if warnings:
+        new_info["warnings"] = list(new_info.get("warnings", [])) + warnings
     return TrackResult(result.steps.copy(), out, new_info)
 
 
