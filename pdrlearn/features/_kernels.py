@@ -147,16 +147,19 @@ def segment_stats(sig: np.ndarray, t: np.ndarray, n_segments: int = 6) -> np.nda
     output (n, 4 * n_segments) = ``[max_1, min_1, mean_1, slope_1, max_2, ...]``.
     """
     n, m = sig.shape
-    out = np.empty((n, 4 * n_segments))
-    for j, (a, b) in enumerate(segment_bounds(m, n_segments)):
-        part = sig[:, a:b]
-        out[:, 4 * j] = part.max(axis=1)
-        out[:, 4 * j + 1] = part.min(axis=1)
-        out[:, 4 * j + 2] = part.mean(axis=1)
-        span = t[:, b - 1] - t[:, a]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            slope = (part[:, -1] - part[:, 0]) / span
-        out[:, 4 * j + 3] = np.where(span > 0, slope, 0.0)
+    bounds = segment_bounds(m, n_segments)
+    starts = np.array([a for a, _ in bounds])
+    last = np.array([b - 1 for _, b in bounds])
+    sizes = np.array([b - a for a, b in bounds], dtype=float)
+    out = np.empty((n, n_segments, 4))
+    out[:, :, 0] = np.maximum.reduceat(sig, starts, axis=1)
+    out[:, :, 1] = np.minimum.reduceat(sig, starts, axis=1)
+    out[:, :, 2] = np.add.reduceat(sig, starts, axis=1) / sizes
+    span = t[:, last] - t[:, starts]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        slope = (sig[:, last] - sig[:, starts]) / span
+    out[:, :, 3] = np.where(span > 0, slope, 0.0)
+    out = out.reshape(n, 4 * n_segments)
     return out
 
 

@@ -42,20 +42,43 @@ def step_probability(x: np.ndarray) -> np.ndarray:
     return np.clip(p / 100.0, 0.0, 1.0)
 
 
-def _stat(name: str) -> Callable[[np.ndarray, str], np.ndarray]:
+_FORCE_STATS = ("air_time", "time_to_peak", "peak_mean_4", "contact_force_2", "takeoff_force")
+_YAW_STATS = ("amplitude", "left", "right", "left_minus_right")
+
+
+class _Stats:
+    """Per-call cache of the statistics of each signal of windows ``X``."""
+
+    def __init__(self, X: np.ndarray):
+        self.X = X
+        self._peak: dict[str, dict[str, np.ndarray]] = {}
+        self._force: dict[str, dict[str, np.ndarray]] = {}
+
+    def peak(self, sig: str) -> dict[str, np.ndarray]:
+        if sig not in self._peak:
+            self._peak[sig] = K.peak_stats(signal(self.X, sig), times(self.X))
+        return self._peak[sig]
+
+    def force(self, sig: str) -> dict[str, np.ndarray]:
+        if sig not in self._force:
+            self._force[sig] = K.force_stats(signal(self.X, sig), times(self.X))
+        return self._force[sig]
+
+
+def _stat(name: str) -> Callable[[_Stats, str], np.ndarray]:
     if name in _PEAK_STATS:
-        return lambda X, sig: K.peak_stats(signal(X, sig), times(X))[name]
+        return lambda S, sig: S.peak(sig)[name]
     if name == "abs_peak_asym":
-        return lambda X, sig: np.abs(K.peak_stats(signal(X, sig), times(X))["peak_asym"])
+        return lambda S, sig: np.abs(S.peak(sig)["peak_asym"])
     if name == "half_balance":
-        return lambda X, sig: half_balance(signal(X, sig))
+        return lambda S, sig: half_balance(signal(S.X, sig))
     if name == "step_probability":
-        return lambda X, sig: step_probability(signal(X, sig))
-    if name in ("air_time", "time_to_peak", "peak_mean_4", "contact_force_2", "takeoff_force"):
-        return lambda X, sig: K.force_stats(signal(X, sig), times(X))[name]
-    if name in ("amplitude", "left", "right", "left_minus_right"):
-        def yaw_stat(X, sig):
-            ps = K.peak_stats(signal(X, sig), times(X))
+        return lambda S, sig: step_probability(signal(S.X, sig))
+    if name in _FORCE_STATS:
+        return lambda S, sig: S.force(sig)[name]
+    if name in _YAW_STATS:
+        def yaw_stat(S, sig):
+            ps = S.peak(sig)
             left = ps["t_max"]
             return {"amplitude": 0.5 * ps["range"], "left": left, "right": ps["duration"] - left,
                     "left_minus_right": 2 * left - ps["duration"]}[name]
@@ -63,14 +86,13 @@ def _stat(name: str) -> Callable[[np.ndarray, str], np.ndarray]:
     raise DataError(f"unknown rule statistic '{name}'")
 
 
-def _range_x_air_time(X: np.ndarray) -> np.ndarray:
+def _range_x_air_time(S: _Stats) -> np.ndarray:
     """Thesis Table 30 #3: foot acceleration peak difference x time without force (m/s^2 x s)."""
-    rng = K.peak_stats(signal(X, "foot_acc_fwd"), times(X))["range"]
-    return rng * K.force_stats(signal(X, "force"), times(X))["air_time"]
+    return S.peak("foot_acc_fwd")["range"] * S.force("force")["air_time"]
 
 
 #: Features that combine two signals: name -> (signals, function).
-COMBINED: dict[str, tuple[tuple[str, ...], Callable[[np.ndarray], np.ndarray]]] = {
+COMBINED: dict[str, tuple[tuple[str, ...], Callable[[_Stats], np.ndarray]]] = {
     "foot_acc_fwd:range_x_air_time": (("foot_acc_fwd", "force"), _range_x_air_time),
 }
 
@@ -87,13 +109,14 @@ def feature_signals(name: str) -> tuple[str, ...]:
 
 def rule_features(X: np.ndarray, names) -> np.ndarray:
     """Matrix (n_steps, len(names)) of the named rule features of windows ``X``."""
+    S = _Stats(X)
     cols = []
     for name in names:
         if name in COMBINED:
-            cols.append(COMBINED[name][1](X))
+            cols.append(COMBINED[name][1](S))
         else:
             sig, _, stat = name.partition(":")
-            cols.append(_stat(stat)(X, sig))
+            cols.append(_stat(stat)(S, sig))
     return np.column_stack(cols)
 
 
