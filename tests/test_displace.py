@@ -8,8 +8,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from pdrlearn.displace import (
-    StepRules,
     THESIS_STEP_BOUNDS,
+    StepRules,
     altitude_change,
     apply_direction,
     clamp_length,
@@ -99,8 +99,8 @@ def test_wnj_kalman_constant_acceleration_without_zupt():
 
 
 def test_direction_rule_sets_the_sign():
-    assert apply_direction(np.array([0.5, -0.5, 0.5, -0.5]),
-                           np.array(["forward", "forward", "backward", "backward"])).tolist() == [0.5, 0.5, -0.5, -0.5]
+    d = np.array(["forward", "forward", "backward", "backward"])
+    assert apply_direction(np.array([0.5, -0.5, 0.5, -0.5]), d).tolist() == [0.5, 0.5, -0.5, -0.5]
 
 
 def test_length_clamp_thesis_examples():
@@ -112,8 +112,9 @@ def test_length_clamp_thesis_examples():
 
 
 def test_altitude_and_terrain_rules():
-    assert altitude_change(np.array([0.2, -0.2, 0.17, 0.3]), np.array(["flat", "up", "down", "up"])).tolist() == \
-        pytest.approx([0.0, 0.2, -0.17, 0.3])
+    t = np.array(["flat", "up", "down", "up"])
+    out = altitude_change(np.array([0.2, -0.2, 0.17, 0.3]), t)
+    assert out.tolist() == pytest.approx([0.0, 0.2, -0.17, 0.3])
     disp = np.array([[0.6, 0.0, -0.34], [0.6, 0.0, 0.34]])
     d = terrain_distance(disp, np.array(["down", "up"]))
     assert d[0] == pytest.approx(np.hypot(0.6, 0.34))  # thesis eq. 61 on descending stairs

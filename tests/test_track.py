@@ -127,8 +127,8 @@ def test_cli_track_errors_are_one_line(real_dir, tmp_path, capsys):
                "--out", str(tmp_path / "a")])
     err = capsys.readouterr().err
     assert rc == 2 and err.startswith("error:") and err.count("\n") == 1
-    rc = main(["track", str(real_dir / "gaitmap_level_right"), "--method", "M3", "--out", str(tmp_path / "b")])
+    rc = main(["track", str(real_dir / "gaitmap_level_right"), "--method", "M3", "--out", str(tmp_path)])
     err = capsys.readouterr().err
     assert rc == 2 and "M3 needs" in err
-    rc = main(["track", str(real_dir / "gaitmap_level_right"), "--method", "M2", "--out", str(tmp_path / "c")])
+    rc = main(["track", str(real_dir / "gaitmap_level_right"), "--method", "M2", "--out", str(tmp_path)])
     assert rc == 2 and "fForceA" in capsys.readouterr().err

@@ -1,4 +1,5 @@
 """``pdrlearn track``: session -> trajectory.csv, steps.csv, path.png, summary.json."""
+# ruff: noqa: B008  (typer options are declared as defaults)
 
 from __future__ import annotations
 
@@ -81,15 +82,15 @@ def track(
     summary["session"] = session.name
     summary["pipeline"] = pipeline
     summary["info"] = result.info
-    summary = json_safe(json.loads(json.dumps(summary, default=lambda o: o.item() if hasattr(o, "item")
-                                              else str(o))))
+    summary = json_safe(json.loads(json.dumps(
+        summary, default=lambda o: o.item() if hasattr(o, "item") else str(o))))
     (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     if as_json:
         print_json(summary)
         return
+    err = summary.get("distance_error_pct")
     typer.echo(f"{session.name}: {summary['n_steps']} steps, {summary['distance_m']:.2f} m"
-               + (f", distance error {summary['distance_error_pct']:+.2f} %" if "distance_error_pct" in summary
-                  else "")
+               + (f", distance error {err:+.2f} %" if err is not None else "")
                + (f", final position error {summary['final_position_error_m']:.2f} m"
                   if "final_position_error_m" in summary else ""))
     for w in result.info.get("warnings", []):

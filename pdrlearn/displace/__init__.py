@@ -17,7 +17,8 @@ from pdrlearn.displace.foot import FootDisplacement, force_stance, inertial_stan
 from pdrlearn.displace.rules import THESIS_STEP_BOUNDS, StepRules, parse_bounds
 
 __all__ = [
-    "FootDisplacement", "StepRules", "THESIS_STEP_BOUNDS", "altitude_change", "apply_direction", "clamp_length",
+    "FootDisplacement", "StepRules", "THESIS_STEP_BOUNDS", "altitude_change", "apply_direction",
+    "clamp_length",
     "double_integrate", "force_stance", "inertial_stance", "parse_bounds", "snap_to_rest", "strapdown",
     "stride_index", "terrain_distance", "wnj_displacement", "wnj_kalman", "wnj_matrices",
 ]

@@ -156,8 +156,9 @@ def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1
     sw : power spectral density of the jerk (thesis ch.7.2.1: 1.8)
     r : acceleration measurement variance (thesis eq. 55: 0.01)
     zupt : add v = 0 pseudo-measurements (variance ``r_zupt``) at the samples ``zupt_at`` (N, L)
-        (default: the first and last valid sample, the foot at rest); with ``smooth`` the Rauch-Tung-Striebel pass carries that correction back
-        through the stride, which is the KF form of the ZUPT drift correction
+        (default: the last valid sample; the first is at rest by the initial state); with ``smooth``
+        the Rauch-Tung-Striebel pass carries that correction back through the stride, which is the
+        KF form of the ZUPT drift correction
     smooth : run the RTS smoother (offline); ``False`` returns the causal filter
 
     Returns

@@ -101,7 +101,8 @@ class FootDisplacement:
         self.snap_s = snap_s
         self.rest_s = rest_s
 
-    def estimate(self, unit: UnitData, steps: pd.DataFrame, *, stance: np.ndarray | None = None) -> FootDisplacement:
+    def estimate(self, unit: UnitData, steps: pd.DataFrame, *,
+                 stance: np.ndarray | None = None) -> FootDisplacement:
         """Estimate the displacement of each row (``start_s``, ``end_s``) of ``steps``.
 
         ``stance`` (n,) bool on ``unit.t``; default: the inertial stance detector.
@@ -142,13 +143,15 @@ class FootDisplacement:
         a_nav, self.yaw_change_ = K.strapdown(acc, gyr, dt, idx, mask, g_body, bias, init)
         zm = K.zupt_mask(self.stance_, idx, mask)
         if self.integrator == "kalman":
-            self.disp_ = K.wnj_displacement(a_nav, mask, dt, sw=self.sw, r=self.r, zupt=self.zupt_end, zupt_at=zm)
+            self.disp_ = K.wnj_displacement(a_nav, mask, dt, sw=self.sw, r=self.r, zupt=self.zupt_end,
+                                            zupt_at=zm)
         else:
             self.disp_ = K.double_integrate(a_nav, mask, dt, zupt_end=self.zupt_end, zupt=zm)
         return self
 
-    def _standstill_bias(self, acc: np.ndarray, gyr: np.ndarray, fs: float, min_s: float = 1.0) -> np.ndarray:
-        """Gyroscope offset (rad/s) over the first standstill of at least ``min_s`` s (thesis ch.7.2.1 setup)."""
+    def _standstill_bias(self, acc: np.ndarray, gyr: np.ndarray, fs: float,
+                         min_s: float = 1.0) -> np.ndarray:
+        """Gyroscope offset (rad/s) over the first standstill of >= ``min_s`` s (thesis ch.7.2.1 setup)."""
         still = standstill_mask(acc, gyr, fs)
         for a, b in runs(still):
             if (b - a) / fs >= min_s:

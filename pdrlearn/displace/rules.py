@@ -61,7 +61,8 @@ class StepRules:
     def effective_bounds(self) -> dict[str, tuple[float, float]]:
         if self.bounds is not None:
             return dict(self.bounds)
-        return {k: (lo * self.bounds_scale, hi * self.bounds_scale) for k, (lo, hi) in THESIS_STEP_BOUNDS.items()}
+        sc = self.bounds_scale
+        return {k: (lo * sc, hi * sc) for k, (lo, hi) in THESIS_STEP_BOUNDS.items()}
 
     def apply(self, disp: np.ndarray, classes: pd.DataFrame) -> pd.DataFrame:
         """Per-stride ``length_m`` (signed) and ``dz_m`` from displacements (B, 3) and classes.

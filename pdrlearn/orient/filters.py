@@ -121,7 +121,8 @@ class WaistHeading:
             self.compass_ = None
             self.warnings_.append("no magnetometer: waist heading from the gyroscope only, relative to the "
                                   f"initial heading {self.initial_heading:.3f} rad")
-            theta = self.initial_heading + np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * dt)])
+            steps = np.cumsum(0.5 * (rate[1:] + rate[:-1]) * dt)
+            theta = self.initial_heading + np.concatenate([[0.0], steps])
         self.t_ = t
         self.heading_ = K.deadband(theta, self.threshold)
         return self

@@ -17,13 +17,16 @@ def parse_start(text: str) -> tuple[float, float]:
             raise ValueError
         lat, lon = (float(p) for p in parts)
     except ValueError:
-        raise DataError(f"--start '{text}': expected LAT,LON in decimal degrees, e.g. --start 41.178,-8.608") from None
+        raise DataError(f"--start '{text}': expected LAT,LON in decimal degrees, "
+                        "e.g. --start 41.178,-8.608") from None
     if not (np.isfinite(lat) and np.isfinite(lon) and -90.0 <= lat <= 90.0 and -180.0 <= lon <= 180.0):
-        raise DataError(f"--start '{text}': latitude must be in [-90, 90] and longitude in [-180, 180] degrees")
+        raise DataError(f"--start '{text}': latitude must be in [-90, 90] and longitude in [-180, 180] "
+                        "degrees")
     return lat, lon
 
 
-def destination(lat_rad: float, lon_rad: float, azimuth_rad: float, distance_km: float) -> tuple[float, float]:
+def destination(lat_rad: float, lon_rad: float, azimuth_rad: float,
+                distance_km: float) -> tuple[float, float]:
     """New latitude/longitude (rad) after ``distance_km`` along ``azimuth_rad`` (clockwise from north).
 
     Thesis eq. 56/57 on a sphere of radius 6371 km.

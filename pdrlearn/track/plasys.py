@@ -30,13 +30,13 @@ from pdrlearn.track.geodetic import geodetic_track
 
 log = logging.getLogger(__name__)
 
+_M2 = {"detector": "AccelForceStepDetector", "integrator": "kalman", "zupt_end": True,
+       "gyro_bias": "standstill", "attitude": "kalman", "heading": "waist", "rules": False, "force": True}
 METHODS: dict[str, dict] = {
-    "M1": {"detector": "AccelStepDetector", "integrator": "integration", "zupt_end": False, "gyro_bias": "none",
-           "attitude": "accel", "heading": "foot", "rules": False, "force": False},
-    "M2": {"detector": "AccelForceStepDetector", "integrator": "kalman", "zupt_end": True,
-           "gyro_bias": "standstill", "attitude": "kalman", "heading": "waist", "rules": False, "force": True},
-    "M3": {"detector": "AccelForceStepDetector", "integrator": "kalman", "zupt_end": True,
-           "gyro_bias": "standstill", "attitude": "kalman", "heading": "waist", "rules": True, "force": True},
+    "M1": {"detector": "AccelStepDetector", "integrator": "integration", "zupt_end": False,
+           "gyro_bias": "none", "attitude": "accel", "heading": "foot", "rules": False, "force": False},
+    "M2": _M2,
+    "M3": {**_M2, "rules": True},
 }
 
 
@@ -106,7 +106,8 @@ def oracle_classes(session: Session, steps: pd.DataFrame) -> pd.DataFrame:
     if lab is None or not any(c in lab for c in ("terrain", "direction", "length_class")):
         raise DataError(f"session '{session.name}': model='oracle' needs labelled steps "
                         "(steps.csv with terrain/direction/length_class)")
-    out = pd.DataFrame(index=range(len(steps)), columns=["terrain", "direction", "length_class"], dtype=object)
+    out = pd.DataFrame(index=range(len(steps)), columns=["terrain", "direction", "length_class"],
+                       dtype=object)
     for i, j in match_by_overlap(steps, lab.reset_index(drop=True), min_iou=0.3):
         for c in out.columns:
             if c in lab:
@@ -201,6 +202,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                              "`pdrlearn train`) or model='oracle' for labelled sessions; M1/M2 need no model")
         if isinstance(model, str) and model == "oracle":
             classes = oracle_classes(session, strides)
+            model_bounds = next((session.meta[k] for k in ("length_class_bounds_m", "length_bounds_m")
+                                 if session.meta.get(k) is not None), None)
         else:
             classes, model_bounds = _model_classes(model, session, strides)
     rules = StepRules(bounds=parse_bounds(bounds if bounds is not None else model_bounds)
@@ -247,12 +250,13 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     if start is not None:
         ll = geodetic_track(tuple(start), length, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
+    oracle = isinstance(model, str) and model == "oracle"
     info = {"pipeline": "plasys", "method": method, "heading_source": hsrc, "stance_source": stance_source,
-            "steps_source": strides.attrs.get("detector", steps), "classes_source":
-            ("oracle" if isinstance(model, str) and model == "oracle" else ("model" if cfg["rules"] else None)),
+            "steps_source": strides.attrs.get("detector", steps),
+            "classes_source": ("oracle" if oracle else ("model" if cfg["rules"] else None)),
             "length_bounds_m": rules.effective_bounds() if cfg["rules"] else None,
-            "settings": fd.__dict__ and {k: getattr(fd, k) for k in
-                                          ("integrator", "zupt_end", "gyro_bias", "attitude", "sw", "r")},
+            "settings": {k: getattr(fd, k)
+                         for k in ("integrator", "zupt_end", "gyro_bias", "attitude", "sw", "r")},
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.name, w)
