@@ -59,6 +59,7 @@ class _Collector:
     def __init__(self):
         self.onnx: dict = {}
         self.npz: dict = {}
+        self.json: dict = {}
 
     def entry(self, est, stem: str) -> dict:
         from sklearn.pipeline import Pipeline
@@ -78,6 +79,21 @@ class _Collector:
                 "members": members,
                 "classes": [str(c) for c in est.classes_],
             }
+        if hasattr(est, "stages_") and hasattr(est, "feature_names_"):  # heuristic rule tables
+            rel = f"params/{stem}.json"
+            self.json[rel] = {
+                "estimator": type(est).__name__,
+                "feature_names": list(est.feature_names_),
+                "stages": [
+                    {
+                        "rules": [r.to_dict() for r in st.rules],
+                        "labels": [[float(v), str(lab)] for v, lab in st.labels.items()],
+                        "parent": st.parent,
+                    }
+                    for st in est.stages_
+                ],
+            }
+            return {"type": "heuristic", "file": rel, "classes": [str(c) for c in est.classes_]}
         if not isinstance(est, Pipeline):
             raise ModelError(
                 f"{stem}: {type(est).__name__} cannot be exported yet (see docs/decisions/export.md)"
@@ -143,7 +159,7 @@ def _nn_module(clf):
 def _units_of(entry: dict, unit: str) -> set[str]:
     if entry["type"] == "fusion":
         return set().union(*(_units_of(e, u) for u, e in entry["members"].items()))
-    return {unit}
+    return {"foot", "waist"} if unit == "fused" else {unit}
 
 
 def export_model(
@@ -265,4 +281,6 @@ def export_model(
         metrics={t: v["cv"] for t, v in tasks.items()},
         export={"methods": list(methods) if methods else "chosen", "skipped": skipped},
     )
-    return write_bundle(out_dir, manifest, onnx_models=col.onnx, npz_files=col.npz, overwrite=overwrite)
+    return write_bundle(
+        out_dir, manifest, onnx_models=col.onnx, npz_files=col.npz, json_files=col.json, overwrite=overwrite
+    )

@@ -48,6 +48,11 @@ class RuntimeModel:
             self.mean, self.std = z["channel_mean"], z["channel_std"]
             self.window = None if entry.get("window") is None else int(entry["window"])
             self.temperature = float(entry["temperature"])
+        elif self.type == "heuristic":
+            spec = bundle.json(entry["file"])
+            self.recipe = [["rule", n] for n in spec["feature_names"]]
+            self.col = {n: i for i, n in enumerate(spec["feature_names"])}
+            self.stages = spec["stages"]
         elif self.type == "fusion":
             self.members = [RuntimeModel(bundle, e, feature_ctx) for e in entry["members"].values()]
             self.weights = np.asarray(entry["weights"], dtype=float)
@@ -70,6 +75,8 @@ class RuntimeModel:
                 d = K.dtw_to_refs(q, self.refs, self.window)
                 out[i] = [d[self.ref_labels == k].mean() for k in range(n_cls)]
             return K.softmax(-out / self.temperature)
+        if self.type == "heuristic":
+            return heuristic_proba(self, W)
         probas = [align(m.proba(W), m.classes, self.classes) for m in self.members]
         return K.soft_vote(probas, self.weights)
 
@@ -106,3 +113,26 @@ class TaskClassifier:
         """``(classes (n,), probabilities (n, n_classes))`` for windows ``W``."""
         p = align(self.model.proba(W), self.model.classes, self.classes)
         return np.asarray(self.classes, dtype=object)[np.argmax(p, axis=1)], p
+
+
+def heuristic_proba(self: RuntimeModel, W: np.ndarray) -> np.ndarray:
+    """Stage scores (thesis eq. 28) -> triangular memberships, multiplied along the stages, as
+    ``pdrlearn.classify.heuristic._RuleClassifier.predict_proba``."""
+    from pdrlearn.classify._rules import Rule, memberships, stage_score
+
+    F = compute_features(W, self.recipe, **self.ctx)
+    probs: dict[str, np.ndarray] = {}
+    for st in self.stages:
+        rules = [Rule.from_dict(r) for r in st["rules"]]
+        conf = None
+        if any(r.confidence for r in rules):
+            conf = np.column_stack(
+                [F[:, self.col[r.confidence]] if r.confidence else np.ones(len(F)) for r in rules]
+            )
+        score = stage_score(F[:, [self.col[r.feature] for r in rules]], rules, conf)
+        values = tuple(float(v) for v, _ in st["labels"])
+        m = memberships(score, values)
+        base = probs.pop(st["parent"]) if st.get("parent") else np.ones(len(F))
+        for j, (_, lab) in enumerate(st["labels"]):
+            probs[lab] = base * m[:, j]
+    return np.column_stack([probs[c] for c in self.classes])

@@ -175,6 +175,8 @@ def compute_features(W: np.ndarray, recipe: list, *, signals: dict, channel_inde
                 "right": ps["duration"] - ps["t_max"],
             }[item[1]]
             cols.append(val[:, None])
+        elif op == "rule":
+            cols.append(rule_feature(W, item[1], sig, peaks)[:, None])
         elif op == "signals":  # DTW step signals (steps, len(names), samples)
             return np.stack([sig(n) for n in item[1]], axis=1)
         else:
@@ -183,3 +185,35 @@ def compute_features(W: np.ndarray, recipe: list, *, signals: dict, channel_inde
     if not np.isfinite(F).all():
         raise DataError("step features are NaN: the stream lacks a sensor the model needs")
     return F
+
+
+def rule_feature(W: np.ndarray, name: str, sig, peaks) -> np.ndarray:
+    """Named heuristic rule feature ``"<signal>:<statistic>"`` (thesis Tables 22-24, 29-31, eq. 31-32)."""
+    t = W[:, 0, :]
+    if name == "foot_acc_fwd:range_x_air_time":  # thesis Table 30 #3
+        return peaks("foot_acc_fwd")["range"] * K.force_stats(sig("force"), t)["air_time"]
+    s, _, stat = name.partition(":")
+    if stat == "abs_peak_asym":
+        return np.abs(peaks(s)["peak_asym"])
+    if stat == "half_balance":  # thesis eq. 31, scale-free
+        x = sig(s)
+        m = x.shape[1]
+        first, second, den = x[:, : (m + 1) // 2].sum(1), x[:, m // 2 :].sum(1), np.abs(x).sum(1)
+        return np.where(den > 0, (first - second) / np.where(den > 0, den, 1.0), 0.0)
+    if stat == "step_probability":  # thesis eq. 32
+        x = sig(s)
+        return np.clip((100.0 - np.abs(x.max(1) + x.min(1)) * 20.0) / 100.0, 0.0, 1.0)
+    if stat in ("air_time", "time_to_peak", "peak_mean_4", "contact_force_2", "takeoff_force"):
+        return K.force_stats(sig(s), t)[stat]
+    ps = peaks(s)
+    if stat in ps:
+        return ps[stat]
+    yaw = {
+        "amplitude": 0.5 * ps["range"],
+        "left": ps["t_max"],
+        "right": ps["duration"] - ps["t_max"],
+        "left_minus_right": 2 * ps["t_max"] - ps["duration"],
+    }
+    if stat in yaw:
+        return yaw[stat]
+    raise DataError(f"bundle rule feature {name!r} is unknown to this runtime; re-export the bundle")
