@@ -108,7 +108,8 @@ def report_cv(sessions, *, folds: int = 5, seed: int = 0, out=sys.stdout) -> dic
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m pdrlearn.features.report", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m pdrlearn.features.report",
+                                 description=__doc__.split("\n")[0])
     ap.add_argument("dirs", nargs="*", help="session folders with labelled steps")
     ap.add_argument("--folds", type=int, default=5)
     ap.add_argument("--seed", type=int, default=0)
