@@ -22,10 +22,17 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
+from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.base import TrackResult, register_pipeline
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
-from pdrlearn.waist.events import WALK_THRESHOLD_MPS2, InitialContactDetector, steps_from_events, walking_gate
+from pdrlearn.waist.events import (
+    WALK_THRESHOLD_MPS2,
+    InitialContactDetector,
+    refine_to_contacts,
+    steps_from_events,
+    walking_gate,
+)
 from pdrlearn.waist.heading import TurnClassifier, gyro_headings, harmonic_headings
 from pdrlearn.waist.params import WaistParams, resolve_params
 from pdrlearn.waist.steplength import frequency_lengths, pendulum_h
@@ -48,30 +55,18 @@ def _sequences(steps: pd.DataFrame) -> list[np.ndarray]:
     return seqs
 
 
-def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float) -> tuple[pd.DataFrame, str]:
-    """Step events of seed 000 (PLL peaks); falls back to the maxima of the zero-lag low-passed vertical
-    acceleration (the peaks the PLL locks on, seed 000 sec. II-C) when no PLL detector is installed."""
-    try:
-        from pdrlearn.steps import PLLStepDetector  # written by the step-detection module
-    except ImportError:
-        PLLStepDetector = None
-    if PLLStepDetector is not None:
-        try:
-            # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
-            det = PLLStepDetector(gate_var=walk_threshold ** 2).detect(session)
-            st = getattr(det, "steps_", det)
-            if isinstance(st, pd.DataFrame) and "event_s" in st and len(st):
-                ev = np.sort(st["event_s"].to_numpy(float))
-                idx = np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t) - 1)
-                gate = walking_gate(imu, walk_threshold=walk_threshold)
-                idx = idx[gate[idx]]
-                return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector="pll"), ""
-        except (TypeError, AttributeError) as exc:  # interface mismatch: say so, use the fallback
-            log.warning("PLLStepDetector unusable here (%s); using vertical-acceleration peaks", exc)
-    gate = walking_gate(imu, walk_threshold=walk_threshold)
-    _, _, vmax = K.ic_offline(imu.acc_v, imu.acc_ap, imu.fs, gate=gate)
-    return (steps_from_events(imu.t, vmax, max_step_s=MAX_STEP_S, detector="vertical-peaks"),
-            "PLL step detector not available: steps at the maxima of the low-passed vertical acceleration")
+def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine_ic: bool = True
+               ) -> pd.DataFrame:
+    """Step events of seed 000: the peaks of :class:`pdrlearn.steps.PLLStepDetector` while walking,
+    moved to the initial contact next to them when ``refine_ic`` (decision W11)."""
+    # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
+    st = PLLStepDetector(gate_var=walk_threshold ** 2).detect(session)
+    ev = np.sort(st["event_s"].to_numpy(float)) if len(st) else np.zeros(0)
+    idx = np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t) - 1)
+    idx = idx[walking_gate(imu, walk_threshold=walk_threshold)[idx]]
+    if refine_ic:
+        idx = refine_to_contacts(imu, idx, walk_threshold=walk_threshold)
+    return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector="pll+ic" if refine_ic else "pll")
 
 
 def _start(start) -> tuple[float, float, float]:
@@ -114,7 +109,7 @@ def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
 
 
 def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool = False,
-                heading: str | None = None) -> TrackResult:
+                heading: str | None = None, refine_ic: bool = True) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -124,6 +119,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     start : dict ``x``, ``y`` (m), ``heading_rad`` (rad, ENU; 0 = east) of the start; default origin,
         heading 0 = the unit's initial facing direction
     realtime : pendulum only: the causal IC detector instead of the zero-lag offline one
+    refine_ic : PLL only: report each step at the initial contact next to its PLL peak (W11)
     heading : ``"ahe"`` (default of waist-pll), ``"ellipse"`` (seed 001 closed form) or ``"gyro"``
         (default of waist-pendulum)
     """
@@ -137,9 +133,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps = det.steps_
         method = heading or "gyro"
     else:
-        steps, note = _pll_steps(session, imu, thr)
-        if note:
-            warnings.append(note)
+        steps = _pll_steps(session, imu, thr, refine_ic=refine_ic)
         method = heading or "ahe"
     if method not in ("ahe", "ellipse", "gyro"):
         raise DataError(f"heading method '{method}' is not one of ahe, ellipse, gyro")

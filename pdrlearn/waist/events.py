@@ -62,6 +62,8 @@ class InitialContactDetector:
     Attributes
     ----------
     steps_ : steps table (see :func:`steps_from_events`); ic_, fc_ : sample indices
+    anchor_ : sample index each IC was found from (offline: the vertical maximum; realtime: the delayed
+        zero crossing)
     """
 
     def __init__(self, *, realtime: bool = False, cutoff_hz: float = 2.5, fir_order_s: float = 0.3,
@@ -80,12 +82,27 @@ class InitialContactDetector:
         cut = min(self.ap_cutoff_hz, 0.4 * fs)
         ap = lowpass(imu.acc_ap, cut, fs, causal=self.realtime)
         if self.realtime:
-            ic, fc, _ = K.ic_realtime(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz)
+            ic, fc, ref = K.ic_realtime(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz)
         else:
-            ic, fc, _ = K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
-                                     fir_order_s=self.fir_order_s)
-        self.ic_, self.fc_ = ic, fc
+            ic, fc, ref = K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
+                                       fir_order_s=self.fir_order_s)
+        self.ic_, self.fc_, self.anchor_ = ic, fc, ref
         name = "alvarez-realtime" if self.realtime else "alvarez-offline"
         self.steps_ = steps_from_events(imu.t, ic, fc, max_step_s=self.max_step_s, detector=name)
         log.info("%s: %d initial contacts", name, len(ic))
         return self
+
+
+def refine_to_contacts(imu: WaistIMU, idx: np.ndarray, *, walk_threshold: float = WALK_THRESHOLD_MPS2,
+                       max_shift_s: float = 0.3) -> np.ndarray:
+    """Move step events found at vertical-acceleration peaks (e.g. PLL peaks) to the initial contact of
+    the nearest vertical maximum within ``max_shift_s`` (decision W11); others are kept. Sorted, unique."""
+    det = InitialContactDetector(walk_threshold=walk_threshold).detect(imu)
+    idx = np.asarray(idx, dtype=int)
+    if det.anchor_.size == 0 or idx.size == 0:
+        return np.unique(idx)
+    j = np.clip(np.searchsorted(det.anchor_, idx), 1, det.anchor_.size) - 1
+    j2 = np.minimum(j + 1, det.anchor_.size - 1)
+    near = np.where(np.abs(det.anchor_[j2] - idx) < np.abs(det.anchor_[j] - idx), j2, j)
+    ok = np.abs(det.anchor_[near] - idx) <= max_shift_s * imu.fs
+    return np.unique(np.where(ok, det.ic_[near], idx))
