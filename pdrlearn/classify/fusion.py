@@ -165,3 +165,23 @@ class UnitFusionClassifier(ClassifierMixin, BaseEstimator):
     def predict(self, X) -> np.ndarray:
         proba = self.predict_proba(X)
         return self.classes_[np.argmax(proba, axis=1)]
+
+
+def fused_from_fitted(units, fitted: list, weights, *, n_features_in: int, random_state: int | None = 0):
+    """A fitted :class:`UnitFusionClassifier` from already-fitted unit models (no refit).
+
+    ``units`` as for the class (the unfitted templates, kept as parameters so ``clone`` works),
+    ``fitted`` the fitted models in the same order, ``weights`` the unit weights.
+    """
+    w = np.asarray(weights, dtype=float)
+    est = UnitFusionClassifier(units, weights=list(w), random_state=random_state)
+    est._check_units()
+    if len(fitted) != len(units):
+        raise DataError(f"fused_from_fitted: {len(fitted)} fitted models for {len(units)} units")
+    est.classes_ = np.unique(np.concatenate([np.asarray(m.classes_) for m in fitted]))
+    est.estimators_ = list(fitted)
+    est.weights_ = w / w.sum()
+    est.unit_names_ = [name for name, _, _ in units]
+    est.validation_accuracy_ = {}
+    est.n_features_in_ = int(n_features_in)
+    return est

@@ -16,6 +16,7 @@ from sklearn.model_selection import train_test_split
 from sklearn.utils.multiclass import check_classification_targets
 from sklearn.utils.validation import check_is_fitted, validate_data
 
+from pdrlearn.classify.svm import check_X_fast
 from pdrlearn.errors import DataError
 
 log = logging.getLogger(__name__)
@@ -176,8 +177,7 @@ class NNClassifier(ClassifierMixin, BaseEstimator):
 
     def _logits(self, X) -> np.ndarray:
         check_is_fitted(self)
-        X = validate_data(self, X, reset=False, dtype=np.float64)
-        Z = (X - self.mean_) / self.scale_
+        Z = (check_X_fast(self, X) - self.mean_) / self.scale_
         return mlp_forward(Z, self.coefs_[0], self.intercepts_[0], self.coefs_[1], self.intercepts_[1])
 
     def predict_proba(self, X) -> np.ndarray:

@@ -40,6 +40,49 @@ def kernel_for(task: str | None, label) -> dict:
     return dict(THESIS_KERNELS.get(task or "", {}).get(str(label), DEFAULT_KERNEL))
 
 
+def svc_decision(
+    Z: np.ndarray,
+    sv: np.ndarray,
+    dual: np.ndarray,
+    b: float,
+    *,
+    kernel: str,
+    gamma: float,
+    degree: int,
+    coef0: float,
+) -> np.ndarray:
+    """Decision values ``sum_i dual_i K(sv_i, z) + b`` of a fitted binary SVC, ``(n,)``.
+
+    Same numbers as :meth:`sklearn.svm.SVC.decision_function` (positive = the class labelled 1), without
+    its per-call overhead (a few microseconds for one step instead of ~0.15 ms).
+    """
+    if kernel == "linear":
+        K = Z @ sv.T
+    elif kernel == "poly":
+        K = (gamma * (Z @ sv.T) + coef0) ** degree
+    elif kernel == "rbf":
+        d2 = np.sum(Z**2, axis=1)[:, None] - 2 * Z @ sv.T + np.sum(sv**2, axis=1)[None, :]
+        K = np.exp(-gamma * np.maximum(d2, 0.0))
+    else:  # pragma: no cover - kernels are fixed by THESIS_KERNELS
+        raise DataError(f"svc_decision: unsupported kernel {kernel!r}")
+    return K @ dual + b
+
+
+def check_X_fast(est, X) -> np.ndarray:
+    """Fast path of ``validate_data(est, X, reset=False)`` for a finite float64 2-D array of the fitted
+    width (one step at a time is the runtime case); anything else goes through scikit-learn's checks."""
+    if (
+        type(X) is np.ndarray
+        and X.dtype == np.float64
+        and X.ndim == 2
+        and X.shape[0] > 0
+        and X.shape[1] == getattr(est, "n_features_in_", -1)
+        and np.isfinite(X).all()
+    ):
+        return X
+    return validate_data(est, X, reset=False, dtype=np.float64)
+
+
 class SVMClassifier(ClassifierMixin, BaseEstimator):
     """One-vs-rest SVMs with per-class kernels behind one scikit-learn estimator.
 
@@ -92,6 +135,20 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
             model = clone(make_pipeline(StandardScaler(), svc))
             model.fit(X, (y == c).astype(int), svc__sample_weight=sample_weight)
             self.estimators_.append(model)
+        scaler = self.estimators_[0][0]  # every model standardizes the same X identically
+        self.mean_, self.scale_ = scaler.mean_, scaler.scale_
+        self.decision_params_ = [
+            dict(
+                sv=m[1].support_vectors_,
+                dual=m[1].dual_coef_[0],
+                b=float(m[1].intercept_[0]),
+                kernel=m[1].kernel,
+                gamma=float(m[1]._gamma),
+                degree=int(m[1].degree),
+                coef0=float(m[1].coef0),
+            )
+            for m in self.estimators_
+        ]
         return self
 
     def decision_function(self, X) -> np.ndarray:
@@ -101,8 +158,8 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
 
     def _scores(self, X) -> np.ndarray:
         check_is_fitted(self)
-        X = validate_data(self, X, reset=False, dtype=np.float64)
-        return np.column_stack([m.decision_function(X) for m in self.estimators_])
+        Z = (check_X_fast(self, X) - self.mean_) / self.scale_
+        return np.column_stack([svc_decision(Z, **p) for p in self.decision_params_])
 
     def predict(self, X) -> np.ndarray:
         """Class of the model with the highest score (thesis ch. 6.1.1.1)."""

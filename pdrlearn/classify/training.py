@@ -23,7 +23,13 @@ from sklearn.pipeline import Pipeline
 from sklearn.preprocessing import FunctionTransformer
 
 from pdrlearn.classify.dtw import THESIS_REFERENCES_PER_CLASS, DTWClassifier
-from pdrlearn.classify.fusion import UnitFusionClassifier, align_proba, best_weights, soft_vote
+from pdrlearn.classify.fusion import (
+    UnitFusionClassifier,
+    align_proba,
+    best_weights,
+    fused_from_fitted,
+    soft_vote,
+)
 from pdrlearn.classify.nn import NNClassifier
 from pdrlearn.classify.svm import SVMClassifier
 from pdrlearn.errors import DataError, MissingSensorError, PdrlearnError
@@ -464,9 +470,13 @@ def train_task(
         yi = np.array([list(classes).index(v) for v in y])
         w = best_weights([oof["foot"], oof["waist"]], yi)
         P = soft_vote([oof["foot"], oof["waist"]], w)
-        est = make_estimator(data.task, method, "fused", seed=seed, weights=w)
-        est.fit(X, y)
-        tm.models[method]["fused"] = est
+        template = make_estimator(data.task, method, "fused", seed=seed, weights=w)
+        fitted = [tm.models[method][u] for u in ("foot", "waist")]
+        if subsets["foot"][0].sum() != mask.sum() or subsets["waist"][0].sum() != mask.sum():
+            fitted = [clone(e).fit(X, y) for _, e, _ in template.units]  # units were fitted on other steps
+        tm.models[method]["fused"] = fused_from_fitted(
+            template.units, fitted, w, n_features_in=X.shape[1], random_state=seed
+        )
         tm.fusion_weights[method] = [float(v) for v in w]
         tm.cv[method]["fused"] = dict(
             class_metrics(y, classes[P.argmax(1)], classes),
