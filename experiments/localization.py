@@ -1,0 +1,262 @@
+"""Localization experiment (thesis ch.7.3, Tables 34-43): simulated scenarios A-D, M1/M2/M3, plus the
+real gaitmap level-walk stride lengths.
+
+Usage::
+
+    .venv/bin/python experiments/localization.py                 # 5 users x 3 speeds, A-D
+    .venv/bin/python experiments/localization.py --users 2 --speeds normal --quick
+
+Writes experiments/results/localization.md, localization_runs.csv and path figures
+experiments/results/localization_path_<scenario>.png. Each user's step classifiers are trained on that
+user's own simulated calibration exercises (terrain / direction / length) with
+``pdrlearn.classify.train_user`` when it is available, otherwise the classes are the session's labels
+("oracle", clearly marked). M3 is reported with both when a model exists.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.io import read_session
+from pdrlearn.orient import WaistHeading, wrap_angle
+from pdrlearn.track.evaluate import evaluate_track
+from pdrlearn.track.plasys import track_plasys
+from pdrlearn.track.plots import plot_paths
+
+ROOT = Path(__file__).resolve().parents[1]
+RESULTS = ROOT / "experiments" / "results"
+REAL = ROOT / "datasets" / "real"
+
+# thesis Tables 40-43: mean distance error (%) of M1, M2, M3 per scenario
+THESIS_DISTANCE = {"A": (11.65, 6.56, 0.23), "B": (11.94, 6.00, 0.68), "C": (14.63, 7.96, 5.24),
+                   "D": (18.09, 10.68, 6.59)}
+THESIS_ALTITUDE_D = 24.0  # thesis ch.7.3.2.2: 4.719 m estimated for 3.8 m, 24 % error
+# thesis Tables 36-39 (waist): mean orientation error (%) of the orientation scenarios
+THESIS_ORIENTATION_WAIST = {"A": 1.73, "B": 0.65, "C": 0.30, "D": 5.12}
+
+log = logging.getLogger("localization")
+
+
+def true_stride_heading(session, steps: pd.DataFrame) -> np.ndarray:
+    """Direction (ENU rad) of the ground-truth waist displacement over each stride window."""
+    g = session.trajectory
+    t = g["t"].to_numpy(float)
+    out = []
+    for s, e in zip(steps["start_s"], steps["end_s"], strict=True):
+        dx = np.interp(e, t, g["x"]) - np.interp(s, t, g["x"])
+        dy = np.interp(e, t, g["y"]) - np.interp(s, t, g["y"])
+        out.append(np.arctan2(dy, dx))
+    return np.array(out)
+
+
+def heading_metrics(result, session) -> dict:
+    """Per-stride heading MAE (deg) and the error of the total heading change (% of the true change)."""
+    st = result.steps
+    if session.trajectory is None or len(st) < 2:
+        return {}
+    true_h = true_stride_heading(session, st)
+    est_h = st["heading_rad"].to_numpy(float)
+    back = st["length_m"].to_numpy(float) < 0
+    true_h = np.where(back, true_h + np.pi, true_h)  # a backward stride moves against the heading
+    err = np.abs(wrap_angle(est_h - true_h))
+    d_true = float(np.sum(wrap_angle(np.diff(true_h))))
+    d_est = float(np.sum(wrap_angle(np.diff(est_h))))
+    out = {"heading_mae_deg": float(np.degrees(np.mean(err))), "heading_change_true_rad": d_true,
+           "heading_change_est_rad": d_est}
+    if abs(d_true) > 0.5:
+        out["orientation_error_pct"] = 100.0 * abs(d_est - d_true) / abs(d_true)
+    return out
+
+
+def train_model(simulate, user: int, quick: bool):
+    """Train the user's classifiers on their calibration exercises; None when classify is unavailable."""
+    try:
+        from pdrlearn.classify import train_user
+    except (ImportError, AttributeError):
+        return None, "oracle (pdrlearn.classify.train_user unavailable)"
+    sessions = [simulate(ex, user_seed=user) for ex in ("terrain", "direction", "length")]
+    kw = {"methods": ("svm",), "cv": 3} if quick else {"cv": 5}
+    t0 = time.perf_counter()
+    model = train_user(sessions, user=f"sim{user}", **kw)
+    log.info("user %d: model trained in %.1f s", user, time.perf_counter() - t0)
+    return model, "model (train_user on the user's calibration exercises)"
+
+
+def run_sim(users: int, speeds: list[str], scenarios: list[str], quick: bool) -> pd.DataFrame:
+    from pdrlearn.sim import simulate
+
+    rows = []
+    figures: dict[str, dict] = {}
+    for user in range(1, users + 1):
+        model, model_source = train_model(simulate, user, quick)
+        for scen in scenarios:
+            for speed in speeds:
+                s = simulate(scen, user_seed=user, speed=speed)
+                runs = {"M1": dict(method="M1"), "M2": dict(method="M2"),
+                        "M3-oracle": dict(method="M3", model="oracle")}
+                if model is not None:
+                    runs["M3"] = dict(method="M3", model=model)
+                for name, kw in runs.items():
+                    t0 = time.perf_counter()
+                    res = track_plasys(s, **kw)
+                    dt = time.perf_counter() - t0
+                    ev = evaluate_track(res, s)
+                    ev.update(heading_metrics(res, s))
+                    rows.append({"user": user, "scenario": scen, "speed": speed, "method": name,
+                                 "duration_s": s.duration_s, "track_time_s": dt, **{
+                                     k: v for k, v in ev.items() if not isinstance(v, dict | str)}})
+                    if user == 1 and speed == speeds[0]:
+                        figures.setdefault(scen, {"session": s, "paths": {}})["paths"][name] = res
+                log.info("user %d %s %s done", user, scen, speed)
+    for scen, f in figures.items():
+        plot_paths(f["paths"], RESULTS / f"localization_path_{scen}.png", session=f["session"],
+                   title=f"scenario {scen}, user 1: M1/M2/M3 vs ground truth")
+    df = pd.DataFrame(rows)
+    df.attrs["model_source"] = model_source
+    return df
+
+
+def run_orientation_tables() -> list[str]:
+    """Thesis Table 34 (standstill) and Table 35 (four pi/2 rotations) on simulated waist data."""
+    from pdrlearn.sim import simulate
+
+    lines = []
+    try:
+        s = simulate("standstill", user_seed=1)
+        wh = WaistHeading().fit_session(s)
+        h = wh.heading_[wh.t_ - wh.t_[0] > 2.0]
+        lines += ["### Table 34: heading with the waist unit still (simulated, 60 s)", "",
+                  "| statistic | thesis (rad) | ours (rad) |", "|---|---|---|",
+                  f"| minimum | 0.9340 | {h.min():.4f} |", f"| maximum | 0.9359 | {h.max():.4f} |",
+                  f"| mean | 0.9350 | {h.mean():.4f} |", f"| standard deviation | 0.00003 | {h.std():.5f} |", ""]
+    except Exception as exc:  # the scenario may not exist in this simulator version
+        lines += [f"Table 34: not run ({type(exc).__name__}: {exc})", ""]
+    try:
+        s = simulate("rotations", user_seed=1)
+        wh = WaistHeading().fit_session(s)
+        g = s.trajectory
+        truth = np.unwrap(g["heading"].to_numpy(float)) if "heading" in g else None
+        h = wh.heading_
+        rate = np.abs(np.gradient(h, wh.t_))
+        moving = rate > 0.2
+        d = np.diff(np.concatenate([[0], moving.astype(int), [0]]))
+        starts, stops = np.flatnonzero(d == 1), np.flatnonzero(d == -1)
+        rows = ["### Table 35: four pi/2 rotations (simulated)", "", "| rotation | thesis (rad) | ours (rad) |"
+                + (" truth (rad) |" if truth is not None else ""), "|---|---|---|" + ("---|" if truth is not None
+                                                                                    else "")]
+        thesis = [1.58, 1.70, 1.63, 1.37]
+        total = 0.0
+        for k, (a, b) in enumerate(zip(starts, stops, strict=True)):
+            a0, b1 = max(a - 10, 0), min(b + 10, len(h) - 1)
+            rot = abs(h[b1] - h[a0])
+            total += rot
+            tr = ""
+            if truth is not None:
+                gt = np.interp(wh.t_[[a0, b1]], g["t"], truth)
+                tr = f" {abs(gt[1] - gt[0]):.2f} |"
+            rows.append(f"| {k + 1} | {thesis[k] if k < 4 else ''} | {rot:.2f} |{tr}")
+        rows.append(f"| total | 6.28 | {total:.2f} |" + (" |" if truth is not None else ""))
+        lines += rows + [""]
+    except Exception as exc:
+        lines += [f"Table 35: not run ({type(exc).__name__}: {exc})", ""]
+    return lines
+
+
+def run_real() -> pd.DataFrame:
+    rows = []
+    for side in ("left", "right"):
+        d = REAL / f"gaitmap_level_{side}"
+        if not d.exists():
+            continue
+        s = read_session(d)
+        for steps in ("labels", "detector"):
+            for name, kw in {"M1": dict(method="M1"), "foot ZUPT/KF (M3 engine, oracle classes)":
+                             dict(method="M3", model="oracle")}.items():
+                res = track_plasys(s, steps=steps, **kw)
+                ev = evaluate_track(res, s)
+                rows.append({"session": s.name, "segmentation": steps, "method": name,
+                             **{k: v for k, v in ev.items() if k.startswith("stride") or k in (
+                                 "n_steps", "distance_m", "distance_error_pct")}})
+    return pd.DataFrame(rows)
+
+
+def fmt(x, nd=2):
+    return "" if x is None or (isinstance(x, float) and not np.isfinite(x)) else f"{x:.{nd}f}"
+
+
+def report(sim: pd.DataFrame | None, real: pd.DataFrame, orient: list[str], args) -> str:
+    lines = ["# Localization results (generated by experiments/localization.py)", "",
+             f"Command: `.venv/bin/python experiments/localization.py {' '.join(args)}`", ""]
+    if sim is not None and len(sim):
+        lines += [f"Classes for M3: {sim.attrs.get('model_source', '')}. M3-oracle uses the simulator's labels.",
+                  "Distance error = |estimated - reference| / reference, reference = sum of the labelled stride "
+                  "lengths; mean over users and speeds (thesis: mean over 2 pedestrians x 10 runs).", "",
+                  "| scenario | method | runs | mean distance error % (thesis) | SD % | final position error m |"
+                  " heading MAE deg | orientation error % | altitude error % |", "|---|---|---|---|---|---|---|---|---|"]
+        sim = sim.assign(abs_err=sim["distance_error_pct"].abs())
+        order = ["M1", "M2", "M3", "M3-oracle"]
+        for scen in sorted(sim["scenario"].unique()):
+            for m in [m for m in order if m in set(sim["method"])]:
+                d = sim[(sim["scenario"] == scen) & (sim["method"] == m)]
+                th = THESIS_DISTANCE.get(scen)
+                ti = {"M1": 0, "M2": 1, "M3": 2, "M3-oracle": 2}[m]
+                alt = d["altitude_error_pct"].mean() if "altitude_error_pct" in d else None
+                ori = d["orientation_error_pct"].mean() if "orientation_error_pct" in d else None
+                lines.append(f"| {scen} | {m} | {len(d)} | {fmt(d['abs_err'].mean())} ({th[ti] if th else ''}) | "
+                             f"{fmt(d['abs_err'].std())} | {fmt(d['final_position_error_m'].mean())} | "
+                             f"{fmt(d['heading_mae_deg'].mean(), 1)} | {fmt(ori)} | "
+                             f"{fmt(alt)}{' (thesis 24)' if scen == 'D' and m.startswith('M3') else ''} |")
+        lines += ["", "Per speed (M3 or M3-oracle, mean distance error %):", "",
+                  "| scenario | " + " | ".join(sorted(sim["speed"].unique())) + " |",
+                  "|---|" + "---|" * sim["speed"].nunique()]
+        m3 = "M3" if "M3" in set(sim["method"]) else "M3-oracle"
+        for scen in sorted(sim["scenario"].unique()):
+            d = sim[(sim["scenario"] == scen) & (sim["method"] == m3)]
+            lines.append(f"| {scen} | " + " | ".join(fmt(d[d["speed"] == sp]["abs_err"].mean())
+                                                     for sp in sorted(sim["speed"].unique())) + " |")
+        rate = sim["duration_s"].sum() / sim["track_time_s"].sum()
+        lines += ["", f"Tracking speed: {rate:.0f} s of data per second of computing (all methods).", ""]
+    lines += orient
+    if len(real):
+        lines += ["## Real foot level walk (gaitmap, motion-capture stride lengths)", "",
+                  "| session | segmentation | method | strides matched | MAE m | MAE % | straight MAE % |"
+                  " turn MAE % | distance error % |", "|---|---|---|---|---|---|---|---|---|"]
+        for r in real.itertuples():
+            lines.append(f"| {r.session} | {r.segmentation} | {r.method} | {r.stride_length_matched} | "
+                         f"{fmt(r.stride_length_mae_m, 3)} | {fmt(r.stride_length_mae_pct)} | "
+                         f"{fmt(getattr(r, 'stride_length_mae_pct_straight', None))} | "
+                         f"{fmt(getattr(r, 'stride_length_mae_pct_turns', None))} | {fmt(r.distance_error_pct)} |")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv: list[str] | None = None) -> None:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--users", type=int, default=5)
+    p.add_argument("--speeds", default="slow,normal,fast")
+    p.add_argument("--scenarios", default="A,B,C,D")
+    p.add_argument("--quick", action="store_true", help="train SVM only with 3-fold CV")
+    p.add_argument("--no-sim", action="store_true", help="only the real-data part")
+    args = p.parse_args(argv)
+    logging.basicConfig(level=logging.INFO, format="%(message)s")
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    sim = None
+    orient: list[str] = []
+    if not args.no_sim:
+        sim = run_sim(args.users, args.speeds.split(","), args.scenarios.split(","), args.quick)
+        sim.to_csv(RESULTS / "localization_runs.csv", index=False)
+        orient = run_orientation_tables()
+    real = run_real()
+    real.to_csv(RESULTS / "localization_real.csv", index=False)
+    text = report(sim, real, orient, argv if argv is not None else __import__("sys").argv[1:])
+    (RESULTS / "localization.md").write_text(text)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()
