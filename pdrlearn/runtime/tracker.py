@@ -202,10 +202,9 @@ class Tracker:
 
     def _append(self, name: str, t, v) -> None:
         t = np.asarray(t, dtype=np.float64).reshape(-1)
-        v = np.asarray(v, dtype=np.float64)
-        v = v.reshape(len(t), -1)
         if len(t) == 0:
             return
+        v = np.asarray(v, dtype=np.float64).reshape(len(t), -1)
         if not (np.isfinite(t).all() and np.isfinite(v).all()):
             raise DataError(f"{name}: pushed samples contain NaN/inf; clean the stream before tracking")
         parts = self._buf.setdefault(name, [])

@@ -1,0 +1,139 @@
+"""Parity of the numpy/onnxruntime runtime with the training side (issue 7, part 3).
+
+A user model is trained once (all five methods, foot / waist / fused) on a synthetic labelled session,
+exported with every method, and the runtime must reproduce ``UserModel.predict_steps`` on held-out
+steps: same classes, probabilities within 1e-5; its numpy kernels must equal the training side's.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from pdrlearn.classify import load_model, train_user
+from pdrlearn.export.bundle import bundle_size_bytes
+from pdrlearn.export.from_model import export_model
+from pdrlearn.features import TASK_COLUMNS, step_windows
+from pdrlearn.runtime import _kernels as K
+from pdrlearn.runtime import load_bundle
+from pdrlearn.runtime.classify import TaskClassifier
+from pdrlearn.runtime.features import step_window
+from pdrlearn.runtime.tracker import Tracker
+from tests.runtime_helpers import synthetic_session
+
+METHODS = ["heuristic", "fusion", "dtw", "svm", "nn"]
+
+
+@pytest.fixture(scope="module")
+def trained(tmp_path_factory):
+    root = tmp_path_factory.mktemp("export")
+    model = train_user([synthetic_session(90, seed=0)], cv=2, seed=0)
+    model.save(root / "model")
+    export_model(root / "model", root / "bundle_all", methods=METHODS)
+    export_model(root / "model", root / "bundle")  # default: each task's chosen method
+    test = synthetic_session(30, seed=5, name="held_out")
+    return {"root": root, "model": load_model(root / "model"), "test": test,
+            "windows": step_windows(test, test.steps, n_samples=model.n_samples)}
+
+
+def _streams(session):
+    return {n: (s.t, s.values) for n, s in session.streams.items()}
+
+
+def test_step_windows_equal_training_side(trained):
+    tr = Tracker(trained["root"] / "bundle_all")
+    s = trained["test"]
+    W = np.stack([step_window(_streams(s), a, b, channels=tr.channels, forward=tr.forward, n_samples=tr.n_samples)
+                  for a, b in zip(s.steps["start_s"], s.steps["end_s"], strict=True)])
+    ref = trained["windows"].X
+    assert np.array_equal(np.isnan(W), np.isnan(ref))
+    np.testing.assert_allclose(W, ref, atol=1e-9, equal_nan=True)
+
+
+def test_every_exported_method_and_unit_matches_predict_steps(trained):
+    model, s, W = trained["model"], trained["test"], trained["windows"].X
+    bundle = load_bundle(trained["root"] / "bundle_all")
+    ctx = {"signals": bundle.manifest["features"]["signals"],
+           "channel_index": {c: i for i, c in enumerate(bundle.manifest["features"]["channels"])}}
+    checked = 0
+    for task, tm in model.tasks.items():
+        for method, per in tm.models.items():
+            for unit in per:
+                ref = model.predict_steps(s, s.steps, tasks=[task], method=method, unit=unit)
+                clf = TaskClassifier(bundle, task, ctx, method=method, unit=unit)
+                classes, proba = clf.predict(W)
+                want = ref[[f"p_{task}_{c}" for c in clf.classes]].to_numpy()
+                assert list(classes) == list(ref[TASK_COLUMNS[task]]), (task, method, unit)
+                assert np.abs(proba - want).max() <= 1e-5, (task, method, unit)
+                checked += 1
+    assert checked >= 3 * 9  # 3 tasks x (heuristic 2 + fusion 1 + dtw/svm/nn 3 each)
+
+
+def test_streamed_steps_equal_training_side_on_the_same_steps(trained):
+    """Replay in 0.5 s chunks: every emitted step's classes/probabilities equal predict_steps on it."""
+    model, s = trained["model"], trained["test"]
+    tr = Tracker(trained["root"] / "bundle")
+    t = s.streams["fAccelerometer"].t
+    steps = []
+    for t0 in np.arange(t[0], t[-1] + 0.5, 0.5):
+        chunk = {n: (st.t[(st.t >= t0) & (st.t < t0 + 0.5)], st.values[(st.t >= t0) & (st.t < t0 + 0.5)])
+                 for n, st in s.streams.items()}
+        steps += tr.push(chunk)
+    # the synthetic session's 30 labelled strides are stance-to-stance: all but the first are found
+    assert len(steps) >= len(s.steps) - 2
+    import pandas as pd
+
+    table = pd.DataFrame({"start_s": [st.start_s for st in steps], "end_s": [st.end_s for st in steps]})
+    ref = model.predict_steps(s, table)
+    for task in tr.classifiers:
+        assert [st.classes[task] for st in steps] == list(ref[TASK_COLUMNS[task]])
+        for c in tr.classifiers[task].classes:
+            got = np.array([st.proba[task][c] for st in steps])
+            assert np.abs(got - ref[f"p_{task}_{c}"].to_numpy()).max() <= 1e-5
+    # bounded state: no more than buffer_s seconds of samples are kept per sensor
+    for name in tr._buf:
+        ts, _ = tr._stream(name)
+        assert ts[-1] - ts[0] <= tr.buffer_s + 0.1
+
+
+def test_default_bundle_holds_the_chosen_methods_and_is_small(trained):
+    b = load_bundle(trained["root"] / "bundle")
+    for task, tm in trained["model"].tasks.items():
+        spec = b.tasks[task]
+        assert spec["chosen"] == {"method": tm.chosen[0], "unit": tm.chosen[1]}
+        assert list(spec["methods"]) == [tm.chosen[0]]
+    assert bundle_size_bytes(trained["root"] / "bundle") < 5e6  # issue 7 target
+    assert not list((trained["root"] / "bundle").rglob("*.pkl")) and not list(
+        (trained["root"] / "bundle").rglob("*.joblib"))
+
+
+def test_runtime_kernels_equal_training_kernels():
+    from dtaidistance import dtw_ndim
+    from scipy.spatial.transform import Rotation
+
+    from pdrlearn.features import _kernels as FK
+    from pdrlearn.signal import gravity_rotation
+
+    rng = np.random.default_rng(3)
+    w = rng.normal(size=(20, 3)) * 0.5
+    np.testing.assert_allclose(K.rotvec_to_matrix(w), Rotation.from_rotvec(w).as_matrix(), atol=1e-12)
+    np.testing.assert_allclose(K.rotvec_to_matrix(w * 1e-10), Rotation.from_rotvec(w * 1e-10).as_matrix(),
+                               atol=1e-15)
+    for R in Rotation.from_rotvec(w).as_matrix():
+        np.testing.assert_allclose(K.matrix_to_rotvec(R), Rotation.from_matrix(R).as_rotvec(), atol=1e-9)
+    for g in [rng.normal(size=3) for _ in range(5)] + [np.array([0, 0, 9.8]), np.array([0, 0, -9.8])]:
+        np.testing.assert_allclose(K.gravity_rotation(g), gravity_rotation(g), atol=1e-12)
+    gyr, dt = rng.normal(size=(30, 3)), np.full(29, 0.05)
+    r0 = gravity_rotation(rng.normal(size=3))
+    np.testing.assert_allclose(K.propagate_attitude(gyr, dt, 4, r0), FK.propagate_attitude(gyr, dt, 4, r0),
+                               atol=1e-12)
+    sig, t = rng.normal(size=(4, 40)), np.tile(np.linspace(0, 1, 40), (4, 1))
+    np.testing.assert_allclose(K.segment_stats(sig, t, 6), FK.segment_stats(sig, t, 6), atol=1e-12)
+    force = np.abs(rng.normal(size=(4, 40))) * (rng.random((4, 40)) > 0.3)
+    for k, v in FK.force_stats(force, t).items():
+        np.testing.assert_allclose(K.force_stats(force, t)[k], v, atol=1e-12)
+    refs = rng.normal(size=(7, 40, 2))
+    q = rng.normal(size=(40, 2))
+    for window in (None, 4, 1):
+        want = [dtw_ndim.distance(q, r, window=window) for r in refs]
+        np.testing.assert_allclose(K.dtw_to_refs(q, refs, window), want, rtol=1e-10)
