@@ -43,7 +43,8 @@ def _streams(session):
 def test_step_windows_equal_training_side(trained):
     tr = Tracker(trained["root"] / "bundle_all")
     s = trained["test"]
-    W = np.stack([step_window(_streams(s), a, b, channels=tr.channels, forward=tr.forward, n_samples=tr.n_samples)
+    W = np.stack([step_window(_streams(s), a, b, channels=tr.channels, forward=tr.forward,
+                              n_samples=tr.n_samples)
                   for a, b in zip(s.steps["start_s"], s.steps["end_s"], strict=True)])
     ref = trained["windows"].X
     assert np.array_equal(np.isnan(W), np.isnan(ref))
