@@ -20,6 +20,7 @@ from pdrlearn.signal.filters import (
     gravity_rotation,
     interp_rows,
     lowpass,
+    lowpass_delay_s,
     magnitude,
     uniform_grid,
 )
@@ -27,5 +28,6 @@ from pdrlearn.signal.filters import (
 __all__ = [
     "G", "UNIT_STREAMS", "StandstillCalibration", "UnitCalibration", "apply_calibration",
     "calibrate_standstill", "resample_stream", "runs", "standstill_mask",
-    "CausalLowpass", "butter_sos", "gravity_rotation", "interp_rows", "lowpass", "magnitude", "uniform_grid",
+    "CausalLowpass", "butter_sos", "gravity_rotation", "interp_rows", "lowpass", "lowpass_delay_s",
+    "magnitude", "uniform_grid",
 ]

@@ -65,6 +65,14 @@ def lowpass(x: np.ndarray, cutoff_hz: float, fs: float, *, order: int = 3,
     return _sig.sosfiltfilt(sos, a, axis=0, padlen=padlen)
 
 
+def lowpass_delay_s(cutoff_hz: float, fs: float, *, order: int = 3, at_hz: float = 1.0) -> float:
+    """Group delay (s) of the causal Butterworth low-pass at ``at_hz`` (default 1 Hz, gait frequencies);
+    detectors subtract it from event times found on causally filtered signals."""
+    b, a = _sig.butter(order, cutoff_hz / (0.5 * fs))
+    _, gd = _sig.group_delay((b, a), w=[at_hz], fs=fs)
+    return float(gd[0]) / fs
+
+
 class CausalLowpass:
     """Streaming Butterworth low-pass with state; ``push(chunk)`` gives the same output as
     ``lowpass(whole, causal=True)`` whatever the chunking."""

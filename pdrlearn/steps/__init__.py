@@ -11,9 +11,9 @@ from pdrlearn.steps.detectors import (
     get_detector,
 )
 from pdrlearn.steps.evaluate import (
+    DEFAULT_TOLERANCE_S,
     Reference,
     in_intervals,
-    DEFAULT_TOLERANCE_S,
     match_events,
     reference_events,
     score_events,
@@ -23,5 +23,6 @@ from pdrlearn.steps.evaluate import (
 __all__ = [
     "STEPS_COLUMNS", "OnlineStepDetector", "StepDetector", "steps_frame",
     "DETECTORS", "AccelStepDetector", "AccelForceStepDetector", "PelvicGyroStepDetector", "PLLStepDetector",
-    "get_detector", "Reference", "in_intervals", "DEFAULT_TOLERANCE_S", "match_events", "reference_events", "score_events", "score_steps",
+    "get_detector", "Reference", "in_intervals", "DEFAULT_TOLERANCE_S", "match_events", "reference_events",
+    "score_events", "score_steps",
 ]

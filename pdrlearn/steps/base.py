@@ -22,7 +22,8 @@ log = logging.getLogger(__name__)
 STEPS_COLUMNS = ("start_s", "end_s", "event_s", "unit", "confidence")
 
 
-def steps_frame(events: list[Event], *, unit: str, detector: str, extra_columns: tuple[str, ...] = ()) -> pd.DataFrame:
+def steps_frame(events: list[Event], *, unit: str, detector: str,
+                extra_columns: tuple[str, ...] = ()) -> pd.DataFrame:
     """Build the steps table from kernel events (sorted by event time)."""
     rows = sorted(events, key=lambda e: e[0])
     data: dict[str, Any] = {
@@ -69,9 +70,11 @@ class OnlineStepDetector:
             )
         if t.size:
             if not (np.all(np.isfinite(t)) and np.all(np.isfinite(v))):
-                raise DataError(f"{self.detector.name} online: NaN or inf in the pushed chunk; drop those samples")
+                raise DataError(f"{self.detector.name} online: NaN or inf in the pushed chunk; "
+                                "drop those samples")
             if t[0] <= self._last_t or np.any(np.diff(t) <= 0):
-                raise DataError(f"{self.detector.name} online: timestamps must increase strictly across chunks")
+                raise DataError(f"{self.detector.name} online: timestamps must increase strictly "
+                                "across chunks")
             self._last_t = float(t[-1])
         events = self._proc.process(t, v) if t.size else []
         return self.detector._frame(events)
@@ -105,7 +108,8 @@ class StepDetector:
     def set_params(self, **params) -> StepDetector:
         for k, v in params.items():
             if k not in self._param_names():
-                raise DataError(f"{self.name}: unknown parameter '{k}'; valid: {', '.join(self._param_names())}")
+                raise DataError(f"{self.name}: unknown parameter '{k}'; "
+                                f"valid: {', '.join(self._param_names())}")
             setattr(self, k, v)
         return self
 

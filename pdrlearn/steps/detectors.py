@@ -16,7 +16,7 @@ import numpy as np
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
 from pdrlearn.signal.conditioning import G, calibrate_standstill
-from pdrlearn.signal.filters import CausalLowpass, magnitude
+from pdrlearn.signal.filters import CausalLowpass, lowpass_delay_s, magnitude
 from pdrlearn.steps._kernels import (
     BurstParams,
     BurstState,
@@ -47,6 +47,13 @@ def _cutoff(cutoff_hz: float, fs: float) -> float:
     return min(cutoff_hz, 0.45 * fs)
 
 
+def _shift(events: list, delay: float) -> list:
+    """Move event times back by the causal filter's group delay (start/end windows unchanged)."""
+    if not delay:
+        return events
+    return [(e[0] - delay, e[1], e[2], e[3], e[4]) for e in events]
+
+
 class _GravityTracker:
     """Causal gravity direction from a slow low-pass of the accelerometer (works in any sensor frame)."""
 
@@ -65,6 +72,7 @@ class _AccelProcessor:
     def __init__(self, det: AccelStepDetector, fs: float):
         self.det = det
         self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
+        self.delay = lowpass_delay_s(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
         self.w = max(2, int(round(det.still_window_s * fs)))
         self.tail: np.ndarray | None = None
         self.state = BurstState()
@@ -80,10 +88,10 @@ class _AccelProcessor:
         mean, std, self.tail = trailing_window_std(m, self.tail, self.w)
         still = (std < self.det.still_std) & (np.abs(mean - self.det.gravity) < self.det.still_level_tol)
         ev, self.state = burst_kernel(t, a, still, self.state, self.params)
-        return ev
+        return _shift(ev, self.delay)
 
     def flush(self) -> list:
-        return burst_flush(self.state)
+        return _shift(burst_flush(self.state), self.delay)
 
 
 class AccelStepDetector(StepDetector):
@@ -191,7 +199,8 @@ class AccelForceStepDetector(StepDetector):
         self.min_swing_s = min_swing_s
 
     def _inputs(self, session: Session):
-        purpose = "the accelerometer + force step detector (thesis ch.5.2; use --detector accel without force)"
+        purpose = ("the accelerometer + force step detector (thesis ch.5.2; "
+                   "use --detector accel without force)")
         session.require("fAccelerometer", "fForceA", "fForceB", purpose=purpose)
         acc = session["fAccelerometer"]
         check_stream(acc, session)
@@ -210,6 +219,7 @@ class _PelvicProcessor:
         self.bias = np.zeros(3) if gyro_bias is None else np.asarray(gyro_bias, dtype=float).reshape(3)
         self.grav = _GravityTracker(fs, det.gravity_cutoff_hz)
         self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
+        self.delay = lowpass_delay_s(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
         self.state = PelvicState()
         self.params = PelvicParams(
             threshold=det.threshold, peak_window_s=det.peak_window_s, amp_ref=det.amp_ref,
@@ -221,10 +231,10 @@ class _PelvicProcessor:
         yaw = np.einsum("ij,ij->i", v[:, :3] - self.bias, up)
         w = self.lp.push(yaw)
         ev, self.state = pelvic_kernel(t, w, self.state, self.params)
-        return ev
+        return _shift(ev, self.delay)
 
     def flush(self) -> list:
-        return pelvic_flush(self.state, self.params)
+        return _shift(pelvic_flush(self.state, self.params), self.delay)
 
 
 class PelvicGyroStepDetector(StepDetector):
@@ -283,7 +293,8 @@ class PelvicGyroStepDetector(StepDetector):
             try:
                 bias = calibrate_standstill(session, units=("waist",))["waist"].gyro_bias
             except DataError as exc:
-                log.warning("%s: no standstill calibration (%s); gyroscope offset taken as 0", session.name, exc)
+                log.warning("%s: no standstill calibration (%s); gyroscope offset taken as 0",
+                            session.name, exc)
         self.gyro_bias_ = bias
         return gyr.t, np.column_stack([gyr.values, acc]), {"gyro_bias": bias}
 
@@ -297,6 +308,7 @@ class _PLLProcessor:
         self.det = det
         self.grav = _GravityTracker(fs, det.gravity_cutoff_hz)
         self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=2)
+        self.delay = lowpass_delay_s(_cutoff(det.cutoff_hz, fs), fs, order=2) if det.refine_frac > 0 else 0.0
         self.state = PLLState()
         self.params = det.loop_params()
 
@@ -304,10 +316,10 @@ class _PLLProcessor:
         up, gnorm = self.grav.push(v)
         vert = self.lp.push(np.einsum("ij,ij->i", v, up) - gnorm)
         ev, self.state = pll_kernel(t, vert, self.state, self.params)
-        return ev
+        return _shift(ev, self.delay)
 
     def flush(self) -> list:
-        return pll_flush(self.state, self.params)
+        return _shift(pll_flush(self.state, self.params), self.delay)
 
 
 class PLLStepDetector(StepDetector):

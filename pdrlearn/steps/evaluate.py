@@ -122,7 +122,8 @@ def _span(times: np.ndarray, *more: np.ndarray) -> np.ndarray:
     return np.array([[float(allv.min()), float(allv.max())]])
 
 
-def reference_events(session: Session, unit: str, *, tolerance_s: float = DEFAULT_TOLERANCE_S) -> Reference | None:
+def reference_events(session: Session, unit: str, *,
+                     tolerance_s: float = DEFAULT_TOLERANCE_S) -> Reference | None:
     """Reference events of ``session`` for a detector on ``unit`` (``None`` without labels).
 
     - ``waist``: every initial contact of both feet (``extras["ics"].ic_s``) when present, else the steps
@@ -158,7 +159,8 @@ def reference_events(session: Session, unit: str, *, tolerance_s: float = DEFAUL
         mid = se.mean(axis=1)
         half = np.maximum(0.5 * (se[:, 1] - se[:, 0]), 1e-3)
         return Reference(mid, half, _span(se[:, 0], se[:, 1]) + [-tol, tol],
-                         "steps.csv stride windows (source=detected: a rest-based segmentation, NOT ground truth)",
+                         "steps.csv stride windows (source=detected: a rest-based segmentation, "
+                         "NOT ground truth)",
                          ground_truth=False)
     if "ic_s" in st and st["ic_s"].notna().any():
         ev = st["ic_s"].dropna().to_numpy(float)
@@ -199,6 +201,7 @@ def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = D
     inside = in_intervals(ev, ref.intervals)
     out = score_events(ev[inside], ref.times, tolerance_s=ref.tolerance_s)
     out["tolerance_s"] = float(tolerance_s)
+    out["scored_count"] = out["count"]
     out["outside_labels"] = int((~inside).sum())
     out["total_count"] = int(ev.size)
     out["reference"] = ref.description

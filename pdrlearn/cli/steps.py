@@ -1,0 +1,70 @@
+# ruff: noqa: B008  (typer declares options as call defaults)
+"""``pdrlearn steps``: detect steps in a session and score them against its labels."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from pdrlearn.cli.common import json_safe, out_file, print_json
+
+_METRICS = ("scored_count", "reference_count", "precision", "recall", "f1", "count_error_pct",
+            "timing_error_mean_s", "timing_error_sd_s", "true_positives", "false_positives",
+            "false_negatives", "outside_labels", "total_count", "tolerance_s", "reference", "ground_truth")
+
+
+def steps(
+    session_dir: Path = typer.Argument(..., help="PLASYS session folder."),
+    detector: str = typer.Option("accel", "--detector", "-d",
+                                 help="accel | accel-force (foot strides) | pelvic-gyro | pll (waist steps)."),  # noqa: E501
+    out: Path = typer.Option(None, "--out", "-o", help="Write the steps table to this CSV (times in s)."),
+    tolerance: float = typer.Option(0.25, "--tolerance", help="Event matching tolerance in seconds."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
+) -> None:
+    """Detect steps and, when the session has labels, print precision/recall/F1 and the count error.
+
+    Foot detectors find one event per stride of the instrumented foot and are scored against
+    steps.csv (ic_ms); waist detectors find every step and are scored against ics.csv when present.
+
+    Examples:
+
+        pdrlearn steps datasets/real/gaitmap_level_right --detector accel
+
+        pdrlearn steps datasets/real/mobgap_HA001_Test5_Trial1 --detector pll --json
+
+        pdrlearn steps out/sim/A --detector accel-force --out out/A_steps.csv
+    """
+    from pdrlearn.io import read_session
+    from pdrlearn.steps import get_detector, score_steps
+
+    det = get_detector(detector)
+    session = read_session(session_dir)
+    table = det.detect(session)
+    result: dict = {"session": session.name, "detector": det.name, "unit": det.unit, "count": int(len(table))}
+    score = score_steps(table, session, tolerance_s=tolerance)
+    if score is not None:
+        result.update({k: score[k] for k in _METRICS})
+    if out is not None:
+        out = out_file(out, (".csv",))
+        table.to_csv(out, index=False)
+        result["out"] = str(out)
+    if as_json:
+        print_json(json_safe(result))
+        return
+    what = "strides" if det.unit == "foot" else "steps"
+    typer.echo(f"{session.name}: {result['count']} {what} ({det.name})")
+    if score is not None:
+        typer.echo(f"reference: {score['reference_count']} from {score['reference']}")
+        typer.echo(f"precision {score['precision']:.3f}  recall {score['recall']:.3f}  F1 {score['f1']:.3f}  "
+                   f"count error {score['count_error_pct']:.1f} %  (tolerance {tolerance:g} s, "
+                   f"{score['outside_labels']} detections outside the labelled span)")
+        if score["ground_truth"]:
+            typer.echo(f"timing error {score['timing_error_mean_s']:+.3f} "
+                       f"+- {score['timing_error_sd_s']:.3f} s")
+    if out is not None:
+        typer.echo(str(out))
+
+
+def register(app: typer.Typer) -> None:
+    app.command("steps")(steps)

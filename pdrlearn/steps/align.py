@@ -1,0 +1,101 @@
+"""Clock alignment of the foot and waist units from their step events (thesis ch.7: the units are
+aligned with the gyroscope step detector; here any waist detector).
+
+Model: at one physical instant the waist clock reads ``t_w = t_f + offset_s + drift * t_f`` where
+``t_f`` is the foot clock (the foot clock is the reference: labels and foot steps are kept on it).
+"""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.io.session import Session
+
+log = logging.getLogger(__name__)
+
+
+def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: float = 0.005,
+                 tolerance_s: float = 0.08, fit_drift: bool = True) -> dict:
+    """Estimate ``offset_s`` (and ``drift``) so that ``foot + offset + drift * foot`` meets waist events.
+
+    Every foot stride event should coincide with one waist step event (the waist sees both feet), so the
+    offset that matches the most foot events within ``tolerance_s`` wins (grid of ``step_s`` over
+    +-``max_offset_s``; ties -> the smallest mean distance); the matched pairs are then fitted by least
+    squares, ``t_w - t_f = offset + drift * t_f``. Pauses and cadence changes make the true offset
+    stand out from offsets shifted by one step period.
+
+    Returns
+    -------
+    dict with ``offset_s``, ``drift`` (s/s), ``matched`` (pairs), ``foot_events``, ``residual_sd_s``.
+    """
+    f = np.sort(np.asarray(foot_times, dtype=float))
+    w = np.sort(np.asarray(waist_times, dtype=float))
+    if f.size < 3 or w.size < 3:
+        raise DataError(f"align_units: need at least 3 foot and 3 waist step events (got {f.size} and "
+                        f"{w.size}); record a longer walk")
+    grid = np.arange(-max_offset_s, max_offset_s + step_s / 2, step_s)
+    shifted = f[None, :] + grid[:, None]  # (n_grid, n_foot)
+    idx = np.clip(np.searchsorted(w, shifted), 1, w.size - 1)
+    dist = np.minimum(np.abs(w[idx] - shifted), np.abs(w[idx - 1] - shifted))
+    ok = dist <= tolerance_s
+    counts = ok.sum(axis=1)
+    mean_d = np.where(counts > 0, np.where(ok, dist, 0).sum(axis=1) / np.maximum(counts, 1), np.inf)
+    best = np.lexsort((mean_d, -counts))[0]
+    o = float(grid[best])
+    # least-squares refinement over the matched pairs (two passes to settle the matching)
+    drift = 0.0
+    pairs_f = pairs_w = np.zeros(0)
+    for _ in range(2):
+        pred = f + o + drift * f
+        j = np.clip(np.searchsorted(w, pred), 1, w.size - 1)
+        jj = np.where(np.abs(w[j] - pred) < np.abs(w[j - 1] - pred), j, j - 1)
+        m = np.abs(w[jj] - pred) <= tolerance_s
+        pairs_f, pairs_w = f[m], w[jj[m]]
+        if pairs_f.size < 2:
+            break
+        d = pairs_w - pairs_f
+        if fit_drift and pairs_f.size >= 5 and np.ptp(pairs_f) > 0:
+            drift, o = (float(v) for v in np.polyfit(pairs_f, d, 1))
+        else:
+            o, drift = float(np.median(d)), 0.0
+    resid = (pairs_w - pairs_f) - (o + drift * pairs_f) if pairs_f.size else np.zeros(0)
+    return {"offset_s": o, "drift": drift, "matched": int(pairs_f.size), "foot_events": int(f.size),
+            "residual_sd_s": float(resid.std()) if resid.size > 1 else float("nan")}
+
+
+def align_units(session: Session, *, foot_detector=None, waist_detector=None, max_offset_s: float = 2.0,
+                tolerance_s: float = 0.08, fit_drift: bool = True) -> tuple[float, float]:
+    """Estimate the clock offset and drift between the foot and waist units of ``session``.
+
+    Foot events: the accelerometer + force detector when force sensors are present, else the
+    accelerometer detector; waist events: the PLL detector (both replaceable). Returns
+    ``(offset_s, drift)`` with ``t_waist = t_foot + offset_s + drift * t_foot``; details are logged and
+    stored in ``session.meta["alignment"]`` is NOT modified (the session is left untouched).
+    """
+    from pdrlearn.steps.detectors import AccelForceStepDetector, AccelStepDetector, PLLStepDetector
+
+    if foot_detector is None:
+        has_force = session.has("fForceA", "fForceB")
+        foot_detector = AccelForceStepDetector() if has_force else AccelStepDetector()
+    waist_detector = waist_detector or PLLStepDetector()
+    fe = foot_detector.detect(session)["event_s"].to_numpy(float)
+    we = waist_detector.detect(session)["event_s"].to_numpy(float)
+    res = align_events(fe, we, max_offset_s=max_offset_s, tolerance_s=tolerance_s, fit_drift=fit_drift)
+    log.info("%s alignment: %s", session.name, res)
+    return res["offset_s"], res["drift"]
+
+
+def apply_alignment(session: Session, offset_s: float, drift: float = 0.0) -> Session:
+    """Copy of ``session`` with the waist streams moved onto the foot clock:
+    ``t_foot = (t_waist - offset_s) / (1 + drift)``. Labels are left as they are (foot clock)."""
+    out = session.copy()
+    if not np.isfinite(offset_s) or not np.isfinite(drift) or abs(drift) > 0.1:
+        raise DataError(f"apply_alignment: implausible offset {offset_s} s / drift {drift}; "
+                        "re-run align_units")
+    for s in out.streams.values():
+        if s.placement == "waist":
+            s.t = (s.t - offset_s) / (1.0 + drift)
+    return out
