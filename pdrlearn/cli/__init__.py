@@ -15,7 +15,7 @@ import typer
 
 from pdrlearn.errors import PdrlearnError
 
-COMMAND_MODULES = ["data", "report", "train", "calibrate", "track"]
+COMMAND_MODULES = ["data", "report", "train", "calibrate", "track", "steps"]
 
 app = typer.Typer(
     name="pdrlearn",
