@@ -246,3 +246,26 @@ def test_real_calibrate_cli_then_track(tmp_path):
     res0 = get_pipeline("waist-pendulum")(test)
     assert any("no per-user calibration" in w for w in res0.info["warnings"])
     assert main(["calibrate", str(tmp_path), "--pipeline", "waist-pll", "--out", str(out)]) == 2
+
+
+@pytest.mark.skipif(not (REAL / "mobgap_HA001_Test5_Trial1").exists(), reason="real data not bundled")
+def test_real_track_cli_json_contract(tmp_path, capsys):
+    """`pdrlearn track DIR --pipeline waist-... --json`: distance_m, n_steps and, with the Mobilise-D
+    references, distance_error_pct over the bouts, step_f1 and stride_length_mae_m."""
+    from pdrlearn.cli import main
+
+    params = tmp_path / "p.json"
+    assert main(["calibrate", str(REAL / "mobgap_HA001_Test5_Trial1"), "--pipeline", "waist-pll",
+                 "--out", str(params)]) == 0
+    capsys.readouterr()
+    rc = main(["track", str(REAL / "mobgap_HA001_Test5_Trial2"), "--pipeline", "waist-pll", "--params",
+               str(params), "--start", "41.178,-8.608", "--out", str(tmp_path / "trk"), "--json"])
+    assert rc == 0
+    d = json.loads(capsys.readouterr().out)
+    for k in ("distance_m", "n_steps", "distance_error_pct", "step_f1", "stride_length_mae_m"):
+        assert k in d
+    assert d["distance_ref_source"].startswith("bouts.csv")
+    assert d["step_f1"] >= 0.95 and abs(d["ic_timing_mean_ms"]) <= 20
+    assert abs(d["distance_error_pct"]) < 15
+    traj = pd.read_csv(tmp_path / "trk" / "trajectory.csv")
+    assert traj["lat"].notna().all()

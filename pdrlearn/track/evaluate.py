@@ -120,8 +120,28 @@ def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
             out["stride_length_mae_pct_turns"] = float(100.0 * np.mean((err / np.abs(r))[turn]))
 
 
+def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
+    """Waist tracks on sessions with Mobilise-D style references (``ics.csv``, ``bouts.csv``): ``step_f1``
+    vs every initial contact, ``distance_error_pct`` over the reference walking bouts and
+    ``stride_length_mae_m`` from the steps inside each reference stride (see pdrlearn.waist.evaluate)."""
+    if not len(result.steps) or "unit" not in result.steps or not (result.steps["unit"] == "waist").all():
+        return
+    if "ics" not in session.extras and "bouts" not in session.extras:
+        return
+    from pdrlearn.waist.evaluate import waist_metrics
+
+    m = waist_metrics(result.steps, session)
+    if "distance_error_pct" in m:  # the bouts, not the sum of overlapping stride lengths, are the reference
+        out["distance_ref_m"] = m["bout_reference_m"]
+        out["distance_ref_source"] = "bouts.csv length_m (distance tracked inside the bouts)"
+    for k in ("stride_length_matched", "stride_length_mae_pct", "stride_length_mae_pct_straight",
+              "stride_length_mae_pct_turns"):
+        out.pop(k, None)
+    out.update(m)
+
+
 #: metric helpers run in order by :func:`evaluate_track`; append to extend.
-METRICS = [_basic, _ground_truth, _stride_lengths]
+METRICS = [_basic, _ground_truth, _stride_lengths, _waist_references]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:

@@ -69,31 +69,42 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine
     return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector="pll+ic" if refine_ic else "pll")
 
 
-def _start(start) -> tuple[float, float, float]:
+def _start(start, initial_heading: float) -> tuple[float, float, float, tuple[float, float] | None]:
+    """``(x0, y0, heading0, latlon)`` from ``start``: None, a dict ``x``/``y``/``heading_rad`` (m, rad)
+    or a ``(lat, lon)`` pair in degrees (the ``pdrlearn track --start`` form)."""
     if start is None:
-        return 0.0, 0.0, 0.0
+        return 0.0, 0.0, initial_heading, None
     if isinstance(start, dict):
         try:
             return (float(start.get("x", 0.0)), float(start.get("y", 0.0)),
-                    float(start.get("heading_rad", start.get("heading", 0.0))))
+                    float(start.get("heading_rad", initial_heading)), None)
         except (TypeError, ValueError):
             raise DataError(f"start {start!r}: x, y, heading_rad must be numbers") from None
-    raise DataError(f"start {start!r}: pass a dict with x, y (m) and heading_rad (rad)")
+    if isinstance(start, list | tuple) and len(start) == 2:
+        try:
+            return 0.0, 0.0, initial_heading, (float(start[0]), float(start[1]))
+        except (TypeError, ValueError):
+            pass
+    raise DataError(f"start {start!r}: pass (lat, lon) in degrees or a dict with x, y (m) and heading_rad")
 
 
-def _result(steps: pd.DataFrame, lengths: np.ndarray, headings: np.ndarray, start, info: dict,
-            t0: float) -> TrackResult:
-    x0, y0, h0 = _start(start)
+def _result(steps: pd.DataFrame, lengths: np.ndarray, headings: np.ndarray, start, initial_heading: float,
+            info: dict, t0: float) -> TrackResult:
+    from pdrlearn.track.geodetic import geodetic_track
+
+    x0, y0, h0, latlon = _start(start, initial_heading)
     out = steps.copy()
+    head = np.angle(np.exp(1j * (headings + h0)))
     out["length_m"] = lengths
-    out["heading_rad"] = np.angle(np.exp(1j * (headings + h0)))
+    out["heading_rad"] = head
     out["dz_m"] = 0.0
-    dx = lengths * np.cos(headings + h0)
-    dy = lengths * np.sin(headings + h0)
     traj = pd.DataFrame({"t": np.concatenate([[t0], out["end_s"].to_numpy(float)]),
-                         "x": x0 + np.concatenate([[0.0], np.cumsum(dx)]),
-                         "y": y0 + np.concatenate([[0.0], np.cumsum(dy)]),
+                         "x": x0 + np.concatenate([[0.0], np.cumsum(lengths * np.cos(head))]),
+                         "y": y0 + np.concatenate([[0.0], np.cumsum(lengths * np.sin(head))]),
                          "z": 0.0})
+    if latlon is not None:
+        ll = geodetic_track(latlon, lengths, head)
+        traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     return TrackResult(steps=out, trajectory=traj, info=info)
 
 
@@ -109,15 +120,17 @@ def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
 
 
 def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool = False,
-                heading: str | None = None, refine_ic: bool = True) -> TrackResult:
+                heading: str | None = None, refine_ic: bool = True, initial_heading: float = 0.0
+                ) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
     ----------
     params : PARAMS.json path, dict or :class:`WaistParams` from ``pdrlearn calibrate`` (None: defaults
         from meta.json, with a warning)
-    start : dict ``x``, ``y`` (m), ``heading_rad`` (rad, ENU; 0 = east) of the start; default origin,
-        heading 0 = the unit's initial facing direction
+    start : ``(lat, lon)`` degrees (adds ``lat``/``lon`` columns) or a dict ``x``, ``y`` (m),
+        ``heading_rad`` (rad, ENU; 0 = east); default: origin
+    initial_heading : ENU heading (rad) given to the unit's initial facing direction (no magnetometer)
     realtime : pendulum only: the causal IC detector instead of the zero-lag offline one
     refine_ic : PLL only: report each step at the initial contact next to its PLL peak (W11)
     heading : ``"ahe"`` (default of waist-pll), ``"ellipse"`` (seed 001 closed form) or ``"gyro"``
@@ -188,7 +201,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     }
     for w in warnings:
         log.warning("%s: %s", session.name, w)
-    return _result(steps, lengths, headings, start, info, float(imu.t[0]))
+    return _result(steps, lengths, headings, start, initial_heading, info, float(imu.t[0]))
 
 
 @register_pipeline("waist-pll")
