@@ -1,0 +1,309 @@
+"""Gait timing, foot and pelvis kinematics of the simulated walker.
+
+The foot is a rigid body moved by a three-rocker model: heel rocker (initial contact -> foot flat,
+rotation about the heel; toe-first contacts rotate about the ball), foot flat (still), forefoot rocker
+(heel-off -> toe-off, rotation about the ball of the foot) and swing (clamped cubic splines for the heel
+path and the pitch). At initial contact the contact point stops abruptly: the velocity jump is the
+impact that real foot accelerometers record. The pelvis follows the mid-point between the feet (smooth
+monotone interpolation between initial contacts) plus gait-phase oscillations: vertical bounce, forward
+surge, lateral sway, pelvic rotation about the vertical, obliquity and tilt, and a short heel-strike
+transient.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.interpolate import CubicSpline, PchipInterpolator
+
+from pdrlearn.sim.kernels import foot_rotation, foot_rotation_dtheta, hermite, rot_x, rot_y, rot_z, smoothstep
+from pdrlearn.sim.path import Footstep
+from pdrlearn.sim.user import GAIT_FACTORS, UserProfile
+
+# Kind -> (step-duration factor, toe-off pitch factor, initial-contact pitch (None = user's heel strike),
+#          impact (forward, vertical) factors, swing clearance (m, None = user's)).
+# Values follow the thesis' qualitative descriptions: on stairs the force is concentrated on the forefoot
+# and the heel load is negligible (thesis ch.2.5, ref [115]); descending steps land toe first with a
+# harder impact (thesis ch.6.1: "the foot touches the ground with a higher force").
+KIND_PARAMS = {
+    "walk": (1.00, 1.00, None, (0.55, -0.85), None),
+    "close": (1.00, 0.60, None, (0.35, -0.6), 0.15),
+    "stairs_up": (1.12, 0.55, np.radians(4.0), (0.75, -1.1), 0.11),
+    "stairs_down": (1.05, 0.45, np.radians(-22.0), (0.35, -1.5), 0.09),
+    "backward": (1.20, -0.30, np.radians(-15.0), (0.30, -0.6), 0.09),
+    "turn": (1.10, 0.25, np.radians(3.0), (0.05, -0.3), 0.05),
+}
+SPEED_PITCH = {"slow": 0.88, "normal": 1.0, "fast": 1.08}
+LOAD_FRACTION = 0.10  # initial contact -> foot flat, fraction of the gait cycle
+HEEL_OFF_FRACTION = 0.35  # heel-off instant, fraction of the gait cycle
+
+
+@dataclass
+class Events:
+    """Per-footstep gait events (s) and swing parameters, arrays aligned with the footstep list."""
+
+    ho: np.ndarray
+    to: np.ndarray
+    ic: np.ndarray
+    ff: np.ndarray
+    step_s: np.ndarray  # nominal step duration
+    theta_to: np.ndarray
+    theta_ic: np.ndarray
+    impact: np.ndarray  # (n, 2): forward, vertical pivot velocity before contact (m/s)
+    clearance: np.ndarray
+    bout_start: np.ndarray  # bool: first step after a standstill
+
+    @property
+    def end_s(self) -> float:
+        return float(self.ff.max()) if len(self.ff) else 0.0
+
+
+def schedule(steps: list[Footstep], user: UserProfile, *, speed: str, rng: np.random.Generator,
+             stand_s: float, variability: float = 1.0) -> Events:
+    """Assign gait-event times to the footsteps (both feet) and draw per-step swing parameters."""
+    n = len(steps)
+    ev = {k: np.zeros(n) for k in ("ho", "to", "ic", "ff", "step_s", "theta_to", "theta_ic", "clearance")}
+    impact = np.zeros((n, 2))
+    bout_start = np.zeros(n, dtype=bool)
+    cv = user.variability * variability
+    last_ff = {"left": stand_s - 1.0, "right": stand_s - 1.0}
+    settle = stand_s  # time at which all feet are flat after the last bout
+    stance = user.stance_fraction
+    for k, st in enumerate(steps):
+        dfac, pfac, ic_pitch, (vf, vz), clear = KIND_PARAMS[st.kind]
+        d = user.step_time(speed, st.gait) * dfac * max(0.7, 1.0 + rng.normal(0.0, cv))
+        if st.irregular:
+            d *= 1.3
+        T = 2.0 * d
+        swing, rock, load = (1 - stance) * T, (stance - HEEL_OFF_FRACTION) * T, LOAD_FRACTION * T
+        start = k == 0 or st.pause_before_s > 0 or steps[k - 1].foot == st.foot
+        if start:
+            ho = max(settle + st.pause_before_s, last_ff[st.foot] + 0.05)
+            ic = ho + rock + swing
+        else:
+            ic = ev["ic"][k - 1] + d
+            ic = max(ic, ev["ic"][k - 1] + swing + 0.02, last_ff[st.foot] + 0.05 + rock + swing)
+        bout_start[k] = start
+        ev["ic"][k], ev["to"][k], ev["ho"][k], ev["ff"][k] = ic, ic - swing, ic - swing - rock, ic + load
+        ev["step_s"][k] = d
+        last_ff[st.foot] = ic + load
+        settle = max(settle, ic + load)
+        jit = 1.0 + 0.1 * variability * rng.normal()
+        gait_pitch = 0.6 if st.gait == "short" else (1.1 if st.gait == "long" else 1.0)
+        ev["theta_to"][k] = np.radians(user.toe_off_pitch_deg) * pfac * SPEED_PITCH[speed] * gait_pitch * jit
+        if ic_pitch is None:
+            ic_pitch = np.radians(user.heel_strike_pitch_deg) * (0.6 if st.kind == "close" else 1.0) \
+                * SPEED_PITCH[speed] * gait_pitch
+        ev["theta_ic"][k] = ic_pitch * (1.0 + 0.1 * variability * rng.normal())
+        sp = user.impact_speed_mps * np.exp(rng.normal(0.0, 0.25 * variability))
+        sp *= {"slow": 0.8, "normal": 1.0, "fast": 1.2}[speed] * GAIT_FACTORS[st.gait][0] ** 0.5
+        if st.irregular:
+            sp *= 0.5
+        impact[k] = (vf * sp, vz * sp)
+        ev["clearance"][k] = (clear if clear is not None else user.swing_height_m) * (0.5 if st.irregular else 1.0)
+    return Events(impact=impact, bout_start=bout_start, **ev)
+
+
+# -- foot ---------------------------------------------------------------------------------------
+def _pivot(theta: float, ball: np.ndarray) -> np.ndarray:
+    """Foot-frame pivot: the ball of the foot when the toes point down (theta < 0), else the heel."""
+    return ball if theta < 0 else np.zeros(3)
+
+
+def foot_pose(t: np.ndarray, foot: str, steps: list[Footstep], ev: Events, initial: dict,
+              user: UserProfile) -> tuple[np.ndarray, np.ndarray]:
+    """Heel position (n, 3) and orientation (n, 3, 3, body FLU -> ENU) of one foot on the time grid ``t``."""
+    n = t.size
+    heel = np.empty((n, 3))
+    yaw = np.empty(n)
+    theta = np.zeros(n)
+    ball = np.array([0.72 * user.foot_length_m, 0.0, 0.0])  # ball of the foot, ~72 % of foot length
+    h_a, y_a = initial[foot]
+    h_a = np.asarray(h_a, float)
+    pos = 0
+    for k in np.flatnonzero([s.foot == foot for s in steps]):
+        st = steps[k]
+        h_b, y_b = st.heel, st.yaw
+        i_ho, i_to, i_ic, i_ff = np.searchsorted(t, [ev.ho[k], ev.to[k], ev.ic[k], ev.ff[k]])
+        heel[pos:i_ho], yaw[pos:i_ho], theta[pos:i_ho] = h_a, y_a, 0.0
+        # forefoot (or heel) rocker: heel-off -> toe-off, pivot fixed on footprint A
+        th_to, th_ic = ev.theta_to[k], ev.theta_ic[k]
+        rock, load = ev.to[k] - ev.ho[k], ev.ff[k] - ev.ic[k]
+        w_to = 1.5 * th_to / rock
+        w_ic = -1.5 * th_ic / load
+        r_a = _pivot(th_to, ball)
+        p_a = h_a + rot_z(y_a) @ r_a
+        sl = slice(i_ho, i_to)
+        th = hermite((t[sl] - ev.ho[k]) / rock, 0.0, th_to, 0.0, w_to, rock)
+        heel[sl] = p_a - foot_rotation(y_a, th) @ r_a
+        yaw[sl], theta[sl] = y_a, th
+        # swing: toe-off -> initial contact
+        heel_to = p_a - foot_rotation(y_a, th_to) @ r_a
+        v_to = -(foot_rotation_dtheta(y_a, th_to) @ r_a) * w_to
+        r_b = ball if th_ic < 0 else np.zeros(3)
+        p_b = h_b + rot_z(y_b) @ r_b
+        heel_ic = p_b - foot_rotation(y_b, th_ic) @ r_b
+        d_xy = heel_ic[:2] - heel_to[:2]
+        dist = float(np.linalg.norm(d_xy))
+        fwd = np.append(d_xy / dist, 0.0) if dist > 1e-6 else np.array([np.cos(y_b), np.sin(y_b), 0.0])
+        v_pivot = ev.impact[k, 0] * fwd + np.array([0.0, 0.0, ev.impact[k, 1]])
+        v_ic = v_pivot - (foot_rotation_dtheta(y_b, th_ic) @ r_b) * w_ic
+        swing = ev.ic[k] - ev.to[k]
+        zmax = max(h_a[2], h_b[2])
+        clear = ev.clearance[k]
+        knots_u = np.array([0.0, 0.27, 0.68, 1.0])
+        frac = np.array([0.0, 0.18, 0.78, 1.0])
+        kp = heel_to[None, :] + frac[:, None] * (heel_ic - heel_to)[None, :]
+        kp[1, 2] = max(zmax + clear, heel_to[2] + 0.3 * clear)
+        kp[2, 2] = zmax + 0.3 * clear
+        kp[0], kp[3] = heel_to, heel_ic
+        cs = CubicSpline(ev.to[k] + knots_u * swing, kp, bc_type=((1, v_to), (1, v_ic)))
+        sl = slice(i_to, i_ic)
+        heel[sl] = cs(t[sl])
+        tu = (t[sl] - ev.to[k]) / swing
+        yaw[sl] = y_a + (y_b - y_a) * smoothstep(tu)
+        pk = np.array([th_to, th_to + 0.15 * th_to - 0.1 * np.sign(th_to) * abs(th_ic), 0.55 * th_ic, th_ic])
+        cp = CubicSpline(ev.to[k] + np.array([0.0, 0.14, 0.62, 1.0]) * swing, pk, bc_type=((1, w_to), (1, w_ic)))
+        theta[sl] = cp(t[sl])
+        # loading rocker: initial contact -> foot flat, pivot fixed on footprint B
+        sl = slice(i_ic, i_ff)
+        th = hermite((t[sl] - ev.ic[k]) / load, th_ic, 0.0, w_ic, 0.0, load)
+        heel[sl] = p_b - foot_rotation(y_b, th) @ r_b
+        yaw[sl], theta[sl] = y_b, th
+        h_a, y_a, pos = np.asarray(h_b, float), y_b, i_ff
+    heel[pos:], yaw[pos:], theta[pos:] = h_a, y_a, 0.0
+    return heel, foot_rotation(yaw, theta)
+
+
+# -- pelvis -------------------------------------------------------------------------------------
+def _foot_centre(heel: np.ndarray, yaw: float, user: UserProfile) -> np.ndarray:
+    return heel + np.array([np.cos(yaw), np.sin(yaw), 0.0]) * 0.4 * user.foot_length_m
+
+
+def _bouts(steps: list[Footstep], ev: Events) -> list[tuple[int, int]]:
+    starts = list(np.flatnonzero(ev.bout_start)) + [len(steps)]
+    return [(starts[i], starts[i + 1] - 1) for i in range(len(starts) - 1)]
+
+
+def pelvis_pose(t: np.ndarray, steps: list[Footstep], ev: Events, initial: dict, user: UserProfile,
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Pelvis reference point (n, 3) at the waist-unit height, orientation (n, 3, 3) and base heading (n,)."""
+    feet = {f: (np.asarray(h, float), y) for f, (h, y) in initial.items()}
+
+    def config() -> tuple[float, ...]:
+        c = [_foot_centre(h, y, user) for h, y in feet.values()]
+        yaws = [y for _, y in feet.values()]
+        return (*(0.5 * (c[0] + c[1])), 0.5 * (yaws[0] + yaws[1]))
+
+    knots = [(float(t[0]), *config())]
+    for k, st in enumerate(steps):
+        if ev.bout_start[k]:
+            knots.append((float(ev.ho[k]), *config()))
+        feet[st.foot] = (np.asarray(st.heel, float), st.yaw)
+        knots.append((float(ev.ic[k]), *config()))
+        last_of_bout = k == len(steps) - 1 or ev.bout_start[k + 1]
+        if last_of_bout:
+            knots.append((float(ev.ff[k] + 0.1), *config()))
+    knots.append((float(t[-1]), *config()))
+    kept = [knots[0]]
+    for kt in knots[1:]:
+        if kt[0] > kept[-1][0] + 1e-6:
+            kept.append(kt)
+    kn = np.array(kept)
+    base = PchipInterpolator(kn[:, 0], kn[:, 1:], axis=0, extrapolate=True)(t)
+    heading = base[:, 3]
+
+    # gait-phase oscillations: phase even at right initial contacts, odd at left ones
+    ph_k, prev = [], -1.0
+    for st in steps:
+        want = 0 if st.foot == "right" else 1
+        v = prev + 1
+        v += (int(v) % 2) != want
+        ph_k.append(v)
+        prev = v
+    env = np.zeros_like(t)
+    for a, b in _bouts(steps, ev):
+        kinds = {steps[i].kind for i in range(a, b + 1)}
+        amp = 0.3 if kinds <= {"turn", "close"} else 1.0
+        rise = smoothstep((t - ev.ho[a]) / max(ev.ic[a] + 0.5 * ev.step_s[a] - ev.ho[a], 1e-3))
+        fall = 1.0 - smoothstep((t - (ev.ic[b] - 0.5 * ev.step_s[b])) / max(ev.ff[b] - ev.ic[b] + 0.5 * ev.step_s[b],
+                                                                              1e-3))
+        env = np.maximum(env, amp * np.minimum(rise, fall))
+    if len(steps) > 1:
+        ph = PchipInterpolator(ev.ic, np.array(ph_k, float), extrapolate=True)(t)
+    else:
+        ph = np.zeros_like(t)
+    bounce = -env * 0.5 * user.pelvis_bounce_m * (1.0 + np.cos(2 * np.pi * ph))
+    surge = env * 0.012 * np.sin(2 * np.pi * ph)
+    sway = -env * user.pelvis_sway_m * np.sin(np.pi * ph)
+    yaw_osc = env * np.radians(user.pelvis_rotation_deg) * np.cos(np.pi * ph)
+    roll = -env * np.radians(user.pelvis_obliquity_deg) * np.sin(np.pi * ph)
+    tilt = env * np.radians(1.5) * np.cos(2 * np.pi * ph)
+
+    # heel-strike transient: a short damped velocity kick (braking forward, upward push)
+    kick_v = np.zeros_like(t)
+    kick_f = np.zeros_like(t)
+    tau0 = 0.025
+    for k, st in enumerate(steps):
+        i0, i1 = np.searchsorted(t, [ev.ic[k], ev.ic[k] + 8 * tau0])
+        tau = t[i0:i1] - ev.ic[k]
+        g = tau * np.exp(-tau / tau0)
+        s = 0.3 if st.kind == "turn" else (1.6 if st.kind == "stairs_down" else 1.0)
+        kick_v[i0:i1] += 0.05 * s * g
+        kick_f[i0:i1] -= 0.03 * s * g
+
+    ca, sa = np.cos(heading), np.sin(heading)
+    pos = np.empty((t.size, 3))
+    fwd = surge + kick_f
+    pos[:, 0] = base[:, 0] + ca * fwd - sa * sway
+    pos[:, 1] = base[:, 1] + sa * fwd + ca * sway
+    pos[:, 2] = base[:, 2] + user.sensor_height_m + bounce + kick_v
+    rot = rot_z(heading + yaw_osc) @ rot_y(tilt) @ rot_x(roll)
+    return pos, rot, heading
+
+
+# -- force sensors -------------------------------------------------------------------------------
+def _ramp(t: np.ndarray, a: float, b: float) -> np.ndarray:
+    """Smooth 0 -> 1 between ``a`` and ``b`` (a step at ``a`` when ``b <= a``)."""
+    return smoothstep((t - a) / max(b - a, 1e-6))
+
+
+def foot_loads(t: np.ndarray, foot: str, steps: list[Footstep], ev: Events, user: UserProfile,
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """Heel and forefoot load (N) reaching one foot's force sensors; exactly 0 while the foot is in the air.
+
+    Heel-first contact: the heel loads from initial contact to foot flat and unloads by heel-off; the
+    forefoot loads from foot flat and peaks in push-off, ending at toe-off. Toe-first contacts (stairs
+    down, backward) load the forefoot first. On stairs the heel load is negligible (thesis ch.2.5 [115]).
+    Standing (foot flat for more than 1 s): each foot carries half the body weight, half on the heel.
+    """
+    bw = user.mass_kg * 9.80665
+    heel = np.zeros_like(t)
+    toe = np.zeros_like(t)
+    idx = [int(k) for k in np.flatnonzero([s.foot == foot for s in steps])]
+    # contact intervals: (initial contact, foot flat) of the landing, then (heel-off, toe-off) of the next swing
+    far = 1e9
+    contacts = [(-far, -far, True, False)] + [(ev.ic[k], ev.ff[k], ev.theta_ic[k] > 0,
+                                               steps[k].kind.startswith("stairs")) for k in idx]
+    lifts = [(ev.ho[k], ev.to[k]) for k in idx] + [(far, far)]
+    for (c0, ff, heel_first, stairs), (ho, to) in zip(contacts, lifts, strict=True):
+        m = (t >= c0) & (t < to)
+        tt = t[m]
+        mid = 0.5 * (ho + to)
+        off = 1.0 - _ramp(tt, mid, to)
+        push = _ramp(tt, ff, mid)
+        h_scale = 0.1 if stairs else 1.0
+        if heel_first:
+            h = _ramp(tt, c0, ff) * (0.25 + 0.85 * (1.0 - _ramp(tt, ff, ho))) * (tt < ho)
+            f = _ramp(tt, c0 + 0.5 * (ff - c0), ff) * (0.4 + 0.7 * push) * off
+        else:
+            f = _ramp(tt, c0, ff) * (0.7 + 0.5 * push) * off
+            h = _ramp(tt, ff, ff + 0.1) * 0.5 * (1.0 - _ramp(tt, ff, ho)) * (tt < ho)
+        h = h * h_scale
+        if ho - ff > 1.0:  # standing: blend towards the static share away from the walking events
+            s = _ramp(tt, ff, ff + 0.4) * (1.0 - _ramp(tt, ho - 0.4, ho))
+            h = (1 - s) * h + s * 0.25
+            f = (1 - s) * f + s * 0.25
+        heel[m], toe[m] = h * bw, f * bw
+    return heel * user.force_coverage, toe * user.force_coverage

@@ -1,0 +1,253 @@
+"""Walking paths as segments, and the planner that turns them into footprints of both feet.
+
+A path is a list of segments (:class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Backward`,
+:class:`Turn`, :class:`Stand`). :func:`plan_footsteps` walks them with a user's step length and returns
+one :class:`Footstep` per foot placement (heel position, heading, kind), alternating feet. Walking bouts
+start and end with both feet side by side (gait initiation and a closing step).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.sim.user import GAITS, UserProfile
+
+
+# -- segments --------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Straight:
+    """Walk straight ahead ``length_m`` metres with ``gait`` steps (short/normal/long)."""
+
+    length_m: float
+    gait: str = "normal"
+
+
+@dataclass(frozen=True)
+class Curve:
+    """Walk along an arc turning ``angle_rad`` (> 0 = left, counter-clockwise) with ``radius_m``."""
+
+    angle_rad: float
+    radius_m: float
+    gait: str = "normal"
+
+
+@dataclass(frozen=True)
+class Stairs:
+    """Climb (``up=True``) or descend ``n`` stairs of ``rise_m`` x ``run_m``, one stair per step."""
+
+    n: int
+    up: bool = True
+    rise_m: float = 0.17
+    run_m: float = 0.28
+
+
+@dataclass(frozen=True)
+class Backward:
+    """``n_steps`` backward steps (the body keeps facing forward)."""
+
+    n_steps: int
+
+
+@dataclass(frozen=True)
+class Turn:
+    """Turn ``angle_rad`` in place (> 0 = left) with small stepping turns of at most 45 degrees."""
+
+    angle_rad: float
+
+
+@dataclass(frozen=True)
+class Stand:
+    """Stand still, feet side by side, for ``duration_s`` seconds."""
+
+    duration_s: float
+
+
+Segment = Straight | Curve | Stairs | Backward | Turn | Stand
+
+
+@dataclass
+class Footstep:
+    """One foot placement: the foot lands with its heel at ``heel`` (ENU, m) facing ``yaw`` (rad)."""
+
+    foot: str  # "left" | "right"
+    heel: np.ndarray
+    yaw: float
+    kind: str  # walk | stairs_up | stairs_down | backward | turn | close
+    gait: str = "normal"
+    direction: str = "forward"
+    pause_before_s: float = 0.0
+    irregular: bool = False
+
+
+def _normal(psi: float) -> np.ndarray:
+    """Unit vector to the left of heading ``psi``."""
+    return np.array([-math.sin(psi), math.cos(psi)])
+
+
+def _ahead(psi: float) -> np.ndarray:
+    return np.array([math.cos(psi), math.sin(psi)])
+
+
+class _Walker:
+    """Mutable planner state (the centre point between the heels, floor height, heading, feet)."""
+
+    def __init__(self, user: UserProfile, speed: str, rng: np.random.Generator, heading0: float,
+                 irregular_rate: float, variability: float):
+        self.user, self.speed, self.rng = user, speed, rng
+        self.c = np.zeros(2)
+        self.z = 0.0
+        self.psi = heading0
+        self.irregular_rate = irregular_rate
+        self.var = user.variability * variability
+        self.steps: list[Footstep] = []
+        self.feet = {f: (self._heel(self.c, self.z, self.psi, f), self.psi) for f in ("left", "right")}
+        self.together = True
+        self.last_moved: str | None = None
+        self.pending_pause = 0.0
+        self.direction = "forward"
+
+    def _heel(self, c: np.ndarray, z: float, psi: float, foot: str) -> np.ndarray:
+        side = 1.0 if foot == "left" else -1.0
+        xy = c + side * 0.5 * self.user.step_width_m * _normal(psi)
+        return np.array([xy[0], xy[1], z])
+
+    def _next_foot(self, lead: str | None = None) -> str:
+        if self.together:
+            if lead is not None:
+                return lead
+            return "right" if self.last_moved in (None, "left") else "left"
+        return "left" if self.last_moved == "right" else "right"
+
+    def step(self, c: np.ndarray, z: float, psi: float, kind: str, *, gait: str = "normal",
+             direction: str = "forward", foot: str | None = None, irregular: bool = False) -> None:
+        foot = foot or self._next_foot()
+        heel = self._heel(c, z, psi, foot)
+        if not self.together or kind != "close":
+            # lateral placement variability
+            heel[:2] += self.rng.normal(0.0, 0.01 * self.var / 0.03) * _normal(psi)
+        self.steps.append(Footstep(foot, heel, float(psi), kind, gait, direction, self.pending_pause, irregular))
+        self.pending_pause = 0.0
+        self.feet[foot] = (heel, psi)
+        self.last_moved = foot
+        self.c, self.z, self.psi = np.asarray(c, float).copy(), z, psi
+        self.together = kind == "close"
+
+    def close(self, pause: float = 0.0) -> None:
+        """Bring the trailing foot beside the leading one (closing step), then optionally pause."""
+        if not self.together:
+            trailing = "left" if self.last_moved == "right" else "right"
+            kind = "stairs_up" if self.feet[trailing][0][2] < self.z - 0.05 else (
+                "stairs_down" if self.feet[trailing][0][2] > self.z + 0.05 else "close")
+            self.step(self.c, self.z, self.psi, kind, foot=trailing, direction=self.direction)
+            self.together = True
+        self.pending_pause += pause
+
+    def _change_direction(self, direction: str) -> None:
+        if direction != self.direction:
+            self.close(pause=0.6)
+            self.direction = direction
+
+    # -- segments ---------------------------------------------------------------------------------
+    def _progress(self, length: float, nominal: float) -> np.ndarray:
+        n = max(1, int(round(length / nominal)))
+        base = length / n
+        s = base * np.arange(1, n + 1, dtype=float)
+        s[:-1] += self.rng.normal(0.0, self.var * base, n - 1)
+        return s
+
+    def _irregular(self) -> bool:
+        return bool(self.irregular_rate > 0 and self.rng.random() < self.irregular_rate)
+
+    def straight(self, seg: Straight) -> None:
+        self._change_direction("forward")
+        c0, u = self.c.copy(), _ahead(self.psi)
+        for s in self._progress(seg.length_m, self.user.step_length(self.speed, seg.gait)):
+            self.step(c0 + s * u, self.z, self.psi, "walk", gait=seg.gait, irregular=self._irregular())
+
+    def curve(self, seg: Curve) -> None:
+        self._change_direction("forward")
+        if seg.radius_m <= 0:
+            raise DataError(f"Curve radius {seg.radius_m} m: must be > 0 (use Turn for turning in place)")
+        sigma = 1.0 if seg.angle_rad >= 0 else -1.0
+        r, psi0 = seg.radius_m, self.psi
+        centre = self.c + sigma * r * _normal(psi0)
+        for s in self._progress(abs(seg.angle_rad) * r, self.user.step_length(self.speed, seg.gait)):
+            psi = psi0 + sigma * s / r
+            self.step(centre - sigma * r * _normal(psi), self.z, psi, "walk", gait=seg.gait,
+                      irregular=self._irregular())
+
+    def stairs(self, seg: Stairs) -> None:
+        self._change_direction("forward")
+        if seg.n < 1 or seg.rise_m <= 0 or seg.run_m <= 0:
+            raise DataError(f"{seg}: needs n >= 1, rise_m > 0 and run_m > 0")
+        c0, z0, u = self.c.copy(), self.z, _ahead(self.psi)
+        sign = 1.0 if seg.up else -1.0
+        for j in range(1, seg.n + 1):
+            self.step(c0 + j * seg.run_m * u, z0 + sign * j * seg.rise_m, self.psi,
+                      "stairs_up" if seg.up else "stairs_down")
+
+    def backward(self, seg: Backward) -> None:
+        self._change_direction("backward")
+        c0, u = self.c.copy(), -_ahead(self.psi)
+        nominal = 0.55 * self.user.step_length(self.speed)
+        for s in self._progress(seg.n_steps * nominal, nominal):
+            self.step(c0 + s * u, self.z, self.psi, "backward", direction="backward")
+
+    def turn(self, seg: Turn) -> None:
+        self._change_direction("forward")
+        self.close(pause=0.3)
+        n = max(1, math.ceil(abs(seg.angle_rad) / (math.pi / 4) - 1e-9))
+        lead = "left" if seg.angle_rad > 0 else "right"
+        psi0 = self.psi
+        for k in range(1, n + 1):
+            foot = lead if k % 2 == 1 else ("right" if lead == "left" else "left")
+            self.step(self.c, self.z, psi0 + k * seg.angle_rad / n, "turn", foot=foot)
+        self.close(pause=0.3)
+
+    def stand(self, seg: Stand) -> None:
+        self.close(pause=max(0.0, float(seg.duration_s)))
+
+
+def path_length(segments: list[Segment], user: UserProfile | None = None) -> float:
+    """Horizontal length (m) of the centre line of ``segments`` (backward steps at 0.55 step length)."""
+    total = 0.0
+    for seg in segments:
+        if isinstance(seg, Straight):
+            total += seg.length_m
+        elif isinstance(seg, Curve):
+            total += abs(seg.angle_rad) * seg.radius_m
+        elif isinstance(seg, Stairs):
+            total += seg.n * seg.run_m
+        elif isinstance(seg, Backward) and user is not None:
+            total += seg.n_steps * 0.55 * user.step_length_m
+    return total
+
+
+def plan_footsteps(segments: list[Segment], user: UserProfile, *, speed: str = "normal",
+                   rng: np.random.Generator, heading0_rad: float = 0.0, irregular_rate: float = 0.0,
+                   variability: float = 1.0) -> tuple[list[Footstep], dict]:
+    """Footprints of both feet along ``segments``.
+
+    Returns
+    -------
+    steps : the footprints in temporal order (alternating feet within a bout)
+    initial : foot -> (heel position, yaw) before the first step
+    """
+    w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability)
+    initial = {f: (h.copy(), y) for f, (h, y) in w.feet.items()}
+    handlers = {Straight: w.straight, Curve: w.curve, Stairs: w.stairs, Backward: w.backward,
+                Turn: w.turn, Stand: w.stand}
+    for seg in segments:
+        if isinstance(seg, Straight | Curve) and seg.gait not in GAITS:
+            raise DataError(f"{seg}: gait must be one of {', '.join(GAITS)}")
+        try:
+            handlers[type(seg)](seg)
+        except KeyError:
+            raise DataError(f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Backward, Turn, Stand") \
+                from None
+    w.close()
+    return w.steps, initial

@@ -1,0 +1,306 @@
+"""Simulate a PLASYS session (foot + waist unit) with ground truth, from a path or a thesis scenario."""
+
+from __future__ import annotations
+
+import logging
+import math
+import zlib
+
+import numpy as np
+import pandas as pd
+from scipy.spatial.transform import Rotation
+
+from pdrlearn.errors import DataError
+from pdrlearn.io.frames import THESIS_FOOT_FRAME, THESIS_WAIST_FRAME
+from pdrlearn.io.session import Session, Stream
+from pdrlearn.sim import sensors as sn
+from pdrlearn.sim.body import Events, foot_loads, foot_pose, pelvis_pose, schedule
+from pdrlearn.sim.kernels import (
+    angular_rate_body,
+    block_mean,
+    earth_field_enu,
+    pressure_hpa,
+    specific_force_body,
+)
+from pdrlearn.sim.path import Footstep, Segment, plan_footsteps
+from pdrlearn.sim.scenarios import SCENARIOS
+from pdrlearn.sim.user import SPEEDS, UserProfile
+
+log = logging.getLogger(__name__)
+
+INTERNAL_RATE_HZ = 100.0  # sensor output data rate (thesis ch.4.2.1.1-2)
+OVERSAMPLE = 5  # pose grid at 500 Hz, averaged to the 100 Hz samples
+TERRAIN_DZ_M = 0.08  # |height change| of a stride above which it is a stair stride (about half a rise)
+
+#: Realism knobs of :func:`simulate` / :func:`simulate_path` and their defaults.
+KNOBS: dict[str, object] = {
+    "variability": 1.0,  # scale of the user's stride-to-stride variability (0 = identical strides)
+    "irregular_rate": 0.0,  # fraction of irregular (short, slow, low-clearance) steps
+    "clock_offset_s": 0.0,  # waist clock = foot clock * (1 + drift) + offset
+    "clock_drift_ppm": 0.0,
+    "drop_rate": 0.0,  # fraction of foot-unit packets lost on the Bluetooth link
+    "noise": True,  # sensor noise, biases, quantisation (False: exact physics)
+    "stand_s": 5.0,  # standstill before the first and after the last movement (thesis ch.8: 5 s)
+    "heading0_deg": 0.0,  # initial heading, ENU (0 = east, counter-clockwise)
+    "mag_field_ut": 45.0,  # Earth field magnitude (uT)
+    "mag_inclination_deg": 55.0,
+    "mag_declination_deg": 0.0,
+    "mag_disturbance_ut": 3.0,  # sd of the indoor field disturbances
+    "baro_drift_hpa_per_h": 0.3,  # sd of the weather drift slope
+    "length_m": 1000.0,  # scenario "walk" only: path length
+}
+
+
+def _rng(*parts: object) -> np.random.Generator:
+    ints = [p if isinstance(p, int) else zlib.crc32(str(p).encode()) for p in parts]
+    return np.random.default_rng(ints)
+
+
+def _check_knobs(knobs: dict) -> dict:
+    unknown = sorted(set(knobs) - set(KNOBS))
+    if unknown:
+        raise DataError(f"simulate: unknown option(s) {', '.join(unknown)}; valid: {', '.join(KNOBS)}")
+    out = {**KNOBS, **knobs}
+    for k in ("variability", "irregular_rate", "drop_rate", "stand_s", "mag_disturbance_ut", "length_m"):
+        v = out[k]
+        if not isinstance(v, int | float) or not math.isfinite(v) or v < 0:
+            raise DataError(f"simulate: {k}={v!r} must be a finite number >= 0")
+    if out["irregular_rate"] > 1 or out["drop_rate"] >= 0.5:
+        raise DataError("simulate: irregular_rate must be <= 1 and drop_rate < 0.5")
+    return out
+
+
+def _output_factor(rate_hz: float) -> int:
+    k = INTERNAL_RATE_HZ / float(rate_hz) if rate_hz and rate_hz > 0 else float("nan")
+    if not math.isfinite(k) or abs(k - round(k)) > 1e-9 or round(k) < 1:
+        raise DataError(
+            f"rate {rate_hz!r} Hz: the simulator averages 100 Hz samples in whole blocks; "
+            "use 100 Hz divided by an integer (100, 50, 25, 20, 10 ...)"
+        )
+    return int(round(k))
+
+
+def _misalignment(deg: list[float]) -> np.ndarray:
+    return Rotation.from_rotvec(np.radians(deg)).as_matrix()
+
+
+def _to_sensor(v_body: np.ndarray, frame_matrix: np.ndarray, mis: np.ndarray) -> np.ndarray:
+    """Body FLU vectors (n, 3) -> sensor axes of a unit declared with ``frame_matrix`` and rotated by ``mis``."""
+    axes = mis @ frame_matrix  # columns: the sensor axes in body coordinates
+    return v_body @ axes
+
+
+def _stride_table(steps: list[Footstep], ev: Events, initial: dict, user: UserProfile,
+                  r_sensor: np.ndarray, foot: str = "right") -> pd.DataFrame:
+    """One row per stride of ``foot``: mid-stance to mid-stance around each swing."""
+    idx = [k for k, s in enumerate(steps) if s.foot == foot]
+    rows = []
+    h_a, y_a = initial[foot]
+    prev_ff = None
+    for j, k in enumerate(idx):
+        st = steps[k]
+        T = 2.0 * ev.step_s[k]
+        gap = 0.5 * (0.35 - 0.10) * T  # half the foot-flat period of a steady gait cycle
+        ho = ev.ho[k]
+        start = 0.5 * (prev_ff + ho) if prev_ff is not None and ho - prev_ff < 2 * gap + 0.3 else ho - gap
+        nxt = idx[j + 1] if j + 1 < len(idx) else None
+        ff = ev.ff[k]
+        end = 0.5 * (ff + ev.ho[nxt]) if nxt is not None and ev.ho[nxt] - ff < 2 * gap + 0.3 else ff + gap
+        p_a = np.asarray(h_a) + _rz(y_a) @ r_sensor
+        p_b = np.asarray(st.heel) + _rz(st.yaw) @ r_sensor
+        length = float(np.hypot(*(p_b - p_a)[:2]))
+        dz = float(p_b[2] - p_a[2])
+        rows.append({
+            "start_s": start, "end_s": end, "ic_s": ev.ic[k], "tc_s": ev.to[k],
+            "terrain": "up" if dz > TERRAIN_DZ_M else ("down" if dz < -TERRAIN_DZ_M else "flat"),
+            "direction": st.direction, "length_m": round(length, 6), "height_m": round(dz, 6),
+            "length_class": user.length_class(length),
+            "heading_change_deg": round(math.degrees(st.yaw - y_a), 4),
+            "foot": foot, "kind": st.kind, "gait": st.gait, "irregular": st.irregular,
+        })
+        h_a, y_a, prev_ff = st.heel, st.yaw, ff
+    df = pd.DataFrame(rows)
+    df.attrs["time_columns"] = ["start_s", "end_s", "ic_s", "tc_s"]
+    return df
+
+
+def _rz(psi: float) -> np.ndarray:
+    c, s = math.cos(psi), math.sin(psi)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def simulate_path(segments: list[Segment], user: UserProfile, *, speed: str = "normal", rate_hz: float = 20.0,
+                  seed: int = 0, name: str = "sim", scenario: str = "custom", **knobs) -> Session:
+    """Simulate walking ``segments`` (see :mod:`pdrlearn.sim.path`) by ``user``.
+
+    Parameters
+    ----------
+    segments : path segments (Straight, Curve, Stairs, Backward, Turn, Stand)
+    user : the pedestrian (:meth:`UserProfile.from_seed`)
+    speed : "slow", "normal" or "fast"
+    rate_hz : output rate (Hz); 100 Hz divided by an integer. 20 Hz = the PLASYS firmware (5-sample mean).
+    seed : randomness of this walk (gait variability, noise, biases)
+    **knobs : see :data:`KNOBS`
+
+    Returns
+    -------
+    Session with the eight PLASYS streams, ``steps`` (strides of the right foot), ``trajectory`` (waist
+    unit, ENU), ``extras["ics"]`` (initial contacts of both feet) and ``extras["foot_trajectory"]``.
+    """
+    if speed not in SPEEDS:
+        raise DataError(f"speed {speed!r}: must be one of {', '.join(SPEEDS)}")
+    k_out = _output_factor(rate_hz)
+    opt = _check_knobs(knobs)
+    noise = bool(opt["noise"])
+    rng = _rng(user.seed, int(seed), scenario, speed, "walk")
+    steps, initial = plan_footsteps(segments, user, speed=speed, rng=rng,
+                                    heading0_rad=math.radians(float(opt["heading0_deg"])),
+                                    irregular_rate=float(opt["irregular_rate"]),
+                                    variability=float(opt["variability"]))
+    stand = float(opt["stand_s"])
+    ev = schedule(steps, user, speed=speed, rng=rng, stand_s=stand, variability=float(opt["variability"]))
+    total_s = max(ev.end_s, stand) + stand if steps else 2 * stand
+    k_fine = OVERSAMPLE * k_out
+    fine_rate = INTERNAL_RATE_HZ * OVERSAMPLE
+    n_out = int(math.floor(total_s * rate_hz)) + 1
+    t = (np.arange(n_out * k_fine) - 0.5 * (k_fine - 1)) / fine_rate
+    dt = 1.0 / fine_rate
+    t100 = block_mean(t, OVERSAMPLE)
+    t_out = block_mean(t100, k_out)
+
+    # -- foot unit (right foot) --
+    r_sensor = np.array([0.45 * user.foot_length_m, 0.0, 0.06])  # on the instep, 6 cm above the sole
+    heel, R_f = foot_pose(t, "right", steps, ev, initial, user)
+    p_f = heel + R_f @ r_sensor
+    f_body = block_mean(specific_force_body(p_f, R_f, dt), OVERSAMPLE)
+    w_body = block_mean(angular_rate_body(R_f, dt), OVERSAMPLE)
+    mis_f = _misalignment(user.foot_misalignment_deg)
+    foot_m = THESIS_FOOT_FRAME.matrix()
+    s_rng = _rng(user.seed, int(seed), scenario, speed, "sensors")
+    acc_f, e_af = sn.imu_readout(_to_sensor(f_body, foot_m, mis_f), sn.FOOT_ACC, s_rng, noise=noise)
+    gyr_f, e_gf = sn.imu_readout(_to_sensor(w_body, foot_m, mis_f), sn.FOOT_GYR, s_rng, noise=noise)
+    load_h, load_t = foot_loads(t100, "right", steps, ev, user)
+    force_a = sn.force_readout(load_h, s_rng, noise=noise)
+    force_b = sn.force_readout(load_t, s_rng, noise=noise)
+
+    # -- waist unit (front of the belt) --
+    r_waist = np.array([0.12, 0.0, 0.0])
+    p_pel, R_p, _ = pelvis_pose(t, steps, ev, initial, user)
+    p_w = p_pel + R_p @ r_waist
+    fw_body = block_mean(specific_force_body(p_w, R_p, dt), OVERSAMPLE)
+    ww_body = block_mean(angular_rate_body(R_p, dt), OVERSAMPLE)
+    mis_w = _misalignment(user.waist_misalignment_deg)
+    waist_m = THESIS_WAIST_FRAME.matrix()
+    acc_w, e_aw = sn.imu_readout(_to_sensor(fw_body, waist_m, mis_w), sn.WAIST_ACC, s_rng, noise=noise)
+    gyr_w, e_gw = sn.imu_readout(_to_sensor(ww_body, waist_m, mis_w), sn.WAIST_GYR, s_rng, noise=noise)
+    p_w100 = p_w[OVERSAMPLE // 2::OVERSAMPLE][: len(t100)]
+    R_p100 = R_p[OVERSAMPLE // 2::OVERSAMPLE][: len(t100)]
+    b_enu = earth_field_enu(float(opt["mag_field_ut"]), float(opt["mag_inclination_deg"]),
+                            float(opt["mag_declination_deg"]))
+    env_rng = _rng(user.seed, int(seed), scenario, speed, "environment")
+    dist = sn.field_disturbance(p_w100, env_rng, float(opt["mag_disturbance_ut"])) if noise else 0.0
+    b_body = np.einsum("nji,nj->ni", R_p100, b_enu[None, :] + dist)
+    mag_w, e_m = sn.magnetometer_readout(_to_sensor(b_body, waist_m, mis_w), s_rng, noise=noise)
+    p0 = float(env_rng.uniform(*sn.BARO_P0_RANGE)) if noise else 1013.25
+    baro, e_b = sn.barometer_readout(pressure_hpa(sn.BUILDING_ALTITUDE_M + p_w100[:, 2], p0), t100, s_rng,
+                                     noise=noise, drift_hpa_per_h=float(opt["baro_drift_hpa_per_h"]))
+
+    # -- output rate, clocks, dropped packets --
+    def out(x: np.ndarray) -> np.ndarray:
+        return block_mean(x, k_out)
+
+    foot_keep = np.ones(n_out, dtype=bool)
+    drop_rate = float(opt["drop_rate"])
+    if drop_rate > 0:
+        foot_keep = _rng(user.seed, int(seed), scenario, speed, "drops").random(n_out) >= drop_rate
+        foot_keep[[0, -1]] = True
+    drift = float(opt["clock_drift_ppm"]) * 1e-6
+    t_waist = t_out * (1.0 + drift) + float(opt["clock_offset_s"])
+    streams = {
+        "fAccelerometer": Stream("fAccelerometer", t_out[foot_keep], out(acc_f)[foot_keep]),
+        "fGyroscope": Stream("fGyroscope", t_out[foot_keep], out(gyr_f)[foot_keep]),
+        "fForceA": Stream("fForceA", t_out[foot_keep], out(force_a)[foot_keep]),
+        "fForceB": Stream("fForceB", t_out[foot_keep], out(force_b)[foot_keep]),
+        "wAccelerometer": Stream("wAccelerometer", t_waist, out(acc_w)),
+        "wGyroscope": Stream("wGyroscope", t_waist, out(gyr_w)),
+        "wMagneticField": Stream("wMagneticField", t_waist, out(mag_w)),
+        "wBarometer": Stream("wBarometer", t_waist, out(baro)),
+    }
+
+    # -- ground truth --
+    pw_out = block_mean(p_w100, k_out)
+    heading_out = _yaw_of(R_p100[k_out // 2::k_out][: n_out])
+    trajectory = pd.DataFrame({"t": t_out, "x": pw_out[:, 0], "y": pw_out[:, 1], "z": pw_out[:, 2],
+                               "heading_rad": heading_out})
+    pf100 = p_f[OVERSAMPLE // 2::OVERSAMPLE][: len(t100)]
+    Rf100 = R_f[OVERSAMPLE // 2::OVERSAMPLE][: len(t100)]
+    q = Rotation.from_matrix(Rf100[k_out // 2::k_out][:n_out]).as_quat()  # x, y, z, w
+    pf_out = pf100[k_out // 2::k_out][:n_out]
+    foot_traj = pd.DataFrame({"t_s": t_out, "x": pf_out[:, 0], "y": pf_out[:, 1], "z": pf_out[:, 2],
+                              "qw": q[:, 3], "qx": q[:, 0], "qy": q[:, 1], "qz": q[:, 2]})
+    foot_traj.attrs["time_columns"] = ["t_s"]
+    ics = pd.DataFrame({"ic_s": ev.ic, "foot": [s.foot for s in steps], "kind": [s.kind for s in steps]})
+    ics.attrs["time_columns"] = ["ic_s"]
+    strides = _stride_table(steps, ev, initial, user, r_sensor)
+
+    meta = {
+        "session": name,
+        "source_project": "pdrlearn.sim",
+        "scenario": scenario, "speed": speed, "seed": int(seed), "user_seed": user.seed,
+        "user": user.to_dict(),
+        "rate_hz": float(rate_hz), "internal_rate_hz": INTERNAL_RATE_HZ,
+        "sensor_height_m": user.sensor_height_m, "leg_length_m": user.leg_length_m, "height_m": user.height_m,
+        "length_class_bounds_m": list(user.length_class_bounds_m),
+        "length_m_definition": "horizontal displacement of the foot unit between the mid-stance instants",
+        "instrumented_foot": "right",
+        "clock_offset_s": float(opt["clock_offset_s"]), "clock_drift_ppm": float(opt["clock_drift_ppm"]),
+        "time_base": "foot unit clock; labels and trajectory use it; waist = foot * (1 + drift) + offset",
+        "dropped_samples": int((~foot_keep).sum()),
+        "misalignment_deg": {"foot": user.foot_misalignment_deg, "waist": user.waist_misalignment_deg},
+        "sensor_errors": {"fAccelerometer": e_af, "fGyroscope": e_gf, "wAccelerometer": e_aw,
+                          "wGyroscope": e_gw, "wMagneticField": e_m, "wBarometer": {**e_b, "p0_hpa": p0}},
+        "earth_field_enu_ut": [float(v) for v in b_enu],
+        "knobs": {k: v for k, v in opt.items()},
+        "n_steps": len(steps), "n_strides": int(len(strides)),
+        "distance_m": float(strides["length_m"].sum()) if len(strides) else 0.0,
+        "units": {"fForceA": "N (heel)", "fForceB": "N (forefoot)"},
+    }
+    frames = {"foot": THESIS_FOOT_FRAME, "waist": THESIS_WAIST_FRAME}
+    return Session(name=name, streams=streams, steps=strides if len(strides) else None, trajectory=trajectory,
+                   extras={"ics": ics, "foot_trajectory": foot_traj}, meta=meta, frames=frames)
+
+
+def _yaw_of(R: np.ndarray) -> np.ndarray:
+    return np.arctan2(R[:, 1, 0], R[:, 0, 0])
+
+
+def simulate(scenario: str, user_seed: int, speed: str = "normal", *, rate_hz: float = 20.0,
+             seed: int | None = None, **knobs) -> Session:
+    """Simulate one of the thesis scenarios or calibration exercises.
+
+    Parameters
+    ----------
+    scenario : "A", "B", "C", "D" (thesis ch.7.3.2.1), "terrain", "direction", "length" (calibration
+        exercises, ch.7.2.2), "standstill" (60 s, Table 34), "rotations" (Table 35), "walk" (knob ``length_m``)
+    user_seed : non-negative integer selecting the user (:meth:`UserProfile.from_seed`)
+    speed : "slow", "normal" or "fast"
+    rate_hz : output rate (Hz), 100 Hz divided by an integer; 20 Hz as the PLASYS firmware
+    seed : randomness of the walk and sensors (default 0); same arguments -> identical session
+    **knobs : realism options, see :data:`KNOBS`
+    """
+    if scenario not in SCENARIOS:
+        raise DataError(f"scenario {scenario!r}: must be one of {', '.join(SCENARIOS)}")
+    if speed not in SPEEDS:
+        raise DataError(f"speed {speed!r}: must be one of {', '.join(SPEEDS)}")
+    seed = 0 if seed is None else seed
+    if not isinstance(seed, int | np.integer) or seed < 0:
+        raise DataError(f"seed {seed!r}: must be a non-negative integer")
+    user = UserProfile.from_seed(user_seed)
+    opt = _check_knobs(knobs)
+    path_rng = _rng(user.seed, int(seed), scenario, speed, "path")
+    segments = SCENARIOS[scenario](user, speed, path_rng, length_m=float(opt["length_m"]))
+    if scenario == "standstill":
+        knobs = {**knobs, "stand_s": 30.0}
+    name = f"sim_{scenario}_u{user_seed}_{speed}_s{seed}"
+    return simulate_path(segments, user, speed=speed, rate_hz=rate_hz, seed=int(seed), name=name,
+                         scenario=scenario, **knobs)

@@ -1,0 +1,129 @@
+"""Simulated users: anthropometry, gait parameters, sensor mounting and sensor biases."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+
+SPEEDS = ("slow", "normal", "fast")
+GAITS = ("short", "normal", "long")
+
+# Speed -> (step-length factor, step-duration factor) relative to the user's normal walk. Slow/fast
+# walking changes both cadence and step length (thesis Table 1: stride grows with speed).
+SPEED_FACTORS = {"slow": (0.85, 1.20), "normal": (1.0, 1.0), "fast": (1.12, 0.86)}
+# Deliberately short/long steps of the length exercise (thesis ch.6.3) -> (length factor, duration factor).
+GAIT_FACTORS = {"short": (0.55, 0.95), "normal": (1.0, 1.0), "long": (1.3, 1.08)}
+
+
+@dataclass
+class UserProfile:
+    """One simulated pedestrian.
+
+    Attributes
+    ----------
+    seed : the user seed this profile was drawn from
+    height_m, mass_kg : stature (m) and body mass (kg)
+    leg_length_m : greater-trochanter height (m), ~0.53 x stature
+    foot_length_m : heel-to-toe length (m)
+    sensor_height_m : height of the waist unit above the floor when standing (m)
+    step_width_m : lateral distance between the feet's centre lines (m)
+    step_length_m : mean step length (one foot to the other, m) at normal speed on level ground
+    step_time_s : mean step duration (initial contact to the next, s) at normal speed
+    variability : coefficient of variation of step length and step time (fraction)
+    stance_fraction : fraction of the gait cycle in stance at normal speed
+    foot_misalignment_deg, waist_misalignment_deg : mounting rotation vectors of the units (deg)
+    force_coverage : fraction of the heel/forefoot load that reaches the force sensors
+    pelvis_bounce_m, pelvis_sway_m, pelvis_rotation_deg, pelvis_obliquity_deg : pelvis motion amplitudes
+    """
+
+    seed: int
+    height_m: float
+    mass_kg: float
+    leg_length_m: float
+    foot_length_m: float
+    sensor_height_m: float
+    step_width_m: float
+    step_length_m: float
+    step_time_s: float
+    variability: float
+    stance_fraction: float
+    impact_speed_mps: float
+    swing_height_m: float
+    toe_off_pitch_deg: float
+    heel_strike_pitch_deg: float
+    foot_misalignment_deg: list[float] = field(default_factory=lambda: [0.0, 0.0, 0.0])
+    waist_misalignment_deg: list[float] = field(default_factory=lambda: [0.0, 0.0, 0.0])
+    force_coverage: float = 0.5
+    pelvis_bounce_m: float = 0.045
+    pelvis_sway_m: float = 0.025
+    pelvis_rotation_deg: float = 4.0
+    pelvis_obliquity_deg: float = 3.0
+
+    @classmethod
+    def from_seed(cls, seed: int) -> UserProfile:
+        """Draw a healthy adult deterministically from ``seed`` (a non-negative integer)."""
+        if not isinstance(seed, int | np.integer) or int(seed) < 0:
+            raise DataError(f"user seed {seed!r}: must be a non-negative integer")
+        rng = np.random.default_rng([int(seed), 0x5EED])
+        # the thesis pedestrians were 1.65 m and 1.90 m tall (thesis ch.7.3.2.2)
+        height = float(rng.uniform(1.55, 1.95))
+        bmi = float(np.clip(rng.normal(23.0, 2.5), 18.5, 30.0))
+        # step length ~0.41 x stature at a comfortable speed; cadence ~100-120 steps/min
+        step_len = float(height * rng.normal(0.415, 0.02))
+        step_time = float(60.0 / rng.uniform(100.0, 118.0))
+        return cls(
+            seed=int(seed),
+            height_m=round(height, 4),
+            mass_kg=round(bmi * height**2, 2),
+            leg_length_m=round(0.53 * height, 4),
+            foot_length_m=round(0.152 * height, 4),
+            sensor_height_m=round(height * rng.uniform(0.55, 0.6), 4),
+            step_width_m=round(float(rng.uniform(0.08, 0.14)), 4),
+            step_length_m=round(step_len, 4),
+            step_time_s=round(step_time, 4),
+            variability=round(float(rng.uniform(0.02, 0.035)), 4),
+            stance_fraction=round(float(rng.uniform(0.58, 0.62)), 4),
+            impact_speed_mps=round(float(rng.uniform(0.45, 0.7)), 4),
+            swing_height_m=round(float(rng.uniform(0.2, 0.28)), 4),
+            toe_off_pitch_deg=round(float(rng.uniform(-58.0, -45.0)), 3),
+            heel_strike_pitch_deg=round(float(rng.uniform(15.0, 25.0)), 3),
+            foot_misalignment_deg=[round(float(v), 3) for v in rng.normal(0.0, 2.5, 3)],
+            waist_misalignment_deg=[round(float(v), 3) for v in rng.normal(0.0, 2.5, 3)],
+            force_coverage=round(float(rng.uniform(0.35, 0.6)), 4),
+            pelvis_bounce_m=round(float(rng.uniform(0.035, 0.05)), 4),
+            pelvis_sway_m=round(float(rng.uniform(0.018, 0.03)), 4),
+            pelvis_rotation_deg=round(float(rng.uniform(3.0, 5.0)), 3),
+            pelvis_obliquity_deg=round(float(rng.uniform(2.0, 4.0)), 3),
+        )
+
+    # -- derived gait parameters -------------------------------------------------------------------
+    def step_length(self, speed: str = "normal", gait: str = "normal") -> float:
+        """Mean step length (m) at ``speed`` with the step ``gait`` (short/normal/long)."""
+        return self.step_length_m * SPEED_FACTORS[speed][0] * GAIT_FACTORS[gait][0]
+
+    def step_time(self, speed: str = "normal", gait: str = "normal") -> float:
+        """Mean step duration (s) at ``speed`` with the step ``gait``."""
+        return self.step_time_s * SPEED_FACTORS[speed][1] * GAIT_FACTORS[gait][1]
+
+    def stride_length(self, speed: str = "normal", gait: str = "normal") -> float:
+        return 2.0 * self.step_length(speed, gait)
+
+    @property
+    def length_class_bounds_m(self) -> tuple[float, float]:
+        """(short/normal, normal/long) stride-length bounds (m), see docs/decisions/simulator.md.
+
+        The thesis (ch.6.3) sets the bounds per user from the calibration exercises; the bounds are the
+        midpoints between this user's mean short, normal and long stride lengths at normal speed.
+        """
+        s, n, l_ = (self.stride_length("normal", g) for g in GAITS)
+        return (round(0.5 * (s + n), 4), round(0.5 * (n + l_), 4))
+
+    def length_class(self, length_m: float) -> str:
+        lo, hi = self.length_class_bounds_m
+        return "short" if length_m <= lo else ("normal" if length_m <= hi else "long")
+
+    def to_dict(self) -> dict:
+        return asdict(self)
