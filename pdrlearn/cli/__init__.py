@@ -15,7 +15,7 @@ import typer
 
 from pdrlearn.errors import PdrlearnError
 
-COMMAND_MODULES = ["data", "report", "train", "calibrate", "track", "steps"]
+COMMAND_MODULES = ["data", "report", "train", "calibrate", "track", "steps", "export"]
 
 app = typer.Typer(
     name="pdrlearn",
