@@ -1,4 +1,5 @@
-"""``pdrlearn export`` (model directory -> runtime bundle) and ``pdrlearn run`` (replay through the runtime)."""
+"""``pdrlearn export`` (model directory -> bundle) and ``pdrlearn run`` (replay through the runtime)."""
+# ruff: noqa: B008  (typer declares options as argument defaults)
 
 from __future__ import annotations
 
