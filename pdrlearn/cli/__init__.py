@@ -15,7 +15,7 @@ import typer
 
 from pdrlearn.errors import PdrlearnError
 
-COMMAND_MODULES = ["data", "report", "train", "calibrate", "track", "steps", "export"]
+COMMAND_MODULES = ["data", "report", "train", "calibrate", "track", "steps", "export", "simulate"]
 
 app = typer.Typer(
     name="pdrlearn",

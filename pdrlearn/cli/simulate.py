@@ -1,0 +1,78 @@
+"""``pdrlearn simulate``: write a simulated PLASYS session folder with ground truth."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from pdrlearn.cli.common import json_safe, print_json, progress
+from pdrlearn.errors import DataError
+
+
+def simulate_cmd(
+    scenario: str = typer.Option(..., "--scenario", "-s",
+                                 help="A, B, C, D (thesis ch.7.3), terrain, direction, length (calibration "
+                                      "exercises), standstill, rotations or walk."),
+    user_seed: int = typer.Option(..., "--user-seed", "-u", help="Selects the simulated user (>= 0)."),
+    out: Path = typer.Option(..., "--out", "-o", help="Session folder to create (must not exist or be empty)."),
+    speed: str = typer.Option("normal", "--speed", help="slow, normal or fast."),
+    rate: float = typer.Option(20.0, "--rate", help="Output rate in Hz: 100 divided by an integer (20 = PLASYS)."),
+    seed: int = typer.Option(0, "--seed", help="Randomness of the walk and the sensors (>= 0)."),
+    length_m: float = typer.Option(1000.0, "--length-m", help="Path length of the 'walk' scenario (m)."),
+    clock_offset_s: float = typer.Option(0.0, "--clock-offset", help="Waist clock offset vs the foot unit (s)."),
+    clock_drift_ppm: float = typer.Option(0.0, "--clock-drift-ppm", help="Waist clock drift (ppm)."),
+    drop_rate: float = typer.Option(0.0, "--drop-rate", help="Fraction of foot packets lost (0-0.5)."),
+    irregular_rate: float = typer.Option(0.0, "--irregular-rate", help="Fraction of irregular steps (0-1)."),
+    no_noise: bool = typer.Option(False, "--no-noise", help="Exact physics: no noise, bias or quantisation."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
+) -> None:
+    """Simulate a foot + waist session (thesis scenarios and calibration exercises) with ground truth.
+
+    Examples:
+
+        pdrlearn simulate --scenario A --user-seed 1 --out out/sim/A_u1
+
+        pdrlearn simulate --scenario D --user-seed 7 --speed fast --rate 100 --out out/sim/D_u7 --json
+
+        pdrlearn simulate --scenario walk --length-m 1000 --user-seed 3 --clock-offset 0.3 \\
+            --clock-drift-ppm 50 --drop-rate 0.01 --out out/sim/walk1km
+    """
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import SCENARIOS, SPEEDS, simulate
+
+    if scenario not in SCENARIOS:
+        raise DataError(f"--scenario {scenario!r}: must be one of {', '.join(SCENARIOS)}")
+    if speed not in SPEEDS:
+        raise DataError(f"--speed {speed!r}: must be one of {', '.join(SPEEDS)}")
+    if user_seed < 0 or seed < 0:
+        raise DataError("--user-seed and --seed must be non-negative integers")
+    if out.exists() and (not out.is_dir() or any(out.iterdir())):
+        raise DataError(f"{out}: already exists and is not an empty folder; choose another --out or remove it")
+    with progress(f"simulating {scenario}", total=2, enabled=not as_json) as advance:
+        session = simulate(scenario, user_seed, speed, rate_hz=rate, seed=seed, length_m=length_m,
+                           clock_offset_s=clock_offset_s, clock_drift_ppm=clock_drift_ppm, drop_rate=drop_rate,
+                           irregular_rate=irregular_rate, noise=not no_noise)
+        advance()
+        write_session(session, out)
+        advance()
+    st = session.steps
+    summary = {
+        "out": str(out), "scenario": scenario, "user_seed": user_seed, "speed": speed, "seed": seed,
+        "rate_hz": rate, "duration_s": round(session.duration_s, 3),
+        "strides": 0 if st is None else int(len(st)),
+        "steps_both_feet": int(len(session.extras["ics"])),
+        "distance_m": round(float(session.meta["distance_m"]), 3),
+        "dropped_samples": session.meta["dropped_samples"],
+        "terrain": {} if st is None else {str(k): int(v) for k, v in st["terrain"].value_counts().items()},
+    }
+    if as_json:
+        print_json(json_safe(summary))
+    else:
+        typer.echo(f"{out}: scenario {scenario}, user {user_seed}, {speed}, {summary['duration_s']:.1f} s, "
+                   f"{summary['strides']} strides of the right foot, {summary['distance_m']:.1f} m, "
+                   f"{rate:g} Hz")
+
+
+def register(app: typer.Typer) -> None:
+    app.command("simulate")(simulate_cmd)
