@@ -118,8 +118,9 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.WARNING)
     if args.sim:
-        from pdrlearn.sim import simulate
+        import pdrlearn.sim as sim
 
+        simulate = getattr(sim.simulate, "simulate", sim.simulate)  # function, not the submodule
         sessions = [simulate(sc, user_seed=u) for u in range(args.users) for sc in args.sim.split(",")]
     else:
         sessions = _load(args.dirs)
