@@ -3,12 +3,12 @@
 Usage::
 
     python -m pdrlearn.features.report DATA_DIR... [--folds 5] [--seed 0]
-    python -m pdrlearn.features.report --sim terrain,direction,length --users 2 [--test-users 1]
+    python -m pdrlearn.features.report --sim [--users 3]
 
 For every task with labels it prints, per unit (and fused when both units exist), the per-class and
 balanced accuracy of the heuristic with learned cut points and with the thesis' cut points. Real
-sessions: stratified k-fold cross-validation over all steps. Simulated: trained on the calibration
-exercises of ``--users`` simulated users, tested on other users' steps (held out), per user.
+sessions: stratified k-fold cross-validation over all steps. Simulated: per user, fitted on one run of
+the task's calibration exercise and tested on a second run (held-out steps).
 """
 
 from __future__ import annotations
@@ -107,24 +107,58 @@ def report_cv(sessions, *, folds: int = 5, seed: int = 0, out=sys.stdout) -> dic
     return results
 
 
+def report_sim(*, users: int = 3, tasks=tuple(TASK_CLASSES), out=sys.stdout) -> dict:
+    """Held-out accuracy on simulated users: per user, fit on the calibration exercise of the task
+    (``simulate(task, user, seed=0)``) and test on a second run of it (``seed=1``); mean over users."""
+    import pdrlearn.sim as sim
+    from pdrlearn.classify.heuristic import make_heuristic
+    from pdrlearn.features.windows import TASK_COLUMNS
+
+    simulate = getattr(sim.simulate, "simulate", sim.simulate)  # the function, not the submodule
+    results: dict = {}
+    for task in tasks:
+        rows: dict = {}
+        n_test = 0
+        for u in range(users):
+            tr, te = simulate(task, user_seed=u, seed=0), simulate(task, user_seed=u, seed=1)
+            wtr, wte = step_windows(tr), step_windows(te)
+            ytr = tr.steps[TASK_COLUMNS[task]].to_numpy(dtype=object)
+            yte = te.steps[TASK_COLUMNS[task]].to_numpy(dtype=object)
+            n_test += len(yte)
+            for unit in _units(wtr.available):
+                for th in ("learn", "thesis"):
+                    for weights in ("thesis", "skill"):
+                        clf = make_heuristic(task, unit, thresholds=th, weights=weights).fit(wtr.X, ytr)
+                        p = clf.predict(wte.X)
+                        rows.setdefault((unit, th, weights), ([], []))
+                        rows[(unit, th, weights)][0].append(yte)
+                        rows[(unit, th, weights)][1].append(p)
+        print(f"\n{task}: {users} simulated users, {n_test} held-out test steps (second run of the exercise)",
+              file=out)
+        print(_header(task), file=out)
+        for (unit, th, weights), (ys, ps) in rows.items():
+            y, p = np.concatenate(ys), np.concatenate(ps)
+            name = f"{'fusion' if unit == 'both' else 'heuristic'} {unit} {th}/{weights}"
+            print(_row(name, y, p, TASK_CLASSES[task]), file=out)
+            results[(task, unit, th, weights)] = float((p == y).mean())
+    return results
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m pdrlearn.features.report",
                                  description=__doc__.split("\n")[0])
     ap.add_argument("dirs", nargs="*", help="session folders with labelled steps")
     ap.add_argument("--folds", type=int, default=5)
     ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("--sim", default="", help="simulate these calibration scenarios instead (comma list)")
-    ap.add_argument("--users", type=int, default=2, help="simulated users")
+    ap.add_argument("--sim", action="store_true",
+                    help="simulated users: fit on one run of each calibration exercise, test on another")
+    ap.add_argument("--users", type=int, default=3, help="simulated users")
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.WARNING)
     if args.sim:
-        import pdrlearn.sim as sim
-
-        simulate = getattr(sim.simulate, "simulate", sim.simulate)  # function, not the submodule
-        sessions = [simulate(sc, user_seed=u) for u in range(args.users) for sc in args.sim.split(",")]
+        report_sim(users=args.users)
     else:
-        sessions = _load(args.dirs)
-    report_cv(sessions, folds=args.folds, seed=args.seed)
+        report_cv(_load(args.dirs), folds=args.folds, seed=args.seed)
     return 0
 
 
