@@ -21,18 +21,39 @@ from pdrlearn.sim.kernels import foot_rotation, foot_rotation_dtheta, hermite, r
 from pdrlearn.sim.path import Footstep
 from pdrlearn.sim.user import GAIT_FACTORS, UserProfile
 
-# Kind -> (step-duration factor, toe-off pitch factor, initial-contact pitch (None = user's heel strike),
-#          impact (forward, vertical) factors, swing clearance (m, None = user's)).
-# Values follow the thesis' qualitative descriptions: on stairs the force is concentrated on the forefoot
-# and the heel load is negligible (thesis ch.2.5, ref [115]); descending steps land toe first with a
-# harder impact (thesis ch.6.1: "the foot touches the ground with a higher force").
-KIND_PARAMS = {
-    "walk": (1.00, 1.00, None, (0.55, -0.85), None),
-    "close": (1.00, 0.60, None, (0.35, -0.6), 0.15),
-    "stairs_up": (1.12, 0.55, np.radians(4.0), (0.75, -1.1), 0.11),
-    "stairs_down": (1.05, 0.45, np.radians(-22.0), (0.35, -1.5), 0.09),
-    "backward": (1.20, -0.30, np.radians(-15.0), (0.30, -0.6), 0.09),
-    "turn": (1.10, 0.25, np.radians(3.0), (0.05, -0.3), 0.05),
+
+@dataclass(frozen=True)
+class StepKind:
+    """Swing parameters of one kind of step.
+
+    duration : step-duration factor (x the user's step time)
+    toe_off : toe-off pitch factor (x the user's toe-off pitch; < 0 lifts the toes first: backward)
+    contact_deg : pitch at initial contact (deg; None = the user's heel-strike pitch; < 0 = toe first)
+    mid_swing_deg : pitch at mid-swing (deg; None = 55 % of the contact pitch)
+    impact : (forward, vertical) velocity of the contact point just before contact (x user impact speed)
+    clearance_m : heel height above the higher footprint at early swing (None = the user's swing height)
+    """
+
+    duration: float
+    toe_off: float
+    contact_deg: float | None
+    mid_swing_deg: float | None
+    impact: tuple[float, float]
+    clearance_m: float | None
+
+
+# Values follow the thesis' qualitative descriptions (ch.6.1.1, Figs. 59-60): on stairs the force is
+# concentrated on the forefoot and the heel load is negligible (thesis ch.2.5, ref [115]); descending
+# steps land toe first with a higher impact force; ascending steps rotate the foot up then down and
+# descending ones the opposite. Magnitudes are set so that peak |acc|, peak pitch rate and stride time
+# fall in the range of the real foot recordings (tests/test_sim_vs_real.py).
+KINDS = {
+    "walk": StepKind(1.00, 1.00, None, None, (0.55, -0.85), None),
+    "close": StepKind(1.00, 0.60, None, None, (0.35, -0.6), 0.15),
+    "stairs_up": StepKind(0.95, 0.85, 8.0, 14.0, (0.7, -1.0), 0.11),
+    "stairs_down": StepKind(0.82, 0.75, -26.0, 22.0, (0.3, -0.95), 0.09),
+    "backward": StepKind(1.20, -0.30, -15.0, None, (0.30, -0.6), 0.09),
+    "turn": StepKind(1.10, 0.25, 3.0, None, (0.05, -0.3), 0.05),
 }
 SPEED_PITCH = {"slow": 0.88, "normal": 1.0, "fast": 1.08}
 LOAD_FRACTION = 0.10  # initial contact -> foot flat, fraction of the gait cycle
@@ -50,6 +71,7 @@ class Events:
     step_s: np.ndarray  # nominal step duration
     theta_to: np.ndarray
     theta_ic: np.ndarray
+    theta_mid: np.ndarray
     impact: np.ndarray  # (n, 2): forward, vertical pivot velocity before contact (m/s)
     clearance: np.ndarray
     bout_start: np.ndarray  # bool: first step after a standstill
@@ -63,7 +85,8 @@ def schedule(steps: list[Footstep], user: UserProfile, *, speed: str, rng: np.ra
              stand_s: float, variability: float = 1.0) -> Events:
     """Assign gait-event times to the footsteps (both feet) and draw per-step swing parameters."""
     n = len(steps)
-    ev = {k: np.zeros(n) for k in ("ho", "to", "ic", "ff", "step_s", "theta_to", "theta_ic", "clearance")}
+    ev = {k: np.zeros(n) for k in ("ho", "to", "ic", "ff", "step_s", "theta_to", "theta_ic", "theta_mid",
+                                   "clearance")}
     impact = np.zeros((n, 2))
     bout_start = np.zeros(n, dtype=bool)
     cv = user.variability * variability
@@ -71,7 +94,9 @@ def schedule(steps: list[Footstep], user: UserProfile, *, speed: str, rng: np.ra
     settle = stand_s  # time at which all feet are flat after the last bout
     stance = user.stance_fraction
     for k, st in enumerate(steps):
-        dfac, pfac, ic_pitch, (vf, vz), clear = KIND_PARAMS[st.kind]
+        kd = KINDS[st.kind]
+        dfac, pfac, (vf, vz), clear = kd.duration, kd.toe_off, kd.impact, kd.clearance_m
+        ic_pitch = None if kd.contact_deg is None else np.radians(kd.contact_deg)
         d = user.step_time(speed, st.gait) * dfac * max(0.7, 1.0 + rng.normal(0.0, cv))
         if st.irregular:
             d *= 1.3
@@ -96,12 +121,15 @@ def schedule(steps: list[Footstep], user: UserProfile, *, speed: str, rng: np.ra
             ic_pitch = np.radians(user.heel_strike_pitch_deg) * (0.6 if st.kind == "close" else 1.0) \
                 * SPEED_PITCH[speed] * gait_pitch
         ev["theta_ic"][k] = ic_pitch * (1.0 + 0.1 * variability * rng.normal())
+        ev["theta_mid"][k] = (0.55 * ev["theta_ic"][k] if kd.mid_swing_deg is None
+                              else np.radians(kd.mid_swing_deg) * jit)
         sp = user.impact_speed_mps * np.exp(rng.normal(0.0, 0.25 * variability))
         sp *= {"slow": 0.8, "normal": 1.0, "fast": 1.2}[speed] * GAIT_FACTORS[st.gait][0] ** 0.5
         if st.irregular:
             sp *= 0.5
         impact[k] = (vf * sp, vz * sp)
-        ev["clearance"][k] = (clear if clear is not None else user.swing_height_m) * (0.5 if st.irregular else 1.0)
+        clear = user.swing_height_m if clear is None else clear
+        ev["clearance"][k] = clear * (0.5 if st.irregular else 1.0)
     return Events(impact=impact, bout_start=bout_start, **ev)
 
 
@@ -163,7 +191,7 @@ def foot_pose(t: np.ndarray, foot: str, steps: list[Footstep], ev: Events, initi
         heel[sl] = cs(t[sl])
         tu = (t[sl] - ev.to[k]) / swing
         yaw[sl] = y_a + (y_b - y_a) * smoothstep(tu)
-        pk = np.array([th_to, th_to + 0.15 * th_to - 0.1 * np.sign(th_to) * abs(th_ic), 0.55 * th_ic, th_ic])
+        pk = np.array([th_to, th_to + 0.15 * th_to - 0.1 * np.sign(th_to) * abs(th_ic), ev.theta_mid[k], th_ic])
         cp = CubicSpline(ev.to[k] + np.array([0.0, 0.14, 0.62, 1.0]) * swing, pk, bc_type=((1, w_to), (1, w_ic)))
         theta[sl] = cp(t[sl])
         # loading rocker: initial contact -> foot flat, pivot fixed on footprint B
@@ -244,6 +272,7 @@ def pelvis_pose(t: np.ndarray, steps: list[Footstep], ev: Events, initial: dict,
     # heel-strike transient: a short damped velocity kick (braking forward, upward push)
     kick_v = np.zeros_like(t)
     kick_f = np.zeros_like(t)
+    kick_l = np.zeros_like(t)
     tau0 = 0.025
     for k, st in enumerate(steps):
         i0, i1 = np.searchsorted(t, [ev.ic[k], ev.ic[k] + 8 * tau0])
@@ -252,10 +281,12 @@ def pelvis_pose(t: np.ndarray, steps: list[Footstep], ev: Events, initial: dict,
         s = 0.3 if st.kind == "turn" else (1.6 if st.kind == "stairs_down" else 1.0)
         kick_v[i0:i1] += 0.05 * s * g
         kick_f[i0:i1] -= 0.03 * s * g
+        kick_l[i0:i1] += (0.02 if st.foot == "left" else -0.02) * s * g
 
     ca, sa = np.cos(heading), np.sin(heading)
     pos = np.empty((t.size, 3))
     fwd = surge + kick_f
+    sway = sway + kick_l
     pos[:, 0] = base[:, 0] + ca * fwd - sa * sway
     pos[:, 1] = base[:, 1] + sa * fwd + ca * sway
     pos[:, 2] = base[:, 2] + user.sensor_height_m + bounce + kick_v

@@ -30,6 +30,7 @@ log = logging.getLogger(__name__)
 
 INTERNAL_RATE_HZ = 100.0  # sensor output data rate (thesis ch.4.2.1.1-2)
 OVERSAMPLE = 5  # pose grid at 500 Hz, averaged to the 100 Hz samples
+STAND_MARGIN_S = 0.2  # added to the standstills so that they last at least ``stand_s`` in every sensor
 TERRAIN_DZ_M = 0.08  # |height change| of a stride above which it is a stair stride (about half a rise)
 
 #: Realism knobs of :func:`simulate` / :func:`simulate_path` and their defaults.
@@ -118,6 +119,10 @@ def _stride_table(steps: list[Footstep], ev: Events, initial: dict, user: UserPr
             "heading_change_deg": round(math.degrees(st.yaw - y_a), 4),
             "foot": foot, "kind": st.kind, "gait": st.gait, "irregular": st.irregular,
         })
+        rows[-1]["steady"] = bool(
+            st.kind in ("walk", "stairs_up", "stairs_down", "backward") and not ev.bout_start[k]
+            and steps[k - 1].kind == st.kind and k + 1 < len(steps) and steps[k + 1].kind == st.kind
+            and not ev.bout_start[k + 1])
         h_a, y_a, prev_ff = st.heel, st.yaw, ff
     df = pd.DataFrame(rows)
     df.attrs["time_columns"] = ["start_s", "end_s", "ic_s", "tc_s"]
@@ -157,7 +162,7 @@ def simulate_path(segments: list[Segment], user: UserProfile, *, speed: str = "n
                                     heading0_rad=math.radians(float(opt["heading0_deg"])),
                                     irregular_rate=float(opt["irregular_rate"]),
                                     variability=float(opt["variability"]))
-    stand = float(opt["stand_s"])
+    stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
     ev = schedule(steps, user, speed=speed, rng=rng, stand_s=stand, variability=float(opt["variability"]))
     total_s = max(ev.end_s, stand) + stand if steps else 2 * stand
     k_fine = OVERSAMPLE * k_out

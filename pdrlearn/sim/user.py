@@ -93,8 +93,8 @@ class UserProfile:
             foot_misalignment_deg=[round(float(v), 3) for v in rng.normal(0.0, 2.5, 3)],
             waist_misalignment_deg=[round(float(v), 3) for v in rng.normal(0.0, 2.5, 3)],
             force_coverage=round(float(rng.uniform(0.35, 0.6)), 4),
-            pelvis_bounce_m=round(float(rng.uniform(0.035, 0.05)), 4),
-            pelvis_sway_m=round(float(rng.uniform(0.018, 0.03)), 4),
+            pelvis_bounce_m=round(float(rng.uniform(0.03, 0.045)), 4),
+            pelvis_sway_m=round(float(rng.uniform(0.025, 0.04)), 4),
             pelvis_rotation_deg=round(float(rng.uniform(3.0, 5.0)), 3),
             pelvis_obliquity_deg=round(float(rng.uniform(2.0, 4.0)), 3),
         )

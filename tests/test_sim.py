@@ -1,0 +1,297 @@
+"""Physics, determinism, format and CLI checks of the gait simulator (pdrlearn.sim)."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from pdrlearn.cli import main
+from pdrlearn.errors import DataError
+from pdrlearn.io import read_session, write_session
+from pdrlearn.sim import (
+    Backward,
+    Curve,
+    Stairs,
+    Stand,
+    Straight,
+    Turn,
+    UserProfile,
+    simulate,
+    simulate_path,
+)
+from pdrlearn.sim.kernels import STANDARD_GRAVITY
+
+G = STANDARD_GRAVITY
+
+
+def _aligned(seed: int = 1) -> UserProfile:
+    return dataclasses.replace(UserProfile.from_seed(seed), foot_misalignment_deg=[0.0, 0.0, 0.0],
+                               waist_misalignment_deg=[0.0, 0.0, 0.0])
+
+
+def _foot_axes(s) -> np.ndarray:
+    """Columns: the foot sensor axes in body FLU (declared frame + recorded misalignment)."""
+    mis = Rotation.from_rotvec(np.radians(s.meta["misalignment_deg"]["foot"])).as_matrix()
+    return mis @ s.frames["foot"].matrix()
+
+
+@pytest.fixture(scope="module")
+def exact_a():
+    return simulate("A", 1, rate_hz=100, noise=False)
+
+
+@pytest.fixture(scope="module")
+def exact_d():
+    return simulate("D", 2, rate_hz=100, noise=False)
+
+
+def test_standing_units_read_gravity_in_their_frames():
+    s = simulate_path([], _aligned(), rate_hz=20, noise=False)
+    # thesis foot frame: y up; waist phone: y up (pdrlearn.io.frames)
+    np.testing.assert_allclose(s["fAccelerometer"].values, np.tile([0.0, G, 0.0], (len(s["fAccelerometer"]), 1)),
+                               atol=1e-9)
+    np.testing.assert_allclose(s["wAccelerometer"].values[5], [0.0, G, 0.0], atol=1e-9)
+    np.testing.assert_allclose(s["fGyroscope"].values, 0.0, atol=1e-12)
+    # misaligned unit: still |g|, and the declared frame + recorded misalignment explain the reading
+    m = simulate("standstill", 4, noise=False)
+    f = m["fAccelerometer"].values
+    np.testing.assert_allclose(np.linalg.norm(f, axis=1), G, atol=1e-9)
+    np.testing.assert_allclose(f[0], _foot_axes(m).T @ [0.0, 0.0, G], atol=1e-9)
+    assert m.duration_s == pytest.approx(60.0, abs=0.06)  # thesis Table 34: 60 s standstill
+
+
+def _stride_windows(s, rows):
+    t = s["fAccelerometer"].t
+    for _, r in rows.iterrows():
+        i0 = int(np.searchsorted(t, r.start_s))
+        i1 = int(np.searchsorted(t, r.end_s)) - 1
+        yield r, i0, i1
+
+
+def test_double_integration_recovers_stride_displacement(exact_a):
+    s = exact_a
+    ft = s.extras["foot_trajectory"]
+    R = Rotation.from_quat(ft[["qx", "qy", "qz", "qw"]].to_numpy()).as_matrix()
+    f_body = s["fAccelerometer"].values @ _foot_axes(s).T
+    a_nav = np.einsum("nij,nj->ni", R, f_body) - [0.0, 0.0, G]
+    dt = 0.01
+    rows = s.steps[s.steps.steady]
+    assert len(rows) >= 10
+    for r, i0, i1 in _stride_windows(s, rows):
+        v = np.vstack([np.zeros(3), np.cumsum(0.5 * (a_nav[i0:i1] + a_nav[i0 + 1:i1 + 1]) * dt, axis=0)])
+        disp = np.sum(0.5 * (v[:-1] + v[1:]) * dt, axis=0)
+        assert np.hypot(*disp[:2]) == pytest.approx(r.length_m, rel=0.02)
+        assert np.linalg.norm(v[-1]) < 0.05  # foot at rest again at mid-stance
+    # the labelled length is the foot-unit displacement of the ground truth trajectory
+    p = ft[["x", "y"]].to_numpy()
+    r, i0, i1 = next(_stride_windows(s, rows))
+    assert np.hypot(*(p[i1] - p[i0])) == pytest.approx(r.length_m, abs=1e-6)
+
+
+def _integrate_gyro(w: np.ndarray, dt: float) -> Rotation:
+    rot = Rotation.identity()
+    for wi in w:
+        rot = rot * Rotation.from_rotvec(wi * dt)
+    return rot
+
+
+def test_gyroscope_integrates_to_orientation_change(exact_a):
+    s = exact_a
+    ft = s.extras["foot_trajectory"]
+    q = Rotation.from_quat(ft[["qx", "qy", "qz", "qw"]].to_numpy())
+    axes = _foot_axes(s)
+    w_body = s["fGyroscope"].values @ axes.T
+    for _, i0, i1 in list(_stride_windows(s, s.steps[s.steps.steady]))[:3]:
+        mid = (i0 + i1) // 2  # compare at mid-swing, where the foot has rotated most
+        est = _integrate_gyro(0.5 * (w_body[i0:mid] + w_body[i0 + 1:mid + 1]), 0.01)  # trapezoid
+        true = q[i0].inv() * q[mid]
+        assert true.magnitude() > 0.3
+        assert (est.inv() * true).magnitude() < math.radians(2.0)
+
+
+def test_waist_gyroscope_sees_in_place_rotations():
+    s = simulate("rotations", 3, rate_hz=100, noise=False)
+    w = s["wGyroscope"].values[:, 1]  # waist y axis = up
+    t = s["wGyroscope"].t
+    yaw = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))])
+    heading = s.trajectory["heading_rad"].to_numpy()
+    # four pi/2 rotations: anticlockwise, two clockwise, anticlockwise (thesis Table 35)
+    moves = np.flatnonzero(np.abs(np.diff(heading)) > 1e-4)
+    assert abs(yaw[-1]) < 0.05 and np.max(yaw) == pytest.approx(math.pi / 2, rel=0.05)
+    assert np.min(yaw) == pytest.approx(-math.pi / 2, rel=0.05) and moves.size > 0
+
+
+def test_force_only_in_stance(exact_a):
+    s = simulate("A", 1, rate_hz=100)  # with noise: an unloaded sensor still reads exactly 0
+    for sess in (exact_a, s):
+        fa, fb = sess["fForceA"], sess["fForceB"]
+        total = fa.values[:, 0] + fb.values[:, 0]
+        for _, r in sess.steps[sess.steps.steady].iterrows():
+            swing = (fa.t > r.tc_s + 0.02) & (fa.t < r.ic_s - 0.02)
+            assert swing.sum() > 10 and np.all(total[swing] == 0.0)
+            stance = (fa.t > r.start_s) & (fa.t < r.start_s + 0.1)
+            assert np.all(fb.values[stance, 0] > 0)
+            heel_strike = (fa.t > r.ic_s + 0.03) & (fa.t < r.ic_s + 0.1)
+            assert np.all(fa.values[heel_strike, 0] > 0)
+    assert fa.values.max() <= 440.0  # Table 7 range
+
+
+def test_stairs_rise_two_stairs_per_stride(exact_d):
+    st = exact_d.steps
+    up = st[(st.terrain == "up") & st.steady]
+    assert len(up) >= 6
+    np.testing.assert_allclose(up.height_m, 2 * 3.8 / 21, atol=1e-6)  # stride = two stairs
+    z = exact_d.trajectory.z.to_numpy()
+    assert z[-1] - z[0] == pytest.approx(3.8, abs=1e-6)  # thesis ch.7.3.2.1: 3.8 m rise
+    assert exact_d.meta["distance_m"] == pytest.approx(90.0, rel=0.05)
+    # the barometer sees the climb: ~0.12 hPa per metre
+    p = exact_d["wBarometer"].values[:, 0]
+    assert p[0] - p[-1] == pytest.approx(3.8 * 0.1193, rel=0.05)
+
+
+def test_same_seed_same_session_other_seed_other_user():
+    a, b = simulate("B", 5, seed=2), simulate("B", 5, seed=2)
+    for name in a.streams:
+        np.testing.assert_array_equal(a[name].values, b[name].values)
+        np.testing.assert_array_equal(a[name].t, b[name].t)
+    assert a.steps.equals(b.steps) and a.meta == b.meta
+    u5, u6 = UserProfile.from_seed(5), UserProfile.from_seed(6)
+    assert u5 == UserProfile.from_seed(5) and u5.height_m != u6.height_m and u5.step_time_s != u6.step_time_s
+    c = simulate("B", 6, seed=2)
+    assert c.meta["user"] != a.meta["user"] and len(c["fAccelerometer"]) != len(a["fAccelerometer"])
+    d = simulate("B", 5, seed=3)
+    assert not np.array_equal(d["fGyroscope"].values[:50], a["fGyroscope"].values[:50])
+
+
+def test_round_trip(tmp_path):
+    s = simulate("direction", 2, clock_offset_s=0.2, drop_rate=0.02)
+    write_session(s, tmp_path / "s")
+    r = read_session(tmp_path / "s")
+    assert set(r.streams) == set(s.streams)
+    for name in s.streams:
+        np.testing.assert_allclose(r[name].t, s[name].t, atol=1e-9)
+        np.testing.assert_array_equal(r[name].values, s[name].values)
+    np.testing.assert_allclose(r.steps.start_s, s.steps.start_s, atol=1e-9)
+    assert list(r.steps.direction) == list(s.steps.direction)
+    np.testing.assert_allclose(r.extras["ics"].ic_s, s.extras["ics"].ic_s, atol=1e-9)
+    assert r.frames == s.frames and r.meta["length_class_bounds_m"] == s.meta["length_class_bounds_m"]
+    np.testing.assert_allclose(r.trajectory[["x", "y", "z"]], s.trajectory[["x", "y", "z"]])
+
+
+def test_steps_table_and_ics_contract(exact_a):
+    st = exact_a.steps
+    for col in ("start_s", "end_s", "ic_s", "terrain", "direction", "length_m", "height_m", "length_class",
+                "heading_change_deg"):
+        assert col in st
+    assert (st.start_s < st.ic_s).all() and (st.ic_s < st.end_s).all() and (st.length_m >= 0).all()
+    assert (st.end_s.to_numpy()[:-1] == pytest.approx(st.start_s.to_numpy()[1:]))
+    ics = exact_a.extras["ics"]
+    assert set(ics.foot) == {"left", "right"} and np.all(np.diff(ics.ic_s) > 0)
+    assert (ics.foot.to_numpy()[1:] != ics.foot.to_numpy()[:-1]).mean() > 0.9
+    # >= 5 s still at both ends (thesis: 5 s standstill for calibration)
+    acc = exact_a["fAccelerometer"]
+    still = acc.values[(acc.t < 5.0) | (acc.t > acc.t[-1] - 5.0)]
+    assert np.ptp(still, axis=0).max() < 1e-9
+    for key in ("sensor_height_m", "leg_length_m", "height_m", "scenario", "user", "clock_offset_s"):
+        assert key in exact_a.meta
+
+
+def test_exercises_label_balance():
+    t = simulate("terrain", 3).steps
+    counts = t.terrain.value_counts()
+    assert 60 <= len(t) <= 110 and min(counts.get(c, 0) for c in ("flat", "up", "down")) >= 20
+    d = simulate("direction", 3).steps
+    assert 40 <= len(d) <= 60 and (d.direction == "backward").sum() >= 20
+    assert (d.direction == "forward").sum() >= 20
+    # backward strides: the foot moves backward (the heading stays)
+    ft = simulate("direction", 3, rate_hz=100, noise=False)
+    back = ft.steps[(ft.steps.direction == "backward") & ft.steps.steady].iloc[0]
+    fx = ft.extras["foot_trajectory"]
+    x = np.interp([back.start_s, back.end_s], fx.t_s, fx.x)
+    assert x[1] < x[0] - 0.2
+    ln = simulate("length", 3)
+    c = ln.steps[ln.steps.steady].length_class.value_counts()
+    assert min(c.get(k, 0) for k in ("short", "normal", "long")) >= 15
+    lo, hi = ln.meta["length_class_bounds_m"]
+    assert 0 < lo < hi
+
+
+def test_speed_changes_cadence_and_length():
+    slow, fast = simulate("A", 2, "slow").steps, simulate("A", 2, "fast").steps
+    s, f = slow[slow.steady], fast[fast.steady]
+    assert (s.end_s - s.start_s).median() > 1.15 * (f.end_s - f.start_s).median()
+    assert s.length_m.median() < f.length_m.median()
+
+
+def test_waist_shows_pelvic_rotation_and_bounce(exact_a):
+    g = exact_a["wGyroscope"]
+    st = exact_a.steps[exact_a.steps.steady]
+    m = (g.t > st.start_s.min()) & (g.t < st.end_s.max())
+    yaw_rate = g.values[m, 1]
+    assert 0.08 < yaw_rate.std() < 0.6
+    stride_hz = 1.0 / (st.end_s - st.start_s).median()
+    spec = np.abs(np.fft.rfft(yaw_rate - yaw_rate.mean()))
+    freqs = np.fft.rfftfreq(yaw_rate.size, 0.01)
+    assert abs(freqs[np.argmax(spec)] - stride_hz) < 0.15  # pelvic rotation at stride frequency
+    acc_up = exact_a["wAccelerometer"].values[m, 1]
+    assert 1.0 < acc_up.std() < 3.5
+
+
+def test_clock_knobs_drops_and_bad_values():
+    s = simulate("A", 1, clock_offset_s=0.3, clock_drift_ppm=50, drop_rate=0.05)
+    ref = simulate("A", 1)
+    tw, tf = s["wAccelerometer"].t, ref["fAccelerometer"].t
+    np.testing.assert_allclose(tw, tf * (1 + 50e-6) + 0.3)
+    assert len(s["fAccelerometer"]) == len(tf) - s.meta["dropped_samples"] and s.meta["dropped_samples"] > 5
+    assert s["fAccelerometer"].gaps()
+    with pytest.raises(DataError, match="scenario"):
+        simulate("E", 1)
+    with pytest.raises(DataError, match="speed"):
+        simulate("A", 1, "jogging")
+    with pytest.raises(DataError, match="unknown option"):
+        simulate("A", 1, wobble=3)
+    with pytest.raises(DataError, match="100 Hz divided"):
+        simulate("A", 1, rate_hz=30)
+    with pytest.raises(DataError, match="non-negative"):
+        simulate("A", -1)
+    with pytest.raises(DataError, match="gait"):
+        simulate_path([Straight(5.0, "huge")], UserProfile.from_seed(1))
+
+
+def test_custom_path_segments():
+    user = UserProfile.from_seed(8)
+    s = simulate_path([Straight(3.0), Curve(math.pi / 2, 1.5), Stand(2.0), Backward(4), Turn(-math.pi),
+                       Stairs(4, up=False, rise_m=0.16, run_m=0.3)], user, rate_hz=50, noise=False)
+    assert s["fAccelerometer"].rate_hz == pytest.approx(50.0)
+    traj = s.trajectory
+    assert traj.z.iloc[-1] - traj.z.iloc[0] == pytest.approx(-0.64, abs=1e-6)
+    assert math.degrees(s.trajectory.heading_rad.iloc[-1]) == pytest.approx(-90.0, abs=1.0)
+    assert {"backward", "forward"} <= set(s.steps.direction)
+
+
+def test_cli_end_to_end(tmp_path, capsys):
+    out = tmp_path / "sim_b"
+    code = main(["simulate", "--scenario", "B", "--user-seed", "3", "--speed", "fast", "--out", str(out), "--json"])
+    printed, err = capsys.readouterr()
+    assert code == 0, err
+    summary = json.loads(printed)
+    assert summary["strides"] > 10 and summary["distance_m"] == pytest.approx(25.0, rel=0.05)
+    s = read_session(out)
+    assert len(s.streams) == 8 and s.steps is not None and "ics" in s.extras
+    for bad in (["--scenario", "Z", "--user-seed", "1"], ["--scenario", "A", "--user-seed", "-2"],
+                ["--scenario", "A", "--user-seed", "1", "--speed", "jog"],
+                ["--scenario", "A", "--user-seed", "1", "--rate", "33"]):
+        target = tmp_path / "bad"
+        code = main(["simulate", *bad, "--out", str(target)])
+        _, err = capsys.readouterr()
+        assert code != 0 and err.startswith("error:") and err.count("\n") == 1, err
+        assert not target.exists()
+    code = main(["simulate", "--scenario", "A", "--user-seed", "1", "--out", str(out)])
+    _, err = capsys.readouterr()
+    assert code == 2 and "not an empty folder" in err
+    assert len(list(out.iterdir())) > 8  # untouched
