@@ -230,3 +230,24 @@ def test_heuristics_beat_chance_on_held_out_simulated_steps(task, unit, min_bacc
     assert bacc > min_bacc, bacc
     p = clf.predict_proba(Xte)
     assert np.allclose(p.sum(axis=1), 1.0)
+
+
+def test_predictions_unchanged_by_mounting_rotation(real_dir, real_terrain):
+    """The stair recording re-mounted by -50 deg pitch / 15 deg roll (roughly the level walk's lateral
+    mount) gets the same terrain predictions."""
+    from scipy.spatial.transform import Rotation
+
+    from pdrlearn.io import Stream
+
+    X, y = real_terrain
+    clf = HeuristicTerrainClassifier(unit="foot").fit(X, y)
+    s = read_session(real_dir / "gaitmap_stairs_up_left")
+    rot = Rotation.from_euler("xyz", (15, -50, 0), degrees=True).as_matrix()
+    r = s.copy()
+    for name in ("fAccelerometer", "fGyroscope"):
+        r.streams[name] = Stream(name, s[name].t, s[name].values @ rot)
+    p0 = clf.predict(step_windows(s).X)
+    p1 = clf.predict(step_windows(r).X)
+    assert (p0 == p1).mean() >= 0.95, (p0, p1)
+    np.testing.assert_allclose(clf.predict_proba(step_windows(s).X), clf.predict_proba(step_windows(r).X),
+                               atol=0.1)
