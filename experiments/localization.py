@@ -13,6 +13,7 @@ user's own simulated calibration exercises (terrain / direction / length) with
 ("oracle", clearly marked). M3 is reported with both when a model exists.
 """
 
+# ruff: noqa: E501  (report tables are long lines)
 from __future__ import annotations
 
 import argparse

@@ -13,12 +13,13 @@ from pdrlearn.displace._kernels import (
     wnj_kalman,
     wnj_matrices,
 )
-from pdrlearn.displace.foot import FootDisplacement, force_stance, inertial_stance, snap_to_rest
+from pdrlearn.displace.foot import FootDisplacement, force_stance, inertial_stance, rest_to_rest, stance_runs
 from pdrlearn.displace.rules import THESIS_STEP_BOUNDS, StepRules, parse_bounds
 
 __all__ = [
     "FootDisplacement", "StepRules", "THESIS_STEP_BOUNDS", "altitude_change", "apply_direction",
     "clamp_length",
-    "double_integrate", "force_stance", "inertial_stance", "parse_bounds", "snap_to_rest", "strapdown",
+    "double_integrate", "force_stance", "inertial_stance", "parse_bounds", "rest_to_rest", "stance_runs",
+    "strapdown",
     "stride_index", "terrain_distance", "wnj_displacement", "wnj_kalman", "wnj_matrices",
 ]

@@ -10,7 +10,44 @@ foot's forward direction at the stride start (yaw of the stride start = 0), z up
 from __future__ import annotations
 
 import numpy as np
+from scipy.interpolate import CubicSpline
 from scipy.spatial.transform import Rotation
+
+
+def upsample_block_means(t: np.ndarray, x: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """Upsample block-averaged samples ``k`` times, preserving each block's mean (a histospline).
+
+    The PLASYS firmware sends the mean of consecutive samples (thesis ch.4: 20 Hz); each sample is the
+    average over its period, stamped at the period's centre. A cubic spline through the running integral
+    at the block edges, differentiated, gives a smooth signal whose block averages are the samples, so
+    the strapdown can integrate rotations and accelerations on a finer grid. Returns (t_fine, x_fine).
+    """
+    t = np.asarray(t, dtype=float)
+    x = np.asarray(x, dtype=float)
+    dt = np.diff(t)
+    edges = np.concatenate([[t[0] - dt[0] / 2], 0.5 * (t[1:] + t[:-1]), [t[-1] + dt[-1] / 2]])
+    width = np.diff(edges)
+    w = width.reshape(-1, *([1] * (x.ndim - 1)))
+    integral = np.vstack([np.zeros((1,) + x.shape[1:]), np.cumsum(x * w, axis=0)])
+    spline = CubicSpline(edges, integral, axis=0)
+    frac = (np.arange(k) + 0.5) / k
+    t_fine = (edges[:-1, None] + width[:, None] * frac[None, :]).ravel()
+    return t_fine, spline(t_fine, 1)
+
+
+def erode_runs(mask: np.ndarray, frac: float) -> np.ndarray:
+    """Shrink every True run of ``mask`` by ``frac`` of its length at each end (keeps its calm middle)."""
+    m = np.asarray(mask, dtype=bool)
+    if frac <= 0 or not m.any():
+        return m.copy()
+    d = np.diff(np.concatenate([[0], m.astype(np.int8), [0]]))
+    starts, stops = np.flatnonzero(d == 1), np.flatnonzero(d == -1)
+    cut = ((stops - starts) * frac).astype(np.int64)
+    out = np.zeros_like(m)
+    for a, b in zip(starts + cut, stops - cut, strict=True):
+        if b > a:
+            out[a:b] = True
+    return out
 
 
 def stride_index(starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -7,6 +7,7 @@ import logging
 
 import numpy as np
 import pandas as pd
+from scipy.ndimage import uniform_filter1d
 
 from pdrlearn.displace import _kernels as K
 from pdrlearn.errors import DataError
@@ -18,43 +19,83 @@ from pdrlearn.signal.conditioning import runs
 log = logging.getLogger(__name__)
 
 
-def force_stance(session: Session, t: np.ndarray, *, level: float = 0.2) -> np.ndarray | None:
-    """Stance samples from the heel + toe force sensors: load above ``level`` x its 95th percentile.
-
-    Returns None when the session has no force sensor. Works in N or normalised units (relative level).
+def force_stance(session: Session, t: np.ndarray, gyr: np.ndarray | None = None, *, level: float = 0.2,
+                 gyr_tol: float = 0.4, window_s: float = 0.1) -> np.ndarray | None:
+    """Zero-velocity samples from the force sensors: the foot is loaded (heel fForceA or toe fForceB above
+    ``level`` x its own 95th percentile; N or normalised units) and, when ``gyr`` (n, 3) is given, not
+    rotating (mean |gyro| over ``window_s`` below ``gyr_tol`` rad/s: the unit moves while the foot
+    rolls over heel or toe). Returns None when the session has no usable force sensor.
     """
     names = [n for n in ("fForceA", "fForceB") if n in session.streams and len(session.streams[n]) >= 2]
     if not names:
         return None
-    total = np.zeros(t.shape[0])
+    loaded = np.zeros(t.shape[0], dtype=bool)
     for n in names:
         s = session.streams[n]
-        total += np.interp(t, s.t, s.values[:, 0])
-    ref = float(np.percentile(total, 95))
-    if not np.isfinite(ref) or ref <= 0:
-        return None
-    return total > level * ref
+        f = np.interp(t, s.t, s.values[:, 0])
+        ref = float(np.percentile(f, 95))
+        if not np.isfinite(ref) or ref <= 0:
+            return None
+        loaded |= f > level * ref
+    if gyr is None:
+        return loaded
+    fs = 1.0 / float(np.median(np.diff(t)))
+    w = max(1, int(round(window_s * fs)))
+    calm = uniform_filter1d(np.linalg.norm(gyr, axis=1), w, mode="nearest") < gyr_tol
+    return loaded & calm
 
 
 def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: float = 0.1,
-                    acc_tol: float = 1.5, gyr_tol: float = 1.0) -> np.ndarray:
+                    acc_tol: float = 1.5, gyr_tol: float = 0.4) -> np.ndarray:
     """Foot-flat samples from accelerometer + gyroscope (short window, looser tolerances than
     :func:`pdrlearn.signal.standstill_mask`, whose test this reuses)."""
     return standstill_mask(acc, gyr, fs, window_s=max(window_s, 2.5 / fs), acc_tol=acc_tol, gyr_tol=gyr_tol)
 
 
-def snap_to_rest(t: np.ndarray, stance: np.ndarray, times: np.ndarray, *, half_window_s: float) -> np.ndarray:
-    """Sample index of each time, moved to the nearest stance sample within +-``half_window_s`` when the
-    time itself is not in stance (a detector's boundary slightly off the foot-flat period)."""
-    i = np.clip(np.searchsorted(t, np.asarray(times, dtype=float)), 0, len(t) - 1)
-    st_idx = np.flatnonzero(stance)
-    if st_idx.size == 0 or half_window_s <= 0:
-        return i
-    pos = np.clip(np.searchsorted(st_idx, i), 1, st_idx.size - 1) if st_idx.size > 1 else np.zeros_like(i)
-    cand = np.stack([st_idx[np.maximum(pos - 1, 0)], st_idx[pos]])
-    best = cand[np.argmin(np.abs(cand - i), axis=0), np.arange(len(i))]
-    ok = (~stance[i]) & (np.abs(t[best] - t[i]) <= half_window_s)
-    return np.where(ok, best, i)
+def stance_runs(t: np.ndarray, stance: np.ndarray, *, merge_s: float = 0.1) -> np.ndarray:
+    """(k, 2) start/stop indices (stop exclusive) of stance runs, runs closer than ``merge_s`` merged."""
+    merged: list[list[int]] = []
+    for a, b in runs(stance):
+        if merged and t[a] - t[merged[-1][1] - 1] <= merge_s:
+            merged[-1][1] = b
+        else:
+            merged.append([a, b])
+    return np.array(merged, dtype=np.int64).reshape(-1, 2)
+
+
+def rest_to_rest(t: np.ndarray, stance: np.ndarray, starts: np.ndarray, ends: np.ndarray, *,
+                 max_rest_s: float = 0.3, tol_s: float = 0.2) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Turn detected step windows into rest-to-rest strides of the foot unit.
+
+    A detector may report the swing (toe-off to contact) or a stance-to-stance window; either way the
+    stride used for integration runs from the middle of the stance before the window start to the middle
+    of the stance after the window end (at most ``max_rest_s`` into a longer rest). Windows whose start
+    and end fall in the same stance, or duplicates, are dropped.
+
+    Returns
+    -------
+    i0, i1 : sample indices of the stride boundaries;  keep : indices of the input rows used
+    """
+    rr = stance_runs(t, stance)
+    if len(rr) < 2:
+        i0 = np.clip(np.searchsorted(t, starts), 0, len(t) - 1)
+        i1 = np.clip(np.searchsorted(t, ends), 0, len(t) - 1)
+        keep = np.flatnonzero(i1 > i0 + 1)
+        return i0[keep], i1[keep], keep
+    rs, re = t[rr[:, 0]], t[rr[:, 1] - 1]
+    mid = np.clip((rr[:, 0] + rr[:, 1] - 1) // 2, 0, len(t) - 1)
+    n_rest = int(round(max_rest_s / float(np.median(np.diff(t)))))
+    # before: the last run starting before start + tol; after: the first run ending after end - tol
+    k0 = np.searchsorted(rs, np.asarray(starts) + tol_s, side="right") - 1
+    k1 = np.searchsorted(re, np.asarray(ends) - tol_s, side="left")
+    ok = (k0 >= 0) & (k1 < len(rr)) & (k1 > k0)
+    keep = np.flatnonzero(ok)
+    k0, k1 = k0[keep], k1[keep]
+    i0 = np.maximum(mid[k0], rr[k0, 1] - 1 - n_rest)
+    i1 = np.minimum(mid[k1], rr[k1, 0] + n_rest)
+    _, first = np.unique(np.column_stack([i0, i1]), axis=0, return_index=True)
+    first = np.sort(first)
+    return i0[first], i1[first], keep[first]
 
 
 class FootDisplacement:
@@ -72,20 +113,28 @@ class FootDisplacement:
     attitude : ``"kalman"`` -> initial roll/pitch of each stride from the 2-state angle Kalman filter
         (thesis eq. 40-43); ``"accel"`` -> from the accelerometer at rest (thesis eq. 38/39)
     sw, r : white-noise-jerk filter settings (thesis ch.7.2.1: Sw = 1.8, R = 0.01)
-    snap_s : a stride boundary outside stance moves to the nearest stance sample within +- this (s)
+    max_rest_s : a stride starts/ends at the middle of the adjacent stance, at most this far (s) into a
+        longer rest (see :func:`rest_to_rest`)
     rest_s : half-width (s) of the window averaged for gravity at a stride boundary
+    zupt_erode : fraction of each stance run dropped at both ends before it is used for ZUPT (the foot
+        rolls over heel and toe at the edges of stance)
+    max_stride_s : strides longer than this (s) are flagged in ``warnings_`` (a missed stance)
+    upsample : strapdown on a ``k`` times finer grid (block-mean preserving spline); default 5 below
+        50 Hz (20 Hz firmware means), else 1
 
     Attributes
     ----------
     disp_ : (B, 3) displacement (m) in each stride's level frame (x = foot forward at the start, z up)
     yaw_change_ : (B,) foot heading change over each stride (rad, CCW)
-    start_idx_, end_idx_ : (B,) sample indices of the stride boundaries used
+    start_idx_, end_idx_ : (B,) sample indices of the stride boundaries used; start_s_, end_s_ their times
+    rows_ : (B,) rows of the input steps table the strides come from (dropped rows: no swing between)
     stance_ : (n,) bool stance mask;  stance_source_ : "force" or "inertial"
     """
 
     def __init__(self, *, integrator: str = "kalman", zupt_end: bool = True, gyro_bias: str = "standstill",
-                 attitude: str = "kalman", sw: float = 1.8, r: float = 0.01, snap_s: float = 0.2,
-                 rest_s: float = 0.05):
+                 attitude: str = "kalman", sw: float = 1.8, r: float = 0.01, max_rest_s: float = 0.3,
+                 rest_s: float = 0.05, zupt_erode: float = 0.25, upsample: int | None = None,
+                 max_stride_s: float = 3.0):
         if integrator not in ("kalman", "integration"):
             raise DataError(f"FootDisplacement: integrator '{integrator}' is not 'kalman' or 'integration'")
         if attitude not in ("kalman", "accel"):
@@ -98,8 +147,11 @@ class FootDisplacement:
         self.attitude = attitude
         self.sw = sw  # thesis ch.7.2.1: Sw = 1.8
         self.r = r  # thesis eq. 55: R = 0.01
-        self.snap_s = snap_s
+        self.max_rest_s = max_rest_s
         self.rest_s = rest_s
+        self.zupt_erode = zupt_erode
+        self.upsample = upsample
+        self.max_stride_s = max_stride_s
 
     def estimate(self, unit: UnitData, steps: pd.DataFrame, *,
                  stance: np.ndarray | None = None) -> FootDisplacement:
@@ -107,19 +159,33 @@ class FootDisplacement:
 
         ``stance`` (n,) bool on ``unit.t``; default: the inertial stance detector.
         """
-        t, acc, gyr, fs = unit.t, unit.acc, unit.gyr, unit.fs
+        from scipy.spatial.transform import Rotation
+
         self.warnings_: list[str] = []
-        dt = 1.0 / fs
+        fs0 = unit.fs
+        stance0 = (inertial_stance(unit.acc, unit.gyr, fs0) if stance is None
+                   else np.asarray(stance, dtype=bool))
         self.stance_source_ = "inertial" if stance is None else "given"
-        self.stance_ = inertial_stance(acc, gyr, fs) if stance is None else np.asarray(stance, dtype=bool)
+        zupt0 = K.erode_runs(stance0, self.zupt_erode)
+        k = self.upsample if self.upsample is not None else (5 if fs0 < 50.0 else 1)
+        t, acc, gyr, fs = unit.t, unit.acc, unit.gyr, fs0
+        if k > 1:
+            t, acc = K.upsample_block_means(unit.t, unit.acc, k)
+            _, gyr = K.upsample_block_means(unit.t, unit.gyr, k)
+            fs = fs0 * k
+        self.t_ = t
+        self.stance_ = np.repeat(stance0, k)
+        zupt_stance = np.repeat(zupt0, k)
+        dt = 1.0 / fs
         st = steps["start_s"].to_numpy(dtype=float)
         en = steps["end_s"].to_numpy(dtype=float)
-        half = self.snap_s
-        i0 = snap_to_rest(t, self.stance_, st, half_window_s=half)
-        i1 = snap_to_rest(t, self.stance_, en, half_window_s=half)
-        i1 = np.maximum(i1, i0 + 2)
-        i1 = np.minimum(i1, len(t) - 1)
+        i0, i1, self.rows_ = rest_to_rest(t, self.stance_, st, en, max_rest_s=self.max_rest_s)
         self.start_idx_, self.end_idx_ = i0, i1
+        self.start_s_, self.end_s_ = t[i0], t[i1]
+        long = (self.end_s_ - self.start_s_) > self.max_stride_s
+        if long.any():
+            self.warnings_.append(f"{int(long.sum())} stride(s) longer than {self.max_stride_s:g} s (no "
+                                  "stance detected between steps): their displacement is unreliable")
         B = len(i0)
         w = max(1, int(round(self.rest_s * fs)))
         csum = np.concatenate([np.zeros((1, 3)), np.cumsum(acc, axis=0)])
@@ -128,20 +194,19 @@ class FootDisplacement:
         g_body = (csum[hi] - csum[lo]) / (hi - lo)[:, None]
         init = None
         if self.attitude == "kalman" and B:
-            att = FootAttitude().estimate(acc, gyr, fs, self.stance_)
+            # the angle filter runs at the native rate; its angles at the stride starts set the attitude
+            att = FootAttitude().estimate(unit.acc, unit.gyr, fs0, zupt0)
             self.attitude_ = att
-            from scipy.spatial.transform import Rotation
-
-            roll, pitch = att.roll_[i0], att.pitch_[i0]
-            init = Rotation.from_euler("YX", np.column_stack([pitch, roll]))  # R = Ry(pitch) Rx(roll)
+            j0 = np.clip(i0 // k, 0, len(unit.t) - 1)
+            init = Rotation.from_euler("YX", np.column_stack([att.pitch_[j0], att.roll_[j0]]))  # Ry(p) Rx(r)
         bias = None
         if self.gyro_bias == "stance" and B:
             bias = self._zaru_bias(gyr, i0, fs)
         elif self.gyro_bias == "standstill" and B:
-            bias = np.tile(self._standstill_bias(acc, gyr, fs), (B, 1))
+            bias = np.tile(self._standstill_bias(unit.acc, unit.gyr, fs0), (B, 1))
         idx, mask = K.stride_index(i0, i1)
         a_nav, self.yaw_change_ = K.strapdown(acc, gyr, dt, idx, mask, g_body, bias, init)
-        zm = K.zupt_mask(self.stance_, idx, mask)
+        zm = K.zupt_mask(zupt_stance, idx, mask)
         if self.integrator == "kalman":
             self.disp_ = K.wnj_displacement(a_nav, mask, dt, sw=self.sw, r=self.r, zupt=self.zupt_end,
                                             zupt_at=zm)

@@ -19,11 +19,17 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pdrlearn.displace import FootDisplacement, StepRules, force_stance, inertial_stance, parse_bounds
+from pdrlearn.displace import (
+    FootDisplacement,
+    StepRules,
+    force_stance,
+    inertial_stance,
+    parse_bounds,
+    stance_runs,
+)
 from pdrlearn.errors import DataError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
-from pdrlearn.signal.conditioning import runs
 from pdrlearn.track.base import TrackResult, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
 from pdrlearn.track.geodetic import geodetic_track
@@ -40,25 +46,16 @@ METHODS: dict[str, dict] = {
 }
 
 
-def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3, min_swing_s: float = 0.2,
-                   merge_s: float = 0.1) -> pd.DataFrame:
-    """Strides of the foot unit from rest to rest: one row between consecutive stance runs.
-
-    Stance runs closer than ``merge_s`` s are merged; a swing shorter than ``min_swing_s`` s is not a
-    stride. A stride starts at the middle of the previous stance (at most ``max_rest_s`` before the
-    swing) and ends at the middle of the next stance (at most ``max_rest_s`` after it).
-    """
-    rr = runs(stance)
-    merged: list[list[int]] = []
-    for a, b in rr:
-        if merged and t[a] - t[merged[-1][1] - 1] <= merge_s:
-            merged[-1][1] = b
-        else:
-            merged.append([a, b])
+def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3,
+                   min_swing_s: float = 0.2) -> pd.DataFrame:
+    """Strides of the foot unit from rest to rest: one row between consecutive stance runs (runs closer
+    than 0.1 s merged; a swing shorter than ``min_swing_s`` s is not a stride). A stride starts at the
+    middle of the previous stance (at most ``max_rest_s`` before the swing) and ends at the middle of
+    the next stance (at most ``max_rest_s`` after it)."""
+    rr = stance_runs(t, stance)
     rows = []
-    for (a0, b0), (a1, b1) in zip(merged[:-1], merged[1:], strict=True):
-        swing = t[a1] - t[b0 - 1]
-        if swing < min_swing_s:
+    for (a0, b0), (a1, b1) in zip(rr[:-1], rr[1:], strict=True):
+        if t[a1] - t[b0 - 1] < min_swing_s:
             continue
         start = max(0.5 * (t[a0] + t[b0 - 1]), t[b0 - 1] - max_rest_s)
         end = min(0.5 * (t[a1] + t[b1 - 1]), t[a1] + max_rest_s)
@@ -172,7 +169,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
     stance = None
     if cfg["force"]:
-        stance = force_stance(session, foot.t)
+        stance = force_stance(session, foot.t, foot.gyr)
         if stance is None:
             if method == "M2":
                 raise MissingSensorError(
@@ -191,6 +188,14 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)
     warnings += fd.warnings_
     disp = fd.disp_
+    if len(fd.rows_) < len(strides):
+        log.info("%s: %d detected step(s) without a swing between two rests dropped", session.name,
+                 len(strides) - len(fd.rows_))
+    source = strides.attrs.get("detector", steps)
+    strides = strides.iloc[fd.rows_].reset_index(drop=True)
+    strides["start_s"], strides["end_s"] = fd.start_s_, fd.end_s_
+    if not len(strides):
+        raise DataError(f"session '{session.name}': no stride between two rests of the foot unit")
 
     classes = pd.DataFrame(index=range(len(strides)), columns=["terrain", "direction", "length_class"],
                            dtype=object)
@@ -252,7 +257,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     oracle = isinstance(model, str) and model == "oracle"
     info = {"pipeline": "plasys", "method": method, "heading_source": hsrc, "stance_source": stance_source,
-            "steps_source": strides.attrs.get("detector", steps),
+            "steps_source": source,
             "classes_source": ("oracle" if oracle else ("model" if cfg["rules"] else None)),
             "length_bounds_m": rules.effective_bounds() if cfg["rules"] else None,
             "settings": {k: getattr(fd, k)
