@@ -61,10 +61,12 @@ def test_segmentation_matches_mocap_midstance(real_dir):
 
 def test_cli_steps_json_metrics(real_dir, capsys, tmp_path):
     out = tmp_path / "steps.csv"
-    rc = main(["steps", str(real_dir / "gaitmap_level_right"), "--detector", "accel", "--json", "--out", str(out)])
+    rc = main(["steps", str(real_dir / "gaitmap_level_right"), "--detector", "accel", "--json",
+               "--out", str(out)])
     assert rc == 0
     res = json.loads(capsys.readouterr().out)
-    for key in ("count", "reference_count", "precision", "recall", "f1", "count_error_pct", "timing_error_mean_s"):
+    for key in ("count", "reference_count", "precision", "recall", "f1", "count_error_pct",
+                "timing_error_mean_s"):
         assert key in res
     assert res["f1"] >= 0.98 and res["reference_count"] == 30
     table = pd.read_csv(out)

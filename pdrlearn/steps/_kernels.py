@@ -45,6 +45,8 @@ class BurstParams:
     min_dur_s: float  # shortest swing (s)
     max_dur_s: float  # longest swing (s); longer bursts are not steps (the thesis' 20-sample window)
     min_stride_s: float  # two events closer than this are one stride (s)
+    rest: float  # rest level of the filtered magnitude (m/s^2, gravity)
+    peak_frac: float  # the event is the last local maximum reaching this fraction of the largest rise
 
 
 @dataclass
@@ -56,32 +58,49 @@ class BurstState:
     mn: float = math.inf
     still_count: int = 0
     last_t: float = math.nan
+    prev_a: float = math.nan
+    prev_t: float = math.nan
+    rising: bool = False
+    emx: float = -math.inf
+    peaks: list = field(default_factory=list)  # local maxima (t, a) of the current swing
     pending: Event | None = None  # last accepted stride, held back until min_stride_s has passed
     pending_amp: float = 0.0
 
 
 def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstState,
-                 p: BurstParams) -> tuple[list[Event], BurstState]:
+                 p: BurstParams, e: np.ndarray | None = None) -> tuple[list[Event], BurstState]:
     """Swing detection: a swing starts at the first non-still sample and ends after ``min_still_n``
     still samples; it is a stride when the filtered magnitude ``a`` spans more than ``p.amp`` (thesis
     ch.5.1 max - current > 1.7 m/s^2) and it lasts ``min_dur_s``..``max_dur_s``. The event is the
-    time of the largest filtered magnitude (the impact of the initial contact). Strides closer than
-    ``min_stride_s`` are merged, keeping the larger one.
+    initial contact, the last impact of the swing: the last local maximum of ``a`` that rises at least
+    ``peak_frac`` of the swing's largest rise above ``rest`` (push-off and impact peaks change order
+    between feet, mountings and speeds; the impact is always the last one). Strides closer than
+    ``min_stride_s`` are merged, keeping the larger one. ``e`` (default ``a``) is the signal whose peaks
+    locate the event (a less smoothed magnitude keeps the impact apart from the push-off).
     """
     out: list[Event] = []
     s = state
     tl, al, sl = t.tolist(), a.tolist(), still.tolist()
-    for ti, ai, si in zip(tl, al, sl, strict=True):
+    el = al if e is None else e.tolist()
+    for ti, ai, si, ei in zip(tl, al, sl, el, strict=True):
         s.last_t = ti
         if s.pending is not None and ti - s.pending[0] >= p.min_stride_s and not (
                 s.active and s.i0_t - s.pending[0] < p.min_stride_s):
             out.append(s.pending)
             s.pending = None
         s.still_count = s.still_count + 1 if si else 0
+        was_rising, prev_a, prev_t = s.rising, s.prev_a, s.prev_t
+        s.rising = ei > prev_a if prev_a == prev_a else False
+        s.prev_a, s.prev_t = ei, ti
         if not s.active:
             if not si:
                 s.active, s.i0_t, s.mx, s.mx_t, s.mn = True, ti, ai, ti, ai
+                s.peaks, s.emx = [], ei
             continue
+        if was_rising and ei <= prev_a:
+            s.peaks.append((prev_t, prev_a))
+        if ei > s.emx:
+            s.emx = ei
         if ai > s.mx:
             s.mx, s.mx_t = ai, ti
         if ai < s.mn:
@@ -92,7 +111,9 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
             span = s.mx - s.mn
             if span > p.amp and p.min_dur_s <= dur <= p.max_dur_s:
                 conf = min(1.0, span / (2.0 * p.amp))
-                ev: Event = (s.mx_t, s.i0_t, ti, conf, {"amplitude": span})
+                level = p.rest + p.peak_frac * (s.emx - p.rest)
+                t_ev = next((pt for pt, pa in reversed(s.peaks) if pa >= level), s.mx_t)
+                ev: Event = (t_ev, s.i0_t, ti, conf, {"amplitude": span})
                 if s.pending is not None and ev[0] - s.pending[0] < p.min_stride_s:
                     if span > s.pending_amp:  # merge: keep the larger burst, spanning both
                         ev = (ev[0], s.pending[1], ev[2], conf, ev[4])

@@ -72,13 +72,15 @@ class _AccelProcessor:
     def __init__(self, det: AccelStepDetector, fs: float):
         self.det = det
         self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
-        self.delay = lowpass_delay_s(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
+        self.lp_event = CausalLowpass(_cutoff(det.event_cutoff_hz, fs), fs, order=2)
+        self.delay = lowpass_delay_s(_cutoff(det.event_cutoff_hz, fs), fs, order=2)
         self.w = max(2, int(round(det.still_window_s * fs)))
         self.tail: np.ndarray | None = None
         self.state = BurstState()
         self.params = BurstParams(
             amp=det.threshold, min_still_n=max(1, int(round(det.min_still_s * fs))),
-            min_dur_s=det.min_swing_s, max_dur_s=det.max_swing_s, min_stride_s=det.min_stride_s)
+            min_dur_s=det.min_swing_s, max_dur_s=det.max_swing_s, min_stride_s=det.min_stride_s,
+            rest=det.gravity, peak_frac=det.peak_frac)
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
         m = magnitude(v)
@@ -87,7 +89,7 @@ class _AccelProcessor:
             self.tail = np.full(self.w - 1, m[0])
         mean, std, self.tail = trailing_window_std(m, self.tail, self.w)
         still = (std < self.det.still_std) & (np.abs(mean - self.det.gravity) < self.det.still_level_tol)
-        ev, self.state = burst_kernel(t, a, still, self.state, self.params)
+        ev, self.state = burst_kernel(t, a, still, self.state, self.params, e=self.lp_event.push(m))
         return _shift(ev, self.delay)
 
     def flush(self) -> list:
@@ -100,7 +102,8 @@ class AccelStepDetector(StepDetector):
     The acceleration magnitude is low-pass filtered (3rd-order Butterworth, causal); a stride is a swing
     between two still periods of the foot in which the filtered magnitude rises and falls by more than
     ``threshold`` (thesis: max - current > 1.7 m/s^2). One event per stride of the instrumented foot,
-    at the largest filtered magnitude (the impact after initial contact).
+    at the initial-contact impact: the last local maximum of the filtered magnitude that rises at least
+    ``peak_frac`` of the swing's largest rise above gravity.
 
     Parameters (keyword-only)
     ----------
@@ -114,6 +117,7 @@ class AccelStepDetector(StepDetector):
     min_swing_s, max_swing_s : accepted swing durations (s)
     min_stride_s : events closer than this are one stride (s). The thesis' 20-sample step period at
         20 Hz (1.0 s) becomes this refractory time; decision: 0.6 s, the shortest walking stride
+    peak_frac : fraction of the largest rise that the initial-contact peak must reach (decision: 0.3)
     gravity : rest magnitude (m/s^2)
     """
 
@@ -125,7 +129,8 @@ class AccelStepDetector(StepDetector):
     def __init__(self, *, cutoff_hz: float = 3.0, order: int = 3, threshold: float = 1.7,  # thesis ch.5.1
                  still_window_s: float = 0.15, still_std: float = 0.6, still_level_tol: float = 1.2,
                  min_still_s: float = 0.05, min_swing_s: float = 0.2, max_swing_s: float = 2.5,
-                 min_stride_s: float = 0.6, gravity: float = G):
+                 min_stride_s: float = 0.6, peak_frac: float = 0.3, event_cutoff_hz: float = 8.0,
+                 gravity: float = G):
         self.cutoff_hz = cutoff_hz
         self.order = order
         self.threshold = threshold
@@ -136,6 +141,8 @@ class AccelStepDetector(StepDetector):
         self.min_swing_s = min_swing_s
         self.max_swing_s = max_swing_s
         self.min_stride_s = min_stride_s
+        self.peak_frac = peak_frac
+        self.event_cutoff_hz = event_cutoff_hz
         self.gravity = gravity
 
     def _inputs(self, session: Session):
@@ -219,6 +226,7 @@ class _PelvicProcessor:
         self.bias = np.zeros(3) if gyro_bias is None else np.asarray(gyro_bias, dtype=float).reshape(3)
         self.grav = _GravityTracker(fs, det.gravity_cutoff_hz)
         self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
+        self.hp = CausalLowpass(det.turn_cutoff_hz, fs, order=2) if det.turn_cutoff_hz > 0 else None
         self.delay = lowpass_delay_s(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
         self.state = PelvicState()
         self.params = PelvicParams(
@@ -230,6 +238,8 @@ class _PelvicProcessor:
         up, _ = self.grav.push(v[:, 3:6])
         yaw = np.einsum("ij,ij->i", v[:, :3] - self.bias, up)
         w = self.lp.push(yaw)
+        if self.hp is not None:  # remove the slow turning rate (decision: turn_cutoff_hz)
+            w = w - self.hp.push(w)
         ev, self.state = pelvic_kernel(t, w, self.state, self.params)
         return _shift(ev, self.delay)
 
@@ -244,7 +254,10 @@ class PelvicGyroStepDetector(StepDetector):
     (gravity direction from a slow low-pass of the waist accelerometer, so any mounting works; the thesis
     reads its x axis, vertical in its placement) is low-pass filtered, and each lobe above ``threshold``
     is scored with P(S) = 0.25 P(A) + 0.10 P(L) + 0.40 P(D1) + 0.25 P(D2) (eq. 27); P(S) > 75 % is a step
-    (every step, both feet; positive lobes = left steps).
+    (every step, both feet; positive lobes = left steps). Decision: a causal 2nd-order high-pass at
+    ``turn_cutoff_hz`` (the filtered signal minus its low-pass) removes the slow turning rate, which
+    otherwise merges the lobes of a curve (the thesis' main error source in scenario B); pelvic rotation
+    is at the stride frequency (>= 0.7 Hz), turns below ~0.3 Hz. ``turn_cutoff_hz=0`` disables it.
 
     Time settings: the thesis gives 50 / 90 / 15 / 25 *samples*. At its 20 Hz they would be 2.5 / 4.5 /
     0.75 / 1.25 s, longer than a step, which makes eq. 27 accept every lobe; decision
@@ -265,7 +278,8 @@ class PelvicGyroStepDetector(StepDetector):
                  d2_s: float = 0.25, d2_ref: float = 0.10,  # thesis: 25 samples, 0.10 rad/s
                  weights: tuple[float, float, float, float] = (0.25, 0.10, 0.40, 0.25),  # thesis eq. 27
                  p_min: float = 0.75,  # thesis ch.5.3: 75 %
-                 max_lobe_s: float = 1.0, gravity_cutoff_hz: float = 0.3, calibrate: bool = True):
+                 max_lobe_s: float = 1.0, gravity_cutoff_hz: float = 0.3, turn_cutoff_hz: float = 0.5,
+                 calibrate: bool = True):
         self.cutoff_hz = cutoff_hz
         self.order = order
         self.threshold = threshold
@@ -280,6 +294,7 @@ class PelvicGyroStepDetector(StepDetector):
         self.p_min = p_min
         self.max_lobe_s = max_lobe_s
         self.gravity_cutoff_hz = gravity_cutoff_hz
+        self.turn_cutoff_hz = turn_cutoff_hz
         self.calibrate = calibrate
 
     def _inputs(self, session: Session):
