@@ -181,3 +181,23 @@ def test_real_gaitmap_terrain_cross_validated(real_dir):
     tm = m.tasks["terrain"]
     assert tm.n_skipped_labels == 1  # the 'unclear' stride
     assert tm.cv["svm"]["foot"]["accuracy"] > 0.8  # chance (majority class) = 0.66
+
+
+def test_mounting_rotation_leaves_predictions_unchanged(real_dir):
+    """Features live in the gravity-aligned step frame, so a fixed extra mounting rotation of the foot
+    sensor (here 40 deg pitch + 15 deg roll, like the lateral-vs-instep mounts) keeps the classes."""
+    from scipy.spatial.transform import Rotation
+
+    names = ("level_left", "level_right", "stairs_up_left", "stairs_down_left")
+    sessions = [read_session(real_dir / f"gaitmap_{n}") for n in names]
+    model = train_user(sessions, tasks=["terrain"], methods=["svm", "nn"], cv=3, seed=0)
+    R = Rotation.from_euler("yx", [40, 15], degrees=True).as_matrix()
+    for s in (sessions[1], sessions[2]):
+        rotated = s.copy()
+        for name in ("fAccelerometer", "fGyroscope"):
+            rotated.streams[name] = Stream(name, s.streams[name].t, s.streams[name].values @ R.T)
+        for method in ("svm", "nn"):
+            a = model.predict_steps(s, method=method, unit="foot")
+            b = model.predict_steps(rotated, method=method, unit="foot")
+            assert np.mean(a["terrain"] == b["terrain"]) >= 0.95, (s.name, method)
+            assert np.abs(a["p_terrain_up"] - b["p_terrain_up"]).mean() < 0.05

@@ -62,7 +62,12 @@ def train_mlp(
             net = torch.nn.Sequential(
                 torch.nn.Linear(X.shape[1], hidden), torch.nn.Tanh(), torch.nn.Linear(hidden, n_classes)
             )
-            opt = torch.optim.Adam(net.parameters(), lr=lr, weight_decay=weight_decay)
+            params = list(net.parameters())
+            # Adam (Kingma & Ba 2015, default betas) written out: torch.optim's first use imports
+            # torch._dynamo (~5 s), which would dominate the training of these tiny networks
+            m1 = [torch.zeros_like(p) for p in params]
+            m2 = [torch.zeros_like(p) for p in params]
+            beta1, beta2, eps = 0.9, 0.999, 1e-8
             loss_fn = torch.nn.CrossEntropyLoss()
             xt, yt = torch.as_tensor(X, dtype=torch.float32), torch.as_tensor(y, dtype=torch.long)
             has_val = X_val is not None and len(X_val) > 0
@@ -70,10 +75,15 @@ def train_mlp(
                 xv, yv = torch.as_tensor(X_val, dtype=torch.float32), torch.as_tensor(y_val, dtype=torch.long)
             best, best_epoch, best_state, stale = np.inf, 0, None, 0
             for epoch in range(1, max_epochs + 1):
-                opt.zero_grad()
                 loss = loss_fn(net(xt), yt)
-                loss.backward()
-                opt.step()
+                grads = torch.autograd.grad(loss, params)
+                with torch.no_grad():
+                    c1, c2 = 1 - beta1**epoch, 1 - beta2**epoch
+                    for p, g, a, b in zip(params, grads, m1, m2, strict=True):
+                        g = g + weight_decay * p
+                        a.mul_(beta1).add_(g, alpha=1 - beta1)
+                        b.mul_(beta2).addcmul_(g, g, value=1 - beta2)
+                        p.sub_(lr * (a / c1) / ((b / c2).sqrt() + eps))
                 with torch.no_grad():
                     monitor = float(loss_fn(net(xv), yv)) if has_val else float(loss)
                 if monitor < best - 1e-6:
@@ -118,9 +128,9 @@ class NNClassifier(ClassifierMixin, BaseEstimator):
         task: str | None = None,
         hidden: int | None = None,
         learning_rate: float = THESIS_LEARNING_RATE,
-        max_epochs: int = 300,
+        max_epochs: int = 200,
         validation_fraction: float = 0.15,
-        patience: int = 25,
+        patience: int = 15,
         weight_decay: float = 1e-4,
         random_state: int | None = 0,
     ):

@@ -1,0 +1,412 @@
+"""Step characterization: thesis Tables 27, 28, 33 on simulated users + the real-data terrain study.
+
+Simulated part (thesis protocol, ch. 6): per user and task, calibration exercises of that task
+(pdrlearn.sim "terrain" / "direction" / "length") are the training data (10-fold CV inside
+:func:`pdrlearn.classify.train_user`, which also holds out validation data for the NN's early stopping and
+learns the unit-fusion weights on out-of-fold predictions); other walks of the same exercise (other
+seeds) are the test set. Test accuracy per class x method x unit is pooled over users and printed beside
+the thesis' numbers.
+
+Real part: the gaitmap foot recordings (terrain label per stride, 'unclear' skipped): 10-fold CV over all
+four recordings, train on the left foot -> test on the right foot, and a continuous stride-length
+regression on the level-walk strides with mocap reference lengths.
+
+Usage::
+
+    .venv/bin/python experiments/characterization.py            # 2 users, thesis-sized protocol
+    .venv/bin/python experiments/characterization.py --quick    # 1 user, fewer walks (smoke run)
+
+Writes experiments/results/characterization.md and .csv.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from pdrlearn.classify import evaluate_model, train_user  # noqa: E402
+
+log = logging.getLogger("characterization")
+
+#: Thesis results, accuracy % per class and unit: thesis Table 27 (terrain), Table 28 (direction),
+#: Table 33 (length). Keys: (method, unit) -> {class: %}. "fusion" = Heuristic Fusion.
+THESIS = {
+    "terrain": {  # thesis Table 27
+        ("heuristic", "waist"): {"up": 98, "down": 97, "flat": 87},
+        ("heuristic", "foot"): {"up": 95, "down": 97, "flat": 89},
+        ("dtw", "waist"): {"up": 59, "down": 98, "flat": 69},
+        ("dtw", "foot"): {"up": 93, "down": 100, "flat": 87},
+        ("svm", "waist"): {"up": 97.5, "down": 94.2, "flat": 85.1},
+        ("svm", "foot"): {"up": 99.4, "down": 99.4, "flat": 94.9},
+        ("nn", "waist"): {"up": 98.3, "down": 94.1, "flat": 87.2},
+        ("nn", "foot"): {"up": 100, "down": 100, "flat": 94.9},
+        ("fusion", "fused"): {"up": 99, "down": 97, "flat": 91},
+        ("svm", "fused"): {"up": 99.4, "down": 99.5, "flat": 96.2},
+        ("nn", "fused"): {"up": 100, "down": 100, "flat": 98.7},
+    },
+    "direction": {  # thesis Table 28
+        ("heuristic", "waist"): {"forward": 82.1, "backward": 74.4},
+        ("heuristic", "foot"): {"forward": 97.4, "backward": 94.9},
+        ("dtw", "waist"): {"forward": 84.6, "backward": 79.5},
+        ("dtw", "foot"): {"forward": 100, "backward": 97.4},
+        ("svm", "waist"): {"forward": 98.6, "backward": 96.7},
+        ("svm", "foot"): {"forward": 100, "backward": 100},
+        ("nn", "waist"): {"forward": 99.4, "backward": 95.5},
+        ("nn", "foot"): {"forward": 100, "backward": 100},
+        ("fusion", "fused"): {"forward": 100, "backward": 98},
+        ("svm", "fused"): {"forward": 100, "backward": 100},
+        ("nn", "fused"): {"forward": 100, "backward": 100},
+    },
+    "length": {  # thesis Table 33
+        ("heuristic", "waist"): {"short": 94, "normal": 63, "long": 87},
+        ("heuristic", "foot"): {"short": 94, "normal": 91, "long": 72},
+        ("dtw", "waist"): {"short": 94, "normal": 74, "long": 71},
+        ("dtw", "foot"): {"short": 100, "normal": 50, "long": 97},
+        ("svm", "waist"): {"short": 98.4, "normal": 80.3, "long": 92.6},
+        ("svm", "foot"): {"short": 96.1, "normal": 81.9, "long": 90.7},
+        ("nn", "waist"): {"short": 100, "normal": 86.7, "long": 96.2},
+        ("nn", "foot"): {"short": 100, "normal": 83.3, "long": 100},
+        ("fusion", "fused"): {"short": 96, "normal": 91, "long": 90},
+        ("svm", "fused"): {"short": 100, "normal": 86.0, "long": 98.1},
+        ("nn", "fused"): {"short": 100, "normal": 90.0, "long": 96.2},
+    },
+}
+TABLE_NO = {"terrain": 27, "direction": 28, "length": 33}
+ROWS = [
+    ("heuristic", "waist"),
+    ("heuristic", "foot"),
+    ("dtw", "waist"),
+    ("dtw", "foot"),
+    ("svm", "waist"),
+    ("svm", "foot"),
+    ("nn", "waist"),
+    ("nn", "foot"),
+    ("fusion", "fused"),
+    ("dtw", "fused"),
+    ("svm", "fused"),
+    ("nn", "fused"),
+]
+#: Training / test set sizes of the thesis (steps): terrain 970 + 170 validation / 540 test (ch. 6.1.1),
+#: direction 450 + 100 / 100 (ch. 6.2.1), length 855 + 171 / 114 (ch. 6.3.1). The thesis adds that a
+#: training set 5 (terrain) to 10 (length) times smaller gives similar results (ch. 6.1.3, 6.3.3); a
+#: user's calibration is one exercise per task (~75 / 50 / 90 steps, DESIGN), so we train on
+#: ``--train-walks`` exercises and test on ``--test-walks`` other ones.
+THESIS_SIZES = {"terrain": (970, 170, 540), "direction": (450, 100, 100), "length": (855, 171, 114)}
+
+
+def pooled_confusions(results: list[dict], task: str) -> dict[tuple[str, str], np.ndarray]:
+    """Sum the confusion matrices of every (method, unit) over users."""
+    out: dict[tuple[str, str], np.ndarray] = {}
+    for r in results:
+        t = r["tasks"].get(task)
+        if t is None:
+            continue
+        for m, d in t["methods"].items():
+            for u, res in d["units"].items():
+                cm = np.asarray(res["confusion"], dtype=float)
+                out[(m, u)] = out.get((m, u), 0) + cm
+    return out
+
+
+def per_class(cm: np.ndarray, classes: list[str]) -> dict[str, float]:
+    rows = cm.sum(axis=1)
+    return {c: (100 * cm[i, i] / rows[i] if rows[i] else float("nan")) for i, c in enumerate(classes)}
+
+
+def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int, seed: int):
+    from pdrlearn.features import TASK_CLASSES
+    from pdrlearn.sim.simulate import simulate
+
+    rows, md, timing = [], [], {}
+    results: dict[str, list[dict]] = {t: [] for t in TASK_CLASSES}
+    cv_results: dict[str, list] = {t: [] for t in TASK_CLASSES}
+    chosen: dict[str, list] = {t: [] for t in TASK_CLASSES}
+    latency: dict[str, dict] = {t: {} for t in TASK_CLASSES}
+    for user in users:
+        t_user = 0.0
+        for task in TASK_CLASSES:
+            train = [simulate(task, user_seed=user, seed=k) for k in range(train_walks)]
+            test = [simulate(task, user_seed=user, seed=1000 + k) for k in range(test_walks)]
+            t0 = time.perf_counter()
+            model = train_user(train, tasks=[task], cv=cv, seed=seed, user=f"u{user}")
+            dt = time.perf_counter() - t0
+            t_user += dt
+            tm = model.tasks[task]
+            log.info(
+                "user %d %s: %d training steps, trained in %.1f s, chosen %s",
+                user,
+                task,
+                tm.n_steps,
+                dt,
+                tm.chosen,
+            )
+            res = evaluate_model(model, test, latency_steps=20)
+            results[task].append(res)
+            cv_results[task].append(tm)
+            chosen[task].append(
+                (tm.chosen, res["tasks"][task]["accuracy"], res["tasks"][task]["n_steps"], tm.n_steps)
+            )
+            for m, d in res["tasks"][task]["methods"].items():
+                for u, r in d["units"].items():
+                    latency[task].setdefault((m, u), []).append(r["latency_ms"])
+        timing[user] = t_user
+    for task, classes in TASK_CLASSES.items():
+        classes = list(classes)
+        test_cm = pooled_confusions(results[task], task)
+        cv_cm: dict = {}
+        for tm in cv_results[task]:
+            for m, per in tm.cv.items():
+                for u, r in per.items():
+                    cv_cm[(m, u)] = cv_cm.get((m, u), 0) + np.asarray(r["confusion"], dtype=float)
+        head = (
+            ["method", "unit"]
+            + [f"{c} ours (thesis)" for c in classes]
+            + ["all % test", "all % CV", "ms/step"]
+        )
+        n_test = sum(c[2] for c in chosen[task])
+        n_train = sum(c[3] for c in chosen[task])
+        lines = [
+            f"### {task} (thesis Table {TABLE_NO[task]}): {len(users)} user(s), {n_train} training steps, "
+            f"{n_test} test steps (thesis {THESIS_SIZES[task][0]} + {THESIS_SIZES[task][1]} / "
+            f"{THESIS_SIZES[task][2]})",
+            "",
+            "| " + " | ".join(head) + " |",
+            "|" + "---|" * len(head),
+        ]
+        for key in ROWS:
+            if key not in test_cm:
+                continue
+            pc = per_class(test_cm[key], classes)
+            cvc = cv_cm.get(key)
+            all_test = 100 * np.trace(test_cm[key]) / test_cm[key].sum()
+            all_cv = 100 * np.trace(cvc) / cvc.sum() if cvc is not None else float("nan")
+            ref = THESIS[task].get(key, {})
+            cells = [f"{pc[c]:.1f} ({ref[c]:g})" if c in ref else f"{pc[c]:.1f} (-)" for c in classes]
+            lat = float(np.median(latency[task][key]))
+            lines.append(
+                "| " + " | ".join([*key, *cells, f"{all_test:.1f}", f"{all_cv:.1f}", f"{lat:.3f}"]) + " |"
+            )
+            for c in classes:
+                rows.append(
+                    {
+                        "study": "simulated",
+                        "table": TABLE_NO[task],
+                        "task": task,
+                        "method": key[0],
+                        "unit": key[1],
+                        "class": c,
+                        "ours_test_pct": round(pc[c], 2),
+                        "thesis_pct": ref.get(c),
+                        "ours_all_test_pct": round(all_test, 2),
+                        "ours_all_cv_pct": round(all_cv, 2),
+                        "latency_ms": round(lat, 4),
+                    }
+                )
+        ch = [
+            f"u{u}: {c[0][0]}/{c[0][1]} {100 * c[1]:.1f} %" for u, c in zip(users, chosen[task], strict=True)
+        ]
+        lines += ["", f"Chosen method per user (test accuracy): {'; '.join(ch)}"]
+        md.append("\n".join(lines))
+    return md, rows, timing
+
+
+def real_terrain_study(cv: int, seed: int):
+    from sklearn.linear_model import RidgeCV
+    from sklearn.model_selection import StratifiedKFold, cross_val_predict
+    from sklearn.pipeline import make_pipeline
+    from sklearn.preprocessing import StandardScaler
+
+    from pdrlearn.classify.training import make_estimator, session_windows
+    from pdrlearn.features import SegmentFeatures
+    from pdrlearn.io import read_session
+
+    real = ROOT / "datasets" / "real"
+    names = [
+        "gaitmap_level_left",
+        "gaitmap_level_right",
+        "gaitmap_stairs_up_left",
+        "gaitmap_stairs_down_left",
+    ]
+    sessions = [read_session(real / n) for n in names]
+    md, rows = [], []
+    # 1) cross-validated, all recordings pooled
+    t0 = time.perf_counter()
+    model = train_user(sessions, tasks=["terrain"], cv=cv, seed=seed, user="gaitmap")
+    dt = time.perf_counter() - t0
+    tm = model.tasks["terrain"]
+    classes = tm.classes
+    lines = [
+        f"### real foot terrain, {tm.cv[tm.chosen[0]][tm.chosen[1]]['n_folds']}-fold CV over 4 gaitmap "
+        f"recordings ({tm.n_steps} strides, {tm.n_skipped_labels} 'unclear' skipped; trained in {dt:.1f} s)",
+        "",
+        "| method | unit | " + " | ".join(f"{c} %" for c in classes) + " | all % |",
+        "|---|---|" + "---|" * (len(classes) + 1),
+    ]
+    for m, u in tm.ranking():
+        r = tm.cv[m][u]
+        lines.append(
+            f"| {m} | {u} | "
+            + " | ".join(f"{100 * r['per_class'][c]:.1f}" for c in classes)
+            + f" | {100 * r['accuracy']:.1f} |"
+        )
+        for c in classes:
+            rows.append(
+                {
+                    "study": "real-cv",
+                    "task": "terrain",
+                    "method": m,
+                    "unit": u,
+                    "class": c,
+                    "ours_test_pct": round(100 * r["per_class"][c], 2),
+                    "ours_all_cv_pct": round(100 * r["accuracy"], 2),
+                }
+            )
+    best = tm.cv[tm.chosen[0]][tm.chosen[1]]["accuracy"]
+    lines.append(f"\nChosen: {tm.chosen[0]}/{tm.chosen[1]} (CV {100 * best:.1f} %)")
+    md.append("\n".join(lines))
+    # 2) across feet: train on the left-foot recordings, test on the right foot (flat strides only)
+    left = [s for s in sessions if s.name.endswith("_left")]
+    right = [s for s in sessions if s.name.endswith("_right")]
+    model_l = train_user(left, tasks=["terrain"], cv=cv, seed=seed, user="gaitmap-left")
+    res = evaluate_model(model_l, right, latency=False)["tasks"]["terrain"]
+    lines = [
+        "### real foot terrain across feet: train left foot (3 recordings), test right foot "
+        f"(level walk, {res['n_steps']} flat strides)",
+        "",
+        "| method | unit | flat % (right foot) |",
+        "|---|---|---|",
+    ]
+    for m, d in res["methods"].items():
+        for u, r in d["units"].items():
+            lines.append(f"| {m} | {u} | {100 * r['per_class']['flat']:.1f} |")
+            rows.append(
+                {
+                    "study": "real-across-feet",
+                    "task": "terrain",
+                    "method": m,
+                    "unit": u,
+                    "class": "flat",
+                    "ours_test_pct": round(100 * r["per_class"]["flat"], 2),
+                }
+            )
+    md.append("\n".join(lines))
+    # 3) per-class accuracy of the chosen pooled model, explicitly held out by recording is impossible for
+    #    up/down (one recording each); 4) continuous stride length on the level walks (mocap reference)
+    level = [s for s in sessions if "level" in s.name]
+    wins = session_windows(level, n_samples=40)
+    feats = SegmentFeatures(channels=("foot_acc_fwd", "foot_acc_v", "foot_pitch"))
+    Xs, ys, gs = [], [], []
+    for i, w in enumerate(wins):
+        keep = w.steps["length_m"].notna().to_numpy()
+        F = feats.fit_transform(w.X[keep])
+        Xs.append(np.column_stack([F, w.durations_s[keep]]))
+        ys.append(w.steps["length_m"].to_numpy()[keep])
+        gs.append(np.full(keep.sum(), i))
+    X, y, g = np.vstack(Xs), np.concatenate(ys), np.concatenate(gs)
+    reg = make_pipeline(StandardScaler(), RidgeCV(alphas=np.logspace(-2, 3, 20)))
+    lines = [
+        "### real continuous stride length (gaitmap level walks, mocap reference; ridge regression on "
+        "73 segment features + duration)",
+        "",
+        "| protocol | strides | RMSE m | MAE m | baseline RMSE m (mean length) |",
+        "|---|---|---|---|---|",
+    ]
+    bins = np.digitize(y, np.quantile(y, [0.33, 0.66]))
+    pred = cross_val_predict(reg, X, y, cv=StratifiedKFold(5, shuffle=True, random_state=seed).split(X, bins))
+    base = np.sqrt(np.mean((y - y.mean()) ** 2))
+    rmse, mae = np.sqrt(np.mean((pred - y) ** 2)), np.mean(np.abs(pred - y))
+    lines.append(f"| 5-fold CV, both feet | {len(y)} | {rmse:.3f} | {mae:.3f} | {base:.3f} |")
+    rows.append(
+        {
+            "study": "real-length",
+            "task": "length_m",
+            "method": "ridge",
+            "unit": "foot",
+            "class": "cv",
+            "rmse_m": round(rmse, 4),
+            "mae_m": round(mae, 4),
+            "baseline_rmse_m": round(base, 4),
+        }
+    )
+    for tr_i, te_i in ((0, 1), (1, 0)):
+        tr, te = g == tr_i, g == te_i
+        p = reg.fit(X[tr], y[tr]).predict(X[te])
+        rmse = np.sqrt(np.mean((p - y[te]) ** 2))
+        b = np.sqrt(np.mean((y[te] - y[tr].mean()) ** 2))
+        lines.append(
+            f"| train {names[tr_i][8:]}, test {names[te_i][8:]} | {te.sum()} | {rmse:.3f} | "
+            f"{np.mean(np.abs(p - y[te])):.3f} | {b:.3f} |"
+        )
+        rows.append(
+            {
+                "study": "real-length",
+                "task": "length_m",
+                "method": "ridge",
+                "unit": "foot",
+                "class": f"{names[tr_i]}->{names[te_i]}",
+                "rmse_m": round(rmse, 4),
+                "baseline_rmse_m": round(b, 4),
+            }
+        )
+    md.append("\n".join(lines))
+    _ = make_estimator  # the same factory the CLI uses trains every model above
+    return md, rows
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--users", type=int, nargs="+", default=[1, 2], help="simulated user seeds (thesis: 2)")
+    ap.add_argument("--train-walks", type=int, default=2, help="calibration exercises per task for training")
+    ap.add_argument("--test-walks", type=int, default=2, help="other exercises per task for testing")
+    ap.add_argument("--cv", type=int, default=10, help="folds (thesis: 10)")
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--quick", action="store_true", help="1 user, 1 training and 1 test walk")
+    ap.add_argument("--no-real", action="store_true", help="skip the real-data study")
+    ap.add_argument("--out", type=Path, default=ROOT / "experiments" / "results")
+    args = ap.parse_args(argv)
+    logging.basicConfig(level=logging.INFO, format="%(message)s")
+    if args.quick:
+        args.users, args.train_walks, args.test_walks = args.users[:1], 1, 1
+    t0 = time.perf_counter()
+    md, rows, timing = simulated_study(args.users, args.train_walks, args.test_walks, args.cv, args.seed)
+    parts = [
+        "# Step characterization: ours beside thesis Tables 27, 28, 33",
+        "",
+        "Cells: test accuracy % per class, ours (thesis). Simulated users (pdrlearn.sim), training = "
+        f"{args.train_walks} calibration exercise(s) per task, test = {args.test_walks} other exercise(s) of "
+        "the same user; 'all % CV' = cross-validated accuracy on the training data; ms/step = median "
+        "per-step latency of feature extraction + classification (this machine, one step at a time; "
+        "step windowing not included). Generated by experiments/characterization.py.",
+        "",
+        *md,
+        "",
+        f"### per-user training time (3 tasks x 5 methods x units, {args.cv}-fold CV)",
+        "",
+        "| user | seconds |",
+        "|---|---|",
+    ]
+    parts += [f"| u{u} | {s:.1f} |" for u, s in timing.items()]
+    if not args.no_real:
+        md_r, rows_r = real_terrain_study(args.cv, args.seed)
+        parts += ["", "## Real recordings (gaitmap foot IMU)", "", *md_r]
+        rows += rows_r
+    parts.append(f"\nTotal run time {time.perf_counter() - t0:.0f} s.")
+    text = "\n".join(parts) + "\n"
+    args.out.mkdir(parents=True, exist_ok=True)
+    (args.out / "characterization.md").write_text(text)
+    pd.DataFrame(rows).to_csv(args.out / "characterization.csv", index=False)
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
