@@ -118,3 +118,31 @@ def synthetic_session(
         meta={"user": "synthetic"},
         frames={"foot": THESIS_FOOT_FRAME, "waist": THESIS_WAIST_FRAME},
     )
+
+
+_CACHE: dict = {}
+
+#: every method of issue 5, exported by the "bundle_all" bundle
+ALL_METHODS = ["heuristic", "fusion", "dtw", "svm", "nn"]
+
+
+def trained_dirs(tmp_path_factory) -> dict:
+    """Train once per test process: a two-unit model (all methods), its bundles (all methods; default =
+    chosen), and a foot-only model + bundle (for the Bluetooth protocol). Returns their paths."""
+    if "root" in _CACHE:
+        return _CACHE
+    from pdrlearn.classify import train_user
+    from pdrlearn.export.from_model import export_model
+
+    root = tmp_path_factory.mktemp("trained")
+    train = synthetic_session(90, seed=0)
+    train_user([train], cv=2, seed=0).save(root / "model")
+    export_model(root / "model", root / "bundle_all", methods=ALL_METHODS)
+    export_model(root / "model", root / "bundle")
+    foot = train.copy()
+    for name in ("wAccelerometer", "wGyroscope", "wBarometer"):
+        del foot.streams[name]
+    train_user([foot], cv=2, seed=0, units=["foot"], methods=["svm", "dtw"]).save(root / "model_foot")
+    export_model(root / "model_foot", root / "bundle_foot")
+    _CACHE.update(root=root)
+    return _CACHE

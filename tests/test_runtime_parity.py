@@ -10,29 +10,23 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pdrlearn.classify import load_model, train_user
+from pdrlearn.classify import load_model
 from pdrlearn.export.bundle import bundle_size_bytes
-from pdrlearn.export.from_model import export_model
 from pdrlearn.features import TASK_COLUMNS, step_windows
 from pdrlearn.runtime import _kernels as K
 from pdrlearn.runtime import load_bundle
 from pdrlearn.runtime.classify import TaskClassifier
 from pdrlearn.runtime.features import step_window
 from pdrlearn.runtime.tracker import Tracker
-from tests.runtime_helpers import synthetic_session
-
-METHODS = ["heuristic", "fusion", "dtw", "svm", "nn"]
+from tests.runtime_helpers import synthetic_session, trained_dirs
 
 
 @pytest.fixture(scope="module")
 def trained(tmp_path_factory):
-    root = tmp_path_factory.mktemp("export")
-    model = train_user([synthetic_session(90, seed=0)], cv=2, seed=0)
-    model.save(root / "model")
-    export_model(root / "model", root / "bundle_all", methods=METHODS)
-    export_model(root / "model", root / "bundle")  # default: each task's chosen method
+    root = trained_dirs(tmp_path_factory)["root"]
+    model = load_model(root / "model")
     test = synthetic_session(30, seed=5, name="held_out")
-    return {"root": root, "model": load_model(root / "model"), "test": test,
+    return {"root": root, "model": model, "test": test,
             "windows": step_windows(test, test.steps, n_samples=model.n_samples)}
 
 
@@ -138,3 +132,23 @@ def test_runtime_kernels_equal_training_kernels():
     for window in (None, 4, 1):
         want = [dtw_ndim.distance(q, r, window=window) for r in refs]
         np.testing.assert_allclose(K.dtw_to_refs(q, refs, window), want, rtol=1e-10)
+
+
+def test_every_rule_feature_equals_training_side(trained):
+    """Each named feature of the thesis rule tables, computed by the runtime, equals RuleFeatures'."""
+    from pdrlearn.classify import heuristic as H
+    from pdrlearn.features import CHANNELS
+    from pdrlearn.features.rules import RuleFeatures
+    from pdrlearn.features.transformers import SIGNALS
+    from pdrlearn.runtime.features import compute_features
+
+    rules = [r for name in dir(H) if name.isupper() and isinstance(getattr(H, name), list)
+             for r in getattr(H, name) if hasattr(r, "feature")]
+    names = sorted({r.feature for r in rules} | {r.confidence for r in rules if r.confidence})
+    assert len(names) >= 10
+    W = trained["windows"].X
+    want = RuleFeatures(names=tuple(names)).fit_transform(W)
+    got = compute_features(W, [["rule", n] for n in names],
+                           signals={k: [list(v[0]), v[1]] for k, v in SIGNALS.items()},
+                           channel_index={c: i for i, c in enumerate(CHANNELS)})
+    np.testing.assert_allclose(got, want, atol=1e-9, err_msg=str(names))

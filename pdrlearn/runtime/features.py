@@ -164,7 +164,7 @@ def compute_features(W: np.ndarray, recipe: list, *, signals: dict, channel_inde
             fs = K.force_stats(sig("force"), t, zero_fraction=float(item[2]))
             cols.append(fs[item[1]][:, None])
         elif op == "yaw_sign":
-            dt = np.gradient(t, axis=1)
+            dt = K._gradient(t)
             cols.append((np.sum(sig("waist_yaw") * dt, axis=1) > 0).astype(float)[:, None])
         elif op == "yaw":
             ps = peaks("waist_yaw")
@@ -195,14 +195,18 @@ def rule_feature(W: np.ndarray, name: str, sig, peaks) -> np.ndarray:
     s, _, stat = name.partition(":")
     if stat == "abs_peak_asym":
         return np.abs(peaks(s)["peak_asym"])
-    if stat == "half_balance":  # thesis eq. 31, scale-free
+    if stat == "half_balance":  # thesis eq. 31: halves of the step's motion (cumulative |x| at half)
         x = sig(s)
-        m = x.shape[1]
-        first, second, den = x[:, : (m + 1) // 2].sum(1), x[:, m // 2 :].sum(1), np.abs(x).sum(1)
-        return np.where(den > 0, (first - second) / np.where(den > 0, den, 1.0), 0.0)
-    if stat == "step_probability":  # thesis eq. 32
+        cum = np.cumsum(np.abs(x), axis=1)
+        total = cum[:, -1]
+        split = np.argmax(cum >= 0.5 * total[:, None], axis=1)
+        first_mask = np.arange(x.shape[1])[None, :] <= split[:, None]
+        first = np.sum(np.where(first_mask, x, 0.0), axis=1)
+        second = np.sum(np.where(first_mask, 0.0, x), axis=1)
+        return np.where(total > 0, (first - second) / np.where(total > 0, total, 1.0), 0.0)
+    if stat == "step_probability":  # thesis eq. 32, acceleration read in g
         x = sig(s)
-        return np.clip((100.0 - np.abs(x.max(1) + x.min(1)) * 20.0) / 100.0, 0.0, 1.0)
+        return np.clip((100.0 - np.abs(x.max(1) + x.min(1)) / 9.80665 * 20.0) / 100.0, 0.0, 1.0)
     if stat in ("air_time", "time_to_peak", "peak_mean_4", "contact_force_2", "takeoff_force"):
         return K.force_stats(sig(s), t)[stat]
     ps = peaks(s)
