@@ -228,3 +228,27 @@ def test_step_windows_waist_and_force_synthetic():
     with pytest.raises(MissingSensorError, match="foot acc"):
         TerrainSVMFeatures(unit="both").fit_transform(w)
     assert TerrainSVMFeatures(unit="waist").fit_transform(w).shape == (2, 6)
+
+
+def test_property_any_mounting_rotation_keeps_features(level):
+    """Hypothesis: a fixed mounting error (roll/pitch/yaw up to +-60 deg) keeps the terrain features.
+
+    Beyond ~70 deg of yaw the declared forward axis no longer tells the toes' side of the step's line
+    (this lateral mount already sits ~20 deg off the walking line): decisions doc, section 1."""
+    from hypothesis import HealthCheck, given, settings
+    from hypothesis import strategies as st
+
+    three = level.copy()
+    three.steps = level.steps.iloc[1:4].reset_index(drop=True)
+    tf = TerrainSVMFeatures(unit="foot")
+    f0 = tf.fit_transform(step_windows(three))
+    scale = np.abs(f0).max(axis=0) + 1e-9
+
+    @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+    @given(st.floats(-60, 60), st.floats(-60, 60), st.floats(-60, 60))
+    def check(roll, pitch, yaw):
+        rot = Rotation.from_euler("xyz", (roll, pitch, yaw), degrees=True).as_matrix()
+        f1 = tf.fit_transform(step_windows(_rotate_foot(three, rot)))
+        assert np.max(np.abs(f0 - f1) / scale) < 0.03
+
+    check()
