@@ -29,7 +29,7 @@ class StepKind:
     duration : step-duration factor (x the user's step time)
     toe_off : toe-off pitch factor (x the user's toe-off pitch; < 0 lifts the toes first: backward)
     contact_deg : pitch at initial contact (deg; None = the user's heel-strike pitch; < 0 = toe first)
-    mid_swing_deg : pitch at mid-swing (deg; None = 55 % of the contact pitch)
+    mid_swing_deg : pitch at mid-swing (deg; None = 80 % of the contact pitch)
     impact : (forward, vertical) velocity of the contact point just before contact (x user impact speed)
     clearance_m : heel height above the higher footprint at early swing (None = the user's swing height)
     """
@@ -50,8 +50,8 @@ class StepKind:
 KINDS = {
     "walk": StepKind(1.00, 1.00, None, None, (0.55, -0.85), None),
     "close": StepKind(1.00, 0.60, None, None, (0.35, -0.6), 0.15),
-    "stairs_up": StepKind(0.95, 0.85, 8.0, 14.0, (0.7, -1.0), 0.11),
-    "stairs_down": StepKind(0.82, 0.75, -26.0, 22.0, (0.3, -0.95), 0.09),
+    "stairs_up": StepKind(0.95, 0.7, 8.0, 6.0, (0.7, -1.0), 0.11),
+    "stairs_down": StepKind(0.82, 0.75, -26.0, 17.0, (0.3, -0.95), 0.09),
     "backward": StepKind(1.20, -0.30, -15.0, None, (0.30, -0.6), 0.09),
     "turn": StepKind(1.10, 0.25, 3.0, None, (0.05, -0.3), 0.05),
 }
@@ -121,7 +121,7 @@ def schedule(steps: list[Footstep], user: UserProfile, *, speed: str, rng: np.ra
             ic_pitch = np.radians(user.heel_strike_pitch_deg) * (0.6 if st.kind == "close" else 1.0) \
                 * SPEED_PITCH[speed] * gait_pitch
         ev["theta_ic"][k] = ic_pitch * (1.0 + 0.1 * variability * rng.normal())
-        ev["theta_mid"][k] = (0.55 * ev["theta_ic"][k] if kd.mid_swing_deg is None
+        ev["theta_mid"][k] = (0.8 * ev["theta_ic"][k] if kd.mid_swing_deg is None
                               else np.radians(kd.mid_swing_deg) * jit)
         sp = user.impact_speed_mps * np.exp(rng.normal(0.0, 0.25 * variability))
         sp *= {"slow": 0.8, "normal": 1.0, "fast": 1.2}[speed] * GAIT_FACTORS[st.gait][0] ** 0.5
@@ -192,7 +192,7 @@ def foot_pose(t: np.ndarray, foot: str, steps: list[Footstep], ev: Events, initi
         tu = (t[sl] - ev.to[k]) / swing
         yaw[sl] = y_a + (y_b - y_a) * smoothstep(tu)
         pk = np.array([th_to, th_to + 0.15 * th_to - 0.1 * np.sign(th_to) * abs(th_ic), ev.theta_mid[k], th_ic])
-        cp = CubicSpline(ev.to[k] + np.array([0.0, 0.14, 0.62, 1.0]) * swing, pk, bc_type=((1, w_to), (1, w_ic)))
+        cp = CubicSpline(ev.to[k] + np.array([0.0, 0.14, 0.58, 1.0]) * swing, pk, bc_type=((1, w_to), (1, w_ic)))
         theta[sl] = cp(t[sl])
         # loading rocker: initial contact -> foot flat, pivot fixed on footprint B
         sl = slice(i_ic, i_ff)

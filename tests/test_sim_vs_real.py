@@ -1,0 +1,105 @@
+"""Simulated foot signals against the real gaitmap foot recordings (level walking, stairs up and down).
+
+Per stride: peak |acc| (m/s^2), peak pitch rate (|gyroscope| about the foot's lateral axis, rad/s) and
+stride period (s, start of one stride to the start of the next). Both sides are resampled to 100 Hz with
+pdrlearn.signal.resample_stream. Run with ``pytest -s`` to see the side-by-side table.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.io import read_session
+from pdrlearn.signal import resample_stream
+from pdrlearn.sim import simulate
+
+RATE = 100.0
+REAL = {
+    "flat": ["gaitmap_level_left", "gaitmap_level_right"],
+    "up": ["gaitmap_stairs_up_left"],
+    "down": ["gaitmap_stairs_down_left"],
+}
+SIM_USERS = (1, 2, 3, 4)
+
+
+def _lateral_axis(session) -> int:
+    frame = session.frames["foot"]
+    return next(i for i, ax in enumerate((frame.x, frame.y, frame.z)) if ax in ("left", "right"))
+
+
+def stride_features(session, rows: pd.DataFrame) -> pd.DataFrame:
+    """Peak |acc|, peak |lateral gyro| and stride period of the strides in ``rows`` (consecutive rows)."""
+    acc = resample_stream(session["fAccelerometer"], RATE)
+    gyr = resample_stream(session["fGyroscope"], RATE)
+    lat = _lateral_axis(session)
+    starts = session.steps.start_s.to_numpy()
+    out = []
+    for i, r in rows.iterrows():
+        pos = session.steps.index.get_loc(i)
+        if pos + 1 >= len(starts):
+            continue
+        m = (acc.t >= r.start_s) & (acc.t < r.end_s)
+        g = (gyr.t >= r.start_s) & (gyr.t < r.end_s)
+        out.append({
+            "peak_acc": float(np.linalg.norm(acc.values[m], axis=1).max()),
+            "peak_pitch_rate": float(np.abs(gyr.values[g, lat]).max()),
+            "period_s": float(starts[pos + 1] - r.start_s),
+        })
+    return pd.DataFrame(out)
+
+
+@pytest.fixture(scope="module")
+def real_features(real_dir) -> dict[str, pd.DataFrame]:
+    feats = {}
+    for terrain, names in REAL.items():
+        parts = []
+        for name in names:
+            s = read_session(real_dir / name)
+            st = s.steps
+            keep = st.terrain == terrain
+            if "turn" in st:
+                keep &= ~st.turn.astype(bool)
+            parts.append(stride_features(s, st[keep]))
+        feats[terrain] = pd.concat(parts, ignore_index=True)
+    return feats
+
+
+@pytest.fixture(scope="module")
+def sim_features() -> dict[str, pd.DataFrame]:
+    parts: dict[str, list[pd.DataFrame]] = {"flat": [], "up": [], "down": []}
+    for user in SIM_USERS:
+        level = simulate("A", user, rate_hz=RATE, seed=user)
+        st = level.steps
+        parts["flat"].append(stride_features(level, st[st.steady & (st.terrain == "flat")]))
+        stairs = simulate("terrain", user, rate_hz=RATE, seed=user)
+        st = stairs.steps
+        for terrain in ("up", "down"):
+            parts[terrain].append(stride_features(stairs, st[st.steady & (st.terrain == terrain)]))
+    return {k: pd.concat(v, ignore_index=True) for k, v in parts.items()}
+
+
+def _summary(df: pd.DataFrame, col: str) -> str:
+    q = df[col].quantile([0.0, 0.5, 1.0]).to_numpy()
+    return f"{q[0]:6.2f} {q[1]:6.2f} {q[2]:6.2f}"
+
+
+def test_print_side_by_side(real_features, sim_features):
+    lines = ["", f"{'terrain':7} {'feature':16} {'real min/median/max':>22} {'sim min/median/max':>22}  n real/sim"]
+    for terrain in ("flat", "up", "down"):
+        for col in ("peak_acc", "peak_pitch_rate", "period_s"):
+            r, s = real_features[terrain], sim_features[terrain]
+            lines.append(f"{terrain:7} {col:16} {_summary(r, col):>22} {_summary(s, col):>22}  {len(r)}/{len(s)}")
+    print("\n".join(lines))
+    assert all(len(v) >= 10 for v in sim_features.values())
+
+
+@pytest.mark.parametrize("terrain", ["flat", "up", "down"])
+@pytest.mark.parametrize("col", ["peak_acc", "peak_pitch_rate", "period_s"])
+def test_simulated_strides_fall_in_real_range(real_features, sim_features, terrain, col):
+    real, sim = real_features[terrain][col], sim_features[terrain][col]
+    lo, hi = real.min(), real.max()
+    assert lo <= sim.median() <= hi, f"{terrain} {col}: sim median {sim.median():.2f} outside real [{lo:.2f}, {hi:.2f}]"
+    inside = ((sim >= lo) & (sim <= hi)).mean()
+    assert inside >= 0.8, f"{terrain} {col}: only {inside:.0%} of simulated strides within real [{lo:.2f}, {hi:.2f}]"
