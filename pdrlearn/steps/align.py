@@ -18,14 +18,20 @@ log = logging.getLogger(__name__)
 
 
 def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: float = 0.005,
-                 tolerance_s: float = 0.08, fit_drift: bool = True) -> dict:
+                 tolerance_s: float = 0.12, fit_drift: bool = True, min_span_s: float = 60.0) -> dict:
     """Estimate ``offset_s`` (and ``drift``) so that ``foot + offset + drift * foot`` meets waist events.
 
     Every foot stride event should coincide with one waist step event (the waist sees both feet), so the
     offset that matches the most foot events within ``tolerance_s`` wins (grid of ``step_s`` over
-    +-``max_offset_s``; ties -> the smallest mean distance); the matched pairs are then fitted by least
-    squares, ``t_w - t_f = offset + drift * t_f``. Pauses and cadence changes make the true offset
-    stand out from offsets shifted by one step period.
+    +-``max_offset_s``; among offsets within 10 % of the best count, the local optimum closest to 0,
+    because the units are roughly synchronised). The matched pairs are then
+    fitted by least squares, ``t_w - t_f = offset + drift * t_f`` (drift only when they span at least
+    ``min_span_s`` seconds, else the median offset and ``drift = 0``).
+
+    Limitation (docs/decisions/steps.md): a walk's step events are periodic, so offsets that differ by
+    one step period (~0.5 s) match almost as well; bout starts and ends break the tie only when the
+    waist and the foot see them differently. The estimate is reliable for offsets below half a step
+    period and for changes of the offset (relative alignment).
 
     Returns
     -------
@@ -43,8 +49,14 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
     ok = dist <= tolerance_s
     counts = ok.sum(axis=1)
     mean_d = np.where(counts > 0, np.where(ok, dist, 0).sum(axis=1) / np.maximum(counts, 1), np.inf)
-    best = np.lexsort((mean_d, -counts))[0]
-    o = float(grid[best])
+    # most matches wins; ties -> the smallest |offset| (the units are roughly synchronised: the phone
+    # timestamps both streams), then the smallest mean distance
+    best_count = counts.max()
+    cand = np.flatnonzero(counts >= best_count - max(1, int(0.1 * f.size)))
+    # keep the local optimum (smallest mean distance) of each run of adjacent candidates
+    groups = np.split(cand, np.flatnonzero(np.diff(cand) > 1) + 1)
+    heads = [g[np.argmin(mean_d[g])] for g in groups]
+    o = float(grid[min(heads, key=lambda i: abs(grid[i]))])
     # least-squares refinement over the matched pairs (two passes to settle the matching)
     drift = 0.0
     pairs_f = pairs_w = np.zeros(0)
@@ -57,7 +69,7 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
         if pairs_f.size < 2:
             break
         d = pairs_w - pairs_f
-        if fit_drift and pairs_f.size >= 5 and np.ptp(pairs_f) > 0:
+        if fit_drift and pairs_f.size >= 5 and np.ptp(pairs_f) >= min_span_s:
             drift, o = (float(v) for v in np.polyfit(pairs_f, d, 1))
         else:
             o, drift = float(np.median(d)), 0.0
@@ -67,13 +79,14 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
 
 
 def align_units(session: Session, *, foot_detector=None, waist_detector=None, max_offset_s: float = 2.0,
-                tolerance_s: float = 0.08, fit_drift: bool = True) -> tuple[float, float]:
+                tolerance_s: float = 0.12, fit_drift: bool = True,
+                min_span_s: float = 60.0) -> tuple[float, float]:
     """Estimate the clock offset and drift between the foot and waist units of ``session``.
 
     Foot events: the accelerometer + force detector when force sensors are present, else the
     accelerometer detector; waist events: the PLL detector (both replaceable). Returns
-    ``(offset_s, drift)`` with ``t_waist = t_foot + offset_s + drift * t_foot``; details are logged and
-    stored in ``session.meta["alignment"]`` is NOT modified (the session is left untouched).
+    ``(offset_s, drift)`` with ``t_waist = t_foot + offset_s + drift * t_foot`` (the simulator's
+    convention); details are logged; the session is left untouched.
     """
     from pdrlearn.steps.detectors import AccelForceStepDetector, AccelStepDetector, PLLStepDetector
 
@@ -83,7 +96,8 @@ def align_units(session: Session, *, foot_detector=None, waist_detector=None, ma
     waist_detector = waist_detector or PLLStepDetector()
     fe = foot_detector.detect(session)["event_s"].to_numpy(float)
     we = waist_detector.detect(session)["event_s"].to_numpy(float)
-    res = align_events(fe, we, max_offset_s=max_offset_s, tolerance_s=tolerance_s, fit_drift=fit_drift)
+    res = align_events(fe, we, max_offset_s=max_offset_s, tolerance_s=tolerance_s, fit_drift=fit_drift,
+                       min_span_s=min_span_s)
     log.info("%s alignment: %s", session.name, res)
     return res["offset_s"], res["drift"]
 
