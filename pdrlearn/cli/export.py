@@ -17,6 +17,8 @@ def export(
     out: Path = typer.Option(..., "--out", "-o", help="Bundle folder to create."),
     methods: str = typer.Option(None, help="Comma-separated methods to export for every task "
                                 "(heuristic,fusion,dtw,svm,nn); default: each task's chosen method."),
+    length_bounds: str = typer.Option(None, "--length-bounds", help="Stride-length class edges (m) "
+                                      "SHORT_NORMAL,NORMAL_LONG; default: model's, else 2x thesis ch.6.3."),
     overwrite: bool = typer.Option(False, "--overwrite", help="Replace an existing bundle."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
@@ -28,12 +30,19 @@ def export(
 
         pdrlearn export out/model --out out/bundle_all --methods svm,nn,dtw --json
     """
+    from pdrlearn.errors import DataError
     from pdrlearn.export.bundle import bundle_size_bytes
     from pdrlearn.export.from_model import export_model
     from pdrlearn.runtime import load_bundle
 
     meths = [m.strip() for m in methods.split(",") if m.strip()] if methods else None
-    path = export_model(model_dir, out, methods=meths, overwrite=overwrite)
+    bounds = None
+    if length_bounds:
+        try:
+            bounds = [float(v) for v in length_bounds.split(",")]
+        except ValueError:
+            raise DataError(f"--length-bounds {length_bounds!r}: give two numbers, e.g. 0.6,0.9") from None
+    path = export_model(model_dir, out, methods=meths, length_bounds=bounds, overwrite=overwrite)
     b = load_bundle(path)
     summary = {
         "bundle": str(path), "user": b.manifest["user"], "size_bytes": bundle_size_bytes(path),

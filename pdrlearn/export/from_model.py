@@ -169,6 +169,7 @@ def export_model(
     methods: Sequence[str] | None = None,
     frames: dict | None = None,
     displacement: dict | None = None,
+    length_bounds=None,
     overwrite: bool = False,
     model=None,
 ) -> Path:
@@ -184,11 +185,13 @@ def export_model(
         see (default: the thesis frames).
     displacement : displacement parameters (default:
         :data:`pdrlearn.runtime.tracker.DEFAULT_DISPLACEMENT`).
+    length_bounds : per-user stride-length class bounds (m): ``{"short": [lo, hi], ...}`` or two edges
+        ``[short/normal, normal/long]``; default: the model's ``length_bounds_m`` (settings or training
+        summary, as ``pdrlearn track`` reads them), else twice the thesis step bounds (ch.6.3).
     """
     from pdrlearn.classify.model_dir import load_model, read_manifest
     from pdrlearn.features import CHANNELS
     from pdrlearn.features.transformers import SIGNALS
-    from pdrlearn.runtime.tracker import DEFAULT_DISPLACEMENT
 
     if model is None:
         model = load_model(model_dir)
@@ -270,7 +273,7 @@ def export_model(
             "channels": list(CHANNELS),
             "signals": {k: [list(v[0]), float(v[1])] for k, v in SIGNALS.items()},
         },
-        displacement=dict(displacement or DEFAULT_DISPLACEMENT),
+        displacement=_displacement(displacement, length_bounds, model),
         training={
             "data": model.data_summary,
             "settings": model.settings,
@@ -284,3 +287,27 @@ def export_model(
     return write_bundle(
         out_dir, manifest, onnx_models=col.onnx, npz_files=col.npz, json_files=col.json, overwrite=overwrite
     )
+
+
+def _displacement(displacement: dict | None, length_bounds, model) -> dict:
+    """Displacement parameters with the length-class bounds resolved (see :func:`export_model`)."""
+    from pdrlearn.runtime.tracker import DEFAULT_DISPLACEMENT
+
+    out = dict(DEFAULT_DISPLACEMENT)
+    out.update(displacement or {})
+    if length_bounds is None:
+        for holder in (getattr(model, "settings", None) or {}, getattr(model, "data_summary", None) or {}):
+            length_bounds = holder.get("length_bounds_m", length_bounds)
+    if length_bounds is None:
+        out["length_bounds_source"] = "thesis ch.6.3 step bounds x 2 (stride)"
+        return out
+    if isinstance(length_bounds, dict):
+        bounds = {str(k): [float(v[0]), float(v[1])] for k, v in length_bounds.items()}
+    else:
+        e = [float(v) for v in length_bounds]
+        if len(e) != 2 or not 0 < e[0] < e[1]:
+            raise ModelError(f"length bounds {length_bounds!r}: give two increasing stride lengths in metres")
+        bounds = {"short": [0.0, e[0]], "normal": [e[0], e[1]], "long": [e[1], 20.0]}
+    out["length_bounds_m"] = bounds
+    out["length_bounds_source"] = "user"
+    return out

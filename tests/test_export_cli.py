@@ -1,0 +1,132 @@
+"""``pdrlearn export`` / ``pdrlearn run``: round trip on a simulated session, the Bluetooth protocol, and
+every error case giving one line before any output (issue 7, part 4)."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import numpy as np
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.io import format_protocol, write_session
+from pdrlearn.signal import resample_stream
+from tests.runtime_helpers import synthetic_session, trained_dirs
+
+
+@pytest.fixture(scope="module")
+def dirs(tmp_path_factory):
+    d = dict(trained_dirs(tmp_path_factory))
+    root = tmp_path_factory.mktemp("cli")
+    write_session(synthetic_session(20, seed=9, name="walk"), root / "walk")
+    d["walk"] = root / "walk"
+    d["tmp"] = root
+    return d
+
+
+def _copy_bundle(dirs, name: str):
+    dst = dirs["tmp"] / name
+    shutil.rmtree(dst, ignore_errors=True)
+    shutil.copytree(dirs["root"] / "bundle", dst)
+    return dst
+
+
+def test_export_cli_json_and_run_cli(dirs, capsys, tmp_path):
+    assert main(["export", str(dirs["root"] / "model"), "--out", str(tmp_path / "b"), "--methods", "svm,dtw",
+                 "--length-bounds", "0.5,0.9", "--json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert set(info["tasks"]) == {"terrain", "direction", "length"}
+    assert {m for t in info["tasks"].values() for m in t["methods"]} == {"svm", "dtw"}
+    assert info["size_bytes"] < 5e6
+    manifest = json.loads((tmp_path / "b" / "manifest.json").read_text())
+    assert manifest["displacement"]["length_bounds_m"]["normal"] == [0.5, 0.9]
+    assert main(["run", str(tmp_path / "b"), str(dirs["walk"]), "--out", str(tmp_path / "run"),
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["n_steps"] >= 18  # 20 labelled strides, the first starts at the first stance
+    assert sum(out["classes"]["terrain"].values()) == out["n_steps"]
+    assert (tmp_path / "run" / "steps.csv").is_file() and (tmp_path / "run" / "trajectory.csv").is_file()
+
+
+def test_run_reads_the_bluetooth_protocol(dirs, capsys, tmp_path):
+    s = synthetic_session(15, seed=11)
+    cap = tmp_path / "capture.txt"
+    cap.write_text("".join(format_protocol(s)))
+    assert main(["run", str(dirs["root"] / "bundle_foot"), "--protocol", str(cap), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["n_steps"] >= 13
+
+
+def _fails(capsys, argv, pattern):
+    code = main(argv)
+    cap = capsys.readouterr()
+    assert code == 2
+    assert cap.out == ""  # nothing printed before the error
+    assert cap.err.startswith("error: ") and len(cap.err.strip().splitlines()) == 1
+    assert pattern in cap.err, cap.err
+
+
+def test_altered_missing_and_versioned_bundles_fail_before_output(dirs, capsys, tmp_path):
+    b = _copy_bundle(dirs, "altered")
+    onnx_file = next((b / "models").glob("*.onnx"))
+    onnx_file.write_bytes(onnx_file.read_bytes()[:-1] + b"\x00")
+    _fails(capsys, ["run", str(b), str(dirs["walk"]), "--out", str(tmp_path / "o1")], "altered")
+    assert not (tmp_path / "o1").exists()
+    b = _copy_bundle(dirs, "missing")
+    onnx_file = next((b / "models").glob("*.onnx"))
+    onnx_file.unlink()
+    _fails(capsys, ["run", str(b), str(dirs["walk"])], "missing")
+    b = _copy_bundle(dirs, "version")
+    m = json.loads((b / "manifest.json").read_text())
+    m["schema_version"] = 99
+    (b / "manifest.json").write_text(json.dumps(m))
+    _fails(capsys, ["run", str(b), str(dirs["walk"])], "schema version 99")
+
+
+def test_session_without_a_needed_sensor_or_at_another_rate_fails(dirs, capsys, tmp_path):
+    s = synthetic_session(8, seed=3, name="nowaist")
+    del s.streams["wGyroscope"]
+    write_session(s, tmp_path / "nowaist")
+    _fails(capsys, ["run", str(dirs["root"] / "bundle"), str(tmp_path / "nowaist")], "has no wGyroscope")
+    s = synthetic_session(8, seed=3, name="fast")
+    s.streams = {n: resample_stream(st, 100.0) for n, st in s.streams.items()}
+    write_session(s, tmp_path / "fast")
+    _fails(capsys, ["run", str(dirs["root"] / "bundle"), str(tmp_path / "fast")], "sampled at 100 Hz")
+
+
+def test_tracker_rejects_bad_pushes(dirs):
+    from pdrlearn.errors import DataError
+    from pdrlearn.runtime.tracker import Tracker
+
+    tr = Tracker(dirs["root"] / "bundle")
+    tr.push({"fGyroscope": (np.array([0.0, 0.05]), np.zeros((2, 3)))})
+    with pytest.raises(DataError, match="back in time"):
+        tr.push({"fGyroscope": (np.array([0.01]), np.zeros((1, 3)))})
+    with pytest.raises(DataError, match="NaN"):
+        tr.push({"fAccelerometer": (np.array([1.0]), np.full((1, 3), np.nan))})
+
+
+def test_round_trip_export_run_on_a_simulated_session(tmp_path, capsys):
+    """simulate -> train (calibration exercises) -> export -> run on scenario A."""
+    sim = pytest.importorskip("pdrlearn.sim")
+    from pdrlearn.classify import train_user
+
+    cal = [sim.simulate(sc, 0) for sc in ("terrain", "direction", "length")]
+    train_user(cal, cv=2, seed=0, methods=["svm"]).save(tmp_path / "model")
+    bounds = cal[2].meta.get("length_class_bounds_m")
+    argv = ["export", str(tmp_path / "model"), "--out", str(tmp_path / "bundle"), "--json"]
+    if bounds:
+        argv += ["--length-bounds", ",".join(str(b) for b in bounds)]
+    assert main(argv) == 0
+    capsys.readouterr()
+    a = sim.simulate("A", 0)
+    write_session(a, tmp_path / "A")
+    assert main(["run", str(tmp_path / "bundle"), str(tmp_path / "A"), "--out", str(tmp_path / "run"),
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    truth = float(np.abs(np.diff(a.trajectory[["x", "y"]].to_numpy(), axis=0)).sum())  # path length bound
+    assert out["n_steps"] >= len(a.steps) - 3
+    assert out["classes"]["terrain"].get("flat", 0) >= out["n_steps"] - 1  # scenario A is level walking
+    assert 0.5 * truth < out["distance_m"] < 1.5 * truth
+
