@@ -122,14 +122,14 @@ def test_altitude_and_terrain_rules():
 
 
 def test_step_rules_on_constructed_strides():
-    disp = np.array([[1.2, 0.1, 0.0], [-0.5, 0.0, 0.0], [0.55, 0.02, 0.33], [0.2, 0.0, 0.0]])
+    disp = np.array([[1.2, 0.1, 0.0], [-0.5, 0.0, 0.0], [0.55, 0.02, 0.33], [0.2, 0.0, 0.05]])
     classes = pd.DataFrame({"terrain": ["flat", "flat", "up", None],
                             "direction": ["forward", "forward", "forward", "backward"],
                             "length_class": ["long", "normal", None, "short"]})
     out = StepRules(bounds_scale=2.0).apply(disp, classes)
     assert out["length_m"].iloc[0] == pytest.approx(np.hypot(1.2, 0.1))  # inside long (>= 0.92)
     assert out["length_m"].iloc[1] == pytest.approx(0.6)  # sign forward, clamped to normal [0.6, 0.9]
-    assert out["dz_m"].tolist() == pytest.approx([0.0, 0.0, 0.33, 0.0])
+    assert out["dz_m"].tolist() == pytest.approx([0.0, 0.0, 0.33, 0.05])  # unknown terrain: estimated dz
     assert out["length_m"].iloc[3] == pytest.approx(-0.2)
     off = StepRules(clamp=False, sign=False, altitude=False).apply(disp, classes)
     assert off["length_m"].iloc[1] == pytest.approx(-0.5)

@@ -67,14 +67,15 @@ class StepRules:
     def apply(self, disp: np.ndarray, classes: pd.DataFrame) -> pd.DataFrame:
         """Per-stride ``length_m`` (signed) and ``dz_m`` from displacements (B, 3) and classes.
 
-        ``classes`` has ``terrain``, ``direction``, ``length_class`` (missing values: flat / the sign of
-        the estimate / no clamp).
+        ``classes`` has ``terrain``, ``direction``, ``length_class``; a missing value means "no rule":
+        horizontal distance and the estimated vertical change / the sign of the estimate / no clamp.
         """
         disp = np.asarray(disp, dtype=float).reshape(-1, 3)
         n = disp.shape[0]
         if len(classes) != n:
             raise DataError(f"StepRules: {n} displacements but {len(classes)} rows of classes")
-        terrain = classes.get("terrain", pd.Series(["flat"] * n)).fillna("flat").to_numpy()
+        terrain = classes["terrain"].to_numpy(dtype=object) if "terrain" in classes else np.full(n, None)
+        known_terrain = pd.notna(terrain)
         dist = K.terrain_distance(disp, terrain, down_mode=self.down_mode)
         est_sign = np.where(disp[:, 0] < 0, -1.0, 1.0)
         length = dist * est_sign
@@ -85,6 +86,8 @@ class StepRules:
         if self.clamp and "length_class" in classes:
             lc = classes["length_class"].fillna("").to_numpy()
             length = K.clamp_length(length, lc, self.effective_bounds())
-        dz = K.altitude_change(disp[:, 2], terrain) if self.altitude else disp[:, 2].copy()
+        dz = disp[:, 2].copy()
+        if self.altitude:
+            dz = np.where(known_terrain, K.altitude_change(disp[:, 2], terrain), dz)
         return pd.DataFrame({"length_m": length, "dz_m": dz, "raw_dx_m": disp[:, 0], "raw_dy_m": disp[:, 1],
                              "raw_dz_m": disp[:, 2]})

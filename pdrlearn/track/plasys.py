@@ -128,10 +128,28 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
             if key in holder:
                 bounds = holder[key]
     bounds = getattr(model, "length_bounds_m", bounds)
-    probs = [c for c in pred.columns if c.startswith("p_")]
     if "confidence" not in pred:
-        pred["confidence"] = pred[probs].max(axis=1) if probs else 1.0
+        maxima = [pred[[c for c in pred.columns if c.startswith(f"p_{task}_")]].max(axis=1)
+                  for task in _TASK_COLUMNS if any(c.startswith(f"p_{task}_") for c in pred.columns)]
+        pred["confidence"] = np.min(np.column_stack(maxima), axis=1) if maxima else 1.0
     return pred, bounds
+
+
+_TASK_COLUMNS = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
+
+
+def _confident(classes: pd.DataFrame, min_confidence: float) -> pd.DataFrame:
+    """Classes whose probability (``p_<task>_<class>`` columns) is below ``min_confidence`` set to None,
+    so that their rule is not applied (0 = always apply, as the thesis does)."""
+    out = classes.copy()
+    if min_confidence <= 0:
+        return out
+    for task, col in _TASK_COLUMNS.items():
+        pcols = [c for c in classes.columns if c.startswith(f"p_{task}_")]
+        if pcols and col in out:
+            low = classes[pcols].max(axis=1).to_numpy(float) < min_confidence
+            out.loc[low, col] = None
+    return out
 
 
 def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
@@ -145,7 +163,8 @@ def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
 @register_pipeline("plasys")
 def track_plasys(session: Session, *, method: str = "M3", model=None, start=None, params=None,
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
-                 bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3", **opts) -> TrackResult:
+                 bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
+                 min_confidence: float = 0.0, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -160,6 +179,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
         (the foot unit measures strides = two steps, see docs/decisions/localization.md)
     down_mode : "norm3" (thesis eq. 61) or "horizontal" for descending stairs
+    min_confidence : a class rule is applied only when the model's probability of the class reaches this
+        (0 = always, as the thesis)
     """
     method = str(method).upper()
     if method not in METHODS:
@@ -211,13 +232,23 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                                  if session.meta.get(k) is not None), None)
         else:
             classes, model_bounds = _model_classes(model, session, strides)
-    rules = StepRules(bounds=parse_bounds(bounds if bounds is not None else model_bounds)
-                      if (bounds is not None or model_bounds is not None) else None,
+    use_bounds = bounds if bounds is not None else model_bounds
+    clamp = cfg["rules"]
+    if clamp and use_bounds is None:
+        if isinstance(model, str) and model == "oracle":
+            warnings.append("no length-class bounds in the session: thesis step bounds x "
+                            f"{bounds_scale:g} used")
+        else:
+            clamp = False
+            warnings.append("the model carries no length-class bounds (length_bounds_m): the length rule is "
+                            "skipped; pass bounds=... or retrain with the user's bounds")
+    rules = StepRules(bounds=parse_bounds(use_bounds) if use_bounds is not None else None,
                       bounds_scale=bounds_scale, down_mode=down_mode,
-                      clamp=cfg["rules"], sign=cfg["rules"], altitude=cfg["rules"])
+                      clamp=clamp, sign=cfg["rules"], altitude=cfg["rules"])
     if not cfg["rules"]:
         classes["terrain"] = None
-    applied = rules.apply(disp, classes if cfg["rules"] else classes.assign(terrain="flat"))
+    rule_classes = _confident(classes, min_confidence) if cfg["rules"] else classes.assign(terrain="flat")
+    applied = rules.apply(disp, rule_classes)
     length = applied["length_m"].to_numpy()
     dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
 
@@ -244,6 +275,9 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     for c in ("terrain", "direction", "length_class"):
         table[c] = classes[c].to_numpy() if c in classes else None
     table["confidence"] = classes["confidence"].to_numpy(float) if "confidence" in classes else 1.0
+    for c in classes.columns:
+        if c.startswith("p_"):
+            table[c] = classes[c].to_numpy(float)
     table["unit"] = "foot"
 
     xyz = np.zeros((len(table) + 1, 3))
@@ -259,7 +293,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     info = {"pipeline": "plasys", "method": method, "heading_source": hsrc, "stance_source": stance_source,
             "steps_source": source,
             "classes_source": ("oracle" if oracle else ("model" if cfg["rules"] else None)),
-            "length_bounds_m": rules.effective_bounds() if cfg["rules"] else None,
+            "length_bounds_m": rules.effective_bounds() if clamp else None,
             "settings": {k: getattr(fd, k)
                          for k in ("integrator", "zupt_end", "gyro_bias", "attitude", "sw", "r")},
             "warnings": warnings}
