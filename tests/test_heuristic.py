@@ -12,7 +12,14 @@ from sklearn.exceptions import NotFittedError
 from sklearn.metrics import balanced_accuracy_score
 from sklearn.model_selection import StratifiedKFold, cross_val_predict
 
-from pdrlearn.classify._rules import Rule, apply_rule, learn_thresholds, memberships, stage_score
+from pdrlearn.classify._rules import (
+    Rule,
+    apply_rule,
+    learn_thresholds,
+    memberships,
+    refine_jointly,
+    stage_score,
+)
 from pdrlearn.classify.heuristic import (
     TERRAIN_FUSION_WEIGHTS,
     TERRAIN_STAGE1,
@@ -83,6 +90,28 @@ def test_learn_thresholds_recovers_cut_and_order():
     t3 = np.repeat([1.0, 2.0, 3.0], 50)
     th, cl = learn_thresholds(v3, t3, Rule("force", 1, "x", (0.0, 0.1), (1, 2, 3), 1.0))
     assert 0.5 < th[0] < 1.5 < 2.5 < th[1] < 3.5 and cl == (1, 2, 3)
+
+
+def test_refine_jointly_fixes_the_stage_decision():
+    """Rule a decides the class; b and c are noise. Starting from useless cut points, the joint search
+    reaches a perfect stage decision while never lowering the training accuracy."""
+    rng = np.random.default_rng(5)
+    n = 120
+    target = np.repeat([1.0, 2.0], n // 2)
+    F = np.column_stack([np.where(target == 1, -1.0, 1.0) + rng.normal(0, 0.3, n),
+                         rng.normal(0, 1, n), rng.normal(0, 1, n)])
+    rules = [Rule("foot_acc", 1, "a", (50.0,), (1, 2), 0.6), Rule("foot_acc", 2, "b", (0.0,), (1, 2), 0.2),
+             Rule("foot_gyr", 1, "c", (0.0,), (2, 1), 0.2)]
+
+    def acc(rs):
+        r = stage_score(F, rs)
+        return (np.where(np.abs(r - 1) <= np.abs(r - 2), 1.0, 2.0) == target).mean()
+
+    before = acc(rules)
+    fitted = refine_jointly(F, target, rules, (1.0, 2.0))
+    assert acc(fitted) == 1.0 > before
+    assert -0.8 < fitted[0].thresholds[0] < 0.8 and fitted[0].classes == (1, 2)
+    assert [r.weight for r in fitted] == [0.6, 0.2, 0.2]
 
 
 def test_stage_score_confidence_and_memberships():

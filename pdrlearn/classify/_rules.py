@@ -142,3 +142,60 @@ def learn_thresholds(values: np.ndarray, target: np.ndarray, rule: Rule, *, max_
         if score[b] > best[0] + 1e-12:
             best = (float(score[b]), tuple(float(t) for t in combos[b]), order)
     return best[1], best[2]
+
+
+def _candidates(values: np.ndarray, k: int, max_candidates: int) -> np.ndarray:
+    q = np.unique(np.quantile(values, np.linspace(0, 1, max_candidates + 1)))
+    cands = 0.5 * (q[:-1] + q[1:]) if len(q) > 1 else q
+    if k == 1:
+        return cands[:, None]
+    i, j = np.triu_indices(len(cands), k=1)
+    return np.column_stack([cands[i], cands[j]])
+
+
+def refine_jointly(F: np.ndarray, target: np.ndarray, rules: list[Rule], values: tuple[float, ...], *,
+                   passes: int = 2, max_candidates: int = 24) -> list[Rule]:
+    """Coordinate ascent on the *stage decision*: each rule's cut points (and interval order) in turn are
+    set to maximise the balanced accuracy of the rounded weighted result ``R`` (eq. 28) of all rules,
+    the other rules fixed. Starts from ``rules`` (e.g. per-rule learned cut points); weights unchanged.
+
+    Parameters
+    ----------
+    F : (n, len(rules)) rule feature values; target : (n,) class values; values : the stage's classes
+    """
+    classes = np.unique(target)
+    if len(classes) < 2:
+        return rules
+    vals = np.asarray(values, dtype=float)
+    w = np.array([r.weight for r in rules], dtype=float)
+    wsum = w.sum()
+    votes = np.column_stack([apply_rule(F[:, j], r.thresholds, r.classes, r.upper_closed)
+                             for j, r in enumerate(rules)])
+
+    def score_of(R: np.ndarray) -> np.ndarray:  # R (m, n) -> balanced accuracy (m,)
+        pred = vals[np.argmin(np.abs(R[..., None] - vals), axis=-1)]
+        return np.mean([(pred[:, target == c] == c).mean(axis=1) for c in classes], axis=0)
+
+    rules = list(rules)
+    best = float(score_of((votes @ w / wsum)[None, :])[0])
+    for _ in range(passes):
+        improved = False
+        for j, r in enumerate(rules):
+            base = (votes @ w - votes[:, j] * w[j]) / wsum
+            combos = _candidates(F[:, j], len(r.thresholds), max_candidates)
+            for order in (tuple(r.classes), tuple(r.classes[::-1])):
+                idx = (F[None, None, :, j] > combos[:, :, None]).sum(axis=1)
+                cand_votes = np.asarray(order, dtype=float)[idx]
+                s = score_of(base[None, :] + w[j] * cand_votes / wsum)
+                b = int(np.argmax(s))
+                if s[b] > best + 1e-9:
+                    best = float(s[b])
+                    votes[:, j] = cand_votes[b]
+                    rules[j] = Rule(r.sensor, r.number, r.feature, tuple(float(t) for t in combos[b]), order,
+                                    r.weight, True, r.source.replace(" (cut points learned)", "")
+                                    + " (cut points learned jointly)", r.confidence)
+                    r = rules[j]
+                    improved = True
+        if not improved:
+            break
+    return rules

@@ -13,11 +13,12 @@ or its 3-D array), or a 2-D matrix of the table's rule features (:attr:`feature_
   (terrain) and Table 32 (length); direction = decision fusion of eq. 31 weighted by eq. 32 x
   0.6 (foot) / 0.4 (waist).
 
-``fit`` with ``thresholds="learn"`` (default) re-learns each rule's cut points (and, when the data says
-so, the order of its intervals) from the user's labelled calibration steps - the thesis says its
+``fit`` learns the rules' cut points from the user's labelled calibration steps - the thesis says its
 thresholds depend on the pedestrian (ch. 6.1.3, 6.3) and were set from calibration exercises; the
-weights and rule structure stay the thesis'. ``thresholds="thesis"`` keeps the documents' thresholds
-(converted to SI units and seconds, docs/decisions/features.md).
+weights and rule structure stay the thesis'. ``thresholds="learn"``: each rule's cut points (and, when
+the data says so, the order of its intervals) maximise that rule's own balanced accuracy;
+``"joint"`` (default): then coordinate ascent on the stage's rounded result ``R`` (all rules together);
+``"thesis"``: the documents' thresholds (converted to SI units and seconds, docs/decisions/features.md).
 
 ``weights="skill"`` (option, not the thesis) scales each thesis weight by the rule's chance-corrected
 balanced accuracy on the training steps (``max(0, 2 * bacc - 1)``), so rules that do not separate a
@@ -36,7 +37,14 @@ import numpy as np
 from sklearn.base import BaseEstimator, ClassifierMixin
 from sklearn.utils.validation import check_is_fitted
 
-from pdrlearn.classify._rules import Rule, learn_thresholds, memberships, rule_skill, stage_score
+from pdrlearn.classify._rules import (
+    Rule,
+    learn_thresholds,
+    memberships,
+    refine_jointly,
+    rule_skill,
+    stage_score,
+)
 from pdrlearn.errors import DataError
 from pdrlearn.features.rules import RuleFeatures
 from pdrlearn.features.transformers import as_windows
@@ -168,8 +176,8 @@ class _RuleClassifier(ClassifierMixin, BaseEstimator):
         raise NotImplementedError
 
     def _check_params(self) -> None:
-        if self.thresholds not in ("learn", "thesis"):
-            raise DataError(f"{type(self).__name__}: thresholds must be 'learn' or 'thesis', "
+        if self.thresholds not in ("learn", "joint", "thesis"):
+            raise DataError(f"{type(self).__name__}: thresholds must be 'learn', 'joint' or 'thesis', "
                             f"not {self.thresholds!r}")
         if self.weights not in ("thesis", "skill"):
             raise DataError(f"{type(self).__name__}: weights must be 'thesis' or 'skill', "
@@ -220,7 +228,7 @@ class _RuleClassifier(ClassifierMixin, BaseEstimator):
             stage_lab = np.array([st.children.get(v, v) for v in y], dtype=object)
             rows = np.array([lab in inv for lab in stage_lab], dtype=bool)
             target = np.array([inv.get(lab, np.nan) for lab in stage_lab], dtype=float)[rows]
-            if self.thresholds == "learn":
+            if self.thresholds in ("learn", "joint"):
                 new = []
                 for r in rules:
                     th, cl = learn_thresholds(F[rows, col[r.feature]], target, r)
@@ -228,6 +236,9 @@ class _RuleClassifier(ClassifierMixin, BaseEstimator):
                                     r.source + " (cut points learned)", r.confidence)
                                if (th, cl) != (r.thresholds, r.classes) else r)
                 rules = new
+            if self.thresholds == "joint" and not any(r.confidence for r in rules):
+                rules = refine_jointly(F[rows][:, [col[r.feature] for r in rules]], target, rules,
+                                       tuple(st.labels))
             if self.weights == "skill" and len(np.unique(target)) > 1:
                 skill = np.array([rule_skill(F[rows, col[r.feature]], target, r) for r in rules])
                 w = np.array([r.weight for r in rules]) * np.clip(2 * np.nan_to_num(skill) - 1, 0, None)
@@ -295,7 +306,7 @@ class _RuleClassifier(ClassifierMixin, BaseEstimator):
 
 
 class _UnitRuleClassifier(_RuleClassifier):
-    def __init__(self, *, unit: str = "foot", thresholds: str = "learn", weights: str = "thesis"):
+    def __init__(self, *, unit: str = "foot", thresholds: str = "joint", weights: str = "thesis"):
         self.unit = unit
         self.thresholds = thresholds
         self.weights = weights
@@ -350,7 +361,7 @@ class HeuristicFusionClassifier(_RuleClassifier):
     0.6 (foot) / 0.4 (waist).
     """
 
-    def __init__(self, *, task: str = "terrain", thresholds: str = "learn", weights: str = "thesis"):
+    def __init__(self, *, task: str = "terrain", thresholds: str = "joint", weights: str = "thesis"):
         self.task = task
         self.thresholds = thresholds
         self.weights = weights
@@ -370,7 +381,7 @@ class HeuristicFusionClassifier(_RuleClassifier):
         return [Stage(_fused(LENGTH_RULES, LENGTH_FUSION_WEIGHTS), LENGTH_LABELS)]
 
 
-def make_heuristic(task: str, unit: str = "both", *, thresholds: str = "learn",
+def make_heuristic(task: str, unit: str = "both", *, thresholds: str = "joint",
                    weights: str = "thesis") -> _RuleClassifier:
     """The heuristic of ``task`` for ``unit`` (``both`` -> :class:`HeuristicFusionClassifier`)."""
     if unit == "both":

@@ -90,7 +90,7 @@ def report_cv(sessions, *, folds: int = 5, seed: int = 0, out=sys.stdout) -> dic
         cv = StratifiedKFold(k, shuffle=True, random_state=seed)
         print(_header(task), file=out)
         for unit in _units(avail):
-            for th in ("learn", "thesis"):
+            for th in ("learn", "joint", "thesis"):
                 for weights in ("thesis", "skill"):
                     clf = make_heuristic(task, unit, thresholds=th, weights=weights)
                     try:
@@ -126,7 +126,7 @@ def report_sim(*, users: int = 3, tasks=tuple(TASK_CLASSES), out=sys.stdout) -> 
             yte = te.steps[TASK_COLUMNS[task]].to_numpy(dtype=object)
             n_test += len(yte)
             for unit in _units(wtr.available):
-                for th in ("learn", "thesis"):
+                for th in ("learn", "joint", "thesis"):
                     for weights in ("thesis", "skill"):
                         clf = make_heuristic(task, unit, thresholds=th, weights=weights).fit(wtr.X, ytr)
                         p = clf.predict(wte.X)
