@@ -90,7 +90,7 @@ def test_printed_seed001_formula_fails_where_derivation_holds(phase):
 
 
 @pytest.mark.parametrize("heading", [0.0, 0.8, 2.5, -2.0])
-@pytest.mark.parametrize("method", ["ahe", "ellipse"])
+@pytest.mark.parametrize("method", ["ahe", "ellipse", "ellipse-stride"])
 def test_harmonic_heading_on_synthetic_gait(heading, method):
     from pdrlearn.waist import harmonic_headings
 
@@ -113,6 +113,20 @@ def test_forward_sign_flips_for_backward_phase():
     ev = ev[(ev > 4) & (ev < 16)]
     d = K.ellipse_direction(imu.t, imu.acc_h, imu.acc_v, ev[2], ev[3])
     assert abs(np.angle(np.exp(1j * (d - np.pi)))) < np.radians(10)
+
+
+def test_resolve_axis_signs_fixes_flips_with_the_unit_yaw():
+    rng = np.random.default_rng(3)
+    yaw = np.cumsum(rng.normal(0, 0.05, 40))  # the unit turns slowly
+    true = yaw + 0.6  # constant mounting offset
+    d = np.angle(np.exp(1j * (true + rng.normal(0, 0.05, 40))))
+    flipped = d.copy()
+    flipped[[3, 10, 11, 30]] += np.pi
+    flipped[5] = np.nan
+    out = K.resolve_axis_signs(flipped, yaw)
+    ok = np.isfinite(out)
+    assert np.isnan(out[5])
+    assert np.all(np.abs(np.angle(np.exp(1j * (out[ok] - d[ok])))) < 1e-9)
 
 
 # ------------------------------------------------------------------ step length

@@ -33,7 +33,13 @@ from pdrlearn.waist.events import (
     steps_from_events,
     walking_gate,
 )
-from pdrlearn.waist.heading import TurnClassifier, gyro_headings, harmonic_headings
+from pdrlearn.waist.heading import (
+    HARMONIC_METHODS,
+    TurnClassifier,
+    average_two,
+    gyro_headings,
+    harmonic_directions,
+)
 from pdrlearn.waist.params import WaistParams, resolve_params
 from pdrlearn.waist.steplength import frequency_lengths, pendulum_h
 
@@ -120,8 +126,8 @@ def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
 
 
 def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool = False,
-                heading: str | None = None, refine_ic: bool = True, initial_heading: float = 0.0
-                ) -> TrackResult:
+                heading: str | None = None, refine_ic: bool = True, initial_heading: float = 0.0,
+                resolve_signs: bool = True) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -133,8 +139,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     initial_heading : ENU heading (rad) given to the unit's initial facing direction (no magnetometer)
     realtime : pendulum only: the causal IC detector instead of the zero-lag offline one
     refine_ic : PLL only: report each step at the initial contact next to its PLL peak (W11)
-    heading : ``"ahe"`` (default of waist-pll), ``"ellipse"`` (seed 001 closed form) or ``"gyro"``
-        (default of waist-pendulum)
+    heading : ``"ahe"`` (default of waist-pll, seed 000), ``"ellipse"`` (seed 001 closed form on the
+        step), ``"ellipse-stride"`` (the closed form on the stride's step-frequency harmonic, W12) or
+        ``"gyro"`` (default of waist-pendulum, seed 003)
+    resolve_signs : harmonic headings: fix 180-degree sign errors with the unit's yaw (W13)
     """
     if pipeline not in ("waist-pll", "waist-pendulum"):
         raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
@@ -148,8 +156,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     else:
         steps = _pll_steps(session, imu, thr, refine_ic=refine_ic)
         method = heading or "ahe"
-    if method not in ("ahe", "ellipse", "gyro"):
-        raise DataError(f"heading method '{method}' is not one of ahe, ellipse, gyro")
+    if method not in (*HARMONIC_METHODS, "gyro"):
+        raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
     n = len(steps)
     lengths = np.zeros(n)
     headings = np.full(n, np.nan)
@@ -171,22 +179,36 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         running = K.motion_state(sigma[idx], walk_threshold=thr) == 2
         lengths = np.where(has_next, frequency_lengths(np.nan_to_num(freq, nan=0.0), p, running=running), 0.0)
     steps = steps.assign(frequency_hz=freq)
-    clf = TurnClassifier(**(p.turn_gmm or {})) if method == "gyro" else None
-    current = 0.0
-    for seq in _sequences(steps):
-        ev = steps["event_s"].to_numpy(float)[seq]
-        moving = seq[:-1] if len(seq) > 1 else seq[:0]
-        if len(moving) == 0:
-            headings[seq] = current
-            continue
-        if method == "gyro":
-            hd, tr = gyro_headings(imu, ev, classifier=clf, bias_rps=p.gyro_bias_rps, heading0=current)
-            turning[moving] = tr
-        else:
-            hd = _fill_nan_headings(harmonic_headings(imu, ev, method=method), current)
-        headings[moving] = hd
-        current = float(hd[-1])
-        headings[seq[-1]] = current
+    seqs = _sequences(steps)
+    ev_all = steps["event_s"].to_numpy(float)
+    if method == "gyro":
+        clf = TurnClassifier(**(p.turn_gmm or {}))
+        current = 0.0
+        for seq in seqs:
+            moving = seq[:-1]
+            if len(moving):
+                hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
+                                       heading0=current)
+                turning[moving] = tr
+                headings[moving] = hd
+                current = float(hd[-1])
+            headings[seq[-1]] = current
+    else:
+        raw = np.full(n, np.nan)
+        for seq in seqs:
+            if len(seq) > 1:
+                raw[seq[:-1]] = harmonic_directions(imu, ev_all[seq], method=method)
+        if resolve_signs:  # decision W13: one yaw offset per worn unit fixes 180-degree sign errors
+            mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
+            raw = K.resolve_axis_signs(raw, np.interp(mid, imu.t, imu.yaw))
+        current = 0.0
+        for seq in seqs:
+            moving = seq[:-1]
+            if len(moving):
+                hd = _fill_nan_headings(average_two(raw[moving]), current)
+                headings[moving] = hd
+                current = float(hd[-1])
+            headings[seq[-1]] = current
     headings = _fill_nan_headings(headings, 0.0)
     steps = steps.assign(turning=turning)
     info = {

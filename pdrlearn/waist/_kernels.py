@@ -349,6 +349,45 @@ def tip_to_tail_direction(t: np.ndarray, a_h: np.ndarray, a_v: np.ndarray, t0: f
     return float(np.arctan2(vec[1], vec[0]))
 
 
+def stride_ellipse_direction(t: np.ndarray, a_h: np.ndarray, a_v: np.ndarray, t0: float, t2: float) -> float:
+    """Direction (rad) from the major axis of the step-frequency (second) harmonic over the stride
+    ``[t0, t2]``: seed 001's closed-form ellipse (decision W1) on seed 000's stride window, where the
+    stride-frequency lateral sway falls in the first harmonic and does not tilt the axis (decision W12).
+    Sign by :func:`forward_sign`."""
+    m = (t >= t0) & (t <= t2)
+    if m.sum() < 8:
+        return float("nan")
+    alpha, beta = fourier_coefficients(t[m], np.column_stack([a_h[m], a_v[m]]), t0, t2 - t0, 2)
+    axis = ellipse_axis(alpha[1, :2], beta[1, :2])
+    if not np.any(axis):
+        return float("nan")
+    axis = axis * forward_sign(axis, alpha[1, :2], beta[1, :2], alpha[1, 2], beta[1, 2])
+    return float(np.arctan2(axis[1], axis[0]))
+
+
+def resolve_axis_signs(directions: np.ndarray, yaw: np.ndarray) -> np.ndarray:
+    """Fix 180-degree sign errors of per-step directions with the unit's heading (decision W13).
+
+    A worn unit keeps its yaw offset to the walking direction, so ``direction - yaw`` is about constant;
+    a step whose offset points the other way from the majority is flipped. The axis of the offsets is
+    their doubled-angle mean; its sign is the one most steps (each signed by :func:`forward_sign`) agree
+    on. NaN directions stay NaN.
+    """
+    d = np.asarray(directions, dtype=np.float64)
+    off = d - np.asarray(yaw, dtype=np.float64)
+    ok = np.isfinite(off)
+    if ok.sum() < 3:
+        return d.copy()
+    axis = 0.5 * np.angle(np.sum(np.exp(2j * off[ok])))
+    votes = np.cos(off[ok] - axis)
+    if np.sum(votes > 0) < np.sum(votes < 0):
+        axis += np.pi
+    out = d.copy()
+    flip = ok & (np.cos(off - axis) < 0)
+    out[flip] = np.angle(np.exp(1j * (d[flip] + np.pi)))
+    return out
+
+
 def circular_mean2(a: float, b: float) -> float:
     """Mean direction of two angles (rad); the A-HE average of two consecutive steps (seed 000 Alg. 1e)."""
     if not np.isfinite(a):

@@ -19,40 +19,50 @@ from pdrlearn.waist.ahrs import WaistIMU
 DEFAULT_TURN_GMM = {"means": [0.03, 0.45], "sds": [0.04, 0.25], "weights": [0.7, 0.3]}
 
 
-def harmonic_headings(imu: WaistIMU, events: np.ndarray, *, method: str = "ahe") -> np.ndarray:
-    """Per-step motion direction from the planar acceleration's harmonics.
+HARMONIC_METHODS = ("ahe", "ellipse", "ellipse-stride")
 
-    Parameters
-    ----------
-    events : (m,) step boundary times (s), step ``k`` = ``[events[k], events[k+1]]``
-    method : ``"ahe"`` (seed 000 Alg. 1: tip-to-tail of the first two harmonics over the stride
-        ending with the step, averaged over the last two steps) or ``"ellipse"`` (seed 001: closed-form
-        first-harmonic ellipse axis of the step, averaged over two steps; decision W1)
 
-    Returns
-    -------
-    (m - 1,) directions (rad); NaN where undefined (first step of A-HE has no stride before it and
-    takes its own single-step estimate when the next one exists).
+def harmonic_directions(imu: WaistIMU, events: np.ndarray, *, method: str = "ahe") -> np.ndarray:
+    """Per-step motion direction (rad) from the planar acceleration's harmonics, one value per step
+    ``[events[k], events[k+1]]``, before any averaging.
+
+    ``method``: ``"ahe"`` (seed 000 Alg. 1 a-d: tip-to-tail of the first two harmonics over the stride
+    ending with the step), ``"ellipse"`` (seed 001: closed-form first-harmonic ellipse axis of the step,
+    decision W1) or ``"ellipse-stride"`` (the step-frequency harmonic over the stride ending with the step,
+    decision W12). The first step, which has no stride before it, uses the stride that starts with it.
+    NaN where undefined.
     """
+    if method not in HARMONIC_METHODS:
+        raise DataError(f"harmonic heading: method '{method}' is not one of {', '.join(HARMONIC_METHODS)}")
     ev = np.asarray(events, dtype=np.float64)
     n = len(ev) - 1
     raw = np.full(max(n, 0), np.nan)
     for k in range(n):
-        if method == "ahe":
-            if k == 0:
-                if n < 2:
-                    continue
-                raw[k] = K.tip_to_tail_direction(imu.t, imu.acc_h, imu.acc_v, ev[0], ev[1], ev[2])
-                continue
-            raw[k] = K.tip_to_tail_direction(imu.t, imu.acc_h, imu.acc_v, ev[k - 1], ev[k], ev[k + 1])
-        elif method == "ellipse":
+        if method == "ellipse":
             raw[k] = K.ellipse_direction(imu.t, imu.acc_h, imu.acc_v, ev[k], ev[k + 1])
+            continue
+        if k == 0 and n < 2:
+            continue
+        t0, t1, t2 = (ev[0], ev[1], ev[2]) if k == 0 else (ev[k - 1], ev[k], ev[k + 1])
+        if method == "ahe":
+            raw[k] = K.tip_to_tail_direction(imu.t, imu.acc_h, imu.acc_v, t0, t1, t2)
         else:
-            raise DataError(f"harmonic heading: method '{method}' is not 'ahe' or 'ellipse'")
-    out = raw.copy()
-    for k in range(1, n):  # A-HE: average of the last two steps (seed 000 Alg. 1e; seed 001 sec. 2.2.3)
+            raw[k] = K.stride_ellipse_direction(imu.t, imu.acc_h, imu.acc_v, t0, t2)
+    return raw
+
+
+def average_two(raw: np.ndarray) -> np.ndarray:
+    """A-HE: the mean direction of each step and the one before it (seed 000 Alg. 1e; seed 001 sec. 2.2.3)."""
+    out = np.asarray(raw, dtype=np.float64).copy()
+    for k in range(1, len(out)):
         out[k] = K.circular_mean2(raw[k - 1], raw[k])
     return out
+
+
+def harmonic_headings(imu: WaistIMU, events: np.ndarray, *, method: str = "ahe") -> np.ndarray:
+    """Per-step heading (rad): :func:`harmonic_directions` averaged over two steps (no sign resolution;
+    the pipelines also apply :func:`pdrlearn.waist._kernels.resolve_axis_signs`)."""
+    return average_two(harmonic_directions(imu, events, method=method))
 
 
 class TurnClassifier(ClassifierMixin, BaseEstimator):
