@@ -16,6 +16,7 @@ import logging
 import numpy as np
 import pandas as pd
 
+from pdrlearn.aid._base import ParamsMixin
 from pdrlearn.aid._kernels import kf_update, stretch_segment, wrap_angle
 from pdrlearn.aid.sporadic import P_P0_M2, Q_C_M2
 from pdrlearn.errors import DataError
@@ -217,7 +218,7 @@ def automaton_velocity(
 
 
 # -- the tracker -------------------------------------------------------------------------------------
-class ColomboTracker:
+class ColomboTracker(ParamsMixin):
     """Waist-IMU tracker of seed 004 with absolute fixes every ``period_s`` while moving.
 
     Parameters (keyword-only)

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from pdrlearn.aid._base import ParamsMixin
 from pdrlearn.aid._kernels import kf_predict, kf_update, wrap_angle
 from pdrlearn.aid.fixes import sigma_from_accuracy
 from pdrlearn.errors import DataError
@@ -107,7 +108,7 @@ class StepLengthModel:
         return self
 
 
-class GnssPdrFusion:
+class GnssPdrFusion(ParamsMixin):
     """Step-triggered multi-rate KF with the receiver state machine (seed 001 Sec. 2.2.6, Fig. 8).
 
     Parameters (keyword-only)
@@ -161,27 +162,6 @@ class GnssPdrFusion:
         self.step_length = step_length
         self.model = model
         self.initial_sigma_m = initial_sigma_m
-
-    def get_params(self, deep: bool = True) -> dict:
-        return {
-            k: getattr(self, k)
-            for k in (
-                "mode",
-                "period_s",
-                "ttff_s",
-                "max_on_s",
-                "max_accuracy_m",
-                "gate_chi2",
-                "sigma_length_rel",
-                "sigma_length_m",
-                "sigma_heading_rad",
-                "compensate",
-                "min_baseline_m",
-                "step_length",
-                "model",
-                "initial_sigma_m",
-            )
-        }
 
     def _check(self) -> None:
         if self.mode not in MODES:
@@ -244,38 +224,32 @@ class GnssPdrFusion:
         j = int(np.searchsorted(ft, t0, side="left"))  # next fix to look at
         prev_t = t0
         prev_end = None
+
+        def machine(s: str, t: float, fix_used: bool = False) -> str:
+            return fsm_next(
+                s,
+                mode=self.mode,
+                t=t,
+                switched_on_s=switched_on,
+                last_fix_s=last_fix,
+                fix_used=fix_used,
+                period_s=self.period_s,
+                ttff_s=self.ttff_s,
+                max_on_s=self.max_on_s,
+            )
+
         for k in range(len(st)):
             t_k = float(st.at[k, "end_s"])
             dur = t_k - prev_end if prev_end is not None else float(st.at[k, "end_s"] - st.at[k, "start_s"])
             prev_end = t_k
             freq = 1.0 / dur if dur > 0 else np.nan
             # --- receiver machine up to this step
-            new = fsm_next(
-                state,
-                mode=self.mode,
-                t=t_k,
-                switched_on_s=switched_on,
-                last_fix_s=last_fix,
-                fix_used=False,
-                period_s=self.period_s,
-                ttff_s=self.ttff_s,
-                max_on_s=self.max_on_s,
-            )
+            new = machine(state, t_k)
             if state == OFF and new == ACQUIRING:
                 switched_on = max(last_fix + self.period_s, prev_t)
                 on_since = switched_on
                 counts["activations"] += 1
-                new = fsm_next(
-                    new,
-                    mode=self.mode,
-                    t=t_k,
-                    switched_on_s=switched_on,
-                    last_fix_s=last_fix,
-                    fix_used=False,
-                    period_s=self.period_s,
-                    ttff_s=self.ttff_s,
-                    max_on_s=self.max_on_s,
-                )
+                new = machine(new, t_k)
             if new == OFF and state != OFF and on_since is not None:
                 on_time += t_k - on_since
                 on_since = None
@@ -337,17 +311,7 @@ class GnssPdrFusion:
                             if upd:
                                 scale, bias = s_new, b_new
             if fix_used and self.mode == "saving":
-                state = fsm_next(
-                    state,
-                    mode=self.mode,
-                    t=t_k,
-                    switched_on_s=switched_on,
-                    last_fix_s=last_fix,
-                    fix_used=True,
-                    period_s=self.period_s,
-                    ttff_s=self.ttff_s,
-                    max_on_s=self.max_on_s,
-                )
+                state = machine(state, t_k, fix_used=True)
                 if on_since is not None:
                     on_time += t_k - on_since
                     on_since = None

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from pdrlearn.aid._base import ParamsMixin
 from pdrlearn.aid._kernels import kf_predict, kf_update, stretch_segment, wrap_angle
 from pdrlearn.aid.fixes import sigma_from_accuracy
 from pdrlearn.aid.gnss import check_steps
@@ -22,7 +23,7 @@ P_P0_M2 = 0.1
 Q_C_M2 = 0.0025
 
 
-class SporadicFixFusion:
+class SporadicFixFusion(ParamsMixin):
     """Position EKF with fixes every T_p seconds while moving, trajectory stretching and yaw feedback.
 
     Parameters (keyword-only)
@@ -67,24 +68,6 @@ class SporadicFixFusion:
         self.heading_drift_rad = heading_drift_rad
         self.initial_sigma_m = initial_sigma_m
         self.fix_sigma_m = fix_sigma_m
-
-    def get_params(self, deep: bool = True) -> dict:
-        return {
-            k: getattr(self, k)
-            for k in (
-                "period_s",
-                "moving_gap_s",
-                "query_tolerance_s",
-                "sigma_length_rel",
-                "sigma_length_m",
-                "sigma_heading_rad",
-                "stretch",
-                "yaw_feedback",
-                "heading_drift_rad",
-                "initial_sigma_m",
-                "fix_sigma_m",
-            )
-        }
 
     def run(
         self,

@@ -1,0 +1,92 @@
+"""End to end: ``pdrlearn track --gnss/--fixes`` on a simulated walk (needs pdrlearn.sim and the track CLI)."""
+
+import json
+
+import numpy as np
+import pytest
+
+from pdrlearn.aid.fixgen import gnss_fixes, infrastructure_fixes, write_nmea
+from pdrlearn.cli import main
+
+sim = pytest.importorskip("pdrlearn.sim")
+
+
+@pytest.fixture(scope="module")
+def walk(tmp_path_factory):
+    from pdrlearn.io import write_session
+
+    d = tmp_path_factory.mktemp("aidcli")
+    ses = sim.simulate("walk", 3, length_m=150)
+    write_session(ses, d / "walk")
+    truth = ses.trajectory
+    origin = (45.4642, 9.19)
+    fx = gnss_fixes(truth, accuracy_m=4.0, origin=origin, seed=7)
+    fx[["t", "lat", "lon", "accuracy_m"]].to_csv(d / "gnss.csv", index=False)
+    write_nmea(fx, d / "gnss.nmea")
+    infrastructure_fixes(truth, seed=7).to_csv(d / "cams.csv", index=False)
+    return d, truth
+
+
+def test_track_with_gnss_and_fixes(walk, capsys):
+    d, truth = walk
+    rc = main(
+        [
+            "track",
+            str(d / "walk"),
+            "--pipeline",
+            "waist-pll",
+            "--gnss",
+            str(d / "gnss.nmea"),
+            "--gnss-period",
+            "30",
+            "--out",
+            str(d / "out"),
+            "--json",
+        ]
+    )
+    assert rc == 0
+    summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    aid = summary["info"]["aid"]["gnss"]
+    assert aid["mode"] == "saving" and aid["fixes_used"] >= 2 and 0 < aid["gnss_on_fraction"] < 0.5
+    assert aid["bad_checksum"] == 0
+    traj = (d / "out" / "trajectory.csv").read_text().splitlines()[0].split(",")
+    assert {"x_pdr", "y_pdr", "lat", "lon"} <= set(traj)
+    rc = main(
+        [
+            "track",
+            str(d / "walk"),
+            "--pipeline",
+            "waist-pll",
+            "--fixes",
+            str(d / "cams.csv"),
+            "--fix-period",
+            "4",
+            "--out",
+            str(d / "out2"),
+            "--json",
+        ]
+    )
+    assert rc == 0
+    info = json.loads(capsys.readouterr().out.strip().splitlines()[-1])["info"]["aid"]["fixes"]
+    assert info["fixes_used"] >= 5 and info["period_s"] == 4.0
+    assert np.isfinite(info["queries_per_min"])
+
+
+def test_track_with_bad_fix_file_is_one_line_error(walk, capsys, tmp_path):
+    d, _ = walk
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t,lat,lon\n0,45,9\n")
+    rc = main(
+        [
+            "track",
+            str(d / "walk"),
+            "--pipeline",
+            "waist-pll",
+            "--gnss",
+            str(bad),
+            "--out",
+            str(tmp_path / "o"),
+        ]
+    )
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and err[-1].startswith("error: ") and "accuracy_m" in err[-1]
