@@ -30,8 +30,9 @@ G = STANDARD_GRAVITY
 
 
 def _aligned(seed: int = 1) -> UserProfile:
-    return dataclasses.replace(UserProfile.from_seed(seed), foot_misalignment_deg=[0.0, 0.0, 0.0],
-                               waist_misalignment_deg=[0.0, 0.0, 0.0])
+    return dataclasses.replace(
+        UserProfile.from_seed(seed), foot_misalignment_deg=[0.0, 0.0, 0.0], waist_misalignment_deg=[0.0, 0.0, 0.0]
+    )
 
 
 def _foot_axes(s) -> np.ndarray:
@@ -53,8 +54,9 @@ def exact_d():
 def test_standing_units_read_gravity_in_their_frames():
     s = simulate_path([], _aligned(), rate_hz=20, noise=False)
     # thesis foot frame: y up; waist phone: y up (pdrlearn.io.frames)
-    np.testing.assert_allclose(s["fAccelerometer"].values, np.tile([0.0, G, 0.0], (len(s["fAccelerometer"]), 1)),
-                               atol=1e-9)
+    np.testing.assert_allclose(
+        s["fAccelerometer"].values, np.tile([0.0, G, 0.0], (len(s["fAccelerometer"]), 1)), atol=1e-9
+    )
     np.testing.assert_allclose(s["wAccelerometer"].values[5], [0.0, G, 0.0], atol=1e-9)
     np.testing.assert_allclose(s["fGyroscope"].values, 0.0, atol=1e-12)
     # misaligned unit: still |g|, and the declared frame + recorded misalignment explain the reading
@@ -83,7 +85,7 @@ def test_double_integration_recovers_stride_displacement(exact_a):
     rows = s.steps[s.steps.steady]
     assert len(rows) >= 10
     for r, i0, i1 in _stride_windows(s, rows):
-        v = np.vstack([np.zeros(3), np.cumsum(0.5 * (a_nav[i0:i1] + a_nav[i0 + 1:i1 + 1]) * dt, axis=0)])
+        v = np.vstack([np.zeros(3), np.cumsum(0.5 * (a_nav[i0:i1] + a_nav[i0 + 1 : i1 + 1]) * dt, axis=0)])
         disp = np.sum(0.5 * (v[:-1] + v[1:]) * dt, axis=0)
         assert np.hypot(*disp[:2]) == pytest.approx(r.length_m, rel=0.02)
         assert np.linalg.norm(v[-1]) < 0.05  # foot at rest again at mid-stance
@@ -108,7 +110,7 @@ def test_gyroscope_integrates_to_orientation_change(exact_a):
     w_body = s["fGyroscope"].values @ axes.T
     for _, i0, i1 in list(_stride_windows(s, s.steps[s.steps.steady]))[:3]:
         mid = (i0 + i1) // 2  # compare at mid-swing, where the foot has rotated most
-        est = _integrate_gyro(0.5 * (w_body[i0:mid] + w_body[i0 + 1:mid + 1]), 0.01)  # trapezoid
+        est = _integrate_gyro(0.5 * (w_body[i0:mid] + w_body[i0 + 1 : mid + 1]), 0.01)  # trapezoid
         true = q[i0].inv() * q[mid]
         assert true.magnitude() > 0.3
         assert (est.inv() * true).magnitude() < math.radians(2.0)
@@ -185,11 +187,20 @@ def test_round_trip(tmp_path):
 
 def test_steps_table_and_ics_contract(exact_a):
     st = exact_a.steps
-    for col in ("start_s", "end_s", "ic_s", "terrain", "direction", "length_m", "height_m", "length_class",
-                "heading_change_deg"):
+    for col in (
+        "start_s",
+        "end_s",
+        "ic_s",
+        "terrain",
+        "direction",
+        "length_m",
+        "height_m",
+        "length_class",
+        "heading_change_deg",
+    ):
         assert col in st
     assert (st.start_s < st.ic_s).all() and (st.ic_s < st.end_s).all() and (st.length_m >= 0).all()
-    assert (st.end_s.to_numpy()[:-1] == pytest.approx(st.start_s.to_numpy()[1:]))
+    assert st.end_s.to_numpy()[:-1] == pytest.approx(st.start_s.to_numpy()[1:])
     ics = exact_a.extras["ics"]
     assert set(ics.foot) == {"left", "right"} and np.all(np.diff(ics.ic_s) > 0)
     assert (ics.foot.to_numpy()[1:] != ics.foot.to_numpy()[:-1]).mean() > 0.9
@@ -265,8 +276,19 @@ def test_clock_knobs_drops_and_bad_values():
 
 def test_custom_path_segments():
     user = UserProfile.from_seed(8)
-    s = simulate_path([Straight(3.0), Curve(math.pi / 2, 1.5), Stand(2.0), Backward(4), Turn(-math.pi),
-                       Stairs(4, up=False, rise_m=0.16, run_m=0.3)], user, rate_hz=50, noise=False)
+    s = simulate_path(
+        [
+            Straight(3.0),
+            Curve(math.pi / 2, 1.5),
+            Stand(2.0),
+            Backward(4),
+            Turn(-math.pi),
+            Stairs(4, up=False, rise_m=0.16, run_m=0.3),
+        ],
+        user,
+        rate_hz=50,
+        noise=False,
+    )
     assert s["fAccelerometer"].rate_hz == pytest.approx(50.0)
     traj = s.trajectory
     assert traj.z.iloc[-1] - traj.z.iloc[0] == pytest.approx(-0.64, abs=1e-6)
@@ -283,9 +305,12 @@ def test_cli_end_to_end(tmp_path, capsys):
     assert summary["strides"] > 10 and summary["distance_m"] == pytest.approx(25.0, rel=0.05)
     s = read_session(out)
     assert len(s.streams) == 8 and s.steps is not None and "ics" in s.extras
-    for bad in (["--scenario", "Z", "--user-seed", "1"], ["--scenario", "A", "--user-seed", "-2"],
-                ["--scenario", "A", "--user-seed", "1", "--speed", "jog"],
-                ["--scenario", "A", "--user-seed", "1", "--rate", "33"]):
+    for bad in (
+        ["--scenario", "Z", "--user-seed", "1"],
+        ["--scenario", "A", "--user-seed", "-2"],
+        ["--scenario", "A", "--user-seed", "1", "--speed", "jog"],
+        ["--scenario", "A", "--user-seed", "1", "--rate", "33"],
+    ):
         target = tmp_path / "bad"
         code = main(["simulate", *bad, "--out", str(target)])
         _, err = capsys.readouterr()

@@ -42,11 +42,13 @@ def stride_features(session, rows: pd.DataFrame) -> pd.DataFrame:
             continue
         m = (acc.t >= r.start_s) & (acc.t < r.end_s)
         g = (gyr.t >= r.start_s) & (gyr.t < r.end_s)
-        out.append({
-            "peak_acc": float(np.linalg.norm(acc.values[m], axis=1).max()),
-            "peak_pitch_rate": float(np.abs(gyr.values[g, lat]).max()),
-            "period_s": float(starts[pos + 1] - r.start_s),
-        })
+        out.append(
+            {
+                "peak_acc": float(np.linalg.norm(acc.values[m], axis=1).max()),
+                "peak_pitch_rate": float(np.abs(gyr.values[g, lat]).max()),
+                "period_s": float(starts[pos + 1] - r.start_s),
+            }
+        )
     return pd.DataFrame(out)
 
 

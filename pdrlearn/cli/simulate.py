@@ -11,9 +11,13 @@ from pdrlearn.errors import DataError
 
 
 def simulate_cmd(
-    scenario: str = typer.Option(..., "--scenario", "-s",
-                                 help="A, B, C, D (thesis ch.7.3), terrain, direction, length (calibration "
-                                      "exercises), standstill, rotations or walk."),
+    scenario: str = typer.Option(
+        ...,
+        "--scenario",
+        "-s",
+        help="A, B, C, D (thesis ch.7.3), terrain, direction, length (calibration "
+        "exercises), standstill, rotations or walk.",
+    ),
     user_seed: int = typer.Option(..., "--user-seed", "-u", help="Selects the simulated user (>= 0)."),
     out: Path = typer.Option(..., "--out", "-o", help="Session folder to create (must not exist or be empty)."),
     speed: str = typer.Option("normal", "--speed", help="slow, normal or fast."),
@@ -50,16 +54,31 @@ def simulate_cmd(
     if out.exists() and (not out.is_dir() or any(out.iterdir())):
         raise DataError(f"{out}: already exists and is not an empty folder; choose another --out or remove it")
     with progress(f"simulating {scenario}", total=2, enabled=not as_json) as advance:
-        session = simulate(scenario, user_seed, speed, rate_hz=rate, seed=seed, length_m=length_m,
-                           clock_offset_s=clock_offset_s, clock_drift_ppm=clock_drift_ppm, drop_rate=drop_rate,
-                           irregular_rate=irregular_rate, noise=not no_noise)
+        session = simulate(
+            scenario,
+            user_seed,
+            speed,
+            rate_hz=rate,
+            seed=seed,
+            length_m=length_m,
+            clock_offset_s=clock_offset_s,
+            clock_drift_ppm=clock_drift_ppm,
+            drop_rate=drop_rate,
+            irregular_rate=irregular_rate,
+            noise=not no_noise,
+        )
         advance()
         write_session(session, out)
         advance()
     st = session.steps
     summary = {
-        "out": str(out), "scenario": scenario, "user_seed": user_seed, "speed": speed, "seed": seed,
-        "rate_hz": rate, "duration_s": round(session.duration_s, 3),
+        "out": str(out),
+        "scenario": scenario,
+        "user_seed": user_seed,
+        "speed": speed,
+        "seed": seed,
+        "rate_hz": rate,
+        "duration_s": round(session.duration_s, 3),
         "strides": 0 if st is None else int(len(st)),
         "steps_both_feet": int(len(session.extras["ics"])),
         "distance_m": round(float(session.meta["distance_m"]), 3),
@@ -69,9 +88,11 @@ def simulate_cmd(
     if as_json:
         print_json(json_safe(summary))
     else:
-        typer.echo(f"{out}: scenario {scenario}, user {user_seed}, {speed}, {summary['duration_s']:.1f} s, "
-                   f"{summary['strides']} strides of the right foot, {summary['distance_m']:.1f} m, "
-                   f"{rate:g} Hz")
+        typer.echo(
+            f"{out}: scenario {scenario}, user {user_seed}, {speed}, {summary['duration_s']:.1f} s, "
+            f"{summary['strides']} strides of the right foot, {summary['distance_m']:.1f} m, "
+            f"{rate:g} Hz"
+        )
 
 
 def register(app: typer.Typer) -> None:

@@ -12,6 +12,19 @@ from pdrlearn.sim.simulate import KNOBS, simulate, simulate_path
 from pdrlearn.sim.user import GAITS, SPEEDS, UserProfile
 
 __all__ = [
-    "simulate", "simulate_path", "UserProfile", "SCENARIOS", "KNOBS", "SPEEDS", "GAITS",
-    "Straight", "Curve", "Stairs", "Backward", "Turn", "Stand", "Footstep", "plan_footsteps",
+    "simulate",
+    "simulate_path",
+    "UserProfile",
+    "SCENARIOS",
+    "KNOBS",
+    "SPEEDS",
+    "GAITS",
+    "Straight",
+    "Curve",
+    "Stairs",
+    "Backward",
+    "Turn",
+    "Stand",
+    "Footstep",
+    "plan_footsteps",
 ]

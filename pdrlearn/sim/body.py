@@ -15,9 +15,19 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicSpline, PchipInterpolator
+from scipy.interpolate import PchipInterpolator
 
-from pdrlearn.sim.kernels import foot_rotation, foot_rotation_dtheta, hermite, rot_x, rot_y, rot_z, smoothstep
+from pdrlearn.sim.kernels import (
+    clamped_spline,
+    foot_rotate,
+    foot_rotate_dtheta,
+    foot_rotation,
+    hermite,
+    rot_x,
+    rot_y,
+    rot_z,
+    smoothstep,
+)
 from pdrlearn.sim.path import Footstep
 from pdrlearn.sim.user import GAIT_FACTORS, UserProfile
 
@@ -81,12 +91,18 @@ class Events:
         return float(self.ff.max()) if len(self.ff) else 0.0
 
 
-def schedule(steps: list[Footstep], user: UserProfile, *, speed: str, rng: np.random.Generator,
-             stand_s: float, variability: float = 1.0) -> Events:
+def schedule(
+    steps: list[Footstep],
+    user: UserProfile,
+    *,
+    speed: str,
+    rng: np.random.Generator,
+    stand_s: float,
+    variability: float = 1.0,
+) -> Events:
     """Assign gait-event times to the footsteps (both feet) and draw per-step swing parameters."""
     n = len(steps)
-    ev = {k: np.zeros(n) for k in ("ho", "to", "ic", "ff", "step_s", "theta_to", "theta_ic", "theta_mid",
-                                   "clearance")}
+    ev = {k: np.zeros(n) for k in ("ho", "to", "ic", "ff", "step_s", "theta_to", "theta_ic", "theta_mid", "clearance")}
     impact = np.zeros((n, 2))
     bout_start = np.zeros(n, dtype=bool)
     cv = user.variability * variability
@@ -118,11 +134,14 @@ def schedule(steps: list[Footstep], user: UserProfile, *, speed: str, rng: np.ra
         gait_pitch = 0.6 if st.gait == "short" else (1.1 if st.gait == "long" else 1.0)
         ev["theta_to"][k] = np.radians(user.toe_off_pitch_deg) * pfac * SPEED_PITCH[speed] * gait_pitch * jit
         if ic_pitch is None:
-            ic_pitch = np.radians(user.heel_strike_pitch_deg) * (0.6 if st.kind == "close" else 1.0) \
-                * SPEED_PITCH[speed] * gait_pitch
+            ic_pitch = (
+                np.radians(user.heel_strike_pitch_deg)
+                * (0.6 if st.kind == "close" else 1.0)
+                * SPEED_PITCH[speed]
+                * gait_pitch
+            )
         ev["theta_ic"][k] = ic_pitch * (1.0 + 0.1 * variability * rng.normal())
-        ev["theta_mid"][k] = (0.8 * ev["theta_ic"][k] if kd.mid_swing_deg is None
-                              else np.radians(kd.mid_swing_deg) * jit)
+        ev["theta_mid"][k] = 0.8 * ev["theta_ic"][k] if kd.mid_swing_deg is None else np.radians(kd.mid_swing_deg) * jit
         sp = user.impact_speed_mps * np.exp(rng.normal(0.0, 0.25 * variability))
         sp *= {"slow": 0.8, "normal": 1.0, "fast": 1.2}[speed] * GAIT_FACTORS[st.gait][0] ** 0.5
         if st.irregular:
@@ -139,8 +158,9 @@ def _pivot(theta: float, ball: np.ndarray) -> np.ndarray:
     return ball if theta < 0 else np.zeros(3)
 
 
-def foot_pose(t: np.ndarray, foot: str, steps: list[Footstep], ev: Events, initial: dict,
-              user: UserProfile) -> tuple[np.ndarray, np.ndarray]:
+def foot_pose(
+    t: np.ndarray, foot: str, steps: list[Footstep], ev: Events, initial: dict, user: UserProfile
+) -> tuple[np.ndarray, np.ndarray]:
     """Heel position (n, 3) and orientation (n, 3, 3, body FLU -> ENU) of one foot on the time grid ``t``."""
     n = t.size
     heel = np.empty((n, 3))
@@ -161,22 +181,22 @@ def foot_pose(t: np.ndarray, foot: str, steps: list[Footstep], ev: Events, initi
         w_to = 1.5 * th_to / rock
         w_ic = -1.5 * th_ic / load
         r_a = _pivot(th_to, ball)
-        p_a = h_a + rot_z(y_a) @ r_a
+        p_a = h_a + foot_rotate(y_a, 0.0, r_a)
         sl = slice(i_ho, i_to)
         th = hermite((t[sl] - ev.ho[k]) / rock, 0.0, th_to, 0.0, w_to, rock)
-        heel[sl] = p_a - foot_rotation(y_a, th) @ r_a
+        heel[sl] = p_a - foot_rotate(y_a, th, r_a)
         yaw[sl], theta[sl] = y_a, th
         # swing: toe-off -> initial contact
-        heel_to = p_a - foot_rotation(y_a, th_to) @ r_a
-        v_to = -(foot_rotation_dtheta(y_a, th_to) @ r_a) * w_to
+        heel_to = p_a - foot_rotate(y_a, th_to, r_a)
+        v_to = -foot_rotate_dtheta(y_a, th_to, r_a) * w_to
         r_b = ball if th_ic < 0 else np.zeros(3)
-        p_b = h_b + rot_z(y_b) @ r_b
-        heel_ic = p_b - foot_rotation(y_b, th_ic) @ r_b
+        p_b = h_b + foot_rotate(y_b, 0.0, r_b)
+        heel_ic = p_b - foot_rotate(y_b, th_ic, r_b)
         d_xy = heel_ic[:2] - heel_to[:2]
         dist = float(np.linalg.norm(d_xy))
         fwd = np.append(d_xy / dist, 0.0) if dist > 1e-6 else np.array([np.cos(y_b), np.sin(y_b), 0.0])
         v_pivot = ev.impact[k, 0] * fwd + np.array([0.0, 0.0, ev.impact[k, 1]])
-        v_ic = v_pivot - (foot_rotation_dtheta(y_b, th_ic) @ r_b) * w_ic
+        v_ic = v_pivot - foot_rotate_dtheta(y_b, th_ic, r_b) * w_ic
         swing = ev.ic[k] - ev.to[k]
         zmax = max(h_a[2], h_b[2])
         clear = ev.clearance[k]
@@ -186,18 +206,18 @@ def foot_pose(t: np.ndarray, foot: str, steps: list[Footstep], ev: Events, initi
         kp[1, 2] = max(zmax + clear, heel_to[2] + 0.3 * clear)
         kp[2, 2] = zmax + 0.3 * clear
         kp[0], kp[3] = heel_to, heel_ic
-        cs = CubicSpline(ev.to[k] + knots_u * swing, kp, bc_type=((1, v_to), (1, v_ic)))
         sl = slice(i_to, i_ic)
-        heel[sl] = cs(t[sl])
+        heel[sl] = clamped_spline(ev.to[k] + knots_u * swing, kp, v_to, v_ic, t[sl])
         tu = (t[sl] - ev.to[k]) / swing
         yaw[sl] = y_a + (y_b - y_a) * smoothstep(tu)
         pk = np.array([th_to, th_to + 0.15 * th_to - 0.1 * np.sign(th_to) * abs(th_ic), ev.theta_mid[k], th_ic])
-        cp = CubicSpline(ev.to[k] + np.array([0.0, 0.14, 0.58, 1.0]) * swing, pk, bc_type=((1, w_to), (1, w_ic)))
-        theta[sl] = cp(t[sl])
+        theta[sl] = clamped_spline(
+            ev.to[k] + np.array([0.0, 0.14, 0.58, 1.0]) * swing, pk[:, None], np.array([w_to]), np.array([w_ic]), t[sl]
+        )[:, 0]
         # loading rocker: initial contact -> foot flat, pivot fixed on footprint B
         sl = slice(i_ic, i_ff)
         th = hermite((t[sl] - ev.ic[k]) / load, th_ic, 0.0, w_ic, 0.0, load)
-        heel[sl] = p_b - foot_rotation(y_b, th) @ r_b
+        heel[sl] = p_b - foot_rotate(y_b, th, r_b)
         yaw[sl], theta[sl] = y_b, th
         h_a, y_a, pos = np.asarray(h_b, float), y_b, i_ff
     heel[pos:], yaw[pos:], theta[pos:] = h_a, y_a, 0.0
@@ -214,8 +234,13 @@ def _bouts(steps: list[Footstep], ev: Events) -> list[tuple[int, int]]:
     return [(starts[i], starts[i + 1] - 1) for i in range(len(starts) - 1)]
 
 
-def pelvis_pose(t: np.ndarray, steps: list[Footstep], ev: Events, initial: dict, user: UserProfile,
-                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def pelvis_pose(
+    t: np.ndarray,
+    steps: list[Footstep],
+    ev: Events,
+    initial: dict,
+    user: UserProfile,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pelvis reference point (n, 3) at the waist-unit height, orientation (n, 3, 3) and base heading (n,)."""
     feet = {f: (np.asarray(h, float), y) for f, (h, y) in initial.items()}
 
@@ -255,8 +280,9 @@ def pelvis_pose(t: np.ndarray, steps: list[Footstep], ev: Events, initial: dict,
         kinds = {steps[i].kind for i in range(a, b + 1)}
         amp = 0.3 if kinds <= {"turn", "close"} else 1.0
         rise = smoothstep((t - ev.ho[a]) / max(ev.ic[a] + 0.5 * ev.step_s[a] - ev.ho[a], 1e-3))
-        fall = 1.0 - smoothstep((t - (ev.ic[b] - 0.5 * ev.step_s[b])) / max(ev.ff[b] - ev.ic[b] + 0.5 * ev.step_s[b],
-                                                                              1e-3))
+        fall = 1.0 - smoothstep(
+            (t - (ev.ic[b] - 0.5 * ev.step_s[b])) / max(ev.ff[b] - ev.ic[b] + 0.5 * ev.step_s[b], 1e-3)
+        )
         env = np.maximum(env, amp * np.minimum(rise, fall))
     if len(steps) > 1:
         ph = PchipInterpolator(ev.ic, np.array(ph_k, float), extrapolate=True)(t)
@@ -290,7 +316,7 @@ def pelvis_pose(t: np.ndarray, steps: list[Footstep], ev: Events, initial: dict,
     pos[:, 0] = base[:, 0] + ca * fwd - sa * sway
     pos[:, 1] = base[:, 1] + sa * fwd + ca * sway
     pos[:, 2] = base[:, 2] + user.sensor_height_m + bounce + kick_v
-    rot = rot_z(heading + yaw_osc) @ rot_y(tilt) @ rot_x(roll)
+    rot = np.einsum("nij,njk,nkl->nil", rot_z(heading + yaw_osc), rot_y(tilt), rot_x(roll), optimize=True)
     return pos, rot, heading
 
 
@@ -300,8 +326,13 @@ def _ramp(t: np.ndarray, a: float, b: float) -> np.ndarray:
     return smoothstep((t - a) / max(b - a, 1e-6))
 
 
-def foot_loads(t: np.ndarray, foot: str, steps: list[Footstep], ev: Events, user: UserProfile,
-               ) -> tuple[np.ndarray, np.ndarray]:
+def foot_loads(
+    t: np.ndarray,
+    foot: str,
+    steps: list[Footstep],
+    ev: Events,
+    user: UserProfile,
+) -> tuple[np.ndarray, np.ndarray]:
     """Heel and forefoot load (N) reaching one foot's force sensors; exactly 0 while the foot is in the air.
 
     Heel-first contact: the heel loads from initial contact to foot flat and unloads by heel-off; the
@@ -315,8 +346,9 @@ def foot_loads(t: np.ndarray, foot: str, steps: list[Footstep], ev: Events, user
     idx = [int(k) for k in np.flatnonzero([s.foot == foot for s in steps])]
     # contact intervals: (initial contact, foot flat) of the landing, then (heel-off, toe-off) of the next swing
     far = 1e9
-    contacts = [(-far, -far, True, False)] + [(ev.ic[k], ev.ff[k], ev.theta_ic[k] > 0,
-                                               steps[k].kind.startswith("stairs")) for k in idx]
+    contacts = [(-far, -far, True, False)] + [
+        (ev.ic[k], ev.ff[k], ev.theta_ic[k] > 0, steps[k].kind.startswith("stairs")) for k in idx
+    ]
     lifts = [(ev.ho[k], ev.to[k]) for k in idx] + [(far, far)]
     for (c0, ff, heel_first, stairs), (ho, to) in zip(contacts, lifts, strict=True):
         m = (t >= c0) & (t < to)

@@ -7,34 +7,38 @@ pitch ``theta`` > 0 lifts the toes (dorsiflexion); yaw ``psi`` is the ENU headin
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 STANDARD_GRAVITY = 9.80665  # m/s^2 (thesis ch.4.2.1.1)
 
 
 # -- rotations ------------------------------------------------------------------------------------
+def _rot(angle: np.ndarray | float, i: int, j: int) -> np.ndarray:
+    """Rotation(s) by ``angle`` in the (i, j) plane (i -> j positive): (..., 3, 3)."""
+    angle = np.asarray(angle, dtype=float)
+    c, s = np.cos(angle), np.sin(angle)
+    out = np.zeros((*angle.shape, 3, 3))
+    k = 3 - i - j
+    out[..., k, k] = 1.0
+    out[..., i, i] = c
+    out[..., j, j] = c
+    out[..., j, i] = s
+    out[..., i, j] = -s
+    return out
+
+
 def rot_z(psi: np.ndarray | float) -> np.ndarray:
     """Rotation(s) about z by ``psi`` (rad): (..., 3, 3)."""
-    psi = np.asarray(psi, dtype=float)
-    c, s = np.cos(psi), np.sin(psi)
-    z, o = np.zeros_like(psi), np.ones_like(psi)
-    return np.stack([np.stack([c, -s, z], -1), np.stack([s, c, z], -1), np.stack([z, z, o], -1)], -2)
+    return _rot(psi, 0, 1)
 
 
 def rot_y(beta: np.ndarray | float) -> np.ndarray:
     """Rotation(s) about y by ``beta`` (rad): (..., 3, 3)."""
-    beta = np.asarray(beta, dtype=float)
-    c, s = np.cos(beta), np.sin(beta)
-    z, o = np.zeros_like(beta), np.ones_like(beta)
-    return np.stack([np.stack([c, z, s], -1), np.stack([z, o, z], -1), np.stack([-s, z, c], -1)], -2)
+    return _rot(beta, 2, 0)
 
 
 def rot_x(alpha: np.ndarray | float) -> np.ndarray:
     """Rotation(s) about x by ``alpha`` (rad): (..., 3, 3)."""
-    alpha = np.asarray(alpha, dtype=float)
-    c, s = np.cos(alpha), np.sin(alpha)
-    z, o = np.zeros_like(alpha), np.ones_like(alpha)
-    return np.stack([np.stack([o, z, z], -1), np.stack([z, c, -s], -1), np.stack([z, s, c], -1)], -2)
+    return _rot(alpha, 1, 2)
 
 
 def foot_rotation(psi: np.ndarray | float, theta: np.ndarray | float) -> np.ndarray:
@@ -42,14 +46,23 @@ def foot_rotation(psi: np.ndarray | float, theta: np.ndarray | float) -> np.ndar
     return rot_z(psi) @ rot_y(-np.asarray(theta, dtype=float))
 
 
-def foot_rotation_dtheta(psi: np.ndarray | float, theta: np.ndarray | float) -> np.ndarray:
-    """d(foot_rotation)/d(theta) (..., 3, 3)."""
+def foot_rotate(psi: float, theta: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """``foot_rotation(psi, theta) @ r`` for a fixed heading ``psi`` and pitches ``theta`` (n,) -> (n, 3)."""
     theta = np.asarray(theta, dtype=float)
     c, s = np.cos(theta), np.sin(theta)
-    z = np.zeros_like(theta)
-    # d/dtheta of rot_y(-theta) = [[-s,0,-c],[0,0,0],[c,0,-s]]
-    d = np.stack([np.stack([-s, z, -c], -1), np.stack([z, z, z], -1), np.stack([c, z, -s], -1)], -2)
-    return rot_z(psi) @ d
+    lx = c * r[0] - s * r[2]
+    lz = s * r[0] + c * r[2]
+    cp, sp = np.cos(psi), np.sin(psi)
+    return np.stack([cp * lx - sp * r[1], sp * lx + cp * r[1], lz], axis=-1)
+
+
+def foot_rotate_dtheta(psi: float, theta: float, r: np.ndarray) -> np.ndarray:
+    """d/dtheta of :func:`foot_rotate` at a single pitch (3,)."""
+    c, s = np.cos(theta), np.sin(theta)
+    lx = -s * r[0] - c * r[2]
+    lz = c * r[0] - s * r[2]
+    cp, sp = np.cos(psi), np.sin(psi)
+    return np.array([cp * lx, sp * lx, lz])
 
 
 # -- interpolation ---------------------------------------------------------------------------------
@@ -60,8 +73,49 @@ def hermite(u: np.ndarray, y0, y1, m0, m1, duration: float) -> np.ndarray:
     h10 = u**3 - 2 * u**2 + u
     h01 = -2 * u**3 + 3 * u**2
     h11 = u**3 - u**2
-    return (h00 * np.asarray(y0) + h10 * duration * np.asarray(m0) + h01 * np.asarray(y1)
-            + h11 * duration * np.asarray(m1))
+    return (
+        h00 * np.asarray(y0) + h10 * duration * np.asarray(m0) + h01 * np.asarray(y1) + h11 * duration * np.asarray(m1)
+    )
+
+
+def clamped_spline(tk: np.ndarray, yk: np.ndarray, d0: np.ndarray, d1: np.ndarray, tq: np.ndarray) -> np.ndarray:
+    """Cubic spline through knots ``(tk, yk)`` (k, m) with end slopes ``d0``, ``d1`` (m,), C2 inside.
+
+    Solves the tridiagonal continuity equations for the interior slopes, then evaluates the cubic Hermite
+    pieces at ``tq``; returns (len(tq), m).
+    """
+    tk = np.asarray(tk, float)
+    yk = np.asarray(yk, float).reshape(len(tk), -1)
+    h = np.diff(tk)
+    k = len(tk)
+    slopes = np.zeros_like(yk)
+    slopes[0], slopes[-1] = d0, d1
+    if k > 2:
+        n = k - 2
+        a = np.zeros((n, n))
+        rhs = np.zeros((n, yk.shape[1]))
+        for i in range(1, k - 1):
+            row = i - 1
+            a[row, row] = 2.0 * (1.0 / h[i - 1] + 1.0 / h[i])
+            rhs[row] = 3.0 * ((yk[i] - yk[i - 1]) / h[i - 1] ** 2 + (yk[i + 1] - yk[i]) / h[i] ** 2)
+            if row > 0:
+                a[row, row - 1] = 1.0 / h[i - 1]
+            else:
+                rhs[row] -= slopes[0] / h[i - 1]
+            if row < n - 1:
+                a[row, row + 1] = 1.0 / h[i]
+            else:
+                rhs[row] -= slopes[-1] / h[i]
+        slopes[1:-1] = np.linalg.solve(a, rhs)
+    seg = np.clip(np.searchsorted(tk, tq, side="right") - 1, 0, k - 2)
+    u = ((tq - tk[seg]) / h[seg])[:, None]
+    hh = h[seg][:, None]
+    return (
+        (2 * u**3 - 3 * u**2 + 1) * yk[seg]
+        + (u**3 - 2 * u**2 + u) * hh * slopes[seg]
+        + (-2 * u**3 + 3 * u**2) * yk[seg + 1]
+        + (u**3 - u**2) * hh * slopes[seg + 1]
+    )
 
 
 def smoothstep(u: np.ndarray) -> np.ndarray:
@@ -93,11 +147,21 @@ def angular_rate_body(rot: np.ndarray, dt: float) -> np.ndarray:
     rate is the mean of its two adjacent intervals.
     """
     rel = np.einsum("nji,njk->nik", rot[:-1], rot[1:])
-    w = Rotation.from_matrix(rel).as_rotvec() / dt  # (n-1, 3)
+    w = rotvec(rel) / dt  # (n-1, 3)
     out = np.zeros((rot.shape[0], 3))
     out[1:-1] = 0.5 * (w[:-1] + w[1:])
     out[0], out[-1] = w[0], w[-1]
     return out
+
+
+def rotvec(rel: np.ndarray) -> np.ndarray:
+    """Rotation vectors (n, 3) of rotation matrices (n, 3, 3) with angles below pi/2 (small increments)."""
+    vee = 0.5 * np.stack([rel[:, 2, 1] - rel[:, 1, 2], rel[:, 0, 2] - rel[:, 2, 0], rel[:, 1, 0] - rel[:, 0, 1]], -1)
+    s = np.linalg.norm(vee, axis=1)
+    c = 0.5 * (rel[:, 0, 0] + rel[:, 1, 1] + rel[:, 2, 2] - 1.0)
+    angle = np.arctan2(s, c)
+    scale = np.where(s > 1e-12, angle / np.where(s > 1e-12, s, 1.0), 1.0)
+    return vee * scale[:, None]
 
 
 def block_mean(x: np.ndarray, k: int) -> np.ndarray:

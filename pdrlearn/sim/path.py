@@ -95,8 +95,15 @@ def _ahead(psi: float) -> np.ndarray:
 class _Walker:
     """Mutable planner state (the centre point between the heels, floor height, heading, feet)."""
 
-    def __init__(self, user: UserProfile, speed: str, rng: np.random.Generator, heading0: float,
-                 irregular_rate: float, variability: float):
+    def __init__(
+        self,
+        user: UserProfile,
+        speed: str,
+        rng: np.random.Generator,
+        heading0: float,
+        irregular_rate: float,
+        variability: float,
+    ):
         self.user, self.speed, self.rng = user, speed, rng
         self.c = np.zeros(2)
         self.z = 0.0
@@ -122,8 +129,18 @@ class _Walker:
             return "right" if self.last_moved in (None, "left") else "left"
         return "left" if self.last_moved == "right" else "right"
 
-    def step(self, c: np.ndarray, z: float, psi: float, kind: str, *, gait: str = "normal",
-             direction: str = "forward", foot: str | None = None, irregular: bool = False) -> None:
+    def step(
+        self,
+        c: np.ndarray,
+        z: float,
+        psi: float,
+        kind: str,
+        *,
+        gait: str = "normal",
+        direction: str = "forward",
+        foot: str | None = None,
+        irregular: bool = False,
+    ) -> None:
         foot = foot or self._next_foot()
         heel = self._heel(c, z, psi, foot)
         if not self.together or kind != "close":
@@ -140,8 +157,11 @@ class _Walker:
         """Bring the trailing foot beside the leading one (closing step), then optionally pause."""
         if not self.together:
             trailing = "left" if self.last_moved == "right" else "right"
-            kind = "stairs_up" if self.feet[trailing][0][2] < self.z - 0.05 else (
-                "stairs_down" if self.feet[trailing][0][2] > self.z + 0.05 else "close")
+            kind = (
+                "stairs_up"
+                if self.feet[trailing][0][2] < self.z - 0.05
+                else ("stairs_down" if self.feet[trailing][0][2] > self.z + 0.05 else "close")
+            )
             self.step(self.c, self.z, self.psi, kind, foot=trailing, direction=self.direction)
             self.together = True
         self.pending_pause += pause
@@ -177,8 +197,9 @@ class _Walker:
         centre = self.c + sigma * r * _normal(psi0)
         for s in self._progress(abs(seg.angle_rad) * r, self.user.step_length(self.speed, seg.gait)):
             psi = psi0 + sigma * s / r
-            self.step(centre - sigma * r * _normal(psi), self.z, psi, "walk", gait=seg.gait,
-                      irregular=self._irregular())
+            self.step(
+                centre - sigma * r * _normal(psi), self.z, psi, "walk", gait=seg.gait, irregular=self._irregular()
+            )
 
     def stairs(self, seg: Stairs) -> None:
         self._change_direction("forward")
@@ -187,8 +208,9 @@ class _Walker:
         c0, z0, u = self.c.copy(), self.z, _ahead(self.psi)
         sign = 1.0 if seg.up else -1.0
         for j in range(1, seg.n + 1):
-            self.step(c0 + j * seg.run_m * u, z0 + sign * j * seg.rise_m, self.psi,
-                      "stairs_up" if seg.up else "stairs_down")
+            self.step(
+                c0 + j * seg.run_m * u, z0 + sign * j * seg.rise_m, self.psi, "stairs_up" if seg.up else "stairs_down"
+            )
 
     def backward(self, seg: Backward) -> None:
         self._change_direction("backward")
@@ -227,9 +249,16 @@ def path_length(segments: list[Segment], user: UserProfile | None = None) -> flo
     return total
 
 
-def plan_footsteps(segments: list[Segment], user: UserProfile, *, speed: str = "normal",
-                   rng: np.random.Generator, heading0_rad: float = 0.0, irregular_rate: float = 0.0,
-                   variability: float = 1.0) -> tuple[list[Footstep], dict]:
+def plan_footsteps(
+    segments: list[Segment],
+    user: UserProfile,
+    *,
+    speed: str = "normal",
+    rng: np.random.Generator,
+    heading0_rad: float = 0.0,
+    irregular_rate: float = 0.0,
+    variability: float = 1.0,
+) -> tuple[list[Footstep], dict]:
     """Footprints of both feet along ``segments``.
 
     Returns
@@ -239,15 +268,22 @@ def plan_footsteps(segments: list[Segment], user: UserProfile, *, speed: str = "
     """
     w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability)
     initial = {f: (h.copy(), y) for f, (h, y) in w.feet.items()}
-    handlers = {Straight: w.straight, Curve: w.curve, Stairs: w.stairs, Backward: w.backward,
-                Turn: w.turn, Stand: w.stand}
+    handlers = {
+        Straight: w.straight,
+        Curve: w.curve,
+        Stairs: w.stairs,
+        Backward: w.backward,
+        Turn: w.turn,
+        Stand: w.stand,
+    }
     for seg in segments:
         if isinstance(seg, Straight | Curve) and seg.gait not in GAITS:
             raise DataError(f"{seg}: gait must be one of {', '.join(GAITS)}")
         try:
             handlers[type(seg)](seg)
         except KeyError:
-            raise DataError(f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Backward, Turn, Stand") \
-                from None
+            raise DataError(
+                f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Backward, Turn, Stand"
+            ) from None
     w.close()
     return w.steps, initial

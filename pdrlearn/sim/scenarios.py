@@ -70,8 +70,13 @@ def terrain_exercise(user: UserProfile, speed: str, rng: np.random.Generator, **
     flight of 10 stairs up, a turn on the landing and the flight down."""
     segs: list[Segment] = []
     for _ in range(5):
-        segs += [Straight(4.0 * user.stride_length(speed)), Stairs(10, True), Turn(math.pi),
-                 Stairs(10, False), Turn(math.pi)]
+        segs += [
+            Straight(4.0 * user.stride_length(speed)),
+            Stairs(10, True),
+            Turn(math.pi),
+            Stairs(10, False),
+            Turn(math.pi),
+        ]
     return segs
 
 
@@ -102,8 +107,9 @@ def rotations(user: UserProfile, speed: str, rng: np.random.Generator, **_) -> l
     return [Turn(HALF_PI), Stand(3.0), Turn(-HALF_PI), Stand(3.0), Turn(-HALF_PI), Stand(3.0), Turn(HALF_PI)]
 
 
-def random_walk(user: UserProfile, speed: str, rng: np.random.Generator, *, length_m: float = 1000.0,
-                **_) -> list[Segment]:
+def random_walk(
+    user: UserProfile, speed: str, rng: np.random.Generator, *, length_m: float = 1000.0, **_
+) -> list[Segment]:
     """A long walk of ``length_m`` metres: straights of 5-30 m joined by curves of 20-120 degrees."""
     segs: list[Segment] = []
     total = 0.0
@@ -121,7 +127,14 @@ def random_walk(user: UserProfile, speed: str, rng: np.random.Generator, *, leng
 
 
 SCENARIOS = {
-    "A": scenario_a, "B": scenario_b, "C": scenario_c, "D": scenario_d,
-    "terrain": terrain_exercise, "direction": direction_exercise, "length": length_exercise,
-    "standstill": standstill, "rotations": rotations, "walk": random_walk,
+    "A": scenario_a,
+    "B": scenario_b,
+    "C": scenario_c,
+    "D": scenario_d,
+    "terrain": terrain_exercise,
+    "direction": direction_exercise,
+    "length": length_exercise,
+    "standstill": standstill,
+    "rotations": rotations,
+    "walk": random_walk,
 }

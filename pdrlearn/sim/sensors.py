@@ -30,25 +30,31 @@ class ImuErrorModel:
 
 # thesis Table 4: foot accelerometer deviation (m/s^2) and mean offsets from (0, g, 0)
 FOOT_ACC = ImuErrorModel(
-    noise_sd=(0.0191, 0.0193, 0.0223), bias_sd=(0.0414, 9.8224 - STANDARD_GRAVITY, 0.4475),
+    noise_sd=(0.0191, 0.0193, 0.0223),
+    bias_sd=(0.0414, 9.8224 - STANDARD_GRAVITY, 0.4475),
     full_scale=16 * 9.81,  # +-16 g (thesis ch.4.2.1.1)
     lsb=9.81 / 256,  # thesis eq. 24: 256 counts per g
     scale_sd=0.003,  # total-acceleration mean 9.83 vs 9.807 m/s^2 (thesis Table 4): ~0.3 %
 )
 # thesis Table 6: foot gyroscope deviation and mean (rad/s); 2000 dps range (thesis ch.4.2.1.2)
 FOOT_GYR = ImuErrorModel(
-    noise_sd=(0.0100, 0.0101, 0.0107), bias_sd=(0.0018, 0.0024, 0.0071),
+    noise_sd=(0.0100, 0.0101, 0.0107),
+    bias_sd=(0.0018, 0.0024, 0.0071),
     full_scale=np.radians(2000.0),
     lsb=np.radians(0.070),  # L3G4200D at 2000 dps: 70 mdps/digit (data sheet, thesis ref. [111])
 )
 # thesis Table 12: waist accelerometer deviation and mean offsets (gravity on the x axis in that test)
 WAIST_ACC = ImuErrorModel(
-    noise_sd=(0.0175, 0.0209, 0.0323), bias_sd=(9.8869 - STANDARD_GRAVITY, 0.2201, 0.1675),
-    full_scale=16 * 9.81, scale_sd=0.003,
+    noise_sd=(0.0175, 0.0209, 0.0323),
+    bias_sd=(9.8869 - STANDARD_GRAVITY, 0.2201, 0.1675),
+    full_scale=16 * 9.81,
+    scale_sd=0.003,
 )
 # thesis Table 14: waist gyroscope deviation and mean (rad/s)
 WAIST_GYR = ImuErrorModel(
-    noise_sd=(0.0011, 0.0009, 0.0008), bias_sd=(0.0014, 0.0005, 0.0004), full_scale=np.radians(2000.0),
+    noise_sd=(0.0011, 0.0009, 0.0008),
+    bias_sd=(0.0014, 0.0005, 0.0004),
+    full_scale=np.radians(2000.0),
 )
 MAG_NOISE_SD = (0.6835, 0.7389, 0.7351)  # uT, thesis Table 16
 MAG_LSB = 0.15  # uT, AK8963 sensitivity (thesis Table 15)
@@ -60,8 +66,9 @@ BUILDING_ALTITUDE_M = 75.0  # the thesis' test building is 75 m above sea level 
 FORCE_RANGE_N = 440.0  # Tekscan A201 force range (thesis Table 7)
 
 
-def imu_readout(ideal: np.ndarray, model: ImuErrorModel, rng: np.random.Generator, *,
-                noise: bool) -> tuple[np.ndarray, dict]:
+def imu_readout(
+    ideal: np.ndarray, model: ImuErrorModel, rng: np.random.Generator, *, noise: bool
+) -> tuple[np.ndarray, dict]:
     """Apply scale error, bias, white noise, saturation and quantisation to 100 Hz ideal readings (n, 3).
 
     Returns the readings and a dict of the drawn errors (for the session metadata).
@@ -78,19 +85,22 @@ def imu_readout(ideal: np.ndarray, model: ImuErrorModel, rng: np.random.Generato
     return out, {"bias": [float(b) for b in bias], "scale": [float(s) for s in scale]}
 
 
-def magnetometer_readout(b_sensor: np.ndarray, rng: np.random.Generator, *, noise: bool,
-                         hard_iron_sd: float = 2.0) -> tuple[np.ndarray, dict]:
+def magnetometer_readout(
+    b_sensor: np.ndarray, rng: np.random.Generator, *, noise: bool, hard_iron_sd: float = 2.0
+) -> tuple[np.ndarray, dict]:
     """Add a hard-iron offset, Table 16 noise and Table 15 resolution to the field in the sensor frame (uT)."""
     if not noise:
         return b_sensor.copy(), {"hard_iron_ut": [0.0, 0.0, 0.0]}
     offset = rng.normal(0.0, hard_iron_sd, 3)
-    out = b_sensor + offset + rng.normal(0.0, 1.0, b_sensor.shape) * np.asarray(MAG_NOISE_SD) * np.sqrt(
-        FIRMWARE_AVERAGE)
+    out = (
+        b_sensor + offset + rng.normal(0.0, 1.0, b_sensor.shape) * np.asarray(MAG_NOISE_SD) * np.sqrt(FIRMWARE_AVERAGE)
+    )
     return quantize(np.clip(out, -MAG_RANGE, MAG_RANGE), MAG_LSB), {"hard_iron_ut": [float(v) for v in offset]}
 
 
-def field_disturbance(pos: np.ndarray, rng: np.random.Generator, amplitude_ut: float,
-                      spacing_m: float = 4.0, width_m: float = 1.0) -> np.ndarray:
+def field_disturbance(
+    pos: np.ndarray, rng: np.random.Generator, amplitude_ut: float, spacing_m: float = 4.0, width_m: float = 1.0
+) -> np.ndarray:
     """Smooth indoor field disturbances (uT, ENU) along the walked positions ``pos`` (n, 3).
 
     Gaussian blobs of random vector amplitude (sd ``amplitude_ut``) every ``spacing_m`` metres of path.
@@ -111,8 +121,9 @@ def field_disturbance(pos: np.ndarray, rng: np.random.Generator, amplitude_ut: f
     return out
 
 
-def barometer_readout(pressure: np.ndarray, t: np.ndarray, rng: np.random.Generator, *, noise: bool,
-                      drift_hpa_per_h: float) -> tuple[np.ndarray, dict]:
+def barometer_readout(
+    pressure: np.ndarray, t: np.ndarray, rng: np.random.Generator, *, noise: bool, drift_hpa_per_h: float
+) -> tuple[np.ndarray, dict]:
     """Add a linear weather drift, Table 18 noise and Table 17 resolution to the pressure (hPa)."""
     if not noise:
         return pressure.copy(), {"drift_hpa_per_h": 0.0}

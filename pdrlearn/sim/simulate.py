@@ -91,8 +91,9 @@ def _to_sensor(v_body: np.ndarray, frame_matrix: np.ndarray, mis: np.ndarray) ->
     return v_body @ axes
 
 
-def _stride_table(steps: list[Footstep], ev: Events, initial: dict, user: UserProfile,
-                  r_sensor: np.ndarray, foot: str = "right") -> pd.DataFrame:
+def _stride_table(
+    steps: list[Footstep], ev: Events, initial: dict, user: UserProfile, r_sensor: np.ndarray, foot: str = "right"
+) -> pd.DataFrame:
     """One row per stride of ``foot``: mid-stance to mid-stance around each swing."""
     idx = [k for k, s in enumerate(steps) if s.foot == foot]
     rows = []
@@ -111,18 +112,32 @@ def _stride_table(steps: list[Footstep], ev: Events, initial: dict, user: UserPr
         p_b = np.asarray(st.heel) + _rz(st.yaw) @ r_sensor
         length = float(np.hypot(*(p_b - p_a)[:2]))
         dz = float(p_b[2] - p_a[2])
-        rows.append({
-            "start_s": start, "end_s": end, "ic_s": ev.ic[k], "tc_s": ev.to[k],
-            "terrain": "up" if dz > TERRAIN_DZ_M else ("down" if dz < -TERRAIN_DZ_M else "flat"),
-            "direction": st.direction, "length_m": round(length, 6), "height_m": round(dz, 6),
-            "length_class": user.length_class(length),
-            "heading_change_deg": round(math.degrees(st.yaw - y_a), 4),
-            "foot": foot, "kind": st.kind, "gait": st.gait, "irregular": st.irregular,
-        })
+        rows.append(
+            {
+                "start_s": start,
+                "end_s": end,
+                "ic_s": ev.ic[k],
+                "tc_s": ev.to[k],
+                "terrain": "up" if dz > TERRAIN_DZ_M else ("down" if dz < -TERRAIN_DZ_M else "flat"),
+                "direction": st.direction,
+                "length_m": round(length, 6),
+                "height_m": round(dz, 6),
+                "length_class": user.length_class(length),
+                "heading_change_deg": round(math.degrees(st.yaw - y_a), 4),
+                "foot": foot,
+                "kind": st.kind,
+                "gait": st.gait,
+                "irregular": st.irregular,
+            }
+        )
         rows[-1]["steady"] = bool(
-            st.kind in ("walk", "stairs_up", "stairs_down", "backward") and not ev.bout_start[k]
-            and steps[k - 1].kind == st.kind and k + 1 < len(steps) and steps[k + 1].kind == st.kind
-            and not ev.bout_start[k + 1])
+            st.kind in ("walk", "stairs_up", "stairs_down", "backward")
+            and not ev.bout_start[k]
+            and steps[k - 1].kind == st.kind
+            and k + 1 < len(steps)
+            and steps[k + 1].kind == st.kind
+            and not ev.bout_start[k + 1]
+        )
         h_a, y_a, prev_ff = st.heel, st.yaw, ff
     df = pd.DataFrame(rows)
     df.attrs["time_columns"] = ["start_s", "end_s", "ic_s", "tc_s"]
@@ -134,8 +149,17 @@ def _rz(psi: float) -> np.ndarray:
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def simulate_path(segments: list[Segment], user: UserProfile, *, speed: str = "normal", rate_hz: float = 20.0,
-                  seed: int = 0, name: str = "sim", scenario: str = "custom", **knobs) -> Session:
+def simulate_path(
+    segments: list[Segment],
+    user: UserProfile,
+    *,
+    speed: str = "normal",
+    rate_hz: float = 20.0,
+    seed: int = 0,
+    name: str = "sim",
+    scenario: str = "custom",
+    **knobs,
+) -> Session:
     """Simulate walking ``segments`` (see :mod:`pdrlearn.sim.path`) by ``user``.
 
     Parameters
@@ -158,10 +182,15 @@ def simulate_path(segments: list[Segment], user: UserProfile, *, speed: str = "n
     opt = _check_knobs(knobs)
     noise = bool(opt["noise"])
     rng = _rng(user.seed, int(seed), scenario, speed, "walk")
-    steps, initial = plan_footsteps(segments, user, speed=speed, rng=rng,
-                                    heading0_rad=math.radians(float(opt["heading0_deg"])),
-                                    irregular_rate=float(opt["irregular_rate"]),
-                                    variability=float(opt["variability"]))
+    steps, initial = plan_footsteps(
+        segments,
+        user,
+        speed=speed,
+        rng=rng,
+        heading0_rad=math.radians(float(opt["heading0_deg"])),
+        irregular_rate=float(opt["irregular_rate"]),
+        variability=float(opt["variability"]),
+    )
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
     ev = schedule(steps, user, speed=speed, rng=rng, stand_s=stand, variability=float(opt["variability"]))
     total_s = max(ev.end_s, stand) + stand if steps else 2 * stand
@@ -198,17 +227,26 @@ def simulate_path(segments: list[Segment], user: UserProfile, *, speed: str = "n
     waist_m = THESIS_WAIST_FRAME.matrix()
     acc_w, e_aw = sn.imu_readout(_to_sensor(fw_body, waist_m, mis_w), sn.WAIST_ACC, s_rng, noise=noise)
     gyr_w, e_gw = sn.imu_readout(_to_sensor(ww_body, waist_m, mis_w), sn.WAIST_GYR, s_rng, noise=noise)
-    p_w100 = p_w[OVERSAMPLE // 2::OVERSAMPLE][: len(t100)]
-    R_p100 = R_p[OVERSAMPLE // 2::OVERSAMPLE][: len(t100)]
-    b_enu = earth_field_enu(float(opt["mag_field_ut"]), float(opt["mag_inclination_deg"]),
-                            float(opt["mag_declination_deg"]))
+    p_w100 = p_w[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
+    R_p100 = R_p[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
+    b_enu = earth_field_enu(
+        float(opt["mag_field_ut"]), float(opt["mag_inclination_deg"]), float(opt["mag_declination_deg"])
+    )
     env_rng = _rng(user.seed, int(seed), scenario, speed, "environment")
-    dist = sn.field_disturbance(p_w100, env_rng, float(opt["mag_disturbance_ut"])) if noise else 0.0
+    dist = 0.0
+    if noise:  # the disturbance varies smoothly in space: evaluate at 10 Hz and interpolate
+        coarse = sn.field_disturbance(p_w100[::10], env_rng, float(opt["mag_disturbance_ut"]))
+        dist = np.column_stack([np.interp(t100, t100[::10], coarse[:, j]) for j in range(3)])
     b_body = np.einsum("nji,nj->ni", R_p100, b_enu[None, :] + dist)
     mag_w, e_m = sn.magnetometer_readout(_to_sensor(b_body, waist_m, mis_w), s_rng, noise=noise)
     p0 = float(env_rng.uniform(*sn.BARO_P0_RANGE)) if noise else 1013.25
-    baro, e_b = sn.barometer_readout(pressure_hpa(sn.BUILDING_ALTITUDE_M + p_w100[:, 2], p0), t100, s_rng,
-                                     noise=noise, drift_hpa_per_h=float(opt["baro_drift_hpa_per_h"]))
+    baro, e_b = sn.barometer_readout(
+        pressure_hpa(sn.BUILDING_ALTITUDE_M + p_w100[:, 2], p0),
+        t100,
+        s_rng,
+        noise=noise,
+        drift_hpa_per_h=float(opt["baro_drift_hpa_per_h"]),
+    )
 
     # -- output rate, clocks, dropped packets --
     def out(x: np.ndarray) -> np.ndarray:
@@ -234,15 +272,26 @@ def simulate_path(segments: list[Segment], user: UserProfile, *, speed: str = "n
 
     # -- ground truth --
     pw_out = block_mean(p_w100, k_out)
-    heading_out = _yaw_of(R_p100[k_out // 2::k_out][: n_out])
-    trajectory = pd.DataFrame({"t": t_out, "x": pw_out[:, 0], "y": pw_out[:, 1], "z": pw_out[:, 2],
-                               "heading_rad": heading_out})
-    pf100 = p_f[OVERSAMPLE // 2::OVERSAMPLE][: len(t100)]
-    Rf100 = R_f[OVERSAMPLE // 2::OVERSAMPLE][: len(t100)]
-    q = Rotation.from_matrix(Rf100[k_out // 2::k_out][:n_out]).as_quat()  # x, y, z, w
-    pf_out = pf100[k_out // 2::k_out][:n_out]
-    foot_traj = pd.DataFrame({"t_s": t_out, "x": pf_out[:, 0], "y": pf_out[:, 1], "z": pf_out[:, 2],
-                              "qw": q[:, 3], "qx": q[:, 0], "qy": q[:, 1], "qz": q[:, 2]})
+    heading_out = _yaw_of(R_p100[k_out // 2 :: k_out][:n_out])
+    trajectory = pd.DataFrame(
+        {"t": t_out, "x": pw_out[:, 0], "y": pw_out[:, 1], "z": pw_out[:, 2], "heading_rad": heading_out}
+    )
+    pf100 = p_f[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
+    Rf100 = R_f[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
+    q = Rotation.from_matrix(Rf100[k_out // 2 :: k_out][:n_out]).as_quat()  # x, y, z, w
+    pf_out = pf100[k_out // 2 :: k_out][:n_out]
+    foot_traj = pd.DataFrame(
+        {
+            "t_s": t_out,
+            "x": pf_out[:, 0],
+            "y": pf_out[:, 1],
+            "z": pf_out[:, 2],
+            "qw": q[:, 3],
+            "qx": q[:, 0],
+            "qy": q[:, 1],
+            "qz": q[:, 2],
+        }
+    )
     foot_traj.attrs["time_columns"] = ["t_s"]
     ics = pd.DataFrame({"ic_s": ev.ic, "foot": [s.foot for s in steps], "kind": [s.kind for s in steps]})
     ics.attrs["time_columns"] = ["ic_s"]
@@ -251,36 +300,58 @@ def simulate_path(segments: list[Segment], user: UserProfile, *, speed: str = "n
     meta = {
         "session": name,
         "source_project": "pdrlearn.sim",
-        "scenario": scenario, "speed": speed, "seed": int(seed), "user_seed": user.seed,
+        "scenario": scenario,
+        "speed": speed,
+        "seed": int(seed),
+        "user_seed": user.seed,
         "user": user.to_dict(),
-        "rate_hz": float(rate_hz), "internal_rate_hz": INTERNAL_RATE_HZ,
-        "sensor_height_m": user.sensor_height_m, "leg_length_m": user.leg_length_m, "height_m": user.height_m,
+        "rate_hz": float(rate_hz),
+        "internal_rate_hz": INTERNAL_RATE_HZ,
+        "sensor_height_m": user.sensor_height_m,
+        "leg_length_m": user.leg_length_m,
+        "height_m": user.height_m,
         "length_class_bounds_m": list(user.length_class_bounds_m),
         "length_m_definition": "horizontal displacement of the foot unit between the mid-stance instants",
         "instrumented_foot": "right",
-        "clock_offset_s": float(opt["clock_offset_s"]), "clock_drift_ppm": float(opt["clock_drift_ppm"]),
+        "clock_offset_s": float(opt["clock_offset_s"]),
+        "clock_drift_ppm": float(opt["clock_drift_ppm"]),
         "time_base": "foot unit clock; labels and trajectory use it; waist = foot * (1 + drift) + offset",
         "dropped_samples": int((~foot_keep).sum()),
         "misalignment_deg": {"foot": user.foot_misalignment_deg, "waist": user.waist_misalignment_deg},
-        "sensor_errors": {"fAccelerometer": e_af, "fGyroscope": e_gf, "wAccelerometer": e_aw,
-                          "wGyroscope": e_gw, "wMagneticField": e_m, "wBarometer": {**e_b, "p0_hpa": p0}},
+        "sensor_errors": {
+            "fAccelerometer": e_af,
+            "fGyroscope": e_gf,
+            "wAccelerometer": e_aw,
+            "wGyroscope": e_gw,
+            "wMagneticField": e_m,
+            "wBarometer": {**e_b, "p0_hpa": p0},
+        },
         "earth_field_enu_ut": [float(v) for v in b_enu],
         "knobs": {k: v for k, v in opt.items()},
-        "n_steps": len(steps), "n_strides": int(len(strides)),
+        "n_steps": len(steps),
+        "n_strides": int(len(strides)),
         "distance_m": float(strides["length_m"].sum()) if len(strides) else 0.0,
         "units": {"fForceA": "N (heel)", "fForceB": "N (forefoot)"},
     }
     frames = {"foot": THESIS_FOOT_FRAME, "waist": THESIS_WAIST_FRAME}
-    return Session(name=name, streams=streams, steps=strides if len(strides) else None, trajectory=trajectory,
-                   extras={"ics": ics, "foot_trajectory": foot_traj}, meta=meta, frames=frames)
+    return Session(
+        name=name,
+        streams=streams,
+        steps=strides if len(strides) else None,
+        trajectory=trajectory,
+        extras={"ics": ics, "foot_trajectory": foot_traj},
+        meta=meta,
+        frames=frames,
+    )
 
 
 def _yaw_of(R: np.ndarray) -> np.ndarray:
     return np.arctan2(R[:, 1, 0], R[:, 0, 0])
 
 
-def simulate(scenario: str, user_seed: int, speed: str = "normal", *, rate_hz: float = 20.0,
-             seed: int | None = None, **knobs) -> Session:
+def simulate(
+    scenario: str, user_seed: int, speed: str = "normal", *, rate_hz: float = 20.0, seed: int | None = None, **knobs
+) -> Session:
     """Simulate one of the thesis scenarios or calibration exercises.
 
     Parameters
@@ -307,5 +378,6 @@ def simulate(scenario: str, user_seed: int, speed: str = "normal", *, rate_hz: f
     if scenario == "standstill":
         knobs = {**knobs, "stand_s": 30.0}
     name = f"sim_{scenario}_u{user_seed}_{speed}_s{seed}"
-    return simulate_path(segments, user, speed=speed, rate_hz=rate_hz, seed=int(seed), name=name,
-                         scenario=scenario, **knobs)
+    return simulate_path(
+        segments, user, speed=speed, rate_hz=rate_hz, seed=int(seed), name=name, scenario=scenario, **knobs
+    )
