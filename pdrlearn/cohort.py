@@ -105,6 +105,8 @@ def run_cohort(
         return out
     from distributed import Client, LocalCluster, as_completed
 
+    if not log.isEnabledFor(logging.INFO):  # keep Dask's start/stop chatter out of the user's terminal
+        logging.getLogger("distributed").setLevel(logging.ERROR)
     cluster = None
     try:
         if scheduler:
@@ -115,7 +117,9 @@ def run_cohort(
                                    dashboard_address=None, silence_logs=logging.ERROR)
             client = Client(cluster)
     except OSError as exc:
-        raise DataError(f"cannot reach Dask scheduler {scheduler!r}: {exc}; check the address or omit --scheduler") from None
+        raise DataError(
+            f"cannot reach Dask scheduler {scheduler!r}: {exc}; check the address or omit --scheduler"
+        ) from None
     try:
         futures = {client.submit(_guarded, fn, name, arg, key=f"user-{i}-{name}", pure=False): i
                    for i, (name, arg) in enumerate(items)}

@@ -15,7 +15,7 @@ import typer
 
 from pdrlearn.errors import PdrlearnError
 
-COMMAND_MODULES = ["data", "report", "train", "calibrate", "track", "steps", "export", "simulate"]
+COMMAND_MODULES = ["data", "report", "cohort", "train", "calibrate", "track", "steps", "export", "simulate"]
 
 app = typer.Typer(
     name="pdrlearn",
@@ -28,7 +28,8 @@ app = typer.Typer(
 
 @app.callback()
 def _root(verbose: bool = typer.Option(False, "--verbose", "-v", help="Log progress details to stderr.")):
-    logging.basicConfig(level=logging.INFO if verbose else logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
+    level = logging.INFO if verbose else logging.WARNING
+    logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
 
 
 for _name in COMMAND_MODULES:

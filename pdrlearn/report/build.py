@@ -79,9 +79,8 @@ def _evaluation_sections(ev: dict) -> list[Section]:
         out.append(sec)
     lat = ev.get("latency_ms")
     if isinstance(lat, dict) and lat:
-        out.append(Section("Latency", tables=[("per-step latency (ms)",
-                                               pd.DataFrame([{"method": k, **(_flat_scalars(v) if isinstance(v, dict) else {"ms": v})}
-                                                             for k, v in lat.items()]))]))
+        rows = [{"method": k, **(_flat_scalars(v) if isinstance(v, dict) else {"ms": v})} for k, v in lat.items()]
+        out.append(Section("Latency", tables=[("per-step latency (ms)", pd.DataFrame(rows))]))
     return out
 
 
@@ -126,7 +125,8 @@ def collect(source: str | os.PathLike) -> list[Section]:
 
 _CSS = """body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;color:#222}
 table{border-collapse:collapse;margin:.6em 0 1.4em}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}
-th{background:#f2f2f2}img{max-width:100%;border:1px solid #ddd;margin:4px 0}h2{border-bottom:2px solid #4a7;padding-bottom:2px}
+th{background:#f2f2f2}img{max-width:100%;border:1px solid #ddd;margin:4px 0}
+h2{border-bottom:2px solid #4a7;padding-bottom:2px}
 figure{margin:0 0 1em}figcaption{font-size:12px;color:#555}"""
 
 
@@ -140,7 +140,7 @@ def _html(sections: list[Section], title: str) -> str:
             parts.append(f"<p>{html.escape(s.text)}</p>")
         for caption, df in s.tables:
             parts.append(f"<h3>{html.escape(caption)}</h3>")
-            parts.append(df.to_html(index=False, float_format=lambda v: f"{v:.4g}", border=0, na_rep="—"))
+            parts.append(df.to_html(index=False, float_format=lambda v: f"{v:.4g}", border=0, na_rep="-"))
         for caption, p in s.images:
             b64 = base64.b64encode(p.read_bytes()).decode()
             parts.append(f"<figure><img alt='{html.escape(caption)}' src='data:image/png;base64,{b64}'>"

@@ -1,0 +1,158 @@
+"""``pdrlearn train-all`` / ``pdrlearn evaluate-all``: one per-user job per cohort subfolder, on Dask."""
+# ruff: noqa: B008  (typer options are declared as defaults)
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pandas as pd
+import typer
+
+from pdrlearn.cli.common import json_safe, print_json, progress
+from pdrlearn.cohort import JobResult, cohort_users, run_cohort, user_sessions
+from pdrlearn.errors import DataError
+
+
+def _train_job(args: dict) -> dict:
+    """Train one user (runs on a Dask worker): read sessions, train, save; return a summary row."""
+    from pdrlearn.classify import train_user
+    from pdrlearn.io import read_session
+
+    sessions = [read_session(p) for p in user_sessions(Path(args["user_dir"]), "train")]
+    model = train_user(sessions, tasks=args["tasks"], methods=args["methods"], units=args["units"],
+                       cv=args["cv"], seed=args["seed"], user=Path(args["user_dir"]).name)
+    model.save(Path(args["out"]))
+    row = {"sessions": len(sessions), "skipped_tasks": len(model.skipped)}
+    for t, tm in model.tasks.items():
+        m, u = tm.chosen
+        row[f"{t}_method"] = f"{m}/{u}"
+        row[f"{t}_cv_accuracy"] = tm.cv[m][u]["accuracy"]
+        row[f"{t}_n_steps"] = tm.n_steps
+    return row
+
+
+def _evaluate_job(args: dict) -> dict:
+    """Evaluate one user's model on that user's held-out sessions (``test/``)."""
+    from pdrlearn.classify import evaluate_model, load_model
+    from pdrlearn.io import read_session
+
+    model = load_model(Path(args["model_dir"]))
+    sessions = [read_session(p) for p in user_sessions(Path(args["user_dir"]), "test")]
+    res = evaluate_model(model, sessions, latency=False)
+    if not res["tasks"]:
+        raise DataError(f"{args['user_dir']}: held-out sessions have no labels for the model's tasks")
+    row = {"sessions": len(sessions)}
+    for t, r in res["tasks"].items():
+        row[f"{t}_accuracy"] = r["accuracy"]
+        row[f"{t}_n_steps"] = r["n_steps"]
+    return row
+
+
+def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
+    rows = []
+    for r in results:
+        row = {"user": r.name, "status": "ok" if r.ok else "failed", "seconds": round(r.seconds, 2)}
+        if r.ok:
+            row.update(r.value)
+        else:
+            row["error"] = r.error
+        rows.append(row)
+    df = pd.DataFrame(rows)
+    out.mkdir(parents=True, exist_ok=True)
+    tmp = out / ".cohort_summary.csv.tmp"
+    df.to_csv(tmp, index=False)
+    tmp.replace(out / "cohort_summary.csv")
+    (out / "cohort_summary.md").write_text(df.to_markdown(index=False, floatfmt=".4g") + "\n")
+    return df
+
+
+def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool) -> None:
+    failed = [r for r in results if not r.ok]
+    if as_json:
+        print_json(json_safe({"users": df.to_dict(orient="records"), "n_users": len(results),
+                              "n_failed": len(failed)}))
+    else:
+        from rich.console import Console
+        from rich.table import Table
+
+        shown = df.drop(columns=["error"], errors="ignore")
+        t = Table(title=title)
+        for c in shown.columns:
+            t.add_column(str(c).replace("_", " "))
+        for rec in shown.itertuples(index=False):
+            t.add_row(*["" if pd.isna(v) else f"{v:.4g}" if isinstance(v, float) else str(v) for v in rec])
+        c = Console()
+        c.print(t)
+        for r in failed:
+            c.print(f"[red]failed[/red] {r.name}: {r.error}", highlight=False)
+    if failed and len(failed) == len(results):
+        raise DataError(f"every user failed; first error: {failed[0].name}: {failed[0].error}")
+
+
+def _run(fn, items, scheduler, serial, workers, as_json):
+    with progress("users", len(items), enabled=not as_json) as advance:
+        return run_cohort(fn, items, scheduler=scheduler, serial=serial, n_workers=workers,
+                          on_done=lambda r: advance(1))
+
+
+def train_all(
+    cohort_dir: Path = typer.Argument(..., help="One subfolder per user holding session folders "
+                                      "(or train/ and test/ subfolders)."),
+    out: Path = typer.Option(..., "--out", "-o", help="Models folder: one model directory per user."),
+    scheduler: str = typer.Option(None, help="Dask scheduler address (default: a LocalCluster)."),
+    serial: bool = typer.Option(False, help="Run in this process, without Dask."),
+    workers: int = typer.Option(None, help="LocalCluster worker processes (default: CPU count)."),
+    tasks: str = typer.Option(None, help="Comma list of terrain,direction,length (default: all labelled)."),
+    methods: str = typer.Option(None, help="Comma list of heuristic,fusion,dtw,svm,nn (default: all)."),
+    units: str = typer.Option(None, help="Comma list of foot,waist,fused (default: all)."),
+    cv: int = typer.Option(10, help="Cross-validation folds per user."),
+    seed: int = typer.Option(0, help="Seed (identical results serial or distributed)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
+) -> None:
+    """Train every user of a cohort on Dask; a failing user is reported and the rest complete.
+
+    Writes MODELS/<user>/ and MODELS/cohort_summary.csv|md.
+
+    Examples:
+
+        pdrlearn train-all cohort/ --out models/ --cv 5
+
+        pdrlearn train-all cohort/ --out models/ --scheduler tcp://10.0.0.5:8786
+    """
+    def split(v):
+        return None if v is None else [x.strip() for x in v.split(",") if x.strip()]
+
+    users = cohort_users(cohort_dir)
+    items = [(u.name, {"user_dir": str(u), "out": str(out / u.name), "tasks": split(tasks),
+                       "methods": split(methods), "units": split(units), "cv": cv, "seed": seed})
+             for u in users]
+    results = _run(_train_job, items, scheduler, serial, workers, as_json)
+    df = _summarise(results, out)
+    _print(df, results, f"train-all: {sum(r.ok for r in results)}/{len(results)} users trained", as_json)
+
+
+def evaluate_all(
+    models_dir: Path = typer.Argument(..., help="Models folder written by train-all."),
+    cohort_dir: Path = typer.Argument(..., help="Cohort folder; each user's test/ sessions are scored."),
+    out: Path = typer.Option(None, "--out", "-o", help="Folder for cohort_summary.csv|md (default: MODELS/eval)."),
+    scheduler: str = typer.Option(None, help="Dask scheduler address (default: a LocalCluster)."),
+    serial: bool = typer.Option(False, help="Run in this process, without Dask."),
+    workers: int = typer.Option(None, help="LocalCluster worker processes."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
+) -> None:
+    """Evaluate every user's model on that user's held-out test/ sessions.
+
+    Example:
+
+        pdrlearn evaluate-all models/ cohort/ --out results/cohort && pdrlearn report results/cohort --out report/
+    """
+    users = cohort_users(cohort_dir)
+    items = [(u.name, {"user_dir": str(u), "model_dir": str(models_dir / u.name)}) for u in users]
+    results = _run(_evaluate_job, items, scheduler, serial, workers, as_json)
+    df = _summarise(results, out or models_dir / "eval")
+    _print(df, results, f"evaluate-all: {sum(r.ok for r in results)}/{len(results)} users", as_json)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("train-all")(train_all)
+    app.command("evaluate-all")(evaluate_all)

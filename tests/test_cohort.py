@@ -1,0 +1,96 @@
+"""Cohorts: train-all / evaluate-all on a Dask LocalCluster equal the serial run; failures are isolated."""
+
+from __future__ import annotations
+
+import json
+
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.cohort import run_cohort
+from pdrlearn.errors import DataError
+from pdrlearn.io import write_session
+from pdrlearn.sim import simulate
+
+
+@pytest.fixture(scope="module")
+def cohort(tmp_path_factory):
+    root = tmp_path_factory.mktemp("cohort")
+    for u in (1, 2, 3):
+        write_session(simulate("terrain", user_seed=u), root / f"u{u}" / "train" / "terrain")
+        write_session(simulate("terrain", user_seed=u, seed=1234), root / f"u{u}" / "test" / "terrain")
+    bad = root / "u9_broken" / "train" / "s"
+    bad.mkdir(parents=True)
+    (bad / "fAccelerometer.csv").write_text("timestamp,x,y,z\n")  # empty session -> this user fails
+    return root
+
+
+def _square(x):
+    if x == 3:
+        raise ValueError("three is not allowed")
+    return x * x
+
+
+def test_run_cohort_isolates_failures_serial_and_dask():
+    items = [(f"u{i}", i) for i in range(5)]
+    serial = run_cohort(_square, items, serial=True)
+    dask = run_cohort(_square, items, n_workers=2)
+    assert [r.ok for r in serial] == [True, True, True, False, True]
+    assert [(r.name, r.ok, r.value, r.error) for r in serial] == [(r.name, r.ok, r.value, r.error) for r in dask]
+    assert "ValueError: three is not allowed" in serial[3].error
+
+
+def test_bad_scheduler_address():
+    with pytest.raises(DataError, match="cannot reach Dask scheduler"):
+        run_cohort(_square, [("a", 1)], scheduler="tcp://127.0.0.1:1")
+
+
+@pytest.fixture(scope="module")
+def scheduler():
+    """One LocalCluster shared by the CLI runs below (also exercises --scheduler ADDRESS)."""
+    from distributed import LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        yield cluster.scheduler_address
+
+
+def test_train_all_dask_equals_serial(cohort, scheduler, tmp_path, capsys):
+    args = ["--tasks", "terrain", "--methods", "heuristic,svm", "--cv", "3", "--json"]
+    assert main(["train-all", str(cohort), "--out", str(tmp_path / "serial"), "--serial", *args]) == 0
+    serial = json.loads(capsys.readouterr().out)
+    assert main(["train-all", str(cohort), "--out", str(tmp_path / "dask"), "--scheduler", scheduler, *args]) == 0
+    dask = json.loads(capsys.readouterr().out)
+    assert serial["n_users"] == 4 and serial["n_failed"] == 1
+
+    def strip(d):
+        rows = [{k: v for k, v in u.items() if k != "seconds"} for u in d["users"]]
+        for r in rows:
+            if r.get("error"):
+                r["error"] = r["error"].replace(str(tmp_path / "serial"), "M").replace(str(tmp_path / "dask"), "M")
+        return rows
+
+    assert strip(serial) == strip(dask)
+    broken = next(u for u in serial["users"] if u["user"] == "u9_broken")
+    assert broken["status"] == "failed" and "no samples" in broken["error"]
+    ok = [u for u in serial["users"] if u["status"] == "ok"]
+    assert len(ok) == 3 and all(u["terrain_cv_accuracy"] > 0.6 for u in ok)
+    table = pd.read_csv(tmp_path / "dask" / "cohort_summary.csv")
+    assert list(table["user"]) == ["u1", "u2", "u3", "u9_broken"]
+    # held-out evaluation, serial and distributed
+    assert main(["evaluate-all", str(tmp_path / "serial"), str(cohort), "--serial", "--json"]) == 0
+    ev_serial = json.loads(capsys.readouterr().out)
+    assert main(["evaluate-all", str(tmp_path / "dask"), str(cohort), "--scheduler", scheduler, "--json"]) == 0
+    ev_dask = json.loads(capsys.readouterr().out)
+    assert strip(ev_serial) == strip(ev_dask)
+    accs = [u["terrain_accuracy"] for u in ev_serial["users"] if u["status"] == "ok"]
+    assert len(accs) == 3 and min(accs) > 0.6  # held-out sessions, chance is 1/3
+    assert (tmp_path / "serial" / "eval" / "cohort_summary.md").exists()
+
+
+def test_train_all_errors(tmp_path, capsys):
+    assert main(["train-all", str(tmp_path / "none"), "--out", str(tmp_path / "m"), "--serial"]) == 2
+    assert "cohort folder not found" in capsys.readouterr().err
+    (tmp_path / "empty").mkdir()
+    assert main(["train-all", str(tmp_path / "empty"), "--out", str(tmp_path / "m"), "--serial"]) == 2
+    assert "no user subfolders" in capsys.readouterr().err
