@@ -65,6 +65,7 @@ class BurstState:
     peaks: list = field(default_factory=list)  # local maxima (t, a) of the current swing
     pending: Event | None = None  # last accepted stride, held back until min_stride_s has passed
     pending_amp: float = 0.0
+    pending_emx: float = -math.inf
 
 
 def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstState,
@@ -109,22 +110,22 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
             s.active = False
             dur = ti - s.i0_t
             span = s.mx - s.mn
-            if span > p.amp and p.min_dur_s <= dur <= p.max_dur_s:
+            level = p.rest + p.peak_frac * (s.emx - p.rest)
+            t_ev, e_ev = next(((pt, pa) for pt, pa in reversed(s.peaks) if pa >= level), (s.mx_t, s.emx))
+            if s.pending is not None and t_ev - s.pending[0] < p.min_stride_s:
+                # the same swing split by a brief false rest: merge; the event stays the last impact
+                pe = s.pending
+                s.pending_emx = max(s.pending_emx, s.emx)
+                amp = max(s.pending_amp, span)
+                conf = min(1.0, amp / (2.0 * p.amp))
+                merged_level = p.rest + p.peak_frac * (s.pending_emx - p.rest)
+                t_m = t_ev if e_ev >= merged_level else pe[0]
+                s.pending, s.pending_amp = (t_m, pe[1], ti, conf, {"amplitude": amp}), amp
+            elif span > p.amp and p.min_dur_s <= dur <= p.max_dur_s:
+                if s.pending is not None:
+                    out.append(s.pending)
                 conf = min(1.0, span / (2.0 * p.amp))
-                level = p.rest + p.peak_frac * (s.emx - p.rest)
-                t_ev = next((pt for pt, pa in reversed(s.peaks) if pa >= level), s.mx_t)
-                ev: Event = (t_ev, s.i0_t, ti, conf, {"amplitude": span})
-                if s.pending is not None and ev[0] - s.pending[0] < p.min_stride_s:
-                    if span > s.pending_amp:  # merge: keep the larger burst, spanning both
-                        ev = (ev[0], s.pending[1], ev[2], conf, ev[4])
-                        s.pending, s.pending_amp = ev, span
-                    else:
-                        pe = s.pending
-                        s.pending = (pe[0], pe[1], ev[2], pe[3], pe[4])
-                else:
-                    if s.pending is not None:
-                        out.append(s.pending)
-                    s.pending, s.pending_amp = ev, span
+                s.pending, s.pending_amp, s.pending_emx = (t_ev, s.i0_t, ti, conf, {"amplitude": span}), span, s.emx
     return out, s
 
 
