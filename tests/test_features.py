@@ -171,6 +171,10 @@ def test_step_windows_layout_and_gravity_removed(level):
     assert w.available == ("foot_acc", "foot_gyr")
     assert np.isnan(w.channel("waist_acc_z")).all() and np.isnan(w.channel("force_a")).all()
     np.testing.assert_allclose(w.durations_s, level.steps["end_s"] - level.steps["start_s"])
+    sub = w.subset(np.array([2, 0]))
+    assert len(sub) == 2 and sub.steps["start_s"].tolist() == level.steps["start_s"].iloc[[2, 0]].tolist()
+    np.testing.assert_array_equal(sub.X[1], w.X[0])
+    assert len(w.subset(w.durations_s > 0)) == 8
     # at the window's ends the foot rests: levelled acceleration ~0 after removing gravity
     acc = [CHANNEL_INDEX[c] for c in ("foot_acc_x", "foot_acc_y", "foot_acc_z")]
     ends = w.X[:, acc][:, :, [0, -1]]

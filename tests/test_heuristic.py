@@ -214,18 +214,19 @@ def real_terrain(real_dir):
 
 
 def test_terrain_heuristic_beats_chance_on_real_foot_data(real_terrain):
-    """Cross-validated (5-fold) balanced accuracy of the foot heuristic with learned cut points.
+    """Cross-validated (5-fold) balanced accuracy of the foot heuristic with jointly learned cut points.
 
-    Measured: ~0.62 balanced (flat 0.87, up 0.75-0.81, down 0.06-0.25); chance = 1/3. Descending steps
-    are mostly taken for flat ones - the weakness the thesis also reports (ch. 6.1.3).
+    Measured (python -m pdrlearn.features.report, 10 shuffles pooled): 62 % balanced (flat 84, up 74,
+    down 28 %); chance = 1/3. Descending steps are mostly taken for flat ones - the weakness the thesis
+    also reports (ch. 6.1.3). Small classes (16 strides): one split varies by +-10 points per class.
     """
     X, y = real_terrain
     assert len(y) == 94 and set(y) == {"flat", "up", "down"}
     cv = StratifiedKFold(5, shuffle=True, random_state=0)
-    p = cross_val_predict(HeuristicTerrainClassifier(unit="foot", weights="skill"), X, y, cv=cv)
+    p = cross_val_predict(HeuristicTerrainClassifier(unit="foot"), X, y, cv=cv)
     bacc = balanced_accuracy_score(y, p)
     assert bacc > 0.5, bacc
-    assert (p[y == "flat"] == "flat").mean() > 0.8 and (p[y == "up"] == "up").mean() > 0.6
+    assert (p[y == "flat"] == "flat").mean() > 0.75 and (p[y == "up"] == "up").mean() > 0.5
 
 
 # -- simulated users (held-out steps) ---------------------------------------------------------------

@@ -69,8 +69,9 @@ def _header(task: str) -> str:
     return f"{'method / unit':28s} " + " ".join(f"{c[:6]:>6s}" for c in classes) + "  balanc  overall"
 
 
-def report_cv(sessions, *, folds: int = 5, seed: int = 0, out=sys.stdout) -> dict:
-    """k-fold cross-validated heuristic accuracies on labelled sessions; returns the numbers."""
+def report_cv(sessions, *, folds: int = 5, repeats: int = 10, seed: int = 0, out=sys.stdout) -> dict:
+    """k-fold cross-validated heuristic accuracies on labelled sessions (``repeats`` shuffles, pooled);
+    returns the numbers."""
     from sklearn.model_selection import StratifiedKFold, cross_val_predict
 
     from pdrlearn.classify.heuristic import make_heuristic
@@ -82,25 +83,28 @@ def report_cv(sessions, *, folds: int = 5, seed: int = 0, out=sys.stdout) -> dic
             continue
         X, y, avail, skipped = data
         counts = {c: int((y == c).sum()) for c in TASK_CLASSES[task] if (y == c).any()}
-        print(f"\n{task}: {len(y)} steps {counts}, skipped {skipped} rows with other labels", file=out)
+        print(f"\n{task}: {len(y)} steps {counts}, skipped {skipped} rows with other labels; "
+              f"{folds}-fold CV x {repeats} shuffles", file=out)
         if len(counts) < 2:
             print("  (one class only: nothing to cross-validate)", file=out)
             continue
         k = min(folds, min(counts.values()))
-        cv = StratifiedKFold(k, shuffle=True, random_state=seed)
         print(_header(task), file=out)
         for unit in _units(avail):
             for th in ("learn", "joint", "thesis"):
                 for weights in ("thesis", "skill"):
                     clf = make_heuristic(task, unit, thresholds=th, weights=weights)
-                    try:
-                        p = cross_val_predict(clf, X, y, cv=cv)
+                    try:  # `repeats` shuffles of k-fold CV, pooled
+                        p = np.concatenate([cross_val_predict(
+                            clf, X, y, cv=StratifiedKFold(k, shuffle=True, random_state=seed + r))
+                            for r in range(repeats)])
                     except Exception as exc:  # a unit lacking a sensor the task needs
                         print(f"{unit:5s}: {exc}", file=out)
                         break
+                    yy = np.tile(y, repeats)
                     name = f"{'fusion' if unit == 'both' else 'heuristic'} {unit} {th}/{weights}"
-                    print(_row(name, y, p, TASK_CLASSES[task]), file=out)
-                    results[(task, unit, th, weights)] = float((p == y).mean())
+                    print(_row(name, yy, p, TASK_CLASSES[task]), file=out)
+                    results[(task, unit, th, weights)] = float((p == yy).mean())
                 else:
                     continue
                 break
@@ -150,6 +154,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("dirs", nargs="*", help="session folders with labelled steps")
     ap.add_argument("--folds", type=int, default=5)
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--repeats", type=int, default=10, help="shuffles of the k-fold CV (pooled)")
     ap.add_argument("--sim", action="store_true",
                     help="simulated users: fit on one run of each calibration exercise, test on another")
     ap.add_argument("--users", type=int, default=3, help="simulated users")
@@ -158,7 +163,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.sim:
         report_sim(users=args.users)
     else:
-        report_cv(_load(args.dirs), folds=args.folds, seed=args.seed)
+        report_cv(_load(args.dirs), folds=args.folds, repeats=args.repeats, seed=args.seed)
     return 0
 
 

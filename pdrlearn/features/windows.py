@@ -104,8 +104,9 @@ class StepWindows:
 
     def subset(self, mask: np.ndarray) -> StepWindows:
         """Windows of the selected steps (boolean mask or index array)."""
-        return StepWindows(self.X[mask], self.durations_s[mask], self.channels, self.available,
-                           self.steps[mask].reset_index(drop=True) if len(self.steps) else self.steps,
+        idx = np.flatnonzero(mask) if np.asarray(mask).dtype == bool else np.asarray(mask, dtype=int)
+        steps = self.steps.iloc[idx].reset_index(drop=True) if len(self.steps) else self.steps
+        return StepWindows(self.X[idx], self.durations_s[idx], self.channels, self.available, steps,
                            self.session)
 
 
