@@ -39,6 +39,7 @@ DEFAULT_DISPLACEMENT = {
     "down_mode": "norm3",  # thesis eq. 61: 3-axis norm on descending stairs
     "stance_gyro_rad_s": 0.8,  # decision E7: stance = foot rate below this for >= min_stance_s
     "min_stance_s": 0.1,
+    "stance_half_s": 0.3,
     "min_step_s": 0.3,
     "max_step_s": 3.0,
     "initial_heading_rad": 0.0,
@@ -171,6 +172,8 @@ class Tracker:
         self._stance_start: float | None = None
         self._last_still = -np.inf
         self._last_boundary: float | None = None
+        self._open: float | None = None  # start (s) of the step in progress
+        self._closed = False
         self._det_t = -np.inf
         self.n_steps = 0
 
@@ -237,39 +240,53 @@ class Tracker:
         return steps
 
     def _detect(self) -> list[Step]:
+        """Online stance detection on the foot gyroscope; a step runs from one stance to the next.
+
+        A stance is a run of samples with ``|w| < stance_gyro_rad_s`` lasting ``min_stance_s``. Its
+        boundary is its middle, but at most ``stance_half_s`` from its start (closing the step before)
+        and from its end (opening the next), so standing still neither delays a step nor stretches it
+        (decision E7).
+        """
         if "fGyroscope" not in self._buf or "fAccelerometer" not in self._buf:
             return []
         t, g = self._stream("fGyroscope")
         new = t > self._det_t
         if not new.any():
             return []
-        thr = float(self.params["stance_gyro_rad_s"])
+        p = self.params
+        thr, min_st = float(p["stance_gyro_rad_s"]), float(p["min_stance_s"])
+        half = float(p.get("stance_half_s", 0.3))
         still = np.linalg.norm(g[new], axis=1) < thr
         out = []
         for ti, s in zip(t[new], still, strict=True):
             if s:
                 if self._stance_start is None:
-                    self._stance_start = float(ti)
+                    self._stance_start, self._closed = float(ti), False
                 self._last_still = float(ti)
+                dur = self._last_still - self._stance_start
+                if not self._closed and dur >= max(2 * half, min_st):  # long stance: close the step now
+                    self._close(self._stance_start + half, out)
                 continue
             if self._stance_start is not None:
-                if self._last_still - self._stance_start >= float(self.params["min_stance_s"]):
-                    mid = 0.5 * (self._stance_start + self._last_still)
-                    st = self._boundary(mid)
-                    if st is not None:
-                        out.append(st)
+                s0, s1 = self._stance_start, self._last_still
+                if s1 - s0 >= min_st:
+                    mid = 0.5 * (s0 + s1)
+                    if not self._closed:
+                        self._close(mid, out)
+                    self._open = max(mid, s1 - half)
                 self._stance_start = None
         self._det_t = float(t[-1])
         return out
 
-    def _boundary(self, mid: float) -> Step | None:
-        prev, self._last_boundary = self._last_boundary, mid
-        if prev is None:
-            return None
-        dur = mid - prev
-        if not (float(self.params["min_step_s"]) <= dur <= float(self.params["max_step_s"])):
-            return None
-        return self.process_step(prev, mid)
+    def _close(self, end: float, out: list) -> None:
+        """End the open step at ``end`` (s) and process it when its duration is plausible."""
+        self._closed = True
+        start, self._open = self._open, None
+        self._last_boundary = end
+        if start is None:
+            return
+        if float(self.params["min_step_s"]) <= end - start <= float(self.params["max_step_s"]):
+            out.append(self.process_step(start, end))
 
     def process_step(self, t0: float, t1: float) -> Step:
         """Classify, measure and place the step ``[t0, t1]`` (s) from the buffered samples."""
