@@ -1,0 +1,81 @@
+"""PLASYS tracking on simulated sessions: M3 vs M1, the altitude rule, and the CLI with and without a model."""
+
+from __future__ import annotations
+
+import json
+
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.io import write_session
+from pdrlearn.track.evaluate import evaluate_track
+from pdrlearn.track.plasys import track_plasys
+
+sim = pytest.importorskip("pdrlearn.sim")
+
+
+@pytest.fixture(scope="module")
+def scen_b():
+    return sim.simulate("B", user_seed=3, speed="normal")
+
+
+@pytest.fixture(scope="module")
+def scen_d():
+    return sim.simulate("D", user_seed=2, speed="normal")
+
+
+def test_m3_beats_m1_on_simulated_scenario(scen_b):
+    m1 = evaluate_track(track_plasys(scen_b, method="M1"), scen_b)
+    m3 = evaluate_track(track_plasys(scen_b, method="M3", model="oracle"), scen_b)
+    assert m3["stride_length_mae_pct"] < m1["stride_length_mae_pct"]
+    assert abs(m3["distance_error_pct"]) < abs(m1["distance_error_pct"])
+    assert abs(m3["distance_error_pct"]) < 2.0
+
+
+def test_stairs_altitude_and_m2_flat_rule(scen_d):
+    res = track_plasys(scen_d, method="M3", model="oracle")
+    ev = evaluate_track(res, scen_d)
+    assert ev["altitude_change_ref_m"] == pytest.approx(3.8, abs=0.1)
+    assert ev["altitude_error_pct"] < 24.0  # thesis ch.7.3.2.2: 24 %
+    st = res.steps
+    assert (st.loc[st["terrain"] == "flat", "dz_m"] == 0).all()
+    assert (st.loc[st["terrain"] == "up", "dz_m"] > 0).all()
+    assert res.info["length_bounds_m"]["normal"][0] == pytest.approx(scen_d.meta["length_class_bounds_m"][0])
+
+
+def test_rules_follow_the_classes(scen_b):
+    """A stride labelled backward is negative; a clamp to a wrong class moves the length to its bound."""
+    s = scen_b.copy()
+    s.steps = s.steps.copy()
+    s.steps.loc[s.steps.index[5], "direction"] = "backward"
+    s.steps.loc[s.steps.index[6], "length_class"] = "short"
+    res = track_plasys(s, method="M3", model="oracle", steps="labels")
+    lo, hi = s.meta["length_class_bounds_m"]
+    assert res.steps["length_m"].iloc[5] < 0
+    assert res.steps["length_m"].iloc[6] == pytest.approx(lo)
+
+
+def test_cli_on_simulated_session_without_and_with_model(scen_b, tmp_path, capsys):
+    d = write_session(scen_b, tmp_path / "B")
+    rc = main(["track", str(d), "--method", "M2", "--start", "41.178,-8.608", "--out", str(tmp_path / "m2"), "--json"])
+    assert rc == 0
+    out = json.loads(capsys.readouterr().out)
+    assert abs(out["distance_error_pct"]) < 2.0 and out["final_position_error_m"] < 5.0
+    rc = main(["track", str(d), "--method", "M3", "--out", str(tmp_path / "m3")])
+    assert rc == 2 and "M3 needs" in capsys.readouterr().err
+
+    from pdrlearn.classify import train_user
+
+    cal = [sim.simulate(e, user_seed=3) for e in ("terrain", "direction", "length")]
+    model = train_user(cal, methods=("svm",), cv=3, tasks=("terrain", "direction", "length"))
+    model.save(tmp_path / "model")
+    rc = main(["track", str(d), "--method", "M3", "--model", str(tmp_path / "model"), "--out",
+               str(tmp_path / "m3"), "--json"])
+    assert rc == 0
+    out = json.loads(capsys.readouterr().out)
+    steps = pd.read_csv(tmp_path / "m3" / "steps.csv")
+    assert {"terrain", "direction", "length_class", "length_m", "p_terrain_flat"} <= set(steps.columns)
+    assert steps["terrain"].notna().all()
+    assert out["info"]["classes_source"] == "model"
+    assert abs(out["distance_error_pct"]) < 15.0
