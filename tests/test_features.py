@@ -201,6 +201,14 @@ def test_step_windows_bad_input(level):
     noframe.frames = {}
     with pytest.raises(DataError, match="declares no axis frame"):
         step_windows(noframe)
+    in_g = level.copy()
+    in_g.streams["fAccelerometer"].values /= 9.80665
+    with pytest.raises(DataError, match="looks like g"):
+        step_windows(in_g)
+    in_deg = level.copy()
+    in_deg.streams["fGyroscope"].values *= 180 / np.pi
+    with pytest.raises(DataError, match="deg/s"):
+        step_windows(in_deg)
     nan = level.copy()
     nan.streams["fAccelerometer"].values[5, 0] = np.nan
     with pytest.raises(DataError, match="NaN"):

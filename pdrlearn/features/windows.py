@@ -235,6 +235,23 @@ def _check_steps(steps: pd.DataFrame, session: Session) -> tuple[np.ndarray, np.
     return start, end
 
 
+def _check_units(session: str, s: Stream) -> None:
+    """Catch the common unit mistakes: acceleration in g, angular rate in deg/s."""
+    if s.kind == "accelerometer":
+        med = float(np.median(s.norm()))
+        if med < 4.0:
+            raise DataError(f"session '{session}': {s.name} has a median |a| of {med:.2f}; it looks like g, "
+                            "not m/s^2 - multiply by 9.80665")
+        if med > 40.0:
+            raise DataError(f"session '{session}': {s.name} has a median |a| of {med:.1f}; expected m/s^2 "
+                            "(~9.8 at rest) - check the unit (mg? raw counts?)")
+    elif s.kind == "gyroscope":
+        p99 = float(np.percentile(s.norm(), 99))
+        if p99 > 35.0:  # 2000 deg/s full scale (thesis ch. 4.2.1.2) is 34.9 rad/s
+            raise DataError(f"session '{session}': {s.name} reaches {p99:.0f} (99th percentile); it looks like "
+                            "deg/s, not rad/s - multiply by pi/180")
+
+
 def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_samples: int = 40,
                  heading: str = "pca", rest_search_s: float = 0.3) -> StepWindows:
     """Cut, level and resample every step of ``steps`` to ``n_samples`` points.
@@ -274,6 +291,7 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
             if not np.all(np.isfinite(s.values)):
                 raise DataError(f"session '{session.name}': stream {name} contains NaN/inf values; "
                                 "clean or interpolate it first")
+            _check_units(session.name, s)
             if start.min() < s.t[0] - 0.5 or end.max() > s.t[-1] + 0.5:
                 raise DataError(f"session '{session.name}': steps span {start.min():.2f}-{end.max():.2f} s "
                                 f"but {name} covers {s.t[0]:.2f}-{s.t[-1]:.2f} s; align the clocks or "
