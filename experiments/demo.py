@@ -1,0 +1,156 @@
+"""End-to-end demo (``make demo``): simulate a user, train, evaluate, track, export, run, report.
+
+Every stage is a ``pdrlearn`` CLI command (the same calls a user types), run in-process:
+
+1. simulate user 1's calibration exercises (terrain, direction, length) and a held-out repetition,
+   plus thesis scenario D (90 m with 21 stairs);
+2. ``train`` the user's classifiers (5 methods x foot/waist/fused, 5-fold CV) and ``evaluate`` them on the
+   held-out exercises (tables + confusion matrices);
+3. ``track`` scenario D with M1, M2 and M3 (M3 uses the trained model);
+4. real recordings: ``steps`` on the foot and lower-back data, ``track`` the foot level walk (stride
+   lengths vs motion capture), ``calibrate`` the waist pendulum on a straight walk and ``track`` the
+   daily-activity recording;
+5. ``export`` the model to an ONNX bundle and replay scenario D through the streaming runtime (``run``);
+6. ``report``: one HTML page + Markdown of everything above.
+
+Writes everything under ``--out`` (default ``out/``) and prints a summary table (also out/summary.md).
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import io
+import json
+import shutil
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+REAL = ROOT / "datasets" / "real"
+sys.path.insert(0, str(ROOT))
+
+from pdrlearn.cli import main as cli  # noqa: E402
+
+
+def run(args: list[str], log: list, label: str) -> dict:
+    """Run one CLI command with --json; return its JSON (fail loudly with the command line)."""
+    buf = io.StringIO()
+    t0 = time.perf_counter()
+    with contextlib.redirect_stdout(buf):
+        code = cli([str(a) for a in args])
+    dt = time.perf_counter() - t0
+    if code != 0:
+        raise SystemExit(f"demo: '{' '.join(map(str, ['pdrlearn', *args]))}' failed with exit code {code}")
+    text = buf.getvalue().strip().splitlines()
+    out = json.loads(text[-1]) if text and text[-1].startswith("{") else {}
+    log.append((label, dt))
+    print(f"  {label:<52s} {dt:6.1f} s", flush=True)
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", type=Path, default=ROOT / "out")
+    ap.add_argument("--user-seed", type=int, default=1)
+    ap.add_argument("--cv", type=int, default=5)
+    a = ap.parse_args(argv)
+    out: Path = a.out
+    for sub in ("sim", "models", "eval", "track", "real", "bundle", "run", "report"):
+        shutil.rmtree(out / sub, ignore_errors=True)  # idempotent: every run starts clean
+    out.mkdir(parents=True, exist_ok=True)
+    u = a.user_seed
+    log: list = []
+    t_start = time.perf_counter()
+    print(f"pdrlearn demo -> {out}")
+
+    # 1. simulate -------------------------------------------------------------------------------
+    for ex in ("terrain", "direction", "length"):
+        run(["simulate", "--scenario", ex, "--user-seed", u, "--out", out / f"sim/u{u}/{ex}", "--json"],
+            log, f"simulate {ex} exercise (user {u})")
+        run(["simulate", "--scenario", ex, "--user-seed", u, "--seed", 1234, "--out",
+             out / f"sim/u{u}_test/{ex}", "--json"], log, f"simulate held-out {ex} exercise")
+    run(["simulate", "--scenario", "D", "--user-seed", u, "--out", out / f"sim/D_u{u}", "--json"],
+        log, "simulate scenario D (90 m, 21 stairs)")
+
+    # 2. train + evaluate -----------------------------------------------------------------------
+    train = run(["train", out / f"sim/u{u}", "--out", out / f"models/u{u}", "--cv", a.cv, "--json"],
+                log, f"train 3 tasks x 5 methods x 3 units ({a.cv}-fold CV)")
+    ev = run(["evaluate", out / f"models/u{u}", out / f"sim/u{u}_test", "--report", out / "eval", "--json"],
+             log, "evaluate on held-out exercises")
+    (out / "eval" / "evaluation.json").write_text(json.dumps(ev, indent=1))
+
+    # 3. track scenario D -----------------------------------------------------------------------
+    tracks = {}
+    for m in ("M1", "M2", "M3"):
+        extra = ["--model", out / f"models/u{u}"] if m == "M3" else []
+        tracks[m] = run(["track", out / f"sim/D_u{u}", "--method", m, *extra, "--start", "41.1780,-8.5980",
+                         "--out", out / f"track/D_{m}", "--json"], log, f"track scenario D with {m}")
+
+    # 4. real recordings --------------------------------------------------------------------------
+    real = {}
+    real["foot_steps"] = run(["steps", REAL / "gaitmap_level_left", "--detector", "accel", "--json"],
+                             log, "steps: real foot level walk (accel)")
+    real["stairs_steps"] = run(["steps", REAL / "gaitmap_stairs_down_left", "--detector", "accel", "--json"],
+                               log, "steps: real foot stair descent (accel)")
+    real["waist_steps"] = run(["steps", REAL / "mobgap_HA001_Test11_Trial1", "--detector", "pll", "--json"],
+                              log, "steps: real lower back daily activities (PLL)")
+    real["foot_track"] = run(["track", REAL / "gaitmap_level_left", "--method", "M1", "--out",
+                              out / "real/track_gaitmap_level_left", "--json"], log,
+                             "track: real foot level walk (stride lengths)")
+    run(["calibrate", REAL / "mobgap_HA001_Test5_Trial1", "--pipeline", "waist-pendulum", "--out",
+         out / "real/pendulum_params.json", "--json"], log, "calibrate: waist pendulum on a straight walk")
+    real["waist_track"] = run(["track", REAL / "mobgap_HA001_Test11_Trial1", "--pipeline", "waist-pendulum",
+                               "--params", out / "real/pendulum_params.json", "--out",
+                               out / "real/track_mobgap_Test11", "--json"], log,
+                              "track: real lower back daily activities")
+
+    # 5. export + runtime -----------------------------------------------------------------------------
+    exp = run(["export", out / f"models/u{u}", "--out", out / f"bundle/u{u}", "--json"], log, "export ONNX bundle")
+    rt = run(["run", out / f"bundle/u{u}", out / f"sim/D_u{u}", "--out", out / f"run/D_u{u}", "--json"],
+             log, "runtime replay of scenario D")
+
+    # 6. report -----------------------------------------------------------------------------------------
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        code = cli(["report", str(out), "--out", str(out / "report"), "--title", "pdrlearn demo"])
+    if code != 0:
+        raise SystemExit("demo: report failed")
+
+    # summary ---------------------------------------------------------------------------------------------
+    def pct(x):
+        return "n/a" if x is None else f"{100 * x:.1f} %"
+
+    rows = [("stage", "result")]
+    for t, r in ev.get("tasks", {}).items():
+        rows.append((f"{t} accuracy, held-out ({r['chosen']['method']}/{r['chosen']['unit']})",
+                     f"{pct(r['accuracy'])} of {r['n_steps']} steps"))
+    for m, r in tracks.items():
+        rows.append((f"scenario D {m}: distance error",
+                     f"{r.get('distance_error_pct', float('nan')):.2f} % ({r['distance_m']:.1f} m, {r['n_steps']} steps)"))
+    for k in ("foot_steps", "stairs_steps", "waist_steps"):
+        r = real[k]
+        rows.append((f"real {k.replace('_', ' ')}: F1", f"{r.get('f1', float('nan')):.3f} ({r['count']} detected)"))
+    ft = real["foot_track"]
+    if "stride_length_mae_pct" in ft:
+        rows.append(("real foot stride length MAE", f"{ft['stride_length_mae_pct']:.2f} %"))
+    wt = real["waist_track"]
+    if "distance_error_pct" in wt:
+        rows.append(("real lower-back bout distance error", f"{wt['distance_error_pct']:.2f} %"))
+    rows.append(("bundle size", f"{exp.get('size_bytes', 0) / 1e6:.2f} MB"))
+    rows.append(("runtime replay steps", str(rt.get("n_steps", "n/a"))))
+    rows.append(("total time", f"{time.perf_counter() - t_start:.0f} s"))
+    width = max(len(r[0]) for r in rows)
+    lines = [f"| {a:<{width}} | {b} |" for a, b in rows]
+    lines.insert(1, f"|{'-' * (width + 2)}|---|")
+    md = "# pdrlearn demo\n\n" + "\n".join(lines) + f"\n\nReport: {out / 'report' / 'index.html'}\n"
+    (out / "summary.md").write_text(md)
+    print()
+    print(md)
+    del train
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
