@@ -103,9 +103,7 @@ def test_attitude_follows_gyro_yaw_and_yaw_feedback():
     for _ in range(200):  # 2 s at 0.5 rad/s about z, level, no magnetometer
         th, P = attitude_ekf_step(th, P, np.array([0, 0, 0.5]), np.array([0, 0, 9.8]), None, 0.01)
     assert th[2] == pytest.approx(1.0, abs=1e-6) and abs(th[0]) < 1e-6
-    th2, _ = attitude_ekf_step(
-        th, P * 1000, np.zeros(3), np.array([0, 0, 9.8]), None, 0.01, yaw_meas=1.2, q_eta=1e-6
-    )
+    th2, _ = attitude_ekf_step(th, P * 1000, np.zeros(3), np.array([0, 0, 9.8]), None, 0.01, yaw_meas=1.2, q_eta=1e-6)
     assert th2[2] == pytest.approx(1.2, abs=0.01)
 
 
@@ -125,3 +123,24 @@ def test_tracker_with_fixes_beats_open_loop():
     del ses.streams["wGyroscope"]
     with pytest.raises(MissingSensorError, match="wGyroscope"):
         ColomboTracker().run(ses, fx)
+
+
+def test_analytic_jacobians_match_finite_differences():
+    from pdrlearn.aid.colombo import (
+        _jac,
+        attitude_output,
+        attitude_output_jacobian,
+        euler_rates_jacobian,
+        euler_rates_matrix,
+    )
+
+    rng = np.random.default_rng(0)
+    for _ in range(5):
+        th = rng.uniform([-0.6, -0.6, -3.0], [0.6, 0.6, 3.0])
+        w = rng.normal(0, 1, 3)
+        assert euler_rates_jacobian(th, w) == pytest.approx(
+            _jac(lambda x, w=w: euler_rates_matrix(x) @ w, th), abs=1e-6
+        )
+        for yaw in (False, True):
+            num = _jac(lambda x, yaw=yaw: attitude_output(x, yaw), th)
+            assert attitude_output_jacobian(th, yaw) == pytest.approx(num, abs=1e-6)

@@ -59,14 +59,55 @@ def euler_rates_matrix(theta: np.ndarray) -> np.ndarray:
     return np.array([[1.0, sx * ty, cx * ty], [0.0, cx, -sx], [0.0, sx / cy, cx / cy]])
 
 
+def _rot_derivs(theta: np.ndarray) -> tuple[np.ndarray, list[np.ndarray]]:
+    """R_zyx and its derivatives with respect to roll, pitch and yaw."""
+    cx, sx = np.cos(theta[0]), np.sin(theta[0])
+    cy, sy = np.cos(theta[1]), np.sin(theta[1])
+    cz, sz = np.cos(theta[2]), np.sin(theta[2])
+    Rx = np.array([[1.0, 0.0, 0.0], [0.0, cx, -sx], [0.0, sx, cx]])
+    Ry = np.array([[cy, 0.0, sy], [0.0, 1.0, 0.0], [-sy, 0.0, cy]])
+    Rz = np.array([[cz, -sz, 0.0], [sz, cz, 0.0], [0.0, 0.0, 1.0]])
+    dRx = np.array([[0.0, 0.0, 0.0], [0.0, -sx, -cx], [0.0, cx, -sx]])
+    dRy = np.array([[-sy, 0.0, cy], [0.0, 0.0, 0.0], [-cy, 0.0, -sy]])
+    dRz = np.array([[-sz, -cz, 0.0], [cz, -sz, 0.0], [0.0, 0.0, 0.0]])
+    RzRy = Rz @ Ry
+    return RzRy @ Rx, [RzRy @ dRx, Rz @ dRy @ Rx, dRz @ Ry @ Rx]
+
+
+_G_W = np.array([0.0, 0.0, G_MS2])
+_N_W = np.array([0.0, 1.0, 0.0])  # north unit vector in ENU
+
+
 def attitude_output(theta: np.ndarray, with_yaw: bool) -> np.ndarray:
     """o_r = U(theta) o_w: gravity and north unit vector in the body frame (+ yaw) (seed 004 eqs. 3-4)."""
     Rt = rot_zyx(theta).T
-    out = np.r_[Rt @ np.array([0.0, 0.0, G_MS2]), Rt @ np.array([0.0, 1.0, 0.0])]
-    return np.r_[out, theta[2]] if with_yaw else out
+    out = np.concatenate([Rt @ _G_W, Rt @ _N_W])
+    return np.append(out, theta[2]) if with_yaw else out
+
+
+def attitude_output_jacobian(theta: np.ndarray, with_yaw: bool) -> np.ndarray:
+    """H = d(U(theta) o_w) / d(theta) (seed 004 eq. 9), analytic."""
+    _, dR = _rot_derivs(theta)
+    H = np.empty((7 if with_yaw else 6, 3))
+    for i, d in enumerate(dR):
+        H[0:3, i] = d.T @ _G_W
+        H[3:6, i] = d.T @ _N_W
+    if with_yaw:
+        H[6] = (0.0, 0.0, 1.0)
+    return H
+
+
+def euler_rates_jacobian(theta: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """d(E(theta) omega) / d(theta), analytic (for F_theta of seed 004 eq. 6)."""
+    sx, cx = np.sin(theta[0]), np.cos(theta[0])
+    cy, sy, ty = np.cos(theta[1]), np.sin(theta[1]), np.tan(theta[1])
+    a = sx * omega[1] + cx * omega[2]
+    b = cx * omega[1] - sx * omega[2]
+    return np.array([[b * ty, a / cy**2, 0.0], [-a, 0.0, 0.0], [b / cy, a * sy / cy**2, 0.0]])
 
 
 def _jac(fun, x: np.ndarray, eps: float = 1e-6) -> np.ndarray:
+    """Central-difference Jacobian (used by the tests to check the analytic ones)."""
     f0 = fun(x)
     J = np.empty((f0.size, x.size))
     for i in range(x.size):
@@ -87,23 +128,26 @@ def attitude_ekf_step(
     """
     E = euler_rates_matrix(theta)
     theta_p = theta + dt * E @ omega  # eq. 5
-    F = np.eye(3) + dt * _jac(lambda th: euler_rates_matrix(th) @ omega, theta)
+    F = np.eye(3) + dt * euler_rates_jacobian(theta, omega)
     G = dt * E
-    P_p = F @ P @ F.T + G @ (np.eye(3) * q_omega) @ G.T  # eq. 6
+    P_p = F @ P @ F.T + q_omega * (G @ G.T)  # eq. 6
     with_yaw = yaw_meas is not None
     h = attitude_output(theta_p, with_yaw)
-    H = _jac(lambda th: attitude_output(th, with_yaw), theta_p)
-    z = np.r_[acc, north if north is not None else np.zeros(3)]
-    r = [q_g] * 3 + [q_n] * 3
-    keep = np.r_[np.ones(3, bool), np.full(3, north is not None)]
+    H = attitude_output_jacobian(theta_p, with_yaw)
+    r = np.array([q_g] * 3 + [q_n] * 3 + ([q_eta] if with_yaw else []))
+    z = np.empty(h.size)
+    z[0:3] = acc
+    if north is not None:
+        z[3:6] = north
+        rows = np.arange(h.size)
+    else:
+        rows = np.r_[0:3, 6 : h.size]
     if with_yaw:
-        z = np.r_[z, yaw_meas]
-        r.append(q_eta)
-        keep = np.r_[keep, True]
-    nu = (z - h)[keep]
+        z[6] = yaw_meas
+    nu = (z - h)[rows]
     if with_yaw:
         nu[-1] = wrap_angle(nu[-1])
-    H, R = H[keep], np.diag(np.asarray(r)[keep])
+    H, R = H[rows], np.diag(r[rows])
     S = H @ P_p @ H.T + R
     K = np.linalg.solve(S, H @ P_p).T  # eq. 9
     theta_n = theta_p + K @ nu  # eq. 8
@@ -202,9 +246,7 @@ class VelocityAutomaton:
         return self.v
 
 
-def automaton_velocity(
-    a_xu: np.ndarray, rate_hz: float, **kwargs
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def automaton_velocity(a_xu: np.ndarray, rate_hz: float, **kwargs) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Run :class:`VelocityAutomaton` over a signal: ``(v m/s, discrete state, sigma_a m/s^2)``."""
     va = VelocityAutomaton(rate_hz=rate_hz, **kwargs)
     v = np.empty(len(a_xu))
@@ -263,9 +305,7 @@ class ColomboTracker(ParamsMixin):
         self.yaw_feedback = yaw_feedback
         self.query_tolerance_s = query_tolerance_s
 
-    def run(
-        self, session: Session, fixes: pd.DataFrame | None = None, *, start_xy=(0.0, 0.0)
-    ) -> ColomboTracker:
+    def run(self, session: Session, fixes: pd.DataFrame | None = None, *, start_xy=(0.0, 0.0)) -> ColomboTracker:
         """Track a session with waist accelerometer + gyroscope (+ magnetometer); returns ``self``.
 
         Results: ``trajectory_`` (per sample: ``t``, ``x``, ``y`` stretched, ``x_rt``, ``y_rt``, ``v``,
@@ -290,9 +330,7 @@ class ColomboTracker(ParamsMixin):
             ms = session["wMagneticField"]
             mag = np.column_stack([np.interp(t, ms.t, ms.values[:, i]) for i in range(3)]) @ M.T
         if not (np.isfinite(acc).all() and np.isfinite(gyr).all()):
-            raise DataError(
-                f"session '{session.name}': NaN in waist accelerometer/gyroscope; interpolate gaps first"
-            )
+            raise DataError(f"session '{session.name}': NaN in waist accelerometer/gyroscope; interpolate gaps first")
         fs = acc_s.rate_hz
         n0 = max(int(round(self.window_s * fs)), 1)
         theta = initial_attitude(acc[:n0].mean(0), None if mag is None else mag[:n0].mean(0))
@@ -304,11 +342,7 @@ class ColomboTracker(ParamsMixin):
             q_n = float(max(np.nanmean(np.nanvar(n_init, axis=0)), 1e-6))
         self.q_n_ = q_n
         auto = VelocityAutomaton(rate_hz=fs, window_s=self.window_s, sigma_min=self.sigma_min)
-        fx = (
-            fixes.sort_values("t")
-            if fixes is not None
-            else pd.DataFrame(columns=["t", "x", "y"], dtype=float)
-        )
+        fx = fixes.sort_values("t") if fixes is not None else pd.DataFrame(columns=["t", "x", "y"], dtype=float)
         ft, fxy = fx["t"].to_numpy(float), fx[["x", "y"]].to_numpy(float)
         p = np.asarray(start_xy, float).copy()
         Pp = np.eye(2) * P_P0_M2
@@ -363,11 +397,7 @@ class ColomboTracker(ParamsMixin):
                 else:
                     counts["queries"] += 1
                     j = int(np.searchsorted(ft, t[k]))
-                    cand = [
-                        c
-                        for c in (j - 1, j)
-                        if 0 <= c < len(ft) and abs(ft[c] - t[k]) <= self.query_tolerance_s
-                    ]
+                    cand = [c for c in (j - 1, j) if 0 <= c < len(ft) and abs(ft[c] - t[k]) <= self.query_tolerance_s]
                     if not cand:
                         counts["fixes_missing"] += 1
                     else:

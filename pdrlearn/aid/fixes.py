@@ -243,9 +243,7 @@ def validate_fix_table(df: pd.DataFrame, source: str = "fix table") -> pd.DataFr
     try:
         vals = df[use].astype(float)
     except (TypeError, ValueError):
-        raise DataError(
-            f"{source}: non-numeric values in {', '.join(use)}; fix or remove those rows"
-        ) from None
+        raise DataError(f"{source}: non-numeric values in {', '.join(use)}; fix or remove those rows") from None
     bad = ~np.isfinite(vals.to_numpy()).all(axis=1)
     if bad.any():
         row = int(np.flatnonzero(bad)[0])
@@ -254,9 +252,7 @@ def validate_fix_table(df: pd.DataFrame, source: str = "fix table") -> pd.DataFr
             "drop fixes without a position or accuracy"
         )
     if (vals["accuracy_m"] <= 0).any():
-        raise DataError(
-            f"{source}: accuracy_m must be > 0 m (a 68 % radius); found {float(vals['accuracy_m'].min())}"
-        )
+        raise DataError(f"{source}: accuracy_m must be > 0 m (a 68 % radius); found {float(vals['accuracy_m'].min())}")
     if has_geo and ((vals["lat"].abs() > 90) | (vals["lon"].abs() > 180)).any():
         raise DataError(f"{source}: lat/lon out of range; give degrees (WGS-84), not radians or metres")
     out = df.copy()

@@ -199,9 +199,7 @@ def write_nmea(
     ``t`` maps to UTC time of day ``utc_start_s + t - t[0]``; HDOP = accuracy / ``uere_m``.
     """
     if not {"t", "lat", "lon", "accuracy_m"} <= set(fixes.columns):
-        raise DataError(
-            "write_nmea: the fix table needs t, lat, lon, accuracy_m (pass origin= to the generator)"
-        )
+        raise DataError("write_nmea: the fix table needs t, lat, lon, accuracy_m (pass origin= to the generator)")
     path = Path(path)
     lines = []
     t0 = float(fixes["t"].iloc[0]) if len(fixes) else 0.0

@@ -38,9 +38,7 @@ def check_steps(steps: pd.DataFrame, what: str = "steps table") -> pd.DataFrame:
     need = ("start_s", "end_s", "length_m", "heading_rad")
     if steps is None or any(c not in steps.columns for c in need):
         have = "none" if steps is None else ", ".join(map(str, steps.columns))
-        raise DataError(
-            f"{what}: needs columns {', '.join(need)} (has: {have}); run a tracking pipeline first"
-        )
+        raise DataError(f"{what}: needs columns {', '.join(need)} (has: {have}); run a tracking pipeline first")
     df = steps.loc[:, list(need)].astype(float)
     if not np.isfinite(df.to_numpy()).all():
         raise DataError(f"{what}: NaN/inf in {', '.join(need)}; drop the steps without length or heading")
@@ -124,6 +122,8 @@ class GnssPdrFusion(ParamsMixin):
     sigma_heading_rad : per-step heading standard deviation (rad).
     compensate : estimate the step-length scale and heading bias between valid fixes and apply them to
         the following steps (seed 001 Sec. 3.1.2).
+    compensate_when : ``"always"`` (default: apply the compensation to every prediction once estimated) or
+        ``"off"`` (only while the receiver is not ON, as seed 001 describes it); see docs/decisions/aided.md.
     min_baseline_m : minimum PDR path between two fixes used for the compensation (m).
     step_length : ``"pdr"`` (the track's lengths) or ``"model"`` (a*f - b refined online from GNSS).
     model : the :class:`StepLengthModel` used with ``step_length="model"``.
@@ -143,6 +143,7 @@ class GnssPdrFusion(ParamsMixin):
         sigma_length_m: float = 0.02,
         sigma_heading_rad: float = np.radians(8.0),
         compensate: bool = True,
+        compensate_when: str = "always",
         min_baseline_m: float = 50.0,
         step_length: str = "pdr",
         model: StepLengthModel | None = None,
@@ -158,6 +159,7 @@ class GnssPdrFusion(ParamsMixin):
         self.sigma_length_m = sigma_length_m
         self.sigma_heading_rad = sigma_heading_rad
         self.compensate = compensate
+        self.compensate_when = compensate_when
         self.min_baseline_m = min_baseline_m
         self.step_length = step_length
         self.model = model
@@ -166,6 +168,8 @@ class GnssPdrFusion(ParamsMixin):
     def _check(self) -> None:
         if self.mode not in MODES:
             raise DataError(f"GnssPdrFusion: mode '{self.mode}' unknown; choose one of {', '.join(MODES)}")
+        if self.compensate_when not in ("off", "always"):
+            raise DataError(f"GnssPdrFusion: compensate_when '{self.compensate_when}' unknown; choose off or always")
         if self.step_length not in ("pdr", "model"):
             raise DataError(f"GnssPdrFusion: step_length '{self.step_length}' unknown; choose pdr or model")
         if self.mode == "saving" and not self.period_s > 0:
@@ -266,7 +270,7 @@ class GnssPdrFusion(ParamsMixin):
             nsteps += 1
             fsum += freq if np.isfinite(freq) else 0.0
             # systematic-error compensation only while the receiver is off (seed 001 Sec. 3.1.2)
-            comp = state != ON
+            comp = state != ON or self.compensate_when == "always"
             lc = length * (scale if self.step_length == "pdr" and comp else 1.0)
             hc = heading + (bias if comp else 0.0)
             x, P = kf_predict(
@@ -321,9 +325,7 @@ class GnssPdrFusion(ParamsMixin):
         if on_since is not None:
             on_time += t_end - on_since
         total = max(t_end - t0, 1e-9)
-        self.trajectory_ = pd.DataFrame(
-            rows, columns=["t", "x", "y", "x_pdr", "y_pdr", "sigma_m", "gnss", "fix_used"]
-        )
+        self.trajectory_ = pd.DataFrame(rows, columns=["t", "x", "y", "x_pdr", "y_pdr", "sigma_m", "gnss", "fix_used"])
         self.fixes_used_ = pd.DataFrame(used, columns=["t", "x", "y", "accuracy_m", "step_t"])
         counts["gnss_on_fraction"] = (
             0.0 if self.mode == "off" else (1.0 if self.mode == "best" else float(min(on_time / total, 1.0)))

@@ -37,6 +37,8 @@ class SporadicFixFusion(ParamsMixin):
     stretch : output the stretched trajectory between adjustments (seed 004 eq. 24).
     yaw_feedback : ``"last"`` (the stretched yaw of the last step, seed 004 eq. 28 with j = 0),
         ``"mean"`` (length-weighted mean correction over the segment) or ``None``.
+    scale_feedback : also feed back the step-length scale implied by the stretched speeds (eq. 27),
+        length-weighted over the segment (an extension: the paper feeds back only the yaw).
     heading_drift_rad : standard deviation (rad) of the heading-offset random walk per step.
     initial_sigma_m : start standard deviation (m); default sqrt(P_p(0)) of seed 004.
     fix_sigma_m : per-axis fix standard deviation (m); ``None`` = from each fix's ``accuracy_m``.
@@ -53,6 +55,7 @@ class SporadicFixFusion(ParamsMixin):
         sigma_heading_rad: float = np.radians(5.0),
         stretch: bool = True,
         yaw_feedback: str | None = "last",
+        scale_feedback: bool = False,
         heading_drift_rad: float = np.radians(0.3),
         initial_sigma_m: float = float(np.sqrt(P_P0_M2)),
         fix_sigma_m: float | None = None,
@@ -65,6 +68,7 @@ class SporadicFixFusion(ParamsMixin):
         self.sigma_heading_rad = sigma_heading_rad
         self.stretch = stretch
         self.yaw_feedback = yaw_feedback
+        self.scale_feedback = scale_feedback
         self.heading_drift_rad = heading_drift_rad
         self.initial_sigma_m = initial_sigma_m
         self.fix_sigma_m = fix_sigma_m
@@ -86,9 +90,7 @@ class SporadicFixFusion(ParamsMixin):
         if not self.period_s > 0:
             raise DataError(f"SporadicFixFusion: period_s (T_p) must be > 0 s, got {self.period_s}")
         if self.yaw_feedback not in ("last", "mean", None):
-            raise DataError(
-                f"SporadicFixFusion: yaw_feedback '{self.yaw_feedback}' unknown; use last, mean or None"
-            )
+            raise DataError(f"SporadicFixFusion: yaw_feedback '{self.yaw_feedback}' unknown; use last, mean or None")
         st = check_steps(steps)
         fx = (
             pd.DataFrame(columns=["t", "x", "y", "accuracy_m"], dtype=float)
@@ -106,6 +108,7 @@ class SporadicFixFusion(ParamsMixin):
         P = np.eye(2) * self.initial_sigma_m**2
         raw = x.copy()
         offset, p_off = 0.0, 0.0  # heading offset fed back from the stretched yaw, and its variance
+        log_scale, p_scale = 0.0, 0.0  # log step-length scale fed back from the stretched speeds
         n = len(st)
         out = np.zeros((n + 1, 6))  # x, y (stretched), x_rt, y_rt, x_pdr, y_pdr
         out[0] = [x[0], x[1], x[0], x[1], raw[0], raw[1]]
@@ -121,6 +124,7 @@ class SporadicFixFusion(ParamsMixin):
             length, heading = float(st.at[k, "length_m"]), float(st.at[k, "heading_rad"])
             raw = raw + length * np.array([np.cos(heading), np.sin(heading)])
             hc = heading + offset
+            length = length * np.exp(log_scale)
             x_prev = x
             x, P = kf_predict(
                 x,
@@ -131,6 +135,7 @@ class SporadicFixFusion(ParamsMixin):
                 sigma_heading_rad=self.sigma_heading_rad,
             )  # seed 004 eqs. 16-17
             p_off += self.heading_drift_rad**2
+            p_scale += (0.1 * self.heading_drift_rad) ** 2  # scale random walk, 1/10 of the heading's (rad ~ rel.)
             seg_inc.append(x - x_prev)
             seg_rows.append(k + 1)
             seg_head.append(hc)
@@ -145,11 +150,7 @@ class SporadicFixFusion(ParamsMixin):
                 else:
                     counts["queries"] += 1
                     j = int(np.searchsorted(ft, t_k))
-                    best = [
-                        c
-                        for c in (j - 1, j)
-                        if 0 <= c < len(ft) and abs(ft[c] - t_k) <= self.query_tolerance_s
-                    ]
+                    best = [c for c in (j - 1, j) if 0 <= c < len(ft) and abs(ft[c] - t_k) <= self.query_tolerance_s]
                     if not best:
                         counts["fixes_missing"] += 1
                     else:
@@ -175,6 +176,14 @@ class SporadicFixFusion(ParamsMixin):
                             offset = float(wrap_angle(offset + gain * innov))
                             p_off *= 1.0 - gain
                             counts["yaw_corrections"] += 1
+                        if self.scale_feedback and len(inc):
+                            lens = np.hypot(inc[:, 0], inc[:, 1])
+                            ratio = np.hypot(stretched[:, 0], stretched[:, 1]).sum() / max(lens.sum(), 1e-9)
+                            if ratio > 0:
+                                r = self.sigma_length_rel**2 / len(inc) + 2.0 * fsig[c] ** 2 / max(lens.sum(), 0.5) ** 2
+                                gain = p_scale / (p_scale + r) if p_scale > 0 else 0.0
+                                log_scale = float(np.clip(log_scale + gain * np.log(ratio), -0.7, 0.7))
+                                p_scale *= 1.0 - gain
                         x, P, _, _ = kf_update(x, P, z, fsig[c : c + 1])  # seed 004 eqs. 20-22
                         out[k + 1, 2:4] = x
                         used[k + 1] = True

@@ -86,9 +86,7 @@ def pdr_with_drift(
     rates = rate + np.cumsum(np.radians(drift_deg_per_min) / 60.0 * 0.05 * rng.standard_normal(n))
     drift = np.cumsum(rates * dt)
     herr = np.radians(heading_bias_deg) * rng.standard_normal() + drift
-    headings = (
-        steps["heading_rad"].to_numpy(float) + herr + np.radians(heading_noise_deg) * rng.standard_normal(n)
-    )
+    headings = steps["heading_rad"].to_numpy(float) + herr + np.radians(heading_noise_deg) * rng.standard_normal(n)
     out = steps[["start_s", "end_s", "event_s"]].copy()
     out["length_m"] = lengths
     out["heading_rad"] = (headings + np.pi) % (2 * np.pi) - np.pi
@@ -167,11 +165,7 @@ def synthetic_waist_session(
     y = np.cumsum(v * np.sin(yaw)) / rate_hz
     a_lat = v * yaw_rate  # centripetal, body left
     acc = np.column_stack([a_fwd, a_lat, np.full(n, 9.8)]) + 0.05 * rng.standard_normal((n, 3))
-    gyr = (
-        np.column_stack([np.zeros(n), np.zeros(n), yaw_rate])
-        + gyro_bias_rads
-        + 0.005 * rng.standard_normal((n, 3))
-    )
+    gyr = np.column_stack([np.zeros(n), np.zeros(n), yaw_rate]) + gyro_bias_rads + 0.005 * rng.standard_normal((n, 3))
     m_w = np.array([0.0, 22.0, -40.0])  # ENU field (uT): north and downward dip
     mag = np.column_stack(
         [

@@ -37,9 +37,7 @@ def _load(path, session: Session) -> FixLog:
     if path.suffix.lower() == ".csv":
         return read_fix_csv(path)
     if not path.is_file():
-        raise DataError(
-            f"{path}: no such fix file; pass an NMEA log (.nmea/.txt) or a CSV (t, lat, lon, accuracy_m)"
-        )
+        raise DataError(f"{path}: no such fix file; pass an NMEA log (.nmea/.txt) or a CSV (t, lat, lon, accuracy_m)")
     # NMEA times are UTC of day: mapped with the session's meta 'utc_start_s' (UTC seconds of day at the
     # session clock's t_start) when known, else the first fix is taken at the session start
     # (docs/decisions/aided.md).
@@ -134,9 +132,7 @@ def aid_track(
         flog = _load(path, session)
         fx, origin = to_local(flog.fixes, origin)
         info["origin"] = list(origin) if origin else None
-        sigma0 = (
-            1.0 if start is not None or "x" in flog.fixes.columns else float(fx["accuracy_m"].iloc[0]) / 1.51
-        )
+        sigma0 = 1.0 if start is not None or "x" in flog.fixes.columns else float(fx["accuracy_m"].iloc[0]) / 1.51
         if kind == "gnss":
             mode = "saving" if gnss_period_s else "best"
             f = GnssPdrFusion(mode=mode, period_s=float(gnss_period_s or 60.0), initial_sigma_m=sigma0)
@@ -168,9 +164,7 @@ def aid_track(
             fused = tr.copy()
         else:
             fused["x"], fused["y"] = tr["x"].to_numpy(), tr["y"].to_numpy()
-        cur_steps = _steps_from_path(
-            tr["t"].to_numpy(), tr["x"].to_numpy(), tr["y"].to_numpy(), check_sorted(steps)
-        )
+        cur_steps = _steps_from_path(tr["t"].to_numpy(), tr["x"].to_numpy(), tr["y"].to_numpy(), check_sorted(steps))
         all_fixes.append(fx.assign(source=kind))
     out = pd.DataFrame({"t": fused["t"].to_numpy(), "x": fused["x"].to_numpy(), "y": fused["y"].to_numpy()})
     out["z"] = traj0["z"].to_numpy() if "z" in traj0 and len(traj0) == len(out) else 0.0
@@ -182,9 +176,7 @@ def aid_track(
     if origin is not None:
         out["lat"], out["lon"] = enu_to_geodetic(out["x"].to_numpy(), out["y"].to_numpy(), *origin)
     fixes = pd.concat(all_fixes, ignore_index=True)
-    info["fix_table"] = {
-        c: np.round(fixes[c].to_numpy(float), 3).tolist() for c in ("t", "x", "y", "accuracy_m")
-    }
+    info["fix_table"] = {c: np.round(fixes[c].to_numpy(float), 3).tolist() for c in ("t", "x", "y", "accuracy_m")}
     info["fix_table"]["source"] = fixes["source"].tolist()
     new_info = dict(result.info)
     new_info["aid"] = info
@@ -197,9 +189,7 @@ def check_sorted(steps: pd.DataFrame) -> pd.DataFrame:
     return steps.sort_values("end_s", kind="stable").reset_index(drop=True)
 
 
-def plot_aided(
-    result: TrackResult, out, *, truth: pd.DataFrame | None = None, title: str | None = None
-) -> Path:
+def plot_aided(result: TrackResult, out, *, truth: pd.DataFrame | None = None, title: str | None = None) -> Path:
     """Overlay PDR-only path, fixes and fused path (and the truth when given); PNG, atomic save."""
     import matplotlib
 
