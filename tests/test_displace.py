@@ -144,3 +144,17 @@ def test_parse_bounds_and_errors():
         StepRules(down_mode="diagonal")
     with pytest.raises(DataError):
         StepRules().apply(np.zeros((2, 3)), pd.DataFrame({"terrain": ["flat"]}))
+
+
+def test_rest_to_rest_extends_swing_windows_and_splits_missed_steps():
+    from pdrlearn.displace import rest_to_rest
+
+    t = np.arange(0, 6, 0.01)
+    stance = (t % 1.0) < 0.4  # rest 0-0.4 s of every second
+    # a swing-only window, one spanning three missed steps, and a duplicate of an earlier stride
+    i0, i1, rows = rest_to_rest(t, stance, np.array([0.5, 1.5, 2.5]), np.array([0.9, 4.9, 2.9]))
+    assert np.allclose(t[i0], [0.2, 1.2, 2.2, 3.2, 4.2], atol=0.011)
+    assert np.allclose(t[i1], [1.2, 2.2, 3.2, 4.2, 5.2], atol=0.011)
+    assert rows.tolist() == [0, 1, 1, 1, 1]
+    # no swing between two rests -> dropped
+    assert len(rest_to_rest(t, stance, np.array([0.1]), np.array([0.3]))[0]) == 0

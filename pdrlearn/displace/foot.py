@@ -69,8 +69,9 @@ def rest_to_rest(t: np.ndarray, stance: np.ndarray, starts: np.ndarray, ends: np
 
     A detector may report the swing (toe-off to contact) or a stance-to-stance window; either way the
     stride used for integration runs from the middle of the stance before the window start to the middle
-    of the stance after the window end (at most ``max_rest_s`` into a longer rest). Windows whose start
-    and end fall in the same stance, or duplicates, are dropped.
+    of the stance after the window end (at most ``max_rest_s`` into a longer rest). A window spanning
+    several stances (the detector missed steps) is split at each of them; windows whose start and end
+    fall in the same stance, and duplicates, are dropped.
 
     Returns
     -------
@@ -90,7 +91,10 @@ def rest_to_rest(t: np.ndarray, stance: np.ndarray, starts: np.ndarray, ends: np
     k1 = np.searchsorted(re, np.asarray(ends) - tol_s, side="left")
     ok = (k0 >= 0) & (k1 < len(rr)) & (k1 > k0)
     keep = np.flatnonzero(ok)
-    k0, k1 = k0[keep], k1[keep]
+    span = k1[keep] - k0[keep]
+    keep = np.repeat(keep, span)  # one stride per pair of consecutive stances inside the window
+    k0 = k0[keep] + (np.arange(len(keep)) - np.repeat(np.cumsum(span) - span, span))
+    k1 = k0 + 1
     i0 = np.maximum(mid[k0], rr[k0, 1] - 1 - n_rest)
     i1 = np.minimum(mid[k1], rr[k1, 0] + n_rest)
     _, first = np.unique(np.column_stack([i0, i1]), axis=0, return_index=True)

@@ -135,6 +135,21 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
     return pred, bounds
 
 
+def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
+    """Waist streams moved onto the foot clock with the steps detected by both units (thesis ch.7.2.2:
+    the gyroscope-detected steps align the units); the session unchanged when that fails."""
+    try:
+        from pdrlearn.steps.align import align_units, apply_alignment
+
+        offset, drift = align_units(session)
+        return apply_alignment(session, offset, drift), {"offset_s": float(offset), "drift": float(drift)}
+    except (ImportError, AttributeError):
+        warnings.append("pdrlearn.steps.align_units not available: unit clocks not aligned")
+    except DataError as exc:
+        warnings.append(f"unit clocks not aligned ({exc})")
+    return session, None
+
+
 _TASK_COLUMNS = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
 
 
@@ -164,7 +179,7 @@ def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
 def track_plasys(session: Session, *, method: str = "M3", model=None, start=None, params=None,
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
                  bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
-                 min_confidence: float = 0.0, **opts) -> TrackResult:
+                 min_confidence: float = 0.0, align: bool = False, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -179,6 +194,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
         (the foot unit measures strides = two steps, see docs/decisions/localization.md)
     down_mode : "norm3" (thesis eq. 61) or "horizontal" for descending stairs
+    align : M3: align the waist clock to the foot clock from the steps both units detect (off by
+        default, see docs/decisions/localization.md L13)
     min_confidence : a class rule is applied only when the model's probability of the class reaches this
         (0 = always, as the thesis)
     """
@@ -222,6 +239,10 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                            dtype=object)
     classes["confidence"] = strides.get("confidence", pd.Series(1.0, index=strides.index)).to_numpy()
     model_bounds = None
+    has_waist = session.has("wAccelerometer", "wGyroscope") and "waist" in session.frames
+    work, alignment = session, None
+    if align and cfg["rules"] and has_waist:
+        work, alignment = _align(session, warnings)
     if cfg["rules"]:
         if model is None:
             raise ModelError("M3 needs the step classes: pass a trained model directory (--model DIR, see "
@@ -231,7 +252,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             model_bounds = next((session.meta[k] for k in ("length_class_bounds_m", "length_bounds_m")
                                  if session.meta.get(k) is not None), None)
         else:
-            classes, model_bounds = _model_classes(model, session, strides)
+            classes, model_bounds = _model_classes(model, work, strides)
     use_bounds = bounds if bounds is not None else model_bounds
     clamp = cfg["rules"]
     if clamp and use_bounds is None:
@@ -252,14 +273,13 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     length = applied["length_m"].to_numpy()
     dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
 
-    has_waist = session.has("wAccelerometer", "wGyroscope") and "waist" in session.frames
     hsrc = heading or cfg["heading"]
     if hsrc == "waist" and not has_waist:
         warnings.append("no waist unit: heading from the foot's own integrated yaw (relative to the start)")
         hsrc = "foot"
     lateral = np.arctan2(disp[:, 1], np.abs(disp[:, 0])) * np.where(disp[:, 0] < 0, -1.0, 1.0)
     if hsrc == "waist":
-        wh = WaistHeading().fit_session(session)
+        wh = WaistHeading().fit_session(work)
         warnings += wh.warnings_
         head = _stride_heading(wh, strides)
     elif hsrc == "foot":
@@ -293,6 +313,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     info = {"pipeline": "plasys", "method": method, "heading_source": hsrc, "stance_source": stance_source,
             "steps_source": source,
             "classes_source": ("oracle" if oracle else ("model" if cfg["rules"] else None)),
+            "unit_alignment": alignment,
             "length_bounds_m": rules.effective_bounds() if clamp else None,
             "settings": {k: getattr(fd, k)
                          for k in ("integrator", "zupt_end", "gyro_bias", "attitude", "sw", "r")},
