@@ -39,7 +39,7 @@ class StepKind:
     duration : step-duration factor (x the user's step time)
     toe_off : toe-off pitch factor (x the user's toe-off pitch; < 0 lifts the toes first: backward)
     contact_deg : pitch at initial contact (deg; None = the user's heel-strike pitch; < 0 = toe first)
-    mid_swing_deg : pitch at mid-swing (deg; None = 80 % of the contact pitch)
+    mid_swing_deg : pitch at mid-swing (deg; None = 90 % of the contact pitch)
     impact : (forward, vertical) velocity of the contact point just before contact (x user impact speed)
     clearance_m : heel height above the higher footprint at early swing (None = the user's swing height)
     """
@@ -61,13 +61,15 @@ KINDS = {
     "walk": StepKind(1.00, 1.00, None, None, (0.55, -0.85), None),
     "close": StepKind(1.00, 0.60, None, None, (0.35, -0.6), 0.15),
     "stairs_up": StepKind(0.95, 0.7, 8.0, 6.0, (0.7, -1.0), 0.11),
-    "stairs_down": StepKind(0.82, 0.75, -26.0, 17.0, (0.3, -0.95), 0.09),
+    "stairs_down": StepKind(0.82, 0.6, -22.0, 0.0, (0.3, -0.95), 0.09),
     "backward": StepKind(1.20, -0.30, -15.0, None, (0.30, -0.6), 0.09),
     "turn": StepKind(1.10, 0.25, 3.0, None, (0.05, -0.3), 0.05),
 }
 SPEED_PITCH = {"slow": 0.88, "normal": 1.0, "fast": 1.08}
 LOAD_FRACTION = 0.10  # initial contact -> foot flat, fraction of the gait cycle
-HEEL_OFF_FRACTION = 0.35  # heel-off instant, fraction of the gait cycle
+HEEL_OFF_FRACTION = 0.40  # heel-off instant, fraction of the gait cycle
+PUSH_OFF_RATE = 2.1  # pitch rate at toe-off / mean rate of the forefoot rocker (fast push-off)
+SWING_PITCH_KNOTS = (0.0, 0.15, 0.75, 1.0)  # normalised swing times of the pitch knots
 
 
 @dataclass
@@ -141,7 +143,7 @@ def schedule(
                 * gait_pitch
             )
         ev["theta_ic"][k] = ic_pitch * (1.0 + 0.1 * variability * rng.normal())
-        ev["theta_mid"][k] = 0.8 * ev["theta_ic"][k] if kd.mid_swing_deg is None else np.radians(kd.mid_swing_deg) * jit
+        ev["theta_mid"][k] = 0.9 * ev["theta_ic"][k] if kd.mid_swing_deg is None else np.radians(kd.mid_swing_deg) * jit
         sp = user.impact_speed_mps * np.exp(rng.normal(0.0, 0.25 * variability))
         sp *= {"slow": 0.8, "normal": 1.0, "fast": 1.2}[speed] * GAIT_FACTORS[st.gait][0] ** 0.5
         if st.irregular:
@@ -178,7 +180,7 @@ def foot_pose(
         # forefoot (or heel) rocker: heel-off -> toe-off, pivot fixed on footprint A
         th_to, th_ic = ev.theta_to[k], ev.theta_ic[k]
         rock, load = ev.to[k] - ev.ho[k], ev.ff[k] - ev.ic[k]
-        w_to = 1.5 * th_to / rock
+        w_to = PUSH_OFF_RATE * th_to / rock
         w_ic = -1.5 * th_ic / load
         r_a = _pivot(th_to, ball)
         p_a = h_a + foot_rotate(y_a, 0.0, r_a)
@@ -210,9 +212,9 @@ def foot_pose(
         heel[sl] = clamped_spline(ev.to[k] + knots_u * swing, kp, v_to, v_ic, t[sl])
         tu = (t[sl] - ev.to[k]) / swing
         yaw[sl] = y_a + (y_b - y_a) * smoothstep(tu)
-        pk = np.array([th_to, th_to + 0.15 * th_to - 0.1 * np.sign(th_to) * abs(th_ic), ev.theta_mid[k], th_ic])
+        pk = np.array([th_to, 1.15 * th_to, ev.theta_mid[k], th_ic])
         theta[sl] = clamped_spline(
-            ev.to[k] + np.array([0.0, 0.14, 0.58, 1.0]) * swing, pk[:, None], np.array([w_to]), np.array([w_ic]), t[sl]
+            ev.to[k] + np.array(SWING_PITCH_KNOTS) * swing, pk[:, None], np.array([w_to]), np.array([w_ic]), t[sl]
         )[:, 0]
         # loading rocker: initial contact -> foot flat, pivot fixed on footprint B
         sl = slice(i_ic, i_ff)

@@ -14,7 +14,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.io.frames import THESIS_FOOT_FRAME, THESIS_WAIST_FRAME
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.sim import sensors as sn
-from pdrlearn.sim.body import Events, foot_loads, foot_pose, pelvis_pose, schedule
+from pdrlearn.sim.body import HEEL_OFF_FRACTION, LOAD_FRACTION, Events, foot_loads, foot_pose, pelvis_pose, schedule
 from pdrlearn.sim.kernels import (
     angular_rate_body,
     block_mean,
@@ -102,7 +102,7 @@ def _stride_table(
     for j, k in enumerate(idx):
         st = steps[k]
         T = 2.0 * ev.step_s[k]
-        gap = 0.5 * (0.35 - 0.10) * T  # half the foot-flat period of a steady gait cycle
+        gap = 0.5 * (HEEL_OFF_FRACTION - LOAD_FRACTION) * T  # half the foot-flat period of a steady cycle
         ho = ev.ho[k]
         start = 0.5 * (prev_ff + ho) if prev_ff is not None and ho - prev_ff < 2 * gap + 0.3 else ho - gap
         nxt = idx[j + 1] if j + 1 < len(idx) else None
