@@ -92,6 +92,7 @@ def gnss_rows(u, pdr, truth, label):
         ("best performance (continuous)", dict(mode="best")),
         ("energy saving 60 s", dict(mode="saving", period_s=60.0)),
         ("energy saving 180 s", dict(mode="saving", period_s=180.0)),
+        ("best performance, compensation only while off", dict(mode="best", compensate_when="off")),
         ("energy saving 60 s, no compensation", dict(mode="saving", period_s=60.0, compensate=False)),
         ("energy saving 60 s, a*f-b model", dict(mode="saving", period_s=60.0, step_length="model")),
         ("off (PDR only)", dict(mode="off")),
@@ -118,6 +119,7 @@ def sporadic_rows(u, pdr, truth, label):
     for tp in (1, 2, 4, 8, 16):
         for name, kw in (
             ("stretching + yaw feedback", {}),
+            ("stretching + yaw + length-scale feedback", dict(scale_feedback=True)),
             ("no stretching, no feedback", dict(stretch=False, yaw_feedback=None)),
         ):
             f = SporadicFixFusion(period_s=float(tp), **kw).run(
