@@ -211,10 +211,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
             headings[seq[-1]] = current
     headings = _fill_nan_headings(headings, 0.0)
     steps = steps.assign(turning=turning)
+    length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"
     info = {
         "pipeline": pipeline,
-        "method": {"steps": steps.attrs.get("detector", ""), "length": "pendulum" if pipeline ==
-                   "waist-pendulum" else "frequency", "heading": method},
+        "method": f"{steps.attrs.get('detector', '')}/{length_model}/{method}",
+        "methods": {"steps": steps.attrs.get("detector", ""), "length": length_model, "heading": method},
         "params": p.to_dict(),
         "params_source": p.source,
         "warnings": warnings,

@@ -1,0 +1,37 @@
+"""Speed of the waist pipelines on the real 137.6 s daily-activity recording (run with `make bench`)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+pytestmark = pytest.mark.bench
+
+SESSION = Path(__file__).resolve().parents[2] / "datasets" / "real" / "mobgap_HA001_Test11_Trial1"
+
+
+@pytest.fixture(scope="module")
+def session():
+    if not SESSION.exists():
+        pytest.skip("real data not bundled")
+    from pdrlearn.io import read_session
+
+    return read_session(SESSION)
+
+
+@pytest.mark.parametrize("pipeline,opts", [("waist-pendulum", {}), ("waist-pendulum", {"realtime": True}),
+                                           ("waist-pll", {}), ("waist-pll", {"heading": "ellipse"})])
+def test_bench_waist_pipeline(benchmark, session, pipeline, opts):
+    from pdrlearn.track import get_pipeline
+
+    fn = get_pipeline(pipeline)
+    res = benchmark(fn, session, **opts)
+    assert len(res.steps) > 40
+
+
+def test_bench_waist_ahrs(benchmark, session):
+    from pdrlearn.waist import waist_imu
+
+    imu = benchmark(waist_imu, session)
+    assert len(imu.t) == len(session["wAccelerometer"])
