@@ -1,0 +1,103 @@
+"""Runtime benchmarks (issue 7 targets, measured, not asserted; run with `make bench` or
+``pytest tests/benchmarks/test_bench_runtime.py --benchmark-enable -m bench -s``).
+
+Targets: per-step latency (step window + features + 3 task classifiers + displacement) p50 <= 0.3 ms,
+p99 <= 2 ms; runtime import + bundle load < 0.5 s; bundle size < 5 MB for the default methods.
+The bundle is trained on the simulator's calibration exercises of one user (default export = each
+task's chosen method, usually a foot+waist fused model = 2 ONNX runs per task).
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+pytestmark = pytest.mark.bench
+
+
+@pytest.fixture(scope="module")
+def bundles(tmp_path_factory):
+    from pdrlearn.classify import train_user
+    from pdrlearn.export.from_model import export_model
+    from pdrlearn.sim import simulate
+
+    root = tmp_path_factory.mktemp("bench_runtime")
+    cal = [simulate(sc, 1) for sc in ("terrain", "direction", "length")]
+    train_user(cal, cv=3, seed=0).save(root / "model")
+    export_model(root / "model", root / "bundle")
+    export_model(root / "model", root / "bundle_all", methods=["heuristic", "fusion", "dtw", "svm", "nn"])
+    return {"root": root, "session": simulate("C", 1)}
+
+
+def _loaded_tracker(bundle, session, **kw):
+    from pdrlearn.runtime.tracker import Tracker
+
+    tr = Tracker(bundle, frames={p: f.to_dict() for p, f in session.frames.items()}, buffer_s=1e9, **kw)
+    tr.push({n: (st.t, st.values) for n, st in session.streams.items()})  # fills the buffers
+    return tr
+
+
+def _latencies(tr, steps, repeat=3) -> np.ndarray:
+    out = []
+    for _ in range(repeat):
+        for a, b in steps:
+            t0 = time.perf_counter()
+            tr.process_step(a, b)
+            out.append(time.perf_counter() - t0)
+    return np.array(out) * 1e3
+
+
+def test_bench_runtime_per_step_default_bundle(benchmark, bundles):
+    s = bundles["session"]
+    tr = _loaded_tracker(bundles["root"] / "bundle", s)
+    steps = list(zip(s.steps["start_s"], s.steps["end_s"], strict=True))
+    lat = _latencies(tr, steps)
+    benchmark.extra_info.update(p50_ms=float(np.percentile(lat, 50)), p99_ms=float(np.percentile(lat, 99)),
+                                methods={t: f"{c.method}/{c.unit}" for t, c in tr.classifiers.items()})
+    print(f"\nper step (default bundle {benchmark.extra_info['methods']}): p50 {np.percentile(lat, 50):.2f} ms, "
+          f"p99 {np.percentile(lat, 99):.2f} ms over {len(lat)} steps")
+    a, b = steps[len(steps) // 2]
+    benchmark(tr.process_step, a, b)
+
+
+@pytest.mark.parametrize("method", ["heuristic/foot", "fusion/fused", "dtw/foot", "svm/foot", "nn/foot",
+                                    "svm/fused", "nn/fused"])
+def test_bench_runtime_per_step_by_method(benchmark, bundles, method):
+    s = bundles["session"]
+    tr = _loaded_tracker(bundles["root"] / "bundle_all", s,
+                         methods={t: method for t in ("terrain", "direction", "length")})
+    steps = list(zip(s.steps["start_s"], s.steps["end_s"], strict=True))
+    lat = _latencies(tr, steps, repeat=1)
+    print(f"\n{method} (3 tasks): p50 {np.percentile(lat, 50):.2f} ms, p99 {np.percentile(lat, 99):.2f} ms")
+    a, b = steps[len(steps) // 2]
+    benchmark(tr.process_step, a, b)
+
+
+def test_bench_runtime_import_and_bundle_load(benchmark, bundles):
+    script = ("import time; t=time.perf_counter(); import pdrlearn.runtime as r; "  # noqa: UP031
+              "from pdrlearn.runtime.tracker import Tracker; tr=Tracker(r.load_bundle(%r)); "
+              "import json; print(json.dumps(time.perf_counter()-t))") % str(bundles["root"] / "bundle")
+
+    def once():
+        out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True)
+        return json.loads(out.stdout)
+
+    times = [once() for _ in range(5)]
+    print(f"\nimport + bundle load (incl. ONNX sessions): median {np.median(times) * 1e3:.0f} ms")
+    benchmark.extra_info["median_s"] = float(np.median(times))
+    benchmark.pedantic(once, rounds=3, iterations=1)
+
+
+def test_bench_bundle_size(benchmark, bundles):
+    from pdrlearn.export.bundle import bundle_size_bytes
+
+    size = bundle_size_bytes(bundles["root"] / "bundle")
+    size_all = bundle_size_bytes(bundles["root"] / "bundle_all")
+    print(f"\nbundle size: default {size / 1e3:.0f} kB, all methods {size_all / 1e3:.0f} kB")
+    benchmark.extra_info.update(default_bytes=size, all_methods_bytes=size_all)
+    benchmark(bundle_size_bytes, bundles["root"] / "bundle")
