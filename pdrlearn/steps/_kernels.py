@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
+from scipy.signal import lfilter
 
 Event = tuple[float, float, float, float, dict]
 
@@ -303,8 +304,8 @@ class PLLState:
     power: float = math.nan
     last_t: float = math.nan
     last_peak_t: float = math.nan
-    buf_t: list = field(default_factory=list)
-    buf_v: list = field(default_factory=list)
+    buf_t: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    buf_v: np.ndarray = field(default_factory=lambda: np.zeros(0))
     pending: list = field(default_factory=list)  # [t_peak, freq_hz]
 
 
@@ -314,71 +315,107 @@ def pll_kernel(t: np.ndarray, v: np.ndarray, state: PLLState, p: PLLParams) -> t
     (theta wraps past 2 pi), accepted when the variance of ``v`` over ``gate_window_s`` centred on the
     peak exceeds ``gate_var`` (seed 001's activity gate). The step frequency is 1 / (time since the
     previous peak) (seed 000: f_k = 1/T_k), or the loop frequency for the first peak."""
-    out: list[Event] = []
     s = state
+    if t.size == 0:
+        return [], s
+    # amplitude normalisation: running mean power, exponential with time constant agc_tau_s
+    dt = np.diff(t, prepend=t[0] if s.last_t != s.last_t else s.last_t)
+    alpha = np.exp(-dt / p.agc_tau_s)
+    vv = v * v
+    pw = s.power if s.power == s.power else float(vv[0])
+    if np.all(alpha[1:] == alpha[0]):  # uniform sampling: the same recursion as a first-order IIR
+        a0 = float(alpha[0])
+        power, _ = lfilter([1.0 - a0], [1.0, -a0], vv, zi=[a0 * pw])
+    else:
+        power = np.empty_like(v)
+        for i, (ai, qi) in enumerate(zip(alpha.tolist(), vv.tolist(), strict=True)):
+            pw = ai * pw + (1.0 - ai) * qi
+            power[i] = pw
+    s.power = float(power[-1])
+    x = np.clip(np.where(power > 1e-12, v / np.sqrt(np.maximum(power, 1e-300)), 0.0), -3.0, 3.0)
     w_min, w_max = 2 * math.pi * p.f_min_hz, 2 * math.pi * p.f_max_hz
     w0 = 2 * math.pi * p.f0_hz
+    i_lo, i_hi = w_min - w0, w_max - w0
+    two_pi = 2 * math.pi
+    theta, integ, last_peak = s.theta, s.integ, s.last_peak_t
+    kp, ki = p.kp, p.ki
+    sin = math.sin
+    for ti, xi, di in zip(t.tolist(), x.tolist(), dt.tolist(), strict=True):
+        pd = -xi * sin(theta)
+        integ += ki * pd * di
+        if integ < i_lo:
+            integ = i_lo
+        elif integ > i_hi:
+            integ = i_hi
+        omega = w0 + kp * pd + integ
+        if omega < w_min:
+            omega = w_min
+        elif omega > w_max:
+            omega = w_max
+        th_prev = theta
+        theta += omega * di
+        if theta >= two_pi:
+            theta -= two_pi
+            step = omega * di
+            tp = ti - di + ((two_pi - th_prev) / step) * di if step > 0 else ti
+            freq = 1.0 / (tp - last_peak) if last_peak == last_peak else omega / two_pi
+            s.pending.append([tp, freq, last_peak])
+            last_peak = tp
+    s.theta, s.integ, s.last_peak_t, s.last_t = theta, integ, last_peak, float(t[-1])
+    # activity gate and event refinement need the samples up to half a gate window after each peak
+    s.buf_t = np.concatenate([np.asarray(s.buf_t, dtype=float), t])
+    s.buf_v = np.concatenate([np.asarray(s.buf_v, dtype=float), v])
     half = 0.5 * p.gate_window_s
-    for ti, vi in zip(t.tolist(), v.tolist(), strict=True):
-        dt = ti - s.last_t if s.last_t == s.last_t else 0.0
-        s.last_t = ti
-        if s.power != s.power:
-            s.power = vi * vi
-        elif dt > 0:
-            a = math.exp(-dt / p.agc_tau_s)
-            s.power = a * s.power + (1 - a) * vi * vi
-        x = vi / math.sqrt(s.power) if s.power > 1e-12 else 0.0
-        x = max(-3.0, min(3.0, x))
-        pd = -x * math.sin(s.theta)
-        s.integ += p.ki * pd * dt
-        s.integ = max(w_min - w0, min(w_max - w0, s.integ))
-        omega = max(w_min, min(w_max, w0 + p.kp * pd + s.integ))
-        th_prev = s.theta
-        s.theta += omega * dt
-        if s.theta >= 2 * math.pi:
-            s.theta -= 2 * math.pi
-            frac = (2 * math.pi - th_prev) / (omega * dt) if omega * dt > 0 else 1.0
-            tp = ti - dt + frac * dt
-            freq = 1.0 / (tp - s.last_peak_t) if s.last_peak_t == s.last_peak_t else omega / (2 * math.pi)
-            s.pending.append([tp, freq, s.last_peak_t])
-            s.last_peak_t = tp
-        s.buf_t.append(ti)
-        s.buf_v.append(vi)
-        while s.pending and ti >= s.pending[0][0] + half:
-            out.extend(_pll_decide(s, s.pending.pop(0), p))
-        # keep only what the oldest pending peak (or the next one) can need
-        keep_from = (s.pending[0][0] if s.pending else ti) - half
-        if len(s.buf_t) > 64 and s.buf_t[32] < keep_from:
-            k = 0
-            while k < len(s.buf_t) and s.buf_t[k] < keep_from:
-                k += 1
-            del s.buf_t[:k]
-            del s.buf_v[:k]
+    n_ready = 0
+    while n_ready < len(s.pending) and s.last_t >= s.pending[n_ready][0] + half:
+        n_ready += 1
+    out = _pll_decide_many(s, s.pending[:n_ready], p)
+    del s.pending[:n_ready]
+    keep_from = min(s.pending[0][0] if s.pending else s.last_t, s.last_t) - half - 1.0
+    k = int(np.searchsorted(s.buf_t, keep_from))
+    s.buf_t, s.buf_v = s.buf_t[k:], s.buf_v[k:]
     return out, s
 
 
-def _pll_decide(s: PLLState, c: list, p: PLLParams) -> list[Event]:
-    tp, freq, prev = c
+def _segment_sums(x: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Sum of ``x[lo_i:hi_i]`` for possibly overlapping segments (each reduced on its own)."""
+    idx = np.empty(2 * lo.size, dtype=np.intp)
+    idx[0::2], idx[1::2] = lo, hi
+    xp = np.append(x, 0.0)  # hi may equal len(x)
+    return np.add.reduceat(xp, idx)[0::2]
+
+
+def _pll_decide_many(s: PLLState, cands: list, p: PLLParams) -> list[Event]:
+    """Activity gate (variance of ``v`` over the window centred on each peak) and event refinement."""
+    if not cands:
+        return []
     half = 0.5 * p.gate_window_s
-    vals = [v for tt, v in zip(s.buf_t, s.buf_v, strict=True) if tp - half <= tt <= tp + half]
-    if len(vals) < 2:
-        return []
-    var = float(np.var(np.asarray(vals)))
-    if var < p.gate_var:
-        return []
-    if p.refine_frac > 0:
-        r = p.refine_frac / max(freq, p.f_min_hz)
-        best, best_v = tp, -math.inf
-        for tt, v in zip(s.buf_t, s.buf_v, strict=True):
-            if tp - r <= tt <= tp + r and v > best_v:
-                best, best_v = tt, v
-        tp = best
-    start = prev if prev == prev and tp - prev < 2.0 / p.f_min_hz else tp - 1.0 / max(freq, p.f_min_hz)
-    return [(tp, start, tp, min(1.0, var / (2 * p.gate_var)), {"step_freq_hz": freq})]
+    bt, bv = s.buf_t, s.buf_v
+    tps = np.array([c[0] for c in cands])
+    lo = np.searchsorted(bt, tps - half, side="left")
+    hi = np.searchsorted(bt, tps + half, side="right")
+    n = hi - lo
+    ok = n >= 2
+    lo, hi, n = np.where(ok, lo, 0), np.where(ok, hi, 1), np.maximum(n, 1)
+    mean = _segment_sums(bv, lo, hi) / n
+    var = np.maximum(_segment_sums(bv * bv, lo, hi) / n - mean * mean, 0.0)
+    out: list[Event] = []
+    for c, good, vi in zip(cands, ok.tolist(), var.tolist(), strict=True):
+        if not good or vi < p.gate_var:
+            continue
+        tp, freq, prev = c
+        if p.refine_frac > 0:
+            r = p.refine_frac / max(freq, p.f_min_hz)
+            a, b = np.searchsorted(bt, tp - r, side="left"), np.searchsorted(bt, tp + r, side="right")
+            if b > a:
+                tp = float(bt[a + int(np.argmax(bv[a:b]))])
+        start = prev if prev == prev and tp - prev < 2.0 / p.f_min_hz else tp - 1.0 / max(freq, p.f_min_hz)
+        out.append((tp, start, tp, min(1.0, vi / (2 * p.gate_var)), {"step_freq_hz": freq}))
+    return out
 
 
 def pll_flush(state: PLLState, p: PLLParams) -> list[Event]:
-    out: list[Event] = []
-    while state.pending:
-        out.extend(_pll_decide(state, state.pending.pop(0), p))
+    """Decide the peaks still waiting for their look-ahead with the samples available."""
+    out = _pll_decide_many(state, state.pending, p)
+    state.pending = []
     return out
