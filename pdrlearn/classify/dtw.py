@@ -20,6 +20,7 @@ from sklearn.base import BaseEstimator, ClassifierMixin
 from sklearn.utils.multiclass import check_classification_targets
 from sklearn.utils.validation import check_is_fitted, column_or_1d, validate_data
 
+from pdrlearn.classify.svm import check_X_fast
 from pdrlearn.errors import DataError
 
 log = logging.getLogger(__name__)
@@ -177,11 +178,13 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
 
     # -- helpers ---------------------------------------------------------------------------------
     def _validate(self, X, *, reset: bool) -> np.ndarray:
-        X = validate_data(self, X, reset=reset, allow_nd=True, dtype=np.float64)
+        if reset:
+            X = validate_data(self, X, reset=True, allow_nd=True, dtype=np.float64)
+        else:
+            X = check_X_fast(self, X, allow_nd=True)
         if X.ndim not in (2, 3):
             raise DataError(
-                f"DTWClassifier: X must be (steps, channels, samples) or (steps, samples), "
-                f"got shape {X.shape}"
+                f"DTWClassifier: X must be (steps, channels, samples) or (steps, samples), got shape {X.shape}"
             )
         return as_series(X)
 
@@ -276,9 +279,7 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
             )
             computed += c
         if len(S):
-            log.debug(
-                "DTW: %.1f of %d references computed per step", computed / len(S), len(self.references_)
-            )
+            log.debug("DTW: %.1f of %d references computed per step", computed / len(S), len(self.references_))
         return self.classes_[out]
 
     def __sklearn_tags__(self):

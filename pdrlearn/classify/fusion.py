@@ -18,6 +18,7 @@ from sklearn.model_selection import train_test_split
 from sklearn.utils.multiclass import check_classification_targets
 from sklearn.utils.validation import check_is_fitted, validate_data
 
+from pdrlearn.classify.svm import check_X_fast
 from pdrlearn.errors import DataError
 
 log = logging.getLogger(__name__)
@@ -155,7 +156,7 @@ class UnitFusionClassifier(ClassifierMixin, BaseEstimator):
     def unit_proba(self, X) -> dict[str, np.ndarray]:
         """Each unit's probabilities, aligned to :attr:`classes_`."""
         check_is_fitted(self)
-        X = validate_data(self, X, reset=False, allow_nd=True, dtype=np.float64, ensure_all_finite=False)
+        X = check_X_fast(self, X, allow_nd=True, finite=False)
         return dict(zip(self.unit_names_, self._probas(self.estimators_, X), strict=True))
 
     def predict_proba(self, X) -> np.ndarray:

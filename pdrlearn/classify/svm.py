@@ -68,19 +68,20 @@ def svc_decision(
     return K @ dual + b
 
 
-def check_X_fast(est, X) -> np.ndarray:
-    """Fast path of ``validate_data(est, X, reset=False)`` for a finite float64 2-D array of the fitted
-    width (one step at a time is the runtime case); anything else goes through scikit-learn's checks."""
+def check_X_fast(est, X, *, allow_nd: bool = False, finite: bool = True) -> np.ndarray:
+    """Fast path of ``validate_data(est, X, reset=False)`` for a float64 array of the fitted width (2-D,
+    or 2-/3-D with ``allow_nd``; finite unless ``finite=False``) - one step at a time is the runtime case;
+    anything else goes through scikit-learn's checks."""
     if (
         type(X) is np.ndarray
         and X.dtype == np.float64
-        and X.ndim == 2
+        and (X.ndim == 2 or (allow_nd and X.ndim == 3))
         and X.shape[0] > 0
         and X.shape[1] == getattr(est, "n_features_in_", -1)
-        and np.isfinite(X).all()
+        and (not finite or np.isfinite(X).all())
     ):
         return X
-    return validate_data(est, X, reset=False, dtype=np.float64)
+    return validate_data(est, X, reset=False, dtype=np.float64, allow_nd=allow_nd, ensure_all_finite=finite)
 
 
 class SVMClassifier(ClassifierMixin, BaseEstimator):
@@ -89,7 +90,11 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
     Parameters
     ----------
     task : ``"terrain"``, ``"direction"``, ``"length"`` or ``None`` (rbf for every class).
-    C : soft-margin penalty of every binary model.
+    C : soft-margin penalty of every binary model, or ``"cv"``: the value of ``C_grid`` with the best
+        inner stratified 3-fold CV accuracy (thesis ch. 3: "each combination of parameter choices is
+        checked using cross validation, and the parameters with best cross validation accuracy are
+        chosen"); ties -> the smallest C (widest margin).
+    C_grid : candidates for ``C="cv"``.
     coef0 : independent term of the polynomial kernels; 1.0 gives MATLAB's ``(1 + x'y)^p`` form (decision
         in docs/decisions/classifiers.md).
     class_weight : ``"balanced"`` (each binary SVC balances its positive class against the rest), ``None``,
@@ -105,12 +110,14 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
         self,
         *,
         task: str | None = None,
-        C: float = 1.0,
+        C: float | str = "cv",
+        C_grid: tuple[float, ...] = (0.3, 1.0, 3.0, 10.0),
         coef0: float = 1.0,
         class_weight: str | dict | None = "balanced",
     ):
         self.task = task
         self.C = C
+        self.C_grid = C_grid
         self.coef0 = coef0
         self.class_weight = class_weight
 
@@ -119,19 +126,18 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
         check_classification_targets(y)
         self.classes_ = np.unique(y)
         if len(self.classes_) < 2:
-            raise DataError(
-                f"SVMClassifier: only one class ({self.classes_[0]!r}); label steps of at least 2 classes"
-            )
+            raise DataError(f"SVMClassifier: only one class ({self.classes_[0]!r}); label steps of at least 2 classes")
         sample_weight = None
         if isinstance(self.class_weight, dict):  # per original class -> per step
             sample_weight = np.array([self.class_weight.get(v, 1.0) for v in y], dtype=float)
         binary_weight = self.class_weight if self.class_weight == "balanced" else None
+        self.C_ = self._select_C(X, y) if isinstance(self.C, str) else float(self.C)
         self.kernels_ = {}
         self.estimators_ = []
         for c in self.classes_:  # one model per class, also for 2 classes (symmetric scores)
             kw = kernel_for(self.task, c)
             self.kernels_[str(c)] = kw
-            svc = SVC(C=self.C, coef0=self.coef0, gamma="scale", class_weight=binary_weight, **kw)
+            svc = SVC(C=self.C_, coef0=self.coef0, gamma="scale", class_weight=binary_weight, **kw)
             model = clone(make_pipeline(StandardScaler(), svc))
             model.fit(X, (y == c).astype(int), svc__sample_weight=sample_weight)
             self.estimators_.append(model)
@@ -150,6 +156,27 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
             for m in self.estimators_
         ]
         return self
+
+    def _select_C(self, X: np.ndarray, y: np.ndarray) -> float:
+        if self.C != "cv":
+            raise DataError(f"SVMClassifier: C must be a number or 'cv', not {self.C!r}")
+        from sklearn.model_selection import StratifiedKFold
+
+        counts = np.unique(y, return_counts=True)[1]
+        if counts.min() < 3 or not self.C_grid:
+            return 1.0
+        folds = list(StratifiedKFold(3, shuffle=True, random_state=0).split(X, y))
+        best_c, best_acc = 1.0, -1.0
+        for c in sorted(self.C_grid):
+            acc = 0.0
+            for tr, te in folds:
+                if len(np.unique(y[tr])) < 2:
+                    continue
+                m = SVMClassifier(task=self.task, C=float(c), coef0=self.coef0, class_weight=self.class_weight)
+                acc += float(np.sum(m.fit(X[tr], y[tr]).predict(X[te]) == y[te]))
+            if acc > best_acc:
+                best_c, best_acc = float(c), acc
+        return best_c
 
     def decision_function(self, X) -> np.ndarray:
         """One-vs-rest scores ``(n, n_classes)`` (for 2 classes, the score of ``classes_[1]``)."""
