@@ -227,6 +227,30 @@ def foot_pose(
 
 
 # -- pelvis -------------------------------------------------------------------------------------
+TRUNK_ACC_SD = (0.5, 0.45, 0.6)  # m/s^2 forward, left, up: irregular trunk accelerations while walking
+TRUNK_RATE_SD = (0.08, 0.06, 0.06)  # rad/s yaw, pitch, roll
+TRUNK_BAND_HZ = (1.5, 7.0)
+
+
+def trunk_vibration(t: np.ndarray, rng: np.random.Generator, target_sd: tuple[float, ...]) -> np.ndarray:
+    """Band-limited random displacements/angles (n, k) whose 2nd (displacements, first 3 columns) or 1st
+    (angles, last 3) time derivative has the standard deviation ``target_sd``; computed at 100 Hz and
+    interpolated to ``t``."""
+    from scipy.signal import butter, sosfiltfilt
+
+    t_c = np.arange(t[0], t[-1] + 0.01, 0.01)
+    k = len(target_sd)
+    if t_c.size < 50:
+        return np.zeros((t.size, k))
+    sos = butter(2, TRUNK_BAND_HZ, btype="bandpass", fs=100.0, output="sos")
+    x = sosfiltfilt(sos, rng.normal(0.0, 1.0, (t_c.size, k)), axis=0)
+    out = np.empty((t.size, k))
+    for j, sd in enumerate(target_sd):
+        d = np.diff(x[:, j], n=2 if j < 3 else 1) / 0.01 ** (2 if j < 3 else 1)
+        out[:, j] = np.interp(t, t_c, x[:, j] * sd / max(float(d.std()), 1e-12))
+    return out
+
+
 def _foot_centre(heel: np.ndarray, yaw: float, user: UserProfile) -> np.ndarray:
     return heel + np.array([np.cos(yaw), np.sin(yaw), 0.0]) * 0.4 * user.foot_length_m
 
@@ -242,6 +266,8 @@ def pelvis_pose(
     ev: Events,
     initial: dict,
     user: UserProfile,
+    rng: np.random.Generator | None = None,
+    trunk_noise: float = 1.0,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pelvis reference point (n, 3) at the waist-unit height, orientation (n, 3, 3) and base heading (n,)."""
     feet = {f: (np.asarray(h, float), y) for f, (h, y) in initial.items()}
@@ -311,14 +337,25 @@ def pelvis_pose(
         kick_f[i0:i1] -= 0.03 * s * g
         kick_l[i0:i1] += (0.02 if st.foot == "left" else -0.02) * s * g
 
+    # trunk vibration: band-limited random motion while walking (fwd, left, up in m; yaw, pitch, roll in rad)
+    if rng is not None and trunk_noise > 0:
+        vib = env[:, None] * trunk_noise * trunk_vibration(t, rng, TRUNK_ACC_SD + TRUNK_RATE_SD)
+    else:
+        vib = np.zeros((t.size, 6))
     ca, sa = np.cos(heading), np.sin(heading)
     pos = np.empty((t.size, 3))
-    fwd = surge + kick_f
-    sway = sway + kick_l
+    fwd = surge + kick_f + vib[:, 0]
+    sway = sway + kick_l + vib[:, 1]
     pos[:, 0] = base[:, 0] + ca * fwd - sa * sway
     pos[:, 1] = base[:, 1] + sa * fwd + ca * sway
-    pos[:, 2] = base[:, 2] + user.sensor_height_m + bounce + kick_v
-    rot = np.einsum("nij,njk,nkl->nil", rot_z(heading + yaw_osc), rot_y(tilt), rot_x(roll), optimize=True)
+    pos[:, 2] = base[:, 2] + user.sensor_height_m + bounce + kick_v + vib[:, 2]
+    rot = np.einsum(
+        "nij,njk,nkl->nil",
+        rot_z(heading + yaw_osc + vib[:, 3]),
+        rot_y(tilt + vib[:, 4]),
+        rot_x(roll + vib[:, 5]),
+        optimize=True,
+    )
     return pos, rot, heading
 
 

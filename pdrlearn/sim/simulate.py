@@ -219,7 +219,10 @@ def simulate_path(
 
     # -- waist unit (front of the belt) --
     r_waist = np.array([0.12, 0.0, 0.0])
-    p_pel, R_p, _ = pelvis_pose(t, steps, ev, initial, user)
+    trunk = float(opt["variability"]) if noise else 0.0  # exact physics (noise=False): no trunk vibration
+    p_pel, R_p, _ = pelvis_pose(
+        t, steps, ev, initial, user, rng=_rng(user.seed, int(seed), scenario, speed, "trunk"), trunk_noise=trunk
+    )
     p_w = p_pel + R_p @ r_waist
     fw_body = block_mean(specific_force_body(p_w, R_p, dt), OVERSAMPLE)
     ww_body = block_mean(angular_rate_body(R_p, dt), OVERSAMPLE)
