@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 import onnx
 
+from pdrlearn.classify.model_dir import _json_default  # numpy scalars/arrays, paths -> JSON
 from pdrlearn.errors import ModelError
 from pdrlearn.runtime.bundle import (
     MANIFEST,
@@ -59,16 +60,6 @@ def base_manifest(**fields) -> dict:
     }
     m.update(fields)
     return m
-
-
-def _json_default(o):
-    if isinstance(o, np.generic):
-        return o.item()
-    if isinstance(o, np.ndarray):
-        return o.tolist()
-    if isinstance(o, Path):
-        return str(o)
-    raise TypeError(f"{type(o).__name__} is not JSON serializable")
 
 
 def _dump_json(obj, path: Path) -> None:
