@@ -71,9 +71,20 @@ def _evaluation_sections(ev: dict) -> list[Section]:
         methods = d.get("methods") or {}
         rows = []
         for m, md in methods.items():
-            row = {"method": m}
-            row.update({k: v for k, v in _flat_scalars(md).items()})
-            rows.append(row)
+            units = md.get("units") if isinstance(md.get("units"), dict) else None
+            if units:  # thesis Tables 27/28/33 shape: one row per method x unit, one column per class
+                for u, ud in units.items():
+                    row = {"method": m, "unit": u}
+                    row.update({f"{c} %": 100 * v for c, v in (ud.get("per_class") or {}).items()
+                                if isinstance(v, int | float)})
+                    row["all %"] = 100 * ud["accuracy"] if isinstance(ud.get("accuracy"), int | float) else None
+                    if isinstance(ud.get("latency_ms"), int | float):
+                        row["ms/step"] = ud["latency_ms"]
+                    rows.append(row)
+            else:
+                row = {"method": m}
+                row.update(_flat_scalars(md))
+                rows.append(row)
         if rows:
             sec.tables.append((f"{task}: accuracy per method", pd.DataFrame(rows)))
         out.append(sec)
