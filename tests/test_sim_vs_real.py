@@ -105,3 +105,55 @@ def test_simulated_strides_fall_in_real_range(real_features, sim_features, terra
     assert lo <= sim.median() <= hi, f"{terrain} {col}: sim median {sim.median():.2f} outside real [{lo:.2f}, {hi:.2f}]"
     inside = ((sim >= lo) & (sim <= hi)).mean()
     assert inside >= 0.8, f"{terrain} {col}: only {inside:.0%} of simulated strides within real [{lo:.2f}, {hi:.2f}]"
+
+
+# -- waist: simulated pelvis vs the real lower-back recordings (mobgap) ---------------------------------
+def _axis(session, direction: str) -> tuple[int, float]:
+    frame = session.frames["waist"]
+    opposite = {"up": "down", "forward": "backward"}[direction]
+    for i, ax in enumerate((frame.x, frame.y, frame.z)):
+        if ax in (direction, opposite):
+            return i, 1.0 if ax == direction else -1.0
+    raise AssertionError(f"no {direction} axis in {frame}")
+
+
+def waist_features(session, rows: pd.DataFrame) -> pd.DataFrame:
+    acc = resample_stream(session["wAccelerometer"], RATE)
+    gyr = resample_stream(session["wGyroscope"], RATE)
+    up, _ = _axis(session, "up")
+    fwd, _ = _axis(session, "forward")
+    out = []
+    for _, r in rows.iterrows():
+        m = (acc.t >= r.start_s) & (acc.t < r.end_s)
+        g = (gyr.t >= r.start_s) & (gyr.t < r.end_s)
+        out.append(
+            {
+                "vert_acc_range": float(np.ptp(acc.values[m, up])),
+                "ap_acc_sd": float(acc.values[m, fwd].std()),
+                "yaw_rate_range": float(np.ptp(gyr.values[g, up])),
+            }
+        )
+    return pd.DataFrame(out)
+
+
+def test_waist_signals_match_real_lower_back(real_dir):
+    names = ["mobgap_HA001_Test5_Trial1", "mobgap_HA001_Test5_Trial2"]
+    if not all((real_dir / n).exists() for n in names):
+        pytest.skip("mobgap lower-back recordings not in datasets/real")
+    real = []
+    for n in names:
+        s = read_session(real_dir / n)
+        st = s.steps
+        real.append(waist_features(s, st[~st.turn.astype(bool)]))
+    real_df = pd.concat(real, ignore_index=True)
+    sim = []
+    for user in SIM_USERS:
+        s = simulate("A", user, "slow", rate_hz=RATE, seed=user)  # the mobgap walk is at ~1 m/s
+        sim.append(waist_features(s, s.steps[s.steps.steady]))
+    sim_df = pd.concat(sim, ignore_index=True)
+    lines = ["", f"{'waist feature':16} {'real min/median/max':>22} {'sim min/median/max':>22}"]
+    for col in real_df:
+        lines.append(f"{col:16} {_summary(real_df, col):>22} {_summary(sim_df, col):>22}")
+        ratio = sim_df[col].median() / real_df[col].median()
+        assert 0.5 < ratio < 2.0, f"waist {col}: sim/real median ratio {ratio:.2f}"
+    print("\n".join(lines))
