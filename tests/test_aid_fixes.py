@@ -39,9 +39,7 @@ def test_nmea_bad_checksum_and_empty_fixes_are_skipped_and_counted():
     assert st["used"] == 2 and len(log) == 2
     f = log.fixes
     assert f["t"].tolist() == pytest.approx([100.0, 104.0])
-    assert f["lat"].iloc[0] == pytest.approx(48 + 7.038 / 60) and f["lon"].iloc[0] == pytest.approx(
-        11 + 31.0 / 60
-    )
+    assert f["lat"].iloc[0] == pytest.approx(48 + 7.038 / 60) and f["lon"].iloc[0] == pytest.approx(11 + 31.0 / 60)
     assert f["accuracy_m"].iloc[0] == pytest.approx(0.9 * 5.0)  # GGA merged with RMC keeps HDOP * UERE
     assert f["lat"].iloc[1] < 0 and f["lon"].iloc[1] < 0 and f["accuracy_m"].iloc[1] == 12.0
 
@@ -77,9 +75,9 @@ def test_generated_fixes_round_trip_through_nmea(tmp_path):
 
 def test_csv_reader_good_and_bad(tmp_path):
     good = tmp_path / "fixes.csv"
-    pd.DataFrame(
-        {"t": [2.0, 1.0], "lat": [45.0, 45.0001], "lon": [9.0, 9.0], "accuracy_m": [3.0, 4.0]}
-    ).to_csv(good, index=False)
+    pd.DataFrame({"t": [2.0, 1.0], "lat": [45.0, 45.0001], "lon": [9.0, 9.0], "accuracy_m": [3.0, 4.0]}).to_csv(
+        good, index=False
+    )
     log = read_fix_csv(good)
     assert log.fixes["t"].tolist() == [1.0, 2.0]  # sorted by time
     miss = tmp_path / "missing.csv"
@@ -114,9 +112,7 @@ def test_local_tangent_plane_round_trip_and_scale():
 
 def test_gnss_noise_matches_reported_accuracy_and_outages():
     truth = pd.DataFrame({"t": [0.0, 4000.0], "x": [0.0, 0.0], "y": [0.0, 0.0]})
-    fx = gnss_fixes(
-        truth, accuracy_m=5.0, accuracy_spread=0.0, correlation_s=0.0, outages=[(100, 200)], seed=1
-    )
+    fx = gnss_fixes(truth, accuracy_m=5.0, accuracy_spread=0.0, correlation_s=0.0, outages=[(100, 200)], seed=1)
     r = np.hypot(fx["x"], fx["y"])
     assert np.mean(r <= fx["accuracy_m"]) == pytest.approx(0.68, abs=0.03)  # 68 % radius
     assert not ((fx["t"] >= 100) & (fx["t"] < 200)).any()
@@ -131,3 +127,27 @@ def test_landmark_and_infrastructure_fixes():
     assert len(lm) == 1 and lm["t"].iloc[0] == 50.0 and lm["x"].iloc[0] == 50.0
     inf = infrastructure_fixes(truth, rate_hz=10.0, sigma_m=0.05, seed=0)
     assert len(inf) == 1001 and np.std(inf["y"]) == pytest.approx(0.05, rel=0.15)
+
+
+def test_nmea_parser_never_raises_on_random_text():
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
+
+    field = st.text(alphabet="0123456789.,NSEWAV-*$GPRMCGA ", max_size=80)
+
+    @settings(max_examples=100, deadline=None)
+    @given(st.lists(st.one_of(field, st.text(max_size=40)), max_size=20))
+    def run(lines):
+        log = parse_nmea_lines(lines)
+        s = log.stats
+        assert s["used"] + s["bad_checksum"] + s["empty"] + s["malformed"] + s["unsupported"] <= s["sentences"]
+        assert len(log) == s["used"]
+
+    run()
+    # random bodies with a correct checksum exercise the field parsing as well
+    rng = np.random.default_rng(0)
+    alphabet = list("0123456789.,NSEWAV-")
+    lines = [_s("GPGGA," + "".join(rng.choice(alphabet, 60))) for _ in range(300)]
+    lines += [_s("GPRMC," + "".join(rng.choice(alphabet, 60))) for _ in range(300)]
+    log = parse_nmea_lines(lines)
+    assert log.stats["sentences"] == 600 and log.stats["bad_checksum"] == 0
