@@ -97,19 +97,44 @@ def _ground_truth(result: TrackResult, session: Session, out: dict) -> None:
             out["altitude_error_pct"] = 100.0 * abs(d_est[2] - d_true[2]) / abs(d_true[2])
 
 
+def _composed_strides(est: pd.DataFrame, ref: pd.DataFrame, used_est: set, used_ref: set, *,
+                      tol_s: float = 0.15, min_cover: float = 0.8) -> list[tuple[int, float]]:
+    """Reference strides left unmatched that two or more estimated strides tile (e.g. a turn on the spot
+    split at an intermediate rest): (ref row, horizontal length of the vector sum of those strides)."""
+    out = []
+    es, ee = est["start_s"].to_numpy(float), est["end_s"].to_numpy(float)
+    vec = est["length_m"].to_numpy(float)[:, None] * np.column_stack(
+        [np.cos(est["heading_rad"].to_numpy(float)), np.sin(est["heading_rad"].to_numpy(float))])
+    for j in range(len(ref)):
+        if j in used_ref:
+            continue
+        rs, re = float(ref["start_s"].iloc[j]), float(ref["end_s"].iloc[j])
+        inside = [i for i in np.flatnonzero((es >= rs - tol_s) & (ee <= re + tol_s)) if i not in used_est]
+        if len(inside) >= 2 and (ee[inside].max() - es[inside].min()) >= min_cover * (re - rs):
+            out.append((j, float(np.hypot(*vec[inside].sum(axis=0)))))
+            used_est.update(int(i) for i in inside)
+    return out
+
+
 def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
     st = session.steps
     if st is None or "length_m" not in st or not st["length_m"].notna().any() or not len(result.steps):
         return
     ref = st[st["length_m"].notna()].reset_index(drop=True)
     pairs = match_by_overlap(result.steps, ref)
-    if not pairs:
+    e_list = [float(result.steps["length_m"].iloc[i]) for i, _ in pairs]
+    r_idx = [j for _, j in pairs]
+    for j, length in _composed_strides(result.steps, ref, {i for i, _ in pairs}, set(r_idx)):
+        e_list.append(length)
+        r_idx.append(j)
+    if not r_idx:
         return
-    ei, ri = np.array(pairs).T
-    e = result.steps["length_m"].to_numpy(float)[ei]
+    ri = np.array(r_idx)
+    e = np.array(e_list)
     r = ref["length_m"].to_numpy(float)[ri]
     err = np.abs(np.abs(e) - np.abs(r))
-    out["stride_length_matched"] = int(len(pairs))
+    out["stride_length_composed"] = int(len(r_idx) - len(pairs))
+    out["stride_length_matched"] = int(len(r_idx))
     out["stride_length_mae_m"] = float(err.mean())
     out["stride_length_mae_pct"] = float(100.0 * np.mean(err / np.abs(r)))
     if "turn" in ref:

@@ -290,6 +290,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     table = strides[["start_s", "end_s"]].copy()
     table["event_s"] = strides["event_s"] if "event_s" in strides else strides["end_s"]
     table["length_m"] = length
+    table["raw_length_m"] = np.hypot(disp[:, 0], disp[:, 1]) * np.where(disp[:, 0] < 0, -1.0, 1.0)
     table["heading_rad"] = wrap_angle(head)
     table["dz_m"] = dz
     for c in ("terrain", "direction", "length_class"):
