@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pdrlearn.aid.fixes import FixLog, parse_nmea_lines, read_fix_csv, to_local
+from pdrlearn.aid.fixes import FixLog, parse_nmea_lines, read_fix_csv, sigma_from_accuracy, to_local
 from pdrlearn.aid.geo import enu_to_geodetic
 from pdrlearn.aid.gnss import GnssPdrFusion
 from pdrlearn.aid.sporadic import SporadicFixFusion
@@ -56,7 +56,7 @@ def _load(path, session: Session) -> FixLog:
     return out
 
 
-def _steps_from_path(t: np.ndarray, x: np.ndarray, y: np.ndarray, steps: pd.DataFrame) -> pd.DataFrame:
+def _steps_from_path(x: np.ndarray, y: np.ndarray, steps: pd.DataFrame) -> pd.DataFrame:
     """Steps whose lengths/headings reproduce a path (to chain a second filter after the first)."""
     dx, dy = np.diff(x), np.diff(y)
     out = steps[["start_s", "end_s"]].copy()
@@ -115,11 +115,7 @@ def aid_track(
             )
     origin = _parse_start(start)
     traj0 = result.trajectory
-    t = (
-        np.r_[float(traj0["t"].iloc[0]), steps.sort_values("end_s")["end_s"].to_numpy(float)]
-        if len(traj0) == len(steps) + 1
-        else None
-    )
+    same_rows = len(traj0) == len(steps) + 1  # the pipeline's trajectory: start row + one row per step
     info: dict = {"origin": list(origin) if origin else None}
     x0 = np.array([float(traj0["x"].iloc[0]), float(traj0["y"].iloc[0])]) if len(traj0) else np.zeros(2)
     t_start = float(traj0["t"].iloc[0]) if len(traj0) else None
@@ -132,7 +128,12 @@ def aid_track(
         flog = _load(path, session)
         fx, origin = to_local(flog.fixes, origin)
         info["origin"] = list(origin) if origin else None
-        sigma0 = 1.0 if start is not None or "x" in flog.fixes.columns else float(fx["accuracy_m"].iloc[0]) / 1.51
+        # start known (or local fixes around the track's own origin): 1 m; else the first fix's sigma
+        sigma0 = (
+            1.0
+            if start is not None or "x" in flog.fixes.columns
+            else float(sigma_from_accuracy(fx["accuracy_m"].iloc[0]))
+        )
         if kind == "gnss":
             mode = "saving" if gnss_period_s else "best"
             f = GnssPdrFusion(mode=mode, period_s=float(gnss_period_s or 60.0), initial_sigma_m=sigma0)
@@ -164,12 +165,13 @@ def aid_track(
             fused = tr.copy()
         else:
             fused["x"], fused["y"] = tr["x"].to_numpy(), tr["y"].to_numpy()
-        cur_steps = _steps_from_path(tr["t"].to_numpy(), tr["x"].to_numpy(), tr["y"].to_numpy(), check_sorted(steps))
+            fused["fix_used"] = fused["fix_used"].to_numpy(bool) | tr["fix_used"].to_numpy(bool)
+        cur_steps = _steps_from_path(tr["x"].to_numpy(), tr["y"].to_numpy(), check_sorted(steps))
         all_fixes.append(fx.assign(source=kind))
     out = pd.DataFrame({"t": fused["t"].to_numpy(), "x": fused["x"].to_numpy(), "y": fused["y"].to_numpy()})
     out["z"] = traj0["z"].to_numpy() if "z" in traj0 and len(traj0) == len(out) else 0.0
     out["x_pdr"], out["y_pdr"] = fused["x_pdr"].to_numpy(), fused["y_pdr"].to_numpy()
-    if t is not None and len(traj0) == len(out):  # keep the pipeline's own PDR path
+    if same_rows and len(traj0) == len(out):  # keep the pipeline's own PDR path
         out["x_pdr"], out["y_pdr"] = traj0["x"].to_numpy(), traj0["y"].to_numpy()
     if "fix_used" in fused:
         out["fix_used"] = fused["fix_used"].to_numpy()
