@@ -54,9 +54,12 @@ class Backward:
 
 @dataclass(frozen=True)
 class Turn:
-    """Turn ``angle_rad`` in place (> 0 = left) with small stepping turns of at most 45 degrees."""
+    """Turn ``angle_rad`` in place (> 0 = left) with stepping turns of at most 60 degrees each."""
 
     angle_rad: float
+
+
+MAX_TURN_STEP_RAD = math.pi / 3  # largest heading change of one stepping-turn step
 
 
 @dataclass(frozen=True)
@@ -222,7 +225,7 @@ class _Walker:
     def turn(self, seg: Turn) -> None:
         self._change_direction("forward")
         self.close(pause=0.3)
-        n = max(1, math.ceil(abs(seg.angle_rad) / (math.pi / 4) - 1e-9))
+        n = max(1, math.ceil(abs(seg.angle_rad) / MAX_TURN_STEP_RAD - 1e-9))
         lead = "left" if seg.angle_rad > 0 else "right"
         psi0 = self.psi
         for k in range(1, n + 1):

@@ -92,8 +92,8 @@ def length_exercise(user: UserProfile, speed: str, rng: np.random.Generator, **_
     """Length exercise: ~90 strides, ~30 each with short, normal and long steps (thesis ch.7.2.2)."""
     segs: list[Segment] = []
     for gait in ("short", "normal", "long"):
-        for _ in range(3):
-            segs += [Straight(9.0 * user.stride_length(speed, gait), gait), Turn(math.pi)]
+        for _ in range(2):
+            segs += [Straight(12.0 * user.stride_length(speed, gait), gait), Turn(math.pi)]
     return segs
 
 
