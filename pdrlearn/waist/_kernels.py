@@ -126,15 +126,15 @@ def _nearest_local_max_before(x: np.ndarray, k: int, lo: int) -> int:
 
 def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
                 cutoff_hz: float = 2.5, fir_order: int = 11, search_s: float = 0.25,
-                min_step_s: float = 0.3, lobe_ratio: float = 2.0, fc_search_s: float = 0.25,
-                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                min_step_s: float = 0.3, max_step_s: float = 1.5, lobe_ratio: float = 2.0,
+                fc_search_s: float = 0.25, mean_s: float = 1.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Causal initial-contact detection (seed 003 sec. 3.1, real-time variant).
 
     The AP acceleration passes an 11th-order causal FIR (seed 003 sec. 3.1); each positive-to-negative
     zero crossing of its output is an IC candidate. The positive lobe before a true crossing is about as
-    long as the previous ones, a false crossing's lobe is much longer or shorter: a candidate is rejected
-    when its lobe duration differs from the running median of the accepted lobes by more than a factor
-    ``lobe_ratio`` (the threshold of seed 003, expressed as a ratio). The IC is the last local maximum
+    long as the previous ones, a false crossing's lobe is much longer (seed 003): a candidate is rejected
+    when its lobe lasts more than ``lobe_ratio`` times the running median of the accepted lobes of the
+    current walking sequence (a gap over ``max_step_s`` starts a new one). The IC is the last local maximum
     of the raw AP acceleration in the ``search_s`` window before the (delay-corrected) crossing; the FC
     the minimum of AP acceleration in the ``fc_search_s`` after the IC's vertical maximum. Only samples
     up to the crossing (plus ``fc_search_s`` for the FC) are used, so the IC is known one filter delay
@@ -149,8 +149,8 @@ def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nd
     order = int(fir_order)
     taps = _sig.firwin(order + 1, min(cutoff_hz, 0.45 * fs), fs=fs)
     delay = order // 2
-    # causal mean removal: running mean over the last 2 s keeps the filter input centred
-    w = max(2, int(round(2.0 * fs)))
+    # causal mean removal over the last ``mean_s`` (about a stride) keeps the filter input centred
+    w = max(2, int(round(mean_s * fs)))
     w |= 1
     apc = ap - uniform_filter1d(ap, w, mode="nearest", origin=(w - 1) // 2)
     y = fir_causal(apc, taps)
@@ -162,6 +162,7 @@ def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nd
     ws = max(1, int(round(search_s * fs)))
     wf = max(1, int(round(fc_search_s * fs)))
     min_gap = int(round(min_step_s * fs))
+    max_gap = int(round(max_step_s * fs))
     for z in zc:
         if gate_arr is not None and not gate_arr[z]:
             continue
@@ -169,10 +170,10 @@ def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nd
         if prev_up.size == 0:
             continue
         lobe = (z - prev_up[-1]) / fs
-        if len(lobes) >= 3:
-            med = float(np.median(lobes[-8:]))
-            if not (med / lobe_ratio <= lobe <= med * lobe_ratio):
-                continue
+        if lobes and ic_l and z - zc_l[-1] > max_gap:  # a new walking sequence: forget the old lobes
+            lobes.clear()
+        if len(lobes) >= 3 and lobe > lobe_ratio * float(np.median(lobes[-8:])):
+            continue  # seed 003: a false crossing follows a much longer positive lobe
         zr = z - delay  # crossing time corrected for the FIR delay
         ic = _nearest_local_max_before(ap, zr, max(0, zr - ws))
         if ic_l and ic - ic_l[-1] < min_gap:
