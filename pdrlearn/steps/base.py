@@ -102,6 +102,11 @@ class StepDetector:
         sig = inspect.signature(cls.__init__)
         return [p.name for p in sig.parameters.values() if p.kind == p.KEYWORD_ONLY]
 
+    def _store(self, values: dict) -> None:
+        """Keep every keyword-only ``__init__`` argument as an attribute (called with ``locals()``)."""
+        for k in self._param_names():
+            setattr(self, k, values[k])
+
     def get_params(self, deep: bool = True) -> dict:
         return {k: getattr(self, k) for k in self._param_names()}
 

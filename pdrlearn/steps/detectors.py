@@ -131,19 +131,7 @@ class AccelStepDetector(StepDetector):
                  min_still_s: float = 0.05, min_swing_s: float = 0.2, max_swing_s: float = 2.5,
                  min_stride_s: float = 0.6, peak_frac: float = 0.3, event_cutoff_hz: float = 8.0,
                  gravity: float = G):
-        self.cutoff_hz = cutoff_hz
-        self.order = order
-        self.threshold = threshold
-        self.still_window_s = still_window_s
-        self.still_std = still_std
-        self.still_level_tol = still_level_tol
-        self.min_still_s = min_still_s
-        self.min_swing_s = min_swing_s
-        self.max_swing_s = max_swing_s
-        self.min_stride_s = min_stride_s
-        self.peak_frac = peak_frac
-        self.event_cutoff_hz = event_cutoff_hz
-        self.gravity = gravity
+        self._store(locals())
 
     def _inputs(self, session: Session):
         acc = session.require("fAccelerometer", purpose="the foot accelerometer step detector")
@@ -198,12 +186,7 @@ class AccelForceStepDetector(StepDetector):
 
     def __init__(self, *, cutoff_hz: float = 3.0, order: int = 3, threshold: float = 1.0,  # thesis ch.5.2
                  force_on_frac: float = 0.10, force_off_frac: float = 0.05, min_swing_s: float = 0.15):
-        self.cutoff_hz = cutoff_hz
-        self.order = order
-        self.threshold = threshold
-        self.force_on_frac = force_on_frac
-        self.force_off_frac = force_off_frac
-        self.min_swing_s = min_swing_s
+        self._store(locals())
 
     def _inputs(self, session: Session):
         purpose = ("the accelerometer + force step detector (thesis ch.5.2; "
@@ -280,22 +263,7 @@ class PelvicGyroStepDetector(StepDetector):
                  p_min: float = 0.75,  # thesis ch.5.3: 75 %
                  max_lobe_s: float = 1.0, gravity_cutoff_hz: float = 0.3, turn_cutoff_hz: float = 0.5,
                  calibrate: bool = True):
-        self.cutoff_hz = cutoff_hz
-        self.order = order
-        self.threshold = threshold
-        self.peak_window_s = peak_window_s
-        self.amp_ref = amp_ref
-        self.length_ref_s = length_ref_s
-        self.d1_s = d1_s
-        self.d1_ref = d1_ref
-        self.d2_s = d2_s
-        self.d2_ref = d2_ref
-        self.weights = weights
-        self.p_min = p_min
-        self.max_lobe_s = max_lobe_s
-        self.gravity_cutoff_hz = gravity_cutoff_hz
-        self.turn_cutoff_hz = turn_cutoff_hz
-        self.calibrate = calibrate
+        self._store(locals())
 
     def _inputs(self, session: Session):
         purpose = "the pelvic-rotation step detector (waist gyroscope + accelerometer)"
@@ -372,18 +340,7 @@ class PLLStepDetector(StepDetector):
                  gate_window_s: float = 2.0,  # seed 001 Sec. 2.2.2 uses 4 s; decision: 2 s
                  gate_var: float = 0.5,  # seed 001: 1.5 m^2/s^4 for a pocket; decision: 0.5 at the waist
                  refine_frac: float = 0.25, placement: str = "waist"):
-        self.f0_hz = f0_hz
-        self.loop_hz = loop_hz
-        self.damping = damping
-        self.f_min_hz = f_min_hz
-        self.f_max_hz = f_max_hz
-        self.cutoff_hz = cutoff_hz
-        self.agc_tau_s = agc_tau_s
-        self.gravity_cutoff_hz = gravity_cutoff_hz
-        self.gate_window_s = gate_window_s
-        self.gate_var = gate_var
-        self.refine_frac = refine_frac
-        self.placement = placement
+        self._store(locals())
 
     def loop_params(self) -> PLLParams:
         kd = 1.0 / math.sqrt(2.0)
