@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from pdrlearn.classify import load_model
+from pdrlearn.errors import ModelError
 from pdrlearn.export.bundle import bundle_size_bytes
 from pdrlearn.features import TASK_COLUMNS, step_windows
 from pdrlearn.runtime import _kernels as K
@@ -152,3 +153,22 @@ def test_every_rule_feature_equals_training_side(trained):
                            signals={k: [list(v[0]), v[1]] for k, v in SIGNALS.items()},
                            channel_index={c: i for i, c in enumerate(CHANNELS)})
     np.testing.assert_allclose(got, want, atol=1e-9, err_msg=str(names))
+
+
+def test_opencv_fallback_runs_the_network_like_onnxruntime(trained):
+    """Without onnxruntime the network runs in OpenCV's dnn module (its float32 twin graph)."""
+    pytest.importorskip("cv2")
+    bundle = load_bundle(trained["root"] / "bundle_all")
+    cv = load_bundle(trained["root"] / "bundle_all", backend="opencv")
+    ctx = {"signals": bundle.manifest["features"]["signals"],
+           "channel_index": {c: i for i, c in enumerate(bundle.manifest["features"]["channels"])}}
+    W = trained["windows"].X
+    for task in ("terrain", "direction", "length"):
+        c1, p1 = TaskClassifier(bundle, task, ctx, method="nn", unit="foot").predict(W)
+        c2, p2 = TaskClassifier(cv, task, ctx, method="nn", unit="foot").predict(W)
+        assert cv.model(bundle.tasks[task]["methods"]["nn"]["foot"]["file"],
+                        bundle.tasks[task]["methods"]["nn"]["foot"]).backend == "opencv"
+        assert np.abs(p1 - p2).max() < 1e-4
+        assert np.mean(c1 == c2) >= 0.95
+    with pytest.raises(ModelError, match="needs onnxruntime"):
+        TaskClassifier(cv, "terrain", ctx, method="svm", unit="foot")

@@ -126,6 +126,11 @@ class _Collector:
             model, spec = torch_to_onnx(
                 _nn_module(clf), n_features, classes=classes, name=stem, dtype="float64"
             )
+            # float32 twin for OpenCV's dnn module (the documented fallback without onnxruntime)
+            self.onnx[f"models/{stem}.f32.onnx"] = torch_to_onnx(
+                _nn_module(clf), n_features, classes=classes, name=stem, dtype="float32"
+            )[0]
+            spec["fallback_file"] = f"models/{stem}.f32.onnx"
         else:
             raise ModelError(f"{stem}: classifier {type(clf).__name__} cannot be exported yet")
         self.onnx[rel] = model

@@ -71,8 +71,9 @@ class OnnxModel:
     backend : ``"auto"`` (onnxruntime, else OpenCV for networks), ``"onnxruntime"`` or ``"opencv"``.
     """
 
-    def __init__(self, path: Path, spec: dict, *, backend: str = "auto"):
+    def __init__(self, path: Path, spec: dict, *, backend: str = "auto", fallback_path: Path | None = None):
         self.path = Path(path)
+        self.fallback_path = fallback_path
         self.spec = spec
         self.input_name = spec.get("input", "X")
         self.dtype = np.dtype(spec.get("dtype", "float32"))
@@ -106,7 +107,9 @@ class OnnxModel:
             import cv2
         except ImportError:
             raise ModelError("neither onnxruntime nor opencv is installed; pip install onnxruntime") from None
-        self._net = cv2.dnn.readNetFromONNX(str(self.path))
+        # the float64 network graph has a float32 twin for OpenCV (cv2.dnn computes in float32 only)
+        self._net = cv2.dnn.readNetFromONNX(str(self.fallback_path or self.path))
+        self.dtype = np.dtype(np.float32)
         self._names = list(self.outputs.values())
         return "opencv"
 
@@ -119,8 +122,9 @@ class OnnxModel:
             values = self._sess.run(None, {self.input_name: X})
             by_name = dict(zip(self._names, values, strict=True))
         else:
-            self._net.setInput(X)
-            by_name = {self._names[0]: np.asarray(self._net.forward())}
+            self._net.setInput(X, self.input_name)
+            outs = self._net.forward(self._names)
+            by_name = {n: np.asarray(o, dtype=np.float64) for n, o in zip(self._names, outs, strict=True)}
         return {role: by_name[name] for role, name in self.outputs.items() if name in by_name}
 
 
@@ -160,7 +164,8 @@ class Bundle:
     def model(self, rel: str, spec: dict) -> OnnxModel:
         """The ONNX model stored as ``rel`` (opened once)."""
         if rel not in self._models:
-            self._models[rel] = OnnxModel(self.file(rel), spec, backend=self.backend)
+            fb = self.file(spec["fallback_file"]) if spec.get("fallback_file") else None
+            self._models[rel] = OnnxModel(self.file(rel), spec, backend=self.backend, fallback_path=fb)
         return self._models[rel]
 
     def json(self, rel: str) -> dict:
