@@ -158,3 +158,32 @@ def test_rest_to_rest_extends_swing_windows_and_splits_missed_steps():
     assert rows.tolist() == [0, 1, 1, 1, 1]
     # no swing between two rests -> dropped
     assert len(rest_to_rest(t, stance, np.array([0.1]), np.array([0.3]))[0]) == 0
+
+
+def test_bayes_length_softens_the_clamp_by_the_class_probability():
+    from pdrlearn.displace import bayes_length
+
+    bounds = [(0.0, 1.0), (1.0, 1.5), (1.5, 10.0)]
+    sig = np.array([0.04, 0.04, 0.04])
+    # certain class, estimate outside it -> pulled to the bound (within about one sigma)
+    certain = bayes_length(np.array([1.3, 1.2, 1.25]), np.array([[1.0, 0, 0], [0, 1.0, 0], [0, 1.0, 0]]),
+                           bounds, sig)
+    assert 0.96 < certain[0] < 1.0
+    # inside the certain class -> the estimate (away from the bounds)
+    assert certain[1] == pytest.approx(1.2, abs=1e-3) and certain[2] == pytest.approx(1.25, abs=1e-3)
+    # a doubtful wrong class (p = 0.7) cannot drag an estimate 7 sigma away from it
+    doubt = bayes_length(np.array([1.3]), np.array([[0.7, 0.3, 0.0]]), bounds, sig[:1])
+    assert doubt[0] == pytest.approx(1.3, abs=0.01)
+
+
+def test_bayes_rules_keep_a_clear_sign_and_stair_height():
+    disp = np.array([[1.3, 0.0, 0.0], [0.03, 0.0, 0.0], [0.6, 0.0, 0.35]])
+    classes = pd.DataFrame({"terrain": ["flat", "flat", "flat"], "direction": ["backward"] * 3,
+                            "length_class": [None, None, None]})
+    thesis = StepRules(mode="thesis").apply(disp, classes)
+    bayes = StepRules(mode="bayes").apply(disp, classes)
+    assert thesis["length_m"].iloc[0] < 0 and bayes["length_m"].iloc[0] > 0  # clear forward estimate kept
+    assert bayes["length_m"].iloc[1] < 0  # ambiguous short estimate: the class decides
+    assert thesis["dz_m"].iloc[2] == 0 and bayes["dz_m"].iloc[2] == pytest.approx(0.35)
+    with pytest.raises(DataError):
+        StepRules(mode="fuzzy")

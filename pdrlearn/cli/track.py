@@ -25,6 +25,8 @@ def track(
     method: str = typer.Option("M3", help="PLASYS method: M1 (accelerometer), M2 (+ force), M3 (+ classes)."),
     model: str = typer.Option(None, "--model", help="Trained model directory (M3); 'oracle' = the session's "
                               "own step labels."),
+    rules: str = typer.Option("thesis", "--rules", help="M3 class rules: thesis (classes prevail) or bayes "
+                              "(class probabilities weighed against the estimate)."),
     start: str = typer.Option(None, "--start", help="Start coordinate LAT,LON (degrees) -> lat/lon columns."),
     params: Path = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline."),
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
@@ -60,6 +62,7 @@ def track(
     kw = {"model": model, "start": start_ll, "params": par}
     if pipeline == "plasys":
         kw["method"] = method
+        kw["rules"] = rules
     result = fn(session, **kw)
     if any(v is not None for v in (gnss, fixes)):
         try:

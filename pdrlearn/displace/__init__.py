@@ -4,6 +4,7 @@ and the PLASYS step rules (terrain -> filter mode, direction -> sign, length cla
 from pdrlearn.displace._kernels import (
     altitude_change,
     apply_direction,
+    bayes_length,
     clamp_length,
     double_integrate,
     strapdown,
@@ -17,7 +18,7 @@ from pdrlearn.displace.foot import FootDisplacement, force_stance, inertial_stan
 from pdrlearn.displace.rules import THESIS_STEP_BOUNDS, StepRules, parse_bounds
 
 __all__ = [
-    "FootDisplacement", "StepRules", "THESIS_STEP_BOUNDS", "altitude_change", "apply_direction",
+    "FootDisplacement", "StepRules", "THESIS_STEP_BOUNDS", "altitude_change", "apply_direction", "bayes_length",
     "clamp_length",
     "double_integrate", "force_stance", "inertial_stance", "parse_bounds", "rest_to_rest", "stance_runs",
     "strapdown",

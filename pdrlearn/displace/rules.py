@@ -35,6 +35,17 @@ def parse_bounds(obj) -> dict[str, tuple[float, float]]:
     return {"short": (0.0, edges[0]), "normal": (edges[0], edges[1]), "long": (edges[1], 10.0)}
 
 
+def _class_proba(classes: pd.DataFrame, task: str, names: list[str], labels: np.ndarray) -> np.ndarray:
+    """(B, C) probabilities of ``names`` from ``p_<task>_<name>`` columns, else one-hot of ``labels``."""
+    cols = [f"p_{task}_{c}" for c in names]
+    if all(c in classes for c in cols):
+        p = classes[cols].to_numpy(dtype=float)
+        p = np.where(np.isfinite(p), p, 0.0)
+        s = p.sum(axis=1, keepdims=True)
+        return np.where(s > 0, p / np.where(s > 0, s, 1.0), 1.0 / len(names))
+    return (np.asarray(labels, dtype=object)[:, None] == np.array(names, dtype=object)[None, :]).astype(float)
+
+
 class StepRules:
     """Apply the PLASYS rules to per-stride displacements.
 
@@ -45,12 +56,26 @@ class StepRules:
     bounds_scale : factor applied to the default bounds (2.0 turns thesis step bounds into stride bounds)
     down_mode : ``"norm3"`` (thesis eq. 61) or ``"horizontal"`` for descending stairs
     clamp, sign, altitude : switch each rule on/off (for ablations)
+    mode : ``"thesis"`` (the class prevails: sign flip, hard clamp, altitude from the terrain class) or
+        ``"bayes"`` (docs/decisions/localization.md L14): the length is the posterior mean given the
+        class probabilities and the estimate's uncertainty, the direction class decides only an
+        ambiguous sign (|length| < 2 sigma), and a clear vertical change (|dz| > ``dz_min``) keeps its
+        estimated sign whatever the terrain class
+    sigma_rel, sigma_min : standard deviation of a stride-length estimate: max(sigma_rel |L|, sigma_min) (m)
+    dz_min : vertical change (m) above which the estimate is trusted in "bayes" mode
     """
 
     def __init__(self, *, bounds: dict[str, tuple[float, float]] | None = None, bounds_scale: float = 1.0,
-                 down_mode: str = "norm3", clamp: bool = True, sign: bool = True, altitude: bool = True):
+                 down_mode: str = "norm3", clamp: bool = True, sign: bool = True, altitude: bool = True,
+                 mode: str = "thesis", sigma_rel: float = 0.03, sigma_min: float = 0.02, dz_min: float = 0.1):
         if down_mode not in ("norm3", "horizontal"):
             raise DataError(f"StepRules: down_mode '{down_mode}' is not 'norm3' or 'horizontal'")
+        if mode not in ("thesis", "bayes"):
+            raise DataError(f"StepRules: mode '{mode}' is not 'thesis' or 'bayes'")
+        self.mode = mode
+        self.sigma_rel = sigma_rel
+        self.sigma_min = sigma_min
+        self.dz_min = dz_min
         self.bounds = bounds
         self.bounds_scale = bounds_scale
         self.down_mode = down_mode
@@ -79,15 +104,27 @@ class StepRules:
         dist = K.terrain_distance(disp, terrain, down_mode=self.down_mode)
         est_sign = np.where(disp[:, 0] < 0, -1.0, 1.0)
         length = dist * est_sign
+        sigma = np.maximum(self.sigma_rel * dist, self.sigma_min)
+        bayes = self.mode == "bayes"
         if self.sign and "direction" in classes:
             d = classes["direction"].to_numpy()
-            known = pd.notna(d)
+            known = pd.notna(d) & ((dist < 2 * sigma) if bayes else True)
             length = np.where(known, K.apply_direction(length, np.where(known, d, "forward")), length)
         if self.clamp and "length_class" in classes:
-            lc = classes["length_class"].fillna("").to_numpy()
-            length = K.clamp_length(length, lc, self.effective_bounds())
+            lc = classes["length_class"].to_numpy(dtype=object)
+            bounds = self.effective_bounds()
+            if bayes:
+                names = list(bounds)
+                proba = _class_proba(classes, "length", names, lc)
+                has = pd.notna(lc)
+                mag = K.bayes_length(dist, np.where(has[:, None], proba, 1.0 / len(names)),
+                                     [bounds[c] for c in names], sigma)
+                length = np.where(has, np.sign(length) * mag, length)
+            else:
+                length = K.clamp_length(length, np.where(pd.notna(lc), lc, ""), bounds)
         dz = disp[:, 2].copy()
         if self.altitude:
-            dz = np.where(known_terrain, K.altitude_change(disp[:, 2], terrain), dz)
+            ruled = np.where(known_terrain, K.altitude_change(disp[:, 2], terrain), dz)
+            dz = np.where(np.abs(dz) > self.dz_min, dz, ruled) if bayes else ruled
         return pd.DataFrame({"length_m": length, "dz_m": dz, "raw_dx_m": disp[:, 0], "raw_dy_m": disp[:, 1],
                              "raw_dz_m": disp[:, 2]})

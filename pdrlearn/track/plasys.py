@@ -179,7 +179,8 @@ def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
 def track_plasys(session: Session, *, method: str = "M3", model=None, start=None, params=None,
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
                  bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
-                 min_confidence: float = 0.0, align: bool = False, **opts) -> TrackResult:
+                 min_confidence: float = 0.0, align: bool = False, rules: str = "thesis",
+                 **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -194,6 +195,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
         (the foot unit measures strides = two steps, see docs/decisions/localization.md)
     down_mode : "norm3" (thesis eq. 61) or "horizontal" for descending stairs
+    rules : "thesis" (the classes prevail, ch.7.2.2) or "bayes" (class probabilities weighed against the
+        estimate's uncertainty, docs/decisions/localization.md L14)
     align : M3: align the waist clock to the foot clock from the steps both units detect (off by
         default, see docs/decisions/localization.md L13)
     min_confidence : a class rule is applied only when the model's probability of the class reaches this
@@ -263,13 +266,13 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             clamp = False
             warnings.append("the model carries no length-class bounds (length_bounds_m): the length rule is "
                             "skipped; pass bounds=... or retrain with the user's bounds")
-    rules = StepRules(bounds=parse_bounds(use_bounds) if use_bounds is not None else None,
-                      bounds_scale=bounds_scale, down_mode=down_mode,
-                      clamp=clamp, sign=cfg["rules"], altitude=cfg["rules"])
+    step_rules = StepRules(bounds=parse_bounds(use_bounds) if use_bounds is not None else None,
+                           bounds_scale=bounds_scale, down_mode=down_mode, mode=rules,
+                           clamp=clamp, sign=cfg["rules"], altitude=cfg["rules"])
     if not cfg["rules"]:
         classes["terrain"] = None
     rule_classes = _confident(classes, min_confidence) if cfg["rules"] else classes.assign(terrain="flat")
-    applied = rules.apply(disp, rule_classes)
+    applied = step_rules.apply(disp, rule_classes)
     length = applied["length_m"].to_numpy()
     dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
 
@@ -315,7 +318,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             "steps_source": source,
             "classes_source": ("oracle" if oracle else ("model" if cfg["rules"] else None)),
             "unit_alignment": alignment,
-            "length_bounds_m": rules.effective_bounds() if clamp else None,
+            "length_bounds_m": step_rules.effective_bounds() if clamp else None,
+            "rules": rules if cfg["rules"] else None,
             "settings": {k: getattr(fd, k)
                          for k in ("integrator", "zupt_end", "gyro_bias", "attitude", "sw", "r")},
             "warnings": warnings}
