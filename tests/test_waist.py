@@ -283,3 +283,15 @@ def test_real_track_cli_json_contract(tmp_path, capsys):
     assert abs(d["distance_error_pct"]) < 15
     traj = pd.read_csv(tmp_path / "trk" / "trajectory.csv")
     assert traj["lat"].notna().all()
+
+
+def test_fit_turn_classifier_needs_visible_turns():
+    from pdrlearn.waist.calibration import fit_turn_classifier
+
+    rng = np.random.default_rng(2)
+    straight = np.abs(rng.normal(0.0, 0.02, 60))
+    gmm, how = fit_turn_classifier(straight)
+    assert gmm is None and "prior kept" in how
+    gmm, how = fit_turn_classifier(np.concatenate([straight, rng.normal(0.7, 0.15, 20)]))
+    assert gmm is not None and gmm["means"][1] > 0.5
+    assert fit_turn_classifier(straight[:5])[0] is None

@@ -21,6 +21,9 @@ def register(app: typer.Typer) -> None:
         turns: float = typer.Option(None, "--turns",
                                     help="Signed full turns walked (+1 = one left 360), to fit the gyro "
                                          "bias (seed 003 eq. 2)."),
+        fit_turns: bool = typer.Option(False, "--fit-turns",
+                                       help="Also fit the straight/turning GMM on the walks' strides "
+                                            "(needs >= 20 strides with turns; seed 003)."),
         out: Path = typer.Option(..., "--out", "-o", help="PARAMS.json to write."),
         as_json: bool = typer.Option(False, "--json", help="Print the parameters as JSON."),
     ):
@@ -38,7 +41,8 @@ def register(app: typer.Typer) -> None:
 
         out_file(out, (".json",))
         sessions = [read_session(d) for d in dirs]
-        params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns)
+        params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns,
+                           fit_turns=fit_turns)
         params.save(out, extra={"pipeline": pipeline, "fit": [str(d) for d in dirs]})
         d = params.to_dict()
         if as_json:

@@ -181,6 +181,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = steps.assign(frequency_hz=freq)
     seqs = _sequences(steps)
     ev_all = steps["event_s"].to_numpy(float)
+    mean_rate = np.full(n, np.nan)  # per-step stride mean vertical rate (MRZ, seed 003 sec. 3.3)
+    for seq in seqs:
+        if len(seq) > 1:
+            mean_rate[seq[:-1]] = K.mean_rate_per_stride(imu.t, imu.w_z - p.gyro_bias_rps, ev_all[seq])
     if method == "gyro":
         clf = TurnClassifier(**(p.turn_gmm or {}))
         current = 0.0
@@ -210,7 +214,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 current = float(hd[-1])
             headings[seq[-1]] = current
     headings = _fill_nan_headings(headings, 0.0)
-    steps = steps.assign(turning=turning)
+    steps = steps.assign(turning=turning, mean_rate_rps=mean_rate)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"
     info = {
         "pipeline": pipeline,

@@ -11,6 +11,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.io import Session
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.evaluate import reference_bouts
+from pdrlearn.waist.heading import TurnClassifier
 from pdrlearn.waist.params import WaistParams, resolve_params
 from pdrlearn.waist.steplength import CalibrationWalk, fit_frequency, fit_pendulum
 
@@ -18,16 +19,17 @@ log = logging.getLogger(__name__)
 
 
 def calibration_walks(session: Session, pipeline: str, *, distance_m: float | None = None,
-                      params=None) -> list[CalibrationWalk]:
+                      params=None, result=None) -> list[CalibrationWalk]:
     """The walks of known length in ``session``.
 
     With ``distance_m`` the whole session is one walk (all detected steps); otherwise each reference
-    walking bout (``bouts.csv``) is one walk with the steps whose midpoint lies in it.
+    walking bout (``bouts.csv``) is one walk with the steps whose midpoint lies in it. ``result``: the
+    session's :class:`~pdrlearn.track.base.TrackResult` if already computed.
     """
     from pdrlearn.track.waist import track_waist
 
     p, _ = resolve_params(session, params)
-    res = track_waist(session, pipeline=pipeline, params=p)
+    res = result if result is not None else track_waist(session, pipeline=pipeline, params=p)
     st = res.steps[res.steps["has_next"]]
     g = (K.pendulum_length(st["h_m"].to_numpy(float), p.leg_m, k=1.0, f=0.0) if "h_m" in st
          else np.zeros(len(st)))
@@ -49,9 +51,31 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     return walks
 
 
+MIN_STRIDES_GMM = 20  # strides needed to fit the straight/turning mixture (decision W14)
+
+
+def fit_turn_classifier(mean_rates: np.ndarray) -> tuple[dict | None, str]:
+    """Straight/turning GMM on |MRZ| of calibration strides (seed 003 sec. 3.3: fitted on one trial).
+
+    Kept only when the walks contain turns the fit can see (decision W14): at least
+    :data:`MIN_STRIDES_GMM` strides and a turning component with >= 5 % weight whose mean lies more than
+    three straight standard deviations above the straight mean; otherwise the prior stays in force.
+    """
+    x = np.abs(np.asarray(mean_rates, dtype=float))
+    if x.size < MIN_STRIDES_GMM:
+        return None, f"turn classifier: prior kept ({x.size} strides < {MIN_STRIDES_GMM})"
+    clf = TurnClassifier().fit(x)
+    m, s, w = clf.means_, clf.sds_, clf.weights_
+    if w[1] < 0.05 or m[1] - m[0] < 3 * s[0]:
+        return None, "turn classifier: prior kept (the calibration walks show no separate turning strides)"
+    return clf.to_dict(), (f"turn classifier fitted on {x.size} strides: straight {m[0]:.3f}+-{s[0]:.3f}, "
+                           f"turning {m[1]:.3f}+-{s[1]:.3f} rad/s")
+
+
 def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] | None = None,
-              turns: float | None = None, params=None) -> WaistParams:
-    """Fit the step-length parameters of ``pipeline`` (and, with ``turns``, the gyro bias).
+              turns: float | None = None, fit_turns: bool = False, params=None) -> WaistParams:
+    """Fit the step-length parameters of ``pipeline`` (with ``turns``, the gyro bias; with ``fit_turns``,
+    the straight/turning mixture, decision W14).
 
     Parameters
     ----------
@@ -64,11 +88,17 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     if distances is not None and len(distances) not in (1, len(sessions)):
         raise DataError(f"calibrate: {len(distances)} --distance values for {len(sessions)} sessions; "
                         "give one per session")
+    from pdrlearn.track.waist import track_waist
+
     base, _ = resolve_params(sessions[0], params)
     walks: list[CalibrationWalk] = []
+    rates = []
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
-        walks += calibration_walks(s, pipeline, distance_m=d, params=base)
+        res = track_waist(s, pipeline=pipeline, params=base)
+        walks += calibration_walks(s, pipeline, distance_m=d, params=base, result=res)
+        r = res.steps["mean_rate_rps"].to_numpy(float)
+        rates.append(r[np.isfinite(r)])
     out = WaistParams(**{k: v for k, v in base.to_dict().items() if k != "schema"})
     out.notes = list(base.notes)
     total = sum(w.distance_m for w in walks)
@@ -91,6 +121,11 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         out.gyro_bias_rps = float(np.mean(biases))
         out.notes.append(f"gyro bias {out.gyro_bias_rps:.5f} rad/s from {len(sessions)} walk(s) of "
                          f"{turns:+g} turn(s) (seed 003 eq. 2)")
+    if fit_turns:
+        gmm, how = fit_turn_classifier(np.concatenate(rates) if rates else np.zeros(0))
+        if gmm is not None:
+            out.turn_gmm = gmm
+        out.notes.append(how)
     out.source = "calibrated"
     log.info("calibrated %s: %s", pipeline, out.notes[-1])
     return out
