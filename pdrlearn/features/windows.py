@@ -252,6 +252,42 @@ def _check_units(session: str, s: Stream) -> None:
                             "deg/s, not rad/s - multiply by pi/180")
 
 
+def _fill_step(Xi: np.ndarray, session: Session, t0: float, t1: float, u: np.ndarray,
+               available: tuple[str, ...], fwd_foot: np.ndarray | None, fwd_waist: np.ndarray | None, *,
+               rest_search_s: float, heading: str) -> None:
+    """Write one step's channels (len(CHANNELS), n_samples) into ``Xi`` (in place)."""
+    tg = t0 + (t1 - t0) * u
+    Xi[0] = tg - t0
+    if fwd_foot is not None:
+        ta, acc = _segment(session.streams["fAccelerometer"], t0, t1)
+        gyr = None
+        if "foot_gyr" in available:
+            gyr = _interp(ta, *_segment(session.streams["fGyroscope"], t0, t1)).T
+        a, g, an = _foot_levelled(ta, acc, gyr, fwd_foot, rest_search_s=rest_search_s, heading=heading)
+        Xi[1:4] = _interp(tg, ta, a)
+        Xi[4] = _interp(tg, ta, an[:, None])[0]
+        if g is not None:
+            Xi[5:8] = _interp(tg, ta, g)
+    if "force" in available:
+        for j, name in enumerate(("fForceA", "fForceB")):
+            tf, f = _segment(session.streams[name], t0, t1)
+            Xi[CHANNEL_INDEX["force_a"] + j] = _interp(tg, tf, f)[0]
+    if fwd_waist is not None:
+        tw, wacc = _segment(session.streams["wAccelerometer"], t0, t1)
+        wgyr = None
+        if "waist_gyr" in available:
+            wgyr = _interp(tw, *_segment(session.streams["wGyroscope"], t0, t1)).T
+        a, g = _waist_levelled(wacc, wgyr, fwd_waist)
+        c = CHANNEL_INDEX["waist_acc_x"]
+        Xi[c:c + 3] = _interp(tg, tw, a)
+        if g is not None:
+            c = CHANNEL_INDEX["waist_gyr_x"]
+            Xi[c:c + 3] = _interp(tg, tw, g)
+    if "waist_baro" in available:
+        tb, b = _segment(session.streams["wBarometer"], t0, t1)
+        Xi[CHANNEL_INDEX["waist_baro"]] = np.interp(tg, tb, b[:, 0]) - np.interp(t0, tb, b[:, 0])
+
+
 def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_samples: int = 40,
                  heading: str = "pca", rest_search_s: float = 0.3) -> StepWindows:
     """Cut, level and resample every step of ``steps`` to ``n_samples`` points.
@@ -304,35 +340,10 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
     u = np.linspace(0.0, 1.0, n_samples)
     for i in range(n):
         t0, t1 = float(start[i]), float(end[i])
-        tg = t0 + (t1 - t0) * u
-        X[i, 0] = tg - t0
-        if fwd_foot is not None:
-            ta, acc = _segment(session.streams["fAccelerometer"], t0, t1)
-            gyr = None
-            if "foot_gyr" in available:
-                gyr = _interp(ta, *_segment(session.streams["fGyroscope"], t0, t1)).T
-            a, g, an = _foot_levelled(ta, acc, gyr, fwd_foot, rest_search_s=rest_search_s, heading=heading)
-            X[i, 1:4] = _interp(tg, ta, a)
-            X[i, 4] = _interp(tg, ta, an[:, None])[0]
-            if g is not None:
-                X[i, 5:8] = _interp(tg, ta, g)
-        if "force" in available:
-            for j, name in enumerate(("fForceA", "fForceB")):
-                tf, f = _segment(session.streams[name], t0, t1)
-                X[i, CHANNEL_INDEX["force_a"] + j] = _interp(tg, tf, f)[0]
-        if fwd_waist is not None:
-            tw, wacc = _segment(session.streams["wAccelerometer"], t0, t1)
-            wgyr = None
-            if "waist_gyr" in available:
-                wgyr = _interp(tw, *_segment(session.streams["wGyroscope"], t0, t1)).T
-            a, g = _waist_levelled(wacc, wgyr, fwd_waist)
-            c = CHANNEL_INDEX["waist_acc_x"]
-            X[i, c:c + 3] = _interp(tg, tw, a)
-            if g is not None:
-                c = CHANNEL_INDEX["waist_gyr_x"]
-                X[i, c:c + 3] = _interp(tg, tw, g)
-        if "waist_baro" in available:
-            tb, b = _segment(session.streams["wBarometer"], t0, t1)
-            X[i, CHANNEL_INDEX["waist_baro"]] = np.interp(tg, tb, b[:, 0]) - np.interp(t0, tb, b[:, 0])
+        try:
+            _fill_step(X[i], session, t0, t1, u, available, fwd_foot, fwd_waist,
+                       rest_search_s=rest_search_s, heading=heading)
+        except DataError as exc:
+            raise DataError(f"session '{session.name}', step {i} ({t0:.2f}-{t1:.2f} s): {exc}") from None
     return StepWindows(X=X, durations_s=end - start, channels=CHANNELS, available=available,
                        steps=steps.reset_index(drop=True).copy(), session=session.name)
