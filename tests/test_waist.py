@@ -259,6 +259,8 @@ def test_real_calibrate_cli_then_track(tmp_path):
     assert res.info["warnings"] == []
     res0 = get_pipeline("waist-pendulum")(test)
     assert any("no per-user calibration" in w for w in res0.info["warnings"])
+    other = get_pipeline("waist-pll")(test, params=str(out))  # calibrated for the other pipeline
+    assert any("calibrated for waist-pendulum" in w for w in other.info["warnings"])
     assert main(["calibrate", str(tmp_path), "--pipeline", "waist-pll", "--out", str(out)]) == 2
 
 

@@ -43,7 +43,7 @@ def register(app: typer.Typer) -> None:
         sessions = [read_session(d) for d in dirs]
         params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns,
                            fit_turns=fit_turns)
-        params.save(out, extra={"pipeline": pipeline, "fit": [str(d) for d in dirs]})
+        params.save(out, extra={"fit": [str(d) for d in dirs]})
         d = params.to_dict()
         if as_json:
             print_json(json_safe({"out": str(out), "pipeline": pipeline, **d}))

@@ -147,6 +147,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if pipeline not in ("waist-pll", "waist-pendulum"):
         raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     p, warnings = resolve_params(session, params)
+    if p.source == "calibrated" and p.pipeline not in (None, pipeline):
+        warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
+                        "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
     imu = waist_imu(session)
     thr = p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None else WALK_THRESHOLD_MPS2
     if pipeline == "waist-pendulum":

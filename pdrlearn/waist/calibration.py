@@ -127,5 +127,6 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
             out.turn_gmm = gmm
         out.notes.append(how)
     out.source = "calibrated"
+    out.pipeline = pipeline
     log.info("calibrated %s: %s", pipeline, out.notes[-1])
     return out

@@ -38,7 +38,8 @@ class WaistParams:
     (seed 001 eq. 23, piecewise per seed 000 sec. II-D); gyro_bias_rps : vertical gyro bias (rad/s,
     seed 003 eq. 2); turn_gmm : ``{"means": [...], "sds": [...], "weights": [...]}`` of the straight /
     turning classifier on |MRZ| (rad/s); walk_threshold_mps2 : motion gate; source : "defaults" or
-    "calibrated"; notes : how each value was obtained.
+    "calibrated"; pipeline : the pipeline the step length was calibrated for; notes : how each value was
+    obtained.
     """
 
     leg_m: float = float("nan")
@@ -52,6 +53,7 @@ class WaistParams:
     turn_gmm: dict | None = None
     walk_threshold_mps2: float | None = None
     source: str = "defaults"
+    pipeline: str | None = None
     notes: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict:
@@ -64,7 +66,7 @@ class WaistParams:
         if not isinstance(d, dict):
             raise DataError(f"{where}: waist parameters must be a JSON object")
         names = {f.name for f in fields(cls)}
-        unknown = sorted(set(d) - names - {"schema", "pipeline", "fit"})
+        unknown = sorted(set(d) - names - {"schema", "fit"})
         if unknown:
             raise DataError(f"{where}: unknown waist parameter(s) {', '.join(unknown)}; "
                             f"expected some of {', '.join(sorted(names))}")
@@ -72,7 +74,7 @@ class WaistParams:
         for k, v in d.items():
             if k not in names:
                 continue
-            if k in ("turn_gmm", "notes", "source"):
+            if k in ("turn_gmm", "notes", "source", "pipeline"):
                 kw[k] = v
                 continue
             if v is None:
