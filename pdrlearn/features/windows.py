@@ -31,7 +31,7 @@ from scipy.ndimage import uniform_filter1d
 
 from pdrlearn.errors import DataError
 from pdrlearn.features import _kernels as K
-from pdrlearn.io.session import Session, Stream
+from pdrlearn.io.session import DIRECTION_CLASSES, LENGTH_CLASSES, TERRAIN_CLASSES, Session, Stream
 from pdrlearn.signal import gravity_rotation
 
 log = logging.getLogger(__name__)
@@ -62,9 +62,9 @@ GROUP_STREAMS: dict[str, tuple[str, ...]] = {
 
 #: Classes of each task (thesis ch. 6.1-6.3) and the steps-table column holding them.
 TASK_CLASSES: dict[str, tuple[str, ...]] = {
-    "terrain": ("flat", "up", "down"),
-    "direction": ("forward", "backward"),
-    "length": ("short", "normal", "long"),
+    "terrain": TERRAIN_CLASSES,
+    "direction": DIRECTION_CLASSES,
+    "length": LENGTH_CLASSES,
 }
 TASK_COLUMNS: dict[str, str] = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
 
