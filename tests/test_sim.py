@@ -320,3 +320,12 @@ def test_cli_end_to_end(tmp_path, capsys):
     _, err = capsys.readouterr()
     assert code == 2 and "not an empty folder" in err
     assert len(list(out.iterdir())) > 8  # untouched
+
+
+def test_irregular_steps_are_short_and_slow():
+    st = simulate("C", 2, irregular_rate=0.3).steps
+    irr, reg = st[st.irregular & (st.kind == "walk")], st[~st.irregular & st.steady]
+    assert len(irr) >= 5 and len(reg) >= 10
+    assert irr.length_m.median() < 0.9 * reg.length_m.median()
+    assert (irr.end_s - irr.start_s).median() > 1.05 * (reg.end_s - reg.start_s).median()
+    assert simulate("C", 2).steps.irregular.sum() == 0  # default: none

@@ -59,6 +59,7 @@ class Turn:
     angle_rad: float
 
 
+IRREGULAR_SHORTENING = 0.4  # an irregular step lands this fraction of a step short
 MAX_TURN_STEP_RAD = math.pi / 3  # largest heading change of one stepping-turn step
 
 
@@ -175,21 +176,26 @@ class _Walker:
             self.direction = direction
 
     # -- segments ---------------------------------------------------------------------------------
-    def _progress(self, length: float, nominal: float) -> np.ndarray:
+    def _progress(self, length: float, nominal: float) -> tuple[np.ndarray, np.ndarray]:
+        """Arc positions of the steps along a segment and which of them are irregular.
+
+        An irregular step (stumble, hesitation) lands 40 % of a step short; the next step makes up for it.
+        """
         n = max(1, int(round(length / nominal)))
         base = length / n
         s = base * np.arange(1, n + 1, dtype=float)
         s[:-1] += self.rng.normal(0.0, self.var * base, n - 1)
-        return s
-
-    def _irregular(self) -> bool:
-        return bool(self.irregular_rate > 0 and self.rng.random() < self.irregular_rate)
+        irregular = np.zeros(n, dtype=bool)
+        if self.irregular_rate > 0:
+            irregular[:-1] = self.rng.random(n - 1) < self.irregular_rate
+        s[irregular] -= IRREGULAR_SHORTENING * base
+        return s, irregular
 
     def straight(self, seg: Straight) -> None:
         self._change_direction("forward")
         c0, u = self.c.copy(), _ahead(self.psi)
-        for s in self._progress(seg.length_m, self.user.step_length(self.speed, seg.gait)):
-            self.step(c0 + s * u, self.z, self.psi, "walk", gait=seg.gait, irregular=self._irregular())
+        for s, irr in zip(*self._progress(seg.length_m, self.user.step_length(self.speed, seg.gait)), strict=True):
+            self.step(c0 + s * u, self.z, self.psi, "walk", gait=seg.gait, irregular=bool(irr))
 
     def curve(self, seg: Curve) -> None:
         self._change_direction("forward")
@@ -198,11 +204,11 @@ class _Walker:
         sigma = 1.0 if seg.angle_rad >= 0 else -1.0
         r, psi0 = seg.radius_m, self.psi
         centre = self.c + sigma * r * _normal(psi0)
-        for s in self._progress(abs(seg.angle_rad) * r, self.user.step_length(self.speed, seg.gait)):
+        for s, irr in zip(
+            *self._progress(abs(seg.angle_rad) * r, self.user.step_length(self.speed, seg.gait)), strict=True
+        ):
             psi = psi0 + sigma * s / r
-            self.step(
-                centre - sigma * r * _normal(psi), self.z, psi, "walk", gait=seg.gait, irregular=self._irregular()
-            )
+            self.step(centre - sigma * r * _normal(psi), self.z, psi, "walk", gait=seg.gait, irregular=bool(irr))
 
     def stairs(self, seg: Stairs) -> None:
         self._change_direction("forward")
@@ -219,7 +225,7 @@ class _Walker:
         self._change_direction("backward")
         c0, u = self.c.copy(), -_ahead(self.psi)
         nominal = 0.55 * self.user.step_length(self.speed)
-        for s in self._progress(seg.n_steps * nominal, nominal):
+        for s in self._progress(seg.n_steps * nominal, nominal)[0]:
             self.step(c0 + s * u, self.z, self.psi, "backward", direction="backward")
 
     def turn(self, seg: Turn) -> None:
