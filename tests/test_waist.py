@@ -190,10 +190,11 @@ def test_gyro_heading_integrates_turns_only():
 
 # ------------------------------------------------------------------ events
 @pytest.mark.parametrize("realtime", [False, True])
-def test_ic_detection_on_synthetic_signal(realtime):
+@pytest.mark.parametrize("fs", [20.0, 100.0, 204.8])
+def test_ic_detection_on_synthetic_signal(realtime, fs):
     from pdrlearn.steps.evaluate import score_events
 
-    s = synth_session(duration=20.0)
+    s = synth_session(duration=20.0, fs=fs)
     det = InitialContactDetector(realtime=realtime).detect(waist_imu(s))
     ref = s.extras["contacts"]["ic_s"].to_numpy()
     ref = ref[(ref > 3.5) & (ref < 16.5)]
