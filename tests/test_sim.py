@@ -329,3 +329,14 @@ def test_irregular_steps_are_short_and_slow():
     assert irr.length_m.median() < 0.9 * reg.length_m.median()
     assert (irr.end_s - irr.start_s).median() > 1.05 * (reg.end_s - reg.start_s).median()
     assert simulate("C", 2).steps.irregular.sum() == 0  # default: none
+
+
+def test_20hz_is_the_mean_of_five_100hz_samples(exact_a):
+    """Firmware averaging (thesis ch.4.2.3): each 20 Hz sample is the mean of five 100 Hz samples."""
+    s20 = simulate("A", 1, rate_hz=20, noise=False)
+    for name in ("fAccelerometer", "fGyroscope", "wAccelerometer", "fForceB"):
+        v100, v20 = exact_a[name].values, s20[name].values
+        j = np.arange(1, len(v20) - 1)
+        means = np.stack([v100[5 * k - 2 : 5 * k + 3].mean(axis=0) for k in j])
+        np.testing.assert_allclose(v20[j], means, atol=1e-9)
+        np.testing.assert_allclose(s20[name].t[j], exact_a[name].t[5 * j], atol=1e-12)
