@@ -113,8 +113,9 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
             span = s.mx - s.mn
             level = p.rest + p.peak_frac * (s.emx - p.rest)
             t_ev, e_ev = next(((pt, pa) for pt, pa in reversed(s.peaks) if pa >= level), (s.mx_t, s.emx))
-            if s.pending is not None and t_ev - s.pending[0] < p.min_stride_s:
+            if s.pending is not None and t_ev - s.pending[0] < p.min_stride_s and span > p.amp:
                 # the same swing split by a brief false rest: merge; the event stays the last impact
+                # (a wobble below the threshold while standing is ignored, it never moves the event)
                 pe = s.pending
                 s.pending_emx = max(s.pending_emx, s.emx)
                 amp = max(s.pending_amp, span)
