@@ -52,3 +52,18 @@ def test_alignment_recovers_simulated_clock_offset_within_one_sample(scenario):
     for offset in (0.2, -0.2):
         est, drift = align_units(_sim(scenario, 3, "normal", clock_offset_s=offset))
         assert abs((est - base[0]) - offset) <= 1.0 / fs, (est, base)
+
+
+@pytest.mark.parametrize("detector", ["accel", "accel-force"])
+def test_foot_detectors_on_stairs_and_turns(detector):
+    # the terrain exercise: 10-step stair flights up and down with turns on the spot between them
+    s = _sim("terrain", 1, "normal")
+    sc = score_steps(get_detector(detector).detect(s), s)
+    assert sc["recall"] >= 0.95 and sc["f1"] >= 0.95, sc
+
+
+def test_foot_detectors_with_dropped_packets():
+    s = _sim("B", 1, "normal", drop_rate=0.05)
+    for name in ("accel", "accel-force"):
+        sc = score_steps(get_detector(name).detect(s), s)
+        assert sc["f1"] >= 0.97, (name, sc)
