@@ -5,5 +5,6 @@ is absent). Never torch, scikit-learn, scipy or pandas: ``tests/test_runtime_imp
 """
 
 from pdrlearn.runtime.bundle import SCHEMA_VERSION, Bundle, OnnxModel, load_bundle, read_manifest
+from pdrlearn.runtime.tracker import Step, Tracker
 
-__all__ = ["SCHEMA_VERSION", "Bundle", "OnnxModel", "load_bundle", "read_manifest"]
+__all__ = ["SCHEMA_VERSION", "Bundle", "OnnxModel", "load_bundle", "read_manifest", "Step", "Tracker"]
