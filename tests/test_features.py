@@ -264,3 +264,20 @@ def test_property_any_mounting_rotation_keeps_features(level):
         assert np.max(np.abs(f0 - f1) / scale) < 0.03
 
     check()
+
+
+def test_propagate_attitude_matches_step_by_step_integration():
+    rng = np.random.default_rng(0)
+    n = 57
+    gyr = rng.normal(0, 3, (n, 3))
+    dt = np.full(n - 1, 0.01)
+    r0 = Rotation.from_euler("xyz", (10, -40, 70), degrees=True).as_matrix()
+    steps = Rotation.from_rotvec(0.5 * (gyr[:-1] + gyr[1:]) * dt[:, None]).as_matrix()
+    for k0 in (0, 20, n - 1):
+        want = np.empty((n, 3, 3))
+        want[k0] = r0
+        for k in range(k0, n - 1):
+            want[k + 1] = want[k] @ steps[k]
+        for k in range(k0, 0, -1):
+            want[k - 1] = want[k] @ steps[k - 1].T
+        np.testing.assert_allclose(K.propagate_attitude(gyr, dt, k0, r0), want, atol=1e-12)

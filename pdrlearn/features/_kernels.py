@@ -46,11 +46,25 @@ def propagate_attitude(gyr: np.ndarray, dt: np.ndarray, k0: int, r0: np.ndarray)
         return out
     w = 0.5 * (gyr[:-1] + gyr[1:]) * dt[:, None]  # mean rate over each interval
     steps = Rotation.from_rotvec(w).as_matrix()
-    for k in range(k0, n - 1):
-        out[k + 1] = out[k] @ steps[k]
-    for k in range(k0, 0, -1):
-        out[k - 1] = out[k] @ steps[k - 1].T
+    if k0 < n - 1:  # forward: R_{k0+j} = r0 @ steps[k0] @ ... @ steps[k0+j-1]
+        out[k0 + 1:] = r0 @ prefix_products(steps[k0:])
+    if k0 > 0:  # backward: R_{k0-j} = r0 @ steps[k0-1].T @ ... @ steps[k0-j].T
+        back = prefix_products(np.transpose(steps[:k0][::-1], (0, 2, 1)))
+        out[:k0] = (r0 @ back)[::-1]
     return out
+
+
+def prefix_products(m: np.ndarray) -> np.ndarray:
+    """Inclusive prefix products ``m[0] @ m[1] @ ... @ m[k]`` of a stack of matrices (n, 3, 3).
+
+    Hillis-Steele scan: log2(n) batched matrix products instead of a Python loop over the samples.
+    """
+    p = np.array(m, dtype=np.float64, copy=True)
+    shift = 1
+    while shift < p.shape[0]:
+        p[shift:] = p[:-shift] @ p[shift:]
+        shift *= 2
+    return p
 
 
 def correct_tilt_drift(rot: np.ndarray, g_end_sensor: np.ndarray, k0: int, k1: int) -> np.ndarray:
