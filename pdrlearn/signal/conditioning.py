@@ -151,7 +151,9 @@ def _unit_calibration(session: Session, unit: str, *, min_s: float, max_s: float
     )
 
 
-def calibrate_standstill(session: Session, *, min_s: float = 2.0, max_s: float = 5.0,
+def calibrate_standstill(session: Session, *,
+                         min_s: float = 2.0,  # thesis ch.7.2: two-second setup standstill
+                         max_s: float = 5.0,  # thesis ch.4.4: five seconds still at the start
                          units: tuple[str, ...] | None = None, **mask_kw) -> StandstillCalibration:
     """Estimate gyro bias, gravity vector and noise of each unit from its first standstill.
 
