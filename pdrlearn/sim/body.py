@@ -69,6 +69,9 @@ SPEED_PITCH = {"slow": 0.88, "normal": 1.0, "fast": 1.08}
 LOAD_FRACTION = 0.10  # initial contact -> foot flat, fraction of the gait cycle
 HEEL_OFF_FRACTION = 0.40  # heel-off instant, fraction of the gait cycle
 PUSH_OFF_RATE = 2.1  # pitch rate at toe-off / mean rate of the forefoot rocker (fast push-off)
+SWING_ROLL_DEG = 12.0  # peak inversion of the swinging foot
+SWING_YAW_DEG = 6.0  # peak toe-out of the swinging foot
+CONTACT_ROLL_DEG = 6.0  # inversion at initial contact, removed quickly in the first third of loading
 SWING_PITCH_KNOTS = (0.0, 0.15, 0.75, 1.0)  # normalised swing times of the pitch knots
 
 
@@ -84,6 +87,9 @@ class Events:
     theta_to: np.ndarray
     theta_ic: np.ndarray
     theta_mid: np.ndarray
+    swing_roll: np.ndarray  # peak roll in swing (rad)
+    swing_yaw: np.ndarray  # peak extra yaw in swing (rad)
+    contact_roll: np.ndarray  # roll at initial contact (rad)
     impact: np.ndarray  # (n, 2): forward, vertical pivot velocity before contact (m/s)
     clearance: np.ndarray
     bout_start: np.ndarray  # bool: first step after a standstill
@@ -104,7 +110,21 @@ def schedule(
 ) -> Events:
     """Assign gait-event times to the footsteps (both feet) and draw per-step swing parameters."""
     n = len(steps)
-    ev = {k: np.zeros(n) for k in ("ho", "to", "ic", "ff", "step_s", "theta_to", "theta_ic", "theta_mid", "clearance")}
+    names = (
+        "ho",
+        "to",
+        "ic",
+        "ff",
+        "step_s",
+        "theta_to",
+        "theta_ic",
+        "theta_mid",
+        "clearance",
+        "swing_roll",
+        "swing_yaw",
+        "contact_roll",
+    )
+    ev = {k: np.zeros(n) for k in names}
     impact = np.zeros((n, 2))
     bout_start = np.zeros(n, dtype=bool)
     cv = user.variability * variability
@@ -143,6 +163,12 @@ def schedule(
                 * gait_pitch
             )
         ev["theta_ic"][k] = ic_pitch * (1.0 + 0.1 * variability * rng.normal())
+        # swing wobble: inversion (medial edge up) and toe-out, a few degrees
+        inward = 1.0 if st.foot == "right" else -1.0  # roll > 0 lifts the left edge
+        wob = 0.3 if st.kind == "turn" else (0.6 if st.kind.startswith("stairs") else 1.0)
+        ev["swing_roll"][k] = inward * wob * np.radians(SWING_ROLL_DEG) * (1.0 + 0.2 * variability * rng.normal())
+        ev["contact_roll"][k] = inward * wob * np.radians(CONTACT_ROLL_DEG) * (1.0 + 0.2 * variability * rng.normal())
+        ev["swing_yaw"][k] = -inward * wob * np.radians(SWING_YAW_DEG) * (1.0 + 0.3 * variability * rng.normal())
         ev["theta_mid"][k] = 0.9 * ev["theta_ic"][k] if kd.mid_swing_deg is None else np.radians(kd.mid_swing_deg) * jit
         sp = user.impact_speed_mps * np.exp(rng.normal(0.0, 0.25 * variability))
         sp *= {"slow": 0.8, "normal": 1.0, "fast": 1.2}[speed] * GAIT_FACTORS[st.gait][0] ** 0.5
@@ -168,6 +194,7 @@ def foot_pose(
     heel = np.empty((n, 3))
     yaw = np.empty(n)
     theta = np.zeros(n)
+    roll = np.zeros(n)
     ball = np.array([0.72 * user.foot_length_m, 0.0, 0.0])  # ball of the foot, ~72 % of foot length
     h_a, y_a = initial[foot]
     h_a = np.asarray(h_a, float)
@@ -211,7 +238,10 @@ def foot_pose(
         sl = slice(i_to, i_ic)
         heel[sl] = clamped_spline(ev.to[k] + knots_u * swing, kp, v_to, v_ic, t[sl])
         tu = (t[sl] - ev.to[k]) / swing
-        yaw[sl] = y_a + (y_b - y_a) * smoothstep(tu)
+        # swing wobble: inversion and toe-in/out peaking mid-swing, zero with zero rate at both ends
+        bump = np.sin(np.pi * tu) ** 2
+        yaw[sl] = y_a + (y_b - y_a) * smoothstep(tu) + ev.swing_yaw[k] * bump
+        roll[sl] = ev.swing_roll[k] * bump + ev.contact_roll[k] * smoothstep(tu)
         pk = np.array([th_to, 1.15 * th_to, ev.theta_mid[k], th_ic])
         theta[sl] = clamped_spline(
             ev.to[k] + np.array(SWING_PITCH_KNOTS) * swing, pk[:, None], np.array([w_to]), np.array([w_ic]), t[sl]
@@ -221,9 +251,10 @@ def foot_pose(
         th = hermite((t[sl] - ev.ic[k]) / load, th_ic, 0.0, w_ic, 0.0, load)
         heel[sl] = p_b - foot_rotate(y_b, th, r_b)
         yaw[sl], theta[sl] = y_b, th
+        roll[sl] = ev.contact_roll[k] * (1.0 - smoothstep(3.0 * (t[sl] - ev.ic[k]) / load))
         h_a, y_a, pos = np.asarray(h_b, float), y_b, i_ff
-    heel[pos:], yaw[pos:], theta[pos:] = h_a, y_a, 0.0
-    return heel, foot_rotation(yaw, theta)
+    heel[pos:], yaw[pos:], theta[pos:], roll[pos:] = h_a, y_a, 0.0, 0.0
+    return heel, foot_rotation(yaw, theta, roll)
 
 
 # -- pelvis -------------------------------------------------------------------------------------

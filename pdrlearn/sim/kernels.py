@@ -41,9 +41,13 @@ def rot_x(alpha: np.ndarray | float) -> np.ndarray:
     return _rot(alpha, 1, 2)
 
 
-def foot_rotation(psi: np.ndarray | float, theta: np.ndarray | float) -> np.ndarray:
-    """Foot orientation body->ENU for heading ``psi`` and pitch ``theta`` (toes up > 0), roll 0."""
-    return rot_z(psi) @ rot_y(-np.asarray(theta, dtype=float))
+def foot_rotation(
+    psi: np.ndarray | float, theta: np.ndarray | float, roll: np.ndarray | float | None = None
+) -> np.ndarray:
+    """Foot orientation body->ENU for heading ``psi``, pitch ``theta`` (toes up > 0) and ``roll`` (about the
+    foot's long axis, > 0 lifts the left edge)."""
+    r = rot_z(psi) @ rot_y(-np.asarray(theta, dtype=float))
+    return r if roll is None else r @ rot_x(roll)
 
 
 def foot_rotate(psi: float, theta: np.ndarray, r: np.ndarray) -> np.ndarray:
