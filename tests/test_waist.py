@@ -41,7 +41,8 @@ def synth_session(*, f_step=1.8, heading=0.3, duration=20.0, fs=100.0, lead=np.p
                                     "wGyroscope": Stream("wGyroscope", t, gyr)},
                 meta={"subject": {"height_m": 1.75, "sensor_height_m": 0.95}},
                 frames={"waist": AxisFrame(x="forward", y="left", z="up")})
-    s.extras["contacts"] = pd.DataFrame({"ic_s": t[walking][0] + np.arange(0, duration, 1 / f_step)})
+    t_walk = t[walking][0] if walking.any() else rest
+    s.extras["contacts"] = pd.DataFrame({"ic_s": t_walk + np.arange(0, duration, 1 / f_step)})
     return s
 
 
@@ -298,3 +299,21 @@ def test_fit_turn_classifier_needs_visible_turns():
     gmm, how = fit_turn_classifier(np.concatenate([straight, rng.normal(0.7, 0.15, 20)]))
     assert gmm is not None and gmm["means"][1] > 0.5
     assert fit_turn_classifier(straight[:5])[0] is None
+
+
+def test_standstill_gives_an_empty_track_and_calibration_needs_a_distance():
+    from pdrlearn.track import get_pipeline
+    from pdrlearn.waist.calibration import calibrate
+
+    s = synth_session(duration=10.0, rest=6.0)  # never walks
+    for name in ("waist-pll", "waist-pendulum"):
+        res = get_pipeline(name)(s)
+        assert len(res.steps) == 0 and res.distance_m == 0.0 and len(res.trajectory) == 1
+    with pytest.raises(DataError, match="--distance"):
+        calibrate([synth_session()], "waist-pendulum")
+    with pytest.raises(DataError, match="positive"):
+        calibrate([synth_session()], "waist-pendulum", distances=[-3.0])
+    p = calibrate([synth_session()], "waist-pll", distances=[12.0])
+    assert p.source == "calibrated" and p.pipeline == "waist-pll"
+    res = get_pipeline("waist-pll")(synth_session(), params=p)
+    assert res.distance_m == pytest.approx(12.0, rel=0.02)  # same walk: the calibration is reproduced
