@@ -163,7 +163,7 @@ def _interp(t_new: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
     mean over its own interval first (box anti-alias filter, like the PLASYS firmware's 5-sample
     averaging, thesis ch. 4.3.2), so impact peaks do not alias and 20/100/204.8 Hz data agree."""
     if len(t_new) > 1 and len(t) > 2:
-        width = int(round((t_new[1] - t_new[0]) / float(np.median(np.diff(t)))))
+        width = int(round((t_new[1] - t_new[0]) * (len(t) - 1) / float(t[-1] - t[0])))  # mean spacing
         width = 2 * (width // 2) + 1  # odd: a centred box, no half-sample delay
         if width > 1:
             v = uniform_filter1d(v, size=width, axis=0, mode="nearest")
@@ -174,7 +174,7 @@ def _foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwa
                    rest_search_s: float, heading: str) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
     """Foot acc (n, 3; gravity removed), gyro (n, 3) in the step frame, and |acc| (n,)."""
     n = acc.shape[0]
-    fs = 1.0 / float(np.median(np.diff(t))) if n > 1 else 1.0
+    fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
     m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
     k0 = K.rest_index(acc, gyr, 0, m)
     k1 = K.rest_index(acc, gyr, n - m, n)
