@@ -8,6 +8,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as hst
 from scipy.spatial.transform import Rotation
 
 from pdrlearn.cli import main
@@ -340,3 +342,32 @@ def test_20hz_is_the_mean_of_five_100hz_samples(exact_a):
         means = np.stack([v100[5 * k - 2 : 5 * k + 3].mean(axis=0) for k in j])
         np.testing.assert_allclose(v20[j], means, atol=1e-9)
         np.testing.assert_allclose(s20[name].t[j], exact_a[name].t[5 * j], atol=1e-12)
+
+
+@settings(max_examples=6, deadline=None)
+@given(
+    user_seed=hst.integers(0, 10**6),
+    length=hst.floats(2.0, 12.0),
+    speed=hst.sampled_from(["slow", "normal", "fast"]),
+    angle=hst.floats(-math.pi, math.pi),
+)
+def test_property_any_user_walks_the_path(user_seed, length, speed, angle):
+    user = UserProfile.from_seed(user_seed)
+    s = simulate_path(
+        [Straight(length), Curve(angle, 2.0)] if abs(angle) > 0.05 else [Straight(length)],
+        user,
+        speed=speed,
+        noise=False,
+    )
+    for stream in s.streams.values():
+        assert np.isfinite(stream.values).all()
+    assert (s["fForceA"].values >= 0).all() and (s["fForceB"].values >= 0).all()
+    steps = s.steps
+    assert ((steps.start_s < steps.ic_s) & (steps.ic_s < steps.end_s)).all()
+    # the right foot ends beside the left one at the end of the path: its strides add up to the path
+    expected = length + (abs(angle) * 2.0 if abs(angle) > 0.05 else 0.0)
+    assert steps.length_m.sum() == pytest.approx(expected, rel=0.08)
+    # the waist ends where the path ends (start and end standing still)
+    tr = s.trajectory
+    end = np.array([tr.x.iloc[-1], tr.y.iloc[-1]])
+    assert np.linalg.norm(end) > 0.5 * length
