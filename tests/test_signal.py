@@ -142,3 +142,19 @@ def test_calibrate_errors():
     s2 = Session("acc-only", {"wAccelerometer": Stream("wAccelerometer", t, acc)})
     with pytest.raises(MissingSensorError):
         calibrate_standstill(s2)
+
+
+def test_calibrate_on_real_lower_back(real_dir):
+    from pdrlearn.io import read_session
+
+    s = read_session(real_dir / "mobgap_HA001_Test11_Trial1")
+    cal = calibrate_standstill(s)
+    c = cal["waist"]
+    assert c.t0 == 0.0 and 2.0 <= c.t1 - c.t0 <= 5.0  # the recording starts standing
+    assert np.all(np.abs(c.gyro_bias) < 0.05)  # rad/s
+    assert 9.3 < c.gravity_norm < 10.1 and c.acc_mean[0] > 9.0  # x axis up (meta.json)
+    R = gravity_rotation(c.gravity)
+    assert np.allclose(R @ c.gravity, [0, 0, c.gravity_norm])
+    # a session without any 2 s standstill says so
+    with pytest.raises(DataError, match="standstill"):
+        calibrate_standstill(read_session(real_dir / "mobgap_HA001_Test5_Trial1"))
