@@ -371,3 +371,30 @@ def test_property_any_user_walks_the_path(user_seed, length, speed, angle):
     tr = s.trajectory
     end = np.array([tr.x.iloc[-1], tr.y.iloc[-1]])
     assert np.linalg.norm(end) > 0.5 * length
+
+
+def test_standstill_noise_matches_thesis_tables():
+    """At 20 Hz the stationary deviation reproduces thesis Tables 4, 6, 12, 14, 16 (within 15 %)."""
+    from pdrlearn.sim import sensors as sn
+
+    s = simulate("standstill", 5)
+    for name, table in (
+        ("fAccelerometer", sn.FOOT_ACC.noise_sd),
+        ("fGyroscope", sn.FOOT_GYR.noise_sd),
+        ("wAccelerometer", sn.WAIST_ACC.noise_sd),
+        ("wGyroscope", sn.WAIST_GYR.noise_sd),
+        ("wMagneticField", sn.MAG_NOISE_SD),
+    ):
+        v = s[name].values
+        sd = np.diff(v, axis=0).std(axis=0) / math.sqrt(2)  # white-noise sd, insensitive to the slow drift
+        np.testing.assert_allclose(sd, table, rtol=0.15, err_msg=name)
+    p = s["wBarometer"].values[:, 0]
+    assert 996.0 < p.mean() < 1030.0  # Table 18 range, minus ~0.1 hPa for the phone's 1 m height
+
+
+def test_instep_mount_pitch_knob():
+    s = simulate("A", 1, foot_mount_pitch_deg=50.0, noise=False)
+    rest = s["fAccelerometer"].values[0]
+    # toes-down tilt: gravity shows on -x like the real instep recordings (rest acc_x ~ -7.6 m/s^2)
+    assert rest[0] == pytest.approx(-G * math.sin(math.radians(50.0)), abs=0.6)
+    np.testing.assert_allclose(rest, _foot_axes(s).T @ [0.0, 0.0, G], atol=1e-6)

@@ -26,6 +26,7 @@ class ImuErrorModel:
     full_scale: float
     lsb: float | None = None
     scale_sd: float = 0.0
+    bias_walk: float = 0.0  # bias random walk (unit / sqrt(s)): slow drift during a session
 
 
 # thesis Table 4: foot accelerometer deviation (m/s^2) and mean offsets from (0, g, 0)
@@ -42,6 +43,8 @@ FOOT_GYR = ImuErrorModel(
     bias_sd=(0.0018, 0.0024, 0.0071),
     full_scale=np.radians(2000.0),
     lsb=np.radians(0.070),  # L3G4200D at 2000 dps: 70 mdps/digit (data sheet, thesis ref. [111])
+    # the thesis notes a small drift over time (ch.4.2.1.2); no figure is given: docs/decisions S12
+    bias_walk=2e-4,
 )
 # thesis Table 12: waist accelerometer deviation and mean offsets (gravity on the x axis in that test)
 WAIST_ACC = ImuErrorModel(
@@ -55,6 +58,7 @@ WAIST_GYR = ImuErrorModel(
     noise_sd=(0.0011, 0.0009, 0.0008),
     bias_sd=(0.0014, 0.0005, 0.0004),
     full_scale=np.radians(2000.0),
+    bias_walk=5e-5,  # smaller drift than the foot gyroscope (thesis ch.4.3.1.2); docs/decisions S12
 )
 MAG_NOISE_SD = (0.6835, 0.7389, 0.7351)  # uT, thesis Table 16
 MAG_LSB = 0.15  # uT, AK8963 sensitivity (thesis Table 15)
@@ -79,6 +83,8 @@ def imu_readout(
     scale = 1.0 + rng.normal(0.0, model.scale_sd, 3)
     sd = np.asarray(model.noise_sd) * np.sqrt(FIRMWARE_AVERAGE)
     out = ideal * scale + bias + rng.normal(0.0, 1.0, ideal.shape) * sd
+    if model.bias_walk > 0:  # 100 Hz samples: increments of sd bias_walk * sqrt(0.01 s)
+        out += np.cumsum(rng.normal(0.0, model.bias_walk * 0.1, ideal.shape), axis=0)
     out = np.clip(out, -model.full_scale, model.full_scale)
     if model.lsb:
         out = quantize(out, model.lsb)

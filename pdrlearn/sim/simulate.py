@@ -49,6 +49,7 @@ KNOBS: dict[str, object] = {
     "mag_disturbance_ut": 3.0,  # sd of the indoor field disturbances
     "baro_drift_hpa_per_h": 0.3,  # sd of the weather drift slope
     "length_m": 1000.0,  # scenario "walk" only: path length
+    "foot_mount_pitch_deg": 0.0,  # extra toes-down tilt of the foot unit (e.g. 50 for an instep mount)
 }
 
 
@@ -208,7 +209,10 @@ def simulate_path(
     p_f = heel + R_f @ r_sensor
     f_body = block_mean(specific_force_body(p_f, R_f, dt), OVERSAMPLE)
     w_body = block_mean(angular_rate_body(R_f, dt), OVERSAMPLE)
-    mis_f = _misalignment(user.foot_misalignment_deg)
+    # mounting: the user's few-degree misalignment, optionally on top of a deliberate toes-down tilt
+    # (an instep mount like the real gaitmap stair recordings is pitched ~50 deg)
+    mis_f = _misalignment([0.0, float(opt["foot_mount_pitch_deg"]), 0.0]) @ _misalignment(user.foot_misalignment_deg)
+    foot_mis_deg = [round(float(v), 9) for v in np.degrees(Rotation.from_matrix(mis_f).as_rotvec())]
     foot_m = THESIS_FOOT_FRAME.matrix()
     s_rng = _rng(user.seed, int(seed), scenario, speed, "sensors")
     acc_f, e_af = sn.imu_readout(_to_sensor(f_body, foot_m, mis_f), sn.FOOT_ACC, s_rng, noise=noise)
@@ -320,7 +324,7 @@ def simulate_path(
         "clock_drift_ppm": float(opt["clock_drift_ppm"]),
         "time_base": "foot unit clock; labels and trajectory use it; waist = foot * (1 + drift) + offset",
         "dropped_samples": int((~foot_keep).sum()),
-        "misalignment_deg": {"foot": user.foot_misalignment_deg, "waist": user.waist_misalignment_deg},
+        "misalignment_deg": {"foot": foot_mis_deg, "waist": user.waist_misalignment_deg},
         "sensor_errors": {
             "fAccelerometer": e_af,
             "fGyroscope": e_gf,
