@@ -7,6 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from sklearn.linear_model import LogisticRegression
+from sklearn.naive_bayes import GaussianNB
 from sklearn.utils.estimator_checks import check_estimator
 
 from pdrlearn.classify.dtw import DTWClassifier, as_series, dtw_block, envelope, lb_keogh
@@ -49,11 +50,11 @@ def synthetic_features(n: int, seed: int, sep: float = 1.5, n_features: int = 12
 @pytest.mark.parametrize(
     "est, xfail",
     [
-        (SVMClassifier(), {}),
-        (NNClassifier(max_epochs=30), {}),
+        (SVMClassifier(C=1.0), {}),  # C="cv" only wraps fits of this estimator (test_svm_c_by_cv)
+        (NNClassifier(max_epochs=10), {}),
         (DTWClassifier(n_references=8), {}),
         (
-            UnitFusionClassifier([("a", LogisticRegression(), [0]), ("b", LogisticRegression(), [1])]),
+            UnitFusionClassifier([("a", GaussianNB(), [0]), ("b", GaussianNB(), [1])], weight_step=0.25),
             {"check_fit2d_1feature": "units address columns 0 and 1; a 1-column X cannot feed them"},
         ),
     ],
@@ -107,6 +108,14 @@ def test_svm_thesis_kernels():
     clf = SVMClassifier(task="length").fit(X[:200], y[:200])
     assert clf.kernels_["normal"] == {"kernel": "poly", "degree": 2}
     assert np.mean(clf.predict(X[200:]) == y[200:]) > 0.75
+
+
+def test_svm_c_by_cv():
+    X, y = synthetic_features(150, seed=9)
+    clf = SVMClassifier(task="terrain", C_grid=(0.3, 10.0)).fit(X, np.where(y == "short", "up", "flat"))
+    assert clf.C_ in (0.3, 10.0)
+    with pytest.raises(DataError, match="'cv'"):
+        SVMClassifier(C="auto").fit(X, y)
 
 
 def test_nn_thesis_sizes_and_determinism():

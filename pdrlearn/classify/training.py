@@ -553,7 +553,7 @@ def train_user(
             if strict:
                 raise
             skipped.append(str(exc))
-            log.warning("skipped %s", exc)
+            log.info("skipped %s", exc)
             continue
         out[task] = train_task(data, methods=methods, units=units, cv=cv, seed=seed, advance=advance)
     if not out:

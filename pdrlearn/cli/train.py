@@ -127,7 +127,7 @@ def train(
         if tm.n_skipped_labels:
             c.print(f"  ignored {tm.n_skipped_labels} step label(s) that are not {t} classes")
     for s in model.skipped:
-        c.print(f"skipped task {s}")
+        c.print(f"skipped {s}")
     c.print(f"model written to {out} ({seconds:.1f} s)")
 
 
