@@ -33,17 +33,9 @@ def test_kf_two_step_hand_computed():
 def test_fsm_transitions():
     kw = dict(period_s=60.0, ttff_s=2.0, max_on_s=30.0)
     assert fsm_next(OFF, mode="saving", t=59.0, switched_on_s=0, last_fix_s=0.0, fix_used=False, **kw) == OFF
-    assert (
-        fsm_next(OFF, mode="saving", t=60.0, switched_on_s=0, last_fix_s=0.0, fix_used=False, **kw)
-        == ACQUIRING
-    )
-    assert (
-        fsm_next(ACQUIRING, mode="saving", t=61.0, switched_on_s=60, last_fix_s=0, fix_used=False, **kw)
-        == ACQUIRING
-    )
-    assert (
-        fsm_next(ACQUIRING, mode="saving", t=62.0, switched_on_s=60, last_fix_s=0, fix_used=False, **kw) == ON
-    )
+    assert fsm_next(OFF, mode="saving", t=60.0, switched_on_s=0, last_fix_s=0.0, fix_used=False, **kw) == ACQUIRING
+    assert fsm_next(ACQUIRING, mode="saving", t=61.0, switched_on_s=60, last_fix_s=0, fix_used=False, **kw) == ACQUIRING
+    assert fsm_next(ACQUIRING, mode="saving", t=62.0, switched_on_s=60, last_fix_s=0, fix_used=False, **kw) == ON
     assert fsm_next(ON, mode="saving", t=63.0, switched_on_s=60, last_fix_s=0, fix_used=True, **kw) == OFF
     assert fsm_next(ON, mode="saving", t=90.0, switched_on_s=60, last_fix_s=0, fix_used=False, **kw) == OFF
     assert fsm_next(OFF, mode="best", t=0.0, switched_on_s=0, last_fix_s=0, fix_used=True, **kw) == ON
@@ -86,9 +78,7 @@ def test_fused_error_below_pdr_on_synthetic_walk():
     for mode, per in (("best", 60.0), ("saving", 60.0), ("off", 60.0)):
         f = GnssPdrFusion(mode=mode, period_s=per).run(pdr.steps, fx)
         rmse[mode] = float(np.sqrt(np.mean(position_errors(f.trajectory_, truth) ** 2)))
-        assert f.trajectory_[["x_pdr", "y_pdr"]].to_numpy() == pytest.approx(
-            pdr.trajectory[["x", "y"]].to_numpy()
-        )
+        assert f.trajectory_[["x_pdr", "y_pdr"]].to_numpy() == pytest.approx(pdr.trajectory[["x", "y"]].to_numpy())
     pdr_rmse = float(np.sqrt(np.mean(e_pdr**2)))
     assert rmse["off"] == pytest.approx(pdr_rmse, rel=1e-9)
     assert rmse["best"] < 0.5 * pdr_rmse and rmse["saving"] < pdr_rmse
@@ -121,3 +111,22 @@ def test_bad_settings_and_tables():
         GnssPdrFusion().run(steps.drop(columns="heading_rad"), None)
     with pytest.raises(DataError, match="NaN"):
         GnssPdrFusion().run(steps.assign(length_m=np.nan), None)
+
+
+def test_compensation_between_continuous_fixes():
+    steps, truth = _straight(n=600)
+    fx = gnss_fixes(truth, accuracy_m=5.0, correlation_s=0.0, seed=2)
+    biased = steps.assign(length_m=steps["length_m"] * 0.7, heading_rad=steps["heading_rad"] - np.radians(8))
+    always = GnssPdrFusion(mode="best").run(biased, fx)
+    paper = GnssPdrFusion(mode="best", compensate_when="off").run(biased, fx)
+    assert always.stats_["compensations"] > 100
+    e_a = np.sqrt(np.mean(position_errors(always.trajectory_, truth) ** 2))
+    e_p = np.sqrt(np.mean(position_errors(paper.trajectory_, truth) ** 2))
+    assert e_a < e_p
+    # averaging the noisy single-baseline estimates (constant true errors) gets closer to them
+    smooth = GnssPdrFusion(mode="best", heading_drift_deg_per_min=0.1, scale_drift_per_min=0.001).run(biased, fx)
+    assert abs(smooth.scale_ - 1 / 0.7) < abs(always.scale_ - 1 / 0.7)
+    assert smooth.scale_ == pytest.approx(1 / 0.7, rel=0.05)
+    assert np.degrees(smooth.heading_bias_rad_) == pytest.approx(8.0, abs=1.5)
+    with pytest.raises(DataError, match="compensate_when"):
+        GnssPdrFusion(compensate_when="sometimes").run(steps, fx)

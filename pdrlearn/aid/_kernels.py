@@ -101,3 +101,12 @@ def stretch_segment(
     phi = step * np.sin(theta) + dl[1] / m  # eq. 28, Phi
     psi = step * np.cos(theta) + dl[0] / m  # eq. 28, Psi
     return d + dl / m, scale, np.arctan2(phi, psi)
+
+
+def scalar_kf(estimate: float, var: float, obs: float, obs_var: float, q: float) -> tuple[float, float]:
+    """One random-walk predict (+ ``q``) and update of a scalar estimate; ``var = inf`` adopts ``obs``."""
+    if not np.isfinite(var):
+        return float(obs), float(obs_var)
+    var = var + q
+    gain = var / (var + obs_var)
+    return float(estimate + gain * (obs - estimate)), float((1.0 - gain) * var)

@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.aid._base import ParamsMixin
-from pdrlearn.aid._kernels import kf_predict, kf_update, wrap_angle
+from pdrlearn.aid._kernels import kf_predict, kf_update, scalar_kf, wrap_angle
 from pdrlearn.aid.fixes import sigma_from_accuracy
 from pdrlearn.errors import DataError
 
@@ -124,6 +124,10 @@ class GnssPdrFusion(ParamsMixin):
         the following steps (seed 001 Sec. 3.1.2).
     compensate_when : ``"always"`` (default: apply the compensation to every prediction once estimated) or
         ``"off"`` (only while the receiver is not ON, as seed 001 describes it); see docs/decisions/aided.md.
+    heading_drift_deg_per_min, scale_drift_per_min : ``None`` (default): the compensation uses the latest
+        estimate ("the last information considered valid", seed 001 Sec. 3.1.2); numbers: how fast the
+        heading bias (deg/min) and the length scale (1/min) may change, and successive estimates are averaged
+        by a scalar Kalman filter with these as process noise.
     min_baseline_m : minimum PDR path between two fixes used for the compensation (m).
     step_length : ``"pdr"`` (the track's lengths) or ``"model"`` (a*f - b refined online from GNSS).
     model : the :class:`StepLengthModel` used with ``step_length="model"``.
@@ -144,6 +148,8 @@ class GnssPdrFusion(ParamsMixin):
         sigma_heading_rad: float = np.radians(8.0),
         compensate: bool = True,
         compensate_when: str = "always",
+        heading_drift_deg_per_min: float | None = None,
+        scale_drift_per_min: float | None = None,
         min_baseline_m: float = 50.0,
         step_length: str = "pdr",
         model: StepLengthModel | None = None,
@@ -160,6 +166,8 @@ class GnssPdrFusion(ParamsMixin):
         self.sigma_heading_rad = sigma_heading_rad
         self.compensate = compensate
         self.compensate_when = compensate_when
+        self.heading_drift_deg_per_min = heading_drift_deg_per_min
+        self.scale_drift_per_min = scale_drift_per_min
         self.min_baseline_m = min_baseline_m
         self.step_length = step_length
         self.model = model
@@ -209,6 +217,7 @@ class GnssPdrFusion(ParamsMixin):
         switched_on, last_fix = t0, t0
         on_time, on_since = 0.0, (t0 if state != OFF else None)
         scale, bias = 1.0, 0.0
+        log_scale, p_ls, p_b, t_comp = 0.0, np.inf, np.inf, None  # compensation smoother
         anchors: list[tuple] = []  # (raw xy, fix xy, sigma, path length, n steps, sum freq)
         path = 0.0
         nsteps, fsum = 0, 0.0
@@ -309,11 +318,23 @@ class GnssPdrFusion(ParamsMixin):
                             counts["fixes_used"] += 1
                             used.append((ft[i], fxy[i, 0], fxy[i, 1], facc[i], t_k))
                             last_fix = t_k
-                            s_new, b_new, upd = self._compensation(
-                                anchors, raw, z, fsig[i], path, nsteps, fsum, model, counts
-                            )
-                            if upd:
-                                scale, bias = s_new, b_new
+                            obs = self._compensation(anchors, raw, z, fsig[i], path, nsteps, fsum, model, counts)
+                            if obs is not None:
+                                # scalar Kalman smoothing of log-scale and bias: each estimate has the
+                                # variance (fix noise / baseline)^2; both drift between estimates
+                                dt_min = (t_k - t_comp) / 60.0 if t_comp is not None else 0.0
+                                if self.scale_drift_per_min is None:
+                                    p_ls = np.inf  # adopt the latest estimate
+                                if self.heading_drift_deg_per_min is None:
+                                    p_b = np.inf
+                                q_ls = (self.scale_drift_per_min or 0.0) ** 2 * dt_min**2
+                                q_b = np.radians(self.heading_drift_deg_per_min or 0.0) ** 2 * dt_min**2
+                                log_scale, p_ls = scalar_kf(log_scale, p_ls, np.log(obs[0]), obs[2], q_ls)
+                                b_obs = bias + float(wrap_angle(obs[1] - bias))
+                                bias, p_b = scalar_kf(bias, p_b, b_obs, obs[2], q_b)
+                                bias = float(wrap_angle(bias))
+                                scale = float(np.exp(log_scale))
+                                t_comp = t_k
             if fix_used and self.mode == "saving":
                 state = machine(state, t_k, fix_used=True)
                 if on_since is not None:
@@ -336,17 +357,18 @@ class GnssPdrFusion(ParamsMixin):
         return self
 
     def _compensation(self, anchors, raw, z, sigma, path, nsteps, fsum, model, counts):
-        """Systematic-error estimate from the newest anchor at least ``min_baseline_m`` of path back."""
+        """Systematic-error estimate (scale, heading bias rad, variance of both) from the newest anchor at least
+        ``min_baseline_m`` of path back, or ``None``."""
         anchors.append((raw.copy(), z.copy(), float(sigma), path, nsteps, fsum))
         if not self.compensate:
-            return 1.0, 0.0, False
+            return None
         base = None
         for a in reversed(anchors[:-1]):
             if path - a[3] >= self.min_baseline_m:
                 base = a
                 break
         if base is None:
-            return 1.0, 0.0, False
+            return None
         # keep only anchors that may still serve as a base later
         while len(anchors) > 2 and path - anchors[1][3] >= self.min_baseline_m:
             anchors.pop(0)
@@ -354,10 +376,10 @@ class GnssPdrFusion(ParamsMixin):
         n_raw, n_fix = float(np.hypot(*d_raw)), float(np.hypot(*d_fix))
         noise = np.hypot(sigma, base[2])
         if n_raw < 1e-6 or n_fix < 10.0 * noise:  # baseline too short for the fixes' noise
-            return 1.0, 0.0, False
+            return None
         # straightness: a loop between the fixes says nothing about scale
         if n_raw < 0.5 * (path - base[3]):
-            return 1.0, 0.0, False
+            return None
         counts["compensations"] += 1
         if self.step_length == "model":
             n = nsteps - base[4]
@@ -367,4 +389,4 @@ class GnssPdrFusion(ParamsMixin):
                 counts["model_updates"] += 1
         scale = float(np.clip(n_fix / n_raw, 0.5, 2.0))
         bias = float(wrap_angle(np.arctan2(d_fix[1], d_fix[0]) - np.arctan2(d_raw[1], d_raw[0])))
-        return scale, bias, True
+        return scale, bias, float((noise / n_fix) ** 2)
