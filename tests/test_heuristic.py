@@ -92,6 +92,22 @@ def test_learn_thresholds_recovers_cut_and_order():
     assert 0.5 < th[0] < 1.5 < 2.5 < th[1] < 3.5 and cl == (1, 2, 3)
 
 
+def test_learn_thresholds_band_only_when_it_pays():
+    rng = np.random.default_rng(6)
+    mid = rng.normal(0, 1, 100)  # flat (C1) in the middle, stairs (C2) on both sides
+    sides = np.concatenate([rng.normal(-5, 1, 50), rng.normal(5, 1, 50)])
+    v = np.concatenate([mid, sides])
+    target = np.repeat([1.0, 2.0], 100)
+    rule = Rule("foot_acc", 1, "x", (-5.0,), (1, 2), 0.2, False)
+    th, cl = learn_thresholds(v, target, rule, bands=False)
+    assert len(th) == 1
+    th, cl = learn_thresholds(v, target, rule, bands=True)
+    assert cl == (2, 1, 2) and -4 < th[0] < -1 and 1 < th[1] < 4
+    one_sided = np.concatenate([rng.normal(0, 1, 100), rng.normal(5, 1, 100)])
+    th, cl = learn_thresholds(one_sided, target, rule, bands=True)
+    assert len(th) == 1  # no band when a single cut point does as well
+
+
 def test_refine_jointly_fixes_the_stage_decision():
     """Rule a decides the class; b and c are noise. Starting from useless cut points, the joint search
     reaches a perfect stage decision while never lowering the training accuracy."""

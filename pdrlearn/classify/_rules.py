@@ -110,7 +110,8 @@ def rule_skill(values: np.ndarray, target: np.ndarray, rule: Rule) -> float:
     return float(_balanced_correct(pred, target, np.unique(target))[0])
 
 
-def learn_thresholds(values: np.ndarray, target: np.ndarray, rule: Rule, *, max_candidates: int = 48
+def learn_thresholds(values: np.ndarray, target: np.ndarray, rule: Rule, *, max_candidates: int = 48,
+                     bands: bool = False, band_gain: float = 0.05
                      ) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """Cut points (and interval order) that make ``rule`` agree best with the labels.
 
@@ -141,6 +142,19 @@ def learn_thresholds(values: np.ndarray, target: np.ndarray, rule: Rule, *, max_
         b = int(np.argmax(score))
         if score[b] > best[0] + 1e-12:
             best = (float(score[b]), tuple(float(t) for t in combos[b]), order)
+    if bands and k == 1 and len(set(rule.classes)) == 2:
+        # a two-class rule may instead hold one class inside a band [t1, t2] (e.g. flat between up and
+        # down); taken only when it gains at least ``band_gain`` balanced accuracy (decisions doc)
+        c1, c2 = rule.classes
+        i, j = np.triu_indices(len(cands), k=1)
+        pairs = np.column_stack([cands[i], cands[j]])
+        for order in ((c1, c2, c1), (c2, c1, c2)):
+            idx = (values[None, None, :] > pairs[:, :, None]).sum(axis=1)
+            pred = np.asarray(order, dtype=float)[idx]
+            score = _balanced_correct(pred, target, classes_present)
+            b = int(np.argmax(score))
+            if score[b] > best[0] + band_gain:
+                best = (float(score[b]), tuple(float(t) for t in pairs[b]), order)
     return best[1], best[2]
 
 

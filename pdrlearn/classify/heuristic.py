@@ -19,6 +19,10 @@ weights and rule structure stay the thesis'. ``thresholds="learn"``: each rule's
 the data says so, the order of its intervals) maximise that rule's own balanced accuracy;
 ``"joint"`` (default): then coordinate ascent on the stage's rounded result ``R`` (all rules together);
 ``"thesis"``: the documents' thresholds (converted to SI units and seconds, docs/decisions/features.md).
+With ``bands=True`` (default) a two-class rule may, when learning, hold one class inside a band
+``[t1, t2]`` instead of beyond one cut point, if that gains >= 5 points of balanced accuracy for the rule
+(e.g. the minimum vertical foot acceleration: flat strides lie between up and down); ``bands=False``
+keeps the thesis' one-sided rule shape.
 
 ``weights="skill"`` (option, not the thesis) scales each thesis weight by the rule's chance-corrected
 balanced accuracy on the training steps (``max(0, 2 * bacc - 1)``), so rules that do not separate a
@@ -231,7 +235,7 @@ class _RuleClassifier(ClassifierMixin, BaseEstimator):
             if self.thresholds in ("learn", "joint"):
                 new = []
                 for r in rules:
-                    th, cl = learn_thresholds(F[rows, col[r.feature]], target, r)
+                    th, cl = learn_thresholds(F[rows, col[r.feature]], target, r, bands=self.bands)
                     new.append(Rule(r.sensor, r.number, r.feature, th, cl, r.weight, True,
                                     r.source + " (cut points learned)", r.confidence)
                                if (th, cl) != (r.thresholds, r.classes) else r)
@@ -306,10 +310,12 @@ class _RuleClassifier(ClassifierMixin, BaseEstimator):
 
 
 class _UnitRuleClassifier(_RuleClassifier):
-    def __init__(self, *, unit: str = "foot", thresholds: str = "joint", weights: str = "thesis"):
+    def __init__(self, *, unit: str = "foot", thresholds: str = "joint", weights: str = "thesis",
+                 bands: bool = True):
         self.unit = unit
         self.thresholds = thresholds
         self.weights = weights
+        self.bands = bands
 
     def _check_params(self) -> None:
         super()._check_params()
@@ -361,10 +367,12 @@ class HeuristicFusionClassifier(_RuleClassifier):
     0.6 (foot) / 0.4 (waist).
     """
 
-    def __init__(self, *, task: str = "terrain", thresholds: str = "joint", weights: str = "thesis"):
+    def __init__(self, *, task: str = "terrain", thresholds: str = "joint", weights: str = "thesis",
+                 bands: bool = True):
         self.task = task
         self.thresholds = thresholds
         self.weights = weights
+        self.bands = bands
 
     def _check_params(self) -> None:
         super()._check_params()
@@ -381,13 +389,13 @@ class HeuristicFusionClassifier(_RuleClassifier):
         return [Stage(_fused(LENGTH_RULES, LENGTH_FUSION_WEIGHTS), LENGTH_LABELS)]
 
 
-def make_heuristic(task: str, unit: str = "both", *, thresholds: str = "joint",
+def make_heuristic(task: str, unit: str = "both", *, thresholds: str = "joint", bands: bool = True,
                    weights: str = "thesis") -> _RuleClassifier:
     """The heuristic of ``task`` for ``unit`` (``both`` -> :class:`HeuristicFusionClassifier`)."""
     if unit == "both":
-        return HeuristicFusionClassifier(task=task, thresholds=thresholds, weights=weights)
+        return HeuristicFusionClassifier(task=task, thresholds=thresholds, weights=weights, bands=bands)
     cls = {"terrain": HeuristicTerrainClassifier, "direction": HeuristicDirectionClassifier,
            "length": HeuristicLengthClassifier}.get(task)
     if cls is None:
         raise DataError(f"make_heuristic: unknown task '{task}'; choose terrain, direction or length")
-    return cls(unit=unit, thresholds=thresholds, weights=weights)
+    return cls(unit=unit, thresholds=thresholds, weights=weights, bands=bands)

@@ -19,6 +19,7 @@ import sys
 
 import numpy as np
 
+from pdrlearn.errors import PdrlearnError
 from pdrlearn.features.windows import TASK_CLASSES, step_windows
 
 log = logging.getLogger(__name__)
@@ -57,6 +58,21 @@ def task_data(sessions, task: str):
     return np.concatenate(Xs), np.concatenate(ys), avail, skipped
 
 
+#: Heuristic variants compared: name -> make_heuristic keyword arguments.
+VARIANTS: dict[str, dict] = {
+    "default": {},  # joint cut points, bands, thesis weights
+    "joint": {"thresholds": "joint", "bands": False},
+    "learn+bands": {"thresholds": "learn", "bands": True},
+    "learn": {"thresholds": "learn", "bands": False},
+    "default+skill": {"weights": "skill"},
+    "thesis": {"thresholds": "thesis", "bands": False},
+}
+
+
+def _name(unit: str, variant: str) -> str:
+    return f"{'fusion' if unit == 'both' else 'heuristic'} {unit} {variant}"
+
+
 def _row(name: str, y: np.ndarray, p: np.ndarray, classes) -> str:
     per = [f"{(p[y == c] == c).mean():6.1%}" if (y == c).any() else "     -" for c in classes]
     present = [c for c in classes if (y == c).any()]
@@ -91,23 +107,18 @@ def report_cv(sessions, *, folds: int = 5, repeats: int = 10, seed: int = 0, out
         k = min(folds, min(counts.values()))
         print(_header(task), file=out)
         for unit in _units(avail):
-            for th in ("learn", "joint", "thesis"):
-                for weights in ("thesis", "skill"):
-                    clf = make_heuristic(task, unit, thresholds=th, weights=weights)
-                    try:  # `repeats` shuffles of k-fold CV, pooled
-                        p = np.concatenate([cross_val_predict(
-                            clf, X, y, cv=StratifiedKFold(k, shuffle=True, random_state=seed + r))
-                            for r in range(repeats)])
-                    except Exception as exc:  # a unit lacking a sensor the task needs
-                        print(f"{unit:5s}: {exc}", file=out)
-                        break
-                    yy = np.tile(y, repeats)
-                    name = f"{'fusion' if unit == 'both' else 'heuristic'} {unit} {th}/{weights}"
-                    print(_row(name, yy, p, TASK_CLASSES[task]), file=out)
-                    results[(task, unit, th, weights)] = float((p == yy).mean())
-                else:
-                    continue
-                break
+            for variant, kw in VARIANTS.items():
+                clf = make_heuristic(task, unit, **kw)
+                try:  # `repeats` shuffles of k-fold CV, pooled
+                    p = np.concatenate([cross_val_predict(
+                        clf, X, y, cv=StratifiedKFold(k, shuffle=True, random_state=seed + r))
+                        for r in range(repeats)])
+                except PdrlearnError as exc:  # a unit lacking a sensor the task needs
+                    print(f"{unit:5s}: {exc}", file=out)
+                    break
+                yy = np.tile(y, repeats)
+                print(_row(_name(unit, variant), yy, p, TASK_CLASSES[task]), file=out)
+                results[(task, unit, variant)] = float((p == yy).mean())
     return results
 
 
@@ -130,21 +141,18 @@ def report_sim(*, users: int = 3, tasks=tuple(TASK_CLASSES), out=sys.stdout) -> 
             yte = te.steps[TASK_COLUMNS[task]].to_numpy(dtype=object)
             n_test += len(yte)
             for unit in _units(wtr.available):
-                for th in ("learn", "joint", "thesis"):
-                    for weights in ("thesis", "skill"):
-                        clf = make_heuristic(task, unit, thresholds=th, weights=weights).fit(wtr.X, ytr)
-                        p = clf.predict(wte.X)
-                        rows.setdefault((unit, th, weights), ([], []))
-                        rows[(unit, th, weights)][0].append(yte)
-                        rows[(unit, th, weights)][1].append(p)
+                for variant, kw in VARIANTS.items():
+                    p = make_heuristic(task, unit, **kw).fit(wtr.X, ytr).predict(wte.X)
+                    rows.setdefault((unit, variant), ([], []))
+                    rows[(unit, variant)][0].append(yte)
+                    rows[(unit, variant)][1].append(p)
         print(f"\n{task}: {users} simulated users, {n_test} held-out test steps (second run of the exercise)",
               file=out)
         print(_header(task), file=out)
-        for (unit, th, weights), (ys, ps) in rows.items():
+        for (unit, variant), (ys, ps) in rows.items():
             y, p = np.concatenate(ys), np.concatenate(ps)
-            name = f"{'fusion' if unit == 'both' else 'heuristic'} {unit} {th}/{weights}"
-            print(_row(name, y, p, TASK_CLASSES[task]), file=out)
-            results[(task, unit, th, weights)] = float((p == y).mean())
+            print(_row(_name(unit, variant), y, p, TASK_CLASSES[task]), file=out)
+            results[(task, unit, variant)] = float((p == y).mean())
     return results
 
 
