@@ -69,11 +69,11 @@ def stats(e: np.ndarray) -> dict:
     return {"rmse_m": float(np.sqrt(np.mean(e**2))), "p95_m": float(np.percentile(e, 95))}
 
 
-def gnss_rows(u, pdr, truth, label):
+def urban_gnss(truth, u):
+    """Urban-like GNSS: 5 m open sky, two 60 s indoor/urban-canyon passages with multipath, one 30 s outage."""
     dur = float(truth["t"].iloc[-1] - truth["t"].iloc[0])
     t0 = float(truth["t"].iloc[0])
-    # urban-like GNSS: 5 m open sky, two indoor/urban-canyon passages with multipath, one outage
-    fx = gnss_fixes(
+    return gnss_fixes(
         truth,
         accuracy_m=5.0,
         correlation_s=10.0,
@@ -82,6 +82,10 @@ def gnss_rows(u, pdr, truth, label):
         outages=[(t0 + 0.5 * dur, t0 + 0.5 * dur + 30)],
         multipath_bias_m=10.0,
     )
+
+
+def gnss_rows(u, pdr, truth, label):
+    fx = urban_gnss(truth, u)
     rows = []
     e_fix = np.hypot(
         fx["x"] - np.interp(fx["t"], truth["t"], truth["x"]),
@@ -182,17 +186,7 @@ def plot_example(source: str, length_m: float) -> Path:
     from pdrlearn.track.base import TrackResult
 
     u, pdr, truth, label = next(iter(walks(source, 1, length_m)))
-    dur = float(truth["t"].iloc[-1] - truth["t"].iloc[0])
-    t0 = float(truth["t"].iloc[0])
-    fx = gnss_fixes(
-        truth,
-        accuracy_m=5.0,
-        correlation_s=10.0,
-        seed=100 + u,
-        indoor=[(t0 + 0.3 * dur, t0 + 0.3 * dur + 60), (t0 + 0.7 * dur, t0 + 0.7 * dur + 60)],
-        outages=[(t0 + 0.5 * dur, t0 + 0.5 * dur + 30)],
-        multipath_bias_m=10.0,
-    )
+    fx = urban_gnss(truth, u)
     f = GnssPdrFusion(mode="saving", period_s=60.0).run(
         pdr.steps, fx, start_xy=(truth["x"].iloc[0], truth["y"].iloc[0])
     )
