@@ -320,7 +320,8 @@ def tip_to_tail_direction(t: np.ndarray, a_h: np.ndarray, a_v: np.ndarray, t0: f
     Fourier approximation of the planar acceleration over the stride ``[t0, t2]`` (seed 000 sec. III,
     Algorithm 1 steps a-d).
 
-    The two largest local maxima of ``|a2(t)|`` inside the step are the tip and the tail; the vector
+    The maxima of ``|a2(t)|`` (periodic over the stride) that lie in the step, or nearest to it, are the
+    tip and the tail (the two largest when more lie inside, decision W15); the vector
     joining them is the step's line of motion, oriented forward by :func:`forward_sign` (the
     acceleration phase = tip, decision W2) using the step-frequency (second) harmonic of the stride.
     """
@@ -329,18 +330,21 @@ def tip_to_tail_direction(t: np.ndarray, a_h: np.ndarray, a_v: np.ndarray, t0: f
         return float("nan")
     period = t2 - t0
     alpha, beta = fourier_coefficients(t[m], np.column_stack([a_h[m], a_v[m]]), t0, period, 2)
-    tg = np.linspace(t1, t2, n_grid)
+    # the approximation is periodic over the stride: find the maxima of its magnitude over the whole
+    # stride (circularly), then keep the two that belong to the step [t1, t2]
+    tg = t0 + period * np.arange(n_grid) / n_grid
     tau = tg - t0
     approx = np.zeros((n_grid, 2))
     for n in (1, 2):
         w = 2.0 * np.pi * n / period
         approx += np.outer(np.cos(w * tau), alpha[n - 1, :2]) + np.outer(np.sin(w * tau), beta[n - 1, :2])
     mag = np.hypot(approx[:, 0], approx[:, 1])
-    # local maxima of the magnitude (the ends count when the curve is rising into / falling from them)
-    ext = np.concatenate([[-np.inf], mag, [-np.inf]])
-    peaks = np.flatnonzero((ext[1:-1] >= ext[:-2]) & (ext[1:-1] > ext[2:]))
+    peaks = np.flatnonzero((mag >= np.roll(mag, 1)) & (mag > np.roll(mag, -1)))
     if peaks.size >= 2:
-        top = np.sort(peaks[np.argsort(mag[peaks])[-2:]])
+        # distance (s) of each maximum from the step interval; inside = 0, ties broken by magnitude
+        dist = np.maximum(t1 - tg[peaks], 0.0) + np.maximum(tg[peaks] - t2, 0.0)
+        order = np.lexsort((-mag[peaks], dist))
+        top = np.sort(peaks[order[:2]])
         vec = approx[top[0]] - approx[top[1]]
     else:  # degenerate: a single maximum; use the major axis of the step-frequency harmonic
         vec = ellipse_axis(alpha[1, :2], beta[1, :2])
