@@ -398,3 +398,15 @@ def test_instep_mount_pitch_knob():
     # toes-down tilt: gravity shows on -x like the real instep recordings (rest acc_x ~ -7.6 m/s^2)
     assert rest[0] == pytest.approx(-G * math.sin(math.radians(50.0)), abs=0.6)
     np.testing.assert_allclose(rest, _foot_axes(s).T @ [0.0, 0.0, G], atol=1e-6)
+
+
+def test_magnetometer_gives_the_true_heading_at_rest():
+    s = simulate("rotations", 2, noise=False, heading0_deg=30.0)
+    mis = Rotation.from_rotvec(np.radians(s.meta["misalignment_deg"]["waist"])).as_matrix()
+    b_body = s["wMagneticField"].values @ (mis @ s.frames["waist"].matrix()).T
+    rest = [0, len(b_body) - 1]  # pelvis level at the start and end standstills
+    np.testing.assert_allclose(np.linalg.norm(b_body[rest], axis=1), 45.0, atol=1e-9)
+    heading = np.arctan2(b_body[rest, 0], b_body[rest, 1])  # field points north: psi = atan2(b_x, b_y)
+    truth = s.trajectory.heading_rad.to_numpy()[rest]
+    np.testing.assert_allclose(np.angle(np.exp(1j * (heading - truth))), 0.0, atol=1e-6)
+    assert math.degrees(truth[0]) == pytest.approx(30.0, abs=1e-6)
