@@ -201,3 +201,23 @@ def test_mounting_rotation_leaves_predictions_unchanged(real_dir):
             b = model.predict_steps(rotated, method=method, unit="foot")
             assert np.mean(a["terrain"] == b["terrain"]) >= 0.95, (s.name, method)
             assert np.abs(a["p_terrain_up"] - b["p_terrain_up"]).mean() < 0.05
+
+
+def test_predict_steps_falls_back_to_the_units_a_session_has(trained):
+    from pdrlearn.errors import MissingSensorError
+
+    model, _ = trained
+    s = labelled_session(11, 4)
+    foot_only = s.copy()
+    for name in ("wAccelerometer", "wGyroscope"):
+        del foot_only.streams[name]
+    df = model.predict_steps(foot_only)
+    assert set(df["method_terrain"].str.split("/").str[1]) == {"foot"}  # chosen fused -> best foot model
+    no_force = foot_only.copy()
+    for name in ("fForceA", "fForceB"):
+        del no_force.streams[name]
+    df = model.predict_steps(no_force)
+    assert (df["method_length"] == "none").all() and df["length_class"].isna().all()
+    assert df["terrain"].notna().all()
+    with pytest.raises(MissingSensorError, match="force"):
+        model.predict_steps(no_force, tasks=["length"])

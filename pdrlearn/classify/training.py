@@ -81,9 +81,7 @@ def _heuristic_module():
     return heuristic
 
 
-def make_estimator(
-    task: str, method: str, unit: str, *, seed: int = 0, weights: Sequence[float] | None = None
-):
+def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights: Sequence[float] | None = None):
     """A fresh estimator on step-window arrays for ``task`` x ``method`` x ``unit``.
 
     ``unit="fused"`` gives a :class:`UnitFusionClassifier` over the foot and waist models (``weights``
@@ -101,9 +99,7 @@ def make_estimator(
         if method == "heuristic":
             raise DataError("heuristic has no fused unit; use method 'fusion' (heuristic fusion)")
         members = [(u, make_estimator(task, method, u, seed=seed), slice(None)) for u in ("foot", "waist")]
-        return UnitFusionClassifier(
-            members, weights=None if weights is None else list(weights), random_state=seed
-        )
+        return UnitFusionClassifier(members, weights=None if weights is None else list(weights), random_state=seed)
     if method == "svm":
         return Pipeline([("features", make_features(task, unit, "svm")), ("clf", SVMClassifier(task=task))])
     if method == "nn":
@@ -226,9 +222,7 @@ def class_metrics(y_true: np.ndarray, y_pred: np.ndarray, classes: Sequence[str]
 
     y_true, y_pred = np.asarray(y_true).astype(str), np.asarray(y_pred).astype(str)
     classes = [str(c) for c in classes]
-    per_class = {
-        c: (float(np.mean(y_pred[y_true == c] == c)) if np.any(y_true == c) else None) for c in classes
-    }
+    per_class = {c: (float(np.mean(y_pred[y_true == c] == c)) if np.any(y_true == c) else None) for c in classes}
     present = [v for v in per_class.values() if v is not None]
     return {
         "accuracy": float(np.mean(y_true == y_pred)) if len(y_true) else None,
@@ -285,25 +279,38 @@ class UserModel:
 
         save_model(self, path)
 
-    def _pick(self, tm: TaskModel, windows, method: str | None, unit: str | None) -> tuple[str, str]:
-        """The chosen (method, unit), else the best-ranked one whose sensors the windows have."""
+    def _candidates(self, tm: TaskModel, windows, method: str | None, unit: str | None) -> list[tuple[str, str]]:
+        """(method, unit) pairs to try: the requested one only, else the chosen one and then the ranking,
+        keeping those whose units the windows have."""
         if method is not None or unit is not None:
             m = method or (tm.chosen[0] if tm.chosen else None)
             units = [unit] if unit else [u for mm, u in tm.ranking() if mm == m]
-            for u in units:
-                if u in tm.models.get(m, {}):
-                    return m, u
-            raise DataError(
-                f"model task {tm.task}: no trained method {m!r} unit {unit!r}; trained: "
-                f"{', '.join(f'{a}/{b}' for a, b in tm.ranking())}"
-            )
-        order = ([tm.chosen] if tm.chosen else []) + tm.ranking()
-        for m, u in order:
-            if _units_available(u, windows.available, m):
-                return m, u
+            pairs = [(m, u) for u in units if u in tm.models.get(m, {})]
+            if not pairs:
+                raise DataError(
+                    f"model task {tm.task}: no trained method {m!r} unit {unit!r}; trained: "
+                    f"{', '.join(f'{a}/{b}' for a, b in tm.ranking())}"
+                )
+            return pairs[:1]
+        order = list(dict.fromkeys(([tm.chosen] if tm.chosen else []) + tm.ranking()))
+        return [(m, u) for m, u in order if _units_available(u, windows.available, m)]
+
+    def _predict_task(self, tm: TaskModel, windows, method: str | None, unit: str | None):
+        """``(method, unit, proba)`` of the first candidate model that runs on the windows."""
+        reasons = []
+        for m, u in self._candidates(tm, windows, method, unit):
+            est = tm.models[m][u]
+            try:
+                proba = est.predict_proba(windows.X)
+            except MissingSensorError as exc:  # e.g. a length model needing force sensors
+                if method is not None or unit is not None:
+                    raise
+                reasons.append(f"{m}/{u}: {exc}")
+                continue
+            return m, u, align_proba(proba, np.asarray(est.classes_).astype(str), np.asarray(tm.classes))
         raise MissingSensorError(
             f"session '{windows.session}' lacks the sensors of every {tm.task} model "
-            f"(it has {', '.join(windows.available) or 'none'})"
+            f"(it has {', '.join(windows.available) or 'none'}){'; ' if reasons else ''}{'; '.join(reasons)}"
         )
 
     def predict_steps(
@@ -320,7 +327,10 @@ class UserModel:
         Returns a DataFrame (one row per step, same index as ``steps``) with, per trained task, the class
         column (``terrain``, ``direction``, ``length_class``), the probabilities ``p_<task>_<class>`` and
         ``method_<task>`` (``"<method>/<unit>"``). By default each task uses the model's chosen method, or,
-        when the session lacks one of its units, the best cross-validated method it can run.
+        when the session lacks one of its units, the best cross-validated method it can run. A task no
+        model can run on the session (e.g. length without force sensors) gets ``None`` classes, NaN
+        probabilities and ``method_<task> = "none"`` (logged) unless ``tasks``/``method``/``unit`` were
+        given, which makes it a :class:`MissingSensorError`.
         """
         from pdrlearn.features import TASK_COLUMNS, step_windows
 
@@ -333,15 +343,20 @@ class UserModel:
         for task in tasks or list(self.tasks):
             if task not in self.tasks:
                 raise DataError(
-                    f"model of user '{self.user}' has no {task} classifier; trained tasks: "
-                    f"{', '.join(self.tasks)}"
+                    f"model of user '{self.user}' has no {task} classifier; trained tasks: {', '.join(self.tasks)}"
                 )
             tm = self.tasks[task]
-            m, u = self._pick(tm, windows, method, unit)
-            est = tm.models[m][u]
-            proba = align_proba(
-                est.predict_proba(windows.X), np.asarray(est.classes_).astype(str), np.asarray(tm.classes)
-            )
+            try:
+                m, u, proba = self._predict_task(tm, windows, method, unit)
+            except MissingSensorError as exc:
+                if tasks is not None or method is not None or unit is not None:
+                    raise
+                log.warning("%s: %s task left unclassified: %s", session.name, task, exc)
+                out[TASK_COLUMNS[task]] = None
+                for c in tm.classes:
+                    out[f"p_{task}_{c}"] = np.nan
+                out[f"method_{task}"] = "none"
+                continue
             out[TASK_COLUMNS[task]] = np.asarray(tm.classes, dtype=object)[np.argmax(proba, axis=1)]
             for j, c in enumerate(tm.classes):
                 out[f"p_{task}_{c}"] = proba[:, j]
@@ -375,12 +390,8 @@ def _folds(y: np.ndarray, cv: int, seed: int, task: str) -> list:
     """Stratified, shuffled folds; fewer than ``cv`` when the smallest class has fewer steps."""
     n_splits = int(min(cv, min(np.sum(y == c) for c in np.unique(y))))
     if n_splits < cv:
-        log.warning(
-            "task %s: %d-fold CV instead of %d (smallest class has %d steps)", task, n_splits, cv, n_splits
-        )
-    return list(
-        StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y)
-    )
+        log.warning("task %s: %d-fold CV instead of %d (smallest class has %d steps)", task, n_splits, cv, n_splits)
+    return list(StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y))
 
 
 def _split_units(units: Sequence[str]) -> tuple[list[str], bool]:
@@ -462,9 +473,7 @@ def train_task(
         t0 = time.perf_counter()
         if not {"foot", "waist"} <= set(oof):  # the units were trained on other step sets: redo on these
             for unit in ("foot", "waist"):
-                oof[unit] = _oof_proba(
-                    make_estimator(data.task, method, unit, seed=seed), X, y, folds, classes
-                )
+                oof[unit] = _oof_proba(make_estimator(data.task, method, unit, seed=seed), X, y, folds, classes)
         # unit weights from the out-of-fold probabilities of the foot and waist models (decision in
         # docs/decisions/classifiers.md), then the fused CV score of that soft vote
         yi = np.array([list(classes).index(v) for v in y])
