@@ -410,3 +410,20 @@ def test_magnetometer_gives_the_true_heading_at_rest():
     truth = s.trajectory.heading_rad.to_numpy()[rest]
     np.testing.assert_allclose(np.angle(np.exp(1j * (heading - truth))), 0.0, atol=1e-6)
     assert math.degrees(truth[0]) == pytest.approx(30.0, abs=1e-6)
+
+
+@pytest.mark.parametrize(
+    "knobs, match",
+    [
+        ({"noise": "yes"}, "noise"),
+        ({"drop_rate": 0.7}, "drop_rate"),
+        ({"variability": -1}, "variability"),
+        ({"clock_offset_s": float("nan")}, "clock_offset_s"),
+        ({"stand_s": "5"}, "stand_s"),
+        ({"mag_inclination_deg": 120}, "mag_inclination_deg"),
+    ],
+)
+def test_bad_knobs_are_one_line_errors(knobs, match):
+    with pytest.raises(DataError, match=match) as err:
+        simulate("A", 1, **knobs)
+    assert "\n" not in str(err.value)

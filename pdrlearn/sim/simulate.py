@@ -53,22 +53,42 @@ KNOBS: dict[str, object] = {
 }
 
 
+NON_NEGATIVE_KNOBS = (
+    "variability",
+    "irregular_rate",
+    "drop_rate",
+    "stand_s",
+    "mag_disturbance_ut",
+    "length_m",
+    "baro_drift_hpa_per_h",
+)
+
+
 def _rng(*parts: object) -> np.random.Generator:
     ints = [p if isinstance(p, int) else zlib.crc32(str(p).encode()) for p in parts]
     return np.random.default_rng(ints)
 
 
 def _check_knobs(knobs: dict) -> dict:
+    """Merge ``knobs`` with the defaults, failing with one line on unknown names or bad values."""
     unknown = sorted(set(knobs) - set(KNOBS))
     if unknown:
         raise DataError(f"simulate: unknown option(s) {', '.join(unknown)}; valid: {', '.join(KNOBS)}")
     out = {**KNOBS, **knobs}
-    for k in ("variability", "irregular_rate", "drop_rate", "stand_s", "mag_disturbance_ut", "length_m"):
+    if not isinstance(out["noise"], bool | np.bool_):
+        raise DataError(f"simulate: noise={out['noise']!r} must be True or False")
+    for k, default in KNOBS.items():
         v = out[k]
-        if not isinstance(v, int | float) or not math.isfinite(v) or v < 0:
-            raise DataError(f"simulate: {k}={v!r} must be a finite number >= 0")
+        if isinstance(default, bool):
+            continue
+        if isinstance(v, bool) or not isinstance(v, int | float | np.number) or not math.isfinite(v):
+            raise DataError(f"simulate: {k}={v!r} must be a finite number")
+        if k in NON_NEGATIVE_KNOBS and v < 0:
+            raise DataError(f"simulate: {k}={v!r} must be >= 0")
     if out["irregular_rate"] > 1 or out["drop_rate"] >= 0.5:
         raise DataError("simulate: irregular_rate must be <= 1 and drop_rate < 0.5")
+    if not 0 < out["mag_field_ut"] < 1000 or not -90 <= out["mag_inclination_deg"] <= 90:
+        raise DataError("simulate: mag_field_ut must be in (0, 1000) uT and mag_inclination_deg in [-90, 90]")
     return out
 
 
