@@ -94,14 +94,15 @@ def _start(start, initial_heading: float) -> tuple[float, float, float, tuple[fl
     raise DataError(f"start {start!r}: pass (lat, lon) in degrees or a dict with x, y (m) and heading_rad")
 
 
-def _result(steps: pd.DataFrame, lengths: np.ndarray, headings: np.ndarray, start, initial_heading: float,
-            info: dict, t0: float) -> TrackResult:
+def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: float) -> TrackResult:
+    """TrackResult from a steps table with ``length_m`` and navigation-frame ``heading_rad``: headings
+    rotated by the start heading (ENU), trajectory = cumulative positions (plus lat/lon)."""
     from pdrlearn.track.geodetic import geodetic_track
 
     x0, y0, h0, latlon = _start(start, initial_heading)
     out = steps.copy()
-    head = np.angle(np.exp(1j * (headings + h0)))
-    out["length_m"] = lengths
+    lengths = out["length_m"].to_numpy(float)
+    head = np.angle(np.exp(1j * (out["heading_rad"].to_numpy(float) + h0)))
     out["heading_rad"] = head
     out["dz_m"] = 0.0
     traj = pd.DataFrame({"t": np.concatenate([[t0], out["end_s"].to_numpy(float)]),
@@ -123,6 +124,75 @@ def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
         else:
             out[i] = last
     return out
+
+
+def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: str, thr: float
+                  ) -> pd.DataFrame:
+    """Steps table with ``length_m`` (0 for sequence-closing contacts), ``frequency_hz`` and, for the
+    pendulum, ``h_m`` (vertical excursion)."""
+    n, fs = len(steps), imu.fs
+    idx = np.clip(np.round((steps["event_s"].to_numpy(float) - imu.t[0]) * fs).astype(int), 0, len(imu.t) - 1)
+    has_next = steps["has_next"].to_numpy(bool)
+    dur = (steps["end_s"] - steps["start_s"]).to_numpy(float)
+    freq = np.where(has_next & (dur > 0), 1.0 / np.where(dur > 0, dur, 1.0), np.nan)
+    if pipeline == "waist-pendulum":
+        fc_idx = np.round((steps["fc_s"].fillna(-1).to_numpy(float) - imu.t[0]) * fs).astype(int)
+        h = np.zeros(n)
+        for i in np.flatnonzero(has_next):
+            h[i] = pendulum_h(imu.acc_v, fs, idx[i], fc_idx[i], idx[i + 1])
+        lengths = np.where(has_next, K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m), 0.0)
+        steps = steps.assign(h_m=h)
+    else:
+        sigma = K.rolling_std(imu.acc_v, fs, causal=False)
+        running = K.motion_state(sigma[idx], walk_threshold=thr) == 2
+        lengths = np.where(has_next, frequency_lengths(np.nan_to_num(freq, nan=0.0), p, running=running), 0.0)
+    return steps.assign(length_m=lengths, frequency_hz=freq)
+
+
+def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
+                   resolve_signs: bool) -> pd.DataFrame:
+    """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
+    (gyro method) and ``mean_rate_rps`` (stride mean vertical rate, MRZ of seed 003 sec. 3.3). Headings
+    carry over between walking sequences; a sequence-closing contact keeps the last heading."""
+    n = len(steps)
+    headings = np.full(n, np.nan)
+    turning = np.zeros(n, dtype=int)
+    seqs = _sequences(steps)
+    ev_all = steps["event_s"].to_numpy(float)
+    mean_rate = np.full(n, np.nan)
+    for seq in seqs:
+        if len(seq) > 1:
+            mean_rate[seq[:-1]] = K.mean_rate_per_stride(imu.t, imu.w_z - p.gyro_bias_rps, ev_all[seq])
+    if method == "gyro":
+        clf = TurnClassifier(**(p.turn_gmm or {}))
+        per_seq = []
+        current = 0.0
+        for seq in seqs:
+            if len(seq) > 1:
+                hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
+                                       heading0=current)
+                turning[seq[:-1]] = tr
+                current = float(hd[-1])
+                per_seq.append(hd)
+            else:
+                per_seq.append(np.zeros(0))
+    else:
+        raw = np.full(n, np.nan)
+        for seq in seqs:
+            if len(seq) > 1:
+                raw[seq[:-1]] = harmonic_directions(imu, ev_all[seq], method=method)
+        if resolve_signs:  # decision W13: one yaw offset per worn unit fixes 180-degree sign errors
+            mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
+            raw = K.resolve_axis_signs(raw, np.interp(mid, imu.t, imu.yaw))
+        per_seq = [average_two(raw[seq[:-1]]) for seq in seqs]
+    current = 0.0
+    for seq, hd in zip(seqs, per_seq, strict=True):
+        if len(hd):
+            hd = _fill_nan_headings(hd, current)
+            headings[seq[:-1]] = hd
+            current = float(hd[-1])
+        headings[seq[-1]] = current
+    return steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
 
 
 def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool = False,
@@ -161,63 +231,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
+    steps = _step_lengths(steps, imu, p, pipeline, thr)
+    steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs)
     n = len(steps)
-    lengths = np.zeros(n)
-    headings = np.full(n, np.nan)
-    turning = np.zeros(n, dtype=int)
-    fs = imu.fs
-    idx = np.clip(np.round((steps["event_s"].to_numpy(float) - imu.t[0]) * fs).astype(int), 0, len(imu.t) - 1)
-    has_next = steps["has_next"].to_numpy(bool)
-    dur = (steps["end_s"] - steps["start_s"]).to_numpy(float)
-    freq = np.where(has_next & (dur > 0), 1.0 / np.where(dur > 0, dur, 1.0), np.nan)
-    if pipeline == "waist-pendulum":
-        fc_idx = np.round((steps["fc_s"].fillna(-1).to_numpy(float) - imu.t[0]) * fs).astype(int)
-        h = np.zeros(n)
-        for i in np.flatnonzero(has_next):
-            h[i] = pendulum_h(imu.acc_v, fs, idx[i], fc_idx[i], idx[i + 1])
-        lengths = np.where(has_next, K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m), 0.0)
-        steps = steps.assign(h_m=h)
-    else:
-        sigma = K.rolling_std(imu.acc_v, fs, causal=False)
-        running = K.motion_state(sigma[idx], walk_threshold=thr) == 2
-        lengths = np.where(has_next, frequency_lengths(np.nan_to_num(freq, nan=0.0), p, running=running), 0.0)
-    steps = steps.assign(frequency_hz=freq)
-    seqs = _sequences(steps)
-    ev_all = steps["event_s"].to_numpy(float)
-    mean_rate = np.full(n, np.nan)  # per-step stride mean vertical rate (MRZ, seed 003 sec. 3.3)
-    for seq in seqs:
-        if len(seq) > 1:
-            mean_rate[seq[:-1]] = K.mean_rate_per_stride(imu.t, imu.w_z - p.gyro_bias_rps, ev_all[seq])
-    if method == "gyro":
-        clf = TurnClassifier(**(p.turn_gmm or {}))
-        current = 0.0
-        for seq in seqs:
-            moving = seq[:-1]
-            if len(moving):
-                hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
-                                       heading0=current)
-                turning[moving] = tr
-                headings[moving] = hd
-                current = float(hd[-1])
-            headings[seq[-1]] = current
-    else:
-        raw = np.full(n, np.nan)
-        for seq in seqs:
-            if len(seq) > 1:
-                raw[seq[:-1]] = harmonic_directions(imu, ev_all[seq], method=method)
-        if resolve_signs:  # decision W13: one yaw offset per worn unit fixes 180-degree sign errors
-            mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
-            raw = K.resolve_axis_signs(raw, np.interp(mid, imu.t, imu.yaw))
-        current = 0.0
-        for seq in seqs:
-            moving = seq[:-1]
-            if len(moving):
-                hd = _fill_nan_headings(average_two(raw[moving]), current)
-                headings[moving] = hd
-                current = float(hd[-1])
-            headings[seq[-1]] = current
-    headings = _fill_nan_headings(headings, 0.0)
-    steps = steps.assign(turning=turning, mean_rate_rps=mean_rate)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"
     info = {
         "pipeline": pipeline,
@@ -227,11 +243,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "params_source": p.source,
         "warnings": warnings,
         "n_contacts": int(n),
-        "rate_hz": fs,
+        "rate_hz": imu.fs,
     }
     for w in warnings:
         log.warning("%s: %s", session.name, w)
-    return _result(steps, lengths, headings, start, initial_heading, info, float(imu.t[0]))
+    return _result(steps, start, initial_heading, info, float(imu.t[0]))
 
 
 @register_pipeline("waist-pll")
