@@ -28,6 +28,9 @@ def simulate_cmd(
     clock_drift_ppm: float = typer.Option(0.0, "--clock-drift-ppm", help="Waist clock drift (ppm)."),
     drop_rate: float = typer.Option(0.0, "--drop-rate", help="Fraction of foot packets lost (0-0.5)."),
     irregular_rate: float = typer.Option(0.0, "--irregular-rate", help="Fraction of irregular steps (0-1)."),
+    foot_mount_pitch: float = typer.Option(
+        0.0, "--foot-mount-pitch", help="Extra toes-down tilt of the foot unit (deg), e.g. 50 for an instep mount."
+    ),
     no_noise: bool = typer.Option(False, "--no-noise", help="Exact physics: no noise, bias or quantisation."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -65,6 +68,7 @@ def simulate_cmd(
             clock_drift_ppm=clock_drift_ppm,
             drop_rate=drop_rate,
             irregular_rate=irregular_rate,
+            foot_mount_pitch_deg=foot_mount_pitch,
             noise=not no_noise,
         )
         advance()
