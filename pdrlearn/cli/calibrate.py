@@ -31,10 +31,13 @@ def register(app: typer.Typer) -> None:
 
         Examples:
 
-          pdrlearn calibrate datasets/real/mobgap_HA001_Test5_Trial1 --pipeline waist-pendulum
-          --distance 5.01 --out p.json
+          pdrlearn calibrate datasets/real/mobgap_HA001_Test5_Trial1 -p waist-pendulum -o p.json
 
           pdrlearn calibrate walk1 walk2 --pipeline waist-pll -d 40 -d 60 --out p.json
+
+          pdrlearn calibrate loop --pipeline waist-pendulum -d 35 --turns 1 --out p.json
+
+        Then: pdrlearn track DIR --pipeline waist-pendulum --params p.json --out OUT
         """
         from pdrlearn.io import read_session
         from pdrlearn.waist.calibration import calibrate
