@@ -127,7 +127,7 @@ def test_round_trip_export_run_on_a_simulated_session(tmp_path, capsys):
     out = json.loads(capsys.readouterr().out)
     truth = float(np.hypot(*np.diff(a.trajectory[["x", "y"]].to_numpy(), axis=0).T).sum())  # path length (m)
     assert out["n_steps"] >= len(a.steps) - 1
-    assert out["classes"]["terrain"].get("flat", 0) >= out["n_steps"] - 1  # scenario A is level walking
+    assert out["classes"]["terrain"].get("flat", 0) >= out["n_steps"] - 1, out  # scenario A is level
     print("scenario A", out["n_steps"], "of", len(a.steps), "strides", out["distance_m"], "m of", truth)
     assert 0.85 * truth < out["distance_m"] < 1.15 * truth
 

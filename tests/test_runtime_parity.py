@@ -172,3 +172,18 @@ def test_opencv_fallback_runs_the_network_like_onnxruntime(trained):
         assert np.mean(c1 == c2) >= 0.95
     with pytest.raises(ModelError, match="needs onnxruntime"):
         TaskClassifier(cv, "terrain", ctx, method="svm", unit="foot")
+
+
+def test_step_windows_equal_training_side_on_real_204hz_foot_data(gaitmap_level_left):
+    """Real 204.8 Hz foot recording with its own mounting: resampling filter, rest search, attitude."""
+    from pdrlearn.features import CHANNELS
+    from pdrlearn.io import read_session
+    from pdrlearn.runtime.tracker import forward_vector
+
+    s = read_session(gaitmap_level_left)
+    steps = s.steps.iloc[:8]
+    ref = step_windows(s, steps, n_samples=40).X
+    fwd = {"foot": forward_vector(s.frames["foot"].to_dict())}
+    W = np.stack([step_window(_streams(s), a, b, channels=list(CHANNELS), forward=fwd, n_samples=40)
+                  for a, b in zip(steps["start_s"], steps["end_s"], strict=True)])
+    np.testing.assert_allclose(W, ref, atol=1e-8, equal_nan=True)

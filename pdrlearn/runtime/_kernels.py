@@ -86,11 +86,21 @@ def propagate_attitude(gyr: np.ndarray, dt: np.ndarray, k0: int, r0: np.ndarray)
     if n < 2:
         return out
     steps = rotvec_to_matrix(0.5 * (gyr[:-1] + gyr[1:]) * dt[:, None])
-    for k in range(k0, n - 1):
-        out[k + 1] = out[k] @ steps[k]
-    for k in range(k0, 0, -1):
-        out[k - 1] = out[k] @ steps[k - 1].T
+    if k0 < n - 1:  # forward: R_{k0+j} = r0 @ steps[k0] @ ... @ steps[k0+j-1]
+        out[k0 + 1:] = r0 @ prefix_products(steps[k0:])
+    if k0 > 0:  # backward, with the transposed steps
+        out[:k0] = (r0 @ prefix_products(np.transpose(steps[:k0][::-1], (0, 2, 1))))[::-1]
     return out
+
+
+def prefix_products(m: np.ndarray) -> np.ndarray:
+    """Inclusive prefix products ``m[0] @ ... @ m[k]`` of ``(n, 3, 3)`` matrices (Hillis-Steele scan)."""
+    p = np.array(m, dtype=np.float64, copy=True)
+    shift = 1
+    while shift < p.shape[0]:
+        p[shift:] = p[:-shift] @ p[shift:]
+        shift *= 2
+    return p
 
 
 def correct_tilt_drift(rot: np.ndarray, g_end_sensor: np.ndarray, k0: int, k1: int) -> np.ndarray:

@@ -32,14 +32,30 @@ def _segment(t: np.ndarray, v: np.ndarray, t0: float, t1: float) -> tuple[np.nda
     return t[i0:i1], v[i0:i1]
 
 
+def box_filter(v: np.ndarray, width: int) -> np.ndarray:
+    """Centred moving mean of odd ``width`` along axis 0, edges repeated (``uniform_filter1d`` with
+    ``mode="nearest"``)."""
+    h = width // 2
+    p = np.concatenate([np.repeat(v[:1], h, axis=0), v, np.repeat(v[-1:], h, axis=0)], axis=0)
+    c = np.concatenate([np.zeros((1,) + v.shape[1:]), np.cumsum(p, axis=0)], axis=0)
+    return (c[width:] - c[:-width]) / width
+
+
 def _interp(tq: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Resample the columns of ``v`` at ``tq``; when downsampling, a box anti-alias filter over one output
+    interval first (as the PLASYS firmware's 5-sample mean, thesis ch. 4.3.2)."""
+    if len(tq) > 1 and len(t) > 2:
+        width = int(round((tq[1] - tq[0]) * (len(t) - 1) / float(t[-1] - t[0])))  # mean spacing
+        width = 2 * (width // 2) + 1
+        if width > 1:
+            v = box_filter(v, width)
     return np.stack([np.interp(tq, t, v[:, j]) for j in range(v.shape[1])], axis=0)
 
 
 def foot_levelled(t, acc, gyr, forward_s, *, rest_search_s: float, heading: str):
     """Foot acceleration (gravity removed) and rate in the step frame, and |acc| (see features/windows)."""
     n = acc.shape[0]
-    fs = 1.0 / float(np.median(np.diff(t))) if n > 1 else 1.0
+    fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
     m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
     k0 = K.rest_index(acc, gyr, 0, m)
     k1 = K.rest_index(acc, gyr, n - m, n)
@@ -108,14 +124,14 @@ def step_window(
         a, g, an = foot_levelled(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s, heading=heading)
         c = ci["foot_acc_x"]
         X[c : c + 3] = _interp(tg, ta, a)
-        X[ci["foot_acc_norm"]] = np.interp(tg, ta, an)
+        X[ci["foot_acc_norm"]] = _interp(tg, ta, an[:, None])[0]
         if g is not None:
             c = ci["foot_gyr_x"]
             X[c : c + 3] = _interp(tg, ta, g)
     if "force" in has:
         for j, name in enumerate(("fForceA", "fForceB")):
             tf, f = _segment(*streams[name], t0, t1)
-            X[ci["force_a"] + j] = np.interp(tg, tf, f[:, 0])
+            X[ci["force_a"] + j] = _interp(tg, tf, f)[0]
     if "waist_acc" in has and "waist" in forward:
         tw, wacc = _segment(*streams["wAccelerometer"], t0, t1)
         wgyr = _interp(tw, *_segment(*streams["wGyroscope"], t0, t1)).T if "waist_gyr" in has else None
