@@ -279,6 +279,19 @@ def test_heuristics_beat_chance_on_held_out_simulated_steps(task, unit, min_bacc
     assert np.allclose(p.sum(axis=1), 1.0)
 
 
+def test_terrain_proba_argmax_equals_two_stage_decision(real_terrain):
+    X, y = real_terrain
+    for unit in ("foot",):
+        clf = HeuristicTerrainClassifier(unit=unit).fit(X[::2], y[::2])
+        p = clf.predict_proba(X)
+        np.testing.assert_allclose(p.sum(axis=1), 1.0)
+        np.testing.assert_array_equal(clf.classes_[p.argmax(axis=1)], clf.predict(X))
+    # boundary case by hand: stage 1 R = 1.55 (stairs, m = .45/.55), stage 2 R = 3.45 (up, m = .55/.45)
+    clf = HeuristicTerrainClassifier(unit="foot", thresholds="thesis").fit(X[:5], y[:5])
+    clf._stage_scores = lambda F: [np.full(len(F), 1.55), np.full(len(F), 3.45)]
+    assert clf.predict(X[:1])[0] == "up" and clf.classes_[clf.predict_proba(X[:1]).argmax()] == "up"
+
+
 def test_predictions_unchanged_by_mounting_rotation(real_dir, real_terrain):
     """The stair recording re-mounted by -50 deg pitch / 15 deg roll (roughly the level walk's lateral
     mount) gets the same terrain predictions."""

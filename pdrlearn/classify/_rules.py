@@ -213,3 +213,27 @@ def refine_jointly(F: np.ndarray, target: np.ndarray, rules: list[Rule], values:
         if not improved:
             break
     return rules
+
+
+def combine_stages(stages: list[tuple[np.ndarray, list[str], str | None]]) -> dict[str, np.ndarray]:
+    """Class probabilities from the memberships of chained stages (decisions doc, section 9).
+
+    Each item is ``(m, labels, parent)``: memberships ``m`` (n, k) of the stage's class values, their
+    labels, and the label of the previous stage this stage refines (``None`` for the first stage).
+    A refined label's mass is split by the stage's memberships; the parent stage's other labels are
+    scaled by the stage's best membership, so the argmax equals the stage-by-stage rounded decision.
+    Rows are normalised to sum 1. Returns label -> (n,) probabilities.
+    """
+    probs: dict[str, np.ndarray] = {}
+    for m, labels, parent in stages:
+        if parent:
+            base = probs.pop(parent)
+            best = m.max(axis=1)
+            for k in probs:
+                probs[k] = probs[k] * best
+        else:
+            base = np.ones(m.shape[0])
+        for j, lab in enumerate(labels):
+            probs[lab] = base * m[:, j]
+    total = np.sum(list(probs.values()), axis=0)
+    return {k: v / total for k, v in probs.items()}

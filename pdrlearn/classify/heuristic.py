@@ -43,6 +43,7 @@ from sklearn.utils.validation import check_is_fitted
 
 from pdrlearn.classify._rules import (
     Rule,
+    combine_stages,
     learn_thresholds,
     memberships,
     refine_jointly,
@@ -275,13 +276,9 @@ class _RuleClassifier(ClassifierMixin, BaseEstimator):
         """Class probabilities (n_steps, n_classes), columns in :attr:`classes_` order."""
         check_is_fitted(self, "stages_")
         F = self._features(X, self.feature_names_)
-        probs: dict[str, np.ndarray] = {}
-        for st, score in zip(self.stages_, self._stage_scores(F), strict=True):
-            values = tuple(st.labels)
-            m = memberships(score, values)
-            base = probs.pop(st.parent) if st.parent else np.ones(len(F))
-            for j, v in enumerate(values):
-                probs[st.labels[v]] = base * m[:, j]
+        stages = [(memberships(score, tuple(st.labels)), list(st.labels.values()), st.parent)
+                  for st, score in zip(self.stages_, self._stage_scores(F), strict=True)]
+        probs = combine_stages(stages)
         return np.column_stack([probs[c] for c in self.classes_])
 
     def predict(self, X) -> np.ndarray:
