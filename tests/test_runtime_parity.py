@@ -187,3 +187,33 @@ def test_step_windows_equal_training_side_on_real_204hz_foot_data(gaitmap_level_
     W = np.stack([step_window(_streams(s), a, b, channels=list(CHANNELS), forward=fwd, n_samples=40)
                   for a, b in zip(steps["start_s"], steps["end_s"], strict=True)])
     np.testing.assert_allclose(W, ref, atol=1e-8, equal_nan=True)
+
+
+def test_real_foot_recordings_stream_like_the_training_side(real_dir, tmp_path):
+    """Terrain model trained on the real gaitmap foot recordings (204.8 Hz), exported, and the real
+    right-foot walk streamed through the runtime: every streamed step classified as predict_steps does."""
+    import pandas as pd
+
+    from pdrlearn.classify import train_user
+    from pdrlearn.export.from_model import export_model
+    from pdrlearn.io import read_session
+
+    train = [read_session(real_dir / n) for n in
+             ("gaitmap_level_left", "gaitmap_stairs_up_left", "gaitmap_stairs_down_left")]
+    model = train_user(train, tasks=["terrain"], cv=3, seed=0, methods=["svm"])
+    model.save(tmp_path / "model")
+    export_model(tmp_path / "model", tmp_path / "bundle", frames={"foot": train[0].frames["foot"].to_dict()})
+    for s in (read_session(real_dir / "gaitmap_level_right"), train[1]):
+        tr = Tracker(tmp_path / "bundle", frames={p: f.to_dict() for p, f in s.frames.items()})
+        t = s.streams["fAccelerometer"].t
+        steps = []
+        for a in np.arange(t[0], t[-1] + 0.5, 0.5):
+            steps += tr.push({n: (st.t[(st.t >= a) & (st.t < a + 0.5)], st.values[(st.t >= a) & (st.t < a + 0.5)])
+                              for n, st in s.streams.items()})
+        assert len(steps) >= len(s.steps) - 1
+        ref = model.predict_steps(s, pd.DataFrame({"start_s": [x.start_s for x in steps],
+                                                   "end_s": [x.end_s for x in steps]}))
+        assert [x.classes["terrain"] for x in steps] == list(ref["terrain"])
+        for c in ("flat", "up", "down"):
+            got = np.array([x.proba["terrain"][c] for x in steps])
+            assert np.abs(got - ref[f"p_terrain_{c}"].to_numpy()).max() <= 1e-5
