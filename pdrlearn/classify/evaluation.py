@@ -89,18 +89,27 @@ def evaluate_model(
             "methods": {},
             "skipped": [],
         }
-        preds: dict[tuple[str, str], np.ndarray] = {}
+        # predict session by session: a session lacking a model's sensors is skipped for that model only
+        sess_ids = np.unique(data.session)
+        preds: dict[tuple[str, str], dict[int, np.ndarray]] = {}
         for method, per in tm.models.items():
             units = {}
             for unit, est in per.items():
-                try:
-                    y_pred = np.asarray(est.predict(data.X)).astype(str)
-                except MissingSensorError as exc:
-                    res["skipped"].append(f"{method}/{unit}: {exc}")
+                got: dict[int, np.ndarray] = {}
+                for i in sess_ids:
+                    sel = data.session == i
+                    try:
+                        got[int(i)] = np.asarray(est.predict(data.X[sel])).astype(str)
+                    except MissingSensorError as exc:
+                        res["skipped"].append(f"{method}/{unit} on {windows[int(i)].session}: {exc}")
+                if not got:
                     continue
-                preds[(method, unit)] = y_pred
-                m = class_metrics(data.y, y_pred, classes)
-                m["latency_ms"] = step_latency_ms(est, data.X, n=latency_steps) if latency else None
+                preds[(method, unit)] = got
+                sel = np.isin(data.session, list(got))
+                y_pred = np.concatenate([got[int(i)] for i in sess_ids if int(i) in got])
+                y_true = np.concatenate([data.y[data.session == i] for i in sess_ids if int(i) in got])
+                m = class_metrics(y_true, y_pred, classes)
+                m["latency_ms"] = step_latency_ms(est, data.X[sel], n=latency_steps) if latency else None
                 units[unit] = m
             if not units:
                 continue
@@ -111,15 +120,26 @@ def evaluate_model(
                 "unit": best_unit,
                 "units": units,
             }
-        order = ([tm.chosen] if tm.chosen else []) + tm.ranking()
-        chosen = next((p for p in order if p in preds), None)
-        if chosen is None:
+        # the model's own choice per session: chosen method, else the best-ranked one that runs there
+        order = list(dict.fromkeys(([tm.chosen] if tm.chosen else []) + tm.ranking()))
+        y_true, y_pred, used = [], [], []
+        for i in sess_ids:
+            pair = next((p for p in order if p in preds and int(i) in preds[p]), None)
+            if pair is None:
+                res["skipped"].append(f"chosen: no model runs on {windows[int(i)].session}")
+                continue
+            y_true.append(data.y[data.session == i])
+            y_pred.append(preds[pair][int(i)])
+            used.append(pair)
+        if not used:
             out["skipped"].append(
                 f"{task}: no trained method can run on these sessions "
                 f"(they have {', '.join(sorted(available)) or 'no sensors'})"
             )
             continue
-        m = class_metrics(data.y, preds[chosen], classes)
+        chosen = max(set(used), key=used.count)
+        m = class_metrics(np.concatenate(y_true), np.concatenate(y_pred), classes)
+        res["n_steps"] = int(m["n_steps"])
         res.update(
             accuracy=m["accuracy"],
             balanced_accuracy=m["balanced_accuracy"],
@@ -141,10 +161,7 @@ def results_table(task_result: dict) -> list[list[str]]:
     pairs += [(m, u) for m, d in methods.items() for u in d["units"] if (m, u) not in pairs]
     for m, u in pairs:
         r = methods[m]["units"][u]
-        pc = [
-            ("-" if r["per_class"][c] is None else f"{100 * r['per_class'][c]:.1f}")
-            for c in task_result["classes"]
-        ]
+        pc = [("-" if r["per_class"][c] is None else f"{100 * r['per_class'][c]:.1f}") for c in task_result["classes"]]
         lat = r.get("latency_ms")
         rows.append([m, u, *pc, f"{100 * r['accuracy']:.1f}", "-" if lat is None else f"{lat:.3f}"])
     return rows
