@@ -8,6 +8,7 @@ or pandas at module level and so cannot be loaded by the runtime (decision E5, d
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -87,7 +88,7 @@ def propagate_attitude(gyr: np.ndarray, dt: np.ndarray, k0: int, r0: np.ndarray)
         return out
     steps = rotvec_to_matrix(0.5 * (gyr[:-1] + gyr[1:]) * dt[:, None])
     if k0 < n - 1:  # forward: R_{k0+j} = r0 @ steps[k0] @ ... @ steps[k0+j-1]
-        out[k0 + 1:] = r0 @ prefix_products(steps[k0:])
+        out[k0 + 1 :] = r0 @ prefix_products(steps[k0:])
     if k0 > 0:  # backward, with the transposed steps
         out[:k0] = (r0 @ prefix_products(np.transpose(steps[:k0][::-1], (0, 2, 1))))[::-1]
     return out
@@ -149,17 +150,31 @@ def peak_stats(sig: np.ndarray, t: np.ndarray) -> dict[str, np.ndarray]:
     sum_neg = np.sum(np.clip(-sig, 0, None) * dt, axis=1)
     t_min, t_max = tt[rows, i_min], tt[rows, i_max]
     return {
-        "min": vmin, "max": vmax, "t_min": t_min, "t_max": t_max, "dt_peaks": t_max - t_min,
-        "abs_dt_peaks": np.abs(t_max - t_min), "range": vmax - vmin, "peak_asym": np.abs(vmax) - np.abs(vmin),
-        "sum_pos": sum_pos, "sum_neg": sum_neg, "pos_minus_neg": sum_pos - sum_neg, "duration": tt[:, -1],
+        "min": vmin,
+        "max": vmax,
+        "t_min": t_min,
+        "t_max": t_max,
+        "dt_peaks": t_max - t_min,
+        "abs_dt_peaks": np.abs(t_max - t_min),
+        "range": vmax - vmin,
+        "peak_asym": np.abs(vmax) - np.abs(vmin),
+        "sum_pos": sum_pos,
+        "sum_neg": sum_neg,
+        "pos_minus_neg": sum_pos - sum_neg,
+        "duration": tt[:, -1],
     }
+
+
+@functools.lru_cache(maxsize=64)
+def _segment_edges(m: int, n_segments: int) -> tuple[np.ndarray, np.ndarray]:
+    edges = np.linspace(0, m, n_segments + 1).round().astype(int)
+    return edges[:-1], edges[1:]
 
 
 def segment_stats(sig: np.ndarray, t: np.ndarray, n_segments: int = 6) -> np.ndarray:
     """Per part of ``n_segments`` equal parts: max, min, mean, slope (thesis ch. 6.1.1.2)."""
     n, m = sig.shape
-    edges = np.linspace(0, m, n_segments + 1).round().astype(int)
-    a, b = edges[:-1], edges[1:]
+    a, b = _segment_edges(m, n_segments)
     mx = np.maximum.reduceat(sig, a, axis=1)
     mn = np.minimum.reduceat(sig, a, axis=1)
     mean = np.add.reduceat(sig, a, axis=1) / (b - a)

@@ -92,9 +92,7 @@ class OnnxModel:
                 opts.intra_op_num_threads = 1  # one step at a time: threads only add latency
                 opts.inter_op_num_threads = 1
                 opts.log_severity_level = 3
-                self._sess = ort.InferenceSession(
-                    str(self.path), sess_options=opts, providers=["CPUExecutionProvider"]
-                )
+                self._sess = ort.InferenceSession(str(self.path), sess_options=opts, providers=["CPUExecutionProvider"])
                 self._names = [o.name for o in self._sess.get_outputs()]
                 return "onnxruntime"
         # OpenCV fallback: plain networks only (the ai.onnx.ml SVM operators are not in cv2.dnn).

@@ -59,15 +59,15 @@ class RuntimeModel:
         else:
             raise ModelError(f"bundle {bundle.path.name}: unknown model type {self.type!r}; re-export it")
 
-    def proba(self, W: np.ndarray) -> np.ndarray:
+    def proba(self, W: np.ndarray, cache: dict | None = None) -> np.ndarray:
         if self.type == "onnx":
-            F = compute_features(W, self.entry["features"], **self.ctx)
+            F = compute_features(W, self.entry["features"], cache=cache, **self.ctx)
             out = self.model.run(F)
             if "proba" in out:
                 return np.asarray(out["proba"], dtype=np.float64)
             return K.softmax(np.asarray(out["logits"], dtype=np.float64))
         if self.type == "dtw":
-            S = compute_features(W, [["signals", self.entry["signals"]]], **self.ctx)
+            S = compute_features(W, [["signals", self.entry["signals"]]], cache=cache, **self.ctx)
             S = (np.transpose(S, (0, 2, 1)) - self.mean) / self.std  # (n, samples, channels)
             n_cls = len(self.classes)
             out = np.empty((len(S), n_cls))
@@ -76,8 +76,8 @@ class RuntimeModel:
                 out[i] = [d[self.ref_labels == k].mean() for k in range(n_cls)]
             return K.softmax(-out / self.temperature)
         if self.type == "heuristic":
-            return heuristic_proba(self, W)
-        probas = [align(m.proba(W), m.classes, self.classes) for m in self.members]
+            return heuristic_proba(self, W, cache)
+        probas = [align(m.proba(W, cache), m.classes, self.classes) for m in self.members]
         return K.soft_vote(probas, self.weights)
 
 
@@ -109,26 +109,24 @@ class TaskClassifier:
         self.method, self.unit = method, unit
         self.model = RuntimeModel(bundle, methods[method][unit], feature_ctx)
 
-    def predict(self, W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def predict(self, W: np.ndarray, cache: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
         """``(classes (n,), probabilities (n, n_classes))`` for windows ``W``."""
-        p = align(self.model.proba(W), self.model.classes, self.classes)
+        p = align(self.model.proba(W, cache), self.model.classes, self.classes)
         return np.asarray(self.classes, dtype=object)[np.argmax(p, axis=1)], p
 
 
-def heuristic_proba(self: RuntimeModel, W: np.ndarray) -> np.ndarray:
+def heuristic_proba(self: RuntimeModel, W: np.ndarray, cache: dict | None = None) -> np.ndarray:
     """Stage scores (thesis eq. 28) -> triangular memberships, multiplied along the stages, as
     ``pdrlearn.classify.heuristic._RuleClassifier.predict_proba``."""
     from pdrlearn.classify._rules import Rule, memberships, stage_score
 
-    F = compute_features(W, self.recipe, **self.ctx)
+    F = compute_features(W, self.recipe, cache=cache, **self.ctx)
     probs: dict[str, np.ndarray] = {}
     for st in self.stages:
         rules = [Rule.from_dict(r) for r in st["rules"]]
         conf = None
         if any(r.confidence for r in rules):
-            conf = np.column_stack(
-                [F[:, self.col[r.confidence]] if r.confidence else np.ones(len(F)) for r in rules]
-            )
+            conf = np.column_stack([F[:, self.col[r.confidence]] if r.confidence else np.ones(len(F)) for r in rules])
         score = stage_score(F[:, [self.col[r.feature] for r in rules]], rules, conf)
         values = tuple(float(v) for v, _ in st["labels"])
         m = memberships(score, values)

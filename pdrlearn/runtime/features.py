@@ -156,29 +156,50 @@ def signal(W: np.ndarray, name: str, signals: dict, channel_index: dict) -> np.n
     return sign * out
 
 
-def compute_features(W: np.ndarray, recipe: list, *, signals: dict, channel_index: dict) -> np.ndarray:
-    """Feature matrix ``(n_steps, n_features)`` of windows ``W (n_steps, channels, samples)``."""
+def compute_features(
+    W: np.ndarray, recipe: list, *, signals: dict, channel_index: dict, cache: dict | None = None
+) -> np.ndarray:
+    """Feature matrix ``(n_steps, n_features)`` of windows ``W (n_steps, channels, samples)``.
+
+    ``cache`` (optional, one dict per ``W``) shares signals and statistics between the recipes of the
+    several models that classify the same step.
+    """
     t = W[:, 0, :]
     cols: list[np.ndarray] = []
-    peak_cache: dict[str, dict] = {}
+    c = {} if cache is None else cache
 
     def sig(name):
-        return signal(W, name, signals, channel_index)
+        key = ("sig", name)
+        if key not in c:
+            c[key] = signal(W, name, signals, channel_index)
+        return c[key]
 
     def peaks(name):
-        if name not in peak_cache:
-            peak_cache[name] = K.peak_stats(sig(name), t)
-        return peak_cache[name]
+        key = ("peak", name)
+        if key not in c:
+            c[key] = K.peak_stats(sig(name), t)
+        return c[key]
+
+    def segments(name, n):
+        key = ("seg", name, n)
+        if key not in c:
+            c[key] = K.segment_stats(sig(name), t, n)
+        return c[key]
+
+    def force(zero_fraction):
+        key = ("force", zero_fraction)
+        if key not in c:
+            c[key] = K.force_stats(sig("force"), t, zero_fraction=zero_fraction)
+        return c[key]
 
     for item in recipe:
         op = item[0]
         if op == "peak":
             cols.append(peaks(item[1])[item[2]][:, None])
         elif op == "segments":
-            cols.append(K.segment_stats(sig(item[1]), t, int(item[2])))
+            cols.append(segments(item[1], int(item[2])))
         elif op == "force":
-            fs = K.force_stats(sig("force"), t, zero_fraction=float(item[2]))
-            cols.append(fs[item[1]][:, None])
+            cols.append(force(float(item[2]))[item[1]][:, None])
         elif op == "yaw_sign":
             dt = K._gradient(t)
             cols.append((np.sum(sig("waist_yaw") * dt, axis=1) > 0).astype(float)[:, None])

@@ -166,9 +166,7 @@ class Tracker:
         self.buffer_s = float(buffer_s)
         self._buf: dict[str, list] = {}
         self.position = np.asarray(start, dtype=float).copy()
-        self.heading = float(
-            self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad
-        )
+        self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
         self._stance_start: float | None = None
         self._last_still = -np.inf
         self._last_boundary: float | None = None
@@ -180,7 +178,8 @@ class Tracker:
     # -- classification of given windows (also used by the parity tests) ----------------------------
     def classify(self, W: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
         """Task -> (classes (n,), probabilities (n, n_classes)) for windows ``W (n, channels, samples)``."""
-        return {task: clf.predict(W) for task, clf in self.classifiers.items()}
+        cache: dict = {}  # signals and statistics shared by every model of this step
+        return {task: clf.predict(W, cache) for task, clf in self.classifiers.items()}
 
     def window(self, t0: float, t1: float) -> np.ndarray:
         """The step window of ``[t0, t1]`` from the buffered samples."""
