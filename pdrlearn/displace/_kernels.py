@@ -101,16 +101,38 @@ def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float, idx: np.ndarray, mask
     rot = level_rotation(g_body) if init is None else init
     gnorm = np.linalg.norm(g_body, axis=1)
     bias = np.zeros((B, 3)) if gyro_bias is None else np.asarray(gyro_bias, dtype=float)
-    a_nav[:, 0] = rot.apply(acc[idx[:, 0]])
-    for j in range(1, L):
-        w = 0.5 * (gyr[idx[:, j - 1]] + gyr[idx[:, j]]) - bias
-        w = np.where(mask[:, j, None], w, 0.0)
-        rot = rot * Rotation.from_rotvec(w * dt)
-        a_nav[:, j] = rot.apply(acc[idx[:, j]])
+    # body-frame rotation increments of every step (midpoint rate), as quaternions [w, x, y, z]
+    w = 0.5 * (gyr[idx[:, :-1]] + gyr[idx[:, 1:]]) - bias[:, None, :]
+    w = np.where(mask[:, 1:, None], w, 0.0) * dt
+    ang = np.linalg.norm(w, axis=2, keepdims=True)
+    half = 0.5 * ang
+    dq = np.concatenate([np.cos(half), w * np.where(ang > 1e-12, np.sin(half) / np.maximum(ang, 1e-300), 0.5)],
+                        axis=2)
+    xyzw = rot.as_quat()
+    qc = np.empty((L, 4, B))  # per sample position: components w, x, y, z of every stride (contiguous)
+    qc[0] = np.vstack([xyzw[:, 3], xyzw[:, 0], xyzw[:, 1], xyzw[:, 2]])
+    d = np.ascontiguousarray(np.transpose(dq, (1, 2, 0)))  # (L - 1, 4, B)
+    for j in range(1, L):  # q_j = q_{j-1} * dq_j (Hamilton product, body-frame increment)
+        pw, px, py, pz = qc[j - 1]
+        qw_, qx_, qy_, qz_ = d[j - 1]
+        qc[j, 0] = pw * qw_ - px * qx_ - py * qy_ - pz * qz_
+        qc[j, 1] = pw * qx_ + px * qw_ + py * qz_ - pz * qy_
+        qc[j, 2] = pw * qy_ - px * qz_ + py * qw_ + pz * qx_
+        qc[j, 3] = pw * qz_ + px * qy_ - py * qx_ + pz * qw_
+    q = np.transpose(qc, (2, 0, 1))  # (B, L, 4)
+    a_nav[:] = _qrotate(q, acc[idx])
     a_nav[:, :, 2] -= gnorm[:, None]
     a_nav[~mask] = 0.0
-    f = rot.apply(np.array([1.0, 0.0, 0.0]))
+    n = mask.sum(axis=1) - 1
+    f = _qrotate(q[np.arange(B), n], np.tile([1.0, 0.0, 0.0], (B, 1)))
     return a_nav, np.arctan2(f[:, 1], f[:, 0])
+
+
+def _qrotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Rotate vectors v (..., 3) by unit quaternions q (..., 4): v + 2w (u x v) + 2 u x (u x v)."""
+    u = q[..., 1:]
+    t = 2.0 * np.cross(u, v)
+    return v + q[..., :1] * t + np.cross(u, t)
 
 
 def _cumtrapz(x: np.ndarray, dt: float) -> np.ndarray:
@@ -150,14 +172,25 @@ def double_integrate(a_nav: np.ndarray, mask: np.ndarray, dt: float, *, zupt_end
             frac = np.minimum(np.arange(L)[None, :] / np.maximum(n - 1, 1)[:, None], 1.0)
             v = v - frac[:, :, None] * v_end[:, None, :]
         else:
-            j = np.arange(L)
-            for b in range(B):
-                jj = np.flatnonzero(zupt[b, : n[b]])
-                for c in range(3):
-                    v[b, : n[b], c] -= np.interp(j[: n[b]], jj, v[b, jj, c])
+            v = v - _interp_between(v, zupt & mask)
     v[~mask] = 0.0
     p = _cumtrapz(v, dt)
     return p[np.arange(B), n - 1]
+
+
+def _interp_between(v: np.ndarray, known: np.ndarray) -> np.ndarray:
+    """Per row b, values of ``v[b]`` (L, k) at the ``known`` samples, linearly interpolated in between
+    (held after the last known sample). Every row's first sample must be known."""
+    B, L = known.shape
+    j = np.arange(L)
+    prev = np.maximum.accumulate(np.where(known, j, 0), axis=1)
+    nxt = np.flip(np.minimum.accumulate(np.flip(np.where(known, j, L), axis=1), axis=1), axis=1)
+    nxt = np.where(nxt >= L, prev, nxt)
+    rows = np.arange(B)[:, None]
+    vp, vn = v[rows, prev], v[rows, nxt]
+    span = np.maximum(nxt - prev, 1)
+    w = ((j[None, :] - prev) / span)[:, :, None]
+    return vp + w * (vn - vp)
 
 
 def wnj_matrices(dt: float, sw: float) -> tuple[np.ndarray, np.ndarray]:
@@ -170,15 +203,19 @@ def wnj_matrices(dt: float, sw: float) -> tuple[np.ndarray, np.ndarray]:
     return F, Q
 
 
-def _scalar_update(x, P, h: int, z, r, active):
-    """Kalman update of state component ``h`` with measurement z (N,), variance r, where ``active``."""
-    s = P[:, h, h] + r
-    k = P[:, :, h] / s[:, None]
-    y = np.where(active, z - x[:, h], 0.0)
-    k = np.where(active[:, None], k, 0.0)
-    x = x + k * y[:, None]
-    P = P - k[:, :, None] * P[:, h, None, :]
-    return x, P
+def _inv3_sym(M: np.ndarray) -> np.ndarray:
+    """Inverse of symmetric 3x3 matrices (..., 3, 3) by cofactors (faster than LAPACK for tiny blocks)."""
+    a, b, c = M[..., 0, 0], M[..., 0, 1], M[..., 0, 2]
+    d, e, f = M[..., 1, 1], M[..., 1, 2], M[..., 2, 2]
+    A = d * f - e * e
+    Bc = c * e - b * f
+    C = b * e - c * d
+    det = a * A + b * Bc + c * C
+    D = a * f - c * c
+    E = b * c - a * e
+    Fc = a * d - b * b
+    inv = np.stack([np.stack([A, Bc, C], -1), np.stack([Bc, D, E], -1), np.stack([C, E, Fc], -1)], -2)
+    return inv / det[..., None, None]
 
 
 def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1.8, r: float = 0.01,
@@ -188,7 +225,8 @@ def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1
 
     Parameters
     ----------
-    a_meas : (N, L) measured acceleration (m/s^2) of N independent signals (strides x axes)
+    a_meas : (N, L) or (N, L, A) measured acceleration (m/s^2); the A axes of a row share the sample
+        times, so they share one covariance (thesis eq. 58-60: one filter per axis, same model)
     mask : (N, L) valid samples (each signal starts at j = 0)
     sw : power spectral density of the jerk (thesis ch.7.2.1: 1.8)
     r : acceleration measurement variance (thesis eq. 55: 0.01)
@@ -200,56 +238,86 @@ def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1
 
     Returns
     -------
-    states : (N, L, 3) distance (m), velocity (m/s), acceleration (m/s^2); the value at the last valid
-    sample of each signal is its displacement estimate
+    states : (N, L, 3) or (N, L, A, 3) distance (m), velocity (m/s), acceleration (m/s^2); the value at
+    the last valid sample of each signal is its displacement estimate
     """
-    N, L = a_meas.shape
+    squeeze = a_meas.ndim == 2
+    am = a_meas[:, :, None] if squeeze else a_meas
+    N, L, A = am.shape
     F, Q = wnj_matrices(dt, sw)
-    x = np.zeros((N, 3))
-    x[:, 2] = a_meas[:, 0]
-    P = np.tile(np.diag([1e-12, 1e-12 if zupt else 1e-4, r]), (N, 1, 1))
+    T, h = dt, dt * dt / 2
+    q00, q01, q02, q11, q12, q22 = Q[0, 0], Q[0, 1], Q[0, 2], Q[1, 1], Q[1, 2], Q[2, 2]
+    # state (N, A, 3); covariance kept as its six distinct elements, each (N,), shared by the A axes
+    x = np.zeros((N, A, 3))
+    x[:, :, 2] = am[:, 0]
+    one = np.ones(N)
+    p = {"00": 1e-12 * one, "01": 0 * one, "02": 0 * one, "11": (1e-12 if zupt else 1e-4) * one,
+         "12": 0 * one, "22": r * one}
     last = mask.sum(axis=1) - 1
     if zupt_at is None:
         zupt_at = np.zeros((N, L), dtype=bool)
         zupt_at[np.arange(N), last] = True
-    xf = np.zeros((N, L, 3))
-    Pf = np.zeros((N, L, 3, 3))
-    xp = np.zeros((N, L, 3))
-    Pp = np.zeros((N, L, 3, 3))
-    xf[:, 0], Pf[:, 0], xp[:, 0], Pp[:, 0] = x, P, x, P
+    xf = np.zeros((N, L, A, 3))
+    xf[:, 0] = x
+    Pf = np.zeros((N, L, 6)) if smooth else None
+    keys = ("00", "01", "02", "11", "12", "22")
+    if smooth:
+        Pf[:, 0] = np.column_stack([p[k] for k in keys])
+
+    def update(comp: int, z: np.ndarray, var: float, act: np.ndarray) -> None:
+        nonlocal x
+        col = [p[f"{min(i, comp)}{max(i, comp)}"] for i in range(3)]  # P[:, i, comp]
+        sden = col[comp] + var
+        k = np.where(act[:, None], np.column_stack(col) / sden[:, None], 0.0)
+        x = x + k[:, None, :] * (z - x[:, :, comp])[:, :, None]
+        for key in keys:
+            i, j = int(key[0]), int(key[1])
+            p[key] = p[key] - k[:, i] * col[j]
+
     for j in range(1, L):
         act = mask[:, j]
-        x = np.where(act[:, None], x @ F.T, x)
-        P = np.where(act[:, None, None], F @ P @ F.T + Q, P)
-        xp[:, j], Pp[:, j] = x, P
-        x, P = _scalar_update(x, P, 2, a_meas[:, j], r, act)  # thesis eq. 55
+        # predict: x = F x, P = F P F^T + Q (thesis eq. 53/54), written out for the 3x3 F
+        xn = x @ F.T
+        x = np.where(act[:, None, None], xn, x)
+        a00 = p["00"] + T * p["01"] + h * p["02"]
+        a01 = p["01"] + T * p["11"] + h * p["12"]
+        a02 = p["02"] + T * p["12"] + h * p["22"]
+        a11 = p["11"] + T * p["12"]
+        a12 = p["12"] + T * p["22"]
+        new = {"00": a00 + T * a01 + h * a02 + q00, "01": a01 + T * a02 + q01, "02": a02 + q02,
+               "11": a11 + T * a12 + q11, "12": a12 + q12, "22": p["22"] + q22}
+        for key in keys:
+            p[key] = np.where(act, new[key], p[key])
+        update(2, am[:, j], r, act)  # thesis eq. 55: the acceleration is measured
         if zupt:
-            x, P = _scalar_update(x, P, 1, np.zeros(N), r_zupt, act & zupt_at[:, j])
-        xf[:, j], Pf[:, j] = x, P
+            update(1, np.zeros((N, A)), r_zupt, act & zupt_at[:, j])
+        xf[:, j] = x
+        if smooth:
+            Pf[:, j] = np.column_stack([p[k] for k in keys])
     if not smooth:
-        return xf
+        return xf[:, :, 0] if squeeze else xf
+    idx = [[0, 1, 2], [1, 3, 4], [2, 4, 5]]
+    Pm = Pf[..., idx]  # (N, L, 3, 3)
     xs = xf.copy()
     for j in range(L - 2, -1, -1):
         act = mask[:, j + 1]
-        C = Pf[:, j] @ F.T @ np.linalg.inv(Pp[:, j + 1])
-        upd = xf[:, j] + np.einsum("nij,nj->ni", C, xs[:, j + 1] - xp[:, j + 1])
-        xs[:, j] = np.where(act[:, None], upd, xf[:, j])
-    return xs
+        Pp = F @ Pm[:, j] @ F.T + Q
+        C = Pm[:, j] @ F.T @ _inv3_sym(Pp)
+        upd = xf[:, j] + np.einsum("nij,naj->nai", C, xs[:, j + 1] - xf[:, j] @ F.T)
+        xs[:, j] = np.where(act[:, None, None], upd, xf[:, j])
+    return xs[:, :, 0] if squeeze else xs
 
 
 def wnj_displacement(a_nav: np.ndarray, mask: np.ndarray, dt: float, **kw) -> np.ndarray:
     """Displacement (B, 3) of each stride from one white-noise-jerk filter per axis (thesis eq. 58-60)."""
-    B, L, _ = a_nav.shape
+    B = a_nav.shape[0]
     if B == 0:
         return np.zeros((0, 3))
-    sig = np.transpose(a_nav, (0, 2, 1)).reshape(B * 3, L)
-    m = np.repeat(mask, 3, axis=0)
-    if kw.get("zupt_at") is not None:
-        kw["zupt_at"] = np.repeat(kw["zupt_at"], 3, axis=0)
-    states = wnj_kalman(sig, m, dt, **kw)
-    last = m.sum(axis=1) - 1
-    d = states[np.arange(B * 3), last, 0]
-    return d.reshape(B, 3)
+    # the smoothed state at the last sample equals the filtered one (RTS), so the filter suffices here
+    kw.setdefault("smooth", False)
+    states = wnj_kalman(a_nav, mask, dt, **kw)
+    last = mask.sum(axis=1) - 1
+    return states[np.arange(B), last, :, 0]
 
 
 # --- M3 rules (thesis ch.7.2.2) -------------------------------------------------------------------

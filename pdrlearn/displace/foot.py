@@ -174,8 +174,8 @@ class FootDisplacement:
         k = self.upsample if self.upsample is not None else (5 if fs0 < 50.0 else 1)
         t, acc, gyr, fs = unit.t, unit.acc, unit.gyr, fs0
         if k > 1:
-            t, acc = K.upsample_block_means(unit.t, unit.acc, k)
-            _, gyr = K.upsample_block_means(unit.t, unit.gyr, k)
+            t, both = K.upsample_block_means(unit.t, np.hstack([unit.acc, unit.gyr]), k)
+            acc, gyr = both[:, :3], both[:, 3:]
             fs = fs0 * k
         self.t_ = t
         self.stance_ = np.repeat(stance0, k)

@@ -105,10 +105,14 @@ def oracle_classes(session: Session, steps: pd.DataFrame) -> pd.DataFrame:
                         "(steps.csv with terrain/direction/length_class)")
     out = pd.DataFrame(index=range(len(steps)), columns=["terrain", "direction", "length_class"],
                        dtype=object)
-    for i, j in match_by_overlap(steps, lab.reset_index(drop=True), min_iou=0.3):
+    pairs = match_by_overlap(steps, lab.reset_index(drop=True), min_iou=0.3)
+    if pairs:
+        ei, ri = (np.array(v) for v in zip(*pairs, strict=True))
         for c in out.columns:
             if c in lab:
-                out.at[i, c] = lab[c].iloc[j]
+                col = out[c].to_numpy(dtype=object, copy=True)
+                col[ei] = lab[c].to_numpy(dtype=object)[ri]
+                out[c] = col
     out["confidence"] = 1.0
     return out
 
