@@ -32,9 +32,11 @@ browser:
 test: $(STAMP) browser
 	$(BIN)/python -m pytest -q
 
+# Benchmarks are kept out of the test run (pytest-benchmark's --benchmark-skip in pyproject addopts).
 bench: $(STAMP)
-	$(BIN)/python -m pytest -q -m bench --benchmark-only --benchmark-enable tests/benchmarks
-	$(BIN)/python experiments/bench.py
+	mkdir -p out
+	$(BIN)/python -m pytest -q -m bench --benchmark-only --benchmark-enable --benchmark-json out/bench.json \
+	  --benchmark-columns=min,median,max,rounds tests/benchmarks
 
 lint: $(STAMP)
 	$(BIN)/ruff check pdrlearn tests experiments
