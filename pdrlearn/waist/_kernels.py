@@ -75,7 +75,7 @@ def fir_causal(x: np.ndarray, taps: np.ndarray) -> np.ndarray:
 
 
 def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
-               cutoff_hz: float = 2.5, fir_order_s: float = 0.3, min_step_s: float = 0.3,
+               cutoff_hz: float = 2.5, fir_order_s: float = 0.3, min_step_s: float = 0.3,  # windows: W16
                search_s: float = 0.25, fc_search_s: float = 0.25, min_peak_mps2: float = 0.1,
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
@@ -125,7 +125,7 @@ def _nearest_local_max_before(x: np.ndarray, k: int, lo: int) -> int:
 
 
 def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
-                cutoff_hz: float = 2.5, fir_order: int = 11, search_s: float = 0.25,
+                cutoff_hz: float = 2.5, fir_order: int = 11, search_s: float = 0.25,  # windows: W16
                 min_step_s: float = 0.3, max_step_s: float = 1.5, lobe_ratio: float = 2.0,
                 fc_search_s: float = 0.25, mean_s: float = 1.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Causal initial-contact detection (seed 003 sec. 3.1, real-time variant).
