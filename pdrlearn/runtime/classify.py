@@ -116,21 +116,20 @@ class TaskClassifier:
 
 
 def heuristic_proba(self: RuntimeModel, W: np.ndarray, cache: dict | None = None) -> np.ndarray:
-    """Stage scores (thesis eq. 28) -> triangular memberships, multiplied along the stages, as
-    ``pdrlearn.classify.heuristic._RuleClassifier.predict_proba``."""
-    from pdrlearn.classify._rules import Rule, memberships, stage_score
+    """Stage scores (thesis eq. 28) -> triangular memberships -> chained stage probabilities, with the
+    training side's own pure functions (``pdrlearn.classify._rules``, numpy only)."""
+    from pdrlearn.classify._rules import Rule, combine_stages, memberships, stage_score
 
     F = compute_features(W, self.recipe, cache=cache, **self.ctx)
-    probs: dict[str, np.ndarray] = {}
+    stages = []
     for st in self.stages:
         rules = [Rule.from_dict(r) for r in st["rules"]]
         conf = None
         if any(r.confidence for r in rules):
-            conf = np.column_stack([F[:, self.col[r.confidence]] if r.confidence else np.ones(len(F)) for r in rules])
+            conf = np.column_stack([F[:, self.col[r.confidence]] if r.confidence else np.ones(len(F))
+                                    for r in rules])
         score = stage_score(F[:, [self.col[r.feature] for r in rules]], rules, conf)
-        values = tuple(float(v) for v, _ in st["labels"])
-        m = memberships(score, values)
-        base = probs.pop(st["parent"]) if st.get("parent") else np.ones(len(F))
-        for j, (_, lab) in enumerate(st["labels"]):
-            probs[lab] = base * m[:, j]
+        m = memberships(score, tuple(float(v) for v, _ in st["labels"]))
+        stages.append((m, [lab for _, lab in st["labels"]], st.get("parent")))
+    probs = combine_stages(stages)
     return np.column_stack([probs[c] for c in self.classes])
