@@ -8,6 +8,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from pdrlearn.errors import DataError, MissingSensorError
 from pdrlearn.io import AxisFrame, Session, Stream
@@ -317,3 +319,19 @@ def test_standstill_gives_an_empty_track_and_calibration_needs_a_distance():
     assert p.source == "calibrated" and p.pipeline == "waist-pll"
     res = get_pipeline("waist-pll")(synth_session(), params=p)
     assert res.distance_m == pytest.approx(12.0, rel=0.02)  # same walk: the calibration is reproduced
+
+
+
+@settings(max_examples=60, deadline=None)
+@given(theta=st.floats(-np.pi, np.pi), phase=st.floats(0, 2 * np.pi), a=st.floats(0.5, 3.0),
+       ratio=st.floats(0.05, 0.9), rot=st.floats(-np.pi, np.pi))
+def test_ellipse_axis_properties(theta, phase, a, ratio, rot):
+    """The axis is the major one for any orientation/phase, and rotates with the data."""
+    t, acc = _ellipse(theta, a, a * ratio, phase, n=200)
+    alpha, beta = K.fourier_coefficients(np.append(t, 1.0), np.vstack([acc, acc[:1]]), 0.0, 1.0, 1)
+    axis = K.ellipse_axis(alpha[0], beta[0])
+    assert np.linalg.norm(axis) == pytest.approx(a, rel=1e-2)
+    r = np.array([[np.cos(rot), -np.sin(rot)], [np.sin(rot), np.cos(rot)]])
+    axis_r = K.ellipse_axis(r @ alpha[0], r @ beta[0])
+    u, v = axis_r, r @ axis
+    assert abs(u[0] * v[1] - u[1] * v[0]) < 1e-6 * a * a  # same line after rotating the data
