@@ -159,9 +159,9 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
     if "distance_error_pct" in m:  # the bouts, not the sum of overlapping stride lengths, are the reference
         out["distance_ref_m"] = m["bout_reference_m"]
         out["distance_ref_source"] = "bouts.csv length_m (distance tracked inside the bouts)"
-    for k in ("stride_length_matched", "stride_length_mae_pct", "stride_length_mae_pct_straight",
-              "stride_length_mae_pct_turns"):
-        out.pop(k, None)
+    for k in ("stride_length_matched", "stride_length_composed", "stride_length_mae_pct",
+              "stride_length_mae_pct_straight", "stride_length_mae_pct_turns"):
+        out.pop(k, None)  # step rows are not strides: the stride metric of waist_metrics replaces these
     out.update(m)
 
 
