@@ -39,7 +39,7 @@ class StepKind:
     duration : step-duration factor (x the user's step time)
     toe_off : toe-off pitch factor (x the user's toe-off pitch; < 0 lifts the toes first: backward)
     contact_deg : pitch at initial contact (deg; None = the user's heel-strike pitch; < 0 = toe first)
-    mid_swing_deg : pitch at mid-swing (deg; None = 90 % of the contact pitch)
+    mid_swing_deg : pitch at mid-swing (deg, at 85 % of swing; None = 95 % of the contact pitch)
     impact : (forward, vertical) velocity of the contact point just before contact (x user impact speed)
     clearance_m : heel height above the higher footprint at early swing (None = the user's swing height)
     """
@@ -60,19 +60,21 @@ class StepKind:
 KINDS = {
     "walk": StepKind(1.00, 1.00, None, None, (0.55, -0.85), None),
     "close": StepKind(1.00, 0.60, None, None, (0.35, -0.6), 0.15),
-    "stairs_up": StepKind(0.95, 0.7, 8.0, 6.0, (0.7, -1.0), 0.11),
-    "stairs_down": StepKind(0.82, 0.6, -22.0, 0.0, (0.3, -0.95), 0.09),
+    "stairs_up": StepKind(0.95, 0.75, 8.0, 6.0, (0.9, -1.5), 0.11),
+    "stairs_down": StepKind(0.82, 0.85, -22.0, -12.0, (0.3, -1.1), 0.09),
     "backward": StepKind(1.20, -0.30, -15.0, None, (0.30, -0.6), 0.09),
     "turn": StepKind(1.10, 0.25, 3.0, None, (0.05, -0.3), 0.05),
 }
 SPEED_PITCH = {"slow": 0.88, "normal": 1.0, "fast": 1.08}
 LOAD_FRACTION = 0.10  # initial contact -> foot flat, fraction of the gait cycle
 HEEL_OFF_FRACTION = 0.40  # heel-off instant, fraction of the gait cycle
-PUSH_OFF_RATE = 2.1  # pitch rate at toe-off / mean rate of the forefoot rocker (fast push-off)
+PUSH_OFF_RATE = 2.2  # pitch rate at toe-off / mean rate of the forefoot rocker (fast push-off)
 SWING_ROLL_DEG = 12.0  # peak inversion of the swinging foot
 SWING_YAW_DEG = 6.0  # peak toe-out of the swinging foot
 CONTACT_ROLL_DEG = 6.0  # inversion at initial contact, removed quickly in the first third of loading
-SWING_PITCH_KNOTS = (0.0, 0.15, 0.75, 1.0)  # normalised swing times of the pitch knots
+SWING_PITCH_KNOTS = (0.0, 0.2, 0.5, 0.85, 1.0)  # normalised swing times of the pitch knots (steady
+# dorsiflexion between 15 % and 85 % of swing, as the plateau of the real foot gyroscope)
+LOADING_RATE = 1.2  # pitch rate at contact / mean rate of the heel rocker
 
 
 @dataclass
@@ -152,7 +154,7 @@ def schedule(
         ev["step_s"][k] = d
         last_ff[st.foot] = ic + load
         settle = max(settle, ic + load)
-        jit = 1.0 + 0.1 * variability * rng.normal()
+        jit = 1.0 + 0.05 * variability * rng.normal()
         gait_pitch = 0.6 if st.gait == "short" else (1.1 if st.gait == "long" else 1.0)
         ev["theta_to"][k] = np.radians(user.toe_off_pitch_deg) * pfac * SPEED_PITCH[speed] * gait_pitch * jit
         if ic_pitch is None:
@@ -162,14 +164,16 @@ def schedule(
                 * SPEED_PITCH[speed]
                 * gait_pitch
             )
-        ev["theta_ic"][k] = ic_pitch * (1.0 + 0.1 * variability * rng.normal())
+        ev["theta_ic"][k] = ic_pitch * (1.0 + 0.05 * variability * rng.normal())
         # swing wobble: inversion (medial edge up) and toe-out, a few degrees
         inward = 1.0 if st.foot == "right" else -1.0  # roll > 0 lifts the left edge
         wob = 0.3 if st.kind == "turn" else (0.6 if st.kind.startswith("stairs") else 1.0)
         ev["swing_roll"][k] = inward * wob * np.radians(SWING_ROLL_DEG) * (1.0 + 0.2 * variability * rng.normal())
         ev["contact_roll"][k] = inward * wob * np.radians(CONTACT_ROLL_DEG) * (1.0 + 0.2 * variability * rng.normal())
         ev["swing_yaw"][k] = -inward * wob * np.radians(SWING_YAW_DEG) * (1.0 + 0.3 * variability * rng.normal())
-        ev["theta_mid"][k] = 0.9 * ev["theta_ic"][k] if kd.mid_swing_deg is None else np.radians(kd.mid_swing_deg) * jit
+        ev["theta_mid"][k] = (
+            0.95 * ev["theta_ic"][k] if kd.mid_swing_deg is None else np.radians(kd.mid_swing_deg) * jit
+        )
         sp = user.impact_speed_mps * np.exp(rng.normal(0.0, 0.25 * variability))
         sp *= {"slow": 0.8, "normal": 1.0, "fast": 1.2}[speed] * GAIT_FACTORS[st.gait][0] ** 0.5
         if st.irregular:
@@ -208,7 +212,7 @@ def foot_pose(
         th_to, th_ic = ev.theta_to[k], ev.theta_ic[k]
         rock, load = ev.to[k] - ev.ho[k], ev.ff[k] - ev.ic[k]
         w_to = PUSH_OFF_RATE * th_to / rock
-        w_ic = -1.5 * th_ic / load
+        w_ic = -LOADING_RATE * th_ic / load
         r_a = _pivot(th_to, ball)
         p_a = h_a + foot_rotate(y_a, 0.0, r_a)
         sl = slice(i_ho, i_to)
@@ -229,11 +233,13 @@ def foot_pose(
         swing = ev.ic[k] - ev.to[k]
         zmax = max(h_a[2], h_b[2])
         clear = ev.clearance[k]
-        knots_u = np.array([0.0, 0.27, 0.68, 1.0])
-        frac = np.array([0.0, 0.18, 0.78, 1.0])
+        knots_u = np.array([0.0, 0.38, 0.72, 1.0])
+        frac = np.array([0.0, 0.3, 0.8, 1.0])
         kp = heel_to[None, :] + frac[:, None] * (heel_ic - heel_to)[None, :]
-        kp[1, 2] = max(zmax + clear, heel_to[2] + 0.3 * clear)
-        kp[2, 2] = zmax + 0.3 * clear
+        # early swing: half of any rise to the next tread plus the clearance (stairs are climbed gradually)
+        kp[1, 2] = max(h_a[2] + clear + 0.5 * (zmax - h_a[2]), heel_to[2] + 0.3 * clear)
+        # late swing: over the landing tread, with part of a descent still to go (stairs down)
+        kp[2, 2] = h_b[2] + 0.3 * clear + 0.35 * max(0.0, h_a[2] - h_b[2]) if h_b[2] < h_a[2] else zmax + 0.3 * clear
         kp[0], kp[3] = heel_to, heel_ic
         sl = slice(i_to, i_ic)
         heel[sl] = clamped_spline(ev.to[k] + knots_u * swing, kp, v_to, v_ic, t[sl])
@@ -242,7 +248,8 @@ def foot_pose(
         bump = np.sin(np.pi * tu) ** 2
         yaw[sl] = y_a + (y_b - y_a) * smoothstep(tu) + ev.swing_yaw[k] * bump
         roll[sl] = ev.swing_roll[k] * bump + ev.contact_roll[k] * smoothstep(tu)
-        pk = np.array([th_to, 1.15 * th_to, ev.theta_mid[k], th_ic])
+        th_early = 1.05 * th_to
+        pk = np.array([th_to, th_early, 0.5 * (th_early + ev.theta_mid[k]), ev.theta_mid[k], th_ic])
         theta[sl] = clamped_spline(
             ev.to[k] + np.array(SWING_PITCH_KNOTS) * swing, pk[:, None], np.array([w_to]), np.array([w_ic]), t[sl]
         )[:, 0]

@@ -88,7 +88,7 @@ class UserProfile:
             stance_fraction=round(float(rng.uniform(0.58, 0.62)), 4),
             impact_speed_mps=round(float(rng.uniform(0.45, 0.7)), 4),
             swing_height_m=round(float(rng.uniform(0.2, 0.28)), 4),
-            toe_off_pitch_deg=round(float(rng.uniform(-62.0, -50.0)), 3),
+            toe_off_pitch_deg=round(float(rng.uniform(-58.0, -50.0)), 3),
             heel_strike_pitch_deg=round(float(rng.uniform(17.0, 26.0)), 3),
             foot_misalignment_deg=[round(float(v), 3) for v in rng.normal(0.0, 2.5, 3)],
             waist_misalignment_deg=[round(float(v), 3) for v in rng.normal(0.0, 2.5, 3)],
