@@ -20,6 +20,17 @@ WALK_THRESHOLD_MPS2 = 0.5
 PAPER_WALK_THRESHOLD_MPS2 = 1.5  # seed 000 sec. II-B
 
 
+def causal_lowpass_delay_s(cutoff_hz: float, fs: float, *, at_hz: float = 1.0) -> float:
+    """Group delay (s) at ``at_hz`` of the causal Butterworth of :func:`pdrlearn.signal.lowpass`."""
+    from scipy import signal as sg
+
+    from pdrlearn.signal import butter_sos
+
+    b, a = sg.sos2tf(butter_sos(cutoff_hz, fs))
+    _, gd = sg.group_delay((b, a), w=[at_hz], fs=fs)
+    return float(gd[0]) / fs
+
+
 def walking_gate(imu: WaistIMU, *, walk_threshold: float = WALK_THRESHOLD_MPS2, causal: bool = False
                  ) -> np.ndarray:
     """Samples where the motion state (seed 000 sec. II-B) is walking or running."""
@@ -83,6 +94,9 @@ class InitialContactDetector:
         ap = lowpass(imu.acc_ap, cut, fs, causal=self.realtime)
         if self.realtime:
             ic, fc, ref = K.ic_realtime(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz)
+            # the causal low-pass delays the AP peaks: date the contacts back by its group delay (W17)
+            lag = int(round(causal_lowpass_delay_s(cut, fs) * fs))
+            ic, fc = np.maximum(ic - lag, 0), np.maximum(fc - lag, 0)
         else:
             ic, fc, ref = K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
                                        fir_order_s=self.fir_order_s)
