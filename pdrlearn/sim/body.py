@@ -19,13 +19,11 @@ from scipy.interpolate import PchipInterpolator
 
 from pdrlearn.sim.kernels import (
     clamped_spline,
+    euler_zyx,
     foot_rotate,
     foot_rotate_dtheta,
     foot_rotation,
     hermite,
-    rot_x,
-    rot_y,
-    rot_z,
     smoothstep,
 )
 from pdrlearn.sim.path import Footstep
@@ -387,13 +385,7 @@ def pelvis_pose(
     pos[:, 0] = base[:, 0] + ca * fwd - sa * sway
     pos[:, 1] = base[:, 1] + sa * fwd + ca * sway
     pos[:, 2] = base[:, 2] + user.sensor_height_m + bounce + kick_v + vib[:, 2]
-    rot = np.einsum(
-        "nij,njk,nkl->nil",
-        rot_z(heading + yaw_osc + vib[:, 3]),
-        rot_y(tilt + vib[:, 4]),
-        rot_x(roll + vib[:, 5]),
-        optimize=True,
-    )
+    rot = euler_zyx(heading + yaw_osc + vib[:, 3], tilt + vib[:, 4], roll + vib[:, 5])
     return pos, rot, heading
 
 

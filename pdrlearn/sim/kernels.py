@@ -41,13 +41,29 @@ def rot_x(alpha: np.ndarray | float) -> np.ndarray:
     return _rot(alpha, 1, 2)
 
 
+def euler_zyx(psi: np.ndarray | float, beta: np.ndarray | float, alpha: np.ndarray | float) -> np.ndarray:
+    """``rot_z(psi) @ rot_y(beta) @ rot_x(alpha)`` filled directly: (..., 3, 3)."""
+    psi, beta, alpha = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (psi, beta, alpha)))
+    cz, sz, cy, sy, cx, sx = np.cos(psi), np.sin(psi), np.cos(beta), np.sin(beta), np.cos(alpha), np.sin(alpha)
+    out = np.empty((*psi.shape, 3, 3))
+    out[..., 0, 0] = cz * cy
+    out[..., 0, 1] = cz * sy * sx - sz * cx
+    out[..., 0, 2] = cz * sy * cx + sz * sx
+    out[..., 1, 0] = sz * cy
+    out[..., 1, 1] = sz * sy * sx + cz * cx
+    out[..., 1, 2] = sz * sy * cx - cz * sx
+    out[..., 2, 0] = -sy
+    out[..., 2, 1] = cy * sx
+    out[..., 2, 2] = cy * cx
+    return out
+
+
 def foot_rotation(
     psi: np.ndarray | float, theta: np.ndarray | float, roll: np.ndarray | float | None = None
 ) -> np.ndarray:
     """Foot orientation body->ENU for heading ``psi``, pitch ``theta`` (toes up > 0) and ``roll`` (about the
     foot's long axis, > 0 lifts the left edge)."""
-    r = rot_z(psi) @ rot_y(-np.asarray(theta, dtype=float))
-    return r if roll is None else r @ rot_x(roll)
+    return euler_zyx(psi, -np.asarray(theta, dtype=float), 0.0 if roll is None else roll)
 
 
 def foot_rotate(psi: float, theta: np.ndarray, r: np.ndarray) -> np.ndarray:
