@@ -152,9 +152,7 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
             res = evaluate_model(model, test, latency_steps=20)
             results[task].append(res)
             cv_results[task].append(tm)
-            chosen[task].append(
-                (tm.chosen, res["tasks"][task]["accuracy"], res["tasks"][task]["n_steps"], tm.n_steps)
-            )
+            chosen[task].append((tm.chosen, res["tasks"][task]["accuracy"], res["tasks"][task]["n_steps"], tm.n_steps))
             for m, d in res["tasks"][task]["methods"].items():
                 for u, r in d["units"].items():
                     latency[task].setdefault((m, u), []).append(r["latency_ms"])
@@ -167,11 +165,7 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
             for m, per in tm.cv.items():
                 for u, r in per.items():
                     cv_cm[(m, u)] = cv_cm.get((m, u), 0) + np.asarray(r["confusion"], dtype=float)
-        head = (
-            ["method", "unit"]
-            + [f"{c} ours (thesis)" for c in classes]
-            + ["all % test", "all % CV", "ms/step"]
-        )
+        head = ["method", "unit"] + [f"{c} ours (thesis)" for c in classes] + ["all % test", "all % CV", "ms/step"]
         n_test = sum(c[2] for c in chosen[task])
         n_train = sum(c[3] for c in chosen[task])
         lines = [
@@ -192,9 +186,7 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
             ref = THESIS[task].get(key, {})
             cells = [f"{pc[c]:.1f} ({ref[c]:g})" if c in ref else f"{pc[c]:.1f} (-)" for c in classes]
             lat = float(np.median(latency[task][key]))
-            lines.append(
-                "| " + " | ".join([*key, *cells, f"{all_test:.1f}", f"{all_cv:.1f}", f"{lat:.3f}"]) + " |"
-            )
+            lines.append("| " + " | ".join([*key, *cells, f"{all_test:.1f}", f"{all_cv:.1f}", f"{lat:.3f}"]) + " |")
             for c in classes:
                 rows.append(
                     {
@@ -211,9 +203,7 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
                         "latency_ms": round(lat, 4),
                     }
                 )
-        ch = [
-            f"u{u}: {c[0][0]}/{c[0][1]} {100 * c[1]:.1f} %" for u, c in zip(users, chosen[task], strict=True)
-        ]
+        ch = [f"u{u}: {c[0][0]}/{c[0][1]} {100 * c[1]:.1f} %" for u, c in zip(users, chosen[task], strict=True)]
         lines += ["", f"Chosen method per user (test accuracy): {'; '.join(ch)}"]
         md.append("\n".join(lines))
     return md, rows, timing
@@ -299,8 +289,39 @@ def real_terrain_study(cv: int, seed: int):
                 }
             )
     md.append("\n".join(lines))
-    # 3) per-class accuracy of the chosen pooled model, explicitly held out by recording is impossible for
-    #    up/down (one recording each); 4) continuous stride length on the level walks (mocap reference)
+    # 3) sim-to-real: a model trained on simulated terrain exercises (foot unit only) classifies the real strides
+    from pdrlearn.sim.simulate import simulate
+
+    sim = [simulate("terrain", user_seed=u, seed=0) for u in (1, 2)]
+    model_s = train_user(sim, tasks=["terrain"], units=["foot"], cv=cv, seed=seed, user="sim")
+    res = evaluate_model(model_s, sessions, latency=False)["tasks"]["terrain"]
+    lines = [
+        "### sim-to-real: trained on simulated terrain exercises (2 users, foot unit), tested on the "
+        f"{res['n_steps']} real gaitmap strides",
+        "",
+        "| method | unit | flat % | up % | down % | all % |",
+        "|---|---|---|---|---|---|",
+    ]
+    for m, d in res["methods"].items():
+        for u, r in d["units"].items():
+            lines.append(
+                f"| {m} | {u} | "
+                + " | ".join(f"{100 * r['per_class'][c]:.1f}" for c in classes)
+                + f" | {100 * r['accuracy']:.1f} |"
+            )
+            rows.append(
+                {
+                    "study": "sim-to-real",
+                    "task": "terrain",
+                    "method": m,
+                    "unit": u,
+                    "class": "all",
+                    "ours_test_pct": round(100 * r["accuracy"], 2),
+                }
+            )
+    md.append("\n".join(lines))
+    # 4) per-class accuracy of the chosen pooled model, explicitly held out by recording is impossible for
+    #    up/down (one recording each); 5) continuous stride length on the level walks (mocap reference)
     level = [s for s in sessions if "level" in s.name]
     wins = session_windows(level, n_samples=40)
     feats = SegmentFeatures(channels=("foot_acc_fwd", "foot_acc_v", "foot_pitch"))

@@ -445,15 +445,23 @@ def train_task(
                 continue
             mask, folds = subsets[unit]
             X, y = data.X[mask], data.y[mask]
+            t0 = time.perf_counter()
             try:
                 est = make_estimator(data.task, method, unit, seed=seed)
                 est.fit(X, y)  # the final model first: fails fast on missing sensors
+                template = make_estimator(data.task, method, unit, seed=seed)
+                if method == "svm":  # C picked once by the final model's inner CV (decision C5)
+                    template.set_params(clf__C=est[-1].C_)
+                P = _oof_proba(template, X, y, folds, classes)
             except MissingSensorError as exc:
                 tm.skipped.append(f"{method}/{unit}: {exc}")
                 log.info("task %s: skipped %s/%s: %s", data.task, method, unit, exc)
                 continue
-            t0 = time.perf_counter()
-            P = _oof_proba(make_estimator(data.task, method, unit, seed=seed), X, y, folds, classes)
+            except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+                # one method failing on these data (e.g. a degenerate rule threshold) must not stop the others
+                tm.skipped.append(f"{method}/{unit}: failed ({type(exc).__name__}: {exc})")
+                log.warning("task %s: %s/%s failed: %s: %s", data.task, method, unit, type(exc).__name__, exc)
+                continue
             if mask.all():
                 oof[unit] = P
             tm.models.setdefault(method, {})[unit] = est
