@@ -395,8 +395,10 @@ def _folds(y: np.ndarray, cv: int, seed: int, task: str) -> list:
 
 
 def _split_units(units: Sequence[str]) -> tuple[list[str], bool]:
-    per_unit = [u for u in ("foot", "waist") if u in units]
-    return per_unit, "fused" in units
+    """Per-unit models to train and whether to fuse; the fused model needs both unit models."""
+    if "fused" in units:
+        return ["foot", "waist"], True
+    return [u for u in ("foot", "waist") if u in units], False
 
 
 def _check_choice(name: str, values: Sequence[str], allowed: Sequence[str]) -> list[str]:
@@ -529,7 +531,8 @@ def train_user(
     ----------
     sessions : labelled :class:`~pdrlearn.io.Session` objects (``steps`` with ``start_s``/``end_s`` and
         ``terrain`` / ``direction`` / ``length_class`` labels).
-    tasks, methods, units : subsets of :data:`TASKS`, :data:`METHODS`, :data:`UNITS` (default: all).
+    tasks, methods, units : subsets of :data:`TASKS`, :data:`METHODS`, :data:`UNITS` (default: all);
+        ``fused`` also trains the foot and waist models it combines.
     cv : folds of the stratified cross-validation that scores every model (thesis ch. 6: 10-fold);
         reduced to the smallest class size when a class has fewer steps.
     seed : seed of the folds, the DTW reference choice and the network initialisation.
