@@ -427,3 +427,17 @@ def test_bad_knobs_are_one_line_errors(knobs, match):
     with pytest.raises(DataError, match=match) as err:
         simulate("A", 1, **knobs)
     assert "\n" not in str(err.value)
+
+
+def test_edge_cases_of_custom_paths():
+    user = UserProfile.from_seed(1)
+    with pytest.raises(DataError, match="nothing to simulate"):
+        simulate_path([], user, stand_s=0.0)
+    with pytest.raises(DataError, match="seed"):
+        simulate_path([Straight(5.0)], user, seed=-3)
+    with pytest.raises(DataError, match="radius"):
+        simulate_path([Curve(1.0, 0.0)], user)
+    with pytest.raises(DataError, match="stairs|n >= 1"):
+        simulate_path([Stairs(0)], user)
+    s = simulate_path([Turn(0.0), Stand(1.0)], user, seed=None)
+    assert s.steps is None and s.duration_s == pytest.approx(11.0, abs=0.1)

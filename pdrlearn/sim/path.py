@@ -230,6 +230,8 @@ class _Walker:
 
     def turn(self, seg: Turn) -> None:
         self._change_direction("forward")
+        if abs(seg.angle_rad) < 1e-6:
+            return
         self.close(pause=0.3)
         n = max(1, math.ceil(abs(seg.angle_rad) / MAX_TURN_STEP_RAD - 1e-9))
         lead = "left" if seg.angle_rad > 0 else "right"
@@ -267,13 +269,14 @@ def plan_footsteps(
     heading0_rad: float = 0.0,
     irregular_rate: float = 0.0,
     variability: float = 1.0,
-) -> tuple[list[Footstep], dict]:
+) -> tuple[list[Footstep], dict, float]:
     """Footprints of both feet along ``segments``.
 
     Returns
     -------
     steps : the footprints in temporal order (alternating feet within a bout)
     initial : foot -> (heel position, yaw) before the first step
+    end_pause_s : standing time requested after the last step (trailing :class:`Stand` segments)
     """
     w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability)
     initial = {f: (h.copy(), y) for f, (h, y) in w.feet.items()}
@@ -295,4 +298,4 @@ def plan_footsteps(
                 f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Backward, Turn, Stand"
             ) from None
     w.close()
-    return w.steps, initial
+    return w.steps, initial, w.pending_pause

@@ -176,7 +176,7 @@ def simulate_path(
     *,
     speed: str = "normal",
     rate_hz: float = 20.0,
-    seed: int = 0,
+    seed: int | None = 0,
     name: str = "sim",
     scenario: str = "custom",
     **knobs,
@@ -201,9 +201,12 @@ def simulate_path(
         raise DataError(f"speed {speed!r}: must be one of {', '.join(SPEEDS)}")
     k_out = _output_factor(rate_hz)
     opt = _check_knobs(knobs)
+    seed = 0 if seed is None else seed
+    if not isinstance(seed, int | np.integer) or isinstance(seed, bool) or seed < 0:
+        raise DataError(f"seed {seed!r}: must be a non-negative integer")
     noise = bool(opt["noise"])
     rng = _rng(user.seed, int(seed), scenario, speed, "walk")
-    steps, initial = plan_footsteps(
+    steps, initial, end_pause = plan_footsteps(
         segments,
         user,
         speed=speed,
@@ -213,8 +216,10 @@ def simulate_path(
         variability=float(opt["variability"]),
     )
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
+    if not steps and 2 * stand + end_pause < 1.0:
+        raise DataError("simulate: nothing to simulate (no steps and stand_s < 1 s); add segments or stand longer")
     ev = schedule(steps, user, speed=speed, rng=rng, stand_s=stand, variability=float(opt["variability"]))
-    total_s = max(ev.end_s, stand) + stand if steps else 2 * stand
+    total_s = (max(ev.end_s, stand) if steps else stand) + end_pause + stand
     k_fine = OVERSAMPLE * k_out
     fine_rate = INTERNAL_RATE_HZ * OVERSAMPLE
     n_out = int(math.floor(total_s * rate_hz)) + 1
