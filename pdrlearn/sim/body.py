@@ -70,6 +70,9 @@ PUSH_OFF_RATE = 2.2  # pitch rate at toe-off / mean rate of the forefoot rocker 
 SWING_ROLL_DEG = 12.0  # peak inversion of the swinging foot
 SWING_YAW_DEG = 6.0  # peak toe-out of the swinging foot
 CONTACT_ROLL_DEG = 6.0  # inversion at initial contact, removed quickly in the first third of loading
+IMPACT_RING_HZ = 25.0  # rotational ringing after contact (shoe/strap), seen as gyro spikes in real data
+IMPACT_RING_DECAY_S = 0.015
+IMPACT_RING_RAD = (0.035, 0.02, 0.02)  # roll, yaw, pitch amplitude (rad)
 SWING_PITCH_KNOTS = (0.0, 0.2, 0.5, 0.85, 1.0)  # normalised swing times of the pitch knots (steady
 # dorsiflexion between 15 % and 85 % of swing, as the plateau of the real foot gyroscope)
 LOADING_RATE = 1.2  # pitch rate at contact / mean rate of the heel rocker
@@ -189,9 +192,19 @@ def _pivot(theta: float, ball: np.ndarray) -> np.ndarray:
 
 
 def foot_pose(
-    t: np.ndarray, foot: str, steps: list[Footstep], ev: Events, initial: dict, user: UserProfile
+    t: np.ndarray,
+    foot: str,
+    steps: list[Footstep],
+    ev: Events,
+    initial: dict,
+    user: UserProfile,
+    *,
+    vibration: float = 0.0,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Heel position (n, 3) and orientation (n, 3, 3, body FLU -> ENU) of one foot on the time grid ``t``."""
+    """Heel position (n, 3) and orientation (n, 3, 3, body FLU -> ENU) of one foot on the time grid ``t``.
+
+    ``vibration`` scales a short damped rotational ringing of the shoe after each contact (0 = none).
+    """
     n = t.size
     heel = np.empty((n, 3))
     yaw = np.empty(n)
@@ -256,7 +269,13 @@ def foot_pose(
         th = hermite((t[sl] - ev.ic[k]) / load, th_ic, 0.0, w_ic, 0.0, load)
         heel[sl] = p_b - foot_rotate(y_b, th, r_b)
         yaw[sl], theta[sl] = y_b, th
-        roll[sl] = ev.contact_roll[k] * (1.0 - smoothstep(3.0 * (t[sl] - ev.ic[k]) / load))
+        tau = t[sl] - ev.ic[k]
+        roll[sl] = ev.contact_roll[k] * (1.0 - smoothstep(3.0 * tau / load))
+        if vibration > 0:  # impact ringing of shoe and sensor strap: ~25 Hz, decays in ~15 ms
+            ring = vibration * np.exp(-tau / IMPACT_RING_DECAY_S) * np.sin(2 * np.pi * IMPACT_RING_HZ * tau)
+            roll[sl] += ring * IMPACT_RING_RAD[0] * np.sign(ev.contact_roll[k] or 1.0)
+            yaw[sl] += ring * IMPACT_RING_RAD[1]
+            theta[sl] += ring * IMPACT_RING_RAD[2]
         h_a, y_a, pos = np.asarray(h_b, float), y_b, i_ff
     heel[pos:], yaw[pos:], theta[pos:], roll[pos:] = h_a, y_a, 0.0, 0.0
     return heel, foot_rotation(yaw, theta, roll)

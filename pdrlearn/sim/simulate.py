@@ -230,7 +230,7 @@ def simulate_path(
 
     # -- foot unit (right foot) --
     r_sensor = np.array([0.45 * user.foot_length_m, 0.0, 0.06])  # on the instep, 6 cm above the sole
-    heel, R_f = foot_pose(t, "right", steps, ev, initial, user)
+    heel, R_f = foot_pose(t, "right", steps, ev, initial, user, vibration=1.0 if noise else 0.0)
     p_f = heel + R_f @ r_sensor
     f_body = block_mean(specific_force_body(p_f, R_f, dt), OVERSAMPLE)
     w_body = block_mean(angular_rate_body(R_f, dt), OVERSAMPLE)
