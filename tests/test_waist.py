@@ -335,3 +335,24 @@ def test_ellipse_axis_properties(theta, phase, a, ratio, rot):
     axis_r = K.ellipse_axis(r @ alpha[0], r @ beta[0])
     u, v = axis_r, r @ axis
     assert abs(u[0] * v[1] - u[1] * v[0]) < 1e-6 * a * a  # same line after rotating the data
+
+
+def test_gyro_heading_integrate_stops_option():
+    """A 90-degree turn made while standing between two walks is kept only with integrate_stops."""
+    from pdrlearn.track.waist import track_waist
+
+    a = synth_session(duration=12.0, rest=2.0)
+    b = synth_session(duration=12.0, rest=2.0)
+    t = np.concatenate([a["wAccelerometer"].t, b["wAccelerometer"].t + 12.0])
+    acc = np.vstack([a["wAccelerometer"].values, b["wAccelerometer"].values])
+    gyr = np.vstack([a["wGyroscope"].values, b["wGyroscope"].values])
+    stand = (t > 10.5) & (t < 13.5)  # standing between the walks: turn left by 90 deg in 3 s
+    gyr[stand, 2] += (np.pi / 2) / 3.0
+    s = Session(name="stop-turn", streams={"wAccelerometer": Stream("wAccelerometer", t, acc),
+                                           "wGyroscope": Stream("wGyroscope", t, gyr)},
+                meta=a.meta, frames=a.frames)
+    off = track_waist(s, pipeline="waist-pendulum")
+    on = track_waist(s, pipeline="waist-pendulum", integrate_stops=True)
+    last = on.steps[on.steps["has_next"]].iloc[-1]["heading_rad"]
+    assert abs(last - np.pi / 2) < np.radians(10)
+    assert abs(off.steps[off.steps["has_next"]].iloc[-1]["heading_rad"]) < np.radians(10)

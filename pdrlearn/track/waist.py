@@ -150,7 +150,7 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
 
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
-                   resolve_signs: bool) -> pd.DataFrame:
+                   resolve_signs: bool, integrate_stops: bool = False) -> pd.DataFrame:
     """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
     (gyro method) and ``mean_rate_rps`` (stride mean vertical rate, MRZ of seed 003 sec. 3.3). Headings
     carry over between walking sequences; a sequence-closing contact keeps the last heading."""
@@ -167,7 +167,10 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
         clf = TurnClassifier(**(p.turn_gmm or {}))
         per_seq = []
         current = 0.0
-        for seq in seqs:
+        for j, seq in enumerate(seqs):
+            if integrate_stops and j > 0:  # turns made while standing between walking sequences
+                current += K.integrate_rate(imu.t, imu.w_z - p.gyro_bias_rps, ev_all[seqs[j - 1][-1]],
+                                            ev_all[seq[0]])
             if len(seq) > 1:
                 hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
                                        heading0=current)
@@ -197,7 +200,7 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
 
 def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool = False,
                 heading: str | None = None, refine_ic: bool = True, initial_heading: float = 0.0,
-                resolve_signs: bool = True) -> TrackResult:
+                resolve_signs: bool = True, integrate_stops: bool = False) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -213,6 +216,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         step), ``"ellipse-stride"`` (the closed form on the stride's step-frequency harmonic, W12) or
         ``"gyro"`` (default of waist-pendulum, seed 003)
     resolve_signs : harmonic headings: fix 180-degree sign errors with the unit's yaw (W13)
+    integrate_stops : gyro heading: also integrate the rate between walking sequences (turns made while
+        standing); seed 003 integrates only during walking, so the default is False
     """
     if pipeline not in ("waist-pll", "waist-pendulum"):
         raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
@@ -232,7 +237,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
     steps = _step_lengths(steps, imu, p, pipeline, thr)
-    steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs)
+    steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops)
     n = len(steps)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"
     info = {
