@@ -27,6 +27,8 @@ def track(
                               "own step labels."),
     rules: str = typer.Option("thesis", "--rules", help="M3 class rules: thesis (classes prevail) or bayes "
                               "(class probabilities weighed against the estimate)."),
+    length_bounds: str = typer.Option(None, "--length-bounds", help="M3 stride-length class edges "
+                                      "SHORT_MAX,NORMAL_MAX in m (default: the model's, else thesis x 2)."),
     start: str = typer.Option(None, "--start", help="Start coordinate LAT,LON (degrees) -> lat/lon columns."),
     params: Path = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline."),
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
@@ -63,6 +65,12 @@ def track(
     if pipeline == "plasys":
         kw["method"] = method
         kw["rules"] = rules
+        if length_bounds is not None:
+            try:
+                kw["bounds"] = [float(v) for v in length_bounds.split(",")]
+            except ValueError:
+                raise DataError(f"--length-bounds '{length_bounds}': expected two numbers in m, e.g. "
+                                "1.02,1.52") from None
     result = fn(session, **kw)
     if any(v is not None for v in (gnss, fixes)):
         try:

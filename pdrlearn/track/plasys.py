@@ -5,7 +5,8 @@
   each stride start only; heading from the foot's own yaw (foot unit only, as thesis ch.7.3.2).
 - **M2** (accelerometer + force): force-sensor stance (ZUPT at every stance sample, ZARU attitude reset),
   setup-standstill gyroscope offset, the 2-state angle Kalman filter, the white-noise-jerk Kalman filter
-  (Sw = 1.8, R = 0.01) with RTS smoothing; heading from the waist complementary filter.
+  (Sw = 1.8, R = 0.01) with ZUPT updates; heading: the foot's stride yaw aligned to the waist
+  complementary-filter heading ("fused", decision L17; ``heading="waist"`` is the thesis' choice).
 - **M3** (PLASYS): M2 plus the step classes (model or ``oracle`` labels): terrain picks the distance
   (horizontal for flat/up, 3-axis norm for down), direction fixes the sign, the length class clamps the
   distance, stairs give the altitude change (thesis ch.7.2.2).
@@ -37,7 +38,7 @@ from pdrlearn.track.geodetic import geodetic_track
 log = logging.getLogger(__name__)
 
 _M2 = {"detector": "AccelForceStepDetector", "integrator": "kalman", "zupt_end": True,
-       "gyro_bias": "standstill", "attitude": "kalman", "heading": "waist", "rules": False, "force": True}
+       "gyro_bias": "standstill", "attitude": "kalman", "heading": "fused", "rules": False, "force": True}
 METHODS: dict[str, dict] = {
     "M1": {"detector": "AccelStepDetector", "integrator": "integration", "zupt_end": False,
            "gyro_bias": "none", "attitude": "accel", "heading": "foot", "rules": False, "force": False},
@@ -154,6 +155,22 @@ def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]
     return session, None
 
 
+def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, tau_s: float = 60.0) -> np.ndarray:
+    """Relative foot heading (accurate turns, slow drift) aligned to the absolute waist heading (noisy,
+    magnetically disturbed) by a slowly varying offset: the circular mean of ``absolute - relative``
+    over a +-``tau_s`` window of strides (rad)."""
+    if len(relative) == 0:
+        return relative
+    d = wrap_angle(np.asarray(absolute) - np.asarray(relative))
+    c, s = np.cos(d), np.sin(d)
+    cc = np.concatenate([[0.0], np.cumsum(c)])
+    cs = np.concatenate([[0.0], np.cumsum(s)])
+    lo = np.searchsorted(t, t - tau_s, side="left")
+    hi = np.searchsorted(t, t + tau_s, side="right")
+    offset = np.arctan2(cs[hi] - cs[lo], cc[hi] - cc[lo])
+    return np.asarray(relative) + offset
+
+
 _TASK_COLUMNS = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
 
 
@@ -184,7 +201,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
                  bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
                  min_confidence: float = 0.0, align: bool = False, rules: str = "thesis",
-                 **opts) -> TrackResult:
+                 fused_tau_s: float = 60.0, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -194,7 +211,9 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     start : (lat, lon) degrees -> ``lat``/``lon`` columns via thesis eq. 56/57
     params : optional dict overriding :class:`FootDisplacement` settings
     steps : "detector" (pdrlearn.steps detectors), "stance" (stance segmentation) or "labels"
-    heading : "waist" | "foot" (default per method; "foot" when there is no waist unit)
+    heading : "waist" | "foot" | "fused" (default per method; "foot" when there is no waist unit).
+        "fused": the foot's stride-by-stride yaw aligned to the waist heading by an offset averaged over
+        +-``fused_tau_s`` s (decision L17)
     initial_heading : ENU heading (rad) at the start when the heading is relative (foot, or no magnetometer)
     bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
         (the foot unit measures strides = two steps, see docs/decisions/localization.md)
@@ -253,7 +272,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     if cfg["rules"]:
         if model is None:
             raise ModelError("M3 needs the step classes: pass a trained model directory (--model DIR, see "
-                             "`pdrlearn train`) or model='oracle' for labelled sessions; M1/M2 need no model")
+                             "`pdrlearn train`) or --model oracle for labelled sessions; M1/M2 need no model")
         if isinstance(model, str) and model == "oracle":
             classes = oracle_classes(session, strides)
             model_bounds = next((session.meta[k] for k in ("length_class_bounds_m", "length_bounds_m")
@@ -281,18 +300,21 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
 
     hsrc = heading or cfg["heading"]
-    if hsrc == "waist" and not has_waist:
+    if hsrc in ("waist", "fused") and not has_waist:
         warnings.append("no waist unit: heading from the foot's own integrated yaw (relative to the start)")
         hsrc = "foot"
     lateral = np.arctan2(disp[:, 1], np.abs(disp[:, 0])) * np.where(disp[:, 0] < 0, -1.0, 1.0)
-    if hsrc == "waist":
+    if hsrc in ("waist", "fused"):
         wh = WaistHeading().fit_session(work)
         warnings += wh.warnings_
         head = _stride_heading(wh, strides)
+        if hsrc == "fused":
+            head = fuse_heading(fd.foot_heading(0.0) + lateral, head, strides["end_s"].to_numpy(float),
+                                tau_s=fused_tau_s)
     elif hsrc == "foot":
         head = fd.foot_heading(initial_heading) + lateral
     else:
-        raise DataError(f"plasys: heading '{hsrc}' is not waist or foot")
+        raise DataError(f"plasys: heading '{hsrc}' is not waist, foot or fused")
 
     table = strides[["start_s", "end_s"]].copy()
     table["event_s"] = strides["event_s"] if "event_s" in strides else strides["end_s"]
