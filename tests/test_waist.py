@@ -356,3 +356,18 @@ def test_gyro_heading_integrate_stops_option():
     last = on.steps[on.steps["has_next"]].iloc[-1]["heading_rad"]
     assert abs(last - np.pi / 2) < np.radians(10)
     assert abs(off.steps[off.steps["has_next"]].iloc[-1]["heading_rad"]) < np.radians(10)
+
+
+def test_params_options_reach_the_pipeline():
+    """Options in PARAMS.json ("options") apply when the call does not set them (the track CLI path)."""
+    from pdrlearn.track.waist import track_waist
+
+    s = synth_session()
+    res = track_waist(s, pipeline="waist-pendulum", params={"options": {"realtime": True, "heading": "ahe"}})
+    assert res.info["methods"] == {"steps": "alvarez-realtime", "length": "pendulum", "heading": "ahe"}
+    res = track_waist(s, pipeline="waist-pendulum", params={"options": {"realtime": True}}, realtime=False)
+    assert res.info["methods"]["steps"] == "alvarez-offline"
+    with pytest.raises(DataError, match="unknown"):
+        track_waist(s, pipeline="waist-pll", params={"options": {"speed": 3}})
+    with pytest.raises(DataError, match="JSON object"):
+        track_waist(s, pipeline="waist-pll", params={"options": "fast"})

@@ -198,9 +198,14 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
     return steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
 
 
-def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool = False,
-                heading: str | None = None, refine_ic: bool = True, initial_heading: float = 0.0,
-                resolve_signs: bool = True, integrate_stops: bool = False) -> TrackResult:
+#: pipeline options a PARAMS.json may set under "options" (so ``pdrlearn track --params`` reaches them)
+OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
+                   "resolve_signs": True, "integrate_stops": False}
+
+
+def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool | None = None,
+                heading: str | None = None, refine_ic: bool | None = None, initial_heading: float | None = None,
+                resolve_signs: bool | None = None, integrate_stops: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -218,10 +223,23 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     resolve_signs : harmonic headings: fix 180-degree sign errors with the unit's yaw (W13)
     integrate_stops : gyro heading: also integrate the rate between walking sequences (turns made while
         standing); seed 003 integrates only during walking, so the default is False
+
+    Options left at ``None`` take the value of ``params.options`` (a PARAMS.json ``"options"`` object)
+    and else :data:`OPTION_DEFAULTS`.
     """
     if pipeline not in ("waist-pll", "waist-pendulum"):
         raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     p, warnings = resolve_params(session, params)
+    given = {"realtime": realtime, "heading": heading, "refine_ic": refine_ic,
+             "initial_heading": initial_heading, "resolve_signs": resolve_signs,
+             "integrate_stops": integrate_stops}
+    unknown = sorted(set(p.options or {}) - set(OPTION_DEFAULTS))
+    if unknown:
+        raise DataError(f"params options: unknown {', '.join(unknown)}; use some of {', '.join(OPTION_DEFAULTS)}")
+    o = {k: (v if v is not None else (p.options or {}).get(k, OPTION_DEFAULTS[k])) for k, v in given.items()}
+    realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
+    initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
+    integrate_stops = bool(o["integrate_stops"])
     if p.source == "calibrated" and p.pipeline not in (None, pipeline):
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
@@ -246,6 +264,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "methods": {"steps": steps.attrs.get("detector", ""), "length": length_model, "heading": method},
         "params": p.to_dict(),
         "params_source": p.source,
+        "options": o,
         "warnings": warnings,
         "n_contacts": int(n),
         "rate_hz": imu.fs,

@@ -38,8 +38,9 @@ class WaistParams:
     (seed 001 eq. 23, piecewise per seed 000 sec. II-D); gyro_bias_rps : vertical gyro bias (rad/s,
     seed 003 eq. 2); turn_gmm : ``{"means": [...], "sds": [...], "weights": [...]}`` of the straight /
     turning classifier on |MRZ| (rad/s); walk_threshold_mps2 : motion gate; source : "defaults" or
-    "calibrated"; pipeline : the pipeline the step length was calibrated for; notes : how each value was
-    obtained.
+    "calibrated"; pipeline : the pipeline the step length was calibrated for; options : pipeline options
+    (``realtime``, ``heading``, ``integrate_stops`` ..., see :data:`pdrlearn.track.waist.OPTION_DEFAULTS`);
+    notes : how each value was obtained.
     """
 
     leg_m: float = float("nan")
@@ -54,6 +55,7 @@ class WaistParams:
     walk_threshold_mps2: float | None = None
     source: str = "defaults"
     pipeline: str | None = None
+    options: dict | None = None
     notes: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict:
@@ -74,7 +76,9 @@ class WaistParams:
         for k, v in d.items():
             if k not in names:
                 continue
-            if k in ("turn_gmm", "notes", "source", "pipeline"):
+            if k in ("turn_gmm", "notes", "source", "pipeline", "options"):
+                if k in ("turn_gmm", "options") and v is not None and not isinstance(v, dict):
+                    raise DataError(f"{where}: {k} must be a JSON object")
                 kw[k] = v
                 continue
             if v is None:
