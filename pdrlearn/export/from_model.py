@@ -16,7 +16,7 @@ import numpy as np
 
 from pdrlearn.errors import ModelError
 from pdrlearn.export.bundle import base_manifest, write_bundle
-from pdrlearn.export.onnx_convert import ovr_scores_to_onnx, torch_to_onnx
+from pdrlearn.export.onnx_convert import ovr_scores_to_onnx, svm_decision_to_onnx, torch_to_onnx
 
 log = logging.getLogger(__name__)
 
@@ -70,9 +70,7 @@ class _Collector:
         from pdrlearn.classify.svm import SVMClassifier
 
         if isinstance(est, UnitFusionClassifier):
-            members = {
-                u: self.entry(e, f"{stem}_{u}") for u, e in zip(est.unit_names_, est.estimators_, strict=True)
-            }
+            members = {u: self.entry(e, f"{stem}_{u}") for u, e in zip(est.unit_names_, est.estimators_, strict=True)}
             return {
                 "type": "fusion",
                 "weights": [float(w) for w in est.weights_],
@@ -95,9 +93,7 @@ class _Collector:
             }
             return {"type": "heuristic", "file": rel, "classes": [str(c) for c in est.classes_]}
         if not isinstance(est, Pipeline):
-            raise ModelError(
-                f"{stem}: {type(est).__name__} cannot be exported yet (see docs/decisions/export.md)"
-            )
+            raise ModelError(f"{stem}: {type(est).__name__} cannot be exported yet (see docs/decisions/export.md)")
         first, clf = est.steps[0][1], est.steps[-1][1]
         classes = [str(c) for c in clf.classes_]
         if isinstance(clf, DTWClassifier):
@@ -121,11 +117,12 @@ class _Collector:
         n_features = int(clf.n_features_in_)
         rel = f"models/{stem}.onnx"
         if isinstance(clf, SVMClassifier):
-            model, spec = ovr_scores_to_onnx(clf.estimators_, classes, n_features, name=stem)
+            if hasattr(clf, "decision_params_"):  # exact float64 graph of SVMClassifier's own formula
+                model, spec = svm_decision_to_onnx(clf.mean_, clf.scale_, clf.decision_params_, classes, name=stem)
+            else:
+                model, spec = ovr_scores_to_onnx(clf.estimators_, classes, n_features, name=stem)
         elif isinstance(clf, NNClassifier):
-            model, spec = torch_to_onnx(
-                _nn_module(clf), n_features, classes=classes, name=stem, dtype="float64"
-            )
+            model, spec = torch_to_onnx(_nn_module(clf), n_features, classes=classes, name=stem, dtype="float64")
             # float32 twin for OpenCV's dnn module (the documented fallback without onnxruntime)
             self.onnx[f"models/{stem}.f32.onnx"] = torch_to_onnx(
                 _nn_module(clf), n_features, classes=classes, name=stem, dtype="float32"
@@ -239,11 +236,7 @@ def export_model(
             "methods": entries,
             "cv": {
                 m: {
-                    u: {
-                        k: v
-                        for k, v in met.items()
-                        if k in ("accuracy", "balanced_accuracy", "per_class", "n_steps")
-                    }
+                    u: {k: v for k, v in met.items() if k in ("accuracy", "balanced_accuracy", "per_class", "n_steps")}
                     for u, met in per.items()
                 }
                 for m, per in tm.cv.items()

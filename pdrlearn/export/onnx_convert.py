@@ -260,9 +260,7 @@ def check_parity(
         d = np.abs(out[spec["outputs"]["proba"]] - est_proba(X))
         res["proba_max_abs_diff"] = float(d.max()) if d.size else 0.0
     if res["label_agreement"] < 1.0 or res.get("proba_max_abs_diff", 0.0) > atol:
-        raise ModelError(
-            f"{name}: ONNX export differs from the trained model ({res}); see docs/decisions/export.md"
-        )
+        raise ModelError(f"{name}: ONNX export differs from the trained model ({res}); see docs/decisions/export.md")
     return res
 
 
@@ -285,9 +283,7 @@ def _decision_column(model: onnx.ModelProto, est, n_features: int, dtype: str, *
     for j in range(out.shape[1]):
         if np.allclose(out[:, j], want, rtol=1e-4, atol=1e-5):
             return j
-    raise ModelError(
-        f"{name}: the ONNX SVM scores do not reproduce decision_function; see docs/decisions/export.md"
-    )
+    raise ModelError(f"{name}: the ONNX SVM scores do not reproduce decision_function; see docs/decisions/export.md")
 
 
 def ovr_scores_to_onnx(
@@ -348,6 +344,110 @@ def ovr_scores_to_onnx(
         "input": "X",
         "dtype": dtype,
         "n_features": int(n_features),
+        "outputs": {"scores": "scores", "proba": "proba"},
+        "classes": [str(c) for c in classes],
+    }
+    return model, spec
+
+
+def svm_decision_to_onnx(
+    mean: np.ndarray, scale: np.ndarray, params: list[dict], classes: list[str], *, name: str = "svm"
+) -> tuple[onnx.ModelProto, dict]:
+    """A float64 graph of the one-vs-rest SVM decision values, built from standard ONNX operators.
+
+    ``Z = (X - mean) / scale``; per class ``d_k = K(Z, SV_k) @ dual_k + b_k`` with the linear, polynomial
+    ``(gamma Z.SV + coef0)^degree`` or rbf ``exp(-gamma max(|Z|^2 - 2 Z.SV + |SV|^2, 0))`` kernel
+    (the formula of :func:`pdrlearn.classify.svm.svc_decision`); ``scores`` = the ``d_k`` side by side,
+    ``proba = softmax(scores)``. Unlike the ``ai.onnx.ml`` SVM operator (float32 inside; decision values
+    off by ~1e-4 when large kernel terms cancel), this keeps float64 end to end (decision E4).
+    """
+    from onnx import TensorProto, helper, numpy_helper
+
+    D = TensorProto.DOUBLE
+    n_features = int(len(mean))
+    inits = [
+        numpy_helper.from_array(np.asarray(mean, np.float64), "mean"),
+        numpy_helper.from_array(np.asarray(scale, np.float64), "scale"),
+        numpy_helper.from_array(np.ones((n_features, 1)), "ones_col"),
+        numpy_helper.from_array(np.zeros(1), "zero"),
+    ]
+    nodes = [helper.make_node("Sub", ["X", "mean"], ["Xc"]), helper.make_node("Div", ["Xc", "scale"], ["Z"])]
+    need_sq = any(p["kernel"] == "rbf" for p in params)
+    if need_sq:
+        nodes += [
+            helper.make_node("Mul", ["Z", "Z"], ["Z2"]),
+            helper.make_node("MatMul", ["Z2", "ones_col"], ["z_sq"]),
+        ]  # (n, 1)
+    cols = []
+    for k, p in enumerate(params):
+        sv = np.asarray(p["sv"], np.float64)
+        f = f"k{k}_"
+        inits += [
+            numpy_helper.from_array(np.ascontiguousarray(sv.T), f + "svT"),
+            numpy_helper.from_array(np.asarray(p["dual"], np.float64).reshape(-1, 1), f + "dual"),
+            numpy_helper.from_array(np.array([p["b"]], np.float64), f + "b"),
+        ]
+        nodes.append(helper.make_node("MatMul", ["Z", f + "svT"], [f + "dot"]))
+        kern = p["kernel"]
+        if kern == "linear":
+            K = f + "dot"
+        elif kern == "poly":
+            inits += [
+                numpy_helper.from_array(np.array([p["gamma"]], np.float64), f + "gamma"),
+                numpy_helper.from_array(np.array([p["coef0"]], np.float64), f + "coef0"),
+                numpy_helper.from_array(np.array([float(p["degree"])], np.float64), f + "degree"),
+            ]
+            nodes += [
+                helper.make_node("Mul", [f + "dot", f + "gamma"], [f + "gd"]),
+                helper.make_node("Add", [f + "gd", f + "coef0"], [f + "base"]),
+                helper.make_node("Pow", [f + "base", f + "degree"], [f + "K"]),
+            ]
+            K = f + "K"
+        elif kern == "rbf":
+            inits += [
+                numpy_helper.from_array(np.array([-p["gamma"]], np.float64), f + "neg_gamma"),
+                numpy_helper.from_array(np.array([-2.0]), f + "m2"),
+                numpy_helper.from_array(np.sum(sv**2, axis=1)[None, :], f + "sv_sq"),
+            ]
+            nodes += [
+                helper.make_node("Mul", [f + "dot", f + "m2"], [f + "m2dot"]),
+                helper.make_node("Add", ["z_sq", f + "m2dot"], [f + "a"]),
+                helper.make_node("Add", [f + "a", f + "sv_sq"], [f + "d2raw"]),
+                helper.make_node("Max", [f + "d2raw", "zero"], [f + "d2"]),
+                helper.make_node("Mul", [f + "d2", f + "neg_gamma"], [f + "e"]),
+                helper.make_node("Exp", [f + "e"], [f + "K"]),
+            ]
+            K = f + "K"
+        else:
+            raise ModelError(f"{name}: kernel {kern!r} has no ONNX translation; see docs/decisions/export.md")
+        nodes += [
+            helper.make_node("MatMul", [K, f + "dual"], [f + "kd"]),
+            helper.make_node("Add", [f + "kd", f + "b"], [f + "col"]),
+        ]
+        cols.append(f + "col")
+    nodes += [
+        helper.make_node("Concat", cols, ["scores"], axis=1),
+        helper.make_node("Softmax", ["scores"], ["proba"], axis=1),
+    ]
+    g = helper.make_graph(
+        nodes,
+        name,
+        [helper.make_tensor_value_info("X", D, [None, n_features])],
+        [
+            helper.make_tensor_value_info("scores", D, [None, len(params)]),
+            helper.make_tensor_value_info("proba", D, [None, len(params)]),
+        ],
+        initializer=inits,
+    )
+    model = helper.make_model(g, opset_imports=[helper.make_opsetid("", OPSET)], producer_name="pdrlearn")
+    model.ir_version = 8  # onnxruntime >= 1.14 reads IR 8 / opset 17
+    onnx.checker.check_model(model, full_check=True)
+    spec = {
+        "kind": "svm",
+        "estimator": "SVMClassifier (one-vs-rest, float64 decision graph)",
+        "input": "X",
+        "dtype": "float64",
+        "n_features": n_features,
         "outputs": {"scores": "scores", "proba": "proba"},
         "classes": [str(c) for c in classes],
     }
