@@ -217,3 +217,28 @@ def test_real_foot_recordings_stream_like_the_training_side(real_dir, tmp_path):
         for c in ("flat", "up", "down"):
             got = np.array([x.proba["terrain"][c] for x in steps])
             assert np.abs(got - ref[f"p_terrain_{c}"].to_numpy()).max() <= 1e-5
+
+
+def test_late_waist_samples_delay_the_step_instead_of_changing_it(trained):
+    """Foot chunks arrive 1 s before the waist's: the same steps come out, just later; flush() ends."""
+    s = trained["test"]
+    foot = [n for n in s.streams if n.startswith("f")]
+    waist = [n for n in s.streams if n.startswith("w")]
+
+    def chunk(names, a, b):
+        return {n: (s.streams[n].t[(s.streams[n].t >= a) & (s.streams[n].t < b)],
+                    s.streams[n].values[(s.streams[n].t >= a) & (s.streams[n].t < b)]) for n in names}
+
+    t_end = s.streams["fAccelerometer"].t[-1] + 0.5
+    together, late = Tracker(trained["root"] / "bundle"), Tracker(trained["root"] / "bundle")
+    a_steps, b_steps = [], []
+    for a in np.arange(0.0, t_end + 1.0, 0.5):
+        a_steps += together.push(chunk(foot + waist, a, a + 0.5))
+        b_steps += late.push(chunk(foot, a, a + 0.5))
+        b_steps += late.push(chunk(waist, a - 1.0, a - 0.5))
+    a_steps += together.flush()
+    b_steps += late.flush()
+    assert len(a_steps) == len(b_steps) >= len(s.steps) - 2
+    for x, y in zip(a_steps, b_steps, strict=True):
+        assert (x.start_s, x.end_s, x.classes) == (y.start_s, y.end_s, y.classes)
+        assert abs(x.length_m - y.length_m) < 1e-9 and abs(x.x - y.x) < 1e-9

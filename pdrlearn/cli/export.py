@@ -123,6 +123,7 @@ def run(
                     lat.append((time.perf_counter() - t0) / len(new))
                 steps += new
             steps += tracker.push(parser.close())
+            steps += tracker.flush()
         source = f"protocol {protocol}"
     else:
         if session_dir is None:
@@ -143,6 +144,7 @@ def run(
             if new:
                 lat.append((time.perf_counter() - t0) / len(new))
             steps += new
+        steps += tracker.flush()
         source = f"session {s.name}"
     summary = _summary(steps, tracker, lat, source)
     if out is not None:

@@ -43,6 +43,7 @@ DEFAULT_DISPLACEMENT = {
     "min_step_s": 0.3,
     "max_step_s": 3.0,
     "initial_heading_rad": 0.0,
+    "max_wait_s": 2.0,  # longest wait for a late sensor before a step is processed (thesis: < 2 s delay)
 }
 _DIRECTIONS = {
     "forward": (1, 0, 0),
@@ -171,6 +172,7 @@ class Tracker:
         self._last_still = -np.inf
         self._last_boundary: float | None = None
         self._open: float | None = None  # start (s) of the step in progress
+        self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
         self._closed = False
         self._det_t = -np.inf
         self.n_steps = 0
@@ -234,11 +236,33 @@ class Tracker:
                 vs.append(mm.values)
             for name, (ts, vs) in grouped.items():
                 self._append(name, ts, vs)
-        steps = self._detect()
+        self._detect()
+        steps = self._process_ready()
         self._trim()
         return steps
 
-    def _detect(self) -> list[Step]:
+    def flush(self) -> list[Step]:
+        """Process the detected steps still waiting for other sensors' samples (end of a recording)."""
+        steps = self._process_ready(force=True)
+        self._trim()
+        return steps
+
+    def _process_ready(self, force: bool = False) -> list[Step]:
+        """Process pending steps once every buffered sensor has samples past the step's end (sensors
+        stream with different delays; a window cut before the waist data arrives would be wrong)."""
+        if not self._pending:
+            return []
+        ends = [float(p[-1][0][-1]) for p in self._buf.values() if p]
+        required = self.bundle.manifest["sensors"].get("required", [])
+        latest = min(ends + [-np.inf for n in required if n not in self._buf])
+        # a sensor that stopped must not hold the steps forever: the thesis asks for < 2 s delay
+        stale = max(ends) - float(self.params.get("max_wait_s", 2.0))
+        out = []
+        while self._pending and (force or self._pending[0][1] < max(latest, stale)):
+            out.append(self.process_step(*self._pending.pop(0)))
+        return out
+
+    def _detect(self) -> None:
         """Online stance detection on the foot gyroscope; a step runs from one stance to the next.
 
         A stance is a run of samples with ``|w| < stance_gyro_rad_s`` lasting ``min_stance_s``. Its
@@ -247,16 +271,15 @@ class Tracker:
         (decision E7).
         """
         if "fGyroscope" not in self._buf or "fAccelerometer" not in self._buf:
-            return []
+            return
         t, g = self._stream("fGyroscope")
         new = t > self._det_t
         if not new.any():
-            return []
+            return
         p = self.params
         thr, min_st = float(p["stance_gyro_rad_s"]), float(p["min_stance_s"])
         half = float(p.get("stance_half_s", 0.3))
         still = np.linalg.norm(g[new], axis=1) < thr
-        out = []
         for ti, s in zip(t[new], still, strict=True):
             if s:
                 if self._stance_start is None:
@@ -264,28 +287,27 @@ class Tracker:
                 self._last_still = float(ti)
                 dur = self._last_still - self._stance_start
                 if not self._closed and dur >= max(2 * half, min_st):  # long stance: close the step now
-                    self._close(self._stance_start + half, out)
+                    self._close(self._stance_start + half)
                 continue
             if self._stance_start is not None:
                 s0, s1 = self._stance_start, self._last_still
                 if s1 - s0 >= min_st:
                     mid = 0.5 * (s0 + s1)
                     if not self._closed:
-                        self._close(mid, out)
+                        self._close(mid)
                     self._open = max(mid, s1 - half)
                 self._stance_start = None
         self._det_t = float(t[-1])
-        return out
 
-    def _close(self, end: float, out: list) -> None:
-        """End the open step at ``end`` (s) and process it when its duration is plausible."""
+    def _close(self, end: float) -> None:
+        """End the open step at ``end`` (s); queue it when its duration is plausible."""
         self._closed = True
         start, self._open = self._open, None
         self._last_boundary = end
         if start is None:
             return
         if float(self.params["min_step_s"]) <= end - start <= float(self.params["max_step_s"]):
-            out.append(self.process_step(start, end))
+            self._pending.append((start, end))
 
     def process_step(self, t0: float, t1: float) -> Step:
         """Classify, measure and place the step ``[t0, t1]`` (s) from the buffered samples."""
@@ -314,6 +336,8 @@ class Tracker:
         keep_from = latest - self.buffer_s
         if self._last_boundary is not None:  # the next step starts at the last boundary
             keep_from = max(keep_from, self._last_boundary - 1.0)
+        if self._pending:  # keep what the waiting steps need
+            keep_from = min(keep_from, self._pending[0][0] - 1.0)
         for name in self._buf:
             t, v = self._stream(name)
             i = int(np.searchsorted(t, keep_from))
