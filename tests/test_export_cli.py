@@ -131,3 +131,15 @@ def test_round_trip_export_run_on_a_simulated_session(tmp_path, capsys):
     print("scenario A", out["n_steps"], "of", len(a.steps), "strides", out["distance_m"], "m of", truth)
     assert 0.85 * truth < out["distance_m"] < 1.15 * truth
 
+
+
+def test_tracker_needs_a_foot_unit(dirs, tmp_path):
+    from pdrlearn.errors import ModelError
+    from pdrlearn.runtime.tracker import Tracker
+
+    b = _copy_bundle(dirs, "waist_only")
+    m = json.loads((b / "manifest.json").read_text())
+    m["sensors"] = {"required": ["wAccelerometer", "wGyroscope"], "optional": []}
+    (b / "manifest.json").write_text(json.dumps(m))
+    with pytest.raises(ModelError, match="no foot unit"):
+        Tracker(b)

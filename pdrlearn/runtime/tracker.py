@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, ModelError
 from pdrlearn.runtime.bundle import Bundle, load_bundle
 from pdrlearn.runtime.classify import TaskClassifier
 from pdrlearn.runtime.features import step_window
@@ -163,6 +163,11 @@ class Tracker:
             meth, unit = mu.split("/") if mu else (None, None)
             self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit)
         self.params = dict(m["displacement"])
+        if not {"fAccelerometer", "fGyroscope"} <= set(m["sensors"].get("required", [])) | set(
+                m["sensors"].get("optional", [])):
+            raise ModelError(f"bundle {self.bundle.path.name}: the streaming tracker detects steps on the foot "
+                             "unit's gyroscope, and this bundle has no foot unit; train with foot data "
+                             "(waist-only tracking: pdrlearn track --pipeline waist-pll)")
         self.rate_hz = self.bundle.rate_hz
         self.buffer_s = float(buffer_s)
         self._buf: dict[str, list] = {}
