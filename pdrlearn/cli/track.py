@@ -14,7 +14,7 @@ from pdrlearn.errors import DataError
 
 def _write_csv(df, path: Path) -> None:
     tmp = path.with_name(f".{path.name}.tmp")
-    df.to_csv(tmp, index=False, float_format="%.6f")
+    df.to_csv(tmp, index=False, float_format="%.10g")
     tmp.replace(path)
 
 
