@@ -16,7 +16,7 @@ import numpy as np
 
 from pdrlearn.errors import ModelError
 from pdrlearn.export.bundle import base_manifest, write_bundle
-from pdrlearn.export.onnx_convert import ovr_scores_to_onnx, svm_decision_to_onnx, torch_to_onnx
+from pdrlearn.export.onnx_convert import svm_decision_to_onnx, torch_to_onnx
 
 log = logging.getLogger(__name__)
 
@@ -117,10 +117,8 @@ class _Collector:
         n_features = int(clf.n_features_in_)
         rel = f"models/{stem}.onnx"
         if isinstance(clf, SVMClassifier):
-            if hasattr(clf, "decision_params_"):  # exact float64 graph of SVMClassifier's own formula
-                model, spec = svm_decision_to_onnx(clf.mean_, clf.scale_, clf.decision_params_, classes, name=stem)
-            else:
-                model, spec = ovr_scores_to_onnx(clf.estimators_, classes, n_features, name=stem)
+            # exact float64 graph of SVMClassifier's own decision formula (decision E4)
+            model, spec = svm_decision_to_onnx(clf.mean_, clf.scale_, clf.decision_params_, classes, name=stem)
         elif isinstance(clf, NNClassifier):
             model, spec = torch_to_onnx(_nn_module(clf), n_features, classes=classes, name=stem, dtype="float64")
             # float32 twin for OpenCV's dnn module (the documented fallback without onnxruntime)
