@@ -79,3 +79,13 @@ def test_cli_on_simulated_session_without_and_with_model(scen_b, tmp_path, capsy
     assert steps["terrain"].notna().all()
     assert out["info"]["classes_source"] == "model"
     assert abs(out["distance_error_pct"]) < 15.0
+
+
+def test_standstill_and_bad_params_give_one_line_errors():
+    from pdrlearn.errors import DataError
+
+    still = sim.simulate("standstill", user_seed=1)
+    with pytest.raises(DataError, match="stride"):
+        track_plasys(still, method="M2")
+    with pytest.raises(DataError, match="unknown parameter"):
+        track_plasys(sim.simulate("A", user_seed=1), method="M2", params={"pendulum_k": 1.0})

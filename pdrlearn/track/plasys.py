@@ -14,6 +14,7 @@
 
 from __future__ import annotations
 
+import inspect
 import logging
 from pathlib import Path
 
@@ -248,6 +249,11 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     if not len(strides):
         raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?")
     fd_kw = {k: cfg[k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
+    allowed = set(inspect.signature(FootDisplacement).parameters)
+    unknown = sorted(set(params or {}) - allowed)
+    if unknown:
+        raise DataError(f"plasys: unknown parameter(s) {', '.join(unknown)} in params; the plasys pipeline "
+                        f"takes FootDisplacement settings: {', '.join(sorted(allowed))}")
     fd_kw.update(params or {})
     fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)
     warnings += fd.warnings_
