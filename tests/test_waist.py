@@ -371,3 +371,64 @@ def test_params_options_reach_the_pipeline():
         track_waist(s, pipeline="waist-pll", params={"options": {"speed": 3}})
     with pytest.raises(DataError, match="JSON object"):
         track_waist(s, pipeline="waist-pll", params={"options": "fast"})
+
+
+# ------------------------------------------------------------------ rhythm completion (decision W18)
+def _pulse_train(fs, times, heights, duration):
+    """Filtered-vertical-like signal: a smooth bump of the given height at each time (s)."""
+    t = np.arange(0.0, duration, 1.0 / fs)
+    x = np.zeros_like(t)
+    for tc, hc in zip(times, heights, strict=True):
+        x += hc * np.exp(-0.5 * ((t - tc) / 0.08) ** 2)
+    return t, x
+
+
+@pytest.mark.parametrize("fs", [20.0, 100.0, 204.8])
+def test_rhythm_complete_fills_weak_step_and_gate_cut_end(fs):
+    from scipy.signal import find_peaks
+
+    times = 1.0 + 0.6 * np.arange(12)               # 12 steps at 0.6 s
+    heights = np.full(12, 1.0)
+    heights[5] = 0.04                                 # a shuffling/turning step: weak vertical maximum
+    t, x = _pulse_train(fs, list(times) + [11.0], list(heights) + [0.5], 12.0)  # + isolated bump later
+    cand, _ = find_peaks(x, height=0.0, distance=int(round(0.3 * fs)))
+    accepted = x[cand] >= 0.1
+    accepted &= t[cand] < times[-1] - 0.1             # the motion gate closed one step early
+    accepted &= t[cand] < 10.0                        # the isolated bump is outside the gate too
+    keep = K.rhythm_complete(cand, x[cand], accepted, fs, min_peak=0.1)
+    got = t[cand[keep]]
+    assert np.allclose(got, times, atol=1.5 / fs)     # weak step and last step recovered, nothing else
+    # the isolated bump at 11 s is a full-height maximum but not one period after the sequence
+    assert not np.any(np.isclose(got, 11.0, atol=0.05))
+
+
+def test_rhythm_complete_does_not_chain_into_standing_noise():
+    fs = 100.0
+    rng = np.random.default_rng(1)
+    times = 1.0 + 0.55 * np.arange(8)
+    t, x = _pulse_train(fs, times, np.ones(8), 20.0)
+    x += np.where(t > times[-1] + 0.3, 0.2 * np.sin(2 * np.pi * t / 0.55), 0.0)  # rhythmic sway while standing
+    x += rng.normal(0, 0.005, t.size)
+    from scipy.signal import find_peaks
+    cand, _ = find_peaks(x, height=0.0, distance=30)
+    accepted = (x[cand] >= 0.1) & (t[cand] <= times[-1] + 0.1)
+    keep = K.rhythm_complete(cand, x[cand], accepted, fs, min_peak=0.1)
+    assert keep.sum() - accepted.sum() <= 1           # at most one step beyond the sequence end
+    short = np.zeros_like(accepted)
+    short[np.flatnonzero(accepted)[:2]] = True        # two contacts: no period yet -> nothing added
+    assert K.rhythm_complete(cand, x[cand], short, fs, min_peak=0.1).sum() == 2
+
+
+def test_rhythm_completion_recovers_real_daily_activity_steps():
+    from pdrlearn.io import read_session
+    from pdrlearn.waist.evaluate import step_metrics
+
+    path = REAL / "mobgap_HA001_Test11_Trial1"
+    if not path.exists():
+        pytest.skip("real lower-back recording not bundled")
+    s = read_session(path)
+    imu = waist_imu(s)
+    on = step_metrics(InitialContactDetector().detect(imu).steps_, s)
+    off = step_metrics(InitialContactDetector(rhythm=False).detect(imu).steps_, s)
+    assert on["step_recall"] > off["step_recall"]
+    assert on["step_f1"] >= off["step_f1"]

@@ -77,6 +77,7 @@ def fir_causal(x: np.ndarray, taps: np.ndarray) -> np.ndarray:
 def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
                cutoff_hz: float = 2.5, fir_order_s: float = 0.3, min_step_s: float = 0.3,  # windows: W16
                search_s: float = 0.25, fc_search_s: float = 0.25, min_peak_mps2: float = 0.1,
+               rhythm: bool = False, max_step_s: float = 1.5,
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
 
@@ -93,6 +94,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     fs : rate (Hz)
     gate : (n,) bool, samples where the user moves; vertical maxima outside it are ignored
     min_peak_mps2 : a vertical maximum must exceed this (filtered, m/s^2) to be a step
+    rhythm : complete the walking sequences with :func:`rhythm_complete` (decision W18)
+    max_step_s : maxima further apart than this (s) belong to different walking sequences (``rhythm``)
 
     Returns
     -------
@@ -102,9 +105,19 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     ap = np.asarray(acc_ap, dtype=np.float64)
     taps = fir_taps(cutoff_hz, fs, int(round(fir_order_s * fs)))  # seed 003 sec. 3.1: order 30, 2.5 Hz
     vf = fir_zero_lag(v - np.mean(v), taps)
-    peaks, _ = _sig.find_peaks(vf, height=min_peak_mps2, distance=max(1, int(round(min_step_s * fs))))
-    if gate is not None:
-        peaks = peaks[np.asarray(gate, dtype=bool)[peaks]]
+    dist = max(1, int(round(min_step_s * fs)))
+    if rhythm:  # decision W18: gaps and gate-cut sequence ends completed at the local step period
+        cand, _ = _sig.find_peaks(vf, height=0.0, distance=dist)
+        strong = vf[cand] >= min_peak_mps2
+        if gate is not None:
+            strong &= np.asarray(gate, dtype=bool)[cand]
+        keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2,
+                               min_step_s=min_step_s, max_step_s=max_step_s)
+        peaks = cand[keep]
+    else:
+        peaks, _ = _sig.find_peaks(vf, height=min_peak_mps2, distance=dist)
+        if gate is not None:
+            peaks = peaks[np.asarray(gate, dtype=bool)[peaks]]
     ws = max(1, int(round(search_s * fs)))
     wf = max(1, int(round(fc_search_s * fs)))
     ic, fc = np.empty(len(peaks), dtype=int), np.empty(len(peaks), dtype=int)
@@ -113,6 +126,93 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         hi = min(len(ap), p + wf + 1)
         fc[i] = p + int(np.argmin(ap[p:hi]))
     return ic, fc, peaks
+
+
+RHYTHM_TOL = 0.35  # a filled maximum lies within +-35 % of a step period of its predicted time (W18)
+RHYTHM_MIN_STEPS = 3  # a local step period needs at least this many contacts of the sequence (W18)
+
+
+def _local_period(t: np.ndarray, k: int, side: int, max_gap: float, n: int = 3) -> float:
+    """Median of up to ``n`` step intervals of the sequence on ``side`` (-1 before, +1 after) of
+    accepted maximum ``k`` (times ``t`` in samples); NaN when fewer than ``RHYTHM_MIN_STEPS - 1``."""
+    iv = []
+    j = k
+    while len(iv) < n:
+        j2 = j + side
+        if j2 < 0 or j2 >= t.size or abs(t[j2] - t[j]) > max_gap:
+            break
+        iv.append(abs(t[j2] - t[j]))
+        j = j2
+    return float(np.median(iv)) if len(iv) >= RHYTHM_MIN_STEPS - 1 else float("nan")
+
+
+def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, fs: float, *,
+                    min_peak: float, min_step_s: float = 0.3, max_step_s: float = 1.5,
+                    tol: float = RHYTHM_TOL) -> np.ndarray:
+    """Complete walking sequences of accepted vertical maxima with the gait rhythm (decision W18).
+
+    Steps come at a regular period: (1) inside a sequence, a gap of ``m + 1`` local periods
+    (``m >= 1``, gap > 1.5 periods) gets ``m`` maxima, the highest positive candidate within ``tol``
+    periods of each predicted time (weak maxima of turning/shuffling steps); (2) a sequence of at least
+    ``RHYTHM_MIN_STEPS`` contacts is extended by one step at each end when a candidate of full height
+    (``>= min_peak``) lies one period (``+- tol``) beyond it (the 2 s motion gate lags at walk
+    start/end). One step per end only, so noise while standing cannot chain.
+
+    Parameters
+    ----------
+    cand : (n,) sample indices of positive maxima of the filtered vertical acceleration, increasing
+    height : (n,) their filtered values (m/s^2)
+    accepted : (n,) bool, maxima accepted by the height threshold and the motion gate
+    fs : rate (Hz); min_step_s, max_step_s : shortest step (s), longest step inside a sequence (s)
+
+    Returns
+    -------
+    (n,) bool: the accepted maxima plus the completed ones.
+    """
+    cand = np.asarray(cand, dtype=np.int64)
+    h = np.asarray(height, dtype=np.float64)
+    keep = np.asarray(accepted, dtype=bool).copy()
+    if cand.size == 0:
+        return keep
+    max_gap, min_gap = max_step_s * fs, min_step_s * fs
+    acc = np.flatnonzero(keep)
+    t = cand[acc].astype(np.float64)
+    add: list[int] = []
+
+    def best_near(centre: float, half: float, floor: float) -> int | None:
+        lo, hi = np.searchsorted(cand, centre - half), np.searchsorted(cand, centre + half, side="right")
+        idx = [i for i in range(lo, hi) if not keep[i] and h[i] >= floor]
+        return max(idx, key=lambda i: h[i]) if idx else None
+
+    for k in range(t.size):
+        period_b = _local_period(t, k, -1, max_gap)
+        if k + 1 < t.size and t[k + 1] - t[k] <= max_gap:  # (1) gap inside a sequence
+            period_a = _local_period(t, k + 1, +1, max_gap)
+            per = np.nanmedian([period_b, period_a]) if np.isfinite([period_b, period_a]).any() else np.nan
+            gap = t[k + 1] - t[k]
+            if np.isfinite(per) and gap > 1.5 * per:
+                m = int(round(gap / per)) - 1
+                for j in range(1, m + 1):
+                    i = best_near(t[k] + j * gap / (m + 1), tol * per, 0.0)
+                    if i is not None:
+                        add.append(i)
+        elif np.isfinite(period_b):  # (2) sequence end: one more step where the gate closed early
+            i = best_near(t[k] + period_b, tol * period_b, min_peak)
+            if i is not None:
+                add.append(i)
+        if (k == 0 or t[k] - t[k - 1] > max_gap):  # (2) sequence start
+            period_a = _local_period(t, k, +1, max_gap)
+            if np.isfinite(period_a):
+                i = best_near(t[k] - period_a, tol * period_a, min_peak)
+                if i is not None:
+                    add.append(i)
+    keep[np.asarray(add, dtype=np.int64)] = True
+    # the completed set must still respect the shortest step: drop the lower of two too-close maxima
+    sel = np.flatnonzero(keep)
+    for a, b in zip(sel[:-1], sel[1:], strict=True):
+        if keep[a] and keep[b] and cand[b] - cand[a] < min_gap:
+            keep[a if h[a] < h[b] else b] = False
+    return keep
 
 
 def _nearest_local_max_before(x: np.ndarray, k: int, lo: int) -> int:

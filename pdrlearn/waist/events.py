@@ -69,6 +69,8 @@ class InitialContactDetector:
     ap_cutoff_hz : light low-pass of the AP acceleration before locating its maximum (Hz; capped at
         0.4 x rate)
     max_step_s : contacts further apart than this end a walking sequence (s)
+    rhythm : offline only: complete each walking sequence at its local step period (gaps of weak
+        turning/shuffling steps, sequence ends cut by the motion gate; decision W18)
 
     Attributes
     ----------
@@ -79,8 +81,9 @@ class InitialContactDetector:
 
     def __init__(self, *, realtime: bool = False, cutoff_hz: float = 2.5, fir_order_s: float = 0.3,
                  walk_threshold: float = WALK_THRESHOLD_MPS2, ap_cutoff_hz: float = 20.0,
-                 max_step_s: float = 1.5):
+                 max_step_s: float = 1.5, rhythm: bool = True):
         self.realtime = realtime
+        self.rhythm = rhythm
         self.cutoff_hz = cutoff_hz
         self.fir_order_s = fir_order_s
         self.walk_threshold = walk_threshold
@@ -99,7 +102,8 @@ class InitialContactDetector:
             ic, fc = np.maximum(ic - lag, 0), np.maximum(fc - lag, 0)
         else:
             ic, fc, ref = K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
-                                       fir_order_s=self.fir_order_s)
+                                       fir_order_s=self.fir_order_s, rhythm=self.rhythm,
+                                       max_step_s=self.max_step_s)
         self.ic_, self.fc_, self.anchor_ = ic, fc, ref
         name = "alvarez-realtime" if self.realtime else "alvarez-offline"
         self.steps_ = steps_from_events(imu.t, ic, fc, max_step_s=self.max_step_s, detector=name)
