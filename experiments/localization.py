@@ -186,6 +186,54 @@ def run_orientation_tables(users: int) -> list[str]:
     return lines
 
 
+def orientation_scenarios():
+    """The four ~6 m orientation scenarios of thesis ch.7.3.1.1 (Fig. 86 is not in the text: radii chosen)."""
+    from pdrlearn.sim import Curve, Straight
+
+    hp = np.pi / 2
+    return {
+        "A": [Straight(2.0), Curve(np.pi, 0.5), Straight(2.0)],  # leave a room through a ~pi curve
+        "B": [Straight(1.5), Curve(-np.pi / 4, 1.5), Straight(1.0), Curve(np.pi / 4, 1.5), Straight(1.0)],
+        "C": [Straight(3.0), Curve(-hp, 0.4), Straight(3.0)],  # one sharp pi/2 right curve
+        "D": [Straight(1.5), Curve(-hp, 0.4), Straight(1.5), Curve(-hp, 0.4), Straight(1.5), Curve(-hp, 0.4),
+              Straight(1.0)],  # square: three right pi/2 curves
+    }
+
+
+def run_orientation_scenarios(users: int) -> list[str]:
+    """Thesis Tables 36-39: heading change start -> end of short walks, waist (complementary filter) vs
+    foot (strapdown stride yaw), mean change, SD and mean error (% of the true change; thesis definition)."""
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.track.plasys import track_plasys as tp
+
+    thesis = {"A": ((3.19, 0.06, 1.73), (3.42, 0.17, 8.27)), "B": ((0.02, 0.02, 0.65), (0.05, 0.05, 1.44)),
+              "C": ((1.57, 0.05, 0.30), (1.66, 0.07, 5.46)), "D": ((1.66, 0.06, 5.12), (1.74, 0.16, 9.52))}
+    lines = ["### Tables 36-39: orientation scenarios (about 6 m each), waist vs foot", "",
+             "Heading change from the first to the last stride, wrapped to [-pi, pi) as the thesis reports it "
+             "(D: three right turns = 1.57 rad); error = |estimated - true change| in % of pi (the thesis does "
+             "not define the base; pi keeps B, whose true change is ~0, finite). 5 users x 3 speeds; M2 strides.", "",
+             "| scenario | unit | mean change rad (thesis) | SD (thesis) | mean error % (thesis) |", "|---|---|---|---|---|"]
+    for name, segs in orientation_scenarios().items():
+        res = {"waist": [], "foot": []}
+        for user in range(1, users + 1):
+            for speed in ("slow", "normal", "fast"):
+                s = simulate_path(segs, UserProfile.from_seed(user), speed=speed, seed=user,
+                                  name=f"orient_{name}_u{user}_{speed}", scenario=f"orient-{name}")
+                g = s.trajectory
+                for unit, heading in (("waist", "waist"), ("foot", "foot")):
+                    r = tp(s, method="M2", heading=heading)
+                    h = np.unwrap(r.steps["heading_rad"].to_numpy(float))
+                    gt = np.interp(r.steps["end_s"].to_numpy(float)[[0, -1]], g["t"], np.unwrap(g["heading_rad"]))
+                    d_est, d_true = h[-1] - h[0], gt[1] - gt[0]
+                    res[unit].append((abs(wrap_angle(d_est)), abs(wrap_angle(d_est - d_true))))
+        for k, unit in enumerate(("waist", "foot")):
+            a = np.array(res[unit])
+            th = thesis[name][k]
+            lines.append(f"| {name} | {unit} | {a[:, 0].mean():.2f} ({th[0]}) | {a[:, 0].std():.2f} ({th[1]}) | "
+                         f"{100 * a[:, 1].mean() / np.pi:.2f} ({th[2]}) |")
+    return lines + [""]
+
+
 def run_real() -> pd.DataFrame:
     rows = []
     for side in ("left", "right"):
@@ -269,7 +317,7 @@ def main(argv: list[str] | None = None) -> None:
     if not args.no_sim:
         sim = run_sim(args.users, args.speeds.split(","), args.scenarios.split(","), args.quick)
         sim.to_csv(RESULTS / "localization_runs.csv", index=False)
-        orient = run_orientation_tables(min(args.users, 5))
+        orient = run_orientation_tables(min(args.users, 5)) + run_orientation_scenarios(min(args.users, 5))
     real = run_real()
     real.to_csv(RESULTS / "localization_real.csv", index=False)
     text = report(sim, real, orient, argv if argv is not None else __import__("sys").argv[1:])
