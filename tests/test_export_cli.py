@@ -101,8 +101,12 @@ def test_tracker_rejects_bad_pushes(dirs):
 
     tr = Tracker(dirs["root"] / "bundle")
     tr.push({"fGyroscope": (np.array([0.0, 0.05]), np.zeros((2, 3)))})
-    with pytest.raises(DataError, match="back in time"):
+    with pytest.raises(DataError, match="not increasing"):
         tr.push({"fGyroscope": (np.array([0.01]), np.zeros((1, 3)))})
+    with pytest.raises(DataError, match="not increasing"):
+        tr.push({"fGyroscope": (np.array([0.3, 0.2]), np.zeros((2, 3)))})
+    with pytest.raises(DataError, match=r"sampled at 100 Hz .* trained at 20 Hz"):
+        tr.push({"fAccelerometer": (np.arange(10) * 0.01, np.zeros((10, 3)))})
     with pytest.raises(DataError, match="NaN"):
         tr.push({"fAccelerometer": (np.array([1.0]), np.full((1, 3), np.nan))})
 

@@ -199,9 +199,13 @@ class Bundle:
                 f"(it has: {', '.join(rates_hz) or 'none'}); record those sensors or export a bundle "
                 "for the sensors you have"
             )
+        self.check_rates(rates_hz, where=where)
+
+    def check_rates(self, rates_hz: dict[str, float], *, where: str = "data") -> None:
+        """Check the rates of the given sensors that the bundle uses (others are ignored)."""
         rate = self.rate_hz
         tol = float(self.manifest["sampling"].get("rate_tolerance", DEFAULT_RATE_TOLERANCE))
-        used = required + list(self.manifest["sensors"].get("optional", []))
+        used = list(self.manifest["sensors"].get("required", [])) + list(self.manifest["sensors"].get("optional", []))
         for name in used:
             r = rates_hz.get(name)
             if r is None or not math.isfinite(r):

@@ -126,8 +126,7 @@ def heuristic_proba(self: RuntimeModel, W: np.ndarray, cache: dict | None = None
         rules = [Rule.from_dict(r) for r in st["rules"]]
         conf = None
         if any(r.confidence for r in rules):
-            conf = np.column_stack([F[:, self.col[r.confidence]] if r.confidence else np.ones(len(F))
-                                    for r in rules])
+            conf = np.column_stack([F[:, self.col[r.confidence]] if r.confidence else np.ones(len(F)) for r in rules])
         score = stage_score(F[:, [self.col[r.feature] for r in rules]], rules, conf)
         m = memberships(score, tuple(float(v) for v, _ in st["labels"]))
         stages.append((m, [lab for _, lab in st["labels"]], st.get("parent")))

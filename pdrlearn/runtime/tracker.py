@@ -164,10 +164,13 @@ class Tracker:
             self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit)
         self.params = dict(m["displacement"])
         if not {"fAccelerometer", "fGyroscope"} <= set(m["sensors"].get("required", [])) | set(
-                m["sensors"].get("optional", [])):
-            raise ModelError(f"bundle {self.bundle.path.name}: the streaming tracker detects steps on the foot "
-                             "unit's gyroscope, and this bundle has no foot unit; train with foot data "
-                             "(waist-only tracking: pdrlearn track --pipeline waist-pll)")
+            m["sensors"].get("optional", [])
+        ):
+            raise ModelError(
+                f"bundle {self.bundle.path.name}: the streaming tracker detects steps on the foot "
+                "unit's gyroscope, and this bundle has no foot unit; train with foot data "
+                "(waist-only tracking: pdrlearn track --pipeline waist-pll)"
+            )
         self.rate_hz = self.bundle.rate_hz
         self.buffer_s = float(buffer_s)
         self._buf: dict[str, list] = {}
@@ -180,6 +183,7 @@ class Tracker:
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
         self._closed = False
         self._det_t = -np.inf
+        self._rate_checked: set[str] = set()
         self.n_steps = 0
 
     # -- classification of given windows (also used by the parity tests) ----------------------------
@@ -217,12 +221,17 @@ class Tracker:
         if not (np.isfinite(t).all() and np.isfinite(v).all()):
             raise DataError(f"{name}: pushed samples contain NaN/inf; clean the stream before tracking")
         parts = self._buf.setdefault(name, [])
-        if parts and t[0] <= parts[-1][0][-1]:
+        if (parts and t[0] <= parts[-1][0][-1]) or np.any(np.diff(t) <= 0):
+            prev = f" after {parts[-1][0][-1]:.3f} s" if parts else ""
             raise DataError(
-                f"{name}: pushed timestamps go back in time ({t[0]:.3f} s after "
-                f"{parts[-1][0][-1]:.3f} s); push samples in time order"
+                f"{name}: pushed timestamps are not increasing (at {t[0]:.3f} s{prev}); push samples in time order"
             )
         parts.append((t, v))
+        if name not in self._rate_checked:  # the data's rate against the bundle's, once per sensor
+            tt = self._stream(name)[0]
+            if len(tt) >= 5:
+                self.bundle.check_rates({name: 1.0 / float(np.median(np.diff(tt)))}, where=f"pushed {name}")
+                self._rate_checked.add(name)
 
     def push(self, samples) -> list[Step]:
         """Add samples; returns the steps completed by them (possibly none).
