@@ -512,6 +512,32 @@ def train_task(
     return tm
 
 
+def length_class_bounds(sessions) -> list[float] | None:
+    """The user's stride-length class edges ``[short/normal, normal/long]`` (m), used by M3's clamp.
+
+    Thesis ch.6.3: the short/normal/long intervals "must be defined from a set of exercises for a
+    pedestrian in specific". Taken from the sessions' ``meta.json`` (``length_class_bounds_m``, as the
+    simulator and a calibration protocol record them; the median when sessions differ); otherwise derived
+    from the labelled steps that have both ``length_m`` and ``length_class``: each edge is the midpoint
+    between the neighbouring classes' median lengths. ``None`` when neither is available.
+    """
+    declared = [s.meta.get("length_class_bounds_m") for s in sessions]
+    declared = [b for b in declared if isinstance(b, list | tuple) and len(b) == 2]
+    if declared:
+        lo, hi = np.median(np.asarray(declared, dtype=float), axis=0)
+        return [float(lo), float(hi)]
+    frames = [s.steps[["length_m", "length_class"]] for s in sessions
+              if s.steps is not None and {"length_m", "length_class"} <= set(s.steps.columns)]
+    if not frames:
+        return None
+    df = pd.concat(frames).dropna()
+    med = df.groupby("length_class")["length_m"].median()
+    if not {"short", "normal", "long"} <= set(med.index):
+        return None
+    lo, hi = (med["short"] + med["normal"]) / 2, (med["normal"] + med["long"]) / 2
+    return [float(lo), float(hi)] if 0 < lo < hi else None
+
+
 def train_user(
     sessions,
     *,
@@ -583,6 +609,9 @@ def train_user(
         for name, st in s.streams.items():
             rates.setdefault(name, round(float(st.rate_hz), 3))
     summary = {"sessions": [s.name for s in sessions], "n_sessions": len(sessions), "steps": {}}
+    bounds = length_class_bounds(sessions)
+    if bounds is not None:
+        summary["length_bounds_m"] = bounds
     for t, m in out.items():
         data = task_data(windows, t)
         summary["steps"][t] = {
