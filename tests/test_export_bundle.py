@@ -163,3 +163,15 @@ def test_sensor_and_rate_mismatch_are_data_errors(tmp_path):
         b.check_streams({"fAccelerometer": 20.0}, where="session s")
     with pytest.raises(DataError, match=r"sampled at 100 Hz .* trained at 20 Hz"):
         b.check_streams({"fAccelerometer": 100.0, "fGyroscope": 100.0})
+
+
+def test_altered_or_unsigned_manifest_is_a_model_error(tmp_path):
+    out, _, _ = _small_bundle(tmp_path)
+    m = json.loads((out / "manifest.json").read_text())
+    m["displacement"] = {"length_bounds_m": {"short": [0, 5]}}  # an edit that checksums of the files miss
+    (out / "manifest.json").write_text(json.dumps(m))
+    with pytest.raises(ModelError, match="manifest.json was altered"):
+        load_bundle(out)
+    (out / "manifest.sha256").unlink()
+    with pytest.raises(ModelError, match="manifest.sha256 is missing"):
+        load_bundle(out)

@@ -145,5 +145,8 @@ def test_tracker_needs_a_foot_unit(dirs, tmp_path):
     m = json.loads((b / "manifest.json").read_text())
     m["sensors"] = {"required": ["wAccelerometer", "wGyroscope"], "optional": []}
     (b / "manifest.json").write_text(json.dumps(m))
+    from pdrlearn.runtime.bundle import sha256_file
+
+    (b / "manifest.sha256").write_text(sha256_file(b / "manifest.json"))  # a consistent edited bundle
     with pytest.raises(ModelError, match="no foot unit"):
         Tracker(b)

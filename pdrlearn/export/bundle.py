@@ -29,6 +29,7 @@ from pdrlearn.classify.model_dir import _json_default  # numpy scalars/arrays, p
 from pdrlearn.errors import ModelError
 from pdrlearn.runtime.bundle import (
     MANIFEST,
+    MANIFEST_SHA,
     REQUIRED_KEYS,
     SCHEMA_NAME,
     SCHEMA_VERSION,
@@ -68,7 +69,7 @@ def _dump_json(obj, path: Path) -> None:
 
 def _check_rel(rel: str) -> None:
     p = Path(rel)
-    if p.is_absolute() or ".." in p.parts or rel == MANIFEST:
+    if p.is_absolute() or ".." in p.parts or rel in (MANIFEST, MANIFEST_SHA):
         raise ModelError(f"bundle file name '{rel}' must be a relative path inside the bundle")
 
 
@@ -138,6 +139,7 @@ def write_bundle(
         full = dict(manifest)
         full["files"] = files
         _dump_json(full, tmp / MANIFEST)
+        (tmp / MANIFEST_SHA).write_text(f"{sha256_file(tmp / MANIFEST)}  {MANIFEST}\n")
         if verify:
             load_bundle(tmp, verify=True)
         if out.exists():

@@ -30,6 +30,8 @@ SCHEMA_NAME = "pdrlearn-bundle"
 #: Version of the bundle layout; a runtime reads exactly this version (decision E2, docs/decisions/export.md).
 SCHEMA_VERSION = 1
 MANIFEST = "manifest.json"
+#: sha256 of manifest.json itself (the manifest cannot hold its own digest)
+MANIFEST_SHA = "manifest.sha256"
 #: Keys every manifest carries (see docs/deploying.md for their meaning).
 REQUIRED_KEYS = (
     "schema",
@@ -253,6 +255,12 @@ def verify_files(path: Path, manifest: dict) -> None:
     files = manifest["files"]
     if not isinstance(files, dict) or not files:
         raise _fail(path, f"{MANIFEST} lists no files; re-export the bundle")
+    sha_file = path / MANIFEST_SHA
+    if not sha_file.is_file():
+        raise _fail(path, f"{MANIFEST_SHA} is missing; copy the whole bundle folder")
+    if sha_file.read_text().split()[0:1] != [sha256_file(path / MANIFEST)]:
+        raise _fail(path, f"{MANIFEST} was altered (sha256 differs from {MANIFEST_SHA}); "
+                          "restore the original bundle or re-export it")
     for rel, digest in files.items():
         f = path / rel
         if Path(rel).is_absolute() or ".." in Path(rel).parts:
