@@ -150,3 +150,12 @@ def test_tracker_needs_a_foot_unit(dirs, tmp_path):
     (b / "manifest.sha256").write_text(sha256_file(b / "manifest.json"))  # a consistent edited bundle
     with pytest.raises(ModelError, match="no foot unit"):
         Tracker(b)
+
+
+def test_export_errors_are_one_line(dirs, capsys, tmp_path):
+    _fails(capsys, ["export", str(tmp_path / "nope"), "--out", str(tmp_path / "b")], "no such model directory")
+    _fails(capsys, ["export", str(dirs["root"] / "model"), "--out", str(tmp_path / "b"), "--methods", "svm,knn"],
+           "unknown method(s) knn")
+    _fails(capsys, ["export", str(dirs["root"] / "model"), "--out", str(tmp_path / "b"), "--length-bounds", "x"],
+           "--length-bounds")
+    assert not (tmp_path / "b").exists()

@@ -193,6 +193,10 @@ def export_model(
     from pdrlearn.features import CHANNELS
     from pdrlearn.features.transformers import SIGNALS
 
+    known = ("heuristic", "fusion", "dtw", "svm", "nn")  # issue 5 methods
+    bad = [m for m in methods or [] if m not in known]
+    if bad:
+        raise ModelError(f"unknown method(s) {', '.join(bad)}; choose from {', '.join(known)}")
     if model is None:
         model = load_model(model_dir)
         src_manifest = read_manifest(model_dir)
