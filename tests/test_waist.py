@@ -432,3 +432,27 @@ def test_rhythm_completion_recovers_real_daily_activity_steps():
     off = step_metrics(InitialContactDetector(rhythm=False).detect(imu).steps_, s)
     assert on["step_recall"] > off["step_recall"]
     assert on["step_f1"] >= off["step_f1"]
+
+
+# ------------------------------------------------------------------ turning steps (decision W19)
+def test_turning_step_factor_by_hand():
+    f = K.turning_step_factor(np.array([0.0, np.pi / 3, -np.pi / 3, np.pi / 2, 2.0, np.nan]))
+    assert np.allclose(f[:5], [1.0, 0.5, 0.5, 0.0, 0.0], atol=1e-12)
+    assert np.isnan(f[5])
+
+
+def test_turn_factor_shortens_turning_steps_only():
+    from pdrlearn.track import get_pipeline
+
+    straight = synth_session(turn_rate=0.0, name="straight")
+    turning = synth_session(turn_rate=1.0, name="turning")   # ~31 deg per step at 1.8 steps/s
+    runs = {}
+    for s in (straight, turning):
+        for tf in (False, True):
+            st = get_pipeline("waist-pendulum")(s, turn_factor=tf).steps
+            runs[s.name, tf] = st.loc[st["has_next"], "length_m"].sum(), st
+    assert runs["straight", True][0] == pytest.approx(runs["straight", False][0], rel=0.01)
+    ratio = runs["turning", True][0] / runs["turning", False][0]
+    assert ratio == pytest.approx(np.cos(1.0 / 1.8), abs=0.05)
+    st = runs["turning", True][1]
+    assert np.median(st.loc[st["has_next"], "dyaw_rad"]) == pytest.approx(1.0 / 1.8, rel=0.1)

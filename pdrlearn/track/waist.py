@@ -126,10 +126,11 @@ def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
     return out
 
 
-def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: str, thr: float
-                  ) -> pd.DataFrame:
-    """Steps table with ``length_m`` (0 for sequence-closing contacts), ``frequency_hz`` and, for the
-    pendulum, ``h_m`` (vertical excursion)."""
+def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: str, thr: float, *,
+                  turn_factor: bool = False) -> pd.DataFrame:
+    """Steps table with ``length_m`` (0 for sequence-closing contacts), ``frequency_hz``, ``dyaw_rad``
+    (vertical-gyro rotation during the step) and, for the pendulum, ``h_m`` (vertical excursion).
+    ``turn_factor`` scales each length by :func:`~pdrlearn.waist._kernels.turning_step_factor` (W19)."""
     n, fs = len(steps), imu.fs
     idx = np.clip(np.round((steps["event_s"].to_numpy(float) - imu.t[0]) * fs).astype(int), 0, len(imu.t) - 1)
     has_next = steps["has_next"].to_numpy(bool)
@@ -146,7 +147,14 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
         sigma = K.rolling_std(imu.acc_v, fs, causal=False)
         running = K.motion_state(sigma[idx], walk_threshold=thr) == 2
         lengths = np.where(has_next, frequency_lengths(np.nan_to_num(freq, nan=0.0), p, running=running), 0.0)
-    return steps.assign(length_m=lengths, frequency_hz=freq)
+    ev = steps["event_s"].to_numpy(float)
+    end = steps["end_s"].to_numpy(float)
+    w_z = imu.w_z - p.gyro_bias_rps
+    dyaw = np.array([K.integrate_rate(imu.t, w_z, a, b) if hn else 0.0
+                     for a, b, hn in zip(ev, end, has_next, strict=True)])
+    if turn_factor:
+        lengths = lengths * K.turning_step_factor(dyaw)
+    return steps.assign(length_m=lengths, frequency_hz=freq, dyaw_rad=dyaw)
 
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
@@ -200,12 +208,13 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
 
 #: pipeline options a PARAMS.json may set under "options" (so ``pdrlearn track --params`` reaches them)
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
-                   "resolve_signs": True, "integrate_stops": False}
+                   "resolve_signs": True, "integrate_stops": False, "turn_factor": True}
 
 
 def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool | None = None,
                 heading: str | None = None, refine_ic: bool | None = None, initial_heading: float | None = None,
-                resolve_signs: bool | None = None, integrate_stops: bool | None = None) -> TrackResult:
+                resolve_signs: bool | None = None, integrate_stops: bool | None = None,
+                turn_factor: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -223,6 +232,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     resolve_signs : harmonic headings: fix 180-degree sign errors with the unit's yaw (W13)
     integrate_stops : gyro heading: also integrate the rate between walking sequences (turns made while
         standing); seed 003 integrates only during walking, so the default is False
+    turn_factor : shorten steps during which the pelvis turns, ``x cos(turn)`` (decision W19; the papers'
+        models assume straight steps); default True
 
     Options left at ``None`` take the value of ``params.options`` (a PARAMS.json ``"options"`` object)
     and else :data:`OPTION_DEFAULTS`.
@@ -232,7 +243,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     p, warnings = resolve_params(session, params)
     given = {"realtime": realtime, "heading": heading, "refine_ic": refine_ic,
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
-             "integrate_stops": integrate_stops}
+             "integrate_stops": integrate_stops, "turn_factor": turn_factor}
     unknown = sorted(set(p.options or {}) - set(OPTION_DEFAULTS))
     if unknown:
         raise DataError(f"params options: unknown {', '.join(unknown)}; use some of {', '.join(OPTION_DEFAULTS)}")
@@ -254,7 +265,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
-    steps = _step_lengths(steps, imu, p, pipeline, thr)
+    steps = _step_lengths(steps, imu, p, pipeline, thr, turn_factor=bool(o["turn_factor"]))
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops)
     n = len(steps)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"

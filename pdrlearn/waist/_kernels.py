@@ -322,6 +322,15 @@ def vertical_excursion(acc_v: np.ndarray, fs: float, i0: int, i1: int) -> float:
     return float(pos.max() - pos.min())
 
 
+def turning_step_factor(dpsi_rad: np.ndarray) -> np.ndarray:
+    """Share of a step's straight-ahead length kept when the pelvis turns by ``dpsi_rad`` during it
+    (decision W19): ``cos(min(|dpsi|, pi/2))`` -- the component of the step along the heading held at
+    both of its contacts; 1 on straight steps, 0 for a quarter turn or more in one step (turning on the
+    spot)."""
+    d = np.minimum(np.abs(np.asarray(dpsi_rad, dtype=np.float64)), 0.5 * np.pi)
+    return np.cos(d)
+
+
 def frequency_length(f_hz: np.ndarray, a: float, b: float) -> np.ndarray:
     """Step length linear in step frequency (seed 001 eq. 23; seed 000 sec. II-D): ``SL = a f - b``."""
     return a * np.asarray(f_hz, dtype=np.float64) - b

@@ -33,6 +33,8 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     st = res.steps[res.steps["has_next"]]
     g = (K.pendulum_length(st["h_m"].to_numpy(float), p.leg_m, k=1.0, f=0.0) if "h_m" in st
          else np.zeros(len(st)))
+    if res.info.get("options", {}).get("turn_factor") and "dyaw_rad" in st:  # the same model as tracking (W19)
+        g = g * K.turning_step_factor(st["dyaw_rad"].to_numpy(float))
     f = st["frequency_hz"].to_numpy(float)
     mid = 0.5 * (st["start_s"].to_numpy(float) + st["end_s"].to_numpy(float))
     if distance_m is not None:
