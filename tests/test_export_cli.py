@@ -118,12 +118,12 @@ def test_round_trip_export_run_on_a_simulated_session(tmp_path, capsys):
 
     cal = [sim.simulate(sc, 0) for sc in ("terrain", "direction", "length")]
     train_user(cal, cv=2, seed=0, methods=["svm"]).save(tmp_path / "model")
-    bounds = cal[2].meta.get("length_class_bounds_m")
-    argv = ["export", str(tmp_path / "model"), "--out", str(tmp_path / "bundle"), "--json"]
-    if bounds:
-        argv += ["--length-bounds", ",".join(str(b) for b in bounds)]
-    assert main(argv) == 0
+    assert main(["export", str(tmp_path / "model"), "--out", str(tmp_path / "bundle"), "--json"]) == 0
     capsys.readouterr()
+    # the user's stride-length bounds recorded at training (from the exercise's meta) reach the bundle
+    disp = json.loads((tmp_path / "bundle" / "manifest.json").read_text())["displacement"]
+    e1, e2 = cal[2].meta["length_class_bounds_m"]
+    assert disp["length_bounds_m"]["normal"] == pytest.approx([e1, e2])
     a = sim.simulate("A", 0)
     write_session(a, tmp_path / "A")
     assert main(["run", str(tmp_path / "bundle"), str(tmp_path / "A"), "--out", str(tmp_path / "run"),
