@@ -24,6 +24,7 @@ from pdrlearn.io import read_session
 from pdrlearn.track import get_pipeline
 from pdrlearn.waist.calibration import calibrate
 from pdrlearn.waist.evaluate import waist_metrics
+from pdrlearn.waist.params import resolve_params
 
 ROOT = Path(__file__).resolve().parents[1]
 PAPERS = {
@@ -36,9 +37,13 @@ RUNS = [  # (calibration sessions, test session)
     (["mobgap_HA001_Test5_Trial1"], "mobgap_HA001_Test5_Trial2"),
     (["mobgap_HA001_Test5_Trial2"], "mobgap_HA001_Test5_Trial1"),
     (["mobgap_HA001_Test5_Trial1", "mobgap_HA001_Test5_Trial2"], "mobgap_HA001_Test11_Trial1"),
+    # the other direction of leave-one-recording-out: calibrated on daily activities, tested on a walk
+    (["mobgap_HA001_Test11_Trial1"], "mobgap_HA001_Test5_Trial1"),
+    (["mobgap_HA001_Test11_Trial1"], "mobgap_HA001_Test5_Trial2"),
 ]
 CONFIGS = [  # (label, pipeline, options)
     ("waist-pendulum", "waist-pendulum", {}),
+    ("waist-pendulum papers (no W18/W19)", "waist-pendulum", {"rhythm": False, "turn_factor": False}),
     ("waist-pendulum realtime", "waist-pendulum", {"realtime": True}),
     ("waist-pll (A-HE)", "waist-pll", {}),
     ("waist-pll ellipse", "waist-pll", {"heading": "ellipse"}),
@@ -93,7 +98,9 @@ def real(data: Path) -> pd.DataFrame:
         cal = [read_session(data / n) for n in cal_names]
         test = read_session(data / test_name)
         for label, pipeline, opts in CONFIGS:
-            params = calibrate(cal, pipeline)
+            base, _ = resolve_params(cal[0], None)
+            base.options = dict(opts)  # calibrate with the same pipeline options as the test
+            params = calibrate(cal, pipeline, params=base)
             for kind, p in (("calibrated", params), ("defaults", None)):
                 res = get_pipeline(pipeline)(test, params=p, **opts)
                 m = waist_metrics(res.steps, test)
@@ -119,7 +126,9 @@ def simulated(users: list[int]) -> pd.DataFrame:
         cal = simulate("walk", u, "normal", rate_hz=100.0, seed=1, length_m=60.0)
         tests = {sc: simulate(sc, u, "normal", rate_hz=100.0) for sc in "ABCD"}
         for label, pipeline, opts in CONFIGS:
-            params = calibrate([cal], pipeline, distances=[60.0])
+            base, _ = resolve_params(cal, None)
+            base.options = dict(opts)
+            params = calibrate([cal], pipeline, distances=[60.0], params=base)
             for sc, s in tests.items():
                 res = get_pipeline(pipeline)(s, params=params, **opts)
                 ev = evaluate_track(res, s)

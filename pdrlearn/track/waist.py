@@ -61,8 +61,8 @@ def _sequences(steps: pd.DataFrame) -> list[np.ndarray]:
     return seqs
 
 
-def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine_ic: bool = True
-               ) -> pd.DataFrame:
+def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine_ic: bool = True,
+               rhythm: bool = True) -> pd.DataFrame:
     """Step events of seed 000: the peaks of :class:`pdrlearn.steps.PLLStepDetector` while walking,
     moved to the initial contact next to them when ``refine_ic`` (decision W11)."""
     # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
@@ -71,7 +71,7 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine
     idx = np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t) - 1)
     idx = idx[walking_gate(imu, walk_threshold=walk_threshold)[idx]]
     if refine_ic:
-        idx = refine_to_contacts(imu, idx, walk_threshold=walk_threshold)
+        idx = refine_to_contacts(imu, idx, walk_threshold=walk_threshold, rhythm=rhythm)
     return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector="pll+ic" if refine_ic else "pll")
 
 
@@ -208,13 +208,13 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
 
 #: pipeline options a PARAMS.json may set under "options" (so ``pdrlearn track --params`` reaches them)
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
-                   "resolve_signs": True, "integrate_stops": False, "turn_factor": True}
+                   "resolve_signs": True, "integrate_stops": False, "turn_factor": True, "rhythm": True}
 
 
 def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool | None = None,
                 heading: str | None = None, refine_ic: bool | None = None, initial_heading: float | None = None,
                 resolve_signs: bool | None = None, integrate_stops: bool | None = None,
-                turn_factor: bool | None = None) -> TrackResult:
+                turn_factor: bool | None = None, rhythm: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -234,6 +234,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         standing); seed 003 integrates only during walking, so the default is False
     turn_factor : shorten steps during which the pelvis turns, ``x cos(turn)`` (decision W19; the papers'
         models assume straight steps); default True
+    rhythm : offline IC detector (pendulum, and the PLL's IC refinement): complete walking sequences at
+        the gait rhythm (decision W18); default True
 
     Options left at ``None`` take the value of ``params.options`` (a PARAMS.json ``"options"`` object)
     and else :data:`OPTION_DEFAULTS`.
@@ -243,7 +245,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     p, warnings = resolve_params(session, params)
     given = {"realtime": realtime, "heading": heading, "refine_ic": refine_ic,
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
-             "integrate_stops": integrate_stops, "turn_factor": turn_factor}
+             "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm}
     unknown = sorted(set(p.options or {}) - set(OPTION_DEFAULTS))
     if unknown:
         raise DataError(f"params options: unknown {', '.join(unknown)}; use some of {', '.join(OPTION_DEFAULTS)}")
@@ -257,11 +259,12 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     imu = waist_imu(session)
     thr = p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None else WALK_THRESHOLD_MPS2
     if pipeline == "waist-pendulum":
-        det = InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S).detect(imu)
+        det = InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
+                                     rhythm=bool(o["rhythm"])).detect(imu)
         steps = det.steps_
         method = heading or "gyro"
     else:
-        steps = _pll_steps(session, imu, thr, refine_ic=refine_ic)
+        steps = _pll_steps(session, imu, thr, refine_ic=refine_ic, rhythm=bool(o["rhythm"]))
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")

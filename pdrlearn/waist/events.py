@@ -112,10 +112,10 @@ class InitialContactDetector:
 
 
 def refine_to_contacts(imu: WaistIMU, idx: np.ndarray, *, walk_threshold: float = WALK_THRESHOLD_MPS2,
-                       max_shift_s: float = 0.3) -> np.ndarray:
+                       max_shift_s: float = 0.3, rhythm: bool = True) -> np.ndarray:
     """Move step events found at vertical-acceleration peaks (e.g. PLL peaks) to the initial contact of
     the nearest vertical maximum within ``max_shift_s`` (decision W11); others are kept. Sorted, unique."""
-    det = InitialContactDetector(walk_threshold=walk_threshold).detect(imu)
+    det = InitialContactDetector(walk_threshold=walk_threshold, rhythm=rhythm).detect(imu)
     idx = np.asarray(idx, dtype=int)
     if det.anchor_.size == 0 or idx.size == 0:
         return np.unique(idx)
