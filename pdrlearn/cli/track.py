@@ -41,9 +41,11 @@ def track(
 
     Examples:
 
-        pdrlearn track datasets/real/gaitmap_level_right --method M2 --out out/track
+        pdrlearn track datasets/real/gaitmap_level_right --method M3 --model oracle --out out/track
 
-        pdrlearn track out/sim/A --method M3 --model models/user1 --start 41.178,-8.608 --out out/A --json
+        pdrlearn track out/sim/D --method M2 --start 41.178,-8.608 --out out/D
+
+        pdrlearn track out/sim/D --method M3 --model models/user1 --rules bayes --out out/D3 --json
     """
     from pdrlearn.io import read_session
     from pdrlearn.track.base import get_pipeline
