@@ -199,9 +199,18 @@ class FootDisplacement:
         init = None
         if self.attitude == "kalman" and B:
             # the angle filter runs at the native rate; its angles at the stride starts set the attitude
-            att = FootAttitude().estimate(unit.acc, unit.gyr, fs0, zupt0)
+            # the angle filter needs no more than ~50 Hz: faster streams are block-averaged first
+            m = max(1, int(fs0 // 50.0))
+            n_m = (len(unit.t) // m) * m
+            if m > 1:
+                a_m = unit.acc[:n_m].reshape(-1, m, 3).mean(axis=1)
+                g_m = unit.gyr[:n_m].reshape(-1, m, 3).mean(axis=1)
+                z_m = zupt0[:n_m].reshape(-1, m).all(axis=1)
+            else:
+                a_m, g_m, z_m = unit.acc, unit.gyr, zupt0
+            att = FootAttitude().estimate(a_m, g_m, fs0 / m, z_m)
             self.attitude_ = att
-            j0 = np.clip(i0 // k, 0, len(unit.t) - 1)
+            j0 = np.clip(i0 // (k * m), 0, len(att.roll_) - 1)
             init = Rotation.from_euler("YX", np.column_stack([att.pitch_[j0], att.roll_[j0]]))  # Ry(p) Rx(r)
         bias = None
         if self.gyro_bias == "stance" and B:
