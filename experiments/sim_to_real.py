@@ -1,14 +1,21 @@
 """Sim-to-real study: terrain classifiers trained on simulated users only vs trained on real recordings.
 
 1. sim -> real: train each method (foot unit; the real recordings have no waist unit) on the terrain
-   calibration exercises of N simulated users, test on every labelled stride of the real foot recordings.
-2. real -> real: stratified k-fold cross-validation on the real recordings themselves.
-3. The gap per method (points of accuracy).
+   calibration exercises of N simulated users, test on every labelled stride of the real foot recordings
+   (all together, and each recording separately).
+2. real -> real: stratified k-fold cross-validation on the real recordings themselves; with ``--loro``
+   also leave-one-recording-out (train on 3 real recordings, test on the 4th: harder, because the folds no
+   longer share a recording, and the stairs recordings are the only source of their class).
+3. The gap per method (points of accuracy, sim->real vs real CV).
+4. ``--diagnose``: per terrain class, the median of every foot terrain-SVM feature
+   (``TerrainSVMFeatures(unit="foot")``) and of the segment means of ``SegmentFeatures`` on the simulated
+   strides and on each real recording (where the classifier's view of the two differs).
 
 Only terrain is studied: the real foot recordings carry terrain labels only (direction is always forward,
-and the stair strides have no reference length). Writes experiments/results/sim_to_real.md|csv.
+and the stair strides have no reference length). Writes experiments/results/sim_to_real.md|csv
+(``sim_to_real_<rate>hz.*`` when ``--rate`` is not 20).
 
-    .venv/bin/python experiments/sim_to_real.py [--users 4] [--cv 5]
+    .venv/bin/python experiments/sim_to_real.py [--users 2] [--cv 5] [--rate 20] [--loro] [--diagnose]
 """
 
 from __future__ import annotations
@@ -18,9 +25,11 @@ import logging
 import time
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
 from pdrlearn.classify import evaluate_model, train_user
+from pdrlearn.errors import DataError
 from pdrlearn.io import read_session
 from pdrlearn.sim import simulate
 
@@ -29,57 +38,154 @@ REAL = ROOT / "datasets" / "real"
 RESULTS = ROOT / "experiments" / "results"
 REAL_FOOT = ["gaitmap_level_left", "gaitmap_level_right", "gaitmap_stairs_up_left", "gaitmap_stairs_down_left"]
 METHODS = ["heuristic", "dtw", "svm", "nn"]
+CLASSES = ("flat", "up", "down")
+
+
+def _foot_accuracy(ev: dict, method: str) -> dict | None:
+    return ev["methods"].get(method, {}).get("units", {}).get("foot")
+
+
+def simulate_users(users: int, rate_hz: float) -> list:
+    """Terrain calibration exercises of ``users`` simulated users at three speeds."""
+    return [simulate("terrain", user_seed=u, speed=sp, rate_hz=rate_hz) for u in range(1, users + 1)
+            for sp in ("slow", "normal", "fast")]
+
+
+def feature_table(sessions, label: str) -> pd.DataFrame:
+    """Per-stride foot terrain features (SVM peaks + segment means), with the stride's terrain label."""
+    from pdrlearn.features import SegmentFeatures, TerrainSVMFeatures, step_windows
+
+    frames = []
+    for s in sessions:
+        steps = s.steps[s.steps["terrain"].isin(CLASSES)]
+        if "steady" in steps:  # simulated: clean class examples only
+            steps = steps[steps["steady"].astype(bool)]
+        if not len(steps):
+            continue
+        w = step_windows(s, steps)
+        svm = TerrainSVMFeatures(unit="foot").fit(w.X)
+        seg = SegmentFeatures(channels=("foot_acc_v", "foot_pitch")).fit(w.X)
+        f = pd.DataFrame(svm.transform(w.X), columns=svm.get_feature_names_out())
+        g = pd.DataFrame(seg.transform(w.X), columns=seg.get_feature_names_out())
+        f = pd.concat([f, g[[c for c in g.columns if c.endswith("_mean")]]], axis=1)
+        f["terrain"] = steps["terrain"].to_numpy()
+        f["source"] = label if label else s.name
+        frames.append(f)
+    return pd.concat(frames, ignore_index=True)
+
+
+def diagnose(sims, real) -> str:
+    """Markdown table: per class and feature, sim median [IQR] vs the median of each real recording."""
+    df = pd.concat([feature_table(sims, "sim"), feature_table(real, "")], ignore_index=True)
+    feats = [c for c in df.columns if c not in ("terrain", "source")]
+    rows = []
+    for cls in CLASSES:
+        d = df[df["terrain"] == cls]
+        srcs = [s for s in ["sim", *REAL_FOOT] if ((d["source"] == s).sum() >= 3)]
+        for f in feats:
+            row = {"class": cls, "feature": f}
+            for s in srcs:
+                v = d.loc[d["source"] == s, f]
+                row[s.replace("gaitmap_", "")] = f"{v.median():.2f}"
+                if s == "sim":
+                    row["sim IQR"] = f"{v.quantile(0.25):.2f}..{v.quantile(0.75):.2f}"
+            rows.append(row)
+    return pd.DataFrame(rows).fillna("").to_markdown(index=False)
+
+
+def loro(real, args) -> dict:
+    """Leave-one-recording-out real-trained accuracy per method, pooled over the held-out recordings whose
+    classes the other three recordings contain (a stairs recording is the only source of its class)."""
+    hits = {m: [] for m in METHODS}
+    per_rec = {}
+    for i, test in enumerate(real):
+        train = [r for j, r in enumerate(real) if j != i]
+        try:
+            model = train_user(train, tasks=["terrain"], methods=METHODS, units=["foot"], cv=3, seed=args.seed,
+                               user="real-loro")
+        except DataError as exc:  # the held-out recording is the only source of a class (the stairs)
+            logging.warning("LORO: %s not scored: %s", test.name, exc)
+            continue
+        ev = evaluate_model(model, [test], latency=False)["tasks"]["terrain"]
+        n = ev["n_steps"]
+        for m in METHODS:
+            r = _foot_accuracy(ev, m)
+            if r is not None:
+                hits[m].append((r["accuracy"] * n, n))
+                per_rec[(m, test.name)] = 100 * r["accuracy"]
+    return {m: 100 * sum(h for h, _ in v) / max(sum(n for _, n in v), 1) for m, v in hits.items()}, per_rec
 
 
 def main(argv: list[str] | None = None) -> pd.DataFrame:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--users", type=int, default=4, help="simulated users to train on")
+    ap.add_argument("--users", type=int, default=2, help="simulated users to train on (x 3 speeds)")
     ap.add_argument("--cv", type=int, default=5, help="folds of the real-data cross-validation")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--rate", type=float, default=20.0,
                     help="simulated output rate (Hz); the real foot recordings are 204.8 Hz")
+    ap.add_argument("--loro", action="store_true", help="also leave-one-recording-out real-trained accuracy")
+    ap.add_argument("--diagnose", action="store_true", help="also per-class feature medians sim vs real")
+    ap.add_argument("--no-write", action="store_true", help="print only, do not write experiments/results")
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.WARNING)
 
+    t_all = time.perf_counter()
     real = [read_session(REAL / n) for n in REAL_FOOT]
     t0 = time.perf_counter()
-    sims = [simulate("terrain", user_seed=u, speed=sp, rate_hz=args.rate) for u in range(1, args.users + 1)
-            for sp in ("slow", "normal", "fast")]
+    sims = simulate_users(args.users, args.rate)
     sim_s = time.perf_counter() - t0
     sim_model = train_user(sims, tasks=["terrain"], methods=METHODS, units=["foot"], cv=3, seed=args.seed,
                            user="simulated")
     sim_eval = evaluate_model(sim_model, real, latency=False)["tasks"]["terrain"]
+    per_rec = {r.name: evaluate_model(sim_model, [r], latency=False)["tasks"]["terrain"] for r in real}
     real_model = train_user(real, tasks=["terrain"], methods=METHODS, units=["foot"], cv=args.cv,
                             seed=args.seed, user="real")
+    loro_acc, loro_rec = loro(real, args) if args.loro else ({}, {})
     rows = []
     for m in METHODS:
         real_cv = real_model.tasks["terrain"].cv[m]["foot"]
-        s2r = sim_eval["methods"].get(m, {}).get("units", {}).get("foot")
-        rows.append({
+        s2r = _foot_accuracy(sim_eval, m)
+        row = {
             "method": m,
             "sim->real accuracy %": 100 * s2r["accuracy"] if s2r else float("nan"),
             "sim->real balanced %": 100 * s2r["balanced_accuracy"] if s2r else float("nan"),
             "real CV accuracy %": 100 * real_cv["accuracy"],
-            "real CV balanced %": 100 * real_cv["balanced_accuracy"],
             "gap (points)": 100 * (real_cv["accuracy"] - s2r["accuracy"]) if s2r else float("nan"),
-            **{f"sim->real {c} %": 100 * s2r["per_class"][c] for c in sim_eval["classes"] if s2r},
-        })
+        }
+        if args.loro:
+            row["real LORO accuracy %"] = loro_acc.get(m, float("nan"))
+            row["gap to LORO"] = row["real LORO accuracy %"] - row["sim->real accuracy %"]
+        for name, ev in per_rec.items():
+            r = _foot_accuracy(ev, m)
+            row[f"sim->{name.replace('gaitmap_', '')} %"] = 100 * r["accuracy"] if r else float("nan")
+        rows.append(row)
     df = pd.DataFrame(rows)
-    RESULTS.mkdir(parents=True, exist_ok=True)
-    df.to_csv(RESULTS / "sim_to_real.csv", index=False)
     n_real = sim_eval["n_steps"]
     text = (
-        "# Sim-to-real: terrain (foot unit)\n\n"
+        f"# Sim-to-real: terrain (foot unit), simulator at {args.rate:g} Hz\n\n"
         f"Trained on {len(sims)} simulated terrain exercises ({args.users} users x 3 speeds, {args.rate:g} Hz, "
         f"{sum(len(s.steps) for s in sims)} strides, simulated in {sim_s:.1f} s); tested on the {n_real} "
-        f"labelled strides of the real foot recordings ({', '.join(REAL_FOOT)}). Real CV = {args.cv}-fold "
-        "stratified cross-validation on the real strides.\n\n"
-        + df.to_markdown(index=False, floatfmt=".1f") + "\n"
+        f"labelled strides of the real foot recordings ({', '.join(REAL_FOOT)}), pooled and per recording. "
+        f"Real CV = {args.cv}-fold stratified cross-validation on the real strides"
+        + ("; real LORO = train on 3 real recordings, test on the 4th (pooled over the held-out recordings "
+           "whose classes the other three contain)" if args.loro else "")
+        + ".\n\n" + df.to_markdown(index=False, floatfmt=".1f") + "\n"
     )
-    (RESULTS / "sim_to_real.md").write_text(text)
+    if args.loro:
+        text += "\nLORO per held-out recording (%): " + ", ".join(
+            f"{m}/{n.replace('gaitmap_', '')} {v:.0f}" for (m, n), v in loro_rec.items()) + "\n"
+    if args.diagnose:
+        text += "\n## Per-class feature medians (foot; sim = steady strides)\n\n" + diagnose(sims, real) + "\n"
+    text += f"\n(run time {time.perf_counter() - t_all:.0f} s)\n"
+    if not args.no_write:
+        RESULTS.mkdir(parents=True, exist_ok=True)
+        stem = "sim_to_real" if args.rate == 20.0 else f"sim_to_real_{args.rate:g}hz"
+        df.to_csv(RESULTS / f"{stem}.csv", index=False)
+        (RESULTS / f"{stem}.md").write_text(text)
     print(text)
     return df
 
 
 if __name__ == "__main__":
+    np.seterr(all="ignore")
     main()

@@ -58,8 +58,10 @@ class StepKind:
 KINDS = {
     "walk": StepKind(1.00, 1.00, None, None, (0.55, -0.85), None),
     "close": StepKind(1.00, 0.60, None, None, (0.35, -0.6), 0.15),
-    "stairs_up": StepKind(0.95, 0.75, 8.0, 6.0, (0.9, -1.5), 0.11),
-    "stairs_down": StepKind(0.82, 0.85, -22.0, -12.0, (0.3, -1.1), 0.09),
+    # stairs up: fore/midfoot placement on the tread, no heel rocker (decisions S15)
+    "stairs_up": StepKind(0.95, 0.75, -2.0, -5.0, (0.9, -1.5), 0.11),
+    # stairs down: the foot is plantarflexed early in swing and lowered toes first (decisions S15)
+    "stairs_down": StepKind(0.82, 0.85, -22.0, -20.0, (0.3, -1.1), 0.09),
     "backward": StepKind(1.20, -0.30, -15.0, None, (0.30, -0.6), 0.09),
     "turn": StepKind(1.10, 0.25, 3.0, None, (0.05, -0.3), 0.05),
 }
@@ -247,10 +249,14 @@ def foot_pose(
         knots_u = np.array([0.0, 0.38, 0.72, 1.0])
         frac = np.array([0.0, 0.3, 0.8, 1.0])
         kp = heel_to[None, :] + frac[:, None] * (heel_ic - heel_to)[None, :]
-        # early swing: half of any rise to the next tread plus the clearance (stairs are climbed gradually)
+        drop = max(0.0, h_a[2] - h_b[2])
+        # early swing: half of any rise to the next tread plus the clearance (stairs are climbed gradually);
+        # a descending foot only clears the edge of its own tread and is already on its way down (S15)
         kp[1, 2] = max(h_a[2] + clear + 0.5 * (zmax - h_a[2]), heel_to[2] + 0.3 * clear)
+        if drop > 0:
+            kp[1, 2] = max(h_a[2] + 0.5 * clear, heel_to[2] - 0.25 * drop)
         # late swing: over the landing tread, with part of a descent still to go (stairs down)
-        kp[2, 2] = h_b[2] + 0.3 * clear + 0.35 * max(0.0, h_a[2] - h_b[2]) if h_b[2] < h_a[2] else zmax + 0.3 * clear
+        kp[2, 2] = h_b[2] + 0.3 * clear + 0.2 * drop if drop > 0 else zmax + 0.3 * clear
         kp[0], kp[3] = heel_to, heel_ic
         sl = slice(i_to, i_ic)
         heel[sl] = clamped_spline(ev.to[k] + knots_u * swing, kp, v_to, v_ic, t[sl])
