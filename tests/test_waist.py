@@ -456,3 +456,18 @@ def test_turn_factor_shortens_turning_steps_only():
     assert ratio == pytest.approx(np.cos(1.0 / 1.8), abs=0.05)
     st = runs["turning", True][1]
     assert np.median(st.loc[st["has_next"], "dyaw_rad"]) == pytest.approx(1.0 / 1.8, rel=0.1)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.floats(0.0, 2.0), min_size=0, max_size=40), st.integers(0, 2**16))
+def test_rhythm_complete_properties(heights, seed):
+    fs = 100.0
+    rng = np.random.default_rng(seed)
+    cand = np.cumsum(rng.integers(30, 120, len(heights))).astype(int)   # >= 0.3 s apart
+    h = np.asarray(heights, dtype=float)
+    accepted = (h >= 0.1) & (rng.random(len(h)) < 0.8)
+    keep = K.rhythm_complete(cand, h, accepted, fs, min_peak=0.1)
+    assert keep.shape == accepted.shape and keep.dtype == bool
+    assert np.all(keep[accepted])                                         # never drops an accepted maximum
+    assert K.integrate_rate(np.arange(5.0), np.ones(5), np.array([0.0, 1.0]), np.array([2.0, 4.0])) \
+        == pytest.approx([2.0, 3.0])

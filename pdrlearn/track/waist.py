@@ -149,9 +149,7 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
         lengths = np.where(has_next, frequency_lengths(np.nan_to_num(freq, nan=0.0), p, running=running), 0.0)
     ev = steps["event_s"].to_numpy(float)
     end = steps["end_s"].to_numpy(float)
-    w_z = imu.w_z - p.gyro_bias_rps
-    dyaw = np.array([K.integrate_rate(imu.t, w_z, a, b) if hn else 0.0
-                     for a, b, hn in zip(ev, end, has_next, strict=True)])
+    dyaw = np.where(has_next, K.integrate_rate(imu.t, imu.w_z - p.gyro_bias_rps, ev, end), 0.0)
     if turn_factor:
         lengths = lengths * K.turning_step_factor(dyaw)
     return steps.assign(length_m=lengths, frequency_hz=freq, dyaw_rad=dyaw)

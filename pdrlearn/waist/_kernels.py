@@ -541,7 +541,9 @@ def mean_rate_per_stride(t: np.ndarray, w_z: np.ndarray, events: np.ndarray) -> 
     return out
 
 
-def integrate_rate(t: np.ndarray, w_z: np.ndarray, t0: float, t1: float) -> float:
-    """Integral of ``w_z`` over ``[t0, t1]`` (rad), trapezoidal with interpolated ends."""
+def integrate_rate(t: np.ndarray, w_z: np.ndarray, t0, t1):
+    """Integral of ``w_z`` over ``[t0, t1]`` (rad), trapezoidal with interpolated ends. ``t0``/``t1``
+    may be arrays (one integral per pair, one pass over the signal); scalars give a float."""
     cum = np.concatenate([[0.0], np.cumsum(0.5 * (w_z[1:] + w_z[:-1]) * np.diff(t))])
-    return float(np.interp(t1, t, cum) - np.interp(t0, t, cum))
+    out = np.interp(t1, t, cum) - np.interp(t0, t, cum)
+    return float(out) if np.ndim(out) == 0 else out
