@@ -67,3 +67,13 @@ def test_foot_detectors_with_dropped_packets():
     for name in ("accel", "accel-force"):
         sc = score_steps(get_detector(name).detect(s), s)
         assert sc["f1"] >= 0.97, (name, sc)
+
+
+def test_accel_detector_slow_swing_is_one_stride_at_20hz():
+    # at 20 Hz a single quiet sample in the middle of a slow swing must not split the stride
+    # (MIN_STILL_SAMPLES, docs/decisions/steps.md)
+    for scenario, user in (("A", 3), ("B", 3)):
+        s = _sim(scenario, user, "slow")
+        assert s["fAccelerometer"].rate_hz == pytest.approx(20.0)
+        sc = score_steps(get_detector("accel").detect(s), s)
+        assert sc["false_positives"] <= 1 and sc["recall"] >= 0.95, (scenario, sc)

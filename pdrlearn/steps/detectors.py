@@ -68,6 +68,11 @@ class _GravityTracker:
 
 
 # ---------------------------------------------------------------------------------------------------
+#: a still period that ends a swing needs at least this many samples, whatever min_still_s gives: at
+#: 20 Hz one quiet sample in the middle of a slow swing split strides in two (docs/decisions/steps.md)
+MIN_STILL_SAMPLES = 2
+
+
 class _AccelProcessor:
     def __init__(self, det: AccelStepDetector, fs: float):
         self.det = det
@@ -78,7 +83,7 @@ class _AccelProcessor:
         self.tail: np.ndarray | None = None
         self.state = BurstState()
         self.params = BurstParams(
-            amp=det.threshold, min_still_n=max(1, int(round(det.min_still_s * fs))),
+            amp=det.threshold, min_still_n=max(MIN_STILL_SAMPLES, int(round(det.min_still_s * fs))),
             min_dur_s=det.min_swing_s, max_dur_s=det.max_swing_s, min_stride_s=det.min_stride_s,
             rest=det.gravity, peak_frac=det.peak_frac)
 
