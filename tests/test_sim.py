@@ -441,3 +441,57 @@ def test_edge_cases_of_custom_paths():
         simulate_path([Stairs(0)], user)
     s = simulate_path([Turn(0.0), Stand(1.0)], user, seed=None)
     assert s.steps is None and s.duration_s == pytest.approx(11.0, abs=0.1)
+
+
+def _peak_lag_ms(t, sig, ics, half_window_s=0.25):
+    lags = []
+    for ic in ics:
+        m = (t >= ic - half_window_s) & (t <= ic + half_window_s)
+        lags.append(t[m][np.argmax(sig[m])] - ic)
+    return 1e3 * float(np.median(lags))
+
+
+def test_waist_forward_acc_and_yaw_rate_peak_near_contact(exact_a):
+    """Decisions S17: as on the real lower back (mobgap: forward-acc peak -30..-110 ms, |yaw rate| peak
+    -70..+50 ms from IC), not 0.15-0.2 s before / mid-step as with sinusoidal surge and rotation."""
+    acc, gyr = exact_a["wAccelerometer"], exact_a["wGyroscope"]
+    st = exact_a.steps[exact_a.steps.steady]
+    ics = exact_a.extras["ics"]["ic_s"].to_numpy()
+    ics = ics[(ics > st.start_s.min()) & (ics < st.end_s.max())]
+    fwd = acc.values[:, 2]  # waist frame: z forward
+    assert abs(_peak_lag_ms(acc.t, fwd, ics)) < 60
+    assert abs(_peak_lag_ms(gyr.t, np.abs(gyr.values[:, 1]), ics)) < 80  # y up: yaw rate
+
+
+def test_skewed_phase_and_sawtooth_kernels():
+    from pdrlearn.sim.kernels import sawtooth_surge, skewed_phase
+
+    ph = np.linspace(-2.0, 4.0, 6001)
+    w = skewed_phase(ph, shift=-0.2, skew=0.6, centre=0.1)
+    assert np.all(np.diff(w) > 0)  # monotone
+    np.testing.assert_allclose(skewed_phase(np.arange(-2.0, 4.0) - 0.2, shift=-0.2, skew=0.6, centre=0.1),
+                               np.arange(-2.0, 4.0), atol=1e-12)  # integers of ph - shift map to integers
+    rate = np.gradient(w, ph)
+    assert abs(ph[np.argmax(rate[:1000])] % 1.0 - (0.1 - 0.2) % 1.0) < 0.01  # fastest `centre` after
+    acc = np.gradient(np.gradient(sawtooth_surge(ph, drop=0.1), ph), ph)  # x'': rising sawtooth
+    k = np.argmax(acc[(ph >= 0.5) & (ph < 1.5)])
+    assert -0.2 < ph[(ph >= 0.5) & (ph < 1.5)][k] - 1.0 < 0.05  # peaks just before the drop at 1 + 0.1
+
+
+def test_stairs_up_lands_without_heel_rocker_and_down_lowers_early():
+    """Decisions S15: ascending steps land fore/midfoot (no heel-first pitch), descending ones are pointed
+    before contact and start down right after toe-off."""
+    s = simulate("terrain", 1, rate_hz=100, noise=False)
+    ft = s.extras["foot_trajectory"]
+    t = ft["t_s"].to_numpy()
+    pitch = np.asarray([Rotation.from_quat([r.qx, r.qy, r.qz, r.qw]).as_euler("ZYX")[1] for r in ft.itertuples()])
+    z = ft["z"].to_numpy()
+    st = s.steps[s.steps.steady]
+    for row in st[st.terrain == "up"].itertuples():
+        i = np.searchsorted(t, row.ic_s)
+        assert np.degrees(-pitch[i]) < 1.0  # not toes-up at contact (body pitch < 0 = toes up in FLU)
+    for row in st[st.terrain == "down"].itertuples():
+        i_to, i_ic = np.searchsorted(t, [row.tc_s, row.ic_s])
+        i_mid = (i_to + i_ic) // 2
+        assert z[i_to:i_mid].max() < z[i_to] + 0.05  # no lift by the clearance after toe-off
+        assert z[i_mid] < z[i_to]  # already going down at mid-swing

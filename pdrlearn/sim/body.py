@@ -24,6 +24,8 @@ from pdrlearn.sim.kernels import (
     foot_rotate_dtheta,
     foot_rotation,
     hermite,
+    sawtooth_surge,
+    skewed_phase,
     smoothstep,
 )
 from pdrlearn.sim.path import Footstep
@@ -291,6 +293,9 @@ def foot_pose(
 TRUNK_ACC_SD = (0.5, 0.45, 0.6)  # m/s^2 forward, left, up: irregular trunk accelerations while walking
 TRUNK_RATE_SD = (0.08, 0.06, 0.06)  # rad/s yaw, pitch, roll
 TRUNK_BAND_HZ = (1.5, 7.0)
+SURGE_DROP_STEP = 2 * LOAD_FRACTION / 2  # centre of the loading response (LOAD_FRACTION of a cycle), in steps
+PELVIS_YAW_LEAD_STEP = -0.2  # pelvic rotation extreme 0.2 step before contact (terminal swing)
+PELVIS_YAW_SKEW = 0.6  # reversal rate 1.6x the mean around contact, 0.4x in mid single support
 
 
 def trunk_vibration(t: np.ndarray, rng: np.random.Generator, target_sd: tuple[float, ...]) -> np.ndarray:
@@ -378,9 +383,15 @@ def pelvis_pose(
     else:
         ph = np.zeros_like(t)
     bounce = -env * 0.5 * user.pelvis_bounce_m * (1.0 + np.cos(2 * np.pi * ph))
-    surge = env * 0.012 * np.sin(2 * np.pi * ph)
+    # forward surge of an inverted pendulum: the trunk accelerates forward through single support until
+    # the next contact and is braked in the loading response (lower-trunk forward acceleration peaks at
+    # initial contact, Zijlstra & Hof 2003); the drop is centred in the loading response (decisions S17)
+    surge = env * 0.012 * sawtooth_surge(ph, drop=SURGE_DROP_STEP)
     sway = -env * user.pelvis_sway_m * np.sin(np.pi * ph)
-    yaw_osc = env * np.radians(user.pelvis_rotation_deg) * np.cos(np.pi * ph)
+    # pelvic rotation: extreme in terminal swing, reversed quickly around contact and slowly through
+    # single support, so the yaw rate peaks near initial contact as on the real lower back (S17)
+    yaw_ph = skewed_phase(ph, shift=PELVIS_YAW_LEAD_STEP, skew=PELVIS_YAW_SKEW, centre=0.1)
+    yaw_osc = env * np.radians(user.pelvis_rotation_deg) * np.cos(np.pi * yaw_ph)
     roll = -env * np.radians(user.pelvis_obliquity_deg) * np.sin(np.pi * ph)
     tilt = env * np.radians(1.5) * np.cos(2 * np.pi * ph)
 

@@ -138,6 +138,26 @@ def clamped_spline(tk: np.ndarray, yk: np.ndarray, d0: np.ndarray, d1: np.ndarra
     )
 
 
+def skewed_phase(ph: np.ndarray, *, shift: float, skew: float, centre: float) -> np.ndarray:
+    """Monotone warp of a step phase (1 per step) that runs fastest ``centre`` steps after each
+    integer of ``ph - shift``: integers map to integers, the warp's rate is 1 + skew cos(2 pi (u - centre)).
+
+    ``skew`` in [0, 1) (0 = identity shifted by ``shift``); smooth and periodic in the step.
+    """
+    x = np.asarray(ph, dtype=float) - shift
+    k = np.floor(x)
+    u = x - k
+    return k + u + skew / (2 * np.pi) * (np.sin(2 * np.pi * (u - centre)) + np.sin(2 * np.pi * centre))
+
+
+def sawtooth_surge(ph: np.ndarray, *, drop: float, harmonics: int = 3) -> np.ndarray:
+    """Unit-amplitude forward displacement whose 2nd derivative is a band-limited rising sawtooth in the
+    step phase ``ph``: slowly increasing forward acceleration, dropping around ``drop`` steps after each
+    integer (sum of sin(2 pi n q) / n^3, n = 1..harmonics)."""
+    q = np.asarray(ph, dtype=float) - drop
+    return sum(np.sin(2 * np.pi * n * q) / n**3 for n in range(1, harmonics + 1))
+
+
 def smoothstep(u: np.ndarray) -> np.ndarray:
     """C2 quintic ramp 0 -> 1 on ``u`` in [0, 1] (clipped outside)."""
     u = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
