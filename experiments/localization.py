@@ -75,12 +75,18 @@ def heading_metrics(result, session) -> dict:
     return out
 
 
-def train_model(simulate, user: int, quick: bool):
-    """Train the user's classifiers on their calibration exercises; None when classify is unavailable."""
+def train_model(simulate, user: int, quick: bool, cache: Path | None = None):
+    """Train the user's classifiers on their calibration exercises; None when classify is unavailable.
+    With ``cache``, a model saved there by an earlier run (same user, same quick flag) is reused."""
     try:
-        from pdrlearn.classify import train_user
+        from pdrlearn.classify import load_model, train_user
     except (ImportError, AttributeError):
         return None, "oracle (pdrlearn.classify.train_user unavailable)"
+    how = "SVM only, 3-fold CV" if quick else "all methods, 5-fold CV, best fused method"
+    source = f"model (train_user on the user's calibration exercises, {how})"
+    mdir = cache / f"user{user}{'_quick' if quick else ''}" if cache is not None else None
+    if mdir is not None and mdir.exists():
+        return load_model(mdir), source + f", cached in {mdir}"
     sessions = [simulate(ex, user_seed=user) for ex in ("terrain", "direction", "length")]
     kw = {"methods": ("svm",), "cv": 3} if quick else {"cv": 5}
     t0 = time.perf_counter()
@@ -91,17 +97,44 @@ def train_model(simulate, user: int, quick: bool):
                   None)
     if bounds is not None and getattr(model, "length_bounds_m", None) is None:
         model.length_bounds_m = bounds
-    how = "SVM only, 3-fold CV" if quick else "all methods, 5-fold CV, best fused method"
-    return model, f"model (train_user on the user's calibration exercises, {how})"
+    if mdir is not None:
+        model.save(mdir)
+    return model, source
 
 
-def run_sim(users: int, speeds: list[str], scenarios: list[str], quick: bool) -> pd.DataFrame:
+def stride_rows(res, session, **keys) -> list[dict]:
+    """Per-stride diagnosis: predicted vs labelled classes, raw / ruled / reference stride length."""
+    from pdrlearn.track.evaluate import match_by_overlap
+
+    lab = session.steps
+    st = res.steps
+    if lab is None or not len(st):
+        return []
+    lab = lab.reset_index(drop=True)
+    out = []
+    for i, j in match_by_overlap(st, lab, min_iou=0.3):
+        r = {**keys, "length_m": float(st["length_m"].iloc[i]), "raw_length_m": float(st["raw_length_m"].iloc[i]),
+             "ref_length_m": float(lab["length_m"].iloc[j]) if "length_m" in lab else np.nan,
+             "confidence": float(st["confidence"].iloc[i])}
+        for c in ("terrain", "direction", "length_class"):
+            r[c] = st[c].iloc[i]
+            r[f"true_{c}"] = lab[c].iloc[j] if c in lab else None
+        for c in st.columns:
+            if c.startswith("p_length_"):
+                r[c] = float(st[c].iloc[i])
+        out.append(r)
+    return out
+
+
+def run_sim(users: int, speeds: list[str], scenarios: list[str], quick: bool,
+            cache: Path | None = None) -> pd.DataFrame:
     from pdrlearn.sim import simulate
 
     rows = []
+    strides: list[dict] = []
     figures: dict[str, dict] = {}
     for user in range(1, users + 1):
-        model, model_source = train_model(simulate, user, quick)
+        model, model_source = train_model(simulate, user, quick, cache)
         for scen in scenarios:
             for speed in speeds:
                 s = simulate(scen, user_seed=user, speed=speed)
@@ -119,6 +152,8 @@ def run_sim(users: int, speeds: list[str], scenarios: list[str], quick: bool) ->
                     rows.append({"user": user, "scenario": scen, "speed": speed, "method": name,
                                  "duration_s": s.duration_s, "track_time_s": dt, **{
                                      k: v for k, v in ev.items() if not isinstance(v, dict | str)}})
+                    if name == "M3":
+                        strides += stride_rows(res, s, user=user, scenario=scen, speed=speed)
                     if user == 1 and speed == speeds[0]:
                         figures.setdefault(scen, {"session": s, "paths": {}})["paths"][name] = res
                 log.info("user %d %s %s done", user, scen, speed)
@@ -127,6 +162,7 @@ def run_sim(users: int, speeds: list[str], scenarios: list[str], quick: bool) ->
                    title=f"scenario {scen}, user 1: M1/M2/M3 vs ground truth")
     df = pd.DataFrame(rows)
     df.attrs["model_source"] = model_source
+    df.attrs["strides"] = pd.DataFrame(strides)
     return df
 
 
@@ -309,14 +345,18 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--scenarios", default="A,B,C,D")
     p.add_argument("--quick", action="store_true", help="train SVM only with 3-fold CV")
     p.add_argument("--no-sim", action="store_true", help="only the real-data part")
+    p.add_argument("--model-cache", type=Path, default=None,
+                   help="save the trained user models here and reuse them on the next run")
     args = p.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     RESULTS.mkdir(parents=True, exist_ok=True)
     sim = None
     orient: list[str] = []
     if not args.no_sim:
-        sim = run_sim(args.users, args.speeds.split(","), args.scenarios.split(","), args.quick)
+        sim = run_sim(args.users, args.speeds.split(","), args.scenarios.split(","), args.quick,
+                      args.model_cache)
         sim.to_csv(RESULTS / "localization_runs.csv", index=False)
+        sim.attrs["strides"].to_csv(RESULTS / "localization_m3_strides.csv", index=False)
         orient = run_orientation_tables(min(args.users, 5)) + run_orientation_scenarios(min(args.users, 5))
     real = run_real()
     real.to_csv(RESULTS / "localization_real.csv", index=False)

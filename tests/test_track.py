@@ -132,3 +132,24 @@ def test_cli_track_errors_are_one_line(real_dir, tmp_path, capsys):
     assert rc == 2 and "M3 needs" in err
     rc = main(["track", str(real_dir / "gaitmap_level_right"), "--method", "M2", "--out", str(tmp_path)])
     assert rc == 2 and "fForceA" in capsys.readouterr().err
+
+
+def test_cli_track_fixes_with_start_writes_aided_overlay(tmp_path, capsys):
+    """--fixes + --start: aid_track gets the start coordinate (the fused track begins there) and the
+    aided overlay figure is written beside path.png."""
+    sim = pytest.importorskip("pdrlearn.sim")
+    from pdrlearn.aid.fixgen import infrastructure_fixes
+    from pdrlearn.io import write_session
+
+    ses = sim.simulate("walk", 2, length_m=40)
+    write_session(ses, tmp_path / "walk")
+    infrastructure_fixes(ses.trajectory, seed=3).to_csv(tmp_path / "cams.csv", index=False)
+    out = tmp_path / "o"
+    rc = main(["track", str(tmp_path / "walk"), "--method", "M2", "--fixes", str(tmp_path / "cams.csv"),
+               "--fix-period", "4", "--start", "41.178,-8.608", "--out", str(out), "--json"])
+    assert rc == 0
+    summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert summary["info"]["aid"]["fixes"]["fixes_used"] >= 2
+    assert (out / "aided.png").is_file() and (out / "path.png").is_file()
+    traj = pd.read_csv(out / "trajectory.csv")
+    assert abs(traj["lat"].iloc[0] - 41.178) < 1e-4 and abs(traj["lon"].iloc[0] + 8.608) < 1e-4

@@ -76,13 +76,19 @@ def track(
     result = fn(session, **kw)
     if any(v is not None for v in (gnss, fixes)):
         try:
-            from pdrlearn.aid import aid_track
+            from pdrlearn.aid import aid_track, plot_aided
         except ImportError:
             raise DataError("aiding (--gnss/--fixes) needs pdrlearn.aid.aid_track, which is not installed "
                             "in this version; run without those options") from None
         result = aid_track(result, session, gnss_path=gnss, gnss_period_s=gnss_period, fixes_path=fixes,
-                           fix_period_s=fix_period)
+                           fix_period_s=fix_period, start=start_ll)
+        aided = True
+    else:
+        aided = False
     out.mkdir(parents=True, exist_ok=True)
+    if aided:
+        plot_aided(result, out / "aided.png", truth=session.trajectory,
+                   title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes")
     traj = result.trajectory.copy()
     for c in ("lat", "lon"):
         if c not in traj:
@@ -108,7 +114,7 @@ def track(
                   if "final_position_error_m" in summary else ""))
     for w in result.info.get("warnings", []):
         typer.echo(f"warning: {w}", err=True)
-    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, summary.json")
+    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json")
 
 
 def register(app: typer.Typer) -> None:
