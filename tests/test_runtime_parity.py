@@ -14,7 +14,9 @@ from pdrlearn.classify import load_model
 from pdrlearn.errors import ModelError
 from pdrlearn.export.bundle import bundle_size_bytes
 from pdrlearn.features import TASK_COLUMNS, step_windows
-from pdrlearn.runtime import _kernels as K
+from pdrlearn.kernels import dtw as KD
+from pdrlearn.kernels import rotation as KR
+from pdrlearn.kernels import stats as KS
 from pdrlearn.runtime import load_bundle
 from pdrlearn.runtime.classify import TaskClassifier
 from pdrlearn.runtime.features import step_window
@@ -103,36 +105,75 @@ def test_default_bundle_holds_the_chosen_methods_and_is_small(trained):
         (trained["root"] / "bundle").rglob("*.joblib"))
 
 
-def test_runtime_kernels_equal_training_kernels():
+def test_training_side_and_runtime_share_one_kernel_set():
+    """No mirrors: the training side's kernels are the very objects the runtime calls (issue 7)."""
+    from pdrlearn.classify import fusion
+    from pdrlearn.features import _kernels as FK
+    from pdrlearn.features import rules, windows
+    from pdrlearn.kernels import proba, window
+    from pdrlearn.runtime import classify, features
+    from pdrlearn.signal import gravity_rotation
+
+    assert gravity_rotation is KR.gravity_rotation
+    for name in ("peak_stats", "segment_stats", "force_stats", "propagate_attitude", "half_balance",
+                 "step_probability", "yaw_stats", "positive_net_rotation"):
+        assert getattr(FK, name) is getattr(KS, name), name
+    assert rules.half_balance is KS.half_balance and features.K is KS
+    assert windows.fill_step_window is window.fill_step_window is features.fill_step_window
+    assert fusion.soft_vote is proba.soft_vote is classify.soft_vote
+    assert fusion.align_proba is classify.align
+    import pdrlearn.runtime
+
+    assert not hasattr(pdrlearn.runtime, "_kernels")
+
+
+def test_numpy_kernels_equal_the_library_references():
+    """The numpy-only kernels against scipy / dtaidistance (which the runtime cannot import)."""
     from dtaidistance import dtw_ndim
+    from scipy.ndimage import uniform_filter1d
     from scipy.spatial.transform import Rotation
 
-    from pdrlearn.features import _kernels as FK
-    from pdrlearn.signal import gravity_rotation
+    from pdrlearn.kernels.window import box_filter
 
     rng = np.random.default_rng(3)
     w = rng.normal(size=(20, 3)) * 0.5
-    np.testing.assert_allclose(K.rotvec_to_matrix(w), Rotation.from_rotvec(w).as_matrix(), atol=1e-12)
-    np.testing.assert_allclose(K.rotvec_to_matrix(w * 1e-10), Rotation.from_rotvec(w * 1e-10).as_matrix(),
+    np.testing.assert_allclose(KR.rotvec_to_matrix(w), Rotation.from_rotvec(w).as_matrix(), atol=1e-12)
+    np.testing.assert_allclose(KR.rotvec_to_matrix(w * 1e-10), Rotation.from_rotvec(w * 1e-10).as_matrix(),
                                atol=1e-15)
     for R in Rotation.from_rotvec(w).as_matrix():
-        np.testing.assert_allclose(K.matrix_to_rotvec(R), Rotation.from_matrix(R).as_rotvec(), atol=1e-9)
+        np.testing.assert_allclose(KR.matrix_to_rotvec(R), Rotation.from_matrix(R).as_rotvec(), atol=1e-9)
     for g in [rng.normal(size=3) for _ in range(5)] + [np.array([0, 0, 9.8]), np.array([0, 0, -9.8])]:
-        np.testing.assert_allclose(K.gravity_rotation(g), gravity_rotation(g), atol=1e-12)
+        R = KR.gravity_rotation(g)
+        np.testing.assert_allclose(R @ g, [0, 0, np.linalg.norm(g)], atol=1e-12)
+        np.testing.assert_allclose(R @ R.T, np.eye(3), atol=1e-12)
     gyr, dt = rng.normal(size=(30, 3)), np.full(29, 0.05)
-    r0 = gravity_rotation(rng.normal(size=3))
-    np.testing.assert_allclose(K.propagate_attitude(gyr, dt, 4, r0), FK.propagate_attitude(gyr, dt, 4, r0),
-                               atol=1e-12)
-    sig, t = rng.normal(size=(4, 40)), np.tile(np.linspace(0, 1, 40), (4, 1))
-    np.testing.assert_allclose(K.segment_stats(sig, t, 6), FK.segment_stats(sig, t, 6), atol=1e-12)
-    force = np.abs(rng.normal(size=(4, 40))) * (rng.random((4, 40)) > 0.3)
-    for k, v in FK.force_stats(force, t).items():
-        np.testing.assert_allclose(K.force_stats(force, t)[k], v, atol=1e-12)
+    r0 = KR.gravity_rotation(rng.normal(size=3))
+    want = [r0]  # sample-by-sample scipy propagation forward from k0 = 0
+    for k in range(29):
+        want.append(want[-1] @ Rotation.from_rotvec(0.5 * (gyr[k] + gyr[k + 1]) * dt[k]).as_matrix())
+    np.testing.assert_allclose(KS.propagate_attitude(gyr, dt, 0, r0), np.array(want), atol=1e-12)
+    t = np.cumsum(rng.uniform(0.01, 0.05, size=(4, 40)), axis=1)
+    np.testing.assert_allclose(KS.row_gradient(t), np.gradient(t, axis=1), atol=1e-15)
+    v = rng.normal(size=(50, 3))
+    for width in (1, 3, 5, 11):
+        np.testing.assert_allclose(box_filter(v, width), uniform_filter1d(v, width, axis=0, mode="nearest"),
+                                   atol=1e-12)
     refs = rng.normal(size=(7, 40, 2))
     q = rng.normal(size=(40, 2))
     for window in (None, 4, 1):
         want = [dtw_ndim.distance(q, r, window=window) for r in refs]
-        np.testing.assert_allclose(K.dtw_to_refs(q, refs, window), want, rtol=1e-10)
+        np.testing.assert_allclose(KD.dtw_to_refs(q, refs, window), want, rtol=1e-10)
+
+
+def test_kernels_package_imports_numpy_only():
+    import subprocess
+    import sys
+
+    code = ("import sys, pdrlearn.kernels.window, pdrlearn.kernels.dtw, pdrlearn.kernels.proba; "
+            "print(sorted(m for m in ('scipy', 'pandas', 'sklearn', 'torch') if m in sys.modules))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert r.stdout.strip() == "[]"
 
 
 def test_every_rule_feature_equals_training_side(trained):

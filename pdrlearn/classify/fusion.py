@@ -20,27 +20,12 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 
 from pdrlearn.classify.svm import check_X_fast
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.proba import align_proba, soft_vote  # noqa: F401 (shared with the runtime)
 
 log = logging.getLogger(__name__)
 
 
 # -- kernels ---------------------------------------------------------------------------------------
-def align_proba(proba: np.ndarray, model_classes: np.ndarray, classes: np.ndarray) -> np.ndarray:
-    """Re-order/extend a model's ``predict_proba`` columns to ``classes`` (absent classes get 0)."""
-    out = np.zeros((proba.shape[0], len(classes)))
-    index = {c: i for i, c in enumerate(classes)}
-    for j, c in enumerate(model_classes):
-        out[:, index[c]] = proba[:, j]
-    return out
-
-
-def soft_vote(probas: list[np.ndarray], weights: np.ndarray) -> np.ndarray:
-    """Weighted mean of aligned probability matrices, ``(n, n_classes)``, rows summing to 1."""
-    w = np.asarray(weights, dtype=float)
-    fused = sum(wi * p for wi, p in zip(w, probas, strict=True)) / max(w.sum(), 1e-12)
-    return fused / np.clip(fused.sum(axis=1, keepdims=True), 1e-12, None)
-
-
 def simplex_grid(n_units: int, step: float) -> np.ndarray:
     """All weight vectors with entries in multiples of ``step`` summing to 1: ``(m, n_units)``."""
     k = int(round(1.0 / step))

@@ -14,39 +14,10 @@ import numpy as np
 from pdrlearn.errors import DataError
 from pdrlearn.features import _kernels as K
 from pdrlearn.features.transformers import _StepFeatures, signal, times
+from pdrlearn.kernels.stats import half_balance, step_probability, yaw_stats
 
 _PEAK_STATS = ("min", "max", "t_min", "t_max", "dt_peaks", "abs_dt_peaks", "range", "peak_asym",
                "sum_pos", "sum_neg", "pos_minus_neg", "duration")
-
-
-def half_balance(x: np.ndarray) -> np.ndarray:
-    """Thesis eq. 31 as a signed, scale-free number: ``(sum(first half) - sum(second half)) / sum(|x|)``.
-
-    Positive = forward step for the forward acceleration. The halves are those of the step's *motion*:
-    the split is where the cumulative ``|x|`` reaches half its total (a stance-to-stance window starts
-    and ends at rest, so the window's midpoint would cut the swing off-centre; decisions doc).
-    """
-    a = np.abs(x)
-    cum = np.cumsum(a, axis=1)
-    total = cum[:, -1:]
-    split = np.argmax(cum >= 0.5 * total, axis=1)
-    idx = np.arange(x.shape[1])[None, :]
-    first = np.sum(np.where(idx <= split[:, None], x, 0.0), axis=1)
-    second = np.sum(np.where(idx > split[:, None], x, 0.0), axis=1)
-    denom = total[:, 0]
-    return np.where(denom > 0, (first - second) / np.where(denom > 0, denom, 1.0), 0.0)
-
-
-def step_probability(x: np.ndarray) -> np.ndarray:
-    """Thesis eq. 32: ``100 - |max(acc) + min(acc)| * 20``, normalised to 0..1 (clipped).
-
-    A forward (backward) step's positive acceleration is followed (preceded) by a negative one of the
-    same magnitude; the more the peaks differ, the less the step is trusted. ``x`` in m/s^2, the
-    equation is applied in g (a foot's peaks are several g; in m/s^2 nearly every step would get 0).
-    """
-    g = 9.80665  # eq. 32 reads the acceleration in g (decisions doc): m/s^2 -> g
-    p = 100.0 - np.abs(x.max(axis=1) + x.min(axis=1)) / g * 20.0  # thesis eq. 32
-    return np.clip(p / 100.0, 0.0, 1.0)
 
 
 _FORCE_STATS = ("air_time", "time_to_peak", "peak_mean_4", "contact_force_2", "takeoff_force")
@@ -84,12 +55,7 @@ def _stat(name: str) -> Callable[[_Stats, str], np.ndarray]:
     if name in _FORCE_STATS:
         return lambda S, sig: S.force(sig)[name]
     if name in _YAW_STATS:
-        def yaw_stat(S, sig):
-            ps = S.peak(sig)
-            left = ps["t_max"]
-            return {"amplitude": 0.5 * ps["range"], "left": left, "right": ps["duration"] - left,
-                    "left_minus_right": 2 * left - ps["duration"]}[name]
-        return yaw_stat
+        return lambda S, sig: yaw_stats(S.peak(sig))[name]
     raise DataError(f"unknown rule statistic '{name}'")
 
 

@@ -134,7 +134,7 @@ class _StepFeatures(TransformerMixin, BaseEstimator):
 
 # -- terrain SVM features (thesis ch. 6.1.1.1) ------------------------------------------------------
 
-#: (signal, statistic of :func:`pdrlearn.features._kernels.peak_stats`) per sensor, thesis ch. 6.1.1.1.
+#: (signal, statistic of :func:`pdrlearn.kernels.stats.peak_stats`) per sensor, thesis ch. 6.1.1.1.
 TERRAIN_SVM_SPEC: dict[str, tuple[tuple[str, str], ...]] = {
     # foot accelerometer, 6 features: min, max, instant difference, peak difference, sum neg, sum pos
     "foot_acc": tuple(("foot_acc_v", s) for s in ("min", "max", "dt_peaks", "range", "sum_neg", "sum_pos")),
@@ -236,9 +236,7 @@ def _segment_names(sig: str, n_segments: int = 6) -> list[str]:
 
 def waist_yaw_sign(X: np.ndarray) -> np.ndarray:
     """1 when the pelvis' net yaw rotation over the step is positive (left), else 0 (thesis ch. 6.2.1)."""
-    yaw = signal(X, "waist_yaw")
-    dt = np.gradient(times(X), axis=1)
-    return (np.sum(yaw * dt, axis=1) > 0).astype(float)
+    return K.positive_net_rotation(signal(X, "waist_yaw"), times(X))
 
 
 class DirectionFeatures(_StepFeatures):
@@ -282,11 +280,7 @@ def waist_yaw_stats(X: np.ndarray) -> dict[str, np.ndarray]:
     """Pelvic-rotation statistics (thesis Table 31, ch. 6.3.1): ``amplitude`` (half peak-to-peak, rad/s),
     ``left`` (s from the step start to the max), ``right`` (s from the max to the end),
     ``left_minus_right`` (s), ``duration`` (s)."""
-    ps = K.peak_stats(signal(X, "waist_yaw"), times(X))
-    left = ps["t_max"]
-    right = ps["duration"] - left
-    return {"amplitude": 0.5 * ps["range"], "left": left, "right": right,
-            "left_minus_right": left - right, "duration": ps["duration"]}
+    return K.yaw_stats(K.peak_stats(signal(X, "waist_yaw"), times(X)))
 
 
 class LengthFeatures(_StepFeatures):

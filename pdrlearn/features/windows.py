@@ -27,38 +27,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
-from scipy.ndimage import uniform_filter1d
 
 from pdrlearn.errors import DataError
-from pdrlearn.features import _kernels as K
 from pdrlearn.io.session import DIRECTION_CLASSES, LENGTH_CLASSES, TERRAIN_CLASSES, Session, Stream
-from pdrlearn.signal import gravity_rotation
+from pdrlearn.kernels.window import (  # noqa: F401 (the layout is part of this module's API)
+    CHANNEL_INDEX,
+    CHANNELS,
+    GROUP_STREAMS,
+    GROUPS,
+    fill_step_window,
+)
 
 log = logging.getLogger(__name__)
-
-#: Sensor groups and their channels, in the order of :data:`CHANNELS` (after ``t_s``).
-GROUPS: dict[str, tuple[str, ...]] = {
-    "foot_acc": ("foot_acc_x", "foot_acc_y", "foot_acc_z", "foot_acc_norm"),  # m/s^2, z gravity removed
-    "foot_gyr": ("foot_gyr_x", "foot_gyr_y", "foot_gyr_z"),  # rad/s about forward/left/up
-    "force": ("force_a", "force_b"),  # heel (fForceA), toe (fForceB); sensor units (N or normalised)
-    "waist_acc": ("waist_acc_x", "waist_acc_y", "waist_acc_z"),  # m/s^2, z gravity removed
-    "waist_gyr": ("waist_gyr_x", "waist_gyr_y", "waist_gyr_z"),  # rad/s about forward/left/up
-    "waist_baro": ("waist_baro",),  # hPa relative to the step's first sample
-}
-
-#: Fixed channel layout of :attr:`StepWindows.X` (axis 1). ``t_s`` = time since the step start (s).
-CHANNELS: tuple[str, ...] = ("t_s",) + tuple(c for group in GROUPS.values() for c in group)
-CHANNEL_INDEX: dict[str, int] = {c: i for i, c in enumerate(CHANNELS)}
-
-#: Source streams of each sensor group.
-GROUP_STREAMS: dict[str, tuple[str, ...]] = {
-    "foot_acc": ("fAccelerometer",),
-    "foot_gyr": ("fGyroscope",),
-    "force": ("fForceA", "fForceB"),
-    "waist_acc": ("wAccelerometer",),
-    "waist_gyr": ("wGyroscope",),
-    "waist_baro": ("wBarometer",),
-}
 
 #: Classes of each task (thesis ch. 6.1-6.3) and the steps-table column holding them.
 TASK_CLASSES: dict[str, tuple[str, ...]] = {
@@ -151,71 +131,6 @@ def _declared_forward(session: Session, placement: str) -> np.ndarray:
     return frame.matrix().T @ np.array([1.0, 0.0, 0.0])  # sensor vector pointing body-forward
 
 
-def _segment(stream: Stream, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
-    """Samples covering [t0, t1] plus one sample on each side (for interpolation at the edges)."""
-    i0 = max(int(np.searchsorted(stream.t, t0, side="right")) - 1, 0)
-    i1 = min(int(np.searchsorted(stream.t, t1, side="left")) + 1, len(stream))
-    return stream.t[i0:i1], stream.values[i0:i1]
-
-
-def _interp(t_new: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Resample the columns of ``v`` (n, k) at ``t_new``; when downsampling, each output sample is the
-    mean over its own interval first (box anti-alias filter, like the PLASYS firmware's 5-sample
-    averaging, thesis ch. 4.3.2), so impact peaks do not alias and 20/100/204.8 Hz data agree."""
-    if len(t_new) > 1 and len(t) > 2:
-        width = int(round((t_new[1] - t_new[0]) * (len(t) - 1) / float(t[-1] - t[0])))  # mean spacing
-        width = 2 * (width // 2) + 1  # odd: a centred box, no half-sample delay
-        if width > 1:
-            v = uniform_filter1d(v, size=width, axis=0, mode="nearest")
-    return np.stack([np.interp(t_new, t, v[:, j]) for j in range(v.shape[1])], axis=0)
-
-
-def _foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
-                   rest_search_s: float, heading: str) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
-    """Foot acc (n, 3; gravity removed), gyro (n, 3) in the step frame, and |acc| (n,)."""
-    n = acc.shape[0]
-    fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
-    m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
-    k0 = K.rest_index(acc, gyr, 0, m)
-    k1 = K.rest_index(acc, gyr, n - m, n)
-    h = max(0, int(round(0.02 * fs)))
-    g0 = acc[max(k0 - h, 0): k0 + h + 1].mean(axis=0)
-    g1 = acc[max(k1 - h, 0): k1 + h + 1].mean(axis=0)
-    r0 = gravity_rotation(g0)
-    if gyr is not None:
-        rot = K.propagate_attitude(gyr, np.diff(t), k0, r0)
-        rot = K.correct_tilt_drift(rot, g1, k0, k1)
-    else:
-        rot = np.broadcast_to(r0, (n, 3, 3))
-    a_lev = np.einsum("kij,kj->ki", rot, acc)
-    a_lev[:, 2] -= float(np.linalg.norm(g0))
-    ref = (rot[k0] @ forward_s)[:2]
-    if np.linalg.norm(ref) < 0.1:
-        raise DataError("foot unit: the declared forward axis points (nearly) vertically at rest; "
-                        "check the foot frame in meta.json")
-    ref = ref / np.linalg.norm(ref)
-    fwd = K.principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref
-    yaw = K.heading_rotation(fwd)
-    a_out = a_lev @ yaw.T
-    g_out = None if gyr is None else np.einsum("kij,kj->ki", rot, gyr) @ yaw.T
-    return a_out, g_out, np.linalg.norm(acc, axis=1)
-
-
-def _waist_levelled(acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray
-                    ) -> tuple[np.ndarray, np.ndarray | None]:
-    g = acc.mean(axis=0)
-    r = gravity_rotation(g)
-    ref = (r @ forward_s)[:2]
-    if np.linalg.norm(ref) < 0.1:
-        raise DataError("waist unit: the declared forward axis points (nearly) vertically; "
-                        "check the waist frame in meta.json")
-    yaw = K.heading_rotation(ref / np.linalg.norm(ref))
-    rr = yaw @ r
-    a = acc @ rr.T
-    a[:, 2] -= float(np.linalg.norm(g))
-    return a, (None if gyr is None else gyr @ rr.T)
-
-
 # -- main entry point -----------------------------------------------------------------------------
 
 
@@ -250,42 +165,6 @@ def _check_units(session: str, s: Stream) -> None:
         if p99 > 35.0:  # 2000 deg/s full scale (thesis ch. 4.2.1.2) is 34.9 rad/s
             raise DataError(f"session '{session}': {s.name} reaches {p99:.0f} (99th percentile); it looks like "
                             "deg/s, not rad/s - multiply by pi/180")
-
-
-def _fill_step(Xi: np.ndarray, session: Session, t0: float, t1: float, u: np.ndarray,
-               available: tuple[str, ...], fwd_foot: np.ndarray | None, fwd_waist: np.ndarray | None, *,
-               rest_search_s: float, heading: str) -> None:
-    """Write one step's channels (len(CHANNELS), n_samples) into ``Xi`` (in place)."""
-    tg = t0 + (t1 - t0) * u
-    Xi[0] = tg - t0
-    if fwd_foot is not None:
-        ta, acc = _segment(session.streams["fAccelerometer"], t0, t1)
-        gyr = None
-        if "foot_gyr" in available:
-            gyr = _interp(ta, *_segment(session.streams["fGyroscope"], t0, t1)).T
-        a, g, an = _foot_levelled(ta, acc, gyr, fwd_foot, rest_search_s=rest_search_s, heading=heading)
-        Xi[1:4] = _interp(tg, ta, a)
-        Xi[4] = _interp(tg, ta, an[:, None])[0]
-        if g is not None:
-            Xi[5:8] = _interp(tg, ta, g)
-    if "force" in available:
-        for j, name in enumerate(("fForceA", "fForceB")):
-            tf, f = _segment(session.streams[name], t0, t1)
-            Xi[CHANNEL_INDEX["force_a"] + j] = _interp(tg, tf, f)[0]
-    if fwd_waist is not None:
-        tw, wacc = _segment(session.streams["wAccelerometer"], t0, t1)
-        wgyr = None
-        if "waist_gyr" in available:
-            wgyr = _interp(tw, *_segment(session.streams["wGyroscope"], t0, t1)).T
-        a, g = _waist_levelled(wacc, wgyr, fwd_waist)
-        c = CHANNEL_INDEX["waist_acc_x"]
-        Xi[c:c + 3] = _interp(tg, tw, a)
-        if g is not None:
-            c = CHANNEL_INDEX["waist_gyr_x"]
-            Xi[c:c + 3] = _interp(tg, tw, g)
-    if "waist_baro" in available:
-        tb, b = _segment(session.streams["wBarometer"], t0, t1)
-        Xi[CHANNEL_INDEX["waist_baro"]] = np.interp(tg, tb, b[:, 0]) - np.interp(t0, tb, b[:, 0])
 
 
 def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_samples: int = 40,
@@ -337,12 +216,13 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
 
     n = len(start)
     X = np.full((n, len(CHANNELS), n_samples), np.nan)
-    u = np.linspace(0.0, 1.0, n_samples)
+    streams = {name: (s.t, s.values) for name, s in session.streams.items()}
+    forward = {p: f for p, f in (("foot", fwd_foot), ("waist", fwd_waist)) if f is not None}
     for i in range(n):
         t0, t1 = float(start[i]), float(end[i])
         try:
-            _fill_step(X[i], session, t0, t1, u, available, fwd_foot, fwd_waist,
-                       rest_search_s=rest_search_s, heading=heading)
+            fill_step_window(X[i], streams, t0, t1, channel_index=CHANNEL_INDEX, available=available,
+                             forward=forward, rest_search_s=rest_search_s, heading=heading)
         except DataError as exc:
             raise DataError(f"session '{session.name}', step {i} ({t0:.2f}-{t1:.2f} s): {exc}") from None
     return StepWindows(X=X, durations_s=end - start, channels=CHANNELS, available=available,

@@ -16,18 +16,11 @@ from __future__ import annotations
 import numpy as np
 
 from pdrlearn.errors import ModelError
-from pdrlearn.runtime import _kernels as K
+from pdrlearn.kernels.dtw import dtw_to_refs
+from pdrlearn.kernels.proba import align_proba as align
+from pdrlearn.kernels.proba import soft_vote, softmax
 from pdrlearn.runtime.bundle import Bundle
 from pdrlearn.runtime.features import compute_features
-
-
-def align(proba: np.ndarray, model_classes, classes) -> np.ndarray:
-    """Re-order a model's probability columns to ``classes`` (absent classes get 0)."""
-    out = np.zeros((proba.shape[0], len(classes)))
-    index = {c: i for i, c in enumerate(classes)}
-    for j, c in enumerate(model_classes):
-        out[:, index[c]] = proba[:, j]
-    return out
 
 
 class RuntimeModel:
@@ -65,20 +58,20 @@ class RuntimeModel:
             out = self.model.run(F)
             if "proba" in out:
                 return np.asarray(out["proba"], dtype=np.float64)
-            return K.softmax(np.asarray(out["logits"], dtype=np.float64))
+            return softmax(np.asarray(out["logits"], dtype=np.float64))
         if self.type == "dtw":
             S = compute_features(W, [["signals", self.entry["signals"]]], cache=cache, **self.ctx)
             S = (np.transpose(S, (0, 2, 1)) - self.mean) / self.std  # (n, samples, channels)
             n_cls = len(self.classes)
             out = np.empty((len(S), n_cls))
             for i, q in enumerate(S):
-                d = K.dtw_to_refs(q, self.refs, self.window)
+                d = dtw_to_refs(q, self.refs, self.window)
                 out[i] = [d[self.ref_labels == k].mean() for k in range(n_cls)]
-            return K.softmax(-out / self.temperature)
+            return softmax(-out / self.temperature)
         if self.type == "heuristic":
             return heuristic_proba(self, W, cache)
         probas = [align(m.proba(W, cache), m.classes, self.classes) for m in self.members]
-        return K.soft_vote(probas, self.weights)
+        return soft_vote(probas, self.weights)
 
 
 class TaskClassifier:

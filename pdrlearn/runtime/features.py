@@ -13,84 +13,8 @@ from __future__ import annotations
 import numpy as np
 
 from pdrlearn.errors import DataError
-from pdrlearn.runtime import _kernels as K
-
-#: source streams of each channel group (the PLASYS file names, thesis ch. 4.3.3)
-GROUP_STREAMS = {
-    "foot_acc": ("fAccelerometer",),
-    "foot_gyr": ("fGyroscope",),
-    "force": ("fForceA", "fForceB"),
-    "waist_acc": ("wAccelerometer",),
-    "waist_gyr": ("wGyroscope",),
-    "waist_baro": ("wBarometer",),
-}
-
-
-def _segment(t: np.ndarray, v: np.ndarray, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
-    i0 = max(int(np.searchsorted(t, t0, side="right")) - 1, 0)
-    i1 = min(int(np.searchsorted(t, t1, side="left")) + 1, len(t))
-    return t[i0:i1], v[i0:i1]
-
-
-def box_filter(v: np.ndarray, width: int) -> np.ndarray:
-    """Centred moving mean of odd ``width`` along axis 0, edges repeated (``uniform_filter1d`` with
-    ``mode="nearest"``)."""
-    h = width // 2
-    p = np.concatenate([np.repeat(v[:1], h, axis=0), v, np.repeat(v[-1:], h, axis=0)], axis=0)
-    c = np.concatenate([np.zeros((1,) + v.shape[1:]), np.cumsum(p, axis=0)], axis=0)
-    return (c[width:] - c[:-width]) / width
-
-
-def _interp(tq: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Resample the columns of ``v`` at ``tq``; when downsampling, a box anti-alias filter over one output
-    interval first (as the PLASYS firmware's 5-sample mean, thesis ch. 4.3.2)."""
-    if len(tq) > 1 and len(t) > 2:
-        width = int(round((tq[1] - tq[0]) * (len(t) - 1) / float(t[-1] - t[0])))  # mean spacing
-        width = 2 * (width // 2) + 1
-        if width > 1:
-            v = box_filter(v, width)
-    return np.stack([np.interp(tq, t, v[:, j]) for j in range(v.shape[1])], axis=0)
-
-
-def foot_levelled(t, acc, gyr, forward_s, *, rest_search_s: float, heading: str):
-    """Foot acceleration (gravity removed) and rate in the step frame, and |acc| (see features/windows)."""
-    n = acc.shape[0]
-    fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
-    m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
-    k0 = K.rest_index(acc, gyr, 0, m)
-    k1 = K.rest_index(acc, gyr, n - m, n)
-    h = max(0, int(round(0.02 * fs)))
-    g0 = acc[max(k0 - h, 0) : k0 + h + 1].mean(axis=0)
-    g1 = acc[max(k1 - h, 0) : k1 + h + 1].mean(axis=0)
-    r0 = K.gravity_rotation(g0)
-    if gyr is not None:
-        rot = K.correct_tilt_drift(K.propagate_attitude(gyr, np.diff(t), k0, r0), g1, k0, k1)
-    else:
-        rot = np.broadcast_to(r0, (n, 3, 3))
-    a_lev = np.einsum("kij,kj->ki", rot, acc)
-    a_lev[:, 2] -= float(np.linalg.norm(g0))
-    ref = (rot[k0] @ forward_s)[:2]
-    if np.linalg.norm(ref) < 0.1:
-        raise DataError(
-            "foot unit: the declared forward axis points (nearly) vertically at rest; "
-            "check the foot frame of the bundle"
-        )
-    ref = ref / np.linalg.norm(ref)
-    yaw = K.heading_rotation(K.principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
-    g_out = None if gyr is None else np.einsum("kij,kj->ki", rot, gyr) @ yaw.T
-    return a_lev @ yaw.T, g_out, np.linalg.norm(acc, axis=1)
-
-
-def waist_levelled(acc, gyr, forward_s):
-    g = acc.mean(axis=0)
-    r = K.gravity_rotation(g)
-    ref = (r @ forward_s)[:2]
-    if np.linalg.norm(ref) < 0.1:
-        raise DataError("waist unit: the declared forward axis points (nearly) vertically; check the frame")
-    rr = K.heading_rotation(ref / np.linalg.norm(ref)) @ r
-    a = acc @ rr.T
-    a[:, 2] -= float(np.linalg.norm(g))
-    return a, (None if gyr is None else gyr @ rr.T)
+from pdrlearn.kernels import stats as K
+from pdrlearn.kernels.window import available_groups, fill_step_window
 
 
 def step_window(
@@ -113,37 +37,10 @@ def step_window(
     channels : channel layout (manifest ``features.channels``; first is ``t_s``).
     forward : placement -> sensor-frame vector pointing body-forward (from the declared frame).
     """
-    ci = {c: i for i, c in enumerate(channels)}
     X = np.full((len(channels), n_samples), np.nan)
-    tg = t0 + (t1 - t0) * np.linspace(0.0, 1.0, n_samples)
-    X[0] = tg - t0
-    has = {g for g, names in GROUP_STREAMS.items() if all(nm in streams for nm in names)}
-    if "foot_acc" in has and "foot" in forward:
-        ta, acc = _segment(*streams["fAccelerometer"], t0, t1)
-        gyr = _interp(ta, *_segment(*streams["fGyroscope"], t0, t1)).T if "foot_gyr" in has else None
-        a, g, an = foot_levelled(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s, heading=heading)
-        c = ci["foot_acc_x"]
-        X[c : c + 3] = _interp(tg, ta, a)
-        X[ci["foot_acc_norm"]] = _interp(tg, ta, an[:, None])[0]
-        if g is not None:
-            c = ci["foot_gyr_x"]
-            X[c : c + 3] = _interp(tg, ta, g)
-    if "force" in has:
-        for j, name in enumerate(("fForceA", "fForceB")):
-            tf, f = _segment(*streams[name], t0, t1)
-            X[ci["force_a"] + j] = _interp(tg, tf, f)[0]
-    if "waist_acc" in has and "waist" in forward:
-        tw, wacc = _segment(*streams["wAccelerometer"], t0, t1)
-        wgyr = _interp(tw, *_segment(*streams["wGyroscope"], t0, t1)).T if "waist_gyr" in has else None
-        a, g = waist_levelled(wacc, wgyr, forward["waist"])
-        c = ci["waist_acc_x"]
-        X[c : c + 3] = _interp(tg, tw, a)
-        if g is not None:
-            c = ci["waist_gyr_x"]
-            X[c : c + 3] = _interp(tg, tw, g)
-    if "waist_baro" in has:
-        tb, b = _segment(*streams["wBarometer"], t0, t1)
-        X[ci["waist_baro"]] = np.interp(tg, tb, b[:, 0]) - np.interp(t0, tb, b[:, 0])
+    fill_step_window(X, streams, t0, t1, channel_index={c: i for i, c in enumerate(channels)},
+                     available=available_groups(streams), forward=forward, rest_search_s=rest_search_s,
+                     heading=heading)
     return X
 
 
@@ -201,17 +98,9 @@ def compute_features(
         elif op == "force":
             cols.append(force(float(item[2]))[item[1]][:, None])
         elif op == "yaw_sign":
-            dt = K._gradient(t)
-            cols.append((np.sum(sig("waist_yaw") * dt, axis=1) > 0).astype(float)[:, None])
+            cols.append(K.positive_net_rotation(sig("waist_yaw"), t)[:, None])
         elif op == "yaw":
-            ps = peaks("waist_yaw")
-            val = {
-                "amplitude": 0.5 * ps["range"],
-                "duration": ps["duration"],
-                "left": ps["t_max"],
-                "right": ps["duration"] - ps["t_max"],
-            }[item[1]]
-            cols.append(val[:, None])
+            cols.append(K.yaw_stats(peaks("waist_yaw"))[item[1]][:, None])
         elif op == "rule":
             cols.append(rule_feature(W, item[1], sig, peaks)[:, None])
         elif op == "signals":  # DTW step signals (steps, len(names), samples)
@@ -232,29 +121,16 @@ def rule_feature(W: np.ndarray, name: str, sig, peaks) -> np.ndarray:
     s, _, stat = name.partition(":")
     if stat == "abs_peak_asym":
         return np.abs(peaks(s)["peak_asym"])
-    if stat == "half_balance":  # thesis eq. 31: halves of the step's motion (cumulative |x| at half)
-        x = sig(s)
-        cum = np.cumsum(np.abs(x), axis=1)
-        total = cum[:, -1]
-        split = np.argmax(cum >= 0.5 * total[:, None], axis=1)
-        first_mask = np.arange(x.shape[1])[None, :] <= split[:, None]
-        first = np.sum(np.where(first_mask, x, 0.0), axis=1)
-        second = np.sum(np.where(first_mask, 0.0, x), axis=1)
-        return np.where(total > 0, (first - second) / np.where(total > 0, total, 1.0), 0.0)
-    if stat == "step_probability":  # thesis eq. 32, acceleration read in g
-        x = sig(s)
-        return np.clip((100.0 - np.abs(x.max(1) + x.min(1)) / 9.80665 * 20.0) / 100.0, 0.0, 1.0)
+    if stat == "half_balance":  # thesis eq. 31
+        return K.half_balance(sig(s))
+    if stat == "step_probability":  # thesis eq. 32
+        return K.step_probability(sig(s))
     if stat in ("air_time", "time_to_peak", "peak_mean_4", "contact_force_2", "takeoff_force"):
         return K.force_stats(sig(s), t)[stat]
     ps = peaks(s)
     if stat in ps:
         return ps[stat]
-    yaw = {
-        "amplitude": 0.5 * ps["range"],
-        "left": ps["t_max"],
-        "right": ps["duration"] - ps["t_max"],
-        "left_minus_right": 2 * ps["t_max"] - ps["duration"],
-    }
+    yaw = K.yaw_stats(ps)
     if stat in yaw:
         return yaw[stat]
     raise DataError(f"bundle rule feature {name!r} is unknown to this runtime; re-export the bundle")

@@ -9,6 +9,7 @@ import numpy as np
 from scipy import signal as _sig
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.rotation import gravity_rotation  # noqa: F401 (numpy-only, shared with the runtime)
 
 
 def magnitude(v: np.ndarray) -> np.ndarray:
@@ -108,29 +109,3 @@ def interp_rows(t_new: np.ndarray, t: np.ndarray, values: np.ndarray) -> np.ndar
     for j in range(v2.shape[1]):
         out[:, j] = np.interp(t_new, t, v2[:, j])
     return out.reshape((t_new.shape[0],) + v.shape[1:])
-
-
-def gravity_rotation(g_sensor: np.ndarray) -> np.ndarray:
-    """Minimal rotation ``R`` (3x3) with ``R @ g_sensor = [0, 0, |g|]`` (z up, gravity-aligned frame).
-
-    ``g_sensor`` is the specific force measured at rest (points up, magnitude ~9.81 m/s^2). The
-    rotation is the shortest one (axis ``g x z``, Rodrigues' formula), so the heading about z is kept
-    as close to the sensor's as possible. Raises :class:`DataError` for a zero or non-finite vector.
-    """
-    g = np.asarray(g_sensor, dtype=np.float64).reshape(3)
-    n = float(np.linalg.norm(g))
-    if not np.isfinite(n) or n < 1e-9:
-        raise DataError(f"gravity_rotation: gravity vector {g.tolist()} is zero or not finite; "
-                        "estimate it from a standstill period")
-    a = g / n
-    z = np.array([0.0, 0.0, 1.0])
-    c = float(a @ z)
-    v = np.cross(a, z)
-    s = float(np.linalg.norm(v))
-    if s < 1e-12:
-        if c > 0:
-            return np.eye(3)
-        return np.diag([1.0, -1.0, -1.0])  # 180 deg about x
-    k = v / s
-    kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
-    return np.eye(3) + s * kx + (1 - c) * (kx @ kx)

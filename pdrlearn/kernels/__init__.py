@@ -1,0 +1,19 @@
+"""Pure numpy kernels shared by the training side and the streaming runtime.
+
+Every module of this package imports only numpy, the standard library and :mod:`pdrlearn.errors`, so
+:mod:`pdrlearn.runtime` (numpy + onnxruntime only, issue 7) and the training side
+(:mod:`pdrlearn.features`, :mod:`pdrlearn.signal`, :mod:`pdrlearn.classify`, :mod:`pdrlearn.displace`)
+run *the same* functions: there is one implementation of each kernel, no mirror.
+
+Modules
+-------
+- :mod:`~pdrlearn.kernels.rotation` - gravity rotation, rotation vector <-> matrix (Rodrigues).
+- :mod:`~pdrlearn.kernels.stats` - step attitude (rest sample, gyro propagation, tilt drift, heading) and
+  the per-step statistics of the thesis features (peaks, segments, force, eq. 31/32).
+- :mod:`~pdrlearn.kernels.window` - one step's levelled, heading-aligned, resampled window.
+- :mod:`~pdrlearn.kernels.dtw` - DTW distance of one step to a reference set.
+- :mod:`~pdrlearn.kernels.proba` - softmax, class alignment, soft vote.
+- :mod:`~pdrlearn.kernels.stride` - per-stride displacement (ZUPT, M3 rules) and position update.
+
+This ``__init__`` imports nothing (importing a submodule never loads the others).
+"""

@@ -1,0 +1,67 @@
+"""Rotations in numpy only: gravity alignment and rotation vector <-> matrix (Rodrigues' formula)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+
+
+def skew(k: np.ndarray) -> np.ndarray:
+    """Cross-product matrix ``[k]x`` (3x3) of a 3-vector."""
+    return np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+
+
+def gravity_rotation(g_sensor: np.ndarray) -> np.ndarray:
+    """Minimal rotation ``R`` (3x3) with ``R @ g_sensor = [0, 0, |g|]`` (z up, gravity-aligned frame).
+
+    ``g_sensor`` is the specific force measured at rest (points up, ~9.81 m/s^2). The rotation is the
+    shortest one (axis ``g x z``, Rodrigues' formula), so the heading about z stays as close to the
+    sensor's as possible. Raises :class:`DataError` for a zero or non-finite vector.
+    """
+    g = np.asarray(g_sensor, dtype=np.float64).reshape(3)
+    n = float(np.linalg.norm(g))
+    if not np.isfinite(n) or n < 1e-9:
+        raise DataError(f"gravity_rotation: gravity vector {g.tolist()} is zero or not finite; "
+                        "estimate it from a standstill period")
+    a = g / n
+    c = float(a[2])
+    v = np.array([a[1], -a[0], 0.0])  # a x z
+    s = float(np.linalg.norm(v))
+    if s < 1e-12:
+        return np.eye(3) if c > 0 else np.diag([1.0, -1.0, -1.0])  # 180 deg about x
+    kx = skew(v / s)
+    return np.eye(3) + s * kx + (1 - c) * (kx @ kx)
+
+
+def rotvec_to_matrix(w: np.ndarray) -> np.ndarray:
+    """Rotation matrices ``(n, 3, 3)`` of rotation vectors ``(n, 3)`` (rad), Rodrigues' formula."""
+    w = np.atleast_2d(np.asarray(w, dtype=np.float64))
+    th = np.linalg.norm(w, axis=1)
+    small = th < 1e-8
+    safe = np.where(small, 1.0, th)
+    # sin(th)/th and (1-cos th)/th^2 with their Taylor series near 0
+    a = np.where(small, 1.0 - th**2 / 6.0, np.sin(th) / safe)
+    b = np.where(small, 0.5 - th**2 / 24.0, (1.0 - np.cos(th)) / safe**2)
+    K = np.zeros((len(w), 3, 3))
+    K[:, 0, 1], K[:, 0, 2], K[:, 1, 2] = -w[:, 2], w[:, 1], -w[:, 0]
+    K[:, 1, 0], K[:, 2, 0], K[:, 2, 1] = w[:, 2], -w[:, 1], w[:, 0]
+    return np.eye(3)[None] + a[:, None, None] * K + b[:, None, None] * (K @ K)
+
+
+def matrix_to_rotvec(R: np.ndarray) -> np.ndarray:
+    """Rotation vector (3,) of a rotation matrix (rad; any angle up to pi)."""
+    c = np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)
+    th = math.acos(c)
+    v = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+    if th < 1e-8:
+        return 0.5 * v
+    if math.pi - th < 1e-6:  # 180 deg: axis from the symmetric part
+        k = np.sqrt(np.clip((np.diag(R) + 1.0) / 2.0, 0.0, None))
+        i = int(np.argmax(k))
+        k = (R[i] + R[:, i]) / (2.0 * k[i]) if k[i] > 0 else k
+        k[i] = math.sqrt(max((R[i, i] + 1.0) / 2.0, 0.0))
+        return th * k / np.linalg.norm(k)
+    return th * v / (2.0 * math.sin(th))

@@ -1,0 +1,263 @@
+"""Step attitude and the per-signal statistics the thesis features are built from (numpy only).
+
+Attitude of a foot unit through one step (gyroscope propagation from the stance, tilt drift spread
+over the swing), the heading of a step in the levelled frame, and the statistics of each step's signal
+(peaks, peak instants, sums, segment max/min/mean/slope, force-sensor statistics, thesis eq. 31/32).
+Arrays of statistics are ``(n_steps, n_samples)``, one row per step.
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from pdrlearn.kernels.rotation import gravity_rotation, matrix_to_rotvec, rotvec_to_matrix
+
+
+def rest_index(acc: np.ndarray, gyr: np.ndarray | None, lo: int, hi: int) -> int:
+    """Index in ``[lo, hi)`` where the unit moves least.
+
+    Motion score = gyroscope norm (rad/s) when a gyroscope exists, plus the deviation of the
+    specific-force norm from its window median scaled to rad/s-like magnitude (1 m/s^2 ~ 0.1 rad/s).
+    """
+    lo = max(0, lo)
+    hi = max(lo + 1, min(hi, acc.shape[0]))
+    an = np.linalg.norm(acc[lo:hi], axis=1)
+    score = 0.1 * np.abs(an - np.median(np.linalg.norm(acc, axis=1)))
+    if gyr is not None:
+        score = score + np.linalg.norm(gyr[lo:hi], axis=1)
+    return lo + int(np.argmin(score))
+
+
+def propagate_attitude(gyr: np.ndarray, dt: np.ndarray, k0: int, r0: np.ndarray) -> np.ndarray:
+    """Attitudes ``R_k`` (n, 3, 3), sensor -> levelled frame, from ``R_{k0} = r0`` and the angular rate.
+
+    ``dR/dt = R [w]x`` integrated with the exact rotation of each sample interval
+    (``R_{k+1} = R_k exp([w_k dt_k]x)``), forward and backward from ``k0``.
+
+    Parameters
+    ----------
+    gyr : (n, 3) angular rate in the sensor frame (rad/s)
+    dt : (n - 1,) sample intervals (s)
+    """
+    n = gyr.shape[0]
+    out = np.empty((n, 3, 3))
+    out[k0] = r0
+    if n < 2:
+        return out
+    steps = rotvec_to_matrix(0.5 * (gyr[:-1] + gyr[1:]) * dt[:, None])  # mean rate over each interval
+    if k0 < n - 1:  # forward: R_{k0+j} = r0 @ steps[k0] @ ... @ steps[k0+j-1]
+        out[k0 + 1:] = r0 @ prefix_products(steps[k0:])
+    if k0 > 0:  # backward: R_{k0-j} = r0 @ steps[k0-1].T @ ... @ steps[k0-j].T
+        out[:k0] = (r0 @ prefix_products(np.transpose(steps[:k0][::-1], (0, 2, 1))))[::-1]
+    return out
+
+
+def prefix_products(m: np.ndarray) -> np.ndarray:
+    """Inclusive prefix products ``m[0] @ m[1] @ ... @ m[k]`` of a stack of matrices (n, 3, 3).
+
+    Hillis-Steele scan: log2(n) batched matrix products instead of a Python loop over the samples.
+    """
+    p = np.array(m, dtype=np.float64, copy=True)
+    shift = 1
+    while shift < p.shape[0]:
+        p[shift:] = p[:-shift] @ p[shift:]
+        shift *= 2
+    return p
+
+
+def correct_tilt_drift(rot: np.ndarray, g_end_sensor: np.ndarray, k0: int, k1: int) -> np.ndarray:
+    """Spread the tilt error seen at the second rest ``k1`` linearly over ``k0..k1``.
+
+    At ``k1`` the levelled specific force should point straight up; the minimal rotation that makes
+    it so is applied with weight ``(k - k0) / (k1 - k0)`` (clipped to 0..1) to every sample.
+    """
+    if k1 <= k0:
+        return rot
+    corr = matrix_to_rotvec(gravity_rotation(rot[k1] @ g_end_sensor))
+    frac = np.clip((np.arange(rot.shape[0]) - k0) / float(k1 - k0), 0.0, 1.0)
+    return rotvec_to_matrix(frac[:, None] * corr[None, :]) @ rot
+
+
+def heading_rotation(forward_xy: np.ndarray) -> np.ndarray:
+    """Rotation about z (3x3) that turns the horizontal unit vector ``forward_xy`` onto +x."""
+    c, s = float(forward_xy[0]), float(forward_xy[1])
+    return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def principal_horizontal_axis(acc_lev: np.ndarray, reference_xy: np.ndarray) -> np.ndarray:
+    """Unit principal axis of the horizontal acceleration, signed to agree with ``reference_xy``.
+
+    The foot accelerates and brakes along its direction of travel, so the dominant eigenvector of the
+    horizontal second-moment matrix is the line of the step; the sign (toes side) comes from the
+    declared forward axis of the sensor, so backward steps keep their sign.
+    """
+    h = acc_lev[:, :2]
+    vals, vecs = np.linalg.eigh(h.T @ h)
+    e = vecs[:, int(np.argmax(vals))]
+    if float(e @ reference_xy) < 0:
+        e = -e
+    return e / np.linalg.norm(e)
+
+
+# -- per-signal statistics on (n_steps, n_samples) arrays ------------------------------------------
+
+
+def row_gradient(tt: np.ndarray) -> np.ndarray:
+    """``np.gradient(tt, axis=1)`` (unit index spacing) of an ``(n, m >= 2)`` array, without its overhead:
+    the sample weights (s) of each row's possibly non-uniform time grid."""
+    g = np.empty_like(tt)
+    g[:, 0] = tt[:, 1] - tt[:, 0]
+    g[:, -1] = tt[:, -1] - tt[:, -2]
+    g[:, 1:-1] = (tt[:, 2:] - tt[:, :-2]) / 2.0
+    return g
+
+
+def peak_stats(sig: np.ndarray, t: np.ndarray) -> dict[str, np.ndarray]:
+    """Peak and sum statistics of each row of ``sig`` (n, m) sampled at times ``t`` (n, m) (s).
+
+    Thesis ch. 6.1.1.1. Returns arrays (n,): ``min``, ``max``, ``t_min``, ``t_max`` (s from the step
+    start), ``dt_peaks`` (= t_max - t_min, s), ``abs_dt_peaks``, ``range`` (= max - min), ``peak_asym``
+    (= |max| - |min|), ``sum_pos`` / ``sum_neg`` (time integral of the positive part / magnitude of the
+    negative part, unit x s; the thesis sums samples at 20 Hz, see docs/decisions/features.md),
+    ``pos_minus_neg``, ``duration`` (s).
+    """
+    rows = np.arange(sig.shape[0])
+    i_min, i_max = np.argmin(sig, axis=1), np.argmax(sig, axis=1)
+    vmin, vmax = sig[rows, i_min], sig[rows, i_max]
+    tt = t - t[:, :1]
+    dt = row_gradient(tt)
+    sum_pos = np.sum(np.clip(sig, 0, None) * dt, axis=1)
+    sum_neg = np.sum(np.clip(-sig, 0, None) * dt, axis=1)
+    t_min, t_max = tt[rows, i_min], tt[rows, i_max]
+    return {
+        "min": vmin,
+        "max": vmax,
+        "t_min": t_min,
+        "t_max": t_max,
+        "dt_peaks": t_max - t_min,
+        "abs_dt_peaks": np.abs(t_max - t_min),
+        "range": vmax - vmin,
+        "peak_asym": np.abs(vmax) - np.abs(vmin),
+        "sum_pos": sum_pos,
+        "sum_neg": sum_neg,
+        "pos_minus_neg": sum_pos - sum_neg,
+        "duration": tt[:, -1],
+    }
+
+
+@functools.lru_cache(maxsize=64)
+def _edges(m: int, n_segments: int) -> tuple[np.ndarray, np.ndarray]:
+    if n_segments < 1 or n_segments > m:
+        raise ValueError(f"n_segments={n_segments} must be between 1 and the window length {m}")
+    edges = np.linspace(0, m, n_segments + 1).round().astype(int)
+    return edges[:-1], edges[1:]
+
+
+def segment_bounds(m: int, n_segments: int) -> list[tuple[int, int]]:
+    """Index ranges ``[a, b)`` of ``n_segments`` nearly equal consecutive parts of ``m`` samples."""
+    a, b = _edges(m, n_segments)
+    return [(int(i), int(j)) for i, j in zip(a, b, strict=True)]
+
+
+def segment_stats(sig: np.ndarray, t: np.ndarray, n_segments: int = 6) -> np.ndarray:
+    """Segment features (thesis ch. 6.1.1.2): per part max, min, mean and slope.
+
+    The signal of each step (row of ``sig``, (n, m)) is divided into ``n_segments`` equal parts; for
+    each part the maximum, minimum, mean and the slope between its first and last sample
+    (``(x_last - x_first) / (t_last - t_first)``, unit/s) are returned, in that order:
+    output (n, 4 * n_segments) = ``[max_1, min_1, mean_1, slope_1, max_2, ...]``.
+    """
+    n, m = sig.shape
+    a, b = _edges(m, n_segments)
+    mx = np.maximum.reduceat(sig, a, axis=1)
+    mn = np.minimum.reduceat(sig, a, axis=1)
+    mean = np.add.reduceat(sig, a, axis=1) / (b - a)
+    span = t[:, b - 1] - t[:, a]
+    d = sig[:, b - 1] - sig[:, a]
+    slope = np.divide(d, span, out=np.zeros_like(d), where=span > 0)
+    return np.stack([mx, mn, mean, slope], axis=2).reshape(n, 4 * n_segments)
+
+
+def interp_rows(t_query: np.ndarray, t: np.ndarray, sig: np.ndarray) -> np.ndarray:
+    """``sig[i]`` at time ``t_query[i]`` (clamped to the window), (n,)."""
+    return np.array([np.interp(tq, ti, si) for tq, ti, si in zip(t_query, t, sig, strict=True)])
+
+
+def force_stats(force: np.ndarray, t: np.ndarray, *, zero_fraction: float = 0.05,
+                sample_s: float = 0.05) -> dict[str, np.ndarray]:
+    """Force-sensor statistics of each step (thesis Table 29 and ch. 6.3.1), rows of ``force`` (n, m).
+
+    A sample is "zero" (foot in the air) when below ``zero_fraction`` x the step's peak force. The
+    thesis counts PLASYS samples (20 Hz, thesis ch. 4.3.2: 50 ms); here counts are times (s) and
+    "the k-th measurement" is ``k * sample_s`` seconds.
+
+    Returns (n,) arrays: ``air_time`` (s of zero force; Table 29 #1), ``time_to_peak`` (s from the last
+    zero to the contact peak; Table 29 #2), ``peak_mean_4`` (mean force 4 samples before and after the
+    contact peak; Table 29 #3), ``contact_force_2`` (force 2 samples after the last zero; Table 29 #4),
+    ``takeoff_force`` (force 2 samples before the first zero; ch. 6.3.1).
+    """
+    n, m = force.shape
+    tt = t - t[:, :1]
+    dt = row_gradient(tt)
+    peak = force.max(axis=1, keepdims=True)
+    zero = force < zero_fraction * np.where(peak > 0, peak, 1.0)
+    any_zero = zero.any(axis=1)
+    last_zero = np.where(any_zero, m - 1 - np.argmax(zero[:, ::-1], axis=1), np.argmin(force, axis=1))
+    first_zero = np.where(any_zero, np.argmax(zero, axis=1), np.argmin(force, axis=1))
+    rows = np.arange(n)
+    i_peak = np.argmax(np.where(np.arange(m)[None, :] >= last_zero[:, None], force, -np.inf), axis=1)
+    t_last, t_peak = tt[rows, last_zero], tt[rows, i_peak]
+    return {
+        "air_time": np.sum(zero * dt, axis=1),
+        "time_to_peak": t_peak - t_last,
+        "peak_mean_4": 0.5 * (interp_rows(t_peak - 4 * sample_s, tt, force)
+                              + interp_rows(t_peak + 4 * sample_s, tt, force)),
+        "contact_force_2": interp_rows(t_last + 2 * sample_s, tt, force),
+        "takeoff_force": interp_rows(tt[rows, first_zero] - 2 * sample_s, tt, force),
+    }
+
+
+def half_balance(x: np.ndarray) -> np.ndarray:
+    """Thesis eq. 31 as a signed, scale-free number: ``(sum(first half) - sum(second half)) / sum(|x|)``.
+
+    Positive = forward step for the forward acceleration. The halves are those of the step's *motion*:
+    the split is where the cumulative ``|x|`` reaches half its total (a stance-to-stance window starts
+    and ends at rest, so the window's midpoint would cut the swing off-centre; decisions doc).
+    """
+    cum = np.cumsum(np.abs(x), axis=1)
+    total = cum[:, -1:]
+    split = np.argmax(cum >= 0.5 * total, axis=1)
+    first_mask = np.arange(x.shape[1])[None, :] <= split[:, None]
+    first = np.sum(np.where(first_mask, x, 0.0), axis=1)
+    second = np.sum(np.where(first_mask, 0.0, x), axis=1)
+    denom = total[:, 0]
+    return np.where(denom > 0, (first - second) / np.where(denom > 0, denom, 1.0), 0.0)
+
+
+def step_probability(x: np.ndarray) -> np.ndarray:
+    """Thesis eq. 32: ``100 - |max(acc) + min(acc)| * 20``, normalised to 0..1 (clipped).
+
+    A forward (backward) step's positive acceleration is followed (preceded) by a negative one of the
+    same magnitude; the more the peaks differ, the less the step is trusted. ``x`` in m/s^2, the
+    equation is applied in g (a foot's peaks are several g; in m/s^2 nearly every step would get 0).
+    """
+    g = 9.80665  # eq. 32 reads the acceleration in g (decisions doc): m/s^2 -> g
+    p = 100.0 - np.abs(x.max(axis=1) + x.min(axis=1)) / g * 20.0  # thesis eq. 32
+    return np.clip(p / 100.0, 0.0, 1.0)
+
+
+def yaw_stats(ps: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """Yaw-rate statistics from :func:`peak_stats` of the waist yaw rate (thesis Table 24, ch. 6.2.1):
+    ``amplitude`` (half the range, rad/s), ``left``/``right`` (s before/after the maximum),
+    ``left_minus_right`` (s), ``duration`` (s)."""
+    left = ps["t_max"]
+    return {"amplitude": 0.5 * ps["range"], "duration": ps["duration"], "left": left,
+            "right": ps["duration"] - left, "left_minus_right": 2 * left - ps["duration"]}
+
+
+def positive_net_rotation(rate: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """1.0 where the time integral of each row of ``rate`` (rad/s) over its times ``t`` (s) is positive
+    (net left turn of the pelvis for the waist yaw rate, thesis ch. 6.2.1), else 0.0; (n,)."""
+    return (np.sum(rate * row_gradient(t), axis=1) > 0).astype(float)

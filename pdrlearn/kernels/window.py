@@ -1,0 +1,175 @@
+"""One step's window: levelled, heading-aligned, gravity-removed, resampled (numpy only).
+
+The construction shared by :func:`pdrlearn.features.step_windows` (training) and
+:func:`pdrlearn.runtime.features.step_window` (streaming); see :mod:`pdrlearn.features.windows` for the
+step frame (x forward horizontal, y left, z up) and docs/features.md.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.kernels.rotation import gravity_rotation
+from pdrlearn.kernels.stats import (
+    correct_tilt_drift,
+    heading_rotation,
+    principal_horizontal_axis,
+    propagate_attitude,
+    rest_index,
+)
+
+#: Sensor groups and their channels, in the order of :data:`CHANNELS` (after ``t_s``).
+GROUPS: dict[str, tuple[str, ...]] = {
+    "foot_acc": ("foot_acc_x", "foot_acc_y", "foot_acc_z", "foot_acc_norm"),  # m/s^2, z gravity removed
+    "foot_gyr": ("foot_gyr_x", "foot_gyr_y", "foot_gyr_z"),  # rad/s about forward/left/up
+    "force": ("force_a", "force_b"),  # heel (fForceA), toe (fForceB); sensor units (N or normalised)
+    "waist_acc": ("waist_acc_x", "waist_acc_y", "waist_acc_z"),  # m/s^2, z gravity removed
+    "waist_gyr": ("waist_gyr_x", "waist_gyr_y", "waist_gyr_z"),  # rad/s about forward/left/up
+    "waist_baro": ("waist_baro",),  # hPa relative to the step's first sample
+}
+
+#: Fixed channel layout of a window array (axis 1). ``t_s`` = time since the step start (s).
+CHANNELS: tuple[str, ...] = ("t_s",) + tuple(c for group in GROUPS.values() for c in group)
+CHANNEL_INDEX: dict[str, int] = {c: i for i, c in enumerate(CHANNELS)}
+
+#: Source streams of each sensor group (the PLASYS file names, thesis ch. 4.3.3).
+GROUP_STREAMS: dict[str, tuple[str, ...]] = {
+    "foot_acc": ("fAccelerometer",),
+    "foot_gyr": ("fGyroscope",),
+    "force": ("fForceA", "fForceB"),
+    "waist_acc": ("wAccelerometer",),
+    "waist_gyr": ("wGyroscope",),
+    "waist_baro": ("wBarometer",),
+}
+
+Streams = Mapping[str, tuple[np.ndarray, np.ndarray]]  # sensor name -> (t (n,) s, values (n, k))
+
+
+def segment(t: np.ndarray, v: np.ndarray, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
+    """Samples covering [t0, t1] plus one sample on each side (for interpolation at the edges)."""
+    i0 = max(int(np.searchsorted(t, t0, side="right")) - 1, 0)
+    i1 = min(int(np.searchsorted(t, t1, side="left")) + 1, len(t))
+    return t[i0:i1], v[i0:i1]
+
+
+def box_filter(v: np.ndarray, width: int) -> np.ndarray:
+    """Centred moving mean of odd ``width`` samples along axis 0, edges repeated (like scipy's
+    ``uniform_filter1d(mode="nearest")``)."""
+    h = width // 2
+    p = np.concatenate([np.repeat(v[:1], h, axis=0), v, np.repeat(v[-1:], h, axis=0)], axis=0)
+    c = np.concatenate([np.zeros((1,) + v.shape[1:]), np.cumsum(p, axis=0)], axis=0)
+    return (c[width:] - c[:-width]) / width
+
+
+def resample(t_new: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Resample the columns of ``v`` (n, k) at ``t_new`` -> (k, len(t_new)); when downsampling, each output
+    sample is the mean over its own interval first (box anti-alias filter, like the PLASYS firmware's
+    5-sample averaging, thesis ch. 4.3.2), so impact peaks do not alias and 20/100/204.8 Hz data agree."""
+    if len(t_new) > 1 and len(t) > 2:
+        width = int(round((t_new[1] - t_new[0]) * (len(t) - 1) / float(t[-1] - t[0])))  # mean spacing
+        width = 2 * (width // 2) + 1  # odd: a centred box, no half-sample delay
+        if width > 1:
+            v = box_filter(v, width)
+    return np.stack([np.interp(t_new, t, v[:, j]) for j in range(v.shape[1])], axis=0)
+
+
+def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
+                  rest_search_s: float, heading: str) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
+    """Foot acc (n, 3; gravity removed), gyro (n, 3) in the step frame, and |acc| (n,).
+
+    Tilt from the rest specific force near the window's start, attitude propagated with the gyroscope,
+    the tilt seen at the rest near the end spread over the step; forward = principal horizontal axis of
+    the acceleration (``heading="pca"``) or the declared axis (``"declared"``), signed by ``forward_s``.
+    """
+    n = acc.shape[0]
+    fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
+    m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
+    k0 = rest_index(acc, gyr, 0, m)
+    k1 = rest_index(acc, gyr, n - m, n)
+    h = max(0, int(round(0.02 * fs)))
+    g0 = acc[max(k0 - h, 0): k0 + h + 1].mean(axis=0)
+    g1 = acc[max(k1 - h, 0): k1 + h + 1].mean(axis=0)
+    r0 = gravity_rotation(g0)
+    if gyr is not None:
+        rot = correct_tilt_drift(propagate_attitude(gyr, np.diff(t), k0, r0), g1, k0, k1)
+    else:
+        rot = np.broadcast_to(r0, (n, 3, 3))
+    a_lev = np.einsum("kij,kj->ki", rot, acc)
+    a_lev[:, 2] -= float(np.linalg.norm(g0))
+    ref = (rot[k0] @ forward_s)[:2]
+    if np.linalg.norm(ref) < 0.1:
+        raise DataError("foot unit: the declared forward axis points (nearly) vertically at rest; "
+                        "check the declared foot frame (meta.json or the bundle's frames)")
+    ref = ref / np.linalg.norm(ref)
+    yaw = heading_rotation(principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
+    g_out = None if gyr is None else np.einsum("kij,kj->ki", rot, gyr) @ yaw.T
+    return a_lev @ yaw.T, g_out, np.linalg.norm(acc, axis=1)
+
+
+def waist_levelled(acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray | None]:
+    """Waist acc (gravity removed) and rate in the step frame: tilt from the mean specific force over
+    the step (the pelvis never rests while walking), forward = the declared axis made horizontal."""
+    g = acc.mean(axis=0)
+    r = gravity_rotation(g)
+    ref = (r @ forward_s)[:2]
+    if np.linalg.norm(ref) < 0.1:
+        raise DataError("waist unit: the declared forward axis points (nearly) vertically; "
+                        "check the declared waist frame (meta.json or the bundle's frames)")
+    rr = heading_rotation(ref / np.linalg.norm(ref)) @ r
+    a = acc @ rr.T
+    a[:, 2] -= float(np.linalg.norm(g))
+    return a, (None if gyr is None else gyr @ rr.T)
+
+
+def available_groups(streams: Streams) -> tuple[str, ...]:
+    """Sensor groups (keys of :data:`GROUPS`) whose every source stream is in ``streams``."""
+    return tuple(g for g, names in GROUP_STREAMS.items() if all(nm in streams for nm in names))
+
+
+def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, channel_index: Mapping[str, int],
+                     available: tuple[str, ...], forward: Mapping[str, np.ndarray], rest_search_s: float,
+                     heading: str) -> None:
+    """Write one step's channels ``(len(channel_index), n_samples)`` into ``Xi`` (in place).
+
+    Parameters
+    ----------
+    Xi : NaN-filled output; row ``channel_index["t_s"]`` gets the time since ``t0`` (s).
+    streams : sensor name -> ``(t (n,) s, values (n, k))`` covering ``[t0, t1]``.
+    t0, t1 : step start and end (s).
+    available : sensor groups to fill (the others stay NaN).
+    forward : placement (``foot``/``waist``) -> sensor-frame vector pointing body-forward.
+    """
+    ci = channel_index
+    n_samples = Xi.shape[1]
+    tg = t0 + (t1 - t0) * np.linspace(0.0, 1.0, n_samples)
+    Xi[ci["t_s"]] = tg - t0
+    if "foot_acc" in available and "foot" in forward:
+        ta, acc = segment(*streams["fAccelerometer"], t0, t1)
+        gyr = resample(ta, *segment(*streams["fGyroscope"], t0, t1)).T if "foot_gyr" in available else None
+        a, g, an = foot_levelled(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s, heading=heading)
+        c = ci["foot_acc_x"]
+        Xi[c:c + 3] = resample(tg, ta, a)
+        Xi[ci["foot_acc_norm"]] = resample(tg, ta, an[:, None])[0]
+        if g is not None:
+            c = ci["foot_gyr_x"]
+            Xi[c:c + 3] = resample(tg, ta, g)
+    if "force" in available:
+        for j, name in enumerate(("fForceA", "fForceB")):
+            tf, f = segment(*streams[name], t0, t1)
+            Xi[ci["force_a"] + j] = resample(tg, tf, f)[0]
+    if "waist_acc" in available and "waist" in forward:
+        tw, wacc = segment(*streams["wAccelerometer"], t0, t1)
+        wgyr = resample(tw, *segment(*streams["wGyroscope"], t0, t1)).T if "waist_gyr" in available else None
+        a, g = waist_levelled(wacc, wgyr, forward["waist"])
+        c = ci["waist_acc_x"]
+        Xi[c:c + 3] = resample(tg, tw, a)
+        if g is not None:
+            c = ci["waist_gyr_x"]
+            Xi[c:c + 3] = resample(tg, tw, g)
+    if "waist_baro" in available:
+        tb, b = segment(*streams["wBarometer"], t0, t1)
+        Xi[ci["waist_baro"]] = np.interp(tg, tb, b[:, 0]) - np.interp(t0, tb, b[:, 0])
