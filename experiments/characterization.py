@@ -34,6 +34,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from pdrlearn.classify import evaluate_model, train_user  # noqa: E402
+from pdrlearn.classify.evaluation import ROW_ORDER  # noqa: E402
 
 log = logging.getLogger("characterization")
 
@@ -81,20 +82,7 @@ THESIS = {
     },
 }
 TABLE_NO = {"terrain": 27, "direction": 28, "length": 33}
-ROWS = [
-    ("heuristic", "waist"),
-    ("heuristic", "foot"),
-    ("dtw", "waist"),
-    ("dtw", "foot"),
-    ("svm", "waist"),
-    ("svm", "foot"),
-    ("nn", "waist"),
-    ("nn", "foot"),
-    ("fusion", "fused"),
-    ("dtw", "fused"),
-    ("svm", "fused"),
-    ("nn", "fused"),
-]
+ROWS = ROW_ORDER  # thesis Tables 27, 28, 33 row order
 #: Training / test set sizes of the thesis (steps): terrain 970 + 170 validation / 540 test (ch. 6.1.1),
 #: direction 450 + 100 / 100 (ch. 6.2.1), length 855 + 171 / 114 (ch. 6.3.1). The thesis adds that a
 #: training set 5 (terrain) to 10 (length) times smaller gives similar results (ch. 6.1.3, 6.3.3); a

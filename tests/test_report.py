@@ -95,3 +95,11 @@ def test_report_renders_in_headless_chromium(results, tmp_path):
     # the embedded viridis images render as coloured (non-grey) pixels
     colourful = (img.max(axis=2) - img.min(axis=2)) > 0.25
     assert colourful.sum() > 2000
+
+
+def test_report_inside_its_source_does_not_grow(results):
+    """Re-running ``pdrlearn report out --out out/report`` does not pick up the previous report's images."""
+    build_report(results, results / "report")
+    first = (results / "report" / "index.html").read_text().count("<img")
+    build_report(results, results / "report")
+    assert (results / "report" / "index.html").read_text().count("<img") == first == 2

@@ -18,11 +18,9 @@ from __future__ import annotations
 import hashlib
 import json
 import logging
-import os
-import shutil
-import tempfile
 from pathlib import Path
 
+from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import ModelError
 
 log = logging.getLogger(__name__)
@@ -117,9 +115,9 @@ def save_model(model, path) -> Path:
     import joblib
 
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.tmp-", dir=path.parent))
-    try:
+    if path.exists() and not (path / MANIFEST).exists() and any(path.iterdir()):
+        raise ModelError(f"{path}: exists and is not a model directory; choose another --out")
+    with atomic_directory(path) as tmp:
         (tmp / "models").mkdir()
         files = {}
         for task, tm in model.tasks.items():
@@ -130,18 +128,6 @@ def save_model(model, path) -> Path:
                     files[rel] = _sha256(tmp / rel)
         manifest = manifest_of(model, files)
         (tmp / MANIFEST).write_text(json.dumps(manifest, indent=2, allow_nan=False, default=_json_default))
-        old = None
-        if path.exists():
-            if not (path / MANIFEST).exists() and any(path.iterdir()):
-                raise ModelError(f"{path}: exists and is not a model directory; choose another --out")
-            old = path.with_name(f".{path.name}.old-{os.getpid()}")
-            path.rename(old)
-        tmp.rename(path)
-        if old is not None:
-            shutil.rmtree(old, ignore_errors=True)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
     log.info("model written to %s (%d files)", path, len(files))
     return path
 

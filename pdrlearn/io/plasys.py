@@ -14,17 +14,16 @@ from __future__ import annotations
 import json
 import logging
 import os
-import shutil
-import tempfile
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
+from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import frames_from_meta
-from pdrlearn.io.session import STEP_COLUMNS, Session, Stream
 from pdrlearn.io.sensors import SENSORS
+from pdrlearn.io.session import STEP_COLUMNS, Session, Stream
 from pdrlearn.io.validate import check_columns, check_numeric, check_timestamps, check_units
 
 log = logging.getLogger(__name__)
@@ -207,9 +206,7 @@ def write_session(session: Session, folder: str | os.PathLike, *, overwrite: boo
     if folder.exists() and not overwrite:
         if any(folder.iterdir()):
             raise DataError(f"{folder}: already exists and is not empty; choose another --out or remove it")
-    folder.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{folder.name}.", dir=folder.parent))
-    try:
+    with atomic_directory(folder) as tmp:
         meta = dict(session.meta)
         meta.setdefault("session", session.name)
         units = dict(meta.get("units", {}))
@@ -229,12 +226,6 @@ def write_session(session: Session, folder: str | os.PathLike, *, overwrite: boo
         for k, df in session.extras.items():
             _s_to_ms(df).to_csv(tmp / f"{k}.csv", index=False)
         (tmp / "meta.json").write_text(json.dumps(meta, indent=2, default=_json_default) + "\n")
-        if folder.exists():
-            shutil.rmtree(folder)
-        os.replace(tmp, folder)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
     return folder
 
 

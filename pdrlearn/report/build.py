@@ -8,12 +8,12 @@ import html
 import json
 import os
 import shutil
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import pandas as pd
 
+from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError
 
 
@@ -95,8 +95,9 @@ def _evaluation_sections(ev: dict) -> list[Section]:
     return out
 
 
-def collect(source: str | os.PathLike) -> list[Section]:
-    """Gather report sections from a model directory or a results folder."""
+def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = None) -> list[Section]:
+    """Gather report sections from a model directory or a results folder (files under ``exclude``,
+    e.g. a previous report written inside ``source``, are ignored)."""
     root = Path(source)
     if not root.exists():
         raise DataError(f"{root}: not found; pass a model directory or a results folder")
@@ -105,18 +106,25 @@ def collect(source: str | os.PathLike) -> list[Section]:
     sections: list[Section] = []
     if (root / "manifest.json").exists():
         sections.append(_model_section(_read_json(root / "manifest.json"), root))
-    for p in sorted(root.rglob("evaluation.json")):
+    skip = Path(exclude).resolve() if exclude is not None else None
+
+    def find(pattern: str) -> list[Path]:
+        return sorted(p for p in root.rglob(pattern)
+                      if not any(part.startswith(".") for part in p.relative_to(root).parts)
+                      and (skip is None or not p.resolve().is_relative_to(skip)))
+
+    for p in find("evaluation.json"):
         sections.extend(_evaluation_sections(_read_json(p)))
-    for p in sorted(root.rglob("cohort_summary.csv")):
+    for p in find("cohort_summary.csv"):
         sections.append(Section(f"Cohort — {p.parent.name}", tables=[("per-user results", pd.read_csv(p))]))
-    tracks = sorted(root.rglob("summary.json"))
+    tracks = find("summary.json")
     if tracks:
         rows = []
         for p in tracks:
             d = _flat_scalars(_read_json(p))
             rows.append({"run": str(p.parent.relative_to(root)) or ".", **d})
         sections.append(Section("Tracking", tables=[("trajectory summaries", pd.DataFrame(rows))]))
-    images = sorted(root.rglob("*.png"))
+    images = find("*.png")
     if images:
         by_kind: dict[str, list[Path]] = {}
         for p in images:
@@ -176,14 +184,12 @@ def _markdown(sections: list[Section], title: str, image_names: dict[Path, str])
 
 def build_report(source: str | os.PathLike, out: str | os.PathLike, *, title: str | None = None) -> Path:
     """Write ``out/index.html`` (self-contained) and ``out/report.md`` (+ images); atomic. Returns ``out``."""
-    sections = collect(source)
     out = Path(out)
+    sections = collect(source, exclude=out)
     if out.exists() and any(out.iterdir()) and not (out / "index.html").exists():
         raise DataError(f"{out}: exists and is not a report folder; choose another --out")
     title = title or f"pdrlearn report — {Path(source).resolve().name}"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
-    try:
+    with atomic_directory(out) as tmp:
         names: dict[Path, str] = {}
         (tmp / "img").mkdir()
         for s in sections:
@@ -193,10 +199,4 @@ def build_report(source: str | os.PathLike, out: str | os.PathLike, *, title: st
                 names[p] = name
         (tmp / "index.html").write_text(_html(sections, title))
         (tmp / "report.md").write_text(_markdown(sections, title, names))
-        if out.exists():
-            shutil.rmtree(out)
-        os.replace(tmp, out)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
     return out
