@@ -29,6 +29,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.features.batch import batch_applicable, fill_windows_batch
 from pdrlearn.io.session import DIRECTION_CLASSES, LENGTH_CLASSES, TERRAIN_CLASSES, Session, Stream
 from pdrlearn.kernels.window import (  # noqa: F401 (the layout is part of this module's API)
     CHANNEL_INDEX,
@@ -168,7 +169,7 @@ def _check_units(session: str, s: Stream) -> None:
 
 
 def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_samples: int = 40,
-                 heading: str = "pca", rest_search_s: float = 0.3) -> StepWindows:
+                 heading: str = "pca", rest_search_s: float = 0.3, batch: bool = True) -> StepWindows:
     """Cut, level and resample every step of ``steps`` to ``n_samples`` points.
 
     Parameters
@@ -180,6 +181,8 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
         forward axis: independent of the mounting yaw) or ``"declared"`` (declared forward axis only)
     rest_search_s : the foot's rest sample is searched within this many seconds (at most a quarter of
         the window) from each end of the step
+    batch : process all steps at once (:mod:`pdrlearn.features.batch`, equal to the per-step kernel to
+        rounding) when each unit's gyroscope shares its accelerometer's clock; False = step by step
 
     Raises
     ------
@@ -218,6 +221,14 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
     X = np.full((n, len(CHANNELS), n_samples), np.nan)
     streams = {name: (s.t, s.values) for name, s in session.streams.items()}
     forward = {p: f for p, f in (("foot", fwd_foot), ("waist", fwd_waist)) if f is not None}
+    if batch and batch_applicable(streams, available):  # all steps at once (pdrlearn.features.batch)
+        try:
+            fill_windows_batch(X, streams, start, end, channel_index=CHANNEL_INDEX, available=available,
+                               forward=forward, rest_search_s=rest_search_s, heading=heading)
+        except DataError as exc:
+            raise DataError(f"session '{session.name}': {exc}") from None
+        return StepWindows(X=X, durations_s=end - start, channels=CHANNELS, available=available,
+                           steps=steps.reset_index(drop=True).copy(), session=session.name)
     for i in range(n):
         t0, t1 = float(start[i]), float(end[i])
         try:
