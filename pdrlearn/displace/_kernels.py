@@ -13,6 +13,13 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 from scipy.spatial.transform import Rotation
 
+from pdrlearn.kernels.stride import (  # noqa: F401 (numpy-only rules, shared with the runtime)
+    altitude_change,
+    apply_direction,
+    clamp_length,
+    terrain_distance,
+)
+
 
 def upsample_block_means(t: np.ndarray, x: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
     """Upsample block-averaged samples ``k`` times, preserving each block's mean (a histospline).
@@ -321,48 +328,6 @@ def wnj_displacement(a_nav: np.ndarray, mask: np.ndarray, dt: float, **kw) -> np
 
 
 # --- M3 rules (thesis ch.7.2.2) -------------------------------------------------------------------
-
-def terrain_distance(disp: np.ndarray, terrain: np.ndarray, *, down_mode: str = "norm3") -> np.ndarray:
-    """Unsigned distance (m) of each stride from its displacement (B, 3) according to its terrain class.
-
-    flat/up: the displacement along the direction of travel (horizontal, the thesis' "x-axis" filter);
-    down: the norm of the three axes, thesis eq. 61 (``down_mode="horizontal"`` uses the flat rule).
-    """
-    horiz = np.hypot(disp[:, 0], disp[:, 1])
-    if down_mode == "horizontal":
-        return horiz
-    norm3 = np.linalg.norm(disp, axis=1)  # thesis eq. 61
-    return np.where(np.asarray(terrain) == "down", norm3, horiz)
-
-
-def apply_direction(distance: np.ndarray, direction: np.ndarray) -> np.ndarray:
-    """Sign of each distance set by its direction class; the class prevails (thesis ch.7.2.2)."""
-    d = np.abs(np.asarray(distance, dtype=float))
-    return np.where(np.asarray(direction) == "backward", -d, d)
-
-
-def clamp_length(distance: np.ndarray, length_class: np.ndarray,
-                 bounds: dict[str, tuple[float, float]]) -> np.ndarray:
-    """Clamp |distance| into the bounds of its length class, keeping the sign (thesis ch.7.2.2).
-
-    ``bounds`` maps a class to (min, max) in metres; unknown classes are left unchanged.
-    """
-    d = np.asarray(distance, dtype=float)
-    cls = np.asarray(length_class)
-    mag = np.abs(d)
-    out = mag.copy()
-    for name, (lo, hi) in bounds.items():
-        sel = cls == name
-        out[sel] = np.clip(mag[sel], lo, hi)
-    return np.where(d < 0, -out, out)
-
-
-def altitude_change(dz: np.ndarray, terrain: np.ndarray) -> np.ndarray:
-    """Altitude change (m) per stride: 0 on flat terrain, +|dz| up, -|dz| down (thesis ch.7.2.2)."""
-    t = np.asarray(terrain)
-    a = np.abs(np.asarray(dz, dtype=float))
-    return np.where(t == "up", a, np.where(t == "down", -a, 0.0))
-
 
 def bayes_length(distance: np.ndarray, proba: np.ndarray, bounds: list[tuple[float, float]],
                  sigma: np.ndarray) -> np.ndarray:

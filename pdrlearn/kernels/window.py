@@ -130,9 +130,34 @@ def available_groups(streams: Streams) -> tuple[str, ...]:
     return tuple(g for g, names in GROUP_STREAMS.items() if all(nm in streams for nm in names))
 
 
+Levelled = dict[str, tuple[np.ndarray, np.ndarray, "np.ndarray | None", "np.ndarray | None"]]
+
+
+def levelled_units(streams: Streams, t0: float, t1: float, *, available: tuple[str, ...],
+                   forward: Mapping[str, np.ndarray], rest_search_s: float, heading: str) -> Levelled:
+    """Each unit's samples of the step ``[t0, t1]`` at the unit's own rate, in the step frame.
+
+    Returns placement -> ``(t (n,) s, acc (n, 3) m/s^2 gravity removed, gyr (n, 3) rad/s or None,
+    |acc| (n,) or None)`` for ``foot`` (:func:`foot_levelled`) and ``waist`` (:func:`waist_levelled`)
+    when their accelerometer is available and their forward axis is declared.
+    """
+    out: Levelled = {}
+    if "foot_acc" in available and "foot" in forward:
+        ta, acc = segment(*streams["fAccelerometer"], t0, t1)
+        gyr = resample(ta, *segment(*streams["fGyroscope"], t0, t1)).T if "foot_gyr" in available else None
+        a, g, an = foot_levelled(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s, heading=heading)
+        out["foot"] = (ta, a, g, an)
+    if "waist_acc" in available and "waist" in forward:
+        tw, wacc = segment(*streams["wAccelerometer"], t0, t1)
+        wgyr = resample(tw, *segment(*streams["wGyroscope"], t0, t1)).T if "waist_gyr" in available else None
+        a, g = waist_levelled(wacc, wgyr, forward["waist"])
+        out["waist"] = (tw, a, g, None)
+    return out
+
+
 def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, channel_index: Mapping[str, int],
                      available: tuple[str, ...], forward: Mapping[str, np.ndarray], rest_search_s: float,
-                     heading: str) -> None:
+                     heading: str) -> Levelled:
     """Write one step's channels ``(len(channel_index), n_samples)`` into ``Xi`` (in place).
 
     Parameters
@@ -142,15 +167,19 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
     t0, t1 : step start and end (s).
     available : sensor groups to fill (the others stay NaN).
     forward : placement (``foot``/``waist``) -> sensor-frame vector pointing body-forward.
+
+    Returns
+    -------
+    The units' levelled samples at their own rate (:func:`levelled_units`), for the stride kernels.
     """
     ci = channel_index
     n_samples = Xi.shape[1]
     tg = t0 + (t1 - t0) * np.linspace(0.0, 1.0, n_samples)
     Xi[ci["t_s"]] = tg - t0
-    if "foot_acc" in available and "foot" in forward:
-        ta, acc = segment(*streams["fAccelerometer"], t0, t1)
-        gyr = resample(ta, *segment(*streams["fGyroscope"], t0, t1)).T if "foot_gyr" in available else None
-        a, g, an = foot_levelled(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s, heading=heading)
+    lev = levelled_units(streams, t0, t1, available=available, forward=forward, rest_search_s=rest_search_s,
+                         heading=heading)
+    if "foot" in lev:
+        ta, a, g, an = lev["foot"]
         c = ci["foot_acc_x"]
         Xi[c:c + 3] = resample(tg, ta, a)
         Xi[ci["foot_acc_norm"]] = resample(tg, ta, an[:, None])[0]
@@ -161,10 +190,8 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
         for j, name in enumerate(("fForceA", "fForceB")):
             tf, f = segment(*streams[name], t0, t1)
             Xi[ci["force_a"] + j] = resample(tg, tf, f)[0]
-    if "waist_acc" in available and "waist" in forward:
-        tw, wacc = segment(*streams["wAccelerometer"], t0, t1)
-        wgyr = resample(tw, *segment(*streams["wGyroscope"], t0, t1)).T if "waist_gyr" in available else None
-        a, g = waist_levelled(wacc, wgyr, forward["waist"])
+    if "waist" in lev:
+        tw, a, g, _ = lev["waist"]
         c = ci["waist_acc_x"]
         Xi[c:c + 3] = resample(tg, tw, a)
         if g is not None:
@@ -173,3 +200,4 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
     if "waist_baro" in available:
         tb, b = segment(*streams["wBarometer"], t0, t1)
         Xi[ci["waist_baro"]] = np.interp(tg, tb, b[:, 0]) - np.interp(t0, tb, b[:, 0])
+    return lev

@@ -6,13 +6,11 @@ measurements (objects with ``t``, ``sensor``, ``values``). The tracker keeps at 
 builds the step window, classifies it with each task's model, estimates its displacement with the
 PLASYS rules and updates heading and position.
 
-Displacement (decision E6, docs/decisions/export.md): the step window's levelled, gravity-removed foot
-acceleration is integrated twice with a zero-velocity update at both stances (linear velocity-drift
-removal, thesis ch.7.2 ZUPT); terrain ``down`` uses the 3-axis norm, otherwise the horizontal distance
-(thesis eq. 61); direction ``backward`` makes it negative; the length class clamps it to its bounds
-(thesis ch.6.3 / ch.7.2.2); on stairs the vertical displacement is the altitude change. Heading =
-previous heading + the integral of the vertical angular rate over the step (waist unit when present,
-else the foot).
+Displacement, heading and position (decision E6, docs/decisions/export.md) come from the stride kernel
+:mod:`pdrlearn.kernels.stride`, the same one ``pdrlearn track --streaming`` (plasys pipeline) runs: the
+stride's levelled, gravity-removed foot acceleration at the unit's own rate integrated twice with a
+zero-velocity update at both stances (thesis ch.7.2), the M3 rules (thesis eq. 61, ch.7.2.2), heading
+= previous heading + the integral of the levelled vertical rate over the stride (``heading_source``).
 """
 
 from __future__ import annotations
@@ -24,9 +22,16 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, ModelError
+from pdrlearn.kernels.stride import (
+    HEADING_SOURCES,
+    StanceSegmenter,
+    advance,
+    apply_stride_rules,
+    stride_motion,
+)
+from pdrlearn.kernels.window import available_groups, fill_step_window
 from pdrlearn.runtime.bundle import Bundle, load_bundle
 from pdrlearn.runtime.classify import TaskClassifier
-from pdrlearn.runtime.features import step_window
 
 log = logging.getLogger(__name__)
 
@@ -43,6 +48,7 @@ DEFAULT_DISPLACEMENT = {
     "min_step_s": 0.3,
     "max_step_s": 3.0,
     "initial_heading_rad": 0.0,
+    "heading_source": "auto",  # decision E6: "auto" (waist gyro when present, else foot), "foot", "waist-gyro"
     "max_wait_s": 2.0,  # longest wait for a late sensor before a step is processed (thesis: < 2 s delay)
 }
 _DIRECTIONS = {
@@ -97,31 +103,6 @@ class Step:
         }
 
 
-def step_displacement(W: np.ndarray, ci: dict, classes: dict[str, str], params: dict) -> tuple[float, float]:
-    """Signed length (m) and altitude change (m) of one step window ``W (channels, samples)``."""
-    t = W[ci["t_s"]]
-    a = W[[ci["foot_acc_x"], ci["foot_acc_y"], ci["foot_acc_z"]]].T
-    dt = np.diff(t)[:, None]
-    v = np.vstack([np.zeros((1, 3)), np.cumsum(0.5 * (a[1:] + a[:-1]) * dt, axis=0)])
-    v -= np.linspace(0.0, 1.0, len(t))[:, None] * v[-1]  # ZUPT at both stances (thesis ch.7.2)
-    d = np.sum(0.5 * (v[1:] + v[:-1]) * dt, axis=0)
-    terrain = classes.get("terrain", "flat")
-    dist = (
-        float(np.linalg.norm(d))
-        if terrain == "down" and params.get("down_mode") == "norm3"
-        else float(np.hypot(d[0], d[1]))
-    )  # thesis eq. 61
-    lc = classes.get("length")
-    bounds = params.get("length_bounds_m", {})
-    if lc in bounds:
-        lo, hi = bounds[lc]
-        dist = float(np.clip(dist, lo, hi))  # length class clamps (thesis ch.7.2.2)
-    if classes.get("direction") == "backward" or ("direction" not in classes and d[0] < 0):
-        dist = -dist
-    dz = float(d[2]) if terrain in ("up", "down") else 0.0  # altitude change only on stairs
-    return dist, dz
-
-
 class Tracker:
     """Classify and track steps as samples stream in (numpy + onnxruntime only).
 
@@ -133,6 +114,7 @@ class Tracker:
     methods : task -> ``"method/unit"`` to use instead of the bundle's chosen one.
     start : initial ENU position (m) and ``heading_rad`` override.
     buffer_s : seconds of samples kept per sensor (bounded state).
+    heading_source : "auto" | "foot" | "waist-gyro" (default: the bundle's ``displacement``).
     """
 
     def __init__(
@@ -145,6 +127,7 @@ class Tracker:
         start=(0.0, 0.0, 0.0),
         heading_rad: float | None = None,
         buffer_s: float = 8.0,
+        heading_source: str | None = None,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -163,6 +146,12 @@ class Tracker:
             meth, unit = mu.split("/") if mu else (None, None)
             self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit)
         self.params = dict(m["displacement"])
+        self.heading_source = heading_source or str(self.params.get("heading_source", "auto"))
+        if self.heading_source not in HEADING_SOURCES:
+            raise DataError(f"heading_source {self.heading_source!r} is not one of {', '.join(HEADING_SOURCES)}")
+        b = self.params.get("length_bounds_m")
+        self.bounds = None if b is None else {str(k): (float(v[0]), float(v[1])) for k, v in b.items()}
+        self.segmenter = StanceSegmenter.from_params(self.params)
         if not {"fAccelerometer", "fGyroscope"} <= set(m["sensors"].get("required", [])) | set(
             m["sensors"].get("optional", [])
         ):
@@ -176,12 +165,7 @@ class Tracker:
         self._buf: dict[str, list] = {}
         self.position = np.asarray(start, dtype=float).copy()
         self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
-        self._stance_start: float | None = None
-        self._last_still = -np.inf
-        self._last_boundary: float | None = None
-        self._open: float | None = None  # start (s) of the step in progress
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
-        self._closed = False
         self._det_t = -np.inf
         self._rate_checked: set[str] = set()
         self.n_steps = 0
@@ -194,17 +178,14 @@ class Tracker:
 
     def window(self, t0: float, t1: float) -> np.ndarray:
         """The step window of ``[t0, t1]`` from the buffered samples."""
+        return self._window(t0, t1)[0]
+
+    def _window(self, t0: float, t1: float):
         streams = {k: self._stream(k) for k in self._buf}
-        return step_window(
-            streams,
-            t0,
-            t1,
-            channels=self.channels,
-            forward=self.forward,
-            n_samples=self.n_samples,
-            heading=self.heading_mode,
-            rest_search_s=self.rest_search_s,
-        )
+        W = np.full((len(self.channels), self.n_samples), np.nan)
+        lev = fill_step_window(W, streams, t0, t1, channel_index=self.ci, available=available_groups(streams),
+                               forward=self.forward, rest_search_s=self.rest_search_s, heading=self.heading_mode)
+        return W, lev
 
     # -- streaming ------------------------------------------------------------------------------------
     def _stream(self, name: str) -> tuple[np.ndarray, np.ndarray]:
@@ -277,68 +258,33 @@ class Tracker:
         return out
 
     def _detect(self) -> None:
-        """Online stance detection on the foot gyroscope; a step runs from one stance to the next.
-
-        A stance is a run of samples with ``|w| < stance_gyro_rad_s`` lasting ``min_stance_s``. Its
-        boundary is its middle, but at most ``stance_half_s`` from its start (closing the step before)
-        and from its end (opening the next), so standing still neither delays a step nor stretches it
-        (decision E7).
-        """
+        """Online stance detection on the foot gyroscope (:class:`pdrlearn.kernels.stride.StanceSegmenter`,
+        decision E7); a step runs from one stance to the next."""
         if "fGyroscope" not in self._buf or "fAccelerometer" not in self._buf:
             return
         t, g = self._stream("fGyroscope")
-        new = t > self._det_t
-        if not new.any():
+        i = int(np.searchsorted(t, self._det_t, side="right"))
+        if i >= len(t):
             return
-        p = self.params
-        thr, min_st = float(p["stance_gyro_rad_s"]), float(p["min_stance_s"])
-        half = float(p.get("stance_half_s", 0.3))
-        still = np.linalg.norm(g[new], axis=1) < thr
-        for ti, s in zip(t[new], still, strict=True):
-            if s:
-                if self._stance_start is None:
-                    self._stance_start, self._closed = float(ti), False
-                self._last_still = float(ti)
-                dur = self._last_still - self._stance_start
-                if not self._closed and dur >= max(2 * half, min_st):  # long stance: close the step now
-                    self._close(self._stance_start + half)
-                continue
-            if self._stance_start is not None:
-                s0, s1 = self._stance_start, self._last_still
-                if s1 - s0 >= min_st:
-                    mid = 0.5 * (s0 + s1)
-                    if not self._closed:
-                        self._close(mid)
-                    self._open = max(mid, s1 - half)
-                self._stance_start = None
+        self._pending += self.segmenter.update(t[i:], g[i:])
         self._det_t = float(t[-1])
-
-    def _close(self, end: float) -> None:
-        """End the open step at ``end`` (s); queue it when its duration is plausible."""
-        self._closed = True
-        start, self._open = self._open, None
-        self._last_boundary = end
-        if start is None:
-            return
-        if float(self.params["min_step_s"]) <= end - start <= float(self.params["max_step_s"]):
-            self._pending.append((start, end))
 
     def process_step(self, t0: float, t1: float) -> Step:
         """Classify, measure and place the step ``[t0, t1]`` (s) from the buffered samples."""
-        W = self.window(t0, t1)
+        W, lev = self._window(t0, t1)
         res = self.classify(W[None])
         classes = {task: str(c[0]) for task, (c, _) in res.items()}
         proba = {
             task: {cl: float(v) for cl, v in zip(self.classifiers[task].classes, p[0], strict=True)}
             for task, (_, p) in res.items()
         }
-        length, dz = step_displacement(W, self.ci, classes, self.params)
-        yaw_ch = "waist_gyr_z" if np.isfinite(W[self.ci["waist_gyr_z"]]).all() else "foot_gyr_z"
-        if np.isfinite(W[self.ci[yaw_ch]]).all():
-            tt = W[self.ci["t_s"]]
-            r = W[self.ci[yaw_ch]]
-            self.heading += float(np.sum(0.5 * (r[1:] + r[:-1]) * np.diff(tt)))
-        self.position += (length * np.cos(self.heading), length * np.sin(self.heading), dz)
+        disp, dyaw = stride_motion(lev, self.heading_source)
+        length, dz = apply_stride_rules(disp, [classes.get("terrain")], [classes.get("direction")],
+                                        [classes.get("length")], bounds=self.bounds,
+                                        down_mode=str(self.params.get("down_mode", "norm3")))
+        length, dz = float(length[0]), float(dz[0])
+        self.heading += dyaw
+        self.position = advance(self.position, self.heading, length, dz)
         self.n_steps += 1
         return Step(t0, t1, classes, proba, length, dz, self.heading, *map(float, self.position))
 
@@ -348,8 +294,8 @@ class Tracker:
         if latest is None:
             return
         keep_from = latest - self.buffer_s
-        if self._last_boundary is not None:  # the next step starts at the last boundary
-            keep_from = max(keep_from, self._last_boundary - 1.0)
+        if self.segmenter.last_boundary is not None:  # the next step starts at the last boundary
+            keep_from = max(keep_from, self.segmenter.last_boundary - 1.0)
         if self._pending:  # keep what the waiting steps need
             keep_from = min(keep_from, self._pending[0][0] - 1.0)
         for name in self._buf:

@@ -10,6 +10,11 @@
 - **M3** (PLASYS): M2 plus the step classes (model or ``oracle`` labels): terrain picks the distance
   (horizontal for flat/up, 3-axis norm for down), direction fixes the sign, the length class clamps the
   distance, stairs give the altitude change (thesis ch.7.2.2).
+
+``streaming=True`` (M2/M3) runs the stride-local kernel of the streaming runtime instead
+(:mod:`pdrlearn.kernels.stride`: online stance segmentation, per-stride ZUPT on the levelled foot
+acceleration, the M3 rules, heading from the integrated vertical rate), so that
+``pdrlearn.runtime.Tracker`` reproduces the track (issue 7; docs/deploying.md "Streamable tracking").
 """
 
 from __future__ import annotations
@@ -31,6 +36,8 @@ from pdrlearn.displace import (
 )
 from pdrlearn.errors import DataError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
+from pdrlearn.kernels import stride as SK
+from pdrlearn.kernels.window import available_groups, levelled_units
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.track.base import TrackResult, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
@@ -202,7 +209,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
                  bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
                  min_confidence: float = 0.0, align: bool = False, rules: str = "thesis",
-                 fused_tau_s: float = 60.0, **opts) -> TrackResult:
+                 fused_tau_s: float = 60.0, streaming: bool = False, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -225,10 +232,20 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         default, see docs/decisions/localization.md L13)
     min_confidence : a class rule is applied only when the model's probability of the class reaches this
         (0 = always, as the thesis)
+    streaming : M2/M3 with the streaming runtime's stride-local kernel (see :func:`track_streaming`);
+        ``heading`` is then "auto" (default), "foot" or "waist-gyro"; ``params`` = stance-segmentation
+        settings (:class:`pdrlearn.kernels.stride.StanceSegmenter`)
     """
     method = str(method).upper()
     if method not in METHODS:
         raise DataError(f"plasys: method '{method}' is not one of M1, M2, M3")
+    if streaming:
+        if steps != "detector" or align or rules != "thesis" or min_confidence > 0:
+            raise DataError("plasys streaming=True: steps, align, rules='bayes' and min_confidence are not "
+                            "streamable; leave them at their defaults")
+        return track_streaming(session, method=method, model=model, start=start, params=params,
+                               heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
+                               bounds_scale=bounds_scale, down_mode=down_mode)
     cfg = METHODS[method]
     warnings: list[str] = []
     foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
@@ -357,4 +374,82 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.name, w)
+    return TrackResult(steps=table, trajectory=traj, info=info)
+
+
+def track_streaming(session: Session, *, method: str = "M3", model=None, start=None, params=None,
+                    heading: str = "auto", initial_heading: float = 0.0, bounds=None, bounds_scale: float = 2.0,
+                    down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca") -> TrackResult:
+    """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
+
+    Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
+    each stride's displacement from its own samples only (:func:`~pdrlearn.kernels.stride.stride_motion`:
+    levelled foot acceleration, ZUPT at both stances); M3 classes from ``model`` (directory, loaded model
+    or ``"oracle"``) and the rules of :func:`~pdrlearn.kernels.stride.apply_stride_rules`; the heading is
+    ``initial_heading`` + the integrated levelled vertical rate (``heading``: "auto" = waist gyroscope
+    when present, else foot; "foot"; "waist-gyro"). ``Tracker(bundle)`` streaming the same session gives
+    the same steps and positions (tested to 1 mm). Session-wide steps (Kalman smoother, waist heading
+    filter with the magnetometer, fused heading) are not streamable and not used here.
+    """
+    if method not in ("M2", "M3"):
+        raise DataError(f"plasys streaming: method '{method}' is not streamable; use M2 or M3")
+    if heading not in SK.HEADING_SOURCES:
+        raise DataError(f"plasys streaming: heading '{heading}' is not one of {', '.join(SK.HEADING_SOURCES)} "
+                        "(waist/fused headings need the whole session)")
+    session.require("fAccelerometer", "fGyroscope", purpose=f"PLASYS {method} (streaming)")
+    from pdrlearn.features.windows import _declared_forward
+
+    streams = {n: (s.t, s.values) for n, s in session.streams.items()}
+    available = available_groups(streams)
+    forward = {p: _declared_forward(session, p) for p in ("foot", "waist")
+               if p in session.frames and f"{p}_acc" in available}
+    seg_params = dict(params or {})
+    strides = SK.stance_strides(*streams["fGyroscope"], seg_params)
+    if not len(strides):
+        raise DataError(f"session '{session.name}': no stance-to-stance stride found on the foot gyroscope")
+    table = pd.DataFrame({"start_s": strides[:, 0], "end_s": strides[:, 1]})
+    warnings: list[str] = []
+    classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
+    model_bounds = None
+    if method == "M3":
+        if model is None:
+            raise ModelError("M3 needs the step classes: pass a trained model directory or 'oracle'")
+        if isinstance(model, str) and model == "oracle":
+            classes = oracle_classes(session, table)
+        else:
+            classes, model_bounds = _model_classes(model, session, table)
+    use_bounds = bounds if bounds is not None else model_bounds
+    rb = (StepRules(bounds=parse_bounds(use_bounds) if use_bounds is not None else None,
+                    bounds_scale=bounds_scale).effective_bounds() if method == "M3" else None)
+    disp, dyaw = np.zeros((len(table), 3)), np.zeros(len(table))
+    for i, (t0, t1) in enumerate(strides):
+        lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,
+                             rest_search_s=rest_search_s, heading=step_heading)
+        disp[i], dyaw[i] = SK.stride_motion(lev, heading)
+    length, dz = SK.apply_stride_rules(disp, *(classes[c].to_numpy(dtype=object) if method == "M3" else None
+                                             for c in ("terrain", "direction", "length_class")),
+                                       bounds=rb, down_mode=down_mode)
+    head = initial_heading + np.cumsum(dyaw)
+    xyz = np.zeros((len(table) + 1, 3))
+    for i in range(len(table)):  # the runtime's own position update, stride by stride
+        xyz[i + 1] = SK.advance(xyz[i], float(head[i]), float(length[i]), float(dz[i]))
+    table["event_s"] = table["end_s"]
+    table["length_m"] = length
+    table["raw_length_m"] = np.hypot(disp[:, 0], disp[:, 1]) * np.where(disp[:, 0] < 0, -1.0, 1.0)
+    table["heading_rad"] = wrap_angle(head)
+    table["dz_m"] = dz
+    for c in classes.columns:
+        table[c] = classes[c].to_numpy()
+    table["unit"] = "foot"
+    traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
+                         "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2]})
+    if start is not None:
+        ll = geodetic_track(tuple(start), length, head)
+        traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
+    info = {"pipeline": "plasys", "method": method, "streaming": True, "heading_source": heading,
+            "steps_source": "stance (streaming)",
+            "classes_source": (None if method == "M2" else ("oracle" if isinstance(model, str)
+                                                            and model == "oracle" else "model")),
+            "length_bounds_m": rb, "settings": {"segmenter": seg_params, "rest_search_s": rest_search_s},
+            "warnings": warnings}
     return TrackResult(steps=table, trajectory=traj, info=info)
