@@ -77,8 +77,11 @@ def resample(t_new: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
 
 
 def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
-                  rest_search_s: float, heading: str) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
-    """Foot acc (n, 3; gravity removed), gyro (n, 3) in the step frame, and |acc| (n,).
+                  rest_search_s: float, heading: str
+                  ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray, float]:
+    """Foot acc (n, 3; gravity removed), gyro (n, 3) in the step frame, |acc| (n,), and the heading
+    change (rad, + = left) of the declared forward axis from the first to the last sample (0 without a
+    gyroscope), from the propagated attitude.
 
     Tilt from the rest specific force near the window's start, attitude propagated with the gyroscope,
     the tilt seen at the rest near the end spread over the step; forward = principal horizontal axis of
@@ -106,7 +109,9 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     ref = ref / np.linalg.norm(ref)
     yaw = heading_rotation(principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
     g_out = None if gyr is None else np.einsum("kij,kj->ki", rot, gyr) @ yaw.T
-    return a_lev @ yaw.T, g_out, np.linalg.norm(acc, axis=1)
+    f0, f1 = ref, (rot[-1] @ forward_s)[:2]  # forward axis at the start rest and at the window's end
+    dpsi = 0.0 if gyr is None else float(np.arctan2(f0[0] * f1[1] - f0[1] * f1[0], f0 @ f1))
+    return a_lev @ yaw.T, g_out, np.linalg.norm(acc, axis=1), dpsi
 
 
 def waist_levelled(acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray
@@ -130,7 +135,7 @@ def available_groups(streams: Streams) -> tuple[str, ...]:
     return tuple(g for g, names in GROUP_STREAMS.items() if all(nm in streams for nm in names))
 
 
-Levelled = dict[str, tuple[np.ndarray, np.ndarray, "np.ndarray | None", "np.ndarray | None"]]
+Levelled = dict[str, tuple[np.ndarray, np.ndarray, "np.ndarray | None", "np.ndarray | None", float]]
 
 
 def levelled_units(streams: Streams, t0: float, t1: float, *, available: tuple[str, ...],
@@ -138,20 +143,22 @@ def levelled_units(streams: Streams, t0: float, t1: float, *, available: tuple[s
     """Each unit's samples of the step ``[t0, t1]`` at the unit's own rate, in the step frame.
 
     Returns placement -> ``(t (n,) s, acc (n, 3) m/s^2 gravity removed, gyr (n, 3) rad/s or None,
-    |acc| (n,) or None)`` for ``foot`` (:func:`foot_levelled`) and ``waist`` (:func:`waist_levelled`)
+    |acc| (n,) or None, heading change (rad) of the foot's attitude or nan)`` for ``foot``
+    (:func:`foot_levelled`) and ``waist`` (:func:`waist_levelled`)
     when their accelerometer is available and their forward axis is declared.
     """
     out: Levelled = {}
     if "foot_acc" in available and "foot" in forward:
         ta, acc = segment(*streams["fAccelerometer"], t0, t1)
         gyr = resample(ta, *segment(*streams["fGyroscope"], t0, t1)).T if "foot_gyr" in available else None
-        a, g, an = foot_levelled(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s, heading=heading)
-        out["foot"] = (ta, a, g, an)
+        a, g, an, dpsi = foot_levelled(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s,
+                                       heading=heading)
+        out["foot"] = (ta, a, g, an, dpsi)
     if "waist_acc" in available and "waist" in forward:
         tw, wacc = segment(*streams["wAccelerometer"], t0, t1)
         wgyr = resample(tw, *segment(*streams["wGyroscope"], t0, t1)).T if "waist_gyr" in available else None
         a, g = waist_levelled(wacc, wgyr, forward["waist"])
-        out["waist"] = (tw, a, g, None)
+        out["waist"] = (tw, a, g, None, float("nan"))
     return out
 
 
@@ -179,7 +186,7 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
     lev = levelled_units(streams, t0, t1, available=available, forward=forward, rest_search_s=rest_search_s,
                          heading=heading)
     if "foot" in lev:
-        ta, a, g, an = lev["foot"]
+        ta, a, g, an, _ = lev["foot"]
         c = ci["foot_acc_x"]
         Xi[c:c + 3] = resample(tg, ta, a)
         Xi[ci["foot_acc_norm"]] = resample(tg, ta, an[:, None])[0]
@@ -191,7 +198,7 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
             tf, f = segment(*streams[name], t0, t1)
             Xi[ci["force_a"] + j] = resample(tg, tf, f)[0]
     if "waist" in lev:
-        tw, a, g, _ = lev["waist"]
+        tw, a, g, _, _ = lev["waist"]
         c = ci["waist_acc_x"]
         Xi[c:c + 3] = resample(tg, tw, a)
         if g is not None:
