@@ -96,3 +96,64 @@ def test_standstill_and_bad_params_give_one_line_errors():
         track_plasys(still, method="M2")
     with pytest.raises(DataError, match="unknown parameter"):
         track_plasys(sim.simulate("A", user_seed=1), method="M2", params={"pendulum_k": 1.0})
+
+
+def _cal_model(user: int):
+    """The user's classifiers trained on their own calibration exercises walked at the three speeds
+    (decision L18; SVM on both units only, to keep the test fast)."""
+    from pdrlearn.classify import train_user
+
+    cal = [sim.simulate(e, user_seed=user, speed=sp) for sp in ("slow", "normal", "fast")
+           for e in ("terrain", "direction", "length")]
+    return train_user(cal, methods=("svm",), units=("fused",), cv=3, user=f"u{user}")
+
+
+def test_m3_with_a_trained_model_beats_m1_and_matches_m2():
+    """Decision L18: with a model trained on the user's calibration exercises, M3 (default: bayes rules on
+    the classes with probability >= 0.95) beats M1 and is no worse than M2 (0.3 percentage points); the
+    thesis rules with every class prevailing are worse."""
+    err = {"M1": [], "M2": [], "M3": [], "M3-thesis": []}
+    for user in (2, 4):
+        model = _cal_model(user)
+        for scen, speed in (("B", "normal"), ("C", "slow"), ("C", "fast")):
+            s = sim.simulate(scen, user_seed=user, speed=speed)
+            for name, kw in {"M1": {"method": "M1"}, "M2": {"method": "M2"},
+                             "M3": {"method": "M3", "model": model},
+                             "M3-thesis": {"method": "M3", "model": model, "rules": "thesis",
+                                           "min_confidence": 0.0}}.items():
+                res = track_plasys(s, **kw)
+                err[name].append(abs(evaluate_track(res, s)["distance_error_pct"]))
+                if name == "M3":
+                    assert res.info["classes_source"] == "model"
+                    assert res.info["min_confidence"] == pytest.approx(0.95)
+                    assert res.info["rules"] == "bayes"
+    m = {k: float(np.mean(v)) for k, v in err.items()}
+    assert m["M3"] < m["M1"]
+    assert m["M3"] <= m["M2"] + 0.3
+    assert m["M3"] < m["M3-thesis"]
+
+
+def test_confidence_gate_keeps_the_estimate_of_a_doubtful_class(scen_b):
+    """A length class with probability < min_confidence does not clamp; >= min_confidence does."""
+    res0 = track_plasys(scen_b, method="M3", model="oracle", steps="labels")
+    n = len(res0.steps)
+    lo, _ = scen_b.meta["length_class_bounds_m"]
+
+    class Fake:  # a model calling every stride "short" with probability p
+        def __init__(self, p):
+            self.p = p
+            self.data_summary = {"length_bounds_m": scen_b.meta["length_class_bounds_m"]}
+
+        def predict_steps(self, session, steps):
+            q = (1 - self.p) / 2
+            return pd.DataFrame({"terrain": ["flat"] * len(steps), "direction": ["forward"] * len(steps),
+                                 "length_class": ["short"] * len(steps), "p_length_short": self.p,
+                                 "p_length_normal": q, "p_length_long": q})
+
+    doubtful = track_plasys(scen_b, method="M3", model=Fake(0.8), steps="labels", rules="thesis")
+    sure = track_plasys(scen_b, method="M3", model=Fake(0.99), steps="labels", rules="thesis")
+    raw = doubtful.steps["raw_length_m"].abs().to_numpy()
+    assert len(doubtful.steps) == n
+    np.testing.assert_allclose(doubtful.steps["length_m"].abs(), raw)
+    assert (sure.steps["length_m"].abs() <= lo + 1e-9).all()
+    assert (raw > lo + 0.01).sum() > n // 2  # the clamp did change most strides

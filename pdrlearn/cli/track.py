@@ -25,8 +25,12 @@ def track(
     method: str = typer.Option("M3", help="PLASYS method: M1 (accelerometer), M2 (+ force), M3 (+ classes)."),
     model: str = typer.Option(None, "--model", help="Trained model directory (M3); 'oracle' = the session's "
                               "own step labels."),
-    rules: str = typer.Option("thesis", "--rules", help="M3 class rules: thesis (classes prevail) or bayes "
-                              "(class probabilities weighed against the estimate)."),
+    rules: str = typer.Option(None, "--rules", help="M3 class rules: thesis (classes prevail) or bayes "
+                              "(class probabilities weighed against the estimate); default bayes with a "
+                              "model, thesis with --model oracle."),
+    min_confidence: float = typer.Option(None, "--min-confidence", min=0.0, max=1.0,
+                                         help="M3: apply a class rule only when the model's probability of the "
+                                         "class reaches this (default 0.95; 0 = always, as the thesis)."),
     length_bounds: str = typer.Option(None, "--length-bounds", help="M3 stride-length class edges "
                                       "SHORT_MAX,NORMAL_MAX in m (default: the model's, else thesis x 2)."),
     start: str = typer.Option(None, "--start", help="Start coordinate LAT,LON (degrees) -> lat/lon columns."),
@@ -66,7 +70,10 @@ def track(
     kw = {"model": model, "start": start_ll, "params": par}
     if pipeline == "plasys":
         kw["method"] = method
-        kw["rules"] = rules
+        if rules is not None:
+            kw["rules"] = rules
+        if min_confidence is not None:
+            kw["min_confidence"] = min_confidence
         if length_bounds is not None:
             try:
                 kw["bounds"] = [float(v) for v in length_bounds.split(",")]

@@ -180,6 +180,11 @@ def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, t
 
 
 _TASK_COLUMNS = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
+#: Probability a model's class needs before its rule overrides the estimate (docs/decisions/localization.md
+#: L18): a wrong length class costs ~15-20 % of a stride, a right one gains ~0 when the estimate is good.
+DEFAULT_MIN_CONFIDENCE = 0.95
+#: Class rules with a model's classes (L18): "bayes" (L14) was better than "thesis" in every run.
+DEFAULT_MODEL_RULES = "bayes"
 
 
 def _confident(classes: pd.DataFrame, min_confidence: float) -> pd.DataFrame:
@@ -208,7 +213,7 @@ def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
 def track_plasys(session: Session, *, method: str = "M3", model=None, start=None, params=None,
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
                  bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
-                 min_confidence: float = 0.0, align: bool = False, rules: str = "thesis",
+                 min_confidence: float | None = None, align: bool = False, rules: str | None = None,
                  fused_tau_s: float = 60.0, streaming: bool = False, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
@@ -227,11 +232,14 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         (the foot unit measures strides = two steps, see docs/decisions/localization.md)
     down_mode : "norm3" (thesis eq. 61) or "horizontal" for descending stairs
     rules : "thesis" (the classes prevail, ch.7.2.2) or "bayes" (class probabilities weighed against the
-        estimate's uncertainty, docs/decisions/localization.md L14)
+        estimate's uncertainty, docs/decisions/localization.md L14). Default None: "bayes" with a model's
+        classes, "thesis" with ``model="oracle"`` labels (decision L18); streaming applies "thesis"
     align : M3: align the waist clock to the foot clock from the steps both units detect (off by
         default, see docs/decisions/localization.md L13)
     min_confidence : a class rule is applied only when the model's probability of the class reaches this
-        (0 = always, as the thesis)
+        (default None = :data:`DEFAULT_MIN_CONFIDENCE` 0.95, decision L18; 0 = always, as the thesis).
+        Oracle classes carry no probabilities and are always applied. ``streaming=True`` applies every
+        class (the runtime has no confidence gate yet)
     streaming : M2/M3 with the streaming runtime's stride-local kernel (see :func:`track_streaming`);
         ``heading`` is then "auto" (default), "foot" or "waist-gyro"; ``params`` = stance-segmentation
         settings (:class:`pdrlearn.kernels.stride.StanceSegmenter`)
@@ -240,7 +248,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     if method not in METHODS:
         raise DataError(f"plasys: method '{method}' is not one of M1, M2, M3")
     if streaming:
-        if steps != "detector" or align or rules != "thesis" or min_confidence > 0:
+        if steps != "detector" or align or rules not in (None, "thesis") or (min_confidence or 0) > 0:
             raise DataError("plasys streaming=True: steps, align, rules='bayes' and min_confidence are not "
                             "streamable; leave them at their defaults")
         return track_streaming(session, method=method, model=model, start=start, params=params,
@@ -312,12 +320,15 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             clamp = False
             warnings.append("the model carries no length-class bounds (length_bounds_m): the length rule is "
                             "skipped; pass bounds=... or retrain with the user's bounds")
+    if rules is None:  # decision L18: a model's probabilities are weighed, certain labels prevail
+        rules = "thesis" if isinstance(model, str) and model == "oracle" else DEFAULT_MODEL_RULES
     step_rules = StepRules(bounds=parse_bounds(use_bounds) if use_bounds is not None else None,
                            bounds_scale=bounds_scale, down_mode=down_mode, mode=rules,
                            clamp=clamp, sign=cfg["rules"], altitude=cfg["rules"])
     if not cfg["rules"]:
         classes["terrain"] = None
-    rule_classes = _confident(classes, min_confidence) if cfg["rules"] else classes.assign(terrain="flat")
+    gate = DEFAULT_MIN_CONFIDENCE if min_confidence is None else float(min_confidence)
+    rule_classes = _confident(classes, gate) if cfg["rules"] else classes.assign(terrain="flat")
     applied = step_rules.apply(disp, rule_classes)
     length = applied["length_m"].to_numpy()
     dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
@@ -369,6 +380,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             "unit_alignment": alignment,
             "length_bounds_m": step_rules.effective_bounds() if clamp else None,
             "rules": rules if cfg["rules"] else None,
+            "min_confidence": gate if cfg["rules"] else None,
             "settings": {k: getattr(fd, k)
                          for k in ("integrator", "zupt_end", "gyro_bias", "attitude", "sw", "r")},
             "warnings": warnings}
