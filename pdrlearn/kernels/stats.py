@@ -15,19 +15,26 @@ import numpy as np
 from pdrlearn.kernels.rotation import gravity_rotation, matrix_to_rotvec, rotvec_to_matrix
 
 
-def rest_index(acc: np.ndarray, gyr: np.ndarray | None, lo: int, hi: int) -> int:
+def rest_index(acc: np.ndarray, gyr: np.ndarray | None, lo: int, hi: int, *,
+               acc_norm: np.ndarray | None = None) -> int:
     """Index in ``[lo, hi)`` where the unit moves least.
 
     Motion score = gyroscope norm (rad/s) when a gyroscope exists, plus the deviation of the
     specific-force norm from its window median scaled to rad/s-like magnitude (1 m/s^2 ~ 0.1 rad/s).
+    ``acc_norm`` : |acc| (n,) when the caller has it already (saves its computation).
     """
     lo = max(0, lo)
     hi = max(lo + 1, min(hi, acc.shape[0]))
-    an = np.linalg.norm(acc[lo:hi], axis=1)
-    score = 0.1 * np.abs(an - np.median(np.linalg.norm(acc, axis=1)))
+    an = row_norm(acc) if acc_norm is None else acc_norm
+    score = 0.1 * np.abs(an[lo:hi] - np.median(an))
     if gyr is not None:
-        score = score + np.linalg.norm(gyr[lo:hi], axis=1)
+        score = score + row_norm(gyr[lo:hi])
     return lo + int(np.argmin(score))
+
+
+def row_norm(v: np.ndarray) -> np.ndarray:
+    """Euclidean norm of each row of ``v (n, k)`` (``np.linalg.norm(v, axis=1)`` without its overhead)."""
+    return np.sqrt(np.einsum("ij,ij->i", v, v))
 
 
 def propagate_attitude(gyr: np.ndarray, dt: np.ndarray, k0: int, r0: np.ndarray) -> np.ndarray:
@@ -148,16 +155,20 @@ def peak_stats(sig: np.ndarray, t: np.ndarray) -> dict[str, np.ndarray]:
 
 
 @functools.lru_cache(maxsize=64)
-def _edges(m: int, n_segments: int) -> tuple[np.ndarray, np.ndarray]:
+def _edges(m: int, n_segments: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     if n_segments < 1 or n_segments > m:
         raise ValueError(f"n_segments={n_segments} must be between 1 and the window length {m}")
     edges = np.linspace(0, m, n_segments + 1).round().astype(int)
-    return edges[:-1], edges[1:]
+    a, b = edges[:-1], edges[1:]
+    mean = np.zeros((m, n_segments))  # column k averages part k: mean = sig @ mean
+    for k in range(n_segments):
+        mean[a[k]:b[k], k] = 1.0 / (b[k] - a[k])
+    return a, b, mean
 
 
 def segment_bounds(m: int, n_segments: int) -> list[tuple[int, int]]:
     """Index ranges ``[a, b)`` of ``n_segments`` nearly equal consecutive parts of ``m`` samples."""
-    a, b = _edges(m, n_segments)
+    a, b, _ = _edges(m, n_segments)
     return [(int(i), int(j)) for i, j in zip(a, b, strict=True)]
 
 
@@ -170,19 +181,26 @@ def segment_stats(sig: np.ndarray, t: np.ndarray, n_segments: int = 6) -> np.nda
     output (n, 4 * n_segments) = ``[max_1, min_1, mean_1, slope_1, max_2, ...]``.
     """
     n, m = sig.shape
-    a, b = _edges(m, n_segments)
-    mx = np.maximum.reduceat(sig, a, axis=1)
-    mn = np.minimum.reduceat(sig, a, axis=1)
-    mean = np.add.reduceat(sig, a, axis=1) / (b - a)
+    a, b, mean = _edges(m, n_segments)
+    out = np.empty((n, 4 * n_segments))
+    out[:, 0::4] = np.maximum.reduceat(sig, a, axis=1)
+    out[:, 1::4] = np.minimum.reduceat(sig, a, axis=1)
+    out[:, 2::4] = sig @ mean
     span = t[:, b - 1] - t[:, a]
-    d = sig[:, b - 1] - sig[:, a]
-    slope = np.divide(d, span, out=np.zeros_like(d), where=span > 0)
-    return np.stack([mx, mn, mean, slope], axis=2).reshape(n, 4 * n_segments)
+    out[:, 3::4] = (sig[:, b - 1] - sig[:, a]) / np.where(span > 0, span, np.inf)  # 0 for a 1-sample part
+    return out
 
 
 def interp_rows(t_query: np.ndarray, t: np.ndarray, sig: np.ndarray) -> np.ndarray:
-    """``sig[i]`` at time ``t_query[i]`` (clamped to the window), (n,)."""
-    return np.array([np.interp(tq, ti, si) for tq, ti, si in zip(t_query, t, sig, strict=True)])
+    """``sig[i]`` at times ``t_query[..., i]`` (clamped to row i's window): shape of ``t_query``.
+
+    One ``np.interp`` call for every row: the rows' time grids are shifted to follow each other.
+    """
+    tn = t - t[:, :1]
+    dur = tn[:, -1]
+    off = np.concatenate([[0.0], np.cumsum(dur[:-1] + 1.0)])
+    q = np.clip(np.asarray(t_query) - t[:, 0], 0.0, dur) + off
+    return np.interp(q, (tn + off[:, None]).ravel(), sig.ravel())
 
 
 def force_stats(force: np.ndarray, t: np.ndarray, *, zero_fraction: float = 0.05,
@@ -209,13 +227,15 @@ def force_stats(force: np.ndarray, t: np.ndarray, *, zero_fraction: float = 0.05
     rows = np.arange(n)
     i_peak = np.argmax(np.where(np.arange(m)[None, :] >= last_zero[:, None], force, -np.inf), axis=1)
     t_last, t_peak = tt[rows, last_zero], tt[rows, i_peak]
+    q = np.stack([t_peak - 4 * sample_s, t_peak + 4 * sample_s, t_last + 2 * sample_s,
+                  tt[rows, first_zero] - 2 * sample_s])
+    v = interp_rows(q, tt, force)
     return {
         "air_time": np.sum(zero * dt, axis=1),
         "time_to_peak": t_peak - t_last,
-        "peak_mean_4": 0.5 * (interp_rows(t_peak - 4 * sample_s, tt, force)
-                              + interp_rows(t_peak + 4 * sample_s, tt, force)),
-        "contact_force_2": interp_rows(t_last + 2 * sample_s, tt, force),
-        "takeoff_force": interp_rows(tt[rows, first_zero] - 2 * sample_s, tt, force),
+        "peak_mean_4": 0.5 * (v[0] + v[1]),
+        "contact_force_2": v[2],
+        "takeoff_force": v[3],
     }
 
 

@@ -19,6 +19,7 @@ from pdrlearn.kernels.stats import (
     principal_horizontal_axis,
     propagate_attitude,
     rest_index,
+    row_norm,
 )
 
 #: Sensor groups and their channels, in the order of :data:`CHANNELS` (after ``t_s``).
@@ -90,8 +91,9 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     n = acc.shape[0]
     fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
     m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
-    k0 = rest_index(acc, gyr, 0, m)
-    k1 = rest_index(acc, gyr, n - m, n)
+    an = row_norm(acc)
+    k0 = rest_index(acc, gyr, 0, m, acc_norm=an)
+    k1 = rest_index(acc, gyr, n - m, n, acc_norm=an)
     h = max(0, int(round(0.02 * fs)))
     g0 = acc[max(k0 - h, 0): k0 + h + 1].mean(axis=0)
     g1 = acc[max(k1 - h, 0): k1 + h + 1].mean(axis=0)
@@ -111,7 +113,7 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     g_out = None if gyr is None else np.einsum("kij,kj->ki", rot, gyr) @ yaw.T
     f0, f1 = ref, (rot[-1] @ forward_s)[:2]  # forward axis at the start rest and at the window's end
     dpsi = 0.0 if gyr is None else float(np.arctan2(f0[0] * f1[1] - f0[1] * f1[0], f0 @ f1))
-    return a_lev @ yaw.T, g_out, np.linalg.norm(acc, axis=1), dpsi
+    return a_lev @ yaw.T, g_out, an, dpsi
 
 
 def waist_levelled(acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray

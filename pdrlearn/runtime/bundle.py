@@ -96,6 +96,7 @@ class OnnxModel:
                 opts.log_severity_level = 3
                 self._sess = ort.InferenceSession(str(self.path), sess_options=opts, providers=["CPUExecutionProvider"])
                 self._names = [o.name for o in self._sess.get_outputs()]
+                self._wanted = [n for n in self.outputs.values() if n in self._names]
                 return "onnxruntime"
         # OpenCV fallback: plain networks only (the ai.onnx.ml SVM operators are not in cv2.dnn).
         if self.spec.get("kind") != "network":
@@ -119,8 +120,8 @@ class OnnxModel:
         if X.ndim == 1:
             X = X[None, :]
         if self.backend == "onnxruntime":
-            values = self._sess.run(None, {self.input_name: X})
-            by_name = dict(zip(self._names, values, strict=True))
+            values = self._sess.run(self._wanted, {self.input_name: X})  # only the roles' outputs
+            by_name = dict(zip(self._wanted, values, strict=True))
         else:
             self._net.setInput(X, self.input_name)
             outs = self._net.forward(self._names)
