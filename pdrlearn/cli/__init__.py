@@ -15,7 +15,7 @@ import typer
 
 from pdrlearn.errors import PdrlearnError
 
-COMMAND_MODULES = ["data", "report", "cohort", "train", "calibrate", "track", "steps", "export", "simulate"]
+COMMAND_MODULES = ["simulate", "data", "steps", "train", "track", "calibrate", "export", "report", "cohort"]
 
 app = typer.Typer(
     name="pdrlearn",
