@@ -93,3 +93,14 @@ def test_segmenter_is_chunk_invariant():
         parts += seg.update(t[i:i + 37], gyr[i:i + 37])
     assert len(whole) >= 15
     np.testing.assert_array_equal(np.array(parts), whole)
+
+
+def test_yaw_change_of_consecutive_strides_adds_up():
+    """Strides share their boundary: the heading changes of [t0, tb] and [tb, t1] (each cut from samples
+    that reach one sample beyond its ends) sum to the change over [t0, t1]."""
+    t = np.arange(0.0, 3.0, 0.05)
+    rate = np.sin(t) + 0.5
+    whole = SK.yaw_change(t, rate, 0.52, 2.47)
+    parts = SK.yaw_change(t[8:31], rate[8:31], 0.52, 1.43) + SK.yaw_change(t[28:51], rate[28:51], 1.43, 2.47)
+    assert parts == pytest.approx(whole, abs=1e-12)
+    assert whole == pytest.approx((np.cos(0.52) - np.cos(2.47)) + 0.5 * 1.95, abs=2e-3)

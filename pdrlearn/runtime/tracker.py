@@ -278,7 +278,7 @@ class Tracker:
             task: {cl: float(v) for cl, v in zip(self.classifiers[task].classes, p[0], strict=True)}
             for task, (_, p) in res.items()
         }
-        disp, dyaw = stride_motion(lev, self.heading_source)
+        disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
         length, dz = apply_stride_rules(disp, [classes.get("terrain")], [classes.get("direction")],
                                         [classes.get("length")], bounds=self.bounds,
                                         down_mode=str(self.params.get("down_mode", "norm3")))

@@ -437,7 +437,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     for i, (t0, t1) in enumerate(strides):
         lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,
                              rest_search_s=rest_search_s, heading=step_heading)
-        disp[i], dyaw[i] = SK.stride_motion(lev, heading)
+        disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1))
     length, dz = SK.apply_stride_rules(disp, *(classes[c].to_numpy(dtype=object) if method == "M3" else None
                                              for c in ("terrain", "direction", "length_class")),
                                        bounds=rb, down_mode=down_mode)

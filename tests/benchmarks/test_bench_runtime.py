@@ -65,6 +65,49 @@ def test_bench_runtime_per_step_default_bundle(benchmark, bundles):
     benchmark(tr.process_step, a, b)
 
 
+def test_bench_runtime_stage_breakdown(benchmark, bundles):
+    """Where a step's time goes: step window, classification (of which ONNX runs), stride kernel."""
+    import pdrlearn.runtime.bundle as rb
+    from pdrlearn.kernels.stride import apply_stride_rules, stride_motion
+
+    s = bundles["session"]
+    tr = _loaded_tracker(bundles["root"] / "bundle", s)
+    steps = list(zip(s.steps["start_s"], s.steps["end_s"], strict=True))
+    onnx = [0.0]
+    run = rb.OnnxModel.run
+
+    def timed(self, X):
+        t0 = time.perf_counter()
+        out = run(self, X)
+        onnx[0] += time.perf_counter() - t0
+        return out
+
+    stages: dict[str, list[float]] = {"window": [], "classify": [], "onnx": [], "stride": []}
+    rb.OnnxModel.run = timed
+    try:
+        for _ in range(3):
+            for a, b in steps:
+                t0 = time.perf_counter()
+                W, lev = tr._window(a, b)
+                t1 = time.perf_counter()
+                onnx[0] = 0.0
+                res = tr.classify(W[None])
+                t2 = time.perf_counter()
+                d, _ = stride_motion(lev, tr.heading_source, t0=a, t1=b)
+                apply_stride_rules(d, *([str(res[k][0][0])] if k in res else None
+                                        for k in ("terrain", "direction", "length")), bounds=tr.bounds)
+                t3 = time.perf_counter()
+                for k, v in zip(stages, (t1 - t0, t2 - t1, onnx[0], t3 - t2), strict=True):
+                    stages[k].append(v * 1e3)
+    finally:
+        rb.OnnxModel.run = run
+    med = {k: float(np.median(v)) for k, v in stages.items()}
+    print("\nper step, median ms: " + ", ".join(f"{k} {v:.3f}" for k, v in med.items()))
+    benchmark.extra_info.update(median_ms=med)
+    a, b = steps[len(steps) // 2]
+    benchmark(tr._window, a, b)
+
+
 @pytest.mark.parametrize("method", ["heuristic/foot", "fusion/fused", "dtw/foot", "svm/foot", "nn/foot",
                                     "svm/fused", "nn/fused"])
 def test_bench_runtime_per_step_by_method(benchmark, bundles, method):
