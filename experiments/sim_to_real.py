@@ -15,7 +15,7 @@ Only terrain is studied: the real foot recordings carry terrain labels only (dir
 and the stair strides have no reference length). Writes experiments/results/sim_to_real.md|csv
 (``sim_to_real_<rate>hz.*`` when ``--rate`` is not 20).
 
-    .venv/bin/python experiments/sim_to_real.py [--users 2] [--cv 5] [--rate 20] [--loro] [--diagnose]
+    .venv/bin/python experiments/sim_to_real.py [--users 4] [--cv 5] [--rate 20] [--loro] [--diagnose]
 """
 
 from __future__ import annotations
@@ -93,6 +93,32 @@ def diagnose(sims, real) -> str:
     return pd.DataFrame(rows).fillna("").to_markdown(index=False)
 
 
+def profiles(sessions, label: str) -> list[dict]:
+    """Median stride profile (mid-stance to mid-stance, every 5 %) of foot_pitch and foot_acc_v per class."""
+    from pdrlearn.features import step_windows
+    from pdrlearn.features.transformers import signal
+
+    rows = []
+    for cls in CLASSES:
+        sig = {"foot_pitch": [], "foot_acc_v": []}
+        for s in sessions:
+            st = s.steps[s.steps["terrain"] == cls]
+            if "steady" in st:
+                st = st[st["steady"].astype(bool)]
+            if "turn" in st:
+                st = st[~st["turn"].astype(bool)]
+            if len(st):
+                w = step_windows(s, st)
+                for k in sig:
+                    sig[k].append(signal(w.X, k))
+        for k, v in sig.items():
+            if v:
+                med = np.median(np.vstack(v), axis=0)[::2]
+                rows.append({"class": cls, "signal": k, "source": label or sessions[0].name.replace("gaitmap_", ""),
+                             "profile (0..95 % of the stride)": " ".join(f"{x:.1f}" for x in med)})
+    return rows
+
+
 def loro(real, args) -> dict:
     """Leave-one-recording-out real-trained accuracy per method, pooled over the held-out recordings whose
     classes the other three recordings contain (a stairs recording is the only source of its class)."""
@@ -118,7 +144,7 @@ def loro(real, args) -> dict:
 
 def main(argv: list[str] | None = None) -> pd.DataFrame:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--users", type=int, default=2, help="simulated users to train on (x 3 speeds)")
+    ap.add_argument("--users", type=int, default=4, help="simulated users to train on (x 3 speeds)")
     ap.add_argument("--cv", type=int, default=5, help="folds of the real-data cross-validation")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--rate", type=float, default=20.0,
@@ -176,6 +202,9 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
             f"{m}/{n.replace('gaitmap_', '')} {v:.0f}" for (m, n), v in loro_rec.items()) + "\n"
     if args.diagnose:
         text += "\n## Per-class feature medians (foot; sim = steady strides)\n\n" + diagnose(sims, real) + "\n"
+        prof = profiles(sims, "sim") + [r for s in real for r in profiles([s], "")]
+        prof = sorted(prof, key=lambda r: (CLASSES.index(r["class"]), r["signal"]))
+        text += "\n## Median stride profiles (foot)\n\n" + pd.DataFrame(prof).to_markdown(index=False) + "\n"
     text += f"\n(run time {time.perf_counter() - t_all:.0f} s)\n"
     if not args.no_write:
         RESULTS.mkdir(parents=True, exist_ok=True)

@@ -42,6 +42,8 @@ class StepKind:
     mid_swing_deg : pitch at mid-swing (deg, at 85 % of swing; None = 95 % of the contact pitch)
     impact : (forward, vertical) velocity of the contact point just before contact (x user impact speed)
     clearance_m : heel height above the higher footprint at early swing (None = the user's swing height)
+    pitch_hold : fraction of swing during which the foot keeps its toe-off plantarflexion before it
+        dorsiflexes (the second knot of ``SWING_PITCH_KNOTS``)
     """
 
     duration: float
@@ -50,6 +52,7 @@ class StepKind:
     mid_swing_deg: float | None
     impact: tuple[float, float]
     clearance_m: float | None
+    pitch_hold: float = 0.2
 
 
 # Values follow the thesis' qualitative descriptions (ch.6.1.1, Figs. 59-60): on stairs the force is
@@ -61,7 +64,9 @@ KINDS = {
     "walk": StepKind(1.00, 1.00, None, None, (0.55, -0.85), None),
     "close": StepKind(1.00, 0.60, None, None, (0.35, -0.6), 0.15),
     # stairs up: fore/midfoot placement on the tread, no heel rocker (decisions S15)
-    "stairs_up": StepKind(0.95, 0.75, -2.0, -5.0, (0.9, -1.5), 0.11),
+    # ... and the foot stays pointed through early swing (the knee and hip lift it over the nosing), then
+    # dorsiflexes in mid-late swing to place the forefoot (decisions S18)
+    "stairs_up": StepKind(0.95, 0.75, -2.0, -5.0, (0.9, -1.5), 0.11, pitch_hold=0.45),
     # stairs down: the foot is plantarflexed early in swing and lowered toes first (decisions S15)
     "stairs_down": StepKind(0.82, 0.85, -22.0, -20.0, (0.3, -1.1), 0.09),
     "backward": StepKind(1.20, -0.30, -15.0, None, (0.30, -0.6), 0.09),
@@ -252,13 +257,15 @@ def foot_pose(
         frac = np.array([0.0, 0.3, 0.8, 1.0])
         kp = heel_to[None, :] + frac[:, None] * (heel_ic - heel_to)[None, :]
         drop = max(0.0, h_a[2] - h_b[2])
-        # early swing: half of any rise to the next tread plus the clearance (stairs are climbed gradually);
-        # a descending foot only clears the edge of its own tread and is already on its way down (S15)
-        kp[1, 2] = max(h_a[2] + clear + 0.5 * (zmax - h_a[2]), heel_to[2] + 0.3 * clear)
         if drop > 0:
-            kp[1, 2] = max(h_a[2] + 0.5 * clear, heel_to[2] - 0.25 * drop)
-        # late swing: over the landing tread, with part of a descent still to go (stairs down)
-        kp[2, 2] = h_b[2] + 0.3 * clear + 0.2 * drop if drop > 0 else zmax + 0.3 * clear
+            # descent: past the nosing of its own tread the foot is over the void, so it travels on the
+            # straight line from toe-off to contact, lifted by part of the clearance (decisions S15)
+            kp[1:3, 2] = kp[1:3, 2] + np.array([0.5, 0.25]) * clear
+        else:
+            # early swing: half of any rise to the next tread plus the clearance (stairs are climbed
+            # gradually); late swing: over the landing tread
+            kp[1, 2] = max(h_a[2] + clear + 0.5 * (zmax - h_a[2]), heel_to[2] + 0.3 * clear)
+            kp[2, 2] = zmax + 0.3 * clear
         kp[0], kp[3] = heel_to, heel_ic
         sl = slice(i_to, i_ic)
         heel[sl] = clamped_spline(ev.to[k] + knots_u * swing, kp, v_to, v_ic, t[sl])
@@ -269,8 +276,10 @@ def foot_pose(
         roll[sl] = ev.swing_roll[k] * bump + ev.contact_roll[k] * smoothstep(tu)
         th_early = 1.05 * th_to
         pk = np.array([th_to, th_early, 0.5 * (th_early + ev.theta_mid[k]), ev.theta_mid[k], th_ic])
+        hold = KINDS[st.kind].pitch_hold
+        knots = (0.0, hold, 0.5 * (hold + SWING_PITCH_KNOTS[3]), *SWING_PITCH_KNOTS[3:])
         theta[sl] = clamped_spline(
-            ev.to[k] + np.array(SWING_PITCH_KNOTS) * swing, pk[:, None], np.array([w_to]), np.array([w_ic]), t[sl]
+            ev.to[k] + np.array(knots) * swing, pk[:, None], np.array([w_to]), np.array([w_ic]), t[sl]
         )[:, 0]
         # loading rocker: initial contact -> foot flat, pivot fixed on footprint B
         sl = slice(i_ic, i_ff)
