@@ -1,0 +1,219 @@
+"""Stride-local displacement, PLASYS rules and position update, numpy only (thesis ch.7.2).
+
+The one kernel behind both the streaming runtime (:class:`pdrlearn.runtime.tracker.Tracker`) and the
+streamable variant of the ``plasys`` pipeline (``pdrlearn track --streaming``), so that a streamed
+trajectory equals the offline one (issue 7, decision E6 in docs/decisions/export.md):
+
+- :class:`StanceSegmenter` - online step detection on the foot gyroscope, stance to stance (decision E7);
+- :func:`stride_motion` - the stride's foot signals levelled by :func:`pdrlearn.kernels.window.levelled_units`
+  (the step-window construction, at the unit's own rate) integrated twice with a zero-velocity update
+  at both stances, and the stride's heading change;
+- :func:`apply_stride_rules` - the M3 rules (terrain -> distance, direction -> sign, length class ->
+  clamp, stairs -> altitude change; thesis ch.7.2.2) on per-stride displacements;
+- :func:`advance` - heading and ENU position after a stride.
+
+Units: s, m, rad, m/s^2, rad/s.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.kernels.window import Levelled
+
+
+# -- stride detection ---------------------------------------------------------------------------------
+class StanceSegmenter:
+    """Online stance-to-stance stride detection on the foot gyroscope (decision E7).
+
+    A stance is a run of samples with ``|w| < stance_gyro_rad_s`` lasting ``min_stance_s``. Its boundary
+    is its middle, but at most ``stance_half_s`` from its start (closing the stride before) and from its
+    end (opening the next), so standing still neither delays a stride nor stretches it. Strides lasting
+    ``min_step_s``..``max_step_s`` are returned by :meth:`update` as ``(start_s, end_s)``.
+    """
+
+    def __init__(self, *, stance_gyro_rad_s: float = 0.8, min_stance_s: float = 0.1, stance_half_s: float = 0.3,
+                 min_step_s: float = 0.3, max_step_s: float = 3.0):
+        self.thr = float(stance_gyro_rad_s)
+        self.min_stance_s = float(min_stance_s)
+        self.half = float(stance_half_s)
+        self.min_step_s, self.max_step_s = float(min_step_s), float(max_step_s)
+        self.stance_start: float | None = None
+        self.last_still = -np.inf
+        self.closed = False
+        self.open_s: float | None = None  # start (s) of the stride in progress
+        self.last_boundary: float | None = None
+
+    @classmethod
+    def from_params(cls, params: Mapping) -> StanceSegmenter:
+        """From a bundle's ``displacement`` parameters (unknown keys ignored)."""
+        keys = ("stance_gyro_rad_s", "min_stance_s", "stance_half_s", "min_step_s", "max_step_s")
+        return cls(**{k: float(params[k]) for k in keys if k in params})
+
+    def update(self, t: np.ndarray, gyr: np.ndarray) -> list[tuple[float, float]]:
+        """Feed new foot-gyroscope samples ``t (n,)`` s, ``gyr (n, 3)`` rad/s; return the strides they close."""
+        out: list[tuple[float, float]] = []
+        still = np.linalg.norm(gyr, axis=1) < self.thr
+        for ti, s in zip(t.tolist(), still.tolist(), strict=True):
+            if s:
+                if self.stance_start is None:
+                    self.stance_start, self.closed = ti, False
+                self.last_still = ti
+                if not self.closed and ti - self.stance_start >= max(2 * self.half, self.min_stance_s):
+                    self._close(self.stance_start + self.half, out)  # long stance: close the stride now
+                continue
+            if self.stance_start is not None:
+                s0, s1 = self.stance_start, self.last_still
+                if s1 - s0 >= self.min_stance_s:
+                    mid = 0.5 * (s0 + s1)
+                    if not self.closed:
+                        self._close(mid, out)
+                    self.open_s = max(mid, s1 - self.half)
+                self.stance_start = None
+        return out
+
+    def _close(self, end: float, out: list) -> None:
+        self.closed = True
+        start, self.open_s = self.open_s, None
+        self.last_boundary = end
+        if start is not None and self.min_step_s <= end - start <= self.max_step_s:
+            out.append((start, end))
+
+
+def stance_strides(t: np.ndarray, gyr: np.ndarray, params: Mapping | None = None) -> np.ndarray:
+    """All strides ``(n, 2)`` (start, end s) of a whole foot-gyroscope recording, as streamed."""
+    seg = StanceSegmenter.from_params(params or {})
+    return np.array(seg.update(np.asarray(t, float), np.asarray(gyr, float)), dtype=float).reshape(-1, 2)
+
+
+# -- stride displacement ------------------------------------------------------------------------------
+def zupt_displacement(t: np.ndarray, acc: np.ndarray) -> np.ndarray:
+    """Displacement (3,) m of a stance-to-stance stride from its levelled, gravity-removed acceleration.
+
+    Trapezoidal velocity; the velocity drift is removed linearly in time so that v = 0 at both stances
+    (zero-velocity update, thesis ch.7.2); trapezoidal position.
+    """
+    if len(t) < 2 or not t[-1] > t[0]:
+        return np.zeros(3)  # no sample interval inside the stride: no measured motion
+    dt = np.diff(t)[:, None]
+    v = np.empty_like(acc)
+    v[0] = 0.0
+    np.cumsum(0.5 * (acc[1:] + acc[:-1]) * dt, axis=0, out=v[1:])
+    v -= ((t - t[0]) / (t[-1] - t[0]))[:, None] * v[-1]  # ZUPT at both stances (thesis ch.7.2)
+    return np.sum(0.5 * (v[1:] + v[:-1]) * dt, axis=0)
+
+
+def yaw_change(t: np.ndarray, rate_z: np.ndarray, t0: float = -np.inf, t1: float = np.inf) -> float:
+    """Heading change (rad) over ``[t0, t1]`` (s): trapezoidal integral of the levelled vertical rate
+    (rad/s) linearly interpolated at ``t0``/``t1``, so that consecutive strides do not share samples."""
+    tt = np.clip(t, t0, t1)
+    r = np.interp(tt, t, rate_z)
+    return float(np.sum(0.5 * (r[1:] + r[:-1]) * np.diff(tt)))
+
+
+#: Heading sources of a streamed stride: the foot's attitude change from rest to rest, the waist's
+#: levelled vertical rate integrated over the stride, or "auto" (the waist when the stride has waist
+#: samples, else the foot).
+HEADING_SOURCES = ("auto", "foot", "waist-gyro")
+
+
+def stride_motion(levelled: Levelled, heading_source: str = "auto", *, t0: float = -np.inf,
+                  t1: float = np.inf) -> tuple[np.ndarray, float]:
+    """Displacement (3,) m in the step frame (foot, ZUPT at both stances) and heading change (rad) of
+    the stride ``[t0, t1]`` (s) from :func:`pdrlearn.kernels.window.levelled_units`."""
+    if "foot" not in levelled:
+        raise DataError("stride displacement needs the foot unit's accelerometer and its declared frame")
+    ta, a, g, _, dpsi = levelled["foot"]
+    disp = zupt_displacement(ta, a)
+    src = heading_source
+    if src == "auto":
+        src = "waist-gyro" if "waist" in levelled and levelled["waist"][2] is not None else "foot"
+    if src == "waist-gyro":
+        if "waist" not in levelled or levelled["waist"][2] is None:
+            raise DataError("heading 'waist-gyro' needs the waist unit's accelerometer and gyroscope")
+        tw, _, gw, _, _ = levelled["waist"]
+        return disp, yaw_change(tw, gw[:, 2], t0, t1)
+    if src != "foot":
+        raise DataError(f"stride heading source {heading_source!r} is not one of {', '.join(HEADING_SOURCES)}")
+    return disp, dpsi  # the foot's attitude change from rest to rest (the rate's vertical integral is not)
+
+
+# -- rules (thesis ch.7.2.2) --------------------------------------------------------------------------
+def terrain_distance(disp: np.ndarray, terrain: np.ndarray, *, down_mode: str = "norm3") -> np.ndarray:
+    """Unsigned distance (m) of each stride from its displacement (B, 3) according to its terrain class.
+
+    flat/up: the displacement along the direction of travel (horizontal, the thesis' "x-axis" filter);
+    down: the norm of the three axes, thesis eq. 61 (``down_mode="horizontal"`` uses the flat rule).
+    """
+    horiz = np.hypot(disp[:, 0], disp[:, 1])
+    if down_mode == "horizontal":
+        return horiz
+    norm3 = np.linalg.norm(disp, axis=1)  # thesis eq. 61
+    return np.where(np.asarray(terrain) == "down", norm3, horiz)
+
+
+def apply_direction(distance: np.ndarray, direction: np.ndarray) -> np.ndarray:
+    """Sign of each distance set by its direction class; the class prevails (thesis ch.7.2.2)."""
+    d = np.abs(np.asarray(distance, dtype=float))
+    return np.where(np.asarray(direction) == "backward", -d, d)
+
+
+def clamp_length(distance: np.ndarray, length_class: np.ndarray,
+                 bounds: Mapping[str, tuple[float, float]]) -> np.ndarray:
+    """Clamp |distance| into the bounds of its length class, keeping the sign (thesis ch.7.2.2).
+
+    ``bounds`` maps a class to (min, max) in metres; unknown classes are left unchanged.
+    """
+    d = np.asarray(distance, dtype=float)
+    cls = np.asarray(length_class)
+    mag = np.abs(d)
+    out = mag.copy()
+    for name, (lo, hi) in bounds.items():
+        sel = cls == name
+        out[sel] = np.clip(mag[sel], lo, hi)
+    return np.where(d < 0, -out, out)
+
+
+def altitude_change(dz: np.ndarray, terrain: np.ndarray) -> np.ndarray:
+    """Altitude change (m) per stride: 0 on flat terrain, +|dz| up, -|dz| down (thesis ch.7.2.2)."""
+    t = np.asarray(terrain)
+    a = np.abs(np.asarray(dz, dtype=float))
+    return np.where(t == "up", a, np.where(t == "down", -a, 0.0))
+
+
+def _known(x: np.ndarray) -> np.ndarray:
+    return np.array([v is not None and v == v and v != "" for v in x], dtype=bool)  # v == v: not NaN
+
+
+def apply_stride_rules(disp: np.ndarray, terrain=None, direction=None, length_class=None, *,
+                       bounds: Mapping[str, tuple[float, float]] | None = None,
+                       down_mode: str = "norm3") -> tuple[np.ndarray, np.ndarray]:
+    """The M3 rules (thesis ch.7.2.2) on displacements ``disp (B, 3)``: signed length and altitude change.
+
+    A missing class (None) means "no rule": horizontal distance signed by the estimate and the
+    estimated vertical change / the sign of the estimate / no clamp.
+    """
+    disp = np.asarray(disp, dtype=float).reshape(-1, 3)
+    n = len(disp)
+    none = np.full(n, None, dtype=object)
+    terrain = none if terrain is None else np.asarray(terrain, dtype=object)
+    direction = none if direction is None else np.asarray(direction, dtype=object)
+    length_class = none if length_class is None else np.asarray(length_class, dtype=object)
+    length = terrain_distance(disp, terrain, down_mode=down_mode) * np.where(disp[:, 0] < 0, -1.0, 1.0)
+    has_dir = _known(direction)
+    length = np.where(has_dir, apply_direction(length, np.where(has_dir, direction, "forward")), length)
+    if bounds is not None:
+        has_lc = _known(length_class)
+        length = clamp_length(length, np.where(has_lc, length_class, ""), bounds)
+    has_t = _known(terrain)
+    dz = np.where(has_t, altitude_change(disp[:, 2], np.where(has_t, terrain, "flat")), disp[:, 2])
+    return length, dz
+
+
+# -- position -----------------------------------------------------------------------------------------
+def advance(position: np.ndarray, heading_rad: float, length_m: float, dz_m: float) -> np.ndarray:
+    """ENU position (3,) m after a stride of signed ``length_m`` along ``heading_rad`` and ``dz_m`` up."""
+    return position + np.array([length_m * np.cos(heading_rad), length_m * np.sin(heading_rad), dz_m])
