@@ -187,25 +187,27 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
     Xi[ci["t_s"]] = tg - t0
     lev = levelled_units(streams, t0, t1, available=available, forward=forward, rest_search_s=rest_search_s,
                          heading=heading)
-    if "foot" in lev:
+    if "foot" in lev:  # one resampling call for all of a unit's channels (same numbers, fewer calls)
         ta, a, g, an, _ = lev["foot"]
+        r = resample(tg, ta, np.column_stack([a, an] if g is None else [a, an, g]))
         c = ci["foot_acc_x"]
-        Xi[c:c + 3] = resample(tg, ta, a)
-        Xi[ci["foot_acc_norm"]] = resample(tg, ta, an[:, None])[0]
+        Xi[c:c + 3] = r[:3]
+        Xi[ci["foot_acc_norm"]] = r[3]
         if g is not None:
             c = ci["foot_gyr_x"]
-            Xi[c:c + 3] = resample(tg, ta, g)
+            Xi[c:c + 3] = r[4:7]
     if "force" in available:
         for j, name in enumerate(("fForceA", "fForceB")):
             tf, f = segment(*streams[name], t0, t1)
             Xi[ci["force_a"] + j] = resample(tg, tf, f)[0]
     if "waist" in lev:
         tw, a, g, _, _ = lev["waist"]
+        r = resample(tg, tw, a if g is None else np.column_stack([a, g]))
         c = ci["waist_acc_x"]
-        Xi[c:c + 3] = resample(tg, tw, a)
+        Xi[c:c + 3] = r[:3]
         if g is not None:
             c = ci["waist_gyr_x"]
-            Xi[c:c + 3] = resample(tg, tw, g)
+            Xi[c:c + 3] = r[3:6]
     if "waist_baro" in available:
         tb, b = segment(*streams["wBarometer"], t0, t1)
         Xi[ci["waist_baro"]] = np.interp(tg, tb, b[:, 0]) - np.interp(t0, tb, b[:, 0])
