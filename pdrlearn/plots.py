@@ -4,6 +4,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
+from pdrlearn.atomic import atomic_file
+from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
 
 _TERRAIN_COLOURS = {"flat": "#9ecae1", "up": "#a1d99b", "down": "#fdae6b"}
@@ -21,19 +25,35 @@ def _figure(nrows: int, height: float = 2.0):
 
 def save_atomic(fig, path: Path) -> None:
     """Save a figure via a temporary file so an interrupted run leaves no half-written PNG."""
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.tmp.png")
-    fig.savefig(tmp, dpi=110, bbox_inches="tight")
-    tmp.replace(path)
+    with atomic_file(path, suffix=".png") as tmp:
+        fig.savefig(tmp, dpi=110, bbox_inches="tight")
+
+
+def check_window(start: float | None, end: float | None, duration_s: float, where: str) -> tuple[float, float]:
+    """Validate a time window (s since the session start) against a session of ``duration_s`` seconds.
+
+    ``None`` means the session's start / end. Returns ``(start, end)``; a window that is reversed, not
+    finite or entirely outside the session is a :class:`DataError` (an empty plot would hide the mistake).
+    """
+    lo = 0.0 if start is None else float(start)
+    hi = duration_s if end is None else float(end)
+    if not (np.isfinite(lo) and np.isfinite(hi)):
+        raise DataError(f"{where}: --start {lo:g} / --end {hi:g} must be finite seconds")
+    if lo >= duration_s or hi <= 0:
+        raise DataError(f"{where}: --start {lo:g} s .. --end {hi:g} s is outside the session "
+                        f"(0 to {duration_s:.1f} s); pick a window inside it")
+    if hi <= lo:
+        raise DataError(f"{where}: --end {hi:g} s is not after --start {lo:g} s; swap or fix them")
+    return lo, hi
 
 
 def plot_session(session: Session, out: Path, *, start: float | None = None, end: float | None = None) -> Path:
     """One panel per sensor stream; labelled steps shaded by terrain (or alternately when unknown)."""
     names = list(session.streams)
-    plt, fig, axes = _figure(len(names))
     t0 = session.t_start
-    lo = t0 + (start or 0.0)
-    hi = session.t_end if end is None else t0 + end
+    start, end = check_window(start, end, session.t_end - t0, session.name)
+    lo, hi = t0 + start, t0 + end
+    plt, fig, axes = _figure(len(names))
     for ax, name in zip(axes, names, strict=True):
         s = session.streams[name].slice(lo, hi + 1e-9)
         for j, col in enumerate(s.spec.columns):

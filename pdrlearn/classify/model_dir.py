@@ -110,13 +110,21 @@ def manifest_of(model, files: dict[str, str]) -> dict:
     }
 
 
+def check_out_dir(path) -> Path:
+    """Check that ``path`` may receive a model directory: absent, empty or a previous model directory."""
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise ModelError(f"{path}: is a file, not a model directory; choose another --out")
+    if path.exists() and not (path / MANIFEST).exists() and any(path.iterdir()):
+        raise ModelError(f"{path}: exists and is not a model directory; choose another --out")
+    return path
+
+
 def save_model(model, path) -> Path:
     """Write ``model`` to the directory ``path`` atomically (temp dir + rename); returns ``path``."""
     import joblib
 
-    path = Path(path)
-    if path.exists() and not (path / MANIFEST).exists() and any(path.iterdir()):
-        raise ModelError(f"{path}: exists and is not a model directory; choose another --out")
+    path = check_out_dir(path)
     with atomic_directory(path) as tmp:
         (tmp / "models").mkdir()
         files = {}
@@ -168,6 +176,20 @@ def read_manifest(path) -> dict:
     return manifest
 
 
+def verify_model_dir(path) -> dict:
+    """Validate a model directory without loading it: manifest schema, every listed file present and
+    unchanged (SHA-256). Returns the manifest; raises :class:`ModelError` (one line) otherwise."""
+    path = Path(path)
+    manifest = read_manifest(path)
+    for rel, digest in manifest["files"].items():
+        f = path / rel
+        if not f.is_file():
+            raise ModelError(f"{path}: model file {rel} is missing; retrain the model")
+        if _sha256(f) != digest:
+            raise ModelError(f"{path}: model file {rel} was altered (checksum mismatch); retrain the model")
+    return manifest
+
+
 def load_model(path):
     """Load a model directory written by :meth:`UserModel.save` -> :class:`UserModel`.
 
@@ -179,14 +201,10 @@ def load_model(path):
     from pdrlearn.classify.training import TaskModel, UserModel
 
     path = Path(path)
-    manifest = read_manifest(path)
+    manifest = verify_model_dir(path)
     models: dict[str, object] = {}
-    for rel, digest in manifest["files"].items():
+    for rel in manifest["files"]:
         f = path / rel
-        if not f.is_file():
-            raise ModelError(f"{path}: model file {rel} is missing; retrain the model")
-        if _sha256(f) != digest:
-            raise ModelError(f"{path}: model file {rel} was altered (checksum mismatch); retrain the model")
         try:
             models[rel] = joblib.load(f)
         except Exception as exc:  # noqa: BLE001 - any unpickling failure is a model problem

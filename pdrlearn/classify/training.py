@@ -405,8 +405,34 @@ def _check_choice(name: str, values: Sequence[str], allowed: Sequence[str]) -> l
     values = [v.strip() for v in values if v.strip()]
     bad = [v for v in values if v not in allowed]
     if bad or not values:
-        raise DataError(f"unknown {name} {', '.join(bad) or '(none)'}; choose from {', '.join(allowed)}")
+        raise DataError(
+            f"--{name}s: unknown {name} {', '.join(bad) or '(none given)'}; choose from {', '.join(allowed)}"
+        )
     return values
+
+
+def check_settings(
+    *,
+    tasks: Sequence[str] | None = None,
+    methods: Sequence[str] | None = None,
+    units: Sequence[str] | None = None,
+    cv: int = 10,
+    seed: int = 0,
+) -> tuple[list[str], list[str], list[str]]:
+    """Validate training settings before any data is read; returns the task, method and unit lists.
+
+    ``None`` means all of :data:`TASKS` / :data:`METHODS` / :data:`UNITS`; an empty list is an error.
+    Raises :class:`DataError` naming the option (``--tasks`` ...) and the allowed values.
+    """
+    out = [
+        _check_choice(name, all_ if values is None else values, all_)
+        for name, values, all_ in (("task", tasks, TASKS), ("method", methods, METHODS), ("unit", units, UNITS))
+    ]
+    if cv < 2:
+        raise DataError(f"train: --cv {cv}; cross-validation needs at least 2 folds")
+    if not 0 <= seed < 2**32:
+        raise DataError(f"train: --seed {seed}; use an integer from 0 to 2**32 - 1")
+    return out[0], out[1], out[2]
 
 
 def train_task(
@@ -578,11 +604,7 @@ def train_user(
     if not sessions:
         raise DataError("train: no sessions given; pass at least one labelled session folder")
     strict = (tasks is not None) if strict is None else strict
-    tasks = _check_choice("task", tasks or TASKS, TASKS)
-    methods = _check_choice("method", methods or METHODS, METHODS)
-    units = _check_choice("unit", units or UNITS, UNITS)
-    if cv < 2:
-        raise DataError(f"train: cv={cv}; cross-validation needs at least 2 folds")
+    tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
     windows = session_windows(sessions, n_samples=n_samples)
     out: dict[str, TaskModel] = {}
     skipped: list[str] = []

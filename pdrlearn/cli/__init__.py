@@ -48,14 +48,30 @@ def main(argv: list[str] | None = None) -> int:
     except typer.Abort:
         print("error: aborted", file=sys.stderr)
         return 130
-    except Exception as exc:  # click usage errors and the like
-        import click
-
-        if isinstance(exc, click.ClickException):
-            exc.show()
-            return exc.exit_code
-        raise
+    except Exception as exc:  # click usage errors (bad option values, missing arguments) and the like
+        if not isinstance(exc, _click_exceptions()):
+            raise
+        # one line, like every other input error (the usage text is one --help away)
+        ctx = getattr(exc, "ctx", None)
+        command = f"pdrlearn {ctx.info_name}" if ctx is not None and ctx.parent is not None else "pdrlearn"
+        hint = f" (see '{command} --help')"
+        print(f"error: {' '.join(exc.format_message().split())}{hint}", file=sys.stderr)
+        return exc.exit_code
     return 0
+
+
+def _click_exceptions() -> tuple[type, ...]:
+    """Click's exception base class and typer's vendored copy of it (typer >= 0.17 ships its own click)."""
+    import click
+
+    classes: list[type] = [click.ClickException]
+    try:
+        from typer._click.exceptions import ClickException as TyperClickException
+    except ImportError:  # older typer: uses click itself
+        pass
+    else:
+        classes.append(TyperClickException)
+    return tuple(classes)
 
 
 def run() -> None:  # pragma: no cover - thin wrapper for the console script

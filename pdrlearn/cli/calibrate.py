@@ -3,11 +3,13 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import typer
 
 from pdrlearn.cli.common import json_safe, out_file, print_json
+from pdrlearn.errors import DataError
 
 
 def register(app: typer.Typer) -> None:
@@ -43,6 +45,8 @@ def register(app: typer.Typer) -> None:
         from pdrlearn.waist.calibration import calibrate
 
         out_file(out, (".json",))
+        if turns is not None and not math.isfinite(turns):
+            raise DataError(f"--turns {turns}: give the signed number of full turns walked, e.g. 1 or -2")
         sessions = [read_session(d) for d in dirs]
         params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns,
                            fit_turns=fit_turns)

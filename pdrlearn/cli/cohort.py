@@ -8,7 +8,7 @@ from pathlib import Path
 import pandas as pd
 import typer
 
-from pdrlearn.cli.common import json_safe, print_json, progress
+from pdrlearn.cli.common import json_safe, out_folder, print_json, progress, split_choices
 from pdrlearn.cohort import JobResult, cohort_users, run_cohort, user_sessions
 from pdrlearn.errors import DataError
 
@@ -85,8 +85,18 @@ def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool
         c.print(t)
         for r in failed:
             c.print(f"[red]failed[/red] {r.name}: {r.error}", highlight=False)
+
+
+def _check_any_ok(results: list[JobResult]) -> None:
+    """Every user failed: nothing useful to write, so fail with the first user's error (and write nothing)."""
+    failed = [r for r in results if not r.ok]
     if failed and len(failed) == len(results):
         raise DataError(f"every user failed; first error: {failed[0].name}: {failed[0].error}")
+
+
+def _check_workers(workers: int | None) -> None:
+    if workers is not None and workers < 1:
+        raise DataError(f"--workers {workers}: give at least 1 worker process (or leave it out for one per core)")
 
 
 def _run(fn, items, scheduler, serial, workers, as_json):
@@ -119,14 +129,19 @@ def train_all(
 
         pdrlearn train-all cohort/ --out models/ --scheduler tcp://10.0.0.5:8786
     """
-    def split(v):
-        return None if v is None else [x.strip() for x in v.split(",") if x.strip()]
+    from pdrlearn.classify.training import check_settings
 
+    t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
+    # bad settings fail here, once, before a cluster is started and before anything is written
+    check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
+    _check_workers(workers)
+    out_folder(out, ("cohort_summary.csv", "*/manifest.json"), "per-user model directories")
     users = cohort_users(cohort_dir)
-    items = [(u.name, {"user_dir": str(u), "out": str(out / u.name), "tasks": split(tasks),
-                       "methods": split(methods), "units": split(units), "cv": cv, "seed": seed})
+    items = [(u.name, {"user_dir": str(u), "out": str(out / u.name), "tasks": t_list,
+                       "methods": m_list, "units": u_list, "cv": cv, "seed": seed})
              for u in users]
     results = _run(_train_job, items, scheduler, serial, workers, as_json)
+    _check_any_ok(results)
     df = _summarise(results, out)
     _print(df, results, f"train-all: {sum(r.ok for r in results)}/{len(results)} users trained", as_json)
 
@@ -146,10 +161,15 @@ def evaluate_all(
 
         pdrlearn evaluate-all models/ cohort/ --out results/cohort && pdrlearn report results/cohort --out report/
     """
+    _check_workers(workers)
+    if not models_dir.is_dir():
+        raise DataError(f"{models_dir}: models folder not found; run 'pdrlearn train-all COHORT --out {models_dir}'")
+    out = out_folder(out or models_dir / "eval", ("cohort_summary.csv",), "a cohort summary")
     users = cohort_users(cohort_dir)
     items = [(u.name, {"user_dir": str(u), "model_dir": str(models_dir / u.name)}) for u in users]
     results = _run(_evaluate_job, items, scheduler, serial, workers, as_json)
-    df = _summarise(results, out or models_dir / "eval")
+    _check_any_ok(results)
+    df = _summarise(results, out)
     _print(df, results, f"evaluate-all: {sum(r.ok for r in results)}/{len(results)} users", as_json)
 
 

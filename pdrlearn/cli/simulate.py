@@ -54,6 +54,8 @@ def simulate_cmd(
         raise DataError(f"--speed {speed!r}: must be one of {', '.join(SPEEDS)}")
     if user_seed < 0 or seed < 0:
         raise DataError("--user-seed and --seed must be non-negative integers")
+    if not -90.0 <= foot_mount_pitch <= 90.0:  # beyond +-90 deg the unit would be mounted upside down
+        raise DataError(f"--foot-mount-pitch {foot_mount_pitch:g}: give a tilt between -90 and 90 degrees")
     if out.exists() and (not out.is_dir() or any(out.iterdir())):
         raise DataError(f"{out}: already exists and is not an empty folder; choose another --out or remove it")
     with progress(f"simulating {scenario}", total=2, enabled=not as_json) as advance:

@@ -35,10 +35,13 @@ def steps(
 
         pdrlearn steps out/sim/A --detector accel-force --out out/A_steps.csv
     """
+    from pdrlearn.atomic import atomic_file
     from pdrlearn.io import read_session
     from pdrlearn.steps import get_detector, score_steps
 
     det = get_detector(detector)
+    if out is not None:
+        out = out_file(out, (".csv",))
     session = read_session(session_dir)
     table = det.detect(session)
     result: dict = {"session": session.name, "detector": det.name, "unit": det.unit, "count": int(len(table))}
@@ -46,8 +49,8 @@ def steps(
     if score is not None:
         result.update({k: score[k] for k in _METRICS})
     if out is not None:
-        out = out_file(out, (".csv",))
-        table.to_csv(out, index=False)
+        with atomic_file(out) as tmp:
+            table.to_csv(tmp, index=False)
         result["out"] = str(out)
     if as_json:
         print_json(json_safe(result))

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import json_safe, print_json, progress
+from pdrlearn.cli.common import json_safe, out_folder, print_json, progress, split_choices
 from pdrlearn.errors import DataError
 
 
@@ -42,10 +42,6 @@ def _read_all(paths: list[Path]):
     return [read_session(d) for d in find_session_dirs(paths)]
 
 
-def _split(value: str | None) -> list[str] | None:
-    return None if value is None else [v.strip() for v in value.split(",") if v.strip()]
-
-
 def train(
     data_dirs: list[Path] = typer.Argument(..., help="Labelled session folders (or folders of sessions)."),
     out: Path = typer.Option(..., "--out", "-o", help="Model directory to write (replaced atomically)."),
@@ -71,12 +67,14 @@ def train(
         pdrlearn train datasets/real/gaitmap_level_left datasets/real/gaitmap_stairs_up_left \\
             datasets/real/gaitmap_stairs_down_left --out models/gaitmap --tasks terrain --cv 5
     """
-    from pdrlearn.classify.training import METHODS, TASKS, UNITS, train_user
+    from pdrlearn.classify.model_dir import check_out_dir
+    from pdrlearn.classify.training import check_settings, train_user
 
+    t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
+    t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
+    check_out_dir(out)
     sessions = _read_all(data_dirs)
-    t_list, m_list, u_list = _split(tasks), _split(methods), _split(units)
-    n_units = len(u_list or UNITS)
-    total = len(t_list or TASKS) * len(m_list or METHODS) * n_units
+    total = len(t_all) * len(m_all) * len(u_all)
     t0 = time.perf_counter()
     with progress("training", total, enabled=not as_json) as advance:
         model = train_user(
@@ -148,6 +146,8 @@ def evaluate(
     from pdrlearn.classify import evaluate_model, load_model
     from pdrlearn.classify.evaluation import results_table
 
+    if report is not None:
+        out_folder(report, ("report.md", "report.json", "evaluation.json"), "an evaluation report")
     model = load_model(model_dir)
     sessions = _read_all(data_dirs)
     result = evaluate_model(model, sessions, report_dir=report)

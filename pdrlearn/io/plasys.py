@@ -37,16 +37,23 @@ def _timestamp_scale(meta: dict) -> float:
     return _TIME_SCALE.get(unit, 1e-3)
 
 
-def _read_csv(path: Path) -> pd.DataFrame:
+def read_table(path: str | os.PathLike) -> pd.DataFrame:
+    """Read a CSV file with stripped column names; a missing, empty or malformed file is a one-line
+    :class:`DataError`."""
+    path = Path(path)
+    if not path.is_file():
+        raise DataError(f"{path}: file not found")
     try:
         df = pd.read_csv(path)
     except pd.errors.EmptyDataError:
-        raise DataError(f"{path}: file is empty (no header); expected header timestamp,x,y,z") from None
+        raise DataError(f"{path}: file is empty (not even a header line); re-export or remove it") from None
     except (pd.errors.ParserError, UnicodeDecodeError) as exc:
         first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise DataError(f"{path}: not a valid CSV ({first}); fix or re-export the file") from None
     df.columns = [str(c).strip() for c in df.columns]
     return df
+
+
 
 
 def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale: float = 1e-3,
@@ -59,7 +66,7 @@ def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale:
     spec = SENSORS[name]
     if not path.is_file():
         raise DataError(f"{path}: file not found")
-    df = _read_csv(path)
+    df = read_table(path)
     check_columns(df, ("timestamp", *spec.columns), str(path))
     arr = check_numeric(df, ("timestamp", *spec.columns), str(path))
     t = arr[:, 0] * time_scale
@@ -68,6 +75,9 @@ def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale:
         check_units(spec, arr[:, 1:], str(path))
     return Stream(name, t, arr[:, 1:])
 
+
+#: label time columns that must be filled in every row (the others, e.g. ``tc_ms``, may be blank = unknown)
+REQUIRED_TIME_COLUMNS = ("start_ms", "end_ms", "ic_ms")
 
 #: time columns (seconds) written back as ``*_ms`` when a table carries no record of its own.
 DEFAULT_TIME_COLUMNS = ("start_s", "end_s", "ic_s", "tc_s", "pre_ic_s", "fc_s")
@@ -87,6 +97,13 @@ def _ms_to_s(df: pd.DataFrame, where: str) -> pd.DataFrame:
             vals = pd.to_numeric(out[col], errors="coerce")
             if vals.isna().sum() > out[col].isna().sum():
                 raise DataError(f"{where}: column {col} has non-numeric values; times must be numbers in ms")
+            if col in REQUIRED_TIME_COLUMNS and vals.isna().any():
+                # docs/decisions/bad-input.md: an event or interval without its time is unusable
+                first = int(np.flatnonzero(vals.isna().to_numpy())[0]) + 2
+                raise DataError(f"{where}: column {col} has {int(vals.isna().sum())} empty value(s) (first at "
+                                f"line {first}); fill in the time or remove those rows")
+            if not np.isfinite(vals.to_numpy(dtype=float)[vals.notna().to_numpy()]).all():
+                raise DataError(f"{where}: column {col} has infinite values; times must be finite numbers in ms")
             out[col[:-3] + "_s"] = vals * 1e-3
             out = out.drop(columns=col)
     out = out[[c[:-3] + "_s" if c.endswith("_ms") else c for c in df.columns]]
@@ -110,7 +127,7 @@ def _s_to_ms(df: pd.DataFrame) -> pd.DataFrame:
 
 
 def _read_steps(path: Path) -> pd.DataFrame:
-    df = _ms_to_s(_read_csv(path), str(path))
+    df = _ms_to_s(read_table(path), str(path))
     check_columns(df, STEP_COLUMNS, f"{path} (times in ms: start_ms,end_ms)")
     se = check_numeric(df, STEP_COLUMNS, str(path))
     bad = np.flatnonzero(se[:, 1] < se[:, 0])
@@ -120,7 +137,7 @@ def _read_steps(path: Path) -> pd.DataFrame:
 
 
 def _read_trajectory(path: Path, scale: float) -> pd.DataFrame:
-    df = _read_csv(path)
+    df = read_table(path)
     check_columns(df, ("timestamp", "x", "y", "z"), str(path))
     arr = check_numeric(df, ("timestamp", "x", "y", "z"), str(path))
     check_timestamps(arr[:, 0] * scale, str(path))
@@ -171,7 +188,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
     for p in sorted(folder.glob("*.csv")):
         if p.stem in SENSORS or p.stem in LABEL_FILES:
             continue
-        extras[p.stem] = _ms_to_s(_read_csv(p), str(p))
+        extras[p.stem] = _ms_to_s(read_table(p), str(p))
     try:
         frames = frames_from_meta(meta)
     except DataError as exc:

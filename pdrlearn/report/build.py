@@ -15,6 +15,7 @@ import pandas as pd
 
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError
+from pdrlearn.io.plasys import read_table
 
 
 @dataclass
@@ -48,6 +49,24 @@ def _flat_scalars(d: dict, prefix: str = "") -> dict:
         elif isinstance(v, int | float | str | bool) or v is None:
             out[key] = v
     return out
+
+
+def _verified_manifest(root: Path) -> dict:
+    """The manifest of a model directory or bundle after checking its schema version and file checksums,
+    so that a report never presents a model from another version or with altered files."""
+    manifest = _read_json(root / "manifest.json")
+    if not isinstance(manifest, dict):
+        raise DataError(f"{root / 'manifest.json'}: must hold a JSON object; regenerate it")
+    if manifest.get("kind") == "pdrlearn user model":
+        from pdrlearn.classify.model_dir import verify_model_dir
+
+        return verify_model_dir(root)
+    if manifest.get("schema") == "pdrlearn-bundle":
+        from pdrlearn.runtime.bundle import read_manifest, verify_files
+
+        manifest = read_manifest(root)
+        verify_files(root, manifest)
+    return manifest
 
 
 def _model_section(manifest: dict, root: Path) -> Section:
@@ -105,7 +124,7 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         raise DataError(f"{root}: not a folder; pass a model directory or a results folder")
     sections: list[Section] = []
     if (root / "manifest.json").exists():
-        sections.append(_model_section(_read_json(root / "manifest.json"), root))
+        sections.append(_model_section(_verified_manifest(root), root))
     skip = Path(exclude).resolve() if exclude is not None else None
 
     def find(pattern: str) -> list[Path]:
@@ -116,7 +135,7 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
     for p in find("evaluation.json"):
         sections.extend(_evaluation_sections(_read_json(p)))
     for p in find("cohort_summary.csv"):
-        sections.append(Section(f"Cohort — {p.parent.name}", tables=[("per-user results", pd.read_csv(p))]))
+        sections.append(Section(f"Cohort — {p.parent.name}", tables=[("per-user results", read_table(p))]))
     tracks = find("summary.json")
     if tracks:
         rows = []
@@ -186,6 +205,8 @@ def build_report(source: str | os.PathLike, out: str | os.PathLike, *, title: st
     """Write ``out/index.html`` (self-contained) and ``out/report.md`` (+ images); atomic. Returns ``out``."""
     out = Path(out)
     sections = collect(source, exclude=out)
+    if out.exists() and not out.is_dir():
+        raise DataError(f"{out}: is a file; --out must be a folder for index.html and report.md")
     if out.exists() and any(out.iterdir()) and not (out / "index.html").exists():
         raise DataError(f"{out}: exists and is not a report folder; choose another --out")
     title = title or f"pdrlearn report — {Path(source).resolve().name}"
