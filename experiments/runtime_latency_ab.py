@@ -16,30 +16,24 @@ from __future__ import annotations
 
 import logging
 import sys
-import time
+from pathlib import Path
 
 import numpy as np
+
+sys.path.append(str(Path(__file__).resolve().parents[1]))  # after PYTHONPATH: an old pdrlearn there wins
 
 
 def main(bundle: str, session_dir: str, passes: int = 5) -> None:
     logging.disable(logging.WARNING)
     import pdrlearn
     from pdrlearn.io import read_session
-    from pdrlearn.runtime.tracker import Tracker
+    from tests.benchmarks.test_bench_runtime import _latencies, _loaded_tracker
 
     s = read_session(session_dir)
-    tr = Tracker(bundle, frames={p: f.to_dict() for p, f in s.frames.items()}, buffer_s=1e9)
-    tr.push({n: (st.t, st.values) for n, st in s.streams.items()})
-    steps = list(zip(s.steps["start_s"], s.steps["end_s"], strict=True))
-    lat = []
-    for _ in range(passes):
-        for a, b in steps:
-            t0 = time.perf_counter()
-            tr.process_step(a, b)
-            lat.append(time.perf_counter() - t0)
-    ms = np.array(lat) * 1e3
+    tr = _loaded_tracker(bundle, s)
+    ms = _latencies(tr, list(zip(s.steps["start_s"], s.steps["end_s"], strict=True)), repeat=passes)
     print(f"{pdrlearn.__file__}: p50 {np.percentile(ms, 50):.3f} ms, p99 {np.percentile(ms, 99):.3f} ms "
-          f"({len(steps)} steps x {passes})")
+          f"({len(s.steps)} steps x {passes})")
 
 
 if __name__ == "__main__":
