@@ -141,15 +141,13 @@ def save_model(model, path) -> Path:
 
 
 def _json_default(o):
-    import numpy as np
+    """Like :func:`pdrlearn.io.plasys.json_default`, but any other object is written as its ``str``."""
+    from pdrlearn.io.plasys import json_default
 
-    if isinstance(o, np.generic):
-        return o.item()
-    if isinstance(o, np.ndarray):
-        return o.tolist()
-    if isinstance(o, tuple):
-        return list(o)
-    return str(o)
+    try:
+        return json_default(o)
+    except TypeError:
+        return str(o)
 
 
 def read_manifest(path) -> dict:

@@ -10,21 +10,12 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError
-
-
-def _default(o):
-    if isinstance(o, np.generic):
-        return o.item()
-    if isinstance(o, np.ndarray):
-        return o.tolist()
-    if isinstance(o, Path):
-        return str(o)
-    raise TypeError(type(o).__name__)
+from pdrlearn.io.plasys import json_default
 
 
 def print_json(obj) -> None:
     """Print one JSON object on stdout (the machine-readable contract of ``--json``)."""
-    sys.stdout.write(json.dumps(obj, default=_default, allow_nan=False) + "\n")
+    sys.stdout.write(json.dumps(obj, default=json_default, allow_nan=False) + "\n")
 
 
 def json_safe(obj):

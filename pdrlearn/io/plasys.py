@@ -242,13 +242,16 @@ def write_session(session: Session, folder: str | os.PathLike, *, overwrite: boo
             tr.to_csv(tmp / "trajectory.csv", index=False, float_format="%.17g")
         for k, df in session.extras.items():
             _s_to_ms(df).to_csv(tmp / f"{k}.csv", index=False)
-        (tmp / "meta.json").write_text(json.dumps(meta, indent=2, default=_json_default) + "\n")
+        (tmp / "meta.json").write_text(json.dumps(meta, indent=2, default=json_default) + "\n")
     return folder
 
 
-def _json_default(o):
+def json_default(o):
+    """``json.dumps(default=...)`` for numpy scalars and arrays and paths (the one shared converter)."""
     if isinstance(o, np.generic):
         return o.item()
     if isinstance(o, np.ndarray):
         return o.tolist()
+    if isinstance(o, Path):
+        return str(o)
     raise TypeError(f"not JSON serialisable: {type(o).__name__}")
