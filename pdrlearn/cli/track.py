@@ -39,6 +39,8 @@ def track(
     gnss_period: float = typer.Option(None, "--gnss-period", help="Use a GNSS fix every S seconds."),
     fixes: Path = typer.Option(None, "--fixes", help="Sporadic absolute fixes CSV for aiding."),
     fix_period: float = typer.Option(None, "--fix-period", help="Use a fix every S seconds."),
+    streaming: bool = typer.Option(False, "--streaming", help="plasys M2/M3 with the stride-local kernel of "
+                                   "the streaming runtime: the trajectory `pdrlearn run` reproduces to 1 mm."),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
 ) -> None:
     """Track a session: per-step table, trajectory, path figure and summary (errors vs ground truth).
@@ -50,6 +52,8 @@ def track(
         pdrlearn track out/sim/D --method M2 --start 41.178,-8.608 --out out/D
 
         pdrlearn track out/sim/D --method M3 --model models/user1 --rules bayes --out out/D3 --json
+
+        pdrlearn track out/sim/D --method M3 --model models/user1 --streaming --out out/D3s   # = pdrlearn run
     """
     from pdrlearn.io import read_session
     from pdrlearn.track.base import get_pipeline
@@ -68,8 +72,12 @@ def track(
     session = read_session(session_dir)
     fn = get_pipeline(pipeline)
     kw = {"model": model, "start": start_ll, "params": par}
+    if streaming and pipeline != "plasys":
+        raise DataError(f"--streaming applies to the plasys pipeline only (got --pipeline {pipeline})")
     if pipeline == "plasys":
         kw["method"] = method
+        if streaming:
+            kw["streaming"] = True
         if rules is not None:
             kw["rules"] = rules
         if min_confidence is not None:

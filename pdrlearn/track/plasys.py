@@ -106,6 +106,17 @@ def _detect_strides(session: Session, kind: str, steps: str, t: np.ndarray, stan
     return stance_strides(t, stance)
 
 
+def classes_and_bounds(model, session: Session, steps: pd.DataFrame) -> tuple[pd.DataFrame, object]:
+    """M3's step classes and the user's stride-length class bounds, from a trained model or, with
+    ``model="oracle"``, from the session's own labels and ``meta.json`` (one place for the offline and the
+    streaming paths)."""
+    if isinstance(model, str) and model == "oracle":
+        bounds = next((session.meta[k] for k in ("length_class_bounds_m", "length_bounds_m")
+                       if session.meta.get(k) is not None), None)
+        return oracle_classes(session, steps), bounds
+    return _model_classes(model, session, steps)
+
+
 def oracle_classes(session: Session, steps: pd.DataFrame) -> pd.DataFrame:
     """Classes of each stride from the session's own labels (matched by time overlap)."""
     lab = session.steps
@@ -304,12 +315,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         if model is None:
             raise ModelError("M3 needs the step classes: pass a trained model directory (--model DIR, see "
                              "`pdrlearn train`) or --model oracle for labelled sessions; M1/M2 need no model")
-        if isinstance(model, str) and model == "oracle":
-            classes = oracle_classes(session, strides)
-            model_bounds = next((session.meta[k] for k in ("length_class_bounds_m", "length_bounds_m")
-                                 if session.meta.get(k) is not None), None)
-        else:
-            classes, model_bounds = _model_classes(model, work, strides)
+        classes, model_bounds = classes_and_bounds(model, work, strides)
     use_bounds = bounds if bounds is not None else model_bounds
     clamp = cfg["rules"]
     if clamp and use_bounds is None:
@@ -426,10 +432,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if method == "M3":
         if model is None:
             raise ModelError("M3 needs the step classes: pass a trained model directory or 'oracle'")
-        if isinstance(model, str) and model == "oracle":
-            classes = oracle_classes(session, table)
-        else:
-            classes, model_bounds = _model_classes(model, session, table)
+        classes, model_bounds = classes_and_bounds(model, session, table)
     use_bounds = bounds if bounds is not None else model_bounds
     rb = (StepRules(bounds=parse_bounds(use_bounds) if use_bounds is not None else None,
                     bounds_scale=bounds_scale).effective_bounds() if method == "M3" else None)
