@@ -72,6 +72,14 @@ DEFECTS = {
     "ics_time_blank": (lambda d: _edit(d, "ics.csv", lambda df: _set(df, 2, "ic_ms", np.nan)),
                        "ics.csv: column ic_ms has 1 empty value"),
     "meta_json": (lambda d: (d / "meta.json").write_text("{broken"), "meta.json: invalid JSON"),
+    "timestamps_in_s": (lambda d: _edit(d, "fGyroscope.csv", lambda df: df.assign(timestamp=df.timestamp / 1e3)),
+                        "fGyroscope.csv: timestamps give 20000 Hz, so they are not milliseconds"),
+    "timestamps_in_ns": (lambda d: _edit(d, "wBarometer.csv", lambda df: df.assign(timestamp=df.timestamp * 1e6)),
+                         "wBarometer.csv: timestamps give 2e-05 Hz"),
+    "steps_in_s": (lambda d: _edit(d, "steps.csv", lambda df: df.assign(
+        **{c: df[c] / 1e3 for c in df.columns if c.endswith("_ms")})), "steps.csv: label intervals of"),
+    "ics_in_us": (lambda d: _edit(d, "ics.csv", lambda df: df.assign(ic_ms=df.ic_ms * 1e3)),
+                  "ics.csv: 190 of 190 label times lie outside the recording"),
 }
 
 

@@ -24,7 +24,14 @@ from pdrlearn.errors import DataError
 from pdrlearn.io.frames import frames_from_meta
 from pdrlearn.io.sensors import SENSORS
 from pdrlearn.io.session import STEP_COLUMNS, Session, Stream
-from pdrlearn.io.validate import check_columns, check_numeric, check_timestamps, check_units
+from pdrlearn.io.validate import (
+    check_columns,
+    check_label_times,
+    check_numeric,
+    check_rate,
+    check_timestamps,
+    check_units,
+)
 
 log = logging.getLogger(__name__)
 
@@ -71,6 +78,7 @@ def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale:
     arr = check_numeric(df, ("timestamp", *spec.columns), str(path))
     t = arr[:, 0] * time_scale
     check_timestamps(t, str(path))
+    check_rate(t, str(path))
     if check_unit:
         check_units(spec, arr[:, 1:], str(path))
     return Stream(name, t, arr[:, 1:])
@@ -195,6 +203,8 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
         raise DataError(f"{meta_path}: {exc}") from None
     session = Session(name=str(meta.get("session", folder.name)), streams=streams, steps=steps,
                       trajectory=traj, extras=extras, meta=meta, frames=frames)
+    for label, table in [*([("steps", steps)] if steps is not None else []), *extras.items()]:
+        check_label_times(table, session.t_start, session.t_end, str(folder / f"{label}.csv"))
     for name, s in streams.items():
         gaps = s.gaps()
         if gaps:

@@ -96,3 +96,56 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str) -> None:
             raise DataError(f"{where}: median pressure {med:.1f} looks like kPa; multiply by 10 to get hPa")
         if not 300 <= med <= 1100:
             raise DataError(f"{where}: median pressure {med:.1f} hPa is outside 300-1100 hPa (thesis Table 17)")
+
+
+#: plausible native sampling rates of a body-worn sensor file (Hz): barometers log at >= 1 Hz, IMUs up to
+#: a few hundred Hz (PLASYS 20 Hz, thesis ch.4.2.3; real recordings 100 and 204.8 Hz). Outside this band the
+#: timestamps are in another unit than the reader assumed (docs/decisions/bad-input.md B9).
+RATE_LIMITS_HZ = (0.5, 5000.0)
+
+
+def check_rate(t: np.ndarray, where: str) -> None:
+    """The median sample interval of ``t`` (s) must give a plausible rate; else name the likely unit."""
+    if t.size < 3:
+        return
+    rate = 1.0 / float(np.median(np.diff(t)))
+    lo, hi = RATE_LIMITS_HZ
+    if rate > hi:
+        raise DataError(
+            f"{where}: timestamps give {rate:.0f} Hz, so they are not milliseconds (seconds?); convert them to ms "
+            "or declare \"units\": {\"timestamp\": \"s\"} in meta.json"
+        )
+    if rate < lo:
+        raise DataError(
+            f"{where}: timestamps give {rate:.3g} Hz, so they are not milliseconds (micro- or nanoseconds?); "
+            "convert them to ms or declare \"units\": {\"timestamp\": \"us\"} (or \"ns\") in meta.json"
+        )
+
+
+def check_label_times(table: pd.DataFrame, t_start: float, t_end: float, where: str) -> None:
+    """Label times (s) must lie on the sensors' clock and look like real steps/events.
+
+    Refused: most label times outside the recording (+-1 s), or intervals/events closer than 50 ms on
+    median (a step lasts ~0.3-2 s; such values are seconds written into ``*_ms`` columns).
+    """
+    cols = [c for c in ("start_s", "end_s", "ic_s") if c in table.columns]
+    if not cols or len(table) == 0:
+        return
+    times = table[cols].to_numpy(dtype=float)
+    times = times[np.isfinite(times)]
+    outside = int(np.sum((times < t_start - 1.0) | (times > t_end + 1.0)))
+    if outside > times.size / 2:
+        raise DataError(
+            f"{where}: {outside} of {times.size} label times lie outside the recording ({t_start:.1f}-{t_end:.1f} s "
+            "on the sensors' clock); *_ms columns must be milliseconds on the sensor files' time base"
+        )
+    if len(table) >= 3:
+        if "start_s" in table.columns and "end_s" in table.columns:
+            spacing = float(np.median(table["end_s"].to_numpy(float) - table["start_s"].to_numpy(float)))
+        else:
+            spacing = float(np.median(np.diff(np.sort(table[cols[0]].to_numpy(float)))))
+        if 0 < spacing < 0.05:
+            raise DataError(
+                f"{where}: label intervals of {1e3 * spacing:.1f} ms on median are too short for steps; "
+                "the *_ms columns look like seconds: multiply them by 1000"
+            )
