@@ -56,10 +56,11 @@ def plot(
         pdrlearn plot datasets/real/gaitmap_stairs_up_left --out out/stairs.png --start 5 --end 12
     """
     from pdrlearn.io import read_session
-    from pdrlearn.plots import plot_session
+    from pdrlearn.plots import check_window, plot_session
 
     out = out_file(out, (".png",))
     s = read_session(session_dir)
+    check_window(start, end, s.t_end - s.t_start, str(session_dir))
     plot_session(s, out, start=start, end=end)
     typer.echo(str(out))
 
