@@ -156,7 +156,8 @@ BAD_OPTIONS = [
     (["train-all", "{root}", "--out", "{out}/m", "--workers", "0"], "--workers 0"),
     (["evaluate-all", "{out}/none", "{root}", "--serial"], "models folder not found"),
     (["steps", "{good}", "--detector", "magic"], "unknown step detector 'magic'"),
-    (["steps", "{good}", "--tolerance", "0"], "tolerance 0.0 s must be positive"),
+    (["steps", "{good}", "--tolerance", "0"], "--tolerance 0.0: give the event matching tolerance"),
+    (["steps", "{good}", "--tolerance", "nan"], "--tolerance nan"),
     (["steps", "{good}", "--out", "{out}/steps.txt"], "must end in .csv"),
     (["plot", "{good}", "--out", "{out}/p.png", "--start", "abc"], "Invalid value for '--start'"),
     (["plot", "{good}", "--out", "{out}/p.png", "--start", "10", "--end", "5"], "--end 5 s is not after --start 10"),
@@ -280,3 +281,15 @@ def test_plot_window_partly_outside_is_clipped(base, tmp_path):
     out = tmp_path / "p.png"
     assert main(["plot", str(base["good"]), "--out", str(out), "--start", "-5", "--end", "3"]) == 0
     assert out.stat().st_size > 1000
+
+
+def test_console_script_prints_one_line(tmp_path):
+    """The installed entry point (``pdrlearn.cli:run``) exits 2 with one line, no traceback."""
+    import subprocess
+    import sys
+
+    proc = subprocess.run([sys.executable, "-c", "from pdrlearn.cli import run; run()", "info", str(tmp_path / "none")],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2 and proc.stdout == ""
+    assert proc.stderr.strip() == f"error: {tmp_path / 'none'}: session folder not found; pass a folder with " \
+        "fAccelerometer.csv etc."

@@ -3,11 +3,13 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import typer
 
 from pdrlearn.cli.common import json_safe, out_file, print_json
+from pdrlearn.errors import DataError
 
 _METRICS = ("scored_count", "reference_count", "precision", "recall", "f1", "count_error_pct",
             "timing_error_mean_s", "timing_error_sd_s", "true_positives", "false_positives",
@@ -40,6 +42,8 @@ def steps(
     from pdrlearn.steps import get_detector, score_steps
 
     det = get_detector(detector)
+    if not tolerance > 0 or not math.isfinite(tolerance):
+        raise DataError(f"--tolerance {tolerance}: give the event matching tolerance in seconds (> 0, e.g. 0.25)")
     if out is not None:
         out = out_file(out, (".csv",))
     session = read_session(session_dir)
