@@ -33,3 +33,21 @@ def test_streaming_rejects_what_is_not_streamable(walk_a, tmp_path, capsys):
     assert "not streamable" in capsys.readouterr().err
     assert main(["track", str(walk_a), "--pipeline", "waist-pll", "--streaming", "--out", str(tmp_path / "y")]) == 2
     assert "--streaming applies to the plasys pipeline only" in capsys.readouterr().err
+
+
+def test_track_and_export_refuse_bad_out(walk_a, tmp_path, capsys):
+    f = tmp_path / "file.txt"
+    f.write_text("x")
+    assert main(["track", str(walk_a), "--method", "M2", "--out", str(f)]) == 2
+    assert "is a file" in capsys.readouterr().err
+    busy = tmp_path / "busy"
+    busy.mkdir()
+    (busy / "notes.txt").write_text("mine")
+    assert main(["track", str(walk_a), "--method", "M2", "--out", str(busy)]) == 2
+    assert "does not hold a track" in capsys.readouterr().err
+    assert sorted(p.name for p in busy.iterdir()) == ["notes.txt"]
+    from pdrlearn.errors import ModelError
+    from pdrlearn.export.bundle import write_bundle
+
+    with pytest.raises(ModelError, match="is a file"):
+        write_bundle(f, {})

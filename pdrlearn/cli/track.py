@@ -55,12 +55,14 @@ def track(
 
         pdrlearn track out/sim/D --method M3 --model models/user1 --streaming --out out/D3s   # = pdrlearn run
     """
+    from pdrlearn.cli.common import out_folder
     from pdrlearn.io import read_session
     from pdrlearn.track.base import get_pipeline
     from pdrlearn.track.evaluate import evaluate_track
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plots import plot_paths
 
+    out_folder(out, ("summary.json",), "a track (trajectory.csv, steps.csv, path.png, summary.json)")
     start_ll = parse_start(start) if start is not None else None
     par = None
     if params is not None:

@@ -17,14 +17,12 @@ from __future__ import annotations
 import datetime as _dt
 import json
 import logging
-import os
-import shutil
-import tempfile
 from pathlib import Path
 
 import numpy as np
 import onnx
 
+from pdrlearn.atomic import atomic_directory
 from pdrlearn.classify.model_dir import _json_default  # numpy scalars/arrays, paths -> JSON
 from pdrlearn.errors import ModelError
 from pdrlearn.runtime.bundle import (
@@ -100,14 +98,14 @@ def write_bundle(
     ModelError : missing manifest keys, an invalid ONNX model, an object array, an existing target.
     """
     out = Path(out_dir)
+    if out.exists() and not out.is_dir():
+        raise ModelError(f"{out}: is a file; --out must be a folder for the bundle")
     if out.exists() and any(out.iterdir()) and not overwrite:
         raise ModelError(f"{out}: folder exists and is not empty; choose another --out or pass --overwrite")
     missing = [k for k in REQUIRED_KEYS if k != "files" and k not in manifest]
     if missing:
         raise ModelError(f"bundle manifest lacks {', '.join(missing)}; build it with base_manifest()")
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.tmp-", dir=out.parent))
-    try:
+    with atomic_directory(out) as tmp:
         files: dict[str, str] = {}
         for rel, model in (onnx_models or {}).items():
             _check_rel(rel)
@@ -142,16 +140,6 @@ def write_bundle(
         (tmp / MANIFEST_SHA).write_text(f"{sha256_file(tmp / MANIFEST)}  {MANIFEST}\n")
         if verify:
             load_bundle(tmp, verify=True)
-        if out.exists():
-            old = out.with_name(f".{out.name}.old-{os.getpid()}")
-            os.replace(out, old)
-            os.replace(tmp, out)
-            shutil.rmtree(old, ignore_errors=True)
-        else:
-            os.replace(tmp, out)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
     log.info("wrote bundle %s (%d files)", out, len(files))
     return out
 

@@ -21,8 +21,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.sensors import PROTOCOL_TYPES, SENSORS
+from pdrlearn.io.session import Session, Stream
 
 FIRMWARE_RATE_HZ = 20.0  # thesis ch.4.2.3: sampling period 50 ms
 _SPLIT = re.compile(r"[\s,;]+")
