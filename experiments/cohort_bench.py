@@ -26,6 +26,27 @@ from pdrlearn.io import write_session  # noqa: E402
 from pdrlearn.sim import simulate  # noqa: E402
 
 
+def _numeric_burn(seed: int) -> int:
+    """Matrix products for 3 s; returns the iterations done (a probe of the machine's parallel capacity)."""
+    import numpy as np
+
+    a = np.random.default_rng(seed).normal(size=(300, 300))
+    t0, k = time.perf_counter(), 0
+    while time.perf_counter() - t0 < 3.0:
+        a = np.tanh(a @ a.T / 300.0)
+        k += 1
+    return k
+
+
+def parallel_capacity(workers: int) -> float:
+    """Total numeric throughput of ``workers`` LocalCluster processes relative to one process."""
+    from pdrlearn.cohort import run_cohort
+
+    one = run_cohort(_numeric_burn, [("probe", 0)], serial=True)[0].value
+    many = run_cohort(_numeric_burn, [(f"p{i}", i) for i in range(workers)], n_workers=workers)
+    return sum(r.value for r in many) / one
+
+
 def _cli_json(args: list[str]) -> dict:
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
@@ -58,10 +79,14 @@ def main(argv: list[str] | None = None) -> None:
         t0 = time.perf_counter()
         dask = _cli_json(["train-all", work / "cohort", "--out", work / "m_dask", "--workers", a.workers, *common])
         t_dask = time.perf_counter() - t0
+        def per_user(d):
+            return sum(r.get("seconds", 0.0) for r in d["users"]) / max(len(d["users"]), 1)
+
         same = [{k: v for k, v in r.items() if k != "seconds"} for r in serial["users"]] == \
                [{k: v for k, v in r.items() if k != "seconds"} for r in dask["users"]]
         _cli_json(["evaluate-all", work / "m_dask", work / "cohort", "--out", work / "results", "--workers",
                    a.workers, "--json"])
+        capacity = parallel_capacity(a.workers)
         t0 = time.perf_counter()
         with contextlib.redirect_stdout(io.StringIO()):
             cli(["report", str(work / "results"), "--out", str(work / "report")])
@@ -70,11 +95,14 @@ def main(argv: list[str] | None = None) -> None:
             "# Cohort benchmark\n\n"
             f"{a.users} simulated users, tasks {a.tasks}, methods {a.methods}, {a.cv}-fold CV; "
             f"simulation {t_sim:.0f} s.\n\n"
-            "| run | seconds | users/min |\n|---|---|---|\n"
-            f"| serial | {t_serial:.1f} | {60 * a.users / t_serial:.2f} |\n"
-            f"| LocalCluster ({a.workers} workers) | {t_dask:.1f} | {60 * a.users / t_dask:.2f} |\n\n"
+            "| run | seconds | users/min | mean seconds per user job |\n|---|---|---|---|\n"
+            f"| serial | {t_serial:.1f} | {60 * a.users / t_serial:.2f} | {per_user(serial):.1f} |\n"
+            f"| LocalCluster ({a.workers} workers) | {t_dask:.1f} | {60 * a.users / t_dask:.2f} | "
+            f"{per_user(dask):.1f} |\n\n"
             f"Speed-up {t_serial / t_dask:.2f}x; results identical to the serial run: {same}. "
-            f"Report of {a.users} users generated in {t_report:.2f} s.\n"
+            f"Report of {a.users} users generated in {t_report:.2f} s.\n\n"
+            f"Machine probe: {a.workers} processes doing matrix products together get {capacity:.2f}x the numeric "
+            f"throughput of one process (an upper bound of the cohort speed-up on this machine).\n"
         )
         out = ROOT / "experiments" / "results" / "cohort_bench.md"
         out.parent.mkdir(parents=True, exist_ok=True)
