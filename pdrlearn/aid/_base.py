@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import inspect
 
+import numpy as np
+import pandas as pd
+
 
 class ParamsMixin:
     """``get_params``/``set_params`` from the keyword-only arguments of ``__init__``."""
@@ -22,3 +25,18 @@ class ParamsMixin:
                 raise ValueError(f"{type(self).__name__}: unknown parameter '{k}'")
             setattr(self, k, v)
         return self
+
+
+def stretched_trajectory(t, out: np.ndarray, used, *, keep_causal: np.ndarray,
+                         extra: dict | None = None) -> pd.DataFrame:
+    """Trajectory table of a fix-fusion filter (seed 004 "stretching").
+
+    ``out[:, 0:2]`` holds the stretched (smoothed between two fixes) positions, ``out[:, 2:4]`` the causal
+    real-time ones; rows where ``keep_causal`` is true (after the last fix, or everywhere without
+    stretching) take the causal position. Columns ``t, x, y, x_rt, y_rt`` + ``extra`` + ``fix_used``.
+    """
+    out[keep_causal, 0:2] = out[keep_causal, 2:4]
+    cols = {"t": t, "x": out[:, 0], "y": out[:, 1], "x_rt": out[:, 2], "y_rt": out[:, 3]}
+    cols.update(extra or {})
+    cols["fix_used"] = used
+    return pd.DataFrame(cols)

@@ -16,7 +16,7 @@ import logging
 import numpy as np
 import pandas as pd
 
-from pdrlearn.aid._base import ParamsMixin
+from pdrlearn.aid._base import ParamsMixin, stretched_trajectory
 from pdrlearn.aid._kernels import kf_update, stretch_segment, wrap_angle
 from pdrlearn.aid.sporadic import P_P0_M2, Q_C_M2
 from pdrlearn.errors import DataError
@@ -421,19 +421,9 @@ class ColomboTracker(ParamsMixin):
         tail = np.ones(n, bool)
         if self.stretch and anchor_i >= 0:
             tail[: anchor_i + 1] = False
-        out[tail, 0:2] = out[tail, 2:4]
-        self.trajectory_ = pd.DataFrame(
-            {
-                "t": t,
-                "x": out[:, 0],
-                "y": out[:, 1],
-                "x_rt": out[:, 2],
-                "y_rt": out[:, 3],
-                "v": out[:, 4],
-                "yaw": out[:, 5],
-                "state": out[:, 6].astype(int),
-                "fix_used": used,
-            }
+        self.trajectory_ = stretched_trajectory(
+            t, out, used, keep_causal=tail,
+            extra={"v": out[:, 4], "yaw": out[:, 5], "state": out[:, 6].astype(int)},
         )
         self.stats_ = counts
         return self

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pdrlearn.aid._base import ParamsMixin
+from pdrlearn.aid._base import ParamsMixin, stretched_trajectory
 from pdrlearn.aid._kernels import kf_predict, kf_update, stretch_segment, wrap_angle
 from pdrlearn.aid.fixes import sigma_from_accuracy
 from pdrlearn.aid.gnss import check_steps
@@ -196,20 +196,9 @@ class SporadicFixFusion(ParamsMixin):
         if self.stretch:
             tail[: anchor_row + 1] = False
             tail[0] = True
-        out[tail, 0:2] = out[tail, 2:4]
         t = np.r_[t0, st["end_s"].to_numpy(float)]
-        self.trajectory_ = pd.DataFrame(
-            {
-                "t": t,
-                "x": out[:, 0],
-                "y": out[:, 1],
-                "x_rt": out[:, 2],
-                "y_rt": out[:, 3],
-                "x_pdr": out[:, 4],
-                "y_pdr": out[:, 5],
-                "fix_used": used,
-            }
-        )
+        self.trajectory_ = stretched_trajectory(t, out, used, keep_causal=tail,
+                                                extra={"x_pdr": out[:, 4], "y_pdr": out[:, 5]})
         dur = max(t[-1] - t0, 1e-9)
         counts["queries_per_min"] = counts["queries"] / dur * 60.0
         self.stats_ = counts
