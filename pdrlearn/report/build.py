@@ -142,7 +142,9 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         for p in tracks:
             d = _flat_scalars(_read_json(p))
             rows.append({"run": str(p.parent.relative_to(root)) or ".", **d})
-        sections.append(Section("Tracking", tables=[("trajectory summaries", pd.DataFrame(rows))]))
+        df = pd.DataFrame(rows)
+        key = [c for c in TRACK_COLUMNS if c in df.columns]
+        sections.append(Section("Tracking", tables=[("trajectory summaries", df[key])]))
     images = find("*.png")
     if images:
         by_kind: dict[str, list[Path]] = {}
@@ -160,6 +162,11 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
                         "summary.json or PNG); run pdrlearn train/evaluate/track first")
     return sections
 
+
+#: The tracking summary columns shown in reports (the full JSON stays in each run's summary.json).
+TRACK_COLUMNS = ("run", "pipeline", "distance_m", "distance_ref_m", "n_steps", "distance_error_pct",
+                 "final_position_error_m", "stride_length_mae_pct", "stride_length_mae_pct_straight",
+                 "step_f1", "altitude_error_pct")
 
 _CSS = """body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;color:#222}
 table{border-collapse:collapse;margin:.6em 0 1.4em}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}
