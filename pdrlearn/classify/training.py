@@ -131,8 +131,8 @@ class TaskData:
     y: np.ndarray
     session: np.ndarray  # session index per step
     n_skipped: int = 0  # rows whose label is not a class of the task (e.g. 'unclear')
-    foot: np.ndarray | None = None  # per step: its session has the foot accelerometer
-    waist: np.ndarray | None = None  # per step: its session has the waist accelerometer
+    foot: np.ndarray | None = None  # per step: its session has the foot accelerometer (and no gap, B11)
+    waist: np.ndarray | None = None  # per step: its session has the waist accelerometer (and no gap, B11)
 
     def unit_mask(self, unit: str) -> np.ndarray:
         """Steps whose session has the unit (``fused``: both units)."""
@@ -168,8 +168,14 @@ def task_data(windows, task: str) -> TaskData | None:
         Xs.append(w.X[keep])
         ys.append(y)
         sess.append(np.full(len(y), i))
-        foot.append(np.full(len(y), "foot_acc" in w.available))
-        waist.append(np.full(len(y), "waist_acc" in w.available))
+        lost = getattr(w, "gap_steps", {})  # steps overlapping a sensor gap lose that unit (decision B11)
+        for unit, has, acc in (("foot", foot, "foot_acc"), ("waist", waist, "waist_acc")):
+            ok = np.full(len(y), acc in w.available)
+            if unit in lost:
+                ok &= ~lost[unit][keep]
+                log.warning("session '%s': %s task: %d labelled steps overlap a %s sensor gap and are left "
+                            "out of the %s models", w.session, task, int(lost[unit][keep].sum()), unit, unit)
+            has.append(ok)
     if not Xs:
         return None
     return TaskData(
@@ -346,22 +352,45 @@ class UserModel:
                     f"model of user '{self.user}' has no {task} classifier; trained tasks: {', '.join(self.tasks)}"
                 )
             tm = self.tasks[task]
-            try:
-                m, u, proba = self._predict_task(tm, windows, method, unit)
-            except MissingSensorError as exc:
-                if tasks is not None or method is not None or unit is not None:
-                    raise
-                log.warning("%s: %s task left unclassified: %s", session.name, task, exc)
-                out[TASK_COLUMNS[task]] = None
-                for c in tm.classes:
-                    out[f"p_{task}_{c}"] = np.nan
-                out[f"method_{task}"] = "none"
-                continue
-            out[TASK_COLUMNS[task]] = np.asarray(tm.classes, dtype=object)[np.argmax(proba, axis=1)]
-            for j, c in enumerate(tm.classes):
-                out[f"p_{task}_{c}"] = proba[:, j]
-            out[f"method_{task}"] = f"{m}/{u}"
+            out[TASK_COLUMNS[task]] = None
+            for c in tm.classes:
+                out[f"p_{task}_{c}"] = np.nan
+            out[f"method_{task}"] = "none"
+            for rows, win in _gap_groups(windows):
+                try:
+                    m, u, proba = self._predict_task(tm, win, method, unit)
+                except MissingSensorError as exc:
+                    if len(rows) == len(out) and (tasks is not None or method is not None or unit is not None):
+                        raise
+                    log.warning("%s: %s task left unclassified for %d steps: %s", session.name, task,
+                                len(rows), exc)
+                    continue
+                col = out.columns.get_loc(TASK_COLUMNS[task])
+                out.iloc[rows, col] = np.asarray(tm.classes, dtype=object)[np.argmax(proba, axis=1)]
+                for j, c in enumerate(tm.classes):
+                    out.iloc[rows, out.columns.get_loc(f"p_{task}_{c}")] = proba[:, j]
+                out.iloc[rows, out.columns.get_loc(f"method_{task}")] = f"{m}/{u}"
         return out
+
+
+def _gap_groups(windows):
+    """``(rows, windows)`` pairs: the steps that lost the same units to sensor gaps, with those units
+    removed from ``available`` (decision B11), so a model of the remaining unit classifies them."""
+    from pdrlearn.features.windows import UNIT_GROUPS
+
+    gaps = getattr(windows, "gap_steps", {})
+    if not gaps:
+        return [(np.arange(len(windows)), windows)]
+    units = sorted(gaps)
+    key = np.stack([gaps[u] for u in units], axis=1)
+    groups = []
+    for k in np.unique(key, axis=0):
+        rows = np.flatnonzero((key == k).all(axis=1))
+        win = windows.subset(rows)
+        lost = {g for u, b in zip(units, k, strict=True) if b for g in UNIT_GROUPS[u]}
+        win.available = tuple(g for g in win.available if g not in lost)
+        groups.append((rows, win))
+    return groups
 
 
 def _units_available(unit: str, available: Sequence[str], method: str) -> bool:

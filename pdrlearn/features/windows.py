@@ -62,6 +62,8 @@ class StepWindows:
     available : sensor groups (keys of :data:`GROUPS`) the session has; the others are NaN
     steps : the steps table the windows were cut from (index reset)
     session : name of the source session
+    gap_steps : unit (``"foot"``/``"waist"``) -> (n_steps,) bool, the steps whose window overlaps a gap
+        in that unit's accelerometer/gyroscope stream; their channels of that unit are NaN (decision B11)
     """
 
     X: np.ndarray
@@ -70,6 +72,7 @@ class StepWindows:
     available: tuple[str, ...] = ()
     steps: pd.DataFrame = field(default_factory=pd.DataFrame)
     session: str = ""
+    gap_steps: dict[str, np.ndarray] = field(default_factory=dict)
 
     def __len__(self) -> int:
         return int(self.X.shape[0])
@@ -88,7 +91,7 @@ class StepWindows:
         idx = np.flatnonzero(mask) if np.asarray(mask).dtype == bool else np.asarray(mask, dtype=int)
         steps = self.steps.iloc[idx].reset_index(drop=True) if len(self.steps) else self.steps
         return StepWindows(self.X[idx], self.durations_s[idx], self.channels, self.available, steps,
-                           self.session)
+                           self.session, {u: m[idx] for u, m in self.gap_steps.items()})
 
 
 def task_labels(steps: pd.DataFrame, task: str, *,
@@ -168,6 +171,41 @@ def _check_units(session: str, s: Stream) -> None:
                             "deg/s, not rad/s - multiply by pi/180")
 
 
+#: Sensor groups of each unit and the groups whose stream gaps blank the unit (decision B11).
+UNIT_GROUPS: dict[str, tuple[str, ...]] = {"foot": ("foot_acc", "foot_gyr", "force"),
+                                           "waist": ("waist_acc", "waist_gyr", "waist_baro")}
+GAP_GROUPS: dict[str, tuple[str, ...]] = {"foot": ("foot_acc", "foot_gyr"), "waist": ("waist_acc", "waist_gyr")}
+
+
+def gap_steps(session: Session, start: np.ndarray, end: np.ndarray,
+              available: tuple[str, ...]) -> dict[str, np.ndarray]:
+    """Per unit, the steps ``[start, end]`` (s) overlapping a gap (interval > 1.5 nominal periods,
+    :meth:`Stream.gaps`) of the unit's accelerometer or gyroscope; only units with such steps."""
+    out = {}
+    for unit, groups in GAP_GROUPS.items():
+        mask = np.zeros(len(start), dtype=bool)
+        for g in groups:
+            if g not in available:
+                continue
+            for name in GROUP_STREAMS[g]:
+                for gap in session.streams[name].gaps():
+                    mask |= (start < gap.start_s + gap.duration_s) & (end > gap.start_s)
+        if mask.any():
+            out[unit] = mask
+    return out
+
+
+def _blank_gap_steps(X: np.ndarray, gaps: dict[str, np.ndarray], available: tuple[str, ...],
+                     session: str) -> None:
+    """NaN the unit's channels of the steps in ``gaps`` (no interpolated values across a gap, B11)."""
+    for unit, mask in gaps.items():
+        for g in UNIT_GROUPS[unit]:
+            if g in available:
+                X[np.ix_(mask, [CHANNEL_INDEX[c] for c in GROUPS[g]])] = np.nan
+        log.warning("session '%s': %d of %d steps overlap a gap in the %s unit's streams; their %s "
+                    "channels are missing (NaN)", session, int(mask.sum()), len(mask), unit, unit)
+
+
 def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_samples: int = 40,
                  heading: str = "pca", rest_search_s: float = 0.3, batch: bool = True) -> StepWindows:
     """Cut, level and resample every step of ``steps`` to ``n_samples`` points.
@@ -221,14 +259,16 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
     X = np.full((n, len(CHANNELS), n_samples), np.nan)
     streams = {name: (s.t, s.values) for name, s in session.streams.items()}
     forward = {p: f for p, f in (("foot", fwd_foot), ("waist", fwd_waist)) if f is not None}
+    gaps = gap_steps(session, start, end, available)
     if batch and batch_applicable(streams, available):  # all steps at once (pdrlearn.features.batch)
         try:
             fill_windows_batch(X, streams, start, end, channel_index=CHANNEL_INDEX, available=available,
                                forward=forward, rest_search_s=rest_search_s, heading=heading)
         except DataError as exc:
             raise DataError(f"session '{session.name}': {exc}") from None
+        _blank_gap_steps(X, gaps, available, session.name)
         return StepWindows(X=X, durations_s=end - start, channels=CHANNELS, available=available,
-                           steps=steps.reset_index(drop=True).copy(), session=session.name)
+                           steps=steps.reset_index(drop=True).copy(), session=session.name, gap_steps=gaps)
     for i in range(n):
         t0, t1 = float(start[i]), float(end[i])
         try:
@@ -236,5 +276,6 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
                              forward=forward, rest_search_s=rest_search_s, heading=heading)
         except DataError as exc:
             raise DataError(f"session '{session.name}', step {i} ({t0:.2f}-{t1:.2f} s): {exc}") from None
+    _blank_gap_steps(X, gaps, available, session.name)
     return StepWindows(X=X, durations_s=end - start, channels=CHANNELS, available=available,
-                       steps=steps.reset_index(drop=True).copy(), session=session.name)
+                       steps=steps.reset_index(drop=True).copy(), session=session.name, gap_steps=gaps)

@@ -41,6 +41,7 @@ from pdrlearn.kernels.window import available_groups, levelled_units
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.track.base import TrackResult, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
+from pdrlearn.track.gaps import drop_steps_across_gaps, gap_warnings, long_gaps, overlaps_gaps
 from pdrlearn.track.geodetic import geodetic_track
 
 log = logging.getLogger(__name__)
@@ -282,6 +283,10 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
     kind = cfg["detector"] if stance_source == "force" or method == "M1" else "AccelStepDetector"
     strides = _detect_strides(session, kind, steps, foot.t, stance, warnings).reset_index(drop=True)
+    # decision B11: report long stream gaps; no foot stride spans a foot-stream gap
+    foot_gaps = long_gaps(session, ("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
+    warnings += gap_warnings(foot_gaps) + gap_warnings(long_gaps(session, ("wAccelerometer", "wGyroscope")))
+    strides = drop_steps_across_gaps(strides, foot_gaps)
     if not len(strides):
         raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?")
     fd_kw = {k: cfg[k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
@@ -300,6 +305,10 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     source = strides.attrs.get("detector", steps)
     strides = strides.iloc[fd.rows_].reset_index(drop=True)
     strides["start_s"], strides["end_s"] = fd.start_s_, fd.end_s_
+    # decision B11: the rest-to-rest bounds may reach across a gap; such strides move 0 m
+    in_gap = overlaps_gaps(strides, foot_gaps)
+    if in_gap.any():
+        disp = np.where(in_gap[:, None], 0.0, disp)
     if not len(strides):
         raise DataError(f"session '{session.name}': no stride between two rests of the foot unit")
 
@@ -338,6 +347,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     applied = step_rules.apply(disp, rule_classes)
     length = applied["length_m"].to_numpy()
     dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
+    length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
 
     hsrc = heading or cfg["heading"]
     if hsrc in ("waist", "fused") and not has_waist:

@@ -24,6 +24,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.io import Session
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.base import TrackResult, register_pipeline
+from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.events import (
@@ -266,6 +267,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
+    gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
+    warnings.extend(gap_warnings(gaps))
+    steps = cut_steps_at_gaps(steps, gaps)
     steps = _step_lengths(steps, imu, p, pipeline, thr, turn_factor=bool(o["turn_factor"]))
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops)
     n = len(steps)

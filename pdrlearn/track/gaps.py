@@ -1,0 +1,79 @@
+"""Sensor-stream gaps in the tracking pipelines (decision B11, docs/decisions/bad-input.md).
+
+A pipeline must not invent displacement across a gap in a stream it uses: :func:`gap_warnings` names
+the gaps longer than ``min_gap_s`` for ``TrackResult.info["warnings"]``, and :func:`cut_steps_at_gaps`
+ends the walking sequence at such a gap (no step spans it, no contact inside it counts).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.io.session import Session
+
+#: Gaps longer than this (s) are reported and end a walking sequence: the shortest steps last ~0.4 s
+#: and 1 s of missing data can hide one or two steps (brief: "gaps longer than e.g. 1 s").
+MIN_GAP_S = 1.0
+
+
+def long_gaps(session: Session, names: tuple[str, ...], *, min_gap_s: float = MIN_GAP_S
+              ) -> dict[str, list[tuple[float, float]]]:
+    """Stream name -> ``[(start_s, end_s), ...]`` of its gaps longer than ``min_gap_s`` (s)."""
+    out = {}
+    for name in names:
+        s = session.streams.get(name)
+        if s is None:
+            continue
+        g = [(gap.start_s, gap.start_s + gap.duration_s) for gap in s.gaps() if gap.duration_s > min_gap_s]
+        if g:
+            out[name] = g
+    return out
+
+
+def gap_warnings(gaps: dict[str, list[tuple[float, float]]]) -> list[str]:
+    """One warning per stream: the count and the longest gap."""
+    out = []
+    for name, g in gaps.items():
+        t0, t1 = max(g, key=lambda ab: ab[1] - ab[0])
+        out.append(f"{name} has {len(g)} gap(s) longer than {MIN_GAP_S:g} s (longest {t1 - t0:.1f} s at "
+                   f"{t0:.1f} s); no steps are counted inside them - re-record or trim the session")
+    return out
+
+
+def cut_steps_at_gaps(steps: pd.DataFrame, gaps: dict[str, list[tuple[float, float]]]) -> pd.DataFrame:
+    """Drop the contacts inside a gap and end each walking sequence before a gap: a step
+    (``start_s``..``end_s`` with ``has_next``) spanning a gap becomes a closing contact (``end_s =
+    start_s``, ``has_next = False``)."""
+    if not gaps or len(steps) == 0:
+        return steps
+    iv = np.array([ab for g in gaps.values() for ab in g])
+    ev = steps["start_s"].to_numpy(float)
+    inside = ((ev[:, None] > iv[None, :, 0]) & (ev[:, None] < iv[None, :, 1])).any(axis=1)
+    out = steps.loc[~inside].copy()
+    st, en = out["start_s"].to_numpy(float), out["end_s"].to_numpy(float)
+    nxt = np.append(st[1:], np.inf)
+    spans = ((st[:, None] < iv[None, :, 1]) & (np.maximum(en, nxt)[:, None] > iv[None, :, 0])).any(axis=1)
+    spans &= out["has_next"].to_numpy(bool)
+    out.loc[out.index[spans], "end_s"] = st[spans]
+    out.loc[out.index[spans], "has_next"] = False
+    out.attrs = dict(steps.attrs)
+    return out.reset_index(drop=True)
+
+
+def overlaps_gaps(steps: pd.DataFrame, gaps: dict[str, list[tuple[float, float]]]) -> np.ndarray:
+    """(n_rows,) bool: the row's ``start_s``..``end_s`` overlaps one of ``gaps``."""
+    st, en = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    if not gaps or len(steps) == 0:
+        return np.zeros(len(st), dtype=bool)
+    iv = np.array([ab for g in gaps.values() for ab in g])
+    return ((st[:, None] < iv[None, :, 1]) & (en[:, None] > iv[None, :, 0])).any(axis=1)
+
+
+def drop_steps_across_gaps(steps: pd.DataFrame, gaps: dict[str, list[tuple[float, float]]]) -> pd.DataFrame:
+    """Rows of a strides table (``start_s``..``end_s``) that overlap no gap (index reset)."""
+    if not gaps or len(steps) == 0:
+        return steps
+    out = steps.loc[~overlaps_gaps(steps, gaps)].reset_index(drop=True)
+    out.attrs = dict(steps.attrs)
+    return out
