@@ -133,3 +133,28 @@ def test_plasys_warns_and_drops_strides_across_a_foot_gap():
     assert (st.loc[across, "length_m"] == 0).all() and (st.loc[across, "dz_m"] == 0).all()
     assert len(st) < len(full.steps)
     assert st["length_m"].sum() < full.steps["length_m"].sum() - 0.5 * (GAP[1] - GAP[0])
+
+
+def test_training_and_prediction_treat_gap_steps_as_missing_waist():
+    """A waist-trained step in a waist gap is left out of the waist/fused models, and a gap step is
+    classified by a foot model (as a session without the waist unit), never from NaN features."""
+    from pdrlearn.classify import train_user
+    from tests.test_classify_training import labelled_session
+
+    def with_gap(s, t0, t1):
+        for name in ("wAccelerometer", "wGyroscope"):
+            x = s.streams[name]
+            keep = (x.t < t0) | (x.t >= t1)
+            s.streams[name] = Stream(name, x.t[keep], x.values[keep])
+        return s
+
+    model = train_user([labelled_session(1, 12), with_gap(labelled_session(2, 12), 10.0, 20.0)],
+                       tasks=["terrain"], methods=["svm"], cv=3, seed=0)
+    s = with_gap(labelled_session(11, 4), 4.0, 8.0)
+    df = model.predict_steps(s, tasks=["terrain"])
+    gap = ((s.steps["start_s"] < 8.0) & (s.steps["end_s"] > 4.0)).to_numpy()
+    assert gap.any() and (~gap).any()
+    units = df["method_terrain"].str.split("/").str[1].to_numpy()
+    assert set(units[gap]) == {"foot"} and set(units[~gap]) != {"foot"}  # the chosen model uses the waist
+    assert df["terrain"].notna().all()
+    assert np.isfinite(df.filter(like="p_terrain_").to_numpy(float)).all()
