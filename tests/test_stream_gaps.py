@@ -158,3 +158,15 @@ def test_training_and_prediction_treat_gap_steps_as_missing_waist():
     assert set(units[gap]) == {"foot"} and set(units[~gap]) != {"foot"}  # the chosen model uses the waist
     assert df["terrain"].notna().all()
     assert np.isfinite(df.filter(like="p_terrain_").to_numpy(float)).all()
+
+
+def test_streaming_plasys_warns_about_gaps():
+    from pdrlearn.sim import simulate
+    from pdrlearn.track.plasys import track_streaming
+
+    s = simulate("walk", user_seed=2, length_m=40.0)
+    x = s.streams["fGyroscope"]
+    keep = (x.t < 10.0) | (x.t >= 12.0)
+    s.streams["fGyroscope"] = Stream("fGyroscope", x.t[keep], x.values[keep])
+    res = track_streaming(s, method="M2")
+    assert any(w.startswith("fGyroscope has 1 gap(s)") for w in res.info["warnings"])

@@ -436,7 +436,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if not len(strides):
         raise DataError(f"session '{session.name}': no stance-to-stance stride found on the foot gyroscope")
     table = pd.DataFrame({"start_s": strides[:, 0], "end_s": strides[:, 1]})
-    warnings: list[str] = []
+    # decision B11: warned only - the streaming runtime sees the same samples (trajectory parity)
+    warnings: list[str] = gap_warnings(long_gaps(session, ("fAccelerometer", "fGyroscope", "wAccelerometer",
+                                                           "wGyroscope")))
     classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
     model_bounds = None
     if method == "M3":
