@@ -216,12 +216,16 @@ def fill_windows_batch(X: np.ndarray, streams: Streams, start: np.ndarray, end: 
             sel = np.flatnonzero(lengths == L)
             yield sel, i0[sel], int(L)
 
-    if "foot_acc" in available and "foot" in forward:
-        t_a, v_a = streams["fAccelerometer"]
-        v_g = streams["fGyroscope"][1]
-        for sel, i0, L in by_length("fAccelerometer"):
+    def acc_and_gyro(acc_name, gyr_name):
+        """Per segment length: the selected steps, sample times, accelerometer and gyroscope segments."""
+        t_a, v_a = streams[acc_name]
+        v_g = streams[gyr_name][1]
+        for sel, i0, L in by_length(acc_name):
             ta, acc = _gather(t_a, v_a, i0, L)
-            gyr = resample_rows(ta, ta, _gather(t_a, v_g, i0, L)[1]).transpose(0, 2, 1)
+            yield sel, ta, acc, resample_rows(ta, ta, _gather(t_a, v_g, i0, L)[1]).transpose(0, 2, 1)
+
+    if "foot_acc" in available and "foot" in forward:
+        for sel, ta, acc, gyr in acc_and_gyro("fAccelerometer", "fGyroscope"):
             a, g, an = foot_levelled_batch(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s,
                                            heading=heading, first_step=steps_idx[sel])
             c = ci["foot_acc_x"]
@@ -236,11 +240,7 @@ def fill_windows_batch(X: np.ndarray, streams: Streams, start: np.ndarray, end: 
                 tf, f = _gather(t_f, v_f, i0, L)
                 X[sel, ci["force_a"] + j] = resample_rows(tg[sel], tf, f[..., :1])[:, 0]
     if "waist_acc" in available and "waist" in forward:
-        t_w, v_w = streams["wAccelerometer"]
-        v_wg = streams["wGyroscope"][1]
-        for sel, i0, L in by_length("wAccelerometer"):
-            tw, wacc = _gather(t_w, v_w, i0, L)
-            wgyr = resample_rows(tw, tw, _gather(t_w, v_wg, i0, L)[1]).transpose(0, 2, 1)
+        for sel, tw, wacc, wgyr in acc_and_gyro("wAccelerometer", "wGyroscope"):
             a, g = waist_levelled_batch(wacc, wgyr, forward["waist"], steps_idx[sel])
             c = ci["waist_acc_x"]
             X[sel, c:c + 3] = resample_rows(tg[sel], tw, a)

@@ -266,16 +266,14 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
                                forward=forward, rest_search_s=rest_search_s, heading=heading)
         except DataError as exc:
             raise DataError(f"session '{session.name}': {exc}") from None
-        _blank_gap_steps(X, gaps, available, session.name)
-        return StepWindows(X=X, durations_s=end - start, channels=CHANNELS, available=available,
-                           steps=steps.reset_index(drop=True).copy(), session=session.name, gap_steps=gaps)
-    for i in range(n):
-        t0, t1 = float(start[i]), float(end[i])
-        try:
-            fill_step_window(X[i], streams, t0, t1, channel_index=CHANNEL_INDEX, available=available,
-                             forward=forward, rest_search_s=rest_search_s, heading=heading)
-        except DataError as exc:
-            raise DataError(f"session '{session.name}', step {i} ({t0:.2f}-{t1:.2f} s): {exc}") from None
+    else:
+        for i in range(n):
+            t0, t1 = float(start[i]), float(end[i])
+            try:
+                fill_step_window(X[i], streams, t0, t1, channel_index=CHANNEL_INDEX, available=available,
+                                 forward=forward, rest_search_s=rest_search_s, heading=heading)
+            except DataError as exc:
+                raise DataError(f"session '{session.name}', step {i} ({t0:.2f}-{t1:.2f} s): {exc}") from None
     _blank_gap_steps(X, gaps, available, session.name)
     return StepWindows(X=X, durations_s=end - start, channels=CHANNELS, available=available,
                        steps=steps.reset_index(drop=True).copy(), session=session.name, gap_steps=gaps)
