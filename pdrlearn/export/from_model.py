@@ -17,6 +17,9 @@ import numpy as np
 from pdrlearn.errors import ModelError
 from pdrlearn.export.bundle import base_manifest, write_bundle
 from pdrlearn.export.onnx_convert import svm_decision_to_onnx, torch_to_onnx
+from pdrlearn.export.step_graph import build_step_graph
+
+STEP_GRAPH_FILE = "models/step.onnx"
 
 log = logging.getLogger(__name__)
 
@@ -249,6 +252,14 @@ def export_model(
     rates = {k: float(v) for k, v in (model.sampling_rate_hz or {}).items()}
     core = [s for u in sorted(used_units) for s in UNIT_SENSORS[u]]
     rate = float(np.median([rates[s] for s in core if s in rates])) if any(s in rates for s in core) else 20.0
+    features = {
+        "n_samples": int(model.n_samples),
+        "heading": "pca",
+        "rest_search_s": 0.3,
+        "channels": list(CHANNELS),
+        "signals": {k: [list(v[0]), float(v[1])] for k, v in SIGNALS.items()},
+    }
+    step = build_step_graph(tasks, col.onnx, features)  # one session run per step (decision E10)
     manifest = base_manifest(
         user=model.user,
         tasks=tasks,
@@ -266,13 +277,7 @@ def export_model(
             "time": "s",
         },
         frames=frames or {u: DEFAULT_FRAMES[u] for u in sorted(used_units)},
-        features={
-            "n_samples": int(model.n_samples),
-            "heading": "pca",
-            "rest_search_s": 0.3,
-            "channels": list(CHANNELS),
-            "signals": {k: [list(v[0]), float(v[1])] for k, v in SIGNALS.items()},
-        },
+        features=features,
         displacement=_displacement(displacement, length_bounds, model),
         training={
             "data": model.data_summary,
@@ -284,6 +289,9 @@ def export_model(
         metrics={t: v["cv"] for t, v in tasks.items()},
         export={"methods": list(methods) if methods else "chosen", "skipped": skipped},
     )
+    if step is not None:
+        col.onnx[STEP_GRAPH_FILE] = step[0]
+        manifest["step_graph"] = {"file": STEP_GRAPH_FILE, **step[1]}
     return write_bundle(
         out_dir, manifest, onnx_models=col.onnx, npz_files=col.npz, json_files=col.json, overwrite=overwrite
     )

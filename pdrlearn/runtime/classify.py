@@ -15,11 +15,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from pdrlearn.errors import ModelError
+from pdrlearn.errors import DataError, ModelError
 from pdrlearn.kernels.dtw import dtw_to_refs
 from pdrlearn.kernels.proba import align_proba as align
 from pdrlearn.kernels.proba import soft_vote, softmax
-from pdrlearn.runtime.bundle import Bundle
+from pdrlearn.runtime.bundle import Bundle, OnnxModel
 from pdrlearn.runtime.features import compute_features
 
 
@@ -89,6 +89,7 @@ class TaskClassifier:
         spec = bundle.tasks[task]
         self.task = task
         self.classes = list(spec["classes"])
+        self.class_array = np.asarray(self.classes, dtype=object)
         chosen = spec.get("chosen") or {}
         method = method or chosen.get("method")
         unit = unit or chosen.get("unit")
@@ -100,12 +101,13 @@ class TaskClassifier:
                 f"(it has {have}); export it with --methods"
             )
         self.method, self.unit = method, unit
+        self.is_chosen = (method, unit) == (chosen.get("method"), chosen.get("unit"))
         self.model = RuntimeModel(bundle, methods[method][unit], feature_ctx)
 
     def predict(self, W: np.ndarray, cache: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
         """``(classes (n,), probabilities (n, n_classes))`` for windows ``W``."""
         p = align(self.model.proba(W, cache), self.model.classes, self.classes)
-        return np.asarray(self.classes, dtype=object)[np.argmax(p, axis=1)], p
+        return self.class_array[np.argmax(p, axis=1)], p
 
 
 def heuristic_proba(self: RuntimeModel, W: np.ndarray, cache: dict | None = None) -> np.ndarray:
@@ -125,3 +127,40 @@ def heuristic_proba(self: RuntimeModel, W: np.ndarray, cache: dict | None = None
         stages.append((m, [lab for _, lab in st["labels"]], st.get("parent")))
     probs = combine_stages(stages)
     return np.column_stack([probs[c] for c in self.classes])
+
+
+class StepGraph:
+    """The bundle's step graph (decision E10): the step window in, every covered task's probabilities
+    out, in one onnxruntime session run (features, models, class alignment and unit fusion inside).
+
+    Built only for the tasks that classify with their chosen (exported) model; the others stay on the
+    per-model path. ``StepGraph.open`` returns None when the bundle has no step graph or runs on
+    OpenCV's dnn module (which lacks the graph's operators).
+    """
+
+    def __init__(self, bundle: Bundle, spec: dict, tasks: list[str]):
+        self.tasks = tasks
+        self.model = OnnxModel(bundle.file(spec["file"]),
+                               {"input": spec.get("input", "W"), "dtype": spec.get("dtype", "float64"),
+                                "outputs": {t: spec["outputs"][t] for t in tasks}}, backend="onnxruntime")
+        ci = {c: i for i, c in enumerate(bundle.manifest["features"]["channels"])}
+        self.channels = np.array([ci[c] for c in spec["channels"]], dtype=np.intp)
+
+    @classmethod
+    def open(cls, bundle: Bundle, classifiers: dict[str, TaskClassifier]) -> StepGraph | None:
+        spec = bundle.manifest.get("step_graph")
+        if not spec or bundle.backend == "opencv":
+            return None
+        tasks = [t for t, c in classifiers.items() if t in spec["outputs"] and c.is_chosen]
+        if not tasks:
+            return None
+        try:
+            return cls(bundle, spec, tasks)
+        except ModelError:  # no onnxruntime: the per-model path (OpenCV fallback) still works
+            return None
+
+    def predict(self, W: np.ndarray) -> dict[str, np.ndarray]:
+        """Task -> probabilities ``(n, n_classes)`` (the task's class order) of windows ``W``."""
+        if not np.isfinite(W[:, self.channels]).all():  # as compute_features: never classify NaN
+            raise DataError("step features are NaN: the stream lacks a sensor the model needs")
+        return self.model.run(W)

@@ -31,7 +31,7 @@ from pdrlearn.kernels.stride import (
 )
 from pdrlearn.kernels.window import available_groups, fill_step_window
 from pdrlearn.runtime.bundle import Bundle, load_bundle
-from pdrlearn.runtime.classify import TaskClassifier
+from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 
 log = logging.getLogger(__name__)
 
@@ -115,6 +115,8 @@ class Tracker:
     start : initial ENU position (m) and ``heading_rad`` override.
     buffer_s : seconds of samples kept per sensor (bounded state).
     heading_source : "auto" | "foot" | "waist-gyro" (default: the bundle's ``displacement``).
+    step_graph : classify with the bundle's step graph when it has one (one onnxruntime run per step,
+        decision E10); False = one run per model (the same numbers, slower).
     """
 
     def __init__(
@@ -128,6 +130,7 @@ class Tracker:
         heading_rad: float | None = None,
         buffer_s: float = 8.0,
         heading_source: str | None = None,
+        step_graph: bool = True,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -145,6 +148,8 @@ class Tracker:
             mu = (methods or {}).get(task)
             meth, unit = mu.split("/") if mu else (None, None)
             self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit)
+        #: one onnxruntime run per step for the chosen models (decision E10); None = per-model path
+        self.step_graph = StepGraph.open(self.bundle, self.classifiers) if step_graph else None
         self.params = dict(m["displacement"])
         self.heading_source = heading_source or str(self.params.get("heading_source", "auto"))
         if self.heading_source not in HEADING_SOURCES:
@@ -174,7 +179,16 @@ class Tracker:
     def classify(self, W: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
         """Task -> (classes (n,), probabilities (n, n_classes)) for windows ``W (n, channels, samples)``."""
         cache: dict = {}  # signals and statistics shared by every model of this step
-        return {task: clf.predict(W, cache) for task, clf in self.classifiers.items()}
+        g = self.step_graph
+        probas = g.predict(W) if g is not None else {}
+        out = {}
+        for task, clf in self.classifiers.items():
+            if task in probas:
+                p = probas[task]
+                out[task] = (clf.class_array[np.argmax(p, axis=1)], p)
+            else:
+                out[task] = clf.predict(W, cache)
+        return out
 
     def window(self, t0: float, t1: float) -> np.ndarray:
         """The step window of ``[t0, t1]`` from the buffered samples."""

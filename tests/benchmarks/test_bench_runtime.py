@@ -38,7 +38,11 @@ def _loaded_tracker(bundle, session, **kw):
     from pdrlearn.runtime.tracker import Tracker
 
     tr = Tracker(bundle, frames={p: f.to_dict() for p, f in session.frames.items()}, buffer_s=1e9, **kw)
-    tr.push({n: (st.t, st.values) for n, st in session.streams.items()})  # fills the buffers
+    # fill the buffers with the whole session, without detecting, processing and trimming (push would
+    # process every step and then keep only the last second before the last stance: the labelled steps
+    # timed afterwards would see one-sample windows)
+    for n, st in session.streams.items():
+        tr._append(n, st.t, st.values)
     return tr
 
 

@@ -1,0 +1,144 @@
+"""The bundle's step graph (decision E10): one onnxruntime run per step gives the per-model path's numbers.
+
+The graph computes the feature recipes, runs the inlined models and fuses the units; it must equal the
+numpy recipes (:func:`pdrlearn.runtime.features.compute_features`) and the per-model classifiers
+(which the parity tests pin to the training side) on every exportable method x unit.
+"""
+
+from __future__ import annotations
+
+import copy
+
+import numpy as np
+import onnx
+import onnxruntime as ort
+import pytest
+
+from pdrlearn.errors import DataError
+from pdrlearn.export.step_graph import build_step_graph, features_graph
+from pdrlearn.features import step_windows
+from pdrlearn.runtime import load_bundle
+from pdrlearn.runtime.classify import TaskClassifier
+from pdrlearn.runtime.features import compute_features
+from pdrlearn.runtime.tracker import Tracker
+from tests.runtime_helpers import synthetic_session, trained_dirs
+
+
+@pytest.fixture(scope="module")
+def trained(tmp_path_factory):
+    root = trained_dirs(tmp_path_factory)["root"]
+    test = synthetic_session(30, seed=5, name="held_out")
+    return {"root": root, "test": test, "W": step_windows(test, test.steps, n_samples=40).X}
+
+
+def _run(model: onnx.ModelProto, W: np.ndarray) -> dict[str, np.ndarray]:
+    sess = ort.InferenceSession(model.SerializeToString(), providers=["CPUExecutionProvider"])
+    names = [o.name for o in sess.get_outputs()]
+    return dict(zip(names, sess.run(names, {"W": W}), strict=True))
+
+
+def _ctx(bundle):
+    fm = bundle.manifest["features"]
+    return {"signals": fm["signals"], "channel_index": {c: i for i, c in enumerate(fm["channels"])}}
+
+
+def _leaves(entry):
+    if entry["type"] == "fusion":
+        return [x for e in entry["members"].values() for x in _leaves(e)]
+    return [entry]
+
+
+def _random_windows(bundle, n=64, seed=0):
+    """Windows with awkward force rows: never zero, zero only at the last sample, all zero, ties."""
+    fm = bundle.manifest["features"]
+    ci = {c: i for i, c in enumerate(fm["channels"])}
+    rng = np.random.default_rng(seed)
+    m = int(fm["n_samples"])
+    W = rng.normal(size=(n, len(ci), m))
+    W[:, ci["t_s"]] = np.linspace(0.0, 1.0, m)[None, :] * rng.uniform(0.4, 2.5, (n, 1))
+    W[:, ci["force_a"]] = np.abs(W[:, ci["force_a"]]) * 100
+    W[0, ci["force_a"]] = 50.0 + np.arange(m)  # never below 5 % of its peak
+    W[0, ci["force_b"]] = 0.0
+    W[1, ci["force_a"], -1] = W[1, ci["force_b"], -1] = -1.0  # zero at the last sample only
+    W[2, ci["force_a"]] = W[2, ci["force_b"]] = 0.0  # no force at all (peak 0)
+    W[3, ci["foot_acc_z"]] = 1.0  # flat signal: argmin/argmax ties
+    return W
+
+
+def test_every_recipe_item_equals_the_numpy_recipe(trained):
+    bundle = load_bundle(trained["root"] / "bundle_all")
+    recipes = {json_key(leaf["features"]): leaf["features"] for spec in bundle.tasks.values()
+               for per in spec["methods"].values() for e in per.values() for leaf in _leaves(e)
+               if leaf["type"] == "onnx"}
+    ops = {item[0] for r in recipes.values() for item in r}
+    assert {"peak", "segments", "force", "yaw", "yaw_sign"} <= ops
+    for W in (trained["W"], _random_windows(bundle)):
+        for recipe in recipes.values():
+            got = _run(features_graph(recipe, bundle.manifest["features"]), W)["F"]
+            want = compute_features(W, recipe, **_ctx(bundle))
+            np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-12, err_msg=str(recipe))
+
+
+def json_key(recipe):
+    return repr(recipe)
+
+
+@pytest.mark.parametrize("method", ["svm", "nn"])
+def test_step_graph_equals_the_per_model_path_for_every_method_and_unit(trained, method):
+    bundle = load_bundle(trained["root"] / "bundle_all")
+    models = {rel: onnx.load(bundle.path / rel) for rel in bundle.manifest["files"] if rel.endswith(".onnx")}
+    W = trained["W"]
+    for unit in ("foot", "waist", "fused"):
+        tasks = copy.deepcopy(bundle.tasks)
+        for spec in tasks.values():
+            spec["chosen"] = {"method": method, "unit": unit}
+        model, spec = build_step_graph(tasks, models, bundle.manifest["features"])
+        assert set(spec["outputs"]) == set(tasks)
+        out = _run(model, W)
+        for task in tasks:
+            classes, proba = TaskClassifier(bundle, task, _ctx(bundle), method=method, unit=unit).predict(W)
+            got = out[spec["outputs"][task]]
+            assert np.abs(got - proba).max() <= 1e-9, (task, method, unit)
+            assert list(np.asarray(bundle.classes(task))[np.argmax(got, axis=1)]) == list(classes)
+
+
+def test_tracker_with_step_graph_streams_the_same_steps(trained):
+    s = trained["test"]
+    graph = Tracker(trained["root"] / "bundle")
+    plain = Tracker(trained["root"] / "bundle", step_graph=False)
+    assert graph.step_graph is not None and set(graph.step_graph.tasks) == set(graph.classifiers)
+    assert plain.step_graph is None
+    data = {n: (st.t, st.values) for n, st in s.streams.items()}
+    a, b = graph.push(data) + graph.flush(), plain.push(data) + plain.flush()
+    assert len(a) == len(b) >= len(s.steps) - 2
+    for x, y in zip(a, b, strict=True):
+        assert x.classes == y.classes
+        for task in x.proba:
+            assert max(abs(x.proba[task][c] - y.proba[task][c]) for c in x.proba[task]) <= 1e-9
+        assert (x.x, x.y, x.z) == (y.x, y.y, y.z)
+
+
+def test_other_methods_and_non_graph_models_use_the_per_model_path(trained):
+    bundle = load_bundle(trained["root"] / "bundle_all")
+    tr = Tracker(bundle, methods={"terrain": "dtw/foot"})
+    assert "terrain" not in (tr.step_graph.tasks if tr.step_graph else [])
+    models = {rel: onnx.load(bundle.path / rel) for rel in bundle.manifest["files"] if rel.endswith(".onnx")}
+    tasks = copy.deepcopy(bundle.tasks)
+    for spec in tasks.values():
+        spec["chosen"] = {"method": "dtw", "unit": "foot"}
+    assert build_step_graph(tasks, models, bundle.manifest["features"]) is None  # DTW stays in numpy
+    W = trained["W"][:5]
+    res = tr.classify(W)
+    ref = Tracker(bundle, methods={"terrain": "dtw/foot"}, step_graph=False).classify(W)
+    for task in res:
+        assert list(res[task][0]) == list(ref[task][0])
+        assert np.abs(res[task][1] - ref[task][1]).max() <= 1e-9
+
+
+def test_missing_sensor_in_the_window_is_a_data_error(trained):
+    tr = Tracker(trained["root"] / "bundle")
+    W = trained["W"][:2].copy()
+    ch = tr.step_graph.channels
+    W[:, ch[-1]] = np.nan
+    with pytest.raises(DataError, match="NaN"):
+        tr.classify(W)
