@@ -77,7 +77,7 @@ def fir_causal(x: np.ndarray, taps: np.ndarray) -> np.ndarray:
 def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
                cutoff_hz: float = 2.5, fir_order_s: float = 0.3, min_step_s: float = 0.3,  # windows: W16
                search_s: float = 0.25, fc_search_s: float = 0.25, min_peak_mps2: float = 0.1,
-               rhythm: bool = False, max_step_s: float = 1.5,
+               rhythm: bool = False, max_step_s: float = 1.5, acc_ml: np.ndarray | None = None,
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
 
@@ -96,6 +96,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     min_peak_mps2 : a vertical maximum must exceed this (filtered, m/s^2) to be a step
     rhythm : complete the walking sequences with :func:`rhythm_complete` (decision W18)
     max_step_s : maxima further apart than this (s) belong to different walking sequences (``rhythm``)
+    acc_ml : (n,) medio-lateral acceleration (m/s^2); with ``rhythm`` the side of each step from it
+        (:func:`step_sides`) makes the completed sequences alternate left/right (decision W20)
 
     Returns
     -------
@@ -111,8 +113,9 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         strong = vf[cand] >= min_peak_mps2
         if gate is not None:
             strong &= np.asarray(gate, dtype=bool)[cand]
+        side = None if acc_ml is None else step_sides(lateral_velocity(acc_ml, fs)[cand], strong)
         keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2,
-                               min_step_s=min_step_s, max_step_s=max_step_s)
+                               min_step_s=min_step_s, max_step_s=max_step_s, side=side)
         peaks = cand[keep]
     else:
         peaks, _ = _sig.find_peaks(vf, height=min_peak_mps2, distance=dist)
@@ -130,6 +133,39 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
 
 RHYTHM_TOL = 0.35  # a filled maximum lies within +-35 % of a step period of its predicted time (W18)
 RHYTHM_MIN_STEPS = 3  # a local step period needs at least this many contacts of the sequence (W18)
+SIDE_BAND_HZ = (0.3, 3.0)  # W20: holds the stride frequency of walking (0.5-1.7 Hz), drops turns/drift
+SIDE_MIN_FRAC = 1.0 / 3.0  # W20: a side is decided when |v_ml| >= 1/3 of its median at the steps
+PRUNE_HEIGHT_FRAC = 0.5  # W20: of a same-side pair only a maximum under half the other's height goes
+
+
+def lateral_velocity(acc_ml: np.ndarray, fs: float, *, band_hz: tuple[float, float] = SIDE_BAND_HZ
+                     ) -> np.ndarray:
+    """Medio-lateral velocity of the pelvis (m/s; zero-phase, offline), from the ML acceleration
+    band-passed to the stride band, integrated and high-passed again (integration drift removed).
+
+    The pelvis sways towards the stance foot once per stride, so at the initial contacts its lateral
+    velocity has one sign for left and the other for right steps (decision W20). Zeros for inputs too
+    short to filter (< 32 samples).
+    """
+    a = np.asarray(acc_ml, dtype=np.float64)
+    if a.shape[0] < 32:
+        return np.zeros_like(a)
+    lo, hi = band_hz[0], min(band_hz[1], 0.45 * fs)
+    v = np.cumsum(_sig.sosfiltfilt(_sig.butter(2, [lo, hi], btype="bandpass", fs=fs, output="sos"), a)) / fs
+    return _sig.sosfiltfilt(_sig.butter(2, lo, btype="highpass", fs=fs, output="sos"), v)
+
+
+def step_sides(v_at: np.ndarray, accepted: np.ndarray, *, min_frac: float = SIDE_MIN_FRAC) -> np.ndarray:
+    """Side of each candidate step (+1 / -1; 0 = undecided) from the pelvis's lateral velocity at it
+    (:func:`lateral_velocity`, decision W20). Decided where ``|v| >= min_frac`` x the median ``|v|`` of
+    the ``accepted`` steps (the signal's own scale). Which sign is the left foot depends on the mounting
+    and does not matter: only equal vs opposite sides are used."""
+    v = np.asarray(v_at, dtype=np.float64)
+    acc = np.asarray(accepted, dtype=bool)
+    scale = float(np.median(np.abs(v[acc]))) if acc.any() else 0.0
+    if not np.isfinite(scale) or scale <= 0.0:
+        return np.zeros(v.shape[0], dtype=np.int8)
+    return np.where(np.abs(v) >= min_frac * scale, np.sign(v), 0.0).astype(np.int8)
 
 
 def _local_period(t: np.ndarray, k: int, side: int, max_gap: float, n: int = 3) -> float:
@@ -146,9 +182,56 @@ def _local_period(t: np.ndarray, k: int, side: int, max_gap: float, n: int = 3) 
     return float(np.median(iv)) if len(iv) >= RHYTHM_MIN_STEPS - 1 else float("nan")
 
 
+def _period_around(t: np.ndarray, k: int, max_gap: float) -> float:
+    """Local step period at accepted maximum ``k``: median of the periods before and after it."""
+    p = [x for x in (_local_period(t, k, -1, max_gap), _local_period(t, k, +1, max_gap)) if np.isfinite(x)]
+    return float(np.median(p)) if p else float("nan")
+
+
+def _missing_steps(ratio: float, side_a: int, side_b: int) -> int:
+    """Steps missing in a gap of ``ratio`` local periods between two contacts. Sides unknown (0): the
+    nearest count, ``round(ratio) - 1`` (W18). Both sides known: that count only if its parity agrees
+    with alternation -- odd between equal sides, even between opposite ones (W20) -- else 0 (no count
+    of the right parity lies within half a period of the gap)."""
+    m = int(round(ratio)) - 1
+    if m < 1:
+        return 0
+    if side_a == 0 or side_b == 0:
+        return m
+    return m if (m % 2 == 1) == (side_a == side_b) else 0
+
+
+def prune_same_side(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, side: np.ndarray,
+                    fs: float, *, max_step_s: float = 1.5) -> np.ndarray:
+    """Drop the weaker of two consecutive accepted maxima that lie on the same side and closer than
+    1.5 local step periods when it is under ``PRUNE_HEIGHT_FRAC`` of the other's height (decision W20):
+    steps alternate left/right, and a same-side pair too close to hold the missing opposite step between
+    them contains a maximum that is no step (a pelvic bounce inside a long swing). Pairs of similar
+    height (a side read wrongly is likelier) and maxima with an undecided side (0) are left alone.
+    Returns the new mask."""
+    cand = np.asarray(cand, dtype=np.int64)
+    h = np.asarray(height, dtype=np.float64)
+    keep = np.asarray(accepted, dtype=bool).copy()
+    acc = np.flatnonzero(keep)
+    t = cand[acc].astype(np.float64)
+    max_gap = max_step_s * fs
+    last = -1
+    for k, i in enumerate(acc):
+        if last >= 0 and side[i] != 0 and side[i] == side[last] and cand[i] - cand[last] <= max_gap:
+            per = _period_around(t, k, max_gap)
+            lo_h, hi_h = sorted((h[i], h[last]))
+            if np.isfinite(per) and cand[i] - cand[last] < 1.5 * per and lo_h < PRUNE_HEIGHT_FRAC * hi_h:
+                drop = i if h[i] < h[last] else last
+                keep[drop] = False
+                last = last if drop == i else i
+                continue
+        last = i
+    return keep
+
+
 def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, fs: float, *,
                     min_peak: float, min_step_s: float = 0.3, max_step_s: float = 1.5,
-                    tol: float = RHYTHM_TOL) -> np.ndarray:
+                    tol: float = RHYTHM_TOL, side: np.ndarray | None = None) -> np.ndarray:
     """Complete walking sequences of accepted vertical maxima with the gait rhythm (decision W18).
 
     Steps come at a regular period: (1) inside a sequence, a gap of ``m + 1`` local periods
@@ -158,12 +241,19 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     (``>= min_peak``) lies one period (``+- tol``) beyond it (the 2 s motion gate lags at walk
     start/end). One step per end only, so noise while standing cannot chain.
 
+    With ``side`` (decision W20) the sequences must alternate left/right: same-side pairs too close for
+    a missing step lose their weaker maximum first (:func:`prune_same_side`); a gap between contacts of
+    known sides is filled only with a step count of the right parity (:func:`_missing_steps`), only by
+    candidates not on the wrong side, and only completely (all ``m`` steps found, else none); an end
+    step must not lie on the side of the contact it extends.
+
     Parameters
     ----------
     cand : (n,) sample indices of positive maxima of the filtered vertical acceleration, increasing
     height : (n,) their filtered values (m/s^2)
     accepted : (n,) bool, maxima accepted by the height threshold and the motion gate
     fs : rate (Hz); min_step_s, max_step_s : shortest step (s), longest step inside a sequence (s)
+    side : (n,) int, +1 / -1 / 0 (undecided) step side of each candidate (:func:`step_sides`) or None
 
     Returns
     -------
@@ -174,36 +264,42 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     keep = np.asarray(accepted, dtype=bool).copy()
     if cand.size == 0:
         return keep
+    sd = np.zeros(cand.size, dtype=np.int8) if side is None else np.asarray(side, dtype=np.int8)
+    if side is not None:
+        keep = prune_same_side(cand, h, keep, sd, fs, max_step_s=max_step_s)
     max_gap, min_gap = max_step_s * fs, min_step_s * fs
     acc = np.flatnonzero(keep)
     t = cand[acc].astype(np.float64)
     add: list[int] = []
 
-    def best_near(centre: float, half: float, floor: float) -> int | None:
+    def best_near(centre: float, half: float, floor: float, want: int = 0) -> int | None:
         lo, hi = np.searchsorted(cand, centre - half), np.searchsorted(cand, centre + half, side="right")
-        idx = [i for i in range(lo, hi) if not keep[i] and h[i] >= floor]
+        idx = [i for i in range(lo, hi) if not keep[i] and h[i] >= floor and sd[i] * want >= 0]
         return max(idx, key=lambda i: h[i]) if idx else None
 
     for k in range(t.size):
+        s_k = int(sd[acc[k]])
         period_b = _local_period(t, k, -1, max_gap)
         if k + 1 < t.size and t[k + 1] - t[k] <= max_gap:  # (1) gap inside a sequence
             period_a = _local_period(t, k + 1, +1, max_gap)
             per = np.nanmedian([period_b, period_a]) if np.isfinite([period_b, period_a]).any() else np.nan
             gap = t[k + 1] - t[k]
             if np.isfinite(per) and gap > 1.5 * per:
-                m = int(round(gap / per)) - 1
-                for j in range(1, m + 1):
-                    i = best_near(t[k] + j * gap / (m + 1), tol * per, 0.0)
-                    if i is not None:
-                        add.append(i)
+                s_n = int(sd[acc[k + 1]])
+                m = _missing_steps(gap / per, s_k, s_n)
+                fills = [best_near(t[k] + j * gap / (m + 1), tol * per, 0.0, s_k * (-1) ** j)
+                         for j in range(1, m + 1)]
+                found = [i for i in fills if i is not None]
+                if s_k == 0 or s_n == 0 or len(found) == m:  # W20: alternation needs all of them
+                    add.extend(found)
         elif np.isfinite(period_b):  # (2) sequence end: one more step where the gate closed early
-            i = best_near(t[k] + period_b, tol * period_b, min_peak)
+            i = best_near(t[k] + period_b, tol * period_b, min_peak, -s_k)
             if i is not None:
                 add.append(i)
         if (k == 0 or t[k] - t[k - 1] > max_gap):  # (2) sequence start
             period_a = _local_period(t, k, +1, max_gap)
             if np.isfinite(period_a):
-                i = best_near(t[k] - period_a, tol * period_a, min_peak)
+                i = best_near(t[k] - period_a, tol * period_a, min_peak, -s_k)
                 if i is not None:
                     add.append(i)
     keep[np.asarray(add, dtype=np.int64)] = True

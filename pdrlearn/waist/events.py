@@ -71,6 +71,9 @@ class InitialContactDetector:
     max_step_s : contacts further apart than this end a walking sequence (s)
     rhythm : offline only: complete each walking sequence at its local step period (gaps of weak
         turning/shuffling steps, sequence ends cut by the motion gate; decision W18)
+    alternate : offline, with ``rhythm``: make the sequences alternate left/right, with the step side
+        from the pelvis's lateral velocity (same-side maxima too close for a step between them lose the
+        weaker one, gaps are filled with a step count of the right parity; decision W20)
 
     Attributes
     ----------
@@ -81,9 +84,10 @@ class InitialContactDetector:
 
     def __init__(self, *, realtime: bool = False, cutoff_hz: float = 2.5, fir_order_s: float = 0.3,
                  walk_threshold: float = WALK_THRESHOLD_MPS2, ap_cutoff_hz: float = 20.0,
-                 max_step_s: float = 1.5, rhythm: bool = True):
+                 max_step_s: float = 1.5, rhythm: bool = True, alternate: bool = True):
         self.realtime = realtime
         self.rhythm = rhythm
+        self.alternate = alternate
         self.cutoff_hz = cutoff_hz
         self.fir_order_s = fir_order_s
         self.walk_threshold = walk_threshold
@@ -103,7 +107,8 @@ class InitialContactDetector:
         else:
             ic, fc, ref = K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
                                        fir_order_s=self.fir_order_s, rhythm=self.rhythm,
-                                       max_step_s=self.max_step_s)
+                                       max_step_s=self.max_step_s,
+                                       acc_ml=imu.acc_ml if self.alternate else None)
         self.ic_, self.fc_, self.anchor_ = ic, fc, ref
         name = "alvarez-realtime" if self.realtime else "alvarez-offline"
         self.steps_ = steps_from_events(imu.t, ic, fc, max_step_s=self.max_step_s, detector=name)
