@@ -471,3 +471,72 @@ def test_rhythm_complete_properties(heights, seed):
     assert np.all(keep[accepted])                                         # never drops an accepted maximum
     assert K.integrate_rate(np.arange(5.0), np.ones(5), np.array([0.0, 1.0]), np.array([2.0, 4.0])) \
         == pytest.approx([2.0, 3.0])
+
+
+# ------------------------------------------------------------------ distance bookkeeping (decision W20)
+def test_bout_accounting_counts_the_steps_between_first_and_last_contact():
+    """N contacts matching a bout's N reference contacts give its N - 1 steps: the step ending at the
+    first contact and the one starting at the last lie outside; a closing contact has no length."""
+    from pdrlearn.waist.evaluate import distance_metrics, steps_in_interval
+    from pdrlearn.waist.events import steps_from_events
+
+    t = np.arange(0.0, 6.0, 0.01)
+    ic = np.round(np.array([1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0]) * 100).astype(int)
+    st = steps_from_events(t, ic, max_step_s=1.5)
+    st["length_m"] = np.where(st["has_next"], 0.6, 0.0)
+    m = steps_in_interval(st, 1.5, 3.5)
+    assert m.sum() == 4 and st["start_s"][m].min() == pytest.approx(1.5) and st["end_s"][m].max() == pytest.approx(3.5)
+    assert st["length_m"][steps_in_interval(st, 3.9, 4.1)].sum() == 0  # the closing contact at 4.0 s
+    s = _session_with_bouts(pd.DataFrame({"start_s": [1.5], "end_s": [3.5], "length_m": [2.4]}))
+    assert distance_metrics(st, s)["distance_error_pct"] == pytest.approx(0.0)
+    # a missed contact at the bout start: the step that spans it counts when its midpoint is inside
+    st2 = steps_from_events(t, np.delete(ic, 1), max_step_s=1.5)
+    st2["length_m"] = np.where(st2["has_next"], 0.6, 0.0)
+    assert steps_in_interval(st2, 1.5, 3.5).sum() == 4
+
+
+def _session_with_bouts(bouts: pd.DataFrame):
+    from pdrlearn.io import Session
+
+    return Session(name="bouts", streams={}, extras={"bouts": bouts})
+
+
+def test_calibration_fits_reproduce_the_walks_as_the_tracker_sums_them():
+    """Offset-only / K-only fits solve each walk's distance as the tracker sums it, turn factors
+    included (decision W20): sum(c (a f - b)) and sum(c (K g + F)) equal the known total."""
+    from pdrlearn.waist.params import WaistParams
+    from pdrlearn.waist.steplength import CalibrationWalk, fit_frequency, fit_pendulum
+
+    rng = np.random.default_rng(5)
+    walks = []
+    for d in (5.0, 7.5):
+        f = rng.uniform(1.2, 2.2, 12)  # irregular cadence: harmonic and arithmetic means differ
+        g = rng.uniform(0.2, 0.6, 12)
+        c = np.cos(np.minimum(np.abs(rng.normal(0, 0.5, 12)), np.pi / 2))
+        walks.append(CalibrationWalk(d, f, g, c=c))
+    p = WaistParams(a_walk=0.4, b_walk=0.1, f_m=0.1)
+    a, b, how = fit_frequency(walks, p)
+    assert "offset only" in how
+    assert sum(np.sum(w.c * (a * w.f_hz - b)) for w in walks) == pytest.approx(12.5)
+    k, f, how = fit_pendulum(walks, p)
+    assert "K only" in how and f == pytest.approx(0.1)
+    assert sum(np.sum(w.c * (k * w.g + f)) for w in walks) == pytest.approx(12.5)
+    # without factors the plain step count is used
+    k1, _, _ = fit_pendulum([CalibrationWalk(6.0, np.ones(10), np.full(10, 0.5))], WaistParams(f_m=0.0))
+    assert k1 == pytest.approx(6.0 / 5.0)
+
+
+@pytest.mark.skipif(not (REAL / "mobgap_HA001_Test5_Trial1").exists(), reason="real data not bundled")
+@pytest.mark.parametrize("pipeline", ["waist-pendulum", "waist-pll"])
+def test_real_calibration_is_self_consistent(pipeline):
+    """Calibrated on a recording's reference bouts, tracking the same recording reproduces their total
+    length: calibration and evaluation count the same steps with the same length model (W20)."""
+    from pdrlearn.io import read_session
+    from pdrlearn.track import get_pipeline
+    from pdrlearn.waist.calibration import calibrate
+    from pdrlearn.waist.evaluate import waist_metrics
+
+    s = read_session(REAL / "mobgap_HA001_Test5_Trial1")
+    p = calibrate([s], pipeline)
+    m = waist_metrics(get_pipeline(pipeline)(s, params=p).steps, s)
+    assert m["distance_error_pct"] == pytest.approx(0.0, abs=1e-6)

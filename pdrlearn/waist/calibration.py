@@ -10,7 +10,7 @@ import numpy as np
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
 from pdrlearn.waist import _kernels as K
-from pdrlearn.waist.evaluate import reference_bouts
+from pdrlearn.waist.evaluate import reference_bouts, steps_in_interval
 from pdrlearn.waist.heading import TurnClassifier
 from pdrlearn.waist.params import WaistParams, resolve_params
 from pdrlearn.waist.steplength import CalibrationWalk, fit_frequency, fit_pendulum
@@ -22,9 +22,10 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
                       params=None, result=None) -> list[CalibrationWalk]:
     """The walks of known length in ``session``.
 
-    With ``distance_m`` the whole session is one walk (all detected steps); otherwise each reference
-    walking bout (``bouts.csv``) is one walk with the steps whose midpoint lies in it. ``result``: the
-    session's :class:`~pdrlearn.track.base.TrackResult` if already computed.
+    With ``distance_m`` the whole session is one walk (all detected steps, as ``track`` sums them: the
+    distance from the first to the last detected contact, decision W20); otherwise each reference walking
+    bout (``bouts.csv``) is one walk with the steps :func:`~pdrlearn.waist.evaluate.steps_in_interval`
+    counts for it. ``result``: the session's :class:`~pdrlearn.track.base.TrackResult` if already computed.
     """
     from pdrlearn.track.waist import track_waist
 
@@ -33,23 +34,23 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     st = res.steps[res.steps["has_next"]]
     g = (K.pendulum_length(st["h_m"].to_numpy(float), p.leg_m, k=1.0, f=0.0) if "h_m" in st
          else np.zeros(len(st)))
+    c = np.ones(len(st))
     if res.info.get("options", {}).get("turn_factor") and "dyaw_rad" in st:  # the same model as tracking (W19)
-        g = g * K.turning_step_factor(st["dyaw_rad"].to_numpy(float))
+        c = K.turning_step_factor(st["dyaw_rad"].to_numpy(float))
     f = st["frequency_hz"].to_numpy(float)
-    mid = 0.5 * (st["start_s"].to_numpy(float) + st["end_s"].to_numpy(float))
     if distance_m is not None:
         if not (np.isfinite(distance_m) and distance_m > 0):
             raise DataError(f"calibrate: --distance {distance_m} must be a positive number of metres")
-        return [CalibrationWalk(float(distance_m), f, g, session.name)]
+        return [CalibrationWalk(float(distance_m), f, g, session.name, c)]
     bouts = reference_bouts(session)
     if bouts is None:
         raise DataError(f"session '{session.name}' has no bouts.csv with reference lengths; "
                         "pass --distance METERS (the length walked in the recording)")
     walks = []
     for b in bouts.itertuples():
-        m = (mid >= b.start_s) & (mid <= b.end_s)
+        m = steps_in_interval(st, b.start_s, b.end_s)
         if m.any():
-            walks.append(CalibrationWalk(float(b.length_m), f[m], g[m], f"{session.name}@{b.start_s:.1f}s"))
+            walks.append(CalibrationWalk(float(b.length_m), f[m], g[m], f"{session.name}@{b.start_s:.1f}s", c[m]))
     return walks
 
 

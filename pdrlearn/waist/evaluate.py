@@ -61,17 +61,29 @@ def _mid(steps: pd.DataFrame) -> np.ndarray:
     return 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
 
 
+def steps_in_interval(steps: pd.DataFrame, start_s: float, end_s: float) -> np.ndarray:
+    """Boolean mask of the steps whose length counts toward the walk ``[start_s, end_s]`` (s).
+
+    The one accounting rule of the evaluation and of the calibration (decisions W9, W20): a step (IC to
+    next IC) counts when its midpoint lies inside. A reference bout runs from its first to its last
+    initial contact, so N detected contacts matching the bout's N contacts give exactly its N - 1 steps;
+    the step that ends at the first contact and the one that starts at the last lie outside, and a
+    sequence-closing contact (``end_s == start_s``) carries no length.
+    """
+    mid = _mid(steps)
+    return (mid >= start_s) & (mid <= end_s)
+
+
 def distance_metrics(steps: pd.DataFrame, session: Session) -> dict:
     """``distance_error_pct`` (total over the bouts), per-bout errors and their median (empty without
     bouts)."""
     bouts = reference_bouts(session)
     if bouts is None:
         return {}
-    mid = _mid(steps)
     lengths = steps["length_m"].abs().to_numpy(float)
     per = []
     for _, b in bouts.iterrows():
-        est = float(lengths[(mid >= b.start_s) & (mid <= b.end_s)].sum())
+        est = float(lengths[steps_in_interval(steps, b.start_s, b.end_s)].sum())
         per.append({"start_s": float(b.start_s), "end_s": float(b.end_s), "reference_m": float(b.length_m),
                     "tracked_m": est, "error_pct": 100.0 * (est - b.length_m) / b.length_m})
     ref_total = float(bouts.length_m.sum())
@@ -88,9 +100,8 @@ def stride_metrics(steps: pd.DataFrame, session: Session) -> dict:
     if st is None or "length_m" not in st or not st["length_m"].notna().any():
         return {}
     st = st.dropna(subset=["length_m"])
-    mid = _mid(steps)
     lengths = steps["length_m"].abs().to_numpy(float)
-    est = np.array([lengths[(mid >= r.start_s) & (mid <= r.end_s)].sum() for r in st.itertuples()])
+    est = np.array([lengths[steps_in_interval(steps, r.start_s, r.end_s)].sum() for r in st.itertuples()])
     err = est - st["length_m"].to_numpy(float)
     return {"stride_length_mae_m": float(np.mean(np.abs(err))), "stride_length_bias_m": float(np.mean(err)),
             "n_strides": int(len(err))}

@@ -41,33 +41,59 @@ def frequency_lengths(f_hz: np.ndarray, p: WaistParams, *, running: np.ndarray |
 class CalibrationWalk:
     """One calibration walk: per-step features of the detected steps and the known distance (m).
 
-    ``f_hz`` step frequencies (frequency model); ``g`` = ``2 sqrt(2 L h - h^2)`` per step (pendulum)."""
+    ``f_hz`` step frequencies (frequency model); ``g`` = ``2 sqrt(2 L h - h^2)`` per step (pendulum);
+    ``c`` = the factor the tracker multiplies each step's length by (the turning-step factor of W19; ones
+    when ``None``). The fits below solve the walk's distance as the tracker sums it (decision W20):
+    ``D = sum(c (a f - b))`` and ``D = sum(c (K g + F))``.
+    """
 
     distance_m: float
     f_hz: np.ndarray
     g: np.ndarray
     name: str = ""
+    c: np.ndarray | None = None
+
+    def factors(self) -> np.ndarray:
+        n = len(self.f_hz)
+        return np.ones(n) if self.c is None else np.asarray(self.c, dtype=np.float64)
+
+
+def _walk_sums(walks: list[CalibrationWalk], x: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per walk with steps: ``sum(c x)``, ``sum(c)`` and the distance, for ``x`` = ``"f_hz"`` or ``"g"``
+    (non-finite features count as 0, as the tracker's lengths do)."""
+    rows = []
+    for w in walks:
+        if not len(w.f_hz):
+            continue
+        c = w.factors()
+        v = np.nan_to_num(np.asarray(getattr(w, x), dtype=np.float64), nan=0.0)
+        rows.append((float(np.sum(c * v)), float(np.sum(c)), float(w.distance_m)))
+    if not rows:
+        raise DataError("calibration: no steps detected in the calibration walks; check the recordings")
+    a = np.array(rows)
+    return a[:, 0], a[:, 1], a[:, 2]
 
 
 def fit_frequency(walks: list[CalibrationWalk], p: WaistParams) -> tuple[float, float, str]:
-    """``(a, b)`` of ``SL = a f - b`` from walks of known length (seed 000 eq. 1-2 + least squares).
+    """``(a, b)`` of ``SL = a f - b`` from walks of known length (seed 000 sec. II-D + least squares).
 
-    Each walk gives one point (harmonic-mean frequency, distance / steps). With points spanning at least
-    :data:`MIN_SPREAD_HZ` the line is the least-squares fit; otherwise the slope ``a`` is kept and only
-    the offset ``b`` is fitted (decision W8).
+    Each walk gives one point (its steps' mean frequency, distance / steps), both weighted by the
+    turning-step factors so that tracking the walk with the fitted line sums to its distance (decision
+    W20; seed 000 eq. 1's harmonic mean would not: the tracker sums per-step ``a f_k - b``). With points
+    spanning at least :data:`MIN_SPREAD_HZ` the line is the least-squares fit; otherwise the slope ``a``
+    is kept and only the offset ``b`` is fitted (decision W8), exactly reproducing the walks' total.
     """
-    pts = [(K.harmonic_mean_frequency(w.f_hz), w.distance_m / len(w.f_hz)) for w in walks if len(w.f_hz)]
-    pts = [(f, s) for f, s in pts if np.isfinite(f)]
-    if not pts:
-        raise DataError("calibration: no steps detected in the calibration walks; check the recordings")
-    f = np.array([q[0] for q in pts])
-    sl = np.array([q[1] for q in pts])
-    n = np.array([len(w.f_hz) for w in walks if len(w.f_hz)], dtype=float)
-    if f.max() - f.min() >= MIN_SPREAD_HZ and len(pts) >= 2:
-        a, c = np.polyfit(f, sl, 1, w=np.sqrt(n))
-        return float(a), float(-c), f"least squares over {len(pts)} walks ({f.min():.2f}-{f.max():.2f} Hz)"
+    sf, sc, d = _walk_sums(walks, "f_hz")
+    ok = sc > 0
+    sf, sc, d = sf[ok], sc[ok], d[ok]
+    if not sc.size:
+        raise DataError("calibration: every calibration step is a quarter turn or more; walk straight")
+    f, sl = sf / sc, d / sc
+    if f.max() - f.min() >= MIN_SPREAD_HZ and f.size >= 2:
+        a, c = np.polyfit(f, sl, 1, w=np.sqrt(sc))
+        return float(a), float(-c), f"least squares over {f.size} walks ({f.min():.2f}-{f.max():.2f} Hz)"
     a = p.a_walk
-    b = float(np.sum(n * (a * f - sl)) / n.sum())
+    b = float((a * sf.sum() - d.sum()) / sc.sum())
     span = f.max() - f.min()
     return float(a), b, f"offset only (walks span {span:.2f} Hz < {MIN_SPREAD_HZ} Hz; slope kept)"
 
@@ -75,24 +101,20 @@ def fit_frequency(walks: list[CalibrationWalk], p: WaistParams) -> tuple[float, 
 def fit_pendulum(walks: list[CalibrationWalk], p: WaistParams) -> tuple[float, float, str]:
     """``(K, F)`` of seed 003 eq. 1 from walks of known length.
 
-    Each walk gives ``D = K sum(g) + F N``. With walks whose mean ``g`` differ by more than 10 % both are
-    fitted by least squares; otherwise ``F`` is kept at its default (foot length) and ``K`` fitted
-    (decision W8).
+    Each walk gives ``D = K sum(c g) + F sum(c)`` (``c`` the turning-step factors, decision W20). With
+    walks whose mean ``g`` differ by more than 10 % both are fitted by least squares; otherwise ``F`` is
+    kept at its default and ``K`` fitted (decision W8).
     """
-    rows = [(w.g.sum(), len(w.g), w.distance_m) for w in walks if len(w.g)]
-    if not rows:
-        raise DataError("calibration: no steps detected in the calibration walks; check the recordings")
-    sg = np.array([r[0] for r in rows])
-    nn = np.array([r[1] for r in rows], float)
-    d = np.array([r[2] for r in rows])
-    mean_g = sg / nn
-    if len(rows) >= 2 and (mean_g.max() - mean_g.min()) > 0.1 * mean_g.mean():
+    sg, nn, d = _walk_sums(walks, "g")
+    mean_g = sg / np.where(nn > 0, nn, 1.0)
+    if len(d) >= 2 and (mean_g.max() - mean_g.min()) > 0.1 * mean_g.mean():
         (k, f), *_ = np.linalg.lstsq(np.column_stack([sg, nn]), d, rcond=None)
         if k > 0 and f >= 0:
-            return float(k), float(f), f"K and F by least squares over {len(rows)} walks"
+            return float(k), float(f), f"K and F by least squares over {len(d)} walks"
     f = p.f_m
-    k = float(np.sum(d - f * nn) / np.sum(sg))
+    k = float(np.sum(d - f * nn) / np.sum(sg)) if np.sum(sg) > 0 else float("nan")
     if not k > 0:
         raise DataError("calibration: the known distance is shorter than the foot-length term of the "
-                        f"{int(nn.sum())} detected steps; check --distance")
+                        f"{int(round(nn.sum()))} detected steps (or no step shows vertical motion); "
+                        "check --distance")
     return k, float(f), f"K only (F kept at {f:.3f} m; walks too similar to separate K and F)"
