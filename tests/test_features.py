@@ -281,3 +281,52 @@ def test_propagate_attitude_matches_step_by_step_integration():
         for k in range(k0, 0, -1):
             want[k - 1] = want[k] @ steps[k - 1].T
         np.testing.assert_allclose(K.propagate_attitude(gyr, dt, k0, r0), want, atol=1e-12)
+
+
+# -- rest-to-rest step boundaries (decision 13) ------------------------------------------------------
+
+
+@pytest.mark.parametrize("fs", [20.0, 204.8])
+def test_rest_boundaries_move_to_the_quietest_sample(fs):
+    """Boundaries given during motion move to the foot's rest within the search span (any rate); a
+    boundary already at rest stays; the inward search is capped at a quarter of the step."""
+    from pdrlearn.features.windows import rest_boundaries
+
+    t = np.arange(0.0, 6.0, 1.0 / fs)
+    rate = 3.0 + np.sin(2 * np.pi * t)  # always moving ...
+    for c in (1.0, 2.0, 3.0, 4.0):  # ... except short rests centred at 1, 2, 3, 4 s
+        rate[np.abs(t - c) < 0.08] = 0.0
+    gyr = np.column_stack([rate, 0.5 * rate, np.zeros_like(t)])
+    start = np.array([0.8, 2.0, 3.0])  # 0.2 s before a rest / at rest / at rest
+    end = np.array([2.25, 3.0, 4.1])  # 0.25 s after / at rest / 0.1 s after
+    s, e = rest_boundaries(t, gyr, start, end, search_s=0.3)
+    step = 1.0 / fs
+    np.testing.assert_allclose(s, [1.0, 2.0, 3.0], atol=0.08 + step)
+    np.testing.assert_allclose(e, [2.0, 3.0, 4.0], atol=0.08 + step)
+    assert np.all(np.isin(s, t)) and np.all(e > s)
+    # a rest 0.5 s inside a 1 s step is beyond the quarter-step cap: the start stays before it
+    s2, _ = rest_boundaries(t, gyr, np.array([1.5]), np.array([2.5]), search_s=0.6)
+    assert s2[0] <= 1.5 + 0.25 + step
+
+
+def test_step_windows_rest_boundaries(level):
+    """boundaries="rest": windows start and end where the foot rests; labels' times kept; bad value named."""
+    late = level.steps.copy()
+    late["start_s"] += 0.15  # cut like a swing detector: after the stance
+    late["end_s"] += 0.15
+    given = step_windows(level, late)
+    rest = step_windows(level, late, boundaries="rest")
+    gyr = [CHANNEL_INDEX[c] for c in ("foot_gyr_x", "foot_gyr_y", "foot_gyr_z")]
+
+    def end_rate(w):
+        return np.median(np.linalg.norm(w.X[:, gyr][:, :, [0, -1]], axis=1))
+
+    assert end_rate(rest) < 0.15 < end_rate(given)
+    assert rest.steps["start_s"].tolist() == late["start_s"].tolist()  # the labels' own times
+    np.testing.assert_allclose(rest.durations_s, rest.steps["window_end_s"] - rest.steps["window_start_s"])
+    assert np.abs(rest.steps["window_start_s"] - late["start_s"]).max() <= 0.3 + 1e-9
+    # the same strides cut at their rests agree whichever phase the labels started at
+    np.testing.assert_allclose(step_windows(level, boundaries="rest").steps["window_start_s"],
+                               rest.steps["window_start_s"], atol=0.03)
+    with pytest.raises(DataError, match="boundaries must be one of given, rest"):
+        step_windows(level, boundaries="stance")

@@ -143,15 +143,16 @@ class TaskData:
         return self.foot & self.waist
 
 
-def session_windows(sessions, *, n_samples: int):
-    """Step windows of every labelled step of every session (one :class:`StepWindows` per session)."""
+def session_windows(sessions, *, n_samples: int, boundaries: str = "given"):
+    """Step windows of every labelled step of every session (one :class:`StepWindows` per session);
+    ``boundaries`` as :func:`pdrlearn.features.step_windows` (``"rest"``: rest-to-rest windows)."""
     from pdrlearn.features import step_windows
 
     out = []
     for s in sessions:
         if s.steps is None or len(s.steps) == 0:
             raise DataError(f"session '{s.name}' has no labelled steps (steps.csv); label the steps to train")
-        out.append(step_windows(s, s.steps, n_samples=n_samples))
+        out.append(step_windows(s, s.steps, n_samples=n_samples, boundaries=boundaries))
     return out
 
 
@@ -279,6 +280,12 @@ class UserModel:
     created: str = ""
     skipped: list[str] = field(default_factory=list)
 
+    @property
+    def boundaries(self) -> str:
+        """Step-window boundaries the model was trained with (``settings["boundaries"]``; models saved
+        before the option existed: ``"given"``); prediction cuts windows the same way."""
+        return str((self.settings or {}).get("boundaries", "given"))
+
     def save(self, path) -> None:
         """Write the model directory atomically (see :mod:`pdrlearn.classify.model_dir`)."""
         from pdrlearn.classify.model_dir import save_model
@@ -341,7 +348,7 @@ class UserModel:
         from pdrlearn.features import TASK_COLUMNS, step_windows
 
         steps = session.steps if steps is None else steps
-        windows = step_windows(session, steps, n_samples=self.n_samples)
+        windows = step_windows(session, steps, n_samples=self.n_samples, boundaries=self.boundaries)
         out = pd.DataFrame(index=steps.index if steps is not None else None)
         for col in ("start_s", "end_s"):
             if col in steps:
@@ -602,6 +609,7 @@ def train_user(
     cv: int = 10,
     seed: int = 0,
     n_samples: int = 40,
+    boundaries: str = "given",
     user: str | None = None,
     strict: bool | None = None,
     advance: Callable[[int], None] = lambda n=1: None,
@@ -618,6 +626,11 @@ def train_user(
         reduced to the smallest class size when a class has fewer steps.
     seed : seed of the folds, the DTW reference choice and the network initialisation.
     n_samples : samples per resampled step window.
+    boundaries : ``"given"`` (default) cuts each step at its labelled ``start_s``/``end_s``; ``"rest"``
+        moves each boundary to the foot's quietest sample within 0.3 s first, so steps labelled at other
+        gait phases (motion-capture events, a converter's detection) become rest-to-rest windows
+        (:func:`pdrlearn.features.windows.rest_boundaries`). Stored in ``settings``; prediction and
+        evaluation cut windows the same way (decision C13).
     strict : raise on a task without labels / with a missing class. Default: strict when ``tasks`` is
         given explicitly; otherwise such tasks are skipped and listed in ``UserModel.skipped``.
 
@@ -634,7 +647,11 @@ def train_user(
         raise DataError("train: no sessions given; pass at least one labelled session folder")
     strict = (tasks is not None) if strict is None else strict
     tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
-    windows = session_windows(sessions, n_samples=n_samples)
+    from pdrlearn.features.windows import BOUNDARIES
+
+    if boundaries not in BOUNDARIES:
+        raise DataError(f"train: boundaries {boundaries!r}; choose one of {', '.join(BOUNDARIES)}")
+    windows = session_windows(sessions, n_samples=n_samples, boundaries=boundaries)
     out: dict[str, TaskModel] = {}
     skipped: list[str] = []
     for task in tasks:
@@ -682,6 +699,7 @@ def train_user(
             "methods": list(methods),
             "units": list(units),
             "min_steps_per_class": MIN_STEPS_PER_CLASS,
+            "boundaries": boundaries,
             "package_version": pdrlearn.__version__,
         },
         created=datetime.now(UTC).isoformat(timespec="seconds"),

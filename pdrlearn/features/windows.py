@@ -36,6 +36,7 @@ from pdrlearn.kernels.window import (  # noqa: F401 (the layout is part of this 
     CHANNELS,
     GROUP_STREAMS,
     GROUPS,
+    box_filter,
     fill_step_window,
 )
 
@@ -171,6 +172,57 @@ def _check_units(session: str, s: Stream) -> None:
                             "deg/s, not rad/s - multiply by pi/180")
 
 
+#: Step-boundary modes of :func:`step_windows` (decision 13 in docs/decisions/features.md).
+BOUNDARIES = ("given", "rest")
+
+
+def rest_boundaries(t: np.ndarray, gyr: np.ndarray, start: np.ndarray, end: np.ndarray, *,
+                    search_s: float = 0.3, smooth_s: float = 0.05) -> tuple[np.ndarray, np.ndarray]:
+    """Move each step boundary to the foot's quietest sample nearby (rest-to-rest step windows).
+
+    The quietest sample is the minimum of the angular-rate norm (rad/s; rotation-invariant, so the same
+    for any mounting), box-smoothed over ``smooth_s`` seconds, within ``search_s`` seconds of the given
+    boundary, searched at most a quarter of the step inward so that a window keeps at least half of its
+    given span. Step labels from other sources (motion-capture mid-stance events, a converter's swing
+    detection, manual cuts) start at different gait phases; cut at the foot's rest, every step runs
+    rest to rest whatever the source, mounting or rate (decision 13 in docs/decisions/features.md).
+
+    Parameters
+    ----------
+    t : (n,) s, increasing;  gyr : (n, 3) rad/s foot angular rate on ``t``
+    start, end : (m,) step boundaries (s), ``end > start``
+    search_s, smooth_s : search half-width and smoothing window (s), converted with the stream's rate
+
+    Returns
+    -------
+    new_start, new_end : (m,) s, sample times of ``t`` (``new_end > new_start``)
+    """
+    t = np.asarray(t, dtype=float)
+    start = np.asarray(start, dtype=float)
+    end = np.asarray(end, dtype=float)
+    if len(t) < 2:
+        return start.copy(), end.copy()
+    fs = (len(t) - 1) / float(t[-1] - t[0])
+    w = 2 * (max(1, int(round(smooth_s * fs))) // 2) + 1  # odd: a centred box
+    score = np.sqrt(np.einsum("ij,ij->i", gyr, gyr))
+    if w > 1:
+        score = box_filter(score, w)
+    quarter = 0.25 * (end - start)
+
+    def quietest(lo: np.ndarray, hi: np.ndarray, given: np.ndarray) -> np.ndarray:
+        i0 = np.searchsorted(t, lo, side="left")
+        i1 = np.searchsorted(t, hi, side="right")
+        out = given.copy()
+        for k in range(len(given)):  # a few samples per boundary; steps are not equally long
+            if i1[k] > i0[k]:
+                out[k] = t[i0[k] + int(np.argmin(score[i0[k]:i1[k]]))]
+        return out
+
+    new_start = quietest(start - search_s, start + np.minimum(search_s, quarter), start)
+    new_end = quietest(end - np.minimum(search_s, quarter), end + search_s, end)
+    return new_start, new_end
+
+
 #: Sensor groups of each unit and the groups whose stream gaps blank the unit (decision B11).
 UNIT_GROUPS: dict[str, tuple[str, ...]] = {"foot": ("foot_acc", "foot_gyr", "force"),
                                            "waist": ("waist_acc", "waist_gyr", "waist_baro")}
@@ -207,7 +259,8 @@ def _blank_gap_steps(X: np.ndarray, gaps: dict[str, np.ndarray], available: tupl
 
 
 def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_samples: int = 40,
-                 heading: str = "pca", rest_search_s: float = 0.3, batch: bool = True) -> StepWindows:
+                 heading: str = "pca", rest_search_s: float = 0.3, batch: bool = True,
+                 boundaries: str = "given") -> StepWindows:
     """Cut, level and resample every step of ``steps`` to ``n_samples`` points.
 
     Parameters
@@ -221,6 +274,11 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
         the window) from each end of the step
     batch : process all steps at once (:mod:`pdrlearn.features.batch`, equal to the per-step kernel to
         rounding) when each unit's gyroscope shares its accelerometer's clock; False = step by step
+    boundaries : ``"given"`` cuts at ``start_s``/``end_s``; ``"rest"`` first moves each boundary to the
+        foot's quietest sample within ``rest_search_s`` (:func:`rest_boundaries`, decision 13), so steps
+        labelled at other gait phases become rest-to-rest windows; the times used are in
+        ``steps["window_start_s"/"window_end_s"]``. Needs the foot gyroscope; without it (waist-only
+        sessions) the given boundaries are kept.
 
     Raises
     ------
@@ -230,6 +288,8 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
         raise DataError(f"step_windows: heading must be 'pca' or 'declared', not {heading!r}")
     if n_samples < 6:
         raise DataError(f"step_windows: n_samples={n_samples} is too small; use at least 6")
+    if boundaries not in BOUNDARIES:
+        raise DataError(f"step_windows: boundaries must be one of {', '.join(BOUNDARIES)}, not {boundaries!r}")
     if steps is None:
         steps = session.steps
     start, end = _check_steps(steps, session)
@@ -254,6 +314,14 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
                                 "drop the steps outside the recording")
     fwd_foot = _declared_forward(session, "foot") if "foot_acc" in available else None
     fwd_waist = _declared_forward(session, "waist") if "waist_acc" in available else None
+    out_steps = steps.reset_index(drop=True).copy()
+    if boundaries == "rest":
+        if "foot_gyr" in available:
+            gyro = session.streams["fGyroscope"]
+            start, end = rest_boundaries(gyro.t, gyro.values, start, end, search_s=rest_search_s)
+        else:
+            log.info("session '%s': no foot gyroscope; step windows keep the given boundaries", session.name)
+        out_steps["window_start_s"], out_steps["window_end_s"] = start, end
 
     n = len(start)
     X = np.full((n, len(CHANNELS), n_samples), np.nan)
@@ -276,4 +344,4 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
                 raise DataError(f"session '{session.name}', step {i} ({t0:.2f}-{t1:.2f} s): {exc}") from None
     _blank_gap_steps(X, gaps, available, session.name)
     return StepWindows(X=X, durations_s=end - start, channels=CHANNELS, available=available,
-                       steps=steps.reset_index(drop=True).copy(), session=session.name, gap_steps=gaps)
+                       steps=out_steps, session=session.name, gap_steps=gaps)
