@@ -15,13 +15,13 @@ import logging
 import math
 
 import numpy as np
-from scipy.special import softmax
 from sklearn.base import BaseEstimator, ClassifierMixin
 from sklearn.utils.multiclass import check_classification_targets
-from sklearn.utils.validation import check_is_fitted, column_or_1d, validate_data
+from sklearn.utils.validation import column_or_1d, validate_data
 
-from pdrlearn.classify.svm import check_X_fast
+from pdrlearn.classify.svm import check_fitted_fast, check_X_fast
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.proba import softmax  # = scipy.special.softmax, no array-API dispatch
 
 log = logging.getLogger(__name__)
 logging.getLogger("be.kuleuven.dtai.distance").setLevel(logging.WARNING)  # one INFO line per call otherwise
@@ -248,18 +248,18 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
 
     def mean_distances(self, X) -> np.ndarray:
         """Mean DTW distance of each step to each class's references: ``(n, n_classes)``."""
-        check_is_fitted(self)
+        check_fitted_fast(self, "references_")
         S = self._scale(self._validate(X, reset=False))
         D = dtw_block(S, self.references_, window=self.window_samples_)
         return class_mean_distances(D, self.reference_labels_, len(self.classes_))
 
     def predict_proba(self, X) -> np.ndarray:
         """Softmin of the class mean distances (temperature :attr:`temperature_`)."""
-        return softmax(-self.mean_distances(X) / self.temperature_, axis=1)
+        return softmax(-self.mean_distances(X) / self.temperature_)
 
     def predict(self, X) -> np.ndarray:
         """Class with the lowest mean DTW distance (thesis ch. 6.1.2.2)."""
-        check_is_fitted(self)
+        check_fitted_fast(self, "references_")
         if not self.prune:
             means = self.mean_distances(X)
             return self.classes_[np.argmin(means, axis=1)]

@@ -16,9 +16,9 @@ import numpy as np
 from sklearn.base import BaseEstimator, ClassifierMixin, clone
 from sklearn.model_selection import train_test_split
 from sklearn.utils.multiclass import check_classification_targets
-from sklearn.utils.validation import check_is_fitted, validate_data
+from sklearn.utils.validation import validate_data
 
-from pdrlearn.classify.svm import check_X_fast
+from pdrlearn.classify.svm import check_fitted_fast, check_X_fast
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.proba import align_proba, soft_vote  # noqa: F401 (shared with the runtime)
 
@@ -99,7 +99,7 @@ class UnitFusionClassifier(ClassifierMixin, BaseEstimator):
 
     def _probas(self, estimators, X) -> list[np.ndarray]:
         return [
-            align_proba(est.predict_proba(self._columns(X, cols)), est.classes_, self.classes_)
+            align_proba(unit_predict_proba(est, self._columns(X, cols)), est.classes_, self.classes_)
             for est, (_, _, cols) in zip(estimators, self.units, strict=True)
         ]
 
@@ -140,7 +140,7 @@ class UnitFusionClassifier(ClassifierMixin, BaseEstimator):
 
     def unit_proba(self, X) -> dict[str, np.ndarray]:
         """Each unit's probabilities, aligned to :attr:`classes_`."""
-        check_is_fitted(self)
+        check_fitted_fast(self, "estimators_")
         X = check_X_fast(self, X, allow_nd=True, finite=False)
         return dict(zip(self.unit_names_, self._probas(self.estimators_, X), strict=True))
 
@@ -151,6 +151,18 @@ class UnitFusionClassifier(ClassifierMixin, BaseEstimator):
     def predict(self, X) -> np.ndarray:
         proba = self.predict_proba(X)
         return self.classes_[np.argmax(proba, axis=1)]
+
+
+def unit_predict_proba(est, X) -> np.ndarray:
+    """``est.predict_proba(X)``; a fitted Pipeline's steps are called directly (what ``Pipeline.predict_proba``
+    does without routed parameters, minus its per-call tag and fitted-state lookups: per-step latency)."""
+    steps = getattr(est, "steps", None)
+    if steps is None:
+        return est.predict_proba(X)
+    for _, step in steps[:-1]:
+        if step is not None and step != "passthrough":
+            X = step.transform(X)
+    return steps[-1][1].predict_proba(X)
 
 
 def fused_from_fitted(units, fitted: list, weights, *, n_features_in: int, random_state: int | None = 0):

@@ -10,14 +10,14 @@ from __future__ import annotations
 import logging
 
 import numpy as np
-from scipy.special import softmax
 from sklearn.base import BaseEstimator, ClassifierMixin
 from sklearn.model_selection import train_test_split
 from sklearn.utils.multiclass import check_classification_targets
-from sklearn.utils.validation import check_is_fitted, validate_data
+from sklearn.utils.validation import validate_data
 
-from pdrlearn.classify.svm import check_X_fast
+from pdrlearn.classify.svm import check_fitted_fast, check_X_fast
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.proba import softmax  # = scipy.special.softmax, no array-API dispatch
 
 log = logging.getLogger(__name__)
 
@@ -186,13 +186,13 @@ class NNClassifier(ClassifierMixin, BaseEstimator):
         return self
 
     def _logits(self, X) -> np.ndarray:
-        check_is_fitted(self)
+        check_fitted_fast(self, "coefs_")
         Z = (check_X_fast(self, X) - self.mean_) / self.scale_
         return mlp_forward(Z, self.coefs_[0], self.intercepts_[0], self.coefs_[1], self.intercepts_[1])
 
     def predict_proba(self, X) -> np.ndarray:
         """Softmax outputs ``(n, n_classes)``."""
-        return softmax(self._logits(X), axis=1)
+        return softmax(self._logits(X))
 
     def predict(self, X) -> np.ndarray:
         logits = self._logits(X)
