@@ -46,9 +46,15 @@ def test_pll_step_frequency_matches_simulated_cadence():
 
 @pytest.mark.parametrize("scenario", ["A", "B"])
 def test_alignment_recovers_simulated_clock_offset_within_one_sample(scenario):
-    base = align_units(_sim(scenario, 3, "normal"))
-    fs = _sim(scenario, 3, "normal")["wAccelerometer"].rate_hz
-    assert abs(base[0]) <= 1.5 / fs  # same clock: only the detectors' event definitions differ
+    s = _sim(scenario, 3, "normal")
+    base = align_units(s)
+    fs = s["wAccelerometer"].rate_hz
+    # Same clock: the residual offset is the gap between the two detectors' events (the foot detector's
+    # swing-acceleration peak vs the waist PLL's contact phase). That gap depends on the gait timing (it
+    # moves by ~50 ms between a 60 % and a 68 % stance, decisions S14), so it is not asserted to be ~0;
+    # it must stay well inside half a step so that the periodic matching cannot pick a neighbouring step.
+    step_s = float(np.median(np.diff(np.sort(s.extras["ics"]["ic_s"].to_numpy()))))
+    assert abs(base[0]) <= 0.25 * step_s, (base, step_s)
     for offset in (0.2, -0.2):
         est, drift = align_units(_sim(scenario, 3, "normal", clock_offset_s=offset))
         assert abs((est - base[0]) - offset) <= 1.0 / fs, (est, base)
