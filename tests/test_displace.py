@@ -14,6 +14,7 @@ from pdrlearn.displace import (
     apply_direction,
     clamp_length,
     double_integrate,
+    error_clock,
     parse_bounds,
     strapdown,
     stride_index,
@@ -66,6 +67,47 @@ def test_zupt_removes_a_constant_accelerometer_bias():
     fixed = double_integrate(a_nav, mask, 1 / fs, zupt_end=True)
     assert abs(raw[0, 0] - 1.4) > 0.1
     assert abs(fixed[0, 0] - 1.4) < 0.01
+
+
+def _impact_stride(fs: float = 204.8, clip: float = 40.0):
+    """A forward swing ending in a heel-strike impact that stops the foot within 2 samples; the
+    accelerometer clips the impact at ``clip`` m/s^2. Returns (a_true, a_measured, true displacement)."""
+    dt = 1.0 / fs
+    n_sw = int(0.5 * fs)
+    s = np.arange(n_sw + 1) / n_sw
+    v = 0.8 * np.sin(np.pi * s / 2)  # the foot still moves at 0.8 m/s at the heel strike
+    v = np.concatenate([v, np.zeros(int(0.2 * fs))])  # impact within one sample, then stance
+    a = np.gradient(v, dt)
+    a3 = np.column_stack([a, 0 * a, 0 * a])[None]
+    meas = np.clip(a3, -clip, clip)
+    true = np.sum(0.5 * (v[1:] + v[:-1]) * dt)
+    return a3, meas, true
+
+
+def test_error_clock_puts_the_zupt_correction_at_a_clipped_impact():
+    """Decision L21: a clipped heel strike leaves a velocity error that appears at the impact; spreading
+    it evenly in time (the classical linear ZUPT correction) misplaces it, the error clock much less."""
+    fs = 204.8
+    a_true, meas, true = _impact_stride(fs)
+    L = meas.shape[1]
+    mask = np.ones((1, L), bool)
+    zupt = np.zeros((1, L), bool)
+    zupt[0, 0] = True
+    zupt[0, -int(0.15 * fs):] = True  # the stance after the impact
+    exact = double_integrate(a_true, mask, 1 / fs, zupt=zupt)[0, 0]
+    assert exact == pytest.approx(true, rel=0.01)
+    linear = double_integrate(meas, mask, 1 / fs, zupt=zupt)[0, 0]
+    assert abs(linear - true) > 0.2 * true  # the even spread is > 20 % off
+    for s_err, gain in ((0.01, 1.2), (0.05, 3.5)):  # the default and a larger proportional error
+        clock = error_clock(meas, mask, r=0.01, scale_error=s_err)
+        weighted = double_integrate(meas, mask, 1 / fs, zupt=zupt, clock=clock)[0, 0]
+        assert abs(weighted - true) < abs(linear - true) / gain
+        kf = wnj_displacement(meas, mask, 1 / fs, zupt_at=zupt,
+                              q_vel=s_err**2 * np.sum(meas**2, axis=2) / fs**2)[0, 0]
+        kf_plain = wnj_displacement(meas, mask, 1 / fs, zupt_at=zupt)[0, 0]
+        assert abs(kf - true) < abs(kf_plain - true) / gain
+    # no acceleration-proportional error: the clock is time (the classical correction)
+    assert np.allclose(error_clock(meas, mask, r=0.01, scale_error=0.0)[0], np.arange(L))
 
 
 def test_batch_of_strides_equals_single_strides():

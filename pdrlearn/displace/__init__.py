@@ -7,7 +7,9 @@ from pdrlearn.displace._kernels import (
     bayes_length,
     clamp_length,
     double_integrate,
+    error_clock,
     strapdown,
+    stride_attitude,
     stride_index,
     terrain_distance,
     wnj_displacement,
@@ -20,7 +22,7 @@ from pdrlearn.displace.rules import THESIS_STEP_BOUNDS, StepRules, parse_bounds
 __all__ = [
     "FootDisplacement", "StepRules", "THESIS_STEP_BOUNDS", "altitude_change", "apply_direction", "bayes_length",
     "clamp_length",
-    "double_integrate", "force_stance", "inertial_stance", "parse_bounds", "rest_to_rest", "stance_runs",
-    "strapdown",
+    "double_integrate", "error_clock", "force_stance", "inertial_stance", "parse_bounds", "rest_to_rest", "stance_runs",
+    "strapdown", "stride_attitude",
     "stride_index", "terrain_distance", "wnj_displacement", "wnj_kalman", "wnj_matrices",
 ]

@@ -83,7 +83,7 @@ def level_rotation(g_body: np.ndarray) -> Rotation:
 
 def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float, idx: np.ndarray, mask: np.ndarray,
               g_body: np.ndarray, gyro_bias: np.ndarray | None = None,
-              init: Rotation | None = None) -> tuple[np.ndarray, np.ndarray]:
+              init: Rotation | None = None, q: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Rotate each stride's specific force into its navigation frame and remove gravity.
 
     Parameters
@@ -95,6 +95,7 @@ def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float, idx: np.ndarray, mask
         its norm is the local gravity that is removed, so a sensor scale error cancels)
     gyro_bias : (B, 3) rate offset removed during each stride (ZARU), or None
     init : initial attitude per stride (overrides the one from ``g_body``)
+    q : (B, L, 4) attitude of every stride sample from :func:`stride_attitude` (computed when None)
 
     Returns
     -------
@@ -105,8 +106,24 @@ def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float, idx: np.ndarray, mask
     a_nav = np.zeros((B, L, 3))
     if B == 0:
         return a_nav, np.zeros(0)
+    if q is None:
+        q = stride_attitude(gyr, dt, idx, mask, g_body, gyro_bias, init)
+    a_nav[:] = _qrotate(q, acc[idx])
+    a_nav[:, :, 2] -= np.linalg.norm(g_body, axis=1)[:, None]
+    a_nav[~mask] = 0.0
+    n = mask.sum(axis=1) - 1
+    f = _qrotate(q[np.arange(B), n], np.tile([1.0, 0.0, 0.0], (B, 1)))
+    return a_nav, np.arctan2(f[:, 1], f[:, 0])
+
+
+def stride_attitude(gyr: np.ndarray, dt: float, idx: np.ndarray, mask: np.ndarray, g_body: np.ndarray,
+                    gyro_bias: np.ndarray | None = None, init: Rotation | None = None) -> np.ndarray:
+    """Attitude (B, L, 4) quaternions [w, x, y, z] body -> navigation frame of every stride sample:
+    the gravity (or ``init``) attitude at the stride start propagated with the gyroscope (midpoint rate,
+    ``gyro_bias`` (B, 3) rad/s removed). Arguments as :func:`strapdown`; padded samples repeat the
+    stride's last attitude."""
+    B, L = idx.shape
     rot = level_rotation(g_body) if init is None else init
-    gnorm = np.linalg.norm(g_body, axis=1)
     bias = np.zeros((B, 3)) if gyro_bias is None else np.asarray(gyro_bias, dtype=float)
     # body-frame rotation increments of every step (midpoint rate), as quaternions [w, x, y, z]
     w = 0.5 * (gyr[idx[:, :-1]] + gyr[idx[:, 1:]]) - bias[:, None, :]
@@ -126,13 +143,7 @@ def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float, idx: np.ndarray, mask
         qc[j, 1] = pw * qx_ + px * qw_ + py * qz_ - pz * qy_
         qc[j, 2] = pw * qy_ - px * qz_ + py * qw_ + pz * qx_
         qc[j, 3] = pw * qz_ + px * qy_ - py * qx_ + pz * qw_
-    q = np.transpose(qc, (2, 0, 1))  # (B, L, 4)
-    a_nav[:] = _qrotate(q, acc[idx])
-    a_nav[:, :, 2] -= gnorm[:, None]
-    a_nav[~mask] = 0.0
-    n = mask.sum(axis=1) - 1
-    f = _qrotate(q[np.arange(B), n], np.tile([1.0, 0.0, 0.0], (B, 1)))
-    return a_nav, np.arctan2(f[:, 1], f[:, 0])
+    return np.transpose(qc, (2, 0, 1))  # (B, L, 4)
 
 
 def _qrotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -160,13 +171,15 @@ def zupt_mask(stance: np.ndarray, idx: np.ndarray, mask: np.ndarray) -> np.ndarr
 
 
 def double_integrate(a_nav: np.ndarray, mask: np.ndarray, dt: float, *, zupt_end: bool = True,
-                     zupt: np.ndarray | None = None) -> np.ndarray:
+                     zupt: np.ndarray | None = None, clock: np.ndarray | None = None) -> np.ndarray:
     """Displacement (B, 3) of each stride by double integration (equations of motion, thesis ch.7.2.1).
 
     The velocity starts at zero (ZUPT at the stride start). With ``zupt_end`` the velocity found at the
     zero-velocity samples ``zupt`` (B, L) (default: the first and last sample) is the velocity error
     there; it is interpolated linearly in between and removed (ZUPT drift correction). Without
-    ``zupt_end`` only the start reset is applied (the traditional method).
+    ``zupt_end`` only the start reset is applied (the traditional method). ``clock`` (B, L), increasing
+    along each stride, is the variable the interpolation is linear in (default: time; decision L21 uses
+    :func:`error_clock`, the accumulated variance of the velocity error).
     """
     B, L, _ = a_nav.shape
     if B == 0:
@@ -179,24 +192,44 @@ def double_integrate(a_nav: np.ndarray, mask: np.ndarray, dt: float, *, zupt_end
             frac = np.minimum(np.arange(L)[None, :] / np.maximum(n - 1, 1)[:, None], 1.0)
             v = v - frac[:, :, None] * v_end[:, None, :]
         else:
-            v = v - _interp_between(v, zupt & mask)
+            v = v - _interp_between(v, zupt & mask, clock)
     v[~mask] = 0.0
     p = _cumtrapz(v, dt)
     return p[np.arange(B), n - 1]
 
 
-def _interp_between(v: np.ndarray, known: np.ndarray) -> np.ndarray:
+def error_clock(a_nav: np.ndarray, mask: np.ndarray, *, r: float, scale_error: float) -> np.ndarray:
+    """Accumulated variance (B, L), in units of the white-noise variance per sample, of the velocity error
+    of each stride (decision L21).
+
+    The error of a velocity integrated from an accelerometer grows by white noise (variance ``r``
+    (m/s^2)^2 per sample, thesis eq. 55: R = 0.01) and by errors proportional to the acceleration itself
+    (scale factor, non-linearity, bandwidth and clipping of impacts; relative size ``scale_error``):
+    increment variance ``r + (scale_error |a|)^2``. The ZUPT correction interpolated linearly in this
+    variable is the Brownian-bridge estimate of the velocity error between zero-velocity samples, so the
+    drift found at a stance is attributed to the hard accelerations of the swing and heel strike rather
+    than spread evenly in time. ``scale_error = 0`` gives time.
+    """
+    w = 1.0 + (scale_error ** 2 / r) * np.sum(np.asarray(a_nav, dtype=float) ** 2, axis=2)
+    w = np.where(mask, w, 0.0)
+    w[:, 0] = 0.0
+    return np.cumsum(w, axis=1)
+
+
+def _interp_between(v: np.ndarray, known: np.ndarray, clock: np.ndarray | None = None) -> np.ndarray:
     """Per row b, values of ``v[b]`` (L, k) at the ``known`` samples, linearly interpolated in between
-    (held after the last known sample). Every row's first sample must be known."""
+    (held after the last known sample) along ``clock`` (B, L) (default: the sample index). Every row's
+    first sample must be known."""
     B, L = known.shape
     j = np.arange(L)
+    tau = np.broadcast_to(j[None, :].astype(float), (B, L)) if clock is None else clock
     prev = np.maximum.accumulate(np.where(known, j, 0), axis=1)
     nxt = np.flip(np.minimum.accumulate(np.flip(np.where(known, j, L), axis=1), axis=1), axis=1)
     nxt = np.where(nxt >= L, prev, nxt)
     rows = np.arange(B)[:, None]
     vp, vn = v[rows, prev], v[rows, nxt]
-    span = np.maximum(nxt - prev, 1)
-    w = ((j[None, :] - prev) / span)[:, :, None]
+    span = np.maximum(tau[rows, nxt] - tau[rows, prev], 1e-300)
+    w = np.where(nxt > prev, (tau - tau[rows, prev]) / span, 0.0)[:, :, None]
     return vp + w * (vn - vp)
 
 
@@ -227,7 +260,7 @@ def _inv3_sym(M: np.ndarray) -> np.ndarray:
 
 def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1.8, r: float = 0.01,
                zupt: bool = True, zupt_at: np.ndarray | None = None, r_zupt: float = 1e-6,
-               smooth: bool = True) -> np.ndarray:
+               smooth: bool = True, q_vel: np.ndarray | None = None) -> np.ndarray:
     """White-noise-jerk Kalman filter (state [d, v, a], thesis eq. 44-55) on a batch of signals.
 
     Parameters
@@ -242,6 +275,8 @@ def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1
         the Rauch-Tung-Striebel pass carries that correction back through the stride, which is the
         KF form of the ZUPT drift correction
     smooth : run the RTS smoother (offline); ``False`` returns the causal filter
+    q_vel : (N, L) extra velocity process noise (m/s)^2 added in the prediction to sample j (decision
+        L21: velocity errors proportional to the acceleration); None = the white-noise-jerk model only
 
     Returns
     -------
@@ -292,7 +327,8 @@ def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1
         a11 = p["11"] + T * p["12"]
         a12 = p["12"] + T * p["22"]
         new = {"00": a00 + T * a01 + h * a02 + q00, "01": a01 + T * a02 + q01, "02": a02 + q02,
-               "11": a11 + T * a12 + q11, "12": a12 + q12, "22": p["22"] + q22}
+               "11": a11 + T * a12 + q11 + (0.0 if q_vel is None else q_vel[:, j]), "12": a12 + q12,
+               "22": p["22"] + q22}
         for key in keys:
             p[key] = np.where(act, new[key], p[key])
         update(2, am[:, j], r, act)  # thesis eq. 55: the acceleration is measured
@@ -309,6 +345,8 @@ def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1
     for j in range(L - 2, -1, -1):
         act = mask[:, j + 1]
         Pp = F @ Pm[:, j] @ F.T + Q
+        if q_vel is not None:
+            Pp[:, 1, 1] += q_vel[:, j + 1]
         C = Pm[:, j] @ F.T @ _inv3_sym(Pp)
         upd = xf[:, j] + np.einsum("nij,naj->nai", C, xs[:, j + 1] - xf[:, j] @ F.T)
         xs[:, j] = np.where(act[:, None, None], upd, xf[:, j])

@@ -123,6 +123,10 @@ class FootDisplacement:
     zupt_erode : fraction of each stance run dropped at both ends before it is used for ZUPT (the foot
         rolls over heel and toe at the edges of stance)
     max_stride_s : strides longer than this (s) are flagged in ``warnings_`` (a missed stance)
+    accel_scale_error : relative accelerometer error proportional to the acceleration (scale factor,
+        non-linearity, bandwidth, clipped impacts; default 1 %): the ZUPT drift correction attributes the
+        velocity error found at a stance to the samples in proportion to ``r + (accel_scale_error |a|)^2``
+        instead of evenly in time (decision L21); 0 = evenly in time
     upsample : strapdown on a ``k`` times finer grid (block-mean preserving spline); default 5 below
         50 Hz (20 Hz firmware means), else 1
 
@@ -138,7 +142,7 @@ class FootDisplacement:
     def __init__(self, *, integrator: str = "kalman", zupt_end: bool = True, gyro_bias: str = "standstill",
                  attitude: str = "kalman", sw: float = 1.8, r: float = 0.01, max_rest_s: float = 0.3,
                  rest_s: float = 0.05, zupt_erode: float = 0.25, upsample: int | None = None,
-                 max_stride_s: float = 3.0):
+                 max_stride_s: float = 3.0, accel_scale_error: float = 0.01):
         if integrator not in ("kalman", "integration"):
             raise DataError(f"FootDisplacement: integrator '{integrator}' is not 'kalman' or 'integration'")
         if attitude not in ("kalman", "accel"):
@@ -156,6 +160,9 @@ class FootDisplacement:
         self.zupt_erode = zupt_erode
         self.upsample = upsample
         self.max_stride_s = max_stride_s
+        if not np.isfinite(accel_scale_error) or accel_scale_error < 0:
+            raise DataError(f"FootDisplacement: accel_scale_error {accel_scale_error!r} must be >= 0 (e.g. 0.01)")
+        self.accel_scale_error = float(accel_scale_error)
 
     def estimate(self, unit: UnitData, steps: pd.DataFrame, *,
                  stance: np.ndarray | None = None) -> FootDisplacement:
@@ -218,13 +225,18 @@ class FootDisplacement:
         elif self.gyro_bias == "standstill" and B:
             bias = np.tile(self._standstill_bias(unit.acc, unit.gyr, fs0), (B, 1))
         idx, mask = K.stride_index(i0, i1)
-        a_nav, self.yaw_change_ = K.strapdown(acc, gyr, dt, idx, mask, g_body, bias, init)
+        q = K.stride_attitude(gyr, dt, idx, mask, g_body, bias, init) if B else None
+        a_nav, self.yaw_change_ = K.strapdown(acc, gyr, dt, idx, mask, g_body, bias, init, q=q)
         zm = K.zupt_mask(zupt_stance, idx, mask)
+        s2 = self.accel_scale_error ** 2
         if self.integrator == "kalman":
+            # decision L21: velocity errors proportional to |a| (scale, bandwidth, clipped impacts)
+            q_vel = s2 * np.sum(a_nav ** 2, axis=2) * dt * dt if s2 > 0 else None
             self.disp_ = K.wnj_displacement(a_nav, mask, dt, sw=self.sw, r=self.r, zupt=self.zupt_end,
-                                            zupt_at=zm)
+                                            zupt_at=zm, q_vel=q_vel)
         else:
-            self.disp_ = K.double_integrate(a_nav, mask, dt, zupt_end=self.zupt_end, zupt=zm)
+            clock = K.error_clock(a_nav, mask, r=self.r, scale_error=self.accel_scale_error) if s2 > 0 else None
+            self.disp_ = K.double_integrate(a_nav, mask, dt, zupt_end=self.zupt_end, zupt=zm, clock=clock)
         return self
 
     def _standstill_bias(self, acc: np.ndarray, gyr: np.ndarray, fs: float,
