@@ -184,3 +184,22 @@ def test_alternation_keeps_simulated_steps():
         f1 = [score_events(InitialContactDetector(alternate=a).detect(imu).steps_["event_s"].to_numpy(float),
                            ref)["f1"] for a in (False, True)]
         assert f1[1] >= f1[0] - 1e-9, (sc, speed, f1)
+
+
+def test_pll_events_pass_the_alternation_check(test11):
+    """W20 on the PLL's events (waist-pll): phase-locked peaks inside slow steps are dropped."""
+    from pdrlearn.steps import PLLStepDetector
+    from pdrlearn.waist.evaluate import step_metrics
+    from pdrlearn.waist.events import WALK_THRESHOLD_MPS2, refine_to_contacts, steps_from_events
+
+    s, imu = test11
+    ev = PLLStepDetector(gate_var=WALK_THRESHOLD_MPS2 ** 2).detect(s)["event_s"].to_numpy(float)
+    idx = np.clip(np.searchsorted(imu.t, np.sort(ev)), 0, imu.t.size - 1)
+    f1 = {}
+    for alt in (False, True):
+        out = refine_to_contacts(imu, idx, alternate=alt)
+        assert np.all(np.diff(out) > 0)
+        f1[alt] = step_metrics(steps_from_events(imu.t, out), s)
+    assert f1[True]["step_precision"] > f1[False]["step_precision"]
+    assert f1[True]["step_recall"] == f1[False]["step_recall"]
+    assert f1[True]["n_detected"] < f1[False]["n_detected"]

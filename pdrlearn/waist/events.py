@@ -117,10 +117,15 @@ class InitialContactDetector:
 
 
 def refine_to_contacts(imu: WaistIMU, idx: np.ndarray, *, walk_threshold: float = WALK_THRESHOLD_MPS2,
-                       max_shift_s: float = 0.3, rhythm: bool = True) -> np.ndarray:
+                       max_shift_s: float = 0.3, rhythm: bool = True, alternate: bool = True) -> np.ndarray:
     """Move step events found at vertical-acceleration peaks (e.g. PLL peaks) to the initial contact of
-    the nearest vertical maximum within ``max_shift_s`` (decision W11); others are kept. Sorted, unique."""
-    det = InitialContactDetector(walk_threshold=walk_threshold, rhythm=rhythm).detect(imu)
+    the nearest vertical maximum within ``max_shift_s`` (decision W11); others are kept. Sorted, unique.
+
+    With ``rhythm`` and ``alternate`` the events then pass the same left/right check as the IC detector
+    (decision W20, :func:`pdrlearn.waist._kernels.prune_same_side`): of two consecutive events on the same
+    side closer than 1.5 local step periods, the one whose filtered vertical acceleration is under half
+    the other's is dropped (a phase-locked peak inside a slow step, where no contact is)."""
+    det = InitialContactDetector(walk_threshold=walk_threshold, rhythm=rhythm, alternate=alternate).detect(imu)
     idx = np.asarray(idx, dtype=int)
     if det.anchor_.size == 0 or idx.size == 0:
         return np.unique(idx)
@@ -128,4 +133,13 @@ def refine_to_contacts(imu: WaistIMU, idx: np.ndarray, *, walk_threshold: float 
     j2 = np.minimum(j + 1, det.anchor_.size - 1)
     near = np.where(np.abs(det.anchor_[j2] - idx) < np.abs(det.anchor_[j] - idx), j2, j)
     ok = np.abs(det.anchor_[near] - idx) <= max_shift_s * imu.fs
-    return np.unique(np.where(ok, det.ic_[near], idx))
+    out, first = np.unique(np.where(ok, det.ic_[near], idx), return_index=True)
+    if not (rhythm and alternate) or out.size < 3:
+        return out
+    anchor = np.where(ok, det.anchor_[near], idx)[first]  # the vertical maximum each event stands for
+    taps = K.fir_taps(det.cutoff_hz, imu.fs, int(round(det.fir_order_s * imu.fs)))  # as ic_offline
+    vf = K.fir_zero_lag(imu.acc_v - np.mean(imu.acc_v), taps)
+    side = K.step_sides(K.lateral_velocity(imu.acc_ml, imu.fs)[anchor], np.ones(anchor.size, dtype=bool))
+    keep = K.prune_same_side(anchor, vf[anchor], np.ones(anchor.size, dtype=bool), side, imu.fs,
+                             max_step_s=det.max_step_s)
+    return out[keep]
