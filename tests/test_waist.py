@@ -473,7 +473,7 @@ def test_rhythm_complete_properties(heights, seed):
         == pytest.approx([2.0, 3.0])
 
 
-# ------------------------------------------------------------------ distance bookkeeping (decision W20)
+# ------------------------------------------------------------------ distance bookkeeping (decision W21)
 def test_bout_accounting_counts_the_steps_between_first_and_last_contact():
     """N contacts matching a bout's N reference contacts give its N - 1 steps: the step ending at the
     first contact and the one starting at the last lie outside; a closing contact has no length."""
@@ -503,7 +503,7 @@ def _session_with_bouts(bouts: pd.DataFrame):
 
 def test_calibration_fits_reproduce_the_walks_as_the_tracker_sums_them():
     """Offset-only / K-only fits solve each walk's distance as the tracker sums it, turn factors
-    included (decision W20): sum(c (a f - b)) and sum(c (K g + F)) equal the known total."""
+    included (decision W21): sum(c (a f - b)) and sum(c (K g + F)) equal the known total."""
     from pdrlearn.waist.params import WaistParams
     from pdrlearn.waist.steplength import CalibrationWalk, fit_frequency, fit_pendulum
 
@@ -530,7 +530,7 @@ def test_calibration_fits_reproduce_the_walks_as_the_tracker_sums_them():
 @pytest.mark.parametrize("pipeline", ["waist-pendulum", "waist-pll"])
 def test_real_calibration_is_self_consistent(pipeline):
     """Calibrated on a recording's reference bouts, tracking the same recording reproduces their total
-    length: calibration and evaluation count the same steps with the same length model (W20)."""
+    length: calibration and evaluation count the same steps with the same length model (W21)."""
     from pdrlearn.io import read_session
     from pdrlearn.track import get_pipeline
     from pdrlearn.waist.calibration import calibrate

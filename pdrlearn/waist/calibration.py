@@ -23,7 +23,7 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     """The walks of known length in ``session``.
 
     With ``distance_m`` the whole session is one walk (all detected steps, as ``track`` sums them: the
-    distance from the first to the last detected contact, decision W20); otherwise each reference walking
+    distance from the first to the last detected contact, decision W21); otherwise each reference walking
     bout (``bouts.csv``) is one walk with the steps :func:`~pdrlearn.waist.evaluate.steps_in_interval`
     counts for it. ``result``: the session's :class:`~pdrlearn.track.base.TrackResult` if already computed.
     """

@@ -64,7 +64,7 @@ def _mid(steps: pd.DataFrame) -> np.ndarray:
 def steps_in_interval(steps: pd.DataFrame, start_s: float, end_s: float) -> np.ndarray:
     """Boolean mask of the steps whose length counts toward the walk ``[start_s, end_s]`` (s).
 
-    The one accounting rule of the evaluation and of the calibration (decisions W9, W20): a step (IC to
+    The one accounting rule of the evaluation and of the calibration (decisions W9, W21): a step (IC to
     next IC) counts when its midpoint lies inside. A reference bout runs from its first to its last
     initial contact, so N detected contacts matching the bout's N contacts give exactly its N - 1 steps;
     the step that ends at the first contact and the one that starts at the last lie outside, and a

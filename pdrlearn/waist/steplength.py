@@ -43,7 +43,7 @@ class CalibrationWalk:
 
     ``f_hz`` step frequencies (frequency model); ``g`` = ``2 sqrt(2 L h - h^2)`` per step (pendulum);
     ``c`` = the factor the tracker multiplies each step's length by (the turning-step factor of W19; ones
-    when ``None``). The fits below solve the walk's distance as the tracker sums it (decision W20):
+    when ``None``). The fits below solve the walk's distance as the tracker sums it (decision W21):
     ``D = sum(c (a f - b))`` and ``D = sum(c (K g + F))``.
     """
 
@@ -79,7 +79,7 @@ def fit_frequency(walks: list[CalibrationWalk], p: WaistParams) -> tuple[float, 
 
     Each walk gives one point (its steps' mean frequency, distance / steps), both weighted by the
     turning-step factors so that tracking the walk with the fitted line sums to its distance (decision
-    W20; seed 000 eq. 1's harmonic mean would not: the tracker sums per-step ``a f_k - b``). With points
+    W21; seed 000 eq. 1's harmonic mean would not: the tracker sums per-step ``a f_k - b``). With points
     spanning at least :data:`MIN_SPREAD_HZ` the line is the least-squares fit; otherwise the slope ``a``
     is kept and only the offset ``b`` is fitted (decision W8), exactly reproducing the walks' total.
     """
@@ -101,7 +101,7 @@ def fit_frequency(walks: list[CalibrationWalk], p: WaistParams) -> tuple[float, 
 def fit_pendulum(walks: list[CalibrationWalk], p: WaistParams) -> tuple[float, float, str]:
     """``(K, F)`` of seed 003 eq. 1 from walks of known length.
 
-    Each walk gives ``D = K sum(c g) + F sum(c)`` (``c`` the turning-step factors, decision W20). With
+    Each walk gives ``D = K sum(c g) + F sum(c)`` (``c`` the turning-step factors, decision W21). With
     walks whose mean ``g`` differ by more than 10 % both are fitted by least squares; otherwise ``F`` is
     kept at its default and ``K`` fitted (decision W8).
     """
