@@ -117,70 +117,168 @@ class _Builder:
             return self.op(op, [x, self.const(np.array([1], np.int64), "ax", np.int64)], "sum", keepdims=keepdims)
         return self.op(op, [x], op.lower(), axes=[1], keepdims=keepdims)
 
-    # -- statistics (kernels.stats) -------------------------------------------------------------------
-    def peak(self, sig_name: str, stat: str) -> str:
-        """One column (n, 1) of kernels.stats.peak_stats."""
+    # -- statistics (kernels.stats), batched over the signals that share them -------------------------
+    def stack(self, names: list[str]) -> str:
+        """Signals side by side: (n, len(names), m)."""
         def build():
-            s, tt = self.signal(sig_name), self.tt()
-            k = ("peak", sig_name)
-            i_min = self.memo_get(k + ("i_min",), lambda: self.op("ArgMin", [s], "imin", axis=1, keepdims=1))
-            i_max = self.memo_get(k + ("i_max",), lambda: self.op("ArgMax", [s], "imax", axis=1, keepdims=1))
-            vmin = self.memo_get(k + ("vmin",), lambda: self.at(s, i_min))
-            vmax = self.memo_get(k + ("vmax",), lambda: self.at(s, i_max))
-            t_min = self.memo_get(k + ("t_min",), lambda: self.at(tt, i_min))
-            t_max = self.memo_get(k + ("t_max",), lambda: self.at(tt, i_max))
-            dt = self.gradient(tt)
+            if all(len(self.signals[nm][0]) == 1 for nm in names):  # one Gather (and one sign product)
+                idx = [self.ci[self.signals[nm][0][0]] for nm in names]
+                self.used_channels.update(idx)
+                x = self.op("Gather", [INPUT, self.const(np.array(idx, np.int64), "chs", np.int64)], "stack", axis=1)
+                sign = np.array([float(self.signals[nm][1]) for nm in names])
+                if np.all(sign == 1.0):
+                    return x
+                return self.op("Mul", [x, self.const(sign[None, :, None], "signs")], "stack")
+            ax1 = self.const(np.array([1], np.int64), "ax1", np.int64)
+            return self.op("Concat", [self.op("Unsqueeze", [self.signal(nm), ax1]) for nm in names], "stack", axis=1)
+        return self.memo_get(("stack", tuple(names)), build)
 
-            def psum(neg: bool) -> str:
-                x = self.op("Neg", [s]) if neg else s
-                return self.reduce("ReduceSum", self.op("Mul", [self.op("Relu", [x]), dt]), keepdims=1)
-
-            sum_pos = self.memo_get(k + ("sum_pos",), lambda: psum(False))
-            sum_neg = self.memo_get(k + ("sum_neg",), lambda: psum(True))
-            dtp = self.memo_get(k + ("dt_peaks",), lambda: self.op("Sub", [t_max, t_min], "dtp"))
-            table = {
-                "min": lambda: vmin,
-                "max": lambda: vmax,
-                "t_min": lambda: t_min,
-                "t_max": lambda: t_max,
-                "dt_peaks": lambda: dtp,
-                "abs_dt_peaks": lambda: self.op("Abs", [dtp]),
-                "range": lambda: self.op("Sub", [vmax, vmin], "range"),
-                "peak_asym": lambda: self.op("Sub", [self.op("Abs", [vmax]), self.op("Abs", [vmin])], "asym"),
-                "sum_pos": lambda: sum_pos,
-                "sum_neg": lambda: sum_neg,
-                "pos_minus_neg": lambda: self.op("Sub", [sum_pos, sum_neg], "pmn"),
-                "duration": lambda: self.memo_get("duration", lambda: self.cols(tt, self.m - 1)),
-            }
-            if stat not in table:
-                raise KeyError(stat)
-            return table[stat]()
-        return self.memo_get(("peakstat", sig_name, stat), build)
-
-    def segments(self, sig_name: str, n_segments: int) -> str:
-        """kernels.stats.segment_stats (n, 4 * n_segments): per part max, min, mean, slope."""
+    def segment_block(self, names: list[str], n_segments: int) -> str:
+        """kernels.stats.segment_stats of each signal, side by side: (n, len(names) * 4 * n_segments), per
+        signal ``[max_1, min_1, mean_1, slope_1, max_2, ...]``."""
         from pdrlearn.kernels.stats import _edges
 
-        def build():
-            s, t = self.signal(sig_name), self.channel("t_s")
-            a, b, mean = _edges(self.m, n_segments)
-            width = int(max(b - a))
-            # each part's indices, padded with its own last index (max/min unchanged)
-            idx = np.array([list(range(i, j)) + [j - 1] * (width - (j - i)) for i, j in zip(a, b, strict=True)])
-            parts = self.op("Gather", [s, self.const(idx, "segidx", np.int64)], "parts", axis=1)  # (n, k, w)
-            mx = self.op("ReduceMax", [parts], "segmax", axes=[2], keepdims=1)
-            mn = self.op("ReduceMin", [parts], "segmin", axes=[2], keepdims=1)
-            three = self.const(np.array([-1, n_segments, 1], np.int64), "shape3", np.int64)
-            mu = self.op("Reshape", [self.op("MatMul", [s, self.const(mean, "segmean")]), three])
-            span = self.op("Sub", [self.cols(t, b - 1), self.cols(t, a)], "span")
-            pos = self.op("Greater", [span, self.const(np.array(0.0), "zero")])
-            span = self.op("Where", [pos, span, self.const(np.array(np.inf), "inf")])
-            slope = self.op("Div", [self.op("Sub", [self.cols(s, b - 1), self.cols(s, a)]), span], "slope")
-            slope = self.op("Reshape", [slope, three])
-            inter = self.op("Concat", [mx, mn, mu, slope], "seg4", axis=2)  # (n, k, 4)
-            return self.op("Reshape", [inter, self.const(np.array([-1, 4 * n_segments], np.int64), "shape2",
-                                                         np.int64)], "seg")
-        return self.memo_get(("seg", sig_name, int(n_segments)), build)
+        x, t = self.stack(names), self.channel("t_s")
+        a, b, mean = _edges(self.m, n_segments)
+        width = int(max(b - a))
+        # each part's indices, padded with its own last index (max/min unchanged)
+        idx = np.array([list(range(i, j)) + [j - 1] * (width - (j - i)) for i, j in zip(a, b, strict=True)])
+        parts = self.op("Gather", [x, self.const(idx, "segidx", np.int64)], "parts", axis=2)  # (n, S, k, w)
+        mx = self.op("ReduceMax", [parts], "segmax", axes=[3], keepdims=1)
+        mn = self.op("ReduceMin", [parts], "segmin", axes=[3], keepdims=1)
+        ax3 = self.const(np.array([3], np.int64), "ax3", np.int64)
+        mu = self.op("Unsqueeze", [self.op("MatMul", [x, self.const(mean, "segmean")]), ax3])
+        span = self.op("Sub", [self.cols(t, b - 1), self.cols(t, a)], "span")  # (n, k)
+        pos = self.op("Greater", [span, self.const(np.array(0.0), "zero")])
+        span = self.op("Where", [pos, span, self.const(np.array(np.inf), "inf")])  # 0 for a 1-sample part
+        span = self.op("Unsqueeze", [span, self.const(np.array([1], np.int64), "ax1", np.int64)])  # (n, 1, k)
+        last = self.op("Gather", [x, self.const(b - 1, "idx", np.int64)], "xb", axis=2)
+        first = self.op("Gather", [x, self.const(a, "idx", np.int64)], "xa", axis=2)
+        slope = self.op("Unsqueeze", [self.op("Div", [self.op("Sub", [last, first]), span], "slope"), ax3])
+        inter = self.op("Concat", [mx, mn, mu, slope], "seg4", axis=3)  # (n, S, k, 4)
+        shape = self.const(np.array([-1, len(names) * 4 * n_segments], np.int64), "shape", np.int64)
+        return self.op("Reshape", [inter, shape], "seg")
+
+    def peak_block(self, names: list[str], stats: list[str]) -> dict[str, str]:
+        """kernels.stats.peak_stats of each signal: stat -> (n, len(names)) (``duration``: (n, 1))."""
+        x, tt = self.stack(names), self.tt()
+        k: dict[str, str] = self.memo.setdefault(("peakblock", tuple(names)), {})
+
+        def get(stat: str) -> str:
+            if stat in k:
+                return k[stat]
+            if stat in ("i_min", "i_max"):
+                v = self.op("ArgMin" if stat == "i_min" else "ArgMax", [x], stat, axis=2, keepdims=0)
+            elif stat in ("min", "max"):  # the extreme's value (= x at its first index)
+                v = self.op("ReduceMin" if stat == "min" else "ReduceMax", [x], stat, axes=[2], keepdims=0)
+            elif stat in ("t_min", "t_max"):
+                v = self.at(tt, get("i" + stat[1:]))
+            elif stat in ("sum_pos", "sum_neg"):  # time integral of the positive part / |negative part|
+                xx = self.op("Relu", [x if stat == "sum_pos" else self.op("Neg", [x])])
+                dt = self.op("Unsqueeze", [self.gradient(tt), self.const(np.array([1], np.int64), "ax1", np.int64)])
+                v = self.op("ReduceSum", [self.op("Mul", [xx, dt]), self.const(np.array([2], np.int64), "ax2",
+                                                                               np.int64)], stat, keepdims=0)
+            elif stat == "dt_peaks":
+                v = self.op("Sub", [get("t_max"), get("t_min")], stat)
+            elif stat == "abs_dt_peaks":
+                v = self.op("Abs", [get("dt_peaks")])
+            elif stat == "range":
+                v = self.op("Sub", [get("max"), get("min")], stat)
+            elif stat == "peak_asym":
+                v = self.op("Sub", [self.op("Abs", [get("max")]), self.op("Abs", [get("min")])], stat)
+            elif stat == "pos_minus_neg":
+                v = self.op("Sub", [get("sum_pos"), get("sum_neg")], stat)
+            elif stat == "duration":
+                v = self.memo_get("duration", lambda: self.cols(tt, self.m - 1))
+            else:
+                raise KeyError(stat)
+            k[stat] = v
+            return v
+
+        return {st: get(st) for st in stats}
+
+    def prepare(self, recipes: list[list]) -> None:
+        """Compute every column the recipes use, once, into one matrix ``(n, F)`` (few, batched nodes)."""
+        seg: dict[int, list[str]] = {}
+        peak_sigs: list[str] = []
+        peak_stats: list[str] = []  # asked for by "peak" items
+        force: dict[float, list[str]] = {}
+        yaw: list[str] = []
+        sign = False
+        for recipe in recipes:
+            for item in recipe:
+                op = item[0]
+                if op == "segments":
+                    seg.setdefault(int(item[2]), [])
+                    if item[1] not in seg[int(item[2])]:
+                        seg[int(item[2])].append(item[1])
+                elif op == "peak":
+                    peak_sigs += [item[1]] if item[1] not in peak_sigs else []
+                    peak_stats += [item[2]] if item[2] not in peak_stats else []
+                elif op == "force":
+                    force.setdefault(float(item[2]), [])
+                    force[float(item[2])] += [item[1]] if item[1] not in force[float(item[2])] else []
+                elif op == "yaw":
+                    yaw += [item[1]] if item[1] not in yaw else []
+                elif op == "yaw_sign":
+                    sign = True
+                else:
+                    raise KeyError(op)
+        blocks: list[tuple[str, list]] = []  # (tensor, the key of each of its columns)
+        for n_seg, names in seg.items():
+            blocks.append((self.segment_block(names, n_seg),
+                           [("seg", nm, n_seg, j) for nm in names for j in range(4 * n_seg)]))
+        yaw_need = {"amplitude": ["range"], "duration": ["duration"], "left": ["t_max"],
+                    "right": ["duration", "t_max"], "left_minus_right": ["duration", "t_max"]}
+        if yaw:
+            if any(s not in yaw_need for s in yaw):
+                raise KeyError(next(s for s in yaw if s not in yaw_need))
+            peak_sigs += ["waist_yaw"] if "waist_yaw" not in peak_sigs else []
+        if peak_stats:
+            stats = self.peak_block(peak_sigs, peak_stats)
+            for st in peak_stats:
+                keys = [("duration",)] if st == "duration" else [("peak", nm, st) for nm in peak_sigs]
+                blocks.append((stats[st], keys))
+        if yaw:
+            j = self.const(np.array([peak_sigs.index("waist_yaw")], np.int64), "idx", np.int64)
+            st = {s: self.op("Gather", [v, j], s, axis=1) if s != "duration" else v
+                  for s, v in self.peak_block(peak_sigs, sorted({s for y in yaw for s in yaw_need[y]})).items()}
+            table = {  # kernels.stats.yaw_stats (thesis Table 24, ch. 6.2.1)
+                "amplitude": lambda: self.op("Mul", [st["range"], self.const(np.array(0.5), "half")]),
+                "duration": lambda: st["duration"],
+                "left": lambda: st["t_max"],
+                "right": lambda: self.op("Sub", [st["duration"], st["t_max"]]),
+                "left_minus_right": lambda: self.op("Sub", [
+                    self.op("Mul", [st["t_max"], self.const(np.array(2.0), "two")]), st["duration"]]),
+            }
+            for y in yaw:
+                blocks.append((table[y](), [("yaw", y)]))
+        if sign:
+            blocks.append((self.yaw_sign(), [("yaw_sign",)]))
+        for zf, stats in force.items():
+            for st in stats:
+                blocks.append((self.force(st, zf), [("force", st, zf)]))
+        self.index = {key: i for i, key in enumerate(key for _, keys in blocks for key in keys)}
+        self.all = blocks[0][0] if len(blocks) == 1 else self.op("Concat", [t for t, _ in blocks], "all", axis=1)
+
+    def features(self, recipe: list) -> str:
+        """The feature matrix (n, F) of a recipe (columns in recipe order) from the prepared matrix."""
+        cols: list[int] = []
+        for item in recipe:
+            op = item[0]
+            if op == "segments":
+                cols += [self.index[("seg", item[1], int(item[2]), j)] for j in range(4 * int(item[2]))]
+            elif op == "peak":
+                cols.append(self.index[("duration",) if item[2] == "duration" else ("peak", item[1], item[2])])
+            elif op == "force":
+                cols.append(self.index[("force", item[1], float(item[2]))])
+            elif op == "yaw":
+                cols.append(self.index[("yaw", item[1])])
+            else:
+                cols.append(self.index[("yaw_sign",)])
+        if cols == list(range(len(self.index))):
+            return self.all
+        return self.cols(self.all, cols)
 
     def interp(self, q: str, x: str, y: str) -> str:
         """``np.interp`` of each row: queries q (n, k) on the row's grid x (n, m) (increasing) -> (n, k)."""
@@ -202,9 +300,9 @@ class _Builder:
 
     def force(self, stat: str, zero_fraction: float, sample_s: float = 0.05) -> str:
         """One column (n, 1) of kernels.stats.force_stats (thesis Table 29, ch. 6.3.1)."""
-        def build():
+        key = ("forcebase", float(zero_fraction))
+        if key not in self.memo:
             f, tt = self.signal("force"), self.tt()
-            m = self.m
             peak = self.op("ReduceMax", [f], "fpeak", axes=[1], keepdims=1)
             pos = self.op("Greater", [peak, self.const(np.array(0.0), "zero")])
             ref = self.op("Where", [pos, peak, self.const(np.array(1.0), "onef")])
@@ -216,31 +314,39 @@ class _Builder:
             last_zero = self.op("Where", [any_zero, self.op("ArgMax", [zf], "lz", axis=1, keepdims=1,
                                                             select_last_index=1), i_fmin])
             first_zero = self.op("Where", [any_zero, self.op("ArgMax", [zf], "fz", axis=1, keepdims=1), i_fmin])
-            after = self.op("GreaterOrEqual", [self.const(np.arange(m)[None, :], "arange", np.int64), last_zero])
+            after = self.op("GreaterOrEqual", [self.const(np.arange(self.m)[None, :], "arange", np.int64), last_zero])
             masked = self.op("Where", [after, f, self.const(np.array(-np.inf), "ninf")])
             i_peak = self.op("ArgMax", [masked], "ipeak", axis=1, keepdims=1)
-            t_last, t_peak, t_first = self.at(tt, last_zero), self.at(tt, i_peak), self.at(tt, first_zero)
-            q = self.op("Concat", [
-                self.op("Sub", [t_peak, self.const(np.array(4 * sample_s), "s4")]),
-                self.op("Add", [t_peak, self.const(np.array(4 * sample_s), "s4")]),
-                self.op("Add", [t_last, self.const(np.array(2 * sample_s), "s2")]),
-                self.op("Sub", [t_first, self.const(np.array(2 * sample_s), "s2")]),
-            ], "q", axis=1)
-            dur = self.cols(tt, m - 1)
-            q = self.op("Min", [self.op("Max", [q, self.const(np.array(0.0), "zero")]), dur], "qc")  # interp_rows' clip
-            v = self.interp(q, tt, f)
-            out = {
-                "air_time": lambda: self.reduce("ReduceSum", self.op("Mul", [zf, self.gradient(tt)]), keepdims=1),
-                "time_to_peak": lambda: self.op("Sub", [t_peak, t_last], "ttp"),
-                "peak_mean_4": lambda: self.op("Mul", [self.op("Add", [self.cols(v, 0), self.cols(v, 1)]),
-                                                       self.const(np.array(0.5), "half")]),
-                "contact_force_2": lambda: self.cols(v, 2),
-                "takeoff_force": lambda: self.cols(v, 3),
-            }
-            if stat not in out:
-                raise KeyError(stat)
-            return out[stat]()
-        return self.memo_get(("force", stat, float(zero_fraction)), build)
+            self.memo[key] = {"f": f, "tt": tt, "zf": zf, "t_last": self.at(tt, last_zero),
+                              "t_peak": self.at(tt, i_peak), "first_zero": first_zero}
+        c = self.memo[key]
+
+        def values() -> str:  # the force at the four instants of Table 29 #3-4 and ch. 6.3.1
+            def build():
+                tt = c["tt"]
+                q = self.op("Concat", [
+                    self.op("Sub", [c["t_peak"], self.const(np.array(4 * sample_s), "s4")]),
+                    self.op("Add", [c["t_peak"], self.const(np.array(4 * sample_s), "s4")]),
+                    self.op("Add", [c["t_last"], self.const(np.array(2 * sample_s), "s2")]),
+                    self.op("Sub", [self.at(tt, c["first_zero"]), self.const(np.array(2 * sample_s), "s2")]),
+                ], "q", axis=1)
+                dur = self.memo_get("duration", lambda: self.cols(tt, self.m - 1))
+                q = self.op("Min", [self.op("Max", [q, self.const(np.array(0.0), "zero")]), dur], "qc")  # interp_rows
+                return self.interp(q, tt, c["f"])
+            return self.memo_get(key + ("values",), build)
+
+        table = {
+            "air_time": lambda: self.reduce("ReduceSum", self.op("Mul", [c["zf"], self.gradient(c["tt"])]),
+                                            keepdims=1),
+            "time_to_peak": lambda: self.op("Sub", [c["t_peak"], c["t_last"]], "ttp"),
+            "peak_mean_4": lambda: self.op("Mul", [self.op("Add", [self.cols(values(), 0), self.cols(values(), 1)]),
+                                                   self.const(np.array(0.5), "half")]),
+            "contact_force_2": lambda: self.cols(values(), 2),
+            "takeoff_force": lambda: self.cols(values(), 3),
+        }
+        if stat not in table:
+            raise KeyError(stat)
+        return self.memo_get(key + (stat,), table[stat])
 
     def yaw_sign(self) -> str:
         """kernels.stats.positive_net_rotation of the waist yaw rate (n, 1)."""
@@ -251,42 +357,6 @@ class _Builder:
             return self.op("Cast", [self.op("Greater", [total, self.const(np.array(0.0), "zero")])], "yawsign",
                            to=TensorProto.DOUBLE)
         return self.memo_get("yaw_sign", build)
-
-    def yaw(self, stat: str) -> str:
-        """kernels.stats.yaw_stats of the waist yaw rate's peak statistics (n, 1)."""
-        def build():
-            rng, dur, left = (self.peak("waist_yaw", s) for s in ("range", "duration", "t_max"))
-            table = {
-                "amplitude": lambda: self.op("Mul", [rng, self.const(np.array(0.5), "half")]),
-                "duration": lambda: dur,
-                "left": lambda: left,
-                "right": lambda: self.op("Sub", [dur, left]),
-                "left_minus_right": lambda: self.op("Sub", [self.op("Mul", [left, self.const(np.array(2.0), "two")]),
-                                                            dur]),
-            }
-            if stat not in table:
-                raise KeyError(stat)
-            return table[stat]()
-        return self.memo_get(("yaw", stat), build)
-
-    def features(self, recipe: list) -> str:
-        """The feature matrix (n, F) of a recipe, columns in recipe order."""
-        cols = []
-        for item in recipe:
-            op = item[0]
-            if op == "peak":
-                cols.append(self.peak(item[1], item[2]))
-            elif op == "segments":
-                cols.append(self.segments(item[1], int(item[2])))
-            elif op == "force":
-                cols.append(self.force(item[1], float(item[2])))
-            elif op == "yaw_sign":
-                cols.append(self.yaw_sign())
-            elif op == "yaw":
-                cols.append(self.yaw(item[1]))
-            else:
-                raise KeyError(op)
-        return cols[0] if len(cols) == 1 else self.op("Concat", cols, "features", axis=1)
 
     # -- models -------------------------------------------------------------------------------------
     def inline(self, model: onnx.ModelProto, prefix: str, x: str, output: str) -> str:
@@ -331,25 +401,29 @@ def build_step_graph(tasks: dict, onnx_models: dict[str, onnx.ModelProto], featu
     ci = {c: i for i, c in enumerate(features["channels"])}
     b = _Builder(int(features["n_samples"]), ci, features["signals"])
     b.onnx_models = onnx_models
-    outputs: dict[str, str] = {}
-    out_infos = []
+    included: dict[str, dict] = {}
     for task, spec in tasks.items():
         ch = spec.get("chosen") or {}
         entry = spec["methods"].get(ch.get("method"), {}).get(ch.get("unit"))
         if entry is None or not _translatable(entry, onnx_models):
             continue
-        n_nodes, n_inits, memo = len(b.nodes), len(b.inits), dict(b.memo)
-        try:
-            p = _entry_proba(b, entry, list(spec["classes"]), f"{task}_")
-        except KeyError as exc:  # a recipe statistic without a translation: per-model path for this task
+        try:  # a recipe statistic without a translation: the per-model path for this task
+            _Builder(b.m, ci, features["signals"]).prepare([leaf["features"] for leaf in _leaf_models(entry)])
+        except KeyError as exc:
             log.info("step graph: task %s left to the per-model path (%s)", task, exc)
-            del b.nodes[n_nodes:], b.inits[n_inits:]
-            b.memo = memo
             continue
+        included[task] = entry
+    if not included:
+        return None
+    b.prepare([leaf["features"] for e in included.values() for leaf in _leaf_models(e)])
+    outputs: dict[str, str] = {}
+    out_infos = []
+    for task, entry in included.items():
+        classes = list(tasks[task]["classes"])
         name = f"proba_{task}"
-        b.nodes.append(helper.make_node("Identity", [p], [name]))
+        b.nodes.append(helper.make_node("Identity", [_entry_proba(b, entry, classes, f"{task}_")], [name]))
         outputs[task] = name
-        out_infos.append(helper.make_tensor_value_info(name, TensorProto.DOUBLE, [None, len(spec["classes"])]))
+        out_infos.append(helper.make_tensor_value_info(name, TensorProto.DOUBLE, [None, len(classes)]))
     if not outputs:
         return None
     domains = {"": OPSET}
@@ -409,8 +483,8 @@ def features_graph(recipe: list, features: dict) -> onnx.ModelProto:
     """A graph ``W -> features (n, F)`` of one recipe alone (tests pin it to the numpy recipe path)."""
     ci = {c: i for i, c in enumerate(features["channels"])}
     b = _Builder(int(features["n_samples"]), ci, features["signals"])
-    x = b.features(recipe)
-    b.nodes.append(helper.make_node("Identity", [x], ["F"]))
+    b.prepare([recipe])
+    b.nodes.append(helper.make_node("Identity", [b.features(recipe)], ["F"]))
     g = helper.make_graph(b.nodes, "pdrlearn_features",
                           [helper.make_tensor_value_info(INPUT, TensorProto.DOUBLE, [None, len(ci), b.m])],
                           [helper.make_tensor_value_info("F", TensorProto.DOUBLE, [None, None])], initializer=b.inits)
