@@ -9,6 +9,11 @@ import numpy as np
 from pdrlearn.errors import DataError
 
 
+def vec_norm(v: np.ndarray) -> float:
+    """Euclidean norm of a 1-D vector: ``np.linalg.norm(v)`` (the same ``sqrt(v.dot(v))``) without its overhead."""
+    return math.sqrt(float(v.dot(v)))
+
+
 def skew(k: np.ndarray) -> np.ndarray:
     """Cross-product matrix ``[k]x`` (3x3) of a 3-vector."""
     return np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
@@ -22,14 +27,14 @@ def gravity_rotation(g_sensor: np.ndarray) -> np.ndarray:
     sensor's as possible. Raises :class:`DataError` for a zero or non-finite vector.
     """
     g = np.asarray(g_sensor, dtype=np.float64).reshape(3)
-    n = float(np.linalg.norm(g))
+    n = vec_norm(g)
     if not np.isfinite(n) or n < 1e-9:
         raise DataError(f"gravity_rotation: gravity vector {g.tolist()} is zero or not finite; "
                         "estimate it from a standstill period")
     a = g / n
     c = float(a[2])
     v = np.array([a[1], -a[0], 0.0])  # a x z
-    s = float(np.linalg.norm(v))
+    s = vec_norm(v)
     if s < 1e-12:
         return np.eye(3) if c > 0 else np.diag([1.0, -1.0, -1.0])  # 180 deg about x
     kx = skew(v / s)
@@ -39,7 +44,7 @@ def gravity_rotation(g_sensor: np.ndarray) -> np.ndarray:
 def rotvec_to_matrix(w: np.ndarray) -> np.ndarray:
     """Rotation matrices ``(n, 3, 3)`` of rotation vectors ``(n, 3)`` (rad), Rodrigues' formula."""
     w = np.atleast_2d(np.asarray(w, dtype=np.float64))
-    th = np.linalg.norm(w, axis=1)
+    th = np.sqrt(np.add.reduce(w * w, axis=1))  # = np.linalg.norm(w, axis=1), same arithmetic
     small = th < 1e-8
     safe = np.where(small, 1.0, th)
     # sin(th)/th and (1-cos th)/th^2 with their Taylor series near 0
@@ -63,5 +68,5 @@ def matrix_to_rotvec(R: np.ndarray) -> np.ndarray:
         i = int(np.argmax(k))
         k = (R[i] + R[:, i]) / (2.0 * k[i]) if k[i] > 0 else k
         k[i] = math.sqrt(max((R[i, i] + 1.0) / 2.0, 0.0))
-        return th * k / np.linalg.norm(k)
+        return th * k / vec_norm(k)
     return th * v / (2.0 * math.sin(th))

@@ -12,21 +12,21 @@ import functools
 
 import numpy as np
 
-from pdrlearn.kernels.rotation import gravity_rotation, matrix_to_rotvec, rotvec_to_matrix
+from pdrlearn.kernels.rotation import gravity_rotation, matrix_to_rotvec, rotvec_to_matrix, vec_norm
 
 
 def rest_index(acc: np.ndarray, gyr: np.ndarray | None, lo: int, hi: int, *,
-               acc_norm: np.ndarray | None = None) -> int:
+               acc_norm: np.ndarray | None = None, acc_median: float | None = None) -> int:
     """Index in ``[lo, hi)`` where the unit moves least.
 
     Motion score = gyroscope norm (rad/s) when a gyroscope exists, plus the deviation of the
     specific-force norm from its window median scaled to rad/s-like magnitude (1 m/s^2 ~ 0.1 rad/s).
-    ``acc_norm`` : |acc| (n,) when the caller has it already (saves its computation).
+    ``acc_norm`` : |acc| (n,), ``acc_median`` : its median, when the caller has them already.
     """
     lo = max(0, lo)
     hi = max(lo + 1, min(hi, acc.shape[0]))
     an = row_norm(acc) if acc_norm is None else acc_norm
-    score = 0.1 * np.abs(an[lo:hi] - np.median(an))
+    score = 0.1 * np.abs(an[lo:hi] - (np.median(an) if acc_median is None else acc_median))
     if gyr is not None:
         score = score + row_norm(gyr[lo:hi])
     return lo + int(np.argmin(score))
@@ -105,7 +105,7 @@ def principal_horizontal_axis(acc_lev: np.ndarray, reference_xy: np.ndarray) -> 
     e = vecs[:, int(np.argmax(vals))]
     if float(e @ reference_xy) < 0:
         e = -e
-    return e / np.linalg.norm(e)
+    return e / vec_norm(e)
 
 
 # -- per-signal statistics on (n_steps, n_samples) arrays ------------------------------------------

@@ -12,7 +12,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from pdrlearn.errors import DataError
-from pdrlearn.kernels.rotation import gravity_rotation
+from pdrlearn.kernels.rotation import gravity_rotation, vec_norm
 from pdrlearn.kernels.stats import (
     correct_tilt_drift,
     heading_rotation,
@@ -92,8 +92,9 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
     m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
     an = row_norm(acc)
-    k0 = rest_index(acc, gyr, 0, m, acc_norm=an)
-    k1 = rest_index(acc, gyr, n - m, n, acc_norm=an)
+    med = np.median(an)
+    k0 = rest_index(acc, gyr, 0, m, acc_norm=an, acc_median=med)
+    k1 = rest_index(acc, gyr, n - m, n, acc_norm=an, acc_median=med)
     h = max(0, int(round(0.02 * fs)))
     g0 = acc[max(k0 - h, 0): k0 + h + 1].mean(axis=0)
     g1 = acc[max(k1 - h, 0): k1 + h + 1].mean(axis=0)
@@ -103,12 +104,12 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     else:
         rot = np.broadcast_to(r0, (n, 3, 3))
     a_lev = np.einsum("kij,kj->ki", rot, acc)
-    a_lev[:, 2] -= float(np.linalg.norm(g0))
+    a_lev[:, 2] -= vec_norm(g0)
     ref = (rot[k0] @ forward_s)[:2]
-    if np.linalg.norm(ref) < 0.1:
+    if vec_norm(ref) < 0.1:
         raise DataError("foot unit: the declared forward axis points (nearly) vertically at rest; "
                         "check the declared foot frame (meta.json or the bundle's frames)")
-    ref = ref / np.linalg.norm(ref)
+    ref = ref / vec_norm(ref)
     yaw = heading_rotation(principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
     g_out = None if gyr is None else np.einsum("kij,kj->ki", rot, gyr) @ yaw.T
     f0, f1 = ref, (rot[-1] @ forward_s)[:2]  # forward axis at the start rest and at the window's end
@@ -123,12 +124,12 @@ def waist_levelled(acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarra
     g = acc.mean(axis=0)
     r = gravity_rotation(g)
     ref = (r @ forward_s)[:2]
-    if np.linalg.norm(ref) < 0.1:
+    if vec_norm(ref) < 0.1:
         raise DataError("waist unit: the declared forward axis points (nearly) vertically; "
                         "check the declared waist frame (meta.json or the bundle's frames)")
-    rr = heading_rotation(ref / np.linalg.norm(ref)) @ r
+    rr = heading_rotation(ref / vec_norm(ref)) @ r
     a = acc @ rr.T
-    a[:, 2] -= float(np.linalg.norm(g))
+    a[:, 2] -= vec_norm(g)
     return a, (None if gyr is None else gyr @ rr.T)
 
 
