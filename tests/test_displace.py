@@ -15,7 +15,10 @@ from pdrlearn.displace import (
     clamp_length,
     double_integrate,
     error_clock,
+    heel_rocker_samples,
+    move_reference,
     parse_bounds,
+    rotation_pivot,
     strapdown,
     stride_index,
     terrain_distance,
@@ -108,6 +111,74 @@ def test_error_clock_puts_the_zupt_correction_at_a_clipped_impact():
         assert abs(kf - true) < abs(kf_plain - true) / gain
     # no acceleration-proportional error: the clock is time (the classical correction)
     assert np.allclose(error_clock(meas, mask, r=0.01, scale_error=0.0)[0], np.arange(L))
+
+
+def _quat(rot: Rotation) -> np.ndarray:
+    xyzw = rot.as_quat().reshape(-1, 4)
+    return np.column_stack([xyzw[:, 3], xyzw[:, :3]])
+
+
+def test_rotation_pivot_and_reference_move_of_a_foot_turning_on_its_heel():
+    """Decision L22: a foot rolling about its heel (fixed pivot) moves its sensor by w x rho; the pivot
+    is recovered from body-frame velocities and rates, and a stride that only turns the foot 90 deg
+    about the heel moves the heel by 0 while the lateral sensor moves ~0.1 m."""
+    rng = np.random.default_rng(1)
+    rho = np.array([0.05, 0.02, 0.06])  # sensor relative to the heel contact, body frame (m)
+    w = rng.normal(size=(200, 3)) * np.array([0.5, 4.0, 0.5])  # mostly pitch, some roll and yaw
+    v = np.cross(w, rho) + rng.normal(scale=0.005, size=(200, 3))
+    est, fit = rotation_pivot(v, w)
+    assert np.allclose(est, rho, atol=0.005) and fit > 0.95
+    q0 = _quat(Rotation.identity())
+    q1 = _quat(Rotation.from_euler("z", np.pi / 2))
+    r = -rho  # heel contact - sensor
+    sensor = Rotation.from_euler("z", np.pi / 2).apply(-r) - (-r)  # the sensor circles the heel
+    assert np.hypot(*sensor[:2]) > 0.05
+    heel = move_reference(sensor[None], q0, q1, r)
+    assert np.allclose(heel, 0.0, atol=1e-12)
+    # no rotation between the rests: every point of the foot moves alike
+    d = np.array([[1.3, 0.1, 0.0]])
+    assert np.allclose(move_reference(d, q0, q0, r), d)
+
+
+def test_heel_rocker_samples_lie_between_the_impact_and_the_stance():
+    dt = 0.01
+    L = 100
+    a = np.zeros((1, L, 3))
+    a[0, 70, 2] = 80.0  # heel-strike impact
+    gyr = np.zeros((1, L, 3))
+    gyr[0, 40:85, 1] = 3.0  # the foot still turns after the impact until foot flat at 85
+    stance = np.zeros((1, L), bool)
+    stance[0, :10] = True
+    stance[0, 85:] = True
+    sel = heel_rocker_samples(a, gyr, stance, np.ones((1, L), bool), dt)
+    assert np.flatnonzero(sel[0]).tolist() == list(range(71, 85))
+
+
+def test_heel_reference_on_a_foot_recording():
+    """The heel lever arm estimated from a real foot walk (gaitmap, lateral shoe mount) points back from
+    the sensor, and the heel reference moves a turning stride by > 5 cm, straight ones by < 1 cm."""
+    from pathlib import Path
+
+    from pdrlearn.displace import FootDisplacement
+    from pdrlearn.io import read_session
+    from pdrlearn.orient import unit_data
+
+    d = Path(__file__).resolve().parents[1] / "datasets" / "real" / "gaitmap_level_right"
+    if not d.exists():
+        pytest.skip("real gaitmap recording not available")
+    s = read_session(d)
+    unit = unit_data(s, "foot")
+    steps = s.steps[["start_s", "end_s"]]
+    sensor = FootDisplacement().estimate(unit, steps)
+    heel = FootDisplacement(reference_point="heel").estimate(unit, steps)
+    assert sensor.lever_arm_ is None
+    r = heel.lever_arm_
+    assert -0.15 < r[0] < 0.0 and np.linalg.norm(r) < 0.2 and heel.lever_fit_ > 0.5
+    change = np.linalg.norm(heel.disp_[:, :2] - sensor.disp_[:, :2], axis=1)  # (R_end - R_start) r
+    turn = np.abs(np.degrees(heel.yaw_change_)) > 60
+    assert turn.any() and change[turn].min() > 0.05 and np.median(change[~turn]) < 0.01
+    with pytest.raises(DataError):
+        FootDisplacement(reference_point="toe")
 
 
 def test_batch_of_strides_equals_single_strides():

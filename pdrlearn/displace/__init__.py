@@ -8,6 +8,9 @@ from pdrlearn.displace._kernels import (
     clamp_length,
     double_integrate,
     error_clock,
+    heel_rocker_samples,
+    move_reference,
+    rotation_pivot,
     strapdown,
     stride_attitude,
     stride_index,
@@ -22,7 +25,8 @@ from pdrlearn.displace.rules import THESIS_STEP_BOUNDS, StepRules, parse_bounds
 __all__ = [
     "FootDisplacement", "StepRules", "THESIS_STEP_BOUNDS", "altitude_change", "apply_direction", "bayes_length",
     "clamp_length",
-    "double_integrate", "error_clock", "force_stance", "inertial_stance", "parse_bounds", "rest_to_rest", "stance_runs",
+    "double_integrate", "error_clock", "force_stance", "heel_rocker_samples", "move_reference",
+    "rotation_pivot", "inertial_stance", "parse_bounds", "rest_to_rest", "stance_runs",
     "strapdown", "stride_attitude",
     "stride_index", "terrain_distance", "wnj_displacement", "wnj_kalman", "wnj_matrices",
 ]

@@ -181,9 +181,19 @@ def double_integrate(a_nav: np.ndarray, mask: np.ndarray, dt: float, *, zupt_end
     along each stride, is the variable the interpolation is linear in (default: time; decision L21 uses
     :func:`error_clock`, the accumulated variance of the velocity error).
     """
-    B, L, _ = a_nav.shape
+    B = a_nav.shape[0]
     if B == 0:
         return np.zeros((0, 3))
+    v = zupt_velocity(a_nav, mask, dt, zupt_end=zupt_end, zupt=zupt, clock=clock)
+    p = _cumtrapz(v, dt)
+    return p[np.arange(B), mask.sum(axis=1) - 1]
+
+
+def zupt_velocity(a_nav: np.ndarray, mask: np.ndarray, dt: float, *, zupt_end: bool = True,
+                  zupt: np.ndarray | None = None, clock: np.ndarray | None = None) -> np.ndarray:
+    """Velocity (B, L, 3) m/s of each stride sample with the ZUPT drift correction of
+    :func:`double_integrate` (same arguments); zero on padded samples."""
+    B, L, _ = a_nav.shape
     n = mask.sum(axis=1)
     v = _cumtrapz(a_nav, dt)
     if zupt_end:
@@ -194,8 +204,54 @@ def double_integrate(a_nav: np.ndarray, mask: np.ndarray, dt: float, *, zupt_end
         else:
             v = v - _interp_between(v, zupt & mask, clock)
     v[~mask] = 0.0
-    p = _cumtrapz(v, dt)
-    return p[np.arange(B), n - 1]
+    return v
+
+
+def heel_rocker_samples(a_nav: np.ndarray, gyr_b: np.ndarray, stance: np.ndarray, mask: np.ndarray,
+                        dt: float, *, window_s: float = 0.25, min_rate: float = 0.5) -> np.ndarray:
+    """(B, L) samples of the heel rocker of each stride: after the heel-strike impact (the largest
+    |acceleration| within ``window_s`` s before the stance that ends the stride) and before that stance,
+    while the foot turns faster than ``min_rate`` rad/s (it rolls over the heel, decision L22)."""
+    B, L = mask.shape
+    out = np.zeros((B, L), dtype=bool)
+    st = np.asarray(stance, dtype=bool) & mask
+    n = mask.sum(axis=1)
+    w = max(1, int(round(window_s / dt)))
+    anorm = np.linalg.norm(a_nav, axis=2)
+    rate = np.linalg.norm(gyr_b, axis=2)
+    for b in range(B):
+        j = int(n[b]) - 1
+        while j > 0 and st[b, j - 1]:
+            j -= 1  # first sample of the final stance run
+        j0 = max(j - w, 1)
+        if j - j0 < 3:
+            continue
+        imp = j0 + int(np.argmax(anorm[b, j0:j]))
+        out[b, imp + 1:j] = rate[b, imp + 1:j] > min_rate
+    return out
+
+
+def move_reference(disp: np.ndarray, q_start: np.ndarray, q_end: np.ndarray, r_body: np.ndarray) -> np.ndarray:
+    """Displacement (B, 3) of the point at ``r_body`` (3,) m from the sensor (body frame) given the
+    sensor's displacement ``disp`` (B, 3) and the attitudes (B, 4) [w, x, y, z] at the stride start and
+    end: p + R r moves by disp + (R_end - R_start) r."""
+    rb = np.tile(np.asarray(r_body, dtype=float), (len(disp), 1))
+    return disp + _qrotate(q_end, rb) - _qrotate(q_start, rb)
+
+
+def rotation_pivot(v_b: np.ndarray, w_b: np.ndarray) -> tuple[np.ndarray, float]:
+    """Least-squares position (3,) m of the sensor relative to a fixed pivot from body-frame velocities
+    ``v_b`` (k, 3) m/s and rates ``w_b`` (k, 3) rad/s of a rigid rotation about it: v = w x rho.
+    Returns (rho, explained fraction of the velocity variance)."""
+    wx = np.zeros((len(w_b), 3, 3))
+    wx[:, 0, 1], wx[:, 0, 2] = -w_b[:, 2], w_b[:, 1]
+    wx[:, 1, 0], wx[:, 1, 2] = w_b[:, 2], -w_b[:, 0]
+    wx[:, 2, 0], wx[:, 2, 1] = -w_b[:, 1], w_b[:, 0]
+    A = wx.reshape(-1, 3)
+    y = np.asarray(v_b, dtype=float).reshape(-1)
+    rho = np.linalg.lstsq(A, y, rcond=None)[0]
+    ss = float(np.sum(y ** 2))
+    return rho, (1.0 - float(np.sum((A @ rho - y) ** 2)) / ss) if ss > 0 else 0.0
 
 
 def error_clock(a_nav: np.ndarray, mask: np.ndarray, *, r: float, scale_error: float) -> np.ndarray:

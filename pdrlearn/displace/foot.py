@@ -127,6 +127,10 @@ class FootDisplacement:
         non-linearity, bandwidth, clipped impacts; default 1 %): the ZUPT drift correction attributes the
         velocity error found at a stance to the samples in proportion to ``r + (accel_scale_error |a|)^2``
         instead of evenly in time (decision L21); 0 = evenly in time
+    reference_point : ``"sensor"`` (the unit's own displacement) or ``"heel"``: the displacement of the heel
+        contact point, with the sensor-to-heel lever arm estimated from the heel rocker of all strides
+        (decision L22; matters in turns, where the foot rotates between the two rests)
+    min_rocker_samples : fewest heel-rocker samples for the lever-arm estimate (else it stays at the sensor)
     upsample : strapdown on a ``k`` times finer grid (block-mean preserving spline); default 5 below
         50 Hz (20 Hz firmware means), else 1
 
@@ -135,6 +139,8 @@ class FootDisplacement:
     disp_ : (B, 3) displacement (m) in each stride's level frame (x = foot forward at the start, z up)
     yaw_change_ : (B,) foot heading change over each stride (rad, CCW)
     start_idx_, end_idx_ : (B,) sample indices of the stride boundaries used; start_s_, end_s_ their times
+    lever_arm_ : (3,) heel contact - sensor in the body frame (m) with ``reference_point="heel"``, else None;
+        lever_fit_ : fraction of the heel-rocker velocity variance the rotation about it explains
     rows_ : (B,) rows of the input steps table the strides come from (dropped rows: no swing between)
     stance_ : (n,) bool stance mask;  stance_source_ : "force" or "inertial"
     """
@@ -142,7 +148,12 @@ class FootDisplacement:
     def __init__(self, *, integrator: str = "kalman", zupt_end: bool = True, gyro_bias: str = "standstill",
                  attitude: str = "kalman", sw: float = 1.8, r: float = 0.01, max_rest_s: float = 0.3,
                  rest_s: float = 0.05, zupt_erode: float = 0.25, upsample: int | None = None,
-                 max_stride_s: float = 3.0, accel_scale_error: float = 0.01):
+                 max_stride_s: float = 3.0, accel_scale_error: float = 0.01,
+                 reference_point: str = "sensor", min_rocker_samples: int = 20):
+        if reference_point not in ("sensor", "heel"):
+            raise DataError(f"FootDisplacement: reference_point '{reference_point}' is not 'sensor' or 'heel'")
+        self.reference_point = reference_point
+        self.min_rocker_samples = int(min_rocker_samples)
         if integrator not in ("kalman", "integration"):
             raise DataError(f"FootDisplacement: integrator '{integrator}' is not 'kalman' or 'integration'")
         if attitude not in ("kalman", "accel"):
@@ -237,7 +248,29 @@ class FootDisplacement:
         else:
             clock = K.error_clock(a_nav, mask, r=self.r, scale_error=self.accel_scale_error) if s2 > 0 else None
             self.disp_ = K.double_integrate(a_nav, mask, dt, zupt_end=self.zupt_end, zupt=zm, clock=clock)
+        self.lever_arm_ = None
+        if self.reference_point == "heel" and B:
+            self._to_heel(a_nav, mask, dt, zm, q, gyr[idx], self.stance_[idx])
         return self
+
+    def _to_heel(self, a_nav, mask, dt, zm, q, gyr_b, stance_b) -> None:
+        """Decision L22: move the displacement from the sensor to the heel, the point strides are measured
+        at in gait analysis: heel = sensor + R(t) r, r = heel contact - sensor (body frame), estimated from
+        the heel rocker (the foot rolls about the heel contact between heel strike and foot flat)."""
+        clock = K.error_clock(a_nav, mask, r=self.r, scale_error=self.accel_scale_error)
+        v = K.zupt_velocity(a_nav, mask, dt, zupt_end=True, zupt=zm, clock=clock)
+        sel = K.heel_rocker_samples(a_nav, gyr_b, stance_b, mask, dt)
+        n_sel = int(sel.sum())
+        if n_sel < self.min_rocker_samples:
+            self.warnings_.append(f"heel reference: only {n_sel} heel-rocker samples (< "
+                                  f"{self.min_rocker_samples}); displacement left at the sensor")
+            return
+        qs = q[sel]
+        v_b = K._qrotate(qs * np.array([1.0, -1.0, -1.0, -1.0]), v[sel])
+        rho, fit = K.rotation_pivot(v_b, gyr_b[sel])
+        r = -rho
+        self.lever_arm_, self.lever_fit_ = r, fit
+        self.disp_ = K.move_reference(self.disp_, q[:, 0], q[np.arange(len(q)), mask.sum(axis=1) - 1], r)
 
     def _standstill_bias(self, acc: np.ndarray, gyr: np.ndarray, fs: float,
                          min_s: float = 1.0) -> np.ndarray:
