@@ -245,7 +245,8 @@ class PelvicGyroStepDetector(StepDetector):
     (every step, both feet; positive lobes = left steps). Decision: a causal 2nd-order high-pass at
     ``turn_cutoff_hz`` (the filtered signal minus its low-pass) removes the slow turning rate, which
     otherwise merges the lobes of a curve (the thesis' main error source in scenario B); pelvic rotation
-    is at the stride frequency (>= 0.7 Hz), turns below ~0.3 Hz. ``turn_cutoff_hz=0`` disables it.
+    is at the stride frequency (>= 0.7 Hz), turns mostly below; 0.6 Hz, just under the slowest walking
+    stride, removes more of a sharp turn (decision 12). ``turn_cutoff_hz=0`` disables it.
 
     Time settings: the thesis gives 50 / 90 / 15 / 25 *samples*. At its 20 Hz they would be 2.5 / 4.5 /
     0.75 / 1.25 s, longer than a step, which makes eq. 27 accept every lobe; decision
@@ -266,7 +267,8 @@ class PelvicGyroStepDetector(StepDetector):
                  d2_s: float = 0.25, d2_ref: float = 0.10,  # thesis: 25 samples, 0.10 rad/s
                  weights: tuple[float, float, float, float] = (0.25, 0.10, 0.40, 0.25),  # thesis eq. 27
                  p_min: float = 0.75,  # thesis ch.5.3: 75 %
-                 max_lobe_s: float = 1.0, gravity_cutoff_hz: float = 0.3, turn_cutoff_hz: float = 0.5,
+                 max_lobe_s: float = 1.0, gravity_cutoff_hz: float = 0.3,
+                 turn_cutoff_hz: float = 0.6,  # decision 12 (docs/decisions/steps.md): was 0.5
                  calibrate: bool = True):
         self._store(locals())
 
