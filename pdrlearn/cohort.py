@@ -5,21 +5,45 @@ A cohort folder holds one subfolder per user; a user folder holds session folder
 a ``distributed.LocalCluster`` (default: one single-threaded worker process per core) or on any
 scheduler address, or serially; results are identical either way because every job is deterministic
 and independent.
+
+Throughput (docs/cohort.md): every job runs single-threaded — one BLAS/OpenMP thread and one torch
+intra-op thread (:func:`single_threaded`), serially as on the cluster — so two worker processes on two
+cores do not oversubscribe them with library thread pools, and the numerics do not depend on where a job
+ran. Jobs carry only paths (each user reads its own data in the worker) and are submitted biggest first
+(``cost``) so that no long job starts last.
 """
 
 from __future__ import annotations
 
+import importlib
 import logging
 import os
+import sys
 import time
 import traceback
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from pdrlearn.errors import DataError, PdrlearnError
 
 log = logging.getLogger(__name__)
+
+#: Environment of LocalCluster worker processes: libraries read these when they load, so BLAS (OpenBLAS,
+#: MKL), OpenMP (scikit-learn, torch) and torch's intra-op pool start with one thread in each single-threaded
+#: worker process. ``None`` removes a variable from Dask's ``distributed.nanny.pre-spawn-environ`` default:
+#: Dask sets ``MALLOC_TRIM_THRESHOLD_=65536`` to hand freed memory back to the OS, which also freezes glibc's
+#: mmap threshold at 128 KiB, so every numpy temporary above it (a 300 x 300 float64 product is 720 KiB) is
+#: a fresh mmap + page faults + munmap; measured 2-3x slower numpy in the workers than in the parent process
+#: (docs/decisions/cohort.md). Per-user jobs are short and the cluster lives for one run: glibc's default
+#: (adaptive threshold) is the better trade.
+WORKER_ENV: dict[str, str | None] = {
+    "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "MALLOC_TRIM_THRESHOLD_": None,
+}
+#: Dask worker settings for CPU-bound jobs: no statistical profiler (it samples the running task's stack
+#: every 10 ms, taking the GIL from it; the profile is only shown on a dashboard, which is off).
+WORKER_CONFIG = {"distributed.worker.profile.enabled": False}
 
 
 @dataclass
@@ -31,6 +55,8 @@ class JobResult:
     value: object = None
     error: str = ""
     seconds: float = 0.0
+    #: CPU time of the process running the job while it ran (all its threads), s.
+    cpu_seconds: float = 0.0
     extra: dict = field(default_factory=dict)
 
 
@@ -62,17 +88,78 @@ def cohort_users(cohort_dir: str | os.PathLike) -> list[Path]:
     return users
 
 
-def _guarded(fn: Callable, name: str, arg) -> JobResult:
-    t0 = time.perf_counter()
+@contextmanager
+def single_threaded(preload: Sequence[str] = ()) -> Iterator[None]:
+    """Run the body with one BLAS/OpenMP thread and one torch intra-op thread; restore the counts after.
+
+    Parameters
+    ----------
+    preload : modules imported first, so that the thread pools of the libraries they load (OpenBLAS of
+        numpy/scipy, OpenMP of scikit-learn/torch) exist and are limited too; a pool first loaded inside
+        the body keeps its own default (on LocalCluster workers :data:`WORKER_ENV` makes that one thread).
+    """
+    from threadpoolctl import threadpool_limits
+
+    for name in preload:
+        importlib.import_module(name)
+    torch = sys.modules.get("torch")
+    torch_threads = torch.get_num_threads() if torch is not None else None
+    if torch is not None:
+        torch.set_num_threads(1)
     try:
-        value = fn(arg)
-        return JobResult(name, True, value, seconds=time.perf_counter() - t0)
+        with threadpool_limits(limits=1):
+            yield
+    finally:
+        if torch is not None:
+            torch.set_num_threads(torch_threads)
+
+
+def _guarded(fn: Callable, name: str, arg, threads: int | None = 1,
+             preload: Sequence[str] = ()) -> JobResult:
+    t0, c0 = time.perf_counter(), time.process_time()
+
+    def done(**kw) -> JobResult:
+        return JobResult(name, seconds=time.perf_counter() - t0, cpu_seconds=time.process_time() - c0, **kw)
+
+    try:
+        if threads == 1:
+            with single_threaded(preload):
+                value = fn(arg)
+        else:
+            value = fn(arg)
+        return done(ok=True, value=value)
     except PdrlearnError as exc:
-        return JobResult(name, False, error=str(exc), seconds=time.perf_counter() - t0)
+        return done(ok=False, error=str(exc))
     except Exception as exc:  # a bug in one user's job must not stop the cohort; keep the cause
         last = traceback.extract_tb(exc.__traceback__)[-1]
         msg = f"{type(exc).__name__}: {exc} (at {Path(last.filename).name}:{last.lineno})"
-        return JobResult(name, False, error=" ".join(msg.split()), seconds=time.perf_counter() - t0)
+        return done(ok=False, error=" ".join(msg.split()))
+
+
+def biggest_first(costs: Sequence[float]) -> list[int]:
+    """Submission order: indices by decreasing cost, ties in input order (longest-processing-time first)."""
+    return sorted(range(len(costs)), key=lambda i: (-costs[i], i))
+
+
+def folder_bytes(path: str | os.PathLike) -> int:
+    """Total size of the files under ``path`` (bytes) — a job-cost estimate for :func:`biggest_first`."""
+    return sum(f.stat().st_size for f in Path(path).rglob("*") if f.is_file())
+
+
+def _local_cluster(n_workers: int):
+    """A LocalCluster of ``n_workers`` single-threaded worker processes set up for CPU-bound jobs."""
+    import dask
+    from distributed import LocalCluster
+
+    saved = dict(os.environ)  # the nannies export their pre-spawn variables into this process; undo that
+    try:
+        # the nannies read both settings when created and hand them to their worker processes
+        with dask.config.set({"distributed.nanny.pre-spawn-environ": WORKER_ENV, **WORKER_CONFIG}):
+            return LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
+                                dashboard_address=None, silence_logs=logging.ERROR)
+    finally:
+        os.environ.clear()
+        os.environ.update(saved)
 
 
 def run_cohort(
@@ -82,28 +169,39 @@ def run_cohort(
     scheduler: str | None = None,
     serial: bool = False,
     n_workers: int | None = None,
+    costs: Sequence[float] | None = None,
+    threads: int | None = 1,
+    preload: Sequence[str] = (),
     on_done: Callable[[JobResult], None] | None = None,
 ) -> list[JobResult]:
     """Apply ``fn(arg)`` to every ``(name, arg)``; return results in input order.
 
     Parameters
     ----------
-    fn : picklable function (module level) run once per item.
+    fn : picklable function (module level) run once per item; ``arg`` should be small (paths, settings):
+        it travels through the scheduler, so each job reads its own data where it runs.
     scheduler : address of a running Dask scheduler (``tcp://host:8786``); default: a fresh
         ``LocalCluster`` with ``n_workers`` single-threaded worker processes (default: CPU count).
     serial : run in this process (no Dask) — the reference for equality tests.
+    costs : estimated relative cost per item (e.g. :func:`folder_bytes`); on Dask the costliest jobs
+        start first, so the run does not end with one long job on one worker while the others idle.
+    threads : ``1`` (default) runs each job inside :func:`single_threaded`, serially and on workers;
+        ``None`` leaves the libraries' thread pools as they are.
+    preload : modules to import before the thread limit is applied (see :func:`single_threaded`).
     on_done : called with each :class:`JobResult` as it completes (progress bars).
     """
     items = list(items)
+    if costs is not None and len(costs) != len(items):
+        raise ValueError(f"costs: {len(costs)} values for {len(items)} items")
     if serial or not items:
         out = []
         for name, arg in items:
-            r = _guarded(fn, name, arg)
+            r = _guarded(fn, name, arg, threads, preload)
             if on_done:
                 on_done(r)
             out.append(r)
         return out
-    from distributed import Client, LocalCluster, as_completed
+    from distributed import Client, as_completed
 
     if not log.isEnabledFor(logging.INFO):  # keep Dask's start/stop chatter out of the user's terminal
         logging.getLogger("distributed").setLevel(logging.ERROR)
@@ -112,17 +210,20 @@ def run_cohort(
         if scheduler:
             client = Client(scheduler, timeout="10s")
         else:
-            n = n_workers or os.cpu_count() or 1
-            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                   dashboard_address=None, silence_logs=logging.ERROR)
+            cluster = _local_cluster(n_workers or os.cpu_count() or 1)
             client = Client(cluster)
     except OSError as exc:
         raise DataError(
             f"cannot reach Dask scheduler {scheduler!r}: {exc}; check the address or omit --scheduler"
         ) from None
     try:
-        futures = {client.submit(_guarded, fn, name, arg, key=f"user-{i}-{name}", pure=False): i
-                   for i, (name, arg) in enumerate(items)}
+        order = biggest_first(costs) if costs is not None else list(range(len(items)))
+        futures = {}
+        for rank, i in enumerate(order):  # higher Dask priority runs first
+            name, arg = items[i]
+            fut = client.submit(_guarded, fn, name, arg, threads, preload, key=f"user-{i}-{name}",
+                                pure=False, priority=len(order) - rank)
+            futures[fut] = i
         out: list[JobResult | None] = [None] * len(items)
         for fut in as_completed(futures):
             r = fut.result()

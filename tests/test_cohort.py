@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import json
+import os
+import time
 
 import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
-from pdrlearn.cohort import run_cohort
+from pdrlearn.cohort import biggest_first, run_cohort, single_threaded
 from pdrlearn.errors import DataError
 from pdrlearn.io import write_session
 from pdrlearn.sim import simulate
@@ -41,6 +43,42 @@ def test_run_cohort_isolates_failures_serial_and_dask():
     assert "ValueError: three is not allowed" in serial[3].error
 
 
+def _threads_seen(_):
+    """What a job sees: the BLAS/OpenMP pool sizes, the worker's environment, and its start time."""
+    import scipy.linalg  # noqa: F401  (loads scipy's own OpenBLAS)
+    from threadpoolctl import threadpool_info
+
+    time.sleep(0.05)
+    return ({i["num_threads"] for i in threadpool_info()}, os.environ.get("MALLOC_TRIM_THRESHOLD_"),
+            time.perf_counter())
+
+
+def test_single_threaded_limits_and_restores():
+    import scipy.linalg  # noqa: F401
+    from threadpoolctl import threadpool_info
+
+    before = [i["num_threads"] for i in threadpool_info()]
+    with single_threaded():
+        assert {i["num_threads"] for i in threadpool_info()} == {1}
+    assert [i["num_threads"] for i in threadpool_info()] == before
+
+
+def test_workers_single_threaded_biggest_first_and_env_restored():
+    env_before = dict(os.environ)
+    items = [(f"u{i}", i) for i in range(5)]
+    costs = [1.0, 5.0, 3.0, 5.0, 2.0]
+    res = run_cohort(_threads_seen, items, n_workers=1, costs=costs)
+    assert dict(os.environ) == env_before  # Dask's pre-spawn variables do not leak into this process
+    assert [r.name for r in res] == [n for n, _ in items]  # input order kept
+    assert all(r.value[0] == {1} for r in res)  # one BLAS/OpenMP thread per pool in the worker
+    assert all(r.value[1] is None for r in res)  # glibc's adaptive mmap threshold kept (decision C2)
+    started = sorted(range(5), key=lambda i: res[i].value[2])
+    assert started == biggest_first(costs) == [1, 3, 2, 4, 0]
+    assert all(r.cpu_seconds > 0 for r in res)
+    with pytest.raises(ValueError, match="costs"):
+        run_cohort(_threads_seen, items, serial=True, costs=[1.0])
+
+
 def test_bad_scheduler_address():
     with pytest.raises(DataError, match="cannot reach Dask scheduler"):
         run_cohort(_square, [("a", 1)], scheduler="tcp://127.0.0.1:1")
@@ -64,7 +102,7 @@ def test_train_all_dask_equals_serial(cohort, scheduler, tmp_path, capsys):
     assert serial["n_users"] == 4 and serial["n_failed"] == 1
 
     def strip(d):
-        rows = [{k: v for k, v in u.items() if k != "seconds"} for u in d["users"]]
+        rows = [{k: v for k, v in u.items() if k not in ("seconds", "cpu_seconds")} for u in d["users"]]
         for r in rows:
             if r.get("error"):
                 r["error"] = r["error"].replace(str(tmp_path / "serial"), "M").replace(str(tmp_path / "dask"), "M")

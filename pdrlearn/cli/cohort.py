@@ -9,8 +9,12 @@ import pandas as pd
 import typer
 
 from pdrlearn.cli.common import json_safe, out_folder, print_json, progress, split_choices
-from pdrlearn.cohort import JobResult, cohort_users, run_cohort, user_sessions
+from pdrlearn.cohort import JobResult, cohort_users, folder_bytes, run_cohort, user_sessions
 from pdrlearn.errors import DataError
+
+#: Numeric libraries of the train/evaluate jobs, loaded before each job's one-thread limit is applied so
+#: that their BLAS/OpenMP pools are limited in a serial run too (pdrlearn.cohort.single_threaded).
+JOB_LIBRARIES = ("scipy.linalg", "scipy.signal", "sklearn.svm")
 
 
 def _train_job(args: dict) -> dict:
@@ -51,7 +55,8 @@ def _evaluate_job(args: dict) -> dict:
 def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
     rows = []
     for r in results:
-        row = {"user": r.name, "status": "ok" if r.ok else "failed", "seconds": round(r.seconds, 2)}
+        row = {"user": r.name, "status": "ok" if r.ok else "failed", "seconds": round(r.seconds, 2),
+               "cpu_seconds": round(r.cpu_seconds, 2)}
         if r.ok:
             row.update(r.value)
         else:
@@ -99,10 +104,17 @@ def _check_workers(workers: int | None) -> None:
         raise DataError(f"--workers {workers}: give at least 1 worker process (or leave it out for one per core)")
 
 
-def _run(fn, items, scheduler, serial, workers, as_json):
+def _cost(user_dir: Path, part: str) -> int:
+    """Bytes of recordings a user's job reads (its ``part/`` folder when present): the job-size estimate."""
+    base = user_dir / part if (user_dir / part).is_dir() else user_dir
+    return folder_bytes(base)
+
+
+def _run(fn, items, scheduler, serial, workers, as_json, part):
+    costs = [_cost(Path(arg["user_dir"]), part) for _, arg in items]
     with progress("users", len(items), enabled=not as_json) as advance:
-        return run_cohort(fn, items, scheduler=scheduler, serial=serial, n_workers=workers,
-                          on_done=lambda r: advance(1))
+        return run_cohort(fn, items, scheduler=scheduler, serial=serial, n_workers=workers, costs=costs,
+                          preload=JOB_LIBRARIES, on_done=lambda r: advance(1))
 
 
 def train_all(
@@ -140,7 +152,7 @@ def train_all(
     items = [(u.name, {"user_dir": str(u), "out": str(out / u.name), "tasks": t_list,
                        "methods": m_list, "units": u_list, "cv": cv, "seed": seed})
              for u in users]
-    results = _run(_train_job, items, scheduler, serial, workers, as_json)
+    results = _run(_train_job, items, scheduler, serial, workers, as_json, "train")
     _check_any_ok(results)
     df = _summarise(results, out)
     _print(df, results, f"train-all: {sum(r.ok for r in results)}/{len(results)} users trained", as_json)
@@ -167,7 +179,7 @@ def evaluate_all(
     out = out_folder(out or models_dir / "eval", ("cohort_summary.csv",), "a cohort summary")
     users = cohort_users(cohort_dir)
     items = [(u.name, {"user_dir": str(u), "model_dir": str(models_dir / u.name)}) for u in users]
-    results = _run(_evaluate_job, items, scheduler, serial, workers, as_json)
+    results = _run(_evaluate_job, items, scheduler, serial, workers, as_json, "test")
     _check_any_ok(results)
     df = _summarise(results, out)
     _print(df, results, f"evaluate-all: {sum(r.ok for r in results)}/{len(results)} users", as_json)
