@@ -18,8 +18,9 @@ def register(app: typer.Typer) -> None:
         dirs: list[Path] = typer.Argument(..., help="Calibration session folder(s) of one user."),
         pipeline: str = typer.Option("waist-pll", "--pipeline", "-p", help="waist-pll or waist-pendulum."),
         distance: list[float] = typer.Option(None, "--distance", "-d",
-                                             help="Known walked length (m), one per folder; default: "
-                                                  "the folder's reference bouts (bouts.csv)."),
+                                             help="Known walked length (m), one per folder, from the "
+                                                  "first to the last heel strike (every detected step "
+                                                  "counts); default: the folder's reference bouts."),
         turns: float = typer.Option(None, "--turns",
                                     help="Signed full turns walked (+1 = one left 360), to fit the gyro "
                                          "bias (seed 003 eq. 2)."),

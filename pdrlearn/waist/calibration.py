@@ -41,7 +41,9 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     if distance_m is not None:
         if not (np.isfinite(distance_m) and distance_m > 0):
             raise DataError(f"calibrate: --distance {distance_m} must be a positive number of metres")
-        return [CalibrationWalk(float(distance_m), f, g, session.name, c)]
+        span = (f"{session.name}: contacts {st['start_s'].min():.1f}-{st['end_s'].max():.1f} s" if len(st)
+                else session.name)
+        return [CalibrationWalk(float(distance_m), f, g, span, c)]
     bouts = reference_bouts(session)
     if bouts is None:
         raise DataError(f"session '{session.name}' has no bouts.csv with reference lengths; "
@@ -112,6 +114,9 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         out.a_walk, out.b_walk, how = fit_frequency(walks, base)
     else:
         raise DataError(f"calibrate: unknown pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
+    if distances is not None:  # decision W21: the known length must span the counted steps
+        out.notes += [f"--distance {w.distance_m:g} m counted over {len(w.f_hz)} steps, {w.name} (give the "
+                      "length from the first to the last heel strike)" for w in walks]
     out.notes.append(f"{pipeline} step length calibrated on {len(walks)} walk(s), {n_steps} steps, "
                      f"{total:.2f} m: {how}")
     if turns is not None:
