@@ -8,6 +8,9 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 
+_I3 = np.eye(3)
+_I3.flags.writeable = False
+
 
 def vec_norm(v: np.ndarray) -> float:
     """Euclidean norm of a 1-D vector: ``np.linalg.norm(v)`` (the same ``sqrt(v.dot(v))``) without its overhead."""
@@ -38,7 +41,7 @@ def gravity_rotation(g_sensor: np.ndarray) -> np.ndarray:
     if s < 1e-12:
         return np.eye(3) if c > 0 else np.diag([1.0, -1.0, -1.0])  # 180 deg about x
     kx = skew(v / s)
-    return np.eye(3) + s * kx + (1 - c) * (kx @ kx)
+    return _I3 + s * kx + (1 - c) * (kx @ kx)
 
 
 def rotvec_to_matrix(w: np.ndarray) -> np.ndarray:
@@ -53,7 +56,7 @@ def rotvec_to_matrix(w: np.ndarray) -> np.ndarray:
     K = np.zeros((len(w), 3, 3))
     K[:, 0, 1], K[:, 0, 2], K[:, 1, 2] = -w[:, 2], w[:, 1], -w[:, 0]
     K[:, 1, 0], K[:, 2, 0], K[:, 2, 1] = w[:, 2], -w[:, 1], w[:, 0]
-    return np.eye(3)[None] + a[:, None, None] * K + b[:, None, None] * (K @ K)
+    return _I3[None] + a[:, None, None] * K + b[:, None, None] * (K @ K)
 
 
 def matrix_to_rotvec(R: np.ndarray) -> np.ndarray:

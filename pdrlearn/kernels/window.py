@@ -7,6 +7,7 @@ step frame (x forward horizontal, y left, z up) and docs/features.md.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping
 
 import numpy as np
@@ -51,8 +52,8 @@ Streams = Mapping[str, tuple[np.ndarray, np.ndarray]]  # sensor name -> (t (n,) 
 
 def segment(t: np.ndarray, v: np.ndarray, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
     """Samples covering [t0, t1] plus one sample on each side (for interpolation at the edges)."""
-    i0 = max(int(np.searchsorted(t, t0, side="right")) - 1, 0)
-    i1 = min(int(np.searchsorted(t, t1, side="left")) + 1, len(t))
+    i0 = max(int(t.searchsorted(t0, side="right")) - 1, 0)
+    i1 = min(int(t.searchsorted(t1, side="left")) + 1, len(t))
     return t[i0:i1], v[i0:i1]
 
 
@@ -69,12 +70,18 @@ def resample(t_new: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Resample the columns of ``v`` (n, k) at ``t_new`` -> (k, len(t_new)); when downsampling, each output
     sample is the mean over its own interval first (box anti-alias filter, like the PLASYS firmware's
     5-sample averaging, thesis ch. 4.3.2), so impact peaks do not alias and 20/100/204.8 Hz data agree."""
+    width = 1
     if len(t_new) > 1 and len(t) > 2:
         width = int(round((t_new[1] - t_new[0]) * (len(t) - 1) / float(t[-1] - t[0])))  # mean spacing
         width = 2 * (width // 2) + 1  # odd: a centred box, no half-sample delay
         if width > 1:
             v = box_filter(v, width)
-    return np.stack([np.interp(t_new, t, v[:, j]) for j in range(v.shape[1])], axis=0)
+    if width == 1 and len(t_new) == len(t) and (t_new == t).all():  # same clock (e.g. acc and gyro of a unit)
+        return v.T.copy()  # = np.interp at its own nodes, exactly
+    out = np.empty((v.shape[1], len(t_new)))
+    for j in range(v.shape[1]):
+        out[j] = np.interp(t_new, t, v[:, j])
+    return out
 
 
 def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
@@ -165,6 +172,13 @@ def levelled_units(streams: Streams, t0: float, t1: float, *, available: tuple[s
     return out
 
 
+@functools.lru_cache(maxsize=8)
+def _unit_grid(n_samples: int) -> np.ndarray:
+    g = np.linspace(0.0, 1.0, n_samples)
+    g.flags.writeable = False
+    return g
+
+
 def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, channel_index: Mapping[str, int],
                      available: tuple[str, ...], forward: Mapping[str, np.ndarray], rest_search_s: float,
                      heading: str) -> Levelled:
@@ -184,7 +198,7 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
     """
     ci = channel_index
     n_samples = Xi.shape[1]
-    tg = t0 + (t1 - t0) * np.linspace(0.0, 1.0, n_samples)
+    tg = t0 + (t1 - t0) * _unit_grid(n_samples)
     Xi[ci["t_s"]] = tg - t0
     lev = levelled_units(streams, t0, t1, available=available, forward=forward, rest_search_s=rest_search_s,
                          heading=heading)
