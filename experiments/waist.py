@@ -234,7 +234,7 @@ def main() -> None:
         sim = simulated(list(range(1, args.sim_users + 1)))
         sim.to_csv(out / "waist_sim.csv", index=False, float_format="%.4g")
         summary = summarize_sim(sim)
-        print(f"\nsimulated users 1..{args.sim_users}, calibrated on a 60 m walk, scenarios A-D:")
+        print(f"\nsimulated users 1..{args.sim_users}, calibrated on a measured \"60 m\" walk, scenarios A-D:")
         print(summary.round(2).to_string(index=False))
         lines += ["## Simulated scenarios A-D", "", SIM_NOTE.format(n=args.sim_users), "",
                   summary.round(2).to_markdown(index=False), ""]
