@@ -540,3 +540,29 @@ def test_real_calibration_is_self_consistent(pipeline):
     p = calibrate([s], pipeline)
     m = waist_metrics(get_pipeline(pipeline)(s, params=p).steps, s)
     assert m["distance_error_pct"] == pytest.approx(0.0, abs=1e-6)
+
+
+def test_pendulum_fit_allows_a_negative_intercept_when_walks_separate_k_and_f():
+    """Walks of different mean step length fit K and F of either sign (decision W22); a fit that would
+    give a walk a non-positive mean step falls back to K only; the tracker never sums negative steps."""
+    from pdrlearn.waist.params import WaistParams
+    from pdrlearn.waist.steplength import CalibrationWalk, fit_pendulum
+
+    rng = np.random.default_rng(7)
+    walks = []
+    for lo, hi in ((0.15, 0.3), (0.45, 0.6)):  # shuffling-like and normal steps
+        g = rng.uniform(lo, hi, 15)
+        walks.append(CalibrationWalk(float(np.sum(1.3 * g - 0.1)), np.ones(15), g))
+    k, f, how = fit_pendulum(walks, WaistParams(f_m=0.0))
+    assert "least squares" in how and k == pytest.approx(1.3) and f == pytest.approx(-0.1)
+    bad = [CalibrationWalk(d, np.ones(10), np.full(10, g)) for d, g in ((0.1, 0.2), (0.1, 0.25), (6.0, 0.5))]
+    k, f, how = fit_pendulum(bad, WaistParams(f_m=0.0))
+    assert "K only" in how and f == 0.0
+
+
+def test_pendulum_steps_never_negative_with_negative_f():
+    from pdrlearn.track.waist import track_waist
+
+    s = synth_session(duration=12.0)
+    res = track_waist(s, pipeline="waist-pendulum", params={"k": 1.0, "f_m": -5.0})
+    assert (res.steps["length_m"] >= 0).all() and res.steps["length_m"].max() == 0.0

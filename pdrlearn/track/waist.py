@@ -142,7 +142,8 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
         h = np.zeros(n)
         for i in np.flatnonzero(has_next):
             h[i] = pendulum_h(imu.acc_v, fs, idx[i], fc_idx[i], idx[i + 1])
-        lengths = np.where(has_next, K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m), 0.0)
+        # a negative F (W22) must not turn a step with a tiny excursion into a backward one
+        lengths = np.where(has_next, np.maximum(K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m), 0.0), 0.0)
         steps = steps.assign(h_m=h)
     else:
         sigma = K.rolling_std(imu.acc_v, fs, causal=False)

@@ -102,14 +102,15 @@ def fit_pendulum(walks: list[CalibrationWalk], p: WaistParams) -> tuple[float, f
     """``(K, F)`` of seed 003 eq. 1 from walks of known length.
 
     Each walk gives ``D = K sum(c g) + F sum(c)`` (``c`` the turning-step factors, decision W21). With
-    walks whose mean ``g`` differ by more than 10 % both are fitted by least squares; otherwise ``F`` is
-    kept at its default and ``K`` fitted (decision W8).
+    walks whose mean ``g`` differ by more than 10 % both are fitted by least squares, ``F`` of either sign
+    as long as every walk's mean step comes out positive (decision W22); otherwise ``F`` is kept at its
+    default and ``K`` fitted (decision W8).
     """
     sg, nn, d = _walk_sums(walks, "g")
     mean_g = sg / np.where(nn > 0, nn, 1.0)
     if len(d) >= 2 and (mean_g.max() - mean_g.min()) > 0.1 * mean_g.mean():
         (k, f), *_ = np.linalg.lstsq(np.column_stack([sg, nn]), d, rcond=None)
-        if k > 0 and f >= 0:
+        if k > 0 and np.all(k * mean_g + f > 0):
             return float(k), float(f), f"K and F by least squares over {len(d)} walks"
     f = p.f_m
     k = float(np.sum(d - f * nn) / np.sum(sg)) if np.sum(sg) > 0 else float("nan")
