@@ -61,7 +61,7 @@ def rotvec_to_matrix(w: np.ndarray) -> np.ndarray:
 
 def matrix_to_rotvec(R: np.ndarray) -> np.ndarray:
     """Rotation vector (3,) of a rotation matrix (rad; any angle up to pi)."""
-    c = np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)
+    c = min(max((float(R[0, 0] + R[1, 1] + R[2, 2]) - 1.0) / 2.0, -1.0), 1.0)  # cos(angle), clipped
     th = math.acos(c)
     v = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
     if th < 1e-8:

@@ -83,7 +83,7 @@ def correct_tilt_drift(rot: np.ndarray, g_end_sensor: np.ndarray, k0: int, k1: i
     if k1 <= k0:
         return rot
     corr = matrix_to_rotvec(gravity_rotation(rot[k1] @ g_end_sensor))
-    frac = np.clip((np.arange(rot.shape[0]) - k0) / float(k1 - k0), 0.0, 1.0)
+    frac = np.minimum(np.maximum((np.arange(rot.shape[0]) - k0) / float(k1 - k0), 0.0), 1.0)  # clipped to 0..1
     return rotvec_to_matrix(frac[:, None] * corr[None, :]) @ rot
 
 

@@ -109,7 +109,7 @@ def zupt_displacement(t: np.ndarray, acc: np.ndarray) -> np.ndarray:
 def yaw_change(t: np.ndarray, rate_z: np.ndarray, t0: float = -np.inf, t1: float = np.inf) -> float:
     """Heading change (rad) over ``[t0, t1]`` (s): trapezoidal integral of the levelled vertical rate
     (rad/s) linearly interpolated at ``t0``/``t1``, so that consecutive strides do not share samples."""
-    tt = np.clip(t, t0, t1)
+    tt = np.minimum(np.maximum(t, t0), t1)  # clipped to [t0, t1]
     r = np.interp(tt, t, rate_z)
     return float(np.sum(0.5 * (r[1:] + r[:-1]) * np.diff(tt)))
 
@@ -173,7 +173,7 @@ def clamp_length(distance: np.ndarray, length_class: np.ndarray,
     out = mag.copy()
     for name, (lo, hi) in bounds.items():
         sel = cls == name
-        out[sel] = np.clip(mag[sel], lo, hi)
+        out[sel] = np.minimum(np.maximum(mag[sel], lo), hi)
     return np.where(d < 0, -out, out)
 
 
