@@ -15,8 +15,10 @@ Usage::
 
     .venv/bin/python experiments/characterization.py            # 2 users, thesis-sized protocol
     .venv/bin/python experiments/characterization.py --quick    # 1 user, fewer walks (smoke run)
+    .venv/bin/python experiments/characterization.py --boundaries rest   # rest-to-rest step windows
 
-Writes experiments/results/characterization.md and .csv.
+Writes experiments/results/characterization.md and .csv (``--boundaries rest``: characterization_rest.*).
+The real-data CV is printed for both step-window boundary modes (decision 13, docs/decisions/features.md).
 """
 
 from __future__ import annotations
@@ -110,7 +112,8 @@ def per_class(cm: np.ndarray, classes: list[str]) -> dict[str, float]:
     return {c: (100 * cm[i, i] / rows[i] if rows[i] else float("nan")) for i, c in enumerate(classes)}
 
 
-def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int, seed: int):
+def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int, seed: int,
+                    boundaries: str = "given"):
     from pdrlearn.features import TASK_CLASSES
     from pdrlearn.sim.simulate import simulate
 
@@ -125,7 +128,7 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
             train = [simulate(task, user_seed=user, seed=k) for k in range(train_walks)]
             test = [simulate(task, user_seed=user, seed=1000 + k) for k in range(test_walks)]
             t0 = time.perf_counter()
-            model = train_user(train, tasks=[task], cv=cv, seed=seed, user=f"u{user}")
+            model = train_user(train, tasks=[task], cv=cv, seed=seed, user=f"u{user}", boundaries=boundaries)
             dt = time.perf_counter() - t0
             t_user += dt
             tm = model.tasks[task]
@@ -197,7 +200,7 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
     return md, rows, timing
 
 
-def real_terrain_study(cv: int, seed: int):
+def real_terrain_study(cv: int, seed: int, boundaries: str = "given"):
     from sklearn.linear_model import RidgeCV
     from sklearn.model_selection import StratifiedKFold, cross_val_predict
     from sklearn.pipeline import make_pipeline
@@ -216,49 +219,52 @@ def real_terrain_study(cv: int, seed: int):
     ]
     sessions = [read_session(real / n) for n in names]
     md, rows = [], []
-    # 1) cross-validated, all recordings pooled
-    t0 = time.perf_counter()
-    model = train_user(sessions, tasks=["terrain"], cv=cv, seed=seed, user="gaitmap")
-    dt = time.perf_counter() - t0
-    tm = model.tasks["terrain"]
-    classes = tm.classes
-    lines = [
-        f"### real foot terrain, {tm.cv[tm.chosen[0]][tm.chosen[1]]['n_folds']}-fold CV over 4 gaitmap "
-        f"recordings ({tm.n_steps} strides, {tm.n_skipped_labels} 'unclear' skipped; trained in {dt:.1f} s)",
-        "",
-        "| method | unit | " + " | ".join(f"{c} %" for c in classes) + " | all % |",
-        "|---|---|" + "---|" * (len(classes) + 1),
-    ]
-    for m, u in tm.ranking():
-        r = tm.cv[m][u]
-        lines.append(
-            f"| {m} | {u} | "
-            + " | ".join(f"{100 * r['per_class'][c]:.1f}" for c in classes)
-            + f" | {100 * r['accuracy']:.1f} |"
-        )
-        for c in classes:
-            rows.append(
-                {
-                    "study": "real-cv",
-                    "task": "terrain",
-                    "method": m,
-                    "unit": u,
-                    "class": c,
-                    "ours_test_pct": round(100 * r["per_class"][c], 2),
-                    "ours_all_cv_pct": round(100 * r["accuracy"], 2),
-                }
+    # 1) cross-validated, all recordings pooled; step windows cut at the labelled boundaries and rest to
+    #    rest (decision 13 in docs/decisions/features.md), the study's own choice first
+    for bnd in dict.fromkeys([boundaries, "given", "rest"]):
+        t0 = time.perf_counter()
+        model = train_user(sessions, tasks=["terrain"], cv=cv, seed=seed, user="gaitmap", boundaries=bnd)
+        dt = time.perf_counter() - t0
+        tm = model.tasks["terrain"]
+        classes = tm.classes
+        lines = [
+            f"### real foot terrain, {tm.cv[tm.chosen[0]][tm.chosen[1]]['n_folds']}-fold CV over 4 gaitmap "
+            f"recordings, boundaries={bnd} ({tm.n_steps} strides, {tm.n_skipped_labels} 'unclear' skipped; "
+            f"trained in {dt:.1f} s)",
+            "",
+            "| method | unit | " + " | ".join(f"{c} %" for c in classes) + " | all % |",
+            "|---|---|" + "---|" * (len(classes) + 1),
+        ]
+        for m, u in tm.ranking():
+            r = tm.cv[m][u]
+            lines.append(
+                f"| {m} | {u} | "
+                + " | ".join(f"{100 * r['per_class'][c]:.1f}" for c in classes)
+                + f" | {100 * r['accuracy']:.1f} |"
             )
-    best = tm.cv[tm.chosen[0]][tm.chosen[1]]["accuracy"]
-    lines.append(f"\nChosen: {tm.chosen[0]}/{tm.chosen[1]} (CV {100 * best:.1f} %)")
-    md.append("\n".join(lines))
+            for c in classes:
+                rows.append(
+                    {
+                        "study": f"real-cv-{bnd}",
+                        "task": "terrain",
+                        "method": m,
+                        "unit": u,
+                        "class": c,
+                        "ours_test_pct": round(100 * r["per_class"][c], 2),
+                        "ours_all_cv_pct": round(100 * r["accuracy"], 2),
+                    }
+                )
+        best = tm.cv[tm.chosen[0]][tm.chosen[1]]["accuracy"]
+        lines.append(f"\nChosen: {tm.chosen[0]}/{tm.chosen[1]} (CV {100 * best:.1f} %)")
+        md.append("\n".join(lines))
     # 2) across feet: train on the left-foot recordings, test on the right foot (flat strides only)
     left = [s for s in sessions if s.name.endswith("_left")]
     right = [s for s in sessions if s.name.endswith("_right")]
-    model_l = train_user(left, tasks=["terrain"], cv=cv, seed=seed, user="gaitmap-left")
+    model_l = train_user(left, tasks=["terrain"], cv=cv, seed=seed, user="gaitmap-left", boundaries=boundaries)
     res = evaluate_model(model_l, right, latency=False)["tasks"]["terrain"]
     lines = [
         "### real foot terrain across feet: train left foot (3 recordings), test right foot "
-        f"(level walk, {res['n_steps']} flat strides)",
+        f"(level walk, {res['n_steps']} flat strides; boundaries={boundaries})",
         "",
         "| method | unit | flat % (right foot) |",
         "|---|---|---|",
@@ -281,11 +287,12 @@ def real_terrain_study(cv: int, seed: int):
     from pdrlearn.sim.simulate import simulate
 
     sim = [simulate("terrain", user_seed=u, seed=0) for u in (1, 2)]
-    model_s = train_user(sim, tasks=["terrain"], units=["foot"], cv=cv, seed=seed, user="sim")
+    model_s = train_user(sim, tasks=["terrain"], units=["foot"], cv=cv, seed=seed, user="sim",
+                         boundaries=boundaries)
     res = evaluate_model(model_s, sessions, latency=False)["tasks"]["terrain"]
     lines = [
         "### sim-to-real: trained on simulated terrain exercises (2 users, foot unit), tested on the "
-        f"{res['n_steps']} real gaitmap strides",
+        f"{res['n_steps']} real gaitmap strides (boundaries={boundaries})",
         "",
         "| method | unit | flat % | up % | down % | all % |",
         "|---|---|---|---|---|---|",
@@ -380,13 +387,16 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--quick", action="store_true", help="1 user, 1 training and 1 test walk")
     ap.add_argument("--no-real", action="store_true", help="skip the real-data study")
+    ap.add_argument("--boundaries", choices=("given", "rest"), default="given",
+                    help="step-window boundaries (decision 13): 'rest' writes characterization_rest.md/.csv")
     ap.add_argument("--out", type=Path, default=ROOT / "experiments" / "results")
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     if args.quick:
         args.users, args.train_walks, args.test_walks = args.users[:1], 1, 1
     t0 = time.perf_counter()
-    md, rows, timing = simulated_study(args.users, args.train_walks, args.test_walks, args.cv, args.seed)
+    md, rows, timing = simulated_study(args.users, args.train_walks, args.test_walks, args.cv, args.seed,
+                                       args.boundaries)
     parts = [
         "# Step characterization: ours beside thesis Tables 27, 28, 33",
         "",
@@ -394,7 +404,8 @@ def main(argv: list[str] | None = None) -> int:
         f"{args.train_walks} calibration exercise(s) per task, test = {args.test_walks} other exercise(s) of "
         "the same user; 'all % CV' = cross-validated accuracy on the training data; ms/step = median "
         "per-step latency of feature extraction + classification (this machine, one step at a time; "
-        "step windowing not included). Generated by experiments/characterization.py.",
+        f"step windowing not included). Step windows: boundaries={args.boundaries}. Generated by "
+        "experiments/characterization.py.",
         "",
         *md,
         "",
@@ -405,14 +416,15 @@ def main(argv: list[str] | None = None) -> int:
     ]
     parts += [f"| u{u} | {s:.1f} |" for u, s in timing.items()]
     if not args.no_real:
-        md_r, rows_r = real_terrain_study(args.cv, args.seed)
+        md_r, rows_r = real_terrain_study(args.cv, args.seed, args.boundaries)
         parts += ["", "## Real recordings (gaitmap foot IMU)", "", *md_r]
         rows += rows_r
     parts.append(f"\nTotal run time {time.perf_counter() - t0:.0f} s.")
     text = "\n".join(parts) + "\n"
     args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "characterization.md").write_text(text)
-    pd.DataFrame(rows).to_csv(args.out / "characterization.csv", index=False)
+    stem = "characterization" + ("_rest" if args.boundaries == "rest" else "")
+    (args.out / f"{stem}.md").write_text(text)
+    pd.DataFrame(rows).to_csv(args.out / f"{stem}.csv", index=False)
     print(text)
     return 0
 

