@@ -72,6 +72,26 @@ def test_zupt_removes_a_constant_accelerometer_bias():
     assert abs(fixed[0, 0] - 1.4) < 0.01
 
 
+def test_quintic_histospline_reconstructs_block_means_better_than_cubic():
+    """Decision L24: 20 Hz means of a smooth 100 Hz signal are upsampled x5 with their block means kept;
+    the degree-5 histospline is closer to the signal than the cubic one."""
+    from pdrlearn.displace._kernels import upsample_block_means
+
+    t100 = (np.arange(400) + 0.5) / 100.0
+    x = np.column_stack([np.sin(2 * np.pi * 1.7 * t100) * 20, np.cos(2 * np.pi * 3.1 * t100) * 5])
+    t20 = t100.reshape(-1, 5).mean(axis=1)
+    x20 = x.reshape(-1, 5, 2).mean(axis=1)
+    err = {}
+    for deg in (3, 5):
+        tf, xf = upsample_block_means(t20, x20, 5, degree=deg)
+        assert np.allclose(tf, t100)
+        assert np.allclose(xf.reshape(-1, 5, 2).mean(axis=1), x20, atol=0.02 * np.abs(x20).max())
+        err[deg] = np.sqrt(np.mean((xf - x)[20:-20] ** 2))
+    assert err[5] < err[3]
+    t2, x2 = upsample_block_means(t20[:3], x20[:3], 5)  # too short for degree 5: a lower odd degree
+    assert x2.shape == (15, 2) and np.isfinite(x2).all()
+
+
 def _impact_stride(fs: float = 204.8, clip: float = 40.0):
     """A forward swing ending in a heel-strike impact that stops the foot within 2 samples; the
     accelerometer clips the impact at ``clip`` m/s^2. Returns (a_true, a_measured, true displacement)."""
