@@ -16,6 +16,7 @@ Usage::
     .venv/bin/python experiments/characterization.py            # 2 users, thesis-sized protocol
     .venv/bin/python experiments/characterization.py --quick    # 1 user, fewer walks (smoke run)
     .venv/bin/python experiments/characterization.py --boundaries rest   # rest-to-rest step windows
+    .venv/bin/python experiments/characterization.py --boundaries rest --ensemble   # + the nn/svm/dtw vote
 
 Writes experiments/results/characterization.md and .csv (``--boundaries rest``: characterization_rest.*).
 The real-data CV is printed for both step-window boundary modes (decision 13, docs/decisions/features.md).
@@ -37,6 +38,7 @@ sys.path.insert(0, str(ROOT))
 
 from pdrlearn.classify import evaluate_model, train_user  # noqa: E402
 from pdrlearn.classify.evaluation import ROW_ORDER  # noqa: E402
+from pdrlearn.classify.training import DEFAULT_METHODS  # noqa: E402
 
 log = logging.getLogger("characterization")
 
@@ -113,7 +115,7 @@ def per_class(cm: np.ndarray, classes: list[str]) -> dict[str, float]:
 
 
 def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int, seed: int,
-                    boundaries: str = "given"):
+                    boundaries: str = "given", methods: list[str] | None = None):
     from pdrlearn.features import TASK_CLASSES
     from pdrlearn.sim.simulate import simulate
 
@@ -128,7 +130,8 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
             train = [simulate(task, user_seed=user, seed=k) for k in range(train_walks)]
             test = [simulate(task, user_seed=user, seed=1000 + k) for k in range(test_walks)]
             t0 = time.perf_counter()
-            model = train_user(train, tasks=[task], cv=cv, seed=seed, user=f"u{user}", boundaries=boundaries)
+            model = train_user(train, tasks=[task], cv=cv, seed=seed, user=f"u{user}", boundaries=boundaries,
+                               methods=methods)
             dt = time.perf_counter() - t0
             t_user += dt
             tm = model.tasks[task]
@@ -200,7 +203,7 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
     return md, rows, timing
 
 
-def real_terrain_study(cv: int, seed: int, boundaries: str = "given"):
+def real_terrain_study(cv: int, seed: int, boundaries: str = "given", methods: list[str] | None = None):
     from sklearn.linear_model import RidgeCV
     from sklearn.model_selection import StratifiedKFold, cross_val_predict
     from sklearn.pipeline import make_pipeline
@@ -223,7 +226,8 @@ def real_terrain_study(cv: int, seed: int, boundaries: str = "given"):
     #    rest (decision 13 in docs/decisions/features.md), the study's own choice first
     for bnd in dict.fromkeys([boundaries, "given", "rest"]):
         t0 = time.perf_counter()
-        model = train_user(sessions, tasks=["terrain"], cv=cv, seed=seed, user="gaitmap", boundaries=bnd)
+        model = train_user(sessions, tasks=["terrain"], cv=cv, seed=seed, user="gaitmap", boundaries=bnd,
+                           methods=methods)
         dt = time.perf_counter() - t0
         tm = model.tasks["terrain"]
         classes = tm.classes
@@ -260,7 +264,8 @@ def real_terrain_study(cv: int, seed: int, boundaries: str = "given"):
     # 2) across feet: train on the left-foot recordings, test on the right foot (flat strides only)
     left = [s for s in sessions if s.name.endswith("_left")]
     right = [s for s in sessions if s.name.endswith("_right")]
-    model_l = train_user(left, tasks=["terrain"], cv=cv, seed=seed, user="gaitmap-left", boundaries=boundaries)
+    model_l = train_user(left, tasks=["terrain"], cv=cv, seed=seed, user="gaitmap-left", boundaries=boundaries,
+                         methods=methods)
     res = evaluate_model(model_l, right, latency=False)["tasks"]["terrain"]
     lines = [
         "### real foot terrain across feet: train left foot (3 recordings), test right foot "
@@ -287,7 +292,7 @@ def real_terrain_study(cv: int, seed: int, boundaries: str = "given"):
     from pdrlearn.sim.simulate import simulate
 
     sim = [simulate("terrain", user_seed=u, seed=0) for u in (1, 2)]
-    model_s = train_user(sim, tasks=["terrain"], units=["foot"], cv=cv, seed=seed, user="sim",
+    model_s = train_user(sim, tasks=["terrain"], units=["foot"], cv=cv, seed=seed, user="sim", methods=methods,
                          boundaries=boundaries)
     res = evaluate_model(model_s, sessions, latency=False)["tasks"]["terrain"]
     lines = [
@@ -389,14 +394,17 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--no-real", action="store_true", help="skip the real-data study")
     ap.add_argument("--boundaries", choices=("given", "rest"), default="given",
                     help="step-window boundaries (decision 13): 'rest' writes characterization_rest.md/.csv")
+    ap.add_argument("--ensemble", action="store_true",
+                    help="also train the opt-in 'ensemble' method (decision C14); adds '_ensemble' to the file names")
     ap.add_argument("--out", type=Path, default=ROOT / "experiments" / "results")
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     if args.quick:
         args.users, args.train_walks, args.test_walks = args.users[:1], 1, 1
     t0 = time.perf_counter()
+    methods = [*DEFAULT_METHODS, "ensemble"] if args.ensemble else None
     md, rows, timing = simulated_study(args.users, args.train_walks, args.test_walks, args.cv, args.seed,
-                                       args.boundaries)
+                                       args.boundaries, methods)
     parts = [
         "# Step characterization: ours beside thesis Tables 27, 28, 33",
         "",
@@ -404,7 +412,8 @@ def main(argv: list[str] | None = None) -> int:
         f"{args.train_walks} calibration exercise(s) per task, test = {args.test_walks} other exercise(s) of "
         "the same user; 'all % CV' = cross-validated accuracy on the training data; ms/step = median "
         "per-step latency of feature extraction + classification (this machine, one step at a time; "
-        f"step windowing not included). Step windows: boundaries={args.boundaries}. Generated by "
+        f"step windowing not included). Step windows: boundaries={args.boundaries}; methods: "
+        f"{', '.join(methods or DEFAULT_METHODS)}. Generated by "
         "experiments/characterization.py.",
         "",
         *md,
@@ -416,13 +425,13 @@ def main(argv: list[str] | None = None) -> int:
     ]
     parts += [f"| u{u} | {s:.1f} |" for u, s in timing.items()]
     if not args.no_real:
-        md_r, rows_r = real_terrain_study(args.cv, args.seed, args.boundaries)
+        md_r, rows_r = real_terrain_study(args.cv, args.seed, args.boundaries, methods)
         parts += ["", "## Real recordings (gaitmap foot IMU)", "", *md_r]
         rows += rows_r
     parts.append(f"\nTotal run time {time.perf_counter() - t0:.0f} s.")
     text = "\n".join(parts) + "\n"
     args.out.mkdir(parents=True, exist_ok=True)
-    stem = "characterization" + ("_rest" if args.boundaries == "rest" else "")
+    stem = "characterization" + ("_rest" if args.boundaries == "rest" else "") + ("_ensemble" if args.ensemble else "")
     (args.out / f"{stem}.md").write_text(text)
     pd.DataFrame(rows).to_csv(args.out / f"{stem}.csv", index=False)
     print(text)

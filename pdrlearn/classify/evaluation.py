@@ -28,6 +28,9 @@ ROW_ORDER = [
     ("dtw", "fused"),
     ("svm", "fused"),
     ("nn", "fused"),
+    ("ensemble", "waist"),
+    ("ensemble", "foot"),
+    ("ensemble", "fused"),
 ]
 
 

@@ -37,14 +37,18 @@ from pdrlearn.errors import DataError, MissingSensorError, PdrlearnError
 log = logging.getLogger(__name__)
 
 TASKS = ("terrain", "direction", "length")
-METHODS = ("heuristic", "fusion", "dtw", "svm", "nn")
+METHODS = ("heuristic", "fusion", "dtw", "svm", "nn", "ensemble")
+#: Methods trained when none are named: the thesis' five; ``ensemble`` (not thesis) is opt-in.
+DEFAULT_METHODS = ("heuristic", "fusion", "dtw", "svm", "nn")
+#: Members of the per-unit ``ensemble`` method, an equal-weight soft vote (decision C14).
+ENSEMBLE_MEMBERS = ("nn", "svm", "dtw")
 UNITS = ("foot", "waist", "fused")
 #: Per-unit methods; "fusion" (heuristic fusion, thesis ch. 6.1.2.3) exists only fused.
 UNIT_METHODS = ("heuristic", "dtw", "svm", "nn")
 #: Fewest labelled steps per class for training and CV (decision: docs/decisions/classifiers.md).
 MIN_STEPS_PER_CLASS = 5
 #: Tie-break order when two fused methods score alike (the thesis' best first, Tables 27, 28, 33).
-PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic")
+PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic", "ensemble")
 
 #: Step signals compared by DTW per task and unit: terrain foot accelerometer + gyroscope / waist
 #: accelerometer (thesis ch. 6.1.2.2); direction foot / waist forward acceleration (thesis ch. 6.2.2.2);
@@ -102,6 +106,9 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
         return UnitFusionClassifier(members, weights=None if weights is None else list(weights), random_state=seed)
     if method == "svm":
         return Pipeline([("features", make_features(task, unit, "svm")), ("clf", SVMClassifier(task=task))])
+    if method == "ensemble":  # equal-weight soft vote of the unit's learned classifiers (decision C14)
+        members = [(m, make_estimator(task, m, unit, seed=seed), slice(None)) for m in ENSEMBLE_MEMBERS]
+        return UnitFusionClassifier(members, weights=[1.0] * len(members), random_state=seed)
     if method == "nn":
         return Pipeline(
             [
@@ -457,11 +464,11 @@ def check_settings(
 ) -> tuple[list[str], list[str], list[str]]:
     """Validate training settings before any data is read; returns the task, method and unit lists.
 
-    ``None`` means all of :data:`TASKS` / :data:`METHODS` / :data:`UNITS`; an empty list is an error.
+    ``None`` means all of :data:`TASKS` / :data:`DEFAULT_METHODS` / :data:`UNITS`; an empty list is an error.
     Raises :class:`DataError` naming the option (``--tasks`` ...) and the allowed values.
     """
     out = [
-        _check_choice(name, all_ if values is None else values, all_)
+        _check_choice(name, (DEFAULT_METHODS if name == "method" else all_) if values is None else values, all_)
         for name, values, all_ in (("task", tasks, TASKS), ("method", methods, METHODS), ("unit", units, UNITS))
     ]
     if cv < 2:
@@ -498,7 +505,8 @@ def train_task(
             subsets[unit] = f"steps with the {unit} unit: {exc}"
             continue
         subsets[unit] = (mask, _folds(data.y[mask], cv, seed, data.task))
-    for method in methods:
+    oof_by: dict[tuple[str, str], np.ndarray] = {}  # (method, unit) -> out-of-fold probabilities
+    for method in sorted(methods, key=lambda m: m == "ensemble"):  # the ensemble reuses its members
         oof: dict[str, np.ndarray] = {}
         unit_list = ["fused"] if method == "fusion" else list(per_unit)
         for unit in unit_list:
@@ -510,6 +518,30 @@ def train_task(
             mask, folds = subsets[unit]
             X, y = data.X[mask], data.y[mask]
             t0 = time.perf_counter()
+            if method == "ensemble":
+                missing = [m for m in ENSEMBLE_MEMBERS if (m, unit) not in oof_by]
+                if missing:
+                    tm.skipped.append(f"ensemble/{unit}: needs {', '.join(missing)}/{unit} trained in the same run "
+                                      f"(add {', '.join(missing)} to the methods)")
+                    continue
+                # equal-weight soft vote of the fitted members; CV = the same vote of their out-of-fold
+                # probabilities (no weight is chosen on the folds, decision C14)
+                w = np.full(len(ENSEMBLE_MEMBERS), 1.0 / len(ENSEMBLE_MEMBERS))
+                P = soft_vote([oof_by[(m, unit)] for m in ENSEMBLE_MEMBERS], w)
+                template = make_estimator(data.task, "ensemble", unit, seed=seed)
+                est = fused_from_fitted(template.units, [tm.models[m][unit] for m in ENSEMBLE_MEMBERS], w,
+                                        n_features_in=X.shape[1], random_state=seed)
+                tm.models.setdefault(method, {})[unit] = est
+                tm.cv.setdefault(method, {})[unit] = dict(
+                    class_metrics(y, classes[P.argmax(1)], classes),
+                    cv_seconds=time.perf_counter() - t0,
+                    n_folds=len(folds),
+                )
+                oof_by[(method, unit)] = P
+                if mask.all():
+                    oof[unit] = P
+                advance(1)
+                continue
             try:
                 est = make_estimator(data.task, method, unit, seed=seed)
                 est.fit(X, y)  # the final model first: fails fast on missing sensors
@@ -528,6 +560,7 @@ def train_task(
                 continue
             if mask.all():
                 oof[unit] = P
+            oof_by[(method, unit)] = P
             tm.models.setdefault(method, {})[unit] = est
             tm.cv.setdefault(method, {})[unit] = dict(
                 class_metrics(y, classes[P.argmax(1)], classes),
@@ -620,8 +653,10 @@ def train_user(
     ----------
     sessions : labelled :class:`~pdrlearn.io.Session` objects (``steps`` with ``start_s``/``end_s`` and
         ``terrain`` / ``direction`` / ``length_class`` labels).
-    tasks, methods, units : subsets of :data:`TASKS`, :data:`METHODS`, :data:`UNITS` (default: all);
-        ``fused`` also trains the foot and waist models it combines.
+    tasks, methods, units : subsets of :data:`TASKS`, :data:`METHODS`, :data:`UNITS` (default: all tasks
+        and units, the thesis' five methods :data:`DEFAULT_METHODS`); ``fused`` also trains the foot and
+        waist models it combines; ``ensemble`` (opt-in, decision C14) is the equal-weight soft vote of the
+        unit's nn, svm and dtw models and needs them in the same run.
     cv : folds of the stratified cross-validation that scores every model (thesis ch. 6: 10-fold);
         reduced to the smallest class size when a class has fewer steps.
     seed : seed of the folds, the DTW reference choice and the network initialisation.
@@ -710,6 +745,7 @@ def train_user(
 __all__ = [
     "TASKS",
     "METHODS",
+    "DEFAULT_METHODS",
     "UNITS",
     "MIN_STEPS_PER_CLASS",
     "DTW_SIGNALS",
