@@ -95,7 +95,8 @@ WAIST_IC_VARIANTS = {  # label -> InitialContactDetector settings
     "seed 003 (papers)": {"rhythm": False},
     "+ W18 rhythm": {"alternate": False},
     "+ W18 + W20 alternation (default)": {},
-    "realtime (seed 003 causal)": {"realtime": True},
+    "realtime, seed 003 lobe check (ratio 2)": {"realtime": True, "lobe_ratio": 2.0},
+    "realtime (default: no lobe check)": {"realtime": True},
 }
 
 

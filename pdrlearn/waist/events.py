@@ -71,6 +71,10 @@ class InitialContactDetector:
     max_step_s : contacts further apart than this end a walking sequence (s)
     rhythm : offline only: complete each walking sequence at its local step period (gaps of weak
         turning/shuffling steps, sequence ends cut by the motion gate; decision W18)
+    lobe_ratio : realtime: reject a zero crossing whose positive lobe lasts more than this times the
+        running median of the sequence's accepted lobes (seed 003's false-crossing check); ``None``
+        (default) = no lobe check: on our data it rejected more true steps than false ones
+        (docs/decisions/steps.md, decision 13)
     alternate : offline, with ``rhythm``: make the sequences alternate left/right, with the step side
         from the pelvis's lateral velocity (same-side maxima too close for a step between them lose the
         weaker one, gaps are filled with a step count of the right parity; decision W20)
@@ -84,8 +88,10 @@ class InitialContactDetector:
 
     def __init__(self, *, realtime: bool = False, cutoff_hz: float = 2.5, fir_order_s: float = 0.3,
                  walk_threshold: float = WALK_THRESHOLD_MPS2, ap_cutoff_hz: float = 20.0,
-                 max_step_s: float = 1.5, rhythm: bool = True, alternate: bool = True):
+                 max_step_s: float = 1.5, rhythm: bool = True, alternate: bool = True,
+                 lobe_ratio: float | None = None):
         self.realtime = realtime
+        self.lobe_ratio = lobe_ratio
         self.rhythm = rhythm
         self.alternate = alternate
         self.cutoff_hz = cutoff_hz
@@ -100,7 +106,8 @@ class InitialContactDetector:
         cut = min(self.ap_cutoff_hz, 0.4 * fs)
         ap = lowpass(imu.acc_ap, cut, fs, causal=self.realtime)
         if self.realtime:
-            ic, fc, ref = K.ic_realtime(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz)
+            ic, fc, ref = K.ic_realtime(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
+                                        lobe_ratio=np.inf if self.lobe_ratio is None else self.lobe_ratio)
             # the causal low-pass delays the AP peaks: date the contacts back by its group delay (W17)
             lag = int(round(causal_lowpass_delay_s(cut, fs) * fs))
             ic, fc = np.maximum(ic - lag, 0), np.maximum(fc - lag, 0)
