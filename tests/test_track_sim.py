@@ -27,17 +27,20 @@ def scen_d():
 
 
 def test_m3_beats_m1_on_simulated_scenario():
-    """Scenario C (76 m, many curves), three users: per-stride and total distance errors."""
+    """Scenario C (76 m, many curves), three users: per-stride errors, final position and total distance.
+
+    M1's total distance is not compared with M3's: its per-stride errors (2-6 % MAE, over- and
+    under-estimates) largely cancel in the sum (0.3-1.0 % on these users), so that comparison is luck."""
     m1, m3 = [], []
     for user in (1, 2, 3):
         s = sim.simulate("C", user_seed=user, speed="normal")
         for out, kw in ((m1, {"method": "M1"}), (m3, {"method": "M3", "model": "oracle"})):
             ev = evaluate_track(track_plasys(s, **kw), s)
-            out.append((ev["stride_length_mae_pct"], abs(ev["distance_error_pct"])))
+            out.append((ev["stride_length_mae_pct"], abs(ev["distance_error_pct"]), ev["final_position_error_m"]))
     m1, m3 = np.mean(m1, axis=0), np.mean(m3, axis=0)
     assert m3[0] < 0.7 * m1[0]  # stride length MAE
-    assert m3[1] < m1[1]  # distance error
-    assert m3[1] < 2.0
+    assert m3[2] < 0.7 * m1[2]  # final position error
+    assert m3[1] < 1.0  # distance error
 
 
 def test_stairs_altitude_and_m2_flat_rule(scen_d):
