@@ -27,13 +27,16 @@ class RuntimeModel:
     """One model entry of a bundle; :meth:`proba` maps windows ``(n, channels, samples)`` to
     probabilities ``(n, len(classes))`` in the entry's class order."""
 
-    def __init__(self, bundle: Bundle, entry: dict, feature_ctx: dict):
+    def __init__(self, bundle: Bundle, entry: dict, feature_ctx: dict, *, lazy: bool = False):
         self.entry = entry
         self.type = entry.get("type")
         self.classes = list(entry["classes"])
         self.ctx = feature_ctx
+        self.bundle = bundle
+        self._model = None
         if self.type == "onnx":
-            self.model = bundle.model(entry["file"], entry)
+            if not lazy:
+                self.open()
         elif self.type == "dtw":
             z = bundle.npz(entry["file"])
             self.refs = np.ascontiguousarray(z["references"])
@@ -47,10 +50,22 @@ class RuntimeModel:
             self.col = {n: i for i, n in enumerate(spec["feature_names"])}
             self.stages = spec["stages"]
         elif self.type == "fusion":
-            self.members = [RuntimeModel(bundle, e, feature_ctx) for e in entry["members"].values()]
+            self.members = [RuntimeModel(bundle, e, feature_ctx, lazy=lazy) for e in entry["members"].values()]
             self.weights = np.asarray(entry["weights"], dtype=float)
         else:
             raise ModelError(f"bundle {bundle.path.name}: unknown model type {self.type!r}; re-export it")
+
+    def open(self) -> None:
+        """Open the ONNX session(s) now (they are opened on first use when created with ``lazy=True``)."""
+        if self.type == "onnx" and self._model is None:
+            self._model = self.bundle.model(self.entry["file"], self.entry)
+        for m in getattr(self, "members", []):
+            m.open()
+
+    @property
+    def model(self):
+        self.open()
+        return self._model
 
     def proba(self, W: np.ndarray, cache: dict | None = None) -> np.ndarray:
         if self.type == "onnx":
@@ -85,6 +100,7 @@ class TaskClassifier:
         *,
         method: str | None = None,
         unit: str | None = None,
+        lazy: bool = False,
     ):
         spec = bundle.tasks[task]
         self.task = task
@@ -102,7 +118,7 @@ class TaskClassifier:
             )
         self.method, self.unit = method, unit
         self.is_chosen = (method, unit) == (chosen.get("method"), chosen.get("unit"))
-        self.model = RuntimeModel(bundle, methods[method][unit], feature_ctx)
+        self.model = RuntimeModel(bundle, methods[method][unit], feature_ctx, lazy=lazy)
 
     def predict(self, W: np.ndarray, cache: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
         """``(classes (n,), probabilities (n, n_classes))`` for windows ``W``."""

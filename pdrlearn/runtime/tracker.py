@@ -147,9 +147,12 @@ class Tracker:
         for task in tasks or list(self.bundle.tasks):
             mu = (methods or {}).get(task)
             meth, unit = mu.split("/") if mu else (None, None)
-            self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit)
+            self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit, lazy=True)
         #: one onnxruntime run per step for the chosen models (decision E10); None = per-model path
         self.step_graph = StepGraph.open(self.bundle, self.classifiers) if step_graph else None
+        for task, clf in self.classifiers.items():  # per-model sessions: only where the graph does not
+            if self.step_graph is None or task not in self.step_graph.tasks:  # classify (errors show here)
+                clf.model.open()
         self.params = dict(m["displacement"])
         self.heading_source = heading_source or str(self.params.get("heading_source", "auto"))
         if self.heading_source not in HEADING_SOURCES:
