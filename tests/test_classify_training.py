@@ -140,6 +140,7 @@ def test_evaluate_shape(trained):
     assert set(t["methods"]) == {"dtw", "svm", "nn"} and t["methods"]["svm"]["unit"] == "fused"
     assert t["methods"]["dtw"]["units"]["foot"]["latency_ms"] > 0
     assert "| svm | fused |" in markdown_tables(r)
+    assert r["boundaries"] == "given"  # the model's step-window cut (decision C13)
 
 
 def test_errors_are_named():

@@ -59,8 +59,8 @@ def evaluate_model(
     ``{"user", "sessions", "tasks": {task: {"accuracy", "balanced_accuracy", "n_steps", "chosen",
     "per_class", "confusion", "classes", "methods": {method: {"accuracy", "unit", "units": {unit:
     {"accuracy", "balanced_accuracy", "per_class", "confusion", "latency_ms"}}}}, "skipped"}},
-    "windows_ms_per_step", "skipped"}``. ``methods.<m>.accuracy`` is the accuracy of that method's fused
-    model when it could run, else of its best-ranked unit. ``tasks.<t>.accuracy`` is the model's chosen
+    "windows_ms_per_step", "boundaries", "skipped"}``. ``methods.<m>.accuracy`` is the accuracy of that
+    method's fused model when it could run, else of its best-ranked unit. ``tasks.<t>.accuracy`` is the model's chosen
     method (or, for sessions lacking one of its units, the best-ranked method they can run).
     """
     from pdrlearn.classify.training import class_metrics, session_windows, task_data
@@ -77,6 +77,7 @@ def evaluate_model(
         "sessions": [s.name for s in sessions],
         "tasks": {},
         "windows_ms_per_step": windows_ms,
+        "boundaries": model.boundaries,  # how the step windows were cut (decision C13)
         "skipped": [],
     }
     for task, tm in model.tasks.items():
