@@ -495,3 +495,40 @@ def test_stairs_up_lands_without_heel_rocker_and_down_lowers_early():
         i_mid = (i_to + i_ic) // 2
         assert z[i_to:i_mid].max() < z[i_to] + 0.05  # no lift by the clearance after toe-off
         assert z[i_mid] < z[i_to]  # already going down at mid-swing
+
+
+def test_stance_fraction_and_heel_off_timing(exact_a):
+    """Decisions S14: stance 62-68 % of the contact-to-contact cycle (real gaitmap mocap ~67 %, mobgap INDIP
+    ~68 %), heel-off at 45 % of the cycle."""
+    assert all(0.62 <= UserProfile.from_seed(u).stance_fraction <= 0.68 for u in range(1, 30))
+    ics = exact_a.extras["ics"]
+    right = np.sort(ics.loc[ics["foot"] == "right", "ic_s"].to_numpy())
+    st = exact_a.steps[exact_a.steps.steady]
+    fracs = []
+    for row in st.itertuples():
+        prev = right[right < row.tc_s].max()  # the contact that starts this stride's stance
+        fracs.append((row.tc_s - prev) / (row.ic_s - prev))
+    user = UserProfile.from_seed(1)
+    assert np.median(fracs) == pytest.approx(user.stance_fraction, abs=0.02)
+
+
+def test_foot_mount_is_drawn_per_user_and_moves_the_sensor():
+    """Decisions S19: the foot unit sits between a lateral mount below the ankle and the instep; the rest of
+    the user is unchanged by that draw, and a rear mount rises faster in push-off than an instep mount."""
+    users = [UserProfile.from_seed(u) for u in range(1, 40)]
+    x = np.array([u.foot_sensor_x_frac for u in users])
+    h = np.array([u.foot_sensor_height_m for u in users])
+    assert x.min() >= 0.25 and x.max() <= 0.5 and np.ptp(x) > 0.15
+    assert h.min() >= 0.03 and h.max() <= 0.07 and np.corrcoef(x, h)[0, 1] > 0.5  # higher on the instep
+    base = _aligned(2)
+    peak_up = {}
+    for name, (xf, hm) in {"rear": (0.25, 0.03), "instep": (0.5, 0.07)}.items():
+        user = dataclasses.replace(base, foot_sensor_x_frac=xf, foot_sensor_height_m=hm)
+        s = simulate_path([Straight(6.0)], user, rate_hz=100, seed=0, noise=False)
+        ft = s.extras["foot_trajectory"]
+        vz = np.gradient(ft["z"].to_numpy(), ft["t_s"].to_numpy())
+        t = ft["t_s"].to_numpy()
+        st = s.steps[s.steps.steady]
+        # upward speed of the unit between heel-off (stance start .. toe-off) and toe-off
+        peak_up[name] = np.median([vz[(t > r.start_s) & (t < r.tc_s)].max() for r in st.itertuples()])
+    assert peak_up["rear"] > 1.5 * peak_up["instep"], peak_up

@@ -74,7 +74,7 @@ KINDS = {
 }
 SPEED_PITCH = {"slow": 0.88, "normal": 1.0, "fast": 1.08}
 LOAD_FRACTION = 0.10  # initial contact -> foot flat, fraction of the gait cycle
-HEEL_OFF_FRACTION = 0.40  # heel-off instant, fraction of the gait cycle
+HEEL_OFF_FRACTION = 0.45  # heel-off instant, fraction of the gait cycle (decisions S14)
 PUSH_OFF_RATE = 2.2  # pitch rate at toe-off / mean rate of the forefoot rocker (fast push-off)
 SWING_ROLL_DEG = 12.0  # peak inversion of the swinging foot
 SWING_YAW_DEG = 6.0  # peak toe-out of the swinging foot

@@ -229,7 +229,8 @@ def simulate_path(
     t_out = block_mean(t100, k_out)
 
     # -- foot unit (right foot) --
-    r_sensor = np.array([0.45 * user.foot_length_m, 0.0, 0.06])  # on the instep, 6 cm above the sole
+    # per-user mount: from beside the heel to the instep (decisions S19)
+    r_sensor = np.array([user.foot_sensor_x_frac * user.foot_length_m, 0.0, user.foot_sensor_height_m])
     heel, R_f = foot_pose(t, "right", steps, ev, initial, user, vibration=1.0 if noise else 0.0)
     p_f = heel + R_f @ r_sensor
     f_body = block_mean(specific_force_body(p_f, R_f, dt), OVERSAMPLE)

@@ -18,6 +18,22 @@ SPEED_FACTORS = {"slow": (0.85, 1.20), "normal": (1.0, 1.0), "fast": (1.12, 0.86
 GAIT_FACTORS = {"short": (0.55, 0.95), "normal": (1.0, 1.0), "long": (1.3, 1.08)}
 
 
+# Foot-unit mounts (decisions S19): from a lateral mount below the ankle (gaitmap level recordings,
+# "lateral shoe sensor": ~25-30 % of the foot length from the heel, 3-4 cm up) to the instep (PLASYS-style
+# top-of-foot unit, gaitmap stairs recordings: ~45-50 %, 5-7 cm up).
+FOOT_SENSOR_X_FRAC = (0.25, 0.5)
+FOOT_SENSOR_HEIGHT_M = (0.03, 0.07)
+
+
+def _foot_mount(rng: np.random.Generator) -> dict:
+    x = float(rng.uniform(*FOOT_SENSOR_X_FRAC))
+    # the height follows the position along the foot (low beside the heel, higher on the instep) +- 1 cm
+    lo, hi = FOOT_SENSOR_HEIGHT_M
+    u = (x - FOOT_SENSOR_X_FRAC[0]) / (FOOT_SENSOR_X_FRAC[1] - FOOT_SENSOR_X_FRAC[0])
+    h = float(np.clip(lo + u * (hi - lo) + rng.uniform(-0.01, 0.01), lo, hi))
+    return {"foot_sensor_x_frac": round(x, 4), "foot_sensor_height_m": round(h, 4)}
+
+
 @dataclass
 class UserProfile:
     """One simulated pedestrian.
@@ -37,6 +53,8 @@ class UserProfile:
     foot_misalignment_deg, waist_misalignment_deg : mounting rotation vectors of the units (deg)
     force_coverage : fraction of the heel/forefoot load that reaches the force sensors
     pelvis_bounce_m, pelvis_sway_m, pelvis_rotation_deg, pelvis_obliquity_deg : pelvis motion amplitudes
+    foot_sensor_x_frac, foot_sensor_height_m : foot unit position in the foot frame: distance from the heel
+        (fraction of the foot length) and height above the sole (m); see decisions S19
     """
 
     seed: int
@@ -61,6 +79,8 @@ class UserProfile:
     pelvis_sway_m: float = 0.025
     pelvis_rotation_deg: float = 4.0
     pelvis_obliquity_deg: float = 3.0
+    foot_sensor_x_frac: float = 0.45
+    foot_sensor_height_m: float = 0.06
 
     @classmethod
     def from_seed(cls, seed: int) -> UserProfile:
@@ -85,7 +105,9 @@ class UserProfile:
             step_length_m=round(step_len, 4),
             step_time_s=round(step_time, 4),
             variability=round(float(rng.uniform(0.02, 0.035)), 4),
-            stance_fraction=round(float(rng.uniform(0.58, 0.62)), 4),
+            # stance 62-68 % of the cycle: gaitmap mocap and mobgap INDIP references ~67-68 %, force-plate
+            # norms 60-62 % at a brisk 1.37 m/s (decisions S14)
+            stance_fraction=round(float(rng.uniform(0.62, 0.68)), 4),
             impact_speed_mps=round(float(rng.uniform(0.45, 0.7)), 4),
             swing_height_m=round(float(rng.uniform(0.2, 0.28)), 4),
             toe_off_pitch_deg=round(float(rng.uniform(-58.0, -50.0)), 3),
@@ -97,6 +119,8 @@ class UserProfile:
             pelvis_sway_m=round(float(rng.uniform(0.025, 0.04)), 4),
             pelvis_rotation_deg=round(float(rng.uniform(3.0, 5.0)), 3),
             pelvis_obliquity_deg=round(float(rng.uniform(2.0, 4.0)), 3),
+            # drawn last so that the earlier draws (and the users of earlier versions) are unchanged
+            **_foot_mount(rng),
         )
 
     # -- derived gait parameters -------------------------------------------------------------------
