@@ -108,7 +108,7 @@ def test_tracker_with_step_graph_streams_the_same_steps(trained):
     plain = Tracker(trained["root"] / "bundle", step_graph=False)
     assert graph.step_graph is not None and set(graph.step_graph.tasks) == set(graph.classifiers)
     assert plain.step_graph is None
-    assert set(graph.bundle._models) == {graph.bundle.manifest["step_graph"]["file"]}  # no per-model sessions
+    assert not graph.bundle._models and plain.bundle._models  # the graph tracker opens no per-model session
     data = {n: (st.t, st.values) for n, st in s.streams.items()}
     a, b = graph.push(data) + graph.flush(), plain.push(data) + plain.flush()
     assert len(a) == len(b) >= len(s.steps) - 2
