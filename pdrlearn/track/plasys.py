@@ -398,7 +398,10 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             "rules": rules if cfg["rules"] else None,
             "min_confidence": gate if cfg["rules"] else None,
             "settings": {k: getattr(fd, k)
-                         for k in ("integrator", "zupt_end", "gyro_bias", "attitude", "sw", "r")},
+                         for k in ("integrator", "zupt_end", "gyro_bias", "attitude", "sw", "r",
+                                   "accel_scale_error", "reference_point")},
+            # decision L22: heel contact - sensor (body frame, m) when the heel is the reference point
+            "lever_arm_m": None if fd.lever_arm_ is None else [round(float(v), 4) for v in fd.lever_arm_],
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.name, w)
