@@ -10,6 +10,9 @@ from pdrlearn.errors import DataError
 
 _I3 = np.eye(3)
 _I3.flags.writeable = False
+_SKEW_AT = np.array([1, 2, 3, 5, 6, 7])  # flat 3x3 positions of [w]x's entries
+_SKEW_FROM = np.array([2, 1, 2, 0, 1, 0])  # the component of w at each of them
+_SKEW_SIGN = np.array([-1.0, 1.0, 1.0, -1.0, -1.0, 1.0])
 
 
 def vec_norm(v: np.ndarray) -> float:
@@ -49,13 +52,16 @@ def rotvec_to_matrix(w: np.ndarray) -> np.ndarray:
     w = np.atleast_2d(np.asarray(w, dtype=np.float64))
     th = np.sqrt(np.add.reduce(w * w, axis=1))  # = np.linalg.norm(w, axis=1), same arithmetic
     small = th < 1e-8
-    safe = np.where(small, 1.0, th)
-    # sin(th)/th and (1-cos th)/th^2 with their Taylor series near 0
-    a = np.where(small, 1.0 - th**2 / 6.0, np.sin(th) / safe)
-    b = np.where(small, 0.5 - th**2 / 24.0, (1.0 - np.cos(th)) / safe**2)
-    K = np.zeros((len(w), 3, 3))
-    K[:, 0, 1], K[:, 0, 2], K[:, 1, 2] = -w[:, 2], w[:, 1], -w[:, 0]
-    K[:, 1, 0], K[:, 2, 0], K[:, 2, 1] = w[:, 2], -w[:, 1], w[:, 0]
+    if small.any():
+        safe = np.where(small, 1.0, th)
+        # sin(th)/th and (1-cos th)/th^2 with their Taylor series near 0
+        a = np.where(small, 1.0 - th**2 / 6.0, np.sin(th) / safe)
+        b = np.where(small, 0.5 - th**2 / 24.0, (1.0 - np.cos(th)) / safe**2)
+    else:  # the same values without the series branch (fewer numpy calls per step)
+        a, b = np.sin(th) / th, (1.0 - np.cos(th)) / th**2
+    K = np.zeros((len(w), 9))  # [w]x, row by row: entries 1, 2, 3, 5, 6, 7
+    K[:, _SKEW_AT] = w[:, _SKEW_FROM] * _SKEW_SIGN
+    K = K.reshape(-1, 3, 3)
     return _I3[None] + a[:, None, None] * K + b[:, None, None] * (K @ K)
 
 
