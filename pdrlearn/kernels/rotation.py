@@ -22,7 +22,8 @@ def vec_norm(v: np.ndarray) -> float:
 
 def skew(k: np.ndarray) -> np.ndarray:
     """Cross-product matrix ``[k]x`` (3x3) of a 3-vector."""
-    return np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    x, y, z = np.asarray(k, dtype=np.float64).tolist()  # Python floats: a faster np.array, same values
+    return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
 
 
 def gravity_rotation(g_sensor: np.ndarray) -> np.ndarray:
@@ -34,12 +35,12 @@ def gravity_rotation(g_sensor: np.ndarray) -> np.ndarray:
     """
     g = np.asarray(g_sensor, dtype=np.float64).reshape(3)
     n = vec_norm(g)
-    if not np.isfinite(n) or n < 1e-9:
+    if not math.isfinite(n) or n < 1e-9:
         raise DataError(f"gravity_rotation: gravity vector {g.tolist()} is zero or not finite; "
                         "estimate it from a standstill period")
     a = g / n
-    c = float(a[2])
-    v = np.array([a[1], -a[0], 0.0])  # a x z
+    a0, a1, c = a.tolist()
+    v = np.array([a1, -a0, 0.0])  # a x z
     s = vec_norm(v)
     if s < 1e-12:
         return np.eye(3) if c > 0 else np.diag([1.0, -1.0, -1.0])  # 180 deg about x
