@@ -151,7 +151,7 @@ def terrain_distance(disp: np.ndarray, terrain: np.ndarray, *, down_mode: str = 
     horiz = np.hypot(disp[:, 0], disp[:, 1])
     if down_mode == "horizontal":
         return horiz
-    norm3 = np.linalg.norm(disp, axis=1)  # thesis eq. 61
+    norm3 = np.sqrt(np.add.reduce(disp * disp, axis=1))  # thesis eq. 61 (= np.linalg.norm(disp, axis=1))
     return np.where(np.asarray(terrain) == "down", norm3, horiz)
 
 
@@ -171,7 +171,8 @@ def clamp_length(distance: np.ndarray, length_class: np.ndarray,
     cls = np.asarray(length_class)
     mag = np.abs(d)
     out = mag.copy()
-    for name, (lo, hi) in bounds.items():
+    for name in bounds.keys() & set(cls.ravel().tolist()):  # the classes present (masks are disjoint)
+        lo, hi = bounds[name]
         sel = cls == name
         out[sel] = np.minimum(np.maximum(mag[sel], lo), hi)
     return np.where(d < 0, -out, out)
