@@ -32,6 +32,17 @@ def rest_index(acc: np.ndarray, gyr: np.ndarray | None, lo: int, hi: int, *,
     return lo + int(np.argmin(score))
 
 
+def median1d(x: np.ndarray) -> float:
+    """``np.median`` of a non-empty 1-D array: the same partition (NaN sorted last, then NaN) and mean of
+    the middle values, without its generic-axis overhead."""
+    n = x.shape[0]
+    k = n // 2
+    p = np.partition(x, [k, n - 1] if n % 2 else [k - 1, k, n - 1])
+    if p[n - 1] != p[n - 1]:  # NaN
+        return float("nan")
+    return float(p[k]) if n % 2 else float((p[k - 1] + p[k]) / 2.0)
+
+
 def row_norm(v: np.ndarray) -> np.ndarray:
     """Euclidean norm of each row of ``v (n, k)`` (``np.linalg.norm(v, axis=1)`` without its overhead)."""
     return np.sqrt(np.einsum("ij,ij->i", v, v))

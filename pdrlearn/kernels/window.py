@@ -17,6 +17,7 @@ from pdrlearn.kernels.rotation import gravity_rotation, vec_norm
 from pdrlearn.kernels.stats import (
     correct_tilt_drift,
     heading_rotation,
+    median1d,
     principal_horizontal_axis,
     propagate_attitude,
     rest_index,
@@ -99,7 +100,7 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
     m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
     an = row_norm(acc)
-    med = np.median(an)
+    med = median1d(an)  # of finite samples (the stream is checked on arrival)
     k0 = rest_index(acc, gyr, 0, m, acc_norm=an, acc_median=med)
     k1 = rest_index(acc, gyr, n - m, n, acc_norm=an, acc_median=med)
     h = max(0, int(round(0.02 * fs)))
