@@ -51,6 +51,11 @@ GROUP_STREAMS: dict[str, tuple[str, ...]] = {
 Streams = Mapping[str, tuple[np.ndarray, np.ndarray]]  # sensor name -> (t (n,) s, values (n, k))
 
 
+def col_mean(v: np.ndarray) -> np.ndarray:
+    """``v.mean(axis=0)`` of an ``(n >= 1, k)`` array: the same sum divided by n, without its wrapper."""
+    return np.add.reduce(v, axis=0) / v.shape[0]
+
+
 def segment(t: np.ndarray, v: np.ndarray, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
     """Samples covering [t0, t1] plus one sample on each side (for interpolation at the edges)."""
     i0 = max(int(t.searchsorted(t0, side="right")) - 1, 0)
@@ -104,8 +109,8 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     k0 = rest_index(acc, gyr, 0, m, acc_norm=an, acc_median=med)
     k1 = rest_index(acc, gyr, n - m, n, acc_norm=an, acc_median=med)
     h = max(0, int(round(0.02 * fs)))
-    g0 = acc[max(k0 - h, 0): k0 + h + 1].mean(axis=0)
-    g1 = acc[max(k1 - h, 0): k1 + h + 1].mean(axis=0)
+    g0 = col_mean(acc[max(k0 - h, 0): k0 + h + 1])
+    g1 = col_mean(acc[max(k1 - h, 0): k1 + h + 1])
     r0 = gravity_rotation(g0)
     if gyr is not None:
         rot = correct_tilt_drift(propagate_attitude(gyr, np.diff(t), k0, r0), g1, k0, k1)
@@ -129,7 +134,7 @@ def waist_levelled(acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarra
                    ) -> tuple[np.ndarray, np.ndarray | None]:
     """Waist acc (gravity removed) and rate in the step frame: tilt from the mean specific force over
     the step (the pelvis never rests while walking), forward = the declared axis made horizontal."""
-    g = acc.mean(axis=0)
+    g = col_mean(acc)
     r = gravity_rotation(g)
     ref = (r @ forward_s)[:2]
     if vec_norm(ref) < 0.1:
