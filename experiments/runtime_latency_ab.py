@@ -9,7 +9,8 @@ Usage (compare the current tree with an older commit, interleaving runs to share
     done
 
 Prints the code location, then p50/p99 (ms) of ``Tracker.process_step`` over the session's labelled
-steps (5 passes, buffers pre-filled, as tests/benchmarks/test_bench_runtime.py).
+steps and the p50 of its CPU time (5 passes, buffers pre-filled without trimming, as
+tests/benchmarks/test_bench_runtime.py).
 """
 
 from __future__ import annotations
@@ -31,9 +32,10 @@ def main(bundle: str, session_dir: str, passes: int = 5) -> None:
 
     s = read_session(session_dir)
     tr = _loaded_tracker(bundle, s)
-    ms = _latencies(tr, list(zip(s.steps["start_s"], s.steps["end_s"], strict=True)), repeat=passes)
-    print(f"{pdrlearn.__file__}: p50 {np.percentile(ms, 50):.3f} ms, p99 {np.percentile(ms, 99):.3f} ms "
-          f"({len(s.steps)} steps x {passes})")
+    cpu: list[float] = []
+    ms = _latencies(tr, list(zip(s.steps["start_s"], s.steps["end_s"], strict=True)), repeat=passes, cpu=cpu)
+    print(f"{pdrlearn.__file__}: p50 {np.percentile(ms, 50):.3f} ms, p99 {np.percentile(ms, 99):.3f} ms, "
+          f"CPU time p50 {np.percentile(cpu, 50):.3f} ms ({len(s.steps)} steps x {passes})")
 
 
 if __name__ == "__main__":
