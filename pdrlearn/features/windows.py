@@ -201,7 +201,8 @@ def rest_boundaries(t: np.ndarray, gyr: np.ndarray, start: np.ndarray, end: np.n
 
     Returns
     -------
-    new_start, new_end : (m,) s, sample times of ``t`` (``new_end > new_start``)
+    new_start, new_end : (m,) s (``new_end > new_start``); the rest's edges are interpolated between
+        samples, so 20 Hz and 204.8 Hz streams of the same walk give boundaries a few ms apart
     """
     t = np.asarray(t, dtype=float)
     start = np.asarray(start, dtype=float)
@@ -221,17 +222,22 @@ def rest_boundaries(t: np.ndarray, gyr: np.ndarray, start: np.ndarray, end: np.n
         out = given.copy()
         for k in range(len(given)):  # a few samples per boundary; steps are not equally long
             if i1[k] > i0[k]:
-                seg = score[i0[k]:i1[k]]
+                seg, ts = score[i0[k]:i1[k]], t[i0[k]:i1[k]]
                 j = int(np.argmin(seg))
+                out[k] = ts[j]
                 if rest_tol_rad_s > 0:  # middle of the quiet run around the minimum
-                    quiet = seg <= seg[j] + rest_tol_rad_s
+                    thr = seg[j] + rest_tol_rad_s
                     a, b = j, j
-                    while a > 0 and quiet[a - 1]:
+                    while a > 0 and seg[a - 1] <= thr:
                         a -= 1
-                    while b < len(seg) - 1 and quiet[b + 1]:
+                    while b < len(seg) - 1 and seg[b + 1] <= thr:
                         b += 1
-                    j = (a + b) // 2
-                out[k] = t[i0[k] + j]
+                    # run edges where the score crosses thr, interpolated between samples, so the middle
+                    # does not move by whole sample periods at low rates (20 Hz: 50 ms)
+                    left = ts[a] if a == 0 else float(np.interp(thr, [seg[a], seg[a - 1]], [ts[a], ts[a - 1]]))
+                    right = ts[b] if b == len(seg) - 1 else float(
+                        np.interp(thr, [seg[b], seg[b + 1]], [ts[b], ts[b + 1]]))
+                    out[k] = 0.5 * (left + right)
         return out
 
     new_start = quietest(start - search_s, start + np.minimum(search_s, quarter), start)
