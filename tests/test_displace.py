@@ -199,6 +199,11 @@ def test_heel_reference_on_a_foot_recording():
     assert turn.any() and change[turn].min() > 0.05 and np.median(change[~turn]) < 0.01
     with pytest.raises(DataError):
         FootDisplacement(reference_point="toe")
+    few = FootDisplacement(reference_point="heel", min_rocker_samples=10**6).estimate(unit, steps)
+    assert few.lever_arm_ is None and np.allclose(few.disp_, sensor.disp_)
+    assert any("heel-rocker samples" in w for w in few.warnings_)
+    with pytest.raises(DataError):
+        FootDisplacement(accel_scale_error=-0.01)
 
 
 def test_batch_of_strides_equals_single_strides():
