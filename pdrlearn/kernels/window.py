@@ -218,9 +218,12 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
             c = ci["foot_gyr_x"]
             Xi[c:c + 3] = r[4:7]
     if "force" in available:
-        for j, name in enumerate(("fForceA", "fForceB")):
-            tf, f = segment(*streams[name], t0, t1)
-            Xi[ci["force_a"] + j] = resample(tg, tf, f)[0]
+        (ta_, fa), (tb_, fb) = (segment(*streams[name], t0, t1) for name in ("fForceA", "fForceB"))
+        if len(ta_) == len(tb_) and (ta_ == tb_).all():  # one clock: one resampling call for both sensors
+            Xi[[ci["force_a"], ci["force_b"]]] = resample(tg, ta_, np.column_stack([fa[:, 0], fb[:, 0]]))
+        else:
+            Xi[ci["force_a"]] = resample(tg, ta_, fa)[0]
+            Xi[ci["force_b"]] = resample(tg, tb_, fb)[0]
     if "waist" in lev:
         tw, a, g, _, _ = lev["waist"]
         r = resample(tg, tw, a if g is None else np.column_stack([a, g]))
