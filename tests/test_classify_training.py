@@ -202,6 +202,7 @@ def test_rest_boundaries_setting_is_saved_and_used_for_prediction(tmp_path):
     expect = est.predict(step_windows(s, late, n_samples=m.n_samples, boundaries="rest").X)
     assert df["terrain"].tolist() == list(expect)
     assert np.mean(df["terrain"] == s.steps["terrain"]) >= 0.9
+    assert evaluate_model(loaded, [s], latency=False)["boundaries"] == "rest"
     assert train_user([s], tasks=["terrain"], methods=["svm"], cv=3).boundaries == "given"  # default
     with pytest.raises(DataError, match="boundaries 'stance'"):
         train_user([s], tasks=["terrain"], methods=["svm"], cv=3, boundaries="stance")
