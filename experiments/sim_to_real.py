@@ -45,6 +45,82 @@ def _foot_accuracy(ev: dict, method: str) -> dict | None:
     return ev["methods"].get(method, {}).get("units", {}).get("foot")
 
 
+# Simulator variants tried in docs/sim_to_real.md, applied by patching pdrlearn.sim for this process only
+# (the shipped simulator is unchanged). "old-timing": the stance of the previous simulator (58-62 % of the
+# cycle, a linear map of the user's 62-68 % draw) and heel-off at 40 % (decisions S14); "mocap-boundary":
+# stride boundaries at the middle of the mid-stance phase, 21.5 % of the cycle after contact (Perry &
+# Burnfield 2010: mid-stance 12-31 %; where the gaitmap mocap min_vel events lie), instead of the middle of
+# foot flat (decisions S1).
+VARIANTS = ("none", "old-timing", "mocap-boundary")
+MID_STANCE_FRACTION = 0.215
+
+
+def apply_variant(name: str) -> None:
+    """Patch the simulator of this process with variant ``name`` (see ``VARIANTS``)."""
+    import importlib
+
+    body, sim, user = (importlib.import_module(f"pdrlearn.sim.{m}") for m in ("body", "simulate", "user"))
+    if name == "old-timing":
+        draw = user.UserProfile.from_seed.__func__
+
+        def from_seed(cls, seed):
+            u = draw(cls, seed)
+            u.stance_fraction = round(0.58 + (u.stance_fraction - 0.62) / 1.5, 4)
+            return u
+
+        user.UserProfile.from_seed = classmethod(from_seed)
+        body.HEEL_OFF_FRACTION = sim.HEEL_OFF_FRACTION = 0.40
+    if name != "mocap-boundary":
+        return
+    table = sim._stride_table
+    ho_frac = body.HEEL_OFF_FRACTION
+
+    def stride_table(steps, ev, initial, user_, r_sensor, foot="right"):
+        df = table(steps, ev, initial, user_, r_sensor, foot)
+        idx = [k for k, s in enumerate(steps) if s.foot == foot]
+        for j, k in enumerate(idx):
+            T = 2.0 * ev.step_s[k]
+            flat, after = (ho_frac - body.LOAD_FRACTION) * T, (MID_STANCE_FRACTION - body.LOAD_FRACTION) * T
+            if j > 0 and ev.ho[k] - ev.ff[idx[j - 1]] < flat + 0.3:
+                prev_ff = ev.ff[idx[j - 1]]
+                df.loc[j, "start_s"] = prev_ff + min(after, 0.5 * (ev.ho[k] - prev_ff))
+            else:
+                df.loc[j, "start_s"] = ev.ho[k] - (flat - after)
+            nxt = idx[j + 1] if j + 1 < len(idx) else None
+            gap = ev.ho[nxt] - ev.ff[k] if nxt is not None else np.inf
+            df.loc[j, "end_s"] = ev.ff[k] + (min(after, 0.5 * gap) if gap < flat + 0.3 else after)
+        return df
+
+    sim._stride_table = stride_table
+
+
+def patch_rest_search() -> None:
+    """Diagnostic (``--rest-fix``): the step windows' rest search scores each sample by its gyroscope norm
+    plus 0.1 x the deviation of |acc| from the WINDOW median |acc|; when less than half of the window is
+    rest (stance 62-68 % with foot flat 10-45 % of the cycle: ~35 % rest), that median is a moving value
+    and the 'rest' sample lands in the push-off or loading (noise-free simulated 100 Hz flat stride: |acc|
+    13.99 m/s^2, |gyro| 0.22 rad/s at the chosen sample), so the whole window is levelled with a wrong
+    tilt (rest vertical acceleration -2 m/s^2 instead of 0). This patch (this process only; the features
+    module is not changed) uses the median |acc| of the quietest quarter of the samples (by gyroscope norm)
+    as the rest reference, and the per-step path instead of the batch one."""
+    import importlib
+
+    stats = importlib.import_module("pdrlearn.kernels.stats")
+    window = importlib.import_module("pdrlearn.kernels.window")
+    windows = importlib.import_module("pdrlearn.features.windows")
+    original = stats.rest_index
+
+    def rest_index(acc, gyr, lo, hi, *, acc_norm=None, acc_median=None):
+        if gyr is not None:
+            an = stats.row_norm(acc) if acc_norm is None else acc_norm
+            gn = stats.row_norm(gyr)
+            acc_median = float(np.median(an[gn <= np.quantile(gn, 0.25)]))
+        return original(acc, gyr, lo, hi, acc_norm=acc_norm, acc_median=acc_median)
+
+    window.rest_index = rest_index
+    windows.batch_applicable = lambda *a, **k: False
+
+
 def simulate_users(users: int, rate_hz: float) -> list:
     """Terrain calibration exercises of ``users`` simulated users at three speeds."""
     return [simulate("terrain", user_seed=u, speed=sp, rate_hz=rate_hz) for u in range(1, users + 1)
@@ -119,6 +195,76 @@ def profiles(sessions, label: str) -> list[dict]:
     return rows
 
 
+def dtw_diagnosis(sims, real, seed: int = 0) -> str:
+    """Why DTW decides as it does: median class-mean DTW distance of each real recording's strides to the
+    simulated references, per signal (both = what the classifier uses), with the resulting votes; and the
+    simulated classes' own spread (mean distance of a class's references to each class).
+
+    Same set-up as the classifier (``DTW_SIGNALS`` terrain/foot, channels standardized by the simulated
+    strides, 36 random references per class, Sakoe-Chiba +-10 %).
+    """
+    from pdrlearn.classify.dtw import THESIS_REFERENCES_PER_CLASS, as_series, dtw_block
+    from pdrlearn.classify.training import DTW_SIGNALS, select_signals
+    from pdrlearn.features import step_windows
+
+    names = DTW_SIGNALS["terrain"]["foot"]
+
+    def series(sessions, steady: bool):
+        xs, ys, kinds = [], [], []
+        for s in sessions:
+            st = s.steps[s.steps["terrain"].isin(CLASSES)]
+            if steady and "steady" in st:
+                st = st[st["steady"].astype(bool)]
+            if len(st):
+                xs.append(as_series(select_signals(step_windows(s, st).X, names=names)))
+                ys += list(st["terrain"])
+                kinds += list(st["kind"]) if "kind" in st else ["real"] * len(st)
+        return np.concatenate(xs), np.array(ys), np.array(kinds)
+
+    S, y, kinds = series(sims, steady=False)
+    flat_kinds = pd.Series(kinds[y == "flat"]).value_counts().to_dict()
+    mu, sd = S.reshape(-1, S.shape[2]).mean(0), S.reshape(-1, S.shape[2]).std(0)
+    rng = np.random.default_rng(seed)
+    n_ref = THESIS_REFERENCES_PER_CLASS["terrain"]
+    idx = np.concatenate([rng.choice(np.flatnonzero(y == c), min(n_ref, int((y == c).sum())), replace=False)
+                          for c in CLASSES])
+    R, ry = np.ascontiguousarray((S[idx] - mu) / sd), y[idx]
+    win = max(1, round(0.1 * S.shape[1]))
+    rows = []
+    chans = {"both": slice(None), **{n: slice(i, i + 1) for i, n in enumerate(names)}}
+    for r in real:
+        Q, qy, _ = series([r], steady=False)
+        Q = (Q - mu) / sd
+        for cname, ch in chans.items():
+            d = dtw_block(np.ascontiguousarray(Q[:, :, ch]), np.ascontiguousarray(R[:, :, ch]), window=win)
+            m = np.vstack([d[:, ry == c].mean(axis=1) for c in CLASSES])
+            pred = np.array(CLASSES)[np.argmin(m, axis=0)]
+            rows.append({"real": r.name.replace("gaitmap_", ""), "signal": cname,
+                         **{f"to sim {c}": f"{np.median(m[i]):.2f}" for i, c in enumerate(CLASSES)},
+                         "votes flat/up/down": "/".join(str(int((pred == c).sum())) for c in CLASSES),
+                         "labels flat/up/down": "/".join(str(int((qy == c).sum())) for c in CLASSES)})
+    # the same with references drawn from the steady walking / stair strides only (no turns, closing steps)
+    steady = np.flatnonzero(np.isin(kinds, ("walk", "stairs_up", "stairs_down")))
+    idx_s = np.concatenate([rng.choice(steady[y[steady] == c], min(n_ref, int((y[steady] == c).sum())),
+                                       replace=False) for c in CLASSES])
+    Rs, rys = np.ascontiguousarray((S[idx_s] - mu) / sd), y[idx_s]
+    for r in real:
+        Q, qy, _ = series([r], steady=False)
+        d = dtw_block(np.ascontiguousarray((Q - mu) / sd), Rs, window=win)
+        m = np.vstack([d[:, rys == c].mean(axis=1) for c in CLASSES])
+        pred = np.array(CLASSES)[np.argmin(m, axis=0)]
+        rows.append({"real": r.name.replace("gaitmap_", ""), "signal": "both, steady refs",
+                     **{f"to sim {c}": f"{np.median(m[i]):.2f}" for i, c in enumerate(CLASSES)},
+                     "votes flat/up/down": "/".join(str(int((pred == c).sum())) for c in CLASSES),
+                     "labels flat/up/down": "/".join(str(int((qy == c).sum())) for c in CLASSES)})
+    for c in CLASSES:
+        d = dtw_block(np.ascontiguousarray(R[ry == c]), R, window=win)
+        rows.append({"real": f"(sim {c} refs)", "signal": "both",
+                     **{f"to sim {k}": f"{d[:, ry == k].mean():.2f}" for k in CLASSES}})
+    return (pd.DataFrame(rows).fillna("").to_markdown(index=False)
+            + f"\n\nSimulated flat strides by kind (all of them are DTW reference candidates): {flat_kinds}\n")
+
+
 def loro(real, args) -> dict:
     """Leave-one-recording-out real-trained accuracy per method, pooled over the held-out recordings whose
     classes the other three recordings contain (a stairs recording is the only source of its class)."""
@@ -152,13 +298,25 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
     ap.add_argument("--loro", action="store_true", help="also leave-one-recording-out real-trained accuracy")
     ap.add_argument("--diagnose", action="store_true", help="also per-class feature medians sim vs real")
     ap.add_argument("--no-write", action="store_true", help="print only, do not write experiments/results")
+    ap.add_argument("--variant", default="none", choices=VARIANTS,
+                    help="simulator variant tried in docs/sim_to_real.md (none = the shipped simulator)")
+    ap.add_argument("--steady-train", action="store_true",
+                    help="train on the steady simulated strides only (no turns on the spot / closing steps)")
+    ap.add_argument("--rest-fix", action="store_true",
+                    help="diagnostic: rest search of the step windows referenced to the quietest samples")
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.WARNING)
+    apply_variant(args.variant)
+    if args.rest_fix:
+        patch_rest_search()
 
     t_all = time.perf_counter()
     real = [read_session(REAL / n) for n in REAL_FOOT]
     t0 = time.perf_counter()
     sims = simulate_users(args.users, args.rate)
+    if args.steady_train:  # clean class examples only: no turns on the spot, closing or transition strides
+        for s in sims:
+            s.steps = s.steps[s.steps["steady"].astype(bool)].reset_index(drop=True)
     sim_s = time.perf_counter() - t0
     sim_model = train_user(sims, tasks=["terrain"], methods=METHODS, units=["foot"], cv=3, seed=args.seed,
                            user="simulated")
@@ -188,7 +346,8 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
     df = pd.DataFrame(rows)
     n_real = sim_eval["n_steps"]
     text = (
-        f"# Sim-to-real: terrain (foot unit), simulator at {args.rate:g} Hz\n\n"
+        f"# Sim-to-real: terrain (foot unit), simulator at {args.rate:g} Hz"
+        + ("" if args.variant == "none" else f", variant '{args.variant}' (not the shipped simulator)") + "\n\n"
         f"Trained on {len(sims)} simulated terrain exercises ({args.users} users x 3 speeds, {args.rate:g} Hz, "
         f"{sum(len(s.steps) for s in sims)} strides, simulated in {sim_s:.1f} s); tested on the {n_real} "
         f"labelled strides of the real foot recordings ({', '.join(REAL_FOOT)}), pooled and per recording. "
@@ -205,10 +364,14 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
         prof = profiles(sims, "sim") + [r for s in real for r in profiles([s], "")]
         prof = sorted(prof, key=lambda r: (CLASSES.index(r["class"]), r["signal"]))
         text += "\n## Median stride profiles (foot)\n\n" + pd.DataFrame(prof).to_markdown(index=False) + "\n"
+        text += ("\n## DTW: class-mean distances of the real strides to the simulated references\n\n"
+                 + dtw_diagnosis(sims, real, seed=args.seed))
     text += f"\n(run time {time.perf_counter() - t_all:.0f} s)\n"
     if not args.no_write:
         RESULTS.mkdir(parents=True, exist_ok=True)
         stem = "sim_to_real" if args.rate == 20.0 else f"sim_to_real_{args.rate:g}hz"
+        stem += "" if args.variant == "none" else f"_{args.variant}"
+        stem += ("_restfix" if args.rest_fix else "") + ("_steady" if args.steady_train else "")
         df.to_csv(RESULTS / f"{stem}.csv", index=False)
         (RESULTS / f"{stem}.md").write_text(text)
     print(text)
