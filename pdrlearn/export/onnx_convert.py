@@ -274,75 +274,78 @@ def svm_decision_to_onnx(
     (the formula of :func:`pdrlearn.classify.svm.svc_decision`); ``scores`` = the ``d_k`` side by side,
     ``proba = softmax(scores)``. Unlike the ``ai.onnx.ml`` SVM operator (float32 inside; decision values
     off by ~1e-4 when large kernel terms cancel), this keeps float64 end to end (decision E4).
+
+    All classes' support vectors share one product ``Z @ SV.T``; the kernels are applied column-wise
+    (linear = polynomial with gamma 1, coef0 0, degree 1, which is exact) and one product with the
+    block matrix of the dual coefficients gives every ``d_k`` (a fixed number of nodes per model, so the
+    runtime's step graph stays small).
     """
     from onnx import TensorProto, helper, numpy_helper
 
     D = TensorProto.DOUBLE
     n_features = int(len(mean))
+    for p in params:
+        if p["kernel"] not in ("linear", "poly", "rbf"):
+            raise ModelError(f"{name}: kernel {p['kernel']!r} has no ONNX translation; see docs/decisions/export.md")
+    svs = [np.asarray(p["sv"], np.float64).reshape(-1, n_features) for p in params]
+    sizes = [len(v) for v in svs]
+    sv = np.concatenate(svs, axis=0)
+    col_kernel = np.repeat([p["kernel"] for p in params], sizes)
+    col = {k: np.repeat([float(p[k]) if p["kernel"] == "poly" else d for p in params], sizes)
+           for k, d in (("gamma", 1.0), ("coef0", 0.0), ("degree", 1.0))}
+    dual = np.zeros((len(sv), len(params)))
+    for k, (o, p) in enumerate(zip(np.cumsum([0] + sizes[:-1]), params, strict=True)):
+        dual[o:o + sizes[k], k] = np.asarray(p["dual"], np.float64).reshape(-1)
     inits = [
         numpy_helper.from_array(np.asarray(mean, np.float64), "mean"),
         numpy_helper.from_array(np.asarray(scale, np.float64), "scale"),
-        numpy_helper.from_array(np.ones((n_features, 1)), "ones_col"),
-        numpy_helper.from_array(np.zeros(1), "zero"),
+        numpy_helper.from_array(np.ascontiguousarray(sv.T), "svT"),
+        numpy_helper.from_array(dual, "dual"),
+        numpy_helper.from_array(np.array([p["b"] for p in params], np.float64), "b"),
     ]
-    nodes = [helper.make_node("Sub", ["X", "mean"], ["Xc"]), helper.make_node("Div", ["Xc", "scale"], ["Z"])]
-    need_sq = any(p["kernel"] == "rbf" for p in params)
-    if need_sq:
+    nodes = [helper.make_node("Sub", ["X", "mean"], ["Xc"]), helper.make_node("Div", ["Xc", "scale"], ["Z"]),
+             helper.make_node("MatMul", ["Z", "svT"], ["dot"])]
+    is_rbf = col_kernel == "rbf"
+    if not is_rbf.all():
+        inits += [numpy_helper.from_array(col[k], k) for k in ("gamma", "coef0", "degree")]
+        nodes += [
+            helper.make_node("Mul", ["dot", "gamma"], ["gd"]),
+            helper.make_node("Add", ["gd", "coef0"], ["base"]),
+            helper.make_node("Pow", ["base", "degree"], ["K_poly"]),
+        ]
+    if is_rbf.any():
+        gam = np.repeat([float(p["gamma"]) if p["kernel"] == "rbf" else 0.0 for p in params], sizes)
+        inits += [
+            numpy_helper.from_array(np.ones((n_features, 1)), "ones_col"),
+            numpy_helper.from_array(np.zeros(1), "zero"),
+            numpy_helper.from_array(np.array([-2.0]), "m2"),
+            numpy_helper.from_array(-gam, "neg_gamma"),
+            numpy_helper.from_array(np.sum(sv**2, axis=1)[None, :], "sv_sq"),
+        ]
         nodes += [
             helper.make_node("Mul", ["Z", "Z"], ["Z2"]),
-            helper.make_node("MatMul", ["Z2", "ones_col"], ["z_sq"]),
-        ]  # (n, 1)
-    cols = []
-    for k, p in enumerate(params):
-        sv = np.asarray(p["sv"], np.float64)
-        f = f"k{k}_"
-        inits += [
-            numpy_helper.from_array(np.ascontiguousarray(sv.T), f + "svT"),
-            numpy_helper.from_array(np.asarray(p["dual"], np.float64).reshape(-1, 1), f + "dual"),
-            numpy_helper.from_array(np.array([p["b"]], np.float64), f + "b"),
+            helper.make_node("MatMul", ["Z2", "ones_col"], ["z_sq"]),  # (n, 1)
+            helper.make_node("Mul", ["dot", "m2"], ["m2dot"]),
+            helper.make_node("Add", ["z_sq", "m2dot"], ["a"]),
+            helper.make_node("Add", ["a", "sv_sq"], ["d2raw"]),
+            helper.make_node("Max", ["d2raw", "zero"], ["d2"]),
+            helper.make_node("Mul", ["d2", "neg_gamma"], ["e"]),
+            helper.make_node("Exp", ["e"], ["K_rbf"]),
         ]
-        nodes.append(helper.make_node("MatMul", ["Z", f + "svT"], [f + "dot"]))
-        kern = p["kernel"]
-        if kern == "linear":
-            K = f + "dot"
-        elif kern == "poly":
-            inits += [
-                numpy_helper.from_array(np.array([p["gamma"]], np.float64), f + "gamma"),
-                numpy_helper.from_array(np.array([p["coef0"]], np.float64), f + "coef0"),
-                numpy_helper.from_array(np.array([float(p["degree"])], np.float64), f + "degree"),
-            ]
-            nodes += [
-                helper.make_node("Mul", [f + "dot", f + "gamma"], [f + "gd"]),
-                helper.make_node("Add", [f + "gd", f + "coef0"], [f + "base"]),
-                helper.make_node("Pow", [f + "base", f + "degree"], [f + "K"]),
-            ]
-            K = f + "K"
-        elif kern == "rbf":
-            inits += [
-                numpy_helper.from_array(np.array([-p["gamma"]], np.float64), f + "neg_gamma"),
-                numpy_helper.from_array(np.array([-2.0]), f + "m2"),
-                numpy_helper.from_array(np.sum(sv**2, axis=1)[None, :], f + "sv_sq"),
-            ]
-            nodes += [
-                helper.make_node("Mul", [f + "dot", f + "m2"], [f + "m2dot"]),
-                helper.make_node("Add", ["z_sq", f + "m2dot"], [f + "a"]),
-                helper.make_node("Add", [f + "a", f + "sv_sq"], [f + "d2raw"]),
-                helper.make_node("Max", [f + "d2raw", "zero"], [f + "d2"]),
-                helper.make_node("Mul", [f + "d2", f + "neg_gamma"], [f + "e"]),
-                helper.make_node("Exp", [f + "e"], [f + "K"]),
-            ]
-            K = f + "K"
-        else:
-            raise ModelError(f"{name}: kernel {kern!r} has no ONNX translation; see docs/decisions/export.md")
-        nodes += [
-            helper.make_node("MatMul", [K, f + "dual"], [f + "kd"]),
-            helper.make_node("Add", [f + "kd", f + "b"], [f + "col"]),
-        ]
-        cols.append(f + "col")
+    if is_rbf.all():
+        K = "K_rbf"
+    elif not is_rbf.any():
+        K = "K_poly"
+    else:
+        inits.append(numpy_helper.from_array(is_rbf, "is_rbf"))
+        nodes.append(helper.make_node("Where", ["is_rbf", "K_rbf", "K_poly"], ["K"]))
+        K = "K"
     nodes += [
-        helper.make_node("Concat", cols, ["scores"], axis=1),
+        helper.make_node("MatMul", [K, "dual"], ["kd"]),
+        helper.make_node("Add", ["kd", "b"], ["scores"]),
         helper.make_node("Softmax", ["scores"], ["proba"], axis=1),
     ]
+
     g = helper.make_graph(
         nodes,
         name,
