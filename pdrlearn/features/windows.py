@@ -31,13 +31,14 @@ import pandas as pd
 from pdrlearn.errors import DataError
 from pdrlearn.features.batch import batch_applicable, fill_windows_batch
 from pdrlearn.io.session import DIRECTION_CLASSES, LENGTH_CLASSES, TERRAIN_CLASSES, Session, Stream
-from pdrlearn.kernels.window import (  # noqa: F401 (the layout is part of this module's API)
+from pdrlearn.kernels.window import (  # noqa: F401 (the layout and rest rule are part of this module's API)
+    BOUNDARIES,
     CHANNEL_INDEX,
     CHANNELS,
     GROUP_STREAMS,
     GROUPS,
-    box_filter,
     fill_step_window,
+    rest_boundaries,
 )
 
 log = logging.getLogger(__name__)
@@ -170,79 +171,6 @@ def _check_units(session: str, s: Stream) -> None:
         if p99 > 35.0:  # 2000 deg/s full scale (thesis ch. 4.2.1.2) is 34.9 rad/s
             raise DataError(f"session '{session}': {s.name} reaches {p99:.0f} (99th percentile); it looks like "
                             "deg/s, not rad/s - multiply by pi/180")
-
-
-#: Step-boundary modes of :func:`step_windows` (decision 13 in docs/decisions/features.md).
-BOUNDARIES = ("given", "rest")
-
-
-def rest_boundaries(t: np.ndarray, gyr: np.ndarray, start: np.ndarray, end: np.ndarray, *,
-                    search_s: float = 0.3, smooth_s: float = 0.05, rest_tol_rad_s: float = 0.1
-                    ) -> tuple[np.ndarray, np.ndarray]:
-    """Move each step boundary to the middle of the foot's rest nearby (rest-to-rest step windows).
-
-    Motion score = angular-rate norm (rad/s; rotation-invariant, so the same for any mounting),
-    box-smoothed over ``smooth_s`` seconds. Within ``search_s`` seconds of the given boundary (at most a
-    quarter of the step inward, so a window keeps at least half of its given span) the rest is the run of
-    samples around the score's minimum that stay within ``rest_tol_rad_s`` of it; the boundary becomes
-    that run's middle (``rest_tol_rad_s=0``: the minimum itself, which jitters by the noise inside a long
-    rest). Step labels from other sources (motion-capture mid-stance events, a converter's swing
-    detection, manual cuts) start at different gait phases; cut at the middle of the foot's rest, every
-    step runs rest to rest whatever the source, mounting or rate, like the runtime's stance-middle
-    segmentation (decision 13 in docs/decisions/features.md).
-
-    Parameters
-    ----------
-    t : (n,) s, increasing;  gyr : (n, 3) rad/s foot angular rate on ``t``
-    start, end : (m,) step boundaries (s), ``end > start``
-    search_s, smooth_s : search half-width and smoothing window (s), converted with the stream's rate
-    rest_tol_rad_s : rate above the local minimum still counted as rest (rad/s; 0.1 rad/s = 6 deg/s, a
-        foot flat on the ground vs. heel strike / heel-off, whose rates pass it within a few samples)
-
-    Returns
-    -------
-    new_start, new_end : (m,) s (``new_end > new_start``); the rest's edges are interpolated between
-        samples, so 20 Hz and 204.8 Hz streams of the same walk give boundaries a few ms apart
-    """
-    t = np.asarray(t, dtype=float)
-    start = np.asarray(start, dtype=float)
-    end = np.asarray(end, dtype=float)
-    if len(t) < 2:
-        return start.copy(), end.copy()
-    fs = (len(t) - 1) / float(t[-1] - t[0])
-    w = 2 * (max(1, int(round(smooth_s * fs))) // 2) + 1  # odd: a centred box
-    score = np.sqrt(np.einsum("ij,ij->i", gyr, gyr))
-    if w > 1:
-        score = box_filter(score, w)
-    quarter = 0.25 * (end - start)
-
-    def quietest(lo: np.ndarray, hi: np.ndarray, given: np.ndarray) -> np.ndarray:
-        i0 = np.searchsorted(t, lo, side="left")
-        i1 = np.searchsorted(t, hi, side="right")
-        out = given.copy()
-        for k in range(len(given)):  # a few samples per boundary; steps are not equally long
-            if i1[k] > i0[k]:
-                seg, ts = score[i0[k]:i1[k]], t[i0[k]:i1[k]]
-                j = int(np.argmin(seg))
-                out[k] = ts[j]
-                if rest_tol_rad_s > 0:  # middle of the quiet run around the minimum
-                    thr = seg[j] + rest_tol_rad_s
-                    a, b = j, j
-                    while a > 0 and seg[a - 1] <= thr:
-                        a -= 1
-                    while b < len(seg) - 1 and seg[b + 1] <= thr:
-                        b += 1
-                    # run edges where the score crosses thr, interpolated between samples, so the middle
-                    # does not move by whole sample periods at low rates (20 Hz: 50 ms)
-                    left = ts[a] if a == 0 else float(np.interp(thr, [seg[a], seg[a - 1]], [ts[a], ts[a - 1]]))
-                    right = ts[b] if b == len(seg) - 1 else float(
-                        np.interp(thr, [seg[b], seg[b + 1]], [ts[b], ts[b + 1]]))
-                    out[k] = 0.5 * (left + right)
-        return out
-
-    new_start = quietest(start - search_s, start + np.minimum(search_s, quarter), start)
-    new_end = quietest(end - np.minimum(search_s, quarter), end + search_s, end)
-    return new_start, new_end
 
 
 #: Sensor groups of each unit and the groups whose stream gaps blank the unit (decision B11).
