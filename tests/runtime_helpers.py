@@ -146,3 +146,25 @@ def trained_dirs(tmp_path_factory) -> dict:
     export_model(root / "model_foot", root / "bundle_foot")
     _CACHE.update(root=root)
     return _CACHE
+
+
+#: methods of the rest-boundary model: the ensemble (decision C14) and its members
+REST_METHODS = ["nn", "svm", "dtw", "ensemble"]
+
+
+def rest_dirs(tmp_path_factory) -> dict:
+    """A foot-only model trained on rest-to-rest windows (``boundaries="rest"``, decision 13) with the
+    ``ensemble`` method, and its bundle with every method (once per test process)."""
+    if "rest_root" in _CACHE:
+        return _CACHE
+    from pdrlearn.classify import train_user
+    from pdrlearn.export.from_model import export_model
+
+    root = tmp_path_factory.mktemp("trained_rest")
+    foot = synthetic_session(90, seed=0)
+    for name in ("wAccelerometer", "wGyroscope", "wBarometer"):
+        del foot.streams[name]
+    train_user([foot], cv=2, seed=0, units=["foot"], methods=REST_METHODS, boundaries="rest").save(root / "model")
+    export_model(root / "model", root / "bundle", methods=REST_METHODS)
+    _CACHE.update(rest_root=root)
+    return _CACHE

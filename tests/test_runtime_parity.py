@@ -21,7 +21,7 @@ from pdrlearn.runtime import load_bundle
 from pdrlearn.runtime.classify import TaskClassifier
 from pdrlearn.runtime.features import step_window
 from pdrlearn.runtime.tracker import Tracker
-from tests.runtime_helpers import synthetic_session, trained_dirs
+from tests.runtime_helpers import REST_METHODS, rest_dirs, synthetic_session, trained_dirs
 
 
 @pytest.fixture(scope="module")
@@ -284,3 +284,65 @@ def test_late_waist_samples_delay_the_step_instead_of_changing_it(trained):
     for x, y in zip(a_steps, b_steps, strict=True):
         assert (x.start_s, x.end_s, x.classes) == (y.start_s, y.end_s, y.classes)
         assert abs(x.length_m - y.length_m) < 1e-9 and abs(x.x - y.x) < 1e-9
+
+
+# -- a model trained on rest-to-rest windows (decision 13) with the ensemble (C14) ---------------------
+@pytest.fixture(scope="module")
+def trained_rest(tmp_path_factory):
+    root = rest_dirs(tmp_path_factory)["rest_root"]
+    test = synthetic_session(30, seed=5, name="held_out")
+    for name in ("wAccelerometer", "wGyroscope", "wBarometer"):  # the model is foot-only
+        del test.streams[name]
+    return {"root": root, "model": load_model(root / "model"), "test": test}
+
+
+def _replay(tr: Tracker, s, chunk_s: float = 0.5) -> list:
+    t = s.streams["fAccelerometer"].t
+    steps = []
+    for t0 in np.arange(t[0], t[-1] + chunk_s, chunk_s):
+        steps += tr.push({n: (st.t[(st.t >= t0) & (st.t < t0 + chunk_s)], st.values[(st.t >= t0) & (st.t < t0 + chunk_s)])
+                          for n, st in s.streams.items()})
+    return steps + tr.flush()
+
+
+def test_rest_boundary_windows_equal_training_side(trained_rest):
+    """The runtime moves a step's ends with the training side's own kernel (rest_boundaries) and cuts the
+    same window as step_windows(boundaries="rest")."""
+    import pandas as pd
+
+    from pdrlearn.kernels.window import rest_boundaries
+
+    s = trained_rest["test"]
+    tr = Tracker(trained_rest["root"] / "bundle")
+    tr._trim = lambda: None  # keep the whole session buffered, to cut every step's window afterwards
+    assert tr.boundaries == "rest" and tr.bundle.manifest["features"]["boundaries"] == "rest"
+    steps = _replay(tr, s)
+    table = pd.DataFrame({"start_s": [st.start_s for st in steps], "end_s": [st.end_s for st in steps]})
+    g = s.streams["fGyroscope"]
+    a, b = rest_boundaries(g.t, g.values, table["start_s"].to_numpy(), table["end_s"].to_numpy())
+    got = np.array([tr.window_bounds(x, y) for x, y in zip(table["start_s"], table["end_s"], strict=True)])
+    np.testing.assert_allclose(got, np.column_stack([a, b]), atol=1e-12)
+    assert np.abs(got - table.to_numpy()).max() > 1e-3  # the windows really moved off the stance boundaries
+    ref = step_windows(s, table, n_samples=tr.n_samples, boundaries="rest").X
+    W = np.stack([tr.window(x, y) for x, y in zip(table["start_s"], table["end_s"], strict=True)])
+    np.testing.assert_allclose(W, ref, atol=1e-9, equal_nan=True)
+
+
+@pytest.mark.parametrize("method", REST_METHODS)
+def test_rest_boundary_model_streams_like_predict_steps(trained_rest, method):
+    """Streamed steps of a rest-window model, each method incl. the ensemble: classes equal the training
+    side's (predict_steps on the streamed step times, which cuts at the rest too), probabilities within 1e-5."""
+    import pandas as pd
+
+    model, s = trained_rest["model"], trained_rest["test"]
+    b = load_bundle(trained_rest["root"] / "bundle")
+    tr = Tracker(b, methods={t: f"{method}/foot" for t in b.tasks})
+    steps = _replay(tr, s)
+    assert len(steps) >= len(s.steps) - 2
+    table = pd.DataFrame({"start_s": [st.start_s for st in steps], "end_s": [st.end_s for st in steps]})
+    ref = model.predict_steps(s, table, method=method, unit="foot")
+    for task in tr.classifiers:
+        assert [st.classes[task] for st in steps] == list(ref[TASK_COLUMNS[task]]), (task, method)
+        got = np.array([[st.proba[task][c] for c in tr.classifiers[task].classes] for st in steps])
+        want = ref[[f"p_{task}_{c}" for c in tr.classifiers[task].classes]].to_numpy()
+        assert np.abs(got - want).max() <= 1e-5, (task, method)

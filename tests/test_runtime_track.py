@@ -10,7 +10,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.kernels import stride as SK
 from pdrlearn.runtime.tracker import Tracker
 from pdrlearn.track.base import get_pipeline
-from tests.runtime_helpers import synthetic_session, trained_dirs
+from tests.runtime_helpers import rest_dirs, synthetic_session, trained_dirs
 
 
 @pytest.fixture(scope="module")
@@ -45,6 +45,25 @@ def test_streamed_trajectory_equals_streaming_track_within_1mm(trained, heading)
     np.testing.assert_allclose([st.heading_rad for st in steps], np.unwrap(res.steps["heading_rad"]), atol=1e-9)
     # the walk turns (0.3 rad per stride of yaw rate in the synthetic sensor frame), so the heading matters
     assert np.median(np.diff([st.heading_rad for st in steps])) > 0.1
+
+
+def test_rest_boundary_model_tracks_like_streaming_track(tmp_path_factory):
+    """A model on rest-to-rest windows (decision 13): the runtime classifies rest-cut windows like
+    predict_steps, the displacement stays stance to stance, so the trajectory still matches within 1 mm."""
+    root = rest_dirs(tmp_path_factory)["rest_root"]
+    s = synthetic_session(24, seed=11, name="parity", turn_rad_per_step=0.3)
+    for name in ("wAccelerometer", "wGyroscope", "wBarometer"):
+        del s.streams[name]
+    res = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True, heading="foot")
+    tr = Tracker(root / "bundle", heading_source="foot")
+    assert tr.boundaries == "rest"
+    steps = _stream(tr, s)
+    assert len(steps) == len(res.steps) >= 20
+    np.testing.assert_allclose([st.start_s for st in steps], res.steps["start_s"], atol=1e-12)
+    for task, col in (("terrain", "terrain"), ("direction", "direction"), ("length", "length_class")):
+        assert [st.classes[task] for st in steps] == list(res.steps[col])
+    got = np.array([[st.x, st.y, st.z] for st in steps])
+    assert np.abs(got - res.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
 
 
 def test_streaming_track_rejects_session_wide_options(trained):

@@ -160,8 +160,10 @@ def _nn_module(clf):
 
 
 def _units_of(entry: dict, unit: str) -> set[str]:
+    """Body units (foot / waist) an entry of ``unit`` reads. Fusion members are units (foot/waist of a
+    fused model) or methods (an ``ensemble``'s nn/svm/dtw, decision C14): those read their parent's unit."""
     if entry["type"] == "fusion":
-        return set().union(*(_units_of(e, u) for u, e in entry["members"].items()))
+        return set().union(*(_units_of(e, u if u in UNIT_SENSORS else unit) for u, e in entry["members"].items()))
     return {"foot", "waist"} if unit == "fused" else {unit}
 
 
@@ -196,7 +198,7 @@ def export_model(
     from pdrlearn.features import CHANNELS
     from pdrlearn.features.transformers import SIGNALS
 
-    known = ("heuristic", "fusion", "dtw", "svm", "nn")  # issue 5 methods
+    known = ("heuristic", "fusion", "dtw", "svm", "nn", "ensemble")  # issue 5 methods + opt-in C14
     bad = [m for m in methods or [] if m not in known]
     if bad:
         raise ModelError(f"unknown method(s) {', '.join(bad)}; choose from {', '.join(known)}")
@@ -256,6 +258,9 @@ def export_model(
         "n_samples": int(model.n_samples),
         "heading": "pca",
         "rest_search_s": 0.3,
+        # where windows are cut: "given" = at the segmenter's stance boundaries, "rest" = each boundary
+        # moved to the middle of the foot's rest (kernels.window.rest_boundaries; decisions 13 / C13)
+        "boundaries": model.boundaries,
         "channels": list(CHANNELS),
         "signals": {k: [list(v[0]), float(v[1])] for k, v in SIGNALS.items()},
     }

@@ -29,7 +29,14 @@ from pdrlearn.kernels.stride import (
     apply_stride_rules,
     stride_motion,
 )
-from pdrlearn.kernels.window import available_groups, fill_step_window
+from pdrlearn.kernels.window import (
+    BOUNDARIES,
+    available_groups,
+    fill_step_window,
+    levelled_units,
+    rest_boundaries,
+    segment,
+)
 from pdrlearn.runtime.bundle import Bundle, load_bundle
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 
@@ -140,6 +147,15 @@ class Tracker:
         self.n_samples = int(fm["n_samples"])
         self.heading_mode = fm.get("heading", "pca")
         self.rest_search_s = float(fm.get("rest_search_s", 0.3))
+        #: where classification windows are cut (decisions 13 / C13): "given" = the segmenter's stance
+        #: boundaries, "rest" = each moved to the middle of the foot's rest by the training side's own
+        #: kernel (bundles exported before the setting existed read as "given")
+        self.boundaries = str(fm.get("boundaries", "given"))
+        if self.boundaries not in BOUNDARIES:
+            raise ModelError(f"bundle {self.bundle.path.name}: features.boundaries {self.boundaries!r} is not one "
+                             f"of {', '.join(BOUNDARIES)}; re-export it with this version")
+        # a rest boundary is searched up to rest_search_s after the step's end (+ the 50 ms smoothing box)
+        self._lookahead_s = self.rest_search_s + 0.05 if self.boundaries == "rest" else 0.0
         frames = frames or m["frames"]
         self.forward = {p: forward_vector(f) for p, f in frames.items()}
         ctx = {"signals": fm["signals"], "channel_index": self.ci}
@@ -200,9 +216,26 @@ class Tracker:
     def _window(self, t0: float, t1: float):
         streams = {k: self._stream(k) for k in self._buf}
         W = np.full((len(self.channels), self.n_samples), np.nan)
-        lev = fill_step_window(W, streams, t0, t1, channel_index=self.ci, available=available_groups(streams),
+        avail = available_groups(streams)
+        w0, w1 = self.window_bounds(t0, t1, streams)
+        lev = fill_step_window(W, streams, w0, w1, channel_index=self.ci, available=avail,
                                forward=self.forward, rest_search_s=self.rest_search_s, heading=self.heading_mode)
+        if (w0, w1) != (t0, t1):  # displacement stays stance to stance, like pdrlearn track --streaming
+            lev = levelled_units(streams, t0, t1, available=avail, forward=self.forward,
+                                 rest_search_s=self.rest_search_s, heading=self.heading_mode)
         return W, lev
+
+    def window_bounds(self, t0: float, t1: float, streams=None) -> tuple[float, float]:
+        """Times (s) the classification window of the step ``[t0, t1]`` is cut at: the step itself, or
+        with ``features.boundaries == "rest"`` each end moved to the middle of the foot's rest nearby
+        (:func:`pdrlearn.kernels.window.rest_boundaries`, the function ``step_windows`` calls)."""
+        streams = streams if streams is not None else {k: self._stream(k) for k in self._buf}
+        if self.boundaries != "rest" or "fGyroscope" not in streams:
+            return t0, t1
+        pad = self.rest_search_s + 0.1  # the search span plus the smoothing box's reach
+        tg, g = segment(*streams["fGyroscope"], t0 - pad, t1 + pad)
+        a, b = rest_boundaries(tg, g, np.array([t0]), np.array([t1]), search_s=self.rest_search_s)
+        return float(a[0]), float(b[0])
 
     # -- streaming ------------------------------------------------------------------------------------
     def _stream(self, name: str) -> tuple[np.ndarray, np.ndarray]:
@@ -270,7 +303,7 @@ class Tracker:
         # a sensor that stopped must not hold the steps forever: the thesis asks for < 2 s delay
         stale = max(ends) - float(self.params.get("max_wait_s", 2.0))
         out = []
-        while self._pending and (force or self._pending[0][1] < max(latest, stale)):
+        while self._pending and (force or self._pending[0][1] + self._lookahead_s < max(latest, stale)):
             out.append(self.process_step(*self._pending.pop(0)))
         return out
 
