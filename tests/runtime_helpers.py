@@ -168,3 +168,14 @@ def rest_dirs(tmp_path_factory) -> dict:
     export_model(root / "model", root / "bundle", methods=REST_METHODS)
     _CACHE.update(rest_root=root)
     return _CACHE
+
+
+def replay(tracker, session, chunk_s: float = 0.5) -> list:
+    """Push ``session`` into ``tracker`` in ``chunk_s`` chunks, then flush; the emitted steps."""
+    t = session.streams["fAccelerometer"].t
+    steps = []
+    for t0 in np.arange(t[0], t[-1] + chunk_s, chunk_s):
+        steps += tracker.push({n: (st.t[(st.t >= t0) & (st.t < t0 + chunk_s)],
+                                   st.values[(st.t >= t0) & (st.t < t0 + chunk_s)])
+                               for n, st in session.streams.items()})
+    return steps + tracker.flush()

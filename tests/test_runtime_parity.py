@@ -21,7 +21,7 @@ from pdrlearn.runtime import load_bundle
 from pdrlearn.runtime.classify import TaskClassifier
 from pdrlearn.runtime.features import step_window
 from pdrlearn.runtime.tracker import Tracker
-from tests.runtime_helpers import REST_METHODS, rest_dirs, synthetic_session, trained_dirs
+from tests.runtime_helpers import REST_METHODS, replay, rest_dirs, synthetic_session, trained_dirs
 
 
 @pytest.fixture(scope="module")
@@ -296,15 +296,6 @@ def trained_rest(tmp_path_factory):
     return {"root": root, "model": load_model(root / "model"), "test": test}
 
 
-def _replay(tr: Tracker, s, chunk_s: float = 0.5) -> list:
-    t = s.streams["fAccelerometer"].t
-    steps = []
-    for t0 in np.arange(t[0], t[-1] + chunk_s, chunk_s):
-        steps += tr.push({n: (st.t[(st.t >= t0) & (st.t < t0 + chunk_s)], st.values[(st.t >= t0) & (st.t < t0 + chunk_s)])
-                          for n, st in s.streams.items()})
-    return steps + tr.flush()
-
-
 def test_rest_boundary_windows_equal_training_side(trained_rest):
     """The runtime moves a step's ends with the training side's own kernel (rest_boundaries) and cuts the
     same window as step_windows(boundaries="rest")."""
@@ -316,7 +307,7 @@ def test_rest_boundary_windows_equal_training_side(trained_rest):
     tr = Tracker(trained_rest["root"] / "bundle")
     tr._trim = lambda: None  # keep the whole session buffered, to cut every step's window afterwards
     assert tr.boundaries == "rest" and tr.bundle.manifest["features"]["boundaries"] == "rest"
-    steps = _replay(tr, s)
+    steps = replay(tr, s)
     table = pd.DataFrame({"start_s": [st.start_s for st in steps], "end_s": [st.end_s for st in steps]})
     g = s.streams["fGyroscope"]
     a, b = rest_boundaries(g.t, g.values, table["start_s"].to_numpy(), table["end_s"].to_numpy())
@@ -337,7 +328,7 @@ def test_rest_boundary_model_streams_like_predict_steps(trained_rest, method):
     model, s = trained_rest["model"], trained_rest["test"]
     b = load_bundle(trained_rest["root"] / "bundle")
     tr = Tracker(b, methods={t: f"{method}/foot" for t in b.tasks})
-    steps = _replay(tr, s)
+    steps = replay(tr, s)
     assert len(steps) >= len(s.steps) - 2
     table = pd.DataFrame({"start_s": [st.start_s for st in steps], "end_s": [st.end_s for st in steps]})
     ref = model.predict_steps(s, table, method=method, unit="foot")

@@ -10,7 +10,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.kernels import stride as SK
 from pdrlearn.runtime.tracker import Tracker
 from pdrlearn.track.base import get_pipeline
-from tests.runtime_helpers import rest_dirs, synthetic_session, trained_dirs
+from tests.runtime_helpers import replay, rest_dirs, synthetic_session, trained_dirs
 
 
 @pytest.fixture(scope="module")
@@ -19,13 +19,7 @@ def trained(tmp_path_factory):
 
 
 def _stream(tr: Tracker, session, chunk_s: float = 0.37) -> list:
-    t = session.streams["fAccelerometer"].t
-    steps = []
-    for t0 in np.arange(t[0], t[-1] + chunk_s, chunk_s):
-        steps += tr.push({n: (st.t[(st.t >= t0) & (st.t < t0 + chunk_s)],
-                              st.values[(st.t >= t0) & (st.t < t0 + chunk_s)])
-                          for n, st in session.streams.items()})
-    return steps + tr.flush()
+    return replay(tr, session, chunk_s)
 
 
 @pytest.mark.parametrize("heading", ["foot", "auto"])

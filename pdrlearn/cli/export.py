@@ -16,7 +16,7 @@ def export(
     model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train'."),
     out: Path = typer.Option(..., "--out", "-o", help="Bundle folder to create."),
     methods: str = typer.Option(None, help="Comma-separated methods to export for every task "
-                                "(heuristic,fusion,dtw,svm,nn); default: each task's chosen method."),
+                                "(heuristic,fusion,dtw,svm,nn,ensemble); default: each task's chosen method."),
     length_bounds: str = typer.Option(None, "--length-bounds", help="Stride-length class edges (m) "
                                       "SHORT_NORMAL,NORMAL_LONG; default: model's, else 2x thesis ch.6.3."),
     overwrite: bool = typer.Option(False, "--overwrite", help="Replace an existing bundle."),
@@ -47,6 +47,7 @@ def export(
     summary = {
         "bundle": str(path), "user": b.manifest["user"], "size_bytes": bundle_size_bytes(path),
         "files": sorted(b.manifest["files"]), "rate_hz": b.rate_hz,
+        "boundaries": b.manifest["features"].get("boundaries", "given"),
         "tasks": {t: {"chosen": v["chosen"], "methods": {m: sorted(per) for m, per in v["methods"].items()}}
                   for t, v in b.tasks.items()},
         "skipped": b.manifest.get("export", {}).get("skipped", []),
@@ -54,7 +55,8 @@ def export(
     if as_json:
         print_json(json_safe(summary))
         return
-    typer.echo(f"bundle {path} ({summary['size_bytes'] / 1e3:.1f} kB, {len(summary['files'])} files)")
+    typer.echo(f"bundle {path} ({summary['size_bytes'] / 1e3:.1f} kB, {len(summary['files'])} files, "
+               f"{summary['boundaries']} step boundaries)")
     for t, v in summary["tasks"].items():
         typer.echo(f"  {t}: {v['chosen']['method']}/{v['chosen']['unit']}  (exported: "
                    + ", ".join(f"{m}/{u}" for m, us in v["methods"].items() for u in us) + ")")

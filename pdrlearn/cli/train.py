@@ -48,11 +48,21 @@ def train(
     tasks: str = typer.Option(
         None, help="Comma list of terrain,direction,length (default: what is labelled)."
     ),
-    methods: str = typer.Option(None, help="Comma list of heuristic,fusion,dtw,svm,nn (default: all)."),
+    methods: str = typer.Option(
+        None,
+        help="Comma list of heuristic,fusion,dtw,svm,nn,ensemble (default: the thesis' five; ensemble = "
+        "equal vote of the unit's nn, svm and dtw, decision C14).",
+    ),
     units: str = typer.Option(None, help="Comma list of foot,waist,fused (default: all the data allow)."),
     cv: int = typer.Option(10, help="Folds of the stratified cross-validation (thesis: 10)."),
     seed: int = typer.Option(0, help="Seed of folds, DTW references and network initialisation."),
     user: str = typer.Option(None, help="User name stored in the manifest (default: from the data)."),
+    boundaries: str = typer.Option(
+        "given",
+        help="Step-window boundaries: 'given' (the labelled start/end) or 'rest' (each boundary moved to the "
+        "middle of the foot's rest nearby: rest-to-rest windows, decision 13). Stored in the model; "
+        "evaluate, predict and the exported runtime cut windows the same way.",
+    ),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
     """Train a user's terrain / direction / length classifiers and save a model directory.
@@ -66,10 +76,16 @@ def train(
 
         pdrlearn train datasets/real/gaitmap_level_left datasets/real/gaitmap_stairs_up_left \\
             datasets/real/gaitmap_stairs_down_left --out models/gaitmap --tasks terrain --cv 5
+
+        pdrlearn train datasets/real/gaitmap_* --out models/gaitmap --tasks terrain \\
+            --boundaries rest --methods heuristic,dtw,svm,nn,ensemble
     """
     from pdrlearn.classify.model_dir import check_out_dir
     from pdrlearn.classify.training import check_settings, train_user
+    from pdrlearn.features.windows import BOUNDARIES
 
+    if boundaries not in BOUNDARIES:
+        raise DataError(f"train: --boundaries {boundaries!r}; choose one of {', '.join(BOUNDARIES)}")
     t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
     t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
     check_out_dir(out)
@@ -78,7 +94,8 @@ def train(
     t0 = time.perf_counter()
     with progress("training", total, enabled=not as_json) as advance:
         model = train_user(
-            sessions, tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, user=user, advance=advance
+            sessions, tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, user=user,
+            boundaries=boundaries, advance=advance,
         )
     seconds = time.perf_counter() - t0
     model.save(out)
@@ -86,6 +103,7 @@ def train(
         "out": str(out),
         "user": model.user,
         "sessions": len(sessions),
+        "boundaries": model.boundaries,
         "seconds": round(seconds, 2),
         "skipped": model.skipped,
         "tasks": {
@@ -126,6 +144,7 @@ def train(
             c.print(f"  ignored {tm.n_skipped_labels} step label(s) that are not {t} classes")
     for s in model.skipped:
         c.print(f"skipped {s}")
+    c.print(f"step windows: {model.boundaries} boundaries")
     c.print(f"model written to {out} ({seconds:.1f} s)")
 
 
@@ -175,7 +194,8 @@ def evaluate(
         c.print(tab)
         for s in r["skipped"]:
             c.print(f"  skipped {s}")
-    c.print(f"step windows: {result['windows_ms_per_step']:.3f} ms/step")
+    c.print(f"step windows: {result.get('boundaries', model.boundaries)} boundaries, "
+            f"{result['windows_ms_per_step']:.3f} ms/step")
     for s in result["skipped"]:
         c.print(f"skipped {s}")
     if report is not None:
