@@ -75,6 +75,7 @@ KINDS = {
 SPEED_PITCH = {"slow": 0.88, "normal": 1.0, "fast": 1.08}
 LOAD_FRACTION = 0.10  # initial contact -> foot flat, fraction of the gait cycle
 HEEL_OFF_FRACTION = 0.45  # heel-off instant, fraction of the gait cycle (decisions S14)
+TOE_TIP_FRACTION = 0.97  # push-off pivot (toe rocker: the foot rolls over the tip of the hallux), x foot length
 PUSH_OFF_RATE = 2.2  # pitch rate at toe-off / mean rate of the forefoot rocker (fast push-off)
 SWING_ROLL_DEG = 12.0  # peak inversion of the swinging foot
 SWING_YAW_DEG = 6.0  # peak toe-out of the swinging foot
@@ -220,6 +221,7 @@ def foot_pose(
     theta = np.zeros(n)
     roll = np.zeros(n)
     ball = np.array([0.72 * user.foot_length_m, 0.0, 0.0])  # ball of the foot, ~72 % of foot length
+    toe = np.array([TOE_TIP_FRACTION * user.foot_length_m, 0.0, 0.0])  # tip of the hallux
     h_a, y_a = initial[foot]
     h_a = np.asarray(h_a, float)
     pos = 0
@@ -233,7 +235,7 @@ def foot_pose(
         rock, load = ev.to[k] - ev.ho[k], ev.ff[k] - ev.ic[k]
         w_to = PUSH_OFF_RATE * th_to / rock
         w_ic = -LOADING_RATE * th_ic / load
-        r_a = _pivot(th_to, ball)
+        r_a = _pivot(th_to, toe)  # push-off ends on the toe rocker (decisions S21)
         p_a = h_a + foot_rotate(y_a, 0.0, r_a)
         sl = slice(i_ho, i_to)
         th = hermite((t[sl] - ev.ho[k]) / rock, 0.0, th_to, 0.0, w_to, rock)
@@ -265,6 +267,10 @@ def foot_pose(
             # early swing: half of any rise to the next tread plus the clearance (stairs are climbed
             # gradually); late swing: over the landing tread
             kp[1, 2] = max(h_a[2] + clear + 0.5 * (zmax - h_a[2]), heel_to[2] + 0.3 * clear)
+            if th_to < 0 and zmax - h_a[2] < 0.01:
+                # level forward step: the heel is highest at toe-off and is not lifted further; the foot
+                # levels off in early swing with the toes kept low (decisions S21)
+                kp[1, 2] = heel_to[2]
             kp[2, 2] = zmax + 0.3 * clear
         kp[0], kp[3] = heel_to, heel_ic
         sl = slice(i_to, i_ic)
