@@ -120,6 +120,9 @@ def test_training_side_and_runtime_share_one_kernel_set():
         assert getattr(FK, name) is getattr(KS, name), name
     assert rules.half_balance is KS.half_balance and features.K is KS
     assert windows.fill_step_window is window.fill_step_window is features.fill_step_window
+    from pdrlearn.runtime import tracker
+
+    assert windows.rest_boundaries is window.rest_boundaries is tracker.rest_boundaries  # decision C15
     assert fusion.soft_vote is proba.soft_vote is classify.soft_vote
     assert fusion.align_proba is classify.align
     import pdrlearn.runtime
