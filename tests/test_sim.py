@@ -532,3 +532,19 @@ def test_foot_mount_is_drawn_per_user_and_moves_the_sensor():
         # upward speed of the unit between heel-off (stance start .. toe-off) and toe-off
         peak_up[name] = np.median([vz[(t > r.start_s) & (t < r.tc_s)].max() for r in st.itertuples()])
     assert peak_up["rear"] > 1.5 * peak_up["instep"], peak_up
+
+
+def test_level_push_off_lifts_the_foot_before_toe_off(exact_a):
+    """Decisions S21: the foot rolls over the toe tip in push-off, so the heel is already at its highest at
+    toe-off (no further lift by the swing spline on level ground) and rising fast when it leaves."""
+    ft = exact_a.extras["foot_trajectory"]
+    t, z = ft["t_s"].to_numpy(), ft["z"].to_numpy()
+    vz = np.gradient(z, t)
+    st = exact_a.steps[exact_a.steps.steady]
+    for r in st.itertuples():
+        i_to, i_ic = np.searchsorted(t, [r.tc_s, r.ic_s])
+        z_floor = z[np.searchsorted(t, r.start_s)]
+        assert z[i_to] - z_floor > 0.05  # lifted by the push-off itself
+        assert vz[i_to - 5:i_to].max() > 0.3  # and rising when the toes leave
+        # coasts up a little, not lifted to the swing height (+15 cm before S21)
+        assert z[i_to:i_ic].max() < z[i_to] + 0.06
