@@ -82,6 +82,23 @@ def test_stride_rules_kernel():
     np.testing.assert_allclose(dz, [0.3, -0.2, 0.0, 0.1])  # stairs |dz|, flat 0, unknown terrain: estimate
 
 
+def test_one_stride_rules_equal_the_array_path():
+    """The runtime's one-stride call (Python scalars) gives the array path's bits for every combination of
+    classes (incl. missing and unknown ones), bounds and down mode."""
+    import itertools
+
+    rng = np.random.default_rng(3)
+    bounds = {"short": (0.0, 0.6), "normal": (0.6, 0.9), "long": (0.92, 20.0)}
+    for te, di, lc, b, dm in itertools.product(["flat", "up", "down", None, "", float("nan")],
+                                               ["forward", "backward", "left", None],
+                                               ["short", "normal", "long", "huge", None], [bounds, None],
+                                               ["norm3", "horizontal"]):
+        d = rng.normal(size=3) * [1.0, 0.3, 0.2]
+        one = SK.apply_stride_rules(d, [te], [di], [lc], bounds=b, down_mode=dm)
+        two = SK.apply_stride_rules(np.vstack([d, d]), [te, te], [di, di], [lc, lc], bounds=b, down_mode=dm)
+        assert one[0].shape == one[1].shape == (1,)
+        assert (one[0][0], one[1][0]) == (two[0][0], two[1][0]), (te, di, lc, b, dm)
+
 def test_zupt_displacement_of_a_known_stride():
     """A stride with acceleration a(t) = A sin(2 pi t / T) forward, starting and ending at rest, moves
     A T^2 / (2 pi) (exact); a constant accelerometer bias is removed by the ZUPT."""

@@ -9,10 +9,14 @@ Arrays of statistics are ``(n_steps, n_samples)``, one row per step.
 from __future__ import annotations
 
 import functools
+import math
 
 import numpy as np
 
-from pdrlearn.kernels.rotation import gravity_rotation, matrix_to_rotvec, rotvec_to_matrix, vec_norm
+from pdrlearn.kernels.rotation import gravity_rotation, matrix_to_rotvec, rotvec_to_matrix, skew, vec_norm
+
+_I3 = np.eye(3)
+_I3.flags.writeable = False
 
 
 def rest_index(acc: np.ndarray, gyr: np.ndarray | None, lo: int, hi: int, *,
@@ -94,8 +98,15 @@ def correct_tilt_drift(rot: np.ndarray, g_end_sensor: np.ndarray, k0: int, k1: i
     if k1 <= k0:
         return rot
     corr = matrix_to_rotvec(gravity_rotation(rot[k1] @ g_end_sensor))
+    th = vec_norm(corr)
+    if th == 0.0:
+        return rot
     frac = np.minimum(np.maximum((np.arange(rot.shape[0]) - k0) / float(k1 - k0), 0.0), 1.0)  # clipped to 0..1
-    return rotvec_to_matrix(frac[:, None] * corr[None, :]) @ rot
+    # rotations frac * corr share one axis k: Rodrigues' R = I + sin(a) [k]x + (1 - cos a) [k]x^2 with
+    # a = frac |corr|, the 3x3 [k]x built once (rotvec_to_matrix of frac * corr, fewer numpy calls)
+    K = skew(corr / th)
+    ang = frac * th
+    return (_I3 + np.sin(ang)[:, None, None] * K + (1.0 - np.cos(ang))[:, None, None] * (K @ K)) @ rot
 
 
 def heading_rotation(forward_xy: np.ndarray) -> np.ndarray:
@@ -112,11 +123,16 @@ def principal_horizontal_axis(acc_lev: np.ndarray, reference_xy: np.ndarray) -> 
     declared forward axis of the sensor, so backward steps keep their sign.
     """
     h = acc_lev[:, :2]
-    vals, vecs = np.linalg.eigh(h.T @ h)
-    e = vecs[:, int(np.argmax(vals))]
-    if float(e @ reference_xy) < 0:
-        e = -e
-    return e / vec_norm(e)
+    (sxx, sxy), (_, syy) = (h.T @ h).tolist()
+    # dominant eigenvector of the symmetric 2x2 [[sxx, sxy], [sxy, syy]] in closed form: the major axis at
+    # angle atan2(2 sxy, sxx - syy) / 2 (np.linalg.eigh's vector up to rounding and sign; equal
+    # eigenvalues give +x like eigh's first column)
+    phi = 0.5 * math.atan2(2.0 * sxy, sxx - syy)
+    ex, ey = math.cos(phi), math.sin(phi)
+    r0, r1 = np.asarray(reference_xy, dtype=np.float64).tolist()[:2]
+    if ex * r0 + ey * r1 < 0:
+        ex, ey = -ex, -ey
+    return np.array([ex, ey])
 
 
 # -- per-signal statistics on (n_steps, n_samples) arrays ------------------------------------------

@@ -187,7 +187,7 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     g1 = col_mean(acc[max(k1 - h, 0): k1 + h + 1])
     r0 = gravity_rotation(g0)
     if gyr is not None:
-        rot = correct_tilt_drift(propagate_attitude(gyr, np.diff(t), k0, r0), g1, k0, k1)
+        rot = correct_tilt_drift(propagate_attitude(gyr, t[1:] - t[:-1], k0, r0), g1, k0, k1)
     else:
         rot = np.broadcast_to(r0, (n, 3, 3))
     a_lev = np.einsum("kij,kj->ki", rot, acc)

@@ -324,9 +324,8 @@ class Tracker:
         W, lev = self._window(t0, t1)
         res = self.classify(W[None])
         classes = {task: str(c[0]) for task, (c, _) in res.items()}
-        proba = {
-            task: {cl: float(v) for cl, v in zip(self.classifiers[task].classes, p[0], strict=True)}
-            for task, (_, p) in res.items()
+        proba = {  # tolist: Python floats in one call per task
+            task: dict(zip(self.classifiers[task].classes, p[0].tolist(), strict=True)) for task, (_, p) in res.items()
         }
         disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
         length, dz = apply_stride_rules(disp, [classes.get("terrain")], [classes.get("direction")],
