@@ -104,7 +104,7 @@ def zupt_displacement(t: np.ndarray, acc: np.ndarray) -> np.ndarray:
     v[0] = 0.0
     np.cumsum(0.5 * (acc[1:] + acc[:-1]) * dt, axis=0, out=v[1:])
     v -= ((t - t[0]) / (t[-1] - t[0]))[:, None] * v[-1]  # ZUPT at both stances (thesis ch.7.2)
-    return np.sum(0.5 * (v[1:] + v[:-1]) * dt, axis=0)
+    return np.add.reduce(0.5 * (v[1:] + v[:-1]) * dt, axis=0)  # = np.sum, without its wrapper
 
 
 def yaw_change(t: np.ndarray, rate_z: np.ndarray, t0: float = -np.inf, t1: float = np.inf) -> float:
@@ -112,7 +112,7 @@ def yaw_change(t: np.ndarray, rate_z: np.ndarray, t0: float = -np.inf, t1: float
     (rad/s) linearly interpolated at ``t0``/``t1``, so that consecutive strides do not share samples."""
     tt = np.minimum(np.maximum(t, t0), t1)  # clipped to [t0, t1]
     r = np.interp(tt, t, rate_z)
-    return float(np.sum(0.5 * (r[1:] + r[:-1]) * np.diff(tt)))
+    return float(np.add.reduce(0.5 * (r[1:] + r[:-1]) * (tt[1:] - tt[:-1])))  # = np.sum(... * np.diff(tt))
 
 
 #: Heading sources of a streamed stride: the foot's attitude change from rest to rest, the waist's
