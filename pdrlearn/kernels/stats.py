@@ -19,32 +19,68 @@ _I3 = np.eye(3)
 _I3.flags.writeable = False
 
 
-def rest_index(acc: np.ndarray, gyr: np.ndarray | None, lo: int, hi: int, *,
-               acc_norm: np.ndarray | None = None, acc_median: float | None = None) -> int:
-    """Index in ``[lo, hi)`` where the unit moves least.
+#: Share of a step window's samples, quietest by gyroscope norm, whose median |acc| is the rest reference
+#: of :func:`rest_index` (decisions doc, "Rest reference of the step windows").
+REST_QUIET_FRACTION = 0.25
+STANDARD_GRAVITY = 9.80665  # m/s^2, the rest |acc| without a gyroscope (thesis ch. 4.2.1.1)
 
-    Motion score = gyroscope norm (rad/s) when a gyroscope exists, plus the deviation of the
-    specific-force norm from its window median scaled to rad/s-like magnitude (1 m/s^2 ~ 0.1 rad/s).
-    ``acc_norm`` : |acc| (n,), ``acc_median`` : its median, when the caller has them already.
+
+def rest_reference(acc_norm: np.ndarray, gyr_norm: np.ndarray | None) -> float | np.ndarray:
+    """Specific-force norm (m/s^2) of the unit at rest in a step window, along the last axis.
+
+    The median |acc| of the quietest :data:`REST_QUIET_FRACTION` of the samples by gyroscope norm
+    (ties kept in time order), so the reference is the sensor's own gravity reading (scale errors
+    included) as long as at least half of those samples are rest (rest >= 12.5 % of the window);
+    :data:`STANDARD_GRAVITY` without a gyroscope.
+
+    Parameters
+    ----------
+    acc_norm : |acc| (n,) or (B, n), m/s^2
+    gyr_norm : |gyro| of the same samples, rad/s, or None
+
+    Returns
+    -------
+    float for 1-D input, (B,) array for 2-D input
     """
+    if gyr_norm is None:
+        return STANDARD_GRAVITY if acc_norm.ndim == 1 else np.full(acc_norm.shape[:-1], STANDARD_GRAVITY)
+    k = max(1, int(REST_QUIET_FRACTION * acc_norm.shape[-1]))
+    q = np.take_along_axis(acc_norm, np.argsort(gyr_norm, axis=-1, kind="stable")[..., :k], axis=-1)
+    q.sort(axis=-1)
+    mid = 0.5 * (q[..., (k - 1) // 2] + q[..., k // 2])  # median (odd k: the middle value itself)
+    return float(mid) if acc_norm.ndim == 1 else mid
+
+
+def rest_score(acc_norm: np.ndarray, gyr_norm: np.ndarray | None, *, acc_ref: float | np.ndarray | None = None,
+               half_width: int = 0) -> np.ndarray:
+    """Motion score of each sample of a step window (lower = quieter), along the last axis.
+
+    Gyroscope norm (rad/s; when a gyroscope exists) plus the deviation of |acc| from its rest value
+    ``acc_ref`` (default :func:`rest_reference`; a float, or (B,) for 2-D input) scaled to rad/s-like
+    magnitude (1 m/s^2 ~ 0.1 rad/s), then the largest score within ``+-half_width`` samples (window
+    edges truncated): the rest specific force is averaged over that neighbourhood, so all of it must be
+    quiet (decisions doc, "Rest reference of the step windows").
+    """
+    ref = rest_reference(acc_norm, gyr_norm) if acc_ref is None else acc_ref
+    score = 0.1 * np.abs(acc_norm - (np.asarray(ref)[..., None] if acc_norm.ndim > 1 else ref))
+    if gyr_norm is not None:
+        score = score + gyr_norm
+    out = score.copy() if half_width > 0 else score
+    for j in range(1, min(half_width, score.shape[-1] - 1) + 1):  # running max over [k - hw, k + hw]
+        np.maximum(out[..., :-j], score[..., j:], out=out[..., :-j])
+        np.maximum(out[..., j:], score[..., :-j], out=out[..., j:])
+    return out
+
+
+def rest_index(acc: np.ndarray, gyr: np.ndarray | None, lo: int, hi: int, *,
+               score: np.ndarray | None = None) -> int:
+    """Index in ``[lo, hi)`` where the unit moves least: the first minimum of :func:`rest_score`
+    (``score`` (n,) when the caller has it already, e.g. for both ends of a window)."""
     lo = max(0, lo)
     hi = max(lo + 1, min(hi, acc.shape[0]))
-    an = row_norm(acc) if acc_norm is None else acc_norm
-    score = 0.1 * np.abs(an[lo:hi] - (np.median(an) if acc_median is None else acc_median))
-    if gyr is not None:
-        score = score + row_norm(gyr[lo:hi])
-    return lo + int(np.argmin(score))
-
-
-def median1d(x: np.ndarray) -> float:
-    """``np.median`` of a non-empty 1-D array: the same partition (NaN sorted last, then NaN) and mean of
-    the middle values, without its generic-axis overhead."""
-    n = x.shape[0]
-    k = n // 2
-    p = np.partition(x, [k, n - 1] if n % 2 else [k - 1, k, n - 1])
-    if p[n - 1] != p[n - 1]:  # NaN
-        return float("nan")
-    return float(p[k]) if n % 2 else float((p[k - 1] + p[k]) / 2.0)
+    if score is None:
+        score = rest_score(row_norm(acc), None if gyr is None else row_norm(gyr))
+    return lo + int(np.argmin(score[lo:hi]))
 
 
 def row_norm(v: np.ndarray) -> np.ndarray:
@@ -56,7 +92,9 @@ def propagate_attitude(gyr: np.ndarray, dt: np.ndarray, k0: int, r0: np.ndarray)
     """Attitudes ``R_k`` (n, 3, 3), sensor -> levelled frame, from ``R_{k0} = r0`` and the angular rate.
 
     ``dR/dt = R [w]x`` integrated with the exact rotation of each sample interval
-    (``R_{k+1} = R_k exp([w_k dt_k]x)``), forward and backward from ``k0``.
+    (``R_{k+1} = R_k exp([w_k dt_k]x)``), forward and backward from ``k0``: ``R_k = r0 P_k0^T P_k`` with
+    ``P_k`` the product of the interval rotations before sample k (one prefix scan for both directions,
+    the formula of the batched training path :mod:`pdrlearn.features.batch`).
 
     Parameters
     ----------
@@ -64,15 +102,16 @@ def propagate_attitude(gyr: np.ndarray, dt: np.ndarray, k0: int, r0: np.ndarray)
     dt : (n - 1,) sample intervals (s)
     """
     n = gyr.shape[0]
-    out = np.empty((n, 3, 3))
-    out[k0] = r0
     if n < 2:
+        out = np.empty((n, 3, 3))
+        out[k0] = r0
         return out
-    steps = rotvec_to_matrix(0.5 * (gyr[:-1] + gyr[1:]) * dt[:, None])  # mean rate over each interval
-    if k0 < n - 1:  # forward: R_{k0+j} = r0 @ steps[k0] @ ... @ steps[k0+j-1]
-        out[k0 + 1:] = r0 @ prefix_products(steps[k0:])
-    if k0 > 0:  # backward: R_{k0-j} = r0 @ steps[k0-1].T @ ... @ steps[k0-j].T
-        out[:k0] = (r0 @ prefix_products(np.transpose(steps[:k0][::-1], (0, 2, 1))))[::-1]
+    P = np.empty((n, 3, 3))
+    P[0] = _I3
+    P[1:] = rotvec_to_matrix(0.5 * (gyr[:-1] + gyr[1:]) * dt[:, None])  # mean rate over each interval
+    P = prefix_products(P)
+    out = (r0 @ P[k0].T) @ P
+    out[k0] = r0  # exactly (P_k0^T P_k0 = I to rounding)
     return out
 
 
@@ -81,7 +120,7 @@ def prefix_products(m: np.ndarray) -> np.ndarray:
 
     Hillis-Steele scan: log2(n) batched matrix products instead of a Python loop over the samples.
     """
-    p = np.array(m, dtype=np.float64, copy=True)
+    p = m.copy() if m.dtype == np.float64 else m.astype(np.float64)
     shift = 1
     while shift < p.shape[0]:
         p[shift:] = p[:-shift] @ p[shift:]
