@@ -94,33 +94,6 @@ def apply_variant(name: str) -> None:
     sim._stride_table = stride_table
 
 
-def patch_rest_search() -> None:
-    """Diagnostic (``--rest-fix``): the step windows' rest search scores each sample by its gyroscope norm
-    plus 0.1 x the deviation of |acc| from the WINDOW median |acc|; when less than half of the window is
-    rest (stance 62-68 % with foot flat 10-45 % of the cycle: ~35 % rest), that median is a moving value
-    and the 'rest' sample lands in the push-off or loading (noise-free simulated 100 Hz flat stride: |acc|
-    13.99 m/s^2, |gyro| 0.22 rad/s at the chosen sample), so the whole window is levelled with a wrong
-    tilt (rest vertical acceleration -2 m/s^2 instead of 0). This patch (this process only; the features
-    module is not changed) uses the median |acc| of the quietest quarter of the samples (by gyroscope norm)
-    as the rest reference, and the per-step path instead of the batch one."""
-    import importlib
-
-    stats = importlib.import_module("pdrlearn.kernels.stats")
-    window = importlib.import_module("pdrlearn.kernels.window")
-    windows = importlib.import_module("pdrlearn.features.windows")
-    original = stats.rest_index
-
-    def rest_index(acc, gyr, lo, hi, *, acc_norm=None, acc_median=None):
-        if gyr is not None:
-            an = stats.row_norm(acc) if acc_norm is None else acc_norm
-            gn = stats.row_norm(gyr)
-            acc_median = float(np.median(an[gn <= np.quantile(gn, 0.25)]))
-        return original(acc, gyr, lo, hi, acc_norm=acc_norm, acc_median=acc_median)
-
-    window.rest_index = rest_index
-    windows.batch_applicable = lambda *a, **k: False
-
-
 def simulate_users(users: int, rate_hz: float) -> list:
     """Terrain calibration exercises of ``users`` simulated users at three speeds."""
     return [simulate("terrain", user_seed=u, speed=sp, rate_hz=rate_hz) for u in range(1, users + 1)
@@ -302,13 +275,9 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
                     help="simulator variant tried in docs/sim_to_real.md (none = the shipped simulator)")
     ap.add_argument("--steady-train", action="store_true",
                     help="train on the steady simulated strides only (no turns on the spot / closing steps)")
-    ap.add_argument("--rest-fix", action="store_true",
-                    help="diagnostic: rest search of the step windows referenced to the quietest samples")
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.WARNING)
     apply_variant(args.variant)
-    if args.rest_fix:
-        patch_rest_search()
 
     t_all = time.perf_counter()
     real = [read_session(REAL / n) for n in REAL_FOOT]
@@ -371,7 +340,7 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
         RESULTS.mkdir(parents=True, exist_ok=True)
         stem = "sim_to_real" if args.rate == 20.0 else f"sim_to_real_{args.rate:g}hz"
         stem += "" if args.variant == "none" else f"_{args.variant}"
-        stem += ("_restfix" if args.rest_fix else "") + ("_steady" if args.steady_train else "")
+        stem += "_steady" if args.steady_train else ""
         df.to_csv(RESULTS / f"{stem}.csv", index=False)
         (RESULTS / f"{stem}.md").write_text(text)
     print(text)

@@ -17,6 +17,7 @@ from scipy.ndimage import uniform_filter1d
 from scipy.spatial.transform import Rotation
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.stats import rest_score
 
 Streams = Mapping[str, tuple[np.ndarray, np.ndarray]]
 
@@ -94,11 +95,14 @@ def foot_levelled_batch(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, forward
     fs = (L - 1) / (t[:, -1] - t[:, 0]) if L > 1 else np.ones(B)  # mean rate over the step (Hz)
     m = np.maximum(2, np.minimum(np.rint(rest_search_s * fs).astype(int), L // 4 + 1))
     an = np.linalg.norm(acc, axis=2)
-    score = 0.1 * np.abs(an - np.median(an, axis=1, keepdims=True)) + np.linalg.norm(gyr, axis=2)
+    h = np.maximum(0, np.rint(0.02 * fs).astype(int))
+    score = np.empty_like(an)  # the per-step kernel's rest score, rows grouped by their half-width h
+    for hw in np.unique(h):
+        sel = h == hw
+        score[sel] = rest_score(an[sel], np.linalg.norm(gyr[sel], axis=2), half_width=int(hw))
     k0 = _rest_index(score, np.zeros(B, int), np.maximum(1, np.minimum(m, L)))
     lo1 = np.maximum(0, L - m)
     k1 = _rest_index(score, lo1, np.maximum(lo1 + 1, L))
-    h = np.maximum(0, np.rint(0.02 * fs).astype(int))
     idx = np.arange(L)[None, :]
 
     def rest_mean(k):

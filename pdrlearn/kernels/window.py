@@ -17,10 +17,10 @@ from pdrlearn.kernels.rotation import gravity_rotation, vec_norm
 from pdrlearn.kernels.stats import (
     correct_tilt_drift,
     heading_rotation,
-    median1d,
     principal_horizontal_axis,
     propagate_attitude,
     rest_index,
+    rest_score,
     row_norm,
 )
 
@@ -179,10 +179,11 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
     m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
     an = row_norm(acc)
-    med = median1d(an)  # of finite samples (the stream is checked on arrival)
-    k0 = rest_index(acc, gyr, 0, m, acc_norm=an, acc_median=med)
-    k1 = rest_index(acc, gyr, n - m, n, acc_norm=an, acc_median=med)
-    h = max(0, int(round(0.02 * fs)))
+    h = max(0, int(round(0.02 * fs)))  # rest specific force averaged over +-20 ms
+    # rest |acc| from the quietest samples, the whole +-h neighbourhood quiet (decisions: rest reference)
+    score = rest_score(an, None if gyr is None else row_norm(gyr), half_width=h)
+    k0 = rest_index(acc, gyr, 0, m, score=score)
+    k1 = rest_index(acc, gyr, n - m, n, score=score)
     g0 = col_mean(acc[max(k0 - h, 0): k0 + h + 1])
     g1 = col_mean(acc[max(k1 - h, 0): k1 + h + 1])
     r0 = gravity_rotation(g0)
