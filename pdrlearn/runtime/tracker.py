@@ -192,6 +192,7 @@ class Tracker:
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
         self._det_t = -np.inf
         self._rate_checked: set[str] = set()
+        self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
         self.n_steps = 0
 
     # -- classification of given windows (also used by the parity tests) ----------------------------
@@ -216,7 +217,9 @@ class Tracker:
     def _window(self, t0: float, t1: float):
         streams = {k: self._stream(k) for k in self._buf}
         W = np.full((len(self.channels), self.n_samples), np.nan)
-        avail = available_groups(streams)
+        if self._groups[0] != tuple(streams):  # the sensor groups change only when a new sensor arrives
+            self._groups = (tuple(streams), available_groups(streams))
+        avail = self._groups[1]
         w0, w1 = self.window_bounds(t0, t1, streams)
         lev = fill_step_window(W, streams, w0, w1, channel_index=self.ci, available=avail,
                                forward=self.forward, rest_search_s=self.rest_search_s, heading=self.heading_mode)
