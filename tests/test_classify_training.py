@@ -219,8 +219,9 @@ def test_real_gaitmap_terrain_rest_to_rest_windows(real_dir):
                    boundaries="rest")
     cv = m.tasks["terrain"].cv
     assert cv["dtw"]["foot"]["accuracy"] >= 0.95  # 0.89-0.92 with the given boundaries
-    # the three learned classifiers err on different strides; their equal-weight vote (decision C14)
-    assert cv["ensemble"]["foot"]["accuracy"] >= 0.97  # 0.95-0.97 with the given boundaries
+    # the three learned classifiers err on different strides; their equal-weight vote (decision C14):
+    # 95.7-97.9 % over seeds 0-3 since the rest-reference fix (decision 14; 96.8-100 before it)
+    assert cv["ensemble"]["foot"]["accuracy"] >= 0.95  # 0.95-0.98 with the given boundaries
     chosen = m.tasks["terrain"].chosen
     assert cv[chosen[0]][chosen[1]]["accuracy"] >= 0.97
 
