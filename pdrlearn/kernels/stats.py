@@ -45,10 +45,13 @@ def rest_reference(acc_norm: np.ndarray, gyr_norm: np.ndarray | None) -> float |
     if gyr_norm is None:
         return STANDARD_GRAVITY if acc_norm.ndim == 1 else np.full(acc_norm.shape[:-1], STANDARD_GRAVITY)
     k = max(1, int(REST_QUIET_FRACTION * acc_norm.shape[-1]))
+    if acc_norm.ndim == 1:  # per-step path: plain indexing (the same values as the batch branch)
+        q = acc_norm[np.argsort(gyr_norm, kind="stable")[:k]]
+        q.sort()
+        return float(0.5 * (q[(k - 1) // 2] + q[k // 2]))
     q = np.take_along_axis(acc_norm, np.argsort(gyr_norm, axis=-1, kind="stable")[..., :k], axis=-1)
     q.sort(axis=-1)
-    mid = 0.5 * (q[..., (k - 1) // 2] + q[..., k // 2])  # median (odd k: the middle value itself)
-    return float(mid) if acc_norm.ndim == 1 else mid
+    return 0.5 * (q[..., (k - 1) // 2] + q[..., k // 2])  # median (odd k: the middle value itself)
 
 
 def rest_score(acc_norm: np.ndarray, gyr_norm: np.ndarray | None, *, acc_ref: float | np.ndarray | None = None,
