@@ -1,7 +1,7 @@
 """Cohort throughput: train N simulated users serially and on a Dask LocalCluster; time the report.
 
     .venv/bin/python experiments/cohort_bench.py [--users 50] [--methods heuristic,svm] [--cv 5]
-        [--repeats 2] [--serial-default-threads] [--out experiments/results/cohort_bench.md]
+        [--repeats 2] [--serial-default-threads] [--one-worker] [--out experiments/results/cohort_bench.md]
 
 Writes a Markdown table (default experiments/results/cohort_bench.md). The number of interest is the
 speed-up of the 2-worker LocalCluster over the serial ``train-all --serial`` run (target >= 1.7x on 2
@@ -110,6 +110,8 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--repeats", type=int, default=1, help="serial/cluster pairs (order alternates)")
     ap.add_argument("--serial-default-threads", action="store_true",
                     help="also time a serial run with the libraries' default thread pools (first in each pair)")
+    ap.add_argument("--one-worker", action="store_true",
+                    help="also time a 1-worker LocalCluster (last in each pair): the cluster's own scaling")
     ap.add_argument("--out", type=Path, default=ROOT / "experiments" / "results" / "cohort_bench.md")
     a = ap.parse_args(argv)
     work = Path(tempfile.mkdtemp(prefix="pdrlearn_cohort_"))
@@ -120,8 +122,6 @@ def main(argv: list[str] | None = None) -> None:
                 write_session(simulate(ex, user_seed=u), work / "cohort" / f"user{u:03d}" / "train" / ex)
                 write_session(simulate(ex, user_seed=u, seed=777), work / "cohort" / f"user{u:03d}" / "test" / ex)
         t_sim = time.perf_counter() - t0
-        capacity = parallel_capacity(a.workers)
-        print(f"probe: {capacity}", flush=True)
         common = ["--tasks", a.tasks, "--methods", a.methods, "--cv", a.cv, "--json"]
         runs: list[dict] = []
 
@@ -141,7 +141,11 @@ def main(argv: list[str] | None = None) -> None:
             return run
 
         cluster_label = f"LocalCluster ({a.workers} workers)"
+        probes = []
         for rep in range(a.repeats):
+            probes.append(parallel_capacity(a.workers))
+            print(f"probe (repeat {rep}): {probes[-1]}", flush=True)
+
             def serial(rep=rep):
                 return _cli_json(["train-all", work / "cohort", "--out", work / f"m_serial{rep}", "--serial",
                                   *common])
@@ -156,6 +160,9 @@ def main(argv: list[str] | None = None) -> None:
             pair = [("serial", serial), (cluster_label, dask)]
             for label, call in pair if rep % 2 == 0 else pair[::-1]:
                 timed(label, rep, call)
+            if a.one_worker:
+                timed("LocalCluster (1 worker)", rep, lambda rep=rep: _cli_json(
+                    ["train-all", work / "cohort", "--out", work / f"m_one{rep}", "--workers", 1, *common]))
         ref = _strip(runs[0]["rows"]) if not a.serial_default_threads else _strip(runs[1]["rows"])
         same_all = all(_strip(r["rows"]) == ref for r in runs if r["run"] != "serial, library default threads")
         same_default = [_strip(r["rows"]) == ref for r in runs if r["run"] == "serial, library default threads"]
@@ -166,17 +173,30 @@ def main(argv: list[str] | None = None) -> None:
             cli(["report", str(work / "results"), "--out", str(work / "report")])
         t_report = time.perf_counter() - t0
 
-        speedups = []
+        speedups, ceilings = [], []
         for rep in range(a.repeats):
             by = {r["run"]: r["seconds"] for r in runs if r["repeat"] == rep}
             speedups.append(by["serial"] / by[cluster_label])
+            if a.one_worker:
+                print(f"repeat {rep}: {a.workers} workers vs 1 worker "
+                      f"{by['LocalCluster (1 worker)'] / by[cluster_label]:.2f}x")
+            ceilings.append(statistics.fmean(probes[rep].values()))
+        autogroup = Path("/proc/sys/kernel/sched_autogroup_enabled")
+        autogroup = autogroup.read_text().strip() == "1" if autogroup.exists() else False
         lines = [
             "# Cohort benchmark\n",
             f"{a.users} simulated users, tasks {a.tasks}, methods {a.methods}, {a.cv}-fold CV; "
             f"simulation of the cohort (train + test sessions) {t_sim:.0f} s; {os.cpu_count()} CPUs.\n",
-            f"Probe just before: {a.workers} single-threaded processes together get {capacity['numpy']:.2f}x "
-            f"(numpy matrix products) and {capacity['python']:.2f}x (pure Python) the throughput of one — "
-            "the ceiling of the speed-up at that moment (other processes share the machine).\n",
+            "Probe before each pair: what "
+            f"{a.workers} single-threaded processes together get relative to one (numpy matrix products / pure "
+            "Python, 2 s each): the ceiling of the speed-up at that moment, since other processes share the "
+            "machine" + (" and the kernel's autogroup scheduling (`sched_autogroup_enabled=1`) gives every "
+            "session, not every process, an equal share of busy cores" if autogroup else "") + ".\n",
+            "| repeat | probe numpy | probe python | speed-up | speed-up / probe ceiling |",
+            "|---|---|---|---|---|",
+            *[f"| {rep} | {probes[rep]['numpy']:.2f}x | {probes[rep]['python']:.2f}x | {speedups[rep]:.2f}x | "
+              f"{speedups[rep] / ceilings[rep]:.2f} |" for rep in range(a.repeats)],
+            "",
             "| run | repeat | 1-min load at start | seconds | users/min | mean s/job | mean cpu s/job | failed |",
             "|---|---|---|---|---|---|---|---|",
         ]
@@ -191,6 +211,11 @@ def main(argv: list[str] | None = None) -> None:
             f"Speed-up of the LocalCluster over serial `train-all --serial`: {spread}. Results of every "
             f"serial and cluster run identical (all columns but the timings): {same_all}.",
         ]
+        if a.one_worker:
+            lines.append("LocalCluster speed-up from 1 to " + f"{a.workers} workers: " + ", ".join(
+                f"{r1['seconds'] / r2['seconds']:.2f}x" for r1, r2 in zip(
+                    [r for r in runs if r["run"] == "LocalCluster (1 worker)"],
+                    [r for r in runs if r["run"] == cluster_label], strict=True)) + ".")
         if same_default:
             lines.append(f"Serial run with the libraries' default thread pools identical to the one-thread runs: "
                          f"{all(same_default)}.")

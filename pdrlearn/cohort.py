@@ -191,6 +191,8 @@ def run_cohort(
     on_done : called with each :class:`JobResult` as it completes (progress bars).
     """
     items = list(items)
+    if threads not in (1, None):
+        raise ValueError(f"threads={threads!r}: use 1 (one thread per job) or None (libraries' own pools)")
     if costs is not None and len(costs) != len(items):
         raise ValueError(f"costs: {len(costs)} values for {len(items)} items")
     if serial or not items:
