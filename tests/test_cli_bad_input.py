@@ -62,7 +62,7 @@ DEFECTS = {
     "duplicate": (lambda d: _edit(d, "wAccelerometer.csv", lambda df: pd.concat([df.iloc[:6], df.iloc[5:]])),
                   "wAccelerometer.csv: 1 duplicate timestamp"),
     "g": (lambda d: _edit(d, "fAccelerometer.csv", lambda df: df.assign(x=df.x / 9.81, y=df.y / 9.81, z=df.z / 9.81)),
-          "fAccelerometer.csv: median |acc| is 1.00, which looks like units of g"),
+          "fAccelerometer.csv: median |acc| is 1.0"),
     "deg_s": (lambda d: _edit(d, "wGyroscope.csv", lambda df: df.assign(x=df.x * 57.3, y=df.y * 57.3, z=df.z * 57.3)),
               "wGyroscope.csv: 99th percentile |rate|"),
     "header_only": (_header_only, "no samples (empty file)"),
