@@ -99,7 +99,7 @@ class UnitFusionClassifier(ClassifierMixin, BaseEstimator):
 
     def _probas(self, estimators, X) -> list[np.ndarray]:
         return [
-            align_proba(unit_predict_proba(est, self._columns(X, cols)), est.classes_, self.classes_)
+            aligned_proba(unit_predict_proba(est, self._columns(X, cols)), est.classes_, self.classes_)
             for est, (_, _, cols) in zip(estimators, self.units, strict=True)
         ]
 
@@ -151,6 +151,14 @@ class UnitFusionClassifier(ClassifierMixin, BaseEstimator):
     def predict(self, X) -> np.ndarray:
         proba = self.predict_proba(X)
         return self.classes_[np.argmax(proba, axis=1)]
+
+
+def aligned_proba(proba: np.ndarray, model_classes, classes) -> np.ndarray:
+    """:func:`align_proba`, returning ``proba`` itself when it is already float64 in the order of
+    ``classes`` (the usual case; the copy would hold the same numbers): per-step latency, issue 5."""
+    if proba.dtype == np.float64 and np.ndim(model_classes) == 1 and list(model_classes) == list(classes):
+        return proba
+    return align_proba(proba, model_classes, classes)
 
 
 def unit_predict_proba(est, X) -> np.ndarray:

@@ -68,6 +68,39 @@ def svc_decision(
     return K @ dual + b
 
 
+def stack_decisions(params: list[dict]) -> dict:
+    """The per-class decision parameters of :func:`svc_decision` stacked for :func:`ovr_scores`: every
+    class's support vectors as rows of one ``sv`` array (one product ``Z @ sv.T`` for all classes), and
+    per class its row range, kernel settings, dual coefficients, intercept and (rbf) squared
+    support-vector norms computed once."""
+    bounds = np.cumsum([0] + [len(p["sv"]) for p in params])
+    blocks = []
+    for p, a, b in zip(params, bounds[:-1], bounds[1:], strict=True):
+        sv_sq = np.sum(p["sv"] ** 2, axis=1)[None, :] if p["kernel"] == "rbf" else None
+        blocks.append((int(a), int(b), p["kernel"], p["gamma"], p["degree"], p["coef0"], p["dual"], p["b"], sv_sq))
+    return {"sv": np.ascontiguousarray(np.vstack([p["sv"] for p in params])), "blocks": blocks}
+
+
+def ovr_scores(Z: np.ndarray, stack: dict) -> np.ndarray:
+    """Decision values ``(n, n_classes)`` of every class's binary SVC: the formulas of :func:`svc_decision`
+    per class, with the products of all classes in one matrix product (per-step latency, issue 5; equal
+    to the per-class calls within 1e-12, tests/test_classify_length_fast.py)."""
+    G = Z @ stack["sv"].T
+    out = np.empty((Z.shape[0], len(stack["blocks"])))
+    for j, (a, b, kernel, gamma, degree, coef0, dual, b0, sv_sq) in enumerate(stack["blocks"]):
+        g = G[:, a:b]
+        if kernel == "linear":
+            K = g
+        elif kernel == "poly":
+            K = (gamma * g + coef0) ** degree
+        elif kernel == "rbf":  # |z - s|^2 = |z|^2 - 2 <z, s> + |s|^2, as svc_decision
+            K = np.exp(-gamma * np.maximum((Z * Z).sum(axis=1)[:, None] - 2 * g + sv_sq, 0.0))
+        else:  # pragma: no cover - kernels are fixed by THESIS_KERNELS
+            raise DataError(f"ovr_scores: unsupported kernel {kernel!r}")
+        out[:, j] = K @ dual + b0
+    return out
+
+
 def check_fitted_fast(est, attribute: str) -> None:
     """``check_is_fitted(est)``, skipping scikit-learn's tag lookups (~30 us a call) when ``attribute``, which
     ``fit`` sets, exists: per-step latency (issue 5)."""
@@ -162,7 +195,13 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
             )
             for m in self.estimators_
         ]
+        self.decision_stack_ = stack_decisions(self.decision_params_)
         return self
+
+    def __setstate__(self, state):
+        super().__setstate__(state)
+        if "decision_params_" in self.__dict__ and "decision_stack_" not in self.__dict__:
+            self.decision_stack_ = stack_decisions(self.decision_params_)  # models saved before the stack
 
     def _select_C(self, X: np.ndarray, y: np.ndarray) -> float:
         if self.C != "cv":
@@ -191,9 +230,9 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
         return scores[:, 1] - scores[:, 0] if len(self.classes_) == 2 else scores
 
     def _scores(self, X) -> np.ndarray:
-        check_fitted_fast(self, "decision_params_")
+        check_fitted_fast(self, "decision_stack_")
         Z = (check_X_fast(self, X) - self.mean_) / self.scale_
-        return np.column_stack([svc_decision(Z, **p) for p in self.decision_params_])
+        return ovr_scores(Z, self.decision_stack_)
 
     def predict(self, X) -> np.ndarray:
         """Class of the model with the highest score (thesis ch. 6.1.1.1)."""

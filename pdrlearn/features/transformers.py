@@ -60,12 +60,19 @@ def as_windows(X) -> np.ndarray:
 
 
 def signal(X: np.ndarray, name: str) -> np.ndarray:
-    """Derived signal ``name`` (see :data:`SIGNALS`) of every step, (n_steps, n_samples)."""
+    """Derived signal ``name`` (see :data:`SIGNALS`) of every step, (n_steps, n_samples), a new array.
+
+    Channels summed left to right, then times the sign; a sign of 1.0 skips the (exact) product and a
+    single channel is one copy (per-step latency, issue 5).
+    """
     chans, sign, _ = SIGNALS[name]
-    out = X[:, CHANNEL_INDEX[chans[0]], :].copy()
-    for c in chans[1:]:
+    first = X[:, CHANNEL_INDEX[chans[0]], :]
+    if len(chans) == 1:
+        return first.copy() if sign == 1.0 else sign * first
+    out = first + X[:, CHANNEL_INDEX[chans[1]], :]
+    for c in chans[2:]:
         out += X[:, CHANNEL_INDEX[c], :]
-    return sign * out
+    return out if sign == 1.0 else sign * out
 
 
 def times(X: np.ndarray) -> np.ndarray:
@@ -300,6 +307,17 @@ def waist_yaw_stats(X: np.ndarray) -> dict[str, np.ndarray]:
     return K.yaw_stats(K.peak_stats(signal(X, "waist_yaw"), times(X)))
 
 
+def waist_yaw_amplitude_duration(X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``amplitude`` (rad/s) and ``duration`` (s) of :func:`waist_yaw_stats`, the two pelvic-rotation
+    features of the learned length classifiers (thesis ch. 6.3.1), without the other ten peak statistics.
+
+    Same arithmetic as ``K.yaw_stats(K.peak_stats(...))``: ``0.5 * (max - min)`` and
+    ``(t_last - t_first)`` (bit-identical; tests/test_classify_length_fast.py).
+    """
+    yaw, t = signal(X, "waist_yaw"), times(X)
+    return 0.5 * (yaw.max(axis=1) - yaw.min(axis=1)), t[:, -1] - t[:, 0]
+
+
 class LengthFeatures(_StepFeatures):
     """Length features (thesis ch. 6.3.1): 24 segment features of the forward foot acceleration,
     3 force features (time from contact to peak force, take-off force, air time) and 2 pelvic-rotation
@@ -330,15 +348,22 @@ class LengthFeatures(_StepFeatures):
         return names
 
     def _compute(self, X):
-        cols = []
-        if self.unit != "waist":
-            cols.append(K.segment_stats(signal(X, "foot_acc_fwd"), times(X), self.n_segments))
-            fs = K.force_stats(signal(X, "force"), times(X), zero_fraction=self.zero_fraction)
-            cols.append(np.column_stack([fs[s] for s in LENGTH_FORCE_STATS]))
-        if self.unit != "foot":
-            ws = waist_yaw_stats(X)
-            cols.append(np.column_stack([ws[s] for s in LENGTH_WAIST_STATS]))
-        return np.hstack(cols)
+        # columns written into one array (no column_stack / hstack: per-step latency, issue 5)
+        t = times(X)
+        nseg = 4 * self.n_segments
+        foot, waist = self.unit != "waist", self.unit != "foot"
+        width = foot * (nseg + len(LENGTH_FORCE_STATS)) + waist * len(LENGTH_WAIST_STATS)
+        out = np.empty((X.shape[0], width))
+        j = 0
+        if foot:
+            out[:, :nseg] = K.segment_stats(signal(X, "foot_acc_fwd"), t, self.n_segments)
+            fs = K.force_stats(signal(X, "force"), t, zero_fraction=self.zero_fraction)
+            for j, s in enumerate(LENGTH_FORCE_STATS, start=nseg):
+                out[:, j] = fs[s]
+            j += 1
+        if waist:
+            out[:, j], out[:, j + 1] = waist_yaw_amplitude_duration(X)  # LENGTH_WAIST_STATS
+        return out
 
 
 def make_features(task: str, unit: str = "both", kind: str = "svm") -> _StepFeatures:
