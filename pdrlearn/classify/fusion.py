@@ -156,7 +156,13 @@ class UnitFusionClassifier(ClassifierMixin, BaseEstimator):
 def aligned_proba(proba: np.ndarray, model_classes, classes) -> np.ndarray:
     """:func:`align_proba`, returning ``proba`` itself when it is already float64 in the order of
     ``classes`` (the usual case; the copy would hold the same numbers): per-step latency, issue 5."""
-    if proba.dtype == np.float64 and np.ndim(model_classes) == 1 and list(model_classes) == list(classes):
+    if (
+        proba.dtype == np.float64
+        and type(model_classes) is np.ndarray
+        and type(classes) is np.ndarray
+        and model_classes.ndim == 1
+        and model_classes.tolist() == classes.tolist()
+    ):
         return proba
     return align_proba(proba, model_classes, classes)
 

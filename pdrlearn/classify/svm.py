@@ -70,15 +70,16 @@ def svc_decision(
 
 def stack_decisions(params: list[dict]) -> dict:
     """The per-class decision parameters of :func:`svc_decision` stacked for :func:`ovr_scores`: every
-    class's support vectors as rows of one ``sv`` array (one product ``Z @ sv.T`` for all classes), and
-    per class its row range, kernel settings, dual coefficients, intercept and (rbf) squared
+    class's support vectors as rows of one ``sv`` array (one product ``Z @ sv.T`` for all classes), the
+    intercepts ``b``, and per class its row range, kernel settings, dual coefficients and (rbf) squared
     support-vector norms computed once."""
     bounds = np.cumsum([0] + [len(p["sv"]) for p in params])
     blocks = []
     for p, a, b in zip(params, bounds[:-1], bounds[1:], strict=True):
         sv_sq = np.sum(p["sv"] ** 2, axis=1)[None, :] if p["kernel"] == "rbf" else None
-        blocks.append((int(a), int(b), p["kernel"], p["gamma"], p["degree"], p["coef0"], p["dual"], p["b"], sv_sq))
-    return {"sv": np.ascontiguousarray(np.vstack([p["sv"] for p in params])), "blocks": blocks}
+        blocks.append((int(a), int(b), p["kernel"], p["gamma"], p["degree"], p["coef0"], p["dual"], sv_sq))
+    return {"sv": np.ascontiguousarray(np.vstack([p["sv"] for p in params])), "blocks": blocks,
+            "b": np.array([p["b"] for p in params], dtype=float)}
 
 
 def ovr_scores(Z: np.ndarray, stack: dict) -> np.ndarray:
@@ -87,7 +88,7 @@ def ovr_scores(Z: np.ndarray, stack: dict) -> np.ndarray:
     to the per-class calls within 1e-12, tests/test_classify_length_fast.py)."""
     G = Z @ stack["sv"].T
     out = np.empty((Z.shape[0], len(stack["blocks"])))
-    for j, (a, b, kernel, gamma, degree, coef0, dual, b0, sv_sq) in enumerate(stack["blocks"]):
+    for j, (a, b, kernel, gamma, degree, coef0, dual, sv_sq) in enumerate(stack["blocks"]):
         g = G[:, a:b]
         if kernel == "linear":
             K = g
@@ -97,7 +98,8 @@ def ovr_scores(Z: np.ndarray, stack: dict) -> np.ndarray:
             K = np.exp(-gamma * np.maximum((Z * Z).sum(axis=1)[:, None] - 2 * g + sv_sq, 0.0))
         else:  # pragma: no cover - kernels are fixed by THESIS_KERNELS
             raise DataError(f"ovr_scores: unsupported kernel {kernel!r}")
-        out[:, j] = K @ dual + b0
+        out[:, j] = K @ dual
+    out += stack["b"]  # + each class's intercept
     return out
 
 

@@ -1,4 +1,5 @@
-"""Per-step latency of the learned classifiers and a user's full training (run with `make bench`).
+"""Per-step latency of the learned classifiers (terrain, length) and a user's full training (run with
+`make bench`).
 
 Targets (issue 5): SVM / NN <= 0.2 ms per step (features + classification), DTW with 108 references
 <= 0.3 ms; a user's full training (3 tasks x 5 methods, 10-fold CV) < 60 s.
@@ -47,6 +48,26 @@ def test_bench_one_step_features_and_classification(benchmark, terrain_windows, 
     est = make_estimator("terrain", method, "foot" if unit == "foot" else "fused", seed=0)
     est.fit(terrain_windows.X, terrain_windows.y)
     one = terrain_windows.X[:1]
+    benchmark(est.predict, one)
+
+
+@pytest.fixture(scope="module")
+def length_windows():
+    from pdrlearn.classify.training import session_windows, task_data
+    from pdrlearn.sim.simulate import simulate
+
+    sessions = [simulate("length", user_seed=1, seed=k) for k in range(2)]
+    return task_data(session_windows(sessions, n_samples=40), "length")
+
+
+@pytest.mark.parametrize("method", ["svm", "nn"])
+@pytest.mark.parametrize("unit", ["foot", "fused"])
+def test_bench_length_one_step_features_and_classification(benchmark, length_windows, method, unit):
+    """Length: 27 foot features (24 segment + 3 force) and 2 pelvic-rotation features per step (thesis
+    ch. 6.3.1), per-class SVM kernels rbf/poly2/linear (thesis ch. 6.3.1.1), fused = both units + vote."""
+    est = make_estimator("length", method, unit, seed=0)
+    est.fit(length_windows.X, length_windows.y)
+    one = length_windows.X[:1]
     benchmark(est.predict, one)
 
 
