@@ -10,16 +10,12 @@ import pytest
 from scipy.signal import find_peaks
 
 from pdrlearn.waist import _kernels as K
+from tests.test_waist import _pulse_train
 
 REAL = Path(__file__).resolve().parents[1] / "datasets" / "real"
 
 
-def _pulses(fs: float, times, heights, duration: float):
-    t = np.arange(0.0, duration, 1.0 / fs)
-    x = np.zeros_like(t)
-    for tc, hc in zip(times, heights, strict=True):
-        x += hc * np.exp(-0.5 * ((t - tc) / 0.08) ** 2)
-    return t, x
+_pulses = _pulse_train  # smooth bumps of given heights at given times (shared with test_waist)
 
 
 @pytest.mark.parametrize("fs", [20.0, 100.0, 204.8])
