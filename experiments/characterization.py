@@ -203,6 +203,18 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
     return md, rows, timing
 
 
+def _append_method_rows(res: dict, study: str, cols: list[str], row_class: str, lines: list, rows: list) -> None:
+    """One table line per method x unit of an ``evaluate_model`` terrain result (per-class % of ``cols``,
+    then the overall % when ``row_class == "all"``) and one CSV row with ``row_class``'s accuracy."""
+    for m, d in res["methods"].items():
+        for u, r in d["units"].items():
+            vals = [100 * r["per_class"][c] for c in cols] + ([100 * r["accuracy"]] if row_class == "all" else [])
+            lines.append(f"| {m} | {u} | " + " | ".join(f"{v:.1f}" for v in vals) + " |")
+            pct = r["accuracy"] if row_class == "all" else r["per_class"][row_class]
+            rows.append({"study": study, "task": "terrain", "method": m, "unit": u, "class": row_class,
+                         "ours_test_pct": round(100 * pct, 2)})
+
+
 def real_terrain_study(cv: int, seed: int, boundaries: str = "given", methods: list[str] | None = None):
     from sklearn.linear_model import RidgeCV
     from sklearn.model_selection import StratifiedKFold, cross_val_predict
@@ -274,19 +286,7 @@ def real_terrain_study(cv: int, seed: int, boundaries: str = "given", methods: l
         "| method | unit | flat % (right foot) |",
         "|---|---|---|",
     ]
-    for m, d in res["methods"].items():
-        for u, r in d["units"].items():
-            lines.append(f"| {m} | {u} | {100 * r['per_class']['flat']:.1f} |")
-            rows.append(
-                {
-                    "study": "real-across-feet",
-                    "task": "terrain",
-                    "method": m,
-                    "unit": u,
-                    "class": "flat",
-                    "ours_test_pct": round(100 * r["per_class"]["flat"], 2),
-                }
-            )
+    _append_method_rows(res, "real-across-feet", ["flat"], "flat", lines, rows)
     md.append("\n".join(lines))
     # 3) sim-to-real: a model trained on simulated terrain exercises (foot unit only) classifies the real strides
     from pdrlearn.sim.simulate import simulate
@@ -302,23 +302,7 @@ def real_terrain_study(cv: int, seed: int, boundaries: str = "given", methods: l
         "| method | unit | flat % | up % | down % | all % |",
         "|---|---|---|---|---|---|",
     ]
-    for m, d in res["methods"].items():
-        for u, r in d["units"].items():
-            lines.append(
-                f"| {m} | {u} | "
-                + " | ".join(f"{100 * r['per_class'][c]:.1f}" for c in classes)
-                + f" | {100 * r['accuracy']:.1f} |"
-            )
-            rows.append(
-                {
-                    "study": "sim-to-real",
-                    "task": "terrain",
-                    "method": m,
-                    "unit": u,
-                    "class": "all",
-                    "ours_test_pct": round(100 * r["accuracy"], 2),
-                }
-            )
+    _append_method_rows(res, "sim-to-real", list(classes), "all", lines, rows)
     md.append("\n".join(lines))
     # 4) per-class accuracy of the chosen pooled model, explicitly held out by recording is impossible for
     #    up/down (one recording each); 5) continuous stride length on the level walks (mocap reference)
