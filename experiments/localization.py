@@ -81,17 +81,22 @@ def train_model(simulate, user: int, quick: bool, cache: Path | None = None,
     With ``cache``, a model saved there by an earlier run (same user, same quick flag) is reused."""
     try:
         from pdrlearn.classify import load_model, train_user
+        from pdrlearn.displace import calibrate_distance
     except (ImportError, AttributeError):
         return None, "oracle (pdrlearn.classify.train_user unavailable)"
     how = "SVM only, 3-fold CV" if quick else "all methods, 5-fold CV, best fused method"
     source = f"model (train_user on the user's calibration exercises at {'/'.join(cal_speeds)} speed, {how})"
     tag = "" if cal_speeds == ("normal",) else "_" + "-".join(cal_speeds)
     mdir = cache / f"user{user}{'_quick' if quick else ''}{tag}" if cache is not None else None
-    if mdir is not None and mdir.exists():
-        return load_model(mdir), source + f", cached in {mdir}"
     # the calibration exercises (thesis ch.6: terrain, direction, length), walked at ``cal_speeds``
     sessions = [simulate(ex, user_seed=user, speed=sp) for sp in cal_speeds
                 for ex in ("terrain", "direction", "length")]
+    if mdir is not None and mdir.exists():
+        model = load_model(mdir)
+        # decision L26: the distance calibration always comes from the simulator as it is now (a cached
+        # model keeps only its classifiers)
+        model.data_summary["distance_calibration"] = calibrate_distance(sessions)
+        return model, source + f", cached in {mdir}"
     kw = {"methods": ("svm",), "cv": 3} if quick else {"cv": 5}
     t0 = time.perf_counter()
     model = train_user(sessions, user=f"sim{user}", **kw)
@@ -132,8 +137,13 @@ def stride_rows(res, session, **keys) -> list[dict]:
 
 def run_sim(users: int, speeds: list[str], scenarios: list[str], quick: bool,
             cache: Path | None = None, cal_speeds: tuple[str, ...] = ("normal",),
-            out: Path = RESULTS) -> pd.DataFrame:
+            out: Path = RESULTS, device_errors: bool = True) -> pd.DataFrame:
+    from functools import partial
+
     from pdrlearn.sim import simulate
+
+    # decisions S22: accelerometer scale factors per unit (default) or per session (the model before S22)
+    simulate = partial(simulate, device_errors=device_errors)
 
     rows = []
     strides: list[dict] = []
@@ -147,6 +157,8 @@ def run_sim(users: int, speeds: list[str], scenarios: list[str], quick: bool,
                         "M3-oracle": dict(method="M3", model="oracle")}
                 if model is not None:
                     runs["M3"] = dict(method="M3", model=model)  # default (L18): bayes rules, confident classes
+                    # decision L26: the same without the user's distance calibration
+                    runs["M3-nogain"] = dict(method="M3", model=model, distance_gain=1.0)
                     runs["M3-thesis"] = dict(method="M3", model=model, rules="thesis", min_confidence=0.0)
                     runs["M3-gated"] = dict(method="M3", model=model, rules="thesis")  # thesis rules, p >= 0.95
                 for name, kw in runs.items():
@@ -156,7 +168,8 @@ def run_sim(users: int, speeds: list[str], scenarios: list[str], quick: bool,
                     ev = evaluate_track(res, s)
                     ev.update(heading_metrics(res, s))
                     rows.append({"user": user, "scenario": scen, "speed": speed, "method": name,
-                                 "duration_s": s.duration_s, "track_time_s": dt, **{
+                                 "duration_s": s.duration_s, "track_time_s": dt,
+                                 "distance_gain": res.info.get("distance_gain"), **{
                                      k: v for k, v in ev.items() if not isinstance(v, dict | str)}})
                     if name == "M3":
                         strides += stride_rows(res, s, user=user, scenario=scen, speed=speed)
@@ -310,11 +323,13 @@ def report(sim: pd.DataFrame | None, real: pd.DataFrame, orient: list[str], args
                   "M3-thesis = the thesis rules, every class prevails; M3-gated = thesis rules on the classes with probability >= 0.95. "
                   "M3-oracle uses the simulator's labels (thesis rules).",
                   "Distance error = |estimated - reference| / reference, reference = sum of the labelled stride "
-                  "lengths; mean over users and speeds (thesis: mean over 2 pedestrians x 10 runs).", "",
+                  "lengths; mean over users and speeds (thesis: mean over 2 pedestrians x 10 runs). "
+                  "M3, M3-thesis and M3-gated apply the user's distance calibration (decision L26) from the "
+                  "calibration exercises; M3-nogain is M3 without it.", "",
                   "| scenario | method | runs | mean distance error % (thesis) | SD % | final position error m |"
                   " heading MAE deg | orientation error % | altitude error % |", "|---|---|---|---|---|---|---|---|---|"]
         sim = sim.assign(abs_err=sim["distance_error_pct"].abs())
-        order = ["M1", "M2", "M3", "M3-thesis", "M3-gated", "M3-oracle"]
+        order = ["M1", "M2", "M3", "M3-nogain", "M3-thesis", "M3-gated", "M3-oracle"]
         for scen in sorted(sim["scenario"].unique()):
             for m in [m for m in order if m in set(sim["method"])]:
                 d = sim[(sim["scenario"] == scen) & (sim["method"] == m)]
@@ -334,6 +349,10 @@ def report(sim: pd.DataFrame | None, real: pd.DataFrame, orient: list[str], args
             d = sim[(sim["scenario"] == scen) & (sim["method"] == m3)]
             lines.append(f"| {scen} | " + " | ".join(fmt(d[d["speed"] == sp]["abs_err"].mean())
                                                      for sp in sorted(sim["speed"].unique())) + " |")
+        if "M3" in set(sim["method"]):
+            gains = sim[sim["method"] == "M3"].groupby("user")["distance_gain"].first()
+            lines += ["", "Distance gains (L26) per user: " + ", ".join(
+                f"user {u} {100 * (g - 1):+.2f} %" for u, g in gains.items()), ""]
         rate = sim["duration_s"].sum() / sim["track_time_s"].sum()
         lines += ["", f"Tracking speed: {rate:.0f} s of data per second of computing (all methods).", ""]
     lines += orient
@@ -359,6 +378,9 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--cal-speeds", default="slow,normal,fast",
                    help="speeds of the calibration exercises the user's model is trained on")
     p.add_argument("--out", type=Path, default=RESULTS, help="results folder")
+    p.add_argument("--sensor-errors", choices=("device", "session"), default="device",
+                   help="accelerometer scale errors drawn per unit (default, decisions S22) or per session "
+                        "(the simulator before S22, for before/after comparisons)")
     p.add_argument("--model-cache", type=Path, default=None,
                    help="save the trained user models here and reuse them on the next run")
     args = p.parse_args(argv)
@@ -369,7 +391,8 @@ def main(argv: list[str] | None = None) -> None:
     orient: list[str] = []
     if not args.no_sim:
         sim = run_sim(args.users, args.speeds.split(","), args.scenarios.split(","), args.quick,
-                      args.model_cache, tuple(args.cal_speeds.split(",")), out)
+                      args.model_cache, tuple(args.cal_speeds.split(",")), out,
+                      device_errors=args.sensor_errors == "device")
         sim.to_csv(out / "localization_runs.csv", index=False)
         sim.attrs["strides"].to_csv(out / "localization_m3_strides.csv", index=False)
         orient = run_orientation_tables(min(args.users, 5)) + run_orientation_scenarios(min(args.users, 5))

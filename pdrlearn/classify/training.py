@@ -645,6 +645,7 @@ def train_user(
     boundaries: str = "given",
     user: str | None = None,
     strict: bool | None = None,
+    distance_calibration: bool = True,
     advance: Callable[[int], None] = lambda n=1: None,
 ) -> UserModel:
     """Train a user's step classifiers from labelled sessions.
@@ -668,6 +669,9 @@ def train_user(
         evaluation cut windows the same way (decision C13).
     strict : raise on a task without labels / with a missing class. Default: strict when ``tasks`` is
         given explicitly; otherwise such tasks are skipped and listed in ``UserModel.skipped``.
+    distance_calibration : estimate the user's distance gain from the sessions' labelled stride lengths
+        (:func:`pdrlearn.displace.calibrate_distance`, docs/decisions/localization.md L26), stored in
+        ``data_summary["distance_calibration"]`` and used by PLASYS M3 with this model.
 
     Returns
     -------
@@ -715,6 +719,10 @@ def train_user(
     bounds = length_class_bounds(sessions)
     if bounds is not None:
         summary["length_bounds_m"] = bounds
+    if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
+        from pdrlearn.displace.calibration import calibrate_distance
+
+        summary["distance_calibration"] = calibrate_distance(sessions)
     for t, m in out.items():
         data = task_data(windows, t)
         summary["steps"][t] = {

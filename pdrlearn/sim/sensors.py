@@ -4,6 +4,12 @@ Noise standard deviations are the thesis' stationary statistics. Those were meas
 outputs, which the foot firmware obtains by averaging five 100 Hz samples (thesis ch.4.2.3); the 100 Hz
 white noise is therefore ``sd * sqrt(5)`` so that the 20 Hz output reproduces the tables. Constant biases
 are drawn per session with the tables' mean offsets as standard deviations.
+
+Accelerometer scale factors are a property of the DEVICE (decision S22 in docs/decisions/simulator.md):
+the unit's own scale error is drawn once per unit (``device_rng``, the user's unit in
+:func:`pdrlearn.sim.simulate`) and each session adds a small turn-on/temperature term
+(``scale_session_sd``). Without ``device_rng`` the whole scale error is drawn per session (the model
+before S22, kept for A/B comparisons with the knob ``device_errors=False``).
 """
 
 from __future__ import annotations
@@ -25,8 +31,9 @@ class ImuErrorModel:
     bias_sd: tuple[float, float, float]
     full_scale: float
     lsb: float | None = None
-    scale_sd: float = 0.0
+    scale_sd: float = 0.0  # per-DEVICE scale-factor error (fraction, sd), decision S22
     bias_walk: float = 0.0  # bias random walk (unit / sqrt(s)): slow drift during a session
+    scale_session_sd: float = 0.0  # per-SESSION change of the scale factor (fraction, sd), decision S22
 
 
 # thesis Table 4: foot accelerometer deviation (m/s^2) and mean offsets from (0, g, 0)
@@ -36,6 +43,9 @@ FOOT_ACC = ImuErrorModel(
     full_scale=16 * 9.81,  # +-16 g (thesis ch.4.2.1.1)
     lsb=9.81 / 256,  # thesis eq. 24: 256 counts per g
     scale_sd=0.003,  # total-acceleration mean 9.83 vs 9.807 m/s^2 (thesis Table 4): ~0.3 %
+    # ADXL345 data sheet (thesis ref. [32]): sensitivity change due to temperature +-0.01 %/degC; a unit
+    # 5 degC warmer or colder than in its last session (sd) -> 0.05 % (decision S22)
+    scale_session_sd=0.0005,
 )
 # thesis Table 6: foot gyroscope deviation and mean (rad/s); 2000 dps range (thesis ch.4.2.1.2)
 FOOT_GYR = ImuErrorModel(
@@ -52,6 +62,9 @@ WAIST_ACC = ImuErrorModel(
     bias_sd=(9.8869 - STANDARD_GRAVITY, 0.2201, 0.1675),
     full_scale=16 * 9.81,
     scale_sd=0.003,
+    # MPU-6500 family data sheet (thesis ref. [55]): sensitivity change vs temperature +-0.026 %/degC;
+    # 5 degC sd between sessions -> 0.13 % (decision S22)
+    scale_session_sd=0.0013,
 )
 # thesis Table 14: waist gyroscope deviation and mean (rad/s)
 WAIST_GYR = ImuErrorModel(
@@ -70,17 +83,38 @@ BUILDING_ALTITUDE_M = 75.0  # the thesis' test building is 75 m above sea level 
 FORCE_RANGE_N = 440.0  # Tekscan A201 force range (thesis Table 7)
 
 
+def device_scale(model: ImuErrorModel, device_rng: np.random.Generator) -> np.ndarray:
+    """The unit's own per-axis scale factors (1 + error), drawn once per device (decision S22)."""
+    return 1.0 + device_rng.normal(0.0, 1.0, 3) * model.scale_sd
+
+
 def imu_readout(
-    ideal: np.ndarray, model: ImuErrorModel, rng: np.random.Generator, *, noise: bool
+    ideal: np.ndarray,
+    model: ImuErrorModel,
+    rng: np.random.Generator,
+    *,
+    noise: bool,
+    device_rng: np.random.Generator | None = None,
 ) -> tuple[np.ndarray, dict]:
     """Apply scale error, bias, white noise, saturation and quantisation to 100 Hz ideal readings (n, 3).
+
+    Parameters
+    ----------
+    rng : the session's randomness (biases, noise, the per-session scale term)
+    device_rng : the unit's own randomness: its scale factors (``model.scale_sd``) are drawn from it and
+        the session adds ``model.scale_session_sd`` (decision S22). None: the whole scale error
+        (``model.scale_sd``) is drawn per session (the model before S22).
 
     Returns the readings and a dict of the drawn errors (for the session metadata).
     """
     if not noise:
         return ideal.copy(), {"bias": [0.0, 0.0, 0.0], "scale": [1.0, 1.0, 1.0]}
     bias = rng.normal(0.0, 1.0, 3) * np.asarray(model.bias_sd)
-    scale = 1.0 + rng.normal(0.0, model.scale_sd, 3)
+    z = rng.normal(0.0, 1.0, 3)  # the same draws as before S22, so the other session errors are unchanged
+    if device_rng is None:
+        scale = 1.0 + z * model.scale_sd
+    else:
+        scale = device_scale(model, device_rng) * (1.0 + z * model.scale_session_sd)
     sd = np.asarray(model.noise_sd) * np.sqrt(FIRMWARE_AVERAGE)
     out = ideal * scale + bias + rng.normal(0.0, 1.0, ideal.shape) * sd
     if model.bias_walk > 0:  # 100 Hz samples: increments of sd bias_walk * sqrt(0.01 s)

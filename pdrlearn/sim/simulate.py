@@ -50,6 +50,7 @@ KNOBS: dict[str, object] = {
     "baro_drift_hpa_per_h": 0.3,  # sd of the weather drift slope
     "length_m": 1000.0,  # scenario "walk" only: path length
     "foot_mount_pitch_deg": 0.0,  # extra toes-down tilt of the foot unit (e.g. 50 for an instep mount)
+    "device_errors": True,  # accelerometer scale factors per unit (the user's own), not per session (S22)
 }
 
 
@@ -75,8 +76,9 @@ def _check_knobs(knobs: dict) -> dict:
     if unknown:
         raise DataError(f"simulate: unknown option(s) {', '.join(unknown)}; valid: {', '.join(KNOBS)}")
     out = {**KNOBS, **knobs}
-    if not isinstance(out["noise"], bool | np.bool_):
-        raise DataError(f"simulate: noise={out['noise']!r} must be True or False")
+    for k in ("noise", "device_errors"):
+        if not isinstance(out[k], bool | np.bool_):
+            raise DataError(f"simulate: {k}={out[k]!r} must be True or False")
     for k, default in KNOBS.items():
         v = out[k]
         if isinstance(default, bool):
@@ -241,7 +243,13 @@ def simulate_path(
     foot_mis_deg = [round(float(v), 9) for v in np.degrees(Rotation.from_matrix(mis_f).as_rotvec())]
     foot_m = THESIS_FOOT_FRAME.matrix()
     s_rng = _rng(user.seed, int(seed), scenario, speed, "sensors")
-    acc_f, e_af = sn.imu_readout(_to_sensor(f_body, foot_m, mis_f), sn.FOOT_ACC, s_rng, noise=noise)
+
+    def unit(name: str) -> np.random.Generator | None:  # the user's own device (decisions S22)
+        return _rng(user.seed, "device", name) if opt["device_errors"] else None
+
+    acc_f, e_af = sn.imu_readout(
+        _to_sensor(f_body, foot_m, mis_f), sn.FOOT_ACC, s_rng, noise=noise, device_rng=unit("fAccelerometer")
+    )
     gyr_f, e_gf = sn.imu_readout(_to_sensor(w_body, foot_m, mis_f), sn.FOOT_GYR, s_rng, noise=noise)
     load_h, load_t = foot_loads(t100, "right", steps, ev, user)
     force_a = sn.force_readout(load_h, s_rng, noise=noise)
@@ -258,7 +266,9 @@ def simulate_path(
     ww_body = block_mean(angular_rate_body(R_p, dt), OVERSAMPLE)
     mis_w = _misalignment(user.waist_misalignment_deg)
     waist_m = THESIS_WAIST_FRAME.matrix()
-    acc_w, e_aw = sn.imu_readout(_to_sensor(fw_body, waist_m, mis_w), sn.WAIST_ACC, s_rng, noise=noise)
+    acc_w, e_aw = sn.imu_readout(
+        _to_sensor(fw_body, waist_m, mis_w), sn.WAIST_ACC, s_rng, noise=noise, device_rng=unit("wAccelerometer")
+    )
     gyr_w, e_gw = sn.imu_readout(_to_sensor(ww_body, waist_m, mis_w), sn.WAIST_GYR, s_rng, noise=noise)
     p_w100 = p_w[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
     R_p100 = R_p[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]

@@ -27,10 +27,13 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.displace import (
+    LEVEL_DZ_M,
+    RATE_TOLERANCE,
     FootDisplacement,
     StepRules,
     force_stance,
     inertial_stance,
+    model_distance_calibration,
     parse_bounds,
     stance_runs,
 )
@@ -213,6 +216,27 @@ def _confident(classes: pd.DataFrame, min_confidence: float) -> pd.DataFrame:
     return out
 
 
+def _distance_gain(requested: float | None, model, fs: float, warnings: list[str]) -> tuple[float, str]:
+    """The distance gain to apply (decision L26) and where it comes from."""
+    if requested is not None:
+        g = float(requested)
+        if not np.isfinite(g) or not 0.5 < g < 2.0:
+            raise DataError(f"plasys: distance_gain={requested!r} must be a finite factor between 0.5 and 2 "
+                            "(1.0 = off)")
+        return g, "argument"
+    if model is None or isinstance(model, str):
+        return 1.0, "none"
+    rec = model_distance_calibration(model)
+    if rec is None:
+        return 1.0, "none (model without distance calibration)"
+    rate = rec.get("rate_hz")
+    if rate and abs(float(rate) - fs) > RATE_TOLERANCE * float(rate):
+        warnings.append(f"the model's distance calibration was made at {float(rate):g} Hz, the foot unit runs "
+                        f"at {fs:g} Hz: not applied (recalibrate at this rate)")
+        return 1.0, "none (rate mismatch)"
+    return float(rec.get("gain", 1.0)), "model"
+
+
 def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
     """Mean waist heading over each stride window (rad)."""
     s = steps["start_s"].to_numpy(float)
@@ -226,7 +250,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
                  bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
                  min_confidence: float | None = None, align: bool = False, rules: str | None = None,
-                 fused_tau_s: float = 60.0, streaming: bool = False, **opts) -> TrackResult:
+                 fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
+                 **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -255,6 +280,10 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     streaming : M2/M3 with the streaming runtime's stride-local kernel (see :func:`track_streaming`);
         ``heading`` is then "auto" (default), "foot" or "waist-gyro"; ``params`` = stance-segmentation
         settings (:class:`pdrlearn.kernels.stride.StanceSegmenter`)
+    distance_gain : factor on the horizontal displacement of the level strides (|dz| < 0.1 m), decision
+        L26. Default None: M3 with a trained model uses the model's per-user distance calibration (from
+        ``pdrlearn train``) when its foot rate matches the session's, else 1; a number applies it with
+        any method (e.g. M2); 1.0 = off
     """
     method = str(method).upper()
     if method not in METHODS:
@@ -298,7 +327,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     fd_kw.update(params or {})
     fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)
     warnings += fd.warnings_
-    disp = fd.disp_
+    raw_disp = disp = fd.disp_
     if len(fd.rows_) < len(strides):
         log.info("%s: %d detected step(s) without a swing between two rests dropped", session.name,
                  len(strides) - len(fd.rows_))
@@ -324,7 +353,16 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         if model is None:
             raise ModelError("M3 needs the step classes: pass a trained model directory (--model DIR, see "
                              "`pdrlearn train`) or --model oracle for labelled sessions; M1/M2 need no model")
+        if isinstance(model, str | Path) and str(model) != "oracle":
+            from pdrlearn.classify import load_model
+
+            model = load_model(model)
         classes, model_bounds = classes_and_bounds(model, work, strides)
+    gain, gain_source = _distance_gain(distance_gain, model if cfg["rules"] else None, foot.fs, warnings)
+    if gain != 1.0:  # decision L26: the user's calibration on the level strides' horizontal displacement
+        level = np.abs(disp[:, 2]) < LEVEL_DZ_M
+        disp = disp.copy()
+        disp[level, :2] *= gain
     use_bounds = bounds if bounds is not None else model_bounds
     clamp = cfg["rules"]
     if clamp and use_bounds is None:
@@ -369,7 +407,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     table = strides[["start_s", "end_s"]].copy()
     table["event_s"] = strides["event_s"] if "event_s" in strides else strides["end_s"]
     table["length_m"] = length
-    table["raw_length_m"] = np.hypot(disp[:, 0], disp[:, 1]) * np.where(disp[:, 0] < 0, -1.0, 1.0)
+    table["raw_length_m"] = np.hypot(raw_disp[:, 0], raw_disp[:, 1]) * np.where(raw_disp[:, 0] < 0, -1.0, 1.0)
     table["heading_rad"] = wrap_angle(head)
     table["dz_m"] = dz
     for c in ("terrain", "direction", "length_class"):
@@ -397,6 +435,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             "length_bounds_m": step_rules.effective_bounds() if clamp else None,
             "rules": rules if cfg["rules"] else None,
             "min_confidence": gate if cfg["rules"] else None,
+            "distance_gain": gain, "distance_gain_source": gain_source,
             "settings": {k: getattr(fd, k)
                          for k in ("integrator", "zupt_end", "gyro_bias", "attitude", "sw", "r",
                                    "accel_scale_error", "reference_point")},

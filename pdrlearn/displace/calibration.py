@@ -1,0 +1,173 @@
+"""Per-user distance calibration of the foot displacement (docs/decisions/localization.md L26).
+
+The foot engine (ZUPT/ZARU strapdown + white-noise-jerk Kalman filter, methods M2/M3) measures level
+strides with a small systematic error: the accelerometer's own scale factors (a property of the unit,
+ADXL345 sensitivity tolerance up to +-10 %, thesis Table 4 suggests ~0.3 %) and, at the PLASYS 20 Hz
+rate, the information the five-sample averaging removes (-0.17 %, L25). Neither is observable in a
+session (the foot is flat at every rest), but both are in the user's calibration exercises (thesis
+ch.6/7.2.2), whose strides have known lengths: the ratio reference / estimate over the level, forward,
+straight strides is the user's distance gain. It is estimated robustly (MAD outlier rejection, ratio of
+sums), shrunk towards 1 by its standard error, stored in the user's model by ``pdrlearn train``
+(``training_data.distance_calibration`` in the manifest) and applied by M3 to the level strides.
+
+``distance_gain`` is the pure kernel; :func:`calibrate_distance` runs the tracker's own engine on
+labelled sessions and returns the record stored in the model.
+"""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError, PdrlearnError
+
+log = logging.getLogger(__name__)
+
+#: Prior sd of the gain (fraction): a MEMS scale-factor + non-linearity budget of 1 % (the same budget as
+#: ``FootDisplacement(accel_scale_error=0.01)``, decision L21).
+PRIOR_SD = 0.01
+#: Largest |gain - 1| accepted (fraction): the ADXL345 sensitivity tolerance (230..282 LSB/g around 256 at
+#: +-16 g full resolution, data sheet of thesis ref. [32]) is ~+-10 %; beyond it the labels are suspect.
+MAX_DEVIATION = 0.10
+#: A stride is "level" when its estimated height change is below this (m): half a stair rise, as the
+#: simulator's terrain label (decisions S3: 0.08 m) - a stair stride climbs 2 x 0.15-0.18 m.
+LEVEL_DZ_M = 0.10
+#: A stride is "straight" when the heading changes less than this to both neighbours (deg).
+STRAIGHT_TURN_DEG = 15.0
+MIN_STRIDES = 10
+RATE_TOLERANCE = 0.01  # relative: a gain applies only at the foot rate it was estimated at
+
+
+def distance_gain(raw_m, ref_m, *, prior_sd: float = PRIOR_SD, outlier_mad: float = 3.5,
+                  min_strides: int = MIN_STRIDES, max_deviation: float = MAX_DEVIATION) -> dict:
+    """Robust distance gain ``reference / estimate`` of a set of strides.
+
+    Parameters
+    ----------
+    raw_m, ref_m : estimated and reference stride lengths (m), positive, same length
+    prior_sd : sd of the prior N(1, prior_sd^2) of the gain (fraction)
+    outlier_mad : strides whose log ratio is further than this many robust sd (1.4826 MAD) from the
+        median are left out
+    min_strides : fewer usable strides -> gain 1 (with ``reason``)
+    max_deviation : a ratio further than this from 1 -> gain 1 (with ``reason``): the labels are suspect
+
+    Returns
+    -------
+    dict with ``gain`` (shrunk, applied), ``ratio`` (ratio of sums of the kept strides), ``se`` (its
+    standard error), ``weight`` (shrinkage weight prior^2 / (prior^2 + se^2)), ``n_strides`` (kept),
+    ``n_outliers`` and ``reason`` (None when the gain was estimated).
+    """
+    raw = np.asarray(raw_m, float)
+    ref = np.asarray(ref_m, float)
+    if raw.shape != ref.shape:
+        raise DataError(f"distance_gain: {raw.shape[0]} estimates for {ref.shape[0]} references")
+    ok = np.isfinite(raw) & np.isfinite(ref) & (raw > 0) & (ref > 0)
+    raw, ref = raw[ok], ref[ok]
+    out = {"gain": 1.0, "ratio": None, "se": None, "weight": 0.0, "n_strides": int(len(raw)),
+           "n_outliers": 0, "reason": None}
+    if len(raw) < min_strides:
+        out["reason"] = f"{len(raw)} usable strides (< {min_strides})"
+        return out
+    lr = np.log(ref / raw)
+    med = np.median(lr)
+    mad = 1.4826 * np.median(np.abs(lr - med))
+    keep = np.abs(lr - med) <= outlier_mad * mad if mad > 0 else np.ones(len(lr), bool)
+    raw, ref = raw[keep], ref[keep]
+    out["n_outliers"], out["n_strides"] = int((~keep).sum()), int(keep.sum())
+    if len(raw) < min_strides:
+        out["reason"] = f"{len(raw)} strides left after outlier rejection (< {min_strides})"
+        return out
+    ratio = float(ref.sum() / raw.sum())
+    # ratio of sums = raw-weighted mean of the per-stride ratios; its standard error
+    w = raw / raw.sum()
+    r = ref / raw
+    se = float(np.sqrt(np.sum(w**2 * (r - ratio) ** 2) * len(r) / max(len(r) - 1, 1)))
+    out.update(ratio=ratio, se=se)
+    if abs(ratio - 1.0) > max_deviation:
+        out["reason"] = (f"ratio {ratio:.4f} is further than {max_deviation:.0%} from 1: check the labelled "
+                         "stride lengths")
+        return out
+    weight = prior_sd**2 / (prior_sd**2 + se**2)
+    out.update(gain=float(1.0 + weight * (ratio - 1.0)), weight=float(weight))
+    return out
+
+
+def straight_level_forward(steps: pd.DataFrame, *, level_dz_m: float = LEVEL_DZ_M,
+                           turn_deg: float = STRAIGHT_TURN_DEG) -> np.ndarray:
+    """Mask of the consecutive tracked strides (``steps``: ``raw_length_m`` m, ``dz_m`` m,
+    ``heading_rad`` rad) that are level (|dz| < ``level_dz_m``), forward (positive length) and straight
+    (heading change to both neighbours < ``turn_deg`` deg; the first and last stride are not)."""
+    raw = steps["raw_length_m"].to_numpy(float)
+    dz = steps["dz_m"].to_numpy(float)
+    dh = np.degrees(np.abs(np.diff(np.unwrap(steps["heading_rad"].to_numpy(float)))))
+    straight = (np.concatenate([[np.inf], dh]) < turn_deg) & (np.concatenate([dh, [np.inf]]) < turn_deg)
+    return (raw > 0) & (np.abs(dz) < level_dz_m) & straight
+
+
+def _labelled_flat_forward(labels: pd.DataFrame) -> np.ndarray:
+    """Labels that are flat and forward where the table says so (columns ``terrain``/``direction``)."""
+    mask = np.ones(len(labels), bool)
+    for col, value in (("terrain", "flat"), ("direction", "forward")):
+        if col in labels:
+            mask &= labels[col].astype(str).to_numpy() == value
+    return mask
+
+
+def calibrate_distance(sessions, *, params: dict | None = None, **kernel_kw) -> dict:
+    """The user's distance gain from labelled calibration sessions (strides with ``length_m``).
+
+    Each session is tracked on its labelled strides with the M2/M3 foot engine (force stance where the
+    session has force sensors; M3 with the labels' classes otherwise), the level, forward, straight
+    strides are matched to their labels and :func:`distance_gain` is applied to all of them together.
+
+    Returns the record stored in the user model: the :func:`distance_gain` dict plus ``rate_hz`` (foot
+    accelerometer rate of the sessions, Hz), ``engine`` and ``sessions`` (names used / skipped and why).
+    """
+    from pdrlearn.track.evaluate import match_by_overlap
+    from pdrlearn.track.plasys import track_plasys
+
+    raw_all, ref_all, used, skipped, rates = [], [], [], [], []
+    for s in sessions:
+        lab = s.steps
+        if lab is None or "length_m" not in lab or not s.has("fAccelerometer", "fGyroscope"):
+            skipped.append(f"{s.name}: no labelled stride lengths or no foot unit")
+            continue
+        method = "M2" if s.has("fForceA") or s.has("fForceB") else "M3"
+        try:
+            res = track_plasys(s, method=method, model=None if method == "M2" else "oracle", steps="labels",
+                               heading="foot", params=params, distance_gain=1.0)
+        except PdrlearnError as exc:
+            skipped.append(f"{s.name}: {exc}")
+            continue
+        lab = lab.reset_index(drop=True)
+        pairs = match_by_overlap(res.steps, lab, min_iou=0.5)
+        if not pairs:
+            skipped.append(f"{s.name}: no tracked stride matches a label")
+            continue
+        ei, ri = (np.array(v) for v in zip(*pairs, strict=True))
+        st = res.steps.iloc[ei].reset_index(drop=True)
+        mask = straight_level_forward(res.steps)[ei] & _labelled_flat_forward(lab.iloc[ri])
+        raw_all.append(st["raw_length_m"].to_numpy(float)[mask])
+        ref_all.append(lab["length_m"].to_numpy(float)[ri][mask])
+        used.append(s.name)
+        rates.append(float(s.streams["fAccelerometer"].rate_hz))
+    raw = np.concatenate(raw_all) if raw_all else np.zeros(0)
+    ref = np.concatenate(ref_all) if ref_all else np.zeros(0)
+    out = distance_gain(raw, ref, **kernel_kw)
+    if rates and (max(rates) - min(rates)) > RATE_TOLERANCE * max(rates):
+        out.update(gain=1.0, weight=0.0, reason=f"calibration sessions at different foot rates {sorted(set(rates))} Hz")
+    out.update(rate_hz=float(np.median(rates)) if rates else None, engine="plasys M2/M3 foot engine",
+               params=dict(params or {}), sessions_used=used, sessions_skipped=skipped)
+    log.info("distance calibration: gain %.4f (ratio %s, se %s, %d strides)", out["gain"], out["ratio"],
+             out["se"], out["n_strides"])
+    return out
+
+
+def model_distance_calibration(model) -> dict | None:
+    """The distance-calibration record of a trained user model (``data_summary`` / manifest
+    ``training_data``), or None for models trained before L26."""
+    summary = getattr(model, "data_summary", None) or {}
+    rec = summary.get("distance_calibration")
+    return rec if isinstance(rec, dict) else None
