@@ -54,19 +54,36 @@ def gravity_rotation(g_sensor: np.ndarray) -> np.ndarray:
 def rotvec_to_matrix(w: np.ndarray) -> np.ndarray:
     """Rotation matrices ``(n, 3, 3)`` of rotation vectors ``(n, 3)`` (rad), Rodrigues' formula."""
     w = np.atleast_2d(np.asarray(w, dtype=np.float64))
-    th = np.sqrt(np.add.reduce(w * w, axis=1))  # = np.linalg.norm(w, axis=1), same arithmetic
+    th2 = np.add.reduce(w * w, axis=1)
+    th = np.sqrt(th2)  # = np.linalg.norm(w, axis=1), same arithmetic
     small = th < 1e-8
     if small.any():
         safe = np.where(small, 1.0, th)
         # sin(th)/th and (1-cos th)/th^2 with their Taylor series near 0
         a = np.where(small, 1.0 - th**2 / 6.0, np.sin(th) / safe)
         b = np.where(small, 0.5 - th**2 / 24.0, (1.0 - np.cos(th)) / safe**2)
-    else:  # the same values without the series branch (fewer numpy calls per step)
-        a, b = np.sin(th) / th, (1.0 - np.cos(th)) / th**2
-    K = np.zeros((len(w), 9))  # [w]x, row by row: entries 1, 2, 3, 5, 6, 7
-    K[:, _SKEW_AT] = w[:, _SKEW_FROM] * _SKEW_SIGN
-    K = K.reshape(-1, 3, 3)
-    return _I3[None] + a[:, None, None] * K + b[:, None, None] * (K @ K)
+        K = np.zeros((len(w), 9))  # [w]x, row by row: entries 1, 2, 3, 5, 6, 7
+        K[:, _SKEW_AT] = w[:, _SKEW_FROM] * _SKEW_SIGN
+        K = K.reshape(-1, 3, 3)
+        return _I3[None] + a[:, None, None] * K + b[:, None, None] * (K @ K)
+    # R = cos(th) I + a [w]x + b w w^T (the same rotation as I + a [w]x + b [w]x^2, since
+    # [w]x^2 = w w^T - th^2 I): one outer product and in-place column updates, ~10 fewer numpy calls
+    # than the 3x3-stack products (decision E13; within 2e-16 of the other form)
+    c = np.cos(th)
+    out = np.empty((len(w), 3, 3))
+    np.multiply(((1.0 - c) / th2)[:, None, None] * w[:, :, None], w[:, None, :], out=out)
+    aw = (np.sin(th) / th)[:, None] * w
+    f = out.reshape(-1, 9)
+    f[:, 0] += c
+    f[:, 4] += c
+    f[:, 8] += c
+    f[:, 7] += aw[:, 0]
+    f[:, 2] += aw[:, 1]
+    f[:, 3] += aw[:, 2]
+    f[:, 5] -= aw[:, 0]
+    f[:, 6] -= aw[:, 1]
+    f[:, 1] -= aw[:, 2]
+    return out
 
 
 def matrix_to_rotvec(R: np.ndarray) -> np.ndarray:

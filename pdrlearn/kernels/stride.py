@@ -23,7 +23,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from pdrlearn.errors import DataError
-from pdrlearn.kernels.window import Levelled
+from pdrlearn.kernels.window import Levelled, interp
 
 
 # -- stride detection ---------------------------------------------------------------------------------
@@ -111,7 +111,7 @@ def yaw_change(t: np.ndarray, rate_z: np.ndarray, t0: float = -np.inf, t1: float
     """Heading change (rad) over ``[t0, t1]`` (s): trapezoidal integral of the levelled vertical rate
     (rad/s) linearly interpolated at ``t0``/``t1``, so that consecutive strides do not share samples."""
     tt = np.minimum(np.maximum(t, t0), t1)  # clipped to [t0, t1]
-    r = np.interp(tt, t, rate_z)
+    r = interp(tt, t, rate_z)
     return float(np.add.reduce(0.5 * (r[1:] + r[:-1]) * (tt[1:] - tt[:-1])))  # = np.sum(... * np.diff(tt))
 
 
@@ -247,4 +247,5 @@ def _stride_rules_one(d: list[float], terrain, direction, length_class, *,
 # -- position -----------------------------------------------------------------------------------------
 def advance(position: np.ndarray, heading_rad: float, length_m: float, dz_m: float) -> np.ndarray:
     """ENU position (3,) m after a stride of signed ``length_m`` along ``heading_rad`` and ``dz_m`` up."""
-    return position + np.array([length_m * np.cos(heading_rad), length_m * np.sin(heading_rad), dz_m])
+    x, y, z = np.asarray(position, dtype=np.float64).reshape(3).tolist()  # Python floats: math.cos/sin
+    return np.array([x + length_m * math.cos(heading_rad), y + length_m * math.sin(heading_rad), z + dz_m])
