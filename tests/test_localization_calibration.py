@@ -26,6 +26,7 @@ def test_distance_gain_recovers_a_known_ratio_and_rejects_an_outlier():
     assert out["n_outliers"] >= 1 and out["reason"] is None
     assert out["ratio"] == pytest.approx(1.02, abs=0.001)
     assert out["se"] == pytest.approx(0.005 / np.sqrt(199), rel=0.3)
+    assert out["stride_sd"] == pytest.approx(0.005, rel=0.25)  # robust sd of one stride's ratio
     # ratio of sums of the kept strides, shrunk by prior^2 / (prior^2 + se^2)
     w = 0.01**2 / (0.01**2 + out["se"] ** 2)
     assert out["gain"] == pytest.approx(1 + w * (out["ratio"] - 1), abs=1e-12)
@@ -139,9 +140,12 @@ class _Model:
 
 def test_model_gain_is_used_only_at_the_rate_it_was_estimated_at():
     warnings: list[str] = []
-    assert _distance_gain(None, _Model({"gain": 1.004, "rate_hz": 20.0}), 20.0, warnings) == (1.004, "model")
-    g, src = _distance_gain(None, _Model({"gain": 1.004, "rate_hz": 20.0}), 100.0, warnings)
-    assert g == 1.0 and "rate" in src and "recalibrate" in warnings[-1]
+    rec = {"gain": 1.004, "rate_hz": 20.0, "stride_sd": 0.006, "reason": None}
+    assert _distance_gain(None, _Model(rec), 20.0, warnings) == (1.004, "model", 0.006)
+    assert _distance_gain(1.01, _Model(rec), 20.0, warnings) == (1.01, "argument", 0.006)
+    assert _distance_gain(None, _Model(rec), 20.0, warnings, calibration=False)[::2] == (1.0, None)
+    g, src, sd = _distance_gain(None, _Model(rec), 100.0, warnings)
+    assert (g, sd) == (1.0, None) and "calibration" in src and "recalibrate" in warnings[-1]
     assert _distance_gain(None, _Model(None), 20.0, warnings)[0] == 1.0
     assert _distance_gain(None, "oracle", 20.0, warnings)[0] == 1.0
     assert model_distance_calibration(_Model(None)) is None
@@ -157,3 +161,27 @@ def test_calibrated_m2_is_closer_on_the_same_users_unit():
     after = evaluate_track(track_plasys(s, method="M2", distance_gain=rec["gain"]), s)["distance_error_pct"]
     assert rec["gain"] > 1.0 and before < 0
     assert abs(after) < abs(before)
+
+
+def test_train_user_stores_the_calibration_and_m3_uses_it(tmp_path, length_exercise):
+    from pdrlearn.classify import load_model, train_user
+
+    cal = simulate("length", user_seed=2, speed="normal")
+    model = train_user([cal], tasks=["length"], methods=["svm"], units=["foot"], cv=2)
+    rec = model.data_summary["distance_calibration"]
+    assert rec["reason"] is None and rec["n_strides"] >= 40 and 0.99 < rec["gain"] < 1.01
+    assert 0 < rec["stride_sd"] < 0.03
+    model.length_bounds_m = cal.meta["length_class_bounds_m"]
+    model.save(tmp_path / "m")
+    loaded = load_model(tmp_path / "m")  # the record travels in the manifest (training_data)
+    assert loaded.data_summary["distance_calibration"]["gain"] == pytest.approx(rec["gain"])
+    s = simulate("A", user_seed=2, speed="normal")
+    res = track_plasys(s, method="M3", model=tmp_path / "m")
+    assert res.info["distance_gain_source"] == "model"
+    assert res.info["distance_gain"] == pytest.approx(rec["gain"])
+    assert res.info["stride_sigma_rel"] == pytest.approx(rec["stride_sd"])
+    off = track_plasys(s, method="M3", model=loaded, calibration=False)
+    assert off.info["distance_gain"] == 1.0 and off.info["stride_sigma_rel"] == 0.03
+    # skipped when asked
+    assert "distance_calibration" not in train_user([cal], tasks=["length"], methods=["svm"], units=["foot"], cv=2,
+                                                    distance_calibration=False).data_summary

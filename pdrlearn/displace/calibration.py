@@ -56,7 +56,8 @@ def distance_gain(raw_m, ref_m, *, prior_sd: float = PRIOR_SD, outlier_mad: floa
     Returns
     -------
     dict with ``gain`` (shrunk, applied), ``ratio`` (ratio of sums of the kept strides), ``se`` (its
-    standard error), ``weight`` (shrinkage weight prior^2 / (prior^2 + se^2)), ``n_strides`` (kept),
+    standard error), ``stride_sd`` (robust relative sd of one stride's estimate, 1.4826 MAD),
+    ``weight`` (shrinkage weight prior^2 / (prior^2 + se^2)), ``n_strides`` (kept),
     ``n_outliers`` and ``reason`` (None when the gain was estimated).
     """
     raw = np.asarray(raw_m, float)
@@ -65,7 +66,7 @@ def distance_gain(raw_m, ref_m, *, prior_sd: float = PRIOR_SD, outlier_mad: floa
         raise DataError(f"distance_gain: {raw.shape[0]} estimates for {ref.shape[0]} references")
     ok = np.isfinite(raw) & np.isfinite(ref) & (raw > 0) & (ref > 0)
     raw, ref = raw[ok], ref[ok]
-    out = {"gain": 1.0, "ratio": None, "se": None, "weight": 0.0, "n_strides": int(len(raw)),
+    out = {"gain": 1.0, "ratio": None, "se": None, "stride_sd": None, "weight": 0.0, "n_strides": int(len(raw)),
            "n_outliers": 0, "reason": None}
     if len(raw) < min_strides:
         out["reason"] = f"{len(raw)} usable strides (< {min_strides})"
@@ -84,7 +85,7 @@ def distance_gain(raw_m, ref_m, *, prior_sd: float = PRIOR_SD, outlier_mad: floa
     w = raw / raw.sum()
     r = ref / raw
     se = float(np.sqrt(np.sum(w**2 * (r - ratio) ** 2) * len(r) / max(len(r) - 1, 1)))
-    out.update(ratio=ratio, se=se)
+    out.update(ratio=ratio, se=se, stride_sd=float(1.4826 * np.median(np.abs(r / np.median(r) - 1.0))))
     if abs(ratio - 1.0) > max_deviation:
         out["reason"] = (f"ratio {ratio:.4f} is further than {max_deviation:.0%} from 1: check the labelled "
                          "stride lengths")

@@ -216,25 +216,29 @@ def _confident(classes: pd.DataFrame, min_confidence: float) -> pd.DataFrame:
     return out
 
 
-def _distance_gain(requested: float | None, model, fs: float, warnings: list[str]) -> tuple[float, str]:
-    """The distance gain to apply (decision L26) and where it comes from."""
+def _distance_gain(requested: float | None, model, fs: float, warnings: list[str],
+                   calibration: bool = True) -> tuple[float, str, float | None]:
+    """The distance gain to apply (decision L26), where it comes from, and the user's calibrated relative
+    sd of one stride's length estimate (None: no applicable calibration)."""
+    rec = model_distance_calibration(model) if calibration and not (model is None or isinstance(model, str)) \
+        else None
+    if rec is not None:
+        rate = rec.get("rate_hz")
+        if rate and abs(float(rate) - fs) > RATE_TOLERANCE * float(rate):
+            warnings.append(f"the model's distance calibration was made at {float(rate):g} Hz, the foot unit "
+                            f"runs at {fs:g} Hz: not applied (recalibrate at this rate)")
+            rec = None
+    sd = rec.get("stride_sd") if rec is not None and rec.get("reason") is None else None
     if requested is not None:
         g = float(requested)
         if not np.isfinite(g) or not 0.5 < g < 2.0:
             raise DataError(f"plasys: distance_gain={requested!r} must be a finite factor between 0.5 and 2 "
                             "(1.0 = off)")
-        return g, "argument"
-    if model is None or isinstance(model, str):
-        return 1.0, "none"
-    rec = model_distance_calibration(model)
+        return g, "argument", sd
     if rec is None:
-        return 1.0, "none (model without distance calibration)"
-    rate = rec.get("rate_hz")
-    if rate and abs(float(rate) - fs) > RATE_TOLERANCE * float(rate):
-        warnings.append(f"the model's distance calibration was made at {float(rate):g} Hz, the foot unit runs "
-                        f"at {fs:g} Hz: not applied (recalibrate at this rate)")
-        return 1.0, "none (rate mismatch)"
-    return float(rec.get("gain", 1.0)), "model"
+        src = "none" if model is None or isinstance(model, str) else "none (no applicable calibration in the model)"
+        return 1.0, src, None
+    return float(rec.get("gain", 1.0)), "model", sd
 
 
 def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
@@ -251,7 +255,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                  bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
                  min_confidence: float | None = None, align: bool = False, rules: str | None = None,
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
-                 **opts) -> TrackResult:
+                 calibration: bool = True, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -284,6 +288,9 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         L26. Default None: M3 with a trained model uses the model's per-user distance calibration (from
         ``pdrlearn train``) when its foot rate matches the session's, else 1; a number applies it with
         any method (e.g. M2); 1.0 = off
+    calibration : M3 with a trained model: use the model's distance calibration (L26): its gain (unless
+        ``distance_gain`` is given) and, for the bayes rules, its measured stride-length sd in place of the
+        3 % default. False: neither
     """
     method = str(method).upper()
     if method not in METHODS:
@@ -358,7 +365,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
 
             model = load_model(model)
         classes, model_bounds = classes_and_bounds(model, work, strides)
-    gain, gain_source = _distance_gain(distance_gain, model if cfg["rules"] else None, foot.fs, warnings)
+    gain, gain_source, stride_sd = _distance_gain(distance_gain, model if cfg["rules"] else None, foot.fs,
+                                                  warnings, calibration)
     if gain != 1.0:  # decision L26: the user's calibration on the level strides' horizontal displacement
         level = np.abs(disp[:, 2]) < LEVEL_DZ_M
         disp = disp.copy()
@@ -375,9 +383,11 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                             "skipped; pass bounds=... or retrain with the user's bounds")
     if rules is None:  # decision L18: a model's probabilities are weighed, certain labels prevail
         rules = "thesis" if isinstance(model, str) and model == "oracle" else DEFAULT_MODEL_RULES
+    # decision L26: the bayes rule weighs the classes against the user's own calibrated stride accuracy
+    sigma_kw = {"sigma_rel": float(stride_sd)} if stride_sd and rules == "bayes" else {}
     step_rules = StepRules(bounds=parse_bounds(use_bounds) if use_bounds is not None else None,
                            bounds_scale=bounds_scale, down_mode=down_mode, mode=rules,
-                           clamp=clamp, sign=cfg["rules"], altitude=cfg["rules"])
+                           clamp=clamp, sign=cfg["rules"], altitude=cfg["rules"], **sigma_kw)
     if not cfg["rules"]:
         classes["terrain"] = None
     gate = DEFAULT_MIN_CONFIDENCE if min_confidence is None else float(min_confidence)
@@ -436,6 +446,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             "rules": rules if cfg["rules"] else None,
             "min_confidence": gate if cfg["rules"] else None,
             "distance_gain": gain, "distance_gain_source": gain_source,
+            "stride_sigma_rel": step_rules.sigma_rel if cfg["rules"] and rules == "bayes" else None,
             "settings": {k: getattr(fd, k)
                          for k in ("integrator", "zupt_end", "gyro_bias", "attitude", "sw", "r",
                                    "accel_scale_error", "reference_point")},
