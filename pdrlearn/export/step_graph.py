@@ -265,6 +265,13 @@ class _Builder:
 
     def features(self, recipe: list) -> str:
         """The feature matrix (n, F) of a recipe (columns in recipe order) from the prepared matrix."""
+        cols = self.feature_cols(recipe)
+        if cols == list(range(len(self.index))):
+            return self.all
+        return self.cols(self.all, cols)
+
+    def feature_cols(self, recipe: list) -> list[int]:
+        """Columns of the prepared matrix that a recipe reads, in recipe order."""
         cols: list[int] = []
         for item in recipe:
             op = item[0]
@@ -278,9 +285,7 @@ class _Builder:
                 cols.append(self.index[("yaw", item[1])])
             else:
                 cols.append(self.index[("yaw_sign",)])
-        if cols == list(range(len(self.index))):
-            return self.all
-        return self.cols(self.all, cols)
+        return cols
 
     def interp(self, q: str, x: str, y: str) -> str:
         """``np.interp`` of each row: queries q (n, k) on the row's grid x (n, m) (increasing) -> (n, k)."""
@@ -409,6 +414,7 @@ def build_step_graph(tasks: dict, onnx_models: dict[str, onnx.ModelProto], featu
         entry = spec["methods"].get(ch.get("method"), {}).get(ch.get("unit"))
         if entry is None or not _translatable(entry, onnx_models):
             continue
+        entry = _pruned(entry)  # units with fusion weight 0 add exactly 0 (decision E13)
         try:  # a recipe statistic without a translation: the per-model path for this task
             _Builder(b.m, ci, features["signals"]).prepare([leaf["features"] for leaf in _leaf_models(entry)])
         except KeyError as exc:
@@ -418,16 +424,10 @@ def build_step_graph(tasks: dict, onnx_models: dict[str, onnx.ModelProto], featu
     if not included:
         return None
     b.prepare([leaf["features"] for e in included.values() for leaf in _leaf_models(e)])
-    outputs: dict[str, str] = {}
-    out_infos = []
-    for task, entry in included.items():
-        classes = list(tasks[task]["classes"])
-        name = f"proba_{task}"
-        b.nodes.append(helper.make_node("Identity", [_entry_proba(b, entry, classes, f"{task}_")], [name]))
-        outputs[task] = name
-        out_infos.append(helper.make_tensor_value_info(name, TensorProto.DOUBLE, [None, len(classes)]))
-    if not outputs:
-        return None
+    outputs = {task: f"proba_{task}" for task in included}
+    _head(b, {task: (entry, list(tasks[task]["classes"])) for task, entry in included.items()}, outputs)
+    out_infos = [helper.make_tensor_value_info(name, TensorProto.DOUBLE, [None, len(tasks[task]["classes"])])
+                 for task, name in outputs.items()]
     domains = {"": OPSET}
     for m in onnx_models.values():
         for o in m.opset_import:
@@ -447,38 +447,122 @@ def build_step_graph(tasks: dict, onnx_models: dict[str, onnx.ModelProto], featu
     return model, spec
 
 
-def _entry_proba(b: _Builder, entry: dict, classes: list[str], prefix: str) -> str:
-    """Probabilities (n, len(classes)) of a model entry, aligned to ``classes`` (kernels.proba)."""
-    if entry["type"] == "fusion":
-        probas = [_entry_proba(b, e, list(entry["classes"]), f"{prefix}{u}_")
-                  for u, e in entry["members"].items()]
+def _pruned(entry: dict) -> dict:
+    """The entry without fusion members of weight 0 (``soft_vote`` adds them as exactly 0; at least one
+    member is kept)."""
+    if entry.get("type") != "fusion":
+        return entry
+    keep = [(u, e, w) for (u, e), w in zip(entry["members"].items(), entry["weights"], strict=True) if w != 0]
+    if not keep:
+        return entry
+    return {**entry, "members": {u: _pruned(e) for u, e, _ in keep}, "weights": [w for _, _, w in keep]}
+
+
+def _leaf_weights(entry: dict, classes: list[str], weight: float = 1.0) -> list[tuple[dict, float, list[int]]]:
+    """Every ONNX leaf of an entry with its share of the task's soft vote (the product of the normalised
+    fusion weights on its path) and, for each of its classes, the column of that class in ``classes``."""
+    if entry.get("type") == "fusion":
         w = np.asarray(entry["weights"], dtype=float)
-        acc = None
-        for wi, p in zip(w, probas, strict=True):  # soft_vote: sum(w_i p_i) / sum(w), rows renormalised
-            term = b.op("Mul", [b.const(np.array(wi), "w"), p])
-            acc = term if acc is None else b.op("Add", [acc, term])
-        fused = b.op("Div", [acc, b.const(np.array(max(w.sum(), 1e-12)), "wsum")], "fused")
-        tot = b.op("Clip", [b.reduce("ReduceSum", fused, keepdims=1), b.const(np.array(1e-12), "eps")])
-        p = b.op("Div", [fused, tot], "vote")
-        return _align(b, p, list(entry["classes"]), classes)
-    x = b.features(entry["features"])
-    outs = entry["outputs"]
-    model = b.onnx_models[entry["file"]]
-    if "proba" in outs:
-        p = b.inline(model, f"{prefix}m_", x, outs["proba"])
-    else:
-        p = b.op("Softmax", [b.inline(model, f"{prefix}m_", x, outs["logits"])], "softmax", axis=1)
-    return _align(b, p, list(entry["classes"]), classes)
+        total = max(float(w.sum()), 1e-12)
+        return [leaf for (_, e), wi in zip(entry["members"].items(), w, strict=True)
+                for leaf in _leaf_weights(e, classes, weight * float(wi) / total)]
+    return [(entry, weight, [classes.index(c) for c in entry["classes"]])]
 
 
-def _align(b: _Builder, p: str, model_classes: list[str], classes: list[str]) -> str:
-    """kernels.proba.align_proba as a 0/1 matrix product (exact: each column copies one input column)."""
-    if model_classes == classes:
-        return p
-    A = np.zeros((len(model_classes), len(classes)))
-    for j, c in enumerate(model_classes):
-        A[j, classes.index(c)] = 1.0
-    return b.op("MatMul", [p, b.const(A, "align")], "aligned")
+#: The torch networks' graph (pdrlearn.export.onnx_convert.torch_to_onnx of the project's MLP).
+_MLP_OPS = ("Sub", "Div", "Gemm", "Tanh", "Gemm", "Softmax")
+
+
+def _mlp_params(model: onnx.ModelProto) -> dict | None:
+    """Weights of a one-hidden-layer network graph ``Softmax(Gemm(tanh(Gemm((X - mean) / scale))))``, or
+    None when the graph has another form (it is then inlined unchanged)."""
+    nodes = list(model.graph.node)
+    if tuple(n.op_type for n in nodes) != _MLP_OPS:
+        return None
+    init = {i.name: numpy_helper.to_array(i) for i in model.graph.initializer}
+    try:
+        p = {"mean": init[nodes[0].input[1]], "scale": init[nodes[1].input[1]],
+             "W1": init[nodes[2].input[1]], "b1": init[nodes[2].input[2]],
+             "W2": init[nodes[4].input[1]], "b2": init[nodes[4].input[2]]}
+    except (KeyError, IndexError):
+        return None
+    for g in (nodes[2], nodes[4]):
+        a = {x.name: helper.get_attribute_value(x) for x in g.attribute}
+        if a.get("alpha", 1.0) != 1.0 or a.get("beta", 1.0) != 1.0 or a.get("transA", 0) or not a.get("transB", 0):
+            return None
+    if any(v.dtype != np.float64 for v in p.values()):
+        return None
+    return p
+
+
+def _block_diag(blocks: list[np.ndarray]) -> np.ndarray:
+    out = np.zeros((sum(x.shape[0] for x in blocks), sum(x.shape[1] for x in blocks)))
+    r = c = 0
+    for x in blocks:
+        out[r:r + x.shape[0], c:c + x.shape[1]] = x
+        r, c = r + x.shape[0], c + x.shape[1]
+    return out
+
+
+def _head(b: _Builder, tasks: dict[str, tuple[dict, list[str]]], outputs: dict[str, str]) -> None:
+    """Every task's probabilities from the prepared feature matrix, in few nodes (decision E13).
+
+    The networks of the project's form become one block-diagonal network (one Gather of all their
+    features, one scaler, two Gemm, one Softmax over ``(n, networks, classes)``; missing classes of a
+    smaller network are padded with a -1e300 logit, probability exactly 0); other models are inlined
+    unchanged. One product with a head matrix then does every task's soft vote and class alignment
+    (entries = the leaves' normalised fusion weights, :func:`pdrlearn.kernels.proba.soft_vote` without its
+    final row renormalisation: the rows of softmax outputs already sum to 1, so the difference is
+    rounding, <= 1e-15), and one Split names the outputs ``proba_<task>``.
+    """
+    leaves = [(task, leaf, w, cols) for task, (entry, classes) in tasks.items()
+              for leaf, w, cols in _leaf_weights(entry, classes)]
+    mlps = [(i, _mlp_params(b.onnx_models[leaf["file"]])) for i, (_, leaf, _, _) in enumerate(leaves)]
+    mlps = [(i, p) for i, p in mlps if p is not None and "proba" in leaves[i][1]["outputs"]]
+    parts: list[tuple[str, list[tuple[int, int]]]] = []  # (tensor, (leaf, class) of each column)
+    if mlps:
+        k = max(len(leaves[i][1]["classes"]) for i, _ in mlps)
+        cols = [c for i, _ in mlps for c in b.feature_cols(leaves[i][1]["features"])]
+        x = b.cols(b.all, cols)
+        x = b.op("Sub", [x, b.const(np.concatenate([p["mean"] for _, p in mlps]), "nn_mean")])
+        x = b.op("Div", [x, b.const(np.concatenate([p["scale"] for _, p in mlps]), "nn_scale")])
+        x = b.op("Gemm", [x, b.const(_block_diag([p["W1"] for _, p in mlps]), "nn_W1"),
+                          b.const(np.concatenate([p["b1"] for _, p in mlps]), "nn_b1")], "hidden", transB=1)
+        x = b.op("Tanh", [x])
+        W2 = [np.vstack([p["W2"], np.zeros((k - len(p["W2"]), p["W2"].shape[1]))]) for _, p in mlps]
+        b2 = [np.concatenate([p["b2"], np.full(k - len(p["b2"]), -1e300)]) for _, p in mlps]
+        x = b.op("Gemm", [x, b.const(_block_diag(W2), "nn_W2"), b.const(np.concatenate(b2), "nn_b2")],
+                 "logits", transB=1)
+        x = b.op("Reshape", [x, b.const(np.array([-1, len(mlps), k], np.int64), "shape", np.int64)])
+        x = b.op("Softmax", [x], "nn_proba", axis=-1)
+        x = b.op("Reshape", [x, b.const(np.array([-1, len(mlps) * k], np.int64), "shape", np.int64)])
+        parts.append((x, [(i, j) for i, _ in mlps for j in range(k)]))
+    done = {i for i, _ in mlps}
+    for i, (task, leaf, _, _) in enumerate(leaves):
+        if i in done:
+            continue
+        outs = leaf["outputs"]
+        model = b.onnx_models[leaf["file"]]
+        x = b.features(leaf["features"])
+        if "proba" in outs:
+            p = b.inline(model, f"{task}_{i}_m_", x, outs["proba"])
+        else:
+            p = b.op("Softmax", [b.inline(model, f"{task}_{i}_m_", x, outs["logits"])], "softmax", axis=1)
+        parts.append((p, [(i, j) for j in range(len(leaf["classes"]))]))
+    offset, width = {}, 0
+    for task, (_, classes) in tasks.items():
+        offset[task], width = width, width + len(classes)
+    columns = [col for _, cs in parts for col in cs]
+    H = np.zeros((len(columns), width))
+    for r, (i, j) in enumerate(columns):
+        if j < len(leaves[i][3]):  # padded network classes stay 0
+            task, _, w, cls_cols = leaves[i]
+            H[r, offset[task] + cls_cols[j]] = w
+    P = parts[0][0] if len(parts) == 1 else b.op("Concat", [t for t, _ in parts], "leaf_proba", axis=1)
+    fused = b.op("MatMul", [P, b.const(H, "head")], "fused")
+    sizes = np.array([len(classes) for _, classes in tasks.values()], np.int64)
+    b.nodes.append(helper.make_node("Split", [fused, b.const(sizes, "split", np.int64)],
+                                    [outputs[t] for t in tasks], axis=1))
 
 
 def features_graph(recipe: list, features: dict) -> onnx.ModelProto:
