@@ -143,3 +143,66 @@ def test_missing_sensor_in_the_window_is_a_data_error(trained):
     W[:, ch[-1]] = np.nan
     with pytest.raises(DataError, match="NaN"):
         tr.classify(W)
+
+
+def test_head_prunes_zero_weight_units_and_merges_the_networks(trained):
+    """Decision E13: a unit of fusion weight 0 is left out of the graph, the networks run as one
+    block-diagonal network, and the soft vote is one product; numbers = soft_vote of the per-model path."""
+    from pdrlearn.kernels.proba import align_proba, soft_vote
+    from pdrlearn.runtime.classify import RuntimeModel
+
+    bundle = load_bundle(trained["root"] / "bundle_all")
+    models = {rel: onnx.load(bundle.path / rel) for rel in bundle.manifest["files"] if rel.endswith(".onnx")}
+    tasks = copy.deepcopy(bundle.tasks)
+    chosen = {"terrain": "nn", "direction": "nn", "length": "svm"}
+    for task, spec in tasks.items():
+        spec["chosen"] = {"method": chosen[task], "unit": "fused"}
+    tasks["terrain"]["methods"]["nn"]["fused"]["weights"] = [1.0, 0.0]  # waist network: weight 0
+    tasks["length"]["methods"]["svm"]["fused"]["weights"] = [0.3, 0.7]
+    model, spec = build_step_graph(tasks, models, bundle.manifest["features"])
+    ops = [n.op_type for n in model.graph.node]
+    assert ops.count("Tanh") == 1 and ops.count("Split") == 1  # one network block, one head
+    # the block holds exactly the networks of non-zero weight (the terrain waist network is left out)
+    W1 = next(i for i in model.graph.initializer if i.name.endswith("nn_W1"))
+
+    def hidden(e):
+        return next(i for i in models[e["file"]].graph.initializer if i.name.endswith("hidden.weight")).dims[0]
+
+    want_hidden = sum(hidden(e) for t in ("terrain", "direction")
+                      for e, w in zip(tasks[t]["methods"]["nn"]["fused"]["members"].values(),
+                                      tasks[t]["methods"]["nn"]["fused"]["weights"], strict=True) if w != 0)
+    assert W1.dims[0] == want_hidden
+    assert want_hidden < sum(hidden(e) for t in ("terrain", "direction")
+                             for e in tasks[t]["methods"]["nn"]["fused"]["members"].values())
+    W = trained["W"]
+    out = _run(model, W)
+    ctx = _ctx(bundle)
+    for task, spec_t in tasks.items():
+        entry = spec_t["methods"][chosen[task]]["fused"]
+        classes = list(spec_t["classes"])
+        probas = []
+        for e in entry["members"].values():
+            probas.append(align_proba(RuntimeModel(bundle, e, ctx).proba(W), e["classes"], entry["classes"]))
+        want = align_proba(soft_vote(probas, entry["weights"]), entry["classes"], classes)
+        got = out[spec["outputs"][task]]
+        assert np.abs(got - want).max() <= 1e-12, task
+        assert (np.argmax(got, axis=1) == np.argmax(want, axis=1)).all()
+
+
+def test_rebuilt_step_graph_gives_the_same_steps(trained, tmp_path):
+    """rebuild_step_graph (decision E13) rewrites a bundle's step graph atomically, checksums included."""
+    from pdrlearn.export.bundle import rebuild_step_graph
+
+    src = trained["root"] / "bundle"
+    out = rebuild_step_graph(src, tmp_path / "rebuilt")
+    b = load_bundle(out, verify=True)
+    assert b.manifest["step_graph"]["file"] in b.manifest["files"]
+    s = trained["test"]
+    data = {n: (st.t, st.values) for n, st in s.streams.items()}
+    x_steps = Tracker(src).push(data)
+    y_steps = Tracker(b).push(data)
+    assert len(x_steps) == len(y_steps) > 0
+    for x, y in zip(x_steps, y_steps, strict=True):
+        assert x.classes == y.classes and (x.x, x.y, x.z) == (y.x, y.y, y.z)
+        for task in x.proba:
+            assert max(abs(x.proba[task][c] - y.proba[task][c]) for c in x.proba[task]) <= 1e-12

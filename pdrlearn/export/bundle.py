@@ -147,3 +147,42 @@ def write_bundle(
 def bundle_size_bytes(path: str | Path) -> int:
     """Total size of a bundle folder in bytes."""
     return sum(f.stat().st_size for f in Path(path).rglob("*") if f.is_file())
+
+
+def rebuild_step_graph(bundle_dir: str | Path, out_dir: str | Path | None = None) -> Path:
+    """Re-build a bundle's step graph (``models/step.onnx``) with this version's graph builder.
+
+    The bundle is verified and read (manifest, every ONNX/JSON/NPZ file), the step graph is built again
+    from its own per-model graphs and feature table (:func:`pdrlearn.export.step_graph.build_step_graph`),
+    and the bundle is written atomically with new checksums to ``out_dir`` (default: in place). The
+    models, classes and numbers stay those of the bundle; a bundle without an ONNX task loses its
+    step graph entry. Used to bring shipped bundles to the decision-E13 graph without retraining.
+    """
+    import json as _json
+
+    from pdrlearn.export.step_graph import build_step_graph
+
+    src = Path(bundle_dir)
+    b = load_bundle(src, verify=True)
+    manifest = {k: v for k, v in b.manifest.items() if k not in ("files", "step_graph")}
+    old_graph = (b.manifest.get("step_graph") or {}).get("file")
+    onnx_models, json_files, npz_files = {}, {}, {}
+    for rel in b.manifest["files"]:
+        if rel == old_graph:
+            continue
+        if rel.endswith(".onnx"):
+            onnx_models[rel] = onnx.load(str(src / rel))
+        elif rel.endswith(".json"):
+            json_files[rel] = _json.loads((src / rel).read_text())
+        elif rel.endswith(".npz"):
+            with np.load(src / rel, allow_pickle=False) as z:
+                npz_files[rel] = {k: z[k] for k in z.files}
+        else:
+            raise ModelError(f"bundle {src.name}: file '{rel}' has no known type; re-export the bundle")
+    step = build_step_graph(manifest["tasks"], onnx_models, manifest["features"])
+    if step is not None:
+        rel = old_graph or "models/step.onnx"
+        onnx_models[rel] = step[0]
+        manifest["step_graph"] = {"file": rel, **step[1]}
+    return write_bundle(out_dir or src, manifest, onnx_models=onnx_models, json_files=json_files,
+                        npz_files=npz_files, overwrite=True)
