@@ -169,7 +169,8 @@ def run_sim(users: int, speeds: list[str], scenarios: list[str], quick: bool,
                     ev.update(heading_metrics(res, s))
                     rows.append({"user": user, "scenario": scen, "speed": speed, "method": name,
                                  "duration_s": s.duration_s, "track_time_s": dt,
-                                 "distance_gain": res.info.get("distance_gain"), **{
+                                 "distance_gain": res.info.get("distance_gain"),
+                                 "stride_sigma_rel": res.info.get("stride_sigma_rel"), **{
                                      k: v for k, v in ev.items() if not isinstance(v, dict | str)}})
                     if name == "M3":
                         strides += stride_rows(res, s, user=user, scenario=scen, speed=speed)
@@ -350,9 +351,10 @@ def report(sim: pd.DataFrame | None, real: pd.DataFrame, orient: list[str], args
             lines.append(f"| {scen} | " + " | ".join(fmt(d[d["speed"] == sp]["abs_err"].mean())
                                                      for sp in sorted(sim["speed"].unique())) + " |")
         if "M3" in set(sim["method"]):
-            gains = sim[sim["method"] == "M3"].groupby("user")["distance_gain"].first()
-            lines += ["", "Distance gains (L26) per user: " + ", ".join(
-                f"user {u} {100 * (g - 1):+.2f} %" for u, g in gains.items()), ""]
+            cal = sim[sim["method"] == "M3"].groupby("user")[["distance_gain", "stride_sigma_rel"]].first()
+            lines += ["", "Distance calibration (L26) per user, gain / stride sd: " + ", ".join(
+                f"user {u} {100 * (r.distance_gain - 1):+.2f} % / {100 * r.stride_sigma_rel:.2f} %"
+                for u, r in cal.iterrows()), ""]
         rate = sim["duration_s"].sum() / sim["track_time_s"].sum()
         lines += ["", f"Tracking speed: {rate:.0f} s of data per second of computing (all methods).", ""]
     lines += orient
