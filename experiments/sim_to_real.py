@@ -51,7 +51,10 @@ def _foot_accuracy(ev: dict, method: str) -> dict | None:
 # stride boundaries at the middle of the mid-stance phase, 21.5 % of the cycle after contact (Perry &
 # Burnfield 2010: mid-stance 12-31 %; where the gaitmap mocap min_vel events lie), instead of the middle of
 # foot flat (decisions S1).
-VARIANTS = ("none", "old-timing", "mocap-boundary")
+# "pre-s23": the level swing of the session-2 simulator (heel path knots at fixed heights, decisions S21)
+# instead of the heel height set by the swing pitch and the toe clearance (decisions S23).
+# "pre-s24": S23 without the ascent change (decisions S24).
+VARIANTS = ("none", "old-timing", "mocap-boundary", "pre-s23", "pre-s24")
 MID_STANCE_FRACTION = 0.215
 
 
@@ -60,6 +63,13 @@ def apply_variant(name: str) -> None:
     import importlib
 
     body, sim, user = (importlib.import_module(f"pdrlearn.sim.{m}") for m in ("body", "simulate", "user"))
+    if name in ("pre-s23", "pre-s24"):
+        body.ASCENT_TOE_LED = False
+    if name == "pre-s23":
+        import dataclasses
+
+        body.LEVEL_SWING_TOE_LED = False
+        body.KINDS["walk"] = dataclasses.replace(body.KINDS["walk"], impact=(0.55, -0.85), loading_rate=1.2)
     if name == "old-timing":
         draw = user.UserProfile.from_seed.__func__
 
@@ -94,9 +104,23 @@ def apply_variant(name: str) -> None:
     sim._stride_table = stride_table
 
 
-def simulate_users(users: int, rate_hz: float) -> list:
-    """Terrain calibration exercises of ``users`` simulated users at three speeds."""
-    return [simulate("terrain", user_seed=u, speed=sp, rate_hz=rate_hz) for u in range(1, users + 1)
+def block_average(session, rate_hz: float):
+    """``session`` with every stream averaged in blocks of ``round(native rate / rate_hz)`` samples: the
+    acquisition of a device that outputs ``rate_hz`` by averaging its sensor's samples (the PLASYS firmware
+    averages five 100 Hz samples, thesis ch. 4.2.1.1-2, as the simulator does: 204.8 Hz -> 20.48 Hz by 10)."""
+    from pdrlearn.io.session import Stream
+    from pdrlearn.sim.kernels import block_mean
+
+    out = session.copy()
+    for name, st in session.streams.items():
+        k = max(1, round(st.rate_hz / rate_hz))
+        out.streams[name] = Stream(name, block_mean(st.t, k), block_mean(st.values, k))
+    return out
+
+
+def simulate_users(users: int, rate_hz: float, first: int = 1) -> list:
+    """Terrain calibration exercises of ``users`` simulated users (seeds ``first`` ...) at three speeds."""
+    return [simulate("terrain", user_seed=u, speed=sp, rate_hz=rate_hz) for u in range(first, first + users)
             for sp in ("slow", "normal", "fast")]
 
 
@@ -246,7 +270,8 @@ def loro(real, args) -> dict:
     for i, test in enumerate(real):
         train = [r for j, r in enumerate(real) if j != i]
         try:
-            model = train_user(train, tasks=["terrain"], methods=METHODS, units=["foot"], cv=3, seed=args.seed,
+            model = train_user(train, tasks=["terrain"], methods=METHODS, units=["foot"],
+                               boundaries=args.boundaries, cv=3, seed=args.seed,
                                user="real-loro")
         except DataError as exc:  # the held-out recording is the only source of a class (the stairs)
             logging.warning("LORO: %s not scored: %s", test.name, exc)
@@ -264,6 +289,8 @@ def loro(real, args) -> dict:
 def main(argv: list[str] | None = None) -> pd.DataFrame:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--users", type=int, default=4, help="simulated users to train on (x 3 speeds)")
+    ap.add_argument("--first-user", type=int, default=1,
+                    help="seed of the first simulated user (another draw of users: e.g. 5 with --users 4)")
     ap.add_argument("--cv", type=int, default=5, help="folds of the real-data cross-validation")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--rate", type=float, default=20.0,
@@ -273,6 +300,12 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
     ap.add_argument("--no-write", action="store_true", help="print only, do not write experiments/results")
     ap.add_argument("--variant", default="none", choices=VARIANTS,
                     help="simulator variant tried in docs/sim_to_real.md (none = the shipped simulator)")
+    ap.add_argument("--boundaries", default="given", choices=("given", "rest"),
+                    help="step-window boundaries of every model (rest: each stride re-cut at the middle of the "
+                         "foot's rest next to its labelled boundaries, decision 13 of docs/decisions/features.md)")
+    ap.add_argument("--real-rate", default="native", choices=("native", "sim"),
+                    help="sim: block-average the real recordings to the simulated rate (the acquisition of a "
+                         "device at that rate) before training/testing on them; native: 204.8 Hz as recorded")
     ap.add_argument("--steady-train", action="store_true",
                     help="train on the steady simulated strides only (no turns on the spot / closing steps)")
     args = ap.parse_args(argv)
@@ -281,17 +314,21 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
 
     t_all = time.perf_counter()
     real = [read_session(REAL / n) for n in REAL_FOOT]
+    if args.real_rate == "sim":
+        real = [block_average(r, args.rate) for r in real]
     t0 = time.perf_counter()
-    sims = simulate_users(args.users, args.rate)
+    sims = simulate_users(args.users, args.rate, args.first_user)
     if args.steady_train:  # clean class examples only: no turns on the spot, closing or transition strides
         for s in sims:
             s.steps = s.steps[s.steps["steady"].astype(bool)].reset_index(drop=True)
     sim_s = time.perf_counter() - t0
-    sim_model = train_user(sims, tasks=["terrain"], methods=METHODS, units=["foot"], cv=3, seed=args.seed,
+    sim_model = train_user(sims, tasks=["terrain"], methods=METHODS, units=["foot"],
+                           boundaries=args.boundaries, cv=3, seed=args.seed,
                            user="simulated")
     sim_eval = evaluate_model(sim_model, real, latency=False)["tasks"]["terrain"]
     per_rec = {r.name: evaluate_model(sim_model, [r], latency=False)["tasks"]["terrain"] for r in real}
-    real_model = train_user(real, tasks=["terrain"], methods=METHODS, units=["foot"], cv=args.cv,
+    real_model = train_user(real, tasks=["terrain"], methods=METHODS, units=["foot"],
+                            boundaries=args.boundaries, cv=args.cv,
                             seed=args.seed, user="real")
     loro_acc, loro_rec = loro(real, args) if args.loro else ({}, {})
     rows = []
@@ -317,7 +354,8 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
     text = (
         f"# Sim-to-real: terrain (foot unit), simulator at {args.rate:g} Hz"
         + ("" if args.variant == "none" else f", variant '{args.variant}' (not the shipped simulator)") + "\n\n"
-        f"Trained on {len(sims)} simulated terrain exercises ({args.users} users x 3 speeds, {args.rate:g} Hz, "
+        f"Trained on {len(sims)} simulated terrain exercises ({args.users} users, seeds {args.first_user}.."
+        f"{args.first_user + args.users - 1}, x 3 speeds, {args.rate:g} Hz, "
         f"{sum(len(s.steps) for s in sims)} strides, simulated in {sim_s:.1f} s); tested on the {n_real} "
         f"labelled strides of the real foot recordings ({', '.join(REAL_FOOT)}), pooled and per recording. "
         f"Real CV = {args.cv}-fold stratified cross-validation on the real strides"
@@ -341,6 +379,8 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
         stem = "sim_to_real" if args.rate == 20.0 else f"sim_to_real_{args.rate:g}hz"
         stem += "" if args.variant == "none" else f"_{args.variant}"
         stem += "_steady" if args.steady_train else ""
+        stem += "_rest" if args.boundaries == "rest" else ""
+        stem += "_realrate" if args.real_rate == "sim" else ""
         df.to_csv(RESULTS / f"{stem}.csv", index=False)
         (RESULTS / f"{stem}.md").write_text(text)
     print(text)

@@ -548,3 +548,56 @@ def test_level_push_off_lifts_the_foot_before_toe_off(exact_a):
         assert vz[i_to - 5:i_to].max() > 0.3  # and rising when the toes leave
         # coasts up a little, not lifted to the swing height (+15 cm before S21)
         assert z[i_to:i_ic].max() < z[i_to] + 0.06
+
+
+def _heel_and_toe(s, user: UserProfile) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Time (s), heel height, toe-tip height (m) and pitch (rad, > 0 toes up) of the simulated right foot."""
+    from pdrlearn.sim.body import TOE_TIP_FRACTION
+
+    ft = s.extras["foot_trajectory"]
+    rot = Rotation.from_quat(ft[["qx", "qy", "qz", "qw"]].to_numpy())
+    r = np.array([user.foot_sensor_x_frac * user.foot_length_m, 0.0, user.foot_sensor_height_m])
+    heel = ft[["x", "y", "z"]].to_numpy() - rot.apply(r)
+    toe = heel + rot.apply([TOE_TIP_FRACTION * user.foot_length_m, 0.0, 0.0])
+    return ft["t_s"].to_numpy(), heel[:, 2], toe[:, 2], -rot.as_euler("ZYX")[:, 1]
+
+
+def test_level_swing_heel_falls_early_and_contact_at_largest_pitch(exact_a):
+    """Decisions S23: on level ground the toes stay just above the floor in swing, so the heel (lifted by
+    the plantarflexed foot at toe-off) falls in mid-swing and skims the floor in terminal swing (mocap heel
+    trajectories), and the foot reaches its largest pitch at contact: the heel rocker starts from rest."""
+    user = UserProfile.from_seed(1)
+    assert 0.004 <= user.toe_clearance_m <= 0.022
+    t, heel, toe, pitch = _heel_and_toe(exact_a, user)
+    rate = np.gradient(pitch, t)
+    st = exact_a.steps[exact_a.steps.steady & (exact_a.steps.terrain == "flat")]
+    assert len(st) > 10
+    for r in st.itertuples():
+        floor = heel[np.searchsorted(t, r.start_s)]
+        i_to, i_ic = np.searchsorted(t, [r.tc_s, r.ic_s])
+        n = i_ic - i_to
+        sw_heel, sw_toe = heel[i_to:i_ic] - floor, toe[i_to:i_ic] - floor
+        assert np.argmax(sw_heel) < 0.3 * n  # highest early in swing (before S23: ~0.55 of swing)
+        assert sw_heel[int(0.75 * n):].max() < 0.04  # near the floor in terminal swing (before: 5-9 cm)
+        assert sw_toe[int(0.1 * n):int(0.9 * n)].min() > -0.005  # the toes never go through the floor
+        assert abs(rate[i_ic - 1]) < 1.0  # largest pitch at contact (before: -3..-4 rad/s)
+        assert rate[i_ic:i_ic + int(0.1 / (t[1] - t[0]))].min() < -2.0  # then the heel rocker
+
+
+def test_stair_ascent_toes_clear_the_next_nosing_right_after_toe_off():
+    """Decisions S24: ascending, the toes rise above the intermediate step's nosing in early swing (the
+    riser is right in front of them at toe-off), so the foot's upward speed peaks in the first half of
+    swing and it decelerates before it lands."""
+    user = UserProfile.from_seed(1)
+    s = simulate("terrain", 1, rate_hz=100, noise=False)
+    t, heel, toe, _ = _heel_and_toe(s, user)
+    vz = np.gradient(heel, t)
+    st = s.steps[s.steps.steady & (s.steps.terrain == "up")]
+    assert len(st) > 5
+    for r in st.itertuples():
+        floor = heel[np.searchsorted(t, r.start_s)]
+        i_to, i_ic = np.searchsorted(t, [r.tc_s, r.ic_s])
+        n = i_ic - i_to
+        half_rise = 0.5 * r.height_m
+        assert toe[i_to + int(0.38 * n)] - floor > half_rise  # above the intermediate nosing
+        assert np.argmax(vz[i_to:i_ic]) < 0.5 * n

@@ -44,6 +44,8 @@ class StepKind:
     clearance_m : heel height above the higher footprint at early swing (None = the user's swing height)
     pitch_hold : fraction of swing during which the foot keeps its toe-off plantarflexion before it
         dorsiflexes (the second knot of ``SWING_PITCH_KNOTS``)
+    loading_rate : pitch rate at initial contact / mean rate of the loading rocker (0 = the foot reaches
+        its largest contact pitch at contact and the rocker starts from rest, decisions S23)
     """
 
     duration: float
@@ -53,15 +55,19 @@ class StepKind:
     impact: tuple[float, float]
     clearance_m: float | None
     pitch_hold: float = 0.2
+    loading_rate: float = 1.2
 
 
+WALK_IMPACT = (0.85, -0.5)  # (forward, vertical) heel velocity before a level contact / user impact speed
 # Values follow the thesis' qualitative descriptions (ch.6.1.1, Figs. 59-60): on stairs the force is
 # concentrated on the forefoot and the heel load is negligible (thesis ch.2.5, ref [115]); descending
 # steps land toe first with a higher impact force; ascending steps rotate the foot up then down and
 # descending ones the opposite. Magnitudes are set so that peak |acc|, peak pitch rate and stride time
 # fall in the range of the real foot recordings (tests/test_sim_vs_real.py).
 KINDS = {
-    "walk": StepKind(1.00, 1.00, None, None, (0.55, -0.85), None),
+    # level walk (decisions S23): the heel approaches the floor mostly forward (before (0.55, -0.85)), and
+    # the foot is at its largest pitch at heel strike: the heel rocker's plantarflexion starts after contact
+    "walk": StepKind(1.00, 1.00, None, None, WALK_IMPACT, None, loading_rate=0.0),
     "close": StepKind(1.00, 0.60, None, None, (0.35, -0.6), 0.15),
     # stairs up: fore/midfoot placement on the tread, no heel rocker (decisions S15)
     # ... and the foot stays pointed through early swing (the knee and hip lift it over the nosing), then
@@ -85,7 +91,10 @@ IMPACT_RING_DECAY_S = 0.015
 IMPACT_RING_RAD = (0.035, 0.02, 0.02)  # roll, yaw, pitch amplitude (rad)
 SWING_PITCH_KNOTS = (0.0, 0.2, 0.5, 0.85, 1.0)  # normalised swing times of the pitch knots (steady
 # dorsiflexion between 15 % and 85 % of swing, as the plateau of the real foot gyroscope)
-LOADING_RATE = 1.2  # pitch rate at contact / mean rate of the heel rocker
+SWING_HEEL_KNOTS = (0.38, 0.72)  # normalised swing times of the two inner knots of the heel path
+LEVEL_SWING_TOE_LED = True  # level steps: heel height from the swing pitch and the toe clearance (S23)
+ASCENT_TOE_LED = True  # stair ascent: the toes clear the next nosing right after toe-off (S24)
+STAIR_TOE_CLEARANCE = 2.0  # toe clearance over a stair nosing / the user's level toe clearance (S24)
 
 
 @dataclass
@@ -196,6 +205,14 @@ def schedule(
 
 
 # -- foot ---------------------------------------------------------------------------------------
+def _toe_lift(pitch_tk, pk, w_ends, t_to: float, swing: float, user: UserProfile) -> np.ndarray:
+    """Height (m) of the heel above the toe tip at the two inner heel-path knots of a swing: toe-tip
+    distance x sin(plantarflexion) from the swing pitch spline (0 when the toes are up: the heel is lowest).
+    """
+    th = clamped_spline(pitch_tk, pk[:, None], *w_ends, t_to + np.asarray(SWING_HEEL_KNOTS) * swing)[:, 0]
+    return np.maximum(0.0, np.sin(-th)) * TOE_TIP_FRACTION * user.foot_length_m
+
+
 def _pivot(theta: float, ball: np.ndarray) -> np.ndarray:
     """Foot-frame pivot: the ball of the foot when the toes point down (theta < 0), else the heel."""
     return ball if theta < 0 else np.zeros(3)
@@ -234,7 +251,7 @@ def foot_pose(
         th_to, th_ic = ev.theta_to[k], ev.theta_ic[k]
         rock, load = ev.to[k] - ev.ho[k], ev.ff[k] - ev.ic[k]
         w_to = PUSH_OFF_RATE * th_to / rock
-        w_ic = -LOADING_RATE * th_ic / load
+        w_ic = -KINDS[st.kind].loading_rate * th_ic / load
         r_a = _pivot(th_to, toe)  # push-off ends on the toe rocker (decisions S21)
         p_a = h_a + foot_rotate(y_a, 0.0, r_a)
         sl = slice(i_ho, i_to)
@@ -255,7 +272,13 @@ def foot_pose(
         swing = ev.ic[k] - ev.to[k]
         zmax = max(h_a[2], h_b[2])
         clear = ev.clearance[k]
-        knots_u = np.array([0.0, 0.38, 0.72, 1.0])
+        # swing pitch: clamped spline through the toe-off, hold, mid-swing and contact pitches
+        th_early = 1.05 * th_to
+        pk = np.array([th_to, th_early, 0.5 * (th_early + ev.theta_mid[k]), ev.theta_mid[k], th_ic])
+        hold = KINDS[st.kind].pitch_hold
+        knots = (0.0, hold, 0.5 * (hold + SWING_PITCH_KNOTS[3]), *SWING_PITCH_KNOTS[3:])
+        pitch_tk, w_ends = ev.to[k] + np.array(knots) * swing, (np.array([w_to]), np.array([w_ic]))
+        knots_u = np.array([0.0, *SWING_HEEL_KNOTS, 1.0])
         frac = np.array([0.0, 0.3, 0.8, 1.0])
         kp = heel_to[None, :] + frac[:, None] * (heel_ic - heel_to)[None, :]
         drop = max(0.0, h_a[2] - h_b[2])
@@ -263,6 +286,22 @@ def foot_pose(
             # descent: past the nosing of its own tread the foot is over the void, so it travels on the
             # straight line from toe-off to contact, lifted by part of the clearance (decisions S15)
             kp[1:3, 2] = kp[1:3, 2] + np.array([0.5, 0.25]) * clear
+        elif th_to < 0 and zmax - h_a[2] < 0.01 and LEVEL_SWING_TOE_LED:
+            # level forward step (decisions S23): the toes stay just above the floor through swing and the
+            # heel height is set by the foot's pitch: toe clearance + toe-tip distance x sin(plantarflexion)
+            # (dorsiflexed: the heel is the lowest point). The heel falls from its toe-off height as the
+            # foot dorsiflexes in early swing and skims the floor in terminal swing, as in the mocap heel
+            # trajectories (Winter 1992: minimum toe clearance ~1.3 cm at mid-swing).
+            kp[1:3, 2] = zmax + user.toe_clearance_m + _toe_lift(pitch_tk, pk, w_ends, ev.to[k], swing, user)
+            kp[1, 2] = min(kp[1, 2], heel_to[2])  # never lifted above its toe-off height (decisions S21)
+        elif th_to < 0 and ASCENT_TOE_LED:
+            # stair ascent (decisions S24): the riser of the next step stands right in front of the toes at
+            # toe-off, so the toes must rise above its nosing before they move forward (early-swing knot:
+            # half the rise, the intermediate step of a two-step stride) and be above the landing tread by
+            # late swing; the heel follows from the pitch as on level ground. The foot is lifted right
+            # after toe-off instead of gradually through swing.
+            toe_z = np.array([h_a[2] + 0.5 * (zmax - h_a[2]), zmax]) + STAIR_TOE_CLEARANCE * user.toe_clearance_m
+            kp[1:3, 2] = toe_z + _toe_lift(pitch_tk, pk, w_ends, ev.to[k], swing, user)
         else:
             # early swing: half of any rise to the next tread plus the clearance (stairs are climbed
             # gradually); late swing: over the landing tread
@@ -280,13 +319,7 @@ def foot_pose(
         bump = np.sin(np.pi * tu) ** 2
         yaw[sl] = y_a + (y_b - y_a) * smoothstep(tu) + ev.swing_yaw[k] * bump
         roll[sl] = ev.swing_roll[k] * bump + ev.contact_roll[k] * smoothstep(tu)
-        th_early = 1.05 * th_to
-        pk = np.array([th_to, th_early, 0.5 * (th_early + ev.theta_mid[k]), ev.theta_mid[k], th_ic])
-        hold = KINDS[st.kind].pitch_hold
-        knots = (0.0, hold, 0.5 * (hold + SWING_PITCH_KNOTS[3]), *SWING_PITCH_KNOTS[3:])
-        theta[sl] = clamped_spline(
-            ev.to[k] + np.array(knots) * swing, pk[:, None], np.array([w_to]), np.array([w_ic]), t[sl]
-        )[:, 0]
+        theta[sl] = clamped_spline(pitch_tk, pk[:, None], *w_ends, t[sl])[:, 0]
         # loading rocker: initial contact -> foot flat, pivot fixed on footprint B
         sl = slice(i_ic, i_ff)
         th = hermite((t[sl] - ev.ic[k]) / load, th_ic, 0.0, w_ic, 0.0, load)

@@ -55,6 +55,8 @@ class UserProfile:
     pelvis_bounce_m, pelvis_sway_m, pelvis_rotation_deg, pelvis_obliquity_deg : pelvis motion amplitudes
     foot_sensor_x_frac, foot_sensor_height_m : foot unit position in the foot frame: distance from the heel
         (fraction of the foot length) and height above the sole (m); see decisions S19
+    toe_clearance_m : lowest height of the toe tip (or of the heel, when the foot is dorsiflexed) above
+        the floor in the swing of a level step (m); see decisions S23
     """
 
     seed: int
@@ -81,6 +83,7 @@ class UserProfile:
     pelvis_obliquity_deg: float = 3.0
     foot_sensor_x_frac: float = 0.45
     foot_sensor_height_m: float = 0.06
+    toe_clearance_m: float = 0.013
 
     @classmethod
     def from_seed(cls, seed: int) -> UserProfile:
@@ -121,6 +124,9 @@ class UserProfile:
             pelvis_obliquity_deg=round(float(rng.uniform(2.0, 4.0)), 3),
             # drawn last so that the earlier draws (and the users of earlier versions) are unchanged
             **_foot_mount(rng),
+            # minimum toe clearance 1.29 +- 0.45 cm (Winter 1992, young adults), +-2 SD; drawn after the
+            # mount so that the earlier draws stay as they were (decisions S23)
+            toe_clearance_m=round(float(rng.uniform(0.004, 0.022)), 4),
         )
 
     # -- derived gait parameters -------------------------------------------------------------------
