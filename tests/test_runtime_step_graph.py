@@ -206,3 +206,49 @@ def test_rebuilt_step_graph_gives_the_same_steps(trained, tmp_path):
         assert x.classes == y.classes and (x.x, x.y, x.z) == (y.x, y.y, y.z)
         for task in x.proba:
             assert max(abs(x.proba[task][c] - y.proba[task][c]) for c in x.proba[task]) <= 1e-12
+
+
+@pytest.mark.parametrize("kernels", [("rbf", "rbf", "rbf"), ("poly", "linear"), ("rbf", "poly", "linear")])
+def test_svm_block_equals_each_svm_graph(trained, kernels):
+    """Decision E13: the SVM decision graphs of several units/tasks merged into one block (rbf only, poly /
+    linear only, mixed; 2 and 3 classes, so the padded class columns are exercised) give each graph's numbers."""
+    from pdrlearn.classify.svm import svc_decision
+    from pdrlearn.export.onnx_convert import svm_decision_to_onnx
+    from pdrlearn.kernels.proba import soft_vote, softmax
+
+    bundle = load_bundle(trained["root"] / "bundle_all")
+    features = bundle.manifest["features"]
+    rng = np.random.default_rng(len(kernels))
+    recipes = {"foot": [["segments", "foot_acc_fwd", 2]], "waist": [["segments", "waist_acc_v", 3]]}
+    models, tasks, want = {}, {}, {}
+    W = trained["W"]
+    for task, classes in (("a", ["x", "y", "z"][:len(kernels)]), ("b", ["p", "q"])):
+        members, probas = {}, []
+        for unit, recipe in recipes.items():
+            F = compute_features(W, recipe, **_ctx(bundle))
+            mean, scale = F.mean(axis=0), F.std(axis=0) + 0.5
+            params = []
+            for c in range(len(classes)):
+                kern, n_sv = kernels[c % len(kernels)], int(rng.integers(3, 9))
+                params.append({"kernel": kern, "sv": rng.normal(size=(n_sv, F.shape[1])), "dual": rng.normal(size=n_sv),
+                               "b": float(rng.normal()), "gamma": 0.1, "degree": 3 if kern == "poly" else 1,
+                               "coef0": 1.0 if kern == "poly" else 0.0})
+            model, spec = svm_decision_to_onnx(mean, scale, params, classes)
+            rel = f"models/{task}_{unit}.onnx"
+            models[rel] = model
+            members[unit] = {"type": "onnx", "file": rel, "features": recipe, **spec}
+            Z = (F - mean) / scale
+            scores = np.column_stack([svc_decision(Z, p["sv"], p["dual"], p["b"], kernel=p["kernel"],
+                                                   gamma=p["gamma"], degree=p["degree"], coef0=p["coef0"])
+                                      for p in params])
+            probas.append(softmax(scores))
+        weights = [0.35, 0.65]
+        tasks[task] = {"classes": classes, "chosen": {"method": "svm", "unit": "fused"},
+                       "methods": {"svm": {"fused": {"type": "fusion", "weights": weights, "classes": classes,
+                                                     "members": members}}}}
+        want[task] = soft_vote(probas, weights)
+    model, spec = build_step_graph(tasks, models, features)
+    assert [n.op_type for n in model.graph.node].count("Softmax") == 1  # one block for the four SVMs
+    out = _run(model, W)
+    for task in tasks:
+        np.testing.assert_allclose(out[spec["outputs"][task]], want[task], rtol=0, atol=1e-9)

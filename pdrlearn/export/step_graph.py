@@ -495,6 +495,67 @@ def _mlp_params(model: onnx.ModelProto) -> dict | None:
     return p
 
 
+#: The SVM decision graphs of pdrlearn.export.onnx_convert.svm_decision_to_onnx (rbf, poly/linear, mixed).
+_SVM_OPS = {
+    ("Sub", "Div", "MatMul", "Mul", "MatMul", "Mul", "Add", "Add", "Max", "Mul", "Exp", "MatMul", "Add", "Softmax"),
+    ("Sub", "Div", "MatMul", "Mul", "Add", "Pow", "MatMul", "Add", "Softmax"),
+    ("Sub", "Div", "MatMul", "Mul", "Add", "Pow", "Mul", "MatMul", "Mul", "Add", "Add", "Max", "Mul", "Exp", "Where",
+     "MatMul", "Add", "Softmax"),
+}
+
+
+def _svm_params(model: onnx.ModelProto) -> dict | None:
+    """Per-support-vector parameters of an SVM decision graph (``svm_decision_to_onnx``), or None."""
+    if tuple(n.op_type for n in model.graph.node) not in _SVM_OPS:
+        return None
+    init = {i.name: numpy_helper.to_array(i) for i in model.graph.initializer}
+    if not {"mean", "scale", "svT", "dual", "b"} <= set(init):
+        return None
+    n_sv = init["svT"].shape[1]
+    rbf = "neg_gamma" in init
+    poly = "degree" in init
+    is_rbf = init["is_rbf"].astype(bool) if "is_rbf" in init else np.full(n_sv, rbf)
+    return {"mean": init["mean"], "scale": init["scale"], "svT": init["svT"], "dual": init["dual"], "b": init["b"],
+            "gamma": init["gamma"] if poly else np.ones(n_sv), "coef0": init["coef0"] if poly else np.zeros(n_sv),
+            "degree": init["degree"] if poly else np.ones(n_sv),
+            "neg_gamma": init["neg_gamma"] if rbf else np.zeros(n_sv),
+            "sv_sq": init["sv_sq"].reshape(-1) if rbf else np.zeros(n_sv), "is_rbf": is_rbf}
+
+
+def _svm_block(b: _Builder, leaves: list, svms: list[tuple[int, dict]]) -> tuple[str, int]:
+    """The SVM leaves as one graph (the formulas of ``svm_decision_to_onnx``): block-diagonal support
+    vectors and dual coefficients, per-column kernel parameters; returns the probabilities
+    ``(n, len(svms) * k)`` (classes padded to k with a -1e300 score) and k."""
+    k = max(p["dual"].shape[1] for _, p in svms)
+    cols = [c for i, _ in svms for c in b.feature_cols(leaves[i][1]["features"])]
+    z = b.cols(b.all, cols)
+    z = b.op("Sub", [z, b.const(np.concatenate([p["mean"] for _, p in svms]), "svm_mean")])
+    z = b.op("Div", [z, b.const(np.concatenate([p["scale"] for _, p in svms]), "svm_scale")], "Z")
+    dot = b.op("MatMul", [z, b.const(_block_diag([p["svT"] for _, p in svms]), "svT")], "dot")
+    cat = {key: np.concatenate([p[key] for _, p in svms]) for key in ("gamma", "coef0", "degree", "neg_gamma",
+                                                                      "sv_sq", "is_rbf")}
+    kp = kr = None
+    if not cat["is_rbf"].all():
+        kp = b.op("Mul", [dot, b.const(cat["gamma"], "gamma")])
+        kp = b.op("Add", [kp, b.const(cat["coef0"], "coef0")])
+        kp = b.op("Pow", [kp, b.const(cat["degree"], "degree")], "K_poly")
+    if cat["is_rbf"].any():
+        ones = _block_diag([np.ones((len(p["mean"]), p["svT"].shape[1])) for _, p in svms])  # |z|^2 of each SV's model
+        z_sq = b.op("MatMul", [b.op("Mul", [z, z]), b.const(ones, "zsq_of_sv")], "z_sq")
+        d2 = b.op("Add", [b.op("Add", [z_sq, b.op("Mul", [dot, b.const(np.array([-2.0]), "m2")])]),
+                          b.const(cat["sv_sq"][None, :], "sv_sq")])
+        d2 = b.op("Max", [d2, b.const(np.zeros(1), "zero")], "d2")
+        kr = b.op("Exp", [b.op("Mul", [d2, b.const(cat["neg_gamma"], "neg_gamma")])], "K_rbf")
+    K = kr if kp is None else kp if kr is None else b.op(
+        "Where", [b.const(cat["is_rbf"], "is_rbf", bool), kr, kp], "K")
+    dual = _block_diag([np.hstack([p["dual"], np.zeros((len(p["dual"]), k - p["dual"].shape[1]))]) for _, p in svms])
+    bias = np.concatenate([np.concatenate([p["b"], np.full(k - len(p["b"]), -1e300)]) for _, p in svms])
+    scores = b.op("Add", [b.op("MatMul", [K, b.const(dual, "dual")]), b.const(bias, "svm_b")], "scores")
+    x = b.op("Reshape", [scores, b.const(np.array([-1, len(svms), k], np.int64), "shape", np.int64)])
+    x = b.op("Softmax", [x], "svm_proba", axis=-1)
+    return b.op("Reshape", [x, b.const(np.array([-1, len(svms) * k], np.int64), "shape", np.int64)]), k
+
+
 def _block_diag(blocks: list[np.ndarray]) -> np.ndarray:
     out = np.zeros((sum(x.shape[0] for x in blocks), sum(x.shape[1] for x in blocks)))
     r = c = 0
@@ -509,8 +570,9 @@ def _head(b: _Builder, tasks: dict[str, tuple[dict, list[str]]], outputs: dict[s
 
     The networks of the project's form become one block-diagonal network (one Gather of all their
     features, one scaler, two Gemm, one Softmax over ``(n, networks, classes)``; missing classes of a
-    smaller network are padded with a -1e300 logit, probability exactly 0); other models are inlined
-    unchanged. One product with a head matrix then does every task's soft vote and class alignment
+    smaller network are padded with a -1e300 logit, probability exactly 0), the SVM decision graphs one
+    block of support vectors (:func:`_svm_block`); other models are inlined unchanged. One product
+    with a head matrix then does every task's soft vote and class alignment
     (entries = the leaves' normalised fusion weights, :func:`pdrlearn.kernels.proba.soft_vote` without its
     final row renormalisation: the rows of softmax outputs already sum to 1, so the difference is
     rounding, <= 1e-15), and one Split names the outputs ``proba_<task>``.
@@ -538,6 +600,13 @@ def _head(b: _Builder, tasks: dict[str, tuple[dict, list[str]]], outputs: dict[s
         x = b.op("Reshape", [x, b.const(np.array([-1, len(mlps) * k], np.int64), "shape", np.int64)])
         parts.append((x, [(i, j) for i, _ in mlps for j in range(k)]))
     done = {i for i, _ in mlps}
+    svms = [(i, _svm_params(b.onnx_models[leaf["file"]])) for i, (_, leaf, _, _) in enumerate(leaves)
+            if i not in done and leaf.get("outputs", {}).get("proba") == "proba"]
+    svms = [(i, p) for i, p in svms if p is not None]
+    if svms:
+        x, k = _svm_block(b, leaves, svms)
+        parts.append((x, [(i, j) for i, _ in svms for j in range(k)]))
+        done |= {i for i, _ in svms}
     for i, (task, leaf, _, _) in enumerate(leaves):
         if i in done:
             continue
