@@ -581,6 +581,7 @@ def _head(b: _Builder, tasks: dict[str, tuple[dict, list[str]]], outputs: dict[s
               for leaf, w, cols in _leaf_weights(entry, classes)]
     mlps = [(i, _mlp_params(b.onnx_models[leaf["file"]])) for i, (_, leaf, _, _) in enumerate(leaves)]
     mlps = [(i, p) for i, p in mlps if p is not None and "proba" in leaves[i][1]["outputs"]]
+    mlps = mlps if len(mlps) > 1 else []  # one model alone: inlined (the block adds two Reshape)
     parts: list[tuple[str, list[tuple[int, int]]]] = []  # (tensor, (leaf, class) of each column)
     if mlps:
         k = max(len(leaves[i][1]["classes"]) for i, _ in mlps)
@@ -603,7 +604,7 @@ def _head(b: _Builder, tasks: dict[str, tuple[dict, list[str]]], outputs: dict[s
     svms = [(i, _svm_params(b.onnx_models[leaf["file"]])) for i, (_, leaf, _, _) in enumerate(leaves)
             if i not in done and leaf.get("outputs", {}).get("proba") == "proba"]
     svms = [(i, p) for i, p in svms if p is not None]
-    if svms:
+    if len(svms) > 1:
         x, k = _svm_block(b, leaves, svms)
         parts.append((x, [(i, j) for i, _ in svms for j in range(k)]))
         done |= {i for i, _ in svms}
