@@ -10,7 +10,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
-from pdrlearn.cohort import biggest_first, run_cohort, single_threaded
+from pdrlearn.cohort import HOUSEKEEPING_CONFIG, biggest_first, run_cohort, single_threaded
 from pdrlearn.errors import DataError
 from pdrlearn.io import write_session
 from pdrlearn.sim import simulate
@@ -45,12 +45,13 @@ def test_run_cohort_isolates_failures_serial_and_dask():
 
 def _threads_seen(_):
     """What a job sees: the BLAS/OpenMP pool sizes, the worker's environment, and its start time."""
+    import dask
     import scipy.linalg  # noqa: F401  (loads scipy's own OpenBLAS)
     from threadpoolctl import threadpool_info
 
     time.sleep(0.05)
     return ({i["num_threads"] for i in threadpool_info()}, os.environ.get("MALLOC_TRIM_THRESHOLD_"),
-            time.perf_counter())
+            time.perf_counter(), {k: dask.config.get(k) for k in HOUSEKEEPING_CONFIG})
 
 
 def test_single_threaded_limits_and_restores():
@@ -64,7 +65,11 @@ def test_single_threaded_limits_and_restores():
 
 
 def test_workers_single_threaded_biggest_first_and_env_restored():
+    import dask
+
     env_before = dict(os.environ)
+    config_before = {k: dask.config.get(k) for k in HOUSEKEEPING_CONFIG}
+    assert config_before != HOUSEKEEPING_CONFIG  # Dask's interactive defaults in this process
     items = [(f"u{i}", i) for i in range(5)]
     costs = [1.0, 5.0, 3.0, 5.0, 2.0]
     res = run_cohort(_threads_seen, items, n_workers=1, costs=costs)
@@ -72,6 +77,8 @@ def test_workers_single_threaded_biggest_first_and_env_restored():
     assert [r.name for r in res] == [n for n, _ in items]  # input order kept
     assert all(r.value[0] == {1} for r in res)  # one BLAS/OpenMP thread per pool in the worker
     assert all(r.value[1] is None for r in res)  # glibc's adaptive mmap threshold kept (decision C2)
+    assert all(r.value[3] == HOUSEKEEPING_CONFIG for r in res)  # quiet housekeeping in the workers (C6)
+    assert {k: dask.config.get(k) for k in HOUSEKEEPING_CONFIG} == config_before  # and not left set here
     started = sorted(range(5), key=lambda i: res[i].value[2])
     assert started == biggest_first(costs) == [1, 3, 2, 4, 0]
     assert all(r.cpu_seconds > 0 for r in res)
