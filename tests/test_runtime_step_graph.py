@@ -252,3 +252,21 @@ def test_svm_block_equals_each_svm_graph(trained, kernels):
     out = _run(model, W)
     for task in tasks:
         np.testing.assert_allclose(out[spec["outputs"][task]], want[task], rtol=0, atol=1e-9)
+
+
+def test_process_step_resamples_only_the_channels_the_graph_reads(trained):
+    """Decision E13: with every task in the step graph, process_step fills only the graph's channels; those
+    equal the full window's bit for bit, and a tracker with full windows (step_graph=False) emits the same
+    steps."""
+    s = trained["test"]
+    tr = Tracker(trained["root"] / "bundle")
+    assert tr._step_channels is not None and len(tr._step_channels) < len(tr.channels)
+    assert Tracker(trained["root"] / "bundle_all", methods={"terrain": "dtw/foot"})._step_channels is None
+    for n, st in s.streams.items():
+        tr._append(n, st.t, st.values)
+    used = [tr.ci[c] for c in sorted(tr._step_channels)]
+    unused = [j for j in range(len(tr.channels)) if j not in used]
+    for a, b in zip(s.steps["start_s"][1:6], s.steps["end_s"][1:6], strict=True):
+        part, full = tr._window(a, b)[0], tr.window(a, b)
+        np.testing.assert_array_equal(part[used], full[used])
+        assert np.isnan(part[unused]).all() and np.isfinite(full[unused]).any()

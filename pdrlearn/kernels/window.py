@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 
 import numpy as np
 
@@ -281,7 +281,7 @@ def _unit_grid(n_samples: int) -> np.ndarray:
 
 def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, channel_index: Mapping[str, int],
                      available: tuple[str, ...], forward: Mapping[str, np.ndarray], rest_search_s: float,
-                     heading: str) -> Levelled:
+                     heading: str, channels: Collection[str] | None = None) -> Levelled:
     """Write one step's channels ``(len(channel_index), n_samples)`` into ``Xi`` (in place).
 
     Parameters
@@ -291,6 +291,9 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
     t0, t1 : step start and end (s).
     available : sensor groups to fill (the others stay NaN).
     forward : placement (``foot``/``waist``) -> sensor-frame vector pointing body-forward.
+    channels : only these channels are resampled, the others stay NaN (the streaming runtime asks for
+        the channels its step graph reads, decision E13); None = every channel. A written channel has the
+        same values either way (the resampling is column by column).
 
     Returns
     -------
@@ -302,6 +305,9 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
     Xi[ci["t_s"]] = tg - t0
     lev = levelled_units(streams, t0, t1, available=available, forward=forward, rest_search_s=rest_search_s,
                          heading=heading)
+    if channels is not None:
+        _fill_channels(Xi, streams, t0, t1, tg, lev, ci, available, set(channels))
+        return lev
     if "foot" in lev:  # one resampling call for all of a unit's channels (same numbers, fewer calls)
         ta, a, g, an, _ = lev["foot"]
         r = resample(tg, ta, np.column_stack([a, an] if g is None else [a, an, g]))
@@ -330,3 +336,35 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
         tb, b = segment(*streams["wBarometer"], t0, t1)
         Xi[ci["waist_baro"]] = interp(tg, tb, b[:, 0]) - interp(t0, tb, b[:, 0])
     return lev
+
+
+def _fill_channels(Xi: np.ndarray, streams: Streams, t0: float, t1: float, tg: np.ndarray, lev: Levelled,
+                   ci: Mapping[str, int], available: tuple[str, ...], need: set[str]) -> None:
+    """:func:`fill_step_window`'s resampling for the channels in ``need`` only (one call per unit)."""
+    units = []
+    if "foot" in lev:
+        ta, a, g, an, _ = lev["foot"]
+        cols = {"foot_acc_x": a[:, 0], "foot_acc_y": a[:, 1], "foot_acc_z": a[:, 2], "foot_acc_norm": an}
+        if g is not None:
+            cols.update(foot_gyr_x=g[:, 0], foot_gyr_y=g[:, 1], foot_gyr_z=g[:, 2])
+        units.append((ta, cols))
+    if "waist" in lev:
+        tw, a, g, _, _ = lev["waist"]
+        cols = {"waist_acc_x": a[:, 0], "waist_acc_y": a[:, 1], "waist_acc_z": a[:, 2]}
+        if g is not None:
+            cols.update(waist_gyr_x=g[:, 0], waist_gyr_y=g[:, 1], waist_gyr_z=g[:, 2])
+        units.append((tw, cols))
+    for t, cols in units:
+        names = [c for c in cols if c in need]
+        if names:
+            Xi[[ci[c] for c in names]] = resample(tg, t, np.column_stack([cols[c] for c in names]))
+    if "force" in available and need & {"force_a", "force_b"}:
+        (ta_, fa), (tb_, fb) = (segment(*streams[name], t0, t1) for name in ("fForceA", "fForceB"))
+        if len(ta_) == len(tb_) and (ta_ == tb_).all():  # one clock: one resampling call for both sensors
+            Xi[[ci["force_a"], ci["force_b"]]] = resample(tg, ta_, np.column_stack([fa[:, 0], fb[:, 0]]))
+        else:
+            Xi[ci["force_a"]] = resample(tg, ta_, fa)[0]
+            Xi[ci["force_b"]] = resample(tg, tb_, fb)[0]
+    if "waist_baro" in available and "waist_baro" in need:
+        tb, b = segment(*streams["wBarometer"], t0, t1)
+        Xi[ci["waist_baro"]] = interp(tg, tb, b[:, 0]) - interp(t0, tb, b[:, 0])

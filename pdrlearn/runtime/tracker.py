@@ -169,6 +169,11 @@ class Tracker:
         for task, clf in self.classifiers.items():  # per-model sessions: only where the graph does not
             if self.step_graph is None or task not in self.step_graph.tasks:  # classify (errors show here)
                 clf.model.open()
+        #: the window channels process_step resamples: those the step graph reads when it classifies every
+        #: task, else all (None); the other rows stay NaN (decision E13)
+        g = self.step_graph
+        self._step_channels = (None if g is None or set(g.tasks) != set(self.classifiers)
+                               else frozenset({"t_s"} | {self.channels[j] for j in g.channels.tolist()}))
         self.params = dict(m["displacement"])
         self.heading_source = heading_source or str(self.params.get("heading_source", "auto"))
         if self.heading_source not in HEADING_SOURCES:
@@ -212,18 +217,21 @@ class Tracker:
         return out
 
     def window(self, t0: float, t1: float) -> np.ndarray:
-        """The step window of ``[t0, t1]`` from the buffered samples."""
-        return self._window(t0, t1)[0]
+        """The step window of ``[t0, t1]`` from the buffered samples (every channel)."""
+        return self._window(t0, t1, channels=None)[0]
 
-    def _window(self, t0: float, t1: float):
+    def _window(self, t0: float, t1: float, channels=False):
+        """Window (channels x samples) and levelled units of the step; ``channels``: the channels to fill
+        (default: those process_step needs, ``self._step_channels``; None = all)."""
+        channels = self._step_channels if channels is False else channels
         streams = {k: self._stream(k) for k in self._buf}
         W = np.full((len(self.channels), self.n_samples), np.nan)
         if self._groups[0] != tuple(streams):  # the sensor groups change only when a new sensor arrives
             self._groups = (tuple(streams), available_groups(streams))
         avail = self._groups[1]
         w0, w1 = self.window_bounds(t0, t1, streams)
-        lev = fill_step_window(W, streams, w0, w1, channel_index=self.ci, available=avail,
-                               forward=self.forward, rest_search_s=self.rest_search_s, heading=self.heading_mode)
+        lev = fill_step_window(W, streams, w0, w1, channel_index=self.ci, available=avail, forward=self.forward,
+                               rest_search_s=self.rest_search_s, heading=self.heading_mode, channels=channels)
         if (w0, w1) != (t0, t1):  # displacement stays stance to stance, like pdrlearn track --streaming
             lev = levelled_units(streams, t0, t1, available=avail, forward=self.forward,
                                  rest_search_s=self.rest_search_s, heading=self.heading_mode)
