@@ -53,8 +53,9 @@ def _foot_accuracy(ev: dict, method: str) -> dict | None:
 # foot flat (decisions S1).
 # "pre-s23": the level swing of the session-2 simulator (heel path knots at fixed heights, decisions S21)
 # instead of the heel height set by the swing pitch and the toe clearance (decisions S23).
-# "pre-s24": S23 without the ascent change (decisions S24).
-VARIANTS = ("none", "old-timing", "mocap-boundary", "pre-s23", "pre-s24")
+# "pre-s24": S23 without the ascent change (decisions S24); "pre-s25": S23 + S24, push-off over the toe tip
+# of a bare foot (decisions S25).
+VARIANTS = ("none", "old-timing", "mocap-boundary", "pre-s23", "pre-s24", "pre-s25")
 MID_STANCE_FRACTION = 0.215
 
 
@@ -63,6 +64,8 @@ def apply_variant(name: str) -> None:
     import importlib
 
     body, sim, user = (importlib.import_module(f"pdrlearn.sim.{m}") for m in ("body", "simulate", "user"))
+    if name in ("pre-s23", "pre-s24", "pre-s25"):
+        body.SHOD = False
     if name in ("pre-s23", "pre-s24"):
         body.ASCENT_TOE_LED = False
     if name == "pre-s23":

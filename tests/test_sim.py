@@ -552,13 +552,13 @@ def test_level_push_off_lifts_the_foot_before_toe_off(exact_a):
 
 def _heel_and_toe(s, user: UserProfile) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Time (s), heel height, toe-tip height (m) and pitch (rad, > 0 toes up) of the simulated right foot."""
-    from pdrlearn.sim.body import TOE_TIP_FRACTION
+    from pdrlearn.sim.body import toe_tip_m
 
     ft = s.extras["foot_trajectory"]
     rot = Rotation.from_quat(ft[["qx", "qy", "qz", "qw"]].to_numpy())
     r = np.array([user.foot_sensor_x_frac * user.foot_length_m, 0.0, user.foot_sensor_height_m])
     heel = ft[["x", "y", "z"]].to_numpy() - rot.apply(r)
-    toe = heel + rot.apply([TOE_TIP_FRACTION * user.foot_length_m, 0.0, 0.0])
+    toe = heel + rot.apply([toe_tip_m(user), 0.0, 0.0])
     return ft["t_s"].to_numpy(), heel[:, 2], toe[:, 2], -rot.as_euler("ZYX")[:, 1]
 
 
@@ -601,3 +601,21 @@ def test_stair_ascent_toes_clear_the_next_nosing_right_after_toe_off():
         half_rise = 0.5 * r.height_m
         assert toe[i_to + int(0.38 * n)] - floor > half_rise  # above the intermediate nosing
         assert np.argmax(vz[i_to:i_ic]) < 0.5 * n
+
+
+def test_push_off_rolls_over_the_front_of_the_shoe(exact_a):
+    """Decisions S25: the toe rocker pivots at the front of the shoe's sole (toe tip + a 1-3 cm allowance
+    drawn per user), so at toe-off the heel is that far from the floor times sin(push-off angle)."""
+    from pdrlearn.sim.body import toe_tip_m
+
+    allow = np.array([UserProfile.from_seed(u).shoe_toe_allowance_m for u in range(1, 40)])
+    assert allow.min() >= 0.01 and allow.max() <= 0.03 and np.ptp(allow) > 0.01
+    user = UserProfile.from_seed(1)
+    assert toe_tip_m(user) > user.foot_length_m
+    t, heel, toe, pitch = _heel_and_toe(exact_a, user)
+    st = exact_a.steps[exact_a.steps.steady & (exact_a.steps.terrain == "flat")]
+    for r in st.itertuples():
+        floor = heel[np.searchsorted(t, r.start_s)]
+        i_to = np.searchsorted(t, r.tc_s)
+        assert toe[i_to] - floor == pytest.approx(0.0, abs=0.003)  # the pivot is on the floor
+        assert heel[i_to] - floor == pytest.approx(toe_tip_m(user) * np.sin(-pitch[i_to]), abs=0.005)

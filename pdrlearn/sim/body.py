@@ -94,6 +94,7 @@ SWING_PITCH_KNOTS = (0.0, 0.2, 0.5, 0.85, 1.0)  # normalised swing times of the 
 SWING_HEEL_KNOTS = (0.38, 0.72)  # normalised swing times of the two inner knots of the heel path
 LEVEL_SWING_TOE_LED = True  # level steps: heel height from the swing pitch and the toe clearance (S23)
 ASCENT_TOE_LED = True  # stair ascent: the toes clear the next nosing right after toe-off (S24)
+SHOD = True  # the foot rolls over the front of the shoe's sole, beyond the toes (decisions S25)
 STAIR_TOE_CLEARANCE = 2.0  # toe clearance over a stair nosing / the user's level toe clearance (S24)
 
 
@@ -205,12 +206,18 @@ def schedule(
 
 
 # -- foot ---------------------------------------------------------------------------------------
+def toe_tip_m(user: UserProfile) -> float:
+    """Distance (m) from the heel to the push-off pivot: the tip of the hallux (``TOE_TIP_FRACTION`` x foot
+    length) plus the shoe's length beyond the toes when ``SHOD`` (decisions S25)."""
+    return TOE_TIP_FRACTION * user.foot_length_m + (user.shoe_toe_allowance_m if SHOD else 0.0)
+
+
 def _toe_lift(pitch_tk, pk, w_ends, t_to: float, swing: float, user: UserProfile) -> np.ndarray:
     """Height (m) of the heel above the toe tip at the two inner heel-path knots of a swing: toe-tip
     distance x sin(plantarflexion) from the swing pitch spline (0 when the toes are up: the heel is lowest).
     """
     th = clamped_spline(pitch_tk, pk[:, None], *w_ends, t_to + np.asarray(SWING_HEEL_KNOTS) * swing)[:, 0]
-    return np.maximum(0.0, np.sin(-th)) * TOE_TIP_FRACTION * user.foot_length_m
+    return np.maximum(0.0, np.sin(-th)) * toe_tip_m(user)
 
 
 def _pivot(theta: float, ball: np.ndarray) -> np.ndarray:
@@ -238,7 +245,7 @@ def foot_pose(
     theta = np.zeros(n)
     roll = np.zeros(n)
     ball = np.array([0.72 * user.foot_length_m, 0.0, 0.0])  # ball of the foot, ~72 % of foot length
-    toe = np.array([TOE_TIP_FRACTION * user.foot_length_m, 0.0, 0.0])  # tip of the hallux
+    toe = np.array([toe_tip_m(user), 0.0, 0.0])  # front of the shoe's sole (decisions S21, S25)
     h_a, y_a = initial[foot]
     h_a = np.asarray(h_a, float)
     pos = 0

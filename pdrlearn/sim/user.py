@@ -57,6 +57,8 @@ class UserProfile:
         (fraction of the foot length) and height above the sole (m); see decisions S19
     toe_clearance_m : lowest height of the toe tip (or of the heel, when the foot is dorsiflexed) above
         the floor in the swing of a level step (m); see decisions S23
+    shoe_toe_allowance_m : length of the shoe's sole beyond the tip of the toes (m); the push-off rolls over
+        the front of the sole (decisions S25)
     """
 
     seed: int
@@ -84,6 +86,7 @@ class UserProfile:
     foot_sensor_x_frac: float = 0.45
     foot_sensor_height_m: float = 0.06
     toe_clearance_m: float = 0.013
+    shoe_toe_allowance_m: float = 0.02
 
     @classmethod
     def from_seed(cls, seed: int) -> UserProfile:
@@ -127,6 +130,9 @@ class UserProfile:
             # minimum toe clearance 1.29 +- 0.45 cm (Winter 1992, young adults), +-2 SD; drawn after the
             # mount so that the earlier draws stay as they were (decisions S23)
             toe_clearance_m=round(float(rng.uniform(0.004, 0.022)), 4),
+            # shoe sizing allows ~1.5 cm beyond the longest toe (EU size = 1.5 x (foot length cm + 1.5)), plus
+            # the sole's rim: 1-3 cm (decisions S25)
+            shoe_toe_allowance_m=round(float(rng.uniform(0.01, 0.03)), 4),
         )
 
     # -- derived gait parameters -------------------------------------------------------------------
