@@ -163,7 +163,7 @@ def test_head_prunes_zero_weight_units_and_merges_the_networks(trained):
     ops = [n.op_type for n in model.graph.node]
     assert ops.count("Tanh") == 1 and ops.count("Split") == 1  # one network block, one head
     # the block holds exactly the networks of non-zero weight (the terrain waist network is left out)
-    W1 = next(i for i in model.graph.initializer if i.name.endswith("nn_W1"))
+    W1_rows = sum(i.dims[0] for i in model.graph.initializer if i.name.endswith("nn_W1"))  # its blocks
 
     def hidden(e):
         return next(i for i in models[e["file"]].graph.initializer if i.name.endswith("hidden.weight")).dims[0]
@@ -171,7 +171,7 @@ def test_head_prunes_zero_weight_units_and_merges_the_networks(trained):
     want_hidden = sum(hidden(e) for t in ("terrain", "direction")
                       for e, w in zip(tasks[t]["methods"]["nn"]["fused"]["members"].values(),
                                       tasks[t]["methods"]["nn"]["fused"]["weights"], strict=True) if w != 0)
-    assert W1.dims[0] == want_hidden
+    assert W1_rows == want_hidden
     assert want_hidden < sum(hidden(e) for t in ("terrain", "direction")
                              for e in tasks[t]["methods"]["nn"]["fused"]["members"].values())
     W = trained["W"]

@@ -67,6 +67,20 @@ class _Builder:
         idx = np.asarray([idx] if np.isscalar(idx) else idx, dtype=np.int64)
         return self.op("Gather", [x, self.const(idx, "idx", np.int64)], "cols", axis=1)
 
+    def block_diag(self, blocks: list[np.ndarray], hint: str) -> str:
+        """Block-diagonal matrix of 2-D ``blocks``: each block padded with zero columns to its place, the
+        rows concatenated. The nodes read only initializers, so onnxruntime folds them into one constant
+        when the session is created, and the file stores the blocks without their zeros (decision E13)."""
+        if len(blocks) == 1:
+            return self.const(blocks[0], hint)
+        width = sum(x.shape[1] for x in blocks)
+        rows, c = [], 0
+        for x in blocks:
+            pads = np.array([0, c, 0, width - c - x.shape[1]], np.int64)
+            rows.append(self.op("Pad", [self.const(x, hint), self.const(pads, "pads", np.int64)], hint))
+            c += x.shape[1]
+        return self.op("Concat", rows, hint, axis=0)
+
     def at(self, x: str, idx: str) -> str:
         """``x[row, idx[row]]`` for an (n, k) int64 index tensor -> (n, k)."""
         return self.op("GatherElements", [x, idx], "at", axis=1)
@@ -531,7 +545,7 @@ def _svm_block(b: _Builder, leaves: list, svms: list[tuple[int, dict]]) -> tuple
     z = b.cols(b.all, cols)
     z = b.op("Sub", [z, b.const(np.concatenate([p["mean"] for _, p in svms]), "svm_mean")])
     z = b.op("Div", [z, b.const(np.concatenate([p["scale"] for _, p in svms]), "svm_scale")], "Z")
-    dot = b.op("MatMul", [z, b.const(_block_diag([p["svT"] for _, p in svms]), "svT")], "dot")
+    dot = b.op("MatMul", [z, b.block_diag([p["svT"] for _, p in svms], "svT")], "dot")
     cat = {key: np.concatenate([p[key] for _, p in svms]) for key in ("gamma", "coef0", "degree", "neg_gamma",
                                                                       "sv_sq", "is_rbf")}
     kp = kr = None
@@ -540,17 +554,19 @@ def _svm_block(b: _Builder, leaves: list, svms: list[tuple[int, dict]]) -> tuple
         kp = b.op("Add", [kp, b.const(cat["coef0"], "coef0")])
         kp = b.op("Pow", [kp, b.const(cat["degree"], "degree")], "K_poly")
     if cat["is_rbf"].any():
-        ones = _block_diag([np.ones((len(p["mean"]), p["svT"].shape[1])) for _, p in svms])  # |z|^2 of each SV's model
-        z_sq = b.op("MatMul", [b.op("Mul", [z, z]), b.const(ones, "zsq_of_sv")], "z_sq")
+        member = _block_diag([np.ones((len(p["mean"]), 1)) for _, p in svms])  # feature -> its model
+        of_sv = np.repeat(np.arange(len(svms)), [p["svT"].shape[1] for _, p in svms])  # support vector -> model
+        z_sq = b.op("MatMul", [b.op("Mul", [z, z]), b.const(member, "member")], "z_sq")  # |z|^2 of each model
+        z_sq = b.op("Gather", [z_sq, b.const(of_sv, "of_sv", np.int64)], "z_sq", axis=1)
         d2 = b.op("Add", [b.op("Add", [z_sq, b.op("Mul", [dot, b.const(np.array([-2.0]), "m2")])]),
                           b.const(cat["sv_sq"][None, :], "sv_sq")])
         d2 = b.op("Max", [d2, b.const(np.zeros(1), "zero")], "d2")
         kr = b.op("Exp", [b.op("Mul", [d2, b.const(cat["neg_gamma"], "neg_gamma")])], "K_rbf")
     K = kr if kp is None else kp if kr is None else b.op(
         "Where", [b.const(cat["is_rbf"], "is_rbf", bool), kr, kp], "K")
-    dual = _block_diag([np.hstack([p["dual"], np.zeros((len(p["dual"]), k - p["dual"].shape[1]))]) for _, p in svms])
+    dual = [np.hstack([p["dual"], np.zeros((len(p["dual"]), k - p["dual"].shape[1]))]) for _, p in svms]
     bias = np.concatenate([np.concatenate([p["b"], np.full(k - len(p["b"]), -1e300)]) for _, p in svms])
-    scores = b.op("Add", [b.op("MatMul", [K, b.const(dual, "dual")]), b.const(bias, "svm_b")], "scores")
+    scores = b.op("Add", [b.op("MatMul", [K, b.block_diag(dual, "dual")]), b.const(bias, "svm_b")], "scores")
     x = b.op("Reshape", [scores, b.const(np.array([-1, len(svms), k], np.int64), "shape", np.int64)])
     x = b.op("Softmax", [x], "svm_proba", axis=-1)
     return b.op("Reshape", [x, b.const(np.array([-1, len(svms) * k], np.int64), "shape", np.int64)]), k
@@ -589,12 +605,12 @@ def _head(b: _Builder, tasks: dict[str, tuple[dict, list[str]]], outputs: dict[s
         x = b.cols(b.all, cols)
         x = b.op("Sub", [x, b.const(np.concatenate([p["mean"] for _, p in mlps]), "nn_mean")])
         x = b.op("Div", [x, b.const(np.concatenate([p["scale"] for _, p in mlps]), "nn_scale")])
-        x = b.op("Gemm", [x, b.const(_block_diag([p["W1"] for _, p in mlps]), "nn_W1"),
+        x = b.op("Gemm", [x, b.block_diag([p["W1"] for _, p in mlps], "nn_W1"),
                           b.const(np.concatenate([p["b1"] for _, p in mlps]), "nn_b1")], "hidden", transB=1)
         x = b.op("Tanh", [x])
         W2 = [np.vstack([p["W2"], np.zeros((k - len(p["W2"]), p["W2"].shape[1]))]) for _, p in mlps]
         b2 = [np.concatenate([p["b2"], np.full(k - len(p["b2"]), -1e300)]) for _, p in mlps]
-        x = b.op("Gemm", [x, b.const(_block_diag(W2), "nn_W2"), b.const(np.concatenate(b2), "nn_b2")],
+        x = b.op("Gemm", [x, b.block_diag(W2, "nn_W2"), b.const(np.concatenate(b2), "nn_b2")],
                  "logits", transB=1)
         x = b.op("Reshape", [x, b.const(np.array([-1, len(mlps), k], np.int64), "shape", np.int64)])
         x = b.op("Softmax", [x], "nn_proba", axis=-1)
