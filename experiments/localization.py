@@ -159,6 +159,7 @@ def run_sim(users: int, speeds: list[str], scenarios: list[str], quick: bool,
                     runs["M3"] = dict(method="M3", model=model)  # default (L18): bayes rules, confident classes
                     # decision L26: the same without the user's distance calibration (gain and stride sd)
                     runs["M3-nocal"] = dict(method="M3", model=model, calibration=False)
+                    runs["M3-sdonly"] = dict(method="M3", model=model, distance_gain=1.0)  # L26 stride sd, no gain
                     runs["M3-thesis"] = dict(method="M3", model=model, rules="thesis", min_confidence=0.0)
                     runs["M3-gated"] = dict(method="M3", model=model, rules="thesis")  # thesis rules, p >= 0.95
                 for name, kw in runs.items():
@@ -361,11 +362,11 @@ def report(sim: pd.DataFrame | None, real: pd.DataFrame, orient: list[str], args
                   "Distance error = |estimated - reference| / reference, reference = sum of the labelled stride "
                   "lengths; mean over users and speeds (thesis: mean over 2 pedestrians x 10 runs). "
                   "M3, M3-thesis and M3-gated apply the user's distance calibration (decision L26: gain; M3 also "
-                  "the calibrated stride sd in the bayes rule) from the calibration exercises; M3-nocal is M3 without it (gain 1, the 3 % stride sd of L14).", "",
+                  "the calibrated stride sd in the bayes rule) from the calibration exercises; M3-nocal is M3 without it (gain 1, the 3 % stride sd of L14); M3-sdonly uses the calibrated stride sd with gain 1.", "",
                   "| scenario | method | runs | mean distance error % (thesis) | SD % | final position error m |"
                   " heading MAE deg | orientation error % | altitude error % |", "|---|---|---|---|---|---|---|---|---|"]
         sim = sim.assign(abs_err=sim["distance_error_pct"].abs())
-        order = ["M1", "M2", "M3", "M3-nocal", "M3-thesis", "M3-gated", "M3-oracle"]
+        order = ["M1", "M2", "M3", "M3-nocal", "M3-sdonly", "M3-thesis", "M3-gated", "M3-oracle"]
         for scen in sorted(sim["scenario"].unique()):
             for m in [m for m in order if m in set(sim["method"])]:
                 d = sim[(sim["scenario"] == scen) & (sim["method"] == m)]
