@@ -26,18 +26,19 @@ def test_levelled_vectors_equal_the_attitude_stack(n):
         k0 = int(rng.integers(0, max(1, n // 4)))
         k1 = int(rng.integers(k0, n)) if trial % 4 else k0  # k1 == k0: no tilt correction
         g_end = rng.normal(size=3) * 2 + [0.0, 0.0, 9.81]
-        X = rng.normal(size=(n, 3, 3))
-        want = _attitude_reference(gyr, dt, k0, k1, r0, g_end) @ X
+        X = rng.normal(size=(n, 3, 3))  # rows: three vectors per sample
+        want = X @ _attitude_reference(gyr, dt, k0, k1, r0, g_end).transpose(0, 2, 1)  # R_k x for each row x
         np.testing.assert_allclose(KS.levelled_vectors(gyr, dt, k0, k1, r0, g_end, X), want, rtol=0, atol=1e-12)
 
 
 def test_levelled_vectors_level_and_upside_down_end_rest():
     rng = np.random.default_rng(7)
     n, dt = 12, np.full(11, 0.05)
-    gyr, X = np.zeros((n, 3)), rng.normal(size=(n, 3, 2))
+    gyr, X = np.zeros((n, 3)), rng.normal(size=(n, 2, 3))
     r0 = np.eye(3)
     np.testing.assert_array_equal(KS.levelled_vectors(gyr, dt, 0, n - 1, r0, np.array([0, 0, 9.8]), X), X)
-    want = _attitude_reference(gyr, dt, 0, n - 1, r0, np.array([0, 0, -9.8])) @ X  # 180 deg about x
+    rot = _attitude_reference(gyr, dt, 0, n - 1, r0, np.array([0, 0, -9.8]))  # 180 deg about x
+    want = X @ rot.transpose(0, 2, 1)
     np.testing.assert_allclose(KS.levelled_vectors(gyr, dt, 0, n - 1, r0, np.array([0, 0, -9.8]), X), want,
                                atol=1e-12)
     with pytest.raises(DataError, match="gravity"):

@@ -153,26 +153,32 @@ def correct_tilt_drift(rot: np.ndarray, g_end_sensor: np.ndarray, k0: int, k1: i
 
 def levelled_vectors(gyr: np.ndarray, dt: np.ndarray, k0: int, k1: int, r0: np.ndarray,
                      g_end_sensor: np.ndarray, X: np.ndarray) -> np.ndarray:
-    """Sensor-frame vectors ``X (n, 3, c)`` in the levelled frame, ``R_k X_k``, with the attitude of
-    ``correct_tilt_drift(propagate_attitude(gyr, dt, k0, r0), g_end_sensor, k0, k1)``.
+    """Sensor-frame vectors ``X (n, c, 3)`` (c row vectors per sample) in the levelled frame, ``R_k x``,
+    with the attitude of ``correct_tilt_drift(propagate_attitude(gyr, dt, k0, r0), g_end_sensor, k0, k1)``.
 
     The same rotations without forming the ``(n, 3, 3)`` attitude stack (decision E13 in
-    docs/decisions/export.md: ~15 fewer numpy calls per step window, within 1e-13 of the composed
-    functions): ``R_k X_k = A (P_k X_k)`` with ``A = r0 P_k0^T``, then the tilt correction of angle
-    ``frac_k th`` about the fixed axis ``k`` applied to the vectors by Rodrigues' formula,
-    ``v + sin(a) [k]x v + (1 - cos a) [k]x^2 v``. The correction's rotation vector comes straight from the
-    levelled specific force at ``k1`` (axis ``g x z``, angle ``atan2(|g x z|, g.z)``), which is
+    docs/decisions/export.md: fewer numpy calls per step window, within 1e-12 of the composed functions):
+    ``R_k x = A (P_k x)`` with ``A = r0 P_k0^T``, then the tilt correction of angle ``frac_k th`` about
+    the fixed axis ``k`` applied to the vectors by Rodrigues' formula,
+    ``v + sin(a) [k]x v + (1 - cos a) [k]x^2 v``. Only ``P_k x`` is a per-sample product; the constant
+    rotations (``A``, ``[k]x``) act on all rows in one 2-D product (a stack of 3x3 products costs one
+    BLAS call per sample). The correction's rotation vector comes straight from the levelled specific
+    force at ``k1`` (axis ``g x z``, angle ``atan2(|g x z|, g.z)``), which is
     :func:`pdrlearn.kernels.rotation.gravity_rotation` followed by ``matrix_to_rotvec``.
 
     Parameters
     ----------
     gyr : (n, 3) rad/s;  dt : (n - 1,) s;  k0, k1 : rest samples (start, end)
     r0 : (3, 3) levelling rotation at ``k0``;  g_end_sensor : (3,) specific force at the end rest (m/s^2)
-    X : (n, 3, c) vectors to rotate, e.g. acceleration, angular rate and a constant axis stacked
+    X : (n, c, 3) vectors to rotate, e.g. acceleration, angular rate and a constant axis as rows
+
+    Returns
+    -------
+    (n, c, 3) C-ordered
     """
     n = gyr.shape[0]
     if n < 2:
-        return r0 @ X
+        return X @ r0.T
     P = np.empty((n, 3, 3))
     P[0] = _I3
     P[1:] = rotvec_to_matrix(0.5 * (gyr[:-1] + gyr[1:]) * dt[:, None])  # mean rate over each interval
@@ -181,9 +187,10 @@ def levelled_vectors(gyr: np.ndarray, dt: np.ndarray, k0: int, k1: int, r0: np.n
         P[shift:] = P[:-shift] @ P[shift:]
         shift *= 2
     A = r0 @ P[k0].T
-    Y = A @ (P @ X)
+    shape = X.shape
+    Y = ((X @ P.transpose(0, 2, 1)).reshape(-1, 3) @ A.T)  # rows (A P_k x)^T, one 2-D product for A
     if k1 <= k0:
-        return Y
+        return Y.reshape(shape)
     gx, gy, gz = (A @ (P[k1] @ g_end_sensor)).tolist()  # levelled specific force at the end rest
     nrm = math.sqrt(gx * gx + gy * gy + gz * gz)
     if not math.isfinite(nrm) or nrm < 1e-9:
@@ -191,15 +198,16 @@ def levelled_vectors(gyr: np.ndarray, dt: np.ndarray, k0: int, k1: int, r0: np.n
     s = math.sqrt(gx * gx + gy * gy) / nrm
     if s < 1e-12:
         if gz > 0:
-            return Y  # already level: no correction (correct_tilt_drift's th == 0)
+            return Y.reshape(shape)  # already level: no correction (correct_tilt_drift's th == 0)
         kx, ky, th = 1.0, 0.0, math.pi  # upside down: 180 deg about x, as gravity_rotation
     else:
         kx, ky, th = gy / nrm / s, -gx / nrm / s, math.atan2(s, gz / nrm)  # axis (g x z) / |g x z|
     frac = np.minimum(np.maximum((np.arange(n) - k0) / float(k1 - k0), 0.0), 1.0)  # clipped to 0..1
     ang = frac * th
-    K = np.array([[0.0, 0.0, ky], [0.0, 0.0, -kx], [-ky, kx, 0.0]])  # [k]x of k = (kx, ky, 0)
-    KY = K @ Y
-    return Y + np.sin(ang)[:, None, None] * KY + (1.0 - np.cos(ang))[:, None, None] * (K @ KY)
+    KT = np.array([[0.0, 0.0, -ky], [0.0, 0.0, kx], [ky, -kx, 0.0]])  # ([k]x)^T of k = (kx, ky, 0)
+    KY = Y @ KT  # rows ([k]x v)^T
+    K2Y = (KY @ KT).reshape(shape)  # rows ([k]x^2 v)^T
+    return Y.reshape(shape) + np.sin(ang)[:, None, None] * KY.reshape(shape) + (1.0 - np.cos(ang))[:, None, None] * K2Y
 
 
 def heading_rotation(forward_xy: np.ndarray) -> np.ndarray:

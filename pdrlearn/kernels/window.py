@@ -205,23 +205,23 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     if gyr is not None:
         # acc, gyro and the forward axis rotated together by the propagated, tilt-corrected attitude
         # (one stack of products instead of the (n, 3, 3) attitude and two einsums, decision E13)
-        X = np.empty((n, 3, 3))
-        X[:, :, 0] = acc
-        X[:, :, 1] = gyr
-        X[:, :, 2] = forward_s
+        X = np.empty((n, 3, 3))  # per sample the rows acc, gyro, forward axis
+        X[:, 0] = acc
+        X[:, 1] = gyr
+        X[:, 2] = forward_s
         Y = levelled_vectors(gyr, t[1:] - t[:-1], k0, k1, r0, g1, X)
-        a_lev = Y[:, :, 0]
+        a_lev = Y[:, 0]
     else:
         a_lev = acc @ r0.T
     a_lev[:, 2] -= vec_norm(g0)
     yaw = heading_rotation(principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
     if gyr is None:
         return a_lev @ yaw.T, None, an, 0.0
-    out = yaw @ Y[:, :, :2]  # acc and gyro about the step's forward axis
+    out = (Y.reshape(-1, 3) @ yaw.T).reshape(n, 3, 3)  # acc and gyro about the step's forward axis
     # heading change of the forward axis from the start rest to the window's end
-    (r0x, r0y), (f1x, f1y) = ref.tolist(), Y[-1, :2, 2].tolist()
+    (r0x, r0y), (f1x, f1y) = ref.tolist(), Y[-1, 2, :2].tolist()
     dpsi = math.atan2(r0x * f1y - r0y * f1x, r0x * f1x + r0y * f1y)
-    return out[:, :, 0], out[:, :, 1], an, dpsi
+    return out[:, 0], out[:, 1], an, dpsi
 
 
 def waist_levelled(acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray
