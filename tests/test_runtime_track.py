@@ -134,3 +134,122 @@ def test_yaw_change_of_consecutive_strides_adds_up():
     parts = SK.yaw_change(t[8:31], rate[8:31], 0.52, 1.43) + SK.yaw_change(t[28:51], rate[28:51], 1.43, 2.47)
     assert parts == pytest.approx(whole, abs=1e-12)
     assert whole == pytest.approx((np.cos(0.52) - np.cos(2.47)) + 0.5 * 1.95, abs=2e-3)
+
+
+# -- per-user distance calibration (decisions L26 / E14) ------------------------------------------------
+@pytest.fixture(scope="module")
+def calibrated(tmp_path_factory):
+    """A model trained on a simulated calibration exercise with distance_calibration=True, its bundle, and
+    a simulated scenario walk of the same user (same unit: S22 per-device scale errors)."""
+    from pdrlearn.classify import train_user
+    from pdrlearn.export.from_model import export_model
+    from pdrlearn.sim import simulate
+
+    root = tmp_path_factory.mktemp("calibrated")
+    cal = simulate("length", user_seed=2, speed="normal")
+    model = train_user([cal], tasks=["length"], methods=["svm"], units=["foot"], cv=2, distance_calibration=True)
+    model.length_bounds_m = cal.meta["length_class_bounds_m"]
+    model.save(root / "model")
+    export_model(root / "model", root / "bundle")
+    return root, model, simulate("A", user_seed=2, speed="normal")
+
+
+def _stream_sim(tr: Tracker, session) -> list:
+    return replay(tr, session, 0.5)  # 0.5 s = 10 whole samples at 20 Hz: no sample on a chunk edge twice
+
+
+def _xyz(steps) -> np.ndarray:
+    return np.array([[st.x, st.y, st.z] for st in steps])
+
+
+def test_calibrated_bundle_streams_like_calibrated_streaming_track(calibrated):
+    import json
+
+    root, model, s = calibrated
+    rec = model.data_summary["distance_calibration"]
+    assert rec["reason"] is None and rec["gain"] != 1.0
+    disp = json.loads((root / "bundle" / "manifest.json").read_text())["displacement"]
+    assert disp["distance_gain"] == pytest.approx(rec["gain"])
+    assert disp["distance_gain_rate_hz"] == pytest.approx(rec["rate_hz"])
+    assert disp["stride_sigma_rel"] == pytest.approx(rec["stride_sd"])
+    res = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True, heading="foot")
+    assert res.info["distance_gain"] == pytest.approx(rec["gain"]) and res.info["distance_gain_source"] == "model"
+    tr = Tracker(root / "bundle", heading_source="foot")
+    steps = _stream_sim(tr, s)
+    assert tr.distance_gain == pytest.approx(rec["gain"]) and tr.stride_sd == pytest.approx(rec["stride_sd"])
+    assert len(steps) == len(res.steps) >= 10
+    assert [st.classes["length"] for st in steps] == list(res.steps["length_class"])
+    for c in model.tasks["length"].classes:
+        np.testing.assert_allclose([st.proba["length"][c] for st in steps], res.steps[f"p_length_{c}"], atol=1e-5)
+    want = res.trajectory[["x", "y", "z"]].to_numpy()[1:]
+    assert np.abs(_xyz(steps) - want).max() < 1e-3  # issue 7: within 1 mm at every step
+    # the gain moved the walk (so the parity above is not the uncalibrated one)
+    off = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True, heading="foot",
+                                 calibration=False)
+    assert off.info["distance_gain"] == 1.0
+    assert np.abs(off.trajectory[["x", "y"]].to_numpy() - res.trajectory[["x", "y"]].to_numpy()).max() > 5e-3
+
+
+def test_bundle_without_calibration_fields_runs_with_gain_one(calibrated, tmp_path):
+    """A bundle exported before E14 (no distance_* fields) tracks like ``calibration=False``."""
+    import json
+    import shutil
+
+    root, _, s = calibrated
+    old = tmp_path / "old_bundle"
+    shutil.copytree(root / "bundle", old)
+    m = json.loads((old / "manifest.json").read_text())
+    for k in ("distance_gain", "distance_gain_rate_hz", "stride_sigma_rel", "distance_calibration_reason"):
+        del m["displacement"][k]
+    (old / "manifest.json").write_text(json.dumps(m))
+    from pdrlearn.runtime.bundle import MANIFEST_SHA, sha256_file
+
+    (old / MANIFEST_SHA).write_text(f"{sha256_file(old / 'manifest.json')}  manifest.json\n")  # as re-written
+    tr = Tracker(old, heading_source="foot")
+    steps = _stream_sim(tr, s)
+    assert tr.distance_gain == 1.0 and tr.stride_sd is None and not tr.warnings
+    off = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True, heading="foot",
+                                 calibration=False)
+    assert np.abs(_xyz(steps) - off.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
+
+
+def test_calibration_at_another_rate_warns_and_is_skipped_in_track_and_runtime(calibrated, tmp_path, caplog):
+    import copy
+    import logging
+
+    from pdrlearn.export.from_model import export_model
+
+    _, model, s = calibrated
+    other = copy.copy(model)
+    other.data_summary = copy.deepcopy(model.data_summary)
+    other.data_summary["distance_calibration"]["rate_hz"] = 100.0  # calibrated on a 100 Hz unit
+    export_model(None, tmp_path / "b100", model=other)
+    fn = get_pipeline("plasys")
+    with caplog.at_level(logging.WARNING):
+        stream_res = fn(s, method="M3", model=other, streaming=True, heading="foot")
+        offline = fn(s, method="M3", model=other)
+        tr = Tracker(tmp_path / "b100", heading_source="foot")
+        steps = _stream_sim(tr, s)
+    msg = "distance calibration was made at 100 Hz, the foot unit runs at 20 Hz: not applied"
+    for info in (stream_res.info, offline.info):
+        assert info["distance_gain"] == 1.0 and any(msg in w for w in info["warnings"])
+    assert offline.info["stride_sigma_rel"] == 0.03  # the bayes rule keeps the default spread
+    assert tr.distance_gain == 1.0 and tr.stride_sd is None and any(msg in w for w in tr.warnings)
+    assert sum(msg in r.getMessage() for r in caplog.records) >= 3
+    assert np.abs(_xyz(steps) - stream_res.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
+
+
+def test_level_gain_kernel_touches_level_strides_only():
+    from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain, calibrated_stride_sd
+
+    disp = np.array([[1.0, 0.2, 0.05], [0.8, 0.1, 0.3], [-0.5, 0.0, -0.09]])
+    out = apply_level_gain(disp, 1.02)
+    np.testing.assert_allclose(out, [[1.02, 0.204, 0.05], [0.8, 0.1, 0.3], [-0.51, 0.0, -0.09]])
+    assert out is not disp and disp[0, 0] == 1.0  # a new array
+    one = apply_level_gain(disp[0], 1.02)  # the runtime's one stride: the same bits
+    assert one.shape == (3,) and (one == out[0]).all()
+    rec = {"gain": 1.01, "rate_hz": 20.0, "stride_sd": 0.006, "reason": None}
+    assert applicable_calibration(rec, 20.1) == (rec, None)  # within 1 %
+    none, warning = applicable_calibration(rec, 20.5)
+    assert none is None and "20 Hz" in warning and "20.5 Hz" in warning
+    assert calibrated_stride_sd(rec) == 0.006 and calibrated_stride_sd({**rec, "reason": "few"}) is None

@@ -23,6 +23,9 @@ import pandas as pd
 
 from pdrlearn.errors import DataError, PdrlearnError
 
+# the level-stride threshold and the rate check are shared with the streaming runtime (decision E14)
+from pdrlearn.kernels.distance import LEVEL_DZ_M, RATE_TOLERANCE  # noqa: F401
+
 log = logging.getLogger(__name__)
 
 #: Prior sd of the gain (fraction): a MEMS scale-factor + non-linearity budget of 1 % (the same budget as
@@ -31,13 +34,9 @@ PRIOR_SD = 0.01
 #: Largest |gain - 1| accepted (fraction): the ADXL345 sensitivity tolerance (230..282 LSB/g around 256 at
 #: +-16 g full resolution, data sheet of thesis ref. [32]) is ~+-10 %; beyond it the labels are suspect.
 MAX_DEVIATION = 0.10
-#: A stride is "level" when its estimated height change is below this (m): half a stair rise, as the
-#: simulator's terrain label (decisions S3: 0.08 m) - a stair stride climbs 2 x 0.15-0.18 m.
-LEVEL_DZ_M = 0.10
 #: A stride is "straight" when the heading changes less than this to both neighbours (deg).
 STRAIGHT_TURN_DEG = 15.0
 MIN_STRIDES = 10
-RATE_TOLERANCE = 0.01  # relative: a gain applies only at the foot rate it was estimated at
 
 
 def distance_gain(raw_m, ref_m, *, prior_sd: float = PRIOR_SD, outlier_mad: float = 3.5,

@@ -307,6 +307,7 @@ def _displacement(displacement: dict | None, length_bounds, model) -> dict:
     from pdrlearn.runtime.tracker import DEFAULT_DISPLACEMENT
 
     out = dict(DEFAULT_DISPLACEMENT)
+    out.update(_calibration_fields(model))
     out.update(displacement or {})
     if length_bounds is None:
         for holder in (getattr(model, "settings", None) or {}, getattr(model, "data_summary", None) or {}):
@@ -324,3 +325,20 @@ def _displacement(displacement: dict | None, length_bounds, model) -> dict:
     out["length_bounds_m"] = bounds
     out["length_bounds_source"] = "user"
     return out
+
+
+def _calibration_fields(model) -> dict:
+    """The user's distance calibration (decision L26) as bundle displacement parameters (decision E14):
+    ``distance_gain`` (factor on the level strides' horizontal displacement), ``distance_gain_rate_hz``
+    (foot rate it applies at, +-1 %) and ``stride_sigma_rel`` (relative sd of one stride's length; None
+    when the calibration was refused). Empty for a model without a calibration record."""
+    rec = (getattr(model, "data_summary", None) or {}).get("distance_calibration")
+    if not isinstance(rec, dict):
+        return {}
+    ok = rec.get("reason") is None
+    return {
+        "distance_gain": float(rec.get("gain", 1.0)),
+        "distance_gain_rate_hz": None if rec.get("rate_hz") is None else float(rec["rate_hz"]),
+        "stride_sigma_rel": float(rec["stride_sd"]) if ok and rec.get("stride_sd") else None,
+        "distance_calibration_reason": rec.get("reason"),
+    }

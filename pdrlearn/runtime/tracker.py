@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, ModelError
+from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain, calibrated_stride_sd
 from pdrlearn.kernels.stride import (
     HEADING_SOURCES,
     StanceSegmenter,
@@ -110,6 +111,15 @@ class Step:
         }
 
 
+def calibration_record(displacement: dict) -> dict | None:
+    """The distance-calibration record (``gain``, ``rate_hz``, ``stride_sd``) of a bundle's ``displacement``
+    parameters (decision E14), or None when the bundle carries none (uncalibrated model, older bundle)."""
+    if displacement.get("distance_gain") is None:
+        return None
+    return {"gain": float(displacement["distance_gain"]), "rate_hz": displacement.get("distance_gain_rate_hz"),
+            "stride_sd": displacement.get("stride_sigma_rel"), "reason": None}
+
+
 class Tracker:
     """Classify and track steps as samples stream in (numpy + onnxruntime only).
 
@@ -182,6 +192,13 @@ class Tracker:
         self.bounds = None if b is None else {str(k): (float(v[0]), float(v[1])) for k, v in b.items()}
         self._down_mode = str(self.params.get("down_mode", "norm3"))
         self.segmenter = StanceSegmenter.from_params(self.params)
+        #: the user's distance calibration carried by the bundle (decision E14; absent = gain 1), resolved
+        #: against the pushed foot rate at the first step (the rate check of ``pdrlearn track``, L26)
+        self._calibration = calibration_record(self.params)
+        #: applied gain on the level strides (None until the foot rate is known), calibrated stride sd
+        self.distance_gain: float | None = None
+        self.stride_sd: float | None = None
+        self.warnings: list[str] = []
         if not {"fAccelerometer", "fGyroscope"} <= set(m["sensors"].get("required", [])) | set(
             m["sensors"].get("optional", [])
         ):
@@ -336,6 +353,9 @@ class Tracker:
         W, lev = self._window(t0, t1)
         classes, proba = self._classify_step(W)
         disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
+        if self.distance_gain is None:
+            self._resolve_calibration()
+        disp = apply_level_gain(disp, self.distance_gain)  # decision L26 / E14, as pdrlearn track
         length, dz = apply_stride_rules(disp, [classes.get("terrain")], [classes.get("direction")],
                                         [classes.get("length")], bounds=self.bounds, down_mode=self._down_mode)
         length, dz = float(length[0]), float(dz[0])
@@ -344,6 +364,18 @@ class Tracker:
         self.n_steps += 1
         x, y, z = self.position.tolist()
         return Step(t0, t1, classes, proba, length, dz, self.heading, x, y, z)
+
+    def _resolve_calibration(self) -> None:
+        """The distance gain and stride sd that apply at the pushed foot accelerometer's rate (median
+        sample interval, as ``Stream.rate_hz``); a rate mismatch warns once and applies neither."""
+        t = self._stream("fAccelerometer")[0]
+        fs = 1.0 / float(np.median(np.diff(t))) if len(t) > 1 else float(self.rate_hz)
+        rec, warning = applicable_calibration(self._calibration, fs)
+        if warning:
+            self.warnings.append(warning)
+            log.warning("bundle %s: %s", self.bundle.path.name, warning)
+        self.distance_gain = float(rec.get("gain", 1.0)) if rec is not None else 1.0
+        self.stride_sd = calibrated_stride_sd(rec)
 
     def _classify_step(self, W: np.ndarray) -> tuple[dict[str, str], dict[str, dict[str, float]]]:
         """Classes and probabilities (task -> class -> p) of one step window, as :meth:`classify` with

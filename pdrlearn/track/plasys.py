@@ -27,8 +27,6 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.displace import (
-    LEVEL_DZ_M,
-    RATE_TOLERANCE,
     FootDisplacement,
     StepRules,
     force_stance,
@@ -40,6 +38,7 @@ from pdrlearn.displace import (
 from pdrlearn.errors import DataError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
+from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain, calibrated_stride_sd
 from pdrlearn.kernels.window import available_groups, levelled_units
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.track.base import TrackResult, register_pipeline
@@ -222,13 +221,10 @@ def _distance_gain(requested: float | None, model, fs: float, warnings: list[str
     sd of one stride's length estimate (None: no applicable calibration)."""
     rec = model_distance_calibration(model) if calibration and not (model is None or isinstance(model, str)) \
         else None
-    if rec is not None:
-        rate = rec.get("rate_hz")
-        if rate and abs(float(rate) - fs) > RATE_TOLERANCE * float(rate):
-            warnings.append(f"the model's distance calibration was made at {float(rate):g} Hz, the foot unit "
-                            f"runs at {fs:g} Hz: not applied (recalibrate at this rate)")
-            rec = None
-    sd = rec.get("stride_sd") if rec is not None and rec.get("reason") is None else None
+    rec, warning = applicable_calibration(rec, fs)  # the runtime's own rate check (decision E14)
+    if warning:
+        warnings.append(warning)
+    sd = calibrated_stride_sd(rec)
     if requested is not None:
         g = float(requested)
         if not np.isfinite(g) or not 0.5 < g < 2.0:
@@ -301,7 +297,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                             "streamable; leave them at their defaults")
         return track_streaming(session, method=method, model=model, start=start, params=params,
                                heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
-                               bounds_scale=bounds_scale, down_mode=down_mode)
+                               bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
+                               calibration=calibration)
     cfg = METHODS[method]
     warnings: list[str] = []
     foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
@@ -367,10 +364,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         classes, model_bounds = classes_and_bounds(model, work, strides)
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if cfg["rules"] else None, foot.fs,
                                                   warnings, calibration)
-    if gain != 1.0:  # decision L26: the user's calibration on the level strides' horizontal displacement
-        level = np.abs(disp[:, 2]) < LEVEL_DZ_M
-        disp = disp.copy()
-        disp[level, :2] *= gain
+    # decision L26: the user's calibration on the level strides' horizontal displacement
+    disp = apply_level_gain(disp, gain)
     use_bounds = bounds if bounds is not None else model_bounds
     clamp = cfg["rules"]
     if clamp and use_bounds is None:
@@ -460,7 +455,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
 
 def track_streaming(session: Session, *, method: str = "M3", model=None, start=None, params=None,
                     heading: str = "auto", initial_heading: float = 0.0, bounds=None, bounds_scale: float = 2.0,
-                    down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca") -> TrackResult:
+                    down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca",
+                    distance_gain: float | None = None, calibration: bool = True) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -470,7 +466,11 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     ``initial_heading`` + the integrated levelled vertical rate (``heading``: "auto" = waist gyroscope
     when present, else foot; "foot"; "waist-gyro"). ``Tracker(bundle)`` streaming the same session gives
     the same steps and positions (tested to 1 mm). Session-wide steps (Kalman smoother, waist heading
-    filter with the magnetometer, fused heading) are not streamable and not used here.
+    filter with the magnetometer, fused heading) are not streamable and not used here. ``distance_gain`` /
+    ``calibration``: as :func:`track_plasys` (decision L26): M3 with a trained model multiplies the level
+    strides' horizontal displacement by the model's distance gain when its foot rate matches the session's,
+    as the runtime does with a bundle's ``displacement.distance_gain`` (decision E14). The calibrated
+    stride sd only enters the bayes rules, which streaming does not apply (thesis rules, E6).
     """
     if method not in ("M2", "M3"):
         raise DataError(f"plasys streaming: method '{method}' is not streamable; use M2 or M3")
@@ -497,7 +497,13 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if method == "M3":
         if model is None:
             raise ModelError("M3 needs the step classes: pass a trained model directory or 'oracle'")
+        if isinstance(model, str | Path) and str(model) != "oracle":
+            from pdrlearn.classify import load_model
+
+            model = load_model(model)
         classes, model_bounds = classes_and_bounds(model, session, table)
+    gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
+                                                  session.streams["fAccelerometer"].rate_hz, warnings, calibration)
     use_bounds = bounds if bounds is not None else model_bounds
     rb = (StepRules(bounds=parse_bounds(use_bounds) if use_bounds is not None else None,
                     bounds_scale=bounds_scale).effective_bounds() if method == "M3" else None)
@@ -506,7 +512,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,
                              rest_search_s=rest_search_s, heading=step_heading)
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1))
-    length, dz = SK.apply_stride_rules(disp, *(classes[c].to_numpy(dtype=object) if method == "M3" else None
+    raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
+    length, dz = SK.apply_stride_rules(disp, *(classes[c].to_numpy(dtype=object)
+                                               if method == "M3" and c in classes else None  # length-only models
                                              for c in ("terrain", "direction", "length_class")),
                                        bounds=rb, down_mode=down_mode)
     head = initial_heading + np.cumsum(dyaw)
@@ -515,7 +523,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         xyz[i + 1] = SK.advance(xyz[i], float(head[i]), float(length[i]), float(dz[i]))
     table["event_s"] = table["end_s"]
     table["length_m"] = length
-    table["raw_length_m"] = np.hypot(disp[:, 0], disp[:, 1]) * np.where(disp[:, 0] < 0, -1.0, 1.0)
+    table["raw_length_m"] = np.hypot(raw_disp[:, 0], raw_disp[:, 1]) * np.where(raw_disp[:, 0] < 0, -1.0, 1.0)
     table["heading_rad"] = wrap_angle(head)
     table["dz_m"] = dz
     for c in classes.columns:
@@ -531,5 +539,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             "classes_source": (None if method == "M2" else ("oracle" if isinstance(model, str)
                                                             and model == "oracle" else "model")),
             "length_bounds_m": rb, "settings": {"segmenter": seg_params, "rest_search_s": rest_search_s},
+            "distance_gain": gain, "distance_gain_source": gain_source, "stride_sd_calibrated": stride_sd,
             "warnings": warnings}
+    for w in warnings:
+        log.warning("%s: %s", session.name, w)
     return TrackResult(steps=table, trajectory=traj, info=info)

@@ -1,0 +1,56 @@
+"""The per-user distance calibration rule (docs/decisions/localization.md L26), shared by ``pdrlearn track``
+(:func:`pdrlearn.track.plasys.track_plasys`, offline and ``streaming=True``) and the streaming runtime
+(:class:`pdrlearn.runtime.tracker.Tracker`, decision E14 of docs/decisions/export.md).
+
+A calibration record (``gain``, ``rate_hz``, ``stride_sd``, ``reason``: the dict of
+:func:`pdrlearn.displace.calibrate_distance`, stored in the user model; a bundle carries it in its
+``displacement`` parameters) applies only at the foot rate it was estimated at, and its gain multiplies
+the horizontal displacement of the level strides only. numpy + standard library only (runtime boundary).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+#: A stride is "level" when its estimated height change is below this (m): half a stair rise, as the
+#: simulator's terrain label (decisions S3: 0.08 m) - a stair stride climbs 2 x 0.15-0.18 m (L26).
+LEVEL_DZ_M = 0.10
+#: Relative foot-rate difference beyond which a calibration does not apply: the 20 Hz averaging bias the
+#: gain corrects is rate specific (L26).
+RATE_TOLERANCE = 0.01
+
+
+def applicable_calibration(rec: Mapping | None, fs_hz: float, *, tolerance: float = RATE_TOLERANCE
+                           ) -> tuple[Mapping | None, str | None]:
+    """The calibration record if it applies at the foot rate ``fs_hz`` (Hz), else None and the warning.
+
+    A record without ``rate_hz`` applies at any rate (as before the rate was stored)."""
+    if rec is None:
+        return None, None
+    rate = rec.get("rate_hz")
+    if rate and abs(float(rate) - float(fs_hz)) > tolerance * float(rate):
+        return None, (f"the model's distance calibration was made at {float(rate):g} Hz, the foot unit runs at "
+                      f"{float(fs_hz):g} Hz: not applied (recalibrate at this rate)")
+    return rec, None
+
+
+def calibrated_stride_sd(rec: Mapping | None) -> float | None:
+    """The user's relative sd of one stride's length estimate from an applicable record (None: none, or
+    the calibration was refused - ``reason`` set)."""
+    if rec is None or rec.get("reason") is not None or not rec.get("stride_sd"):
+        return None
+    return float(rec["stride_sd"])
+
+
+def apply_level_gain(disp: np.ndarray, gain: float, *, level_dz_m: float = LEVEL_DZ_M) -> np.ndarray:
+    """Displacements ``disp (B, 3)`` (or one ``(3,)``) m with the horizontal part of the level strides
+    (|dz| < ``level_dz_m``) multiplied by ``gain``; stair strides keep theirs (L26). A new array."""
+    d = np.array(disp, dtype=np.float64)
+    if gain == 1.0:
+        return d
+    rows = d.reshape(-1, 3)
+    level = np.abs(rows[:, 2]) < level_dz_m
+    rows[level, :2] *= gain
+    return d
