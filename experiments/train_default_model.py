@@ -48,6 +48,14 @@ def main(argv: list[str] | None = None) -> None:
             raise SystemExit(f"training/export failed (exit {code})")
         lines = [json.loads(x) for x in buf.getvalue().splitlines() if x.startswith("{")]
         (a.out.parent / f"{a.out.name}.training.json").write_text(json.dumps(lines, indent=1) + "\n")
+        # decision E14: `pdrlearn train` calibrated the distance on the length exercises (L26) and the export
+        # carries it in the bundle's displacement parameters; a bundle without them would track with gain 1
+        disp = json.loads((a.out / "manifest.json").read_text())["displacement"]
+        cal = {k: disp.get(k) for k in ("distance_gain", "distance_gain_rate_hz", "stride_sigma_rel",
+                                        "distance_calibration_reason")}
+        if cal["distance_gain"] is None:
+            raise SystemExit(f"{a.out}: the bundle carries no distance calibration (displacement.distance_gain)")
+        print("distance calibration in the bundle:", json.dumps(cal))
         print(json.dumps(lines[0]["tasks"], indent=1))
         print(f"bundle written to {a.out}")
     finally:
