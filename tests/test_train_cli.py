@@ -33,6 +33,9 @@ def test_simulate_train_evaluate(sim_dirs, tmp_path, capsys):
     assert set(summary["tasks"]) == {"terrain", "direction"}
     assert any(s.startswith("task length") for s in summary["skipped"])
     assert (model / "manifest.json").is_file()
+    # decision L26: the user's distance gain from the labelled straight level strides, stored in the model
+    cal = summary["distance_calibration"]
+    assert cal["n_strides"] > 10 and abs(cal["gain"] - 1.0) < 0.1
 
     report = tmp_path / "report"
     rc = main(["evaluate", str(model), str(test), "--json", "--report", str(report)])
@@ -47,6 +50,18 @@ def test_simulate_train_evaluate(sim_dirs, tmp_path, capsys):
         assert all(0 <= m["accuracy"] <= 1 for m in t["methods"].values())
         assert (report / f"confusion_{task}.png").stat().st_size > 1000
     assert "| svm | fused |" in (report / "report.md").read_text()
+
+
+def test_train_without_distance_calibration(sim_dirs, tmp_path, capsys):
+    # a model pooled over users/devices (the shipped default) carries no gain: --no-distance-calibration
+    train, _ = sim_dirs
+    model = tmp_path / "model"
+    rc = main(["train", str(train / "direction_0"), "--out", str(model), "--methods", "svm", "--cv", "3",
+               "--no-distance-calibration", "--json"])
+    out = capsys.readouterr()
+    assert rc == 0, out.err
+    assert json.loads(out.out)["distance_calibration"] is None
+    assert "distance_calibration" not in json.loads((model / "manifest.json").read_text())["training_data"]
 
 
 def test_cli_errors_are_one_line(sim_dirs, tmp_path, capsys):

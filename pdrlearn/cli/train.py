@@ -63,6 +63,12 @@ def train(
         "middle of the foot's rest nearby: rest-to-rest windows, decision 13). Stored in the model; "
         "evaluate, predict and the exported runtime cut windows the same way.",
     ),
+    distance_calibration: bool = typer.Option(
+        True, "--distance-calibration/--no-distance-calibration",
+        help="Estimate the user's distance gain and stride spread from the straight level strides of the "
+        "labelled sessions (decision L26; M3 and the runtime apply it). Turn off for a model pooled over "
+        "several users or devices: a pooled gain corrects no one's sensor.",
+    ),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
     """Train a user's terrain / direction / length classifiers and save a model directory.
@@ -95,7 +101,7 @@ def train(
     with progress("training", total, enabled=not as_json) as advance:
         model = train_user(
             sessions, tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, user=user,
-            boundaries=boundaries, advance=advance,
+            boundaries=boundaries, advance=advance, distance_calibration=distance_calibration,
         )
     seconds = time.perf_counter() - t0
     model.save(out)
@@ -106,6 +112,7 @@ def train(
         "boundaries": model.boundaries,
         "seconds": round(seconds, 2),
         "skipped": model.skipped,
+        "distance_calibration": model.data_summary.get("distance_calibration"),
         "tasks": {
             t: {
                 "chosen": {"method": tm.chosen[0], "unit": tm.chosen[1]},
