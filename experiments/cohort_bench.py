@@ -1,7 +1,8 @@
 """Cohort throughput: train N simulated users serially and on a Dask LocalCluster; time the report.
 
     .venv/bin/python experiments/cohort_bench.py [--users 50] [--methods heuristic,svm] [--cv 5]
-        [--repeats 2] [--serial-default-threads] [--one-worker] [--out experiments/results/cohort_bench.md]
+        [--repeats 2] [--serial-default-threads] [--one-worker] [--plain-halves]
+        [--out experiments/results/cohort_bench.md]
 
 Writes a Markdown table (default experiments/results/cohort_bench.md). The number of interest is the
 speed-up of the 2-worker LocalCluster over the serial ``train-all --serial`` run (target >= 1.7x on 2
@@ -11,6 +12,8 @@ cores from either run. ``cpu s/job`` is the CPU time of the process running a jo
 serial and on the cluster means the workers add no per-job overhead (thread oversubscription, spin-waiting,
 serialization), whatever the load. A probe measures what 2 single-threaded processes get together relative
 to one at that moment (numpy matrix products and pure Python): the ceiling of the speed-up then.
+``--plain-halves`` also times the ceiling with the real job: two plain ``train-all --serial`` processes
+(no Dask) started together on half the users each (decision C7 in docs/decisions/cohort.md).
 """
 
 from __future__ import annotations
@@ -22,6 +25,7 @@ import json
 import os
 import shutil
 import statistics
+import subprocess
 import sys
 import tempfile
 import time
@@ -100,6 +104,23 @@ def _serial_default_threads(cohort: Path, out: Path, a) -> dict:
     return {"users": _summarise(results, out).to_dict(orient="records")}
 
 
+def _plain_halves(cohort: Path, out: Path, common: list) -> dict:
+    """Two plain ``train-all --serial`` processes at once, on alternate users: the ceiling with the real job."""
+    halves = [out / "cohort_a", out / "cohort_b"]
+    for i, user in enumerate(sorted(p for p in cohort.iterdir() if p.is_dir())):
+        halves[i % 2].mkdir(parents=True, exist_ok=True)
+        (halves[i % 2] / user.name).symlink_to(user.resolve())
+    cmd = [sys.executable, "-c", "import sys; from pdrlearn.cli import main; sys.exit(main(sys.argv[1:]))"]
+    procs = [subprocess.Popen([*cmd, "train-all", str(h), "--out", str(out / f"m{i}"), "--serial",
+                               *map(str, common)], stdout=subprocess.PIPE, text=True, cwd=ROOT)
+             for i, h in enumerate(halves)]
+    outs = [p.communicate()[0] for p in procs]
+    if any(p.returncode for p in procs):
+        raise SystemExit("failed: plain train-all --serial on half the users")
+    rows = [r for o in outs for r in json.loads(o.strip().splitlines()[-1])["users"]]
+    return {"users": sorted(rows, key=lambda r: r["user"])}
+
+
 def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--users", type=int, default=50)
@@ -112,6 +133,8 @@ def main(argv: list[str] | None = None) -> None:
                     help="also time a serial run with the libraries' default thread pools (first in each pair)")
     ap.add_argument("--one-worker", action="store_true",
                     help="also time a 1-worker LocalCluster (last in each pair): the cluster's own scaling")
+    ap.add_argument("--plain-halves", action="store_true",
+                    help="also time two plain serial processes on half the users each (no Dask; last in each pair)")
     ap.add_argument("--out", type=Path, default=ROOT / "experiments" / "results" / "cohort_bench.md")
     a = ap.parse_args(argv)
     work = Path(tempfile.mkdtemp(prefix="pdrlearn_cohort_"))
@@ -160,11 +183,15 @@ def main(argv: list[str] | None = None) -> None:
             pair = [("serial", serial), (cluster_label, dask)]
             for label, call in pair if rep % 2 == 0 else pair[::-1]:
                 timed(label, rep, call)
+            if a.plain_halves:
+                timed("2 plain processes (half the users each)", rep,
+                      lambda rep=rep: _plain_halves(work / "cohort", work / f"halves{rep}", common))
             if a.one_worker:
                 timed("LocalCluster (1 worker)", rep, lambda rep=rep: _cli_json(
                     ["train-all", work / "cohort", "--out", work / f"m_one{rep}", "--workers", 1, *common]))
         ref = _strip(runs[0]["rows"]) if not a.serial_default_threads else _strip(runs[1]["rows"])
         same_all = all(_strip(r["rows"]) == ref for r in runs if r["run"] != "serial, library default threads")
+        halves = [r for r in runs if r["run"].startswith("2 plain")]
         same_default = [_strip(r["rows"]) == ref for r in runs if r["run"] == "serial, library default threads"]
         _cli_json(["evaluate-all", work / "m_dask0", work / "cohort", "--out", work / "results", "--workers",
                    a.workers, "--json"])
@@ -216,6 +243,11 @@ def main(argv: list[str] | None = None) -> None:
                 f"{r1['seconds'] / r2['seconds']:.2f}x" for r1, r2 in zip(
                     [r for r in runs if r["run"] == "LocalCluster (1 worker)"],
                     [r for r in runs if r["run"] == cluster_label], strict=True)) + ".")
+        if halves:
+            lines.append("Two plain serial processes (half the users each, no Dask) vs serial: " + ", ".join(
+                f"{by_rep['serial'] / h['seconds']:.2f}x" for h in halves
+                for by_rep in [{r["run"]: r["seconds"] for r in runs if r["repeat"] == h["repeat"]}])
+                + " (the ceiling with the real job at that moment).")
         if same_default:
             lines.append(f"Serial run with the libraries' default thread pools identical to the one-thread runs: "
                          f"{all(same_default)}.")

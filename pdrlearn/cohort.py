@@ -50,7 +50,7 @@ WORKER_CONFIG = {"distributed.worker.profile.enabled": False}
 #: nanny and worker reads the worker's memory every 100 ms, the client refreshes the scheduler's state every
 #: 2 s and the cluster its text representation every 500 ms. Measured on 2 cores (idle cluster, 15 s): the
 #: parent 4.6 % of a core, each worker 1.7-1.8 % with 52 wake-ups/s; during jobs a worker's event-loop
-#: thread used 0.57-0.73 s CPU per ~10 s job, which it takes from the job's core and its GIL. A cohort run
+#: thread used 0.25-0.82 s CPU per 8-11 s job, which it takes from the job's core and its GIL. A cohort run
 #: has no dashboard and jobs that last seconds: 1 s / 5 s / 1 s keeps the health warning (``tick.limit``
 #: 3 s), memory limits (checked every second) and failure detection, at 0.7 % and 0.3 % of a core.
 HOUSEKEEPING_CONFIG = {

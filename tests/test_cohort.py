@@ -44,7 +44,7 @@ def test_run_cohort_isolates_failures_serial_and_dask():
 
 
 def _threads_seen(_):
-    """What a job sees: the BLAS/OpenMP pool sizes, the worker's environment, and its start time."""
+    """What a job sees: BLAS/OpenMP pool sizes, the worker's environment, start time, Dask housekeeping."""
     import dask
     import scipy.linalg  # noqa: F401  (loads scipy's own OpenBLAS)
     from threadpoolctl import threadpool_info
