@@ -293,3 +293,14 @@ def test_console_script_prints_one_line(tmp_path):
     assert proc.returncode == 2 and proc.stdout == ""
     assert proc.stderr.strip() == f"error: {tmp_path / 'none'}: session folder not found; pass a folder with " \
         "fAccelerometer.csv etc."
+
+
+@pytest.mark.parametrize("command", ["evaluate", "track"])
+def test_a_bundle_where_a_model_directory_is_expected(base, tmp_path, capsys, command):
+    bundle = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
+    out = tmp_path / "out"
+    argv = {"evaluate": ["evaluate", str(bundle), str(base["good"]), "--report", str(out)],
+            "track": ["track", str(base["good"]), "--method", "M3", "--model", str(bundle), "--out", str(out)]}
+    msg = run(argv[command], capsys)
+    assert "an exported runtime bundle, not a model directory" in msg and "pdrlearn run" in msg
+    assert not out.exists()

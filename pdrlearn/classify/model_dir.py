@@ -162,6 +162,11 @@ def read_manifest(path) -> dict:
         manifest = json.loads(mf.read_text())
     except (OSError, json.JSONDecodeError) as exc:
         raise ModelError(f"{mf}: unreadable manifest ({exc}); retrain the model") from None
+    if isinstance(manifest, dict) and manifest.get("schema") == "pdrlearn-bundle":
+        raise ModelError(
+            f"{path}: an exported runtime bundle, not a model directory; pass the folder written by "
+            "'pdrlearn train', or replay sessions through the bundle with 'pdrlearn run'"
+        )
     if not isinstance(manifest, dict) or manifest.get("schema_version") != SCHEMA_VERSION:
         got = manifest.get("schema_version") if isinstance(manifest, dict) else None
         raise ModelError(

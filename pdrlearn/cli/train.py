@@ -151,6 +151,14 @@ def train(
             c.print(f"  ignored {tm.n_skipped_labels} step label(s) that are not {t} classes")
     for s in model.skipped:
         c.print(f"skipped {s}")
+    cal = summary["distance_calibration"]
+    if cal is None:
+        c.print("distance calibration: off (--no-distance-calibration)")
+    elif cal.get("reason"):
+        c.print(f"distance calibration: gain 1 ({cal['reason']})")
+    else:
+        c.print(f"distance calibration: gain {cal['gain']:.4f} from {cal['n_strides']} straight level strides "
+                f"(decision L26; M3 and the runtime apply it)")
     c.print(f"step windows: {model.boundaries} boundaries")
     c.print(f"model written to {out} ({seconds:.1f} s)")
 

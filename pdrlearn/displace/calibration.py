@@ -17,6 +17,7 @@ labelled sessions and returns the record stored in the model.
 from __future__ import annotations
 
 import logging
+from contextlib import contextmanager
 
 import numpy as np
 import pandas as pd
@@ -115,6 +116,18 @@ def _labelled_flat_forward(labels: pd.DataFrame) -> np.ndarray:
     return mask
 
 
+@contextmanager
+def _tracker_warnings_silenced():
+    """Raise the ``pdrlearn.track`` logger to ERROR for the duration (calibration runs the tracker internally)."""
+    log = logging.getLogger("pdrlearn.track")
+    level = log.level
+    log.setLevel(logging.ERROR)
+    try:
+        yield
+    finally:
+        log.setLevel(level)
+
+
 def calibrate_distance(sessions, *, params: dict | None = None, **kernel_kw) -> dict:
     """The user's distance gain from labelled calibration sessions (strides with ``length_m``).
 
@@ -136,8 +149,9 @@ def calibrate_distance(sessions, *, params: dict | None = None, **kernel_kw) -> 
             continue
         method = "M2" if s.has("fForceA") or s.has("fForceB") else "M3"
         try:
-            res = track_plasys(s, method=method, model=None if method == "M2" else "oracle", steps="labels",
-                               heading="foot", params=params, distance_gain=1.0)
+            with _tracker_warnings_silenced():  # the tracker's notes (e.g. default length bounds) are not the user's
+                res = track_plasys(s, method=method, model=None if method == "M2" else "oracle", steps="labels",
+                                   heading="foot", params=params, distance_gain=1.0)
         except PdrlearnError as exc:
             skipped.append(f"{s.name}: {exc}")
             continue
