@@ -102,9 +102,10 @@ def scheduler():
 
 def test_train_all_dask_equals_serial(cohort, scheduler, tmp_path, capsys):
     args = ["--tasks", "terrain", "--methods", "heuristic,svm", "--cv", "3", "--json"]
-    assert main(["train-all", str(cohort), "--out", str(tmp_path / "serial"), "--serial", *args]) == 0
+    # exit code 1: one user failed, the others completed and the summary is written
+    assert main(["train-all", str(cohort), "--out", str(tmp_path / "serial"), "--serial", *args]) == 1
     serial = json.loads(capsys.readouterr().out)
-    assert main(["train-all", str(cohort), "--out", str(tmp_path / "dask"), "--scheduler", scheduler, *args]) == 0
+    assert main(["train-all", str(cohort), "--out", str(tmp_path / "dask"), "--scheduler", scheduler, *args]) == 1
     dask = json.loads(capsys.readouterr().out)
     assert serial["n_users"] == 4 and serial["n_failed"] == 1
 
@@ -123,14 +124,19 @@ def test_train_all_dask_equals_serial(cohort, scheduler, tmp_path, capsys):
     table = pd.read_csv(tmp_path / "dask" / "cohort_summary.csv")
     assert list(table["user"]) == ["u1", "u2", "u3", "u9_broken"]
     # held-out evaluation, serial and distributed
-    assert main(["evaluate-all", str(tmp_path / "serial"), str(cohort), "--serial", "--json"]) == 0
+    assert main(["evaluate-all", str(tmp_path / "serial"), str(cohort), "--serial", "--json"]) == 1
     ev_serial = json.loads(capsys.readouterr().out)
-    assert main(["evaluate-all", str(tmp_path / "dask"), str(cohort), "--scheduler", scheduler, "--json"]) == 0
+    assert main(["evaluate-all", str(tmp_path / "dask"), str(cohort), "--scheduler", scheduler, "--json"]) == 1
     ev_dask = json.loads(capsys.readouterr().out)
     assert strip(ev_serial) == strip(ev_dask)
     accs = [u["terrain_accuracy"] for u in ev_serial["users"] if u["status"] == "ok"]
     assert len(accs) == 3 and min(accs) > 0.6  # held-out sessions, chance is 1/3
     assert (tmp_path / "serial" / "eval" / "cohort_summary.md").exists()
+    # piped output (no terminal): the summary as a Markdown table, not squeezed to 80 columns
+    assert main(["evaluate-all", str(tmp_path / "serial"), str(cohort), "--serial", "--out",
+                 str(tmp_path / "ev_text")]) == 1
+    text = capsys.readouterr().out
+    assert "| user " in text and "| u1 " in text and "…" not in text and "failed u9_broken" in text
 
 
 def test_train_all_errors(tmp_path, capsys):

@@ -253,3 +253,12 @@ def test_level_gain_kernel_touches_level_strides_only():
     none, warning = applicable_calibration(rec, 20.5)
     assert none is None and "20 Hz" in warning and "20.5 Hz" in warning
     assert calibrated_stride_sd(rec) == 0.006 and calibrated_stride_sd({**rec, "reason": "few"}) is None
+
+
+def test_m3_says_which_rules_a_partial_model_cannot_apply(calibrated):
+    # a length-only model: M3 runs, and says the terrain and direction rules are off (no silent half-M3)
+    root, _, s = calibrated
+    res = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), heading="foot")
+    said = " ".join(res.info["warnings"])
+    assert "classifies no terrain" in said and "classifies no direction" in said
+    assert "classifies no length" not in said

@@ -39,7 +39,8 @@ for _name in COMMAND_MODULES:
 def main(argv: list[str] | None = None) -> int:
     """Console-script entry point; returns the exit code."""
     try:
-        app(args=argv, standalone_mode=False)
+        # with standalone_mode=False click returns a command's `typer.Exit(code)` instead of raising it
+        rc = app(args=argv, standalone_mode=False)
     except PdrlearnError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return exc.exit_code
@@ -57,7 +58,7 @@ def main(argv: list[str] | None = None) -> int:
         hint = f" (see '{command} --help')"
         print(f"error: {' '.join(exc.format_message().split())}{hint}", file=sys.stderr)
         return exc.exit_code
-    return 0
+    return rc if isinstance(rc, int) else 0
 
 
 def _click_exceptions() -> tuple[type, ...]:

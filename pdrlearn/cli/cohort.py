@@ -81,15 +81,25 @@ def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool
         from rich.table import Table
 
         shown = df.drop(columns=["error"], errors="ignore")
-        t = Table(title=title)
-        for c in shown.columns:
-            t.add_column(str(c).replace("_", " "))
-        for rec in shown.itertuples(index=False):
-            t.add_row(*["" if pd.isna(v) else f"{v:.4g}" if isinstance(v, float) else str(v) for v in rec])
         c = Console()
-        c.print(t)
+        if c.is_terminal:
+            t = Table(title=title)
+            for col in shown.columns:  # fold long cells instead of cutting them to "…" on narrow terminals
+                t.add_column(str(col).replace("_", " "), overflow="fold")
+            for rec in shown.itertuples(index=False):
+                t.add_row(*["" if pd.isna(v) else f"{v:.4g}" if isinstance(v, float) else str(v) for v in rec])
+            c.print(t)
+        else:  # piped or logged: the same Markdown table as cohort_summary.md, never squeezed to 80 columns
+            print(title)
+            print(shown.to_markdown(index=False, floatfmt=".4g"))
         for r in failed:
             c.print(f"[red]failed[/red] {r.name}: {r.error}", highlight=False)
+
+
+def _exit_if_any_failed(results: list[JobResult]) -> None:
+    """Some users failed (the rest completed and the summary is written): exit code 1 so scripts can tell."""
+    if any(not r.ok for r in results):
+        raise typer.Exit(1)
 
 
 def _check_any_ok(results: list[JobResult]) -> None:
@@ -133,6 +143,9 @@ def train_all(
 ) -> None:
     """Train every user of a cohort on Dask; a failing user is reported and the rest complete.
 
+    Exit code 0 when every user trained, 1 when some failed (their models are missing, the summary lists
+    why), 2 on bad input or when every user failed (nothing is written).
+
     Writes MODELS/<user>/ and MODELS/cohort_summary.csv|md.
 
     Examples:
@@ -156,6 +169,7 @@ def train_all(
     _check_any_ok(results)
     df = _summarise(results, out)
     _print(df, results, f"train-all: {sum(r.ok for r in results)}/{len(results)} users trained", as_json)
+    _exit_if_any_failed(results)
 
 
 def evaluate_all(
@@ -183,6 +197,7 @@ def evaluate_all(
     _check_any_ok(results)
     df = _summarise(results, out)
     _print(df, results, f"evaluate-all: {sum(r.ok for r in results)}/{len(results)} users", as_json)
+    _exit_if_any_failed(results)
 
 
 def register(app: typer.Typer) -> None:

@@ -362,6 +362,12 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
 
             model = load_model(model)
         classes, model_bounds = classes_and_bounds(model, work, strides)
+        if not (isinstance(model, str) and model == "oracle"):
+            for task, rule in (("terrain", "filter and altitude"), ("direction", "sign"), ("length", "length")):
+                col = _TASK_COLUMNS[task]
+                if col not in classes or classes[col].isna().all():
+                    warnings.append(f"the model classifies no {task}: the {rule} rule is off for every step "
+                                    f"(train with {task} labels for M3)")
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if cfg["rules"] else None, foot.fs,
                                                   warnings, calibration)
     # decision L26: the user's calibration on the level strides' horizontal displacement
