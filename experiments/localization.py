@@ -291,13 +291,17 @@ def run_orientation_scenarios(users: int) -> list[str]:
     return lines + [""]
 
 
-def run_real() -> pd.DataFrame:
-    rows = []
+def _real_level_walks():
+    """The bundled real foot level walks (gaitmap left, right) that exist, as sessions."""
     for side in ("left", "right"):
         d = REAL / f"gaitmap_level_{side}"
-        if not d.exists():
-            continue
-        s = read_session(d)
+        if d.exists():
+            yield read_session(d)
+
+
+def run_real() -> pd.DataFrame:
+    rows = []
+    for s in _real_level_walks():
         for steps in ("labels", "detector"):
             # the reference is the heel marker: the heel reference point (decision L22) compares like
             # with like; the sensor's own displacement is kept for comparison
@@ -322,11 +326,7 @@ def run_real_calibration_halves() -> pd.DataFrame:
 
     params = {"reference_point": "heel"}
     rows = []
-    for side in ("left", "right"):
-        d = REAL / f"gaitmap_level_{side}"
-        if not d.exists():
-            continue
-        s = read_session(d)
+    for s in _real_level_walks():
         lab = s.steps.sort_values("start_s").reset_index(drop=True)
         half = len(lab) // 2
         for name, cal, test in (("first -> second half", slice(0, half), slice(half, None)),

@@ -60,7 +60,7 @@ def train(
     boundaries: str = typer.Option(
         "given",
         help="Step-window boundaries: 'given' (the labelled start/end) or 'rest' (each boundary moved to the "
-        "middle of the foot's rest nearby: rest-to-rest windows, decision 13). Stored in the model; "
+        "middle of the foot's rest nearby: rest-to-rest windows, decision C13). Stored in the model; "
         "evaluate, predict and the exported runtime cut windows the same way.",
     ),
     distance_calibration: bool = typer.Option(

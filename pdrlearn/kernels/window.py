@@ -318,12 +318,7 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
             c = ci["foot_gyr_x"]
             Xi[c:c + 3] = r[4:7]
     if "force" in available:
-        (ta_, fa), (tb_, fb) = (segment(*streams[name], t0, t1) for name in ("fForceA", "fForceB"))
-        if len(ta_) == len(tb_) and (ta_ == tb_).all():  # one clock: one resampling call for both sensors
-            Xi[[ci["force_a"], ci["force_b"]]] = resample(tg, ta_, np.column_stack([fa[:, 0], fb[:, 0]]))
-        else:
-            Xi[ci["force_a"]] = resample(tg, ta_, fa)[0]
-            Xi[ci["force_b"]] = resample(tg, tb_, fb)[0]
+        _fill_force(Xi, streams, t0, t1, tg, ci)
     if "waist" in lev:
         tw, a, g, _, _ = lev["waist"]
         r = resample(tg, tw, a if g is None else np.column_stack([a, g]))
@@ -336,6 +331,17 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
         tb, b = segment(*streams["wBarometer"], t0, t1)
         Xi[ci["waist_baro"]] = interp(tg, tb, b[:, 0]) - interp(t0, tb, b[:, 0])
     return lev
+
+
+def _fill_force(Xi: np.ndarray, streams: Streams, t0: float, t1: float, tg: np.ndarray,
+                ci: Mapping[str, int]) -> None:
+    """Resample the two force sensors of the window onto ``tg`` (rows ``force_a`` / ``force_b`` of ``Xi``)."""
+    (ta_, fa), (tb_, fb) = (segment(*streams[name], t0, t1) for name in ("fForceA", "fForceB"))
+    if len(ta_) == len(tb_) and (ta_ == tb_).all():  # one clock: one resampling call for both sensors
+        Xi[[ci["force_a"], ci["force_b"]]] = resample(tg, ta_, np.column_stack([fa[:, 0], fb[:, 0]]))
+    else:
+        Xi[ci["force_a"]] = resample(tg, ta_, fa)[0]
+        Xi[ci["force_b"]] = resample(tg, tb_, fb)[0]
 
 
 def _fill_channels(Xi: np.ndarray, streams: Streams, t0: float, t1: float, tg: np.ndarray, lev: Levelled,
@@ -359,12 +365,7 @@ def _fill_channels(Xi: np.ndarray, streams: Streams, t0: float, t1: float, tg: n
         if names:
             Xi[[ci[c] for c in names]] = resample(tg, t, np.column_stack([cols[c] for c in names]))
     if "force" in available and need & {"force_a", "force_b"}:
-        (ta_, fa), (tb_, fb) = (segment(*streams[name], t0, t1) for name in ("fForceA", "fForceB"))
-        if len(ta_) == len(tb_) and (ta_ == tb_).all():  # one clock: one resampling call for both sensors
-            Xi[[ci["force_a"], ci["force_b"]]] = resample(tg, ta_, np.column_stack([fa[:, 0], fb[:, 0]]))
-        else:
-            Xi[ci["force_a"]] = resample(tg, ta_, fa)[0]
-            Xi[ci["force_b"]] = resample(tg, tb_, fb)[0]
+        _fill_force(Xi, streams, t0, t1, tg, ci)
     if "waist_baro" in available and "waist_baro" in need:
         tb, b = segment(*streams["wBarometer"], t0, t1)
         Xi[ci["waist_baro"]] = interp(tg, tb, b[:, 0]) - interp(t0, tb, b[:, 0])
