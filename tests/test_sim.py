@@ -562,6 +562,14 @@ def _heel_and_toe(s, user: UserProfile) -> tuple[np.ndarray, np.ndarray, np.ndar
     return ft["t_s"].to_numpy(), heel[:, 2], toe[:, 2], -rot.as_euler("ZYX")[:, 1]
 
 
+def _swings(strides, t: np.ndarray, heel: np.ndarray):
+    """Per labelled stride: (row, heel height at its start = the floor, toe-off index, contact index, swing
+    length in samples)."""
+    for r in strides.itertuples():
+        i_to, i_ic = np.searchsorted(t, [r.tc_s, r.ic_s])
+        yield r, heel[np.searchsorted(t, r.start_s)], i_to, i_ic, i_ic - i_to
+
+
 def test_level_swing_heel_falls_early_and_contact_at_largest_pitch(exact_a):
     """Decisions S23: on level ground the toes stay just above the floor in swing, so the heel (lifted by
     the plantarflexed foot at toe-off) falls in mid-swing and skims the floor in terminal swing (mocap heel
@@ -572,10 +580,7 @@ def test_level_swing_heel_falls_early_and_contact_at_largest_pitch(exact_a):
     rate = np.gradient(pitch, t)
     st = exact_a.steps[exact_a.steps.steady & (exact_a.steps.terrain == "flat")]
     assert len(st) > 10
-    for r in st.itertuples():
-        floor = heel[np.searchsorted(t, r.start_s)]
-        i_to, i_ic = np.searchsorted(t, [r.tc_s, r.ic_s])
-        n = i_ic - i_to
+    for _r, floor, i_to, i_ic, n in _swings(st, t, heel):
         sw_heel, sw_toe = heel[i_to:i_ic] - floor, toe[i_to:i_ic] - floor
         assert np.argmax(sw_heel) < 0.3 * n  # highest early in swing (before S23: ~0.55 of swing)
         assert sw_heel[int(0.75 * n):].max() < 0.04  # near the floor in terminal swing (before: 5-9 cm)
@@ -594,10 +599,7 @@ def test_stair_ascent_toes_clear_the_next_nosing_right_after_toe_off():
     vz = np.gradient(heel, t)
     st = s.steps[s.steps.steady & (s.steps.terrain == "up")]
     assert len(st) > 5
-    for r in st.itertuples():
-        floor = heel[np.searchsorted(t, r.start_s)]
-        i_to, i_ic = np.searchsorted(t, [r.tc_s, r.ic_s])
-        n = i_ic - i_to
+    for r, floor, i_to, i_ic, n in _swings(st, t, heel):
         half_rise = 0.5 * r.height_m
         assert toe[i_to + int(0.38 * n)] - floor > half_rise  # above the intermediate nosing
         assert np.argmax(vz[i_to:i_ic]) < 0.5 * n
