@@ -100,6 +100,44 @@ def _balanced_correct(pred: np.ndarray, target: np.ndarray, classes: np.ndarray)
     return np.mean([ok[:, target == c].mean(axis=1) for c in classes], axis=0)
 
 
+# The threshold searches below score every candidate set of cut points (m of them) on n labelled steps.
+# Materialising the (m, n) predictions costs O(m n) Python-driven numpy work per rule (most of a heuristic
+# fit). A step's predicted class depends only on the interval its value falls in, and the cut points of
+# a candidate are ascending, so the number of steps of each class in each interval comes from a
+# ``searchsorted`` on the sorted values: O((m + n) log n). The counts are exact integers and the balanced
+# accuracy is formed from them with the same float operations as ``_balanced_correct`` (a mean of 0/1
+# values is count / n_c), so the chosen cut points are bit-identical (tests/test_classify_fastpaths.py).
+
+
+def _interval_counts(values: np.ndarray, target: np.ndarray, classes: np.ndarray,
+                     combos: np.ndarray) -> np.ndarray:
+    """Steps of each class in each interval of each candidate: (n_classes, m, k + 1) integers.
+
+    ``combos`` (m, k) holds ascending cut points per row; a value is in interval ``#(value > t)``.
+    ``values`` must be finite.
+    """
+    m, k = combos.shape
+    out = np.empty((len(classes), m, k + 1), dtype=np.int64)
+    for ci, c in enumerate(classes):
+        s = np.sort(values[target == c])
+        le = np.searchsorted(s, combos, side="right")  # values <= t: not above the cut point
+        out[ci, :, 0] = le[:, 0]
+        out[ci, :, 1:k] = np.diff(le, axis=1)
+        out[ci, :, k] = len(s) - le[:, k - 1]
+    return out
+
+
+def _balanced_from_counts(counts: np.ndarray, order, classes: np.ndarray) -> np.ndarray:
+    """``_balanced_correct`` of the predictions ``order[interval]`` from :func:`_interval_counts`: (m,)."""
+    order = np.asarray(order, dtype=float)
+    per_class = []
+    for ci, c in enumerate(classes):
+        ok = np.abs(order - c) < 0.75  # the interval's class counts as correct for class c
+        with np.errstate(invalid="ignore", divide="ignore"):  # a class without finite values: NaN, as before
+            per_class.append(counts[ci][:, ok].sum(axis=1) / counts[ci].sum(axis=1))
+    return np.mean(per_class, axis=0)
+
+
 def rule_skill(values: np.ndarray, target: np.ndarray, rule: Rule) -> float:
     """Balanced accuracy of ``rule`` alone on labelled values (class values in ``target``), 0..1."""
     ok = np.isfinite(values) & np.isfinite(target)
@@ -134,11 +172,10 @@ def learn_thresholds(values: np.ndarray, target: np.ndarray, rule: Rule, *, max_
         i, j = np.triu_indices(len(cands), k=1)
         combos = np.column_stack([cands[i], cands[j]])
     best = (-1.0, rule.thresholds, rule.classes)
+    counts = _interval_counts(values, target, classes_present, combos)
     for order in (tuple(rule.classes), tuple(rule.classes[::-1])):
-        # predictions for all candidate threshold sets at once: (n_combos, n)
-        idx = (values[None, None, :] > combos[:, :, None]).sum(axis=1)
-        pred = np.asarray(order, dtype=float)[idx]
-        score = _balanced_correct(pred, target, classes_present)
+        # balanced accuracy of every candidate threshold set at once: (n_combos,)
+        score = _balanced_from_counts(counts, order, classes_present)
         b = int(np.argmax(score))
         if score[b] > best[0] + 1e-12:
             best = (float(score[b]), tuple(float(t) for t in combos[b]), order)
@@ -148,10 +185,9 @@ def learn_thresholds(values: np.ndarray, target: np.ndarray, rule: Rule, *, max_
         c1, c2 = rule.classes
         i, j = np.triu_indices(len(cands), k=1)
         pairs = np.column_stack([cands[i], cands[j]])
+        counts = _interval_counts(values, target, classes_present, pairs)
         for order in ((c1, c2, c1), (c2, c1, c2)):
-            idx = (values[None, None, :] > pairs[:, :, None]).sum(axis=1)
-            pred = np.asarray(order, dtype=float)[idx]
-            score = _balanced_correct(pred, target, classes_present)
+            score = _balanced_from_counts(counts, order, classes_present)
             b = int(np.argmax(score))
             if score[b] > best[0] + band_gain:
                 best = (float(score[b]), tuple(float(t) for t in pairs[b]), order)
@@ -197,14 +233,17 @@ def refine_jointly(F: np.ndarray, target: np.ndarray, rules: list[Rule], values:
         for j, r in enumerate(rules):
             base = (votes @ w - votes[:, j] * w[j]) / wsum
             combos = _candidates(F[:, j], len(r.thresholds), max_candidates)
+            fast = np.isfinite(F[:, j]).all() and np.isfinite(base).all()
             for order in (tuple(r.classes), tuple(r.classes[::-1])):
-                idx = (F[None, None, :, j] > combos[:, :, None]).sum(axis=1)
-                cand_votes = np.asarray(order, dtype=float)[idx]
-                s = score_of(base[None, :] + w[j] * cand_votes / wsum)
+                if fast:
+                    s = _joint_scores(F[:, j], base, w[j], wsum, order, combos, vals, target, classes)
+                else:  # NaN features: the direct (m, n) evaluation
+                    idx = (F[None, None, :, j] > combos[:, :, None]).sum(axis=1)
+                    s = score_of(base[None, :] + w[j] * np.asarray(order, dtype=float)[idx] / wsum)
                 b = int(np.argmax(s))
                 if s[b] > best + 1e-9:
                     best = float(s[b])
-                    votes[:, j] = cand_votes[b]
+                    votes[:, j] = np.asarray(order, dtype=float)[(F[:, j] > combos[b][:, None]).sum(axis=0)]
                     rules[j] = Rule(r.sensor, r.number, r.feature, tuple(float(t) for t in combos[b]), order,
                                     r.weight, True, r.source.replace(" (cut points learned)", "")
                                     + " (cut points learned jointly)", r.confidence)
@@ -213,6 +252,35 @@ def refine_jointly(F: np.ndarray, target: np.ndarray, rules: list[Rule], values:
         if not improved:
             break
     return rules
+
+
+def _joint_scores(x: np.ndarray, base: np.ndarray, wj: float, wsum: float, order, combos: np.ndarray,
+                  vals: np.ndarray, target: np.ndarray, classes: np.ndarray) -> np.ndarray:
+    """Balanced accuracy (m,) of the rounded stage result when rule ``j`` (values ``x``, weight ``wj``)
+    uses each candidate's cut points and interval classes ``order`` and the other rules give ``base``.
+
+    Same result as rounding ``base + wj * order[interval] / wsum`` for every candidate (``refine_jointly``),
+    from per-interval counts: a step's rounded class depends only on its interval (finite ``x``).
+    """
+    order = np.asarray(order, dtype=float)
+    srt = np.argsort(x, kind="stable")
+    pos = np.searchsorted(x[srt], combos, side="right")  # (m, k) steps at or below each cut point
+    edges = np.concatenate([np.zeros((len(combos), 1), dtype=np.int64), pos,
+                            np.full((len(combos), 1), len(x), dtype=np.int64)], axis=1)
+    tgt = target[srt]
+    correct = []
+    for o in order:  # rounded decision of every step if its vote were o (same expression as score_of)
+        R = base + wj * o / wsum
+        correct.append(vals[np.argmin(np.abs(R[:, None] - vals), axis=-1)][srt] == tgt)
+    per_class = []
+    for c in classes:
+        is_c = tgt == c
+        hits = np.zeros(len(combos), dtype=np.int64)
+        for i, ok in enumerate(correct):
+            cum = np.concatenate([[0], np.cumsum(ok & is_c)])
+            hits += cum[edges[:, i + 1]] - cum[edges[:, i]]
+        per_class.append(hits / is_c.sum())
+    return np.mean(per_class, axis=0)
 
 
 def combine_stages(stages: list[tuple[np.ndarray, list[str], str | None]]) -> dict[str, np.ndarray]:

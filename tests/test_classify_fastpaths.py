@@ -1,0 +1,148 @@
+"""The fast training paths give bit-identical models to the direct computations they replaced.
+
+Cohort throughput (issue 10, docs/decisions/cohort.md C8): the heuristic classifiers' cut-point searches
+count steps per interval instead of materialising every candidate's predictions, and the neural network's
+training loop calls the same torch operations with less Python around them. Both must not change a
+trained model: the references below are the previous implementations, kept here verbatim.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from pdrlearn.classify._rules import (
+    Rule,
+    _balanced_correct,
+    _candidates,
+    apply_rule,
+    learn_thresholds,
+    refine_jointly,
+)
+
+# -- references: the direct (m, n) evaluations of the previous _rules.py ----------------------------------
+
+
+def _learn_thresholds_ref(values, target, rule, *, max_candidates=48, bands=False, band_gain=0.05):
+    classes_present = np.unique(target)
+    finite = np.isfinite(values)
+    values, target = values[finite], target[finite]
+    if len(classes_present) < 2 or len(values) < 2:
+        return rule.thresholds, rule.classes
+    q = np.unique(np.quantile(values, np.linspace(0, 1, max_candidates + 1)))
+    cands = 0.5 * (q[:-1] + q[1:]) if len(q) > 1 else q
+    k = len(rule.thresholds)
+    if k == 1:
+        combos = cands[:, None]
+    else:
+        i, j = np.triu_indices(len(cands), k=1)
+        combos = np.column_stack([cands[i], cands[j]])
+    best = (-1.0, rule.thresholds, rule.classes)
+    for order in (tuple(rule.classes), tuple(rule.classes[::-1])):
+        idx = (values[None, None, :] > combos[:, :, None]).sum(axis=1)
+        pred = np.asarray(order, dtype=float)[idx]
+        score = _balanced_correct(pred, target, classes_present)
+        b = int(np.argmax(score))
+        if score[b] > best[0] + 1e-12:
+            best = (float(score[b]), tuple(float(t) for t in combos[b]), order)
+    if bands and k == 1 and len(set(rule.classes)) == 2:
+        c1, c2 = rule.classes
+        i, j = np.triu_indices(len(cands), k=1)
+        pairs = np.column_stack([cands[i], cands[j]])
+        for order in ((c1, c2, c1), (c2, c1, c2)):
+            idx = (values[None, None, :] > pairs[:, :, None]).sum(axis=1)
+            pred = np.asarray(order, dtype=float)[idx]
+            score = _balanced_correct(pred, target, classes_present)
+            b = int(np.argmax(score))
+            if score[b] > best[0] + band_gain:
+                best = (float(score[b]), tuple(float(t) for t in pairs[b]), order)
+    return best[1], best[2]
+
+
+def _refine_jointly_ref(F, target, rules, values, *, passes=2, max_candidates=24):
+    classes = np.unique(target)
+    if len(classes) < 2:
+        return rules
+    vals = np.asarray(values, dtype=float)
+    w = np.array([r.weight for r in rules], dtype=float)
+    wsum = w.sum()
+    votes = np.column_stack([apply_rule(F[:, j], r.thresholds, r.classes, r.upper_closed)
+                             for j, r in enumerate(rules)])
+
+    def score_of(R):
+        pred = vals[np.argmin(np.abs(R[..., None] - vals), axis=-1)]
+        return np.mean([(pred[:, target == c] == c).mean(axis=1) for c in classes], axis=0)
+
+    rules = list(rules)
+    best = float(score_of((votes @ w / wsum)[None, :])[0])
+    for _ in range(passes):
+        improved = False
+        for j, r in enumerate(rules):
+            base = (votes @ w - votes[:, j] * w[j]) / wsum
+            combos = _candidates(F[:, j], len(r.thresholds), max_candidates)
+            for order in (tuple(r.classes), tuple(r.classes[::-1])):
+                idx = (F[None, None, :, j] > combos[:, :, None]).sum(axis=1)
+                cand_votes = np.asarray(order, dtype=float)[idx]
+                s = score_of(base[None, :] + w[j] * cand_votes / wsum)
+                b = int(np.argmax(s))
+                if s[b] > best + 1e-9:
+                    best = float(s[b])
+                    votes[:, j] = cand_votes[b]
+                    rules[j] = Rule(r.sensor, r.number, r.feature, tuple(float(t) for t in combos[b]), order,
+                                    r.weight, True, r.source.replace(" (cut points learned)", "")
+                                    + " (cut points learned jointly)", r.confidence)
+                    r = rules[j]
+                    improved = True
+        if not improved:
+            break
+    return rules
+
+
+def _data(rng, n, classes, *, ties=False, nan=0):
+    target = rng.choice(np.asarray(classes, dtype=float), size=n)
+    v = target * rng.uniform(0.2, 1.5) + rng.normal(0, 1.0, n)
+    if ties:  # few distinct values: many candidates fall between equal values, exact ties at cut points
+        v = np.round(v * 2) / 2
+    if nan:
+        v[rng.choice(n, nan, replace=False)] = np.nan
+    return v, target
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_learn_thresholds_equals_direct_search(seed):
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(5, 300))
+    two = Rule("foot_acc", 1, "x", (0.3,), (1, 2), 0.2, bool(seed % 2))
+    three = Rule("force", 1, "x", (0.1, 0.4), (1, 2, 3), 0.1, False)
+    half = Rule("force", 3, "x", (0.1,), (1, 2.5), 0.1, False)
+    for rule, classes in ((two, (1, 2)), (two, (3, 4)), (three, (1, 2, 3)), (half, (1, 2, 3))):
+        v, t = _data(rng, n, classes, ties=seed % 3 == 0, nan=int(rng.integers(0, 3)) if seed % 4 == 0 else 0)
+        for bands in (False, True):
+            got = learn_thresholds(v, t, rule, bands=bands)
+            assert got == _learn_thresholds_ref(v, t, rule, bands=bands), (rule, bands)
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_refine_jointly_equals_direct_search(seed):
+    rng = np.random.default_rng(100 + seed)
+    n = int(rng.integers(6, 250))
+    three = seed % 2 == 1
+    classes = (1.0, 2.0, 3.0) if three else (1.0, 2.0)
+    target = rng.choice(np.asarray(classes), size=n)
+    cols, rules = [], []
+    for j in range(int(rng.integers(2, 6))):
+        x = target * rng.uniform(-1, 1) + rng.normal(0, 1, n)
+        if seed % 3 == 0:
+            x = np.round(x)
+        cols.append(x)
+        if three and j % 2:
+            rules.append(Rule("force", j, f"f{j}", (-0.5, 0.5), (1, 2, 3), float(rng.uniform(0.05, 0.5))))
+        elif three:
+            rules.append(Rule("force", j, f"f{j}", (0.0,), (1, 2.5), float(rng.uniform(0.05, 0.5))))
+        else:
+            rules.append(Rule("foot_acc", j, f"f{j}", (0.0,), (1, 2), float(rng.uniform(0.05, 0.5))))
+    F = np.column_stack(cols)
+    if seed % 5 == 0:  # a NaN feature value takes the direct path; the others stay fast
+        F[0, 0] = np.nan
+    # repr: a NaN cut point (the NaN column's quantiles) compares unequal to itself
+    assert repr(refine_jointly(F, target, rules, classes)) == repr(_refine_jointly_ref(F, target, rules, classes))
