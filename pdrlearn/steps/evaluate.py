@@ -122,6 +122,19 @@ def _span(times: np.ndarray, *more: np.ndarray) -> np.ndarray:
     return np.array([[float(allv.min()), float(allv.max())]])
 
 
+def _chains(lo: np.ndarray, hi: np.ndarray, gap_s: float = 1e-3) -> np.ndarray:
+    """``[a, b]`` rows covering the labelled strides ``[lo_i, hi_i]``: strides that touch or overlap
+    (within ``gap_s``) form one interval; a gap between two strides (unlabelled walking) splits them."""
+    order = np.argsort(lo, kind="stable")
+    out: list[list[float]] = []
+    for a, b in zip(lo[order], hi[order], strict=True):
+        if out and a <= out[-1][1] + gap_s:
+            out[-1][1] = max(out[-1][1], float(b))
+        else:
+            out.append([float(a), float(b)])
+    return np.asarray(out, dtype=float).reshape(-1, 2)
+
+
 def reference_events(session: Session, unit: str, *,
                      tolerance_s: float = DEFAULT_TOLERANCE_S) -> Reference | None:
     """Reference events of ``session`` for a detector on ``unit`` (``None`` without labels).
@@ -130,9 +143,11 @@ def reference_events(session: Session, unit: str, *,
       table as for the foot. Labelled intervals: the walking bouts (``extras["bouts"]``, level ``wb``)
       when present, else first..last IC: the references label only walking bouts, and the steps a
       subject takes outside them (turning on the spot, shuffling, the first/last steps) are unlabelled.
-    - ``foot``: one event per stride of the instrumented foot, ``steps.ic_s`` (plus a ``pre_ic_s`` earlier
-      than every ``ic_s``: the motion-captured initial contact that opens the first labelled stride),
-      else ``steps.start_s``. Labelled interval: first event .. last stride end.
+    - ``foot``: one event per stride of the instrumented foot, ``steps.ic_s`` (plus every ``pre_ic_s``
+      that is no stride's ``ic_s``: the motion-captured initial contact that opens a chain of labelled
+      strides), else ``steps.start_s``. Labelled intervals: each chain of touching strides, from its
+      first event to its last stride end (a reference that labels only some strides of a walk, e.g.
+      those inside a mocap volume, leaves the strides between chains unscored).
     - rows marked ``source == "detected"`` are a rest-based segmentation, NOT ground truth: a detection
       matches a stride when it falls inside the stride's ``[start_s, end_s]`` window.
     Every interval is widened by ``tolerance_s`` on both sides.
@@ -165,16 +180,21 @@ def reference_events(session: Session, unit: str, *,
     if "ic_s" in st and st["ic_s"].notna().any():
         ev = st["ic_s"].dropna().to_numpy(float)
         desc = "steps.ic_s"
+        lo = se[:, 0].copy()
         if "pre_ic_s" in st and st["pre_ic_s"].notna().any():
-            pre = st["pre_ic_s"].dropna().to_numpy(float)
-            extra = pre[pre < ev.min() - 1e-9]
+            pre = st["pre_ic_s"].to_numpy(float)
+            lo = np.fmin(lo, pre)
+            pre = pre[np.isfinite(pre)]
+            # a pre_ic that is no stride's ic opens a chain of labelled strides (mocap ICs)
+            extra = pre[np.abs(pre[:, None] - ev[None, :]).min(axis=1) > 1e-3] if ev.size else pre
             if extra.size:
                 ev = np.concatenate([extra, ev])
-                desc += " + first pre_ic_s"
+                desc += " + pre_ic_s opening each chain of strides"
         ev = np.unique(ev)
-        return Reference(ev, tol, _span(ev, se[:, 1]) + [-tol, tol], desc)
+        hi = np.fmax(se[:, 1], st["ic_s"].to_numpy(float))
+        return Reference(ev, tol, _chains(lo, hi) + [-tol, tol], desc)
     ev = np.sort(se[:, 0])
-    return Reference(ev, tol, _span(ev, se[:, 1]) + [-tol, tol], "steps.start_s")
+    return Reference(ev, tol, _chains(se[:, 0], se[:, 1]) + [-tol, tol], "steps.start_s")
 
 
 def in_intervals(times: np.ndarray, intervals: np.ndarray) -> np.ndarray:
