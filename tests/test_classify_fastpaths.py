@@ -146,3 +146,69 @@ def test_refine_jointly_equals_direct_search(seed):
         F[0, 0] = np.nan
     # repr: a NaN cut point (the NaN column's quantiles) compares unequal to itself
     assert repr(refine_jointly(F, target, rules, classes)) == repr(_refine_jointly_ref(F, target, rules, classes))
+
+
+# -- neural network: the previous training loop (nn.Module calls, one Adam update per tensor) --------------
+
+
+def _train_mlp_ref(X, y, n_classes, *, hidden, lr, max_epochs, patience, X_val, y_val, weight_decay, seed):
+    import torch
+
+    threads = torch.get_num_threads()
+    torch.set_num_threads(1)
+    with torch.random.fork_rng(devices=[]):
+        torch.manual_seed(seed)
+        net = torch.nn.Sequential(
+            torch.nn.Linear(X.shape[1], hidden), torch.nn.Tanh(), torch.nn.Linear(hidden, n_classes)
+        )
+        params = list(net.parameters())
+        m1 = [torch.zeros_like(p) for p in params]
+        m2 = [torch.zeros_like(p) for p in params]
+        beta1, beta2, eps = 0.9, 0.999, 1e-8
+        loss_fn = torch.nn.CrossEntropyLoss()
+        xt, yt = torch.as_tensor(X, dtype=torch.float32), torch.as_tensor(y, dtype=torch.long)
+        has_val = X_val is not None and len(X_val) > 0
+        if has_val:
+            xv, yv = torch.as_tensor(X_val, dtype=torch.float32), torch.as_tensor(y_val, dtype=torch.long)
+        best, best_epoch, best_state, stale = np.inf, 0, None, 0
+        for epoch in range(1, max_epochs + 1):
+            loss = loss_fn(net(xt), yt)
+            grads = torch.autograd.grad(loss, params)
+            with torch.no_grad():
+                c1, c2 = 1 - beta1**epoch, 1 - beta2**epoch
+                for p, g, a, b in zip(params, grads, m1, m2, strict=True):
+                    g = g + weight_decay * p
+                    a.mul_(beta1).add_(g, alpha=1 - beta1)
+                    b.mul_(beta2).addcmul_(g, g, value=1 - beta2)
+                    p.sub_(lr * (a / c1) / ((b / c2).sqrt() + eps))
+            with torch.no_grad():
+                monitor = float(loss_fn(net(xv), yv)) if has_val else float(loss)
+            if monitor < best - 1e-6:
+                best, best_epoch, stale = monitor, epoch, 0
+                best_state = [p.detach().clone() for p in net.parameters()]
+            else:
+                stale += 1
+                if stale >= patience:
+                    break
+        params = best_state if best_state is not None else [p.detach() for p in net.parameters()]
+    torch.set_num_threads(threads)
+    W1, b1, W2, b2 = (p.numpy().astype(np.float64) for p in params)
+    return [W1.T.copy(), b1, W2.T.copy(), b2], best_epoch
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_train_mlp_equals_previous_loop(seed):
+    from pdrlearn.classify.nn import train_mlp
+
+    rng = np.random.default_rng(seed)
+    n, d, k = int(rng.integers(30, 200)), int(rng.integers(3, 60)), int(rng.integers(2, 4))
+    y = rng.integers(0, k, n)
+    X = rng.normal(size=(n, d)) + y[:, None] * rng.normal(0, 0.5, d)
+    val = seed % 3 != 0
+    kw = {"hidden": [10, 60, 144][seed % 3], "lr": 0.01, "max_epochs": 120, "patience": 15,
+          "X_val": X[:20] if val else None, "y_val": y[:20] if val else None, "weight_decay": 1e-4, "seed": seed}
+    got, got_epoch = train_mlp(X[20:], y[20:], k, **kw)
+    ref, ref_epoch = _train_mlp_ref(X[20:], y[20:], k, **kw)
+    assert got_epoch == ref_epoch
+    for a, b in zip(got, ref, strict=True):
+        assert a.dtype == b.dtype and np.array_equal(a, b)  # bit-identical weights

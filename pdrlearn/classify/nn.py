@@ -53,47 +53,60 @@ def train_mlp(
     Returns the best weights ``[W1, b1, W2, b2]`` (numpy, ``W`` as ``(in, out)``) and the best epoch.
     """
     import torch
+    import torch.nn.functional as F
 
     threads = torch.get_num_threads()
     torch.set_num_threads(1)  # tiny networks: thread start-up costs more than it saves
     try:
         with torch.random.fork_rng(devices=[]):
             torch.manual_seed(seed)
-            net = torch.nn.Sequential(
+            net = torch.nn.Sequential(  # built for its (seeded) initialisation; the loop calls its ops directly
                 torch.nn.Linear(X.shape[1], hidden), torch.nn.Tanh(), torch.nn.Linear(hidden, n_classes)
             )
             params = list(net.parameters())
+            w1, c1_, w2, c2_ = params
+
+            def forward(x):  # = net(x): Linear -> Tanh -> Linear, without nn.Module's per-call hooks
+                return F.linear(torch.tanh(F.linear(x, w1, c1_)), w2, c2_)
+
             # Adam (Kingma & Ba 2015, default betas) written out: torch.optim's first use imports
-            # torch._dynamo (~5 s), which would dominate the training of these tiny networks
+            # torch._dynamo (~5 s), which would dominate the training of these tiny networks. The update
+            # runs as torch._foreach_* calls over the 4 tensors: on CPU each is the same per-tensor
+            # operation as the single-tensor form, in one call (decision C8 in docs/decisions/cohort.md)
             m1 = [torch.zeros_like(p) for p in params]
             m2 = [torch.zeros_like(p) for p in params]
             beta1, beta2, eps = 0.9, 0.999, 1e-8
-            loss_fn = torch.nn.CrossEntropyLoss()
             xt, yt = torch.as_tensor(X, dtype=torch.float32), torch.as_tensor(y, dtype=torch.long)
             has_val = X_val is not None and len(X_val) > 0
             if has_val:
                 xv, yv = torch.as_tensor(X_val, dtype=torch.float32), torch.as_tensor(y_val, dtype=torch.long)
             best, best_epoch, best_state, stale = np.inf, 0, None, 0
             for epoch in range(1, max_epochs + 1):
-                loss = loss_fn(net(xt), yt)
+                loss = F.cross_entropy(forward(xt), yt)  # = torch.nn.CrossEntropyLoss()
                 grads = torch.autograd.grad(loss, params)
                 with torch.no_grad():
                     c1, c2 = 1 - beta1**epoch, 1 - beta2**epoch
-                    for p, g, a, b in zip(params, grads, m1, m2, strict=True):
-                        g = g + weight_decay * p
-                        a.mul_(beta1).add_(g, alpha=1 - beta1)
-                        b.mul_(beta2).addcmul_(g, g, value=1 - beta2)
-                        p.sub_(lr * (a / c1) / ((b / c2).sqrt() + eps))
-                with torch.no_grad():
-                    monitor = float(loss_fn(net(xv), yv)) if has_val else float(loss)
+                    g = torch._foreach_add(grads, torch._foreach_mul(params, weight_decay))  # g + wd * p
+                    torch._foreach_mul_(m1, beta1)
+                    torch._foreach_add_(m1, g, alpha=1 - beta1)
+                    torch._foreach_mul_(m2, beta2)
+                    torch._foreach_addcmul_(m2, g, g, value=1 - beta2)
+                    step = torch._foreach_div(m1, c1)  # lr * (m1 / c1) / (sqrt(m2 / c2) + eps)
+                    torch._foreach_mul_(step, lr)
+                    den = torch._foreach_div(m2, c2)
+                    torch._foreach_sqrt_(den)
+                    torch._foreach_add_(den, eps)
+                    torch._foreach_div_(step, den)
+                    torch._foreach_sub_(params, step)
+                    monitor = float(F.cross_entropy(forward(xv), yv)) if has_val else float(loss)
                 if monitor < best - 1e-6:
                     best, best_epoch, stale = monitor, epoch, 0
-                    best_state = [p.detach().clone() for p in net.parameters()]
+                    best_state = [p.detach().clone() for p in params]
                 else:
                     stale += 1
                     if stale >= patience:
                         break
-            params = best_state if best_state is not None else [p.detach() for p in net.parameters()]
+            params = best_state if best_state is not None else [p.detach() for p in params]
     finally:
         torch.set_num_threads(threads)
     W1, b1, W2, b2 = (p.numpy().astype(np.float64) for p in params)
