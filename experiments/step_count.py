@@ -3,11 +3,14 @@ normal and fast walking) on simulated users, and report the detectors on the rea
 
 Usage:
     .venv/bin/python experiments/step_count.py [--users 10] [--real-dir datasets/real] [--waist-ic 3]
+        [--external datasets/external]
 
 Writes experiments/results/step_count.md and step_count.csv (simulated) and step_count_real.csv.
 ``--waist-ic N`` also scores the offline waist initial-contact detector (seed 003 + W18 rhythm completion
 + W20 left/right alternation, ``pdrlearn.waist.events``) with its variants on the real lower-back
 recordings and on simulated scenarios A-D x N users x 3 speeds at 100 Hz (step_count_waist_ic.md/csv).
+``--external DIR`` adds the referenced mobgap sessions of ``pdrlearn fetch mobgap --out DIR`` (HA002, MS001;
+HA001 is datasets/real) to that table, with per-session rows and rows pooled over all real subjects.
 Count error = sum over sessions of |detected - reference| / sum of reference counts (errors of different
 sessions do not cancel). Foot detectors count strides of the instrumented foot against steps.csv
 (ic); waist detectors count every step against extras['ics'].
@@ -100,7 +103,19 @@ WAIST_IC_VARIANTS = {  # label -> InitialContactDetector settings
 }
 
 
-def waist_ic(real_dir: Path, users: int) -> pd.DataFrame:
+def external_waist_sessions(ext: Path) -> list[Path]:
+    """Referenced lower-back sessions of a ``pdrlearn fetch mobgap`` folder that are not in REAL."""
+    import json
+
+    out = []
+    for d in sorted(ext.glob("mobgap_*")):
+        meta = json.loads((d / "meta.json").read_text())
+        if meta.get("reference", {}).get("available") and d.name not in REAL["waist"]:
+            out.append(d)
+    return out
+
+
+def waist_ic(real_dir: Path, users: int, external: Path | None = None) -> pd.DataFrame:
     """Offline/realtime waist IC detector variants: real lower-back recordings (scored inside the
     reference bouts, decision W9) and simulated scenarios A-D (every reference contact)."""
     from pdrlearn.steps.evaluate import score_events
@@ -109,13 +124,16 @@ def waist_ic(real_dir: Path, users: int) -> pd.DataFrame:
     from pdrlearn.waist.events import InitialContactDetector
 
     rows = []
-    for name in REAL["waist"]:
-        s = read_session(real_dir / name)
+    paths = [real_dir / n for n in REAL["waist"]] + (external_waist_sessions(external) if external else [])
+    for path in paths:
+        name = path.name
+        s = read_session(path)
         imu = waist_imu(s)
         for label, kw in WAIST_IC_VARIANTS.items():
             m = step_metrics(InitialContactDetector(**kw).detect(imu).steps_, s)
             rows.append({"data": name, "variant": label, "tp": round(m["step_recall"] * m["n_reference"]),
                          "detected": m["n_detected"], "reference": m["n_reference"],
+                         "unscored": m.get("n_unscored", 0),
                          "ic_mean_ms": m["ic_timing_mean_ms"], "ic_sd_ms": m["ic_timing_sd_ms"]})
     for scenario in "ABCD":
         for speed in SPEEDS:
@@ -140,14 +158,24 @@ def _md_waist_ic(df: pd.DataFrame, users: int) -> str:
              "F1 = 2 TP / (detected + reference).", "",
              "| data | " + " | ".join(WAIST_IC_VARIANTS) + " |", "|---" * (len(WAIST_IC_VARIANTS) + 1) + "|"]
     df = df.assign(group=np.where(df["data"].str.startswith("sim"), "simulated A-D (pooled)", df["data"]))
+    real = df[df["data"].str.startswith("mobgap")]
+    if real["data"].str.split("_").str[1].nunique() > 1:  # several real subjects: add pooled rows
+        kinds = real["data"].str.split("_").str[2]
+        df = pd.concat([df, real.assign(group="real " + kinds + " pooled (" + ", ".join(
+            sorted(real["data"].str.split("_").str[1].unique())) + ")")], ignore_index=True)
     for group, sub in df.groupby("group", sort=False):
         cells = []
         for label in WAIST_IC_VARIANTS:
             v = sub[sub.variant == label]
             f1 = 2 * v.tp.sum() / (v.detected.sum() + v.reference.sum())
-            extra = "" if group.startswith("simulated") else \
-                f" (P {v.tp.sum() / v.detected.sum():.3f}, R {v.tp.sum() / v.reference.sum():.3f}, " \
-                f"IC {v.ic_mean_ms.iloc[0]:+.1f} ± {v.ic_sd_ms.iloc[0]:.0f} ms)"
+            if group.startswith("simulated"):
+                extra = ""
+            else:
+                w = v.tp.to_numpy(float)
+                mean = float(np.sum(w * v.ic_mean_ms) / w.sum())
+                sd = float(np.sqrt(np.sum(w * (v.ic_sd_ms ** 2 + v.ic_mean_ms ** 2)) / w.sum() - mean ** 2))
+                extra = f" (P {v.tp.sum() / v.detected.sum():.3f}, R {v.tp.sum() / v.reference.sum():.3f}, " \
+                    f"IC {mean:+.1f} ± {sd:.0f} ms)"
             cells.append(f"{f1:.3f}{extra}")
         lines.append(f"| {group} | " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
@@ -191,6 +219,8 @@ def main() -> None:
     ap.add_argument("--real-dir", type=Path, default=ROOT / "datasets" / "real")
     ap.add_argument("--waist-ic", type=int, default=0, metavar="N",
                     help="also score the waist IC detector variants (N simulated users; 0 = skip)")
+    ap.add_argument("--external", type=Path, default=None, metavar="DIR",
+                    help="with --waist-ic: also the mobgap subjects of `pdrlearn fetch mobgap --out DIR`")
     args = ap.parse_args()
     warnings.filterwarnings("ignore")
     logging.basicConfig(level=logging.ERROR)
@@ -215,7 +245,7 @@ def main() -> None:
     (OUT / "step_count.md").write_text(text)
     print(text)
     if args.waist_ic > 0:
-        wic = waist_ic(args.real_dir, args.waist_ic)
+        wic = waist_ic(args.real_dir, args.waist_ic, args.external)
         wic.to_csv(OUT / "step_count_waist_ic.csv", index=False, float_format="%.4g")
         text = _md_waist_ic(wic, args.waist_ic)
         (OUT / "step_count_waist_ic.md").write_text(text)

@@ -9,7 +9,13 @@ defaults) for comparison.
 Simulated protocol: per user, calibrate on a simulated "60 m" walk (seed 1) with its measured length (waist path
 from the first to the last initial contact, W21), test on scenarios A-D (seed 0).
 
-Run: .venv/bin/python experiments/waist.py [--data datasets/real] [--sim-users 3]
+External subjects (``--external datasets/external``, from ``pdrlearn fetch mobgap``): the same protocol per
+subject (HA001, HA002, MS001): each Test5 trial with a reference -> the other one, all of them -> Test11;
+per-subject rows plus pooled rows (F1 from the pooled counts, IC timing over all matched contacts, median
+over all bouts, stride MAE over all strides). HA002 Test5 Trial1 has no reference and Trial2 a Stereophoto
+one (docs/external-data.md E3), so HA002 is calibrated on Test5 Trial2 and tested on Test11 only.
+
+Run: .venv/bin/python experiments/waist.py [--data datasets/real] [--sim-users 3] [--external datasets/external]
 """
 
 from __future__ import annotations
@@ -96,28 +102,90 @@ def heading_error_deg(res, session) -> float:
     return float(np.degrees(np.median(np.abs(np.angle(np.exp(1j * (d - off)))))))
 
 
-def real(data: Path) -> pd.DataFrame:
+def real(data: Path, runs=RUNS, configs=CONFIGS, bouts: list | None = None) -> pd.DataFrame:
+    """One row per (run, pipeline, calibrated/defaults). ``bouts`` (if given) receives one dict per
+    reference bout with its error, for pooled medians."""
     rows = []
-    for cal_names, test_name in RUNS:
+    for cal_names, test_name in runs:
         cal = [read_session(data / n) for n in cal_names]
         test = read_session(data / test_name)
-        for label, pipeline, opts in CONFIGS:
+        prefix = "_".join(test_name.split("_")[:2]) + "_"  # mobgap_<subject>_
+        for label, pipeline, opts in configs:
             base, _ = resolve_params(cal[0], None)
             base.options = dict(opts)  # calibrate with the same pipeline options as the test
             params = calibrate(cal, pipeline, params=base)
             for kind, p in (("calibrated", params), ("defaults", None)):
                 res = get_pipeline(pipeline)(test, params=p, **opts)
                 m = waist_metrics(res.steps, test)
-                rows.append({
-                    "test": test_name.replace("mobgap_HA001_", ""),
-                    "calibrated_on": "+".join(n.replace("mobgap_HA001_", "") for n in cal_names)
+                row = {
+                    "subject": test_name.split("_")[1],
+                    "test": test_name.replace(prefix, ""),
+                    "calibrated_on": "+".join(n.replace(prefix, "") for n in cal_names)
                     if p is not None else "-",
                     "pipeline": label, "params": kind, "step_f1": m.get("step_f1"),
                     "step_f1_all": m.get("step_f1_all"), "ic_mean_ms": m.get("ic_timing_mean_ms"),
                     "ic_sd_ms": m.get("ic_timing_sd_ms"), "dist_err_pct": m.get("distance_error_pct"),
                     "bout_err_median_pct": m.get("bout_distance_error_median_pct"),
-                    "stride_mae_m": m.get("stride_length_mae_m")})
+                    "stride_mae_m": m.get("stride_length_mae_m"),
+                    "tp": round(m.get("step_recall", np.nan) * m.get("n_reference", 0)),
+                    "n_detected": m.get("n_detected"), "n_reference": m.get("n_reference"),
+                    "n_strides": m.get("n_strides")}
+                rows.append(row)
+                if bouts is not None:
+                    bouts += [{**{k: row[k] for k in ("subject", "test", "pipeline", "params")}, **b}
+                              for b in m.get("bouts", [])]
     return pd.DataFrame(rows)
+
+
+def external_runs(ext: Path) -> list[tuple[list[str], str]]:
+    """Per subject of a ``pdrlearn fetch mobgap`` folder: each Test5 trial with a reference -> each other
+    one, all of them -> every Test11 trial (never calibrated on the test recording)."""
+    import json
+
+    by_subject: dict[str, dict[str, list[str]]] = {}
+    for d in sorted(ext.glob("mobgap_*_Test*_Trial*")):
+        meta = json.loads((d / "meta.json").read_text())
+        if not meta.get("reference", {}).get("available"):
+            continue
+        by_subject.setdefault(meta["subject"]["cohort"] + meta["subject"]["participant_id"], {}).setdefault(
+            meta["test"], []).append(d.name)
+    runs = []
+    for _subj, tests in sorted(by_subject.items()):
+        walks = sorted(tests.get("Test5", []))
+        if len(walks) >= 2:
+            runs += [([a], b) for a in walks for b in walks if a != b]
+        if walks:
+            runs += [(walks, t) for t in sorted(tests.get("Test11", []))]
+    return runs
+
+
+def pooled(df: pd.DataFrame, bouts: pd.DataFrame) -> pd.DataFrame:
+    """Per pipeline, params and test kind (Test5 / Test11), pooled over subjects and runs."""
+    df = df.assign(kind=df["test"].str.split("_").str[0])
+    bouts = bouts.assign(kind=bouts["test"].str.split("_").str[0], abs_err=bouts["error_pct"].abs())
+    rows = []
+    for (kind, pipeline, params), g in df.groupby(["kind", "pipeline", "params"], sort=False):
+        b = bouts[(bouts.kind == kind) & (bouts.pipeline == pipeline) & (bouts.params == params)]
+        w = g["tp"].to_numpy(float)
+        rows.append({"test": kind, "pipeline": pipeline, "params": params, "runs": len(g),
+                     "subjects": ",".join(sorted(g["subject"].unique())),
+                     "step_f1": 2 * g.tp.sum() / (g.n_detected.sum() + g.n_reference.sum()),
+                     "ic_mean_ms": float(np.sum(w * g.ic_mean_ms) / w.sum()),
+                     "ic_sd_ms": float(np.sqrt(np.sum(w * (g.ic_sd_ms ** 2 + g.ic_mean_ms ** 2)) / w.sum()
+                                               - (np.sum(w * g.ic_mean_ms) / w.sum()) ** 2)),
+                     "bouts": len(b), "bout_err_median_pct": float(b.abs_err.median()),
+                     "bout_err_signed_median_pct": float(b.error_pct.median()),
+                     "stride_mae_m": float(np.sum(g.n_strides * g.stride_mae_m) / g.n_strides.sum())})
+    return pd.DataFrame(rows)
+
+
+EXTRA_COLS = ("tp", "n_detected", "n_reference", "n_strides")
+EXTERNAL_NOTE = ("Per subject: calibrated on one Test5 straight walk (reference bout length) and tested on the "
+                 "other, and on both -> Test11 (daily activities); HA002 has one referenced Test5 trial "
+                 "(Stereophoto, docs/external-data.md E3) -> Test11 only. Pooled: F1 from the summed counts, "
+                 "IC mean/sd over all matched contacts, median of |per-bout error| over all bouts, stride MAE "
+                 "over all strides. INDIP contacts without a time are not in ics.csv (E2): a detection there "
+                 "counts as a false positive.")
 
 
 def walked_between_contacts(session) -> float:
@@ -213,23 +281,70 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--data", type=Path, default=ROOT / "datasets" / "real")
     ap.add_argument("--sim-users", type=int, default=3, help="simulated users (0 = skip the simulation)")
+    ap.add_argument("--external", type=Path, default=None, metavar="DIR",
+                    help="also evaluate the mobgap subjects of `pdrlearn fetch mobgap --out DIR` "
+                         "(per-subject and pooled tables: waist_external.csv, waist_external_pooled.csv)")
+    ap.add_argument("--no-real", action="store_true",
+                    help="only the --external tables (skip datasets/real and the simulation)")
     args = ap.parse_args()
     logging.basicConfig(level=logging.ERROR)
     out = ROOT / "experiments" / "results"
     out.mkdir(parents=True, exist_ok=True)
     pd.set_option("display.width", 220)
-    df = real(args.data)
-    df.to_csv(out / "waist.csv", index=False, float_format="%.4g")
-    print(df.round(3).to_string(index=False))
-    lines = ["# Waist-only dead reckoning", "", "Generated by `experiments/waist.py`.", "",
-             "## Real lower-back data (mobgap HA001)", "", REAL_NOTE, "",
-             df.round(3).to_markdown(index=False), ""]
-    floor = noise_floor(args.data, {
+    lines = ["# Waist-only dead reckoning", "", "Generated by `experiments/waist.py`.", ""]
+    if not args.no_real:
+        df = real(args.data)
+        df.to_csv(out / "waist.csv", index=False, float_format="%.4g")
+        shown = df[[c for c in df.columns if c not in EXTRA_COLS]]
+        print(shown.round(3).to_string(index=False))
+        lines += ["## Real lower-back data (mobgap HA001)", "", REAL_NOTE, "", shown.round(3).to_markdown(index=False),
+                  ""]
+    if args.external is not None:
+        runs = external_runs(args.external)
+        if not runs:
+            raise SystemExit(f"{args.external}: no mobgap sessions with a reference; run "
+                             f"`pdrlearn fetch mobgap --out {args.external}` first")
+        bouts: list = []
+        ext = real(args.external, runs, bouts=bouts)
+        ext.to_csv(out / "waist_external.csv", index=False, float_format="%.4g")
+        pool = pooled(ext, pd.DataFrame(bouts))
+        pool.to_csv(out / "waist_external_pooled.csv", index=False, float_format="%.4g")
+        shown = ext[[c for c in ext.columns if c not in EXTRA_COLS]]
+        print(f"\nexternal subjects ({args.external}):")
+        print(shown.round(3).to_string(index=False))
+        print("\npooled over subjects:")
+        print(pool.round(3).to_string(index=False))
+        ext_lines = ["# Waist-only dead reckoning on the mobgap subjects (HA001, HA002, MS001)", "",
+                     f"Generated by `experiments/waist.py --external {args.external}`.", "", EXTERNAL_NOTE, "",
+                     "## Pooled over subjects", "", pool.round(3).to_markdown(index=False), "",
+                     "## Per subject and run", "", shown.round(3).to_markdown(index=False), ""]
+    groups = {} if args.no_real else {
         "Test5 T1+T2 (straight walks)": ["mobgap_HA001_Test5_Trial1", "mobgap_HA001_Test5_Trial2"],
-        "Test11 (daily activities)": ["mobgap_HA001_Test11_Trial1"]})
-    print("\nper-step noise floor of the pendulum length (straight strides):")
-    print(floor.round(2).to_string(index=False))
-    lines += ["## Noise floor of the per-step length", "", FLOOR_NOTE, "", floor.round(2).to_markdown(index=False), ""]
+        "Test11 (daily activities)": ["mobgap_HA001_Test11_Trial1"]}
+    floor = noise_floor(args.data, groups) if groups else pd.DataFrame()
+    if args.external is not None:
+        ext_groups: dict[str, list[str]] = {}
+        for cal_names, test_name in runs:
+            subj = test_name.split("_")[1]
+            for n in [*cal_names, test_name]:
+                key = f"{subj} {n.split('_')[2]}"
+                ext_groups.setdefault(key, [])
+                if n not in ext_groups[key]:
+                    ext_groups[key].append(n)
+        ext_floor = noise_floor(args.external, ext_groups)
+        print("\nper-step noise floor of the pendulum length, external subjects (straight strides):")
+        print(ext_floor.round(2).to_string(index=False))
+        ext_lines += ["## Noise floor of the per-step length", "", FLOOR_NOTE, "",
+                      ext_floor.round(2).to_markdown(index=False), ""]
+        (out / "waist_external.md").write_text("\n".join(ext_lines) + "\n")
+        print(f"wrote {out / 'waist_external.md'}, waist_external.csv, waist_external_pooled.csv")
+        if args.no_real:
+            return
+    if len(floor):
+        print("\nper-step noise floor of the pendulum length (straight strides):")
+        print(floor.round(2).to_string(index=False))
+        lines += ["## Noise floor of the per-step length", "", FLOOR_NOTE, "", floor.round(2).to_markdown(index=False),
+                  ""]
     if args.sim_users > 0:
         sim = simulated(list(range(1, args.sim_users + 1)))
         sim.to_csv(out / "waist_sim.csv", index=False, float_format="%.4g")

@@ -125,6 +125,24 @@ def test_nan_contacts_left_out_and_counted(synthetic, tmp_path):
     assert any("could not time" in c for c in meta["caveats"])
     steps = pd.read_csv(folder / "steps.csv")
     assert steps[["start_ms", "end_ms"]].notna().all().all()
+    untimed = pd.read_csv(folder / "ics_untimed.csv")  # between its timed neighbours 4.54 s and 5.59 s
+    assert untimed.to_dict("records") == [{"wb_id": 1, "after_ms": 4540, "before_ms": 5590, "foot": "left"}]
+    assert not (mobgap.convert(synthetic, tmp_path / "o2")[0] / "ics_untimed.csv").exists()  # only when needed
+
+
+def test_untimed_contacts_are_not_false_positives(synthetic, tmp_path):
+    from pdrlearn.waist.evaluate import step_metrics
+
+    s = read_session(mobgap.convert(synthetic, tmp_path / "out")[1])
+    ref = s.extras["ics"]["ic_s"].to_numpy()
+    hit = pd.DataFrame({"event_s": np.r_[ref, 5.06]})  # every timed contact + the untimed one (~5.05 s)
+    m = step_metrics(hit, s)
+    assert m["step_f1"] == 1.0 and m["n_unscored"] == 1
+    extra = pd.DataFrame({"event_s": np.r_[ref, 5.0, 5.1]})  # one too many in the gap: one false positive
+    m = step_metrics(extra, s)
+    assert m["n_unscored"] == 1 and m["n_detected"] == len(ref) + 1 and m["step_precision"] < 1.0
+    near = pd.DataFrame({"event_s": np.r_[ref, 4.7]})  # within the tolerance of a timed neighbour: scored
+    assert step_metrics(near, s)["n_unscored"] == 0
 
 
 def test_no_reference_and_stereophoto_fallback(tmp_path):

@@ -4,7 +4,11 @@
   (``extras["ics"]``), scored with :func:`pdrlearn.steps.evaluate.score_events`. When the session has
   reference walking bouts, only detections inside the bouts (+- the matching tolerance) are scored,
   because the reference marks contacts only there (decision W9); ``step_f1_all`` scores the whole
-  recording.
+  recording. Where the reference has a contact without a time (``extras["ics_untimed"]``: INDIP NaN,
+  with the interval between its timed neighbours), up to that many detections inside the interval
+  (farther than the tolerance from both neighbours, so they cannot match a timed contact) are not
+  scored: the step happened, only its time is unknown (docs/external-data.md E2); ``n_unscored`` counts
+  them.
 - ``distance_error_pct``: distance tracked inside the reference bouts (steps whose midpoint lies in a
   bout) vs the bouts' total reference length; ``bout_distance_error_median_pct`` is the median of the
   per-bout absolute errors.
@@ -38,6 +42,20 @@ def _in_intervals(x: np.ndarray, starts: np.ndarray, ends: np.ndarray, pad: floa
     return m
 
 
+def untimed_mask(ev: np.ndarray, session: Session, tolerance_s: float = DEFAULT_TOLERANCE_S) -> np.ndarray:
+    """Detections (sorted times ``ev``) that stand for reference contacts without a time: in each interval
+    of ``extras["ics_untimed"]`` holding k such contacts, the first k detections farther than
+    ``tolerance_s`` from both of its (timed) ends."""
+    out = np.zeros(len(ev), dtype=bool)
+    u = session.extras.get("ics_untimed")
+    if u is None or not {"after_s", "before_s"} <= set(u.columns) or len(u) == 0:
+        return out
+    for (a, b), g in u.groupby(["after_s", "before_s"]):
+        inside = np.flatnonzero((ev > a + tolerance_s) & (ev < b - tolerance_s) & ~out)
+        out[inside[:len(g)]] = True
+    return out
+
+
 def step_metrics(steps: pd.DataFrame, session: Session, *, tolerance_s: float = DEFAULT_TOLERANCE_S) -> dict:
     """``step_f1``, ``step_f1_all``, ``ic_timing_mean_ms``, ``ic_timing_sd_ms`` (empty dict without ICs)."""
     ics = session.extras.get("ics")
@@ -49,11 +67,13 @@ def step_metrics(steps: pd.DataFrame, session: Session, *, tolerance_s: float = 
     bouts = reference_bouts(session)
     if bouts is not None:
         ev = ev[_in_intervals(ev, bouts.start_s.to_numpy(), bouts.end_s.to_numpy(), tolerance_s)]
+    unscored = untimed_mask(ev, session, tolerance_s)
+    ev = ev[~unscored]
     sc = score_events(ev, ref, tolerance_s=tolerance_s)
     out.update(step_f1=sc["f1"], step_precision=sc["precision"], step_recall=sc["recall"],
                ic_timing_mean_ms=1e3 * sc["timing_error_mean_s"],
                ic_timing_sd_ms=1e3 * sc["timing_error_sd_s"],
-               n_detected=sc["count"], n_reference=sc["reference_count"])
+               n_detected=sc["count"], n_reference=sc["reference_count"], n_unscored=int(unscored.sum()))
     return out
 
 

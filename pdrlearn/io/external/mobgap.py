@@ -185,7 +185,7 @@ def _labels(mat: _Mat, std: dict, fs: float, where: str,
     number of reference entries left out (NaN times, duplicate contacts)."""
     cwp = _records(mat.get(std, "ContinuousWalkingPeriod", where))
     lwb = _records(std.get("MicroWB", []))
-    steps, ics, bouts, turns = [], [], [], []
+    steps, ics, bouts, turns, untimed = [], [], [], [], []
     dropped = {"ics": 0, "duplicate_ics": 0, "strides": 0}
     for level, recs in (("wb", cwp), ("lwb", lwb)):
         for i, wb in enumerate(recs):
@@ -210,6 +210,10 @@ def _labels(mat: _Mat, std: dict, fs: float, where: str,
                                 f"InitialContact_LeftRight; the file is damaged (fetch again)")
             ok = np.isfinite(ic_t)  # INDIP leaves an IC it could not time as NaN (decision E2)
             dropped["ics"] += int((~ok).sum())
+            for k in np.flatnonzero(~ok):  # where the untimed contact lies: between its timed neighbours
+                before, after = ic_t[:k][ok[:k]], ic_t[k + 1:][ok[k + 1:]]
+                untimed.append({"wb_id": i, "after_ms": before[-1] if before.size else start,
+                                "before_ms": after[0] if after.size else end, "foot": ic_lr[k]})
             seen: dict[int, str] = {}
             for t, f in zip(ic_t[ok], np.asarray(ic_lr, dtype=object)[ok], strict=True):
                 if int(np.rint(t)) in seen:  # the same contact twice (MS001 Test11): keep the first
@@ -254,13 +258,14 @@ def _labels(mat: _Mat, std: dict, fs: float, where: str,
         "steps": pd.DataFrame(steps, columns=["start_ms", "end_ms", "ic_ms", "foot", "terrain", "length_m",
                                               "speed_mps", "duration_s", "stance_s", "swing_s", "wb_id", "turn"]),
         "ics": pd.DataFrame(ics, columns=["wb_id", "ic_ms", "foot"]),
+        "ics_untimed": pd.DataFrame(untimed, columns=["wb_id", "after_ms", "before_ms", "foot"]),
         "bouts": pd.DataFrame(bouts, columns=["level", "wb_id", "start_ms", "end_ms", "n_strides", "length_m",
                                               "duration_s", "speed_mps", "avg_stride_length_m", "cadence_spm",
                                               "n_turns", "termination_reason", "incline_number"]),
         "turns": pd.DataFrame(turns, columns=["wb_id", "start_ms", "end_ms", "angle_deg", "direction"]),
     }
     for df in out.values():
-        for c in ("start_ms", "end_ms", "ic_ms"):
+        for c in ("start_ms", "end_ms", "ic_ms", "after_ms", "before_ms"):
             if c in df and len(df):
                 df[c] = _int_ms(df[c].to_numpy(float))
     out["bouts"]["incline_number"] = out["bouts"]["incline_number"].astype("Int64")
@@ -374,9 +379,16 @@ def _session(mat: _Mat, rec: dict, cohort: str, pid: str, test: str, trial: str,
                 "strides_without_border": dropped["strides"]}
             caveats.append(
                 f"INDIP could not time {dropped['ics']} initial contact(s) (NaN) and {dropped['strides']} "
-                f"stride(s) (NaN border); they are left out of ics.csv / steps.csv although the steps happened, "
-                f"so a detector that finds them scores a false positive there"
+                f"stride(s) (NaN border); they are left out of ics.csv / steps.csv although the steps happened; "
+                f"ics_untimed.csv gives the interval between the timed neighbours of each such contact, where "
+                f"pdrlearn.waist.evaluate does not count a detection as a false positive"
                 + (f"; {dropped['duplicate_ics']} duplicate IC(s) kept once" if dropped["duplicate_ics"] else ""))
+        if dropped.get("ics"):
+            meta["labels"]["ics_untimed.csv"] = ("INDIP initial contacts without a time (NaN in the source), one "
+                                                 "row each: the contact lies between after_ms and before_ms (its "
+                                                 "timed neighbours, or the bout border)")
+        else:
+            del labels["ics_untimed"]
         tables.update(labels)
     else:
         meta["labels"] = {}
@@ -390,7 +402,7 @@ def _session(mat: _Mat, rec: dict, cohort: str, pid: str, test: str, trial: str,
 def _write(folder: Path, tables: dict[str, pd.DataFrame], meta: dict) -> None:
     with atomic_directory(folder) as tmp:
         for stem, df in tables.items():
-            fmt = LABEL_FORMAT if stem in ("steps", "ics", "bouts", "turns") else FLOAT_FORMAT
+            fmt = LABEL_FORMAT if stem in ("steps", "ics", "bouts", "turns", "ics_untimed") else FLOAT_FORMAT
             if stem == "wBarometer":
                 fmt = "%.9g"  # hPa: 7 digits would round away the 0.1 Pa resolution
             df.to_csv(tmp / f"{stem}.csv", index=False, float_format=fmt)
