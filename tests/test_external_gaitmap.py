@@ -207,3 +207,17 @@ def test_new_recordings_from_the_cache(tmp_path):
     ms = json.loads((tmp_path / "gaitmap_ms_left" / "meta.json").read_text())
     assert ms["n_samples"] == 7000 and ms["subject"]["cohort"].startswith("multiple sclerosis")
     assert len(made) == len(gaitmap.RECORDINGS)
+
+
+@needs_cache
+def test_foot_detector_on_the_new_recordings(tmp_path_factory):
+    out = tmp_path_factory.mktemp("gaitmap-new")
+    gaitmap.convert(CACHE, out)
+    for name in ("gaitmap_walk4x10_left", "gaitmap_walk4x10_right"):  # mocap IC reference
+        s = read_session(out / name)
+        sc = score_steps(AccelStepDetector().detect(s), s)
+        assert sc["ground_truth"] and sc["f1"] >= 0.98 and abs(sc["timing_error_mean_s"]) < 0.05, (name, sc)
+    for name in ("gaitmap_ms_left", "gaitmap_ms_right"):  # short foot-flats (decision 14)
+        s = read_session(out / name)
+        sc = score_steps(AccelStepDetector().detect(s), s)
+        assert not sc["ground_truth"] and sc["f1"] >= 0.95, (name, sc)

@@ -48,6 +48,13 @@ class BurstParams:
     min_stride_s: float  # two events closer than this are one stride (s)
     rest: float  # rest level of the filtered magnitude (m/s^2, gravity)
     peak_frac: float  # the event is the last local maximum reaching this fraction of the largest rise
+    # adaptive still time (decision 14): a still run must last quiet_frac x the longest of the last
+    # ``history`` still runs, between min_still_n and max_still_n samples; quiet_frac = 0: min_still_n
+    max_still_n: int = 0
+    quiet_frac: float = 0.0
+    history: int = 4
+    window_n: int = 1  # samples of the trailing still window (a run of k still samples = k + window_n - 1 quiet)
+    cap_n: int = 0  # still runs are counted up to this many quiet samples (standing is not a stance)
 
 
 @dataclass
@@ -67,6 +74,15 @@ class BurstState:
     pending: Event | None = None  # last accepted stride, held back until min_stride_s has passed
     pending_amp: float = 0.0
     pending_emx: float = -math.inf
+    quiet: list = field(default_factory=list)  # quiet samples of the last still runs (at most p.history)
+    need_n: int = -1  # still samples that end a swing now (-1: p.min_still_n)
+
+
+def _still_need(s: BurstState, p: BurstParams) -> int:
+    if p.quiet_frac <= 0 or not s.quiet:
+        return p.min_still_n
+    n = int(round(p.quiet_frac * max(s.quiet))) - (p.window_n - 1)
+    return min(max(n, p.min_still_n), max(p.max_still_n, p.min_still_n))
 
 
 def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstState,
@@ -90,7 +106,14 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
                 s.active and s.i0_t - s.pending[0] < p.min_stride_s):
             out.append(s.pending)
             s.pending = None
-        s.still_count = s.still_count + 1 if si else 0
+        if si:
+            s.still_count += 1
+        elif s.still_count:
+            if p.quiet_frac > 0:
+                q = s.still_count + p.window_n - 1
+                s.quiet = (s.quiet + [min(q, p.cap_n) if p.cap_n else q])[-p.history:]
+                s.need_n = _still_need(s, p)
+            s.still_count = 0
         was_rising, prev_a, prev_t = s.rising, s.prev_a, s.prev_t
         s.rising = ei > prev_a if prev_a == prev_a else False
         s.prev_a, s.prev_t = ei, ti
@@ -107,7 +130,7 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
             s.mx, s.mx_t = ai, ti
         if ai < s.mn:
             s.mn = ai
-        if s.still_count >= p.min_still_n:
+        if s.still_count >= (s.need_n if s.need_n >= 0 else p.min_still_n):
             s.active = False
             dur = ti - s.i0_t
             span = s.mx - s.mn

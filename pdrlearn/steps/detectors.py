@@ -71,6 +71,8 @@ class _GravityTracker:
 #: a still period that ends a swing needs at least this many samples, whatever min_still_s gives: at
 #: 20 Hz one quiet sample in the middle of a slow swing split strides in two (docs/decisions/steps.md)
 MIN_STILL_SAMPLES = 2
+#: a standard deviation over fewer than 3 samples is no estimate (decision 14)
+MIN_STILL_WINDOW_SAMPLES = 3
 
 
 class _AccelProcessor:
@@ -79,13 +81,18 @@ class _AccelProcessor:
         self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
         self.lp_event = CausalLowpass(_cutoff(det.event_cutoff_hz, fs), fs, order=2)
         self.delay = lowpass_delay_s(_cutoff(det.event_cutoff_hz, fs), fs, order=2)
-        self.w = max(2, int(round(det.still_window_s * fs)))
+        self.w = max(MIN_STILL_WINDOW_SAMPLES, int(round(det.still_window_s * fs)))
         self.tail: np.ndarray | None = None
         self.state = BurstState()
+        # still samples for a quiet time of q seconds: the window's first w - 1 samples are quiet too
+        def need(q: float) -> int:
+            return max(MIN_STILL_SAMPLES, int(round(q * fs)) - (self.w - 1))
         self.params = BurstParams(
-            amp=det.threshold, min_still_n=max(MIN_STILL_SAMPLES, int(round(det.min_still_s * fs))),
+            amp=det.threshold, min_still_n=need(det.min_quiet_s),
             min_dur_s=det.min_swing_s, max_dur_s=det.max_swing_s, min_stride_s=det.min_stride_s,
-            rest=det.gravity, peak_frac=det.peak_frac)
+            rest=det.gravity, peak_frac=det.peak_frac, max_still_n=need(det.max_quiet_s),
+            quiet_frac=det.quiet_frac, history=4, window_n=self.w, cap_n=int(round(0.6 * fs)))
+        self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
         m = magnitude(v)
@@ -116,9 +123,14 @@ class AccelStepDetector(StepDetector):
     order : Butterworth order (thesis ch.5.1: 3)
     threshold : minimum rise-and-fall of the filtered magnitude in a stride (m/s^2; thesis ch.5.1: 1.7)
     still_window_s, still_std, still_level_tol : a sample is still when the raw magnitude over the last
-        ``still_window_s`` seconds has a standard deviation below ``still_std`` (m/s^2) and a mean within
-        ``still_level_tol`` (m/s^2) of ``gravity``
-    min_still_s : still time that ends a swing (s)
+        ``still_window_s`` seconds (at least 3 samples) has a standard deviation below ``still_std``
+        (m/s^2) and a mean within ``still_level_tol`` (m/s^2) of ``gravity``
+    min_quiet_s, max_quiet_s, quiet_frac : a swing ends when the foot has been quiet (still window
+        included) for ``quiet_frac`` of its longest rest among the last 4 (each counted up to 0.6 s),
+        kept within ``min_quiet_s``..``max_quiet_s`` and starting at ``max_quiet_s`` (decision 14:
+        0.1 / 0.2 s, 0.5). Rest time is the subject's own: a healthy walker rests 0.3-0.5 s per stride,
+        an MS patient 0.12-0.19 s, while slow swings can look quiet for 0.08-0.15 s. ``quiet_frac=0``
+        always uses ``min_quiet_s``
     min_swing_s, max_swing_s : accepted swing durations (s)
     min_stride_s : events closer than this are one stride (s). The thesis' 20-sample step period at
         20 Hz (1.0 s) becomes this refractory time; decision: 0.6 s, the shortest walking stride
@@ -132,8 +144,9 @@ class AccelStepDetector(StepDetector):
     extra_columns = ("amplitude",)
 
     def __init__(self, *, cutoff_hz: float = 3.0, order: int = 3, threshold: float = 1.7,  # thesis ch.5.1
-                 still_window_s: float = 0.15, still_std: float = 0.6, still_level_tol: float = 1.2,
-                 min_still_s: float = 0.05, min_swing_s: float = 0.2, max_swing_s: float = 2.5,
+                 still_window_s: float = 0.08, still_std: float = 0.6, still_level_tol: float = 1.2,
+                 min_quiet_s: float = 0.1, max_quiet_s: float = 0.2, quiet_frac: float = 0.5,
+                 min_swing_s: float = 0.2, max_swing_s: float = 2.5,
                  min_stride_s: float = 0.6, peak_frac: float = 0.3, event_cutoff_hz: float = 8.0,
                  gravity: float = G):
         self._store(locals())
