@@ -127,6 +127,9 @@ def real(data: Path, runs=RUNS, configs=CONFIGS, bouts: list | None = None) -> p
                     "ic_sd_ms": m.get("ic_timing_sd_ms"), "dist_err_pct": m.get("distance_error_pct"),
                     "bout_err_median_pct": m.get("bout_distance_error_median_pct"),
                     "stride_mae_m": m.get("stride_length_mae_m"),
+                    "ic_stereo_mean_ms": m.get("ic_timing_stereo_mean_ms", np.nan),
+                    "ic_stereo_sd_ms": m.get("ic_timing_stereo_sd_ms", np.nan),
+                    "n_stereo": m.get("n_stereo_matched", 0),
                     "tp": round(m.get("step_recall", np.nan) * m.get("n_reference", 0)),
                     "n_detected": m.get("n_detected"), "n_reference": m.get("n_reference"),
                     "n_strides": m.get("n_strides")}
@@ -159,6 +162,16 @@ def external_runs(ext: Path) -> list[tuple[list[str], str]]:
     return runs
 
 
+def _pooled_timing(w: np.ndarray, mean: pd.Series, sd: pd.Series, name: str) -> dict:
+    """Mean and sd over all matched contacts of several runs (w = matched contacts per run)."""
+    ok = (w > 0) & np.isfinite(mean.to_numpy(float))
+    if not ok.any():
+        return {f"{name}_mean_ms": np.nan, f"{name}_sd_ms": np.nan}
+    w, m, s = w[ok], mean.to_numpy(float)[ok], np.nan_to_num(sd.to_numpy(float)[ok])
+    mu = float(np.sum(w * m) / w.sum())
+    return {f"{name}_mean_ms": mu, f"{name}_sd_ms": float(np.sqrt(np.sum(w * (s ** 2 + m ** 2)) / w.sum() - mu ** 2))}
+
+
 def pooled(df: pd.DataFrame, bouts: pd.DataFrame) -> pd.DataFrame:
     """Per pipeline, params and test kind (Test5 / Test11), pooled over subjects and runs."""
     df = df.assign(kind=df["test"].str.split("_").str[0])
@@ -170,22 +183,24 @@ def pooled(df: pd.DataFrame, bouts: pd.DataFrame) -> pd.DataFrame:
         rows.append({"test": kind, "pipeline": pipeline, "params": params, "runs": len(g),
                      "subjects": ",".join(sorted(g["subject"].unique())),
                      "step_f1": 2 * g.tp.sum() / (g.n_detected.sum() + g.n_reference.sum()),
-                     "ic_mean_ms": float(np.sum(w * g.ic_mean_ms) / w.sum()),
-                     "ic_sd_ms": float(np.sqrt(np.sum(w * (g.ic_sd_ms ** 2 + g.ic_mean_ms ** 2)) / w.sum()
-                                               - (np.sum(w * g.ic_mean_ms) / w.sum()) ** 2)),
+                     **_pooled_timing(w, g.ic_mean_ms, g.ic_sd_ms, "ic"),
+                     **_pooled_timing(g.n_stereo.to_numpy(float), g.ic_stereo_mean_ms, g.ic_stereo_sd_ms,
+                                      "ic_stereo"),
                      "bouts": len(b), "bout_err_median_pct": float(b.abs_err.median()),
                      "bout_err_signed_median_pct": float(b.error_pct.median()),
                      "stride_mae_m": float(np.sum(g.n_strides * g.stride_mae_m) / g.n_strides.sum())})
     return pd.DataFrame(rows)
 
 
-EXTRA_COLS = ("tp", "n_detected", "n_reference", "n_strides")
+EXTRA_COLS = ("tp", "n_detected", "n_reference", "n_strides", "n_stereo")
 EXTERNAL_NOTE = ("Per subject: calibrated on one Test5 straight walk (reference bout length) and tested on the "
                  "other, and on both -> Test11 (daily activities); HA002 has one referenced Test5 trial "
                  "(Stereophoto, docs/external-data.md E3) -> Test11 only. Pooled: F1 from the summed counts, "
                  "IC mean/sd over all matched contacts, median of |per-bout error| over all bouts, stride MAE "
-                 "over all strides. INDIP contacts without a time are not in ics.csv (E2): a detection there "
-                 "counts as a false positive.")
+                 "over all strides. Detections standing for INDIP contacts without a time are not scored (E2). "
+                 "ic_stereo = IC timing against the Stereophoto contacts (optical motion capture, E4), where "
+                 "the trial has them: INDIP dates MS001's right (affected) foot contacts 130-160 ms later than "
+                 "the Stereophoto.")
 
 
 def walked_between_contacts(session) -> float:

@@ -46,7 +46,7 @@ def _bout(start: float, ics: list[float], feet: list[str], *, border_unit: str =
     return w
 
 
-def _trial(n: int, cwp, *, system: str = "INDIP") -> dict:
+def _trial(n: int, cwp, *, system: str = "INDIP", stereo=None) -> dict:
     t = np.arange(n) / FS
     acc = np.column_stack([np.ones(n), 0.01 * np.sin(t), np.zeros(n)])  # g, x up
     gyr = np.column_stack([np.full(n, 57.29577951308232), np.zeros(n), np.zeros(n)])  # deg/s (1 rad/s)
@@ -55,6 +55,8 @@ def _trial(n: int, cwp, *, system: str = "INDIP") -> dict:
     std = {"INDIP": {"ContinuousWalkingPeriod": np.empty(0), "MicroWB": np.empty(0), "Fs": FS},
            "Stereophoto": {"ContinuousWalkingPeriod": np.empty(0), "MicroWB": np.empty(0), "Fs": FS}}
     std[system] = {"ContinuousWalkingPeriod": cwp, "MicroWB": cwp, "Fs": FS}
+    if stereo is not None:
+        std["Stereophoto"] = {"ContinuousWalkingPeriod": stereo, "MicroWB": stereo, "Fs": FS}
     return {"StartDateTime": "2020-01-01T10:00:00.000+01:00", "TimeZone": "Europe/Berlin",
             "SU": {"LowerBack": lb}, "Standards": std}
 
@@ -200,8 +202,26 @@ def test_unknown_source(tmp_path):
         fetch("nope", tmp_path)
 
 
+def test_stereophoto_contacts_as_second_reference(tmp_path):
+    from pdrlearn.waist.evaluate import step_metrics
+
+    indip = _bout(1.0, [1.0, 1.5, 2.0, 2.5, 3.0], FEET[:5])
+    stereo = _bout(1.0, [1.0, 1.4, 2.0, 2.4, 3.0], FEET[:5], border_unit="s")  # right contacts 100 ms earlier
+    made = mobgap.convert(_write_root(tmp_path / "src", {"Test5": {"Trial1": _trial(400, indip, stereo=stereo)}}),
+                          tmp_path / "out")
+    folder = made[0]
+    st = pd.read_csv(folder / "ics_stereophoto.csv")
+    assert st.ic_ms.tolist() == [990, 1390, 1990, 2390, 2990] and list(st.columns) == ["wb_id", "ic_ms", "foot"]
+    assert "ics_stereophoto.csv" in json.loads((folder / "meta.json").read_text())["labels"]
+    s = read_session(folder)
+    m = step_metrics(pd.DataFrame({"event_s": s.extras["ics_stereophoto"]["ic_s"].to_numpy()}), s)
+    assert m["ic_timing_stereo_mean_ms"] == pytest.approx(0.0) and m["stereo_recall"] == 1.0
+    assert m["ic_timing_mean_ms"] == pytest.approx(-40.0)  # vs INDIP: two of five contacts 100 ms early
+
+
 CACHED = default_cache_dir() / f"mobgap-{mobgap.SDIST.version}"
 PROVENANCE = {"source_commit", "source_sdist"}  # git commit of the bundled copy vs the pinned sdist
+ADDED = {"ics_stereophoto.csv"}  # second IC reference (E4), not in the bundled copy
 
 
 @pytest.mark.skipif(not (CACHED / "example_data").is_dir(),
@@ -213,7 +233,7 @@ def test_reproduces_bundled_ha001(real_dir, tmp_path):
     assert len(bundled) == 3
     for ref in bundled:
         new = made[ref.name]
-        assert sorted(p.name for p in new.iterdir()) == sorted(p.name for p in ref.iterdir())
+        assert sorted(p.name for p in new.iterdir() if p.name not in ADDED) == sorted(p.name for p in ref.iterdir())
         for f in sorted(ref.glob("*.csv")):
             a, b = pd.read_csv(new / f.name), pd.read_csv(f)
             assert list(a.columns) == list(b.columns) and a.shape == b.shape, f
@@ -223,5 +243,6 @@ def test_reproduces_bundled_ha001(real_dir, tmp_path):
                 else:
                     assert a[c].astype(str).tolist() == b[c].astype(str).tolist(), f"{f}:{c}"
         ma, mb = json.loads((new / "meta.json").read_text()), json.loads((ref / "meta.json").read_text())
+        ma["labels"] = {k: v for k, v in ma["labels"].items() if k not in ADDED}
         assert {k: v for k, v in ma.items() if k not in PROVENANCE} == \
             {k: v for k, v in mb.items() if k not in PROVENANCE}

@@ -8,7 +8,10 @@
   with the interval between its timed neighbours), up to that many detections inside the interval
   (farther than the tolerance from both neighbours, so they cannot match a timed contact) are not
   scored: the step happened, only its time is unknown (docs/external-data.md E2); ``n_unscored`` counts
-  them.
+  them. Where the session has a second IC reference (``extras["ics_stereophoto"]``, the lab's optical
+  motion capture, docs/external-data.md E4), ``ic_timing_stereo_mean_ms`` / ``_sd_ms`` give the timing
+  of the detections matched to it and ``stereo_recall`` its recall (no precision: its capture volume
+  covers only part of a bout).
 - ``distance_error_pct``: distance tracked inside the reference bouts (steps whose midpoint lies in a
   bout) vs the bouts' total reference length; ``bout_distance_error_median_pct`` is the median of the
   per-bout absolute errors.
@@ -74,6 +77,13 @@ def step_metrics(steps: pd.DataFrame, session: Session, *, tolerance_s: float = 
                ic_timing_mean_ms=1e3 * sc["timing_error_mean_s"],
                ic_timing_sd_ms=1e3 * sc["timing_error_sd_s"],
                n_detected=sc["count"], n_reference=sc["reference_count"], n_unscored=int(unscored.sum()))
+    second = session.extras.get("ics_stereophoto")
+    if second is not None and "ic_s" in second and len(second):
+        all_ev = np.sort(steps["event_s"].to_numpy(float)) if len(steps) else np.zeros(0)
+        s2 = score_events(all_ev, np.sort(second["ic_s"].dropna().to_numpy(float)), tolerance_s=tolerance_s)
+        out.update(ic_timing_stereo_mean_ms=1e3 * s2["timing_error_mean_s"],
+                   ic_timing_stereo_sd_ms=1e3 * s2["timing_error_sd_s"], stereo_recall=s2["recall"],
+                   n_stereo_matched=s2["true_positives"])
     return out
 
 

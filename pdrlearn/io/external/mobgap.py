@@ -64,6 +64,7 @@ COHORTS = {
 
 FLOAT_FORMAT = "%.7g"  # sensor values: 7 significant digits (the MM+ resolution is far coarser)
 LABEL_FORMAT = "%.6g"
+LABEL_STEMS = ("steps", "ics", "bouts", "turns", "ics_untimed", "ics_stereophoto")
 
 UNITS = {
     "timestamp": "ms since first sample (sample_index * 10); the device timestamps are uniform at 10 ms",
@@ -312,6 +313,11 @@ def _session(mat: _Mat, rec: dict, cohort: str, pid: str, test: str, trial: str,
             labels, dropped = _labels(mat, std[sys_name], fs, f"{where}.Standards.{sys_name}", unit)
             break
     ref = std.get(system)
+    second = None  # decision E4: the Stereophoto contacts as a second, independent IC reference
+    if system == "INDIP" and labels is not None and isinstance(std.get("Stereophoto"), dict) and _records(
+            std["Stereophoto"].get("ContinuousWalkingPeriod", [])):
+        sl, _ = _labels(mat, std["Stereophoto"], fs, f"{where}.Standards.Stereophoto", REFERENCES["Stereophoto"][1])
+        second = sl["ics"] if len(sl["ics"]) else None
     name = f"mobgap_{cohort}{pid}_{test}_{trial}"
     acc_si = tables["wAccelerometer"][["x", "y", "z"]].to_numpy()
     mag = tables["wMagneticField"][["x", "y", "z"]].to_numpy()
@@ -383,6 +389,12 @@ def _session(mat: _Mat, rec: dict, cohort: str, pid: str, test: str, trial: str,
                 f"ics_untimed.csv gives the interval between the timed neighbours of each such contact, where "
                 f"pdrlearn.waist.evaluate does not count a detection as a false positive"
                 + (f"; {dropped['duplicate_ics']} duplicate IC(s) kept once" if dropped["duplicate_ics"] else ""))
+        if second is not None:
+            labels["ics_stereophoto"] = second
+            meta["labels"]["ics_stereophoto.csv"] = (
+                "initial contacts of the Stereophoto reference (optical motion capture, lab gold standard; only "
+                "inside its capture volume), same columns and time convention as ics.csv: a second, independent "
+                "IC reference (docs/external-data.md E4)")
         if dropped.get("ics"):
             meta["labels"]["ics_untimed.csv"] = ("INDIP initial contacts without a time (NaN in the source), one "
                                                  "row each: the contact lies between after_ms and before_ms (its "
@@ -402,7 +414,7 @@ def _session(mat: _Mat, rec: dict, cohort: str, pid: str, test: str, trial: str,
 def _write(folder: Path, tables: dict[str, pd.DataFrame], meta: dict) -> None:
     with atomic_directory(folder) as tmp:
         for stem, df in tables.items():
-            fmt = LABEL_FORMAT if stem in ("steps", "ics", "bouts", "turns", "ics_untimed") else FLOAT_FORMAT
+            fmt = LABEL_FORMAT if stem in LABEL_STEMS else FLOAT_FORMAT
             if stem == "wBarometer":
                 fmt = "%.9g"  # hPa: 7 digits would round away the 0.1 Pa resolution
             df.to_csv(tmp / f"{stem}.csv", index=False, float_format=fmt)
