@@ -63,18 +63,22 @@ def train_mlp(
             net = torch.nn.Sequential(  # built for its (seeded) initialisation; the loop calls its ops directly
                 torch.nn.Linear(X.shape[1], hidden), torch.nn.Tanh(), torch.nn.Linear(hidden, n_classes)
             )
-            params = list(net.parameters())
+            # the 4 tensors live in one flat buffer (views of ``theta``), so Adam updates all of them
+            # with one call per operation; elementwise float ops do not depend on where an element sits
+            # in memory: same numbers as the per-tensor update (decision C8 in docs/decisions/cohort.md)
+            theta = torch.cat([p.detach().reshape(-1) for p in net.parameters()])
+            params, offset = [], 0
+            for p in net.parameters():
+                params.append(theta[offset:offset + p.numel()].view(p.shape).requires_grad_(True))
+                offset += p.numel()
             w1, c1_, w2, c2_ = params
 
             def forward(x):  # = net(x): Linear -> Tanh -> Linear, without nn.Module's per-call hooks
                 return F.linear(torch.tanh(F.linear(x, w1, c1_)), w2, c2_)
 
             # Adam (Kingma & Ba 2015, default betas) written out: torch.optim's first use imports
-            # torch._dynamo (~5 s), which would dominate the training of these tiny networks. The update
-            # runs as torch._foreach_* calls over the 4 tensors: on CPU each is the same per-tensor
-            # operation as the single-tensor form, in one call (decision C8 in docs/decisions/cohort.md)
-            m1 = [torch.zeros_like(p) for p in params]
-            m2 = [torch.zeros_like(p) for p in params]
+            # torch._dynamo (~5 s), which would dominate the training of these tiny networks
+            m1, m2 = torch.zeros_like(theta), torch.zeros_like(theta)
             beta1, beta2, eps = 0.9, 0.999, 1e-8
             xt, yt = torch.as_tensor(X, dtype=torch.float32), torch.as_tensor(y, dtype=torch.long)
             has_val = X_val is not None and len(X_val) > 0
@@ -86,27 +90,21 @@ def train_mlp(
                 grads = torch.autograd.grad(loss, params)
                 with torch.no_grad():
                     c1, c2 = 1 - beta1**epoch, 1 - beta2**epoch
-                    g = torch._foreach_add(grads, torch._foreach_mul(params, weight_decay))  # g + wd * p
-                    torch._foreach_mul_(m1, beta1)
-                    torch._foreach_add_(m1, g, alpha=1 - beta1)
-                    torch._foreach_mul_(m2, beta2)
-                    torch._foreach_addcmul_(m2, g, g, value=1 - beta2)
-                    step = torch._foreach_div(m1, c1)  # lr * (m1 / c1) / (sqrt(m2 / c2) + eps)
-                    torch._foreach_mul_(step, lr)
-                    den = torch._foreach_div(m2, c2)
-                    torch._foreach_sqrt_(den)
-                    torch._foreach_add_(den, eps)
-                    torch._foreach_div_(step, den)
-                    torch._foreach_sub_(params, step)
+                    g = torch.cat([gi.view(-1) for gi in grads])
+                    g = g + weight_decay * theta
+                    m1.mul_(beta1).add_(g, alpha=1 - beta1)
+                    m2.mul_(beta2).addcmul_(g, g, value=1 - beta2)
+                    theta.sub_(lr * (m1 / c1) / ((m2 / c2).sqrt() + eps))
                     monitor = float(F.cross_entropy(forward(xv), yv)) if has_val else float(loss)
                 if monitor < best - 1e-6:
                     best, best_epoch, stale = monitor, epoch, 0
-                    best_state = [p.detach().clone() for p in params]
+                    best_state = theta.clone()
                 else:
                     stale += 1
                     if stale >= patience:
                         break
-            params = best_state if best_state is not None else [p.detach() for p in params]
+            flat = best_state if best_state is not None else theta
+            params = [t.view(p.shape) for t, p in zip(flat.split([p.numel() for p in params]), params, strict=True)]
     finally:
         torch.set_num_threads(threads)
     W1, b1, W2, b2 = (p.numpy().astype(np.float64) for p in params)
