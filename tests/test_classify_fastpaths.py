@@ -212,3 +212,31 @@ def test_train_mlp_equals_previous_loop(seed):
     assert got_epoch == ref_epoch
     for a, b in zip(got, ref, strict=True):
         assert a.dtype == b.dtype and np.array_equal(a, b)  # bit-identical weights
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_loss_and_grads_equal_autograd(seed):
+    import torch
+    import torch.nn.functional as F
+
+    from pdrlearn.classify.nn import _loss_and_grads
+
+    g = torch.Generator().manual_seed(seed)
+    threads = torch.get_num_threads()
+    torch.set_num_threads(1)
+    try:
+        for t in range(25):
+            n, d = int(torch.randint(3, 220, (1,), generator=g)), int(torch.randint(1, 60, (1,), generator=g))
+            h, k = [10, 60, 144, int(torch.randint(1, 200, (1,), generator=g))][t % 4], 2 + t % 2
+            x, y = torch.randn(n, d, generator=g), torch.randint(0, k, (n,), generator=g)
+            ps = [torch.randn(h, d, generator=g) * 0.3, torch.randn(h, generator=g) * 0.1,
+                  torch.randn(k, h, generator=g) * 0.3, torch.randn(k, generator=g) * 0.1]
+            leaves = [p.clone().requires_grad_(True) for p in ps]
+            loss = F.cross_entropy(F.linear(torch.tanh(F.linear(x, leaves[0], leaves[1])), leaves[2], leaves[3]), y)
+            ref = torch.autograd.grad(loss, leaves)
+            with torch.no_grad():
+                got_loss, got = _loss_and_grads(x, y, *ps)
+            assert torch.equal(got_loss, loss.detach())
+            assert all(torch.equal(a, b) for a, b in zip(got, ref, strict=True)), (n, d, h, k)
+    finally:
+        torch.set_num_threads(threads)

@@ -34,6 +34,30 @@ def mlp_forward(X: np.ndarray, W1: np.ndarray, b1: np.ndarray, W2: np.ndarray, b
     return np.tanh(X @ W1 + b1) @ W2 + b2
 
 
+def _loss_and_grads(x, y, w1, b1, w2, b2):
+    """Mean cross-entropy of ``tanh(x w1^T + b1) w2^T + b2`` and its gradients ``(dw1, db1, dw2, db2)``.
+
+    The same ATen calls, in the same layouts, as ``torch.autograd.grad`` of
+    ``F.cross_entropy(F.linear(torch.tanh(F.linear(x, w1, b1)), w2, b2), y)`` makes (``linear`` is ``addmm``
+    with the transposed weight; the weight gradient of a transposed ``addmm`` operand is
+    ``grad.t().mm(input)``; a bias gradient is the column sum), so the numbers are bit-identical
+    (tests/test_classify_fastpaths.py checks it against autograd) at a third of the cost: these
+    networks are so small that building and walking the autograd graph costs more than the arithmetic.
+    Call under ``torch.no_grad()``.
+    """
+    import torch
+
+    aten = torch.ops.aten
+    a = torch.tanh(torch.addmm(b1, x, w1.t()))
+    ls = torch.log_softmax(torch.addmm(b2, a, w2.t()), 1)
+    loss, total_weight = aten.nll_loss_forward(ls, y, None, 1, -100)  # reduction 1 = mean
+    g_ls = aten.nll_loss_backward(torch.ones_like(loss), ls, y, None, 1, -100, total_weight)
+    g2 = aten._log_softmax_backward_data(g_ls, ls, 1, ls.dtype)
+    g1 = aten.tanh_backward(g2.mm(w2), a)
+    return loss, (g1.t().mm(x), g1.sum([0], keepdim=True).view(b1.shape),
+                  g2.t().mm(a), g2.sum([0], keepdim=True).view(b2.shape))
+
+
 def train_mlp(
     X: np.ndarray,
     y: np.ndarray,
@@ -69,13 +93,9 @@ def train_mlp(
             theta = torch.cat([p.detach().reshape(-1) for p in net.parameters()])
             params, offset = [], 0
             for p in net.parameters():
-                params.append(theta[offset:offset + p.numel()].view(p.shape).requires_grad_(True))
+                params.append(theta[offset:offset + p.numel()].view(p.shape))
                 offset += p.numel()
             w1, c1_, w2, c2_ = params
-
-            def forward(x):  # = net(x): Linear -> Tanh -> Linear, without nn.Module's per-call hooks
-                return F.linear(torch.tanh(F.linear(x, w1, c1_)), w2, c2_)
-
             # Adam (Kingma & Ba 2015, default betas) written out: torch.optim's first use imports
             # torch._dynamo (~5 s), which would dominate the training of these tiny networks
             m1, m2 = torch.zeros_like(theta), torch.zeros_like(theta)
@@ -85,24 +105,24 @@ def train_mlp(
             if has_val:
                 xv, yv = torch.as_tensor(X_val, dtype=torch.float32), torch.as_tensor(y_val, dtype=torch.long)
             best, best_epoch, best_state, stale = np.inf, 0, None, 0
-            for epoch in range(1, max_epochs + 1):
-                loss = F.cross_entropy(forward(xt), yt)  # = torch.nn.CrossEntropyLoss()
-                grads = torch.autograd.grad(loss, params)
-                with torch.no_grad():
+            with torch.no_grad():
+                for epoch in range(1, max_epochs + 1):
+                    loss, grads = _loss_and_grads(xt, yt, w1, c1_, w2, c2_)
                     c1, c2 = 1 - beta1**epoch, 1 - beta2**epoch
                     g = torch.cat([gi.view(-1) for gi in grads])
                     g = g + weight_decay * theta
                     m1.mul_(beta1).add_(g, alpha=1 - beta1)
                     m2.mul_(beta2).addcmul_(g, g, value=1 - beta2)
                     theta.sub_(lr * (m1 / c1) / ((m2 / c2).sqrt() + eps))
-                    monitor = float(F.cross_entropy(forward(xv), yv)) if has_val else float(loss)
-                if monitor < best - 1e-6:
-                    best, best_epoch, stale = monitor, epoch, 0
-                    best_state = theta.clone()
-                else:
-                    stale += 1
-                    if stale >= patience:
-                        break
+                    monitor = (float(F.cross_entropy(F.linear(torch.tanh(F.linear(xv, w1, c1_)), w2, c2_), yv))
+                               if has_val else float(loss))
+                    if monitor < best - 1e-6:
+                        best, best_epoch, stale = monitor, epoch, 0
+                        best_state = theta.clone()
+                    else:
+                        stale += 1
+                        if stale >= patience:
+                            break
             flat = best_state if best_state is not None else theta
             params = [t.view(p.shape) for t, p in zip(flat.split([p.numel() for p in params]), params, strict=True)]
     finally:
