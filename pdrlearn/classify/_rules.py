@@ -228,15 +228,21 @@ def refine_jointly(F: np.ndarray, target: np.ndarray, rules: list[Rule], values:
 
     rules = list(rules)
     best = float(score_of((votes @ w / wsum)[None, :])[0])
+    # each column's candidates and sorted layout do not change between passes (its rule keeps the number
+    # of cut points): computed once
+    cols = [(_candidates(F[:, j], len(r.thresholds), max_candidates), np.isfinite(F[:, j]).all())
+            for j, r in enumerate(rules)]
+    cols = [(combos, _joint_layout(F[:, j], combos, target, classes) if finite else None)
+            for j, (combos, finite) in enumerate(cols)]
     for _ in range(passes):
         improved = False
         for j, r in enumerate(rules):
             base = (votes @ w - votes[:, j] * w[j]) / wsum
-            combos = _candidates(F[:, j], len(r.thresholds), max_candidates)
-            fast = np.isfinite(F[:, j]).all() and np.isfinite(base).all()
+            combos, layout = cols[j]
+            fast = layout is not None and np.isfinite(base).all()
             for order in (tuple(r.classes), tuple(r.classes[::-1])):
                 if fast:
-                    s = _joint_scores(F[:, j], base, w[j], wsum, order, combos, vals, target, classes)
+                    s = _joint_scores(base, w[j], wsum, order, layout, vals)
                 else:  # NaN features: the direct (m, n) evaluation
                     idx = (F[None, None, :, j] > combos[:, :, None]).sum(axis=1)
                     s = score_of(base[None, :] + w[j] * np.asarray(order, dtype=float)[idx] / wsum)
@@ -254,33 +260,33 @@ def refine_jointly(F: np.ndarray, target: np.ndarray, rules: list[Rule], values:
     return rules
 
 
-def _joint_scores(x: np.ndarray, base: np.ndarray, wj: float, wsum: float, order, combos: np.ndarray,
-                  vals: np.ndarray, target: np.ndarray, classes: np.ndarray) -> np.ndarray:
-    """Balanced accuracy (m,) of the rounded stage result when rule ``j`` (values ``x``, weight ``wj``)
-    uses each candidate's cut points and interval classes ``order`` and the other rules give ``base``.
-
-    Same result as rounding ``base + wj * order[interval] / wsum`` for every candidate (``refine_jointly``),
-    from per-interval counts: a step's rounded class depends only on its interval (finite ``x``).
-    """
-    order = np.asarray(order, dtype=float)
+def _joint_layout(x: np.ndarray, combos: np.ndarray, target: np.ndarray, classes: np.ndarray) -> tuple:
+    """Steps sorted by ``x`` (finite), each candidate's interval edges in that order, the classes' masks."""
     srt = np.argsort(x, kind="stable")
     pos = np.searchsorted(x[srt], combos, side="right")  # (m, k) steps at or below each cut point
     edges = np.concatenate([np.zeros((len(combos), 1), dtype=np.int64), pos,
                             np.full((len(combos), 1), len(x), dtype=np.int64)], axis=1)
     tgt = target[srt]
-    correct = []
-    for o in order:  # rounded decision of every step if its vote were o (same expression as score_of)
-        R = base + wj * o / wsum
-        correct.append(vals[np.argmin(np.abs(R[:, None] - vals), axis=-1)][srt] == tgt)
-    per_class = []
-    for c in classes:
-        is_c = tgt == c
-        hits = np.zeros(len(combos), dtype=np.int64)
-        for i, ok in enumerate(correct):
-            cum = np.concatenate([[0], np.cumsum(ok & is_c)])
-            hits += cum[edges[:, i + 1]] - cum[edges[:, i]]
-        per_class.append(hits / is_c.sum())
-    return np.mean(per_class, axis=0)
+    is_c = tgt[None, :] == np.asarray(classes)[:, None]  # (n_classes, n)
+    return srt, edges, tgt, is_c, is_c.sum(axis=1)
+
+
+def _joint_scores(base: np.ndarray, wj: float, wsum: float, order, layout: tuple, vals: np.ndarray) -> np.ndarray:
+    """Balanced accuracy (m,) of the rounded stage result when rule ``j`` (weight ``wj``) uses each
+    candidate's cut points and interval classes ``order`` and the other rules give ``base``.
+
+    Same result as rounding ``base + wj * order[interval] / wsum`` for every candidate (``refine_jointly``),
+    from per-interval counts: a step's rounded class depends only on its interval (finite values).
+    """
+    srt, edges, tgt, is_c, n_c = layout
+    order = np.asarray(order, dtype=float)
+    R = base[None, :] + (wj * order / wsum)[:, None]  # (k + 1, n): every step's result for each interval's vote
+    correct = vals[np.argmin(np.abs(R[..., None] - vals), axis=-1)][:, srt] == tgt  # same rounding as score_of
+    n = len(tgt)
+    cum = np.zeros((len(order), len(n_c), n + 1), dtype=np.int64)  # correct steps of each class, cumulated
+    np.cumsum(correct[:, None, :] & is_c[None, :, :], axis=-1, out=cum[..., 1:])
+    hits = sum(cum[i][:, edges[:, i + 1]] - cum[i][:, edges[:, i]] for i in range(len(order)))  # (classes, m)
+    return np.mean(hits / n_c[:, None], axis=0)
 
 
 def combine_stages(stages: list[tuple[np.ndarray, list[str], str | None]]) -> dict[str, np.ndarray]:
