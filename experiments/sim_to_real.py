@@ -4,7 +4,7 @@
    calibration exercises of N simulated users, test on every labelled stride of the real foot recordings
    (all together, and each recording separately).
 2. real -> real: stratified k-fold cross-validation on the real recordings themselves; with ``--loro``
-   also leave-one-recording-out (train on 3 real recordings, test on the 4th: harder, because the folds no
+   also leave-one-recording-out (train on all real recordings but one, test on it: harder, because the folds no
    longer share a recording, and the stairs recordings are the only source of their class).
 3. The gap per method (points of accuracy, sim->real vs real CV).
 4. ``--diagnose``: per terrain class, the median of every foot terrain-SVM feature
@@ -37,6 +37,10 @@ ROOT = Path(__file__).resolve().parents[1]
 REAL = ROOT / "datasets" / "real"
 RESULTS = ROOT / "experiments" / "results"
 REAL_FOOT = ["gaitmap_level_left", "gaitmap_level_right", "gaitmap_stairs_up_left", "gaitmap_stairs_down_left"]
+# `--external DIR` (sessions of `pdrlearn fetch gaitmap`): the right foot of the same stair recordings, labelled
+# by the same converter rule as the bundled left foot (docs/external-data.md, gaitmap section). Only these:
+# the other new foot recordings are flat by protocol and would swamp the stair classes of the pooled score.
+EXTERNAL_FOOT = ["gaitmap_stairs_up_right", "gaitmap_stairs_down_right"]
 METHODS = ["heuristic", "dtw", "svm", "nn"]
 CLASSES = ("flat", "up", "down")
 
@@ -309,6 +313,9 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
     ap.add_argument("--real-rate", default="native", choices=("native", "sim"),
                     help="sim: block-average the real recordings to the simulated rate (the acquisition of a "
                          "device at that rate) before training/testing on them; native: 204.8 Hz as recorded")
+    ap.add_argument("--external", type=Path, default=None,
+                    help="folder of `pdrlearn fetch gaitmap` sessions: also test on the right-foot stair recordings "
+                         f"({', '.join(EXTERNAL_FOOT)}); results get the suffix _ext")
     ap.add_argument("--steady-train", action="store_true",
                     help="train on the steady simulated strides only (no turns on the spot / closing steps)")
     args = ap.parse_args(argv)
@@ -317,6 +324,13 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
 
     t_all = time.perf_counter()
     real = [read_session(REAL / n) for n in REAL_FOOT]
+    if args.external is not None:
+        missing = [n for n in EXTERNAL_FOOT if not (args.external / n).is_dir()]
+        if missing:
+            raise SystemExit(f"{args.external}: no {', '.join(missing)}; run `pdrlearn fetch gaitmap --out "
+                             f"{args.external}` first")
+        real += [read_session(args.external / n) for n in EXTERNAL_FOOT]
+    names = [r.name for r in real]
     if args.real_rate == "sim":
         real = [block_average(r, args.rate) for r in real]
     t0 = time.perf_counter()
@@ -360,10 +374,10 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
         f"Trained on {len(sims)} simulated terrain exercises ({args.users} users, seeds {args.first_user}.."
         f"{args.first_user + args.users - 1}, x 3 speeds, {args.rate:g} Hz, "
         f"{sum(len(s.steps) for s in sims)} strides, simulated in {sim_s:.1f} s); tested on the {n_real} "
-        f"labelled strides of the real foot recordings ({', '.join(REAL_FOOT)}), pooled and per recording. "
+        f"labelled strides of the real foot recordings ({', '.join(names)}), pooled and per recording. "
         f"Real CV = {args.cv}-fold stratified cross-validation on the real strides"
-        + ("; real LORO = train on 3 real recordings, test on the 4th (pooled over the held-out recordings "
-           "whose classes the other three contain)" if args.loro else "")
+        + ("; real LORO = train on all real recordings but one, test on that one (pooled over the held-out recordings "
+           "whose classes the others contain)" if args.loro else "")
         + ".\n\n" + df.to_markdown(index=False, floatfmt=".1f") + "\n"
     )
     if args.loro:
@@ -384,6 +398,7 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
         stem += "_steady" if args.steady_train else ""
         stem += "_rest" if args.boundaries == "rest" else ""
         stem += "_realrate" if args.real_rate == "sim" else ""
+        stem += "_ext" if args.external is not None else ""
         df.to_csv(RESULTS / f"{stem}.csv", index=False)
         (RESULTS / f"{stem}.md").write_text(text)
     print(text)
