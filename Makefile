@@ -5,7 +5,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 export MPLBACKEND := Agg
 
-.PHONY: venv demo test bench lint clean browser
+.PHONY: venv demo test bench lint clean browser external
 
 venv: $(STAMP)
 
@@ -37,6 +37,11 @@ bench: $(STAMP)
 	mkdir -p out
 	$(BIN)/python -m pytest -q -m bench --benchmark-only --benchmark-enable --benchmark-json out/bench.json \
 	  --benchmark-columns=min,median,max,rounds tests/benchmarks
+
+# Public example data of gaitmap and mobgap (pinned PyPI sdists, sha256-checked) -> datasets/external (needs the network once).
+external: $(STAMP)
+	$(BIN)/pdrlearn fetch mobgap --out datasets/external
+	$(BIN)/pdrlearn fetch gaitmap --out datasets/external
 
 lint: $(STAMP)
 	$(BIN)/ruff check pdrlearn tests experiments
