@@ -78,7 +78,7 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
                cutoff_hz: float = 2.5, fir_order_s: float = 0.3, min_step_s: float = 0.3,  # windows: W16
                search_s: float = 0.25, fc_search_s: float = 0.25, min_peak_mps2: float = 0.1,
                rhythm: bool = False, max_step_s: float = 1.5, acc_ml: np.ndarray | None = None,
-               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+               unshifted: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
 
     The vertical acceleration is low-passed with a zero-lag FIR (seed 003: order 30, 2.5 Hz, here the
@@ -98,6 +98,7 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     max_step_s : maxima further apart than this (s) belong to different walking sequences (``rhythm``)
     acc_ml : (n,) medio-lateral acceleration (m/s^2); with ``rhythm`` the side of each step from it
         (:func:`step_sides`) makes the completed sequences alternate left/right (decision W20)
+    unshifted : with ``acc_ml`` and ``rhythm``, drop weak maxima without a weight shift (decision W23)
 
     Returns
     -------
@@ -115,7 +116,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
             strong &= np.asarray(gate, dtype=bool)[cand]
         side = None if acc_ml is None else step_sides(lateral_velocity(acc_ml, fs)[cand], strong)
         keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2,
-                               min_step_s=min_step_s, max_step_s=max_step_s, side=side)
+                               min_step_s=min_step_s, max_step_s=max_step_s, side=side,
+                               unshifted=unshifted)
         peaks = cand[keep]
     else:
         peaks, _ = _sig.find_peaks(vf, height=min_peak_mps2, distance=dist)
@@ -229,9 +231,43 @@ def prune_same_side(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     return keep
 
 
+def drop_unshifted(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, accepted: np.ndarray,
+                   side: np.ndarray, fs: float, *, max_step_s: float = 1.5, n_neighbours: int = 2) -> np.ndarray:
+    """Drop a maximum that shows neither cue of a step (decision W23): accepted by the fixed height
+    threshold only (not a W18 rhythm fill), no weight shift (undecided side: the pelvis's lateral velocity
+    under a third of its typical value, W20), and under ``PRUNE_HEIGHT_FRAC`` of the median height of its
+    walking-sequence neighbours (up to ``n_neighbours`` kept maxima on each side, consecutive maxima at
+    most ``max_step_s`` apart). Every step moves the body's weight from one foot to the other, so a weak
+    vertical bounce without that lateral shift is no step (a bounce inside a slow step, a postural move).
+    Decided on the mask as given (order-independent). Returns the new mask."""
+    cand = np.asarray(cand, dtype=np.int64)
+    h = np.asarray(height, dtype=np.float64)
+    keep = np.asarray(keep, dtype=bool)
+    out = keep.copy()
+    sel = np.flatnonzero(keep)
+    t = cand[sel]
+    max_gap = max_step_s * fs
+    for j, c in enumerate(sel):
+        if side[c] != 0 or not accepted[c]:
+            continue
+        nb = []
+        for step in (-1, 1):
+            i = j
+            while len([x for x in nb if (x > j) == (step > 0)]) < n_neighbours:
+                nxt = i + step
+                if nxt < 0 or nxt >= sel.size or abs(t[nxt] - t[i]) > max_gap:
+                    break
+                nb.append(nxt)
+                i = nxt
+        if nb and h[c] < PRUNE_HEIGHT_FRAC * float(np.median(h[sel[nb]])):
+            out[c] = False
+    return out
+
+
 def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, fs: float, *,
                     min_peak: float, min_step_s: float = 0.3, max_step_s: float = 1.5,
-                    tol: float = RHYTHM_TOL, side: np.ndarray | None = None) -> np.ndarray:
+                    tol: float = RHYTHM_TOL, side: np.ndarray | None = None, unshifted: bool = True
+                    ) -> np.ndarray:
     """Complete walking sequences of accepted vertical maxima with the gait rhythm (decision W18).
 
     Steps come at a regular period: (1) inside a sequence, a gap of ``m + 1`` local periods
@@ -245,7 +281,9 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     a missing step lose their weaker maximum first (:func:`prune_same_side`); a gap between contacts of
     known sides is filled only with a step count of the right parity (:func:`_missing_steps`), only by
     candidates not on the wrong side, and only completely (all ``m`` steps found, else none); an end
-    step must not lie on the side of the contact it extends.
+    step must not lie on the side of the contact it extends. With ``side`` and ``unshifted`` (decision
+    W23), an accepted maximum with an undecided side and under half its neighbours' height is dropped
+    (:func:`drop_unshifted`).
 
     Parameters
     ----------
@@ -303,6 +341,8 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
                 if i is not None:
                     add.append(i)
     keep[np.asarray(add, dtype=np.int64)] = True
+    if side is not None and unshifted:  # W23: no weight shift and a weak bounce: no step
+        keep = drop_unshifted(cand, h, keep, np.asarray(accepted, dtype=bool), sd, fs, max_step_s=max_step_s)
     # the completed set must still respect the shortest step: drop the lower of two too-close maxima
     sel = np.flatnonzero(keep)
     for a, b in zip(sel[:-1], sel[1:], strict=True):

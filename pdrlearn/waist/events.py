@@ -78,6 +78,9 @@ class InitialContactDetector:
     alternate : offline, with ``rhythm``: make the sequences alternate left/right, with the step side
         from the pelvis's lateral velocity (same-side maxima too close for a step between them lose the
         weaker one, gaps are filled with a step count of the right parity; decision W20)
+    weight_shift : offline, with ``alternate``: a maximum accepted by the height threshold alone, with no
+        lateral weight shift (undecided side) and under half its sequence neighbours' height, is no step
+        (decision W23)
 
     Attributes
     ----------
@@ -89,11 +92,12 @@ class InitialContactDetector:
     def __init__(self, *, realtime: bool = False, cutoff_hz: float = 2.5, fir_order_s: float = 0.3,
                  walk_threshold: float = WALK_THRESHOLD_MPS2, ap_cutoff_hz: float = 20.0,
                  max_step_s: float = 1.5, rhythm: bool = True, alternate: bool = True,
-                 lobe_ratio: float | None = None):
+                 lobe_ratio: float | None = None, weight_shift: bool = True):
         self.realtime = realtime
         self.lobe_ratio = lobe_ratio
         self.rhythm = rhythm
         self.alternate = alternate
+        self.weight_shift = weight_shift
         self.cutoff_hz = cutoff_hz
         self.fir_order_s = fir_order_s
         self.walk_threshold = walk_threshold
@@ -115,7 +119,8 @@ class InitialContactDetector:
             ic, fc, ref = K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
                                        fir_order_s=self.fir_order_s, rhythm=self.rhythm,
                                        max_step_s=self.max_step_s,
-                                       acc_ml=imu.acc_ml if self.alternate else None)
+                                       acc_ml=imu.acc_ml if self.alternate else None,
+                                       unshifted=self.weight_shift)
         self.ic_, self.fc_, self.anchor_ = ic, fc, ref
         name = "alvarez-realtime" if self.realtime else "alvarez-offline"
         self.steps_ = steps_from_events(imu.t, ic, fc, max_step_s=self.max_step_s, detector=name)
