@@ -664,13 +664,16 @@ def gyro_bias_360(t: np.ndarray, w_z: np.ndarray, *, turns: float = 1.0) -> floa
 def mean_rate_per_stride(t: np.ndarray, w_z: np.ndarray, events: np.ndarray) -> np.ndarray:
     """Mean vertical rate (rad/s) over the stride around each step (seed 003 sec. 3.3, MRZ without the
     absolute value): for step ``k`` (``events[k]`` to ``events[k+1]``) the stride is
-    ``[events[k-1], events[k+1]]`` (clipped at the ends). Returns ``len(events) - 1`` values."""
+    ``[events[k-1], events[k+1]]``; the first step of a sequence takes the stride that starts with it,
+    ``[events[0], events[2]]`` (decision W24: a window of one step keeps the pelvis's per-step yaw
+    swing, which cancels only over a stride). One-step sequences use that step. Returns
+    ``len(events) - 1`` values."""
     ev = np.asarray(events, dtype=np.float64)
     n = len(ev) - 1
     out = np.full(max(n, 0), np.nan)
     cum = np.concatenate([[0.0], np.cumsum(0.5 * (w_z[1:] + w_z[:-1]) * np.diff(t))])
     for k in range(n):
-        a, b = ev[max(k - 1, 0)], ev[k + 1]
+        a, b = (ev[k - 1], ev[k + 1]) if k > 0 else (ev[0], ev[min(2, n)])
         if b <= a:
             continue
         out[k] = (np.interp(b, t, cum) - np.interp(a, t, cum)) / (b - a)
