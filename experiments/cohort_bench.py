@@ -6,14 +6,16 @@
 
 Writes a Markdown table (default experiments/results/cohort_bench.md). The number of interest is the
 speed-up of the 2-worker LocalCluster over the serial ``train-all --serial`` run (target >= 1.7x on 2
-cores, issue 10). Serial and cluster runs go back to back (the order alternates between repeats) and each
-row records the 1-minute load average when it started, because other processes on a shared machine take
-cores from either run. ``cpu s/job`` is the CPU time of the process running a job while it ran: equal
-serial and on the cluster means the workers add no per-job overhead (thread oversubscription, spin-waiting,
-serialization), whatever the load. A probe measures what 2 single-threaded processes get together relative
-to one at that moment (numpy matrix products and pure Python): the ceiling of the speed-up then.
-``--plain-halves`` also times the ceiling with the real job: two plain ``train-all --serial`` processes
-(no Dask) started together on half the users each (decision C7 in docs/decisions/cohort.md).
+cores, issue 10). Each serial and cluster run is a fresh ``pdrlearn train-all`` process, as a user runs
+it, so both pay their imports (decision C9). Serial and cluster runs go back to back (the order alternates
+between repeats) and each row records the 1-minute load average when it started, because other processes
+on a shared machine take cores from either run. ``cpu s/job`` is the CPU time of the process running a job
+while it ran: equal serial and on the cluster means the workers add no per-job overhead (thread
+oversubscription, spin-waiting, serialization), whatever the load. A probe measures what 2 single-threaded
+processes get together relative to one at that moment (numpy matrix products and pure Python): the ceiling
+of the speed-up then. ``--plain-halves`` also times the ceiling with the real job: two plain ``train-all
+--serial`` processes (no Dask) started together on half the users each (decision C7 in
+docs/decisions/cohort.md).
 """
 
 from __future__ import annotations
@@ -79,6 +81,19 @@ def parallel_capacity(workers: int) -> dict[str, float]:
     return out
 
 
+#: ``pdrlearn`` in a fresh interpreter (the console script's entry point, without depending on PATH).
+CLI = [sys.executable, "-c", "import sys; from pdrlearn.cli import main; sys.exit(main(sys.argv[1:]))"]
+
+
+def _cli_fresh(args: list) -> dict:
+    """``pdrlearn ARGS --json`` in a fresh process, as a user runs it: serial and cluster runs both pay their
+    imports (a serial run inside this warm process would not, while every cluster starts cold workers)."""
+    proc = subprocess.run([*CLI, *map(str, args)], stdout=subprocess.PIPE, text=True, cwd=ROOT)
+    if proc.returncode != 0:
+        raise SystemExit(f"failed: pdrlearn {' '.join(map(str, args))}")
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
 def _cli_json(args: list[str]) -> dict:
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
@@ -110,8 +125,7 @@ def _plain_halves(cohort: Path, out: Path, common: list) -> dict:
     for i, user in enumerate(sorted(p for p in cohort.iterdir() if p.is_dir())):
         halves[i % 2].mkdir(parents=True, exist_ok=True)
         (halves[i % 2] / user.name).symlink_to(user.resolve())
-    cmd = [sys.executable, "-c", "import sys; from pdrlearn.cli import main; sys.exit(main(sys.argv[1:]))"]
-    procs = [subprocess.Popen([*cmd, "train-all", str(h), "--out", str(out / f"m{i}"), "--serial",
+    procs = [subprocess.Popen([*CLI, "train-all", str(h), "--out", str(out / f"m{i}"), "--serial",
                                *map(str, common)], stdout=subprocess.PIPE, text=True, cwd=ROOT)
              for i, h in enumerate(halves)]
     outs = [p.communicate()[0] for p in procs]
@@ -170,12 +184,12 @@ def main(argv: list[str] | None = None) -> None:
             print(f"probe (repeat {rep}): {probes[-1]}", flush=True)
 
             def serial(rep=rep):
-                return _cli_json(["train-all", work / "cohort", "--out", work / f"m_serial{rep}", "--serial",
-                                  *common])
+                return _cli_fresh(["train-all", work / "cohort", "--out", work / f"m_serial{rep}", "--serial",
+                                   *common])
 
             def dask(rep=rep):
-                return _cli_json(["train-all", work / "cohort", "--out", work / f"m_dask{rep}", "--workers",
-                                  a.workers, *common])
+                return _cli_fresh(["train-all", work / "cohort", "--out", work / f"m_dask{rep}", "--workers",
+                                   a.workers, *common])
 
             if a.serial_default_threads:
                 timed("serial, library default threads", rep,
@@ -187,7 +201,7 @@ def main(argv: list[str] | None = None) -> None:
                 timed("2 plain processes (half the users each)", rep,
                       lambda rep=rep: _plain_halves(work / "cohort", work / f"halves{rep}", common))
             if a.one_worker:
-                timed("LocalCluster (1 worker)", rep, lambda rep=rep: _cli_json(
+                timed("LocalCluster (1 worker)", rep, lambda rep=rep: _cli_fresh(
                     ["train-all", work / "cohort", "--out", work / f"m_one{rep}", "--workers", 1, *common]))
         ref = _strip(runs[0]["rows"]) if not a.serial_default_threads else _strip(runs[1]["rows"])
         same_all = all(_strip(r["rows"]) == ref for r in runs if r["run"] != "serial, library default threads")
@@ -214,6 +228,8 @@ def main(argv: list[str] | None = None) -> None:
             "# Cohort benchmark\n",
             f"{a.users} simulated users, tasks {a.tasks}, methods {a.methods}, {a.cv}-fold CV; "
             f"simulation of the cohort (train + test sessions) {t_sim:.0f} s; {os.cpu_count()} CPUs.\n",
+            "Every serial and cluster run is a fresh `pdrlearn train-all` process, as a user runs it (both pay "
+            "their imports; before session 4 the serial run reused this script's warm process, decision C9).\n",
             "Probe before each pair: what "
             f"{a.workers} single-threaded processes together get relative to one (numpy matrix products / pure "
             "Python, 2 s each): the ceiling of the speed-up at that moment, since other processes share the "
