@@ -1,5 +1,5 @@
 """Localization experiment (thesis ch.7.3, Tables 34-43): simulated scenarios A-D, M1/M2/M3, plus the
-real gaitmap level-walk stride lengths.
+real gaitmap level-walk stride lengths and the strides found on every real foot recording (decision L27).
 
 Usage::
 
@@ -317,6 +317,86 @@ def run_real() -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+EXTERNAL = ROOT / "datasets" / "external"
+E7_STANCE = {"stance_floor_factor": 0.0, "stance_gap_s": 0.0}  # decision E7 without L27
+
+
+def _foot_recordings():
+    """Every real foot recording: the bundled gaitmap sessions and, when fetched, datasets/external's."""
+    for root in (REAL, EXTERNAL):
+        for d in sorted(root.glob("gaitmap_*")) if root.exists() else ():
+            yield read_session(d)
+
+
+def run_real_stride_finding() -> pd.DataFrame:
+    """Decision L27: strides found by the stance rules on every real foot recording, E7 (fixed thresholds)
+    and L27 (relative to the walker's stance floor), streaming (StanceSegmenter) and offline (the inertial
+    stance + rest-to-rest strides of the M3 engine on the accelerometer detector's strides); matched =
+    overlapping a detector stride with IoU >= 0.5."""
+    import pdrlearn.steps as steps_mod
+    from pdrlearn.displace import FootDisplacement, inertial_stance
+    from pdrlearn.kernels.stride import stance_strides
+    from pdrlearn.orient import unit_data
+    from pdrlearn.track.evaluate import match_by_overlap
+
+    def found(strides: np.ndarray, det: pd.DataFrame) -> tuple[int, int]:
+        x = pd.DataFrame(np.asarray(strides, float).reshape(-1, 2), columns=["start_s", "end_s"])
+        return len(x), len(match_by_overlap(x, det, min_iou=0.5))
+
+    rows = []
+    for s in _foot_recordings():
+        f = unit_data(s, "foot")
+        det = steps_mod.AccelStepDetector().detect(s)[["start_s", "end_s"]].reset_index(drop=True)
+        row = {"session": s.name, "rate_hz": f.fs, "detector": len(det)}
+        for tag, seg, fac in (("E7", E7_STANCE, 0.0), ("L27", {}, None)):
+            row[f"stream_{tag}"] = found(stance_strides(f.t, f.gyr, seg), det)
+            stance = inertial_stance(f.acc, f.gyr, f.fs, **({} if fac is None else {"floor_factor": fac}))
+            fd = FootDisplacement().estimate(f, det, stance=stance)
+            row[f"offline_{tag}"] = found(np.column_stack([fd.start_s_, fd.end_s_]), det)
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def run_real_walk_geometry() -> list[str]:
+    """L-walk (datasets/external/gaitmap_lwalk): straight legs (>= 4 strides whose heading changes by < 20 deg
+    from stride to stride) with their length and the turn between legs (90-degree corners and 180-degree
+    turnarounds by protocol); 4x10 m walk: total distance per foot (no distance reference)."""
+    lines = []
+    lw = EXTERNAL / "gaitmap_lwalk"
+    if lw.exists():
+        s = read_session(lw)
+        lines += ["### L-walk legs and turns (foot heading; protocol: 90-degree corners, 180-degree turnarounds)", "",
+                  "| path | strides | distance m | legs: start s, length m, turn to it deg |", "|---|---|---|---|"]
+        for name, kw in (("offline (M3 oracle, detector)", {"steps": "detector"}), ("streaming", {"streaming": True})):
+            r = track_plasys(s, method="M3", model="oracle", heading="foot", **kw)
+            st, tr = r.steps.reset_index(drop=True), r.trajectory.reset_index(drop=True)
+            h = np.degrees(np.unwrap(st["heading_rad"].to_numpy(float)))
+            legs, cur = [], [0]
+            for i in range(1, len(st)):
+                if abs(h[i] - h[i - 1]) < 20:
+                    cur.append(i)
+                else:
+                    legs.append(cur)
+                    cur = [i]
+            legs = [g for g in legs + [cur] if len(g) >= 4]
+            cells, prev = [], None
+            for g in legs:
+                a, b = g[0], g[-1] + 1
+                mh = float(np.mean(h[g[1:-1]]))
+                length = float(np.hypot(tr["x"][b] - tr["x"][a], tr["y"][b] - tr["y"][a]))
+                cells.append(f"{st['start_s'][a]:.0f} s {length:.1f} m" + ("" if prev is None else f" {mh - prev:+.0f}"))
+                prev = mh
+            lines.append(f"| {name} | {len(st)} | {np.abs(st['length_m']).sum():.1f} | {'; '.join(cells)} |")
+        lines.append("")
+    for side in ("left", "right"):
+        d = EXTERNAL / f"gaitmap_walk4x10_{side}"
+        if d.exists():
+            r = track_plasys(read_session(d), method="M3", model="oracle", steps="detector", heading="foot")
+            lines.append(f"4x10 m walk, {side} foot (offline): {len(r.steps)} strides, "
+                         f"{r.steps['length_m'].sum():.2f} m (no distance reference: mocap ICs only)")
+    return lines + [""] if lines else []
+
+
 def run_real_calibration_halves() -> pd.DataFrame:
     """Decision L26 on real data: the distance calibration estimated on one half of a gaitmap level walk's
     labelled strides (by time), tested on the other half (heel point, oracle classes, labelled strides)."""
@@ -403,6 +483,19 @@ def report(sim: pd.DataFrame | None, real: pd.DataFrame, orient: list[str], args
                          f"{fmt(r.stride_length_mae_m, 3)} | {fmt(r.stride_length_mae_pct)} | "
                          f"{fmt(getattr(r, 'stride_length_mae_pct_straight', None))} | "
                          f"{fmt(getattr(r, 'stride_length_mae_pct_turns', None))} | {fmt(r.distance_error_pct)} |")
+    finding = getattr(real, "attrs", {}).get("stride_finding")
+    if finding is not None and len(finding):
+        lines += ["", "## Stride finding on every real foot recording (decision L27)", "",
+                  "Strides found / matched to an accelerometer-detector stride (IoU >= 0.5), E7 fixed stance "
+                  "thresholds -> L27 (relative to the walker's stance floor); offline = inertial stance + "
+                  "rest-to-rest strides of the M3 engine on the detector's strides.", "",
+                  "| session | rate Hz | detector strides | streaming E7 -> L27 | offline E7 -> L27 |",
+                  "|---|---|---|---|---|"]
+        for r in finding.itertuples():
+            lines.append(f"| {r.session} | {r.rate_hz:.1f} | {r.detector} | {r.stream_E7[0]} / {r.stream_E7[1]} -> "
+                         f"{r.stream_L27[0]} / {r.stream_L27[1]} | {r.offline_E7[0]} / {r.offline_E7[1]} -> "
+                         f"{r.offline_L27[0]} / {r.offline_L27[1]} |")
+        lines += [""] + list(getattr(real, "attrs", {}).get("walk_geometry", []))
     halves = getattr(real, "attrs", {}).get("calibration_halves")
     if halves is not None and len(halves):
         lines += ["", "### Distance calibration (L26) on real data: estimated on one half of the labelled strides, "
@@ -447,6 +540,8 @@ def main(argv: list[str] | None = None) -> None:
     real = run_real()
     real.to_csv(out / "localization_real.csv", index=False)
     real.attrs["calibration_halves"] = run_real_calibration_halves()
+    real.attrs["stride_finding"] = run_real_stride_finding()
+    real.attrs["walk_geometry"] = run_real_walk_geometry()
     text = report(sim, real, orient, argv if argv is not None else __import__("sys").argv[1:])
     (out / "localization.md").write_text(text)
     print(text)

@@ -12,6 +12,7 @@ from scipy.ndimage import uniform_filter1d
 from pdrlearn.displace import _kernels as K
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
+from pdrlearn.kernels import stride as SK
 from pdrlearn.orient import FootAttitude, UnitData
 from pdrlearn.signal import standstill_mask
 from pdrlearn.signal.conditioning import runs
@@ -46,10 +47,25 @@ def force_stance(session: Session, t: np.ndarray, gyr: np.ndarray | None = None,
 
 
 def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: float = 0.1,
-                    acc_tol: float = 1.5, gyr_tol: float = 0.4) -> np.ndarray:
+                    acc_tol: float = 1.5, gyr_tol: float = 0.4,
+                    floor_factor: float = SK.STANCE_L27_DEFAULTS["stance_floor_factor"],
+                    floor_window_s: float = SK.STANCE_L27_DEFAULTS["stance_floor_window_s"],
+                    gyr_max: float = SK.STANCE_L27_DEFAULTS["stance_gyro_max_rad_s"]) -> np.ndarray:
     """Foot-flat samples from accelerometer + gyroscope (short window, looser tolerances than
-    :func:`pdrlearn.signal.standstill_mask`, whose test this reuses)."""
-    return standstill_mask(acc, gyr, fs, window_s=max(window_s, 2.5 / fs), acc_tol=acc_tol, gyr_tol=gyr_tol)
+    :func:`pdrlearn.signal.standstill_mask`, whose test this reuses).
+
+    Decision L27: the gyro tolerance follows the walker's own stance rotation: ``floor_factor`` x the
+    lowest ``window_s`` mean of |w| within ``floor_window_s`` around the sample, never below ``gyr_tol``
+    nor above ``gyr_max`` (a foot that never quite rests: instep mounts rolling with the foot, short
+    foot-flats); ``floor_factor=0`` = the fixed ``gyr_tol``.
+    """
+    window_s = max(window_s, 2.5 / fs)
+    tol = gyr_tol
+    if floor_factor > 0 and len(gyr):
+        floor = SK.stance_floor(np.linalg.norm(np.asarray(gyr, dtype=float), axis=1), fs, mean_s=window_s,
+                                window_s=floor_window_s)
+        tol = SK.stance_gyro_threshold(floor, gyr_tol, factor=floor_factor, cap=gyr_max)
+    return standstill_mask(acc, gyr, fs, window_s=window_s, acc_tol=acc_tol, gyr_tol=tol)
 
 
 def stance_runs(t: np.ndarray, stance: np.ndarray, *, merge_s: float = 0.1) -> np.ndarray:

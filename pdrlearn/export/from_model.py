@@ -304,9 +304,10 @@ def export_model(
 
 def _displacement(displacement: dict | None, length_bounds, model) -> dict:
     """Displacement parameters with the length-class bounds resolved (see :func:`export_model`)."""
+    from pdrlearn.kernels.stride import STANCE_L27_DEFAULTS
     from pdrlearn.runtime.tracker import DEFAULT_DISPLACEMENT
 
-    out = dict(DEFAULT_DISPLACEMENT)
+    out = {**STANCE_L27_DEFAULTS, **DEFAULT_DISPLACEMENT}  # decision L27: the stance rule's settings
     out.update(_calibration_fields(model))
     out.update(displacement or {})
     if length_bounds is None:

@@ -4,7 +4,9 @@ The one kernel behind both the streaming runtime (:class:`pdrlearn.runtime.track
 streamable variant of the ``plasys`` pipeline (``pdrlearn track --streaming``), so that a streamed
 trajectory equals the offline one (issue 7, decision E6 in docs/decisions/export.md):
 
-- :class:`StanceSegmenter` - online step detection on the foot gyroscope, stance to stance (decision E7);
+- :class:`StanceSegmenter` - online step detection on the foot gyroscope, stance to stance (decision E7),
+  the stance threshold relative to the walker's own stance rotation (decision L27 in
+  docs/decisions/localization.md; :func:`stance_floor`/:func:`stance_gyro_threshold` are the offline side);
 - :func:`stride_motion` - the stride's foot signals levelled by :func:`pdrlearn.kernels.window.levelled_units`
   (the step-window construction, at the unit's own rate) integrated twice with a zero-velocity update
   at both stances, and the stride's heading change;
@@ -18,6 +20,7 @@ Units: s, m, rad, m/s^2, rad/s.
 from __future__ import annotations
 
 import math
+from collections import deque
 from collections.abc import Mapping
 
 import numpy as np
@@ -25,48 +28,122 @@ import numpy as np
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.window import Levelled, interp
 
-
 # -- stride detection ---------------------------------------------------------------------------------
-class StanceSegmenter:
-    """Online stance-to-stance stride detection on the foot gyroscope (decision E7).
+#: Decision L27 (docs/decisions/localization.md): the stance threshold follows the walker's own stance
+#: rotation. ``stance_floor_factor`` x the floor (the lowest ``min_stance_s`` mean of |w| within
+#: ``stance_floor_window_s``), never below the fixed threshold, never above ``stance_gyro_max_rad_s``;
+#: factor 0 = the fixed threshold alone (decision E7). ``stance_gap_s``: a stance survives shorter runs of
+#: samples above the threshold (one-sample spikes split the 0.12-0.19 s foot-flats of the MS recording).
+STANCE_L27_DEFAULTS = {"stance_floor_factor": 2.0, "stance_floor_window_s": 1.0, "stance_gyro_max_rad_s": 2.0,
+                       "stance_gap_s": 0.03}
 
-    A stance is a run of samples with ``|w| < stance_gyro_rad_s`` lasting ``min_stance_s``. Its boundary
-    is its middle, but at most ``stance_half_s`` from its start (closing the stride before) and from its
-    end (opening the next), so standing still neither delays a stride nor stretches it. Strides lasting
-    ``min_step_s``..``max_step_s`` are returned by :meth:`update` as ``(start_s, end_s)``.
+
+def stance_gyro_threshold(floor: np.ndarray | float, base: float, *, factor: float = 2.0,
+                          cap: float = 2.0) -> np.ndarray:
+    """Decision L27: the stance gyro threshold (rad/s) from the stance floor (rad/s, the lowest short-time
+    mean of |w| around the sample): ``factor`` x floor, within ``base`` (the fixed threshold) .. ``cap``.
+    A non-finite floor (no sample to estimate it) gives ``base``."""
+    f = np.asarray(floor, dtype=float)
+    return np.minimum(np.maximum(factor * np.where(np.isfinite(f), f, 0.0), base), max(cap, base))
+
+
+def stance_floor(w: np.ndarray, fs: float, *, mean_s: float, window_s: float) -> np.ndarray:
+    """Offline (centred) stance floor (rad/s) of a whole recording of |w| ``(n,)`` at ``fs`` Hz (decision
+    L27): the mean of |w| over ``mean_s`` around each sample, its minimum within ``window_s`` around it.
+    The streaming :class:`StanceSegmenter` uses the trailing window."""
+    from scipy.ndimage import minimum_filter1d, uniform_filter1d
+
+    w = np.asarray(w, dtype=float)
+    if not len(w):
+        return np.zeros(0)
+    m = uniform_filter1d(w, max(1, int(round(mean_s * fs))), mode="nearest")
+    return minimum_filter1d(m, max(1, int(round(window_s * fs))), mode="nearest")
+
+
+class StanceSegmenter:
+    """Online stance-to-stance stride detection on the foot gyroscope (decisions E7, L27).
+
+    A stance is a run of samples with ``|w|`` below the stance threshold lasting ``min_stance_s``. The
+    threshold is ``stance_gyro_rad_s``, raised to ``stance_floor_factor`` x the walker's stance floor (the
+    lowest ``min_stance_s`` mean of |w| in the last ``stance_floor_window_s``) when the foot never quite
+    rests (a rolling instep mount, short foot-flats), at most ``stance_gyro_max_rad_s`` (decision L27).
+    Its boundary is its middle, but at most ``stance_half_s`` from its start (closing the stride before)
+    and from its end (opening the next), so standing still neither delays a stride nor stretches it.
+    Strides lasting ``min_step_s``..``max_step_s`` are returned by :meth:`update` as ``(start_s, end_s)``.
     """
 
     def __init__(self, *, stance_gyro_rad_s: float = 0.8, min_stance_s: float = 0.1, stance_half_s: float = 0.3,
-                 min_step_s: float = 0.3, max_step_s: float = 3.0):
+                 min_step_s: float = 0.3, max_step_s: float = 3.0,
+                 stance_floor_factor: float = STANCE_L27_DEFAULTS["stance_floor_factor"],
+                 stance_floor_window_s: float = STANCE_L27_DEFAULTS["stance_floor_window_s"],
+                 stance_gyro_max_rad_s: float = STANCE_L27_DEFAULTS["stance_gyro_max_rad_s"],
+                 stance_gap_s: float = STANCE_L27_DEFAULTS["stance_gap_s"]):
         self.thr = float(stance_gyro_rad_s)
         self.min_stance_s = float(min_stance_s)
         self.half = float(stance_half_s)
         self.min_step_s, self.max_step_s = float(min_step_s), float(max_step_s)
+        self.factor = float(stance_floor_factor)
+        self.floor_window_s = float(stance_floor_window_s)
+        self.cap = max(float(stance_gyro_max_rad_s), self.thr)
+        self.gap = float(stance_gap_s)
+        if not (self.factor >= 0 and self.floor_window_s > 0 and self.gap >= 0):
+            raise DataError(f"StanceSegmenter: stance_floor_factor {stance_floor_factor!r} and stance_gap_s "
+                            f"{stance_gap_s!r} must be >= 0, stance_floor_window_s {stance_floor_window_s!r} > 0 "
+                            "(decision L27; factor 0 and gap 0 = the fixed rule E7)")
         self.stance_start: float | None = None
         self.last_still = -np.inf
         self.closed = False
         self.open_s: float | None = None  # start (s) of the stride in progress
         self.last_boundary: float | None = None
+        # decision L27: trailing min_stance_s mean of |w| (running sum) and its trailing minimum (monotonic deque)
+        self._mean_q: deque = deque()
+        self._mean_sum = 0.0
+        self._min_q: deque = deque()
 
     @classmethod
     def from_params(cls, params: Mapping) -> StanceSegmenter:
         """From a bundle's ``displacement`` parameters (unknown keys ignored)."""
-        keys = ("stance_gyro_rad_s", "min_stance_s", "stance_half_s", "min_step_s", "max_step_s")
+        keys = ("stance_gyro_rad_s", "min_stance_s", "stance_half_s", "min_step_s", "max_step_s",
+                *STANCE_L27_DEFAULTS)
         return cls(**{k: float(params[k]) for k in keys if k in params})
+
+    def _thresholds(self, t: list[float], w: list[float]) -> list[float]:
+        """Decision L27: the stance threshold at each new sample (trailing floor; state carried across calls,
+        so the result does not depend on how the stream is chunked)."""
+        if self.factor == 0:
+            return [self.thr] * len(t)
+        out = []
+        mq, nq = self._mean_q, self._min_q
+        ms, fw, k, lo, hi = self.min_stance_s, self.floor_window_s, self.factor, self.thr, self.cap
+        for ti, wi in zip(t, w, strict=True):
+            mq.append((ti, wi))
+            self._mean_sum += wi
+            while mq[0][0] <= ti - ms:
+                self._mean_sum -= mq.popleft()[1]
+            m = self._mean_sum / len(mq)
+            while nq and nq[-1][1] >= m:
+                nq.pop()
+            nq.append((ti, m))
+            while nq[0][0] <= ti - fw:
+                nq.popleft()
+            out.append(min(max(k * nq[0][1], lo), hi))
+        return out
 
     def update(self, t: np.ndarray, gyr: np.ndarray) -> list[tuple[float, float]]:
         """Feed new foot-gyroscope samples ``t (n,)`` s, ``gyr (n, 3)`` rad/s; return the strides they close."""
         out: list[tuple[float, float]] = []
-        still = np.linalg.norm(gyr, axis=1) < self.thr
-        for ti, s in zip(t.tolist(), still.tolist(), strict=True):
-            if s:
+        w = np.linalg.norm(gyr, axis=1).tolist()
+        tl = t.tolist()
+        thr = self._thresholds(tl, w)
+        for ti, wi, th in zip(tl, w, thr, strict=True):
+            if wi < th:
                 if self.stance_start is None:
                     self.stance_start, self.closed = ti, False
                 self.last_still = ti
                 if not self.closed and ti - self.stance_start >= max(2 * self.half, self.min_stance_s):
                     self._close(self.stance_start + self.half, out)  # long stance: close the stride now
                 continue
-            if self.stance_start is not None:
+            if self.stance_start is not None and ti - self.last_still > self.gap:  # L27: bridge short spikes
                 s0, s1 = self.stance_start, self.last_still
                 if s1 - s0 >= self.min_stance_s:
                     mid = 0.5 * (s0 + s1)
