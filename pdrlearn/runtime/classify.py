@@ -161,8 +161,11 @@ class StepGraph:
                                 "outputs": {t: spec["outputs"][t] for t in tasks}}, backend="onnxruntime")
         ci = {c: i for i, c in enumerate(bundle.manifest["features"]["channels"])}
         self.channels = np.array([ci[c] for c in spec["channels"]], dtype=np.intp)
-        m = self.model  # the session's run with its output names, for float64 C-ordered windows (E13)
-        self._run = m._sess.run if m.backend == "onnxruntime" else None
+        m = self.model  # the session's run with its output names, for float64 C-ordered windows (E13);
+        # the compiled session's own run (onnxruntime's Python wrapper only checks the input names, which are
+        # fixed here, and the ownership of OrtValue inputs, which numpy windows are not; decision E15)
+        sess = m._sess if m.backend == "onnxruntime" else None
+        self._run = None if sess is None else getattr(sess, "_sess", sess).run
         self._wanted = getattr(m, "_wanted", [])
         by_name = {name: role for role, name in m.outputs.items()}
         self._roles = [by_name[name] for name in self._wanted]
@@ -185,5 +188,5 @@ class StepGraph:
         if not np.isfinite(W[:, self.channels]).all():  # as compute_features: never classify NaN
             raise DataError("step features are NaN: the stream lacks a sensor the model needs")
         if self._run is not None and W.dtype == np.float64 and W.flags.c_contiguous:
-            return dict(zip(self._roles, self._run(self._wanted, {self.model.input_name: W}), strict=True))
+            return dict(zip(self._roles, self._run(self._wanted, {self.model.input_name: W}, None), strict=True))
         return self.model.run(W)

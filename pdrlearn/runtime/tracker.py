@@ -16,6 +16,7 @@ zero-velocity update at both stances (thesis ch.7.2), the M3 rules (thesis eq. 6
 from __future__ import annotations
 
 import logging
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -32,6 +33,8 @@ from pdrlearn.kernels.stride import (
 )
 from pdrlearn.kernels.window import (
     BOUNDARIES,
+    _fill_channels,
+    _unit_grid,
     available_groups,
     fill_step_window,
     levelled_units,
@@ -40,6 +43,7 @@ from pdrlearn.kernels.window import (
 )
 from pdrlearn.runtime.bundle import Bundle, load_bundle
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
+from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled
 
 log = logging.getLogger(__name__)
 
@@ -134,6 +138,8 @@ class Tracker:
     heading_source : "auto" | "foot" | "waist-gyro" (default: the bundle's ``displacement``).
     step_graph : classify with the bundle's step graph when it has one (one onnxruntime run per step,
         decision E10); False = one run per model (the same numbers, slower).
+    incremental : level the foot samples as they are pushed (decision E15; the same windows to rounding,
+        less work at the step event); False = all of it at the step event (the shared kernel alone).
     """
 
     def __init__(
@@ -148,6 +154,7 @@ class Tracker:
         buffer_s: float = 8.0,
         heading_source: str | None = None,
         step_graph: bool = True,
+        incremental: bool = True,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -182,6 +189,7 @@ class Tracker:
         #: the window channels process_step resamples: those the step graph reads when it classifies every
         #: task, else all (None); the other rows stay NaN (decision E13)
         g = self.step_graph
+        self._all_channels = frozenset(self.channels)
         self._step_channels = (None if g is None or set(g.tasks) != set(self.classifiers)
                                else frozenset({"t_s"} | {self.channels[j] for j in g.channels.tolist()}))
         self.params = dict(m["displacement"])
@@ -209,13 +217,19 @@ class Tracker:
             )
         self.rate_hz = self.bundle.rate_hz
         self.buffer_s = float(buffer_s)
-        self._buf: dict[str, list] = {}
+        self._buf: dict[str, Ring] = {}
+        self._oldest = math.inf  # time of the oldest buffered sample (s), for a cheap _trim
+        self._latest = -math.inf  # time of the newest buffered sample (s)
+        #: the foot levelling's per-sample part, done at push time (decision E15); None = the shared
+        #: kernel at the step event only (``incremental=False``, or no declared foot frame)
+        self._foot = FootLevelling(self.forward["foot"]) if incremental and "foot" in self.forward else None
         self.position = np.asarray(start, dtype=float).copy()
         self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
         self._det_t = -np.inf
         self._rate_checked: set[str] = set()
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
+        self._waist_groups: tuple[str, ...] | None = None
         self.n_steps = 0
 
     # -- classification of given windows (also used by the parity tests) ----------------------------
@@ -234,12 +248,20 @@ class Tracker:
         return out
 
     def window(self, t0: float, t1: float) -> np.ndarray:
-        """The step window of ``[t0, t1]`` from the buffered samples (every channel)."""
-        return self._window(t0, t1, channels=None)[0]
+        """The step window of ``[t0, t1]`` from the buffered samples (every channel), built by the shared
+        kernel alone (:func:`pdrlearn.kernels.window.fill_step_window`, the training side's)."""
+        streams = {k: self._stream(k) for k in self._buf}
+        W = np.full((len(self.channels), self.n_samples), np.nan)
+        w0, w1 = self.window_bounds(t0, t1, streams)
+        fill_step_window(W, streams, w0, w1, channel_index=self.ci, available=available_groups(streams),
+                         forward=self.forward, rest_search_s=self.rest_search_s, heading=self.heading_mode)
+        return W
 
     def _window(self, t0: float, t1: float, channels=False):
         """Window (channels x samples) and levelled units of the step; ``channels``: the channels to fill
-        (default: those process_step needs, ``self._step_channels``; None = all)."""
+        (default: those process_step needs, ``self._step_channels``; None = all). The foot unit is
+        levelled from the push-time state when it covers the step (decision E15), else by the shared
+        kernel; resampling is the shared kernel's (``fill_step_window``'s per-channel path)."""
         channels = self._step_channels if channels is False else channels
         streams = {k: self._stream(k) for k in self._buf}
         W = np.full((len(self.channels), self.n_samples), np.nan)
@@ -247,12 +269,31 @@ class Tracker:
             self._groups = (tuple(streams), available_groups(streams))
         avail = self._groups[1]
         w0, w1 = self.window_bounds(t0, t1, streams)
-        lev = fill_step_window(W, streams, w0, w1, channel_index=self.ci, available=avail, forward=self.forward,
-                               rest_search_s=self.rest_search_s, heading=self.heading_mode, channels=channels)
+        lev = self._levelled(streams, w0, w1, avail)
+        tg = w0 + (w1 - w0) * _unit_grid(self.n_samples)
+        W[self.ci["t_s"]] = tg - w0
+        need = self._all_channels if channels is None else channels
+        if not fill_resampled(W, streams, w0, w1, tg, lev, self.ci, avail, need):
+            _fill_channels(W, streams, w0, w1, tg, lev, self.ci, avail, need)
         if (w0, w1) != (t0, t1):  # displacement stays stance to stance, like pdrlearn track --streaming
-            lev = levelled_units(streams, t0, t1, available=avail, forward=self.forward,
-                                 rest_search_s=self.rest_search_s, heading=self.heading_mode)
+            lev = self._levelled(streams, t0, t1, avail)
         return W, lev
+
+    def _levelled(self, streams, t0: float, t1: float, avail: tuple[str, ...]):
+        """:func:`pdrlearn.kernels.window.levelled_units` of ``[t0, t1]``, the foot from the push-time state
+        (:func:`pdrlearn.runtime.stream.foot_levelled`) when it holds the step."""
+        kw = {"forward": self.forward, "rest_search_s": self.rest_search_s, "heading": self.heading_mode}
+        foot = None
+        if self._foot is not None and "foot_acc" in avail and "foot_gyr" in avail:
+            foot = foot_levelled(self._foot, t0, t1, rest_search_s=self.rest_search_s, heading=self.heading_mode)
+        if foot is None:
+            return levelled_units(streams, t0, t1, available=avail, **kw)
+        lev = {"foot": foot}
+        if "waist_acc" in avail and "waist" in self.forward:
+            if self._groups[1] is not avail or self._waist_groups is None:
+                self._waist_groups = tuple(g for g in avail if g.startswith("waist"))
+            lev.update(levelled_units(streams, t0, t1, available=self._waist_groups, **kw))
+        return lev
 
     def window_bounds(self, t0: float, t1: float, streams=None) -> tuple[float, float]:
         """Times (s) the classification window of the step ``[t0, t1]`` is cut at: the step itself, or
@@ -268,27 +309,47 @@ class Tracker:
 
     # -- streaming ------------------------------------------------------------------------------------
     def _stream(self, name: str) -> tuple[np.ndarray, np.ndarray]:
-        parts = self._buf[name]
-        if len(parts) > 1:
-            parts[:] = [(np.concatenate([p[0] for p in parts]), np.vstack([p[1] for p in parts]))]
-        return parts[0]
+        return self._buf[name].view()
 
     def _append(self, name: str, t, v) -> None:
         t = np.asarray(t, dtype=np.float64).reshape(-1)
-        if len(t) == 0:
+        n = len(t)
+        if n == 0:
             return
-        v = np.asarray(v, dtype=np.float64).reshape(len(t), -1)
-        if not (np.isfinite(t).all() and np.isfinite(v).all()):
+        v = np.asarray(v, dtype=np.float64).reshape(n, -1)
+        ring = self._buf.get(name)
+        t0 = float(t[0])
+        if n == 1:  # one sample (streaming sample by sample): the checks on Python floats
+            vals = v[0].tolist()
+            ok = math.isfinite(t0) and all(map(math.isfinite, vals))
+        else:  # finite iff the sum is (a sum of finite values overflows only beyond 1e308); else exactly
+            ok = math.isfinite(float(np.add.reduce(t))) and math.isfinite(float(np.add.reduce(v, axis=None)))
+            ok = ok or bool(np.isfinite(t).all() and np.isfinite(v).all())
+        if not ok:
             raise DataError(f"{name}: pushed samples contain NaN/inf; clean the stream before tracking")
-        parts = self._buf.setdefault(name, [])
-        if (parts and t[0] <= parts[-1][0][-1]) or np.any(np.diff(t) <= 0):
-            prev = f" after {parts[-1][0][-1]:.3f} s" if parts else ""
+        if (ring is not None and t0 <= ring.last) or (n > 1 and not (t[1:] > t[:-1]).all()):
+            prev = f" after {ring.last:.3f} s" if ring is not None else ""
             raise DataError(
-                f"{name}: pushed timestamps are not increasing (at {t[0]:.3f} s{prev}); push samples in time order"
+                f"{name}: pushed timestamps are not increasing (at {t0:.3f} s{prev}); push samples in time order"
             )
-        parts.append((t, v))
+        if ring is None:
+            ring = self._buf[name] = Ring(v.shape[1])
+            self._oldest = min(self._oldest, t0)
+        elif v.shape[1] != ring.v.shape[1]:
+            raise DataError(f"{name}: pushed {v.shape[1]} values per sample after {ring.v.shape[1]}; push every "
+                            "sample of a sensor with the same number of values")
+        if n == 1:
+            ring.append1(t0, vals)
+            if self._foot is not None and (name == "fAccelerometer" or name == "fGyroscope"):
+                self._foot.feed1(name, t0, vals)
+        else:
+            ring.append(t, v)
+            if self._foot is not None and (name == "fAccelerometer" or name == "fGyroscope"):
+                self._foot.feed(name, t, v)
+        if ring.last > self._latest:
+            self._latest = ring.last
         if name not in self._rate_checked:  # the data's rate against the bundle's, once per sensor
-            tt = self._stream(name)[0]
+            tt = ring.view()[0]
             if len(tt) >= 5:
                 self.bundle.check_rates({name: 1.0 / float(np.median(np.diff(tt)))}, where=f"pushed {name}")
                 self._rate_checked.add(name)
@@ -326,7 +387,7 @@ class Tracker:
         stream with different delays; a window cut before the waist data arrives would be wrong)."""
         if not self._pending:
             return []
-        ends = [float(p[-1][0][-1]) for p in self._buf.values() if p]
+        ends = [r.last for r in self._buf.values()]
         required = self.bundle.manifest["sensors"].get("required", [])
         latest = min(ends + [-np.inf for n in required if n not in self._buf])
         # a sensor that stopped must not hold the steps forever: the thesis asks for < 2 s delay
@@ -341,10 +402,10 @@ class Tracker:
         decision E7); a step runs from one stance to the next."""
         if "fGyroscope" not in self._buf or "fAccelerometer" not in self._buf:
             return
-        t, g = self._stream("fGyroscope")
-        i = int(np.searchsorted(t, self._det_t, side="right"))
-        if i >= len(t):
+        if self._buf["fGyroscope"].last <= self._det_t:  # no new gyroscope sample
             return
+        t, g = self._stream("fGyroscope")
+        i = int(t.searchsorted(self._det_t, side="right"))
         self._pending += self.segmenter.update(t[i:], g[i:])
         self._det_t = float(t[-1])
 
@@ -396,16 +457,17 @@ class Tracker:
 
     def _trim(self) -> None:
         """Drop samples older than both the last step boundary (minus a margin) and ``buffer_s``."""
-        latest = max((p[-1][0][-1] for p in self._buf.values() if p), default=None)
-        if latest is None:
+        if not self._buf:
             return
-        keep_from = latest - self.buffer_s
+        keep_from = self._latest - self.buffer_s
         if self.segmenter.last_boundary is not None:  # the next step starts at the last boundary
             keep_from = max(keep_from, self.segmenter.last_boundary - 1.0)
         if self._pending:  # keep what the waiting steps need
             keep_from = min(keep_from, self._pending[0][0] - 1.0)
-        for name in self._buf:
-            t, v = self._stream(name)
-            i = int(np.searchsorted(t, keep_from))
-            if i > 0:
-                self._buf[name][:] = [(t[i:], v[i:])] if i < len(t) else [(t[-1:], v[-1:])]
+        if keep_from <= self._oldest:  # nothing to drop (the common case between two steps)
+            return
+        for ring in self._buf.values():
+            ring.drop_before(keep_from)
+        if self._foot is not None:
+            self._foot.drop_before(keep_from)
+        self._oldest = min(float(r.t[r.i0]) for r in self._buf.values())

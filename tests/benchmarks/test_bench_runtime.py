@@ -46,6 +46,45 @@ def _loaded_tracker(bundle, session, **kw):
     return tr
 
 
+def native_chunks(session) -> list[dict]:
+    """The session's samples as a device streams them (decision E15): one push per timestamp, holding
+    each sensor's sample at that time (all sensors of a 20 Hz PLASYS tick together; units on their own
+    clocks in separate pushes), in time order."""
+    names = list(session.streams)
+    ts = [session.streams[n].t for n in names]
+    allt = np.unique(np.concatenate(ts))
+    idx = [np.searchsorted(allt, t) for t in ts]  # each sample's tick
+    per_tick: list[dict] = [{} for _ in range(len(allt))]
+    for n, t, ix in zip(names, ts, idx, strict=True):
+        v = session.streams[n].values
+        for k, j in enumerate(ix.tolist()):
+            per_tick[j][n] = (t[k:k + 1], v[k:k + 1])
+    return per_tick
+
+
+def push_latencies(bundle, session, repeat=3, **kw) -> tuple[np.ndarray, np.ndarray, int]:
+    """Decision E15's latency: ``Tracker.push`` timed on every push of :func:`native_chunks` (a new tracker
+    per pass). Returns (ms of the pushes that returned a step, ms of the other pushes, steps per pass)."""
+    from pdrlearn.runtime.tracker import Tracker
+
+    chunks = native_chunks(session)
+    frames = {p: f.to_dict() for p, f in session.frames.items()}
+    yielding, other, n = [], [], 0
+    for _ in range(repeat):
+        tr = Tracker(bundle, frames=frames, **kw)
+        n = 0
+        for d in chunks:
+            t0 = time.perf_counter()
+            out = tr.push(d)
+            dt = time.perf_counter() - t0
+            if out:
+                yielding.append(dt / len(out))
+                n += len(out)
+            else:
+                other.append(dt)
+    return np.array(yielding) * 1e3, np.array(other) * 1e3, n
+
+
 def _latencies(tr, steps, repeat=3, cpu: list | None = None) -> np.ndarray:
     """Wall-clock ms per ``process_step``; ``cpu`` (a list) also gets each step's CPU time of this thread
     (ms), which other processes on the machine inflate less than the wall clock."""
