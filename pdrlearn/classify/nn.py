@@ -95,7 +95,7 @@ def train_mlp(
             for p in net.parameters():
                 params.append(theta[offset:offset + p.numel()].view(p.shape))
                 offset += p.numel()
-            w1, c1_, w2, c2_ = params
+            w1, bias1, w2, bias2 = params
             # Adam (Kingma & Ba 2015, default betas) written out: torch.optim's first use imports
             # torch._dynamo (~5 s), which would dominate the training of these tiny networks
             m1, m2 = torch.zeros_like(theta), torch.zeros_like(theta)
@@ -107,14 +107,14 @@ def train_mlp(
             best, best_epoch, best_state, stale = np.inf, 0, None, 0
             with torch.no_grad():
                 for epoch in range(1, max_epochs + 1):
-                    loss, grads = _loss_and_grads(xt, yt, w1, c1_, w2, c2_)
+                    loss, grads = _loss_and_grads(xt, yt, w1, bias1, w2, bias2)
                     c1, c2 = 1 - beta1**epoch, 1 - beta2**epoch
                     g = torch.cat([gi.view(-1) for gi in grads])
                     g = g + weight_decay * theta
                     m1.mul_(beta1).add_(g, alpha=1 - beta1)
                     m2.mul_(beta2).addcmul_(g, g, value=1 - beta2)
                     theta.sub_(lr * (m1 / c1) / ((m2 / c2).sqrt() + eps))
-                    monitor = (float(F.cross_entropy(F.linear(torch.tanh(F.linear(xv, w1, c1_)), w2, c2_), yv))
+                    monitor = (float(F.cross_entropy(F.linear(torch.tanh(F.linear(xv, w1, bias1)), w2, bias2), yv))
                                if has_val else float(loss))
                     if monitor < best - 1e-6:
                         best, best_epoch, stale = monitor, epoch, 0
