@@ -155,3 +155,51 @@ def test_bundle_parameters_reach_the_segmenter():
 
     disp = _displacement(None, None, None)
     assert all(disp[k] == v for k, v in STANCE_L27_DEFAULTS.items())
+
+
+def test_a_foot_pivoting_between_strides_turns_the_heading():
+    """Decision L28: between two strides that do not touch, the turn about gravity of a pivoting foot is
+    kept; a still foot (|w| below the ZARU threshold) does not turn."""
+    from pdrlearn.displace import FootDisplacement
+
+    fs, n = 100.0, 300
+    acc = np.tile([0.0, 0.0, 9.81], (n, 1))
+    gyr = np.zeros((n, 3))
+    gyr[100:200, 2] = 1.0  # 1 s pivot at 1 rad/s about the vertical, between stride 0 (ends 90) and 1 (starts 210)
+    fd = FootDisplacement()
+    i0, i1 = np.array([0, 210]), np.array([90, 290])
+    gy = fd._gap_yaw(acc, gyr, 1 / fs, i0, i1, None)
+    assert gy[0] == 0 and gy[1] == pytest.approx(1.0, abs=0.02)
+    gyr[100:200, 2] = 0.2  # below the 0.4 rad/s ZARU threshold: a still foot
+    assert fd._gap_yaw(acc, gyr, 1 / fs, i0, i1, None)[1] == 0
+    fd.yaw_change_, fd.gap_yaw_ = np.array([0.1, 0.2]), np.array([0.0, 1.0])
+    np.testing.assert_allclose(fd.foot_heading(0.5), [0.5, 1.6])
+
+
+def test_l_walk_turns_are_right_angles_and_turnarounds():
+    """Real L-walk (400 Hz, 250 s): every turn between straight legs is a 90-degree corner or a 180-degree
+    turnaround within 20 deg (before L28 one turnaround measured +62 deg: its pivot fell between strides)."""
+    d = EXTERNAL / "gaitmap_lwalk"
+    if not d.exists():
+        pytest.skip(f"{d} absent: run `pdrlearn fetch gaitmap --out datasets/external`")
+    from pdrlearn.io import read_session
+    from pdrlearn.track.plasys import track_plasys
+
+    logging.disable(logging.WARNING)
+    try:
+        r = track_plasys(read_session(d), method="M3", model="oracle", steps="detector", heading="foot")
+    finally:
+        logging.disable(logging.NOTSET)
+    h = np.degrees(np.unwrap(r.steps["heading_rad"].to_numpy(float)))
+    legs, cur = [], [0]
+    for i in range(1, len(h)):
+        if abs(h[i] - h[i - 1]) < 20:
+            cur.append(i)
+        else:
+            legs.append(cur)
+            cur = [i]
+    legs = [g for g in legs + [cur] if len(g) >= 4]
+    turns = np.diff([np.mean(h[g[1:-1]]) for g in legs])
+    assert len(turns) >= 10
+    err = np.minimum(np.abs(np.abs(turns) - 90), np.abs(np.abs(turns) - 180))
+    assert err.max() < 20, np.round(turns)

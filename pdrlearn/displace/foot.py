@@ -147,6 +147,9 @@ class FootDisplacement:
         contact point, with the sensor-to-heel lever arm estimated from the heel rocker of all strides
         (decision L22; matters in turns, where the foot rotates between the two rests)
     min_rocker_samples : fewest heel-rocker samples for the lever-arm estimate (else it stays at the sensor)
+    gap_yaw : add the turn of a foot pivoting between two strides that do not touch (a rest longer than
+        2 x ``max_rest_s``) to the foot heading (decision L28); samples with |w| < ``zaru_gyro_rad_s``
+        count as still (ZARU: no heading change)
     upsample : strapdown on a ``k`` times finer grid (block-mean preserving spline); default 5 below
         50 Hz (20 Hz firmware means), else 1
 
@@ -165,10 +168,13 @@ class FootDisplacement:
                  attitude: str = "kalman", sw: float = 1.8, r: float = 0.01, max_rest_s: float = 0.3,
                  rest_s: float = 0.05, zupt_erode: float = 0.25, upsample: int | None = None,
                  max_stride_s: float = 3.0, accel_scale_error: float = 0.01,
-                 reference_point: str = "sensor", min_rocker_samples: int = 20):
+                 reference_point: str = "sensor", min_rocker_samples: int = 20, gap_yaw: bool = True,
+                 zaru_gyro_rad_s: float = 0.4):
         if reference_point not in ("sensor", "heel"):
             raise DataError(f"FootDisplacement: reference_point '{reference_point}' is not 'sensor' or 'heel'")
         self.reference_point = reference_point
+        self.gap_yaw = bool(gap_yaw)
+        self.zaru_gyro_rad_s = float(zaru_gyro_rad_s)
         self.min_rocker_samples = int(min_rocker_samples)
         if integrator not in ("kalman", "integration"):
             raise DataError(f"FootDisplacement: integrator '{integrator}' is not 'kalman' or 'integration'")
@@ -254,6 +260,7 @@ class FootDisplacement:
         idx, mask = K.stride_index(i0, i1)
         q = K.stride_attitude(gyr, dt, idx, mask, g_body, bias, init) if B else None
         a_nav, self.yaw_change_ = K.strapdown(acc, gyr, dt, idx, mask, g_body, bias, init, q=q)
+        self.gap_yaw_ = self._gap_yaw(acc, gyr, dt, i0, i1, bias) if self.gap_yaw else np.zeros(B)
         zm = K.zupt_mask(zupt_stance, idx, mask)
         s2 = self.accel_scale_error ** 2
         if self.integrator == "kalman":
@@ -313,10 +320,33 @@ class FootDisplacement:
             bias[s] = gyr[a:b].mean(axis=0)
         return bias
 
+    def _gap_yaw(self, acc: np.ndarray, gyr: np.ndarray, dt: float, i0: np.ndarray, i1: np.ndarray,
+                 bias: np.ndarray | None) -> np.ndarray:
+        """Decision L28: heading change (rad, CCW) between the end of the previous stride and the start of
+        each stride (0 for the first and for contiguous strides): the rate about gravity (the mean specific
+        force over the gap; the foot is loaded) integrated over the samples that are not still by the fixed
+        rule (|w| >= ``zaru_gyro_rad_s``): a foot pivoting on the ground turns, a still foot does not (ZARU)."""
+        out = np.zeros(len(i0))
+        for k in range(1, len(i0)):
+            a, b = int(i1[k - 1]), int(i0[k])
+            if b - a < 2:
+                continue
+            w = gyr[a:b] - (0.0 if bias is None else bias[k])
+            up = acc[a:b].mean(axis=0)
+            n = float(np.linalg.norm(up))
+            if not n > 0:
+                continue
+            rate = w @ (up / n)
+            moving = np.linalg.norm(w, axis=1) >= self.zaru_gyro_rad_s
+            out[k] = float(np.sum(np.where(moving, rate, 0.0)[1:] + np.where(moving, rate, 0.0)[:-1]) * 0.5 * dt)
+        return out
+
     def foot_heading(self, initial: float = 0.0) -> np.ndarray:
-        """Foot heading (rad, ENU) at each stride start: the stride yaw changes accumulated (ZARU between
-        strides, so the heading does not change at rest)."""
-        return initial + np.concatenate([[0.0], np.cumsum(self.yaw_change_)[:-1]]) if len(self.yaw_change_) \
-            else np.zeros(0)
+        """Foot heading (rad, ENU) at each stride start: the stride yaw changes accumulated, plus the turn of
+        a foot pivoting between two strides (decision L28; ZARU: no change while the foot is still)."""
+        if not len(self.yaw_change_):
+            return np.zeros(0)
+        gap = getattr(self, "gap_yaw_", np.zeros(len(self.yaw_change_)))
+        return initial + np.concatenate([[0.0], np.cumsum(self.yaw_change_)[:-1]]) + np.cumsum(gap)
 
 
