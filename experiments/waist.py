@@ -67,7 +67,25 @@ SIM_NOTE = ("Users 1..{n} (`pdrlearn.sim`, 100 Hz), each calibrated on a simulat
             "heading_err = median per-step heading error after removing the constant mounting offset.")
 REAL_NOTE = ("step_f1 = detections inside the reference bouts vs every reference IC (tolerance 0.25 s); "
              "step_f1_all = whole recording; dist_err_pct = distance tracked inside the reference walking "
-             "bouts vs their total reference length; bout_err_median_pct = median of per-bout |errors|.")
+             "bouts vs their total reference length; bout_err_median_pct = median of per-bout |errors|; "
+             "*_strides_* = the same against each bout's own reference strides (its steps x half its mean "
+             "stride, decision W25) instead of the bout `Length` (short in bouts with untimed contacts, E2b).")
+DECOMP_NOTE = ("Per reference bout (calibrated `waist-pendulum`): L = INDIP bout `Length`; L_strides = the bout's "
+               "reference steps x half its mean stride (W25); err_L / err_strides = tracked vs each; count_err = "
+               "detected / reference steps - 1; step_err = mean tracked step / mean reference step - 1 "
+               "((1 + err_strides) = (1 + count_err)(1 + step_err)).")
+
+
+def decomposition(bouts: pd.DataFrame, pipeline: str = "waist-pendulum") -> pd.DataFrame:
+    """Per bout: the error against both references, split into a step-count and a per-step-length part."""
+    b = bouts[(bouts.pipeline == pipeline) & (bouts.params == "calibrated")]
+    n, nr = b["n_steps"].to_numpy(float), b["n_reference_steps"].to_numpy(float)
+    per_step = (b["tracked_m"] / np.where(n > 0, n, np.nan)) / (b["reference_strides_m"] / nr)
+    return pd.DataFrame({"subject": b["subject"], "test": b["test"], "start_s": b["start_s"],
+                         "L_m": b["reference_m"], "L_strides_m": b["reference_strides_m"], "tracked_m": b["tracked_m"],
+                         "err_L_pct": b["error_pct"], "err_strides_pct": b["error_strides_pct"],
+                         "steps": b["n_steps"], "ref_steps": b["n_reference_steps"],
+                         "count_err_pct": 100 * (n / nr - 1), "step_err_pct": 100 * (per_step.to_numpy() - 1)})
 
 
 def _step_heading_offsets(res, session) -> np.ndarray | None:
@@ -126,6 +144,8 @@ def real(data: Path, runs=RUNS, configs=CONFIGS, bouts: list | None = None) -> p
                     "step_f1_all": m.get("step_f1_all"), "ic_mean_ms": m.get("ic_timing_mean_ms"),
                     "ic_sd_ms": m.get("ic_timing_sd_ms"), "dist_err_pct": m.get("distance_error_pct"),
                     "bout_err_median_pct": m.get("bout_distance_error_median_pct"),
+                    "dist_err_strides_pct": m.get("distance_error_strides_pct", np.nan),
+                    "bout_err_strides_median_pct": m.get("bout_distance_error_strides_median_pct", np.nan),
                     "stride_mae_m": m.get("stride_length_mae_m"),
                     "ic_stereo_mean_ms": m.get("ic_timing_stereo_mean_ms", np.nan),
                     "ic_stereo_sd_ms": m.get("ic_timing_stereo_sd_ms", np.nan),
@@ -175,7 +195,8 @@ def _pooled_timing(w: np.ndarray, mean: pd.Series, sd: pd.Series, name: str) -> 
 def pooled(df: pd.DataFrame, bouts: pd.DataFrame) -> pd.DataFrame:
     """Per pipeline, params and test kind (Test5 / Test11), pooled over subjects and runs."""
     df = df.assign(kind=df["test"].str.split("_").str[0])
-    bouts = bouts.assign(kind=bouts["test"].str.split("_").str[0], abs_err=bouts["error_pct"].abs())
+    bouts = bouts.assign(kind=bouts["test"].str.split("_").str[0], abs_err=bouts["error_pct"].abs(),
+                         abs_err_strides=bouts["error_strides_pct"].abs())
     rows = []
     for (kind, pipeline, params), g in df.groupby(["kind", "pipeline", "params"], sort=False):
         b = bouts[(bouts.kind == kind) & (bouts.pipeline == pipeline) & (bouts.params == params)]
@@ -188,6 +209,7 @@ def pooled(df: pd.DataFrame, bouts: pd.DataFrame) -> pd.DataFrame:
                                       "ic_stereo"),
                      "bouts": len(b), "bout_err_median_pct": float(b.abs_err.median()),
                      "bout_err_signed_median_pct": float(b.error_pct.median()),
+                     "bout_err_strides_median_pct": float(b.abs_err_strides.median()),
                      "stride_mae_m": float(np.sum(g.n_strides * g.stride_mae_m) / g.n_strides.sum())})
     return pd.DataFrame(rows)
 
@@ -325,6 +347,10 @@ def main() -> None:
         pool = pooled(ext, pd.DataFrame(bouts))
         pool.to_csv(out / "waist_external_pooled.csv", index=False, float_format="%.4g")
         shown = ext[[c for c in ext.columns if c not in EXTRA_COLS]]
+        dec = decomposition(pd.DataFrame(bouts))
+        dec.to_csv(out / "waist_external_bouts.csv", index=False, float_format="%.4g")
+        print(f"\nper-bout decomposition, external subjects ({DECOMP_NOTE}):")
+        print(dec.round(3).to_string(index=False))
         print(f"\nexternal subjects ({args.external}):")
         print(shown.round(3).to_string(index=False))
         print("\npooled over subjects:")
@@ -332,7 +358,9 @@ def main() -> None:
         ext_lines = ["# Waist-only dead reckoning on the mobgap subjects (HA001, HA002, MS001)", "",
                      f"Generated by `experiments/waist.py --external {args.external}`.", "", EXTERNAL_NOTE, "",
                      "## Pooled over subjects", "", pool.round(3).to_markdown(index=False), "",
-                     "## Per subject and run", "", shown.round(3).to_markdown(index=False), ""]
+                     "## Per subject and run", "", shown.round(3).to_markdown(index=False), "",
+                     "## Per bout: count and per-step parts of the error", "", DECOMP_NOTE, "",
+                     dec.round(3).to_markdown(index=False), ""]
     groups = {} if args.no_real else {
         "Test5 T1+T2 (straight walks)": ["mobgap_HA001_Test5_Trial1", "mobgap_HA001_Test5_Trial2"],
         "Test11 (daily activities)": ["mobgap_HA001_Test11_Trial1"]}

@@ -14,7 +14,10 @@
   covers only part of a bout).
 - ``distance_error_pct``: distance tracked inside the reference bouts (steps whose midpoint lies in a
   bout) vs the bouts' total reference length; ``bout_distance_error_median_pct`` is the median of the
-  per-bout absolute errors.
+  per-bout absolute errors. ``*_strides_*``: the same against the bout's own reference steps, its number
+  of steps (timed contacts, duplicates < 0.1 s apart merged, plus untimed ones, minus one) times half its
+  mean stride length (:func:`bout_stride_length`, decision W25): INDIP's ``Length`` is 8-27 % short in
+  bouts with untimed contacts (docs/external-data.md E2b).
 - ``stride_length_mae_m``: per reference stride, the sum of the tracked steps whose midpoint lies in it.
 """
 
@@ -104,24 +107,63 @@ def steps_in_interval(steps: pd.DataFrame, start_s: float, end_s: float) -> np.n
     return (mid >= start_s) & (mid <= end_s)
 
 
+DUPLICATE_IC_S = 0.1  # reference contacts closer than this are one contact (no step is that short, W25)
+
+
+def bout_stride_length(session: Session, start_s: float, end_s: float) -> tuple[float, int]:
+    """``(length_m, n_steps)`` of the reference bout ``[start_s, end_s]`` from its own strides (decision W25):
+    ``n_steps`` = its timed initial contacts (duplicates closer than :data:`DUPLICATE_IC_S` merged) plus
+    its untimed ones (``extras["ics_untimed"]``), minus one; length = ``n_steps`` x half the mean length of
+    the reference strides inside the bout (a stride is two steps). NaN without contacts or strides with
+    a length."""
+    ics, st = session.extras.get("ics"), session.steps
+    if ics is None or "ic_s" not in ics or st is None or "length_m" not in st:
+        return float("nan"), 0
+    eps = 1e-6
+    ic = np.sort(ics["ic_s"].dropna().to_numpy(float))
+    ic = ic[(ic >= start_s - eps) & (ic <= end_s + eps)]
+    n_ic = int(ic.size and 1 + np.sum(np.diff(ic) >= DUPLICATE_IC_S))
+    u = session.extras.get("ics_untimed")
+    if u is not None and {"after_s", "before_s"} <= set(u.columns):
+        n_ic += int(((u["after_s"] >= start_s - eps) & (u["before_s"] <= end_s + eps)).sum())
+    s = st.dropna(subset=["length_m"])
+    s = s[(s["start_s"] >= start_s - eps) & (s["end_s"] <= end_s + eps)]
+    if n_ic < 2 or not len(s):
+        return float("nan"), max(n_ic - 1, 0)
+    return float((n_ic - 1) * s["length_m"].mean() / 2.0), n_ic - 1
+
+
 def distance_metrics(steps: pd.DataFrame, session: Session) -> dict:
     """``distance_error_pct`` (total over the bouts), per-bout errors and their median (empty without
-    bouts)."""
+    bouts); the same against the bouts' own reference strides (``*_strides_*``, :func:`bout_stride_length`)
+    where the session has them."""
     bouts = reference_bouts(session)
     if bouts is None:
         return {}
     lengths = steps["length_m"].abs().to_numpy(float)
+    has_next = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(steps), dtype=bool)
     per = []
     for _, b in bouts.iterrows():
-        est = float(lengths[steps_in_interval(steps, b.start_s, b.end_s)].sum())
+        m = steps_in_interval(steps, b.start_s, b.end_s)
+        est = float(lengths[m].sum())
+        ref_s, n_ref = bout_stride_length(session, b.start_s, b.end_s)
         per.append({"start_s": float(b.start_s), "end_s": float(b.end_s), "reference_m": float(b.length_m),
-                    "tracked_m": est, "error_pct": 100.0 * (est - b.length_m) / b.length_m})
+                    "tracked_m": est, "error_pct": 100.0 * (est - b.length_m) / b.length_m,
+                    "reference_strides_m": ref_s, "error_strides_pct": 100.0 * (est - ref_s) / ref_s,
+                    "n_steps": int((m & has_next).sum()), "n_reference_steps": n_ref})
     ref_total = float(bouts.length_m.sum())
     est_total = float(sum(p["tracked_m"] for p in per))
-    return {"distance_error_pct": 100.0 * (est_total - ref_total) / ref_total,
-            "bout_distance_m": est_total, "bout_reference_m": ref_total,
-            "bout_distance_error_median_pct": float(np.median([abs(p["error_pct"]) for p in per])),
-            "bouts": per}
+    out = {"distance_error_pct": 100.0 * (est_total - ref_total) / ref_total,
+           "bout_distance_m": est_total, "bout_reference_m": ref_total,
+           "bout_distance_error_median_pct": float(np.median([abs(p["error_pct"]) for p in per])),
+           "bouts": per}
+    es = np.array([p["error_strides_pct"] for p in per])
+    if np.isfinite(es).all():
+        ref_s_total = float(sum(p["reference_strides_m"] for p in per))
+        out.update(distance_error_strides_pct=100.0 * (est_total - ref_s_total) / ref_s_total,
+                   bout_reference_strides_m=ref_s_total,
+                   bout_distance_error_strides_median_pct=float(np.median(np.abs(es))))
+    return out
 
 
 def stride_metrics(steps: pd.DataFrame, session: Session) -> dict:
