@@ -12,6 +12,8 @@ Prints the code location, then p50/p99 (ms) of ``Tracker.process_step`` over the
 steps and the p50 of its CPU time (5 passes, buffers pre-filled without trimming, as
 tests/benchmarks/test_bench_runtime.py), and the median over the steps of each step's fastest pass
 ("min-of-passes p50"): the figure least moved by other processes on a loaded machine (decision E13).
+Then decision E15's latency: p50/p99 of the push that completes a step with the session pushed sample
+by sample (``native_chunks``), and the mean cost of the other pushes.
 """
 
 from __future__ import annotations
@@ -29,16 +31,19 @@ def main(bundle: str, session_dir: str, passes: int = 5) -> None:
     logging.disable(logging.WARNING)
     import pdrlearn
     from pdrlearn.io import read_session
-    from tests.benchmarks.test_bench_runtime import _latencies, _loaded_tracker
+    from tests.benchmarks.test_bench_runtime import _latencies, _loaded_tracker, push_latencies
 
     s = read_session(session_dir)
     tr = _loaded_tracker(bundle, s)
     cpu: list[float] = []
     ms = _latencies(tr, list(zip(s.steps["start_s"], s.steps["end_s"], strict=True)), repeat=passes, cpu=cpu)
     fastest = ms.reshape(passes, len(s.steps)).min(axis=0)  # each step's fastest pass
-    print(f"{pdrlearn.__file__}: p50 {np.percentile(ms, 50):.3f} ms, p99 {np.percentile(ms, 99):.3f} ms, "
+    print(f"{pdrlearn.__file__}: process_step p50 {np.percentile(ms, 50):.3f} ms, p99 {np.percentile(ms, 99):.3f} ms, "
           f"CPU time p50 {np.percentile(cpu, 50):.3f} ms, min-of-passes p50 {np.median(fastest):.3f} ms "
           f"({len(s.steps)} steps x {passes})")
+    y, o, n = push_latencies(bundle, s, repeat=passes)
+    print(f"{pdrlearn.__file__}: push yielding a step p50 {np.percentile(y, 50):.3f} ms, "
+          f"p99 {np.percentile(y, 99):.3f} ms ({n} steps x {passes}); other pushes mean {np.mean(o) * 1e3:.1f} us")
 
 
 if __name__ == "__main__":

@@ -373,7 +373,8 @@ class Tracker:
                 self._append(name, ts, vs)
         self._detect()
         steps = self._process_ready()
-        self._trim()
+        if not steps:  # a push that completes steps returns them first; the next push trims (decision E15)
+            self._trim()
         return steps
 
     def flush(self) -> list[Step]:

@@ -2,7 +2,9 @@
 ``pytest tests/benchmarks/test_bench_runtime.py --benchmark-enable -m bench -s``).
 
 Targets: per-step latency (step window + features + 3 task classifiers + displacement) p50 <= 0.3 ms,
-p99 <= 2 ms; runtime import + bundle load < 0.5 s; bundle size < 5 MB for the default methods.
+p99 <= 2 ms, measured as the push that completes a step with the session pushed sample by sample
+(decision E15; ``process_step`` on pre-filled buffers is decision E11's figure, kept for comparison);
+runtime import + bundle load < 0.5 s; bundle size < 5 MB for the default methods.
 The bundle is trained on the simulator's calibration exercises of one user (default export = each
 task's chosen method, usually a foot+waist fused model = 2 ONNX runs per task).
 """
@@ -113,6 +115,28 @@ def test_bench_runtime_per_step_default_bundle(benchmark, bundles):
           f"p99 {np.percentile(cpu, 99):.2f} ms")
     a, b = steps[len(steps) // 2]
     benchmark(tr.process_step, a, b)
+
+
+def test_bench_runtime_push_latency_default_bundle(benchmark, bundles):
+    """Decision E15: the latency of the push that completes a step (that sample's own work, the step's
+    window, classification and displacement), with the session pushed sample by sample (native_chunks),
+    and the mean cost of every other push (where the push-time share of the work now is)."""
+    s = bundles["session"]
+    out = {}
+    for inc in (True, False):
+        y, o, n = push_latencies(bundles["root"] / "bundle", s, repeat=3, incremental=inc)
+        out[inc] = (y, o)
+        print(f"\npush that yields a step (incremental={inc}): p50 {np.percentile(y, 50):.3f} ms, "
+              f"p99 {np.percentile(y, 99):.3f} ms over {len(y)} steps ({n} per pass); other pushes: mean "
+              f"{np.mean(o) * 1e3:.1f} us, p50 {np.percentile(o, 50) * 1e3:.1f} us, "
+              f"p99 {np.percentile(o, 99) * 1e3:.1f} us ({len(o)} pushes)")
+    y, o = out[True]
+    benchmark.extra_info.update(push_step_p50_ms=float(np.percentile(y, 50)),
+                                push_step_p99_ms=float(np.percentile(y, 99)),
+                                other_push_mean_us=float(np.mean(o) * 1e3))
+    chunks = native_chunks(s)
+    benchmark.pedantic(lambda: push_latencies(bundles["root"] / "bundle", s, repeat=1), rounds=1, iterations=1)
+    assert len(chunks) > 100
 
 
 def test_bench_runtime_stage_breakdown(benchmark, bundles):
