@@ -61,6 +61,11 @@ HOUSEKEEPING_CONFIG = {
     "distributed.client.scheduler-info-interval": "10s",
 }
 
+#: The scheduler always serves HTTP (health, metrics); ``dashboard_address=None`` only drops the dashboard and
+#: leaves that server on port 8787, so a second cohort run (or any other Dask cluster) on the machine
+#: printed "Port 8787 is already in use". No dashboard, and the HTTP server on a free local port.
+SCHEDULER_HTTP = {"dashboard": False, "dashboard_address": "127.0.0.1:0"}
+
 
 @dataclass
 class JobResult:
@@ -173,7 +178,8 @@ def _local_cluster(n_workers: int):
         with dask.config.set({"distributed.nanny.pre-spawn-environ": WORKER_ENV, **WORKER_CONFIG,
                               **HOUSEKEEPING_CONFIG}):
             return LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                                dashboard_address=None, silence_logs=logging.ERROR)
+                                dashboard_address=None, scheduler_kwargs=SCHEDULER_HTTP,
+                                silence_logs=logging.ERROR)
     finally:
         os.environ.clear()
         os.environ.update(saved)

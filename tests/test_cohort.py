@@ -86,6 +86,35 @@ def test_workers_single_threaded_biggest_first_and_env_restored():
         run_cohort(_threads_seen, items, serial=True, costs=[1.0])
 
 
+def test_local_cluster_leaves_port_8787_alone():
+    """No dashboard and no HTTP server on Dask's default port: two cohort runs (or any other Dask cluster)
+    on one machine do not collide ("Port 8787 is already in use")."""
+    import socket
+    import warnings
+
+    from pdrlearn.cohort import _local_cluster
+
+    held = socket.socket()
+    try:
+        held.bind(("127.0.0.1", 8787))
+        held.listen()
+    except OSError:
+        pass  # someone else's cluster holds it already: the same situation
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            cluster = _local_cluster(1)
+            try:
+                http = cluster.scheduler.http_server
+                ports = {s.getsockname()[1] for s in http._sockets.values()}
+                assert 8787 not in ports
+            finally:
+                cluster.close()
+        assert not [w for w in caught if "already in use" in str(w.message)]
+    finally:
+        held.close()
+
+
 def test_bad_scheduler_address():
     with pytest.raises(DataError, match="cannot reach Dask scheduler"):
         run_cohort(_square, [("a", 1)], scheduler="tcp://127.0.0.1:1")
