@@ -186,3 +186,14 @@ def test_ring_drops_from_the_front_and_keeps_old_views_valid():
     assert r.view()[0].tolist() == [2.0, 3.0, 4.0, 5.0] and r.last == 5.0
     r.drop_before(99.0)  # keeps the newest sample
     assert r.view()[0].tolist() == [5.0]
+
+
+def test_foot_accelerometer_without_its_gyroscope_keeps_the_state_bounded(bundle):
+    """Accelerometer samples held for a gyroscope that never comes are given up once the buffer passes them."""
+    s = synthetic_session(12, seed=1)
+    tr = Tracker(bundle, buffer_s=2.0)
+    acc = s.streams["fAccelerometer"]
+    for k in range(len(acc.t)):
+        tr.push({"fAccelerometer": (acc.t[k:k + 1], acc.values[k:k + 1])})
+    assert not tr._foot.ok and tr._foot._pa is None
+    assert len(tr._buf["fAccelerometer"]) <= 2.0 * 20 + 2

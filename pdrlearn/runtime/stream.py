@@ -259,6 +259,12 @@ class FootLevelling:
         if self.i1 > self.i0 and t[self.i0] < keep_from:
             i = self.i0 + int(t[self.i0:self.i1].searchsorted(keep_from))
             self.i0 = min(i, self.i1 - 1)
+        for slot in ("_pa", "_pg"):  # one sensor without its partner (a missing or late gyroscope) must not
+            h = getattr(self, slot)  # grow the held samples: past the buffer the state is given up
+            if h is not None and (h[0] if isinstance(h[0], float) else float(h[0][0])) < keep_from:
+                self.ok = False
+                self._pa = self._pg = None
+                return
 
 
 def _rotvec_matrix(wx: float, wy: float, wz: float) -> tuple:
