@@ -95,7 +95,7 @@ class FootLevelling:
     kernel reads): ``t``, ``acc (3)``, ``gyr (3)``, ``an = |acc|``, ``gn = |gyr|``, ``Q (3, 3)`` and
     ``Z = X Q^T (3, 3)`` with rows ``X`` = acc, gyro, forward axis. The running product restarts from the
     identity at the oldest kept sample whenever the arrays are reallocated, so its rounding never
-    accumulates over more than the few hundred samples of one buffer.
+    accumulates over more products than the arrays hold (256 samples, more only when the kept span needs it).
     """
 
     _SHAPES = {"t": (), "acc": (3,), "gyr": (3,), "an": (), "gn": (), "Q": (3, 3), "Z": (3, 3)}
