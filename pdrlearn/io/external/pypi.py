@@ -28,6 +28,11 @@ class Sdist:
     def filename(self) -> str:
         return f"{self.name}-{self.version}.tar.gz"
 
+    def provenance(self) -> dict:
+        """The ``source_sdist`` entry of a converted session's meta.json (docs/external-data.md E1)."""
+        return {"name": self.name, "version": self.version, "file": self.filename, "sha256": self.sha256,
+                "index": f"https://pypi.org/project/{self.name}/{self.version}/"}
+
     def url(self) -> str:
         """Download address of the sdist, from PyPI's simple index (PEP 503)."""
         import re
