@@ -99,3 +99,19 @@ def test_reference_without_strides_of_the_foot_is_an_error(tmp_path):
     with pytest.raises(DataError, match="no stride of the right foot") as e:
         gaitmap.read_reference(p, "right", 102.4)
     assert "delete the extracted gaitmap-" in str(e.value)  # re-fetching alone reuses the extraction
+
+
+def test_extraction_without_tarfile_filters(tmp_path, monkeypatch):
+    """requires-python >= 3.11 includes 3.11.0-3.11.3, whose tarfile has no ``filter`` argument."""
+    sd = _tiny_sdist(tmp_path)
+    monkeypatch.delattr(tarfile, "data_filter")
+    real = tarfile.TarFile.extractall
+
+    def old_extractall(self, path=".", members=None, *, numeric_owner=False, **kw):
+        if kw:
+            raise TypeError(f"extractall() got an unexpected keyword argument {next(iter(kw))!r}")
+        return real(self, path, members, numeric_owner=numeric_owner, filter="data")
+
+    monkeypatch.setattr(tarfile.TarFile, "extractall", old_extractall)
+    root = pypi.extract_sdist(sd, cache_dir=tmp_path)
+    assert (root / "example_data" / "a.txt").read_text() == "hello"

@@ -103,5 +103,12 @@ def extract_sdist(sdist: Sdist, cache_dir: Path | None = None,
             members = [m for m in tf.getmembers() if m.name.startswith(prefix) and (m.isfile() or m.isdir())]
             for m in members:
                 m.name = m.name[len(prefix):]
-            tf.extractall(tmp, members=[m for m in members if m.name], filter="data")
+            keep = [m for m in members if m.name]
+            if hasattr(tarfile, "data_filter"):  # Python >= 3.11.4: refuse links, absolute paths, ".."
+                tf.extractall(tmp, members=keep, filter="data")
+            else:  # 3.11.0-3.11.3 have no extraction filters: the same checks on the (pinned) member names
+                if any(m.name.startswith("/") or ".." in Path(m.name).parts for m in keep):
+                    raise DataError(f"{tarball}: a member points outside its folder; delete the file and "
+                                    f"fetch again")
+                tf.extractall(tmp, members=keep)
     return root
