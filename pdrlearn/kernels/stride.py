@@ -134,6 +134,8 @@ class StanceSegmenter:
         out: list[tuple[float, float]] = []
         w = np.linalg.norm(gyr, axis=1).tolist()
         tl = t.tolist()
+        if not math.isfinite(sum(w)):  # a NaN would stay in the L27 running sum: no stance for the rest of the stream
+            raise DataError("StanceSegmenter: foot gyroscope samples contain NaN/inf; drop those samples first")
         thr = self._thresholds(tl, w)
         for ti, wi, th in zip(tl, w, thr, strict=True):
             if wi < th:
