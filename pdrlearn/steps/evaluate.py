@@ -145,9 +145,10 @@ def reference_events(session: Session, unit: str, *,
       subject takes outside them (turning on the spot, shuffling, the first/last steps) are unlabelled.
     - ``foot``: one event per stride of the instrumented foot, ``steps.ic_s`` (plus every ``pre_ic_s``
       that is no stride's ``ic_s``: the motion-captured initial contact that opens a chain of labelled
-      strides), else ``steps.start_s``. Labelled intervals: each chain of touching strides, from its
-      first event to its last stride end (a reference that labels only some strides of a walk, e.g.
-      those inside a mocap volume, leaves the strides between chains unscored).
+      strides), else ``steps.start_s``. Labelled intervals: with ``pre_ic_s``, each chain of touching
+      strides, from its first event to its last stride end (a reference that labels only some strides of
+      a walk, e.g. those inside a mocap volume, leaves the strides between chains unscored); without it,
+      first event .. last stride end (every stride is labelled: a detection in a pause is a false positive).
     - rows marked ``source == "detected"`` are a rest-based segmentation, NOT ground truth: a detection
       matches a stride when it falls inside the stride's ``[start_s, end_s]`` window.
     Every interval is widened by ``tolerance_s`` on both sides.
@@ -181,7 +182,8 @@ def reference_events(session: Session, unit: str, *,
         ev = st["ic_s"].dropna().to_numpy(float)
         desc = "steps.ic_s"
         lo = se[:, 0].copy()
-        if "pre_ic_s" in st and st["pre_ic_s"].notna().any():
+        partial = "pre_ic_s" in st and st["pre_ic_s"].notna().any()
+        if partial:
             pre = st["pre_ic_s"].to_numpy(float)
             lo = np.fmin(lo, pre)
             pre = pre[np.isfinite(pre)]
@@ -192,9 +194,13 @@ def reference_events(session: Session, unit: str, *,
                 desc += " + pre_ic_s opening each chain of strides"
         ev = np.unique(ev)
         hi = np.fmax(se[:, 1], st["ic_s"].to_numpy(float))
-        return Reference(ev, tol, _chains(lo, hi) + [-tol, tol], desc)
+        # chains only where pre_ic_s says where each labelled chain opens (decision 15); a reference
+        # without it labels every stride, so a gap between strides is a pause and detections in it are
+        # false positives (simulated sessions, calibration exercises)
+        iv = _chains(lo, hi) if partial else _span(ev, hi[np.isfinite(hi)])
+        return Reference(ev, tol, iv + [-tol, tol], desc)
     ev = np.sort(se[:, 0])
-    return Reference(ev, tol, _chains(se[:, 0], se[:, 1]) + [-tol, tol], "steps.start_s")
+    return Reference(ev, tol, _span(ev, se[:, 1]) + [-tol, tol], "steps.start_s")
 
 
 def in_intervals(times: np.ndarray, intervals: np.ndarray) -> np.ndarray:
