@@ -197,3 +197,21 @@ def test_foot_accelerometer_without_its_gyroscope_keeps_the_state_bounded(bundle
         tr.push({"fAccelerometer": (acc.t[k:k + 1], acc.values[k:k + 1])})
     assert not tr._foot.ok and tr._foot._pa is None
     assert len(tr._buf["fAccelerometer"]) <= 2.0 * 20 + 2
+
+
+@pytest.mark.parametrize("chunk_s", [1.0, 2.0])
+def test_chunked_pushes_keep_the_state_bounded(bundle, chunk_s):
+    """Pushes of a stride or more return a step nearly every time; the buffers must still be trimmed."""
+    s = synthetic_session(120, seed=5)
+    tr = Tracker(bundle, buffer_s=8.0)
+    held = []
+    t_all = np.concatenate([st.t for st in s.streams.values()])
+    edges = np.arange(t_all.min(), t_all.max() + 2 * chunk_s, chunk_s)
+    for a, b in zip(edges[:-1], edges[1:], strict=True):
+        d = {}
+        for n, st in s.streams.items():
+            i0, i1 = np.searchsorted(st.t, [a, b])
+            d[n] = (st.t[i0:i1], st.values[i0:i1])
+        tr.push(d)
+        held.append(len(tr._buf["fAccelerometer"]))
+    assert max(held) <= (2 * 8.0 + 2 * chunk_s) * 20 + 2  # 20 Hz foot; the whole 120 s would be 2400

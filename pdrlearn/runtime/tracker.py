@@ -373,7 +373,10 @@ class Tracker:
                 self._append(name, ts, vs)
         self._detect()
         steps = self._process_ready()
-        if not steps:  # a push that completes steps returns them first; the next push trims (decision E15)
+        # a push that completes steps returns them first and the next push trims (decision E15); pushes in
+        # chunks of a stride or more complete a step nearly every time, so trim anyway once the buffers
+        # hold twice buffer_s (bounded state, issue 7)
+        if not steps or self._latest - self._oldest > 2.0 * self.buffer_s:
             self._trim()
         return steps
 
