@@ -26,3 +26,38 @@ def gaitmap_level_left() -> Path:
 @pytest.fixture(scope="session")
 def mobgap_test5() -> Path:
     return REAL / "mobgap_HA001_Test5_Trial1"
+
+
+# -- sessions of `pdrlearn fetch` (datasets/external) ----------------------------------------------------
+_EXTERNAL_CONVERTED: dict[str, Path | None] = {}
+
+
+def external_session(name: str) -> Path:
+    """The folder of an external session (``gaitmap_*`` / ``mobgap_*``): from datasets/external when fetched,
+    else converted once per test run from the sdist already in the download cache (never downloads: tests
+    need no network); skips with the fetch command when neither exists."""
+    import atexit
+    import shutil
+    import tempfile
+
+    source = name.split("_", 1)[0]
+    d = Path(__file__).resolve().parents[1] / "datasets" / "external" / name
+    if d.is_dir():
+        return d
+    if source not in _EXTERNAL_CONVERTED:
+        import importlib
+
+        from pdrlearn.io.external import SOURCES, fetch
+        from pdrlearn.io.external.pypi import default_cache_dir
+
+        sdist = importlib.import_module(SOURCES[source]).SDIST
+        out = None
+        if (default_cache_dir() / sdist.filename).is_file():
+            out = Path(tempfile.mkdtemp(prefix=f"pdrlearn-{source}-"))
+            atexit.register(shutil.rmtree, out, ignore_errors=True)
+            fetch(source, out)
+        _EXTERNAL_CONVERTED[source] = out
+    out = _EXTERNAL_CONVERTED[source]
+    if out is None or not (out / name).is_dir():
+        pytest.skip(f"{d} absent: run `pdrlearn fetch {source} --out datasets/external`")
+    return out / name

@@ -14,10 +14,10 @@ import pytest
 from pdrlearn.displace.foot import inertial_stance, stance_runs
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.stride import StanceSegmenter, stance_strides
+from tests.conftest import external_session
 
 ROOT = Path(__file__).resolve().parents[1]
 REAL = ROOT / "datasets" / "real"
-EXTERNAL = ROOT / "datasets" / "external"
 E7 = {"stance_floor_factor": 0.0, "stance_gap_s": 0.0}  # the fixed rule before L27
 
 
@@ -139,9 +139,7 @@ def test_bundled_foot_recordings_keep_every_detected_stride(name):
                                            ("gaitmap_stairs_down_right", 0.99), ("gaitmap_stairs_up_right", 0.99),
                                            ("gaitmap_ms_left", 0.9), ("gaitmap_ms_right", 0.9)])
 def test_external_foot_recordings_find_the_detected_strides(name, min_frac):
-    d = EXTERNAL / name
-    if not d.exists():
-        pytest.skip(f"{d} absent: run `pdrlearn fetch gaitmap --out datasets/external`")
+    d = external_session(name)
     for found, det in _streamed_and_offline(d):
         assert found >= min_frac * det, (name, found, det)
 
@@ -179,9 +177,7 @@ def test_a_foot_pivoting_between_strides_turns_the_heading():
 def test_l_walk_turns_are_right_angles_and_turnarounds():
     """Real L-walk (400 Hz, 250 s): every turn between straight legs is a 90-degree corner or a 180-degree
     turnaround within 20 deg (before L28 one turnaround measured +62 deg: its pivot fell between strides)."""
-    d = EXTERNAL / "gaitmap_lwalk"
-    if not d.exists():
-        pytest.skip(f"{d} absent: run `pdrlearn fetch gaitmap --out datasets/external`")
+    d = external_session("gaitmap_lwalk")
     from pdrlearn.io import read_session
     from pdrlearn.track.plasys import track_plasys
 

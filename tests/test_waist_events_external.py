@@ -1,14 +1,12 @@
 """Offline waist IC detector on the three mobgap subjects (decision W26: the per-subject floors a rule
-for the daily-activity errors must keep). Skipped without `pdrlearn fetch mobgap --out datasets/external`."""
+for the daily-activity errors must keep). Uses datasets/external, else the sdist in the download cache
+(tests/conftest.py external_session); skipped without either."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-EXTERNAL = ROOT / "datasets" / "external"
+from tests.conftest import external_session
 
 # printed by experiments/step_count.py --waist-ic 3 --external datasets/external (after W23)
 TEST11_F1 = {"HA001": 0.938, "HA002": 0.795, "MS001": 0.840}
@@ -17,9 +15,7 @@ TEST5 = ["HA001_Test5_Trial1", "HA001_Test5_Trial2", "HA002_Test5_Trial2", "MS00
 
 
 def _metrics(name: str) -> dict:
-    d = EXTERNAL / f"mobgap_{name}"
-    if not d.is_dir():
-        pytest.skip(f"{d} absent: run `pdrlearn fetch mobgap --out datasets/external`")
+    d = external_session(f"mobgap_{name}")
     from pdrlearn.io import read_session
     from pdrlearn.waist.ahrs import waist_imu
     from pdrlearn.waist.evaluate import step_metrics
