@@ -187,27 +187,36 @@ def levelled_vectors(gyr: np.ndarray, dt: np.ndarray, k0: int, k1: int, r0: np.n
         P[shift:] = P[:-shift] @ P[shift:]
         shift *= 2
     A = r0 @ P[k0].T
-    shape = X.shape
     Y = ((X @ P.transpose(0, 2, 1)).reshape(-1, 3) @ A.T)  # rows (A P_k x)^T, one 2-D product for A
     if k1 <= k0:
-        return Y.reshape(shape)
-    gx, gy, gz = (A @ (P[k1] @ g_end_sensor)).tolist()  # levelled specific force at the end rest
+        return Y.reshape(X.shape)
+    return tilt_corrected(Y.reshape(X.shape), A @ (P[k1] @ g_end_sensor), k0, k1)
+
+
+def tilt_corrected(Y: np.ndarray, g_lev: np.ndarray, k0: int, k1: int) -> np.ndarray:
+    """The tilt-drift correction of :func:`levelled_vectors` (also used by the runtime's push-time
+    levelling, decision E15): the rotation that makes the levelled end-rest specific force ``g_lev``
+    vertical, spread linearly over ``k0..k1``, applied to the rows of ``Y (n, c, 3)``."""
+    if k1 <= k0:
+        return Y
+    n, shape = Y.shape[0], Y.shape
+    gx, gy, gz = g_lev.tolist()  # levelled specific force at the end rest
     nrm = math.sqrt(gx * gx + gy * gy + gz * gz)
     if not math.isfinite(nrm) or nrm < 1e-9:
         gravity_rotation(np.array([gx, gy, gz]))  # raises its DataError
     s = math.sqrt(gx * gx + gy * gy) / nrm
     if s < 1e-12:
         if gz > 0:
-            return Y.reshape(shape)  # already level: no correction (correct_tilt_drift's th == 0)
+            return Y  # already level: no correction (correct_tilt_drift's th == 0)
         kx, ky, th = 1.0, 0.0, math.pi  # upside down: 180 deg about x, as gravity_rotation
     else:
         kx, ky, th = gy / nrm / s, -gx / nrm / s, math.atan2(s, gz / nrm)  # axis (g x z) / |g x z|
     frac = np.minimum(np.maximum((np.arange(n) - k0) / float(k1 - k0), 0.0), 1.0)  # clipped to 0..1
     ang = frac * th
     KT = np.array([[0.0, 0.0, -ky], [0.0, 0.0, kx], [ky, -kx, 0.0]])  # ([k]x)^T of k = (kx, ky, 0)
-    KY = Y @ KT  # rows ([k]x v)^T
+    KY = Y.reshape(-1, 3) @ KT  # rows ([k]x v)^T
     K2Y = (KY @ KT).reshape(shape)  # rows ([k]x^2 v)^T
-    return Y.reshape(shape) + np.sin(ang)[:, None, None] * KY.reshape(shape) + (1.0 - np.cos(ang))[:, None, None] * K2Y
+    return Y + np.sin(ang)[:, None, None] * KY.reshape(shape) + (1.0 - np.cos(ang))[:, None, None] * K2Y
 
 
 def heading_rotation(forward_xy: np.ndarray) -> np.ndarray:

@@ -21,7 +21,14 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.rotation import gravity_rotation, rotvec_to_matrix, vec_norm
-from pdrlearn.kernels.stats import heading_rotation, principal_horizontal_axis, rest_index, rest_score, row_norm
+from pdrlearn.kernels.stats import (
+    heading_rotation,
+    principal_horizontal_axis,
+    rest_index,
+    rest_score,
+    row_norm,
+    tilt_corrected,
+)
 from pdrlearn.kernels.window import col_mean, interp, segment
 
 _I3 = np.eye(3)
@@ -330,7 +337,7 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
     Q = arr["Q"][j0:j1]
     A = r0 @ Q[k0].T
     Y = (arr["Z"][j0:j1].reshape(-1, 3) @ A.T).reshape(n, 3, 3)  # rows (A Q_k x)^T
-    Y = _tilt_corrected(Y, A @ (Q[k1] @ g1), k0, k1)
+    Y = tilt_corrected(Y, A @ (Q[k1] @ g1), k0, k1)
     a_lev = Y[:, 0]
     a_lev[:, 2] -= vec_norm(g0)
     yaw = heading_rotation(principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
@@ -338,33 +345,6 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
     (r0x, r0y), (f1x, f1y) = ref.tolist(), Y[-1, 2, :2].tolist()
     dpsi = math.atan2(r0x * f1y - r0y * f1x, r0x * f1x + r0y * f1y)
     return t, out[:, 0], out[:, 1], an, dpsi
-
-
-def _tilt_corrected(Y: np.ndarray, g_lev: np.ndarray, k0: int, k1: int) -> np.ndarray:
-    """The tilt-drift correction of :func:`pdrlearn.kernels.stats.levelled_vectors` (the same lines):
-    the rotation that makes the levelled end-rest force ``g_lev`` vertical, spread linearly over
-    ``k0..k1``, applied to the rows of ``Y (n, c, 3)``."""
-    if k1 <= k0:
-        return Y
-    n, shape = Y.shape[0], Y.shape
-    gx, gy, gz = g_lev.tolist()
-    nrm = math.sqrt(gx * gx + gy * gy + gz * gz)
-    if not math.isfinite(nrm) or nrm < 1e-9:
-        gravity_rotation(np.array([gx, gy, gz]))  # raises its DataError
-    s = math.sqrt(gx * gx + gy * gy) / nrm
-    if s < 1e-12:
-        if gz > 0:
-            return Y
-        kx, ky, th = 1.0, 0.0, math.pi
-    else:
-        kx, ky, th = gy / nrm / s, -gx / nrm / s, math.atan2(s, gz / nrm)
-    frac = np.minimum(np.maximum((np.arange(n) - k0) / float(k1 - k0), 0.0), 1.0)
-    ang = frac * th
-    KT = np.array([[0.0, 0.0, -ky], [0.0, 0.0, kx], [ky, -kx, 0.0]])
-    Y2 = Y.reshape(-1, 3)
-    KY = Y2 @ KT
-    K2Y = (KY @ KT).reshape(shape)
-    return Y + np.sin(ang)[:, None, None] * KY.reshape(shape) + (1.0 - np.cos(ang))[:, None, None] * K2Y
 
 
 _UNIT_COLUMNS = {  # window channel -> (unit, index in the levelled_units entry, axis or None)
