@@ -26,7 +26,7 @@ import pandas as pd
 
 from pdrlearn.io import read_session
 from pdrlearn.orient import WaistHeading, wrap_angle
-from pdrlearn.track.evaluate import evaluate_track
+from pdrlearn.track.evaluate import evaluate_track, straight_legs
 from pdrlearn.track.plasys import track_plasys
 from pdrlearn.track.plots import plot_paths
 
@@ -371,14 +371,7 @@ def run_real_walk_geometry() -> list[str]:
             r = track_plasys(s, method="M3", model="oracle", heading="foot", **kw)
             st, tr = r.steps.reset_index(drop=True), r.trajectory.reset_index(drop=True)
             h = np.degrees(np.unwrap(st["heading_rad"].to_numpy(float)))
-            legs, cur = [], [0]
-            for i in range(1, len(st)):
-                if abs(h[i] - h[i - 1]) < 20:
-                    cur.append(i)
-                else:
-                    legs.append(cur)
-                    cur = [i]
-            legs = [g for g in legs + [cur] if len(g) >= 4]
+            legs = straight_legs(h)
             cells, prev = [], None
             for g in legs:
                 a, b = g[0], g[-1] + 1

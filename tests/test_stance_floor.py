@@ -179,6 +179,7 @@ def test_l_walk_turns_are_right_angles_and_turnarounds():
     turnaround within 20 deg (before L28 one turnaround measured +62 deg: its pivot fell between strides)."""
     d = external_session("gaitmap_lwalk")
     from pdrlearn.io import read_session
+    from pdrlearn.track.evaluate import straight_legs
     from pdrlearn.track.plasys import track_plasys
 
     logging.disable(logging.WARNING)
@@ -187,14 +188,7 @@ def test_l_walk_turns_are_right_angles_and_turnarounds():
     finally:
         logging.disable(logging.NOTSET)
     h = np.degrees(np.unwrap(r.steps["heading_rad"].to_numpy(float)))
-    legs, cur = [], [0]
-    for i in range(1, len(h)):
-        if abs(h[i] - h[i - 1]) < 20:
-            cur.append(i)
-        else:
-            legs.append(cur)
-            cur = [i]
-    legs = [g for g in legs + [cur] if len(g) >= 4]
+    legs = straight_legs(h)
     turns = np.diff([np.mean(h[g[1:-1]]) for g in legs])
     assert len(turns) >= 10
     err = np.minimum(np.abs(np.abs(turns) - 90), np.abs(np.abs(turns) - 180))

@@ -42,6 +42,19 @@ def match_by_overlap(est: pd.DataFrame, ref: pd.DataFrame, *, min_iou: float = 0
     return sorted(pairs)
 
 
+def straight_legs(heading_deg: np.ndarray, *, max_change_deg: float = 20.0, min_strides: int = 4) -> list[list[int]]:
+    """Runs of consecutive strides whose heading changes by less than ``max_change_deg`` from one stride to
+    the next (the straight legs of a walk), keeping runs of at least ``min_strides``: stride indices."""
+    legs, cur = [], [0]
+    for i in range(1, len(heading_deg)):
+        if abs(heading_deg[i] - heading_deg[i - 1]) < max_change_deg:
+            cur.append(i)
+        else:
+            legs.append(cur)
+            cur = [i]
+    return [g for g in legs + [cur] if len(g) >= min_strides]
+
+
 def path_length(traj: pd.DataFrame, *, min_spacing_s: float = 0.5) -> float:
     """Horizontal length (m) of a trajectory sampled every ``min_spacing_s`` s (smooths body sway)."""
     t = traj["t"].to_numpy(float)
