@@ -74,26 +74,31 @@ def summarise(df: pd.DataFrame) -> pd.DataFrame:
     return out
 
 
+SCORE_KEYS = ("reference_count", "count", "precision", "recall", "f1", "count_error_pct", "timing_error_mean_s",
+              "timing_error_sd_s", "outside_labels")
+
+
+def detector_row(s, label: str, d: str, keys: tuple[str, ...] = SCORE_KEYS) -> dict:
+    """One table row: detector ``d`` on session ``s`` scored against its labels (or the detector's error)."""
+    row = {"session": label, "detector": d}
+    try:
+        st = get_detector(d).detect(s)
+    except Exception as exc:  # the force detector must say that force data is missing
+        row["note"] = f"{type(exc).__name__}: {str(exc)[:80]}..."
+        return row
+    sc = score_steps(st, s)
+    row.update({k: sc[k] for k in keys})
+    row["note"] = sc["reference"]
+    return row
+
+
 def real(real_dir: Path) -> pd.DataFrame:
     rows = []
     for unit, names in REAL.items():
         for name in names:
             s = read_session(real_dir / name)
             dets = ("accel", "accel-force") if unit == "foot" else ("pelvic-gyro", "pll")
-            for d in dets:
-                row = {"session": name, "detector": d}
-                try:
-                    st = get_detector(d).detect(s)
-                except Exception as exc:  # the force detector must say that force data is missing
-                    row["note"] = f"{type(exc).__name__}: {str(exc)[:80]}..."
-                    rows.append(row)
-                    continue
-                sc = score_steps(st, s)
-                row.update({k: sc[k] for k in ("reference_count", "count", "precision", "recall", "f1",
-                                                "count_error_pct", "timing_error_mean_s", "timing_error_sd_s",
-                                                "outside_labels")})
-                row["note"] = sc["reference"]
-                rows.append(row)
+            rows += [detector_row(s, name, d) for d in dets]
     return pd.DataFrame(rows)
 
 
@@ -107,20 +112,8 @@ def external_foot(ext: Path) -> pd.DataFrame:
     rows = []
     for path in external_foot_sessions(ext):
         s = read_session(path)
-        for d in ("accel", "accel-force"):
-            row = {"session": f"{path.name} (external)", "detector": d}
-            try:
-                st = get_detector(d).detect(s)
-            except Exception as exc:  # the force detector must say that force data is missing
-                row["note"] = f"{type(exc).__name__}: {str(exc)[:80]}..."
-                rows.append(row)
-                continue
-            sc = score_steps(st, s)
-            row.update({k: sc[k] for k in ("reference_count", "count", "precision", "recall", "f1",
-                                            "count_error_pct", "timing_error_mean_s", "timing_error_sd_s",
-                                            "outside_labels", "ground_truth")})
-            row["note"] = sc["reference"]
-            rows.append(row)
+        rows += [detector_row(s, f"{path.name} (external)", d, SCORE_KEYS + ("ground_truth",))
+                 for d in ("accel", "accel-force")]
     return pd.DataFrame(rows)
 
 
