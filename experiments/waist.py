@@ -13,7 +13,7 @@ External subjects (``--external datasets/external``, from ``pdrlearn fetch mobga
 subject (HA001, HA002, MS001): each Test5 trial with a reference -> the other one, all of them -> Test11;
 per-subject rows plus pooled rows (F1 from the pooled counts, IC timing over all matched contacts, median
 over all bouts, stride MAE over all strides). HA002 Test5 Trial1 has no reference and Trial2 a Stereophoto
-one (docs/external-data.md E3), so HA002 is calibrated on Test5 Trial2 and tested on Test11 only.
+one (docs/external-data.md X3), so HA002 is calibrated on Test5 Trial2 and tested on Test11 only.
 
 Run: .venv/bin/python experiments/waist.py [--data datasets/real] [--sim-users 3] [--external datasets/external]
 """
@@ -69,7 +69,7 @@ REAL_NOTE = ("step_f1 = detections inside the reference bouts vs every reference
              "step_f1_all = whole recording; dist_err_pct = distance tracked inside the reference walking "
              "bouts vs their total reference length; bout_err_median_pct = median of per-bout |errors|; "
              "*_strides_* = the same against each bout's own reference strides (its steps x half its mean "
-             "stride, decision W25) instead of the bout `Length` (short in bouts with untimed contacts, E2b).")
+             "stride, decision W25) instead of the bout `Length` (short in bouts with untimed contacts, X2b).")
 DECOMP_NOTE = ("Per reference bout (calibrated `waist-pendulum`): L = INDIP bout `Length`; L_strides = the bout's "
                "reference steps x half its mean stride (W25); err_L / err_strides = tracked vs each; count_err = "
                "detected / reference steps - 1; step_err = mean tracked step / mean reference step - 1 "
@@ -217,10 +217,10 @@ def pooled(df: pd.DataFrame, bouts: pd.DataFrame) -> pd.DataFrame:
 EXTRA_COLS = ("tp", "n_detected", "n_reference", "n_strides", "n_stereo")
 EXTERNAL_NOTE = ("Per subject: calibrated on one Test5 straight walk (reference bout length) and tested on the "
                  "other, and on both -> Test11 (daily activities); HA002 has one referenced Test5 trial "
-                 "(Stereophoto, docs/external-data.md E3) -> Test11 only. Pooled: F1 from the summed counts, "
+                 "(Stereophoto, docs/external-data.md X3) -> Test11 only. Pooled: F1 from the summed counts, "
                  "IC mean/sd over all matched contacts, median of |per-bout error| over all bouts, stride MAE "
-                 "over all strides. Detections standing for INDIP contacts without a time are not scored (E2). "
-                 "ic_stereo = IC timing against the Stereophoto contacts (optical motion capture, E4), where "
+                 "over all strides. Detections standing for INDIP contacts without a time are not scored (X2). "
+                 "ic_stereo = IC timing against the Stereophoto contacts (optical motion capture, X4), where "
                  "the trial has them: INDIP dates MS001's right (affected) foot contacts 130-160 ms later than "
                  "the Stereophoto.")
 

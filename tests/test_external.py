@@ -221,7 +221,7 @@ def test_stereophoto_contacts_as_second_reference(tmp_path):
 
 CACHED = default_cache_dir() / f"mobgap-{mobgap.SDIST.version}"
 PROVENANCE = {"source_commit", "source_sdist"}  # git commit of the bundled copy vs the pinned sdist
-ADDED = {"ics_stereophoto.csv"}  # second IC reference (E4), not in the bundled copy
+ADDED = {"ics_stereophoto.csv"}  # second IC reference (X4), not in the bundled copy
 
 
 @pytest.mark.skipif(not (CACHED / "example_data").is_dir(),

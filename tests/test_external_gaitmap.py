@@ -93,7 +93,7 @@ def test_convert_writes_sessions_in_the_datasets_real_layout(fake_sdist, tmp_pat
         assert np.allclose(np.linalg.norm(acc.values[:5], axis=1), gaitmap.G, atol=1e-5)
         assert 3.9 < np.abs(gyr.values[:, 0]).max() <= 4.0 + 1e-5  # deg/s -> rad/s
         assert meta["license"].startswith("MIT") and meta["source_files"][0].startswith("example_data/")
-        assert meta["source_sdist"]["sha256"] == gaitmap.SDIST.sha256  # same entry as mobgap's (E1)
+        assert meta["source_sdist"]["sha256"] == gaitmap.SDIST.sha256  # same entry as mobgap's (X1)
         assert meta["n_strides"] == len(s.steps)
     ts = (tmp_path / "ext" / "gaitmap_stairs_up_right" / "fAccelerometer.csv").read_text().splitlines()
     assert ts[1].startswith("0,") and ts[2].startswith("4.8828125,")  # ms since the first sample

@@ -1,5 +1,5 @@
 """Decision W25: each reference bout's length also from its own strides (steps x half the mean stride),
-because INDIP's bout `Length` leaves out steps without a time (docs/external-data.md E2b)."""
+because INDIP's bout `Length` leaves out steps without a time (docs/external-data.md X2b)."""
 
 from __future__ import annotations
 
@@ -39,7 +39,7 @@ def test_stride_length_counts_untimed_contacts_and_merges_duplicates():
 
 
 def test_distance_metrics_reports_both_references():
-    s = _session(3.0)  # INDIP-like Length shorter than the steps x mean step (E2b)
+    s = _session(3.0)  # INDIP-like Length shorter than the steps x mean step (X2b)
     t = np.arange(0.0, 5.0, 0.01)
     st = steps_from_events(t, np.round(np.arange(1.0, 4.01, 0.5) * 100).astype(int), max_step_s=1.5)
     st["length_m"] = np.where(st["has_next"], 0.6, 0.0)
@@ -65,7 +65,7 @@ def test_without_reference_strides_only_the_length_error():
 
 @pytest.mark.skipif(not (REAL / "mobgap_HA001_Test5_Trial1").exists(), reason="real data not bundled")
 def test_complete_indip_bout_agrees_with_its_length():
-    """On a bout where INDIP times every contact the two references agree within 2 % (E2b)."""
+    """On a bout where INDIP times every contact the two references agree within 2 % (X2b)."""
     from pdrlearn.io import read_session
     from pdrlearn.waist.evaluate import reference_bouts
 

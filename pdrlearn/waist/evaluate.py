@@ -7,9 +7,9 @@
   recording. Where the reference has a contact without a time (``extras["ics_untimed"]``: INDIP NaN,
   with the interval between its timed neighbours), up to that many detections inside the interval
   (farther than the tolerance from both neighbours, so they cannot match a timed contact) are not
-  scored: the step happened, only its time is unknown (docs/external-data.md E2); ``n_unscored`` counts
+  scored: the step happened, only its time is unknown (docs/external-data.md X2); ``n_unscored`` counts
   them. Where the session has a second IC reference (``extras["ics_stereophoto"]``, the lab's optical
-  motion capture, docs/external-data.md E4), ``ic_timing_stereo_mean_ms`` / ``_sd_ms`` give the timing
+  motion capture, docs/external-data.md X4), ``ic_timing_stereo_mean_ms`` / ``_sd_ms`` give the timing
   of the detections matched to it and ``stereo_recall`` its recall (no precision: its capture volume
   covers only part of a bout).
 - ``distance_error_pct``: distance tracked inside the reference bouts (steps whose midpoint lies in a
@@ -17,7 +17,7 @@
   per-bout absolute errors. ``*_strides_*``: the same against the bout's own reference steps, its number
   of steps (timed contacts, duplicates < 0.1 s apart merged, plus untimed ones, minus one) times half its
   mean stride length (:func:`bout_stride_length`, decision W25): INDIP's ``Length`` is 8-27 % short in
-  bouts with untimed contacts (docs/external-data.md E2b).
+  bouts with untimed contacts (docs/external-data.md X2b).
 - ``stride_length_mae_m``: per reference stride, the sum of the tracked steps whose midpoint lies in it.
 """
 

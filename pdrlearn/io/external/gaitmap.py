@@ -356,7 +356,7 @@ def build_session(rec: Recording, src: Path, folder: Path) -> dict:
     meta = {
         "source_project": "gaitmap (MaD-Lab, FAU Erlangen-Nuernberg)",
         "source_repo": "https://github.com/mad-lab-fau/gaitmap",
-        "source_sdist": SDIST.provenance(),  # the same entry as the mobgap sessions' (E1)
+        "source_sdist": SDIST.provenance(),  # the same entry as the mobgap sessions' (X1)
         "license": LICENSE,
         "placement": "foot",
         "sensor_hardware": "foot-worn IMU, no force sensors" + ("" if rec.session == "gaitmap_lwalk" else

@@ -19,7 +19,7 @@ struct ``data.TimeMeasure1.<Test>.<Trial>``) and ``example_data/data_csv/partici
 A trial whose INDIP reference has no walking bout takes its labels from the Stereophoto reference if that
 has one (HA002 Test5 Trial2 in mobgap 1.2.0); a trial with neither (HA002 Test5 Trial1) gets the sensor
 files and ``meta.json`` (``reference.available = false``) but no label files. INDIP contacts/strides with
-NaN times are left out and counted in ``meta.json`` (decisions E1-E3 in docs/external-data.md).
+NaN times are left out and counted in ``meta.json`` (decisions X1-X3 in docs/external-data.md).
 """
 
 from __future__ import annotations
@@ -43,7 +43,7 @@ PARTICIPANTS = Path("example_data/data_csv/participant_metadata.json")
 TIME_MEASURE = "TimeMeasure1"
 #: reference systems in order of preference: name -> (description, unit of Stride_InitialContacts).
 #: INDIP is used where it has walking bouts; the Stereophoto (optical motion capture, lab) fills in a
-#: trial where INDIP has none (HA002 Test5 Trial2), decision E3.
+#: trial where INDIP has none (HA002 Test5 Trial2), decision X3.
 REFERENCES = {
     "INDIP": ("INDIP (multi-sensor: foot IMUs + pressure insoles + distance sensors)", "samples"),
     "Stereophoto": ("Stereophoto (optical motion capture in the lab; used where INDIP has no walking bout)", "s"),
@@ -209,7 +209,7 @@ def _labels(mat: _Mat, std: dict, fs: float, where: str,
             if len(ic_lr) != ic_t.size:
                 raise DataError(f"{mat.path}: {w}: {ic_t.size} InitialContact_Event but {len(ic_lr)} "
                                 f"InitialContact_LeftRight; the file is damaged (fetch again)")
-            ok = np.isfinite(ic_t)  # INDIP leaves an IC it could not time as NaN (decision E2)
+            ok = np.isfinite(ic_t)  # INDIP leaves an IC it could not time as NaN (decision X2)
             dropped["ics"] += int((~ok).sum())
             for k in np.flatnonzero(~ok):  # where the untimed contact lies: between its timed neighbours
                 before, after = ic_t[:k][ok[:k]], ic_t[k + 1:][ok[k + 1:]]
@@ -244,7 +244,7 @@ def _labels(mat: _Mat, std: dict, fs: float, where: str,
             to_ms = _sample_ms if border_unit == "samples" else _ref_ms
             s_ms, e_ms = to_ms(sic[:, 0], fs), to_ms(sic[:, 1], fs)
             for k in range(n):
-                if not (np.isfinite(s_ms[k]) and np.isfinite(e_ms[k])):  # a NaN border: not placeable (E2)
+                if not (np.isfinite(s_ms[k]) and np.isfinite(e_ms[k])):  # a NaN border: not placeable (X2)
                     dropped["strides"] += 1
                     continue
                 foot = seen.get(int(np.rint(s_ms[k])))
@@ -313,7 +313,7 @@ def _session(mat: _Mat, rec: dict, cohort: str, pid: str, test: str, trial: str,
             labels, dropped = _labels(mat, std[sys_name], fs, f"{where}.Standards.{sys_name}", unit)
             break
     ref = std.get(system)
-    second = None  # decision E4: the Stereophoto contacts as a second, independent IC reference
+    second = None  # decision X4: the Stereophoto contacts as a second, independent IC reference
     if system == "INDIP" and labels is not None and isinstance(std.get("Stereophoto"), dict) and _records(
             std["Stereophoto"].get("ContinuousWalkingPeriod", [])):
         sl, _ = _labels(mat, std["Stereophoto"], fs, f"{where}.Standards.Stereophoto", REFERENCES["Stereophoto"][1])
@@ -393,7 +393,7 @@ def _session(mat: _Mat, rec: dict, cohort: str, pid: str, test: str, trial: str,
             meta["labels"]["ics_stereophoto.csv"] = (
                 "initial contacts of the Stereophoto reference (optical motion capture, lab gold standard; only "
                 "inside its capture volume), same columns and time convention as ics.csv: a second, independent "
-                "IC reference (docs/external-data.md E4)")
+                "IC reference (docs/external-data.md X4)")
         if dropped.get("ics"):
             meta["labels"]["ics_untimed.csv"] = ("INDIP initial contacts without a time (NaN in the source), one "
                                                  "row each: the contact lies between after_ms and before_ms (its "

@@ -29,7 +29,7 @@ class Sdist:
         return f"{self.name}-{self.version}.tar.gz"
 
     def provenance(self) -> dict:
-        """The ``source_sdist`` entry of a converted session's meta.json (docs/external-data.md E1)."""
+        """The ``source_sdist`` entry of a converted session's meta.json (docs/external-data.md X1)."""
         return {"name": self.name, "version": self.version, "file": self.filename, "sha256": self.sha256,
                 "index": f"https://pypi.org/project/{self.name}/{self.version}/"}
 
