@@ -18,7 +18,7 @@ from tests.conftest import external_session
 
 ROOT = Path(__file__).resolve().parents[1]
 REAL = ROOT / "datasets" / "real"
-E7 = {"stance_floor_factor": 0.0, "stance_gap_s": 0.0}  # the fixed rule before L27
+E7 = {"stance_floor_factor": 0.0, "stance_gap_s": 0.0, "stance_mean_min_s": 0.0}  # the fixed rule before L27, L29
 
 
 def _walk(stance_level: float, *, fs: float = 100.0, n_strides: int = 12, stance_s: float = 0.35,
@@ -78,7 +78,10 @@ def test_calm_stance_keeps_the_fixed_threshold():
     seg = StanceSegmenter()
     thr = np.array(seg._thresholds(t.tolist(), np.linalg.norm(gyr, axis=1).tolist()))
     assert np.all(thr == 0.8)  # floor x 2 stays below 0.8: decision E7's threshold
-    np.testing.assert_array_equal(stance_strides(t, gyr), stance_strides(t, gyr, E7))
+    np.testing.assert_array_equal(stance_strides(t, gyr, {"stance_mean_min_s": 0.0}), stance_strides(t, gyr, E7))
+    # decision L29's window-mean test only widens a stance by less than half its 0.1 s window
+    new, e7 = stance_strides(t, gyr), stance_strides(t, gyr, E7)
+    assert new.shape == e7.shape and np.abs(new - e7).max() <= 0.05
 
 
 def test_threshold_is_capped_and_chunk_invariant():

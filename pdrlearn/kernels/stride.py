@@ -34,8 +34,11 @@ from pdrlearn.kernels.window import Levelled, interp
 #: ``stance_floor_window_s``), never below the fixed threshold, never above ``stance_gyro_max_rad_s``;
 #: factor 0 = the fixed threshold alone (decision E7). ``stance_gap_s``: a stance survives shorter runs of
 #: samples above the threshold (one-sample spikes split the 0.12-0.19 s foot-flats of the MS recording).
+#: Decision L29: ``stance_mean_min_s`` > 0 also counts a sample as still when the ``min_stance_s`` mean of
+#: |w| centred on it is below the threshold (the offline rule of ``inertial_stance``), and a stance then
+#: needs to last ``stance_mean_min_s`` (not ``min_stance_s``); 0 = L27 alone.
 STANCE_L27_DEFAULTS = {"stance_floor_factor": 2.0, "stance_floor_window_s": 1.0, "stance_gyro_max_rad_s": 2.0,
-                       "stance_gap_s": 0.03}
+                       "stance_gap_s": 0.03, "stance_mean_min_s": 0.07}
 
 
 def stance_gyro_threshold(floor: np.ndarray | float, base: float, *, factor: float = 2.0,
@@ -61,12 +64,15 @@ def stance_floor(w: np.ndarray, fs: float, *, mean_s: float, window_s: float) ->
 
 
 class StanceSegmenter:
-    """Online stance-to-stance stride detection on the foot gyroscope (decisions E7, L27).
+    """Online stance-to-stance stride detection on the foot gyroscope (decisions E7, L27, L29).
 
     A stance is a run of samples with ``|w|`` below the stance threshold lasting ``min_stance_s``. The
     threshold is ``stance_gyro_rad_s``, raised to ``stance_floor_factor`` x the walker's stance floor (the
     lowest ``min_stance_s`` mean of |w| in the last ``stance_floor_window_s``) when the foot never quite
     rests (a rolling instep mount, short foot-flats), at most ``stance_gyro_max_rad_s`` (decision L27).
+    Decision L29 (``stance_mean_min_s`` > 0): a sample is also still when the ``min_stance_s`` mean of |w|
+    centred on it is below the threshold (the offline stance test), and a run of still samples is a stance
+    when it lasts ``stance_mean_min_s``; samples are then judged half a mean window late (~0.05 s).
     Its boundary is its middle, but at most ``stance_half_s`` from its start (closing the stride before)
     and from its end (opening the next), so standing still neither delays a stride nor stretches it.
     Strides lasting ``min_step_s``..``max_step_s`` are returned by :meth:`update` as ``(start_s, end_s)``.
@@ -77,7 +83,8 @@ class StanceSegmenter:
                  stance_floor_factor: float = STANCE_L27_DEFAULTS["stance_floor_factor"],
                  stance_floor_window_s: float = STANCE_L27_DEFAULTS["stance_floor_window_s"],
                  stance_gyro_max_rad_s: float = STANCE_L27_DEFAULTS["stance_gyro_max_rad_s"],
-                 stance_gap_s: float = STANCE_L27_DEFAULTS["stance_gap_s"]):
+                 stance_gap_s: float = STANCE_L27_DEFAULTS["stance_gap_s"],
+                 stance_mean_min_s: float = STANCE_L27_DEFAULTS["stance_mean_min_s"]):
         self.thr = float(stance_gyro_rad_s)
         self.min_stance_s = float(min_stance_s)
         self.half = float(stance_half_s)
@@ -86,16 +93,19 @@ class StanceSegmenter:
         self.floor_window_s = float(stance_floor_window_s)
         self.cap = max(float(stance_gyro_max_rad_s), self.thr)
         self.gap = float(stance_gap_s)
-        if not (self.factor >= 0 and self.floor_window_s > 0 and self.gap >= 0):
-            raise DataError(f"StanceSegmenter: stance_floor_factor {stance_floor_factor!r} and stance_gap_s "
-                            f"{stance_gap_s!r} must be >= 0, stance_floor_window_s {stance_floor_window_s!r} > 0 "
-                            "(decision L27; factor 0 and gap 0 = the fixed rule E7)")
+        self.mean_min = float(stance_mean_min_s)
+        if not (self.factor >= 0 and self.floor_window_s > 0 and self.gap >= 0 and self.mean_min >= 0):
+            raise DataError(f"StanceSegmenter: stance_floor_factor {stance_floor_factor!r}, stance_gap_s "
+                            f"{stance_gap_s!r} and stance_mean_min_s {stance_mean_min_s!r} must be >= 0, "
+                            f"stance_floor_window_s {stance_floor_window_s!r} > 0 (decisions L27, L29; all "
+                            "three 0 = the fixed rule E7)")
         self.stance_start: float | None = None
         self.last_still = -np.inf
         self.closed = False
         self.open_s: float | None = None  # start (s) of the stride in progress
         self.last_boundary: float | None = None
-        # decision L27: trailing min_stance_s mean of |w| (running sum) and its trailing minimum (monotonic deque)
+        # decision L27: trailing min_stance_s window of [t, |w|, threshold] (running sum of |w|) and the
+        # trailing minimum of its mean (monotonic deque)
         self._mean_q: deque = deque()
         self._mean_sum = 0.0
         self._min_q: deque = deque()
@@ -107,27 +117,30 @@ class StanceSegmenter:
                 *STANCE_L27_DEFAULTS)
         return cls(**{k: float(params[k]) for k in keys if k in params})
 
-    def _thresholds(self, t: list[float], w: list[float]) -> list[float]:
-        """Decision L27: the stance threshold at each new sample (trailing floor; state carried across calls,
-        so the result does not depend on how the stream is chunked)."""
+    def _push(self, ti: float, wi: float) -> tuple[float, float]:
+        """Add one sample to the trailing window; its mean of |w| and the sample's stance threshold (decision
+        L27: trailing floor; state carried across calls, so nothing depends on how the stream is chunked)."""
+        mq = self._mean_q
+        mq.append([ti, wi, self.thr])
+        self._mean_sum += wi
+        while mq[0][0] <= ti - self.min_stance_s:
+            self._mean_sum -= mq.popleft()[1]
+        m = self._mean_sum / len(mq)
         if self.factor == 0:
-            return [self.thr] * len(t)
-        out = []
-        mq, nq = self._mean_q, self._min_q
-        ms, fw, k, lo, hi = self.min_stance_s, self.floor_window_s, self.factor, self.thr, self.cap
-        for ti, wi in zip(t, w, strict=True):
-            mq.append((ti, wi))
-            self._mean_sum += wi
-            while mq[0][0] <= ti - ms:
-                self._mean_sum -= mq.popleft()[1]
-            m = self._mean_sum / len(mq)
-            while nq and nq[-1][1] >= m:
-                nq.pop()
-            nq.append((ti, m))
-            while nq[0][0] <= ti - fw:
-                nq.popleft()
-            out.append(min(max(k * nq[0][1], lo), hi))
-        return out
+            return m, self.thr
+        nq = self._min_q
+        while nq and nq[-1][1] >= m:
+            nq.pop()
+        nq.append((ti, m))
+        while nq[0][0] <= ti - self.floor_window_s:
+            nq.popleft()
+        th = min(max(self.factor * nq[0][1], self.thr), self.cap)
+        mq[-1][2] = th
+        return m, th
+
+    def _thresholds(self, t: list[float], w: list[float]) -> list[float]:
+        """Decision L27: the stance threshold at each new sample (advances the state)."""
+        return [self._push(ti, wi)[1] for ti, wi in zip(t, w, strict=True)]
 
     def update(self, t: np.ndarray, gyr: np.ndarray) -> list[tuple[float, float]]:
         """Feed new foot-gyroscope samples ``t (n,)`` s, ``gyr (n, 3)`` rad/s; return the strides they close."""
@@ -136,18 +149,26 @@ class StanceSegmenter:
         tl = t.tolist()
         if not math.isfinite(sum(w)):  # a NaN would stay in the L27 running sum: no stance for the rest of the stream
             raise DataError("StanceSegmenter: foot gyroscope samples contain NaN/inf; drop those samples first")
-        thr = self._thresholds(tl, w)
-        for ti, wi, th in zip(tl, w, thr, strict=True):
-            if wi < th:
+        mean_rule = self.mean_min > 0
+        min_run = self.mean_min if mean_rule else self.min_stance_s
+        mq = self._mean_q
+        for tn, wn in zip(tl, w, strict=True):
+            m, th = self._push(tn, wn)
+            if mean_rule:  # L29: judge the sample at the window's centre (its older middle: E7 dates kept)
+                ti, wi, thi = mq[(len(mq) - 1) // 2]
+                still = wi < thi or m < th
+            else:
+                ti, still = tn, wn < th
+            if still:
                 if self.stance_start is None:
                     self.stance_start, self.closed = ti, False
                 self.last_still = ti
-                if not self.closed and ti - self.stance_start >= max(2 * self.half, self.min_stance_s):
+                if not self.closed and ti - self.stance_start >= max(2 * self.half, min_run):
                     self._close(self.stance_start + self.half, out)  # long stance: close the stride now
                 continue
             if self.stance_start is not None and ti - self.last_still > self.gap:  # L27: bridge short spikes
                 s0, s1 = self.stance_start, self.last_still
-                if s1 - s0 >= self.min_stance_s:
+                if s1 - s0 >= min_run:
                     mid = 0.5 * (s0 + s1)
                     if not self.closed:
                         self._close(mid, out)
