@@ -50,7 +50,8 @@ RUNS = [  # (calibration sessions, test session)
 ]
 CONFIGS = [  # (label, pipeline, options)
     ("waist-pendulum", "waist-pendulum", {}),
-    ("waist-pendulum papers (no W18/W19)", "waist-pendulum", {"rhythm": False, "turn_factor": False}),
+    ("waist-pendulum papers (no W18/W19/W27)", "waist-pendulum",
+     {"rhythm": False, "turn_factor": False, "merge_fragments": False}),
     ("waist-pendulum realtime", "waist-pendulum", {"realtime": True}),
     ("waist-pll (A-HE)", "waist-pll", {}),
     ("waist-pll ellipse", "waist-pll", {"heading": "ellipse"}),

@@ -42,7 +42,7 @@ from pdrlearn.waist.heading import (
     harmonic_directions,
 )
 from pdrlearn.waist.params import WaistParams, resolve_params
-from pdrlearn.waist.steplength import frequency_lengths, pendulum_h
+from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
 
 log = logging.getLogger(__name__)
 
@@ -128,30 +128,43 @@ def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
 
 
 def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: str, thr: float, *,
-                  turn_factor: bool = False) -> pd.DataFrame:
+                  turn_factor: bool = False, merge_fragments: bool = False) -> pd.DataFrame:
     """Steps table with ``length_m`` (0 for sequence-closing contacts), ``frequency_hz``, ``dyaw_rad``
-    (vertical-gyro rotation during the step) and, for the pendulum, ``h_m`` (vertical excursion).
-    ``turn_factor`` scales each length by :func:`~pdrlearn.waist._kernels.turning_step_factor` (W19)."""
+    (vertical-gyro rotation during the step) and, for the pendulum, ``h_m`` (vertical excursion) and
+    ``merged`` (True: a fragment whose length its neighbour carries).
+    ``turn_factor`` scales each length by :func:`~pdrlearn.waist._kernels.turning_step_factor` (W19);
+    ``merge_fragments`` (pendulum): a step shorter than half its sequence's median step is merged with a
+    neighbour, whose h and rotation are taken over both (decision W27)."""
     n, fs = len(steps), imu.fs
     idx = np.clip(np.round((steps["event_s"].to_numpy(float) - imu.t[0]) * fs).astype(int), 0, len(imu.t) - 1)
     has_next = steps["has_next"].to_numpy(bool)
     dur = (steps["end_s"] - steps["start_s"]).to_numpy(float)
     freq = np.where(has_next & (dur > 0), 1.0 / np.where(dur > 0, dur, 1.0), np.nan)
+    ev = steps["event_s"].to_numpy(float)
+    end = steps["end_s"].to_numpy(float)
+    win: dict[int, tuple[int, int]] = {}
     if pipeline == "waist-pendulum":
         fc_idx = np.round((steps["fc_s"].fillna(-1).to_numpy(float) - imu.t[0]) * fs).astype(int)
+        if merge_fragments:
+            win = fragment_windows(steps["start_s"].to_numpy(float), end, has_next)
+        merged = fragment_mask(n, win)
         h = np.zeros(n)
-        for i in np.flatnonzero(has_next):
-            h[i] = pendulum_h(imu.acc_v, fs, idx[i], fc_idx[i], idx[i + 1])
+        for i in np.flatnonzero(has_next & ~merged):
+            if i in win:  # W27: the whole step a spurious contact had split
+                h[i] = K.vertical_excursion(imu.acc_v, fs, idx[win[i][0]], idx[win[i][1] + 1])
+            else:
+                h[i] = pendulum_h(imu.acc_v, fs, idx[i], fc_idx[i], idx[i + 1])
         # a negative F (W22) must not turn a step with a tiny excursion into a backward one
-        lengths = np.where(has_next, np.maximum(K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m), 0.0), 0.0)
-        steps = steps.assign(h_m=h)
+        lengths = np.where(has_next & ~merged,
+                           np.maximum(K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m), 0.0), 0.0)
+        steps = steps.assign(h_m=h, merged=merged)
     else:
         sigma = K.rolling_std(imu.acc_v, fs, causal=False)
         running = K.motion_state(sigma[idx], walk_threshold=thr) == 2
         lengths = np.where(has_next, frequency_lengths(np.nan_to_num(freq, nan=0.0), p, running=running), 0.0)
-    ev = steps["event_s"].to_numpy(float)
-    end = steps["end_s"].to_numpy(float)
     dyaw = np.where(has_next, K.integrate_rate(imu.t, imu.w_z - p.gyro_bias_rps, ev, end), 0.0)
+    for i, (a, b) in win.items():  # W27: the owner's turn factor over the merged step
+        dyaw[i] = float(np.sum(dyaw[a:b + 1]))
     if turn_factor:
         lengths = lengths * K.turning_step_factor(dyaw)
     return steps.assign(length_m=lengths, frequency_hz=freq, dyaw_rad=dyaw)
@@ -208,13 +221,15 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
 
 #: pipeline options a PARAMS.json may set under "options" (so ``pdrlearn track --params`` reaches them)
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
-                   "resolve_signs": True, "integrate_stops": False, "turn_factor": True, "rhythm": True}
+                   "resolve_signs": True, "integrate_stops": False, "turn_factor": True, "rhythm": True,
+                   "merge_fragments": True}
 
 
 def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool | None = None,
                 heading: str | None = None, refine_ic: bool | None = None, initial_heading: float | None = None,
                 resolve_signs: bool | None = None, integrate_stops: bool | None = None,
-                turn_factor: bool | None = None, rhythm: bool | None = None) -> TrackResult:
+                turn_factor: bool | None = None, rhythm: bool | None = None,
+                merge_fragments: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -236,6 +251,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         models assume straight steps); default True
     rhythm : offline IC detector (pendulum, and the PLL's IC refinement): complete walking sequences at
         the gait rhythm (decision W18); default True
+    merge_fragments : pendulum: a step shorter than half its walking sequence's median step is a piece of
+        a step split by a spurious contact; its neighbour's length covers both (decision W27); default True
 
     Options left at ``None`` take the value of ``params.options`` (a PARAMS.json ``"options"`` object)
     and else :data:`OPTION_DEFAULTS`.
@@ -245,7 +262,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     p, warnings = resolve_params(session, params)
     given = {"realtime": realtime, "heading": heading, "refine_ic": refine_ic,
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
-             "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm}
+             "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
+             "merge_fragments": merge_fragments}
     unknown = sorted(set(p.options or {}) - set(OPTION_DEFAULTS))
     if unknown:
         raise DataError(f"params options: unknown {', '.join(unknown)}; use some of {', '.join(OPTION_DEFAULTS)}")
@@ -271,7 +289,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
-    steps = _step_lengths(steps, imu, p, pipeline, thr, turn_factor=bool(o["turn_factor"]))
+    steps = _step_lengths(steps, imu, p, pipeline, thr, turn_factor=bool(o["turn_factor"]),
+                          merge_fragments=bool(o["merge_fragments"]))
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops)
     n = len(steps)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"

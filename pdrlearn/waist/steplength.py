@@ -17,6 +17,11 @@ log = logging.getLogger(__name__)
 #: seed 000 sec. II-D: linear ranges 1.5-2.2 Hz walking, 2.7-4.2 Hz running; the split between them
 RUN_SPLIT_HZ = 2.45
 MIN_SPREAD_HZ = 0.15  # fit a slope only when the calibration walks span this much frequency (decision W8)
+# decision W27: a step shorter than this fraction of its walking sequence's median step is a fragment of a step
+# split by a spurious contact (step-time variability within a walking sequence is a few per cent, Hausdorff
+# 2005 J NeuroEng Rehabil 2:19, so half the period is no step at that cadence; the same limit as W25/W26)
+FRAGMENT_FRAC = 0.5
+MIN_FRAGMENT_SEQ = 3  # steps a sequence needs for its median step to judge fragments by
 
 
 def pendulum_h(acc_v: np.ndarray, fs: float, i_ic: int, i_fc: int, i_next: int, *,
@@ -26,6 +31,49 @@ def pendulum_h(acc_v: np.ndarray, fs: float, i_ic: int, i_fc: int, i_next: int, 
     next IC as seed 003 sec. 3.2 describes (the whole step when the FC is not inside it)."""
     i0 = i_fc if single_stance and i_ic < i_fc < i_next - 2 else i_ic
     return K.vertical_excursion(acc_v, fs, i0, i_next)
+
+
+def fragment_windows(start_s: np.ndarray, end_s: np.ndarray, has_next: np.ndarray) -> dict[int, tuple[int, int]]:
+    """Steps that carry a split step's length (decision W27): ``{owner: (first_row, last_row)}``.
+
+    In a walking sequence (consecutive rows with ``has_next``, closed by a row without) of at least
+    :data:`MIN_FRAGMENT_SEQ` steps, a step (IC to next IC) shorter than :data:`FRAGMENT_FRAC` x the
+    sequence's median step is a fragment: it is merged with the neighbouring non-fragment step of the
+    sequence that makes the merged duration closest to the median, and that neighbour (the owner) spans
+    rows ``first_row .. last_row`` (its pendulum h is taken over the merged window); the fragment carries
+    no length. Rows not in the result keep their own window. A fragment without a non-fragment neighbour
+    is left alone.
+    """
+    t0, t1 = np.asarray(start_s, dtype=np.float64), np.asarray(end_s, dtype=np.float64)
+    hn = np.asarray(has_next, dtype=bool)
+    dur = t1 - t0
+    out: dict[int, tuple[int, int]] = {}
+    seq: list[int] = []
+    for i in range(hn.size + 1):
+        if i < hn.size and hn[i]:
+            seq.append(i)
+            continue
+        if len(seq) >= MIN_FRAGMENT_SEQ:
+            med = float(np.median(dur[seq]))
+            frag = {j for j in seq if dur[j] < FRAGMENT_FRAC * med}
+            for j in sorted(frag):
+                nbs = [k for k in (j - 1, j + 1) if k in seq and k not in frag]
+                if not nbs:
+                    continue
+                k = min(nbs, key=lambda q: abs(dur[q] + dur[j] - med))
+                a, b = out.get(k, (k, k))
+                out[k] = (min(a, j), max(b, j))
+        seq = []
+    return out
+
+
+def fragment_mask(n: int, windows: dict[int, tuple[int, int]]) -> np.ndarray:
+    """Rows merged into another step by :func:`fragment_windows` (they carry no length, W27)."""
+    m = np.zeros(n, dtype=bool)
+    for k, (a, b) in windows.items():
+        m[a:b + 1] = True
+        m[k] = False
+    return m
 
 
 def frequency_lengths(f_hz: np.ndarray, p: WaistParams, *, running: np.ndarray | None = None) -> np.ndarray:
