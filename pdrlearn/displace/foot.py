@@ -118,6 +118,18 @@ def rest_to_rest(t: np.ndarray, stance: np.ndarray, starts: np.ndarray, ends: np
     return i0[first], i1[first], keep[first]
 
 
+def twist_yaw(q_start: np.ndarray, q_end: np.ndarray) -> np.ndarray:
+    """Decision L30: heading change (rad, CCW, in (-pi, pi]) of attitudes ``q_start`` -> ``q_end`` ((B, 4)
+    quaternions [w, x, y, z], body -> navigation frame, z up): the angle about the vertical of the relative
+    rotation q_end q_start^-1 (its twist in a swing-twist decomposition). Unlike the heading of a body axis,
+    it does not depend on how far the mount tilts that axis, nor on the foot's tilt at either rest."""
+    w1, x1, y1, z1 = np.moveaxis(np.asarray(q_end, dtype=float), -1, 0)
+    w2, x2, y2, z2 = np.moveaxis(np.asarray(q_start, dtype=float), -1, 0)
+    w = w1 * w2 + x1 * x2 + y1 * y2 + z1 * z2  # q_end * conj(q_start): scalar and z components
+    z = -w1 * z2 - x1 * y2 + y1 * x2 + z1 * w2
+    return 2.0 * np.arctan2(z * np.sign(np.where(w == 0, 1.0, w)), np.abs(w))
+
+
 class FootDisplacement:
     """Displacement of each stride of the foot unit between two rests.
 
@@ -152,6 +164,10 @@ class FootDisplacement:
         count as still (ZARU: no heading change)
     upsample : strapdown on a ``k`` times finer grid (block-mean preserving spline); default 5 below
         50 Hz (20 Hz firmware means), else 1
+    yaw : a stride's heading change: ``"twist"`` (default, decision L30) = the rotation about the vertical
+        of the foot's attitude change from rest to rest (swing-twist decomposition), or ``"x-axis"`` = the
+        heading of the unit's x axis at the stride end (the former rule; ill-conditioned when the mount
+        pitches the x axis far from horizontal)
 
     Attributes
     ----------
@@ -169,7 +185,10 @@ class FootDisplacement:
                  rest_s: float = 0.05, zupt_erode: float = 0.25, upsample: int | None = None,
                  max_stride_s: float = 3.0, accel_scale_error: float = 0.01,
                  reference_point: str = "sensor", min_rocker_samples: int = 20, gap_yaw: bool = True,
-                 zaru_gyro_rad_s: float = 0.4):
+                 zaru_gyro_rad_s: float = 0.4, yaw: str = "twist"):
+        if yaw not in ("twist", "x-axis"):
+            raise DataError(f"FootDisplacement: yaw '{yaw}' is not 'twist' or 'x-axis'")
+        self.yaw = yaw
         if reference_point not in ("sensor", "heel"):
             raise DataError(f"FootDisplacement: reference_point '{reference_point}' is not 'sensor' or 'heel'")
         self.reference_point = reference_point
@@ -260,6 +279,8 @@ class FootDisplacement:
         idx, mask = K.stride_index(i0, i1)
         q = K.stride_attitude(gyr, dt, idx, mask, g_body, bias, init) if B else None
         a_nav, self.yaw_change_ = K.strapdown(acc, gyr, dt, idx, mask, g_body, bias, init, q=q)
+        if self.yaw == "twist" and B:
+            self.yaw_change_ = twist_yaw(q[:, 0], q[np.arange(B), mask.sum(axis=1) - 1])
         self.gap_yaw_ = self._gap_yaw(acc, gyr, dt, i0, i1, bias) if self.gap_yaw else np.zeros(B)
         zm = K.zupt_mask(zupt_stance, idx, mask)
         s2 = self.accel_scale_error ** 2
