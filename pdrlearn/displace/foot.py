@@ -348,18 +348,13 @@ class FootDisplacement:
         force over the gap; the foot is loaded) integrated over the samples that are not still by the fixed
         rule (|w| >= ``zaru_gyro_rad_s``): a foot pivoting on the ground turns, a still foot does not (ZARU)."""
         out = np.zeros(len(i0))
+        t = np.arange(len(gyr)) * dt
         for k in range(1, len(i0)):
             a, b = int(i1[k - 1]), int(i0[k])
             if b - a < 2:
                 continue
             w = gyr[a:b] - (0.0 if bias is None else bias[k])
-            up = acc[a:b].mean(axis=0)
-            n = float(np.linalg.norm(up))
-            if not n > 0:
-                continue
-            rate = w @ (up / n)
-            moving = np.linalg.norm(w, axis=1) >= self.zaru_gyro_rad_s
-            out[k] = float(np.sum(np.where(moving, rate, 0.0)[1:] + np.where(moving, rate, 0.0)[:-1]) * 0.5 * dt)
+            out[k] = SK.pivot_yaw(t[a:b], w, acc[a:b].mean(axis=0), still_rad_s=self.zaru_gyro_rad_s)
         return out
 
     def foot_heading(self, initial: float = 0.0) -> np.ndarray:

@@ -215,6 +215,41 @@ def yaw_change(t: np.ndarray, rate_z: np.ndarray, t0: float = -np.inf, t1: float
     return float(np.add.reduce(0.5 * (r[1:] + r[:-1]) * (tt[1:] - tt[:-1])))  # = np.sum(... * np.diff(tt))
 
 
+def pivot_yaw(t: np.ndarray, gyr: np.ndarray, up: np.ndarray, *, still_rad_s: float = 0.4) -> float:
+    """Decision L28: heading change (rad, CCW) of a foot between two strides, samples ``t (n,)`` s, ``gyr
+    (n, 3)`` rad/s (offset removed): the rate about ``up`` (the mean specific force over the gap: the foot
+    is loaded) integrated (trapezoid) over the samples that are not still (|w| >= ``still_rad_s``, the fixed
+    stance threshold below L27's floor): a foot pivoting on the ground turns, a still one does not (ZARU)."""
+    n = float(math.sqrt(float(np.dot(up, up))))
+    if len(t) < 2 or not n > 0:
+        return 0.0
+    w = np.asarray(gyr, dtype=float)
+    rate = np.where(np.sqrt(np.add.reduce(w * w, axis=1)) >= still_rad_s, w @ (np.asarray(up, float) / n), 0.0)
+    return float(np.add.reduce(0.5 * (rate[1:] + rate[:-1]) * (t[1:] - t[:-1])))
+
+
+#: Decision L31: the streamed gap yaw looks back at most this far (s) from a stride's start (the runtime
+#: keeps one second of samples before the stride it is measuring).
+GAP_YAW_MAX_S = 1.0
+
+
+def gap_yaw(t_gyr: np.ndarray, gyr: np.ndarray, t_acc: np.ndarray, acc: np.ndarray, t0: float, t1: float,
+            *, still_rad_s: float = 0.4, max_s: float = GAP_YAW_MAX_S) -> float:
+    """Decision L31: :func:`pivot_yaw` of a streamed foot between the end ``t0`` of one stride and the start
+    ``t1`` of the next (s), over the gyroscope samples in ``[max(t0, t1 - max_s), t1]`` (0 when the strides
+    touch or no accelerometer sample falls in the gap)."""
+    lo = max(float(t0), float(t1) - max_s)
+    if not t1 > lo:
+        return 0.0
+    i0, i1 = np.searchsorted(t_gyr, [lo, t1], side="left")
+    j0, j1 = np.searchsorted(t_acc, [lo, t1], side="left")
+    i1 += int(i1 < len(t_gyr) and t_gyr[i1] == t1)
+    j1 += int(j1 < len(t_acc) and t_acc[j1] == t1)
+    if i1 - i0 < 2 or j1 <= j0:
+        return 0.0
+    return pivot_yaw(t_gyr[i0:i1], gyr[i0:i1], np.add.reduce(acc[j0:j1], axis=0) / (j1 - j0), still_rad_s=still_rad_s)
+
+
 #: Heading sources of a streamed stride: the foot's attitude change from rest to rest, the waist's
 #: levelled vertical rate integrated over the stride, or "auto" (the waist when the stride has waist
 #: samples, else the foot).

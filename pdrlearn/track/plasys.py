@@ -462,7 +462,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
 def track_streaming(session: Session, *, method: str = "M3", model=None, start=None, params=None,
                     heading: str = "auto", initial_heading: float = 0.0, bounds=None, bounds_scale: float = 2.0,
                     down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca",
-                    distance_gain: float | None = None, calibration: bool = True) -> TrackResult:
+                    distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = False
+                    ) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -476,7 +477,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     ``calibration``: as :func:`track_plasys` (decision L26): M3 with a trained model multiplies the level
     strides' horizontal displacement by the model's distance gain when its foot rate matches the session's,
     as the runtime does with a bundle's ``displacement.distance_gain`` (decision E14). The calibrated
-    stride sd only enters the bayes rules, which streaming does not apply (thesis rules, E6).
+    stride sd only enters the bayes rules, which streaming does not apply (thesis rules, E6). ``gap_yaw``
+    (decision L31, off until the runtime applies it too): a stride headed by the foot adds the turn of the foot
+    pivoting in the gap before it (:func:`~pdrlearn.kernels.stride.gap_yaw`, the streamed form of L28).
     """
     if method not in ("M2", "M3"):
         raise DataError(f"plasys streaming: method '{method}' is not streamable; use M2 or M3")
@@ -518,6 +521,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,
                              rest_search_s=rest_search_s, heading=step_heading)
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1))
+        by_foot = heading == "foot" or (heading == "auto" and ("waist" not in lev or lev["waist"][2] is None))
+        if gap_yaw and by_foot and i:  # decision L31: the foot's pivot between the strides
+            dyaw[i] += SK.gap_yaw(*streams["fGyroscope"], *streams["fAccelerometer"], float(strides[i - 1, 1]),
+                                  float(t0))
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
     length, dz = SK.apply_stride_rules(disp, *(classes[c].to_numpy(dtype=object)
                                                if method == "M3" and c in classes else None  # length-only models
