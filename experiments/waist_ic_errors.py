@@ -1,5 +1,5 @@
-"""Where the offline waist IC detector errs on daily activities, and three candidate rules judged
-leave-one-subject-out (decision W26).
+"""Where the offline waist IC detector errs on daily activities, and candidate rules judged
+leave-one-subject-out (decisions W26, W28-W30).
 
 Part 1 (error breakdown, per Test11 recording of HA001, HA002, MS001 of `pdrlearn fetch mobgap --out
 datasets/external`, scored as `pdrlearn.waist.evaluate.step_metrics`: inside the reference bouts, untimed
@@ -8,8 +8,10 @@ contact 0.25-0.5 s away (a timing miss, counted once as FP and once as FN), insi
 > 1.2 s (with the reference feet at the gap's ends: the same foot means INDIP itself lost a contact), or
 other; every false negative -- an FP 0.25-0.5 s away, the 2 s motion gate closed at the contact, or other.
 
-Part 2 (candidate rules, applied after W23 inside `rhythm_complete` through a patched
-`_kernels.drop_unshifted`; none is adopted, W26):
+Part 2 (candidate rules; the adopted W28 end steps switched off, the W29 IC level (an option) switched
+on; the others are applied after W28 inside `rhythm_complete` through a patched
+`_kernels.drop_unshifted` or replace the IC search `_kernels._nearest_local_max_before`; none of these
+is adopted, W26, W30)
 - split: of three consecutive kept maxima whose outer two lie on decided *opposite* sides (W20) and
   closer than 1.5 local periods (W18's boundary: no step can be missing between them), the middle one
   goes (a spurious contact splitting one step)
@@ -17,7 +19,16 @@ Part 2 (candidate rules, applied after W23 inside `rhythm_complete` through a pa
   of the periods on both sides of the pair, W18), the lower one goes
 - turning: an accepted maximum under half the median height of its neighbours (W23's 1/2) while the
   pelvis turns faster than 90 (or 45) deg/s (mean |yaw rate| over its step) goes (turning on the spot)
+- chain (W30): the W18 end extension repeated (one local period +- 35 %, full height, decided opposite
+  side) until it finds nothing -- the motion gate extended along a walking sequence; "loose": an
+  undecided side allowed too
+- IC window (W30): the last local AP maximum above the 2 s mean searched 0.5 / 0.4 s (instead of
+  0.25 s) before the vertical maximum; or above 0 instead of the 2 s mean
 Scored on Test11 (three subjects), the Test5 straight walks and simulated A-D x 3 speeds x users 1-3.
+
+Part 3 (W30, gyroscope as a second side cue): how often the sign of a candidate cue at the detected,
+matched contacts agrees with the reference foot (the better of the two sign conventions), among the
+decided ones (|cue| >= 1/3 of its median, W20's rule), and the decided share.
 
 Run: .venv/bin/python experiments/waist_ic_errors.py [--external datasets/external]
 Writes experiments/results/waist_ic_errors.md.
@@ -32,6 +43,7 @@ from pathlib import Path
 from unittest import mock
 
 import numpy as np
+from scipy import signal as sg
 
 from pdrlearn.io import read_session
 from pdrlearn.sim import simulate
@@ -105,31 +117,101 @@ def _turning(cand, h, keep, side, fs, max_step_s, accepted, rate_deg_s=90.0):
     return out
 
 
-CANDIDATES = {"default (W18+W20+W23)": None, "split": _split, "refractory": _refractory,
-              "turning (> 90 deg/s)": _turning,
-              "turning (> 45 deg/s)": lambda *a: _turning(*a, rate_deg_s=45.0)}
+def _chain(cand, h, keep, side, fs, max_step_s, strict=True, min_peak=0.1):
+    out = keep.copy()
+    tol, max_gap = K.RHYTHM_TOL, max_step_s * fs
+    changed = True
+    while changed:
+        changed = False
+        sel = np.flatnonzero(out)
+        for sq in np.split(sel, np.flatnonzero(np.diff(cand[sel]) > max_gap) + 1):
+            if sq.size < K.RHYTHM_MIN_STEPS:
+                continue
+            t = cand[sq].astype(float)
+            for end, d in ((sq.size - 1, 1), (0, -1)):
+                per = K._local_period(t, end, -d, max_gap)
+                s_end = int(side[sq[end]])
+                if not np.isfinite(per) or (strict and s_end == 0):
+                    continue
+                c0 = t[end] + d * per
+                idx = [i for i in range(cand.size) if abs(cand[i] - c0) <= tol * per and not out[i]
+                       and h[i] >= min_peak and ((side[i] != 0 and side[i] == -s_end) if strict
+                                                 else side[i] * s_end <= 0)]
+                if idx:
+                    out[max(idx, key=lambda i: h[i])] = True
+                    changed = True
+    return out
+
+
+_NLM = K._nearest_local_max_before
+
+
+def _ic_level(window_factor: float, centred: bool = True):
+    """IC search: the last local AP maximum above the 2 s mean (or 0) within ``window_factor`` x the
+    0.25 s window, preferring one inside 0.25 s; else the default rule."""
+    cache: dict = {}
+
+    def pick(x, k, lo, *, level=None):
+        key = (id(x), x.size)
+        if key not in cache:
+            cache.clear()
+            cache[key] = K.ap_mean_level(x, _YAW["fs"]) if centred else np.zeros_like(x)
+        lv = cache[key]
+        lo2 = max(0, int(k - window_factor * (k - lo)))
+        seg = x[lo2:k + 1]
+        pk = lo2 + np.flatnonzero((seg[1:-1] >= seg[:-2]) & (seg[1:-1] > seg[2:])) + 1
+        pos = pk[x[pk] > lv[pk]]
+        inside = pos[pos >= lo]
+        if inside.size:
+            return int(inside[-1])
+        return int(pos[-1]) if pos.size else _NLM(x, k, lo)
+    return pick
+
+
+# name -> (InitialContactDetector settings, post-W23 mask rule or None, IC search or None)
+CANDIDATES = {
+    "default (W18+W20+W23+W28)": ({}, None, None),
+    "without W28 end steps": ({"end_steps": False}, None, None),
+    "W29 AP level (option)": ({"ap_above_mean": True}, None, None),
+    "split (W26)": ({}, _split, None),
+    "refractory (W26)": ({}, _refractory, None),
+    "turning > 90 deg/s (W26)": ({}, _turning, None),
+    "turning > 45 deg/s (W26)": ({}, lambda *a: _turning(*a, rate_deg_s=45.0), None),
+    "chain (W30)": ({}, _chain, None),
+    "chain, loose (W30)": ({}, lambda *a: _chain(*a, strict=False), None),
+    "IC: above 2 s mean within 0.5 s (W30)": ({"ap_above_mean": False}, None, _ic_level(2.0)),
+    "IC: above 2 s mean within 0.4 s (W30)": ({"ap_above_mean": False}, None, _ic_level(1.6)),
+    "IC: above 0 within 0.25 s (W30)": ({"ap_above_mean": False}, None, _ic_level(1.0, centred=False)),
+}
+_KW: dict = {}
 
 
 @contextlib.contextmanager
 def candidate(name: str):
-    rule = CANDIDATES[name]
-    if rule is None:
-        yield
-        return
-    orig = K.drop_unshifted
+    kw, rule, pick = CANDIDATES[name]
+    _KW.clear()
+    _KW.update(kw)
+    with contextlib.ExitStack() as stack:
+        if rule is not None:
+            orig = K.drop_unshifted
 
-    def patched(cand, height, keep, accepted, side, fs, *, max_step_s=1.5, n_neighbours=2):
-        m = orig(cand, height, keep, accepted, side, fs, max_step_s=max_step_s, n_neighbours=n_neighbours)
-        args = (np.asarray(cand), np.asarray(height), m, side, fs, max_step_s)
-        return rule(*args, np.asarray(accepted)) if name.startswith("turning") else rule(*args)
+            def patched(cand, height, keep, accepted, side, fs, *, max_step_s=1.5, n_neighbours=2):
+                m = orig(cand, height, keep, accepted, side, fs, max_step_s=max_step_s, n_neighbours=n_neighbours)
+                args = (np.asarray(cand), np.asarray(height), m, side, fs, max_step_s)
+                return rule(*args, np.asarray(accepted)) if name.startswith("turning") else rule(*args)
 
-    with mock.patch.object(K, "drop_unshifted", patched):
-        yield
+            stack.enter_context(mock.patch.object(K, "drop_unshifted", patched))
+        if pick is not None:
+            stack.enter_context(mock.patch.object(K, "_nearest_local_max_before", pick))
+        try:
+            yield
+        finally:
+            _KW.clear()
 
 
 def detect(imu):
-    _YAW["w"] = imu.w_z
-    return InitialContactDetector().detect(imu)
+    _YAW["w"], _YAW["fs"] = imu.w_z, imu.fs
+    return InitialContactDetector(**_KW).detect(imu)
 
 
 def scored(session, imu, det):
@@ -198,20 +280,69 @@ def candidates(ext: Path) -> list[str]:
         with candidate(n):
             for k in sessions:
                 tp = det = nref = 0
+                dt: list[float] = []
                 for s, imu in zip(sessions[k], imus[k], strict=True):
-                    ev, ref, i_d, _ = scored(s, imu, detect(imu))
+                    ev, ref, i_d, i_r = scored(s, imu, detect(imu))
                     tp, det, nref = tp + i_d.size, det + ev.size, nref + ref.size
-                res[n][k] = (tp, det, nref)
+                    dt += list(ev[i_d] - ref[i_r])
+                res[n][k] = (tp, det, nref, dt)
             tp = det = nref = 0
+            dt = []
             for s, imu in zip(sims, sim_imus, strict=True):
-                sc = score_events(imu.t[detect(imu).ic_], s.extras["ics"]["ic_s"].to_numpy(float))
+                ev, ref = imu.t[detect(imu).ic_], s.extras["ics"]["ic_s"].to_numpy(float)
+                sc = score_events(ev, ref)
                 tp, det, nref = tp + sc["true_positives"], det + sc["count"], nref + sc["reference_count"]
-            res[n][cols[-1]] = (tp, det, nref)
+                i_d, i_r = match_events(ev, ref, np.full(ref.size, TOL))
+                dt += list(ev[i_d] - ref[i_r])
+            res[n][cols[-1]] = (tp, det, nref, dt)
     lines = ["| rule | " + " | ".join(cols) + " |", "|---" * (len(cols) + 1) + "|"]
     for n in names:
-        cells = [f"{f1(*res[n][c]):.3f} (TP {res[n][c][0]}, det {res[n][c][1]})" if "simulated" not in c
-                 else f"{f1(*res[n][c]):.4f} (TP {res[n][c][0]}, det {res[n][c][1]})" for c in cols]
+        cells = []
+        for c in cols:
+            tp, det, nref, dt = res[n][c]
+            ms = 1e3 * np.asarray(dt)
+            cells.append(f"{f1(tp, det, nref):.{4 if 'simulated' in c else 3}f} (TP {tp}, det {det}; "
+                         f"IC {ms.mean():+.1f} ± {ms.std():.1f} ms)")
         lines.append(f"| {n} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def _stride_band(x, fs, integrate):
+    if integrate:  # as the W20 lateral velocity: band-pass, integrate, high-pass
+        return K.lateral_velocity(x, fs)
+    return sg.sosfiltfilt(sg.butter(2, [K.SIDE_BAND_HZ[0], min(K.SIDE_BAND_HZ[1], 0.45 * fs)], btype="bandpass",
+                                    fs=fs, output="sos"), x)
+
+
+def side_cues(ext: Path) -> list[str]:
+    """Part 3: agreement of step-side cues with the reference foot at the matched detections."""
+    groups = {f"{s} Test11": [f"{s}_Test11_Trial1"] for s in SUBJECTS}
+    groups["Test5 (5 walks)"] = list(TEST5)
+    names = {"ML velocity (W20)": ("ml", True), "yaw angle": ("yaw", True), "yaw rate": ("yaw", False),
+             "roll angle": ("roll", True), "roll rate": ("roll", False)}
+    lines = ["| data | " + " | ".join(names) + " |", "|---" * (len(names) + 1) + "|"]
+    for g, sessions in groups.items():
+        agree = {n: [0, 0, 0] for n in names}  # agreeing, decided, matched
+        for name in sessions:
+            s = read_session(ext / f"mobgap_{name}")
+            imu = waist_imu(s)
+            det = InitialContactDetector().detect(imu)
+            ics = s.extras["ics"].dropna(subset=["ic_s"]).sort_values("ic_s")
+            rt = ics["ic_s"].to_numpy(float)
+            foot = np.where(ics["foot"].astype(str).str.lower().str.startswith("l"), 1, -1)
+            i_d, i_r = match_events(imu.t[det.ic_], rt, np.full(rt.size, TOL))
+            ap_dir = np.column_stack([np.cos(imu.yaw), np.sin(imu.yaw)])
+            sig = {"ml": imu.acc_ml, "yaw": imu.w_z, "roll": np.sum(imu.gyr_nav[:, :2] * ap_dir, axis=1)}
+            for n, (src, integ) in names.items():
+                x = _stride_band(sig[src], imu.fs, integ)[det.anchor_[i_d]]
+                dec = np.abs(x) >= K.SIDE_MIN_FRAC * np.median(np.abs(x))
+                ok = np.sign(x[dec]) == foot[i_r][dec]
+                a = agree[n]
+                a[0] += int(max(ok.sum(), (~ok).sum()))  # either sign convention (mounting)
+                a[1] += int(dec.sum())
+                a[2] += int(dec.size)
+        lines.append(f"| {g} | " + " | ".join(f"{a[0] / a[1]:.3f} ({a[1] / a[2]:.0%} decided)"
+                                               for a in agree.values()) + " |")
     return lines
 
 
@@ -222,11 +353,15 @@ def main() -> None:
     logging.basicConfig(level=logging.WARNING)
     if not (args.external / "mobgap_HA002_Test11_Trial1").is_dir():
         raise SystemExit(f"{args.external}: no mobgap sessions; run `pdrlearn fetch mobgap --out {args.external}`")
-    out = ["# Offline waist IC detector on daily activities: error breakdown and candidate rules (W26)", "",
+    out = ["# Offline waist IC detector on daily activities: error breakdown and candidate rules (W26, W28-W30)", "",
            "Test11, scored as `step_metrics` (inside the reference bouts, untimed INDIP contacts not scored, "
            "0.25 s).", ""] + breakdown(args.external) + [
-           "", "Candidate rules after W23 (step F1; real: inside the reference bouts; none adopted, W26):", ""
-           ] + candidates(args.external)
+           "", "Candidate rules (step F1 and IC timing of the matched detections vs the reference; real: inside "
+           "the reference bouts, TP and detections scored there; "
+           "W28 adopted, W29 an option (off), the rest not: W26, W29, W30):", ""
+           ] + candidates(args.external) + [
+           "", "Step-side cues at the matched detections: agreement with the reference foot among the decided "
+           "(W30; gyroscope cues not adopted):", ""] + side_cues(args.external)
     text = "\n".join(out) + "\n"
     print(text)
     (ROOT / "experiments" / "results" / "waist_ic_errors.md").write_text(text)

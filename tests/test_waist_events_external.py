@@ -1,4 +1,4 @@
-"""Offline waist IC detector on the three mobgap subjects (decision W26: the per-subject floors a rule
+"""Offline waist IC detector on the three mobgap subjects (decisions W26, W28-W30: the per-subject floors a rule
 for the daily-activity errors must keep). Uses datasets/external, else the sdist in the download cache
 (tests/conftest.py external_session); skipped without either."""
 
@@ -8,8 +8,9 @@ import pytest
 
 from tests.conftest import external_session
 
-# printed by experiments/step_count.py --waist-ic 3 --external datasets/external (after W23)
-TEST11_F1 = {"HA001": 0.938, "HA002": 0.795, "MS001": 0.840}
+# printed by experiments/step_count.py --waist-ic 3 --external datasets/external (after W28;
+# before: 0.938 / 0.795 / 0.840 after W23)
+TEST11_F1 = {"HA001": 0.938, "HA002": 0.809, "MS001": 0.848}
 TEST5 = ["HA001_Test5_Trial1", "HA001_Test5_Trial2", "HA002_Test5_Trial2", "MS001_Test5_Trial1",
          "MS001_Test5_Trial2"]
 

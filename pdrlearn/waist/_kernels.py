@@ -78,7 +78,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
                cutoff_hz: float = 2.5, fir_order_s: float = 0.3, min_step_s: float = 0.3,  # windows: W16
                search_s: float = 0.25, fc_search_s: float = 0.25, min_peak_mps2: float = 0.1,
                rhythm: bool = False, max_step_s: float = 1.5, acc_ml: np.ndarray | None = None,
-               unshifted: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+               unshifted: bool = True, end_steps: bool = False, ap_above_mean: bool = False
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
 
     The vertical acceleration is low-passed with a zero-lag FIR (seed 003: order 30, 2.5 Hz, here the
@@ -99,6 +100,10 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     acc_ml : (n,) medio-lateral acceleration (m/s^2); with ``rhythm`` the side of each step from it
         (:func:`step_sides`) makes the completed sequences alternate left/right (decision W20)
     unshifted : with ``acc_ml`` and ``rhythm``, drop weak maxima without a weight shift (decision W23)
+    end_steps : with ``acc_ml`` and ``rhythm``, one step of gait initiation / termination beyond each
+        sequence end on the alternating side (:func:`extend_alternating`, decision W28)
+    ap_above_mean : the IC is the last local AP maximum above the AP signal's mean over the motion
+        gate's window (``GATE_WINDOW_S``, centred), when the search window holds one (decision W29)
 
     Returns
     -------
@@ -117,7 +122,7 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         side = None if acc_ml is None else step_sides(lateral_velocity(acc_ml, fs)[cand], strong)
         keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2,
                                min_step_s=min_step_s, max_step_s=max_step_s, side=side,
-                               unshifted=unshifted)
+                               unshifted=unshifted, end_steps=end_steps)
         peaks = cand[keep]
     else:
         peaks, _ = _sig.find_peaks(vf, height=min_peak_mps2, distance=dist)
@@ -125,9 +130,10 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
             peaks = peaks[np.asarray(gate, dtype=bool)[peaks]]
     ws = max(1, int(round(search_s * fs)))
     wf = max(1, int(round(fc_search_s * fs)))
+    level = ap_mean_level(ap, fs) if ap_above_mean else None
     ic, fc = np.empty(len(peaks), dtype=int), np.empty(len(peaks), dtype=int)
     for i, p in enumerate(peaks):
-        ic[i] = _nearest_local_max_before(ap, p, max(0, p - ws))
+        ic[i] = _nearest_local_max_before(ap, p, max(0, p - ws), level=level)
         hi = min(len(ap), p + wf + 1)
         fc[i] = p + int(np.argmin(ap[p:hi]))
     return ic, fc, peaks
@@ -264,10 +270,55 @@ def drop_unshifted(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, accep
     return out
 
 
+def extend_alternating(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, side: np.ndarray, fs: float, *,
+                       min_peak: float, max_step_s: float = 1.5, tol: float = RHYTHM_TOL) -> np.ndarray:
+    """One step of gait initiation / termination beyond each end of a walking sequence (decision W28).
+
+    W18 extends a sequence by one step at its own rhythm (one local period +- ``tol``). The first and
+    last steps of a walk are slower than its rhythm and fall where the 2 s motion gate is closed, so
+    here the evidence is the alternation instead (W20): beyond each end of a sequence of at least
+    ``RHYTHM_MIN_STEPS`` kept maxima whose end contact has a decided side, the nearest candidate of full
+    height (``>= min_peak``) on the decided *opposite* side between ``1 - tol`` local periods and
+    ``max_step_s`` (the longest step inside a sequence, W16) from the end is added. One step per end and
+    one pass: it does not chain. Returns the new mask."""
+    cand = np.asarray(cand, dtype=np.int64)
+    h = np.asarray(height, dtype=np.float64)
+    sd = np.asarray(side)
+    keep = np.asarray(keep, dtype=bool)
+    out = keep.copy()
+    sel = np.flatnonzero(keep)
+    max_gap = max_step_s * fs
+    breaks = np.flatnonzero(np.diff(cand[sel]) > max_gap) + 1
+    for sq in np.split(sel, breaks):
+        if sq.size < RHYTHM_MIN_STEPS:
+            continue
+        t = cand[sq].astype(np.float64)
+        for end, direction in ((sq.size - 1, 1), (0, -1)):
+            s_end = int(sd[sq[end]])
+            per = _local_period(t, end, -direction, max_gap)
+            if s_end == 0 or not np.isfinite(per):
+                continue
+            near, far = t[end] + direction * (1.0 - tol) * per, t[end] + direction * max_gap
+            lo, hi = min(near, far), max(near, far)
+            idx = [i for i in range(np.searchsorted(cand, lo), np.searchsorted(cand, hi, side="right"))
+                   if not out[i] and h[i] >= min_peak and int(sd[i]) == -s_end]
+            if idx:
+                out[min(idx, key=lambda i: abs(cand[i] - t[end]))] = True
+    return out
+
+
+def ap_mean_level(ap: np.ndarray, fs: float, *, window_s: float = GATE_WINDOW_S) -> np.ndarray:
+    """Mean of the AP acceleration over a centred window of ``window_s`` (the motion gate's 2 s, seed 000
+    sec. II-B): the level an AP *maximum* at the initial contact must exceed (decision W29)."""
+    x = np.asarray(ap, dtype=np.float64)
+    w = max(3, int(round(window_s * fs)) | 1)
+    return uniform_filter1d(x, w, mode="nearest")
+
+
 def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, fs: float, *,
                     min_peak: float, min_step_s: float = 0.3, max_step_s: float = 1.5,
-                    tol: float = RHYTHM_TOL, side: np.ndarray | None = None, unshifted: bool = True
-                    ) -> np.ndarray:
+                    tol: float = RHYTHM_TOL, side: np.ndarray | None = None, unshifted: bool = True,
+                    end_steps: bool = False) -> np.ndarray:
     """Complete walking sequences of accepted vertical maxima with the gait rhythm (decision W18).
 
     Steps come at a regular period: (1) inside a sequence, a gap of ``m + 1`` local periods
@@ -283,7 +334,10 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     candidates not on the wrong side, and only completely (all ``m`` steps found, else none); an end
     step must not lie on the side of the contact it extends. With ``side`` and ``unshifted`` (decision
     W23), an accepted maximum with an undecided side and under half its neighbours' height is dropped
-    (:func:`drop_unshifted`).
+    (:func:`drop_unshifted`). With ``side`` and ``end_steps`` (decision W28) each sequence end then gets
+    one more step of gait initiation / termination on the alternating side (:func:`extend_alternating`).
+    The shortest step is ``round(min_step_s * fs)`` samples, the candidates' own spacing (W28: a float
+    ``min_step_s * fs`` just over it dropped maxima exactly that far apart).
 
     Parameters
     ----------
@@ -305,7 +359,7 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     sd = np.zeros(cand.size, dtype=np.int8) if side is None else np.asarray(side, dtype=np.int8)
     if side is not None:
         keep = prune_same_side(cand, h, keep, sd, fs, max_step_s=max_step_s)
-    max_gap, min_gap = max_step_s * fs, min_step_s * fs
+    max_gap, min_gap = max_step_s * fs, max(1, int(round(min_step_s * fs)))  # as find_peaks' distance
     acc = np.flatnonzero(keep)
     t = cand[acc].astype(np.float64)
     add: list[int] = []
@@ -343,6 +397,8 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     keep[np.asarray(add, dtype=np.int64)] = True
     if side is not None and unshifted:  # W23: no weight shift and a weak bounce: no step
         keep = drop_unshifted(cand, h, keep, np.asarray(accepted, dtype=bool), sd, fs, max_step_s=max_step_s)
+    if side is not None and end_steps:  # W28: initiation / termination step on the alternating side
+        keep = extend_alternating(cand, h, keep, sd, fs, min_peak=min_peak, max_step_s=max_step_s, tol=tol)
     # the completed set must still respect the shortest step: drop the lower of two too-close maxima
     sel = np.flatnonzero(keep)
     for a, b in zip(sel[:-1], sel[1:], strict=True):
@@ -351,12 +407,18 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     return keep
 
 
-def _nearest_local_max_before(x: np.ndarray, k: int, lo: int) -> int:
-    """Index of the last local maximum of ``x`` in ``[lo, k]`` (the global maximum there if none)."""
+def _nearest_local_max_before(x: np.ndarray, k: int, lo: int, *, level: np.ndarray | None = None) -> int:
+    """Index of the last local maximum of ``x`` in ``[lo, k]`` (the global maximum there if none). With
+    ``level`` (per sample), the last local maximum above it if there is one (decision W29: a ripple in an
+    AP trough is no maximum of the AP signal)."""
     seg = x[lo:k + 1]
     if seg.size < 3:
         return lo + int(np.argmax(seg)) if seg.size else k
     inner = np.flatnonzero((seg[1:-1] >= seg[:-2]) & (seg[1:-1] > seg[2:])) + 1
+    if level is not None and inner.size:
+        above = inner[seg[inner] > level[lo + inner]]
+        if above.size:
+            return lo + int(above[-1])
     return lo + int(inner[-1]) if inner.size else lo + int(np.argmax(seg))
 
 

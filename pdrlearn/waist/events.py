@@ -81,6 +81,11 @@ class InitialContactDetector:
     weight_shift : offline, with ``alternate``: a maximum accepted by the height threshold alone, with no
         lateral weight shift (undecided side) and under half its sequence neighbours' height, is no step
         (decision W23)
+    end_steps : offline, with ``alternate``: one step of gait initiation / termination beyond each
+        walking sequence on the alternating side, up to ``max_step_s`` away (decision W28)
+    ap_above_mean : offline: the IC is the last local AP maximum above the AP acceleration's 2 s mean
+        in the search window, if there is one (decision W29; off by default: it moves the simulator's
+        contacts earlier)
 
     Attributes
     ----------
@@ -92,12 +97,15 @@ class InitialContactDetector:
     def __init__(self, *, realtime: bool = False, cutoff_hz: float = 2.5, fir_order_s: float = 0.3,
                  walk_threshold: float = WALK_THRESHOLD_MPS2, ap_cutoff_hz: float = 20.0,
                  max_step_s: float = 1.5, rhythm: bool = True, alternate: bool = True,
-                 lobe_ratio: float | None = None, weight_shift: bool = True):
+                 lobe_ratio: float | None = None, weight_shift: bool = True, end_steps: bool = True,
+                 ap_above_mean: bool = False):
         self.realtime = realtime
         self.lobe_ratio = lobe_ratio
         self.rhythm = rhythm
         self.alternate = alternate
         self.weight_shift = weight_shift
+        self.end_steps = end_steps
+        self.ap_above_mean = ap_above_mean
         self.cutoff_hz = cutoff_hz
         self.fir_order_s = fir_order_s
         self.walk_threshold = walk_threshold
@@ -120,7 +128,8 @@ class InitialContactDetector:
                                        fir_order_s=self.fir_order_s, rhythm=self.rhythm,
                                        max_step_s=self.max_step_s,
                                        acc_ml=imu.acc_ml if self.alternate else None,
-                                       unshifted=self.weight_shift)
+                                       unshifted=self.weight_shift, end_steps=self.end_steps,
+                                       ap_above_mean=self.ap_above_mean)
         self.ic_, self.fc_, self.anchor_ = ic, fc, ref
         name = "alvarez-realtime" if self.realtime else "alvarez-offline"
         self.steps_ = steps_from_events(imu.t, ic, fc, max_step_s=self.max_step_s, detector=name)
