@@ -46,3 +46,16 @@ def test_streaming_gap_yaw_is_off_by_default_and_changes_only_the_heading():
     b = track_streaming(s, method="M2", heading="foot", gap_yaw=True)
     np.testing.assert_array_equal(a.steps["length_m"], b.steps["length_m"])
     assert len(a.steps) == len(b.steps)
+
+
+def test_track_plasys_forwards_gap_yaw_to_streaming(monkeypatch):
+    sim = pytest.importorskip("pdrlearn.sim")
+    import pdrlearn.track.plasys as P
+
+    seen = []
+    real = P.track_streaming
+    monkeypatch.setattr(P, "track_streaming", lambda s, **kw: seen.append(kw.get("gap_yaw")) or real(s, **kw))
+    s = sim.simulate("A", user_seed=1, speed="normal")
+    P.track_plasys(s, method="M2", streaming=True, heading="foot", gap_yaw=True)
+    P.track_plasys(s, method="M2", streaming=True, heading="foot")
+    assert seen == [True, None]  # None: track_streaming's own default

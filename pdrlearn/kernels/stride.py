@@ -277,6 +277,13 @@ def stride_motion(levelled: Levelled, heading_source: str = "auto", *, t0: float
     return disp, dpsi  # the foot's attitude change from rest to rest (the rate's vertical integral is not)
 
 
+def headed_by_foot(levelled: Levelled, heading_source: str) -> bool:
+    """Whether :func:`stride_motion` takes this stride's heading from the foot (decision L31: only then is
+    the foot's pivot before the stride added)."""
+    return heading_source == "foot" or (heading_source == "auto" and ("waist" not in levelled
+                                                                       or levelled["waist"][2] is None))
+
+
 # -- rules (thesis ch.7.2.2) --------------------------------------------------------------------------
 def terrain_distance(disp: np.ndarray, terrain: np.ndarray, *, down_mode: str = "norm3") -> np.ndarray:
     """Unsigned distance (m) of each stride from its displacement (B, 3) according to its terrain class.

@@ -251,7 +251,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                  bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
                  min_confidence: float | None = None, align: bool = False, rules: str | None = None,
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
-                 calibration: bool = True, **opts) -> TrackResult:
+                 calibration: bool = True, gap_yaw: bool | None = None, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -284,6 +284,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         L26. Default None: M3 with a trained model uses the model's per-user distance calibration (from
         ``pdrlearn train``) when its foot rate matches the session's, else 1; a number applies it with
         any method (e.g. M2); 1.0 = off
+    gap_yaw : streaming: add the foot's turn between two strides that do not touch (decision L31; None = the
+        :func:`track_streaming` default); offline this is ``params={"gap_yaw": ...}`` (L28, on by default)
     calibration : M3 with a trained model: use the model's distance calibration (L26): its gain (unless
         ``distance_gain`` is given) and, for the bayes rules, its measured stride-length sd in place of the
         3 % default. False: neither
@@ -298,7 +300,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         return track_streaming(session, method=method, model=model, start=start, params=params,
                                heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
                                bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
-                               calibration=calibration)
+                               calibration=calibration, **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}))
     cfg = METHODS[method]
     warnings: list[str] = []
     foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
@@ -521,8 +523,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,
                              rest_search_s=rest_search_s, heading=step_heading)
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1))
-        by_foot = heading == "foot" or (heading == "auto" and ("waist" not in lev or lev["waist"][2] is None))
-        if gap_yaw and by_foot and i:  # decision L31: the foot's pivot between the strides
+        if gap_yaw and i and SK.headed_by_foot(lev, heading):  # decision L31: the foot's pivot between strides
             dyaw[i] += SK.gap_yaw(*streams["fGyroscope"], *streams["fAccelerometer"], float(strides[i - 1, 1]),
                                   float(t0))
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
