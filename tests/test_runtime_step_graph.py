@@ -208,10 +208,13 @@ def test_rebuilt_step_graph_gives_the_same_steps(trained, tmp_path):
             assert max(abs(x.proba[task][c] - y.proba[task][c]) for c in x.proba[task]) <= 1e-12
 
 
-@pytest.mark.parametrize("kernels", [("rbf", "rbf", "rbf"), ("poly", "linear"), ("rbf", "poly", "linear")])
-def test_svm_block_equals_each_svm_graph(trained, kernels):
+@pytest.mark.parametrize("kernels,degree", [(("rbf", "rbf", "rbf"), 3), (("poly", "linear"), 3),
+                                            (("rbf", "poly", "linear"), 3), (("rbf", "poly", "linear"), 2),
+                                            (("poly", "linear"), 2)])
+def test_svm_block_equals_each_svm_graph(trained, kernels, degree):
     """Decision E13: the SVM decision graphs of several units/tasks merged into one block (rbf only, poly /
-    linear only, mixed; 2 and 3 classes, so the padded class columns are exercised) give each graph's numbers."""
+    linear only, mixed; 2 and 3 classes, so the padded class columns are exercised) give each graph's numbers.
+    Decision E16: with polynomial degrees 1 and 2 only, the block squares by a product (no Pow node)."""
     from pdrlearn.classify.svm import svc_decision
     from pdrlearn.export.onnx_convert import svm_decision_to_onnx
     from pdrlearn.kernels.proba import soft_vote, softmax
@@ -231,7 +234,7 @@ def test_svm_block_equals_each_svm_graph(trained, kernels):
             for c in range(len(classes)):
                 kern, n_sv = kernels[c % len(kernels)], int(rng.integers(3, 9))
                 params.append({"kernel": kern, "sv": rng.normal(size=(n_sv, F.shape[1])), "dual": rng.normal(size=n_sv),
-                               "b": float(rng.normal()), "gamma": 0.1, "degree": 3 if kern == "poly" else 1,
+                               "b": float(rng.normal()), "gamma": 0.1, "degree": degree if kern == "poly" else 1,
                                "coef0": 1.0 if kern == "poly" else 0.0})
             model, spec = svm_decision_to_onnx(mean, scale, params, classes)
             rel = f"models/{task}_{unit}.onnx"
@@ -248,7 +251,9 @@ def test_svm_block_equals_each_svm_graph(trained, kernels):
                                                      "members": members}}}}
         want[task] = soft_vote(probas, weights)
     model, spec = build_step_graph(tasks, models, features)
-    assert [n.op_type for n in model.graph.node].count("Softmax") == 1  # one block for the four SVMs
+    ops = [n.op_type for n in model.graph.node]
+    assert ops.count("Softmax") == 1  # one block for the four SVMs
+    assert ("Pow" in ops) == ("poly" in kernels and degree == 3)
     out = _run(model, W)
     for task in tasks:
         np.testing.assert_allclose(out[spec["outputs"][task]], want[task], rtol=0, atol=1e-9)
@@ -272,3 +277,23 @@ def test_process_step_resamples_only_the_channels_the_graph_reads(trained):
         assert np.isnan(part[unused]).all() and np.isfinite(full[unused]).any()
         # the foot levelled at push time (decision E15) rounds differently from the shared kernel alone
         np.testing.assert_allclose(full, tr.window(a, b), rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("stats", [["air_time"], ["time_to_peak"], ["peak_mean_4"], ["contact_force_2"],
+                                   ["takeoff_force"], ["takeoff_force", "time_to_peak", "air_time"],
+                                   ["contact_force_2", "peak_mean_4", "time_to_peak", "takeoff_force", "air_time"]])
+def test_force_block_computes_only_the_asked_statistics_like_the_kernel(trained, stats):
+    """Decision E16: the force block gathers and interpolates only the instants its statistics need, and
+    the segment block's differences are +-1 products; every column still equals the numpy recipe."""
+    bundle = load_bundle(trained["root"] / "bundle_all")
+    recipe = [["force", st, zf] for zf in (0.05, 0.2) for st in stats] + [["segments", "foot_pitch", 6],
+                                                                          ["segments", "foot_acc_fwd", 3]]
+    model = features_graph(recipe, bundle.manifest["features"])
+    for W in (trained["W"], _random_windows(bundle)):
+        got = _run(model, W)["F"]
+        want = compute_features(W, recipe, **_ctx(bundle))
+        np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-12, err_msg=str(stats))
+    n_interp = [n.op_type for n in model.graph.node].count("GreaterOrEqual")
+    interpolated = bool({"peak_mean_4", "contact_force_2", "takeoff_force"} & set(stats))
+    # one interpolation per zero fraction when a statistic needs one (its end rule), plus the peak mask
+    assert n_interp == 2 * (interpolated + bool({"time_to_peak", "peak_mean_4"} & set(stats)))

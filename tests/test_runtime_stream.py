@@ -208,3 +208,55 @@ def test_chunked_pushes_keep_the_state_bounded(bundle, chunk_s):
     held = []
     _stream(tr, synthetic_session(120, seed=5), chunk_s, lambda tr: held.append(len(tr._buf["fAccelerometer"])))
     assert max(held) <= (2 * 8.0 + 2 * chunk_s) * 20 + 2  # 20 Hz foot; the whole 120 s would be 2400
+
+
+def test_waist_entry_equals_the_shared_kernel_and_falls_back_on_degenerate_tilts():
+    """Decision E16: the waist levelling on Python floats against ``levelled_units``' waist entry (1e-14),
+    on random tilts, a level unit (no rotation), an upside-down unit and a second waist clock; a forward
+    axis that is vertical at rest raises the kernel's DataError."""
+    from pdrlearn.errors import DataError
+    from pdrlearn.runtime.stream import waist_entry
+
+    rng = np.random.default_rng(3)
+    t = np.arange(40) * 0.05
+    fwd = {"waist": np.array([0.0, 0.0, 1.0])}
+    for k in range(30):
+        g = rng.normal(size=3)
+        g = 9.81 * g / np.linalg.norm(g) if k > 1 else np.array([0.0, 0.0, 9.81 if k == 0 else -9.81])
+        acc = g + rng.normal(scale=2.0, size=(40, 3))
+        gyr = rng.normal(size=(40, 3))
+        tg = t if k % 3 else t + 0.013  # every third: the gyroscope on its own clock
+        streams = {"wAccelerometer": (t, acc), "wGyroscope": (tg, gyr)}
+        f = np.array([1.0, 0.0, 0.0]) if k > 1 else np.array([0.0, 1.0, 0.0])
+        for gyro in (True, False):
+            groups = ("waist_acc", "waist_gyr") if gyro else ("waist_acc",)
+            want = levelled_units(streams, 0.3, 1.6, available=groups, forward={"waist": f}, rest_search_s=0.3,
+                                  heading="pca")["waist"]
+            got = waist_entry(streams, 0.3, 1.6, f, gyro)
+            np.testing.assert_array_equal(got[0], want[0])
+            np.testing.assert_allclose(got[1], want[1], rtol=0, atol=1e-13)
+            assert (got[2] is None) == (want[2] is None) == (not gyro)
+            if gyro:
+                np.testing.assert_allclose(got[2], want[2], rtol=0, atol=1e-13)
+    streams = {"wAccelerometer": (t, np.tile([0.0, 0.0, 9.81], (40, 1))), "wGyroscope": (t, np.zeros((40, 3)))}
+    with pytest.raises(DataError, match="vertically"):
+        waist_entry(streams, 0.3, 1.6, fwd["waist"], True)
+
+
+def test_buffer_views_are_made_on_first_access(bundle):
+    """Decision E16: the step reads its sensors through ``_Views``: membership and iteration are the
+    buffers', a view is the buffer's, an unknown sensor is a KeyError."""
+    from pdrlearn.runtime.tracker import _Views
+
+    s = synthetic_session(6, seed=2)
+    tr = Tracker(bundle)
+    for n, st in s.streams.items():
+        tr._append(n, st.t, st.values)
+    v = _Views(tr._buf)
+    assert tuple(v) == tuple(tr._buf) and len(v) == len(tr._buf) and "fGyroscope" in v and "nope" not in v
+    assert dict.__len__(v) == 0  # nothing made yet
+    t, x = v["fGyroscope"]
+    np.testing.assert_array_equal(t, tr._buf["fGyroscope"].view()[0])
+    assert np.shares_memory(x, tr._buf["fGyroscope"].v) and dict.__len__(v) == 1
+    with pytest.raises(KeyError):
+        v["nope"]

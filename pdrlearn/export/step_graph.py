@@ -27,6 +27,8 @@ log = logging.getLogger(__name__)
 
 #: Recipe operations the step graph translates (see :func:`pdrlearn.runtime.features.compute_features`).
 GRAPH_OPS = ("peak", "segments", "force", "yaw_sign", "yaw")
+#: kernels.stats.force_stats' statistics
+FORCE_STATS = ("air_time", "time_to_peak", "peak_mean_4", "contact_force_2", "takeoff_force")
 INPUT = "W"
 
 
@@ -149,31 +151,45 @@ class _Builder:
             return self.op("Concat", [self.op("Unsqueeze", [self.signal(nm), ax1]) for nm in names], "stack", axis=1)
         return self.memo_get(("stack", tuple(names)), build)
 
-    def segment_block(self, names: list[str], n_segments: int) -> str:
-        """kernels.stats.segment_stats of each signal, side by side: (n, len(names) * 4 * n_segments), per
-        signal ``[max_1, min_1, mean_1, slope_1, max_2, ...]``."""
+    def segment_block(self, names: list[str], n_segments: int) -> tuple[str, list]:
+        """kernels.stats.segment_stats of each signal: a tensor (n, len(names) * 4 * n_segments) and the
+        kernel column (``4 * part + stat``, stats max/min/mean/slope) of each of its columns. The columns
+        are per signal ``[max_1..max_S, min_1..min_S, mean_1..mean_S, slope_1..slope_S]``: the models'
+        Gathers pick them in recipe order, so the block needs no per-part interleaving (decision E16).
+        Differences of two samples (the slope's rise and the part's time span) are one product with a
+        +-1 matrix each: every output sums one exact ``+x`` and one exact ``-y`` term and zeros, so it
+        rounds once, like the subtraction it replaces (two Gathers and a Sub, E16)."""
         from pdrlearn.kernels.stats import _edges
 
-        x, t = self.stack(names), self.channel("t_s")
+        x = self.stack(names)
         a, b, mean = _edges(self.m, n_segments)
         width = int(max(b - a))
         # each part's indices, padded with its own last index (max/min unchanged)
         idx = np.array([list(range(i, j)) + [j - 1] * (width - (j - i)) for i, j in zip(a, b, strict=True)])
-        parts = self.op("Gather", [x, self.const(idx, "segidx", np.int64)], "parts", axis=2)  # (n, S, k, w)
-        mx = self.op("ReduceMax", [parts], "segmax", axes=[3], keepdims=1)
-        mn = self.op("ReduceMin", [parts], "segmin", axes=[3], keepdims=1)
-        ax3 = self.const(np.array([3], np.int64), "ax3", np.int64)
-        mu = self.op("Unsqueeze", [self.op("MatMul", [x, self.const(mean, "segmean")]), ax3])
-        span = self.op("Sub", [self.cols(t, b - 1), self.cols(t, a)], "span")  # (n, k)
-        pos = self.op("Greater", [span, self.const(np.array(0.0), "zero")])
-        span = self.op("Where", [pos, span, self.const(np.array(np.inf), "inf")])  # 0 for a 1-sample part
-        span = self.op("Unsqueeze", [span, self.const(np.array([1], np.int64), "ax1", np.int64)])  # (n, 1, k)
-        last = self.op("Gather", [x, self.const(b - 1, "idx", np.int64)], "xb", axis=2)
-        first = self.op("Gather", [x, self.const(a, "idx", np.int64)], "xa", axis=2)
-        slope = self.op("Unsqueeze", [self.op("Div", [self.op("Sub", [last, first]), span], "slope"), ax3])
-        inter = self.op("Concat", [mx, mn, mu, slope], "seg4", axis=3)  # (n, S, k, 4)
+        parts = self.op("Gather", [x, self.const(idx, "segidx", np.int64)], "parts", axis=2)  # (n, k, S, w)
+        mx = self.op("ReduceMax", [parts], "segmax", axes=[3], keepdims=0)  # (n, k, S)
+        mn = self.op("ReduceMin", [parts], "segmin", axes=[3], keepdims=0)
+        mu = self.op("MatMul", [x, self.const(mean, "segmean")], "segmu")
+        D = np.zeros((self.m, n_segments))  # column s: sample b_s - 1 minus sample a_s
+        D[b - 1, np.arange(n_segments)] += 1.0
+        D[a, np.arange(n_segments)] -= 1.0
+        D = self.const(D, "segdiff")
+        rise = self.op("MatMul", [x, D], "rise")  # (n, k, S)
+        span = self.memo_get(("segspan", n_segments), lambda: self._span(D))  # (n, 1, S)
+        slope = self.op("Div", [rise, span], "slope")
+        inter = self.op("Concat", [mx, mn, mu, slope], "seg4", axis=2)  # (n, k, 4 S)
         shape = self.const(np.array([-1, len(names) * 4 * n_segments], np.int64), "shape", np.int64)
-        return self.op("Reshape", [inter, shape], "seg")
+        order = [4 * p + st for _ in names for st in range(4) for p in range(n_segments)]
+        return self.op("Reshape", [inter, shape], "seg"), order
+
+    def _span(self, D: str) -> str:
+        """Time span of each segment (n, 1, S), +inf for a one-sample part (the slope is then 0)."""
+        j = self.ci["t_s"]
+        self.used_channels.add(j)
+        t = self.op("Gather", [INPUT, self.const(np.array([j], np.int64), "chs", np.int64)], "t3", axis=1)
+        span = self.op("MatMul", [t, D], "span")
+        pos = self.op("Greater", [span, self.const(np.array(0.0), "zero")])
+        return self.op("Where", [pos, span, self.const(np.array(np.inf), "inf")], "span")
 
     def peak_block(self, names: list[str], stats: list[str]) -> dict[str, str]:
         """kernels.stats.peak_stats of each signal: stat -> (n, len(names)) (``duration``: (n, 1))."""
@@ -242,8 +258,9 @@ class _Builder:
                     raise KeyError(op)
         blocks: list[tuple[str, list]] = []  # (tensor, the key of each of its columns)
         for n_seg, names in seg.items():
-            blocks.append((self.segment_block(names, n_seg),
-                           [("seg", nm, n_seg, j) for nm in names for j in range(4 * n_seg)]))
+            seg_t, order = self.segment_block(names, n_seg)
+            nms = [nm for nm in names for _ in range(4 * n_seg)]
+            blocks.append((seg_t, [("seg", nm, n_seg, j) for nm, j in zip(nms, order, strict=True)]))
         yaw_need = {"amplitude": ["range"], "duration": ["duration"], "left": ["t_max"],
                     "right": ["duration", "t_max"], "left_minus_right": ["duration", "t_max"]}
         if yaw:
@@ -272,15 +289,18 @@ class _Builder:
         if sign:
             blocks.append((self.yaw_sign(), [("yaw_sign",)]))
         for zf, stats in force.items():
-            for st in stats:
-                blocks.append((self.force(st, zf), [("force", st, zf)]))
-        self.index = {key: i for i, key in enumerate(key for _, keys in blocks for key in keys)}
+            if any(st not in FORCE_STATS for st in stats):
+                raise KeyError(next(st for st in stats if st not in FORCE_STATS))
+            blocks += self.force_block(stats, zf)
+        keys = [key for _, ks in blocks for key in ks]
+        self.index = {key: i for i, key in enumerate(keys) if key is not None}
+        self.n_cols = len(keys)
         self.all = blocks[0][0] if len(blocks) == 1 else self.op("Concat", [t for t, _ in blocks], "all", axis=1)
 
     def features(self, recipe: list) -> str:
         """The feature matrix (n, F) of a recipe (columns in recipe order) from the prepared matrix."""
         cols = self.feature_cols(recipe)
-        if cols == list(range(len(self.index))):
+        if cols == list(range(self.n_cols)):
             return self.all
         return self.cols(self.all, cols)
 
@@ -302,15 +322,15 @@ class _Builder:
         return cols
 
     def interp(self, q: str, x: str, y: str) -> str:
-        """``np.interp`` of each row: queries q (n, k) on the row's grid x (n, m) (increasing) -> (n, k)."""
+        """``np.interp`` of each row: queries q (n, k) on the row's grid x (n, m) (increasing) -> (n, k).
+        The queries must lie in ``[x[:, 0], x[:, -1]]`` (the force statistics clip them to the window)."""
         m = self.m
         q3 = self.op("Unsqueeze", [q, self.const(np.array([2], np.int64), "ax2", np.int64)])  # (n, k, 1)
-        x3 = self.op("Unsqueeze", [x, self.const(np.array([1], np.int64), "ax1", np.int64)])  # (n, 1, m)
-        le = self.op("Cast", [self.op("LessOrEqual", [x3, q3])], "le", to=TensorProto.INT64)
-        cnt = self.op("ReduceSum", [le, self.const(np.array([2], np.int64), "ax2", np.int64)], "cnt", keepdims=0)
-        j = self.op("Clip", [self.op("Sub", [cnt, self.const(np.array(1, np.int64), "one", np.int64)]),
-                             self.const(np.array(0, np.int64), "zero_i", np.int64),
-                             self.const(np.array(m - 2, np.int64), "m2", np.int64)], "j")
+        # the interval j = the last grid point at or below q, within 0..m-2: the number of inner grid points
+        # x[1..m-2] at or below q (x[0] <= q always), so no Clip of the full count (decision E16)
+        inner = self.op("Gather", [x, self.const(np.arange(1, m - 1)[None, :], "inner", np.int64)], "xin", axis=1)
+        le = self.op("Cast", [self.op("LessOrEqual", [inner, q3])], "le", to=TensorProto.INT64)  # (n, k, m-2)
+        j = self.op("ReduceSum", [le, self.const(np.array([2], np.int64), "ax2", np.int64)], "j", keepdims=0)
         j1 = self.op("Add", [j, self.const(np.array(1, np.int64), "one", np.int64)], "j1")
         xj, xj1, yj, yj1 = self.at(x, j), self.at(x, j1), self.at(y, j), self.at(y, j1)
         slope = self.op("Div", [self.op("Sub", [yj1, yj]), self.op("Sub", [xj1, xj])], "islope")
@@ -319,55 +339,84 @@ class _Builder:
         last = self.op("GreaterOrEqual", [q, self.cols(x, m - 1)])
         return self.op("Where", [last, self.cols(y, m - 1), v], "interp")
 
-    def force(self, stat: str, zero_fraction: float, sample_s: float = 0.05) -> str:
-        """One column (n, 1) of kernels.stats.force_stats (thesis Table 29, ch. 6.3.1)."""
-        key = ("forcebase", float(zero_fraction))
-        if key not in self.memo:
-            f, tt = self.signal("force"), self.tt()
-            peak = self.op("ReduceMax", [f], "fpeak", axes=[1], keepdims=1)
-            pos = self.op("Greater", [peak, self.const(np.array(0.0), "zero")])
-            ref = self.op("Where", [pos, peak, self.const(np.array(1.0), "onef")])
-            zero = self.op("Less", [f, self.op("Mul", [self.const(np.array(zero_fraction), "zf"), ref])], "zero")
-            zf = self.op("Cast", [zero], "zerof", to=TensorProto.DOUBLE)
-            any_zero = self.op("Greater", [self.op("ReduceMax", [zf], "anyz", axes=[1], keepdims=1),
-                                           self.const(np.array(0.0), "zero")])
-            i_fmin = self.op("ArgMin", [f], "ifmin", axis=1, keepdims=1)
+    def force_block(self, stats: list[str], zero_fraction: float, sample_s: float = 0.05) -> list[tuple[str, list]]:
+        """kernels.stats.force_stats (thesis Table 29, ch. 6.3.1) of the statistics ``stats``: tensors and the
+        key of each of their columns (None = a column no recipe reads).
+
+        Only the instants the asked statistics need are gathered and interpolated (decision E16): one
+        GatherElements of the times at (last zero, contact peak, first zero), one product with a 0/+-1
+        matrix plus one offset vector gives the interpolation queries and ``time_to_peak`` (each output
+        one exact term, or one rounded difference, like the kernel's), and the queries go through one
+        interpolation. ``time_to_peak`` lies in ``[0, duration]`` (the peak is at or after the last zero),
+        so the clip of the queries to the window leaves it unchanged.
+        """
+        key = lambda st: ("force", st, float(zero_fraction))  # noqa: E731
+        f, tt = self.signal("force"), self.tt()
+        peak = self.op("ReduceMax", [f], "fpeak", axes=[1], keepdims=1)
+        pos = self.op("Greater", [peak, self.const(np.array(0.0), "zero")])
+        ref = self.op("Where", [pos, peak, self.const(np.array(1.0), "onef")])
+        zero = self.op("Less", [f, self.op("Mul", [self.const(np.array(zero_fraction), "zf"), ref])], "zero")
+        zf = self.op("Cast", [zero], "zerof", to=TensorProto.DOUBLE)
+        out: list[tuple[str, list]] = []
+        if "air_time" in stats:
+            out.append((self.reduce("ReduceSum", self.op("Mul", [zf, self.gradient(tt)]), keepdims=1),
+                        [key("air_time")]))
+        need_last = bool({"time_to_peak", "peak_mean_4", "contact_force_2"} & set(stats))
+        need_peak = bool({"time_to_peak", "peak_mean_4"} & set(stats))
+        need_first = "takeoff_force" in stats
+        if not (need_last or need_first):
+            return out
+        any_zero = self.op("Greater", [self.op("ReduceMax", [zf], "anyz", axes=[1], keepdims=1),
+                                       self.const(np.array(0.0), "zero")])
+        i_fmin = self.op("ArgMin", [f], "ifmin", axis=1, keepdims=1)
+        idx: list[str] = []  # the instants, in the order of the rows of L below
+        rows: list[str] = []
+        if need_last:
             last_zero = self.op("Where", [any_zero, self.op("ArgMax", [zf], "lz", axis=1, keepdims=1,
                                                             select_last_index=1), i_fmin])
-            first_zero = self.op("Where", [any_zero, self.op("ArgMax", [zf], "fz", axis=1, keepdims=1), i_fmin])
+            idx.append(last_zero)
+            rows.append("last")
+        if need_peak:
             after = self.op("GreaterOrEqual", [self.const(np.arange(self.m)[None, :], "arange", np.int64), last_zero])
             masked = self.op("Where", [after, f, self.const(np.array(-np.inf), "ninf")])
-            i_peak = self.op("ArgMax", [masked], "ipeak", axis=1, keepdims=1)
-            self.memo[key] = {"f": f, "tt": tt, "zf": zf, "t_last": self.at(tt, last_zero),
-                              "t_peak": self.at(tt, i_peak), "first_zero": first_zero}
-        c = self.memo[key]
-
-        def values() -> str:  # the force at the four instants of Table 29 #3-4 and ch. 6.3.1
-            def build():
-                tt = c["tt"]
-                q = self.op("Concat", [
-                    self.op("Sub", [c["t_peak"], self.const(np.array(4 * sample_s), "s4")]),
-                    self.op("Add", [c["t_peak"], self.const(np.array(4 * sample_s), "s4")]),
-                    self.op("Add", [c["t_last"], self.const(np.array(2 * sample_s), "s2")]),
-                    self.op("Sub", [self.at(tt, c["first_zero"]), self.const(np.array(2 * sample_s), "s2")]),
-                ], "q", axis=1)
-                dur = self.memo_get("duration", lambda: self.cols(tt, self.m - 1))
-                q = self.op("Min", [self.op("Max", [q, self.const(np.array(0.0), "zero")]), dur], "qc")  # interp_rows
-                return self.interp(q, tt, c["f"])
-            return self.memo_get(key + ("values",), build)
-
-        table = {
-            "air_time": lambda: self.reduce("ReduceSum", self.op("Mul", [c["zf"], self.gradient(c["tt"])]),
-                                            keepdims=1),
-            "time_to_peak": lambda: self.op("Sub", [c["t_peak"], c["t_last"]], "ttp"),
-            "peak_mean_4": lambda: self.op("Mul", [self.op("Add", [self.cols(values(), 0), self.cols(values(), 1)]),
-                                                   self.const(np.array(0.5), "half")]),
-            "contact_force_2": lambda: self.cols(values(), 2),
-            "takeoff_force": lambda: self.cols(values(), 3),
-        }
-        if stat not in table:
-            raise KeyError(stat)
-        return self.memo_get(key + (stat,), table[stat])
+            idx.append(self.op("ArgMax", [masked], "ipeak", axis=1, keepdims=1))
+            rows.append("peak")
+        if need_first:
+            idx.append(self.op("Where", [any_zero, self.op("ArgMax", [zf], "fz", axis=1, keepdims=1), i_fmin]))
+            rows.append("first")
+        at = self.at(tt, idx[0] if len(idx) == 1 else self.op("Concat", idx, "fidx", axis=1))  # (n, len(rows))
+        # columns: (coefficients on the rows, offset, key or None); the kernel's queries are
+        # t_peak -+ 4 samples, t_last + 2 samples, t_first - 2 samples (thesis Table 29 #3-4, ch. 6.3.1)
+        cols: list[tuple[dict, float, str | None]] = []
+        if "time_to_peak" in stats:
+            cols.append(({"peak": 1.0, "last": -1.0}, 0.0, "time_to_peak"))
+        if "peak_mean_4" in stats:
+            cols += [({"peak": 1.0}, -4 * sample_s, None), ({"peak": 1.0}, 4 * sample_s, None)]
+        if "contact_force_2" in stats:
+            cols.append(({"last": 1.0}, 2 * sample_s, "contact_force_2"))
+        if "takeoff_force" in stats:
+            cols.append(({"first": 1.0}, -2 * sample_s, "takeoff_force"))
+        L = np.zeros((len(rows), len(cols)))
+        for c, (coef, _, _) in enumerate(cols):
+            for r, w in coef.items():
+                L[rows.index(r), c] = w
+        q = self.op("MatMul", [at, self.const(L, "fsel")], "fq")
+        offs = np.array([o for _, o, _ in cols])
+        if offs.any():
+            q = self.op("Add", [q, self.const(offs, "foff")], "fq")  # + 0.0 leaves time_to_peak exact
+        interpolated = [k for _, _, k in cols if k != "time_to_peak"]
+        if not interpolated:
+            return out + [(q, [key("time_to_peak")])]
+        dur = self.memo_get("duration", lambda: self.cols(tt, self.m - 1))
+        q = self.op("Min", [self.op("Max", [q, self.const(np.array(0.0), "zero")]), dur], "qc")  # interp_rows
+        out.append((q, [key(k) if k == "time_to_peak" else None for _, _, k in cols]))
+        v = self.interp(q, tt, f)
+        out.append((v, [None if k in (None, "time_to_peak") else key(k) for _, _, k in cols]))
+        if "peak_mean_4" in stats:
+            h = np.zeros((len(cols), 1))
+            h[[c for c, (coef, o, k) in enumerate(cols) if k is None], 0] = 0.5  # 0.5 v0 + 0.5 v1, one rounding
+            out.append((self.op("MatMul", [v, self.const(h, "pm4")], "pm4"), [key("peak_mean_4")]))
+        return out
 
     def yaw_sign(self) -> str:
         """kernels.stats.positive_net_rotation of the waist yaw rate (n, 1)."""
@@ -552,7 +601,12 @@ def _svm_block(b: _Builder, leaves: list, svms: list[tuple[int, dict]]) -> tuple
     if not cat["is_rbf"].all():
         kp = b.op("Mul", [dot, b.const(cat["gamma"], "gamma")])
         kp = b.op("Add", [kp, b.const(cat["coef0"], "coef0")])
-        kp = b.op("Pow", [kp, b.const(cat["degree"], "degree")], "K_poly")
+        if set(cat["degree"].tolist()) <= {1.0, 2.0}:  # t^2 = t * t, t^1 = t * 1: numpy's ** 2 and ** 1 exactly,
+            sq = b.op("Where", [b.const(cat["degree"] == 2.0, "deg2", bool), kp,  # and no libm pow per column (E16)
+                                b.const(np.array(1.0), "onef")])
+            kp = b.op("Mul", [kp, sq], "K_poly")
+        else:
+            kp = b.op("Pow", [kp, b.const(cat["degree"], "degree")], "K_poly")
     if cat["is_rbf"].any():
         member = _block_diag([np.ones((len(p["mean"]), 1)) for _, p in svms])  # feature -> its model
         of_sv = np.repeat(np.arange(len(svms)), [p["svT"].shape[1] for _, p in svms])  # support vector -> model

@@ -24,15 +24,15 @@ from pdrlearn.kernels.rotation import gravity_rotation, rotvec_to_matrix, vec_no
 from pdrlearn.kernels.stats import (
     heading_rotation,
     principal_horizontal_axis,
-    rest_index,
     rest_score,
     row_norm,
     tilt_corrected,
 )
-from pdrlearn.kernels.window import col_mean, interp, segment
+from pdrlearn.kernels.window import col_mean, interp, resample, segment, waist_levelled
 
 _I3 = np.eye(3)
 _I3.flags.writeable = False
+
 
 
 class Ring:
@@ -319,13 +319,13 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
         return None
     t = t[j0:j1]
     j0, j1 = i0 + j0, i0 + j1
-    acc, gyr, an, gn = arr["acc"][j0:j1], arr["gyr"][j0:j1], arr["an"][j0:j1], arr["gn"][j0:j1]
+    acc, an, gn = arr["acc"][j0:j1], arr["an"][j0:j1], arr["gn"][j0:j1]
     fs = (n - 1) / float(t[-1] - t[0])  # mean rate over the step
     m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
     h = max(0, int(round(0.02 * fs)))  # rest specific force averaged over +-20 ms
     score = rest_score(an, gn, half_width=h)
-    k0 = rest_index(acc, gyr, 0, m, score=score)
-    k1 = rest_index(acc, gyr, n - m, n, score=score)
+    k0 = _first_min(score, 0, m, n)  # rest_index with the score given, without np.argmin's wrapper (E16)
+    k1 = _first_min(score, n - m, n, n)
     g0 = col_mean(acc[max(k0 - h, 0): k0 + h + 1])
     g1 = col_mean(acc[max(k1 - h, 0): k1 + h + 1])
     r0 = gravity_rotation(g0)
@@ -347,6 +347,52 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
     return t, out[:, 0], out[:, 1], an, dpsi
 
 
+def _first_min(score: np.ndarray, lo: int, hi: int, n: int) -> int:
+    """:func:`pdrlearn.kernels.stats.rest_index` with the score given: the first minimum in ``[lo, hi)``."""
+    lo = max(0, lo)
+    hi = max(lo + 1, min(hi, n))
+    return lo + int(score[lo:hi].argmin())
+
+
+def waist_entry(streams, t0: float, t1: float, forward_s: np.ndarray, gyro: bool):
+    """The waist entry ``(t, acc, gyr, None, nan)`` of :func:`pdrlearn.kernels.window.levelled_units` for the
+    step ``[t0, t1]``, with the levelling rotation on Python floats (decision E16): the tilt from the mean
+    specific force over the step, the declared forward axis made horizontal
+    (:func:`pdrlearn.kernels.window.waist_levelled`'s formulas; ``gravity_rotation``, ``heading_rotation``
+    and their product written out, 3 numpy calls instead of ~15). Within 1e-15 of the shared kernel (the
+    3x3 products round differently); degenerate cases (zero or level gravity, a vertical forward axis)
+    run the shared kernel, which also raises its errors."""
+    tw, acc = segment(*streams["wAccelerometer"], t0, t1)
+    gyr = None
+    if gyro:
+        tg, g = segment(*streams["wGyroscope"], t0, t1)
+        gyr = g if len(tg) == len(tw) and (tg == tw).all() else resample(tw, tg, g).T  # same clock: as resample
+    gx, gy, gz = col_mean(acc).tolist()
+    n = math.sqrt(gx * gx + gy * gy + gz * gz)
+    if math.isfinite(n) and n >= 1e-9:
+        a0, a1, c = gx / n, gy / n, gz / n
+        s = math.sqrt(a1 * a1 + a0 * a0)
+        if s >= 1e-12:  # gravity_rotation: R = I + s [k]x + (1 - c) [k]x^2, k = (a1, -a0, 0) / s
+            k0, k1 = a1 / s, -a0 / s
+            b = 1.0 - c
+            r = ((1.0 - b * k1 * k1, b * k0 * k1, s * k1),
+                 (b * k0 * k1, 1.0 - b * k0 * k0, -s * k0),
+                 (-s * k1, s * k0, 1.0 - b * (k0 * k0 + k1 * k1)))
+            fx, fy, fz = forward_s.tolist()
+            hx = r[0][0] * fx + r[0][1] * fy + r[0][2] * fz  # (r @ forward)[:2]
+            hy = r[1][0] * fx + r[1][1] * fy + r[1][2] * fz
+            hn = math.sqrt(hx * hx + hy * hy)
+            if hn >= 0.1:
+                hc, hs = hx / hn, hy / hn  # heading_rotation(ref) @ r
+                rr = np.array([[hc * r[0][j] + hs * r[1][j] for j in range(3)],
+                               [hc * r[1][j] - hs * r[0][j] for j in range(3)], r[2]])
+                a = acc @ rr.T
+                a[:, 2] -= n
+                return tw, a, (None if gyr is None else gyr @ rr.T), None, float("nan")
+    a, g = waist_levelled(acc, gyr, forward_s)
+    return tw, a, g, None, float("nan")
+
+
 _UNIT_COLUMNS = {  # window channel -> (unit, index in the levelled_units entry, axis or None)
     **{f"foot_acc_{ax}": ("foot", 1, i) for i, ax in enumerate("xyz")},
     "foot_acc_norm": ("foot", 3, None),
@@ -356,10 +402,11 @@ _UNIT_COLUMNS = {  # window channel -> (unit, index in the levelled_units entry,
 }
 
 
-def _box_width(tg: np.ndarray, t: np.ndarray) -> int:
-    """The anti-alias box width :func:`pdrlearn.kernels.window.resample` uses for ``t -> tg``."""
-    if len(tg) > 1 and len(t) > 2:
-        w = int(round((tg[1] - tg[0]) * (len(t) - 1) / float(t[-1] - t[0])))
+def _box_width(dg: float, t: np.ndarray) -> int:
+    """The anti-alias box width :func:`pdrlearn.kernels.window.resample` uses for ``t -> tg`` (``dg`` =
+    ``tg[1] - tg[0]`` as a Python float, None for a one-sample grid: the same arithmetic, E16)."""
+    if dg is not None and len(t) > 2:
+        w = int(round(dg * (len(t) - 1) / float(t[-1] - t[0])))
         return 2 * (w // 2) + 1
     return 1
 
@@ -377,15 +424,16 @@ def fill_resampled(W: np.ndarray, streams, t0: float, t1: float, tg: np.ndarray,
             u, k, ax = _UNIT_COLUMNS[c]
             if u in lev and lev[u][k] is not None:
                 units.append((c, lev[u][0], lev[u][k] if ax is None else lev[u][k][:, ax]))
+    dg = float(tg[1] - tg[0]) if len(tg) > 1 else None
     for u in lev:
-        if _box_width(tg, lev[u][0]) > 1:
+        if _box_width(dg, lev[u][0]) > 1:
             return False
     force = "force" in available and ("force_a" in need or "force_b" in need)
     segs = {}
     if force:
         for name in ("fForceA", "fForceB"):
             segs[name] = segment(*streams[name], t0, t1)
-            if _box_width(tg, segs[name][0]) > 1:
+            if _box_width(dg, segs[name][0]) > 1:
                 return False
     for c, t, x in units:
         W[ci[c]] = interp(tg, t, x)

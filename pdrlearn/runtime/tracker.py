@@ -43,7 +43,7 @@ from pdrlearn.kernels.window import (
 )
 from pdrlearn.runtime.bundle import Bundle, load_bundle
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
-from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled
+from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
 
 log = logging.getLogger(__name__)
 
@@ -122,6 +122,30 @@ def calibration_record(displacement: dict) -> dict | None:
         return None
     return {"gain": float(displacement["distance_gain"]), "rate_hz": displacement.get("distance_gain_rate_hz"),
             "stride_sd": displacement.get("stride_sigma_rel"), "reason": None}
+
+
+class _Views(dict):
+    """Sensor name -> ``(t, values)`` views of the tracker's buffers, each made on first access (a step
+    reads 4-6 of the buffered sensors; decision E16). Membership and iteration are the buffers'."""
+
+    __slots__ = ("_buf",)
+
+    def __init__(self, buf: dict[str, Ring]):
+        super().__init__()
+        self._buf = buf
+
+    def __missing__(self, name: str):
+        v = self[name] = self._buf[name].view()
+        return v
+
+    def __contains__(self, name) -> bool:
+        return name in self._buf
+
+    def __iter__(self):
+        return iter(self._buf)
+
+    def __len__(self) -> int:
+        return len(self._buf)
 
 
 class Tracker:
@@ -229,7 +253,6 @@ class Tracker:
         self._det_t = -np.inf
         self._rate_checked: set[str] = set()
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
-        self._waist_groups: tuple[str, ...] | None = None
         self.n_steps = 0
 
     # -- classification of given windows (also used by the parity tests) ----------------------------
@@ -263,7 +286,7 @@ class Tracker:
         levelled from the push-time state when it covers the step (decision E15), else by the shared
         kernel; resampling is the shared kernel's (``fill_step_window``'s per-channel path)."""
         channels = self._step_channels if channels is False else channels
-        streams = {k: self._stream(k) for k in self._buf}
+        streams = _Views(self._buf)  # a sensor's buffer view is made when a kernel reads it (E16)
         W = np.full((len(self.channels), self.n_samples), np.nan)
         if self._groups[0] != tuple(streams):  # the sensor groups change only when a new sensor arrives
             self._groups = (tuple(streams), available_groups(streams))
@@ -289,10 +312,8 @@ class Tracker:
         if foot is None:
             return levelled_units(streams, t0, t1, available=avail, **kw)
         lev = {"foot": foot}
-        if "waist_acc" in avail and "waist" in self.forward:
-            if self._groups[1] is not avail or self._waist_groups is None:
-                self._waist_groups = tuple(g for g in avail if g.startswith("waist"))
-            lev.update(levelled_units(streams, t0, t1, available=self._waist_groups, **kw))
+        if "waist_acc" in avail and "waist" in self.forward:  # the waist levelling on Python floats (E16)
+            lev["waist"] = waist_entry(streams, t0, t1, self.forward["waist"], "waist_gyr" in avail)
         return lev
 
     def window_bounds(self, t0: float, t1: float, streams=None) -> tuple[float, float]:
@@ -420,7 +441,8 @@ class Tracker:
         disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
         if self.distance_gain is None:
             self._resolve_calibration()
-        disp = apply_level_gain(disp, self.distance_gain)  # decision L26 / E14, as pdrlearn track
+        if self.distance_gain != 1.0:  # gain 1: apply_level_gain would return a copy of the same values
+            disp = apply_level_gain(disp, self.distance_gain)  # decision L26 / E14, as pdrlearn track
         length, dz = apply_stride_rules(disp, [classes.get("terrain")], [classes.get("direction")],
                                         [classes.get("length")], bounds=self.bounds, down_mode=self._down_mode)
         length, dz = float(length[0]), float(dz[0])
