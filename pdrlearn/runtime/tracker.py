@@ -46,6 +46,7 @@ from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
 
 log = logging.getLogger(__name__)
+_F64 = np.dtype(np.float64)
 
 #: Default displacement parameters written into bundles. Bounds are per foot-unit *stride* = 2 x the
 #: thesis step bounds (thesis ch.6.3: short <= 0.30 m, normal 0.30-0.45 m, long > 0.45 m; ch.7.2.2: a long
@@ -333,15 +334,19 @@ class Tracker:
         return self._buf[name].view()
 
     def _append(self, name: str, t, v) -> None:
-        t = np.asarray(t, dtype=np.float64).reshape(-1)
-        n = len(t)
-        if n == 0:
-            return
-        v = np.asarray(v, dtype=np.float64).reshape(n, -1)
+        if (type(t) is np.ndarray and type(v) is np.ndarray and t.shape == (1,) and v.ndim == 2 and v.shape[0] == 1
+                and t.dtype is _F64 and v.dtype is _F64):  # one float64 sample: no conversions (decision E16)
+            n, t0, vals = 1, t.item(), v.tolist()[0]
+        else:
+            t = np.asarray(t, dtype=np.float64).reshape(-1)
+            n = len(t)
+            if n == 0:
+                return
+            v = np.asarray(v, dtype=np.float64).reshape(n, -1)
+            t0 = float(t[0])
+            vals = v[0].tolist() if n == 1 else None
         ring = self._buf.get(name)
-        t0 = float(t[0])
         if n == 1:  # one sample (streaming sample by sample): the checks on Python floats
-            vals = v[0].tolist()
             ok = math.isfinite(t0) and all(map(math.isfinite, vals))
         else:  # finite iff the sum is (a sum of finite values overflows only beyond 1e308); else exactly
             ok = math.isfinite(float(np.add.reduce(t))) and math.isfinite(float(np.add.reduce(v, axis=None)))
@@ -427,12 +432,17 @@ class Tracker:
         decision E7); a step runs from one stance to the next."""
         if "fGyroscope" not in self._buf or "fAccelerometer" not in self._buf:
             return
-        if self._buf["fGyroscope"].last <= self._det_t:  # no new gyroscope sample
+        ring = self._buf["fGyroscope"]
+        if ring.last <= self._det_t:  # no new gyroscope sample
             return
-        t, g = self._stream("fGyroscope")
-        i = int(t.searchsorted(self._det_t, side="right"))
-        self._pending += self.segmenter.update(t[i:], g[i:])
-        self._det_t = float(t[-1])
+        i1 = ring.i1
+        if i1 - ring.i0 >= 2 and ring.t[i1 - 2] <= self._det_t:  # one new sample (sample-by-sample pushes, E16)
+            self._pending += self.segmenter.update(ring.t[i1 - 1:i1], ring.v[i1 - 1:i1])
+        else:
+            t, g = ring.view()
+            i = int(t.searchsorted(self._det_t, side="right"))
+            self._pending += self.segmenter.update(t[i:], g[i:])
+        self._det_t = ring.last
 
     def process_step(self, t0: float, t1: float) -> Step:
         """Classify, measure and place the step ``[t0, t1]`` (s) from the buffered samples."""
