@@ -318,7 +318,7 @@ def run_real() -> pd.DataFrame:
 
 
 EXTERNAL = ROOT / "datasets" / "external"
-E7_STANCE = {"stance_floor_factor": 0.0, "stance_gap_s": 0.0}  # decision E7 without L27
+E7_STANCE = {"stance_floor_factor": 0.0, "stance_gap_s": 0.0, "stance_mean_min_s": 0.0}  # decision E7 without L27 or L29
 
 
 def _foot_recordings():
