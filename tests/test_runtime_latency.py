@@ -105,3 +105,17 @@ def test_foot_levelled_equals_the_attitude_stack_version(rate, heading):
     for g, w in zip(got[:3], want[:3], strict=True):
         np.testing.assert_allclose(g, w, rtol=0, atol=1e-12)
     assert got[3] == pytest.approx(want[3], abs=1e-13)
+
+
+def test_stance_segmenter_norm_is_numpys_norm_bit_for_bit():
+    """Decision E16: the segmenter's |w| without np.linalg.norm's wrapper is the same arithmetic."""
+    rng = np.random.default_rng(7)
+    for scale in (1e-6, 1.0, 30.0, 1e150):
+        g = rng.normal(size=(500, 3)) * scale
+        np.testing.assert_array_equal(np.sqrt(np.add.reduce(g * g, axis=1)), np.linalg.norm(g, axis=1))
+    from pdrlearn.kernels.stride import StanceSegmenter
+
+    t = np.arange(400) * 0.05
+    g = np.where((np.arange(400) // 20 % 2 == 0)[:, None], 0.1, 3.0) * rng.normal(size=(400, 3))
+    a, b = StanceSegmenter(), StanceSegmenter()
+    assert a.update(t, g) == [s for i in range(400) for s in b.update(t[i:i + 1], g[i:i + 1])]

@@ -145,7 +145,8 @@ class StanceSegmenter:
     def update(self, t: np.ndarray, gyr: np.ndarray) -> list[tuple[float, float]]:
         """Feed new foot-gyroscope samples ``t (n,)`` s, ``gyr (n, 3)`` rad/s; return the strides they close."""
         out: list[tuple[float, float]] = []
-        w = np.linalg.norm(gyr, axis=1).tolist()
+        gyr = np.asarray(gyr, dtype=np.float64)  # |w| = np.linalg.norm(gyr, axis=1)'s own arithmetic without its
+        w = np.sqrt(np.add.reduce(gyr * gyr, axis=1)).tolist()  # Python wrapper (~1 us per push, decision E16)
         tl = t.tolist()
         if not math.isfinite(sum(w)):  # a NaN would stay in the L27 running sum: no stance for the rest of the stream
             raise DataError("StanceSegmenter: foot gyroscope samples contain NaN/inf; drop those samples first")
