@@ -204,7 +204,8 @@ def test_pll_events_pass_the_alternation_check(test11):
 def test_realtime_without_lobe_check_keeps_more_true_steps(test11):
     """Decision 13 (docs/decisions/steps.md): seed 003's lobe check at ratio 2 rejected more true
     contacts than false ones; without it the causal detector finds more of Test11 and of a slow
-    simulated walk without losing precision on the walk."""
+    simulated walk without losing precision on the walk. (Seed 003's zero-crossing detector,
+    ``delay_s=None``; the default realtime detector is W31's delayed decision.)"""
     from pdrlearn.sim import simulate
     from pdrlearn.steps.evaluate import score_events
     from pdrlearn.waist import waist_imu
@@ -212,14 +213,14 @@ def test_realtime_without_lobe_check_keeps_more_true_steps(test11):
     from pdrlearn.waist.events import InitialContactDetector
 
     s, imu = test11
-    on = step_metrics(InitialContactDetector(realtime=True, lobe_ratio=2.0).detect(imu).steps_, s)
-    off = step_metrics(InitialContactDetector(realtime=True).detect(imu).steps_, s)
+    on = step_metrics(InitialContactDetector(realtime=True, delay_s=None, lobe_ratio=2.0).detect(imu).steps_, s)
+    off = step_metrics(InitialContactDetector(realtime=True, delay_s=None).detect(imu).steps_, s)
     assert off["step_recall"] > on["step_recall"] and off["step_f1"] > on["step_f1"]
     assert abs(off["ic_timing_mean_ms"]) <= 20.0
     sim = simulate("A", 1, "slow", rate_hz=100.0)
     simu = waist_imu(sim)
     ref = sim.extras["ics"]["ic_s"].to_numpy(float)
-    sc = {lr: score_events(InitialContactDetector(realtime=True, lobe_ratio=lr).detect(simu)
+    sc = {lr: score_events(InitialContactDetector(realtime=True, delay_s=None, lobe_ratio=lr).detect(simu)
                            .steps_["event_s"].to_numpy(float), ref) for lr in (2.0, None)}
     assert sc[None]["recall"] > sc[2.0]["recall"]
     assert sc[None]["f1"] >= sc[2.0]["f1"]

@@ -61,19 +61,20 @@ class InitialContactDetector:
 
     Parameters
     ----------
-    realtime : ``False`` -> zero-lag FIR offline method; ``True`` -> causal variant (11th-order FIR
-        on the AP acceleration, positive-to-negative zero crossings, lobe check).
+    realtime : ``False`` -> zero-lag FIR offline method; ``True`` -> causal: with ``delay_s`` (default)
+        the offline method on the data up to each decision time (W31), else seed 003's causal variant
+        (11th-order FIR on the AP acceleration, positive-to-negative zero crossings, lobe check).
     cutoff_hz : FIR cutoff (seed 003 sec. 3.1: 2.5 Hz)
     fir_order_s : offline FIR order in seconds of samples (seed 003: order 30; 0.3 s at 100 Hz)
     walk_threshold : motion-gate threshold on the std of vertical acceleration (m/s^2)
     ap_cutoff_hz : light low-pass of the AP acceleration before locating its maximum (Hz; capped at
         0.4 x rate)
     max_step_s : contacts further apart than this end a walking sequence (s)
-    rhythm : offline only: complete each walking sequence at its local step period (gaps of weak
-        turning/shuffling steps, sequence ends cut by the motion gate; decision W18)
-    lobe_ratio : realtime: reject a zero crossing whose positive lobe lasts more than this times the
-        running median of the sequence's accepted lobes (seed 003's false-crossing check); ``None``
-        (default) = no lobe check: on our data it rejected more true steps than false ones
+    rhythm : offline (and realtime with ``delay_s``): complete each walking sequence at its local step
+        period (gaps of weak turning/shuffling steps, sequence ends cut by the motion gate; decision W18)
+    lobe_ratio : realtime with ``delay_s=None``: reject a zero crossing whose positive lobe lasts more
+        than this times the running median of the sequence's accepted lobes (seed 003's false-crossing
+        check); ``None`` (default) = no lobe check: on our data it rejected more true steps than false ones
         (docs/decisions/steps.md, decision 13)
     alternate : offline, with ``rhythm``: make the sequences alternate left/right, with the step side
         from the pelvis's lateral velocity (same-side maxima too close for a step between them lose the
@@ -83,6 +84,14 @@ class InitialContactDetector:
         (decision W23)
     end_steps : offline, with ``alternate``: one step of gait initiation / termination beyond each
         walking sequence on the alternating side, up to ``max_step_s`` away (decision W28)
+    delay_s : realtime: decide each contact this long after it (to ``delay_s + hop_s``) with the offline
+        detector run on the samples up to the decision time only -- its sequence rules W18, W20, W23,
+        W28 (``rhythm``, ``alternate``, ``weight_shift``, ``end_steps``; ``ap_above_mean`` too) see
+        ``delay_s`` of the gait that follows (decision W31; 1.75 s: the thesis allows < 2 s);
+        ``None`` = seed 003's causal zero-crossing detector (decided about one filter delay after the
+        contact, no sequence rules)
+    hop_s : realtime with ``delay_s``: decision interval (s)
+    history_s : realtime with ``delay_s``: seconds of data before the decided stretch the rules see
     ap_above_mean : offline: the IC is the last local AP maximum above the AP acceleration's 2 s mean
         in the search window, if there is one (decision W29; off by default: it moves the simulator's
         contacts earlier)
@@ -90,16 +99,22 @@ class InitialContactDetector:
     Attributes
     ----------
     steps_ : steps table (see :func:`steps_from_events`); ic_, fc_ : sample indices
-    anchor_ : sample index each IC was found from (offline: the vertical maximum; realtime: the delayed
-        zero crossing)
+    anchor_ : sample index each IC was found from (offline and realtime with ``delay_s``: the vertical
+        maximum; realtime without: the delayed zero crossing)
+    decided_ : sample index at which each contact was decided (the first sample the decision did not
+        use; offline: the end of the data). ``(decided_ - ic_) / fs`` is the decision delay.
     """
 
     def __init__(self, *, realtime: bool = False, cutoff_hz: float = 2.5, fir_order_s: float = 0.3,
                  walk_threshold: float = WALK_THRESHOLD_MPS2, ap_cutoff_hz: float = 20.0,
                  max_step_s: float = 1.5, rhythm: bool = True, alternate: bool = True,
                  lobe_ratio: float | None = None, weight_shift: bool = True, end_steps: bool = True,
-                 ap_above_mean: bool = False):
+                 ap_above_mean: bool = False, delay_s: float | None = K.DECISION_DELAY_S,
+                 hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S):
         self.realtime = realtime
+        self.delay_s = delay_s
+        self.hop_s = hop_s
+        self.history_s = history_s
         self.lobe_ratio = lobe_ratio
         self.rhythm = rhythm
         self.alternate = alternate
@@ -112,29 +127,52 @@ class InitialContactDetector:
         self.ap_cutoff_hz = ap_cutoff_hz
         self.max_step_s = max_step_s
 
-    def detect(self, imu: WaistIMU) -> InitialContactDetector:
+    def _offline(self, imu: WaistIMU) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The offline detector's contacts (zero-lag filters, sequence rules) on ``imu``."""
         fs = imu.fs
-        gate = walking_gate(imu, walk_threshold=self.walk_threshold, causal=self.realtime)
-        cut = min(self.ap_cutoff_hz, 0.4 * fs)
-        ap = lowpass(imu.acc_ap, cut, fs, causal=self.realtime)
-        if self.realtime:
+        gate = walking_gate(imu, walk_threshold=self.walk_threshold, causal=False)
+        ap = lowpass(imu.acc_ap, min(self.ap_cutoff_hz, 0.4 * fs), fs, causal=False)
+        return K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
+                            fir_order_s=self.fir_order_s, rhythm=self.rhythm, max_step_s=self.max_step_s,
+                            acc_ml=imu.acc_ml if self.alternate else None, unshifted=self.weight_shift,
+                            end_steps=self.end_steps, ap_above_mean=self.ap_above_mean)
+
+    def detect(self, imu: WaistIMU, *, final: bool = True) -> InitialContactDetector:
+        """Detect the contacts of ``imu``. ``final`` (realtime with ``delay_s``): the end of the data
+        decides the contacts of its last ``delay_s`` (a stream that ended); ``False`` leaves them out, as a
+        live stream at that moment would."""
+        fs = imu.fs
+        if self.realtime and self.delay_s is not None:  # W31: offline rules, decided delay_s later
+            if self.lobe_ratio is not None:
+                log.warning("lobe_ratio applies to seed 003's zero-crossing detector only (delay_s=None)")
+            ic, fc, ref, self.decided_ = K.delayed_decisions(
+                len(imu.t), fs, lambda lo, hi: self._offline(_window(imu, lo, hi)), delay_s=self.delay_s,
+                hop_s=self.hop_s, history_s=self.history_s, final=final)
+        elif self.realtime:
+            gate = walking_gate(imu, walk_threshold=self.walk_threshold, causal=True)
+            cut = min(self.ap_cutoff_hz, 0.4 * fs)
+            ap = lowpass(imu.acc_ap, cut, fs, causal=True)
             ic, fc, ref = K.ic_realtime(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
                                         lobe_ratio=np.inf if self.lobe_ratio is None else self.lobe_ratio)
             # the causal low-pass delays the AP peaks: date the contacts back by its group delay (W17)
             lag = int(round(causal_lowpass_delay_s(cut, fs) * fs))
             ic, fc = np.maximum(ic - lag, 0), np.maximum(fc - lag, 0)
+            self.decided_ = ref + 1  # the crossing's sample is the last one the decision saw
         else:
-            ic, fc, ref = K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
-                                       fir_order_s=self.fir_order_s, rhythm=self.rhythm,
-                                       max_step_s=self.max_step_s,
-                                       acc_ml=imu.acc_ml if self.alternate else None,
-                                       unshifted=self.weight_shift, end_steps=self.end_steps,
-                                       ap_above_mean=self.ap_above_mean)
+            ic, fc, ref = self._offline(imu)
+            self.decided_ = np.full(ic.size, len(imu.t), dtype=int)
         self.ic_, self.fc_, self.anchor_ = ic, fc, ref
         name = "alvarez-realtime" if self.realtime else "alvarez-offline"
         self.steps_ = steps_from_events(imu.t, ic, fc, max_step_s=self.max_step_s, detector=name)
         log.info("%s: %d initial contacts", name, len(ic))
         return self
+
+
+def _window(imu: WaistIMU, lo: int, hi: int) -> WaistIMU:
+    """Samples ``[lo, hi)`` of ``imu`` (same rate)."""
+    return WaistIMU(t=imu.t[lo:hi], fs=imu.fs, acc_nav=imu.acc_nav[lo:hi], gyr_nav=imu.gyr_nav[lo:hi],
+                    yaw=imu.yaw[lo:hi], acc_v=imu.acc_v[lo:hi], acc_h=imu.acc_h[lo:hi],
+                    acc_ap=imu.acc_ap[lo:hi], acc_ml=imu.acc_ml[lo:hi])
 
 
 def refine_to_contacts(imu: WaistIMU, idx: np.ndarray, *, walk_threshold: float = WALK_THRESHOLD_MPS2,
