@@ -85,8 +85,7 @@ def _foot_levelled_reference(t, acc, gyr, forward_s, *, rest_search_s, heading):
     ref = ref / np.linalg.norm(ref)
     yaw = KS.heading_rotation(KS.principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
     g_out = np.einsum("kij,kj->ki", rot, gyr) @ yaw.T
-    f1 = (rot[-1] @ forward_s)[:2]
-    dpsi = float(np.arctan2(ref[0] * f1[1] - ref[1] * f1[0], ref @ f1))
+    dpsi = KW.twist_about_z(rot[-1] @ rot[k0].T)  # decision L30: the attitude change's turn about the vertical
     return a_lev @ yaw.T, g_out, an, dpsi
 
 

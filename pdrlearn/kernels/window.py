@@ -210,6 +210,7 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
         X[:, 1] = gyr
         X[:, 2] = forward_s
         Y = levelled_vectors(gyr, t[1:] - t[:-1], k0, k1, r0, g1, X)
+        dpsi = twist_dpsi(r0, forward_s, acc[-1], Y[-1, 2], Y[-1, 0])  # decision L30 (before gravity is removed)
         a_lev = Y[:, 0]
     else:
         a_lev = acc @ r0.T
@@ -218,10 +219,53 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     if gyr is None:
         return a_lev @ yaw.T, None, an, 0.0
     out = (Y.reshape(-1, 3) @ yaw.T).reshape(n, 3, 3)  # acc and gyro about the step's forward axis
-    # heading change of the forward axis from the start rest to the window's end
-    (r0x, r0y), (f1x, f1y) = ref.tolist(), Y[-1, 2, :2].tolist()
-    dpsi = math.atan2(r0x * f1y - r0y * f1x, r0x * f1x + r0y * f1y)
     return out[:, 0], out[:, 1], an, dpsi
+
+
+def twist_dpsi(r0: np.ndarray, e1: np.ndarray, e2: np.ndarray, f1: np.ndarray, f2: np.ndarray) -> float:
+    """Decision L30: heading change (rad, + = left) of a foot from its start-rest attitude ``r0`` (3, 3) to
+    the attitude that carries the body vectors ``e1``, ``e2`` (not parallel; e.g. the forward axis and the
+    last specific force) to ``f1``, ``f2``: the twist about the vertical of R_rel = R_end r0^T. Unlike the
+    heading of the forward axis it does not depend on how far the mount tilts that axis (pitched instep
+    mounts) nor on the foot's tilt at either rest."""
+    def frame(a: list[float], b: list[float]) -> tuple[list[float], list[float], list[float]]:
+        na = math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+        u = [a[0] / na, a[1] / na, a[2] / na]
+        d = u[0] * b[0] + u[1] * b[1] + u[2] * b[2]
+        v = [b[0] - d * u[0], b[1] - d * u[1], b[2] - d * u[2]]
+        nv = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+        v = [v[0] / nv, v[1] / nv, v[2] / nv]
+        return u, v, [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+
+    # 3-vectors on Python floats: a dozen numpy calls on (3,) arrays cost ~10x more per step (runtime E16)
+    (a0, a1, a2), (b0, b1, b2), (c0, c1, c2) = r0.tolist()
+    x, y = np.asarray(e1, dtype=float).tolist(), np.asarray(e2, dtype=float).tolist()
+    s1, s2, s3 = frame([a0 * x[0] + a1 * x[1] + a2 * x[2], b0 * x[0] + b1 * x[1] + b2 * x[2],
+                        c0 * x[0] + c1 * x[1] + c2 * x[2]],
+                       [a0 * y[0] + a1 * y[1] + a2 * y[2], b0 * y[0] + b1 * y[1] + b2 * y[2],
+                        c0 * y[0] + c1 * y[1] + c2 * y[2]])
+    v1, v2, v3 = frame(np.asarray(f1, dtype=float).tolist(), np.asarray(f2, dtype=float).tolist())
+    R = [[v1[i] * s1[j] + v2[i] * s2[j] + v3[i] * s3[j] for j in range(3)] for i in range(3)]
+    return twist_about_z(R)
+
+
+def twist_about_z(R: np.ndarray | list) -> float:
+    """Angle (rad, in (-pi, pi]) about the vertical of the rotation ``R`` (3, 3): 2 atan2(q_z, q_w) of its
+    quaternion (swing-twist decomposition), the quaternion taken from the largest of its four squares
+    (Shepperd), so that a half-turn stride (q_w near 0) keeps full precision."""
+    (a, b, c), (d, e, f), (g, h, i) = R.tolist() if isinstance(R, np.ndarray) else R
+    sq = (1.0 + a + e + i, 1.0 + a - e - i, 1.0 - a + e - i, 1.0 - a - e + i)  # 4 q_w^2, 4 q_x^2, ...
+    k = max(range(4), key=sq.__getitem__)
+    m = 2.0 * math.sqrt(sq[k])  # 4 q_k
+    if k == 0:
+        qw, qz = 0.25 * m, (d - b) / m
+    elif k == 1:
+        qw, qz = (h - f) / m, (c + g) / m
+    elif k == 2:
+        qw, qz = (c - g) / m, (f + h) / m
+    else:
+        qw, qz = (d - b) / m, 0.25 * m
+    return 2.0 * math.atan2(qz if qw >= 0 else -qz, abs(qw))
 
 
 def waist_levelled(acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray

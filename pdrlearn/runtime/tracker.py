@@ -29,6 +29,8 @@ from pdrlearn.kernels.stride import (
     StanceSegmenter,
     advance,
     apply_stride_rules,
+    gap_yaw,
+    headed_by_foot,
     stride_motion,
 )
 from pdrlearn.kernels.window import (
@@ -255,6 +257,7 @@ class Tracker:
         self._rate_checked: set[str] = set()
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
         self.n_steps = 0
+        self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
 
     # -- classification of given windows (also used by the parity tests) ----------------------------
     def classify(self, W: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
@@ -449,6 +452,9 @@ class Tracker:
         W, lev = self._window(t0, t1)
         classes, proba = self._classify_step(W)
         disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
+        if self._prev_end is not None and t0 > self._prev_end and headed_by_foot(lev, self.heading_source):
+            dyaw += gap_yaw(*self._stream("fGyroscope"), *self._stream("fAccelerometer"), self._prev_end, t0)  # L31
+        self._prev_end = t1
         if self.distance_gain is None:
             self._resolve_calibration()
         if self.distance_gain != 1.0:  # gain 1: apply_level_gain would return a copy of the same values

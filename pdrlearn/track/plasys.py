@@ -464,7 +464,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
 def track_streaming(session: Session, *, method: str = "M3", model=None, start=None, params=None,
                     heading: str = "auto", initial_heading: float = 0.0, bounds=None, bounds_scale: float = 2.0,
                     down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca",
-                    distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = False
+                    distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = True
                     ) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
@@ -480,7 +480,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     strides' horizontal displacement by the model's distance gain when its foot rate matches the session's,
     as the runtime does with a bundle's ``displacement.distance_gain`` (decision E14). The calibrated
     stride sd only enters the bayes rules, which streaming does not apply (thesis rules, E6). ``gap_yaw``
-    (decision L31, off until the runtime applies it too): a stride headed by the foot adds the turn of the foot
+    (decision L31, as the runtime): a stride headed by the foot adds the turn of the foot
     pivoting in the gap before it (:func:`~pdrlearn.kernels.stride.gap_yaw`, the streamed form of L28).
     """
     if method not in ("M2", "M3"):
