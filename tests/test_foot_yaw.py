@@ -67,3 +67,20 @@ def test_walk4x10_turnarounds_are_half_turns_on_both_feet(side):
     turns = np.diff([np.mean(h[g[1:-1]]) for g in legs])
     assert len(legs) == 4, [len(g) for g in legs]  # four passes of 10 m
     assert np.all(np.abs(turns - 180.0) < 15.0), turns
+
+
+def test_streamed_twist_matches_the_attitude_change_and_survives_a_zeroed_last_sample():
+    """kernels.window.twist_dpsi (the streamed L30 rule): the twist of R_end r0^T; a last specific force that is
+    zero (a zeroed sample) or along the forward axis gives the forward axis's heading change, not a
+    ZeroDivisionError."""
+    from pdrlearn.kernels.window import twist_about_z, twist_dpsi
+
+    rng = np.random.default_rng(5)
+    r0, r1 = Rotation.random(2, random_state=5).as_matrix()
+    fwd, acc = np.array([0.6, 0.0, -0.8]), rng.normal(size=3) + [0.0, 0.0, 9.8]
+    want = twist_about_z(r1 @ r0.T)
+    assert twist_dpsi(r0, fwd, acc, r1 @ fwd, r1 @ acc) == pytest.approx(want, abs=1e-12)
+    s, f = r0 @ fwd, r1 @ fwd
+    axis = np.arctan2(s[0] * f[1] - s[1] * f[0], s[0] * f[0] + s[1] * f[1])
+    for e2 in (np.zeros(3), 2.0 * fwd):
+        assert twist_dpsi(r0, fwd, e2, r1 @ fwd, r1 @ e2) == pytest.approx(axis, abs=1e-12)

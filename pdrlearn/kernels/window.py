@@ -228,23 +228,30 @@ def twist_dpsi(r0: np.ndarray, e1: np.ndarray, e2: np.ndarray, f1: np.ndarray, f
     last specific force) to ``f1``, ``f2``: the twist about the vertical of R_rel = R_end r0^T. Unlike the
     heading of the forward axis it does not depend on how far the mount tilts that axis (pitched instep
     mounts) nor on the foot's tilt at either rest."""
-    def frame(a: list[float], b: list[float]) -> tuple[list[float], list[float], list[float]]:
+    def frame(a: list[float], b: list[float]) -> tuple[list[float], list[float], list[float]] | None:
         na = math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+        if not na > 0:
+            return None
         u = [a[0] / na, a[1] / na, a[2] / na]
         d = u[0] * b[0] + u[1] * b[1] + u[2] * b[2]
         v = [b[0] - d * u[0], b[1] - d * u[1], b[2] - d * u[2]]
         nv = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+        if not nv > 1e-9 * math.sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]):  # b zero or along a
+            return None
         v = [v[0] / nv, v[1] / nv, v[2] / nv]
         return u, v, [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
 
     # 3-vectors on Python floats: a dozen numpy calls on (3,) arrays cost ~10x more per step (runtime E16)
     (a0, a1, a2), (b0, b1, b2), (c0, c1, c2) = r0.tolist()
     x, y = np.asarray(e1, dtype=float).tolist(), np.asarray(e2, dtype=float).tolist()
-    s1, s2, s3 = frame([a0 * x[0] + a1 * x[1] + a2 * x[2], b0 * x[0] + b1 * x[1] + b2 * x[2],
-                        c0 * x[0] + c1 * x[1] + c2 * x[2]],
-                       [a0 * y[0] + a1 * y[1] + a2 * y[2], b0 * y[0] + b1 * y[1] + b2 * y[2],
-                        c0 * y[0] + c1 * y[1] + c2 * y[2]])
-    v1, v2, v3 = frame(np.asarray(f1, dtype=float).tolist(), np.asarray(f2, dtype=float).tolist())
+    s = [a0 * x[0] + a1 * x[1] + a2 * x[2], b0 * x[0] + b1 * x[1] + b2 * x[2], c0 * x[0] + c1 * x[1] + c2 * x[2]]
+    f = np.asarray(f1, dtype=float).tolist()
+    S = frame(s, [a0 * y[0] + a1 * y[1] + a2 * y[2], b0 * y[0] + b1 * y[1] + b2 * y[2],
+                  c0 * y[0] + c1 * y[1] + c2 * y[2]])
+    V = frame(f, np.asarray(f2, dtype=float).tolist())
+    if S is None or V is None:  # e2 zero (a zeroed sample) or along e1: the heading of the e1 axis (pre-L30 rule)
+        return math.atan2(s[0] * f[1] - s[1] * f[0], s[0] * f[0] + s[1] * f[1])
+    (s1, s2, s3), (v1, v2, v3) = S, V
     R = [[v1[i] * s1[j] + v2[i] * s2[j] + v3[i] * s3[j] for j in range(3)] for i in range(3)]
     return twist_about_z(R)
 
