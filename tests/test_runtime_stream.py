@@ -260,3 +260,17 @@ def test_buffer_views_are_made_on_first_access(bundle):
     assert np.shares_memory(x, tr._buf["fGyroscope"].v) and dict.__len__(v) == 1
     with pytest.raises(KeyError):
         v["nope"]
+
+
+def test_lazy_buffer_views_answer_get_like_a_dict():
+    """runtime.tracker._Views (E16) makes a sensor's view on first access; ``get`` must see every buffered
+    sensor too (dict.get does not call __missing__)."""
+    from pdrlearn.runtime.tracker import _Views
+
+    r = Ring(3)
+    r.append(np.array([0.0, 0.01]), np.zeros((2, 3)))
+    v = _Views({"fGyroscope": r})
+    t, g = v.get("fGyroscope")
+    np.testing.assert_array_equal(t, [0.0, 0.01])
+    assert g.shape == (2, 3)
+    assert v.get("wGyroscope") is None and v.get("wGyroscope", 1) == 1

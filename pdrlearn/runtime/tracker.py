@@ -150,6 +150,9 @@ class _Views(dict):
     def __len__(self) -> int:
         return len(self._buf)
 
+    def get(self, name, default=None):  # dict.get bypasses __missing__: it would say a buffered sensor is absent
+        return self[name] if name in self._buf else default
+
 
 class Tracker:
     """Classify and track steps as samples stream in (numpy + onnxruntime only).
