@@ -85,3 +85,6 @@ def test_real_merged_fragments_carry_no_length_and_calibration_stays_self_consis
     # W21: calibrated on the whole recording's length, tracking it sums to that length (the calibration
     # gives a merged fragment neither a chord nor the F term, as the tracker does)
     assert st["length_m"].sum() == pytest.approx(150.0, rel=1e-9)
+    # the merged step's turn belongs to its owner alone: the column still sums to the walk's turn
+    assert np.all(st["dyaw_rad"].to_numpy()[m] == 0.0)
+    assert st["dyaw_rad"].sum() == pytest.approx(off["dyaw_rad"].sum(), abs=1e-9)

@@ -25,6 +25,7 @@ import numpy as np
 from pdrlearn.errors import DataError, ModelError
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain, calibrated_stride_sd
 from pdrlearn.kernels.stride import (
+    GAP_YAW_MAX_S,
     HEADING_SOURCES,
     StanceSegmenter,
     advance,
@@ -49,6 +50,8 @@ from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_le
 
 log = logging.getLogger(__name__)
 _F64 = np.dtype(np.float64)
+#: samples kept before a step's start: the window margin (1 s) and L31's gap-yaw look-back
+_LOOK_BACK_S = max(1.0, GAP_YAW_MAX_S)
 
 #: Default displacement parameters written into bundles. Bounds are per foot-unit *stride* = 2 x the
 #: thesis step bounds (thesis ch.6.3: short <= 0.30 m, normal 0.30-0.45 m, long > 0.45 m; ch.7.2.2: a long
@@ -506,9 +509,9 @@ class Tracker:
             return
         keep_from = self._latest - self.buffer_s
         if self.segmenter.last_boundary is not None:  # the next step starts at the last boundary
-            keep_from = max(keep_from, self.segmenter.last_boundary - 1.0)
+            keep_from = max(keep_from, self.segmenter.last_boundary - _LOOK_BACK_S)
         if self._pending:  # keep what the waiting steps need
-            keep_from = min(keep_from, self._pending[0][0] - 1.0)
+            keep_from = min(keep_from, self._pending[0][0] - _LOOK_BACK_S)
         if keep_from <= self._oldest:  # nothing to drop (the common case between two steps)
             return
         for ring in self._buf.values():

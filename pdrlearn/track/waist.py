@@ -163,8 +163,10 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
         running = K.motion_state(sigma[idx], walk_threshold=thr) == 2
         lengths = np.where(has_next, frequency_lengths(np.nan_to_num(freq, nan=0.0), p, running=running), 0.0)
     dyaw = np.where(has_next, K.integrate_rate(imu.t, imu.w_z - p.gyro_bias_rps, ev, end), 0.0)
-    for i, (a, b) in win.items():  # W27: the owner's turn factor over the merged step
-        dyaw[i] = float(np.sum(dyaw[a:b + 1]))
+    for i, (a, b) in win.items():  # W27: the owner's turn factor over the merged step; the fragment keeps
+        total = float(np.sum(dyaw[a:b + 1]))  # none, so that the column sums to the walk's turn
+        dyaw[a:b + 1] = 0.0
+        dyaw[i] = total
     if turn_factor:
         lengths = lengths * K.turning_step_factor(dyaw)
     return steps.assign(length_m=lengths, frequency_hz=freq, dyaw_rad=dyaw)
