@@ -121,9 +121,12 @@ WAIST_IC_VARIANTS = {  # label -> InitialContactDetector settings
     "seed 003 (papers)": {"rhythm": False},
     "+ W18 rhythm": {"alternate": False},
     "+ W18 + W20 alternation": {"weight_shift": False},
-    "+ W18 + W20 + W23 weight shift (default)": {},
-    "realtime, seed 003 lobe check (ratio 2)": {"realtime": True, "lobe_ratio": 2.0},
-    "realtime (default: no lobe check)": {"realtime": True},
+    "+ W18 + W20 + W23 weight shift": {"end_steps": False},
+    "+ W28 end steps (default)": {},
+    "realtime, seed 003 zero crossings, lobe check (ratio 2)": {"realtime": True, "delay_s": None,
+                                                                "lobe_ratio": 2.0},
+    "realtime, seed 003 zero crossings, no lobe check": {"realtime": True, "delay_s": None},
+    "realtime W31 (default: the offline rules decided 1.75-2 s late)": {"realtime": True},
 }
 
 
@@ -176,7 +179,7 @@ def waist_ic(real_dir: Path, users: int, external: Path | None = None) -> pd.Dat
 
 
 def _md_waist_ic(df: pd.DataFrame, users: int) -> str:
-    lines = ["# Offline waist initial-contact detector: seed 003, W18, W20, W23", "",
+    lines = ["# Waist initial-contact detector: seed 003, W18, W20, W23, W28; realtime W31", "",
              "Real: mobgap lower back, detections inside the reference bouts vs every reference IC "
              f"(0.25 s). Simulated: scenarios A-D x slow/normal/fast x users 1-{users} at 100 Hz, pooled "
              "F1 = 2 TP / (detected + reference).", "",
