@@ -304,3 +304,14 @@ def test_a_bundle_where_a_model_directory_is_expected(base, tmp_path, capsys, co
     msg = run(argv[command], capsys)
     assert "an exported runtime bundle, not a model directory" in msg and "pdrlearn run" in msg
     assert not out.exists()
+
+
+def test_waist_params_that_are_not_a_params_file_name_the_file_and_the_fix(base, capsys, tmp_path):
+    """A user passes the session's meta.json as --params: one line naming that file and `pdrlearn calibrate`."""
+    meta = base["good"] / "meta.json"
+    code = main(["track", str(base["good"]), "--pipeline", "waist-pendulum", "--params", str(meta),
+                 "--out", str(tmp_path / "o")])
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.strip().splitlines()) == 1, err
+    assert str(meta) in err and "pdrlearn calibrate" in err and "not a waist parameter file" in err
+    assert not (tmp_path / "o").exists()

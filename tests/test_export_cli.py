@@ -56,6 +56,19 @@ def test_run_reads_the_bluetooth_protocol(dirs, capsys, tmp_path):
     assert main(["run", str(dirs["root"] / "bundle_foot"), "--protocol", str(cap), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["n_steps"] >= 13
+    assert out["protocol"]["corrupted"] == 0 and out["protocol"]["sets"] > 0
+
+
+def test_run_counts_corrupted_protocol_lines_and_refuses_two_sources(dirs, capsys, tmp_path):
+    s = synthetic_session(15, seed=11)
+    cap = tmp_path / "capture.txt"
+    cap.write_text("garbage\n" + "".join(format_protocol(s)) + "%$1 1 2$2\n")
+    assert main(["run", str(dirs["root"] / "bundle_foot"), "--protocol", str(cap), "--json"]) == 0
+    got = capsys.readouterr()
+    assert json.loads(got.out)["protocol"]["corrupted"] >= 2
+    assert "corrupted line(s) skipped" in got.err
+    _fails(capsys, ["run", str(dirs["root"] / "bundle_foot"), str(dirs["walk"]), "--protocol", str(cap)],
+           "not both")
 
 
 def _fails(capsys, argv, pattern):

@@ -99,8 +99,10 @@ def run(
     from pdrlearn.runtime import load_bundle
     from pdrlearn.runtime.tracker import Tracker
 
+    if protocol is not None and session_dir is not None:
+        raise DataError(f"run: give a SESSION_DIR ({session_dir}) or --protocol {protocol}, not both")
     bundle = load_bundle(bundle_dir)  # verified before any output
-    steps, lat = [], []
+    steps, lat, protocol_stats = [], [], None
     if protocol is not None:
         from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
 
@@ -127,6 +129,10 @@ def run(
             steps += tracker.push(parser.close())
             steps += tracker.flush()
         source = f"protocol {protocol}"
+        protocol_stats = parser.stats.to_dict()
+        if parser.stats.corrupted:
+            typer.echo(f"warning: {protocol}: {parser.stats.corrupted} corrupted line(s) skipped (e.g. "
+                       f"{parser.stats.examples[0]!r}) of {parser.stats.sets} set(s) read", err=True)
     else:
         if session_dir is None:
             raise DataError("run: give a SESSION_DIR or --protocol FILE")
@@ -149,6 +155,8 @@ def run(
         steps += tracker.flush()
         source = f"session {s.name}"
     summary = _summary(steps, tracker, lat, source)
+    if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
+        summary["protocol"] = protocol_stats
     if out is not None:
         _write(out, steps, tracker, summary)
     if as_json:

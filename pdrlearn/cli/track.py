@@ -73,7 +73,8 @@ def track(
                             "pass the file written by `pdrlearn calibrate`") from None
     session = read_session(session_dir)
     fn = get_pipeline(pipeline)
-    kw = {"model": model, "start": start_ll, "params": par}
+    # waist pipelines read the file themselves, so that their errors name it
+    kw = {"model": model, "start": start_ll, "params": par if pipeline == "plasys" or par is None else str(params)}
     if streaming and pipeline != "plasys":
         raise DataError(f"--streaming applies to the plasys pipeline only (got --pipeline {pipeline})")
     if pipeline == "plasys":

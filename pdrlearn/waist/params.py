@@ -70,8 +70,9 @@ class WaistParams:
         names = {f.name for f in fields(cls)}
         unknown = sorted(set(d) - names - {"schema", "fit"})
         if unknown:
-            raise DataError(f"{where}: unknown waist parameter(s) {', '.join(unknown)}; "
-                            f"expected some of {', '.join(sorted(names))}")
+            more = f" and {len(unknown) - 5} more" if len(unknown) > 5 else ""
+            raise DataError(f"{where}: not a waist parameter file (unknown key(s) {', '.join(unknown[:5])}{more}); "
+                            "pass the PARAMS.json written by `pdrlearn calibrate`")
         kw = {}
         for k, v in d.items():
             if k not in names:
