@@ -157,7 +157,7 @@ class StanceSegmenter:
             m, th = self._push(tn, wn)
             if mean_rule:  # L29: judge the sample at the window's centre (its older middle: E7 dates kept)
                 ti, wi, thi = mq[(len(mq) - 1) // 2]
-                still = wi < thi or m < th
+                still = wi < thi or m < thi  # L32: the centred mean against the centre's threshold (offline)
             else:
                 ti, still = tn, wn < th
             if still:

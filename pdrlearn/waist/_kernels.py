@@ -176,6 +176,13 @@ def step_sides(v_at: np.ndarray, accepted: np.ndarray, *, min_frac: float = SIDE
     return np.where(np.abs(v) >= min_frac * scale, np.sign(v), 0.0).astype(np.int8)
 
 
+def _max_gap(max_step_s: float, fs: float) -> int:
+    """Decision W32: the longest step inside a sequence in whole samples, ``round(max_step_s * fs)``
+    (as W28 made the shortest one): two maxima exactly ``max_step_s`` apart stay in one sequence whether
+    the rate estimate is a hair under or over its nominal value (100 Hz from timestamps: 100.000000000002)."""
+    return int(round(max_step_s * fs))
+
+
 def _local_period(t: np.ndarray, k: int, side: int, max_gap: float, n: int = 3) -> float:
     """Median of up to ``n`` step intervals of the sequence on ``side`` (-1 before, +1 after) of
     accepted maximum ``k`` (times ``t`` in samples); NaN when fewer than ``RHYTHM_MIN_STEPS - 1``."""
@@ -222,7 +229,7 @@ def prune_same_side(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     keep = np.asarray(accepted, dtype=bool).copy()
     acc = np.flatnonzero(keep)
     t = cand[acc].astype(np.float64)
-    max_gap = max_step_s * fs
+    max_gap = _max_gap(max_step_s, fs)
     last = -1
     for k, i in enumerate(acc):
         if last >= 0 and side[i] != 0 and side[i] == side[last] and cand[i] - cand[last] <= max_gap:
@@ -252,7 +259,7 @@ def drop_unshifted(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, accep
     out = keep.copy()
     sel = np.flatnonzero(keep)
     t = cand[sel]
-    max_gap = max_step_s * fs
+    max_gap = _max_gap(max_step_s, fs)
     for j, c in enumerate(sel):
         if side[c] != 0 or not accepted[c]:
             continue
@@ -287,7 +294,7 @@ def extend_alternating(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, s
     keep = np.asarray(keep, dtype=bool)
     out = keep.copy()
     sel = np.flatnonzero(keep)
-    max_gap = max_step_s * fs
+    max_gap = _max_gap(max_step_s, fs)
     breaks = np.flatnonzero(np.diff(cand[sel]) > max_gap) + 1
     for sq in np.split(sel, breaks):
         if sq.size < RHYTHM_MIN_STEPS:
@@ -359,7 +366,7 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     sd = np.zeros(cand.size, dtype=np.int8) if side is None else np.asarray(side, dtype=np.int8)
     if side is not None:
         keep = prune_same_side(cand, h, keep, sd, fs, max_step_s=max_step_s)
-    max_gap, min_gap = max_step_s * fs, max(1, int(round(min_step_s * fs)))  # as find_peaks' distance
+    max_gap, min_gap = _max_gap(max_step_s, fs), max(1, int(round(min_step_s * fs)))  # as find_peaks' distance
     acc = np.flatnonzero(keep)
     t = cand[acc].astype(np.float64)
     add: list[int] = []
