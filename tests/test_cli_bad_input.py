@@ -315,3 +315,15 @@ def test_waist_params_that_are_not_a_params_file_name_the_file_and_the_fix(base,
     assert code == 2 and len(err.strip().splitlines()) == 1, err
     assert str(meta) in err and "pdrlearn calibrate" in err and "not a waist parameter file" in err
     assert not (tmp_path / "o").exists()
+
+
+def test_bouts_without_length_say_why_no_distance_error(capsys, caplog, tmp_path):
+    """A bouts.csv without length_m: the track still runs, and a warning names the missing column."""
+    src = Path(__file__).resolve().parents[1] / "datasets" / "real" / "mobgap_HA001_Test11_Trial1"
+    d = _copy(src, tmp_path / "s")
+    _edit(d, "bouts.csv", lambda df: df.drop(columns=["length_m"]))
+    with caplog.at_level("WARNING"):
+        code = main(["track", str(d), "--pipeline", "waist-pendulum", "--out", str(tmp_path / "o"), "--json"])
+    assert code == 0
+    assert "distance_error_pct" not in json.loads(capsys.readouterr().out)
+    assert any("bouts.csv has no length_m" in r.getMessage() for r in caplog.records)

@@ -117,7 +117,7 @@ def run(
             stream = p.open()
         need = [s for s in bundle.manifest["sensors"]["required"] if not s.startswith("f")]
         if need:
-            raise DataError(f"bundle {bundle.path.name} needs {', '.join(need)}, which the foot unit's "
+            raise DataError(f"bundle {bundle.path} needs {', '.join(need)}, which the foot unit's "
                             "Bluetooth protocol does not carry; export a foot-only model")
         with stream:
             for line in stream:

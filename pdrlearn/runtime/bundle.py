@@ -101,7 +101,7 @@ class OnnxModel:
         # OpenCV fallback: plain networks only (the ai.onnx.ml SVM operators are not in cv2.dnn).
         if self.spec.get("kind") != "network":
             raise ModelError(
-                f"{self.path.name}: needs onnxruntime (pip install onnxruntime); "
+                f"{self.path}: needs onnxruntime (pip install onnxruntime); "
                 "OpenCV's dnn module only runs the neural network"
             )
         try:
@@ -198,7 +198,7 @@ class Bundle:
         missing = [s for s in required if s not in rates_hz]
         if missing:
             raise MissingSensorError(
-                f"{where} has no {', '.join(missing)}, which bundle {self.path.name} needs "
+                f"{where} has no {', '.join(missing)}, which bundle {self.path} needs "
                 f"(it has: {', '.join(rates_hz) or 'none'}); record those sensors or export a bundle "
                 "for the sensors you have"
             )
@@ -215,7 +215,7 @@ class Bundle:
                 continue
             if abs(r - rate) > tol * rate:
                 raise DataError(
-                    f"{where}: {name} is sampled at {r:.4g} Hz but bundle {self.path.name} was trained at "
+                    f"{where}: {name} is sampled at {r:.4g} Hz but bundle {self.path} was trained at "
                     f"{rate:.4g} Hz; resample the data to {rate:.4g} Hz or train a model at {r:.4g} Hz"
                 )
 

@@ -53,7 +53,7 @@ class RuntimeModel:
             self.members = [RuntimeModel(bundle, e, feature_ctx, lazy=lazy) for e in entry["members"].values()]
             self.weights = np.asarray(entry["weights"], dtype=float)
         else:
-            raise ModelError(f"bundle {bundle.path.name}: unknown model type {self.type!r}; re-export it")
+            raise ModelError(f"bundle {bundle.path}: unknown model type {self.type!r}; re-export it")
 
     def open(self) -> None:
         """Open the ONNX session(s) now (they are opened on first use when created with ``lazy=True``)."""
@@ -113,7 +113,7 @@ class TaskClassifier:
         if method not in methods or unit not in methods[method]:
             have = ", ".join(f"{m}/{u}" for m, per in methods.items() for u in per)
             raise ModelError(
-                f"bundle {bundle.path.name}: task {task} has no {method}/{unit} model "
+                f"bundle {bundle.path}: task {task} has no {method}/{unit} model "
                 f"(it has {have}); export it with --methods"
             )
         self.method, self.unit = method, unit

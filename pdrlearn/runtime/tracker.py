@@ -202,7 +202,7 @@ class Tracker:
         #: kernel (bundles exported before the setting existed read as "given")
         self.boundaries = str(fm.get("boundaries", "given"))
         if self.boundaries not in BOUNDARIES:
-            raise ModelError(f"bundle {self.bundle.path.name}: features.boundaries {self.boundaries!r} is not one "
+            raise ModelError(f"bundle {self.bundle.path}: features.boundaries {self.boundaries!r} is not one "
                              f"of {', '.join(BOUNDARIES)}; re-export it with this version")
         # a rest boundary is searched up to rest_search_s after the step's end (+ the 50 ms smoothing box)
         self._lookahead_s = self.rest_search_s + 0.05 if self.boundaries == "rest" else 0.0
@@ -244,7 +244,7 @@ class Tracker:
             m["sensors"].get("optional", [])
         ):
             raise ModelError(
-                f"bundle {self.bundle.path.name}: the streaming tracker detects steps on the foot "
+                f"bundle {self.bundle.path}: the streaming tracker detects steps on the foot "
                 "unit's gyroscope, and this bundle has no foot unit; train with foot data "
                 "(waist-only tracking: pdrlearn track --pipeline waist-pll)"
             )
@@ -482,7 +482,7 @@ class Tracker:
         rec, warning = applicable_calibration(self._calibration, fs)
         if warning:
             self.warnings.append(warning)
-            log.warning("bundle %s: %s", self.bundle.path.name, warning)
+            log.warning("bundle %s: %s", self.bundle.path, warning)
         self.distance_gain = float(rec.get("gain", 1.0)) if rec is not None else 1.0
         self.stride_sd = calibrated_stride_sd(rec)
 

@@ -23,17 +23,26 @@
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 import pandas as pd
 
 from pdrlearn.io import Session
 from pdrlearn.steps.evaluate import DEFAULT_TOLERANCE_S, score_events
 
+log = logging.getLogger(__name__)
+
 
 def reference_bouts(session: Session) -> pd.DataFrame | None:
     """Reference walking bouts (``start_s``, ``end_s``, ``length_m``), one level only (``wb``)."""
     b = session.extras.get("bouts")
-    if b is None or not {"start_s", "end_s", "length_m"} <= set(b.columns) or len(b) == 0:
+    if b is None or len(b) == 0:
+        return None
+    missing = sorted({"start_s", "end_s", "length_m"} - set(b.columns))
+    if missing:  # say why no distance error is reported instead of dropping it silently
+        log.warning("%s: bouts.csv has no %s column(s) (start_ms, end_ms, length_m): no bout distance "
+                    "error or bout-limited step scoring", session.name, ", ".join(missing))
         return None
     if "level" in b:
         lv = b["level"].astype(str)
