@@ -42,3 +42,10 @@ def test_chains_opened_by_pre_ic_leave_the_gap_unscored():
     det = _detections([0.0, 1.0, 2.0, 3.0, 4.5, 6.0, 7.0, 8.0, 9.0])
     sc = score_steps(det, s, unit="foot")
     assert sc["outside_labels"] == 1 and sc["precision"] == 1.0
+
+
+def test_reference_without_ic_says_it_scores_stride_starts():
+    steps = _steps(pre_ic=False).drop(columns="ic_s")
+    ref = reference_events(Session("no ic", {}, steps=steps), "foot")
+    np.testing.assert_allclose(ref.times, steps["start_s"].to_numpy())
+    assert "no ic_ms column" in ref.description

@@ -200,7 +200,8 @@ def reference_events(session: Session, unit: str, *,
         iv = _chains(lo, hi) if partial else _span(ev, hi[np.isfinite(hi)])
         return Reference(ev, tol, iv + [-tol, tol], desc)
     ev = np.sort(se[:, 0])
-    return Reference(ev, tol, _span(ev, se[:, 1]) + [-tol, tol], "steps.start_s")
+    return Reference(ev, tol, _span(ev, se[:, 1]) + [-tol, tol],
+                     "steps.start_s (steps.csv has no ic_ms column: each labelled stride's start is its event)")
 
 
 def in_intervals(times: np.ndarray, intervals: np.ndarray) -> np.ndarray:
