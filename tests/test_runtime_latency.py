@@ -85,7 +85,7 @@ def _foot_levelled_reference(t, acc, gyr, forward_s, *, rest_search_s, heading):
     ref = ref / np.linalg.norm(ref)
     yaw = KS.heading_rotation(KS.principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
     g_out = np.einsum("kij,kj->ki", rot, gyr) @ yaw.T
-    dpsi = KW.twist_about_z(rot[-1] @ rot[k0].T)  # decision L30: the attitude change's turn about the vertical
+    dpsi = KW.twist_about_z(rot[-1] @ rot[0].T)  # decisions L30/L33: the turn about the vertical, first to last sample
     return a_lev @ yaw.T, g_out, an, dpsi
 
 

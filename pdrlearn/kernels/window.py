@@ -175,11 +175,12 @@ def rest_boundaries(t: np.ndarray, gyr: np.ndarray, start: np.ndarray, end: np.n
 
 
 def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
-                  rest_search_s: float, heading: str
+                  rest_search_s: float, heading: str, t0: float | None = None
                   ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray, float]:
     """Foot acc (n, 3; gravity removed), gyro (n, 3) in the step frame, |acc| (n,), and the heading
-    change (rad, + = left) of the declared forward axis from the first to the last sample (0 without a
-    gyroscope), from the propagated attitude.
+    change (rad, + = left) of the foot from the first sample at or after ``t0`` (the stride's start; None =
+    the first sample) to the last sample (0 without a gyroscope), from the propagated attitude (decisions
+    L30, L33: the twist about the vertical, chained without a hole between consecutive strides).
 
     Tilt from the rest specific force near the window's start, attitude propagated with the gyroscope,
     the tilt seen at the rest near the end spread over the step; forward = principal horizontal axis of
@@ -210,7 +211,7 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
         X[:, 1] = gyr
         X[:, 2] = forward_s
         Y = levelled_vectors(gyr, t[1:] - t[:-1], k0, k1, r0, g1, X)
-        dpsi = twist_dpsi(r0, forward_s, acc[-1], Y[-1, 2], Y[-1, 0])  # decision L30 (before gravity is removed)
+        dpsi = stride_dpsi(forward_s, acc, Y, start_index(t, t0))  # decisions L30, L33 (before gravity is removed)
         a_lev = Y[:, 0]
     else:
         a_lev = acc @ r0.T
@@ -228,19 +229,7 @@ def twist_dpsi(r0: np.ndarray, e1: np.ndarray, e2: np.ndarray, f1: np.ndarray, f
     last specific force) to ``f1``, ``f2``: the twist about the vertical of R_rel = R_end r0^T. Unlike the
     heading of the forward axis it does not depend on how far the mount tilts that axis (pitched instep
     mounts) nor on the foot's tilt at either rest."""
-    def frame(a: list[float], b: list[float]) -> tuple[list[float], list[float], list[float]] | None:
-        na = math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
-        if not na > 0:
-            return None
-        u = [a[0] / na, a[1] / na, a[2] / na]
-        d = u[0] * b[0] + u[1] * b[1] + u[2] * b[2]
-        v = [b[0] - d * u[0], b[1] - d * u[1], b[2] - d * u[2]]
-        nv = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
-        if not nv > 1e-9 * math.sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]):  # b zero or along a
-            return None
-        v = [v[0] / nv, v[1] / nv, v[2] / nv]
-        return u, v, [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
-
+    frame = _frame3
     # 3-vectors on Python floats: a dozen numpy calls on (3,) arrays cost ~10x more per step (runtime E16)
     (a0, a1, a2), (b0, b1, b2), (c0, c1, c2) = r0.tolist()
     x, y = np.asarray(e1, dtype=float).tolist(), np.asarray(e2, dtype=float).tolist()
@@ -254,6 +243,63 @@ def twist_dpsi(r0: np.ndarray, e1: np.ndarray, e2: np.ndarray, f1: np.ndarray, f
     (s1, s2, s3), (v1, v2, v3) = S, V
     R = [[v1[i] * s1[j] + v2[i] * s2[j] + v3[i] * s3[j] for j in range(3)] for i in range(3)]
     return twist_about_z(R)
+
+
+def start_index(t: np.ndarray, t0: float | None) -> int:
+    """Decision L33: index of the first sample at or after ``t0`` (s) in a stride's samples ``t`` as cut by
+    :func:`segment` (one sample before ``t0`` when ``t0`` falls between two samples): 0 or 1. The stride's
+    last sample is the first at or after its end, so consecutive strides chain their heading changes
+    sample to sample, no interval counted twice or left out."""
+    return 1 if t0 is not None and len(t) > 2 and float(t[0]) < t0 else 0
+
+
+def stride_dpsi(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: int = 0) -> float:
+    """Decisions L30/L33: heading change (rad, + = left) of the foot from sample ``s`` to the last sample of
+    a stride: the twist about the vertical of R_end R_s^T, each attitude given by the body vectors (declared
+    forward axis ``forward_s``, the sample's specific force ``acc[k]``) and their levelled images ``Y[k, 2]``,
+    ``Y[k, 0]`` (rows of :func:`pdrlearn.kernels.stats.levelled_vectors`: acc, gyro, forward axis).
+
+    The attitude at the start rest's quietest sample (the tilt reference ``r0``) is not the stride's start:
+    the foot still turns in the ~0.1 s between the middle of the stance and that sample (the gaitmap level
+    walks: 0.015 rad per stride, always the same sign, a heading drift of ~0.9 deg/s), so the heading is
+    measured from the stride's own first sample, which is the previous stride's last one (decision L33)."""
+    if s == 0 and len(Y) == 1:
+        return 0.0
+    Rs = _attitude(forward_s, acc[s], Y[s, 2], Y[s, 0])
+    Re = _attitude(forward_s, acc[-1], Y[-1, 2], Y[-1, 0])
+    if Rs is None or Re is None:  # a zeroed sample or the specific force along the forward axis: the
+        f, g = np.asarray(Y[s, 2], float).tolist(), np.asarray(Y[-1, 2], float).tolist()  # forward axis's
+        return math.atan2(f[0] * g[1] - f[1] * g[0], f[0] * g[0] + f[1] * g[1])  # heading change (pre-L30)
+    # R_end R_s^T on Python floats (3x3: cheaper than numpy calls, runtime E16)
+    R = [[sum(Re[i][k] * Rs[j][k] for k in range(3)) for j in range(3)] for i in range(3)]
+    return twist_about_z(R)
+
+
+def _frame3(a: list[float], b: list[float]) -> tuple[list[float], list[float], list[float]] | None:
+    """Orthonormal frame (u, v, u x v) from ``a`` and the part of ``b`` normal to it; None when ``a`` is
+    zero or ``b`` (nearly) along it."""
+    na = math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+    if not na > 0:
+        return None
+    u = [a[0] / na, a[1] / na, a[2] / na]
+    d = u[0] * b[0] + u[1] * b[1] + u[2] * b[2]
+    v = [b[0] - d * u[0], b[1] - d * u[1], b[2] - d * u[2]]
+    nv = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+    if not nv > 1e-9 * math.sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]):
+        return None
+    v = [v[0] / nv, v[1] / nv, v[2] / nv]
+    return u, v, [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+
+
+def _attitude(e1, e2, f1, f2) -> list[list[float]] | None:
+    """The rotation (3x3 nested lists) carrying the body vectors ``e1``, ``e2`` to ``f1``, ``f2`` (frames of
+    :func:`_frame3`); None when a frame is degenerate."""
+    S = _frame3(np.asarray(e1, float).tolist(), np.asarray(e2, float).tolist())
+    V = _frame3(np.asarray(f1, float).tolist(), np.asarray(f2, float).tolist())
+    if S is None or V is None:
+        return None
+    (s1, s2, s3), (v1, v2, v3) = S, V
+    return [[v1[i] * s1[j] + v2[i] * s2[j] + v3[i] * s3[j] for j in range(3)] for i in range(3)]
 
 
 def twist_about_z(R: np.ndarray | list) -> float:
@@ -313,7 +359,7 @@ def levelled_units(streams: Streams, t0: float, t1: float, *, available: tuple[s
         ta, acc = segment(*streams["fAccelerometer"], t0, t1)
         gyr = resample(ta, *segment(*streams["fGyroscope"], t0, t1)).T if "foot_gyr" in available else None
         a, g, an, dpsi = foot_levelled(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s,
-                                       heading=heading)
+                                       heading=heading, t0=t0)
         out["foot"] = (ta, a, g, an, dpsi)
     if "waist_acc" in available and "waist" in forward:
         tw, wacc = segment(*streams["wAccelerometer"], t0, t1)

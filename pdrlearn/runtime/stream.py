@@ -28,7 +28,15 @@ from pdrlearn.kernels.stats import (
     row_norm,
     tilt_corrected,
 )
-from pdrlearn.kernels.window import col_mean, interp, resample, segment, twist_dpsi, waist_levelled
+from pdrlearn.kernels.window import (
+    col_mean,
+    interp,
+    resample,
+    segment,
+    start_index,
+    stride_dpsi,
+    waist_levelled,
+)
 
 _I3 = np.eye(3)
 _I3.flags.writeable = False
@@ -338,7 +346,7 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
     A = r0 @ Q[k0].T
     Y = (arr["Z"][j0:j1].reshape(-1, 3) @ A.T).reshape(n, 3, 3)  # rows (A Q_k x)^T
     Y = tilt_corrected(Y, A @ (Q[k1] @ g1), k0, k1)
-    dpsi = twist_dpsi(r0, state.forward, acc[-1], Y[-1, 2], Y[-1, 0])  # decision L30 (before gravity is removed)
+    dpsi = stride_dpsi(state.forward, acc, Y, start_index(t, t0))  # decisions L30, L33 (before gravity is removed)
     a_lev = Y[:, 0]
     a_lev[:, 2] -= vec_norm(g0)
     yaw = heading_rotation(principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
