@@ -69,5 +69,35 @@ def test_streamed_level_walk_keeps_its_heading_and_turns_by_half_a_circle(side):
     st = track_plasys(read_session(d), method="M3", model="oracle", heading="foot", streaming=True).steps
     h = np.unwrap(st["heading_rad"].to_numpy(float))
     leg1, leg2 = h[1:14], h[17:29]
-    assert abs(np.polyfit(np.arange(len(leg1)), leg1, 1)[0]) < 0.008  # rad per stride
+    assert abs(np.polyfit(np.arange(len(leg1)), leg1, 1)[0]) < 0.012  # rad per stride
     assert abs(np.degrees(leg2.mean() - leg1.mean()) - 180.0) < 3.0
+
+
+def test_a_foot_headed_stride_is_placed_along_the_heading_at_its_start():
+    """Decision L34: heading after the stride less its own turn, plus the step frame's direction relative to the
+    foot at the start and the displacement's direction in the step frame; a waist-headed stride: 0."""
+    from pdrlearn.kernels.stride import placement_offset
+
+    t = np.arange(3.0)
+    foot = (t, np.zeros((3, 3)), np.zeros((3, 3)), np.ones(3), 1.2, 0.1)  # turned 1.2 rad, frame 0.1 rad left
+    lev = {"foot": foot}
+    assert placement_offset(lev, "foot", np.array([1.0, 0.2, 0.0])) == pytest.approx(0.1 + np.arctan(0.2) - 1.2)
+    assert placement_offset(lev, "auto", np.array([-1.0, 0.2, 0.0])) == pytest.approx(0.1 - np.arctan(0.2) - 1.2)
+    waist = (t, np.zeros((3, 3)), np.zeros((3, 3)), None, float("nan"))
+    assert placement_offset({"foot": foot, "waist": waist}, "auto", np.array([1.0, 0.2, 0.0])) == 0.0
+    assert placement_offset({"foot": foot, "waist": waist}, "waist-gyro", np.array([1.0, 0.2, 0.0])) == 0.0
+
+
+@pytest.mark.parametrize(("side", "max_m"), [("left", 0.6), ("right", 0.9)])
+def test_streamed_level_walk_ends_where_the_reference_does(side, max_m):
+    """gaitmap 2 x 20 m, streamed (= pdrlearn run): final position error before L33 0.38 / 5.51 m (left / right),
+    with L33 1.15 / 1.95 m (strides placed along the heading after them), with L34 0.29 / 0.53 m; offline 1.47 /
+    0.22 m."""
+    from pdrlearn.track.evaluate import evaluate_track
+
+    d = ROOT / "datasets" / "real" / f"gaitmap_level_{side}"
+    if not d.exists():
+        pytest.skip(f"{d} not bundled")
+    s = read_session(d)
+    ev = evaluate_track(track_plasys(s, method="M3", model="oracle", streaming=True), s)
+    assert ev["final_position_error_m"] < max_m

@@ -263,7 +263,7 @@ def stride_motion(levelled: Levelled, heading_source: str = "auto", *, t0: float
     the stride ``[t0, t1]`` (s) from :func:`pdrlearn.kernels.window.levelled_units`."""
     if "foot" not in levelled:
         raise DataError("stride displacement needs the foot unit's accelerometer and its declared frame")
-    ta, a, g, _, dpsi = levelled["foot"]
+    ta, a, g, _, dpsi = levelled["foot"][:5]
     disp = zupt_displacement(ta, a)
     src = heading_source
     if src == "auto":
@@ -276,6 +276,22 @@ def stride_motion(levelled: Levelled, heading_source: str = "auto", *, t0: float
     if src != "foot":
         raise DataError(f"stride heading source {heading_source!r} is not one of {', '.join(HEADING_SOURCES)}")
     return disp, dpsi  # the foot's attitude change from rest to rest (the rate's vertical integral is not)
+
+
+def placement_offset(levelled: Levelled, heading_source: str, disp: np.ndarray) -> float:
+    """Decision L34: the direction (rad) a stride is placed along, relative to the heading after it. A
+    stride headed by the foot goes along the foot's heading at its start (the heading after it less its own
+    turn) plus the direction of its displacement relative to the foot there (offline's ``foot_heading +
+    lateral``), not along the heading after a turn it made on the way; a stride headed by the waist keeps
+    the heading after it (0). ``disp`` (3,) in the step frame (:func:`stride_motion`); the lateral angle is
+    signed with the stride's x, like the length's sign."""
+    if not headed_by_foot(levelled, heading_source):
+        return 0.0
+    foot = levelled["foot"]
+    direction = foot[5] if len(foot) > 5 else 0.0
+    dx, dy = float(disp[0]), float(disp[1])
+    lateral = math.atan2(dy, abs(dx)) * (-1.0 if dx < 0 else 1.0)
+    return direction + lateral - float(foot[4])
 
 
 def headed_by_foot(levelled: Levelled, heading_source: str) -> bool:

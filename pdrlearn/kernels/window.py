@@ -175,8 +175,8 @@ def rest_boundaries(t: np.ndarray, gyr: np.ndarray, start: np.ndarray, end: np.n
 
 
 def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
-                  rest_search_s: float, heading: str, t0: float | None = None
-                  ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray, float]:
+                  rest_search_s: float, heading: str, t0: float | None = None, frame: bool = False
+                  ) -> tuple:
     """Foot acc (n, 3; gravity removed), gyro (n, 3) in the step frame, |acc| (n,), and the heading
     change (rad, + = left) of the foot from the first sample at or after ``t0`` (the stride's start; None =
     the first sample) to the last sample (0 without a gyroscope), from the propagated attitude (decisions
@@ -185,6 +185,9 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     Tilt from the rest specific force near the window's start, attitude propagated with the gyroscope,
     the tilt seen at the rest near the end spread over the step; forward = principal horizontal axis of
     the acceleration (``heading="pca"``) or the declared axis (``"declared"``), signed by ``forward_s``.
+    ``frame=True`` adds a fifth value: the direction (rad, + = left) of the step frame's forward axis
+    relative to the foot's heading at the stride's first sample (decision L34, :func:`step_direction`;
+    0 without a gyroscope).
     """
     n = acc.shape[0]
     fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
@@ -211,15 +214,20 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
         X[:, 1] = gyr
         X[:, 2] = forward_s
         Y = levelled_vectors(gyr, t[1:] - t[:-1], k0, k1, r0, g1, X)
-        dpsi = stride_dpsi(forward_s, acc, Y, start_index(t, t0))  # decisions L30, L33 (before gravity is removed)
+        s0 = start_index(t, t0)
+        dpsi = stride_dpsi(forward_s, acc, Y, s0)  # decisions L30, L33 (before gravity is removed)
+        psi0 = start_heading(forward_s, acc[s0], Y[s0]) if frame else 0.0  # decision L34 (idem)
         a_lev = Y[:, 0]
     else:
         a_lev = acc @ r0.T
     a_lev[:, 2] -= vec_norm(g0)
-    yaw = heading_rotation(principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
+    axis = principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref
+    yaw = heading_rotation(axis)
     if gyr is None:
-        return a_lev @ yaw.T, None, an, 0.0
+        return (a_lev @ yaw.T, None, an, 0.0) + ((0.0,) if frame else ())
     out = (Y.reshape(-1, 3) @ yaw.T).reshape(n, 3, 3)  # acc and gyro about the step's forward axis
+    if frame:  # decision L34, from the attitude at the stride's first sample
+        return out[:, 0], out[:, 1], an, dpsi, step_direction(axis, psi0)
     return out[:, 0], out[:, 1], an, dpsi
 
 
@@ -273,6 +281,27 @@ def stride_dpsi(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: int = 
     # R_end R_s^T on Python floats (3x3: cheaper than numpy calls, runtime E16)
     R = [[sum(Re[i][k] * Rs[j][k] for k in range(3)) for j in range(3)] for i in range(3)]
     return twist_about_z(R)
+
+
+def start_heading(forward_s: np.ndarray, acc_s: np.ndarray, Y_s: np.ndarray) -> float:
+    """Decision L34: the foot's heading (rad, in the levelled frame of the stride) at the sample whose body
+    vectors ``forward_s``, ``acc_s`` (specific force, gravity included) are levelled to ``Y_s[2]``,
+    ``Y_s[0]`` (a row of :func:`pdrlearn.kernels.stats.levelled_vectors` before gravity is removed): the
+    twist about the vertical of that attitude (the heading the stride chain of L30/L33 carries forward), not
+    the heading of the declared forward axis, which a pitched instep mount makes depend on the roll (L30).
+    A degenerate attitude gives the heading of the levelled forward axis."""
+    ys = np.asarray(Y_s, dtype=float).tolist()
+    R = _attitude(forward_s, acc_s, ys[2], ys[0])
+    if R is None:
+        return math.atan2(ys[2][1], ys[2][0])
+    return twist_about_z(R)
+
+
+def step_direction(axis: np.ndarray, heading0: float) -> float:
+    """Decision L34: direction (rad, + = left, in (-pi, pi]) of the step frame's forward axis ``axis``
+    (levelled, (2,) or (3,)) relative to the foot's heading ``heading0`` (:func:`start_heading`)."""
+    d = math.atan2(float(axis[1]), float(axis[0])) - heading0
+    return math.atan2(math.sin(d), math.cos(d))
 
 
 def _frame3(a: list[float], b: list[float]) -> tuple[list[float], list[float], list[float]] | None:
@@ -351,16 +380,17 @@ def levelled_units(streams: Streams, t0: float, t1: float, *, available: tuple[s
 
     Returns placement -> ``(t (n,) s, acc (n, 3) m/s^2 gravity removed, gyr (n, 3) rad/s or None,
     |acc| (n,) or None, heading change (rad) of the foot's attitude or nan)`` for ``foot``
-    (:func:`foot_levelled`) and ``waist`` (:func:`waist_levelled`)
+    (:func:`foot_levelled`; the foot's tuple has a sixth value, the step frame's direction relative to
+    the foot's heading at the stride's start, decision L34) and ``waist`` (:func:`waist_levelled`)
     when their accelerometer is available and their forward axis is declared.
     """
     out: Levelled = {}
     if "foot_acc" in available and "foot" in forward:
         ta, acc = segment(*streams["fAccelerometer"], t0, t1)
         gyr = resample(ta, *segment(*streams["fGyroscope"], t0, t1)).T if "foot_gyr" in available else None
-        a, g, an, dpsi = foot_levelled(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s,
-                                       heading=heading, t0=t0)
-        out["foot"] = (ta, a, g, an, dpsi)
+        a, g, an, dpsi, direction = foot_levelled(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s,
+                                                  heading=heading, t0=t0, frame=True)
+        out["foot"] = (ta, a, g, an, dpsi, direction)
     if "waist_acc" in available and "waist" in forward:
         tw, wacc = segment(*streams["wAccelerometer"], t0, t1)
         wgyr = resample(tw, *segment(*streams["wGyroscope"], t0, t1)).T if "waist_gyr" in available else None
@@ -406,7 +436,7 @@ def fill_step_window(Xi: np.ndarray, streams: Streams, t0: float, t1: float, *, 
         _fill_channels(Xi, streams, t0, t1, tg, lev, ci, available, set(channels))
         return lev
     if "foot" in lev:  # one resampling call for all of a unit's channels (same numbers, fewer calls)
-        ta, a, g, an, _ = lev["foot"]
+        ta, a, g, an = lev["foot"][:4]
         r = resample(tg, ta, np.column_stack([a, an] if g is None else [a, an, g]))
         c = ci["foot_acc_x"]
         Xi[c:c + 3] = r[:3]
@@ -446,7 +476,7 @@ def _fill_channels(Xi: np.ndarray, streams: Streams, t0: float, t1: float, tg: n
     """:func:`fill_step_window`'s resampling for the channels in ``need`` only (one call per unit)."""
     units = []
     if "foot" in lev:
-        ta, a, g, an, _ = lev["foot"]
+        ta, a, g, an = lev["foot"][:4]
         cols = {"foot_acc_x": a[:, 0], "foot_acc_y": a[:, 1], "foot_acc_z": a[:, 2], "foot_acc_norm": an}
         if g is not None:
             cols.update(foot_gyr_x=g[:, 0], foot_gyr_y=g[:, 1], foot_gyr_z=g[:, 2])

@@ -33,7 +33,9 @@ from pdrlearn.kernels.window import (
     interp,
     resample,
     segment,
+    start_heading,
     start_index,
+    step_direction,
     stride_dpsi,
     waist_levelled,
 )
@@ -346,12 +348,15 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
     A = r0 @ Q[k0].T
     Y = (arr["Z"][j0:j1].reshape(-1, 3) @ A.T).reshape(n, 3, 3)  # rows (A Q_k x)^T
     Y = tilt_corrected(Y, A @ (Q[k1] @ g1), k0, k1)
-    dpsi = stride_dpsi(state.forward, acc, Y, start_index(t, t0))  # decisions L30, L33 (before gravity is removed)
+    s0 = start_index(t, t0)
+    dpsi = stride_dpsi(state.forward, acc, Y, s0)  # decisions L30, L33 (before gravity is removed)
+    psi0 = start_heading(state.forward, acc[s0], Y[s0])  # decision L34 (idem)
     a_lev = Y[:, 0]
     a_lev[:, 2] -= vec_norm(g0)
-    yaw = heading_rotation(principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
+    axis = principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref
+    yaw = heading_rotation(axis)
     out = (Y.reshape(-1, 3) @ yaw.T).reshape(n, 3, 3)
-    return t, out[:, 0], out[:, 1], an, dpsi
+    return t, out[:, 0], out[:, 1], an, dpsi, step_direction(axis, psi0)  # L34
 
 
 def _first_min(score: np.ndarray, lo: int, hi: int, n: int) -> int:

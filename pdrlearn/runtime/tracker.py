@@ -32,6 +32,7 @@ from pdrlearn.kernels.stride import (
     apply_stride_rules,
     gap_yaw,
     headed_by_foot,
+    placement_offset,
     stride_motion,
 )
 from pdrlearn.kernels.window import (
@@ -469,10 +470,11 @@ class Tracker:
                                         [classes.get("length")], bounds=self.bounds, down_mode=self._down_mode)
         length, dz = float(length[0]), float(dz[0])
         self.heading += dyaw
-        self.position = advance(self.position, self.heading, length, dz)
+        direction = self.heading + placement_offset(lev, self.heading_source, disp)  # decision L34
+        self.position = advance(self.position, direction, length, dz)
         self.n_steps += 1
         x, y, z = self.position.tolist()
-        return Step(t0, t1, classes, proba, length, dz, self.heading, x, y, z)
+        return Step(t0, t1, classes, proba, length, dz, direction, x, y, z)
 
     def _resolve_calibration(self) -> None:
         """The distance gain and stride sd that apply at the pushed foot accelerometer's rate (median
