@@ -68,6 +68,11 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
                                                                                       np.ndarray]:
     """Waist accelerometer and gyroscope on the accelerometer's timestamps, in the body frame FLU.
 
+    The waist kernels count samples (windows, shortest/longest step), so the clock must be uniform: when
+    the accelerometer has dropped samples (an interval over 1.5 nominal periods, :meth:`Stream.gaps`),
+    both streams are interpolated linearly onto the uniform clock ``t0 + k / fs`` of the native rate
+    (decision W33). Uniform recordings are returned unchanged.
+
     Raises :class:`MissingSensorError` without them and :class:`DataError` for an undeclared frame,
     NaN values or a recording shorter than 2 s.
     """
@@ -85,11 +90,19 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
         if not np.all(np.isfinite(s.values)):
             raise DataError(f"session '{session.name}': {s.name} contains NaN or infinite values; "
                             "clean or interpolate the recording first")
+    acc = acc_s.values
+    gaps = acc_s.gaps()
+    if gaps:  # decision W33: bridge dropped samples so that sample counts stay durations
+        fs = acc_s.rate_hz
+        t = acc_s.t[0] + np.arange(int(round(acc_s.duration_s * fs)) + 1) / fs
+        acc = interp_rows(t, acc_s.t, acc_s.values)
+        log.info("%s: %s has %d gap(s) (longest %.3f s), interpolated onto a uniform %.4g Hz clock",
+                 session.name, ACC, len(gaps), max(g.duration_s for g in gaps), fs)
     gyr = gyr_s.values
-    if len(gyr_s) != len(acc_s) or not np.allclose(gyr_s.t, t, atol=1e-6):
+    if len(gyr_s) != len(t) or not np.allclose(gyr_s.t, t, atol=1e-6):
         gyr = interp_rows(t, gyr_s.t, gyr_s.values)
     r = frame.matrix()
-    return t, acc_s.values @ r.T, gyr @ r.T
+    return t, acc @ r.T, gyr @ r.T
 
 
 def waist_imu(session: Session, *, gain: float = MADGWICK_GAIN, init_s: float = 0.5) -> WaistIMU:
