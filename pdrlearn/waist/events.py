@@ -95,6 +95,11 @@ class InitialContactDetector:
     ap_above_mean : offline: the IC is the last local AP maximum above the AP acceleration's 2 s mean
         in the search window, if there is one (decision W29; off by default: it moves the simulator's
         contacts earlier)
+    learned : offline (and realtime with ``delay_s``): a learned second stage decides the contacts
+        (decision W33; off by default): every maximum of the filtered vertical acceleration is a candidate,
+        gradient-boosted trees (:mod:`pdrlearn.waist.learned`, shipped as JSON) score it from local features
+        and the rule detector's outcomes, and the kept candidates are at least the shortest step (0.3 s)
+        apart. ``True`` = the shipped model; a path = a model file of the same form
 
     Attributes
     ----------
@@ -109,7 +114,8 @@ class InitialContactDetector:
                  walk_threshold: float = WALK_THRESHOLD_MPS2, ap_cutoff_hz: float = 20.0,
                  max_step_s: float = 1.5, rhythm: bool = True, alternate: bool = True,
                  lobe_ratio: float | None = None, weight_shift: bool = True, end_steps: bool = True,
-                 ap_above_mean: bool = False, delay_s: float | None = K.DECISION_DELAY_S,
+                 ap_above_mean: bool = False, learned: bool | str = False,
+                 delay_s: float | None = K.DECISION_DELAY_S,
                  hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S):
         self.realtime = realtime
         self.delay_s = delay_s
@@ -121,6 +127,7 @@ class InitialContactDetector:
         self.weight_shift = weight_shift
         self.end_steps = end_steps
         self.ap_above_mean = ap_above_mean
+        self.learned = learned
         self.cutoff_hz = cutoff_hz
         self.fir_order_s = fir_order_s
         self.walk_threshold = walk_threshold
@@ -132,10 +139,21 @@ class InitialContactDetector:
         fs = imu.fs
         gate = walking_gate(imu, walk_threshold=self.walk_threshold, causal=False)
         ap = lowpass(imu.acc_ap, min(self.ap_cutoff_hz, 0.4 * fs), fs, causal=False)
-        return K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
-                            fir_order_s=self.fir_order_s, rhythm=self.rhythm, max_step_s=self.max_step_s,
-                            acc_ml=imu.acc_ml if self.alternate else None, unshifted=self.weight_shift,
-                            end_steps=self.end_steps, ap_above_mean=self.ap_above_mean)
+        ic, fc, vmax = K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
+                                    fir_order_s=self.fir_order_s, rhythm=self.rhythm, max_step_s=self.max_step_s,
+                                    acc_ml=imu.acc_ml if self.alternate else None, unshifted=self.weight_shift,
+                                    end_steps=self.end_steps, ap_above_mean=self.ap_above_mean)
+        if self.learned is False or self.learned is None:
+            return ic, fc, vmax
+        from pdrlearn.waist import learned as L  # W33: the rule outcomes are features of the learned stage
+
+        model = L.shipped_model() if self.learned is True else L.TreeEnsembleClassifier.load(self.learned)
+        ic, vmax = L.learned_contacts(imu.acc_v, ap, imu.acc_ml, imu.w_z, fs, vmax, model=model,
+                                      walk_threshold=self.walk_threshold, cutoff_hz=self.cutoff_hz,
+                                      fir_order_s=self.fir_order_s, max_step_s=self.max_step_s)
+        wf = max(1, int(round(0.25 * fs)))  # the FC after each vertical maximum, as ic_offline (W16)
+        fc = np.array([p + int(np.argmin(ap[p:min(len(ap), p + wf + 1)])) for p in vmax], dtype=int)
+        return ic, fc, vmax
 
     def detect(self, imu: WaistIMU, *, final: bool = True) -> InitialContactDetector:
         """Detect the contacts of ``imu``. ``final`` (realtime with ``delay_s``): the end of the data
