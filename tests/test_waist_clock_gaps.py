@@ -1,4 +1,4 @@
-"""Decision W33: the waist pipelines bridge dropped samples on a uniform clock (sample counts = durations).
+"""Decision W34: the waist pipelines bridge dropped samples on a uniform clock (sample counts = durations).
 
 Found by experiments/robustness.py: a 0.5 s gap in a 5 m straight walk lost one step and ~15 % of the
 tracked distance (the kernels count samples, so the gap vanished from the step's duration), and a
@@ -58,7 +58,7 @@ def test_gapped_recording_comes_back_on_a_uniform_clock():
 
 @pytest.mark.parametrize("name", WALKS)
 def test_a_half_second_gap_costs_no_step_length(name):
-    """Mean tracked-distance change over 8 gap positions inside the reference bout: before W33 -15.7 and
+    """Mean tracked-distance change over 8 gap positions inside the reference bout: before W34 -15.7 and
     -13.7 % (one step lost at almost every position), after -5.3 and -1.0 %."""
     s = _walk(name)
     b = s.extras["bouts"].iloc[0]

@@ -71,7 +71,7 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     The waist kernels count samples (windows, shortest/longest step), so the clock must be uniform: when
     the accelerometer has dropped samples (an interval over 1.5 nominal periods, :meth:`Stream.gaps`),
     both streams are interpolated linearly onto the uniform clock ``t0 + k / fs`` of the native rate
-    (decision W33). Uniform recordings are returned unchanged.
+    (decision W34). Uniform recordings are returned unchanged.
 
     Raises :class:`MissingSensorError` without them and :class:`DataError` for an undeclared frame,
     NaN values or a recording shorter than 2 s.
@@ -92,7 +92,7 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
                             "clean or interpolate the recording first")
     acc = acc_s.values
     gaps = acc_s.gaps()
-    if gaps:  # decision W33: bridge dropped samples so that sample counts stay durations
+    if gaps:  # decision W34: bridge dropped samples so that sample counts stay durations
         fs = acc_s.rate_hz
         t = acc_s.t[0] + np.arange(int(round(acc_s.duration_s * fs)) + 1) / fs
         acc = interp_rows(t, acc_s.t, acc_s.values)
