@@ -67,3 +67,21 @@ def test_a_half_second_gap_costs_no_step_length(name):
     change = [100 * (pipe(_drop(s, t0, 0.5)).distance_m / d0 - 1)
               for t0 in np.linspace(b.start_s + 0.5, b.end_s - 1.0, 8)]
     assert abs(np.mean(change)) < 8.0, change
+
+
+def test_calibration_says_when_a_walk_lost_samples():
+    """W34: the interpolated step inside a gap comes out short, so K comes out high; the calibration
+    notes say so (and name the gap) instead of fitting silently."""
+    from pdrlearn.waist.calibration import calibrate
+
+    s = _walk(WALKS[0])
+    b = s.extras["bouts"].iloc[0]
+    clean = calibrate([s], "waist-pendulum")
+    assert not any("dropped samples" in n for n in clean.notes)
+    t0 = 0.5 * (b.start_s + b.end_s)
+    gapped = calibrate([_drop(s, t0, 0.5)], "waist-pendulum")
+    note = [n for n in gapped.notes if "dropped samples" in n]
+    # the interval between the two recorded samples around the 0.5 s of dropped ones: 0.51 s at 100 Hz
+    assert len(note) == 1 and "1 gap(s)" in note[0] and "(0.51 s at" in note[0], gapped.notes
+    short = calibrate([_drop(s, t0, 0.1)], "waist-pendulum")  # shorter than the shortest step (W16)
+    assert not any("dropped samples" in n for n in short.notes)

@@ -59,6 +59,23 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
 
 
 MIN_STRIDES_GMM = 20  # strides needed to fit the straight/turning mixture (decision W14)
+#: a gap this long (s) can hold a whole step: the IC detector's shortest step (decision W16); decision W34
+GAP_NOTE_S = 0.3
+
+
+def gap_notes(session: Session, t0: float, t1: float) -> list[str]:
+    """Notes on the accelerometer gaps of at least :data:`GAP_NOTE_S` inside ``[t0, t1]`` (s): the steps in
+    them are interpolated (W34) and come out short, so a calibration on that walk overestimates K."""
+    acc = session.streams.get("wAccelerometer")
+    if acc is None:
+        return []
+    g = [x for x in acc.gaps() if x.duration_s >= GAP_NOTE_S and t0 <= x.start_s + x.duration_s and x.start_s <= t1]
+    if not g:
+        return []
+    longest = max(g, key=lambda x: x.duration_s)
+    return [f"{session.name}: {len(g)} gap(s) of dropped samples between its first and last step "
+            f"({longest.duration_s:.2f} s at {longest.start_s:.1f} s); the steps there come out short and K high "
+            "(decision W34): re-record the walk or calibrate on another one"]
 
 
 def fit_turn_classifier(mean_rates: np.ndarray) -> tuple[dict | None, str]:
@@ -100,10 +117,14 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     base, _ = resolve_params(sessions[0], params)
     walks: list[CalibrationWalk] = []
     rates = []
+    notes_gap: list[str] = []
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
         res = track_waist(s, pipeline=pipeline, params=base)
         walks += calibration_walks(s, pipeline, distance_m=d, params=base, result=res)
+        st = res.steps
+        if len(st):  # decision W34: say when a calibration walk lost samples
+            notes_gap += gap_notes(s, float(st["start_s"].min()), float(st["end_s"].max()))
         r = res.steps["mean_rate_rps"].to_numpy(float)
         rates.append(r[np.isfinite(r)])
     out = WaistParams(**{k: v for k, v in base.to_dict().items() if k != "schema"})
@@ -121,6 +142,9 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
                       "length from the first to the last heel strike)" for w in walks]
     out.notes.append(f"{pipeline} step length calibrated on {len(walks)} walk(s), {n_steps} steps, "
                      f"{total:.2f} m: {how}")
+    for n in notes_gap:
+        log.info("calibrate: %s", n)
+    out.notes += notes_gap
     if turns is not None:
         from pdrlearn.waist.ahrs import waist_imu
 
