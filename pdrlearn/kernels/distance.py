@@ -54,3 +54,12 @@ def apply_level_gain(disp: np.ndarray, gain: float, *, level_dz_m: float = LEVEL
     level = np.abs(rows[:, 2]) < level_dz_m
     rows[level, :2] *= gain
     return d
+
+
+def apply_level_gain_one(dx: float, dy: float, dz: float, gain: float, *, level_dz_m: float = LEVEL_DZ_M
+                         ) -> tuple[float, float, float]:
+    """:func:`apply_level_gain` of one stride's displacement on Python floats (the same products; the
+    runtime's call, decision E17 in docs/decisions/export.md)."""
+    if abs(dz) < level_dz_m:
+        return dx * gain, dy * gain, dz
+    return dx, dy, dz

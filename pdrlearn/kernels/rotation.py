@@ -33,7 +33,11 @@ def gravity_rotation(g_sensor: np.ndarray) -> np.ndarray:
     shortest one (axis ``g x z``, Rodrigues' formula), so the heading about z stays as close to the
     sensor's as possible. Raises :class:`DataError` for a zero or non-finite vector.
     """
-    gx, gy, gz = np.asarray(g_sensor, dtype=np.float64).reshape(3).tolist()
+    return gravity_rotation_xyz(*np.asarray(g_sensor, dtype=np.float64).reshape(3).tolist())
+
+
+def gravity_rotation_xyz(gx: float, gy: float, gz: float) -> np.ndarray:
+    """:func:`gravity_rotation` of the vector given as three Python floats (the runtime's call, E17)."""
     n = math.sqrt(gx * gx + gy * gy + gz * gz)
     if not math.isfinite(n) or n < 1e-9:
         raise DataError(f"gravity_rotation: gravity vector {[gx, gy, gz]} is zero or not finite; "

@@ -45,8 +45,8 @@ def rest_reference(acc_norm: np.ndarray, gyr_norm: np.ndarray | None) -> float |
     if gyr_norm is None:
         return STANDARD_GRAVITY if acc_norm.ndim == 1 else np.full(acc_norm.shape[:-1], STANDARD_GRAVITY)
     k = max(1, int(REST_QUIET_FRACTION * acc_norm.shape[-1]))
-    if acc_norm.ndim == 1:  # per-step path: plain indexing (the same values as the batch branch)
-        q = acc_norm[np.argsort(gyr_norm, kind="stable")[:k]]
+    if acc_norm.ndim == 1:  # per-step path: plain indexing (the same values as the batch branch); the
+        q = acc_norm[gyr_norm.argsort(kind="stable")[:k]]  # method, not np.argsort's wrapper (runtime E17)
         q.sort()
         return float(0.5 * (q[(k - 1) // 2] + q[k // 2]))
     q = np.take_along_axis(acc_norm, np.argsort(gyr_norm, axis=-1, kind="stable")[..., :k], axis=-1)
@@ -211,12 +211,23 @@ def tilt_corrected(Y: np.ndarray, g_lev: np.ndarray, k0: int, k1: int) -> np.nda
         kx, ky, th = 1.0, 0.0, math.pi  # upside down: 180 deg about x, as gravity_rotation
     else:
         kx, ky, th = gy / nrm / s, -gx / nrm / s, math.atan2(s, gz / nrm)  # axis (g x z) / |g x z|
-    frac = np.minimum(np.maximum((np.arange(n) - k0) / float(k1 - k0), 0.0), 1.0)  # clipped to 0..1
-    ang = frac * th
+    # (k - k0) / (k1 - k0) clipped to 0..1, as an (n, 1, 1) column that broadcasts over each sample's rows
+    # (the same values as np.arange(n) - k0; fewer calls per step, runtime decision E17)
+    frac = (_arange_col(n) - float(k0)) / float(k1 - k0)
+    ang = np.minimum(np.maximum(frac, 0.0, out=frac), 1.0, out=frac)
+    ang *= th
     KT = np.array([[0.0, 0.0, -ky], [0.0, 0.0, kx], [ky, -kx, 0.0]])  # ([k]x)^T of k = (kx, ky, 0)
     KY = Y.reshape(-1, 3) @ KT  # rows ([k]x v)^T
     K2Y = (KY @ KT).reshape(shape)  # rows ([k]x^2 v)^T
-    return Y + np.sin(ang)[:, None, None] * KY.reshape(shape) + (1.0 - np.cos(ang))[:, None, None] * K2Y
+    return Y + np.sin(ang) * KY.reshape(shape) + (1.0 - np.cos(ang)) * K2Y
+
+
+@functools.lru_cache(maxsize=64)
+def _arange_col(n: int) -> np.ndarray:
+    """Read-only ``np.arange(n, dtype=float).reshape(n, 1, 1)`` (cached: a step's length repeats)."""
+    a = np.arange(n, dtype=np.float64).reshape(n, 1, 1)
+    a.flags.writeable = False
+    return a
 
 
 def heading_rotation(forward_xy: np.ndarray) -> np.ndarray:
@@ -232,6 +243,13 @@ def principal_horizontal_axis(acc_lev: np.ndarray, reference_xy: np.ndarray) -> 
     horizontal second-moment matrix is the line of the step; the sign (toes side) comes from the
     declared forward axis of the sensor, so backward steps keep their sign.
     """
+    r0, r1 = np.asarray(reference_xy, dtype=np.float64).tolist()[:2]
+    return np.array(principal_horizontal_xy(acc_lev, r0, r1))
+
+
+def principal_horizontal_xy(acc_lev: np.ndarray, r0: float, r1: float) -> tuple[float, float]:
+    """:func:`principal_horizontal_axis` with the reference given and the axis returned as Python floats
+    (the runtime's call, E17)."""
     h = acc_lev[:, :2]
     (sxx, sxy), (_, syy) = (h.T @ h).tolist()
     # dominant eigenvector of the symmetric 2x2 [[sxx, sxy], [sxy, syy]] in closed form: the major axis at
@@ -239,10 +257,9 @@ def principal_horizontal_axis(acc_lev: np.ndarray, reference_xy: np.ndarray) -> 
     # eigenvalues give +x like eigh's first column)
     phi = 0.5 * math.atan2(2.0 * sxy, sxx - syy)
     ex, ey = math.cos(phi), math.sin(phi)
-    r0, r1 = np.asarray(reference_xy, dtype=np.float64).tolist()[:2]
     if ex * r0 + ey * r1 < 0:
         ex, ey = -ex, -ey
-    return np.array([ex, ey])
+    return ex, ey
 
 
 # -- per-signal statistics on (n_steps, n_samples) arrays ------------------------------------------

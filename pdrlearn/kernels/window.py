@@ -273,13 +273,35 @@ def stride_dpsi(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: int = 
     measured from the stride's own first sample, which is the previous stride's last one (decision L33)."""
     if s == 0 and len(Y) == 1:
         return 0.0
-    Rs = _attitude(forward_s, acc[s], Y[s, 2], Y[s, 0])
-    Re = _attitude(forward_s, acc[-1], Y[-1, 2], Y[-1, 0])
+    fwd = np.asarray(forward_s, dtype=float).tolist()  # Python floats, each row fetched once (runtime E17)
+    ys = np.asarray(Y[s], dtype=float).tolist()  # rows acc, gyro, fwd
+    return _dpsi(fwd, acc, Y, ys, _attitude(fwd, np.asarray(acc[s], dtype=float).tolist(), ys[2], ys[0]))
+
+
+def stride_headings(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: int = 0) -> tuple[float, float]:
+    """``(stride_dpsi(forward_s, acc, Y, s), start_heading(forward_s, acc[s], Y[s]))`` with the attitude at
+    sample ``s`` computed once (both need it; the same values bit for bit, runtime decision E17)."""
+    fwd = np.asarray(forward_s, dtype=float).tolist()
+    ys = np.asarray(Y[s], dtype=float).tolist()
+    Rs = _attitude(fwd, np.asarray(acc[s], dtype=float).tolist(), ys[2], ys[0])
+    psi0 = math.atan2(ys[2][1], ys[2][0]) if Rs is None else twist_about_z(Rs)
+    return (0.0 if s == 0 and len(Y) == 1 else _dpsi(fwd, acc, Y, ys, Rs)), psi0
+
+
+def _dpsi(fwd: list[float], acc: np.ndarray, Y: np.ndarray, ys: list, Rs: list | None) -> float:
+    """:func:`stride_dpsi` given the start sample's levelled rows ``ys`` and attitude ``Rs``."""
+    ye = np.asarray(Y[-1], dtype=float).tolist()
+    Re = _attitude(fwd, np.asarray(acc[-1], dtype=float).tolist(), ye[2], ye[0])
     if Rs is None or Re is None:  # a zeroed sample or the specific force along the forward axis: the
-        f, g = np.asarray(Y[s, 2], float).tolist(), np.asarray(Y[-1, 2], float).tolist()  # forward axis's
-        return math.atan2(f[0] * g[1] - f[1] * g[0], f[0] * g[0] + f[1] * g[1])  # heading change (pre-L30)
-    # R_end R_s^T on Python floats (3x3: cheaper than numpy calls, runtime E16)
-    R = [[sum(Re[i][k] * Rs[j][k] for k in range(3)) for j in range(3)] for i in range(3)]
+        f, g = ys[2], ye[2]  # forward axis's heading change (pre-L30)
+        return math.atan2(f[0] * g[1] - f[1] * g[0], f[0] * g[0] + f[1] * g[1])
+    # R_end R_s^T on Python floats (3x3: cheaper than numpy calls, runtime E16), each entry the sum
+    # 0 + p0 + p1 + p2 (as sum() of the three products), written out (runtime E17)
+    (a0, a1, a2), (a3, a4, a5), (a6, a7, a8) = Re
+    (b0, b1, b2), (b3, b4, b5), (b6, b7, b8) = Rs
+    R = [[0 + a0 * b0 + a1 * b1 + a2 * b2, 0 + a0 * b3 + a1 * b4 + a2 * b5, 0 + a0 * b6 + a1 * b7 + a2 * b8],
+         [0 + a3 * b0 + a4 * b1 + a5 * b2, 0 + a3 * b3 + a4 * b4 + a5 * b5, 0 + a3 * b6 + a4 * b7 + a5 * b8],
+         [0 + a6 * b0 + a7 * b1 + a8 * b2, 0 + a6 * b3 + a7 * b4 + a8 * b5, 0 + a6 * b6 + a7 * b7 + a8 * b8]]
     return twist_about_z(R)
 
 
@@ -323,12 +345,21 @@ def _frame3(a: list[float], b: list[float]) -> tuple[list[float], list[float], l
 def _attitude(e1, e2, f1, f2) -> list[list[float]] | None:
     """The rotation (3x3 nested lists) carrying the body vectors ``e1``, ``e2`` to ``f1``, ``f2`` (frames of
     :func:`_frame3`); None when a frame is degenerate."""
-    S = _frame3(np.asarray(e1, float).tolist(), np.asarray(e2, float).tolist())
-    V = _frame3(np.asarray(f1, float).tolist(), np.asarray(f2, float).tolist())
+    S = _frame3(_floats(e1), _floats(e2))
+    V = _frame3(_floats(f1), _floats(f2))
     if S is None or V is None:
         return None
     (s1, s2, s3), (v1, v2, v3) = S, V
-    return [[v1[i] * s1[j] + v2[i] * s2[j] + v3[i] * s3[j] for j in range(3)] for i in range(3)]
+    x1, y1, z1 = s1  # V S^T, entry (i, j) = v1[i] s1[j] + v2[i] s2[j] + v3[i] s3[j] (written out, E17)
+    x2, y2, z2 = s2
+    x3, y3, z3 = s3
+    return [[p * x1 + q * x2 + r * x3, p * y1 + q * y2 + r * y3, p * z1 + q * z2 + r * z3]
+            for p, q, r in zip(v1, v2, v3, strict=True)]
+
+
+def _floats(v) -> list[float]:
+    """A 3-vector as a list of Python floats (lists of floats as they are)."""
+    return v if type(v) is list else np.asarray(v, dtype=float).tolist()
 
 
 def twist_about_z(R: np.ndarray | list) -> float:
@@ -482,8 +513,8 @@ def _fill_channels(Xi: np.ndarray, streams: Streams, t0: float, t1: float, tg: n
             cols.update(foot_gyr_x=g[:, 0], foot_gyr_y=g[:, 1], foot_gyr_z=g[:, 2])
         units.append((ta, cols))
     if "waist" in lev:
-        tw, a, g, _, _ = lev["waist"]
-        cols = {"waist_acc_x": a[:, 0], "waist_acc_y": a[:, 1], "waist_acc_z": a[:, 2]}
+        tw, a, g, _, _ = lev["waist"]  # a is None when no needed channel reads it (runtime, decision E17)
+        cols = {} if a is None else {"waist_acc_x": a[:, 0], "waist_acc_y": a[:, 1], "waist_acc_z": a[:, 2]}
         if g is not None:
             cols.update(waist_gyr_x=g[:, 0], waist_gyr_y=g[:, 1], waist_gyr_z=g[:, 2])
         units.append((tw, cols))

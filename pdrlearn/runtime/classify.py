@@ -13,6 +13,8 @@ Class = argmax of the probabilities aligned to the task's classes, as on the tra
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from pdrlearn.errors import DataError, ModelError
@@ -185,7 +187,8 @@ class StepGraph:
 
     def predict(self, W: np.ndarray) -> dict[str, np.ndarray]:
         """Task -> probabilities ``(n, n_classes)`` (the task's class order) of windows ``W``."""
-        if not np.isfinite(W[:, self.channels]).all():  # as compute_features: never classify NaN
+        x = W[:, self.channels]  # as compute_features: never classify NaN; the sum is finite iff every value
+        if not (math.isfinite(float(np.add.reduce(x, axis=None))) or np.isfinite(x).all()):  # is (bar overflow, E17)
             raise DataError("step features are NaN: the stream lacks a sensor the model needs")
         if self._run is not None and W.dtype == np.float64 and W.flags.c_contiguous:
             return dict(zip(self._roles, self._run(self._wanted, {self.model.input_name: W}, None), strict=True))

@@ -20,23 +20,22 @@ import math
 import numpy as np
 
 from pdrlearn.errors import DataError
-from pdrlearn.kernels.rotation import gravity_rotation, rotvec_to_matrix, vec_norm
+from pdrlearn.kernels.rotation import gravity_rotation_xyz, rotvec_to_matrix, vec_norm
 from pdrlearn.kernels.stats import (
-    heading_rotation,
-    principal_horizontal_axis,
+    principal_horizontal_xy,
     rest_score,
     row_norm,
     tilt_corrected,
 )
 from pdrlearn.kernels.window import (
+    _compiled_interp,
     col_mean,
     interp,
     resample,
     segment,
-    start_heading,
     start_index,
     step_direction,
-    stride_dpsi,
+    stride_headings,
     waist_levelled,
 )
 
@@ -95,6 +94,15 @@ class Ring:
 
     def view(self) -> tuple[np.ndarray, np.ndarray]:
         return self.t[self.i0:self.i1], self.v[self.i0:self.i1]
+
+    def segment(self, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
+        """:func:`pdrlearn.kernels.window.segment` of :meth:`view` (the same samples), sliced from the arrays
+        directly (decision E17)."""
+        i0, i1 = self.i0, self.i1
+        t = self.t[i0:i1]
+        a = i0 + max(int(t.searchsorted(t0, side="right")) - 1, 0)
+        b = i0 + min(int(t.searchsorted(t1, side="left")) + 1, i1 - i0)
+        return self.t[a:b], self.v[a:b]
 
     def drop_before(self, keep_from: float) -> None:
         """Drop the samples older than ``keep_from`` (s), keeping at least the newest one."""
@@ -336,27 +344,31 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
     score = rest_score(an, gn, half_width=h)
     k0 = _first_min(score, 0, m, n)  # rest_index with the score given, without np.argmin's wrapper (E16)
     k1 = _first_min(score, n - m, n, n)
-    g0 = col_mean(acc[max(k0 - h, 0): k0 + h + 1])
-    g1 = col_mean(acc[max(k1 - h, 0): k1 + h + 1])
-    r0 = gravity_rotation(g0)
+    if h == 0:  # one sample: col_mean of it is the sample + 0.0 (-0.0 becomes +0.0 as in the sum; E17)
+        g0, g1 = acc[k0] + 0.0, acc[k1] + 0.0
+    else:
+        g0, g1 = col_mean(acc[max(k0 - h, 0): k0 + h + 1]), col_mean(acc[max(k1 - h, 0): k1 + h + 1])
+    gx, gy, gz = g0.tolist()
+    r0 = gravity_rotation_xyz(gx, gy, gz)
     ref = (r0 @ state.forward)[:2]
-    if vec_norm(ref) < 0.1:
+    nr = vec_norm(ref)
+    if nr < 0.1:
         raise DataError("foot unit: the declared forward axis points (nearly) vertically at rest; "
                         "check the declared foot frame (meta.json or the bundle's frames)")
-    ref = ref / vec_norm(ref)
     Q = arr["Q"][j0:j1]
     A = r0 @ Q[k0].T
     Y = (arr["Z"][j0:j1].reshape(-1, 3) @ A.T).reshape(n, 3, 3)  # rows (A Q_k x)^T
     Y = tilt_corrected(Y, A @ (Q[k1] @ g1), k0, k1)
     s0 = start_index(t, t0)
-    dpsi = stride_dpsi(state.forward, acc, Y, s0)  # decisions L30, L33 (before gravity is removed)
-    psi0 = start_heading(state.forward, acc[s0], Y[s0])  # decision L34 (idem)
+    dpsi, psi0 = stride_headings(state.forward, acc, Y, s0)  # decisions L30, L33, L34 (before gravity is removed)
     a_lev = Y[:, 0]
-    a_lev[:, 2] -= vec_norm(g0)
-    axis = principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref
-    yaw = heading_rotation(axis)
-    out = (Y.reshape(-1, 3) @ yaw.T).reshape(n, 3, 3)
-    return t, out[:, 0], out[:, 1], an, dpsi, step_direction(axis, psi0)  # L34
+    a_lev[:, 2] -= math.sqrt(gx * gx + gy * gy + gz * gz)  # |g0| (vec_norm to rounding)
+    rx, ry = ref.tolist()
+    rx, ry = rx / nr, ry / nr
+    ex, ey = principal_horizontal_xy(a_lev, rx, ry) if heading == "pca" else (rx, ry)
+    yaw_t = np.array([[ex, -ey, 0.0], [ey, ex, 0.0], [0.0, 0.0, 1.0]])  # heading_rotation((ex, ey)).T
+    out = (Y.reshape(-1, 3) @ yaw_t).reshape(n, 3, 3)
+    return t, out[:, 0], out[:, 1], an, dpsi, step_direction((ex, ey), psi0)  # decision L34
 
 
 def _first_min(score: np.ndarray, lo: int, hi: int, n: int) -> int:
@@ -366,18 +378,28 @@ def _first_min(score: np.ndarray, lo: int, hi: int, n: int) -> int:
     return lo + int(score[lo:hi].argmin())
 
 
-def waist_entry(streams, t0: float, t1: float, forward_s: np.ndarray, gyro: bool):
+def _segment(streams, name: str, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
+    """``segment(*streams[name], t0, t1)``; from the sensor's :class:`Ring` when ``streams`` is the tracker's
+    buffer views (their ``rings``), without making the view first (decision E17)."""
+    rings = getattr(streams, "rings", None)
+    if rings is not None:
+        return rings[name].segment(t0, t1)
+    return segment(*streams[name], t0, t1)
+
+
+def waist_entry(streams, t0: float, t1: float, forward_s: np.ndarray, gyro: bool, need_acc: bool = True):
     """The waist entry ``(t, acc, gyr, None, nan)`` of :func:`pdrlearn.kernels.window.levelled_units` for the
     step ``[t0, t1]``, with the levelling rotation on Python floats (decision E16): the tilt from the mean
     specific force over the step, the declared forward axis made horizontal
     (:func:`pdrlearn.kernels.window.waist_levelled`'s formulas; ``gravity_rotation``, ``heading_rotation``
     and their product written out, 3 numpy calls instead of ~15). Within 1e-15 of the shared kernel (the
     3x3 products round differently); degenerate cases (zero or level gravity, a vertical forward axis)
-    run the shared kernel, which also raises its errors."""
-    tw, acc = segment(*streams["wAccelerometer"], t0, t1)
+    run the shared kernel, which also raises its errors. ``need_acc=False`` leaves the levelled acceleration
+    out (None; decision E17: the step graph and the stride kernel read only the waist's rate)."""
+    tw, acc = _segment(streams, "wAccelerometer", t0, t1)
     gyr = None
     if gyro:
-        tg, g = segment(*streams["wGyroscope"], t0, t1)
+        tg, g = _segment(streams, "wGyroscope", t0, t1)
         gyr = g if len(tg) == len(tw) and (tg == tw).all() else resample(tw, tg, g).T  # same clock: as resample
     gx, gy, gz = col_mean(acc).tolist()
     n = math.sqrt(gx * gx + gy * gy + gz * gz)
@@ -391,16 +413,21 @@ def waist_entry(streams, t0: float, t1: float, forward_s: np.ndarray, gyro: bool
                  (b * k0 * k1, 1.0 - b * k0 * k0, -s * k0),
                  (-s * k1, s * k0, 1.0 - b * (k0 * k0 + k1 * k1)))
             fx, fy, fz = forward_s.tolist()
-            hx = r[0][0] * fx + r[0][1] * fy + r[0][2] * fz  # (r @ forward)[:2]
-            hy = r[1][0] * fx + r[1][1] * fy + r[1][2] * fz
+            (r00, r01, r02), (r10, r11, r12), r2 = r
+            hx = r00 * fx + r01 * fy + r02 * fz  # (r @ forward)[:2]
+            hy = r10 * fx + r11 * fy + r12 * fz
             hn = math.sqrt(hx * hx + hy * hy)
             if hn >= 0.1:
-                hc, hs = hx / hn, hy / hn  # heading_rotation(ref) @ r
-                rr = np.array([[hc * r[0][j] + hs * r[1][j] for j in range(3)],
-                               [hc * r[1][j] - hs * r[0][j] for j in range(3)], r[2]])
-                a = acc @ rr.T
-                a[:, 2] -= n
-                return tw, a, (None if gyr is None else gyr @ rr.T), None, float("nan")
+                hc, hs = hx / hn, hy / hn  # (heading_rotation(ref) @ r).T, written out (E17)
+                rr_t = np.array([[hc * r00 + hs * r10, hc * r10 - hs * r00, r2[0]],
+                                 [hc * r01 + hs * r11, hc * r11 - hs * r01, r2[1]],
+                                 [hc * r02 + hs * r12, hc * r12 - hs * r02, r2[2]]])
+                if need_acc:
+                    a = acc @ rr_t
+                    a[:, 2] -= n
+                else:  # no window channel reads the waist acceleration (the stride kernel never does)
+                    a = None
+                return tw, a, (None if gyr is None else gyr @ rr_t), None, float("nan")
     a, g = waist_levelled(acc, gyr, forward_s)
     return tw, a, g, None, float("nan")
 
@@ -444,16 +471,16 @@ def fill_resampled(W: np.ndarray, streams, t0: float, t1: float, tg: np.ndarray,
     segs = {}
     if force:
         for name in ("fForceA", "fForceB"):
-            segs[name] = segment(*streams[name], t0, t1)
+            segs[name] = _segment(streams, name, t0, t1)
             if _box_width(dg, segs[name][0]) > 1:
                 return False
-    for c, t, x in units:
-        W[ci[c]] = interp(tg, t, x)
+    for c, t, x in units:  # the compiled routine of kernels.window.interp, without its Python frame (E17)
+        W[ci[c]] = _compiled_interp(tg, t, x, None, None)
     if force:
         for name, c in (("fForceA", "force_a"), ("fForceB", "force_b")):
             tf, f = segs[name]
-            W[ci[c]] = interp(tg, tf, f[:, 0])
+            W[ci[c]] = _compiled_interp(tg, tf, f[:, 0], None, None)
     if "waist_baro" in available and "waist_baro" in need:
-        tb, b = segment(*streams["wBarometer"], t0, t1)
+        tb, b = _segment(streams, "wBarometer", t0, t1)
         W[ci["waist_baro"]] = interp(tg, tb, b[:, 0]) - interp(t0, tb, b[:, 0])
     return True

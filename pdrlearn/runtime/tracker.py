@@ -15,6 +15,7 @@ zero-velocity update at both stances (thesis ch.7.2), the M3 rules (thesis eq. 6
 
 from __future__ import annotations
 
+import functools
 import logging
 import math
 from dataclasses import dataclass, field
@@ -23,17 +24,17 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, ModelError
-from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain, calibrated_stride_sd
+from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
 from pdrlearn.kernels.stride import (
     GAP_YAW_MAX_S,
     HEADING_SOURCES,
     StanceSegmenter,
-    advance,
-    apply_stride_rules,
+    advance_xyz,
     gap_yaw,
     headed_by_foot,
     placement_offset,
     stride_motion,
+    stride_rules_one,
 )
 from pdrlearn.kernels.window import (
     BOUNDARIES,
@@ -51,6 +52,8 @@ from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_le
 
 log = logging.getLogger(__name__)
 _F64 = np.dtype(np.float64)
+#: the window channels of the waist's levelled acceleration (computed only when one of them is needed, E17)
+_WAIST_ACC = frozenset(("waist_acc_x", "waist_acc_y", "waist_acc_z"))
 #: samples kept before a step's start: the window margin (1 s) and L31's gap-yaw look-back
 _LOOK_BACK_S = max(1.0, GAP_YAW_MAX_S)
 
@@ -131,6 +134,14 @@ def calibration_record(displacement: dict) -> dict | None:
             "stride_sd": displacement.get("stride_sigma_rel"), "reason": None}
 
 
+@functools.lru_cache(maxsize=8)
+def _nan_template(n_channels: int, n_samples: int) -> np.ndarray:
+    """A read-only all-NaN window; ``.copy()`` of it is ``np.full`` without its Python wrapper (E17)."""
+    W = np.full((n_channels, n_samples), np.nan)
+    W.flags.writeable = False
+    return W
+
+
 class _Views(dict):
     """Sensor name -> ``(t, values)`` views of the tracker's buffers, each made on first access (a step
     reads 4-6 of the buffered sensors; decision E16). Membership and iteration are the buffers'."""
@@ -140,6 +151,11 @@ class _Views(dict):
     def __init__(self, buf: dict[str, Ring]):
         super().__init__()
         self._buf = buf
+
+    @property
+    def rings(self) -> dict[str, Ring]:
+        """The buffers themselves (``runtime.stream._segment`` cuts a segment from them directly, E17)."""
+        return self._buf
 
     def __missing__(self, name: str):
         v = self[name] = self._buf[name].view()
@@ -257,7 +273,7 @@ class Tracker:
         #: the foot levelling's per-sample part, done at push time (decision E15); None = the shared
         #: kernel at the step event only (``incremental=False``, or no declared foot frame)
         self._foot = FootLevelling(self.forward["foot"]) if incremental and "foot" in self.forward else None
-        self.position = np.asarray(start, dtype=float).copy()
+        self.position = np.asarray(start, dtype=float).reshape(3).copy()
         self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
         self._det_t = -np.inf
@@ -298,22 +314,23 @@ class Tracker:
         kernel; resampling is the shared kernel's (``fill_step_window``'s per-channel path)."""
         channels = self._step_channels if channels is False else channels
         streams = _Views(self._buf)  # a sensor's buffer view is made when a kernel reads it (E16)
-        W = np.full((len(self.channels), self.n_samples), np.nan)
-        if self._groups[0] != tuple(streams):  # the sensor groups change only when a new sensor arrives
+        W = _nan_template(len(self.channels), self.n_samples).copy()  # = np.full(..., nan) in one call (E17)
+        if self._groups[0] != tuple(self._buf):  # the sensor groups change only when a new sensor arrives
             self._groups = (tuple(streams), available_groups(streams))
         avail = self._groups[1]
         w0, w1 = self.window_bounds(t0, t1, streams)
-        lev = self._levelled(streams, w0, w1, avail)
+        need = self._all_channels if channels is None else channels
+        waist_acc = not _WAIST_ACC.isdisjoint(need)  # else the waist's levelled acceleration is not computed
+        lev = self._levelled(streams, w0, w1, avail, waist_acc)
         tg = w0 + (w1 - w0) * _unit_grid(self.n_samples)
         W[self.ci["t_s"]] = tg - w0
-        need = self._all_channels if channels is None else channels
         if not fill_resampled(W, streams, w0, w1, tg, lev, self.ci, avail, need):
             _fill_channels(W, streams, w0, w1, tg, lev, self.ci, avail, need)
         if (w0, w1) != (t0, t1):  # displacement stays stance to stance, like pdrlearn track --streaming
-            lev = self._levelled(streams, t0, t1, avail)
+            lev = self._levelled(streams, t0, t1, avail, waist_acc)
         return W, lev
 
-    def _levelled(self, streams, t0: float, t1: float, avail: tuple[str, ...]):
+    def _levelled(self, streams, t0: float, t1: float, avail: tuple[str, ...], waist_acc: bool = True):
         """:func:`pdrlearn.kernels.window.levelled_units` of ``[t0, t1]``, the foot from the push-time state
         (:func:`pdrlearn.runtime.stream.foot_levelled`) when it holds the step."""
         kw = {"forward": self.forward, "rest_search_s": self.rest_search_s, "heading": self.heading_mode}
@@ -324,7 +341,7 @@ class Tracker:
             return levelled_units(streams, t0, t1, available=avail, **kw)
         lev = {"foot": foot}
         if "waist_acc" in avail and "waist" in self.forward:  # the waist levelling on Python floats (E16)
-            lev["waist"] = waist_entry(streams, t0, t1, self.forward["waist"], "waist_gyr" in avail)
+            lev["waist"] = waist_entry(streams, t0, t1, self.forward["waist"], "waist_gyr" in avail, waist_acc)
         return lev
 
     def window_bounds(self, t0: float, t1: float, streams=None) -> tuple[float, float]:
@@ -397,7 +414,27 @@ class Tracker:
         measurements with ``t``, ``sensor`` and ``values`` attributes (the Bluetooth parser's output).
         """
         if isinstance(samples, dict):
+            buf, foot, fast = self._buf, self._foot, self._rate_checked
             for name, (t, v) in samples.items():
+                # one float64 sample of a known, rate-checked sensor that is finite and newer than its buffer:
+                # appended here without _append's frame and general checks (decision E17); anything else
+                # (a new sensor, chunks, other dtypes, NaN, old timestamps: their errors) goes through _append
+                if (name in fast and type(t) is np.ndarray and type(v) is np.ndarray and t.shape == (1,)
+                        and t.dtype is _F64 and v.dtype is _F64 and v.ndim == 2 and v.shape[0] == 1):
+                    ring = buf[name]
+                    t0, vals = t.item(), v.tolist()[0]
+                    i = ring.i1
+                    if (t0 > ring.last and len(vals) == ring.v.shape[1] and i < len(ring.t) and math.isfinite(t0)
+                            and all(map(math.isfinite, vals))):
+                        ring.t[i] = t0  # Ring.append1
+                        ring.v[i] = vals
+                        ring.i1 = i + 1
+                        ring.last = t0
+                        if foot is not None and (name == "fAccelerometer" or name == "fGyroscope"):
+                            foot.feed1(name, t0, vals)
+                        if t0 > self._latest:
+                            self._latest = t0
+                        continue
                 self._append(name, t, v)
         else:
             grouped: dict[str, tuple[list, list]] = {}
@@ -446,8 +483,9 @@ class Tracker:
         if ring.last <= self._det_t:  # no new gyroscope sample
             return
         i1 = ring.i1
-        if i1 - ring.i0 >= 2 and ring.t[i1 - 2] <= self._det_t:  # one new sample (sample-by-sample pushes, E16)
-            self._pending += self.segmenter.update(ring.t[i1 - 1:i1], ring.v[i1 - 1:i1])
+        if i1 - ring.i0 >= 2 and ring.t[i1 - 2] <= self._det_t and ring.v.shape[1] == 3:  # one new sample (E16)
+            gx, gy, gz = ring.v[i1 - 1].tolist()  # |w| on Python floats: update's arithmetic (decision E17)
+            self._pending += self.segmenter.update_norms([ring.last], [math.sqrt(gx * gx + gy * gy + gz * gz)])
         else:
             t, g = ring.view()
             i = int(t.searchsorted(self._det_t, side="right"))
@@ -464,16 +502,18 @@ class Tracker:
         self._prev_end = t1
         if self.distance_gain is None:
             self._resolve_calibration()
-        if self.distance_gain != 1.0:  # gain 1: apply_level_gain would return a copy of the same values
-            disp = apply_level_gain(disp, self.distance_gain)  # decision L26 / E14, as pdrlearn track
-        length, dz = apply_stride_rules(disp, [classes.get("terrain")], [classes.get("direction")],
-                                        [classes.get("length")], bounds=self.bounds, down_mode=self._down_mode)
-        length, dz = float(length[0]), float(dz[0])
+        # the one-stride kernels on Python floats: the same arithmetic as apply_level_gain, apply_stride_rules
+        # and advance (decision E17)
+        dx, dy, dz = disp.tolist()
+        if self.distance_gain != 1.0:  # decision L26 / E14, as pdrlearn track
+            dx, dy, dz = apply_level_gain_one(dx, dy, dz, self.distance_gain)
+        length, dz = stride_rules_one(dx, dy, dz, classes.get("terrain"), classes.get("direction"),
+                                      classes.get("length"), bounds=self.bounds, down_mode=self._down_mode)
         self.heading += dyaw
         direction = self.heading + placement_offset(lev, self.heading_source, disp)  # decision L34
-        self.position = advance(self.position, direction, length, dz)
+        x, y, z = advance_xyz(*self.position.tolist(), direction, length, dz)
+        self.position = np.array((x, y, z))
         self.n_steps += 1
-        x, y, z = self.position.tolist()
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z)
 
     def _resolve_calibration(self) -> None:
