@@ -14,11 +14,12 @@ The rule route (W16-W32) stops at HA001 / HA002 / MS001 0.938 / 0.809 / 0.848. H
   ``irregular_rate`` 0 and 0.2 (100 Hz); (b) the same simulator runs + the Test11 and Test5 recordings of
   the other two real subjects (leave-one-subject-out: the held-out subject's Test11 and Test5 are never
   seen), with two sample weightings: every group (simulated user, real subject) weighs the same, or the
-  simulator and the real recordings weigh half each (MLPClassifier takes no sample weights: its two (b)
-  rows are one model). Real candidates are labelled only inside the INDIP bouts (+- 0.25 s) and outside untimed
-  contacts (W9, X2), as they are scored. A candidate matched to a reference IC (one-to-one, 0.25 s,
-  closest first) is a step; one within 0.25 s of a reference IC but not matched is left out of training
-  (the NMS, not the classifier, decides between two candidates of one step); the rest are no step.
+  simulator and the real recordings weigh half each (MLPClassifier takes no sample weights: its two (b) rows
+  are one model); (c) the two other subjects only (no simulator). Real candidates are labelled only inside
+  the INDIP bouts (+- 0.25 s) and outside untimed contacts (W9, X2), as they are scored. A candidate matched
+  to a reference IC (one-to-one, 0.25 s, closest first) is a step; one within 0.25 s of a reference IC but
+  not matched is left out of training (the NMS, not the classifier, decides between two candidates of one
+  step); the rest are no step.
 - **Threshold** on training data only: out-of-fold scores (groups: simulated users, real subjects), the
   threshold that maximises the pooled F1 after NMS on those folds.
 - **Scored** as `experiments/waist_ic_errors.py` / `step_metrics` (real: inside the bouts, untimed
@@ -307,7 +308,7 @@ def main() -> None:
     ap.add_argument("--models", default="logreg,hgb,mlp")
     ap.add_argument("--weights", default="domain", choices=("group", "domain"),
                     help="sample weights of the exported model")
-    ap.add_argument("--train", default="ab", help="training sets to run: a, b or ab")
+    ap.add_argument("--train", default="abc", help="training sets to run: any of a, b, c")
     ap.add_argument("--export", action="store_true",
                     help="also train the shipped model (HGB, simulator + all three subjects) and write "
                          "pdrlearn/waist/ic_model.json")
@@ -344,16 +345,17 @@ def main() -> None:
     summary = []
     for kind in args.models.split(","):
         kinds = [k for k in ("a: simulator only", "b: simulator + two real subjects, groups equal",
-                             "b: simulator + two real subjects, simulator = real") if k[0] in args.train]
+                             "b: simulator + two real subjects, simulator = real",
+                             "c: two real subjects only") if k[0] in args.train]
         for train_kind in kinds:
             WEIGHTS["w"] = "domain" if train_kind.endswith("= real") else "group"
             per_subj, t5_all, sim_parts = [], [], []
             fitted = None
             for s in SUBJECTS:
-                train = list(sim_train)
-                if train_kind.startswith("b"):
+                train = [] if train_kind.startswith("c") else list(sim_train)
+                if train_kind[0] in "bc":
                     train += [r for o in SUBJECTS if o != s for r in real[o] + t5[o]]
-                if fitted is None or train_kind.startswith("b"):  # (a): one model for every subject
+                if fitted is None or train_kind[0] in "bc":  # (a): one model for every subject
                     fitted = (_fit(kind, train), choose_threshold(kind, train))
                     model, thr = fitted
                     sim_parts.append(pooled([evaluate(r, detections(r, score_of(model, r), thr)) for r in sim_test]))

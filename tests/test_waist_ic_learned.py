@@ -91,7 +91,7 @@ def test_shipped_model_loads():
     assert np.all(np.isfinite(p)) and np.all((p >= 0) & (p <= 1))
 
 
-def test_learned_detector_on_synthetic_gait():
+def test_learned_detector_on_synthetic_gait(tmp_path):
     from pdrlearn.steps.evaluate import score_events
 
     s = synth_session(duration=20.0, fs=100.0)
@@ -103,6 +103,9 @@ def test_learned_detector_on_synthetic_gait():
     assert np.all(np.diff(det.ic_) >= 30) and det.ic_.size == det.fc_.size == det.anchor_.size
     sc = score_events(ev[(ev > 3.5) & (ev < 16.5)], ref)
     assert sc["f1"] > 0.95
+    path = tmp_path / "copy.json"  # a model file given by path gives the same contacts
+    L.shipped_model().save(path)
+    np.testing.assert_array_equal(InitialContactDetector(learned=str(path)).detect(imu).ic_, det.ic_)
     # a model that accepts nothing gives no contacts; the option is off by default
     none = _stump_model(threshold=1.1)
     ic, anchor = L.learned_contacts(imu.acc_v, imu.acc_ap, imu.acc_ml, imu.w_z, imu.fs, det.anchor_,

@@ -147,7 +147,7 @@ class InitialContactDetector:
             return ic, fc, vmax
         from pdrlearn.waist import learned as L  # W33: the rule outcomes are features of the learned stage
 
-        model = L.shipped_model() if self.learned is True else L.TreeEnsembleClassifier.load(self.learned)
+        model = L.shipped_model(None if self.learned is True else self.learned)
         ic, vmax = L.learned_contacts(imu.acc_v, ap, imu.acc_ml, imu.w_z, fs, vmax, model=model,
                                       walk_threshold=self.walk_threshold, cutoff_hz=self.cutoff_hz,
                                       fir_order_s=self.fir_order_s, max_step_s=self.max_step_s)

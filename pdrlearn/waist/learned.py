@@ -289,11 +289,12 @@ class TreeEnsembleClassifier:
 _CACHE: dict[str, TreeEnsembleClassifier] = {}
 
 
-def shipped_model() -> TreeEnsembleClassifier:
-    """The shipped model (loaded once)."""
-    if "m" not in _CACHE:
-        _CACHE["m"] = TreeEnsembleClassifier.load()
-    return _CACHE["m"]
+def shipped_model(path: str | Path | None = None) -> TreeEnsembleClassifier:
+    """The shipped model, or the one in ``path`` (each file loaded once per process)."""
+    key = str(Path(path).resolve()) if path is not None else ""
+    if key not in _CACHE:
+        _CACHE[key] = TreeEnsembleClassifier.load(path)
+    return _CACHE[key]
 
 
 def learned_contacts(acc_v: np.ndarray, ap: np.ndarray, acc_ml: np.ndarray, w_z: np.ndarray, fs: float,
