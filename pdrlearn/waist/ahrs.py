@@ -26,6 +26,9 @@ from pdrlearn.signal import gravity_rotation, interp_rows
 log = logging.getLogger(__name__)
 
 ACC, GYR = "wAccelerometer", "wGyroscope"
+#: bridged gaps longer than this (s) are filled as a rest (decision B11: reported, they end the walking
+#: sequence; pdrlearn.track.gaps.MIN_GAP_S)
+LONG_GAP_S = 1.0
 MADGWICK_GAIN = 0.033  # Madgwick 2010 IMU gain (ahrs default), the filter seed 001 sec. 2.2.1 uses
 
 
@@ -71,7 +74,11 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     The waist kernels count samples (windows, shortest/longest step), so the clock must be uniform: when
     the accelerometer has dropped samples (an interval over 1.5 nominal periods, :meth:`Stream.gaps`),
     both streams are interpolated linearly onto the uniform clock ``t0 + k / fs`` of the native rate
-    (decision W34). Uniform recordings are returned unchanged.
+    (decision W34). A gap longer than :data:`LONG_GAP_S` (reported and ending the walking sequence, B11) is
+    filled as a rest instead: the mean specific force of the second before it and zero rate, so the AHRS
+    keeps its attitude across it (a straight line between two walking samples tilted it for the rest of the
+    recording and moved the median gravity, hence contacts and lengths before and after the gap; W34).
+    Uniform recordings are returned unchanged.
 
     Raises :class:`MissingSensorError` without them and :class:`DataError` for an undeclared frame,
     NaN values or a recording shorter than 2 s.
@@ -101,6 +108,14 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     gyr = gyr_s.values
     if len(gyr_s) != len(t) or not np.allclose(gyr_s.t, t, atol=1e-6):
         gyr = interp_rows(t, gyr_s.t, gyr_s.values)
+    long = [g for g in gaps if g.duration_s > LONG_GAP_S]
+    if long:  # a straight line between two walking samples would tilt the AHRS for the rest of the recording
+        gyr = gyr.copy() if gyr is gyr_s.values else gyr
+        for g in long:
+            inside = (t > g.start_s) & (t < g.start_s + g.duration_s)
+            before = (acc_s.t > g.start_s - LONG_GAP_S) & (acc_s.t <= g.start_s)
+            acc[inside] = acc_s.values[before].mean(axis=0)  # at rest: the specific force of the last second
+            gyr[inside] = 0.0
     r = frame.matrix()
     return t, acc @ r.T, gyr @ r.T
 
