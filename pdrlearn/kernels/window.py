@@ -345,8 +345,8 @@ def _frame3(a: list[float], b: list[float]) -> tuple[list[float], list[float], l
 def _attitude(e1, e2, f1, f2) -> list[list[float]] | None:
     """The rotation (3x3 nested lists) carrying the body vectors ``e1``, ``e2`` to ``f1``, ``f2`` (frames of
     :func:`_frame3`); None when a frame is degenerate."""
-    S = _frame3(_floats(e1), _floats(e2))
-    V = _frame3(_floats(f1), _floats(f2))
+    S = _frame3(e1 if type(e1) is list else _floats(e1), e2 if type(e2) is list else _floats(e2))  # lists as
+    V = _frame3(f1 if type(f1) is list else _floats(f1), f2 if type(f2) is list else _floats(f2))  # they are
     if S is None or V is None:
         return None
     (s1, s2, s3), (v1, v2, v3) = S, V

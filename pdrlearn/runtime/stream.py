@@ -342,8 +342,10 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
     m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
     h = max(0, int(round(0.02 * fs)))  # rest specific force averaged over +-20 ms
     score = rest_score(an, gn, half_width=h)
-    k0 = _first_min(score, 0, m, n)  # rest_index with the score given, without np.argmin's wrapper (E16)
-    k1 = _first_min(score, n - m, n, n)
+    # rest_index with the score given, without np.argmin's wrapper (E16): the first minimum in [0, m) and in
+    # [n - m, n) (2 <= m <= n; kernels.stats.rest_index's clipping changes nothing there, E17)
+    k0 = int(score[:m].argmin())
+    k1 = n - m + int(score[n - m:].argmin())
     if h == 0:  # one sample: col_mean of it is the sample + 0.0 (-0.0 becomes +0.0 as in the sum; E17)
         g0, g1 = acc[k0] + 0.0, acc[k1] + 0.0
     else:
@@ -371,13 +373,6 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
     return t, out[:, 0], out[:, 1], an, dpsi, step_direction((ex, ey), psi0)  # decision L34
 
 
-def _first_min(score: np.ndarray, lo: int, hi: int, n: int) -> int:
-    """:func:`pdrlearn.kernels.stats.rest_index` with the score given: the first minimum in ``[lo, hi)``."""
-    lo = max(0, lo)
-    hi = max(lo + 1, min(hi, n))
-    return lo + int(score[lo:hi].argmin())
-
-
 def _segment(streams, name: str, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
     """``segment(*streams[name], t0, t1)``; from the sensor's :class:`Ring` when ``streams`` is the tracker's
     buffer views (their ``rings``), without making the view first (decision E17)."""
@@ -396,11 +391,14 @@ def waist_entry(streams, t0: float, t1: float, forward_s: np.ndarray, gyro: bool
     3x3 products round differently); degenerate cases (zero or level gravity, a vertical forward axis)
     run the shared kernel, which also raises its errors. ``need_acc=False`` leaves the levelled acceleration
     out (None; decision E17: the step graph and the stride kernel read only the waist's rate)."""
-    tw, acc = _segment(streams, "wAccelerometer", t0, t1)
+    rings = getattr(streams, "rings", None)  # _segment, written out (E17)
+    tw, acc = (rings["wAccelerometer"].segment(t0, t1) if rings is not None
+               else segment(*streams["wAccelerometer"], t0, t1))
     gyr = None
     if gyro:
-        tg, g = _segment(streams, "wGyroscope", t0, t1)
-        gyr = g if len(tg) == len(tw) and (tg == tw).all() else resample(tw, tg, g).T  # same clock: as resample
+        tg, g = rings["wGyroscope"].segment(t0, t1) if rings is not None else segment(*streams["wGyroscope"], t0, t1)
+        same = len(tg) == len(tw) and bool(np.logical_and.reduce(tg == tw))  # .all() without its wrapper (E17)
+        gyr = g if same else resample(tw, tg, g).T  # same clock: as resample
     gx, gy, gz = col_mean(acc).tolist()
     n = math.sqrt(gx * gx + gy * gy + gz * gz)
     if math.isfinite(n) and n >= 1e-9:
@@ -441,15 +439,6 @@ _UNIT_COLUMNS = {  # window channel -> (unit, index in the levelled_units entry,
 }
 
 
-def _box_width(dg: float, t: np.ndarray) -> int:
-    """The anti-alias box width :func:`pdrlearn.kernels.window.resample` uses for ``t -> tg`` (``dg`` =
-    ``tg[1] - tg[0]`` as a Python float, None for a one-sample grid: the same arithmetic, E16)."""
-    if dg is not None and len(t) > 2:
-        w = int(round(dg * (len(t) - 1) / float(t[-1] - t[0])))
-        return 2 * (w // 2) + 1
-    return 1
-
-
 def fill_resampled(W: np.ndarray, streams, t0: float, t1: float, tg: np.ndarray, lev, ci, available,
                    need) -> bool:
     """The resampling of ``fill_step_window(channels=need)`` (its ``_fill_channels``) with one compiled
@@ -464,15 +453,15 @@ def fill_resampled(W: np.ndarray, streams, t0: float, t1: float, tg: np.ndarray,
             if u in lev and lev[u][k] is not None:
                 units.append((c, lev[u][0], lev[u][k] if ax is None else lev[u][k][:, ax]))
     dg = float(tg[1] - tg[0]) if len(tg) > 1 else None
-    for u in lev:
-        if _box_width(dg, lev[u][0]) > 1:
-            return False
     force = "force" in available and ("force_a" in need or "force_b" in need)
     segs = {}
     if force:
+        rings = getattr(streams, "rings", None)  # _segment, written out (E17)
         for name in ("fForceA", "fForceB"):
-            segs[name] = _segment(streams, name, t0, t1)
-            if _box_width(dg, segs[name][0]) > 1:
+            segs[name] = rings[name].segment(t0, t1) if rings is not None else segment(*streams[name], t0, t1)
+    if dg is not None:  # _box_width(dg, t) > 1, i.e. its w >= 2, written out (E17)
+        for tt in [lev[u][0] for u in lev] + [seg[0] for seg in segs.values()]:
+            if len(tt) > 2 and int(round(dg * (len(tt) - 1) / float(tt[-1] - tt[0]))) >= 2:
                 return False
     for c, t, x in units:  # the compiled routine of kernels.window.interp, without its Python frame (E17)
         W[ci[c]] = _compiled_interp(tg, t, x, None, None)

@@ -146,16 +146,12 @@ class _Views(dict):
     """Sensor name -> ``(t, values)`` views of the tracker's buffers, each made on first access (a step
     reads 4-6 of the buffered sensors; decision E16). Membership and iteration are the buffers'."""
 
-    __slots__ = ("_buf",)
+    __slots__ = ("_buf", "rings")
 
     def __init__(self, buf: dict[str, Ring]):
         super().__init__()
         self._buf = buf
-
-    @property
-    def rings(self) -> dict[str, Ring]:
-        """The buffers themselves (``runtime.stream._segment`` cuts a segment from them directly, E17)."""
-        return self._buf
+        self.rings = buf  # the buffers themselves: runtime.stream cuts segments from them directly (E17)
 
     def __missing__(self, name: str):
         v = self[name] = self._buf[name].view()
