@@ -112,7 +112,7 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     if long:  # a straight line between two walking samples would tilt the AHRS for the rest of the recording
         gyr = gyr.copy() if gyr is gyr_s.values else gyr
         for g in long:
-            inside = (t > g.start_s) & (t < g.start_s + g.duration_s)
+            inside = (t > g.start_s + 0.5 / fs) & (t < g.start_s + g.duration_s - 0.5 / fs)  # not the edge samples
             before = (acc_s.t > g.start_s - LONG_GAP_S) & (acc_s.t <= g.start_s)
             acc[inside] = acc_s.values[before].mean(axis=0)  # at rest: the specific force of the last second
             gyr[inside] = 0.0
