@@ -28,6 +28,14 @@ def test_a_pivoting_foot_turns_by_its_rate_about_gravity(tilt):
     assert gap_yaw(t, gyr, t, acc, 0.0, 2.5, max_s=2.5) == pytest.approx(2.0, abs=1e-9)
 
 
+def test_gap_between_samples_chains_with_the_next_strides_first_sample():
+    # t1 between two samples: the next stride's turn starts at its first sample at or after t1 (L33), so
+    # the gap runs to that sample; before, the interval holding t1 was counted by neither (review, s6)
+    t, gyr, acc = _gap(0.8)
+    assert gap_yaw(t, gyr, t, acc, 1.005, 1.505) == pytest.approx(0.8 * (1.51 - 1.01), abs=1e-9)
+    assert gap_yaw(t, gyr, t, acc, 1.0, 2.995) == pytest.approx(0.8 * (2.99 - 2.0), abs=1e-9)  # data end
+
+
 def test_a_still_foot_and_touching_strides_do_not_turn():
     t, gyr, acc = _gap(0.3)  # below the 0.4 rad/s ZARU threshold: still
     assert gap_yaw(t, gyr, t, acc, 0.5, 1.5) == 0.0

@@ -246,15 +246,17 @@ GAP_YAW_MAX_S = 1.0
 def gap_yaw(t_gyr: np.ndarray, gyr: np.ndarray, t_acc: np.ndarray, acc: np.ndarray, t0: float, t1: float,
             *, still_rad_s: float = 0.4, max_s: float = GAP_YAW_MAX_S) -> float:
     """Decision L31: :func:`pivot_yaw` of a streamed foot between the end ``t0`` of one stride and the start
-    ``t1`` of the next (s), over the gyroscope samples in ``[max(t0, t1 - max_s), t1]`` (0 when the strides
-    touch or no accelerometer sample falls in the gap)."""
+    ``t1`` of the next (s), over the gyroscope samples from the first one at or after ``max(t0, t1 - max_s)``
+    to the first one at or after ``t1`` (0 when the strides touch or no accelerometer sample falls in the
+    gap). A stride's own turn runs from its first sample at or after its start to the first at or after its
+    end (L33, :func:`pdrlearn.kernels.window.start_index`), so strides and the gaps between them chain
+    without a sample interval counted by neither (before, the interval holding ``t1`` was lost)."""
     lo = max(float(t0), float(t1) - max_s)
     if not t1 > lo:
         return 0.0
-    i0, i1 = np.searchsorted(t_gyr, [lo, t1], side="left")
-    j0, j1 = np.searchsorted(t_acc, [lo, t1], side="left")
-    i1 += int(i1 < len(t_gyr) and t_gyr[i1] == t1)
-    j1 += int(j1 < len(t_acc) and t_acc[j1] == t1)
+    i0, i1 = (int(i) for i in np.searchsorted(t_gyr, [lo, t1], side="left"))
+    j0, j1 = (int(i) for i in np.searchsorted(t_acc, [lo, t1], side="left"))
+    i1, j1 = min(i1 + 1, len(t_gyr)), min(j1 + 1, len(t_acc))  # to the next stride's first sample
     if i1 - i0 < 2 or j1 <= j0:
         return 0.0
     return pivot_yaw(t_gyr[i0:i1], gyr[i0:i1], np.add.reduce(acc[j0:j1], axis=0) / (j1 - j0), still_rad_s=still_rad_s)
