@@ -117,3 +117,17 @@ def test_a_long_pause_changes_no_step_outside_it(name):
     for a, length in zip(post.start_s - 20.0, post.length_m, strict=True):
         ref = clean[np.isclose(clean.start_s, a, atol=1e-6)]
         assert len(ref) == 1 and abs(float(ref.length_m.iloc[0]) - length) < 5e-3, (a, length)
+
+
+def test_a_long_gyroscope_only_gap_is_zero_rate():
+    # the accelerometer keeps recording, the gyroscope loses 1.5 s: no rotation is interpolated across it
+    s = _walk(WALKS[0]).copy()
+    st = s.streams["wGyroscope"]
+    keep = (st.t < 6.0) | (st.t >= 7.5)
+    s.streams["wGyroscope"] = Stream("wGyroscope", st.t[keep], st.values[keep])
+    t, _, gyr = body_data(s)
+    assert len(t) == len(s["wAccelerometer"])  # the accelerometer's clock is kept
+    inside = (t > 5.995) & (t < 7.495)
+    assert inside.sum() >= 140 and np.all(gyr[inside] == 0.0)
+    t0, _, gyr0 = body_data(_walk(WALKS[0]))
+    assert np.array_equal(gyr[t < 5.995], gyr0[t0 < 5.995])  # untouched outside the gap

@@ -78,6 +78,7 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     filled as a rest instead: the mean specific force of the second before it and zero rate, so the AHRS
     keeps its attitude across it (a straight line between two walking samples tilted it for the rest of the
     recording and moved the median gravity, hence contacts and lengths before and after the gap; W34).
+    A gyroscope gap over :data:`LONG_GAP_S` (the accelerometer recording on) is zero rate, not a line.
     Uniform recordings are returned unchanged.
 
     Raises :class:`MissingSensorError` without them and :class:`DataError` for an undeclared frame,
@@ -109,13 +110,17 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     if len(gyr_s) != len(t) or not np.allclose(gyr_s.t, t, atol=1e-6):
         gyr = interp_rows(t, gyr_s.t, gyr_s.values)
     long = [g for g in gaps if g.duration_s > LONG_GAP_S]
-    if long:  # a straight line between two walking samples would tilt the AHRS for the rest of the recording
-        gyr = gyr.copy() if gyr is gyr_s.values else gyr
+    gyr_long = [g for g in gyr_s.gaps() if g.duration_s > LONG_GAP_S]
+    if long or gyr_long:  # a straight line between two walking samples would tilt the AHRS for the rest
+        gyr = gyr.copy() if gyr is gyr_s.values else gyr  # of the recording
+        half = 0.5 / acc_s.rate_hz
         for g in long:
-            inside = (t > g.start_s + 0.5 / fs) & (t < g.start_s + g.duration_s - 0.5 / fs)  # not the edge samples
+            inside = (t > g.start_s + half) & (t < g.start_s + g.duration_s - half)  # not the edge samples
             before = (acc_s.t > g.start_s - LONG_GAP_S) & (acc_s.t <= g.start_s)
             acc[inside] = acc_s.values[before].mean(axis=0)  # at rest: the specific force of the last second
             gyr[inside] = 0.0
+        for g in gyr_long:  # the gyroscope alone lost samples: no rotation is made up inside its gap
+            gyr[(t > g.start_s + half) & (t < g.start_s + g.duration_s - half)] = 0.0
     r = frame.matrix()
     return t, acc @ r.T, gyr @ r.T
 
