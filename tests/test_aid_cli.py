@@ -90,3 +90,24 @@ def test_track_with_bad_fix_file_is_one_line_error(walk, capsys, tmp_path):
     )
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and err[-1].startswith("error: ") and "accuracy_m" in err[-1]
+
+
+def test_track_warns_when_no_fix_lies_within_the_track(walk, capsys, tmp_path):
+    """A fix CSV written with millisecond times (the session files' unit) has every fix after the walk:
+    nothing is used, and the user is told so instead of getting the PDR path back silently."""
+    import pandas as pd
+
+    d, _ = walk
+    cams = pd.read_csv(d / "cams.csv")
+    cams = cams[cams["t"] >= 1.0]  # the 150 m walk lasts ~2 min: every fix lands after it in ms
+    cams["t"] = cams["t"] * 1000.0
+    cams.to_csv(tmp_path / "cams_ms.csv", index=False)
+    args = ["track", str(d / "walk"), "--pipeline", "waist-pll", "--fixes"]
+    rc = main(args + [str(tmp_path / "cams_ms.csv"), "--fix-period", "4", "--out", str(tmp_path / "o")])
+    assert rc == 0
+    err = capsys.readouterr().err
+    assert "none of the" in err and "is in seconds on the session clock" in err
+    rc = main(args + [str(d / "cams.csv"), "--fix-period", "4", "--out", str(tmp_path / "o2"), "--json"])
+    assert rc == 0
+    summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert not any("none of the" in w for w in summary["info"].get("warnings", []))

@@ -127,6 +127,15 @@ def aid_track(
             continue
         flog = _load(path, session)
         fx, origin = to_local(flog.fixes, origin)
+        if t_start is not None and len(fx):
+            t_end = float(traj0["t"].iloc[-1])
+            ft = fx["t"].to_numpy(float)
+            if not ((ft >= t_start) & (ft <= t_end)).any():
+                warnings.append(
+                    f"aid: none of the {len(fx)} fixes in {path} lies within the track ({t_start:.1f} to "
+                    f"{t_end:.1f} s; fixes at {ft.min():.1f} to {ft.max():.1f} s), so none is used; a fix CSV's t "
+                    "is in seconds on the session clock (the session files' timestamps are milliseconds)"
+                )
         info["origin"] = list(origin) if origin else None
         # start known (or local fixes around the track's own origin): 1 m; else the first fix's sigma
         sigma0 = (
