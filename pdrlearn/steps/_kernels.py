@@ -55,6 +55,10 @@ class BurstParams:
     history: int = 4
     window_n: int = 1  # samples of the trailing still window (a run of k still samples = k + window_n - 1 quiet)
     cap_n: int = 0  # still runs are counted up to this many quiet samples (standing is not a stance)
+    # decision 16: the still time follows the quiet_rank-th longest rest of the history (1 = the longest);
+    # rests_only: only still runs of at least min_still_n samples (long enough to end a swing) enter it
+    quiet_rank: int = 1
+    rests_only: bool = False
 
 
 @dataclass
@@ -81,7 +85,8 @@ class BurstState:
 def _still_need(s: BurstState, p: BurstParams) -> int:
     if p.quiet_frac <= 0 or not s.quiet:
         return p.min_still_n
-    n = int(round(p.quiet_frac * max(s.quiet))) - (p.window_n - 1)
+    ranked = sorted(s.quiet, reverse=True)
+    n = int(round(p.quiet_frac * ranked[min(p.quiet_rank, len(ranked)) - 1])) - (p.window_n - 1)
     return min(max(n, p.min_still_n), max(p.max_still_n, p.min_still_n))
 
 
@@ -109,7 +114,7 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
         if si:
             s.still_count += 1
         elif s.still_count:
-            if p.quiet_frac > 0:
+            if p.quiet_frac > 0 and (not p.rests_only or s.still_count >= p.min_still_n):
                 q = s.still_count + p.window_n - 1
                 s.quiet = (s.quiet + [min(q, p.cap_n) if p.cap_n else q])[-p.history:]
                 s.need_n = _still_need(s, p)

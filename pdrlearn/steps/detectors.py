@@ -91,7 +91,8 @@ class _AccelProcessor:
             amp=det.threshold, min_still_n=need(det.min_quiet_s),
             min_dur_s=det.min_swing_s, max_dur_s=det.max_swing_s, min_stride_s=det.min_stride_s,
             rest=det.gravity, peak_frac=det.peak_frac, max_still_n=need(det.max_quiet_s),
-            quiet_frac=det.quiet_frac, history=4, window_n=self.w, cap_n=int(round(0.6 * fs)))
+            quiet_frac=det.quiet_frac, history=4, window_n=self.w, cap_n=int(round(0.6 * fs)),
+            quiet_rank=det.quiet_rank, rests_only=det.rests_only)
         self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
@@ -125,12 +126,15 @@ class AccelStepDetector(StepDetector):
     still_window_s, still_std, still_level_tol : a sample is still when the raw magnitude over the last
         ``still_window_s`` seconds (at least 3 samples) has a standard deviation below ``still_std``
         (m/s^2) and a mean within ``still_level_tol`` (m/s^2) of ``gravity``
-    min_quiet_s, max_quiet_s, quiet_frac : a swing ends when the foot has been quiet (still window
-        included) for ``quiet_frac`` of its longest rest among the last 4 (each counted up to 0.6 s),
-        kept within ``min_quiet_s``..``max_quiet_s`` and starting at ``max_quiet_s`` (decision 14:
-        0.1 / 0.2 s, 0.5). Rest time is the subject's own: a healthy walker rests 0.3-0.5 s per stride,
-        an MS patient 0.12-0.19 s, while slow swings can look quiet for 0.08-0.15 s. ``quiet_frac=0``
-        always uses ``min_quiet_s``
+    min_quiet_s, max_quiet_s, quiet_frac, quiet_rank, rests_only : a swing ends when the foot has
+        been quiet (still window included) for ``quiet_frac`` of its ``quiet_rank``-th longest rest
+        among the last 4 (each counted up to 0.6 s), kept within ``min_quiet_s``..``max_quiet_s`` and
+        starting at ``max_quiet_s`` (decision 14: 0.1 / 0.2 s, 0.5). Decision 16: the second longest, so
+        that one long rest (a hesitation) does not raise the still time for the next strides, and with
+        ``rests_only`` only quiet runs of at least ``min_quiet_s`` (long enough to end a swing) are
+        rests; ``quiet_rank=1, rests_only=False`` is decision 14 alone. Rest time is the subject's own:
+        a healthy walker rests 0.3-0.5 s per stride, an MS patient 0.12-0.19 s, while slow swings can
+        look quiet for 0.08-0.15 s. ``quiet_frac=0`` always uses ``min_quiet_s``
     min_swing_s, max_swing_s : accepted swing durations (s)
     min_stride_s : events closer than this are one stride (s). The thesis' 20-sample step period at
         20 Hz (1.0 s) becomes this refractory time; decision: 0.6 s, the shortest walking stride
@@ -146,6 +150,7 @@ class AccelStepDetector(StepDetector):
     def __init__(self, *, cutoff_hz: float = 3.0, order: int = 3, threshold: float = 1.7,  # thesis ch.5.1
                  still_window_s: float = 0.08, still_std: float = 0.6, still_level_tol: float = 1.2,
                  min_quiet_s: float = 0.1, max_quiet_s: float = 0.2, quiet_frac: float = 0.5,
+                 quiet_rank: int = 2, rests_only: bool = True,
                  min_swing_s: float = 0.2, max_swing_s: float = 2.5,
                  min_stride_s: float = 0.6, peak_frac: float = 0.3, event_cutoff_hz: float = 8.0,
                  gravity: float = G):
