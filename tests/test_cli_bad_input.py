@@ -327,3 +327,12 @@ def test_bouts_without_length_say_why_no_distance_error(capsys, caplog, tmp_path
     assert code == 0
     assert "distance_error_pct" not in json.loads(capsys.readouterr().out)
     assert any("bouts.csv has no length_m" in r.getMessage() for r in caplog.records)
+
+
+def test_no_command_prints_the_help_without_an_empty_error_line(capsys):
+    """`pdrlearn` alone prints the command list; it used to add a blank "error:  (see ...)" line."""
+    rc = main([])
+    out, err = capsys.readouterr()
+    assert rc == 2
+    assert "Commands" in out and "track" in out
+    assert "error:" not in err

@@ -52,11 +52,14 @@ def main(argv: list[str] | None = None) -> int:
     except Exception as exc:  # click usage errors (bad option values, missing arguments) and the like
         if not isinstance(exc, _click_exceptions()):
             raise
+        message = " ".join(exc.format_message().split())
+        if not message:  # `pdrlearn` alone: click has printed the help already; no empty "error:" line
+            return exc.exit_code
         # one line, like every other input error (the usage text is one --help away)
         ctx = getattr(exc, "ctx", None)
         command = f"pdrlearn {ctx.info_name}" if ctx is not None and ctx.parent is not None else "pdrlearn"
         hint = f" (see '{command} --help')"
-        print(f"error: {' '.join(exc.format_message().split())}{hint}", file=sys.stderr)
+        print(f"error: {message}{hint}", file=sys.stderr)
         return exc.exit_code
     return rc if isinstance(rc, int) else 0
 
