@@ -19,7 +19,7 @@ def info(
 
         pdrlearn info datasets/real/gaitmap_level_left
 
-        pdrlearn info out/sim/A --json
+        pdrlearn info out/sim/D_u1 --json
     """
     from pdrlearn.io import read_session
 

@@ -26,9 +26,9 @@ def export(
 
     Examples:
 
-        pdrlearn export out/model --out out/bundle
+        pdrlearn export out/models/u1 --out out/bundle_u1
 
-        pdrlearn export out/model --out out/bundle_all --methods svm,nn,dtw --json
+        pdrlearn export out/models/u1 --out out/bundle_u1_all --methods svm,nn,dtw --json
     """
     from pdrlearn.errors import DataError
     from pdrlearn.export.bundle import bundle_size_bytes
@@ -89,7 +89,7 @@ def run(
 
     Examples:
 
-        pdrlearn run out/bundle out/sim/A --out out/run_A --json
+        pdrlearn run out/bundle/u1 out/sim/D_u1 --out out/run_D --json
 
         cat capture.txt | pdrlearn run out/bundle --protocol - --out out/live
     """

@@ -19,7 +19,7 @@ def report(
 
     Examples:
 
-        pdrlearn evaluate models/u1 sims/u1_test --report out/eval --json > out/eval/evaluation.json
+        pdrlearn evaluate out/models/u1 out/sim/u1_test --report out/eval_u1 --json > out/evaluation.json
 
         pdrlearn report out/eval --out out/report
     """

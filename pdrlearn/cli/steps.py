@@ -35,7 +35,7 @@ def steps(
 
         pdrlearn steps datasets/real/mobgap_HA001_Test5_Trial1 --detector pll --json
 
-        pdrlearn steps out/sim/A --detector accel-force --out out/A_steps.csv
+        pdrlearn steps out/sim/D_u1 --detector accel-force --out out/A_steps.csv
     """
     from pdrlearn.atomic import atomic_file
     from pdrlearn.io import read_session

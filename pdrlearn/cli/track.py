@@ -47,13 +47,13 @@ def track(
 
     Examples:
 
-        pdrlearn track datasets/real/gaitmap_level_right --method M3 --model oracle --out out/track
+        pdrlearn track datasets/real/gaitmap_level_right --method M3 --model oracle --out out/track_right
 
-        pdrlearn track out/sim/D --method M2 --start 41.178,-8.608 --out out/D
+        pdrlearn track out/sim/D_u1 --method M2 --start 41.178,-8.608 --out out/D
 
-        pdrlearn track out/sim/D --method M3 --model models/user1 --rules bayes --out out/D3 --json
+        pdrlearn track out/sim/D_u1 --method M3 --model out/models/u1 --rules bayes --out out/D3 --json
 
-        pdrlearn track out/sim/D --method M3 --model models/user1 --streaming --out out/D3s   # = pdrlearn run
+        pdrlearn track out/sim/D_u1 --method M3 --model out/models/u1 --streaming --out out/D3s   # = pdrlearn run
     """
     from pdrlearn.cli.common import out_folder
     from pdrlearn.io import read_session

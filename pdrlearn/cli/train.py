@@ -173,9 +173,9 @@ def evaluate(
 
     Examples:
 
-        pdrlearn evaluate models/u1 out/sim/test_u1 --report out/eval_u1
+        pdrlearn evaluate out/models/u1 out/sim/u1_test --report out/eval_u1
 
-        pdrlearn evaluate models/u1 out/sim/test_u1 --json
+        pdrlearn evaluate out/models/u1 out/sim/u1_test --json
     """
     from pdrlearn.classify import evaluate_model, load_model
     from pdrlearn.classify.evaluation import results_table
