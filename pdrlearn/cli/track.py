@@ -128,6 +128,10 @@ def track(
     err = summary.get("distance_error_pct")
     typer.echo(f"{session.name}: {summary['n_steps']} steps, {summary['distance_m']:.2f} m"
                + (f", distance error {err:+.2f} %" if err is not None else "")
+               + (f" (over the {summary['stride_length_matched']} labelled strides "
+                  f"{summary['distance_matched_error_pct']:+.2f} %)"  # a reference labelling part of the walk
+                  if "distance_matched_error_pct" in summary and "stride_length_matched" in summary
+                  and err is not None and summary["stride_length_matched"] < summary["n_steps"] else "")
                + (f", final position error {summary['final_position_error_m']:.2f} m"
                   if "final_position_error_m" in summary else ""))
     for w in result.info.get("warnings", []):
