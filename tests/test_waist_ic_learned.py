@@ -114,3 +114,24 @@ def test_learned_detector_on_synthetic_gait(tmp_path):
                                     walk_threshold=0.5)
     assert ic.size == 0 and anchor.size == 0
     assert InitialContactDetector().learned is False
+
+
+@pytest.mark.parametrize("text", ["", "[]", "null", '{"schema": 99}', "BASE_NO_BASELINE", "BASE_BAD_TREE",
+                                  "BASE_TEXT_BASELINE"])
+def test_load_names_the_file_for_any_bad_content(tmp_path, text):
+    # review: valid JSON of the wrong shape raised AttributeError/KeyError/TypeError/ValueError without the
+    # file's name (missing/unparsable files already gave one DataError line naming it)
+    d = _stump_model().to_dict()
+    if text == "BASE_NO_BASELINE":
+        text = json.dumps({k: v for k, v in d.items() if k != "baseline"})
+    elif text == "BASE_BAD_TREE":
+        text = json.dumps({**d, "trees": [{"feature": [0]}]})
+    elif text == "BASE_TEXT_BASELINE":
+        text = json.dumps({**d, "baseline": "x"})
+    path = tmp_path / "ic_model.json"
+    path.write_text(text)
+    with pytest.raises(DataError, match="ic_model.json") as e:
+        L.TreeEnsembleClassifier.load(path)
+    assert "\n" not in str(e.value)
+    with pytest.raises(DataError, match="ic_model.json"):
+        L.TreeEnsembleClassifier.load(tmp_path / "missing" / "ic_model.json")

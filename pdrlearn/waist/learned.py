@@ -255,7 +255,12 @@ class TreeEnsembleClassifier:
             d = json.loads(p.read_text())
         except (OSError, ValueError) as e:
             raise DataError(f"{p}: cannot read the IC model ({e})") from e
-        model = cls.from_dict(d)
+        try:  # valid JSON of another shape (a list, missing keys, text for numbers): one line naming the file
+            model = cls.from_dict(d)
+        except DataError as e:
+            raise DataError(f"{p}: {e}") from e
+        except (AttributeError, KeyError, TypeError, ValueError) as e:
+            raise DataError(f"{p}: not an IC model ({type(e).__name__}: {e})") from e
         if model.features != FEATURES:
             raise DataError(f"{p}: the model's features differ from this version's FEATURES")
         return model
