@@ -42,3 +42,20 @@ def test_ms_patient_strides_after_a_long_rest():
     assert score_steps(AccelStepDetector().detect(s), s)["true_positives"] >= 72
     old = AccelStepDetector(**D14).detect(s)["event_s"].to_numpy()
     assert ((old > 34.90) & (old < 35.87)).sum() == 0
+
+
+@pytest.mark.parametrize("fs", [60.0, 102.4])
+@pytest.mark.parametrize("cuts", [[1] * 97 + [7, 13, 3], [0, 1, 2, 3, 5, 11, 17, 29, 31] * 10, [37] * 30])
+def test_decision16_online_in_odd_chunks_equals_offline(fs, cuts):
+    # the rest history (the last 4 quiet runs, the rank-2 still time, short runs left out) is kept across
+    # pushes: chunked at odd sizes through the hesitation, the online detector gives the offline strides
+    import pandas as pd
+
+    from tests.test_steps import _chunked
+
+    s, _ = _hesitating(fs)
+    det = AccelStepDetector()
+    offline = det.detect(s)
+    assert len(offline) >= 12
+    pd.testing.assert_frame_equal(offline.reset_index(drop=True), _chunked(det, det._inputs(s), cuts),
+                                  check_dtype=False)
