@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import pytest
 
+from pdrlearn.errors import DataError
 from pdrlearn.steps import AccelStepDetector
 from tests.test_steps_quiet import FAST, _session
 
@@ -59,3 +60,9 @@ def test_decision16_online_in_odd_chunks_equals_offline(fs, cuts):
     assert len(offline) >= 12
     pd.testing.assert_frame_equal(offline.reset_index(drop=True), _chunked(det, det._inputs(s), cuts),
                                   check_dtype=False)
+
+
+@pytest.mark.parametrize("rank", [0, -1, 1.5])
+def test_quiet_rank_below_one_is_refused(rank):
+    with pytest.raises(DataError, match="quiet_rank must be an integer >= 1"):
+        AccelStepDetector(quiet_rank=rank)

@@ -154,6 +154,9 @@ class AccelStepDetector(StepDetector):
                  min_swing_s: float = 0.2, max_swing_s: float = 2.5,
                  min_stride_s: float = 0.6, peak_frac: float = 0.3, event_cutoff_hz: float = 8.0,
                  gravity: float = G):
+        if int(quiet_rank) != quiet_rank or quiet_rank < 1:
+            raise DataError(f"accel detector: quiet_rank must be an integer >= 1 (1 = the longest recent rest, "
+                            f"decision 14; 2 = the second longest, decision 16), got {quiet_rank!r}")
         self._store(locals())
 
     def _inputs(self, session: Session):
