@@ -336,3 +336,11 @@ def test_no_command_prints_the_help_without_an_empty_error_line(capsys):
     assert rc == 2
     assert "Commands" in out and "track" in out
     assert "error:" not in err
+
+
+def test_version_prints_the_package_version(capsys):
+    from pdrlearn import __version__
+    from pdrlearn.cli import main as cli_main
+
+    assert cli_main(["--version"]) == 0
+    assert capsys.readouterr().out.strip() == f"pdrlearn {__version__}"
