@@ -233,6 +233,17 @@ class Perturbation:
     calibration: bool = True  # waist: perturb the calibration walks too (same device), else the tests only
 
 
+def _tilts(unit: str, deg: int) -> list[Perturbation]:
+    """Pitch and roll of ``unit``'s mount by +-``deg`` (undeclared: gravity levels them), and the unit
+    upside down (roll 180, declared)."""
+    out = [Perturbation("mounting", f"{unit} {label} {d:+d} deg", (unit,),
+                        lambda s, r, p, a=about, d=d: rotate(s, p, a, d))
+           for about, label in (("left", "pitch"), ("forward", "roll")) for d in (deg, -deg)]
+    out.append(Perturbation("mounting", f"{unit} upside down (roll 180, declared)", (unit,),
+                            lambda s, r, p: rotate(s, p, "forward", 180)))
+    return out
+
+
 def _perturbations() -> list[Perturbation]:
     P = Perturbation
     out = [P("baseline", "none (write + read back)", ("foot", "waist"), lambda s, r, p: s)]
@@ -240,12 +251,7 @@ def _perturbations() -> list[Perturbation]:
         out.append(P("mounting", f"foot yaw {deg:+d} deg", ("foot",), lambda s, r, p, d=deg: rotate(s, p, "up", d)))
     out.append(P("mounting", "foot yaw +90 deg undeclared", ("foot",),
                  lambda s, r, p: rotate(s, p, "up", 90, declare=False)))
-    for about, label in (("left", "pitch"), ("forward", "roll")):
-        for deg in (20, -20):
-            out.append(P("mounting", f"foot {label} {deg:+d} deg", ("foot",),
-                         lambda s, r, p, a=about, d=deg: rotate(s, p, a, d)))
-    out.append(P("mounting", "foot upside down (roll 180, declared)", ("foot",),
-                 lambda s, r, p: rotate(s, p, "forward", 180)))
+    out += _tilts("foot", 20)
     out.append(P("mounting", "foot axes permuted (roll -90: z to the right, declared)", ("foot",),
                  lambda s, r, p: rotate(s, p, "forward", -90)))
     for deg in (90, -90, 30, -30, 15):
@@ -253,12 +259,7 @@ def _perturbations() -> list[Perturbation]:
                      f"waist yaw {deg:+d} deg", ("waist",), lambda s, r, p, d=deg: rotate(s, p, "up", d)))
     out.append(P("mounting", "waist yaw +90 deg undeclared", ("waist",),
                  lambda s, r, p: rotate(s, p, "up", 90, declare=False)))
-    for about, label in (("left", "pitch"), ("forward", "roll")):
-        for deg in (15, -15):
-            out.append(P("mounting", f"waist {label} {deg:+d} deg", ("waist",),
-                         lambda s, r, p, a=about, d=deg: rotate(s, p, a, d)))
-    out.append(P("mounting", "waist upside down (roll 180, declared)", ("waist",),
-                 lambda s, r, p: rotate(s, p, "forward", 180)))
+    out += _tilts("waist", 15)
     for hz in (100.0, 128.0, 60.0):
         out.append(P("rate", f"foot resampled to {hz:g} Hz", ("foot",), lambda s, r, p, h=hz: resample(s, h)))
     for hz in (50.0, 64.0, 128.0, 200.0):

@@ -134,18 +134,27 @@ def _stride_dpsi_before(forward_s, acc, Y, s=0):
     return KW.twist_about_z([[sum(Re[i][k] * Rs[j][k] for k in range(3)) for j in range(3)] for i in range(3)])
 
 
+def _random_stride(rng, max_n: int, *, zero_last: bool = False, zero_any: bool = False):
+    """A random stride for the kernel comparisons: levelled rows Y (n, 3, 3), specific force (n, 3), the
+    forward axis and the start sample s (0 or 1); optionally one zeroed (degenerate) sample."""
+    n = int(rng.integers(1, max_n))
+    Y = rng.normal(size=(n, 3, 3))
+    acc = rng.normal(size=(n, 3)) * 5.0
+    if zero_last:
+        acc[-1] = 0.0
+    if zero_any:
+        acc[rng.integers(0, n)] = 0.0
+    fwd = rng.normal(size=3)
+    s = int(rng.integers(0, 2)) if n > 1 else 0
+    return Y, acc, fwd, s, n
+
+
 def test_rewritten_window_kernels_are_bit_identical():
     """tilt_corrected (cached index column, no [:, None, None]), stride_dpsi (rows fetched once, products
     written out), rest_reference (argsort method), gravity_rotation_xyz and principal_horizontal_xy."""
     rng = np.random.default_rng(8)
     for it in range(1500):
-        n = int(rng.integers(1, 70))
-        Y = rng.normal(size=(n, 3, 3))
-        acc = rng.normal(size=(n, 3)) * 5.0
-        if it % 9 == 0:
-            acc[-1] = 0.0  # degenerate frame: the pre-L30 fallback
-        fwd = rng.normal(size=3)
-        s = int(rng.integers(0, 2)) if n > 1 else 0
+        Y, acc, fwd, s, n = _random_stride(rng, 70, zero_last=it % 9 == 0)  # degenerate: pre-L30 fallback
         a, b = _stride_dpsi_before(fwd, acc, Y, s), KW.stride_dpsi(fwd, acc, Y, s)
         assert a == b or (math.isnan(a) and math.isnan(b))
         k0, k1 = int(rng.integers(0, n)), int(rng.integers(0, n))
@@ -257,13 +266,8 @@ def test_stride_headings_equal_stride_dpsi_and_start_heading():
     """The runtime computes the start attitude once for L33's turn and L34's start heading."""
     rng = np.random.default_rng(12)
     for it in range(1500):
-        n = int(rng.integers(1, 40))
-        Y = rng.normal(size=(n, 3, 3))
-        acc = rng.normal(size=(n, 3)) * 5.0
-        if it % 9 == 0:
-            acc[rng.integers(0, n)] = 0.0  # a degenerate frame at the start or the end
-        fwd = rng.normal(size=3)
-        s = int(rng.integers(0, 2)) if n > 1 else 0
+        # a degenerate frame at the start or the end
+        Y, acc, fwd, s, n = _random_stride(rng, 40, zero_any=it % 9 == 0)
         dpsi, psi0 = KW.stride_headings(fwd, acc, Y, s)
         want = KW.stride_dpsi(fwd, acc, Y, s), KW.start_heading(fwd, acc[s], Y[s])
         assert (dpsi, psi0) == want
