@@ -129,14 +129,16 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         if gate is not None:
             peaks = peaks[np.asarray(gate, dtype=bool)[peaks]]
     ws = max(1, int(round(search_s * fs)))
-    wf = max(1, int(round(fc_search_s * fs)))
     level = ap_mean_level(ap, fs) if ap_above_mean else None
-    ic, fc = np.empty(len(peaks), dtype=int), np.empty(len(peaks), dtype=int)
-    for i, p in enumerate(peaks):
-        ic[i] = _nearest_local_max_before(ap, p, max(0, p - ws), level=level)
-        hi = min(len(ap), p + wf + 1)
-        fc[i] = p + int(np.argmin(ap[p:hi]))
-    return ic, fc, peaks
+    ic = np.array([_nearest_local_max_before(ap, p, max(0, p - ws), level=level) for p in peaks], dtype=int)
+    return ic, fc_after(ap, peaks, fs, fc_search_s), peaks
+
+
+def fc_after(acc_ap: np.ndarray, peaks: np.ndarray, fs: float, fc_search_s: float = 0.25) -> np.ndarray:
+    """Final contacts (sample indices): the minimum of AP acceleration within ``fc_search_s`` after each
+    vertical maximum in ``peaks`` (seed 003 sec. 3.1; the offline detector and its learned stage, W33)."""
+    wf = max(1, int(round(fc_search_s * fs)))
+    return np.array([p + int(np.argmin(acc_ap[p:min(len(acc_ap), p + wf + 1)])) for p in peaks], dtype=int)
 
 
 RHYTHM_TOL = 0.35  # a filled maximum lies within +-35 % of a step period of its predicted time (W18)

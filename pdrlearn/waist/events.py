@@ -151,9 +151,7 @@ class InitialContactDetector:
         ic, vmax = L.learned_contacts(imu.acc_v, ap, imu.acc_ml, imu.w_z, fs, vmax, model=model,
                                       walk_threshold=self.walk_threshold, cutoff_hz=self.cutoff_hz,
                                       fir_order_s=self.fir_order_s, max_step_s=self.max_step_s)
-        wf = max(1, int(round(0.25 * fs)))  # the FC after each vertical maximum, as ic_offline (W16)
-        fc = np.array([p + int(np.argmin(ap[p:min(len(ap), p + wf + 1)])) for p in vmax], dtype=int)
-        return ic, fc, vmax
+        return ic, K.fc_after(ap, vmax, fs), vmax
 
     def detect(self, imu: WaistIMU, *, final: bool = True) -> InitialContactDetector:
         """Detect the contacts of ``imu``. ``final`` (realtime with ``delay_s``): the end of the data
