@@ -215,7 +215,7 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
         X[:, 2] = forward_s
         Y = levelled_vectors(gyr, t[1:] - t[:-1], k0, k1, r0, g1, X)
         s0 = start_index(t, t0)
-        dpsi = stride_dpsi(forward_s, acc, Y, s0)  # decisions L30, L33 (before gravity is removed)
+        dpsi = stride_dpsi(forward_s, acc, Y, s0, t)  # decisions L30, L33, L35 (before gravity is removed)
         psi0 = start_heading(forward_s, acc[s0], Y[s0]) if frame else 0.0  # decision L34 (idem)
         a_lev = Y[:, 0]
     else:
@@ -261,7 +261,8 @@ def start_index(t: np.ndarray, t0: float | None) -> int:
     return 1 if t0 is not None and len(t) > 2 and float(t[0]) < t0 else 0
 
 
-def stride_dpsi(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: int = 0) -> float:
+def stride_dpsi(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: int = 0,
+                t: np.ndarray | None = None) -> float:
     """Decisions L30/L33: heading change (rad, + = left) of the foot from sample ``s`` to the last sample of
     a stride: the twist about the vertical of R_end R_s^T, each attitude given by the body vectors (declared
     forward axis ``forward_s``, the sample's specific force ``acc[k]``) and their levelled images ``Y[k, 2]``,
@@ -270,22 +271,57 @@ def stride_dpsi(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: int = 
     The attitude at the start rest's quietest sample (the tilt reference ``r0``) is not the stride's start:
     the foot still turns in the ~0.1 s between the middle of the stance and that sample (the gaitmap level
     walks: 0.015 rad per stride, always the same sign, a heading drift of ~0.9 deg/s), so the heading is
-    measured from the stride's own first sample, which is the previous stride's last one (decision L33)."""
+    measured from the stride's own first sample, which is the previous stride's last one (decision L33).
+
+    ``t`` (the samples' times, s) given, the coning term the mean-rate attitude misses is added
+    (:func:`coning_yaw`, decision L35); the levelled rows ``Y`` (the step window's signals) are not changed."""
     if s == 0 and len(Y) == 1:
         return 0.0
     fwd = np.asarray(forward_s, dtype=float).tolist()  # Python floats, each row fetched once (runtime E17)
     ys = np.asarray(Y[s], dtype=float).tolist()  # rows acc, gyro, fwd
-    return _dpsi(fwd, acc, Y, ys, _attitude(fwd, np.asarray(acc[s], dtype=float).tolist(), ys[2], ys[0]))
+    d = _dpsi(fwd, acc, Y, ys, _attitude(fwd, np.asarray(acc[s], dtype=float).tolist(), ys[2], ys[0]))
+    return d if t is None else d + coning_yaw(t, Y, s)
 
 
-def stride_headings(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: int = 0) -> tuple[float, float]:
-    """``(stride_dpsi(forward_s, acc, Y, s), start_heading(forward_s, acc[s], Y[s]))`` with the attitude at
+def stride_headings(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: int = 0,
+                    t: np.ndarray | None = None) -> tuple[float, float]:
+    """``(stride_dpsi(forward_s, acc, Y, s, t), start_heading(forward_s, acc[s], Y[s]))`` with the attitude at
     sample ``s`` computed once (both need it; the same values bit for bit, runtime decision E17)."""
     fwd = np.asarray(forward_s, dtype=float).tolist()
     ys = np.asarray(Y[s], dtype=float).tolist()
     Rs = _attitude(fwd, np.asarray(acc[s], dtype=float).tolist(), ys[2], ys[0])
     psi0 = math.atan2(ys[2][1], ys[2][0]) if Rs is None else twist_about_z(Rs)
-    return (0.0 if s == 0 and len(Y) == 1 else _dpsi(fwd, acc, Y, ys, Rs)), psi0
+    if s == 0 and len(Y) == 1:
+        return 0.0, psi0
+    d = _dpsi(fwd, acc, Y, ys, Rs)
+    return (d if t is None else d + coning_yaw(t, Y, s)), psi0
+
+
+#: Decision L35: coefficient of the second-order (coning) term of the heading chain, for samples that are the
+#: means of the rate over their own sample interval (the PLASYS foot firmware averages five 100 Hz samples into
+#: each 20 Hz sample, thesis ch.4.2.3): 1/12 for the rate varying linearly within an interval (Bortz's
+#: rotation-vector equation, the classical two-sample coning term) + 1/8 for the increments of the mean of
+#: two adjacent samples, which keep only 3/4 of the non-commuting products of adjacent sample intervals.
+CONING_COEF = 1.0 / 12.0 + 1.0 / 8.0
+
+
+def coning_yaw(t: np.ndarray, Y: np.ndarray, s: int = 0) -> float:
+    """Decision L35: the heading change (rad, + = left) from sample ``s`` to the last sample that the attitude
+    from the mean rate of each sample interval misses: (5/24) sum_k dt_k^2 (w_k x w_k+1)_z, with ``w_k``
+    the levelled angular rate (``Y[k, 1]``, rad/s, rows of :func:`pdrlearn.kernels.stats.levelled_vectors`)
+    and ``dt_k`` the sample intervals (s, from ``t``). Without it the simulated 20 Hz foot's heading drifts
+    +0.023 rad per stride (one sign on every stride: the swing's pitch and roll do not commute); the term
+    scales with dt^2 (25x smaller at 100 Hz, 100x at 204.8 Hz). Only the heading chain takes it: the
+    levelled step windows (training features) stay as they are."""
+    w = Y[s:, 1]
+    if w.shape[0] < 2:
+        return 0.0
+    ts = t[s:]
+    dt = ts[1:] - ts[:-1]
+    dt *= dt
+    # sum dt^2 (x_k y_k+1 - y_k x_k+1) as the two sums of [x_k y_k+1, y_k x_k+1] (fewer calls per step)
+    p, q = (dt @ (w[:-1, :2] * w[1:, 1::-1])).tolist()
+    return CONING_COEF * (p - q)
 
 
 def _dpsi(fwd: list[float], acc: np.ndarray, Y: np.ndarray, ys: list, Rs: list | None) -> float:

@@ -362,7 +362,7 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
     Y = (arr["Z"][j0:j1].reshape(-1, 3) @ A.T).reshape(n, 3, 3)  # rows (A Q_k x)^T
     Y = tilt_corrected(Y, A @ (Q[k1] @ g1), k0, k1)
     s0 = start_index(t, t0)
-    dpsi, psi0 = stride_headings(state.forward, acc, Y, s0)  # decisions L30, L33, L34 (before gravity is removed)
+    dpsi, psi0 = stride_headings(state.forward, acc, Y, s0, t)  # decisions L30, L33-L35 (before gravity is removed)
     a_lev = Y[:, 0]
     a_lev[:, 2] -= math.sqrt(gx * gx + gy * gy + gz * gz)  # |g0| (vec_norm to rounding)
     rx, ry = ref.tolist()
