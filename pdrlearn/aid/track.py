@@ -193,6 +193,8 @@ def aid_track(
     new_info["aid"] = info
     if warnings:
         new_info["warnings"] = list(new_info.get("warnings", [])) + warnings
+    for w in warnings:  # logged once, like the pipelines' warnings (the CLI prints log records, decision B13)
+        log.warning("%s: %s", session.name, w)
     return TrackResult(result.steps.copy(), out, new_info)
 
 

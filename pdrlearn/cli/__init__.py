@@ -3,6 +3,11 @@
 Every subcommand lives in its own module of this package and exposes ``register(app)``; add the module
 name to :data:`COMMAND_MODULES` to make it appear. Bad input raises :class:`pdrlearn.PdrlearnError`,
 which :func:`main` prints as one ``error: ...`` line on stderr with a non-zero exit (no traceback).
+
+Warnings: the library logs each warning once (``logging``, logger ``pdrlearn.*``; a pipeline also keeps
+it in ``info["warnings"]`` for ``--json``); :func:`main` prints every warning record as one
+``warning: ...`` line on stderr, and commands do not echo them again (decision B13). ``-v/--verbose``
+adds the INFO records; it is accepted before or after the command name.
 """
 
 from __future__ import annotations
@@ -10,6 +15,7 @@ from __future__ import annotations
 import importlib
 import logging
 import sys
+from contextlib import contextmanager
 
 import typer
 
@@ -34,12 +40,90 @@ def _print_version(value: bool) -> None:
         raise typer.Exit()
 
 
+class _Formatter(logging.Formatter):
+    """``warning: <message>`` for warnings (like ``error: ...`` lines); ``INFO <logger>: <message>`` with -v."""
+
+    def format(self, record: logging.LogRecord) -> str:
+        if record.levelno >= logging.WARNING:
+            return f"{record.levelname.lower()}: {' '.join(record.getMessage().split())}"
+        return f"{record.levelname} {record.name}: {record.getMessage()}"
+
+
+_handler: logging.Handler | None = None  # the stderr handler of the running main() call
+_old_level = logging.NOTSET  # the pdrlearn logger's level before it
+
+
+def _set_verbose(verbose: bool) -> None:
+    # the logger's own level is raised only for -v (INFO); otherwise it stays as the caller had it, so a
+    # test's caplog.at_level() still sees the records; the handler prints WARNING and up
+    logging.getLogger("pdrlearn").setLevel(logging.INFO if verbose else _old_level)
+    if _handler is not None:
+        _handler.setLevel(logging.INFO if verbose else logging.WARNING)
+
+
+@contextmanager
+def _stderr_logging():
+    """Print the ``pdrlearn`` loggers' records on stderr while a command runs (one handler, removed after,
+    so calling :func:`main` in-process, e.g. from tests or the demo, leaves logging as it was)."""
+    global _handler, _old_level
+    logger = logging.getLogger("pdrlearn")
+    old_level = _old_level = logger.level
+    _handler = logging.StreamHandler(sys.stderr)
+    _handler.setFormatter(_Formatter())
+    logger.addHandler(_handler)
+    _set_verbose(False)
+    try:
+        yield
+    finally:
+        logger.removeHandler(_handler)
+        logger.setLevel(old_level)
+        _handler = None
+
+
 @app.callback()
-def _root(verbose: bool = typer.Option(False, "--verbose", "-v", help="Log progress details to stderr."),
+def _root(verbose: bool = typer.Option(False, "--verbose", "-v", help="Log progress details to stderr "
+                                       "(also accepted after the command name)."),
           version: bool = typer.Option(False, "--version", callback=_print_version, is_eager=True,
                                        help="Print the package version and exit.")):
-    level = logging.INFO if verbose else logging.WARNING
-    logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
+    _set_verbose(verbose)
+
+
+def _hoist_verbose(argv: list[str]) -> list[str]:
+    """Move ``-v``/``--verbose`` given after the command name in front of it, where the root option is
+    parsed (``pdrlearn track DIR --out O -v`` = ``pdrlearn -v track DIR --out O``). A token that is the
+    value of a command option (``--title -v``) or follows ``--`` is left alone."""
+    import typer.main
+
+    i = next((k for k, a in enumerate(argv) if not a.startswith("-")), None)
+    if i is None:
+        return argv
+    cmd = typer.main.get_command(app).commands.get(argv[i])
+    if cmd is None:
+        return argv
+    takes_value, own = set(), set()
+    for p in cmd.params:
+        names = [*getattr(p, "opts", []), *getattr(p, "secondary_opts", [])]
+        own.update(names)
+        if p.param_type_name == "option" and not getattr(p, "is_flag", False) and not getattr(p, "count", False):
+            takes_value.update(names)
+    if own & {"-v", "--verbose"}:
+        return argv
+    head, rest, after = argv[:i], [], argv[i + 1:]
+    hoisted, k = [], 0
+    while k < len(after):
+        a = after[k]
+        if a == "--":
+            rest += after[k:]
+            break
+        if a in ("-v", "--verbose"):
+            hoisted.append(a)
+        else:
+            rest.append(a)
+            if a in takes_value and k + 1 < len(after):
+                rest.append(after[k + 1])
+                k += 1
+        k += 1
+    return [*head, *hoisted, argv[i], *rest]
 
 
 for _name in COMMAND_MODULES:
@@ -48,9 +132,12 @@ for _name in COMMAND_MODULES:
 
 def main(argv: list[str] | None = None) -> int:
     """Console-script entry point; returns the exit code."""
+    if argv is None:
+        argv = sys.argv[1:]
     try:
-        # with standalone_mode=False click returns a command's `typer.Exit(code)` instead of raising it
-        rc = app(args=argv, standalone_mode=False)
+        with _stderr_logging():
+            # with standalone_mode=False click returns a command's `typer.Exit(code)` instead of raising it
+            rc = app(args=_hoist_verbose(list(argv)), standalone_mode=False)
     except PdrlearnError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return exc.exit_code

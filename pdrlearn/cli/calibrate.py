@@ -8,7 +8,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import json_safe, out_file, print_json
+from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, out_file, print_json, replaced
 from pdrlearn.errors import DataError
 
 
@@ -27,7 +27,8 @@ def register(app: typer.Typer) -> None:
         fit_turns: bool = typer.Option(False, "--fit-turns",
                                        help="Also fit the straight/turning GMM on the walks' strides "
                                             "(needs >= 20 strides with turns; seed 003)."),
-        out: Path = typer.Option(..., "--out", "-o", help="PARAMS.json to write."),
+        out: Path = typer.Option(..., "--out", "-o", help="PARAMS.json to write (an existing file only with --force)."),
+        force: bool = typer.Option(False, "--force", help=FORCE_HELP),
         as_json: bool = typer.Option(False, "--json", help="Print the parameters as JSON."),
     ):
         """Fit per-user waist step-length parameters from walks of known length.
@@ -45,13 +46,15 @@ def register(app: typer.Typer) -> None:
         from pdrlearn.io import read_session
         from pdrlearn.waist.calibration import calibrate
 
-        out_file(out, (".json",))
+        out_file(out, (".json",), force=force)
+        was = existed(out)
         if turns is not None and not math.isfinite(turns):
             raise DataError(f"--turns {turns}: give the signed number of full turns walked, e.g. 1 or -2")
         sessions = [read_session(d) for d in dirs]
         params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns,
                            fit_turns=fit_turns)
         params.save(out, extra={"fit": [str(d) for d in dirs]})
+        replaced(out, was)
         d = params.to_dict()
         if as_json:
             print_json(json_safe({"out": str(out), "pipeline": pipeline, **d}))

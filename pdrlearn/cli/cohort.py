@@ -8,7 +8,16 @@ from pathlib import Path
 import pandas as pd
 import typer
 
-from pdrlearn.cli.common import json_safe, out_folder, print_json, progress, split_choices
+from pdrlearn.cli.common import (
+    FORCE_HELP,
+    existed,
+    json_safe,
+    out_folder,
+    print_json,
+    progress,
+    replaced,
+    split_choices,
+)
 from pdrlearn.cohort import JobResult, cohort_users, folder_bytes, run_cohort, user_sessions
 from pdrlearn.errors import DataError
 
@@ -139,6 +148,8 @@ def train_all(
     units: str = typer.Option(None, help="Comma list of foot,waist,fused (default: all)."),
     cv: int = typer.Option(10, help="Cross-validation folds per user."),
     seed: int = typer.Option(0, help="Seed (identical results serial or distributed)."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP.split(" (")[0] + " (each user's model "
+                               "directory is replaced atomically)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
     """Train every user of a cohort on Dask; a failing user is reported and the rest complete.
@@ -160,7 +171,8 @@ def train_all(
     # bad settings fail here, once, before a cluster is started and before anything is written
     check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
     _check_workers(workers)
-    out_folder(out, ("cohort_summary.csv", "*/manifest.json"), "per-user model directories")
+    out_folder(out, ("cohort_summary.csv", "*/manifest.json"), "per-user model directories", force=force)
+    was = existed(out)
     users = cohort_users(cohort_dir)
     items = [(u.name, {"user_dir": str(u), "out": str(out / u.name), "tasks": t_list,
                        "methods": m_list, "units": u_list, "cv": cv, "seed": seed})
@@ -168,6 +180,7 @@ def train_all(
     results = _run(_train_job, items, scheduler, serial, workers, as_json, "train")
     _check_any_ok(results)
     df = _summarise(results, out)
+    replaced(out, was)
     _print(df, results, f"train-all: {sum(r.ok for r in results)}/{len(results)} users trained", as_json)
     _exit_if_any_failed(results)
 
@@ -179,6 +192,7 @@ def evaluate_all(
     scheduler: str = typer.Option(None, help="Dask scheduler address (default: a LocalCluster)."),
     serial: bool = typer.Option(False, help="Run in this process, without Dask."),
     workers: int = typer.Option(None, help="LocalCluster worker processes."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP.split(" (")[0] + "."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
     """Evaluate every user's model on that user's held-out test/ sessions.
@@ -190,12 +204,14 @@ def evaluate_all(
     _check_workers(workers)
     if not models_dir.is_dir():
         raise DataError(f"{models_dir}: models folder not found; run 'pdrlearn train-all COHORT --out {models_dir}'")
-    out = out_folder(out or models_dir / "eval", ("cohort_summary.csv",), "a cohort summary")
+    out = out_folder(out or models_dir / "eval", ("cohort_summary.csv",), "a cohort summary", force=force)
+    was = existed(out)
     users = cohort_users(cohort_dir)
     items = [(u.name, {"user_dir": str(u), "model_dir": str(models_dir / u.name)}) for u in users]
     results = _run(_evaluate_job, items, scheduler, serial, workers, as_json, "test")
     _check_any_ok(results)
     df = _summarise(results, out)
+    replaced(out, was)
     _print(df, results, f"evaluate-all: {sum(r.ok for r in results)}/{len(results)} users", as_json)
     _exit_if_any_failed(results)
 

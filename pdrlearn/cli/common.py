@@ -44,20 +44,36 @@ def split_choices(*, tasks: str | None, methods: str | None, units: str | None):
     return split_list(tasks, "--tasks"), split_list(methods, "--methods"), split_list(units, "--units")
 
 
-def out_folder(path: Path, markers: tuple[str, ...], what: str) -> Path:
-    """Validate an output folder before any work is done: absent, empty, or a previous output of the same
-    command (it holds one of the ``markers`` glob patterns, e.g. ``cohort_summary.csv``); never a file or
-    a folder of unrelated files, which the command would mix its output into."""
+#: The ``--force`` option every command that writes an output takes (docs/decisions/bad-input.md B12).
+FORCE_HELP = "Replace an existing output of this command (atomically: the old one stays until the new one is complete)."
+
+
+def out_folder(path: Path, markers: tuple[str, ...], what: str, *, force: bool = False,
+               allow: tuple[str, ...] = ()) -> Path:
+    """Validate an output folder before any work is done (decision B12).
+
+    An absent or empty folder is used. A previous output of the same command (it holds one of the
+    ``markers`` glob patterns, e.g. ``manifest.json``) is replaced only with ``force``; anything else -- a
+    file, or a folder of unrelated files, which the command would mix its output into or delete -- is
+    refused even with ``force``. ``allow`` names files that do not make a folder "non-empty" (the
+    documented ``--json > DIR/evaluation.json`` redirect creates that file before the command runs).
+    """
     if path.exists() and not path.is_dir():
         raise DataError(f"{path}: is a file; --out must be a folder for {what}")
-    if path.is_dir() and any(path.iterdir()) and not any(any(path.glob(m)) for m in markers):
-        raise DataError(f"{path}: exists and does not hold {what}; choose another output folder or empty it")
+    entries = [q for q in path.iterdir() if q.name not in allow] if path.is_dir() else []
+    if entries:
+        if not any(any(path.glob(m)) for m in markers):
+            raise DataError(f"{path}: exists and does not hold {what}; choose another output folder or empty it")
+        if not force:
+            raise DataError(f"{path}: already holds {what}; pass --force to replace it, or choose another output "
+                            "folder")
     return path
 
 
-def out_file(path: Path, suffixes: tuple[str, ...]) -> Path:
-    """Validate an output file path before any work is done: a known suffix, not a folder, and no file
-    in the way of its parent folder. Nothing is created here; writers create the parent folder."""
+def out_file(path: Path, suffixes: tuple[str, ...], *, force: bool = False) -> Path:
+    """Validate an output file path before any work is done: a known suffix, not a folder, no file in the
+    way of its parent folder, and an existing file only with ``force`` (decision B12). Nothing is created
+    here; writers create the parent folder."""
     if path.suffix.lower() not in suffixes:
         raise DataError(f"{path}: output must end in {' or '.join(suffixes)}")
     if path.is_dir():
@@ -67,7 +83,22 @@ def out_file(path: Path, suffixes: tuple[str, ...]) -> Path:
             if not parent.is_dir():
                 raise DataError(f"{path}: {parent} is a file, not a folder; choose another output path")
             break
+    if path.exists() and not force:
+        raise DataError(f"{path}: file exists; pass --force to replace it, or choose another output file")
     return path
+
+
+def replaced(path: Path, existed: bool) -> None:
+    """Say on stderr that ``--force`` replaced a previous output (one line; stdout stays machine-readable)."""
+    if existed:
+        import typer
+
+        typer.echo(f"replaced {path}", err=True)
+
+
+def existed(path: Path) -> bool:
+    """Whether ``path`` is an existing file or a non-empty folder (what ``--force`` is about to replace)."""
+    return path.is_file() or (path.is_dir() and any(path.iterdir()))
 
 
 @contextmanager
@@ -84,3 +115,18 @@ def progress(description: str, total: int | None, enabled: bool = True):
                   TimeElapsedColumn(), console=console, transient=True) as bar:
         task = bar.add_task(description, total=total)
         yield lambda n=1: bar.advance(task, n)
+
+
+def warn_gaps(session, names, consequence: str) -> None:
+    """Log one warning per stream of ``names`` with gaps longer than 1 s (count, longest, where) and what
+    the command does about them: the commands that, unlike ``track`` (decision B11), do not cut at gaps
+    still say that the data has holes (decision B15)."""
+    import logging
+
+    from pdrlearn.track.gaps import MIN_GAP_S, long_gaps
+
+    log = logging.getLogger("pdrlearn.cli")
+    for name, g in long_gaps(session, tuple(names)).items():
+        t0, t1 = max(g, key=lambda ab: ab[1] - ab[0])
+        log.warning("%s: %s has %d gap(s) longer than %g s (longest %.1f s at %.1f s); %s", session.name, name,
+                    len(g), MIN_GAP_S, t1 - t0, t0, consequence)

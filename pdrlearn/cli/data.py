@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import json_safe, out_file, print_json
+from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, out_file, print_json, replaced
 
 
 def info(
@@ -48,6 +48,7 @@ def plot(
     out: Path = typer.Option(..., "--out", "-o", help="PNG file to write."),
     start: float = typer.Option(None, help="First second to show (default: whole session)."),
     end: float = typer.Option(None, help="Last second to show."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
 ) -> None:
     """Plot every sensor stream with the labelled steps shaded.
 
@@ -58,10 +59,12 @@ def plot(
     from pdrlearn.io import read_session
     from pdrlearn.plots import check_window, plot_session
 
-    out = out_file(out, (".png",))
+    out = out_file(out, (".png",), force=force)
+    was = existed(out)
     s = read_session(session_dir)
     check_window(start, end, s.t_end - s.t_start, str(session_dir))
     plot_session(s, out, start=start, end=end)
+    replaced(out, was)
     typer.echo(str(out))
 
 

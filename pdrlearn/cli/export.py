@@ -9,7 +9,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import json_safe, print_json
+from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, out_folder, print_json, replaced, warn_gaps
 
 
 def export(
@@ -19,7 +19,7 @@ def export(
                                 "(heuristic,fusion,dtw,svm,nn,ensemble); default: each task's chosen method."),
     length_bounds: str = typer.Option(None, "--length-bounds", help="Stride-length class edges (m) "
                                       "SHORT_NORMAL,NORMAL_LONG; default: model's, else 2x thesis ch.6.3."),
-    overwrite: bool = typer.Option(False, "--overwrite", help="Replace an existing bundle."),
+    force: bool = typer.Option(False, "--force", "--overwrite", help=FORCE_HELP + " --overwrite is the old name."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
     """Export a trained model as a portable bundle (manifest.json + ONNX + JSON/NPZ, no pickle).
@@ -42,7 +42,10 @@ def export(
             bounds = [float(v) for v in length_bounds.split(",")]
         except ValueError:
             raise DataError(f"--length-bounds {length_bounds!r}: give two numbers, e.g. 0.6,0.9") from None
-    path = export_model(model_dir, out, methods=meths, length_bounds=bounds, overwrite=overwrite)
+    out_folder(out, ("manifest.json",), "a runtime bundle", force=force)
+    was = existed(out)
+    path = export_model(model_dir, out, methods=meths, length_bounds=bounds, overwrite=force)
+    replaced(out, was)
     b = load_bundle(path)
     summary = {
         "bundle": str(path), "user": b.manifest["user"], "size_bytes": bundle_size_bytes(path),
@@ -79,10 +82,12 @@ def _frames_of(session, bundle) -> dict:
 def run(
     bundle_dir: Path = typer.Argument(..., help="Bundle folder written by 'pdrlearn export'."),
     session_dir: Path = typer.Argument(None, help="PLASYS session folder to replay (omit with --protocol)."),
-    out: Path = typer.Option(None, "--out", "-o", help="Folder for steps.csv, trajectory.csv, summary.json."),
+    out: Path = typer.Option(None, "--out", "-o", help="Folder for steps.csv, trajectory.csv, summary.json "
+                             "(the files and columns of `pdrlearn track`)."),
     protocol: str = typer.Option(None, "--protocol", help="Bluetooth text-protocol capture to read instead "
                                  "of a session ('-' = stdin)."),
     chunk_s: float = typer.Option(1.0, help="Replay chunk length (s)."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
@@ -101,8 +106,12 @@ def run(
 
     if protocol is not None and session_dir is not None:
         raise DataError(f"run: give a SESSION_DIR ({session_dir}) or --protocol {protocol}, not both")
+    if not (chunk_s > 0 and chunk_s < float("inf")):
+        raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
+    if out is not None:
+        out_folder(out, ("summary.json",), "a run (steps.csv, trajectory.csv, summary.json)", force=force)
     bundle = load_bundle(bundle_dir)  # verified before any output
-    steps, lat, protocol_stats = [], [], None
+    steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
     if protocol is not None:
         from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
 
@@ -131,20 +140,26 @@ def run(
         source = f"protocol {protocol}"
         protocol_stats = parser.stats.to_dict()
         if parser.stats.corrupted:
-            typer.echo(f"warning: {protocol}: {parser.stats.corrupted} corrupted line(s) skipped (e.g. "
-                       f"{parser.stats.examples[0]!r}) of {parser.stats.sets} set(s) read", err=True)
+            import logging  # printed as one "warning:" line by the CLI, like every warning (decision B13)
+
+            logging.getLogger(__name__).warning(
+                "%s: %d corrupted line(s) skipped (e.g. %r) of %d set(s) read", protocol,
+                parser.stats.corrupted, parser.stats.examples[0], parser.stats.sets)
     else:
         if session_dir is None:
             raise DataError("run: give a SESSION_DIR or --protocol FILE")
         from pdrlearn.io import read_session
 
-        s = read_session(session_dir)
-        bundle.check_streams({n: st.rate_hz for n, st in s.streams.items()}, where=f"session '{s.name}'")
-        tracker = Tracker(bundle, frames=_frames_of(s, bundle))
-        t_all = np.concatenate([st.t for st in s.streams.values()])
+        session = read_session(session_dir)
+        bundle.check_streams({n: st.rate_hz for n, st in session.streams.items()}, where=f"session '{session.name}'")
+        warn_gaps(session, bundle.manifest["sensors"]["required"],
+                  "the runtime replays across them (a stride spanning one is unreliable) - re-record or trim the "
+                  "session, or use `pdrlearn track`, which ends the walk at a gap")
+        tracker = Tracker(bundle, frames=_frames_of(session, bundle))
+        t_all = np.concatenate([st.t for st in session.streams.values()])
         for a in np.arange(t_all.min(), t_all.max() + chunk_s, chunk_s):
             chunk = {}
-            for n, st in s.streams.items():
+            for n, st in session.streams.items():
                 i0, i1 = np.searchsorted(st.t, [a, a + chunk_s])
                 chunk[n] = (st.t[i0:i1], st.values[i0:i1])
             t0 = time.perf_counter()
@@ -153,47 +168,84 @@ def run(
                 lat.append((time.perf_counter() - t0) / len(new))
             steps += new
         steps += tracker.flush()
-        source = f"session {s.name}"
-    summary = _summary(steps, tracker, lat, source)
+        source = f"session {session.name}"
+    result = _result(steps)
+    summary = _summary(steps, tracker, lat, source, result, session)
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats
     if out is not None:
-        _write(out, steps, tracker, summary)
+        _write(out, result, summary)
     if as_json:
         print_json(json_safe(summary))
     else:
-        typer.echo(f"{source}: {summary['n_steps']} steps, {summary['distance_m']:.2f} m, final position "
-                   f"{[round(v, 2) for v in summary['final_position']]}" + (f" -> {out}" if out else ""))
+        err = summary.get("distance_error_pct")
+        typer.echo(f"{source}: {summary['n_steps']} steps, {summary['distance_m']:.2f} m"
+                   + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
+                   f"{[round(summary['final_position'][k], 2) for k in 'xyz']}" + (f" -> {out}" if out else ""))
 
 
-def _summary(steps, tracker, lat, source) -> dict:
+#: Step table columns in the order of ``pdrlearn track`` (decision B14); the runtime's extra columns follow.
+_STEP_COLUMNS = ("start_s", "end_s", "length_m", "heading_rad", "dz_m", "terrain", "direction", "length_class")
+
+
+def _result(steps):
+    """The runtime's steps as a :class:`~pdrlearn.track.base.TrackResult` with the columns of ``track``:
+    the runtime's ``length`` class column is ``length_class`` (decision B14), the trajectory has
+    ``t, x, y, z, lat, lon`` (lat/lon empty: ``run`` takes no start coordinate)."""
+    import pandas as pd
+
+    from pdrlearn.track.base import TrackResult
+
+    df = pd.DataFrame([st.to_dict() for st in steps]).rename(columns={"length": "length_class"})
+    if df.empty:
+        df = pd.DataFrame(columns=["start_s", "end_s", "length_m", "heading_rad", "dz_m"])
+    first = [c for c in _STEP_COLUMNS if c in df.columns]
+    df = df[first + [c for c in df.columns if c not in first]]
+    traj = [{"t": steps[0].start_s, "x": 0.0, "y": 0.0, "z": 0.0}] if steps else []
+    traj += [{"t": st.end_s, "x": st.x, "y": st.y, "z": st.z} for st in steps]
+    traj = pd.DataFrame(traj, columns=["t", "x", "y", "z"]).assign(lat=float("nan"), lon=float("nan"))
+    return TrackResult(steps=df, trajectory=traj, info={"pipeline": "runtime"})
+
+
+def _summary(steps, tracker, lat, source, result, session) -> dict:
+    """The keys of ``track``'s summary.json for the same content (``distance_m``, ``n_steps``,
+    ``final_position`` {x, y, z}, ``session``, ``pipeline`` and, replaying a session with ground truth, its
+    errors), plus the runtime's ``source``, ``methods``, ``classes`` and latency."""
     import numpy as np
+
+    from pdrlearn.track.evaluate import evaluate_track
 
     counts = {t: {} for t in tracker.classifiers}
     for st in steps:
         for t, c in st.classes.items():
             counts[t][c] = counts[t].get(c, 0) + 1
-    return {
-        "source": source, "n_steps": len(steps), "distance_m": float(sum(abs(s.length_m) for s in steps)),
-        "final_position": [float(v) for v in tracker.position],
+    out = {"source": source, **evaluate_track(result, session)}
+    out["final_position"] = dict(zip("xyz", (float(v) for v in tracker.position), strict=True))
+    if session is not None:
+        out["session"] = session.name
+    out["pipeline"] = "runtime"
+    out.update({
         "methods": {t: f"{c.method}/{c.unit}" for t, c in tracker.classifiers.items()},
         "classes": counts,
         "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
                                 "p99": float(np.percentile(lat, 99) * 1e3) if lat else None},
-    }
+    })
+    return out
 
 
-def _write(out: Path, steps, tracker, summary) -> None:
+def _write(out: Path, result, summary) -> None:
+    """steps.csv, trajectory.csv and summary.json as ``track`` writes them (same names, columns, number
+    format), atomically: all three or none, and ``--force`` keeps the old run until then."""
     import json
 
-    import pandas as pd
+    from pdrlearn.atomic import atomic_directory
 
-    out.mkdir(parents=True, exist_ok=True)
-    pd.DataFrame([s.to_dict() for s in steps]).to_csv(out / "steps.csv", index=False)
-    traj = [{"t": steps[0].start_s if steps else 0.0, "x": 0.0, "y": 0.0, "z": 0.0}] if steps else []
-    traj += [{"t": s.end_s, "x": s.x, "y": s.y, "z": s.z} for s in steps]
-    pd.DataFrame(traj, columns=["t", "x", "y", "z"]).to_csv(out / "trajectory.csv", index=False)
-    (out / "summary.json").write_text(json.dumps(json_safe(summary), indent=1))
+    was = existed(out)
+    with atomic_directory(out) as tmp:
+        result.steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
+        result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format="%.10g")
+        (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
+    replaced(out, was)
 
 
 def register(app: typer.Typer) -> None:

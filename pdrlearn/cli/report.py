@@ -6,12 +6,15 @@ from pathlib import Path
 
 import typer
 
+from pdrlearn.cli.common import FORCE_HELP, existed, out_folder, replaced
+
 
 def report(
     source: Path = typer.Argument(..., help="Model directory (manifest.json) or a results folder "
                                   "(evaluation.json, cohort_summary.csv, summary.json, PNG figures)."),
     out: Path = typer.Option(..., "--out", "-o", help="Report folder to write (index.html + report.md)."),
     title: str = typer.Option(None, help="Page title."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
 ) -> None:
     """Render accuracy tables, confusion matrices, trajectories and latency figures as one page.
 
@@ -25,7 +28,10 @@ def report(
     """
     from pdrlearn.report import build_report
 
+    out_folder(out, ("index.html",), "a report (index.html, report.md)", force=force)
+    was = existed(out)
     path = build_report(source, out, title=title)
+    replaced(out, was)
     typer.echo(str(path / "index.html"))
 
 

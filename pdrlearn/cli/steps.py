@@ -8,7 +8,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import json_safe, out_file, print_json
+from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, out_file, print_json, replaced, warn_gaps
 from pdrlearn.errors import DataError
 
 _METRICS = ("scored_count", "reference_count", "precision", "recall", "f1", "count_error_pct",
@@ -22,6 +22,7 @@ def steps(
                                  help="accel | accel-force (foot strides) | pelvic-gyro | pll (waist steps)."),  # noqa: E501
     out: Path = typer.Option(None, "--out", "-o", help="Write the steps table to this CSV (times in s)."),
     tolerance: float = typer.Option(0.25, "--tolerance", help="Event matching tolerance in seconds."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
     """Detect steps and, when the session has labels, print precision/recall/F1 and the count error.
@@ -45,8 +46,13 @@ def steps(
     if not tolerance > 0 or not math.isfinite(tolerance):
         raise DataError(f"--tolerance {tolerance}: give the event matching tolerance in seconds (> 0, e.g. 0.25)")
     if out is not None:
-        out = out_file(out, (".csv",))
+        out = out_file(out, (".csv",), force=force)
+    was = out is not None and existed(out)
     session = read_session(session_dir)
+    u = det.unit[0]  # "f" or "w": the unit's inertial streams (+ the force sensors of accel-force)
+    warn_gaps(session, [f"{u}Accelerometer", f"{u}Gyroscope", *(("fForceA", "fForceB") if "force" in det.name else ())],
+              "no step is detected inside them (recall counts the labelled ones as missed) - re-record or trim "
+              "the session")
     table = det.detect(session)
     result: dict = {"session": session.name, "detector": det.name, "unit": det.unit, "count": int(len(table))}
     score = score_steps(table, session, tolerance_s=tolerance)
@@ -55,6 +61,7 @@ def steps(
     if out is not None:
         with atomic_file(out) as tmp:
             table.to_csv(tmp, index=False)
+        replaced(out, was)
         result["out"] = str(out)
     if as_json:
         print_json(json_safe(result))

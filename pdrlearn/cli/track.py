@@ -8,19 +8,17 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import json_safe, print_json
+from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, print_json, replaced
 from pdrlearn.errors import DataError
 
 
 def _write_csv(df, path: Path) -> None:
-    tmp = path.with_name(f".{path.name}.tmp")
-    df.to_csv(tmp, index=False, float_format="%.10g")
-    tmp.replace(path)
+    df.to_csv(path, index=False, float_format="%.10g")
 
 
 def track(
     session_dir: Path = typer.Argument(..., help="Session folder (PLASYS format)."),
-    out: Path = typer.Option(..., "--out", "-o", help="Output folder (created)."),
+    out: Path = typer.Option(..., "--out", "-o", help="Output folder (created; an existing track only with --force)."),
     pipeline: str = typer.Option("plasys", help="Tracking pipeline: plasys, waist-pll, waist-pendulum."),
     method: str = typer.Option("M3", help="PLASYS method: M1 (accelerometer), M2 (+ force), M3 (+ classes)."),
     model: str = typer.Option(None, "--model", help="Trained model directory (M3); 'oracle' = the session's "
@@ -41,6 +39,7 @@ def track(
     fix_period: float = typer.Option(None, "--fix-period", help="Use a fix every S seconds."),
     streaming: bool = typer.Option(False, "--streaming", help="plasys M2/M3 with the stride-local kernel of "
                                    "the streaming runtime: the trajectory `pdrlearn run` reproduces to 1 mm."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
 ) -> None:
     """Track a session: per-step table, trajectory, path figure and summary (errors vs ground truth).
@@ -55,6 +54,7 @@ def track(
 
         pdrlearn track out/sim/D_u1 --method M3 --model out/models/u1 --streaming --out out/D3s   # = pdrlearn run
     """
+    from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.common import out_folder
     from pdrlearn.io import read_session
     from pdrlearn.track.base import get_pipeline
@@ -62,7 +62,7 @@ def track(
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plots import plot_paths
 
-    out_folder(out, ("summary.json",), "a track (trajectory.csv, steps.csv, path.png, summary.json)")
+    out_folder(out, ("summary.json",), "a track (trajectory.csv, steps.csv, path.png, summary.json)", force=force)
     start_ll = parse_start(start) if start is not None else None
     par = None
     if params is not None:
@@ -103,25 +103,27 @@ def track(
         aided = True
     else:
         aided = False
-    out.mkdir(parents=True, exist_ok=True)
-    if aided:
-        plot_aided(result, out / "aided.png", truth=session.trajectory,
-                   title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes")
-    traj = result.trajectory.copy()
-    for c in ("lat", "lon"):
-        if c not in traj:
-            traj[c] = float("nan")
-    _write_csv(traj, out / "trajectory.csv")
-    _write_csv(result.steps, out / "steps.csv")
-    plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, out / "path.png",
-               session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}")
     summary = evaluate_track(result, session)
     summary["session"] = session.name
     summary["pipeline"] = pipeline
     summary["info"] = result.info
     summary = json_safe(json.loads(json.dumps(
         summary, default=lambda o: o.item() if hasattr(o, "item") else str(o))))
-    (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    traj = result.trajectory.copy()
+    for c in ("lat", "lon"):
+        if c not in traj:
+            traj[c] = float("nan")
+    was = existed(out)
+    with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
+        if aided:
+            plot_aided(result, tmp / "aided.png", truth=session.trajectory,
+                       title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes")
+        _write_csv(traj, tmp / "trajectory.csv")
+        _write_csv(result.steps, tmp / "steps.csv")
+        plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, tmp / "path.png",
+                   session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}")
+        (tmp / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    replaced(out, was)
     if as_json:
         print_json(summary)
         return
@@ -134,8 +136,6 @@ def track(
                   and err is not None and summary["stride_length_matched"] < summary["n_steps"] else "")
                + (f", final position error {summary['final_position_error_m']:.2f} m"
                   if "final_position_error_m" in summary else ""))
-    for w in result.info.get("warnings", []):
-        typer.echo(f"warning: {w}", err=True)
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json")
 
 

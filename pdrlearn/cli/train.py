@@ -8,7 +8,16 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import json_safe, out_folder, print_json, progress, split_choices
+from pdrlearn.cli.common import (
+    FORCE_HELP,
+    existed,
+    json_safe,
+    out_folder,
+    print_json,
+    progress,
+    replaced,
+    split_choices,
+)
 from pdrlearn.errors import DataError
 
 
@@ -44,7 +53,7 @@ def _read_all(paths: list[Path]):
 
 def train(
     data_dirs: list[Path] = typer.Argument(..., help="Labelled session folders (or folders of sessions)."),
-    out: Path = typer.Option(..., "--out", "-o", help="Model directory to write (replaced atomically)."),
+    out: Path = typer.Option(..., "--out", "-o", help="Model directory to write (an existing one only with --force)."),
     tasks: str = typer.Option(
         None, help="Comma list of terrain,direction,length (default: what is labelled)."
     ),
@@ -69,6 +78,7 @@ def train(
         "labelled sessions (decision L26; M3 and the runtime apply it). Turn off for a model pooled over "
         "several users or devices: a pooled gain corrects no one's sensor.",
     ),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
     """Train a user's terrain / direction / length classifiers and save a model directory.
@@ -86,7 +96,6 @@ def train(
         pdrlearn train datasets/real/gaitmap_* --out models/gaitmap --tasks terrain \\
             --boundaries rest --methods heuristic,dtw,svm,nn,ensemble
     """
-    from pdrlearn.classify.model_dir import check_out_dir
     from pdrlearn.classify.training import check_settings, train_user
     from pdrlearn.features.windows import BOUNDARIES
 
@@ -94,7 +103,8 @@ def train(
         raise DataError(f"train: --boundaries {boundaries!r}; choose one of {', '.join(BOUNDARIES)}")
     t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
     t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
-    check_out_dir(out)
+    out_folder(out, ("manifest.json",), "a model directory", force=force)
+    was = existed(out)
     sessions = _read_all(data_dirs)
     total = len(t_all) * len(m_all) * len(u_all)
     t0 = time.perf_counter()
@@ -105,6 +115,7 @@ def train(
         )
     seconds = time.perf_counter() - t0
     model.save(out)
+    replaced(out, was)
     summary = {
         "out": str(out),
         "user": model.user,
@@ -168,6 +179,7 @@ def evaluate(
     data_dirs: list[Path] = typer.Argument(..., help="Labelled session folders (or folders of sessions)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object (tasks.<task>.accuracy ...)."),
     report: Path = typer.Option(None, "--report", help="Folder for report.md/json and confusion PNGs."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
 ) -> None:
     """Accuracy per class x method x unit (thesis Tables 27/28/33), confusion matrices, per-step latency.
 
@@ -181,7 +193,11 @@ def evaluate(
     from pdrlearn.classify.evaluation import results_table
 
     if report is not None:
-        out_folder(report, ("report.md", "report.json", "evaluation.json"), "an evaluation report")
+        # evaluation.json alone is the documented `--json > DIR/evaluation.json` redirect, made by the shell
+        out_folder(report, ("report.md", "report.json"), "an evaluation report", force=force,
+                   allow=("evaluation.json",))
+    # not atomic: the folder may hold the file the shell is redirecting --json into (written in place)
+    was = report is not None and (report / "report.md").is_file()
     model = load_model(model_dir)
     sessions = _read_all(data_dirs)
     result = evaluate_model(model, sessions, report_dir=report)
@@ -190,6 +206,8 @@ def evaluate(
             f"evaluate: the sessions have no labels for the model's tasks ({', '.join(model.tasks)}); "
             + "; ".join(result["skipped"])
         )
+    if was:
+        replaced(report, was)
     if as_json:
         print_json(json_safe(result))
         return

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import logging
+import math
 import os
 from pathlib import Path
 
@@ -37,11 +38,39 @@ log = logging.getLogger(__name__)
 
 LABEL_FILES = ("steps", "trajectory")
 _TIME_SCALE = {"ms": 1e-3, "s": 1.0, "us": 1e-6, "ns": 1e-9}
+_TIME_ALIASES = {"milliseconds": "ms", "millisecond": "ms", "msec": "ms", "seconds": "s", "second": "s", "sec": "s",
+                 "microseconds": "us", "microsecond": "us", "\u00b5s": "us", "nanoseconds": "ns", "nanosecond": "ns"}
+#: meta.json body measures (m) read by the waist pipelines: (name, largest plausible value in m). Beyond it
+#: the number is centimetres (a 175 "m" subject); the limits are anatomy, not tuned (decision B16).
+_BODY_FIELDS = (("height_m", 3.0), ("leg_length_m", 2.0), ("sensor_height_m", 2.0), ("foot_length_m", 0.5))
 
 
-def _timestamp_scale(meta: dict) -> float:
-    unit = str(meta.get("units", {}).get("timestamp", "ms")).strip().split()[0].lower() if meta else "ms"
-    return _TIME_SCALE.get(unit, 1e-3)
+def _timestamp_scale(meta: dict, where: str = "meta.json") -> float:
+    """Seconds per timestamp unit from ``units.timestamp`` (its first word: ms, s, us, ns; default ms).
+    An unknown word is an error (decision B16): guessing ms would mis-time every sample by 1000x or more."""
+    units = meta.get("units", {}) if meta else {}
+    if not isinstance(units, dict):
+        raise DataError(f"{where}: \"units\" must be an object such as {{\"timestamp\": \"ms\"}}; fix or remove it")
+    text = str(units.get("timestamp", "ms")).strip()
+    word = text.split()[0].lower() if text else "ms"
+    unit = _TIME_ALIASES.get(word, word)
+    if unit not in _TIME_SCALE:
+        raise DataError(f"{where}: units.timestamp {text[:40]!r} does not start with ms, s, us or ns; write the "
+                        "timestamps' unit first (e.g. \"ms since the first sample\")")
+    return _TIME_SCALE[unit]
+
+
+def _check_body_fields(meta: dict, where: str) -> None:
+    """Body measures in meta.json must be positive numbers in metres (decision B16): a text or a value in
+    cm would otherwise be replaced by a default or scale every waist step length silently."""
+    for name, most in _BODY_FIELDS:
+        if name not in meta or meta[name] is None:
+            continue
+        v = meta[name]
+        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v) or v <= 0:
+            raise DataError(f"{where}: {name} {v!r} is not a positive number in m; fix it or remove the field")
+        if v > most:
+            raise DataError(f"{where}: {name} {v:g} m is implausible (over {most:g} m; centimetres?); give metres")
 
 
 def read_table(path: str | os.PathLike) -> pd.DataFrame:
@@ -179,7 +208,8 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
             raise DataError(f"{meta_path}: invalid JSON (line {exc.lineno}); fix or delete the file") from None
         if not isinstance(meta, dict):
             raise DataError(f"{meta_path}: must hold a JSON object")
-    scale = _timestamp_scale(meta)
+        _check_body_fields(meta, str(meta_path))
+    scale = _timestamp_scale(meta, str(meta_path))
     streams = {}
     for name, spec in SENSORS.items():
         p = folder / spec.filename

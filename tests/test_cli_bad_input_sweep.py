@@ -1,0 +1,246 @@
+"""Bad-input sweep (docs/bad-input.md, decisions B12-B16): every command that reads a session -- info, plot,
+steps (foot and waist), track with each pipeline (plasys M1/M2/M3, M3 --streaming, waist-pll,
+waist-pendulum), calibrate, train, evaluate, run -- fed one malformed copy of a short simulated session.
+
+Each case either exits 2 with ONE ``error: ...`` line naming the file (or the session and the missing
+sensor) and the fix, nothing on stdout and no output written, or -- where the data is usable -- succeeds
+with a ``warning: ...`` line saying what was wrong. export/report/evaluate/track/run get broken models and
+bundles. Table-driven; ~30 s (the errors fire while reading, before any computation)."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+BUNDLE = ROOT / "models" / "plasys-sim-default"
+
+
+@pytest.fixture(scope="module")
+def base(tmp_path_factory) -> dict[str, Path]:
+    """Scenario A (26 s, foot + waist, labelled) and a heuristic terrain model (~5 s)."""
+    root = tmp_path_factory.mktemp("sweep")
+    assert main(["simulate", "-s", "A", "-u", "1", "--out", str(root / "A"), "--json"]) == 0
+    assert main(["simulate", "-s", "terrain", "-u", "3", "--out", str(root / "terrain"), "--json"]) == 0
+    assert main(["train", str(root / "terrain"), "--out", str(root / "model"), "--methods", "heuristic", "--tasks",
+                 "terrain", "--cv", "3", "--json"]) == 0
+    return {"root": root, "A": root / "A", "model": root / "model"}
+
+
+def _edit(name: str, fn):
+    def apply(d: Path) -> None:
+        df = pd.read_csv(d / name)
+        fn(df).to_csv(d / name, index=False)
+    return apply
+
+
+def _meta(fn):
+    def apply(d: Path) -> None:
+        m = json.loads((d / "meta.json").read_text())
+        fn(m)
+        (d / "meta.json").write_text(json.dumps(m))
+    return apply
+
+
+def _drop_unit(prefix: str):
+    def apply(d: Path) -> None:
+        for p in d.glob(f"{prefix}[A-Z]*.csv"):
+            p.unlink()
+    return apply
+
+
+def _gap(d: Path) -> None:
+    for p in d.glob("[fw][A-Z]*.csv"):
+        df = pd.read_csv(p)
+        df[(df.timestamp <= 10_000) | (df.timestamp >= 15_000)].to_csv(p, index=False)
+
+
+def _nan(df):
+    df["x"] = df["x"].astype(float)
+    df.loc[5, "x"] = np.nan
+    return df
+
+
+# defect -> (edit of a copy of scenario A, text every command's error must contain; the file it names)
+ERRORS = {
+    # train/evaluate also take a folder of sessions, and say so
+    "missing_folder": (lambda d: shutil.rmtree(d), ("session folder not found", "no such folder"), ""),
+    "no_sensor_file": (lambda d: [p.unlink() for p in d.glob("[fw][A-Z]*.csv")],
+                       ("no sensor files found", "neither a session folder"), ""),
+    "missing_column": (_edit("fAccelerometer.csv", lambda df: df.drop(columns=["z"])), "missing column(s) z",
+                       "fAccelerometer.csv"),
+    "empty_csv": (lambda d: (d / "wAccelerometer.csv").write_text(""), "file is empty", "wAccelerometer.csv"),
+    "header_only": (lambda d: (d / "fGyroscope.csv").write_text("timestamp,x,y,z\n"), "no samples",
+                    "fGyroscope.csv"),
+    "nan_row": (_edit("wAccelerometer.csv", _nan), "non-numeric, NaN", "wAccelerometer.csv"),
+    "non_numeric": (_edit("fGyroscope.csv", lambda df: df.astype({"y": object}).assign(
+        y=lambda f: f["y"].where(f.index != 7, "oops"))), "non-numeric", "fGyroscope.csv"),
+    "unsorted": (_edit("wGyroscope.csv", lambda df: df.iloc[[0, 1, 2, 4, 3, *range(5, len(df))]]),
+                 "timestamps go backwards", "wGyroscope.csv"),
+    "duplicate": (_edit("fAccelerometer.csv", lambda df: pd.concat([df.iloc[:6], df.iloc[5:]])),
+                  "duplicate timestamp", "fAccelerometer.csv"),
+    "seconds": (_edit("wAccelerometer.csv", lambda df: df.assign(timestamp=df.timestamp / 1e3)),
+                "not milliseconds", "wAccelerometer.csv"),
+    "g": (_edit("wAccelerometer.csv", lambda df: df.assign(x=df.x / 9.81, y=df.y / 9.81, z=df.z / 9.81)),
+          "looks like units of g", "wAccelerometer.csv"),
+    "deg_s": (_edit("fGyroscope.csv", lambda df: df.assign(x=df.x * 57.3, y=df.y * 57.3, z=df.z * 57.3)),
+              "looks like deg/s", "fGyroscope.csv"),
+    "meta_invalid_json": (lambda d: (d / "meta.json").write_text("{broken"), "invalid JSON", "meta.json"),
+    "meta_not_object": (lambda d: (d / "meta.json").write_text("[1, 2]"), "must hold a JSON object", "meta.json"),
+    # B16 (new): before, an unknown timestamp unit was read as ms and a text height replaced by 1.7 m
+    "meta_timestamp_unit": (_meta(lambda m: m.update(units={"timestamp": "fortnights"})), "units.timestamp",
+                            "meta.json"),
+    "meta_height_text": (_meta(lambda m: m.update(height_m="tall")), "height_m 'tall' is not a positive number",
+                         "meta.json"),
+    "meta_height_cm": (_meta(lambda m: m.update(height_m=175)), "centimetres", "meta.json"),
+}
+
+
+def _commands(s: Path, out: Path, model: Path) -> dict[str, list[str]]:
+    return {
+        "info": ["info", str(s)],
+        "plot": ["plot", str(s), "--out", str(out / "p.png")],
+        "steps": ["steps", str(s), "--out", str(out / "s.csv")],
+        "steps-pll": ["steps", str(s), "--detector", "pll", "--out", str(out / "s.csv")],
+        "track-M1": ["track", str(s), "--method", "M1", "--out", str(out / "t")],
+        "track-M2": ["track", str(s), "--method", "M2", "--out", str(out / "t")],
+        "track-M3": ["track", str(s), "--method", "M3", "--model", str(model), "--out", str(out / "t")],
+        "track-M3-streaming": ["track", str(s), "--method", "M3", "--model", str(model), "--streaming", "--out",
+                               str(out / "t")],
+        "track-waist-pll": ["track", str(s), "--pipeline", "waist-pll", "--out", str(out / "t")],
+        "track-waist-pendulum": ["track", str(s), "--pipeline", "waist-pendulum", "--out", str(out / "t")],
+        "calibrate": ["calibrate", str(s), "-d", "20", "--out", str(out / "p.json")],
+        "train": ["train", str(s), "--out", str(out / "m"), "--methods", "heuristic", "--cv", "2"],
+        "evaluate": ["evaluate", str(model), str(s), "--report", str(out / "r")],
+        "run": ["run", str(BUNDLE), str(s), "--out", str(out / "r")],
+    }
+
+
+COMMANDS = list(_commands(Path("s"), Path("o"), Path("m")))
+
+
+def _session(base, tmp_path, edit) -> Path:
+    s = tmp_path / "session"
+    shutil.copytree(base["A"], s)
+    edit(s)
+    return s
+
+
+def _one_error_line(argv, capsys) -> str:
+    rc = main(argv)
+    captured = capsys.readouterr()
+    lines = [ln for ln in captured.err.splitlines() if ln.strip()]
+    errors = [ln for ln in lines if ln.startswith("error: ")]
+    assert rc == 2, (rc, captured.err)
+    assert len(errors) == 1 and errors == lines[-1:], captured.err  # warnings may precede, nothing follows
+    assert all(ln.startswith(("error: ", "warning: ")) for ln in lines), captured.err
+    assert "Traceback" not in captured.err and captured.out == ""
+    return errors[0]
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+@pytest.mark.parametrize("defect", list(ERRORS))
+def test_malformed_session_is_one_line_naming_the_file(base, tmp_path, capsys, defect, command):
+    edit, expected, filename = ERRORS[defect]
+    s = _session(base, tmp_path, edit)
+    out = tmp_path / "out"
+    msg = _one_error_line(_commands(s, out, base["model"])[command], capsys)
+    assert any(e in msg for e in ((expected,) if isinstance(expected, str) else expected)), msg
+    assert str(s / filename) in msg or (not filename and str(s) in msg), msg
+    assert not out.exists()  # no partial output
+
+
+# a unit missing for a command that needs it: one line naming the session, the missing sensor and the fix
+NEEDS_WAIST = ["steps-pll", "track-waist-pll", "track-waist-pendulum", "calibrate", "run"]
+NEEDS_FOOT = ["steps", "track-M1", "track-M2", "track-M3", "track-M3-streaming", "run"]
+
+
+@pytest.mark.parametrize(("kind", "command"), [("foot_only", c) for c in NEEDS_WAIST]
+                         + [("waist_only", c) for c in NEEDS_FOOT])
+def test_a_session_without_the_unit_a_command_needs(base, tmp_path, capsys, kind, command):
+    s = _session(base, tmp_path, _drop_unit("w" if kind == "foot_only" else "f"))
+    out = tmp_path / "out"
+    msg = _one_error_line(_commands(s, out, base["model"])[command], capsys)
+    missing = "wAccelerometer" if kind == "foot_only" else "fAccelerometer"
+    assert missing in msg and "sim_A_u1" in msg, msg
+    assert not out.exists()
+
+
+# usable data: the command succeeds and says what is wrong on stderr (warning lines only, each once)
+WARNINGS = {
+    "gap_5s": (_gap, {"steps": "fAccelerometer has 1 gap", "steps-pll": "wAccelerometer has 1 gap",
+                      "track-M2": "fAccelerometer has 1 gap", "track-M3-streaming": "gap(s) longer than 1 s",
+                      "track-waist-pll": "wAccelerometer has 1 gap", "track-waist-pendulum": "wGyroscope has 1 gap",
+                      "calibrate": "wGyroscope has 1 gap", "run": "the runtime replays across them"}),
+    "meta_no_frames": (_meta(lambda m: m.pop("frames")), {"run": "declares no foot frame"}),
+    "meta_no_height": (_meta(lambda m: [m.pop(k) for k in ("height_m", "user")]),
+                       {"track-waist-pll": "gives no subject height"}),
+    "no_waist_gyroscope": (lambda d: (d / "wGyroscope.csv").unlink(),
+                           {"track-M2": "no waist unit: heading from the foot's own integrated yaw"}),
+}
+
+
+@pytest.mark.parametrize(("defect", "command"), [(d, c) for d, (_, cs) in WARNINGS.items() for c in cs])
+def test_usable_data_succeeds_with_a_warning(base, tmp_path, capsys, defect, command):
+    edit, expected = WARNINGS[defect]
+    s = _session(base, tmp_path, edit)
+    rc = main(_commands(s, tmp_path / "out", base["model"])[command])
+    err = capsys.readouterr().err
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert rc == 0, err
+    assert all(ln.startswith(("warning: ", "replaced ")) for ln in lines), err
+    assert any(expected[command] in ln for ln in lines), err
+    assert len(set(lines)) == len(lines), err
+
+
+def _schema(d: Path) -> None:
+    m = json.loads((d / "manifest.json").read_text())
+    m["schema_version"] = 99
+    (d / "manifest.json").write_text(json.dumps(m))
+
+
+MODEL_DEFECTS = {
+    "schema_version": (_schema, "schema version 99"),
+    "manifest_invalid_json": (lambda d: (d / "manifest.json").write_text("{"), "manifest"),
+    "manifest_missing": (lambda d: (d / "manifest.json").unlink(), ""),
+    "model_file_missing": (lambda d: sorted((d / "models").glob("*"))[0].unlink(), "missing"),
+}
+
+
+@pytest.mark.parametrize("command", ["export", "report", "evaluate", "track-M3"])
+@pytest.mark.parametrize("defect", list(MODEL_DEFECTS))
+def test_broken_model_directory(base, tmp_path, capsys, defect, command):
+    edit, expected = MODEL_DEFECTS[defect]
+    model = tmp_path / "model"
+    shutil.copytree(base["model"], model)
+    edit(model)
+    out = tmp_path / "out"
+    argv = {"export": ["export", str(model), "--out", str(out)],
+            "report": ["report", str(model), "--out", str(out)],
+            "evaluate": ["evaluate", str(model), str(base["A"]), "--report", str(out)],
+            "track-M3": ["track", str(base["A"]), "--method", "M3", "--model", str(model), "--out", str(out)]}[command]
+    msg = _one_error_line(argv, capsys)
+    assert expected in msg and str(model) in msg, msg
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("defect", ["schema_version", "manifest_invalid_json", "manifest_missing",
+                                    "model_file_missing"])
+def test_broken_bundle_for_run(base, tmp_path, capsys, defect):
+    bundle = tmp_path / "bundle"
+    shutil.copytree(BUNDLE, bundle)
+    if defect == "model_file_missing":
+        sorted((bundle / "models").glob("*"))[0].unlink()
+    else:
+        MODEL_DEFECTS[defect][0](bundle)
+    out = tmp_path / "out"
+    msg = _one_error_line(["run", str(bundle), str(base["A"]), "--out", str(out)], capsys)
+    assert str(bundle) in msg, msg
+    assert not out.exists()
