@@ -58,6 +58,11 @@ METHODS: dict[str, dict] = {
 }
 
 
+NO_MODEL_WARNING = ("no model: the M3 engine (ZUPT/Kalman strides) without the class rules (terrain filter, "
+                    "sign, length bounds, altitude); pass --model DIR (`pdrlearn train`) or --model oracle "
+                    "(labelled sessions) for M3")
+
+
 def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3,
                    min_swing_s: float = 0.2) -> pd.DataFrame:
     """Strides of the foot unit from rest to rest: one row between consecutive stance runs (runs closer
@@ -256,7 +261,9 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
 
     Parameters
     ----------
-    method : "M1" | "M2" | "M3"
+    method : "M1" | "M2" | "M3" | "auto". "auto" (decision L36): M3 when ``model`` is given; without a model
+        the M3 engine (M2's ZUPT/Kalman strides, the stance from the force sensors or the inertial detector)
+        with the class rules off, and a warning (streaming: M2's kernel)
     model : M3 classes source: a model directory / loaded model, or ``"oracle"`` (the session's labels)
     start : (lat, lon) degrees -> ``lat``/``lon`` columns via thesis eq. 56/57
     params : optional dict overriding :class:`FootDisplacement` settings
@@ -291,18 +298,26 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         3 % default. False: neither
     """
     method = str(method).upper()
+    no_classes = False
+    if method == "AUTO":  # decision L36: M3 with a model; without one the M3 engine, its class rules off
+        method, no_classes = ("M3", False) if model is not None else (("M2", True) if streaming else ("M3", True))
     if method not in METHODS:
-        raise DataError(f"plasys: method '{method}' is not one of M1, M2, M3")
+        raise DataError(f"plasys: method '{method}' is not one of auto, M1, M2, M3")
     if streaming:
         if steps != "detector" or align or rules not in (None, "thesis") or (min_confidence or 0) > 0:
             raise DataError("plasys streaming=True: steps, align, rules='bayes' and min_confidence are not "
                             "streamable; leave them at their defaults")
-        return track_streaming(session, method=method, model=model, start=start, params=params,
-                               heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
-                               bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
-                               calibration=calibration, **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}))
-    cfg = METHODS[method]
-    warnings: list[str] = []
+        res = track_streaming(session, method=method, model=model, start=start, params=params,
+                              heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
+                              bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
+                              calibration=calibration, **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}))
+        if no_classes:
+            res.info["method"] = "M3 engine, no classes"
+            res.info["warnings"] = [NO_MODEL_WARNING, *res.info.get("warnings", [])]
+            log.warning("%s: %s", session.name, NO_MODEL_WARNING)
+        return res
+    cfg = {**METHODS[method], "rules": False} if no_classes else METHODS[method]
+    warnings: list[str] = [NO_MODEL_WARNING] if no_classes else []
     foot = unit_data(session, "foot", purpose=f"PLASYS {method}")
     stance = None
     if cfg["force"]:
@@ -441,7 +456,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         ll = geodetic_track(tuple(start), length, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     oracle = isinstance(model, str) and model == "oracle"
-    info = {"pipeline": "plasys", "method": method, "heading_source": hsrc, "stance_source": stance_source,
+    info = {"pipeline": "plasys", "method": "M3 engine, no classes" if no_classes else method,
+            "heading_source": hsrc, "stance_source": stance_source,
             "steps_source": source,
             "classes_source": ("oracle" if oracle else ("model" if cfg["rules"] else None)),
             "unit_alignment": alignment,

@@ -1,0 +1,47 @@
+"""Decision L36: `track` without a model runs the M3 engine with its class rules off (method "auto")."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from pdrlearn import sim
+from pdrlearn.errors import ModelError
+from pdrlearn.io import read_session
+from pdrlearn.track.plasys import NO_MODEL_WARNING, track_plasys
+
+
+@pytest.fixture(scope="module")
+def level_left(gaitmap_level_left):
+    return read_session(gaitmap_level_left)
+
+
+def test_auto_without_model_is_the_m3_engine_without_rules(level_left):
+    auto = track_plasys(level_left, method="auto")
+    oracle = track_plasys(level_left, method="M3", model="oracle")
+    assert auto.info["method"] == "M3 engine, no classes" and auto.info["warnings"][0] == NO_MODEL_WARNING
+    assert auto.info["classes_source"] is None and auto.info["rules"] is None
+    # the level walk's oracle classes are all flat/forward: the rules change nothing there
+    np.testing.assert_allclose(auto.steps["length_m"], oracle.steps["length_m"], rtol=0, atol=1e-9)
+    assert auto.steps["terrain"].isna().all()
+
+
+def test_auto_without_model_streams_m2(level_left):
+    auto = track_plasys(level_left, method="auto", streaming=True)
+    m2 = track_plasys(level_left, method="M2", streaming=True)
+    assert auto.info["method"] == "M3 engine, no classes" and NO_MODEL_WARNING in auto.info["warnings"]
+    xyz = ["x", "y", "z"]
+    np.testing.assert_array_equal(auto.trajectory[xyz].to_numpy(), m2.trajectory[xyz].to_numpy())
+
+
+def test_auto_with_model_is_m3_and_explicit_m3_still_needs_a_model():
+    s = sim.simulate("C", user_seed=2, speed="normal")
+    auto = track_plasys(s, method="auto", model="oracle")
+    m3 = track_plasys(s, method="M3", model="oracle")
+    assert auto.info["method"] == "M3" and NO_MODEL_WARNING not in auto.info["warnings"]
+    np.testing.assert_array_equal(auto.steps["length_m"], m3.steps["length_m"])
+    # stairs without classes keep the integrated height (no altitude rule), not zero
+    bare = track_plasys(s, method="auto")
+    assert np.abs(bare.steps["dz_m"]).max() > 0.05
+    with pytest.raises(ModelError, match="M3 needs"):
+        track_plasys(s, method="M3")
