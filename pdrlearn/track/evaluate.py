@@ -161,6 +161,35 @@ def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
             out["stride_length_mae_pct_turns"] = float(100.0 * np.mean((err / np.abs(r))[turn]))
 
 
+def _foot_stride_f1(result: TrackResult, session: Session, out: dict) -> None:
+    """Foot tracks on sessions with ground-truth strides: ``step_f1`` (with ``step_precision`` /
+    ``step_recall``) of the tracked strides against the labelled ones, matched by time overlap (IoU >= 0.5,
+    as the stride lengths). Only tracked strides whose middle lies in a labelled interval are scored (the
+    intervals of :func:`pdrlearn.steps.evaluate.reference_events`: a reference that labels part of a walk
+    leaves the rest unscored). A labelled stride that two or more tracked strides tile (a turn split at an
+    intermediate rest) counts once, and its pieces are not false positives; a rest-based segmentation
+    (``source=detected``) is not ground truth and gives no F1 (decision L36)."""
+    st = session.steps
+    if st is None or not len(st) or not len(result.steps) or "unit" not in result.steps:
+        return
+    if not (result.steps["unit"] == "foot").all():
+        return
+    from pdrlearn.steps.evaluate import in_intervals, reference_events
+
+    ref = reference_events(session, "foot")
+    if ref is None or not ref.ground_truth:
+        return
+    mid = result.steps[["start_s", "end_s"]].to_numpy(float).mean(axis=1)
+    est = result.steps[in_intervals(mid, ref.intervals)].reset_index(drop=True)
+    pairs = match_by_overlap(est, st)
+    used_est, used_ref = {i for i, _ in pairs}, {j for _, j in pairs}
+    tp = len(pairs) + len(_composed_strides(est, st, used_est, used_ref))  # adds the tiles to used_est
+    precision = len(used_est) / len(est) if len(est) else 0.0
+    recall = tp / len(st)
+    out["step_precision"], out["step_recall"] = float(precision), float(recall)
+    out["step_f1"] = float(2 * precision * recall / (precision + recall)) if tp else 0.0
+
+
 def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
     """Waist tracks on sessions with Mobilise-D style references (``ics.csv``, ``bouts.csv``): ``step_f1``
     vs every initial contact, ``distance_error_pct`` over the reference walking bouts and
@@ -182,7 +211,7 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
 
 
 #: metric helpers run in order by :func:`evaluate_track`; append to extend.
-METRICS = [_basic, _ground_truth, _stride_lengths, _waist_references]
+METRICS = [_basic, _ground_truth, _stride_lengths, _foot_stride_f1, _waist_references]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:
