@@ -45,3 +45,15 @@ def test_auto_with_model_is_m3_and_explicit_m3_still_needs_a_model():
     assert np.abs(bare.steps["dz_m"]).max() > 0.05
     with pytest.raises(ModelError, match="M3 needs"):
         track_plasys(s, method="M3")
+
+
+def test_cli_track_without_model_or_method_runs_the_engine(gaitmap_level_left, tmp_path, capsys):
+    import json
+
+    from pdrlearn.cli import main
+
+    rc = main(["track", str(gaitmap_level_left), "--out", str(tmp_path / "t"), "--json"])
+    cap = capsys.readouterr()
+    assert rc == 0 and "no model: the M3 engine" in cap.err and cap.err.count("no model") == 1
+    out = json.loads(cap.out)
+    assert out["step_f1"] >= 0.98 and abs(out["distance_matched_error_pct"]) < 5

@@ -20,7 +20,8 @@ def track(
     session_dir: Path = typer.Argument(..., help="Session folder (PLASYS format)."),
     out: Path = typer.Option(..., "--out", "-o", help="Output folder (created; an existing track only with --force)."),
     pipeline: str = typer.Option("plasys", help="Tracking pipeline: plasys, waist-pll, waist-pendulum."),
-    method: str = typer.Option("M3", help="PLASYS method: M1 (accelerometer), M2 (+ force), M3 (+ classes)."),
+    method: str = typer.Option("auto", help="PLASYS method: M1 (accelerometer), M2 (+ force), M3 (+ classes); "
+                               "auto = M3 with --model, else the M3 engine without the class rules (warned)."),
     model: str = typer.Option(None, "--model", help="Trained model directory (M3); 'oracle' = the session's "
                               "own step labels."),
     rules: str = typer.Option(None, "--rules", help="M3 class rules: thesis (classes prevail) or bayes "
@@ -46,6 +47,7 @@ def track(
 
     Examples:
 
+        pdrlearn track datasets/real/gaitmap_level_right --out out/track_right       # no model: M3 engine, no classes
         pdrlearn track datasets/real/gaitmap_level_right --method M3 --model oracle --out out/track_right
 
         pdrlearn track out/sim/D_u1 --method M2 --start 41.178,-8.608 --out out/D
