@@ -86,6 +86,8 @@ def _foot_levelled_reference(t, acc, gyr, forward_s, *, rest_search_s, heading):
     yaw = KS.heading_rotation(KS.principal_horizontal_axis(a_lev, ref) if heading == "pca" else ref)
     g_out = np.einsum("kij,kj->ki", rot, gyr) @ yaw.T
     dpsi = KW.twist_about_z(rot[-1] @ rot[0].T)  # decisions L30/L33: the turn about the vertical, first to last sample
+    w = np.einsum("kij,kj->ki", rot, gyr)  # decision L35: + (5/24) sum dt^2 (w_k x w_k+1)_z of the levelled rate
+    dpsi += 5.0 / 24.0 * float(np.sum(np.diff(t) ** 2 * np.cross(w[:-1], w[1:])[:, 2]))
     return a_lev @ yaw.T, g_out, an, dpsi
 
 
