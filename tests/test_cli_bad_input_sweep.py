@@ -244,3 +244,35 @@ def test_broken_bundle_for_run(base, tmp_path, capsys, defect):
     msg = _one_error_line(["run", str(bundle), str(base["A"]), "--out", str(out)], capsys)
     assert str(bundle) in msg, msg
     assert not out.exists()
+
+
+RESULTS_DEFECTS = {
+    "summary_json_list": ("summary.json", "[1, 2]", "must hold a JSON object"),
+    "summary_json_invalid": ("summary.json", "{broken", "not valid JSON"),
+    "evaluation_json_list": ("evaluation.json", "[]", "must hold a JSON object"),
+    "evaluation_json_wrong_shape": ("evaluation.json", '{"tasks": 3}', "not an evaluation written by"),
+}
+
+
+@pytest.mark.parametrize("defect", list(RESULTS_DEFECTS))
+def test_report_of_a_broken_results_folder(tmp_path, capsys, defect):
+    """Before: a summary.json holding a list, or an evaluation.json of another shape, raised
+    AttributeError with a traceback."""
+    name, text, expected = RESULTS_DEFECTS[defect]
+    results = tmp_path / "results" / "track1"
+    results.mkdir(parents=True)
+    (results / name).write_text(text)
+    out = tmp_path / "out"
+    msg = _one_error_line(["report", str(tmp_path / "results"), "--out", str(out)], capsys)
+    assert expected in msg and str(results / name) in msg, msg
+    assert not out.exists()
+
+
+@pytest.mark.xfail(strict=True, reason="open (features/classify, not CLI): evaluate on a session with a 5 s gap "
+                   "stops with 'terrain features: N of M steps have NaN foot_acc samples' naming neither the session "
+                   "nor the gap; B11 says steps that lost a unit are classified without it")
+def test_evaluate_on_a_session_with_a_gap(base, tmp_path, capsys):
+    s = _session(base, tmp_path, _gap)
+    rc = main(["evaluate", str(base["model"]), str(s), "--json"])
+    errors = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("error: ")]
+    assert rc == 0 or (len(errors) == 1 and (str(s) in errors[0] or "sim_A_u1_normal_s0" in errors[0])), errors

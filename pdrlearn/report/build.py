@@ -28,9 +28,23 @@ class Section:
 
 def _read_json(p: Path) -> dict:
     try:
-        return json.loads(p.read_text())
+        d = json.loads(p.read_text())
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise DataError(f"{p}: not valid JSON ({exc}); regenerate it") from None
+    if not isinstance(d, dict):  # a list/number would fail later with a traceback (bad-input sweep, B16)
+        raise DataError(f"{p}: must hold a JSON object, not {type(d).__name__}; regenerate it")
+    return d
+
+
+def _evaluation_sections_of(p: Path) -> list[Section]:
+    """The sections of one evaluation.json; a JSON object of another shape is one line naming the file."""
+    try:
+        return _evaluation_sections(_read_json(p))
+    except (AttributeError, KeyError, TypeError, ValueError) as exc:
+        if isinstance(exc, DataError):
+            raise
+        raise DataError(f"{p}: not an evaluation written by `pdrlearn evaluate --json` ({type(exc).__name__}: "
+                        f"{exc}); regenerate it") from None
 
 
 def _fmt(v) -> str:
@@ -133,7 +147,7 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
                       and (skip is None or not p.resolve().is_relative_to(skip)))
 
     for p in find("evaluation.json"):
-        sections.extend(_evaluation_sections(_read_json(p)))
+        sections.extend(_evaluation_sections_of(p))
     for p in find("cohort_summary.csv"):
         sections.append(Section(f"Cohort — {p.parent.name}", tables=[("per-user results", read_table(p))]))
     tracks = find("summary.json")
