@@ -276,3 +276,18 @@ def test_evaluate_on_a_session_with_a_gap(base, tmp_path, capsys):
     rc = main(["evaluate", str(base["model"]), str(s), "--json"])
     errors = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("error: ")]
     assert rc == 0 or (len(errors) == 1 and (str(s) in errors[0] or "sim_A_u1_normal_s0" in errors[0])), errors
+
+
+NEEDS_FRAMES = ["track-M1", "track-M2", "track-M3", "track-M3-streaming", "track-waist-pll", "track-waist-pendulum",
+                "calibrate", "train", "evaluate"]
+
+
+@pytest.mark.parametrize("command", NEEDS_FRAMES)
+def test_meta_json_without_frames(base, tmp_path, capsys, command):
+    """A meta.json lacking "frames": the commands that need a unit's axes stop with one line naming the unit
+    and the entry to add (info/plot/steps do not need them; run takes the bundle's, with a warning)."""
+    s = _session(base, tmp_path, _meta(lambda m: m.pop("frames")))
+    out = tmp_path / "out"
+    msg = _one_error_line(_commands(s, out, base["model"])[command], capsys)
+    assert "frame" in msg and "meta.json" in msg and "sim_A_u1_normal_s0" in msg, msg
+    assert not out.exists()

@@ -194,3 +194,22 @@ def test_hoist_verbose_leaves_option_values_alone():
 def test_without_verbose_no_info_lines(data, tmp_path, capsys):
     lines = _stderr_of(["track", str(data["A"]), "--method", "M2", "--out", str(tmp_path / "t")], capsys)
     assert not any(ln.startswith("INFO") for ln in lines), lines
+
+
+def test_train_all_and_evaluate_all_need_force_to_replace(data, tmp_path, capsys):
+    cohort = tmp_path / "cohort"
+    shutil.copytree(data["terrain"], cohort / "u1" / "train" / "s1")
+    shutil.copytree(data["terrain"], cohort / "u1" / "test" / "s1")
+    models = tmp_path / "models"
+    argv = ["train-all", str(cohort), "--out", str(models), "--serial", "--methods", "heuristic", "--tasks",
+            "terrain", "--cv", "3", "--json"]
+    assert main(argv) == 0
+    assert main(argv) == 2
+    assert "--force" in capsys.readouterr().err
+    assert main([*argv, "--force"]) == 0
+    assert f"replaced {models}" in capsys.readouterr().err
+    ev = ["evaluate-all", str(models), str(cohort), "--serial", "--json"]
+    assert main(ev) == 0
+    assert main(ev) == 2
+    assert "--force" in capsys.readouterr().err
+    assert main([*ev, "--force"]) == 0
