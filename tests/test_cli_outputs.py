@@ -213,3 +213,19 @@ def test_train_all_and_evaluate_all_need_force_to_replace(data, tmp_path, capsys
     assert main(ev) == 2
     assert "--force" in capsys.readouterr().err
     assert main([*ev, "--force"]) == 0
+
+
+def test_console_script_prints_each_warning_once(data, tmp_path):
+    """B13 in a real process (logging unconfigured, as for a user): before, the waist pipeline's warning
+    came twice, as `WARNING pdrlearn.track.waist: ...` (logging.basicConfig) and `warning: ...` (echo);
+    in-process tests under pytest saw only one because pytest's handlers made basicConfig a no-op."""
+    import subprocess
+    import sys
+
+    proc = subprocess.run([sys.executable, "-c", "from pdrlearn.cli import run; run()", "track", str(data["A"]),
+                           "--pipeline", "waist-pll", "--out", str(tmp_path / "t")],
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    lines = [ln for ln in proc.stderr.splitlines() if ln.strip()]
+    assert lines and all(ln.startswith("warning: ") for ln in lines), lines
+    assert sum("no per-user calibration" in ln for ln in lines) == 1, lines
