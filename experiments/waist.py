@@ -71,18 +71,20 @@ REAL_NOTE = ("step_f1 = detections inside the reference bouts vs every reference
              "bouts vs their total reference length; bout_err_median_pct = median of per-bout |errors|; "
              "*_strides_* = the same against each bout's own reference strides (its steps x half its mean "
              "stride, decision W25) instead of the bout `Length` (short in bouts with untimed contacts, X2b).")
-DECOMP_NOTE = ("Per reference bout (calibrated `waist-pendulum`): L = INDIP bout `Length`; L_strides = the bout's "
-               "reference steps x half its mean stride (W25); err_L / err_strides = tracked vs each; count_err = "
-               "detected / reference steps - 1; step_err = mean tracked step / mean reference step - 1 "
-               "((1 + err_strides) = (1 + count_err)(1 + step_err)).")
+DECOMP_NOTE = ("Per reference bout (calibrated `waist-pendulum`, offline and realtime): L = INDIP bout `Length`; "
+               "L_strides = the bout's reference steps x half its mean stride (W25); err_L / err_strides = tracked "
+               "vs each; count_err = detected / reference steps - 1; step_err = mean tracked step / mean "
+               "reference step - 1 ((1 + err_strides) = (1 + count_err)(1 + step_err)).")
 
 
-def decomposition(bouts: pd.DataFrame, pipeline: str = "waist-pendulum") -> pd.DataFrame:
-    """Per bout: the error against both references, split into a step-count and a per-step-length part."""
-    b = bouts[(bouts.pipeline == pipeline) & (bouts.params == "calibrated")]
+def decomposition(bouts: pd.DataFrame, pipelines: tuple[str, ...] = ("waist-pendulum", "waist-pendulum realtime")
+                  ) -> pd.DataFrame:
+    """Per bout: the error against both references, split into a step-count and a per-step-length part
+    (offline and realtime: their distances differ through the step count, decision W35)."""
+    b = bouts[bouts.pipeline.isin(pipelines) & (bouts.params == "calibrated")]
     n, nr = b["n_steps"].to_numpy(float), b["n_reference_steps"].to_numpy(float)
     per_step = (b["tracked_m"] / np.where(n > 0, n, np.nan)) / (b["reference_strides_m"] / nr)
-    return pd.DataFrame({"subject": b["subject"], "test": b["test"], "start_s": b["start_s"],
+    return pd.DataFrame({"pipeline": b["pipeline"], "subject": b["subject"], "test": b["test"], "start_s": b["start_s"],
                          "L_m": b["reference_m"], "L_strides_m": b["reference_strides_m"], "tracked_m": b["tracked_m"],
                          "err_L_pct": b["error_pct"], "err_strides_pct": b["error_strides_pct"],
                          "steps": b["n_steps"], "ref_steps": b["n_reference_steps"],

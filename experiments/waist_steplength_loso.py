@@ -38,9 +38,12 @@ calibration and in the test; K from the subject's Test5 as above):
   walking sequence gets that median (a robust per-sequence length for implausible excursions)
 - K shrunk to the population: K = (1 - w) K_own + w K_others, K_others calibrated on the other two
   subjects' Test5 walks (leave-one-subject-out), w = 0.25, 0.5
+- pendulum (W27) x cos(turn)^p (decision W36): the W19 turning factor raised to p (p = 1: the pipeline's
+  default model), p chosen on the two other subjects as beta and phi; pooled rows for every p
 and a per-trial diagnostic of the straight walks (--diagnose): step frequency, h, reference step length,
 K against the reference steps with and without the first / last step(s), correlation of the per-step
-reference / pendulum ratio with step frequency, tilt of the sensor's up axis at rest.
+reference / pendulum ratio with step frequency, tilt of the sensor's up axis at rest; and (--turns) the
+per-step reference / pendulum ratio of the Test11 steps by their pelvis rotation (W36).
 
 Run: .venv/bin/python experiments/waist_steplength_loso.py [--external datasets/external]
 """
@@ -68,6 +71,7 @@ SUBJECTS = {"HA001": ["Test5_Trial1", "Test5_Trial2"], "HA002": ["Test5_Trial2"]
             "MS001": ["Test5_Trial1", "Test5_Trial2"]}  # HA002 Test5 Trial1 has no reference (E3)
 BETAS = np.round(np.arange(-1.0, 1.01, 0.25), 2)
 PHIS = np.round(np.arange(-0.3, 0.21, 0.05), 2)
+TURN_POWERS = np.array([0.0, 0.5, 1.0, 1.5, 2.0, 3.0])  # W36: exponents of the W19 factor cos(turn)
 FRAGMENT_FRAC = 0.5
 
 
@@ -200,6 +204,9 @@ def model_sum(r: dict, model: str, par: float = 0.0, f_cal: float = 1.0) -> floa
         return float(np.sum(r["c"] * np.maximum(r["g"] + par, 0.0)))
     if model == "pendulum without fragments":
         return float(np.sum(r["c"] * r["g"] * (1.0 - r["fragment"])))
+    if model == "pendulum (W27) x cos(turn)^p":  # W36: the W19 factor's exponent, p = 1 is the default
+        c = r["c:fragments merged (W27)"]
+        return float(np.sum(np.where(c > 0, np.clip(c, 1e-12, None) ** par, 0.0) * r["g:fragments merged (W27)"]))
     if model.startswith("pendulum, h "):
         v = model.removeprefix("pendulum, h ")
         return float(np.sum(r.get("c:" + v, r["c"]) * r["g:" + v]))
@@ -279,21 +286,72 @@ def diagnose(ext: Path) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def collect_errors(rows: list[dict], model: str) -> tuple[np.ndarray, np.ndarray]:
+def collect_errors(rows: list[dict], model: str, par: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Signed Test11 per-bout errors (%) vs ``Length`` and vs strides, K from the subject's Test5."""
     cal = [r for r in rows if r["test"].startswith("Test5")]
     f_cal = float(np.median(np.concatenate([r["f"] for r in cal])))
-    k = k_of(rows, model, 0.0, f_cal)
+    k = k_of(rows, model, par, f_cal)
     t11 = [r for r in rows if r["test"].startswith("Test11")]
-    est = np.array([k * model_sum(r, model, 0.0, f_cal) for r in t11])
+    est = np.array([k * model_sum(r, model, par, f_cal) for r in t11])
     L, LS = np.array([r["L"] for r in t11]), np.array([r["LS"] for r in t11])
     return 100 * (est - L) / L, 100 * (est - LS) / LS
+
+
+def turn_per_step(ext: Path) -> pd.DataFrame:
+    """W36: per Test11 walking step inside the bouts (default pipeline, merged fragments left out, a reference
+    step length = half the mean reference stride containing its midpoint), the reference / pendulum chord
+    ratio (K = 1, no turn factor) by the step's net pelvis rotation, and the slope b of
+    log(ratio) = a + b log cos(rotation) (W19 assumes b = 1; rotation capped at 89 deg)."""
+    rows = []
+    for subj in SUBJECTS:
+        s = read_session(ext / f"mobgap_{subj}_Test11_Trial1")
+        p, _ = resolve_params(s, None)
+        st = get_pipeline("waist-pendulum")(s, params=p).steps
+        ref = _reference_steps(s, st)
+        inside = np.zeros(len(st), dtype=bool)
+        for b in reference_bouts(s).itertuples():
+            inside |= steps_in_interval(st, b.start_s, b.end_s)
+        g = K.pendulum_length(st["h_m"].to_numpy(float), p.leg_m)
+        ok = inside & st["has_next"].to_numpy(bool) & ~st["merged"].to_numpy(bool) & np.isfinite(ref) & (g > 0.02)
+        turn = np.degrees(np.abs(st["dyaw_rad"].to_numpy(float)))
+        for r, gg, t in zip(ref[ok], g[ok], turn[ok], strict=True):
+            rows.append({"subject": subj, "ratio": r / gg, "turn_deg": t})
+    df = pd.DataFrame(rows)
+    df["turn"] = pd.cut(df["turn_deg"], [0, 10, 20, 35, 50, 70, 180])
+    out = df.groupby(["turn", "subject"], observed=True)["ratio"].agg(["size", "median"]).unstack("subject")
+    slopes = {}
+    for subj, g in df.groupby("subject"):
+        x = np.log(np.cos(np.radians(np.minimum(g["turn_deg"].to_numpy(float), 89.0))))
+        slopes[subj] = float(np.polyfit(x, np.log(g["ratio"].to_numpy(float)), 1)[0])
+    out.loc["slope b of log(ratio) on log cos(turn)", :] = [slopes.get(sj, np.nan) if c == "median" else np.nan
+                                                          for c, sj in out.columns]
+    return out
+
+
+def turn_power_sim(powers=(1.0, 1.5), users=(1, 2, 3)) -> pd.DataFrame:
+    """W36: the simulator (`experiments/waist.py`'s protocol: users x scenarios A-D, calibrated on a measured
+    60 m walk) with the W19 factor raised to each power, offline and realtime `waist-pendulum`."""
+    import sys
+    from unittest import mock
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import waist as W
+
+    base = K.turning_step_factor
+    out = []
+    for pw in powers:
+        cfg = [c for c in W.CONFIGS if c[0] in ("waist-pendulum", "waist-pendulum realtime")]
+        with mock.patch.object(W, "CONFIGS", cfg), \
+                mock.patch.object(K, "turning_step_factor", lambda d, pw=pw: base(d) ** pw):
+            out.append(W.summarize_sim(W.simulated(list(users))).assign(p=pw))
+    return pd.concat(out, ignore_index=True)
 
 
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
     ap.add_argument("--diagnose", action="store_true", help="also print the per-trial straight-walk diagnostic (W27)")
+    ap.add_argument("--turns", action="store_true", help="also print the per-step turn diagnostic (W36)")
     args = ap.parse_args()
     logging.basicConfig(level=logging.ERROR)
     pd.set_option("display.width", 220)
@@ -310,7 +368,8 @@ def main() -> None:
             rows.append({"subject": subj, "model": f"pendulum, K shrunk {w:.2f} to the others' K",
                          "parameter": f"K_others {k_pop:.3f}", **errors(r, "pendulum", shrink=(w, k_pop))})
     grids = {}
-    for m, grid in (("pendulum x (f/f_cal)^beta", BETAS), ("pendulum + phi", PHIS)):
+    for m, grid in (("pendulum x (f/f_cal)^beta", BETAS), ("pendulum + phi", PHIS),
+                    ("pendulum (W27) x cos(turn)^p", TURN_POWERS)):
         g = pd.DataFrame({s: [errors(r, m, x)["test11_median_vs_strides_pct"] for x in grid]
                           for s, r in data.items()}, index=grid)
         grids[m] = g
@@ -332,11 +391,22 @@ def main() -> None:
             eL, eS = (np.abs(np.concatenate([x[j] for x in e])) for j in (0, 1))
             pooled.append({"model": m, "test11_pooled_median_vs_length_pct": float(np.median(eL)),
                            "test11_pooled_median_vs_strides_pct": float(np.median(eS))})
+    for x in TURN_POWERS:  # W36: pooled per exponent (fixed, no LOSO choice)
+        m = "pendulum (W27) x cos(turn)^p"
+        e = [collect_errors(data[sj], m, x) for sj in data]
+        eL, eS = (np.abs(np.concatenate([y[j] for y in e])) for j in (0, 1))
+        pooled.append({"model": f"{m}, p = {x:g}", "test11_pooled_median_vs_length_pct": float(np.median(eL)),
+                       "test11_pooled_median_vs_strides_pct": float(np.median(eS))})
     print("\nTest11, all 15 bouts pooled (median |per-bout error|, %):")
     print(pd.DataFrame(pooled).round(1).to_string(index=False))
     if args.diagnose:
         print("\nStraight walks (Test5) per trial, W27 angle 1 (K_* = reference / pendulum over the bout's steps):")
         print(diagnose(args.external).round(3).to_string(index=False))
+    if args.turns:
+        print("\nTest11 steps: reference / pendulum chord (K = 1, no turn factor) by net pelvis rotation (W36):")
+        print(turn_per_step(args.external).round(2).to_string())
+        print("\nSimulator, W19 factor cos(turn)^p (W36):")
+        print(turn_power_sim().round(2).to_string(index=False))
     res = ROOT / "experiments" / "results"
     out.to_csv(res / "waist_steplength_loso.csv", index=False, float_format="%.4g")
     print(f"wrote {res / 'waist_steplength_loso.csv'}")
