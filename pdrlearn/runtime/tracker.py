@@ -33,6 +33,7 @@ from pdrlearn.kernels.stride import (
     gap_yaw,
     headed_by_foot,
     placement_offset,
+    reversed_by_rules,
     stride_motion,
     stride_rules_one,
 )
@@ -506,7 +507,8 @@ class Tracker:
         length, dz = stride_rules_one(dx, dy, dz, classes.get("terrain"), classes.get("direction"),
                                       classes.get("length"), bounds=self.bounds, down_mode=self._down_mode)
         self.heading += dyaw
-        direction = self.heading + placement_offset(lev, self.heading_source, disp)  # decision L34
+        direction = (self.heading + placement_offset(lev, self.heading_source, disp)  # decision L34
+                     + reversed_by_rules(lev, self.heading_source, dx, length))  # decision L37
         x, y, z = advance_xyz(*self.position.tolist(), direction, length, dz)
         self.position = np.array((x, y, z))
         self.n_steps += 1
