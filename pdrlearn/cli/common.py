@@ -48,8 +48,24 @@ def split_choices(*, tasks: str | None, methods: str | None, units: str | None):
 FORCE_HELP = "Replace an existing output of this command (atomically: the old one stays until the new one is complete)."
 
 
+#: ``manifest.json`` of the two folder kinds that share that marker: (field, value) -> what the folder is
+_MANIFEST_KINDS = {("schema", "pdrlearn-bundle"): "a runtime bundle",
+                   ("kind", "pdrlearn user model"): "a model directory"}
+
+
+def manifest_kind(folder: Path) -> str | None:
+    """``"a runtime bundle"`` or ``"a model directory"`` from ``folder/manifest.json`` (None: neither, unreadable)."""
+    try:
+        m = json.loads((folder / "manifest.json").read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(m, dict):
+        return None
+    return next((v for (k, val), v in _MANIFEST_KINDS.items() if m.get(k) == val), None)
+
+
 def out_folder(path: Path, markers: tuple[str, ...], what: str, *, force: bool = False,
-               allow: tuple[str, ...] = ()) -> Path:
+               allow: tuple[str, ...] = (), inputs: tuple = ()) -> Path:
     """Validate an output folder before any work is done (decision B12).
 
     An absent or empty folder is used. A previous output of the same command (it holds one of the
@@ -57,6 +73,9 @@ def out_folder(path: Path, markers: tuple[str, ...], what: str, *, force: bool =
     file, or a folder of unrelated files, which the command would mix its output into or delete -- is
     refused even with ``force``. ``allow`` names files that do not make a folder "non-empty" (the
     documented ``--json > DIR/evaluation.json`` redirect creates that file before the command runs).
+    A model directory and a runtime bundle share the ``manifest.json`` marker: one is never replaced by
+    the other (``what`` names the kind), and a folder that is or holds one of the command's ``inputs``
+    (``export M --out M``) is never replaced: the atomic replacement would delete the input.
     """
     if path.exists() and not path.is_dir():
         raise DataError(f"{path}: is a file; --out must be a folder for {what}")
@@ -64,6 +83,14 @@ def out_folder(path: Path, markers: tuple[str, ...], what: str, *, force: bool =
     if entries:
         if not any(any(path.glob(m)) for m in markers):
             raise DataError(f"{path}: exists and does not hold {what}; choose another output folder or empty it")
+        kind = manifest_kind(path) if "manifest.json" in markers else None
+        if kind is not None and not what.startswith(kind):
+            raise DataError(f"{path}: holds {kind}, not {what}; choose another output folder")
+        here = path.resolve()
+        for q in inputs:
+            if q is not None and (Path(q).resolve() == here or Path(q).resolve().is_relative_to(here)):
+                raise DataError(f"{path}: is (or holds) the input {q}; replacing it would delete it -- choose "
+                                "another output folder")
         if not force:
             raise DataError(f"{path}: already holds {what}; pass --force to replace it, or choose another output "
                             "folder")

@@ -42,7 +42,7 @@ def export(
             bounds = [float(v) for v in length_bounds.split(",")]
         except ValueError:
             raise DataError(f"--length-bounds {length_bounds!r}: give two numbers, e.g. 0.6,0.9") from None
-    out_folder(out, ("manifest.json",), "a runtime bundle", force=force)
+    out_folder(out, ("manifest.json",), "a runtime bundle", force=force, inputs=(model_dir,))
     was = existed(out)
     path = export_model(model_dir, out, methods=meths, length_bounds=bounds, overwrite=force)
     replaced(out, was)
@@ -109,7 +109,8 @@ def run(
     if not (chunk_s > 0 and chunk_s < float("inf")):
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     if out is not None:
-        out_folder(out, ("summary.json",), "a run (steps.csv, trajectory.csv, summary.json)", force=force)
+        out_folder(out, ("summary.json",), "a run (steps.csv, trajectory.csv, summary.json)", force=force,
+                   inputs=(bundle_dir, session_dir))
     bundle = load_bundle(bundle_dir)  # verified before any output
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
     if protocol is not None:
@@ -156,6 +157,13 @@ def run(
                   "the runtime replays across them (a stride spanning one is unreliable) - re-record or trim the "
                   "session, or use `pdrlearn track`, which ends the walk at a gap")
         tracker = Tracker(bundle, frames=_frames_of(session, bundle))
+        if tracker.heading_source == "auto" and not (session.has("wAccelerometer", "wGyroscope")
+                                                     and "waist" in tracker.forward):  # as track says (B17)
+            import logging
+
+            from pdrlearn.track.plasys import NO_WAIST_HEADING
+
+            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, NO_WAIST_HEADING)
         t_all = np.concatenate([st.t for st in session.streams.values()])
         for a in np.arange(t_all.min(), t_all.max() + chunk_s, chunk_s):
             chunk = {}

@@ -103,7 +103,7 @@ def train(
         raise DataError(f"train: --boundaries {boundaries!r}; choose one of {', '.join(BOUNDARIES)}")
     t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
     t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
-    out_folder(out, ("manifest.json",), "a model directory", force=force)
+    out_folder(out, ("manifest.json",), "a model directory", force=force, inputs=tuple(data_dirs))
     was = existed(out)
     sessions = _read_all(data_dirs)
     total = len(t_all) * len(m_all) * len(u_all)

@@ -1,0 +1,72 @@
+"""Decision B12: `--force` replaces a previous output of the same command only. A model directory and a
+runtime bundle share the `manifest.json` marker, so `export --force` must not take a model directory for a
+previous bundle (`export M --out M --force` deleted the trained model) and `train --force` must not replace
+a bundle; a folder that is one of the command's inputs is never replaced."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+from pdrlearn.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+BUNDLE = ROOT / "models" / "plasys-sim-default"
+
+
+@pytest.fixture(scope="module")
+def model(tmp_path_factory) -> dict[str, Path]:
+    root = tmp_path_factory.mktemp("force_kinds")
+    terrain = root / "terrain"
+    assert main(["simulate", "-s", "terrain", "-u", "3", "--out", str(terrain), "--json"]) == 0
+    m = root / "model"
+    assert main(["train", str(terrain), "--out", str(m), "--methods", "heuristic", "--tasks", "terrain",
+                 "--cv", "3", "--json"]) == 0
+    return {"terrain": terrain, "model": m}
+
+
+def _snapshot(folder: Path) -> dict[str, bytes]:
+    return {str(p.relative_to(folder)): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def _refused(argv, capsys) -> str:
+    rc = main([str(a) for a in argv])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1 and err[0].startswith("error: "), err
+    return err[0]
+
+
+def test_export_force_never_replaces_its_own_model(model, tmp_path, capsys):
+    m = tmp_path / "m"
+    shutil.copytree(model["model"], m)
+    before = _snapshot(m)
+    err = _refused(["export", m, "--out", m, "--force"], capsys)
+    assert str(m) in err and "model directory" in err
+    assert _snapshot(m) == before  # the trained model is still there
+
+
+def test_export_force_never_replaces_another_model_directory(model, tmp_path, capsys):
+    other = tmp_path / "other_model"
+    shutil.copytree(model["model"], other)
+    before = _snapshot(other)
+    _refused(["export", model["model"], "--out", other, "--force"], capsys)
+    assert _snapshot(other) == before
+
+
+def test_train_force_never_replaces_a_bundle(model, tmp_path, capsys):
+    b = tmp_path / "bundle"
+    shutil.copytree(BUNDLE, b)
+    before = _snapshot(b)
+    err = _refused(["train", model["terrain"], "--out", b, "--methods", "heuristic", "--tasks", "terrain",
+                    "--cv", "3", "--force"], capsys)
+    assert "runtime bundle" in err
+    assert _snapshot(b) == before
+
+
+def test_export_force_still_replaces_a_bundle(model, tmp_path, capsys):
+    b = tmp_path / "b"
+    assert main(["export", str(model["model"]), "--out", str(b)]) == 0
+    assert main(["export", str(model["model"]), "--out", str(b), "--force"]) == 0
+    assert f"replaced {b}" in capsys.readouterr().err
