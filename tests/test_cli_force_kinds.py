@@ -70,3 +70,19 @@ def test_export_force_still_replaces_a_bundle(model, tmp_path, capsys):
     assert main(["export", str(model["model"]), "--out", str(b)]) == 0
     assert main(["export", str(model["model"]), "--out", str(b), "--force"]) == 0
     assert f"replaced {b}" in capsys.readouterr().err
+
+
+def test_run_summary_scores_the_strides_like_track_streaming(tmp_path, capsys):
+    """B14 / L36: `run`'s summary is evaluate_track's, so it reports the stride F1 that `track --streaming`
+    (the same kernel) reports; before, the runtime's steps.csv had no `unit` column and step_f1 was missing."""
+    import json
+
+    s = tmp_path / "A"
+    assert main(["simulate", "-s", "A", "-u", "1", "--out", str(s), "--json"]) == 0
+    capsys.readouterr()
+    assert main(["run", str(BUNDLE), str(s), "--out", str(tmp_path / "r"), "--json"]) == 0
+    rj = json.loads(capsys.readouterr().out)
+    assert main(["track", str(s), "--method", "M2", "--streaming", "--out", str(tmp_path / "t"), "--json"]) == 0
+    tj = json.loads(capsys.readouterr().out)
+    assert "step_f1" in tj and "step_f1" in rj
+    assert rj["n_steps"] == tj["n_steps"] and abs(rj["step_f1"] - tj["step_f1"]) < 1e-9

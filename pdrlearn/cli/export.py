@@ -198,8 +198,8 @@ _STEP_COLUMNS = ("start_s", "end_s", "length_m", "heading_rad", "dz_m", "terrain
 
 def _result(steps):
     """The runtime's steps as a :class:`~pdrlearn.track.base.TrackResult` with the columns of ``track``:
-    the runtime's ``length`` class column is ``length_class`` (decision B14), the trajectory has
-    ``t, x, y, z, lat, lon`` (lat/lon empty: ``run`` takes no start coordinate)."""
+    the runtime's ``length`` class column is ``length_class`` (decision B14), ``unit`` is ``foot``, the
+    trajectory has ``t, x, y, z, lat, lon`` (lat/lon empty: ``run`` takes no start coordinate)."""
     import pandas as pd
 
     from pdrlearn.track.base import TrackResult
@@ -209,6 +209,9 @@ def _result(steps):
         df = pd.DataFrame(columns=["start_s", "end_s", "length_m", "heading_rad", "dz_m"])
     first = [c for c in _STEP_COLUMNS if c in df.columns]
     df = df[first + [c for c in df.columns if c not in first]]
+    # every runtime step is a stride of the foot unit (the Tracker needs it); track's `unit` column also lets
+    # evaluate_track score the strides (step_f1, decision L36) as it does for `track`
+    df["unit"] = "foot"
     traj = [{"t": steps[0].start_s, "x": 0.0, "y": 0.0, "z": 0.0}] if steps else []
     traj += [{"t": st.end_s, "x": st.x, "y": st.y, "z": st.z} for st in steps]
     traj = pd.DataFrame(traj, columns=["t", "x", "y", "z"]).assign(lat=float("nan"), lon=float("nan"))
