@@ -93,26 +93,35 @@ def evaluate_model(
             "methods": {},
             "skipped": [],
         }
-        # predict session by session: a session lacking a model's sensors is skipped for that model only
+        # predict session by session: a session lacking a model's sensors is skipped for that model only, and
+        # the steps that lost that model's unit to a sensor gap are scored without it (decision B11/B17)
         sess_ids = np.unique(data.session)
-        preds: dict[tuple[str, str], dict[int, np.ndarray]] = {}
+        sess_rows = {int(i): np.flatnonzero(data.session == i) for i in sess_ids}
+        # (method, unit) -> session -> (rows of data it classified, their predictions)
+        preds: dict[tuple[str, str], dict[int, tuple[np.ndarray, np.ndarray]]] = {}
         for method, per in tm.models.items():
             units = {}
             for unit, est in per.items():
-                got: dict[int, np.ndarray] = {}
-                for i in sess_ids:
-                    sel = data.session == i
+                got: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+                mask = data.unit_mask(unit)
+                for i, rows in sess_rows.items():
+                    ok = rows[mask[rows]]
+                    if len(ok) == 0 and _has_unit(unit, windows[i].available):
+                        res["skipped"].append(f"{method}/{unit} on {windows[i].session}: every step overlaps "
+                                              f"a sensor gap of the {unit} unit")
+                        continue
+                    if len(ok) == 0:
+                        ok = rows  # the session lacks the unit: the model names the sensor it needs
                     try:
-                        got[int(i)] = np.asarray(est.predict(data.X[sel])).astype(str)
+                        got[i] = (ok, np.asarray(est.predict(data.X[ok])).astype(str))
                     except MissingSensorError as exc:
-                        res["skipped"].append(f"{method}/{unit} on {windows[int(i)].session}: {exc}")
+                        res["skipped"].append(f"{method}/{unit} on {windows[i].session}: {exc}")
                 if not got:
                     continue
                 preds[(method, unit)] = got
-                sel = np.isin(data.session, list(got))
-                y_pred = np.concatenate([got[int(i)] for i in sess_ids if int(i) in got])
-                y_true = np.concatenate([data.y[data.session == i] for i in sess_ids if int(i) in got])
-                m = class_metrics(y_true, y_pred, classes)
+                sel = np.concatenate([got[i][0] for i in sorted(got)])
+                y_pred = np.concatenate([got[i][1] for i in sorted(got)])
+                m = class_metrics(data.y[sel], y_pred, classes)
                 m["latency_ms"] = step_latency_ms(est, data.X[sel], n=latency_steps) if latency else None
                 units[unit] = m
             if not units:
@@ -124,20 +133,44 @@ def evaluate_model(
                 "unit": best_unit,
                 "units": units,
             }
-        # the model's own choice per session: chosen method, else the best-ranked one that runs there
+        # the model's own choice per session: chosen method, else the best-ranked one that runs there; a step
+        # that lost the chosen model's unit to a gap takes the next one that classified it (as
+        # UserModel.predict_steps does for track), and with none it is left out of the score (B17)
         order = list(dict.fromkeys(([tm.chosen] if tm.chosen else []) + tm.ranking()))
-        y_true, y_pred, used = [], [], []
-        for i in sess_ids:
-            pair = next((p for p in order if p in preds and int(i) in preds[p]), None)
-            if pair is None:
-                res["skipped"].append(f"chosen: no model runs on {windows[int(i)].session}")
+        y_true, y_pred, used, n_gap = [], [], [], 0
+        for i, rows in sess_rows.items():
+            runs = [p for p in order if p in preds and i in preds[p]]
+            every_step_in_a_gap = bool(windows[i].gap_steps) and not (data.foot[rows] | data.waist[rows]).any()
+            if not runs and not every_step_in_a_gap:
+                res["skipped"].append(f"chosen: no model runs on {windows[i].session}")
                 continue
-            y_true.append(data.y[data.session == i])
-            y_pred.append(preds[pair][int(i)])
-            used.append(pair)
+            pred = np.full(len(rows), None, dtype=object)
+            pos = {r: k for k, r in enumerate(rows)}
+            for p in runs:
+                got_rows, got_pred = preds[p][i]
+                for r, c in zip(got_rows, got_pred, strict=True):
+                    if pred[pos[r]] is None:
+                        pred[pos[r]] = c
+            done = np.array([c is not None for c in pred], dtype=bool)
+            if not done.all():
+                msg = (f"session '{windows[i].session}': {task}: {int((~done).sum())} of {len(rows)} labelled "
+                       f"steps overlap a sensor gap ({_gap_text(sessions[i], windows[i].gap_steps)}) and no "
+                       "trained model runs without the unit they lost; left out of the score (track leaves "
+                       "them unclassified)")
+                log.warning(msg)
+                res["skipped"].append(f"{int((~done).sum())} steps on {windows[i].session}: they overlap a sensor "
+                                      f"gap ({_gap_text(sessions[i], windows[i].gap_steps)}) and no trained model "
+                                      "runs without the unit they lost")
+                n_gap += int((~done).sum())
+            if done.any():
+                y_true.append(data.y[rows[done]])
+                y_pred.append(pred[done].astype(str))
+                used.append(runs[0])
+        res["n_gap_unclassified"] = n_gap  # labelled steps lost to sensor gaps of every usable unit (B17)
         if not used:
             out["skipped"].append(
-                f"{task}: no trained method can run on these sessions "
+                f"{task}: every labelled step overlaps a sensor gap of the units its trained methods need"
+                if n_gap else f"{task}: no trained method can run on these sessions "
                 f"(they have {', '.join(sorted(available)) or 'no sensors'})"
             )
             continue
@@ -155,6 +188,30 @@ def evaluate_model(
     if report_dir is not None:
         write_report(out, Path(report_dir))
     return out
+
+
+def _has_unit(unit: str, available) -> bool:
+    """The session recorded ``unit`` (``fused``: both units)."""
+    foot, waist = "foot_acc" in available, "waist_acc" in available
+    return {"foot": foot, "waist": waist}.get(unit, foot and waist)
+
+
+def _gap_text(session, gap_steps: dict) -> str:
+    """The longest gap in the streams of the units that lost steps, e.g. ``5.0 s at 10.0 s in
+    fAccelerometer`` (decision B17)."""
+    from pdrlearn.features.windows import GAP_GROUPS, GROUP_STREAMS
+
+    best = None
+    for unit in gap_steps:
+        for g in GAP_GROUPS.get(unit, ()):
+            for name in GROUP_STREAMS[g]:
+                st = session.streams.get(name)
+                for gap in st.gaps() if st is not None else ():
+                    if best is None or gap.duration_s > best[0]:
+                        best = (gap.duration_s, gap.start_s, name)
+    if best is None:
+        return "a gap in the " + " and ".join(sorted(gap_steps)) + " streams"
+    return f"longest {best[0]:.1f} s at {best[1]:.1f} s in {best[2]}"
 
 
 def results_table(task_result: dict) -> list[list[str]]:

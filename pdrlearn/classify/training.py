@@ -693,8 +693,9 @@ def train_user(
     windows = session_windows(sessions, n_samples=n_samples, boundaries=boundaries)
     out: dict[str, TaskModel] = {}
     skipped: list[str] = []
+    datas: dict[str, TaskData] = {}
     for task in tasks:
-        data = task_data(windows, task)
+        data = datas[task] = task_data(windows, task)  # logs its gap steps once (B13)
         try:
             if data is None:
                 raise DataError(
@@ -724,7 +725,7 @@ def train_user(
 
         summary["distance_calibration"] = calibrate_distance(sessions)
     for t, m in out.items():
-        data = task_data(windows, t)
+        data = datas[t]
         summary["steps"][t] = {
             "n_steps": m.n_steps,
             "n_skipped_labels": m.n_skipped_labels,

@@ -48,6 +48,10 @@ from pdrlearn.track.geodetic import geodetic_track
 
 log = logging.getLogger(__name__)
 
+#: Warning when a foot-only session (no waist accelerometer + gyroscope, or no waist frame) is headed by the
+#: foot's own yaw: offline M2/M3 and the streamed path (decision B17), and `pdrlearn run`.
+NO_WAIST_HEADING = "no waist unit: heading from the foot's own integrated yaw (relative to the start)"
+
 _M2 = {"detector": "AccelForceStepDetector", "integrator": "kalman", "zupt_end": True,
        "gyro_bias": "standstill", "attitude": "kalman", "heading": "fused", "rules": False, "force": True}
 METHODS: dict[str, dict] = {
@@ -417,7 +421,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
 
     hsrc = heading or cfg["heading"]
     if hsrc in ("waist", "fused") and not has_waist:
-        warnings.append("no waist unit: heading from the foot's own integrated yaw (relative to the start)")
+        warnings.append(NO_WAIST_HEADING)
         hsrc = "foot"
     lateral = np.arctan2(disp[:, 1], np.abs(disp[:, 0])) * np.where(disp[:, 0] < 0, -1.0, 1.0)
     if hsrc in ("waist", "fused"):
@@ -519,6 +523,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     # decision B11: warned only - the streaming runtime sees the same samples (trajectory parity)
     warnings: list[str] = gap_warnings(long_gaps(session, ("fAccelerometer", "fGyroscope", "wAccelerometer",
                                                            "wGyroscope")))
+    if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
+        warnings.append(NO_WAIST_HEADING)
     classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
     model_bounds = None
     if method == "M3":
