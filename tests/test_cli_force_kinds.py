@@ -86,3 +86,19 @@ def test_run_summary_scores_the_strides_like_track_streaming(tmp_path, capsys):
     tj = json.loads(capsys.readouterr().out)
     assert "step_f1" in tj and "step_f1" in rj
     assert rj["n_steps"] == tj["n_steps"] and abs(rj["step_f1"] - tj["step_f1"]) < 1e-9
+
+
+@pytest.mark.parametrize("command", ["track", "run", "report", "train", "export"])
+def test_a_file_in_the_way_of_the_output_folder_is_one_error_line(model, tmp_path, capsys, command):
+    """`--out FILE/sub` (a file where a parent folder must go): one line naming it before any work, exit 2;
+    before, FileExistsError escaped as a traceback after the command had done all its work."""
+    (tmp_path / "afile").write_text("not a folder")
+    out = tmp_path / "afile" / "sub"
+    argv = {"track": ["track", model["terrain"], "--method", "M2", "--out", out],
+            "run": ["run", BUNDLE, model["terrain"], "--out", out],
+            "report": ["report", model["model"], "--out", out],
+            "train": ["train", model["terrain"], "--out", out, "--methods", "heuristic", "--tasks", "terrain",
+                      "--cv", "3"],
+            "export": ["export", model["model"], "--out", out]}[command]
+    err = _refused(argv, capsys)
+    assert "afile" in err and "is a file" in err

@@ -79,6 +79,11 @@ def out_folder(path: Path, markers: tuple[str, ...], what: str, *, force: bool =
     """
     if path.exists() and not path.is_dir():
         raise DataError(f"{path}: is a file; --out must be a folder for {what}")
+    for parent in path.parents:  # a file in the way of the folder (was FileExistsError after all the work)
+        if parent.exists():
+            if not parent.is_dir():
+                raise DataError(f"{path}: {parent} is a file, not a folder; choose another output folder")
+            break
     entries = [q for q in path.iterdir() if q.name not in allow] if path.is_dir() else []
     if entries:
         if not any(any(path.glob(m)) for m in markers):
