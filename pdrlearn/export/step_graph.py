@@ -274,7 +274,8 @@ class _Builder:
                 blocks.append((stats[st], keys))
         if yaw:
             j = self.const(np.array([peak_sigs.index("waist_yaw")], np.int64), "idx", np.int64)
-            st = {s: self.op("Gather", [v, j], s, axis=1) if s != "duration" else v
+            one = peak_sigs == ["waist_yaw"]  # the block's statistics are already its (n, 1) columns (E18)
+            st = {s: self.op("Gather", [v, j], s, axis=1) if s != "duration" and not one else v
                   for s, v in self.peak_block(peak_sigs, sorted({s for y in yaw for s in yaw_need[y]})).items()}
             table = {  # kernels.stats.yaw_stats (thesis Table 24, ch. 6.2.1)
                 "amplitude": lambda: self.op("Mul", [st["range"], self.const(np.array(0.5), "half")]),
@@ -611,7 +612,11 @@ def _svm_block(b: _Builder, leaves: list, svms: list[tuple[int, dict]]) -> tuple
         member = _block_diag([np.ones((len(p["mean"]), 1)) for _, p in svms])  # feature -> its model
         of_sv = np.repeat(np.arange(len(svms)), [p["svT"].shape[1] for _, p in svms])  # support vector -> model
         z_sq = b.op("MatMul", [b.op("Mul", [z, z]), b.const(member, "member")], "z_sq")  # |z|^2 of each model
-        z_sq = b.op("Gather", [z_sq, b.const(of_sv, "of_sv", np.int64)], "z_sq", axis=1)
+        # each support vector's column takes its model's |z|^2: a product with a 0/1 matrix (one exact term
+        # plus zeros per output, so the same value) costs less than a Gather of 387 int64 indices (E18)
+        expand = np.zeros((len(svms), len(of_sv)))
+        expand[of_sv, np.arange(len(of_sv))] = 1.0
+        z_sq = b.op("MatMul", [z_sq, b.const(expand, "of_sv")], "z_sq")
         d2 = b.op("Add", [b.op("Add", [z_sq, b.op("Mul", [dot, b.const(np.array([-2.0]), "m2")])]),
                           b.const(cat["sv_sq"][None, :], "sv_sq")])
         d2 = b.op("Max", [d2, b.const(np.zeros(1), "zero")], "d2")

@@ -211,15 +211,23 @@ def tilt_corrected(Y: np.ndarray, g_lev: np.ndarray, k0: int, k1: int) -> np.nda
         kx, ky, th = 1.0, 0.0, math.pi  # upside down: 180 deg about x, as gravity_rotation
     else:
         kx, ky, th = gy / nrm / s, -gx / nrm / s, math.atan2(s, gz / nrm)  # axis (g x z) / |g x z|
-    # (k - k0) / (k1 - k0) clipped to 0..1, as an (n, 1, 1) column that broadcasts over each sample's rows
-    # (the same values as np.arange(n) - k0; fewer calls per step, runtime decision E17)
-    frac = (_arange_col(n) - float(k0)) / float(k1 - k0)
-    ang = np.minimum(np.maximum(frac, 0.0, out=frac), 1.0, out=frac)
-    ang *= th
+    ang = _tilt_fraction(n, k0, k1) * th  # the fraction of the correction at each sample, times the angle
     KT = np.array([[0.0, 0.0, -ky], [0.0, 0.0, kx], [ky, -kx, 0.0]])  # ([k]x)^T of k = (kx, ky, 0)
     KY = Y.reshape(-1, 3) @ KT  # rows ([k]x v)^T
     K2Y = (KY @ KT).reshape(shape)  # rows ([k]x^2 v)^T
     return Y + np.sin(ang) * KY.reshape(shape) + (1.0 - np.cos(ang)) * K2Y
+
+
+@functools.lru_cache(maxsize=1024)
+def _tilt_fraction(n: int, k0: int, k1: int) -> np.ndarray:
+    """Read-only ``(k - k0) / (k1 - k0)`` clipped to 0..1 for ``k = 0..n-1``, as an ``(n, 1, 1)`` column that
+    broadcasts over each sample's rows. It depends on the step's length and rest samples only, which repeat
+    from step to step, so it is cached (runtime decision E18; the values of the three numpy calls it
+    replaces, bit for bit)."""
+    frac = (_arange_col(n) - float(k0)) / float(k1 - k0)  # the same values as np.arange(n) - k0 (E17)
+    np.minimum(np.maximum(frac, 0.0, out=frac), 1.0, out=frac)
+    frac.flags.writeable = False
+    return frac
 
 
 @functools.lru_cache(maxsize=64)

@@ -365,17 +365,19 @@ def step_direction(axis: np.ndarray, heading0: float) -> float:
 def _frame3(a: list[float], b: list[float]) -> tuple[list[float], list[float], list[float]] | None:
     """Orthonormal frame (u, v, u x v) from ``a`` and the part of ``b`` normal to it; None when ``a`` is
     zero or ``b`` (nearly) along it."""
-    na = math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+    a0, a1, a2 = a  # each entry read once (the same arithmetic; fewer list lookups, runtime decision E18)
+    b0, b1, b2 = b
+    na = math.sqrt(a0 * a0 + a1 * a1 + a2 * a2)
     if not na > 0:
         return None
-    u = [a[0] / na, a[1] / na, a[2] / na]
-    d = u[0] * b[0] + u[1] * b[1] + u[2] * b[2]
-    v = [b[0] - d * u[0], b[1] - d * u[1], b[2] - d * u[2]]
-    nv = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
-    if not nv > 1e-9 * math.sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]):
+    u0, u1, u2 = a0 / na, a1 / na, a2 / na
+    d = u0 * b0 + u1 * b1 + u2 * b2
+    v0, v1, v2 = b0 - d * u0, b1 - d * u1, b2 - d * u2
+    nv = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
+    if not nv > 1e-9 * math.sqrt(b0 * b0 + b1 * b1 + b2 * b2):
         return None
-    v = [v[0] / nv, v[1] / nv, v[2] / nv]
-    return u, v, [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+    v0, v1, v2 = v0 / nv, v1 / nv, v2 / nv
+    return [u0, u1, u2], [v0, v1, v2], [u1 * v2 - u2 * v1, u2 * v0 - u0 * v2, u0 * v1 - u1 * v0]
 
 
 def _attitude(e1, e2, f1, f2) -> list[list[float]] | None:
