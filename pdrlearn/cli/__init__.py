@@ -146,6 +146,12 @@ def main(argv: list[str] | None = None) -> int:
     except typer.Abort:
         print("error: aborted", file=sys.stderr)
         return 130
+    except OSError as exc:  # an output the system refuses (unwritable or special folder, disk full): one line
+        if exc.filename is None or exc.strerror is None:
+            raise
+        print(f"error: {exc.filename}: {exc.strerror}; choose another output location or fix its permissions",
+              file=sys.stderr)
+        return 1
     except Exception as exc:  # click usage errors (bad option values, missing arguments) and the like
         if not isinstance(exc, _click_exceptions()):
             raise
