@@ -1,4 +1,4 @@
-"""Bad-input sweep (docs/bad-input.md, decisions B12-B17): every command that reads a session -- info, plot,
+"""Bad-input sweep (docs/bad-input.md, decisions B12-B18): every command that reads a session -- info, plot,
 steps (foot and waist), track with each pipeline (plasys M1/M2/M3, M3 --streaming, waist-pll,
 waist-pendulum), calibrate, train, evaluate, run -- fed one malformed copy of a short simulated session.
 
@@ -315,5 +315,6 @@ def test_meta_json_without_frames(base, tmp_path, capsys, command):
     s = _session(base, tmp_path, _meta(lambda m: m.pop("frames")))
     out = tmp_path / "out"
     msg = _one_error_line(_commands(s, out, base["model"])[command], capsys)
-    assert "frame" in msg and "meta.json" in msg and "sim_A_u1_normal_s0" in msg, msg
+    assert "frame" in msg and str(s / "meta.json") in msg and "sim_A_u1_normal_s0" in msg, msg
+    assert '"frames": {"foot": {"x": "forward", "y": "up", "z": "right"}}' in msg or '"frames": {"waist": ' in msg, msg
     assert not out.exists()

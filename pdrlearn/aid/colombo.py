@@ -313,12 +313,7 @@ class ColomboTracker(ParamsMixin):
         """
         acc_s = session.require("wAccelerometer", "wGyroscope", purpose="the seed 004 tracker")
         gyr_s = session["wGyroscope"]
-        frame = session.frames.get("waist")
-        if frame is None:
-            raise DataError(
-                f"session '{session.name}': no declared waist axis frame; declare it in meta.json "
-                "(frames.waist) so the tracker knows which axis points forward"
-            )
+        frame = session.require_frame("waist")
         M = frame.matrix()
         t = acc_s.t
         if len(t) < 10:

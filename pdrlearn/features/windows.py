@@ -128,12 +128,7 @@ def task_labels(steps: pd.DataFrame, task: str, *,
 
 
 def _declared_forward(session: Session, placement: str) -> np.ndarray:
-    frame = session.frames.get(placement)
-    if frame is None:
-        raise DataError(
-            f"session '{session.name}' declares no axis frame for the {placement} unit; add "
-            f"'frames': {{'{placement}': {{'x': ..., 'y': ..., 'z': ...}}}} to its meta.json"
-        )
+    frame = session.require_frame(placement)
     return frame.matrix().T @ np.array([1.0, 0.0, 0.0])  # sensor vector pointing body-forward
 
 

@@ -232,7 +232,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
     except DataError as exc:
         raise DataError(f"{meta_path}: {exc}") from None
     session = Session(name=str(meta.get("session", folder.name)), streams=streams, steps=steps,
-                      trajectory=traj, extras=extras, meta=meta, frames=frames)
+                      trajectory=traj, extras=extras, meta=meta, frames=frames, folder=folder)
     for label, table in [*([("steps", steps)] if steps is not None else []), *extras.items()]:
         check_label_times(table, session.t_start, session.t_end, str(folder / f"{label}.csv"))
     for name, s in streams.items():

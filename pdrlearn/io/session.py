@@ -8,14 +8,19 @@ milliseconds (``start_ms`` ...), see :mod:`pdrlearn.io.plasys`.
 from __future__ import annotations
 
 import copy
+import json
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError, MissingSensorError
-from pdrlearn.io.frames import AxisFrame
+from pdrlearn.io.frames import THESIS_FOOT_FRAME, THESIS_WAIST_FRAME, AxisFrame
 from pdrlearn.io.sensors import SENSORS, SensorSpec
+
+#: The thesis mounting of each unit: the example of the missing-frame error (:meth:`Session.require_frame`).
+EXAMPLE_FRAMES: dict[str, AxisFrame] = {"foot": THESIS_FOOT_FRAME, "waist": THESIS_WAIST_FRAME}
 
 #: Canonical columns of a steps table (seconds). Other columns are kept as they are.
 STEP_COLUMNS = ("start_s", "end_s")
@@ -130,6 +135,8 @@ class Session:
     extras : other label tables (``ics``, ``bouts``, ``turns`` ...) with times in seconds
     meta : contents of ``meta.json``
     frames : placement -> declared :class:`AxisFrame` (absent when not declared)
+    folder : the folder it was read from (:func:`pdrlearn.io.read_session`), ``None`` for one built in memory;
+        errors about ``meta.json`` name ``folder / "meta.json"``
     """
 
     name: str
@@ -139,6 +146,7 @@ class Session:
     extras: dict[str, pd.DataFrame] = field(default_factory=dict)
     meta: dict = field(default_factory=dict)
     frames: dict[str, AxisFrame] = field(default_factory=dict)
+    folder: Path | None = None
 
     # -- access -----------------------------------------------------------------------------------
     def __getitem__(self, name: str) -> Stream:
@@ -161,6 +169,22 @@ class Session:
                 "record that sensor or choose a method that does not need it"
             )
         return self.streams[names[0]]
+
+    def require_frame(self, placement: str) -> AxisFrame:
+        """The declared axis frame of the ``placement`` unit; a :class:`DataError` naming the session's
+        ``meta.json`` and the ``frames`` entry to add when it is not declared (the one wording of every
+        method that needs a unit's axes, decision B18)."""
+        frame = self.frames.get(placement)
+        if frame is not None:
+            return frame
+        example = json.dumps({placement: EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"]).to_dict()})
+        where = (f"{self.folder / 'meta.json'}: session '{self.name}'" if self.folder is not None
+                 else f"session '{self.name}' (its meta.json)")
+        raise DataError(
+            f"{where} declares no axis frame for the {placement} unit; add a \"frames\" entry giving the body "
+            f"direction of each of its axes (forward, backward, left, right, up, down), e.g. the thesis "
+            f"mounting \"frames\": {example}"
+        )
 
     @property
     def placements(self) -> list[str]:

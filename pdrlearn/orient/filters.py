@@ -52,12 +52,7 @@ def unit_data(session: Session, placement: str, *, purpose: str = "localization"
     acc_n, gyr_n, mag_n = _UNIT[placement]
     acc_s = session.require(acc_n, gyr_n, purpose=purpose)
     gyr_s = session.streams[gyr_n]
-    frame = session.frames.get(placement)
-    if frame is None:
-        raise DataError(
-            f"session '{session.name}': the {placement} unit's axis frame is not declared; add "
-            f'"frames": {{"{placement}": {{"x": ..., "y": ..., "z": ...}}}} to meta.json'
-        )
+    frame = session.require_frame(placement)
     if len(acc_s) < 4 or len(gyr_s) < 4:
         raise DataError(f"session '{session.name}': {placement} streams have fewer than 4 samples")
     R = frame.matrix()

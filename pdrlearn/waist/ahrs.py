@@ -85,10 +85,7 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     NaN values or a recording shorter than 2 s.
     """
     session.require(ACC, GYR, purpose=purpose)
-    frame = session.frames.get("waist")
-    if frame is None:
-        raise DataError(f"session '{session.name}': the waist unit's axis frame is not declared; add "
-                        '"frames": {"waist": {"x": ..., "y": ..., "z": ...}} to its meta.json')
+    frame = session.require_frame("waist")
     acc_s, gyr_s = session[ACC], session[GYR]
     t = acc_s.t
     if len(acc_s) < 2 or acc_s.duration_s < 2.0:
