@@ -139,6 +139,22 @@ def test_force_never_replaces_an_unrelated_folder(data, tmp_path, capsys, comman
     assert [p.name for p in target.iterdir()] == ["thesis.tex"]
 
 
+@pytest.mark.parametrize(("command", "lone"), [("track", "summary.json"), ("run", "summary.json"),
+                                             ("report", "index.html")])
+def test_force_needs_every_file_of_a_previous_output(data, tmp_path, capsys, command, lone):
+    """B12 review: one file of the same name (a website's index.html, someone's summary.json) does not make a
+    folder a previous output; --force replaces only a folder holding every file the command writes."""
+    argv, _, _ = OUTPUT_CASES[command]
+    target = tmp_path / "target"
+    target.mkdir()
+    (target / lone).write_text("{}")
+    fmt = {k: str(v) for k, v in data.items()} | {"target": str(target)}
+    rc = main([*(a.format(**fmt) for a in argv), "--force"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1 and "does not hold" in err[0], err
+    assert [p.name for p in target.iterdir()] == [lone]
+
+
 def test_export_keeps_overwrite_as_the_old_name_of_force(data, tmp_path, capsys):
     out = tmp_path / "b"
     assert main(["export", str(data["model"]), "--out", str(out)]) == 0

@@ -57,3 +57,10 @@ def test_cli_track_without_model_or_method_runs_the_engine(gaitmap_level_left, t
     assert rc == 0 and "no model: the M3 engine" in cap.err and cap.err.count("no model") == 1
     out = json.loads(cap.out)
     assert out["step_f1"] >= 0.98 and abs(out["distance_matched_error_pct"]) < 5
+
+
+def test_auto_without_model_refuses_rule_options(level_left):
+    for kw in ({"rules": "thesis"}, {"min_confidence": 0.5}, {"bounds": [0.5, 1.0]}):
+        with pytest.raises(ModelError, match="need the step classes"):
+            track_plasys(level_left, method="auto", **kw)
+    assert track_plasys(level_left, method="auto", model="oracle", rules="thesis").info["rules"] == "thesis"

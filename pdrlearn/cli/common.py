@@ -68,8 +68,9 @@ def out_folder(path: Path, markers: tuple[str, ...], what: str, *, force: bool =
                allow: tuple[str, ...] = (), inputs: tuple = ()) -> Path:
     """Validate an output folder before any work is done (decision B12).
 
-    An absent or empty folder is used. A previous output of the same command (it holds one of the
-    ``markers`` glob patterns, e.g. ``manifest.json``) is replaced only with ``force``; anything else -- a
+    An absent or empty folder is used. A previous output of the same command (it holds every one of the
+    ``markers`` glob patterns, e.g. ``summary.json`` + ``steps.csv`` + ``trajectory.csv``) is replaced only
+    with ``force``; anything else -- a
     file, or a folder of unrelated files, which the command would mix its output into or delete -- is
     refused even with ``force``. ``allow`` names files that do not make a folder "non-empty" (the
     documented ``--json > DIR/evaluation.json`` redirect creates that file before the command runs).
@@ -86,7 +87,7 @@ def out_folder(path: Path, markers: tuple[str, ...], what: str, *, force: bool =
             break
     entries = [q for q in path.iterdir() if q.name not in allow] if path.is_dir() else []
     if entries:
-        if not any(any(path.glob(m)) for m in markers):
+        if not all(any(path.glob(m)) for m in markers):  # every marker: a website's index.html is no report
             raise DataError(f"{path}: exists and does not hold {what}; choose another output folder or empty it")
         kind = manifest_kind(path) if "manifest.json" in markers else None
         if kind is not None and not what.startswith(kind):

@@ -109,7 +109,8 @@ def run(
     if not (chunk_s > 0 and chunk_s < float("inf")):
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     if out is not None:
-        out_folder(out, ("summary.json",), "a run (steps.csv, trajectory.csv, summary.json)", force=force,
+        out_folder(out, ("summary.json", "steps.csv", "trajectory.csv"),
+                   "a run (steps.csv, trajectory.csv, summary.json)", force=force,
                    inputs=(bundle_dir, session_dir))
     bundle = load_bundle(bundle_dir)  # verified before any output
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)

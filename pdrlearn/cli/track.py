@@ -64,7 +64,8 @@ def track(
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plots import plot_paths
 
-    out_folder(out, ("summary.json",), "a track (trajectory.csv, steps.csv, path.png, summary.json)", force=force)
+    out_folder(out, ("summary.json", "steps.csv", "trajectory.csv"),
+               "a track (trajectory.csv, steps.csv, path.png, summary.json)", force=force)
     start_ll = parse_start(start) if start is not None else None
     par = None
     if params is not None:

@@ -305,6 +305,11 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     no_classes = False
     if method == "AUTO":  # decision L36: M3 with a model; without one the M3 engine, its class rules off
         method, no_classes = ("M3", False) if model is not None else (("M2", True) if streaming else ("M3", True))
+        asked = [n for n, v in (("--rules", rules), ("--min-confidence", min_confidence),
+                                ("--length-bounds", bounds)) if v is not None]
+        if no_classes and asked:  # they would be ignored: no classes, no rules
+            raise ModelError(f"plasys: {', '.join(asked)} set the class rules, which need the step classes: pass "
+                             "a trained model (--model DIR, `pdrlearn train`) or --model oracle")
     if method not in METHODS:
         raise DataError(f"plasys: method '{method}' is not one of auto, M1, M2, M3")
     if streaming:
