@@ -107,7 +107,7 @@ def _commands(s: Path, out: Path, model: Path) -> dict[str, list[str]]:
     return {
         "info": ["info", str(s)],
         "plot": ["plot", str(s), "--out", str(out / "p.png")],
-        "steps": ["steps", str(s), "--out", str(out / "s.csv")],
+        "steps": ["steps", str(s), "--detector", "accel", "--out", str(out / "s.csv")],
         "steps-pll": ["steps", str(s), "--detector", "pll", "--out", str(out / "s.csv")],
         "track-M1": ["track", str(s), "--method", "M1", "--out", str(out / "t")],
         "track-M2": ["track", str(s), "--method", "M2", "--out", str(out / "t")],

@@ -18,8 +18,9 @@ _METRICS = ("scored_count", "reference_count", "precision", "recall", "f1", "cou
 
 def steps(
     session_dir: Path = typer.Argument(..., help="PLASYS session folder."),
-    detector: str = typer.Option("accel", "--detector", "-d",
-                                 help="accel | accel-force (foot strides) | pelvic-gyro | pll (waist steps)."),  # noqa: E501
+    detector: str = typer.Option("auto", "--detector", "-d",
+                                 help="accel | accel-force (foot strides) | pelvic-gyro | pll (waist steps); auto = "
+                                 "accel with a foot unit, else pll."),
     out: Path = typer.Option(None, "--out", "-o", help="Write the steps table to this CSV (times in s)."),
     tolerance: float = typer.Option(0.25, "--tolerance", help="Event matching tolerance in seconds."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -42,13 +43,16 @@ def steps(
     from pdrlearn.io import read_session
     from pdrlearn.steps import get_detector, score_steps
 
-    det = get_detector(detector)
+    if detector != "auto":
+        det = get_detector(detector)
     if not tolerance > 0 or not math.isfinite(tolerance):
         raise DataError(f"--tolerance {tolerance}: give the event matching tolerance in seconds (> 0, e.g. 0.25)")
     if out is not None:
         out = out_file(out, (".csv",), force=force)
     was = out is not None and existed(out)
     session = read_session(session_dir)
+    if detector == "auto":  # a foot unit's strides, else the lower back's steps
+        det = get_detector("accel" if session.has("fAccelerometer") or not session.has("wAccelerometer") else "pll")
     u = det.unit[0]  # "f" or "w": the unit's inertial streams (+ the force sensors of accel-force)
     warn_gaps(session, [f"{u}Accelerometer", f"{u}Gyroscope", *(("fForceA", "fForceB") if "force" in det.name else ())],
               "no step is detected inside them (recall counts the labelled ones as missed) - re-record or trim "

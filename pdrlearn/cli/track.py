@@ -19,7 +19,8 @@ def _write_csv(df, path: Path) -> None:
 def track(
     session_dir: Path = typer.Argument(..., help="Session folder (PLASYS format)."),
     out: Path = typer.Option(..., "--out", "-o", help="Output folder (created; an existing track only with --force)."),
-    pipeline: str = typer.Option("plasys", help="Tracking pipeline: plasys, waist-pll, waist-pendulum."),
+    pipeline: str = typer.Option("auto", help="Tracking pipeline: plasys, waist-pll, waist-pendulum; auto = plasys "
+                                 "for a session with a foot unit, else waist-pendulum."),
     method: str = typer.Option("auto", help="PLASYS method: M1 (accelerometer), M2 (+ force), M3 (+ classes); "
                                "auto = M3 with --model, else the M3 engine without the class rules (warned)."),
     model: str = typer.Option(None, "--model", help="Trained model directory (M3); 'oracle' = the session's "
@@ -59,7 +60,7 @@ def track(
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.common import out_folder
     from pdrlearn.io import read_session
-    from pdrlearn.track.base import get_pipeline
+    from pdrlearn.track.base import get_pipeline, resolve_pipeline
     from pdrlearn.track.evaluate import evaluate_track
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plots import plot_paths
@@ -75,6 +76,9 @@ def track(
             raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
                             "pass the file written by `pdrlearn calibrate`") from None
     session = read_session(session_dir)
+    if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming):
+        pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
+    pipeline = resolve_pipeline(pipeline, session)
     fn = get_pipeline(pipeline)
     # waist pipelines read the file themselves, so that their errors name it
     kw = {"model": model, "start": start_ll, "params": par if pipeline == "plasys" or par is None else str(params)}

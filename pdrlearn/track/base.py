@@ -52,6 +52,17 @@ def register_pipeline(name: str) -> Callable[[Pipeline], Pipeline]:
     return deco
 
 
+def resolve_pipeline(name: str, session) -> str:
+    """``"auto"`` (the CLI default, decision L36): ``plasys`` for a session with a foot unit, else
+    ``waist-pendulum`` (the lower-back pipeline with the best step F1 and distance on the real recordings,
+    docs/waist.md); any other name is returned as given."""
+    if name != "auto":
+        return name
+    if session.has("fAccelerometer") or not session.has("wAccelerometer"):
+        return "plasys"
+    return "waist-pendulum"
+
+
 def get_pipeline(name: str) -> Pipeline:
     import pdrlearn.track.pipelines  # noqa: F401  (imports every module that registers a pipeline)
 
