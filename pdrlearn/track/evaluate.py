@@ -77,9 +77,15 @@ def _basic(result: TrackResult, out: dict) -> None:
         out["final_position"].update(lat=float(last["lat"]), lon=float(last["lon"]))
 
 
-def _reference_distance(session: Session) -> tuple[float | None, str]:
+def _reference_distance(session: Session, *, waist: bool = False) -> tuple[float | None, str]:
+    """The reference distance and its source. For a waist track (``waist``) a ``steps.csv`` of strides of
+    both feet (a ``foot`` column with two values) gives the larger of the two feet's sums: each foot's
+    strides tile the walked path once, so the sum over both feet counts it twice (decision W38)."""
     st = session.steps
     if st is not None and "length_m" in st and len(st) and st["length_m"].notna().all():
+        if waist and "foot" in st and st["foot"].nunique() >= 2:
+            per_foot = st["length_m"].abs().groupby(st["foot"]).sum()
+            return float(per_foot.max()), "steps.csv length_m (strides of both feet: the longer foot's sum, W38)"
         return float(st["length_m"].abs().sum()), "steps.csv length_m"
     if session.trajectory is not None and len(session.trajectory) > 1:
         return path_length(session.trajectory), "trajectory.csv path"
@@ -87,7 +93,8 @@ def _reference_distance(session: Session) -> tuple[float | None, str]:
 
 
 def _ground_truth(result: TrackResult, session: Session, out: dict) -> None:
-    ref, source = _reference_distance(session)
+    waist = bool(len(result.steps)) and "unit" in result.steps and bool((result.steps["unit"] == "waist").all())
+    ref, source = _reference_distance(session, waist=waist)
     if ref is None or ref <= 0:
         return
     out["distance_ref_m"] = ref

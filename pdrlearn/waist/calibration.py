@@ -13,7 +13,7 @@ from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.evaluate import reference_bouts, steps_in_interval
 from pdrlearn.waist.heading import TurnClassifier
 from pdrlearn.waist.params import WaistParams, resolve_params
-from pdrlearn.waist.steplength import CalibrationWalk, fit_frequency, fit_pendulum
+from pdrlearn.waist.steplength import CalibrationWalk, fit_frequency, fit_pendulum, frequency_lengths
 
 log = logging.getLogger(__name__)
 
@@ -78,6 +78,46 @@ def gap_notes(session: Session, t0: float, t1: float) -> list[str]:
             "(decision W34): re-record the walk or calibrate on another one"]
 
 
+#: decision W39: the plausible range of a walk's known distance over the distance the default (uncalibrated)
+#: step-length model gives its steps -- for the pendulum with F = 0 that is K itself. Our calibrations span
+#: 0.83-1.22 (W39: the five mobgap Test5 walks with bouts, both pipelines, and the simulated users); seed
+#: 003 sec. 3.2's pendulum needs no gain at all (accuracy 100.96 %). Outside the range the walk's distance is
+#: more likely wrong (a --distance of a longer walk, a walk that was not all recorded) than the user unusual.
+PLAUSIBLE_GAIN = (0.6, 1.8)
+
+
+def default_lengths(walk: CalibrationWalk, pipeline: str, base: WaistParams) -> float:
+    """The distance the uncalibrated model ``base`` gives the steps of ``walk``, as the tracker sums it."""
+    c = walk.factors()
+    if pipeline == "waist-pendulum":
+        per = np.maximum(base.k * np.nan_to_num(np.asarray(walk.g, dtype=float), nan=0.0)
+                         + (base.f_m if np.isfinite(base.f_m) else 0.0), 0.0)
+    else:
+        per = frequency_lengths(np.nan_to_num(np.asarray(walk.f_hz, dtype=float), nan=0.0), base,
+                                running=np.zeros(len(walk.f_hz), dtype=bool))
+    return float(np.sum(c * per))
+
+
+def check_gain(walks: list[CalibrationWalk], pipeline: str, base: WaistParams) -> list[str]:
+    """Warnings for walks whose known distance is implausible for their steps (decision W39): the ratio of
+    the distance to :func:`default_lengths` outside :data:`PLAUSIBLE_GAIN`. Raises :class:`DataError`
+    when the calibration as a whole would need a gain <= 0 (no steps with length)."""
+    tot_l = sum(default_lengths(w, pipeline, base) for w in walks)
+    if not tot_l > 0:
+        raise DataError(f"calibrate: the detected steps of {', '.join(w.name for w in walks)} carry no length "
+                        "under the default model (no vertical motion / step frequency); check the recordings")
+    lo, hi = PLAUSIBLE_GAIN
+    out = []
+    for w in walks:
+        lw = default_lengths(w, pipeline, base)
+        g = w.distance_m / lw if lw > 0 else float("inf")
+        if not lo <= g <= hi:
+            out.append(f"{w.name}: the known distance {w.distance_m:g} m is {g:.2f} x what the default model "
+                       f"gives its {len(w.f_hz)} steps ({lw:.2f} m; plausible {lo:g}-{hi:g}, decision W39): "
+                       "check --distance (the length from the first to the last heel strike of this walk)")
+    return out
+
+
 def fit_turn_classifier(mean_rates: np.ndarray) -> tuple[dict | None, str]:
     """Straight/turning GMM on |MRZ| of calibration strides (seed 003 sec. 3.3: fitted on one trial).
 
@@ -131,12 +171,15 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     out.notes = list(base.notes)
     total = sum(w.distance_m for w in walks)
     n_steps = sum(len(w.f_hz) for w in walks)
+    if pipeline not in ("waist-pendulum", "waist-pll"):
+        raise DataError(f"calibrate: unknown pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
+    implausible = check_gain(walks, pipeline, base)  # decision W39
     if pipeline == "waist-pendulum":
         out.k, out.f_m, how = fit_pendulum(walks, base)
-    elif pipeline == "waist-pll":
-        out.a_walk, out.b_walk, how = fit_frequency(walks, base)
     else:
-        raise DataError(f"calibrate: unknown pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
+        out.a_walk, out.b_walk, how = fit_frequency(walks, base)
+    for n in implausible:
+        log.warning("calibrate: %s", n)
     if distances is not None:  # decision W21: the known length must span the counted steps
         out.notes += [f"--distance {w.distance_m:g} m counted over {len(w.f_hz)} steps, {w.name} (give the "
                       "length from the first to the last heel strike)" for w in walks]
@@ -144,7 +187,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
                      f"{total:.2f} m: {how}")
     for n in notes_gap:
         log.info("calibrate: %s", n)
-    out.notes += notes_gap
+    out.notes += notes_gap + implausible
     if turns is not None:
         from pdrlearn.waist.ahrs import waist_imu
 

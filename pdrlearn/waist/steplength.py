@@ -16,6 +16,10 @@ log = logging.getLogger(__name__)
 
 #: seed 000 sec. II-D: linear ranges 1.5-2.2 Hz walking, 2.7-4.2 Hz running; the split between them
 RUN_SPLIT_HZ = 2.45
+#: decision W37: the upper ends of those linear ranges (seed 000 sec. II-D); a step faster than its line's
+#: range keeps the length the line gives at the end (no extrapolation to 2 m steps at 5 Hz)
+WALK_MAX_HZ = 2.2
+RUN_MAX_HZ = 4.2
 MIN_SPREAD_HZ = 0.15  # fit a slope only when the calibration walks span this much frequency (decision W8)
 # decision W27: a step shorter than this fraction of its walking sequence's median step is a fragment of a step
 # split by a spurious contact (step-time variability within a walking sequence is a few per cent, Hausdorff
@@ -78,10 +82,13 @@ def fragment_mask(n: int, windows: dict[int, tuple[int, int]]) -> np.ndarray:
 
 def frequency_lengths(f_hz: np.ndarray, p: WaistParams, *, running: np.ndarray | None = None) -> np.ndarray:
     """Piecewise-linear step length (m) from step frequency (seed 000 sec. II-D): the walking line
-    below :data:`RUN_SPLIT_HZ` (or where ``running`` is False), the running line above."""
+    below :data:`RUN_SPLIT_HZ` (or where ``running`` is False), the running line above. Each line is
+    evaluated at most at the upper end of its linear range, :data:`WALK_MAX_HZ` / :data:`RUN_MAX_HZ`
+    (decision W37)."""
     f = np.asarray(f_hz, dtype=np.float64)
     run = f >= RUN_SPLIT_HZ if running is None else np.asarray(running, dtype=bool)
-    sl = np.where(run, K.frequency_length(f, p.a_run, p.b_run), K.frequency_length(f, p.a_walk, p.b_walk))
+    sl = np.where(run, K.frequency_length(np.minimum(f, RUN_MAX_HZ), p.a_run, p.b_run),
+                  K.frequency_length(np.minimum(f, WALK_MAX_HZ), p.a_walk, p.b_walk))
     return np.clip(sl, 0.0, None)
 
 
@@ -115,6 +122,8 @@ def _walk_sums(walks: list[CalibrationWalk], x: str) -> tuple[np.ndarray, np.nda
             continue
         c = w.factors()
         v = np.nan_to_num(np.asarray(getattr(w, x), dtype=np.float64), nan=0.0)
+        if x == "f_hz":  # the walking line is evaluated at most at WALK_MAX_HZ by the tracker (W37)
+            v = np.minimum(v, WALK_MAX_HZ)
         rows.append((float(np.sum(c * v)), float(np.sum(c)), float(w.distance_m)))
     if not rows:
         raise DataError("calibration: no steps detected in the calibration walks; check the recordings")
