@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import logging
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -40,6 +41,10 @@ from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.evaluate import bout_stride_length, reference_bouts, steps_in_interval
 from pdrlearn.waist.events import _window, walking_gate
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+# W31's padded side-cue variant, one definition for both scripts
+from waist_realtime_ic import _padded_lateral_velocity as _padded_lv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SUBJECTS = ("HA001", "HA002", "MS001")
@@ -132,19 +137,6 @@ def side_trace(s, t_max: float) -> list[dict]:
                      "side": int(side[c]), "height_mps2": round(float(vf[cand[c]]), 3),
                      "kept": bool(np.any(np.abs(an - cand[c]) <= 1))})
     return rows
-
-
-def _padded_lv(padtype: str, pad_s: float):
-    """W20's lateral velocity with its zero-phase filters padded by ``pad_s`` of reflection (W31's variants)."""
-    def lv(acc_ml, fs, *, band_hz=K.SIDE_BAND_HZ):
-        a = np.asarray(acc_ml, dtype=np.float64)
-        if a.shape[0] < 32:
-            return np.zeros_like(a)
-        kw = {"padtype": padtype, "padlen": min(a.shape[0] - 1, int(pad_s * fs))}
-        lo, hi = band_hz[0], min(band_hz[1], 0.45 * fs)
-        v = np.cumsum(sg.sosfiltfilt(sg.butter(2, [lo, hi], btype="bandpass", fs=fs, output="sos"), a, **kw)) / fs
-        return sg.sosfiltfilt(sg.butter(2, lo, btype="highpass", fs=fs, output="sos"), v, **kw)
-    return lv
 
 
 SIDE_VARIANTS = {"scipy default (detector)": None, "odd 2 s": ("odd", 2.0), "even 2 s": ("even", 2.0)}
@@ -240,7 +232,6 @@ DECISION_VARIANTS = {"W31 (default)": None, "any of 2 windows": ("vote", 2, 1), 
 def decision_variants(ext: Path) -> pd.DataFrame:
     """Realtime `waist-pendulum` per decision variant, calibrated on Test5 as `experiments/waist.py` does:
     Test11 step F1 and median |per-bout error| vs `Length` / vs strides per subject, pooled over the bouts."""
-    import sys
     from unittest import mock
 
     sys.path.insert(0, str(Path(__file__).resolve().parent))

@@ -12,6 +12,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
+from tests.cli_helpers import simulated_session_and_model
 
 GAITMAP = Path(__file__).resolve().parents[1] / "datasets" / "real" / "gaitmap_stairs_down_left"
 
@@ -20,11 +21,7 @@ GAITMAP = Path(__file__).resolve().parents[1] / "datasets" / "real" / "gaitmap_s
 def base(tmp_path_factory) -> dict[str, Path]:
     """A small simulated session (foot + waist, labelled) and a heuristic model trained on it (~3 s)."""
     root = tmp_path_factory.mktemp("bad_input")
-    good = root / "good"
-    assert main(["simulate", "--scenario", "terrain", "--user-seed", "3", "--out", str(good), "--json"]) == 0
-    model = root / "model"
-    assert main(["train", str(good), "--out", str(model), "--methods", "heuristic", "--tasks", "terrain",
-                 "--cv", "3", "--json"]) == 0
+    good, model = simulated_session_and_model(root)
     return {"root": root, "good": good, "model": model}
 
 

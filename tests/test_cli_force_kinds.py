@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from pdrlearn.cli import main
+from tests.cli_helpers import simulated_session_and_model
 
 ROOT = Path(__file__).resolve().parents[1]
 BUNDLE = ROOT / "models" / "plasys-sim-default"
@@ -18,12 +19,7 @@ BUNDLE = ROOT / "models" / "plasys-sim-default"
 
 @pytest.fixture(scope="module")
 def model(tmp_path_factory) -> dict[str, Path]:
-    root = tmp_path_factory.mktemp("force_kinds")
-    terrain = root / "terrain"
-    assert main(["simulate", "-s", "terrain", "-u", "3", "--out", str(terrain), "--json"]) == 0
-    m = root / "model"
-    assert main(["train", str(terrain), "--out", str(m), "--methods", "heuristic", "--tasks", "terrain",
-                 "--cv", "3", "--json"]) == 0
+    terrain, m = simulated_session_and_model(tmp_path_factory.mktemp("force_kinds"), "terrain")
     return {"terrain": terrain, "model": m}
 
 

@@ -1,0 +1,18 @@
+"""Small CLI fixtures shared by the CLI test modules."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from pdrlearn.cli import main
+
+
+def simulated_session_and_model(root: Path, session: str = "good") -> tuple[Path, Path]:
+    """A small simulated terrain session (foot + waist, labelled, user 3) and a heuristic terrain model
+    trained on it with 3-fold CV (~3 s), both made through the CLI under ``root``."""
+    good = root / session
+    assert main(["simulate", "--scenario", "terrain", "--user-seed", "3", "--out", str(good), "--json"]) == 0
+    model = root / "model"
+    assert main(["train", str(good), "--out", str(model), "--methods", "heuristic", "--tasks", "terrain",
+                 "--cv", "3", "--json"]) == 0
+    return good, model
