@@ -431,6 +431,14 @@ def summary_lines(rows: list[dict]) -> list[str]:
 
 # ---------------------------------------------------------------- perturbations (another lab's converter)
 
+def without_source_project(d: Path) -> Path:
+    """Drop ``source_project`` from ``d/meta.json`` (the converted recordings' frames come from it)."""
+    meta = json.loads((d / "meta.json").read_text())
+    meta.pop("source_project", None)
+    (d / "meta.json").write_text(json.dumps(meta, indent=2))
+    return d
+
+
 def _read(p: Path) -> pd.DataFrame:
     return pd.read_csv(p)
 
@@ -508,11 +516,8 @@ def make_perturbed(work: Path, mob: Path, gait: Path) -> list[tuple[Path, str]]:
         df["timestamp"] = df["timestamp"] / 1000.0
         df.to_csv(p, index=False)
     out.append((d, "sensor timestamps in SECONDS (a converter that ignored the ms convention); labels still ms"))
-    d = copy(mob, "no_source_project")
-    meta = json.loads((d / "meta.json").read_text())
-    meta.pop("source_project", None)
-    (d / "meta.json").write_text(json.dumps(meta, indent=2))
-    out.append((d, "meta.json without source_project (axes described only in prose, no frames entry)"))
+    out.append((without_source_project(copy(mob, "no_source_project")),
+                "meta.json without source_project (axes described only in prose, no frames entry)"))
 
     # gaitmap foot
     st = _read(gait / "steps.csv")
@@ -554,11 +559,8 @@ def make_perturbed(work: Path, mob: Path, gait: Path) -> list[tuple[Path, str]]:
     d = copy(gait, "steps_start_end_only")
     st[["start_ms", "end_ms"]].to_csv(d / "steps.csv", index=False)
     out.append((d, "steps.csv with only start_ms,end_ms (no ic_ms, terrain, length_m)"))
-    d = copy(gait, "no_source_project")
-    meta = json.loads((d / "meta.json").read_text())
-    meta.pop("source_project", None)
-    (d / "meta.json").write_text(json.dumps(meta, indent=2))
-    out.append((d, "meta.json without source_project (axes only in prose)"))
+    out.append((without_source_project(copy(gait, "no_source_project")),
+                "meta.json without source_project (axes only in prose)"))
     d = copy(gait, "no_labels")
     for n_ in ("steps.csv", "trajectory.csv"):
         (d / n_).unlink()
