@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn import sim
-from pdrlearn.kernels.stride import reversed_by_rules
+from pdrlearn.kernels.stride import headed_by_foot, reversed_by_rules
 from pdrlearn.orient import wrap_angle
 from pdrlearn.track.plasys import track_streaming
 
@@ -18,12 +18,12 @@ WAIST = {"foot": (None,) * 6, "waist": (None, None, np.zeros(3))}
 
 
 def test_reversed_only_when_the_rules_flip_a_foot_headed_stride():
-    assert reversed_by_rules(FOOT, "foot", -0.4, 0.4) == math.pi  # measured backwards, classed forward
-    assert reversed_by_rules(FOOT, "foot", 0.4, -0.4) == math.pi
-    assert reversed_by_rules(FOOT, "foot", -0.4, -0.4) == 0.0  # the rule agrees with the measurement
-    assert reversed_by_rules(FOOT, "foot", 0.4, 0.0) == 0.0
-    assert reversed_by_rules(WAIST, "auto", -0.4, 0.4) == 0.0  # waist-headed: the thesis sign rule
-    assert reversed_by_rules(FOOT, "auto", -0.4, 0.4) == math.pi
+    assert reversed_by_rules(headed_by_foot(FOOT, "foot"), -0.4, 0.4) == math.pi  # measured backwards, classed forward
+    assert reversed_by_rules(headed_by_foot(FOOT, "foot"), 0.4, -0.4) == math.pi
+    assert reversed_by_rules(headed_by_foot(FOOT, "foot"), -0.4, -0.4) == 0.0  # the rule agrees with the measurement
+    assert reversed_by_rules(headed_by_foot(FOOT, "foot"), 0.4, 0.0) == 0.0
+    assert reversed_by_rules(headed_by_foot(WAIST, "auto"), -0.4, 0.4) == 0.0  # waist-headed: the thesis sign rule
+    assert reversed_by_rules(headed_by_foot(FOOT, "auto"), -0.4, 0.4) == math.pi
 
 
 def test_simulated_turning_strides_keep_their_turn():

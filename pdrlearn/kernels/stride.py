@@ -305,12 +305,13 @@ def placement_offset(levelled: Levelled, heading_source: str, disp: np.ndarray) 
     return direction + lateral - float(foot[4])
 
 
-def reversed_by_rules(levelled: Levelled, heading_source: str, dx: float, length: float) -> float:
-    """Decision L37: pi when the rules gave a foot-headed stride a length whose sign is against its measured
-    x (a turning stride whose step frame points backwards, classed forward), else 0. Added to
-    :func:`placement_offset`, the stride goes along its measured displacement, as offline's does, instead
-    of ~160 deg the wrong way; a stride headed by the waist keeps the thesis sign rule (0)."""
-    if length == 0.0 or (length < 0.0) == (dx < 0.0) or not headed_by_foot(levelled, heading_source):
+def reversed_by_rules(foot_headed: bool, dx: float, length: float) -> float:
+    """Decision L37: pi when the rules gave a stride headed by the foot (:func:`headed_by_foot`) a length
+    whose sign is against its measured x (a turning stride whose step frame points backwards, classed
+    forward), else 0. Added to :func:`placement_offset`, the stride goes along its measured displacement, as
+    offline's does, instead of ~160 deg the wrong way; a stride headed by the waist keeps the thesis sign
+    rule (0)."""
+    if not foot_headed or length == 0.0 or (length < 0.0) == (dx < 0.0):
         return 0.0
     return math.pi
 

@@ -508,7 +508,7 @@ class Tracker:
                                       classes.get("length"), bounds=self.bounds, down_mode=self._down_mode)
         self.heading += dyaw
         direction = (self.heading + placement_offset(lev, self.heading_source, disp)  # decision L34
-                     + reversed_by_rules(lev, self.heading_source, dx, length))  # decision L37
+                     + reversed_by_rules(headed_by_foot(lev, self.heading_source), dx, length))  # L37
         x, y, z = advance_xyz(*self.position.tolist(), direction, length, dz)
         self.position = np.array((x, y, z))
         self.n_steps += 1

@@ -546,13 +546,13 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     rb = (StepRules(bounds=parse_bounds(use_bounds) if use_bounds is not None else None,
                     bounds_scale=bounds_scale).effective_bounds() if method == "M3" else None)
     disp, dyaw, place = np.zeros((len(table), 3)), np.zeros(len(table)), np.zeros(len(table))
-    levs = []
+    foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
     for i, (t0, t1) in enumerate(strides):
         lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,
                              rest_search_s=rest_search_s, heading=step_heading)
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1))
         place[i] = SK.placement_offset(lev, heading, disp[i])  # decision L34
-        levs.append(lev)
+        foot_headed[i] = SK.headed_by_foot(lev, heading)
         if gap_yaw and i and SK.headed_by_foot(lev, heading):  # decision L31: the foot's pivot between strides
             dyaw[i] += SK.gap_yaw(*streams["fGyroscope"], *streams["fAccelerometer"], float(strides[i - 1, 1]),
                                   float(t0))
@@ -561,8 +561,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                                if method == "M3" and c in classes else None  # length-only models
                                              for c in ("terrain", "direction", "length_class")),
                                        bounds=rb, down_mode=down_mode)
-    place += [SK.reversed_by_rules(lev, heading, float(d[0]), float(L))  # decision L37
-              for lev, d, L in zip(levs, disp, length, strict=True)]
+    place += [SK.reversed_by_rules(bool(f), float(d[0]), float(L))  # decision L37
+              for f, d, L in zip(foot_headed, disp, length, strict=True)]
     head = initial_heading + np.cumsum(dyaw) + place  # decision L34: the direction each stride is placed along
     xyz = np.zeros((len(table) + 1, 3))
     for i in range(len(table)):  # the runtime's own position update, stride by stride
