@@ -36,6 +36,7 @@ from pdrlearn.steps._kernels import (
     trailing_window_std,
 )
 from pdrlearn.steps.base import StepDetector, check_stream, stream_on
+from pdrlearn.steps.waist_ic import WaistICStepDetector
 
 log = logging.getLogger(__name__)
 
@@ -395,11 +396,12 @@ DETECTORS: dict[str, type[StepDetector]] = {
     "accel-force": AccelForceStepDetector,
     "pelvic-gyro": PelvicGyroStepDetector,
     "pll": PLLStepDetector,
+    "waist-ic": WaistICStepDetector,  # the waist-pendulum pipeline's IC detector (pdrlearn/steps/waist_ic.py)
 }
 
 
 def get_detector(name: str, **params) -> StepDetector:
-    """Detector by CLI name (``accel``, ``accel-force``, ``pelvic-gyro``, ``pll``)."""
+    """Detector by CLI name (``accel``, ``accel-force``, ``pelvic-gyro``, ``pll``, ``waist-ic``)."""
     try:
         cls = DETECTORS[name]
     except KeyError:

@@ -130,10 +130,17 @@ def waist_imu(session: Session, *, gain: float = MADGWICK_GAIN, init_s: float = 
     gain : Madgwick filter gain (-)
     init_s : the initial attitude is the gravity direction averaged over the first ``init_s`` seconds
     """
+    t, acc, gyr = body_data(session)
+    return imu_from_body(t, acc, gyr, gain=gain, init_s=init_s)
+
+
+def imu_from_body(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, *, fs: float | None = None,
+                  gain: float = MADGWICK_GAIN, init_s: float = 0.5) -> WaistIMU:
+    """The AHRS and navigation-frame casting of :func:`waist_imu` on body-frame (FLU) arrays on a uniform
+    clock, as :func:`body_data` returns them (``fs``: rate in Hz, default ``1 / median(diff(t))``)."""
     from ahrs.filters import Madgwick
 
-    t, acc, gyr = body_data(session)
-    fs = float(1.0 / np.median(np.diff(t)))
+    fs = float(1.0 / np.median(np.diff(t))) if fs is None else float(fs)
     n0 = max(1, int(round(init_s * fs)))
     r0 = Rotation.from_matrix(gravity_rotation(acc[:n0].mean(axis=0)))
     x, y, z, w = r0.as_quat()
