@@ -21,7 +21,7 @@ def test_track_and_steps_on_a_lower_back_recording_without_options(mobgap_test5,
     assert out["pipeline"] == "waist-pendulum" and out["step_f1"] == 1.0 and "distance_error_pct" in out
     assert main(["steps", str(mobgap_test5), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    assert out["detector"] == "pll" and out["unit"] == "waist" and out["f1"] >= 0.95
+    assert out["detector"] == "waist-ic" and out["unit"] == "waist" and out["f1"] >= 0.95
 
 
 def test_steps_on_a_foot_recording_without_options(gaitmap_level_left, capsys):

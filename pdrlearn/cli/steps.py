@@ -19,8 +19,9 @@ _METRICS = ("scored_count", "reference_count", "precision", "recall", "f1", "cou
 def steps(
     session_dir: Path = typer.Argument(..., help="PLASYS session folder."),
     detector: str = typer.Option("auto", "--detector", "-d",
-                                 help="accel | accel-force (foot strides) | pelvic-gyro | pll (waist steps); auto = "
-                                 "accel with a foot unit, else pll."),
+                                 help="accel | accel-force (foot strides) | pelvic-gyro | pll | waist-ic (waist "
+                                 "steps); auto = accel with a foot unit, else waist-ic (the waist-pendulum "
+                                 "pipeline's initial contacts; pll without a waist gyroscope)."),
     out: Path = typer.Option(None, "--out", "-o", help="Write the steps table to this CSV (times in s)."),
     tolerance: float = typer.Option(0.25, "--tolerance", help="Event matching tolerance in seconds."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -37,6 +38,8 @@ def steps(
 
         pdrlearn steps datasets/real/mobgap_HA001_Test5_Trial1 --detector pll --json
 
+        pdrlearn steps datasets/real/mobgap_HA001_Test11_Trial1 --detector waist-ic
+
         pdrlearn steps out/sim/D_u1 --detector accel-force --out out/A_steps.csv
     """
     from pdrlearn.atomic import atomic_file
@@ -51,8 +54,9 @@ def steps(
         out = out_file(out, (".csv",), force=force)
     was = out is not None and existed(out)
     session = read_session(session_dir)
-    if detector == "auto":  # a foot unit's strides, else the lower back's steps
-        det = get_detector("accel" if session.has("fAccelerometer") or not session.has("wAccelerometer") else "pll")
+    if detector == "auto":  # a foot unit's strides, else the lower back's steps (decision 17)
+        det = get_detector("accel" if session.has("fAccelerometer") or not session.has("wAccelerometer")
+                           else "waist-ic" if session.has("wGyroscope") else "pll")
     u = det.unit[0]  # "f" or "w": the unit's inertial streams (+ the force sensors of accel-force)
     warn_gaps(session, [f"{u}Accelerometer", f"{u}Gyroscope", *(("fForceA", "fForceB") if "force" in det.name else ())],
               "no step is detected inside them (recall counts the labelled ones as missed) - re-record or trim "

@@ -19,10 +19,11 @@ from pdrlearn.steps.evaluate import (
     score_events,
     score_steps,
 )
+from pdrlearn.steps.waist_ic import WaistICStepDetector
 
 __all__ = [
     "STEPS_COLUMNS", "OnlineStepDetector", "StepDetector", "steps_frame",
     "DETECTORS", "AccelStepDetector", "AccelForceStepDetector", "PelvicGyroStepDetector", "PLLStepDetector",
-    "get_detector", "Reference", "in_intervals", "DEFAULT_TOLERANCE_S", "match_events", "reference_events",
-    "score_events", "score_steps",
+    "WaistICStepDetector", "get_detector", "Reference", "in_intervals", "DEFAULT_TOLERANCE_S", "match_events",
+    "reference_events", "score_events", "score_steps",
 ]

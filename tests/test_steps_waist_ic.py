@@ -1,0 +1,124 @@
+"""`waist-ic` step detector: the waist-pendulum pipeline's IC detector behind the steps interface
+(docs/decisions/steps.md decision 17)."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from pdrlearn.cli import main
+from pdrlearn.errors import DataError, MissingSensorError
+from pdrlearn.io import read_session
+from pdrlearn.steps import DETECTORS, STEPS_COLUMNS, get_detector, score_steps
+from pdrlearn.steps.waist_ic import WaistICStepDetector
+from pdrlearn.track.waist import MAX_STEP_S, track_waist
+from pdrlearn.waist.ahrs import MADGWICK_GAIN, waist_imu
+from pdrlearn.waist.events import WALK_THRESHOLD_MPS2, InitialContactDetector
+
+_CACHE: dict = {}
+
+
+def _test5(mobgap_test5):
+    if "s" not in _CACHE:
+        s = read_session(mobgap_test5)
+        det = get_detector("waist-ic")
+        _CACHE["s"] = (s, det, det.detect(s), det._inputs(s))
+    return _CACHE["s"]
+
+
+def test_registered_with_the_pipeline_defaults():
+    assert DETECTORS["waist-ic"] is WaistICStepDetector
+    det = get_detector("waist-ic")
+    assert det.walk_threshold == WALK_THRESHOLD_MPS2 and det.max_step_s == MAX_STEP_S
+    assert det.ahrs_gain == MADGWICK_GAIN
+
+
+@pytest.mark.parametrize("name", ["mobgap_HA001_Test5_Trial1", "mobgap_HA001_Test11_Trial1"])
+def test_offline_equals_track_waist_pendulum_contacts(real_dir, name):
+    s = read_session(real_dir / name)
+    steps = get_detector("waist-ic").detect(s)
+    assert list(steps.columns[:5]) == list(STEPS_COLUMNS) and (steps["unit"] == "waist").all()
+    tr = track_waist(s, pipeline="waist-pendulum")
+    np.testing.assert_array_equal(steps["event_s"].to_numpy(), tr.steps["event_s"].to_numpy())
+    np.testing.assert_array_equal(steps["end_s"].to_numpy(), tr.steps["end_s"].to_numpy())
+    # and the IC detector itself on the AHRS data, with its defaults
+    ic = InitialContactDetector().detect(waist_imu(s))
+    np.testing.assert_array_equal(steps["event_s"].to_numpy(), s["wAccelerometer"].t[ic.ic_])
+    assert len(steps) > 5
+
+
+@settings(max_examples=6, deadline=None)
+@given(cuts=st.lists(st.integers(0, 400), min_size=1, max_size=8))
+def test_online_in_random_chunks_equals_offline(mobgap_test5, cuts):
+    s, det, offline, (t, v, ctx) = _test5(mobgap_test5)
+    online = det.online(1.0 / np.median(np.diff(t)), **ctx)
+    parts, i = [], 0
+    for c in cuts:
+        part = online.push(t[i:i + c], v[i:i + c])
+        assert len(part) == 0  # decision 17: every contact is decided at flush
+        parts.append(part)
+        i += c
+    parts.append(online.push(t[i:], v[i:]))
+    parts.append(online.flush())
+    got = pd.concat(parts, ignore_index=True)
+    assert len(offline) > 5
+    pd.testing.assert_frame_equal(offline.reset_index(drop=True), got, check_dtype=False)
+
+
+def test_online_on_sensor_frame_samples_with_the_rotation(mobgap_test5):
+    s, det, offline, _ = _test5(mobgap_test5)
+    acc, gyr = s["wAccelerometer"], s["wGyroscope"]
+    r = s.require_frame("waist").matrix()
+    online = det.online(1.0 / np.median(np.diff(acc.t)), rotation=r)
+    v = np.column_stack([acc.values, np.asarray([np.interp(acc.t, gyr.t, gyr.values[:, k]) for k in range(3)]).T])
+    got = pd.concat([online.push(acc.t[:500], v[:500]), online.push(acc.t[500:], v[500:]), online.flush()],
+                    ignore_index=True)
+    np.testing.assert_allclose(got["event_s"].to_numpy(), offline["event_s"].to_numpy())
+
+
+def test_cli_json_contract(mobgap_test5, capsys):
+    assert main(["steps", str(mobgap_test5), "--detector", "waist-ic", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["detector"] == "waist-ic" and out["unit"] == "waist"
+    for k in ("count", "reference_count", "precision", "recall", "f1", "count_error_pct"):
+        assert k in out, k
+    s, _, offline, _ = _test5(mobgap_test5)
+    sc = score_steps(offline, s)
+    assert out["count"] == len(offline) and out["f1"] == pytest.approx(sc["f1"]) and out["f1"] == 1.0
+
+
+def test_auto_picks_waist_ic_without_a_foot_unit_and_pll_without_a_waist_gyroscope(mobgap_test5, tmp_path,
+                                                                                    capsys):
+    assert main(["steps", str(mobgap_test5), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["detector"] == "waist-ic"
+    no_gyro = tmp_path / "no_gyro"
+    shutil.copytree(mobgap_test5, no_gyro)
+    (no_gyro / "wGyroscope.csv").unlink()
+    assert main(["steps", str(no_gyro), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["detector"] == "pll"
+
+
+def test_no_lower_back_accelerometer_is_one_line_naming_the_folder(gaitmap_level_left, mobgap_test5, tmp_path,
+                                                                   capsys):
+    with pytest.raises(MissingSensorError, match="wAccelerometer") as exc:
+        get_detector("waist-ic").detect(read_session(gaitmap_level_left))
+    assert str(gaitmap_level_left) in str(exc.value) and "\n" not in str(exc.value)
+    no_acc = tmp_path / "no_acc"
+    shutil.copytree(mobgap_test5, no_acc)
+    (no_acc / "wAccelerometer.csv").unlink()
+    assert main(["steps", str(no_acc), "--detector", "waist-ic"]) == 2
+    err = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
+    assert len(err) == 1 and err[0].startswith("error: ") and str(no_acc) in err[0] and "wAccelerometer" in err[0]
+
+
+def test_online_rejects_wrong_columns():
+    online = get_detector("waist-ic").online(100.0)
+    with pytest.raises(DataError, match="shape"):
+        online.push(np.arange(3.0), np.zeros((3, 3)))
+    assert len(online.flush()) == 0
