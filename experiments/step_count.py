@@ -202,6 +202,7 @@ def _md_waist_ic(df: pd.DataFrame, users: int) -> str:
              f"(0.25 s). Simulated: scenarios A-D x slow/normal/fast x users 1-{users} at 100 Hz, pooled "
              "F1 = 2 TP / (detected + reference).", "",
              "| data | " + " | ".join(WAIST_IC_VARIANTS) + " |", "|---" * (len(WAIST_IC_VARIANTS) + 1) + "|"]
+    same = df.loc[df["data"].str.startswith("mobgap"), "same_as_steps_cli"].dropna()
     df = df.assign(group=np.where(df["data"].str.startswith("sim"), "simulated A-D (pooled)", df["data"]))
     real = df[df["data"].str.startswith("mobgap")]
     if real["data"].str.split("_").str[1].nunique() > 1:  # several real subjects: add pooled rows
@@ -223,7 +224,6 @@ def _md_waist_ic(df: pd.DataFrame, users: int) -> str:
                     f"IC {mean:+.1f} ± {sd:.0f} ms)"
             cells.append(f"{f1:.3f}{extra}")
         lines.append(f"| {group} | " + " | ".join(cells) + " |")
-    same = df.loc[df["data"].str.startswith("mobgap"), "same_as_steps_cli"].dropna()
     lines += ["", f"`pdrlearn steps --detector waist-ic` gives the default column's contacts on {int(same.sum())} of "
               f"{same.size} real sessions (same event times). Its own F1 (the steps table, step_count.md) counts "
               "detections that stand for INDIP contacts without a time (`ics_untimed`, docs/external-data.md X2) "
