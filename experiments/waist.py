@@ -241,36 +241,96 @@ def walked_between_contacts(session) -> float:
 
 
 FLOOR_NOTE = ("Per reference stride (straight, `turn` False, exactly two detected steps in it): ratio of the "
-              "INDIP stride length to the pendulum's (K = 1). cv_stride = its coefficient of variation; "
-              "cv_step = cv_stride x sqrt(2) (a stride is two steps with independent errors); "
-              "expected_median_pct = 0.674 x cv_step x sqrt(1/n + 1/m), the median |error| of an n-step bout "
-              "when K is calibrated on m steps, from this per-step scatter alone (perfect detection, no turns).")
+              "INDIP stride length to the pendulum's (K = 1). cv_stride = its coefficient of variation over the "
+              "group's recordings pooled (it includes the differences between the recordings' mean ratios); "
+              "cv_within = the same about each recording's own mean ratio (the per-stride scatter a bout averages "
+              "down); k_bouts = reference / pendulum over each recording's bouts (the K a calibration on it gives); "
+              "between_pct = the largest / smallest k_bouts - 1; expected_median_pct_nN_mM = 0.674 x cv x "
+              "sqrt(2/N + 2/M), the median |error| of an N-step bout (N/2 strides) when K is calibrated on M steps, "
+              "from independent per-stride scatter alone (perfect detection, no turns), from cv_stride "
+              "(n8_m16, the earlier figure) and from cv_within (n8_m8: one 8-step Test5 trial -> the other, "
+              "decision W40); cv_within_stereo = cv_within with the Stereophoto contacts (optical, X4) as "
+              "the integration bounds of h instead of the detected ones, where the recordings have them; sd_ref / "
+              "sd_tracked = spread of the reference / tracked stride lengths about each recording's mean (log, %), "
+              "corr_ref_tracked = their correlation (how much of the stride-to-stride change the pendulum follows).")
+
+
+def _stride_ratios(st: pd.DataFrame, session) -> np.ndarray:
+    """``(reference, tracked)`` lengths (rows) of the straight reference strides holding exactly two
+    tracked steps."""
+    from pdrlearn.waist.evaluate import steps_in_interval
+
+    ref = session.steps.dropna(subset=["length_m"])
+    if "turn" in ref:
+        ref = ref[~ref["turn"].astype(bool)]
+    r = []
+    for q in ref.itertuples():
+        m = steps_in_interval(st, q.start_s, q.end_s) & st["has_next"].to_numpy(bool)
+        if m.sum() == 2 and st["length_m"][m].sum() > 0:
+            r.append((q.length_m, st["length_m"][m].sum()))
+    return np.array(r, dtype=np.float64).reshape(-1, 2).T
+
+
+def _steps_between(session, ic_s: np.ndarray) -> pd.DataFrame:
+    """Pendulum steps (K = 1, meta.json leg length) between consecutive given contacts (no W19/W27)."""
+    from pdrlearn.waist import _kernels as K
+    from pdrlearn.waist.ahrs import waist_imu
+
+    p, _ = resolve_params(session, None)
+    imu = waist_imu(session)
+    ic = np.sort(ic_s)
+    idx = np.clip(np.round((ic - imu.t[0]) * imu.fs).astype(int), 0, len(imu.t) - 1)
+    h = np.array([K.vertical_excursion(imu.acc_v, imu.fs, idx[i], idx[i + 1]) for i in range(len(ic) - 1)])
+    return pd.DataFrame({"start_s": ic[:-1], "end_s": ic[1:], "has_next": True,
+                         "length_m": K.pendulum_length(h, p.leg_m)})
 
 
 def noise_floor(data: Path, groups: dict[str, list[str]], *, n_bout: int = 8, m_cal: int = 16) -> pd.DataFrame:
     """Per-stride scatter of reference / pendulum length on straight strides, per group of recordings,
-    and the per-bout error it implies (decision W21: why a 3 % median over 5 m bouts is below what the
-    method resolves)."""
-    from pdrlearn.waist.evaluate import steps_in_interval
+    and the per-bout error it implies (decisions W21, W40: how much of a short bout's error per-stride
+    scatter alone explains)."""
+    from pdrlearn.waist.evaluate import reference_bouts, steps_in_interval
 
     rows = []
     for label, names in groups.items():
-        r = []
+        r, within, stereo, kb, dev = [], [], [], [], []
         for name in names:
             s = read_session(data / name)
             st = get_pipeline("waist-pendulum")(s).steps
-            ref = s.steps.dropna(subset=["length_m"])
-            if "turn" in ref:
-                ref = ref[~ref["turn"].astype(bool)]
-            for q in ref.itertuples():
-                m = steps_in_interval(st, q.start_s, q.end_s) & st["has_next"].to_numpy(bool)
-                if m.sum() == 2 and st["length_m"][m].sum() > 0:
-                    r.append(q.length_m / st["length_m"][m].sum())
-        rows.append({"recordings": label, "strides": len(r), "ratio_mean": float(np.mean(r)),
-                     "cv_stride_pct": 100 * float(np.std(r, ddof=1) / np.mean(r))})
+            ref, est = _stride_ratios(st, s)
+            x = ref / est
+            r.append(x)
+            within.append(x - x.mean())
+            dev.append(np.log(np.vstack([ref, est])) - np.log(np.vstack([ref, est])).mean(axis=1, keepdims=True))
+            b = reference_bouts(s)
+            if b is not None:
+                m = np.zeros(len(st), dtype=bool)
+                for q in b.itertuples():
+                    m |= steps_in_interval(st, q.start_s, q.end_s)
+                kb.append(float(b.length_m.sum() / st["length_m"][m].sum()))
+            so = s.extras.get("ics_stereophoto")
+            if so is not None and "ic_s" in so and so["ic_s"].notna().sum() >= 3:
+                y = np.divide(*_stride_ratios(_steps_between(s, so["ic_s"].dropna().to_numpy(float)), s))
+                if len(y) >= 2:
+                    stereo.append(y - y.mean())
+        r_all = np.concatenate(r)
+        dof = len(r_all) - len(r)
+        cv_w = 100 * float(np.sqrt(np.sum(np.concatenate(within) ** 2) / dof) / np.mean(r_all)) if dof > 0 else np.nan
+        cv_s = np.nan
+        if stereo:
+            y = np.concatenate(stereo)
+            cv_s = 100 * float(np.sqrt(np.sum(y ** 2) / (len(y) - len(stereo))) / np.mean(r_all))
+        rows.append({"recordings": label, "strides": len(r_all), "ratio_mean": float(np.mean(r_all)),
+                     "cv_stride_pct": 100 * float(np.std(r_all, ddof=1) / np.mean(r_all)), "cv_within_pct": cv_w,
+                     "cv_within_stereo_pct": cv_s, "sd_ref_pct": 100 * float(np.std(np.hstack(dev)[0])),
+                     "sd_tracked_pct": 100 * float(np.std(np.hstack(dev)[1])),
+                     "corr_ref_tracked": float(np.corrcoef(np.hstack(dev))[0, 1]),
+                     "k_bouts": " / ".join(f"{k:.3f}" for k in kb),
+                     "between_pct": 100 * (max(kb) / min(kb) - 1) if len(kb) >= 2 else np.nan})
     out = pd.DataFrame(rows)
-    out["cv_step_pct"] = out["cv_stride_pct"] * np.sqrt(2)
-    out[f"expected_median_pct_n{n_bout}_m{m_cal}"] = 0.674 * out["cv_step_pct"] * np.sqrt(1 / n_bout + 1 / m_cal)
+    out[f"expected_median_pct_n{n_bout}_m{m_cal}"] = (0.674 * out["cv_stride_pct"]
+                                                      * np.sqrt(2 / n_bout + 2 / m_cal))
+    out[f"expected_median_pct_n{n_bout}_m{n_bout}"] = 0.674 * out["cv_within_pct"] * np.sqrt(4 / n_bout)
     return out
 
 
@@ -377,6 +437,8 @@ def main() -> None:
                 ext_groups.setdefault(key, [])
                 if n not in ext_groups[key]:
                     ext_groups[key].append(n)
+        for kind in ("Test5", "Test11"):  # pooled over the subjects (W40)
+            ext_groups[f"all {kind}"] = [n for k, v in list(ext_groups.items()) if k.endswith(f" {kind}") for n in v]
         ext_floor = noise_floor(args.external, ext_groups)
         print("\nper-step noise floor of the pendulum length, external subjects (straight strides):")
         print(ext_floor.round(2).to_string(index=False))
