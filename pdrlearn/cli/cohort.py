@@ -8,10 +8,12 @@ from pathlib import Path
 import pandas as pd
 import typer
 
+from pdrlearn.atomic import atomic_directory
 from pdrlearn.cli.common import (
     FORCE_HELP,
     existed,
     json_safe,
+    manifest_kind,
     out_folder,
     print_json,
     progress,
@@ -118,6 +120,34 @@ def _check_any_ok(results: list[JobResult]) -> None:
         raise DataError(f"every user failed; first error: {failed[0].name}: {failed[0].error}")
 
 
+#: What makes a folder a previous ``train-all`` output (every pattern present, decision B12).
+TRAIN_ALL_MARKERS = ("cohort_summary.csv", "*/manifest.json")
+
+
+def _check_only_train_all_output(out: Path) -> None:
+    """``train-all --force`` replaces the whole models folder (decision B19), so a previous output may hold
+    only what train-all and evaluate-all write there: the summary, model directories, evaluate-all's
+    default ``eval/`` and the hidden leftovers of an interrupted atomic write. Anything else (a user's
+    notes, another command's output) is refused, with or without ``--force``, naming it."""
+    if not out.is_dir() or not all(any(out.glob(m)) for m in TRAIN_ALL_MARKERS):
+        return  # absent, empty or not a train-all output at all: out_folder says what to do
+
+    def ours(p: Path) -> bool:
+        if p.name in ("cohort_summary.csv", "cohort_summary.md"):
+            return p.is_file()
+        if p.name.startswith(".") and (".tmp-" in p.name or ".old-" in p.name):
+            return True
+        if p.name == "eval" and (p / "cohort_summary.csv").is_file():
+            return True
+        return p.is_dir() and manifest_kind(p) == "a model directory"
+
+    foreign = sorted(p.name for p in out.iterdir() if not ours(p))
+    if foreign:
+        names = ", ".join(foreign[:3]) + (f" and {len(foreign) - 3} more" if len(foreign) > 3 else "")
+        raise DataError(f"{out}: also holds {names}, which train-all did not write; --force replaces the whole "
+                        "models folder, so move them out or choose another output folder")
+
+
 def _check_workers(workers: int | None) -> None:
     if workers is not None and workers < 1:
         raise DataError(f"--workers {workers}: give at least 1 worker process (or leave it out for one per core)")
@@ -148,8 +178,9 @@ def train_all(
     units: str = typer.Option(None, help="Comma list of foot,waist,fused (default: all)."),
     cv: int = typer.Option(10, help="Cross-validation folds per user."),
     seed: int = typer.Option(0, help="Seed (identical results serial or distributed)."),
-    force: bool = typer.Option(False, "--force", help=FORCE_HELP.split(" (")[0] + " (each user's model "
-                               "directory is replaced atomically)."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP.split(" (")[0] + " (the whole models "
+                               "folder is replaced atomically: users no longer in the cohort, or failing now, "
+                               "keep no old model)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
     """Train every user of a cohort on Dask; a failing user is reported and the rest complete.
@@ -171,16 +202,23 @@ def train_all(
     # bad settings fail here, once, before a cluster is started and before anything is written
     check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
     _check_workers(workers)
-    out_folder(out, ("cohort_summary.csv", "*/manifest.json"), "per-user model directories", force=force)
-    was = existed(out)
+    _check_only_train_all_output(out)
+    out_folder(out, TRAIN_ALL_MARKERS, "per-user model directories", force=force)
+    was, had_eval = existed(out), (out / "eval" / "cohort_summary.csv").is_file()
     users = cohort_users(cohort_dir)
-    items = [(u.name, {"user_dir": str(u), "out": str(out / u.name), "tasks": t_list,
-                       "methods": m_list, "units": u_list, "cv": cv, "seed": seed})
-             for u in users]
-    results = _run(_train_job, items, scheduler, serial, workers, as_json, "train")
-    _check_any_ok(results)
-    df = _summarise(results, out)
-    replaced(out, was)
+    # the whole models folder is built beside the old one and swapped in (decision B19): a --force re-run
+    # leaves no model of a user who is no longer in the cohort, or who failed this time
+    with atomic_directory(out) as tmp:
+        items = [(u.name, {"user_dir": str(u), "out": str(tmp / u.name), "tasks": t_list,
+                           "methods": m_list, "units": u_list, "cv": cv, "seed": seed})
+                 for u in users]
+        results = _run(_train_job, items, scheduler, serial, workers, as_json, "train")
+        _check_any_ok(results)
+        df = _summarise(results, tmp)
+    if was and had_eval:  # evaluate-all's default output scored the old models: it went with them
+        typer.echo(f"replaced {out} (and {out / 'eval'}, evaluate-all's summary of the replaced models)", err=True)
+    else:
+        replaced(out, was)
     _print(df, results, f"train-all: {sum(r.ok for r in results)}/{len(results)} users trained", as_json)
     _exit_if_any_failed(results)
 
