@@ -1,5 +1,16 @@
 """Atomic writes: a folder or file is built under a temporary name and moved into place only when complete,
-so an interrupted or failing write never leaves a half-written result (project standard, DESIGN.md)."""
+so an interrupted or failing write never leaves a half-written result (project standard, DESIGN.md).
+
+Replacing an existing folder (``--force``, decision B12) is check-then-replace: the CLI checks the folder
+before the work (``cli.common.out_folder``) and replaces it minutes later. Decision B20 narrows that race:
+:func:`expect_unchanged` records what the check saw, and :func:`atomic_directory` first renames the old
+folder aside to a fresh hidden name (one atomic step; nobody else writes under that name), then compares
+the set-aside folder with the record and puts it back unchanged if it differs, so what is deleted is
+exactly what was checked. The remaining window -- another process creating ``target`` between the two
+renames -- loses nothing either: the new folder's rename fails and the old one is kept (under its own
+name, or under the set-aside name, which the error gives). Files (:func:`atomic_file`) are replaced by one
+``os.replace`` without such a record.
+"""
 
 from __future__ import annotations
 
@@ -8,7 +19,18 @@ import shutil
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
+from contextvars import ContextVar
 from pathlib import Path
+
+from pdrlearn.errors import PdrlearnError
+
+#: What each checked output folder held when it was checked: resolved path -> :func:`fingerprint`. ``None``
+#: outside :func:`checked_outputs` (library calls), where nothing is compared.
+_checked: ContextVar[dict[Path, frozenset] | None] = ContextVar("pdrlearn_checked_outputs", default=None)
+
+
+class OutputChangedError(PdrlearnError):
+    """An output folder changed between the command's check and its replacement; it was not replaced."""
 
 
 def _umask() -> int:
@@ -18,13 +40,74 @@ def _umask() -> int:
     return mask
 
 
+def fingerprint(folder: str | os.PathLike) -> frozenset:
+    """What ``folder`` holds: every entry's relative path, and for files inode, size and mtime (ns).
+    Renaming the folder changes none of these; writing, adding, removing or replacing a file does.
+    An absent folder gives the empty set, like an empty one."""
+    folder = Path(folder)
+    if not folder.is_dir():
+        return frozenset()
+    items = []
+    for p in folder.rglob("*"):
+        st = p.lstat()
+        rel = p.relative_to(folder).as_posix()
+        items.append((rel, "d") if p.is_dir() and not p.is_symlink() else (rel, st.st_ino, st.st_size, st.st_mtime_ns))
+    return frozenset(items)
+
+
+@contextmanager
+def checked_outputs() -> Iterator[None]:
+    """Scope (one CLI command) inside which :func:`expect_unchanged` records are kept and compared."""
+    token = _checked.set({})
+    try:
+        yield
+    finally:
+        _checked.reset(token)
+
+
+def expect_unchanged(folder: str | os.PathLike) -> None:
+    """Record what ``folder`` holds now (after the command checked it may be replaced); a later
+    :func:`atomic_directory` on it replaces it only if it still holds exactly that. No-op outside
+    :func:`checked_outputs`."""
+    records = _checked.get()
+    if records is not None:
+        records[Path(folder).resolve()] = fingerprint(folder)
+
+
+def _set_aside(target: Path) -> Path | None:
+    """Rename ``target`` to a fresh hidden sibling (reserved by mkdtemp, so no earlier leftover is hit) and
+    return it; ``None`` when there is no ``target`` (any more)."""
+    if not (target.exists() or target.is_symlink()):
+        return None
+    aside = Path(tempfile.mkdtemp(prefix=f".{target.name}.old-", dir=target.parent))
+    try:
+        target.rename(aside)  # a folder onto an empty folder: one atomic step
+    except FileNotFoundError:  # removed since the check above: nothing to replace
+        aside.rmdir()
+        return None
+    except BaseException:
+        aside.rmdir()
+        raise
+    return aside
+
+
+def _put_back(aside: Path, target: Path) -> None:
+    try:
+        aside.rename(target)
+    except OSError as exc:  # another process has written target in the meantime: keep both, say where
+        raise OutputChangedError(f"{target}: another process wrote it while this command replaced it; the previous "
+                                 f"output is kept in {aside}") from exc
+
+
 @contextmanager
 def atomic_directory(target: str | os.PathLike) -> Iterator[Path]:
     """Yield a temporary sibling folder of ``target``; when the block succeeds it replaces ``target``.
 
     An existing ``target`` is first renamed aside and removed only after the new folder is in place; on
     any exception the temporary folder is deleted and ``target`` is left as it was. Callers decide
-    beforehand whether an existing ``target`` may be replaced.
+    beforehand whether an existing ``target`` may be replaced; if they recorded it with
+    :func:`expect_unchanged`, a ``target`` that changed since is put back and :class:`OutputChangedError`
+    raised (decision B20).
     """
     target = Path(target)
     target.parent.mkdir(parents=True, exist_ok=True)
@@ -34,15 +117,19 @@ def atomic_directory(target: str | os.PathLike) -> Iterator[Path]:
     tmp.chmod(0o777 & ~_umask())
     try:
         yield tmp
-        old = None
-        if target.exists():
-            old = target.with_name(f".{target.name}.old-{os.getpid()}")
-            target.rename(old)
+        records = _checked.get()
+        expected = records.get(target.resolve()) if records is not None else None
+        old = _set_aside(target)
+        if old is not None and expected is not None and fingerprint(old) != expected:
+            _put_back(old, target)
+            raise OutputChangedError(f"{target}: changed after this command checked it (files added, removed or "
+                                     "rewritten meanwhile); it was not replaced -- look at it and run the command "
+                                     "again")
         try:
             tmp.rename(target)
         except BaseException:
-            if old is not None and not target.exists():  # put the previous result back under its own name
-                old.rename(target)
+            if old is not None:  # put the previous result back under its own name
+                _put_back(old, target)
             raise
         if old is not None:
             shutil.rmtree(old, ignore_errors=True)

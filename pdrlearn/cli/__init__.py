@@ -134,8 +134,10 @@ def main(argv: list[str] | None = None) -> int:
     """Console-script entry point; returns the exit code."""
     if argv is None:
         argv = sys.argv[1:]
+    from pdrlearn.atomic import checked_outputs
+
     try:
-        with _stderr_logging():
+        with _stderr_logging(), checked_outputs():  # an output folder is replaced only as checked (B20)
             # with standalone_mode=False click returns a command's `typer.Exit(code)` instead of raising it
             rc = app(args=_hoist_verbose(list(argv)), standalone_mode=False)
     except PdrlearnError as exc:

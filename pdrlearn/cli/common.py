@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from pdrlearn.atomic import expect_unchanged
 from pdrlearn.errors import DataError
 from pdrlearn.io.plasys import json_default
 
@@ -100,6 +101,7 @@ def out_folder(path: Path, markers: tuple[str, ...], what: str, *, force: bool =
         if not force:
             raise DataError(f"{path}: already holds {what}; pass --force to replace it, or choose another output "
                             "folder")
+    expect_unchanged(path)  # the atomic replacement deletes only what was checked here (decision B20)
     return path
 
 
