@@ -11,6 +11,7 @@ import typer
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.cli.common import (
     FORCE_HELP,
+    console,
     existed,
     json_safe,
     manifest_kind,
@@ -88,11 +89,10 @@ def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool
         print_json(json_safe({"users": df.to_dict(orient="records"), "n_users": len(results),
                               "n_failed": len(failed)}))
     else:
-        from rich.console import Console
         from rich.table import Table
 
         shown = df.drop(columns=["error"], errors="ignore")
-        c = Console()
+        c = console()
         if c.is_terminal:
             t = Table(title=title)
             for col in shown.columns:  # fold long cells instead of cutting them to "…" on narrow terminals

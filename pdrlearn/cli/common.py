@@ -136,6 +136,18 @@ def existed(path: Path) -> bool:
     return path.is_file() or (path.is_dir() and any(path.iterdir()))
 
 
+def console():
+    """The rich console of a command's human-readable stdout. On a terminal rich wraps at its width; piped
+    or logged, rich assumed 80 columns and broke sentences and table titles in the middle ("(decision L26;"
+    / "M3 and the runtime apply it)"), so there lines are not wrapped (tables keep their layout)."""
+    from rich.console import Console
+
+    c = Console()
+    if not c.is_terminal:
+        c.soft_wrap = True
+    return c
+
+
 @contextmanager
 def progress(description: str, total: int | None, enabled: bool = True):
     """A rich progress bar on stderr (silent when not a terminal or disabled); yields ``advance()``."""

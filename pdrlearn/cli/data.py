@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, out_file, print_json, replaced
+from pdrlearn.cli.common import FORCE_HELP, console, existed, json_safe, out_file, print_json, replaced
 
 
 def info(
@@ -28,16 +28,17 @@ def info(
     if as_json:
         print_json(json_safe(summary))
         return
-    from rich.console import Console
     from rich.table import Table
 
-    t = Table(title=f"session {summary['name']} — {summary['duration_s']:.1f} s")
+    c = console()
+    c.print(f"session {summary['name']} — {summary['duration_s']:.1f} s", markup=False)
+    t = Table()
     for col in ("sensor", "placement", "rate (Hz)", "samples", "duration (s)", "gaps", "longest gap (s)"):
-        t.add_column(col)
+        # names whole (the sensor was cut to "fAccelero…" at 80 columns); the other headers wrap instead
+        t.add_column(col, min_width={"sensor": 14, "placement": 9}.get(col))
     for name, d in summary["sensors"].items():
         t.add_row(name, d["placement"], f"{d['rate_hz']}", str(d["samples"]), f"{d['duration_s']:.2f}",
                   str(d["gaps"]), f"{d['longest_gap_s']:.3f}")
-    c = Console()
     c.print(t)
     c.print(f"frames: {summary['frames'] or 'not declared'}")
     c.print(f"labels: {summary['labels']}")

@@ -10,6 +10,7 @@ import typer
 
 from pdrlearn.cli.common import (
     FORCE_HELP,
+    console,
     existed,
     json_safe,
     out_folder,
@@ -138,15 +139,14 @@ def train(
     if as_json:
         print_json(json_safe(summary))
         return
-    from rich.console import Console
     from rich.table import Table
 
-    c = Console()
+    c = console()
     for t, tm in model.tasks.items():
-        tab = Table(
-            title=f"{t}: {tm.n_steps} steps, {tm.cv[tm.chosen[0]][tm.chosen[1]]['n_folds']}"
-            f"-fold CV accuracy (chosen: {tm.chosen[0]}/{tm.chosen[1]})"
-        )
+        # the title as its own line: as a table title rich wrapped it to the table's width
+        c.print(f"{t}: {tm.n_steps} steps, {tm.cv[tm.chosen[0]][tm.chosen[1]]['n_folds']}-fold CV accuracy "
+                f"(chosen: {tm.chosen[0]}/{tm.chosen[1]})", markup=False)
+        tab = Table()
         tab.add_column("method")
         for col in (*tm.classes, "all", "unit"):
             tab.add_column(col)
@@ -211,15 +211,13 @@ def evaluate(
     if as_json:
         print_json(json_safe(result))
         return
-    from rich.console import Console
     from rich.table import Table
 
-    c = Console()
+    c = console()
     for task, r in result["tasks"].items():
-        tab = Table(
-            title=f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
-            f"{100 * r['accuracy']:.1f} %"
-        )
+        c.print(f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
+                f"{100 * r['accuracy']:.1f} %", markup=False)
+        tab = Table()
         for col in ("method", "unit", *[f"{k} %" for k in r["classes"]], "all %", "ms/step"):
             tab.add_column(col)
         for row in results_table(r):
