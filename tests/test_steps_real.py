@@ -48,6 +48,19 @@ def test_pll_real_lower_back_straight_walk(real_dir):
         assert np.all((f > 0.8) & (f < 3.2))
 
 
+@pytest.mark.parametrize("subject, floor", [("HA001", 0.87), ("HA002", 0.65), ("MS001", 0.75)])
+def test_pll_daily_activities_keep_slow_walking(subject, floor):
+    """Decision 18: the PLL's gate is the waist motion gate (W4, std 0.5 m/s^2); decision 6's 0.5 m^2/s^4
+    dropped the slow Test11 walking (F1 0.852 / 0.575 / 0.749; now 0.882 / 0.667 / 0.754)."""
+    from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
+    from tests.conftest import external_session
+
+    assert PLLStepDetector().gate_var == pytest.approx(WALK_THRESHOLD_MPS2 ** 2)
+    s = read_session(external_session(f"mobgap_{subject}_Test11_Trial1"))
+    sc = score_steps(PLLStepDetector().detect(s), s)
+    assert sc["f1"] >= floor, sc
+
+
 def test_segmentation_matches_mocap_midstance(real_dir):
     s = read_session(real_dir / "gaitmap_level_right")
     seg = segment_steps(s, AccelStepDetector().detect(s))
