@@ -89,7 +89,8 @@ def user_sessions(user_dir: Path, part: str | None = None) -> list[Path]:
     """Session folders of one user: ``user/part/*`` when ``part`` is given and exists, else ``user/*``."""
     base = user_dir / part if part and (user_dir / part).is_dir() else user_dir
     if part and base is user_dir and part == "test":
-        raise DataError(f"{user_dir}: no test/ folder with held-out sessions; add one or evaluate explicitly")
+        raise DataError(f"{user_dir}: no test/ folder with held-out sessions; add {user_dir / 'test'} (one "
+                        "folder per session), or score this user with 'pdrlearn evaluate MODEL_DIR SESSION...'")
     if _is_session_dir(base):
         return [base]
     sessions = sorted(p for p in base.iterdir() if _is_session_dir(p))

@@ -157,7 +157,9 @@ def read_manifest(path) -> dict:
         raise ModelError(f"{path}: no such model directory; train one with 'pdrlearn train ... --out {path}'")
     mf = path / MANIFEST
     if not mf.is_file():
-        raise ModelError(f"{path}: missing {MANIFEST}; not a pdrlearn model directory (retrain it)")
+        hint = " -- it is a session folder (arguments swapped?)" if any(path.glob("*Accelerometer.csv")) else ""
+        raise ModelError(f"{path}: missing {MANIFEST}; not a model directory written by 'pdrlearn train' (pass "
+                         f"that folder, or retrain if its manifest was deleted){hint}")
     try:
         manifest = json.loads(mf.read_text())
     except (OSError, json.JSONDecodeError) as exc:

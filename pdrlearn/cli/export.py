@@ -129,7 +129,8 @@ def run(
         need = [s for s in bundle.manifest["sensors"]["required"] if not s.startswith("f")]
         if need:
             raise DataError(f"bundle {bundle.path} needs {', '.join(need)}, which the foot unit's "
-                            "Bluetooth protocol does not carry; export a foot-only model")
+                            "Bluetooth protocol does not carry; export a foot-only model "
+                            "('pdrlearn train ... --units foot', then 'pdrlearn export')")
         with stream:
             for line in stream:
                 t0 = time.perf_counter()

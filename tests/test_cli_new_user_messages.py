@@ -1,0 +1,49 @@
+"""Error lines a new user met in a fresh-clone trial said what was wrong but not what to do: a session folder
+given as the model ("(retrain it)"), a cohort user without test/ ("evaluate explicitly"), a waist bundle fed
+the foot's Bluetooth protocol ("export a foot-only model", without how)."""
+
+from __future__ import annotations
+
+import io
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+from pdrlearn.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+REAL = ROOT / "datasets" / "real"
+BUNDLE = ROOT / "models" / "plasys-sim-default"
+
+
+def _err(capsys) -> str:
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("error: "), err
+    return err[0]
+
+
+def test_session_given_as_model_says_arguments_swapped(capsys):
+    session = REAL / "gaitmap_level_left"
+    assert main(["evaluate", str(session), str(session)]) == 2
+    msg = _err(capsys)
+    assert "not a model directory written by 'pdrlearn train'" in msg and "session folder" in msg
+    assert "retrain it" not in msg
+
+
+def test_cohort_user_without_test_folder_is_told_how(tmp_path):
+    from pdrlearn.cohort import user_sessions
+    from pdrlearn.errors import DataError
+
+    user = tmp_path / "cohort" / "u1"
+    shutil.copytree(REAL / "gaitmap_level_left", user / "s1")  # no test/ folder
+    with pytest.raises(DataError) as err:
+        user_sessions(user, "test")
+    assert str(user / "test") in str(err.value) and "pdrlearn evaluate MODEL_DIR" in str(err.value)
+
+
+def test_protocol_with_a_waist_bundle_says_how_to_make_a_foot_one(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(sys, "stdin", io.StringIO(""))
+    assert main(["run", str(BUNDLE), "--protocol", "-", "--out", str(tmp_path / "o")]) == 2
+    assert "--units foot" in _err(capsys)
