@@ -122,3 +122,55 @@ def test_online_rejects_wrong_columns():
     with pytest.raises(DataError, match="shape"):
         online.push(np.arange(3.0), np.zeros((3, 3)))
     assert len(online.flush()) == 0
+
+
+# -- delay_s: the realtime IC detector (W31) on a stream --------------------------------------------------
+@pytest.mark.parametrize("name", ["mobgap_HA001_Test5_Trial1", "mobgap_HA001_Test11_Trial1"])
+def test_realtime_equals_track_realtime_contacts(real_dir, name):
+    s = read_session(real_dir / name)
+    steps = WaistICStepDetector(delay_s=1.75).detect(s)
+    tr = track_waist(s, pipeline="waist-pendulum", realtime=True)
+    np.testing.assert_array_equal(steps["event_s"].to_numpy(), tr.steps["event_s"].to_numpy())
+    np.testing.assert_array_equal(steps["end_s"].to_numpy(), tr.steps["end_s"].to_numpy())
+    assert len(steps) > 5
+
+
+@settings(max_examples=5, deadline=None)
+@given(cuts=st.lists(st.integers(0, 300), min_size=1, max_size=10))
+def test_realtime_online_in_random_chunks_equals_its_detect(mobgap_test5, cuts):
+    s = read_session(mobgap_test5)
+    det = WaistICStepDetector(delay_s=1.75)
+    if "rt" not in _CACHE:
+        _CACHE["rt"] = (det.detect(s), det._inputs(s))
+    offline, (t, v, ctx) = _CACHE["rt"]
+    online = det.online(1.0 / np.median(np.diff(t)), **ctx)
+    parts, i = [], 0
+    for c in cuts:
+        parts.append(online.push(t[i:i + c], v[i:i + c]))
+        i += c
+    parts.append(online.push(t[i:], v[i:]))
+    parts.append(online.flush())
+    pd.testing.assert_frame_equal(offline.reset_index(drop=True), pd.concat(parts, ignore_index=True),
+                                  check_dtype=False)
+
+
+def test_realtime_reports_each_contact_within_a_bounded_delay_and_state(real_dir):
+    s = read_session(real_dir / "mobgap_HA001_Test11_Trial1")
+    det = WaistICStepDetector(delay_s=1.75)
+    t, v, ctx = det._inputs(s)
+    online = det.online(1.0 / np.median(np.diff(t)), **ctx)
+    chunk, late, longest = 25, [], 0
+    for i in range(0, len(t), chunk):
+        new = online.push(t[i:i + chunk], v[i:i + chunk])
+        late += list(t[min(i + chunk, len(t)) - 1] - new["event_s"].to_numpy())
+        longest = max(longest, len(online._proc.buf.get("t", ())))
+    assert len(late) > 50
+    # decided 1.75 to < 2.0 s after the contact (W31), reported when the next contact is decided or
+    # max_step_s has passed without one, plus one chunk of 0.25 s
+    assert min(late) >= 1.75 - 1e-9 and max(late) < 1.75 + 0.25 + det.max_step_s + 0.25 + 1e-9
+    assert longest <= (10 + 1.75 + 0.25 + 0.25) * 100 + 2 * chunk  # history + delay + hop (+ chunk), 100 Hz
+
+
+def test_realtime_settings_checked(mobgap_test5):
+    with pytest.raises(DataError, match="hop_s"):
+        WaistICStepDetector(delay_s=1.75, hop_s=0).online(100.0)

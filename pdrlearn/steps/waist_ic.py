@@ -10,9 +10,11 @@ vertical acceleration removed before the FIR, the median lateral velocity that d
 forward-backward lateral band-pass), so no contact is final before the recording ends. The online
 detector therefore holds every sample and decides all contacts at :meth:`OnlineStepDetector.flush`: its
 result is identical to :meth:`WaistICStepDetector.detect` for any chunking, its memory grows with the
-stream (6 floats per sample) and ``push`` returns no steps. For a bounded delay use the realtime variant
-of the IC detector (decision W31: contacts decided 1.75 to < 2 s after they happen;
-``pdrlearn track --pipeline waist-pendulum --realtime``).
+stream (6 floats per sample) and ``push`` returns no steps. ``WaistICStepDetector(delay_s=1.75)`` is the
+bounded-delay variant: the realtime IC detector of decision W31 (the same rules on the last 12 s, each
+contact decided once, 1.75 to < 2 s after it happens) with a streaming AHRS; its state is bounded, its
+``detect`` is its own online detector on one chunk (identical for any chunking), and its contacts are
+those of ``pdrlearn track --pipeline waist-pendulum --realtime`` (decision 17).
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ import logging
 
 import numpy as np
 
-from pdrlearn.errors import MissingSensorError
+from pdrlearn.errors import DataError, MissingSensorError
 from pdrlearn.io.session import Session
 from pdrlearn.steps.base import StepDetector
 
@@ -66,6 +68,169 @@ class _WaistICProcessor:
                 for r in steps.itertuples()]
 
 
+class _RealtimeProcessor:
+    """Decision W31 on a stream: a streaming Madgwick AHRS, then every ``hop_s`` the offline IC detector on
+    the last ``history_s + delay_s + hop_s`` seconds decides the contacts ``delay_s`` to ``delay_s + hop_s``
+    old, once (the loop of :func:`pdrlearn.waist._kernels.delayed_decisions`, one decision time at a time).
+    A contact is reported once the next one is decided or no next one can follow within ``max_step_s``."""
+
+    def __init__(self, det: WaistICStepDetector, fs: float, rotation=None, gaps=None):
+        from pdrlearn.waist import _kernels as K
+
+        self.det, self.fs = det, fs
+        self.rotation = None if rotation is None else np.asarray(rotation, dtype=float).reshape(3, 3)
+        self.gaps = gaps or {}
+        self.ic_det = det.ic_detector()
+        self.hop = max(1, int(round(det.hop_s * fs)))  # as K.delayed_decisions
+        self.dly = int(round(det.delay_s * fs))
+        self.keep = int(round(det.history_s * fs)) + self.dly + self.hop
+        self.min_gap = max(1, int(round(0.3 * fs)))  # K.delayed_decisions' min_step_s (W16)
+        self.max_gap = K._max_gap(det.max_step_s, fs)
+        self.n0 = max(1, int(round(INIT_S * fs)))  # the AHRS's initial attitude (pdrlearn.waist.ahrs.waist_imu)
+        self.raw: list[np.ndarray] = []  # samples before the initial attitude is known
+        self.q: np.ndarray | None = None
+        self.filt = None
+        self.g = 0.0
+        self.prev_raw_yaw = 0.0
+        self.wrap = 0
+        self.b0 = 0  # absolute index of the first buffered sample
+        self.buf: dict[str, np.ndarray] = {}
+        self.n = 0
+        self.next_t = self.hop
+        self.done = -1
+        self.decided: list[tuple[int, float, float]] = []  # (ic index, ic time, fc time) not yet reported
+        self.decided_last = -1  # index of the last decided contact
+
+    # -- AHRS ------------------------------------------------------------------------------------
+    def _nav(self, t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, first: bool) -> None:
+        from scipy.spatial.transform import Rotation
+
+        q = np.zeros((len(t), 4))
+        start = 0
+        if first:  # as Madgwick's batch form: the first sample is the initial attitude itself
+            q[0] = self.q / np.linalg.norm(self.q)
+            start = 1
+        else:
+            q[0] = self.q
+        prev = q[0]
+        for i in range(start, len(t)):
+            prev = q[i] = self.filt.updateIMU(prev, gyr[i], acc[i])
+        self.q = q[-1]
+        rot = Rotation.from_quat(np.column_stack([q[:, 1:], q[:, :1]]))
+        acc_nav, gyr_nav = rot.apply(acc), rot.apply(gyr)
+        fwd = rot.apply(np.tile([1.0, 0.0, 0.0], (len(t), 1)))
+        raw = np.arctan2(fwd[:, 1], fwd[:, 0])
+        if first:
+            self.prev_raw_yaw = raw[0]
+            self.g = float(np.median(acc_nav[:self.n0, 2]))  # causal: gravity of the first INIT_S
+        # unwrap with whole turns counted as integers: the same yaw whatever the chunking
+        dd = np.diff(np.concatenate([[self.prev_raw_yaw], raw]))
+        turns = self.wrap + np.cumsum(np.where(dd > np.pi, -1, np.where(dd < -np.pi, 1, 0)))
+        self.wrap, self.prev_raw_yaw = int(turns[-1]), raw[-1]
+        yaw = raw + 2 * np.pi * turns
+        c, s = np.cos(yaw), np.sin(yaw)
+        new = {"t": t, "acc_nav": acc_nav, "gyr_nav": gyr_nav, "yaw": yaw, "acc_v": acc_nav[:, 2] - self.g,
+               "acc_ap": c * acc_nav[:, 0] + s * acc_nav[:, 1], "acc_ml": -s * acc_nav[:, 0] + c * acc_nav[:, 1]}
+        self.buf = {k: np.concatenate([self.buf[k], v]) if self.buf else v for k, v in new.items()}
+        self.n += len(t)
+
+    # -- decisions -------------------------------------------------------------------------------
+    def _decide(self, tt: int, final: bool) -> None:
+        from pdrlearn.waist.ahrs import WaistIMU
+
+        upto = self.n - 1 if final else tt - self.dly
+        if upto <= self.done:
+            return
+        lo = max(0, tt - self.keep)
+        a, b = lo - self.b0, tt - self.b0
+        w = {k: v[a:b] for k, v in self.buf.items()}
+        imu = WaistIMU(t=w["t"], fs=self.fs, acc_nav=w["acc_nav"], gyr_nav=w["gyr_nav"], yaw=w["yaw"],
+                       acc_v=w["acc_v"], acc_h=w["acc_nav"][:, :2], acc_ap=w["acc_ap"], acc_ml=w["acc_ml"])
+        ic, fc, _ = self.ic_det._offline(imu)
+        for i, f in zip(np.asarray(ic) + lo, np.asarray(fc) + lo, strict=True):
+            if self.done < i <= upto and (self.decided_last < 0 or i - self.decided_last >= self.min_gap):
+                self.decided.append((int(i), float(self.buf["t"][i - self.b0]), float(self.buf["t"][f - self.b0])))
+                self.decided_last = int(i)
+        self.done = upto
+
+    def _report(self, final: bool) -> list:
+        from pdrlearn.track.gaps import cut_steps_at_gaps
+        from pdrlearn.waist.events import steps_from_events
+
+        out = []
+        t_done = self.buf["t"][self.done - self.b0] if self.buf and self.done >= self.b0 else -np.inf
+        while self.decided:
+            i, ti, tf = self.decided[0]
+            if len(self.decided) < 2 and not final and not t_done - ti > self.det.max_step_s:
+                break  # a next contact within max_step_s may still be decided
+            pair = self.decided[:2]
+            st = steps_from_events(np.array([p[1] for p in pair]), np.arange(len(pair)),
+                                   max_step_s=self.det.max_step_s)
+            st["fc_s"] = tf
+            st = cut_steps_at_gaps(st.iloc[:1] if len(pair) == 1 else st, self.gaps)
+            if len(st) and st["start_s"].iloc[0] == ti:  # (a contact inside a recording gap is dropped, B11)
+                r = st.iloc[0]
+                out.append((ti, ti, float(r.end_s), float(r.confidence), {"fc_s": tf}))
+            self.decided.pop(0)
+        return out
+
+    def _trim(self) -> None:
+        # keep the next decision's window, the final one's (flush at n >= next_t - hop) and t[done]
+        drop = max(0, min(self.next_t - self.hop - self.keep, self.done) - self.b0)
+        if drop > 0:
+            self.buf = {k: v[drop:] for k, v in self.buf.items()}
+            self.b0 += drop
+
+    # -- stream ----------------------------------------------------------------------------------
+    def process(self, t: np.ndarray, v: np.ndarray) -> list:
+        if self.rotation is not None:
+            v = np.column_stack([v[:, :3] @ self.rotation.T, v[:, 3:6] @ self.rotation.T])
+        first = False
+        if self.q is None:
+            self.raw.append((t, v))
+            tt = np.concatenate([r[0] for r in self.raw])
+            if tt.size < self.n0:
+                return []
+            vv = np.concatenate([r[1] for r in self.raw])
+            self.raw = []
+            t, v, first = tt, vv, True
+            self._start(v)
+        self._nav(t, v[:, :3], v[:, 3:6], first)
+        while self.next_t <= self.n:
+            self._decide(self.next_t, final=False)
+            self.next_t += self.hop
+        out = self._report(final=False)
+        self._trim()
+        return out
+
+    def _start(self, v: np.ndarray) -> None:
+        from ahrs.filters import Madgwick
+        from scipy.spatial.transform import Rotation
+
+        from pdrlearn.signal import gravity_rotation
+
+        r0 = Rotation.from_matrix(gravity_rotation(v[:self.n0, :3].mean(axis=0)))  # as waist_imu
+        x, y, z, w = r0.as_quat()
+        self.q = np.array([w, x, y, z])
+        self.filt = Madgwick(frequency=self.fs, gain=self.det.ahrs_gain)
+
+    def flush(self) -> list:
+        if self.q is None and self.raw:  # shorter than the initial attitude window: start anyway
+            tt = np.concatenate([r[0] for r in self.raw])
+            vv = np.concatenate([r[1] for r in self.raw])
+            self.raw = []
+            self.n0 = min(self.n0, tt.size)
+            self._start(vv)
+            self._nav(tt, vv[:, :3], vv[:, 3:6], True)
+        if self.n == 0:
+            return []
+        self._decide(self.n, final=True)
+        return self._report(final=True)
+
+
+INIT_S = 0.5  # pdrlearn.waist.ahrs.waist_imu's init_s: initial attitude from the first 0.5 s
+
+
 class WaistICStepDetector(StepDetector):
     """Every step (both feet) at its initial contact, from the lower-back accelerometer and gyroscope.
 
@@ -83,6 +248,11 @@ class WaistICStepDetector(StepDetector):
     rhythm, alternate, weight_shift, end_steps : the sequence rules W18, W20, W23, W28 (default on)
     learned : the W33 learned second stage (off by default; ``True`` = the shipped model, or a path)
     ahrs_gain : Madgwick gain (Madgwick 2010 / seed 001 sec. 2.2.1: 0.033)
+    delay_s : ``None`` (default): the offline detector, every contact reported at the end (decision 17);
+        a number: the realtime IC detector of decision W31 on a stream, each contact decided ``delay_s`` to
+        ``delay_s + hop_s`` after it (W31: 1.75 s, the thesis' < 2 s) from the last ``history_s`` seconds
+        (W31: 10 s) and reported when the next one is decided (at most ``max_step_s`` later); bounded state
+    hop_s, history_s : decision interval and history of the realtime variant (s; W31: 0.25, 10)
 
     Online (decision 17): input columns are the waist accelerometer (m/s^2) and gyroscope (rad/s) in the
     body frame FLU on a uniform clock (``online(fs, rotation=R)`` maps sensor-frame samples with the
@@ -98,7 +268,8 @@ class WaistICStepDetector(StepDetector):
                  max_step_s: float = 1.5,  # the pipeline's MAX_STEP_S (pdrlearn.track.waist)
                  rhythm: bool = True, alternate: bool = True, weight_shift: bool = True, end_steps: bool = True,
                  learned: bool | str = False,
-                 ahrs_gain: float = 0.033):  # Madgwick 2010 IMU gain, seed 001 sec. 2.2.1 (ahrs.MADGWICK_GAIN)
+                 ahrs_gain: float = 0.033,  # Madgwick 2010 IMU gain, seed 001 sec. 2.2.1 (ahrs.MADGWICK_GAIN)
+                 delay_s: float | None = None, hop_s: float = 0.25, history_s: float = 10.0):  # W31
         self._store(locals())
 
     def ic_detector(self):
@@ -125,4 +296,9 @@ class WaistICStepDetector(StepDetector):
         return t, np.column_stack([acc, gyr]), {"gaps": gaps}
 
     def _make_processor(self, fs: float, rotation=None, gaps=None, **context):
+        if self.delay_s is not None:
+            if not (self.delay_s >= 0 and self.hop_s > 0 and self.history_s >= 0):
+                raise DataError(f"waist-ic: delay_s={self.delay_s!r}, hop_s={self.hop_s!r}, "
+                                f"history_s={self.history_s!r} must be >= 0, > 0, >= 0 seconds (W31: 1.75, 0.25, 10)")
+            return _RealtimeProcessor(self, fs, rotation=rotation, gaps=gaps)
         return _WaistICProcessor(self, fs, rotation=rotation, gaps=gaps)
