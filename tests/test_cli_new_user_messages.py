@@ -47,3 +47,19 @@ def test_protocol_with_a_waist_bundle_says_how_to_make_a_foot_one(tmp_path, caps
     monkeypatch.setattr(sys, "stdin", io.StringIO(""))
     assert main(["run", str(BUNDLE), "--protocol", "-", "--out", str(tmp_path / "o")]) == 2
     assert "--units foot" in _err(capsys)
+
+
+def test_folder_of_sessions_given_to_a_one_session_command(tmp_path, capsys):
+    shutil.copytree(REAL / "gaitmap_level_left", tmp_path / "calib" / "walk1")
+    shutil.copytree(REAL / "gaitmap_level_right", tmp_path / "calib" / "walk2")
+    assert main(["info", str(tmp_path / "calib")]) == 2
+    msg = _err(capsys)
+    assert "holds session folders (walk1, walk2)" in msg and str(tmp_path / "calib" / "walk1") in msg
+
+
+def test_missing_fix_file_is_refused_before_tracking(tmp_path, capsys):
+    """Before, the session was tracked first (a 'no model' warning, then the error)."""
+    assert main(["track", str(REAL / "gaitmap_level_left"), "--gnss", str(tmp_path / "none.nmea"), "--out",
+                 str(tmp_path / "o")]) == 2
+    assert "no such fix file" in _err(capsys)  # the only stderr line
+    assert not (tmp_path / "o").exists()

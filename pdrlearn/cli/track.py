@@ -68,6 +68,10 @@ def track(
     out_folder(out, ("summary.json", "steps.csv", "trajectory.csv"),
                "a track (trajectory.csv, steps.csv, path.png, summary.json)", force=force)
     start_ll = parse_start(start) if start is not None else None
+    for fix_file in (gnss, fixes):  # before the tracking, which warned and worked first
+        if fix_file is not None and not Path(fix_file).is_file():
+            raise DataError(f"{fix_file}: no such fix file; pass an NMEA log (.nmea/.txt) or a CSV "
+                            "(t, lat, lon, accuracy_m)")
     par = None
     if params is not None:
         try:

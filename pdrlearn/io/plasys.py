@@ -216,6 +216,11 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
         if p.exists():
             streams[name] = read_stream(p, name, time_scale=scale, check_unit=check_units)
     if not streams:
+        inner = sorted(p.name for p in folder.iterdir() if p.is_dir() and any(p.glob("[fw]*.csv")))
+        if inner:  # a folder of sessions (what `train` takes) given to a one-session command
+            more = f" and {len(inner) - 3} more" if len(inner) > 3 else ""
+            raise DataError(f"{folder}: holds session folders ({', '.join(inner[:3])}{more}), not one session's "
+                            f"sensor files; pass one of them, e.g. {folder / inner[0]}")
         raise DataError(
             f"{folder}: no sensor files found; expected at least one of "
             f"{', '.join(s.filename for s in SENSORS.values())}"
