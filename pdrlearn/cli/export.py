@@ -96,7 +96,7 @@ def run(
 
         pdrlearn run out/bundle/u1 out/sim/D_u1 --out out/run_D --json
 
-        cat capture.txt | pdrlearn run out/bundle --protocol - --out out/live
+        cat capture.txt | pdrlearn run out/bundle/u1 --protocol - --out out/live
     """
     import numpy as np
 

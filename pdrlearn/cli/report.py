@@ -22,9 +22,10 @@ def report(
 
     Examples:
 
-        pdrlearn evaluate out/models/u1 out/sim/u1_test --report out/eval_u1 --json > out/evaluation.json
+        mkdir -p out/eval_u1 && pdrlearn evaluate out/models/u1 out/sim/u1_test --report out/eval_u1 \\
+            --json > out/eval_u1/evaluation.json
 
-        pdrlearn report out/eval --out out/report
+        pdrlearn report out/eval_u1 --out out/report_u1
     """
     from pdrlearn.report import build_report
 

@@ -48,8 +48,9 @@ def track(
 
     Examples:
 
-        pdrlearn track datasets/real/gaitmap_level_right --out out/track_right       # no model: M3 engine, no classes
-        pdrlearn track datasets/real/gaitmap_level_right --method M3 --model oracle --out out/track_right
+        pdrlearn track datasets/real/gaitmap_level_right --out out/track_right   # no model: no classes
+
+        pdrlearn track datasets/real/gaitmap_level_right --method M3 --model oracle --out out/track_oracle
 
         pdrlearn track out/sim/D_u1 --method M2 --start 41.178,-8.608 --out out/D
 

@@ -89,7 +89,7 @@ def train(
 
     Examples:
 
-        pdrlearn train out/sim/calib_u1 --out models/u1
+        pdrlearn train out/sim/u1 --out models/u1
 
         pdrlearn train datasets/real/gaitmap_level_left datasets/real/gaitmap_stairs_up_left \\
             datasets/real/gaitmap_stairs_down_left --out models/gaitmap --tasks terrain --cv 5
