@@ -225,9 +225,8 @@ def _md_waist_ic(df: pd.DataFrame, users: int) -> str:
             cells.append(f"{f1:.3f}{extra}")
         lines.append(f"| {group} | " + " | ".join(cells) + " |")
     lines += ["", f"`pdrlearn steps --detector waist-ic` gives the default column's contacts on {int(same.sum())} of "
-              f"{same.size} real sessions (same event times). Its own F1 (the steps table, step_count.md) counts "
-              "detections that stand for INDIP contacts without a time (`ics_untimed`, docs/external-data.md X2) "
-              "as false positives; this table leaves them unscored (`unscored`)."]
+              f"{same.size} real sessions (same event times), and the same F1: both leave detections that stand for "
+              "INDIP contacts without a time (`ics_untimed`, docs/external-data.md X2) unscored (decision 19)."]
     return "\n".join(lines) + "\n"
 
 

@@ -13,7 +13,8 @@ from pdrlearn.errors import DataError
 
 _METRICS = ("scored_count", "reference_count", "precision", "recall", "f1", "count_error_pct",
             "timing_error_mean_s", "timing_error_sd_s", "true_positives", "false_positives",
-            "false_negatives", "outside_labels", "total_count", "tolerance_s", "reference", "ground_truth")
+            "false_negatives", "outside_labels", "unscored_untimed", "total_count", "tolerance_s", "reference",
+            "ground_truth")
 
 
 def steps(
@@ -80,7 +81,9 @@ def steps(
         typer.echo(f"reference: {score['reference_count']} from {score['reference']}")
         typer.echo(f"precision {score['precision']:.3f}  recall {score['recall']:.3f}  F1 {score['f1']:.3f}  "
                    f"count error {score['count_error_pct']:.1f} %  (tolerance {tolerance:g} s, "
-                   f"{score['outside_labels']} detections outside the labelled span)")
+                   f"{score['outside_labels']} detections outside the labelled span"
+                   + (f", {score['unscored_untimed']} standing for contacts without a time"
+                      if score["unscored_untimed"] else "") + ")")
         if score["ground_truth"]:
             typer.echo(f"timing error {score['timing_error_mean_s']:+.3f} "
                        f"+- {score['timing_error_sd_s']:.3f} s")

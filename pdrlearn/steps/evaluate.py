@@ -213,23 +213,45 @@ def in_intervals(times: np.ndarray, intervals: np.ndarray) -> np.ndarray:
     return m
 
 
+def untimed_mask(ev: np.ndarray, session: Session, tolerance_s: float = DEFAULT_TOLERANCE_S) -> np.ndarray:
+    """Detections (sorted times ``ev``) that stand for reference contacts without a time: in each interval
+    of ``extras["ics_untimed"]`` holding k such contacts, the first k detections farther than
+    ``tolerance_s`` from both of its (timed) ends (docs/external-data.md X2: the step happened, only its
+    time is unknown, so such a detection is neither a hit nor a false positive)."""
+    out = np.zeros(len(ev), dtype=bool)
+    u = session.extras.get("ics_untimed")
+    if u is None or not {"after_s", "before_s"} <= set(u.columns) or len(u) == 0:
+        return out
+    for (a, b), g in u.groupby(["after_s", "before_s"]):
+        inside = np.flatnonzero((ev > a + tolerance_s) & (ev < b - tolerance_s) & ~out)
+        out[inside[:len(g)]] = True
+    return out
+
+
 def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = DEFAULT_TOLERANCE_S,
                 unit: str | None = None) -> dict | None:
     """Score a detector's steps table against the session's labels (``None`` without labels).
 
     Only detections inside the labelled intervals are scored (see :func:`reference_events`); the result
     says how many were left out (``outside_labels``) and where the reference comes from (``reference``).
+    Against lower-back initial contacts, detections that stand for a contact without a time
+    (:func:`untimed_mask`) are not scored either (``unscored_untimed``), as in ``pdrlearn track``'s
+    ``step_f1`` (decision 19): the same contacts get the same F1 from ``steps`` and ``track``.
     """
     unit = unit or (str(steps["unit"].iloc[0]) if len(steps) else steps.attrs.get("unit", "foot"))
     ref = reference_events(session, unit, tolerance_s=tolerance_s)
     if ref is None:
         return None
-    ev = steps["event_s"].to_numpy(float)
+    ev = np.sort(steps["event_s"].to_numpy(float))
     inside = in_intervals(ev, ref.intervals)
-    out = score_events(ev[inside], ref.times, tolerance_s=ref.tolerance_s)
+    scored = ev[inside]
+    untimed = (untimed_mask(scored, session, tolerance_s) if ref.description.startswith("extras['ics']")
+               else np.zeros(scored.size, dtype=bool))
+    out = score_events(scored[~untimed], ref.times, tolerance_s=ref.tolerance_s)
     out["tolerance_s"] = float(tolerance_s)
     out["scored_count"] = out["count"]
     out["outside_labels"] = int((~inside).sum())
+    out["unscored_untimed"] = int(untimed.sum())
     out["total_count"] = int(ev.size)
     out["reference"] = ref.description
     out["ground_truth"] = ref.ground_truth

@@ -29,7 +29,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.io import Session
-from pdrlearn.steps.evaluate import DEFAULT_TOLERANCE_S, score_events
+from pdrlearn.steps.evaluate import DEFAULT_TOLERANCE_S, score_events, untimed_mask
 
 log = logging.getLogger(__name__)
 
@@ -55,20 +55,6 @@ def _in_intervals(x: np.ndarray, starts: np.ndarray, ends: np.ndarray, pad: floa
     for a, b in zip(starts, ends, strict=True):
         m |= (x >= a - pad) & (x <= b + pad)
     return m
-
-
-def untimed_mask(ev: np.ndarray, session: Session, tolerance_s: float = DEFAULT_TOLERANCE_S) -> np.ndarray:
-    """Detections (sorted times ``ev``) that stand for reference contacts without a time: in each interval
-    of ``extras["ics_untimed"]`` holding k such contacts, the first k detections farther than
-    ``tolerance_s`` from both of its (timed) ends."""
-    out = np.zeros(len(ev), dtype=bool)
-    u = session.extras.get("ics_untimed")
-    if u is None or not {"after_s", "before_s"} <= set(u.columns) or len(u) == 0:
-        return out
-    for (a, b), g in u.groupby(["after_s", "before_s"]):
-        inside = np.flatnonzero((ev > a + tolerance_s) & (ev < b - tolerance_s) & ~out)
-        out[inside[:len(g)]] = True
-    return out
 
 
 def step_metrics(steps: pd.DataFrame, session: Session, *, tolerance_s: float = DEFAULT_TOLERANCE_S) -> dict:
