@@ -136,6 +136,19 @@ def existed(path: Path) -> bool:
     return path.is_file() or (path.is_dir() and any(path.iterdir()))
 
 
+def grouped_skips(skipped: list[str]) -> list[str]:
+    """``method/unit: reason`` lines with the same reason as one line, in first-seen order (a foot-only
+    recording listed nine lines, one per model, for two reasons)."""
+    by_reason: dict[str, list[str]] = {}
+    for s in skipped:
+        what, sep, reason = s.partition(": ")
+        if not sep or " " in what:  # not a "method/unit: reason" line: kept as it is
+            by_reason.setdefault(s, [])
+        else:
+            by_reason.setdefault(reason, []).append(what)
+    return [f"{', '.join(whats)}: {reason}" if whats else reason for reason, whats in by_reason.items()]
+
+
 def console():
     """The rich console of a command's human-readable stdout. On a terminal rich wraps at its width; piped
     or logged, rich assumed 80 columns and broke sentences and table titles in the middle ("(decision L26;"

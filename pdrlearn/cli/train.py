@@ -12,6 +12,7 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     console,
     existed,
+    grouped_skips,
     json_safe,
     out_folder,
     print_json,
@@ -156,8 +157,8 @@ def train(
                 m, *[f"{100 * r['per_class'][k]:.1f}" for k in tm.classes], f"{100 * r['accuracy']:.1f}", u
             )
         c.print(tab)
-        for s in tm.skipped:
-            c.print(f"  skipped {s}")
+        for s in grouped_skips(tm.skipped):
+            c.print(f"  skipped {s}", markup=False)
         if tm.n_skipped_labels:
             c.print(f"  ignored {tm.n_skipped_labels} step label(s) that are not {t} classes")
     for s in model.skipped:
