@@ -15,6 +15,7 @@ import onnxruntime as ort
 import pytest
 
 from pdrlearn.errors import DataError
+from pdrlearn.export import step_graph as step_graph_module
 from pdrlearn.export.step_graph import build_step_graph, features_graph
 from pdrlearn.features import step_windows
 from pdrlearn.runtime import load_bundle
@@ -145,7 +146,7 @@ def test_missing_sensor_in_the_window_is_a_data_error(trained):
         tr.classify(W)
 
 
-def test_head_prunes_zero_weight_units_and_merges_the_networks(trained):
+def test_head_prunes_zero_weight_units_and_merges_the_networks(trained, monkeypatch):
     """Decision E13: a unit of fusion weight 0 is left out of the graph, the networks run as one
     block-diagonal network, and the soft vote is one product; numbers = soft_vote of the per-model path."""
     from pdrlearn.kernels.proba import align_proba, soft_vote
@@ -161,7 +162,17 @@ def test_head_prunes_zero_weight_units_and_merges_the_networks(trained):
     tasks["length"]["methods"]["svm"]["fused"]["weights"] = [0.3, 0.7]
     model, spec = build_step_graph(tasks, models, bundle.manifest["features"])
     ops = [n.op_type for n in model.graph.node]
-    assert ops.count("Tanh") == 1 and ops.count("Split") == 1  # one network block, one head
+    heads = [n for n in model.graph.node if n.op_type == "Split" and set(n.output) & set(spec["outputs"].values())]
+    assert ops.count("Tanh") == 1 and len(heads) == 1  # one network block, one head (E19: the force block splits too)
+    assert ops.count("Softmax") == 1  # E19: one Softmax for the network and the SVM blocks
+    # E19: the shared scaler and Softmax give the separate blocks' numbers bit for bit (the SVM's two classes
+    # padded to the networks' three with a -1e300 score)
+    monkeypatch.setattr(step_graph_module, "ONE_SOFTMAX", False)
+    apart, _ = build_step_graph(tasks, models, bundle.manifest["features"])
+    assert [n.op_type for n in apart.graph.node].count("Softmax") == 2
+    for W in (trained["W"], _random_windows(bundle)):
+        got, want = _run(model, W), _run(apart, W)
+        assert all(np.array_equal(got[k], want[k]) for k in want)
     # the block holds exactly the networks of non-zero weight (the terrain waist network is left out)
     W1_rows = sum(i.dims[0] for i in model.graph.initializer if i.name.endswith("nn_W1"))  # its blocks
 
@@ -293,7 +304,9 @@ def test_force_block_computes_only_the_asked_statistics_like_the_kernel(trained,
         got = _run(model, W)["F"]
         want = compute_features(W, recipe, **_ctx(bundle))
         np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-12, err_msg=str(stats))
-    n_interp = [n.op_type for n in model.graph.node].count("GreaterOrEqual")
+    ops = [n.op_type for n in model.graph.node]
     interpolated = bool({"peak_mean_4", "contact_force_2", "takeoff_force"} & set(stats))
-    # one interpolation per zero fraction when a statistic needs one (its end rule), plus the peak mask
-    assert n_interp == 2 * (interpolated + bool({"time_to_peak", "peak_mean_4"} & set(stats)))
+    # one interpolation per zero fraction when a statistic needs one (E19: one LessOrEqual, the end rule
+    # without a Where), and one contact-peak mask when a statistic needs the peak
+    assert ops.count("LessOrEqual") == 2 * interpolated
+    assert ops.count("GreaterOrEqual") == 2 * bool({"time_to_peak", "peak_mean_4"} & set(stats))

@@ -30,6 +30,9 @@ GRAPH_OPS = ("peak", "segments", "force", "yaw_sign", "yaw")
 #: kernels.stats.force_stats' statistics
 FORCE_STATS = ("air_time", "time_to_peak", "peak_mean_4", "contact_force_2", "takeoff_force")
 INPUT = "W"
+#: Decision E19: the network and SVM blocks share one scaler (Gather, Sub, Div, Split) and one Softmax (their
+#: classes padded to one width with a -1e300 score); False builds them apart as E13-E18 did (tests compare both).
+ONE_SOFTMAX = True
 
 
 class _Builder:
@@ -322,70 +325,117 @@ class _Builder:
                 cols.append(self.index[("yaw_sign",)])
         return cols
 
-    def interp(self, q: str, x: str, y: str) -> str:
-        """``np.interp`` of each row: queries q (n, k) on the row's grid x (n, m) (increasing) -> (n, k).
-        The queries must lie in ``[x[:, 0], x[:, -1]]`` (the force statistics clip them to the window)."""
+    def signal3(self, name: str) -> str:
+        """A derived signal as (n, 1, m) (``signal``'s Adds on (n, 1, m) channel Gathers; decision E19)."""
+        def build():
+            chans, sign = self.signals[name][0], float(self.signals[name][1])
+            ix = [self.ci[c] for c in chans]
+            self.used_channels.update(ix)
+            ch = [self.op("Gather", [INPUT, self.const(np.array([j], np.int64), "chs", np.int64)], c, axis=1)
+                  for c, j in zip(chans, ix, strict=True)]
+            out = ch[0]
+            for c in ch[1:]:
+                out = self.op("Add", [out, c], name)
+            return out if sign == 1.0 else self.op("Mul", [out, self.const(np.array(sign), "sign")], name)
+        return self.memo_get(("sig3", name), build)
+
+    def tt3(self) -> str:
+        """``tt`` as (n, 1, m)."""
+        return self.memo_get("tt3", lambda: self.op(
+            "Unsqueeze", [self.tt(), self.const(np.array([1], np.int64), "ax1", np.int64)], "tt3"))
+
+    def interp(self, q: str, k: int, y: str) -> str:
+        """``np.interp`` of each row: k queries q (n, k) on the grid ``tt`` (n, m) with values y (n, m) -> (n, k).
+        The queries must lie in ``[0, duration]`` (the force statistics clip them to the window).
+
+        Decision E19: every index is a count of grid points at or below the query, so one LessOrEqual, one
+        product with a 0/1 count matrix and one GatherElements on ``[tt | y]`` fetch all of them. The
+        interval ``a`` is the number of inner grid points ``tt[1..m-2]`` at or below q (E16) and ``a + 1``
+        the number of ``tt[0..m-2]`` (``tt[0] = 0 <= q``); the ``y`` entries sit ``m`` further on, which
+        the always-counted ``tt[0]`` adds with weight ``m``. The value is ``slope (q - x_b) + y_b`` with
+        numpy's slope ``(y[a+1] - y[a]) / (x[a+1] - x[a])`` and ``b`` the number of ``tt[1..m-1]`` at or
+        below q: ``b = a`` inside the grid (numpy's formula, in its order), and at the grid's end
+        (``q = tt[m-1]``) ``b = m - 1`` gives ``slope * (+0) + y[m-1] = y[m-1]``, np.interp's end rule,
+        without a Where. One product with a 0/+-1 matrix gives the two differences (one exact ``+u`` and one
+        exact ``-v`` term each, so one rounding, like a Sub) and passes ``x_b`` and ``y_b`` through, and one
+        Split names the four."""
         m = self.m
         q3 = self.op("Unsqueeze", [q, self.const(np.array([2], np.int64), "ax2", np.int64)])  # (n, k, 1)
-        # the interval j = the last grid point at or below q, within 0..m-2: the number of inner grid points
-        # x[1..m-2] at or below q (x[0] <= q always), so no Clip of the full count (decision E16)
-        inner = self.op("Gather", [x, self.const(np.arange(1, m - 1)[None, :], "inner", np.int64)], "xin", axis=1)
-        le = self.op("Cast", [self.op("LessOrEqual", [inner, q3])], "le", to=TensorProto.INT64)  # (n, k, m-2)
-        j = self.op("ReduceSum", [le, self.const(np.array([2], np.int64), "ax2", np.int64)], "j", keepdims=0)
-        j1 = self.op("Add", [j, self.const(np.array(1, np.int64), "one", np.int64)], "j1")
-        xj, xj1, yj, yj1 = self.at(x, j), self.at(x, j1), self.at(y, j), self.at(y, j1)
-        slope = self.op("Div", [self.op("Sub", [yj1, yj]), self.op("Sub", [xj1, xj])], "islope")
-        v = self.op("Add", [self.op("Mul", [slope, self.op("Sub", [q, xj])]), yj], "iv")  # numpy's order
-        # np.interp returns the last value exactly at (and past) the grid's end
-        last = self.op("GreaterOrEqual", [q, self.cols(x, m - 1)])
-        return self.op("Where", [last, self.cols(y, m - 1), v], "interp")
+        le = self.op("Cast", [self.op("LessOrEqual", [self.tt3(), q3])], "le", to=TensorProto.DOUBLE)  # (n, k, m)
+        inner, head, full = np.zeros(m, np.int64), np.zeros(m, np.int64), np.zeros(m, np.int64)
+        inner[1:m - 1], head[0:m - 1], full[1:m] = 1, 1, 1  # counts a, a + 1, b
+        first = np.eye(m, dtype=np.int64)[0]
+        C = np.stack([inner, head, full] + [c + m * first for c in (inner, head, full)], axis=1)  # (m, 6)
+        # (n, k, 6) exact small integers (a double product costs less than an int64 one), then int64 indices
+        cnt = self.op("Cast", [self.op("MatMul", [le, self.const(C, "icount")], "icount")], "icount",
+                      to=TensorProto.INT64)
+        idx = self.op("Reshape", [cnt, self.const(np.array([-1, 6 * k], np.int64), "shape", np.int64)], "iidx")
+        xy = self.op("Concat", [self.tt(), y], "xy", axis=1)  # (n, 2 m)
+        vals = self.op("GatherElements", [xy, idx], "ivals", axis=1)  # per query x_a, x_a+1, x_b, y_a, y_a+1, y_b
+        D = np.zeros((6 * k, 4 * k))
+        for j in range(k):
+            o = 6 * j
+            D[o + 4, j], D[o + 3, j] = 1.0, -1.0  # y[a+1] - y[a]
+            D[o + 1, k + j], D[o, k + j] = 1.0, -1.0  # x[a+1] - x[a]
+            D[o + 2, 2 * k + j] = D[o + 5, 3 * k + j] = 1.0  # x_b, y_b
+        parts = self.op("MatMul", [vals, self.const(D, "idiff")], "idiff")
+        dy, dx, xb, yb = (self.name(nm) for nm in ("dy", "dx", "xb", "yb"))
+        self.nodes.append(helper.make_node("Split", [parts], [dy, dx, xb, yb], axis=1))  # 4 equal parts
+        slope = self.op("Div", [dy, dx], "islope")
+        return self.op("Add", [self.op("Mul", [slope, self.op("Sub", [q, xb])]), yb], "iv")  # numpy's order
 
     def force_block(self, stats: list[str], zero_fraction: float, sample_s: float = 0.05) -> list[tuple[str, list]]:
         """kernels.stats.force_stats (thesis Table 29, ch. 6.3.1) of the statistics ``stats``: tensors and the
         key of each of their columns (None = a column no recipe reads).
 
-        Only the instants the asked statistics need are gathered and interpolated (decision E16): one
-        GatherElements of the times at (last zero, contact peak, first zero), one product with a 0/+-1
-        matrix plus one offset vector gives the interpolation queries and ``time_to_peak`` (each output
-        one exact term, or one rounded difference, like the kernel's), and the queries go through one
-        interpolation. ``time_to_peak`` lies in ``[0, duration]`` (the peak is at or after the last zero),
-        so the clip of the queries to the window leaves it unchanged.
+        Only the instants the asked statistics need are gathered and interpolated (decision E16), with few
+        nodes (decision E19). The force is (n, 1, m) (one Gather and one ReduceSum of its two channels).
+        The last and the first zero sample, each with the kernel's fallback (``argmin(force)`` when no
+        sample is zero), come from one ArgMax over the rows ``Where(zero, score, -force)``: the score of a
+        zero sample is ``k + 1`` (last zero) or ``m - k`` (first zero), at least 1, and a sample that is not
+        zero has ``force >= zero_fraction * ref >= 0``, so ``-force <= 0`` is below every score. With a zero
+        sample the ArgMax is the zero sample of the highest score (distinct), and without one it is
+        numpy's first ``argmin(force)``. The contact peak is the first maximum of the force from the last
+        zero on. One GatherElements takes the times at these instants, and one product with a 0/+-1 matrix
+        plus one offset vector gives the interpolation queries and ``time_to_peak`` (each output one exact
+        term, or one rounded difference, like the kernel's), which go through one interpolation.
+        ``time_to_peak`` lies in ``[0, duration]`` (the peak is at or after the last zero), so the queries'
+        clip leaves it unchanged; the clip at 0 is needed by the queries before an instant and the one at
+        the duration by those after one.
         """
+        if not zero_fraction >= 0.0:  # the ArgMax scores need a threshold >= 0
+            raise KeyError(f"force zero fraction {zero_fraction}")
         key = lambda st: ("force", st, float(zero_fraction))  # noqa: E731
-        f, tt = self.signal("force"), self.tt()
-        peak = self.op("ReduceMax", [f], "fpeak", axes=[1], keepdims=1)
+        m = self.m
+        f, tt = self.signal3("force"), self.tt()  # (n, 1, m), (n, m)
+        peak = self.op("ReduceMax", [f], "fpeak", axes=[2], keepdims=1)
         pos = self.op("Greater", [peak, self.const(np.array(0.0), "zero")])
         ref = self.op("Where", [pos, peak, self.const(np.array(1.0), "onef")])
         zero = self.op("Less", [f, self.op("Mul", [self.const(np.array(zero_fraction), "zf"), ref])], "zero")
-        zf = self.op("Cast", [zero], "zerof", to=TensorProto.DOUBLE)
         out: list[tuple[str, list]] = []
         if "air_time" in stats:
-            out.append((self.reduce("ReduceSum", self.op("Mul", [zf, self.gradient(tt)]), keepdims=1),
-                        [key("air_time")]))
+            zdt = self.op("Mul", [self.op("Cast", [zero], "zerof", to=TensorProto.DOUBLE), self.gradient(self.tt3())])
+            out.append((self.op("ReduceSum", [zdt, self.const(np.array([2], np.int64), "ax2", np.int64)], "sum",
+                                keepdims=0), [key("air_time")]))
         need_last = bool({"time_to_peak", "peak_mean_4", "contact_force_2"} & set(stats))
         need_peak = bool({"time_to_peak", "peak_mean_4"} & set(stats))
         need_first = "takeoff_force" in stats
         if not (need_last or need_first):
             return out
-        any_zero = self.op("Greater", [self.op("ReduceMax", [zf], "anyz", axes=[1], keepdims=1),
-                                       self.const(np.array(0.0), "zero")])
-        i_fmin = self.op("ArgMin", [f], "ifmin", axis=1, keepdims=1)
-        idx: list[str] = []  # the instants, in the order of the rows of L below
-        rows: list[str] = []
-        if need_last:
-            last_zero = self.op("Where", [any_zero, self.op("ArgMax", [zf], "lz", axis=1, keepdims=1,
-                                                            select_last_index=1), i_fmin])
-            idx.append(last_zero)
-            rows.append("last")
-        if need_peak:
-            after = self.op("GreaterOrEqual", [self.const(np.arange(self.m)[None, :], "arange", np.int64), last_zero])
+        ks = np.arange(m, dtype=np.float64)
+        rows = (["last"] if need_last else []) + (["first"] if need_first else [])
+        score = np.stack([ks + 1.0 if r == "last" else m - ks for r in rows])[None]  # (1, rows, m)
+        negf = self.op("Neg", [f])
+        idx = self.op("ArgMax", [self.op("Where", [zero, self.const(score, "zscore"), negf])], "izero", axis=2,
+                      keepdims=0)  # (n, rows)
+        if need_peak:  # each row's first maximum from its instant on (the "first" row's is not read)
+            i3 = self.op("Unsqueeze", [idx, self.const(np.array([2], np.int64), "ax2", np.int64)])
+            after = self.op("GreaterOrEqual", [self.const(np.arange(m)[None, None, :], "arange", np.int64), i3])
             masked = self.op("Where", [after, f, self.const(np.array(-np.inf), "ninf")])
-            idx.append(self.op("ArgMax", [masked], "ipeak", axis=1, keepdims=1))
-            rows.append("peak")
-        if need_first:
-            idx.append(self.op("Where", [any_zero, self.op("ArgMax", [zf], "fz", axis=1, keepdims=1), i_fmin]))
-            rows.append("first")
-        at = self.at(tt, idx[0] if len(idx) == 1 else self.op("Concat", idx, "fidx", axis=1))  # (n, len(rows))
+            ipeak = self.op("ArgMax", [masked], "ipeak", axis=2, keepdims=0)
+            idx = self.op("Concat", [idx, ipeak], "fidx", axis=1)
+            rows = rows + ["peak" if r == "last" else "-" for r in rows]
+        at = self.at(tt, idx)  # (n, len(rows))
         # columns: (coefficients on the rows, offset, key or None); the kernel's queries are
         # t_peak -+ 4 samples, t_last + 2 samples, t_first - 2 samples (thesis Table 29 #3-4, ch. 6.3.1)
         cols: list[tuple[dict, float, str | None]] = []
@@ -408,10 +458,13 @@ class _Builder:
         interpolated = [k for _, _, k in cols if k != "time_to_peak"]
         if not interpolated:
             return out + [(q, [key("time_to_peak")])]
-        dur = self.memo_get("duration", lambda: self.cols(tt, self.m - 1))
-        q = self.op("Min", [self.op("Max", [q, self.const(np.array(0.0), "zero")]), dur], "qc")  # interp_rows
+        if (offs < 0).any():  # interp_rows' clip: a query before an instant can fall before the window
+            q = self.op("Max", [q, self.const(np.array(0.0), "zero")], "qc")
+        if (offs > 0).any():  # and one after an instant past its end
+            q = self.op("Min", [q, self.memo_get("duration", lambda: self.cols(tt, m - 1))], "qc")
         out.append((q, [key(k) if k == "time_to_peak" else None for _, _, k in cols]))
-        v = self.interp(q, tt, f)
+        v = self.interp(q, len(cols), self.op("Reshape", [f, self.const(np.array([-1, m], np.int64), "shape",
+                                                                               np.int64)], "force"))
         out.append((v, [None if k in (None, "time_to_peak") else key(k) for _, _, k in cols]))
         if "peak_mean_4" in stats:
             h = np.zeros((len(cols), 1))
@@ -586,15 +639,18 @@ def _svm_params(model: onnx.ModelProto) -> dict | None:
             "sv_sq": init["sv_sq"].reshape(-1) if rbf else np.zeros(n_sv), "is_rbf": is_rbf}
 
 
-def _svm_block(b: _Builder, leaves: list, svms: list[tuple[int, dict]]) -> tuple[str, int]:
+def _svm_block(b: _Builder, leaves: list, svms: list[tuple[int, dict]], k: int | None = None,
+               z: str | None = None) -> tuple[str, int]:
     """The SVM leaves as one graph (the formulas of ``svm_decision_to_onnx``): block-diagonal support
     vectors and dual coefficients, per-column kernel parameters; returns the probabilities
-    ``(n, len(svms) * k)`` (classes padded to k with a -1e300 score) and k."""
-    k = max(p["dual"].shape[1] for _, p in svms)
-    cols = [c for i, _ in svms for c in b.feature_cols(leaves[i][1]["features"])]
-    z = b.cols(b.all, cols)
-    z = b.op("Sub", [z, b.const(np.concatenate([p["mean"] for _, p in svms]), "svm_mean")])
-    z = b.op("Div", [z, b.const(np.concatenate([p["scale"] for _, p in svms]), "svm_scale")], "Z")
+    ``(n, len(svms) * k)`` (classes padded to k with a -1e300 score) and k. With ``z`` (the scaled features,
+    decision E19) it returns the scores ``(n, len(svms) * k)`` before the softmax, padded to ``k``."""
+    scores_only = z is not None
+    k = max(p["dual"].shape[1] for _, p in svms) if k is None else k
+    if z is None:
+        z = b.cols(b.all, _model_cols(b, leaves, svms))
+        z = b.op("Sub", [z, b.const(np.concatenate([p["mean"] for _, p in svms]), "svm_mean")])
+        z = b.op("Div", [z, b.const(np.concatenate([p["scale"] for _, p in svms]), "svm_scale")], "Z")
     dot = b.op("MatMul", [z, b.block_diag([p["svT"] for _, p in svms], "svT")], "dot")
     cat = {key: np.concatenate([p[key] for _, p in svms]) for key in ("gamma", "coef0", "degree", "neg_gamma",
                                                                       "sv_sq", "is_rbf")}
@@ -628,9 +684,30 @@ def _svm_block(b: _Builder, leaves: list, svms: list[tuple[int, dict]]) -> tuple
     dual = [np.hstack([p["dual"], np.zeros((len(p["dual"]), k - p["dual"].shape[1]))]) for _, p in svms]
     bias = np.concatenate([np.concatenate([p["b"], np.full(k - len(p["b"]), -1e300)]) for _, p in svms])
     scores = b.op("Add", [b.op("MatMul", [K, b.block_diag(dual, "dual")]), b.const(bias, "svm_b")], "scores")
-    x = b.op("Reshape", [scores, b.const(np.array([-1, len(svms), k], np.int64), "shape", np.int64)])
-    x = b.op("Softmax", [x], "svm_proba", axis=-1)
-    return b.op("Reshape", [x, b.const(np.array([-1, len(svms) * k], np.int64), "shape", np.int64)]), k
+    return (scores, k) if scores_only else (_grouped_softmax(b, scores, len(svms), k, "svm_proba"), k)
+
+
+def _model_cols(b: _Builder, leaves: list, models: list[tuple[int, dict]]) -> list[int]:
+    """The prepared matrix's columns that the models read, model after model."""
+    return [c for i, _ in models for c in b.feature_cols(leaves[i][1]["features"])]
+
+
+def _grouped_softmax(b: _Builder, x: str, groups: int, k: int, hint: str) -> str:
+    """Softmax over each group of ``k`` columns of ``x (n, groups * k)``: one Softmax over (n, groups, k)."""
+    x = b.op("Reshape", [x, b.const(np.array([-1, groups, k], np.int64), "shape", np.int64)])
+    x = b.op("Softmax", [x], hint, axis=-1)
+    return b.op("Reshape", [x, b.const(np.array([-1, groups * k], np.int64), "shape", np.int64)])
+
+
+def _mlp_logits(b: _Builder, mlps: list[tuple[int, dict]], x: str, k: int) -> str:
+    """The networks' logits ``(n, len(mlps) * k)`` from their scaled features ``x`` (one block-diagonal
+    network, classes padded to k with a -1e300 logit; decision E13)."""
+    x = b.op("Gemm", [x, b.block_diag([p["W1"] for _, p in mlps], "nn_W1"),
+                      b.const(np.concatenate([p["b1"] for _, p in mlps]), "nn_b1")], "hidden", transB=1)
+    x = b.op("Tanh", [x])
+    W2 = [np.vstack([p["W2"], np.zeros((k - len(p["W2"]), p["W2"].shape[1]))]) for _, p in mlps]
+    b2 = [np.concatenate([p["b2"], np.full(k - len(p["b2"]), -1e300)]) for _, p in mlps]
+    return b.op("Gemm", [x, b.block_diag(W2, "nn_W2"), b.const(np.concatenate(b2), "nn_b2")], "logits", transB=1)
 
 
 def _block_diag(blocks: list[np.ndarray]) -> np.ndarray:
@@ -660,31 +737,37 @@ def _head(b: _Builder, tasks: dict[str, tuple[dict, list[str]]], outputs: dict[s
     mlps = [(i, p) for i, p in mlps if p is not None and "proba" in leaves[i][1]["outputs"]]
     mlps = mlps if len(mlps) > 1 else []  # one model alone: inlined (the block adds two Reshape)
     parts: list[tuple[str, list[tuple[int, int]]]] = []  # (tensor, (leaf, class) of each column)
-    if mlps:
-        k = max(len(leaves[i][1]["classes"]) for i, _ in mlps)
-        cols = [c for i, _ in mlps for c in b.feature_cols(leaves[i][1]["features"])]
-        x = b.cols(b.all, cols)
-        x = b.op("Sub", [x, b.const(np.concatenate([p["mean"] for _, p in mlps]), "nn_mean")])
-        x = b.op("Div", [x, b.const(np.concatenate([p["scale"] for _, p in mlps]), "nn_scale")])
-        x = b.op("Gemm", [x, b.block_diag([p["W1"] for _, p in mlps], "nn_W1"),
-                          b.const(np.concatenate([p["b1"] for _, p in mlps]), "nn_b1")], "hidden", transB=1)
-        x = b.op("Tanh", [x])
-        W2 = [np.vstack([p["W2"], np.zeros((k - len(p["W2"]), p["W2"].shape[1]))]) for _, p in mlps]
-        b2 = [np.concatenate([p["b2"], np.full(k - len(p["b2"]), -1e300)]) for _, p in mlps]
-        x = b.op("Gemm", [x, b.block_diag(W2, "nn_W2"), b.const(np.concatenate(b2), "nn_b2")],
-                 "logits", transB=1)
-        x = b.op("Reshape", [x, b.const(np.array([-1, len(mlps), k], np.int64), "shape", np.int64)])
-        x = b.op("Softmax", [x], "nn_proba", axis=-1)
-        x = b.op("Reshape", [x, b.const(np.array([-1, len(mlps) * k], np.int64), "shape", np.int64)])
-        parts.append((x, [(i, j) for i, _ in mlps for j in range(k)]))
     done = {i for i, _ in mlps}
     svms = [(i, _svm_params(b.onnx_models[leaf["file"]])) for i, (_, leaf, _, _) in enumerate(leaves)
             if i not in done and leaf.get("outputs", {}).get("proba") == "proba"]
     svms = [(i, p) for i, p in svms if p is not None]
-    if len(svms) > 1:
-        x, k = _svm_block(b, leaves, svms)
-        parts.append((x, [(i, j) for i, _ in svms for j in range(k)]))
-        done |= {i for i, _ in svms}
+    svms = svms if len(svms) > 1 else []
+    k_nn = max((len(leaves[i][1]["classes"]) for i, _ in mlps), default=0)
+    k_svm = max((p["dual"].shape[1] for _, p in svms), default=0)
+    if mlps and svms and ONE_SOFTMAX:  # decision E19: one scaler and one Softmax for both blocks (one k)
+        k = max(k_nn, k_svm)
+        n_nn = len(_model_cols(b, leaves, mlps))
+        x = b.cols(b.all, _model_cols(b, leaves, mlps) + _model_cols(b, leaves, svms))
+        x = b.op("Sub", [x, b.const(np.concatenate([p["mean"] for _, p in mlps + svms]), "scaler_mean")])
+        x = b.op("Div", [x, b.const(np.concatenate([p["scale"] for _, p in mlps + svms]), "scaler_scale")])
+        xn, z = b.name("nn_x"), b.name("Z")
+        b.nodes.append(helper.make_node("Split", [x, b.const(np.array([n_nn, len(_model_cols(b, leaves, svms))],
+                                                                       np.int64), "split", np.int64)], [xn, z], axis=1))
+        scores, _ = _svm_block(b, leaves, svms, k=k, z=z)
+        logits = b.op("Concat", [_mlp_logits(b, mlps, xn, k), scores], "logits", axis=1)
+        parts.append((_grouped_softmax(b, logits, len(mlps) + len(svms), k, "leaf_proba"),
+                      [(i, j) for i, _ in mlps + svms for j in range(k)]))
+    else:
+        if mlps:
+            x = b.cols(b.all, _model_cols(b, leaves, mlps))
+            x = b.op("Sub", [x, b.const(np.concatenate([p["mean"] for _, p in mlps]), "nn_mean")])
+            x = b.op("Div", [x, b.const(np.concatenate([p["scale"] for _, p in mlps]), "nn_scale")])
+            parts.append((_grouped_softmax(b, _mlp_logits(b, mlps, x, k_nn), len(mlps), k_nn, "nn_proba"),
+                          [(i, j) for i, _ in mlps for j in range(k_nn)]))
+        if svms:
+            x, k = _svm_block(b, leaves, svms)
+            parts.append((x, [(i, j) for i, _ in svms for j in range(k)]))
+    done |= {i for i, _ in svms}
     for i, (task, leaf, _, _) in enumerate(leaves):
         if i in done:
             continue
