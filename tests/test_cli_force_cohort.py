@@ -83,3 +83,14 @@ def test_every_user_failing_on_force_rerun_keeps_the_old_folder(session, tmp_pat
     assert main(["train-all", str(cohort), "--out", str(models), *ARGS, "--force"]) == 2
     assert "every user failed" in capsys.readouterr().err
     assert (models / "u1" / "manifest.json").read_text() == manifest  # B5: nothing written, old one kept
+
+
+def test_output_inside_the_cohort_folder_is_refused(session, tmp_path, capsys):
+    """Before, the second run took COHORT/models for a user ("no session folders", exit 1)."""
+    cohort = _cohort(tmp_path / "cohort", session, ["u1"])
+    assert main(["train-all", str(cohort), "--out", str(cohort / "models"), *ARGS]) == 2
+    assert "inside the cohort folder" in capsys.readouterr().err
+    (tmp_path / "m").mkdir()
+    assert main(["evaluate-all", str(tmp_path / "m"), str(cohort), "--serial", "--out", str(cohort / "ev")]) == 2
+    assert "inside the cohort folder" in capsys.readouterr().err
+    assert sorted(p.name for p in cohort.iterdir()) == ["u1"]

@@ -148,6 +148,14 @@ def _check_only_train_all_output(out: Path) -> None:
                         "models folder, so move them out or choose another output folder")
 
 
+def _check_outside_cohort(out: Path, cohort_dir: Path) -> None:
+    """An output inside the cohort folder is read as one more user by the next run (a "models" user that
+    fails with "no session folders"), so it is refused before any work."""
+    if out.resolve() == cohort_dir.resolve() or out.resolve().is_relative_to(cohort_dir.resolve()):
+        raise DataError(f"{out}: is inside the cohort folder {cohort_dir}, where the next run would take it for a "
+                        "user; choose an output folder outside it")
+
+
 def _check_workers(workers: int | None) -> None:
     if workers is not None and workers < 1:
         raise DataError(f"--workers {workers}: give at least 1 worker process (or leave it out for one per core)")
@@ -202,6 +210,7 @@ def train_all(
     # bad settings fail here, once, before a cluster is started and before anything is written
     check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
     _check_workers(workers)
+    _check_outside_cohort(out, cohort_dir)
     _check_only_train_all_output(out)
     out_folder(out, TRAIN_ALL_MARKERS, "per-user model directories", force=force)
     was, had_eval = existed(out), (out / "eval" / "cohort_summary.csv").is_file()
@@ -242,6 +251,7 @@ def evaluate_all(
     _check_workers(workers)
     if not models_dir.is_dir():
         raise DataError(f"{models_dir}: models folder not found; run 'pdrlearn train-all COHORT --out {models_dir}'")
+    _check_outside_cohort(out or models_dir / "eval", cohort_dir)
     out = out_folder(out or models_dir / "eval", ("cohort_summary.csv",), "a cohort summary", force=force)
     was = existed(out)
     users = cohort_users(cohort_dir)
