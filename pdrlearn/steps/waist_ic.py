@@ -88,8 +88,7 @@ class _RealtimeProcessor:
         self.max_gap = K._max_gap(det.max_step_s, fs)
         self.n0 = max(1, int(round(INIT_S * fs)))  # the AHRS's initial attitude (pdrlearn.waist.ahrs.waist_imu)
         self.raw: list[np.ndarray] = []  # samples before the initial attitude is known
-        self.q: np.ndarray | None = None
-        self.filt = None
+        self.q: np.ndarray | None = None  # the AHRS attitude (w, x, y, z) after the last sample
         self.g = 0.0
         self.prev_raw_yaw = 0.0
         self.wrap = 0
@@ -105,16 +104,14 @@ class _RealtimeProcessor:
     def _nav(self, t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, first: bool) -> None:
         from scipy.spatial.transform import Rotation
 
-        q = np.zeros((len(t), 4))
-        start = 0
+        from pdrlearn.orient._kernels import madgwick_imu
+
+        dt, gain = 1.0 / self.fs, self.det.ahrs_gain
         if first:  # as Madgwick's batch form: the first sample is the initial attitude itself
-            q[0] = self.q / np.linalg.norm(self.q)
-            start = 1
+            q0 = self.q / np.linalg.norm(self.q)
+            q = np.vstack([q0, madgwick_imu(q0, gyr[1:], acc[1:], dt, gain=gain)])
         else:
-            q[0] = self.q
-        prev = q[0]
-        for i in range(start, len(t)):
-            prev = q[i] = self.filt.updateIMU(prev, gyr[i], acc[i])
+            q = madgwick_imu(self.q, gyr, acc, dt, gain=gain)
         self.q = q[-1]
         rot = Rotation.from_quat(np.column_stack([q[:, 1:], q[:, :1]]))
         acc_nav, gyr_nav = rot.apply(acc), rot.apply(gyr)
@@ -204,7 +201,6 @@ class _RealtimeProcessor:
         return out
 
     def _start(self, v: np.ndarray) -> None:
-        from ahrs.filters import Madgwick
         from scipy.spatial.transform import Rotation
 
         from pdrlearn.signal import gravity_rotation
@@ -212,7 +208,6 @@ class _RealtimeProcessor:
         r0 = Rotation.from_matrix(gravity_rotation(v[:self.n0, :3].mean(axis=0)))  # as waist_imu
         x, y, z, w = r0.as_quat()
         self.q = np.array([w, x, y, z])
-        self.filt = Madgwick(frequency=self.fs, gain=self.det.ahrs_gain)
 
     def flush(self) -> list:
         if self.q is None and self.raw:  # shorter than the initial attitude window: start anyway

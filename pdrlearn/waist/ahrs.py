@@ -1,10 +1,11 @@
 """Attitude of the waist unit and its data cast to a gravity-aligned navigation frame.
 
 Seed 000 sec. II-A and seed 001 sec. 2.2.1 cast the waist data to a global frame with an AHRS
-(seed 001: a Madgwick filter) before any gait analysis. We use the maintained ``ahrs`` package's
-Madgwick filter in its IMU form (accelerometer + gyroscope): the magnetometers of the recordings we
-have are uncalibrated (see ../shared/data/README.md), so the heading is relative to the start, not to
-magnetic north (docs/decisions/waist.md W5).
+(seed 001: a Madgwick filter) before any gait analysis. We use Madgwick's filter in its IMU form
+(accelerometer + gyroscope) as the ``ahrs`` package writes it, run by the scalar kernel
+:func:`pdrlearn.orient._kernels.madgwick_imu` (equal to ``ahrs`` to rounding, over 10x faster; decision W43):
+the magnetometers of the recordings we have are uncalibrated (see ../shared/data/README.md), so the
+heading is relative to the start, not to magnetic north (docs/decisions/waist.md W5).
 
 Frames: the sensor axes are mapped to the body frame FLU with the session's declared
 ``frames["waist"]``; the navigation frame has z up and x along the unit's initial forward direction
@@ -21,6 +22,7 @@ from scipy.spatial.transform import Rotation
 
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
+from pdrlearn.orient._kernels import madgwick_imu
 from pdrlearn.signal import gravity_rotation, interp_rows
 
 log = logging.getLogger(__name__)
@@ -138,13 +140,13 @@ def imu_from_body(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, *, fs: float 
                   gain: float = MADGWICK_GAIN, init_s: float = 0.5) -> WaistIMU:
     """The AHRS and navigation-frame casting of :func:`waist_imu` on body-frame (FLU) arrays on a uniform
     clock, as :func:`body_data` returns them (``fs``: rate in Hz, default ``1 / median(diff(t))``)."""
-    from ahrs.filters import Madgwick
-
     fs = float(1.0 / np.median(np.diff(t))) if fs is None else float(fs)
     n0 = max(1, int(round(init_s * fs)))
     r0 = Rotation.from_matrix(gravity_rotation(acc[:n0].mean(axis=0)))
     x, y, z, w = r0.as_quat()
-    q = Madgwick(gyr=gyr, acc=acc, frequency=fs, gain=gain, q0=np.array([w, x, y, z])).Q
+    q0 = np.array([w, x, y, z])
+    q0 /= np.linalg.norm(q0)  # as ahrs' Madgwick batch form: the first sample's attitude is q0 itself
+    q = np.vstack([q0, madgwick_imu(q0, gyr[1:], acc[1:], 1.0 / fs, gain=gain)])
     rot = _quat_wxyz_to_rotation(q)
     acc_nav = rot.apply(acc)
     gyr_nav = rot.apply(gyr)
