@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import logging
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -49,10 +50,20 @@ def step_latency_ms(est, X: np.ndarray, *, n: int = 20, repeat: int = 3) -> floa
     return float(np.median(times) * 1e3) if times else float("nan")
 
 
+def evaluation_stages(model, *, report: bool = False) -> int:
+    """How many times :func:`evaluate_model` calls ``advance``: once for the step windows, once per trained
+    task x method x unit, once for the report (the total of the CLI's progress bar)."""
+    return 1 + sum(len(per) for tm in model.tasks.values() for per in tm.models.values()) + int(report)
+
+
 def evaluate_model(
-    model, sessions, *, report_dir: Path | None = None, latency: bool = True, latency_steps: int = 20
+    model, sessions, *, report_dir: Path | None = None, latency: bool = True, latency_steps: int = 20,
+    advance: Callable[[int], None] = lambda n=1: None,
 ) -> dict:
     """Score every trained task x method x unit of ``model`` on the labelled steps of ``sessions``.
+
+    ``advance(n)`` is called as the work proceeds, :func:`evaluation_stages` times in all (the CLI's
+    progress bar); each scored model is also logged at INFO level (``-v``).
 
     Returns
     -------
@@ -71,6 +82,7 @@ def evaluate_model(
     windows = session_windows(sessions, n_samples=model.n_samples, boundaries=model.boundaries)
     n_total = sum(len(w) for w in windows)
     windows_ms = (time.perf_counter() - t0) * 1e3 / max(n_total, 1)
+    advance(1)
     available = set.intersection(*(set(w.available) for w in windows))
     out: dict = {
         "user": model.user,
@@ -84,6 +96,7 @@ def evaluate_model(
         data = task_data(windows, task)
         if data is None or len(data.y) == 0:
             out["skipped"].append(f"{task}: the sessions have no {task} labels")
+            advance(sum(len(per) for per in tm.models.values()))
             continue
         classes = list(tm.classes)
         res: dict = {
@@ -102,6 +115,7 @@ def evaluate_model(
         for method, per in tm.models.items():
             units = {}
             for unit, est in per.items():
+                t_model = time.perf_counter()
                 got: dict[int, tuple[np.ndarray, np.ndarray]] = {}
                 mask = data.unit_mask(unit)
                 for i, rows in sess_rows.items():
@@ -117,6 +131,7 @@ def evaluate_model(
                     except MissingSensorError as exc:
                         res["skipped"].append(f"{method}/{unit} on {windows[i].session}: {exc}")
                 if not got:
+                    advance(1)
                     continue
                 preds[(method, unit)] = got
                 sel = np.concatenate([got[i][0] for i in sorted(got)])
@@ -124,6 +139,9 @@ def evaluate_model(
                 m = class_metrics(data.y[sel], y_pred, classes)
                 m["latency_ms"] = step_latency_ms(est, data.X[sel], n=latency_steps) if latency else None
                 units[unit] = m
+                log.info("evaluate %s: %s/%s on %d steps: %.1f %% (%.1f s)", task, method, unit, len(sel),
+                         100 * m["accuracy"], time.perf_counter() - t_model)
+                advance(1)
             if not units:
                 continue
             ranked = [u for mm, u in tm.ranking() if mm == method and u in units]
@@ -187,6 +205,7 @@ def evaluate_model(
         out["tasks"][task] = res
     if report_dir is not None:
         write_report(out, Path(report_dir))
+        advance(1)
     return out
 
 

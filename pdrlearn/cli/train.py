@@ -191,7 +191,7 @@ def evaluate(
         pdrlearn evaluate out/models/u1 out/sim/u1_test --json
     """
     from pdrlearn.classify import evaluate_model, load_model
-    from pdrlearn.classify.evaluation import results_table
+    from pdrlearn.classify.evaluation import evaluation_stages, results_table
 
     if report is not None:
         # evaluation.json alone is the documented `--json > DIR/evaluation.json` redirect, made by the shell
@@ -201,7 +201,9 @@ def evaluate(
     was = report is not None and (report / "report.md").is_file()
     model = load_model(model_dir)
     sessions = _read_all(data_dirs)
-    result = evaluate_model(model, sessions, report_dir=report)
+    # the same progress bar as train (stderr, a terminal only, not with --json); -v logs each scored model
+    with progress("evaluating", evaluation_stages(model, report=report is not None), enabled=not as_json) as advance:
+        result = evaluate_model(model, sessions, report_dir=report, advance=advance)
     if not result["tasks"]:
         raise DataError(
             f"evaluate: the sessions have no labels for the model's tasks ({', '.join(model.tasks)}); "
