@@ -166,6 +166,25 @@ def test_errors_are_named():
     assert "length" not in m.tasks and any("length" in x for x in m.skipped)
 
 
+def test_lengths_without_classes_say_what_is_missing():
+    """steps.csv with length_m but no length_class said only "no session has length labels", which read as
+    if the lengths were ignored: the message now names the missing column and that classes are not derived
+    from length_m."""
+    s = labelled_session(3, 12)
+    lengths = s.copy()
+    lengths.steps = s.steps.drop(columns=["length_class"]).assign(length_m=1.3)
+    with pytest.raises(DataError, match="no session has length labels") as err:
+        train_user([lengths], tasks=["length"], methods=["svm"], cv=3)
+    msg = str(err.value)
+    assert "'length_m'" in msg and "no 'length_class' column" in msg and "does not derive" in msg
+    assert "--tasks terrain,direction" in msg
+    bare = s.copy()  # no lengths either: the short message
+    bare.steps = s.steps.drop(columns=["length_class"])
+    with pytest.raises(DataError) as err:
+        train_user([bare], tasks=["length"], methods=["svm"], cv=3)
+    assert "length_m" not in str(err.value)
+
+
 def test_foot_only_sessions_train_foot_models():
     s = labelled_session(4, 10, waist=False)
     m = train_user([s], tasks=["terrain"], methods=["svm", "nn"], cv=3)

@@ -607,6 +607,25 @@ def train_task(
     return tm
 
 
+def _no_labels_message(task: str, sessions) -> str:
+    """Why ``task`` has no labels and how to get them. Stride lengths (``length_m``) without classes read
+    as if the lengths were ignored: say that the classes are a column of their own, which pdrlearn does
+    not derive from the lengths (thesis ch. 6.3: the user's short/normal/long classes come from calibration
+    exercises walked that way; docs/decisions/simulator.md S2), and what ``length_m`` is used for."""
+    column = {"length": "length_class"}.get(task, task)
+    msg = f"task {task}: no session has {task} labels; label the steps ('{column}' column) or drop the task"
+    has_lengths = any(s.steps is not None and "length_m" in s.steps.columns and s.steps["length_m"].notna().any()
+                      for s in sessions)
+    if task != "length" or not has_lengths:
+        return msg
+    return ("task length: no session has length labels: the steps have stride lengths ('length_m', used by the "
+            "distance calibration, decision L26) but no 'length_class' column; the length task learns the "
+            "user's short/normal/long classes, which pdrlearn does not derive from 'length_m' (thesis ch. 6.3: "
+            "the classes come from calibration exercises walked short, normal and long) -- add a "
+            "'length_class' column (short, normal or long per step) to steps.csv, or drop the task "
+            "(--tasks terrain,direction)")
+
+
 def length_class_bounds(sessions) -> list[float] | None:
     """The user's stride-length class edges ``[short/normal, normal/long]`` (m), used by M3's clamp.
 
@@ -698,10 +717,7 @@ def train_user(
         data = datas[task] = task_data(windows, task)  # logs its gap steps once (B13)
         try:
             if data is None:
-                raise DataError(
-                    f"task {task}: no session has {task} labels; label the steps "
-                    f"('{ {'length': 'length_class'}.get(task, task) }' column) or drop the task"
-                )
+                raise DataError(_no_labels_message(task, sessions))
             check_classes(data)
         except DataError as exc:
             if strict:
