@@ -183,20 +183,21 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
     seqs = _sequences(steps)
     ev_all = steps["event_s"].to_numpy(float)
     mean_rate = np.full(n, np.nan)
+    w = imu.w_z - p.gyro_bias_rps
+    cum = K.rate_integral(imu.t, w)  # once for every sequence (W43)
     for seq in seqs:
         if len(seq) > 1:
-            mean_rate[seq[:-1]] = K.mean_rate_per_stride(imu.t, imu.w_z - p.gyro_bias_rps, ev_all[seq])
+            mean_rate[seq[:-1]] = K.mean_rate_per_stride(imu.t, w, ev_all[seq], cum=cum)
     if method == "gyro":
         clf = TurnClassifier(**(p.turn_gmm or {}))
         per_seq = []
         current = 0.0
         for j, seq in enumerate(seqs):
             if integrate_stops and j > 0:  # turns made while standing between walking sequences
-                current += K.integrate_rate(imu.t, imu.w_z - p.gyro_bias_rps, ev_all[seqs[j - 1][-1]],
-                                            ev_all[seq[0]])
+                current += K.integrate_rate(imu.t, w, ev_all[seqs[j - 1][-1]], ev_all[seq[0]], cum=cum)
             if len(seq) > 1:
                 hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
-                                       heading0=current)
+                                       heading0=current, cum=cum)
                 turning[seq[:-1]] = tr
                 current = float(hd[-1])
                 per_seq.append(hd)

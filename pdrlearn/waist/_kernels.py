@@ -6,6 +6,8 @@ and returns new arrays. The classes in :mod:`pdrlearn.waist` hold parameters and
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from scipy import signal as _sig
 from scipy.ndimage import uniform_filter1d
@@ -160,9 +162,16 @@ def lateral_velocity(acc_ml: np.ndarray, fs: float, *, band_hz: tuple[float, flo
     a = np.asarray(acc_ml, dtype=np.float64)
     if a.shape[0] < 32:
         return np.zeros_like(a)
-    lo, hi = band_hz[0], min(band_hz[1], 0.45 * fs)
-    v = np.cumsum(_sig.sosfiltfilt(_sig.butter(2, [lo, hi], btype="bandpass", fs=fs, output="sos"), a)) / fs
-    return _sig.sosfiltfilt(_sig.butter(2, lo, btype="highpass", fs=fs, output="sos"), v)
+    lo, hi = float(band_hz[0]), float(min(band_hz[1], 0.45 * fs))
+    v = np.cumsum(_sig.sosfiltfilt(_butter2(lo, hi, "bandpass", float(fs)).copy(), a)) / fs
+    return _sig.sosfiltfilt(_butter2(lo, None, "highpass", float(fs)).copy(), v)
+
+
+@functools.lru_cache(maxsize=32)
+def _butter2(lo: float, hi: float | None, btype: str, fs: float) -> np.ndarray:
+    """Second-order Butterworth sections, designed once per setting (callers take a copy): the realtime
+    detector (W31) filters a window every 0.25 s, and the design cost as much as the filtering (W43)."""
+    return _sig.butter(2, lo if hi is None else [lo, hi], btype=btype, fs=fs, output="sos")
 
 
 def step_sides(v_at: np.ndarray, accepted: np.ndarray, *, min_frac: float = SIDE_MIN_FRAC) -> np.ndarray:
@@ -790,17 +799,25 @@ def gyro_bias_360(t: np.ndarray, w_z: np.ndarray, *, turns: float = 1.0) -> floa
     return (total - 2.0 * np.pi * turns) / float(t[-1] - t[0])
 
 
-def mean_rate_per_stride(t: np.ndarray, w_z: np.ndarray, events: np.ndarray) -> np.ndarray:
+def rate_integral(t: np.ndarray, w_z: np.ndarray) -> np.ndarray:
+    """Running trapezoidal integral of ``w_z`` over ``t`` (rad; 0 at ``t[0]``): pass it as ``cum`` to
+    :func:`mean_rate_per_stride` / :func:`integrate_rate` to integrate one signal over many windows in
+    one pass (the same values as computing it in each call)."""
+    return np.concatenate([[0.0], np.cumsum(0.5 * (w_z[1:] + w_z[:-1]) * np.diff(t))])
+
+
+def mean_rate_per_stride(t: np.ndarray, w_z: np.ndarray, events: np.ndarray, *,
+                         cum: np.ndarray | None = None) -> np.ndarray:
     """Mean vertical rate (rad/s) over the stride around each step (seed 003 sec. 3.3, MRZ without the
     absolute value): for step ``k`` (``events[k]`` to ``events[k+1]``) the stride is
     ``[events[k-1], events[k+1]]``; the first step of a sequence takes the stride that starts with it,
     ``[events[0], events[2]]`` (decision W24: a window of one step keeps the pelvis's per-step yaw
     swing, which cancels only over a stride). One-step sequences use that step. Returns
-    ``len(events) - 1`` values."""
+    ``len(events) - 1`` values. ``cum``: :func:`rate_integral` of ``(t, w_z)`` if already computed."""
     ev = np.asarray(events, dtype=np.float64)
     n = len(ev) - 1
     out = np.full(max(n, 0), np.nan)
-    cum = np.concatenate([[0.0], np.cumsum(0.5 * (w_z[1:] + w_z[:-1]) * np.diff(t))])
+    cum = rate_integral(t, w_z) if cum is None else cum
     for k in range(n):
         a, b = (ev[k - 1], ev[k + 1]) if k > 0 else (ev[0], ev[min(2, n)])
         if b <= a:
@@ -809,9 +826,10 @@ def mean_rate_per_stride(t: np.ndarray, w_z: np.ndarray, events: np.ndarray) -> 
     return out
 
 
-def integrate_rate(t: np.ndarray, w_z: np.ndarray, t0, t1):
+def integrate_rate(t: np.ndarray, w_z: np.ndarray, t0, t1, *, cum: np.ndarray | None = None):
     """Integral of ``w_z`` over ``[t0, t1]`` (rad), trapezoidal with interpolated ends. ``t0``/``t1``
-    may be arrays (one integral per pair, one pass over the signal); scalars give a float."""
-    cum = np.concatenate([[0.0], np.cumsum(0.5 * (w_z[1:] + w_z[:-1]) * np.diff(t))])
+    may be arrays (one integral per pair, one pass over the signal); scalars give a float. ``cum``:
+    :func:`rate_integral` of ``(t, w_z)`` if already computed."""
+    cum = rate_integral(t, w_z) if cum is None else cum
     out = np.interp(t1, t, cum) - np.interp(t0, t, cum)
     return float(out) if np.ndim(out) == 0 else out

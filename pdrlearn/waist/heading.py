@@ -37,17 +37,23 @@ def harmonic_directions(imu: WaistIMU, events: np.ndarray, *, method: str = "ahe
     ev = np.asarray(events, dtype=np.float64)
     n = len(ev) - 1
     raw = np.full(max(n, 0), np.nan)
+    if n <= 0:
+        return raw
+    # the samples of the sequence only: every window below lies in [ev[0], ev[-1]] and selects the same
+    # samples from this slice as from the recording (sorted clock), without a pass over all of it (W43)
+    i0, i1 = np.searchsorted(imu.t, ev.min(), "left"), np.searchsorted(imu.t, ev.max(), "right")
+    t, a_h, a_v = imu.t[i0:i1], imu.acc_h[i0:i1], imu.acc_v[i0:i1]
     for k in range(n):
         if method == "ellipse":
-            raw[k] = K.ellipse_direction(imu.t, imu.acc_h, imu.acc_v, ev[k], ev[k + 1])
+            raw[k] = K.ellipse_direction(t, a_h, a_v, ev[k], ev[k + 1])
             continue
         if k == 0 and n < 2:
             continue
         t0, t1, t2 = (ev[0], ev[1], ev[2]) if k == 0 else (ev[k - 1], ev[k], ev[k + 1])
         if method == "ahe":
-            raw[k] = K.tip_to_tail_direction(imu.t, imu.acc_h, imu.acc_v, t0, t1, t2)
+            raw[k] = K.tip_to_tail_direction(t, a_h, a_v, t0, t1, t2)
         else:
-            raw[k] = K.stride_ellipse_direction(imu.t, imu.acc_h, imu.acc_v, t0, t2)
+            raw[k] = K.stride_ellipse_direction(t, a_h, a_v, t0, t2)
     return raw
 
 
@@ -150,13 +156,16 @@ class TurnClassifier(ClassifierMixin, BaseEstimator):
 
 
 def gyro_headings(imu: WaistIMU, events: np.ndarray, *, classifier: TurnClassifier | None = None,
-                  bias_rps: float = 0.0, heading0: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+                  bias_rps: float = 0.0, heading0: float = 0.0, cum: np.ndarray | None = None
+                  ) -> tuple[np.ndarray, np.ndarray]:
     """Per-step heading from the vertical gyroscope, integrated only over turning strides
     (seed 003 sec. 3.3).
 
     Each step's stride mean rate is classified; the rate (minus ``bias_rps``, seed 003 eq. 2) is
     integrated over the steps classified as turning and over the step before and after each of them
     (seed 003: "integrate two straight steps occurring before and after a curved walking step").
+    ``cum``: :func:`pdrlearn.waist._kernels.rate_integral` of ``(imu.t, imu.w_z - bias_rps)`` when the
+    caller integrates the same rate over many sequences (one pass over the recording, W43).
 
     Returns
     -------
@@ -167,16 +176,18 @@ def gyro_headings(imu: WaistIMU, events: np.ndarray, *, classifier: TurnClassifi
     if n <= 0:
         return np.zeros(0), np.zeros(0, dtype=int)
     w = imu.w_z - bias_rps
-    mrz = K.mean_rate_per_stride(imu.t, w, ev)
+    cum = K.rate_integral(imu.t, w) if cum is None else cum
+    mrz = K.mean_rate_per_stride(imu.t, w, ev, cum=cum)
     clf = classifier if classifier is not None else TurnClassifier()
     turning = clf.predict(np.nan_to_num(mrz))
     integrate = turning.astype(bool).copy()
     integrate[1:] |= turning[:-1].astype(bool)
     integrate[:-1] |= turning[1:].astype(bool)
+    dpsi = K.integrate_rate(imu.t, w, ev[:-1], ev[1:], cum=cum)
     heading = np.empty(n)
     h = heading0
     for k in range(n):
         if integrate[k]:
-            h += K.integrate_rate(imu.t, w, ev[k], ev[k + 1])
+            h += dpsi[k]
         heading[k] = h
     return heading, turning
