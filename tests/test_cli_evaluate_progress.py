@@ -24,8 +24,10 @@ def _recorder(calls: list):
         rec = {"description": description, "total": total, "enabled": enabled, "advanced": 0}
         calls.append(rec)
 
-        def advance(n=1):
+        def advance(n=1, total=None):
             rec["advanced"] += n
+            if total is not None:
+                rec["total"] = total
 
         yield advance
 
@@ -41,8 +43,8 @@ def test_evaluate_advances_a_progress_bar_to_its_total(base, tmp_path, monkeypat
     assert main(["evaluate", str(model), str(session), *extra]) == 0
     assert [c["description"] for c in calls] == ["evaluating"]
     (c,) = calls
-    # windows + heuristic/foot + heuristic/waist (+ the report)
-    assert c["enabled"] and c["total"] == 3 + report and c["advanced"] == c["total"], c
+    # the model, the session, windows, heuristic/foot, heuristic/waist (+ the report)
+    assert c["enabled"] and c["total"] == 5 + report and c["advanced"] == c["total"], c
 
 
 def test_evaluate_json_has_no_progress_and_one_json_line(base, monkeypatch, capsys):

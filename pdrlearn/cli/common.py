@@ -163,18 +163,19 @@ def console():
 
 @contextmanager
 def progress(description: str, total: int | None, enabled: bool = True):
-    """A rich progress bar on stderr (silent when not a terminal or disabled); yields ``advance()``."""
+    """A rich progress bar on stderr (silent when not a terminal or disabled); yields ``advance(n=1, total=None)``
+    (``total``: set the total once it is known, e.g. after a model is loaded; ``None`` at the start = unknown)."""
     from rich.console import Console
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
     console = Console(stderr=True)
     if not enabled or not console.is_terminal:
-        yield lambda n=1: None
+        yield lambda n=1, total=None: None
         return
     with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
                   TimeElapsedColumn(), console=console, transient=True) as bar:
         task = bar.add_task(description, total=total)
-        yield lambda n=1: bar.advance(task, n)
+        yield lambda n=1, total=None: bar.update(task, advance=n, **({} if total is None else {"total": total}))
 
 
 def warn_gaps(session, names, consequence: str) -> None:

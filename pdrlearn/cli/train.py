@@ -199,10 +199,19 @@ def evaluate(
                    allow=("evaluation.json",))
     # not atomic: the folder may hold the file the shell is redirecting --json into (written in place)
     was = report is not None and (report / "report.md").is_file()
-    model = load_model(model_dir)
-    sessions = _read_all(data_dirs)
-    # the same progress bar as train (stderr, a terminal only, not with --json); -v logs each scored model
-    with progress("evaluating", evaluation_stages(model, report=report is not None), enabled=not as_json) as advance:
+    from pdrlearn.io import read_session
+
+    # the same progress bar as train (stderr, a terminal only, not with --json): loading the model (~2 s),
+    # reading each session, then evaluate_model's stages (its total is known once the model is loaded);
+    # -v logs each scored model
+    with progress("evaluating", None, enabled=not as_json) as advance:
+        model = load_model(model_dir)  # checked before the sessions, as before the bar
+        dirs = find_session_dirs(data_dirs)
+        advance(1, total=1 + len(dirs) + evaluation_stages(model, report=report is not None))
+        sessions = []
+        for d in dirs:
+            sessions.append(read_session(d))
+            advance(1)
         result = evaluate_model(model, sessions, report_dir=report, advance=advance)
     if not result["tasks"]:
         raise DataError(
