@@ -130,6 +130,28 @@ for _name in COMMAND_MODULES:
     importlib.import_module(f"pdrlearn.cli.{_name}").register(app)
 
 
+def _flags_show_no_type(typer_app: typer.Typer) -> None:
+    """Give every boolean flag of the commands an empty ``metavar`` (typer's public ``Option(metavar=...)``):
+    typer 0.29's help shows the type of every option, so ``--json <bool>`` read as if it took a value.
+    Flags take none; their type column is now empty. Typer's own ``--help`` keeps its ``<bool>`` (its
+    option is made inside typer, with no setting for it)."""
+    import inspect
+
+    from typer.models import OptionInfo
+
+    callbacks = [c.callback for c in typer_app.registered_commands]
+    if typer_app.registered_callback is not None:
+        callbacks.append(typer_app.registered_callback.callback)
+    for cb in callbacks:
+        for p in inspect.signature(cb).parameters.values():
+            info = p.default
+            if isinstance(info, OptionInfo) and isinstance(info.default, bool) and info.metavar is None:
+                info.metavar = ""
+
+
+_flags_show_no_type(app)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Console-script entry point; returns the exit code."""
     if argv is None:
