@@ -1,0 +1,63 @@
+"""`make demo` printed the three expected warnings of its foot-only real recording in the middle of the stage
+list, which read as a problem to a new user: they are now collected and printed once at the end under
+"expected notes:" with why; any other warning of a stage is still printed at once."""
+
+from __future__ import annotations
+
+import importlib.util
+import logging
+from pathlib import Path
+
+import pytest
+
+DEMO = Path(__file__).resolve().parents[1] / "experiments" / "demo.py"
+FOOT = "track: real foot level walk (M3 engine, stride lengths)"
+
+
+@pytest.fixture()
+def demo():
+    spec = importlib.util.spec_from_file_location("pdrlearn_demo_under_test", DEMO)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _fake_cli(warnings: list[str]):
+    """A CLI call that logs ``warnings`` through the real main()'s stderr handler and prints a JSON line."""
+    from pdrlearn.cli import _stderr_logging
+
+    def cli(argv):
+        with _stderr_logging():
+            for w in warnings:
+                logging.getLogger("pdrlearn.track").warning(w)
+        print('{"ok": 1}')
+        return 0
+
+    return cli
+
+
+def test_expected_warnings_wait_for_the_end_others_are_printed_at_once(demo, monkeypatch, capsys):
+    monkeypatch.setattr(demo, "cli", _fake_cli([
+        "gaitmap_level_left: no force sensors: stance from the accelerometer/gyroscope detector",
+        "gaitmap_level_left: no waist unit: heading from the foot's own integrated yaw",
+        "gaitmap_level_left: something nobody expected"]))
+    log: list = []
+    assert demo.run(["track", "x"], log, FOOT) == {"ok": 1}
+    cap = capsys.readouterr()
+    assert cap.err.splitlines() == ["warning: gaitmap_level_left: something nobody expected"]
+    assert "no force sensors" not in cap.out and FOOT in cap.out
+    demo.print_notes()
+    out = capsys.readouterr().out.splitlines()
+    assert out[0].startswith("expected notes:")
+    assert out[1].startswith(f"  {FOOT}: gaitmap_level_left is a foot-only recording")
+    assert [ln.strip() for ln in out[2:]] == [
+        "warning: gaitmap_level_left: no force sensors: stance from the accelerometer/gyroscope detector",
+        "warning: gaitmap_level_left: no waist unit: heading from the foot's own integrated yaw"]
+
+
+def test_the_same_warning_in_another_stage_is_not_hidden(demo, monkeypatch, capsys):
+    monkeypatch.setattr(demo, "cli", _fake_cli(["gaitmap_level_left: no force sensors: stance from ..."]))
+    demo.run(["track", "x"], [], "track scenario D with M2")
+    assert "no force sensors" in capsys.readouterr().err
+    demo.print_notes()
+    assert capsys.readouterr().out == ""
