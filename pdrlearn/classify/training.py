@@ -619,11 +619,10 @@ def _no_labels_message(task: str, sessions) -> str:
     if task != "length" or not has_lengths:
         return msg
     return ("task length: no session has length labels: the steps have stride lengths ('length_m', used by the "
-            "distance calibration, decision L26) but no 'length_class' column; the length task learns the "
-            "user's short/normal/long classes, which pdrlearn does not derive from 'length_m' (thesis ch. 6.3: "
-            "the classes come from calibration exercises walked short, normal and long) -- add a "
-            "'length_class' column (short, normal or long per step) to steps.csv, or drop the task "
-            "(--tasks terrain,direction)")
+            "distance calibration, decision L26) but no 'length_class' column; pdrlearn does not derive the "
+            "user's short/normal/long classes from 'length_m' (thesis ch. 6.3: they come from calibration "
+            "exercises walked short, normal and long) -- add 'length_class' (short, normal or long per step) to "
+            "steps.csv, or drop the task (--tasks terrain,direction)")
 
 
 def length_class_bounds(sessions) -> list[float] | None:
