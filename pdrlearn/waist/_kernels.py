@@ -776,13 +776,23 @@ def resolve_axis_signs(directions: np.ndarray, yaw: np.ndarray) -> np.ndarray:
     return out
 
 
+#: two directions whose unit vectors sum to less than this have no mean (decision W44)
+OPPOSITE_EPS = 1e-9
+
+
 def circular_mean2(a: float, b: float) -> float:
-    """Mean direction of two angles (rad); the A-HE average of two consecutive steps (seed 000 Alg. 1e)."""
+    """Mean direction of two angles (rad); the A-HE average of two consecutive steps (seed 000 Alg. 1e).
+
+    Two (nearly) opposite directions have no mean (the sum of their unit vectors is rounding residue,
+    so its angle is arbitrary): the newer step ``b`` is taken (decision W44)."""
     if not np.isfinite(a):
         return b
     if not np.isfinite(b):
         return a
-    return float(np.arctan2(np.sin(a) + np.sin(b), np.cos(a) + np.cos(b)))
+    s, c = np.sin(a) + np.sin(b), np.cos(a) + np.cos(b)
+    if np.hypot(s, c) < OPPOSITE_EPS:
+        return float(b)
+    return float(np.arctan2(s, c))
 
 
 # --------------------------------------------------------------------------------------------------
