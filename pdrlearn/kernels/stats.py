@@ -212,9 +212,10 @@ def tilt_corrected(Y: np.ndarray, g_lev: np.ndarray, k0: int, k1: int) -> np.nda
     else:
         kx, ky, th = gy / nrm / s, -gx / nrm / s, math.atan2(s, gz / nrm)  # axis (g x z) / |g x z|
     ang = _tilt_fraction(n, k0, k1) * th  # the fraction of the correction at each sample, times the angle
-    KT = np.array([[0.0, 0.0, -ky], [0.0, 0.0, kx], [ky, -kx, 0.0]])  # ([k]x)^T of k = (kx, ky, 0)
-    KY = Y.reshape(-1, 3) @ KT  # rows ([k]x v)^T
-    K2Y = (KY @ KT).reshape(shape)  # rows ([k]x^2 v)^T
+    KT = np.array((0.0, 0.0, -ky, 0.0, 0.0, kx, ky, -kx, 0.0)).reshape(3, 3)  # ([k]x)^T of k = (kx, ky, 0)
+    # 2-D products by ndarray.dot: the same BLAS product as @, without the matmul ufunc's dispatch (E20)
+    KY = Y.reshape(-1, 3).dot(KT)  # rows ([k]x v)^T
+    K2Y = KY.dot(KT).reshape(shape)  # rows ([k]x^2 v)^T
     return Y + np.sin(ang) * KY.reshape(shape) + (1.0 - np.cos(ang)) * K2Y
 
 

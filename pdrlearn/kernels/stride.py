@@ -214,7 +214,7 @@ def zupt_displacement(t: np.ndarray, acc: np.ndarray) -> np.ndarray:
     tr = t - t[0]  # times from the stride's start (no cancellation of large clock values)
     lo, hi = tr[:-1], tr[1:]
     w = (0.5 * tr[-1].item() - 0.5 * (lo + hi)) * (hi - lo)  # (t_c - m_k) dt_k
-    return (0.5 * w) @ (acc[1:] + acc[:-1])
+    return (0.5 * w).dot(acc[1:] + acc[:-1])  # ndarray.dot: @'s BLAS product without its dispatch (E20)
 
 
 def yaw_change(t: np.ndarray, rate_z: np.ndarray, t0: float = -np.inf, t1: float = np.inf) -> float:
@@ -222,7 +222,7 @@ def yaw_change(t: np.ndarray, rate_z: np.ndarray, t0: float = -np.inf, t1: float
     (rad/s) linearly interpolated at ``t0``/``t1``, so that consecutive strides do not share samples."""
     tt = np.minimum(np.maximum(t, t0), t1)  # clipped to [t0, t1]
     r = interp(tt, t, rate_z)
-    return 0.5 * float((r[1:] + r[:-1]) @ (tt[1:] - tt[:-1]))  # trapezoid (one product, decision E17)
+    return 0.5 * float((r[1:] + r[:-1]).dot(tt[1:] - tt[:-1]))  # trapezoid (one product, E17; .dot: E20)
 
 
 def pivot_yaw(t: np.ndarray, gyr: np.ndarray, up: np.ndarray, *, still_rad_s: float = 0.4) -> float:

@@ -287,9 +287,9 @@ def stride_headings(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: in
                     t: np.ndarray | None = None) -> tuple[float, float]:
     """``(stride_dpsi(forward_s, acc, Y, s, t), start_heading(forward_s, acc[s], Y[s]))`` with the attitude at
     sample ``s`` computed once (both need it; the same values bit for bit, runtime decision E17)."""
-    fwd = np.asarray(forward_s, dtype=float).tolist()
-    ys = np.asarray(Y[s], dtype=float).tolist()
-    Rs = _attitude(fwd, np.asarray(acc[s], dtype=float).tolist(), ys[2], ys[0])
+    fwd = _floats(forward_s)  # a list as it is: the runtime converts its declared axis once (runtime E20)
+    ys = Y[s].tolist()  # float arrays: np.asarray(., dtype=float).tolist() without the asarray (E20)
+    Rs = _attitude(fwd, acc[s].tolist(), ys[2], ys[0])
     psi0 = math.atan2(ys[2][1], ys[2][0]) if Rs is None else twist_about_z(Rs)
     if s == 0 and len(Y) == 1:
         return 0.0, psi0
@@ -313,21 +313,20 @@ def coning_yaw(t: np.ndarray, Y: np.ndarray, s: int = 0) -> float:
     +0.023 rad per stride (one sign on every stride: the swing's pitch and roll do not commute); the term
     scales with dt^2 (25x smaller at 100 Hz, 100x at 204.8 Hz). Only the heading chain takes it: the
     levelled step windows (training features) stay as they are."""
-    w = Y[s:, 1]
+    w = Y[s:, 1, :2]  # the rate's x, y (one index, E20)
     if w.shape[0] < 2:
         return 0.0
-    ts = t[s:]
-    dt = ts[1:] - ts[:-1]
+    dt = t[s + 1:] - t[s:-1]
     dt *= dt
     # sum dt^2 (x_k y_k+1 - y_k x_k+1) as the two sums of [x_k y_k+1, y_k x_k+1] (fewer calls per step)
-    p, q = (dt @ (w[:-1, :2] * w[1:, 1::-1])).tolist()
+    p, q = (dt @ (w[:-1] * w[1:, ::-1])).tolist()
     return CONING_COEF * (p - q)
 
 
 def _dpsi(fwd: list[float], acc: np.ndarray, Y: np.ndarray, ys: list, Rs: list | None) -> float:
     """:func:`stride_dpsi` given the start sample's levelled rows ``ys`` and attitude ``Rs``."""
-    ye = np.asarray(Y[-1], dtype=float).tolist()
-    Re = _attitude(fwd, np.asarray(acc[-1], dtype=float).tolist(), ye[2], ye[0])
+    ye = Y[-1].tolist()  # float arrays (E20)
+    Re = _attitude(fwd, acc[-1].tolist(), ye[2], ye[0])
     if Rs is None or Re is None:  # a zeroed sample or the specific force along the forward axis: the
         f, g = ys[2], ye[2]  # forward axis's heading change (pre-L30)
         return math.atan2(f[0] * g[1] - f[1] * g[0], f[0] * g[0] + f[1] * g[1])
@@ -405,9 +404,18 @@ def twist_about_z(R: np.ndarray | list) -> float:
     quaternion (swing-twist decomposition), the quaternion taken from the largest of its four squares
     (Shepperd), so that a half-turn stride (q_w near 0) keeps full precision."""
     (a, b, c), (d, e, f), (g, h, i) = R.tolist() if isinstance(R, np.ndarray) else R
-    sq = (1.0 + a + e + i, 1.0 + a - e - i, 1.0 - a + e - i, 1.0 - a - e + i)  # 4 q_w^2, 4 q_x^2, ...
-    k = max(range(4), key=sq.__getitem__)
-    m = 2.0 * math.sqrt(sq[k])  # 4 q_k
+    # 4 q_w^2, 4 q_x^2, ...; the first largest, as max(range(4), key=sq.__getitem__) without its calls (E20)
+    k, best = 0, 1.0 + a + e + i
+    sq = 1.0 + a - e - i
+    if sq > best:
+        k, best = 1, sq
+    sq = 1.0 - a + e - i
+    if sq > best:
+        k, best = 2, sq
+    sq = 1.0 - a - e + i
+    if sq > best:
+        k, best = 3, sq
+    m = 2.0 * math.sqrt(best)  # 4 q_k
     if k == 0:
         qw, qz = 0.25 * m, (d - b) / m
     elif k == 1:

@@ -134,6 +134,7 @@ class FootLevelling:
         self._pa: tuple[np.ndarray, np.ndarray] | None = None  # acc samples waiting for their gyro
         self._pg: tuple[np.ndarray, np.ndarray] | None = None
         self._fwd = tuple(self.forward.tolist())
+        self.fwd_list = self.forward.tolist()  # for stride_headings, converted once (decision E20)
         self._q: tuple = ()  # the newest Q as 9 Python floats, and its array index
         self._q_at = -1
 
@@ -352,24 +353,24 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
         g0, g1 = col_mean(acc[max(k0 - h, 0): k0 + h + 1]), col_mean(acc[max(k1 - h, 0): k1 + h + 1])
     gx, gy, gz = g0.tolist()
     r0 = gravity_rotation_xyz(gx, gy, gz)
-    ref = (r0 @ state.forward)[:2]
+    ref = r0.dot(state.forward)[:2]  # 2-D products by ndarray.dot: @'s BLAS call without its dispatch (E20)
     nr = vec_norm(ref)
     if nr < 0.1:
         raise DataError("foot unit: the declared forward axis points (nearly) vertically at rest; "
                         "check the declared foot frame (meta.json or the bundle's frames)")
     Q = arr["Q"][j0:j1]
-    A = r0 @ Q[k0].T
-    Y = (arr["Z"][j0:j1].reshape(-1, 3) @ A.T).reshape(n, 3, 3)  # rows (A Q_k x)^T
-    Y = tilt_corrected(Y, A @ (Q[k1] @ g1), k0, k1)
+    A = r0.dot(Q[k0].T)
+    Y = arr["Z"][j0:j1].reshape(-1, 3).dot(A.T).reshape(n, 3, 3)  # rows (A Q_k x)^T
+    Y = tilt_corrected(Y, A.dot(Q[k1].dot(g1)), k0, k1)
     s0 = start_index(t, t0)
-    dpsi, psi0 = stride_headings(state.forward, acc, Y, s0, t)  # decisions L30, L33-L35 (before gravity is removed)
+    dpsi, psi0 = stride_headings(state.fwd_list, acc, Y, s0, t)  # decisions L30, L33-L35 (before gravity is removed)
     a_lev = Y[:, 0]
     a_lev[:, 2] -= math.sqrt(gx * gx + gy * gy + gz * gz)  # |g0| (vec_norm to rounding)
     rx, ry = ref.tolist()
     rx, ry = rx / nr, ry / nr
     ex, ey = principal_horizontal_xy(a_lev, rx, ry) if heading == "pca" else (rx, ry)
-    yaw_t = np.array([[ex, -ey, 0.0], [ey, ex, 0.0], [0.0, 0.0, 1.0]])  # heading_rotation((ex, ey)).T
-    out = (Y.reshape(-1, 3) @ yaw_t).reshape(n, 3, 3)
+    yaw_t = np.array((ex, -ey, 0.0, ey, ex, 0.0, 0.0, 0.0, 1.0)).reshape(3, 3)  # heading_rotation((ex, ey)).T
+    out = Y.reshape(-1, 3).dot(yaw_t).reshape(n, 3, 3)
     return t, out[:, 0], out[:, 1], an, dpsi, step_direction((ex, ey), psi0)  # decision L34
 
 
@@ -417,15 +418,15 @@ def waist_entry(streams, t0: float, t1: float, forward_s: np.ndarray, gyro: bool
             hn = math.sqrt(hx * hx + hy * hy)
             if hn >= 0.1:
                 hc, hs = hx / hn, hy / hn  # (heading_rotation(ref) @ r).T, written out (E17)
-                rr_t = np.array([[hc * r00 + hs * r10, hc * r10 - hs * r00, r2[0]],
-                                 [hc * r01 + hs * r11, hc * r11 - hs * r01, r2[1]],
-                                 [hc * r02 + hs * r12, hc * r12 - hs * r02, r2[2]]])
+                rr_t = np.array((hc * r00 + hs * r10, hc * r10 - hs * r00, r2[0],  # flat + reshape (E20)
+                                 hc * r01 + hs * r11, hc * r11 - hs * r01, r2[1],
+                                 hc * r02 + hs * r12, hc * r12 - hs * r02, r2[2])).reshape(3, 3)
                 if need_acc:
-                    a = acc @ rr_t
+                    a = acc.dot(rr_t)  # ndarray.dot: @'s BLAS product without its dispatch (E20)
                     a[:, 2] -= n
                 else:  # no window channel reads the waist acceleration (the stride kernel never does)
                     a = None
-                return tw, a, (None if gyr is None else gyr @ rr_t), None, float("nan")
+                return tw, a, (None if gyr is None else gyr.dot(rr_t)), None, float("nan")
     a, g = waist_levelled(acc, gyr, forward_s)
     return tw, a, g, None, float("nan")
 
