@@ -129,3 +129,20 @@ def test_dot_products_equal_matmul_in_the_stride_kernel():
         tt = np.minimum(np.maximum(t, t[1]), t[-2])
         r = KW.interp(tt, t, rate)
         assert SK.yaw_change(t, rate, float(t[1]), float(t[-2])) == 0.5 * float((r[1:] + r[:-1]) @ (tt[1:] - tt[:-1]))
+
+
+def test_rest_reference_median_on_floats_is_unchanged():
+    from pdrlearn.kernels import stats as KS
+
+    rng = np.random.default_rng(8)
+    for n in (1, 2, 3, 8, 21, 40, 79):
+        for _ in range(40):
+            a = rng.normal(9.8, 0.5, size=n)
+            g = np.abs(rng.normal(size=n))
+            g[-1] = g[0]  # a tie in the quiet order
+            k = max(1, int(KS.REST_QUIET_FRACTION * n))
+            q = a[g.argsort(kind="stable")[:k]]
+            q.sort()
+            want = float(0.5 * (q[(k - 1) // 2] + q[k // 2]))
+            got = KS.rest_reference(a, g)
+            assert type(got) is float and got == want

@@ -48,7 +48,8 @@ def rest_reference(acc_norm: np.ndarray, gyr_norm: np.ndarray | None) -> float |
     if acc_norm.ndim == 1:  # per-step path: plain indexing (the same values as the batch branch); the
         q = acc_norm[gyr_norm.argsort(kind="stable")[:k]]  # method, not np.argsort's wrapper (runtime E17)
         q.sort()
-        return float(0.5 * (q[(k - 1) // 2] + q[k // 2]))
+        q = q.tolist()  # the median's arithmetic on Python floats: the same IEEE sums, no numpy scalars (E20)
+        return 0.5 * (q[(k - 1) // 2] + q[k // 2])
     q = np.take_along_axis(acc_norm, np.argsort(gyr_norm, axis=-1, kind="stable")[..., :k], axis=-1)
     q.sort(axis=-1)
     return 0.5 * (q[..., (k - 1) // 2] + q[..., k // 2])  # median (odd k: the middle value itself)
