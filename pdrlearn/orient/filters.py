@@ -51,6 +51,7 @@ def unit_data(session: Session, placement: str, *, purpose: str = "localization"
     """
     acc_n, gyr_n, mag_n = _UNIT[placement]
     acc_s = session.require(acc_n, gyr_n, purpose=purpose)
+    session.require_cover(acc_n, gyr_n)  # the gyroscope is interpolated onto the accelerometer's clock
     gyr_s = session.streams[gyr_n]
     frame = session.require_frame(placement)
     if len(acc_s) < 4 or len(gyr_s) < 4:

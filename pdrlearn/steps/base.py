@@ -159,6 +159,11 @@ def stream_on(session: Session, name: str, t: np.ndarray, *, purpose: str) -> np
     check_stream(s, session)
     if s.t.shape == t.shape and np.array_equal(s.t, t):
         return s.values
+    if len(t) and (s.t[0] - t[0] > 1.0 or t[-1] - s.t[-1] > 1.0):  # held values beyond its ends (B11's 1 s)
+        master = next((m.name for m in session.streams.values() if m.t.shape == t.shape and np.array_equal(m.t, t)),
+                      None)
+        if master is not None:
+            session.require_cover(master, name)
     return interp_rows(t, s.t, s.values)
 
 

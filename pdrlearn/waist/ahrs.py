@@ -87,6 +87,7 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     NaN values or a recording shorter than 2 s.
     """
     session.require(ACC, GYR, purpose=purpose)
+    session.require_cover(ACC, GYR)  # interpolated onto the accelerometer's clock: no made-up rates at the ends
     frame = session.require_frame("waist")
     acc_s, gyr_s = session[ACC], session[GYR]
     t = acc_s.t
