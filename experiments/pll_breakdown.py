@@ -19,12 +19,12 @@ from scipy.signal import butter, filtfilt
 
 from pdrlearn.io import read_session
 from pdrlearn.steps import PLLStepDetector
-from pdrlearn.steps.evaluate import match_events
+from pdrlearn.steps.evaluate import match_events, untimed_mask
 from pdrlearn.track import get_pipeline
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.calibration import calibrate
-from pdrlearn.waist.evaluate import steps_in_interval, untimed_mask, waist_metrics
+from pdrlearn.waist.evaluate import steps_in_interval, waist_metrics
 from pdrlearn.waist.params import resolve_params
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -47,10 +47,10 @@ from scipy import signal as sg
 
 from pdrlearn.io import read_session
 from pdrlearn.sim import simulate
-from pdrlearn.steps.evaluate import match_events, score_events
+from pdrlearn.steps.evaluate import match_events, score_events, untimed_mask
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import waist_imu
-from pdrlearn.waist.evaluate import _in_intervals, reference_bouts, untimed_mask
+from pdrlearn.waist.evaluate import _in_intervals, reference_bouts
 from pdrlearn.waist.events import InitialContactDetector, walking_gate
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -60,10 +60,10 @@ import numpy as np
 from pdrlearn.io import read_session
 from pdrlearn.signal import lowpass
 from pdrlearn.sim import simulate
-from pdrlearn.steps.evaluate import match_events
+from pdrlearn.steps.evaluate import match_events, untimed_mask
 from pdrlearn.waist import learned as L
 from pdrlearn.waist.ahrs import waist_imu
-from pdrlearn.waist.evaluate import _in_intervals, reference_bouts, untimed_mask
+from pdrlearn.waist.evaluate import _in_intervals, reference_bouts
 from pdrlearn.waist.events import WALK_THRESHOLD_MPS2, InitialContactDetector
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -57,3 +57,17 @@ def test_steps_and_track_give_one_f1_on_real_daily_activities(path):
     s = read_session(path)
     table = get_detector("waist-ic").detect(s)
     assert score_steps(table, s)["f1"] == pytest.approx(step_metrics(table, s)["step_f1"], abs=1e-12)
+
+
+@pytest.mark.parametrize("bouts", ["none", "no_length", "full"])
+def test_track_and_steps_limit_detections_to_the_labels_alike(bouts):
+    s = _session(untimed=False)
+    if bouts == "none":
+        del s.extras["bouts"]
+    elif bouts == "no_length":
+        s.extras["bouts"] = s.extras["bouts"].drop(columns="length_m")
+    # every contact found plus one detection long before the first labelled contact
+    det = _steps([0.0, *np.arange(1.0, 4.01, 0.5)])
+    sc = score_steps(det, s)
+    assert sc["outside_labels"] == 1 and sc["f1"] == 1.0
+    assert step_metrics(det, s)["step_f1"] == sc["f1"]

@@ -29,7 +29,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.io import Session
-from pdrlearn.steps.evaluate import DEFAULT_TOLERANCE_S, score_events, untimed_mask
+from pdrlearn.steps.evaluate import DEFAULT_TOLERANCE_S, score_events, score_steps
 
 log = logging.getLogger(__name__)
 
@@ -58,23 +58,26 @@ def _in_intervals(x: np.ndarray, starts: np.ndarray, ends: np.ndarray, pad: floa
 
 
 def step_metrics(steps: pd.DataFrame, session: Session, *, tolerance_s: float = DEFAULT_TOLERANCE_S) -> dict:
-    """``step_f1``, ``step_f1_all``, ``ic_timing_mean_ms``, ``ic_timing_sd_ms`` (empty dict without ICs)."""
+    """``step_f1``, ``step_f1_all``, ``ic_timing_mean_ms``, ``ic_timing_sd_ms`` (empty dict without ICs).
+
+    ``step_f1`` is :func:`pdrlearn.steps.evaluate.score_steps`'s F1, so ``track`` and ``steps`` score the
+    same contacts with one rule (decision 19): detections inside the reference bouts (W9; without
+    ``bouts.csv``, inside first..last reference contact) +- the tolerance, those standing for untimed
+    contacts left out."""
     ics = session.extras.get("ics")
     if ics is None or "ic_s" not in ics:
         return {}
     ref = np.sort(ics["ic_s"].dropna().to_numpy(float))
     ev = np.sort(steps["event_s"].to_numpy(float)) if len(steps) else np.zeros(0)
     out = {"step_f1_all": score_events(ev, ref, tolerance_s=tolerance_s)["f1"]}
-    bouts = reference_bouts(session)
-    if bouts is not None:
-        ev = ev[_in_intervals(ev, bouts.start_s.to_numpy(), bouts.end_s.to_numpy(), tolerance_s)]
-    unscored = untimed_mask(ev, session, tolerance_s)
-    ev = ev[~unscored]
-    sc = score_events(ev, ref, tolerance_s=tolerance_s)
+    sc = score_steps(steps.assign(unit="waist") if len(steps) else steps, session, tolerance_s=tolerance_s,
+                     unit="waist")
+    if sc is None:  # no timed contact at all
+        return out
     out.update(step_f1=sc["f1"], step_precision=sc["precision"], step_recall=sc["recall"],
                ic_timing_mean_ms=1e3 * sc["timing_error_mean_s"],
                ic_timing_sd_ms=1e3 * sc["timing_error_sd_s"],
-               n_detected=sc["count"], n_reference=sc["reference_count"], n_unscored=int(unscored.sum()))
+               n_detected=sc["count"], n_reference=sc["reference_count"], n_unscored=sc["unscored_untimed"])
     second = session.extras.get("ics_stereophoto")
     if second is not None and "ic_s" in second and len(second):
         all_ev = np.sort(steps["event_s"].to_numpy(float)) if len(steps) else np.zeros(0)
