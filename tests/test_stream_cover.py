@@ -63,3 +63,13 @@ def test_cli_steps_one_error_line(tmp_path, capsys):
     assert main(["steps", str(d)]) == 2
     err = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
     assert len(err) == 1 and err[0].startswith(f"error: {d / 'wGyroscope.csv'} covers 0.00-5.99 s"), err
+
+
+def test_a_too_short_lower_back_recording_names_the_file_and_the_command():
+    s = read_session(REAL / "mobgap_HA001_Test11_Trial1")
+    short = _cut(_cut(s, "wAccelerometer", t1=1.5), "wGyroscope", t1=1.5)
+    with pytest.raises(DataError) as exc:
+        get_detector("waist-ic").detect(short)
+    msg = str(exc.value)
+    assert str(REAL / "mobgap_HA001_Test11_Trial1" / "wAccelerometer.csv") in msg
+    assert "the waist-ic step detector needs at least 2 s" in msg and "\n" not in msg

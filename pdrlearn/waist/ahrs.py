@@ -69,6 +69,13 @@ def _quat_wxyz_to_rotation(q: np.ndarray) -> Rotation:
     return Rotation.from_quat(np.column_stack([q[:, 1:], q[:, :1]]))
 
 
+def _where(session: Session, stream: str) -> str:
+    """The file of ``stream`` when the session was read from disk, else the session and stream names."""
+    if session.folder is not None:
+        return str(session.folder / f"{stream}.csv")
+    return f"session '{session.name}': {stream}"
+
+
 def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tuple[np.ndarray, np.ndarray,
                                                                                       np.ndarray]:
     """Waist accelerometer and gyroscope on the accelerometer's timestamps, in the body frame FLU.
@@ -92,11 +99,11 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     acc_s, gyr_s = session[ACC], session[GYR]
     t = acc_s.t
     if len(acc_s) < 2 or acc_s.duration_s < 2.0:
-        raise DataError(f"session '{session.name}': {ACC} covers {acc_s.duration_s:.2f} s; "
-                        "waist dead reckoning needs at least 2 s of data")
+        raise DataError(f"{_where(session, ACC)} covers {acc_s.duration_s:.2f} s; "
+                        f"{purpose} needs at least 2 s of data: record a longer session")
     for s in (acc_s, gyr_s):
         if not np.all(np.isfinite(s.values)):
-            raise DataError(f"session '{session.name}': {s.name} contains NaN or infinite values; "
+            raise DataError(f"{_where(session, s.name)} contains NaN or infinite values; "
                             "clean or interpolate the recording first")
     acc = acc_s.values
     gaps = acc_s.gaps()
