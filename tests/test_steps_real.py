@@ -51,7 +51,8 @@ def test_pll_real_lower_back_straight_walk(real_dir):
 @pytest.mark.parametrize("subject, floor", [("HA001", 0.87), ("HA002", 0.65), ("MS001", 0.75)])
 def test_pll_daily_activities_keep_slow_walking(subject, floor):
     """Decision 18: the PLL's gate is the waist motion gate (W4, std 0.5 m/s^2); decision 6's 0.5 m^2/s^4
-    dropped the slow Test11 walking (F1 0.852 / 0.575 / 0.749; now 0.882 / 0.667 / 0.754)."""
+    dropped the slow Test11 walking (F1 0.852 / 0.575 / 0.749; then 0.882 / 0.667 / 0.754, 0.882 / 0.719 / 0.765
+    with untimed INDIP contacts unscored, decision 19)."""
     from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
     from tests.conftest import external_session
 
