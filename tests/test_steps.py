@@ -22,6 +22,7 @@ from pdrlearn.steps import (
 from pdrlearn.steps._kernels import PelvicParams, pelvic_score
 from pdrlearn.steps.align import align_events, align_units, apply_alignment
 from pdrlearn.steps.segment import segment_steps
+from tests.steps_helpers import chunked
 
 G = 9.80665
 
@@ -194,18 +195,6 @@ def test_standing_gives_no_steps():
 
 
 # ---------------------------------------------------------------------------------------------------
-def _chunked(det, session_inputs, cuts):
-    t, v, ctx = session_inputs
-    online = det.online(1.0 / np.median(np.diff(t)), **ctx)
-    parts, i = [], 0
-    for c in cuts:
-        parts.append(online.push(t[i:i + c], v[i:i + c]))
-        i += c
-    parts.append(online.push(t[i:], v[i:]))
-    parts.append(online.flush())
-    return pd.concat(parts, ignore_index=True)
-
-
 _SESSIONS = {}
 
 
@@ -226,7 +215,7 @@ def _inputs(name):
 def test_online_equals_offline(name, cuts):
     s, det, inputs = _inputs(name)
     offline = det.detect(s)
-    online = _chunked(det, inputs, cuts)
+    online = chunked(det, inputs, cuts)
     assert len(offline) > 5
     pd.testing.assert_frame_equal(offline.reset_index(drop=True), online, check_dtype=False)
 

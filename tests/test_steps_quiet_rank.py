@@ -52,13 +52,13 @@ def test_decision16_online_in_odd_chunks_equals_offline(fs, cuts):
     # pushes: chunked at odd sizes through the hesitation, the online detector gives the offline strides
     import pandas as pd
 
-    from tests.test_steps import _chunked
+    from tests.steps_helpers import chunked
 
     s, _ = _hesitating(fs)
     det = AccelStepDetector()
     offline = det.detect(s)
     assert len(offline) >= 12
-    pd.testing.assert_frame_equal(offline.reset_index(drop=True), _chunked(det, det._inputs(s), cuts),
+    pd.testing.assert_frame_equal(offline.reset_index(drop=True), chunked(det, det._inputs(s), cuts),
                                   check_dtype=False)
 
 

@@ -20,6 +20,7 @@ from pdrlearn.steps.waist_ic import WaistICStepDetector
 from pdrlearn.track.waist import MAX_STEP_S, track_waist
 from pdrlearn.waist.ahrs import MADGWICK_GAIN, waist_imu
 from pdrlearn.waist.events import WALK_THRESHOLD_MPS2, InitialContactDetector
+from tests.steps_helpers import chunked
 
 _CACHE: dict = {}
 
@@ -57,16 +58,11 @@ def test_offline_equals_track_waist_pendulum_contacts(real_dir, name):
 @given(cuts=st.lists(st.integers(0, 400), min_size=1, max_size=8))
 def test_online_in_random_chunks_equals_offline(mobgap_test5, cuts):
     s, det, offline, (t, v, ctx) = _test5(mobgap_test5)
-    online = det.online(1.0 / np.median(np.diff(t)), **ctx)
-    parts, i = [], 0
-    for c in cuts:
-        part = online.push(t[i:i + c], v[i:i + c])
+
+    def nothing_before_flush(part):
         assert len(part) == 0  # decision 17: every contact is decided at flush
-        parts.append(part)
-        i += c
-    parts.append(online.push(t[i:], v[i:]))
-    parts.append(online.flush())
-    got = pd.concat(parts, ignore_index=True)
+
+    got = chunked(det, (t, v, ctx), cuts, each=nothing_before_flush)
     assert len(offline) > 5
     pd.testing.assert_frame_equal(offline.reset_index(drop=True), got, check_dtype=False)
 
@@ -143,14 +139,7 @@ def test_realtime_online_in_random_chunks_equals_its_detect(mobgap_test5, cuts):
     if "rt" not in _CACHE:
         _CACHE["rt"] = (det.detect(s), det._inputs(s))
     offline, (t, v, ctx) = _CACHE["rt"]
-    online = det.online(1.0 / np.median(np.diff(t)), **ctx)
-    parts, i = [], 0
-    for c in cuts:
-        parts.append(online.push(t[i:i + c], v[i:i + c]))
-        i += c
-    parts.append(online.push(t[i:], v[i:]))
-    parts.append(online.flush())
-    pd.testing.assert_frame_equal(offline.reset_index(drop=True), pd.concat(parts, ignore_index=True),
+    pd.testing.assert_frame_equal(offline.reset_index(drop=True), chunked(det, (t, v, ctx), cuts),
                                   check_dtype=False)
 
 
