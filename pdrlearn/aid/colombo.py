@@ -319,6 +319,9 @@ class ColomboTracker(ParamsMixin):
         if len(t) < 10:
             raise DataError(f"session '{session.name}': wAccelerometer has only {len(t)} samples")
         acc = acc_s.values @ M.T
+        # B21: the gyroscope (and the magnetometer) are interpolated onto the accelerometer's clock
+        session.require_cover("wAccelerometer", "wGyroscope",
+                              *(("wMagneticField",) if self.use_magnetometer and "wMagneticField" in session else ()))
         gyr = np.column_stack([np.interp(t, gyr_s.t, gyr_s.values[:, i]) for i in range(3)]) @ M.T
         mag = None
         if self.use_magnetometer and "wMagneticField" in session:

@@ -155,6 +155,10 @@ def run(
 
         session = read_session(session_dir)
         bundle.check_streams({n: st.rate_hz for n, st in session.streams.items()}, where=f"session '{session.name}'")
+        from pdrlearn.track.plasys import require_stride_cover
+
+        sensors = bundle.manifest["sensors"]
+        require_stride_cover(session, [*sensors["required"], *sensors.get("optional", [])])  # decision B21
         warn_gaps(session, bundle.manifest["sensors"]["required"],
                   "the runtime replays across them (a stride spanning one is unreliable) - re-record or trim the "
                   "session, or use `pdrlearn track`, which ends the walk at a gap")

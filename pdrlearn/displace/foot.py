@@ -30,6 +30,9 @@ def force_stance(session: Session, t: np.ndarray, gyr: np.ndarray | None = None,
     names = [n for n in ("fForceA", "fForceB") if n in session.streams and len(session.streams[n]) >= 2]
     if not names:
         return None
+    acc = session.streams.get("fAccelerometer")
+    if acc is not None and acc.t.shape == np.shape(t) and np.array_equal(acc.t, t):  # B21: on its clock
+        session.require_cover("fAccelerometer", *names)
     loaded = np.zeros(t.shape[0], dtype=bool)
     for n in names:
         s = session.streams[n]

@@ -65,6 +65,7 @@ def unit_data(session: Session, placement: str, *, purpose: str = "localization"
     gyr = interp_rows(t, gyr_s.t, gyr_s.values) @ R.T
     mag = None
     if mag_n and mag_n in session.streams and len(session.streams[mag_n]) >= 2:
+        session.require_cover(acc_n, mag_n)  # B21: a stopped compass would hold its last field (the heading)
         m = session.streams[mag_n]
         mag = interp_rows(t, m.t, m.values) @ R.T
     return UnitData(placement, t, acc, gyr, mag, float(acc_s.rate_hz))

@@ -131,6 +131,7 @@ def _unit_calibration(session: Session, unit: str, *, min_s: float, max_s: float
     gyr_s = session.require(gyr_name, purpose=f"{unit} standstill calibration")
     if len(acc_s) < 2 or len(gyr_s) < 2:
         raise DataError(f"session '{session.name}': {unit} streams are empty; nothing to calibrate")
+    session.require_cover(acc_name, gyr_name)  # B21: interpolated onto the accelerometer's clock below
     t = acc_s.t
     gyr = interp_rows(t, gyr_s.t, gyr_s.values)
     fs = acc_s.rate_hz

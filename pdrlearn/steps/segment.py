@@ -15,6 +15,7 @@ def _still_runs(session: Session, unit: str) -> tuple[np.ndarray, list[tuple[int
     acc_name, gyr_name = UNIT_STREAMS[unit]
     acc = session.require(acc_name, purpose=f"{unit} step segmentation")
     if gyr_name in session:
+        session.require_cover(acc_name, gyr_name)  # B21: no held rates beyond the gyroscope's ends
         gyr = interp_rows(acc.t, session[gyr_name].t, session[gyr_name].values)
     else:
         gyr = np.zeros_like(acc.values)

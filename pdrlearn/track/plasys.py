@@ -39,7 +39,7 @@ from pdrlearn.errors import DataError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain, calibrated_stride_sd
-from pdrlearn.kernels.window import available_groups, levelled_units
+from pdrlearn.kernels.window import GROUP_STREAMS, available_groups, levelled_units
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.track.base import TrackResult, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
@@ -246,6 +246,17 @@ def _distance_gain(requested: float | None, model, fs: float, warnings: list[str
     return float(rec.get("gain", 1.0)), "model", sd
 
 
+def require_stride_cover(session: Session, names) -> None:
+    """Decision B21 for the stride-local kernel of the streaming runtime (``track --streaming``, ``pdrlearn
+    run`` replaying a session): strides come from the foot gyroscope and each stride's samples of every other
+    stream in ``names`` (foot accelerometer, force, waist, barometer) are cut and interpolated there, so each
+    must cover the gyroscope's span (:meth:`~pdrlearn.io.session.Session.require_cover`): a waist
+    accelerometer that stopped after 60 s of 90 s turned the sim D_u1 replay's final position by 27 m, a foot
+    accelerometer that stopped there cut its distance by 31 %, without a word."""
+    used = {n for group in GROUP_STREAMS.values() for n in group}
+    session.require_cover("fGyroscope", *(n for n in names if n in used and n != "fGyroscope" and n in session))
+
+
 def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
     """Mean waist heading over each stride window (rad)."""
     s = steps["start_s"].to_numpy(float)
@@ -430,6 +441,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         hsrc = "foot"
     lateral = np.arctan2(disp[:, 1], np.abs(disp[:, 0])) * np.where(disp[:, 0] < 0, -1.0, 1.0)
     if hsrc in ("waist", "fused"):
+        work.require_cover("fAccelerometer", "wAccelerometer")  # B21: the waist heading is read at the strides
         wh = WaistHeading().fit_session(work)
         warnings += wh.warnings_
         head = _stride_heading(wh, strides)
@@ -518,6 +530,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
 
     streams = {n: (s.t, s.values) for n, s in session.streams.items()}
     available = available_groups(streams)
+    require_stride_cover(session, [n for g in available for n in GROUP_STREAMS[g]])
     forward = {p: _declared_forward(session, p) for p in ("foot", "waist")
                if p in session.frames and f"{p}_acc" in available}
     seg_params = dict(params or {})
