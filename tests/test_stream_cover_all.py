@@ -110,7 +110,7 @@ def test_plasys_refuses_a_force_sensor_or_waist_stopping_early(walk, tmp_path, n
     d = _cut_file(walk, tmp_path / "cut", name, 10.0)
     with pytest.raises(DataError) as exc:
         get_pipeline("plasys")(read_session(d), method="M2")
-    _one_line(exc, d, name)
+    assert "but fAccelerometer" in _one_line(exc, d, name)
 
 
 @pytest.mark.parametrize("name", ["fAccelerometer", "fForceB", "wGyroscope", "wBarometer"])

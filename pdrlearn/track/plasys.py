@@ -251,7 +251,7 @@ def require_stride_cover(session: Session, names) -> None:
     run`` replaying a session): strides come from the foot gyroscope and each stride's samples of every other
     stream in ``names`` (foot accelerometer, force, waist, barometer) are cut and interpolated there, so each
     must cover the gyroscope's span (:meth:`~pdrlearn.io.session.Session.require_cover`): a waist
-    accelerometer that stopped after 60 s of 90 s turned the sim D_u1 replay's final position by 27 m, a foot
+    accelerometer that stopped after 60 s of 90 s moved the sim D_u1 replay's final position by 28 m, a foot
     accelerometer that stopped there cut its distance by 31 %, without a word."""
     used = {n for group in GROUP_STREAMS.values() for n in group}
     session.require_cover("fGyroscope", *(n for n in names if n in used and n != "fGyroscope" and n in session))
