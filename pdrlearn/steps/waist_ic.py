@@ -71,7 +71,8 @@ class _WaistICProcessor:
 class _RealtimeProcessor:
     """Decision W31 on a stream: a streaming Madgwick AHRS, then every ``hop_s`` the offline IC detector on
     the last ``history_s + delay_s + hop_s`` seconds decides the contacts ``delay_s`` to ``delay_s + hop_s``
-    old, once (the loop of :func:`pdrlearn.waist._kernels.delayed_decisions`, one decision time at a time).
+    old, once (:class:`pdrlearn.waist._kernels.DelayedDecider`, the state of ``track --realtime``'s
+    :func:`~pdrlearn.waist._kernels.delayed_decisions`, fed as the samples arrive).
     A contact is reported once the next one is decided or no next one can follow within ``max_step_s``."""
 
     def __init__(self, det: WaistICStepDetector, fs: float, rotation=None, gaps=None):
@@ -81,10 +82,7 @@ class _RealtimeProcessor:
         self.rotation = None if rotation is None else np.asarray(rotation, dtype=float).reshape(3, 3)
         self.gaps = gaps or {}
         self.ic_det = det.ic_detector()
-        self.hop = max(1, int(round(det.hop_s * fs)))  # as K.delayed_decisions
-        self.dly = int(round(det.delay_s * fs))
-        self.keep = int(round(det.history_s * fs)) + self.dly + self.hop
-        self.min_gap = max(1, int(round(0.3 * fs)))  # K.delayed_decisions' min_step_s (W16)
+        self.decider = K.DelayedDecider(fs, delay_s=det.delay_s, hop_s=det.hop_s, history_s=det.history_s)
         self.max_gap = K._max_gap(det.max_step_s, fs)
         self.n0 = max(1, int(round(INIT_S * fs)))  # the AHRS's initial attitude (pdrlearn.waist.ahrs.waist_imu)
         self.raw: list[np.ndarray] = []  # samples before the initial attitude is known
@@ -95,10 +93,7 @@ class _RealtimeProcessor:
         self.b0 = 0  # absolute index of the first buffered sample
         self.buf: dict[str, np.ndarray] = {}
         self.n = 0
-        self.next_t = self.hop
-        self.done = -1
         self.decided: list[tuple[int, float, float]] = []  # (ic index, ic time, fc time) not yet reported
-        self.decided_last = -1  # index of the last decided contact
 
     # -- AHRS ------------------------------------------------------------------------------------
     def _nav(self, t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, first: bool) -> None:
@@ -132,30 +127,28 @@ class _RealtimeProcessor:
         self.n += len(t)
 
     # -- decisions -------------------------------------------------------------------------------
-    def _decide(self, tt: int, final: bool) -> None:
+    def _detect(self, lo: int, hi: int):
+        """The offline IC detector on the buffered samples ``[lo, hi)`` (absolute indices)."""
         from pdrlearn.waist.ahrs import WaistIMU
 
-        upto = self.n - 1 if final else tt - self.dly
-        if upto <= self.done:
-            return
-        lo = max(0, tt - self.keep)
-        a, b = lo - self.b0, tt - self.b0
+        a, b = lo - self.b0, hi - self.b0
         w = {k: v[a:b] for k, v in self.buf.items()}
         imu = WaistIMU(t=w["t"], fs=self.fs, acc_nav=w["acc_nav"], gyr_nav=w["gyr_nav"], yaw=w["yaw"],
                        acc_v=w["acc_v"], acc_h=w["acc_nav"][:, :2], acc_ap=w["acc_ap"], acc_ml=w["acc_ml"])
-        ic, fc, _ = self.ic_det._offline(imu)
-        for i, f in zip(np.asarray(ic) + lo, np.asarray(fc) + lo, strict=True):
-            if self.done < i <= upto and (self.decided_last < 0 or i - self.decided_last >= self.min_gap):
-                self.decided.append((int(i), float(self.buf["t"][i - self.b0]), float(self.buf["t"][f - self.b0])))
-                self.decided_last = int(i)
-        self.done = upto
+        return self.ic_det._offline(imu)
+
+    def _decide(self, end: bool) -> None:
+        t = self.buf["t"]
+        for i, f, _, _ in self.decider.decide_until(self.n, self._detect, end=end):
+            self.decided.append((i, float(t[i - self.b0]), float(t[f - self.b0])))
 
     def _report(self, final: bool) -> list:
         from pdrlearn.track.gaps import cut_steps_at_gaps
         from pdrlearn.waist.events import steps_from_events
 
         out = []
-        t_done = self.buf["t"][self.done - self.b0] if self.buf and self.done >= self.b0 else -np.inf
+        done = self.decider.done
+        t_done = self.buf["t"][done - self.b0] if self.buf and done >= self.b0 else -np.inf
         while self.decided:
             i, ti, tf = self.decided[0]
             if len(self.decided) < 2 and not final and not t_done - ti > self.det.max_step_s:
@@ -173,7 +166,8 @@ class _RealtimeProcessor:
 
     def _trim(self) -> None:
         # keep the next decision's window, the final one's (flush at n >= next_t - hop) and t[done]
-        drop = max(0, min(self.next_t - self.hop - self.keep, self.done) - self.b0)
+        d = self.decider
+        drop = max(0, min(d.next_t - d.hop - d.span, d.done) - self.b0)
         if drop > 0:
             self.buf = {k: v[drop:] for k, v in self.buf.items()}
             self.b0 += drop
@@ -193,9 +187,7 @@ class _RealtimeProcessor:
             t, v, first = tt, vv, True
             self._start(v)
         self._nav(t, v[:, :3], v[:, 3:6], first)
-        while self.next_t <= self.n:
-            self._decide(self.next_t, final=False)
-            self.next_t += self.hop
+        self._decide(end=False)
         out = self._report(final=False)
         self._trim()
         return out
@@ -219,7 +211,7 @@ class _RealtimeProcessor:
             self._nav(tt, vv[:, :3], vv[:, 3:6], True)
         if self.n == 0:
             return []
-        self._decide(self.n, final=True)
+        self._decide(end=True)
         return self._report(final=True)
 
 

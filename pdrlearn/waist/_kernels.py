@@ -443,23 +443,69 @@ def _nearest_local_max_before(x: np.ndarray, k: int, lo: int, *, level: np.ndarr
 DECISION_DELAY_S = 1.75  # W31: a contact is decided 1.75 to < 2.0 s after it (thesis: realtime delay < 2 s)
 DECISION_HOP_S = 0.25  # W31: decisions every 0.25 s
 DECISION_HISTORY_S = 10.0  # W31: samples before the decision window the sequence rules may look at
+DECISION_MIN_STEP_S = 0.3  # W31: a contact within the shortest step (W16: 0.3 s) of the last decided one repeats it
+
+
+class DelayedDecider:
+    """The state of decision W31's decisions, fed one stretch of samples at a time.
+
+    Decision times lie on a grid of ``hop_s`` from the first sample. At a decision time ``T`` the caller's
+    ``detect(lo, T)`` runs on the samples ``[lo, T)`` only (``lo = T - span``, clipped at 0, ``span`` =
+    ``history_s + delay_s + hop_s``) and returns ``(ic, fc, anchor)`` indices relative to ``lo``; the contacts
+    whose IC lies in ``(T - hop_s - delay_s, T - delay_s]`` are decided there, once, and never revised. A
+    contact closer than ``round(min_step_s * fs)`` samples after the last decided one is the same step seen
+    again from a later window and is not repeated. The end of the data is one more decision time that
+    decides all remaining contacts (:meth:`decide_until` with ``end``).
+
+    Used by :func:`delayed_decisions` (a whole recording) and by the ``waist-ic`` step detector's streaming
+    mode (:mod:`pdrlearn.steps.waist_ic`, steps decision 17), which keeps only the last ``span`` samples.
+    """
+
+    def __init__(self, fs: float, *, delay_s: float = DECISION_DELAY_S, hop_s: float = DECISION_HOP_S,
+                 history_s: float = DECISION_HISTORY_S, min_step_s: float = DECISION_MIN_STEP_S):
+        self.hop = max(1, int(round(hop_s * fs)))
+        self.dly = int(round(delay_s * fs))
+        self.span = int(round(history_s * fs)) + self.dly + self.hop  # samples a decision's detector sees
+        self.min_gap = max(1, int(round(min_step_s * fs)))
+        self.next_t = self.hop  # the next decision time on the grid (samples from the first one)
+        self.done = -1  # contacts with an IC up to this sample are decided
+        self.last: int | None = None  # the IC of the last decided contact
+
+    def decide_until(self, n: int, detect, *, end: bool = False) -> list[tuple[int, int, int, int]]:
+        """Decide at every grid time up to ``n`` samples (``end``: before ``n``, then at ``n`` itself, which
+        decides every contact left: the data ends there). Returns the new ``(ic, fc, anchor, decided)``
+        (absolute sample indices; ``decided`` the decision time) in increasing order."""
+        out: list[tuple[int, int, int, int]] = []
+        while self.next_t <= n and not (end and self.next_t == n):
+            self._decide(self.next_t, self.next_t - self.dly, detect, out)
+            self.next_t += self.hop
+        if end:
+            self._decide(n, n - 1, detect, out)
+        return out
+
+    def _decide(self, tt: int, upto: int, detect, out: list) -> None:
+        if upto <= self.done:
+            return
+        lo = max(0, tt - self.span)
+        ic, fc, an = detect(lo, tt)
+        for a, b, c in zip(np.asarray(ic) + lo, np.asarray(fc) + lo, np.asarray(an) + lo, strict=True):
+            if self.done < a <= upto and (self.last is None or a - self.last >= self.min_gap):
+                out.append((int(a), int(b), int(c), tt))
+                self.last = int(a)
+        self.done = upto
 
 
 def delayed_decisions(n: int, fs: float, detect, *, delay_s: float = DECISION_DELAY_S,
                       hop_s: float = DECISION_HOP_S, history_s: float = DECISION_HISTORY_S,
-                      min_step_s: float = 0.3, final: bool = True
+                      min_step_s: float = DECISION_MIN_STEP_S, final: bool = True
                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Causal contacts with a bounded decision delay from an offline detector (decision W31).
+    """Causal contacts with a bounded decision delay from an offline detector (decision W31), on ``n`` samples.
 
-    At each decision time ``T`` on a grid of ``hop_s`` from the first sample, ``detect(lo, T)`` runs on
-    the samples ``[lo, T)`` only (``lo = T - history_s - delay_s - hop_s``, clipped at 0) and returns
-    ``(ic, fc, anchor)`` indices relative to ``lo``; the contacts whose IC lies in
-    ``(T - hop_s - delay_s, T - delay_s]`` are decided there, once, and never revised. A contact is thus
-    decided at least ``delay_s`` and less than ``delay_s + hop_s`` after it happens (``T - ic``), with the
-    whole-sequence rules of the offline detector (rhythm, alternation: W18, W20, W23, W28) seeing ``delay_s``
-    of what follows it.
-    A contact closer than ``round(min_step_s * fs)`` samples after the last decided one is the same step
-    seen again from a later window and is not repeated. With ``final`` the end of the data is one more
+    :class:`DelayedDecider` over the whole data: ``detect(lo, T)`` runs on the samples ``[lo, T)`` at each
+    decision time ``T`` and the contacts whose IC lies in ``(T - hop_s - delay_s, T - delay_s]`` are decided
+    there, once. A contact is thus decided at least ``delay_s`` and less than ``delay_s + hop_s`` after it
+    happens (``T - ic``), with the whole-sequence rules of the offline detector (rhythm, alternation: W18,
+    W20, W23, W28) seeing ``delay_s`` of what follows it. With ``final`` the end of the data is one more
     decision time that decides all remaining contacts (a stream that ends); without it the last
     ``delay_s`` stay undecided. A prefix of the data gives the same contacts as the whole data up to
     the prefix's last decision time minus ``delay_s``.
@@ -469,33 +515,10 @@ def delayed_decisions(n: int, fs: float, detect, *, delay_s: float = DECISION_DE
     ic, fc, anchor, decided : sample indices (int arrays of equal length), increasing; ``decided`` is the
     decision time (the first sample the decision did not see).
     """
-    hop = max(1, int(round(hop_s * fs)))
-    dly = int(round(delay_s * fs))
-    hist = int(round(history_s * fs))
-    min_gap = max(1, int(round(min_step_s * fs)))
-    times = list(range(hop, n + 1, hop))
-    if final and (not times or times[-1] != n):
-        times.append(n)
-    out_ic: list[int] = []
-    out_fc: list[int] = []
-    out_an: list[int] = []
-    out_dt: list[int] = []
-    done = -1  # contacts with an IC up to this sample are decided
-    for tt in times:
-        upto = n - 1 if (final and tt == n) else tt - dly
-        if upto <= done:
-            continue
-        lo = max(0, tt - hist - dly - hop)
-        ic, fc, an = detect(lo, tt)
-        for a, b, c in zip(np.asarray(ic) + lo, np.asarray(fc) + lo, np.asarray(an) + lo, strict=True):
-            if done < a <= upto and (not out_ic or a - out_ic[-1] >= min_gap):
-                out_ic.append(int(a))
-                out_fc.append(int(b))
-                out_an.append(int(c))
-                out_dt.append(tt)
-        done = upto
-    return (np.array(out_ic, dtype=int), np.array(out_fc, dtype=int), np.array(out_an, dtype=int),
-            np.array(out_dt, dtype=int))
+    rows = DelayedDecider(fs, delay_s=delay_s, hop_s=hop_s, history_s=history_s,
+                          min_step_s=min_step_s).decide_until(n, detect, end=final)
+    cols = np.array(rows, dtype=int).reshape(-1, 4)
+    return cols[:, 0].copy(), cols[:, 1].copy(), cols[:, 2].copy(), cols[:, 3].copy()
 
 
 def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
