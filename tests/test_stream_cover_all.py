@@ -14,19 +14,11 @@ import pytest
 from pdrlearn.cli import main
 from pdrlearn.errors import DataError
 from pdrlearn.io import read_session, write_session
-from pdrlearn.io.session import Stream
+from tests.test_stream_cover import _cut
 
 REAL = Path(__file__).resolve().parents[1] / "datasets" / "real"
 MOBGAP = REAL / "mobgap_HA001_Test11_Trial1"  # 137.6 s lower back (acc, gyr, magnetometer, barometer)
 GAITMAP = REAL / "gaitmap_level_left"  # foot (acc, gyr)
-
-
-def _cut(session, name: str, t0: float | None = None, t1: float | None = None):
-    s = session.copy()
-    st = s.streams[name]
-    keep = ((st.t >= t0) if t0 is not None else True) & ((st.t <= t1) if t1 is not None else True)
-    s.streams[name] = Stream(name, st.t[keep], st.values[keep])
-    return s
 
 
 def _one_line(exc, folder: Path, name: str) -> str:
