@@ -108,6 +108,8 @@ class Reference:
     intervals : (k, 2) time intervals that the labels cover (s); detections outside are not scored
     description : where the events come from
     ground_truth : ``False`` for a segmentation (``source=detected``): scored by window, no timing error
+    from_ics : the events are lower-back initial contacts (``extras["ics"]``), which may have contacts
+        without a time (``extras["ics_untimed"]``, decision 19)
     """
 
     times: np.ndarray
@@ -115,6 +117,7 @@ class Reference:
     intervals: np.ndarray
     description: str
     ground_truth: bool = True
+    from_ics: bool = False
 
 
 def _span(times: np.ndarray, *more: np.ndarray) -> np.ndarray:
@@ -166,7 +169,7 @@ def reference_events(session: Session, unit: str, *,
         else:
             iv = _span(ics)
             desc = "extras['ics'].ic_s"
-        return Reference(ics, tol, iv + [-tol, tol], desc)
+        return Reference(ics, tol, iv + [-tol, tol], desc, from_ics=True)
     st = session.steps
     if st is None or len(st) == 0:
         return None
@@ -245,7 +248,7 @@ def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = D
     ev = np.sort(steps["event_s"].to_numpy(float))
     inside = in_intervals(ev, ref.intervals)
     scored = ev[inside]
-    untimed = (untimed_mask(scored, session, tolerance_s) if ref.description.startswith("extras['ics']")
+    untimed = (untimed_mask(scored, session, tolerance_s) if ref.from_ics
                else np.zeros(scored.size, dtype=bool))
     out = score_events(scored[~untimed], ref.times, tolerance_s=ref.tolerance_s)
     out["tolerance_s"] = float(tolerance_s)
