@@ -133,8 +133,8 @@ for _name in COMMAND_MODULES:
 def _flags_show_no_type(typer_app: typer.Typer) -> None:
     """Give every boolean flag of the commands an empty ``metavar`` (typer's public ``Option(metavar=...)``):
     typer 0.29's help shows the type of every option, so ``--json <bool>`` read as if it took a value.
-    Flags take none; their type column is now empty. Typer's own ``--help`` keeps its ``<bool>`` (its
-    option is made inside typer, with no setting for it)."""
+    Flags take none; their type column is now empty. Typer's own ``--help`` is click's help option, made
+    when a command is first asked for it: :func:`_help_flag_shows_no_type` gives it the same empty metavar."""
     import inspect
 
     from typer.models import OptionInfo
@@ -149,7 +149,46 @@ def _flags_show_no_type(typer_app: typer.Typer) -> None:
                 info.metavar = ""
 
 
+def _help_flag_shows_no_type() -> None:
+    """The same empty metavar for click's ``--help`` option of every typer command and group (click builds
+    it in ``Command.get_help_option``; typer has no setting for its metavar)."""
+    from typer.core import TyperCommand, TyperGroup
+
+    for cls in (TyperCommand, TyperGroup):
+        if getattr(cls.get_help_option, "_pdrlearn", False):
+            continue
+        original = cls.get_help_option
+
+        def get_help_option(self, ctx, _original=original):
+            option = _original(self, ctx)
+            if option is not None and option.metavar is None:
+                option.metavar = ""
+            return option
+
+        get_help_option._pdrlearn = True
+        cls.get_help_option = get_help_option
+
+
+def reflow_paragraphs(doc: str) -> str:
+    """A command's docstring with each plain paragraph on one line, so that the help wraps it at the
+    terminal's width (typer keeps every source line break: an 80-column help broke sentences in the
+    middle). Paragraphs with an indented line (the examples) are kept as written."""
+    import inspect
+
+    paragraphs = inspect.cleandoc(doc).split("\n\n")
+    return "\n\n".join(p if any(line.startswith(" ") for line in p.splitlines()) else " ".join(p.split("\n"))
+                       for p in paragraphs)
+
+
+def _reflow_help(typer_app: typer.Typer) -> None:
+    for command in typer_app.registered_commands:
+        if command.help is None and command.callback is not None and command.callback.__doc__:
+            command.help = reflow_paragraphs(command.callback.__doc__)
+
+
 _flags_show_no_type(app)
+_help_flag_shows_no_type()
+_reflow_help(app)
 
 
 def main(argv: list[str] | None = None) -> int:
