@@ -23,7 +23,8 @@ Part 2 (candidates; each family is a grid plus "off" = the default detector):
   inseq), vote and retime with PLL or pelvic-gyro
 - turn branch: while the pelvis turns (|yaw rate| of the pipeline's AHRS, moving mean over win seconds,
   above thr deg/s) the pelvic-gyro detector's steps replace the IC contacts ("replace"), or are added
-  where no IC contact is within 0.3 s ("union", also with the PLL)
+  where no IC contact is within 0.3 s ("union", also with the PLL); or the IC detector with a higher FIR
+  cutoff (3 / 3.5 / 4 Hz) replaces the default's contacts there ("cutoff")
 - second gate: the motion gate (2 s std of vertical acceleration > 0.5 m/s^2, W4) also open where the std
   exceeds a lower threshold inside a walking bracket: within `reach` s of an open sample ("near") or in a
   closed stretch shorter than `reach` s between two open ones ("between") -- W30's gate-closed slow steps
@@ -191,6 +192,17 @@ def turn_branch(r: Rec, thr: float, win: float, how: str, other: str = "pelvic-g
     return np.sort(np.concatenate([c, [x for x in q if not c.size or np.min(np.abs(c - x)) >= MIN_STEP_S]]))
 
 
+def turn_cutoff(r: Rec, cutoff: float, thr: float, win: float) -> np.ndarray:
+    """While turning, the IC detector with a higher FIR cutoff (turning steps come faster than the
+    2.5 Hz low-pass of seed 003 sec. 3.1 separates; W41 tried it everywhere)."""
+    key = f"cutoff {cutoff}"
+    if key not in r.ev:
+        r.ev[key] = np.sort(E.InitialContactDetector(cutoff_hz=cutoff).detect(r.imu).steps_["event_s"].to_numpy(float))
+    inturn = turning(r, thr, win)
+    c, q = r.ev["waist-ic"], r.ev[key]
+    return np.sort(np.concatenate([c[~inturn(c)] if c.size else c, q[inturn(q)] if q.size else q]))
+
+
 def _second_gate(low: float, reach: float, mode: str):
     def gate(imu, *, walk_threshold=E.WALK_THRESHOLD_MPS2, causal=False):
         sigma = K.rolling_std(imu.acc_v, imu.fs, causal=causal)
@@ -223,7 +235,9 @@ FAMILIES = {
        for how, o, w in itertools.product(("fill", "vote", "retime"), ("pll", "pelvic-gyro"), (0.1, 0.15, 0.2))],
     "turn branch": [(f"{how} {o} thr{thr} win{win}", lambda r, h=how, o=o, t=thr, n=win: turn_branch(r, t, n, h, o))
                     for how, o in (("replace", "pelvic-gyro"), ("union", "pelvic-gyro"), ("union", "pll"))
-                    for thr, win in itertools.product((45, 60, 90), (1.0, 2.0))],
+                    for thr, win in itertools.product((45, 60, 90), (1.0, 2.0))]
+    + [(f"cutoff {cut} thr{thr} win{win}", lambda r, c=cut, t=thr, n=win: turn_cutoff(r, c, t, n))
+       for cut, thr, win in itertools.product((3.0, 3.5, 4.0), (30, 45, 60), (1.0, 2.0))],
     "second gate": [(f"{m} low{lo} reach{re}", lambda r, m=m, lo=lo, re=re: second_gate(r, lo, re, m))
                     for m, lo, re in itertools.product(("near", "between"), (0.3, 0.35, 0.4, 0.45), (1.0, 2.0, 3.0))],
 }
