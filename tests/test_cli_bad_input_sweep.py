@@ -308,13 +308,50 @@ NEEDS_FRAMES = ["track-M1", "track-M2", "track-M3", "track-M3-streaming", "track
                 "calibrate", "train", "evaluate"]
 
 
+def _unframed(yaw_deg: float = 0.0):
+    """meta.json without "frames"; with ``yaw_deg`` both units also turned about their up axis (y in the
+    thesis frames), so that at 45 deg the data cannot fix which axis is forward (decision D8)."""
+    c, s_ = np.cos(np.radians(yaw_deg)), np.sin(np.radians(yaw_deg))
+
+    def turn(df):
+        x, z = df["x"].to_numpy(), df["z"].to_numpy()
+        df["x"], df["z"] = c * x + s_ * z, -s_ * x + c * z
+        return df
+
+    def apply(d: Path) -> None:
+        _meta(lambda m: m.pop("frames"))(d)
+        if yaw_deg:
+            for name in ("fAccelerometer", "fGyroscope", "wAccelerometer", "wGyroscope", "wMagneticField"):
+                _edit(f"{name}.csv", turn)(d)
+    return apply
+
+
 @pytest.mark.parametrize("command", NEEDS_FRAMES)
 def test_meta_json_without_frames(base, tmp_path, capsys, command):
-    """A meta.json lacking "frames": the commands that need a unit's axes stop with one line naming the unit
-    and the entry to add (info/plot/steps do not need them; run takes the bundle's, with a warning)."""
-    s = _session(base, tmp_path, _meta(lambda m: m.pop("frames")))
+    """A meta.json lacking "frames" on data that does not fix the axes (units turned 45 deg about the
+    vertical): the commands that need a unit's axes stop with one line naming the unit, why the data does
+    not fix them and the entry to add (info/plot/steps do not need them; run takes the bundle's)."""
+    s = _session(base, tmp_path, _unframed(45.0))
     out = tmp_path / "out"
     msg = _one_error_line(_commands(s, out, base["model"])[command], capsys)
     assert "frame" in msg and str(s / "meta.json") in msg and "sim_A_u1_normal_s0" in msg, msg
+    assert "its data does not fix the axes" in msg, msg
     assert '"frames": {"foot": {"x": "forward", "y": "up", "z": "right"}}' in msg or '"frames": {"waist": ' in msg, msg
     assert not out.exists()
+
+
+@pytest.mark.parametrize("command", ["track-M1", "track-M3-streaming", "track-waist-pendulum", "calibrate",
+                                     "evaluate"])
+def test_meta_json_without_frames_infers_them_with_a_warning(base, tmp_path, capsys, command):
+    """Decision D8: without "frames" the axes come from the data, with one warning line per unit naming
+    meta.json, the frame found and the entry to declare if it is wrong."""
+    s = _session(base, tmp_path, _unframed())
+    rc = main(_commands(s, tmp_path / "out", base["model"])[command])
+    err = capsys.readouterr().err
+    lines = [ln for ln in err.splitlines() if "inferred from the data" in ln]
+    assert rc == 0, err
+    assert 1 <= len(lines) <= 2 and len(set(lines)) == len(lines), err
+    assert all(ln.startswith(f"warning: {s / 'meta.json'}: session 'sim_A_u1_normal_s0' declares no axis frame")
+               for ln in lines), err
+    assert any('"frames": {"foot": {"x": "forward", "y": "up", "z": "right"}}' in ln
+               or '"frames": {"waist": {"x": "left", "y": "up", "z": "forward"}}' in ln for ln in lines), err

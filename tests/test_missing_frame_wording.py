@@ -1,12 +1,16 @@
 """One wording for an undeclared unit axis frame (decision B18): the step windows, the orientation filters'
 unit data, the waist AHRS and the Colombo tracker all raise ``Session.require_frame``'s error, which names
-the session's meta.json and the ``frames`` entry to add. Before: three wordings, none with the path."""
+the session's meta.json and the ``frames`` entry to add. Before: three wordings, none with the path. Since
+decision D8 an undeclared frame is inferred from the data; the fixture's units are turned 45 deg about the
+vertical, so the data does not fix the axes and the wording (with the reason) is what every caller gives."""
 
 from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import THESIS_FOOT_FRAME
@@ -15,12 +19,17 @@ from pdrlearn.io.frames import THESIS_FOOT_FRAME
 @pytest.fixture(scope="module")
 def no_frames(tmp_path_factory):
     from pdrlearn.io import read_session, write_session
+    from pdrlearn.signal.frame_inference import remount
     from pdrlearn.sim import simulate
 
     folder = tmp_path_factory.mktemp("nf") / "walk"
-    write_session(simulate("walk", user_seed=2, length_m=15.0), folder)
+    s = simulate("walk", user_seed=2, length_m=15.0)
+    turn = Rotation.from_rotvec(np.radians(45.0) * np.array([0.0, 1.0, 0.0])).as_matrix()
+    for placement in ("foot", "waist"):  # 45 deg about their up axis (y): the data cannot fix forward (D8)
+        s = remount(s, placement, turn)
+    write_session(s, folder)
     meta = json.loads((folder / "meta.json").read_text())
-    meta.pop("frames")
+    meta.pop("frames", None)
     (folder / "meta.json").write_text(json.dumps(meta))
     return read_session(folder)
 

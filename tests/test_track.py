@@ -107,7 +107,7 @@ def test_missing_force_model_and_frame_errors(right):
     with pytest.raises(DataError, match="method"):
         track_plasys(right, method="M9")
     s = right.copy()
-    s.frames = {}
+    s.frames, s.infer_frames = {}, False  # decision D8: otherwise the frame is inferred from the data
     with pytest.raises(DataError, match="frame"):
         track_plasys(s, method="M1")
     s = right.copy()

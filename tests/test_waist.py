@@ -230,7 +230,7 @@ def test_bad_input_errors():
     with pytest.raises(DataError, match="NaN"):
         waist_imu(s)
     s = synth_session()
-    s.frames = {}
+    s.frames, s.infer_frames = {}, False  # decision D8: otherwise the frame is inferred from the data
     with pytest.raises(DataError, match="frame"):
         waist_imu(s)
     from pdrlearn.waist.params import load_params

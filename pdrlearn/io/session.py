@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import copy
 import json
+import logging
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -21,6 +22,8 @@ from pdrlearn.io.sensors import SENSORS, SensorSpec
 
 #: The thesis mounting of each unit: the example of the missing-frame error (:meth:`Session.require_frame`).
 EXAMPLE_FRAMES: dict[str, AxisFrame] = {"foot": THESIS_FOOT_FRAME, "waist": THESIS_WAIST_FRAME}
+
+log = logging.getLogger(__name__)
 
 #: Canonical columns of a steps table (seconds). Other columns are kept as they are.
 STEP_COLUMNS = ("start_s", "end_s")
@@ -143,6 +146,8 @@ class Session:
     frames : placement -> declared :class:`AxisFrame` (absent when not declared)
     folder : the folder it was read from (:func:`pdrlearn.io.read_session`), ``None`` for one built in memory;
         errors about ``meta.json`` name ``folder / "meta.json"``
+    infer_frames : when a unit's frame is not declared, :meth:`require_frame` infers it from the data with a
+        warning (decision D8 in docs/decisions.md); ``False`` restores the plain missing-frame error
     """
 
     name: str
@@ -153,6 +158,8 @@ class Session:
     meta: dict = field(default_factory=dict)
     frames: dict[str, AxisFrame] = field(default_factory=dict)
     folder: Path | None = None
+    infer_frames: bool = True
+    _inferred: dict[str, AxisFrame | str] = field(default_factory=dict, repr=False, compare=False)
 
     # -- access -----------------------------------------------------------------------------------
     def __getitem__(self, name: str) -> Stream:
@@ -201,20 +208,49 @@ class Session:
                     f"its values would be made up for the missing {max(late, 0) + max(early, 0):.2f} s -- {fix}")
 
     def require_frame(self, placement: str) -> AxisFrame:
-        """The declared axis frame of the ``placement`` unit; a :class:`DataError` naming the session's
-        ``meta.json`` and the ``frames`` entry to add when it is not declared (the one wording of every
-        method that needs a unit's axes, decision B18)."""
+        """The axis frame of the ``placement`` unit: the declared one; else (``infer_frames``) the frame
+        inferred from the unit's data (:mod:`pdrlearn.signal.frame_inference`, decision D8), logged once
+        as a warning that names what was found and the ``frames`` entry to declare if it is wrong; else, or
+        when the data does not fix the axes, a :class:`DataError` naming the session's ``meta.json`` and
+        the entry to add (the one wording of every method that needs a unit's axes, decision B18)."""
         frame = self.frames.get(placement)
         if frame is not None:
             return frame
-        example = json.dumps({placement: EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"]).to_dict()})
         where = (f"{self.folder / 'meta.json'}: session '{self.name}'" if self.folder is not None
                  else f"session '{self.name}' (its meta.json)")
+        reason = ""
+        if self.infer_frames:
+            from pdrlearn.signal.frame_inference import infer_session_frame
+
+            if placement not in self._inferred:  # once per session: the frame, or why there is none
+                try:
+                    found = infer_session_frame(self, placement)
+                except DataError as exc:
+                    self._inferred[placement] = str(exc)
+                else:
+                    self._inferred[placement] = found.frame
+                    log.warning("%s declares no axis frame for the %s unit; inferred from the data: \"frames\": "
+                                "%s (%s); if that is wrong, add the right \"frames\" entry to meta.json", where,
+                                placement, json.dumps({placement: found.frame.to_dict()}), found.describe())
+            known = self._inferred[placement]
+            if isinstance(known, AxisFrame):
+                return known
+            reason = f" and its data does not fix the axes ({known})"
+        example = json.dumps({placement: EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"]).to_dict()})
         raise DataError(
-            f"{where} declares no axis frame for the {placement} unit; add a \"frames\" entry giving the body "
-            f"direction of each of its axes (forward, backward, left, right, up, down), e.g. the thesis "
+            f"{where} declares no axis frame for the {placement} unit{reason}; add a \"frames\" entry giving the "
+            f"body direction of each of its axes (forward, backward, left, right, up, down), e.g. the thesis "
             f"mounting \"frames\": {example}"
         )
+
+    def has_frame(self, placement: str) -> bool:
+        """True when :meth:`require_frame` gives the ``placement`` unit a frame (declared, or inferred from
+        the data with its warning); for methods that use a unit only when its axes are known."""
+        try:
+            self.require_frame(placement)
+        except DataError:
+            return False
+        return True
 
     @property
     def placements(self) -> list[str]:

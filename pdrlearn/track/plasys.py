@@ -386,7 +386,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                            dtype=object)
     classes["confidence"] = strides.get("confidence", pd.Series(1.0, index=strides.index)).to_numpy()
     model_bounds = None
-    has_waist = session.has("wAccelerometer", "wGyroscope") and "waist" in session.frames
+    has_waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
     work, alignment = session, None
     if align and cfg["rules"] and has_waist:
         work, alignment = _align(session, warnings)
@@ -532,7 +532,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     available = available_groups(streams)
     require_stride_cover(session, [n for g in available for n in GROUP_STREAMS[g]])
     forward = {p: _declared_forward(session, p) for p in ("foot", "waist")
-               if p in session.frames and f"{p}_acc" in available}
+               if f"{p}_acc" in available and session.has_frame(p)}
     seg_params = dict(params or {})
     strides = SK.stance_strides(*streams["fGyroscope"], seg_params)
     if not len(strides):

@@ -1,0 +1,353 @@
+"""Axis frames inferred from the data, for sessions whose ``meta.json`` declares none (decision D8).
+
+A unit's :class:`~pdrlearn.io.frames.AxisFrame` maps each sensor axis to the nearest signed body
+direction; the pipelines level with gravity themselves, so a pitched or rolled mount needs only that
+nearest mapping (the foot filters take the tilt from the rest specific force, the waist AHRS from its
+mean). What the data fixes:
+
+- **foot**: up = the mean specific force at rest (stance); the medio-lateral axis = the principal axis of
+  the angular rate (the foot rotates in the sagittal plane); its sign from the swing: the largest rotation
+  of a forward stride is the toes-up swing (mid-swing peak; gaitmap's foot frame: swing ``gyr_y`` about
+  -4 rad/s with y = left), i.e. a positive rotation about the body's right; forward = left x up. A pitched
+  mount (an instep sensor is pitched toes-down by ~50 deg) is mapped by the mounting prior
+  :data:`FOOT_PITCH_WINDOW_DEG`: the forward axis is the sagittal sensor axis pitched between 30 deg
+  toes-up and 60 deg toes-down (foot mounts slope toes-down: laces, instep).
+- **waist**: up = the mean specific force; forward = the horizontal axis with the strongest acceleration
+  at step frequency (the anterior-posterior oscillation is at step frequency, the medio-lateral sway at
+  stride frequency), signed by the W2 phase rule (the forward acceleration leads the vertical one by
+  0-90 deg at step frequency; seed 003 sec. 3.1); left = up x forward.
+
+Every check that can fail raises :class:`FrameInferenceError` (a :class:`DataError`) with the reason;
+:meth:`pdrlearn.io.Session.require_frame` adds the file and the ``frames`` entry to declare instead.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.io.frames import _DIRECTIONS, AxisFrame
+
+#: Largest angle (deg) between a body direction found in the data and the sensor axis it is snapped to
+#: (up, medio-lateral, waist forward). 45 deg would be a coin toss; beyond 35 deg the mount is too oblique
+#: for a nearest-axis frame and the session must declare one.
+MAX_SNAP_DEG = 35.0
+#: Foot mounting prior (deg, toes-down positive): the forward sensor axis is the one whose pitch lies in
+#: this 90 deg window. Shoe-top and instep mounts pitch toes-down (gaitmap instep units 45-51 deg, shoe
+#: mounts 0-4 deg, ``rest_acc_mean_mps2`` of their meta.json); a toes-up pitch beyond 30 deg is not a
+#: foot-top mount. Within :data:`PITCH_MARGIN_DEG` of either end the choice is refused as ambiguous.
+FOOT_PITCH_WINDOW_DEG = (-30.0, 60.0)
+PITCH_MARGIN_DEG = 5.0
+#: Foot: least total rest (s) for up; least strides longer than MIN_STRIDE_M (m, horizontal) and least mean
+#: resultant length of their unit directions (1 = all strides point the same way in the unit's frame).
+MIN_REST_S = 0.5
+MIN_STRIDES = 4
+MIN_STRIDE_M = 0.2
+MIN_RESULTANT = 0.5
+#: Waist: least walking (s).
+MIN_WALK_S = 4.0
+#: Waist: the forward axis must carry this factor more step-frequency power than the lateral one, and the
+#: forward/vertical phase (W2) must be this many degrees away from the +-90 deg of 45 deg boundary.
+MIN_AP_POWER_RATIO = 1.5
+MIN_PHASE_MARGIN_DEG = 15.0
+
+
+class FrameInferenceError(DataError):
+    """The data does not fix the unit's axes with confidence (no walking, no rest, ambiguous axes)."""
+
+
+@dataclass
+class InferredFrame:
+    """An inferred frame and what it was found from (``evidence``: the numbers the warning prints)."""
+
+    placement: str
+    frame: AxisFrame
+    evidence: dict = field(default_factory=dict)
+
+    def describe(self) -> str:
+        return ", ".join(f"{k} {v}" for k, v in self.evidence.items())
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    n = float(np.linalg.norm(v))
+    return v / n if n > 0 else v
+
+
+def _angle_deg(a: np.ndarray, b: np.ndarray) -> float:
+    return float(np.degrees(np.arccos(np.clip(abs(float(_unit(a) @ _unit(b))), -1.0, 1.0))))
+
+
+def _nearest_axis(v: np.ndarray, exclude: tuple[int, ...] = ()) -> tuple[int, float, float]:
+    """(sensor axis index, sign, angle deg) of the signed sensor axis nearest the direction ``v``."""
+    v = _unit(v)
+    cand = [i for i in range(3) if i not in exclude]
+    i = max(cand, key=lambda k: abs(v[k]))
+    sub = np.array([v[k] for k in cand])
+    cos = min(1.0, abs(v[i]) / max(float(np.linalg.norm(sub)), 1e-12))
+    return i, float(np.sign(v[i]) or 1.0), float(np.degrees(np.arccos(cos)))
+
+
+def frame_from_axes(forward: tuple[int, float], left: tuple[int, float], up: tuple[int, float]) -> AxisFrame:
+    """The :class:`AxisFrame` of sensor axes (index, sign) pointing forward, left and up."""
+    names = {}
+    for (i, s), (pos, neg) in zip((forward, left, up), (("forward", "backward"), ("left", "right"),
+                                                       ("up", "down")), strict=True):
+        names["xyz"[i]] = pos if s > 0 else neg
+    return AxisFrame(**names)
+
+
+def stride_displacements(acc: np.ndarray, gyr: np.ndarray, fs: float, stance: np.ndarray) -> np.ndarray:
+    """ZUPT displacement (k, 3) m of every rest-to-rest stride, in the sensor frame of its start rest.
+
+    The project's stride integration (:func:`pdrlearn.displace._kernels.strapdown`: levelled by the start
+    rest's specific force, attitude from the gyroscope; :func:`double_integrate` with the ZUPT at both
+    rests), rotated back from the levelled frame into the sensor axes. Strides are stance-run middle to the
+    next stance-run middle, 0.4-3 s long (a stride at 20-150 strides/min)."""
+    from pdrlearn.displace._kernels import double_integrate, level_rotation, strapdown, stride_index
+    from pdrlearn.displace.foot import stance_runs
+
+    t = np.arange(len(acc)) / fs
+    rr = stance_runs(t, stance)
+    if len(rr) < 2:
+        return np.zeros((0, 3))
+    mid = (rr[:, 0] + rr[:, 1] - 1) // 2
+    i0, i1 = mid[:-1], mid[1:]
+    dur = (i1 - i0) / fs
+    ok = (dur >= 0.4) & (dur <= 3.0)
+    i0, i1 = i0[ok], i1[ok]
+    if not len(i0):
+        return np.zeros((0, 3))
+    idx, mask = stride_index(i0, i1)
+    g_body = acc[i0]
+    a_nav, _ = strapdown(acc, gyr, 1.0 / fs, idx, mask, g_body)
+    disp = double_integrate(a_nav, mask, 1.0 / fs)
+    return level_rotation(g_body).inv().apply(disp)
+
+
+def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFrame:
+    """Frame of a foot unit from its specific force (m/s^2) and angular rate (rad/s) on one clock (fs Hz).
+
+    Raises :class:`FrameInferenceError` when the recording has too little rest or walking, or an axis is
+    ambiguous (see the module docstring for the rules and thresholds).
+    """
+    from pdrlearn.displace.foot import inertial_stance
+
+    acc = np.asarray(acc, dtype=float)
+    gyr = np.asarray(gyr, dtype=float)
+    stance = inertial_stance(acc, gyr, fs)
+    if stance.sum() < MIN_REST_S * fs:
+        raise FrameInferenceError(f"the foot unit is never still for {MIN_REST_S:g} s in total (no stance to "
+                                  "find up from)")
+    up = _unit(acc[stance].mean(axis=0))
+    disp = stride_displacements(acc, gyr, fs, stance)
+    hor = disp - np.outer(disp @ up, up)
+    length = np.linalg.norm(hor, axis=1)
+    hor = hor[length > MIN_STRIDE_M] / length[length > MIN_STRIDE_M, None]
+    if len(hor) < MIN_STRIDES:
+        raise FrameInferenceError(f"{len(hor)} strides of more than {MIN_STRIDE_M:g} m between two rests of the "
+                                  f"foot unit (at least {MIN_STRIDES} walking strides are needed)")
+    mean = hor.mean(axis=0)
+    resultant = float(np.linalg.norm(mean))
+    if resultant < MIN_RESULTANT:
+        raise FrameInferenceError(f"the strides point in no common direction of the unit (mean resultant "
+                                  f"{resultant:.2f} < {MIN_RESULTANT:g}; walking back and forth?)")
+    fwd = _unit(mean)
+    left = np.cross(up, fwd)
+    # cross-check: the foot rotates about its medio-lateral axis (principal axis of the angular rate)
+    moving = ~stance
+    w, v = np.linalg.eigh(gyr[moving].T @ gyr[moving] / max(int(moving.sum()), 1))
+    ang_rot = _angle_deg(v[:, 2], left)
+    if ang_rot > MAX_SNAP_DEG:
+        raise FrameInferenceError(f"the foot's main rotation axis is {ang_rot:.0f} deg from the medio-lateral "
+                                  f"direction of its strides (more than {MAX_SNAP_DEG:g})")
+    i_ml, s_ml, ang_ml = _nearest_axis(left)
+    if ang_ml > MAX_SNAP_DEG:
+        raise FrameInferenceError(f"the medio-lateral direction is {ang_ml:.0f} deg from every sensor axis "
+                                  f"(more than {MAX_SNAP_DEG:g}; a yawed mount)")
+    sag = [i for i in range(3) if i != i_ml]
+    lo_w, hi_w = FOOT_PITCH_WINDOW_DEG
+    best = (sag[0], 1.0, 0.0)
+    for i in sag:  # exactly one of the four signed sagittal axes (90 deg apart) lies in the 90 deg window
+        for s in (1.0, -1.0):
+            pitch = float(np.degrees(np.arctan2(-s * up[i], s * fwd[i])))  # toes-down positive
+            if lo_w < pitch <= hi_w:
+                best = (i, s, pitch)
+    i_f, s_f, pitch = best
+    if min(abs(pitch - lo_w), abs(pitch - hi_w)) < PITCH_MARGIN_DEG:
+        raise FrameInferenceError(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
+                                  "deg window that decides which axis is forward")
+    i_u = next(i for i in sag if i != i_f)
+    s_u = float(np.sign(up[i_u]) or 1.0)
+    frame = frame_from_axes((i_f, s_f), (i_ml, s_ml), (i_u, s_u))
+    return InferredFrame("foot", frame, {
+        "up": f"{'xyz'[i_u]}{'+' if s_u > 0 else '-'} (pitch {abs(pitch):.0f} deg "
+              f"{'toes-down' if pitch >= 0 else 'toes-up'}, {ang_ml:.0f} deg roll/yaw)",
+        "forward": f"{'xyz'[i_f]}{'+' if s_f > 0 else '-'} from {len(hor)} strides (resultant {resultant:.2f})",
+        "rotation axis": f"{ang_rot:.0f} deg from medio-lateral",
+    })
+
+
+def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: float = 4.0,
+                  walk_std: float = 0.5) -> tuple[np.ndarray, np.ndarray, float]:
+    """Summed cross-spectra at step frequency over walking windows.
+
+    Returns ``C`` (2, 2) real horizontal cross-power and ``z`` (2,) complex horizontal x vertical
+    cross-spectra, both at each window's step frequency (the vertical peak in 1.2-3.0 Hz), and the time (s)
+    the walking windows cover (vertical std over ``walk_std`` m/s^2, the W4 motion gate)."""
+    n = max(int(round(window_s * fs)), 8)
+    hop = n // 2
+    hann = np.hanning(n)
+    freqs = np.fft.rfftfreq(n, 1.0 / fs)
+    band = (freqs >= 1.2) & (freqs <= min(3.0, 0.45 * fs))  # cadence 72-180 steps/min
+    C = np.zeros((2, 2))
+    z = np.zeros(2, dtype=complex)
+    covered = np.zeros(len(acc_v), dtype=bool)
+    for a in range(0, len(acc_v) - n + 1, hop):
+        v = acc_v[a:a + n]
+        if np.std(v) < walk_std:
+            continue
+        V = np.fft.rfft((v - v.mean()) * hann)
+        if not band.any():
+            break
+        k = int(np.flatnonzero(band)[np.argmax(np.abs(V[band]))])
+        H = np.fft.rfft((acc_h[a:a + n] - acc_h[a:a + n].mean(0)) * hann[:, None], axis=0)[k]
+        C += np.real(np.outer(H, np.conj(H)))
+        z += H * np.conj(V[k])
+        covered[a:a + n] = True
+    return C, z, float(covered.sum()) / fs
+
+
+def _walking_mean(acc: np.ndarray, fs: float, *, window_s: float = 4.0, walk_std: float = 0.5) -> np.ndarray:
+    """Mean specific force over the 4 s windows whose |a| varies by more than ``walk_std`` m/s^2 (the W4
+    motion gate on the norm, which needs no axis): the unit's up while walking, not while sitting or lying;
+    the whole recording's mean when no window walks."""
+    n = max(int(round(window_s * fs)), 8)
+    norm = np.linalg.norm(acc, axis=1)
+    sums, count = np.zeros(3), 0
+    for a in range(0, len(acc) - n + 1, n):
+        if np.std(norm[a:a + n]) >= walk_std:
+            sums += acc[a:a + n].sum(axis=0)
+            count += n
+    return sums / count if count else acc.mean(axis=0)
+
+
+def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFrame:
+    """Frame of a waist (lower-back, belt) unit from its specific force (m/s^2) on one clock (fs Hz).
+
+    ``gyr`` is accepted for symmetry with :func:`infer_foot_frame` and not used. Raises
+    :class:`FrameInferenceError` when there is too little walking or the axes are ambiguous.
+    """
+    from pdrlearn.waist._kernels import forward_sign
+
+    acc = np.asarray(acc, dtype=float)
+    up = _unit(_walking_mean(acc, fs))
+    i_u, s_u, ang_u = _nearest_axis(up)
+    if ang_u > MAX_SNAP_DEG:
+        raise FrameInferenceError(f"gravity is {ang_u:.0f} deg from every sensor axis (more than {MAX_SNAP_DEG:g})")
+    hor = [i for i in range(3) if i != i_u]
+    e = np.eye(3)
+    # horizontal basis: the two other sensor axes made orthogonal to up (the unit's tilt removed)
+    b = [_unit(e[i] - (e[i] @ up) * up) for i in hor]
+    b[1] = _unit(b[1] - (b[1] @ b[0]) * b[0])
+    B = np.column_stack(b)
+    C, z, walk_s = _step_spectra(acc @ up, acc @ B, fs)
+    if walk_s < MIN_WALK_S:
+        raise FrameInferenceError(f"less than {MIN_WALK_S:g} s of walking (vertical acceleration std over 0.5 "
+                                  "m/s^2 in 4 s windows)")
+    w, vecs = np.linalg.eigh(C)
+    ratio = float(w[1] / max(w[0], 1e-12))
+    if ratio < MIN_AP_POWER_RATIO:
+        raise FrameInferenceError(f"no horizontal axis dominates at step frequency (power ratio {ratio:.2f} < "
+                                  f"{MIN_AP_POWER_RATIO:g}): forward and lateral are ambiguous")
+    ap = B @ vecs[:, 1]
+    zc = complex(vecs[:, 1] @ z)
+    lead = float(np.degrees(np.angle(zc)))
+    margin = 90.0 - abs(((lead - 45.0 + 180.0) % 360.0) - 180.0)
+    if abs(margin) < MIN_PHASE_MARGIN_DEG:
+        raise FrameInferenceError(f"the forward/vertical phase at step frequency ({lead:.0f} deg) does not tell "
+                                  "forward from backward")
+    # decision W2: forward when the lead lies within +-90 deg of 45 deg (the one rule, shared with the heading)
+    fwd = ap * forward_sign(np.array([1.0]), np.array([zc.real]), np.array([-zc.imag]), 1.0, 0.0)
+    i_f, s_f, ang_f = _nearest_axis(fwd, exclude=(i_u,))
+    if ang_f > MAX_SNAP_DEG:
+        raise FrameInferenceError(f"the forward direction is {ang_f:.0f} deg from both horizontal sensor axes "
+                                  f"(more than {MAX_SNAP_DEG:g})")
+    left = np.cross(e[i_u] * s_u, e[i_f] * s_f)
+    i_l = int(np.argmax(np.abs(left)))
+    frame = frame_from_axes((i_f, s_f), (i_l, float(np.sign(left[i_l]))), (i_u, s_u))
+    return InferredFrame("waist", frame, {
+        "up": f"{'xyz'[i_u]}{'+' if s_u > 0 else '-'} ({ang_u:.0f} deg tilt)",
+        "forward": f"{'xyz'[i_f]}{'+' if s_f > 0 else '-'} ({ang_f:.0f} deg off, step-frequency power x{ratio:.1f})",
+        "forward lead": f"{lead:.0f} deg over {walk_s:.0f} s of walking",
+    })
+
+
+INFER = {"foot": infer_foot_frame, "waist": infer_waist_frame}
+#: Accelerometer and gyroscope streams of each unit.
+UNIT_STREAMS = {"foot": ("fAccelerometer", "fGyroscope"), "waist": ("wAccelerometer", "wGyroscope")}
+
+
+def infer_session_frame(session, placement: str) -> InferredFrame:
+    """Infer the ``placement`` unit's frame from a :class:`~pdrlearn.io.Session` (the gyroscope on the
+    accelerometer's clock). Raises :class:`FrameInferenceError` (a :class:`DataError`) with the reason."""
+    from pdrlearn.signal.filters import interp_rows
+
+    if placement not in INFER:
+        raise FrameInferenceError(f"no inference for a '{placement}' unit")
+    acc_n, gyr_n = UNIT_STREAMS[placement]
+    missing = [n for n in (acc_n, gyr_n) if n not in session.streams]
+    if missing:
+        raise FrameInferenceError(f"it has no {' or '.join(missing)} to infer it from")
+    acc_s, gyr_s = session.streams[acc_n], session.streams[gyr_n]
+    if len(acc_s) < 8 or len(gyr_s) < 2 or not np.isfinite(acc_s.rate_hz):
+        raise FrameInferenceError("too few samples")
+    acc, gyr = acc_s.values, interp_rows(acc_s.t, gyr_s.t, gyr_s.values)
+    if not (np.isfinite(acc).all() and np.isfinite(gyr).all()):
+        raise FrameInferenceError("NaN or infinite values")
+    return INFER[placement](acc, gyr, float(acc_s.rate_hz))
+
+def remount(session, placement: str, rotation: np.ndarray):
+    """A copy of ``session`` with the ``placement`` unit's 3-axis streams (accelerometer, gyroscope,
+    magnetometer) expressed in a remounted sensor frame: ``v_new = rotation @ v_old``. A declared frame
+    follows (``M rotation^T``) when that is still a signed permutation, else it is dropped (a yaw of 45 deg
+    cannot be declared). For tests and experiments: every orientation of a unit from one recording."""
+    from pdrlearn.io.session import Stream
+
+    R = np.asarray(rotation, dtype=float)
+    out = session.copy()
+    out._inferred = {}
+    for name, st in session.streams.items():
+        if st.placement == placement and st.values.ndim == 2 and st.values.shape[1] == 3:
+            out.streams[name] = Stream(name, st.t.copy(), st.values @ R.T)
+    if placement in out.frames:
+        M = np.round(out.frames[placement].matrix() @ R.T, 9)
+        names = {}
+        for j, axis in enumerate("xyz"):
+            hit = [d for d, v in _DIRECTIONS.items() if np.allclose(M[:, j], v)]
+            if not hit:
+                del out.frames[placement]
+                break
+            names[axis] = hit[0]
+        else:
+            out.frames[placement] = AxisFrame(**names)
+    return out
+
+
+def right_handed_orientations() -> list[np.ndarray]:
+    """The 24 signed permutation matrices with determinant +1 (every 90-degree mounting of a unit)."""
+    import itertools
+
+    out = []
+    for perm in itertools.permutations(range(3)):
+        for signs in itertools.product((1.0, -1.0), repeat=3):
+            P = np.zeros((3, 3))
+            P[[0, 1, 2], list(perm)] = signs
+            if np.linalg.det(P) > 0:
+                out.append(P)
+    return out
+
+
+__all__ = ["FrameInferenceError", "InferredFrame", "infer_foot_frame", "infer_waist_frame", "frame_from_axes",
+           "infer_session_frame", "remount", "right_handed_orientations", "INFER", "UNIT_STREAMS"]
