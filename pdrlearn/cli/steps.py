@@ -13,7 +13,8 @@ from pdrlearn.errors import DataError
 
 _METRICS = ("scored_count", "reference_count", "precision", "recall", "f1", "count_error_pct",
             "timing_error_mean_s", "timing_error_sd_s", "true_positives", "false_positives",
-            "false_negatives", "outside_labels", "unscored_untimed", "total_count", "tolerance_s", "reference",
+            "false_negatives", "outside_labels", "unscored_untimed", "unscored_same_foot_gap",
+            "f1_same_foot_gaps_scored", "total_count", "tolerance_s", "reference",
             "ground_truth")
 
 
@@ -83,7 +84,10 @@ def steps(
                    f"count error {score['count_error_pct']:.1f} %  (tolerance {tolerance:g} s, "
                    f"{score['outside_labels']} detections outside the labelled span"
                    + (f", {score['unscored_untimed']} standing for contacts without a time"
-                      if score["unscored_untimed"] else "") + ")")
+                      if score["unscored_untimed"] else "")
+                   + (f", {score['unscored_same_foot_gap']} in same-foot reference gaps (F1 "
+                      f"{score['f1_same_foot_gaps_scored']:.3f} counting them)"
+                      if score["unscored_same_foot_gap"] else "") + ")")
         if score["ground_truth"]:
             typer.echo(f"timing error {score['timing_error_mean_s']:+.3f} "
                        f"+- {score['timing_error_sd_s']:.3f} s")

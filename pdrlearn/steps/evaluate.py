@@ -231,6 +231,35 @@ def untimed_mask(ev: np.ndarray, session: Session, tolerance_s: float = DEFAULT_
     return out
 
 
+def same_foot_gap_mask(ev: np.ndarray, session: Session, tolerance_s: float = DEFAULT_TOLERANCE_S,
+                       taken: np.ndarray | None = None) -> np.ndarray:
+    """Detections (sorted times ``ev``) that stand for a contact the reference lost without saying so: two
+    consecutive timed contacts of the *same* foot inside one walking bout (``extras["ics"]`` with ``foot``
+    and ``wb_id``) bound a contact of the other foot that INDIP did not record; the first detection farther
+    than ``tolerance_s`` from both ends (and not already in ``taken``) is neither a hit nor a false positive
+    (decision 20 of docs/decisions/steps.md, the rule of :func:`untimed_mask` for a loss with no
+    ``ics_untimed`` entry). A gap that holds an ``ics_untimed`` interval is left to :func:`untimed_mask`."""
+    out = np.zeros(len(ev), dtype=bool)
+    ics = session.extras.get("ics")
+    if ics is None or not {"ic_s", "foot"} <= set(ics.columns) or len(ics) < 2:
+        return out
+    taken = np.zeros(len(ev), dtype=bool) if taken is None else np.asarray(taken, dtype=bool)
+    df = ics.dropna(subset=["ic_s"]).sort_values("ic_s", kind="stable")
+    t = df["ic_s"].to_numpy(float)
+    foot = df["foot"].astype(str).str.lower().to_numpy()
+    bout = df["wb_id"].to_numpy() if "wb_id" in df else np.zeros(len(df))
+    u = session.extras.get("ics_untimed")
+    known = (u[["after_s", "before_s"]].to_numpy(float) if u is not None and len(u)
+             and {"after_s", "before_s"} <= set(u.columns) else np.empty((0, 2)))
+    for i in np.flatnonzero((foot[1:] == foot[:-1]) & (bout[1:] == bout[:-1]) & (t[1:] > t[:-1])):
+        a, b = t[i], t[i + 1]
+        if np.any((known[:, 0] >= a - 1e-9) & (known[:, 1] <= b + 1e-9)):
+            continue
+        inside = np.flatnonzero((ev > a + tolerance_s) & (ev < b - tolerance_s) & ~taken & ~out)
+        out[inside[:1]] = True
+    return out
+
+
 def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = DEFAULT_TOLERANCE_S,
                 unit: str | None = None) -> dict | None:
     """Score a detector's steps table against the session's labels (``None`` without labels).
@@ -239,7 +268,9 @@ def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = D
     says how many were left out (``outside_labels``) and where the reference comes from (``reference``).
     Against lower-back initial contacts, detections that stand for a contact without a time
     (:func:`untimed_mask`) are not scored either (``unscored_untimed``), as in ``pdrlearn track``'s
-    ``step_f1`` (decision 19): the same contacts get the same F1 from ``steps`` and ``track``.
+    ``step_f1`` (decision 19): the same contacts get the same F1 from ``steps`` and ``track``; nor is one
+    detection per same-foot gap of the reference (:func:`same_foot_gap_mask`, ``unscored_same_foot_gap``,
+    decision 20; ``f1_same_foot_gaps_scored`` is the F1 with them counted as false positives).
     """
     unit = unit or (str(steps["unit"].iloc[0]) if len(steps) else steps.attrs.get("unit", "foot"))
     ref = reference_events(session, unit, tolerance_s=tolerance_s)
@@ -250,11 +281,17 @@ def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = D
     scored = ev[inside]
     untimed = (untimed_mask(scored, session, tolerance_s) if ref.from_ics
                else np.zeros(scored.size, dtype=bool))
-    out = score_events(scored[~untimed], ref.times, tolerance_s=ref.tolerance_s)
+    lost = (same_foot_gap_mask(scored, session, tolerance_s, taken=untimed) if ref.from_ics
+            else np.zeros(scored.size, dtype=bool))
+    out = score_events(scored[~(untimed | lost)], ref.times, tolerance_s=ref.tolerance_s)
     out["tolerance_s"] = float(tolerance_s)
     out["scored_count"] = out["count"]
     out["outside_labels"] = int((~inside).sum())
     out["unscored_untimed"] = int(untimed.sum())
+    out["unscored_same_foot_gap"] = int(lost.sum())
+    # the F1 with those detections counted as false positives (they lie > tolerance from every contact)
+    n = out["count"] + int(lost.sum()) + out["reference_count"]
+    out["f1_same_foot_gaps_scored"] = float(2 * out["true_positives"] / n) if n else float("nan")
     out["total_count"] = int(ev.size)
     out["reference"] = ref.description
     out["ground_truth"] = ref.ground_truth

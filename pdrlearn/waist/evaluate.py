@@ -63,7 +63,7 @@ def step_metrics(steps: pd.DataFrame, session: Session, *, tolerance_s: float = 
     ``step_f1`` is :func:`pdrlearn.steps.evaluate.score_steps`'s F1, so ``track`` and ``steps`` score the
     same contacts with one rule (decision 19): detections inside the reference bouts (W9; without
     ``bouts.csv``, inside first..last reference contact) +- the tolerance, those standing for untimed
-    contacts left out."""
+    contacts and one per same-foot reference gap (decision 20) left out."""
     ics = session.extras.get("ics")
     if ics is None or "ic_s" not in ics:
         return {}
@@ -77,7 +77,9 @@ def step_metrics(steps: pd.DataFrame, session: Session, *, tolerance_s: float = 
     out.update(step_f1=sc["f1"], step_precision=sc["precision"], step_recall=sc["recall"],
                ic_timing_mean_ms=1e3 * sc["timing_error_mean_s"],
                ic_timing_sd_ms=1e3 * sc["timing_error_sd_s"],
-               n_detected=sc["count"], n_reference=sc["reference_count"], n_unscored=sc["unscored_untimed"])
+               n_detected=sc["count"], n_reference=sc["reference_count"],
+               n_unscored=sc["unscored_untimed"] + sc["unscored_same_foot_gap"],
+               step_f1_same_foot_gaps_scored=sc["f1_same_foot_gaps_scored"])
     second = session.extras.get("ics_stereophoto")
     if second is not None and "ic_s" in second and len(second):
         all_ev = np.sort(steps["event_s"].to_numpy(float)) if len(steps) else np.zeros(0)
