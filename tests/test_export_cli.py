@@ -105,14 +105,14 @@ def test_session_without_a_needed_sensor_or_at_another_rate_fails(dirs, capsys, 
     s = synthetic_session(8, seed=3, name="fast")
     s.streams = {n: resample_stream(st, 100.0) for n, st in s.streams.items()}
     write_session(s, tmp_path / "fast")
-    _fails(capsys, ["run", str(dirs["root"] / "bundle"), str(tmp_path / "fast")], "sampled at 100 Hz")
+    _fails(capsys, ["run", str(dirs["root"] / "bundle"), str(tmp_path / "fast"), "--no-resample"], "sampled at 100 Hz")
 
 
 def test_tracker_rejects_bad_pushes(dirs):
     from pdrlearn.errors import DataError
     from pdrlearn.runtime.tracker import Tracker
 
-    tr = Tracker(dirs["root"] / "bundle")
+    tr = Tracker(dirs["root"] / "bundle", resample=False)  # the rate refusal (E3) without E22's resampling
     tr.push({"fGyroscope": (np.array([0.0, 0.05]), np.zeros((2, 3)))})
     with pytest.raises(DataError, match="not increasing"):
         tr.push({"fGyroscope": (np.array([0.01]), np.zeros((1, 3)))})

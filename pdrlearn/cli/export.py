@@ -79,6 +79,53 @@ def _frames_of(session, bundle) -> dict:
     return frames
 
 
+def _announce_resampling(bundle, rates: dict, where: str) -> None:
+    """Decision E22: one warning line naming the streams the runtime will resample to the bundle's rate."""
+    import logging
+    import math
+
+    from pdrlearn.runtime.resample import StreamResampler
+
+    s = bundle.manifest["sensors"]
+    used = [*s.get("required", []), *s.get("optional", [])]
+    tol = float(bundle.manifest["sampling"].get("rate_tolerance", 0.05))
+    other = {n: r for n, r in rates.items() if n in used and math.isfinite(r)
+             and abs(r - bundle.rate_hz) > tol * bundle.rate_hz}
+    if not other:
+        return
+    r0 = StreamResampler(max(other.values()), bundle.rate_hz)
+    how = (f"a {len(r0.taps)}-tap linear-phase low-pass, then linear interpolation" if r0.taps is not None
+           else "linear interpolation")
+    logging.getLogger("pdrlearn.cli").warning(
+        "%s: %s sampled at %s Hz, bundle %s at %.4g Hz: resampling to %.4g Hz as the samples stream in (%s; "
+        "strides and classes can differ a little from `pdrlearn track --streaming` at the data's own rate, "
+        "docs/deploying.md); --no-resample refuses instead",
+        where, ", ".join(other), "/".join(sorted({f"{r:.4g}" for r in other.values()})),
+        bundle.path, bundle.rate_hz, bundle.rate_hz, how)
+
+
+def _warn_short_streams(session, tracker, steps) -> None:
+    """Decision E23 for a recording: a stream the bundle uses that ends before the foot gyroscope (which
+    finds the strides) ends the walk there; say where and how much was not tracked."""
+    import logging
+
+    s = tracker.bundle.manifest["sensors"]
+    g = session.streams.get("fGyroscope")
+    if g is None or not len(g):
+        return
+    for n in [*s.get("required", []), *s.get("optional", [])]:
+        st = session.streams.get(n)
+        if st is None or not len(st) or n == "fGyroscope":
+            continue
+        short = float(g.t[-1] - st.t[-1])
+        if short > 2.0 / max(st.rate_hz, 1e-9):  # more than two of its sample intervals (NaN rate: never)
+            last = f"{steps[-1].end_s:.2f} s" if steps else "none"
+            logging.getLogger("pdrlearn.cli").warning(
+                "%s: %s ends at %.2f s, %.2f s before fGyroscope (%.2f s): nothing after %.2f s is tracked (last "
+                "step ends at %s); trim the session to where every sensor has data, or re-record", session.name,
+                n, float(st.t[-1]), short, float(g.t[-1]), float(st.t[-1]), last)
+
+
 def run(
     bundle_dir: Path = typer.Argument(..., help="Bundle folder written by 'pdrlearn export'."),
     session_dir: Path = typer.Argument(None, help="PLASYS session folder to replay (omit with --protocol)."),
@@ -89,6 +136,8 @@ def run(
     chunk_s: float = typer.Option(1.0, help="Replay chunk length (s)."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
+    no_resample: bool = typer.Option(False, "--no-resample", help="Refuse data at another rate than the "
+                                     "bundle's (+-5 %) instead of resampling it causally (decision E22)."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -118,7 +167,8 @@ def run(
         from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
 
         parser = BluetoothParser(rate_hz=bundle.rate_hz)
-        tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()})
+        tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
+                          resample=not no_resample)
         if protocol == "-":
             stream = sys.stdin
         else:
@@ -154,7 +204,11 @@ def run(
         from pdrlearn.io import read_session
 
         session = read_session(session_dir)
-        bundle.check_streams({n: st.rate_hz for n, st in session.streams.items()}, where=f"session '{session.name}'")
+        rates = {n: st.rate_hz for n, st in session.streams.items()}
+        where = f"session '{session.name}'"
+        bundle.check_streams(rates if no_resample else {n: float("nan") for n in rates}, where=where)
+        if not no_resample:
+            _announce_resampling(bundle, rates, where)
         from pdrlearn.track.plasys import require_stride_cover
 
         sensors = bundle.manifest["sensors"]
@@ -162,7 +216,7 @@ def run(
         warn_gaps(session, bundle.manifest["sensors"]["required"],
                   "the runtime replays across them (a stride spanning one is unreliable) - re-record or trim the "
                   "session, or use `pdrlearn track`, which ends the walk at a gap")
-        tracker = Tracker(bundle, frames=_frames_of(session, bundle))
+        tracker = Tracker(bundle, frames=_frames_of(session, bundle), resample=not no_resample)
         if tracker.heading_source == "auto" and not (session.has("wAccelerometer", "wGyroscope")
                                                      and "waist" in tracker.forward):  # as track says (B17)
             import logging
@@ -182,6 +236,7 @@ def run(
                 lat.append((time.perf_counter() - t0) / len(new))
             steps += new
         steps += tracker.flush()
+        _warn_short_streams(session, tracker, steps)
         source = f"session {session.name}"
     result = _result(steps)
     summary = _summary(steps, tracker, lat, source, result, session)

@@ -49,6 +49,7 @@ from pdrlearn.kernels.window import (
 )
 from pdrlearn.runtime.bundle import Bundle, load_bundle
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
+from pdrlearn.runtime.resample import InputStage, stopped_stream
 from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
 
 log = logging.getLogger(__name__)
@@ -202,6 +203,8 @@ class Tracker:
         heading_source: str | None = None,
         step_graph: bool = True,
         incremental: bool = True,
+        resample: bool = True,
+        max_lag_s: float | None = None,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -278,6 +281,19 @@ class Tracker:
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
         self.n_steps = 0
         self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
+        #: the input side (decision E22): streams at another rate than the bundle's are resampled to it
+        #: (``resample=True``) or refused; ``inputs.input_rates_hz`` / ``resampled_hz`` tell which
+        self.inputs = InputStage(self.bundle, resample=resample)
+        #: a stream further behind the newest one than this (s) stopped (decision E23; default: max_wait_s,
+        #: 2 s, the longest a step waits for it before E9 would process it without that stream's samples)
+        self.max_lag_s = float(self.params.get("max_wait_s", 2.0) if max_lag_s is None else max_lag_s)
+        self._lag_next = -math.inf  # data time (s) of the next lag check
+        self._first_t = math.inf  # the first pushed sample's time (s)
+
+    @property
+    def resampled_hz(self) -> dict[str, float]:
+        """Sensor -> its input rate (Hz), for the streams this tracker resamples to ``rate_hz`` (E22)."""
+        return {n: r.rate_in for n, r in self.inputs.resamplers.items()}
 
     # -- classification of given windows (also used by the parity tests) ----------------------------
     def classify(self, W: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
@@ -410,7 +426,16 @@ class Tracker:
         ``samples`` : mapping sensor name -> ``(t (n,) s, values (n, k))``, or an iterable of
         measurements with ``t``, ``sensor`` and ``values`` attributes (the Bluetooth parser's output).
         """
-        if isinstance(samples, dict):
+        if not isinstance(samples, dict):  # Bluetooth measurements: grouped per sensor
+            grouped: dict[str, tuple[list, list]] = {}
+            for mm in samples:
+                ts, vs = grouped.setdefault(mm.sensor, ([], []))
+                ts.append(mm.t)
+                vs.append(mm.values)
+            samples = grouped
+        samples = self.inputs.push(samples)  # the same dict when every stream is at the bundle's rate (E22)
+        if samples:
+            self._note_resampled()
             buf, foot, fast = self._buf, self._foot, self._rate_checked
             for name, (t, v) in samples.items():
                 # one float64 sample of a known, rate-checked sensor that is finite and newer than its buffer:
@@ -433,15 +458,9 @@ class Tracker:
                             self._latest = t0
                         continue
                 self._append(name, t, v)
-        else:
-            grouped: dict[str, tuple[list, list]] = {}
-            for mm in samples:
-                ts, vs = grouped.setdefault(mm.sensor, ([], []))
-                ts.append(mm.t)
-                vs.append(mm.values)
-            for name, (ts, vs) in grouped.items():
-                self._append(name, ts, vs)
         self._detect()
+        if self._pending or self._latest >= self._lag_next:  # E23: before a waiting step could go stale
+            self._check_lag()
         steps = self._process_ready()
         # a push that completes steps returns them first and the next push trims (decision E15); pushes in
         # chunks of a stride or more complete a step nearly every time, so trim anyway once the buffers
@@ -451,7 +470,11 @@ class Tracker:
         return steps
 
     def flush(self) -> list[Step]:
-        """Process the detected steps still waiting for other sensors' samples (end of a recording)."""
+        """Process the detected steps still waiting for other sensors' samples (end of a recording); the
+        resampled streams' last samples (their filter's delay, decision E22) are buffered first."""
+        for name, (t, v) in self.inputs.flush().items():
+            self._append(name, t, v)
+        self._detect()
         steps = self._process_ready(force=True)
         self._trim()
         return steps
@@ -470,6 +493,31 @@ class Tracker:
         while self._pending and (force or self._pending[0][1] + self._lookahead_s < max(latest, stale)):
             out.append(self.process_step(*self._pending.pop(0)))
         return out
+
+    def _note_resampled(self) -> None:
+        """Each resampled stream's announcement (decision E22) once in ``warnings``, logged at info level
+        (``pdrlearn run`` prints one warning line for the session)."""
+        msgs = self.inputs.messages
+        while msgs:
+            m = msgs.pop(0)
+            self.warnings.append(m)
+            log.info("bundle %s: %s", self.bundle.path, m)
+
+    def _check_lag(self) -> None:
+        """Decision E23 (:func:`pdrlearn.runtime.resample.stopped_stream`): a stream the bundle uses, or a
+        required one never seen, more than ``max_lag_s`` behind the newest sample is a one-line
+        :class:`DataError` naming it; a stream it does not use is dropped with a warning."""
+        self._lag_next = self._latest + 0.25
+        self._first_t = min(self._first_t, self._oldest)
+        while True:
+            name, msg = stopped_stream({n: r.last for n, r in self._buf.items()}, self.bundle.manifest["sensors"],
+                                       self._first_t, self.max_lag_s)
+            if name is None:
+                return
+            self.warnings.append(msg)
+            log.warning("bundle %s: %s", self.bundle.path, msg)
+            del self._buf[name]
+            self._rate_checked.discard(name)
 
     def _detect(self) -> None:
         """Online stance detection on the foot gyroscope (:class:`pdrlearn.kernels.stride.StanceSegmenter`,
@@ -519,6 +567,7 @@ class Tracker:
         sample interval, as ``Stream.rate_hz``); a rate mismatch warns once and applies neither."""
         t = self._stream("fAccelerometer")[0]
         fs = 1.0 / float(np.median(np.diff(t))) if len(t) > 1 else float(self.rate_hz)
+        fs = self.resampled_hz.get("fAccelerometer", fs)  # resampled (E22): the data's own rate, as track
         rec, warning = applicable_calibration(self._calibration, fs)
         if warning:
             self.warnings.append(warning)
