@@ -517,7 +517,8 @@ def make_perturbed(work: Path, mob: Path, gait: Path) -> list[tuple[Path, str]]:
         df.to_csv(p, index=False)
     out.append((d, "sensor timestamps in SECONDS (a converter that ignored the ms convention); labels still ms"))
     out.append((without_source_project(copy(mob, "no_source_project")),
-                "meta.json without source_project (axes described only in prose, no frames entry)"))
+                "meta.json without source_project (axes described only in prose, no frames entry): the frame is "
+                "inferred from the data with one warning (decision D8), so every command applies"))
 
     # gaitmap foot
     st = _read(gait / "steps.csv")
@@ -560,7 +561,7 @@ def make_perturbed(work: Path, mob: Path, gait: Path) -> list[tuple[Path, str]]:
     st[["start_ms", "end_ms"]].to_csv(d / "steps.csv", index=False)
     out.append((d, "steps.csv with only start_ms,end_ms (no ic_ms, terrain, length_m)"))
     out.append((without_source_project(copy(gait, "no_source_project")),
-                "meta.json without source_project (axes only in prose)"))
+                "meta.json without source_project (axes only in prose): frame inferred from the data, warned (D8)"))
     d = copy(gait, "no_labels")
     for n_ in ("steps.csv", "trajectory.csv"):
         (d / n_).unlink()
