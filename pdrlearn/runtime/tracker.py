@@ -289,6 +289,7 @@ class Tracker:
         self.max_lag_s = float(self.params.get("max_wait_s", 2.0) if max_lag_s is None else max_lag_s)
         self._lag_next = -math.inf  # data time (s) of the next lag check
         self._first_t = math.inf  # the first pushed sample's time (s)
+        self._unseen = frozenset(self.bundle.manifest["sensors"].get("required", []))  # not pushed yet
 
     @property
     def resampled_hz(self) -> dict[str, float]:
@@ -509,6 +510,10 @@ class Tracker:
         :class:`DataError` naming it; a stream it does not use is dropped with a warning."""
         self._lag_next = self._latest + 0.25
         self._first_t = min(self._first_t, self._oldest)
+        if self._unseen:  # required sensors not pushed yet (a required sensor is never dropped)
+            self._unseen = self._unseen.difference(self._buf)
+        if not self._unseen and self._latest - min([r.last for r in self._buf.values()]) <= self.max_lag_s:
+            return  # the common case
         while True:
             name, msg = stopped_stream({n: r.last for n, r in self._buf.items()}, self.bundle.manifest["sensors"],
                                        self._first_t, self.max_lag_s)
