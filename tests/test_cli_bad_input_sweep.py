@@ -173,13 +173,33 @@ def test_a_session_without_the_unit_a_command_needs(base, tmp_path, capsys, kind
     assert not out.exists()
 
 
+def _unframed(yaw_deg: float = 0.0):
+    """meta.json without "frames"; with ``yaw_deg`` both units also turned about their up axis (y in the
+    thesis frames), so that at 45 deg the data cannot fix which axis is forward (decision D8)."""
+    c, s_ = np.cos(np.radians(yaw_deg)), np.sin(np.radians(yaw_deg))
+
+    def turn(df):
+        x, z = df["x"].to_numpy(), df["z"].to_numpy()
+        df["x"], df["z"] = c * x + s_ * z, -s_ * x + c * z
+        return df
+
+    def apply(d: Path) -> None:
+        _meta(lambda m: m.pop("frames"))(d)
+        if yaw_deg:
+            for name in ("fAccelerometer", "fGyroscope", "wAccelerometer", "wGyroscope", "wMagneticField"):
+                _edit(f"{name}.csv", turn)(d)
+    return apply
+
+
 # usable data: the command succeeds and says what is wrong on stderr (warning lines only, each once)
 WARNINGS = {
     "gap_5s": (_gap, {"steps": "fAccelerometer has 1 gap", "steps-pll": "wAccelerometer has 1 gap",
                       "track-M2": "fAccelerometer has 1 gap", "track-M3-streaming": "gap(s) longer than 1 s",
                       "track-waist-pll": "wAccelerometer has 1 gap", "track-waist-pendulum": "wGyroscope has 1 gap",
                       "calibrate": "wGyroscope has 1 gap", "run": "the runtime replays across them"}),
-    "meta_no_frames": (_meta(lambda m: m.pop("frames")), {"run": "declares no foot frame"}),
+    # decision D8: run takes the frame inferred from the data; the bundle's only when the data does not fix it
+    "meta_no_frames": (_unframed(), {"run": "inferred from the data"}),
+    "meta_no_frames_yawed": (_unframed(45.0), {"run": "declares no foot frame and its data does not fix the axes"}),
     "meta_no_height": (_meta(lambda m: [m.pop(k) for k in ("height_m", "user")]),
                        {"track-waist-pll": "gives no subject height"}),
     # B17: the streamed path says it too (before: silent), and run with a foot-only bundle
@@ -306,24 +326,6 @@ def test_evaluate_on_a_session_with_a_gap(base, tmp_path, capsys):
 
 NEEDS_FRAMES = ["track-M1", "track-M2", "track-M3", "track-M3-streaming", "track-waist-pll", "track-waist-pendulum",
                 "calibrate", "train", "evaluate"]
-
-
-def _unframed(yaw_deg: float = 0.0):
-    """meta.json without "frames"; with ``yaw_deg`` both units also turned about their up axis (y in the
-    thesis frames), so that at 45 deg the data cannot fix which axis is forward (decision D8)."""
-    c, s_ = np.cos(np.radians(yaw_deg)), np.sin(np.radians(yaw_deg))
-
-    def turn(df):
-        x, z = df["x"].to_numpy(), df["z"].to_numpy()
-        df["x"], df["z"] = c * x + s_ * z, -s_ * x + c * z
-        return df
-
-    def apply(d: Path) -> None:
-        _meta(lambda m: m.pop("frames"))(d)
-        if yaw_deg:
-            for name in ("fAccelerometer", "fGyroscope", "wAccelerometer", "wGyroscope", "wMagneticField"):
-                _edit(f"{name}.csv", turn)(d)
-    return apply
 
 
 @pytest.mark.parametrize("command", NEEDS_FRAMES)

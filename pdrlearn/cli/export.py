@@ -68,13 +68,21 @@ def export(
 
 
 def _frames_of(session, bundle) -> dict:
+    """Each unit's frame for the runtime: declared; else inferred from the session's data (decision D8, with
+    its warning); else, when the data does not fix the axes, the bundle's (its training sessions'), warned."""
     import logging
+
+    from pdrlearn.errors import DataError
 
     frames = {p: f.to_dict() for p, f in session.frames.items()}
     for p, f in bundle.manifest["frames"].items():
-        if p not in frames:
-            logging.getLogger(__name__).warning("session '%s' declares no %s frame; using the bundle's %s",
-                                                session.name, p, f)
+        if p in frames:
+            continue
+        try:
+            frames[p] = session.require_frame(p).to_dict()
+        except DataError:
+            logging.getLogger(__name__).warning("session '%s' declares no %s frame and its data does not fix the "
+                                                "axes; using the bundle's %s", session.name, p, f)
             frames[p] = f
     return frames
 
