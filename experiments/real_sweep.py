@@ -23,7 +23,7 @@ Commands per session (``applicable`` = should succeed; ``na`` = expected one-lin
   L36: ``--method auto``, the M3 engine without class rules when there is no model), M1, M3 ``--model oracle``,
   M3 ``--model RMODEL`` (terrain model trained on the three shared left-foot recordings, in-sample for
   those), M3 ``--streaming`` with RMODEL, ``run RBUNDLE`` (its export); na: M2 (needs force sensors);
-- lower back: ``steps -d pll`` and ``-d pelvic-gyro``, ``track --pipeline waist-pll`` and
+- lower back: ``steps -d waist-ic``, ``-d pll`` and ``-d pelvic-gyro``, ``track --pipeline waist-pll`` and
   ``waist-pendulum`` (uncalibrated: meta.json defaults), ``waist-pendulum --params P`` with P from
   ``pdrlearn calibrate`` on the same subject's other Test5 trial; na: ``run`` with the shipped
   foot+waist bundle ``models/plasys-sim-default``.
@@ -298,7 +298,8 @@ def jobs_for(s: Session, models: dict, sessions: list[Session], work: Path, stag
         if models.get("bundle"):
             jobs.append(Job(s, "run rbundle", [CLI, "run", str(models["bundle"]), d, "--out", str(wd / "run"), "--json"], "run"))
     else:
-        jobs += [Job(s, "steps pll", [CLI, "steps", d, "-d", "pll", "--json"], "steps"),
+        jobs += [Job(s, "steps waist-ic", [CLI, "steps", d, "-d", "waist-ic", "--json"], "steps"),
+                 Job(s, "steps pll", [CLI, "steps", d, "-d", "pll", "--json"], "steps"),
                  Job(s, "steps pelvic-gyro", [CLI, "steps", d, "-d", "pelvic-gyro", "--json"], "steps"),
                  Job(s, "track waist-pll", [CLI, "track", d, "--pipeline", "waist-pll", "--out", str(wd / "t_pll"), "--json"], "track", out_dir=wd / "t_pll"),
                  Job(s, "track waist-pendulum", [CLI, "track", d, "--pipeline", "waist-pendulum", "--out", str(wd / "t_pend"), "--json"], "track", out_dir=wd / "t_pend"),
