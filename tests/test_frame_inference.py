@@ -197,3 +197,14 @@ def test_cli_track_on_a_stripped_real_session_gives_the_same_numbers(real_dir, t
     assert "inferred" not in runs["declared"][1]
     a, b = _numbers(runs["declared"][0]), _numbers(runs["inferred"][0])
     assert len(a) >= 5 and a == b
+
+
+def test_foot_pitch_edge_with_a_yaw_is_refused_not_guessed(walk):
+    """A yawed mount skews the sagittal axes' projections: at the window's edge none of the four signed axes
+    may lie in it. Before: forward fell back to the first sagittal axis with a made-up pitch of 0 deg."""
+    left = walk.frames["foot"].matrix().T @ np.array(_DIRECTIONS["left"])
+    up = walk.frames["foot"].matrix().T @ np.array(_DIRECTIONS["up"])
+    # the unit yawed 15 deg, then pitched 60 deg toes-down (rotations in the old sensor frame)
+    R = Rotation.from_rotvec(np.radians(15.0) * up) * Rotation.from_rotvec(np.radians(60.0) * left)
+    with pytest.raises(FrameInferenceError, match="edge"):
+        infer_session_frame(remount(walk, "foot", R.as_matrix().T), "foot")

@@ -5,10 +5,11 @@ direction; the pipelines level with gravity themselves, so a pitched or rolled m
 nearest mapping (the foot filters take the tilt from the rest specific force, the waist AHRS from its
 mean). What the data fixes:
 
-- **foot**: up = the mean specific force at rest (stance); the medio-lateral axis = the principal axis of
-  the angular rate (the foot rotates in the sagittal plane); its sign from the swing: the largest rotation
-  of a forward stride is the toes-up swing (mid-swing peak; gaitmap's foot frame: swing ``gyr_y`` about
-  -4 rad/s with y = left), i.e. a positive rotation about the body's right; forward = left x up. A pitched
+- **foot**: up = the mean specific force at rest (stance); forward = the mean direction of the ZUPT stride
+  displacements (:func:`stride_displacements`), so mostly backward walking gives a reversed frame (only a
+  session of back-and-forth strides is refused); left = up x forward, cross-checked against the principal
+  axis of the angular rate (the foot rotates in the sagittal plane; unsigned; the sign of the swing peak
+  was measured and not adopted, decision D8). A pitched
   mount (an instep sensor is pitched toes-down by ~50 deg) is mapped by the mounting prior
   :data:`FOOT_PITCH_WINDOW_DEG`: the forward axis is the sagittal sensor axis pitched between 30 deg
   toes-up and 60 deg toes-down (foot mounts slope toes-down: laces, instep).
@@ -168,13 +169,16 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
                                   f"(more than {MAX_SNAP_DEG:g}; a yawed mount)")
     sag = [i for i in range(3) if i != i_ml]
     lo_w, hi_w = FOOT_PITCH_WINDOW_DEG
-    best = (sag[0], 1.0, 0.0)
-    for i in sag:  # exactly one of the four signed sagittal axes (90 deg apart) lies in the 90 deg window
-        for s in (1.0, -1.0):
-            pitch = float(np.degrees(np.arctan2(-s * up[i], s * fwd[i])))  # toes-down positive
-            if lo_w < pitch <= hi_w:
-                best = (i, s, pitch)
-    i_f, s_f, pitch = best
+    cand = [(i, s, float(np.degrees(np.arctan2(-s * up[i], s * fwd[i])))) for i in sag for s in (1.0, -1.0)]
+    inside = [c for c in cand if lo_w < c[2] <= hi_w]  # pitch toes-down positive
+    # one of the four signed sagittal axes lies in the 90 deg window when they are 90 deg apart; a yawed or
+    # rolled mount skews their projections, so near an edge none or two may: ambiguous, as the margin says
+    if len(inside) != 1:
+        pitch = min((c[2] for c in cand), key=lambda p: min(abs(p - lo_w), abs(p - hi_w)))
+        raise FrameInferenceError(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
+                                  f"deg window that decides which axis is forward ({len(inside)} sagittal axes "
+                                  "in it)")
+    i_f, s_f, pitch = inside[0]
     if min(abs(pitch - lo_w), abs(pitch - hi_w)) < PITCH_MARGIN_DEG:
         raise FrameInferenceError(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
                                   "deg window that decides which axis is forward")
