@@ -93,6 +93,23 @@ def test_synthetic_waist_ambiguous_raises():
         infer_waist_frame(still, np.zeros_like(still), 100.0)
 
 
+@pytest.mark.parametrize("fs,seconds", [(20.0, 60.0), (100.0, 60.0), (100.0, 10.0)])
+def test_waist_noise_without_a_walking_rhythm_is_refused(fs, seconds):
+    """Gravity + white noise moves enough for the motion gate and often shows a dominant horizontal axis by
+    chance (review: 40 of 200 got a frame); with no repeating step it is refused. The same noise on top of
+    the rhythmic synthetic walk is still inferred (the gate is about the rhythm, not the noise)."""
+    rng = np.random.default_rng(3)
+    n = int(fs * seconds)
+    for _ in range(10):
+        noise = rng.normal(0.0, 1.5, (n, 3))
+        acc = np.array([0.0, 9.81, 0.0]) + noise
+        with pytest.raises(FrameInferenceError, match="no walking rhythm"):
+            infer_waist_frame(acc, np.zeros_like(acc), fs)
+    walk, fs_w = _synthetic_waist(fs=fs, seconds=seconds)
+    walk = walk + 0.5 * rng.normal(0.0, 1.0, walk.shape)
+    assert infer_waist_frame(walk, np.zeros_like(walk), fs_w).frame == AxisFrame(x="forward", y="left", z="up")
+
+
 @pytest.mark.parametrize("placement", ["foot", "waist"])
 def test_simulated_session_in_every_orientation(walk, placement):
     wrong = []

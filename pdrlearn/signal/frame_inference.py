@@ -53,6 +53,13 @@ MIN_WALK_S = 4.0
 #: forward/vertical phase (W2) must be this many degrees away from the +-90 deg of 45 deg boundary.
 MIN_AP_POWER_RATIO = 1.5
 MIN_PHASE_MARGIN_DEG = 15.0
+#: Waist: walking is rhythmic. The autocorrelation of the vertical acceleration over the walking windows
+#: must peak at a lag of RHYTHM_LAG_S (a step or a stride period: 0.3-1.0 s) at least MIN_RHYTHM_SIGMA white-
+#: noise standard deviations (1/sqrt(N), Bartlett) above zero: a significance level, not fitted to data
+#: (gravity + N(0, 1.5) m/s^2 white noise, 10-300 s at 20-100 Hz: at most 4.2 in 2250 recordings; the 9
+#: mobgap lower-back sessions 12.7-24.8, simulated scenarios 17.6-78; docs/frames.md).
+RHYTHM_LAG_S = (0.3, 1.0)
+MIN_RHYTHM_SIGMA = 8.0
 
 
 class FrameInferenceError(DataError):
@@ -188,18 +195,22 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     return InferredFrame("foot", frame, {
         "up": f"{'xyz'[i_u]}{'+' if s_u > 0 else '-'} (pitch {abs(pitch):.0f} deg "
               f"{'toes-down' if pitch >= 0 else 'toes-up'}, {ang_ml:.0f} deg roll/yaw)",
-        "forward": f"{'xyz'[i_f]}{'+' if s_f > 0 else '-'} from {len(hor)} strides (resultant {resultant:.2f})",
+        "forward": f"{'xyz'[i_f]}{'+' if s_f > 0 else '-'} from {len(hor)} strides (resultant {resultant:.2f}; "
+                   "the sign assumes the walker mostly walks forward)",
         "rotation axis": f"{ang_rot:.0f} deg from medio-lateral",
     })
 
 
 def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: float = 4.0,
-                  walk_std: float = 0.5) -> tuple[np.ndarray, np.ndarray, float]:
-    """Summed cross-spectra at step frequency over walking windows.
+                  walk_std: float = 0.5) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """Summed cross-spectra at step frequency over walking windows, and their gait rhythm.
 
     Returns ``C`` (2, 2) real horizontal cross-power and ``z`` (2,) complex horizontal x vertical
-    cross-spectra, both at each window's step frequency (the vertical peak in 1.2-3.0 Hz), and the time (s)
-    the walking windows cover (vertical std over ``walk_std`` m/s^2, the W4 motion gate)."""
+    cross-spectra, both at each window's step frequency (the vertical peak in 1.2-3.0 Hz), the time (s)
+    the walking windows cover (vertical std over ``walk_std`` m/s^2, the W4 motion gate), and the rhythm
+    significance: the highest autocorrelation of the vertical acceleration (summed over the walking
+    windows, normalised, unbiased) at a lag of :data:`RHYTHM_LAG_S`, in units of its white-noise standard
+    deviation 1/sqrt(N) (Bartlett), N the samples the walking windows cover."""
     n = max(int(round(window_s * fs)), 8)
     hop = n // 2
     hann = np.hanning(n)
@@ -207,11 +218,14 @@ def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: 
     band = (freqs >= 1.2) & (freqs <= min(3.0, 0.45 * fs))  # cadence 72-180 steps/min
     C = np.zeros((2, 2))
     z = np.zeros(2, dtype=complex)
+    ac = np.zeros(n)
     covered = np.zeros(len(acc_v), dtype=bool)
     for a in range(0, len(acc_v) - n + 1, hop):
         v = acc_v[a:a + n]
         if np.std(v) < walk_std:
             continue
+        F = np.fft.rfft(v - v.mean(), 2 * n)
+        ac += np.fft.irfft(F * np.conj(F), 2 * n)[:n]
         V = np.fft.rfft((v - v.mean()) * hann)
         if not band.any():
             break
@@ -220,7 +234,13 @@ def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: 
         C += np.real(np.outer(H, np.conj(H)))
         z += H * np.conj(V[k])
         covered[a:a + n] = True
-    return C, z, float(covered.sum()) / fs
+    lags = np.arange(n)
+    sel = (lags >= RHYTHM_LAG_S[0] * fs) & (lags <= RHYTHM_LAG_S[1] * fs)
+    rhythm = 0.0
+    if ac[0] > 0 and sel.any():
+        r = ac / ac[0] * n / (n - lags)  # normalised, unbiased
+        rhythm = float(r[sel].max() * np.sqrt(covered.sum()))
+    return C, z, float(covered.sum()) / fs, rhythm
 
 
 def _walking_mean(acc: np.ndarray, fs: float, *, window_s: float = 4.0, walk_std: float = 0.5) -> np.ndarray:
@@ -256,10 +276,14 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
     b = [_unit(e[i] - (e[i] @ up) * up) for i in hor]
     b[1] = _unit(b[1] - (b[1] @ b[0]) * b[0])
     B = np.column_stack(b)
-    C, z, walk_s = _step_spectra(acc @ up, acc @ B, fs)
+    C, z, walk_s, rhythm = _step_spectra(acc @ up, acc @ B, fs)
     if walk_s < MIN_WALK_S:
         raise FrameInferenceError(f"less than {MIN_WALK_S:g} s of walking (vertical acceleration std over 0.5 "
                                   "m/s^2 in 4 s windows)")
+    if rhythm < MIN_RHYTHM_SIGMA:
+        raise FrameInferenceError(f"no walking rhythm: the vertical acceleration of the {walk_s:.0f} s that move "
+                                  f"repeats at no step or stride period of {RHYTHM_LAG_S[0]:g}-{RHYTHM_LAG_S[1]:g} s "
+                                  f"(autocorrelation {rhythm:.1f} < {MIN_RHYTHM_SIGMA:g} noise standard deviations)")
     w, vecs = np.linalg.eigh(C)
     ratio = float(w[1] / max(w[0], 1e-12))
     if ratio < MIN_AP_POWER_RATIO:
@@ -284,7 +308,8 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
     return InferredFrame("waist", frame, {
         "up": f"{'xyz'[i_u]}{'+' if s_u > 0 else '-'} ({ang_u:.0f} deg tilt)",
         "forward": f"{'xyz'[i_f]}{'+' if s_f > 0 else '-'} ({ang_f:.0f} deg off, step-frequency power x{ratio:.1f})",
-        "forward lead": f"{lead:.0f} deg over {walk_s:.0f} s of walking",
+        "forward lead": f"{lead:.0f} deg over {walk_s:.0f} s of walking (rhythm {rhythm:.0f} sigma; the sign "
+                        "assumes the walker mostly walks forward)",
     })
 
 
