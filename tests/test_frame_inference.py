@@ -21,6 +21,7 @@ from pdrlearn.signal.frame_inference import (
     infer_waist_frame,
     remount,
     right_handed_orientations,
+    swing_pitch_extremes,
 )
 
 ORIENTATIONS = right_handed_orientations()
@@ -141,6 +142,33 @@ def test_yawed_45_degrees_is_ambiguous(walk, placement):
     with pytest.raises(FrameInferenceError, match="deg from"):
         infer_session_frame(_yawed(walk, placement, 45.0), placement)
     assert infer_session_frame(_yawed(walk, placement, 15.0), placement).frame == walk.frames[placement]
+
+
+@pytest.mark.parametrize("rate", [20.0, 100.0])
+def test_foot_mostly_walking_backward_is_refused_not_reversed(rate):
+    """Review: 3 forward + 13 backward strides gave a reversed frame (x backward) and a mirrored track. The
+    strides' mean direction is backward, but the foot does not push off toes-down relative to it: refused."""
+    from pdrlearn.sim import Backward, Stand, Straight, UserProfile, simulate_path
+
+    s = simulate_path([Straight(3.0), Stand(1.0), Backward(12), Stand(1.0), Backward(12)], UserProfile.from_seed(1),
+                      rate_hz=rate)
+    with pytest.raises(FrameInferenceError, match="no forward push-off"):
+        infer_session_frame(s, "foot")
+    # mostly forward with a backward stretch in the middle: still inferred, and right
+    s = simulate_path([Straight(12.0), Stand(1.0), Backward(8), Stand(1.0), Straight(12.0)], UserProfile.from_seed(1),
+                      rate_hz=rate)
+    found = infer_session_frame(s, "foot")
+    assert found.frame == s.frames["foot"] and "asymmetry" in found.describe()
+
+
+def test_swing_pitch_extremes_hand_computed():
+    fs = 10.0
+    left = np.array([0.0, 0.0, -1.0])  # thesis foot: z right
+    w = np.zeros((20, 3))
+    w[2:5, 2] = -1.0  # 0.3 rad toes-down (about left = -z)
+    w[5:7, 2] = 2.0  # then 0.4 rad back: 0.1 rad toes-up
+    down, up = swing_pitch_extremes(w, fs, np.array([0, 10]), np.array([10, 20]), left)
+    assert np.allclose(down, [0.3, 0.0]) and np.allclose(up, [0.1, 0.0])
 
 
 def test_foot_walking_back_and_forth_is_refused():
