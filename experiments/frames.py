@@ -31,7 +31,7 @@ from pathlib import Path
 
 from pdrlearn.errors import DataError
 from pdrlearn.io import read_session
-from pdrlearn.signal.frame_inference import UNIT_STREAMS, infer_session_frame, remount, right_handed_orientations
+from pdrlearn.track.frame_inference import UNIT_STREAMS, infer_session_frame, remount, right_handed_orientations
 
 ROOT = Path(__file__).resolve().parents[1]
 SOURCES = [ROOT.parent / "shared" / "data", ROOT / "datasets" / "external"]

@@ -14,7 +14,7 @@ from pdrlearn.cli import main
 from pdrlearn.errors import DataError
 from pdrlearn.io import read_session
 from pdrlearn.io.frames import _DIRECTIONS, AxisFrame
-from pdrlearn.signal.frame_inference import (
+from pdrlearn.track.frame_inference import (
     FrameInferenceError,
     frame_from_axes,
     infer_session_frame,

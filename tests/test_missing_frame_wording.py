@@ -19,8 +19,8 @@ from pdrlearn.io.frames import THESIS_FOOT_FRAME
 @pytest.fixture(scope="module")
 def no_frames(tmp_path_factory):
     from pdrlearn.io import read_session, write_session
-    from pdrlearn.signal.frame_inference import remount
     from pdrlearn.sim import simulate
+    from pdrlearn.track.frame_inference import remount
 
     folder = tmp_path_factory.mktemp("nf") / "walk"
     s = simulate("walk", user_seed=2, length_m=15.0)

@@ -5,7 +5,7 @@ declared as a mapping from each sensor axis to a body direction, e.g. the thesis
 (x toward the toes, y along gravity at rest i.e. up, z to the right) is
 ``AxisFrame(x="forward", y="up", z="right")``. A session whose ``meta.json`` declares no frame has
 ``frames == {}``; :meth:`pdrlearn.io.Session.require_frame` then infers the unit's frame from its data with a
-warning, or says why the data does not fix it (decision D8, :mod:`pdrlearn.signal.frame_inference`).
+warning, or says why the data does not fix it (decision D8, :mod:`pdrlearn.track.frame_inference`).
 """
 
 from __future__ import annotations

@@ -209,7 +209,7 @@ class Session:
 
     def require_frame(self, placement: str) -> AxisFrame:
         """The axis frame of the ``placement`` unit: the declared one; else (``infer_frames``) the frame
-        inferred from the unit's data (:mod:`pdrlearn.signal.frame_inference`, decision D8), logged once
+        inferred from the unit's data (:mod:`pdrlearn.track.frame_inference`, decision D8), logged once
         as a warning that names what was found and the ``frames`` entry to declare if it is wrong; else, or
         when the data does not fix the axes, a :class:`DataError` naming the session's ``meta.json`` and
         the entry to add (the one wording of every method that needs a unit's axes, decision B18)."""
@@ -220,7 +220,7 @@ class Session:
                  else f"session '{self.name}' (its meta.json)")
         reason = ""
         if self.infer_frames:
-            from pdrlearn.signal.frame_inference import infer_session_frame
+            from pdrlearn.track.frame_inference import infer_session_frame
 
             if placement not in self._inferred:  # once per session: the frame, or why there is none
                 try:

@@ -20,6 +20,10 @@ mean). What the data fixes:
   stride frequency), signed by the W2 phase rule (the forward acceleration leads the vertical one by
   0-90 deg at step frequency; seed 003 sec. 3.1); left = up x forward.
 
+The module sits in ``track``, after the stages it uses (the ZUPT stride integration of ``displace``, the W2
+rule of ``waist``; /work/shared/DESIGN.md data flow); :meth:`pdrlearn.io.Session.require_frame` imports it
+lazily, when a method first asks for an undeclared frame.
+
 Every check that can fail raises :class:`FrameInferenceError` (a :class:`DataError`) with the reason;
 :meth:`pdrlearn.io.Session.require_frame` adds the file and the ``frames`` entry to declare instead.
 """
