@@ -33,6 +33,9 @@ from pdrlearn.errors import DataError
 from pdrlearn.io import read_session
 from pdrlearn.track.frame_inference import UNIT_STREAMS, infer_session_frame, remount, right_handed_orientations
 
+sys.path.append(str(Path(__file__).resolve().parents[1]))  # the repository root: tests.cli_helpers
+from tests.cli_helpers import json_numbers  # noqa: E402
+
 ROOT = Path(__file__).resolve().parents[1]
 SOURCES = [ROOT.parent / "shared" / "data", ROOT / "datasets" / "external"]
 CLI = [str(Path(sys.executable).with_name("pdrlearn"))]
@@ -53,14 +56,6 @@ def _strip(src: Path, dst: Path) -> None:
     meta.pop("frames", None)
     meta.pop("source_project", None)
     (dst / "meta.json").write_text(json.dumps(meta, indent=1))
-
-
-def _numbers(obj, prefix=""):
-    if isinstance(obj, dict):
-        return {k2: v for k, v in obj.items() if k != "warnings" for k2, v in _numbers(v, f"{prefix}.{k}").items()}
-    if isinstance(obj, list):
-        return {k2: v for i, v in enumerate(obj) for k2, v in _numbers(v, f"{prefix}[{i}]").items()}
-    return {prefix: obj} if isinstance(obj, int | float) and not isinstance(obj, bool) else {}
 
 
 def _track(folder: Path, out: Path, placement: str) -> tuple[int, dict, str]:
@@ -109,7 +104,7 @@ def real(work: Path, track: bool) -> list[str]:
                 _strip(d, stripped)
                 ra = _track(d, work / "out" / name / "declared", placement)
                 rb = _track(stripped, work / "out" / name / "stripped", placement)
-                na, nb = _numbers(ra[1]), _numbers(rb[1])
+                na, nb = json_numbers(ra[1]), json_numbers(rb[1])
                 diff = sorted(k for k in set(na) | set(nb) if na.get(k) != nb.get(k))
                 n_warn = sum("inferred from the data" in ln for ln in rb[2].splitlines())
                 cells = [f"{ra[0]}/{rb[0]} ({n_warn} warning)", str(len(na)), str(len(diff)) + (f" {diff[:3]}" if diff else ""),

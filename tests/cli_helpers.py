@@ -16,3 +16,14 @@ def simulated_session_and_model(root: Path, session: str = "good") -> tuple[Path
     assert main(["train", str(good), "--out", str(model), "--methods", "heuristic", "--tasks", "terrain",
                  "--cv", "3", "--json"]) == 0
     return good, model
+
+
+def json_numbers(obj, prefix: str = "") -> dict:
+    """Every number of a ``--json`` output as ``{".key[i].sub": value}``, the ``warnings`` lists left out
+    (booleans are not numbers): two runs that should agree compare equal on this."""
+    if isinstance(obj, dict):
+        return {k2: v2 for k, v in obj.items() if k != "warnings"
+                for k2, v2 in json_numbers(v, f"{prefix}.{k}").items()}
+    if isinstance(obj, list):
+        return {k2: v2 for i, v in enumerate(obj) for k2, v2 in json_numbers(v, f"{prefix}[{i}]").items()}
+    return {prefix: obj} if isinstance(obj, int | float) and not isinstance(obj, bool) else {}

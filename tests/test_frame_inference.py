@@ -23,6 +23,7 @@ from pdrlearn.track.frame_inference import (
     right_handed_orientations,
     swing_pitch_extremes,
 )
+from tests.cli_helpers import json_numbers
 
 ORIENTATIONS = right_handed_orientations()
 
@@ -211,14 +212,6 @@ def test_not_inferable_keeps_the_one_wording_with_the_reason(walk):
     assert not s.has_frame("foot")
 
 
-def _numbers(obj, prefix=""):
-    if isinstance(obj, dict):
-        return {k2: v for k, v in obj.items() if k != "warnings" for k2, v in _numbers(v, f"{prefix}.{k}").items()}
-    if isinstance(obj, list):
-        return {k2: v for i, v in enumerate(obj) for k2, v in _numbers(v, f"{prefix}[{i}]").items()}
-    return {prefix: obj} if isinstance(obj, int | float) and not isinstance(obj, bool) else {}
-
-
 @pytest.mark.parametrize("name,extra", [("gaitmap_level_left", []),
                                         ("mobgap_HA001_Test5_Trial1", ["--pipeline", "waist-pendulum"])])
 def test_cli_track_on_a_stripped_real_session_gives_the_same_numbers(real_dir, tmp_path, capsys, name, extra):
@@ -240,7 +233,7 @@ def test_cli_track_on_a_stripped_real_session_gives_the_same_numbers(real_dir, t
     inferred = [ln for ln in runs["inferred"][1].splitlines() if "inferred from the data" in ln]
     assert len(inferred) == 1 and inferred[0].startswith(f"warning: {stripped / 'meta.json'}"), runs["inferred"][1]
     assert "inferred" not in runs["declared"][1]
-    a, b = _numbers(runs["declared"][0]), _numbers(runs["inferred"][0])
+    a, b = json_numbers(runs["declared"][0]), json_numbers(runs["inferred"][0])
     assert len(a) >= 5 and a == b
 
 
