@@ -21,6 +21,10 @@ DEFAULT_HEIGHT_M = 1.70  # used only when meta.json gives no height (a warning s
 # Anthropometric ratios (Drillis & Contini 1966, as tabulated by Winter, Biomechanics of Human Movement):
 LEG_PER_HEIGHT = 0.53  # greater-trochanter height / body height
 FOOT_PER_HEIGHT = 0.152  # foot length / body height
+# Pendulum gain K without calibration (decision W46): mobgap's SlZijlstra default scaling factor
+# (step_length_scaling_factor_ms_ms = 4.587 / 4, optimised on the Mobilise-D MS project), the same
+# whole-step-h inverted pendulum (Zijlstra & Hof 2003) on the sensor height as here (W10)
+DEFAULT_K = 4.587 / 4
 # Step length vs frequency default (decision W6): 0.415 x height at 1.8 Hz, slope 0.25 x height per Hz.
 STEP_PER_HEIGHT_AT_F0 = 0.415
 F0_HZ = 1.8  # seed 000 sec. II-C: free-running walking frequency 1.8 Hz
@@ -44,7 +48,7 @@ class WaistParams:
     """
 
     leg_m: float = float("nan")
-    k: float = 1.0  # seed 003 eq. 1 with K = 1 is the unmodified pendulum (Zijlstra & Hof 1997)
+    k: float = DEFAULT_K  # seed 003 eq. 1's K; without calibration mobgap's population factor (W46)
     f_m: float = float("nan")
     a_walk: float = float("nan")
     b_walk: float = float("nan")
@@ -166,7 +170,8 @@ def default_params(session: Session) -> tuple[WaistParams, list[str]]:
     # over the whole step here (decision W10), so F defaults to 0 (Zijlstra & Hof) and the foot length is
     # only recorded in the notes
     notes.append(f"foot length {foot:.3f} m (not used: F = 0 with whole-step h)")
-    p = WaistParams(leg_m=leg, k=1.0, f_m=0.0, a_walk=a_w, b_walk=b_w, a_run=a_r, b_run=b_r,
+    notes.append(f"K = {DEFAULT_K:.3f} (mobgap SlZijlstra's population factor, decision W46)")
+    p = WaistParams(leg_m=leg, k=DEFAULT_K, f_m=0.0, a_walk=a_w, b_walk=b_w, a_run=a_r, b_run=b_r,
                     source="defaults", notes=notes)
     return p, warnings
 
