@@ -32,6 +32,7 @@ from pdrlearn.io.validate import (
     check_rate,
     check_timestamps,
     check_units,
+    infer_time_unit,
 )
 
 log = logging.getLogger(__name__)
@@ -43,6 +44,11 @@ _TIME_ALIASES = {"milliseconds": "ms", "millisecond": "ms", "msec": "ms", "secon
 #: meta.json body measures (m) read by the waist pipelines: (name, largest plausible value in m). Beyond it
 #: the number is centimetres (a 175 "m" subject); the limits are anatomy, not tuned (decision B16).
 _BODY_FIELDS = (("height_m", 3.0), ("leg_length_m", 2.0), ("sensor_height_m", 2.0), ("foot_length_m", 0.5))
+
+
+def _timestamp_declared(meta: dict) -> bool:
+    units = meta.get("units", {}) if meta else {}
+    return isinstance(units, dict) and "timestamp" in units
 
 
 def _timestamp_scale(meta: dict, where: str = "meta.json") -> float:
@@ -95,6 +101,15 @@ def read_table(path: str | os.PathLike) -> pd.DataFrame:
 def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale: float = 1e-3,
                 check_unit: bool = True) -> Stream:
     """Read one sensor CSV into a :class:`Stream` (timestamps converted to seconds)."""
+    return _read_stream(path, name, time_scale=time_scale, check_unit=check_unit)[0]
+
+
+def _read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale: float = 1e-3,
+                 check_unit: bool = True, infer_unit: bool = False,
+                 declared_rate_hz: float | None = None) -> tuple[Stream, str | None]:
+    """:func:`read_stream`, and with ``infer_unit`` (meta.json declares no timestamp unit) timestamps that are
+    not milliseconds read in the one other unit that gives a plausible rate (decision B22). Returns the
+    stream and the inferred unit (``None`` when ``time_scale`` was used)."""
     path = Path(path)
     name = name or path.stem
     if name not in SENSORS:
@@ -105,12 +120,13 @@ def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale:
     df = read_table(path)
     check_columns(df, ("timestamp", *spec.columns), str(path))
     arr = check_numeric(df, ("timestamp", *spec.columns), str(path))
-    t = arr[:, 0] * time_scale
+    guess = infer_time_unit(arr[:, 0], declared_rate_hz) if infer_unit else None
+    t = arr[:, 0] * (guess[1] if guess else time_scale)
     check_timestamps(t, str(path))
     check_rate(t, str(path))
     if check_unit:
         check_units(spec, arr[:, 1:], str(path))
-    return Stream(name, t, arr[:, 1:])
+    return Stream(name, t, arr[:, 1:]), (guess[0] if guess else None)
 
 
 #: label time columns that must be filled in every row (the others, e.g. ``tc_ms``, may be blank = unknown)
@@ -210,11 +226,28 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
             raise DataError(f"{meta_path}: must hold a JSON object")
         _check_body_fields(meta, str(meta_path))
     scale = _timestamp_scale(meta, str(meta_path))
-    streams = {}
+    infer = not _timestamp_declared(meta)
+    rate = meta.get("rate_hz")
+    rate = float(rate) if isinstance(rate, int | float) and rate > 0 else None
+    streams, inferred = {}, {}
     for name, spec in SENSORS.items():
         p = folder / spec.filename
         if p.exists():
-            streams[name] = read_stream(p, name, time_scale=scale, check_unit=check_units)
+            # a barometer logs at its own rate: only the IMU streams are held to meta.json's rate_hz
+            streams[name], unit = _read_stream(p, name, time_scale=scale, check_unit=check_units, infer_unit=infer,
+                                               declared_rate_hz=rate if spec.kind != "barometer" else None)
+            inferred[name] = unit
+    units = set(inferred.values())
+    if units != {None}:  # decision B22: one unit for every file, said once
+        if len(units) > 1:
+            raise DataError(f"{meta_path}: declares no timestamp unit and the sensor files disagree (" + ", ".join(
+                f"{n}: {u or 'ms'}" for n, u in inferred.items()) + "); write every file in ms or declare "
+                "\"units\": {\"timestamp\": ...} in meta.json")
+        unit = units.pop()
+        scale = _TIME_SCALE[unit]
+        log.warning("%s: declares no timestamp unit and the timestamps are not milliseconds: read as %s "
+                    "(%s); add \"units\": {\"timestamp\": \"%s\"} to meta.json to say so", meta_path, unit,
+                    ", ".join(f"{n} {s.rate_hz:.4g} Hz" for n, s in streams.items()), unit)
     if not streams:
         inner = sorted(p.name for p in folder.iterdir() if p.is_dir() and any(p.glob("[fw]*.csv")))
         if inner:  # a folder of sessions (what `train` takes) given to a one-session command
