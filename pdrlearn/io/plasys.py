@@ -238,7 +238,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
                                                declared_rate_hz=rate if spec.kind != "barometer" else None)
             inferred[name] = unit
     units = set(inferred.values())
-    if units != {None}:  # decision B22: one unit for every file, said once
+    if units - {None}:  # decision B22: one unit for every file, said once
         if len(units) > 1:
             raise DataError(f"{meta_path}: declares no timestamp unit and the sensor files disagree (" + ", ".join(
                 f"{n}: {u or 'ms'}" for n, u in inferred.items()) + "); write every file in ms or declare "
