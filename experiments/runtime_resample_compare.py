@@ -49,10 +49,14 @@ def replay(bundle, session, *, native: bool = False, chunk_s: float = 1.0):
     from pdrlearn.cli.export import _frames_of
     from pdrlearn.runtime.tracker import Tracker
 
-    tr = Tracker(bundle, frames=_frames_of(session, bundle))
-    if native:
-        tr.inputs.tol = np.inf
-        tr.bundle.check_rates = lambda *a, **k: None
+    if native:  # no stream is at another rate: nothing resampled, nothing refused
+        from pdrlearn.runtime.bundle import Bundle, load_bundle
+
+        bundle = load_bundle(bundle) if not isinstance(bundle, Bundle) else bundle
+        bundle.off_rate = lambda rates: {}
+    tr = Tracker(bundle, frames=_frames_of(session, bundle),  # as `run` makes it (its rates, stream ends)
+                 input_rates_hz={n: st.rate_hz for n, st in session.streams.items()},
+                 stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
     t_all = np.concatenate([st.t for st in session.streams.values()])
     steps = []
     for a in np.arange(t_all.min(), t_all.max() + chunk_s, chunk_s):

@@ -119,7 +119,7 @@ def test_tracker_rejects_bad_pushes(dirs):
     with pytest.raises(DataError, match="not increasing"):
         tr.push({"fGyroscope": (np.array([0.3, 0.2]), np.zeros((2, 3)))})
     with pytest.raises(DataError, match=r"sampled at 100 Hz .* trained at 20 Hz") as exc:
-        tr.push({"fAccelerometer": (np.arange(10) * 0.01, np.zeros((10, 3)))})
+        tr.push({"fAccelerometer": (np.arange(40) * 0.01, np.zeros((40, 3)))})  # rate from 32 samples (E22)
     assert str(dirs["root"] / "bundle") in str(exc.value)  # the bundle's path, not only its folder name
     with pytest.raises(DataError, match="NaN"):
         tr.push({"fAccelerometer": (np.array([1.0]), np.full((1, 3), np.nan))})

@@ -180,7 +180,13 @@ def test_ring_drops_from_the_front_and_keeps_old_views_valid():
     r = Ring(2, capacity=4)
     r.append(np.array([0.0, 1.0, 2.0]), np.arange(6.0).reshape(3, 2))
     t_old, v_old = r.view()
+    r.drop_before(1.5)  # keeps the last sample before 1.5 s (a window's left node across a gap, E23 amended)
+    assert r.view()[0].tolist() == [1.0, 2.0]
     r.drop_before(1.5)
+    assert r.view()[0].tolist() == [1.0, 2.0]
+    r.drop_before(2.0)
+    assert r.view()[0].tolist() == [1.0, 2.0]
+    r.drop_before(2.5)
     assert r.view()[0].tolist() == [2.0]
     r.append1(3.0, [7.0, 8.0])
     r.append(np.array([4.0, 5.0]), np.ones((2, 2)))  # full: new arrays, the old views unchanged
@@ -208,7 +214,8 @@ def test_chunked_pushes_keep_the_state_bounded(bundle, chunk_s):
     """Pushes of a stride or more return a step nearly every time; the buffers must still be trimmed."""
     tr = Tracker(bundle, buffer_s=8.0)
     held = []
-    _stream(tr, synthetic_session(120, seed=5), chunk_s, lambda tr: held.append(len(tr._buf["fAccelerometer"])))
+    _stream(tr, synthetic_session(120, seed=5), chunk_s,  # (the first 1 s is held to learn the rate, E22)
+            lambda tr: held.append(len(tr._buf["fAccelerometer"]) if "fAccelerometer" in tr._buf else 0))
     assert max(held) <= (2 * 8.0 + 2 * chunk_s) * 20 + 2  # 20 Hz foot; the whole 120 s would be 2400
 
 

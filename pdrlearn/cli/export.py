@@ -87,51 +87,32 @@ def _frames_of(session, bundle) -> dict:
     return frames
 
 
-def _announce_resampling(bundle, rates: dict, where: str) -> None:
-    """Decision E22: one warning line naming the streams the runtime will resample to the bundle's rate."""
-    import logging
-    import math
-
-    from pdrlearn.runtime.resample import StreamResampler
-
-    s = bundle.manifest["sensors"]
-    used = [*s.get("required", []), *s.get("optional", [])]
-    tol = float(bundle.manifest["sampling"].get("rate_tolerance", 0.05))
-    other = {n: r for n, r in rates.items() if n in used and math.isfinite(r)
-             and abs(r - bundle.rate_hz) > tol * bundle.rate_hz}
-    if not other:
-        return
-    r0 = StreamResampler(max(other.values()), bundle.rate_hz)
-    how = (f"a {len(r0.taps)}-tap linear-phase low-pass, then linear interpolation" if r0.taps is not None
-           else "linear interpolation")
-    logging.getLogger("pdrlearn.cli").warning(
-        "%s: %s sampled at %s Hz, bundle %s at %.4g Hz: resampling to %.4g Hz as the samples stream in (%s; "
-        "strides and classes can differ a little from `pdrlearn track --streaming` at the data's own rate, "
-        "docs/deploying.md); --no-resample refuses instead",
-        where, ", ".join(other), "/".join(sorted({f"{r:.4g}" for r in other.values()})),
-        bundle.path, bundle.rate_hz, bundle.rate_hz, how)
-
-
 def _warn_short_streams(session, tracker, steps) -> None:
     """Decision E23 for a recording: a stream the bundle uses that ends before the foot gyroscope (which
-    finds the strides) ends the walk there; say where and how much was not tracked."""
+    finds the strides): say where, which steps ran past its end (measured with its last sample held) and
+    where the tracked walk ends."""
     import logging
 
-    s = tracker.bundle.manifest["sensors"]
     g = session.streams.get("fGyroscope")
     if g is None or not len(g):
         return
-    for n in [*s.get("required", []), *s.get("optional", [])]:
+    for n in tracker.bundle.used_sensors:
         st = session.streams.get(n)
         if st is None or not len(st) or n == "fGyroscope":
             continue
-        short = float(g.t[-1] - st.t[-1])
+        end = float(st.t[-1])
+        short = float(g.t[-1]) - end
         if short > 2.0 / max(st.rate_hz, 1e-9):  # more than two of its sample intervals (NaN rate: never)
-            last = f"{steps[-1].end_s:.2f} s" if steps else "none"
+            past = [x for x in steps if x.end_s > end]
+            if past:
+                what = (f"{len(past)} step(s) ({past[0].start_s:.2f} to {past[-1].end_s:.2f} s) ran past its end and "
+                        f"were measured with its last sample held; the walk is tracked to {steps[-1].end_s:.2f} s")
+            else:
+                what = ("no step runs past its end; the walk is tracked to "
+                        + (f"{steps[-1].end_s:.2f} s" if steps else "nowhere (no step)"))
             logging.getLogger("pdrlearn.cli").warning(
-                "%s: %s ends at %.2f s, %.2f s before fGyroscope (%.2f s): nothing after %.2f s is tracked (last "
-                "step ends at %s); trim the session to where every sensor has data, or re-record", session.name,
-                n, float(st.t[-1]), short, float(g.t[-1]), float(st.t[-1]), last)
+                "%s: %s ends at %.2f s, %.2f s before fGyroscope (%.2f s): %s; trim the session to where every "
+                "sensor has data, or re-record", session.name, n, end, short, float(g.t[-1]), what)
 
 
 def run(
@@ -215,16 +196,18 @@ def run(
         rates = {n: st.rate_hz for n, st in session.streams.items()}
         where = f"session '{session.name}'"
         bundle.check_streams(rates if no_resample else {n: float("nan") for n in rates}, where=where)
-        if not no_resample:
-            _announce_resampling(bundle, rates, where)
         from pdrlearn.track.plasys import require_stride_cover
 
-        sensors = bundle.manifest["sensors"]
-        require_stride_cover(session, [*sensors["required"], *sensors.get("optional", [])])  # decision B21
+        require_stride_cover(session, bundle.used_sensors)  # decision B21
         warn_gaps(session, bundle.manifest["sensors"]["required"],
                   "the runtime replays across them (a stride spanning one is unreliable) - re-record or trim the "
                   "session, or use `pdrlearn track`, which ends the walk at a gap")
-        tracker = Tracker(bundle, frames=_frames_of(session, bundle), resample=not no_resample)
+        # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
+        # the runtime resamples at these rates and announces it in one line; a stream behind the others
+        # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
+        tracker = Tracker(bundle, frames=_frames_of(session, bundle), resample=not no_resample,
+                          input_rates_hz=rates,
+                          stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
         if tracker.heading_source == "auto" and not (session.has("wAccelerometer", "wGyroscope")
                                                      and "waist" in tracker.forward):  # as track says (B17)
             import logging

@@ -204,20 +204,27 @@ class Bundle:
             )
         self.check_rates(rates_hz, where=where)
 
-    def check_rates(self, rates_hz: dict[str, float], *, where: str = "data") -> None:
-        """Check the rates of the given sensors that the bundle uses (others are ignored)."""
+    @property
+    def used_sensors(self) -> list[str]:
+        """The sensors the bundle reads: its required ones, then its optional ones (manifest order)."""
+        s = self.manifest["sensors"]
+        return [*s.get("required", []), *s.get("optional", [])]
+
+    def off_rate(self, rates_hz: dict[str, float]) -> dict[str, float]:
+        """The used sensors whose finite rate (Hz) differs from the bundle's by more than its tolerance
+        (decision E3; ``nan`` = unknown, never off)."""
         rate = self.rate_hz
         tol = float(self.manifest["sampling"].get("rate_tolerance", DEFAULT_RATE_TOLERANCE))
-        used = list(self.manifest["sensors"].get("required", [])) + list(self.manifest["sensors"].get("optional", []))
-        for name in used:
-            r = rates_hz.get(name)
-            if r is None or not math.isfinite(r):
-                continue
-            if abs(r - rate) > tol * rate:
-                raise DataError(
-                    f"{where}: {name} is sampled at {r:.4g} Hz but bundle {self.path} was trained at "
-                    f"{rate:.4g} Hz; resample the data to {rate:.4g} Hz or train a model at {r:.4g} Hz"
-                )
+        return {n: float(rates_hz[n]) for n in self.used_sensors if n in rates_hz
+                and math.isfinite(rates_hz[n]) and abs(rates_hz[n] - rate) > tol * rate}
+
+    def check_rates(self, rates_hz: dict[str, float], *, where: str = "data") -> None:
+        """Check the rates of the given sensors that the bundle uses (others are ignored)."""
+        for name, r in self.off_rate(rates_hz).items():
+            raise DataError(
+                f"{where}: {name} is sampled at {r:.4g} Hz but bundle {self.path} was trained at "
+                f"{self.rate_hz:.4g} Hz; resample the data to {self.rate_hz:.4g} Hz or train a model at {r:.4g} Hz"
+            )
 
 
 def _fail(path: Path, msg: str) -> ModelError:

@@ -7,22 +7,31 @@
   ``(n_taps - 1) / 2`` input samples late), then interpolates linearly; upsampling interpolates linearly.
   Every output sample is computed from the same input samples with the same operations in the same order
   whatever the chunking, so pushes of any sizes give the output of one big push, bit for bit.
-* :class:`InputStage` — per sensor: learns the input rate from the first :data:`RATE_PROBE` samples
-  (median interval, the tracker's own rate check), then passes the stream through (rate within the
-  bundle's tolerance), resamples it, or refuses it (``resample=False``: the rate ``DataError`` of E3).
-* :func:`stopped_stream` — the stream that has fallen more than ``max_lag_s`` behind the newest one.
+* :class:`InputStage` — per sensor: its input rate is the caller's declared one (``Tracker(input_rates_hz=...)``,
+  ``pdrlearn run`` gives the session's) or else learned from its first samples (median interval of the
+  first :data:`RATE_PROBE` samples or :data:`RATE_PROBE_S` s); then the stream passes through (rate within
+  the bundle's tolerance), is resampled, or refused (``resample=False``: the rate ``DataError`` of E3). A
+  stream the bundle does not use is ignored from its first sample.
+* :func:`stopped_message` — the one line of decision E23 for a stream that stopped.
 """
 
 from __future__ import annotations
 
+import logging
 import math
 
 import numpy as np
 
 from pdrlearn.errors import DataError
 
-#: samples of a stream used to learn its rate (the tracker's rate check reads as many, decision E3)
-RATE_PROBE = 5
+#: a stream's rate, when the caller does not declare it, is the median interval of its first RATE_PROBE samples,
+#: or of those in its first RATE_PROBE_S s when that comes first (at least RATE_PROBE_MIN samples): a few
+#: irregular samples at the start (a burst, a late first sample) do not decide it (decision E22, amended)
+RATE_PROBE = 32
+RATE_PROBE_S = 1.0
+RATE_PROBE_MIN = 5
+#: centres filtered together in one block of :meth:`StreamResampler._filter_at` (bounds its memory)
+_BLOCK = 64
 #: input intervals longer than this (s) are not bridged: the resampler ends the segment and restarts at the
 #: next sample (decision B11's gap length; shorter gaps are interpolated, as ``resample_stream`` does)
 GAP_S = 1.0
@@ -103,10 +112,9 @@ class StreamResampler:
             out = _cat([], 0 if self._hv is None else self._hv.shape[1])
         else:
             d = self.delay
-            n_real = len(self._ht) - d  # samples after the left padding / history whose centre is pending
             pad_t = self._ht[-1] + (np.arange(1, d + 1) / self.rate_in)  # times of the repeated last sample
-            out = self._filter(np.concatenate([self._ht, pad_t]),
-                               np.concatenate([self._hv, np.repeat(self._hv[-1:], d, axis=0)]), n_real)
+            out = self._centres(np.concatenate([self._ht, pad_t]),
+                                np.concatenate([self._hv, np.repeat(self._hv[-1:], d, axis=0)]), len(self._ht) - d)
         self._ht, self._hv, self._pt, self._pv, self._k, self._last_in = np.empty(0), None, None, None, None, None
         return out
 
@@ -119,22 +127,55 @@ class StreamResampler:
         if d == 0:
             self._ht, self._hv = ht[-1:], hv[-1:]  # nothing to filter: the last sample only marks the segment
             return self._interp(t, v)
-        n_ready = len(ht) - 2 * d  # centres with their whole support
-        if n_ready <= 0:
+        n = len(ht) - 2 * d  # centres (from index d) with their whole support
+        if n <= (self._pt is not None):  # nothing new (the first centre is the last push's right node)
             self._ht, self._hv = ht, hv
             return _cat([], v.shape[1])
-        out = self._filter(ht, hv, n_ready)
-        self._ht, self._hv = ht[n_ready:], hv[n_ready:]
+        out = self._centres(ht, hv, n)
+        self._ht, self._hv = ht[n - 1:], hv[n - 1:]  # from the support of the last centre (the next left node)
         return out
 
-    def _filter(self, ht: np.ndarray, hv: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-        """The first ``n`` centres of ``hv`` filtered (tap by tap, in one fixed order: the same sums for
-        every chunking) and interpolated onto the output grid."""
-        h, d = self.taps.tolist(), self.delay
-        acc = h[0] * hv[0:n]
-        for j in range(1, len(h)):
-            acc += h[j] * hv[j:j + n]
-        return self._interp(ht[d:d + n], acc)
+    def _centres(self, ht: np.ndarray, hv: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """The output grid samples up to the ``n``-th centre (``ht[d:d + n]``; the first one is the last
+        push's right node when the segment goes on). Only the centres that bracket an output time are
+        filtered (decision E22: ~2 per output sample, not one per input sample), each by the same sum."""
+        d = self.delay
+        ct = ht[d:d + n]
+        if self._pt is None:  # a new segment: the grid from its first centre
+            self._k = math.ceil(float(ct[0]) * self.rate_out)
+            while self._k / self.rate_out < ct[0]:  # rounding of the product
+                self._k += 1
+        self._pt = float(ct[-1])
+        tg = _grid(self._k, float(ct[-1]), self.rate_out)
+        if not len(tg):
+            return _cat([], hv.shape[1])
+        self._k += len(tg)
+        i = np.searchsorted(ct, tg, side="right") - 1  # left node of each output time (ct[i] <= tg)
+        need = np.unique(np.concatenate([i, np.minimum(i + 1, n - 1)]))
+        y = self._filter_at(hv, need)
+        out = np.empty((len(tg), hv.shape[1]))
+        for j in range(hv.shape[1]):
+            out[:, j] = np.interp(tg, ct[need], y[:, j])
+        return tg, out
+
+    def _filter_at(self, hv: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        """FIR output at the centres ``idx`` (their support ``hv[idx:idx + n_taps]``): products, then a
+        running sum in tap order (``np.add.accumulate`` is sequential), so a centre's value has the same
+        bits whichever push or block computes it."""
+        if len(idx) * hv.shape[1] >= _BLOCK * 4:  # many centres (a long push): tap by tap over their span,
+            lo, hi = int(idx[0]), int(idx[-1]) + 1  # the same products and running sums, fewer numpy calls
+            h = self.taps.tolist()
+            acc = h[0] * hv[lo:hi]
+            for j in range(1, len(h)):
+                acc += h[j] * hv[lo + j:hi + j]
+            return acc[idx - lo]
+        taps = self.taps[None, :, None]
+        k = np.arange(len(self.taps))
+        out = np.empty((len(idx), hv.shape[1]))
+        for b in range(0, len(idx), _BLOCK):
+            w = hv[idx[b:b + _BLOCK, None] + k]  # (block, taps, channels)
+            out[b:b + _BLOCK] = np.add.accumulate(taps * w, axis=1)[:, -1]
+        return out
 
     def _interp(self, t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Output grid samples up to ``t[-1]`` by linear interpolation between consecutive filtered samples
@@ -147,9 +188,7 @@ class StreamResampler:
         else:
             xt, xv = np.concatenate([[self._pt], t]), np.concatenate([self._pv, y])
         self._pt, self._pv = float(t[-1]), y[-1:].copy()
-        k1 = int(math.floor(float(xt[-1]) * self.rate_out)) + 2
-        tg = np.arange(self._k, max(k1, self._k)) / self.rate_out
-        tg = tg[tg <= xt[-1]]
+        tg = _grid(self._k, float(xt[-1]), self.rate_out)
         if not len(tg):
             return _cat([], y.shape[1])
         self._k += len(tg)
@@ -157,6 +196,18 @@ class StreamResampler:
         for j in range(y.shape[1]):
             out[:, j] = np.interp(tg, xt, xv[:, j])
         return tg, out
+
+
+def _grid(k: int, t_max: float, rate: float) -> np.ndarray:
+    """Output times ``j / rate`` (s) for ``j = k, k + 1, ...`` up to ``t_max``."""
+    k1 = int(math.floor(t_max * rate)) + 2
+    tg = np.arange(k, max(k1, k)) / rate
+    return tg[tg <= t_max]
+
+
+def probe_rate(t: np.ndarray) -> float:
+    """A stream's rate (Hz) from its first samples: the median interval (decision E22)."""
+    return 1.0 / float(np.median(np.diff(t)))
 
 
 def _checked(name: str, t, v, last: float | None) -> tuple[np.ndarray, np.ndarray]:
@@ -190,64 +241,108 @@ class InputStage:
 
     ``push(samples)`` takes ``{sensor: (t, values)}`` and returns the samples to buffer: unchanged for a
     stream at the bundle's rate (within its tolerance), resampled to it for another rate (``resample``)
-    or, without ``resample``, the rate ``DataError`` of decision E3. The first :data:`RATE_PROBE` samples
-    of each stream are held until its rate is known.
+    or, without ``resample``, the rate ``DataError`` of decision E3. A stream's rate is ``rates_hz[name]``
+    when the caller declares it (a recording knows its rates), else learned from its first samples (held
+    until then, :func:`probe_rate`). A stream the bundle does not use is ignored (``ignored``, logged once).
     """
 
-    def __init__(self, bundle, *, resample: bool = True):
+    def __init__(self, bundle, *, resample: bool = True, rates_hz: dict[str, float] | None = None):
         self.bundle = bundle
         self.rate_hz = float(bundle.rate_hz)
-        self.tol = float(bundle.manifest["sampling"].get("rate_tolerance", 0.05))
-        s = bundle.manifest["sensors"]
-        self.used = set(s.get("required", [])) | set(s.get("optional", []))
+        self.used = frozenset(bundle.used_sensors)
         self.resample = bool(resample)
-        #: sensor -> its input rate (Hz), learned from its first samples
+        #: sensor -> its input rate (Hz): declared, or learned from its first samples
         self.input_rates_hz: dict[str, float] = {}
         #: sensor -> its resampler (only the streams at another rate)
         self.resamplers: dict[str, StreamResampler] = {}
         self._probe: dict[str, tuple[list, list]] = {}
+        self._last_raw: dict[str, float] = {}  # resampled streams: time of the last input sample (s)
         self.passed: set[str] = set()  # streams at the bundle's rate, passed through unchanged
-        self.messages: list[str] = []  # one line per resampled stream (decision E22)
+        #: sensor -> why its samples are dropped (the bundle does not use it; an optional stream that stopped)
+        self.ignored: dict[str, str] = {}
+        #: (logging level, line) for the caller to report once: the resampling (warning level, one line per
+        #: call that finds streams to resample, decision E22); each ignored stream (debug level: logged once,
+        #: not a warning, as the sensors a recording carries beyond the bundle's are normal)
+        self.messages: list[tuple[int, str]] = []
+        declared = {n: float(r) for n, r in (rates_hz or {}).items()
+                    if n in self.used and math.isfinite(r) and r > 0}
+        if declared:
+            self._decide(declared, where="declared rates")
+
+    def _decide(self, rates: dict[str, float], where: str) -> None:
+        """Pass, resample or refuse the streams of ``rates`` (sensor -> input rate, Hz)."""
+        off = self.bundle.off_rate(rates)
+        if off and not self.resample:
+            self.bundle.check_rates(off, where=where)
+        self.input_rates_hz.update(rates)
+        self.passed.update(n for n in rates if n not in off)
+        for n, fs in off.items():
+            self.resamplers[n] = StreamResampler(fs, self.rate_hz)
+        if off:
+            self.messages.append((logging.WARNING, resample_message({n: self.resamplers[n] for n in off},
+                                                                    self.rate_hz)))
+
+    def ignore(self, name: str, why: str) -> None:
+        """Drop ``name``'s samples from now on."""
+        self.ignored[name] = why
+        self.passed.discard(name)
+        self.resamplers.pop(name, None)
+        self._probe.pop(name, None)
+
+    def last_in(self, name: str) -> float | None:
+        """Time (s) of the newest sample received of a stream that is resampled or whose rate is being
+        learned (None otherwise: its buffer's last sample is)."""
+        if name in self._last_raw:
+            return self._last_raw[name]
+        p = self._probe.get(name)
+        return float(p[0][-1][-1]) if p and p[0] else None
 
     def push(self, samples: dict) -> dict:
         if self.passed.issuperset(samples):  # every stream known and at the bundle's rate
             return samples
-        out = {}
+        out, learned = {}, {}
         for name, (t, v) in samples.items():
             if name in self.passed:
                 out[name] = (t, v)
                 continue
             r = self.resamplers.get(name)
             if r is not None:
-                out[name] = r.push(*_checked(name, t, v, r.last_in))
+                t, v = _checked(name, t, v, self._last_raw.get(name))
+                if len(t):
+                    out[name] = r.push(t, v)
+                    self._last_raw[name] = float(t[-1])
+                continue
+            if name in self.ignored:
+                continue
+            if name not in self.used:
+                self.ignore(name, "the bundle does not use it")
+                self.messages.append((logging.DEBUG, f"{name}: the bundle does not use it; its samples are ignored"))
                 continue
             pt, pv = self._probe.setdefault(name, ([], []))
-            t, v = _checked(name, t, v, float(pt[-1][-1]) if pt else None)  # the errors now, not 5 samples later
+            t, v = _checked(name, t, v, float(pt[-1][-1]) if pt else None)  # the errors now, not samples later
             if not len(t):
                 continue
             pt.append(t)
             pv.append(v)
             tt = np.concatenate(pt)
-            if len(tt) < RATE_PROBE:
+            if len(tt) < RATE_PROBE and not (len(tt) >= RATE_PROBE_MIN and tt[-1] - tt[0] >= RATE_PROBE_S):
                 continue
             del self._probe[name]
-            vv = np.concatenate(pv)
-            fs = 1.0 / float(np.median(np.diff(tt[:RATE_PROBE])))
-            self.input_rates_hz[name] = fs
-            if name not in self.used or abs(fs - self.rate_hz) <= self.tol * self.rate_hz:
-                self.passed.add(name)
-                out[name] = (tt, vv)
-                continue
-            if not self.resample:
-                self.bundle.check_rates({name: fs}, where=f"pushed {name}")
-            r = self.resamplers[name] = StreamResampler(fs, self.rate_hz)
-            self.messages.append(resample_message(name, fs, self.rate_hz, r))
-            out[name] = r.push(tt, vv)
+            learned[name] = (tt, np.concatenate(pv))
+        if learned:  # the streams whose rate this push told: one announcement for them
+            self._decide({n: probe_rate(tt[:RATE_PROBE]) for n, (tt, _) in learned.items()},
+                         where="pushed " + ", ".join(learned))
+            for name, (tt, vv) in learned.items():
+                if name in self.passed:
+                    out[name] = (tt, vv)
+                else:
+                    out[name] = self.resamplers[name].push(tt, vv)
+                    self._last_raw[name] = float(tt[-1])
         return {n: tv for n, tv in out.items() if len(tv[0])}
 
     def flush(self) -> dict:
-        """The samples still held: probes of streams that never reached :data:`RATE_PROBE` samples and
-        each resampler's filter tail (end of the recording)."""
+        """The samples still held: probes of streams that never reached their rate probe and each
+        resampler's filter tail (end of the recording)."""
         out = {n: (np.concatenate(pt), np.concatenate(pv)) for n, (pt, pv) in self._probe.items()}
         self._probe.clear()
         for name, r in self.resamplers.items():
@@ -257,41 +352,32 @@ class InputStage:
         return out
 
 
-def resample_message(name: str, rate_in: float, rate_out: float, r: StreamResampler | None = None) -> str:
-    """The one line that announces a resampled stream (decision E22)."""
-    how = ("linear interpolation" if r is None or r.taps is None
-           else f"{len(r.taps)}-tap linear-phase low-pass + linear interpolation")
-    lat = f", {r.latency_s * 1e3:.0f} ms delay" if r is not None else ""
-    return (f"{name} is sampled at {rate_in:.4g} Hz, the bundle at {rate_out:.4g} Hz: resampling it to "
-            f"{rate_out:.4g} Hz ({how}{lat}); pass --no-resample / Tracker(resample=False) to refuse instead")
+def resample_message(resamplers: dict[str, StreamResampler], rate_out: float) -> str:
+    """The one line that announces the resampled streams (decision E22), grouped by input rate."""
+    groups: dict[float, list[str]] = {}
+    for n, r in resamplers.items():
+        groups.setdefault(r.rate_in, []).append(n)
+    parts = []
+    for rate_in, names in groups.items():
+        r = resamplers[names[0]]
+        how = ("linear interpolation" if r.taps is None
+               else f"{len(r.taps)}-tap linear-phase low-pass + linear interpolation")
+        parts.append(f"{', '.join(names)} sampled at {rate_in:.4g} Hz ({how}, {r.latency_s * 1e3:.0f} ms delay)")
+    return (f"{'; '.join(parts)}, the bundle at {rate_out:.4g} Hz: resampling to {rate_out:.4g} Hz as the samples "
+            "stream in (strides and classes can differ a little from `pdrlearn track --streaming` at the data's "
+            "own rate, docs/deploying.md); --no-resample / Tracker(resample=False) refuses instead")
 
 
-def stopped_stream(last_s: dict[str, float], sensors: dict, first_s: float, max_lag_s: float
-                   ) -> tuple[str | None, str | None]:
-    """Decision E23: the stream furthest behind the newest one, when that is more than ``max_lag_s`` (s).
-
-    ``last_s``: sensor -> time (s) of its newest sample; ``sensors``: the bundle's ``{"required": [...],
-    "optional": [...]}``; a required sensor without any sample counts from ``first_s`` (the first sample of
-    any stream). A stream the bundle uses raises a one-line :class:`DataError` naming it (its steps would be
-    made of held values); for a stream it does not use, returns ``(name, warning)`` (the caller drops it);
-    ``(None, None)`` when no stream is that far behind.
-    """
-    required = list(sensors.get("required", []))
-    last = dict(last_s)
-    for n in required:
-        last.setdefault(n, first_s)
-    if not last:
-        return None, None
-    newest = max(last.values())
-    name, t = min(last.items(), key=lambda kv: kv[1])
-    if not newest - t > max_lag_s:
-        return None, None
-    if name in required or name in sensors.get("optional", []):
-        what = (f"no samples since {t:.2f} s" if name in last_s
-                else f"no samples at all since the first sample at {t:.2f} s")
-        raise DataError(
-            f"{name}: {what} while other sensors are at {newest:.2f} s (more than max_lag_s = {max_lag_s:g} s "
-            "behind; the sensor stopped or its link dropped); reconnect it and start a new Tracker, or track "
-            "without it with a bundle that does not need it")
-    return name, (f"{name} stopped at {t:.2f} s (the others are at {newest:.2f} s); the bundle does not use it: "
-                  "dropped, the steps no longer wait for it")
+def stopped_message(name: str, t: float | None, first_s: float, newest: float, max_lag_s: float, grace_s: float,
+                    required: bool) -> str:
+    """Decision E23's line for a stream that sent nothing while the others moved on by more than
+    ``max_lag_s`` + ``grace_s`` (its own delivery interval, s); ``t`` = its newest sample (None: never)."""
+    what = (f"no samples since {t:.2f} s" if t is not None
+            else f"no samples at all since the first sample at {first_s:.2f} s")
+    behind = f"max_lag_s = {max_lag_s:g} s" + (f" + {grace_s:.2f} s of its own delivery interval" if grace_s else "")
+    if required:
+        return (f"{name}: {what} while other sensors are at {newest:.2f} s (more than {behind} behind; the sensor "
+                "stopped or its link dropped); reconnect it and start a new Tracker, or track without it with a "
+                "bundle that does not need it")
+    return (f"{name} (optional): {what} while the others are at {newest:.2f} s (more than {behind} behind): "
+            "ignored from now on; the steps no longer wait for it and are measured without it")

@@ -105,10 +105,12 @@ class Ring:
         return self.t[a:b], self.v[a:b]
 
     def drop_before(self, keep_from: float) -> None:
-        """Drop the samples older than ``keep_from`` (s), keeping at least the newest one."""
+        """Drop the samples older than ``keep_from`` (s), keeping at least the newest one and the last one
+        before ``keep_from`` (the left node across a gap in the stream: what a window interpolates from must
+        not depend on when the trim ran, decision E23 amended)."""
         if self.i1 > self.i0 and self.t[self.i0] < keep_from:
-            i = self.i0 + int(self.t[self.i0:self.i1].searchsorted(keep_from))
-            self.i0 = min(i, self.i1 - 1)
+            i = self.i0 + int(self.t[self.i0:self.i1].searchsorted(keep_from)) - 1
+            self.i0 = max(self.i0, min(i, self.i1 - 1))
 
 
 class FootLevelling:

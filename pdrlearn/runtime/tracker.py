@@ -49,7 +49,7 @@ from pdrlearn.kernels.window import (
 )
 from pdrlearn.runtime.bundle import Bundle, load_bundle
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
-from pdrlearn.runtime.resample import InputStage, stopped_stream
+from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
 
 log = logging.getLogger(__name__)
@@ -205,6 +205,8 @@ class Tracker:
         incremental: bool = True,
         resample: bool = True,
         max_lag_s: float | None = None,
+        input_rates_hz: dict[str, float] | None = None,
+        stream_ends_s: dict[str, float] | None = None,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -257,9 +259,7 @@ class Tracker:
         self.distance_gain: float | None = None
         self.stride_sd: float | None = None
         self.warnings: list[str] = []
-        if not {"fAccelerometer", "fGyroscope"} <= set(m["sensors"].get("required", [])) | set(
-            m["sensors"].get("optional", [])
-        ):
+        if not {"fAccelerometer", "fGyroscope"} <= set(self.bundle.used_sensors):
             raise ModelError(
                 f"bundle {self.bundle.path}: the streaming tracker detects steps on the foot "
                 "unit's gyroscope, and this bundle has no foot unit; train with foot data "
@@ -283,13 +283,23 @@ class Tracker:
         self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
         #: the input side (decision E22): streams at another rate than the bundle's are resampled to it
         #: (``resample=True``) or refused; ``inputs.input_rates_hz`` / ``resampled_hz`` tell which
-        self.inputs = InputStage(self.bundle, resample=resample)
-        #: a stream further behind the newest one than this (s) stopped (decision E23; default: max_wait_s,
-        #: 2 s, the longest a step waits for it before E9 would process it without that stream's samples)
+        self.inputs = InputStage(self.bundle, resample=resample, rates_hz=input_rates_hz)
+        #: a stream further behind the newest one than this (s) plus its own delivery interval stopped
+        #: (decision E23; default: max_wait_s, 2 s, the thesis' delay requirement)
         self.max_lag_s = float(self.params.get("max_wait_s", 2.0) if max_lag_s is None else max_lag_s)
-        self._lag_next = -math.inf  # data time (s) of the next lag check
+        #: a step waits at most this long (s of newer data) for a lagging stream before it is processed with
+        #: that stream's last value held (E9); with the lag check on, a step waits until the stream catches up
+        #: or the check gives it up (E23 amended): never made of held values
+        self._wait_s = float(self.params.get("max_wait_s", 2.0)) if self.max_lag_s == math.inf else math.inf
+        #: a recording's streams' last times (s): a stream behind the others before its end is in a gap,
+        #: and the steps wait for it rather than the lag check stopping the replay (E23 amended)
+        self._ends = {str(n): float(t) for n, t in (stream_ends_s or {}).items()}
+        self._lag_next = -math.inf  # data time (s) of the next lag tick (delivery intervals measured)
         self._first_t = math.inf  # the first pushed sample's time (s)
         self._unseen = frozenset(self.bundle.manifest["sensors"].get("required", []))  # not pushed yet
+        self._tick_last: dict[str, float] = {}  # each stream's newest input time at the last lag tick
+        self._batch: dict[str, float] = {}  # each stream's latest advance between two lag ticks (s)
+        self._note_resampled()  # declared rates: the resampling is known (and announced) before any push
 
     @property
     def resampled_hz(self) -> dict[str, float]:
@@ -415,11 +425,8 @@ class Tracker:
                 self._foot.feed(name, t, v)
         if ring.last > self._latest:
             self._latest = ring.last
-        if name not in self._rate_checked:  # the data's rate against the bundle's, once per sensor
-            tt = ring.view()[0]
-            if len(tt) >= 5:
-                self.bundle.check_rates({name: 1.0 / float(np.median(np.diff(tt)))}, where=f"pushed {name}")
-                self._rate_checked.add(name)
+        if name not in self._rate_checked:  # the input stage judged its rate (decision E22)
+            self._rate_checked.add(name)
 
     def push(self, samples) -> list[Step]:
         """Add samples; returns the steps completed by them (possibly none).
@@ -489,40 +496,67 @@ class Tracker:
         required = self.bundle.manifest["sensors"].get("required", [])
         latest = min(ends + [-np.inf for n in required if n not in self._buf])
         # a sensor that stopped must not hold the steps forever: the thesis asks for < 2 s delay
-        stale = max(ends) - float(self.params.get("max_wait_s", 2.0))
+        stale = max(ends) - self._wait_s
         out = []
         while self._pending and (force or self._pending[0][1] + self._lookahead_s < max(latest, stale)):
             out.append(self.process_step(*self._pending.pop(0)))
         return out
 
     def _note_resampled(self) -> None:
-        """Each resampled stream's announcement (decision E22) once in ``warnings``, logged at info level
-        (``pdrlearn run`` prints one warning line for the session)."""
+        """The input stage's lines (decision E22) once each: the resampling in ``warnings`` and logged at
+        warning level (``pdrlearn run`` prints it as its one line); an ignored unused stream logged at debug
+        level only (``inputs.ignored`` names it)."""
         msgs = self.inputs.messages
         while msgs:
-            m = msgs.pop(0)
-            self.warnings.append(m)
-            log.info("bundle %s: %s", self.bundle.path, m)
+            level, m = msgs.pop(0)
+            if level >= logging.WARNING:
+                self.warnings.append(m)
+            log.log(level, "bundle %s: %s", self.bundle.path, m)
 
     def _check_lag(self) -> None:
-        """Decision E23 (:func:`pdrlearn.runtime.resample.stopped_stream`): a stream the bundle uses, or a
-        required one never seen, more than ``max_lag_s`` behind the newest sample is a one-line
-        :class:`DataError` naming it; a stream it does not use is dropped with a warning."""
-        self._lag_next = self._latest + 0.25
-        self._first_t = min(self._first_t, self._oldest)
+        """Decision E23 (amended): a stream the bundle uses that has sent nothing while the newest data moved
+        on by more than ``max_lag_s`` plus its own delivery interval (its latest advance between two lag
+        ticks: the batch it arrives in, or its sample interval when slower) has stopped: a required one is a
+        one-line :class:`DataError` naming it, an optional one is ignored from then on with one warning.
+        A stream behind before its known end (``stream_ends_s``, a recording) is in a gap: the steps wait."""
+        if self._latest >= self._lag_next:  # a lag tick (every 0.25 s of data): the delivery intervals
+            self._lag_next = self._latest + 0.25 - 1e-9  # (0.25 s pushes tick each time, whatever the rounding)
+            self._first_t = min(self._first_t, self._oldest)
+            for n, r in self._buf.items():
+                raw = self.inputs.last_in(n)
+                last = r.last if raw is None else max(r.last, raw)
+                adv = last - self._tick_last.get(n, self._first_t)
+                if adv > 0.0:  # its latest delivery: a batch, or one sample interval of a slow stream
+                    self._batch[n] = adv
+                self._tick_last[n] = last
         if self._unseen:  # required sensors not pushed yet (a required sensor is never dropped)
             self._unseen = self._unseen.difference(self._buf)
         if not self._unseen and self._latest - min([r.last for r in self._buf.values()]) <= self.max_lag_s:
             return  # the common case
-        while True:
-            name, msg = stopped_stream({n: r.last for n, r in self._buf.items()}, self.bundle.manifest["sensors"],
-                                       self._first_t, self.max_lag_s)
-            if name is None:
-                return
+        required = self.bundle.manifest["sensors"].get("required", [])
+        last: dict[str, float | None] = {}
+        for n in [*self._buf, *self._unseen]:
+            raw = self.inputs.last_in(n)
+            r = self._buf.get(n)
+            last[n] = raw if r is None else (r.last if raw is None else max(r.last, raw))
+        any_batch = max(self._batch.values(), default=0.0)  # the caller's batches, for a stream not seen yet
+        for n, t in last.items():
+            if self._latest - (self._first_t if t is None else t) <= self.max_lag_s:
+                continue
+            if n in self._ends and (t is None or t < self._ends[n]):
+                continue  # a gap in a recording (or a later start): the stream resumes, the steps wait
+            rate = self.inputs.input_rates_hz.get(n)
+            grace = any_batch if t is None else max(self._batch.get(n, 0.0), 1.0 / rate if rate else 0.0)
+            if self._latest - (self._first_t if t is None else t) <= self.max_lag_s + grace:
+                continue  # within its own delivery interval: it can not have sent more yet
+            msg = stopped_message(n, t, self._first_t, self._latest, self.max_lag_s, grace, n in required)
+            if n in required:
+                raise DataError(msg)
+            self.inputs.ignore(n, "it stopped")
+            self._buf.pop(n, None)
+            self._rate_checked.discard(n)
             self.warnings.append(msg)
             log.warning("bundle %s: %s", self.bundle.path, msg)
-            del self._buf[name]
-            self._rate_checked.discard(name)
 
     def _detect(self) -> None:
         """Online stance detection on the foot gyroscope (:class:`pdrlearn.kernels.stride.StanceSegmenter`,
