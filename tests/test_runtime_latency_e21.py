@@ -150,3 +150,27 @@ def test_measurement_objects_and_flush_feed_the_queue(bundle):
     got += [x.to_dict() for x in tr.flush()]
     want += [x.to_dict() for x in ref.flush()]
     assert got == want and len(got) > 5 and not tr._foot_q
+
+
+def test_unpickled_samples_take_the_one_sample_path(bundle):
+    """Arrays that crossed a pickle (a multiprocessing queue) carry an equal copy of numpy's float64 dtype
+    object: they take push's one-sample path like any float64 sample (E21; before, every such sample went
+    through _append's conversions), with the same steps."""
+    import pickle
+
+    s = synthetic_session(20, seed=9)
+    chunks = native_chunks(s)
+    sent = [pickle.loads(pickle.dumps(d)) for d in chunks]
+    assert sent[0]["fGyroscope"][0].dtype is not np.dtype(np.float64)  # the case: an equal, other object
+
+    class _CountingAppend(Tracker):
+        appended = 0
+
+        def _append(self, name, t, v):
+            self.appended += 1
+            return super()._append(name, t, v)
+
+    tr = _CountingAppend(bundle)
+    got = _run(tr, sent)
+    assert tr.appended <= 6 * len(chunks[0])  # the first pushes of each sensor only (its rate check needs 5)
+    assert got == _run(Tracker(bundle), chunks) and len(got) > 5

@@ -52,6 +52,8 @@ from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
 
 log = logging.getLogger(__name__)
+#: float64 in native byte order. Arrays made here share this dtype object (``is`` is the cheap test), but
+#: unpickled arrays (multiprocessing queues, pickled sessions) carry an equal copy of it (``==``, decision E21)
 _F64 = np.dtype(np.float64)
 #: the window channels of the waist's levelled acceleration (computed only when one of them is needed, E17)
 _WAIST_ACC = frozenset(("waist_acc_x", "waist_acc_y", "waist_acc_z"))
@@ -365,7 +367,8 @@ class Tracker:
 
     def _append(self, name: str, t, v) -> None:
         if (type(t) is np.ndarray and type(v) is np.ndarray and t.shape == (1,) and v.ndim == 2 and v.shape[0] == 1
-                and t.dtype is _F64 and v.dtype is _F64):  # one float64 sample: no conversions (decision E16)
+                and (t.dtype is _F64 or t.dtype == _F64) and (v.dtype is _F64 or v.dtype == _F64)):  # one float64
+            # sample: no conversions (decision E16)
             n, t0, vals = 1, t.item(), v.tolist()[0]
         else:
             t = np.asarray(t, dtype=np.float64).reshape(-1)
@@ -426,7 +429,8 @@ class Tracker:
                 # appended here without _append's frame and general checks (decision E17); anything else
                 # (a new sensor, chunks, other dtypes, NaN, old timestamps: their errors) goes through _append
                 if (name in fast and type(t) is np.ndarray and type(v) is np.ndarray and t.shape == (1,)
-                        and t.dtype is _F64 and v.dtype is _F64 and v.ndim == 2 and v.shape[0] == 1):
+                        and (t.dtype is _F64 or t.dtype == _F64) and (v.dtype is _F64 or v.dtype == _F64)
+                        and v.ndim == 2 and v.shape[0] == 1):
                     ring = buf[name]
                     t0, vals = t.item(), v.tolist()[0]
                     i = ring.i1
