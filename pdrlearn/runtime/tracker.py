@@ -53,6 +53,8 @@ from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
 
 log = logging.getLogger(__name__)
+#: float64 in native byte order. Arrays made here share this dtype object (``is`` is the cheap test), but
+#: unpickled arrays (multiprocessing queues, pickled sessions) carry an equal copy of it (``==``, decision E21)
 _F64 = np.dtype(np.float64)
 #: the window channels of the waist's levelled acceleration (computed only when one of them is needed, E17)
 _WAIST_ACC = frozenset(("waist_acc_x", "waist_acc_y", "waist_acc_z"))
@@ -190,6 +192,8 @@ class Tracker:
         less work at the step event); False = all of it at the step event (the shared kernel alone).
     """
 
+    _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
+
     def __init__(
         self,
         bundle: Bundle | str | Path,
@@ -273,6 +277,9 @@ class Tracker:
         #: the foot levelling's per-sample part, done at push time (decision E15); None = the shared
         #: kernel at the step event only (``incremental=False``, or no declared foot frame)
         self._foot = FootLevelling(self.forward["foot"]) if incremental and "foot" in self.forward else None
+        #: one-sample foot feeds of the current push, ``(name, t, values)``: fed to ``_foot`` at the end of a
+        #: push that completes no step, else at the next push (decision E21), or before a step needs them
+        self._foot_q: list[tuple[str, float, list[float]]] = []
         self.position = np.asarray(start, dtype=float).reshape(3).copy()
         self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
@@ -360,7 +367,8 @@ class Tracker:
         kw = {"forward": self.forward, "rest_search_s": self.rest_search_s, "heading": self.heading_mode}
         foot = None
         if self._foot is not None and "foot_acc" in avail and "foot_gyr" in avail:
-            foot = foot_levelled(self._foot, t0, t1, rest_search_s=self.rest_search_s, heading=self.heading_mode)
+            foot = foot_levelled(self._foot_state(t1), t0, t1, rest_search_s=self.rest_search_s,
+                                 heading=self.heading_mode)
         if foot is None:
             return levelled_units(streams, t0, t1, available=avail, **kw)
         lev = {"foot": foot}
@@ -386,7 +394,8 @@ class Tracker:
 
     def _append(self, name: str, t, v) -> None:
         if (type(t) is np.ndarray and type(v) is np.ndarray and t.shape == (1,) and v.ndim == 2 and v.shape[0] == 1
-                and t.dtype is _F64 and v.dtype is _F64):  # one float64 sample: no conversions (decision E16)
+                and (t.dtype is _F64 or t.dtype == _F64) and (v.dtype is _F64 or v.dtype == _F64)):  # one float64
+            # sample: no conversions (decision E16)
             n, t0, vals = 1, t.item(), v.tolist()[0]
         else:
             t = np.asarray(t, dtype=np.float64).reshape(-1)
@@ -418,10 +427,11 @@ class Tracker:
         if n == 1:
             ring.append1(t0, vals)
             if self._foot is not None and (name == "fAccelerometer" or name == "fGyroscope"):
-                self._foot.feed1(name, t0, vals)
+                self._foot_q.append((name, t0, vals))
         else:
             ring.append(t, v)
             if self._foot is not None and (name == "fAccelerometer" or name == "fGyroscope"):
+                self._feed_foot()  # the queued samples first: the state is fed in time order
                 self._foot.feed(name, t, v)
         if ring.last > self._latest:
             self._latest = ring.last
@@ -434,6 +444,8 @@ class Tracker:
         ``samples`` : mapping sensor name -> ``(t (n,) s, values (n, k))``, or an iterable of
         measurements with ``t``, ``sensor`` and ``values`` attributes (the Bluetooth parser's output).
         """
+        if self._foot_q:  # the foot samples of a push that completed a step (decision E21)
+            self._feed_foot()
         if not isinstance(samples, dict):  # Bluetooth measurements: grouped per sensor
             grouped: dict[str, tuple[list, list]] = {}
             for mm in samples:
@@ -444,13 +456,14 @@ class Tracker:
         samples = self.inputs.push(samples)  # the same dict when every stream is at the bundle's rate (E22)
         if samples:
             self._note_resampled()
-            buf, foot, fast = self._buf, self._foot, self._rate_checked
+            buf, foot, fast = self._buf, self._foot_q if self._foot is not None else None, self._rate_checked
             for name, (t, v) in samples.items():
                 # one float64 sample of a known, rate-checked sensor that is finite and newer than its buffer:
                 # appended here without _append's frame and general checks (decision E17); anything else
                 # (a new sensor, chunks, other dtypes, NaN, old timestamps: their errors) goes through _append
                 if (name in fast and type(t) is np.ndarray and type(v) is np.ndarray and t.shape == (1,)
-                        and t.dtype is _F64 and v.dtype is _F64 and v.ndim == 2 and v.shape[0] == 1):
+                        and (t.dtype is _F64 or t.dtype == _F64) and (v.dtype is _F64 or v.dtype == _F64)
+                        and v.ndim == 2 and v.shape[0] == 1):
                     ring = buf[name]
                     t0, vals = t.item(), v.tolist()[0]
                     i = ring.i1
@@ -461,7 +474,7 @@ class Tracker:
                         ring.i1 = i + 1
                         ring.last = t0
                         if foot is not None and (name == "fAccelerometer" or name == "fGyroscope"):
-                            foot.feed1(name, t0, vals)
+                            foot.append((name, t0, vals))  # fed after the step (decision E21)
                         if t0 > self._latest:
                             self._latest = t0
                         continue
@@ -470,16 +483,44 @@ class Tracker:
         if self._pending or self._latest >= self._lag_next:  # E23: before a waiting step could go stale
             self._check_lag()
         steps = self._process_ready()
-        # a push that completes steps returns them first and the next push trims (decision E15); pushes in
-        # chunks of a stride or more complete a step nearly every time, so trim anyway once the buffers
-        # hold twice buffer_s (bounded state, issue 7)
-        if not steps or self._latest - self._oldest > 2.0 * self.buffer_s:
+        # a push that completes steps returns them first, and the next push feeds its foot samples to the
+        # push-time levelling (decision E21) and trims (decision E15); pushes in chunks of a stride or more
+        # complete a step nearly every time, so trim anyway once the buffers hold twice buffer_s (bounded
+        # state, issue 7)
+        if not steps:
+            if self._foot_q:
+                self._feed_foot()
+            self._trim()
+        elif self._latest - self._oldest > 2.0 * self.buffer_s:
             self._trim()
         return steps
+
+    def _feed_foot(self) -> None:
+        """Feed the queued one-sample foot pushes to the push-time levelling, in push order."""
+        q, feed1 = self._foot_q, self._foot.feed1
+        for name, t, vals in q:
+            feed1(name, t, vals)
+        q.clear()  # in place: push holds the list while it appends
+
+    def _foot_state(self, t1: float) -> FootLevelling:
+        """The push-time levelling state for a step ending at ``t1`` (s), with the queued foot samples fed
+        when the step could read them (decision E21): a step reads the foot samples up to the first at or
+        after ``t1``, and the queue holds the newest. The usual queue (one accelerometer and one gyroscope
+        sample of one time, no sample waiting for its partner, room in the state's arrays) with a state
+        already past ``t1`` changes neither the step's samples, nor the state's clock check, nor its anchor
+        (a reallocation re-anchors the running product), so it waits for the next push: the step's numbers
+        are those of the state fed first, bit for bit."""
+        f, q = self._foot, self._foot_q
+        if q and not (f.last > t1 and len(q) == 2 and q[0][1] == q[1][1] and q[0][0] != q[1][0]
+                      and f._pa is None and f._pg is None and f.i1 < len(f.a["t"])):  # no re-anchoring
+            self._feed_foot()
+        return f
 
     def flush(self) -> list[Step]:
         """Process the detected steps still waiting for other sensors' samples (end of a recording); the
         resampled streams' last samples (their filter's delay, decision E22) are buffered first."""
+        if self._foot_q:
+            self._feed_foot()
         for name, (t, v) in self.inputs.flush().items():
             self._append(name, t, v)
         self._detect()
@@ -645,5 +686,7 @@ class Tracker:
         for ring in self._buf.values():
             ring.drop_before(keep_from)
         if self._foot is not None:
+            if self._foot_q:
+                self._feed_foot()
             self._foot.drop_before(keep_from)
         self._oldest = min(float(r.t[r.i0]) for r in self._buf.values())
