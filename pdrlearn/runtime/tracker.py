@@ -272,7 +272,10 @@ class Tracker:
         self.rate_hz = self.bundle.rate_hz
         self.buffer_s = float(buffer_s)
         self._buf: dict[str, Ring] = {}
-        self._oldest = math.inf  # time of the oldest buffered sample (s), for a cheap _trim
+        self._oldest = math.inf  # time of the oldest buffered sample (s)
+        # a lower bound of the earliest cut that drops a sample (a ring keeps the last sample before the cut,
+        # so its second sample; a ring of one sample, that sample): a cheap _trim between two steps
+        self._drop_at = math.inf
         self._latest = -math.inf  # time of the newest buffered sample (s)
         #: the foot levelling's per-sample part, done at push time (decision E15); None = the shared
         #: kernel at the step event only (``incremental=False``, or no declared foot frame)
@@ -421,6 +424,7 @@ class Tracker:
         if ring is None:
             ring = self._buf[name] = Ring(v.shape[1])
             self._oldest = min(self._oldest, t0)
+            self._drop_at = min(self._drop_at, t0)
         elif v.shape[1] != ring.v.shape[1]:
             raise DataError(f"{name}: pushed {v.shape[1]} values per sample after {ring.v.shape[1]}; push every "
                             "sample of a sensor with the same number of values")
@@ -681,7 +685,7 @@ class Tracker:
             keep_from = max(keep_from, self.segmenter.last_boundary - _LOOK_BACK_S)
         if self._pending:  # keep what the waiting steps need
             keep_from = min(keep_from, self._pending[0][0] - _LOOK_BACK_S)
-        if keep_from <= self._oldest:  # nothing to drop (the common case between two steps)
+        if keep_from <= self._drop_at:  # nothing to drop (the common case between two steps)
             return
         for ring in self._buf.values():
             ring.drop_before(keep_from)
@@ -690,3 +694,4 @@ class Tracker:
                 self._feed_foot()
             self._foot.drop_before(keep_from)
         self._oldest = min(float(r.t[r.i0]) for r in self._buf.values())
+        self._drop_at = min(float(r.t[r.i0 + 1] if r.i1 - r.i0 > 1 else r.t[r.i0]) for r in self._buf.values())
