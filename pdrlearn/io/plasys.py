@@ -32,7 +32,7 @@ from pdrlearn.io.validate import (
     check_rate,
     check_timestamps,
     check_units,
-    infer_time_unit,
+    time_unit_candidates,
 )
 
 log = logging.getLogger(__name__)
@@ -101,15 +101,12 @@ def read_table(path: str | os.PathLike) -> pd.DataFrame:
 def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale: float = 1e-3,
                 check_unit: bool = True) -> Stream:
     """Read one sensor CSV into a :class:`Stream` (timestamps converted to seconds)."""
-    return _read_stream(path, name, time_scale=time_scale, check_unit=check_unit)[0]
+    name, arr = _read_raw(path, name)
+    return _to_stream(path, name, arr, time_scale, check_unit)
 
 
-def _read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale: float = 1e-3,
-                 check_unit: bool = True, infer_unit: bool = False,
-                 declared_rate_hz: float | None = None) -> tuple[Stream, str | None]:
-    """:func:`read_stream`, and with ``infer_unit`` (meta.json declares no timestamp unit) timestamps that are
-    not milliseconds read in the one other unit that gives a plausible rate (decision B22). Returns the
-    stream and the inferred unit (``None`` when ``time_scale`` was used)."""
+def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np.ndarray]:
+    """One sensor CSV's name and numeric array (timestamps in the file's unit, then the value columns)."""
     path = Path(path)
     name = name or path.stem
     if name not in SENSORS:
@@ -119,14 +116,35 @@ def _read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale
         raise DataError(f"{path}: file not found")
     df = read_table(path)
     check_columns(df, ("timestamp", *spec.columns), str(path))
-    arr = check_numeric(df, ("timestamp", *spec.columns), str(path))
-    guess = infer_time_unit(arr[:, 0], declared_rate_hz) if infer_unit else None
-    t = arr[:, 0] * (guess[1] if guess else time_scale)
+    return name, check_numeric(df, ("timestamp", *spec.columns), str(path))
+
+
+def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: float, check_unit: bool) -> Stream:
+    t = arr[:, 0] * time_scale
     check_timestamps(t, str(path))
     check_rate(t, str(path))
     if check_unit:
-        check_units(spec, arr[:, 1:], str(path))
-    return Stream(name, t, arr[:, 1:]), (guess[0] if guess else None)
+        check_units(SENSORS[name], arr[:, 1:], str(path))
+    return Stream(name, t, arr[:, 1:])
+
+
+def _session_time_unit(raw: dict[str, np.ndarray], rate_hz: float | None, meta_path: Path) -> str | None:
+    """Decision B22: the one timestamp unit of a session whose meta.json declares none, from every sensor
+    file at once (a unit every file's rate allows; the IMU files held to ``rate_hz``, a barometer logging at
+    its own rate not). ``None`` = milliseconds (also when ms fits, or nothing decides: B9's checks follow)."""
+    cands = {n: time_unit_candidates(a[:, 0], rate_hz if SENSORS[n].kind != "barometer" else None)
+             for n, a in raw.items()}
+    common = [u for u, _ in time_unit_candidates(np.zeros(0)) if all(u in [c for c, _ in v] for v in cands.values())]
+    if "ms" in common or len(common) > 1:
+        return None
+    if common:
+        return common[0]
+    single = {n: v[0][0] for n, v in cands.items() if len(v) == 1}
+    if set(single.values()) - {"ms"}:  # the files contradict each other
+        raise DataError(f"{meta_path}: declares no timestamp unit and the sensor files disagree (" + ", ".join(
+            f"{n}: {single.get(n) or '/'.join(c for c, _ in v) or 'no unit at rate_hz'}" for n, v in cands.items())
+            + "); write every file in ms or declare \"units\": {\"timestamp\": ...} in meta.json")
+    return None
 
 
 #: label time columns that must be filled in every row (the others, e.g. ``tc_ms``, may be blank = unknown)
@@ -226,25 +244,19 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
             raise DataError(f"{meta_path}: must hold a JSON object")
         _check_body_fields(meta, str(meta_path))
     scale = _timestamp_scale(meta, str(meta_path))
-    infer = not _timestamp_declared(meta)
     rate = meta.get("rate_hz")
-    rate = float(rate) if isinstance(rate, int | float) and rate > 0 else None
-    streams, inferred = {}, {}
+    rate = float(rate) if isinstance(rate, int | float) and not isinstance(rate, bool) and rate > 0 else None
+    raw = {}
     for name, spec in SENSORS.items():
         p = folder / spec.filename
         if p.exists():
-            # a barometer logs at its own rate: only the IMU streams are held to meta.json's rate_hz
-            streams[name], unit = _read_stream(p, name, time_scale=scale, check_unit=check_units, infer_unit=infer,
-                                               declared_rate_hz=rate if spec.kind != "barometer" else None)
-            inferred[name] = unit
-    units = set(inferred.values())
-    if units - {None}:  # decision B22: one unit for every file, said once
-        if len(units) > 1:
-            raise DataError(f"{meta_path}: declares no timestamp unit and the sensor files disagree (" + ", ".join(
-                f"{n}: {u or 'ms'}" for n, u in inferred.items()) + "); write every file in ms or declare "
-                "\"units\": {\"timestamp\": ...} in meta.json")
-        unit = units.pop()
+            raw[name] = _read_raw(p, name)[1]
+    unit = _session_time_unit(raw, rate, meta_path) if raw and not _timestamp_declared(meta) else None
+    if unit is not None:  # decision B22: one unit for every file, said once
         scale = _TIME_SCALE[unit]
+    streams = {name: _to_stream(folder / SENSORS[name].filename, name, arr, scale, check_units)
+               for name, arr in raw.items()}
+    if unit is not None:
         log.warning("%s: declares no timestamp unit and the timestamps are not milliseconds: read as %s "
                     "(%s); add \"units\": {\"timestamp\": \"%s\"} to meta.json to say so", meta_path, unit,
                     ", ".join(f"{n} {s.rate_hz:.4g} Hz" for n, s in streams.items()), unit)

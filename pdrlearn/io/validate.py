@@ -122,25 +122,31 @@ def check_rate(t: np.ndarray, where: str) -> None:
         )
 
 
-#: timestamp units tried when a session declares none and its timestamps are not milliseconds (B22)
-_OTHER_TIME_UNITS = (("s", 1.0), ("us", 1e-6), ("ns", 1e-9))
+#: timestamp units a session that declares none may be in (B22), milliseconds first (the default)
+_TIME_UNITS = (("ms", 1e-3), ("s", 1.0), ("us", 1e-6), ("ns", 1e-9))
+
+
+def time_unit_candidates(t_raw: np.ndarray, declared_rate_hz: float | None = None) -> list[tuple[str, float]]:
+    """The units (``(unit, seconds per unit)``, ms first) in which raw timestamps give a plausible rate
+    (:data:`RATE_LIMITS_HZ`) and, where ``meta.json`` declares a rate, that rate within 10 % (decision B22).
+    Every unit when the timestamps say nothing (fewer than 3, or not increasing: :func:`check_timestamps`'s
+    error)."""
+    if t_raw.size < 3:
+        return list(_TIME_UNITS)
+    d = float(np.median(np.diff(t_raw)))
+    if not np.isfinite(d) or d <= 0:
+        return list(_TIME_UNITS)
+    lo, hi = RATE_LIMITS_HZ
+    return [(u, k) for u, k in _TIME_UNITS if lo <= 1.0 / (d * k) <= hi
+            and (declared_rate_hz is None or abs(1.0 / (d * k) - declared_rate_hz) <= 0.1 * declared_rate_hz)]
 
 
 def infer_time_unit(t_raw: np.ndarray, declared_rate_hz: float | None = None) -> tuple[str, float] | None:
     """The unit of raw timestamps that are not milliseconds (decision B22): ``(unit, seconds per unit)`` when
-    exactly one of s, us, ns gives a plausible rate (:data:`RATE_LIMITS_HZ`) and, where ``meta.json`` declares
-    a rate, that rate within 10 %; ``None`` when the ms reading is plausible or no other unit fits."""
-    if t_raw.size < 3:
-        return None
-    d = float(np.median(np.diff(t_raw)))
-    if not np.isfinite(d) or d <= 0:
-        return None
-    lo, hi = RATE_LIMITS_HZ
-    if lo <= 1.0 / (d * 1e-3) <= hi:
-        return None
-    fits = [(u, k) for u, k in _OTHER_TIME_UNITS if lo <= 1.0 / (d * k) <= hi
-            and (declared_rate_hz is None or abs(1.0 / (d * k) - declared_rate_hz) <= 0.1 * declared_rate_hz)]
-    return fits[0] if len(fits) == 1 else None
+    the ms reading is implausible (or contradicts the declared rate) and exactly one of s, us, ns fits
+    (:func:`time_unit_candidates`); ``None`` when ms fits or no single other unit does."""
+    fits = time_unit_candidates(t_raw, declared_rate_hz)
+    return fits[0] if len(fits) == 1 and fits[0][0] != "ms" else None
 
 
 def check_label_times(table: pd.DataFrame, t_start: float, t_end: float, where: str) -> None:
