@@ -79,8 +79,9 @@ def gap_notes(session: Session, t0: float, t1: float) -> list[str]:
 
 
 #: decision W39: the plausible range of a walk's known distance over the distance the default (uncalibrated)
-#: step-length model gives its steps -- for the pendulum with F = 0 that is K itself. Our calibrations span
-#: 0.83-1.22 (W39: the five mobgap Test5 walks with bouts, both pipelines, and the simulated users); seed
+#: step-length model gives its steps -- for the pendulum with F = 0 that is K / DEFAULT_K (4.587/4 since W46;
+#: K itself when W39 chose the range). Our calibrations span 0.83-1.22 as K (W39: the five mobgap Test5 walks
+#: with bouts, both pipelines, and the simulated users), 0.72-1.06 as the ratio since W46; seed
 #: 003 sec. 3.2's pendulum needs no gain at all (accuracy 100.96 %). Outside the range the walk's distance is
 #: more likely wrong (a --distance of a longer walk, a walk that was not all recorded) than the user unusual.
 PLAUSIBLE_GAIN = (0.6, 1.8)
