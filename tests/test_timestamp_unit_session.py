@@ -71,3 +71,24 @@ def test_milliseconds_off_the_declared_rate_stay_milliseconds(tmp_path, caplog):
         s = read_session(_copy(tmp_path, 1.0, rate_hz=50.0))
     assert s.streams["wAccelerometer"].rate_hz == pytest.approx(100.0)
     assert not _unit_lines(caplog)
+
+
+def test_a_magnetometer_at_its_own_rate_follows_the_session(tmp_path):
+    # a 100 Hz session in seconds whose magnetometer logs at 50 Hz: read as seconds, not "disagree"
+    import shutil
+
+    src = Path(__file__).resolve().parents[1] / "datasets" / "real" / "mobgap_HA001_Test5_Trial1"
+    dst = tmp_path / "s"
+    shutil.copytree(src, dst)
+    meta = json.loads((dst / "meta.json").read_text())
+    meta["units"].pop("timestamp", None)
+    (dst / "meta.json").write_text(json.dumps(meta))
+    for p in dst.glob("w*.csv"):
+        df = pd.read_csv(p)
+        if p.name == "wMagneticField.csv":
+            df = df.iloc[::2]
+        df["timestamp"] = df["timestamp"] * 1e-3
+        df.to_csv(p, index=False)
+    s = read_session(dst)
+    assert abs(s.streams["wMagneticField"].rate_hz - 50.0) < 1.0
+    assert abs(s.streams["wAccelerometer"].rate_hz - 100.0) < 1.0

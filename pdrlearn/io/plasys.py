@@ -130,9 +130,11 @@ def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: 
 
 def _session_time_unit(raw: dict[str, np.ndarray], rate_hz: float | None, meta_path: Path) -> str | None:
     """Decision B22: the one timestamp unit of a session whose meta.json declares none, from every sensor
-    file at once (a unit every file's rate allows; the IMU files held to ``rate_hz``, a barometer logging at
-    its own rate not). ``None`` = milliseconds (also when ms fits, or nothing decides: B9's checks follow)."""
-    cands = {n: time_unit_candidates(a[:, 0], rate_hz if SENSORS[n].kind != "barometer" else None)
+    file at once (a unit every file's rate allows; the accelerometer and gyroscope files held to
+    ``rate_hz``, the magnetometer, force and barometer files, which may log at their own rates, not).
+    ``None`` = milliseconds (also when ms fits, or nothing decides: B9's checks follow)."""
+    cands = {n: time_unit_candidates(a[:, 0], rate_hz if SENSORS[n].kind in ("accelerometer", "gyroscope")
+                                     else None)
              for n, a in raw.items()}
     common = [u for u, _ in time_unit_candidates(np.zeros(0)) if all(u in [c for c, _ in v] for v in cands.values())]
     if "ms" in common or len(common) > 1:
