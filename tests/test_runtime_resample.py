@@ -101,7 +101,7 @@ def test_tracker_resamples_another_rate_and_chunks_give_one_push_steps(dirs):
     steps of random-size pushes per stream equal those of one push, and the resampled samples bit for bit."""
     s = synthetic_session(40, seed=11)
     data = _at_rate(s, 50.0)
-    tr = Tracker(dirs["root"] / "bundle")
+    tr = Tracker(dirs["root"] / "bundle", resample=True)
     whole = tr.push(data) + tr.flush()
     assert len(whole) >= 20
     used = set(tr.bundle.manifest["sensors"]["required"]) | set(tr.bundle.manifest["sensors"]["optional"])
@@ -110,7 +110,7 @@ def test_tracker_resamples_another_rate_and_chunks_give_one_push_steps(dirs):
     lines = [w for w in tr.warnings if "resampling to 20 Hz" in w]  # one line for the streams of one push (E22)
     assert len(lines) == 1 and all(n in lines[0] for n in tr.resampled_hz) and "sampled at 50 Hz" in lines[0]
     rng = np.random.default_rng(5)
-    tr2 = Tracker(dirs["root"] / "bundle")
+    tr2 = Tracker(dirs["root"] / "bundle", resample=True)
     steps = []
     for push in _time_chunks(rng, data):
         steps += tr2.push(push)
@@ -148,7 +148,7 @@ def test_a_required_stream_that_stops_is_one_error_naming_it(dirs):
     gyroscope past 10 s + max_lag_s raises, naming the accelerometer, before any step is made of held values
     (E9 would process a waiting step then); before, steps come out as usual."""
     s = synthetic_session(40, seed=2)
-    tr = Tracker(dirs["root"] / "bundle")
+    tr = Tracker(dirs["root"] / "bundle", resample=True)
     assert tr.max_lag_s == 2.0
     n_steps, raised_at = 0, None
     for a in np.arange(0.0, 30.0, 0.25):
@@ -174,7 +174,7 @@ def test_a_required_stream_that_stops_is_one_error_naming_it(dirs):
 
 def test_a_required_stream_that_never_comes_is_an_error_and_an_unused_one_is_ignored(dirs, caplog):
     s = synthetic_session(20, seed=4)
-    tr = Tracker(dirs["root"] / "bundle")
+    tr = Tracker(dirs["root"] / "bundle", resample=True)
     with pytest.raises(DataError, match=r"^wGyroscope: no samples at all since the first sample at 0\.00 s"):
         for a in np.arange(0.0, 20.0, 0.5):
             tr.push({n: (st.t[(st.t >= a) & (st.t < a + 0.5)], st.values[(st.t >= a) & (st.t < a + 0.5)])
@@ -183,9 +183,9 @@ def test_a_required_stream_that_never_comes_is_an_error_and_an_unused_one_is_ign
     # re-added at its next sample and dropped again: a 0.25 Hz stream gave 11 warnings in 60 s); the steps are
     # those of the session without it
     s = synthetic_session(60, seed=3)
-    ref = Tracker(dirs["root"] / "bundle")
+    ref = Tracker(dirs["root"] / "bundle", resample=True)
     want = [(x.start_s, x.end_s) for x in ref.push({n: (st.t, st.values) for n, st in s.streams.items()})]
-    tr = Tracker(dirs["root"] / "bundle")
+    tr = Tracker(dirs["root"] / "bundle", resample=True)
     slow = np.arange(0.0, 60.0, 4.0)
     got = []
     caplog.set_level(logging.DEBUG, logger="pdrlearn")
@@ -233,12 +233,13 @@ def test_units_pushed_separately_in_batches_track_like_one_push(dirs, batch_s):
     is not a stopped stream (it was: 'no samples at all since ...' from 2 s batches on); the steps equal
     those of one push per chunk. A unit that then stops is still an error, one batch later."""
     s = synthetic_session(40, seed=3, rate_hz=20.0)
-    ref = _push_all(Tracker(dirs["root"] / "bundle"), (_cut(s, a, a + 1.0) for a in np.arange(0, 45, 1.0)))
-    tr = Tracker(dirs["root"] / "bundle")
+    ref = _push_all(Tracker(dirs["root"] / "bundle", resample=True),
+                    (_cut(s, a, a + 1.0) for a in np.arange(0, 45, 1.0)))
+    tr = Tracker(dirs["root"] / "bundle", resample=True)
     got = _push_all(tr, (_cut(s, a, a + batch_s, g) for a in np.arange(0, 45, batch_s) for g in (FOOT, WAIST)))
     _same_steps(got, ref)
     assert len(got) >= 30
-    tr = Tracker(dirs["root"] / "bundle")
+    tr = Tracker(dirs["root"] / "bundle", resample=True)
     stop = r"^wAccelerometer: no samples since 1?[19]\.95 s .* max_lag_s = 2 s \+ [0-9.]+ s "
     with pytest.raises(DataError, match=stop):
         _push_all(tr, (_cut(s, a, a + batch_s, g) for a in np.arange(0, 45, batch_s) for g in (FOOT, WAIST)
@@ -251,7 +252,7 @@ def test_an_optional_stream_that_stops_is_ignored_with_one_warning(dirs):
     s = synthetic_session(40, seed=3)
     baro = s.streams["wBarometer"]
     s.streams["wBarometer"] = type(baro)("wBarometer", baro.t[baro.t < 10.0], baro.values[baro.t < 10.0])
-    tr = Tracker(dirs["root"] / "bundle")
+    tr = Tracker(dirs["root"] / "bundle", resample=True)
     got = _push_all(tr, (_cut(s, a, a + 0.5) for a in np.arange(0, 45, 0.5)))
     assert len(got) >= 35 and "wBarometer" not in tr._buf and "wBarometer" in tr.inputs.ignored
     w = [x for x in tr.warnings if x.startswith("wBarometer")]
@@ -265,7 +266,7 @@ def test_a_slow_optional_stream_is_not_a_stopped_one(dirs):
     b = s.streams["wBarometer"]
     t = np.arange(0.0, b.t[-1], 2.5)
     s.streams["wBarometer"] = type(b)("wBarometer", t, np.interp(t, b.t, b.values[:, 0])[:, None])
-    tr = Tracker(dirs["root"] / "bundle")
+    tr = Tracker(dirs["root"] / "bundle", resample=True)
     got = _push_all(tr, (_cut(s, a, a + 0.5) for a in np.arange(-1, 45, 0.5)))
     assert len(got) >= 35 and not any("optional" in w for w in tr.warnings)
     assert tr.resampled_hz == {"wBarometer": pytest.approx(0.4)}
@@ -277,13 +278,14 @@ def test_a_burst_at_the_start_does_not_decide_a_streams_rate(dirs):
     of the first 32 samples / 1 s now: not resampled, the steps of the clean session. ``pdrlearn run``
     gives the tracker the session's rates (``input_rates_hz``), the rates its announcement names."""
     s = synthetic_session(40, seed=3)
-    ref = _push_all(Tracker(dirs["root"] / "bundle"), (_cut(s, a, a + 1.0) for a in np.arange(-1, 45, 1.0)))
+    ref = _push_all(Tracker(dirs["root"] / "bundle", resample=True),
+                    (_cut(s, a, a + 1.0) for a in np.arange(-1, 45, 1.0)))
     for n in ("fAccelerometer", "fGyroscope"):
         x = s.streams[n]
         t = np.concatenate([[x.t[0]], x.t[0] + np.array([0.01, 0.02, 0.03, 0.04]), x.t[1:]])
         s.streams[n] = type(x)(n, t, np.concatenate([np.repeat(x.values[:1], 5, axis=0), x.values[1:]]))
     for kw in ({}, {"input_rates_hz": {n: st.rate_hz for n, st in s.streams.items()}}):
-        tr = Tracker(dirs["root"] / "bundle", **kw)
+        tr = Tracker(dirs["root"] / "bundle", resample=True, **kw)
         got = _push_all(tr, (_cut(s, a, a + 1.0) for a in np.arange(-1, 45, 1.0)))
         assert tr.resampled_hz == {}
         _same_steps(got, ref)
@@ -329,7 +331,7 @@ def test_run_replays_a_gap_in_a_used_stream_the_same_at_any_chunk(dirs, tmp_path
     for chunk in ("0.25", "1", "2", "5"):
         out = tmp_path / f"run{chunk}"
         assert main(["run", str(dirs["root"] / "bundle"), str(tmp_path / "gap"), "--chunk-s", chunk,
-                     "--out", str(out)]) == 0, capsys.readouterr()[1]
+                     "--out", str(out), "--resample"]) == 0, capsys.readouterr()[1]
         tables.append(pd.read_csv(out / "steps.csv"))
     capsys.readouterr()
     assert len(tables[0]) >= 36
@@ -346,7 +348,7 @@ def test_run_verbose_says_the_resampling_once(dirs, tmp_path, capsys):
     for n, (t, v) in _at_rate(s, 50.0).items():
         s.streams[n] = type(s.streams[n])(n, t, v)
     write_session(s, tmp_path / "s50")
-    assert main(["-v", "run", str(dirs["root"] / "bundle"), str(tmp_path / "s50")]) == 0
+    assert main(["-v", "run", str(dirs["root"] / "bundle"), str(tmp_path / "s50"), "--resample"]) == 0
     err = capsys.readouterr()[1]
     lines = [ln for ln in err.splitlines() if "resampling" in ln]
     assert len(lines) == 1 and lines[0].startswith("warning: ") and "sampled at 50 Hz" in lines[0]
@@ -397,7 +399,7 @@ def test_run_a_102hz_recording_with_a_204hz_bundle_like_track_streaming(real_bun
 
     dec = _decimated(REAL / "gaitmap_level_right", tmp_path / "right102")
     b = real_bundle / "bundle"
-    assert main(["run", str(b), str(dec), "--json", "--out", str(tmp_path / "run")]) == 0
+    assert main(["run", str(b), str(dec), "--json", "--out", str(tmp_path / "run"), "--resample"]) == 0
     out, err = capsys.readouterr()
     lines = [ln for ln in err.splitlines() if "resampling" in ln]
     assert len(lines) == 1 and "fAccelerometer, fGyroscope sampled at 102.4 Hz" in lines[0]
@@ -475,3 +477,26 @@ def test_run_says_where_a_short_foot_accelerometer_ends_the_walk(real_bundle, di
         assert len(lines) == 1
         n_past.append(_check_short_line(lines[0], sess, out / "steps.csv", name))
     assert n_past[1] >= 1
+
+
+def test_run_tracks_another_rate_at_the_native_rate_by_default(real_bundle, tmp_path, capsys):
+    """E22 amended: by default ``run`` tracks data at another rate at its own rate, exactly as ``track
+    --streaming`` (resampling a 50 Hz walk into a 20 Hz bundle mislabelled half its steps: the models'
+    features are defined in seconds and cut from the data's own samples)."""
+    import json
+
+    from pdrlearn.cli import main
+    from tests.conftest import REAL
+
+    dec = _decimated(REAL / "gaitmap_level_right", tmp_path / "right102")
+    b = real_bundle / "bundle"
+    assert main(["run", str(b), str(dec), "--json", "--out", str(tmp_path / "run")]) == 0
+    out, err = capsys.readouterr()
+    assert any("tracked at the data's own rate" in ln for ln in err.splitlines())
+    run = json.loads(out)
+    assert main(["track", str(dec), "--model", str(real_bundle / "model"), "--streaming", "--json",
+                 "--out", str(tmp_path / "track")]) == 0
+    track = json.loads(capsys.readouterr()[0])
+    assert run["n_steps"] == track["n_steps"]
+    assert abs(run["distance_m"] - track["distance_m"]) < 1e-6
+    assert main(["run", str(b), str(dec), "--out", str(tmp_path / "x"), "--resample", "--no-resample"]) == 2

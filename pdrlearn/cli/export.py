@@ -115,6 +115,15 @@ def _warn_short_streams(session, tracker, steps) -> None:
                 "sensor has data, or re-record", session.name, n, end, short, float(g.t[-1]), what)
 
 
+def _rate_mode(resample: bool, no_resample: bool) -> bool | str:
+    """``Tracker(resample=...)`` from ``run``'s two flags (decision E22 amended)."""
+    from pdrlearn.errors import DataError
+
+    if resample and no_resample:
+        raise DataError("run: --resample and --no-resample exclude each other; give one")
+    return True if resample else False if no_resample else "native"
+
+
 def run(
     bundle_dir: Path = typer.Argument(..., help="Bundle folder written by 'pdrlearn export'."),
     session_dir: Path = typer.Argument(None, help="PLASYS session folder to replay (omit with --protocol)."),
@@ -125,8 +134,11 @@ def run(
     chunk_s: float = typer.Option(1.0, help="Replay chunk length (s)."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
+    resample: bool = typer.Option(False, "--resample", help="Resample data at another rate than the bundle's "
+                                  "(+-5 %) causally to the bundle's rate (decision E22); default: track it at "
+                                  "its own rate, as `pdrlearn track --streaming`."),
     no_resample: bool = typer.Option(False, "--no-resample", help="Refuse data at another rate than the "
-                                     "bundle's (+-5 %) instead of resampling it causally (decision E22)."),
+                                     "bundle's (+-5 %) (decision E3)."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -157,7 +169,7 @@ def run(
 
         parser = BluetoothParser(rate_hz=bundle.rate_hz)
         tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
-                          resample=not no_resample)
+                          resample=_rate_mode(resample, no_resample))
         if protocol == "-":
             stream = sys.stdin
         else:
@@ -205,7 +217,8 @@ def run(
         # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
         # the runtime resamples at these rates and announces it in one line; a stream behind the others
         # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
-        tracker = Tracker(bundle, frames=_frames_of(session, bundle), resample=not no_resample,
+        tracker = Tracker(bundle, frames=_frames_of(session, bundle),
+                          resample=_rate_mode(resample, no_resample),
                           input_rates_hz=rates,
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
         if tracker.heading_source == "auto" and not (session.has("wAccelerometer", "wGyroscope")

@@ -56,6 +56,14 @@ def lowpass_taps(rate_in: float, rate_out: float) -> np.ndarray:
     return h / h.sum()
 
 
+def native_message(rates: dict[str, float], rate_hz: float) -> str:
+    """The one line that says streams at another rate are tracked at their own rate (E22 amended)."""
+    what = ", ".join(f"{n} {r:.4g} Hz" for n, r in rates.items())
+    return (f"{what}: not the bundle's {rate_hz:.4g} Hz; tracked at the data's own rate, as `pdrlearn track "
+            "--streaming` does (the features are defined in seconds); `--resample` resamples to the bundle's "
+            "rate instead, `--no-resample` refuses")
+
+
 class StreamResampler:
     """Causal resampling of one stream (``(t (n,), values (n, k))`` pushes) onto ``k / rate_out`` (s).
 
@@ -246,11 +254,15 @@ class InputStage:
     until then, :func:`probe_rate`). A stream the bundle does not use is ignored (``ignored``, logged once).
     """
 
-    def __init__(self, bundle, *, resample: bool = True, rates_hz: dict[str, float] | None = None):
+    def __init__(self, bundle, *, resample: bool | str = "native", rates_hz: dict[str, float] | None = None):
         self.bundle = bundle
         self.rate_hz = float(bundle.rate_hz)
         self.used = frozenset(bundle.used_sensors)
-        self.resample = bool(resample)
+        if resample not in (True, False, "native"):
+            raise ValueError(f"resample must be True, False or 'native', not {resample!r}")
+        #: "native" (default): a stream at another rate is tracked at its own rate, as `pdrlearn track
+        #: --streaming` does (E22 amended); True: resampled to the bundle's rate; False: refused (E3)
+        self.resample = resample
         #: sensor -> its input rate (Hz): declared, or learned from its first samples
         self.input_rates_hz: dict[str, float] = {}
         #: sensor -> its resampler (only the streams at another rate)
@@ -272,9 +284,14 @@ class InputStage:
     def _decide(self, rates: dict[str, float], where: str) -> None:
         """Pass, resample or refuse the streams of ``rates`` (sensor -> input rate, Hz)."""
         off = self.bundle.off_rate(rates)
-        if off and not self.resample:
+        if off and self.resample is False:
             self.bundle.check_rates(off, where=where)
         self.input_rates_hz.update(rates)
+        if self.resample == "native":  # E22 amended: the data's own rate, as track --streaming
+            self.passed.update(rates)
+            if off:
+                self.messages.append((logging.WARNING, native_message(off, self.rate_hz)))
+            return
         self.passed.update(n for n in rates if n not in off)
         for n, fs in off.items():
             self.resamplers[n] = StreamResampler(fs, self.rate_hz)

@@ -207,7 +207,7 @@ class Tracker:
         heading_source: str | None = None,
         step_graph: bool = True,
         incremental: bool = True,
-        resample: bool = True,
+        resample: bool | str = "native",
         max_lag_s: float | None = None,
         input_rates_hz: dict[str, float] | None = None,
         stream_ends_s: dict[str, float] | None = None,
@@ -291,8 +291,9 @@ class Tracker:
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
         self.n_steps = 0
         self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
-        #: the input side (decision E22): streams at another rate than the bundle's are resampled to it
-        #: (``resample=True``) or refused; ``inputs.input_rates_hz`` / ``resampled_hz`` tell which
+        #: the input side (decision E22): streams at another rate than the bundle's are tracked at their own
+        #: rate (``resample="native"``, the default, as ``pdrlearn track --streaming``), resampled to the
+        #: bundle's (``True``) or refused (``False``); ``inputs.input_rates_hz`` / ``resampled_hz`` tell which
         self.inputs = InputStage(self.bundle, resample=resample, rates_hz=input_rates_hz)
         #: a stream further behind the newest one than this (s) plus its own delivery interval stopped
         #: (decision E23; default: max_wait_s, 2 s, the thesis' delay requirement)
