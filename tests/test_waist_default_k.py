@@ -34,3 +34,21 @@ def test_step_lengths_scale_with_k():
     d_default = run(s).distance_m
     d_one = run(s, params={"k": 1.0}).distance_m
     assert d_default == pytest.approx(DEFAULT_K * d_one, rel=1e-9)
+
+
+def test_calibrate_defaults_to_the_pipeline_track_takes(tmp_path, capsys):
+    """A newcomer's `calibrate DIR` then `track DIR2 --params` (both without --pipeline) calibrates the
+    pendulum that `track` takes for a lower-back recording, and the text output says what was fitted."""
+    import json
+
+    from pdrlearn.cli import main
+
+    p = tmp_path / "p.json"
+    assert main(["calibrate", str(ROOT / "datasets" / "real" / "mobgap_HA001_Test5_Trial1"), "--out", str(p)]) == 0
+    out = capsys.readouterr().out
+    saved = json.loads(p.read_text())
+    assert saved["pipeline"] == "waist-pendulum" and f"K = {saved['k']:.4f}" in out
+    assert main(["track", str(HA001_T5), "--params", str(p), "--out", str(tmp_path / "t"), "--json"]) == 0
+    captured = capsys.readouterr()
+    assert "keeps its defaults" not in captured.err
+    assert json.loads(captured.out)["distance_error_pct"] != pytest.approx(1.253, abs=0.01)  # not the defaults

@@ -16,7 +16,9 @@ def register(app: typer.Typer) -> None:
     @app.command("calibrate")
     def calibrate_cmd(
         dirs: list[Path] = typer.Argument(..., help="Calibration session folder(s) of one user."),
-        pipeline: str = typer.Option("waist-pll", "--pipeline", "-p", help="waist-pll or waist-pendulum."),
+        pipeline: str = typer.Option("waist-pendulum", "--pipeline", "-p",
+                                     help="waist-pendulum (the pipeline `pdrlearn track` takes for a lower-back "
+                                          "recording) or waist-pll."),
         distance: list[float] = typer.Option(None, "--distance", "-d",
                                              help="Known walked length (m), one per folder, from the "
                                                   "first to the last heel strike (every detected step "
@@ -60,5 +62,10 @@ def register(app: typer.Typer) -> None:
             print_json(json_safe({"out": str(out), "pipeline": pipeline, **d}))
         else:
             typer.echo(f"wrote {out}")
+            if pipeline == "waist-pendulum":
+                typer.echo(f"  fitted: K = {params.k:.4f}, F = {params.f_m:.3f} m (step = K 2 sqrt(2 L h - h^2) + F, "
+                           f"L = {params.leg_m:.3f} m)")
+            else:
+                typer.echo(f"  fitted: step length = {params.a_walk:.4f} f - {params.b_walk:.4f} m (walking)")
             for n in d["notes"]:
                 typer.echo(f"  {n}")
