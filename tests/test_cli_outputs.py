@@ -245,3 +245,14 @@ def test_console_script_prints_each_warning_once(data, tmp_path):
     lines = [ln for ln in proc.stderr.splitlines() if ln.strip()]
     assert lines and all(ln.startswith("warning: ") for ln in lines), lines
     assert sum("no per-user calibration" in ln for ln in lines) == 1, lines
+
+
+def test_waist_track_line_says_the_error_is_inside_the_bouts(tmp_path, capsys):
+    # the whole recording's distance (5.90 m) exceeds the bout's 5.01 m while the error is negative: the line
+    # says what the error compares
+    from pdrlearn.cli import main
+    from tests.conftest import REAL
+
+    assert main(["track", str(REAL / "mobgap_HA001_Test5_Trial1"), "--out", str(tmp_path / "t")]) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines() if "distance error" in ln)
+    assert "inside the reference bouts:" in line and " m vs " in line
