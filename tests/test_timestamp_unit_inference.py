@@ -15,7 +15,7 @@ import pytest
 
 from pdrlearn.errors import DataError
 from pdrlearn.io import read_session
-from pdrlearn.io.validate import infer_time_unit
+from pdrlearn.io.validate import time_unit_candidates
 
 ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "datasets" / "real" / "mobgap_HA001_Test5_Trial1"
@@ -68,7 +68,7 @@ def test_files_in_different_units_are_refused(tmp_path):
 
 def test_the_declared_rate_must_match():
     t = np.arange(100) * 0.01  # 100 Hz in seconds
-    assert infer_time_unit(t) == ("s", 1.0)
-    assert infer_time_unit(t, declared_rate_hz=100.0) == ("s", 1.0)
-    assert infer_time_unit(t, declared_rate_hz=20.0) is None
-    assert infer_time_unit(np.arange(100) * 10.0) is None  # milliseconds
+    assert time_unit_candidates(t) == [("s", 1.0)]
+    assert time_unit_candidates(t, declared_rate_hz=100.0) == [("s", 1.0)]
+    assert time_unit_candidates(t, declared_rate_hz=20.0) == []
+    assert time_unit_candidates(np.arange(100) * 10.0) == [("ms", 1e-3)]  # milliseconds

@@ -141,14 +141,6 @@ def time_unit_candidates(t_raw: np.ndarray, declared_rate_hz: float | None = Non
             and (declared_rate_hz is None or abs(1.0 / (d * k) - declared_rate_hz) <= 0.1 * declared_rate_hz)]
 
 
-def infer_time_unit(t_raw: np.ndarray, declared_rate_hz: float | None = None) -> tuple[str, float] | None:
-    """The unit of raw timestamps that are not milliseconds (decision B22): ``(unit, seconds per unit)`` when
-    the ms reading is implausible (or contradicts the declared rate) and exactly one of s, us, ns fits
-    (:func:`time_unit_candidates`); ``None`` when ms fits or no single other unit does."""
-    fits = time_unit_candidates(t_raw, declared_rate_hz)
-    return fits[0] if len(fits) == 1 and fits[0][0] != "ms" else None
-
-
 def check_label_times(table: pd.DataFrame, t_start: float, t_end: float, where: str) -> None:
     """Label times (s) must lie on the sensors' clock and look like real steps/events.
 
