@@ -256,3 +256,11 @@ def test_waist_track_line_says_the_error_is_inside_the_bouts(tmp_path, capsys):
     assert main(["track", str(REAL / "mobgap_HA001_Test5_Trial1"), "--out", str(tmp_path / "t")]) == 0
     line = next(ln for ln in capsys.readouterr().out.splitlines() if "distance error" in ln)
     assert "inside the reference bouts:" in line and " m vs " in line
+
+
+def test_info_prints_frames_as_pasteable_json(capsys):
+    from tests.conftest import REAL
+
+    assert main(["info", str(REAL / "mobgap_HA001_Test5_Trial1")]) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("frames: "))
+    assert json.loads(line[len("frames: "):]) == {"waist": {"x": "up", "y": "right", "z": "forward"}}

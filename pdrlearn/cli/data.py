@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import typer
@@ -40,7 +41,10 @@ def info(
         t.add_row(name, d["placement"], f"{d['rate_hz']}", str(d["samples"]), f"{d['duration_s']:.2f}",
                   str(d["gaps"]), f"{d['longest_gap_s']:.3f}")
     c.print(t)
-    c.print(f"frames: {summary['frames'] or 'not declared'}")
+    # as meta.json writes it (JSON, pasteable); an undeclared frame is inferred when a command needs it (D8)
+    frames = (json.dumps(summary["frames"]) if summary["frames"]
+              else "not declared (inferred from the data when a command needs it, decision D8)")
+    c.print(f"frames: {frames}", markup=False)
     c.print(f"labels: {summary['labels']}")
 
 
