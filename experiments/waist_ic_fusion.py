@@ -39,11 +39,9 @@ Writes experiments/results/waist_ic_fusion.md.
 
 from __future__ import annotations
 
-import argparse
 import itertools
-import logging
+import sys
 import time
-import warnings
 from pathlib import Path
 from unittest import mock
 
@@ -53,7 +51,6 @@ from scipy.ndimage import binary_closing, binary_dilation, uniform_filter1d
 from scipy.signal import find_peaks
 
 from pdrlearn.io import read_session
-from pdrlearn.sim import simulate
 from pdrlearn.steps.detectors import get_detector
 from pdrlearn.steps.evaluate import (
     in_intervals,
@@ -68,18 +65,13 @@ from pdrlearn.waist import events as E
 from pdrlearn.waist.ahrs import waist_imu
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from waist_ic_loso import SUBJECTS, TEST5, _folder, parse_args, sim_sessions  # noqa: E402
+
 OUT = ROOT / "experiments" / "results"
-SUBJECTS = ("HA001", "HA002", "MS001")
-TEST5 = ("HA001_Test5_Trial1", "HA001_Test5_Trial2", "HA002_Test5_Trial2", "MS001_Test5_Trial1",
-         "MS001_Test5_Trial2")
 DETS = ("waist-ic", "pll", "pelvic-gyro")
 MIN_STEP_S, MAX_STEP_S = 0.3, 1.5  # W16 shortest step, the pipeline's longest step
 RETIME_REACH_S = 0.45  # W26: timing misses lie 0.25-0.5 s from their contact
-
-
-def _folder(ext: Path, name: str) -> Path:
-    p = ROOT / "datasets" / "real" / f"mobgap_{name}"
-    return p if p.exists() else ext / f"mobgap_{name}"
 
 
 class Rec:
@@ -309,20 +301,11 @@ def error_table(recs: dict[str, Rec]) -> list[str]:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
-    ap.add_argument("--sim-users", type=int, default=3)
-    args = ap.parse_args()
-    warnings.filterwarnings("ignore")
-    logging.basicConfig(level=logging.ERROR)
+    args = parse_args(__doc__)
     t0 = time.time()
     real = {s: Rec(read_session(_folder(args.external, f"{s}_Test11_Trial1"))) for s in SUBJECTS}
     t5 = [Rec(read_session(_folder(args.external, n))) for n in TEST5]
-    sim = []
-    for scenario, speed in itertools.product("ABCD", ("slow", "normal", "fast")):
-        for user in range(1, args.sim_users + 1):
-            s = simulate(scenario, user, speed=speed, rate_hz=100.0)
-            sim.append(Rec(s, ref=s.extras["ics"]["ic_s"].to_numpy(float)))
+    sim = [Rec(s, ref=s.extras["ics"]["ic_s"].to_numpy(float)) for s in sim_sessions(args.sim_users)]
     lines = ["# Daily-activity IC errors per event; fusion, turn and second-gate candidates (W45)", "",
              "## Errors of `pdrlearn steps --detector waist-ic` on Test11", "",
              "Scored as `score_steps` (inside the bouts, untimed INDIP contacts unscored, 0.25 s). Nearest "

@@ -69,13 +69,27 @@ def f1(c) -> float:
     return 2 * tp / (det + ref)
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def parse_args(doc: str) -> argparse.Namespace:
+    """``--external`` and ``--sim-users`` of the lower-back IC experiments (also experiments/waist_ic_fusion.py);
+    warnings and logging quietened for their tables."""
+    ap = argparse.ArgumentParser(description=doc.split("\n")[0])
     ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
     ap.add_argument("--sim-users", type=int, default=3)
     args = ap.parse_args()
     warnings.filterwarnings("ignore")
     logging.basicConfig(level=logging.ERROR)
+    return args
+
+
+def sim_sessions(n_users: int):
+    """The simulator check of W41/W45: scenarios A-D x slow/normal/fast x users 1..n_users at 100 Hz."""
+    for scenario, speed in itertools.product("ABCD", ("slow", "normal", "fast")):
+        for user in range(1, n_users + 1):
+            yield simulate(scenario, user, speed=speed, rate_hz=100.0)
+
+
+def main() -> None:
+    args = parse_args(__doc__)
     t0 = time.time()
     combos = list(itertools.product(*GRID.values()))
     test11 = {}
@@ -137,15 +151,12 @@ def main() -> None:
         for c in check:
             t5[c].append(counts(s, contacts(imu, c)))
     sim = {c: [] for c in check}
-    for scenario in "ABCD":
-        for speed in ("slow", "normal", "fast"):
-            for user in range(1, args.sim_users + 1):
-                s = simulate(scenario, user, speed=speed, rate_hz=100.0)
-                imu = waist_imu(s)
-                ref = s.extras["ics"]["ic_s"].to_numpy(float)
-                for c in check:
-                    sc = score_events(contacts(imu, c)["event_s"].to_numpy(float), ref)
-                    sim[c].append((sc["true_positives"], sc["count"], sc["reference_count"]))
+    for s in sim_sessions(args.sim_users):
+        imu = waist_imu(s)
+        ref = s.extras["ics"]["ic_s"].to_numpy(float)
+        for c in check:
+            sc = score_events(contacts(imu, c)["event_s"].to_numpy(float), ref)
+            sim[c].append((sc["true_positives"], sc["count"], sc["reference_count"]))
     for c in check:
         tot = [sum(x) for x in zip(*sim[c], strict=True)]
         lines.append(f"| {c}{' (default)' if c == DEFAULT else ''} | {f1(t5[c]):.3f} | {f1(sim[c]):.4f} "
