@@ -181,8 +181,9 @@ def test_run_writes_the_files_and_columns_of_track(data, tmp_path, capsys):
     assert list(pd.read_csv(r / "trajectory.csv").columns) == list(pd.read_csv(t / "trajectory.csv").columns)
     rj, tj = json.loads((r / "summary.json").read_text()), json.loads((t / "summary.json").read_text())
     assert rj == printed
+    assert set(tj) <= set(rj), set(tj) - set(rj)  # every key of track's (was: no `info`)
     for key in ("distance_m", "n_steps", "final_position", "distance_ref_m", "distance_error_pct", "session",
-                "pipeline", "final_position_error_m"):
+                "pipeline", "final_position_error_m", "info"):
         assert key in rj and key in tj, key
         assert type(rj[key]) is type(tj[key]) or {type(rj[key]), type(tj[key])} <= {int, float}, key
     assert set(rj["final_position"]) >= {"x", "y", "z"} and rj["pipeline"] == "runtime"

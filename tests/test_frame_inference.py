@@ -192,6 +192,7 @@ def test_require_frame_infers_once_warns_and_declared_wins(walk, caplog):
     assert len(lines) == 2 and all("\n" not in ln for ln in lines), lines
     assert 'inferred from the data: "frames": {"foot": {"x": "forward", "y": "up", "z": "right"}}' in lines[0]
     assert s.frames == {}  # an inferred frame is not written back as declared (write_session)
+    assert s.frames_inferred == {"foot": declared["foot"].to_dict(), "waist": declared["waist"].to_dict()}
     odd = AxisFrame(x="left", y="up", z="forward")
     s.frames = {"foot": odd}
     assert s.require_frame("foot") is odd  # a declared frame always wins, even against the data
@@ -235,6 +236,10 @@ def test_cli_track_on_a_stripped_real_session_gives_the_same_numbers(real_dir, t
     assert "inferred" not in runs["declared"][1]
     a, b = json_numbers(runs["declared"][0]), json_numbers(runs["inferred"][0])
     assert len(a) >= 5 and a == b
+    declared = {p: f.to_dict() for p, f in read_session(src).frames.items()}  # meta.json or source_project
+    assert "frames_inferred" not in runs["declared"][0]
+    got = runs["inferred"][0]["frames_inferred"]  # what to paste into meta.json: the frames it found
+    assert got and all(got[p] == declared[p] for p in got), (got, declared)
 
 
 def test_foot_pitch_edge_with_a_yaw_is_refused_not_guessed(walk):

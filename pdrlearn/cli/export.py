@@ -285,8 +285,9 @@ def _result(steps):
 
 def _summary(steps, tracker, lat, source, result, session) -> dict:
     """The keys of ``track``'s summary.json for the same content (``distance_m``, ``n_steps``,
-    ``final_position`` {x, y, z}, ``session``, ``pipeline`` and, replaying a session with ground truth, its
-    errors), plus the runtime's ``source``, ``methods``, ``classes`` and latency."""
+    ``final_position`` {x, y, z}, ``session``, ``pipeline``, ``info``, ``frames_inferred`` when a frame was
+    taken from the data and, replaying a session with ground truth, its errors), plus the runtime's
+    ``source``, ``methods``, ``classes`` and latency."""
     import numpy as np
 
     from pdrlearn.track.evaluate import evaluate_track
@@ -300,6 +301,9 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
     if session is not None:
         out["session"] = session.name
     out["pipeline"] = "runtime"
+    out["info"] = result.info
+    if session is not None and session.frames_inferred:  # D8, as track's summary.json gives them
+        out["frames_inferred"] = session.frames_inferred
     out.update({
         "methods": {t: f"{c.method}/{c.unit}" for t, c in tracker.classifiers.items()},
         "classes": counts,

@@ -119,6 +119,8 @@ def track(
     summary["session"] = session.name
     summary["pipeline"] = pipeline
     summary["info"] = result.info
+    if session.frames_inferred:  # D8: undeclared frames taken from the data, to paste into meta.json
+        summary["frames_inferred"] = session.frames_inferred
     summary = json_safe(json.loads(json.dumps(
         summary, default=lambda o: o.item() if hasattr(o, "item") else str(o))))
     traj = result.trajectory.copy()

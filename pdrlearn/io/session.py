@@ -243,6 +243,12 @@ class Session:
             f"mounting \"frames\": {example}"
         )
 
+    @property
+    def frames_inferred(self) -> dict[str, dict]:
+        """The frames this session's commands inferred from the data so far (decision D8), as meta.json's
+        ``frames`` entry would write them; empty when every frame used was declared."""
+        return {p: f.to_dict() for p, f in sorted(self._inferred.items()) if isinstance(f, AxisFrame)}
+
     def has_frame(self, placement: str) -> bool:
         """True when :meth:`require_frame` gives the ``placement`` unit a frame (declared, or inferred from
         the data with its warning); for methods that use a unit only when its axes are known."""
