@@ -14,7 +14,10 @@ Mobilise-D's pipeline reports only the contacts of strides that pass its stride 
    ``score_steps`` (Test11 per subject, the Test5 trials, the simulator A-D x 3 speeds x users 1-3 at
    100 Hz, every contact);
 3. lists the contacts the rules remove inside the reference bouts and why;
-4. prints the bout distance errors (``distance_error_pct`` vs INDIP ``Length`` and vs the bouts' strides).
+4. prints the bout distance errors (``distance_error_pct`` vs INDIP ``Length`` and vs the bouts' strides);
+5. where mobgap's own ``wba`` can be imported (the cached sdist's ``src`` needs ``tpcp`` and ``xxhash``: e.g.
+   ``pip install --no-deps tpcp==3.5.0 xxhash`` in a scratch environment), checks :mod:`pdrlearn.waist.gait_rules`
+   against ``StrideSelection().filter`` + ``WbAssembly().assemble`` on 2000 random contact sequences.
 
 Adoption rule (decision W47, written before the runs): default only if the pooled Test11 F1 rises by >= 0.01,
 no Test11 subject gets worse, every Test5 trial stays F1 1.000 and the simulator keeps all its true contacts.
@@ -223,6 +226,47 @@ def removed_table(sessions: dict, base: dict, rules: dict) -> list[str]:
     return [*lines, ""]
 
 
+def mobgap_crosscheck(cache: Path, n_runs: int = 2000) -> list[str]:
+    """Kept contacts of :func:`G.gait_rule_mask` vs mobgap's StrideSelection + WbAssembly (mobilised
+    defaults) on the same strides of random contact sequences at 100 Hz (skipped without mobgap's deps)."""
+    head = ["## 5. The rules against mobgap's own implementation", ""]
+    src = cache / f"{SDIST.name}-{SDIST.version}" / "src"
+    sys.path.insert(0, str(src))
+    try:
+        from mobgap.wba import StrideSelection, WbAssembly
+    except ImportError as exc:
+        return [*head, f"(skipped: cannot import mobgap.wba from {src}: {exc})", ""]
+    finally:
+        sys.path.remove(str(src))
+    rng = np.random.default_rng(0)
+    n_diff = n_kept = n_drop = 0
+    for _ in range(n_runs):
+        n = int(rng.integers(3, 40))
+        steps = rng.choice([20, 45, 60, 90, 140, 160], size=n, p=[.05, .15, .4, .2, .1, .1])  # samples
+        t_smp = np.cumsum(np.concatenate([[0], steps[:-1]])) + rng.integers(0, 50)
+        hn = np.append(steps[:-1] <= round(MAX_STEP_S * 100), False)
+        sl = np.where(hn, rng.choice([0.03, 0.06, 0.1, 0.3, 0.6, np.nan], size=n, p=[.1, .1, .1, .3, .35, .05]), 0.0)
+        mine = G.gait_rule_mask(t_smp / 100.0, hn, sl)
+        a, b = G.positional_strides(hn)
+        theirs = np.zeros(n, dtype=bool)
+        if a.size:
+            df = pd.DataFrame({"start": t_smp[a], "end": t_smp[b], "stride_length_m": sl[a] + sl[a + 1],
+                               "foot": np.where(a % 2 == 0, "left", "right")},
+                              index=pd.Index(range(a.size), name="s_id"))
+            sel = StrideSelection().filter(df, sampling_rate_hz=100.0).filtered_stride_list_
+            ann = WbAssembly().assemble(sel, sampling_rate_hz=100.0).annotated_stride_list_
+            sid = ann.index.get_level_values("s_id").to_numpy(int) if len(ann) else np.zeros(0, dtype=int)
+            theirs[a[sid]] = True
+            theirs[b[sid]] = True
+        n_diff += int((mine != theirs).any())
+        n_kept += int(mine.sum())
+        n_drop += int((~mine).sum())
+    return [*head, f"{n_runs} random contact sequences (100 Hz; steps of 0.2-1.6 s, walking-sequence breaks "
+            f"over {MAX_STEP_S} s, step lengths 0.03-0.6 m or NaN): {n_diff} differ from mobgap "
+            f"{SDIST.version} StrideSelection + WbAssembly (mobilised defaults); {n_kept} contacts kept, "
+            f"{n_drop} dropped.", ""]
+
+
 def main() -> None:
     args = parse_args(__doc__)
     t0 = time.time()
@@ -309,8 +353,9 @@ def main() -> None:
                      f"{np.median(per[1]):.2f} % | {np.median(per_s[0]):.2f} -> {np.median(per_s[1]):.2f} % |")
     de = [[abs(m[i]["distance_error_pct"]) for m in sim_dist if "distance_error_pct" in m[i]] for i in (0, 1)]
     lines += ["", f"Simulator (A-D x 3 speeds x users 1-{args.sim_users}): mean |distance error| "
-              f"{np.mean(de[0]):.2f} -> {np.mean(de[1]):.2f} % of the path.", "",
-              f"Run time {time.time() - t0:.0f} s."]
+              f"{np.mean(de[0]):.2f} -> {np.mean(de[1]):.2f} % of the reference distance (meta.json defaults).", ""]
+    lines += mobgap_crosscheck(default_cache_dir())
+    lines += [f"Run time {time.time() - t0:.0f} s."]
     text = "\n".join(lines) + "\n"
     OUT.mkdir(parents=True, exist_ok=True)
     (OUT / "waist_ic_gait_rules.md").write_text(text)

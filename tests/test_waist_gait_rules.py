@@ -107,3 +107,16 @@ def test_keep_contacts_relinks_steps():
                        "has_next": [True, False, False], "confidence": [1.0, 0.5, 0.5]})
     out = G.keep_contacts(st, np.array([True, False, True]), max_step_s=1.5)
     assert out["has_next"].tolist() == [False, False]
+
+
+def test_limits_hold_in_whole_samples():
+    # mobgap compares samples / rate: 528 - 228 samples at 100 Hz are a 3 s break, which keeps one bout,
+    # though 5.28 - 2.28 is 3.0000000000000004 in floats
+    t = np.array([48, 108, 168, 228, 528, 588, 648, 708]) / 100.0
+    hn = np.array([True, True, True, False, True, True, True, False])
+    assert G.gait_rule_mask(t, hn, np.full(8, 0.6)).all()
+    t[4:] += 0.01
+    assert not G.gait_rule_mask(t, hn, np.full(8, 0.6)).any()
+    # a 300-sample stride passes (10.3 - 7.3 = 3.000000000000001), a 20-sample one fails (1.03 - 0.83)
+    d = np.array([10.3 - 7.3, 1.03 - 0.83])
+    assert G.select_strides(d, np.ones(2)).tolist() == [True, False]

@@ -36,6 +36,9 @@ MAX_STRIDE_S = 3.0  # Mobilise-D stride selection, mobgap StrideSelection mobili
 MIN_STRIDE_LENGTH_M = 0.15  # Mobilise-D stride selection, mobgap StrideSelection mobilised default (exclusive)
 MIN_BOUT_STRIDES = 4  # Mobilise-D WB assembly, mobgap WbAssembly mobilised default NStridesCriteria(min_strides=4)
 MAX_BREAK_S = 3.0  # Mobilise-D WB assembly, mobgap WbAssembly mobilised default MaxBreakCriteria(max_break_s=3)
+#: contact times are sample times in float seconds: a difference within this of a limit is the limit (mobgap
+#: compares whole samples / rate; 5.28 - 2.28 s is 3.0000000000000004 s, 528 - 228 samples at 100 Hz are 3 s)
+TIME_EPS_S = 1e-9
 
 
 def positional_strides(has_next: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -54,7 +57,7 @@ def select_strides(duration_s: np.ndarray, length_m: np.ndarray, *, min_s: float
     d = np.asarray(duration_s, dtype=np.float64)
     length = np.asarray(length_m, dtype=np.float64)
     with np.errstate(invalid="ignore"):
-        return (d > min_s) & (d <= max_s) & (length > min_length_m)
+        return (d > min_s + TIME_EPS_S) & (d <= max_s + TIME_EPS_S) & (length > min_length_m)
 
 
 def assemble_bouts(start_s: np.ndarray, end_s: np.ndarray, *, max_break_s: float = MAX_BREAK_S,
@@ -68,7 +71,7 @@ def assemble_bouts(start_s: np.ndarray, end_s: np.ndarray, *, max_break_s: float
         return np.zeros(0, dtype=int)
     if np.any(np.diff(s) < 0):
         raise ValueError("assemble_bouts: strides must be ordered by start")
-    new = np.concatenate([[True], (s[1:] - e[:-1]) > max_break_s])
+    new = np.concatenate([[True], (s[1:] - e[:-1]) > max_break_s + TIME_EPS_S])
     pre = np.cumsum(new) - 1
     sizes = np.bincount(pre)
     ok = sizes[pre] >= min_strides
