@@ -123,19 +123,25 @@ def heading_error_deg(res, session) -> float:
     return float(np.degrees(np.median(np.abs(np.angle(np.exp(1j * (d - off)))))))
 
 
-def real(data: Path, runs=RUNS, configs=CONFIGS, bouts: list | None = None) -> pd.DataFrame:
+def real(data: Path, runs=RUNS, configs=CONFIGS, bouts: list | None = None, *, cal_kw=None,
+         defaults: bool = True, fits: list | None = None) -> pd.DataFrame:
     """One row per (run, pipeline, calibrated/defaults). ``bouts`` (if given) receives one dict per
-    reference bout with its error, for pooled medians."""
+    reference bout with its error, for pooled medians. ``cal_kw(subject, cal_names)`` (if given) returns
+    extra keyword arguments of :func:`calibrate` for a run; ``defaults=False`` skips the uncalibrated rows;
+    ``fits`` (if given) receives the calibrated :class:`WaistParams` of each run and pipeline."""
     rows = []
     for cal_names, test_name in runs:
         cal = [read_session(data / n) for n in cal_names]
         test = read_session(data / test_name)
         prefix = "_".join(test_name.split("_")[:2]) + "_"  # mobgap_<subject>_
+        kw = cal_kw(test_name.split("_")[1], cal_names) if cal_kw is not None else {}
         for label, pipeline, opts in configs:
             base, _ = resolve_params(cal[0], None)
             base.options = dict(opts)  # calibrate with the same pipeline options as the test
-            params = calibrate(cal, pipeline, params=base)
-            for kind, p in (("calibrated", params), ("defaults", None)):
+            params = calibrate(cal, pipeline, params=base, **kw)
+            if fits is not None:
+                fits.append(params)
+            for kind, p in (("calibrated", params), ("defaults", None))[:2 if defaults else 1]:
                 res = get_pipeline(pipeline)(test, params=p, **opts)
                 m = waist_metrics(res.steps, test)
                 row = {
@@ -334,7 +340,10 @@ def noise_floor(data: Path, groups: dict[str, list[str]], *, n_bout: int = 8, m_
     return out
 
 
-def simulated(users: list[int]) -> pd.DataFrame:
+def simulated(users: list[int], configs=CONFIGS, *, cal_kw: dict | None = None, fits: list | None = None
+              ) -> pd.DataFrame:
+    """Per user, scenario and pipeline: the simulated protocol (SIM_NOTE). ``cal_kw``: extra keyword arguments
+    of :func:`calibrate`; ``fits`` (if given) receives ``(user, pipeline label, WaistParams)`` per calibration."""
     from pdrlearn.sim import simulate
     from pdrlearn.steps.evaluate import score_events
     from pdrlearn.track.evaluate import evaluate_track
@@ -344,10 +353,12 @@ def simulated(users: list[int]) -> pd.DataFrame:
         cal = simulate("walk", u, "normal", rate_hz=100.0, seed=1, length_m=60.0)
         cal_m = walked_between_contacts(cal)
         tests = {sc: simulate(sc, u, "normal", rate_hz=100.0) for sc in "ABCD"}
-        for label, pipeline, opts in CONFIGS:
+        for label, pipeline, opts in configs:
             base, _ = resolve_params(cal, None)
             base.options = dict(opts)
-            params = calibrate([cal], pipeline, distances=[cal_m], params=base)
+            params = calibrate([cal], pipeline, distances=[cal_m], params=base, **(cal_kw or {}))
+            if fits is not None:
+                fits.append((u, label, params))
             for sc, s in tests.items():
                 res = get_pipeline(pipeline)(s, params=params, **opts)
                 ev = evaluate_track(res, s)

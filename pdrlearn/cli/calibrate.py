@@ -29,6 +29,9 @@ def register(app: typer.Typer) -> None:
         fit_turns: bool = typer.Option(False, "--fit-turns",
                                        help="Also fit the straight/turning GMM on the walks' strides "
                                             "(needs >= 20 strides with turns; seed 003)."),
+        shrink: bool = typer.Option(False, "--shrink",
+                                    help="waist-pendulum: shrink the calibrated K toward the population K by its "
+                                         "standard error (decision W48; measured, not the default)."),
         out: Path = typer.Option(..., "--out", "-o", help="PARAMS.json to write (an existing file only with --force)."),
         force: bool = typer.Option(False, "--force", help=FORCE_HELP),
         as_json: bool = typer.Option(False, "--json", help="Print the parameters as JSON."),
@@ -43,6 +46,8 @@ def register(app: typer.Typer) -> None:
 
           pdrlearn calibrate loop --pipeline waist-pendulum -d 35 --turns 1 --out p.json
 
+          pdrlearn calibrate walk1 -d 40 --shrink --out p.json   (K shrunk toward the population K, W48)
+
         Then: pdrlearn track DIR --pipeline waist-pendulum --params p.json --out OUT
         """
         from pdrlearn.io import read_session
@@ -54,7 +59,7 @@ def register(app: typer.Typer) -> None:
             raise DataError(f"--turns {turns}: give the signed number of full turns walked, e.g. 1 or -2")
         sessions = [read_session(d) for d in dirs]
         params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns,
-                           fit_turns=fit_turns)
+                           fit_turns=fit_turns, shrink=shrink)
         params.save(out, extra={"fit": [str(d) for d in dirs]})
         replaced(out, was)
         d = params.to_dict()
@@ -65,6 +70,13 @@ def register(app: typer.Typer) -> None:
             if pipeline == "waist-pendulum":
                 typer.echo(f"  fitted: K = {params.k:.4f}, F = {params.f_m:.3f} m (step = K 2 sqrt(2 L h - h^2) + F, "
                            f"L = {params.leg_m:.3f} m)")
+                ks = params.k_shrinkage or {}
+                if ks:
+                    def num(x):
+                        return "n/a" if x is None else f"{x:.4f}"
+                    typer.echo(f"  K_cal = {num(ks['k_cal'])}, se = {num(ks['se'])} ({ks['n_strides']} strides), "
+                               f"K0 = {num(ks['k0'])}, tau = {num(ks['tau'])}, shrunk {num(ks['k_shrunk'])} -> "
+                               f"K = {num(ks['k'])} ({'shrunk' if ks['applied'] else 'not shrunk'}, decision W48)")
             else:
                 typer.echo(f"  fitted: step length = {params.a_walk:.4f} f - {params.b_walk:.4f} m (walking)")
             for n in d["notes"]:

@@ -633,6 +633,60 @@ def frequency_length(f_hz: np.ndarray, a: float, b: float) -> np.ndarray:
     return a * np.asarray(f_hz, dtype=np.float64) - b
 
 
+def stride_gains(distance_m: float, g: np.ndarray, c: np.ndarray | None = None, f_m: float = 0.0) -> np.ndarray:
+    """The pendulum gain each stride of a calibration walk implies if every step of the walk had the same
+    length (decision W48): ``K_j = (D / sum c - F) (c_a + c_b) / (c_a g_a + c_b g_b)`` over consecutive pairs
+    ``(a, b)`` of the steps that carry length (``c > 0``, finite ``g > 0``); ``D`` the walk's known length (m),
+    ``g = 2 sqrt(2 L h - h^2)`` per step (seed 003 eq. 1 with K = 1, F = 0), ``c`` the tracker's per-step
+    factors (W19, W27; ones when ``None``), so that ``D = sum c (K g + F)`` as the tracker sums it (W21).
+    A stride (not a step) is the unit: an early contact moves length from one step to the next (W40).
+    Returns an empty array for a walk of fewer than two such steps."""
+    gg = np.asarray(g, dtype=np.float64)
+    cc = np.ones(gg.size) if c is None else np.asarray(c, dtype=np.float64)
+    if gg.size == 0 or not np.sum(cc) > 0:
+        return np.zeros(0)
+    mean_step = float(distance_m) / float(np.sum(cc)) - f_m
+    keep = (cc > 0) & np.isfinite(gg) & (gg > 0)
+    gg, cc = gg[keep], cc[keep]
+    n = gg.size // 2
+    ca = cc[:2 * n:2] + cc[1:2 * n:2]
+    cg = cc[:2 * n:2] * gg[:2 * n:2] + cc[1:2 * n:2] * gg[1:2 * n:2]
+    return mean_step * ca / cg
+
+
+def shrink_gain(k_cal: float, se: float, k0: float, tau: float) -> float:
+    """Precision-weighted mean of a calibrated gain and a population prior (decision W48; the normal-normal
+    posterior mean, Gelman et al., Bayesian Data Analysis, 3rd ed., eq. 2.12):
+    ``(k_cal / se^2 + k0 / tau^2) / (1 / se^2 + 1 / tau^2)`` = ``k0 + tau^2 / (tau^2 + se^2) (k_cal - k0)``.
+
+    ``se`` = standard error of ``k_cal`` (``inf``: no evidence -> ``k0``); ``tau`` = between-subject spread of the
+    gain about ``k0`` (``inf``: no prior -> ``k_cal``). Raises ``ValueError`` on a NaN / negative ``se`` or ``tau``
+    and on ``se = tau = 0`` (no weighting defined)."""
+    if not (se >= 0 and tau >= 0):
+        raise ValueError(f"shrink_gain: se={se!r} and tau={tau!r} must be >= 0")
+    if np.isinf(tau):
+        return float(k_cal) if np.isfinite(se) else float("nan")
+    if np.isinf(se):
+        return float(k0)
+    if se == 0 and tau == 0:
+        raise ValueError("shrink_gain: se = tau = 0 gives no weighting")
+    w = tau * tau / (tau * tau + se * se)
+    return float(k0 + w * (k_cal - k0))
+
+
+def moment_tau(k_cals: np.ndarray, ses: np.ndarray, k0: float) -> float:
+    """Between-subject spread of the gain about the prior mean ``k0`` by the method of moments (decision W48):
+    ``tau^2 = mean((k_cal_s - k0)^2) - mean(se_s^2)`` over subjects ``s`` (each its calibration gain and standard
+    error), floored at ``mean(se_s^2)`` -- a few subjects can give a moment estimate <= 0 by chance, and the floor
+    keeps a walk as long as theirs at half its weight or more. Needs at least one subject with a finite se."""
+    k, s = np.asarray(k_cals, dtype=np.float64), np.asarray(ses, dtype=np.float64)
+    ok = np.isfinite(k) & np.isfinite(s)
+    if not ok.any():
+        raise ValueError("moment_tau: no subject with a finite gain and standard error")
+    s2 = float(np.mean(s[ok] ** 2))
+    return float(np.sqrt(max(float(np.mean((k[ok] - k0) ** 2)) - s2, s2)))
+
+
 def harmonic_mean_frequency(f_hz: np.ndarray) -> float:
     """Average step frequency of a walk, ``(mean(1/f_k))^-1`` (seed 000 eq. 1)."""
     f = np.asarray(f_hz, dtype=np.float64)

@@ -12,8 +12,15 @@ from pdrlearn.io import Session
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.evaluate import reference_bouts, steps_in_interval
 from pdrlearn.waist.heading import TurnClassifier
-from pdrlearn.waist.params import WaistParams, resolve_params
-from pdrlearn.waist.steplength import CalibrationWalk, fit_frequency, fit_pendulum, frequency_lengths
+from pdrlearn.waist.params import DEFAULT_K, TAU_K, WaistParams, resolve_params
+from pdrlearn.waist.steplength import (
+    MIN_GAIN_STRIDES,
+    CalibrationWalk,
+    fit_frequency,
+    fit_pendulum,
+    frequency_lengths,
+    gain_standard_error,
+)
 
 log = logging.getLogger(__name__)
 
@@ -137,8 +144,50 @@ def fit_turn_classifier(mean_rates: np.ndarray) -> tuple[dict | None, str]:
                            f"turning {m[1]:.3f}+-{s[1]:.3f} rad/s")
 
 
+def _finite(x: float) -> float | None:
+    return float(x) if np.isfinite(x) else None
+
+
+def shrink_pendulum_gain(walks: list[CalibrationWalk], k_cal: float, f_m: float, how: str, *, shrink: bool = False,
+                         tau: float | None = None) -> tuple[float, dict, str]:
+    """The calibrated gain ``k_cal`` and, with ``shrink``, the same shrunk toward the population gain
+    :data:`~pdrlearn.waist.params.DEFAULT_K` by precision weighting (decision W48, measured and not the default):
+    its standard error from the walks' own per-stride scatter
+    (:func:`~pdrlearn.waist.steplength.gain_standard_error`), the between-subject spread ``tau`` (default
+    :data:`~pdrlearn.waist.params.TAU_K`). Returns ``(K, record, note)``; ``record`` goes to
+    ``WaistParams.k_shrinkage`` (``k_cal``, ``se``, ``n_strides``, ``k0``, ``tau``, ``k_shrunk`` = what shrinkage
+    gives, ``k`` = the K kept, ``applied``). ``k_cal`` is kept when ``shrink`` is off, when K and F were fitted
+    jointly or F is not 0 (the prior is on the F = 0 model's K), or when the walks have fewer than
+    :data:`~pdrlearn.waist.steplength.MIN_GAIN_STRIDES` strides (no standard error); the note says which."""
+    tau = TAU_K if tau is None else float(tau)
+    se, n = gain_standard_error(walks, f_m)
+    rec = {"k_cal": float(k_cal), "se": _finite(se), "n_strides": n, "k0": DEFAULT_K, "tau": _finite(tau),
+           "k_shrunk": None, "k": float(k_cal), "applied": False}
+    sd = f" +- {se:.4f} (se over {n} strides)" if np.isfinite(se) else ""
+    if not how.startswith("K only") or f_m != 0:
+        why = "K and F fitted (walks of several speeds); the prior is on K with F = 0"
+    elif not np.isfinite(se):
+        why = (f"{n} stride(s) < {MIN_GAIN_STRIDES}: no standard error of K from the walk; "
+               "calibrate on a longer walk")
+    elif not (np.isfinite(tau) and tau > 0):
+        why = f"no between-subject spread tau ({tau})"
+    else:
+        ks = K.shrink_gain(k_cal, se, DEFAULT_K, tau)
+        rec["k_shrunk"] = ks
+        w = 100 * tau * tau / (tau * tau + se * se)
+        if not shrink:
+            return float(k_cal), rec, (f"K {k_cal:.4f}{sd} as calibrated; --shrink would give {ks:.4f} ({w:.0f} % "
+                                       f"the walk's, {100 - w:.0f} % the population K0 = {DEFAULT_K:.4f}, tau "
+                                       f"{tau:.4f}; decision W48: not the default)")
+        rec.update(k=ks, applied=True)
+        return ks, rec, (f"K shrunk toward the population K0 = {DEFAULT_K:.4f} (--shrink, decision W48): calibrated "
+                         f"{k_cal:.4f}{sd}, tau {tau:.4f} -> K = {ks:.4f} ({w:.0f} % the walk's)")
+    return float(k_cal), rec, f"K {k_cal:.4f}{sd} as calibrated, not shrunk toward K0 = {DEFAULT_K:.4f}: {why}"
+
+
 def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] | None = None,
-              turns: float | None = None, fit_turns: bool = False, params=None) -> WaistParams:
+              turns: float | None = None, fit_turns: bool = False, params=None, shrink: bool = False,
+              tau_k: float | None = None) -> WaistParams:
     """Fit the step-length parameters of ``pipeline`` (with ``turns``, the gyro bias; with ``fit_turns``,
     the straight/turning mixture, decision W14).
 
@@ -147,6 +196,9 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     sessions : calibration recordings of one user
     distances : known length (m) of each session; ``None`` -> the sessions' reference bouts
     turns : signed number of full turns (+ = left) walked in each session, for the bias (seed 003 eq. 2)
+    shrink : waist-pendulum: shrink the calibrated K toward the population K by its standard error (decision
+        W48: measured, not the default); ``tau_k`` the between-subject spread (default
+        :data:`~pdrlearn.waist.params.TAU_K`). K's standard error is recorded in ``k_shrinkage`` either way.
     """
     if not sessions:
         raise DataError("calibrate: give at least one session folder")
@@ -170,13 +222,16 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         rates.append(r[np.isfinite(r)])
     out = WaistParams(**{k: v for k, v in base.to_dict().items() if k != "schema"})
     out.notes = list(base.notes)
+    out.k_shrinkage = None
     total = sum(w.distance_m for w in walks)
     n_steps = sum(len(w.f_hz) for w in walks)
     if pipeline not in ("waist-pendulum", "waist-pll"):
         raise DataError(f"calibrate: unknown pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     implausible = check_gain(walks, pipeline, base)  # decision W39
+    shrunk = None
     if pipeline == "waist-pendulum":
         out.k, out.f_m, how = fit_pendulum(walks, base)
+        out.k, out.k_shrinkage, shrunk = shrink_pendulum_gain(walks, out.k, out.f_m, how, shrink=shrink, tau=tau_k)
     else:
         out.a_walk, out.b_walk, how = fit_frequency(walks, base)
     for n in implausible:
@@ -186,6 +241,8 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
                       "length from the first to the last heel strike)" for w in walks]
     out.notes.append(f"{pipeline} step length calibrated on {len(walks)} walk(s), {n_steps} steps, "
                      f"{total:.2f} m: {how}")
+    if shrunk is not None:
+        out.notes.append(shrunk)
     for n in notes_gap:
         log.info("calibrate: %s", n)
     out.notes += notes_gap + implausible

@@ -25,6 +25,10 @@ FOOT_PER_HEIGHT = 0.152  # foot length / body height
 # (step_length_scaling_factor_ms_ms = 4.587 / 4, optimised on the Mobilise-D MS project), the same
 # whole-step-h inverted pendulum (Zijlstra & Hof 2003) on the sensor height as here (W10)
 DEFAULT_K = 4.587 / 4
+# Between-subject spread of K about DEFAULT_K for `calibrate --shrink` (decision W48, not the default): method of
+# moments over the three mobgap subjects' Test5 calibration walks (HA001, HA002, MS001), as
+# `experiments/waist_k_shrinkage.py` prints it ("tau from all three subjects")
+TAU_K = 0.0403
 # Step length vs frequency default (decision W6): 0.415 x height at 1.8 Hz, slope 0.25 x height per Hz.
 STEP_PER_HEIGHT_AT_F0 = 0.415
 F0_HZ = 1.8  # seed 000 sec. II-C: free-running walking frequency 1.8 Hz
@@ -44,7 +48,9 @@ class WaistParams:
     turning classifier on |MRZ| (rad/s); walk_threshold_mps2 : motion gate; source : "defaults" or
     "calibrated"; pipeline : the pipeline the step length was calibrated for; options : pipeline options
     (``realtime``, ``heading``, ``integrate_stops`` ..., see :data:`pdrlearn.track.waist.OPTION_DEFAULTS`);
-    notes : how each value was obtained.
+    k_shrinkage : the calibrated K's standard error and what shrinking it toward :data:`DEFAULT_K` gives (decision
+    W48: ``k_cal``, ``se``, ``n_strides``, ``k0``, ``tau``, ``k_shrunk``, ``k``, ``applied``); notes : how each value
+    was obtained.
     """
 
     leg_m: float = float("nan")
@@ -60,6 +66,7 @@ class WaistParams:
     source: str = "defaults"
     pipeline: str | None = None
     options: dict | None = None
+    k_shrinkage: dict | None = None
     notes: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict:
@@ -81,8 +88,8 @@ class WaistParams:
         for k, v in d.items():
             if k not in names:
                 continue
-            if k in ("turn_gmm", "notes", "source", "pipeline", "options"):
-                if k in ("turn_gmm", "options") and v is not None and not isinstance(v, dict):
+            if k in ("turn_gmm", "notes", "source", "pipeline", "options", "k_shrinkage"):
+                if k in ("turn_gmm", "options", "k_shrinkage") and v is not None and not isinstance(v, dict):
                     raise DataError(f"{where}: {k} must be a JSON object")
                 kw[k] = v
                 continue

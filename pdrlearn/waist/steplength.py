@@ -176,3 +176,20 @@ def fit_pendulum(walks: list[CalibrationWalk], p: WaistParams) -> tuple[float, f
                         f"{int(round(nn.sum()))} detected steps (or no step shows vertical motion); "
                         "check --distance")
     return k, float(f), f"K only (F kept at {f:.3f} m; walks too similar to separate K and F)"
+
+
+#: decision W48: a standard error of the calibrated gain needs at least this many strides (an sd of one value
+#: is undefined)
+MIN_GAIN_STRIDES = 2
+
+
+def gain_standard_error(walks: list[CalibrationWalk], f_m: float = 0.0) -> tuple[float, int]:
+    """``(se, n_strides)`` of the pendulum gain the walks calibrate (decision W48): the per-stride implied gains
+    of :func:`~pdrlearn.waist._kernels.stride_gains` of every walk pooled, ``se = sd / sqrt(n_strides)``;
+    ``se`` is NaN with fewer than :data:`MIN_GAIN_STRIDES` strides."""
+    kj = [K.stride_gains(w.distance_m, w.g, w.factors(), f_m) for w in walks]
+    x = np.concatenate(kj) if kj else np.zeros(0)
+    x = x[np.isfinite(x)]
+    if x.size < MIN_GAIN_STRIDES:
+        return float("nan"), int(x.size)
+    return float(np.std(x, ddof=1) / np.sqrt(x.size)), int(x.size)
