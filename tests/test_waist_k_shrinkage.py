@@ -100,11 +100,12 @@ def test_calibrate_cli_writes_and_prints_the_shrinkage(tmp_path, capsys):
     assert ks["tau"] == pytest.approx(TAU_K) and ks["se"] > 0 and ks["n_strides"] >= 2
     assert min(ks["k_cal"], DEFAULT_K) < ks["k"] == ks["k_shrunk"] < max(ks["k_cal"], DEFAULT_K)
     assert json.loads(p.read_text())["k"] == ks["k"] and load_params(p).k_shrinkage == ks
-    assert f"K_cal = {ks['k_cal']:.4f}" in out and f"-> K = {ks['k']:.4f} (shrunk" in out
+    assert f"calibrated {ks['k_cal']:.4f}" in out and f"-> K = {ks['k']:.4f} (" in out
+    assert f"fitted: K = {ks['k']:.4f}" in out and "population factor" not in out  # one K, the one used
     # the default (W48: not adopted) keeps the calibrated K and still records its standard error
     assert main(["calibrate", str(HA001_T5), "--out", str(q)]) == 0
     out = capsys.readouterr().out
     d = json.loads(q.read_text())
     assert d["k"] == d["k_shrinkage"]["k_cal"] == ks["k_cal"] and not d["k_shrinkage"]["applied"]
     assert d["k_shrinkage"]["se"] == ks["se"] and d["k_shrinkage"]["k_shrunk"] == ks["k"]
-    assert "not shrunk" in out and "--shrink would give" in out
+    assert f"fitted: K = {ks['k_cal']:.4f}" in out and "as calibrated; --shrink would give" in out

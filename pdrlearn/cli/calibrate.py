@@ -70,13 +70,6 @@ def register(app: typer.Typer) -> None:
             if pipeline == "waist-pendulum":
                 typer.echo(f"  fitted: K = {params.k:.4f}, F = {params.f_m:.3f} m (step = K 2 sqrt(2 L h - h^2) + F, "
                            f"L = {params.leg_m:.3f} m)")
-                ks = params.k_shrinkage or {}
-                if ks:
-                    def num(x):
-                        return "n/a" if x is None else f"{x:.4f}"
-                    typer.echo(f"  K_cal = {num(ks['k_cal'])}, se = {num(ks['se'])} ({ks['n_strides']} strides), "
-                               f"K0 = {num(ks['k0'])}, tau = {num(ks['tau'])}, shrunk {num(ks['k_shrunk'])} -> "
-                               f"K = {num(ks['k'])} ({'shrunk' if ks['applied'] else 'not shrunk'}, decision W48)")
             else:
                 typer.echo(f"  fitted: step length = {params.a_walk:.4f} f - {params.b_walk:.4f} m (walking)")
             for n in d["notes"]:

@@ -142,11 +142,12 @@ def track(
         print_json(summary)
         return
     err = summary.get("distance_error_pct")
+    bouts = err is not None and "bout_distance_m" in summary and "bout_reference_m" in summary
     typer.echo(f"{session.name}: {summary['n_steps']} steps, {summary['distance_m']:.2f} m"
+               # W21: the lower-back error counts the reference bouts only; say so before the number
+               + (f"; inside the reference bouts {summary['bout_distance_m']:.2f} m vs "
+                  f"{summary['bout_reference_m']:.2f} m" if bouts else "")
                + (f", distance error {err:+.2f} %" if err is not None else "")
-               + (f" (inside the reference bouts: {summary['bout_distance_m']:.2f} m vs "
-                  f"{summary['bout_reference_m']:.2f} m)"  # W21: the lower-back error counts the bouts only
-                  if err is not None and "bout_distance_m" in summary and "bout_reference_m" in summary else "")
                + (f" (over the {summary['stride_length_matched']} labelled strides "
                   f"{summary['distance_matched_error_pct']:+.2f} %)"  # a reference labelling part of the walk
                   if "distance_matched_error_pct" in summary and "stride_length_matched" in summary

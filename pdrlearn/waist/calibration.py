@@ -221,7 +221,8 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         r = res.steps["mean_rate_rps"].to_numpy(float)
         rates.append(r[np.isfinite(r)])
     out = WaistParams(**{k: v for k, v in base.to_dict().items() if k != "schema"})
-    out.notes = list(base.notes)
+    # the starting values' notes, less the one the fit replaces (a calibrated K is not the population K)
+    out.notes = [n for n in base.notes if not (pipeline == "waist-pendulum" and n.startswith("K = "))]
     out.k_shrinkage = None
     total = sum(w.distance_m for w in walks)
     n_steps = sum(len(w.f_hz) for w in walks)
