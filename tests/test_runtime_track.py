@@ -265,3 +265,21 @@ def test_m3_says_which_rules_a_partial_model_cannot_apply(calibrated):
     said = " ".join(res.info["warnings"])
     assert "classifies no terrain" in said and "classifies no direction" in said
     assert "classifies no length" not in said
+
+
+def test_resampled_data_says_why_the_calibration_does_not_apply(calibrated):
+    """New-user trial: `run --resample` said "resampling to 20 Hz" and then "the foot unit runs at 50 Hz: not
+    applied" -- both true (E22 judges the calibration at the recording's rate) but it read as a contradiction."""
+    from pdrlearn.sim import simulate
+
+    root, _, _ = calibrated
+    s50 = simulate("A", user_seed=2, speed="normal", rate_hz=50.0)
+    tr = Tracker(root / "bundle", heading_source="foot", resample=True)
+    replay(tr, s50, 0.5)
+    (w,) = [w for w in tr.warnings if "distance calibration" in w]
+    assert "was recorded at 50 Hz (resampled to 20 Hz, which does not restore what the recording rate lost): " \
+           "not applied" in w, w
+    assert tr.distance_gain == 1.0 and "runs at" not in w
+    native = Tracker(root / "bundle", heading_source="foot")  # tracked at 50 Hz: the plain wording
+    replay(native, s50, 0.5)
+    assert any("the foot unit runs at 50 Hz: not applied" in w for w in native.warnings)
