@@ -16,7 +16,9 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     """Plan view (x east, y north, m) of one or more tracks, with the ground truth when the session has one.
 
     The ground truth is shifted so that it starts where the tracks start (its position at the first
-    track's start time).
+    track's start time). Without a magnetometer a track's heading is relative to its start (0 = east,
+    unless ``initial_heading`` says otherwise), so the ground truth is also rotated to set off in the first
+    track's direction (:func:`initial_bearing`); the legend says so.
     """
     import matplotlib
 
@@ -24,17 +26,26 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(7, 6))
-    t0 = None
+    t0, first = None, None
     for name, r in paths.items():
         tr = r.trajectory
         ax.plot(tr["x"], tr["y"], "-", lw=1.4, marker=".", ms=3, label=f"{name} ({r.distance_m:.1f} m)")
         t0 = float(tr["t"].iloc[0]) if t0 is None and len(tr) else t0
+        first = tr if first is None and len(tr) else first
     if session is not None and session.trajectory is not None and len(session.trajectory) > 1:
         g = session.trajectory
         gt = g["t"].to_numpy(float)
         ref_t = gt[0] if t0 is None else t0
         x0, y0 = np.interp(ref_t, gt, g["x"].to_numpy(float)), np.interp(ref_t, gt, g["y"].to_numpy(float))
-        ax.plot(g["x"] - x0, g["y"] - y0, "k--", lw=1.0, label="ground truth")
+        gx, gy = g["x"].to_numpy(float) - x0, g["y"].to_numpy(float) - y0
+        label = "ground truth"
+        absolute = any("Magnetic" in k for k in session.streams)  # a compass: the heading is absolute
+        if first is not None and not absolute:
+            rot = rotated_to_track(gx, gy, gt >= ref_t, first["x"].to_numpy(float), first["y"].to_numpy(float))
+            if rot is not None:
+                gx, gy = rot
+                label = "ground truth (rotated to the track's initial direction: relative heading)"
+        ax.plot(gx, gy, "k--", lw=1.0, label=label)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("east [m]")
     ax.set_ylabel("north [m]")
@@ -44,3 +55,26 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     save_atomic(fig, Path(out))
     plt.close(fig)
     return Path(out)
+
+
+def initial_bearing(x: np.ndarray, y: np.ndarray, *, min_dist_m: float = 2.0) -> float | None:
+    """ENU bearing (rad, 0 = east) from a path's first point to its first point at least ``min_dist_m`` away
+    (about two strides: past the start's sway, before the first turn of a corridor walk); None when the path
+    never gets that far."""
+    d = np.hypot(x - x[0], y - y[0]) if len(x) else np.zeros(0)
+    far = np.flatnonzero(d >= min_dist_m)
+    if not len(far):
+        return None
+    i = int(far[0])
+    return float(np.arctan2(y[i] - y[0], x[i] - x[0]))
+
+
+def rotated_to_track(gx: np.ndarray, gy: np.ndarray, after: np.ndarray, tx: np.ndarray, ty: np.ndarray
+                     ) -> tuple[np.ndarray, np.ndarray] | None:
+    """The ground truth ``(gx, gy)`` (start-shifted) rotated about the start so that its path from the
+    track's start (``after``) sets off in the track's initial direction; None when either is too short."""
+    a_tr, a_gt = initial_bearing(tx, ty), initial_bearing(gx[after], gy[after])
+    if a_tr is None or a_gt is None:
+        return None
+    c, s = np.cos(a_tr - a_gt), np.sin(a_tr - a_gt)
+    return c * gx - s * gy, s * gx + c * gy
