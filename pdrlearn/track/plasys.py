@@ -118,6 +118,37 @@ def _detect_strides(session: Session, kind: str, steps: str, t: np.ndarray, stan
     return stance_strides(t, stance)
 
 
+#: Decision L38: an offline stride is classified on the streaming segmenter's stride when the two cover the same
+#: stride (IoU at least this; 0.1 s moved at each end of a 1 s stride still gives 0.82).
+WINDOW_MIN_IOU = 0.8
+
+
+def classification_windows(session: Session, strides: pd.DataFrame) -> pd.DataFrame:
+    """Decision L38: the step windows M3 classifies the offline ``strides`` on, ``start_s``/``end_s`` (s).
+
+    A model's step windows are cut at stance-to-stance boundaries in the middle of the foot's rest (the
+    labelled steps it was trained on; ``track --streaming`` and the runtime cut at the strides of
+    :class:`~pdrlearn.kernels.stride.StanceSegmenter` on the foot gyroscope). The offline strides' own
+    rest-to-rest bounds come from the ZUPT stance (force sensors or the accelerometer + gyroscope test, on the
+    upsampled grid) and sit ~30 ms later at 20 Hz (sim: +33 ms median against the labels, streaming +7 ms),
+    enough to change the length class of a third of the strides. So each offline stride is classified on the
+    segmenter's stride that covers it (IoU >= :data:`WINDOW_MIN_IOU`), and on its own bounds when none does."""
+    out = strides[["start_s", "end_s"]].reset_index(drop=True).copy()
+    out.attrs["segmenter_windows"] = 0
+    gyro = session.streams.get("fGyroscope")
+    if gyro is None or not len(out):
+        return out
+    seg = SK.stance_strides(gyro.t, gyro.values)  # the streaming default segmenter (track --streaming, runtime)
+    if not len(seg):
+        return out
+    pairs = match_by_overlap(out, pd.DataFrame({"start_s": seg[:, 0], "end_s": seg[:, 1]}), min_iou=WINDOW_MIN_IOU)
+    if pairs:
+        oi, si = (np.array(v) for v in zip(*pairs, strict=True))
+        out.loc[oi, "start_s"], out.loc[oi, "end_s"] = seg[si, 0], seg[si, 1]
+        out.attrs["segmenter_windows"] = len(pairs)
+    return out
+
+
 def classes_and_bounds(model, session: Session, steps: pd.DataFrame) -> tuple[pd.DataFrame, object]:
     """M3's step classes and the user's stride-length class bounds, from a trained model or, with
     ``model="oracle"``, from the session's own labels and ``meta.json`` (one place for the offline and the
@@ -385,7 +416,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     classes = pd.DataFrame(index=range(len(strides)), columns=["terrain", "direction", "length_class"],
                            dtype=object)
     classes["confidence"] = strides.get("confidence", pd.Series(1.0, index=strides.index)).to_numpy()
-    model_bounds = None
+    model_bounds, windows = None, None
     has_waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
     work, alignment = session, None
     if align and cfg["rules"] and has_waist:
@@ -398,7 +429,10 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             from pdrlearn.classify import load_model
 
             model = load_model(model)
-        classes, model_bounds = classes_and_bounds(model, work, strides)
+        is_oracle = isinstance(model, str) and model == "oracle"
+        # decision L38: a model classifies each stride on the window the streaming path (and its training) cuts
+        windows = None if is_oracle else classification_windows(work, strides)
+        classes, model_bounds = classes_and_bounds(model, work, strides if windows is None else windows)
         if not (isinstance(model, str) and model == "oracle"):
             for task, rule in (("terrain", "filter and altitude"), ("direction", "sign"), ("length", "length")):
                 col = _TASK_COLUMNS[task]
@@ -465,6 +499,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     for c in classes.columns:
         if c.startswith("p_"):
             table[c] = classes[c].to_numpy(float)
+    if windows is not None:  # decision L38: the windows the classes come from
+        table["window_start_s"], table["window_end_s"] = (windows[c].to_numpy(float) for c in ("start_s", "end_s"))
     table["unit"] = "foot"
 
     xyz = np.zeros((len(table) + 1, 3))
@@ -481,6 +517,10 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             "heading_source": hsrc, "stance_source": stance_source,
             "steps_source": source,
             "classes_source": ("oracle" if oracle else ("model" if cfg["rules"] else None)),
+            # decision L38: strides classified on the streaming segmenter's window / on their own bounds
+            "class_windows": (None if windows is None else
+                              {"segmenter": int(windows.attrs.get("segmenter_windows", 0)),
+                               "own": len(windows) - int(windows.attrs.get("segmenter_windows", 0))}),
             "unit_alignment": alignment,
             "length_bounds_m": step_rules.effective_bounds() if clamp else None,
             "rules": rules if cfg["rules"] else None,
