@@ -30,8 +30,28 @@ def test_auto_without_model_streams_m2(level_left):
     auto = track_plasys(level_left, method="auto", streaming=True)
     m2 = track_plasys(level_left, method="M2", streaming=True)
     assert auto.info["method"] == "M3 engine, no classes" and NO_MODEL_WARNING in auto.info["warnings"]
-    xyz = ["x", "y", "z"]
-    np.testing.assert_array_equal(auto.trajectory[xyz].to_numpy(), m2.trajectory[xyz].to_numpy())
+    np.testing.assert_array_equal(auto.trajectory[["x", "y"]].to_numpy(), m2.trajectory[["x", "y"]].to_numpy())
+    # decision L39: M2 keeps every stride's integrated height, the class-free engine levels strides < 0.10 m
+    dz = m2.steps["dz_m"].to_numpy()
+    np.testing.assert_array_equal(auto.steps["dz_m"].to_numpy(), np.where(np.abs(dz) < 0.10, 0.0, dz))
+    np.testing.assert_allclose(auto.trajectory["z"].to_numpy()[1:], np.cumsum(auto.steps["dz_m"]), atol=1e-12)
+    assert (np.abs(dz) < 0.10).sum() >= 25 and abs(m2.trajectory["z"].iloc[-1]) > 0.3  # the walk's drift...
+    assert abs(auto.trajectory["z"].iloc[-1]) < 0.05  # ...gone on a level walk (ref. 0.003 m)
+
+
+@pytest.mark.parametrize("streaming", [False, True])
+def test_level_rule_without_classes_keeps_stairs_and_zeroes_level_walks(streaming):
+    """L39 without a model: scenario D's 3.8 m of stairs keep their height (measured users 1-3 x 3 speeds:
+    final height error mean 0.421 -> 0.050 m), a level walk (A) ends at its start height exactly, where M2
+    (every stride's integrated height) drifts."""
+    d = sim.simulate("D", user_seed=1, speed="normal")
+    r = track_plasys(d, method="auto", streaming=streaming)
+    g, t = d.trajectory, r.trajectory["t"]
+    truth = np.interp(t.iloc[-1], g["t"], g["z"]) - np.interp(t.iloc[0], g["t"], g["z"])
+    assert truth > 3.5 and abs(float(r.trajectory["z"].iloc[-1]) - truth) < 0.25
+    a = sim.simulate("A", user_seed=1, speed="normal")
+    assert float(track_plasys(a, method="auto", streaming=streaming).trajectory["z"].iloc[-1]) == 0.0
+    assert abs(float(track_plasys(a, method="M2", streaming=streaming).trajectory["z"].iloc[-1])) > 0.05
 
 
 def test_auto_with_model_is_m3_and_explicit_m3_still_needs_a_model():

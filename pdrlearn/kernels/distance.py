@@ -44,6 +44,14 @@ def calibrated_stride_sd(rec: Mapping | None) -> float | None:
     return float(rec["stride_sd"])
 
 
+def level_dz(dz: np.ndarray, *, level_dz_m: float = LEVEL_DZ_M) -> np.ndarray:
+    """Height changes ``dz`` (m) with the level strides' (|dz| < ``level_dz_m``, half a stair rise) set to 0:
+    the altitude rule of the thesis (ch. 7.2.2: a flat step keeps its altitude) decided by the stride's own
+    height change where there are no terrain classes (decision L39). A new array."""
+    dz = np.asarray(dz, dtype=np.float64)
+    return np.where(np.abs(dz) < level_dz_m, 0.0, dz)
+
+
 def apply_level_gain(disp: np.ndarray, gain: float, *, level_dz_m: float = LEVEL_DZ_M) -> np.ndarray:
     """Displacements ``disp (B, 3)`` (or one ``(3,)``) m with the horizontal part of the level strides
     (|dz| < ``level_dz_m``) multiplied by ``gain``; stair strides keep theirs (L26). A new array."""

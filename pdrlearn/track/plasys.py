@@ -38,7 +38,7 @@ from pdrlearn.displace import (
 from pdrlearn.errors import DataError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
-from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain, calibrated_stride_sd
+from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain, calibrated_stride_sd, level_dz
 from pdrlearn.kernels.window import GROUP_STREAMS, available_groups, levelled_units
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.track.base import TrackResult, register_pipeline
@@ -63,8 +63,8 @@ METHODS: dict[str, dict] = {
 
 
 NO_MODEL_WARNING = ("no model: the M3 engine (ZUPT/Kalman strides) without the class rules (terrain filter, "
-                    "sign, length bounds, altitude); pass --model DIR (`pdrlearn train`) or --model oracle "
-                    "(labelled sessions) for M3")
+                    "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass --model "
+                    "DIR (`pdrlearn train`) or --model oracle (labelled sessions) for M3")
 
 
 def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3,
@@ -364,6 +364,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                               calibration=calibration, **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}))
         if no_classes:
             res.info["method"] = "M3 engine, no classes"
+            _level_without_classes(res)  # decision L39, as offline
             res.info["warnings"] = [NO_MODEL_WARNING, *res.info.get("warnings", [])]
             log.warning("%s: %s", session.name, NO_MODEL_WARNING)
         return res
@@ -467,6 +468,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     applied = step_rules.apply(disp, rule_classes)
     length = applied["length_m"].to_numpy()
     dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
+    if no_classes:  # decision L39: no terrain class, the stride's own height change says level
+        dz = level_dz(dz)
     length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
 
     hsrc = heading or cfg["heading"]
@@ -536,6 +539,16 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     for w in warnings:
         log.warning("%s: %s", session.name, w)
     return TrackResult(steps=table, trajectory=traj, info=info)
+
+
+def _level_without_classes(res: TrackResult) -> None:
+    """Decision L39 on a streamed track without classes: the level strides' ``dz_m`` set to 0 and the
+    trajectory's height re-accumulated (one trajectory row per stride after the start row)."""
+    dz = level_dz(res.steps["dz_m"].to_numpy(float)) if len(res.steps) else np.zeros(0)
+    res.steps["dz_m"] = dz
+    if len(res.trajectory) == len(dz) + 1:
+        z0 = float(res.trajectory["z"].iloc[0])
+        res.trajectory["z"] = z0 + np.concatenate([[0.0], np.cumsum(dz)])
 
 
 def track_streaming(session: Session, *, method: str = "M3", model=None, start=None, params=None,
