@@ -25,7 +25,7 @@ def test_info_keeps_sensor_names_and_label_line_whole(capsys):
     out = capsys.readouterr().out
     assert "fAccelerometer" in out and "…" not in out
     labels = next(ln for ln in out.splitlines() if ln.startswith("labels: "))
-    assert labels.endswith("'length_m_known': 28}")  # > 80 characters, one line
+    assert labels.endswith('"length_m_known": 28}')  # > 80 characters, one line (JSON since session 10)
 
 
 def test_train_lines_and_titles_are_one_line_each(tmp_path, capsys):

@@ -79,7 +79,8 @@ def evaluate_model(
     if not sessions:
         raise DataError("evaluate: no sessions given; pass at least one labelled session folder")
     t0 = time.perf_counter()
-    windows = session_windows(sessions, n_samples=model.n_samples, boundaries=model.boundaries)
+    windows = session_windows(sessions, n_samples=model.n_samples, boundaries=model.boundaries,
+                               purpose="evaluate")
     n_total = sum(len(w) for w in windows)
     windows_ms = (time.perf_counter() - t0) * 1e3 / max(n_total, 1)
     advance(1)

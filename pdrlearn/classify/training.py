@@ -150,15 +150,20 @@ class TaskData:
         return self.foot & self.waist
 
 
-def session_windows(sessions, *, n_samples: int, boundaries: str = "given"):
+def session_windows(sessions, *, n_samples: int, boundaries: str = "given", purpose: str = "train"):
     """Step windows of every labelled step of every session (one :class:`StepWindows` per session);
-    ``boundaries`` as :func:`pdrlearn.features.step_windows` (``"rest"``: rest-to-rest windows)."""
+    ``boundaries`` as :func:`pdrlearn.features.step_windows` (``"rest"``: rest-to-rest windows);
+    ``purpose`` ("train" | "evaluate") words the error for a session without labelled steps."""
     from pdrlearn.features import step_windows
 
     out = []
     for s in sessions:
         if s.steps is None or len(s.steps) == 0:
-            raise DataError(f"session '{s.name}' has no labelled steps (steps.csv); label the steps to train")
+            where = f"{s.folder}" if s.folder is not None else f"session '{s.name}'"
+            fix = ("label its steps to train on it" if purpose == "train" else
+                   "evaluate needs labelled sessions: label its steps, or track an unlabelled walk with "
+                   "`pdrlearn track SESSION --model MODEL`")
+            raise DataError(f"{where}: no labelled steps (steps.csv); {fix}")
         out.append(step_windows(s, s.steps, n_samples=n_samples, boundaries=boundaries))
     return out
 

@@ -45,7 +45,7 @@ def info(
     frames = (json.dumps(summary["frames"]) if summary["frames"]
               else "not declared (inferred from the data when a command needs it, decision D8)")
     c.print(f"frames: {frames}", markup=False)
-    c.print(f"labels: {summary['labels']}")
+    c.print(f"labels: {json.dumps(json_safe(summary['labels']))}", markup=False)  # JSON, like the frames line
 
 
 def plot(

@@ -85,6 +85,8 @@ def track(
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
     fn = get_pipeline(pipeline)
+    if pipeline == "plasys" and isinstance(par, dict):
+        _refuse_waist_params(par, params, session)
     # waist pipelines read the file themselves, so that their errors name it
     kw = {"model": model, "start": start_ll, "params": par if pipeline == "plasys" or par is None else str(params)}
     if streaming and pipeline != "plasys":
@@ -155,6 +157,24 @@ def track(
                + (f", final position error {summary['final_position_error_m']:.2f} m"
                   if "final_position_error_m" in summary else ""))
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json")
+
+
+def _refuse_waist_params(par: dict, path: Path, session) -> None:
+    """A lower-back parameters file given to the foot pipeline: say what it is and where it belongs (the
+    plasys pipeline would list its keys as unknown FootDisplacement settings)."""
+    from dataclasses import fields
+
+    from pdrlearn.waist.params import SCHEMA, WaistParams
+
+    waist_keys = {f.name for f in fields(WaistParams)} - {"notes", "source", "options"}
+    if par.get("schema") != SCHEMA and not waist_keys & set(par):
+        return
+    for_ = par.get("pipeline") if par.get("pipeline") in ("waist-pendulum", "waist-pll") else None
+    use = f"--pipeline {for_}" if for_ else "--pipeline waist-pendulum or waist-pll"
+    unit = "" if session.has("wAccelerometer") else f" (session '{session.name}' has no waist unit)"
+    raise DataError(f"{path}: a {for_ or 'waist-pendulum/waist-pll'} parameters file (lower-back step length, "
+                    f"`pdrlearn calibrate`), not settings of the plasys foot pipeline; use it with {use} on a "
+                    f"session with a waist unit{unit}, or track the foot without --params")
 
 
 def register(app: typer.Typer) -> None:

@@ -86,7 +86,7 @@ def read_table(path: str | os.PathLike) -> pd.DataFrame:
     if not path.is_file():
         raise DataError(f"{path}: file not found")
     try:
-        df = pd.read_csv(path)
+        df = pd.read_csv(path, **_csv_dialect(path))
     except pd.errors.EmptyDataError:
         raise DataError(f"{path}: file is empty (not even a header line); re-export or remove it") from None
     except (pd.errors.ParserError, UnicodeDecodeError) as exc:
@@ -96,6 +96,23 @@ def read_table(path: str | os.PathLike) -> pd.DataFrame:
     return df
 
 
+
+
+def _csv_dialect(path: Path) -> dict:
+    """``pd.read_csv`` options for a CSV written with another separator (decision B24): a header line with
+    no comma but semicolons (a spreadsheet in a decimal-comma locale) or tabs is read with that separator,
+    and a semicolon file whose values carry decimal commas with ``decimal=","``. Comma files are untouched."""
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            header, first = f.readline(), f.readline()
+    except OSError:
+        return {}
+    if "," in header:
+        return {}
+    sep = ";" if ";" in header else "\t" if "\t" in header else None
+    if sep is None:
+        return {}
+    return {"sep": sep, **({"decimal": ","} if sep == ";" and "," in first and "." not in first else {})}
 
 
 def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale: float = 1e-3,
@@ -287,11 +304,35 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
                       trajectory=traj, extras=extras, meta=meta, frames=frames, folder=folder)
     for label, table in [*([("steps", steps)] if steps is not None else []), *extras.items()]:
         check_label_times(table, session.t_start, session.t_end, str(folder / f"{label}.csv"))
+    warn_low_rate(session)
     for name, s in streams.items():
         gaps = s.gaps()
         if gaps:
             log.info("%s/%s: %d gap(s), longest %.3f s", folder, name, len(gaps), max(g.duration_s for g in gaps))
     return session
+
+
+#: Lowest sampling rate (Hz) of a unit's accelerometer/gyroscope that the step detectors are validated at
+#: (decision B23): the thesis system samples both units at 20 Hz (thesis ch.4.2.3, 4.3, 4.4: "sufficient to
+#: include the frequencies in the signals induced by the user walk"), the simulator too; on the real
+#: recordings resampled to 10-15 Hz the foot detector loses strides on every kind of walk
+#: (experiments/results/low_rate.md).
+MIN_VALIDATED_RATE_HZ = 20.0
+_UNIT_IMU = {"foot": ("fAccelerometer", "fGyroscope"), "waist": ("wAccelerometer", "wGyroscope")}
+
+
+def warn_low_rate(session: Session) -> None:
+    """One warning per unit whose accelerometer or gyroscope is sampled below :data:`MIN_VALIDATED_RATE_HZ`
+    (decision B23): the detectors run, but lose steps (a 10 Hz foot recording: 16 of 29 strides)."""
+    where = session.folder if session.folder is not None else f"session '{session.name}'"
+    for unit, names in _UNIT_IMU.items():
+        rates = [session.streams[n].rate_hz for n in names if n in session.streams and len(session.streams[n]) > 1]
+        rate = min(rates, default=float("nan"))
+        if rate < MIN_VALIDATED_RATE_HZ * 0.99:  # D7: a nominal 20 Hz clock may read 19.9x Hz
+            what = "strides" if unit == "foot" else "steps"
+            log.warning("%s: the %s unit is sampled at %.3g Hz, below the %g Hz its step detectors are validated at "
+                        "(thesis ch.4; docs/robustness.md): expect lost %s; record at %g Hz or more", where, unit,
+                        rate, MIN_VALIDATED_RATE_HZ, what, MIN_VALIDATED_RATE_HZ)
 
 
 def _fmt(x: np.ndarray) -> np.ndarray:

@@ -160,6 +160,7 @@ class Session:
     folder: Path | None = None
     infer_frames: bool = True
     _inferred: dict[str, AxisFrame | str] = field(default_factory=dict, repr=False, compare=False)
+    _checked: dict[str, str | None] = field(default_factory=dict, repr=False, compare=False)
 
     # -- access -----------------------------------------------------------------------------------
     def __getitem__(self, name: str) -> Stream:
@@ -208,16 +209,24 @@ class Session:
                     f"its values would be made up for the missing {max(late, 0) + max(early, 0):.2f} s -- {fix}")
 
     def require_frame(self, placement: str) -> AxisFrame:
-        """The axis frame of the ``placement`` unit: the declared one; else (``infer_frames``) the frame
+        """The axis frame of the ``placement`` unit: the declared one (with ``infer_frames``, checked once
+        against the data: a left-handed frame or one the data contradict with confidence is still used, with
+        one warning naming the frame the data give, decision D10); else (``infer_frames``) the frame
         inferred from the unit's data (:mod:`pdrlearn.track.frame_inference`, decision D8), logged once
         as a warning that names what was found and the ``frames`` entry to declare if it is wrong; else, or
         when the data does not fix the axes, a :class:`DataError` naming the session's ``meta.json`` and
         the entry to add (the one wording of every method that needs a unit's axes, decision B18)."""
-        frame = self.frames.get(placement)
-        if frame is not None:
-            return frame
         where = (f"{self.folder / 'meta.json'}: session '{self.name}'" if self.folder is not None
                  else f"session '{self.name}' (its meta.json)")
+        frame = self.frames.get(placement)
+        if frame is not None:
+            if self.infer_frames and placement not in self._checked:  # decision D10: once per session
+                from pdrlearn.track.frame_inference import check_declared_frame
+
+                self._checked[placement] = msg = check_declared_frame(self, placement, frame)
+                if msg:
+                    log.warning("%s: %s", where, msg)
+            return frame
         reason = ""
         if self.infer_frames:
             from pdrlearn.track.frame_inference import infer_session_frame

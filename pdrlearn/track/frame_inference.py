@@ -30,6 +30,7 @@ Every check that can fail raises :class:`FrameInferenceError` (a :class:`DataErr
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -71,6 +72,12 @@ MIN_PHASE_MARGIN_DEG = 15.0
 #: mobgap lower-back sessions 12.7-24.8, simulated scenarios 17.6-78; docs/frames.md).
 RHYTHM_LAG_S = (0.3, 1.0)
 MIN_RHYTHM_SIGMA = 8.0
+#: A declared (or source_project) frame contradicts the data (decision D10) when one of its body directions
+#: lies more than this many degrees from the direction measured in the data. A nearest-axis declaration is
+#: at most 45 deg off (a unit mounted half-way between two axes may be declared either way) and the foot's
+#: pitch window accepts up to 60 deg toes-down (FOOT_PITCH_WINDOW_DEG); a wrong 90-degree turn is 90 deg off
+#: (less the mount's tilt), an upside-down unit 180. Geometry, not fitted to a recording.
+MAX_DECLARED_OFF_DEG = 60.0
 
 
 class FrameInferenceError(DataError):
@@ -84,6 +91,9 @@ class InferredFrame:
     placement: str
     frame: AxisFrame
     evidence: dict = field(default_factory=dict)
+    #: the measured up and forward directions (unit vectors in sensor axes) the frame was snapped from
+    up: np.ndarray | None = None
+    forward: np.ndarray | None = None
 
     def describe(self) -> str:
         return ", ".join(f"{k} {v}" for k, v in self.evidence.items())
@@ -235,7 +245,7 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     i_u = next(i for i in sag if i != i_f)
     s_u = float(np.sign(up[i_u]) or 1.0)
     frame = frame_from_axes((i_f, s_f), (i_ml, s_ml), (i_u, s_u))
-    return InferredFrame("foot", frame, {
+    return InferredFrame("foot", frame, up=up, forward=fwd, evidence={
         "up": f"{'xyz'[i_u]}{'+' if s_u > 0 else '-'} (pitch {abs(pitch):.0f} deg "
               f"{'toes-down' if pitch >= 0 else 'toes-up'}, {ang_ml:.0f} deg roll/yaw)",
         "forward": f"{'xyz'[i_f]}{'+' if s_f > 0 else '-'} from {len(hor)} strides (resultant {resultant:.2f}; "
@@ -350,7 +360,7 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
     left = np.cross(e[i_u] * s_u, e[i_f] * s_f)
     i_l = int(np.argmax(np.abs(left)))
     frame = frame_from_axes((i_f, s_f), (i_l, float(np.sign(left[i_l]))), (i_u, s_u))
-    return InferredFrame("waist", frame, {
+    return InferredFrame("waist", frame, up=up, forward=_unit(fwd - (fwd @ up) * up), evidence={
         "up": f"{'xyz'[i_u]}{'+' if s_u > 0 else '-'} ({ang_u:.0f} deg tilt)",
         "forward": f"{'xyz'[i_f]}{'+' if s_f > 0 else '-'} ({ang_f:.0f} deg off, step-frequency power x{ratio:.1f})",
         "forward lead": f"{lead:.0f} deg over {walk_s:.0f} s of walking (rhythm {rhythm:.0f} sigma; the sign "
@@ -382,6 +392,53 @@ def infer_session_frame(session, placement: str) -> InferredFrame:
         raise FrameInferenceError("NaN or infinite values")
     return INFER[placement](acc, gyr, float(acc_s.rate_hz))
 
+def frame_disagreement(declared: AxisFrame, found: InferredFrame) -> dict[str, float]:
+    """Body directions (``up``, ``forward``, ``left``) for which the ``declared`` frame's sensor direction
+    lies more than :data:`MAX_DECLARED_OFF_DEG` from the direction measured in the data (``found.up``,
+    ``found.forward``, left = up x forward), with the angle in degrees; ``{}`` when the declared frame is
+    a possible nearest-axis declaration of what the data show (decision D10)."""
+    if found.up is None or found.forward is None:
+        return {}
+    R = declared.matrix()  # sensor -> body; its rows are the body directions in sensor axes
+    measured = {"up": found.up, "forward": found.forward, "left": np.cross(found.up, found.forward)}
+    body = {"forward": R[0], "left": R[1], "up": R[2]}
+    out = {}
+    for name in ("up", "forward", "left"):
+        ang = float(np.degrees(np.arccos(np.clip(float(_unit(body[name]) @ _unit(measured[name])), -1.0, 1.0))))
+        if ang > MAX_DECLARED_OFF_DEG:
+            out[name] = ang
+    return out
+
+
+def check_declared_frame(session, placement: str, declared: AxisFrame) -> str | None:
+    """The warning (without the ``meta.json`` location) for a declared or ``source_project`` frame that is
+    left-handed or that the data contradict with confidence (decision D10), else ``None``. The inference
+    runs once here; a refusal (the data do not fix the axes) leaves the declared frame unquestioned."""
+    try:
+        found = infer_session_frame(session, placement)
+    except DataError:
+        found = None
+    off = frame_disagreement(declared, found) if found is not None else {}
+    left_handed = not declared.right_handed
+    if not off and not left_handed:
+        return None
+    if isinstance(session.meta.get("frames"), dict):
+        origin = 'declared in "frames"'
+    else:
+        origin = f"implied by source_project {json.dumps(str(session.meta.get('source_project', '')))}"
+    what = f"the {placement} unit's frame {json.dumps(declared.to_dict())} ({origin})"
+    issues = []
+    if left_handed:
+        issues.append("is left-handed (IMU axes are right-handed: one axis is probably reversed)")
+    if off:
+        issues.append(f"contradicts its data, which give {json.dumps(found.frame.to_dict())} ("
+                      + ", ".join(f"{k} {v:.0f} deg from the declared {k}" for k, v in off.items())
+                      + f"; {found.describe()})")
+    fix = (f'if the data are right, write "frames": {json.dumps({placement: found.frame.to_dict()})} in meta.json'
+           if off else "declare the device's right-handed frame in meta.json")
+    return f"{what} {' and '.join(issues)}; the meta.json frame is still used (decision D8): {fix}"
+
+
 def remount(session, placement: str, rotation: np.ndarray):
     """A copy of ``session`` with the ``placement`` unit's 3-axis streams (accelerometer, gyroscope,
     magnetometer) expressed in a remounted sensor frame: ``v_new = rotation @ v_old``. A declared frame
@@ -392,6 +449,7 @@ def remount(session, placement: str, rotation: np.ndarray):
     R = np.asarray(rotation, dtype=float)
     out = session.copy()
     out._inferred = {}
+    out._checked = {}
     for name, st in session.streams.items():
         if st.placement == placement and st.values.ndim == 2 and st.values.shape[1] == 3:
             out.streams[name] = Stream(name, st.t.copy(), st.values @ R.T)
@@ -424,5 +482,6 @@ def right_handed_orientations() -> list[np.ndarray]:
 
 
 __all__ = ["FrameInferenceError", "InferredFrame", "infer_foot_frame", "infer_waist_frame", "frame_from_axes",
-           "infer_session_frame", "rest_to_rest", "stride_displacements", "swing_pitch_extremes", "remount",
+           "infer_session_frame", "frame_disagreement", "check_declared_frame",
+           "rest_to_rest", "stride_displacements", "swing_pitch_extremes", "remount",
            "right_handed_orientations", "INFER", "UNIT_STREAMS"]
