@@ -111,7 +111,7 @@ def test_data_checked_once_per_session_and_not_without_infer_frames(monkeypatch)
 
     calls = []
     real = fi.infer_session_frame
-    monkeypatch.setattr(fi, "infer_session_frame", lambda s, p: calls.append(p) or real(s, p))
+    monkeypatch.setattr(fi, "infer_session_frame", lambda s, p, **kw: calls.append(p) or real(s, p, **kw))
     s = read_session(FOOT)
     for _ in range(3):
         s.require_frame("foot")
@@ -134,3 +134,19 @@ def test_a_near_axis_declaration_of_a_pitched_mount_is_not_a_contradiction():
     assert set(frame_disagreement(AxisFrame(x="up", y="left", z="backward"), found)) == set()  # 40 deg: either
     off = frame_disagreement(AxisFrame(x="forward", y="up", z="right"), found)
     assert set(off) == {"up", "left"} and all(v > 60 for v in off.values())
+
+
+def test_the_check_reads_only_the_first_minutes(monkeypatch):
+    """A 1 h track paid ~0.7-1.1 s CPU for the D10 check over the whole hour (M3 0.52 s without it); the
+    check reads the first CHECK_SPAN_S seconds."""
+    from pdrlearn import sim
+    from pdrlearn.track import frame_inference as FI
+
+    s = sim.simulate("A", user_seed=1, speed="normal")
+    seen = []
+    real = FI.INFER["foot"]
+    monkeypatch.setitem(FI.INFER, "foot", lambda acc, gyr, fs: seen.append(len(acc)) or real(acc, gyr, fs))
+    monkeypatch.setattr(FI, "CHECK_SPAN_S", 10.0)
+    assert FI.check_declared_frame(s, "foot", s.frames["foot"]) is None
+    fs = s.streams["fAccelerometer"].rate_hz
+    assert abs(seen[0] - 10.0 * fs) <= 1 and len(seen) == 1 and seen[0] < len(s.streams["fAccelerometer"])

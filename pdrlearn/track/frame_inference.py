@@ -373,9 +373,15 @@ INFER = {"foot": infer_foot_frame, "waist": infer_waist_frame}
 UNIT_STREAMS = {"foot": ("fAccelerometer", "fGyroscope"), "waist": ("wAccelerometer", "wGyroscope")}
 
 
-def infer_session_frame(session, placement: str) -> InferredFrame:
+#: The D10 check of a declared frame reads at most this much of a recording from its start (s): minutes of
+#: walking fix the axes as well as an hour does, and a 1 h track must not pay a second pass over its data.
+CHECK_SPAN_S = 300.0
+
+
+def infer_session_frame(session, placement: str, *, max_s: float | None = None) -> InferredFrame:
     """Infer the ``placement`` unit's frame from a :class:`~pdrlearn.io.Session` (the gyroscope on the
-    accelerometer's clock). Raises :class:`FrameInferenceError` (a :class:`DataError`) with the reason."""
+    accelerometer's clock), from its first ``max_s`` seconds when given (default: all of it). Raises
+    :class:`FrameInferenceError` (a :class:`DataError`) with the reason."""
     from pdrlearn.signal.filters import interp_rows
 
     if placement not in INFER:
@@ -387,7 +393,8 @@ def infer_session_frame(session, placement: str) -> InferredFrame:
     acc_s, gyr_s = session.streams[acc_n], session.streams[gyr_n]
     if len(acc_s) < 8 or len(gyr_s) < 2 or not np.isfinite(acc_s.rate_hz):
         raise FrameInferenceError("too few samples")
-    acc, gyr = acc_s.values, interp_rows(acc_s.t, gyr_s.t, gyr_s.values)
+    n = len(acc_s) if max_s is None else int(np.searchsorted(acc_s.t, acc_s.t[0] + max_s, side="right"))
+    acc, gyr = acc_s.values[:n], interp_rows(acc_s.t[:n], gyr_s.t, gyr_s.values)
     if not (np.isfinite(acc).all() and np.isfinite(gyr).all()):
         raise FrameInferenceError("NaN or infinite values")
     return INFER[placement](acc, gyr, float(acc_s.rate_hz))
@@ -413,9 +420,10 @@ def frame_disagreement(declared: AxisFrame, found: InferredFrame) -> dict[str, f
 def check_declared_frame(session, placement: str, declared: AxisFrame) -> str | None:
     """The warning (without the ``meta.json`` location) for a declared or ``source_project`` frame that is
     left-handed or that the data contradict with confidence (decision D10), else ``None``. The inference
-    runs once here; a refusal (the data do not fix the axes) leaves the declared frame unquestioned."""
+    runs once here, on the first :data:`CHECK_SPAN_S` seconds; a refusal (the data do not fix the axes)
+    leaves the declared frame unquestioned."""
     try:
-        found = infer_session_frame(session, placement)
+        found = infer_session_frame(session, placement, max_s=CHECK_SPAN_S)
     except DataError:
         found = None
     off = frame_disagreement(declared, found) if found is not None else {}
