@@ -154,19 +154,34 @@ def test_an_error_is_raised_by_the_steps_own_push(bundle):
     assert where[0] == where[1] > 0
 
 
+def _walk_with_stops(seed: int = 0, rate_hz: float = 20.0):
+    """Foot gyroscope samples of strides (0.6 s swing at ~3 rad/s) separated by stances of 0.4 s (walking)
+    or 1.5 s (standing: the stance closes the stride early, at its start + stance_half_s)."""
+    rng = np.random.default_rng(seed)
+    w, kinds = [], []
+    for i in range(40):
+        still = 1.5 if i % 5 == 4 else 0.4
+        n_st, n_sw = int(round(still * rate_hz)), int(round(0.6 * rate_hz))
+        w += [rng.normal(0, 0.02, (n_st, 3)), np.column_stack([rng.normal(0, 0.05, n_sw), rng.normal(0, 0.05, n_sw),
+                                                              3.0 * np.sin(np.linspace(0, np.pi, n_sw)) + 0.5])]
+        kinds.append(still)
+    g = np.vstack(w)
+    return np.arange(len(g)) / rate_hz, g
+
+
 def test_closing_stride_is_the_stride_update_returns_and_reads_only():
     """``StanceSegmenter.closing_stride`` names the stride that the next sample closes whenever it closes
-    one there, and calling it changes nothing."""
-    s = synthetic_session(40, seed=11)
-    g = s.streams["fGyroscope"]
+    one there, at a stance's end and at a long stance's early close, and calling it changes nothing."""
+    t, g = _walk_with_stops()
     a, b = StanceSegmenter(), StanceSegmenter()
-    named = closed = 0
-    for i in range(len(g.t)):
+    named = closed = early = 0
+    for i in range(len(t)):
         guess = a.closing_stride()
-        out = a.update(g.t[i:i + 1], g.values[i:i + 1])
-        assert out == b.update(g.t[i:i + 1], g.values[i:i + 1])  # b never asked: the same strides
+        out = a.update(t[i:i + 1], g[i:i + 1])
+        assert out == b.update(t[i:i + 1], g[i:i + 1])  # b never asked: the same strides
         if out:
             closed += 1
             named += guess == out[0]
+            early += guess == out[0] and a.stance_start is not None  # closed while the stance goes on
             assert guess is None or guess == out[0]
-    assert closed > 20 and named >= 0.9 * closed
+    assert closed > 30 and named == closed and early >= 5

@@ -184,31 +184,36 @@ class StanceSegmenter:
         return out
 
     def closing_stride(self) -> tuple[float, float] | None:
-        """The stride ``(start_s, end_s)`` that :meth:`update` returns if the next sample it judges is not
-        still, when that can happen (read-only; the runtime computes it ahead, decision E24). That sample
-        ends the stance in progress (``ti - last_still > stance_gap_s``; at 20 Hz the first sample judged
-        after the stance, 0.05 s > 0.03 s) and closes the stride at the stance's middle, exactly as
-        :meth:`update`'s ``0.5 * (s0 + s1)``. None when no stride would close (no stance of the minimum
-        length, already closed, no stride open, or out of ``min_step_s``..``max_step_s``) or when the next
-        judged sample is still for certain: with the L29 mean rule a sample is judged at the centre of the
-        trailing window, and one whose own |w| is below its threshold is still whatever comes after it.
-        Another sample may still be judged first (irregular clocks), so this is a likely stride, never a
-        certain one; a long stance's early close (``stance_half_s``) is not predicted."""
+        """The stride ``(start_s, end_s)`` that :meth:`update` is likely to return for the next sample it
+        judges (read-only; the runtime computes that stride ahead, decision E24), or None.
+
+        A stance in progress ends when a judged sample is not still (``ti - last_still > stance_gap_s``; at
+        20 Hz the first sample judged after the stance, 0.05 s > 0.03 s), closing the stride at the stance's
+        middle, exactly :meth:`update`'s ``0.5 * (s0 + s1)``; a stance that reaches ``2 stance_half_s``
+        closes it at ``s0 + stance_half_s`` while still (standing). With the L29 mean rule a sample is judged
+        at the centre of the trailing window, and one whose own |w| is below its threshold is still whatever
+        comes after it; so: the early close when the next sample to judge is still for certain and old enough,
+        None when it is still for certain otherwise, else the middle. None also when no stride would close
+        (no stance of the minimum length, already closed, no stride open, out of ``min_step_s``..``max_step_s``).
+        Irregular clocks may judge another sample first: a likely stride, never a certain one."""
         s0, s1, start = self.stance_start, self.last_still, self.open_s
         if s0 is None or start is None or self.closed:
             return None
         mean_rule = self.mean_min > 0
-        if s1 - s0 < (self.mean_min if mean_rule else self.min_stance_s):
-            return None
-        end = 0.5 * (s0 + s1)
-        if not self.min_step_s <= end - start <= self.max_step_s:
-            return None
+        min_run = self.mean_min if mean_rule else self.min_stance_s
         mq = self._mean_q
         if mean_rule and mq:
             c = (len(mq) - 1) // 2  # the sample judged last (update's centre)
-            if mq[c][0] == s1 and len(mq) > c + 1 and all(w < th for _, w, th in list(mq)[c + 1:]):
-                return None  # judged still last, and every sample judged next is below its own threshold
-        return start, end
+            later = list(mq)[c + 1:]
+            if mq[c][0] == s1 and later and all(w < th for _, w, th in later):  # judged still, and still next
+                if later[0][0] - s0 < max(2 * self.half, min_run):
+                    return None
+                end = s0 + self.half  # update's long-stance close
+                return (start, end) if self.min_step_s <= end - start <= self.max_step_s else None
+        if s1 - s0 < min_run:
+            return None
+        end = 0.5 * (s0 + s1)
+        return (start, end) if self.min_step_s <= end - start <= self.max_step_s else None
 
     def _close(self, end: float, out: list) -> None:
         self.closed = True
