@@ -169,14 +169,18 @@ def _walk_with_stops(seed: int = 0, rate_hz: float = 20.0):
     return np.arange(len(g)) / rate_hz, g
 
 
-def test_closing_stride_is_the_stride_update_returns_and_reads_only():
+@pytest.mark.parametrize("rate_hz", [20.0, 204.8])
+def test_closing_stride_is_the_stride_update_returns_and_reads_only(rate_hz):
     """``StanceSegmenter.closing_stride`` names the stride that the next sample closes whenever it closes
-    one there, at a stance's end and at a long stance's early close, and calling it changes nothing."""
-    t, g = _walk_with_stops()
+    one there, at a stance's end and at a long stance's early close, names few others (each distinct guess
+    is a step computed ahead), and calling it changes nothing."""
+    t, g = _walk_with_stops(rate_hz=rate_hz)
     a, b = StanceSegmenter(), StanceSegmenter()
     named = closed = early = 0
+    guesses = set()
     for i in range(len(t)):
         guess = a.closing_stride()
+        guesses.add(guess)
         out = a.update(t[i:i + 1], g[i:i + 1])
         assert out == b.update(t[i:i + 1], g[i:i + 1])  # b never asked: the same strides
         if out:
@@ -185,3 +189,4 @@ def test_closing_stride_is_the_stride_update_returns_and_reads_only():
             early += guess == out[0] and a.stance_start is not None  # closed while the stance goes on
             assert guess is None or guess == out[0]
     assert closed > 30 and named == closed and early >= 5
+    assert len(guesses - {None}) <= 1.1 * closed  # at 204.8 Hz not one per stance sample

@@ -198,6 +198,9 @@ class Tracker:
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
+    _spec: tuple | None = None  # likewise: no step computed ahead (decision E24)
+    _trims = 0
+    speculative = False
 
     def __init__(
         self,
