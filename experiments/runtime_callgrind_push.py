@@ -17,6 +17,8 @@ the runtime never calls (``itertools.starmap``, ``accumulate``, ``takewhile``, `
 ``filterfalse``, ``groupby``, ``list.sort(key=)``), so ``callgrind_annotate --inclusive=yes`` lists its
 inclusive cost under that iterator's ``*_next`` (``list_sort_impl`` for the sort). ``--other`` counts the
 pushes that complete no step instead. Put another ``pdrlearn`` first on PYTHONPATH to count it.
+Since decision E24 the step is computed at the end of the push before it (``--other`` counts that work);
+``--nospec`` counts the same code with ``Tracker(speculative=False)`` (every step in its own push).
 """
 
 from __future__ import annotations
@@ -70,7 +72,7 @@ def _wrap(owner, attr: str, k: int) -> None:
     print(f"{NAMES[k]:17s} = {attr}", file=sys.stderr)
 
 
-def main(bundle: str, markers: str = "none", other: bool = False) -> None:
+def main(bundle: str, markers: str = "none", other: bool = False, nospec: bool = False) -> None:
     logging.disable(logging.WARNING)
     import pdrlearn.runtime.stream as stm
     import pdrlearn.runtime.tracker as trm
@@ -93,7 +95,8 @@ def main(bundle: str, markers: str = "none", other: bool = False) -> None:
     s = simulate("C", 1)
     chunks = native_chunks(s)
     frames = {p: f.to_dict() for p, f in s.frames.items()}
-    warm, tr = Tracker(bundle, frames=frames), Tracker(bundle, frames=frames)
+    kw = {"speculative": False} if nospec else {}
+    warm, tr = Tracker(bundle, frames=frames, **kw), Tracker(bundle, frames=frames, **kw)
     hits = {i for i, d in enumerate(chunks) if warm.push(d)}
     measured = set(range(len(chunks))) - hits if other else hits
     for i, d in enumerate(chunks):
@@ -105,5 +108,5 @@ def main(bundle: str, markers: str = "none", other: bool = False) -> None:
 
 
 if __name__ == "__main__":
-    args = [a for a in sys.argv[1:] if a != "--other"]
-    main(args[0], *(args[1:2]), other="--other" in sys.argv)
+    args = [a for a in sys.argv[1:] if a not in ("--other", "--nospec")]
+    main(args[0], *(args[1:2]), other="--other" in sys.argv, nospec="--nospec" in sys.argv)

@@ -183,6 +183,42 @@ class StanceSegmenter:
                 self.stance_start = None
         return out
 
+    def closing_stride(self) -> tuple[float, float] | None:
+        """The stride ``(start_s, end_s)`` that :meth:`update` is likely to return for the next sample it
+        judges (read-only; the runtime computes that stride ahead, decision E24), or None.
+
+        A stance in progress ends when a judged sample is not still (``ti - last_still > stance_gap_s``; at
+        20 Hz the first sample judged after the stance, 0.05 s > 0.03 s), closing the stride at the stance's
+        middle, exactly :meth:`update`'s ``0.5 * (s0 + s1)``; a stance that reaches ``2 stance_half_s``
+        closes it at ``s0 + stance_half_s`` while still (standing). With the L29 mean rule a sample is judged
+        at the centre of the trailing window, and one whose own |w| is below its threshold is still whatever
+        comes after it; so: the early close when the next sample to judge is still for certain and old enough,
+        None when it is still for certain otherwise or within ``stance_gap_s`` of the last still sample (at
+        204.8 Hz the 6 samples after a stance), else the middle. None also when no stride would close (no
+        stance of the minimum length, already closed, no stride open, out of ``min_step_s``..``max_step_s``).
+        The sample judged next is taken to be the one after the last centre; irregular clocks may judge
+        another first: a likely stride, never a certain one."""
+        s0, s1, start = self.stance_start, self.last_still, self.open_s
+        if s0 is None or start is None or self.closed:
+            return None
+        mean_rule = self.mean_min > 0
+        min_run = self.mean_min if mean_rule else self.min_stance_s
+        mq = self._mean_q
+        if mean_rule and len(mq) > (len(mq) - 1) // 2 + 1:
+            # the sample judged next: usually the one after the last centre (with a steady clock)
+            tn, wn, thn = mq[(len(mq) - 1) // 2 + 1]
+            if wn < thn:  # still for certain: no stance ends there, but a long one may close early
+                if tn - s0 < max(2 * self.half, min_run):
+                    return None
+                end = s0 + self.half  # update's long-stance close
+                return (start, end) if self.min_step_s <= end - start <= self.max_step_s else None
+            if tn - s1 <= self.gap:  # a sample within stance_gap_s of the last still one ends no stance
+                return None
+        if s1 - s0 < min_run:
+            return None
+        end = 0.5 * (s0 + s1)
+        return (start, end) if self.min_step_s <= end - start <= self.max_step_s else None
+
     def _close(self, end: float, out: list) -> None:
         self.closed = True
         start, self.open_s = self.open_s, None

@@ -139,6 +139,7 @@ class FootLevelling:
         self.fwd_list = self.forward.tolist()  # for stride_headings, converted once (decision E20)
         self._q: tuple = ()  # the newest Q as 9 Python floats, and its array index
         self._q_at = -1
+        self.gen = 0  # reallocations (each re-anchors the running product; decision E24's stamp)
 
     def __len__(self) -> int:
         return self.i1 - self.i0
@@ -244,6 +245,7 @@ class FootLevelling:
             new["Z"][:m] = new["Z"][:m] @ qa
         self.a, self.i0, self.i1 = new, 0, m
         self._q_at = -1  # re-anchored
+        self.gen += 1
 
     def _add(self, t: np.ndarray, acc: np.ndarray, gyr: np.ndarray) -> None:
         n = len(t)

@@ -190,9 +190,17 @@ class Tracker:
         decision E10); False = one run per model (the same numbers, slower).
     incremental : level the foot samples as they are pushed (decision E15; the same windows to rounding,
         less work at the step event); False = all of it at the step event (the shared kernel alone).
+    speculative : compute the step that the next push is likely to complete at the end of the push before
+        (decision E24): the window, classification and stride of the stride the stance in progress closes
+        (:meth:`StanceSegmenter.closing_stride`), used when that push completes exactly that step from the
+        same data, else recomputed. The same numbers bit for bit; the step-completing push then does only
+        the step's heading and position, and the push before it the rest. False = all at the step event.
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
+    _spec: tuple | None = None  # likewise: no step computed ahead (decision E24)
+    _trims = 0
+    speculative = False
 
     def __init__(
         self,
@@ -211,6 +219,7 @@ class Tracker:
         max_lag_s: float | None = None,
         input_rates_hz: dict[str, float] | None = None,
         stream_ends_s: dict[str, float] | None = None,
+        speculative: bool = True,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -311,6 +320,12 @@ class Tracker:
         self._tick_last: dict[str, float] = {}  # each stream's newest input time at the last lag tick
         self._batch: dict[str, float] = {}  # each stream's latest advance between two lag ticks (s)
         self._note_resampled()  # declared rates: the resampling is known (and announced) before any push
+        #: decision E24: the step computed ahead, ``((t0, t1), stamp, core)``, or None; ``_trims`` counts the
+        #: trims that dropped samples (part of the stamp: the data a step reads is final once every stream
+        #: has a sample past it, and changes only by a trim or a re-anchored foot state)
+        self.speculative = bool(speculative)
+        self._spec: tuple | None = None
+        self._trims = 0
 
     @property
     def resampled_hz(self) -> dict[str, float]:
@@ -496,6 +511,8 @@ class Tracker:
             if self._foot_q:
                 self._feed_foot()
             self._trim()
+            if self.speculative:
+                self._speculate()
         elif self._latest - self._oldest > 2.0 * self.buffer_s:
             self._trim()
         return steps
@@ -622,11 +639,58 @@ class Tracker:
             self._pending += self.segmenter.update(t[i:], g[i:])
         self._det_t = ring.last
 
-    def process_step(self, t0: float, t1: float) -> Step:
-        """Classify, measure and place the step ``[t0, t1]`` (s) from the buffered samples."""
+    def _stamp(self) -> tuple:
+        """What a computed-ahead step's data depends on besides its times (decision E24): the buffered
+        sensors, the trims that dropped samples and the push-time foot state's anchor (a reallocation
+        re-anchors its running product, ``FootLevelling.gen``) and on/off switch."""
+        f = self._foot
+        return tuple(self._buf), self._trims, (None if f is None else (f.gen, f.ok))
+
+    def _speculate(self) -> None:
+        """Decision E24: at the end of a push that completed no step, compute the step the next push is
+        likely to complete (:meth:`StanceSegmenter.closing_stride`), when every stream already has a sample
+        past what that step reads (then the next push reads the same samples), unless it is computed already."""
+        cand = self.segmenter.closing_stride()
+        if cand is None:
+            self._spec = None
+            return
+        stamp = self._stamp()
+        if self._spec is not None and self._spec[0] == cand and self._spec[1] == stamp:
+            return
+        self._spec = None
+        t0, t1 = cand
+        # the samples a step reads end at the first one at or after its end (window_bounds: its search pad)
+        need = t1 + (self.rest_search_s + 0.1 if self.boundaries == "rest" else 0.0)
+        required = self.bundle.manifest["sensors"].get("required", [])
+        if (any(n not in self._buf for n in required) or min(r.last for r in self._buf.values()) <= need
+                or (self._foot is not None and self._foot.ok and self._foot.last <= need)):
+            return
+        try:
+            core = self._step_core(t0, t1)
+        except Exception:  # noqa: BLE001 - the step's own push recomputes it and raises there
+            return
+        self._spec = (cand, stamp, core)
+
+    def _step_core(self, t0: float, t1: float) -> tuple:
+        """The part of :meth:`process_step` that reads only the step's samples: levelled units, classes,
+        probabilities, displacement (step frame) and heading change."""
         W, lev = self._window(t0, t1)
         classes, proba = self._classify_step(W)
         disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
+        return lev, classes, proba, disp, dyaw
+
+    def process_step(self, t0: float, t1: float) -> Step:
+        """Classify, measure and place the step ``[t0, t1]`` (s) from the buffered samples."""
+        spec = self._spec
+        if spec is not None and spec[0] == (t0, t1):  # computed ahead (decision E24): from the same data?
+            self._spec = None
+            if self._foot is not None and self._foot_q:
+                self._foot_state(t1)  # feeds the queue when the step could read it (E21), as _window would
+            if spec[1] != self._stamp():
+                spec = None
+        else:
+            spec = None
+        lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
         if self._prev_end is not None and t0 > self._prev_end and headed_by_foot(lev, self.heading_source):
             dyaw += gap_yaw(*self._stream("fGyroscope"), *self._stream("fAccelerometer"), self._prev_end, t0)  # L31
         self._prev_end = t1
@@ -692,6 +756,7 @@ class Tracker:
             keep_from = min(keep_from, self._pending[0][0] - _LOOK_BACK_S)
         if keep_from <= self._drop_at:  # nothing to drop (the common case between two steps)
             return
+        self._trims += 1  # a computed-ahead step is recomputed (decision E24)
         for ring in self._buf.values():
             ring.drop_before(keep_from)
         if self._foot is not None:

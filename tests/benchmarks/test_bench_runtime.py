@@ -119,14 +119,19 @@ def test_bench_runtime_per_step_default_bundle(benchmark, bundles):
 
 def test_bench_runtime_push_latency_default_bundle(benchmark, bundles):
     """Decision E15: the latency of the push that completes a step (that sample's own work, the step's
-    window, classification and displacement), with the session pushed sample by sample (native_chunks),
-    and the mean cost of every other push (where the push-time share of the work now is)."""
+    window, classification and displacement, or with E24 only its heading and position when the push before
+    computed the step), with the session pushed sample by sample (native_chunks), and the mean cost of every
+    other push (where the push-time share of the work now is; with E24 the step computed ahead too)."""
     s = bundles["session"]
     out = {}
-    for inc in (True, False):
-        y, o, n = push_latencies(bundles["root"] / "bundle", s, repeat=3, incremental=inc)
+    # decision E24: the default computes the likely next step at the end of the push before it; without it
+    # (speculative=False) the step is computed in its own push, and incremental=False levels the foot there too
+    for inc, label in ((True, "incremental=True"), ("nospec", "incremental=True, speculative=False"),
+                       (False, "incremental=False, speculative=False")):
+        kw = {"incremental": inc is True} | ({} if inc is True else {"speculative": False})
+        y, o, n = push_latencies(bundles["root"] / "bundle", s, repeat=3, **kw)
         out[inc] = (y, o)
-        print(f"\npush that yields a step (incremental={inc}): p50 {np.percentile(y, 50):.3f} ms, "
+        print(f"\npush that yields a step ({label}): p50 {np.percentile(y, 50):.3f} ms, "
               f"p99 {np.percentile(y, 99):.3f} ms over {len(y)} steps ({n} per pass); other pushes: mean "
               f"{np.mean(o) * 1e3:.1f} us, p50 {np.percentile(o, 50) * 1e3:.1f} us, "
               f"p99 {np.percentile(o, 99) * 1e3:.1f} us ({len(o)} pushes)")
