@@ -202,6 +202,9 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     """
     if not sessions:
         raise DataError("calibrate: give at least one session folder")
+    if (shrink or tau_k is not None) and pipeline != "waist-pendulum":  # W48: it would be ignored
+        raise DataError(f"calibrate: --shrink shrinks the pendulum gain K (decision W48), which {pipeline} does not "
+                        "have; calibrate --pipeline waist-pendulum, or drop --shrink")
     if distances is not None and len(distances) not in (1, len(sessions)):
         raise DataError(f"calibrate: {len(distances)} --distance values for {len(sessions)} sessions; "
                         "give one per session")
