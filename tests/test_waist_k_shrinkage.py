@@ -121,3 +121,17 @@ def test_shrink_with_the_frequency_pipeline_is_refused(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("error: ") and "--shrink" in err[0] and "waist-pendulum" in err[0]
     assert not p.exists()
+
+
+def test_calibrate_prints_one_walking_line_for_the_frequency_pipeline(tmp_path, capsys):
+    """Review (as 082e762 for K): `calibrate --pipeline waist-pll` printed the fitted line and, below it, the
+    meta.json default it replaces ("height 1.59 m -> SL = 0.398 f - 0.056 (walking)", fitted 0.3975 f - 0.0272),
+    and PARAMS.json's notes kept the default."""
+    from pdrlearn.cli import main
+
+    p = tmp_path / "p.json"
+    assert main(["calibrate", str(HA001_T5), "--pipeline", "waist-pll", "--out", str(p)]) == 0
+    out = capsys.readouterr().out
+    d = json.loads(p.read_text())
+    assert f"fitted: step length = {d['a_walk']:.4f} f - {d['b_walk']:.4f} m (walking)" in out
+    assert "-> SL =" not in out and not any("-> SL =" in n for n in d["notes"])
