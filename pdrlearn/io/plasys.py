@@ -23,7 +23,7 @@ import pandas as pd
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import frames_from_meta
-from pdrlearn.io.sensors import SENSORS
+from pdrlearn.io.sensors import SENSORS, UNIT_IMU
 from pdrlearn.io.session import STEP_COLUMNS, Session, Stream
 from pdrlearn.io.validate import (
     check_columns,
@@ -339,14 +339,13 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
 #: recordings resampled to 10-15 Hz the foot detector loses strides on every kind of walk
 #: (experiments/results/low_rate.md).
 MIN_VALIDATED_RATE_HZ = 20.0
-_UNIT_IMU = {"foot": ("fAccelerometer", "fGyroscope"), "waist": ("wAccelerometer", "wGyroscope")}
 
 
 def warn_low_rate(session: Session) -> None:
     """One warning per unit whose accelerometer or gyroscope is sampled below :data:`MIN_VALIDATED_RATE_HZ`
     (decision B23): the detectors run, but lose steps (a 10 Hz foot recording: 16 of 29 strides)."""
     where = session.folder if session.folder is not None else f"session '{session.name}'"
-    for unit, names in _UNIT_IMU.items():
+    for unit, names in UNIT_IMU.items():
         rates = [session.streams[n].rate_hz for n in names if n in session.streams and len(session.streams[n]) > 1]
         rate = min(rates, default=float("nan"))
         if rate < MIN_VALIDATED_RATE_HZ * 0.99:  # D7: a nominal 20 Hz clock may read 19.9x Hz
