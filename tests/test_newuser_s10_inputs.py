@@ -112,3 +112,25 @@ def test_info_prints_labels_as_json(capsys):
     line = next(ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("labels: "))
     labels = json.loads(line[len("labels: "):])
     assert labels["steps"] == 28 and labels["terrain"] == {"flat": 28}
+
+
+def test_decimal_commas_found_past_the_first_data_line_and_in_tab_files(tmp_path):
+    """B24 (review): a decimal-comma file whose first data line holds only integers, and a tab-separated file
+    with decimal commas (docs/bad-input.md: "semicolon- or tab-separated CSV (decimal commas too)") and a comma
+    file with quoted decimal commas read as numbers; were "row(s) with non-numeric ... values; remove or repair
+    those rows"."""
+    from pdrlearn.io.plasys import read_stream, read_table
+
+    cases = {"int_first.csv": "timestamp;x;y;z\n0;0;0;10\n10;0,5;1,5;9,8\n",
+             "tab.csv": "timestamp\tx\ty\tz\n0\t0,5\t1,25\t9,75\n10\t0,5\t1,5\t9,8\n",
+             "quoted.csv": 'timestamp,x,y,z\n0,"0,5","1,25","9,75"\n10,"0,5","1,5","9,8"\n'}
+    for name, text in cases.items():
+        p = tmp_path / name
+        p.write_text(text)
+        s = read_stream(p, "fAccelerometer")
+        assert s.values[1].tolist() == [0.5, 1.5, 9.8], name
+    # a text column with commas in a semicolon file stays text; a number column beside it is a number
+    p = tmp_path / "labels.csv"
+    p.write_text("start_ms;end_ms;note\n0;1000;left, then right\n1000;2000,5;ok\n")
+    df = read_table(p)
+    assert df["note"].tolist() == ["left, then right", "ok"] and df["end_ms"].tolist() == [1000.0, 2000.5]

@@ -109,3 +109,29 @@ def test_calibrate_cli_writes_and_prints_the_shrinkage(tmp_path, capsys):
     assert d["k"] == d["k_shrinkage"]["k_cal"] == ks["k_cal"] and not d["k_shrinkage"]["applied"]
     assert d["k_shrinkage"]["se"] == ks["se"] and d["k_shrinkage"]["k_shrunk"] == ks["k"]
     assert f"fitted: K = {ks['k_cal']:.4f}" in out and "as calibrated; --shrink would give" in out
+
+
+def test_shrink_with_the_frequency_pipeline_is_refused(tmp_path, capsys):
+    """Review: `calibrate --pipeline waist-pll --shrink` fitted the frequency line and dropped --shrink without
+    a word (the PLL has no K); one-line error naming the option and the pipeline it needs, no file written."""
+    from pdrlearn.cli import main
+
+    p = tmp_path / "p.json"
+    assert main(["calibrate", str(HA001_T5), "--pipeline", "waist-pll", "--shrink", "--out", str(p)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("error: ") and "--shrink" in err[0] and "waist-pendulum" in err[0]
+    assert not p.exists()
+
+
+def test_calibrate_prints_one_walking_line_for_the_frequency_pipeline(tmp_path, capsys):
+    """Review (as 082e762 for K): `calibrate --pipeline waist-pll` printed the fitted line and, below it, the
+    meta.json default it replaces ("height 1.59 m -> SL = 0.398 f - 0.056 (walking)", fitted 0.3975 f - 0.0272),
+    and PARAMS.json's notes kept the default."""
+    from pdrlearn.cli import main
+
+    p = tmp_path / "p.json"
+    assert main(["calibrate", str(HA001_T5), "--pipeline", "waist-pll", "--out", str(p)]) == 0
+    out = capsys.readouterr().out
+    d = json.loads(p.read_text())
+    assert f"fitted: step length = {d['a_walk']:.4f} f - {d['b_walk']:.4f} m (walking)" in out
+    assert "-> SL =" not in out and not any("-> SL =" in n for n in d["notes"])

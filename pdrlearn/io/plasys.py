@@ -23,7 +23,7 @@ import pandas as pd
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import frames_from_meta
-from pdrlearn.io.sensors import SENSORS
+from pdrlearn.io.sensors import SENSORS, UNIT_IMU
 from pdrlearn.io.session import STEP_COLUMNS, Session, Stream
 from pdrlearn.io.validate import (
     check_columns,
@@ -86,22 +86,43 @@ def read_table(path: str | os.PathLike) -> pd.DataFrame:
     if not path.is_file():
         raise DataError(f"{path}: file not found")
     try:
-        df = pd.read_csv(path, **_csv_dialect(path))
+        dialect = _csv_dialect(path)
+        df = pd.read_csv(path, **dialect)
     except pd.errors.EmptyDataError:
         raise DataError(f"{path}: file is empty (not even a header line); re-export or remove it") from None
     except (pd.errors.ParserError, UnicodeDecodeError) as exc:
         first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise DataError(f"{path}: not a valid CSV ({first}); fix or re-export the file") from None
     df.columns = [str(c).strip() for c in df.columns]
+    _decimal_comma_columns(df)
     return df
 
 
+#: a number written with a decimal comma (or an integer): what a text column of a ';' / tab file must hold
+#: throughout to be read as numbers (decision B24)
+_DECIMAL_COMMA = r"[+-]?(?:\d+(?:,\d*)?|,\d+)(?:[eE][+-]?\d+)?"
+
+
+def _decimal_comma_columns(df: pd.DataFrame) -> None:
+    """Decision B24, in place: a column read as text whose every value is a number written with a decimal
+    comma (or an integer) becomes numbers: in a file separated by ';' or tabs whose first data line, which
+    :func:`_csv_dialect` looks at, held integers only, and in a comma file whose values are quoted ("0,5", a
+    spreadsheet's comma export in a decimal-comma locale). Other text columns are kept; numeric columns cost
+    nothing."""
+    for c in df.columns:
+        col = df[c]
+        if col.dtype.kind in "biufc":
+            continue
+        text = col.dropna().astype(str).str.strip()
+        if len(text) and text.str.contains(",", regex=False).any() and text.str.fullmatch(_DECIMAL_COMMA).all():
+            df[c] = pd.to_numeric(text.str.replace(",", ".", regex=False)).reindex(df.index)
 
 
 def _csv_dialect(path: Path) -> dict:
     """``pd.read_csv`` options for a CSV written with another separator (decision B24): a header line with
     no comma but semicolons (a spreadsheet in a decimal-comma locale) or tabs is read with that separator,
-    and a semicolon file whose values carry decimal commas with ``decimal=","``. Comma files are untouched."""
+    and, when its first data line has commas and no point, with ``decimal=","`` (the fast path; a decimal-comma
+    column it misses is converted by :func:`_decimal_comma_columns`). Comma files are untouched."""
     try:
         with open(path, encoding="utf-8", errors="replace") as f:
             header, first = f.readline(), f.readline()
@@ -112,7 +133,7 @@ def _csv_dialect(path: Path) -> dict:
     sep = ";" if ";" in header else "\t" if "\t" in header else None
     if sep is None:
         return {}
-    return {"sep": sep, **({"decimal": ","} if sep == ";" and "," in first and "." not in first else {})}
+    return {"sep": sep, **({"decimal": ","} if "," in first and "." not in first else {})}
 
 
 def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale: float = 1e-3,
@@ -318,14 +339,13 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
 #: recordings resampled to 10-15 Hz the foot detector loses strides on every kind of walk
 #: (experiments/results/low_rate.md).
 MIN_VALIDATED_RATE_HZ = 20.0
-_UNIT_IMU = {"foot": ("fAccelerometer", "fGyroscope"), "waist": ("wAccelerometer", "wGyroscope")}
 
 
 def warn_low_rate(session: Session) -> None:
     """One warning per unit whose accelerometer or gyroscope is sampled below :data:`MIN_VALIDATED_RATE_HZ`
     (decision B23): the detectors run, but lose steps (a 10 Hz foot recording: 16 of 29 strides)."""
     where = session.folder if session.folder is not None else f"session '{session.name}'"
-    for unit, names in _UNIT_IMU.items():
+    for unit, names in UNIT_IMU.items():
         rates = [session.streams[n].rate_hz for n in names if n in session.streams and len(session.streams[n]) > 1]
         rate = min(rates, default=float("nan"))
         if rate < MIN_VALIDATED_RATE_HZ * 0.99:  # D7: a nominal 20 Hz clock may read 19.9x Hz

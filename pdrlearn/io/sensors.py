@@ -50,6 +50,10 @@ SENSORS: dict[str, SensorSpec] = {
 
 PLACEMENTS = ("foot", "waist")
 
+#: each unit's accelerometer and gyroscope (the streams its steps, frame and rate are judged on)
+UNIT_IMU: dict[str, tuple[str, str]] = {"foot": ("fAccelerometer", "fGyroscope"),
+                                        "waist": ("wAccelerometer", "wGyroscope")}
+
 # Bluetooth text protocol sensor types (thesis Table 10).
 PROTOCOL_TYPES: dict[int, str] = {1: "fAccelerometer", 2: "fGyroscope", 3: "fForceA", 4: "fForceB"}
 

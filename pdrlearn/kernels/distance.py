@@ -22,17 +22,22 @@ LEVEL_DZ_M = 0.10
 RATE_TOLERANCE = 0.01
 
 
-def applicable_calibration(rec: Mapping | None, fs_hz: float, *, tolerance: float = RATE_TOLERANCE
-                           ) -> tuple[Mapping | None, str | None]:
+def applicable_calibration(rec: Mapping | None, fs_hz: float, *, tolerance: float = RATE_TOLERANCE,
+                           resampled_hz: float | None = None) -> tuple[Mapping | None, str | None]:
     """The calibration record if it applies at the foot rate ``fs_hz`` (Hz), else None and the warning.
 
-    A record without ``rate_hz`` applies at any rate (as before the rate was stored)."""
+    A record without ``rate_hz`` applies at any rate (as before the rate was stored). ``resampled_hz``: the
+    data was recorded at ``fs_hz`` and resampled to this rate (the runtime's ``--resample``, E22: the
+    calibration is judged at the recording's rate), which the warning says."""
     if rec is None:
         return None, None
     rate = rec.get("rate_hz")
     if rate and abs(float(rate) - float(fs_hz)) > tolerance * float(rate):
-        return None, (f"the model's distance calibration was made at {float(rate):g} Hz, the foot unit runs at "
-                      f"{float(fs_hz):g} Hz: not applied (recalibrate at this rate)")
+        at = (f"runs at {float(fs_hz):g} Hz" if resampled_hz is None else
+              f"was recorded at {float(fs_hz):g} Hz (resampled to {float(resampled_hz):g} Hz, which does not "
+              "restore what the recording rate lost)")
+        return None, (f"the model's distance calibration was made at {float(rate):g} Hz, the foot unit {at}: "
+                      "not applied (recalibrate at this rate)")
     return rec, None
 
 

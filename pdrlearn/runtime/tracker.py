@@ -717,11 +717,9 @@ class Tracker:
         t = self._stream("fAccelerometer")[0]
         fs = 1.0 / float(np.median(np.diff(t))) if len(t) > 1 else float(self.rate_hz)
         fs = self.resampled_hz.get("fAccelerometer", fs)  # resampled (E22): the data's own rate, as track
-        rec, warning = applicable_calibration(self._calibration, fs)
-        if warning and "fAccelerometer" in self.resampled_hz:  # E22: say why resampling does not make it apply
-            warning = warning.replace(" runs at ", " was recorded at ", 1).replace(
-                ": not applied", f" (resampled to {float(self.rate_hz):g} Hz, which does not restore what the "
-                "recording rate lost): not applied", 1)
+        # E22: resampled, the warning says why resampling does not make the calibration apply
+        rec, warning = applicable_calibration(self._calibration, fs, resampled_hz=(
+            float(self.rate_hz) if "fAccelerometer" in self.resampled_hz else None))
         if warning:
             self.warnings.append(warning)
             log.warning("bundle %s: %s", self.bundle.path, warning)

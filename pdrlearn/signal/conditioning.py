@@ -9,6 +9,7 @@ import numpy as np
 from scipy.ndimage import uniform_filter1d
 
 from pdrlearn.errors import DataError, MissingSensorError
+from pdrlearn.io.sensors import UNIT_IMU
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.signal.filters import interp_rows, magnitude, uniform_grid
 
@@ -17,7 +18,7 @@ log = logging.getLogger(__name__)
 G = 9.80665  # standard gravity, m/s^2 (thesis ch.4.3.1)
 
 #: accelerometer / gyroscope stream names of each unit
-UNIT_STREAMS = {"foot": ("fAccelerometer", "fGyroscope"), "waist": ("wAccelerometer", "wGyroscope")}
+UNIT_STREAMS = UNIT_IMU
 
 
 def resample_stream(stream: Stream, rate_hz: float) -> Stream:

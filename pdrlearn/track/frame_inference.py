@@ -37,6 +37,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import _DIRECTIONS, AxisFrame
+from pdrlearn.io.sensors import UNIT_IMU
 
 #: Largest angle (deg) between a body direction found in the data and the sensor axis it is snapped to
 #: (up, medio-lateral, waist forward). 45 deg would be a coin toss; beyond 35 deg the mount is too oblique
@@ -370,7 +371,7 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
 
 INFER = {"foot": infer_foot_frame, "waist": infer_waist_frame}
 #: Accelerometer and gyroscope streams of each unit.
-UNIT_STREAMS = {"foot": ("fAccelerometer", "fGyroscope"), "waist": ("wAccelerometer", "wGyroscope")}
+UNIT_STREAMS = UNIT_IMU
 
 
 #: The D10 check of a declared frame reads at most this much of a recording from its start (s): minutes of

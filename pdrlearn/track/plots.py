@@ -16,9 +16,9 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     """Plan view (x east, y north, m) of one or more tracks, with the ground truth when the session has one.
 
     The ground truth is shifted so that it starts where the tracks start (its position at the first
-    track's start time). Without a magnetometer a track's heading is relative to its start (0 = east,
-    unless ``initial_heading`` says otherwise), so the ground truth is also rotated to set off in the first
-    track's direction (:func:`initial_bearing`); the legend says so.
+    track's start time). When the first track's heading is relative to its start (0 = east, unless
+    ``initial_heading`` says otherwise; :func:`heading_is_absolute`), the ground truth is also rotated to set
+    off in that track's direction (:func:`initial_bearing`); the legend says so.
     """
     import matplotlib
 
@@ -26,12 +26,13 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(7, 6))
-    t0, first = None, None
+    t0, first, first_info = None, None, {}
     for name, r in paths.items():
         tr = r.trajectory
         ax.plot(tr["x"], tr["y"], "-", lw=1.4, marker=".", ms=3, label=f"{name} ({r.distance_m:.1f} m)")
         t0 = float(tr["t"].iloc[0]) if t0 is None and len(tr) else t0
-        first = tr if first is None and len(tr) else first
+        if first is None and len(tr):
+            first, first_info = tr, r.info or {}
     if session is not None and session.trajectory is not None and len(session.trajectory) > 1:
         g = session.trajectory
         gt = g["t"].to_numpy(float)
@@ -39,8 +40,7 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
         x0, y0 = np.interp(ref_t, gt, g["x"].to_numpy(float)), np.interp(ref_t, gt, g["y"].to_numpy(float))
         gx, gy = g["x"].to_numpy(float) - x0, g["y"].to_numpy(float) - y0
         label = "ground truth"
-        absolute = any("Magnetic" in k for k in session.streams)  # a compass: the heading is absolute
-        if first is not None and not absolute:
+        if first is not None and not heading_is_absolute(first_info, session):
             rot = rotated_to_track(gx, gy, gt >= ref_t, first["x"].to_numpy(float), first["y"].to_numpy(float))
             if rot is not None:
                 gx, gy = rot
@@ -78,3 +78,19 @@ def rotated_to_track(gx: np.ndarray, gy: np.ndarray, after: np.ndarray, tx: np.n
         return None
     c, s = np.cos(a_tr - a_gt), np.sin(a_tr - a_gt)
     return c * gx - s * gy, s * gx + c * gy
+
+
+def heading_is_absolute(info: dict, session: Session) -> bool:
+    """True when a track's heading is referenced to north, from its ``info``: aided by position fixes; the
+    offline plasys waist or fused heading on a session with a waist magnetometer (the waist filter's compass).
+    Relative (heading 0 = the start's direction): ``--streaming`` (gyroscopes only), the foot's integrated yaw,
+    the lower-back pipelines (their heading starts at the unit's initial facing, docs/waist.md, W5), a
+    magnetometer in the session or not. A track without a pipeline in its ``info``: absolute when the session
+    has a magnetometer."""
+    has_compass = any("Magnetic" in k for k in session.streams)
+    if info.get("aid"):
+        return True
+    if "pipeline" not in info:
+        return has_compass
+    return (info["pipeline"] == "plasys" and not info.get("streaming")
+            and info.get("heading_source") in ("waist", "fused") and has_compass)

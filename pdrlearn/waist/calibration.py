@@ -4,6 +4,7 @@ seed 001 sec. 2.2.5, seed 003 sec. 3.2) and of the gyro bias from a 360-degree w
 from __future__ import annotations
 
 import logging
+import re
 
 import numpy as np
 
@@ -185,6 +186,10 @@ def shrink_pendulum_gain(walks: list[CalibrationWalk], k_cal: float, f_m: float,
     return float(k_cal), rec, f"K {k_cal:.4f}{sd} as calibrated, not shrunk toward K0 = {DEFAULT_K:.4f}: {why}"
 
 
+#: the note of :func:`~pdrlearn.waist.params.default_params` each pipeline's fit replaces (a regex from the start)
+_FITTED_NOTE = {"waist-pendulum": r"K = ", "waist-pll": r"height \S+ m -> SL = "}
+
+
 def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] | None = None,
               turns: float | None = None, fit_turns: bool = False, params=None, shrink: bool = False,
               tau_k: float | None = None) -> WaistParams:
@@ -202,6 +207,9 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     """
     if not sessions:
         raise DataError("calibrate: give at least one session folder")
+    if (shrink or tau_k is not None) and pipeline != "waist-pendulum":  # W48: it would be ignored
+        raise DataError(f"calibrate: --shrink shrinks the pendulum gain K (decision W48), which {pipeline} does not "
+                        "have; calibrate --pipeline waist-pendulum, or drop --shrink")
     if distances is not None and len(distances) not in (1, len(sessions)):
         raise DataError(f"calibrate: {len(distances)} --distance values for {len(sessions)} sessions; "
                         "give one per session")
@@ -221,8 +229,10 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         r = res.steps["mean_rate_rps"].to_numpy(float)
         rates.append(r[np.isfinite(r)])
     out = WaistParams(**{k: v for k, v in base.to_dict().items() if k != "schema"})
-    # the starting values' notes, less the one the fit replaces (a calibrated K is not the population K)
-    out.notes = [n for n in base.notes if not (pipeline == "waist-pendulum" and n.startswith("K = "))]
+    # the starting values' notes, less the default the fit replaces (a calibrated K is not the population K, a
+    # fitted walking line not the height's)
+    replaced_note = _FITTED_NOTE.get(pipeline)
+    out.notes = [n for n in base.notes if not (replaced_note and re.match(replaced_note, n))]
     out.k_shrinkage = None
     total = sum(w.distance_m for w in walks)
     n_steps = sum(len(w.f_hz) for w in walks)
