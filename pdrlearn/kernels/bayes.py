@@ -13,7 +13,7 @@ the same bits from either (decision L40).
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 
 import numpy as np
 
@@ -34,34 +34,32 @@ _INV_SQRT2 = 1.0 / math.sqrt(2.0)
 _INV_SQRT2PI = 1.0 / math.sqrt(2.0 * math.pi)
 
 
-def _cdf(x: float) -> float:
-    """Standard normal cdf: 0.5 erfc(-x / sqrt 2) (accurate in both tails)."""
-    return 0.5 * math.erfc(-x * _INV_SQRT2)
+def _normal(x: float) -> tuple[float, float]:
+    """Standard normal cdf, 0.5 erfc(-x / sqrt 2) (accurate in both tails), and density at ``x``."""
+    return 0.5 * math.erfc(-x * _INV_SQRT2), _INV_SQRT2PI * math.exp(-0.5 * x * x)
 
 
-def _pdf(x: float) -> float:
-    """Standard normal density."""
-    return _INV_SQRT2PI * math.exp(-0.5 * x * x)
+_normal_ufunc = np.frompyfunc(_normal, 1, 2)  # the same math calls element by element (object arrays out)
 
 
-_cdf_array = np.frompyfunc(_cdf, 1, 1)  # the same math calls element by element (object array out)
-_pdf_array = np.frompyfunc(_pdf, 1, 1)
+def _normal_array(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    c, d = _normal_ufunc(x)
+    return c.astype(float), d.astype(float)
 
 
-def _posterior(d, sg, proba: Sequence, bounds: Sequence[tuple[float, float]], cdf, pdf):
+def _posterior(d, sg, proba: Sequence, bounds: Sequence[tuple[float, float]], normal):
     """(z, num): the posterior mass and first moment of L given the estimate ``d`` (m) with sd ``sg`` and
     the class prior (``proba[c]`` on ``bounds[c]``); ``d``, ``sg``, ``proba[c]`` are floats or arrays of one
-    shape (operators only, so one formula serves both). Per class: the mass P(L in class | d) =
-    Phi(b) - Phi(a) and the integral of L N(d; L, sg) over the class, d mass + sg (phi(a) - phi(b)), with
-    a, b = (lo - d) / sg, (hi - d) / sg (truncated normal moments), weighed by p_c / width_c."""
+    shape (operators only, so one formula serves both; ``normal(x)`` = (cdf, pdf)). Per class: the mass
+    P(L in class | d) = Phi(b) - Phi(a) and the integral of L N(d; L, sg) over the class, d mass + sg (phi(a)
+    - phi(b)), with a, b = (lo - d) / sg, (hi - d) / sg (truncated normal moments), weighed by p_c / width_c."""
     z = num = 0.0
     for p, (lo, hi) in zip(proba, bounds, strict=True):
-        a, b = (lo - d) / sg, (hi - d) / sg
-        mass = cdf(b) - cdf(a)
-        first = d * mass + sg * (pdf(a) - pdf(b))
+        (ca, pa), (cb, pb) = normal((lo - d) / sg), normal((hi - d) / sg)
+        mass = cb - ca
         w = p / max(hi - lo, 1e-9)
         z = z + w * mass
-        num = num + w * first
+        num = num + w * (d * mass + sg * (pa - pb))
     return z, num
 
 
@@ -70,7 +68,7 @@ def bayes_length_one(distance: float, proba: Sequence[float], bounds: Sequence[t
     """Posterior-mean |length| (m) of one stride: |estimate| ``distance`` (m), class probabilities ``proba``
     (summing to 1) on class ``bounds`` ((lo, hi) m), estimate sd ``sigma`` (m). Python floats."""
     d = abs(distance)
-    z, num = _posterior(d, sigma, proba, bounds, _cdf, _pdf)
+    z, num = _posterior(d, sigma, proba, bounds, _normal)
     return num / z if z > 1e-300 else d
 
 
@@ -80,28 +78,25 @@ def bayes_length(distance: np.ndarray, proba: np.ndarray, bounds: Sequence[tuple
     d = np.abs(np.asarray(distance, dtype=float))
     sg = np.broadcast_to(np.asarray(sigma, dtype=float), d.shape)
     p = np.asarray(proba, dtype=float).reshape(len(d), len(bounds))
-
-    def cdf(x):
-        return _cdf_array(x).astype(float)
-
-    def pdf(x):
-        return _pdf_array(x).astype(float)
-
-    z, num = _posterior(d, sg, list(p.T), bounds, cdf, pdf)
+    z, num = _posterior(d, sg, list(p.T), bounds, _normal_array)
     z = np.broadcast_to(np.asarray(z, dtype=float), d.shape)
     return np.where(z > 1e-300, np.asarray(num, dtype=float) / np.where(z > 1e-300, z, 1.0), d)
 
 
-def class_proba_one(proba: Mapping[str, float] | None, names: Sequence[str], label) -> list[float]:
+def class_proba_one(proba: Mapping[str, float] | None, names: Iterable[str], label) -> list[float]:
     """The probabilities of ``names`` from one stride's ``proba`` (class -> p): non-finite as 0, normalised
     (all 0: uniform); one-hot of ``label`` when ``proba`` lacks a name (labels without probabilities, as
     :func:`pdrlearn.displace.rules._class_proba`)."""
-    if proba is None or any(n not in proba for n in names):
+    try:
+        p = [float(proba[n]) for n in names]
+    except (KeyError, TypeError):  # no probabilities (None) or not for every class
         return [1.0 if n == label else 0.0 for n in names]
-    p = [float(proba[n]) for n in names]
+    s = sum(p)
+    if 0.0 < s < math.inf:  # all finite (a NaN or inf makes the sum fail this test): the common case
+        return [v / s for v in p]
     p = [v if math.isfinite(v) else 0.0 for v in p]
     s = sum(p)
-    return [v / s for v in p] if s > 0 else [1.0 / len(names)] * len(names)
+    return [v / s for v in p] if s > 0 else [1.0 / len(p)] * len(p)
 
 
 def confident_one(label, proba: Mapping[str, float] | None, min_confidence: float):
@@ -110,7 +105,9 @@ def confident_one(label, proba: Mapping[str, float] | None, min_confidence: floa
     probabilities are skipped (pandas' row max, as the offline ``_confident``)."""
     if min_confidence <= 0 or not proba:
         return label
-    finite = [v for v in proba.values() if v == v]
+    if max(proba.values()) >= min_confidence:  # a finite value reaches the gate (NaN compares False): kept
+        return label
+    finite = [v for v in proba.values() if v == v]  # else the NaN-free maximum decides (pandas skipna)
     return None if finite and max(finite) < min_confidence else label
 
 

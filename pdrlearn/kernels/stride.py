@@ -474,9 +474,8 @@ def stride_rules_one(dx: float, dy: float, dz: float, terrain=None, direction=No
     if _known_one(direction) and (not bayes or dist < 2 * sigma):  # apply_direction: the class prevails
         length = -abs(length) if direction == "backward" else abs(length)
     if bayes and bounds is not None and _known_one(length_class):  # L14: posterior mean over the classes
-        names = list(bounds)
-        mag = B.bayes_length_one(dist, B.class_proba_one(length_proba, names, length_class),
-                                 [bounds[c] for c in names], sigma)
+        mag = B.bayes_length_one(dist, B.class_proba_one(length_proba, bounds, length_class),  # names = keys
+                                 list(bounds.values()), sigma)
         length = mag if length > 0 else -mag if length < 0 else 0.0 * mag  # np.sign(length) * mag
     elif bounds is not None and _known_one(length_class) and length_class in bounds:  # clamp_length
         lo, hi = bounds[length_class]

@@ -724,11 +724,11 @@ class Tracker:
             length, dz = stride_rules_one(dx, dy, dz, classes.get("terrain"), classes.get("direction"),
                                           classes.get("length"), bounds=self.bounds, down_mode=self._down_mode)
         else:  # decision L40: the gate (L18) and the bayes rule (L14) of pdrlearn track, one stride at a time
-            g = self.min_confidence
+            g, get, pget = self.min_confidence, classes.get, proba.get
             length, dz = stride_rules_one(
-                dx, dy, dz, *(confident_one(classes.get(t), proba.get(t), g) for t in ("terrain", "direction",
-                                                                                      "length")),
-                bounds=self.bounds, down_mode=self._down_mode, rules=self.rules, length_proba=proba.get("length"),
+                dx, dy, dz, confident_one(get("terrain"), pget("terrain"), g),
+                confident_one(get("direction"), pget("direction"), g), confident_one(get("length"), pget("length"), g),
+                bounds=self.bounds, down_mode=self._down_mode, rules=self.rules, length_proba=pget("length"),
                 sigma_rel=self._sigma_rel)
         self.heading += dyaw
         direction = (self.heading + placement_offset(lev, self.heading_source, disp)  # decision L34
