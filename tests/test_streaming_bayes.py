@@ -117,17 +117,22 @@ def _xyz(steps) -> np.ndarray:
     return np.array([[st.x, st.y, st.z] for st in steps])
 
 
-def test_runtime_and_streaming_track_apply_the_offline_default(calibrated_length, tmp_path):
+def test_runtime_and_streaming_track_apply_the_offline_rule_on_request(calibrated_length, tmp_path):
+    """L40 / E25: the streamed default stays the thesis rule on every class (bayes measured, not adopted);
+    --rules bayes streams offline M3's default rule, and runtime and streaming track agree under it."""
     root, model, s = calibrated_length
     disp = json.loads((root / "bundle" / "manifest.json").read_text())["displacement"]
-    assert (disp["rules"], disp["min_confidence"]) == ("bayes", 0.95)
+    assert (disp["rules"], disp["min_confidence"]) == ("thesis", 0.0)
     fn = get_pipeline("plasys")
-    res = fn(s, method="M3", model=str(root / "model"), streaming=True, heading="foot")
+    default = fn(s, method="M3", model=str(root / "model"), streaming=True, heading="foot")
+    assert (default.info["rules"], default.info["min_confidence"]) == ("thesis", 0.0)
+    res = fn(s, method="M3", model=str(root / "model"), streaming=True, heading="foot", rules="bayes")
     offline = fn(s, method="M3", model=str(root / "model"))
     for k in ("rules", "min_confidence", "stride_sigma_rel"):
         assert res.info[k] == offline.info[k]
     assert res.info["stride_sigma_rel"] == pytest.approx(model.data_summary["distance_calibration"]["stride_sd"])
-    tr = Tracker(root / "bundle", heading_source="foot")
+    assert (Tracker(root / "bundle").rules, Tracker(root / "bundle").min_confidence) == ("thesis", 0.0)
+    tr = Tracker(root / "bundle", heading_source="foot", rules="bayes", min_confidence=0.95)
     steps = replay(tr, s, 0.5)
     assert (tr.rules, tr.min_confidence) == ("bayes", 0.95)
     assert len(steps) == len(res.steps) >= 10
@@ -159,7 +164,8 @@ def test_streamed_strides_of_a_doubtful_class_keep_their_measured_length(calibra
     root, model, s = calibrated_length
     fn = get_pipeline("plasys")
     gain = model.data_summary["distance_calibration"]["gain"]
-    for res in (fn(s, method="M3", model=model, streaming=True, heading="foot"), fn(s, method="M3", model=model)):
+    for res in (fn(s, method="M3", model=model, streaming=True, heading="foot", rules="bayes"),
+                fn(s, method="M3", model=model)):
         st = res.steps
         pmax = st[[f"p_length_{c}" for c in NAMES if f"p_length_{c}" in st]].max(axis=1).to_numpy()
         doubtful = pmax < 0.95

@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, ModelError
-from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules, confident_one
+from pdrlearn.kernels.bayes import SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
 from pdrlearn.kernels.stride import (
     GAP_YAW_MAX_S,
@@ -77,10 +77,12 @@ DEFAULT_DISPLACEMENT = {
     "initial_heading_rad": 0.0,
     "heading_source": "auto",  # decision E6: "auto" (waist gyro when present, else foot), "foot", "waist-gyro"
     "max_wait_s": 2.0,  # longest wait for a late sensor before a step is processed (thesis: < 2 s delay)
-    # decision L40 / E25: the class rules of offline M3 with a model (L18): "bayes" (L14) on the classes the
-    # model is >= 0.95 sure of. A bundle without these keys (exported before E25) keeps "thesis" and no gate.
-    "rules": DEFAULT_MODEL_RULES,
-    "min_confidence": DEFAULT_MIN_CONFIDENCE,
+    # decision L40 / E25: the class rules the runtime applies; "bayes" (L14) with the 0.95 gate of offline M3
+    # (L18) is selectable, the default stays the thesis rule on every class (bayes streamed: altitude on D
+    # 6.67 -> 2.78 % but distance on B and C 0.49 / 0.58 -> 0.67 / 0.87 %, so not adopted). A bundle without
+    # these keys (exported before E25) also keeps "thesis" and no gate.
+    "rules": "thesis",
+    "min_confidence": 0.0,
 }
 #: the class rules of a bundle without ``rules`` / ``min_confidence`` (exported before decision E25)
 LEGACY_RULES, LEGACY_MIN_CONFIDENCE = "thesis", 0.0

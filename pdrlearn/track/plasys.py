@@ -620,9 +620,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         classes, model_bounds = classes_and_bounds(model, session, table)
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
                                                   session.streams["fAccelerometer"].rate_hz, warnings, calibration)
-    oracle = isinstance(model, str) and model == "oracle"
-    rules = ("thesis" if oracle else DEFAULT_MODEL_RULES) if rules is None else str(rules)
-    gate = DEFAULT_MIN_CONFIDENCE if min_confidence is None else float(min_confidence)
+    # decision L40: streamed, the thesis rule on every class stays the default (bayes with the 0.95 gate on
+    # request: measured better altitude, worse distance on B and C); explicit rules as offline
+    rules = "thesis" if rules is None else str(rules)
+    gate = (0.0 if rules == "thesis" else DEFAULT_MIN_CONFIDENCE) if min_confidence is None else float(min_confidence)
     check_rules(rules, gate, "plasys streaming")
     # decision L26: the bayes rule weighs the classes against the user's own calibrated stride accuracy
     sigma_rel = float(stride_sd) if stride_sd and rules == "bayes" else SIGMA_REL
