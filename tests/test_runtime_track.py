@@ -71,7 +71,9 @@ def test_streaming_track_rejects_session_wide_options(trained):
     with pytest.raises(DataError, match="waist/fused headings"):
         fn(s, method="M2", streaming=True, heading="fused")
     with pytest.raises(DataError, match="not streamable"):
-        fn(s, method="M3", model="oracle", streaming=True, rules="bayes")
+        fn(s, method="M3", model="oracle", streaming=True, steps="labels")
+    with pytest.raises(DataError, match="rules 'banana' is not one of thesis, bayes"):  # decision L40
+        fn(s, method="M3", model="oracle", streaming=True, rules="banana")
 
 
 def test_stride_rules_kernel():

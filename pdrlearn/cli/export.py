@@ -139,6 +139,12 @@ def run(
                                   "its own rate, as `pdrlearn track --streaming`."),
     no_resample: bool = typer.Option(False, "--no-resample", help="Refuse data at another rate than the "
                                      "bundle's (+-5 %) (decision E3)."),
+    rules: str = typer.Option(None, "--rules", help="Class rules: bayes or thesis (default: the bundle's, "
+                              "thesis; bayes = offline M3's rule, decision E25)."),
+    min_confidence: float = typer.Option(None, "--min-confidence", min=0.0, max=1.0,
+                                         help="Apply a class rule only when the model's probability of the class "
+                                         "reaches this (default: the bundle's, 0 = always, as the thesis; 0.95 with "
+                                         "--rules bayes)."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -169,7 +175,7 @@ def run(
 
         parser = BluetoothParser(rate_hz=bundle.rate_hz)
         tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
-                          resample=_rate_mode(resample, no_resample))
+                          resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence)
         if protocol == "-":
             stream = sys.stdin
         else:
@@ -218,7 +224,7 @@ def run(
         # the runtime resamples at these rates and announces it in one line; a stream behind the others
         # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
         tracker = Tracker(bundle, frames=_frames_of(session, bundle),
-                          resample=_rate_mode(resample, no_resample),
+                          resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           input_rates_hz=rates,
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
         if tracker.heading_source == "auto" and not (session.has("wAccelerometer", "wGyroscope")

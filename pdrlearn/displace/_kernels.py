@@ -437,22 +437,13 @@ def bayes_length(distance: np.ndarray, proba: np.ndarray, bounds: list[tuple[flo
     ``sum_c p_c U(L; lo_c, hi_c)``. The posterior mean is computed in closed form (truncated normals).
     With a certain class (p = 1) it is the truncated-normal mean inside that class's bounds, i.e. the
     thesis clamp softened by the estimate's uncertainty; with a doubtful class the estimate decides.
+    The formula is :mod:`pdrlearn.kernels.bayes`'s, shared with the streaming runtime (decision L40).
 
     Parameters
     ----------
     distance : (B,) |estimated length| (m);  proba : (B, C) class probabilities (rows sum to 1)
     bounds : C (lo, hi) class bounds (m);  sigma : (B,) standard deviation of the estimate (m)
     """
-    from scipy.stats import norm
+    from pdrlearn.kernels.bayes import bayes_length as kernel
 
-    d = np.abs(np.asarray(distance, dtype=float))[:, None]
-    sg = np.asarray(sigma, dtype=float)[:, None]
-    lo = np.array([b[0] for b in bounds])[None, :]
-    hi = np.array([b[1] for b in bounds])[None, :]
-    a, b = (lo - d) / sg, (hi - d) / sg
-    mass = norm.cdf(b) - norm.cdf(a)  # P(L in class | estimate), up to the uniform density 1 / width
-    first = d * mass + sg * (norm.pdf(a) - norm.pdf(b))  # integral of L N(d; L, sg) over the class
-    w = np.asarray(proba, dtype=float) / np.maximum(hi - lo, 1e-9)
-    z = np.sum(w * mass, axis=1)
-    post = np.sum(w * first, axis=1) / np.where(z > 1e-300, z, 1.0)
-    return np.where(z > 1e-300, post, d[:, 0])
+    return kernel(distance, proba, bounds, sigma)

@@ -8,6 +8,7 @@ import pandas as pd
 
 from pdrlearn.displace import _kernels as K
 from pdrlearn.errors import DataError
+from pdrlearn.kernels import bayes as KB
 
 #: Thesis ch.6.3 length classes (per step): short <= 0.30 m, normal 0.30-0.45 m, long > 0.45 m.
 #: The upper bound of "long" is open; 10 m stands for "no bound".
@@ -67,7 +68,8 @@ class StepRules:
 
     def __init__(self, *, bounds: dict[str, tuple[float, float]] | None = None, bounds_scale: float = 1.0,
                  down_mode: str = "norm3", clamp: bool = True, sign: bool = True, altitude: bool = True,
-                 mode: str = "thesis", sigma_rel: float = 0.03, sigma_min: float = 0.02, dz_min: float = 0.1):
+                 mode: str = "thesis", sigma_rel: float = KB.SIGMA_REL, sigma_min: float = KB.SIGMA_MIN,
+                 dz_min: float = KB.DZ_MIN):
         if down_mode not in ("norm3", "horizontal"):
             raise DataError(f"StepRules: down_mode '{down_mode}' is not 'norm3' or 'horizontal'")
         if mode not in ("thesis", "bayes"):

@@ -304,6 +304,7 @@ def export_model(
 
 def _displacement(displacement: dict | None, length_bounds, model) -> dict:
     """Displacement parameters with the length-class bounds resolved (see :func:`export_model`)."""
+    from pdrlearn.displace.rules import parse_bounds
     from pdrlearn.kernels.stride import STANCE_L27_DEFAULTS
     from pdrlearn.runtime.tracker import DEFAULT_DISPLACEMENT
 
@@ -322,8 +323,12 @@ def _displacement(displacement: dict | None, length_bounds, model) -> dict:
         e = [float(v) for v in length_bounds]
         if len(e) != 2 or not 0 < e[0] < e[1]:
             raise ModelError(f"length bounds {length_bounds!r}: give two increasing stride lengths in metres")
-        bounds = {"short": [0.0, e[0]], "normal": [e[0], e[1]], "long": [e[1], 20.0]}
-    out["length_bounds_m"] = bounds
+        bounds = e
+    # decision E25: the bounds `pdrlearn track` uses (parse_bounds: an open "long" class ends at 10 m). The bayes
+    # rule's prior is uniform over each class, so the bound of the open class weighs it (an earlier export's
+    # 20 m halved the "long" density against the track's 10 m: 1 cm on a 1.55 m stride); the thesis clamp
+    # never reaches either
+    out["length_bounds_m"] = {k: [lo, hi] for k, (lo, hi) in parse_bounds(bounds).items()}
     out["length_bounds_source"] = "user"
     return out
 

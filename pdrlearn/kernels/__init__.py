@@ -14,6 +14,7 @@ Modules
 - :mod:`~pdrlearn.kernels.dtw` - DTW distance of one step to a reference set.
 - :mod:`~pdrlearn.kernels.proba` - softmax, class alignment, soft vote.
 - :mod:`~pdrlearn.kernels.stride` - per-stride displacement (ZUPT, M3 rules) and position update.
+- :mod:`~pdrlearn.kernels.bayes` - the bayes class rule's stride length and the confidence gate (L14, L18).
 
 This ``__init__`` imports nothing (importing a submodule never loads the others).
 """

@@ -26,6 +26,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels import bayes as B
 from pdrlearn.kernels.window import Levelled, interp
 
 # -- stride detection ---------------------------------------------------------------------------------
@@ -415,18 +416,24 @@ def _known(x: np.ndarray) -> np.ndarray:
 
 def apply_stride_rules(disp: np.ndarray, terrain=None, direction=None, length_class=None, *,
                        bounds: Mapping[str, tuple[float, float]] | None = None,
-                       down_mode: str = "norm3") -> tuple[np.ndarray, np.ndarray]:
+                       down_mode: str = "norm3", rules: str = "thesis", length_proba=None,
+                       sigma_rel: float = B.SIGMA_REL, sigma_min: float = B.SIGMA_MIN, dz_min: float = B.DZ_MIN
+                       ) -> tuple[np.ndarray, np.ndarray]:
     """The M3 rules (thesis ch.7.2.2) on displacements ``disp (B, 3)``: signed length and altitude change.
 
-    A missing class (None) means "no rule": horizontal distance signed by the estimate and the
-    estimated vertical change / the sign of the estimate / no clamp.
+    A missing class (None) means "no rule": horizontal distance and the estimated vertical change / the
+    sign of the estimate / no clamp. ``rules="bayes"`` (decisions L14, L40): see :func:`stride_rules_one`;
+    ``length_proba`` = one mapping (length class -> probability) or None per stride.
     """
     disp = np.asarray(disp, dtype=float).reshape(-1, 3)
     n = len(disp)
-    if n == 1:  # one stride (the streaming runtime): the same rules on Python scalars
-        return _stride_rules_one(disp[0].tolist(), *(None if c is None else c[0] for c in (terrain, direction,
-                                                                                          length_class)),
-                                 bounds=bounds, down_mode=down_mode)
+    if rules == "bayes" or n == 1:  # one stride (the streaming runtime), or bayes: the scalar kernel per stride
+        cols = [[None] * n if c is None else list(c) for c in (terrain, direction, length_class)]
+        lp = [None] * n if length_proba is None else list(length_proba)
+        out = [stride_rules_one(*d, t, r, c, bounds=bounds, down_mode=down_mode, rules=rules, length_proba=p,
+                                sigma_rel=sigma_rel, sigma_min=sigma_min, dz_min=dz_min)
+               for d, t, r, c, p in zip(disp.tolist(), *cols, lp, strict=True)]
+        return np.array([o[0] for o in out], dtype=float), np.array([o[1] for o in out], dtype=float)
     none = np.full(n, None, dtype=object)
     terrain = none if terrain is None else np.asarray(terrain, dtype=object)
     direction = none if direction is None else np.asarray(direction, dtype=object)
@@ -442,32 +449,39 @@ def apply_stride_rules(disp: np.ndarray, terrain=None, direction=None, length_cl
     return length, dz
 
 
-def _stride_rules_one(d: list[float], terrain, direction, length_class, *,
-                      bounds: Mapping[str, tuple[float, float]] | None, down_mode: str
-                      ) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`apply_stride_rules` of one stride ``d = [dx, dy, dz]`` on Python floats, the same arithmetic as
-    the array path (~35 numpy calls on 1-element object arrays cost more than the rules themselves)."""
-    length, dz = stride_rules_one(*d, terrain, direction, length_class, bounds=bounds, down_mode=down_mode)
-    return np.array([length]), np.array([dz])
-
-
 def stride_rules_one(dx: float, dy: float, dz: float, terrain=None, direction=None, length_class=None, *,
-                     bounds: Mapping[str, tuple[float, float]] | None = None, down_mode: str = "norm3"
+                     bounds: Mapping[str, tuple[float, float]] | None = None, down_mode: str = "norm3",
+                     rules: str = "thesis", length_proba: Mapping[str, float] | None = None,
+                     sigma_rel: float = B.SIGMA_REL, sigma_min: float = B.SIGMA_MIN, dz_min: float = B.DZ_MIN
                      ) -> tuple[float, float]:
     """:func:`apply_stride_rules` of one stride given and returned as Python floats (signed length m, altitude
-    change m): the runtime's call, without the arrays (decision E17)."""
+    change m): the runtime's call, without the arrays (decision E17).
+
+    ``rules="thesis"``: the class prevails (sign, clamp into the class bounds, altitude from the terrain).
+    ``rules="bayes"`` (decision L14, as :class:`pdrlearn.displace.StepRules`; streamed since L40): with
+    sigma = max(``sigma_rel`` |L|, ``sigma_min``), the direction class decides only an ambiguous sign (|L| <
+    2 sigma), the length is the posterior mean given the length-class probabilities ``length_proba`` (class
+    -> p; None: one-hot of ``length_class``), :func:`pdrlearn.kernels.bayes.bayes_length_one`, and a height
+    change above ``dz_min`` keeps its measured sign whatever the terrain class. Gate the classes first
+    (:func:`pdrlearn.kernels.bayes.confident_one`, decision L18): a class set to None has no rule."""
     if down_mode != "horizontal" and terrain == "down":
         dist = math.sqrt(dx * dx + dy * dy + dz * dz)  # thesis eq. 61
     else:
         dist = float(np.hypot(dx, dy))  # terrain_distance: the flat/up rule (numpy's hypot, as the array path)
     length = -dist if dx < 0 else dist
-    if _known_one(direction):  # apply_direction: the class prevails
+    bayes = rules == "bayes"
+    sigma = max(sigma_rel * dist, sigma_min) if bayes else 0.0  # L14: the estimate's sd
+    if _known_one(direction) and (not bayes or dist < 2 * sigma):  # apply_direction: the class prevails
         length = -abs(length) if direction == "backward" else abs(length)
-    if bounds is not None and _known_one(length_class) and length_class in bounds:  # clamp_length
+    if bayes and bounds is not None and _known_one(length_class):  # L14: posterior mean over the classes
+        mag = B.bayes_length_one(dist, B.class_proba_one(length_proba, bounds, length_class),  # names = keys
+                                 list(bounds.values()), sigma)
+        length = mag if length > 0 else -mag if length < 0 else 0.0 * mag  # np.sign(length) * mag
+    elif bounds is not None and _known_one(length_class) and length_class in bounds:  # clamp_length
         lo, hi = bounds[length_class]
         mag = min(max(abs(length), lo), hi)
         length = -mag if length < 0 else mag
-    if _known_one(terrain):  # altitude_change
+    if _known_one(terrain) and not (bayes and abs(dz) > dz_min):  # altitude_change (L14: a clear dz stays)
         dz = abs(dz) if terrain == "up" else -abs(dz) if terrain == "down" else 0.0
     return length, dz
 

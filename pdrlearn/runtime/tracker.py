@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, ModelError
+from pdrlearn.kernels.bayes import SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
 from pdrlearn.kernels.stride import (
     GAP_YAW_MAX_S,
@@ -76,7 +77,15 @@ DEFAULT_DISPLACEMENT = {
     "initial_heading_rad": 0.0,
     "heading_source": "auto",  # decision E6: "auto" (waist gyro when present, else foot), "foot", "waist-gyro"
     "max_wait_s": 2.0,  # longest wait for a late sensor before a step is processed (thesis: < 2 s delay)
+    # decision L40 / E25: the class rules the runtime applies; "bayes" (L14) with the 0.95 gate of offline M3
+    # (L18) is selectable, the default stays the thesis rule on every class (bayes streamed: altitude on D
+    # 6.67 -> 2.78 % but distance on B and C 0.49 / 0.58 -> 0.67 / 0.87 %, so not adopted). A bundle without
+    # these keys (exported before E25) also keeps "thesis" and no gate.
+    "rules": "thesis",
+    "min_confidence": 0.0,
 }
+#: the class rules of a bundle without ``rules`` / ``min_confidence`` (exported before decision E25)
+LEGACY_RULES, LEGACY_MIN_CONFIDENCE = "thesis", 0.0
 _DIRECTIONS = {
     "forward": (1, 0, 0),
     "backward": (-1, 0, 0),
@@ -186,6 +195,10 @@ class Tracker:
     start : initial ENU position (m) and ``heading_rad`` override.
     buffer_s : seconds of samples kept per sensor (bounded state).
     heading_source : "auto" | "foot" | "waist-gyro" (default: the bundle's ``displacement``).
+    rules, min_confidence : the class rules, "bayes" or "thesis", and the probability a class needs before
+        its rule applies (0 = every class); default: the bundle's ``displacement`` (``pdrlearn export`` writes
+        "bayes" and 0.95, as offline ``pdrlearn track``; a bundle exported before decision E25 has neither
+        and keeps "thesis" without a gate).
     step_graph : classify with the bundle's step graph when it has one (one onnxruntime run per step,
         decision E10); False = one run per model (the same numbers, slower).
     incremental : level the foot samples as they are pushed (decision E15; the same windows to rounding,
@@ -220,6 +233,8 @@ class Tracker:
         input_rates_hz: dict[str, float] | None = None,
         stream_ends_s: dict[str, float] | None = None,
         speculative: bool = True,
+        rules: str | None = None,
+        min_confidence: float | None = None,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -264,6 +279,12 @@ class Tracker:
         b = self.params.get("length_bounds_m")
         self.bounds = None if b is None else {str(k): (float(v[0]), float(v[1])) for k, v in b.items()}
         self._down_mode = str(self.params.get("down_mode", "norm3"))
+        #: decision L40 / E25: the class rules and their confidence gate (absent from older bundles: thesis, 0)
+        self.rules = str(self.params.get("rules", LEGACY_RULES) if rules is None else rules)
+        self.min_confidence = float(self.params.get("min_confidence", LEGACY_MIN_CONFIDENCE)
+                                    if min_confidence is None else min_confidence)
+        check_rules(self.rules, self.min_confidence, f"bundle {self.bundle.path}")
+        self._sigma_rel = SIGMA_REL  # the bayes rule's relative stride sd: the calibrated one once resolved (L26)
         self.segmenter = StanceSegmenter.from_params(self.params)
         #: the user's distance calibration carried by the bundle (decision E14; absent = gain 1), resolved
         #: against the pushed foot rate at the first step (the rate check of ``pdrlearn track``, L26)
@@ -701,8 +722,16 @@ class Tracker:
         dx, dy, dz = disp.tolist()
         if self.distance_gain != 1.0:  # decision L26 / E14, as pdrlearn track
             dx, dy, dz = apply_level_gain_one(dx, dy, dz, self.distance_gain)
-        length, dz = stride_rules_one(dx, dy, dz, classes.get("terrain"), classes.get("direction"),
-                                      classes.get("length"), bounds=self.bounds, down_mode=self._down_mode)
+        if self.rules == "thesis" and self.min_confidence <= 0:
+            length, dz = stride_rules_one(dx, dy, dz, classes.get("terrain"), classes.get("direction"),
+                                          classes.get("length"), bounds=self.bounds, down_mode=self._down_mode)
+        else:  # decision L40: the gate (L18) and the bayes rule (L14) of pdrlearn track, one stride at a time
+            g, get, pget = self.min_confidence, classes.get, proba.get
+            length, dz = stride_rules_one(
+                dx, dy, dz, confident_one(get("terrain"), pget("terrain"), g),
+                confident_one(get("direction"), pget("direction"), g), confident_one(get("length"), pget("length"), g),
+                bounds=self.bounds, down_mode=self._down_mode, rules=self.rules, length_proba=pget("length"),
+                sigma_rel=self._sigma_rel)
         self.heading += dyaw
         direction = (self.heading + placement_offset(lev, self.heading_source, disp)  # decision L34
                      + reversed_by_rules(headed_by_foot(lev, self.heading_source), dx, length))  # L37
@@ -725,6 +754,7 @@ class Tracker:
             log.warning("bundle %s: %s", self.bundle.path, warning)
         self.distance_gain = float(rec.get("gain", 1.0)) if rec is not None else 1.0
         self.stride_sd = calibrated_stride_sd(rec)
+        self._sigma_rel = float(self.stride_sd) if self.stride_sd else SIGMA_REL  # L26, as pdrlearn track
 
     def _classify_step(self, W: np.ndarray) -> tuple[dict[str, str], dict[str, dict[str, float]]]:
         """Classes and probabilities (task -> class -> p) of one step window, as :meth:`classify` with

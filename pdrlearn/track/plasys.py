@@ -38,6 +38,7 @@ from pdrlearn.displace import (
 from pdrlearn.errors import DataError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
+from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain, calibrated_stride_sd, level_dz
 from pdrlearn.kernels.window import GROUP_STREAMS, available_groups, levelled_units
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
@@ -234,11 +235,8 @@ def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, t
 
 
 _TASK_COLUMNS = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
-#: Probability a model's class needs before its rule overrides the estimate (docs/decisions/localization.md
-#: L18): a wrong length class costs ~15-20 % of a stride, a right one gains ~0 when the estimate is good.
-DEFAULT_MIN_CONFIDENCE = 0.95
-#: Class rules with a model's classes (L18): "bayes" (L14) was better than "thesis" in every run.
-DEFAULT_MODEL_RULES = "bayes"
+# decision L18: DEFAULT_MODEL_RULES ("bayes") and DEFAULT_MIN_CONFIDENCE (0.95), the default rule with a model's
+# classes and its confidence gate, live in pdrlearn.kernels.bayes since L40 (the streaming runtime applies them)
 
 
 def _confident(classes: pd.DataFrame, min_confidence: float) -> pd.DataFrame:
@@ -253,6 +251,16 @@ def _confident(classes: pd.DataFrame, min_confidence: float) -> pd.DataFrame:
             low = classes[pcols].max(axis=1).to_numpy(float) < min_confidence
             out.loc[low, col] = None
     return out
+
+
+def _length_proba(classes: pd.DataFrame) -> list[dict[str, float] | None]:
+    """Per stride, the model's length-class probabilities (class -> p, from ``p_length_<class>``), or None
+    (oracle labels: the bayes rule takes the label as certain)."""
+    cols = {c[len("p_length_"):]: c for c in classes.columns if c.startswith("p_length_")}
+    if not cols:
+        return [None] * len(classes)
+    p = classes[list(cols.values())].to_numpy(float)
+    return [dict(zip(cols, row, strict=True)) for row in p.tolist()]
 
 
 def _distance_gain(requested: float | None, model, fs: float, warnings: list[str],
@@ -323,13 +331,13 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     down_mode : "norm3" (thesis eq. 61) or "horizontal" for descending stairs
     rules : "thesis" (the classes prevail, ch.7.2.2) or "bayes" (class probabilities weighed against the
         estimate's uncertainty, docs/decisions/localization.md L14). Default None: "bayes" with a model's
-        classes, "thesis" with ``model="oracle"`` labels (decision L18); streaming applies "thesis"
+        classes, "thesis" with ``model="oracle"`` labels (decision L18), streaming too (L40)
     align : M3: align the waist clock to the foot clock from the steps both units detect (off by
         default, see docs/decisions/localization.md L13)
     min_confidence : a class rule is applied only when the model's probability of the class reaches this
         (default None = :data:`DEFAULT_MIN_CONFIDENCE` 0.95, decision L18; 0 = always, as the thesis).
-        Oracle classes carry no probabilities and are always applied. ``streaming=True`` applies every
-        class (the runtime has no confidence gate yet)
+        Oracle classes carry no probabilities and are always applied. ``streaming=True`` gates the same way
+        (decision L40)
     streaming : M2/M3 with the streaming runtime's stride-local kernel (see :func:`track_streaming`);
         ``heading`` is then "auto" (default), "foot" or "waist-gyro"; ``params`` = stance-segmentation
         settings (:class:`pdrlearn.kernels.stride.StanceSegmenter`)
@@ -355,13 +363,14 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     if method not in METHODS:
         raise DataError(f"plasys: method '{method}' is not one of auto, M1, M2, M3")
     if streaming:
-        if steps != "detector" or align or rules not in (None, "thesis") or (min_confidence or 0) > 0:
-            raise DataError("plasys streaming=True: steps, align, rules='bayes' and min_confidence are not "
-                            "streamable; leave them at their defaults")
+        if steps != "detector" or align:
+            raise DataError("plasys streaming=True: steps and align are not streamable; leave them at their "
+                            "defaults")
         res = track_streaming(session, method=method, model=model, start=start, params=params,
                               heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
                               bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
-                              calibration=calibration, **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}))
+                              calibration=calibration, rules=rules, min_confidence=min_confidence,
+                              **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}))
         if no_classes:
             res.info["method"] = "M3 engine, no classes"
             _level_without_classes(res)  # decision L39, as offline
@@ -554,8 +563,8 @@ def _level_without_classes(res: TrackResult) -> None:
 def track_streaming(session: Session, *, method: str = "M3", model=None, start=None, params=None,
                     heading: str = "auto", initial_heading: float = 0.0, bounds=None, bounds_scale: float = 2.0,
                     down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca",
-                    distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = True
-                    ) -> TrackResult:
+                    distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = True,
+                    rules: str | None = None, min_confidence: float | None = None) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -568,8 +577,11 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     filter with the magnetometer, fused heading) are not streamable and not used here. ``distance_gain`` /
     ``calibration``: as :func:`track_plasys` (decision L26): M3 with a trained model multiplies the level
     strides' horizontal displacement by the model's distance gain when its foot rate matches the session's,
-    as the runtime does with a bundle's ``displacement.distance_gain`` (decision E14). The calibrated
-    stride sd only enters the bayes rules, which streaming does not apply (thesis rules, E6). ``gap_yaw``
+    as the runtime does with a bundle's ``displacement.distance_gain`` (decision E14). ``rules`` /
+    ``min_confidence``: as :func:`track_plasys` (default "bayes" on the classes the model is >= 0.95 sure of,
+    "thesis" with oracle labels; decision L40: one stride at a time,
+    :func:`~pdrlearn.kernels.stride.stride_rules_one`, the runtime's call), the bayes rule with the
+    calibrated stride sd when the calibration applies (L26). ``gap_yaw``
     (decision L31, as the runtime): a stride headed by the foot adds the turn of the foot
     pivoting in the gap before it (:func:`~pdrlearn.kernels.stride.gap_yaw`, the streamed form of L28).
     """
@@ -608,6 +620,13 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         classes, model_bounds = classes_and_bounds(model, session, table)
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
                                                   session.streams["fAccelerometer"].rate_hz, warnings, calibration)
+    # decision L40: streamed, the thesis rule on every class stays the default (bayes with the 0.95 gate on
+    # request: measured better altitude, worse distance on B and C); explicit rules as offline
+    rules = "thesis" if rules is None else str(rules)
+    gate = (0.0 if rules == "thesis" else DEFAULT_MIN_CONFIDENCE) if min_confidence is None else float(min_confidence)
+    check_rules(rules, gate, "plasys streaming")
+    # decision L26: the bayes rule weighs the classes against the user's own calibrated stride accuracy
+    sigma_rel = float(stride_sd) if stride_sd and rules == "bayes" else SIGMA_REL
     use_bounds = bounds if bounds is not None else model_bounds
     rb = (StepRules(bounds=parse_bounds(use_bounds) if use_bounds is not None else None,
                     bounds_scale=bounds_scale).effective_bounds() if method == "M3" else None)
@@ -623,10 +642,14 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             dyaw[i] += SK.gap_yaw(*streams["fGyroscope"], *streams["fAccelerometer"], float(strides[i - 1, 1]),
                                   float(t0))
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
-    length, dz = SK.apply_stride_rules(disp, *(classes[c].to_numpy(dtype=object)
-                                               if method == "M3" and c in classes else None  # length-only models
+    rule_classes = _confident(classes, gate) if method == "M3" else classes  # decision L18 / L40
+    length, dz = SK.apply_stride_rules(disp, *(rule_classes[c].to_numpy(dtype=object)
+                                               if method == "M3" and c in rule_classes else None  # length-only models
                                              for c in ("terrain", "direction", "length_class")),
-                                       bounds=rb, down_mode=down_mode)
+                                       bounds=rb, down_mode=down_mode, rules=rules if method == "M3" else "thesis",
+                                       length_proba=_length_proba(classes) if method == "M3" and rules == "bayes"
+                                       else None,
+                                       sigma_rel=sigma_rel)
     place += [SK.reversed_by_rules(bool(f), float(d[0]), float(L))  # decision L37
               for f, d, L in zip(foot_headed, disp, length, strict=True)]
     head = initial_heading + np.cumsum(dyaw) + place  # decision L34: the direction each stride is placed along
@@ -651,6 +674,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             "classes_source": (None if method == "M2" else ("oracle" if isinstance(model, str)
                                                             and model == "oracle" else "model")),
             "length_bounds_m": rb, "settings": {"segmenter": seg_params, "rest_search_s": rest_search_s},
+            "rules": rules if method == "M3" else None, "min_confidence": gate if method == "M3" else None,
+            "stride_sigma_rel": sigma_rel if method == "M3" and rules == "bayes" else None,
             "distance_gain": gain, "distance_gain_source": gain_source, "stride_sd_calibrated": stride_sd,
             "warnings": warnings}
     for w in warnings:
