@@ -179,3 +179,19 @@ def replay(tracker, session, chunk_s: float = 0.5) -> list:
                                    st.values[(st.t >= t0) & (st.t < t0 + chunk_s)])
                                for n, st in session.streams.items()})
     return steps + tracker.flush()
+
+
+def calibrated_length_model(root, scenario_speed: str = "normal"):
+    """A length model of simulated user 2 trained with ``distance_calibration=True``, saved in ``root/model``
+    and exported to ``root/bundle``, and scenario A of the same user at ``scenario_speed`` (same unit: S22
+    per-device scale errors): ``(root, model, session)``."""
+    from pdrlearn.classify import train_user
+    from pdrlearn.export.from_model import export_model
+    from pdrlearn.sim import simulate
+
+    cal = simulate("length", user_seed=2, speed="normal")
+    model = train_user([cal], tasks=["length"], methods=["svm"], units=["foot"], cv=2, distance_calibration=True)
+    model.length_bounds_m = cal.meta["length_class_bounds_m"]
+    model.save(root / "model")
+    export_model(root / "model", root / "bundle")
+    return root, model, simulate("A", user_seed=2, speed=scenario_speed)

@@ -11,7 +11,7 @@ from pdrlearn.kernels import stride as SK
 from pdrlearn.orient import wrap_angle
 from pdrlearn.runtime.tracker import Tracker
 from pdrlearn.track.base import get_pipeline
-from tests.runtime_helpers import replay, rest_dirs, synthetic_session, trained_dirs
+from tests.runtime_helpers import calibrated_length_model, replay, rest_dirs, synthetic_session, trained_dirs
 
 
 @pytest.fixture(scope="module")
@@ -146,17 +146,7 @@ def test_yaw_change_of_consecutive_strides_adds_up():
 def calibrated(tmp_path_factory):
     """A model trained on a simulated calibration exercise with distance_calibration=True, its bundle, and
     a simulated scenario walk of the same user (same unit: S22 per-device scale errors)."""
-    from pdrlearn.classify import train_user
-    from pdrlearn.export.from_model import export_model
-    from pdrlearn.sim import simulate
-
-    root = tmp_path_factory.mktemp("calibrated")
-    cal = simulate("length", user_seed=2, speed="normal")
-    model = train_user([cal], tasks=["length"], methods=["svm"], units=["foot"], cv=2, distance_calibration=True)
-    model.length_bounds_m = cal.meta["length_class_bounds_m"]
-    model.save(root / "model")
-    export_model(root / "model", root / "bundle")
-    return root, model, simulate("A", user_seed=2, speed="normal")
+    return calibrated_length_model(tmp_path_factory.mktemp("calibrated"))
 
 
 def _stream_sim(tr: Tracker, session) -> list:

@@ -17,7 +17,7 @@ from pdrlearn.kernels import bayes as KB
 from pdrlearn.kernels import stride as SK
 from pdrlearn.runtime.tracker import Tracker
 from pdrlearn.track.base import get_pipeline
-from tests.runtime_helpers import replay
+from tests.runtime_helpers import calibrated_length_model, replay
 
 NAMES = ["short", "normal", "long"]
 BOUNDS = {"short": (0.0, 1.0), "normal": (1.0, 1.5), "long": (1.5, 20.0)}
@@ -100,17 +100,7 @@ def test_one_stride_gate_equals_the_offline_gate():
 @pytest.fixture(scope="module")
 def calibrated_length(tmp_path_factory):
     """A length model with a distance calibration (user 2), its bundle, and scenario A of the same user."""
-    from pdrlearn.classify import train_user
-    from pdrlearn.export.from_model import export_model
-    from pdrlearn.sim import simulate
-
-    root = tmp_path_factory.mktemp("bayes")
-    cal = simulate("length", user_seed=2, speed="normal")
-    model = train_user([cal], tasks=["length"], methods=["svm"], units=["foot"], cv=2, distance_calibration=True)
-    model.length_bounds_m = cal.meta["length_class_bounds_m"]
-    model.save(root / "model")
-    export_model(root / "model", root / "bundle")
-    return root, model, simulate("A", user_seed=2, speed="fast")
+    return calibrated_length_model(tmp_path_factory.mktemp("bayes"), "fast")
 
 
 def _xyz(steps) -> np.ndarray:
