@@ -197,8 +197,8 @@ class Tracker:
     heading_source : "auto" | "foot" | "waist-gyro" (default: the bundle's ``displacement``).
     rules, min_confidence : the class rules, "bayes" or "thesis", and the probability a class needs before
         its rule applies (0 = every class); default: the bundle's ``displacement`` (``pdrlearn export`` writes
-        "bayes" and 0.95, as offline ``pdrlearn track``; a bundle exported before decision E25 has neither
-        and keeps "thesis" without a gate).
+        "thesis" and 0, as ``pdrlearn track --streaming``; "bayes" with 0.95 is offline M3's rule, decision
+        L40; a bundle exported before decision E25 has neither and keeps "thesis" without a gate).
     step_graph : classify with the bundle's step graph when it has one (one onnxruntime run per step,
         decision E10); False = one run per model (the same numbers, slower).
     incremental : level the foot samples as they are pushed (decision E15; the same windows to rounding,
