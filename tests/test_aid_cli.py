@@ -67,7 +67,10 @@ def test_track_with_gnss_and_fixes(walk, capsys):
         ]
     )
     assert rc == 0
-    info = json.loads(capsys.readouterr().out.strip().splitlines()[-1])["info"]["aid"]["fixes"]
+    aid = json.loads(capsys.readouterr().out.strip().splitlines()[-1])["info"]["aid"]
+    assert "fix_table" not in aid  # every fix's row (928 on the docs' D walk) is aided.png's, not the summary's
+    assert "fix_table" not in json.loads((d / "out2" / "summary.json").read_text())["info"]["aid"]
+    info = aid["fixes"]
     assert info["fixes_used"] >= 5 and info["period_s"] == 4.0
     assert np.isfinite(info["queries_per_min"])
 

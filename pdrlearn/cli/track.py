@@ -120,7 +120,10 @@ def track(
     summary = evaluate_track(result, session)
     summary["session"] = session.name
     summary["pipeline"] = pipeline
-    summary["info"] = result.info
+    summary["info"] = dict(result.info)
+    aid = summary["info"].get("aid")
+    if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary
+        summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}
     if session.frames_inferred:  # D8: undeclared frames taken from the data, to paste into meta.json
         summary["frames_inferred"] = session.frames_inferred
     summary = json_safe(json.loads(json.dumps(
