@@ -150,3 +150,26 @@ def test_the_check_reads_only_the_first_minutes(monkeypatch):
     assert FI.check_declared_frame(s, "foot", s.frames["foot"]) is None
     fs = s.streams["fAccelerometer"].rate_hz
     assert abs(seen[0] - 10.0 * fs) < 1.5 and len(seen) == 1 and seen[0] < len(s.streams["fAccelerometer"])
+
+
+def test_mirrored_waist_data_get_the_mirror_hint(tmp_path, caplog):
+    """Second new-user trial: y negated in both IMU files (a mirrored export) and the frame declared as the
+    file's axes really point (left-handed): the warning recommended the frame with the opposite left, which
+    tracks differently; it now also says the data may be mirrored and to negate the column."""
+    d = tmp_path / "m"
+    shutil.copytree(REAL / "mobgap_HA001_Test11_Trial1", d)  # daily activities: enough walking to fix the axes
+    for f in d.glob("w*.csv"):
+        df = pd.read_csv(f)
+        if "y" in df.columns:
+            df["y"] = -df["y"]
+            df.to_csv(f, index=False)
+    meta = json.loads((d / "meta.json").read_text())
+    meta["frames"] = {"waist": {"x": "up", "y": "left", "z": "forward"}}
+    (d / "meta.json").write_text(json.dumps(meta))
+    s = read_session(d)
+    with caplog.at_level(logging.WARNING):
+        s.require_frame("waist")
+    (m,) = _frame_warnings(caplog)
+    assert "is left-handed" in m and "deg from the declared left" in m and "deg from the declared up" not in m
+    assert m.endswith("the data are mirrored (one axis column negated, e.g. by a left-handed export): negate "
+                      "that column in the CSV files instead"), m

@@ -310,3 +310,17 @@ def test_force_block_computes_only_the_asked_statistics_like_the_kernel(trained,
     # without a Where), and one contact-peak mask when a statistic needs the peak
     assert ops.count("LessOrEqual") == 2 * interpolated
     assert ops.count("GreaterOrEqual") == 2 * bool({"time_to_peak", "peak_mean_4"} & set(stats))
+
+
+def test_nan_window_names_the_empty_channels(trained):
+    """Second new-user trial: 'step features are NaN: the stream lacks a sensor the model needs' did not say
+    which; the error names the window channels that are empty."""
+    from pdrlearn.errors import DataError
+
+    tr = Tracker(trained["root"] / "bundle")
+    g = tr.step_graph
+    W = np.zeros((1, len(tr.channels), tr.n_samples))
+    name = g.channel_names[-1]
+    W[0, tr.ci[name]] = np.nan
+    with pytest.raises(DataError, match=rf"window channels {name} are empty\); push those sensors"):
+        g.predict(W)

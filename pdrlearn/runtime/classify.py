@@ -163,6 +163,7 @@ class StepGraph:
                                 "outputs": {t: spec["outputs"][t] for t in tasks}}, backend="onnxruntime")
         ci = {c: i for i, c in enumerate(bundle.manifest["features"]["channels"])}
         self.channels = np.array([ci[c] for c in spec["channels"]], dtype=np.intp)
+        self.channel_names = [str(c) for c in spec["channels"]]
         m = self.model  # the session's run with its output names, for float64 C-ordered windows (E13);
         # the compiled session's own run (onnxruntime's Python wrapper only checks the input names, which are
         # fixed here, and the ownership of OrtValue inputs, which numpy windows are not; decision E15)
@@ -189,7 +190,10 @@ class StepGraph:
         """Task -> probabilities ``(n, n_classes)`` (the task's class order) of windows ``W``."""
         x = W[:, self.channels]  # as compute_features: never classify NaN; the sum is finite iff every value
         if not (math.isfinite(float(np.add.reduce(x, axis=None))) or np.isfinite(x).all()):  # is (bar overflow, E17)
-            raise DataError("step features are NaN: the stream lacks a sensor the model needs")
+            missing = [c for j, c in enumerate(self.channel_names) if not np.isfinite(x[:, j]).all()]
+            raise DataError(f"step features are NaN: the stream lacks a sensor the model needs (window channels "
+                            f"{', '.join(missing)} are empty); push those sensors, or export a model trained "
+                            "without them")
         if self._run is not None and W.dtype == np.float64 and W.flags.c_contiguous:
             return dict(zip(self._roles, self._run(self._wanted, {self.model.input_name: W}, None), strict=True))
         return self.model.run(W)

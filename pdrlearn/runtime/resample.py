@@ -381,8 +381,10 @@ def resample_message(resamplers: dict[str, StreamResampler], rate_out: float) ->
                else f"{len(r.taps)}-tap linear-phase low-pass + linear interpolation")
         parts.append(f"{', '.join(names)} sampled at {rate_in:.4g} Hz ({how}, {r.latency_s * 1e3:.0f} ms delay)")
     return (f"{'; '.join(parts)}, the bundle at {rate_out:.4g} Hz: resampling to {rate_out:.4g} Hz as the samples "
-            "stream in (strides and classes can differ a little from `pdrlearn track --streaming` at the data's "
-            "own rate, docs/deploying.md); --no-resample / Tracker(resample=False) refuses instead")
+            "stream in; the resampled windows are not the ones the classifiers were trained on, and on simulated "
+            "50 Hz walks into a 20 Hz bundle most strides came out backward (E22): prefer the default, which "
+            "tracks the data at its own rate as `pdrlearn track --streaming` does; --no-resample / "
+            "Tracker(resample=False) refuses instead")
 
 
 def stopped_message(name: str, t: float | None, first_s: float, newest: float, max_lag_s: float, grace_s: float,

@@ -445,6 +445,9 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> str | 
                       + f"; {found.describe()})")
     fix = (f'if the data are right, write "frames": {json.dumps({placement: found.frame.to_dict()})} in meta.json'
            if off else "declare the device's right-handed frame in meta.json")
+    if set(off) == {"left"}:  # up and forward agree, left reversed: a wrong entry, or mirrored data
+        fix = (f"{fix}; but if the declared axes are right, the data are mirrored (one axis column negated, "
+               "e.g. by a left-handed export): negate that column in the CSV files instead")
     return f"{what} {' and '.join(issues)}; the meta.json frame is still used (decision D8): {fix}"
 
 
