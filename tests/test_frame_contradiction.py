@@ -36,6 +36,17 @@ def _rotated_copy(src: Path, dst: Path, prefix: str, rot: Rotation) -> Path:
     return dst
 
 
+def _declared_waist_warnings(d: Path, frame: dict, caplog) -> list[str]:
+    """The frame warnings of the recording ``d`` with ``frame`` written as its meta.json waist frame."""
+    meta = json.loads((d / "meta.json").read_text())
+    meta["frames"] = {"waist": frame}
+    (d / "meta.json").write_text(json.dumps(meta))
+    s = read_session(d)
+    with caplog.at_level(logging.WARNING):
+        s.require_frame("waist")
+    return _frame_warnings(caplog)
+
+
 def _frame_warnings(caplog) -> list[str]:
     return [r.getMessage() for r in caplog.records if r.levelno == logging.WARNING and "frame" in r.getMessage()]
 
@@ -71,13 +82,7 @@ def test_foot_upside_down_with_declared_frame_warns_once_on_the_cli(tmp_path, ca
 def test_left_handed_declared_frame_warns(tmp_path, caplog):
     d = tmp_path / "lh"
     shutil.copytree(WAIST, d)
-    meta = json.loads((d / "meta.json").read_text())
-    meta["frames"] = {"waist": {"x": "up", "y": "left", "z": "forward"}}
-    (d / "meta.json").write_text(json.dumps(meta))
-    s = read_session(d)
-    with caplog.at_level(logging.WARNING):
-        s.require_frame("waist")
-    msgs = _frame_warnings(caplog)
+    msgs = _declared_waist_warnings(d, {"x": "up", "y": "left", "z": "forward"}, caplog)
     assert len(msgs) == 1 and "left-handed" in msgs[0]
     assert '"frames": {"waist": {"x": "up", "y": "right", "z": "forward"}}' in msgs[0]
 
@@ -163,13 +168,7 @@ def test_mirrored_waist_data_get_the_mirror_hint(tmp_path, caplog):
         if "y" in df.columns:
             df["y"] = -df["y"]
             df.to_csv(f, index=False)
-    meta = json.loads((d / "meta.json").read_text())
-    meta["frames"] = {"waist": {"x": "up", "y": "left", "z": "forward"}}
-    (d / "meta.json").write_text(json.dumps(meta))
-    s = read_session(d)
-    with caplog.at_level(logging.WARNING):
-        s.require_frame("waist")
-    (m,) = _frame_warnings(caplog)
+    (m,) = _declared_waist_warnings(d, {"x": "up", "y": "left", "z": "forward"}, caplog)
     assert "is left-handed" in m and "deg from the declared left" in m and "deg from the declared up" not in m
     assert m.endswith("the data are mirrored (one axis column negated, e.g. by a left-handed export): negate "
                       "that column in the CSV files instead"), m
