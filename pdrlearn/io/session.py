@@ -222,7 +222,10 @@ class Session:
         where = (f"{self.folder / 'meta.json'}: session '{self.name}'" if self.folder is not None
                  else f"session '{self.name}' (its meta.json)")
         if self.infer_frames:
-            self.handedness(placement)
+            from pdrlearn.io.handedness import WARN_PLACEMENTS
+
+            if placement in WARN_PLACEMENTS:  # the waist test is not adopted: not paid for here
+                self.handedness(placement)
         frame = self.frames.get(placement)
         if frame is not None:
             if self.infer_frames and placement not in self._checked:  # decision D10: once per session
