@@ -14,7 +14,11 @@ def info(
     session_dir: Path = typer.Argument(..., help="PLASYS session folder (fAccelerometer.csv, ...)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
-    """Show sensors, rates, duration, gaps and labels of a session.
+    """Show sensors, rates, duration, gaps and labels of a session, and check each IMU unit's axes.
+
+    The axis checks are those every command runs when it needs a unit's frame: a declared frame against
+    the data (decision D10) or the frame inferred from them (D8), and the mirrored-data test of the
+    accelerometer and gyroscope (D11); their warnings go to stderr, the results to the table or --json.
 
     Examples:
 
@@ -26,6 +30,7 @@ def info(
 
     s = read_session(session_dir)
     summary = s.summary()
+    summary["frame_checks"] = s.frame_checks()  # warnings are logged (stderr) once, by the checks themselves
     if as_json:
         print_json(json_safe(summary))
         return
@@ -45,6 +50,15 @@ def info(
     frames = (json.dumps(summary["frames"]) if summary["frames"]
               else "not declared (inferred from the data when a command needs it, decision D8)")
     c.print(f"frames: {frames}", markup=False)
+    for p, chk in summary["frame_checks"].items():
+        frame = json.dumps(chk["frame"]) if chk["frame"] else "none"
+        check = ("not contradicted by the data (D10)" if chk["check"] == "ok"
+                 else "see the warning" if chk["frame"] else chk["check"])
+        h = chk["handedness"]
+        hand = "no accelerometer + gyroscope data" if h is None else (
+            f"{h['verdict']} (log ratio {h['log_ratio'] if h['log_ratio'] is not None else 'n/a'} over "
+            f"{h['segments']} {'strides' if p == 'foot' else 'moving windows'})")
+        c.print(f"{p} axes: {chk['source']} frame {frame}, {check}; handedness (D11): {hand}", markup=False)
     c.print(f"labels: {json.dumps(json_safe(summary['labels']))}", markup=False)  # JSON, like the frames line
 
 

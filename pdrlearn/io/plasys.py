@@ -31,6 +31,7 @@ from pdrlearn.io.validate import (
     check_numeric,
     check_rate,
     check_timestamps,
+    check_trajectory_times,
     check_units,
     time_unit_candidates,
 )
@@ -325,6 +326,9 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
                       trajectory=traj, extras=extras, meta=meta, frames=frames, folder=folder)
     for label, table in [*([("steps", steps)] if steps is not None else []), *extras.items()]:
         check_label_times(table, session.t_start, session.t_end, str(folder / f"{label}.csv"))
+    if traj is not None:  # decision B25: on the sensors' clock, in their unit
+        check_trajectory_times(traj["t"].to_numpy() / scale, scale, session.t_start, session.t_end,
+                               str(folder / "trajectory.csv"))
     warn_low_rate(session)
     for name, s in streams.items():
         gaps = s.gaps()

@@ -161,6 +161,7 @@ class Session:
     infer_frames: bool = True
     _inferred: dict[str, AxisFrame | str] = field(default_factory=dict, repr=False, compare=False)
     _checked: dict[str, str | None] = field(default_factory=dict, repr=False, compare=False)
+    _handed: dict[str, object] = field(default_factory=dict, repr=False, compare=False)
 
     # -- access -----------------------------------------------------------------------------------
     def __getitem__(self, name: str) -> Stream:
@@ -215,9 +216,16 @@ class Session:
         inferred from the unit's data (:mod:`pdrlearn.track.frame_inference`, decision D8), logged once
         as a warning that names what was found and the ``frames`` entry to declare if it is wrong; else, or
         when the data does not fix the axes, a :class:`DataError` naming the session's ``meta.json`` and
-        the entry to add (the one wording of every method that needs a unit's axes, decision B18)."""
+        the entry to add (the one wording of every method that needs a unit's axes, decision B18).
+        With ``infer_frames`` the unit's accelerometer and gyroscope are also checked once for mirrored
+        (left-handed) data, one warning naming the files and the fix (decision D11)."""
         where = (f"{self.folder / 'meta.json'}: session '{self.name}'" if self.folder is not None
                  else f"session '{self.name}' (its meta.json)")
+        if self.infer_frames:
+            from pdrlearn.io.handedness import WARN_PLACEMENTS
+
+            if placement in WARN_PLACEMENTS:  # the waist test is not adopted: not paid for here
+                self.handedness(placement)
         frame = self.frames.get(placement)
         if frame is not None:
             if self.infer_frames and placement not in self._checked:  # decision D10: once per session
@@ -251,6 +259,45 @@ class Session:
             f"body direction of each of its axes (forward, backward, left, right, up, down), e.g. the thesis "
             f"mounting \"frames\": {example}"
         )
+
+    def handedness(self, placement: str):
+        """The mirrored-data test of the ``placement`` unit (:func:`pdrlearn.io.handedness.check_handedness`,
+        decision D11), run once per session; its warning, naming the folder, is logged the first time.
+        ``None`` when the unit has no accelerometer + gyroscope pair."""
+        if placement not in self._handed:
+            from pdrlearn.io.handedness import check_handedness
+
+            self._handed[placement], msg = check_handedness(self, placement)
+            if msg:
+                log.warning("%s: %s", self.folder if self.folder is not None else f"session '{self.name}'", msg)
+        return self._handed[placement]
+
+    def frame_checks(self) -> dict[str, dict]:
+        """Run the data checks of each IMU unit's axes now (what :meth:`require_frame` runs when a command
+        needs them; each warning logged once) and return, per placement: ``frame`` (the frame used, or
+        ``None``), ``source`` (``declared``, ``source_project``, ``inferred`` or ``none``), ``check`` (``ok``,
+        the D10 warning of a declared frame, or why the data do not fix an undeclared one) and
+        ``handedness`` (:meth:`pdrlearn.io.handedness.Handedness.to_dict` or ``None``, decision D11). For
+        ``pdrlearn info``."""
+        from pdrlearn.io.sensors import UNIT_IMU
+
+        out: dict[str, dict] = {}
+        for p in self.placements:
+            if p not in UNIT_IMU or not self.has(*UNIT_IMU[p]):
+                continue
+            declared = p in self.frames
+            try:
+                frame = self.require_frame(p)
+            except DataError as exc:
+                frame, check = None, str(exc)
+            else:
+                check = ((self._checked.get(p) if declared else None) or "ok") if self.infer_frames else "not checked"
+            source = ("none" if frame is None else "inferred" if not declared
+                      else "declared" if isinstance(self.meta.get("frames"), dict) else "source_project")
+            h = self.handedness(p) if self.infer_frames else None
+            out[p] = {"frame": None if frame is None else frame.to_dict(), "source": source, "check": check,
+                      "handedness": None if h is None else h.to_dict()}
+        return out
 
     @property
     def frames_inferred(self) -> dict[str, dict]:

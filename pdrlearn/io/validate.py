@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pandas as pd
 
@@ -168,3 +170,45 @@ def check_label_times(table: pd.DataFrame, t_start: float, t_end: float, where: 
                 f"{where}: label intervals of {1e3 * spacing:.1f} ms on median are too short for steps; "
                 "the *_ms columns look like seconds: multiply them by 1000"
             )
+
+
+def check_trajectory_times(t_raw: np.ndarray, scale: float, t_start: float, t_end: float, where: str) -> None:
+    """A ground-truth trajectory's timestamps (``t_raw``, in the file's unit; ``scale`` s per unit, the
+    session's unit: declared, B22-inferred or ms) must lie on the sensors' clock (decision B25). Refused, one
+    line naming the file and the fix: a rate implausible in that unit or most of the trajectory outside the
+    recording (+-1 s, as :func:`check_label_times`), with the unit that would fit when one does (B22's
+    :func:`time_unit_candidates`: a plausible rate and the recording covered), or the shift of the clocks."""
+    t_raw = np.asarray(t_raw, dtype=float)
+    if t_raw.size < 2 or not t_end > t_start:
+        return
+
+    def inside(k: float) -> float:
+        t = t_raw * k
+        return float(np.mean((t >= t_start - 1.0) & (t <= t_end + 1.0)))
+
+    def covered(k: float) -> float:  # fraction of the recording the trajectory spans
+        lo, hi = max(t_raw[0] * k, t_start), min(t_raw[-1] * k, t_end)
+        return max(hi - lo, 0.0) / (t_end - t_start)
+
+    plausible = dict(time_unit_candidates(t_raw))
+    unit = next((u for u, k in _TIME_UNITS if math.isclose(k, scale)), f"{scale:g} s")
+    ok_rate = unit in plausible or t_raw.size < 3
+    fits = [u for u, k in plausible.items() if u != unit and inside(k) > 0.5 and covered(k) > 0.5]
+    # in the session's unit: a plausible rate, most samples on the recording, and not a span squeezed into
+    # a sliver of it when another unit spans it (s read as ms: 40 s of mocap inside the first 0.04 s)
+    if ok_rate and inside(scale) > 0.5 and not (fits and covered(scale) < 0.05):
+        return
+    t0, t1 = t_raw[0] * scale, t_raw[-1] * scale
+    rate = (1.0 / float(np.median(np.diff(t_raw)) * scale)) if t_raw.size >= 3 else float("nan")
+    what = (f"{where}: its timestamps read as {unit} (the sensor files' unit) give {t0:.6g}-{t1:.6g} s at "
+            f"{rate:.4g} Hz, but the sensors cover {t_start:.2f}-{t_end:.2f} s")
+    if fits:
+        u = fits[0]
+        factor = plausible[u] / scale
+        raise DataError(f"{what}; read as {u} they fit: write its timestamps in {unit} like the sensor files "
+                        f"(multiply by {factor:g})")
+    if not ok_rate:
+        raise DataError(f"{what}; that rate is implausible ({RATE_LIMITS_HZ[0]:g}-{RATE_LIMITS_HZ[1]:g} Hz): write its "
+                        f"timestamps in {unit} like the sensor files, on their time base")
+    raise DataError(f"{what}; the trajectory does not lie on the sensors' clock: write its timestamps in {unit} "
+                    f"on the sensor files' time base (shift by the offset between the two clocks)")
