@@ -181,6 +181,10 @@ def evaluate(
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object (tasks.<task>.accuracy ...)."),
     report: Path = typer.Option(None, "--report", help="Folder for report.md/json and confusion PNGs."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    warn_out_of_domain: float = typer.Option(None, "--warn-out-of-domain", help="Warn (one line) when at least "
+                                             "this fraction of the labelled steps lie outside the model's training "
+                                             "range, e.g. 0.25 (off by default; the fraction is always in the "
+                                             "result as out_of_domain_fraction, decision C16)."),
 ) -> None:
     """Accuracy per class x method x unit (thesis Tables 27/28/33), confusion matrices, per-step latency.
 
@@ -212,7 +216,8 @@ def evaluate(
         for d in dirs:
             sessions.append(read_session(d))
             advance(1)
-        result = evaluate_model(model, sessions, report_dir=report, advance=advance)
+        result = evaluate_model(model, sessions, report_dir=report, advance=advance,
+                                warn_out_of_domain=warn_out_of_domain)
     if not result["tasks"]:
         raise DataError(
             f"evaluate: the sessions have no labels for the model's tasks ({', '.join(model.tasks)}); "
@@ -239,6 +244,9 @@ def evaluate(
             c.print(f"  skipped {s}")
     c.print(f"step windows: {result.get('boundaries', model.boundaries)} boundaries, "
             f"{result['windows_ms_per_step']:.3f} ms/step")
+    if result.get("out_of_domain_fraction") is not None:  # decision C16
+        c.print(f"{100 * result['out_of_domain_fraction']:.0f} % of the labelled steps lie outside the model's "
+                "training range", markup=False)
     for s in result["skipped"]:
         c.print(f"skipped {s}")
     if report is not None:

@@ -203,6 +203,24 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
     return pred, bounds
 
 
+def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: float | None = None) -> dict | None:
+    """Decision C16: how many strides lie outside the trained model's training range (the range of each
+    classifier's own inputs); one warning line appended when the fraction reaches ``warn_at`` (opt-in).
+    ``None`` for oracle labels; for a model saved before C16 a note (no check)."""
+    if model is None or isinstance(model, str | Path) or not hasattr(model, "domain_report"):
+        return None
+    from pdrlearn.classify.domain import NO_RANGES_NOTE, warning_line
+
+    if not model.has_domain:
+        log.info(NO_RANGES_NOTE)
+        return {"out_of_domain_fraction": None, "note": NO_RANGES_NOTE}
+    report = model.domain_report(classes, warn_at=warn_at)
+    line = warning_line(report, what="strides")
+    if line:
+        warnings.append(line)
+    return report
+
+
 def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
     """Waist streams moved onto the foot clock with the steps detected by both units (thesis ch.7.2.2:
     the gyroscope-detected steps align the units); the session unchanged when that fails."""
@@ -310,7 +328,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                  bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
                  min_confidence: float | None = None, align: bool = False, rules: str | None = None,
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
-                 calibration: bool = True, gap_yaw: bool | None = None, **opts) -> TrackResult:
+                 calibration: bool = True, gap_yaw: bool | None = None, warn_out_of_domain: float | None = None,
+                 **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -350,7 +369,13 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     calibration : M3 with a trained model: use the model's distance calibration (L26): its gain (unless
         ``distance_gain`` is given) and, for the bayes rules, its measured stride-length sd in place of the
         3 % default. False: neither
+    warn_out_of_domain : M3 with a trained model: warn (one line) when at least this fraction of the strides
+        lie outside the model's training range (decision C16; None = no warning, the default). The
+        fraction is always in ``info["out_of_domain"]``
     """
+    from pdrlearn.classify.domain import check_warn_at
+
+    check_warn_at(warn_out_of_domain)
     method = str(method).upper()
     no_classes = False
     if method == "AUTO":  # decision L36: M3 with a model; without one the M3 engine, its class rules off
@@ -370,6 +395,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                               heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
                               bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
                               calibration=calibration, rules=rules, min_confidence=min_confidence,
+                              warn_out_of_domain=warn_out_of_domain,
                               **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}))
         if no_classes:
             res.info["method"] = "M3 engine, no classes"
@@ -426,7 +452,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     classes = pd.DataFrame(index=range(len(strides)), columns=["terrain", "direction", "length_class"],
                            dtype=object)
     classes["confidence"] = strides.get("confidence", pd.Series(1.0, index=strides.index)).to_numpy()
-    model_bounds, windows = None, None
+    model_bounds, windows, domain = None, None, None
     has_waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
     work, alignment = session, None
     if align and cfg["rules"] and has_waist:
@@ -443,6 +469,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         # decision L38: a model classifies each stride on the window the streaming path (and its training) cuts
         windows = None if is_oracle else classification_windows(work, strides)
         classes, model_bounds = classes_and_bounds(model, work, strides if windows is None else windows)
+        domain = domain_check(model, classes, warnings, warn_out_of_domain)
         if not (isinstance(model, str) and model == "oracle"):
             for task, rule in (("terrain", "filter and altitude"), ("direction", "sign"), ("length", "length")):
                 col = _TASK_COLUMNS[task]
@@ -509,7 +536,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         table[c] = classes[c].to_numpy() if c in classes else None
     table["confidence"] = classes["confidence"].to_numpy(float) if "confidence" in classes else 1.0
     for c in classes.columns:
-        if c.startswith("p_"):
+        if c.startswith("p_") or (c.startswith("ood_") and not c.startswith("ood_feature_")):
             table[c] = classes[c].to_numpy(float)
     if windows is not None:  # decision L38: the windows the classes come from
         table["window_start_s"], table["window_end_s"] = (windows[c].to_numpy(float) for c in ("start_s", "end_s"))
@@ -534,6 +561,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                               {"segmenter": int(windows.attrs.get("segmenter_windows", 0)),
                                "own": len(windows) - int(windows.attrs.get("segmenter_windows", 0))}),
             "unit_alignment": alignment,
+            "out_of_domain": domain,  # decision C16: strides outside the model's training range
             "length_bounds_m": step_rules.effective_bounds() if clamp else None,
             "rules": rules if cfg["rules"] else None,
             "min_confidence": gate if cfg["rules"] else None,
@@ -564,7 +592,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     heading: str = "auto", initial_heading: float = 0.0, bounds=None, bounds_scale: float = 2.0,
                     down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca",
                     distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = True,
-                    rules: str | None = None, min_confidence: float | None = None) -> TrackResult:
+                    rules: str | None = None, min_confidence: float | None = None,
+                    warn_out_of_domain: float | None = None) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -609,7 +638,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(NO_WAIST_HEADING)
     classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
-    model_bounds = None
+    model_bounds, domain = None, None
     if method == "M3":
         if model is None:
             raise ModelError("M3 needs the step classes: pass a trained model directory or 'oracle'")
@@ -618,6 +647,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
 
             model = load_model(model)
         classes, model_bounds = classes_and_bounds(model, session, table)
+        domain = domain_check(model, classes, warnings, warn_out_of_domain)  # decision C16
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
                                                   session.streams["fAccelerometer"].rate_hz, warnings, calibration)
     # decision L40: streamed, the thesis rule on every class stays the default (bayes with the 0.95 gate on
@@ -662,7 +692,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table["heading_rad"] = wrap_angle(head)
     table["dz_m"] = dz
     for c in classes.columns:
-        table[c] = classes[c].to_numpy()
+        if not c.startswith("ood_feature_"):
+            table[c] = classes[c].to_numpy()
     table["unit"] = "foot"
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
                          "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2]})
@@ -677,6 +708,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             "rules": rules if method == "M3" else None, "min_confidence": gate if method == "M3" else None,
             "stride_sigma_rel": sigma_rel if method == "M3" and rules == "bayes" else None,
             "distance_gain": gain, "distance_gain_source": gain_source, "stride_sd_calibrated": stride_sd,
+            "out_of_domain": domain,  # decision C16
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.name, w)
