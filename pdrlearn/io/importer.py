@@ -53,9 +53,9 @@ _TIME_NAMES = ("timestamp", "time", "t", "ts", "timems", "times", "seconds", "se
 UNITS: dict[str, dict[str, float]] = {
     "acc": {"m/s2": 1.0, "g": STANDARD_GRAVITY},  # STANDARD_GRAVITY: thesis ch.4.2.1.1
     "gyro": {"rad/s": 1.0, "deg/s": math.pi / 180.0},
-    "mag": {"ut": 1.0, "nt": 1e-3, "gauss": 100.0, "mt": 1e3},
-    "baro": {"hpa": 1.0, "pa": 0.01, "kpa": 10.0, "mbar": 1.0},
-    "heel": {"n": 1.0}, "toe": {"n": 1.0},
+    "mag": {"uT": 1.0, "nT": 1e-3, "gauss": 100.0, "mT": 1e3},
+    "baro": {"hPa": 1.0, "Pa": 0.01, "kPa": 10.0, "mbar": 1.0},
+    "heel": {"N": 1.0}, "toe": {"N": 1.0},
 }
 _UNIT_ALIASES = {
     "m/s^2": "m/s2", "m/s²": "m/s2", "ms2": "m/s2", "ms^2": "m/s2", "m/s/s": "m/s2", "mps2": "m/s2",
@@ -84,7 +84,7 @@ def _axis_of(stem: str, kind: str) -> str | None:
     """``x``/``y``/``z`` when ``stem`` is one of the kind's stems followed (or preceded) by the axis."""
     for s in _STEMS[kind]:
         for axis in "xyz":
-            if stem in (s + axis, axis + s) or (len(s) > 2 and stem in (s + "_" + axis, s + axis + "axis")):
+            if stem in (s + axis, axis + s, s + axis + "axis"):
                 return axis
     return None
 
@@ -113,21 +113,28 @@ def guess_columns(columns: list[str]) -> dict[str, list[str]]:
 
 
 def guess_time_column(columns: list[str]) -> str | None:
-    hits = [c for c in columns if _stem(c) in _TIME_NAMES]
-    return hits[0] if len(hits) == 1 else None
+    """The one column named like a time (``timestamp``, ``Time (ms)``, ``t``), else the one whose name starts
+    with ``time`` (``timestamp_ms``, ``time_since_start``); None when there is none or several."""
+    for hits in ([c for c in columns if _stem(c) in _TIME_NAMES],
+                 [c for c in columns if _stem(c).startswith("time")]):
+        if len(hits) == 1:
+            return hits[0]
+        if hits:
+            return None
+    return None
 
 
 def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str) -> tuple[str, float, str]:
     """(unit, factor, source) of a kind's values: the given unit, else the header's hint, else SI."""
     table = UNITS[kind]
+    by_word = {k.lower(): k for k in table}  # unit words are matched case-insensitively
     si = next(iter(table))
     if given is not None:
-        u = _unit_word(given)
-        if u not in table:
+        u = by_word.get(_unit_word(given))
+        if u is None:
             raise DataError(f"{where}: {kind} unit {given!r} is not one of {', '.join(table)}")
         return u, table[u], "given"
-    hints = {_header_unit(c) for c in columns} - {None}
-    hints = {h for h in hints if h in table}
+    hints = {by_word.get(_header_unit(c) or "") for c in columns} - {None}
     if len(hints) == 1:
         u = hints.pop()
         return u, table[u], "header"
