@@ -28,7 +28,7 @@ def sim():
 def _foot_export(s, path: Path) -> Path:
     """The foot unit as a lab's semicolon/decimal-comma export: seconds, g, deg/s, its own column names."""
     a, w = s.streams["fAccelerometer"], s.streams["fGyroscope"]
-    df = pd.DataFrame({"Time (s)": a.t, **{f"AccX AccY AccZ".split()[i] + " (g)": a.values[:, i] / G for i in range(3)},
+    df = pd.DataFrame({"Time (s)": a.t, **{"AccX AccY AccZ".split()[i] + " (g)": a.values[:, i] / G for i in range(3)},
                        **{f"Gyro{c} (deg/s)": np.degrees(w.values[:, i]) for i, c in enumerate("XYZ")},
                        "Heel": s.streams["fForceA"].values[:, 0], "Toe": s.streams["fForceB"].values[:, 0],
                        "Battery": 3.7})
@@ -81,17 +81,25 @@ def test_real_session_round_trip_tab_separated_with_options(tmp_path, capsys):
     s = read_session(src)
     a, w = s.streams["fAccelerometer"], s.streams["fGyroscope"]
     assert np.array_equal(a.t, w.t)
-    df = pd.DataFrame({"t_us": np.round(a.t * 1e6), "A1": a.values[:, 0], "A2": a.values[:, 1],
+    clock_us = 1.7e15  # the lab's clock: epoch microseconds
+    df = pd.DataFrame({"t_us": np.round(a.t * 1e6) + clock_us, "A1": a.values[:, 0], "A2": a.values[:, 1],
                        "A3": a.values[:, 2], "W1": w.values[:, 0], "W2": w.values[:, 1], "W3": w.values[:, 2]})
     csv = tmp_path / "export.tsv"
     df.to_csv(csv, sep="\t", index=False)
     frame = s.frames["foot"].to_dict()
+    labels = pd.read_csv(src / "steps.csv")  # the labels on the lab's clock, in ms
+    for c in [c for c in labels.columns if c.endswith("_ms")]:
+        labels[c] = labels[c] + clock_us * 1e-3 - 1e-3 * np.round(a.t[0] * 1e6)
+    labels.to_csv(tmp_path / "labels.csv", index=False)
     out = tmp_path / "imported"
     assert main(["import", str(csv), "--out", str(out), "--time", "t_us", "--acc", "A1,A2,A3", "--gyro", "W1,W2,W3",
-                 "--frames", json.dumps(frame)]) == 0
+                 "--frames", json.dumps(frame), "--steps", str(tmp_path / "labels.csv")]) == 0
     err = capsys.readouterr().err
     assert "time: column 't_us' in us (given column, unit inferred (B22))" in err
+    assert f"steps: {len(labels)} labelled steps from labels.csv" in err
     got = read_session(out)
+    np.testing.assert_allclose(got.steps["start_s"], s.steps["start_s"] - s.t_start, atol=1e-6)
+    assert list(got.steps["terrain"]) == list(s.steps["terrain"])
     np.testing.assert_allclose(got.streams["fAccelerometer"].values, a.values, rtol=0, atol=0)
     np.testing.assert_allclose(got.streams["fGyroscope"].t, np.round(a.t * 1e6) * 1e-6 - np.round(a.t[0] * 1e6) * 1e-6,
                                atol=1e-9)

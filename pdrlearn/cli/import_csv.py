@@ -58,6 +58,8 @@ def import_command(
     frames: str = typer.Option(None, "--frames", help="The unit's axes, e.g. x=forward,y=up,z=right (default: "
                                "none; commands infer it from the data, decision D8)."),
     sensor_height: float = typer.Option(None, "--sensor-height", help="The unit's height above the ground (m)."),
+    steps: Path = typer.Option(None, "--steps", help="Labelled steps (start_ms,end_ms,terrain,... as steps.csv) in "
+                               "ms on the export's clock; written as the session's steps.csv."),
     name: str = typer.Option(None, "--name", help="Session name (default: the CSV's name)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
                                "unit's files, labels and meta.json are kept)."),
@@ -82,7 +84,7 @@ def import_command(
     """
     from pdrlearn.atomic import expect_unchanged
     from pdrlearn.io import read_session, write_session
-    from pdrlearn.io.importer import KINDS, import_csv, merge_sessions
+    from pdrlearn.io.importer import KINDS, import_csv, import_steps, merge_sessions
 
     m = _mapping_file(mapping)
     unit = unit or m.get("unit") or "foot"
@@ -143,6 +145,11 @@ def import_command(
                                  frame=frames if frames is not None else m.get("frames"),
                                  sensor_height_m=sensor_height if sensor_height is not None
                                  else m.get("sensor_height_m"), name=name or (None if merge else out.name))
+    if steps is not None:
+        if base is not None and base.steps is not None:
+            raise DataError(f"{out}: already has steps.csv; --steps with --merge would replace it -- leave --steps out")
+        session = import_steps(steps, session, record["time"]["origin_s"])
+        record["steps"] = {"file": Path(steps).name, "rows": len(session.steps)}
     if base is not None:
         session = merge_sessions(base, session)
     existed = out.is_dir() and any(out.iterdir())
@@ -170,6 +177,8 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         dropped = record["dropped_rows"].get(sensor)
         err(f"{sensor}: {','.join(r['columns'])} ({r['columns_source']}) in {r['unit']} ({r['unit_source']}{conv}), "
             f"{r['samples']} samples at {r['rate_hz']:g} Hz" + (f", {dropped} empty rows skipped" if dropped else ""))
+    if record.get("steps"):
+        err(f"steps: {record['steps']['rows']} labelled steps from {record['steps']['file']} (shifted to the session's clock)")
     if record["unused_columns"]:
         err(f"unused columns: {', '.join(record['unused_columns'])}")
     unit = record["unit"]

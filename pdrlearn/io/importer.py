@@ -366,6 +366,30 @@ def merge_sessions(base: Session, add: Session) -> Session:
         meta["placement"] = "foot+waist"
     if "sensor_height_m" in add.meta:
         meta["sensor_height_m"] = add.meta["sensor_height_m"]
-    return Session(name=base.name, streams={**base.streams, **add.streams}, steps=base.steps,
+    return Session(name=base.name, streams={**base.streams, **add.streams},
+                   steps=base.steps if base.steps is not None else add.steps,
                    trajectory=base.trajectory, extras=dict(base.extras), meta=meta,
                    frames={**base.frames, **add.frames})
+
+
+def import_steps(path: str | os.PathLike, session: Session, origin_s: float) -> Session:
+    """``session`` with the labelled steps of ``path`` (``start_ms,end_ms`` and ``terrain`` ... as the
+    session's ``steps.csv``, times in ms on the export's clock), moved onto the session's clock (``origin_s``
+    taken off) and checked as ``read_session`` checks them (decision D12)."""
+    from pdrlearn.io.plasys import _ms_to_s
+    from pdrlearn.io.session import STEP_COLUMNS
+    from pdrlearn.io.validate import check_columns, check_label_times, check_numeric
+
+    path = Path(path)
+    df = read_table(path)
+    for c in df.columns:
+        if c.endswith("_ms"):
+            v = pd.to_numeric(df[c], errors="coerce")
+            df[c] = np.where(v.notna(), v - origin_s * 1e3, v) if v.notna().any() else df[c]
+    steps = _ms_to_s(df, str(path))
+    check_columns(steps, STEP_COLUMNS, f"{path} (times in ms on the export's clock: start_ms,end_ms)")
+    check_numeric(steps, STEP_COLUMNS, str(path))
+    check_label_times(steps, session.t_start, session.t_end, str(path))
+    return Session(name=session.name, streams=session.streams, steps=steps, trajectory=session.trajectory,
+                   extras=session.extras, meta=session.meta, frames=session.frames)
+
