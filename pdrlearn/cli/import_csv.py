@@ -178,7 +178,8 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         err(f"{sensor}: {','.join(r['columns'])} ({r['columns_source']}) in {r['unit']} ({r['unit_source']}{conv}), "
             f"{r['samples']} samples at {r['rate_hz']:g} Hz" + (f", {dropped} empty rows skipped" if dropped else ""))
     if record.get("steps"):
-        err(f"steps: {record['steps']['rows']} labelled steps from {record['steps']['file']} (shifted to the session's clock)")
+        st = record["steps"]
+        err(f"steps: {st['rows']} labelled steps from {st['file']} (shifted to the session's clock)")
     if record["unused_columns"]:
         err(f"unused columns: {', '.join(record['unused_columns'])}")
     unit = record["unit"]
