@@ -205,3 +205,23 @@ def test_column_guesses():
     assert guess_columns(["AccX", "AccY"]) == {}  # an incomplete set is not guessed
     assert math.isclose(__import__("pdrlearn.io.importer", fromlist=["UNITS"]).UNITS["gyro"]["deg/s"],
                         math.pi / 180)
+
+
+def test_date_time_texts_and_waist_units(tmp_path, capsys):
+    """ISO date-time texts in the time column; a waist phone export in g and deg/s given by option."""
+    t = pd.date_range("2026-12-02T10:00:00", periods=600, freq="20ms", tz="UTC")
+    rng = np.random.default_rng(1)
+    df = pd.DataFrame({"datetime": t.strftime("%Y-%m-%dT%H:%M:%S.%fZ"), "AccelX": rng.normal(0, .1, 600),
+                       "AccelY": rng.normal(-1, .1, 600), "AccelZ": rng.normal(0, .1, 600),
+                       "GyrX": rng.normal(0, 20, 600), "GyrY": rng.normal(0, 20, 600), "GyrZ": rng.normal(0, 20, 600)})
+    csv = tmp_path / "phone.csv"
+    df.to_csv(csv, index=False)
+    out = tmp_path / "w"
+    assert main(["import", str(csv), "--out", str(out), "--unit", "waist", "--time", "datetime", "--acc-unit", "g",
+                 "--gyro-unit", "deg/s"]) == 0
+    err = capsys.readouterr().err
+    assert "in s (given column, unit date-time text)" in err and "in g (given, x 9.80665" in err
+    s = read_session(out)
+    assert s.streams["wAccelerometer"].rate_hz == pytest.approx(50.0)
+    np.testing.assert_allclose(s.streams["wGyroscope"].values, np.radians(df[["GyrX", "GyrY", "GyrZ"]].to_numpy()),
+                               rtol=1e-12)

@@ -91,3 +91,5 @@ def test_nothing_to_train_without_stride_lengths_either(tmp_path, capsys):
     assert err.startswith("error: train: nothing to train; task terrain") and err.count("\n") == 0
     assert "no distance calibration either: 0 usable strides" in err
     assert not (tmp_path / "m").exists()
+    assert main(["train", str(TRAIN), "--out", str(tmp_path / "m"), "--no-distance-calibration"]) != 0
+    assert capsys.readouterr().err.strip().endswith("| distance calibration off")
