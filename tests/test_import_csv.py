@@ -225,3 +225,17 @@ def test_date_time_texts_and_waist_units(tmp_path, capsys):
     assert s.streams["wAccelerometer"].rate_hz == pytest.approx(50.0)
     np.testing.assert_allclose(s.streams["wGyroscope"].values, np.radians(df[["GyrX", "GyrY", "GyrZ"]].to_numpy()),
                                rtol=1e-12)
+
+
+def test_a_folder_with_an_export_says_to_import_it(sim, tmp_path, capsys):
+    """New-user trial 14: `info raw/` said only "no sensor files found"."""
+    raw = tmp_path / "raw"
+    raw.mkdir()
+    _foot_export(sim, raw / "labx_export.csv")
+    pd.DataFrame({"start_ms": [0, 1000], "end_ms": [1000, 2000]}).to_csv(raw / "labels_steps.csv", index=False)
+    assert main(["info", str(raw)]) != 0
+    err = _err(capsys)
+    assert "no sensor files found" in err and f"`pdrlearn import {raw / 'labx_export.csv'} --out SESSION`" in err
+    (raw / "labx_export.csv").unlink()
+    assert main(["info", str(raw)]) != 0
+    assert "pdrlearn import" not in _err(capsys)  # a label table is no export

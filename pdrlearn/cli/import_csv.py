@@ -71,7 +71,8 @@ def import_command(
     Columns are guessed from common names (acc_x, ax, AccX, accelerometer_x, gyr_x, gx, GyroX ...; units
     from hints such as 'AccX (g)' or 'Time (ms)') unless given; every guess is printed on stderr and kept in
     meta.json ("imported"). Comma, semicolon and tab separated files with decimal commas are read (B24).
-    Timestamps are kept on the export's clock, written in ms. Check the result with 'pdrlearn info'.
+    Timestamps are written in ms since the export's first one (its value is kept in meta.json; --steps
+    labels on the export's clock are shifted alike). Check the result with 'pdrlearn info'.
 
     Examples:
 
