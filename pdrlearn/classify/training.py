@@ -774,7 +774,7 @@ def train_user(
 
         calibration = calibrate_distance(sessions)
     if not out and (calibration is None or calibration.get("reason")):
-        # decision C16: a model without classifiers is worth writing only for its distance calibration
+        # decision C17: a model without classifiers is worth writing only for its distance calibration
         why = ("distance calibration off" if calibration is None
                else f"no distance calibration either: {calibration['reason']}")
         raise DataError("train: nothing to train; " + " | ".join(skipped) + f" | {why}")
