@@ -61,6 +61,7 @@ def test_level_only_model_tracks_a_held_out_walk(level_model, tmp_path, capsys):
     # the gain lengthens the level strides only
     assert 1.0 < res["distance_m"] / plain["distance_m"] <= gain + 1e-9
     assert res["n_steps"] == plain["n_steps"]
+    assert info["out_of_domain"] is None  # no classifier, nothing out of its domain (no "retrain" note)
 
 
 def test_level_only_model_evaluate_and_export_say_what_it_is(level_model, tmp_path, capsys):

@@ -207,8 +207,8 @@ def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: flo
     """Decision C16: how many strides lie outside the trained model's training range (the range of each
     classifier's own inputs); one warning line appended when the fraction reaches ``warn_at`` (opt-in).
     ``None`` for oracle labels; for a model saved before C16 a note (no check)."""
-    if model is None or isinstance(model, str | Path) or not hasattr(model, "domain_report"):
-        return None
+    if model is None or isinstance(model, str | Path) or not hasattr(model, "domain_report") or not model.tasks:
+        return None  # C17: a model without a classifier (level walks only) classifies nothing to check
     from pdrlearn.classify.domain import NO_RANGES_NOTE, warning_line
 
     if not model.has_domain:
