@@ -221,6 +221,11 @@ def test_date_time_texts_and_waist_units(tmp_path, capsys):
                  "--gyro-unit", "deg/s"]) == 0
     err = capsys.readouterr().err
     assert "in s (given column, unit date-time text)" in err and "in g (given, x 9.80665" in err
+    assert "note: no" not in err
+    df.drop(columns=["GyrX", "GyrY", "GyrZ"]).to_csv(csv, index=False)
+    assert main(["import", str(csv), "--out", str(tmp_path / "w2"), "--unit", "waist", "--acc-unit", "g"]) == 0
+    assert "note: no gyroscope columns recognised; the pipelines need one: map them with --gyro X,Y,Z" in \
+        capsys.readouterr().err
     s = read_session(out)
     assert s.streams["wAccelerometer"].rate_hz == pytest.approx(50.0)
     np.testing.assert_allclose(s.streams["wGyroscope"].values, np.radians(df[["GyrX", "GyrY", "GyrZ"]].to_numpy()),

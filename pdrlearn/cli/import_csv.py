@@ -183,6 +183,10 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         err(f"steps: {st['rows']} labelled steps from {st['file']} (shifted to the session's clock)")
     if record["unused_columns"]:
         err(f"unused columns: {', '.join(record['unused_columns'])}")
+    prefix = "f" if record["unit"] == "foot" else "w"
+    for kind, sensor, opt in (("accelerometer", "Accelerometer", "--acc"), ("gyroscope", "Gyroscope", "--gyro")):
+        if prefix + sensor not in record["streams"]:  # every pipeline needs both (README "Session folders")
+            err(f"note: no {kind} columns recognised; the pipelines need one: map them with {opt} X,Y,Z")
     unit = record["unit"]
     if unit in session.frames:
         err(f"{unit} frame: {json.dumps(session.frames[unit].to_dict())}")

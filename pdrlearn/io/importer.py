@@ -47,7 +47,8 @@ _SINGLE: dict[str, tuple[str, ...]] = {
     "toe": ("forcetoe", "toeforce", "toe", "forceb", "fsrtoe", "forefoot", "forceforefoot"),
 }
 _TIME_NAMES = ("timestamp", "time", "t", "ts", "timems", "times", "seconds", "sec", "ms", "millis",
-               "milliseconds", "elapsedtime", "sampletime", "epoch", "unixtime", "timeus", "timens")
+               "milliseconds", "elapsedtime", "sampletime", "epoch", "unixtime", "timeus", "timens",
+               "datetime", "date", "utc", "timestamputc")
 
 #: accepted unit words per kind -> factor to the project's unit (time: seconds per unit)
 UNITS: dict[str, dict[str, float]] = {
