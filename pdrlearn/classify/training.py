@@ -768,8 +768,16 @@ def train_user(
             log.info("skipped %s", exc)
             continue
         out[task] = train_task(data, methods=methods, units=units, cv=cv, seed=seed, advance=advance)
-    if not out:
-        raise DataError("train: nothing to train; " + " | ".join(skipped))
+    calibration = None
+    if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
+        from pdrlearn.displace.calibration import calibrate_distance
+
+        calibration = calibrate_distance(sessions)
+    if not out and (calibration is None or calibration.get("reason")):
+        # decision C17: a model without classifiers is worth writing only for its distance calibration
+        why = ("distance calibration off" if calibration is None
+               else f"no distance calibration either: {calibration['reason']}")
+        raise DataError("train: nothing to train; " + " | ".join(skipped) + f" | {why}")
     rates: dict[str, float] = {}
     for s in sessions:
         for name, st in s.streams.items():
@@ -778,10 +786,8 @@ def train_user(
     bounds = length_class_bounds(sessions)
     if bounds is not None:
         summary["length_bounds_m"] = bounds
-    if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
-        from pdrlearn.displace.calibration import calibrate_distance
-
-        summary["distance_calibration"] = calibrate_distance(sessions)
+    if calibration is not None:
+        summary["distance_calibration"] = calibration
     for t, m in out.items():
         data = datas[t]
         summary["steps"][t] = {

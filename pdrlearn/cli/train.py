@@ -162,7 +162,10 @@ def train(
         if tm.n_skipped_labels:
             c.print(f"  ignored {tm.n_skipped_labels} step label(s) that are not {t} classes")
     for s in model.skipped:
-        c.print(f"skipped {s}")
+        c.print(f"skipped {s}", markup=False)
+    if not model.tasks:  # decision C17
+        c.print("no classifier trained (the labels allow none); the model holds the distance calibration: "
+                "`pdrlearn track SESSION --model DIR` applies it, the class rules as without a model", markup=False)
     cal = summary["distance_calibration"]
     if cal is None:
         c.print("distance calibration: off (--no-distance-calibration)")
@@ -218,6 +221,10 @@ def evaluate(
             advance(1)
         result = evaluate_model(model, sessions, report_dir=report, advance=advance,
                                 warn_out_of_domain=warn_out_of_domain)
+    if not model.tasks:  # decision C17: a model trained on level walks only holds a distance calibration
+        raise DataError(f"evaluate: {model_dir} has no trained classifier to evaluate (training skipped every "
+                        "task), only a distance calibration; evaluate its tracking with `pdrlearn track SESSION "
+                        f"--model {model_dir}`")
     if not result["tasks"]:
         raise DataError(
             f"evaluate: the sessions have no labels for the model's tasks ({', '.join(model.tasks)}); "

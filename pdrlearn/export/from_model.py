@@ -207,6 +207,10 @@ def export_model(
         src_manifest = read_manifest(model_dir)
     else:
         src_manifest = {}
+    if not model.tasks:  # decision C17: trained on level walks only, the model holds a distance calibration
+        raise ModelError(f"{model_dir}: the model has no trained classifier (training skipped every task), only "
+                         "its distance calibration, which `pdrlearn track --model` applies; a runtime bundle needs "
+                         "a classifier: retrain with terrain, direction or length labels")
     col = _Collector()
     tasks: dict = {}
     used_units: set[str] = set()

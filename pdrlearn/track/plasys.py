@@ -207,8 +207,8 @@ def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: flo
     """Decision C16: how many strides lie outside the trained model's training range (the range of each
     classifier's own inputs); one warning line appended when the fraction reaches ``warn_at`` (opt-in).
     ``None`` for oracle labels; for a model saved before C16 a note (no check)."""
-    if model is None or isinstance(model, str | Path) or not hasattr(model, "domain_report"):
-        return None
+    if model is None or isinstance(model, str | Path) or not hasattr(model, "domain_report") or not model.tasks:
+        return None  # C17: a model without a classifier (level walks only) classifies nothing to check
     from pdrlearn.classify.domain import NO_RANGES_NOTE, warning_line
 
     if not model.has_domain:
@@ -255,6 +255,24 @@ def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, t
 _TASK_COLUMNS = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
 # decision L18: DEFAULT_MODEL_RULES ("bayes") and DEFAULT_MIN_CONFIDENCE (0.95), the default rule with a model's
 # classes and its confidence gate, live in pdrlearn.kernels.bayes since L40 (the streaming runtime applies them)
+
+
+#: what M3 does for each task a model does not classify: the no-model behaviour of that rule (decision C17)
+_UNTRAINED_FALLBACK = {"terrain": "horizontal distance, a stride under 0.10 m of height change is level (L39)",
+                       "direction": "the estimate's own sign", "length": "no length clamp"}
+
+
+def untrained_tasks(classes: pd.DataFrame) -> list[str]:
+    """The tasks whose classes a model gave to no stride: not trained (e.g. a model trained on level walks
+    only), or not runnable on the session's sensors (decision C17)."""
+    return [t for t, col in _TASK_COLUMNS.items() if col not in classes or classes[col].isna().all()]
+
+
+def untrained_warning(tasks: list[str]) -> str:
+    """One line: which classes the model does not give and what M3 does instead (decision C17)."""
+    return (f"the model classifies no {', '.join(tasks)} (not trained, or not on this session's sensors); as "
+            "without a model: " + "; ".join(f"{t}: {_UNTRAINED_FALLBACK[t]}" for t in tasks)
+            + f" (decision C17; train with {', '.join(tasks)} labels for those rules)")
 
 
 def _confident(classes: pd.DataFrame, min_confidence: float) -> pd.DataFrame:
@@ -453,6 +471,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                            dtype=object)
     classes["confidence"] = strides.get("confidence", pd.Series(1.0, index=strides.index)).to_numpy()
     model_bounds, windows, domain = None, None, None
+    untrained: list[str] = []  # decision C17: the tasks a model does not classify fall back to the no-model rules
     has_waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
     work, alignment = session, None
     if align and cfg["rules"] and has_waist:
@@ -470,19 +489,17 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         windows = None if is_oracle else classification_windows(work, strides)
         classes, model_bounds = classes_and_bounds(model, work, strides if windows is None else windows)
         domain = domain_check(model, classes, warnings, warn_out_of_domain)
-        if not (isinstance(model, str) and model == "oracle"):
-            for task, rule in (("terrain", "filter and altitude"), ("direction", "sign"), ("length", "length")):
-                col = _TASK_COLUMNS[task]
-                if col not in classes or classes[col].isna().all():
-                    warnings.append(f"the model classifies no {task}: the {rule} rule is off for every step "
-                                    f"(train with {task} labels for M3)")
+        if not is_oracle:
+            untrained = untrained_tasks(classes)
+            if untrained:
+                warnings.append(untrained_warning(untrained))
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if cfg["rules"] else None, foot.fs,
                                                   warnings, calibration)
     # decision L26: the user's calibration on the level strides' horizontal displacement
     disp = apply_level_gain(disp, gain)
     use_bounds = bounds if bounds is not None else model_bounds
     clamp = cfg["rules"]
-    if clamp and use_bounds is None:
+    if clamp and use_bounds is None and "length" not in untrained:  # C17: no length class, nothing to clamp
         if isinstance(model, str) and model == "oracle":
             warnings.append("no length-class bounds in the session: thesis step bounds x "
                             f"{bounds_scale:g} used")
@@ -504,7 +521,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     applied = step_rules.apply(disp, rule_classes)
     length = applied["length_m"].to_numpy()
     dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
-    if no_classes:  # decision L39: no terrain class, the stride's own height change says level
+    if no_classes or "terrain" in untrained:  # decision L39 (C17: also a model without terrain classes)
         dz = level_dz(dz)
     length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
 
