@@ -118,9 +118,12 @@ def test_runtime_and_streaming_track_apply_the_offline_rule_on_request(calibrate
     assert (default.info["rules"], default.info["min_confidence"]) == ("thesis", 0.0)
     res = fn(s, method="M3", model=str(root / "model"), streaming=True, heading="foot", rules="bayes")
     offline = fn(s, method="M3", model=str(root / "model"))
-    for k in ("rules", "min_confidence", "stride_sigma_rel"):
+    for k in ("rules", "min_confidence"):
         assert res.info[k] == offline.info[k]
-    assert res.info["stride_sigma_rel"] == pytest.approx(model.data_summary["distance_calibration"]["stride_sd"])
+    rec = model.data_summary["distance_calibration"]
+    assert offline.info["stride_sigma_rel"] == pytest.approx(rec["stride_sd"])
+    # decision L41: streamed, the stride kernel's own calibrated sd
+    assert res.info["stride_sigma_rel"] == pytest.approx(rec["streaming"]["stride_sd"])
     assert (Tracker(root / "bundle").rules, Tracker(root / "bundle").min_confidence) == ("thesis", 0.0)
     tr = Tracker(root / "bundle", heading_source="foot", rules="bayes", min_confidence=0.95)
     steps = replay(tr, s, 0.5)
@@ -153,9 +156,9 @@ def test_streamed_strides_of_a_doubtful_class_keep_their_measured_length(calibra
     its (gained) measured length in both; a confident one is weighed against its class."""
     root, model, s = calibrated_length
     fn = get_pipeline("plasys")
-    gain = model.data_summary["distance_calibration"]["gain"]
     for res in (fn(s, method="M3", model=model, streaming=True, heading="foot", rules="bayes"),
                 fn(s, method="M3", model=model)):
+        gain = res.info["distance_gain"]  # each engine's own (decision L41)
         st = res.steps
         pmax = st[[f"p_length_{c}" for c in NAMES if f"p_length_{c}" in st]].max(axis=1).to_numpy()
         doubtful = pmax < 0.95

@@ -140,7 +140,13 @@ class Step:
 
 def calibration_record(displacement: dict) -> dict | None:
     """The distance-calibration record (``gain``, ``rate_hz``, ``stride_sd``) of a bundle's ``displacement``
-    parameters (decision E14), or None when the bundle carries none (uncalibrated model, older bundle)."""
+    parameters (decision E14), or None when the bundle carries none (uncalibrated model, older bundle).
+    Decision L41: the streamed stride kernel's own gain and sd when the bundle has them, else (bundles
+    exported before L41) the offline engine's, as before."""
+    if displacement.get("streaming_distance_gain") is not None:
+        return {"gain": float(displacement["streaming_distance_gain"]),
+                "rate_hz": displacement.get("distance_gain_rate_hz"),
+                "stride_sd": displacement.get("streaming_stride_sigma_rel"), "reason": None}
     if displacement.get("distance_gain") is None:
         return None
     return {"gain": float(displacement["distance_gain"]), "rate_hz": displacement.get("distance_gain_rate_hz"),

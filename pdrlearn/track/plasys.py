@@ -34,6 +34,7 @@ from pdrlearn.displace import (
     model_distance_calibration,
     parse_bounds,
     stance_runs,
+    streaming_calibration,
 )
 from pdrlearn.errors import DataError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
@@ -282,11 +283,14 @@ def _length_proba(classes: pd.DataFrame) -> list[dict[str, float] | None]:
 
 
 def _distance_gain(requested: float | None, model, fs: float, warnings: list[str],
-                   calibration: bool = True) -> tuple[float, str, float | None]:
+                   calibration: bool = True, streaming: bool = False) -> tuple[float, str, float | None]:
     """The distance gain to apply (decision L26), where it comes from, and the user's calibrated relative
-    sd of one stride's length estimate (None: no applicable calibration)."""
+    sd of one stride's length estimate (None: no applicable calibration). ``streaming``: the record of the
+    streamed stride kernel when the model has one (decision L41), else the offline engine's."""
     rec = model_distance_calibration(model) if calibration and not (model is None or isinstance(model, str)) \
         else None
+    if streaming:
+        rec = streaming_calibration(rec)
     rec, warning = applicable_calibration(rec, fs)  # the runtime's own rate check (decision E14)
     if warning:
         warnings.append(warning)
@@ -649,7 +653,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         classes, model_bounds = classes_and_bounds(model, session, table)
         domain = domain_check(model, classes, warnings, warn_out_of_domain)  # decision C16
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
-                                                  session.streams["fAccelerometer"].rate_hz, warnings, calibration)
+                                                  session.streams["fAccelerometer"].rate_hz, warnings, calibration,
+                                                  streaming=True)  # decision L41: the stride kernel's own gain
     # decision L40: streamed, the thesis rule on every class stays the default (bayes with the 0.95 gate on
     # request: measured better altitude, worse distance on B and C); explicit rules as offline
     rules = "thesis" if rules is None else str(rules)
