@@ -354,7 +354,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     down_mode : "norm3" (thesis eq. 61) or "horizontal" for descending stairs
     rules : "thesis" (the classes prevail, ch.7.2.2) or "bayes" (class probabilities weighed against the
         estimate's uncertainty, docs/decisions/localization.md L14). Default None: "bayes" with a model's
-        classes, "thesis" with ``model="oracle"`` labels (decision L18), streaming too (L40)
+        classes, "thesis" with ``model="oracle"`` labels (decision L18), streaming too (L40, L41)
     align : M3: align the waist clock to the foot clock from the steps both units detect (off by
         default, see docs/decisions/localization.md L13)
     min_confidence : a class rule is applied only when the model's probability of the class reaches this
@@ -655,9 +655,12 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
                                                   session.streams["fAccelerometer"].rate_hz, warnings, calibration,
                                                   streaming=True)  # decision L41: the stride kernel's own gain
-    # decision L40: streamed, the thesis rule on every class stays the default (bayes with the 0.95 gate on
-    # request: measured better altitude, worse distance on B and C); explicit rules as offline
-    rules = "thesis" if rules is None else str(rules)
+    # decision L41 (L40 amended): streamed, offline's default too - bayes with the 0.95 gate with a model's
+    # classes, the thesis rule with oracle labels (with the stride kernel's own gain: better distance on A-D
+    # and altitude on D than the thesis rule, held-out users 11-20)
+    if rules is None:
+        rules = "thesis" if isinstance(model, str) and model == "oracle" else DEFAULT_MODEL_RULES
+    rules = str(rules)
     gate = (0.0 if rules == "thesis" else DEFAULT_MIN_CONFIDENCE) if min_confidence is None else float(min_confidence)
     check_rules(rules, gate, "plasys streaming")
     # decision L26: the bayes rule weighs the classes against the user's own calibrated stride accuracy
