@@ -84,7 +84,8 @@ def test_streamed_tracking_takes_the_streaming_record_and_older_records_keep_the
 
 def test_streamed_walk_is_measured_as_long_as_the_reference_with_the_streaming_gain(exercises):
     """L40's finding: with the offline gain, streamed strides came out ~0.8 % long. User 2's own scenario A
-    (same S22 unit), thesis rule, no model classes gated (gain only): the streaming gain removes the bias."""
+    (same S22 unit), every class gated out (the measured strides and the gain only): the streaming gain
+    removes the bias."""
     from pdrlearn.classify import train_user
 
     model = train_user(exercises[2::3], tasks=["length"], methods=["svm"], units=["foot"], cv=2)
@@ -95,8 +96,8 @@ def test_streamed_walk_is_measured_as_long_as_the_reference_with_the_streaming_g
     errs = {}
     for speed in ("slow", "normal", "fast"):
         s = simulate("A", user_seed=2, speed=speed)
-        new = track_plasys(s, method="M3", model=model, streaming=True, min_confidence=1.0)
-        old = track_plasys(s, method="M3", model=older, streaming=True, min_confidence=1.0)
+        new = track_plasys(s, method="M3", model=model, streaming=True, rules="bayes", min_confidence=1.0)
+        old = track_plasys(s, method="M3", model=older, streaming=True, rules="bayes", min_confidence=1.0)
         assert new.info["distance_gain"] == pytest.approx(rec["streaming"]["gain"])
         assert old.info["distance_gain"] == pytest.approx(rec["gain"])
         errs[speed] = (evaluate_track(new, s)["distance_error_pct"], evaluate_track(old, s)["distance_error_pct"])
@@ -147,3 +148,36 @@ def test_an_explicit_gain_at_export_overrides_both_gains(calibrated, tmp_path):
     tr = Tracker(tmp_path / "b", heading_source="foot")
     replay(tr, s, 0.5)
     assert tr.distance_gain == 1.02
+
+
+def test_a_model_calibrated_before_l41_streams_with_the_thesis_rule_and_says_why(calibrated, tmp_path, caplog):
+    """L41: the adopted streamed default is the pair (bayes + the streamed gain); with only the offline gain
+    (a model trained before L41) the bayes rule was measured worse than thesis on C and D, so such a model
+    keeps the thesis rule streamed (track --streaming and its export), with a warning to retrain."""
+    import logging
+
+    from pdrlearn.displace import PRE_L41_CALIBRATION
+    from pdrlearn.export.from_model import export_model
+
+    root, model, s = calibrated
+    older = copy.copy(model)
+    older.data_summary = copy.deepcopy(model.data_summary)
+    del older.data_summary["distance_calibration"]["streaming"]
+    res = track_plasys(s, method="M3", model=older, streaming=True, heading="foot")
+    assert (res.info["rules"], res.info["min_confidence"]) == ("thesis", 0.0)
+    assert PRE_L41_CALIBRATION in res.info["warnings"]
+    assert res.info["distance_gain"] == pytest.approx(model.data_summary["distance_calibration"]["gain"])
+    new = track_plasys(s, method="M3", model=model, streaming=True, heading="foot")
+    assert new.info["rules"] == "bayes" and PRE_L41_CALIBRATION not in new.info["warnings"]
+    asked = track_plasys(s, method="M3", model=older, streaming=True, heading="foot", rules="bayes")
+    assert asked.info["rules"] == "bayes"  # asked for: applied
+    with caplog.at_level(logging.WARNING):
+        export_model(None, tmp_path / "b", model=older)
+    assert any("predates decision L41" in r.getMessage() for r in caplog.records)
+    disp = json.loads((tmp_path / "b" / "manifest.json").read_text())["displacement"]
+    assert (disp["rules"], disp["min_confidence"]) == ("thesis", 0.0) and "streaming_distance_gain" not in disp
+    tr = Tracker(tmp_path / "b", heading_source="foot")
+    steps = replay(tr, s, 0.5)
+    assert (tr.rules, tr.min_confidence) == ("thesis", 0.0)
+    xyz = np.array([[st.x, st.y, st.z] for st in steps])
+    assert np.abs(xyz - res.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3

@@ -238,6 +238,19 @@ def streaming_calibration(rec: dict | None) -> dict | None:
     return {**{k: v for k, v in rec.items() if k != "streaming"}, **rec["streaming"], "rate_hz": rec.get("rate_hz")}
 
 
+#: decision L41: why a model calibrated before L41 keeps the thesis rule when streamed
+PRE_L41_CALIBRATION = ("the model's distance calibration predates decision L41 (offline engine only; the streamed "
+                       "stride kernel measures ~0.8 % longer strides): streamed with the thesis rule on every class, "
+                       "as before; retrain (pdrlearn train) for the streamed gain and offline's rule (bayes, 0.95)")
+
+
+def predates_streaming_calibration(rec: dict | None) -> bool:
+    """True for a calibration record made before decision L41 (no ``streaming`` part): streamed tracking then
+    has only the offline engine's gain, with which the bayes rule was measured worse than the thesis rule on
+    scenarios C and D (L41, users 4-10), so the streamed default stays the thesis rule for such a model."""
+    return isinstance(rec, dict) and not isinstance(rec.get("streaming"), dict)
+
+
 def model_distance_calibration(model) -> dict | None:
     """The distance-calibration record of a trained user model (``data_summary`` / manifest
     ``training_data``), or None for models trained before L26."""

@@ -304,6 +304,7 @@ def export_model(
 
 def _displacement(displacement: dict | None, length_bounds, model) -> dict:
     """Displacement parameters with the length-class bounds resolved (see :func:`export_model`)."""
+    from pdrlearn.displace.calibration import PRE_L41_CALIBRATION, predates_streaming_calibration
     from pdrlearn.displace.rules import parse_bounds
     from pdrlearn.kernels.stride import STANCE_L27_DEFAULTS
     from pdrlearn.runtime.tracker import DEFAULT_DISPLACEMENT
@@ -311,6 +312,10 @@ def _displacement(displacement: dict | None, length_bounds, model) -> dict:
     out = {**STANCE_L27_DEFAULTS, **DEFAULT_DISPLACEMENT}  # decision L27: the stance rule's settings
     out.update(_calibration_fields(model))
     explicit = dict(displacement or {})
+    rec = (getattr(model, "data_summary", None) or {}).get("distance_calibration")
+    if predates_streaming_calibration(rec) and not {"rules", "min_confidence"} & explicit.keys():
+        out.update(rules="thesis", min_confidence=0.0)  # decision L41, as pdrlearn track --streaming
+        log.warning("%s", PRE_L41_CALIBRATION)
     if {"distance_gain", "stride_sigma_rel"} & explicit.keys() and not any(k.startswith("streaming_")
                                                                           for k in explicit):
         # decision L41: an explicit calibration overrides the model's for the runtime too (which would

@@ -27,12 +27,14 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.displace import (
+    PRE_L41_CALIBRATION,
     FootDisplacement,
     StepRules,
     force_stance,
     inertial_stance,
     model_distance_calibration,
     parse_bounds,
+    predates_streaming_calibration,
     stance_runs,
     streaming_calibration,
 )
@@ -660,6 +662,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     # and altitude on D than the thesis rule, held-out users 11-20)
     if rules is None:
         rules = "thesis" if isinstance(model, str) and model == "oracle" else DEFAULT_MODEL_RULES
+        if (method == "M3" and calibration and distance_gain is None and not isinstance(model, str)
+                and predates_streaming_calibration(model_distance_calibration(model))):
+            rules = "thesis"  # L41: only the offline gain - the pair measured worse than thesis on C and D
+            warnings.append(PRE_L41_CALIBRATION)
     rules = str(rules)
     gate = (0.0 if rules == "thesis" else DEFAULT_MIN_CONFIDENCE) if min_confidence is None else float(min_confidence)
     check_rules(rules, gate, "plasys streaming")
