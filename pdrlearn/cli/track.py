@@ -27,7 +27,7 @@ def track(
                               "own step labels."),
     rules: str = typer.Option(None, "--rules", help="M3 class rules: thesis (classes prevail) or bayes "
                               "(class probabilities weighed against the estimate); default bayes with a "
-                              "model, thesis with --model oracle or --streaming (decision L40)."),
+                              "model, thesis with --model oracle, offline and --streaming (decisions L40, L41)."),
     min_confidence: float = typer.Option(None, "--min-confidence", min=0.0, max=1.0,
                                          help="M3: apply a class rule only when the model's probability of the "
                                          "class reaches this (default 0.95; 0 = always, as the thesis)."),

@@ -77,7 +77,8 @@ def train(
     distance_calibration: bool = typer.Option(
         True, "--distance-calibration/--no-distance-calibration",
         help="Estimate the user's distance gain and stride spread from the straight level strides of the "
-        "labelled sessions (decision L26; M3 and the runtime apply it). Turn off for a model pooled over "
+        "labelled sessions, once with the offline engine (decision L26; M3 applies it) and once with the "
+        "streamed stride kernel (L41; track --streaming and the runtime apply it). Turn off for a model pooled over "
         "several users or devices: a pooled gain corrects no one's sensor.",
     ),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -173,9 +174,20 @@ def train(
         c.print(f"distance calibration: gain 1 ({cal['reason']})")
     else:
         c.print(f"distance calibration: gain {cal['gain']:.4f} from {cal['n_strides']} straight level strides "
-                f"(decision L26; M3 and the runtime apply it)")
+                f"(decision L26; offline M3 applies it){_streamed_gain(cal)}")
     c.print(f"step windows: {model.boundaries} boundaries")
     c.print(f"model written to {out} ({seconds:.1f} s)")
+
+
+def _streamed_gain(cal: dict) -> str:
+    """The streamed stride kernel's gain of a calibration record (decision L41), as the end of the line."""
+    st = cal.get("streaming")
+    if not isinstance(st, dict):
+        return ""
+    if st.get("reason"):
+        return f"; streamed: gain 1 ({st['reason']})"
+    return (f"; streamed: gain {st['gain']:.4f} from {st['n_strides']} strides (L41; track --streaming and the "
+            "runtime apply it)")
 
 
 def evaluate(

@@ -27,13 +27,16 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.displace import (
+    PRE_L41_CALIBRATION,
     FootDisplacement,
     StepRules,
     force_stance,
     inertial_stance,
     model_distance_calibration,
     parse_bounds,
+    predates_streaming_calibration,
     stance_runs,
+    streaming_calibration,
 )
 from pdrlearn.errors import DataError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
@@ -300,11 +303,14 @@ def _length_proba(classes: pd.DataFrame) -> list[dict[str, float] | None]:
 
 
 def _distance_gain(requested: float | None, model, fs: float, warnings: list[str],
-                   calibration: bool = True) -> tuple[float, str, float | None]:
+                   calibration: bool = True, streaming: bool = False) -> tuple[float, str, float | None]:
     """The distance gain to apply (decision L26), where it comes from, and the user's calibrated relative
-    sd of one stride's length estimate (None: no applicable calibration)."""
+    sd of one stride's length estimate (None: no applicable calibration). ``streaming``: the record of the
+    streamed stride kernel when the model has one (decision L41), else the offline engine's."""
     rec = model_distance_calibration(model) if calibration and not (model is None or isinstance(model, str)) \
         else None
+    if streaming:
+        rec = streaming_calibration(rec)
     rec, warning = applicable_calibration(rec, fs)  # the runtime's own rate check (decision E14)
     if warning:
         warnings.append(warning)
@@ -368,7 +374,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     down_mode : "norm3" (thesis eq. 61) or "horizontal" for descending stairs
     rules : "thesis" (the classes prevail, ch.7.2.2) or "bayes" (class probabilities weighed against the
         estimate's uncertainty, docs/decisions/localization.md L14). Default None: "bayes" with a model's
-        classes, "thesis" with ``model="oracle"`` labels (decision L18), streaming too (L40)
+        classes, "thesis" with ``model="oracle"`` labels (decision L18), streaming too (L40, L41)
     align : M3: align the waist clock to the foot clock from the steps both units detect (off by
         default, see docs/decisions/localization.md L13)
     min_confidence : a class rule is applied only when the model's probability of the class reaches this
@@ -666,10 +672,18 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         classes, model_bounds = classes_and_bounds(model, session, table)
         domain = domain_check(model, classes, warnings, warn_out_of_domain)  # decision C16
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
-                                                  session.streams["fAccelerometer"].rate_hz, warnings, calibration)
-    # decision L40: streamed, the thesis rule on every class stays the default (bayes with the 0.95 gate on
-    # request: measured better altitude, worse distance on B and C); explicit rules as offline
-    rules = "thesis" if rules is None else str(rules)
+                                                  session.streams["fAccelerometer"].rate_hz, warnings, calibration,
+                                                  streaming=True)  # decision L41: the stride kernel's own gain
+    # decision L41 (L40 amended): streamed, offline's default too - bayes with the 0.95 gate with a model's
+    # classes, the thesis rule with oracle labels (with the stride kernel's own gain: better distance on A-D
+    # and altitude on D than the thesis rule, held-out users 11-20)
+    if rules is None:
+        rules = "thesis" if isinstance(model, str) and model == "oracle" else DEFAULT_MODEL_RULES
+        if (method == "M3" and calibration and distance_gain is None and not isinstance(model, str)
+                and predates_streaming_calibration(model_distance_calibration(model))):
+            rules = "thesis"  # L41: only the offline gain - the pair measured worse than thesis on C and D
+            warnings.append(PRE_L41_CALIBRATION)
+    rules = str(rules)
     gate = (0.0 if rules == "thesis" else DEFAULT_MIN_CONFIDENCE) if min_confidence is None else float(min_confidence)
     check_rules(rules, gate, "plasys streaming")
     # decision L26: the bayes rule weighs the classes against the user's own calibrated stride accuracy
