@@ -20,6 +20,8 @@ from pdrlearn.export.onnx_convert import svm_decision_to_onnx, torch_to_onnx
 from pdrlearn.export.step_graph import build_step_graph
 
 STEP_GRAPH_FILE = "models/step.onnx"
+#: the step graph of a foot-only replay of a two-unit bundle (decision E26)
+STEP_GRAPH_FOOT_FILE = "models/step_foot.onnx"
 
 log = logging.getLogger(__name__)
 
@@ -160,11 +162,25 @@ def _nn_module(clf):
 
 
 def _units_of(entry: dict, unit: str) -> set[str]:
-    """Body units (foot / waist) an entry of ``unit`` reads. Fusion members are units (foot/waist of a
-    fused model) or methods (an ``ensemble``'s nn/svm/dtw, decision C14): those read their parent's unit."""
-    if entry["type"] == "fusion":
-        return set().union(*(_units_of(e, u if u in UNIT_SENSORS else unit) for u, e in entry["members"].items()))
-    return {"foot", "waist"} if unit == "fused" else {unit}
+    """Body units (foot / waist) an entry of ``unit`` reads (:func:`pdrlearn.runtime.classify.entry_units`)."""
+    from pdrlearn.runtime.classify import entry_units
+
+    return entry_units(entry, unit)
+
+
+def foot_step_graph(tasks: dict, onnx_models: dict, features: dict):
+    """Decision E26: the step graph of a foot-only replay (each task's ``foot_only`` model) and its manifest
+    entry (with ``models``: task -> "method/unit"), or None when no chosen model reads the waist."""
+    foot_tasks = {t: {**v, "chosen": v["foot_only"]} for t, v in tasks.items() if "foot_only" in v}
+    if not foot_tasks or not any(
+            "waist" in _units_of(v["methods"][v["chosen"]["method"]][v["chosen"]["unit"]], v["chosen"]["unit"])
+            for v in tasks.values()):
+        return None
+    step = build_step_graph(foot_tasks, onnx_models, features)
+    if step is None:
+        return None
+    models = {t: f"{v['chosen']['method']}/{v['chosen']['unit']}" for t, v in foot_tasks.items()}
+    return step[0], {**step[1], "models": models}
 
 
 def export_model(
@@ -185,7 +201,9 @@ def export_model(
     model_dir : folder written by ``pdrlearn train`` (read with ``load_model``); or pass ``model``.
     out_dir : bundle folder to create (atomically).
     methods : methods to export for every task (all their units); default: each task's chosen
-        method/unit only (the smallest bundle that classifies like ``UserModel.predict_steps``).
+        method/unit only (the smallest bundle that classifies like ``UserModel.predict_steps``), and, when
+        that reads the waist, the foot model ``predict_steps`` uses on a session without the waist unit
+        (``tasks[task]["foot_only"]``, decision E26; with ``methods``: the best-ranked of those methods).
     frames : placement -> ``{"x": ..., "y": ..., "z": ...}`` axis frames of the data the bundle will
         see (default: the thesis frames).
     displacement : displacement parameters (default:
@@ -217,6 +235,13 @@ def export_model(
             wanted = [(m, u) for m in methods for u in tm.models.get(m, {})]
         else:
             wanted = [chosen] if chosen else []
+        # decision E26: the model `pdrlearn track` (UserModel.predict_steps) classifies a session without the
+        # waist unit with: the chosen one when it reads the foot only, else the best-ranked foot model (of the
+        # methods asked for, as the chosen one)
+        foot_only = next((p for p in dict.fromkeys(([chosen] if chosen else []) + tm.ranking())
+                          if p[1] == "foot" and (not methods or p[0] in methods)), None)
+        if foot_only is not None and foot_only not in wanted:
+            wanted = [*wanted, foot_only]
         entries: dict = {}
         for m, u in wanted:
             try:
@@ -241,6 +266,9 @@ def export_model(
             "classes": list(tm.classes),
             "chosen": exp_chosen,
             "methods": entries,
+            # decision E26: what a foot-only replay (`pdrlearn run --units foot`) classifies with, as track
+            **({"foot_only": {"method": foot_only[0], "unit": "foot"}}
+               if foot_only is not None and foot_only[1] in entries.get(foot_only[0], {}) else {}),
             "cv": {
                 m: {
                     u: {k: v for k, v in met.items() if k in ("accuracy", "balanced_accuracy", "per_class", "n_steps")}
@@ -265,6 +293,7 @@ def export_model(
         "signals": {k: [list(v[0]), float(v[1])] for k, v in SIGNALS.items()},
     }
     step = build_step_graph(tasks, col.onnx, features)  # one session run per step (decision E10)
+    step_foot = foot_step_graph(tasks, col.onnx, features)
     manifest = base_manifest(
         user=model.user,
         tasks=tasks,
@@ -297,6 +326,9 @@ def export_model(
     if step is not None:
         col.onnx[STEP_GRAPH_FILE] = step[0]
         manifest["step_graph"] = {"file": STEP_GRAPH_FILE, **step[1]}
+    if step_foot is not None:
+        col.onnx[STEP_GRAPH_FOOT_FILE] = step_foot[0]
+        manifest["step_graph_foot"] = {"file": STEP_GRAPH_FOOT_FILE, **step_foot[1]}
     return write_bundle(
         out_dir, manifest, onnx_models=col.onnx, npz_files=col.npz, json_files=col.json, overwrite=overwrite
     )
