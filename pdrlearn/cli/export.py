@@ -138,7 +138,8 @@ def _units_for(bundle, units: str | None, have: set[str] | None, where: str):
         return check_units(bundle, [u for u in units.split(",") if u.strip()]), False
     req = bundle.sensors_of(("waist",))[0]
     lacking = [n for n in req if have is None or n not in have]
-    if "waist" not in bundle.body_units or "foot" not in bundle.body_units or not lacking:
+    no_foot = have is not None and not set(bundle.sensors_of(("foot",))[0]) <= have  # an error follows anyway
+    if "waist" not in bundle.body_units or "foot" not in bundle.body_units or not lacking or no_foot:
         return bundle.body_units, False
     heading = NO_WAIST_HEADING.removeprefix("no waist unit: ")
     logging.getLogger("pdrlearn.cli").warning(
@@ -181,7 +182,7 @@ def run(
 
         cat capture.txt | pdrlearn run out/bundle/u1 --protocol - --out out/live
 
-        pdrlearn run out/bundle/u1 out/sim/A_u1_foot --units foot --out out/run_foot
+        pdrlearn run out/bundle/u1 out/sim/D_u1 --units foot --out out/run_foot
     """
     import numpy as np
 
