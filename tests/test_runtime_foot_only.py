@@ -63,7 +63,8 @@ def test_foot_only_replay_equals_streaming_track(root):
         assert res.steps[f"method_{task}"].iloc[0] == f"{c.method}/{c.unit}"
         assert entry_units(c.model.entry, c.unit) == {"foot"}
     # without the option the waist the bundle requires never comes: one line naming the option
-    with pytest.raises(DataError, match=r"w(Accelerometer|Gyroscope): no samples at all .*units=\('foot',\); pdrlearn run --units foot"):
+    with pytest.raises(DataError, match=r"w(Accelerometer|Gyroscope): no samples at all .*units=\('foot',\); "
+                                        "pdrlearn run --units foot"):
         replay(Tracker(root / "bundle"), s, 0.37)
 
 
@@ -166,7 +167,8 @@ def test_run_cli_foot_only_default_option_and_track_parity(root, tmp_path, capsy
     assert len(run) == len(trk) > 20
     assert np.abs(run[["x", "y", "z"]].to_numpy() - trk[["x", "y", "z"]].to_numpy()).max() < 1e-3
     # both units asked for on a foot-only session, a waist-only request: one line naming the fix
-    _errors_once(capsys, ["run", b, walk, "--units", "foot,waist"], "track the foot unit alone (pdrlearn run --units foot")
+    _errors_once(capsys, ["run", b, walk, "--units", "foot,waist"],
+                 "track the foot unit alone (pdrlearn run --units foot")
     _errors_once(capsys, ["run", b, walk, "--units", "waist"], "needs the foot unit")
     _errors_once(capsys, ["run", str(root / "bundle_foot"), walk, "--units", "waist"], "has no waist models")
 

@@ -261,9 +261,9 @@ def run(
                           resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           input_rates_hz=rates, units=use,
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
-        if tracker.heading_source == "auto" and not said and not (
-                session.has("wAccelerometer", "wGyroscope") and "waist" in tracker.forward
-                and "waist" in tracker.units):  # as track says (B17)
+        dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
+        if tracker.heading_source == "auto" and not said and (dropped or not (
+                session.has("wAccelerometer", "wGyroscope") and "waist" in tracker.forward)):  # as track says (B17)
             import logging
 
             from pdrlearn.track.plasys import NO_WAIST_HEADING
