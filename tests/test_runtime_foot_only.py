@@ -53,8 +53,8 @@ def test_foot_only_replay_equals_streaming_track(root):
     res = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True)
     tr = Tracker(root / "bundle", units=("foot",))
     assert tr.units == ("foot",) and tr.required == ["fAccelerometer", "fGyroscope"]
-    # the foot-only step graph classifies every task in one run (no per-model fallback)
-    assert tr.step_graph is not None and set(tr.step_graph.tasks) == {"terrain", "direction", "length"}
+    # the step graph holds the chosen (fused) models: the foot models run on the per-model path
+    assert tr.step_graph is None
     assert not tr.warnings
     steps = replay(tr, s, 0.37)
     _assert_parity(steps, res)
@@ -78,9 +78,6 @@ def test_bundle_records_the_foot_model_track_picks(root):
         want = next(p for p in [tm.chosen, *tm.ranking()] if p[1] == "foot")  # UserModel._candidates' order
         assert b.tasks[task]["foot_only"] == {"method": want[0], "unit": "foot"}
         assert "foot" in b.tasks[task]["methods"][want[0]]
-    assert b.manifest["step_graph_foot"]["file"] in b.manifest["files"]
-    # a foot-only bundle needs no second graph
-    assert "step_graph_foot" not in load_bundle(root / "bundle_foot").manifest
 
 
 def test_failed_waist_is_ignored_with_units_foot(root):
@@ -103,12 +100,10 @@ def test_bundle_exported_before_e26_uses_the_fused_models_foot_member_and_says_s
     m = json.loads((b / "manifest.json").read_text())
     for spec in m["tasks"].values():
         spec.pop("foot_only")
-    m.pop("step_graph_foot")
     (b / "manifest.json").write_text(json.dumps(m))
     (b / "manifest.sha256").write_text(sha256_file(b / "manifest.json"))
     tr = Tracker(b, units=("foot",))
     assert len(tr.warnings) == 1 and "exported before decision E26" in tr.warnings[0]
-    assert tr.step_graph is None  # the members run on the per-model path
     for task, c in tr.classifiers.items():
         assert c.unit == "foot" and c.model.entry == m["tasks"][task]["methods"][c.method]["fused"]["members"]["foot"]
     # here the members are the very models track picks (fitted on the same strides): the same walk
@@ -184,14 +179,3 @@ def test_run_reads_the_bluetooth_protocol_with_a_two_unit_bundle(root, tmp_path,
     assert len(got.err.strip().splitlines()) == 1 and "has no waist unit" in got.err
     _errors_once(capsys, ["run", str(root / "bundle"), "--protocol", str(cap), "--units", "foot,waist"],
                  "does not carry; replay the foot unit alone (--units foot)")
-
-
-def test_rebuilt_step_graphs_keep_the_foot_only_graph(root, tmp_path):
-    from pdrlearn.export.bundle import rebuild_step_graph
-
-    b = load_bundle(rebuild_step_graph(root / "bundle", tmp_path / "rebuilt"))
-    assert b.manifest["step_graph_foot"] == load_bundle(root / "bundle").manifest["step_graph_foot"]
-    s = _foot_session()
-    x = replay(Tracker(root / "bundle", units=("foot",)), s, 0.37)
-    y = replay(Tracker(b, units=("foot",)), s, 0.37)
-    assert [(st.classes, st.x, st.y) for st in x] == [(st.classes, st.x, st.y) for st in y]

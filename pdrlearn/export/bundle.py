@@ -160,17 +160,15 @@ def rebuild_step_graph(bundle_dir: str | Path, out_dir: str | Path | None = None
     """
     import json as _json
 
-    from pdrlearn.export.from_model import STEP_GRAPH_FOOT_FILE, foot_step_graph
     from pdrlearn.export.step_graph import build_step_graph
 
     src = Path(bundle_dir)
     b = load_bundle(src, verify=True)
-    manifest = {k: v for k, v in b.manifest.items() if k not in ("files", "step_graph", "step_graph_foot")}
+    manifest = {k: v for k, v in b.manifest.items() if k not in ("files", "step_graph")}
     old_graph = (b.manifest.get("step_graph") or {}).get("file")
-    old_foot = (b.manifest.get("step_graph_foot") or {}).get("file")  # decision E26
     onnx_models, json_files, npz_files = {}, {}, {}
     for rel in b.manifest["files"]:
-        if rel in (old_graph, old_foot):
+        if rel == old_graph:
             continue
         if rel.endswith(".onnx"):
             onnx_models[rel] = onnx.load(str(src / rel))
@@ -186,9 +184,5 @@ def rebuild_step_graph(bundle_dir: str | Path, out_dir: str | Path | None = None
         rel = old_graph or "models/step.onnx"
         onnx_models[rel] = step[0]
         manifest["step_graph"] = {"file": rel, **step[1]}
-    foot = foot_step_graph(manifest["tasks"], onnx_models, manifest["features"])
-    if foot is not None:
-        onnx_models[old_foot or STEP_GRAPH_FOOT_FILE] = foot[0]
-        manifest["step_graph_foot"] = {"file": old_foot or STEP_GRAPH_FOOT_FILE, **foot[1]}
     return write_bundle(out_dir or src, manifest, onnx_models=onnx_models, json_files=json_files,
                         npz_files=npz_files, overwrite=True)

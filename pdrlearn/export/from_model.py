@@ -20,8 +20,6 @@ from pdrlearn.export.onnx_convert import svm_decision_to_onnx, torch_to_onnx
 from pdrlearn.export.step_graph import build_step_graph
 
 STEP_GRAPH_FILE = "models/step.onnx"
-#: the step graph of a foot-only replay of a two-unit bundle (decision E26)
-STEP_GRAPH_FOOT_FILE = "models/step_foot.onnx"
 
 log = logging.getLogger(__name__)
 
@@ -168,21 +166,6 @@ def _units_of(entry: dict, unit: str) -> set[str]:
     return entry_units(entry, unit)
 
 
-def foot_step_graph(tasks: dict, onnx_models: dict, features: dict):
-    """Decision E26: the step graph of a foot-only replay (each task's ``foot_only`` model) and its manifest
-    entry (with ``models``: task -> "method/unit"), or None when no chosen model reads the waist."""
-    foot_tasks = {t: {**v, "chosen": v["foot_only"]} for t, v in tasks.items() if "foot_only" in v}
-    if not foot_tasks or not any(
-            "waist" in _units_of(v["methods"][v["chosen"]["method"]][v["chosen"]["unit"]], v["chosen"]["unit"])
-            for v in tasks.values()):
-        return None
-    step = build_step_graph(foot_tasks, onnx_models, features)
-    if step is None:
-        return None
-    models = {t: f"{v['chosen']['method']}/{v['chosen']['unit']}" for t, v in foot_tasks.items()}
-    return step[0], {**step[1], "models": models}
-
-
 def export_model(
     model_dir: str | Path,
     out_dir: str | Path,
@@ -203,7 +186,8 @@ def export_model(
     methods : methods to export for every task (all their units); default: each task's chosen
         method/unit only (the smallest bundle that classifies like ``UserModel.predict_steps``), and, when
         that reads the waist, the foot model ``predict_steps`` uses on a session without the waist unit
-        (``tasks[task]["foot_only"]``, decision E26; with ``methods``: the best-ranked of those methods).
+        (``tasks[task]["foot_only"]``, decision E26; with ``methods``: the best-ranked of those methods; it
+        classifies on the per-model path: a step graph of it saved no instructions).
     frames : placement -> ``{"x": ..., "y": ..., "z": ...}`` axis frames of the data the bundle will
         see (default: the thesis frames).
     displacement : displacement parameters (default:
@@ -293,7 +277,6 @@ def export_model(
         "signals": {k: [list(v[0]), float(v[1])] for k, v in SIGNALS.items()},
     }
     step = build_step_graph(tasks, col.onnx, features)  # one session run per step (decision E10)
-    step_foot = foot_step_graph(tasks, col.onnx, features)
     manifest = base_manifest(
         user=model.user,
         tasks=tasks,
@@ -326,9 +309,6 @@ def export_model(
     if step is not None:
         col.onnx[STEP_GRAPH_FILE] = step[0]
         manifest["step_graph"] = {"file": STEP_GRAPH_FILE, **step[1]}
-    if step_foot is not None:
-        col.onnx[STEP_GRAPH_FOOT_FILE] = step_foot[0]
-        manifest["step_graph_foot"] = {"file": STEP_GRAPH_FOOT_FILE, **step_foot[1]}
     return write_bundle(
         out_dir, manifest, onnx_models=col.onnx, npz_files=col.npz, json_files=col.json, overwrite=overwrite
     )

@@ -108,8 +108,9 @@ class TaskClassifier:
 
     ``units`` (decision E26): the body units the data has (default: all the bundle's). When the chosen model
     reads another unit, the task classifies with the model ``pdrlearn track`` picks for such a session: the
-    bundle's ``foot_only`` record (written by ``pdrlearn export`` since E26); a bundle exported before has
-    none, and a fused model's member of those units stands in (``note`` says so)."""
+    bundle's ``foot_only`` record (written by ``pdrlearn export`` since E26; not in the step graph, which
+    holds the chosen models: the per-model path); a bundle exported before has none, and a fused model's
+    member of those units stands in (``note`` says so)."""
 
     def __init__(
         self,
@@ -212,18 +213,11 @@ class StepGraph:
         self._roles = [by_name[name] for name in self._wanted]
 
     @classmethod
-    def open(cls, bundle: Bundle, classifiers: dict[str, TaskClassifier], units=None) -> StepGraph | None:
-        """The graph for ``classifiers``; ``units`` = the tracked body units: the foot alone with a two-unit
-        bundle reads the foot-only graph (``step_graph_foot``, decision E26) of the ``foot_only`` models."""
-        foot = units is not None and tuple(units) == ("foot",) and "waist" in bundle.body_units
-        spec = bundle.manifest.get("step_graph_foot" if foot else "step_graph")
+    def open(cls, bundle: Bundle, classifiers: dict[str, TaskClassifier]) -> StepGraph | None:
+        spec = bundle.manifest.get("step_graph")
         if not spec or bundle.backend == "opencv":
             return None
-        if foot:
-            tasks = [t for t, c in classifiers.items() if t in spec["outputs"] and c.note is None
-                     and spec["models"].get(t) == f"{c.method}/{c.unit}"]
-        else:
-            tasks = [t for t, c in classifiers.items() if t in spec["outputs"] and c.is_chosen]
+        tasks = [t for t, c in classifiers.items() if t in spec["outputs"] and c.is_chosen]
         if not tasks:
             return None
         try:

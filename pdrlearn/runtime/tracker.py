@@ -290,7 +290,7 @@ class Tracker:
             self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit, lazy=True,
                                                     units=None if units is None else self.units)
         #: one onnxruntime run per step for the chosen models (decision E10); None = per-model path
-        self.step_graph = StepGraph.open(self.bundle, self.classifiers, self.units) if step_graph else None
+        self.step_graph = StepGraph.open(self.bundle, self.classifiers) if step_graph else None
         for task, clf in self.classifiers.items():  # per-model sessions: only where the graph does not
             if self.step_graph is None or task not in self.step_graph.tasks:  # classify (errors show here)
                 clf.model.open()
