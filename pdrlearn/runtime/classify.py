@@ -155,7 +155,7 @@ class TaskClassifier:
                 raise ModelError(
                     f"bundle {bundle.path}: task {task} has {where} that reads the {'+'.join(units)} unit only "
                     f"(it has {', '.join(f'{m}/{u}' for m, per in methods.items() for u in per)}); "
-                    f"{'choose another with --methods' if asked else 'train the model with that unit'}"
+                    f"{'choose another (Tracker methods=)' if asked else 'train the model with that unit'}"
                 )
         self.method, self.unit = method, unit
         self.is_chosen = (method, unit) == (chosen.get("method"), chosen.get("unit")) and self.note is None
