@@ -158,7 +158,8 @@ def test_malformed_session_is_one_line_naming_the_file(base, tmp_path, capsys, d
 
 
 # a unit missing for a command that needs it: one line naming the session, the missing sensor and the fix
-NEEDS_WAIST = ["steps-pll", "track-waist-pll", "track-waist-pendulum", "calibrate", "run"]
+# (run replays a session without the waist with the foot unit alone since decision E26: tests/test_runtime_foot_only.py)
+NEEDS_WAIST = ["steps-pll", "track-waist-pll", "track-waist-pendulum", "calibrate"]
 NEEDS_FOOT = ["steps", "track-M1", "track-M2", "track-M3", "track-M3-streaming", "run"]
 
 

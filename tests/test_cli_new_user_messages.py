@@ -44,8 +44,13 @@ def test_cohort_user_without_test_folder_is_told_how(tmp_path):
 
 
 def test_protocol_with_a_waist_bundle_says_how_to_make_a_foot_one(tmp_path, capsys, monkeypatch):
+    """Since decision E26 the waist bundle replays the protocol with the foot unit alone (a warning); asking
+    for both units is the error, which names the option."""
     monkeypatch.setattr(sys, "stdin", io.StringIO(""))
-    assert main(["run", str(BUNDLE), "--protocol", "-", "--out", str(tmp_path / "o")]) == 2
+    assert main(["run", str(BUNDLE), "--protocol", "-", "--out", str(tmp_path / "o")]) == 0
+    assert "has no waist unit" in capsys.readouterr().err
+    monkeypatch.setattr(sys, "stdin", io.StringIO(""))
+    assert main(["run", str(BUNDLE), "--protocol", "-", "--units", "foot,waist", "--out", str(tmp_path / "p")]) == 2
     assert "--units foot" in _err(capsys)
 
 

@@ -101,7 +101,12 @@ def test_session_without_a_needed_sensor_or_at_another_rate_fails(dirs, capsys, 
     s = synthetic_session(8, seed=3, name="nowaist")
     del s.streams["wGyroscope"]
     write_session(s, tmp_path / "nowaist")
-    _fails(capsys, ["run", str(dirs["root"] / "bundle"), str(tmp_path / "nowaist")], "has no wGyroscope")
+    # both units asked for (without --units a session lacking the waist replays the foot alone, decision E26)
+    _fails(capsys, ["run", str(dirs["root"] / "bundle"), str(tmp_path / "nowaist"), "--units", "foot,waist"],
+           "has no wGyroscope")
+    del s.streams["fGyroscope"]
+    write_session(s, tmp_path / "nofoot")
+    _fails(capsys, ["run", str(dirs["root"] / "bundle"), str(tmp_path / "nofoot")], "has no fGyroscope")
     s = synthetic_session(8, seed=3, name="fast")
     s.streams = {n: resample_stream(st, 100.0) for n, st in s.streams.items()}
     write_session(s, tmp_path / "fast")

@@ -96,7 +96,7 @@ def _warn_short_streams(session, tracker, steps) -> None:
     g = session.streams.get("fGyroscope")
     if g is None or not len(g):
         return
-    for n in tracker.bundle.used_sensors:
+    for n in tracker.used_sensors:
         st = session.streams.get(n)
         if st is None or not len(st) or n == "fGyroscope":
             continue
@@ -124,6 +124,31 @@ def _rate_mode(resample: bool, no_resample: bool) -> bool | str:
     return True if resample else False if no_resample else "native"
 
 
+def _units_for(bundle, units: str | None, have: set[str] | None, where: str):
+    """The body units ``run`` replays (decision E26): ``--units`` as given; without it, the bundle's, or the foot
+    alone when the data lack a waist sensor the bundle requires (``have`` = the data's sensors; None = the
+    foot unit's Bluetooth protocol), with one warning line. Returns ``(units, said)``: ``said`` = that line
+    was logged (it names the foot heading too, so the separate heading line is not repeated)."""
+    import logging
+
+    from pdrlearn.runtime.tracker import check_units
+    from pdrlearn.track.plasys import NO_WAIST_HEADING
+
+    if units is not None:
+        return check_units(bundle, [u for u in units.split(",") if u.strip()]), False
+    req = bundle.sensors_of(("waist",))[0]
+    lacking = [n for n in req if have is None or n not in have]
+    no_foot = have is not None and not set(bundle.sensors_of(("foot",))[0]) <= have  # an error follows anyway
+    if "waist" not in bundle.body_units or "foot" not in bundle.body_units or not lacking or no_foot:
+        return bundle.body_units, False
+    heading = NO_WAIST_HEADING.removeprefix("no waist unit: ")
+    logging.getLogger("pdrlearn.cli").warning(
+        "%s has no %s (the waist unit bundle %s also uses): the foot unit only, as `pdrlearn track` - classes from "
+        "the foot models, %s (--units foot chooses this without the warning)", where,
+        "waist unit" if have is None else ", ".join(lacking), bundle.path, heading)
+    return check_units(bundle, ("foot",)), True
+
+
 def run(
     bundle_dir: Path = typer.Argument(..., help="Bundle folder written by 'pdrlearn export'."),
     session_dir: Path = typer.Argument(None, help="PLASYS session folder to replay (omit with --protocol)."),
@@ -146,6 +171,9 @@ def run(
                                          help="Apply a class rule only when the model's probability of the class "
                                          "reaches this (default: the bundle's, 0.95 since decision L41; 0 = always, "
                                          "as the thesis; 0.95 with --rules bayes, 0 with --rules thesis)."),
+    units: str = typer.Option(None, "--units", help="Body units to track with: foot, or foot,waist (default: "
+                              "the bundle's; the foot alone when the data have no waist unit, with a warning). "
+                              "foot = a two-unit bundle on a foot-only session or a failed waist (decision E26)."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -154,6 +182,8 @@ def run(
         pdrlearn run out/bundle/u1 out/sim/D_u1 --out out/run_D --json
 
         cat capture.txt | pdrlearn run out/bundle/u1 --protocol - --out out/live
+
+        pdrlearn run out/bundle/u1 out/sim/D_u1 --units foot --out out/run_foot
     """
     import numpy as np
 
@@ -175,8 +205,14 @@ def run(
         from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
 
         parser = BluetoothParser(rate_hz=bundle.rate_hz)
+        use, _ = _units_for(bundle, units, None, f"protocol {protocol}")
+        need = [s for s in bundle.sensors_of(use)[0] if not s.startswith("f")]
+        if need:
+            raise DataError(f"bundle {bundle.path} needs {', '.join(need)}, which the foot unit's "
+                            "Bluetooth protocol does not carry; replay the foot unit alone (--units foot)")
         tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
-                          resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence)
+                          resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
+                          units=use)
         if protocol == "-":
             stream = sys.stdin
         else:
@@ -184,11 +220,6 @@ def run(
             if not p.is_file():
                 raise DataError(f"{p}: protocol capture not found")
             stream = p.open()
-        need = [s for s in bundle.manifest["sensors"]["required"] if not s.startswith("f")]
-        if need:
-            raise DataError(f"bundle {bundle.path} needs {', '.join(need)}, which the foot unit's "
-                            "Bluetooth protocol does not carry; export a foot-only model "
-                            "('pdrlearn train ... --units foot', then 'pdrlearn export')")
         with stream:
             for line in stream:
                 t0 = time.perf_counter()
@@ -214,11 +245,14 @@ def run(
         session = read_session(session_dir)
         rates = {n: st.rate_hz for n, st in session.streams.items()}
         where = f"session '{session.name}'"
-        bundle.check_streams(rates if no_resample else {n: float("nan") for n in rates}, where=where)
+        use, said = _units_for(bundle, units, set(session.streams), where)
+        required, optional = bundle.sensors_of(use)
+        rates = {n: r for n, r in rates.items() if n[0] in {u[0] for u in use}}  # a foot-only replay: no waist
+        bundle.check_streams(rates if no_resample else {n: float("nan") for n in rates}, where=where, units=use)
         from pdrlearn.track.plasys import require_stride_cover
 
-        require_stride_cover(session, bundle.used_sensors)  # decision B21
-        warn_gaps(session, bundle.manifest["sensors"]["required"],
+        require_stride_cover(session, [*required, *optional])  # decision B21
+        warn_gaps(session, required,
                   "the runtime replays across them (a stride spanning one is unreliable) - re-record or trim the "
                   "session, or use `pdrlearn track`, which ends the walk at a gap")
         # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
@@ -226,10 +260,11 @@ def run(
         # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
         tracker = Tracker(bundle, frames=_frames_of(session, bundle),
                           resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
-                          input_rates_hz=rates,
+                          input_rates_hz=rates, units=use,
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
-        if tracker.heading_source == "auto" and not (session.has("wAccelerometer", "wGyroscope")
-                                                     and "waist" in tracker.forward):  # as track says (B17)
+        dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
+        if tracker.heading_source == "auto" and not said and (dropped or not (
+                session.has("wAccelerometer", "wGyroscope") and "waist" in tracker.forward)):  # as track says (B17)
             import logging
 
             from pdrlearn.track.plasys import NO_WAIST_HEADING

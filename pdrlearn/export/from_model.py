@@ -160,11 +160,10 @@ def _nn_module(clf):
 
 
 def _units_of(entry: dict, unit: str) -> set[str]:
-    """Body units (foot / waist) an entry of ``unit`` reads. Fusion members are units (foot/waist of a
-    fused model) or methods (an ``ensemble``'s nn/svm/dtw, decision C14): those read their parent's unit."""
-    if entry["type"] == "fusion":
-        return set().union(*(_units_of(e, u if u in UNIT_SENSORS else unit) for u, e in entry["members"].items()))
-    return {"foot", "waist"} if unit == "fused" else {unit}
+    """Body units (foot / waist) an entry of ``unit`` reads (:func:`pdrlearn.runtime.classify.entry_units`)."""
+    from pdrlearn.runtime.classify import entry_units
+
+    return entry_units(entry, unit)
 
 
 def export_model(
@@ -185,7 +184,10 @@ def export_model(
     model_dir : folder written by ``pdrlearn train`` (read with ``load_model``); or pass ``model``.
     out_dir : bundle folder to create (atomically).
     methods : methods to export for every task (all their units); default: each task's chosen
-        method/unit only (the smallest bundle that classifies like ``UserModel.predict_steps``).
+        method/unit only (the smallest bundle that classifies like ``UserModel.predict_steps``), and, when
+        that reads the waist, the foot model ``predict_steps`` uses on a session without the waist unit
+        (``tasks[task]["foot_only"]``, decision E26; with ``methods``: the best-ranked of those methods; it
+        classifies on the per-model path: a step graph of it saved no instructions).
     frames : placement -> ``{"x": ..., "y": ..., "z": ...}`` axis frames of the data the bundle will
         see (default: the thesis frames).
     displacement : displacement parameters (default:
@@ -221,6 +223,13 @@ def export_model(
             wanted = [(m, u) for m in methods for u in tm.models.get(m, {})]
         else:
             wanted = [chosen] if chosen else []
+        # decision E26: the model `pdrlearn track` (UserModel.predict_steps) classifies a session without the
+        # waist unit with: the chosen one when it reads the foot only, else the best-ranked foot model (of the
+        # methods asked for, as the chosen one)
+        foot_only = next((p for p in dict.fromkeys(([chosen] if chosen else []) + tm.ranking())
+                          if p[1] == "foot" and (not methods or p[0] in methods)), None)
+        if foot_only is not None and foot_only not in wanted:
+            wanted = [*wanted, foot_only]
         entries: dict = {}
         for m, u in wanted:
             try:
@@ -245,6 +254,9 @@ def export_model(
             "classes": list(tm.classes),
             "chosen": exp_chosen,
             "methods": entries,
+            # decision E26: what a foot-only replay (`pdrlearn run --units foot`) classifies with, as track
+            **({"foot_only": {"method": foot_only[0], "unit": "foot"}}
+               if foot_only is not None and foot_only[1] in entries.get(foot_only[0], {}) else {}),
             "cv": {
                 m: {
                     u: {k: v for k, v in met.items() if k in ("accuracy", "balanced_accuracy", "per_class", "n_steps")}

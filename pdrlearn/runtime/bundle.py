@@ -51,6 +51,8 @@ REQUIRED_KEYS = (
 )
 #: Relative tolerance between the manifest's sampling rate and the data's (decision E3).
 DEFAULT_RATE_TOLERANCE = 0.05
+#: The body units of a bundle (thesis ch.4: the foot unit and the waist unit / smartphone).
+UNITS = ("foot", "waist")
 
 
 def sha256_file(path: str | Path, *, chunk: int = 1 << 20) -> str:
@@ -181,26 +183,29 @@ class Bundle:
         return self._cache[rel]  # type: ignore[return-value]
 
     # -- compatibility with data --------------------------------------------------------------------
-    def check_streams(self, rates_hz: dict[str, float], *, where: str = "data") -> None:
+    def check_streams(self, rates_hz: dict[str, float], *, where: str = "data", units=None) -> None:
         """Check that the data has the bundle's required sensors at its sampling rate.
 
         Parameters
         ----------
         rates_hz : sensor name (``fAccelerometer`` ...) -> the data's rate (Hz); ``nan`` when unknown.
         where : name of the data (session folder, stream) used in the messages.
+        units : the body units replayed (default: all the bundle's; decision E26).
 
         Raises
         ------
         MissingSensorError : a required sensor is absent.
         DataError : a sensor's rate differs from the manifest's by more than the tolerance.
         """
-        required = list(self.manifest["sensors"].get("required", []))
+        required = self.sensors_of(units)[0]
         missing = [s for s in required if s not in rates_hz]
         if missing:
             raise MissingSensorError(
                 f"{where} has no {', '.join(missing)}, which bundle {self.path} needs "
-                f"(it has: {', '.join(rates_hz) or 'none'}); record those sensors or export a bundle "
-                "for the sensors you have"
+                f"(it has: {', '.join(rates_hz) or 'none'}); record those sensors or "
+                + ("track the foot unit alone (pdrlearn run --units foot, decision E26)"
+                   if "foot" in self.body_units and all(s.startswith("w") for s in missing)
+                   else "export a bundle for the sensors you have")
             )
         self.check_rates(rates_hz, where=where)
 
@@ -209,6 +214,21 @@ class Bundle:
         """The sensors the bundle reads: its required ones, then its optional ones (manifest order)."""
         s = self.manifest["sensors"]
         return [*s.get("required", []), *s.get("optional", [])]
+
+    @property
+    def body_units(self) -> tuple[str, ...]:
+        """The body units whose accelerometer and gyroscope the bundle requires (``foot``, ``waist``)."""
+        req = self.manifest["sensors"].get("required", [])
+        return tuple(u for u in UNITS if f"{u[0]}Accelerometer" in req)
+
+    def sensors_of(self, units=None) -> tuple[list[str], list[str]]:
+        """``(required, optional)`` sensors of the bundle that belong to ``units`` (default: all); a sensor's
+        unit is its name's prefix (``f`` foot, ``w`` waist; thesis ch.4.3.3). Decision E26: a foot-only
+        replay of a two-unit bundle needs and reads no waist sensor."""
+        s = self.manifest["sensors"]
+        keep = tuple(u[0] for u in (UNITS if units is None else units))
+        return ([n for n in s.get("required", []) if n.startswith(keep)],
+                [n for n in s.get("optional", []) if n.startswith(keep)])
 
     def off_rate(self, rates_hz: dict[str, float]) -> dict[str, float]:
         """The used sensors whose finite rate (Hz) differs from the bundle's by more than its tolerance

@@ -91,8 +91,26 @@ class RuntimeModel:
         return soft_vote(probas, self.weights)
 
 
+#: the body units of the bundles' models (thesis ch.4); a model of unit "fused" reads both
+BODY_UNITS = ("foot", "waist")
+
+
+def entry_units(entry: dict, unit: str) -> set[str]:
+    """Body units (foot / waist) a model entry of ``unit`` reads. Fusion members are units (foot/waist of a
+    fused model) or methods (an ``ensemble``'s nn/svm/dtw, decision C14): those read their parent's unit."""
+    if entry["type"] == "fusion":
+        return set().union(*(entry_units(e, u if u in BODY_UNITS else unit) for u, e in entry["members"].items()))
+    return set(BODY_UNITS) if unit == "fused" else {unit}
+
+
 class TaskClassifier:
-    """The bundle's classifier of one task (its chosen method/unit unless another is asked for)."""
+    """The bundle's classifier of one task (its chosen method/unit unless another is asked for).
+
+    ``units`` (decision E26): the body units the data has (default: all the bundle's). When the chosen model
+    reads another unit, the task classifies with the model ``pdrlearn track`` picks for such a session: the
+    bundle's ``foot_only`` record (written by ``pdrlearn export`` since E26; not in the step graph, which
+    holds the chosen models: the per-model path); a bundle exported before has none, and a fused model's
+    member of those units stands in (``note`` says so)."""
 
     def __init__(
         self,
@@ -103,24 +121,45 @@ class TaskClassifier:
         method: str | None = None,
         unit: str | None = None,
         lazy: bool = False,
+        units: tuple[str, ...] | None = None,
     ):
         spec = bundle.tasks[task]
         self.task = task
         self.classes = list(spec["classes"])
         self.class_array = np.asarray(self.classes, dtype=object)
+        #: why this task does not classify with the model track would pick (an old bundle), else None
+        self.note: str | None = None
         chosen = spec.get("chosen") or {}
+        methods = spec["methods"]
+        asked = method is not None or unit is not None
         method = method or chosen.get("method")
         unit = unit or chosen.get("unit")
-        methods = spec["methods"]
         if method not in methods or unit not in methods[method]:
             have = ", ".join(f"{m}/{u}" for m, per in methods.items() for u in per)
             raise ModelError(
                 f"bundle {bundle.path}: task {task} has no {method}/{unit} model "
                 f"(it has {have}); export it with --methods"
             )
+        entry = methods[method][unit]
+        if units is not None and not entry_units(entry, unit) <= set(units):
+            fo = spec.get("foot_only") if tuple(units) == ("foot",) and not asked else None
+            members = entry.get("members", {}) if entry["type"] == "fusion" else {}
+            if fo is not None and fo.get("unit") in methods.get(fo.get("method"), {}):
+                method, unit = fo["method"], fo["unit"]
+                entry = methods[method][unit]
+            elif not asked and len(units) == 1 and units[0] in members:  # a bundle exported before E26
+                self.note = (f"{task} from the {units[0]} member of its {method}/{unit} model")
+                unit, entry = units[0], members[units[0]]
+            else:
+                where = f"the {method}/{unit} model" if asked else "no model"
+                raise ModelError(
+                    f"bundle {bundle.path}: task {task} has {where} that reads the {'+'.join(units)} unit only "
+                    f"(it has {', '.join(f'{m}/{u}' for m, per in methods.items() for u in per)}); "
+                    f"{'choose another (Tracker methods=)' if asked else 'train the model with that unit'}"
+                )
         self.method, self.unit = method, unit
-        self.is_chosen = (method, unit) == (chosen.get("method"), chosen.get("unit"))
-        self.model = RuntimeModel(bundle, methods[method][unit], feature_ctx, lazy=lazy)
+        self.is_chosen = (method, unit) == (chosen.get("method"), chosen.get("unit")) and self.note is None
+        self.model = RuntimeModel(bundle, entry, feature_ctx, lazy=lazy)
 
     def predict(self, W: np.ndarray, cache: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
         """``(classes (n,), probabilities (n, n_classes))`` for windows ``W``."""

@@ -254,10 +254,12 @@ class InputStage:
     until then, :func:`probe_rate`). A stream the bundle does not use is ignored (``ignored``, logged once).
     """
 
-    def __init__(self, bundle, *, resample: bool | str = "native", rates_hz: dict[str, float] | None = None):
+    def __init__(self, bundle, *, resample: bool | str = "native", rates_hz: dict[str, float] | None = None,
+                 used=None):
         self.bundle = bundle
         self.rate_hz = float(bundle.rate_hz)
-        self.used = frozenset(bundle.used_sensors)
+        #: the sensors read (default: the bundle's; a foot-only tracker's, decision E26)
+        self.used = frozenset(bundle.used_sensors if used is None else used)
         if resample not in (True, False, "native"):
             raise ValueError(f"resample must be True, False or 'native', not {resample!r}")
         #: "native" (default): a stream at another rate is tracked at its own rate, as `pdrlearn track
@@ -397,6 +399,7 @@ def stopped_message(name: str, t: float | None, first_s: float, newest: float, m
     if required:
         return (f"{name}: {what} while other sensors are at {newest:.2f} s (more than {behind} behind; the sensor "
                 "stopped or its link dropped); reconnect it and start a new Tracker, or track without it with a "
-                "bundle that does not need it")
+                + ("foot-only Tracker (units=('foot',); pdrlearn run --units foot, decision E26)"
+                   if name.startswith("w") else "bundle that does not need it"))
     return (f"{name} (optional): {what} while the others are at {newest:.2f} s (more than {behind} behind): "
             "ignored from now on; the steps no longer wait for it and are measured without it")

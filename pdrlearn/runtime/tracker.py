@@ -96,6 +96,23 @@ _DIRECTIONS = {
 }
 
 
+def check_units(bundle: Bundle, units) -> tuple[str, ...]:
+    """The body units a tracker follows (decision E26), in the bundle's order: a subset of the bundle's units
+    that holds the foot (the runtime detects steps on the foot gyroscope, decision E7); else a one-line error."""
+    asked = tuple(dict.fromkeys(str(u).strip() for u in ([units] if isinstance(units, str) else units)))
+    have = bundle.body_units
+    missing = [u for u in asked if u not in have]
+    if missing or not asked:
+        raise DataError(f"units {','.join(asked) or '(none)'}: bundle {bundle.path} has no "
+                        f"{', '.join(missing) or 'unit given'} models (its units: {', '.join(have) or 'none'}); "
+                        f"give {' or '.join(have) if have == ('foot',) else 'foot or foot,waist'}")
+    if "foot" not in asked:
+        raise DataError(f"units {','.join(asked)}: the runtime detects steps on the foot unit's gyroscope, so it "
+                        "needs the foot unit (give foot or foot,waist); waist-only tracking: pdrlearn track "
+                        "--pipeline waist-pll")
+    return tuple(u for u in have if u in asked)
+
+
 def forward_vector(frame: dict) -> np.ndarray:
     """Sensor-frame vector pointing body-forward for a declared frame ``{"x": "forward", ...}``."""
     try:
@@ -211,6 +228,11 @@ class Tracker:
         decision E10); False = one run per model (the same numbers, slower).
     incremental : level the foot samples as they are pushed (decision E15; the same windows to rounding,
         less work at the step event); False = all of it at the step event (the shared kernel alone).
+    units : the body units to track with, ``("foot",)`` or ``("foot", "waist")`` (default: the bundle's).
+        ``("foot",)`` with a two-unit bundle (decision E26): a session without the waist unit, or whose
+        waist failed: waist samples are ignored, no waist sensor is required, every task classifies with
+        the foot model ``pdrlearn track`` picks for such a session, the heading is the foot's (``auto``).
+        Steps are detected on the foot, so a unit list without it is an error.
     speculative : compute the step that the next push is likely to complete at the end of the push before
         (decision E24): the window, classification and stride of the stride the stance in progress closes
         (:meth:`StanceSegmenter.closing_stride`), used when that push completes exactly that step from the
@@ -243,9 +265,14 @@ class Tracker:
         speculative: bool = True,
         rules: str | None = None,
         min_confidence: float | None = None,
+        units=None,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
+        #: the body units tracked (decision E26), their required and used sensors
+        self.units = self.bundle.body_units if units is None else check_units(self.bundle, units)
+        self.required, optional = self.bundle.sensors_of(self.units)
+        self.used_sensors = [*self.required, *optional]
         fm = m["features"]
         self.channels = list(fm["channels"])
         self.ci = {c: i for i, c in enumerate(self.channels)}
@@ -268,7 +295,8 @@ class Tracker:
         for task in tasks or list(self.bundle.tasks):
             mu = (methods or {}).get(task)
             meth, unit = mu.split("/") if mu else (None, None)
-            self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit, lazy=True)
+            self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit, lazy=True,
+                                                    units=None if units is None else self.units)
         #: one onnxruntime run per step for the chosen models (decision E10); None = per-model path
         self.step_graph = StepGraph.open(self.bundle, self.classifiers) if step_graph else None
         for task, clf in self.classifiers.items():  # per-model sessions: only where the graph does not
@@ -284,6 +312,9 @@ class Tracker:
         self.heading_source = heading_source or str(self.params.get("heading_source", "auto"))
         if self.heading_source not in HEADING_SOURCES:
             raise DataError(f"heading_source {self.heading_source!r} is not one of {', '.join(HEADING_SOURCES)}")
+        if self.heading_source == "waist-gyro" and "waist" not in self.units:  # decision E26
+            raise DataError(f"heading_source waist-gyro needs the waist unit, and the tracker follows "
+                            f"{'+'.join(self.units)} only; use heading_source auto or foot")
         b = self.params.get("length_bounds_m")
         self.bounds = None if b is None else {str(k): (float(v[0]), float(v[1])) for k, v in b.items()}
         self._down_mode = str(self.params.get("down_mode", "norm3"))
@@ -303,6 +334,11 @@ class Tracker:
         self.distance_gain: float | None = None
         self.stride_sd: float | None = None
         self.warnings: list[str] = []
+        notes = [c.note for c in self.classifiers.values() if c.note]
+        if notes:  # decision E26: a bundle exported before it records no foot-only models; one line
+            self._warn(f"{'+'.join(self.units)} only: no {'+'.join(self.units)}-only models recorded (exported "
+                       f"before decision E26): {'; '.join(notes)}, which `pdrlearn track` may not pick; re-export "
+                       "the model (pdrlearn export) for track's choice")
         if not {"fAccelerometer", "fGyroscope"} <= set(self.bundle.used_sensors):
             raise ModelError(
                 f"bundle {self.bundle.path}: the streaming tracker detects steps on the foot "
@@ -334,7 +370,7 @@ class Tracker:
         #: the input side (decision E22): streams at another rate than the bundle's are tracked at their own
         #: rate (``resample="native"``, the default, as ``pdrlearn track --streaming``), resampled to the
         #: bundle's (``True``) or refused (``False``); ``inputs.input_rates_hz`` / ``resampled_hz`` tell which
-        self.inputs = InputStage(self.bundle, resample=resample, rates_hz=input_rates_hz)
+        self.inputs = InputStage(self.bundle, resample=resample, rates_hz=input_rates_hz, used=self.used_sensors)
         #: a stream further behind the newest one than this (s) plus its own delivery interval stopped
         #: (decision E23; default: max_wait_s, 2 s, the thesis' delay requirement)
         self.max_lag_s = float(self.params.get("max_wait_s", 2.0) if max_lag_s is None else max_lag_s)
@@ -347,7 +383,7 @@ class Tracker:
         self._ends = {str(n): float(t) for n, t in (stream_ends_s or {}).items()}
         self._lag_next = -math.inf  # data time (s) of the next lag tick (delivery intervals measured)
         self._first_t = math.inf  # the first pushed sample's time (s)
-        self._unseen = frozenset(self.bundle.manifest["sensors"].get("required", []))  # not pushed yet
+        self._unseen = frozenset(self.required)  # not pushed yet
         self._tick_last: dict[str, float] = {}  # each stream's newest input time at the last lag tick
         self._batch: dict[str, float] = {}  # each stream's latest advance between two lag ticks (s)
         self._note_resampled()  # declared rates: the resampling is known (and announced) before any push
@@ -587,7 +623,7 @@ class Tracker:
         if not self._pending:
             return []
         ends = [r.last for r in self._buf.values()]
-        required = self.bundle.manifest["sensors"].get("required", [])
+        required = self.required
         latest = min(ends + [-np.inf for n in required if n not in self._buf])
         # a sensor that stopped must not hold the steps forever: the thesis asks for < 2 s delay
         stale = max(ends) - self._wait_s
@@ -627,7 +663,7 @@ class Tracker:
             self._unseen = self._unseen.difference(self._buf)
         if not self._unseen and self._latest - min([r.last for r in self._buf.values()]) <= self.max_lag_s:
             return  # the common case
-        required = self.bundle.manifest["sensors"].get("required", [])
+        required = self.required
         last: dict[str, float | None] = {}
         for n in [*self._buf, *self._unseen]:
             raw = self.inputs.last_in(n)
@@ -692,7 +728,7 @@ class Tracker:
         t0, t1 = cand
         # the samples a step reads end at the first one at or after its end (window_bounds: its search pad)
         need = t1 + (self.rest_search_s + 0.1 if self.boundaries == "rest" else 0.0)
-        required = self.bundle.manifest["sensors"].get("required", [])
+        required = self.required
         if (any(n not in self._buf for n in required) or min(r.last for r in self._buf.values()) <= need
                 or (self._foot is not None and self._foot.ok and self._foot.last <= need)):
             return
@@ -749,6 +785,11 @@ class Tracker:
         self.position = np.array((x, y, z))
         self.n_steps += 1
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z)
+
+    def _warn(self, msg: str) -> None:
+        """One warning line: kept in ``warnings`` and logged."""
+        self.warnings.append(msg)
+        log.warning("bundle %s: %s", self.bundle.path, msg)
 
     def _resolve_calibration(self) -> None:
         """The distance gain and stride sd that apply at the pushed foot accelerometer's rate (median

@@ -1,0 +1,181 @@
+"""Decision E26: a two-unit (foot + waist) bundle replays a session without the waist unit, or whose waist
+failed: ``Tracker(units=("foot",))`` / ``pdrlearn run --units foot`` (the default when the data have no waist
+unit, with one warning line). Classes come from the foot model ``pdrlearn track`` picks for such a session, the
+heading from the foot, and the trajectory equals ``pdrlearn track --streaming`` on the same session."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.errors import DataError, ModelError
+from pdrlearn.io import Stream, format_protocol, write_session
+from pdrlearn.runtime import load_bundle
+from pdrlearn.runtime.bundle import sha256_file
+from pdrlearn.runtime.classify import entry_units
+from pdrlearn.runtime.tracker import Tracker
+from pdrlearn.track.base import get_pipeline
+from tests.runtime_helpers import replay, synthetic_session, trained_dirs
+
+WAIST = ("wAccelerometer", "wGyroscope", "wBarometer")
+TASKS = (("terrain", "terrain"), ("direction", "direction"), ("length", "length_class"))
+
+
+@pytest.fixture(scope="module")
+def root(tmp_path_factory):
+    return trained_dirs(tmp_path_factory)["root"]
+
+
+def _foot_session(name="foot_walk"):
+    s = synthetic_session(24, seed=11, name=name, turn_rad_per_step=0.3)
+    for n in WAIST:
+        del s.streams[n]
+    return s
+
+
+def _assert_parity(steps, res):
+    """The runtime's steps equal track --streaming's (the tolerance of test_runtime_track: 1 mm)."""
+    assert len(steps) == len(res.steps) >= 20
+    np.testing.assert_allclose([st.start_s for st in steps], res.steps["start_s"], atol=1e-12)
+    for task, col in TASKS:
+        assert [st.classes[task] for st in steps] == list(res.steps[col])
+    got = np.array([[st.x, st.y, st.z] for st in steps])
+    assert np.abs(got - res.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
+
+
+def test_foot_only_replay_equals_streaming_track(root):
+    s = _foot_session()
+    res = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True)
+    tr = Tracker(root / "bundle", units=("foot",))
+    assert tr.units == ("foot",) and tr.required == ["fAccelerometer", "fGyroscope"]
+    # the step graph holds the chosen (fused) models: the foot models run on the per-model path
+    assert tr.step_graph is None
+    assert not tr.warnings
+    steps = replay(tr, s, 0.37)
+    _assert_parity(steps, res)
+    # the models are those track used on this session, each reading the foot only
+    for task, c in tr.classifiers.items():
+        assert res.steps[f"method_{task}"].iloc[0] == f"{c.method}/{c.unit}"
+        assert entry_units(c.model.entry, c.unit) == {"foot"}
+    # without the option the waist the bundle requires never comes: one line naming the option
+    with pytest.raises(DataError, match=r"w(Accelerometer|Gyroscope): no samples at all .*units=\('foot',\); "
+                                        "pdrlearn run --units foot"):
+        replay(Tracker(root / "bundle"), s, 0.37)
+
+
+def test_bundle_records_the_foot_model_track_picks(root):
+    from pdrlearn.classify import load_model
+
+    model = load_model(root / "model")
+    b = load_bundle(root / "bundle")
+    for task, tm in model.tasks.items():
+        assert tm.chosen[1] == "fused"  # the case of E26: the chosen model reads the waist
+        want = next(p for p in [tm.chosen, *tm.ranking()] if p[1] == "foot")  # UserModel._candidates' order
+        assert b.tasks[task]["foot_only"] == {"method": want[0], "unit": "foot"}
+        assert "foot" in b.tasks[task]["methods"][want[0]]
+
+
+def test_failed_waist_is_ignored_with_units_foot(root):
+    """A waist that stops after 5 s: with units=("foot",) its samples are ignored and the walk equals the
+    foot-only session's track; without it the tracker stops with a line naming the option."""
+    s = synthetic_session(24, seed=11, name="failed_waist", turn_rad_per_step=0.3)
+    for n in WAIST:
+        st = s.streams[n]
+        keep = st.t < 5.0
+        s.streams[n] = Stream(n, st.t[keep], st.values[keep])
+    res = get_pipeline("plasys")(_foot_session(), method="M3", model=str(root / "model"), streaming=True)
+    _assert_parity(replay(Tracker(root / "bundle", units=("foot",)), s, 0.37), res)
+    with pytest.raises(DataError, match=r"wAccelerometer: no samples since .*--units foot"):
+        replay(Tracker(root / "bundle"), s, 0.37)
+
+
+def test_bundle_exported_before_e26_uses_the_fused_models_foot_member_and_says_so(root, tmp_path):
+    b = tmp_path / "old"
+    shutil.copytree(root / "bundle", b)
+    m = json.loads((b / "manifest.json").read_text())
+    for spec in m["tasks"].values():
+        spec.pop("foot_only")
+    (b / "manifest.json").write_text(json.dumps(m))
+    (b / "manifest.sha256").write_text(sha256_file(b / "manifest.json"))
+    tr = Tracker(b, units=("foot",))
+    assert len(tr.warnings) == 1 and "exported before decision E26" in tr.warnings[0]
+    for task, c in tr.classifiers.items():
+        assert c.unit == "foot" and c.model.entry == m["tasks"][task]["methods"][c.method]["fused"]["members"]["foot"]
+    # here the members are the very models track picks (fitted on the same strides): the same walk
+    s = _foot_session()
+    new = replay(Tracker(root / "bundle", units=("foot",)), s, 0.37)
+    old = replay(tr, s, 0.37)
+    assert [st.classes for st in old] == [st.classes for st in new]
+    assert max(abs(a.x - b.x) + abs(a.y - b.y) for a, b in zip(old, new, strict=True)) < 1e-9
+
+
+def test_unit_requests_the_runtime_cannot_serve_are_one_line_errors(root):
+    with pytest.raises(DataError, match=r"bundle .* has no waist models \(its units: foot\); give foot$"):
+        Tracker(root / "bundle_foot", units=("waist",))
+    with pytest.raises(DataError, match="has no waist models"):
+        Tracker(root / "bundle_foot", units=("foot", "waist"))
+    with pytest.raises(DataError, match="needs the foot unit .*waist-pll"):
+        Tracker(root / "bundle", units=("waist",))
+    with pytest.raises(DataError, match="waist-gyro needs the waist unit"):
+        Tracker(root / "bundle", units=("foot",), heading_source="waist-gyro")
+    with pytest.raises(ModelError, match="task terrain has the svm/fused model that reads the foot unit only"):
+        Tracker(root / "bundle", units=("foot",), methods={"terrain": "svm/fused"})
+    assert Tracker(root / "bundle", units="foot").units == ("foot",)
+    assert Tracker(root / "bundle", units=("waist", "foot")).units == ("foot", "waist")
+
+
+def _errors_once(capsys, argv, pattern):
+    assert main(argv) == 2
+    cap = capsys.readouterr()
+    assert cap.out == "" and cap.err.startswith("error: ") and len(cap.err.strip().splitlines()) == 1
+    assert pattern in cap.err, cap.err
+
+
+def test_run_cli_foot_only_default_option_and_track_parity(root, tmp_path, capsys):
+    write_session(_foot_session("cli_foot"), tmp_path / "walk")
+    walk, b = str(tmp_path / "walk"), str(root / "bundle")
+    assert main(["track", walk, "--model", str(root / "model"), "--streaming", "--out", str(tmp_path / "t")]) == 0
+    capsys.readouterr()
+    # default: the foot alone, announced in one warning line that names the option
+    assert main(["run", b, walk, "--out", str(tmp_path / "r0")]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("warning: session 'cli_foot' has no wAccelerometer, wGyroscope")
+    assert "--units foot" in err[0] and "foot's own integrated yaw" in err[0]
+    # --units foot: the same run, with the heading line `pdrlearn track` prints
+    assert main(["run", b, walk, "--units", "foot", "--out", str(tmp_path / "r1"), "--json"]) == 0
+    cap = capsys.readouterr()
+    assert cap.err.strip().splitlines() == ["warning: cli_foot: no waist unit: heading from the foot's own "
+                                            "integrated yaw (relative to the start)"]
+    out = json.loads(cap.out)
+    assert out["methods"] == {"terrain": "svm/foot", "direction": "nn/foot", "length": "nn/foot"}
+    for f in ("steps.csv", "trajectory.csv"):
+        assert (tmp_path / "r0" / f).read_text() == (tmp_path / "r1" / f).read_text()
+    run, trk = (pd.read_csv(tmp_path / d / "steps.csv") for d in ("r1", "t"))
+    for _, col in TASKS:
+        assert list(run[col]) == list(trk[col])
+    run, trk = (pd.read_csv(tmp_path / d / "trajectory.csv") for d in ("r1", "t"))
+    assert len(run) == len(trk) > 20
+    assert np.abs(run[["x", "y", "z"]].to_numpy() - trk[["x", "y", "z"]].to_numpy()).max() < 1e-3
+    # both units asked for on a foot-only session, a waist-only request: one line naming the fix
+    _errors_once(capsys, ["run", b, walk, "--units", "foot,waist"],
+                 "track the foot unit alone (pdrlearn run --units foot")
+    _errors_once(capsys, ["run", b, walk, "--units", "waist"], "needs the foot unit")
+    _errors_once(capsys, ["run", str(root / "bundle_foot"), walk, "--units", "waist"], "has no waist models")
+
+
+def test_run_reads_the_bluetooth_protocol_with_a_two_unit_bundle(root, tmp_path, capsys):
+    """The foot unit's Bluetooth protocol carries no waist: a two-unit bundle replays it foot-only (E26; it was
+    an error), and asking for the waist names the option."""
+    cap = tmp_path / "capture.txt"
+    cap.write_text("".join(format_protocol(synthetic_session(15, seed=11))))
+    assert main(["run", str(root / "bundle"), "--protocol", str(cap), "--json"]) == 0
+    got = capsys.readouterr()
+    assert json.loads(got.out)["n_steps"] >= 13
+    assert len(got.err.strip().splitlines()) == 1 and "has no waist unit" in got.err
+    _errors_once(capsys, ["run", str(root / "bundle"), "--protocol", str(cap), "--units", "foot,waist"],
+                 "does not carry; replay the foot unit alone (--units foot)")
