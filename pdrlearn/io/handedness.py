@@ -61,10 +61,11 @@ WAIST_HOP_S = 1.0
 #: walking at the lower back swings it by 1-3 m/s^2 (seed 003 Fig. 2), standing by less than 0.2.
 WAIST_MIN_ACC_SD = 0.5
 #: Axis agreement (D11 amendment): strides (at most, evenly spaced) on which all 48 permutations are tried,
-#: and the rate (Hz) they are block-averaged to (not below it): 12 strides at ~50 Hz cost about what D11's
-#: two full-rate integrations cost (docs/decisions.md, D11 amendment; the simulated 20 Hz units pass).
-AXES_STRIDES = 12
-AXES_RATE_HZ = 50.0
+#: and the rate (Hz) they are block-averaged to (not below it): 8 strides at ~30 Hz add 0.04-1.31 times D11's
+#: CPU time on the real foot recordings (12 at ~50 Hz added 0.11-2.51 times; docs/decisions.md, D11
+#: amendment; the simulated 20 Hz units are used as they are).
+AXES_STRIDES = 8
+AXES_RATE_HZ = 30.0
 #: Report another permutation when it fits e times better than the axes as recorded in the median stride
 #: (confirmed on all strides): the same margin as D11's MIN_LOG_RATIO. Measured (experiments/axes_check.py):
 #: see docs/decisions.md, D11 amendment.
@@ -225,12 +226,16 @@ def foot_handedness(acc: np.ndarray, gyr: np.ndarray, fs: float) -> Handedness:
 
 
 def foot_axes(acc: np.ndarray, gyr: np.ndarray, fs: float, i0: np.ndarray, i1: np.ndarray,
-              *, strides: int = AXES_STRIDES, rate_hz: float = AXES_RATE_HZ) -> tuple[np.ndarray, np.ndarray]:
+              *, strides: int | None = None, rate_hz: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Axis agreement on a foot unit's rest-to-rest strides ``i0[b]..i1[b]`` (D11 amendment): the best
     signed permutation P (3, 3) other than the identity (P @ recorded = rate in the accelerometer's axes)
     and the median log ratio (48,) of every :data:`PERMUTATIONS` entry (> 0: fits better than as recorded),
-    on at most ``strides`` evenly spaced strides block-averaged to about ``rate_hz``. Pure function."""
+    on at most ``strides`` evenly spaced strides block-averaged to about ``rate_hz`` (default
+    :data:`AXES_STRIDES`, :data:`AXES_RATE_HZ`). Pure function."""
     from pdrlearn.displace._kernels import strapdown, stride_index, zupt_velocity
+
+    strides = AXES_STRIDES if strides is None else strides
+    rate_hz = AXES_RATE_HZ if rate_hz is None else rate_hz
 
     sel = np.unique(np.linspace(0, len(i0) - 1, min(strides, len(i0))).round().astype(np.int64))
     k = max(1, int(fs // rate_hz))
