@@ -35,4 +35,4 @@ def test_train_lines_and_titles_are_one_line_each(tmp_path, capsys):
     lines = capsys.readouterr().out.splitlines()
     assert any(ln.startswith("terrain: ") and ln.endswith(")") and "(chosen: " in ln for ln in lines), lines
     cal = [ln for ln in lines if ln.startswith("distance calibration:")]
-    assert len(cal) == 1 and cal[0].endswith("M3 and the runtime apply it)"), lines
+    assert len(cal) == 1 and cal[0].endswith("track --streaming and the runtime apply it)"), lines

@@ -621,3 +621,47 @@ def test_push_off_rolls_over_the_front_of_the_shoe(exact_a):
         i_to = np.searchsorted(t, r.tc_s)
         assert toe[i_to] - floor == pytest.approx(0.0, abs=0.003)  # the pivot is on the floor
         assert heel[i_to] - floor == pytest.approx(toe_tip_m(user) * np.sin(-pitch[i_to]), abs=0.005)
+
+
+def _strapdown_velocity(acc_body: np.ndarray, gyr_body: np.ndarray, r0: Rotation, dt: float) -> np.ndarray:
+    """ENU velocity (n, 3) from rest: attitude from ``r0`` (body -> ENU) and the gyroscope (trapezoid),
+    gravity removed from the rotated specific force."""
+    r = r0
+    a_nav = np.empty_like(acc_body)
+    for i in range(len(acc_body)):
+        a_nav[i] = r.apply(acc_body[i]) - [0.0, 0.0, G]
+        if i + 1 < len(acc_body):
+            r = r * Rotation.from_rotvec(0.5 * (gyr_body[i] + gyr_body[i + 1]) * dt)
+    return np.vstack([np.zeros(3), np.cumsum(0.5 * (a_nav[1:] + a_nav[:-1]) * dt, axis=0)])
+
+
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_accelerometer_and_gyroscope_of_one_rigid_body(exact_a, sign):
+    """The gyroscope is the body-frame angular rate of the orientation that put gravity and the linear
+    acceleration into the accelerometer (same frame, sign and order; decision S26): strapdown from the true
+    start orientation reproduces the true velocity of both units; with the gyroscope reversed (sign -1, what a
+    mirrored or sign-flipped simulator would produce) it must not."""
+    s, dt = exact_a, 0.01
+    # waist: the whole session from the initial standstill (pelvis level, heading from the ground truth)
+    mis = Rotation.from_rotvec(np.radians(s.meta["misalignment_deg"]["waist"])).as_matrix()
+    axes = mis @ s.frames["waist"].matrix()
+    v_true = np.gradient(s.trajectory[["x", "y", "z"]].to_numpy(), dt, axis=0)
+    r0 = Rotation.from_euler("z", s.trajectory.heading_rad.iloc[0])
+    v = _strapdown_velocity(s["wAccelerometer"].values @ axes.T, sign * s["wGyroscope"].values @ axes.T, r0, dt)
+    waist_err = float(np.abs(v - v_true).max())
+    # foot: each steady stride from the true orientation at its start (the unit is at rest there)
+    ft = s.extras["foot_trajectory"]
+    q = Rotation.from_quat(ft[["qx", "qy", "qz", "qw"]].to_numpy())
+    vf_true = np.gradient(ft[["x", "y", "z"]].to_numpy(), dt, axis=0)
+    axes = _foot_axes(s)
+    acc_f, gyr_f = s["fAccelerometer"].values @ axes.T, sign * s["fGyroscope"].values @ axes.T
+    foot_err = 0.0
+    for _, i0, i1 in _stride_windows(s, s.steps[s.steps.steady]):
+        sl = slice(i0, i1 + 1)
+        v = _strapdown_velocity(acc_f[sl], gyr_f[sl], q[i0], dt)
+        foot_err = max(foot_err, float(np.abs(v - vf_true[sl]).max()))
+    print(f"gyroscope x {sign:+.0f}: largest velocity error waist {waist_err:.3f} m/s, foot {foot_err:.3f} m/s")
+    if sign > 0:  # (0.021, 0.093) m/s; peak speeds 1.6 / 5 m/s
+        assert waist_err < 0.05 and foot_err < 0.25, (waist_err, foot_err)
+    else:
+        assert waist_err > 1.0 and foot_err > 1.0, (waist_err, foot_err)

@@ -107,27 +107,35 @@ def _xyz(steps) -> np.ndarray:
     return np.array([[st.x, st.y, st.z] for st in steps])
 
 
-def test_runtime_and_streaming_track_apply_the_offline_rule_on_request(calibrated_length, tmp_path):
-    """L40 / E25: the streamed default stays the thesis rule on every class (bayes measured, not adopted);
-    --rules bayes streams offline M3's default rule, and runtime and streaming track agree under it."""
+def test_runtime_and_streaming_track_apply_the_offline_rule_by_default(calibrated_length, tmp_path):
+    """L41 (L40 / E25 amended): streamed, the default is offline M3's rule (bayes, 0.95 gate) in the bundle,
+    the runtime and ``track --streaming``, and runtime and streaming track agree under it."""
     root, model, s = calibrated_length
     disp = json.loads((root / "bundle" / "manifest.json").read_text())["displacement"]
-    assert (disp["rules"], disp["min_confidence"]) == ("thesis", 0.0)
+    assert (disp["rules"], disp["min_confidence"]) == ("bayes", 0.95)
     fn = get_pipeline("plasys")
-    default = fn(s, method="M3", model=str(root / "model"), streaming=True, heading="foot")
-    assert (default.info["rules"], default.info["min_confidence"]) == ("thesis", 0.0)
-    res = fn(s, method="M3", model=str(root / "model"), streaming=True, heading="foot", rules="bayes")
+    res = fn(s, method="M3", model=str(root / "model"), streaming=True, heading="foot")
     offline = fn(s, method="M3", model=str(root / "model"))
-    for k in ("rules", "min_confidence", "stride_sigma_rel"):
+    for k in ("rules", "min_confidence"):
         assert res.info[k] == offline.info[k]
-    assert res.info["stride_sigma_rel"] == pytest.approx(model.data_summary["distance_calibration"]["stride_sd"])
-    assert (Tracker(root / "bundle").rules, Tracker(root / "bundle").min_confidence) == ("thesis", 0.0)
-    tr = Tracker(root / "bundle", heading_source="foot", rules="bayes", min_confidence=0.95)
+    assert (res.info["rules"], res.info["min_confidence"]) == ("bayes", 0.95)
+    oracle = fn(s, method="M3", model="oracle", streaming=True, heading="foot")
+    assert (oracle.info["rules"], oracle.info["min_confidence"]) == ("thesis", 0.0)  # labels prevail, as offline
+    rec = model.data_summary["distance_calibration"]
+    assert offline.info["stride_sigma_rel"] == pytest.approx(rec["stride_sd"])
+    # decision L41: streamed, the stride kernel's own calibrated sd
+    assert res.info["stride_sigma_rel"] == pytest.approx(rec["streaming"]["stride_sd"])
+    assert (Tracker(root / "bundle").rules, Tracker(root / "bundle").min_confidence) == ("bayes", 0.95)
+    tr = Tracker(root / "bundle", heading_source="foot")
     steps = replay(tr, s, 0.5)
     assert (tr.rules, tr.min_confidence) == ("bayes", 0.95)
     assert len(steps) == len(res.steps) >= 10
     assert [st.classes["length"] for st in steps] == list(res.steps["length_class"])  # ungated classes reported
     assert np.abs(_xyz(steps) - res.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
+    # a rule asked for without a gate brings its own gate, in both (thesis: 0, every class prevails)
+    assert Tracker(root / "bundle", rules="thesis").min_confidence == 0.0
+    assert fn(s, method="M3", model=str(root / "model"), streaming=True, heading="foot",
+              rules="thesis").info["min_confidence"] == 0.0
     # the thesis rule stays selectable, in both, and gives another walk (so the parity above is the bayes one)
     thesis = fn(s, method="M3", model=str(root / "model"), streaming=True, heading="foot", rules="thesis",
                 min_confidence=0.0)
@@ -146,6 +154,7 @@ def test_runtime_and_streaming_track_apply_the_offline_rule_on_request(calibrate
     tr_old = Tracker(old, heading_source="foot")
     assert (tr_old.rules, tr_old.min_confidence) == ("thesis", 0.0)
     assert np.abs(_xyz(replay(tr_old, s, 0.5)) - _xyz(steps_t)).max() < 1e-9
+    assert Tracker(old, rules="bayes").min_confidence == 0.95  # offline's gate with offline's rule
 
 
 def test_streamed_strides_of_a_doubtful_class_keep_their_measured_length(calibrated_length):
@@ -153,9 +162,9 @@ def test_streamed_strides_of_a_doubtful_class_keep_their_measured_length(calibra
     its (gained) measured length in both; a confident one is weighed against its class."""
     root, model, s = calibrated_length
     fn = get_pipeline("plasys")
-    gain = model.data_summary["distance_calibration"]["gain"]
     for res in (fn(s, method="M3", model=model, streaming=True, heading="foot", rules="bayes"),
                 fn(s, method="M3", model=model)):
+        gain = res.info["distance_gain"]  # each engine's own (decision L41)
         st = res.steps
         pmax = st[[f"p_length_{c}" for c in NAMES if f"p_length_{c}" in st]].max(axis=1).to_numpy()
         doubtful = pmax < 0.95

@@ -58,12 +58,14 @@ def evaluation_stages(model, *, report: bool = False) -> int:
 
 def evaluate_model(
     model, sessions, *, report_dir: Path | None = None, latency: bool = True, latency_steps: int = 20,
-    advance: Callable[[int], None] = lambda n=1: None,
+    advance: Callable[[int], None] = lambda n=1: None, warn_out_of_domain: float | None = None,
 ) -> dict:
     """Score every trained task x method x unit of ``model`` on the labelled steps of ``sessions``.
 
     ``advance(n)`` is called as the work proceeds, :func:`evaluation_stages` times in all (the CLI's
-    progress bar); each scored model is also logged at INFO level (``-v``).
+    progress bar); each scored model is also logged at INFO level (``-v``). ``out_of_domain_fraction`` is the
+    largest share, over the tasks, of labelled steps outside the training range of the model that
+    classified them (decision C16); ``warn_out_of_domain``: log one warning when it reaches this (opt-in).
 
     Returns
     -------
@@ -74,6 +76,16 @@ def evaluate_model(
     method's fused model when it could run, else of its best-ranked unit. ``tasks.<t>.accuracy`` is the model's chosen
     method (or, for sessions lacking one of its units, the best-ranked method they can run).
     """
+    from pdrlearn.classify.domain import (
+        NO_RANGES_NOTE,
+        check_warn_at,
+        domain_report,
+        step_score,
+        summarize,
+        warning_line,
+    )
+
+    check_warn_at(warn_out_of_domain)
     from pdrlearn.classify.training import class_metrics, session_windows, task_data
 
     if not sessions:
@@ -93,6 +105,7 @@ def evaluate_model(
         "boundaries": model.boundaries,  # how the step windows were cut (decision C13)
         "skipped": [],
     }
+    domain: dict[str, dict] = {}
     for task, tm in model.tasks.items():
         data = task_data(windows, task)
         if data is None or len(data.y) == 0:
@@ -157,8 +170,16 @@ def evaluate_model(
         # UserModel.predict_steps does for track), and with none it is left out of the score (B17)
         order = list(dict.fromkeys(([tm.chosen] if tm.chosen else []) + tm.ranking()))
         y_true, y_pred, used, n_gap = [], [], [], 0
+        ood, ood_feat, ood_models = [], [], set()  # decision C16: the chosen model's training-range check
         for i, rows in sess_rows.items():
             runs = [p for p in order if p in preds and i in preds[p]]
+            if runs:
+                got_rows = preds[runs[0]][i][0]
+                sc = step_score(tm.models[runs[0][0]][runs[0][1]], data.X[got_rows])
+                if sc is not None:
+                    ood.append(sc[0])
+                    ood_feat += sc[1]
+                    ood_models.add("/".join(runs[0]))
             every_step_in_a_gap = bool(windows[i].gap_steps) and not (data.foot[rows] | data.waist[rows]).any()
             if not runs and not every_step_in_a_gap:
                 res["skipped"].append(f"chosen: no model runs on {windows[i].session}")
@@ -193,6 +214,8 @@ def evaluate_model(
                 f"(they have {', '.join(sorted(available)) or 'no sensors'})"
             )
             continue
+        if ood:
+            domain[task] = summarize(np.concatenate(ood), ood_feat, ", ".join(sorted(ood_models)))
         chosen = max(set(used), key=used.count)
         m = class_metrics(np.concatenate(y_true), np.concatenate(y_pred), classes)
         res["n_steps"] = int(m["n_steps"])
@@ -204,6 +227,18 @@ def evaluate_model(
             chosen={"method": chosen[0], "unit": chosen[1]},
         )
         out["tasks"][task] = res
+    # decision C16: share of labelled steps outside the training range of the models that classified them
+    if domain:
+        rep = domain_report(domain, warn_at=warn_out_of_domain)
+        out["out_of_domain_fraction"] = rep["out_of_domain_fraction"]
+        out["out_of_domain"] = rep
+        line = warning_line(rep, what="labelled steps")
+        if line:
+            log.warning(line)
+    elif not model.has_domain:
+        out["out_of_domain_fraction"] = None
+        out["out_of_domain"] = {"out_of_domain_fraction": None, "note": NO_RANGES_NOTE}
+        log.info(NO_RANGES_NOTE)
     if report_dir is not None:
         write_report(out, Path(report_dir))
         advance(1)

@@ -71,6 +71,7 @@ def manifest_of(model, files: dict[str, str]) -> dict:
     import torch
 
     import pdrlearn
+    from pdrlearn.classify.domain import has_ranges
 
     tasks = {}
     for name, tm in model.tasks.items():
@@ -83,6 +84,9 @@ def manifest_of(model, files: dict[str, str]) -> dict:
             "skipped": tm.skipped,
             "n_steps": tm.n_steps,
             "n_skipped_labels": tm.n_skipped_labels,
+            # decision C16: which models keep the training range of their inputs (the ranges are pickled with
+            # each model; absent or false in models saved before C16)
+            "training_ranges": {m: {u: has_ranges(est) for u, est in per.items()} for m, per in tm.models.items()},
             "feature_spec": {
                 m: {u: feature_spec(est) for u, est in per.items()} for m, per in tm.models.items()
             },

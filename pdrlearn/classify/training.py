@@ -22,6 +22,7 @@ from sklearn.model_selection import StratifiedKFold
 from sklearn.pipeline import Pipeline
 from sklearn.preprocessing import FunctionTransformer
 
+from pdrlearn.classify.domain import attach_ranges, domain_report, has_ranges, step_score, summarize
 from pdrlearn.classify.dtw import THESIS_REFERENCES_PER_CLASS, DTWClassifier
 from pdrlearn.classify.fusion import (
     UnitFusionClassifier,
@@ -375,6 +376,8 @@ class UserModel:
             for c in tm.classes:
                 out[f"p_{task}_{c}"] = np.nan
             out[f"method_{task}"] = "none"
+            out[f"ood_{task}"] = np.nan  # distance to the training range (decision C16)
+            out[f"ood_feature_{task}"] = None
             for rows, win in _gap_groups(windows):
                 try:
                     m, u, proba = self._predict_task(tm, win, method, unit)
@@ -389,7 +392,34 @@ class UserModel:
                 for j, c in enumerate(tm.classes):
                     out.iloc[rows, out.columns.get_loc(f"p_{task}_{c}")] = proba[:, j]
                 out.iloc[rows, out.columns.get_loc(f"method_{task}")] = f"{m}/{u}"
+                dist = step_score(tm.models[m][u], win.X)  # decision C16: outside the training range?
+                if dist is not None:
+                    out.iloc[rows, out.columns.get_loc(f"ood_{task}")] = dist[0]
+                    out.iloc[rows, out.columns.get_loc(f"ood_feature_{task}")] = np.asarray(dist[1], dtype=object)
         return out
+
+    def domain_report(self, pred: pd.DataFrame, *, warn_at: float | None = None) -> dict | None:
+        """Out-of-domain summary (decision C16) of a :meth:`predict_steps` table: per task the fraction of
+        classified steps outside the training range, the unit and the feature most often off; ``None`` when
+        the model stores no training ranges (saved before C16) or no task was checked. ``warn_at``: the
+        fraction at which ``warn`` is set (None: never, the default)."""
+        per_task = {}
+        for task in self.tasks:
+            if f"ood_{task}" not in pred:
+                continue
+            d = pred[f"ood_{task}"].to_numpy(float)
+            if not np.isfinite(d).any():
+                continue
+            used = pred[f"method_{task}"].astype(str).to_numpy()[np.isfinite(d)]
+            unit = ", ".join(sorted(set(used)))  # "<method>/<unit>" of the models checked
+            per_task[task] = summarize(d, [str(v) for v in pred[f"ood_feature_{task}"].fillna("")], unit)
+        return domain_report(per_task, warn_at=warn_at) if per_task else None
+
+    @property
+    def has_domain(self) -> bool:
+        """Whether the model stores training ranges (decision C16; models saved before it do not)."""
+        return any(has_ranges(est) for tm in self.tasks.values() for per in tm.models.values()
+                   for est in per.values())
 
 
 def _gap_groups(windows):
@@ -604,6 +634,14 @@ def train_task(
             cv_seconds=time.perf_counter() - t0,
         )
         advance(1)
+    # decision C16: every leaf model keeps the range of its own inputs over its training steps (units first,
+    # so that fused/ensemble members fitted on the unit's steps keep that range)
+    for unit in sorted(subsets, key=lambda u: u == "fused"):
+        if isinstance(subsets[unit], str):
+            continue
+        for per in tm.models.values():
+            if unit in per:
+                attach_ranges(per[unit], data.X[subsets[unit][0]])
     fused = [(m, u) for m, u in tm.ranking() if u == "fused"]
     ranking = tm.ranking()
     tm.chosen = (fused or ranking or [None])[0]
@@ -730,8 +768,16 @@ def train_user(
             log.info("skipped %s", exc)
             continue
         out[task] = train_task(data, methods=methods, units=units, cv=cv, seed=seed, advance=advance)
-    if not out:
-        raise DataError("train: nothing to train; " + " | ".join(skipped))
+    calibration = None
+    if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
+        from pdrlearn.displace.calibration import calibrate_distance
+
+        calibration = calibrate_distance(sessions)
+    if not out and (calibration is None or calibration.get("reason")):
+        # decision C17: a model without classifiers is worth writing only for its distance calibration
+        why = ("distance calibration off" if calibration is None
+               else f"no distance calibration either: {calibration['reason']}")
+        raise DataError("train: nothing to train; " + " | ".join(skipped) + f" | {why}")
     rates: dict[str, float] = {}
     for s in sessions:
         for name, st in s.streams.items():
@@ -740,10 +786,8 @@ def train_user(
     bounds = length_class_bounds(sessions)
     if bounds is not None:
         summary["length_bounds_m"] = bounds
-    if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
-        from pdrlearn.displace.calibration import calibrate_distance
-
-        summary["distance_calibration"] = calibrate_distance(sessions)
+    if calibration is not None:
+        summary["distance_calibration"] = calibration
     for t, m in out.items():
         data = datas[t]
         summary["steps"][t] = {

@@ -21,7 +21,8 @@ import typer
 
 from pdrlearn.errors import PdrlearnError
 
-COMMAND_MODULES = ["simulate", "data", "steps", "train", "track", "calibrate", "export", "report", "cohort"]
+COMMAND_MODULES = ["simulate", "data", "import_csv", "steps", "train", "track", "calibrate", "export", "report",
+                   "cohort"]
 
 app = typer.Typer(
     name="pdrlearn",

@@ -139,12 +139,13 @@ def run(
                                   "its own rate, as `pdrlearn track --streaming`."),
     no_resample: bool = typer.Option(False, "--no-resample", help="Refuse data at another rate than the "
                                      "bundle's (+-5 %) (decision E3)."),
-    rules: str = typer.Option(None, "--rules", help="Class rules: bayes or thesis (default: the bundle's, "
-                              "thesis; bayes = offline M3's rule, decision E25)."),
+    rules: str = typer.Option(None, "--rules", help="Class rules: bayes or thesis (default: the bundle's: "
+                              "bayes = offline M3's rule since decision L41, thesis in bundles exported "
+                              "before it; decision E25)."),
     min_confidence: float = typer.Option(None, "--min-confidence", min=0.0, max=1.0,
                                          help="Apply a class rule only when the model's probability of the class "
-                                         "reaches this (default: the bundle's, 0 = always, as the thesis; 0.95 with "
-                                         "--rules bayes)."),
+                                         "reaches this (default: the bundle's, 0.95 since decision L41; 0 = always, "
+                                         "as the thesis; 0.95 with --rules bayes, 0 with --rules thesis)."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 

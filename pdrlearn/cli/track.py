@@ -27,12 +27,16 @@ def track(
                               "own step labels."),
     rules: str = typer.Option(None, "--rules", help="M3 class rules: thesis (classes prevail) or bayes "
                               "(class probabilities weighed against the estimate); default bayes with a "
-                              "model, thesis with --model oracle or --streaming (decision L40)."),
+                              "model, thesis with --model oracle, offline and --streaming (decisions L40, L41)."),
     min_confidence: float = typer.Option(None, "--min-confidence", min=0.0, max=1.0,
                                          help="M3: apply a class rule only when the model's probability of the "
                                          "class reaches this (default 0.95; 0 = always, as the thesis)."),
     length_bounds: str = typer.Option(None, "--length-bounds", help="M3 stride-length class edges "
                                       "SHORT_MAX,NORMAL_MAX in m (default: the model's, else thesis x 2)."),
+    warn_out_of_domain: float = typer.Option(None, "--warn-out-of-domain", help="With --model: warn (one line) "
+                                             "when at least this fraction of the strides lie outside the model's "
+                                             "training range, e.g. 0.25 (off by default; the fraction is always "
+                                             "in summary.json as out_of_domain_fraction, decision C16)."),
     start: str = typer.Option(None, "--start", help="Start coordinate LAT,LON (degrees) -> lat/lon columns."),
     params: Path = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline."),
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
@@ -57,6 +61,8 @@ def track(
         pdrlearn track out/sim/D_u1 --method M3 --model out/models/u1 --rules bayes --out out/D3 --json
 
         pdrlearn track out/sim/D_u1 --method M3 --model out/models/u1 --streaming --out out/D3s   # = pdrlearn run
+
+        pdrlearn track datasets/real/gaitmap_level_left --model out/models/u1 --warn-out-of-domain 0.25 --out out/L
     """
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.common import out_folder
@@ -99,6 +105,8 @@ def track(
             kw["rules"] = rules
         if min_confidence is not None:
             kw["min_confidence"] = min_confidence
+        if warn_out_of_domain is not None:
+            kw["warn_out_of_domain"] = warn_out_of_domain
         if length_bounds is not None:
             try:
                 kw["bounds"] = [float(v) for v in length_bounds.split(",")]
@@ -121,6 +129,9 @@ def track(
     summary["session"] = session.name
     summary["pipeline"] = pipeline
     summary["info"] = dict(result.info)
+    dom = result.info.get("out_of_domain")
+    if isinstance(dom, dict):  # decision C16: share of strides outside the model's training range
+        summary["out_of_domain_fraction"] = dom.get("out_of_domain_fraction")
     aid = summary["info"].get("aid")
     if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary
         summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}
@@ -158,7 +169,10 @@ def track(
                   if "distance_matched_error_pct" in summary and "stride_length_matched" in summary
                   and err is not None and summary["stride_length_matched"] < summary["n_steps"] else "")
                + (f", final position error {summary['final_position_error_m']:.2f} m"
-                  if "final_position_error_m" in summary else ""))
+                  if "final_position_error_m" in summary else "")
+               # decision C16: how much of the walk the model's training data covered
+               + (f"; {100 * summary['out_of_domain_fraction']:.0f} % of the strides outside the model's "
+                  "training range" if summary.get("out_of_domain_fraction") is not None else ""))
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json")
 
 

@@ -77,7 +77,8 @@ def train(
     distance_calibration: bool = typer.Option(
         True, "--distance-calibration/--no-distance-calibration",
         help="Estimate the user's distance gain and stride spread from the straight level strides of the "
-        "labelled sessions (decision L26; M3 and the runtime apply it). Turn off for a model pooled over "
+        "labelled sessions, once with the offline engine (decision L26; M3 applies it) and once with the "
+        "streamed stride kernel (L41; track --streaming and the runtime apply it). Turn off for a model pooled over "
         "several users or devices: a pooled gain corrects no one's sensor.",
     ),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -162,7 +163,10 @@ def train(
         if tm.n_skipped_labels:
             c.print(f"  ignored {tm.n_skipped_labels} step label(s) that are not {t} classes")
     for s in model.skipped:
-        c.print(f"skipped {s}")
+        c.print(f"skipped {s}", markup=False)
+    if not model.tasks:  # decision C17
+        c.print("no classifier trained (the labels allow none); the model holds the distance calibration: "
+                "`pdrlearn track SESSION --model DIR` applies it, the class rules as without a model", markup=False)
     cal = summary["distance_calibration"]
     if cal is None:
         c.print("distance calibration: off (--no-distance-calibration)")
@@ -170,9 +174,20 @@ def train(
         c.print(f"distance calibration: gain 1 ({cal['reason']})")
     else:
         c.print(f"distance calibration: gain {cal['gain']:.4f} from {cal['n_strides']} straight level strides "
-                f"(decision L26; M3 and the runtime apply it)")
+                f"(decision L26; offline M3 applies it){_streamed_gain(cal)}")
     c.print(f"step windows: {model.boundaries} boundaries")
     c.print(f"model written to {out} ({seconds:.1f} s)")
+
+
+def _streamed_gain(cal: dict) -> str:
+    """The streamed stride kernel's gain of a calibration record (decision L41), as the end of the line."""
+    st = cal.get("streaming")
+    if not isinstance(st, dict):
+        return ""
+    if st.get("reason"):
+        return f"; streamed: gain 1 ({st['reason']})"
+    return (f"; streamed: gain {st['gain']:.4f} from {st['n_strides']} strides (L41; track --streaming and the "
+            "runtime apply it)")
 
 
 def evaluate(
@@ -181,6 +196,10 @@ def evaluate(
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object (tasks.<task>.accuracy ...)."),
     report: Path = typer.Option(None, "--report", help="Folder for report.md/json and confusion PNGs."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    warn_out_of_domain: float = typer.Option(None, "--warn-out-of-domain", help="Warn (one line) when at least "
+                                             "this fraction of the labelled steps lie outside the model's training "
+                                             "range, e.g. 0.25 (off by default; the fraction is always in the "
+                                             "result as out_of_domain_fraction, decision C16)."),
 ) -> None:
     """Accuracy per class x method x unit (thesis Tables 27/28/33), confusion matrices, per-step latency.
 
@@ -212,7 +231,12 @@ def evaluate(
         for d in dirs:
             sessions.append(read_session(d))
             advance(1)
-        result = evaluate_model(model, sessions, report_dir=report, advance=advance)
+        result = evaluate_model(model, sessions, report_dir=report, advance=advance,
+                                warn_out_of_domain=warn_out_of_domain)
+    if not model.tasks:  # decision C17: a model trained on level walks only holds a distance calibration
+        raise DataError(f"evaluate: {model_dir} has no trained classifier to evaluate (training skipped every "
+                        "task), only a distance calibration; evaluate its tracking with `pdrlearn track SESSION "
+                        f"--model {model_dir}`")
     if not result["tasks"]:
         raise DataError(
             f"evaluate: the sessions have no labels for the model's tasks ({', '.join(model.tasks)}); "
@@ -239,6 +263,9 @@ def evaluate(
             c.print(f"  skipped {s}")
     c.print(f"step windows: {result.get('boundaries', model.boundaries)} boundaries, "
             f"{result['windows_ms_per_step']:.3f} ms/step")
+    if result.get("out_of_domain_fraction") is not None:  # decision C16
+        c.print(f"{100 * result['out_of_domain_fraction']:.0f} % of the labelled steps lie outside the model's "
+                "training range", markup=False)
     for s in result["skipped"]:
         c.print(f"skipped {s}")
     if report is not None:

@@ -21,18 +21,23 @@ from pdrlearn.displace._kernels import (
 )
 from pdrlearn.displace.calibration import (
     LEVEL_DZ_M,
+    PRE_L41_CALIBRATION,
     RATE_TOLERANCE,
     calibrate_distance,
+    calibrate_streaming,
     distance_gain,
     model_distance_calibration,
+    predates_streaming_calibration,
     straight_level_forward,
+    streaming_calibration,
 )
 from pdrlearn.displace.foot import FootDisplacement, force_stance, inertial_stance, rest_to_rest, stance_runs
 from pdrlearn.displace.rules import THESIS_STEP_BOUNDS, StepRules, parse_bounds
 
 __all__ = [
-    "LEVEL_DZ_M", "RATE_TOLERANCE", "calibrate_distance", "distance_gain", "model_distance_calibration",
-    "straight_level_forward",
+    "LEVEL_DZ_M", "RATE_TOLERANCE", "calibrate_distance", "calibrate_streaming", "distance_gain",
+    "model_distance_calibration", "straight_level_forward", "streaming_calibration", "PRE_L41_CALIBRATION",
+    "predates_streaming_calibration",
     "FootDisplacement", "StepRules", "THESIS_STEP_BOUNDS", "altitude_change", "apply_direction", "bayes_length",
     "clamp_length",
     "double_integrate", "error_clock", "force_stance", "heel_rocker_samples", "move_reference",

@@ -11,7 +11,10 @@ sums), shrunk towards 1 by its standard error, stored in the user's model by ``p
 (``training_data.distance_calibration`` in the manifest) and applied by M3 to the level strides.
 
 ``distance_gain`` is the pure kernel; :func:`calibrate_distance` runs the tracker's own engine on
-labelled sessions and returns the record stored in the model.
+labelled sessions and returns the record stored in the model. The streamed tracker (``track --streaming``,
+the runtime) measures each stride with its own stride-local kernel, whose bias differs from the offline
+engine's (+0.8 % on the simulator, L40), so the record also holds the gain of that kernel
+(``record["streaming"]``, decision L41), which streamed tracking applies instead.
 """
 
 from __future__ import annotations
@@ -128,18 +131,28 @@ def _tracker_warnings_silenced():
         log.setLevel(level)
 
 
-def calibrate_distance(sessions, *, params: dict | None = None, **kernel_kw) -> dict:
-    """The user's distance gain from labelled calibration sessions (strides with ``length_m``).
-
-    Each session is tracked on its labelled strides with the M2/M3 foot engine (force stance where the
-    session has force sensors; M3 with the labels' classes otherwise), the level, forward, straight
-    strides are matched to their labels and :func:`distance_gain` is applied to all of them together.
-
-    Returns the record stored in the user model: the :func:`distance_gain` dict plus ``rate_hz`` (foot
-    accelerometer rate of the sessions, Hz), ``engine`` and ``sessions`` (names used / skipped and why).
-    """
-    from pdrlearn.track.evaluate import match_by_overlap
+def _offline_track(s, params):
+    """The offline engine on the session's labelled strides (force stance where the session has force
+    sensors; M3 with the labels' classes otherwise), gain 1."""
     from pdrlearn.track.plasys import track_plasys
+
+    method = "M2" if s.has("fForceA") or s.has("fForceB") else "M3"
+    return track_plasys(s, method=method, model=None if method == "M2" else "oracle", steps="labels",
+                        heading="foot", params=params, distance_gain=1.0)
+
+
+def _streaming_track(s, params):
+    """The streamed tracker's stride kernel (``track --streaming``, the runtime) on the stance segmenter's
+    strides, foot heading, gain 1; M2: each stride's measured displacement and height change."""
+    from pdrlearn.track.plasys import track_plasys
+
+    return track_plasys(s, method="M2", streaming=True, heading="foot", params=params, distance_gain=1.0)
+
+
+def _estimate(sessions, track, params, kernel_kw) -> dict:
+    """Track each labelled session with ``track``, keep the level, forward, straight strides matched to a
+    flat forward label (IoU >= 0.5) and apply :func:`distance_gain` to all of them together."""
+    from pdrlearn.track.evaluate import match_by_overlap
 
     raw_all, ref_all, used, skipped, rates = [], [], [], [], []
     for s in sessions:
@@ -147,11 +160,9 @@ def calibrate_distance(sessions, *, params: dict | None = None, **kernel_kw) -> 
         if lab is None or "length_m" not in lab or not s.has("fAccelerometer", "fGyroscope"):
             skipped.append(f"{s.name}: no labelled stride lengths or no foot unit")
             continue
-        method = "M2" if s.has("fForceA") or s.has("fForceB") else "M3"
         try:
             with _tracker_warnings_silenced():  # the tracker's notes (e.g. default length bounds) are not the user's
-                res = track_plasys(s, method=method, model=None if method == "M2" else "oracle", steps="labels",
-                                   heading="foot", params=params, distance_gain=1.0)
+                res = track(s, params)
         except PdrlearnError as exc:
             skipped.append(f"{s.name}: {exc}")
             continue
@@ -172,11 +183,72 @@ def calibrate_distance(sessions, *, params: dict | None = None, **kernel_kw) -> 
     out = distance_gain(raw, ref, **kernel_kw)
     if rates and (max(rates) - min(rates)) > RATE_TOLERANCE * max(rates):
         out.update(gain=1.0, weight=0.0, reason=f"calibration sessions at different foot rates {sorted(set(rates))} Hz")
-    out.update(rate_hz=float(np.median(rates)) if rates else None, engine="plasys M2/M3 foot engine",
-               params=dict(params or {}), sessions_used=used, sessions_skipped=skipped)
+    out.update(rate_hz=float(np.median(rates)) if rates else None, sessions_used=used, sessions_skipped=skipped)
+    return out
+
+
+def calibrate_distance(sessions, *, params: dict | None = None, streaming: bool = True, **kernel_kw) -> dict:
+    """The user's distance gain from labelled calibration sessions (strides with ``length_m``).
+
+    Each session is tracked on its labelled strides with the M2/M3 foot engine (force stance where the
+    session has force sensors; M3 with the labels' classes otherwise), the level, forward, straight
+    strides are matched to their labels and :func:`distance_gain` is applied to all of them together.
+
+    Returns the record stored in the user model: the :func:`distance_gain` dict plus ``rate_hz`` (foot
+    accelerometer rate of the sessions, Hz), ``engine`` and ``sessions`` (names used / skipped and why).
+    With ``streaming`` (default), ``record["streaming"]`` is the same estimate made with the streamed
+    tracker's stride kernel (:func:`calibrate_streaming`, decision L41); the offline fields do not change.
+    """
+    sessions = list(sessions)
+    out = _estimate(sessions, _offline_track, params, kernel_kw)
+    out.update(engine="plasys M2/M3 foot engine", params=dict(params or {}))
+    # key order as before L41 (rate_hz, engine, params, sessions_used, sessions_skipped)
+    out = {**{k: v for k, v in out.items() if not k.startswith("sessions_")},
+           "sessions_used": out["sessions_used"], "sessions_skipped": out["sessions_skipped"]}
     log.info("distance calibration: gain %.4f (ratio %s, se %s, %d strides)", out["gain"], out["ratio"],
              out["se"], out["n_strides"])
+    if streaming:
+        out["streaming"] = calibrate_streaming(sessions, **kernel_kw)
     return out
+
+
+def calibrate_streaming(sessions, *, params: dict | None = None, **kernel_kw) -> dict:
+    """The distance gain of the streamed tracker's stride kernel (decision L41): as
+    :func:`calibrate_distance`, but each session is tracked as ``track --streaming`` and the runtime track it
+    (the stance segmenter's strides, ``params`` = its settings, default the runtime's; each stride measured
+    by :func:`~pdrlearn.kernels.stride.stride_motion` from its own samples; foot heading; gain 1); the same
+    selection (level, forward, straight, labelled flat and forward) and kernel (:func:`distance_gain`).
+
+    Returns the :func:`distance_gain` dict plus ``rate_hz``, ``engine`` and ``sessions_used`` /
+    ``sessions_skipped``."""
+    out = _estimate(list(sessions), _streaming_track, params, kernel_kw)
+    out["engine"] = "streaming stride kernel (track --streaming, runtime)"
+    log.info("distance calibration (streaming kernel): gain %.4f (ratio %s, se %s, %d strides)", out["gain"],
+             out["ratio"], out["se"], out["n_strides"])
+    return out
+
+
+def streaming_calibration(rec: dict | None) -> dict | None:
+    """The calibration record streamed tracking applies (decision L41): the streaming kernel's estimate
+    (``rec["streaming"]``: gain, stride sd, refusal reason), or ``rec`` itself for a record made before L41
+    (the offline engine's gain, as before). The foot rate it applies at is the record's ``rate_hz`` (the same
+    sessions; the one rate a bundle carries, ``distance_gain_rate_hz``)."""
+    if not isinstance(rec, dict) or not isinstance(rec.get("streaming"), dict):
+        return rec
+    return {**{k: v for k, v in rec.items() if k != "streaming"}, **rec["streaming"], "rate_hz": rec.get("rate_hz")}
+
+
+#: decision L41: why a model calibrated before L41 keeps the thesis rule when streamed
+PRE_L41_CALIBRATION = ("the model's distance calibration predates decision L41 (offline engine only; the streamed "
+                       "stride kernel measures ~0.8 % longer strides): streamed with the thesis rule on every class, "
+                       "as before; retrain (pdrlearn train) for the streamed gain and offline's rule (bayes, 0.95)")
+
+
+def predates_streaming_calibration(rec: dict | None) -> bool:
+    """True for a calibration record made before decision L41 (no ``streaming`` part): streamed tracking then
+    has only the offline engine's gain, with which the bayes rule was measured worse than the thesis rule on
+    scenarios C and D (L41, users 4-10), so the streamed default stays the thesis rule for such a model."""
+    return isinstance(rec, dict) and not isinstance(rec.get("streaming"), dict)
 
 
 def model_distance_calibration(model) -> dict | None:

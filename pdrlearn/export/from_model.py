@@ -207,6 +207,10 @@ def export_model(
         src_manifest = read_manifest(model_dir)
     else:
         src_manifest = {}
+    if not model.tasks:  # decision C17: trained on level walks only, the model holds a distance calibration
+        raise ModelError(f"{model_dir}: the model has no trained classifier (training skipped every task), only "
+                         "its distance calibration, which `pdrlearn track --model` applies; a runtime bundle needs "
+                         "a classifier: retrain with terrain, direction or length labels")
     col = _Collector()
     tasks: dict = {}
     used_units: set[str] = set()
@@ -304,13 +308,25 @@ def export_model(
 
 def _displacement(displacement: dict | None, length_bounds, model) -> dict:
     """Displacement parameters with the length-class bounds resolved (see :func:`export_model`)."""
+    from pdrlearn.displace.calibration import PRE_L41_CALIBRATION, predates_streaming_calibration
     from pdrlearn.displace.rules import parse_bounds
     from pdrlearn.kernels.stride import STANCE_L27_DEFAULTS
     from pdrlearn.runtime.tracker import DEFAULT_DISPLACEMENT
 
     out = {**STANCE_L27_DEFAULTS, **DEFAULT_DISPLACEMENT}  # decision L27: the stance rule's settings
     out.update(_calibration_fields(model))
-    out.update(displacement or {})
+    explicit = dict(displacement or {})
+    rec = (getattr(model, "data_summary", None) or {}).get("distance_calibration")
+    if predates_streaming_calibration(rec) and not {"rules", "min_confidence"} & explicit.keys():
+        out.update(rules="thesis", min_confidence=0.0)  # decision L41, as pdrlearn track --streaming
+        log.warning("%s", PRE_L41_CALIBRATION)
+    if {"distance_gain", "stride_sigma_rel"} & explicit.keys() and not any(k.startswith("streaming_")
+                                                                          for k in explicit):
+        # decision L41: an explicit calibration overrides the model's for the runtime too (which would
+        # otherwise take the model's streamed fields first)
+        for k in STREAMING_CALIBRATION_FIELDS:
+            out.pop(k, None)
+    out.update(explicit)
     if length_bounds is None:
         for holder in (getattr(model, "settings", None) or {}, getattr(model, "data_summary", None) or {}):
             length_bounds = holder.get("length_bounds_m", length_bounds)
@@ -333,18 +349,35 @@ def _displacement(displacement: dict | None, length_bounds, model) -> dict:
     return out
 
 
+#: the bundle's fields of the streamed stride kernel's calibration (decision L41)
+STREAMING_CALIBRATION_FIELDS = ("streaming_distance_gain", "streaming_stride_sigma_rel",
+                                "streaming_distance_calibration_reason")
+
+
 def _calibration_fields(model) -> dict:
     """The user's distance calibration (decision L26) as bundle displacement parameters (decision E14):
     ``distance_gain`` (factor on the level strides' horizontal displacement), ``distance_gain_rate_hz``
     (foot rate it applies at, +-1 %) and ``stride_sigma_rel`` (relative sd of one stride's length; None
-    when the calibration was refused). Empty for a model without a calibration record."""
+    when the calibration was refused). Empty for a model without a calibration record. A model calibrated
+    since decision L41 also gives ``streaming_distance_gain`` / ``streaming_stride_sigma_rel`` /
+    ``streaming_distance_calibration_reason``: the same estimate made with the streamed stride kernel, which
+    the runtime applies (the offline fields stay for the record and for older runtimes)."""
     rec = (getattr(model, "data_summary", None) or {}).get("distance_calibration")
     if not isinstance(rec, dict):
         return {}
     ok = rec.get("reason") is None
-    return {
+    out = {
         "distance_gain": float(rec.get("gain", 1.0)),
         "distance_gain_rate_hz": None if rec.get("rate_hz") is None else float(rec["rate_hz"]),
         "stride_sigma_rel": float(rec["stride_sd"]) if ok and rec.get("stride_sd") else None,
         "distance_calibration_reason": rec.get("reason"),
     }
+    sub = rec.get("streaming")
+    if isinstance(sub, dict):  # decision L41: the streamed stride kernel's own gain, which the runtime applies
+        ok = sub.get("reason") is None
+        out.update({
+            "streaming_distance_gain": float(sub.get("gain", 1.0)),
+            "streaming_stride_sigma_rel": float(sub["stride_sd"]) if ok and sub.get("stride_sd") else None,
+            "streaming_distance_calibration_reason": sub.get("reason"),
+        })
+    return out

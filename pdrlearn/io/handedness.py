@@ -46,8 +46,9 @@ import numpy as np
 #: -1.0 (the reversed gyroscope fits e = 2.7 times better in the median segment) is conservative.
 MIN_LOG_RATIO = -1.0
 #: Units whose test may warn. The waist test is measured but not adopted (docs/frames.md, decision D11): truthful
-#: simulated waist units score -0.25 to -0.51 (the simulated pelvis couples its tilt and its horizontal
-#: acceleration unlike the real lower backs, +0.18 to +1.89), so its sign is not a confident verdict, and at
+#: simulated waist units score -0.25 to -0.64 (the simulated pelvis rolls against its lateral acceleration at
+#: the stride frequency, the real lower backs with it; both are right-handed: docs/decisions/simulator.md S26;
+#: real +0.18 to +2.26), so its sign is set by the motion and is not a confident verdict, and at
 #: a threshold that spares them it catches only the long real recordings' mirrored versions.
 WARN_PLACEMENTS = ("foot",)
 #: Units whose axis-agreement test (D11 amendment) may warn: foot (48 permutations), waist (turning axis).

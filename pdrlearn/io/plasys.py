@@ -15,6 +15,7 @@ import json
 import logging
 import math
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -260,6 +261,20 @@ def _read_trajectory(path: Path, scale: float) -> pd.DataFrame:
     return out
 
 
+def _looks_like_export(path: Path) -> bool:
+    """A CSV that may be a one-file lab export (decision D12): not a label table (``steps``/``trajectory``,
+    or a header with ``*_ms`` columns) and at least four columns (a time and three channels)."""
+    if path.stem in LABEL_FILES:
+        return False
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            header = f.readline()
+    except OSError:
+        return False
+    cols = re.split(r"[,;\t]", header.strip())
+    return len(cols) >= 4 and not any(c.strip().endswith("_ms") for c in cols)
+
+
 def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Session:
     """Read a PLASYS session folder.
 
@@ -307,9 +322,13 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
             more = f" and {len(inner) - 3} more" if len(inner) > 3 else ""
             raise DataError(f"{folder}: holds session folders ({', '.join(inner[:3])}{more}), not one session's "
                             f"sensor files; pass one of them, e.g. {folder / inner[0]}")
+        exports = sorted((p for p in folder.glob("*.csv") if _looks_like_export(p)),
+                         key=lambda p: (-p.stat().st_size, p.name))  # the largest
+        hint = (f"; a lab export in one CSV becomes a session with `pdrlearn import {exports[0]} --out SESSION` "
+                "(decision D12)" if exports else "")
         raise DataError(
             f"{folder}: no sensor files found; expected at least one of "
-            f"{', '.join(s.filename for s in SENSORS.values())}"
+            f"{', '.join(s.filename for s in SENSORS.values())}{hint}"
         )
     steps = _read_steps(folder / "steps.csv") if (folder / "steps.csv").exists() else None
     traj = _read_trajectory(folder / "trajectory.csv", scale) if (folder / "trajectory.csv").exists() else None

@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, ModelError
-from pdrlearn.kernels.bayes import SIGMA_REL, check_rules, confident_one
+from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
 from pdrlearn.kernels.stride import (
     GAP_YAW_MAX_S,
@@ -77,12 +77,12 @@ DEFAULT_DISPLACEMENT = {
     "initial_heading_rad": 0.0,
     "heading_source": "auto",  # decision E6: "auto" (waist gyro when present, else foot), "foot", "waist-gyro"
     "max_wait_s": 2.0,  # longest wait for a late sensor before a step is processed (thesis: < 2 s delay)
-    # decision L40 / E25: the class rules the runtime applies; "bayes" (L14) with the 0.95 gate of offline M3
-    # (L18) is selectable, the default stays the thesis rule on every class (bayes streamed: altitude on D
-    # 6.67 -> 2.78 % but distance on B and C 0.49 / 0.58 -> 0.67 / 0.87 %, so not adopted). A bundle without
-    # these keys (exported before E25) also keeps "thesis" and no gate.
-    "rules": "thesis",
-    "min_confidence": 0.0,
+    # decision L40 / E25: the class rules the runtime applies; since L41 offline M3's, "bayes" (L14) with the
+    # 0.95 gate (L18), with the stride kernel's own gain (held-out users 11-20, mean |distance error| A-D
+    # 0.65/0.99/1.50/1.24 -> 0.20/0.18/0.19/0.18 %, altitude on D 9.77 -> 2.21 %). "thesis" stays selectable;
+    # a bundle without these keys (exported before E25) keeps "thesis" and no gate (LEGACY_RULES).
+    "rules": "bayes",
+    "min_confidence": 0.95,
 }
 #: the class rules of a bundle without ``rules`` / ``min_confidence`` (exported before decision E25)
 LEGACY_RULES, LEGACY_MIN_CONFIDENCE = "thesis", 0.0
@@ -140,7 +140,13 @@ class Step:
 
 def calibration_record(displacement: dict) -> dict | None:
     """The distance-calibration record (``gain``, ``rate_hz``, ``stride_sd``) of a bundle's ``displacement``
-    parameters (decision E14), or None when the bundle carries none (uncalibrated model, older bundle)."""
+    parameters (decision E14), or None when the bundle carries none (uncalibrated model, older bundle).
+    Decision L41: the streamed stride kernel's own gain and sd when the bundle has them, else (bundles
+    exported before L41) the offline engine's, as before."""
+    if displacement.get("streaming_distance_gain") is not None:
+        return {"gain": float(displacement["streaming_distance_gain"]),
+                "rate_hz": displacement.get("distance_gain_rate_hz"),
+                "stride_sd": displacement.get("streaming_stride_sigma_rel"), "reason": None}
     if displacement.get("distance_gain") is None:
         return None
     return {"gain": float(displacement["distance_gain"]), "rate_hz": displacement.get("distance_gain_rate_hz"),
@@ -197,8 +203,10 @@ class Tracker:
     heading_source : "auto" | "foot" | "waist-gyro" (default: the bundle's ``displacement``).
     rules, min_confidence : the class rules, "bayes" or "thesis", and the probability a class needs before
         its rule applies (0 = every class); default: the bundle's ``displacement`` (``pdrlearn export`` writes
-        "thesis" and 0, as ``pdrlearn track --streaming``; "bayes" with 0.95 is offline M3's rule, decision
-        L40; a bundle exported before decision E25 has neither and keeps "thesis" without a gate).
+        "bayes" and 0.95, offline M3's rule and ``pdrlearn track --streaming``'s default since decision L41;
+        bundles exported under E25 before it say "thesis" and 0; a bundle exported before decision E25 has
+        neither and keeps "thesis" without a gate). ``rules`` given without ``min_confidence``: that rule's
+        own gate (thesis 0, bayes 0.95), as ``pdrlearn track``.
     step_graph : classify with the bundle's step graph when it has one (one onnxruntime run per step,
         decision E10); False = one run per model (the same numbers, slower).
     incremental : level the foot samples as they are pushed (decision E15; the same windows to rounding,
@@ -281,6 +289,8 @@ class Tracker:
         self._down_mode = str(self.params.get("down_mode", "norm3"))
         #: decision L40 / E25: the class rules and their confidence gate (absent from older bundles: thesis, 0)
         self.rules = str(self.params.get("rules", LEGACY_RULES) if rules is None else rules)
+        if min_confidence is None and rules is not None:  # L41: a rule asked for brings its own gate, as track's
+            min_confidence = 0.0 if self.rules == "thesis" else DEFAULT_MIN_CONFIDENCE
         self.min_confidence = float(self.params.get("min_confidence", LEGACY_MIN_CONFIDENCE)
                                     if min_confidence is None else min_confidence)
         check_rules(self.rules, self.min_confidence, f"bundle {self.bundle.path}")

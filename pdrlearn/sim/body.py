@@ -351,6 +351,12 @@ TRUNK_BAND_HZ = (1.5, 7.0)
 SURGE_DROP_STEP = 2 * LOAD_FRACTION / 2  # centre of the loading response (LOAD_FRACTION of a cycle), in steps
 PELVIS_YAW_LEAD_STEP = -0.2  # pelvic rotation extreme 0.2 step before contact (terminal swing)
 PELVIS_YAW_SKEW = 0.6  # reversal rate 1.6x the mean around contact, 0.4x in mid single support
+# Gains on the user's pelvic obliquity (roll) and lateral sway (decision S26, NOT adopted: 1.0 = the model
+# above). The real lower backs' roll is in phase with their lateral acceleration at the stride frequency
+# (the unit leans toward the stance side), the simulated obliquity against it: a negative roll gain
+# reverses it (experiments/waist_tilt_coupling.py measures the proposal).
+PELVIS_ROLL_GAIN = 1.0
+PELVIS_SWAY_GAIN = 1.0
 
 
 def trunk_vibration(t: np.ndarray, rng: np.random.Generator, target_sd: tuple[float, ...]) -> np.ndarray:
@@ -442,12 +448,12 @@ def pelvis_pose(
     # the next contact and is braked in the loading response (lower-trunk forward acceleration peaks at
     # initial contact, Zijlstra & Hof 2003); the drop is centred in the loading response (decisions S17)
     surge = env * 0.012 * sawtooth_surge(ph, drop=SURGE_DROP_STEP)
-    sway = -env * user.pelvis_sway_m * np.sin(np.pi * ph)
+    sway = -env * PELVIS_SWAY_GAIN * user.pelvis_sway_m * np.sin(np.pi * ph)
     # pelvic rotation: extreme in terminal swing, reversed quickly around contact and slowly through
     # single support, so the yaw rate peaks near initial contact as on the real lower back (S17)
     yaw_ph = skewed_phase(ph, shift=PELVIS_YAW_LEAD_STEP, skew=PELVIS_YAW_SKEW, centre=0.1)
     yaw_osc = env * np.radians(user.pelvis_rotation_deg) * np.cos(np.pi * yaw_ph)
-    roll = -env * np.radians(user.pelvis_obliquity_deg) * np.sin(np.pi * ph)
+    roll = -env * PELVIS_ROLL_GAIN * np.radians(user.pelvis_obliquity_deg) * np.sin(np.pi * ph)
     tilt = env * np.radians(1.5) * np.cos(2 * np.pi * ph)
 
     # heel-strike transient: a short damped velocity kick (braking forward, upward push)

@@ -27,13 +27,16 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.displace import (
+    PRE_L41_CALIBRATION,
     FootDisplacement,
     StepRules,
     force_stance,
     inertial_stance,
     model_distance_calibration,
     parse_bounds,
+    predates_streaming_calibration,
     stance_runs,
+    streaming_calibration,
 )
 from pdrlearn.errors import DataError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
@@ -203,6 +206,24 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
     return pred, bounds
 
 
+def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: float | None = None) -> dict | None:
+    """Decision C16: how many strides lie outside the trained model's training range (the range of each
+    classifier's own inputs); one warning line appended when the fraction reaches ``warn_at`` (opt-in).
+    ``None`` for oracle labels; for a model saved before C16 a note (no check)."""
+    if model is None or isinstance(model, str | Path) or not hasattr(model, "domain_report") or not model.tasks:
+        return None  # C17: a model without a classifier (level walks only) classifies nothing to check
+    from pdrlearn.classify.domain import NO_RANGES_NOTE, warning_line
+
+    if not model.has_domain:
+        log.info(NO_RANGES_NOTE)
+        return {"out_of_domain_fraction": None, "note": NO_RANGES_NOTE}
+    report = model.domain_report(classes, warn_at=warn_at)
+    line = warning_line(report, what="strides")
+    if line:
+        warnings.append(line)
+    return report
+
+
 def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
     """Waist streams moved onto the foot clock with the steps detected by both units (thesis ch.7.2.2:
     the gyroscope-detected steps align the units); the session unchanged when that fails."""
@@ -239,6 +260,24 @@ _TASK_COLUMNS = {"terrain": "terrain", "direction": "direction", "length": "leng
 # classes and its confidence gate, live in pdrlearn.kernels.bayes since L40 (the streaming runtime applies them)
 
 
+#: what M3 does for each task a model does not classify: the no-model behaviour of that rule (decision C17)
+_UNTRAINED_FALLBACK = {"terrain": "horizontal distance, a stride under 0.10 m of height change is level (L39)",
+                       "direction": "the estimate's own sign", "length": "no length clamp"}
+
+
+def untrained_tasks(classes: pd.DataFrame) -> list[str]:
+    """The tasks whose classes a model gave to no stride: not trained (e.g. a model trained on level walks
+    only), or not runnable on the session's sensors (decision C17)."""
+    return [t for t, col in _TASK_COLUMNS.items() if col not in classes or classes[col].isna().all()]
+
+
+def untrained_warning(tasks: list[str]) -> str:
+    """One line: which classes the model does not give and what M3 does instead (decision C17)."""
+    return (f"the model classifies no {', '.join(tasks)} (not trained, or not on this session's sensors); as "
+            "without a model: " + "; ".join(f"{t}: {_UNTRAINED_FALLBACK[t]}" for t in tasks)
+            + f" (decision C17; train with {', '.join(tasks)} labels for those rules)")
+
+
 def _confident(classes: pd.DataFrame, min_confidence: float) -> pd.DataFrame:
     """Classes whose probability (``p_<task>_<class>`` columns) is below ``min_confidence`` set to None,
     so that their rule is not applied (0 = always apply, as the thesis does)."""
@@ -264,11 +303,14 @@ def _length_proba(classes: pd.DataFrame) -> list[dict[str, float] | None]:
 
 
 def _distance_gain(requested: float | None, model, fs: float, warnings: list[str],
-                   calibration: bool = True) -> tuple[float, str, float | None]:
+                   calibration: bool = True, streaming: bool = False) -> tuple[float, str, float | None]:
     """The distance gain to apply (decision L26), where it comes from, and the user's calibrated relative
-    sd of one stride's length estimate (None: no applicable calibration)."""
+    sd of one stride's length estimate (None: no applicable calibration). ``streaming``: the record of the
+    streamed stride kernel when the model has one (decision L41), else the offline engine's."""
     rec = model_distance_calibration(model) if calibration and not (model is None or isinstance(model, str)) \
         else None
+    if streaming:
+        rec = streaming_calibration(rec)
     rec, warning = applicable_calibration(rec, fs)  # the runtime's own rate check (decision E14)
     if warning:
         warnings.append(warning)
@@ -310,7 +352,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                  bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
                  min_confidence: float | None = None, align: bool = False, rules: str | None = None,
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
-                 calibration: bool = True, gap_yaw: bool | None = None, **opts) -> TrackResult:
+                 calibration: bool = True, gap_yaw: bool | None = None, warn_out_of_domain: float | None = None,
+                 **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -331,7 +374,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     down_mode : "norm3" (thesis eq. 61) or "horizontal" for descending stairs
     rules : "thesis" (the classes prevail, ch.7.2.2) or "bayes" (class probabilities weighed against the
         estimate's uncertainty, docs/decisions/localization.md L14). Default None: "bayes" with a model's
-        classes, "thesis" with ``model="oracle"`` labels (decision L18), streaming too (L40)
+        classes, "thesis" with ``model="oracle"`` labels (decision L18), streaming too (L40, L41)
     align : M3: align the waist clock to the foot clock from the steps both units detect (off by
         default, see docs/decisions/localization.md L13)
     min_confidence : a class rule is applied only when the model's probability of the class reaches this
@@ -350,7 +393,13 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     calibration : M3 with a trained model: use the model's distance calibration (L26): its gain (unless
         ``distance_gain`` is given) and, for the bayes rules, its measured stride-length sd in place of the
         3 % default. False: neither
+    warn_out_of_domain : M3 with a trained model: warn (one line) when at least this fraction of the strides
+        lie outside the model's training range (decision C16; None = no warning, the default). The
+        fraction is always in ``info["out_of_domain"]``
     """
+    from pdrlearn.classify.domain import check_warn_at
+
+    check_warn_at(warn_out_of_domain)
     method = str(method).upper()
     no_classes = False
     if method == "AUTO":  # decision L36: M3 with a model; without one the M3 engine, its class rules off
@@ -370,6 +419,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                               heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
                               bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
                               calibration=calibration, rules=rules, min_confidence=min_confidence,
+                              warn_out_of_domain=warn_out_of_domain,
                               **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}))
         if no_classes:
             res.info["method"] = "M3 engine, no classes"
@@ -426,7 +476,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     classes = pd.DataFrame(index=range(len(strides)), columns=["terrain", "direction", "length_class"],
                            dtype=object)
     classes["confidence"] = strides.get("confidence", pd.Series(1.0, index=strides.index)).to_numpy()
-    model_bounds, windows = None, None
+    model_bounds, windows, domain = None, None, None
+    untrained: list[str] = []  # decision C17: the tasks a model does not classify fall back to the no-model rules
     has_waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
     work, alignment = session, None
     if align and cfg["rules"] and has_waist:
@@ -443,19 +494,18 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         # decision L38: a model classifies each stride on the window the streaming path (and its training) cuts
         windows = None if is_oracle else classification_windows(work, strides)
         classes, model_bounds = classes_and_bounds(model, work, strides if windows is None else windows)
-        if not (isinstance(model, str) and model == "oracle"):
-            for task, rule in (("terrain", "filter and altitude"), ("direction", "sign"), ("length", "length")):
-                col = _TASK_COLUMNS[task]
-                if col not in classes or classes[col].isna().all():
-                    warnings.append(f"the model classifies no {task}: the {rule} rule is off for every step "
-                                    f"(train with {task} labels for M3)")
+        domain = domain_check(model, classes, warnings, warn_out_of_domain)
+        if not is_oracle:
+            untrained = untrained_tasks(classes)
+            if untrained:
+                warnings.append(untrained_warning(untrained))
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if cfg["rules"] else None, foot.fs,
                                                   warnings, calibration)
     # decision L26: the user's calibration on the level strides' horizontal displacement
     disp = apply_level_gain(disp, gain)
     use_bounds = bounds if bounds is not None else model_bounds
     clamp = cfg["rules"]
-    if clamp and use_bounds is None:
+    if clamp and use_bounds is None and "length" not in untrained:  # C17: no length class, nothing to clamp
         if isinstance(model, str) and model == "oracle":
             warnings.append("no length-class bounds in the session: thesis step bounds x "
                             f"{bounds_scale:g} used")
@@ -477,7 +527,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     applied = step_rules.apply(disp, rule_classes)
     length = applied["length_m"].to_numpy()
     dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
-    if no_classes:  # decision L39: no terrain class, the stride's own height change says level
+    if no_classes or "terrain" in untrained:  # decision L39 (C17: also a model without terrain classes)
         dz = level_dz(dz)
     length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
 
@@ -509,7 +559,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         table[c] = classes[c].to_numpy() if c in classes else None
     table["confidence"] = classes["confidence"].to_numpy(float) if "confidence" in classes else 1.0
     for c in classes.columns:
-        if c.startswith("p_"):
+        if c.startswith("p_") or (c.startswith("ood_") and not c.startswith("ood_feature_")):
             table[c] = classes[c].to_numpy(float)
     if windows is not None:  # decision L38: the windows the classes come from
         table["window_start_s"], table["window_end_s"] = (windows[c].to_numpy(float) for c in ("start_s", "end_s"))
@@ -534,6 +584,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                               {"segmenter": int(windows.attrs.get("segmenter_windows", 0)),
                                "own": len(windows) - int(windows.attrs.get("segmenter_windows", 0))}),
             "unit_alignment": alignment,
+            "out_of_domain": domain,  # decision C16: strides outside the model's training range
             "length_bounds_m": step_rules.effective_bounds() if clamp else None,
             "rules": rules if cfg["rules"] else None,
             "min_confidence": gate if cfg["rules"] else None,
@@ -564,7 +615,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     heading: str = "auto", initial_heading: float = 0.0, bounds=None, bounds_scale: float = 2.0,
                     down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca",
                     distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = True,
-                    rules: str | None = None, min_confidence: float | None = None) -> TrackResult:
+                    rules: str | None = None, min_confidence: float | None = None,
+                    warn_out_of_domain: float | None = None) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -609,7 +661,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(NO_WAIST_HEADING)
     classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
-    model_bounds = None
+    model_bounds, domain = None, None
     if method == "M3":
         if model is None:
             raise ModelError("M3 needs the step classes: pass a trained model directory or 'oracle'")
@@ -618,11 +670,20 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
 
             model = load_model(model)
         classes, model_bounds = classes_and_bounds(model, session, table)
+        domain = domain_check(model, classes, warnings, warn_out_of_domain)  # decision C16
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
-                                                  session.streams["fAccelerometer"].rate_hz, warnings, calibration)
-    # decision L40: streamed, the thesis rule on every class stays the default (bayes with the 0.95 gate on
-    # request: measured better altitude, worse distance on B and C); explicit rules as offline
-    rules = "thesis" if rules is None else str(rules)
+                                                  session.streams["fAccelerometer"].rate_hz, warnings, calibration,
+                                                  streaming=True)  # decision L41: the stride kernel's own gain
+    # decision L41 (L40 amended): streamed, offline's default too - bayes with the 0.95 gate with a model's
+    # classes, the thesis rule with oracle labels (with the stride kernel's own gain: better distance on A-D
+    # and altitude on D than the thesis rule, held-out users 11-20)
+    if rules is None:
+        rules = "thesis" if isinstance(model, str) and model == "oracle" else DEFAULT_MODEL_RULES
+        if (method == "M3" and calibration and distance_gain is None and not isinstance(model, str)
+                and predates_streaming_calibration(model_distance_calibration(model))):
+            rules = "thesis"  # L41: only the offline gain - the pair measured worse than thesis on C and D
+            warnings.append(PRE_L41_CALIBRATION)
+    rules = str(rules)
     gate = (0.0 if rules == "thesis" else DEFAULT_MIN_CONFIDENCE) if min_confidence is None else float(min_confidence)
     check_rules(rules, gate, "plasys streaming")
     # decision L26: the bayes rule weighs the classes against the user's own calibrated stride accuracy
@@ -662,7 +723,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table["heading_rad"] = wrap_angle(head)
     table["dz_m"] = dz
     for c in classes.columns:
-        table[c] = classes[c].to_numpy()
+        if not c.startswith("ood_feature_"):
+            table[c] = classes[c].to_numpy()
     table["unit"] = "foot"
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
                          "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2]})
@@ -677,6 +739,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             "rules": rules if method == "M3" else None, "min_confidence": gate if method == "M3" else None,
             "stride_sigma_rel": sigma_rel if method == "M3" and rules == "bayes" else None,
             "distance_gain": gain, "distance_gain_source": gain_source, "stride_sd_calibrated": stride_sd,
+            "out_of_domain": domain,  # decision C16
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.name, w)

@@ -1,0 +1,237 @@
+"""Training-range (domain) check of a user model: is a session's data like the data the model learned?
+
+One mechanism for every classifier (heuristic, DTW, SVM, NN, fused, ensemble; decision C16 in
+docs/decisions/classifiers.md): at training time every fitted leaf model (a pipeline or a heuristic rule
+classifier) keeps in ``training_range_`` the 1 % and 99 % quantiles of each of *its own inputs* over its
+training steps -- the features its classifier sees (SVM / NN feature vectors, the rule features of a
+heuristic, the resampled signal samples DTW compares). At prediction time a step's score is its largest
+excess beyond a feature's range, in units of that range's width::
+
+    d = max_j max(0, lo_j - f_j, f_j - hi_j) / (hi_j - lo_j)
+
+and a composite model (fused units, ensemble) takes the largest score of its members. A step is out of
+domain when ``d > STEP_THRESHOLD``. The fraction of such steps is always reported
+(``out_of_domain_fraction``); the one-line warning is opt-in (``warn_at``, CLI ``--warn-out-of-domain``):
+with the tested ``FRACTION_THRESHOLD`` it fired on every real gaitmap walk but also on held-out simulated
+users walking faster than their calibration, above the 1-in-20 false-alarm rule (decision C16).
+``training_range_`` is pickled with the model (joblib), so a model directory keeps it; models saved
+before C16 have none (no check, a note).
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+
+import numpy as np
+
+from pdrlearn.errors import DataError, MissingSensorError
+
+log = logging.getLogger(__name__)
+
+#: Training quantiles that bound a feature's range (robust to a few odd training steps; decision C16).
+QUANTILES = (0.01, 0.99)
+#: A step is out of domain when a feature lies more than this many training-range widths outside its
+#: range (C16; fixed before measuring).
+STEP_THRESHOLD = 0.5
+#: The tested share of out-of-domain steps for the opt-in warning (C16; fixed before measuring, not
+#: adopted as a default: 7 of 36 held-out simulated sessions would warn).
+FRACTION_THRESHOLD = 0.25
+#: Fix named in the warning.
+FIX = "train a per-user model on this user's labelled sessions: pdrlearn train SESSION_DIR... --out MODEL_DIR"
+
+
+@dataclass
+class FeatureRange:
+    """Per-feature training range of one leaf model's inputs: ``lo``/``hi`` quantiles over ``n_steps``
+    training steps (``model``: the leaf's class name)."""
+
+    model: str
+    features: list[str]
+    lo: np.ndarray
+    hi: np.ndarray
+    n_steps: int
+
+    def width(self) -> np.ndarray:
+        """Range width per feature, floored so that a constant training feature still has a scale."""
+        w = self.hi - self.lo
+        floor = 1e-9 + 1e-3 * np.maximum(np.abs(self.lo), np.abs(self.hi))
+        return np.maximum(w, floor)
+
+    def excess(self, F: np.ndarray) -> np.ndarray:
+        """Per step and feature, the excess beyond the range in range widths (>= 0; NaN features -> 0)."""
+        F = np.asarray(F, dtype=float)
+        ex = np.maximum(np.maximum(self.lo - F, F - self.hi), 0.0) / self.width()
+        return np.nan_to_num(ex, nan=0.0)
+
+    def to_dict(self) -> dict:
+        return {"model": self.model, "features": list(self.features),
+                "quantiles": list(QUANTILES), "lo": [float(v) for v in self.lo],
+                "hi": [float(v) for v in self.hi], "n_steps": int(self.n_steps)}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> FeatureRange:
+        lo, hi = np.asarray(d["lo"], dtype=float), np.asarray(d["hi"], dtype=float)
+        if lo.shape != hi.shape or len(lo) != len(d["features"]):
+            raise DataError(f"training range of {d.get('model')}: lo, hi and features differ in length; "
+                            "retrain the model")
+        return cls(str(d.get("model", "")), list(d["features"]), lo, hi, int(d.get("n_steps", 0)))
+
+
+def _leaves(est, X: np.ndarray) -> list[tuple[object, np.ndarray]]:
+    """The leaf models of ``est`` with the window columns each one reads (fused units / ensemble members
+    of a :class:`~pdrlearn.classify.fusion.UnitFusionClassifier` recursively)."""
+    members = getattr(est, "estimators_", None)
+    if members is not None and hasattr(est, "units"):
+        out = []
+        for member, (_, _, cols) in zip(members, est.units, strict=True):
+            out += _leaves(member, X[:, cols])
+        return out
+    return [(est, X)]
+
+
+def model_inputs(est, X: np.ndarray) -> tuple[np.ndarray, list[str]]:
+    """What a leaf model's classifier sees for the windows ``X``: ``(n_steps, n_features)`` and the feature
+    names. A pipeline: the output of every step before the classifier (flattened: DTW's signals become
+    their samples ``signal[k]``); a heuristic rule classifier: its rule features."""
+    from sklearn.pipeline import Pipeline
+
+    if isinstance(est, Pipeline):
+        Xt = X
+        for _, step in est.steps[:-1]:
+            Xt = step.transform(Xt)
+        Xt = np.asarray(Xt, dtype=float)
+        first = est.steps[0][1]
+        if Xt.ndim == 3:  # DTW: (steps, signals, samples)
+            sigs = list((getattr(first, "kw_args", None) or {}).get("names", ()))
+            if len(sigs) != Xt.shape[1]:
+                sigs = [f"signal{i}" for i in range(Xt.shape[1])]
+            names = [f"{s}[{k}]" for s in sigs for k in range(Xt.shape[2])]
+            return Xt.reshape(len(Xt), -1), names
+        try:
+            names = [str(n) for n in first.get_feature_names_out()]
+        except Exception:  # noqa: BLE001 - names are informative only
+            names = []
+        if len(names) != Xt.shape[1]:
+            names = [f"feature{j}" for j in range(Xt.shape[1])]
+        return Xt, names
+    if hasattr(est, "_features") and hasattr(est, "_stages"):  # heuristic rule classifiers
+        names = list(est._feature_names(est._stages()))
+        return np.asarray(est._features(X, names), dtype=float), names
+    raise DataError(f"{type(est).__name__}: no known inputs for the training-range check")
+
+
+def fit_range(est, X: np.ndarray) -> FeatureRange:
+    """The training range of a leaf model's inputs over the step windows ``X`` it was trained on."""
+    F, names = model_inputs(est, X)
+    lo, hi = np.nanquantile(F, QUANTILES, axis=0)
+    return FeatureRange(type(est).__name__, names, np.asarray(lo), np.asarray(hi), int(len(F)))
+
+
+def attach_ranges(est, X: np.ndarray) -> int:
+    """Store ``training_range_`` on every leaf of the fitted ``est`` that has none yet (training windows
+    ``X``); returns how many leaves have one. A leaf whose inputs cannot be computed keeps none."""
+    n = 0
+    for leaf, Xl in _leaves(est, X):
+        if getattr(leaf, "training_range_", None) is None:
+            try:
+                leaf.training_range_ = fit_range(leaf, Xl)
+            except (MissingSensorError, DataError, ValueError) as exc:
+                log.info("no training range for %s: %s", type(leaf).__name__, exc)
+                continue
+        n += 1
+    return n
+
+
+def has_ranges(est) -> bool:
+    """Whether every leaf of ``est`` stores a training range (models saved before C16: False)."""
+    members = getattr(est, "estimators_", None)
+    if members is not None and hasattr(est, "units"):
+        return all(has_ranges(m) for m in members)
+    return getattr(est, "training_range_", None) is not None
+
+
+def step_score(est, X: np.ndarray) -> tuple[np.ndarray, list[str]] | None:
+    """Per step, the score ``d`` (module doc) of the windows ``X`` against the training range of the model
+    ``est`` (composite: the largest over its members) and the feature that set it. None when a leaf has
+    no range (a model saved before C16) or its inputs cannot be computed on ``X``."""
+    X = np.asarray(X, dtype=float)
+    d = np.zeros(len(X))
+    worst = np.full(len(X), "", dtype=object)
+    for leaf, Xl in _leaves(est, X):
+        r = getattr(leaf, "training_range_", None)
+        if r is None:
+            return None
+        try:
+            F, _ = model_inputs(leaf, Xl)
+        except (MissingSensorError, DataError, ValueError):
+            return None
+        if F.shape[1] != len(r.lo):
+            return None
+        ex = r.excess(F)
+        du = ex.max(axis=1)
+        arg = ex.argmax(axis=1)
+        better = du > d
+        d = np.where(better, du, d)
+        worst[better] = [r.features[j] for j in arg[better]]
+    return d, list(worst)
+
+
+def summarize(d: np.ndarray, worst: list[str], unit: str) -> dict:
+    """A task's out-of-domain summary over its checked steps (``d``: :func:`step_score` per step, NaN =
+    not checked): fraction, counts, the models checked, the feature most often farthest out, the largest
+    and median score."""
+    d = np.asarray(d, dtype=float)
+    ok = np.isfinite(d)
+    out = d[ok] > STEP_THRESHOLD
+    names = [w for w, o, k in zip(worst, d > STEP_THRESHOLD, ok, strict=True) if o and k and w]
+    top = max(set(names), key=names.count) if names else None
+    return {"unit": unit, "n_steps": int(ok.sum()), "n_out": int(out.sum()),
+            "fraction": float(out.mean()) if ok.any() else None,
+            "max_score": float(d[ok].max()) if ok.any() else None,
+            "median_score": float(np.median(d[ok])) if ok.any() else None,
+            "feature": top}
+
+
+def domain_report(per_task: dict[str, dict], *, warn_at: float | None = None) -> dict:
+    """Session-level result: ``out_of_domain_fraction`` (largest task fraction; None when no task was
+    checked), ``tasks`` (per task :func:`summarize`), the thresholds and ``warn`` (the fraction reaches
+    ``warn_at``; always False when ``warn_at`` is None, the default)."""
+    check_warn_at(warn_at)
+    checked = {t: s for t, s in per_task.items() if s.get("fraction") is not None}
+    frac = max((s["fraction"] for s in checked.values()), default=None)
+    return {"out_of_domain_fraction": frac, "tasks": per_task,
+            "step_threshold": STEP_THRESHOLD, "warn_at": warn_at,
+            "warn": warn_at is not None and frac is not None and frac >= warn_at}
+
+
+def check_warn_at(warn_at: float | None) -> None:
+    """``warn_at`` must be None or a fraction in (0, 1]."""
+    if warn_at is not None and not (np.isfinite(warn_at) and 0 < warn_at <= 1):
+        raise DataError(f"--warn-out-of-domain {warn_at!r}: give a fraction of strides in (0, 1], e.g. "
+                        f"{FRACTION_THRESHOLD}")
+
+
+def warning_line(report: dict, *, what: str = "steps") -> str | None:
+    """The one warning line for a session whose data lie outside the model's training range, else None:
+    the fraction, the task/unit it concerns (others in brackets), the feature most often off, and the fix."""
+    if not report or not report.get("warn"):
+        return None
+    tasks = {t: s for t, s in report["tasks"].items() if s.get("fraction") is not None}
+    t, s = max(tasks.items(), key=lambda kv: kv[1]["fraction"])
+    others = [f"{o} {so['unit']} {100 * so['fraction']:.0f} %" for o, so in tasks.items()
+              if o != t and so["fraction"] >= report["warn_at"]]
+    feat = f", most often {s['feature']}" if s.get("feature") else ""
+    return (f"{s['n_out']} of {s['n_steps']} {what} ({100 * s['fraction']:.0f} %) lie outside the model's "
+            f"training range for the {t} classifier ({s['unit']}{feat}"
+            f"{'; also ' + ', '.join(others) if others else ''}): the model was trained on data unlike this "
+            f"session and its classes are unreliable here; {FIX}")
+
+
+NO_RANGES_NOTE = ("the model stores no training ranges (trained before pdrlearn checked them): data unlike its "
+                  "training data are not detected; retrain it to enable the check")
+
+
+__all__ = ["QUANTILES", "STEP_THRESHOLD", "FRACTION_THRESHOLD", "FeatureRange", "model_inputs", "fit_range",
+           "attach_ranges", "has_ranges", "step_score", "check_warn_at", "summarize", "domain_report", "warning_line",
+           "NO_RANGES_NOTE"]

@@ -1,0 +1,201 @@
+"""``pdrlearn import``: a one-CSV lab export -> a session folder (decision D12)."""
+# ruff: noqa: B008  (typer options are declared as defaults)
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import typer
+
+from pdrlearn.cli.common import print_json, split_list
+from pdrlearn.errors import DataError
+
+
+def _mapping_file(path: Path | None) -> dict:
+    """The ``--mapping`` JSON: ``{"time": COL, "acc": [X, Y, Z], "gyro": [...], "units": {"time": "ms",
+    "acc": "g", "gyro": "deg/s"}, "unit": "foot", "frames": {...}, "sensor_height_m": 0.95}`` (all optional)."""
+    if path is None:
+        return {}
+    try:
+        m = json.loads(Path(path).read_text())
+    except OSError as exc:
+        raise DataError(f"{path}: cannot read the mapping file ({exc.strerror})") from None
+    except json.JSONDecodeError as exc:
+        raise DataError(f"{path}: invalid JSON (line {exc.lineno}); fix the mapping file") from None
+    if not isinstance(m, dict):
+        raise DataError(f"{path}: the mapping must be a JSON object such as {{\"acc\": [\"ax\", \"ay\", \"az\"]}}")
+    known = {"time", "acc", "gyro", "mag", "baro", "heel", "toe", "units", "unit", "frames", "sensor_height_m"}
+    unknown = sorted(set(m) - known)
+    if unknown:
+        raise DataError(f"{path}: unknown key(s) {', '.join(unknown)}; the mapping takes {', '.join(sorted(known))}")
+    return m
+
+
+#: what ``pdrlearn import`` may replace with --force, and what --merge may rewrite: the files a session
+#: folder holds (sensor CSVs, label CSVs, meta.json); anything else in the folder would be lost
+def _session_files_only(folder: Path) -> list[str]:
+    return sorted(p.name for p in folder.iterdir() if not (p.is_file() and p.suffix.lower() in (".csv", ".json")))
+
+
+def import_command(
+    csv: Path = typer.Argument(..., help="The lab export: one CSV with a timestamp column and channel columns."),
+    out: Path = typer.Option(..., "--out", "-o", help="Session folder to write (or, with --merge, to add to)."),
+    unit: str = typer.Option(None, "--unit", help="Which unit the channels are: foot or waist (default foot)."),
+    time: str = typer.Option(None, "--time", help="Timestamp column (default: the one named like a time)."),
+    acc: str = typer.Option(None, "--acc", help="Accelerometer columns X,Y,Z (default: guessed from the names)."),
+    gyro: str = typer.Option(None, "--gyro", help="Gyroscope columns X,Y,Z (default: guessed)."),
+    mag: str = typer.Option(None, "--mag", help="Magnetometer columns X,Y,Z (waist; default: guessed)."),
+    baro: str = typer.Option(None, "--baro", help="Barometer column (waist, hPa; default: guessed)."),
+    heel: str = typer.Option(None, "--heel", help="Heel force column (foot; default: guessed)."),
+    toe: str = typer.Option(None, "--toe", help="Forefoot force column (foot; default: guessed)."),
+    mapping: Path = typer.Option(None, "--mapping", help="JSON file with the column mapping, units, unit and "
+                                 "frames (the options override it)."),
+    time_unit: str = typer.Option(None, "--time-unit", help="ms, s, us or ns (default: the header's '(ms)', else "
+                                  "inferred from the sampling rate, decision B22)."),
+    acc_unit: str = typer.Option(None, "--acc-unit", help="m/s2 or g (default: the header's '(g)', else m/s2)."),
+    gyro_unit: str = typer.Option(None, "--gyro-unit", help="rad/s or deg/s (default: the header's, else rad/s)."),
+    frames: str = typer.Option(None, "--frames", help="The unit's axes, e.g. x=forward,y=up,z=right (default: "
+                               "none; commands infer it from the data, decision D8)."),
+    sensor_height: float = typer.Option(None, "--sensor-height", help="The unit's height above the ground (m)."),
+    steps: Path = typer.Option(None, "--steps", help="Labelled steps (start_ms,end_ms,terrain,... as steps.csv) in "
+                               "ms on the export's clock; written as the session's steps.csv."),
+    name: str = typer.Option(None, "--name", help="Session name (default: the CSV's name)."),
+    merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
+                               "unit's files, labels and meta.json are kept)."),
+    force: bool = typer.Option(False, "--force", help="Replace a session folder that 'pdrlearn import' wrote."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object with every mapping choice."),
+) -> None:
+    """Turn a one-CSV lab export into a session folder (fAccelerometer.csv, fGyroscope.csv, meta.json ...).
+
+    Columns are guessed from common names (acc_x, ax, AccX, accelerometer_x, gyr_x, gx, GyroX ...; units
+    from hints such as 'AccX (g)' or 'Time (ms)') unless given; every guess is printed on stderr and kept in
+    meta.json ("imported"). Comma, semicolon and tab separated files with decimal commas are read (B24).
+    Timestamps are written in ms since the export's first one (its value is kept in meta.json; --steps
+    labels on the export's clock are shifted alike). Check the result with 'pdrlearn info'.
+
+    Examples:
+
+        pdrlearn import labx_export.csv --out sessions/walk1
+
+        pdrlearn import export.csv --out sessions/walk1 --unit foot --acc ax,ay,az --gyro gx,gy,gz \\
+            --time-unit s --acc-unit g --gyro-unit deg/s --frames x=forward,y=up,z=right
+
+        pdrlearn import phone.csv --out sessions/walk1 --unit waist --merge --sensor-height 1.0
+    """
+    from pdrlearn.atomic import expect_unchanged
+    from pdrlearn.io import read_session, write_session
+    from pdrlearn.io.importer import KINDS, import_csv, import_steps, merge_sessions
+
+    m = _mapping_file(mapping)
+    unit = unit or m.get("unit") or "foot"
+    columns: dict[str, list[str]] = {}
+    for kind in KINDS:
+        v = m.get(kind)
+        if v is not None:
+            columns[kind] = [v] if isinstance(v, str) else [str(c) for c in v]
+    for kind, opt in (("acc", acc), ("gyro", gyro), ("mag", mag), ("baro", baro), ("heel", heel), ("toe", toe)):
+        cols = split_list(opt, f"--{kind}")
+        if cols is not None:
+            columns[kind] = cols
+    mu = m.get("units") or {}
+    if not isinstance(mu, dict):
+        raise DataError(f"{mapping}: \"units\" must be an object such as {{\"acc\": \"g\", \"gyro\": \"deg/s\"}}")
+    units = {k: v for k, v in mu.items() if k != "time"}
+    units.update({k: v for k, v in (("acc", acc_unit), ("gyro", gyro_unit)) if v is not None})
+    # the output, checked before any work: never the input's folder, never a folder of other files
+    src = csv.resolve()
+    if out.exists() and not out.is_dir():
+        raise DataError(f"{out}: is a file; --out must be a session folder")
+    if out.is_dir() and src.is_relative_to(out.resolve()):
+        raise DataError(f"{out}: holds the input {csv}; write the session to another folder")
+    base = None
+    if merge:
+        if not out.is_dir():
+            raise DataError(f"{out}: no such session folder to --merge into; import the first unit without --merge")
+        base = read_session(out)
+        other = _session_files_only(out)
+        if other:
+            raise DataError(f"{out}: holds {', '.join(other[:3])}, which a session rewrite would drop; move them "
+                            "out first")
+    elif out.is_dir() and any(out.iterdir()):
+        meta = out / "meta.json"
+        try:
+            ours = "imported" in json.loads(meta.read_text())
+        except (OSError, ValueError, TypeError):
+            ours = False
+        if not ours:
+            raise DataError(f"{out}: exists and is not a session 'pdrlearn import' wrote; choose another --out "
+                            "(or --merge to add a unit to it)")
+        if not force:
+            raise DataError(f"{out}: already holds an imported session; pass --force to replace it, or --merge "
+                            "to add the other unit")
+        if _session_files_only(out):
+            raise DataError(f"{out}: holds {', '.join(_session_files_only(out)[:3])} besides the session files; "
+                            "choose another --out")
+    if merge or out.is_dir():
+        expect_unchanged(out)  # decision B20: the replacement deletes only what was checked here
+    origin = None
+    if base is not None:  # a second export of the same clock goes onto the first one's origin
+        recs = base.meta.get("imported")
+        recs = recs if isinstance(recs, list) else [recs] if isinstance(recs, dict) else []
+        origin = next((r["time"]["origin_s"] for r in recs if isinstance(r, dict)
+                       and isinstance(r.get("time"), dict) and r["time"].get("origin_s") is not None), None)
+    session, record = import_csv(csv, unit=unit, origin_s=origin, columns=columns, time_column=time or m.get("time"),
+                                 time_unit=time_unit or mu.get("time"), units=units,
+                                 frame=frames if frames is not None else m.get("frames"),
+                                 sensor_height_m=sensor_height if sensor_height is not None
+                                 else m.get("sensor_height_m"), name=name or (None if merge else out.name))
+    if steps is not None:
+        if base is not None and base.steps is not None:
+            raise DataError(f"{out}: already has steps.csv; --steps with --merge would replace it -- leave --steps out")
+        session = import_steps(steps, session, record["time"]["origin_s"])
+        record["steps"] = {"file": Path(steps).name, "rows": len(session.steps)}
+    if base is not None:
+        session = merge_sessions(base, session)
+    existed = out.is_dir() and any(out.iterdir())
+    write_session(session, out, overwrite=True)
+    if not as_json:
+        _say(record, session, out, merge, existed)
+    else:
+        print_json({"out": str(out), "merged": merge, "imported": record,
+                    "frames": {p: f.to_dict() for p, f in session.frames.items()}})
+
+
+def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
+    """What was mapped and guessed (stderr, one line each); the folder on stdout."""
+    def err(msg: str) -> None:
+        typer.echo(msg, err=True)
+
+    t = record["time"]
+    err(f"time: column '{t['column']}' in {t['unit']} ({t['source']}); 0 ms = {t['origin_s']:.10g} s on the "
+        "export's clock")
+    if merge and len(session.meta.get("imported", [])) < 2:
+        err("note: the session was not imported, so the units' clocks are as recorded (align them with "
+            "'pdrlearn track --align' if they differ)")
+    for sensor, r in record["streams"].items():
+        conv = "" if r["factor"] == 1.0 else f", x {r['factor']:.6g} to {session.streams[sensor].spec.unit}"
+        dropped = record["dropped_rows"].get(sensor)
+        err(f"{sensor}: {','.join(r['columns'])} ({r['columns_source']}) in {r['unit']} ({r['unit_source']}{conv}), "
+            f"{r['samples']} samples at {r['rate_hz']:g} Hz" + (f", {dropped} empty rows skipped" if dropped else ""))
+    if record.get("steps"):
+        st = record["steps"]
+        err(f"steps: {st['rows']} labelled steps from {st['file']} (shifted to the session's clock)")
+    if record["unused_columns"]:
+        err(f"unused columns: {', '.join(record['unused_columns'])}")
+    prefix = "f" if record["unit"] == "foot" else "w"
+    for kind, sensor, opt in (("accelerometer", "Accelerometer", "--acc"), ("gyroscope", "Gyroscope", "--gyro")):
+        if prefix + sensor not in record["streams"]:  # every pipeline needs both (README "Session folders")
+            err(f"note: no {kind} columns recognised; the pipelines need one: map them with {opt} X,Y,Z")
+    unit = record["unit"]
+    if unit in session.frames:
+        err(f"{unit} frame: {json.dumps(session.frames[unit].to_dict())}")
+    else:
+        err(f"{unit} frame: not declared; commands infer it from the data (decision D8); pass --frames to declare it")
+    verb = "added to" if merge else ("replaced" if existed else "written to")
+    err(f"{unit} unit {verb} {out}; check it with: pdrlearn info {out}")
+    typer.echo(str(out))
+
+
+def register(app: typer.Typer) -> None:
+    app.command("import")(import_command)

@@ -1,0 +1,396 @@
+"""One-CSV lab exports -> a session (decision D12 in docs/decisions.md): ``pdrlearn import``'s library side.
+
+A lab export holds one timestamp column and several channel columns under names of its own (``Time (ms)``,
+``AccX (g)``, ``gyr_x``, ``Accelerometer X`` ...). :func:`import_csv` reads it with the session reader's own
+CSV reader (comma, semicolon or tab separated, decimal commas: decision B24), maps its columns to one unit's
+sensor streams (given, or guessed from common names), converts time and values to the project's units
+(given, from unit hints in the header, or for time from B22's inference) and returns a :class:`Session`
+plus a record of every choice, which the command prints and writes to ``meta.json`` (``"imported"``).
+Nothing is guessed silently: each guess is in that record, and a column that cannot be mapped is a one-line
+error naming the columns the file has.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import os
+import re
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+from pdrlearn.io.frames import AxisFrame
+from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, read_table
+from pdrlearn.io.sensors import PLACEMENTS, SENSORS
+from pdrlearn.io.session import Session, Stream
+from pdrlearn.io.validate import STANDARD_GRAVITY, check_rate, check_timestamps, check_units, time_unit_candidates
+
+log = logging.getLogger(__name__)
+
+#: channel kinds of the mapping (``--acc``, ``--gyro`` ...): kind -> (sensor suffix, number of columns)
+KINDS: dict[str, tuple[str, int]] = {
+    "acc": ("Accelerometer", 3), "gyro": ("Gyroscope", 3), "mag": ("MagneticField", 3), "baro": ("Barometer", 1),
+    "heel": ("ForceA", 1), "toe": ("ForceB", 1),
+}
+#: name stems (lower case, letters and digits only) that say a column is of a kind, followed by the axis
+_STEMS: dict[str, tuple[str, ...]] = {
+    "acc": ("accelerometer", "acceleration", "accel", "acc", "a"),
+    "gyro": ("gyroscope", "angularvelocity", "angularrate", "rotationrate", "gyro", "gyr", "g", "w"),
+    "mag": ("magnetometer", "magneticfield", "magnetic", "mag", "m"),
+}
+_SINGLE: dict[str, tuple[str, ...]] = {
+    "baro": ("pressure", "barometer", "baro", "airpressure"),
+    "heel": ("forceheel", "heelforce", "heel", "forcea", "fsrheel"),
+    "toe": ("forcetoe", "toeforce", "toe", "forceb", "fsrtoe", "forefoot", "forceforefoot"),
+}
+_TIME_NAMES = ("timestamp", "time", "t", "ts", "timems", "times", "seconds", "sec", "ms", "millis",
+               "milliseconds", "elapsedtime", "sampletime", "epoch", "unixtime", "timeus", "timens",
+               "datetime", "date", "utc", "timestamputc")
+
+#: accepted unit words per kind -> factor to the project's unit (time: seconds per unit)
+UNITS: dict[str, dict[str, float]] = {
+    "acc": {"m/s2": 1.0, "g": STANDARD_GRAVITY},  # STANDARD_GRAVITY: thesis ch.4.2.1.1
+    "gyro": {"rad/s": 1.0, "deg/s": math.pi / 180.0},
+    "mag": {"uT": 1.0, "nT": 1e-3, "gauss": 100.0, "mT": 1e3},
+    "baro": {"hPa": 1.0, "Pa": 0.01, "kPa": 10.0, "mbar": 1.0},
+    "heel": {"N": 1.0}, "toe": {"N": 1.0},
+}
+_UNIT_ALIASES = {
+    "m/s^2": "m/s2", "m/s²": "m/s2", "ms2": "m/s2", "ms^2": "m/s2", "m/s/s": "m/s2", "mps2": "m/s2",
+    "rad/sec": "rad/s", "rads": "rad/s", "deg/sec": "deg/s", "dps": "deg/s", "°/s": "deg/s", "degs": "deg/s",
+    "µt": "ut", "μt": "ut", "microtesla": "ut", "millibar": "mbar",
+}
+_HINT = re.compile(r"[\(\[]\s*([^\)\]]+?)\s*[\)\]]\s*$")
+
+
+def _unit_word(text: str) -> str:
+    w = text.strip().lower().replace(" ", "")
+    return _UNIT_ALIASES.get(w, w)
+
+
+def _stem(column: str) -> str:
+    """A column name without a trailing unit hint ``(g)`` / ``[deg/s]``, lower case, letters and digits only."""
+    return re.sub(r"[^a-z0-9]", "", _HINT.sub("", column).lower())
+
+
+def _header_unit(column: str) -> str | None:
+    m = _HINT.search(column)
+    return _unit_word(m.group(1)) if m else None
+
+
+def _axis_of(stem: str, kind: str) -> str | None:
+    """``x``/``y``/``z`` when ``stem`` is one of the kind's stems followed (or preceded) by the axis."""
+    for s in _STEMS[kind]:
+        for axis in "xyz":
+            if stem in (s + axis, axis + s, s + axis + "axis"):
+                return axis
+    return None
+
+
+def guess_columns(columns: list[str]) -> dict[str, list[str]]:
+    """Kind -> the columns whose names say so (``acc_x``/``ax``/``AccX (g)``/``accelerometer_x`` ...), in
+    x, y, z order; kinds with no complete set are left out. A name two kinds claim is used by neither."""
+    out: dict[str, list[str]] = {}
+    for kind in _STEMS:
+        found: dict[str, list[str]] = {}
+        for c in columns:
+            axis = _axis_of(_stem(c), kind)
+            if axis:
+                found.setdefault(axis, []).append(c)
+        if all(len(found.get(a, [])) == 1 for a in "xyz"):
+            out[kind] = [found[a][0] for a in "xyz"]
+    for kind, names in _SINGLE.items():
+        hits = [c for c in columns if _stem(c) in names]
+        if len(hits) == 1:
+            out[kind] = hits
+    used: dict[str, int] = {}
+    for cols in out.values():
+        for c in cols:
+            used[c] = used.get(c, 0) + 1
+    return {k: v for k, v in out.items() if all(used[c] == 1 for c in v)}
+
+
+def guess_time_column(columns: list[str]) -> str | None:
+    """The one column named like a time (``timestamp``, ``Time (ms)``, ``t``), else the one whose name starts
+    with ``time`` (``timestamp_ms``, ``time_since_start``); None when there is none or several."""
+    for hits in ([c for c in columns if _stem(c) in _TIME_NAMES],
+                 [c for c in columns if _stem(c).startswith("time")]):
+        if len(hits) == 1:
+            return hits[0]
+        if hits:
+            return None
+    return None
+
+
+def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str) -> tuple[str, float, str]:
+    """(unit, factor, source) of a kind's values: the given unit, else the header's hint, else SI."""
+    table = UNITS[kind]
+    by_word = {k.lower(): k for k in table}  # unit words are matched case-insensitively
+    si = next(iter(table))
+    if given is not None:
+        u = by_word.get(_unit_word(given))
+        if u is None:
+            raise DataError(f"{where}: {kind} unit {given!r} is not one of {', '.join(table)}")
+        return u, table[u], "given"
+    hints = {by_word.get(_header_unit(c) or "") for c in columns} - {None}
+    if len(hints) == 1:
+        u = hints.pop()
+        return u, table[u], "header"
+    return si, 1.0, "default"
+
+
+def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str) -> tuple[str, str]:
+    """(unit, source) of the timestamps: given, the header's hint, else decision B22's inference (the units
+    in which the timestamps give a plausible rate; ms when ms is one of them, as read_session does)."""
+    if given is not None:
+        u = _TIME_ALIASES.get(given.strip().lower(), given.strip().lower())
+        if u not in _TIME_SCALE:
+            raise DataError(f"{where}: time unit {given!r} is not one of {', '.join(_TIME_SCALE)}")
+        return u, "given"
+    hint = _header_unit(column)
+    hint = _TIME_ALIASES.get(hint, hint) if hint else None
+    if hint in _TIME_SCALE:
+        return hint, "header"
+    cands = [u for u, _ in time_unit_candidates(t_raw)]
+    if not cands:
+        raise DataError(f"{where}: the timestamps of column '{column}' give no plausible rate in ms, s, us or ns; "
+                        "pass --time-unit")
+    if "ms" in cands:
+        return "ms", "inferred (B22)" + (f"; also fits {', '.join(c for c in cands if c != 'ms')}"
+                                         if len(cands) > 1 else "")
+    return cands[0], "inferred (B22)" + (f"; also fits {', '.join(cands[1:])}" if len(cands) > 1 else "")
+
+
+def _datetime_seconds(col: pd.Series) -> np.ndarray | None:
+    """Seconds since the epoch of a column of date-time texts (ISO 8601 and the like), or None."""
+    if col.dtype.kind in "biufc":
+        return None
+    try:
+        dt = pd.to_datetime(col, errors="raise", utc=True, format="mixed")
+    except (ValueError, TypeError):
+        return None
+    return (dt - pd.Timestamp(0, tz="UTC")).dt.total_seconds().to_numpy(dtype=float)
+
+
+def parse_frame(text: str | dict | None, where: str = "--frames") -> AxisFrame | None:
+    """An axis frame from ``{"x": "forward", ...}`` (dict or JSON text) or ``x=forward,y=up,z=right``."""
+    if text is None:
+        return None
+    if isinstance(text, str):
+        s = text.strip()
+        if s.startswith("{"):
+            import json
+
+            try:
+                d = json.loads(s)
+            except json.JSONDecodeError:
+                raise DataError(f"{where}: not valid JSON; write e.g. x=forward,y=up,z=right") from None
+        else:
+            try:
+                d = dict(p.split("=", 1) for p in s.replace(" ", "").split(","))
+            except ValueError:
+                raise DataError(f"{where} {text!r}: write e.g. x=forward,y=up,z=right") from None
+    else:
+        d = text
+    if not isinstance(d, dict):
+        raise DataError(f"{where}: expected an object such as {{\"x\": \"forward\", \"y\": \"up\", \"z\": \"right\"}}")
+    try:
+        return AxisFrame.from_dict({k.strip().lower(): str(v).strip().lower() for k, v in d.items()})
+    except DataError as exc:
+        raise DataError(f"{where}: {exc}") from None
+
+
+def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str, list[str]] | None = None,
+               time_column: str | None = None, time_unit: str | None = None, units: dict[str, str] | None = None,
+               frame=None, sensor_height_m: float | None = None, name: str | None = None,
+               origin_s: float | None = None, guess: bool = True) -> tuple[Session, dict]:
+    """Read a one-CSV lab export into a session of one unit.
+
+    Parameters
+    ----------
+    path : the CSV (comma, semicolon or tab separated; decimal commas allowed, decision B24)
+    unit : ``"foot"`` or ``"waist"``: which unit's sensor files the channels become
+    columns : kind (``acc``, ``gyro``, ``mag``, ``baro``, ``heel``, ``toe``) -> column names (x, y, z order
+        for 3-axis kinds); kinds not given are guessed from the names when ``guess``
+    time_column : the timestamp column (default: the one column named like a time)
+    time_unit : ``ms``, ``s``, ``us`` or ``ns``; default: the header's hint (``Time (ms)``), else B22's inference
+    units : kind -> unit of its values (``acc``: ``m/s2`` | ``g``; ``gyro``: ``rad/s`` | ``deg/s``; ``mag``:
+        ``uT`` | ``nT`` | ``gauss``; ``baro``: ``hPa`` | ``Pa`` | ``kPa``); default: the header's hint, else SI
+    frame : the unit's axis frame (:func:`parse_frame` input or :class:`AxisFrame`), written to ``frames``
+    sensor_height_m : the unit's height above the ground (m), written to ``meta.json``
+    name : session name (default: the CSV's stem)
+    origin_s : the export's time (s, on its clock) that becomes 0 (default: its first timestamp); the
+        session's files hold "ms since the first sample" (D1), ``record["time"]["origin_s"]`` keeps the origin
+        so that labels on the export's clock can be shifted alike (and ``--merge`` puts a second export of
+        the same clock on the same origin)
+
+    Returns
+    -------
+    (session, record): ``record`` holds the columns, units and their sources (given / header / guessed /
+    inferred), the columns left unused and the rows dropped, as written to ``meta.json["imported"]``.
+    """
+    path = Path(path)
+    where = str(path)
+    if unit not in PLACEMENTS:
+        raise DataError(f"import: unit {unit!r} is not one of {', '.join(PLACEMENTS)}")
+    df = read_table(path)  # B24: ';' / tab separators and decimal commas, as every session file
+    header = list(df.columns)
+    have = ", ".join(header)
+    if len(df) == 0:
+        raise DataError(f"{where}: no data rows under the header ({have}); re-export the file")
+    if len(set(header)) != len(header):
+        dup = sorted({c for c in header if header.count(c) > 1})
+        raise DataError(f"{where}: column name(s) {', '.join(dup)} appear twice; rename them")
+    columns = {k: list(v) for k, v in (columns or {}).items()}
+    for kind, cols in columns.items():
+        if kind not in KINDS:
+            raise DataError(f"import: unknown channel kind {kind!r}; use {', '.join(KINDS)}")
+        n = KINDS[kind][1]
+        if len(cols) != n:
+            raise DataError(f"import: {kind} needs {n} column name(s) (got {len(cols)}: {','.join(cols)})")
+        missing = [c for c in cols if c not in header]
+        if missing:
+            raise DataError(f"{where}: no column {', '.join(repr(c) for c in missing)} for {kind}; the file's columns "
+                            f"are: {have}")
+    sources = {k: "given" for k in columns}
+    if guess:
+        for kind, cols in guess_columns(header).items():
+            if kind not in columns and not set(cols) & {c for v in columns.values() for c in v}:
+                columns[kind], sources[kind] = cols, "guessed"
+    if time_column is None:
+        time_column = guess_time_column(header)
+        t_source = "guessed"
+        if time_column is None:
+            raise DataError(f"{where}: no timestamp column found among: {have}; name it with --time COLUMN")
+    else:
+        t_source = "given"
+        if time_column not in header:
+            raise DataError(f"{where}: no time column {time_column!r}; the file's columns are: {have}")
+    if time_column in {c for v in columns.values() for c in v}:
+        raise DataError(f"{where}: column {time_column!r} is mapped as time and as a channel; map it once")
+    if not columns:
+        raise DataError(f"{where}: no accelerometer/gyroscope columns recognised among: {have}; map them with "
+                        "--acc X,Y,Z --gyro X,Y,Z (or --mapping FILE.json)")
+    prefix = "f" if unit == "foot" else "w"
+    for kind in columns:
+        sensor = prefix + KINDS[kind][0]
+        if sensor not in SENSORS:
+            raise DataError(f"import: the {unit} unit has no {kind} sensor (the {unit} unit's files: "
+                            f"{', '.join(n for n, s in SENSORS.items() if s.placement == unit)})")
+
+    tcol = df[time_column]
+    secs = _datetime_seconds(tcol)
+    if secs is not None:
+        t_num, t_unit, t_how = secs, "s", "date-time text"
+    else:
+        t_num = pd.to_numeric(tcol, errors="coerce").to_numpy(dtype=float)
+        bad = np.flatnonzero(~np.isfinite(t_num))
+        if bad.size:
+            raise DataError(f"{where}: column {time_column!r} has {bad.size} non-numeric or empty value(s) (first at "
+                            f"line {bad[0] + 2}); timestamps must be numbers (or date-times) in every row")
+        t_unit, t_how = _time_unit(t_num, time_unit, time_column, where)
+    # the origin is taken off in the file's own unit: epoch milliseconds keep their exact 10 ms steps
+    scale = _TIME_SCALE[t_unit]
+    origin_raw = float(t_num[0]) if origin_s is None else float(origin_s) / scale
+    t_all = (t_num - origin_raw) * scale
+    origin = origin_raw * scale
+    record: dict = {"file": path.name, "unit": unit,
+                    "time": {"column": time_column, "unit": t_unit, "source": f"{t_source} column, unit {t_how}",
+                             "origin_s": origin},
+                    "streams": {}, "dropped_rows": {}}
+    streams: dict[str, Stream] = {}
+    units = {k: v for k, v in (units or {}).items() if v is not None}
+    for kind, cols in columns.items():
+        sensor = prefix + KINDS[kind][0]
+        vals = df[cols].apply(pd.to_numeric, errors="coerce").to_numpy(dtype=float)
+        finite = np.isfinite(vals)
+        keep = finite.all(axis=1)
+        partial = np.flatnonzero(finite.any(axis=1) & ~keep)
+        if partial.size:
+            raise DataError(f"{where}: {partial.size} row(s) with some of {', '.join(cols)} empty or not numeric "
+                            f"(first at line {partial[0] + 2}); repair or remove them")
+        if not keep.any():
+            raise DataError(f"{where}: columns {', '.join(cols)} ({kind}) hold no numbers")
+        if (~keep).any():  # a multi-rate export leaves a slower sensor's cells empty between its samples
+            record["dropped_rows"][sensor] = int((~keep).sum())
+        u, factor, u_src = _resolve_unit(kind, units.get(kind), cols, where)
+        t = t_all[keep]
+        check_timestamps(t, f"{where} ({time_column})")
+        check_rate(t, f"{where} ({time_column} as {t_unit})")
+        stream = Stream(sensor, t, vals[keep] * factor)
+        try:
+            check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})")
+        except DataError as exc:
+            opt = {"acc": "--acc-unit", "gyro": "--gyro-unit"}.get(kind, "--mapping units")
+            raise DataError(f"{exc}; or give the unit with {opt} ({' | '.join(UNITS[kind])})") from None
+        streams[sensor] = stream
+        record["streams"][sensor] = {"columns": cols, "columns_source": sources[kind], "unit": u,
+                                     "unit_source": u_src, "factor": factor,
+                                     "rate_hz": round(float(stream.rate_hz), 4), "samples": len(stream)}
+    used = {time_column, *(c for v in columns.values() for c in v)}
+    record["unused_columns"] = [c for c in header if c not in used]
+    meta: dict = {"session": name or path.stem, "placement": unit,
+                  "units": {s: f"{SENSORS[s].unit} (source {r['unit']}, x {r['factor']:.10g})"
+                            for s, r in record["streams"].items()},
+                  "imported": record}
+    if sensor_height_m is not None:
+        h = float(sensor_height_m)
+        if not (math.isfinite(h) and 0 < h <= 2.0):  # as meta.json's sensor_height_m (B16): metres, anatomy
+            raise DataError(f"import: sensor height {sensor_height_m!r} is not a height in m (0-2 m)")
+        meta["sensor_height_m"] = h
+    frames = {}
+    f = frame if isinstance(frame, AxisFrame) or frame is None else parse_frame(frame)
+    if f is not None:
+        frames[unit] = f
+    return Session(name=meta["session"], streams=streams, meta=meta, frames=frames), record
+
+
+def merge_sessions(base: Session, add: Session) -> Session:
+    """``base`` with ``add``'s streams, frames and import record (one unit added, decision D12); a sensor
+    that both have is an error, so an import never replaces recorded data."""
+    both = sorted(set(base.streams) & set(add.streams))
+    if both:
+        raise DataError(f"session '{base.name}' already has {', '.join(both)}; --merge adds the other unit "
+                        "(use --unit foot|waist for the one it lacks)")
+    meta = dict(base.meta)
+    units = dict(meta.get("units", {})) if isinstance(meta.get("units"), dict) else {}
+    units.update(add.meta.get("units", {}))
+    meta["units"] = units
+    imported = meta.get("imported")
+    rec = add.meta.get("imported")
+    meta["imported"] = ([*imported] if isinstance(imported, list) else [imported] if imported else []) + [rec]
+    placement = meta.get("placement")
+    if placement and placement != add.meta.get("placement"):
+        meta["placement"] = "foot+waist"
+    if "sensor_height_m" in add.meta:
+        meta["sensor_height_m"] = add.meta["sensor_height_m"]
+    return Session(name=base.name, streams={**base.streams, **add.streams},
+                   steps=base.steps if base.steps is not None else add.steps,
+                   trajectory=base.trajectory, extras=dict(base.extras), meta=meta,
+                   frames={**base.frames, **add.frames})
+
+
+def import_steps(path: str | os.PathLike, session: Session, origin_s: float) -> Session:
+    """``session`` with the labelled steps of ``path`` (``start_ms,end_ms`` and ``terrain`` ... as the
+    session's ``steps.csv``, times in ms on the export's clock), moved onto the session's clock (``origin_s``
+    taken off) and checked as ``read_session`` checks them (decision D12)."""
+    from pdrlearn.io.plasys import _ms_to_s
+    from pdrlearn.io.session import STEP_COLUMNS
+    from pdrlearn.io.validate import check_columns, check_label_times, check_numeric
+
+    path = Path(path)
+    df = read_table(path)
+    for c in df.columns:
+        if c.endswith("_ms"):
+            v = pd.to_numeric(df[c], errors="coerce")
+            df[c] = np.where(v.notna(), v - origin_s * 1e3, v) if v.notna().any() else df[c]
+    steps = _ms_to_s(df, str(path))
+    check_columns(steps, STEP_COLUMNS, f"{path} (times in ms on the export's clock: start_ms,end_ms)")
+    check_numeric(steps, STEP_COLUMNS, str(path))
+    check_label_times(steps, session.t_start, session.t_end, str(path))
+    return Session(name=session.name, streams=session.streams, steps=steps, trajectory=session.trajectory,
+                   extras=session.extras, meta=session.meta, frames=session.frames)
+

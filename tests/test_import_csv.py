@@ -1,0 +1,246 @@
+"""Decision D12: `pdrlearn import` turns a one-CSV lab export into a session folder (round trips on simulated
+and real sessions exported under other column names and units; guesses printed; one-line errors)."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.io import read_session
+
+REAL = Path(__file__).resolve().parents[1] / "datasets" / "real"
+G = 9.80665
+
+
+@pytest.fixture(scope="module")
+def sim():
+    from pdrlearn.sim import simulate
+
+    return simulate("A", 1)
+
+
+def _foot_export(s, path: Path) -> Path:
+    """The foot unit as a lab's semicolon/decimal-comma export: seconds, g, deg/s, its own column names."""
+    a, w = s.streams["fAccelerometer"], s.streams["fGyroscope"]
+    df = pd.DataFrame({"Time (s)": a.t, **{"AccX AccY AccZ".split()[i] + " (g)": a.values[:, i] / G for i in range(3)},
+                       **{f"Gyro{c} (deg/s)": np.degrees(w.values[:, i]) for i, c in enumerate("XYZ")},
+                       "Heel": s.streams["fForceA"].values[:, 0], "Toe": s.streams["fForceB"].values[:, 0],
+                       "Battery": 3.7})
+    df.to_csv(path, sep=";", decimal=",", index=False)
+    return path
+
+
+def _waist_export(s, path: Path) -> Path:
+    a, w, m, b = (s.streams[n] for n in ("wAccelerometer", "wGyroscope", "wMagneticField", "wBarometer"))
+    df = pd.DataFrame({"timestamp_ms": a.t * 1e3, **{f"acc_{c}": a.values[:, i] for i, c in enumerate("xyz")},
+                       **{f"gyr_{c}": w.values[:, i] for i, c in enumerate("xyz")},
+                       **{f"mag_{c}": m.values[:, i] for i, c in enumerate("xyz")}, "pressure": b.values[:, 0]})
+    df.loc[1::2, ["mag_x", "mag_y", "mag_z"]] = np.nan  # a slower magnetometer: empty cells between its samples
+    df.to_csv(path, index=False)
+    return path
+
+
+def test_simulated_foot_and_waist_round_trip(sim, tmp_path, capsys):
+    out = tmp_path / "session"
+    csv = _foot_export(sim, tmp_path / "foot.csv")
+    assert main(["import", str(csv), "--out", str(out), "--frames", "x=forward,y=up,z=right"]) == 0
+    err = capsys.readouterr().err
+    assert "time: column 'Time (s)' in s (guessed column, unit header)" in err
+    assert "fAccelerometer: AccX (g),AccY (g),AccZ (g) (guessed) in g (header, x 9.80665 to m/s^2)" in err
+    assert "fGyroscope: GyroX (deg/s),GyroY (deg/s),GyroZ (deg/s) (guessed) in deg/s" in err
+    assert "unused columns: Battery" in err
+    assert main(["import", str(_waist_export(sim, tmp_path / "waist.csv")), "--out", str(out), "--unit", "waist",
+                 "--merge", "--frames", '{"x": "left", "y": "up", "z": "forward"}', "--sensor-height", "1.05"]) == 0
+    err = capsys.readouterr().err
+    assert "wMagneticField: mag_x,mag_y,mag_z (guessed) in uT (default)" in err and "empty rows skipped" in err
+    got = read_session(out)
+    t0 = sim.streams["fAccelerometer"].t[0]
+    assert set(got.streams) == set(sim.streams)
+    for name, st in sim.streams.items():
+        g = got.streams[name]
+        step = 2 if name == "wMagneticField" else 1
+        np.testing.assert_allclose(g.t, st.t[::step] - t0, rtol=0, atol=1e-9, err_msg=name)
+        np.testing.assert_allclose(g.values, st.values[::step], rtol=1e-12, atol=1e-12, err_msg=name)
+    assert {p: f.to_dict() for p, f in got.frames.items()} == {p: f.to_dict() for p, f in sim.frames.items()}
+    assert got.meta["sensor_height_m"] == 1.05 and len(got.meta["imported"]) == 2
+    assert main(["info", str(out), "--json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert set(info["sensors"]) == set(sim.streams)
+
+
+def test_real_session_round_trip_tab_separated_with_options(tmp_path, capsys):
+    src = REAL / "gaitmap_level_left"
+    if not src.is_dir():
+        pytest.skip("datasets/real/gaitmap_level_left not present")
+    s = read_session(src)
+    a, w = s.streams["fAccelerometer"], s.streams["fGyroscope"]
+    assert np.array_equal(a.t, w.t)
+    clock_us = 1.7e15  # the lab's clock: epoch microseconds
+    df = pd.DataFrame({"t_us": np.round(a.t * 1e6) + clock_us, "A1": a.values[:, 0], "A2": a.values[:, 1],
+                       "A3": a.values[:, 2], "W1": w.values[:, 0], "W2": w.values[:, 1], "W3": w.values[:, 2]})
+    csv = tmp_path / "export.tsv"
+    df.to_csv(csv, sep="\t", index=False)
+    frame = s.frames["foot"].to_dict()
+    labels = pd.read_csv(src / "steps.csv")  # the labels on the lab's clock, in ms
+    for c in [c for c in labels.columns if c.endswith("_ms")]:
+        labels[c] = labels[c] + clock_us * 1e-3 - 1e-3 * np.round(a.t[0] * 1e6)
+    labels.to_csv(tmp_path / "labels.csv", index=False)
+    out = tmp_path / "imported"
+    assert main(["import", str(csv), "--out", str(out), "--time", "t_us", "--acc", "A1,A2,A3", "--gyro", "W1,W2,W3",
+                 "--frames", json.dumps(frame), "--steps", str(tmp_path / "labels.csv")]) == 0
+    err = capsys.readouterr().err
+    assert "time: column 't_us' in us (given column, unit inferred (B22))" in err
+    assert f"steps: {len(labels)} labelled steps from labels.csv" in err
+    got = read_session(out)
+    np.testing.assert_allclose(got.steps["start_s"], s.steps["start_s"] - s.t_start, atol=1e-6)
+    assert list(got.steps["terrain"]) == list(s.steps["terrain"])
+    np.testing.assert_allclose(got.streams["fAccelerometer"].values, a.values, rtol=0, atol=0)
+    np.testing.assert_allclose(got.streams["fGyroscope"].t, np.round(a.t * 1e6) * 1e-6 - np.round(a.t[0] * 1e6) * 1e-6,
+                               atol=1e-9)
+    assert got.frames["foot"].to_dict() == frame
+    assert main(["info", str(out)]) == 0
+    assert main(["track", str(out), "--out", str(tmp_path / "trk"), "--json"]) == 0
+    res = json.loads(capsys.readouterr().out.splitlines()[-1])
+    assert res["n_steps"] > 20
+
+
+def test_mapping_file_and_sample_index_time(tmp_path, capsys):
+    """A mapping JSON; sample-index timestamps (0, 1, 2 ...) fit ms and s: read as ms and said so, --time-unit
+    overrides (new-user trial 4: an index read as ms without a word)."""
+    n = 400
+    rng = np.random.default_rng(0)
+    df = pd.DataFrame({"sample": np.arange(n), "a_x": rng.normal(0, 1, n), "a_y": rng.normal(9.8, 1, n),
+                       "a_z": rng.normal(0, 1, n), "r_x": rng.normal(0, 1, n), "r_y": rng.normal(0, 1, n),
+                       "r_z": rng.normal(0, 1, n)})
+    csv = tmp_path / "x.csv"
+    df.to_csv(csv, index=False)
+    mp = tmp_path / "map.json"
+    mp.write_text(json.dumps({"time": "sample", "acc": ["a_x", "a_y", "a_z"], "gyro": ["r_x", "r_y", "r_z"]}))
+    assert main(["import", str(csv), "--out", str(tmp_path / "a"), "--mapping", str(mp)]) == 0
+    err = capsys.readouterr().err
+    assert "in ms (given column, unit inferred (B22); also fits s)" in err
+    assert main(["import", str(csv), "--out", str(tmp_path / "b"), "--mapping", str(mp), "--time-unit", "s"]) == 0
+    assert read_session(tmp_path / "b").streams["fAccelerometer"].rate_hz == pytest.approx(1.0)
+    mp.write_text(json.dumps({"acc": ["a_x", "a_y", "a_z"], "units": {"time": "s"}, "sampling": 1}))
+    assert main(["import", str(csv), "--out", str(tmp_path / "c"), "--mapping", str(mp)]) != 0
+    assert "unknown key(s) sampling" in capsys.readouterr().err
+
+
+def _err(capsys) -> str:
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error: ") and "\n" not in err, err
+    return err
+
+
+def test_errors_are_one_line_and_name_the_columns(sim, tmp_path, capsys):
+    csv = _foot_export(sim, tmp_path / "foot.csv")
+    out = tmp_path / "s"
+    assert main(["import", str(csv), "--out", str(out), "--acc", "AccX (g),AccY (g),nope"]) != 0
+    err = _err(capsys)
+    assert "no column 'nope' for acc" in err and "Time (s), AccX (g)" in err and "Battery" in err
+    assert main(["import", str(csv), "--out", str(out), "--acc", "AccX (g),AccY (g)"]) != 0
+    assert "acc needs 3 column name(s)" in _err(capsys)
+    plain = tmp_path / "plain.csv"
+    pd.DataFrame({"time": [0, 10, 20, 30], "u": [1, 2, 3, 4], "v": [1, 2, 3, 4]}).to_csv(plain, index=False)
+    assert main(["import", str(plain), "--out", str(out)]) != 0
+    err = _err(capsys)
+    assert "no accelerometer/gyroscope columns recognised among: time, u, v" in err and "--acc X,Y,Z" in err
+    notime = tmp_path / "notime.csv"
+    pd.DataFrame({"ax": [1.0] * 4, "ay": [9.8] * 4, "az": [0.0] * 4}).to_csv(notime, index=False)
+    assert main(["import", str(notime), "--out", str(out)]) != 0
+    assert "no timestamp column found among: ax, ay, az; name it with --time COLUMN" in _err(capsys)
+    # values in g declared as m/s^2: the unit check's message plus the option that says the unit
+    assert main(["import", str(csv), "--out", str(out), "--acc-unit", "m/s2"]) != 0
+    assert "looks like units of g" in (e := _err(capsys)) and "--acc-unit (m/s2 | g)" in e
+    assert main(["import", str(csv), "--out", str(out), "--unit", "waist", "--heel", "Heel"]) != 0
+    assert "the waist unit has no heel sensor" in _err(capsys)
+    assert not out.exists()
+
+
+def test_output_safety_and_merge_errors(sim, tmp_path, capsys):
+    csv = _foot_export(sim, tmp_path / "foot.csv")
+    out = tmp_path / "s"
+    assert main(["import", str(csv), "--out", str(out)]) == 0
+    capsys.readouterr()
+    assert main(["import", str(csv), "--out", str(out)]) != 0
+    assert "already holds an imported session; pass --force" in _err(capsys)
+    assert main(["import", str(csv), "--out", str(out), "--force"]) == 0
+    assert "foot unit replaced" in capsys.readouterr().err
+    assert main(["import", str(csv), "--out", str(out), "--merge"]) != 0
+    assert "already has fAccelerometer, fForceA, fForceB, fGyroscope; --merge adds the other unit" in _err(capsys)
+    other = tmp_path / "recorded"
+    other.mkdir()
+    (other / "notes.txt").write_text("mine")
+    assert main(["import", str(csv), "--out", str(other)]) != 0
+    assert "is not a session 'pdrlearn import' wrote" in _err(capsys)
+    assert main(["import", str(csv), "--out", str(other), "--force"]) != 0
+    _err(capsys)
+    assert (other / "notes.txt").read_text() == "mine"
+    assert main(["import", str(csv), "--out", str(tmp_path)]) != 0  # the input's own folder
+    assert "holds the input" in _err(capsys)
+    (out / "notes.txt").write_text("mine")
+    wcsv = _waist_export(sim, tmp_path / "waist.csv")
+    assert main(["import", str(wcsv), "--out", str(out), "--unit", "waist", "--merge"]) != 0
+    assert "holds notes.txt, which a session rewrite would drop" in _err(capsys)
+    assert main(["import", str(wcsv), "--out", str(tmp_path / "absent"), "--unit", "waist", "--merge"]) != 0
+    assert "no such session folder to --merge into" in _err(capsys)
+
+
+def test_column_guesses():
+    from pdrlearn.io.importer import guess_columns, guess_time_column
+
+    cols = ["Time (ms)", "Accelerometer X", "Accelerometer Y", "Accelerometer Z", "gx", "gy", "gz",
+            "FreeAccX", "FreeAccY", "FreeAccZ", "mag_x", "mag_y", "mag_z", "Pressure (hPa)"]
+    g = guess_columns(cols)
+    assert g == {"acc": cols[1:4], "gyro": ["gx", "gy", "gz"], "mag": ["mag_x", "mag_y", "mag_z"],
+                 "baro": ["Pressure (hPa)"]}  # a gravity-free "FreeAcc" is never taken for the accelerometer
+    assert guess_time_column(cols) == "Time (ms)"
+    assert guess_time_column(["t", "time"]) is None  # two candidates: asked for, not guessed
+    assert guess_columns(["AccX", "AccY"]) == {}  # an incomplete set is not guessed
+    assert math.isclose(__import__("pdrlearn.io.importer", fromlist=["UNITS"]).UNITS["gyro"]["deg/s"],
+                        math.pi / 180)
+
+
+def test_date_time_texts_and_waist_units(tmp_path, capsys):
+    """ISO date-time texts in the time column; a waist phone export in g and deg/s given by option."""
+    t = pd.date_range("2026-12-02T10:00:00", periods=600, freq="20ms", tz="UTC")
+    rng = np.random.default_rng(1)
+    df = pd.DataFrame({"datetime": t.strftime("%Y-%m-%dT%H:%M:%S.%fZ"), "AccelX": rng.normal(0, .1, 600),
+                       "AccelY": rng.normal(-1, .1, 600), "AccelZ": rng.normal(0, .1, 600),
+                       "GyrX": rng.normal(0, 20, 600), "GyrY": rng.normal(0, 20, 600), "GyrZ": rng.normal(0, 20, 600)})
+    csv = tmp_path / "phone.csv"
+    df.to_csv(csv, index=False)
+    out = tmp_path / "w"
+    assert main(["import", str(csv), "--out", str(out), "--unit", "waist", "--time", "datetime", "--acc-unit", "g",
+                 "--gyro-unit", "deg/s"]) == 0
+    err = capsys.readouterr().err
+    assert "in s (given column, unit date-time text)" in err and "in g (given, x 9.80665" in err
+    assert "note: no" not in err
+    df.drop(columns=["GyrX", "GyrY", "GyrZ"]).to_csv(csv, index=False)
+    assert main(["import", str(csv), "--out", str(tmp_path / "w2"), "--unit", "waist", "--acc-unit", "g"]) == 0
+    assert "note: no gyroscope columns recognised; the pipelines need one: map them with --gyro X,Y,Z" in \
+        capsys.readouterr().err
+    s = read_session(out)
+    assert s.streams["wAccelerometer"].rate_hz == pytest.approx(50.0)
+    np.testing.assert_allclose(s.streams["wGyroscope"].values, np.radians(df[["GyrX", "GyrY", "GyrZ"]].to_numpy()),
+                               rtol=1e-12)
+
+
+def test_a_folder_with_an_export_says_to_import_it(sim, tmp_path, capsys):
+    """New-user trial 14: `info raw/` said only "no sensor files found"."""
+    raw = tmp_path / "raw"
+    raw.mkdir()
+    _foot_export(sim, raw / "labx_export.csv")
+    pd.DataFrame({"start_ms": [0, 1000], "end_ms": [1000, 2000]}).to_csv(raw / "labels_steps.csv", index=False)
+    assert main(["info", str(raw)]) != 0
+    err = _err(capsys)
+    assert "no sensor files found" in err and f"`pdrlearn import {raw / 'labx_export.csv'} --out SESSION`" in err
+    (raw / "labx_export.csv").unlink()
+    assert main(["info", str(raw)]) != 0
+    assert "pdrlearn import" not in _err(capsys)  # a label table is no export
