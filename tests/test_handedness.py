@@ -9,12 +9,26 @@ import logging
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
 from pdrlearn.io import read_session
-from pdrlearn.io.handedness import MIN_LOG_RATIO, foot_handedness, session_handedness, waist_handedness
+from pdrlearn.io.handedness import (
+    AXES_MIN_LOG_RATIO,
+    AXES_RATE_HZ,
+    AXES_STRIDES,
+    MIN_LOG_RATIO,
+    axes_fix,
+    axes_label,
+    foot_axes,
+    foot_handedness,
+    session_handedness,
+    signed_permutations,
+    turn_axis,
+    waist_handedness,
+)
 from pdrlearn.io.session import Stream
 from pdrlearn.signal.filters import interp_rows
 from pdrlearn.sim import simulate
@@ -135,3 +149,132 @@ def test_info_prints_a_d10_contradiction(tmp_path, capsys):
     chk = json.loads(out)["frame_checks"]["foot"]
     assert chk["source"] == "declared" and "contradicts its data" in chk["check"]
     assert sum("contradicts its data" in ln for ln in err.splitlines()) == 1
+
+
+# --- D11 amendment: axis agreement (gyroscope axes permuted against the accelerometer's) ---------------------
+
+WAIST_TURNS = ROOT / "datasets" / "real" / "mobgap_HA001_Test11_Trial1"
+
+
+def _gyro_permuted_copy(src: Path, dst: Path, prefix: str, cols: tuple[str, str, str]) -> Path:
+    """The recording with its gyroscope's columns rewritten: new (x, y, z) = ``cols`` of the old, e.g.
+    ("z", "y", "-x") (the new-user trial's chip turned 90 deg about y), meta.json unchanged."""
+    shutil.copytree(src, dst)
+    f = dst / f"{prefix}Gyroscope.csv"
+    df = pd.read_csv(f)
+    old = df[["x", "y", "z"]].copy()
+    for new, c in zip("xyz", cols, strict=True):
+        df[new] = -old[c[1]] if c.startswith("-") else old[c]
+    df.to_csv(f, index=False)
+    return dst
+
+
+def test_the_48_signed_permutations_and_their_labels():
+    P = signed_permutations()
+    assert P.shape == (48, 3, 3) and len({p.tobytes() for p in P}) == 48
+    assert np.array_equal(P[0], np.eye(3)) and np.array_equal(P[7], -np.eye(3))
+    assert sorted(np.round(np.linalg.det(P)).astype(int).tolist()).count(1) == 24
+    # recorded gyroscope = (w_z, w_y, -w_x): the rate in the accelerometer's axes is (-g_z, g_y, g_x)
+    Pt = np.array([[0, 0, -1], [0, 1, 0], [1, 0, 0]], float)
+    assert axes_label(Pt) == "(z, y, -x)" and axes_fix(Pt) == "x = -z, y = y, z = x"
+    w = np.array([0.1, 0.2, 0.3])
+    assert np.allclose(Pt @ np.array([w[2], w[1], -w[0]]), w)
+
+
+@pytest.mark.parametrize("cols", [("z", "y", "-x"), ("y", "-x", "z"), ("x", "-z", "y"), ("y", "z", "x"),
+                                  ("-y", "x", "z")])
+def test_foot_with_permuted_gyroscope_axes_warns_once_naming_the_permutation(tmp_path, caplog, cols):
+    d = _gyro_permuted_copy(FOOT, tmp_path / "p", "f", cols)
+    s = read_session(d)
+    with caplog.at_level(logging.WARNING):
+        s.require_frame("foot")
+        s.require_frame("foot")
+    msgs = [m for m in _warnings(caplog) if "D11" in m]
+    assert len(msgs) == 1, _warnings(caplog)
+    m = msgs[0]
+    label = "(" + ", ".join(cols) + ")"
+    assert str(d) in m and "fGyroscope.csv" in m and label in m and "D11 amendment" in m, m
+    assert s.handedness("foot").verdict == "axes differ"
+
+
+def test_foot_axes_finds_the_applied_permutation_on_simulated_data():
+    s = simulate("A", 2, "normal")
+    a, g = s["fAccelerometer"], s["fGyroscope"]
+    acc, gyr = a.values, interp_rows(a.t, g.t, g.values)
+    h = foot_handedness(acc, gyr, a.rate_hz)
+    assert h.verdict == "right-handed" and h.axes_log_ratio < AXES_MIN_LOG_RATIO
+    for Q in signed_permutations()[[3, 10, 17, 29, 40]]:  # rotations and reflections
+        hq = foot_handedness(acc, gyr @ Q.T, a.rate_hz)
+        assert np.array_equal(hq.axes, Q.T) and hq.axes_log_ratio > AXES_MIN_LOG_RATIO
+        assert hq.verdict in ("axes differ", "mirrored")
+
+
+def test_the_axis_search_is_one_batch_on_few_strides_at_a_low_rate():
+    """8 strides at ~30 Hz in one batch (AXES_STRIDES, AXES_RATE_HZ): not 48 full-rate integrations."""
+    s = read_session(FOOT)
+    a, g = s["fAccelerometer"], s["fGyroscope"]
+    acc, gyr = a.values, interp_rows(a.t, g.t, g.values)
+    from pdrlearn.displace.foot import inertial_stance
+    from pdrlearn.track.frame_inference import rest_to_rest
+
+    i0, i1 = rest_to_rest(inertial_stance(acc, gyr, a.rate_hz), a.rate_hz)
+    import pdrlearn.displace._kernels as K
+
+    calls = []
+    orig = K.strapdown
+
+    def spy(acc_, gyr_, dt, idx, mask, *args, **kw):
+        calls.append((dt, int(mask.sum())))
+        return orig(acc_, gyr_, dt, idx, mask, *args, **kw)
+
+    K.strapdown = spy
+    try:
+        foot_axes(acc, gyr, a.rate_hz, i0, i1)
+    finally:
+        K.strapdown = orig
+    (dt, samples), = calls
+    k = int(a.rate_hz // AXES_RATE_HZ)
+    assert k >= 2 and dt == pytest.approx(k / a.rate_hz)  # 204.8 Hz averaged in blocks
+    full = int((i1 - i0 + 1).sum())
+    assert samples <= 48 * AXES_STRIDES * ((i1 - i0).max() // k + 1)
+    assert samples < 0.1 * 48 * full  # not 48 full-rate integrations of every stride
+
+
+def test_waist_gyroscope_turning_about_a_horizontal_axis_warns_once(tmp_path, caplog):
+    d = _gyro_permuted_copy(WAIST_TURNS, tmp_path / "w", "w", ("y", "-x", "z"))
+    s = read_session(d)
+    with caplog.at_level(logging.WARNING):
+        s.require_frame("waist")
+        s.require_frame("waist")
+        s.frame_checks()
+    msgs = [m for m in _warnings(caplog) if "D11" in m]
+    assert len(msgs) == 1, _warnings(caplog)
+    assert str(d) in msgs[0] and "wGyroscope.csv" in msgs[0] and "from gravity" in msgs[0]
+    h = s.handedness("waist")
+    assert h.verdict == "axes differ" and h.turn_deg > 60 and h.turn_windows >= 50
+
+
+def test_truthful_waist_with_turns_does_not_warn_and_commands_skip_the_ratio(caplog):
+    s = read_session(WAIST_TURNS)
+    with caplog.at_level(logging.WARNING):
+        s.require_frame("waist")
+    assert not [m for m in _warnings(caplog) if "D11" in m]
+    h = s.handedness("waist", ratio=False)
+    assert h.segments == 0 and h.turn_deg < 15 and h.turn_windows >= 50  # measured 5.9 deg over 95
+    assert s.handedness("waist").segments > 0  # info asks for the ratio: computed then
+
+
+def test_turn_axis_hand_computed():
+    fs = 20.0
+    n = 400
+    gyr = np.zeros((n, 3))
+    gyr[100:140, 1] = np.radians(90.0)  # two 90-degree turns about y (2 s at 90 deg/s)
+    gyr[250:290, 1] = -np.radians(90.0)
+    acc = np.tile([0.0, 9.81, 0.0], (n, 1))
+    ang, nt, gi, ai = turn_axis(acc, gyr, fs)
+    assert ang == pytest.approx(0.0, abs=1e-6) and gi == ai == 1 and nt >= 4
+    ang, nt, gi, ai = turn_axis(acc, gyr[:, [1, 0, 2]], fs)
+    assert ang == pytest.approx(90.0) and gi == 0 and ai == 1
+    assert turn_axis(acc, np.zeros((n, 3)), fs)[1] == 0
+    # gravity-removed acceleration (mean about 0) has no gravity to compare with: no verdict
+    assert turn_axis(acc - acc.mean(axis=0), gyr[:, [1, 0, 2]], fs)[1] == 0

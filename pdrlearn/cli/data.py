@@ -57,7 +57,11 @@ def info(
         h = chk["handedness"]
         hand = "no accelerometer + gyroscope data" if h is None else (
             f"{h['verdict']} (log ratio {h['log_ratio'] if h['log_ratio'] is not None else 'n/a'} over "
-            f"{h['segments']} {'strides' if p == 'foot' else 'moving windows'})")
+            f"{h['segments']} {'strides' if p == 'foot' else 'moving windows'}"
+            + (f"; best other gyroscope axes {h['axes']['gyroscope']}, log ratio {h['axes']['log_ratio']}"
+               if h.get("axes") else "")
+            + (f"; turning axis {h['turn_axis']['angle_deg']} deg from gravity over "
+               f"{h['turn_axis']['turn_windows']} turn windows" if h.get("turn_axis") else "") + ")")
         c.print(f"{p} axes: {chk['source']} frame {frame}, {check}; handedness (D11): {hand}", markup=False)
     c.print(f"labels: {json.dumps(json_safe(summary['labels']))}", markup=False)  # JSON, like the frames line
 

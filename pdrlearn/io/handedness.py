@@ -22,10 +22,20 @@ Positive = right-handed. The check takes the median over the strides / windows o
 :data:`MIN_LOG_RATIO` with at least :data:`MIN_SEGMENTS` of them (docs/frames.md, the measurement).
 A declared frame (D8/D10) says where the axes point; this says whether the two sensors agree on the
 sense of rotation, which no frame entry can fix: the data have to be un-mirrored.
+
+**Axis agreement (D11 amendment)**: the foot test generalizes from {as recorded, reversed} to the 48 signed
+permutations of the gyroscope's axes (24 rotations, 24 with a reflection; reversed = ``-I`` is one of them):
+a gyroscope whose chip axes differ from the accelerometer's (a 90-degree turn, swapped columns) fits
+neither sign. On at most :data:`AXES_STRIDES` strides averaged to about :data:`AXES_RATE_HZ` (cost),
+every permutation P is integrated in one batch; per P the median over the strides of
+log(|v_end(as recorded)| / |v_end(P omega)|) (> 0: P fits better). The best P other than the identity
+is confirmed on all the strides at the full rate and reported when that median exceeds
+:data:`AXES_MIN_LOG_RATIO` (:func:`foot_axes`, :attr:`Handedness.axes`).
 """
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -41,6 +51,8 @@ MIN_LOG_RATIO = -1.0
 #: real +0.18 to +2.26), so its sign is set by the motion and is not a confident verdict, and at
 #: a threshold that spares them it catches only the long real recordings' mirrored versions.
 WARN_PLACEMENTS = ("foot",)
+#: Units whose axis-agreement test (D11 amendment) may warn: foot (48 permutations), waist (turning axis).
+AXES_PLACEMENTS = ("foot", "waist")
 #: Least strides (foot) or moving windows (waist) for a verdict; fewer: no warning.
 MIN_SEGMENTS = 4
 #: Waist window length and hop (s): about one stride (0.8-1.4 s at 1.4-2.4 steps/s) to two.
@@ -49,6 +61,64 @@ WAIST_HOP_S = 1.0
 #: A waist window counts when the standard deviation of |specific force| in it exceeds this (m/s^2):
 #: walking at the lower back swings it by 1-3 m/s^2 (seed 003 Fig. 2), standing by less than 0.2.
 WAIST_MIN_ACC_SD = 0.5
+#: Axis agreement (D11 amendment): strides (at most, evenly spaced) on which all 48 permutations are tried,
+#: and the rate (Hz) they are block-averaged to (not below it): 8 strides at ~30 Hz add 0.04-1.31 times D11's
+#: CPU time on the real foot recordings (12 at ~50 Hz added 0.11-2.51 times; docs/decisions.md, D11
+#: amendment; the simulated 20 Hz units are used as they are).
+AXES_STRIDES = 8
+AXES_RATE_HZ = 30.0
+#: Report another permutation when it fits e times better than the axes as recorded in the median stride
+#: (confirmed on all strides): the same margin as D11's MIN_LOG_RATIO. Measured (experiments/axes_check.py):
+#: see docs/decisions.md, D11 amendment.
+AXES_MIN_LOG_RATIO = 1.0
+#: Waist axis agreement (D11 amendment): a turn window is :data:`TURN_WINDOW_S` (hop :data:`TURN_HOP_S`) over
+#: which the integrated angular rate exceeds :data:`TURN_MIN_DEG` (the pelvis's walking oscillations of a few
+#: degrees cancel over a stride, a turn accumulates); the principal axis of those windows' rotation vectors
+#: is the turning (yaw) axis, which must lie along gravity (the accelerometer's mean) within
+#: :data:`TURN_MAX_DEG` when at least :data:`TURN_MIN_WINDOWS` windows turn. Measured (experiments/axes_check.py).
+TURN_WINDOW_S = 2.0
+TURN_HOP_S = 0.5
+TURN_MIN_DEG = 30.0
+TURN_MIN_WINDOWS = 3
+TURN_MAX_DEG = 30.0
+#: The accelerometer's mean must measure gravity for the waist test: at least half of g (m/s^2). Gravity-removed
+#: ("linear") acceleration averages to about 0 and points anywhere (the new-user trial's ph_linacc sessions
+#: scored 84-86 deg: a wrong "axes differ" without this).
+TURN_MIN_GRAVITY = 0.5 * 9.80665
+
+
+def signed_permutations() -> np.ndarray:
+    """The 48 signed permutation matrices (48, 3, 3), the identity first (``-I`` is the eighth)."""
+    out = []
+    for p in itertools.permutations(range(3)):
+        for s in itertools.product((1.0, -1.0), repeat=3):
+            P = np.zeros((3, 3))
+            P[np.arange(3), p] = s
+            out.append(P)
+    return np.array(out)
+
+
+PERMUTATIONS = signed_permutations()
+
+
+def _index(P: np.ndarray) -> int:
+    return int(np.flatnonzero((PERMUTATIONS == np.asarray(P)).all(axis=(1, 2)))[0])
+
+
+def axes_label(P: np.ndarray) -> str:
+    """How the gyroscope's recorded (x, y, z) read in the accelerometer's axes when ``P`` @ recorded =
+    the rate in the accelerometer's axes: ``"(z, y, -x)"`` = the gyroscope's x is the accelerometer's z,
+    its y the accelerometer's y, its z the accelerometer's -x."""
+    Q = np.asarray(P).T
+    return "(" + ", ".join(("-" if Q[i].sum() < 0 else "") + "xyz"[int(np.flatnonzero(Q[i])[0])]
+                           for i in range(3)) + ")"
+
+
+def axes_fix(P: np.ndarray) -> str:
+    """The column rewrite of the gyroscope file that gives the accelerometer's axes: ``x = -z, y = y, z = x``."""
+    P = np.asarray(P)
+    return ", ".join(f"{'xyz'[i]} = " + ("-" if P[i].sum() < 0 else "") + "xyz"[int(np.flatnonzero(P[i])[0])]
+                     for i in range(3))
 
 
 @dataclass
@@ -59,6 +129,30 @@ class Handedness:
     placement: str
     log_ratio: float
     segments: int
+    #: Axis agreement (foot, D11 amendment): the best signed permutation other than the identity (3, 3),
+    #: P @ recorded gyroscope = rate in the accelerometer's axes, and its confirmed median log ratio
+    #: (> 0: it fits better than the axes as recorded; on the subset of :func:`foot_axes`, on all the
+    #: strides when above :data:`AXES_MIN_LOG_RATIO` on the subset); None / NaN when not computed.
+    axes: np.ndarray | None = None
+    axes_log_ratio: float = float("nan")
+    #: Waist axis agreement (D11 amendment, :func:`turn_axis`): the angle (deg) between the gyroscope's
+    #: turning axis and gravity, the number of turn windows, the gyroscope axis nearest the turning axis and
+    #: the accelerometer axis nearest gravity (0-2, -1 when unknown).
+    turn_deg: float = float("nan")
+    turn_windows: int = 0
+    turn_axes: tuple[int, int] = (-1, -1)
+
+    @property
+    def axes_differ(self) -> bool:
+        """True when the gyroscope's axes disagree with the accelerometer's with confidence (D11 amendment):
+        foot, another signed permutation than the identity and the reversal (``-I``, :attr:`mirrored`) fits
+        the strides; waist, the gyroscope turns about an axis far from gravity."""
+        if self.placement not in AXES_PLACEMENTS:
+            return False
+        if self.placement == "waist":
+            return self.turn_windows >= TURN_MIN_WINDOWS and bool(self.turn_deg > TURN_MAX_DEG)
+        return (self.axes is not None and self.segments >= MIN_SEGMENTS
+                and not np.array_equal(self.axes, -np.eye(3)) and bool(self.axes_log_ratio > AXES_MIN_LOG_RATIO))
 
     @property
     def mirrored(self) -> bool:
@@ -71,6 +165,8 @@ class Handedness:
     def verdict(self) -> str:
         """``mirrored``, ``right-handed``, ``unsure`` (too few segments or between the thresholds) or
         ``not tested`` (a unit whose test is not adopted: the ratio is informative only)."""
+        if self.axes_differ:
+            return "axes differ"
         if self.placement not in WARN_PLACEMENTS:
             return "not tested"
         if self.segments < MIN_SEGMENTS:
@@ -80,11 +176,23 @@ class Handedness:
     def describe(self) -> str:
         what = "strides" if self.placement == "foot" else "moving windows"
         ratio = "no" if not np.isfinite(self.log_ratio) else f"{self.log_ratio:+.2f}"
-        return f"{self.verdict} (log ratio {ratio} over {self.segments} {what}, decision D11)"
+        axes = (f"; best other gyroscope axes {axes_label(self.axes)}, log ratio {self.axes_log_ratio:+.2f}"
+                if self.axes is not None and np.isfinite(self.axes_log_ratio) else "")
+        if self.turn_windows:
+            axes += f"; turning axis {self.turn_deg:.0f} deg from gravity over {self.turn_windows} turn windows"
+        return f"{self.verdict} (log ratio {ratio} over {self.segments} {what}{axes}; decision D11)"
 
     def to_dict(self) -> dict:
-        return {"log_ratio": None if not np.isfinite(self.log_ratio) else round(float(self.log_ratio), 3),
-                "segments": int(self.segments), "verdict": self.verdict}
+        out = {"log_ratio": None if not np.isfinite(self.log_ratio) else round(float(self.log_ratio), 3),
+               "segments": int(self.segments), "verdict": self.verdict}
+        if self.axes is not None:
+            out["axes"] = {"gyroscope": axes_label(self.axes), "fix": axes_fix(self.axes),
+                           "log_ratio": (None if not np.isfinite(self.axes_log_ratio)
+                                         else round(float(self.axes_log_ratio), 3))}
+        if self.placement == "waist":
+            out["turn_axis"] = {"angle_deg": None if not np.isfinite(self.turn_deg) else round(float(self.turn_deg), 1),
+                                "turn_windows": int(self.turn_windows)}
+        return out
 
 
 def _end_speed(acc: np.ndarray, gyr: np.ndarray, fs: float, i0: np.ndarray, i1: np.ndarray) -> np.ndarray:
@@ -108,7 +216,49 @@ def foot_handedness(acc: np.ndarray, gyr: np.ndarray, fs: float) -> Handedness:
         return Handedness("foot", float("nan"), 0)
     vp, vm = _end_speed(acc, gyr, fs, i0, i1), _end_speed(acc, -gyr, fs, i0, i1)
     r = np.log(np.maximum(vm, 1e-9) / np.maximum(vp, 1e-9))
-    return Handedness("foot", float(np.median(r)), int(len(r)))
+    P, ra = foot_axes(acc, gyr, fs, i0, i1)
+    r_axes = float(ra[_index(P)])
+    if np.array_equal(P, -np.eye(3)):
+        r_axes = -float(np.median(r))
+    elif r_axes > AXES_MIN_LOG_RATIO:  # a candidate: confirmed on every stride at the full rate
+        va = _end_speed(acc, gyr @ P.T, fs, i0, i1)
+        r_axes = float(np.median(np.log(np.maximum(vp, 1e-9) / np.maximum(va, 1e-9))))
+    return Handedness("foot", float(np.median(r)), int(len(r)), P, r_axes)
+
+
+def foot_axes(acc: np.ndarray, gyr: np.ndarray, fs: float, i0: np.ndarray, i1: np.ndarray,
+              *, strides: int | None = None, rate_hz: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Axis agreement on a foot unit's rest-to-rest strides ``i0[b]..i1[b]`` (D11 amendment): the best
+    signed permutation P (3, 3) other than the identity (P @ recorded = rate in the accelerometer's axes)
+    and the median log ratio (48,) of every :data:`PERMUTATIONS` entry (> 0: fits better than as recorded),
+    on at most ``strides`` evenly spaced strides block-averaged to about ``rate_hz`` (default
+    :data:`AXES_STRIDES`, :data:`AXES_RATE_HZ`). Pure function."""
+    from pdrlearn.displace._kernels import strapdown, stride_index, zupt_velocity
+
+    strides = AXES_STRIDES if strides is None else strides
+    rate_hz = AXES_RATE_HZ if rate_hz is None else rate_hz
+
+    sel = np.unique(np.linspace(0, len(i0) - 1, min(strides, len(i0))).round().astype(np.int64))
+    k = max(1, int(fs // rate_hz))
+    a_parts, g_parts = [], []
+    for b in sel:
+        m = (i1[b] + 1 - i0[b]) // k * k
+        a_parts.append(acc[i0[b]:i0[b] + m].reshape(-1, k, 3).mean(axis=1))
+        g_parts.append(gyr[i0[b]:i0[b] + m].reshape(-1, k, 3).mean(axis=1))
+    lens = np.array([len(a) for a in a_parts])
+    A, G = np.concatenate(a_parts), np.concatenate(g_parts)
+    n_p = len(PERMUTATIONS)
+    starts = (np.arange(n_p)[:, None] * len(A) + np.concatenate([[0], np.cumsum(lens)[:-1]])[None, :]).ravel()
+    ends = starts + np.tile(lens - 1, n_p)
+    AA = np.tile(A, (n_p, 1))
+    GG = np.einsum("pij,nj->pni", PERMUTATIONS, G).reshape(-1, 3)  # every permutation of every sample
+    idx, mask = stride_index(starts, ends)
+    a_nav, _ = strapdown(AA, GG, k / fs, idx, mask, AA[starts])
+    v = zupt_velocity(a_nav, mask, k / fs, zupt_end=False)
+    e = np.log(np.maximum(np.linalg.norm(v[np.arange(len(starts)), mask.sum(axis=1) - 1], axis=1), 1e-9))
+    e = e.reshape(n_p, len(sel))
+    r = np.median(e[0][None, :] - e, axis=1)
+    return PERMUTATIONS[1 + int(np.argmax(r[1:]))], r
 
 
 def _detrended_energy(a_nav: np.ndarray, mask: np.ndarray, fs: float) -> np.ndarray:
@@ -124,11 +274,17 @@ def _detrended_energy(a_nav: np.ndarray, mask: np.ndarray, fs: float) -> np.ndar
     return (r.reshape(L, v.shape[0], 3) ** 2).sum(axis=2).mean(axis=0)
 
 
-def waist_handedness(acc: np.ndarray, gyr: np.ndarray, fs: float) -> Handedness:
-    """Handedness test of a waist unit (arguments as :func:`foot_handedness`). Pure function."""
+def waist_handedness(acc: np.ndarray, gyr: np.ndarray, fs: float, *, ratio: bool = True) -> Handedness:
+    """Handedness test of a waist unit (arguments as :func:`foot_handedness`) with its axis agreement
+    (:func:`turn_axis`); ``ratio=False`` skips the (not adopted) handedness ratio: NaN over 0 windows.
+    Pure function."""
     from pdrlearn.displace._kernels import strapdown, stride_index
 
     acc, gyr = np.asarray(acc, dtype=float), np.asarray(gyr, dtype=float)
+    ang, nt, gi, ai = turn_axis(acc, gyr, fs)
+    turn = {"turn_deg": ang, "turn_windows": nt, "turn_axes": (gi, ai)}
+    if not ratio:
+        return Handedness("waist", float("nan"), 0, **turn)
     L = int(round(WAIST_WINDOW_S * fs))
     hop = max(1, int(round(WAIST_HOP_S * fs)))
     starts = np.arange(0, len(acc) - L, hop)
@@ -137,24 +293,49 @@ def waist_handedness(acc: np.ndarray, gyr: np.ndarray, fs: float) -> Handedness:
         sd = np.array([norm[a:a + L].std() for a in starts])
         starts = starts[sd > WAIST_MIN_ACC_SD]
     if not len(starts):
-        return Handedness("waist", float("nan"), 0)
+        return Handedness("waist", float("nan"), 0, **turn)
     idx, mask = stride_index(starts, starts + L - 1)
     e = []
     for sign in (1.0, -1.0):
         a_nav, _ = strapdown(acc, sign * gyr, 1.0 / fs, idx, mask, acc[starts])
         e.append(_detrended_energy(a_nav, mask, fs))
     r = np.log(np.maximum(e[1], 1e-12) / np.maximum(e[0], 1e-12))
-    return Handedness("waist", float(np.median(r)), int(len(r)))
+    return Handedness("waist", float(np.median(r)), int(len(r)), **turn)
+
+
+def turn_axis(acc: np.ndarray, gyr: np.ndarray, fs: float) -> tuple[float, int, int, int]:
+    """The turning axis of a unit against gravity (D11 amendment, waist): the angle (deg) between the
+    principal axis of the rotation vectors of the turn windows (:data:`TURN_WINDOW_S`, net rotation above
+    :data:`TURN_MIN_DEG`) and the accelerometer's mean direction, the number of turn windows, the
+    gyroscope axis nearest the turning axis and the accelerometer axis nearest gravity (0-2; NaN / -1
+    when fewer than 2 windows turn; NaN, 0, -1, -1 when the accelerometer's mean is below
+    :data:`TURN_MIN_GRAVITY`). Pure function; arguments as :func:`foot_handedness`."""
+    acc, gyr = np.asarray(acc, dtype=float), np.asarray(gyr, dtype=float)
+    L, hop = int(round(TURN_WINDOW_S * fs)), max(1, int(round(TURN_HOP_S * fs)))
+    g = acc.mean(axis=0)
+    if not float(np.linalg.norm(g)) >= TURN_MIN_GRAVITY:  # no gravity to compare with
+        return float("nan"), 0, -1, -1
+    g = g / float(np.linalg.norm(g))
+    c = np.vstack([np.zeros(3), np.cumsum(gyr, axis=0) / fs])
+    st = np.arange(0, len(gyr) - L, hop)
+    th = c[st + L] - c[st]
+    big = th[np.linalg.norm(th, axis=1) > np.radians(TURN_MIN_DEG)]
+    if len(big) < 2:
+        return float("nan"), int(len(big)), -1, int(np.argmax(np.abs(g)))
+    u = np.linalg.eigh(big.T @ big)[1][:, -1]
+    ang = float(np.degrees(np.arccos(min(1.0, abs(float(u @ g))))))
+    return ang, int(len(big)), int(np.argmax(np.abs(u))), int(np.argmax(np.abs(g)))
 
 
 TESTS = {"foot": foot_handedness, "waist": waist_handedness}
 
 
-def session_handedness(session, placement: str, *, max_s: float | None = None) -> Handedness | None:
+def session_handedness(session, placement: str, *, max_s: float | None = None,
+                       ratio: bool = True) -> Handedness | None:
     """The handedness test of a :class:`~pdrlearn.io.Session`'s ``placement`` unit (the gyroscope on the
     accelerometer's clock) over its first ``max_s`` seconds (default
     :data:`~pdrlearn.track.frame_inference.CHECK_SPAN_S`); ``None`` when the unit lacks either sensor,
-    has too few samples or non-finite values."""
+    has too few samples or non-finite values. ``ratio=False``: the waist's cheap axis test only."""
     from pdrlearn.io.sensors import UNIT_IMU
     from pdrlearn.signal.filters import interp_rows
     from pdrlearn.track.frame_inference import CHECK_SPAN_S
@@ -172,19 +353,40 @@ def session_handedness(session, placement: str, *, max_s: float | None = None) -
     acc, gyr = acc_s.values[:n], interp_rows(acc_s.t[:n], gyr_s.t, gyr_s.values)
     if not (np.isfinite(acc).all() and np.isfinite(gyr).all()):
         return None
+    if placement == "waist":
+        return waist_handedness(acc, gyr, float(acc_s.rate_hz), ratio=ratio)
     return TESTS[placement](acc, gyr, float(acc_s.rate_hz))
 
 
-def check_handedness(session, placement: str) -> tuple[Handedness | None, str | None]:
+def check_handedness(session, placement: str, *, ratio: bool = True) -> tuple[Handedness | None, str | None]:
     """The handedness test of the ``placement`` unit and, when the data say with confidence that its
     accelerometer and gyroscope form a left-handed pair (mirrored data), the warning (without the file
     location) with the fix; else ``None`` (decision D11)."""
     from pdrlearn.io.sensors import UNIT_IMU
 
-    h = session_handedness(session, placement)
-    if h is None or not h.mirrored:
+    h = session_handedness(session, placement, ratio=ratio)
+    if h is None or not (h.mirrored or h.axes_differ):
         return h, None
     acc_n, gyr_n = UNIT_IMU[placement]
+    if h.axes_differ and placement == "waist":
+        gi, ai = h.turn_axes
+        msg = (f"the {placement} unit's {gyr_n} axes disagree with {acc_n}'s: over {h.turn_windows} turn windows "
+               f"it turns about an axis {h.turn_deg:.0f} deg from gravity (nearest its {'xyz'[gi]} axis), but gravity "
+               f"lies along the accelerometer's {'xyz'[ai]} axis and a walker turns about the vertical (decision D11 "
+               f"amendment); the gyroscope's {'xyz'[gi]} is probably the accelerometer's {'xyz'[ai]} (or its "
+               f"negative): "
+               f"rewrite {gyr_n}.csv's columns in the accelerometer's axes (or re-export both sensors in one frame); "
+               f"a \"frames\" entry cannot fix this")
+        return h, msg
+    if h.axes_differ:
+        P = h.axes
+        hand = "" if np.linalg.det(P) > 0 else " mirrored and"
+        msg = (f"the {placement} unit's {gyr_n} axes look like {acc_n}'s {axes_label(P)} (its x, y, z are the "
+               f"accelerometer's{hand} permuted axes): the end-of-stride velocity error of the ZUPT integration is "
+               f"{np.exp(h.axes_log_ratio):.1f} times smaller with them (median of {h.segments}; decision D11 "
+               f"amendment); rewrite {gyr_n}.csv's columns as {axes_fix(P)} (or re-export both sensors in one "
+               f"frame); a \"frames\" entry cannot fix this")
+        return h, msg
     err = ("the end-of-stride velocity error of the ZUPT integration" if placement == "foot"
            else "the velocity error of the walking windows")
     msg = (f"the {placement} unit's {acc_n} and {gyr_n} turn like a left-handed (mirrored) pair: {err} is "
@@ -195,5 +397,8 @@ def check_handedness(session, placement: str) -> tuple[Handedness | None, str | 
     return h, msg
 
 
-__all__ = ["Handedness", "foot_handedness", "waist_handedness", "session_handedness", "check_handedness",
+__all__ = ["Handedness", "foot_handedness", "foot_axes", "signed_permutations", "axes_label", "axes_fix",
+           "turn_axis", "PERMUTATIONS", "AXES_PLACEMENTS", "AXES_STRIDES", "AXES_RATE_HZ", "AXES_MIN_LOG_RATIO",
+           "TURN_WINDOW_S", "TURN_HOP_S", "TURN_MIN_DEG", "TURN_MIN_WINDOWS", "TURN_MAX_DEG",
+           "TURN_MIN_GRAVITY",           "waist_handedness", "session_handedness", "check_handedness",
            "MIN_LOG_RATIO", "MIN_SEGMENTS", "WARN_PLACEMENTS", "WAIST_WINDOW_S", "WAIST_HOP_S", "WAIST_MIN_ACC_SD"]

@@ -161,7 +161,7 @@ class Session:
     infer_frames: bool = True
     _inferred: dict[str, AxisFrame | str] = field(default_factory=dict, repr=False, compare=False)
     _checked: dict[str, str | None] = field(default_factory=dict, repr=False, compare=False)
-    _handed: dict[str, object] = field(default_factory=dict, repr=False, compare=False)
+    _handed: dict[object, object] = field(default_factory=dict, repr=False, compare=False)
 
     # -- access -----------------------------------------------------------------------------------
     def __getitem__(self, name: str) -> Stream:
@@ -222,10 +222,12 @@ class Session:
         where = (f"{self.folder / 'meta.json'}: session '{self.name}'" if self.folder is not None
                  else f"session '{self.name}' (its meta.json)")
         if self.infer_frames:
-            from pdrlearn.io.handedness import WARN_PLACEMENTS
+            from pdrlearn.io.handedness import AXES_PLACEMENTS, WARN_PLACEMENTS
 
-            if placement in WARN_PLACEMENTS:  # the waist test is not adopted: not paid for here
+            if placement in WARN_PLACEMENTS:  # the waist ratio is not adopted: not paid for here
                 self.handedness(placement)
+            elif placement in AXES_PLACEMENTS:  # its axis agreement (D11 amendment) is cheap
+                self.handedness(placement, ratio=False)
         frame = self.frames.get(placement)
         if frame is not None:
             if self.infer_frames and placement not in self._checked:  # decision D10: once per session
@@ -260,15 +262,21 @@ class Session:
             f"mounting \"frames\": {example}"
         )
 
-    def handedness(self, placement: str):
-        """The mirrored-data test of the ``placement`` unit (:func:`pdrlearn.io.handedness.check_handedness`,
-        decision D11), run once per session; its warning, naming the folder, is logged the first time.
-        ``None`` when the unit has no accelerometer + gyroscope pair."""
-        if placement not in self._handed:
+    def handedness(self, placement: str, *, ratio: bool = True):
+        """The mirrored-data and axis-agreement tests of the ``placement`` unit
+        (:func:`pdrlearn.io.handedness.check_handedness`, decision D11 and its amendment), run once per
+        session (``ratio=False``: without the waist's costly, not adopted handedness ratio; run again with it
+        when asked); its warning, naming the folder, is logged the first time only. ``None`` when the unit has
+        no accelerometer + gyroscope pair."""
+        key = (placement, "ratio")
+        if placement not in self._handed or (ratio and key not in self._handed):
             from pdrlearn.io.handedness import check_handedness
 
-            self._handed[placement], msg = check_handedness(self, placement)
-            if msg:
+            self._handed[placement], msg = check_handedness(self, placement, ratio=ratio)
+            if ratio:
+                self._handed[key] = True
+            if msg and (placement, "warned") not in self._handed:
+                self._handed[(placement, "warned")] = True
                 log.warning("%s: %s", self.folder if self.folder is not None else f"session '{self.name}'", msg)
         return self._handed[placement]
 
