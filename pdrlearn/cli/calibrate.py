@@ -53,7 +53,7 @@ def register(app: typer.Typer) -> None:
         from pdrlearn.io import read_session
         from pdrlearn.waist.calibration import calibrate
 
-        out_file(out, (".json",), force=force)
+        out_file(out, (".json",), "params", force=force)
         was = existed(out)
         if turns is not None and not math.isfinite(turns):
             raise DataError(f"--turns {turns}: give the signed number of full turns walked, e.g. 1 or -2")
