@@ -253,6 +253,15 @@ class Session:
             if isinstance(known, AxisFrame):
                 return known
             reason = f" and its data does not fix the axes ({known})"
+            h = self._handed.get(placement)
+            if h is not None and h.mirrored:  # B29: a "frames" entry cannot fix mirrored data (D11)
+                from pdrlearn.io.sensors import UNIT_IMU
+
+                acc_n, gyr_n = UNIT_IMU[placement]
+                raise DataError(
+                    f"{where} declares no axis frame for the {placement} unit{reason}; the D11 test finds its {acc_n} "
+                    f"and {gyr_n} {h.describe()}, a left-handed pair: negate the mirrored axis back in both "
+                    f"{acc_n}.csv and {gyr_n}.csv (or re-export without mirroring); a \"frames\" entry cannot fix that")
         example = json.dumps({placement: EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"]).to_dict()})
         raise DataError(
             f"{where} declares no axis frame for the {placement} unit{reason}; add a \"frames\" entry giving the "
