@@ -62,8 +62,8 @@ def register(app: typer.Typer) -> None:
             if not s.has("wAccelerometer"):  # decision B28: say what calibrate is for, not "choose a method"
                 have = ", ".join(s.streams) or "none"
                 raise DataError(f"{d}: calibrate fits the lower-back step length of --pipeline waist-pendulum / "
-                                f"waist-pll and needs the waist unit (wAccelerometer, wGyroscope), which this "
-                                f"session lacks (it has {have}); give a session with the waist unit -- the foot "
+                                f"waist-pll and needs the waist unit (wAccelerometer, wGyroscope), which session "
+                                f"'{s.name}' lacks (it has {have}); give a session with the waist unit -- the foot "
                                 "pipeline (plasys) takes no calibrate file: its distance calibration comes with "
                                 "`pdrlearn train` (decision L26)")
         params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns,

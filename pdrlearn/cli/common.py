@@ -308,15 +308,13 @@ def progress(description: str, total: int | None, enabled: bool = True):
 
 
 def warn_gaps(session, names, consequence: str) -> None:
-    """Log one warning per stream of ``names`` with gaps longer than 1 s (count, longest, where) and what
-    the command does about them: the commands that, unlike ``track`` (decision B11), do not cut at gaps
-    still say that the data has holes (decision B15)."""
+    """Log one warning per group of streams of ``names`` with the same gaps longer than 1 s (count, longest,
+    where; decision B30) and what the command does about them: the commands that, unlike ``track`` (decision
+    B11), do not cut at gaps still say that the data has holes (decision B15)."""
     import logging
 
-    from pdrlearn.track.gaps import MIN_GAP_S, long_gaps
+    from pdrlearn.track.gaps import gap_lines, long_gaps
 
     log = logging.getLogger("pdrlearn.cli")
-    for name, g in long_gaps(session, tuple(names)).items():
-        t0, t1 = max(g, key=lambda ab: ab[1] - ab[0])
-        log.warning("%s: %s has %d gap(s) longer than %g s (longest %.1f s at %.1f s); %s", session.name, name,
-                    len(g), MIN_GAP_S, t1 - t0, t0, consequence)
+    for line in gap_lines(long_gaps(session, tuple(names)), consequence):
+        log.warning("%s: %s", session.where, line)
