@@ -97,6 +97,8 @@ def test_plot_force_replaces_only_its_own_figure(sim_a, tmp_path, capsys):
     capsys.readouterr()
     before = _snapshot(t)
     _refused(["plot", sim_a, "--out", t / "path.png", "--force"], capsys)  # the track's figure
+    err = _refused(["steps", sim_a, "--out", t / "mine.csv"], capsys)  # a new file the next --force would delete
+    assert "holds a track" in err
     assert _snapshot(t) == before
 
 

@@ -226,9 +226,10 @@ def out_file(path: Path, suffixes: tuple[str, ...], kind: str, *, force: bool = 
     """Validate an output file path of ``kind`` (a key of :data:`FILE_KINDS`) before any work is done: a
     known suffix, not a folder, no file in the way of its parent folder (decision B12); not a file a
     session folder reads (its ``meta.json``, a sensor file, or any CSV: a session reads every CSV as a label
-    table); and an existing file only with ``force`` and only when it is a previous output of the same
-    kind (decision B26: never a session's raw file or labels, a model's manifest.json, another command's
-    output). Nothing is created here; writers create the parent folder."""
+    table); not inside another command's output folder (:func:`folder_kind`: a track, a model directory ...,
+    whose next replacement would delete it); and an existing file only with ``force`` and only when it is a
+    previous output of the same kind (decision B26: never a session's raw file or labels, a model's
+    manifest.json, another command's output). Nothing is created here; writers create the parent folder."""
     if path.suffix.lower() not in suffixes:
         raise DataError(f"{path}: output must end in {' or '.join(suffixes)}")
     if path.is_dir():
@@ -243,6 +244,10 @@ def out_file(path: Path, suffixes: tuple[str, ...], kind: str, *, force: bool = 
         raise DataError(f"{path}: is inside the session folder {path.parent}, which reads it as "
                         f"{'its own data' if path.name in session_files() else 'a label table'}; "
                         "write it outside the session folder")
+    parent = folder_kind(path.parent) if path.parent.is_dir() else None
+    if parent not in (None, "session"):  # its next --force replacement would delete the file (B26)
+        raise DataError(f"{path}: is inside {path.parent}, which holds {_what(parent)}; write {what} outside "
+                        "that folder")
     if path.exists() or path.is_symlink():
         if file_kind(path) != kind:  # decision B26
             raise DataError(f"{path}: exists and is not {what} (written by `{command}`); --force replaces only "
