@@ -194,7 +194,7 @@ def _unframed(yaw_deg: float = 0.0):
 
 # usable data: the command succeeds and says what is wrong on stderr (warning lines only, each once)
 WARNINGS = {
-    # B30: the streams with the same gap are one line
+    # B34: the streams with the same gap are one line
     "gap_5s": (_gap, {"steps": "fAccelerometer, fGyroscope have 1 gap", "steps-pll": "wAccelerometer, wGyroscope "
                       "have 1 gap", "track-M2": "fAccelerometer, fGyroscope, fForceA, fForceB, wAccelerometer, "
                       "wGyroscope have 1 gap", "track-M3-streaming": "gap(s) longer than 1 s",

@@ -54,7 +54,7 @@ def _stderr_of(argv, capsys) -> list[str]:
 WARNING_CASES = {
     "track-waist-pll": (["track", "{gap}", "--pipeline", "waist-pll", "--out", "{out}/t"], "no per-user calibration"),
     "track-waist-pendulum": (["track", "{gap}", "--pipeline", "waist-pendulum", "--out", "{out}/t"], "gap(s) longer"),
-    "track-plasys": (["track", "{gap}", "--method", "M2", "--out", "{out}/t"],  # B30: one line for the streams
+    "track-plasys": (["track", "{gap}", "--method", "M2", "--out", "{out}/t"],  # B34: one line for the streams
                      "fAccelerometer, fGyroscope, fForceA, fForceB, wAccelerometer, wGyroscope have 1 gap"),
     "track-streaming": (["track", "{gap}", "--method", "M2", "--streaming", "--out", "{out}/t"], "gap(s) longer"),
     "track-aided": (["track", "{gap}", "--pipeline", "waist-pll", "--fixes", "{out}/fixes_ms.csv", "--out",

@@ -1,4 +1,4 @@
-"""Decision B30 (docs/decisions/bad-input.md): one 2 s gap in every stream of a session gave 12 warning lines
+"""Decision B34 (docs/decisions/bad-input.md): one 2 s gap in every stream of a session gave 12 warning lines
 (a new-user trial): one per stream, one per unit for the step windows, one per task saying the session "lacks
 the sensors of every terrain model (it has none)", and "1 stride(s) longer than 3 s ... unreliable" next to
 "no steps are counted inside them". Now: three consistent lines, each naming the folder being processed

@@ -366,7 +366,7 @@ class UserModel:
         for col in ("start_s", "end_s"):
             if col in steps:
                 out[col] = steps[col].to_numpy()
-        gap_unclassified: dict[tuple, list[str]] = {}  # (lost units, n steps) -> tasks (one line each, B30)
+        gap_unclassified: dict[tuple, list[str]] = {}  # (lost units, n steps) -> tasks (one line each, B34)
         for task in tasks or list(self.tasks):
             if task not in self.tasks:
                 raise DataError(
@@ -385,7 +385,7 @@ class UserModel:
                 except MissingSensorError as exc:
                     if len(rows) == len(out) and (tasks is not None or method is not None or unit is not None):
                         raise
-                    if lost:  # steps that lost units to a gap: "lacks the sensors (it has none)" misled (B30)
+                    if lost:  # steps that lost units to a gap: "lacks the sensors (it has none)" misled (B34)
                         gap_unclassified.setdefault((lost, len(rows)), []).append(task)
                     else:
                         log.warning("%s: %s task left unclassified for %d steps: %s", session.where, task,

@@ -314,7 +314,7 @@ def progress(description: str, total: int | None, enabled: bool = True):
 
 def warn_gaps(session, names, consequence: str) -> None:
     """Log one warning per group of streams of ``names`` with the same gaps longer than 1 s (count, longest,
-    where; decision B30) and what the command does about them: the commands that, unlike ``track`` (decision
+    where; decision B34) and what the command does about them: the commands that, unlike ``track`` (decision
     B11), do not cut at gaps still say that the data has holes (decision B15)."""
     import logging
 

@@ -199,7 +199,7 @@ def _blank_gap_steps(X: np.ndarray, gaps: dict[str, np.ndarray], available: tupl
         for g in UNIT_GROUPS[unit]:
             if g in available:
                 X[np.ix_(mask, [CHANNEL_INDEX[c] for c in GROUPS[g]])] = np.nan
-    # one line for every unit (B30): a gap in both units' streams was two lines
+    # one line for every unit (B34): a gap in both units' streams was two lines
     same: dict[bytes, list[str]] = {}  # units whose gaps hit the same steps: one phrase
     for u, m in gaps.items():
         same.setdefault(np.asarray(m, dtype=bool).tobytes(), []).append(u)

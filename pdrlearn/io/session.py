@@ -172,7 +172,7 @@ class Session:
 
     @property
     def where(self) -> str:
-        """How warnings name the session (decision B30): the folder it was read from, as given (a copied
+        """How warnings name the session (decision B34): the folder it was read from, as given (a copied
         folder keeps its meta.json "session" name, which would name the original); ``session 'NAME'`` for
         a session built in memory. Outputs (summary.json's ``session``) keep :attr:`name`."""
         return str(self.folder) if self.folder is not None else f"session '{self.name}'"

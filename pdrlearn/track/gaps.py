@@ -33,7 +33,7 @@ def long_gaps(session: Session, names: tuple[str, ...], *, min_gap_s: float = MI
 
 def grouped_gaps(gaps: dict[str, list[tuple[float, float]]]) -> list[tuple[list[str], list[tuple[float, float]]]]:
     """``(stream names, gaps)`` with the streams that share the same gaps (to 0.1 s) in one entry, in first-seen
-    order: one gap in every stream of a unit (a dropped radio link) is one line, not one per stream (B30)."""
+    order: one gap in every stream of a unit (a dropped radio link) is one line, not one per stream (B34)."""
     groups: dict[tuple, tuple[list[str], list[tuple[float, float]]]] = {}
     for name, g in gaps.items():
         key = tuple((round(a, 1), round(b, 1)) for a, b in g)
@@ -55,7 +55,7 @@ def gap_lines(gaps: dict[str, list[tuple[float, float]]], consequence: str) -> l
 def gap_warnings(gaps: dict[str, list[tuple[float, float]]],
                  consequence: str = "no displacement is counted inside them") -> list[str]:
     """One warning per group of streams with the same gaps: the count, the longest gap and ``consequence``
-    (what the pipeline does about them; decision B30)."""
+    (what the pipeline does about them; decision B34)."""
     return gap_lines(gaps, f"{consequence} - re-record or trim the session")
 
 

@@ -471,7 +471,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     in_gap = overlaps_gaps(strides, foot_gaps)
     if in_gap.any():
         disp = np.where(in_gap[:, None], 0.0, disp)
-        # B30: a stride across a gap moves 0 m (said by the gap warning), so it is not one of the "unreliable"
+        # B34: a stride across a gap moves 0 m (said by the gap warning), so it is not one of the "unreliable"
         # long strides: those are counted without it (one 2 s gap gave "no steps ... inside" + "1 stride > 3 s")
         long = ((fd.end_s_ - fd.start_s_) > fd.max_stride_s) & ~in_gap
         fd_warnings = [w for w in fd_warnings if "stride(s) longer than" not in w]
