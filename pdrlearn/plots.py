@@ -10,6 +10,10 @@ from pdrlearn.atomic import atomic_file
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
 
+#: PNG text chunk (key, value) that marks a figure of ``pdrlearn plot`` (:func:`plot_session`), so that
+#: ``plot --force`` replaces only such a figure (decision B26, ``cli.common.file_kind``).
+PLOT_MARK = ("pdrlearn", "plot")
+
 _TERRAIN_COLOURS = {"flat": "#9ecae1", "up": "#a1d99b", "down": "#fdae6b"}
 
 
@@ -23,10 +27,11 @@ def _figure(nrows: int, height: float = 2.0):
     return plt, fig, axes[:, 0]
 
 
-def save_atomic(fig, path: Path) -> None:
-    """Save a figure via a temporary file so an interrupted run leaves no half-written PNG."""
+def save_atomic(fig, path: Path, metadata: dict[str, str] | None = None) -> None:
+    """Save a figure via a temporary file so an interrupted run leaves no half-written PNG (``metadata``:
+    extra PNG text chunks)."""
     with atomic_file(path, suffix=".png") as tmp:
-        fig.savefig(tmp, dpi=110, bbox_inches="tight")
+        fig.savefig(tmp, dpi=110, bbox_inches="tight", metadata=metadata)
 
 
 def check_window(start: float | None, end: float | None, duration_s: float, where: str) -> tuple[float, float]:
@@ -72,7 +77,7 @@ def plot_session(session: Session, out: Path, *, start: float | None = None, end
         fig.legend(handles, list(_TERRAIN_COLOURS), loc="upper center", ncol=3, fontsize=8)
     fig.suptitle(f"{session.name}: {len(names)} stream(s), "
                  f"{0 if session.steps is None else len(session.steps)} labelled step(s)", y=1.0)
-    save_atomic(fig, Path(out))
+    save_atomic(fig, Path(out), metadata=dict([PLOT_MARK]))
     plt.close(fig)
     return Path(out)
 

@@ -15,13 +15,18 @@ from pdrlearn.cli.common import out_folder
 
 def _track_like(folder: Path, text: str = "old") -> Path:
     folder.mkdir()
-    for name in ("summary.json", "steps.csv", "trajectory.csv"):
+    for name in ("steps.csv", "trajectory.csv"):
         (folder / name).write_text(text)
+    (folder / "summary.json").write_text(_summary(text))  # a track's summary (B26: a run's says "runtime")
     return folder
 
 
+def _summary(text: str) -> str:
+    return f'{{"pipeline": "plasys", "note": "{text}"}}'
+
+
 def _check(folder: Path) -> None:
-    out_folder(folder, ("summary.json", "steps.csv", "trajectory.csv"), "a track", force=True)
+    out_folder(folder, "track", force=True)
 
 
 def test_fingerprint_survives_a_rename_but_not_an_edit(tmp_path):
@@ -70,7 +75,7 @@ def test_folder_created_after_an_absent_check_is_not_replaced(tmp_path):
         with pytest.raises(OutputChangedError), atomic_directory(target) as tmp:
             (tmp / "summary.json").write_text("new")
             _track_like(target, "someone else's")
-    assert (target / "summary.json").read_text() == "someone else's"
+    assert (target / "summary.json").read_text() == _summary("someone else's")
 
 
 def test_folder_removed_after_the_check_is_simply_written(tmp_path):
@@ -101,8 +106,8 @@ def test_target_created_between_the_renames_keeps_both(tmp_path, monkeypatch):
             atomic_directory(target) as tmp:
         (tmp / "summary.json").write_text("new")
     kept = Path(str(err.value).split("kept in ")[1])
-    assert (kept / "summary.json").read_text() == "old"
-    assert (target / "summary.json").read_text() == "third"
+    assert (kept / "summary.json").read_text() == _summary("old")
+    assert (target / "summary.json").read_text() == _summary("third")
 
 
 def test_old_set_aside_name_is_fresh(tmp_path):

@@ -194,10 +194,13 @@ def _unframed(yaw_deg: float = 0.0):
 
 # usable data: the command succeeds and says what is wrong on stderr (warning lines only, each once)
 WARNINGS = {
-    "gap_5s": (_gap, {"steps": "fAccelerometer has 1 gap", "steps-pll": "wAccelerometer has 1 gap",
-                      "track-M2": "fAccelerometer has 1 gap", "track-M3-streaming": "gap(s) longer than 1 s",
-                      "track-waist-pll": "wAccelerometer has 1 gap", "track-waist-pendulum": "wGyroscope has 1 gap",
-                      "calibrate": "wGyroscope has 1 gap", "run": "the runtime replays across them"}),
+    # B34: the streams with the same gap are one line
+    "gap_5s": (_gap, {"steps": "fAccelerometer, fGyroscope have 1 gap", "steps-pll": "wAccelerometer, wGyroscope "
+                      "have 1 gap", "track-M2": "fAccelerometer, fGyroscope, fForceA, fForceB, wAccelerometer, "
+                      "wGyroscope have 1 gap", "track-M3-streaming": "gap(s) longer than 1 s",
+                      "track-waist-pll": "wAccelerometer, wGyroscope have 1 gap",
+                      "track-waist-pendulum": "wAccelerometer, wGyroscope have 1 gap",
+                      "calibrate": "wAccelerometer, wGyroscope have 1 gap", "run": "the runtime replays across them"}),
     # decision D8: run takes the frame inferred from the data; the bundle's only when the data does not fix it
     "meta_no_frames": (_unframed(), {"run": "inferred from the data"}),
     "meta_no_frames_yawed": (_unframed(45.0), {"run": "declares no foot frame and its data does not fix the axes"}),

@@ -54,13 +54,14 @@ def _stderr_of(argv, capsys) -> list[str]:
 WARNING_CASES = {
     "track-waist-pll": (["track", "{gap}", "--pipeline", "waist-pll", "--out", "{out}/t"], "no per-user calibration"),
     "track-waist-pendulum": (["track", "{gap}", "--pipeline", "waist-pendulum", "--out", "{out}/t"], "gap(s) longer"),
-    "track-plasys": (["track", "{gap}", "--method", "M2", "--out", "{out}/t"], "fAccelerometer has 1 gap"),
+    "track-plasys": (["track", "{gap}", "--method", "M2", "--out", "{out}/t"],  # B34: one line for the streams
+                     "fAccelerometer, fGyroscope, fForceA, fForceB, wAccelerometer, wGyroscope have 1 gap"),
     "track-streaming": (["track", "{gap}", "--method", "M2", "--streaming", "--out", "{out}/t"], "gap(s) longer"),
     "track-aided": (["track", "{gap}", "--pipeline", "waist-pll", "--fixes", "{out}/fixes_ms.csv", "--out",
                      "{out}/t"], "none of the"),
     "calibrate": (["calibrate", "{gap}", "-p", "waist-pll", "-d", "20", "--out", "{out}/p.json"], "gap(s) longer"),
-    "steps": (["steps", "{gap}", "--detector", "accel"], "fAccelerometer has 1 gap"),
-    "steps-waist": (["steps", "{gap}", "--detector", "pll"], "wAccelerometer has 1 gap"),
+    "steps": (["steps", "{gap}", "--detector", "accel"], "fAccelerometer, fGyroscope have 1 gap"),
+    "steps-waist": (["steps", "{gap}", "--detector", "pll"], "wAccelerometer, wGyroscope have 1 gap"),
     "run": (["run", str(BUNDLE), "{gap}", "--out", "{out}/r"], "the runtime replays across them"),
 }
 

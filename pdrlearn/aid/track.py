@@ -194,7 +194,7 @@ def aid_track(
     if warnings:
         new_info["warnings"] = list(new_info.get("warnings", [])) + warnings
     for w in warnings:  # logged once, like the pipelines' warnings (the CLI prints log records, decision B13)
-        log.warning("%s: %s", session.name, w)
+        log.warning("%s: %s", session.where, w)
     return TrackResult(result.steps.copy(), out, new_info)
 
 

@@ -366,6 +366,7 @@ class UserModel:
         for col in ("start_s", "end_s"):
             if col in steps:
                 out[col] = steps[col].to_numpy()
+        gap_unclassified: dict[tuple, list[str]] = {}  # (lost units, n steps) -> tasks (one line each, B34)
         for task in tasks or list(self.tasks):
             if task not in self.tasks:
                 raise DataError(
@@ -378,14 +379,17 @@ class UserModel:
             out[f"method_{task}"] = "none"
             out[f"ood_{task}"] = np.nan  # distance to the training range (decision C16)
             out[f"ood_feature_{task}"] = None
-            for rows, win in _gap_groups(windows):
+            for rows, win, lost in _gap_groups(windows):
                 try:
                     m, u, proba = self._predict_task(tm, win, method, unit)
                 except MissingSensorError as exc:
                     if len(rows) == len(out) and (tasks is not None or method is not None or unit is not None):
                         raise
-                    log.warning("%s: %s task left unclassified for %d steps: %s", session.name, task,
-                                len(rows), exc)
+                    if lost:  # steps that lost units to a gap: "lacks the sensors (it has none)" misled (B34)
+                        gap_unclassified.setdefault((lost, len(rows)), []).append(task)
+                    else:
+                        log.warning("%s: %s task left unclassified for %d steps: %s", session.where, task,
+                                    len(rows), exc)
                     continue
                 col = out.columns.get_loc(TASK_COLUMNS[task])
                 out.iloc[rows, col] = np.asarray(tm.classes, dtype=object)[np.argmax(proba, axis=1)]
@@ -396,6 +400,10 @@ class UserModel:
                 if dist is not None:
                     out.iloc[rows, out.columns.get_loc(f"ood_{task}")] = dist[0]
                     out.iloc[rows, out.columns.get_loc(f"ood_feature_{task}")] = np.asarray(dist[1], dtype=object)
+        for (lost, n), done in gap_unclassified.items():
+            log.warning("%s: %d step(s) overlapping a sensor gap lost the %s unit%s; no trained %s model runs "
+                        "without %s, so they are left unclassified", session.where, n, " and ".join(lost),
+                        "s" if len(lost) > 1 else "", "/".join(done), "them" if len(lost) > 1 else "it")
         return out
 
     def domain_report(self, pred: pd.DataFrame, *, warn_at: float | None = None) -> dict | None:
@@ -423,22 +431,24 @@ class UserModel:
 
 
 def _gap_groups(windows):
-    """``(rows, windows)`` pairs: the steps that lost the same units to sensor gaps, with those units
-    removed from ``available`` (decision B11), so a model of the remaining unit classifies them."""
+    """``(rows, windows, lost units)`` triples: the steps that lost the same units (``("foot", "waist")``, ``()``
+    for none) to sensor gaps, with those units removed from ``available`` (decision B11), so a model of the
+    remaining unit classifies them."""
     from pdrlearn.features.windows import UNIT_GROUPS
 
     gaps = getattr(windows, "gap_steps", {})
     if not gaps:
-        return [(np.arange(len(windows)), windows)]
+        return [(np.arange(len(windows)), windows, ())]
     units = sorted(gaps)
     key = np.stack([gaps[u] for u in units], axis=1)
     groups = []
     for k in np.unique(key, axis=0):
         rows = np.flatnonzero((key == k).all(axis=1))
         win = windows.subset(rows)
-        lost = {g for u, b in zip(units, k, strict=True) if b for g in UNIT_GROUPS[u]}
+        lost_units = tuple(u for u, b in zip(units, k, strict=True) if b)
+        lost = {g for u in lost_units for g in UNIT_GROUPS[u]}
         win.available = tuple(g for g in win.available if g not in lost)
-        groups.append((rows, win))
+        groups.append((rows, win, lost_units))
     return groups
 
 

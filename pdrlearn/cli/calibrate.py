@@ -53,11 +53,19 @@ def register(app: typer.Typer) -> None:
         from pdrlearn.io import read_session
         from pdrlearn.waist.calibration import calibrate
 
-        out_file(out, (".json",), force=force)
+        out_file(out, (".json",), "params", force=force)
         was = existed(out)
         if turns is not None and not math.isfinite(turns):
             raise DataError(f"--turns {turns}: give the signed number of full turns walked, e.g. 1 or -2")
         sessions = [read_session(d) for d in dirs]
+        for d, s in zip(dirs, sessions, strict=True):
+            if not s.has("wAccelerometer"):  # decision B28: say what calibrate is for, not "choose a method"
+                have = ", ".join(s.streams) or "none"
+                raise DataError(f"{d}: calibrate fits the lower-back step length of --pipeline waist-pendulum / "
+                                f"waist-pll and needs the waist unit (wAccelerometer, wGyroscope), which session "
+                                f"'{s.name}' lacks (it has {have}); give a session with the waist unit -- the foot "
+                                "pipeline (plasys) takes no calibrate file: its distance calibration comes with "
+                                "`pdrlearn train` (decision L26)")
         params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns,
                            fit_turns=fit_turns, shrink=shrink)
         params.save(out, extra={"fit": [str(d) for d in dirs]})

@@ -212,7 +212,7 @@ def train_all(
     _check_workers(workers)
     _check_outside_cohort(out, cohort_dir)
     _check_only_train_all_output(out)
-    out_folder(out, TRAIN_ALL_MARKERS, "per-user model directories", force=force)
+    out_folder(out, "train-all", force=force, inputs=(cohort_dir,))
     was, had_eval = existed(out), (out / "eval" / "cohort_summary.csv").is_file()
     users = cohort_users(cohort_dir)
     # the whole models folder is built beside the old one and swapped in (decision B19): a --force re-run
@@ -252,7 +252,7 @@ def evaluate_all(
     if not models_dir.is_dir():
         raise DataError(f"{models_dir}: models folder not found; run 'pdrlearn train-all COHORT --out {models_dir}'")
     _check_outside_cohort(out or models_dir / "eval", cohort_dir)
-    out = out_folder(out or models_dir / "eval", ("cohort_summary.csv",), "a cohort summary", force=force)
+    out = out_folder(out or models_dir / "eval", "evaluate-all", force=force, inputs=(models_dir, cohort_dir))
     was = existed(out)
     users = cohort_users(cohort_dir)
     items = [(u.name, {"user_dir": str(u), "model_dir": str(models_dir / u.name)}) for u in users]

@@ -65,20 +65,81 @@ def manifest_kind(folder: Path) -> str | None:
     return next((v for (k, val), v in _MANIFEST_KINDS.items() if m.get(k) == val), None)
 
 
-def out_folder(path: Path, markers: tuple[str, ...], what: str, *, force: bool = False,
-               allow: tuple[str, ...] = (), inputs: tuple = ()) -> Path:
-    """Validate an output folder before any work is done (decision B12).
+#: Every kind of output folder a command writes (decision B26): kind -> (what it is, the command that writes
+#: it). ``out_folder`` replaces a folder with ``--force`` only when :func:`folder_kind` finds the same kind.
+FOLDER_KINDS = {
+    "track": ("a track (trajectory.csv, steps.csv, path.png, summary.json)", "pdrlearn track"),
+    "run": ("a run (steps.csv, trajectory.csv, summary.json)", "pdrlearn run"),
+    "model": ("a model directory", "pdrlearn train"),
+    "bundle": ("a runtime bundle", "pdrlearn export"),
+    "report": ("a report (index.html, report.md)", "pdrlearn report"),
+    "evaluation": ("an evaluation report", "pdrlearn evaluate --report"),
+    "train-all": ("per-user model directories", "pdrlearn train-all"),
+    "evaluate-all": ("a cohort summary", "pdrlearn evaluate-all"),
+}
+_TRACK_FILES = ("summary.json", "steps.csv", "trajectory.csv")
 
-    An absent or empty folder is used. A previous output of the same command (it holds every one of the
-    ``markers`` glob patterns, e.g. ``summary.json`` + ``steps.csv`` + ``trajectory.csv``) is replaced only
-    with ``force``; anything else -- a
-    file, or a folder of unrelated files, which the command would mix its output into or delete -- is
-    refused even with ``force``. ``allow`` names files that do not make a folder "non-empty" (the
-    documented ``--json > DIR/evaluation.json`` redirect creates that file before the command runs).
-    A model directory and a runtime bundle share the ``manifest.json`` marker: one is never replaced by
-    the other (``what`` names the kind), and a folder that is or holds one of the command's ``inputs``
-    (``export M --out M``) is never replaced: the atomic replacement would delete the input.
+
+def session_files() -> tuple[str, ...]:
+    """The files that make a folder a session: ``meta.json`` and every sensor file name."""
+    from pdrlearn.io.sensors import SENSORS
+
+    return ("meta.json", *(s.filename for s in SENSORS.values()))
+
+
+def is_session_folder(folder: Path) -> bool:
+    """Whether ``folder`` holds a session's own files (``meta.json`` or a sensor CSV): an input, never an output."""
+    return folder.is_dir() and any((folder / n).is_file() for n in session_files())
+
+
+def folder_kind(folder: Path) -> str | None:
+    """What ``folder`` is, from its files: ``"session"`` (an input, never replaced), a key of
+    :data:`FOLDER_KINDS`, or ``None`` (not recognised: unrelated files). Every file of a kind's marker set
+    must be present (a website's ``index.html`` is no report, B12); track and run folders share their
+    file names and are told apart by ``summary.json``'s ``pipeline`` (``runtime`` = run, B14)."""
+    if is_session_folder(folder):
+        return "session"
+    if (folder / "manifest.json").is_file():
+        return {"a runtime bundle": "bundle", "a model directory": "model"}.get(manifest_kind(folder) or "")
+    if (folder / "cohort_summary.csv").is_file():
+        return "train-all" if any(folder.glob("*/manifest.json")) else "evaluate-all"
+    if all((folder / n).is_file() for n in _TRACK_FILES):
+        try:
+            summary = json.loads((folder / "summary.json").read_text())
+        except (OSError, ValueError):
+            return None
+        if not isinstance(summary, dict):
+            return None
+        return "run" if summary.get("pipeline") == "runtime" else "track"
+    if (folder / "index.html").is_file() and (folder / "report.md").is_file():
+        return "report"
+    if (folder / "report.md").is_file() or (folder / "report.json").is_file():
+        return "evaluation"
+    return None
+
+
+def _what(kind: str) -> str:
+    if kind == "session":
+        return "a session (meta.json / sensor files)"
+    what, command = FOLDER_KINDS[kind]
+    return f"{what}, written by `{command}`"
+
+
+def out_folder(path: Path, kind: str, *, force: bool = False, allow: tuple[str, ...] = (),
+               inputs: tuple = ()) -> Path:
+    """Validate an output folder of ``kind`` (a key of :data:`FOLDER_KINDS`) before any work is done
+    (decisions B12, B26).
+
+    An absent or empty folder is used. A previous output of the same kind (:func:`folder_kind`) is
+    replaced only with ``force``; anything else -- a file, a session folder, another command's output
+    (a run for `track`, a model directory for `export`, a train-all models folder for `evaluate-all`),
+    or a folder of unrelated files, which the command would mix its output into or delete -- is refused
+    even with ``force``. ``allow`` names files that do not make a folder "non-empty" (the documented
+    ``--json > DIR/evaluation.json`` redirect creates that file before the command runs). A folder that
+    is or holds one of the command's ``inputs`` (``export M --out M``) is never replaced: the atomic
+    replacement would delete the input.
     """
+    what = FOLDER_KINDS[kind][0]
     if path.exists() and not path.is_dir():
         raise DataError(f"{path}: is a file; --out must be a folder for {what}")
     for parent in path.parents:  # a file in the way of the folder (was FileExistsError after all the work)
@@ -88,11 +149,12 @@ def out_folder(path: Path, markers: tuple[str, ...], what: str, *, force: bool =
             break
     entries = [q for q in path.iterdir() if q.name not in allow] if path.is_dir() else []
     if entries:
-        if not all(any(path.glob(m)) for m in markers):  # every marker: a website's index.html is no report
+        found = folder_kind(path)
+        if found is None:
             raise DataError(f"{path}: exists and does not hold {what}; choose another output folder or empty it")
-        kind = manifest_kind(path) if "manifest.json" in markers else None
-        if kind is not None and not what.startswith(kind):
-            raise DataError(f"{path}: holds {kind}, not {what}; choose another output folder")
+        if found != kind:  # --force replaces only this command's own kind of output (decision B26)
+            raise DataError(f"{path}: holds {_what(found)}, not {what}; --force replaces only a previous output "
+                            "of this command -- choose another output folder")
         here = path.resolve()
         for q in inputs:
             if q is not None and (Path(q).resolve() == here or Path(q).resolve().is_relative_to(here)):
@@ -105,10 +167,69 @@ def out_folder(path: Path, markers: tuple[str, ...], what: str, *, force: bool =
     return path
 
 
-def out_file(path: Path, suffixes: tuple[str, ...], *, force: bool = False) -> Path:
-    """Validate an output file path before any work is done: a known suffix, not a folder, no file in the
-    way of its parent folder, and an existing file only with ``force`` (decision B12). Nothing is created
-    here; writers create the parent folder."""
+#: Output files, by kind (decision B26): kind -> (what it is, the command that writes it). ``out_file``
+#: replaces an existing file with ``--force`` only when :func:`file_kind` recognises it as that kind.
+FILE_KINDS = {
+    "steps": ("a detected steps table", "pdrlearn steps --out"),
+    "params": ("a waist parameters file", "pdrlearn calibrate"),
+    "plot": ("a session plot", "pdrlearn plot"),
+}
+#: The columns every ``pdrlearn steps`` table starts with (the ``steps`` detectors' tables).
+STEPS_COLUMNS = ("start_s", "end_s", "event_s", "unit", "confidence")
+
+
+def png_text(path: Path) -> dict[str, str]:
+    """The tEXt chunks of a PNG file before its image data (key -> value); empty for a file that is not a PNG."""
+    import struct
+
+    out: dict[str, str] = {}
+    with open(path, "rb") as f:
+        if f.read(8) != b"\x89PNG\r\n\x1a\n":
+            return out
+        while True:
+            head = f.read(8)
+            if len(head) < 8:
+                return out
+            n, typ = struct.unpack(">I4s", head)
+            if typ in (b"IDAT", b"IEND"):
+                return out  # matplotlib writes its text chunks before the image data
+            data = f.read(n + 4)[:n]  # + CRC
+            if typ == b"tEXt" and b"\0" in data:
+                k, v = data.split(b"\0", 1)
+                out[k.decode("latin-1")] = v.decode("latin-1")
+
+
+def file_kind(path: Path) -> str | None:
+    """What an existing output file is: a key of :data:`FILE_KINDS`, recognised from its content (a steps
+    table's header, a parameters file's schema, the plot's PNG text chunk), else ``None``."""
+    suffix = path.suffix.lower()
+    try:
+        if suffix == ".csv":
+            with open(path, encoding="utf-8", errors="replace") as f:
+                header = tuple(c.strip() for c in f.readline().strip().split(","))
+            return "steps" if header[:len(STEPS_COLUMNS)] == STEPS_COLUMNS else None
+        if suffix == ".json":
+            from pdrlearn.waist.params import SCHEMA
+
+            d = json.loads(path.read_text())
+            return "params" if isinstance(d, dict) and d.get("schema") == SCHEMA else None
+        if suffix == ".png":
+            from pdrlearn.plots import PLOT_MARK
+
+            return "plot" if png_text(path).get(PLOT_MARK[0]) == PLOT_MARK[1] else None
+    except (OSError, ValueError):
+        return None
+    return None
+
+
+def out_file(path: Path, suffixes: tuple[str, ...], kind: str, *, force: bool = False) -> Path:
+    """Validate an output file path of ``kind`` (a key of :data:`FILE_KINDS`) before any work is done: a
+    known suffix, not a folder, no file in the way of its parent folder (decision B12); not a file a
+    session folder reads (its ``meta.json``, a sensor file, or any CSV: a session reads every CSV as a label
+    table); not inside another command's output folder (:func:`folder_kind`: a track, a model directory ...,
+    whose next replacement would delete it); and an existing file only with ``force`` and only when it is a
+    previous output of the same kind (decision B26: never a session's raw file or labels, a model's
+    manifest.json, another command's output). Nothing is created here; writers create the parent folder."""
     if path.suffix.lower() not in suffixes:
         raise DataError(f"{path}: output must end in {' or '.join(suffixes)}")
     if path.is_dir():
@@ -118,8 +239,21 @@ def out_file(path: Path, suffixes: tuple[str, ...], *, force: bool = False) -> P
             if not parent.is_dir():
                 raise DataError(f"{path}: {parent} is a file, not a folder; choose another output path")
             break
-    if path.exists() and not force:
-        raise DataError(f"{path}: file exists; pass --force to replace it, or choose another output file")
+    what, command = FILE_KINDS[kind]
+    if is_session_folder(path.parent) and (path.name in session_files() or path.suffix.lower() == ".csv"):
+        raise DataError(f"{path}: is inside the session folder {path.parent}, which reads it as "
+                        f"{'its own data' if path.name in session_files() else 'a label table'}; "
+                        "write it outside the session folder")
+    parent = folder_kind(path.parent) if path.parent.is_dir() else None
+    if parent not in (None, "session"):  # its next --force replacement would delete the file (B26)
+        raise DataError(f"{path}: is inside {path.parent}, which holds {_what(parent)}; write {what} outside "
+                        "that folder")
+    if path.exists() or path.is_symlink():
+        if file_kind(path) != kind:  # decision B26
+            raise DataError(f"{path}: exists and is not {what} (written by `{command}`); --force replaces only "
+                            "a previous output of this command -- choose another output file")
+        if not force:
+            raise DataError(f"{path}: file exists; pass --force to replace it, or choose another output file")
     return path
 
 
@@ -179,15 +313,13 @@ def progress(description: str, total: int | None, enabled: bool = True):
 
 
 def warn_gaps(session, names, consequence: str) -> None:
-    """Log one warning per stream of ``names`` with gaps longer than 1 s (count, longest, where) and what
-    the command does about them: the commands that, unlike ``track`` (decision B11), do not cut at gaps
-    still say that the data has holes (decision B15)."""
+    """Log one warning per group of streams of ``names`` with the same gaps longer than 1 s (count, longest,
+    where; decision B34) and what the command does about them: the commands that, unlike ``track`` (decision
+    B11), do not cut at gaps still say that the data has holes (decision B15)."""
     import logging
 
-    from pdrlearn.track.gaps import MIN_GAP_S, long_gaps
+    from pdrlearn.track.gaps import gap_lines, long_gaps
 
     log = logging.getLogger("pdrlearn.cli")
-    for name, g in long_gaps(session, tuple(names)).items():
-        t0, t1 = max(g, key=lambda ab: ab[1] - ab[0])
-        log.warning("%s: %s has %d gap(s) longer than %g s (longest %.1f s at %.1f s); %s", session.name, name,
-                    len(g), MIN_GAP_S, t1 - t0, t0, consequence)
+    for line in gap_lines(long_gaps(session, tuple(names)), consequence):
+        log.warning("%s: %s", session.where, line)

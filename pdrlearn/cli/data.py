@@ -82,7 +82,7 @@ def plot(
     from pdrlearn.io import read_session
     from pdrlearn.plots import check_window, plot_session
 
-    out = out_file(out, (".png",), force=force)
+    out = out_file(out, (".png",), "plot", force=force)
     was = existed(out)
     s = read_session(session_dir)
     check_window(start, end, s.t_end - s.t_start, str(session_dir))

@@ -42,7 +42,7 @@ def export(
             bounds = [float(v) for v in length_bounds.split(",")]
         except ValueError:
             raise DataError(f"--length-bounds {length_bounds!r}: give two numbers, e.g. 0.6,0.9") from None
-    out_folder(out, ("manifest.json",), "a runtime bundle", force=force, inputs=(model_dir,))
+    out_folder(out, "bundle", force=force, inputs=(model_dir,))
     was = existed(out)
     path = export_model(model_dir, out, methods=meths, length_bounds=bounds, overwrite=force)
     replaced(out, was)
@@ -196,9 +196,7 @@ def run(
     if not (chunk_s > 0 and chunk_s < float("inf")):
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     if out is not None:
-        out_folder(out, ("summary.json", "steps.csv", "trajectory.csv"),
-                   "a run (steps.csv, trajectory.csv, summary.json)", force=force,
-                   inputs=(bundle_dir, session_dir))
+        out_folder(out, "run", force=force, inputs=(bundle_dir, session_dir))
     bundle = load_bundle(bundle_dir)  # verified before any output
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
     if protocol is not None:

@@ -29,7 +29,7 @@ def report(
     """
     from pdrlearn.report import build_report
 
-    out_folder(out, ("index.html", "report.md"), "a report (index.html, report.md)", force=force)
+    out_folder(out, "report", force=force, inputs=(source,))
     was = existed(out)
     path = build_report(source, out, title=title)
     replaced(out, was)

@@ -53,7 +53,7 @@ def steps(
     if not tolerance > 0 or not math.isfinite(tolerance):
         raise DataError(f"--tolerance {tolerance}: give the event matching tolerance in seconds (> 0, e.g. 0.25)")
     if out is not None:
-        out = out_file(out, (".csv",), force=force)
+        out = out_file(out, (".csv",), "steps", force=force)
     was = out is not None and existed(out)
     session = read_session(session_dir)
     if detector == "auto":  # a foot unit's strides, else the lower back's steps (decision 17)

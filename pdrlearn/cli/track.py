@@ -72,8 +72,7 @@ def track(
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plots import plot_paths
 
-    out_folder(out, ("summary.json", "steps.csv", "trajectory.csv"),
-               "a track (trajectory.csv, steps.csv, path.png, summary.json)", force=force)
+    out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes))
     start_ll = parse_start(start) if start is not None else None
     for fix_file in (gnss, fixes):  # before the tracking, which warned and worked first
         if fix_file is not None and not Path(fix_file).is_file():
@@ -91,12 +90,16 @@ def track(
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
     fn = get_pipeline(pipeline)
+    _refuse_ignored_options(pipeline, method, {"--method": method.lower() != "auto", "--model": model is not None,
+                                               "--rules": rules is not None,
+                                               "--min-confidence": min_confidence is not None,
+                                               "--length-bounds": length_bounds is not None,
+                                               "--streaming": streaming},
+                            gnss=gnss, gnss_period=gnss_period, fixes=fixes, fix_period=fix_period)
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
     # waist pipelines read the file themselves, so that their errors name it
     kw = {"model": model, "start": start_ll, "params": par if pipeline == "plasys" or par is None else str(params)}
-    if streaming and pipeline != "plasys":
-        raise DataError(f"--streaming applies to the plasys pipeline only (got --pipeline {pipeline})")
     if pipeline == "plasys":
         kw["method"] = method
         if streaming:
@@ -174,6 +177,38 @@ def track(
                + (f"; {100 * summary['out_of_domain_fraction']:.0f} % of the strides outside the model's "
                   "training range" if summary.get("out_of_domain_fraction") is not None else ""))
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json")
+
+
+#: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
+_PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming")
+#: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
+_M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
+
+
+def _refuse_ignored_options(pipeline: str, method: str, given: dict[str, bool], *, gnss, gnss_period, fixes,
+                            fix_period) -> None:
+    """One error line for an option the chosen pipeline (or PLASYS method, or missing companion option)
+    would ignore (decision B27): `track --pipeline waist-pendulum --method M3 --model X` tracked without
+    the model and exited 0."""
+    asked = [o for o in _PLASYS_OPTIONS if given.get(o)]
+    if pipeline != "plasys" and asked:
+        one = len(asked) == 1
+        it = "it" if one else "them"
+        raise DataError(f"{', '.join(asked)} appl{'ies' if one else 'y'} to the plasys pipeline only (got --pipeline "
+                        f"{pipeline}, a lower-back pipeline without step classes, which ignores {it}); drop {it}, "
+                        "or track the foot unit with --pipeline plasys")
+    m = method.upper()
+    asked = [o for o in _M3_OPTIONS if given.get(o)]
+    if m in ("M1", "M2") and asked:
+        one = len(asked) == 1
+        raise DataError(f"track: {', '.join(asked)}: M3 step-class option{'' if one else 's'}, which --method {m} "
+                        "ignores (it uses no step classes); use --method M3 (or leave --method out), or drop "
+                        f"{'it' if one else 'them'}")
+    for period, name, source, src_name in ((gnss_period, "--gnss-period", gnss, "--gnss"),
+                                           (fix_period, "--fix-period", fixes, "--fixes")):
+        if period is not None and source is None:
+            raise DataError(f"track: {name} {period:g} thins the fixes of {src_name} FILE, which is not given; "
+                            f"pass {src_name} FILE or drop {name}")
 
 
 def _refuse_waist_params(par: dict, path: Path, session) -> None:

@@ -106,7 +106,7 @@ def train(
         raise DataError(f"train: --boundaries {boundaries!r}; choose one of {', '.join(BOUNDARIES)}")
     t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
     t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
-    out_folder(out, ("manifest.json",), "a model directory", force=force, inputs=tuple(data_dirs))
+    out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     was = existed(out)
     sessions = _read_all(data_dirs)
     total = len(t_all) * len(m_all) * len(u_all)
@@ -214,7 +214,7 @@ def evaluate(
 
     if report is not None:
         # evaluation.json alone is the documented `--json > DIR/evaluation.json` redirect, made by the shell
-        out_folder(report, ("report.md", "report.json"), "an evaluation report", force=force,
+        out_folder(report, "evaluation", force=force, inputs=(model_dir, *data_dirs),
                    allow=("evaluation.json",))
     # not atomic: the folder may hold the file the shell is redirecting --json into (written in place)
     was = report is not None and (report / "report.md").is_file()

@@ -199,8 +199,15 @@ def _blank_gap_steps(X: np.ndarray, gaps: dict[str, np.ndarray], available: tupl
         for g in UNIT_GROUPS[unit]:
             if g in available:
                 X[np.ix_(mask, [CHANNEL_INDEX[c] for c in GROUPS[g]])] = np.nan
-        log.warning("session '%s': %d of %d steps overlap a gap in the %s unit's streams; their %s "
-                    "channels are missing (NaN)", session, int(mask.sum()), len(mask), unit, unit)
+    # one line for every unit (B34): a gap in both units' streams was two lines
+    same: dict[bytes, list[str]] = {}  # units whose gaps hit the same steps: one phrase
+    for u, m in gaps.items():
+        same.setdefault(np.asarray(m, dtype=bool).tobytes(), []).append(u)
+    counts = ", ".join(f"{int(gaps[us[0]].sum())} of {len(gaps[us[0]])} steps overlap a gap in the "
+                       + (f"{' and '.join(us)} units' streams" if len(us) > 1 else f"{us[0]} unit's streams")
+                       for us in same.values())
+    if counts:
+        log.warning("%s: %s; their %s channels are missing (NaN)", session, counts, " and ".join(gaps))
 
 
 def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_samples: int = 40,
@@ -287,6 +294,6 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
                                  forward=forward, rest_search_s=rest_search_s, heading=heading)
             except DataError as exc:
                 raise DataError(f"session '{session.name}', step {i} ({t0:.2f}-{t1:.2f} s): {exc}") from None
-    _blank_gap_steps(X, gaps, available, session.name)
+    _blank_gap_steps(X, gaps, available, session.where)
     return StepWindows(X=X, durations_s=end - start, channels=CHANNELS, available=available,
                        steps=out_steps, session=session.name, gap_steps=gaps)

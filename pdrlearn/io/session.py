@@ -170,6 +170,13 @@ class Session:
     def __contains__(self, name: str) -> bool:
         return name in self.streams
 
+    @property
+    def where(self) -> str:
+        """How warnings name the session (decision B34): the folder it was read from, as given (a copied
+        folder keeps its meta.json "session" name, which would name the original); ``session 'NAME'`` for
+        a session built in memory. Outputs (summary.json's ``session``) keep :attr:`name`."""
+        return str(self.folder) if self.folder is not None else f"session '{self.name}'"
+
     def has(self, *names: str) -> bool:
         return all(n in self.streams for n in names)
 
@@ -255,6 +262,15 @@ class Session:
             if isinstance(known, AxisFrame):
                 return known
             reason = f" and its data does not fix the axes ({known})"
+            h = self._handed.get(placement)
+            if h is not None and h.mirrored:  # B29: a "frames" entry cannot fix mirrored data (D11)
+                from pdrlearn.io.sensors import UNIT_IMU
+
+                acc_n, gyr_n = UNIT_IMU[placement]
+                raise DataError(
+                    f"{where} declares no axis frame for the {placement} unit{reason}; the D11 test finds its {acc_n} "
+                    f"and {gyr_n} {h.describe()}, a left-handed pair: negate the mirrored axis back in both "
+                    f"{acc_n}.csv and {gyr_n}.csv (or re-export without mirroring); a \"frames\" entry cannot fix that")
         example = json.dumps({placement: EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"]).to_dict()})
         raise DataError(
             f"{where} declares no axis frame for the {placement} unit{reason}; add a \"frames\" entry giving the "

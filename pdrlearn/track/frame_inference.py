@@ -215,8 +215,12 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
         raise FrameInferenceError(
             f"in swing the foot pitches toes-down {np.degrees(np.median(down)):.0f} deg and toes-up "
             f"{np.degrees(np.median(toes_up)):.0f} deg relative to its strides' direction (asymmetry {asym:.2f} < "
-            f"{MIN_SWING_ASYMMETRY:g}): no forward push-off, so the strides' direction is not forward (mostly "
-            "backward walking?)")
+            f"{MIN_SWING_ASYMMETRY:g}): no forward push-off, so the strides' direction is not forward ("
+            # simulated backward walking gives 0.05-0.09 (D9); a clear toes-up "push-off" is what data mirrored
+            # in one axis (a left-handed export, a left foot mirrored to look like a right one) give (B29)
+            + ("data mirrored in one axis, e.g. a left-handed export, or backward walking?)"
+               if asym < -MIN_SWING_ASYMMETRY
+               else "mostly backward walking, or data mirrored in one axis, e.g. a left-handed export?)"))
     # cross-check: the foot rotates about its medio-lateral axis (principal axis of the angular rate)
     moving = ~stance
     w, v = np.linalg.eigh(gyr[moving].T @ gyr[moving] / max(int(moving.sum()), 1))

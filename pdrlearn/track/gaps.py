@@ -31,14 +31,32 @@ def long_gaps(session: Session, names: tuple[str, ...], *, min_gap_s: float = MI
     return out
 
 
-def gap_warnings(gaps: dict[str, list[tuple[float, float]]]) -> list[str]:
-    """One warning per stream: the count and the longest gap."""
-    out = []
+def grouped_gaps(gaps: dict[str, list[tuple[float, float]]]) -> list[tuple[list[str], list[tuple[float, float]]]]:
+    """``(stream names, gaps)`` with the streams that share the same gaps (to 0.1 s) in one entry, in first-seen
+    order: one gap in every stream of a unit (a dropped radio link) is one line, not one per stream (B34)."""
+    groups: dict[tuple, tuple[list[str], list[tuple[float, float]]]] = {}
     for name, g in gaps.items():
+        key = tuple((round(a, 1), round(b, 1)) for a, b in g)
+        groups.setdefault(key, ([], g))[0].append(name)
+    return list(groups.values())
+
+
+def gap_lines(gaps: dict[str, list[tuple[float, float]]], consequence: str) -> list[str]:
+    """One line per group of streams with the same gaps (:func:`grouped_gaps`): the streams, the count, the
+    longest gap and where, then ``consequence``."""
+    out = []
+    for names, g in grouped_gaps(gaps):
         t0, t1 = max(g, key=lambda ab: ab[1] - ab[0])
-        out.append(f"{name} has {len(g)} gap(s) longer than {MIN_GAP_S:g} s (longest {t1 - t0:.1f} s at "
-                   f"{t0:.1f} s); no steps are counted inside them - re-record or trim the session")
+        out.append(f"{', '.join(names)} {'has' if len(names) == 1 else 'have'} {len(g)} gap(s) longer than "
+                   f"{MIN_GAP_S:g} s (longest {t1 - t0:.1f} s at {t0:.1f} s); {consequence}")
     return out
+
+
+def gap_warnings(gaps: dict[str, list[tuple[float, float]]],
+                 consequence: str = "no displacement is counted inside them") -> list[str]:
+    """One warning per group of streams with the same gaps: the count, the longest gap and ``consequence``
+    (what the pipeline does about them; decision B34)."""
+    return gap_lines(gaps, f"{consequence} - re-record or trim the session")
 
 
 def cut_steps_at_gaps(steps: pd.DataFrame, gaps: dict[str, list[tuple[float, float]]]) -> pd.DataFrame:

@@ -425,7 +425,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             res.info["method"] = "M3 engine, no classes"
             _level_without_classes(res)  # decision L39, as offline
             res.info["warnings"] = [NO_MODEL_WARNING, *res.info.get("warnings", [])]
-            log.warning("%s: %s", session.name, NO_MODEL_WARNING)
+            log.warning("%s: %s", session.where, NO_MODEL_WARNING)
         return res
     cfg = {**METHODS[method], "rules": False} if no_classes else METHODS[method]
     warnings: list[str] = [NO_MODEL_WARNING] if no_classes else []
@@ -446,7 +446,8 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     strides = _detect_strides(session, kind, steps, foot.t, stance, warnings).reset_index(drop=True)
     # decision B11: report long stream gaps; no foot stride spans a foot-stream gap
     foot_gaps = long_gaps(session, ("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
-    warnings += gap_warnings(foot_gaps) + gap_warnings(long_gaps(session, ("wAccelerometer", "wGyroscope")))
+    warnings += gap_warnings({**foot_gaps, **long_gaps(session, ("wAccelerometer", "wGyroscope"))},
+                             "no displacement is counted inside them (a stride across one moves 0 m)")
     strides = drop_steps_across_gaps(strides, foot_gaps)
     if not len(strides):
         raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?")
@@ -458,7 +459,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                         f"takes FootDisplacement settings: {', '.join(sorted(allowed))}")
     fd_kw.update(params or {})
     fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)
-    warnings += fd.warnings_
+    fd_warnings = list(fd.warnings_)
     raw_disp = disp = fd.disp_
     if len(fd.rows_) < len(strides):
         log.info("%s: %d detected step(s) without a swing between two rests dropped", session.name,
@@ -470,6 +471,14 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     in_gap = overlaps_gaps(strides, foot_gaps)
     if in_gap.any():
         disp = np.where(in_gap[:, None], 0.0, disp)
+        # B34: a stride across a gap moves 0 m (said by the gap warning), so it is not one of the "unreliable"
+        # long strides: those are counted without it (one 2 s gap gave "no steps ... inside" + "1 stride > 3 s")
+        long = ((fd.end_s_ - fd.start_s_) > fd.max_stride_s) & ~in_gap
+        fd_warnings = [w for w in fd_warnings if "stride(s) longer than" not in w]
+        if long.any():
+            fd_warnings.append(f"{int(long.sum())} stride(s) longer than {fd.max_stride_s:g} s (no stance detected "
+                               "between steps): their displacement is unreliable")
+    warnings += fd_warnings
     if not len(strides):
         raise DataError(f"session '{session.name}': no stride between two rests of the foot unit")
 
@@ -597,7 +606,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
             "lever_arm_m": None if fd.lever_arm_ is None else [round(float(v), 4) for v in fd.lever_arm_],
             "warnings": warnings}
     for w in warnings:
-        log.warning("%s: %s", session.name, w)
+        log.warning("%s: %s", session.where, w)
     return TrackResult(steps=table, trajectory=traj, info=info)
 
 
@@ -657,7 +666,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table = pd.DataFrame({"start_s": strides[:, 0], "end_s": strides[:, 1]})
     # decision B11: warned only - the streaming runtime sees the same samples (trajectory parity)
     warnings: list[str] = gap_warnings(long_gaps(session, ("fAccelerometer", "fGyroscope", "wAccelerometer",
-                                                           "wGyroscope")))
+                                                           "wGyroscope")),
+                                       "the streaming path does not cut at them (parity with the runtime, B11)")
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(NO_WAIST_HEADING)
     classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
@@ -742,5 +752,5 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             "out_of_domain": domain,  # decision C16
             "warnings": warnings}
     for w in warnings:
-        log.warning("%s: %s", session.name, w)
+        log.warning("%s: %s", session.where, w)
     return TrackResult(steps=table, trajectory=traj, info=info)

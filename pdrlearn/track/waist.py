@@ -309,7 +309,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "rate_hz": imu.fs,
     }
     for w in warnings:
-        log.warning("%s: %s", session.name, w)
+        log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]))
 
 
