@@ -159,9 +159,14 @@ def test_jittered_period_is_not_biased():
     assert s.rate_hz == pytest.approx(100.0, rel=0.005)  # was 104.65 Hz: the long intervals were dropped
 
 
-def test_jittered_streams_are_put_on_a_uniform_clock(tmp_path, caplog):
+def test_jittered_streams_have_their_rate_and_no_made_up_gaps(tmp_path):
+    a = read_session(_jittered(tmp_path))["fAccelerometer"]  # was 104.65 Hz and ~270 "gaps" (B11 steps lost)
+    assert a.gaps() == [] and a.rate_hz == pytest.approx(100.0, rel=1e-3) and a.jittered
+
+
+def test_jittered_streams_are_put_on_a_uniform_clock_on_request(tmp_path, caplog):
     with caplog.at_level(logging.WARNING, logger="pdrlearn"):
-        s = read_session(_jittered(tmp_path))
+        s = read_session(_jittered(tmp_path), uniform_clock=True)
     a = s["fAccelerometer"]
     assert a.gaps() == [] and np.ptp(np.diff(a.t)) < 1e-9 and a.rate_hz == pytest.approx(100.0, rel=1e-3)
     assert [r for r in caplog.records if "interpolated onto a uniform 100 Hz clock" in r.getMessage()]
@@ -169,7 +174,7 @@ def test_jittered_streams_are_put_on_a_uniform_clock(tmp_path, caplog):
 
 def test_uniform_and_quantised_clocks_are_untouched(tmp_path):
     for src in (LEVEL, _at_100hz(tmp_path / "clean")):
-        s = read_session(src)
+        s = read_session(src, uniform_clock=True)
         raw = pd.read_csv(src / "fAccelerometer.csv")
         assert np.array_equal(s["fAccelerometer"].t, raw.timestamp.to_numpy() * 1e-3)
     q = tmp_path / "quantised"  # 204.8 Hz in integer ms (D7)
@@ -178,7 +183,8 @@ def test_uniform_and_quantised_clocks_are_untouched(tmp_path):
         df = pd.read_csv(q / f"{n}.csv")
         df["timestamp"] = np.round(df.timestamp).astype(int)
         df.to_csv(q / f"{n}.csv", index=False)
-    assert np.array_equal(read_session(q)["fAccelerometer"].t, pd.read_csv(q / "fAccelerometer.csv").timestamp * 1e-3)
+    s = read_session(q, uniform_clock=True)["fAccelerometer"]
+    assert np.array_equal(s.t, pd.read_csv(q / "fAccelerometer.csv").timestamp * 1e-3) and not s.jittered
 
 
 def test_a_real_gap_in_a_jittered_stream_stays_a_gap(tmp_path):
@@ -186,5 +192,6 @@ def test_a_real_gap_in_a_jittered_stream_stays_a_gap(tmp_path):
     for n in ("fAccelerometer", "fGyroscope"):
         df = pd.read_csv(d / f"{n}.csv")
         df[(df.timestamp < 15000) | (df.timestamp > 17000)].to_csv(d / f"{n}.csv", index=False)
-    gaps = read_session(d)["fAccelerometer"].gaps()
-    assert len(gaps) == 1 and gaps[0].duration_s == pytest.approx(2.0, abs=0.03)
+    for uniform in (False, True):
+        gaps = read_session(d, uniform_clock=uniform)["fAccelerometer"].gaps()
+        assert len(gaps) == 1 and gaps[0].duration_s == pytest.approx(2.0, abs=0.03)

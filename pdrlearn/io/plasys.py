@@ -263,11 +263,9 @@ def _check_declared_rate(streams: dict[str, Stream], rate_hz: float, meta_path: 
                     ", ".join(f"{n} {r:.4g} Hz" for n, r in off.items()))
 
 
-#: sampling jitter (:attr:`Stream.jitter`, interval SD / period) above which an accelerometer or gyroscope is
-#: interpolated onto a uniform clock when read (decision B33)
-MAX_JITTER = 0.1
-#: decision B33 switch (experiments compare with and without it)
-RESAMPLE_JITTER = True
+#: decision B33: put a jittered accelerometer/gyroscope on a uniform clock when read. Off: its adoption rule
+#: failed (experiments/results/jitter.md); ``read_session(..., uniform_clock=True)`` asks for it
+RESAMPLE_JITTER = False
 
 
 def _uniform_clocks(streams: dict[str, Stream], folder: Path) -> None:
@@ -276,7 +274,7 @@ def _uniform_clocks(streams: dict[str, Stream], folder: Path) -> None:
     (:meth:`Stream.on_uniform_clock`), with one warning for the session."""
     done = []
     for name, s in streams.items():
-        if s.kind in ("accelerometer", "gyroscope") and s.jitter > MAX_JITTER:
+        if s.kind in ("accelerometer", "gyroscope") and s.jittered:
             done.append(f"{name} {s.jitter:.0%}")
             streams[name] = s.on_uniform_clock()
     if done:
@@ -357,8 +355,9 @@ def _read_trajectory(path: Path, scale: float) -> pd.DataFrame:
     return out
 
 
-def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Session:
-    """Read a PLASYS session folder.
+def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None) -> Session:
+    """Read a PLASYS session folder. ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
+    uniform clock (decision B33; default :data:`RESAMPLE_JITTER`, off).
 
     Raises
     ------
@@ -413,7 +412,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
                     ", ".join(f"{n} {s.rate_hz:.4g} Hz" for n, s in streams.items()), unit)
     if rate is not None:
         _check_declared_rate(streams, rate, meta_path)
-    if RESAMPLE_JITTER:
+    if RESAMPLE_JITTER if uniform_clock is None else uniform_clock:
         _uniform_clocks(streams, folder)
     if not streams:
         inner = sorted(p.name for p in folder.iterdir() if p.is_dir() and any(p.glob("[fw]*.csv")))

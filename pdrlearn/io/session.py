@@ -33,6 +33,19 @@ DIRECTION_CLASSES = ("forward", "backward")  # thesis ch.6.2
 LENGTH_CLASSES = ("short", "normal", "long")  # thesis ch.6.3
 
 
+#: sampling jitter (:attr:`Stream.jitter`: SD of the regular intervals / period) above which a stream counts as
+#: jittered (decision B33): its period is the mean interval and its gaps allow for the jitter. Quantised clocks
+#: (D7: 4 and 5 ms intervals, SD 7 % of the period) have jitter 0; +-1 ms at 100 Hz gives 0.08, +-2 ms 0.16.
+MAX_JITTER = 0.1
+
+
+def _jittered(regular: np.ndarray, med: float) -> bool:
+    """The regular intervals (0.5-1.5 medians) vary by more than :data:`MAX_JITTER` of the median and take more
+    than two values (so not a quantised clock, D7)."""
+    return (regular.size >= 9 and float(np.std(regular)) > MAX_JITTER * med
+            and np.unique(np.round(regular, 9)).size > 2)
+
+
 @dataclass
 class Gap:
     """An interval between two consecutive samples longer than 1.5 nominal periods."""
@@ -99,6 +112,8 @@ class Stream:
         d = np.diff(self.t)
         med = float(np.median(d))
         regular = d[(d >= 0.5 * med) & (d <= 1.5 * med)]
+        if _jittered(regular, med):  # B33: the sum of the intervals telescopes to the span, the jitter cancels
+            return float(d[d <= 2.0 * med].mean())
         mean = float(regular.mean()) if regular.size else med
         return mean if abs(mean - med) > 0.005 * med else med
 
@@ -116,15 +131,19 @@ class Stream:
             return 0.0
         return float(np.std(reg) / self.period_s)
 
+    @property
+    def jittered(self) -> bool:
+        """Sampling jitter above :data:`MAX_JITTER` (decision B33)."""
+        return self.jitter > MAX_JITTER
+
     def on_uniform_clock(self) -> Stream:
         """The stream linearly interpolated onto a uniform clock at its nominal period from its first sample
         (decision B33: the pipelines integrate with ``dt = 1 / rate``, so samples taken at irregular true times
         are put where that assumes them). No sample is made up inside an interval longer than two periods:
         such gaps stay gaps (B11); a shorter one is bridged, as jitter cannot be told from one dropped sample.
-        The period is the mean of the intervals up to two medians: their sum telescopes to the span, so the
-        jitter cancels (the median of +-4 ms jittered intervals at 100 Hz is off by ~0.1 %)."""
+        The period is :attr:`period_s` (for a jittered stream the mean of the intervals up to two medians)."""
         d = np.diff(self.t)
-        p = float(d[d <= 2.0 * np.median(d)].mean())
+        p = self.period_s
         n = int(np.floor((self.t[-1] - self.t[0]) / p + 1e-9)) + 1
         grid = self.t[0] + p * np.arange(n)
         i = np.clip(np.searchsorted(self.t, grid, side="right") - 1, 0, len(self) - 2)
@@ -148,7 +167,11 @@ class Stream:
         if len(self) < 3:
             return []
         dt = np.diff(self.t)
-        idx = np.flatnonzero(dt > factor * self.period_s)
+        p = self.period_s
+        limit = factor * p
+        if self.jittered:  # B33: +-4 ms at 100 Hz puts 7 % of the intervals over 1.5 periods, no sample missing
+            limit = max(limit, p * (1.0 + 4.0 * self.jitter))
+        idx = np.flatnonzero(dt > limit)
         return [Gap(float(self.t[i]), float(dt[i])) for i in idx]
 
     def slice(self, t0: float, t1: float) -> Stream:
