@@ -24,7 +24,7 @@ import pandas as pd
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import frames_from_meta
-from pdrlearn.io.sensors import SENSORS, UNIT_IMU
+from pdrlearn.io.sensors import SENSORS, UNIT_IMU, VALUE_UNITS
 from pdrlearn.io.session import STEP_COLUMNS, Session, Stream
 from pdrlearn.io.validate import (
     check_columns,
@@ -34,6 +34,7 @@ from pdrlearn.io.validate import (
     check_timestamps,
     check_trajectory_times,
     check_units,
+    implausible_rhythm,
     time_unit_candidates,
 )
 
@@ -42,7 +43,8 @@ log = logging.getLogger(__name__)
 LABEL_FILES = ("steps", "trajectory")
 _TIME_SCALE = {"ms": 1e-3, "s": 1.0, "us": 1e-6, "ns": 1e-9}
 _TIME_ALIASES = {"milliseconds": "ms", "millisecond": "ms", "msec": "ms", "seconds": "s", "second": "s", "sec": "s",
-                 "microseconds": "us", "microsecond": "us", "\u00b5s": "us", "nanoseconds": "ns", "nanosecond": "ns"}
+                 "microseconds": "us", "microsecond": "us", "\u00b5s": "us", "nanoseconds": "ns", "nanosecond": "ns",
+                 "sample": "samples", "index": "samples", "indices": "samples", "sample_index": "samples"}
 #: meta.json body measures (m) read by the waist pipelines: (name, largest plausible value in m). Beyond it
 #: the number is centimetres (a 175 "m" subject); the limits are anatomy, not tuned (decision B16).
 _BODY_FIELDS = (("height_m", 3.0), ("leg_length_m", 2.0), ("sensor_height_m", 2.0), ("foot_length_m", 0.5))
@@ -53,19 +55,43 @@ def _timestamp_declared(meta: dict) -> bool:
     return isinstance(units, dict) and "timestamp" in units
 
 
-def _timestamp_scale(meta: dict, where: str = "meta.json") -> float:
-    """Seconds per timestamp unit from ``units.timestamp`` (its first word: ms, s, us, ns; default ms).
-    An unknown word is an error (decision B16): guessing ms would mis-time every sample by 1000x or more."""
+def _timestamp_scale(meta: dict, where: str = "meta.json", rate_hz: float | None = None) -> float:
+    """Seconds per timestamp unit from ``units.timestamp`` (its first word: ms, s, us, ns; default ms; or
+    ``samples``: sample indices at ``rate_hz``, decision B31). An unknown word is an error (decision B16):
+    guessing ms would mis-time every sample by 1000x or more."""
     units = meta.get("units", {}) if meta else {}
     if not isinstance(units, dict):
         raise DataError(f"{where}: \"units\" must be an object such as {{\"timestamp\": \"ms\"}}; fix or remove it")
     text = str(units.get("timestamp", "ms")).strip()
     word = text.split()[0].lower() if text else "ms"
     unit = _TIME_ALIASES.get(word, word)
+    if unit == "samples":
+        if rate_hz is None:
+            raise DataError(f"{where}: units.timestamp {text[:40]!r} (sample indices) needs the sampling rate: add "
+                            "\"rate_hz\" (Hz) to meta.json")
+        return 1.0 / rate_hz
     if unit not in _TIME_SCALE:
-        raise DataError(f"{where}: units.timestamp {text[:40]!r} does not start with ms, s, us or ns; write the "
-                        "timestamps' unit first (e.g. \"ms since the first sample\")")
+        raise DataError(f"{where}: units.timestamp {text[:40]!r} does not start with ms, s, us, ns or samples; write "
+                        "the timestamps' unit first (e.g. \"ms since the first sample\")")
     return _TIME_SCALE[unit]
+
+
+def _value_unit(meta: dict, name: str, where: str) -> tuple[float, str | None]:
+    """Factor to the SI unit and the declared unit of a sensor file's values, from ``units.<file stem>``
+    (its first word, :data:`pdrlearn.io.sensors.VALUE_UNITS`; decision B32): ``(1.0, None)`` when none is
+    declared. An unknown unit is an error naming meta.json."""
+    units = meta.get("units") if meta else None
+    spec = SENSORS[name]
+    table = VALUE_UNITS.get(spec.kind)
+    if not isinstance(units, dict) or name not in units or table is None:
+        return 1.0, None
+    text = str(units[name]).strip()
+    word = text.split()[0].strip("(),;:").lower() if text else ""
+    if word not in table:
+        raise DataError(f"{where}: units.{name} {text[:40]!r} does not start with a {spec.kind} unit pdrlearn "
+                        f"converts from ({', '.join(dict.fromkeys(table))}); write the unit first, e.g. "
+                        f"\"{spec.unit}\", or remove the entry")
+    return table[word], word
 
 
 def _check_body_fields(meta: dict, where: str) -> None:
@@ -139,10 +165,10 @@ def _csv_dialect(path: Path) -> dict:
 
 
 def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale: float = 1e-3,
-                check_unit: bool = True) -> Stream:
+                check_unit: bool = True, value_scale: float = 1.0) -> Stream:
     """Read one sensor CSV into a :class:`Stream` (timestamps converted to seconds)."""
     name, arr = _read_raw(path, name)
-    return _to_stream(path, name, arr, time_scale, check_unit)
+    return _to_stream(path, name, arr, time_scale, check_unit, (value_scale, None))
 
 
 def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np.ndarray]:
@@ -159,13 +185,22 @@ def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np
     return name, check_numeric(df, ("timestamp", *spec.columns), str(path))
 
 
-def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: float, check_unit: bool) -> Stream:
+def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: float, check_unit: bool,
+               value_unit: tuple[float, str | None] = (1.0, None)) -> Stream:
     t = arr[:, 0] * time_scale
     check_timestamps(t, str(path))
     check_rate(t, str(path))
+    factor, declared = value_unit
+    values = arr[:, 1:] * factor if factor != 1.0 else arr[:, 1:]  # B32: a declared unit, converted to SI
     if check_unit:
-        check_units(SENSORS[name], arr[:, 1:], str(path))
-    return Stream(name, t, arr[:, 1:])
+        try:
+            check_units(SENSORS[name], values, str(path))
+        except DataError as exc:
+            if declared is None:
+                raise
+            raise DataError(f"{exc} (the values were converted from {declared!r}, the unit meta.json declares for "
+                            "them: is that unit right?)") from None
+    return Stream(name, t, values)
 
 
 def _session_time_unit(raw: dict[str, np.ndarray], rate_hz: float | None, meta_path: Path) -> str | None:
@@ -187,6 +222,66 @@ def _session_time_unit(raw: dict[str, np.ndarray], rate_hz: float | None, meta_p
             f"{n}: {single.get(n) or '/'.join(c for c, _ in v) or 'no unit at rate_hz'}" for n, v in cands.items())
             + "); write every file in ms or declare \"units\": {\"timestamp\": ...} in meta.json")
     return None
+
+
+def _index_clock(raw: dict[str, np.ndarray]) -> bool:
+    """True when every accelerometer/gyroscope file's timestamps step by exactly 1 (sample indices 0, 1, 2 ...,
+    or a 1000 Hz clock in integer ms; decision B31)."""
+    imu = [a[:, 0] for n, a in raw.items() if SENSORS[n].kind in ("accelerometer", "gyroscope")]
+    return bool(imu) and all(t.size >= 3 and np.all(np.diff(t) == 1.0) for t in imu)
+
+
+def _index_unit(raw: dict[str, np.ndarray], rate_hz: float | None, folder: Path, meta_path: Path) -> str | None:
+    """Decision B31, for a session whose IMU timestamps step by exactly 1 and declare no unit: ``"samples"``
+    when meta.json's ``rate_hz`` contradicts the 1000 Hz of an ms reading (by more than B22's 10 %); with no
+    ``rate_hz``, a :class:`DataError` when the accelerometer's walking rhythm read at 1000 Hz is implausible
+    (:func:`pdrlearn.io.validate.implausible_rhythm`: 100 Hz sample indices put a 1 s stride at 0.1 s);
+    else ``None`` (ms: a genuine 1000 Hz clock)."""
+    if rate_hz is not None:
+        return "samples" if abs(1000.0 - rate_hz) > 0.1 * rate_hz else None
+    acc = next((n for n in raw if SENSORS[n].kind == "accelerometer"), None)
+    if acc is None:
+        return None
+    lag = implausible_rhythm(raw[acc][:, 1:], 1000.0)
+    if lag is None:
+        return None
+    t = raw[acc][:, 0]
+    raise DataError(f"{folder / SENSORS[acc].filename}: its timestamps are consecutive integers "
+                    f"({t[0]:.0f}-{t[-1]:.0f}), sample indices rather than ms: read as ms (1000 Hz) its walking rhythm "
+                    f"repeats every {1e3 * lag:.0f} ms, faster than any gait; write each sample's time in ms, or give "
+                    f"the sampling rate in {meta_path.name}: \"rate_hz\": <Hz>")
+
+
+def _check_declared_rate(streams: dict[str, Stream], rate_hz: float, meta_path: Path) -> None:
+    """Decision B32: meta.json's ``rate_hz`` (the native rate of the accelerometer and gyroscope, what B22 reads
+    the timestamp unit by) must agree with their timestamps within B22's 10 %; else one warning: the
+    timestamps are used, the field is wrong or the timestamps are."""
+    off = {n: s.rate_hz for n, s in streams.items() if s.kind in ("accelerometer", "gyroscope") and len(s) > 2
+           and abs(s.rate_hz - rate_hz) > 0.1 * rate_hz}
+    if off:
+        log.warning("%s: rate_hz %g contradicts the timestamps (%s); the timestamps are used: correct rate_hz, or "
+                    "the timestamps if they are the wrong ones", meta_path, rate_hz,
+                    ", ".join(f"{n} {r:.4g} Hz" for n, r in off.items()))
+
+
+#: decision B33: put a jittered accelerometer/gyroscope on a uniform clock when read. Off: its adoption rule
+#: failed (experiments/results/jitter.md); ``read_session(..., uniform_clock=True)`` asks for it
+RESAMPLE_JITTER = False
+
+
+def _uniform_clocks(streams: dict[str, Stream], folder: Path) -> None:
+    """Decision B33, in place: an accelerometer or gyroscope whose sample intervals vary by more than
+    :data:`MAX_JITTER` of its period (a phone's sensor events at irregular true times) is put on a uniform clock
+    (:meth:`Stream.on_uniform_clock`), with one warning for the session."""
+    done = []
+    for name, s in streams.items():
+        if s.kind in ("accelerometer", "gyroscope") and s.jittered:
+            done.append(f"{name} {s.jitter:.0%}")
+            streams[name] = s.on_uniform_clock()
+    if done:
+        s = streams[done[0].split()[0]]
+        log.warning("%s: irregular sample times (interval SD / period: %s): interpolated onto a uniform %.4g Hz clock, "
+                    "as the methods integrate with a fixed sample interval", folder, ", ".join(done), s.rate_hz)
 
 
 #: label time columns that must be filled in every row (the others, e.g. ``tc_ms``, may be blank = unknown)
@@ -275,8 +370,9 @@ def _looks_like_export(path: Path) -> bool:
     return len(cols) >= 4 and not any(c.strip().endswith("_ms") for c in cols)
 
 
-def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Session:
-    """Read a PLASYS session folder.
+def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None) -> Session:
+    """Read a PLASYS session folder. ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
+    uniform clock (decision B33; default :data:`RESAMPLE_JITTER`, off).
 
     Raises
     ------
@@ -299,23 +395,40 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True) -> Sess
         if not isinstance(meta, dict):
             raise DataError(f"{meta_path}: must hold a JSON object")
         _check_body_fields(meta, str(meta_path))
-    scale = _timestamp_scale(meta, str(meta_path))
     rate = meta.get("rate_hz")
-    rate = float(rate) if isinstance(rate, int | float) and not isinstance(rate, bool) and rate > 0 else None
+    if rate is not None and (isinstance(rate, bool) or not isinstance(rate, int | float) or not math.isfinite(rate)
+                             or rate <= 0):
+        raise DataError(f"{meta_path}: rate_hz {rate!r} is not a positive number of Hz; fix it or remove the field")
+    rate = float(rate) if rate is not None else None
+    scale = _timestamp_scale(meta, str(meta_path), rate)
     raw = {}
     for name, spec in SENSORS.items():
         p = folder / spec.filename
         if p.exists():
             raw[name] = _read_raw(p, name)[1]
     unit = _session_time_unit(raw, rate, meta_path) if raw and not _timestamp_declared(meta) else None
-    if unit is not None:  # decision B22: one unit for every file, said once
+    if unit is None and raw and not _timestamp_declared(meta) and _index_clock(raw):
+        unit = _index_unit(raw, rate, folder, meta_path)  # decision B31: sample indices, not ms
+    if unit == "samples":
+        scale = 1.0 / rate
+    elif unit is not None:  # decision B22: one unit for every file, said once
         scale = _TIME_SCALE[unit]
-    streams = {name: _to_stream(folder / SENSORS[name].filename, name, arr, scale, check_units)
+    streams = {name: _to_stream(folder / SENSORS[name].filename, name, arr, scale, check_units,
+                                _value_unit(meta, name, str(meta_path)))
                for name, arr in raw.items()}
-    if unit is not None:
+    if unit == "samples":
+        log.warning("%s: declares no timestamp unit and the accelerometer/gyroscope timestamps are consecutive "
+                    "integers, %g times rate_hz %g read as ms: read as sample indices at %g Hz; write each sample's "
+                    "time in ms, or add \"units\": {\"timestamp\": \"samples\"} to meta.json to say so", meta_path,
+                    1000.0 / rate, rate, rate)
+    elif unit is not None:
         log.warning("%s: declares no timestamp unit and the timestamps are not milliseconds: read as %s "
                     "(%s); add \"units\": {\"timestamp\": \"%s\"} to meta.json to say so", meta_path, unit,
                     ", ".join(f"{n} {s.rate_hz:.4g} Hz" for n, s in streams.items()), unit)
+    if rate is not None:
+        _check_declared_rate(streams, rate, meta_path)
+    if RESAMPLE_JITTER if uniform_clock is None else uniform_clock:
+        _uniform_clocks(streams, folder)
     if not streams:
         inner = sorted(p.name for p in folder.iterdir() if p.is_dir() and any(p.glob("[fw]*.csv")))
         if inner:  # a folder of sessions (what `train` takes) given to a one-session command
@@ -404,6 +517,14 @@ def write_session(session: Session, folder: str | os.PathLike, *, overwrite: boo
         meta.setdefault("session", session.name)
         units = dict(meta.get("units", {}))
         units["timestamp"] = "ms since the first sample"
+        for name in session.streams:  # B32: values are in memory in SI, whatever unit meta.json declared
+            if name in units:
+                try:
+                    factor = _value_unit(units and {"units": units}, name, "meta.json")[0]
+                except DataError:
+                    factor = None
+                if factor != 1.0:
+                    units[name] = f"{SENSORS[name].unit} (converted when read, from {units[name]})"
         meta["units"] = units
         if session.frames:
             meta["frames"] = {p: f.to_dict() for p, f in session.frames.items()}

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 
@@ -66,3 +67,18 @@ def spec(name: str) -> SensorSpec:
         return SENSORS[name]
     except KeyError:
         raise DataError(f"unknown sensor '{name}'; known sensors: {', '.join(SENSORS)}") from None
+
+
+#: units a ``meta.json`` may declare for a sensor file (``"units": {"fAccelerometer": "g"}``, the first word of
+#: the text; decision B32): kind -> {unit (lower case) -> factor to the SI unit of :class:`SensorSpec`}.
+#: 1 g = 9.80665 m/s^2 (standard gravity, thesis ch.4.2.1.1); 1 gauss = 100 uT. Force files are in N or
+#: normalised (README) and take any text.
+VALUE_UNITS: dict[str, dict[str, float]] = {
+    "accelerometer": {"m/s^2": 1.0, "m/s2": 1.0, "m/s\u00b2": 1.0, "m/s/s": 1.0, "m*s^-2": 1.0,
+                      "g": 9.80665, "mg": 9.80665e-3},
+    "gyroscope": {"rad/s": 1.0, "deg/s": math.pi / 180, "dps": math.pi / 180, "\u00b0/s": math.pi / 180,
+                  "degrees/s": math.pi / 180, "mrad/s": 1e-3},
+    "magnetometer": {"ut": 1.0, "\u00b5t": 1.0, "\u03bct": 1.0, "microtesla": 1.0, "nt": 1e-3, "mt": 1e3, "t": 1e6,
+                     "gauss": 100.0, "g": 100.0, "mg": 0.1, "milligauss": 0.1},
+    "barometer": {"hpa": 1.0, "mbar": 1.0, "millibar": 1.0, "pa": 0.01, "kpa": 10.0, "bar": 1000.0},
+}

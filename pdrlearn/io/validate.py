@@ -65,10 +65,12 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str) -> None:
         return
     if spec.kind == "accelerometer":
         med = float(np.median(np.linalg.norm(values, axis=1)))
+        check_gravity(values, where)
         if 0.5 <= med <= 2.0:
             raise DataError(
                 f"{where}: median |acc| is {med:.2f}, which looks like units of g; "
-                f"multiply by {STANDARD_GRAVITY} to get m/s^2"
+                f"multiply by {STANDARD_GRAVITY} to get m/s^2, or declare \"units\": {{\"{spec.name}\": \"g\"}} "
+                "in meta.json"
             )
         if med > 200:
             raise DataError(
@@ -82,7 +84,8 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str) -> None:
         if p99 > 40.0:
             raise DataError(
                 f"{where}: 99th percentile |rate| is {p99:.0f}, beyond a 2000 deg/s gyroscope in rad/s; "
-                "the file looks like deg/s: multiply by pi/180"
+                f"the file looks like deg/s: multiply by pi/180, or declare \"units\": {{\"{spec.name}\": \"deg/s\"}} "
+                "in meta.json"
             )
     elif spec.kind == "magnetometer":
         med = float(np.median(np.linalg.norm(values, axis=1)))
@@ -98,6 +101,31 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str) -> None:
             raise DataError(f"{where}: median pressure {med:.1f} looks like kPa; multiply by 10 to get hPa")
         if not 300 <= med <= 1100:
             raise DataError(f"{where}: median pressure {med:.1f} hPa is outside 300-1100 hPa (thesis Table 17)")
+
+
+#: largest ratio |mean acceleration vector| / median |acc| of an accelerometer file whose gravity has been removed
+#: (decision B30). With gravity (the specific force of every IMU, README "Session folders") the mean vector is
+#: gravity in the sensor frame and the ratio is 0.93-1.13 on every bundled, fetched and trial recording (foot and
+#: lower back); gravity-removed ("linear acceleration", "free acceleration") exports average to ~0 in any unit:
+#: 0.001-0.036 on the trial's foot and phone copies. 0.2 lies between (geometric middle 0.18).
+GRAVITY_REMOVED_RATIO = 0.2
+
+
+def check_gravity(values: np.ndarray, where: str) -> None:
+    """Refuse an accelerometer file whose gravity has been removed (decision B30): its mean vector is ~0 in
+    either unit (m/s^2 or g), while a specific force always averages to gravity (|mean| ~ median |acc|). Its
+    median |acc| looked like units of g (0.80: "multiply by 9.80665", then +218 % distance) or passed (foot:
+    -50 % distance without a word)."""
+    if values.shape[0] < 10:
+        return
+    med = float(np.median(np.linalg.norm(values, axis=1)))
+    mean = float(np.linalg.norm(values.mean(axis=0)))
+    if med > 0 and mean < GRAVITY_REMOVED_RATIO * med:
+        raise DataError(
+            f"{where}: the mean acceleration vector is {mean:.3g} against a median |acc| of {med:.3g}, so gravity has "
+            "been removed (linear / free acceleration); pdrlearn needs the specific force: export the raw (total) "
+            "accelerometer, gravity included"
+        )
 
 
 #: plausible native sampling rates of a body-worn sensor file (Hz): barometers log at >= 1 Hz, IMUs up to
@@ -212,3 +240,33 @@ def check_trajectory_times(t_raw: np.ndarray, scale: float, t_start: float, t_en
                         f"timestamps in {unit} like the sensor files, on their time base")
     raise DataError(f"{what}; the trajectory does not lie on the sensors' clock: write its timestamps in {unit} "
                     f"on the sensor files' time base (shift by the offset between the two clocks)")
+
+
+#: walking rhythm bounds (s) for :func:`implausible_rhythm` (decision B31): the shortest step of a walk or run
+#: lasts ~0.25 s (cadence 240 steps/min), a stride up to ~2 s; D9's waist rhythm test looks at 0.3-1.0 s lags.
+RHYTHM_MIN_S, RHYTHM_MAX_S = 0.25, 2.0
+
+
+def implausible_rhythm(values: np.ndarray, fs: float, *, span_s: float = 120.0, min_corr: float = 0.3) -> float | None:
+    """The lag (s) of the strongest repetition of ``|acc|`` read at ``fs`` Hz when it is faster than any gait
+    (under :data:`RHYTHM_MIN_S`), else ``None`` (decision B31). The autocorrelation of the norm (mean removed,
+    first ``span_s`` s) is searched for its highest local maximum between 20 ms and :data:`RHYTHM_MAX_S`; only
+    a clear one (>= ``min_corr``) counts: a recording without walking says nothing. 100 Hz sample indices read as
+    1000 Hz put the strides (~1.1 s) and steps (~0.5 s) at 0.11 s and 0.05 s."""
+    x = np.linalg.norm(np.asarray(values, dtype=float), axis=1)[: int(span_s * fs)]
+    x = x - x.mean()
+    lo, hi = max(int(0.02 * fs), 1), min(int(RHYTHM_MAX_S * fs), x.size // 2)
+    if hi < 2 * int(RHYTHM_MIN_S * fs) or not np.any(x):  # too short to see a repetition twice
+        return None
+    n = 1 << int(np.ceil(np.log2(2 * x.size)))
+    f = np.fft.rfft(x, n)
+    ac = np.fft.irfft(f * np.conj(f), n)[: hi + 2]
+    ac = ac / ac[0]
+    seg = ac[lo - 1: hi + 2]
+    peaks = np.flatnonzero((seg[1:-1] > seg[:-2]) & (seg[1:-1] >= seg[2:])) + lo
+    if peaks.size == 0:
+        return None
+    best = int(peaks[np.argmax(ac[peaks])])
+    if ac[best] < min_corr or best / fs >= RHYTHM_MIN_S:
+        return None
+    return best / fs
