@@ -179,3 +179,17 @@ def test_run_reads_the_bluetooth_protocol_with_a_two_unit_bundle(root, tmp_path,
     assert len(got.err.strip().splitlines()) == 1 and "has no waist unit" in got.err
     _errors_once(capsys, ["run", str(root / "bundle"), "--protocol", str(cap), "--units", "foot,waist"],
                  "does not carry; replay the foot unit alone (--units foot)")
+
+
+def test_foot_only_run_does_not_warn_about_the_absent_waist_frame(root, tmp_path, capsys):
+    """Review s11: a foot-only replay of a session with no waist unit (and so no waist frame) warned that the
+    session 'declares no waist frame and its data does not fix the axes; using the bundle's'."""
+    s = _foot_session("no_waist_frame")
+    s.frames.pop("waist", None)
+    write_session(s, tmp_path / "walk")
+    assert main(["run", str(root / "bundle"), str(tmp_path / "walk"), "--units", "foot"]) == 0
+    err = capsys.readouterr().err
+    assert "waist frame" not in err, err
+    assert main(["run", str(root / "bundle"), str(tmp_path / "walk")]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "waist frame" not in err[0], err
