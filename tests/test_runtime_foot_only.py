@@ -193,3 +193,15 @@ def test_foot_only_run_does_not_warn_about_the_absent_waist_frame(root, tmp_path
     assert main(["run", str(root / "bundle"), str(tmp_path / "walk")]) == 0
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "waist frame" not in err[0], err
+
+
+def test_foot_only_replay_without_force_names_the_empty_channels(root, tmp_path, capsys):
+    """Review s11: the foot-only models run on the per-model path, whose NaN-feature error did not say which
+    sensor is missing (the step graph's does: 'window channels force_a, force_b are empty')."""
+    s = _foot_session("no_force")
+    for n in ("fForceA", "fForceB"):
+        s.streams.pop(n, None)
+    write_session(s, tmp_path / "walk")
+    assert main(["run", str(root / "bundle"), str(tmp_path / "walk"), "--units", "foot"]) != 0
+    err = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("error:")]
+    assert len(err) == 1 and "force_a, force_b are empty" in err[0], err
