@@ -244,3 +244,16 @@ def test_a_folder_with_an_export_says_to_import_it(sim, tmp_path, capsys):
     (raw / "labx_export.csv").unlink()
     assert main(["info", str(raw)]) != 0
     assert "pdrlearn import" not in _err(capsys)  # a label table is no export
+
+
+def test_conflicting_unit_hints_are_an_error_not_si(sim, tmp_path, capsys):
+    """Review s11: 'AccX (g), AccY (m/s^2), AccZ (g)' fell back to m/s2 for all three ('default'), silently
+    leaving x and z in g; hints that disagree within one sensor's columns are a one-line error naming them."""
+    a, w = sim.streams["fAccelerometer"], sim.streams["fGyroscope"]
+    df = pd.DataFrame({"Time (s)": a.t, "AccX (g)": a.values[:, 0] / G, "AccY (m/s^2)": a.values[:, 1],
+                       "AccZ (g)": a.values[:, 2] / G, **{f"Gyro{c}": w.values[:, i] for i, c in enumerate("XYZ")}})
+    df.to_csv(tmp_path / "mixed.csv", index=False)
+    assert main(["import", str(tmp_path / "mixed.csv"), "--out", str(tmp_path / "s")]) != 0
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "g, m/s2" in err and "--acc-unit" in err, err
+    assert not (tmp_path / "s").exists()
