@@ -289,3 +289,20 @@ def test_info_without_turn_windows_prints_no_none_angle(tmp_path, capsys):
     assert main(["info", str(tmp_path / "a")]) == 0
     line = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("waist axes:")]
     assert len(line) == 1 and "None" not in line[0] and "over 0 turn windows" not in line[0], line
+
+
+def test_info_on_a_too_short_unit_does_not_say_it_has_no_data(tmp_path, capsys):
+    """Review s11: a unit with an accelerometer and a gyroscope too short for the test was described as having
+    'no accelerometer + gyroscope data'."""
+    from pdrlearn.io import write_session
+
+    s = simulate("A", 1, "normal")
+    for n, st in list(s.streams.items()):
+        s.streams[n] = Stream(n, st.t[:5], st.values[:5])
+    write_session(s, tmp_path / "a")
+    for f in (tmp_path / "a").glob("*.csv"):  # labels past the 5 samples' end
+        if f.stem not in s.streams:
+            f.unlink()
+    assert main(["info", str(tmp_path / "a")]) == 0
+    line = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("foot axes:")]
+    assert len(line) == 1 and "no accelerometer + gyroscope data" not in line[0] and "not run" in line[0], line

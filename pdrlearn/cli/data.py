@@ -55,7 +55,8 @@ def info(
         check = ("not contradicted by the data (D10)" if chk["check"] == "ok"
                  else "see the warning" if chk["frame"] else chk["check"])
         h = chk["handedness"]
-        hand = "no accelerometer + gyroscope data" if h is None else (
+        # frame_checks lists only units with both sensors: no result = too short or non-finite data
+        hand = "not run (under 16 samples or non-finite values)" if h is None else (
             f"{h['verdict']} (log ratio {h['log_ratio'] if h['log_ratio'] is not None else 'n/a'} over "
             f"{h['segments']} {'strides' if p == 'foot' else 'moving windows'}"
             + (f"; best other gyroscope axes {h['axes']['gyroscope']}, log ratio {h['axes']['log_ratio']}"
