@@ -278,3 +278,31 @@ def test_turn_axis_hand_computed():
     assert turn_axis(acc, np.zeros((n, 3)), fs)[1] == 0
     # gravity-removed acceleration (mean about 0) has no gravity to compare with: no verdict
     assert turn_axis(acc - acc.mean(axis=0), gyr[:, [1, 0, 2]], fs)[1] == 0
+
+
+def test_info_without_turn_windows_prints_no_none_angle(tmp_path, capsys):
+    """Review s11: a waist walk without turns printed 'turning axis None deg from gravity over 0 turn windows'."""
+    from pdrlearn.io import write_session
+
+    s = simulate("A", 1, "normal")  # straight: no turn window
+    write_session(s, tmp_path / "a")
+    assert main(["info", str(tmp_path / "a")]) == 0
+    line = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("waist axes:")]
+    assert len(line) == 1 and "None" not in line[0] and "over 0 turn windows" not in line[0], line
+
+
+def test_info_on_a_too_short_unit_does_not_say_it_has_no_data(tmp_path, capsys):
+    """Review s11: a unit with an accelerometer and a gyroscope too short for the test was described as having
+    'no accelerometer + gyroscope data'."""
+    from pdrlearn.io import write_session
+
+    s = simulate("A", 1, "normal")
+    for n, st in list(s.streams.items()):
+        s.streams[n] = Stream(n, st.t[:5], st.values[:5])
+    write_session(s, tmp_path / "a")
+    for f in (tmp_path / "a").glob("*.csv"):  # labels past the 5 samples' end
+        if f.stem not in s.streams:
+            f.unlink()
+    assert main(["info", str(tmp_path / "a")]) == 0
+    line = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("foot axes:")]
+    assert len(line) == 1 and "no accelerometer + gyroscope data" not in line[0] and "not run" in line[0], line

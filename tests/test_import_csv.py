@@ -244,3 +244,34 @@ def test_a_folder_with_an_export_says_to_import_it(sim, tmp_path, capsys):
     (raw / "labx_export.csv").unlink()
     assert main(["info", str(raw)]) != 0
     assert "pdrlearn import" not in _err(capsys)  # a label table is no export
+
+
+def test_conflicting_unit_hints_are_an_error_not_si(sim, tmp_path, capsys):
+    """Review s11: 'AccX (g), AccY (m/s^2), AccZ (g)' fell back to m/s2 for all three ('default'), silently
+    leaving x and z in g; hints that disagree within one sensor's columns are a one-line error naming them."""
+    a, w = sim.streams["fAccelerometer"], sim.streams["fGyroscope"]
+    df = pd.DataFrame({"Time (s)": a.t, "AccX (g)": a.values[:, 0] / G, "AccY (m/s^2)": a.values[:, 1],
+                       "AccZ (g)": a.values[:, 2] / G, **{f"Gyro{c}": w.values[:, i] for i, c in enumerate("XYZ")}})
+    df.to_csv(tmp_path / "mixed.csv", index=False)
+    assert main(["import", str(tmp_path / "mixed.csv"), "--out", str(tmp_path / "s")]) != 0
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "g, m/s2" in err and "--acc-unit" in err, err
+    assert not (tmp_path / "s").exists()
+
+
+def test_merge_into_a_session_not_imported_says_the_unit_was_shifted(sim, tmp_path, capsys):
+    """Review s11: --merge into a recorded (not imported) session moved the added unit to start at 0 ms, but
+    the note said 'the units' clocks are as recorded'."""
+    from pdrlearn.io import write_session
+
+    base = tmp_path / "s"
+    write_session(sim, base)
+    for n in ("wAccelerometer", "wGyroscope", "wMagneticField", "wBarometer"):
+        (base / f"{n}.csv").unlink()
+    a, w = sim.streams["wAccelerometer"], sim.streams["wGyroscope"]
+    pd.DataFrame({"timestamp": 1e3 * a.t + 500.0, **{f"acc_{c}": a.values[:, i] for i, c in enumerate("xyz")},
+                  **{f"gyr_{c}": w.values[:, i] for i, c in enumerate("xyz")}}).to_csv(tmp_path / "w.csv", index=False)
+    assert main(["import", str(tmp_path / "w.csv"), "--out", str(base), "--unit", "waist", "--merge"]) == 0
+    note = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("note: the session was not imported")]
+    assert len(note) == 1 and "as recorded" not in note[0] and "starts at 0 ms" in note[0], note
+    assert read_session(base).streams["wAccelerometer"].t[0] == 0.0  # what the note says

@@ -179,3 +179,29 @@ def test_run_reads_the_bluetooth_protocol_with_a_two_unit_bundle(root, tmp_path,
     assert len(got.err.strip().splitlines()) == 1 and "has no waist unit" in got.err
     _errors_once(capsys, ["run", str(root / "bundle"), "--protocol", str(cap), "--units", "foot,waist"],
                  "does not carry; replay the foot unit alone (--units foot)")
+
+
+def test_foot_only_run_does_not_warn_about_the_absent_waist_frame(root, tmp_path, capsys):
+    """Review s11: a foot-only replay of a session with no waist unit (and so no waist frame) warned that the
+    session 'declares no waist frame and its data does not fix the axes; using the bundle's'."""
+    s = _foot_session("no_waist_frame")
+    s.frames.pop("waist", None)
+    write_session(s, tmp_path / "walk")
+    assert main(["run", str(root / "bundle"), str(tmp_path / "walk"), "--units", "foot"]) == 0
+    err = capsys.readouterr().err
+    assert "waist frame" not in err, err
+    assert main(["run", str(root / "bundle"), str(tmp_path / "walk")]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "waist frame" not in err[0], err
+
+
+def test_foot_only_replay_without_force_names_the_empty_channels(root, tmp_path, capsys):
+    """Review s11: the foot-only models run on the per-model path, whose NaN-feature error did not say which
+    sensor is missing (the step graph's does: 'window channels force_a, force_b are empty')."""
+    s = _foot_session("no_force")
+    for n in ("fForceA", "fForceB"):
+        s.streams.pop(n, None)
+    write_session(s, tmp_path / "walk")
+    assert main(["run", str(root / "bundle"), str(tmp_path / "walk"), "--units", "foot"]) != 0
+    err = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("error:")]
+    assert len(err) == 1 and "force_a, force_b are empty" in err[0], err

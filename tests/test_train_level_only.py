@@ -94,3 +94,13 @@ def test_nothing_to_train_without_stride_lengths_either(tmp_path, capsys):
     assert not (tmp_path / "m").exists()
     assert main(["train", str(TRAIN), "--out", str(tmp_path / "m"), "--no-distance-calibration"]) != 0
     assert capsys.readouterr().err.strip().endswith("| distance calibration off")
+
+
+def test_level_only_model_streamed_says_what_it_lacks(level_model, tmp_path, capsys):
+    """Review s11: `track --streaming` with a model without a classifier ran silently (no line that the model
+    classifies nothing, and the streamed path keeps each stride's raw height change, unlike offline's L39)."""
+    model, _ = level_model
+    assert main(["track", str(HELD_OUT), "--model", str(model), "--streaming", "--out", str(tmp_path / "s")]) == 0
+    lines = [w for w in capsys.readouterr().err.splitlines() if "classifies no" in w]
+    assert len(lines) == 1 and "classifies no terrain, direction, length" in lines[0], lines
+    assert "raw height change" in lines[0] and "is level (L39)" not in lines[0]

@@ -55,15 +55,22 @@ def info(
         check = ("not contradicted by the data (D10)" if chk["check"] == "ok"
                  else "see the warning" if chk["frame"] else chk["check"])
         h = chk["handedness"]
-        hand = "no accelerometer + gyroscope data" if h is None else (
+        # frame_checks lists only units with both sensors: no result = too short or non-finite data
+        hand = "not run (under 16 samples or non-finite values)" if h is None else (
             f"{h['verdict']} (log ratio {h['log_ratio'] if h['log_ratio'] is not None else 'n/a'} over "
             f"{h['segments']} {'strides' if p == 'foot' else 'moving windows'}"
             + (f"; best other gyroscope axes {h['axes']['gyroscope']}, log ratio {h['axes']['log_ratio']}"
                if h.get("axes") else "")
-            + (f"; turning axis {h['turn_axis']['angle_deg']} deg from gravity over "
-               f"{h['turn_axis']['turn_windows']} turn windows" if h.get("turn_axis") else "") + ")")
+            # as Handedness.describe: no turning-axis clause without a turn window (no "None deg")
+            + (f"; turning axis {_deg(h['turn_axis']['angle_deg'])} from gravity over "
+               f"{h['turn_axis']['turn_windows']} turn windows"
+               if h.get("turn_axis") and h["turn_axis"]["turn_windows"] else "") + ")")
         c.print(f"{p} axes: {chk['source']} frame {frame}, {check}; handedness (D11): {hand}", markup=False)
     c.print(f"labels: {json.dumps(json_safe(summary['labels']))}", markup=False)  # JSON, like the frames line
+
+
+def _deg(v) -> str:
+    return "n/a" if v is None else f"{v} deg"
 
 
 def plot(

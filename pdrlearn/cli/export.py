@@ -67,9 +67,10 @@ def export(
         typer.echo(f"  skipped: {s}")
 
 
-def _frames_of(session, bundle) -> dict:
+def _frames_of(session, bundle, units=None) -> dict:
     """Each unit's frame for the runtime: declared; else inferred from the session's data (decision D8, with
-    its warning); else, when the data does not fix the axes, the bundle's (its training sessions'), warned."""
+    its warning); else, when the data does not fix the axes, the bundle's (its training sessions'), warned.
+    A unit the replay leaves out (``units``, decision E26: ``--units foot``) keeps the bundle's, unsaid."""
     import logging
 
     from pdrlearn.errors import DataError
@@ -77,6 +78,9 @@ def _frames_of(session, bundle) -> dict:
     frames = {p: f.to_dict() for p, f in session.frames.items()}
     for p, f in bundle.manifest["frames"].items():
         if p in frames:
+            continue
+        if units is not None and p not in units:  # not replayed: its frame is never used, nothing to warn about
+            frames[p] = f
             continue
         try:
             frames[p] = session.require_frame(p).to_dict()
@@ -256,7 +260,7 @@ def run(
         # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
         # the runtime resamples at these rates and announces it in one line; a stream behind the others
         # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
-        tracker = Tracker(bundle, frames=_frames_of(session, bundle),
+        tracker = Tracker(bundle, frames=_frames_of(session, bundle, use),
                           resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           input_rates_hz=rates, units=use,
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})

@@ -171,8 +171,11 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
     err(f"time: column '{t['column']}' in {t['unit']} ({t['source']}); 0 ms = {t['origin_s']:.10g} s on the "
         "export's clock")
     if merge and len(session.meta.get("imported", [])) < 2:
-        err("note: the session was not imported, so the units' clocks are as recorded (align them with "
-            "'pdrlearn track --align' if they differ)")
+        # no recorded origin to share: the added unit was moved like a first import (its first timestamp
+        # taken off), so an offset it had on a clock shared with the session is gone
+        err(f"note: the session was not imported, so its clock's origin is unknown: the added unit starts at 0 ms "
+            f"({t['origin_s']:.10g} s on the export's clock taken off), as the session's files do; if both were "
+            "on one clock with another origin, import both units, or align them with 'pdrlearn track --align'")
     for sensor, r in record["streams"].items():
         conv = "" if r["factor"] == 1.0 else f", x {r['factor']:.6g} to {session.streams[sensor].spec.unit}"
         dropped = record["dropped_rows"].get(sensor)

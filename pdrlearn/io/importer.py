@@ -63,6 +63,8 @@ _UNIT_ALIASES = {
     "rad/sec": "rad/s", "rads": "rad/s", "deg/sec": "deg/s", "dps": "deg/s", "°/s": "deg/s", "degs": "deg/s",
     "µt": "ut", "μt": "ut", "microtesla": "ut", "millibar": "mbar",
 }
+#: the option that gives a kind's unit (the others: the --mapping file's "units")
+_UNIT_OPTION = {"acc": "--acc-unit", "gyro": "--gyro-unit"}
 _HINT = re.compile(r"[\(\[]\s*([^\)\]]+?)\s*[\)\]]\s*$")
 
 
@@ -136,6 +138,10 @@ def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str) 
             raise DataError(f"{where}: {kind} unit {given!r} is not one of {', '.join(table)}")
         return u, table[u], "given"
     hints = {by_word.get(_header_unit(c) or "") for c in columns} - {None}
+    if len(hints) > 1:  # never one of them for all the columns: some would be converted wrongly
+        raise DataError(f"{where}: the {kind} columns {', '.join(columns)} carry different units "
+                        f"({', '.join(sorted(hints))}); convert them to one unit, or give it with "
+                        f"{_UNIT_OPTION.get(kind, '--mapping units')}")
     if len(hints) == 1:
         u = hints.pop()
         return u, table[u], "header"
@@ -324,7 +330,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         try:
             check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})")
         except DataError as exc:
-            opt = {"acc": "--acc-unit", "gyro": "--gyro-unit"}.get(kind, "--mapping units")
+            opt = _UNIT_OPTION.get(kind, "--mapping units")
             raise DataError(f"{exc}; or give the unit with {opt} ({' | '.join(UNITS[kind])})") from None
         streams[sensor] = stream
         record["streams"][sensor] = {"columns": cols, "columns_source": sources[kind], "unit": u,

@@ -109,8 +109,24 @@ def compute_features(
             raise DataError(f"bundle feature recipe: unknown operation {op!r}; re-export with this version")
     F = np.hstack(cols)
     if not np.isfinite(F).all():
-        raise DataError("step features are NaN: the stream lacks a sensor the model needs")
+        raise DataError("step features are NaN: the stream lacks a sensor the model needs"
+                        + _empty_channels(W, recipe, signals, channel_index))
     return F
+
+
+def _empty_channels(W: np.ndarray, recipe: list, signals: dict, channel_index: dict) -> str:
+    """The message tail naming the window channels that the recipe's signals read and that hold NaN (as the
+    step graph's error says them, ``runtime.classify.StepGraph.predict``); empty when none can be named."""
+    names = {item[1] for item in recipe if item[0] in ("peak", "segments") and isinstance(item[1], str)}
+    names |= {"force" for item in recipe if item[0] == "force"}
+    names |= {"waist_yaw" for item in recipe if item[0] in ("yaw", "yaw_sign")}
+    names |= {n for item in recipe if item[0] == "signals" for n in item[1]}
+    chans = dict.fromkeys(c for n in sorted(names) if n in signals for c in signals[n][0])
+    missing = [c for c in chans if c in channel_index and not np.isfinite(W[:, channel_index[c], :]).all()]
+    if not missing:
+        return ""
+    return (f" (window channels {', '.join(missing)} are empty); push those sensors, or export a model trained "
+            "without them")
 
 
 def rule_feature(W: np.ndarray, name: str, sig, peaks) -> np.ndarray:

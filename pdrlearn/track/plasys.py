@@ -271,10 +271,18 @@ def untrained_tasks(classes: pd.DataFrame) -> list[str]:
     return [t for t, col in _TASK_COLUMNS.items() if col not in classes or classes[col].isna().all()]
 
 
-def untrained_warning(tasks: list[str]) -> str:
-    """One line: which classes the model does not give and what M3 does instead (decision C17)."""
-    return (f"the model classifies no {', '.join(tasks)} (not trained, or not on this session's sensors); as "
-            "without a model: " + "; ".join(f"{t}: {_UNTRAINED_FALLBACK[t]}" for t in tasks)
+#: the streamed stride rules (``kernels.stride.apply_stride_rules``) for a class the model does not give: C17
+#: changed the offline path only, so terrain keeps each stride's raw height change there (no L39)
+_UNTRAINED_STREAMED = {**_UNTRAINED_FALLBACK, "terrain": "the stride's raw height change (no L39 level rule)"}
+
+
+def untrained_warning(tasks: list[str], streaming: bool = False) -> str:
+    """One line: which classes the model does not give and what M3 does instead (decision C17); ``streaming``:
+    what the streamed stride rules do instead."""
+    fallback = _UNTRAINED_STREAMED if streaming else _UNTRAINED_FALLBACK
+    return (f"the model classifies no {', '.join(tasks)} (not trained, or not on this session's sensors); "
+            + ("streamed: " if streaming else "as without a model: ")
+            + "; ".join(f"{t}: {fallback[t]}" for t in tasks)
             + f" (decision C17; train with {', '.join(tasks)} labels for those rules)")
 
 
@@ -681,6 +689,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             model = load_model(model)
         classes, model_bounds = classes_and_bounds(model, session, table)
         domain = domain_check(model, classes, warnings, warn_out_of_domain)  # decision C16
+        untrained = [] if isinstance(model, str) and model == "oracle" else untrained_tasks(classes)
+        if untrained:  # C17's line, with what the streamed rules do instead (they keep the raw height change)
+            warnings.append(untrained_warning(untrained, streaming=True))
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
                                                   session.streams["fAccelerometer"].rate_hz, warnings, calibration,
                                                   streaming=True)  # decision L41: the stride kernel's own gain
