@@ -100,3 +100,31 @@ def test_shipped_session_reports_its_turns_without_a_warning(tmp_path, capsys):
     s = json.loads(cap.out)
     assert s["n_turns"] == 7 and 0.25 < s["turn_sign_agreement"] < 1.0 and "turn_angle_mae_deg" in s
     assert "reference turns" not in cap.err
+
+
+def test_iphone_accelerometer_sign_with_the_frame_fitted_to_it_warns(tmp_path, capsys):
+    """The trial's case (finding 2): a phone (x right, y up, z backward) whose accelerometer reads gravity as
+    -1 g (iOS CoreMotion), converted to m/s^2 without the sign, and the frame declared to fit gravity (y down,
+    z forward, still right-handed): distances unchanged, every turn reversed -> the warning."""
+    src = external_session("mobgap_MS001_Test11_Trial1")
+    rot = np.array([[0, 1, 0], [1, 0, 0], [0, 0, -1]], float)  # mobgap (x up, y right, z fwd) -> phone axes
+    runs = {}
+    for name, acc_sign, frame in (("phone", 1.0, {"x": "right", "y": "up", "z": "backward"}),
+                                  ("ios", -1.0, {"x": "right", "y": "down", "z": "forward"})):
+        d = tmp_path / name
+        shutil.copytree(src, d)
+        for sensor, sign in (("wAccelerometer", acc_sign), ("wGyroscope", 1.0), ("wMagneticField", 1.0)):
+            t = pd.read_csv(d / f"{sensor}.csv")
+            t[["x", "y", "z"]] = sign * t[["x", "y", "z"]].to_numpy() @ rot.T
+            t.to_csv(d / f"{sensor}.csv", index=False)
+        meta = json.loads((d / "meta.json").read_text())
+        meta["frames"] = {"waist": frame}
+        (d / "meta.json").write_text(json.dumps(meta))
+        capsys.readouterr()
+        assert main(["track", str(d), "--out", str(tmp_path / f"track_{name}"), "--json"]) == 0
+        cap = capsys.readouterr()
+        runs[name] = (json.loads(cap.out), [ln for ln in cap.err.splitlines() if "reference turns" in ln])
+    assert runs["phone"][0]["turn_sign_agreement"] >= 0.85 and runs["phone"][1] == []
+    assert runs["ios"][0]["turn_sign_agreement"] <= 0.15 and len(runs["ios"][1]) == 1
+    assert "iOS reporting gravity as -1 g" in runs["ios"][1][0]
+    assert runs["ios"][0]["distance_m"] == pytest.approx(runs["phone"][0]["distance_m"], rel=1e-3)
