@@ -29,6 +29,7 @@ import pandas as pd
 
 from pdrlearn.io import read_session
 from pdrlearn.track import get_pipeline
+from pdrlearn.track.evaluate import heading_change
 from pdrlearn.waist.calibration import calibrate
 from pdrlearn.waist.evaluate import waist_metrics
 from pdrlearn.waist.params import resolve_params
@@ -109,9 +110,8 @@ def turn_error_deg(res, session, n_end: int = 3) -> float:
     d = _step_heading_offsets(res, session)
     if d is None or len(d) < 2 * n_end:
         return float("nan")
-    start = np.angle(np.mean(np.exp(1j * d[:n_end])))
-    end = np.angle(np.mean(np.exp(1j * d[-n_end:])))
-    return float(np.degrees(abs(np.angle(np.exp(1j * (end - start))))))
+    change = heading_change(d, slice(None, n_end), slice(-n_end, None))  # the track metric's mechanism (L42)
+    return float(np.degrees(abs(np.angle(np.exp(1j * change)))))
 
 
 def heading_error_deg(res, session) -> float:

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import json
+import logging
 from pathlib import Path
 
 import typer
@@ -68,7 +69,7 @@ def track(
     from pdrlearn.cli.common import out_folder
     from pdrlearn.io import read_session
     from pdrlearn.track.base import get_pipeline, resolve_pipeline
-    from pdrlearn.track.evaluate import evaluate_track
+    from pdrlearn.track.evaluate import evaluate_track, turn_warning
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plots import plot_paths
 
@@ -132,6 +133,10 @@ def track(
     summary["session"] = session.name
     summary["pipeline"] = pipeline
     summary["info"] = dict(result.info)
+    mirrored = turn_warning(summary)  # decision L42: the turns against turns.csv
+    if mirrored:
+        logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, mirrored)
+        summary["info"]["warnings"] = [*summary["info"].get("warnings", []), mirrored]
     dom = result.info.get("out_of_domain")
     if isinstance(dom, dict):  # decision C16: share of strides outside the model's training range
         summary["out_of_domain_fraction"] = dom.get("out_of_domain_fraction")

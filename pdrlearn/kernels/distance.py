@@ -22,6 +22,13 @@ LEVEL_DZ_M = 0.10
 RATE_TOLERANCE = 0.01
 
 
+def rate_differs(trained_hz: float, fs_hz: float, *, tolerance: float = RATE_TOLERANCE) -> bool:
+    """Whether a rate ``fs_hz`` (Hz) differs from the rate something was trained or calibrated at by more
+    than ``tolerance`` of the latter: the distance calibration's check (decision E14), shared by the step
+    classifiers' rate warning (decision C18)."""
+    return abs(float(trained_hz) - float(fs_hz)) > tolerance * float(trained_hz)
+
+
 def applicable_calibration(rec: Mapping | None, fs_hz: float, *, tolerance: float = RATE_TOLERANCE,
                            resampled_hz: float | None = None) -> tuple[Mapping | None, str | None]:
     """The calibration record if it applies at the foot rate ``fs_hz`` (Hz), else None and the warning.
@@ -32,7 +39,7 @@ def applicable_calibration(rec: Mapping | None, fs_hz: float, *, tolerance: floa
     if rec is None:
         return None, None
     rate = rec.get("rate_hz")
-    if rate and abs(float(rate) - float(fs_hz)) > tolerance * float(rate):
+    if rate and rate_differs(float(rate), fs_hz, tolerance=tolerance):
         at = (f"runs at {float(fs_hz):g} Hz" if resampled_hz is None else
               f"was recorded at {float(fs_hz):g} Hz (resampled to {float(resampled_hz):g} Hz, which does not "
               "restore what the recording rate lost)")

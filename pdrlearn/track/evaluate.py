@@ -67,6 +67,77 @@ def path_length(traj: pd.DataFrame, *, min_spacing_s: float = 0.5) -> float:
     return float(np.hypot(np.diff(x), np.diff(y)).sum())
 
 
+def heading_change(heading_rad, before, after) -> float:
+    """Change (rad) of a heading sequence from the entries ``before`` to the entries ``after`` (index arrays,
+    slices or masks): the circular mean of each group, placed on the unwrapped sequence, so a turn beyond
+    180 deg keeps its size and sign; NaN when either group is empty. One mechanism for the reference-turn
+    metric of :func:`evaluate_track` and the whole-walk turn error of ``experiments/waist.py``."""
+    h = np.unwrap(np.asarray(heading_rad, dtype=np.float64))
+    means = []
+    for sel in (before, after):
+        g = h[sel]
+        if not g.size:
+            return float("nan")
+        means.append(g[0] + np.angle(np.mean(np.exp(1j * (g - g[0])))))
+    return float(means[1] - means[0])
+
+
+#: turns smaller than this (deg) do not count in ``turn_sign_agreement`` (a small turn's sign is noise)
+TURN_SIGN_MIN_DEG = 45.0
+#: the mirrored-turns warning needs at least this many such turns with at most this agreement (decision L42:
+#: truthful lower-back sessions gave 0.57 (7 turns), 0.33 / 0.0 (3 turns), 0.91 (11 turns))
+TURN_WARN_MIN_TURNS, TURN_WARN_MAX_AGREEMENT = 4, 0.25
+#: a turn is compared only when steps lie within this many seconds before its start and after its end
+TURN_MAX_REACH_S = 3.0
+
+
+def _turns(result: TrackResult, session: Session, out: dict) -> None:
+    """Sessions with reference turns (``turns.csv``: ``start_s``, ``end_s``, ``angle_deg``, left = positive,
+    Mobilise-D/INDIP): per turn the tracked heading change from the last step ending by the turn's start to
+    the first step starting from its end (ENU: counter-clockwise = left = positive, the same sign), and
+    ``turn_angle_mae_deg``, ``turn_sign_agreement`` (fraction of the turns of at least 45 deg whose tracked
+    change has their sign) and ``n_turns`` (turns compared; decision L42)."""
+    turns = session.extras.get("turns")
+    st = result.steps
+    if turns is None or not {"start_s", "end_s", "angle_deg"} <= set(turns) or not len(turns) or len(st) < 2:
+        return
+    order = np.argsort(st["start_s"].to_numpy(float), kind="stable")
+    s0, s1 = st["start_s"].to_numpy(float)[order], st["end_s"].to_numpy(float)[order]
+    head = st["heading_rad"].to_numpy(float)[order]
+    ref, est = [], []
+    for t0, t1, ang in turns[["start_s", "end_s", "angle_deg"]].to_numpy(float):
+        if not np.isfinite(ang):
+            continue
+        before = np.flatnonzero((s1 <= t0) & (s1 >= t0 - TURN_MAX_REACH_S))[-1:]
+        after = np.flatnonzero((s0 >= t1) & (s0 <= t1 + TURN_MAX_REACH_S))[:1]
+        if not (before.size and after.size):
+            continue
+        d = heading_change(head[before[0]:after[0] + 1], [0], [-1])  # unwrapped over the steps in between
+        ref.append(ang)
+        est.append(np.degrees(d))
+    out["n_turns"] = len(ref)
+    if not ref:
+        return
+    r, e = np.array(ref), np.array(est)
+    out["turn_angle_mae_deg"] = float(np.mean(np.abs(e - r)))
+    big = np.abs(r) >= TURN_SIGN_MIN_DEG
+    out["n_turns_signed"] = int(big.sum())
+    out["turn_sign_agreement"] = float(np.mean(np.sign(e[big]) == np.sign(r[big]))) if big.any() else None
+
+
+def turn_warning(summary: dict) -> str | None:
+    """One warning line when the tracked turns come out mirrored against the reference turns (decision
+    L42): at least :data:`TURN_WARN_MIN_TURNS` turns of >= 45 deg, at most :data:`TURN_WARN_MAX_AGREEMENT`
+    of them with the reference's sign."""
+    n, agree = summary.get("n_turns_signed", 0), summary.get("turn_sign_agreement")
+    if agree is None or n < TURN_WARN_MIN_TURNS or agree > TURN_WARN_MAX_AGREEMENT:
+        return None
+    return (f"{n - round(agree * n)} of {n} reference turns (turns.csv) come out the other way round: the track "
+            "is mirrored (left turns go right); check the axis signs - a gyroscope axis negated, or an "
+            "accelerometer sign convention such as iOS reporting gravity as -1 g (multiply the accelerometer by "
+            "-1 rather than declaring flipped axes in meta.json \"frames\")")
+
+
 def _basic(result: TrackResult, out: dict) -> None:
     tr = result.trajectory
     out["distance_m"] = result.distance_m
@@ -218,13 +289,14 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
 
 
 #: metric helpers run in order by :func:`evaluate_track`; append to extend.
-METRICS = [_basic, _ground_truth, _stride_lengths, _foot_stride_f1, _waist_references]
+METRICS = [_basic, _ground_truth, _stride_lengths, _foot_stride_f1, _waist_references, _turns]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:
     """Summary metrics: ``distance_m``, ``n_steps``, ``final_position`` and, with ground truth,
     ``distance_error_pct``, ``final_position_error_m`` (horizontal, start-aligned), altitude errors and
-    ``stride_length_mae_m`` / ``stride_length_mae_pct`` (strides matched by time overlap)."""
+    ``stride_length_mae_m`` / ``stride_length_mae_pct`` (strides matched by time overlap) and, with
+    reference turns, ``n_turns``, ``turn_angle_mae_deg`` and ``turn_sign_agreement`` (decision L42)."""
     out: dict = {}
     for fn in METRICS:
         if fn is _basic:

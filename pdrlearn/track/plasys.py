@@ -42,7 +42,13 @@ from pdrlearn.errors import DataError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
-from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain, calibrated_stride_sd, level_dz
+from pdrlearn.kernels.distance import (
+    applicable_calibration,
+    apply_level_gain,
+    calibrated_stride_sd,
+    level_dz,
+    rate_differs,
+)
 from pdrlearn.kernels.window import GROUP_STREAMS, available_groups, levelled_units
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.track.base import TrackResult, register_pipeline
@@ -222,6 +228,40 @@ def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: flo
     if line:
         warnings.append(line)
     return report
+
+
+#: the units whose sensors a classifier of ``method_<task> = "<method>/<unit>"`` reads
+_UNIT_OF = {"foot": ("foot",), "waist": ("waist",), "fused": ("foot", "waist")}
+_UNIT_ACC = {"foot": "fAccelerometer", "waist": "wAccelerometer"}
+
+
+def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[str]) -> dict | None:
+    """Decision C18: one warning line when a unit whose classifiers classified the strides runs at a rate
+    other than the one the model was trained at (the distance calibration's rate check and tolerance,
+    :func:`~pdrlearn.kernels.distance.rate_differs`): the step windows then hold other signals (a 20 Hz
+    simulator model on a 100 Hz real foot classified 28 of 32 level strides 'up'). Returns unit ->
+    ``{"trained_hz", "session_hz"}`` of the units that differ (None: none, or oracle labels / a model
+    without rates)."""
+    rates = getattr(model, "sampling_rate_hz", None) or {}
+    if isinstance(model, str | Path) or not rates:
+        return None
+    used = {u for c in classes.columns if c.startswith("method_")
+            for v in classes[c].dropna().astype(str).unique() if "/" in v for u in _UNIT_OF.get(v.split("/")[1], ())}
+    off = {}
+    for unit in sorted(used):
+        name = _UNIT_ACC[unit]
+        if name in rates and name in session.streams and rates[name]:
+            fs = float(session.streams[name].rate_hz)
+            if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
+                off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
+    if off:
+        units = " and ".join(off)
+        trained = " / ".join(f"{v['trained_hz']:g}" for v in off.values())
+        now = " / ".join(f"{v['session_hz']:.4g}" for v in off.values())
+        warnings.append(f"the model's step classifiers were trained at {trained} Hz, the session's {units} unit"
+                        f"{'s run' if len(off) > 1 else ' runs'} at {now} Hz: its step classes may be unreliable; "
+                        "train on the user's own data at this rate (`pdrlearn train`)")
+    return off or None
 
 
 def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
@@ -493,7 +533,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     classes = pd.DataFrame(index=range(len(strides)), columns=["terrain", "direction", "length_class"],
                            dtype=object)
     classes["confidence"] = strides.get("confidence", pd.Series(1.0, index=strides.index)).to_numpy()
-    model_bounds, windows, domain = None, None, None
+    model_bounds, windows, domain, off_rate = None, None, None, None
     untrained: list[str] = []  # decision C17: the tasks a model does not classify fall back to the no-model rules
     has_waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
     work, alignment = session, None
@@ -512,6 +552,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
         windows = None if is_oracle else classification_windows(work, strides)
         classes, model_bounds = classes_and_bounds(model, work, strides if windows is None else windows)
         domain = domain_check(model, classes, warnings, warn_out_of_domain)
+        off_rate = rate_check(model, work, classes, warnings)  # decision C18
         if not is_oracle:
             untrained = untrained_tasks(classes)
             if untrained:
@@ -602,6 +643,7 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
                                "own": len(windows) - int(windows.attrs.get("segmenter_windows", 0))}),
             "unit_alignment": alignment,
             "out_of_domain": domain,  # decision C16: strides outside the model's training range
+            "classifier_rate_mismatch": off_rate,  # decision C18
             "length_bounds_m": step_rules.effective_bounds() if clamp else None,
             "rules": rules if cfg["rules"] else None,
             "min_confidence": gate if cfg["rules"] else None,
@@ -679,7 +721,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(NO_WAIST_HEADING)
     classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
-    model_bounds, domain = None, None
+    model_bounds, domain, off_rate = None, None, None
     if method == "M3":
         if model is None:
             raise ModelError("M3 needs the step classes: pass a trained model directory or 'oracle'")
@@ -689,9 +731,13 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             model = load_model(model)
         classes, model_bounds = classes_and_bounds(model, session, table)
         domain = domain_check(model, classes, warnings, warn_out_of_domain)  # decision C16
+<<<<<<< HEAD
         untrained = [] if isinstance(model, str) and model == "oracle" else untrained_tasks(classes)
         if untrained:  # C17's line, with what the streamed rules do instead (they keep the raw height change)
             warnings.append(untrained_warning(untrained, streaming=True))
+=======
+        off_rate = rate_check(model, session, classes, warnings)  # decision C18
+>>>>>>> s11-turns
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
                                                   session.streams["fAccelerometer"].rate_hz, warnings, calibration,
                                                   streaming=True)  # decision L41: the stride kernel's own gain
@@ -761,6 +807,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             "stride_sigma_rel": sigma_rel if method == "M3" and rules == "bayes" else None,
             "distance_gain": gain, "distance_gain_source": gain_source, "stride_sd_calibrated": stride_sd,
             "out_of_domain": domain,  # decision C16
+            "classifier_rate_mismatch": off_rate,  # decision C18
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.where, w)

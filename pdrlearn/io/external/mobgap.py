@@ -435,7 +435,8 @@ def _load_mat(path: Path) -> dict:
 
 def convert(src_root: Path, out_dir: Path, progress: Callable[[str], None] = lambda msg: None) -> list[Path]:
     """Convert every participant x test x trial under ``src_root/example_data/data/lab`` into
-    ``out_dir/mobgap_<cohort><id>_<Test>_<Trial>`` (existing folders of the same name are replaced)."""
+    ``out_dir/mobgap_<cohort><id>_<Test>_<Trial>``; an existing folder of the same name is replaced only when
+    an earlier fetch of mobgap wrote it (decision B35), checked for all before any is written."""
     src_root, out_dir = Path(src_root), Path(out_dir)
     lab = src_root / LAB_DIR
     mats = sorted(lab.glob("*/*/data.mat"))
@@ -450,7 +451,7 @@ def convert(src_root: Path, out_dir: Path, progress: Callable[[str], None] = lam
     except json.JSONDecodeError as exc:
         raise DataError(f"{meta_path}: invalid JSON (line {exc.lineno}); delete the cache folder and fetch "
                         f"again") from None
-    made = []
+    sessions = []
     for path in mats:
         cohort, pid = path.parent.parent.name, path.parent.name
         subject = participants.get(cohort, {}).get(pid)
@@ -462,8 +463,13 @@ def convert(src_root: Path, out_dir: Path, progress: Callable[[str], None] = lam
         for test in sorted(tm, key=lambda s: (len(s), s)):
             for trial in sorted(mat.get(tm, test, f"data.{TIME_MEASURE}")):
                 rec = tm[test][trial]
-                name, tables, meta = _session(mat, rec, cohort, pid, test, trial, subject)
-                progress(f"writing {out_dir / name}")
-                _write(out_dir / name, tables, meta)
-                made.append(out_dir / name)
+                sessions.append(_session(mat, rec, cohort, pid, test, trial, subject))
+    from pdrlearn.io.external import check_targets
+
+    check_targets("mobgap", [out_dir / name for name, _, _ in sessions])  # decision B35: before any is written
+    made = []
+    for name, tables, meta in sessions:
+        progress(f"writing {out_dir / name}")
+        _write(out_dir / name, tables, meta)
+        made.append(out_dir / name)
     return made
