@@ -731,13 +731,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             model = load_model(model)
         classes, model_bounds = classes_and_bounds(model, session, table)
         domain = domain_check(model, classes, warnings, warn_out_of_domain)  # decision C16
-<<<<<<< HEAD
         untrained = [] if isinstance(model, str) and model == "oracle" else untrained_tasks(classes)
         if untrained:  # C17's line, with what the streamed rules do instead (they keep the raw height change)
             warnings.append(untrained_warning(untrained, streaming=True))
-=======
         off_rate = rate_check(model, session, classes, warnings)  # decision C18
->>>>>>> s11-turns
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
                                                   session.streams["fAccelerometer"].rate_hz, warnings, calibration,
                                                   streaming=True)  # decision L41: the stride kernel's own gain
