@@ -261,3 +261,10 @@ def test_without_force_a_bundle_with_a_force_free_model_uses_the_one_track_picks
         assert [st.classes[task] for st in steps] == list(res.steps[col])
     got = np.array([[st.x, st.y, st.z] for st in steps])
     assert np.abs(got - res.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
+
+
+def test_runtime_ranking_tie_break_is_the_training_sides():
+    from pdrlearn.classify.training import PREFERENCE
+    from pdrlearn.runtime.classify import _PREFERENCE
+
+    assert _PREFERENCE == PREFERENCE

@@ -119,15 +119,22 @@ def entry_sensors(bundle: Bundle, entry: dict, signals: dict) -> set[str]:
     return {s for g, cs in GROUPS.items() if chans & set(cs) for s in GROUP_STREAMS[g]}
 
 
+#: the training side's tie-break between methods of equal score (``pdrlearn.classify.training.PREFERENCE``;
+#: the runtime does not import the training side)
+_PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic", "ensemble")
+
+
 def _ranked(spec: dict) -> list[tuple[str, str]]:
     """The task's exported (method, unit) pairs, the chosen one first, then by cross-validated score (as
-    :meth:`pdrlearn.classify.training.TaskModel.ranking`: balanced accuracy, then accuracy; unscored last)."""
+    :meth:`pdrlearn.classify.training.TaskModel.ranking`: balanced accuracy, accuracy, method; unscored last)."""
     cv = spec.get("cv") or {}
-    pairs = [(m, u) for m, per in spec["methods"].items() for u in per]
+    exported = [(m, u) for m, per in spec["methods"].items() for u in per]
+    pairs = list(dict.fromkeys([(m, u) for m, per in cv.items() for u in per if (m, u) in exported] + exported))
 
     def key(p):
         s = (cv.get(p[0]) or {}).get(p[1]) or {}
-        return (-(s.get("balanced_accuracy") or -1.0), -(s.get("accuracy") or -1.0))
+        pref = _PREFERENCE.index(p[0]) if p[0] in _PREFERENCE else len(_PREFERENCE)
+        return (-(s.get("balanced_accuracy") or -1.0), -(s.get("accuracy") or -1.0), pref)
 
     chosen = spec.get("chosen") or {}
     first = [(chosen.get("method"), chosen.get("unit"))]
