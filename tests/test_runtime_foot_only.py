@@ -197,11 +197,74 @@ def test_foot_only_run_does_not_warn_about_the_absent_waist_frame(root, tmp_path
 
 def test_foot_only_replay_without_force_names_the_empty_channels(root, tmp_path, capsys):
     """Review s11: the foot-only models run on the per-model path, whose NaN-feature error did not say which
-    sensor is missing (the step graph's does: 'window channels force_a, force_b are empty')."""
+    sensor is missing (the step graph's does: 'window channels force_a, force_b are empty'). A tracker not
+    told which sensors the stream has still says so."""
     s = _foot_session("no_force")
     for n in ("fForceA", "fForceB"):
         s.streams.pop(n, None)
+    with pytest.raises(DataError, match="force_a, force_b are empty"):
+        replay(Tracker(root / "bundle", units=("foot",)), s, 0.37)
+
+
+def test_run_without_force_leaves_the_force_task_unclassified_as_track(root, tmp_path, capsys):
+    """Review of E26: `run` on a foot-only session without force sensors failed at the first step (the length
+    model reads force A/B, which the bundle lists as optional); `track` leaves length unclassified. Now the
+    replay does the same, with one warning line, and equals `track --streaming`."""
+    s = _foot_session("no_force")
+    for n in ("fForceA", "fForceB"):
+        s.streams.pop(n, None)
+    tr = Tracker(root / "bundle", units=("foot",), sensors=list(s.streams))
+    assert tr.unclassified == {"length": ["fForceA", "fForceB"]} and "length" not in tr.classifiers
+    assert len(tr.warnings) == 1 and tr.warnings[0].startswith("length left unclassified: the stream has no "
+                                                               "fForceA, fForceB")
+    res = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True)
+    assert res.steps["length_class"].isna().all() and (res.steps["method_length"] == "none").all()
+    steps = replay(tr, s, 0.37)
+    assert len(steps) == len(res.steps) >= 20 and all("length" not in st.classes for st in steps)
+    for task, col in TASKS[:2]:
+        assert [st.classes[task] for st in steps] == list(res.steps[col])
+    got = np.array([[st.x, st.y, st.z] for st in steps])
+    assert np.abs(got - res.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
+    # the CLI: the session's sensor files say which sensors the stream has
     write_session(s, tmp_path / "walk")
-    assert main(["run", str(root / "bundle"), str(tmp_path / "walk"), "--units", "foot"]) != 0
-    err = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("error:")]
-    assert len(err) == 1 and "force_a, force_b are empty" in err[0], err
+    assert main(["run", str(root / "bundle"), str(tmp_path / "walk"), "--units", "foot", "--json"]) == 0
+    cap = capsys.readouterr()
+    out = json.loads(cap.out)
+    assert out["n_steps"] == len(steps) and out["methods"]["length"] == "none"
+    warn = [ln for ln in cap.err.splitlines() if "left unclassified" in ln]
+    assert len(warn) == 1 and "length left unclassified" in warn[0] and "error" not in cap.err
+
+
+def test_without_force_a_bundle_with_a_force_free_model_uses_the_one_track_picks(root):
+    """A two-unit session without force: with every method exported, length classifies with the best-ranked
+    model that reads no force (a waist model here; every foot length model reads force), the one `track` falls
+    back to; with the default bundle (chosen + foot_only, both on force) it is left unclassified, as `track`
+    leaves it, and the step graph (which reads force for the chosen length model) gives way to the per-model
+    path: the same walk as `track --streaming`."""
+    two = synthetic_session(24, seed=11, name="no_force_two", turn_rad_per_step=0.3)
+    for n in ("fForceA", "fForceB"):
+        two.streams.pop(n, None)
+    from pdrlearn.classify import load_model
+
+    picked = load_model(root / "model").predict_steps(two, get_pipeline("plasys")(two, method="M1").steps)
+    tr = Tracker(root / "bundle_all", sensors=list(two.streams))
+    assert not tr.unclassified and not tr.warnings
+    assert tr.classifiers["length"].unit == "waist"
+    for task, c in tr.classifiers.items():
+        assert set(picked[f"method_{task}"]) == {f"{c.method}/{c.unit}"}
+    tr = Tracker(root / "bundle", sensors=list(two.streams))
+    assert tr.step_graph is None and tr.unclassified == {"length": ["fForceA", "fForceB"]}
+    res = get_pipeline("plasys")(two, method="M3", model=str(root / "model"), streaming=True)
+    steps = replay(tr, two, 0.37)
+    assert len(steps) == len(res.steps) >= 20
+    for task, col in TASKS[:2]:
+        assert [st.classes[task] for st in steps] == list(res.steps[col])
+    got = np.array([[st.x, st.y, st.z] for st in steps])
+    assert np.abs(got - res.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
+
+
+def test_runtime_ranking_tie_break_is_the_training_sides():
+    from pdrlearn.classify.training import PREFERENCE
+    from pdrlearn.runtime.classify import _PREFERENCE
+
+    assert _PREFERENCE == PREFERENCE

@@ -262,7 +262,7 @@ def run(
         # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
         tracker = Tracker(bundle, frames=_frames_of(session, bundle, use),
                           resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
-                          input_rates_hz=rates, units=use,
+                          input_rates_hz=rates, units=use, sensors=[n for n, st in session.streams.items() if len(st)],
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
         dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
         if tracker.heading_source == "auto" and not said and (dropped or not (
@@ -349,7 +349,8 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
     if session is not None and session.frames_inferred:  # D8, as track's summary.json gives them
         out["frames_inferred"] = session.frames_inferred
     out.update({
-        "methods": {t: f"{c.method}/{c.unit}" for t, c in tracker.classifiers.items()},
+        "methods": {**{t: f"{c.method}/{c.unit}" for t, c in tracker.classifiers.items()},
+                    **{t: "none" for t in getattr(tracker, "unclassified", {})}},  # E26 amended, as track's
         "classes": counts,
         "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
                                 "p99": float(np.percentile(lat, 99) * 1e3) if lat else None},

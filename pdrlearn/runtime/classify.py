@@ -21,8 +21,9 @@ from pdrlearn.errors import DataError, ModelError
 from pdrlearn.kernels.dtw import dtw_to_refs
 from pdrlearn.kernels.proba import align_proba as align
 from pdrlearn.kernels.proba import soft_vote, softmax
+from pdrlearn.kernels.window import GROUP_STREAMS, GROUPS
 from pdrlearn.runtime.bundle import Bundle, OnnxModel
-from pdrlearn.runtime.features import compute_features
+from pdrlearn.runtime.features import compute_features, recipe_channels
 
 
 class RuntimeModel:
@@ -103,6 +104,43 @@ def entry_units(entry: dict, unit: str) -> set[str]:
     return set(BODY_UNITS) if unit == "fused" else {unit}
 
 
+def entry_sensors(bundle: Bundle, entry: dict, signals: dict) -> set[str]:
+    """The sensor streams (``fForceA``, ...) whose window channels a model entry reads (decision E26 amended:
+    a replay whose data lack one leaves the task to another model, or unclassified)."""
+    if entry["type"] == "fusion":
+        return set().union(*(entry_sensors(bundle, e, signals) for e in entry["members"].values()))
+    if entry["type"] == "dtw":
+        recipe = [["signals", entry["signals"]]]
+    elif entry["type"] == "heuristic":
+        recipe = [["rule", n] for n in bundle.json(entry["file"])["feature_names"]]
+    else:
+        recipe = entry["features"]
+    chans = set(recipe_channels(recipe, signals))
+    return {s for g, cs in GROUPS.items() if chans & set(cs) for s in GROUP_STREAMS[g]}
+
+
+#: the training side's tie-break between methods of equal score (``pdrlearn.classify.training.PREFERENCE``;
+#: the runtime does not import the training side)
+_PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic", "ensemble")
+
+
+def _ranked(spec: dict) -> list[tuple[str, str]]:
+    """The task's exported (method, unit) pairs, the chosen one first, then by cross-validated score (as
+    :meth:`pdrlearn.classify.training.TaskModel.ranking`: balanced accuracy, accuracy, method; unscored last)."""
+    cv = spec.get("cv") or {}
+    exported = [(m, u) for m, per in spec["methods"].items() for u in per]
+    pairs = list(dict.fromkeys([(m, u) for m, per in cv.items() for u in per if (m, u) in exported] + exported))
+
+    def key(p):
+        s = (cv.get(p[0]) or {}).get(p[1]) or {}
+        pref = _PREFERENCE.index(p[0]) if p[0] in _PREFERENCE else len(_PREFERENCE)
+        return (-(s.get("balanced_accuracy") or -1.0), -(s.get("accuracy") or -1.0), pref)
+
+    chosen = spec.get("chosen") or {}
+    first = [(chosen.get("method"), chosen.get("unit"))]
+    return list(dict.fromkeys([p for p in first if p in pairs] + sorted(pairs, key=key)))
+
+
 class TaskClassifier:
     """The bundle's classifier of one task (its chosen method/unit unless another is asked for).
 
@@ -122,6 +160,7 @@ class TaskClassifier:
         unit: str | None = None,
         lazy: bool = False,
         units: tuple[str, ...] | None = None,
+        sensors=None,
     ):
         spec = bundle.tasks[task]
         self.task = task
@@ -157,7 +196,23 @@ class TaskClassifier:
                     f"(it has {', '.join(f'{m}/{u}' for m, per in methods.items() for u in per)}); "
                     f"{'choose another (Tracker methods=)' if asked else 'train the model with that unit'}"
                 )
+        #: the sensors the data lack that this task's model reads (decision E26 amended); not empty: the task
+        #: is left unclassified (``model`` is None)
+        self.missing: list[str] = []
+        if sensors is not None and not asked:
+            have, ctx = set(sensors), feature_ctx["signals"]
+            need = entry_sensors(bundle, entry, ctx)
+            if not need <= have:  # another exported model the data can run, in track's order, else none
+                self.missing = sorted(need - have)
+                for m, u in _ranked(spec):
+                    e = methods[m][u]
+                    if (units is None or entry_units(e, u) <= set(units)) and entry_sensors(bundle, e, ctx) <= have:
+                        method, unit, entry, self.missing, self.note = m, u, e, [], None
+                        break
         self.method, self.unit = method, unit
+        if self.missing:
+            self.is_chosen, self.model = False, None
+            return
         self.is_chosen = (method, unit) == (chosen.get("method"), chosen.get("unit")) and self.note is None
         self.model = RuntimeModel(bundle, entry, feature_ctx, lazy=lazy)
 

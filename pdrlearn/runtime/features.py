@@ -114,14 +114,29 @@ def compute_features(
     return F
 
 
-def _empty_channels(W: np.ndarray, recipe: list, signals: dict, channel_index: dict) -> str:
-    """The message tail naming the window channels that the recipe's signals read and that hold NaN (as the
-    step graph's error says them, ``runtime.classify.StepGraph.predict``); empty when none can be named."""
+#: heuristic rule statistics computed on the force signal's shape (``rule_feature``)
+_FORCE_STATS = ("air_time", "time_to_peak", "peak_mean_4", "contact_force_2", "takeoff_force")
+
+
+def recipe_channels(recipe: list, signals: dict) -> list[str]:
+    """The window channels a feature recipe reads (its signals' channels, in a fixed order)."""
     names = {item[1] for item in recipe if item[0] in ("peak", "segments") and isinstance(item[1], str)}
     names |= {"force" for item in recipe if item[0] == "force"}
     names |= {"waist_yaw" for item in recipe if item[0] in ("yaw", "yaw_sign")}
     names |= {n for item in recipe if item[0] == "signals" for n in item[1]}
-    chans = dict.fromkeys(c for n in sorted(names) if n in signals for c in signals[n][0])
+    for item in recipe:  # heuristic rule features "<signal>:<statistic>"
+        if item[0] == "rule":
+            s, _, stat = str(item[1]).partition(":")
+            names.add(s)
+            if stat == "range_x_air_time":  # thesis Table 30 #3: times the force's air time
+                names.add("force")
+    return list(dict.fromkeys(c for n in sorted(names) if n in signals for c in signals[n][0]))
+
+
+def _empty_channels(W: np.ndarray, recipe: list, signals: dict, channel_index: dict) -> str:
+    """The message tail naming the window channels that the recipe's signals read and that hold NaN (as the
+    step graph's error says them, ``runtime.classify.StepGraph.predict``); empty when none can be named."""
+    chans = recipe_channels([it for it in recipe if it[0] != "rule"], signals)
     missing = [c for c in chans if c in channel_index and not np.isfinite(W[:, channel_index[c], :]).all()]
     if not missing:
         return ""
@@ -141,7 +156,7 @@ def rule_feature(W: np.ndarray, name: str, sig, peaks) -> np.ndarray:
         return K.half_balance(sig(s))
     if stat == "step_probability":  # thesis eq. 32
         return K.step_probability(sig(s))
-    if stat in ("air_time", "time_to_peak", "peak_mean_4", "contact_force_2", "takeoff_force"):
+    if stat in _FORCE_STATS:
         return K.force_stats(sig(s), t)[stat]
     ps = peaks(s)
     if stat in ps:

@@ -40,6 +40,8 @@ from pdrlearn.kernels.stride import (
 )
 from pdrlearn.kernels.window import (
     BOUNDARIES,
+    GROUP_STREAMS,
+    GROUPS,
     _fill_channels,
     _unit_grid,
     available_groups,
@@ -94,6 +96,11 @@ _DIRECTIONS = {
     "up": (0, 0, 1),
     "down": (0, 0, -1),
 }
+
+
+#: what the streamed stride rules do for a task without a class (decision C17, ``pdrlearn.track.plasys``)
+_NO_CLASS_RULE = {"terrain": "the stride's raw height change", "direction": "the estimate's own sign",
+                  "length": "no length clamp"}
 
 
 def check_units(bundle: Bundle, units) -> tuple[str, ...]:
@@ -233,6 +240,10 @@ class Tracker:
         waist failed: waist samples are ignored, no waist sensor is required, every task classifies with
         the foot model ``pdrlearn track`` picks for such a session, the heading is the foot's (``auto``).
         Steps are detected on the foot, so a unit list without it is an error.
+    sensors : the sensor streams the data will have (default: unknown, every model's sensors expected).
+        Decision E26 amended: a task whose model reads an absent sensor (e.g. a length model on force
+        sensors) classifies with the bundle's best-ranked model that reads none, else is left unclassified
+        (``unclassified``; one warning line), as ``pdrlearn track`` does.
     speculative : compute the step that the next push is likely to complete at the end of the push before
         (decision E24): the window, classification and stride of the stride the stance in progress closes
         (:meth:`StanceSegmenter.closing_stride`), used when that push completes exactly that step from the
@@ -266,6 +277,7 @@ class Tracker:
         rules: str | None = None,
         min_confidence: float | None = None,
         units=None,
+        sensors=None,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -296,9 +308,18 @@ class Tracker:
             mu = (methods or {}).get(task)
             meth, unit = mu.split("/") if mu else (None, None)
             self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit, lazy=True,
-                                                    units=None if units is None else self.units)
+                                                    units=None if units is None else self.units, sensors=sensors)
+        #: decision E26 amended: tasks whose models all read a sensor the stream will not have -> those sensors;
+        #: left unclassified (no class: the stride rules act as without a model for them, as ``pdrlearn track``)
+        self.unclassified = {t: c.missing for t, c in self.classifiers.items() if c.missing}
+        for task in self.unclassified:
+            del self.classifiers[task]
         #: one onnxruntime run per step for the chosen models (decision E10); None = per-model path
         self.step_graph = StepGraph.open(self.bundle, self.classifiers) if step_graph else None
+        if self.step_graph is not None and sensors is not None and not {  # the graph reads every chosen model's
+                s for g, cs in GROUPS.items() if set(cs) & set(self.step_graph.channel_names)  # channels: an
+                for s in GROUP_STREAMS[g]} <= set(sensors):  # absent one is NaN -> the per-model path (same numbers)
+            self.step_graph = None
         for task, clf in self.classifiers.items():  # per-model sessions: only where the graph does not
             if self.step_graph is None or task not in self.step_graph.tasks:  # classify (errors show here)
                 clf.model.open()
@@ -334,6 +355,14 @@ class Tracker:
         self.distance_gain: float | None = None
         self.stride_sd: float | None = None
         self.warnings: list[str] = []
+        if self.unclassified:  # one line (decision E26 amended; the no-class rules: C17's streamed ones)
+            miss = sorted({s for v in self.unclassified.values() for s in v})
+            it = "it" if len(self.unclassified) == 1 else "them"
+            rules = "; ".join(f"{t}: {_NO_CLASS_RULE.get(t, 'no class')}" for t in self.unclassified)
+            self._warn(f"{', '.join(self.unclassified)} left unclassified: the stream has no {', '.join(miss)}, "
+                       f"which every {'/'.join(self.units)} model of the bundle for {it} reads; "
+                       f"the stride rules act as without a model ({rules}), as `pdrlearn track` does "
+                       "(push those sensors, or export a model trained without them)")
         notes = [c.note for c in self.classifiers.values() if c.note]
         if notes:  # decision E26: a bundle exported before it records no foot-only models; one line
             self._warn(f"{'+'.join(self.units)} only: no {'+'.join(self.units)}-only models recorded (exported "
