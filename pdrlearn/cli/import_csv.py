@@ -71,7 +71,8 @@ def import_command(
                                  "frames (the options override it)."),
     time_unit: str = typer.Option(None, "--time-unit", help="ms, s, us or ns (default: the header's '(ms)', else "
                                   "inferred from the sampling rate, decision B22)."),
-    acc_unit: str = typer.Option(None, "--acc-unit", help="m/s2 or g (default: the header's '(g)', else m/s2)."),
+    acc_unit: str = typer.Option(None, "--acc-unit", help="m/s2, g or mg (default: the header's '(g)' or '_g', "
+                                 "else m/s2)."),
     gyro_unit: str = typer.Option(None, "--gyro-unit", help="rad/s or deg/s (default: the header's, else rad/s)."),
     frames: str = typer.Option(None, "--frames", help="The unit's axes, e.g. x=forward,y=up,z=right (default: "
                                "none; commands infer it from the data, decision D8)."),
@@ -88,9 +89,10 @@ def import_command(
 ) -> None:
     """Turn a one-CSV lab export into a session folder (fAccelerometer.csv, fGyroscope.csv, meta.json ...).
 
-    Columns are guessed from common names (acc_x, ax, AccX, accelerometer_x, gyr_x, gx, GyroX ...; units
-    from hints such as 'AccX (g)' or 'Time (ms)') unless given; every guess is printed on stderr and kept in
-    meta.json ("imported"). Comma, semicolon and tab separated files with decimal commas are read (B24).
+    Columns are guessed from common names (acc_x, ax, AccX, accelerometer_x, gyr_x, gx, GyroX, acc_x_g ...;
+    units from hints such as 'AccX (g)', 'Time (ms)', 'gyr_x_dps' or 'time_s') unless given; every guess is
+    printed on stderr and kept in meta.json ("imported"). Comma, semicolon and tab separated files with
+    decimal commas are read (B24).
     Timestamps are written in ms since the export's first one (its value is kept in meta.json; --steps
     labels on the export's clock are shifted alike). Check the result with 'pdrlearn info'.
 
