@@ -65,7 +65,9 @@ def info(
             + (f"; turning axis {_deg(h['turn_axis']['angle_deg'])} from gravity over "
                f"{h['turn_axis']['turn_windows']} turn windows"
                if h.get("turn_axis") and h["turn_axis"]["turn_windows"] else "") + ")")
-        c.print(f"{p} axes: {chk['source']} frame {frame}, {check}; handedness (D11): {hand}", markup=False)
+        # no frame: "foot axes: no frame declared or inferred (...)", not "none frame none" (trial 2, finding 10)
+        axes = f"{chk['source']} frame {frame}, {check}" if chk["frame"] else f"no frame declared or inferred ({check})"
+        c.print(f"{p} axes: {axes}; handedness (D11): {hand}", markup=False)
     c.print(f"labels: {json.dumps(json_safe(summary['labels']))}", markup=False)  # JSON, like the frames line
 
 

@@ -25,7 +25,8 @@ def _mapping_file(path: Path | None) -> dict:
         raise DataError(f"{path}: invalid JSON (line {exc.lineno}); fix the mapping file") from None
     if not isinstance(m, dict):
         raise DataError(f"{path}: the mapping must be a JSON object such as {{\"acc\": [\"ax\", \"ay\", \"az\"]}}")
-    known = {"time", "acc", "gyro", "mag", "baro", "heel", "toe", "units", "unit", "frames", "sensor_height_m"}
+    known = {"time", "acc", "gyro", "mag", "baro", "heel", "toe", "units", "unit", "frames", "sensor_height_m",
+             "height_m"}
     unknown = sorted(set(m) - known)
     if unknown:
         raise DataError(f"{path}: unknown key(s) {', '.join(unknown)}; the mapping takes {', '.join(sorted(known))}")
@@ -36,6 +37,23 @@ def _mapping_file(path: Path | None) -> dict:
 #: folder holds (sensor CSVs, label CSVs, meta.json); anything else in the folder would be lost
 def _session_files_only(folder: Path) -> list[str]:
     return sorted(p.name for p in folder.iterdir() if not (p.is_file() and p.suffix.lower() in (".csv", ".json")))
+
+
+def _import_written(meta: dict) -> set[str]:
+    """The files an earlier ``pdrlearn import`` wrote into its folder, from its ``meta.json["imported"]``
+    record(s): the sensor files, steps.csv when labels were imported (--steps), meta.json (decision D12)."""
+    recs = meta.get("imported")
+    recs = recs if isinstance(recs, list) else [recs] if isinstance(recs, dict) else []
+    out = {"meta.json"}
+    for r in recs:
+        if not isinstance(r, dict):
+            continue
+        out.update(f"{s}.csv" for s in (r.get("streams") or {}))
+        if r.get("steps"):
+            out.add("steps.csv")
+        for f in (r.get("labels") or {}) if isinstance(r.get("labels"), dict) else ():
+            out.add(f if str(f).endswith(".csv") else f"{f}.csv")
+    return out
 
 
 def import_command(
@@ -53,11 +71,14 @@ def import_command(
                                  "frames (the options override it)."),
     time_unit: str = typer.Option(None, "--time-unit", help="ms, s, us or ns (default: the header's '(ms)', else "
                                   "inferred from the sampling rate, decision B22)."),
-    acc_unit: str = typer.Option(None, "--acc-unit", help="m/s2 or g (default: the header's '(g)', else m/s2)."),
+    acc_unit: str = typer.Option(None, "--acc-unit", help="m/s2, g or mg (default: the header's '(g)' or '_g', "
+                                 "else m/s2)."),
     gyro_unit: str = typer.Option(None, "--gyro-unit", help="rad/s or deg/s (default: the header's, else rad/s)."),
     frames: str = typer.Option(None, "--frames", help="The unit's axes, e.g. x=forward,y=up,z=right (default: "
                                "none; commands infer it from the data, decision D8)."),
     sensor_height: float = typer.Option(None, "--sensor-height", help="The unit's height above the ground (m)."),
+    subject_height: float = typer.Option(None, "--subject-height", help="The subject's height (m), written to "
+                                         "meta.json height_m (default: none; commands assume 1.7 m and say so)."),
     steps: Path = typer.Option(None, "--steps", help="Labelled steps (start_ms,end_ms,terrain,... as steps.csv) in "
                                "ms on the export's clock; written as the session's steps.csv."),
     name: str = typer.Option(None, "--name", help="Session name (default: the CSV's name)."),
@@ -68,9 +89,10 @@ def import_command(
 ) -> None:
     """Turn a one-CSV lab export into a session folder (fAccelerometer.csv, fGyroscope.csv, meta.json ...).
 
-    Columns are guessed from common names (acc_x, ax, AccX, accelerometer_x, gyr_x, gx, GyroX ...; units
-    from hints such as 'AccX (g)' or 'Time (ms)') unless given; every guess is printed on stderr and kept in
-    meta.json ("imported"). Comma, semicolon and tab separated files with decimal commas are read (B24).
+    Columns are guessed from common names (acc_x, ax, AccX, accelerometer_x, gyr_x, gx, GyroX, acc_x_g ...;
+    units from hints such as 'AccX (g)', 'Time (ms)', 'gyr_x_dps' or 'time_s') unless given; every guess is
+    printed on stderr and kept in meta.json ("imported"). Comma, semicolon and tab separated files with
+    decimal commas are read (B24).
     Timestamps are written in ms since the export's first one (its value is kept in meta.json; --steps
     labels on the export's clock are shifted alike). Check the result with 'pdrlearn info'.
 
@@ -121,7 +143,8 @@ def import_command(
     elif out.is_dir() and any(out.iterdir()):
         meta = out / "meta.json"
         try:
-            ours = "imported" in json.loads(meta.read_text())
+            old_meta = json.loads(meta.read_text())
+            ours = "imported" in old_meta
         except (OSError, ValueError, TypeError):
             ours = False
         if not ours:
@@ -133,6 +156,12 @@ def import_command(
         if _session_files_only(out):
             raise DataError(f"{out}: holds {', '.join(_session_files_only(out)[:3])} besides the session files; "
                             "choose another --out")
+        # files added to the import's folder by hand (ics.csv, bouts.csv ...) are never deleted silently
+        added = sorted(p.name for p in out.iterdir() if p.name not in _import_written(old_meta))
+        if added:
+            more = f" and {len(added) - 5} more" if len(added) > 5 else ""
+            raise DataError(f"{out}: holds {', '.join(added[:5])}{more}, which 'pdrlearn import' did not write and "
+                            "--force would delete; move them out first (and back after), or choose another --out")
     if merge or out.is_dir():
         expect_unchanged(out)  # decision B20: the replacement deletes only what was checked here
     origin = None
@@ -145,7 +174,8 @@ def import_command(
                                  time_unit=time_unit or mu.get("time"), units=units,
                                  frame=frames if frames is not None else m.get("frames"),
                                  sensor_height_m=sensor_height if sensor_height is not None
-                                 else m.get("sensor_height_m"), name=name or (None if merge else out.name))
+                                 else m.get("sensor_height_m"), name=name or (None if merge else out.name),
+                                 subject_height_m=subject_height if subject_height is not None else m.get("height_m"))
     if steps is not None:
         if base is not None and base.steps is not None:
             raise DataError(f"{out}: already has steps.csv; --steps with --merge would replace it -- leave --steps out")

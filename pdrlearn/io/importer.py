@@ -24,9 +24,16 @@ import pandas as pd
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import AxisFrame
 from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, read_table
-from pdrlearn.io.sensors import PLACEMENTS, SENSORS
+from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU
 from pdrlearn.io.session import Session, Stream
-from pdrlearn.io.validate import STANDARD_GRAVITY, check_rate, check_timestamps, check_units, time_unit_candidates
+from pdrlearn.io.validate import (
+    STANDARD_GRAVITY,
+    check_imu_pair,
+    check_rate,
+    check_timestamps,
+    check_units,
+    time_unit_candidates,
+)
 
 log = logging.getLogger(__name__)
 
@@ -52,7 +59,7 @@ _TIME_NAMES = ("timestamp", "time", "t", "ts", "timems", "times", "seconds", "se
 
 #: accepted unit words per kind -> factor to the project's unit (time: seconds per unit)
 UNITS: dict[str, dict[str, float]] = {
-    "acc": {"m/s2": 1.0, "g": STANDARD_GRAVITY},  # STANDARD_GRAVITY: thesis ch.4.2.1.1
+    "acc": {"m/s2": 1.0, "g": STANDARD_GRAVITY, "mg": STANDARD_GRAVITY / 1000},  # thesis ch.4.2.1.1
     "gyro": {"rad/s": 1.0, "deg/s": math.pi / 180.0},
     "mag": {"uT": 1.0, "nT": 1e-3, "gauss": 100.0, "mT": 1e3},
     "baro": {"hPa": 1.0, "Pa": 0.01, "kPa": 10.0, "mbar": 1.0},
@@ -66,6 +73,23 @@ _UNIT_ALIASES = {
 #: the option that gives a kind's unit (the others: the --mapping file's "units")
 _UNIT_OPTION = {"acc": "--acc-unit", "gyro": "--gyro-unit"}
 _HINT = re.compile(r"[\(\[]\s*([^\)\]]+?)\s*[\)\]]\s*$")
+#: unit suffixes of names such as ``acc_x_g``, ``gyr_x_dps``, ``time_ms`` (decision D12): suffix -> unit word
+_SUFFIX_UNITS = {"g": "g", "mg": "mg", "ms2": "m/s2", "mps2": "m/s2", "dps": "deg/s", "degs": "deg/s",
+                 "rads": "rad/s", "radps": "rad/s", "ms": "ms", "s": "s", "us": "us", "ns": "ns", "ut": "ut",
+                 "hpa": "hpa", "pa": "pa", "kpa": "kpa"}
+#: suffixes that are also a name's own stem or axis (``x_g``, ``ax_g``?): read as a unit only after two parts
+_SHORT_SUFFIXES = {"g", "s"}
+
+
+def _suffix_unit(column: str) -> tuple[str, str] | None:
+    """(name without the suffix, unit word) of ``acc_x_g`` / ``gyr_x_dps`` / ``time_ms``, else None."""
+    parts = [p for p in re.split(r"[_\s.\-]+", column.strip()) if p]
+    if len(parts) < 2:
+        return None
+    last = parts[-1].lower()
+    if last not in _SUFFIX_UNITS or (last in _SHORT_SUFFIXES and len(parts) < 3 and last != "s"):
+        return None
+    return "_".join(parts[:-1]), _SUFFIX_UNITS[last]
 
 
 def _unit_word(text: str) -> str:
@@ -75,12 +99,18 @@ def _unit_word(text: str) -> str:
 
 def _stem(column: str) -> str:
     """A column name without a trailing unit hint ``(g)`` / ``[deg/s]``, lower case, letters and digits only."""
-    return re.sub(r"[^a-z0-9]", "", _HINT.sub("", column).lower())
+    name = _HINT.sub("", column)
+    if not _HINT.search(column) and _suffix_unit(name):
+        name = _suffix_unit(name)[0]
+    return re.sub(r"[^a-z0-9]", "", name.lower())
 
 
 def _header_unit(column: str) -> str | None:
     m = _HINT.search(column)
-    return _unit_word(m.group(1)) if m else None
+    if m:
+        return _unit_word(m.group(1))
+    suf = _suffix_unit(column)
+    return suf[1] if suf else None
 
 
 def _axis_of(stem: str, kind: str) -> str | None:
@@ -170,6 +200,21 @@ def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str) ->
     return cands[0], "inferred (B22)" + (f"; also fits {', '.join(cands[1:])}" if len(cands) > 1 else "")
 
 
+def _check_import_rate(t: np.ndarray, t_raw: np.ndarray, t_unit: str, t_how: str, column: str, where: str) -> None:
+    """check_rate with import's wording (decision B37): the unit the values look like and --time-unit, not
+    meta.json (which import writes)."""
+    try:
+        check_rate(t, f"{where} ({column} as {t_unit})")
+    except DataError:
+        rate = 1.0 / float(np.median(np.diff(t)))
+        fits = [u for u, _ in time_unit_candidates(t_raw)]
+        looks = (f"the values look like {' or '.join(fits)}: pass --time-unit {fits[0]}" if fits
+                 else "no unit (ms, s, us, ns) gives a plausible rate: check the --time column")
+        src = {"given": "given with --time-unit", "header": "the column name's unit"}.get(t_how, t_how)
+        raise DataError(f"{where}: timestamps of column '{column}' read as {t_unit} ({src}) give {rate:.3g} Hz; "
+                        f"{looks}") from None
+
+
 def _datetime_seconds(col: pd.Series) -> np.ndarray | None:
     """Seconds since the epoch of a column of date-time texts (ISO 8601 and the like), or None."""
     if col.dtype.kind in "biufc":
@@ -212,7 +257,8 @@ def parse_frame(text: str | dict | None, where: str = "--frames") -> AxisFrame |
 def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str, list[str]] | None = None,
                time_column: str | None = None, time_unit: str | None = None, units: dict[str, str] | None = None,
                frame=None, sensor_height_m: float | None = None, name: str | None = None,
-               origin_s: float | None = None, guess: bool = True) -> tuple[Session, dict]:
+               origin_s: float | None = None, guess: bool = True,
+               subject_height_m: float | None = None) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -227,6 +273,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         ``uT`` | ``nT`` | ``gauss``; ``baro``: ``hPa`` | ``Pa`` | ``kPa``); default: the header's hint, else SI
     frame : the unit's axis frame (:func:`parse_frame` input or :class:`AxisFrame`), written to ``frames``
     sensor_height_m : the unit's height above the ground (m), written to ``meta.json``
+    subject_height_m : the subject's height (m), written to ``meta.json`` ``height_m``
     name : session name (default: the CSV's stem)
     origin_s : the export's time (s, on its clock) that becomes 0 (default: its first timestamp); the
         session's files hold "ms since the first sample" (D1), ``record["time"]["origin_s"]`` keeps the origin
@@ -325,17 +372,24 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         u, factor, u_src = _resolve_unit(kind, units.get(kind), cols, where)
         t = t_all[keep]
         check_timestamps(t, f"{where} ({time_column})")
-        check_rate(t, f"{where} ({time_column} as {t_unit})")
+        _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where)
         stream = Stream(sensor, t, vals[keep] * factor)
-        try:
-            check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})")
-        except DataError as exc:
-            opt = _UNIT_OPTION.get(kind, "--mapping units")
-            raise DataError(f"{exc}; or give the unit with {opt} ({' | '.join(UNITS[kind])})") from None
+        opt = _UNIT_OPTION.get(kind, "--mapping units")
+        check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})",
+                    declare=f"give the unit with {opt} ({' | '.join(UNITS[kind])})")
         streams[sensor] = stream
         record["streams"][sensor] = {"columns": cols, "columns_source": sources[kind], "unit": u,
                                      "unit_source": u_src, "factor": factor,
                                      "rate_hz": round(float(stream.rate_hz), 4), "samples": len(stream)}
+    acc_name, gyro_name = UNIT_IMU[unit]
+    if acc_name in streams and gyro_name in streams:  # decisions B36, B37: the two judged together
+        a, g = record["streams"][acc_name], record["streams"][gyro_name]
+        gfix = ("drop --gyro-unit deg/s (or the declared unit)" if g["unit"] == "deg/s"
+                else "check the gyroscope's unit (--gyro-unit rad/s | deg/s)")
+        check_imu_pair(streams[acc_name].t, streams[acc_name].values, streams[gyro_name].t,
+                       streams[gyro_name].values, unit, f"{where} ({', '.join(a['columns'])} as {a['unit']})",
+                       f"{where} ({', '.join(g['columns'])} as {g['unit']})", gyro_fix=gfix,
+                       acc_fix="give the right --acc-unit (m/s2 | g | mg)")
     used = {time_column, *(c for v in columns.values() for c in v)}
     record["unused_columns"] = [c for c in header if c not in used]
     meta: dict = {"session": name or path.stem, "placement": unit,
@@ -347,6 +401,12 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         if not (math.isfinite(h) and 0 < h <= 2.0):  # as meta.json's sensor_height_m (B16): metres, anatomy
             raise DataError(f"import: sensor height {sensor_height_m!r} is not a height in m (0-2 m)")
         meta["sensor_height_m"] = h
+    if subject_height_m is not None:
+        h = float(subject_height_m)
+        if not (math.isfinite(h) and 0.5 <= h <= 2.5):  # a person's height in m (meta.json height_m, B16)
+            raise DataError(f"import: subject height {subject_height_m!r} is not a person's height in m "
+                            "(0.5-2.5 m; 1.75, not 175)")
+        meta["height_m"] = h
     frames = {}
     f = frame if isinstance(frame, AxisFrame) or frame is None else parse_frame(frame)
     if f is not None:
@@ -371,8 +431,9 @@ def merge_sessions(base: Session, add: Session) -> Session:
     placement = meta.get("placement")
     if placement and placement != add.meta.get("placement"):
         meta["placement"] = "foot+waist"
-    if "sensor_height_m" in add.meta:
-        meta["sensor_height_m"] = add.meta["sensor_height_m"]
+    for key in ("sensor_height_m", "height_m"):
+        if key in add.meta:
+            meta[key] = add.meta[key]
     return Session(name=base.name, streams={**base.streams, **add.streams},
                    steps=base.steps if base.steps is not None else add.steps,
                    trajectory=base.trajectory, extras=dict(base.extras), meta=meta,

@@ -54,8 +54,11 @@ def check_timestamps(t: np.ndarray, where: str) -> None:
         )
 
 
-def check_units(spec: SensorSpec, values: np.ndarray, where: str) -> None:
+def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str | None = None) -> None:
     """Detect values recorded in the wrong unit from their magnitudes and say how to convert.
+
+    ``declare`` replaces the meta.json way of declaring the unit in the messages (``pdrlearn import``: its
+    unit option, e.g. ``"pass --acc-unit g"``; decision B37).
 
     The limits are physical: gravity dominates the median accelerometer norm; a MEMS gyroscope's
     full scale is 2000 deg/s = 34.9 rad/s (thesis Tables 5, 13); the Earth's field is 25-65 uT;
@@ -69,8 +72,8 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str) -> None:
         if 0.5 <= med <= 2.0:
             raise DataError(
                 f"{where}: median |acc| is {med:.2f}, which looks like units of g; "
-                f"multiply by {STANDARD_GRAVITY} to get m/s^2, or declare \"units\": {{\"{spec.name}\": \"g\"}} "
-                "in meta.json"
+                f"multiply by {STANDARD_GRAVITY} to get m/s^2, or "
+                + (declare or f"declare \"units\": {{\"{spec.name}\": \"g\"}} in meta.json")
             )
         if med > 200:
             raise DataError(
@@ -84,8 +87,8 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str) -> None:
         if p99 > 40.0:
             raise DataError(
                 f"{where}: 99th percentile |rate| is {p99:.0f}, beyond a 2000 deg/s gyroscope in rad/s; "
-                f"the file looks like deg/s: multiply by pi/180, or declare \"units\": {{\"{spec.name}\": \"deg/s\"}} "
-                "in meta.json"
+                "the file looks like deg/s: multiply by pi/180, or "
+                + (declare or f"declare \"units\": {{\"{spec.name}\": \"deg/s\"}} in meta.json")
             )
     elif spec.kind == "magnetometer":
         med = float(np.median(np.linalg.norm(values, axis=1)))
@@ -123,8 +126,8 @@ def check_gravity(values: np.ndarray, where: str) -> None:
     if med > 0 and mean < GRAVITY_REMOVED_RATIO * med:
         raise DataError(
             f"{where}: the mean acceleration vector is {mean:.3g} against a median |acc| of {med:.3g}, so gravity has "
-            "been removed (linear / free acceleration); pdrlearn needs the specific force: export the raw (total) "
-            "accelerometer, gravity included"
+            "been removed (linear / free acceleration), or these columns are not an accelerometer (gyroscope "
+            "columns?); pdrlearn needs the specific force: export the raw (total) accelerometer, gravity included"
         )
 
 
@@ -270,3 +273,61 @@ def implausible_rhythm(values: np.ndarray, fs: float, *, span_s: float = 120.0, 
     if ac[best] < min_corr or best / fs >= RHYTHM_MIN_S:
         return None
     return best / fs
+
+
+#: still stretches for :func:`check_imu_pair` (decision B36): |gyro| averaged over 0.25 s under 0.3 rad/s, at
+#: least 1 s of them in all. Their median |acc| is 8.97-10.14 m/s^2 on every real recording (datasets/real,
+#: gaitmap and mobgap, foot and lower back) and on simulated A-D, terrain, direction, rotations and standstill
+#: (foot and waist, 20 and 100 Hz): with gravity a still sensor measures ~1 g. Outside 5-15 m/s^2 it is not a
+#: specific force (gravity subtracted once as a vector, or a wrong unit).
+STILL_GYRO_RAD_S, STILL_WINDOW_S, STILL_MIN_S = 0.3, 0.25, 1.0
+STILL_ACC_RANGE = (5.0, 15.0)
+#: a walking unit's gyroscope (|acc| varies, std > 0.5 m/s^2) turns faster than this at its 99th percentile
+#: (rad/s): walking p99 |rate| is >= 4.75 (foot) and >= 0.57 (waist) on the real and simulated recordings above;
+#: rad/s data read as deg/s is 57.3 times smaller (foot <= 0.22, lower back <= 0.04 on the same recordings).
+WALKING_GYRO_P99 = {"foot": 0.5, "waist": 0.1}
+WALKING_ACC_STD = 0.5
+
+
+def check_imu_pair(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro: np.ndarray, placement: str,
+                   where_acc: str, where_gyro: str, *, gyro_fix: str = "declare its unit",
+                   acc_fix: str = "check its unit") -> None:
+    """One unit's accelerometer and gyroscope (SI) checked against each other (decisions B36, B37).
+
+    B36: in still stretches (low gyro, measured in seconds) a sensor with gravity reads ~9.81 m/s^2; a median
+    |acc| there outside :data:`STILL_ACC_RANGE` is refused (gravity removed although the mean vector passed
+    B30, or a wrong unit). B37: a gyroscope whose 99th percentile |rate| is under
+    :data:`WALKING_GYRO_P99` while the accelerometer shows movement is refused (rad/s data converted as deg/s).
+    """
+    if acc.shape[0] < 10 or gyro.shape[0] < 10:
+        return
+    an = np.linalg.norm(acc, axis=1)
+    gn = np.linalg.norm(gyro, axis=1)
+    if not (np.all(np.isfinite(an)) and np.all(np.isfinite(gn))):
+        return
+    p99 = float(np.percentile(gn, 99))
+    astd = float(np.std(an))
+    bound = WALKING_GYRO_P99.get(placement, 0.1)
+    if astd > WALKING_ACC_STD and p99 < bound:
+        raise DataError(
+            f"{where_gyro}: the 99th percentile |rate| is {p99:.3g} rad/s while the accelerometer shows movement "
+            f"(|acc| std {astd:.2g} m/s^2), far under a moving {placement}'s (over {bound:g} rad/s): the values "
+            f"look like rad/s converted as deg/s (57.3 times too small); {gyro_fix}"
+        )
+    fs = 1.0 / float(np.median(np.diff(gyro_t))) if gyro_t.size > 2 else 0.0
+    if not fs > 0:
+        return
+    w = max(int(round(STILL_WINDOW_S * fs)), 1)
+    smooth = np.convolve(gn, np.ones(w) / w, mode="same")
+    still = smooth < STILL_GYRO_RAD_S
+    if still.sum() / fs < STILL_MIN_S:
+        return
+    med = float(np.median(np.interp(gyro_t[still], acc_t, an)))
+    lo, hi = STILL_ACC_RANGE
+    if not lo <= med <= hi:
+        raise DataError(
+            f"{where_acc}: while the unit is still ({still.sum() / fs:.1f} s with |gyro| under "
+            f"{STILL_GYRO_RAD_S:g} rad/s) the median |acc| is {med:.2f} m/s^2, not ~9.81 (gravity): gravity has been "
+            "removed (linear / free acceleration), or the unit is wrong, or these columns are not an accelerometer "
+            f"(gyroscope columns?); export the raw (total) accelerometer, gravity included, or {acc_fix}"
+        )
