@@ -324,3 +324,15 @@ def test_lower_back_labels_are_shifted_like_the_steps_and_score_the_track(tmp_pa
     pd.DataFrame({"ic_s": [1.0, 2.0]}).to_csv(tmp_path / "sec.csv", index=False)
     assert main([*args, "--force", "--labels", str(tmp_path / "sec.csv")]) == 2
     assert "no *_ms time column" in _err(capsys)
+
+
+def test_merge_keeps_the_added_units_labels(sim, tmp_path, capsys):
+    """``--merge --labels``: the label tables come with the added unit (merge_sessions dropped them)."""
+    out = tmp_path / "session"
+    assert main(["import", str(_foot_export(sim, tmp_path / "foot.csv")), "--out", str(out)]) == 0
+    ic = np.round(sim.steps["start_s"].to_numpy() * 1e3, 3)
+    pd.DataFrame({"ic_ms": ic}).to_csv(tmp_path / "ics.csv", index=False)
+    args = ["import", str(_waist_export(sim, tmp_path / "waist.csv")), "--out", str(out), "--unit", "waist", "--merge"]
+    assert main([*args, "--labels", str(tmp_path / "ics.csv")]) == 0
+    got = read_session(out)
+    np.testing.assert_allclose(got.extras["ics"]["ic_s"], ic * 1e-3 - sim.t_start, atol=1e-6)
