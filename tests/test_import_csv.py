@@ -316,6 +316,9 @@ def test_lower_back_labels_are_shifted_like_the_steps_and_score_the_track(tmp_pa
     res = json.loads(capsys.readouterr().out.splitlines()[-1])
     assert res["step_f1"] is not None and res["step_f1"] > 0.8
     assert res["distance_ref_source"].startswith("bouts.csv")
+    # the label tables are import's own files: --force replaces them (hand-copied ones it refuses to delete)
+    assert main([*args, "--force", *(x for f in files[1:] for x in ("--labels", str(f)))]) == 0
+    capsys.readouterr()
     # bad label files: one line naming the file and the fix
     assert main([*args, "--force", "--labels", str(files[0])]) == 2
     assert "pass labelled steps with --steps" in _err(capsys)
