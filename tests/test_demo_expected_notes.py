@@ -61,3 +61,22 @@ def test_the_same_warning_in_another_stage_is_not_hidden(demo, monkeypatch, caps
     assert "no force sensors" in capsys.readouterr().err
     demo.print_notes()
     assert capsys.readouterr().out == ""
+
+
+def test_expected_warnings_that_name_the_session_folder_path_wait_too(demo, monkeypatch, capsys):
+    """Decision B34 made warnings name the folder as given (``/.../datasets/real/gaitmap_level_left: ...``),
+    and the demo printed its three expected warnings mid-run again: never under "expected notes:" (second
+    new-user trial, finding 13)."""
+    where = str(Path(demo.REAL) / "gaitmap_level_left")
+    monkeypatch.setattr(demo, "cli", _fake_cli([
+        f"{where}: no force sensors: stance from the accelerometer/gyroscope detector",
+        f"{where}: no length-class bounds in the session: thesis step bounds x 2 used",
+        f"{where}: no waist unit: heading from the foot's own integrated yaw (relative to the start)",
+        "/elsewhere/gaitmap_level_left_copy: no waist unit: heading from the foot's own integrated yaw"]))
+    demo.run(["track", "x"], [], FOOT)
+    assert capsys.readouterr().err.splitlines() == [
+        "warning: /elsewhere/gaitmap_level_left_copy: no waist unit: heading from the foot's own integrated yaw"]
+    demo.print_notes()
+    out = capsys.readouterr().out.splitlines()
+    assert out[0].startswith("expected notes:") and len(out) == 5
+    assert all(ln.strip().startswith(f"warning: {where}: no ") for ln in out[2:])

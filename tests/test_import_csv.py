@@ -275,3 +275,67 @@ def test_merge_into_a_session_not_imported_says_the_unit_was_shifted(sim, tmp_pa
     note = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("note: the session was not imported")]
     assert len(note) == 1 and "as recorded" not in note[0] and "starts at 0 ms" in note[0], note
     assert read_session(base).streams["wAccelerometer"].t[0] == 0.0  # what the note says
+
+
+def test_lower_back_labels_are_shifted_like_the_steps_and_score_the_track(tmp_path, capsys):
+    """Second new-user trial, finding 3: ``--labels`` copies a lower-back export's extra label tables (ics.csv,
+    bouts.csv, turns.csv, ms on the export's clock) into the session, shifted as ``--steps`` is, so ``track``
+    scores the waist steps against the contacts and bouts (``--steps`` alone: step_f1 null)."""
+    src = REAL / "mobgap_HA001_Test5_Trial1"
+    if not src.is_dir():
+        pytest.skip(f"{src} not present")
+    s = read_session(src)
+    a, w = s.streams["wAccelerometer"], s.streams["wGyroscope"]
+    clock_s = 5000.0  # the lab's clock: the export starts at 5000 s
+    df = pd.DataFrame({"time_ms": np.round((a.t + clock_s) * 1e3, 3),
+                       **{f"acc_{c}": a.values[:, i] for i, c in enumerate("xyz")},
+                       **{f"gyr_{c}": np.interp(a.t, w.t, w.values[:, i]) for i, c in enumerate("xyz")}})
+    df.to_csv(tmp_path / "lowback.csv", index=False)
+    origin_ms = float(df["time_ms"].iloc[0])
+    files = []
+    for name in ("steps", "ics", "bouts", "turns"):
+        t = pd.read_csv(src / f"{name}.csv")
+        for c in [c for c in t.columns if c.endswith("_ms")]:
+            t[c] = t[c] + clock_s * 1e3
+        t.to_csv(tmp_path / f"{name}.csv", index=False)
+        files.append(tmp_path / f"{name}.csv")
+    out = tmp_path / "lb"
+    frame = json.dumps(s.frames["waist"].to_dict())
+    args = ["import", str(tmp_path / "lowback.csv"), "--out", str(out), "--unit", "waist", "--frames", frame,
+            "--steps", str(files[0])]
+    assert main([*args, *(x for f in files[1:] for x in ("--labels", str(f)))]) == 0
+    err = capsys.readouterr().err
+    assert "labels: ics.csv with" in err and "labels: bouts.csv with" in err and "labels: turns.csv with" in err
+    got = read_session(out)
+    shift = origin_ms * 1e-3 - clock_s - s.t_start  # what the import takes off the source's clock (s)
+    for name in ("ics", "bouts", "turns"):
+        assert list(got.extras[name].columns) == list(s.extras[name].columns)
+        for c in [c for c in s.extras[name].columns if c.endswith("_s") and c != "duration_s"]:
+            np.testing.assert_allclose(got.extras[name][c], s.extras[name][c] - s.t_start - shift, atol=1e-6)
+    assert main(["track", str(out), "--out", str(tmp_path / "trk"), "--json"]) == 0
+    res = json.loads(capsys.readouterr().out.splitlines()[-1])
+    assert res["step_f1"] is not None and res["step_f1"] > 0.8
+    assert res["distance_ref_source"].startswith("bouts.csv")
+    # the label tables are import's own files: --force replaces them (hand-copied ones it refuses to delete)
+    assert main([*args, "--force", *(x for f in files[1:] for x in ("--labels", str(f)))]) == 0
+    capsys.readouterr()
+    # bad label files: one line naming the file and the fix
+    assert main([*args, "--force", "--labels", str(files[0])]) == 2
+    assert "pass labelled steps with --steps" in _err(capsys)
+    assert main([*args, "--force", "--labels", str(files[1]), "--labels", str(files[1])]) == 2
+    assert "already has ics.csv" in _err(capsys)
+    pd.DataFrame({"ic_s": [1.0, 2.0]}).to_csv(tmp_path / "sec.csv", index=False)
+    assert main([*args, "--force", "--labels", str(tmp_path / "sec.csv")]) == 2
+    assert "no *_ms time column" in _err(capsys)
+
+
+def test_merge_keeps_the_added_units_labels(sim, tmp_path, capsys):
+    """``--merge --labels``: the label tables come with the added unit (merge_sessions dropped them)."""
+    out = tmp_path / "session"
+    assert main(["import", str(_foot_export(sim, tmp_path / "foot.csv")), "--out", str(out)]) == 0
+    ic = np.round(sim.steps["start_s"].to_numpy() * 1e3, 3)
+    pd.DataFrame({"ic_ms": ic}).to_csv(tmp_path / "ics.csv", index=False)
+    args = ["import", str(_waist_export(sim, tmp_path / "waist.csv")), "--out", str(out), "--unit", "waist", "--merge"]
+    assert main([*args, "--labels", str(tmp_path / "ics.csv")]) == 0
+    got = read_session(out)
+    np.testing.assert_allclose(got.extras["ics"]["ic_s"], ic * 1e-3 - sim.t_start, atol=1e-6)

@@ -493,10 +493,16 @@ def test_run_tracks_another_rate_at_the_native_rate_by_default(real_bundle, tmp_
     assert main(["run", str(b), str(dec), "--json", "--out", str(tmp_path / "run")]) == 0
     out, err = capsys.readouterr()
     assert any("tracked at the data's own rate" in ln for ln in err.splitlines())
+    # decision C18 amended: run says what track says of the classifiers' rate (it said only the line above)
+    c18 = [ln for ln in err.splitlines() if "step classifiers were trained at" in ln]
+    assert len(c18) == 1 and "trained at 204.8 Hz, the session's foot unit runs at 102.4 Hz" in c18[0], err
     run = json.loads(out)
     assert main(["track", str(dec), "--model", str(real_bundle / "model"), "--streaming", "--json",
                  "--out", str(tmp_path / "track")]) == 0
-    track = json.loads(capsys.readouterr()[0])
+    track_out, track_err = capsys.readouterr()
+    track = json.loads(track_out)
+    line = c18[0][c18[0].index("the model's step classifiers"):]
+    assert line in track_err, track_err  # the same words as track's
     assert run["n_steps"] == track["n_steps"]
     assert abs(run["distance_m"] - track["distance_m"]) < 1e-6
     assert main(["run", str(b), str(dec), "--out", str(tmp_path / "x"), "--resample", "--no-resample"]) == 2

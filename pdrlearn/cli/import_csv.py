@@ -81,6 +81,10 @@ def import_command(
                                          "meta.json height_m (default: none; commands assume 1.7 m and say so)."),
     steps: Path = typer.Option(None, "--steps", help="Labelled steps (start_ms,end_ms,terrain,... as steps.csv) in "
                                "ms on the export's clock; written as the session's steps.csv."),
+    labels: list[Path] = typer.Option(None, "--labels", help="An extra label table (ics.csv, bouts.csv, turns.csv "
+                                      "...: *_ms columns on the export's clock), shifted as --steps and written "
+                                      "under its file name; repeat for each (lower-back scoring uses ics.csv and "
+                                      "bouts.csv)."),
     name: str = typer.Option(None, "--name", help="Session name (default: the CSV's name)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
                                "unit's files, labels and meta.json are kept)."),
@@ -94,7 +98,7 @@ def import_command(
     printed on stderr and kept in meta.json ("imported"). Comma, semicolon and tab separated files with
     decimal commas are read (B24).
     Timestamps are written in ms since the export's first one (its value is kept in meta.json; --steps
-    labels on the export's clock are shifted alike). Check the result with 'pdrlearn info'.
+    and --labels tables on the export's clock are shifted alike). Check the result with 'pdrlearn info'.
 
     Examples:
 
@@ -104,10 +108,13 @@ def import_command(
             --time-unit s --acc-unit g --gyro-unit deg/s --frames x=forward,y=up,z=right
 
         pdrlearn import phone.csv --out sessions/walk1 --unit waist --merge --sensor-height 1.0
+
+        pdrlearn import lowback.csv --out sessions/lb1 --unit waist --steps strides.csv --labels ics.csv \\
+            --labels bouts.csv --labels turns.csv
     """
     from pdrlearn.atomic import expect_unchanged
     from pdrlearn.io import read_session, write_session
-    from pdrlearn.io.importer import KINDS, import_csv, import_steps, merge_sessions
+    from pdrlearn.io.importer import KINDS, import_csv, import_labels, import_steps, merge_sessions
 
     m = _mapping_file(mapping)
     unit = unit or m.get("unit") or "foot"
@@ -181,6 +188,11 @@ def import_command(
             raise DataError(f"{out}: already has steps.csv; --steps with --merge would replace it -- leave --steps out")
         session = import_steps(steps, session, record["time"]["origin_s"])
         record["steps"] = {"file": Path(steps).name, "rows": len(session.steps)}
+    if labels:
+        session, rows = import_labels(labels, session, record["time"]["origin_s"],
+                                      taken=() if base is None else tuple(base.extras))
+        record["labels"] = {f"{n}.csv": {"file": Path(p).name, "rows": rows[n]} for n, p in
+                            zip(rows, labels, strict=True)}
     if base is not None:
         session = merge_sessions(base, session)
     existed = out.is_dir() and any(out.iterdir())
@@ -214,6 +226,8 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
     if record.get("steps"):
         st = record["steps"]
         err(f"steps: {st['rows']} labelled steps from {st['file']} (shifted to the session's clock)")
+    for name, lab in (record.get("labels") or {}).items():
+        err(f"labels: {name} with {lab['rows']} rows from {lab['file']} (shifted to the session's clock)")
     if record["unused_columns"]:
         err(f"unused columns: {', '.join(record['unused_columns'])}")
     prefix = "f" if record["unit"] == "foot" else "w"

@@ -436,25 +436,62 @@ def merge_sessions(base: Session, add: Session) -> Session:
             meta[key] = add.meta[key]
     return Session(name=base.name, streams={**base.streams, **add.streams},
                    steps=base.steps if base.steps is not None else add.steps,
-                   trajectory=base.trajectory, extras=dict(base.extras), meta=meta,
+                   trajectory=base.trajectory, extras={**add.extras, **base.extras}, meta=meta,
                    frames={**base.frames, **add.frames})
+
+
+def _shifted_table(path: Path, origin_s: float) -> pd.DataFrame:
+    """A label table of ``path`` with its ``*_ms`` columns (ms on the export's clock) moved onto the session's
+    clock (``origin_s`` taken off) and read as seconds (``*_s``), as ``read_session`` reads label files."""
+    from pdrlearn.io.plasys import _ms_to_s
+
+    df = read_table(path)
+    for c in df.columns:
+        if c.endswith("_ms"):
+            v = pd.to_numeric(df[c], errors="coerce")
+            df[c] = np.where(v.notna(), v - origin_s * 1e3, v) if v.notna().any() else df[c]
+    return _ms_to_s(df, str(path))
+
+
+def import_labels(paths, session: Session, origin_s: float, *, taken=()) -> tuple[Session, dict[str, int]]:
+    """``session`` with the extra label tables of ``paths`` (``ics.csv``, ``bouts.csv``, ``turns.csv`` ...:
+    ``*_ms`` columns in ms on the export's clock), each kept under its file name (``ics.csv`` -> the
+    session's ``ics.csv``), moved onto the session's clock exactly as :func:`import_steps` moves the steps
+    and checked as ``read_session`` checks them. ``taken``: label names the session already has (--merge).
+    Returns the session and name -> rows."""
+    from pdrlearn.io.plasys import LABEL_FILES
+    from pdrlearn.io.sensors import SENSORS
+    from pdrlearn.io.validate import check_label_times
+
+    extras, rows = dict(session.extras), {}
+    for p in map(Path, paths):
+        name = p.stem
+        if p.suffix.lower() != ".csv":
+            raise DataError(f"{p}: --labels takes CSV label tables (ics.csv, bouts.csv ...); convert it to CSV")
+        if name in LABEL_FILES or name in SENSORS:
+            hint = "pass labelled steps with --steps" if name == "steps" else "rename the file"
+            raise DataError(f"{p}: '{name}.csv' is not an extra label table a session can take; {hint}")
+        if name in rows or name in taken:
+            raise DataError(f"{p}: the session already has {name}.csv; pass one file per name (rename one)")
+        if not any(str(c).endswith("_ms") for c in read_table(p).columns):
+            raise DataError(f"{p}: no *_ms time column (ic_ms, start_ms, end_ms ...); label times must be "
+                            "milliseconds on the export's clock")
+        table = _shifted_table(p, origin_s)
+        check_label_times(table, session.t_start, session.t_end, str(p))
+        extras[name], rows[name] = table, len(table)
+    return Session(name=session.name, streams=session.streams, steps=session.steps, trajectory=session.trajectory,
+                   extras=extras, meta=session.meta, frames=session.frames), rows
 
 
 def import_steps(path: str | os.PathLike, session: Session, origin_s: float) -> Session:
     """``session`` with the labelled steps of ``path`` (``start_ms,end_ms`` and ``terrain`` ... as the
     session's ``steps.csv``, times in ms on the export's clock), moved onto the session's clock (``origin_s``
     taken off) and checked as ``read_session`` checks them (decision D12)."""
-    from pdrlearn.io.plasys import _ms_to_s
     from pdrlearn.io.session import STEP_COLUMNS
     from pdrlearn.io.validate import check_columns, check_label_times, check_numeric
 
     path = Path(path)
-    df = read_table(path)
-    for c in df.columns:
-        if c.endswith("_ms"):
-            v = pd.to_numeric(df[c], errors="coerce")
-            df[c] = np.where(v.notna(), v - origin_s * 1e3, v) if v.notna().any() else df[c]
-    steps = _ms_to_s(df, str(path))
+    steps = _shifted_table(path, origin_s)
     check_columns(steps, STEP_COLUMNS, f"{path} (times in ms on the export's clock: start_ms,end_ms)")
     check_numeric(steps, STEP_COLUMNS, str(path))
     check_label_times(steps, session.t_start, session.t_end, str(path))

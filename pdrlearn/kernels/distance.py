@@ -29,6 +29,18 @@ def rate_differs(trained_hz: float, fs_hz: float, *, tolerance: float = RATE_TOL
     return abs(float(trained_hz) - float(fs_hz)) > tolerance * float(trained_hz)
 
 
+def classifier_rate_warning(off: Mapping) -> str:
+    """Decision C18's one line for the units of ``off`` (unit -> ``{"trained_hz", "session_hz"}``) whose
+    step classifiers run at another rate than they were trained at; shared by ``pdrlearn track``
+    (``track.plasys.rate_check``) and ``pdrlearn run`` (``runtime.resample.InputStage``)."""
+    units = " and ".join(off)
+    trained = " / ".join(f"{v['trained_hz']:g}" for v in off.values())
+    now = " / ".join(f"{v['session_hz']:.4g}" for v in off.values())
+    return (f"the model's step classifiers were trained at {trained} Hz, the session's {units} unit"
+            f"{'s run' if len(off) > 1 else ' runs'} at {now} Hz: its step classes may be unreliable; "
+            "train on the user's own data at this rate (`pdrlearn train`)")
+
+
 def applicable_calibration(rec: Mapping | None, fs_hz: float, *, tolerance: float = RATE_TOLERANCE,
                            resampled_hz: float | None = None) -> tuple[Mapping | None, str | None]:
     """The calibration record if it applies at the foot rate ``fs_hz`` (Hz), else None and the warning.

@@ -23,6 +23,7 @@ import math
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.distance import classifier_rate_warning
 
 #: a stream's rate, when the caller does not declare it, is the median interval of its first RATE_PROBE samples,
 #: or of those in its first RATE_PROBE_S s when that comes first (at least RATE_PROBE_MIN samples): a few
@@ -293,6 +294,10 @@ class InputStage:
             self.passed.update(rates)
             if off:
                 self.messages.append((logging.WARNING, native_message(off, self.rate_hz)))
+                units = {u: {"trained_hz": self.rate_hz, "session_hz": off[f"{u[0]}Accelerometer"]}
+                         for u in ("foot", "waist") if f"{u[0]}Accelerometer" in off}
+                if units and self.bundle.tasks:  # decision C18 amended: the classifiers' rate, as track says
+                    self.messages.append((logging.WARNING, classifier_rate_warning(units)))
             return
         self.passed.update(n for n in rates if n not in off)
         for n, fs in off.items():

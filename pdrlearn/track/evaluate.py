@@ -271,14 +271,15 @@ def _foot_stride_f1(result: TrackResult, session: Session, out: dict) -> None:
 def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
     """Waist tracks on sessions with Mobilise-D style references (``ics.csv``, ``bouts.csv``): ``step_f1``
     vs every initial contact, ``distance_error_pct`` over the reference walking bouts and
-    ``stride_length_mae_m`` from the steps inside each reference stride (see pdrlearn.waist.evaluate)."""
+    ``stride_length_mae_m`` from the steps inside each reference stride (see pdrlearn.waist.evaluate).
+    Without ``ics.csv`` and ``bouts.csv`` a ``steps.csv`` of strides still gives that stride metric, never
+    :func:`_stride_lengths`' overlap match of one waist step with one stride (decision W49)."""
     if not len(result.steps) or "unit" not in result.steps or not (result.steps["unit"] == "waist").all():
         return
-    if "ics" not in session.extras and "bouts" not in session.extras:
-        return
-    from pdrlearn.waist.evaluate import waist_metrics
+    from pdrlearn.waist.evaluate import stride_metrics, waist_metrics
 
-    m = waist_metrics(result.steps, session)
+    refs = "ics" in session.extras or "bouts" in session.extras
+    m = waist_metrics(result.steps, session) if refs else stride_metrics(result.steps, session)
     if "distance_error_pct" in m:  # the bouts, not the sum of overlapping stride lengths, are the reference
         out["distance_ref_m"] = m["bout_reference_m"]
         out["distance_ref_source"] = "bouts.csv length_m (distance tracked inside the bouts)"

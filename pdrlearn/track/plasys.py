@@ -46,6 +46,7 @@ from pdrlearn.kernels.distance import (
     applicable_calibration,
     apply_level_gain,
     calibrated_stride_sd,
+    classifier_rate_warning,
     level_dz,
     rate_differs,
 )
@@ -255,12 +256,7 @@ def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[st
             if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
                 off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
     if off:
-        units = " and ".join(off)
-        trained = " / ".join(f"{v['trained_hz']:g}" for v in off.values())
-        now = " / ".join(f"{v['session_hz']:.4g}" for v in off.values())
-        warnings.append(f"the model's step classifiers were trained at {trained} Hz, the session's {units} unit"
-                        f"{'s run' if len(off) > 1 else ' runs'} at {now} Hz: its step classes may be unreliable; "
-                        "train on the user's own data at this rate (`pdrlearn train`)")
+        warnings.append(classifier_rate_warning(off))
     return off or None
 
 
