@@ -23,8 +23,14 @@ import numpy as np
 
 import pdrlearn.io.handedness as H
 from experiments.handedness_check import sessions
-from pdrlearn.io.handedness import AXES_MIN_LOG_RATIO, MIN_SEGMENTS, PERMUTATIONS, axes_label, foot_handedness
-from pdrlearn.signal.filters import interp_rows
+from pdrlearn.io.handedness import (
+    AXES_MIN_LOG_RATIO,
+    MIN_SEGMENTS,
+    PERMUTATIONS,
+    axes_label,
+    foot_handedness,
+    unit_imu_arrays,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "experiments" / "results" / "axes_check.md"
@@ -54,11 +60,10 @@ def main() -> None:
     t0 = time.process_time()
     cpu = 0.0
     for name, s in sessions():
-        if not s.has("fAccelerometer", "fGyroscope"):
+        arrays = unit_imu_arrays(s, "foot", max_s=300.0)  # the same arrays the session check reads
+        if arrays is None:
             continue
-        a, g = s["fAccelerometer"], s["fGyroscope"]
-        n = int(np.searchsorted(a.t, a.t[0] + 300.0, side="right"))
-        acc, gyr, fs = a.values[:n], interp_rows(a.t[:n], g.t, g.values)[:n], float(a.rate_hz)
+        acc, gyr, fs = arrays
         c0 = time.process_time()
         h = foot_handedness(acc, gyr, fs)
         cpu += time.process_time() - c0

@@ -20,8 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from experiments.handedness_check import sessions
-from pdrlearn.io.handedness import PERMUTATIONS, TURN_MAX_DEG, TURN_MIN_WINDOWS, turn_axis
-from pdrlearn.signal.filters import interp_rows
+from pdrlearn.io.handedness import PERMUTATIONS, TURN_MAX_DEG, TURN_MIN_WINDOWS, turn_axis, unit_imu_arrays
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "experiments" / "results" / "axes_check_waist.md"
@@ -36,11 +35,10 @@ def main() -> None:
     rows = []
     cpu = 0.0
     for name, s in sessions():
-        if not s.has("wAccelerometer", "wGyroscope"):
+        arrays = unit_imu_arrays(s, "waist", max_s=300.0)  # the same arrays the session check reads
+        if arrays is None:
             continue
-        a, g = s["wAccelerometer"], s["wGyroscope"]
-        n = int(np.searchsorted(a.t, a.t[0] + 300.0, side="right"))
-        acc, gyr, fs = a.values[:n], interp_rows(a.t[:n], g.t, g.values)[:n], float(a.rate_hz)
+        acc, gyr, fs = arrays
         c0 = time.process_time()
         t = turn_axis(acc, gyr, fs)
         cpu += time.process_time() - c0

@@ -195,3 +195,11 @@ def calibrated_length_model(root, scenario_speed: str = "normal"):
     model.save(root / "model")
     export_model(root / "model", root / "bundle")
     return root, model, simulate("A", user_seed=2, speed=scenario_speed)
+
+
+def scaled_foot_acc(s: Session, k: float) -> Session:
+    """The session as recorded by a foot accelerometer with scale factor ``k`` on every axis."""
+    acc = s.streams["fAccelerometer"]
+    streams = {**s.streams, "fAccelerometer": Stream("fAccelerometer", acc.t, acc.values * k)}
+    return Session(name=s.name, streams=streams, steps=s.steps, trajectory=s.trajectory, extras=s.extras,
+                   meta=s.meta, frames=s.frames)

@@ -9,11 +9,12 @@ import pytest
 
 from pdrlearn.displace import calibrate_distance, distance_gain, model_distance_calibration, straight_level_forward
 from pdrlearn.errors import DataError
-from pdrlearn.io.session import Session, Stream
+from pdrlearn.io.session import Session
 from pdrlearn.sim import sensors as sn
 from pdrlearn.sim import simulate
 from pdrlearn.track.evaluate import evaluate_track
 from pdrlearn.track.plasys import _distance_gain, track_plasys
+from tests.runtime_helpers import scaled_foot_acc
 
 
 # -- kernel ---------------------------------------------------------------------------------------------
@@ -82,14 +83,6 @@ def test_accelerometer_scale_errors_belong_to_the_device_not_the_session():
 
 
 # -- calibration on simulated exercises ------------------------------------------------------------------
-def _scaled(s: Session, k: float) -> Session:
-    """The session as recorded by a foot accelerometer with scale factor ``k`` on every axis."""
-    acc = s.streams["fAccelerometer"]
-    streams = {**s.streams, "fAccelerometer": Stream("fAccelerometer", acc.t, acc.values * k)}
-    return Session(name=s.name, streams=streams, steps=s.steps, trajectory=s.trajectory, extras=s.extras,
-                   meta=s.meta, frames=s.frames)
-
-
 @pytest.fixture(scope="module")
 def length_exercise():
     return simulate("length", user_seed=2, speed="normal", noise=False)
@@ -97,7 +90,7 @@ def length_exercise():
 
 def test_calibration_recovers_an_injected_accelerometer_scale_error(length_exercise):
     base = calibrate_distance([length_exercise])
-    scaled = calibrate_distance([_scaled(length_exercise, 1.01)])
+    scaled = calibrate_distance([scaled_foot_acc(length_exercise, 1.01)])
     assert base["reason"] is None and base["n_strides"] >= 40
     assert base["rate_hz"] == pytest.approx(20.0)
     # a 1 % larger accelerometer output gives 1 % longer strides: the gain undoes it

@@ -12,20 +12,12 @@ import numpy as np
 import pytest
 
 from pdrlearn.displace import calibrate_distance, calibrate_streaming, streaming_calibration
-from pdrlearn.io.session import Session, Stream
 from pdrlearn.runtime import Tracker
 from pdrlearn.runtime.bundle import MANIFEST_SHA, sha256_file
 from pdrlearn.sim import simulate
 from pdrlearn.track.evaluate import evaluate_track
 from pdrlearn.track.plasys import _distance_gain, track_plasys
-from tests.runtime_helpers import calibrated_length_model, replay
-
-
-def _scaled(s: Session, k: float) -> Session:
-    acc = s.streams["fAccelerometer"]
-    streams = {**s.streams, "fAccelerometer": Stream("fAccelerometer", acc.t, acc.values * k)}
-    return Session(name=s.name, streams=streams, steps=s.steps, trajectory=s.trajectory, extras=s.extras,
-                   meta=s.meta, frames=s.frames)
+from tests.runtime_helpers import calibrated_length_model, replay, scaled_foot_acc
 
 
 @pytest.fixture(scope="module")
@@ -56,7 +48,7 @@ def test_streaming_record_beside_an_unchanged_offline_record(exercises):
 def test_streaming_gain_recovers_an_injected_accelerometer_scale_error():
     ex = simulate("length", user_seed=2, speed="normal", noise=False)
     base = calibrate_streaming([ex])
-    scaled = calibrate_streaming([_scaled(ex, 1.01)])
+    scaled = calibrate_streaming([scaled_foot_acc(ex, 1.01)])
     assert base["reason"] is None and base["n_strides"] >= 40
     assert scaled["gain"] * 1.01 == pytest.approx(base["gain"], abs=0.001)
 

@@ -330,17 +330,16 @@ def turn_axis(acc: np.ndarray, gyr: np.ndarray, fs: float) -> tuple[float, int, 
 TESTS = {"foot": foot_handedness, "waist": waist_handedness}
 
 
-def session_handedness(session, placement: str, *, max_s: float | None = None,
-                       ratio: bool = True) -> Handedness | None:
-    """The handedness test of a :class:`~pdrlearn.io.Session`'s ``placement`` unit (the gyroscope on the
-    accelerometer's clock) over its first ``max_s`` seconds (default
-    :data:`~pdrlearn.track.frame_inference.CHECK_SPAN_S`); ``None`` when the unit lacks either sensor,
-    has too few samples or non-finite values. ``ratio=False``: the waist's cheap axis test only."""
+def unit_imu_arrays(session, placement: str, *, max_s: float | None = None
+                    ) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """The ``placement`` unit's accelerometer and gyroscope (on the accelerometer's clock) over its first
+    ``max_s`` seconds (default :data:`~pdrlearn.track.frame_inference.CHECK_SPAN_S`) and the rate: the input of
+    every test here; ``None`` when the unit lacks either sensor, has too few samples or non-finite values."""
     from pdrlearn.io.sensors import UNIT_IMU
     from pdrlearn.signal.filters import interp_rows
     from pdrlearn.track.frame_inference import CHECK_SPAN_S
 
-    if placement not in TESTS or placement not in UNIT_IMU:
+    if placement not in UNIT_IMU:
         return None
     acc_n, gyr_n = UNIT_IMU[placement]
     if acc_n not in session.streams or gyr_n not in session.streams:
@@ -353,9 +352,21 @@ def session_handedness(session, placement: str, *, max_s: float | None = None,
     acc, gyr = acc_s.values[:n], interp_rows(acc_s.t[:n], gyr_s.t, gyr_s.values)
     if not (np.isfinite(acc).all() and np.isfinite(gyr).all()):
         return None
+    return acc, gyr, float(acc_s.rate_hz)
+
+
+def session_handedness(session, placement: str, *, max_s: float | None = None,
+                       ratio: bool = True) -> Handedness | None:
+    """The handedness test of a :class:`~pdrlearn.io.Session`'s ``placement`` unit over the arrays of
+    :func:`unit_imu_arrays`; ``None`` when there are none. ``ratio=False``: the waist's cheap axis test only."""
+    if placement not in TESTS:
+        return None
+    arrays = unit_imu_arrays(session, placement, max_s=max_s)
+    if arrays is None:
+        return None
     if placement == "waist":
-        return waist_handedness(acc, gyr, float(acc_s.rate_hz), ratio=ratio)
-    return TESTS[placement](acc, gyr, float(acc_s.rate_hz))
+        return waist_handedness(*arrays, ratio=ratio)
+    return TESTS[placement](*arrays)
 
 
 def check_handedness(session, placement: str, *, ratio: bool = True) -> tuple[Handedness | None, str | None]:
