@@ -21,6 +21,7 @@ from pdrlearn.io.handedness import (
     AXES_STRIDES,
     MIN_LOG_RATIO,
     axes_fix,
+    axes_fix_acc,
     axes_label,
     foot_axes,
     foot_handedness,
@@ -306,3 +307,51 @@ def test_info_on_a_too_short_unit_does_not_say_it_has_no_data(tmp_path, capsys):
     assert main(["info", str(tmp_path / "a")]) == 0
     line = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("foot axes:")]
     assert len(line) == 1 and "no accelerometer + gyroscope data" not in line[0] and "not run" in line[0], line
+
+
+def _acc_swapped_copy(dst: Path) -> Path:
+    """FOOT imported with its accelerometer columns in the wrong order (x and y swapped, trial 2 finding 8:
+    ``--acc acc_y_g,acc_x_g,acc_z_g``), the gyroscope right, and no frame declared."""
+    shutil.copytree(FOOT, dst)
+    f = dst / "fAccelerometer.csv"
+    df = pd.read_csv(f)
+    df[["x", "y"]] = df[["y", "x"]].to_numpy()
+    df.to_csv(f, index=False)
+    meta = json.loads((dst / "meta.json").read_text())
+    for key in ("frames", "source_project"):
+        meta.pop(key, None)
+    (dst / "meta.json").write_text(json.dumps(meta))
+    return dst
+
+
+def test_the_accelerometer_fix_is_the_inverse_with_the_fewest_negations():
+    swap = np.array([[0, 1, 0], [1, 0, 0], [0, 0, 1]], float)
+    assert axes_fix_acc(-swap) == ("x = y, y = x, z = z", False)  # the gyroscope's fix negates all three
+    Pt = np.array([[0, 0, -1], [0, 1, 0], [1, 0, 0]], float)  # a rotation: its inverse P^T (one negation)
+    assert axes_fix_acc(Pt) == ("x = z, y = y, z = -x", False)
+    for P in signed_permutations()[1:]:
+        fix, negate = axes_fix_acc(P)
+        assert fix.count("-") <= 1 and negate == (np.linalg.det(P) < 0)
+
+
+def test_wrong_accelerometer_column_order_names_both_rewrites_and_track_names_them_not_frames(tmp_path, capsys):
+    """Trial 2, finding 8: the warning told to rewrite the (right) gyroscope only, and track asked for a
+    "frames" entry that the warning itself said cannot fix the data."""
+    d = _acc_swapped_copy(tmp_path / "swapped")
+    rc = main(["track", str(d), "--method", "M2", "--out", str(tmp_path / "t")])
+    lines = capsys.readouterr().err.splitlines()
+    warn = [ln for ln in lines if ln.startswith("warning: ") and "D11 amendment" in ln]
+    err = [ln for ln in lines if ln.startswith("error: ")]
+    assert rc == 2 and len(warn) == 1 and len(err) == 1, lines
+    for text in (warn[0], err[0]):
+        assert "cannot tell which file is wrong" in text, text
+        assert "fGyroscope.csv is, rewrite its columns as x = -y, y = -x, z = -z" in text, text
+        assert "fAccelerometer.csv is (e.g. its columns were given in the wrong order), rewrite its columns as " \
+               "x = y, y = x, z = z" in text, text
+        assert "a \"frames\" entry cannot fix this" in text
+    assert "add a \"frames\" entry" not in err[0] and "axes differ" in err[0]
+    # the accelerometer rewrite named is a fix: the unswapped files pass the test
+    s = read_session(d)
+    a, g = s["fAccelerometer"], s["fGyroscope"]
+    acc = a.values[:, [1, 0, 2]]
+    assert foot_handedness(acc, interp_rows(a.t, g.t, g.values), a.rate_hz).verdict == "right-handed"

@@ -339,3 +339,23 @@ def test_merge_keeps_the_added_units_labels(sim, tmp_path, capsys):
     assert main([*args, "--labels", str(tmp_path / "ics.csv")]) == 0
     got = read_session(out)
     np.testing.assert_allclose(got.extras["ics"]["ic_s"], ic * 1e-3 - sim.t_start, atol=1e-6)
+
+
+def test_merge_warns_once_when_the_units_time_spans_hardly_overlap(sim, tmp_path, capsys):
+    """Second new-user trial, finding 11: a 137.6 s lower-back export merged into a 38.7 s foot session gave
+    rc 0 and no word; spans sharing less than half of the longer one now warn (decision D12), naming both."""
+    foot = _foot_export(sim, tmp_path / "foot.csv")
+    waist = pd.read_csv(_waist_export(sim, tmp_path / "waist.csv"))
+    t = waist["timestamp_ms"].to_numpy()
+    waist[t - t[0] <= 0.3 * (t[-1] - t[0])].to_csv(tmp_path / "short.csv", index=False)  # 30 % of the walk
+    for name, warned in (("waist.csv", False), ("short.csv", True)):
+        out = tmp_path / name.split(".")[0]
+        assert main(["import", str(foot), "--out", str(out)]) == 0
+        capsys.readouterr()
+        assert main(["import", str(tmp_path / name), "--out", str(out), "--unit", "waist", "--merge"]) == 0
+        warn = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("warning: ")]
+        assert len(warn) == int(warned), warn
+    span = sim.streams["fAccelerometer"].t[-1] - sim.streams["fAccelerometer"].t[0]
+    assert f"the session's fAccelerometer, fForceA, fForceB, fGyroscope span 0.0-{span:.1f} s" in warn[0], warn
+    assert "the added waist unit spans 0.0-" in warn[0] and "under half of the longer" in warn[0]
+    assert "track --align" in warn[0] and str(tmp_path / "short") in warn[0]

@@ -114,7 +114,14 @@ def import_command(
     """
     from pdrlearn.atomic import expect_unchanged
     from pdrlearn.io import read_session, write_session
-    from pdrlearn.io.importer import KINDS, import_csv, import_labels, import_steps, merge_sessions
+    from pdrlearn.io.importer import (
+        KINDS,
+        import_csv,
+        import_labels,
+        import_steps,
+        merge_sessions,
+        merge_span_warning,
+    )
 
     m = _mapping_file(mapping)
     unit = unit or m.get("unit") or "foot"
@@ -193,7 +200,9 @@ def import_command(
                                       taken=() if base is None else tuple(base.extras))
         record["labels"] = {f"{n}.csv": {"file": Path(p).name, "rows": rows[n]} for n, p in
                             zip(rows, labels, strict=True)}
+    span_warning = None
     if base is not None:
+        span_warning = merge_span_warning(base, session)  # trial 2, finding 11 (decision D12)
         session = merge_sessions(base, session)
     existed = out.is_dir() and any(out.iterdir())
     write_session(session, out, overwrite=True)
@@ -202,6 +211,8 @@ def import_command(
     else:
         print_json({"out": str(out), "merged": merge, "imported": record,
                     "frames": {p: f.to_dict() for p, f in session.frames.items()}})
+    if span_warning:
+        typer.echo(f"warning: {out}: {span_warning}", err=True)
 
 
 def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:

@@ -121,6 +121,31 @@ def axes_fix(P: np.ndarray) -> str:
                      for i in range(3))
 
 
+def axes_fix_acc(P: np.ndarray) -> tuple[str, bool]:
+    """The other fix of :func:`axes_fix`: the column rewrite of the accelerometer file that gives the
+    gyroscope's axes (the inverse, ``P^T``), and whether the gyroscope's three columns must be negated too.
+    The test cannot see the sign of all three accelerometer columns (their ZUPT errors are identical: the
+    trial's session D scored +3.15 with both), so of ``P^T`` and ``-P^T`` the one with fewer negations is
+    given: a plain column-order mistake needs none (trial 2, finding 8: ``--acc acc_y_g,acc_x_g,acc_z_g``
+    gave ``P`` = (-y, -x, -z) and the accelerometer fix ``x = y, y = x, z = z``). When ``P`` is improper
+    (mirrored and permuted), rewriting the accelerometer alone leaves a mirrored pair: the gyroscope's
+    columns must be negated as well."""
+    Q = np.asarray(P).T
+    if (Q < 0).sum() > 1:  # Q has three nonzero entries: -Q has fewer negations when Q has two or three
+        Q = -Q
+    return axes_fix(Q), bool(np.linalg.det(np.asarray(P)) < 0)
+
+
+def axes_fix_text(P: np.ndarray, acc_n: str, gyr_n: str) -> str:
+    """The two rewrites that fix a unit whose gyroscope reads the accelerometer's axes permuted by ``P``
+    (decision D11 amendment): the test finds how the two files disagree, not which one is wrong."""
+    acc_fix, negate = axes_fix_acc(P)
+    also = f" and negate all three columns of {gyr_n}.csv" if negate else ""
+    return (f"the test cannot tell which file is wrong: if {gyr_n}.csv is, rewrite its columns as {axes_fix(P)}; "
+            f"if {acc_n}.csv is (e.g. its columns were given in the wrong order), rewrite its columns as "
+            f"{acc_fix}{also} (or re-export both sensors in one frame); a \"frames\" entry cannot fix this")
+
+
 @dataclass
 class Handedness:
     """Result of a handedness test: ``log_ratio`` the median over ``segments`` strides / windows of
@@ -187,6 +212,8 @@ class Handedness:
                "segments": int(self.segments), "verdict": self.verdict}
         if self.axes is not None:
             out["axes"] = {"gyroscope": axes_label(self.axes), "fix": axes_fix(self.axes),
+                           "fix_accelerometer": axes_fix_acc(self.axes)[0] + (
+                               " and negate the gyroscope" if axes_fix_acc(self.axes)[1] else ""),
                            "log_ratio": (None if not np.isfinite(self.axes_log_ratio)
                                          else round(float(self.axes_log_ratio), 3))}
         if self.placement == "waist":
@@ -386,7 +413,8 @@ def check_handedness(session, placement: str, *, ratio: bool = True) -> tuple[Ha
                f"lies along the accelerometer's {'xyz'[ai]} axis and a walker turns about the vertical (decision D11 "
                f"amendment); the gyroscope's {'xyz'[gi]} is probably the accelerometer's {'xyz'[ai]} (or its "
                f"negative): "
-               f"rewrite {gyr_n}.csv's columns in the accelerometer's axes (or re-export both sensors in one frame); "
+               f"the test cannot tell which file is wrong: rewrite {gyr_n}.csv's columns in the accelerometer's "
+               f"axes, or {acc_n}.csv's in the gyroscope's (or re-export both sensors in one frame); "
                f"a \"frames\" entry cannot fix this")
         return h, msg
     if h.axes_differ:
@@ -395,8 +423,7 @@ def check_handedness(session, placement: str, *, ratio: bool = True) -> tuple[Ha
         msg = (f"the {placement} unit's {gyr_n} axes look like {acc_n}'s {axes_label(P)} (its x, y, z are the "
                f"accelerometer's{hand} permuted axes): the end-of-stride velocity error of the ZUPT integration is "
                f"{np.exp(h.axes_log_ratio):.1f} times smaller with them (median of {h.segments}; decision D11 "
-               f"amendment); rewrite {gyr_n}.csv's columns as {axes_fix(P)} (or re-export both sensors in one "
-               f"frame); a \"frames\" entry cannot fix this")
+               f"amendment); {axes_fix_text(P, acc_n, gyr_n)}")
         return h, msg
     err = ("the end-of-stride velocity error of the ZUPT integration" if placement == "foot"
            else "the velocity error of the walking windows")
@@ -409,6 +436,7 @@ def check_handedness(session, placement: str, *, ratio: bool = True) -> tuple[Ha
 
 
 __all__ = ["Handedness", "foot_handedness", "foot_axes", "signed_permutations", "axes_label", "axes_fix",
+           "axes_fix_acc", "axes_fix_text",
            "turn_axis", "PERMUTATIONS", "AXES_PLACEMENTS", "AXES_STRIDES", "AXES_RATE_HZ", "AXES_MIN_LOG_RATIO",
            "TURN_WINDOW_S", "TURN_HOP_S", "TURN_MIN_DEG", "TURN_MIN_WINDOWS", "TURN_MAX_DEG",
            "TURN_MIN_GRAVITY",           "waist_handedness", "session_handedness", "check_handedness",

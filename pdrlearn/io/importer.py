@@ -440,6 +440,35 @@ def merge_sessions(base: Session, add: Session) -> Session:
                    frames={**base.frames, **add.frames})
 
 
+#: ``--merge`` warns when the added unit's time span and the session's share less than this fraction of the
+#: longer of the two (decision D12, second amendment: trial 2 finding 11, a 137.6 s lower-back export merged
+#: into a 38.7 s foot session; "half of the shorter" would have missed it, the shorter lying inside the longer).
+MERGE_MIN_OVERLAP = 0.5
+
+
+def _span(session: Session) -> tuple[float, float] | None:
+    ts = [(float(st.t[0]), float(st.t[-1])) for st in session.streams.values() if len(st.t)]
+    return (min(a for a, _ in ts), max(b for _, b in ts)) if ts else None
+
+
+def merge_span_warning(base: Session, add: Session) -> str | None:
+    """The ``--merge`` warning when ``add``'s time span (s, on the session's clock) and ``base``'s overlap by
+    less than :data:`MERGE_MIN_OVERLAP` of the longer span (decision D12, second amendment); else ``None``.
+    A warning, not a refusal: two units' clocks can legitimately differ (``track --align`` aligns them)."""
+    sa, sb = _span(add), _span(base)
+    if sa is None or sb is None:
+        return None
+    overlap = max(0.0, min(sa[1], sb[1]) - max(sa[0], sb[0]))
+    longer = max(sa[1] - sa[0], sb[1] - sb[0])
+    if longer <= 0 or overlap >= MERGE_MIN_OVERLAP * longer:
+        return None
+    unit = add.meta.get("placement", "added")
+    return (f"the added {unit} unit spans {sa[0]:.1f}-{sa[1]:.1f} s ({sa[1] - sa[0]:.1f} s) but the session's "
+            f"{', '.join(sorted(base.streams))} span {sb[0]:.1f}-{sb[1]:.1f} s ({sb[1] - sb[0]:.1f} s): they overlap "
+            f"{overlap:.1f} s, under half of the longer (decision D12); check that both exports record the same "
+            "walk (if their clocks differ, align them with 'pdrlearn track --align')")
+
+
 def _shifted_table(path: Path, origin_s: float) -> pd.DataFrame:
     """A label table of ``path`` with its ``*_ms`` columns (ms on the export's clock) moved onto the session's
     clock (``origin_s`` taken off) and read as seconds (``*_s``), as ``read_session`` reads label files."""

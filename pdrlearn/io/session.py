@@ -328,6 +328,18 @@ class Session:
                     f"{where} declares no axis frame for the {placement} unit{reason}; the D11 test finds its {acc_n} "
                     f"and {gyr_n} {h.describe()}, a left-handed pair: negate the mirrored axis back in both "
                     f"{acc_n}.csv and {gyr_n}.csv (or re-export without mirroring); a \"frames\" entry cannot fix that")
+            if h is not None and h.axes_differ:  # trial 2, finding 8: the D11 amendment's fix, not a frames entry
+                from pdrlearn.io.handedness import axes_fix_text
+                from pdrlearn.io.sensors import UNIT_IMU
+
+                acc_n, gyr_n = UNIT_IMU[placement]
+                fix = (axes_fix_text(h.axes, acc_n, gyr_n) if placement != "waist" else
+                       f"rewrite {gyr_n}.csv's columns in the accelerometer's axes, or {acc_n}.csv's in the "
+                       f"gyroscope's (or re-export both sensors in one frame); a \"frames\" entry cannot fix this")
+                raise DataError(
+                    f"{where} declares no axis frame for the {placement} unit{reason}; the D11 test finds its "
+                    f"{acc_n} and {gyr_n} {h.describe()}: the two files disagree on the axes, which no frame can "
+                    f"describe; {fix}")
         example = json.dumps({placement: EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"]).to_dict()})
         raise DataError(
             f"{where} declares no axis frame for the {placement} unit{reason}; add a \"frames\" entry giving the "
