@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 import pdrlearn.io.handedness as H
-from experiments.handedness_check import sessions
+from experiments.handedness_check import sessions, write_report
 from pdrlearn.io.handedness import (
     AXES_MIN_LOG_RATIO,
     MIN_SEGMENTS,
@@ -106,9 +106,7 @@ def main() -> None:
                      f"warned {tw} / {len(sel)}, worst truthful statistic {worst_t:+.2f}; changed warned {cw} / "
                      f"{len(cv)} ({100 * cw / max(len(cv), 1):.1f} %), right permutation named {named}")
     lines.append(f"\nCPU {total:.0f} s for {len(rows)} units x 48 versions; the truthful checks alone {cpu:.1f} s.")
-    OUT.parent.mkdir(parents=True, exist_ok=True)
-    OUT.write_text("\n".join(lines) + "\n")
-    print("\n".join(lines[-4:]))
+    write_report(OUT, lines, tail=4)
 
 
 if __name__ == "__main__":

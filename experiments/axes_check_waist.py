@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from experiments.handedness_check import sessions
+from experiments.handedness_check import sessions, write_report
 from pdrlearn.io.handedness import PERMUTATIONS, TURN_MAX_DEG, TURN_MIN_WINDOWS, turn_axis, unit_imu_arrays
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -76,9 +76,7 @@ def main() -> None:
                      f"(smallest angle {min((v[0] for v in vis), default=float('nan')):.1f} deg); hidden warned "
                      f"{sum(warns(v) for r in withv for v in r[3])} / {sum(len(r[3]) for r in withv)}")
     lines.append(f"\nCPU of the truthful tests {cpu:.2f} s for {len(rows)} units.")
-    OUT.parent.mkdir(parents=True, exist_ok=True)
-    OUT.write_text("\n".join(lines) + "\n")
-    print("\n".join(lines[-4:]))
+    write_report(OUT, lines, tail=4)
 
 
 if __name__ == "__main__":

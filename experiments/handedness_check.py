@@ -67,6 +67,13 @@ def sessions():
                     yield f"sim {sc} u{u} {speed} {rate:g}Hz", simulate(sc, u, speed, rate_hz=rate, seed=u, **kw)
 
 
+def write_report(out: Path, lines: list[str], tail: int) -> None:
+    """Write the results file and echo its last ``tail`` lines (shared by the D11 experiment scripts)."""
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text("\n".join(lines) + "\n")
+    print("\n".join(lines[-tail:]))
+
+
 def main() -> None:
     logging.basicConfig(level=logging.ERROR)
     rows = []
@@ -108,9 +115,7 @@ def main() -> None:
                          f"{mw} / {3 * len(sel)}; worst truthful {worst_t:+.2f}, worst mirrored {worst_m:+.2f}; "
                          f"no verdict (no segment) {nan}")
     lines.append(f"\nCPU {cpu:.0f} s for {len(rows)} units x 4 versions.")
-    OUT.parent.mkdir(parents=True, exist_ok=True)
-    OUT.write_text("\n".join(lines) + "\n")
-    print("\n".join(lines[-8:]))
+    write_report(OUT, lines, tail=8)
 
 
 if __name__ == "__main__":

@@ -54,16 +54,22 @@ def _warnings(caplog) -> list[str]:
     return [r.getMessage() for r in caplog.records if r.levelno == logging.WARNING]
 
 
-@pytest.mark.parametrize("axis", ["x", "y", "z"])
-def test_mirrored_foot_recording_warns_once_naming_the_files_and_the_fix(tmp_path, caplog, axis):
-    d = _mirrored_copy(FOOT, tmp_path / "m", "f", axis)
+def _one_foot_warning(d, caplog, needle: str):
+    """Read ``d``, check its foot frame twice, and return the session and the one warning containing
+    ``needle`` (asserting there is exactly one: the check warns once per session)."""
     s = read_session(d)
     with caplog.at_level(logging.WARNING):
         s.require_frame("foot")
         s.require_frame("foot")
-    msgs = [m for m in _warnings(caplog) if "mirrored" in m]
+    msgs = [m for m in _warnings(caplog) if needle in m]
     assert len(msgs) == 1, _warnings(caplog)
-    m = msgs[0]
+    return s, msgs[0]
+
+
+@pytest.mark.parametrize("axis", ["x", "y", "z"])
+def test_mirrored_foot_recording_warns_once_naming_the_files_and_the_fix(tmp_path, caplog, axis):
+    d = _mirrored_copy(FOOT, tmp_path / "m", "f", axis)
+    _, m = _one_foot_warning(d, caplog, "mirrored")
     assert str(d) in m and "fAccelerometer.csv" in m and "fGyroscope.csv" in m
     assert "left-handed" in m and "negate that axis back" in m and "D11" in m
 
@@ -186,13 +192,7 @@ def test_the_48_signed_permutations_and_their_labels():
                                   ("-y", "x", "z")])
 def test_foot_with_permuted_gyroscope_axes_warns_once_naming_the_permutation(tmp_path, caplog, cols):
     d = _gyro_permuted_copy(FOOT, tmp_path / "p", "f", cols)
-    s = read_session(d)
-    with caplog.at_level(logging.WARNING):
-        s.require_frame("foot")
-        s.require_frame("foot")
-    msgs = [m for m in _warnings(caplog) if "D11" in m]
-    assert len(msgs) == 1, _warnings(caplog)
-    m = msgs[0]
+    s, m = _one_foot_warning(d, caplog, "D11")
     label = "(" + ", ".join(cols) + ")"
     assert str(d) in m and "fGyroscope.csv" in m and label in m and "D11 amendment" in m, m
     assert s.handedness("foot").verdict == "axes differ"
