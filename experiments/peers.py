@@ -182,23 +182,22 @@ def run_mobgap(ext: Path, names: list[str]) -> tuple[pd.DataFrame, list[dict], l
         if len(dp.data_ss) != n_ours:
             notes.append(f"{name}: mobgap has {len(dp.data_ss)} samples, our session {n_ours}: not scored")
             continue
-        pipe = MobilisedPipelineImpaired() if cohort == "MS" else MobilisedPipelineHealthy()
-        c0 = time.process_time()
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            p = pipe.safe_run(dp)
-        cpu = time.process_time() - c0
         fs = float(dp.sampling_rate_hz)
-        st = p.per_stride_parameters_.reset_index()
-        steps = mobgap_steps(st, fs) if len(st) else ic_steps([], fs)
-        kind = type(pipe).__name__.replace("MobilisedPipeline", "")
-        keys = {"subject": subj, "test": f"{test}_{trial}", "pipeline": f"mobgap {kind}",
-                "params": "mobgap defaults"}
-        row, b = waist_row(steps, s, **keys)
-        raw, _ = waist_row(ic_steps(p.raw_ic_list_["ic"].to_numpy(float), fs), s, **keys)
-        row.update(raw_step_f1=raw["step_f1"], wbs=int(st["wb_id"].nunique()) if len(st) else 0, cpu_s=cpu)
-        rows.append(row)
-        bouts += b
+        for pipe in (MobilisedPipelineHealthy(), MobilisedPipelineImpaired()):  # both, on every subject
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                p = pipe.safe_run(dp)
+            st = p.per_stride_parameters_.reset_index()
+            steps = mobgap_steps(st, fs) if len(st) else ic_steps([], fs)
+            recommended = cohort in pipe.get_recommended_cohorts()  # HA -> Healthy, MS -> Impaired
+            keys = {"subject": subj, "test": f"{test}_{trial}",
+                    "pipeline": f"mobgap {type(pipe).__name__.replace('MobilisedPipeline', '')}",
+                    "params": "recommended" if recommended else "other cohort's"}
+            row, b = waist_row(steps, s, **keys)
+            raw, _ = waist_row(ic_steps(p.raw_ic_list_["ic"].to_numpy(float), fs), s, **keys)
+            row.update(raw_step_f1=raw["step_f1"], wbs=int(st["wb_id"].nunique()) if len(st) else 0)
+            rows.append(row)
+            bouts += b
     return pd.DataFrame(rows), bouts, notes
 
 
@@ -220,16 +219,19 @@ def _foot_side(meta: dict) -> list[str]:
 GAITMAP_SEGMENTERS = ("BarthDtw", "ConstrainedBarthDtw")  # gaitmap's default and its own variant for MS gait
 
 
-def run_gaitmap_one(session, side: str, segmenter: str = "BarthDtw") -> tuple[pd.DataFrame, pd.DataFrame, float, bool]:
+def run_gaitmap_one(session, side: str, segmenter: str = "BarthDtw", trajectory: str = "stride"
+                    ) -> tuple[pd.DataFrame, pd.DataFrame, float, bool]:
     """gaitmap's MaD pipeline (examples/full_pipelines/mad_gait_pipeline.py) on one foot recording that is
     already in gaitmap's foot sensor frame: ``(min_vel_event_list_, spatial parameters_, rate, aligned)``.
     Gravity alignment needs a 0.7 s rest; where gaitmap finds none (the MS patient) the data go in as they are,
-    as gaitmap's own MS example does (decision 21)."""
+    as gaitmap's own MS example does (decision 21). ``trajectory="rts"``: gaitmap's ``RtsKalman`` over the whole
+    recording (``RegionLevelTrajectory``, one region; "expected to be run on long sections ... including multiple
+    strides", its docstring) instead of the per-stride default."""
     from gaitmap.event_detection import RamppEventDetection
     from gaitmap.parameters import SpatialParameterCalculation
     from gaitmap.preprocessing import sensor_alignment
     from gaitmap.stride_segmentation import BarthDtw, ConstrainedBarthDtw
-    from gaitmap.trajectory_reconstruction import StrideLevelTrajectory
+    from gaitmap.trajectory_reconstruction import RegionLevelTrajectory, RtsKalman, StrideLevelTrajectory
     from gaitmap.utils.coordinate_conversion import convert_left_foot_to_fbf, convert_right_foot_to_fbf
 
     acc, gyr = session["fAccelerometer"], session["fGyroscope"]
@@ -249,7 +251,12 @@ def run_gaitmap_one(session, side: str, segmenter: str = "BarthDtw") -> tuple[pd
         mv = ed.min_vel_event_list_
         if len(mv) == 0:
             return mv, pd.DataFrame(), fs, aligned
-        tr = StrideLevelTrajectory().estimate(data=sf, stride_event_list=mv, sampling_rate_hz=fs)
+        if trajectory == "rts":
+            roi = pd.DataFrame({"roi_id": [0], "start": [0], "end": [len(sf)]}).set_index("roi_id")
+            tr = RegionLevelTrajectory(trajectory_method=RtsKalman()).estimate_intersect(
+                data=sf, regions_of_interest=roi, stride_event_list=mv, sampling_rate_hz=fs)
+        else:
+            tr = StrideLevelTrajectory().estimate(data=sf, stride_event_list=mv, sampling_rate_hz=fs)
         sp = SpatialParameterCalculation().calculate(stride_event_list=mv, positions=tr.position_,
                                                      orientations=tr.orientation_, sampling_rate_hz=fs)
     return mv, sp.parameters_, fs, aligned
@@ -321,6 +328,10 @@ def run_foot(dirs: list[Path]) -> tuple[pd.DataFrame, list[str]]:
                     continue
                 rows.append({**base, "tool": tool, **foot_scores(gaitmap_events(mv, fs),
                                                                  gaitmap_strides(mv, par, fs), s, win)})
+                if s.steps is not None and "length_m" in s.steps and segmenter == GAITMAP_SEGMENTERS[0]:
+                    mv, par, fs, _ = run_gaitmap_one(s, side, segmenter, trajectory="rts")
+                    rows.append({**base, "tool": f"{tool} + RtsKalman",
+                                 **foot_scores(gaitmap_events(mv, fs), gaitmap_strides(mv, par, fs), s, win)})
     return pd.DataFrame(rows), notes
 
 
@@ -340,27 +351,37 @@ def waist_table(mob: pd.DataFrame, ours: pd.DataFrame, mob_b: list, ours_b: list
     per = per[[(a, b) in tested for a, b in zip(per["subject"], per["test"], strict=True)]]
     b = pd.DataFrame(mob_b + [{**x, "pipeline": "pdrlearn waist-pendulum"} for x in ours_b])
     b = b[[(a, c) in tested for a, c in zip(b["subject"], b["test"], strict=True)]]
-    pool = W.pooled(per.assign(pipeline=per["pipeline"].str.replace(r"mobgap \w+", "mobgap", regex=True)),
-                    b.assign(pipeline=b["pipeline"].str.replace(r"mobgap \w+", "mobgap", regex=True)))
+
+    def groups(x: pd.DataFrame) -> pd.DataFrame:
+        """Pooling groups: "mobgap" = the recommended pipeline per subject (Healthy for HA, Impaired for MS), and
+        each mobgap pipeline on every subject ("all subjects")."""
+        is_mob = x["pipeline"].str.startswith("mobgap ")
+        rec = x[is_mob & (x["params"] == "recommended")].assign(pipeline="mobgap", params="recommended")
+        every = x[is_mob].assign(params="all subjects")
+        return pd.concat([rec, every, x[~is_mob]], ignore_index=True)
+
+    pp, bb = groups(per), groups(b)
+    pool = W.pooled(pp, bb)
     # precision and recall from the same summed counts as W.pooled's F1
-    g = per.assign(test=per["test"].str.split("_").str[0],
-                   pipeline=per["pipeline"].str.replace(r"mobgap \w+", "mobgap", regex=True)).groupby(
+    g = pp.assign(test=pp["test"].str.split("_").str[0]).groupby(
         ["test", "pipeline", "params"], sort=False)[["tp", "n_detected", "n_reference"]].sum().reset_index()
     g = g.assign(step_precision=g.tp / g.n_detected, step_recall=g.tp / g.n_reference)
     pool = pool.merge(g[["test", "pipeline", "params", "step_precision", "step_recall"]],
                       on=["test", "pipeline", "params"], how="left")
-    # the same per-bout medians over only the reference bouts where mobgap tracked something (a bout it does not
-    # accept as walking counts -100 % above; this reading leaves those out for every tool alike)
-    b = b.assign(test=b["test"].str.split("_").str[0],
-                 pipeline=b["pipeline"].str.replace(r"mobgap \w+", "mobgap", regex=True))
+    # the same per-bout medians over only the reference bouts where (recommended) mobgap tracked something (a bout
+    # it does not accept as walking counts -100 % above; this reading leaves those out for every tool alike)
+    bb = bb.assign(test=bb["test"].str.split("_").str[0])
     key = ["subject", "test", "start_s"]
-    covered = b[(b["pipeline"] == "mobgap") & (b["tracked_m"] > 0)][key].drop_duplicates()
-    c = b.merge(covered, on=key).groupby(["test", "pipeline", "params"], sort=False).agg(
+    covered = bb[(bb["pipeline"] == "mobgap") & (bb["tracked_m"] > 0)][key].drop_duplicates()
+    c = bb.merge(covered, on=key).groupby(["test", "pipeline", "params"], sort=False).agg(
         bouts_mobgap_tracked=("error_pct", "size"),
         bout_err_median_mobgap_tracked_pct=("error_pct", lambda x: float(np.median(np.abs(x)))),
         bout_err_strides_median_mobgap_tracked_pct=("error_strides_pct", lambda x: float(np.median(np.abs(x)))),
     ).reset_index()
     pool = pool.merge(c, on=["test", "pipeline", "params"], how="left")
+    order = {"mobgap": 0, "pdrlearn waist-pendulum": 1}
+    pool = pool.sort_values(["test", "pipeline", "params"], key=lambda col: col.map(order).fillna(2)
+                            if col.name == "pipeline" else col, kind="stable").reset_index(drop=True)
     return per, pool
 
 
