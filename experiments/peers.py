@@ -9,20 +9,21 @@ through the peers' requirements). Without the peer packages it exits with one li
 peer's output into our steps tables (:func:`mobgap_steps`, :func:`gaitmap_strides`, :func:`gaitmap_events`)
 needs neither peer package and is tested in tests/test_peers.py.
 
-(a) mobgap (decision W50, docs/decisions/waist.md): ``MobilisedPipelineHealthy`` for HA*, ``...Impaired`` for
-MS* (mobgap's recommended cohorts), fed through mobgap's own ``LabExampleDataset`` (INDIP reference system)
-from the mobgap 1.2.0 sdist that ``pdrlearn fetch mobgap`` (``make external``) downloads: the same recordings
-as datasets/external/mobgap_*. Its initial contacts (those of its final walking bouts; ``raw`` = every IC in
-its gait sequences) are scored with ``pdrlearn.waist.evaluate.waist_metrics`` (step F1 inside the reference
-bouts, decisions 19/20 of docs/decisions/steps.md, 0.25 s); its distance per step = half the stride length
-(``stride_length_m`` is a stride, two steps: SlZijlstra doubles its step length) of its strides covering the
-step, summed inside each reference bout as our own steps are (vs INDIP ``Length`` and vs the bout's own
-strides, W25). Ours: ``waist-pendulum`` exactly as experiments/waist.py (calibrated on another recording of
-the subject, and meta.json defaults).
+(a) mobgap (decision W50, docs/decisions/waist.md): ``MobilisedPipelineHealthy`` for HA*, ``...Impaired`` for MS*
+(mobgap's recommended cohorts; pooled as "mobgap"), and each of the two on every subject, fed through mobgap's own
+``LabExampleDataset`` (INDIP reference system) from the mobgap 1.2.0 sdist that ``pdrlearn fetch mobgap`` (``make
+external``) downloads: the same recordings as datasets/external/mobgap_*. Its initial contacts (those of its final
+walking bouts; ``raw`` = every IC in its gait sequences) are scored with ``pdrlearn.waist.evaluate.waist_metrics``
+(step F1 inside the reference bouts, decisions 19/20 of docs/decisions/steps.md, 0.25 s); its distance per step =
+half the stride length (``stride_length_m`` is a stride, two steps: SlZijlstra doubles its step length) of its
+strides covering the step, summed inside each reference bout as our own steps are (vs INDIP ``Length`` and vs the
+bout's own strides, W25). Ours: ``waist-pendulum`` exactly as experiments/waist.py (calibrated on another
+recording of the subject, and meta.json defaults).
 
 (b) gaitmap (decision 21, docs/decisions/steps.md): mad_gait_pipeline (gaitmap's examples/full_pipelines):
 gravity alignment, foot body frame, ``BarthDtw`` (default template), ``RamppEventDetection``,
-``StrideLevelTrajectory`` (default) on the sensor frame data, ``SpatialParameterCalculation``; every recording
+``StrideLevelTrajectory`` (default) on the sensor frame data, ``SpatialParameterCalculation``; also
+``ConstrainedBarthDtw`` and, on the level walks, ``RtsKalman`` over the whole recording; every recording
 here is already in gaitmap's foot sensor frame (pdrlearn/io/external/gaitmap.py). Its ICs are scored with
 ``pdrlearn.steps.score_steps`` (the ``pdrlearn steps`` scorer), its min_vel strides' lengths with
 ``pdrlearn.track.evaluate`` (the README's "real foot stride length vs motion capture" row: IoU >= 0.5
