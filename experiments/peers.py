@@ -184,6 +184,11 @@ def run_mobgap(ext: Path, names: list[str]) -> tuple[pd.DataFrame, list[dict], l
             notes.append(f"{name}: mobgap has {len(dp.data_ss)} samples, our session {n_ours}: not scored")
             continue
         fs = float(dp.sampling_rate_hz)
+        ref = np.sort(dp.reference_parameters_.ic_list["ic"].dropna().to_numpy(float)) / fs
+        ours_ic = np.sort(s.extras["ics"]["ic_s"].dropna().to_numpy(float))
+        same = ref.shape == ours_ic.shape and bool(np.allclose(ref, ours_ic, atol=1e-6))
+        notes.append(f"{name}: mobgap's reference ICs {'equal' if same else 'DIFFER from'} our ics.csv "
+                     f"({len(ref)} / {len(ours_ic)}): {'same' if same else 'check the'} time base")
         for pipe in (MobilisedPipelineHealthy(), MobilisedPipelineImpaired()):  # both, on every subject
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
