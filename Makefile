@@ -5,7 +5,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 export MPLBACKEND := Agg
 
-.PHONY: venv demo test bench lint clean browser external
+.PHONY: venv demo test bench lint clean browser external peers
 
 venv: $(STAMP)
 
@@ -42,6 +42,22 @@ bench: $(STAMP)
 external: $(STAMP)
 	$(BIN)/pdrlearn fetch mobgap --out datasets/external
 	$(BIN)/pdrlearn fetch gaitmap --out datasets/external
+
+# The peer tools (experiments/peers.py) in their own venv: mobgap and gaitmap pin numpy/pandas versions of their
+# own, so they are no dependency of pdrlearn. scikit-learn 1.6.1: the version mobgap 1.2.0 pickled its laterality
+# model with (a newer one warns "InconsistentVersionWarning ... invalid results"). pdrlearn is imported from the
+# source tree (PYTHONPATH=.), not installed there. Needs datasets/external (make external) and the network once.
+PEERS := .venv-peers
+PEERS_STAMP := $(PEERS)/.installed
+
+$(PEERS_STAMP):
+	test -x $(PEERS)/bin/python || $(PY) -m venv $(PEERS)
+	$(PEERS)/bin/python -m pip install -q --upgrade pip
+	$(PEERS)/bin/python -m pip install -q mobgap==1.2.0 gaitmap==2.6.0 gaitmap-mad==2.6.0 scikit-learn==1.6.1 tabulate
+	touch $(PEERS_STAMP)
+
+peers: $(PEERS_STAMP)
+	PYTHONPATH=. $(PEERS)/bin/python experiments/peers.py
 
 lint: $(STAMP)
 	$(BIN)/ruff check pdrlearn tests experiments
