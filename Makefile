@@ -56,7 +56,7 @@ $(PEERS_STAMP):
 	$(PEERS)/bin/python -m pip install -q mobgap==1.2.0 gaitmap==2.6.0 gaitmap-mad==2.6.0 scikit-learn==1.6.1 tabulate
 	touch $(PEERS_STAMP)
 
-peers: $(PEERS_STAMP)
+peers: $(PEERS_STAMP) external
 	PYTHONPATH=. $(PEERS)/bin/python experiments/peers.py
 
 lint: $(STAMP)
