@@ -116,3 +116,22 @@ def test_bad_option_and_realtime_are_refused(sim_walks):
         get_pipeline("waist-pendulum")(test, length_smoothing="median")
     with pytest.raises(DataError, match="realtime"):
         get_pipeline("waist-pendulum")(test, length_smoothing="mobgap", realtime=True)
+
+
+def test_bout_error_split_into_count_and_per_step_parts_by_hand():
+    # experiments/peers_bout_parts.py: 7 of 17 reference steps (17.0 m of strides, 1.0 m a step) tracked as 9.03 m
+    # -> count 7/17 - 1 = -58.82 %, per-step (9.03/7)/1.0 - 1 = +29.0 %, (1 + count)(1 + step) = 9.03/17
+    import sys
+    from pathlib import Path
+
+    import pandas as pd
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "experiments"))
+    from peers_bout_parts import parts
+
+    b = parts(pd.DataFrame({"n_steps": [7, 0], "n_reference_steps": [17, 10], "tracked_m": [9.03, 0.0],
+                            "reference_strides_m": [17.0, 6.0]}))
+    assert b["count_err_pct"].iloc[0] == pytest.approx(100 * (7 / 17 - 1))
+    assert b["step_err_pct"].iloc[0] == pytest.approx(29.0)
+    assert (1 + b["count_err_pct"].iloc[0] / 100) * (1 + b["step_err_pct"].iloc[0] / 100) == pytest.approx(9.03 / 17)
+    assert b["count_err_pct"].iloc[1] == -100.0 and np.isnan(b["step_err_pct"].iloc[1])  # no step: no per-step part
