@@ -44,7 +44,9 @@ HistGradientBoosting on the simulator + all three subjects (simulator = real wei
 out-of-fold scores, written as JSON trees to pdrlearn/waist/ic_model.json and checked against scikit-learn.
 
 Run: .venv/bin/python experiments/waist_ic_learned.py [--external datasets/external] [--quick] [--export]
-Writes experiments/results/waist_ic_learned.md (not with --quick).
+Writes experiments/results/waist_ic_learned.md (not with --quick). ``--sim-pelvis realistic`` (decision W52):
+the simulated training sessions with the realistic pelvis of decision S27 (the simulator test set keeps the
+default), written to waist_ic_learned_realistic_pelvis.md; ``--rules-only`` prints the stage-1 table only.
 """
 
 from __future__ import annotations
@@ -143,8 +145,8 @@ def _untimed_any(t: np.ndarray, s) -> np.ndarray:
     return out
 
 
-def sim_rec(scenario: str, user: int, speed: str, irregular: float) -> Rec:
-    s = simulate(scenario, user, speed=speed, rate_hz=100.0, irregular_rate=irregular)
+def sim_rec(scenario: str, user: int, speed: str, irregular: float, pelvis: str = "model") -> Rec:
+    s = simulate(scenario, user, speed=speed, rate_hz=100.0, irregular_rate=irregular, pelvis=pelvis)
     imu = waist_imu(s)
     c = candidates(imu)
     t = imu.t[c["ic"]]
@@ -309,10 +311,17 @@ def main() -> None:
     ap.add_argument("--weights", default="domain", choices=("group", "domain"),
                     help="sample weights of the exported model")
     ap.add_argument("--train", default="abc", help="training sets to run: any of a, b, c")
+    ap.add_argument("--sim-pelvis", default="model", choices=("model", "realistic"),
+                    help="pelvis of the simulated TRAINING sessions (decision W52; the simulator test set keeps "
+                         "the default); 'realistic' also scores the rules on users 1-3 with that pelvis")
+    ap.add_argument("--rules-only", action="store_true",
+                    help="print the stage-1 / rules table only (no simulated training set, no models)")
     ap.add_argument("--export", action="store_true",
                     help="also train the shipped model (HGB, simulator + all three subjects) and write "
                          "pdrlearn/waist/ic_model.json")
     args = ap.parse_args()
+    if args.export and (args.sim_pelvis != "model" or args.rules_only):
+        raise SystemExit("--export trains the shipped model (W33): run it without --sim-pelvis / --rules-only")
     WEIGHTS["w"] = args.weights
     logging.basicConfig(level=logging.WARNING)
     t0 = time.time()
@@ -323,8 +332,9 @@ def main() -> None:
     t5 = {s: [real_rec(ext, n, s) for n in TEST5[s]] for s in SUBJECTS}
     scen = "AB" if args.quick else "ABCD"
     users = SIM_TRAIN_USERS[:2] if args.quick else SIM_TRAIN_USERS
-    sim_train = [sim_rec(sc, u, sp, irr) for u in users for sc in scen for sp in ("slow", "normal", "fast")
-                 for irr in (0.0, 0.2)]
+    sim_train = [] if args.rules_only else [
+        sim_rec(sc, u, sp, irr, args.sim_pelvis) for u in users for sc in scen for sp in ("slow", "normal", "fast")
+        for irr in (0.0, 0.2)]
     sim_test = [sim_rec(sc, u, sp, 0.0) for u in SIM_TEST_USERS[:1 if args.quick else 3] for sc in scen
                 for sp in ("slow", "normal", "fast")]
     log_lines = [f"candidates built in {time.time() - t0:.0f} s"]
@@ -339,8 +349,17 @@ def main() -> None:
     rule_sim = pooled([evaluate(r, r.t[r.rule_ic]) for r in sim_test])
     allc_sim = pooled([evaluate(r, r.t[r.ic]) for r in sim_test])
     head.append(f"| simulator users 1-3 | {fmt(*allc_sim, digits=4)} | {fmt(*rule_sim, digits=4)} |")
+    if args.sim_pelvis != "model":  # W52: the rules on the same walks with the training sessions' pelvis
+        sim_test_p = [sim_rec(sc, u, sp, 0.0, args.sim_pelvis) for u in SIM_TEST_USERS[:1 if args.quick else 3]
+                      for sc in scen for sp in ("slow", "normal", "fast")]
+        head.append(f"| simulator users 1-3, pelvis={args.sim_pelvis} | "
+                    f"{fmt(*pooled([evaluate(r, r.t[r.ic]) for r in sim_test_p]), digits=4)} | "
+                    f"{fmt(*pooled([evaluate(r, r.t[r.rule_ic]) for r in sim_test_p]), digits=4)} |")
     rule_pool = pooled([evaluate(r, r.t[r.rule_ic]) for s in SUBJECTS for r in real[s]])
     head.append(f"| Test11 pooled | | {fmt(*rule_pool)} |")
+    if args.rules_only:
+        print("\n".join(head), flush=True)
+        return
     rows = ["| model | training | held out | Test11 | Test5 | threshold |", "|---|---|---|---|---|---|"]
     summary = []
     for kind in args.models.split(","):
@@ -379,7 +398,10 @@ def main() -> None:
                  "| W28 rules (default) | - | "
                  + " / ".join(f"{f(pooled([evaluate(r, r.t[r.rule_ic]) for r in real[s]])):.3f}" for s in SUBJECTS)
                  + f" | {fmt(*rule_pool)} | {fmt(*rule_t5)} | {fmt(*rule_sim, digits=4)} |"]
-    out = ["# Learned second stage for the offline waist IC detector (W33)", "",
+    title = "# Learned second stage for the offline waist IC detector (W33)"
+    if args.sim_pelvis != "model":
+        title += f"; simulated training sessions with pelvis={args.sim_pelvis} (W52)"
+    out = [title, "",
            "Scored as `step_metrics` (Test11/Test5: inside the INDIP bouts, untimed contacts unscored, 0.25 s); "
            "simulator: users 1-3 x A-D x 3 speeds, 100 Hz, every contact. Leave-one-subject-out: a held-out "
            "subject's Test11 and Test5 are in no training set; thresholds from out-of-fold scores of the "
@@ -392,7 +414,8 @@ def main() -> None:
     text = "\n".join(out) + "\n"
     print(text)
     if not args.quick:
-        (ROOT / "experiments" / "results" / "waist_ic_learned.md").write_text(text)
+        suffix = "" if args.sim_pelvis == "model" else f"_{args.sim_pelvis}_pelvis"
+        (ROOT / "experiments" / "results" / f"waist_ic_learned{suffix}.md").write_text(text)
 
 
 if __name__ == "__main__":
