@@ -101,7 +101,7 @@ class Rec:
 def candidates(imu) -> dict:
     """Stage 1: candidate ICs of ``imu`` with their features (``pdrlearn.waist.learned``)."""
     fs = imu.fs
-    det = InitialContactDetector().detect(imu)  # the default (W28) rule detector
+    det = InitialContactDetector(learned=False).detect(imu)  # the W28 rule detector (explicit: W52)
     ap = lowpass(imu.acc_ap, min(20.0, 0.4 * fs), fs, causal=False)  # as InitialContactDetector
     ic, anchor, X = L.candidate_features(imu.acc_v, ap, imu.acc_ml, imu.w_z, fs, det.anchor_,
                                          walk_threshold=WALK_THRESHOLD_MPS2)
@@ -266,7 +266,7 @@ def pooled(parts: list[tuple[int, int, int, list[float]]]) -> tuple[int, int, in
     return tp, det, nref, dt
 
 
-def export(sim_train: list[Rec], real: dict, t5: dict, sim_test: list[Rec]) -> list[str]:
+def export(sim_train: list[Rec], real: dict, t5: dict, sim_test: list[Rec], pelvis: str = "model") -> list[str]:
     """Train the shipped model on the simulator and all three subjects, convert it to JSON, check that the
     JSON evaluation equals scikit-learn's, and score `InitialContactDetector(learned=True)` (real data:
     in-sample, the leave-one-subject-out rows above are the honest numbers)."""
@@ -276,7 +276,8 @@ def export(sim_train: list[Rec], real: dict, t5: dict, sim_test: list[Rec]) -> l
     info = {"trained_by": "experiments/waist_ic_learned.py --export", "decision": "W33",
             "estimator": "sklearn HistGradientBoostingClassifier(max_depth=3, max_iter=150, learning_rate=0.05, "
                          "early_stopping=False)",
-            "weights": WEIGHTS["w"], "simulator": f"users {SIM_TRAIN_USERS}, A-D x 3 speeds x irregular_rate 0/0.2",
+            "weights": WEIGHTS["w"], "simulator": f"users {SIM_TRAIN_USERS}, A-D x 3 speeds x irregular_rate 0/0.2"
+                                                  + ("" if pelvis == "model" else f", pelvis={pelvis} (S27, W52)"),
             "real": "mobgap HA001, HA002, MS001 Test11 + Test5 (inside the INDIP bouts)",
             "threshold": "out-of-fold pooled F1 (mean of simulator and real) on the training data",
             "n_candidates": int(sum((r.y >= 0).sum() for r in train))}
@@ -320,8 +321,8 @@ def main() -> None:
                     help="also train the shipped model (HGB, simulator + all three subjects) and write "
                          "pdrlearn/waist/ic_model.json")
     args = ap.parse_args()
-    if args.export and (args.sim_pelvis != "model" or args.rules_only):
-        raise SystemExit("--export trains the shipped model (W33): run it without --sim-pelvis / --rules-only")
+    if args.export and args.rules_only:
+        raise SystemExit("--export trains the shipped model (W33): run it without --rules-only")
     WEIGHTS["w"] = args.weights
     logging.basicConfig(level=logging.WARNING)
     t0 = time.time()
@@ -410,7 +411,8 @@ def main() -> None:
            "", f"Run time {time.time() - t0:.0f} s; " + "; ".join(log_lines)]
     WEIGHTS["w"] = args.weights
     if args.export:
-        out += ["", "## Shipped model (`pdrlearn/waist/ic_model.json`)", ""] + export(sim_train, real, t5, sim_test)
+        out += ["", "## Shipped model (`pdrlearn/waist/ic_model.json`)", ""] + export(sim_train, real, t5, sim_test,
+                                                                                      args.sim_pelvis)
     text = "\n".join(out) + "\n"
     print(text)
     if not args.quick:
