@@ -356,10 +356,19 @@ def main() -> None:
         head.append(f"| simulator users 1-3, pelvis={args.sim_pelvis} | "
                     f"{fmt(*pooled([evaluate(r, r.t[r.ic]) for r in sim_test_p]), digits=4)} | "
                     f"{fmt(*pooled([evaluate(r, r.t[r.rule_ic]) for r in sim_test_p]), digits=4)} |")
+        for r0, r1 in zip(sim_test, sim_test_p, strict=True):  # the walks where the pelvis changes the rules
+            e0, e1 = evaluate(r0, r0.t[r0.rule_ic]), evaluate(r1, r1.t[r1.rule_ic])
+            if e0[:3] != e1[:3]:
+                _, i_r = match_events(np.sort(r1.t[r1.rule_ic]), r1.ref, np.full(r1.ref.size, TOL))
+                ics = r1.session.extras["ics"]
+                lost = ics[~np.isin(ics["ic_s"].to_numpy(float), r1.ref[i_r])]
+                log_lines.append(f"{r1.name}: rules TP/det/ref {e0[:3]} -> {e1[:3]} (pelvis={args.sim_pelvis}), "
+                                 "unmatched contacts: " + ", ".join(f"{x.ic_s:.2f} s {x.foot} {x.kind}"
+                                                                    for x in lost.itertuples()))
     rule_pool = pooled([evaluate(r, r.t[r.rule_ic]) for s in SUBJECTS for r in real[s]])
     head.append(f"| Test11 pooled | | {fmt(*rule_pool)} |")
     if args.rules_only:
-        print("\n".join(head), flush=True)
+        print("\n".join(head + [""] + log_lines), flush=True)
         return
     rows = ["| model | training | held out | Test11 | Test5 | threshold |", "|---|---|---|---|---|---|"]
     summary = []
