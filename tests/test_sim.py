@@ -781,3 +781,20 @@ def test_realistic_pelvis_is_one_rigid_body(sign):
     err = _waist_strapdown_error(simulate("A", 1, rate_hz=100, noise=False, pelvis="realistic"), sign)
     print(f"realistic pelvis, gyroscope x {sign:+.0f}: largest waist velocity error {err:.3f} m/s")
     assert err < 0.05 if sign > 0 else err > 1.0
+
+
+def test_cli_pelvis_option(tmp_path, capsys):
+    """S27: `pdrlearn simulate --pelvis realistic` writes the user's pelvis into meta.json; a bad value is
+    one error line."""
+    out = tmp_path / "real_pelvis"
+    code = main(["simulate", "--scenario", "walk", "--length-m", "8", "--user-seed", "1", "--pelvis", "realistic",
+                 "--out", str(out)])
+    _, err = capsys.readouterr()
+    assert code == 0, err
+    from pdrlearn.sim.body import realistic_pelvis
+
+    meta = json.loads((out / "meta.json").read_text())
+    assert meta["pelvis"] == dataclasses.asdict(realistic_pelvis(UserProfile.from_seed(1)))
+    code = main(["simulate", "--scenario", "walk", "--user-seed", "1", "--pelvis", "foo", "--out", str(tmp_path / "x")])
+    _, err = capsys.readouterr()
+    assert code != 0 and err.startswith("error: --pelvis") and err.count("\n") == 1, err
