@@ -41,7 +41,7 @@ from pdrlearn.waist.heading import (
     gyro_headings,
     harmonic_directions,
 )
-from pdrlearn.waist.params import WaistParams, resolve_params
+from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params
 from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
 
 log = logging.getLogger(__name__)
@@ -263,6 +263,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if pipeline not in ("waist-pll", "waist-pendulum"):
         raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     p, warnings = resolve_params(session, params)
+    if pipeline == "waist-pll":  # its frequency step-length model has no leg length (W62)
+        warnings = [w for w in warnings if not w.startswith(NO_SENSOR_HEIGHT)]
     given = {"realtime": realtime, "heading": heading, "refine_ic": refine_ic,
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
