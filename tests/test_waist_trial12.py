@@ -54,6 +54,7 @@ def test_track_realtime_flag_equals_the_params_option(tmp_path, capsys):
     a = json.loads(capsys.readouterr().out)
     assert main(["track", str(HA001_T5), "--params", str(p), "--out", str(tmp_path / "b"), "--json"]) == 0
     b = json.loads(capsys.readouterr().out)
+    assert b["distance_m"] == a["distance_m"]
     assert a["info"]["options"]["realtime"] is True and a["info"]["method"].startswith("alvarez-realtime")
     assert (tmp_path / "a" / "steps.csv").read_text() == (tmp_path / "b" / "steps.csv").read_text()
     # the foot pipeline and the PLL have no causal variant: one line, exit 2
