@@ -61,3 +61,54 @@ def test_track_realtime_flag_equals_the_params_option(tmp_path, capsys):
     assert main(["track", str(HA001_T5), "--pipeline", "waist-pll", "--realtime", "--out", str(tmp_path / "c")]) == 2
     err = capsys.readouterr().err
     assert "--realtime applies to the waist-pendulum pipeline only" in err and not (tmp_path / "c").exists()
+
+
+def _standing(tmp_path: Path) -> Path:
+    """HA001 Test5 Trial1's first 4.5 s (standing before the walk at 5 s), no frames entry, no labels."""
+    import pandas as pd
+
+    d = tmp_path / "stand"
+    d.mkdir()
+    for f in ("wAccelerometer.csv", "wGyroscope.csv"):
+        t = pd.read_csv(HA001_T5 / f)
+        t[t["timestamp"] < 4500].to_csv(d / f, index=False)
+    meta = json.loads((HA001_T5 / "meta.json").read_text())
+    meta["files"] = ["wAccelerometer.csv", "wGyroscope.csv"]
+    meta.pop("frames", None)
+    meta.pop("source_project")  # mobgap's known frame would be taken (frames_from_meta)
+    (d / "meta.json").write_text(json.dumps(meta))
+    return d
+
+
+def test_standing_only_without_frames_tracks_zero_steps(tmp_path, capsys):
+    d = _standing(tmp_path)
+    assert main(["track", str(d), "--out", str(tmp_path / "t"), "--json"]) == 0
+    cap = capsys.readouterr()
+    out = json.loads(cap.out)
+    assert out["n_steps"] == 0 and out["distance_m"] == 0.0
+    assert "no walking to track" in cap.err and cap.err.count("no walking to track") == 1
+    assert "frames_inferred" not in out
+    # calibrate says what is wrong: no steps, not "steps carry no length"
+    assert main(["calibrate", str(d), "-d", "10", "--out", str(tmp_path / "p.json")]) == 2
+    err = capsys.readouterr().err
+    assert f"0 steps detected in {d}" in err and "calibrate needs a walk" in err
+
+
+def test_calibrate_start_end_counts_the_measured_stretch_only(tmp_path, capsys):
+    """HA001 Test5 Trial1: the whole recording's steps (10, from 5.0 s) vs the 5.01 m bout (5.04-9.87 s, 8
+    steps): --start/--end gives the bout's K (trial 12: 0.974 vs 1.219)."""
+    from pdrlearn.waist.calibration import calibrate
+
+    s = read_session(HA001_T5)
+    k_all = calibrate([s], "waist-pendulum", distances=[5.01]).k
+    k_bouts = calibrate([s], "waist-pendulum").k
+    cut = calibrate([s], "waist-pendulum", distances=[5.01], spans=[(5.0, 11.0)])
+    assert abs(cut.k - k_bouts) < 0.01 < abs(k_all - k_bouts)
+    assert any("counted over 8 steps" in n for n in cut.notes)
+    assert main(["calibrate", str(HA001_T5), "-d", "5.01", "--start", "5", "--end", "11", "--out",
+                 str(tmp_path / "p.json"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["k"] == pytest.approx(cut.k)
+    assert main(["calibrate", str(HA001_T5), "--start", "5", "--out", str(tmp_path / "q.json")]) == 2
+    assert "pass --distance METERS too" in capsys.readouterr().err
+    assert main(["calibrate", str(HA001_T5), "-d", "5", "--start", "20", "--out", str(tmp_path / "q.json")]) == 2
+    assert "no detected step" in capsys.readouterr().err

@@ -82,7 +82,11 @@ MAX_DECLARED_OFF_DEG = 60.0
 
 
 class FrameInferenceError(DataError):
-    """The data does not fix the unit's axes with confidence (no walking, no rest, ambiguous axes)."""
+    """The data does not fix the unit's axes with confidence (no walking, no rest, ambiguous axes).
+    ``walk_s``: the seconds of walking found when there were too few to infer a waist frame (decision W61),
+    else None."""
+
+    walk_s: float | None = None
 
 
 @dataclass
@@ -338,8 +342,10 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
     B = np.column_stack(b)
     C, z, walk_s, rhythm = _step_spectra(acc @ up, acc @ B, fs)
     if walk_s < MIN_WALK_S:
-        raise FrameInferenceError(f"less than {MIN_WALK_S:g} s of walking (vertical acceleration std over 0.5 "
+        err = FrameInferenceError(f"less than {MIN_WALK_S:g} s of walking (vertical acceleration std over 0.5 "
                                   "m/s^2 in 4 s windows)")
+        err.walk_s = walk_s  # W61: a waist track of such a recording has no steps to place
+        raise err
     if rhythm < MIN_RHYTHM_SIGMA:
         raise FrameInferenceError(f"no walking rhythm: the vertical acceleration of the {walk_s:.0f} s that move "
                                   f"repeats at no step or stride period of {RHYTHM_LAG_S[0]:g}-{RHYTHM_LAG_S[1]:g} s "
