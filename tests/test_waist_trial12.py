@@ -9,6 +9,7 @@ import logging
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from pdrlearn.cli import main
@@ -112,3 +113,34 @@ def test_calibrate_start_end_counts_the_measured_stretch_only(tmp_path, capsys):
     assert "pass --distance METERS too" in capsys.readouterr().err
     assert main(["calibrate", str(HA001_T5), "-d", "5", "--start", "20", "--out", str(tmp_path / "q.json")]) == 2
     assert "no detected step" in capsys.readouterr().err
+
+
+def test_one_missing_sample_is_bridged_not_a_gap(caplog):
+    """Decision B46: one dropped sample (an interval of 2 periods) is bridged by the step windows' time
+    interpolation, as W34 bridges it in the waist pipelines; two in a row are a gap (B11). Trial 12: 3 of 51
+    waist steps of a 50 Hz recording with 6 single dropped samples lost their channels."""
+    from pdrlearn.features import step_windows
+    from pdrlearn.io.session import Stream
+    from pdrlearn.sim import simulate
+
+    s = simulate("walk", user_seed=2, length_m=20.0, rate_hz=50.0)
+    acc = s.streams["wAccelerometer"]
+    single = np.zeros(len(acc), dtype=bool)
+    single[[300, 420, 555]] = True
+    for name in ("wAccelerometer", "wGyroscope"):
+        st = s.streams[name]
+        s.streams[name] = Stream(name, st.t[~single], st.values[~single])
+    with caplog.at_level(logging.WARNING):
+        w = step_windows(s)
+    assert "waist" not in w.gap_steps and "overlap a gap" not in caplog.text
+    assert np.isfinite(w.X).all()
+    double = single.copy()
+    double[[301]] = True  # 300 and 301: two samples in a row
+    s2 = simulate("walk", user_seed=2, length_m=20.0, rate_hz=50.0)
+    for name in ("wAccelerometer", "wGyroscope"):
+        st = s2.streams[name]
+        s2.streams[name] = Stream(name, st.t[~double], st.values[~double])
+    w2 = step_windows(s2)
+    t_gap = acc.t[300]
+    hit = (s2.steps["start_s"] < t_gap + 0.06).to_numpy() & (s2.steps["end_s"] > t_gap - 0.02).to_numpy()
+    assert hit.any() and np.array_equal(w2.gap_steps["waist"], hit)
