@@ -144,3 +144,33 @@ def test_one_missing_sample_is_bridged_not_a_gap(caplog):
     t_gap = acc.t[300]
     hit = (s2.steps["start_s"] < t_gap + 0.06).to_numpy() & (s2.steps["end_s"] > t_gap - 0.02).to_numpy()
     assert hit.any() and np.array_equal(w2.gap_steps["waist"], hit)
+
+
+@pytest.mark.parametrize("delay_s", [None, 1.75])
+def test_online_with_dropped_samples_equals_detect(delay_s):
+    """Decision W59: a stream with 6 single dropped samples and a 1.5 s gap gives, pushed in chunks, the
+    contacts of ``detect`` on the same session (which bridges them, W34; before: 106 vs 105 offline contacts,
+    99 vs 100 realtime)."""
+    import pandas as pd
+
+    from pdrlearn.io.session import Stream
+    from pdrlearn.steps import WaistICStepDetector
+
+    s = read_session(ROOT / "datasets" / "real" / "mobgap_HA001_Test11_Trial1")
+    n = len(s["wAccelerometer"])
+    drop = np.zeros(n, dtype=bool)
+    drop[np.random.default_rng(0).choice(np.arange(50, n - 50), 6, replace=False)] = True
+    drop[3000:3150] = True  # 1.5 s: filled as a rest and ends the walking sequence (B11)
+    for name in ("wAccelerometer", "wGyroscope"):
+        st = s[name]
+        s.streams[name] = Stream(name, st.t[~drop], st.values[~drop])
+    a, g = s["wAccelerometer"], s["wGyroscope"]
+    t, v = a.t, np.column_stack([a.values, g.values])
+    det = WaistICStepDetector(delay_s=delay_s)
+    off = det.detect(s)
+    on = det.online(a.rate_hz, rotation=s.require_frame("waist").matrix())
+    out = pd.concat([on.push(t[i:i + 37], v[i:i + 37]) for i in range(0, len(t), 37)] + [on.flush()],
+                    ignore_index=True)
+    assert len(out) == len(off) > 90
+    np.testing.assert_allclose(out["start_s"], off["start_s"], atol=1e-9)
+    np.testing.assert_allclose(out["end_s"], off["end_s"], atol=1e-9)
