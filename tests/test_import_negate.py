@@ -68,3 +68,17 @@ def test_d11_cannot_see_an_un_negated_ios_accelerometer():
     finally:
         logging.disable(logging.NOTSET)
     assert h0.log_ratio > 0.1 and h0.segments >= 4 and h1.log_ratio == pytest.approx(h0.log_ratio, abs=0.05)
+
+
+def test_declared_frame_against_an_ios_accelerometer_names_the_sign(caplog):
+    """The true frame declared over an un-negated iOS accelerometer: the D10 warning used to say only "write the
+    data's frame" (a 180-degree turn that mirrors every turn); it now names the -1 g convention (B48)."""
+    from pdrlearn.io.session import Stream
+    from pdrlearn.track.frame_inference import check_declared_frame
+
+    s = read_session(T5)
+    a = s["wAccelerometer"]
+    s.streams["wAccelerometer"] = Stream(a.name, a.t, -a.values)
+    msg = check_declared_frame(s, "waist", s.frames["waist"])
+    assert msg is not None and "gravity as -1 g" in msg and "--acc=-X,-Y,-Z" in msg
+    assert check_declared_frame(read_session(T5), "waist", s.frames["waist"]) is None

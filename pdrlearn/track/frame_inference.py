@@ -458,6 +458,11 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> str | 
     if set(off) == {"left"}:  # up and forward agree, left reversed: a wrong entry, or mirrored data
         fix = (f"{fix}; but if the declared axes are right, the data are mirrored (one axis column negated, "
                "e.g. by a left-handed export): negate that column in the CSV files instead")
+    if set(off) == {"up", "forward"} and min(off.values()) > 150.0:  # B48: the frame turned 180 deg about left
+        acc_n = UNIT_STREAMS[placement][0]
+        fix = (f"{fix}; but if the declared axes are right, the accelerometer reports gravity as -1 g (iOS Core "
+               f"Motion exports do): negate all three columns of {acc_n}.csv (pdrlearn import --acc=-X,-Y,-Z) "
+               "instead, since writing the data's frame would mirror every turn")
     return f"{what} {' and '.join(issues)}; the meta.json frame is still used (decision D8): {fix}"
 
 
