@@ -44,7 +44,9 @@ HistGradientBoosting on the simulator + all three subjects (simulator = real wei
 out-of-fold scores, written as JSON trees to pdrlearn/waist/ic_model.json and checked against scikit-learn.
 
 Run: .venv/bin/python experiments/waist_ic_learned.py [--external datasets/external] [--quick] [--export]
-Writes experiments/results/waist_ic_learned.md (not with --quick).
+Writes experiments/results/waist_ic_learned.md (not with --quick). ``--sim-pelvis realistic`` (decision W52):
+the simulated training sessions with the realistic pelvis of decision S27 (the simulator test set keeps the
+default), written to waist_ic_learned_realistic_pelvis.md; ``--rules-only`` prints the stage-1 table only.
 """
 
 from __future__ import annotations
@@ -99,7 +101,7 @@ class Rec:
 def candidates(imu) -> dict:
     """Stage 1: candidate ICs of ``imu`` with their features (``pdrlearn.waist.learned``)."""
     fs = imu.fs
-    det = InitialContactDetector().detect(imu)  # the default (W28) rule detector
+    det = InitialContactDetector(learned=False).detect(imu)  # the W28 rule detector (explicit: W52)
     ap = lowpass(imu.acc_ap, min(20.0, 0.4 * fs), fs, causal=False)  # as InitialContactDetector
     ic, anchor, X = L.candidate_features(imu.acc_v, ap, imu.acc_ml, imu.w_z, fs, det.anchor_,
                                          walk_threshold=WALK_THRESHOLD_MPS2)
@@ -143,8 +145,8 @@ def _untimed_any(t: np.ndarray, s) -> np.ndarray:
     return out
 
 
-def sim_rec(scenario: str, user: int, speed: str, irregular: float) -> Rec:
-    s = simulate(scenario, user, speed=speed, rate_hz=100.0, irregular_rate=irregular)
+def sim_rec(scenario: str, user: int, speed: str, irregular: float, pelvis: str = "model") -> Rec:
+    s = simulate(scenario, user, speed=speed, rate_hz=100.0, irregular_rate=irregular, pelvis=pelvis)
     imu = waist_imu(s)
     c = candidates(imu)
     t = imu.t[c["ic"]]
@@ -264,7 +266,7 @@ def pooled(parts: list[tuple[int, int, int, list[float]]]) -> tuple[int, int, in
     return tp, det, nref, dt
 
 
-def export(sim_train: list[Rec], real: dict, t5: dict, sim_test: list[Rec]) -> list[str]:
+def export(sim_train: list[Rec], real: dict, t5: dict, sim_test: list[Rec], pelvis: str = "model") -> list[str]:
     """Train the shipped model on the simulator and all three subjects, convert it to JSON, check that the
     JSON evaluation equals scikit-learn's, and score `InitialContactDetector(learned=True)` (real data:
     in-sample, the leave-one-subject-out rows above are the honest numbers)."""
@@ -274,7 +276,8 @@ def export(sim_train: list[Rec], real: dict, t5: dict, sim_test: list[Rec]) -> l
     info = {"trained_by": "experiments/waist_ic_learned.py --export", "decision": "W33",
             "estimator": "sklearn HistGradientBoostingClassifier(max_depth=3, max_iter=150, learning_rate=0.05, "
                          "early_stopping=False)",
-            "weights": WEIGHTS["w"], "simulator": f"users {SIM_TRAIN_USERS}, A-D x 3 speeds x irregular_rate 0/0.2",
+            "weights": WEIGHTS["w"], "simulator": f"users {SIM_TRAIN_USERS}, A-D x 3 speeds x irregular_rate 0/0.2"
+                                                  + ("" if pelvis == "model" else f", pelvis={pelvis} (S27, W52)"),
             "real": "mobgap HA001, HA002, MS001 Test11 + Test5 (inside the INDIP bouts)",
             "threshold": "out-of-fold pooled F1 (mean of simulator and real) on the training data",
             "n_candidates": int(sum((r.y >= 0).sum() for r in train))}
@@ -309,10 +312,17 @@ def main() -> None:
     ap.add_argument("--weights", default="domain", choices=("group", "domain"),
                     help="sample weights of the exported model")
     ap.add_argument("--train", default="abc", help="training sets to run: any of a, b, c")
+    ap.add_argument("--sim-pelvis", default="model", choices=("model", "realistic"),
+                    help="pelvis of the simulated TRAINING sessions (decision W52; the simulator test set keeps "
+                         "the default); 'realistic' also scores the rules on users 1-3 with that pelvis")
+    ap.add_argument("--rules-only", action="store_true",
+                    help="print the stage-1 / rules table only (no simulated training set, no models)")
     ap.add_argument("--export", action="store_true",
                     help="also train the shipped model (HGB, simulator + all three subjects) and write "
                          "pdrlearn/waist/ic_model.json")
     args = ap.parse_args()
+    if args.export and args.rules_only:
+        raise SystemExit("--export trains the shipped model (W33): run it without --rules-only")
     WEIGHTS["w"] = args.weights
     logging.basicConfig(level=logging.WARNING)
     t0 = time.time()
@@ -323,8 +333,9 @@ def main() -> None:
     t5 = {s: [real_rec(ext, n, s) for n in TEST5[s]] for s in SUBJECTS}
     scen = "AB" if args.quick else "ABCD"
     users = SIM_TRAIN_USERS[:2] if args.quick else SIM_TRAIN_USERS
-    sim_train = [sim_rec(sc, u, sp, irr) for u in users for sc in scen for sp in ("slow", "normal", "fast")
-                 for irr in (0.0, 0.2)]
+    sim_train = [] if args.rules_only else [
+        sim_rec(sc, u, sp, irr, args.sim_pelvis) for u in users for sc in scen for sp in ("slow", "normal", "fast")
+        for irr in (0.0, 0.2)]
     sim_test = [sim_rec(sc, u, sp, 0.0) for u in SIM_TEST_USERS[:1 if args.quick else 3] for sc in scen
                 for sp in ("slow", "normal", "fast")]
     log_lines = [f"candidates built in {time.time() - t0:.0f} s"]
@@ -339,8 +350,26 @@ def main() -> None:
     rule_sim = pooled([evaluate(r, r.t[r.rule_ic]) for r in sim_test])
     allc_sim = pooled([evaluate(r, r.t[r.ic]) for r in sim_test])
     head.append(f"| simulator users 1-3 | {fmt(*allc_sim, digits=4)} | {fmt(*rule_sim, digits=4)} |")
+    if args.sim_pelvis != "model":  # W52: the rules on the same walks with the training sessions' pelvis
+        sim_test_p = [sim_rec(sc, u, sp, 0.0, args.sim_pelvis) for u in SIM_TEST_USERS[:1 if args.quick else 3]
+                      for sc in scen for sp in ("slow", "normal", "fast")]
+        head.append(f"| simulator users 1-3, pelvis={args.sim_pelvis} | "
+                    f"{fmt(*pooled([evaluate(r, r.t[r.ic]) for r in sim_test_p]), digits=4)} | "
+                    f"{fmt(*pooled([evaluate(r, r.t[r.rule_ic]) for r in sim_test_p]), digits=4)} |")
+        for r0, r1 in zip(sim_test, sim_test_p, strict=True):  # the walks where the pelvis changes the rules
+            e0, e1 = evaluate(r0, r0.t[r0.rule_ic]), evaluate(r1, r1.t[r1.rule_ic])
+            if e0[:3] != e1[:3]:
+                _, i_r = match_events(np.sort(r1.t[r1.rule_ic]), r1.ref, np.full(r1.ref.size, TOL))
+                ics = r1.session.extras["ics"]
+                lost = ics[~np.isin(ics["ic_s"].to_numpy(float), r1.ref[i_r])]
+                log_lines.append(f"{r1.name}: rules TP/det/ref {e0[:3]} -> {e1[:3]} (pelvis={args.sim_pelvis}), "
+                                 "unmatched contacts: " + ", ".join(f"{x.ic_s:.2f} s {x.foot} {x.kind}"
+                                                                    for x in lost.itertuples()))
     rule_pool = pooled([evaluate(r, r.t[r.rule_ic]) for s in SUBJECTS for r in real[s]])
     head.append(f"| Test11 pooled | | {fmt(*rule_pool)} |")
+    if args.rules_only:
+        print("\n".join(head + [""] + log_lines), flush=True)
+        return
     rows = ["| model | training | held out | Test11 | Test5 | threshold |", "|---|---|---|---|---|---|"]
     summary = []
     for kind in args.models.split(","):
@@ -379,7 +408,10 @@ def main() -> None:
                  "| W28 rules (default) | - | "
                  + " / ".join(f"{f(pooled([evaluate(r, r.t[r.rule_ic]) for r in real[s]])):.3f}" for s in SUBJECTS)
                  + f" | {fmt(*rule_pool)} | {fmt(*rule_t5)} | {fmt(*rule_sim, digits=4)} |"]
-    out = ["# Learned second stage for the offline waist IC detector (W33)", "",
+    title = "# Learned second stage for the offline waist IC detector (W33)"
+    if args.sim_pelvis != "model":
+        title += f"; simulated training sessions with pelvis={args.sim_pelvis} (W52)"
+    out = [title, "",
            "Scored as `step_metrics` (Test11/Test5: inside the INDIP bouts, untimed contacts unscored, 0.25 s); "
            "simulator: users 1-3 x A-D x 3 speeds, 100 Hz, every contact. Leave-one-subject-out: a held-out "
            "subject's Test11 and Test5 are in no training set; thresholds from out-of-fold scores of the "
@@ -388,11 +420,13 @@ def main() -> None:
            "", f"Run time {time.time() - t0:.0f} s; " + "; ".join(log_lines)]
     WEIGHTS["w"] = args.weights
     if args.export:
-        out += ["", "## Shipped model (`pdrlearn/waist/ic_model.json`)", ""] + export(sim_train, real, t5, sim_test)
+        out += ["", "## Shipped model (`pdrlearn/waist/ic_model.json`)", ""] + export(sim_train, real, t5, sim_test,
+                                                                                      args.sim_pelvis)
     text = "\n".join(out) + "\n"
     print(text)
     if not args.quick:
-        (ROOT / "experiments" / "results" / "waist_ic_learned.md").write_text(text)
+        suffix = "" if args.sim_pelvis == "model" else f"_{args.sim_pelvis}_pelvis"
+        (ROOT / "experiments" / "results" / f"waist_ic_learned{suffix}.md").write_text(text)
 
 
 if __name__ == "__main__":

@@ -10,7 +10,8 @@ lower backs (decision S26): the tilt-acceleration coupling at the stride and ste
    force f (lateral c = +g roll, forward c = -g pitch, angles from the gyroscope). Integrating the gyroscope
    reversed turns c into -c in the navigation frame: the velocity error energy changes by 4 Re(f c*) / Omega^2,
    so the reversed sign fits better where f is against c. k = Re(f c*) / |c|^2 (> 0: the recorded sign fits).
-3. The same on simulated sessions with the pelvis roll / sway gains of ``pdrlearn.sim.body`` (S26 proposal).
+3. The same on simulated sessions with the pelvis roll / sway gains of ``pdrlearn.sim.body`` (S26 proposal)
+   and with the opt-in realistic pelvis (``simulate(..., pelvis="realistic")``, decision S27).
 
 Usage::
 
@@ -40,6 +41,8 @@ WIN_S = 4.0
 SIM_USERS = range(8)
 #: (roll gain, sway gain) of the simulated pelvis: the model (1, 1) and the proposals measured (S26)
 VARIANTS = ((1.0, 1.0), (-1.0, 1.0), (-0.4, 1.0), (-0.4, 0.6))
+#: (decision S27) the opt-in realistic pelvis, measured after the gain variants (gains at 1.0)
+PELVIS_OPTIONS = ("realistic",)
 
 
 def _unit(s):
@@ -179,6 +182,12 @@ def main() -> None:
         lines += [_fmt(r) for r in res[key]]
         print(key, "done", flush=True)
     body.PELVIS_ROLL_GAIN, body.PELVIS_SWAY_GAIN = 1.0, 1.0
+    for opt in PELVIS_OPTIONS:
+        key = f"sim pelvis={opt}"
+        res[key] = [summary(f"{key} walk u{u}", simulate("walk", u, "normal", rate_hz=100.0, seed=u, length_m=150.0,
+                                                         pelvis=opt)) for u in SIM_USERS]
+        lines += [_fmt(r) for r in res[key]]
+        print(key, "done", flush=True)
     lines += ["", "## Ranges (min..max over sessions)", "",
               "| group | H | a_lat | g roll | phase lat | k_lat | a_fwd | g pitch | phase fwd | k_fwd |",
               "|---|---|---|---|---|---|---|---|---|---|"]

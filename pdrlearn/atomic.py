@@ -14,15 +14,24 @@ name, or under the set-aside name, which the error gives). Files (:func:`atomic_
 
 from __future__ import annotations
 
+import logging
 import os
+import re
 import shutil
 import tempfile
+import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from pathlib import Path
 
 from pdrlearn.errors import PdrlearnError
+
+log = logging.getLogger(__name__)
+
+#: when this process loaded the module: a temporary folder of the old kind (no process id in its name) last
+#: changed before it cannot be this process's (decision B44)
+_PROCESS_START = time.time()
 
 #: What each checked output folder held when it was checked: resolved path -> :func:`fingerprint`. ``None``
 #: outside :func:`checked_outputs` (library calls), where nothing is compared.
@@ -99,6 +108,48 @@ def _put_back(aside: Path, target: Path) -> None:
                                  f"output is kept in {aside}") from exc
 
 
+def _alive(pid: int) -> bool:
+    """Whether a process ``pid`` runs on this machine (signal 0 checks without sending anything)."""
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OSError):  # another user's process, or the check is not possible: assume alive
+        return True
+    return True
+
+
+def clean_leftovers(target: str | os.PathLike) -> list[Path]:
+    """Decision B44: delete the temporary folders an interrupted write to ``target`` left (``.NAME.tmp-PID-XXXX``
+    whose process has ended; ``.NAME.tmp-XXXX`` of older versions, when last changed before this process
+    started), with one warning; returns them. A killed import or track (SIGTERM) left e.g. 24 MB of a partial
+    wAccelerometer.csv that no later run removed. Set-aside previous outputs (``.NAME.old-XXXX``, B20) are
+    never deleted: they may be the only copy of a result."""
+    target = Path(target)
+    if not target.parent.is_dir():
+        return []
+    pat = re.compile(re.escape(f".{target.name}.tmp-") + r"(?:(\d+)-)?[^/]+$")
+    gone = []
+    for p in target.parent.iterdir():
+        m = pat.match(p.name)
+        if not m or p.is_symlink() or not p.is_dir():
+            continue
+        try:
+            stale = not _alive(int(m.group(1))) if m.group(1) else p.stat().st_mtime < _PROCESS_START
+        except OSError:
+            continue
+        if stale:
+            shutil.rmtree(p, ignore_errors=True)
+            if not p.exists():
+                gone.append(p)
+    if gone:
+        log.warning("%s: removed %d temporary folder(s) left by an interrupted write (%s)", target, len(gone),
+                    ", ".join(p.name for p in gone[:3]) + (" ..." if len(gone) > 3 else ""))
+    return gone
+
+
 @contextmanager
 def atomic_directory(target: str | os.PathLike) -> Iterator[Path]:
     """Yield a temporary sibling folder of ``target``; when the block succeeds it replaces ``target``.
@@ -111,7 +162,8 @@ def atomic_directory(target: str | os.PathLike) -> Iterator[Path]:
     """
     target = Path(target)
     target.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.tmp-", dir=target.parent))
+    clean_leftovers(target)  # decision B44
+    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.tmp-{os.getpid()}-", dir=target.parent))
     # mkdtemp creates 0700; the result gets the permissions a plain mkdir would give (umask applied),
     # so a model, bundle, session or report folder is readable by whoever could read its parent.
     tmp.chmod(0o777 & ~_umask())

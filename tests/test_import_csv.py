@@ -111,8 +111,9 @@ def test_real_session_round_trip_tab_separated_with_options(tmp_path, capsys):
 
 
 def test_mapping_file_and_sample_index_time(tmp_path, capsys):
-    """A mapping JSON; sample-index timestamps (0, 1, 2 ...) fit ms and s: read as ms and said so, --time-unit
-    overrides (new-user trial 4: an index read as ms without a word)."""
+    """A mapping JSON; sample-index timestamps (0, 1, 2 ...) fit ms and s: refused without a unit or a rate
+    (decision B39; before: read as ms and said so, which trial 12 followed to 6 steps for 146), --rate and
+    --time-unit say what they are (new-user trial 4: an index read as ms without a word)."""
     n = 400
     rng = np.random.default_rng(0)
     df = pd.DataFrame({"sample": np.arange(n), "a_x": rng.normal(0, 1, n), "a_y": rng.normal(9.8, 1, n),
@@ -122,9 +123,12 @@ def test_mapping_file_and_sample_index_time(tmp_path, capsys):
     df.to_csv(csv, index=False)
     mp = tmp_path / "map.json"
     mp.write_text(json.dumps({"time": "sample", "acc": ["a_x", "a_y", "a_z"], "gyro": ["r_x", "r_y", "r_z"]}))
-    assert main(["import", str(csv), "--out", str(tmp_path / "a"), "--mapping", str(mp)]) == 0
-    err = capsys.readouterr().err
-    assert "in ms (given column, unit inferred (B22); also fits s)" in err
+    assert main(["import", str(csv), "--out", str(tmp_path / "a"), "--mapping", str(mp)]) != 0
+    err = _err(capsys)
+    assert "column 'sample' holds consecutive integers (0-399, step 1)" in err and "--rate HZ" in err
+    assert main(["import", str(csv), "--out", str(tmp_path / "a"), "--mapping", str(mp), "--rate", "50"]) == 0
+    assert read_session(tmp_path / "a").streams["fAccelerometer"].rate_hz == pytest.approx(50.0)
+    assert "in samples (given column, unit sample numbers at 50 Hz (given with --rate))" in capsys.readouterr().err
     assert main(["import", str(csv), "--out", str(tmp_path / "b"), "--mapping", str(mp), "--time-unit", "s"]) == 0
     assert read_session(tmp_path / "b").streams["fAccelerometer"].rate_hz == pytest.approx(1.0)
     mp.write_text(json.dumps({"acc": ["a_x", "a_y", "a_z"], "units": {"time": "s"}, "sampling": 1}))

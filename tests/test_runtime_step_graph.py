@@ -117,7 +117,9 @@ def test_tracker_with_step_graph_streams_the_same_steps(trained):
         assert x.classes == y.classes
         for task in x.proba:
             assert max(abs(x.proba[task][c] - y.proba[task][c]) for c in x.proba[task]) <= 1e-9
-        assert (x.x, x.y, x.z) == (y.x, y.y, y.z)
+        # positions equal to float rounding: the default bayes rule (L41) weighs lengths by the class
+        # probabilities, which the two paths compute to <= 1e-9 (above), so a last-bit difference is expected
+        assert np.allclose((x.x, x.y, x.z), (y.x, y.y, y.z), rtol=0, atol=1e-9)
 
 
 def test_other_methods_and_non_graph_models_use_the_per_model_path(trained):

@@ -635,6 +635,17 @@ def _strapdown_velocity(acc_body: np.ndarray, gyr_body: np.ndarray, r0: Rotation
     return np.vstack([np.zeros(3), np.cumsum(0.5 * (a_nav[1:] + a_nav[:-1]) * dt, axis=0)])
 
 
+def _waist_strapdown_error(s, sign: float, dt: float = 0.01) -> float:
+    """Largest waist velocity error (m/s) of a strapdown over the whole session from the initial standstill
+    (pelvis level, heading from the ground truth), the gyroscope multiplied by ``sign``."""
+    mis = Rotation.from_rotvec(np.radians(s.meta["misalignment_deg"]["waist"])).as_matrix()
+    axes = mis @ s.frames["waist"].matrix()
+    v_true = np.gradient(s.trajectory[["x", "y", "z"]].to_numpy(), dt, axis=0)
+    r0 = Rotation.from_euler("z", s.trajectory.heading_rad.iloc[0])
+    v = _strapdown_velocity(s["wAccelerometer"].values @ axes.T, sign * s["wGyroscope"].values @ axes.T, r0, dt)
+    return float(np.abs(v - v_true).max())
+
+
 @pytest.mark.parametrize("sign", [1.0, -1.0])
 def test_accelerometer_and_gyroscope_of_one_rigid_body(exact_a, sign):
     """The gyroscope is the body-frame angular rate of the orientation that put gravity and the linear
@@ -642,13 +653,7 @@ def test_accelerometer_and_gyroscope_of_one_rigid_body(exact_a, sign):
     start orientation reproduces the true velocity of both units; with the gyroscope reversed (sign -1, what a
     mirrored or sign-flipped simulator would produce) it must not."""
     s, dt = exact_a, 0.01
-    # waist: the whole session from the initial standstill (pelvis level, heading from the ground truth)
-    mis = Rotation.from_rotvec(np.radians(s.meta["misalignment_deg"]["waist"])).as_matrix()
-    axes = mis @ s.frames["waist"].matrix()
-    v_true = np.gradient(s.trajectory[["x", "y", "z"]].to_numpy(), dt, axis=0)
-    r0 = Rotation.from_euler("z", s.trajectory.heading_rad.iloc[0])
-    v = _strapdown_velocity(s["wAccelerometer"].values @ axes.T, sign * s["wGyroscope"].values @ axes.T, r0, dt)
-    waist_err = float(np.abs(v - v_true).max())
+    waist_err = _waist_strapdown_error(s, sign)
     # foot: each steady stride from the true orientation at its start (the unit is at rest there)
     ft = s.extras["foot_trajectory"]
     q = Rotation.from_quat(ft[["qx", "qy", "qz", "qw"]].to_numpy())
@@ -665,3 +670,131 @@ def test_accelerometer_and_gyroscope_of_one_rigid_body(exact_a, sign):
         assert waist_err < 0.05 and foot_err < 0.25, (waist_err, foot_err)
     else:
         assert waist_err > 1.0 and foot_err > 1.0, (waist_err, foot_err)
+
+
+# -- decision S27: the opt-in realistic pelvis ---------------------------------------------------------
+def _digest(s) -> str:
+    """SHA-256 of a session's streams, ground truth and meta (values rounded to 1e-9)."""
+    import hashlib
+
+    h = hashlib.sha256()
+    for name in sorted(s.streams):
+        st = s.streams[name]
+        h.update(name.encode())
+        h.update(np.round(st.t, 9).tobytes())
+        h.update(np.round(st.values, 9).tobytes())
+    for df in (s.trajectory, s.steps, s.extras["ics"], s.extras["foot_trajectory"]):
+        for c in df.columns:
+            v = df[c].to_numpy()
+            h.update(str(c).encode())
+            num = v.dtype.kind in "fiub"
+            h.update(np.round(v.astype(float), 9).tobytes() if num else "|".join(map(str, v)).encode())
+    h.update(json.dumps(s.meta, sort_keys=True, default=str).encode())
+    return h.hexdigest()
+
+
+# computed with the simulator before the pelvis option existed (commit a324768)
+DEFAULT_DIGESTS = {
+    ("walk", 2, "normal", 100.0, 3): "1cc0769699eee84046c30eedd9fb9482d172d0c79c51172d0130b563987c4ea7",
+    ("A", 1, "fast", 20.0, 0): "d169e165c3d3ece45226740b61a37e70777866e33f2e95385f886b942e213e4a",
+}
+
+
+@pytest.mark.parametrize("key", list(DEFAULT_DIGESTS))
+def test_default_pelvis_is_unchanged(key):
+    """S27: the pelvis option leaves the default sessions (streams, ground truth, meta) as they were; the
+    explicit default is the default, and the realistic pelvis changes only the waist."""
+    sc, u, speed, rate, seed = key
+    kw = {"length_m": 15.0} if sc == "walk" else {}
+    s = simulate(sc, u, speed, rate_hz=rate, seed=seed, **kw)
+    assert _digest(s) == DEFAULT_DIGESTS[key]
+    assert _digest(simulate(sc, u, speed, rate_hz=rate, seed=seed, pelvis="model", **kw)) == DEFAULT_DIGESTS[key]
+    r = simulate(sc, u, speed, rate_hz=rate, seed=seed, pelvis="realistic", **kw)
+    assert r.meta["knobs"]["pelvis"] == "realistic" and set(r.meta["pelvis"]) >= {"roll_deg", "roll_phase_deg"}
+    for name in ("fAccelerometer", "fGyroscope", "fForceA", "wBarometer"):
+        np.testing.assert_array_equal(r[name].values, s[name].values)
+    assert np.abs(r["wGyroscope"].values - s["wGyroscope"].values).max() > 0.01
+
+
+def test_pelvis_option_rejects_unknown_values():
+    with pytest.raises(DataError, match="pelvis="):
+        simulate("walk", 1, length_m=5.0, pelvis="real")
+
+
+def test_realistic_pelvis_draws_cover_the_real_ranges():
+    """S27: roll 0.4-2 deg, phase -45..+45 deg, sway acceleration 0.4-0.9 m/s^2, drawn per user (S26's real
+    lower backs); deterministic per user seed."""
+    from pdrlearn.sim.body import realistic_pelvis
+
+    p = [realistic_pelvis(UserProfile.from_seed(u)) for u in range(60)]
+    roll, ph, acc = (np.array([getattr(x, k) for x in p]) for k in ("roll_deg", "roll_phase_deg", "sway_acc_mps2"))
+    assert roll.min() >= 0.4 and roll.max() <= 2.0 and np.ptp(roll) > 1.2
+    assert ph.min() >= -45 and ph.max() <= 45 and ph.min() < -30 and ph.max() > 30
+    assert acc.min() >= 0.4 and acc.max() <= 0.9 and np.ptp(acc) > 0.35
+    assert realistic_pelvis(UserProfile.from_seed(7)) == p[7]
+
+
+def _stride_coupling(s) -> tuple[float, float, float]:
+    """Noise-free walk: |g roll|, |a_lat| (m/s^2) and the phase of g roll ahead of a_lat (deg) at the stride
+    frequency over whole strides of the steady walk (lock-in, as experiments/waist_tilt_coupling.py)."""
+    mis = Rotation.from_rotvec(np.radians(s.meta["misalignment_deg"]["waist"])).as_matrix()
+    axes = mis @ s.frames["waist"].matrix()
+    acc, gyr, t = s["wAccelerometer"].values @ axes.T, s["wGyroscope"].values @ axes.T, s["wAccelerometer"].t
+    ic = np.sort(s.extras["ics"].ic_s.to_numpy())
+    f = 0.5 / np.median(np.diff(ic))
+    m = (t >= ic[3]) & (t < ic[3] + np.floor((ic[-4] - ic[3]) * f) / f)
+
+    def lockin(x):
+        tt = t[m] - t[m][0]
+        w = np.hanning(tt.size)
+        x = x[m] - np.polyval(np.polyfit(tt, x[m], 1), tt)
+        return complex(2 * np.sum(w * x * np.exp(-2j * np.pi * f * tt)) / np.sum(w))
+
+    c = G * lockin(gyr[:, 0]) / (2j * np.pi * f)  # lateral gravity term +g roll
+    a = lockin(acc[:, 1]) - c
+    return abs(c), abs(a), float(np.degrees(np.angle(c * np.conj(a))))
+
+
+@pytest.mark.parametrize("u", [1, 2, 3])
+def test_realistic_pelvis_leans_toward_the_stance_side(u):
+    """S26/S27: the model's roll is opposite to the lateral acceleration (~180 deg), the realistic roll in
+    phase with it (within the user's drawn phase +- 25 deg: the pelvic rotation's lever arm to the unit adds
+    some lateral acceleration), with the drawn amplitude, and the sway acceleration is smaller."""
+    from pdrlearn.sim.body import realistic_pelvis
+
+    user = UserProfile.from_seed(u)
+    p = realistic_pelvis(user)
+    c_m, a_m, ph_m = _stride_coupling(simulate_path([Straight(25.0)], user, rate_hz=100, noise=False))
+    c_r, a_r, ph_r = _stride_coupling(
+        simulate_path([Straight(25.0)], user, rate_hz=100, noise=False, pelvis="realistic")
+    )
+    assert abs(ph_m) > 150 and abs(ph_r) < 70
+    assert abs(ph_r - p.roll_phase_deg) < 25
+    assert c_r == pytest.approx(G * np.radians(p.roll_deg), rel=0.15)
+    assert 0.4 <= a_r <= 1.2 and a_r < 0.8 * a_m
+
+
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_realistic_pelvis_is_one_rigid_body(sign):
+    """S27 with the S26 strapdown check: the realistic pelvis's gyroscope and accelerometer belong to one
+    rigid body (the true velocity from the true start, within 0.05 m/s; reversed gyroscope > 1 m/s)."""
+    err = _waist_strapdown_error(simulate("A", 1, rate_hz=100, noise=False, pelvis="realistic"), sign)
+    print(f"realistic pelvis, gyroscope x {sign:+.0f}: largest waist velocity error {err:.3f} m/s")
+    assert err < 0.05 if sign > 0 else err > 1.0
+
+
+def test_cli_pelvis_option(tmp_path, capsys):
+    """S27: `pdrlearn simulate --pelvis realistic` writes the user's pelvis into meta.json; a bad value is
+    one error line."""
+    out = tmp_path / "real_pelvis"
+    code = main(["simulate", "--scenario", "walk", "--length-m", "8", "--user-seed", "1", "--pelvis", "realistic",
+                 "--out", str(out)])
+    _, err = capsys.readouterr()
+    assert code == 0, err
+    from pdrlearn.sim.body import realistic_pelvis
+
+    meta = json.loads((out / "meta.json").read_text())
+    assert meta["pelvis"] == dataclasses.asdict(realistic_pelvis(UserProfile.from_seed(1)))
+    code = main(["simulate", "--scenario", "walk", "--user-seed", "1", "--pelvis", "foo", "--out", str(tmp_path / "x")])
+    _, err = capsys.readouterr()
+    assert code != 0 and err.startswith("error: --pelvis") and err.count("\n") == 1, err

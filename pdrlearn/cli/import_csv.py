@@ -72,6 +72,13 @@ def import_command(
                                  "frames (the options override it)."),
     time_unit: str = typer.Option(None, "--time-unit", help="ms, s, us or ns (default: the header's '(ms)', else "
                                   "inferred from the sampling rate, decision B22)."),
+    rate: float = typer.Option(None, "--rate", help="The time column holds sample numbers (0, 1, 2 ...) at this "
+                               "rate in Hz (decision B39; consecutive integers are refused without it or "
+                               "--time-unit)."),
+    time_format: str = typer.Option(None, "--time-format", help="Format of a date-time text column, e.g. "
+                                    "'%d/%m/%Y %H:%M:%S' (needed when day and month cannot be told apart, B43)."),
+    time_zone: str = typer.Option(None, "--time-zone", help="Zone of date-time text without one, e.g. +01:00 or "
+                                  "Europe/Berlin (default: UTC, said in the summary; B43)."),
     acc_unit: str = typer.Option(None, "--acc-unit", help="m/s2, g or mg (default: the header's '(g)' or '_g', "
                                  "else m/s2)."),
     gyro_unit: str = typer.Option(None, "--gyro-unit", help="rad/s or deg/s (default: the header's, else rad/s)."),
@@ -86,6 +93,8 @@ def import_command(
                                       "...: *_ms columns on the export's clock), shifted as --steps and written "
                                       "under its file name; repeat for each (lower-back scoring uses ics.csv and "
                                       "bouts.csv)."),
+    labels_relative: bool = typer.Option(False, "--labels-relative", help="The --steps and --labels times are "
+                                         "ms from the recording's first sample, not on the export's clock (B42)."),
     name: str = typer.Option(None, "--name", help="Session name (default: the CSV's name)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
                                "unit's files, labels and meta.json are kept)."),
@@ -190,15 +199,21 @@ def import_command(
                                  frame=frames if frames is not None else m.get("frames"),
                                  sensor_height_m=sensor_height if sensor_height is not None
                                  else m.get("sensor_height_m"), name=name or (None if merge else out.name),
-                                 subject_height_m=subject_height if subject_height is not None else m.get("height_m"))
+                                 subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
+                                 rate_hz=rate, time_format=time_format, time_zone=time_zone)
     if steps is not None:
         if base is not None and base.steps is not None:
             raise DataError(f"{out}: already has steps.csv; --steps with --merge would replace it -- leave --steps out")
-        session = import_steps(steps, session, record["time"]["origin_s"])
+        session = import_steps(steps, session, record["time"]["origin_s"], relative=labels_relative)
         record["steps"] = {"file": Path(steps).name, "rows": len(session.steps)}
+    if labels_relative and steps is None and not labels:
+        raise DataError("import: --labels-relative says how --steps and --labels times are written; pass those "
+                        "tables, or leave it out")
+    if labels_relative:
+        record["labels_relative"] = True
     if labels:
         session, rows = import_labels(labels, session, record["time"]["origin_s"],
-                                      taken=() if base is None else tuple(base.extras))
+                                      taken=() if base is None else tuple(base.extras), relative=labels_relative)
         record["labels"] = {f"{n}.csv": {"file": Path(p).name, "rows": rows[n]} for n, p in
                             zip(rows, labels, strict=True)}
     span_warning = None
@@ -224,6 +239,10 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
     t = record["time"]
     err(f"time: column '{t['column']}' in {t['unit']} ({t['source']}); 0 ms = {t['origin_s']:.10g} s on the "
         "export's clock")
+    dt = t.get("datetime")
+    if dt:  # decision B43: what the date-time text was read as
+        err(f"time: date-time text read {dt.get('order', 'as written')}: {dt['first']} to {dt['last']} (UTC); "
+            f"zone {dt['zone']}")
     if merge and len(session.meta.get("imported", [])) < 2:
         # no recorded origin to share: the added unit was moved like a first import (its first timestamp
         # taken off), so an offset it had on a clock shared with the session is gone

@@ -31,6 +31,12 @@ def simulate_cmd(
     foot_mount_pitch: float = typer.Option(
         0.0, "--foot-mount-pitch", help="Extra toes-down tilt of the foot unit (deg), e.g. 50 for an instep mount."
     ),
+    pelvis: str = typer.Option(
+        "model",
+        "--pelvis",
+        help="model (default) or realistic: the pelvis rolls toward the stance side with a smaller sway, "
+        "drawn per user (decision S27).",
+    ),
     no_noise: bool = typer.Option(False, "--no-noise", help="Exact physics: no noise, bias or quantisation."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -52,6 +58,8 @@ def simulate_cmd(
         raise DataError(f"--scenario {scenario!r}: must be one of {', '.join(SCENARIOS)}")
     if speed not in SPEEDS:
         raise DataError(f"--speed {speed!r}: must be one of {', '.join(SPEEDS)}")
+    if pelvis not in ("model", "realistic"):
+        raise DataError(f"--pelvis {pelvis!r}: must be model or realistic")
     if user_seed < 0 or seed < 0:
         raise DataError("--user-seed and --seed must be non-negative integers")
     if not -90.0 <= foot_mount_pitch <= 90.0:  # beyond +-90 deg the unit would be mounted upside down
@@ -72,6 +80,7 @@ def simulate_cmd(
             irregular_rate=irregular_rate,
             foot_mount_pitch_deg=foot_mount_pitch,
             noise=not no_noise,
+            pelvis=pelvis,
         )
         advance()
         write_session(session, out)

@@ -190,6 +190,11 @@ def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str) ->
     hint = _TIME_ALIASES.get(hint, hint) if hint else None
     if hint in _TIME_SCALE:
         return hint, "header"
+    if sample_numbers(t_raw):  # decision B39: never read as a 1000 Hz ms clock without being told
+        raise DataError(f"{where}: column '{column}' holds consecutive integers ({t_raw[0]:.0f}-{t_raw[-1]:.0f}, "
+                        "step 1): sample numbers, or a 1000 Hz clock in ms? They cannot be told apart: give the "
+                        "sampling rate with --rate HZ if they are sample numbers, or pass --time-unit ms if they "
+                        "are milliseconds")
     cands = [u for u, _ in time_unit_candidates(t_raw)]
     if not cands:
         raise DataError(f"{where}: the timestamps of column '{column}' give no plausible rate in ms, s, us or ns; "
@@ -198,6 +203,25 @@ def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str) ->
         return "ms", "inferred (B22)" + (f"; also fits {', '.join(c for c in cands if c != 'ms')}"
                                          if len(cands) > 1 else "")
     return cands[0], "inferred (B22)" + (f"; also fits {', '.join(cands[1:])}" if len(cands) > 1 else "")
+
+
+#: decision B39: timestamps at or above this are a clock since an epoch (epoch s >= 1e9 since 2001-09, epoch ms
+#: ~1.6e12), not sample numbers counted from the start of a recording
+EPOCH_START = 1e9
+
+
+def sample_numbers(t_raw: np.ndarray) -> bool:
+    """True when timestamps look like sample numbers (decision B39): integers stepping by exactly 1 (at least 95 %
+    of the steps; dropped samples make a few larger integer steps), starting under :data:`EPOCH_START`. Read as
+    ms they are a 1000 Hz clock, which a genuine 1000 Hz logger in ms since its start also writes; a clock since
+    an epoch (1.6e12 ms) is not taken for sample numbers."""
+    t = np.asarray(t_raw, dtype=float)
+    if t.size < 3 or not np.all(np.isfinite(t)) or abs(float(t[0])) >= EPOCH_START:
+        return False
+    d = np.diff(t)
+    if np.any(d <= 0) or np.any(t != np.round(t)):
+        return False
+    return bool(np.mean(d == 1.0) >= 0.95)
 
 
 def _check_import_rate(t: np.ndarray, t_raw: np.ndarray, t_unit: str, t_how: str, column: str, where: str) -> None:
@@ -215,15 +239,75 @@ def _check_import_rate(t: np.ndarray, t_raw: np.ndarray, t_unit: str, t_how: str
                         f"{looks}") from None
 
 
-def _datetime_seconds(col: pd.Series) -> np.ndarray | None:
-    """Seconds since the epoch of a column of date-time texts (ISO 8601 and the like), or None."""
+#: a numeric date at the start of a text: d/m/y or m/d/y (``10/12/2020``, ``10.12.20``, ``10-12-2020``)
+_NUMERIC_DATE = re.compile(r"^\s*(\d{1,2})([/.\-])(\d{1,2})\2(\d{2}|\d{4})\b")
+
+
+def _date_formats(text: str) -> tuple[str, str]:
+    """(day-first, month-first) strftime formats for a date-time text like ``10/12/2020 13:57:44.733``."""
+    m = _NUMERIC_DATE.match(text)
+    sep, year = m.group(2), "%Y" if len(m.group(4)) == 4 else "%y"
+    rest = text[m.end():]
+    clock = ("%H:%M:%S.%f" if re.match(r"\s*\d{1,2}:\d{2}:\d{2}[.,]\d+", rest) else "%H:%M:%S"
+             if re.match(r"\s*\d{1,2}:\d{2}:\d{2}", rest) else "%H:%M" if re.match(r"\s*\d{1,2}:\d{2}", rest)
+             else "")
+    tail = f" {clock}" if clock else ""
+    return f"%d{sep}%m{sep}{year}{tail}", f"%m{sep}%d{sep}{year}{tail}"
+
+
+def _datetime_seconds(col: pd.Series, where: str = "", time_format: str | None = None,
+                      zone: str | None = None) -> tuple[np.ndarray, dict] | None:
+    """Seconds since the epoch of a column of date-time texts (ISO 8601 and the like) and what was read
+    (``{"order": ..., "zone": ..., "first": ISO, "last": ISO}``), or None when the column is not date-times.
+
+    Decision B43: a numeric date whose day and month are both <= 12 in every row (``10/12/2020``) is refused
+    unless ``time_format`` says which is which (pandas read it month first, but ``13/12/2020`` day first); an
+    unambiguous one is read in the order its values show. Times without a zone are taken as ``zone`` (default
+    UTC), and the record says so."""
     if col.dtype.kind in "biufc":
         return None
+    text = col.astype(str)
+    info: dict = {}
     try:
-        dt = pd.to_datetime(col, errors="raise", utc=True, format="mixed")
+        if time_format is not None:
+            try:
+                dt = pd.to_datetime(text, format=time_format)
+            except (ValueError, TypeError) as exc:
+                raise DataError(f"{where}: the time column does not match --time-format {time_format!r} "
+                                f"({str(exc).splitlines()[0][:120]}); first value: {text.iloc[0]!r}") from None
+            info["order"] = f"--time-format {time_format}"
+        else:
+            m = _NUMERIC_DATE.match(text.iloc[0])
+            dayfirst = False
+            if m:
+                dates = text.str.extract(_NUMERIC_DATE).dropna()
+                a, b = dates[0].astype(int), dates[2].astype(int)
+                if (a > 12).any():
+                    dayfirst, info["order"] = True, "day first (a first field over 12)"
+                elif (b > 12).any():
+                    info["order"] = "month first (a second field over 12)"
+                else:
+                    dfmt, mfmt = _date_formats(text.iloc[0])
+                    raise DataError(f"{where}: the dates ({text.iloc[0]!r} ...) could be day/month or month/day "
+                                    "(both fields <= 12 in every row); say which with --time-format "
+                                    f"'{dfmt}' (day first) or '{mfmt}' (month first)")
+            dt = pd.to_datetime(text, errors="raise", format="mixed", dayfirst=dayfirst)
+    except DataError:
+        raise
     except (ValueError, TypeError):
         return None
-    return (dt - pd.Timestamp(0, tz="UTC")).dt.total_seconds().to_numpy(dtype=float)
+    if getattr(dt.dt, "tz", None) is None:
+        z = zone or "UTC"
+        try:
+            dt = dt.dt.tz_localize(z)
+        except Exception:  # noqa: BLE001 - pandas raises several kinds for an unknown zone
+            raise DataError(f"import: --time-zone {z!r} is not a time zone (write +01:00 or Europe/Berlin)") from None
+        info["zone"] = f"{z} ({'given with --time-zone' if zone else 'none in the text: taken as UTC'})"
+    else:
+        info["zone"] = "from the text" + (" (--time-zone not used)" if zone else "")
+    dt = dt.dt.tz_convert("UTC")
+    info["first"], info["last"] = dt.iloc[0].isoformat(), dt.iloc[-1].isoformat()
+    return (dt - pd.Timestamp(0, tz="UTC")).dt.total_seconds().to_numpy(dtype=float), info
 
 
 def parse_frame(text: str | dict | None, where: str = "--frames") -> AxisFrame | None:
@@ -270,7 +354,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                time_column: str | None = None, time_unit: str | None = None, units: dict[str, str] | None = None,
                frame=None, sensor_height_m: float | None = None, name: str | None = None,
                origin_s: float | None = None, guess: bool = True,
-               subject_height_m: float | None = None) -> tuple[Session, dict]:
+               subject_height_m: float | None = None, rate_hz: float | None = None,
+               time_format: str | None = None, time_zone: str | None = None) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -281,6 +366,11 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         for 3-axis kinds); kinds not given are guessed from the names when ``guess``
     time_column : the timestamp column (default: the one column named like a time)
     time_unit : ``ms``, ``s``, ``us`` or ``ns``; default: the header's hint (``Time (ms)``), else B22's inference
+        (consecutive integers from near 0 are refused: sample numbers or a 1000 Hz ms clock, decision B39)
+    rate_hz : the time column holds sample numbers at this rate (decision B39)
+    time_format : a strftime format of a date-time text column (``%d/%m/%Y %H:%M:%S``); needed when the
+        day and month cannot be told apart (decision B43)
+    time_zone : the zone of date-time texts without one (default UTC, said in the record; decision B43)
     units : kind -> unit of its values (``acc``: ``m/s2`` | ``g``; ``gyro``: ``rad/s`` | ``deg/s``; ``mag``:
         ``uT`` | ``nT`` | ``gauss``; ``baro``: ``hPa`` | ``Pa`` | ``kPa``); default: the header's hint, else SI
     frame : the unit's axis frame (:func:`parse_frame` input or :class:`AxisFrame`), written to ``frames``
@@ -350,18 +440,38 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                             f"{', '.join(n for n, s in SENSORS.items() if s.placement == unit)})")
 
     tcol = df[time_column]
-    secs = _datetime_seconds(tcol)
-    if secs is not None:
+    parsed = _datetime_seconds(tcol, where, time_format, time_zone)
+    secs = None if parsed is None else parsed[0]
+    if parsed is not None:
         t_num, t_unit, t_how = secs, "s", "date-time text"
+    elif time_format is not None or time_zone is not None:
+        raise DataError(f"{where}: --time-format/--time-zone read date-time text, but column '{time_column}' holds "
+                        f"numbers ({tcol.iloc[0]!r} ...); leave them out")
     else:
         t_num = pd.to_numeric(tcol, errors="coerce").to_numpy(dtype=float)
         bad = np.flatnonzero(~np.isfinite(t_num))
         if bad.size:
             raise DataError(f"{where}: column {time_column!r} has {bad.size} non-numeric or empty value(s) (first at "
                             f"line {bad[0] + 2}); timestamps must be numbers (or date-times) in every row")
-        t_unit, t_how = _time_unit(t_num, time_unit, time_column, where)
+        if rate_hz is None and time_unit is not None and _TIME_ALIASES.get(time_unit.strip().lower(),
+                                                                          time_unit.strip().lower()) == "samples":
+            raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")
+        if rate_hz is None:
+            t_unit, t_how = _time_unit(t_num, time_unit, time_column, where)
+    if rate_hz is not None:  # decision B39: the time column holds sample numbers at rate_hz
+        r = float(rate_hz)
+        if not (math.isfinite(r) and r > 0):
+            raise DataError(f"import: --rate {rate_hz!r} is not a sampling rate in Hz")
+        if secs is not None or np.any(t_num != np.round(t_num)):
+            raise DataError(f"{where}: --rate says column '{time_column}' holds sample numbers, but it holds "
+                            f"{'date-times' if secs is not None else 'fractions'}; leave --rate out")
+        if time_unit is not None and _TIME_ALIASES.get(time_unit.strip().lower(),
+                                                       time_unit.strip().lower()) != "samples":
+            raise DataError(f"import: --rate reads the time column as sample numbers; leave --time-unit "
+                            f"{time_unit} out")
+        t_unit, t_how = "samples", f"sample numbers at {r:g} Hz (given with --rate)"
     # the origin is taken off in the file's own unit: epoch milliseconds keep their exact 10 ms steps
-    scale = _TIME_SCALE[t_unit]
+    scale = 1.0 / float(rate_hz) if t_unit == "samples" else _TIME_SCALE[t_unit]
     origin_raw = float(t_num[0]) if origin_s is None else float(origin_s) / scale
     t_all = (t_num - origin_raw) * scale
     origin = origin_raw * scale
@@ -369,6 +479,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                     "time": {"column": time_column, "unit": t_unit, "source": f"{t_source} column, unit {t_how}",
                              "origin_s": origin},
                     "streams": {}, "dropped_rows": {}}
+    if parsed is not None:  # decision B43: what the date-time text was read as, for the summary
+        record["time"]["datetime"] = parsed[1]
     streams: dict[str, Stream] = {}
     units = {k: v for k, v in (units or {}).items() if v is not None}
     for kind, cols in columns.items():
@@ -391,8 +503,20 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         sign = signs.get(kind, np.ones(len(cols)))
         stream = Stream(sensor, t, vals[keep] * factor * sign)
         opt = _UNIT_OPTION.get(kind, "--mapping units")
-        check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})",
-                    declare=f"give the unit with {opt} ({' | '.join(UNITS[kind])})")
+        try:
+            check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})",
+                        declare=f"give the unit with {opt} ({' | '.join(UNITS[kind])})")
+        except DataError as exc:
+            if factor == 1.0:
+                raise
+            try:  # decision B45: the values are plausible as they are, so the conversion is the mistake
+                check_units(SENSORS[sensor], vals[keep], where)
+            except DataError:
+                raise exc from None
+            si = next(iter(UNITS[kind]))
+            fix = (f"drop {opt} {u} (or pass {opt} {si})" if u_src == "given"
+                   else f"the column names say {u}, but the values are not: pass {opt} {si}")
+            raise DataError(f"{exc}; read without the conversion from {u} they are plausible {si}: {fix}") from None
         streams[sensor] = stream
         record["streams"][sensor] = {"columns": cols, "columns_source": sources[kind], "unit": u,
                                      "unit_source": u_src, "factor": factor,
@@ -407,7 +531,9 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         check_imu_pair(streams[acc_name].t, streams[acc_name].values, streams[gyro_name].t,
                        streams[gyro_name].values, unit, f"{where} ({', '.join(a['columns'])} as {a['unit']})",
                        f"{where} ({', '.join(g['columns'])} as {g['unit']})", gyro_fix=gfix,
-                       acc_fix="give the right --acc-unit (m/s2 | g | mg)")
+                       acc_fix="give the right --acc-unit (m/s2 | g | mg)",
+                       gyro_big_fix=("pass --gyro-unit deg/s" if g["unit"] != "deg/s"
+                                     else "check the gyroscope's unit (--gyro-unit rad/s | deg/s)"))
     used = {time_column, *(c for v in columns.values() for c in v)}
     record["unused_columns"] = [c for c in header if c not in used]
     meta: dict = {"session": name or path.stem, "placement": unit,
@@ -500,15 +626,55 @@ def _shifted_table(path: Path, origin_s: float) -> pd.DataFrame:
     return _ms_to_s(df, str(path))
 
 
-def import_labels(paths, session: Session, origin_s: float, *, taken=()) -> tuple[Session, dict[str, int]]:
+def _check_shifted_labels(table: pd.DataFrame, path: Path, session: Session, origin_s: float,
+                          relative: bool) -> None:
+    """check_label_times for a label table moved onto the session's clock (decision D12); when its times lie
+    outside the recording but would fit on the other reading (ms from the recording's start instead of the
+    export's clock, or the reverse), the error says so and names ``--labels-relative`` (decision B42)."""
+    from pdrlearn.io.validate import check_label_times
+
+    try:
+        check_label_times(table, session.t_start, session.t_end, str(path))
+    except DataError as exc:
+        if not origin_s or "outside the recording" not in str(exc):
+            raise
+        cols = [c for c in ("start_s", "end_s", "ic_s") if c in table.columns]
+
+        def fits(shift: float) -> bool:
+            other = table.copy()
+            other[cols] = other[cols].to_numpy(float) - shift
+            try:
+                check_label_times(other, session.t_start, session.t_end, str(path))
+            except DataError:
+                return False
+            return True
+
+        if fits(origin_s if relative else -origin_s):  # undo the one reading, apply the other
+            hint = ("they fit as ms on the export's clock: leave out --labels-relative" if relative else
+                    "they fit as ms from the recording's start (its first sample = 0): pass --labels-relative "
+                    "(or add the export's first timestamp to them)")
+            raise DataError(f"{exc}; {hint}") from None
+        rec = session.meta.get("imported")
+        zone = (rec or {}).get("time", {}).get("datetime", {}).get("zone", "") if isinstance(rec, dict) else ""
+        hours = [h for h in range(-14, 15) if h and fits(-3600.0 * h)] if "taken as UTC" in zone else []
+        if hours:  # decision B43: a local time read as UTC
+            h = hours[0]
+            raise DataError(f"{exc}; moved {abs(h)} h {'later' if h > 0 else 'earlier'} they fit: the export's "
+                            "date-time text has no zone and was taken as UTC: give its zone, e.g. --time-zone "
+                            f"{'+' if h > 0 else '-'}{abs(h):02d}:00") from None
+        raise
+
+
+def import_labels(paths, session: Session, origin_s: float, *, taken=(),
+                  relative: bool = False) -> tuple[Session, dict[str, int]]:
     """``session`` with the extra label tables of ``paths`` (``ics.csv``, ``bouts.csv``, ``turns.csv`` ...:
     ``*_ms`` columns in ms on the export's clock), each kept under its file name (``ics.csv`` -> the
     session's ``ics.csv``), moved onto the session's clock exactly as :func:`import_steps` moves the steps
     and checked as ``read_session`` checks them. ``taken``: label names the session already has (--merge).
+    ``relative``: the times are ms from the recording's first sample, not on the export's clock (decision B42).
     Returns the session and name -> rows."""
-    from pdrlearn.io.plasys import LABEL_FILES
+    from pdrlearn.io.plasys import LABEL_FILES, LABEL_TABLES, check_label_table
     from pdrlearn.io.sensors import SENSORS
-    from pdrlearn.io.validate import check_label_times
 
     extras, rows = dict(session.extras), {}
     for p in map(Path, paths):
@@ -520,28 +686,35 @@ def import_labels(paths, session: Session, origin_s: float, *, taken=()) -> tupl
             raise DataError(f"{p}: '{name}.csv' is not an extra label table a session can take; {hint}")
         if name in rows or name in taken:
             raise DataError(f"{p}: the session already has {name}.csv; pass one file per name (rename one)")
-        if not any(str(c).endswith("_ms") for c in read_table(p).columns):
+        raw = read_table(p)
+        if name in LABEL_TABLES:  # decision B41
+            check_label_table(raw, name, str(p))
+        elif not any(str(c).endswith("_ms") for c in raw.columns):
             raise DataError(f"{p}: no *_ms time column (ic_ms, start_ms, end_ms ...); label times must be "
                             "milliseconds on the export's clock")
-        table = _shifted_table(p, origin_s)
-        check_label_times(table, session.t_start, session.t_end, str(p))
+        else:
+            log.warning("%s: no command reads a label table named %s.csv (they read %s); it is copied into the "
+                        "session but not used: rename it if it is one of those", p, name,
+                        ", ".join(f"{n}.csv ({', '.join(c)})" for n, c in LABEL_TABLES.items()))
+        table = _shifted_table(p, 0.0 if relative else origin_s)
+        _check_shifted_labels(table, p, session, origin_s, relative)
         extras[name], rows[name] = table, len(table)
     return Session(name=session.name, streams=session.streams, steps=session.steps, trajectory=session.trajectory,
                    extras=extras, meta=session.meta, frames=session.frames), rows
 
 
-def import_steps(path: str | os.PathLike, session: Session, origin_s: float) -> Session:
+def import_steps(path: str | os.PathLike, session: Session, origin_s: float, *, relative: bool = False) -> Session:
     """``session`` with the labelled steps of ``path`` (``start_ms,end_ms`` and ``terrain`` ... as the
     session's ``steps.csv``, times in ms on the export's clock), moved onto the session's clock (``origin_s``
     taken off) and checked as ``read_session`` checks them (decision D12)."""
     from pdrlearn.io.session import STEP_COLUMNS
-    from pdrlearn.io.validate import check_columns, check_label_times, check_numeric
+    from pdrlearn.io.validate import check_columns, check_numeric
 
     path = Path(path)
-    steps = _shifted_table(path, origin_s)
+    steps = _shifted_table(path, 0.0 if relative else origin_s)
     check_columns(steps, STEP_COLUMNS, f"{path} (times in ms on the export's clock: start_ms,end_ms)")
     check_numeric(steps, STEP_COLUMNS, str(path))
-    check_label_times(steps, session.t_start, session.t_end, str(path))
+    _check_shifted_labels(steps, path, session, origin_s, relative)
     return Session(name=session.name, streams=session.streams, steps=steps, trajectory=session.trajectory,
                    extras=session.extras, meta=session.meta, frames=session.frames)
 

@@ -41,6 +41,27 @@ from pdrlearn.io.validate import (
 log = logging.getLogger(__name__)
 
 LABEL_FILES = ("steps", "trajectory")
+#: decision B41: the extra label tables the commands read, with the columns each needs (bouts.csv's length_m is
+#: optional: its absence is a warning where the bout distance is scored); other CSVs are kept but read by nothing
+LABEL_TABLES: dict[str, tuple[str, ...]] = {
+    "ics": ("ic_ms",), "ics_stereophoto": ("ic_ms",), "ics_untimed": ("after_ms", "before_ms"),
+    "bouts": ("start_ms", "end_ms"), "turns": ("start_ms", "end_ms", "angle_deg"),
+}
+
+
+def check_label_table(df: pd.DataFrame, name: str, where: str) -> None:
+    """Decision B41: a known label table (:data:`LABEL_TABLES`) must have the columns its readers need: an
+    ``ics.csv`` with ``contact_ms`` instead of ``ic_ms`` was read and then ignored (no step F1, no warning)."""
+    need = LABEL_TABLES.get(name)
+    if need is None:
+        return
+    missing = [c for c in need if c not in df.columns]
+    if missing:
+        spare = [str(c) for c in df.columns if str(c).endswith("_ms") and c not in need]
+        fix = (f"rename {spare[0]} to {missing[0]}" if len(missing) == 1 and len(spare) == 1
+               else f"rename the column(s) to {', '.join(missing)} (times in ms)")
+        raise DataError(f"{where}: {name}.csv needs the column(s) {', '.join(need)} but has "
+                        f"{', '.join(map(str, df.columns))}; {fix}")
 _TIME_SCALE = {"ms": 1e-3, "s": 1.0, "us": 1e-6, "ns": 1e-9}
 _TIME_ALIASES = {"milliseconds": "ms", "millisecond": "ms", "msec": "ms", "seconds": "s", "second": "s", "sec": "s",
                  "microseconds": "us", "microsecond": "us", "\u00b5s": "us", "nanoseconds": "ns", "nanosecond": "ns",
@@ -449,7 +470,9 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     for p in sorted(folder.glob("*.csv")):
         if p.stem in SENSORS or p.stem in LABEL_FILES:
             continue
-        extras[p.stem] = _ms_to_s(read_table(p), str(p))
+        table = read_table(p)
+        check_label_table(table, p.stem, str(p))
+        extras[p.stem] = _ms_to_s(table, str(p))
     try:
         frames = frames_from_meta(meta)
     except DataError as exc:

@@ -114,6 +114,11 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
 GRAVITY_REMOVED_RATIO = 0.2
 
 
+#: decision B45: what a user whose export holds linear acceleration can do (trial 12, finding 13)
+GRAVITY_HINT = ("a phone export's 'total acceleration', or its linear acceleration plus its gravity columns, "
+                "column by column")
+
+
 def check_gravity(values: np.ndarray, where: str) -> None:
     """Refuse an accelerometer file whose gravity has been removed (decision B30): its mean vector is ~0 in
     either unit (m/s^2 or g), while a specific force always averages to gravity (|mean| ~ median |acc|). Its
@@ -128,6 +133,7 @@ def check_gravity(values: np.ndarray, where: str) -> None:
             f"{where}: the mean acceleration vector is {mean:.3g} against a median |acc| of {med:.3g}, so gravity has "
             "been removed (linear / free acceleration), or these columns are not an accelerometer (gyroscope "
             "columns?); pdrlearn needs the specific force: export the raw (total) accelerometer, gravity included"
+            f" ({GRAVITY_HINT})"
         )
 
 
@@ -289,9 +295,41 @@ WALKING_GYRO_P99 = {"foot": 0.5, "waist": 0.1}
 WALKING_ACC_STD = 0.5
 
 
+#: decision B40: the gyroscope's tilt rate against the accelerometer's. Both are averaged over 0.5 s (about one
+#: step, so the step-frequency linear acceleration mostly cancels); the gravity direction g of the accelerometer
+#: turns at |dg/dt| and the gyroscope predicts |w x g| (the part of the rotation that tilts; a turn about gravity
+#: changes neither). Linear acceleration only adds to the accelerometer's side, so with the right unit the RMS ratio
+#: acc/gyro is >= 1.16 on every real recording (datasets/real, datasets/external, /work/shared/data: gaitmap foot,
+#: mobgap lower back, and the trial's 50 Hz and standing copies); deg/s read as rad/s divides it by 57.3: <= 0.074
+#: on the same recordings. 0.3 lies between (geometric middle 0.29). Judged only when the gyroscope's tilt rate is
+#: large (RMS over 0.5 rad/s = 29 deg/s): a still unit's gyroscope bias must not be compared with nothing.
+TILT_WINDOW_S, TILT_RATIO_MIN, TILT_GYRO_RMS_MIN = 0.5, 0.3, 0.5
+
+
+def tilt_rate_ratio(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro: np.ndarray) -> tuple[float, float]:
+    """(RMS of the accelerometer's gravity-direction rate / RMS of the gyroscope's tilt rate, the latter in rad/s)
+    over the recording, both averaged over :data:`TILT_WINDOW_S` (decision B40); ``(nan, nan)`` when too short."""
+    fs = 1.0 / float(np.median(np.diff(gyro_t))) if gyro_t.size > 2 else 0.0
+    w = int(round(TILT_WINDOW_S * fs)) if fs > 0 else 0
+    if w < 2 or gyro.shape[0] < 4 * w:
+        return float("nan"), float("nan")
+    k = np.ones(w) / w
+    a = np.column_stack([np.convolve(np.interp(gyro_t, acc_t, acc[:, j]), k, mode="valid") for j in range(3)])
+    om = np.column_stack([np.convolve(gyro[:, j], k, mode="valid") for j in range(3)])
+    norm = np.linalg.norm(a, axis=1)
+    if not np.all(norm > 0):
+        return float("nan"), float("nan")
+    g = a / norm[:, None]
+    dg = np.gradient(g, axis=0) * fs  # d g / dt of a world-fixed direction in the sensor frame = -w x g
+    pred = np.cross(om, g)
+    rms_g = float(np.sqrt(np.mean(np.sum(pred * pred, axis=1))))
+    rms_a = float(np.sqrt(np.mean(np.sum(dg * dg, axis=1))))
+    return (rms_a / rms_g if rms_g > 0 else float("nan")), rms_g
+
+
 def check_imu_pair(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro: np.ndarray, placement: str,
                    where_acc: str, where_gyro: str, *, gyro_fix: str = "declare its unit",
-                   acc_fix: str = "check its unit") -> None:
+                   acc_fix: str = "check its unit", gyro_big_fix: str = "declare its unit as deg/s") -> None:
     """One unit's accelerometer and gyroscope (SI) checked against each other (decisions B36, B37).
 
     B36: in still stretches (low gyro, measured in seconds) a sensor with gravity reads ~9.81 m/s^2; a median
@@ -314,6 +352,13 @@ def check_imu_pair(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro:
             f"(|acc| std {astd:.2g} m/s^2), far under a moving {placement}'s (over {bound:g} rad/s): the values "
             f"look like rad/s converted as deg/s (57.3 times too small); {gyro_fix}"
         )
+    ratio, rms_tilt = tilt_rate_ratio(acc_t, acc, gyro_t, gyro)
+    if rms_tilt > TILT_GYRO_RMS_MIN and ratio < TILT_RATIO_MIN:  # decision B40
+        raise DataError(
+            f"{where_gyro}: the gyroscope says the unit tilts at {rms_tilt:.3g} rad/s (RMS) but the accelerometer's "
+            f"gravity direction turns {1 / ratio:.3g} times slower: the values look like deg/s read as rad/s "
+            f"(57.3 times too large); {gyro_big_fix}"
+        )
     fs = 1.0 / float(np.median(np.diff(gyro_t))) if gyro_t.size > 2 else 0.0
     if not fs > 0:
         return
@@ -329,5 +374,6 @@ def check_imu_pair(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro:
             f"{where_acc}: while the unit is still ({still.sum() / fs:.1f} s with |gyro| under "
             f"{STILL_GYRO_RAD_S:g} rad/s) the median |acc| is {med:.2f} m/s^2, not ~9.81 (gravity): gravity has been "
             "removed (linear / free acceleration), or the unit is wrong, or these columns are not an accelerometer "
-            f"(gyroscope columns?); export the raw (total) accelerometer, gravity included, or {acc_fix}"
+            f"(gyroscope columns?); export the raw (total) accelerometer, gravity included ({GRAVITY_HINT}), "
+            f"or {acc_fix}"
         )

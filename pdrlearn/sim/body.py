@@ -357,6 +357,41 @@ PELVIS_YAW_SKEW = 0.6  # reversal rate 1.6x the mean around contact, 0.4x in mid
 # reverses it (experiments/waist_tilt_coupling.py measures the proposal).
 PELVIS_ROLL_GAIN = 1.0
 PELVIS_SWAY_GAIN = 1.0
+# Opt-in realistic pelvis (decision S27, from S26's measurements of 9 real lower-back recordings: g roll
+# 0.07-0.34 m/s^2 at the stride frequency, roll -43..+52 deg from the lateral acceleration, lateral
+# acceleration 0.40-0.93 m/s^2). Drawn per user, uniform over these ranges.
+PELVIS_MODES = ("model", "realistic")
+REALISTIC_ROLL_DEG = (0.4, 2.0)  # roll amplitude toward the stance side
+REALISTIC_ROLL_PHASE_DEG = (-45.0, 45.0)  # roll phase ahead of the sway acceleration
+REALISTIC_SWAY_ACC_MPS2 = (0.4, 0.9)  # lateral sway acceleration amplitude
+
+
+@dataclass(frozen=True)
+class PelvisParams:
+    """Per-user parameters of the realistic pelvis (decision S27).
+
+    roll_deg : amplitude of the roll toward the stance side (deg)
+    roll_phase_deg : phase of the roll ahead of the lateral sway acceleration (deg)
+    sway_acc_mps2 : amplitude of the lateral sway acceleration at the user's normal step time (m/s^2)
+    sway_m : the sway amplitude that gives it (m)
+    """
+
+    roll_deg: float
+    roll_phase_deg: float
+    sway_acc_mps2: float
+    sway_m: float
+
+
+def realistic_pelvis(user: UserProfile) -> PelvisParams:
+    """The realistic pelvis of ``user`` (decision S27), drawn from the user seed on a stream of its own so
+    that the profile's other draws (and every default session) are unchanged."""
+    rng = np.random.default_rng([int(user.seed), 0x9E1715])
+    roll = float(rng.uniform(*REALISTIC_ROLL_DEG))
+    phase = float(rng.uniform(*REALISTIC_ROLL_PHASE_DEG))
+    acc = float(rng.uniform(*REALISTIC_SWAY_ACC_MPS2))
+    # sway = -A sin(pi ph), ph advancing by one per step: a sinusoid of angular rate pi / step time
+    omega = np.pi / user.step_time_s
+    return PelvisParams(round(roll, 4), round(phase, 3), round(acc, 4), round(acc / omega**2, 6))
 
 
 def trunk_vibration(t: np.ndarray, rng: np.random.Generator, target_sd: tuple[float, ...]) -> np.ndarray:
@@ -395,8 +430,11 @@ def pelvis_pose(
     user: UserProfile,
     rng: np.random.Generator | None = None,
     trunk_noise: float = 1.0,
+    pelvis: PelvisParams | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Pelvis reference point (n, 3) at the waist-unit height, orientation (n, 3, 3) and base heading (n,)."""
+    """Pelvis reference point (n, 3) at the waist-unit height, orientation (n, 3, 3) and base heading (n,).
+
+    ``pelvis``: None = the model's sway and obliquity; :func:`realistic_pelvis` = decision S27's."""
     feet = {f: (np.asarray(h, float), y) for f, (h, y) in initial.items()}
 
     def config() -> tuple[float, ...]:
@@ -448,12 +486,18 @@ def pelvis_pose(
     # the next contact and is braked in the loading response (lower-trunk forward acceleration peaks at
     # initial contact, Zijlstra & Hof 2003); the drop is centred in the loading response (decisions S17)
     surge = env * 0.012 * sawtooth_surge(ph, drop=SURGE_DROP_STEP)
-    sway = -env * PELVIS_SWAY_GAIN * user.pelvis_sway_m * np.sin(np.pi * ph)
+    if pelvis is None:
+        sway = -env * PELVIS_SWAY_GAIN * user.pelvis_sway_m * np.sin(np.pi * ph)
+    else:  # S27: the model's sway shape (toward the stance foot) with the user's smaller amplitude
+        sway = -env * pelvis.sway_m * np.sin(np.pi * ph)
     # pelvic rotation: extreme in terminal swing, reversed quickly around contact and slowly through
     # single support, so the yaw rate peaks near initial contact as on the real lower back (S17)
     yaw_ph = skewed_phase(ph, shift=PELVIS_YAW_LEAD_STEP, skew=PELVIS_YAW_SKEW, centre=0.1)
     yaw_osc = env * np.radians(user.pelvis_rotation_deg) * np.cos(np.pi * yaw_ph)
-    roll = -env * PELVIS_ROLL_GAIN * np.radians(user.pelvis_obliquity_deg) * np.sin(np.pi * ph)
+    if pelvis is None:
+        roll = -env * PELVIS_ROLL_GAIN * np.radians(user.pelvis_obliquity_deg) * np.sin(np.pi * ph)
+    else:  # S27: the unit leans toward the stance side (right stance: ph in (0, 1), roll > 0 = right side down)
+        roll = env * np.radians(pelvis.roll_deg) * np.sin(np.pi * ph + np.radians(pelvis.roll_phase_deg))
     tilt = env * np.radians(1.5) * np.cos(2 * np.pi * ph)
 
     # heel-strike transient: a short damped velocity kick (braking forward, upward push)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import logging
 import math
 import zlib
+from dataclasses import asdict
 
 import numpy as np
 import pandas as pd
@@ -14,7 +15,17 @@ from pdrlearn.errors import DataError
 from pdrlearn.io.frames import THESIS_FOOT_FRAME, THESIS_WAIST_FRAME
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.sim import sensors as sn
-from pdrlearn.sim.body import HEEL_OFF_FRACTION, LOAD_FRACTION, Events, foot_loads, foot_pose, pelvis_pose, schedule
+from pdrlearn.sim.body import (
+    HEEL_OFF_FRACTION,
+    LOAD_FRACTION,
+    PELVIS_MODES,
+    Events,
+    foot_loads,
+    foot_pose,
+    pelvis_pose,
+    realistic_pelvis,
+    schedule,
+)
 from pdrlearn.sim.kernels import (
     angular_rate_body,
     block_mean,
@@ -51,6 +62,7 @@ KNOBS: dict[str, object] = {
     "length_m": 1000.0,  # scenario "walk" only: path length
     "foot_mount_pitch_deg": 0.0,  # extra toes-down tilt of the foot unit (e.g. 50 for an instep mount)
     "device_errors": True,  # accelerometer scale factors per unit (the user's own), not per session (S22)
+    "pelvis": "model",  # "realistic": roll toward the stance side and a smaller sway, drawn per user (S27)
 }
 
 
@@ -79,9 +91,11 @@ def _check_knobs(knobs: dict) -> dict:
     for k in ("noise", "device_errors"):
         if not isinstance(out[k], bool | np.bool_):
             raise DataError(f"simulate: {k}={out[k]!r} must be True or False")
+    if out["pelvis"] not in PELVIS_MODES:
+        raise DataError(f"simulate: pelvis={out['pelvis']!r} must be one of {', '.join(PELVIS_MODES)}")
     for k, default in KNOBS.items():
         v = out[k]
-        if isinstance(default, bool):
+        if isinstance(default, bool | str):
             continue
         if isinstance(v, bool) or not isinstance(v, int | float | np.number) or not math.isfinite(v):
             raise DataError(f"simulate: {k}={v!r} must be a finite number")
@@ -258,8 +272,16 @@ def simulate_path(
     # -- waist unit (front of the belt) --
     r_waist = np.array([0.12, 0.0, 0.0])
     trunk = float(opt["variability"]) if noise else 0.0  # exact physics (noise=False): no trunk vibration
+    pelvis = realistic_pelvis(user) if opt["pelvis"] == "realistic" else None
     p_pel, R_p, _ = pelvis_pose(
-        t, steps, ev, initial, user, rng=_rng(user.seed, int(seed), scenario, speed, "trunk"), trunk_noise=trunk
+        t,
+        steps,
+        ev,
+        initial,
+        user,
+        rng=_rng(user.seed, int(seed), scenario, speed, "trunk"),
+        trunk_noise=trunk,
+        pelvis=pelvis,
     )
     p_w = p_pel + R_p @ r_waist
     fw_body = block_mean(specific_force_body(p_w, R_p, dt), OVERSAMPLE)
@@ -370,12 +392,15 @@ def simulate_path(
             "wBarometer": {**e_b, "p0_hpa": p0},
         },
         "earth_field_enu_ut": [float(v) for v in b_enu],
-        "knobs": {k: v for k, v in opt.items()},
+        # the default pelvis is left out so that default sessions (and their meta.json) are as before S27
+        "knobs": {k: v for k, v in opt.items() if k != "pelvis" or v != KNOBS["pelvis"]},
         "n_steps": len(steps),
         "n_strides": int(len(strides)),
         "distance_m": float(strides["length_m"].sum()) if len(strides) else 0.0,
         "units": {"fForceA": "N (heel)", "fForceB": "N (forefoot)"},
     }
+    if pelvis is not None:
+        meta["pelvis"] = asdict(pelvis)
     frames = {"foot": THESIS_FOOT_FRAME, "waist": THESIS_WAIST_FRAME}
     return Session(
         name=name,

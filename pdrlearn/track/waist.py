@@ -127,14 +127,33 @@ def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
     return out
 
 
+def _smoothed_g(steps: pd.DataFrame, g: np.ndarray, use: np.ndarray, win: dict[int, tuple[int, int]],
+                mode: str) -> np.ndarray:
+    """``g`` of the rows ``use`` smoothed per walking sequence by
+    :func:`~pdrlearn.waist._kernels.smooth_step_lengths` (decision W56); a W27 owner spans its merged rows."""
+    out = g.copy()
+    t0, t1 = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    for seq in _sequences(steps):
+        rows = seq[use[seq]]
+        if not rows.size:
+            continue
+        a = np.array([t0[win[i][0]] if i in win else t0[i] for i in rows])
+        b = np.array([t1[win[i][1]] if i in win else t1[i] for i in rows])
+        out[rows] = K.smooth_step_lengths(a, b, g[rows], mode)
+    return out
+
+
 def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: str, thr: float, *,
-                  turn_factor: bool = False, merge_fragments: bool = False) -> pd.DataFrame:
+                  turn_factor: bool = False, merge_fragments: bool = False,
+                  length_smoothing: str = "none") -> pd.DataFrame:
     """Steps table with ``length_m`` (0 for sequence-closing contacts), ``frequency_hz``, ``dyaw_rad``
     (vertical-gyro rotation during the step) and, for the pendulum, ``h_m`` (vertical excursion) and
     ``merged`` (True: a fragment whose length its neighbour carries).
     ``turn_factor`` scales each length by :func:`~pdrlearn.waist._kernels.turning_step_factor` (W19);
     ``merge_fragments`` (pendulum): a step shorter than half its sequence's median step is merged with a
-    neighbour, whose h and rotation are taken over both (decision W27)."""
+    neighbour, whose h and rotation are taken over both (decision W27). ``length_smoothing`` (pendulum): mobgap's
+    smoothing of the per-step ``g = 2 sqrt(2 L h - h^2)`` per walking sequence (decision W56), kept in ``g_m``;
+    the length is ``K g_m + F``."""
     n, fs = len(steps), imu.fs
     idx = np.clip(np.round((steps["event_s"].to_numpy(float) - imu.t[0]) * fs).astype(int), 0, len(imu.t) - 1)
     has_next = steps["has_next"].to_numpy(bool)
@@ -154,10 +173,14 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
                 h[i] = K.vertical_excursion(imu.acc_v, fs, idx[win[i][0]], idx[win[i][1] + 1])
             else:
                 h[i] = pendulum_h(imu.acc_v, fs, idx[i], fc_idx[i], idx[i + 1])
+        use = has_next & ~merged
+        g = np.where(use, K.pendulum_length(h, p.leg_m), 0.0)  # K = 1, F = 0
+        if length_smoothing != "none":  # W56; equivariant to K g + F, so calibration sums g_m (W21)
+            g = _smoothed_g(steps, g, use, win, length_smoothing)
         # a negative F (W22) must not turn a step with a tiny excursion into a backward one
-        lengths = np.where(has_next & ~merged,
-                           np.maximum(K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m), 0.0), 0.0)
-        steps = steps.assign(h_m=h, merged=merged)
+        sl = K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m) if length_smoothing == "none" else p.k * g + p.f_m
+        lengths = np.where(use, np.maximum(sl, 0.0), 0.0)
+        steps = steps.assign(h_m=h, g_m=g, merged=merged)
     else:
         sigma = K.rolling_std(imu.acc_v, fs, causal=False)
         running = K.motion_state(sigma[idx], walk_threshold=thr) == 2
@@ -225,14 +248,14 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
 #: pipeline options a PARAMS.json may set under "options" (so ``pdrlearn track --params`` reaches them)
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
                    "resolve_signs": True, "integrate_stops": False, "turn_factor": True, "rhythm": True,
-                   "merge_fragments": True}
+                   "merge_fragments": True, "length_smoothing": "none"}
 
 
 def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool | None = None,
                 heading: str | None = None, refine_ic: bool | None = None, initial_heading: float | None = None,
                 resolve_signs: bool | None = None, integrate_stops: bool | None = None,
                 turn_factor: bool | None = None, rhythm: bool | None = None,
-                merge_fragments: bool | None = None) -> TrackResult:
+                merge_fragments: bool | None = None, length_smoothing: str | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -256,6 +279,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         the gait rhythm (decision W18); default True
     merge_fragments : pendulum: a step shorter than half its walking sequence's median step is a piece of
         a step split by a spurious contact; its neighbour's length covers both (decision W27); default True
+    length_smoothing : pendulum, offline detector: ``"none"`` (default), ``"mobgap"`` (mobgap SlZijlstra's
+        Hampel + per-second smoothing of the step lengths, decision W56), ``"hampel"`` or ``"seconds"`` (its two
+        parts alone)
 
     Options left at ``None`` take the value of ``params.options`` (a PARAMS.json ``"options"`` object)
     and else :data:`OPTION_DEFAULTS`.
@@ -268,7 +294,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     given = {"realtime": realtime, "heading": heading, "refine_ic": refine_ic,
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
-             "merge_fragments": merge_fragments}
+             "merge_fragments": merge_fragments, "length_smoothing": length_smoothing}
     unknown = sorted(set(p.options or {}) - set(OPTION_DEFAULTS))
     if unknown:
         raise DataError(f"params options: unknown {', '.join(unknown)}; use some of {', '.join(OPTION_DEFAULTS)}")
@@ -276,6 +302,13 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
     integrate_stops = bool(o["integrate_stops"])
+    smoothing = str(o["length_smoothing"])
+    if smoothing not in K.LENGTH_SMOOTHING_MODES:
+        raise DataError(f"length_smoothing '{smoothing}' is not one of {', '.join(K.LENGTH_SMOOTHING_MODES)} "
+                        "(decision W56); fix the option or the PARAMS.json \"options\"")
+    if smoothing != "none" and realtime:
+        raise DataError(f"length_smoothing '{smoothing}' looks up to 1 s ahead and the realtime detector does not "
+                        "(decision W56); drop realtime or set length_smoothing to none")
     if p.source == "calibrated" and p.pipeline not in (None, pipeline):
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
@@ -300,7 +333,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
     steps = _step_lengths(steps, imu, p, pipeline, thr, turn_factor=bool(o["turn_factor"]),
-                          merge_fragments=bool(o["merge_fragments"]))
+                          merge_fragments=bool(o["merge_fragments"]), length_smoothing=smoothing)
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops)
     n = len(steps)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"

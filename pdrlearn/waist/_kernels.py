@@ -600,6 +600,104 @@ def pendulum_length(h: np.ndarray, leg_m: float, *, k: float = 1.0, f: float = 0
     return k * 2.0 * np.sqrt(np.maximum(2.0 * leg_m * hh - hh * hh, 0.0)) + f
 
 
+# decision W56: mobgap 1.2.0 SlZijlstra's step-length smoothing (`step_length_smoothing=HampelFilter(2, 3.0)`,
+# `max_interpolation_gap_s=3`, mobgap/stride_length/_sl_zijlstra.py; Zijlstra & Hof 2003 as modified by Soltani
+# et al. 2021, IEEE TNSRE 29:1955-1964); its published defaults, nothing fitted here
+HAMPEL_HALF_WINDOW = 2  # values either side of the current one (window of 5, truncated at the ends)
+HAMPEL_SIGMAS = 3.0
+MAD_TO_SD = 1.4826  # mobgap _hampel_filter_numba: MAD of a normal sample -> its standard deviation
+MAX_INTERP_GAP_S = 3.0  # seconds without a contact interpolated at most (mobgap robust_step_para_to_sec)
+LENGTH_SMOOTHING_MODES = ("none", "mobgap", "hampel", "seconds")
+
+
+def hampel(x: np.ndarray, half_window: int = HAMPEL_HALF_WINDOW, n_sigmas: float = HAMPEL_SIGMAS) -> np.ndarray:
+    """Hampel filter as mobgap's ``_hampel_filter_numba`` (decision W56): each value farther than ``n_sigmas`` x
+    1.4826 x MAD from the median of its window (``half_window`` values either side, truncated at the ends; NaN
+    ignored) is replaced by that median (a MAD of 0 replaces any value off the median); NaN stays NaN."""
+    x = np.asarray(x, dtype=np.float64)
+    out = x.copy()
+    for i in range(x.size):
+        w = x[max(0, i - half_window):i + half_window + 1]
+        w = w[np.isfinite(w)]
+        if not w.size:
+            continue
+        med = float(np.median(w))
+        if abs(x[i] - med) > n_sigmas * MAD_TO_SD * float(np.median(np.abs(w - med))):
+            out[i] = med
+    return out
+
+
+def per_second_means(t_ic: np.ndarray, values: np.ndarray, n_sec: int) -> np.ndarray:
+    """Mean of the values of the contacts ``t_ic`` (s from the sequence's first contact, sorted) inside each
+    second ``[k, k + 1]``, bounds included (mobgap ``interval_mean``, decision W56); NaN for a second without one."""
+    t = np.asarray(t_ic, dtype=np.float64)
+    v = np.asarray(values, dtype=np.float64)
+    k = np.arange(n_sec, dtype=np.float64)
+    lo, hi = np.searchsorted(t, k, side="left"), np.searchsorted(t, k + 1.0, side="right")
+    out = np.full(n_sec, np.nan)
+    for j, (a, b) in enumerate(zip(lo, hi, strict=True)):
+        seg = v[a:b][np.isfinite(v[a:b])]
+        if seg.size:
+            out[j] = float(seg.mean())
+    return out
+
+
+def interpolate_inside(x: np.ndarray, max_gap: float = MAX_INTERP_GAP_S) -> np.ndarray:
+    """NaN runs between finite values filled linearly, runs longer than ``max_gap`` values (seconds) and the
+    edges left NaN (mobgap ``robust_step_para_to_sec``, decision W56)."""
+    x = np.asarray(x, dtype=np.float64).copy()
+    ok = np.flatnonzero(np.isfinite(x))
+    for a, b in zip(ok[:-1], ok[1:], strict=True):
+        if 1 < b - a <= max_gap + 1:
+            x[a + 1:b] = np.interp(np.arange(a + 1, b), [a, b], [x[a], x[b]])
+    return x
+
+
+def smooth_step_lengths(start_s: np.ndarray, end_s: np.ndarray, lengths: np.ndarray, mode: str = "mobgap"
+                        ) -> np.ndarray:
+    """Step lengths of one walking sequence smoothed as mobgap's ``SlZijlstra`` does (decision W56).
+
+    ``start_s``/``end_s``: each step's contacts (s, sorted, step i ends where i + 1 starts); ``lengths`` the
+    per-step values (any unit; the result is equivariant to ``x -> a x + b``, a > 0). ``mode``:
+    ``"mobgap"`` -- the last value repeated for the last contact, a Hampel filter on the per-contact values,
+    the mean per second of the sequence (from its first contact), the Hampel filter on the per-second values,
+    gaps of up to 3 s interpolated, and each step the mean of that piecewise-constant per-second curve over its
+    own span; ``"hampel"`` -- only the first Hampel filter; ``"seconds"`` -- the per-second steps without either
+    Hampel filter; ``"none"`` -- the lengths unchanged.
+    """
+    v = np.asarray(lengths, dtype=np.float64)
+    if mode not in LENGTH_SMOOTHING_MODES:
+        raise DataError(f"length_smoothing '{mode}' is not one of {', '.join(LENGTH_SMOOTHING_MODES)}")
+    if mode == "none" or not v.size:
+        return v.copy()
+    t0 = float(start_s[0])
+    s = np.asarray(start_s, dtype=np.float64) - t0
+    e = np.asarray(end_s, dtype=np.float64) - t0
+    per_ic = np.append(v, v[-1])  # mobgap: the last step's value also stands for the last contact
+    use_hampel = mode in ("mobgap", "hampel")
+    if use_hampel:
+        per_ic = hampel(per_ic)
+    if mode == "hampel":
+        return per_ic[:-1]
+    t_ic = np.append(s, e[-1])
+    n_sec = int(np.floor(t_ic[-1])) + 1  # mobgap: seconds k + 0.5 of the sequence, the last contact's included
+    sec = per_second_means(t_ic, per_ic, n_sec)
+    if use_hampel:
+        sec = hampel(sec)
+    sec = interpolate_inside(sec)
+    # each step: the mean of the piecewise-constant per-second curve over [start, end] (mobgap
+    # naive_sec_paras_to_regions), seconds left NaN (longer gaps) not counted
+    ok = np.isfinite(sec)
+    knots = np.arange(n_sec + 1, dtype=np.float64)
+    area = np.concatenate([[0.0], np.cumsum(np.where(ok, sec, 0.0))])
+    cover = np.concatenate([[0.0], np.cumsum(ok.astype(np.float64))])
+    da = np.interp(e, knots, area) - np.interp(s, knots, area)
+    dc = np.interp(e, knots, cover) - np.interp(s, knots, cover)
+    at = sec[np.clip(np.floor(s).astype(int), 0, n_sec - 1)]  # a step of zero duration: its second's value
+    out = np.where(dc > 1e-12, da / np.where(dc > 1e-12, dc, 1.0), at)
+    return np.where(np.isfinite(out), out, per_ic[:-1])  # no finite second under the step: its own value
+
+
 def vertical_excursion(acc_v: np.ndarray, fs: float, i0: int, i1: int) -> float:
     """Peak-to-peak vertical displacement (m) between samples ``i0`` and ``i1``.
 

@@ -43,8 +43,11 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     p, _ = resolve_params(session, params)
     res = result if result is not None else track_waist(session, pipeline=pipeline, params=p)
     st = res.steps[res.steps["has_next"]]
-    g = (K.pendulum_length(st["h_m"].to_numpy(float), p.leg_m, k=1.0, f=0.0) if "h_m" in st
-         else np.zeros(len(st)))
+    if "g_m" in st:  # the g the tracker multiplies by K, smoothed if it is (W56), so D = sum c (K g + F) (W21)
+        g = st["g_m"].to_numpy(float)
+    else:
+        g = (K.pendulum_length(st["h_m"].to_numpy(float), p.leg_m, k=1.0, f=0.0) if "h_m" in st
+             else np.zeros(len(st)))
     c = np.ones(len(st))
     if res.info.get("options", {}).get("turn_factor") and "dyaw_rad" in st:  # the same model as tracking (W19)
         c = K.turning_step_factor(st["dyaw_rad"].to_numpy(float))
