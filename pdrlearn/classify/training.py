@@ -787,6 +787,10 @@ def train_user(
         # decision C17: a model without classifiers is worth writing only for its distance calibration
         why = ("distance calibration off" if calibration is None
                else f"no distance calibration either: {calibration['reason']}")
+        if not any(s.has("fAccelerometer") for s in sessions):  # decision B47: say where a waist user calibrates
+            why += (" (train's distance calibration is the foot pipeline's; a lower-back-only recording "
+                    "calibrates its step length with 'pdrlearn calibrate DIR --distance METERS', or with the "
+                    "reference walking bouts of bouts.csv)")
         raise DataError("train: nothing to train; " + " | ".join(skipped) + f" | {why}")
     rates: dict[str, float] = {}
     for s in sessions:

@@ -32,6 +32,13 @@ def register(app: typer.Typer) -> None:
         shrink: bool = typer.Option(False, "--shrink",
                                     help="waist-pendulum: shrink the calibrated K toward the population K by its "
                                          "standard error (decision W48; measured, not the default)."),
+        start: list[float] = typer.Option(None, "--start",
+                                          help="With --distance: count only the steps after this time (s from "
+                                               "the recording's start), one per folder or one for all "
+                                               "(decision W61)."),
+        end: list[float] = typer.Option(None, "--end",
+                                        help="With --distance: count only the steps before this time (s from "
+                                             "the recording's start), one per folder or one for all."),
         out: Path = typer.Option(..., "--out", "-o", help="PARAMS.json to write (an existing file only with --force)."),
         force: bool = typer.Option(False, "--force", help=FORCE_HELP),
         as_json: bool = typer.Option(False, "--json", help="Print the parameters as JSON."),
@@ -47,6 +54,8 @@ def register(app: typer.Typer) -> None:
           pdrlearn calibrate loop --pipeline waist-pendulum -d 35 --turns 1 --out p.json
 
           pdrlearn calibrate walk1 -d 40 --shrink --out p.json   (K shrunk toward the population K, W48)
+
+          pdrlearn calibrate walk1 -d 5.01 --start 5.0 --end 11.6 --out p.json   (the measured stretch only)
 
         Then: pdrlearn track DIR --pipeline waist-pendulum --params p.json --out OUT
         """
@@ -66,8 +75,15 @@ def register(app: typer.Typer) -> None:
                                 f"'{s.name}' lacks (it has {have}); give a session with the waist unit -- the foot "
                                 "pipeline (plasys) takes no calibrate file: its distance calibration comes with "
                                 "`pdrlearn train` (decision L26)")
+        spans = None
+        if start or end:  # decision W61: the measured stretch of each recording
+            n = max(len(start or []), len(end or []))
+            if (start and len(start) != n) or (end and len(end) != n):
+                raise DataError(f"calibrate: {len(start or [])} --start and {len(end or [])} --end values; give "
+                                "as many of each (or only one of the two)")
+            spans = [((start or [None] * n)[k], (end or [None] * n)[k]) for k in range(n)]
         params = calibrate(sessions, pipeline, distances=list(distance) if distance else None, turns=turns,
-                           fit_turns=fit_turns, shrink=shrink)
+                           fit_turns=fit_turns, shrink=shrink, spans=spans)
         params.save(out, extra={"fit": [str(d) for d in dirs]})
         replaced(out, was)
         d = params.to_dict()

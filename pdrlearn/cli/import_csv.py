@@ -61,8 +61,9 @@ def import_command(
     out: Path = typer.Option(..., "--out", "-o", help="Session folder to write (or, with --merge, to add to)."),
     unit: str = typer.Option(None, "--unit", help="Which unit the channels are: foot or waist (default foot)."),
     time: str = typer.Option(None, "--time", help="Timestamp column (default: the one named like a time)."),
-    acc: str = typer.Option(None, "--acc", help="Accelerometer columns X,Y,Z (default: guessed from the names)."),
-    gyro: str = typer.Option(None, "--gyro", help="Gyroscope columns X,Y,Z (default: guessed)."),
+    acc: str = typer.Option(None, "--acc", help="Accelerometer columns X,Y,Z (default: guessed from the names); -NAME "
+                            "negates a column, e.g. --acc=-ax,-ay,-az for an iOS export (gravity -1 g, decision B48)."),
+    gyro: str = typer.Option(None, "--gyro", help="Gyroscope columns X,Y,Z (default: guessed; -NAME negates one)."),
     mag: str = typer.Option(None, "--mag", help="Magnetometer columns X,Y,Z (waist; default: guessed)."),
     baro: str = typer.Option(None, "--baro", help="Barometer column (waist, hPa; default: guessed)."),
     heel: str = typer.Option(None, "--heel", help="Heel force column (foot; default: guessed)."),

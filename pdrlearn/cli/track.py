@@ -46,6 +46,9 @@ def track(
     fix_period: float = typer.Option(None, "--fix-period", help="Use a fix every S seconds."),
     streaming: bool = typer.Option(False, "--streaming", help="plasys M2/M3 with the stride-local kernel of "
                                    "the streaming runtime: the trajectory `pdrlearn run` reproduces to 1 mm."),
+    realtime: bool = typer.Option(False, "--realtime", help="waist-pendulum: the causal initial-contact "
+                                  "detector (each contact decided < 2 s after it, decision W31) instead of the "
+                                  "zero-lag offline one; = \"options\": {\"realtime\": true} in --params."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
 ) -> None:
@@ -64,6 +67,8 @@ def track(
         pdrlearn track out/sim/D_u1 --method M3 --model out/models/u1 --streaming --out out/D3s   # = pdrlearn run
 
         pdrlearn track datasets/real/gaitmap_level_left --model out/models/u1 --warn-out-of-domain 0.25 --out out/L
+
+        pdrlearn track datasets/real/mobgap_HA001_Test5_Trial1 --pipeline waist-pendulum --realtime --out out/W
     """
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.common import out_folder
@@ -91,6 +96,10 @@ def track(
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
     fn = get_pipeline(pipeline)
+    if realtime and pipeline != "waist-pendulum":  # decision W60: the flag the docs named
+        raise DataError(f"track: --realtime applies to the waist-pendulum pipeline only (got --pipeline {pipeline}, "
+                        "which has no causal variant); add --pipeline waist-pendulum on a session with a waist "
+                        "unit, or drop --realtime")
     _refuse_ignored_options(pipeline, method, {"--method": method.lower() != "auto", "--model": model is not None,
                                                "--rules": rules is not None,
                                                "--min-confidence": min_confidence is not None,
@@ -101,6 +110,8 @@ def track(
         _refuse_waist_params(par, params, session)
     # waist pipelines read the file themselves, so that their errors name it
     kw = {"model": model, "start": start_ll, "params": par if pipeline == "plasys" or par is None else str(params)}
+    if realtime:
+        kw["realtime"] = True
     if pipeline == "plasys":
         kw["method"] = method
         if streaming:

@@ -174,10 +174,17 @@ UNIT_GROUPS: dict[str, tuple[str, ...]] = {"foot": ("foot_acc", "foot_gyr", "for
 GAP_GROUPS: dict[str, tuple[str, ...]] = {"foot": ("foot_acc", "foot_gyr"), "waist": ("waist_acc", "waist_gyr")}
 
 
+#: decision B46: an interval up to this many nominal periods (one sample missing: 2 periods, with jitter
+#: allowance) is bridged by the windows' time interpolation, as the waist pipelines bridge it (W34) and
+#: :meth:`Stream.on_uniform_clock` does (B33); only a longer one (two or more samples in a row) is a gap
+BRIDGED_PERIODS = 2.5
+
+
 def gap_steps(session: Session, start: np.ndarray, end: np.ndarray,
               available: tuple[str, ...]) -> dict[str, np.ndarray]:
-    """Per unit, the steps ``[start, end]`` (s) overlapping a gap (interval > 1.5 nominal periods,
-    :meth:`Stream.gaps`) of the unit's accelerometer or gyroscope; only units with such steps."""
+    """Per unit, the steps ``[start, end]`` (s) overlapping a gap (interval > :data:`BRIDGED_PERIODS` nominal
+    periods, :meth:`Stream.gaps`; decision B46) of the unit's accelerometer or gyroscope; only units with such
+    steps."""
     out = {}
     for unit, groups in GAP_GROUPS.items():
         mask = np.zeros(len(start), dtype=bool)
@@ -185,7 +192,7 @@ def gap_steps(session: Session, start: np.ndarray, end: np.ndarray,
             if g not in available:
                 continue
             for name in GROUP_STREAMS[g]:
-                for gap in session.streams[name].gaps():
+                for gap in session.streams[name].gaps(BRIDGED_PERIODS):
                     mask |= (start < gap.start_s + gap.duration_s) & (end > gap.start_s)
         if mask.any():
             out[unit] = mask

@@ -338,6 +338,18 @@ def parse_frame(text: str | dict | None, where: str = "--frames") -> AxisFrame |
         raise DataError(f"{where}: {exc}") from None
 
 
+def signed_columns(cols: list[str], header: list[str]) -> tuple[list[str], np.ndarray]:
+    """Decision B48: a channel column written ``-NAME`` (``--acc=-ax,-ay,-az``, or in the --mapping JSON) is
+    column ``NAME`` negated, when the file has no column called ``-NAME`` itself. Returns the column names and
+    the sign (+1 / -1) of each; iOS Core Motion exports report gravity as -1 g (docs/external-data.md)."""
+    names, signs = [], []
+    for c in cols:
+        neg = c.startswith("-") and c not in header and c[1:] in header
+        names.append(c[1:] if neg else c)
+        signs.append(-1.0 if neg else 1.0)
+    return names, np.array(signs)
+
+
 def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str, list[str]] | None = None,
                time_column: str | None = None, time_unit: str | None = None, units: dict[str, str] | None = None,
                frame=None, sensor_height_m: float | None = None, name: str | None = None,
@@ -388,6 +400,9 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         dup = sorted({c for c in header if header.count(c) > 1})
         raise DataError(f"{where}: column name(s) {', '.join(dup)} appear twice; rename them")
     columns = {k: list(v) for k, v in (columns or {}).items()}
+    signs = {}
+    for kind in list(columns):  # B48: -NAME = NAME negated
+        columns[kind], signs[kind] = signed_columns(columns[kind], header)
     for kind, cols in columns.items():
         if kind not in KINDS:
             raise DataError(f"import: unknown channel kind {kind!r}; use {', '.join(KINDS)}")
@@ -485,7 +500,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         t = t_all[keep]
         check_timestamps(t, f"{where} ({time_column})")
         _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where)
-        stream = Stream(sensor, t, vals[keep] * factor)
+        sign = signs.get(kind, np.ones(len(cols)))
+        stream = Stream(sensor, t, vals[keep] * factor * sign)
         opt = _UNIT_OPTION.get(kind, "--mapping units")
         try:
             check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})",
@@ -505,6 +521,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         record["streams"][sensor] = {"columns": cols, "columns_source": sources[kind], "unit": u,
                                      "unit_source": u_src, "factor": factor,
                                      "rate_hz": round(float(stream.rate_hz), 4), "samples": len(stream)}
+        if (sign < 0).any():  # B48
+            record["streams"][sensor]["negated"] = [c for c, g in zip(cols, sign, strict=True) if g < 0]
     acc_name, gyro_name = UNIT_IMU[unit]
     if acc_name in streams and gyro_name in streams:  # decisions B36, B37: the two judged together
         a, g = record["streams"][acc_name], record["streams"][gyro_name]

@@ -216,7 +216,7 @@ class Session:
     frames: dict[str, AxisFrame] = field(default_factory=dict)
     folder: Path | None = None
     infer_frames: bool = True
-    _inferred: dict[str, AxisFrame | str] = field(default_factory=dict, repr=False, compare=False)
+    _inferred: dict[str, AxisFrame | DataError] = field(default_factory=dict, repr=False, compare=False)
     _checked: dict[str, str | None] = field(default_factory=dict, repr=False, compare=False)
     _handed: dict[object, object] = field(default_factory=dict, repr=False, compare=False)
 
@@ -309,7 +309,7 @@ class Session:
                 try:
                     found = infer_session_frame(self, placement)
                 except DataError as exc:
-                    self._inferred[placement] = str(exc)
+                    self._inferred[placement] = exc  # printed as its message; W61 reads its walk_s
                 else:
                     self._inferred[placement] = found.frame
                     log.warning("%s declares no axis frame for the %s unit; inferred from the data: \"frames\": "
@@ -341,11 +341,13 @@ class Session:
                     f"{acc_n} and {gyr_n} {h.describe()}: the two files disagree on the axes, which no frame can "
                     f"describe; {fix}")
         example = json.dumps({placement: EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"]).to_dict()})
-        raise DataError(
+        err = DataError(
             f"{where} declares no axis frame for the {placement} unit{reason}; add a \"frames\" entry giving the "
             f"body direction of each of its axes (forward, backward, left, right, up, down), e.g. the thesis "
             f"mounting \"frames\": {example}"
         )
+        err.walk_s = getattr(self._inferred.get(placement), "walk_s", None)  # W61: too little walking to infer
+        raise err
 
     def handedness(self, placement: str, *, ratio: bool = True):
         """The mirrored-data and axis-agreement tests of the ``placement`` unit

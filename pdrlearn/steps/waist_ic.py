@@ -33,6 +33,60 @@ log = logging.getLogger(__name__)
 _STREAMS = ("wAccelerometer", "wGyroscope")
 
 
+class _Bridge:
+    """Decision W59: the dropped samples of a pushed stream bridged as the offline detector's input is
+    (:func:`pdrlearn.waist.ahrs.body_data`, decision W34), so that ``online`` equals ``detect``: an interval
+    over 1.5 periods gets its missing samples at the nominal period, linearly interpolated; one over
+    ``LONG_GAP_S`` is filled as a rest (the mean of the raw samples of the second before it, zero rate); one over
+    :data:`pdrlearn.track.gaps.MIN_GAP_S` ends the walking sequence (B11), added to ``gaps``."""
+
+    def __init__(self, fs: float, gaps: dict):
+        self.fs = fs
+        self.gaps = gaps
+        self.t_last: float | None = None
+        self.v_last: np.ndarray | None = None
+        self.tail_t = np.zeros(0)
+        self.tail_v = np.zeros((0, 6))
+
+    def __call__(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        from pdrlearn.track.gaps import MIN_GAP_S
+        from pdrlearn.waist.ahrs import LONG_GAP_S
+
+        p = 1.0 / self.fs
+        prev = self.t_last is not None
+        tt = np.concatenate([[self.t_last], t]) if prev else t
+        vv = np.vstack([self.v_last, v]) if prev else v
+        raw_t, raw_v = np.concatenate([self.tail_t, t]), np.vstack([self.tail_v, v])
+        self.t_last, self.v_last = float(t[-1]), v[-1].copy()
+        keep = raw_t > raw_t[-1] - LONG_GAP_S - p
+        self.tail_t, self.tail_v = raw_t[keep], raw_v[keep]
+        d = np.diff(tt)
+        big = np.flatnonzero(d > 1.5 * p)
+        if not big.size:
+            return t, v
+        ts, vs, a = [], [], 0
+        for i in big:
+            ts.append(tt[a:i + 1])
+            vs.append(vv[a:i + 1])
+            n = int(round(d[i] * self.fs)) - 1
+            ti = tt[i] + p * np.arange(1, n + 1)
+            if d[i] > LONG_GAP_S:  # as body_data: at rest, the specific force of the last second, zero rate
+                before = (raw_t > tt[i] - LONG_GAP_S) & (raw_t <= tt[i])
+                fill = np.tile(np.concatenate([raw_v[before, :3].mean(axis=0), np.zeros(3)]), (n, 1))
+            else:
+                w = ((ti - tt[i]) / d[i])[:, None]
+                fill = (1.0 - w) * vv[i] + w * vv[i + 1]
+            ts.append(ti)
+            vs.append(fill)
+            if d[i] > MIN_GAP_S:  # decision B11: the walking sequence ends at it
+                self.gaps.setdefault("online stream", []).append((float(tt[i]), float(tt[i + 1])))
+            a = i + 1
+        ts.append(tt[a:])
+        vs.append(vv[a:])
+        out_t, out_v = np.concatenate(ts), np.vstack(vs)
+        return (out_t[1:], out_v[1:]) if prev else (out_t, out_v)
+
+
 class _WaistICProcessor:
     """Holds the body-frame samples; :meth:`flush` runs the offline IC detector on all of them."""
 
@@ -40,11 +94,13 @@ class _WaistICProcessor:
         self.det = det
         self.fs = fs
         self.rotation = None if rotation is None else np.asarray(rotation, dtype=float).reshape(3, 3)
-        self.gaps = gaps or {}
+        self.gaps = dict(gaps or {})
+        self.bridge = _Bridge(fs, self.gaps)
         self.t: list[np.ndarray] = []
         self.v: list[np.ndarray] = []
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
+        t, v = self.bridge(t, v)  # W59: dropped samples bridged as detect's input (W34)
         self.t.append(t.copy())
         self.v.append(v.copy())
         return []  # decision 17: no contact is final before the end of the recording
@@ -80,7 +136,8 @@ class _RealtimeProcessor:
 
         self.det, self.fs = det, fs
         self.rotation = None if rotation is None else np.asarray(rotation, dtype=float).reshape(3, 3)
-        self.gaps = gaps or {}
+        self.gaps = dict(gaps or {})
+        self.bridge = _Bridge(fs, self.gaps)
         self.ic_det = det.ic_detector()
         self.decider = K.DelayedDecider(fs, delay_s=det.delay_s, hop_s=det.hop_s, history_s=det.history_s)
         self.max_gap = K._max_gap(det.max_step_s, fs)
@@ -174,6 +231,7 @@ class _RealtimeProcessor:
 
     # -- stream ----------------------------------------------------------------------------------
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
+        t, v = self.bridge(t, v)  # W59: dropped samples bridged as detect's input (W34)
         if self.rotation is not None:
             v = np.column_stack([v[:, :3] @ self.rotation.T, v[:, 3:6] @ self.rotation.T])
         first = False
@@ -242,8 +300,10 @@ class WaistICStepDetector(StepDetector):
     hop_s, history_s : decision interval and history of the realtime variant (s; W31: 0.25, 10)
 
     Online (decision 17): input columns are the waist accelerometer (m/s^2) and gyroscope (rad/s) in the
-    body frame FLU on a uniform clock (``online(fs, rotation=R)`` maps sensor-frame samples with the
-    session's ``frames["waist"]`` matrix); every contact is reported by ``flush()``.
+    body frame FLU at ``fs`` Hz (``online(fs, rotation=R)`` maps sensor-frame samples with the session's
+    ``frames["waist"]`` matrix); dropped samples (an interval over 1.5 periods) are bridged as :meth:`detect`
+    bridges them (decision W59, W34), so a stream with dropped samples gives ``detect``'s contacts; every
+    contact is reported by ``flush()`` (``delay_s``: once decided).
     """
 
     name = "waist-ic"

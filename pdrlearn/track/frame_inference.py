@@ -82,7 +82,11 @@ MAX_DECLARED_OFF_DEG = 60.0
 
 
 class FrameInferenceError(DataError):
-    """The data does not fix the unit's axes with confidence (no walking, no rest, ambiguous axes)."""
+    """The data does not fix the unit's axes with confidence (no walking, no rest, ambiguous axes).
+    ``walk_s``: the seconds of walking found when there were too few to infer a waist frame (decision W61),
+    else None."""
+
+    walk_s: float | None = None
 
 
 @dataclass
@@ -338,8 +342,10 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
     B = np.column_stack(b)
     C, z, walk_s, rhythm = _step_spectra(acc @ up, acc @ B, fs)
     if walk_s < MIN_WALK_S:
-        raise FrameInferenceError(f"less than {MIN_WALK_S:g} s of walking (vertical acceleration std over 0.5 "
+        err = FrameInferenceError(f"less than {MIN_WALK_S:g} s of walking (vertical acceleration std over 0.5 "
                                   "m/s^2 in 4 s windows)")
+        err.walk_s = walk_s  # W61: a waist track of such a recording has no steps to place
+        raise err
     if rhythm < MIN_RHYTHM_SIGMA:
         raise FrameInferenceError(f"no walking rhythm: the vertical acceleration of the {walk_s:.0f} s that move "
                                   f"repeats at no step or stride period of {RHYTHM_LAG_S[0]:g}-{RHYTHM_LAG_S[1]:g} s "
@@ -452,6 +458,11 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> str | 
     if set(off) == {"left"}:  # up and forward agree, left reversed: a wrong entry, or mirrored data
         fix = (f"{fix}; but if the declared axes are right, the data are mirrored (one axis column negated, "
                "e.g. by a left-handed export): negate that column in the CSV files instead")
+    if set(off) == {"up", "forward"} and min(off.values()) > 150.0:  # B48: the frame turned 180 deg about left
+        acc_n = UNIT_STREAMS[placement][0]
+        fix = (f"{fix}; but if the declared axes are right, the accelerometer reports gravity as -1 g (iOS Core "
+               f"Motion exports do): negate all three columns of {acc_n}.csv (pdrlearn import --acc=-X,-Y,-Z) "
+               "instead, since writing the data's frame would mirror every turn")
     return f"{what} {' and '.join(issues)}; the meta.json frame is still used (decision D8): {fix}"
 
 

@@ -41,7 +41,7 @@ from pdrlearn.waist.heading import (
     gyro_headings,
     harmonic_directions,
 )
-from pdrlearn.waist.params import WaistParams, resolve_params
+from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params
 from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
 
 log = logging.getLogger(__name__)
@@ -289,6 +289,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if pipeline not in ("waist-pll", "waist-pendulum"):
         raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     p, warnings = resolve_params(session, params)
+    if pipeline == "waist-pll":  # its frequency step-length model has no leg length (W62)
+        warnings = [w for w in warnings if not w.startswith(NO_SENSOR_HEIGHT)]
     given = {"realtime": realtime, "heading": heading, "refine_ic": refine_ic,
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
@@ -310,7 +312,12 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if p.source == "calibrated" and p.pipeline not in (None, pipeline):
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
-    imu = waist_imu(session)
+    try:
+        imu = waist_imu(session)
+    except DataError as exc:  # W61: no frame declared and too little walking to infer one: nothing to track
+        if getattr(exc, "walk_s", None) is None:
+            raise
+        return _no_walking(session, pipeline, p, o, warnings, float(exc.walk_s), start, initial_heading)
     thr = p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None else WALK_THRESHOLD_MPS2
     if pipeline == "waist-pendulum":
         det = InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
@@ -344,6 +351,34 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]))
+
+
+#: the columns of a waist steps table (the pendulum's; the PLL's lacks h_m and merged)
+_STEP_COLUMNS = {"start_s": float, "end_s": float, "event_s": float, "unit": "string", "confidence": float,
+                 "fc_s": float, "has_next": bool, "h_m": float, "merged": bool, "length_m": float,
+                 "frequency_hz": float, "dyaw_rad": float, "heading_rad": float, "turning": "int64",
+                 "mean_rate_rps": float}
+
+
+def _no_walking(session: Session, pipeline: str, p: WaistParams, o: dict, warnings: list[str], walk_s: float,
+                start, initial_heading: float) -> TrackResult:
+    """Decision W61: a recording without a declared waist frame whose data walks less than the frame inference
+    needs (``walk_s`` < 4 s): an empty track (0 steps, 0 m) with one warning, instead of an error asking for the
+    frame of a recording with nothing to track."""
+    from pdrlearn.track.frame_inference import MIN_WALK_S
+
+    cols = {k: v for k, v in _STEP_COLUMNS.items() if pipeline == "waist-pendulum" or k not in ("h_m", "merged")}
+    steps = pd.DataFrame({k: pd.Series(dtype=v) for k, v in cols.items()})
+    acc = session.require("wAccelerometer", purpose="a lower-back track")
+    warnings = [*warnings, f"no walking to track: {walk_s:.0f} s of walking (under {MIN_WALK_S:g} s, too little to "
+                f"infer the axis frame): 0 steps, 0 m; if the recording does walk, add the waist \"frames\" entry "
+                "to meta.json (or 'pdrlearn import --frames')"]
+    info = {"pipeline": pipeline, "method": "", "methods": {}, "params": p.to_dict(), "params_source": p.source,
+            "options": o, "warnings": warnings, "n_contacts": 0, "rate_hz": float(acc.rate_hz),
+            "no_walking": True}
+    for w in warnings:
+        log.warning("%s: %s", session.where, w)
+    return _result(steps, start, initial_heading, info, float(acc.t[0]))
 
 
 @register_pipeline("waist-pll")

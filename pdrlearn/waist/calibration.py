@@ -27,13 +27,16 @@ log = logging.getLogger(__name__)
 
 
 def calibration_walks(session: Session, pipeline: str, *, distance_m: float | None = None,
-                      params=None, result=None) -> list[CalibrationWalk]:
+                      params=None, result=None, span_s: tuple[float | None, float | None] | None = None
+                      ) -> list[CalibrationWalk]:
     """The walks of known length in ``session``.
 
     With ``distance_m`` the whole session is one walk (all detected steps, as ``track`` sums them: the
     distance from the first to the last detected contact, decision W21); otherwise each reference walking
     bout (``bouts.csv``) is one walk with the steps :func:`~pdrlearn.waist.evaluate.steps_in_interval`
     counts for it. ``result``: the session's :class:`~pdrlearn.track.base.TrackResult` if already computed.
+    ``span_s`` (with ``distance_m``): ``(start, end)`` in seconds from the recording's start (either None =
+    open): only the steps whose both contacts lie inside count (decision W61, ``calibrate --start/--end``).
     """
     from pdrlearn.track.waist import track_waist
 
@@ -51,6 +54,22 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     if "merged" in st:  # W27: a fragment merged into its neighbour carries no length (nor an F term)
         c = np.where(st["merged"].to_numpy(bool), 0.0, c)
     f = st["frequency_hz"].to_numpy(float)
+    if span_s is not None and distance_m is None:
+        raise DataError("calibrate: --start/--end mark the stretch whose length --distance gives; pass --distance "
+                        "METERS too (the reference bouts of bouts.csv carry their own times)")
+    if span_s is not None:  # W61: the measured stretch only
+        t0 = session.t_start
+        lo = -np.inf if span_s[0] is None else t0 + float(span_s[0])
+        hi = np.inf if span_s[1] is None else t0 + float(span_s[1])
+        if not lo < hi:
+            raise DataError(f"calibrate: --start {span_s[0]} is not before --end {span_s[1]} (seconds from the "
+                            f"start of {session.name})")
+        keep = (st["start_s"].to_numpy(float) >= lo) & (st["end_s"].to_numpy(float) <= hi)
+        st, g, c, f = st[keep], g[keep], c[keep], f[keep]
+        if not len(st):
+            raise DataError(f"calibrate: no detected step of {session.name} lies inside --start/--end "
+                            f"({span_s[0]}-{span_s[1]} s from its start; the recording covers "
+                            f"{session.duration_s:.1f} s); widen the stretch")
     if distance_m is not None:
         if not (np.isfinite(distance_m) and distance_m > 0):
             raise DataError(f"calibrate: --distance {distance_m} must be a positive number of metres")
@@ -195,7 +214,8 @@ _FITTED_NOTE = {"waist-pendulum": r"K = ", "waist-pll": r"height \S+ m -> SL = "
 
 def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] | None = None,
               turns: float | None = None, fit_turns: bool = False, params=None, shrink: bool = False,
-              tau_k: float | None = None) -> WaistParams:
+              tau_k: float | None = None, spans: list[tuple[float | None, float | None]] | None = None
+              ) -> WaistParams:
     """Fit the step-length parameters of ``pipeline`` (with ``turns``, the gyro bias; with ``fit_turns``,
     the straight/turning mixture, decision W14).
 
@@ -207,6 +227,8 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     shrink : waist-pendulum: shrink the calibrated K toward the population K by its standard error (decision
         W48: measured, not the default); ``tau_k`` the between-subject spread (default
         :data:`~pdrlearn.waist.params.TAU_K`). K's standard error is recorded in ``k_shrinkage`` either way.
+    spans : with ``distances``: per session (or one for all) the ``(start, end)`` seconds from the recording's
+        start whose steps the distance covers (decision W61); None = every detected step.
     """
     if not sessions:
         raise DataError("calibrate: give at least one session folder")
@@ -216,6 +238,9 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     if distances is not None and len(distances) not in (1, len(sessions)):
         raise DataError(f"calibrate: {len(distances)} --distance values for {len(sessions)} sessions; "
                         "give one per session")
+    if spans is not None and len(spans) not in (1, len(sessions)):
+        raise DataError(f"calibrate: {len(spans)} --start/--end stretches for {len(sessions)} sessions; "
+                        "give one per session or one for all")
     from pdrlearn.track.waist import track_waist
 
     base, _ = resolve_params(sessions[0], params)
@@ -225,7 +250,11 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
         res = track_waist(s, pipeline=pipeline, params=base)
-        walks += calibration_walks(s, pipeline, distance_m=d, params=base, result=res)
+        if not res.steps["has_next"].any():  # W61: a standing-only recording, not a model failure
+            raise DataError(f"calibrate: 0 steps detected in {s.folder or s.name}; calibrate needs a walk of known "
+                            "length (give a recording of walking, with --distance or bouts.csv)")
+        span = None if spans is None else spans[i if len(spans) > 1 else 0]
+        walks += calibration_walks(s, pipeline, distance_m=d, params=base, result=res, span_s=span)
         st = res.steps
         if len(st):  # decision W34: say when a calibration walk lost samples
             notes_gap += gap_notes(s, float(st["start_s"].min()), float(st["end_s"].max()))

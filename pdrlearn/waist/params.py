@@ -20,6 +20,8 @@ SCHEMA = "pdrlearn.waist-params/1"
 DEFAULT_HEIGHT_M = 1.70  # used only when meta.json gives no height (a warning says so)
 # Anthropometric ratios (Drillis & Contini 1966, as tabulated by Winter, Biomechanics of Human Movement):
 LEG_PER_HEIGHT = 0.53  # greater-trochanter height / body height
+#: the start of the warning line for a leg length taken from the height (decision W62)
+NO_SENSOR_HEIGHT = "meta.json gives no sensor height"
 FOOT_PER_HEIGHT = 0.152  # foot length / body height
 # Pendulum gain K without calibration (decision W46): mobgap's SlZijlstra default scaling factor
 # (step_length_scaling_factor_ms_ms = 4.587 / 4, optimised on the Mobilise-D MS project), the same
@@ -159,6 +161,10 @@ def default_params(session: Session) -> tuple[WaistParams, list[str]]:
     if leg is None:
         leg = LEG_PER_HEIGHT * height
         notes.append(f"leg length {leg:.3f} m = {LEG_PER_HEIGHT} x height")
+        # decision W62: the pendulum's step length scales with sqrt(leg); a guessed leg says so on one line
+        warnings.append(f"{NO_SENSOR_HEIGHT}: leg length assumed {leg:.3f} m = {LEG_PER_HEIGHT} x height "
+                        f"{height:.2f} m (the pendulum step length grows with its square root); give the unit's "
+                        "height with 'pdrlearn import --sensor-height M' or meta.json sensor_height_m")
     else:
         notes.append(f"leg length {leg:.3f} m from meta.json (leg_length_m or sensor_height_m)")
     foot = _meta_number(meta, "foot_length_m")
