@@ -115,6 +115,30 @@ def test_calibrate_start_end_counts_the_measured_stretch_only(tmp_path, capsys):
     assert "no detected step" in capsys.readouterr().err
 
 
+def test_calibrate_start_end_on_a_clock_that_does_not_start_at_0(tmp_path):
+    """--start/--end are seconds from the recording's start; the contacts span calibrate prints must be on the
+    same clock, or a user narrowing the stretch from it gets the wrong steps (review: it printed 105.7-110.6 s
+    for a recording whose clock starts at 100 s, where --start 5 --end 11 had counted them)."""
+    import pandas as pd
+
+    from pdrlearn.waist.calibration import calibrate
+
+    d = tmp_path / "late"
+    shutil.copytree(HA001_T5, d)
+    for f in d.glob("*.csv"):
+        t = pd.read_csv(f)
+        for c in t.columns:
+            if c == "timestamp" or c.endswith("_ms"):
+                t[c] = t[c] + 100000
+        t.to_csv(f, index=False)
+    ref = calibrate([read_session(HA001_T5)], "waist-pendulum", distances=[5.01], spans=[(5.0, 11.0)])
+    late = calibrate([read_session(d)], "waist-pendulum", distances=[5.01], spans=[(5.0, 11.0)])
+    assert late.k == pytest.approx(ref.k)
+    span = [n for n in late.notes if "counted over" in n]
+    assert span == [n for n in ref.notes if "counted over" in n]
+    assert "contacts 5.7-10.6 s from the recording's start" in span[0]
+
+
 def test_one_missing_sample_is_bridged_not_a_gap(caplog):
     """Decision B46: one dropped sample (an interval of 2 periods) is bridged by the step windows' time
     interpolation, as W34 bridges it in the waist pipelines; two in a row are a gap (B11). Trial 12: 3 of 51
