@@ -64,7 +64,7 @@ def test_track_realtime_flag_equals_the_params_option(tmp_path, capsys):
     assert "--realtime applies to the waist-pendulum pipeline only" in err and not (tmp_path / "c").exists()
 
 
-def _standing(tmp_path: Path) -> Path:
+def _standing(tmp_path: Path, end_ms: float = 4500) -> Path:
     """HA001 Test5 Trial1's first 4.5 s (standing before the walk at 5 s), no frames entry, no labels."""
     import pandas as pd
 
@@ -72,7 +72,7 @@ def _standing(tmp_path: Path) -> Path:
     d.mkdir()
     for f in ("wAccelerometer.csv", "wGyroscope.csv"):
         t = pd.read_csv(HA001_T5 / f)
-        t[t["timestamp"] < 4500].to_csv(d / f, index=False)
+        t[t["timestamp"] < end_ms].to_csv(d / f, index=False)
     meta = json.loads((HA001_T5 / "meta.json").read_text())
     meta["files"] = ["wAccelerometer.csv", "wGyroscope.csv"]
     meta.pop("frames", None)
@@ -93,6 +93,17 @@ def test_standing_only_without_frames_tracks_zero_steps(tmp_path, capsys):
     assert main(["calibrate", str(d), "-d", "10", "--out", str(tmp_path / "p.json")]) == 2
     err = capsys.readouterr().err
     assert f"0 steps detected in {d}" in err and "calibrate needs a walk" in err
+
+
+def test_a_window_of_walking_is_not_tracked_as_standing(tmp_path, capsys):
+    """The first 7.5 s (2.5 s of walking from 5 s): one 4 s window of walking is 400 samples, 3.99999999999996 s
+    at the file's 100.000000000001 Hz, and was taken for "less than 4 s of walking": W61 then tracked a walking
+    recording as 0 steps, 0 m ("4 s of walking (under 4 s ...)"). It is judged by the rhythm test instead, which
+    refuses it asking for the frame."""
+    d = _standing(tmp_path, end_ms=7500)
+    assert main(["track", str(d), "--out", str(tmp_path / "t")]) == 2
+    err = capsys.readouterr().err
+    assert "no walking to track" not in err and "declares no axis frame" in err and "no walking rhythm" in err
 
 
 def test_calibrate_start_end_counts_the_measured_stretch_only(tmp_path, capsys):
