@@ -219,3 +219,26 @@ def test_leftover_temporary_folders_are_removed_at_the_next_write(waist, tmp_pat
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist"]) == 0
     assert not old.exists() and not dead.exists() and live.exists() and aside.exists()
     assert "removed 2 temporary folder(s) left by an interrupted write" in caplog.text
+
+
+def test_labels_relative_with_merge_are_from_this_exports_first_sample(waist, tmp_path, capsys):
+    """--labels-relative reads label times as ms from the recording's first sample (B42). With --merge the
+    added unit goes onto the first unit's origin; here the waist export starts 3 s after the foot export on
+    their shared clock, so its contacts belong 3 s after the session's 0 (review: they were put at the session's
+    0, 3 s early, without a word)."""
+    foot = read_session(ROOT / "datasets" / "real" / "gaitmap_level_left")
+    fa, fg = foot.streams["fAccelerometer"], foot.streams["fGyroscope"]
+    fcsv = tmp_path / "foot.csv"
+    pd.DataFrame({"timestamp": (fa.t - fa.t[0]) * 1e3 + EPOCH_MS - 3000.0,
+                  **{f"a{c}": fa.values[:, i] for i, c in enumerate("xyz")},
+                  **{f"g{c}": fg.values[:, i] for i, c in enumerate("xyz")}}).to_csv(fcsv, index=False,
+                                                                                      float_format="%.15g")
+    out = tmp_path / "s"
+    assert main(["import", str(fcsv), "--out", str(out), "--unit", "foot"]) == 0
+    lab = _ics(waist, tmp_path / "ics.csv", offset=0.0)  # ms from the waist export's first sample
+    assert main(["import", str(_export(waist, tmp_path / "w.csv")), "--out", str(out), "--unit", "waist",
+                 "--merge", "--labels", str(lab), "--labels-relative"]) == 0
+    capsys.readouterr()
+    got = read_session(out)
+    assert got.streams["wAccelerometer"].t[0] == pytest.approx(3.0)
+    np.testing.assert_allclose(got.extras["ics"]["ic_s"], waist.extras["ics"]["ic_s"] + 3.0, atol=1e-6)

@@ -626,6 +626,13 @@ def _shifted_table(path: Path, origin_s: float) -> pd.DataFrame:
     return _ms_to_s(df, str(path))
 
 
+def _label_origin(session: Session, origin_s: float, relative: bool) -> float:
+    """What is taken off a label table's times (s) to put them on the session's clock: the export's origin, or
+    with ``relative`` (decision B42, times from the recording's first sample) minus where this export's first
+    sample lies on the session's clock: 0 for a first import, not with --merge onto another export's origin."""
+    return -session.t_start if relative else origin_s
+
+
 def _check_shifted_labels(table: pd.DataFrame, path: Path, session: Session, origin_s: float,
                           relative: bool) -> None:
     """check_label_times for a label table moved onto the session's clock (decision D12); when its times lie
@@ -636,7 +643,9 @@ def _check_shifted_labels(table: pd.DataFrame, path: Path, session: Session, ori
     try:
         check_label_times(table, session.t_start, session.t_end, str(path))
     except DataError as exc:
-        if not origin_s or "outside the recording" not in str(exc):
+        # the other reading's times: the table's plus the origin used, minus the other one's
+        shift = _label_origin(session, origin_s, not relative) - _label_origin(session, origin_s, relative)
+        if not shift or "outside the recording" not in str(exc):
             raise
         cols = [c for c in ("start_s", "end_s", "ic_s") if c in table.columns]
 
@@ -649,7 +658,7 @@ def _check_shifted_labels(table: pd.DataFrame, path: Path, session: Session, ori
                 return False
             return True
 
-        if fits(origin_s if relative else -origin_s):  # undo the one reading, apply the other
+        if fits(shift):  # undo the one reading, apply the other
             hint = ("they fit as ms on the export's clock: leave out --labels-relative" if relative else
                     "they fit as ms from the recording's start (its first sample = 0): pass --labels-relative "
                     "(or add the export's first timestamp to them)")
@@ -696,7 +705,7 @@ def import_labels(paths, session: Session, origin_s: float, *, taken=(),
             log.warning("%s: no command reads a label table named %s.csv (they read %s); it is copied into the "
                         "session but not used: rename it if it is one of those", p, name,
                         ", ".join(f"{n}.csv ({', '.join(c)})" for n, c in LABEL_TABLES.items()))
-        table = _shifted_table(p, 0.0 if relative else origin_s)
+        table = _shifted_table(p, _label_origin(session, origin_s, relative))
         _check_shifted_labels(table, p, session, origin_s, relative)
         extras[name], rows[name] = table, len(table)
     return Session(name=session.name, streams=session.streams, steps=session.steps, trajectory=session.trajectory,
@@ -711,7 +720,7 @@ def import_steps(path: str | os.PathLike, session: Session, origin_s: float, *, 
     from pdrlearn.io.validate import check_columns, check_numeric
 
     path = Path(path)
-    steps = _shifted_table(path, 0.0 if relative else origin_s)
+    steps = _shifted_table(path, _label_origin(session, origin_s, relative))
     check_columns(steps, STEP_COLUMNS, f"{path} (times in ms on the export's clock: start_ms,end_ms)")
     check_numeric(steps, STEP_COLUMNS, str(path))
     _check_shifted_labels(steps, path, session, origin_s, relative)
