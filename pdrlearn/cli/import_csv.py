@@ -94,7 +94,8 @@ def import_command(
                                       "under its file name; repeat for each (lower-back scoring uses ics.csv and "
                                       "bouts.csv)."),
     labels_relative: bool = typer.Option(False, "--labels-relative", help="The --steps and --labels times are "
-                                         "ms from this export's first sample, not on the export's clock (B42; with --merge too)."),
+                                         "ms from this export's first sample (also with --merge), not on the "
+                                         "export's clock (B42)."),
     name: str = typer.Option(None, "--name", help="Session name (default: the CSV's name)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
                                "unit's files, labels and meta.json are kept)."),
