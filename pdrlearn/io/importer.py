@@ -178,11 +178,17 @@ def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str) 
     return si, 1.0, "default"
 
 
+def _time_word(text: str) -> str:
+    """A --time-unit word normalised (``Milliseconds`` -> ``ms``, ``sample`` -> ``samples``)."""
+    w = text.strip().lower()
+    return _TIME_ALIASES.get(w, w)
+
+
 def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str) -> tuple[str, str]:
     """(unit, source) of the timestamps: given, the header's hint, else decision B22's inference (the units
     in which the timestamps give a plausible rate; ms when ms is one of them, as read_session does)."""
     if given is not None:
-        u = _TIME_ALIASES.get(given.strip().lower(), given.strip().lower())
+        u = _time_word(given)
         if u not in _TIME_SCALE:
             raise DataError(f"{where}: time unit {given!r} is not one of {', '.join(_TIME_SCALE)}")
         return u, "given"
@@ -453,8 +459,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         if bad.size:
             raise DataError(f"{where}: column {time_column!r} has {bad.size} non-numeric or empty value(s) (first at "
                             f"line {bad[0] + 2}); timestamps must be numbers (or date-times) in every row")
-        if rate_hz is None and time_unit is not None and _TIME_ALIASES.get(time_unit.strip().lower(),
-                                                                          time_unit.strip().lower()) == "samples":
+        if rate_hz is None and time_unit is not None and _time_word(time_unit) == "samples":
             raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")
         if rate_hz is None:
             t_unit, t_how = _time_unit(t_num, time_unit, time_column, where)
@@ -465,8 +470,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         if secs is not None or np.any(t_num != np.round(t_num)):
             raise DataError(f"{where}: --rate says column '{time_column}' holds sample numbers, but it holds "
                             f"{'date-times' if secs is not None else 'fractions'}; leave --rate out")
-        if time_unit is not None and _TIME_ALIASES.get(time_unit.strip().lower(),
-                                                       time_unit.strip().lower()) != "samples":
+        if time_unit is not None and _time_word(time_unit) != "samples":
             raise DataError(f"import: --rate reads the time column as sample numbers; leave --time-unit "
                             f"{time_unit} out")
         t_unit, t_how = "samples", f"sample numbers at {r:g} Hz (given with --rate)"
