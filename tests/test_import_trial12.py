@@ -63,6 +63,13 @@ def test_sample_numbers_are_refused_and_read_with_rate(waist, tmp_path, capsys):
     # declared as ms: a genuine 1000 Hz clock since the start is read as the user says
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", "--time", "sample",
                  "--time-unit", "ms", "--force"]) == 0
+    capsys.readouterr()
+    base = ["import", str(csv), "--out", str(tmp_path / "x"), "--unit", "waist", "--time", "sample"]
+    assert main([*base, "--time-unit", "Samples"]) == 2  # the word alone: no rate
+    assert "--time-unit samples needs the sampling rate: pass --rate HZ" in _err(capsys)
+    assert main([*base, "--rate", "100", "--time-unit", "ms"]) == 2
+    assert "leave --time-unit ms out" in _err(capsys)
+    assert main([*base, "--rate", "100", "--time-unit", "sample"]) == 0
 
 
 def test_epoch_ms_clock_at_1000_hz_is_not_taken_for_sample_numbers(waist, tmp_path):
