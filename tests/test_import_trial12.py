@@ -194,6 +194,21 @@ def test_ambiguous_day_month_is_refused_and_format_given(waist, tmp_path, capsys
     assert "2020-12-10T13:57:44+00:00 to" in err and "none in the text: taken as UTC" in err
 
 
+def test_ambiguous_date_with_a_decimal_comma_gets_a_format_that_reads_it(waist, tmp_path, capsys):
+    """A day-first locale writes the seconds' fraction with a comma (``13:57:44,733``, a semicolon CSV, B24): the
+    suggested --time-format must have the comma, or passing it fails with "does not match" (review)."""
+    d = pd.read_csv(_dated(waist, tmp_path / "d.csv", 10))
+    d["time"] = d["time"].str.replace(".", ",", regex=False)
+    csv = tmp_path / "dc.csv"
+    d.to_csv(csv, index=False, sep=";", decimal=",")
+    out = ["--out", str(tmp_path / "s"), "--unit", "waist"]
+    assert main(["import", str(csv), *out]) != 0
+    fmt = "%d/%m/%Y %H:%M:%S,%f"
+    assert f"--time-format '{fmt}' (day first)" in _err(capsys)
+    assert main(["import", str(csv), *out, "--time-format", fmt]) == 0
+    assert "2020-12-10T13:57:44+00:00 to" in capsys.readouterr().err
+
+
 def test_unambiguous_dates_are_read_in_their_order_and_shown(waist, tmp_path, capsys):
     csv = _dated(waist, tmp_path / "d.csv", 13)
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist"]) == 0

@@ -254,7 +254,8 @@ def _date_formats(text: str) -> tuple[str, str]:
     m = _NUMERIC_DATE.match(text)
     sep, year = m.group(2), "%Y" if len(m.group(4)) == 4 else "%y"
     rest = text[m.end():]
-    clock = ("%H:%M:%S.%f" if re.match(r"\s*\d{1,2}:\d{2}:\d{2}[.,]\d+", rest) else "%H:%M:%S"
+    frac = re.match(r"\s*\d{1,2}:\d{2}:\d{2}([.,])\d+", rest)  # a decimal comma in day-first locales
+    clock = (f"%H:%M:%S{frac.group(1)}%f" if frac else "%H:%M:%S"
              if re.match(r"\s*\d{1,2}:\d{2}:\d{2}", rest) else "%H:%M" if re.match(r"\s*\d{1,2}:\d{2}", rest)
              else "")
     tail = f" {clock}" if clock else ""
