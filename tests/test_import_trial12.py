@@ -209,6 +209,21 @@ def test_ambiguous_date_with_a_decimal_comma_gets_a_format_that_reads_it(waist, 
     assert "2020-12-10T13:57:44+00:00 to" in capsys.readouterr().err
 
 
+
+@pytest.mark.parametrize("zone,fmt,first", [(" +0100", "%d/%m/%Y %H:%M:%S.%f %z", "2020-12-10T12:57:44+00:00"),
+                                            ("Z", "%d/%m/%Y %H:%M:%S.%f%z", "2020-12-10T13:57:44+00:00")])
+def test_ambiguous_date_with_a_zone_gets_a_format_that_reads_it(waist, tmp_path, capsys, zone, fmt, first):
+    """The suggested --time-format also reads a zone written after the clock (review: without %z it did not
+    match the text it was suggested for)."""
+    csv = _dated(waist, tmp_path / "d.csv", 10, zone=zone)
+    out = ["--out", str(tmp_path / "s"), "--unit", "waist"]
+    assert main(["import", str(csv), *out]) != 0
+    assert f"--time-format '{fmt}' (day first)" in _err(capsys)
+    assert main(["import", str(csv), *out, "--time-format", fmt]) == 0
+    err = capsys.readouterr().err
+    assert f"{first} to" in err and "zone from the text" in err
+
+
 def test_unambiguous_dates_are_read_in_their_order_and_shown(waist, tmp_path, capsys):
     csv = _dated(waist, tmp_path / "d.csv", 13)
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist"]) == 0

@@ -259,6 +259,9 @@ def _date_formats(text: str) -> tuple[str, str]:
              if re.match(r"\s*\d{1,2}:\d{2}:\d{2}", rest) else "%H:%M" if re.match(r"\s*\d{1,2}:\d{2}", rest)
              else "")
     tail = f" {clock}" if clock else ""
+    zone = re.search(r"(\s*)(?:Z|[+-]\d{2}:?\d{2})\s*$", rest) if clock else None
+    if zone:  # a zone after the clock (``+0100``, ``+01:00``, ``Z``): the format must read it too
+        tail += f"{zone.group(1)}%z"
     return f"%d{sep}%m{sep}{year}{tail}", f"%m{sep}%d{sep}{year}{tail}"
 
 
