@@ -37,6 +37,9 @@ def test_minus_name_negates_the_column(tmp_path, capsys):
     out = tmp_path / "ip"
     assert main(["import", str(csv), "--out", str(out), "--unit", "waist", "--time", "t_s",
                  "--acc=-accX(G),-accY(G),-accZ(G)", "--gyro", "rotX(rad/s),rotY(rad/s),rotZ(rad/s)"]) == 0
+    err = capsys.readouterr().err  # the summary shows the negation it applied
+    assert "wAccelerometer: -accX(G),-accY(G),-accZ(G) (given)" in err
+    assert "wGyroscope: rotX(rad/s),rotY(rad/s),rotZ(rad/s) (given)" in err
     got = read_session(out)
     np.testing.assert_allclose(got["wAccelerometer"].values, s["wAccelerometer"].values, rtol=1e-6, atol=1e-6)
     np.testing.assert_allclose(got["wGyroscope"].values, s["wGyroscope"].values, rtol=1e-6, atol=1e-9)

@@ -63,6 +63,13 @@ def test_sample_numbers_are_refused_and_read_with_rate(waist, tmp_path, capsys):
     # declared as ms: a genuine 1000 Hz clock since the start is read as the user says
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist", "--time", "sample",
                  "--time-unit", "ms", "--force"]) == 0
+    capsys.readouterr()
+    base = ["import", str(csv), "--out", str(tmp_path / "x"), "--unit", "waist", "--time", "sample"]
+    assert main([*base, "--time-unit", "Samples"]) == 2  # the word alone: no rate
+    assert "--time-unit samples needs the sampling rate: pass --rate HZ" in _err(capsys)
+    assert main([*base, "--rate", "100", "--time-unit", "ms"]) == 2
+    assert "leave --time-unit ms out" in _err(capsys)
+    assert main([*base, "--rate", "100", "--time-unit", "sample"]) == 0
 
 
 def test_epoch_ms_clock_at_1000_hz_is_not_taken_for_sample_numbers(waist, tmp_path):
@@ -187,6 +194,36 @@ def test_ambiguous_day_month_is_refused_and_format_given(waist, tmp_path, capsys
     assert "2020-12-10T13:57:44+00:00 to" in err and "none in the text: taken as UTC" in err
 
 
+def test_ambiguous_date_with_a_decimal_comma_gets_a_format_that_reads_it(waist, tmp_path, capsys):
+    """A day-first locale writes the seconds' fraction with a comma (``13:57:44,733``, a semicolon CSV, B24): the
+    suggested --time-format must have the comma, or passing it fails with "does not match" (review)."""
+    d = pd.read_csv(_dated(waist, tmp_path / "d.csv", 10))
+    d["time"] = d["time"].str.replace(".", ",", regex=False)
+    csv = tmp_path / "dc.csv"
+    d.to_csv(csv, index=False, sep=";", decimal=",")
+    out = ["--out", str(tmp_path / "s"), "--unit", "waist"]
+    assert main(["import", str(csv), *out]) != 0
+    fmt = "%d/%m/%Y %H:%M:%S,%f"
+    assert f"--time-format '{fmt}' (day first)" in _err(capsys)
+    assert main(["import", str(csv), *out, "--time-format", fmt]) == 0
+    assert "2020-12-10T13:57:44+00:00 to" in capsys.readouterr().err
+
+
+
+@pytest.mark.parametrize("zone,fmt,first", [(" +0100", "%d/%m/%Y %H:%M:%S.%f %z", "2020-12-10T12:57:44+00:00"),
+                                            ("Z", "%d/%m/%Y %H:%M:%S.%f%z", "2020-12-10T13:57:44+00:00")])
+def test_ambiguous_date_with_a_zone_gets_a_format_that_reads_it(waist, tmp_path, capsys, zone, fmt, first):
+    """The suggested --time-format also reads a zone written after the clock (review: without %z it did not
+    match the text it was suggested for)."""
+    csv = _dated(waist, tmp_path / "d.csv", 10, zone=zone)
+    out = ["--out", str(tmp_path / "s"), "--unit", "waist"]
+    assert main(["import", str(csv), *out]) != 0
+    assert f"--time-format '{fmt}' (day first)" in _err(capsys)
+    assert main(["import", str(csv), *out, "--time-format", fmt]) == 0
+    err = capsys.readouterr().err
+    assert f"{first} to" in err and "zone from the text" in err
+
+
 def test_unambiguous_dates_are_read_in_their_order_and_shown(waist, tmp_path, capsys):
     csv = _dated(waist, tmp_path / "d.csv", 13)
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist"]) == 0
@@ -219,3 +256,26 @@ def test_leftover_temporary_folders_are_removed_at_the_next_write(waist, tmp_pat
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), "--unit", "waist"]) == 0
     assert not old.exists() and not dead.exists() and live.exists() and aside.exists()
     assert "removed 2 temporary folder(s) left by an interrupted write" in caplog.text
+
+
+def test_labels_relative_with_merge_are_from_this_exports_first_sample(waist, tmp_path, capsys):
+    """--labels-relative reads label times as ms from the recording's first sample (B42). With --merge the
+    added unit goes onto the first unit's origin; here the waist export starts 3 s after the foot export on
+    their shared clock, so its contacts belong 3 s after the session's 0 (review: they were put at the session's
+    0, 3 s early, without a word)."""
+    foot = read_session(ROOT / "datasets" / "real" / "gaitmap_level_left")
+    fa, fg = foot.streams["fAccelerometer"], foot.streams["fGyroscope"]
+    fcsv = tmp_path / "foot.csv"
+    pd.DataFrame({"timestamp": (fa.t - fa.t[0]) * 1e3 + EPOCH_MS - 3000.0,
+                  **{f"a{c}": fa.values[:, i] for i, c in enumerate("xyz")},
+                  **{f"g{c}": fg.values[:, i] for i, c in enumerate("xyz")}}).to_csv(fcsv, index=False,
+                                                                                      float_format="%.15g")
+    out = tmp_path / "s"
+    assert main(["import", str(fcsv), "--out", str(out), "--unit", "foot"]) == 0
+    lab = _ics(waist, tmp_path / "ics.csv", offset=0.0)  # ms from the waist export's first sample
+    assert main(["import", str(_export(waist, tmp_path / "w.csv")), "--out", str(out), "--unit", "waist",
+                 "--merge", "--labels", str(lab), "--labels-relative"]) == 0
+    capsys.readouterr()
+    got = read_session(out)
+    assert got.streams["wAccelerometer"].t[0] == pytest.approx(3.0)
+    np.testing.assert_allclose(got.extras["ics"]["ic_s"], waist.extras["ics"]["ic_s"] + 3.0, atol=1e-6)

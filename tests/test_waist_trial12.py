@@ -64,7 +64,7 @@ def test_track_realtime_flag_equals_the_params_option(tmp_path, capsys):
     assert "--realtime applies to the waist-pendulum pipeline only" in err and not (tmp_path / "c").exists()
 
 
-def _standing(tmp_path: Path) -> Path:
+def _standing(tmp_path: Path, end_ms: float = 4500) -> Path:
     """HA001 Test5 Trial1's first 4.5 s (standing before the walk at 5 s), no frames entry, no labels."""
     import pandas as pd
 
@@ -72,7 +72,7 @@ def _standing(tmp_path: Path) -> Path:
     d.mkdir()
     for f in ("wAccelerometer.csv", "wGyroscope.csv"):
         t = pd.read_csv(HA001_T5 / f)
-        t[t["timestamp"] < 4500].to_csv(d / f, index=False)
+        t[t["timestamp"] < end_ms].to_csv(d / f, index=False)
     meta = json.loads((HA001_T5 / "meta.json").read_text())
     meta["files"] = ["wAccelerometer.csv", "wGyroscope.csv"]
     meta.pop("frames", None)
@@ -95,6 +95,17 @@ def test_standing_only_without_frames_tracks_zero_steps(tmp_path, capsys):
     assert f"0 steps detected in {d}" in err and "calibrate needs a walk" in err
 
 
+def test_a_window_of_walking_is_not_tracked_as_standing(tmp_path, capsys):
+    """The first 7.5 s (2.5 s of walking from 5 s): one 4 s window of walking is 400 samples, 3.99999999999996 s
+    at the file's 100.000000000001 Hz, and was taken for "less than 4 s of walking": W61 then tracked a walking
+    recording as 0 steps, 0 m ("4 s of walking (under 4 s ...)"). It is judged by the rhythm test instead, which
+    refuses it asking for the frame."""
+    d = _standing(tmp_path, end_ms=7500)
+    assert main(["track", str(d), "--out", str(tmp_path / "t")]) == 2
+    err = capsys.readouterr().err
+    assert "no walking to track" not in err and "declares no axis frame" in err and "no walking rhythm" in err
+
+
 def test_calibrate_start_end_counts_the_measured_stretch_only(tmp_path, capsys):
     """HA001 Test5 Trial1: the whole recording's steps (10, from 5.0 s) vs the 5.01 m bout (5.04-9.87 s, 8
     steps): --start/--end gives the bout's K (trial 12: 0.974 vs 1.219)."""
@@ -113,6 +124,30 @@ def test_calibrate_start_end_counts_the_measured_stretch_only(tmp_path, capsys):
     assert "pass --distance METERS too" in capsys.readouterr().err
     assert main(["calibrate", str(HA001_T5), "-d", "5", "--start", "20", "--out", str(tmp_path / "q.json")]) == 2
     assert "no detected step" in capsys.readouterr().err
+
+
+def test_calibrate_start_end_on_a_clock_that_does_not_start_at_0(tmp_path):
+    """--start/--end are seconds from the recording's start; the contacts span calibrate prints must be on the
+    same clock, or a user narrowing the stretch from it gets the wrong steps (review: it printed 105.7-110.6 s
+    for a recording whose clock starts at 100 s, where --start 5 --end 11 had counted them)."""
+    import pandas as pd
+
+    from pdrlearn.waist.calibration import calibrate
+
+    d = tmp_path / "late"
+    shutil.copytree(HA001_T5, d)
+    for f in d.glob("*.csv"):
+        t = pd.read_csv(f)
+        for c in t.columns:
+            if c == "timestamp" or c.endswith("_ms"):
+                t[c] = t[c] + 100000
+        t.to_csv(f, index=False)
+    ref = calibrate([read_session(HA001_T5)], "waist-pendulum", distances=[5.01], spans=[(5.0, 11.0)])
+    late = calibrate([read_session(d)], "waist-pendulum", distances=[5.01], spans=[(5.0, 11.0)])
+    assert late.k == pytest.approx(ref.k)
+    span = [n for n in late.notes if "counted over" in n]
+    assert span == [n for n in ref.notes if "counted over" in n]
+    assert "contacts 5.7-10.6 s from the recording's start" in span[0]
 
 
 def test_one_missing_sample_is_bridged_not_a_gap(caplog):

@@ -94,7 +94,8 @@ def import_command(
                                       "under its file name; repeat for each (lower-back scoring uses ics.csv and "
                                       "bouts.csv)."),
     labels_relative: bool = typer.Option(False, "--labels-relative", help="The --steps and --labels times are "
-                                         "ms from the recording's first sample, not on the export's clock (B42)."),
+                                         "ms from this export's first sample (also with --merge), not on the "
+                                         "export's clock (B42)."),
     name: str = typer.Option(None, "--name", help="Session name (default: the CSV's name)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
                                "unit's files, labels and meta.json are kept)."),
@@ -252,7 +253,9 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
     for sensor, r in record["streams"].items():
         conv = "" if r["factor"] == 1.0 else f", x {r['factor']:.6g} to {session.streams[sensor].spec.unit}"
         dropped = record["dropped_rows"].get(sensor)
-        err(f"{sensor}: {','.join(r['columns'])} ({r['columns_source']}) in {r['unit']} ({r['unit_source']}{conv}), "
+        neg = set(r.get("negated", ()))  # B48: the summary shows what was read, -NAME for a negated column
+        cols = ",".join(f"-{c}" if c in neg else c for c in r["columns"])
+        err(f"{sensor}: {cols} ({r['columns_source']}) in {r['unit']} ({r['unit_source']}{conv}), "
             f"{r['samples']} samples at {r['rate_hz']:g} Hz" + (f", {dropped} empty rows skipped" if dropped else ""))
     if record.get("steps"):
         st = record["steps"]

@@ -53,13 +53,14 @@ def simulate_cmd(
     """
     from pdrlearn.io import write_session
     from pdrlearn.sim import SCENARIOS, SPEEDS, simulate
+    from pdrlearn.sim.body import PELVIS_MODES
 
     if scenario not in SCENARIOS:
         raise DataError(f"--scenario {scenario!r}: must be one of {', '.join(SCENARIOS)}")
     if speed not in SPEEDS:
         raise DataError(f"--speed {speed!r}: must be one of {', '.join(SPEEDS)}")
-    if pelvis not in ("model", "realistic"):
-        raise DataError(f"--pelvis {pelvis!r}: must be model or realistic")
+    if pelvis not in PELVIS_MODES:  # the simulator's own list (S27)
+        raise DataError(f"--pelvis {pelvis!r}: must be {' or '.join(PELVIS_MODES)}")
     if user_seed < 0 or seed < 0:
         raise DataError("--user-seed and --seed must be non-negative integers")
     if not -90.0 <= foot_mount_pitch <= 90.0:  # beyond +-90 deg the unit would be mounted upside down

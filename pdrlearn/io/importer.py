@@ -178,11 +178,17 @@ def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str) 
     return si, 1.0, "default"
 
 
+def _time_word(text: str) -> str:
+    """A --time-unit word normalised (``Milliseconds`` -> ``ms``, ``sample`` -> ``samples``)."""
+    w = text.strip().lower()
+    return _TIME_ALIASES.get(w, w)
+
+
 def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str) -> tuple[str, str]:
     """(unit, source) of the timestamps: given, the header's hint, else decision B22's inference (the units
     in which the timestamps give a plausible rate; ms when ms is one of them, as read_session does)."""
     if given is not None:
-        u = _TIME_ALIASES.get(given.strip().lower(), given.strip().lower())
+        u = _time_word(given)
         if u not in _TIME_SCALE:
             raise DataError(f"{where}: time unit {given!r} is not one of {', '.join(_TIME_SCALE)}")
         return u, "given"
@@ -248,10 +254,14 @@ def _date_formats(text: str) -> tuple[str, str]:
     m = _NUMERIC_DATE.match(text)
     sep, year = m.group(2), "%Y" if len(m.group(4)) == 4 else "%y"
     rest = text[m.end():]
-    clock = ("%H:%M:%S.%f" if re.match(r"\s*\d{1,2}:\d{2}:\d{2}[.,]\d+", rest) else "%H:%M:%S"
+    frac = re.match(r"\s*\d{1,2}:\d{2}:\d{2}([.,])\d+", rest)  # a decimal comma in day-first locales
+    clock = (f"%H:%M:%S{frac.group(1)}%f" if frac else "%H:%M:%S"
              if re.match(r"\s*\d{1,2}:\d{2}:\d{2}", rest) else "%H:%M" if re.match(r"\s*\d{1,2}:\d{2}", rest)
              else "")
     tail = f" {clock}" if clock else ""
+    zone = re.search(r"(\s*)(?:Z|[+-]\d{2}:?\d{2})\s*$", rest) if clock else None
+    if zone:  # a zone after the clock (``+0100``, ``+01:00``, ``Z``): the format must read it too
+        tail += f"{zone.group(1)}%z"
     return f"%d{sep}%m{sep}{year}{tail}", f"%m{sep}%d{sep}{year}{tail}"
 
 
@@ -453,8 +463,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         if bad.size:
             raise DataError(f"{where}: column {time_column!r} has {bad.size} non-numeric or empty value(s) (first at "
                             f"line {bad[0] + 2}); timestamps must be numbers (or date-times) in every row")
-        if rate_hz is None and time_unit is not None and _TIME_ALIASES.get(time_unit.strip().lower(),
-                                                                          time_unit.strip().lower()) == "samples":
+        if rate_hz is None and time_unit is not None and _time_word(time_unit) == "samples":
             raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")
         if rate_hz is None:
             t_unit, t_how = _time_unit(t_num, time_unit, time_column, where)
@@ -465,8 +474,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         if secs is not None or np.any(t_num != np.round(t_num)):
             raise DataError(f"{where}: --rate says column '{time_column}' holds sample numbers, but it holds "
                             f"{'date-times' if secs is not None else 'fractions'}; leave --rate out")
-        if time_unit is not None and _TIME_ALIASES.get(time_unit.strip().lower(),
-                                                       time_unit.strip().lower()) != "samples":
+        if time_unit is not None and _time_word(time_unit) != "samples":
             raise DataError(f"import: --rate reads the time column as sample numbers; leave --time-unit "
                             f"{time_unit} out")
         t_unit, t_how = "samples", f"sample numbers at {r:g} Hz (given with --rate)"
@@ -626,6 +634,13 @@ def _shifted_table(path: Path, origin_s: float) -> pd.DataFrame:
     return _ms_to_s(df, str(path))
 
 
+def _label_origin(session: Session, origin_s: float, relative: bool) -> float:
+    """What is taken off a label table's times (s) to put them on the session's clock: the export's origin, or
+    with ``relative`` (decision B42, times from the recording's first sample) minus where this export's first
+    sample lies on the session's clock: 0 for a first import, not with --merge onto another export's origin."""
+    return -session.t_start if relative else origin_s
+
+
 def _check_shifted_labels(table: pd.DataFrame, path: Path, session: Session, origin_s: float,
                           relative: bool) -> None:
     """check_label_times for a label table moved onto the session's clock (decision D12); when its times lie
@@ -636,7 +651,9 @@ def _check_shifted_labels(table: pd.DataFrame, path: Path, session: Session, ori
     try:
         check_label_times(table, session.t_start, session.t_end, str(path))
     except DataError as exc:
-        if not origin_s or "outside the recording" not in str(exc):
+        # the other reading's times: the table's plus the origin used, minus the other one's
+        shift = _label_origin(session, origin_s, not relative) - _label_origin(session, origin_s, relative)
+        if not shift or "outside the recording" not in str(exc):
             raise
         cols = [c for c in ("start_s", "end_s", "ic_s") if c in table.columns]
 
@@ -649,7 +666,7 @@ def _check_shifted_labels(table: pd.DataFrame, path: Path, session: Session, ori
                 return False
             return True
 
-        if fits(origin_s if relative else -origin_s):  # undo the one reading, apply the other
+        if fits(shift):  # undo the one reading, apply the other
             hint = ("they fit as ms on the export's clock: leave out --labels-relative" if relative else
                     "they fit as ms from the recording's start (its first sample = 0): pass --labels-relative "
                     "(or add the export's first timestamp to them)")
@@ -696,7 +713,7 @@ def import_labels(paths, session: Session, origin_s: float, *, taken=(),
             log.warning("%s: no command reads a label table named %s.csv (they read %s); it is copied into the "
                         "session but not used: rename it if it is one of those", p, name,
                         ", ".join(f"{n}.csv ({', '.join(c)})" for n, c in LABEL_TABLES.items()))
-        table = _shifted_table(p, 0.0 if relative else origin_s)
+        table = _shifted_table(p, _label_origin(session, origin_s, relative))
         _check_shifted_labels(table, p, session, origin_s, relative)
         extras[name], rows[name] = table, len(table)
     return Session(name=session.name, streams=session.streams, steps=session.steps, trajectory=session.trajectory,
@@ -711,7 +728,7 @@ def import_steps(path: str | os.PathLike, session: Session, origin_s: float, *, 
     from pdrlearn.io.validate import check_columns, check_numeric
 
     path = Path(path)
-    steps = _shifted_table(path, 0.0 if relative else origin_s)
+    steps = _shifted_table(path, _label_origin(session, origin_s, relative))
     check_columns(steps, STEP_COLUMNS, f"{path} (times in ms on the export's clock: start_ms,end_ms)")
     check_numeric(steps, STEP_COLUMNS, str(path))
     _check_shifted_labels(steps, path, session, origin_s, relative)

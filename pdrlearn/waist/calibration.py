@@ -73,8 +73,10 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     if distance_m is not None:
         if not (np.isfinite(distance_m) and distance_m > 0):
             raise DataError(f"calibrate: --distance {distance_m} must be a positive number of metres")
-        span = (f"{session.name}: contacts {st['start_s'].min():.1f}-{st['end_s'].max():.1f} s" if len(st)
-                else session.name)
+        # on the clock of --start/--end (s from the recording's start, W61), which a session's clock need not be
+        t0 = session.t_start
+        span = (f"{session.name}: contacts {st['start_s'].min() - t0:.1f}-{st['end_s'].max() - t0:.1f} s from the "
+                "recording's start" if len(st) else session.name)
         return [CalibrationWalk(float(distance_m), f, g, span, c)]
     bouts = reference_bouts(session)
     if bouts is None:
