@@ -95,6 +95,19 @@ def test_standing_only_without_frames_tracks_zero_steps(tmp_path, capsys):
     assert f"0 steps detected in {d}" in err and "calibrate needs a walk" in err
 
 
+@pytest.mark.parametrize("detector", ["waist-ic"])  # pll needs no frame: 0 steps without a warning
+def test_steps_on_a_standing_only_recording_without_frames_counts_zero(tmp_path, capsys, detector):
+    """W61 for `pdrlearn steps` as for `track` (it had stopped with exit 2 asking for the frame): 0 steps, one
+    warning, and an empty steps table with the columns of a waist detection."""
+    d = _standing(tmp_path)
+    out_csv = tmp_path / "s.csv"
+    assert main(["steps", str(d), "--detector", detector, "--out", str(out_csv), "--json"]) == 0
+    cap = capsys.readouterr()
+    assert json.loads(cap.out)["count"] == 0
+    assert cap.err.count("no walking to track") == 1 and "0 steps;" in cap.err
+    assert out_csv.read_text().strip() == "start_s,end_s,event_s,unit,confidence"
+
+
 def test_a_window_of_walking_is_not_tracked_as_standing(tmp_path, capsys):
     """The first 7.5 s (2.5 s of walking from 5 s): one 4 s window of walking is 400 samples, 3.99999999999996 s
     at the file's 100.000000000001 Hz, and was taken for "less than 4 s of walking": W61 then tracked a walking

@@ -63,7 +63,20 @@ def steps(
     warn_gaps(session, [f"{u}Accelerometer", f"{u}Gyroscope", *(("fForceA", "fForceB") if "force" in det.name else ())],
               "no step is detected inside them (recall counts the labelled ones as missed) - re-record or trim "
               "the session")
-    table = det.detect(session)
+    try:
+        table = det.detect(session)
+    except DataError as exc:  # decision W61, as `track`: a waist unit with too little walking for its frame
+        if det.unit != "waist" or getattr(exc, "walk_s", None) is None:
+            raise
+        import logging
+
+        import pandas as pd
+
+        from pdrlearn.track.waist import no_walking_message
+
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, no_walking_message(exc.walk_s, "0 steps"))
+        table = pd.DataFrame({"start_s": [], "end_s": [], "event_s": [], "unit": pd.Series(dtype="string"),
+                              "confidence": []})
     result: dict = {"session": session.name, "detector": det.name, "unit": det.unit, "count": int(len(table))}
     score = score_steps(table, session, tolerance_s=tolerance)
     if score is not None:

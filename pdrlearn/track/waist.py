@@ -360,19 +360,26 @@ _STEP_COLUMNS = {"start_s": float, "end_s": float, "event_s": float, "unit": "st
                  "mean_rate_rps": float}
 
 
+def no_walking_message(walk_s: float, outcome: str) -> str:
+    """The one warning line of decision W61 (a waist unit without a declared frame that walks less than the
+    frame inference needs); ``outcome`` says what the command reports instead (e.g. "0 steps, 0 m")."""
+    from pdrlearn.track.frame_inference import MIN_WALK_S
+
+    return (f"no walking to track: {walk_s:.0f} s of walking (under {MIN_WALK_S:g} s, too little to infer the axis "
+            f"frame): {outcome}; if the recording does walk, add the waist \"frames\" entry to meta.json (or "
+            "'pdrlearn import --frames')")
+
+
 def _no_walking(session: Session, pipeline: str, p: WaistParams, o: dict, warnings: list[str], walk_s: float,
                 start, initial_heading: float) -> TrackResult:
     """Decision W61: a recording without a declared waist frame whose data walks less than the frame inference
     needs (``walk_s`` < 4 s): an empty track (0 steps, 0 m) with one warning, instead of an error asking for the
     frame of a recording with nothing to track."""
-    from pdrlearn.track.frame_inference import MIN_WALK_S
 
     cols = {k: v for k, v in _STEP_COLUMNS.items() if pipeline == "waist-pendulum" or k not in ("h_m", "merged")}
     steps = pd.DataFrame({k: pd.Series(dtype=v) for k, v in cols.items()})
     acc = session.require("wAccelerometer", purpose="a lower-back track")
-    warnings = [*warnings, f"no walking to track: {walk_s:.0f} s of walking (under {MIN_WALK_S:g} s, too little to "
-                f"infer the axis frame): 0 steps, 0 m; if the recording does walk, add the waist \"frames\" entry "
-                "to meta.json (or 'pdrlearn import --frames')"]
+    warnings = [*warnings, no_walking_message(walk_s, "0 steps, 0 m")]
     info = {"pipeline": pipeline, "method": "", "methods": {}, "params": p.to_dict(), "params_source": p.source,
             "options": o, "warnings": warnings, "n_contacts": 0, "rate_hz": float(acc.rate_hz),
             "no_walking": True}
