@@ -139,6 +139,14 @@ def test_calibrate_start_end_counts_the_measured_stretch_only(tmp_path, capsys):
     assert "no detected step" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("span", [["--start", "nan"], ["--end", "inf"]])
+def test_calibrate_start_end_must_be_finite(tmp_path, capsys, span):
+    src = str(HA001_T5)
+    assert main(["calibrate", src, "-d", "5.01", *span, "--out", str(tmp_path / "p.json")]) == 2
+    err = capsys.readouterr().err
+    assert f"{span[0]} {span[1]}: give seconds from the start" in err and not (tmp_path / "p.json").exists()
+
+
 def test_calibrate_start_end_on_a_clock_that_does_not_start_at_0(tmp_path):
     """--start/--end are seconds from the recording's start; the contacts span calibrate prints must be on the
     same clock, or a user narrowing the stretch from it gets the wrong steps (review: it printed 105.7-110.6 s

@@ -59,6 +59,10 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
                         "METERS too (the reference bouts of bouts.csv carry their own times)")
     if span_s is not None:  # W61: the measured stretch only
         t0 = session.t_start
+        for name, v in zip(("--start", "--end"), span_s, strict=True):
+            if v is not None and not np.isfinite(float(v)):
+                raise DataError(f"calibrate: {name} {v}: give seconds from the start of {session.name} (a finite "
+                                "number, e.g. --start 5 --end 11)")
         lo = -np.inf if span_s[0] is None else t0 + float(span_s[0])
         hi = np.inf if span_s[1] is None else t0 + float(span_s[1])
         if not lo < hi:
