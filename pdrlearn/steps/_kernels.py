@@ -414,20 +414,78 @@ def _segment_sums(x: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
     return np.add.reduceat(xp, idx)[0::2]
 
 
-def _pll_decide_many(s: PLLState, cands: list, p: PLLParams) -> list[Event]:
-    """Activity gate (variance of ``v`` over the window centred on each peak) and event refinement."""
-    if not cands:
-        return []
-    half = 0.5 * p.gate_window_s
-    bt, bv = s.buf_t, s.buf_v
-    tps = np.array([c[0] for c in cands])
-    lo = np.searchsorted(bt, tps - half, side="left")
-    hi = np.searchsorted(bt, tps + half, side="right")
+def centred_variance(bt: np.ndarray, bv: np.ndarray, centres: np.ndarray,
+                     half: float) -> tuple[np.ndarray, np.ndarray]:
+    """Variance of ``bv`` over ``[c - half, c + half]`` for each centre ``c`` (times ``bt``, sorted).
+
+    Returns ``(ok, var)``; ``ok`` is False where the window holds fewer than two samples. Each window is
+    reduced on its own, so the result does not depend on how the buffer was filled.
+    """
+    lo = np.searchsorted(bt, centres - half, side="left")
+    hi = np.searchsorted(bt, centres + half, side="right")
     n = hi - lo
     ok = n >= 2
     lo, hi, n = np.where(ok, lo, 0), np.where(ok, hi, 1), np.maximum(n, 1)
     mean = _segment_sums(bv, lo, hi) / n
-    var = np.maximum(_segment_sums(bv * bv, lo, hi) / n - mean * mean, 0.0)
+    return ok, np.maximum(_segment_sums(bv * bv, lo, hi) / n - mean * mean, 0.0)
+
+
+# ---------------------------------------------------------------------------------------------------
+# waist motion gate for events of another detector (decision 23 of docs/decisions/steps.md)
+@dataclass
+class GateState:
+    buf_t: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    buf_v: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    pending: list = field(default_factory=list)  # events waiting for half a window of samples after them
+    last_t: float = -math.inf
+
+
+def motion_gate_kernel(t: np.ndarray, v: np.ndarray, events: list, state: GateState, window_s: float,
+                       var_min: float) -> tuple[list[Event], GateState]:
+    """Keep an event when the variance of ``v`` (gravity-removed vertical acceleration) over ``window_s``
+    centred on it reaches ``var_min`` (the waist motion gate, seed 000 sec. II-B; decisions 18 and W4).
+
+    ``events`` are the detector's events of this chunk; each is decided once ``window_s / 2`` of samples
+    after it has arrived, so chunking does not change the result (``motion_gate_flush`` decides the rest).
+    """
+    s = state
+    if len(t):
+        s.buf_t = np.concatenate([s.buf_t, t])
+        s.buf_v = np.concatenate([s.buf_v, v])
+        s.last_t = float(t[-1])
+    s.pending.extend(events)
+    half = 0.5 * window_s
+    n_ready = 0
+    while n_ready < len(s.pending) and s.last_t >= s.pending[n_ready][0] + half:
+        n_ready += 1
+    out = _gate_decide(s, s.pending[:n_ready], half, var_min)
+    del s.pending[:n_ready]
+    keep_from = min(min((e[0] for e in s.pending), default=s.last_t), s.last_t) - half - 1.0
+    k = int(np.searchsorted(s.buf_t, keep_from))
+    s.buf_t, s.buf_v = s.buf_t[k:], s.buf_v[k:]
+    return out, s
+
+
+def _gate_decide(s: GateState, events: list, half: float, var_min: float) -> list[Event]:
+    if not events:
+        return []
+    ok, var = centred_variance(s.buf_t, s.buf_v, np.array([e[0] for e in events]), half)
+    return [e for e, good, vi in zip(events, ok.tolist(), var.tolist(), strict=True) if good and vi >= var_min]
+
+
+def motion_gate_flush(state: GateState, window_s: float, var_min: float) -> list[Event]:
+    """Decide the events still waiting for their look-ahead with the samples available."""
+    out = _gate_decide(state, sorted(state.pending, key=lambda e: e[0]), 0.5 * window_s, var_min)
+    state.pending = []
+    return out
+
+
+def _pll_decide_many(s: PLLState, cands: list, p: PLLParams) -> list[Event]:
+    """Activity gate (variance of ``v`` over the window centred on each peak) and event refinement."""
+    if not cands:
+        return []
+    bt, bv = s.buf_t, s.buf_v
+    ok, var = centred_variance(bt, bv, np.array([c[0] for c in cands]), 0.5 * p.gate_window_s)
     out: list[Event] = []
     for c, good, vi in zip(cands, ok.tolist(), var.tolist(), strict=True):
         if not good or vi < p.gate_var:

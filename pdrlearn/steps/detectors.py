@@ -22,6 +22,7 @@ from pdrlearn.steps._kernels import (
     BurstState,
     ForceParams,
     ForceState,
+    GateState,
     PelvicParams,
     PelvicState,
     PLLParams,
@@ -29,6 +30,8 @@ from pdrlearn.steps._kernels import (
     burst_flush,
     burst_kernel,
     force_kernel,
+    motion_gate_flush,
+    motion_gate_kernel,
     pelvic_flush,
     pelvic_kernel,
     pll_flush,
@@ -41,6 +44,7 @@ from pdrlearn.steps.waist_ic import WaistICStepDetector
 log = logging.getLogger(__name__)
 
 THESIS_RATE_HZ = 20.0  # thesis ch.4.3: both BSUs sample at 20 Hz
+GATE_CUTOFF_HZ = 5.0  # the PLL's input low-pass, on which the waist motion gate was measured (decision 18)
 
 
 def _cutoff(cutoff_hz: float, fs: float) -> float:
@@ -239,22 +243,35 @@ class _PelvicProcessor:
         self.hp = CausalLowpass(det.turn_cutoff_hz, fs, order=2) if det.turn_cutoff_hz > 0 else None
         self.delay = lowpass_delay_s(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
         self.state = PelvicState()
+        # decision 23: the PLL's gate signal (its 5 Hz input low-pass, decision 18) for the waist motion gate
+        self.gate_lp = CausalLowpass(_cutoff(GATE_CUTOFF_HZ, fs), fs, order=2) if det.gate_var > 0 else None
+        self.gate = GateState()
         self.params = PelvicParams(
             threshold=det.threshold, peak_window_s=det.peak_window_s, amp_ref=det.amp_ref,
             length_ref_s=det.length_ref_s, d1_s=det.d1_s, d1_ref=det.d1_ref, d2_s=det.d2_s,
             d2_ref=det.d2_ref, weights=tuple(det.weights), p_min=det.p_min, max_lobe_s=det.max_lobe_s)
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
-        up, _ = self.grav.push(v[:, 3:6])
+        up, gnorm = self.grav.push(v[:, 3:6])
         yaw = np.einsum("ij,ij->i", v[:, :3] - self.bias, up)
         w = self.lp.push(yaw)
         if self.hp is not None:  # remove the slow turning rate (decision: turn_cutoff_hz)
             w = w - self.hp.push(w)
         ev, self.state = pelvic_kernel(t, w, self.state, self.params)
-        return _shift(ev, self.delay)
+        ev = _shift(ev, self.delay)
+        if self.gate_lp is None:
+            return ev
+        vert = self.gate_lp.push(np.einsum("ij,ij->i", v[:, 3:6], up) - gnorm)
+        ev, self.gate = motion_gate_kernel(t, vert, ev, self.gate, self.det.gate_window_s, self.det.gate_var)
+        return ev
 
     def flush(self) -> list:
-        return _shift(pelvic_flush(self.state, self.params), self.delay)
+        ev = _shift(pelvic_flush(self.state, self.params), self.delay)
+        if self.gate_lp is None:
+            return ev
+        ev, self.gate = motion_gate_kernel(np.zeros(0), np.zeros(0), ev, self.gate, self.det.gate_window_s,
+                                           self.det.gate_var)
+        return ev + motion_gate_flush(self.gate, self.det.gate_window_s, self.det.gate_var)
 
 
 class PelvicGyroStepDetector(StepDetector):
@@ -291,6 +308,8 @@ class PelvicGyroStepDetector(StepDetector):
                  p_min: float = 0.75,  # thesis ch.5.3: 75 %
                  max_lobe_s: float = 1.0, gravity_cutoff_hz: float = 0.3,
                  turn_cutoff_hz: float = 0.6,  # decision 12 (docs/decisions/steps.md): was 0.5
+                 gate_window_s: float = 2.0,  # decision 23: the PLL's waist motion gate (decision 18)
+                 gate_var: float = 0.0,  # decision 23: 0.25 m^2/s^4 = W4's std 0.5 m/s^2 squared; 0 = off
                  calibrate: bool = True):
         self._store(locals())
 
@@ -366,7 +385,7 @@ class PLLStepDetector(StepDetector):
 
     def __init__(self, *, f0_hz: float = 1.8,  # seed 000 Sec. II-B, seed 001 Sec. 2.2.2
                  loop_hz: float = 0.5, damping: float = 0.707, f_min_hz: float = 0.8, f_max_hz: float = 3.2,
-                 cutoff_hz: float = 5.0, agc_tau_s: float = 1.0, gravity_cutoff_hz: float = 0.3,
+                 cutoff_hz: float = GATE_CUTOFF_HZ, agc_tau_s: float = 1.0, gravity_cutoff_hz: float = 0.3,
                  gate_window_s: float = 2.0,  # seed 001 Sec. 2.2.2 uses 4 s; decision: 2 s
                  gate_var: float = 0.25,  # seed 001: 1.5 m^2/s^4 for a pocket; decision 18: W4's
                  # waist motion gate (std 0.5 m/s^2, seed 000 sec. II-B) squared
