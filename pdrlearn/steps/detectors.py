@@ -286,6 +286,9 @@ class PelvicGyroStepDetector(StepDetector):
     otherwise merges the lobes of a curve (the thesis' main error source in scenario B); pelvic rotation
     is at the stride frequency (>= 0.7 Hz), turns mostly below; 0.6 Hz, just under the slowest walking
     stride, removes more of a sharp turn (decision 12). ``turn_cutoff_hz=0`` disables it.
+    ``gate_var > 0`` (off by default, decision 23) keeps a step only where the PLL's waist motion gate is
+    open (variance of the vertical acceleration over ``gate_window_s`` centred on it, e.g. 0.25 m^2/s^4):
+    it removes pelvic rotations while standing but, on the daily-activity recordings, slow true steps too.
 
     Time settings: the thesis gives 50 / 90 / 15 / 25 *samples*. At its 20 Hz they would be 2.5 / 4.5 /
     0.75 / 1.25 s, longer than a step, which makes eq. 27 accept every lobe; decision
