@@ -152,7 +152,9 @@ def test_run_cli_foot_only_default_option_and_track_parity(root, tmp_path, capsy
     assert cap.err.strip().splitlines() == ["warning: cli_foot: no waist unit: heading from the foot's own "
                                             "integrated yaw (relative to the start)"]
     out = json.loads(cap.out)
-    assert out["methods"] == {"terrain": "svm/foot", "direction": "nn/foot", "length": "nn/foot"}
+    # the foot's own models for every task (which method wins the CV depends on the synthetic windows)
+    assert set(out["methods"]) == {"terrain", "direction", "length"}
+    assert all(m.endswith("/foot") for m in out["methods"].values()), out["methods"]
     for f in ("steps.csv", "trajectory.csv"):
         assert (tmp_path / "r0" / f).read_text() == (tmp_path / "r1" / f).read_text()
     run, trk = (pd.read_csv(tmp_path / d / "steps.csv") for d in ("r1", "t"))

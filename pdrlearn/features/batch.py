@@ -18,6 +18,7 @@ from scipy.spatial.transform import Rotation
 
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.stats import rest_score
+from pdrlearn.kernels.window import TIE_S
 
 Streams = Mapping[str, tuple[np.ndarray, np.ndarray]]
 
@@ -25,8 +26,8 @@ Streams = Mapping[str, tuple[np.ndarray, np.ndarray]]
 def segment_bounds(t: np.ndarray, start: np.ndarray, end: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Index ranges ``[i0, i1)`` of the samples covering each ``[start, end]`` plus one sample on each
     side (the per-step kernel's ``segment``), for arrays of step times (s)."""
-    i0 = np.maximum(np.searchsorted(t, start, side="right") - 1, 0)
-    i1 = np.minimum(np.searchsorted(t, end, side="left") + 1, len(t))
+    i0 = np.maximum(np.searchsorted(t, start + TIE_S, side="right") - 1, 0)  # decision E35: a sample within
+    i1 = np.minimum(np.searchsorted(t, end - TIE_S, side="left") + 1, len(t))  # TIE_S of an edge is on it
     return i0, i1
 
 

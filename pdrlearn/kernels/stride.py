@@ -27,7 +27,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.kernels import bayes as B
-from pdrlearn.kernels.window import Levelled, interp
+from pdrlearn.kernels.window import TIE_S, Levelled, interp
 
 # -- stride detection ---------------------------------------------------------------------------------
 #: Decision L27 (docs/decisions/localization.md): the stance threshold follows the walker's own stance
@@ -124,7 +124,7 @@ class StanceSegmenter:
         mq = self._mean_q
         mq.append([ti, wi, self.thr])
         self._mean_sum += wi
-        while mq[0][0] <= ti - self.min_stance_s:
+        while mq[0][0] <= ti - self.min_stance_s + TIE_S:
             self._mean_sum -= mq.popleft()[1]
         m = self._mean_sum / len(mq)
         if self.factor == 0:
@@ -133,7 +133,7 @@ class StanceSegmenter:
         while nq and nq[-1][1] >= m:
             nq.pop()
         nq.append((ti, m))
-        while nq[0][0] <= ti - self.floor_window_s:
+        while nq[0][0] <= ti - self.floor_window_s + TIE_S:
             nq.popleft()
         th = min(max(self.factor * nq[0][1], self.thr), self.cap)
         mq[-1][2] = th
@@ -171,12 +171,12 @@ class StanceSegmenter:
                 if self.stance_start is None:
                     self.stance_start, self.closed = ti, False
                 self.last_still = ti
-                if not self.closed and ti - self.stance_start >= max(2 * self.half, min_run):
+                if not self.closed and ti - self.stance_start >= max(2 * self.half, min_run) - TIE_S:
                     self._close(self.stance_start + self.half, out)  # long stance: close the stride now
                 continue
-            if self.stance_start is not None and ti - self.last_still > self.gap:  # L27: bridge short spikes
+            if self.stance_start is not None and ti - self.last_still > self.gap + TIE_S:  # L27: bridge spikes
                 s0, s1 = self.stance_start, self.last_still
-                if s1 - s0 >= min_run:
+                if s1 - s0 >= min_run - TIE_S:
                     mid = 0.5 * (s0 + s1)
                     if not self.closed:
                         self._close(mid, out)
@@ -209,22 +209,25 @@ class StanceSegmenter:
             # the sample judged next: usually the one after the last centre (with a steady clock)
             tn, wn, thn = mq[(len(mq) - 1) // 2 + 1]
             if wn < thn:  # still for certain: no stance ends there, but a long one may close early
-                if tn - s0 < max(2 * self.half, min_run):
+                if tn - s0 < max(2 * self.half, min_run) - TIE_S:
                     return None
                 end = s0 + self.half  # update's long-stance close
-                return (start, end) if self.min_step_s <= end - start <= self.max_step_s else None
-            if tn - s1 <= self.gap:  # a sample within stance_gap_s of the last still one ends no stance
+                return (start, end) if self._step_ok(end - start) else None
+            if tn - s1 <= self.gap + TIE_S:  # a sample within stance_gap_s of the last still one ends no stance
                 return None
-        if s1 - s0 < min_run:
+        if s1 - s0 < min_run - TIE_S:
             return None
         end = 0.5 * (s0 + s1)
-        return (start, end) if self.min_step_s <= end - start <= self.max_step_s else None
+        return (start, end) if self._step_ok(end - start) else None
+
+    def _step_ok(self, duration: float) -> bool:
+        return self.min_step_s - TIE_S <= duration <= self.max_step_s + TIE_S
 
     def _close(self, end: float, out: list) -> None:
         self.closed = True
         start, self.open_s = self.open_s, None
         self.last_boundary = end
-        if start is not None and self.min_step_s <= end - start <= self.max_step_s:
+        if start is not None and self._step_ok(end - start):
             out.append((start, end))
 
 
@@ -293,8 +296,9 @@ def gap_yaw(t_gyr: np.ndarray, gyr: np.ndarray, t_acc: np.ndarray, acc: np.ndarr
     lo = max(float(t0), float(t1) - max_s)
     if not t1 > lo:
         return 0.0
-    i0, i1 = (int(i) for i in np.searchsorted(t_gyr, [lo, t1], side="left"))
-    j0, j1 = (int(i) for i in np.searchsorted(t_acc, [lo, t1], side="left"))
+    edges = [lo - TIE_S, t1 - TIE_S]  # a sample within TIE_S of an edge is on it (decision E35)
+    i0, i1 = (int(i) for i in np.searchsorted(t_gyr, edges, side="left"))
+    j0, j1 = (int(i) for i in np.searchsorted(t_acc, edges, side="left"))
     i1, j1 = min(i1 + 1, len(t_gyr)), min(j1 + 1, len(t_acc))  # to the next stride's first sample
     if i1 - i0 < 2 or j1 <= j0:
         return 0.0

@@ -66,10 +66,27 @@ def col_mean(v: np.ndarray) -> np.ndarray:
     return np.add.reduce(v, axis=0) / v.shape[0]
 
 
+#: Decision E35: time comparisons against a window length or a limit are decided as in exact arithmetic. On a
+#: clock that is an exact multiple of the window (20 Hz: 0.1 s = 2 samples, 100 Hz: 0.03 s = 3 samples) the
+#: difference of two float times lands on either side of the limit by rounding (1e-14 s near 100 s, 1e-7 s on
+#: an epoch clock), so a shift of the clock by 1e-13 s changed which samples a window held and moved a stride
+#: boundary by a sample. Differences within ``TIE_S`` of the limit count as equal to it: far below any sample
+#: interval (1 ms at 1 kHz), far above the rounding.
+TIE_S = 1e-6
+
+
+def cover(t: np.ndarray, t0: float, t1: float) -> tuple[int, int]:
+    """Indices ``i0, i1`` of the samples covering [t0, t1]: the last sample at or before ``t0`` to the first
+    at or after ``t1`` (one sample on each side when an edge falls between samples); a sample within
+    ``TIE_S`` of an edge is on it (decision E35), so the cut does not depend on the clock's rounding."""
+    i0 = max(int(t.searchsorted(t0 + TIE_S, side="right")) - 1, 0)
+    i1 = min(int(t.searchsorted(t1 - TIE_S, side="left")) + 1, len(t))
+    return i0, i1
+
+
 def segment(t: np.ndarray, v: np.ndarray, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
-    """Samples covering [t0, t1] plus one sample on each side (for interpolation at the edges)."""
-    i0 = max(int(t.searchsorted(t0, side="right")) - 1, 0)
-    i1 = min(int(t.searchsorted(t1, side="left")) + 1, len(t))
+    """Samples covering [t0, t1] plus one sample on each side (for interpolation at the edges; :func:`cover`)."""
+    i0, i1 = cover(t, t0, t1)
     return t[i0:i1], v[i0:i1]
 
 
@@ -258,7 +275,7 @@ def start_index(t: np.ndarray, t0: float | None) -> int:
     :func:`segment` (one sample before ``t0`` when ``t0`` falls between two samples): 0 or 1. The stride's
     last sample is the first at or after its end, so consecutive strides chain their heading changes
     sample to sample, no interval counted twice or left out."""
-    return 1 if t0 is not None and len(t) > 2 and float(t[0]) < t0 else 0
+    return 1 if t0 is not None and len(t) > 2 and float(t[0]) < t0 - TIE_S else 0  # E35: within TIE_S = at t0
 
 
 def stride_dpsi(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: int = 0,

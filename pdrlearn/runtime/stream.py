@@ -30,6 +30,7 @@ from pdrlearn.kernels.stats import (
 from pdrlearn.kernels.window import (
     _compiled_interp,
     col_mean,
+    cover,
     interp,
     resample,
     segment,
@@ -98,10 +99,8 @@ class Ring:
     def segment(self, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
         """:func:`pdrlearn.kernels.window.segment` of :meth:`view` (the same samples), sliced from the arrays
         directly (decision E17)."""
-        i0, i1 = self.i0, self.i1
-        t = self.t[i0:i1]
-        a = i0 + max(int(t.searchsorted(t0, side="right")) - 1, 0)
-        b = i0 + min(int(t.searchsorted(t1, side="left")) + 1, i1 - i0)
+        a, b = cover(self.t[self.i0:self.i1], t0, t1)
+        a, b = a + self.i0, b + self.i0
         return self.t[a:b], self.v[a:b]
 
     def drop_before(self, keep_from: float) -> None:
@@ -335,8 +334,7 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
         return None
     arr, i0 = state.a, state.i0
     t = arr["t"][i0:state.i1]
-    j0 = max(int(t.searchsorted(t0, side="right")) - 1, 0)
-    j1 = min(int(t.searchsorted(t1, side="left")) + 1, len(t))
+    j0, j1 = cover(t, t0, t1)
     n = j1 - j0
     if n < 2:
         return None
