@@ -1,16 +1,20 @@
-"""The numba-compiled Madgwick kernel against the Python-float kernel it replaced (decision W67, decisions/waist.md).
+"""A numba-compiled Madgwick kernel against the library's Python-float kernel (decision W67, decisions/waist.md).
 
 For the 9 mobgap lower-back sessions (datasets/real + datasets/external) and 3 simulated waist sessions, every call
-of ``madgwick_imu`` made by ``waist_imu`` (offline AHRS), ``waist-ic`` offline and ``waist-ic`` streaming
-(``delay_s=1.75``, whole and in 25-sample chunks: one kernel call per chunk) is answered by the compiled kernel
-and, on the same arguments, by :func:`madgwick_imu_python` (the W43 kernel, verbatim); the quaternions are
-compared bit for bit (``np.array_equal``, and the max |difference|). Needs numba (the kernel's module imports it).
+of the library's ``madgwick_imu`` (the W43 kernel on Python floats) made by ``waist_imu`` (offline AHRS),
+``waist-ic`` offline and ``waist-ic`` streaming
+(``delay_s=1.75``, whole and in 25-sample chunks: one kernel call per chunk) is answered by the candidate
+:func:`madgwick_imu_numba` (the same statements compiled with ``numba.njit``, no fastmath) and, on the same
+arguments, by the library kernel; the quaternions are compared bit for bit (``np.array_equal``, max |difference|).
+numba is no dependency of pdrlearn (W67: measured, not adopted): run it in a venv that has it, e.g.
 
-Run: PYTHONPATH=. .venv/bin/python experiments/madgwick_numba.py
+  python3.11 -m venv .venv-try && .venv-try/bin/pip install torch==2.13.0 && .venv-try/bin/pip install -e '.[dev]' numba
+  PYTHONPATH=. .venv-try/bin/python experiments/madgwick_numba.py
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from pathlib import Path
@@ -20,50 +24,61 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def madgwick_imu_python(q0, gyr: np.ndarray, acc: np.ndarray, dt: float, *, gain: float) -> np.ndarray:
-    """The W43 kernel on Python floats (pdrlearn/orient/_kernels.py before W67), verbatim."""
-    sqrt = math.sqrt
+def madgwick_imu_numba(q0, gyr: np.ndarray, acc: np.ndarray, dt: float, *, gain: float) -> np.ndarray:
+    """The candidate: :func:`pdrlearn.orient._kernels.madgwick_imu` with its loop compiled (W67, not adopted)."""
     qw, qx, qy, qz = (float(v) for v in q0)
-    hd = 0.5 * dt
-    out = []
-    app = out.append
-    gyr, acc = np.asarray(gyr, dtype=float).reshape(-1, 3), np.asarray(acc, dtype=float).reshape(-1, 3)
-    cols = [c.tolist() for c in (*gyr.T, *acc.T)]
-    for gx, gy, gz, ax, ay, az in zip(*cols, strict=True):
-        n = sqrt(qw * qw + qx * qx + qy * qy + qz * qz)
-        qw, qx, qy, qz = qw / n, qx / n, qy / n, qz / n
-        if gx == 0.0 and gy == 0.0 and gz == 0.0:
-            app((qw, qx, qy, qz))
-            continue
-        dw = -qx * gx - qy * gy - qz * gz
-        dx = qw * gx + qy * gz - qz * gy
-        dy = qw * gy - qx * gz + qz * gx
-        dz = qw * gz + qx * gy - qy * gx
-        na = sqrt(ax * ax + ay * ay + az * az)
-        if na > 0.0:
-            ax, ay, az = ax / na, ay / na, az / na
+    gyr = np.ascontiguousarray(gyr, dtype=float).reshape(-1, 3)
+    acc = np.ascontiguousarray(acc, dtype=float).reshape(-1, 3)
+    out = np.empty((len(gyr), 4))
+    _loop()(qw, qx, qy, qz, gyr, acc, 0.5 * dt, float(gain), out)
+    return out
+
+
+@functools.cache
+def _loop():
+    from numba import njit  # not a dependency of pdrlearn: this script needs a venv with numba
+
+    @njit(cache=False)  # the library candidate had cache=True; no fastmath
+    def loop(qw, qx, qy, qz, gyr, acc, hd, gain, out):  # the W43 kernel's statements, one sample per row
+        sqrt = math.sqrt
+        for i in range(gyr.shape[0]):
+            gx, gy, gz = gyr[i, 0], gyr[i, 1], gyr[i, 2]
+            ax, ay, az = acc[i, 0], acc[i, 1], acc[i, 2]
             n = sqrt(qw * qw + qx * qx + qy * qy + qz * qz)
-            w, x, y, z = qw / n, qx / n, qy / n, qz / n
-            f0 = 2.0 * (x * z - w * y) - ax
-            f1 = 2.0 * (w * x + y * z) - ay
-            f2 = 2.0 * (0.5 - x * x - y * y) - az
-            if f0 != 0.0 or f1 != 0.0 or f2 != 0.0:
-                g0 = -2.0 * y * f0 + 2.0 * x * f1
-                g1 = 2.0 * z * f0 + 2.0 * w * f1 - 4.0 * x * f2
-                g2 = -2.0 * w * f0 + 2.0 * z * f1 - 4.0 * y * f2
-                g3 = 2.0 * x * f0 + 2.0 * y * f1
-                ng = sqrt(g0 * g0 + g1 * g1 + g2 * g2 + g3 * g3)
-                if ng > 0.0:
-                    b = 2.0 * gain / ng
-                    dw -= b * g0
-                    dx -= b * g1
-                    dy -= b * g2
-                    dz -= b * g3
-        qw, qx, qy, qz = qw + hd * dw, qx + hd * dx, qy + hd * dy, qz + hd * dz
-        n = sqrt(qw * qw + qx * qx + qy * qy + qz * qz)
-        qw, qx, qy, qz = qw / n, qx / n, qy / n, qz / n
-        app((qw, qx, qy, qz))
-    return np.array(out, dtype=float).reshape(-1, 4)
+            qw, qx, qy, qz = qw / n, qx / n, qy / n, qz / n
+            if gx == 0.0 and gy == 0.0 and gz == 0.0:
+                out[i, 0], out[i, 1], out[i, 2], out[i, 3] = qw, qx, qy, qz
+                continue
+            dw = -qx * gx - qy * gy - qz * gz  # Madgwick eq. 12
+            dx = qw * gx + qy * gz - qz * gy
+            dy = qw * gy - qx * gz + qz * gx
+            dz = qw * gz + qx * gy - qy * gx
+            na = sqrt(ax * ax + ay * ay + az * az)
+            if na > 0.0:
+                ax, ay, az = ax / na, ay / na, az / na
+                n = sqrt(qw * qw + qx * qx + qy * qy + qz * qz)
+                w, x, y, z = qw / n, qx / n, qy / n, qz / n
+                f0 = 2.0 * (x * z - w * y) - ax  # Madgwick eq. 25
+                f1 = 2.0 * (w * x + y * z) - ay
+                f2 = 2.0 * (0.5 - x * x - y * y) - az
+                if f0 != 0.0 or f1 != 0.0 or f2 != 0.0:
+                    g0 = -2.0 * y * f0 + 2.0 * x * f1  # Madgwick eq. 26/34
+                    g1 = 2.0 * z * f0 + 2.0 * w * f1 - 4.0 * x * f2
+                    g2 = -2.0 * w * f0 + 2.0 * z * f1 - 4.0 * y * f2
+                    g3 = 2.0 * x * f0 + 2.0 * y * f1
+                    ng = sqrt(g0 * g0 + g1 * g1 + g2 * g2 + g3 * g3)
+                    if ng > 0.0:
+                        b = 2.0 * gain / ng  # Madgwick eq. 33
+                        dw -= b * g0
+                        dx -= b * g1
+                        dy -= b * g2
+                        dz -= b * g3
+            qw, qx, qy, qz = qw + hd * dw, qx + hd * dx, qy + hd * dy, qz + hd * dz  # Madgwick eq. 13
+            n = sqrt(qw * qw + qx * qx + qy * qy + qz * qz)
+            qw, qx, qy, qz = qw / n, qx / n, qy / n, qz / n
+            out[i, 0], out[i, 1], out[i, 2], out[i, 3] = qw, qx, qy, qz
+
+    return loop
 
 
 def sessions():
@@ -85,12 +100,12 @@ def main() -> None:
     import pdrlearn.waist.ahrs as A
     from pdrlearn.steps.waist_ic import WaistICStepDetector
 
-    compiled = K.madgwick_imu
+    python = K.madgwick_imu
     calls: list[tuple[int, bool, float]] = []
 
     def both(q0, gyr, acc, dt, *, gain):
-        q = compiled(q0, gyr, acc, dt, gain=gain)
-        ref = madgwick_imu_python(q0, gyr, acc, dt, gain=gain)
+        q = madgwick_imu_numba(q0, gyr, acc, dt, gain=gain)
+        ref = python(q0, gyr, acc, dt, gain=gain)
         calls.append((len(q), np.array_equal(q, ref), float(np.max(np.abs(q - ref), initial=0.0))))
         return q
 
@@ -114,14 +129,14 @@ def main() -> None:
             print(f"{name:44s} kernel calls {len(calls):4d}, samples {n:7d}: "
                   f"{'bit-identical' if ok else 'DIFFERENT'} (max |dq| {max(c[2] for c in calls):.3g})")
     finally:
-        K.madgwick_imu = A.madgwick_imu = compiled
+        K.madgwick_imu = A.madgwick_imu = python
     print("all bit-identical" if n_all == 0 else f"{n_all} sessions DIFFER")
     # speed of the kernel alone on the longest real recording (CPU, min of 5)
     from pdrlearn.io import read_session
     from pdrlearn.waist.ahrs import body_data
 
     t, acc, gyr = body_data(read_session(ROOT / "datasets" / "real" / "mobgap_HA001_Test11_Trial1"))
-    for label, fn in [("python", madgwick_imu_python), ("numba", compiled)]:
+    for label, fn in [("python", python), ("numba", madgwick_imu_numba)]:
         best = math.inf
         for _ in range(5):
             c0 = time.process_time()

@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 from scipy.signal import lfilter
 
 
@@ -179,28 +178,18 @@ def madgwick_imu(q0, gyr: np.ndarray, acc: np.ndarray, dt: float, *, gain: float
     -------
     (n, 4) attitude ``(w, x, y, z)`` after each sample.
     """
-    qw, qx, qy, qz = (float(v) for v in q0)
-    gyr = np.ascontiguousarray(gyr, dtype=float).reshape(-1, 3)
-    acc = np.ascontiguousarray(acc, dtype=float).reshape(-1, 3)
-    if len(gyr) != len(acc):
-        raise ValueError(f"madgwick_imu: {len(gyr)} gyroscope and {len(acc)} accelerometer samples; "
-                         "give as many of each")
-    out = np.empty((len(gyr), 4))
-    _madgwick_loop(qw, qx, qy, qz, gyr, acc, 0.5 * dt, float(gain), out)
-    return out
-
-
-@njit(cache=True)
-def _madgwick_loop(qw, qx, qy, qz, gyr, acc, hd, gain, out):
-    """The per-sample loop of :func:`madgwick_imu`, compiled (decision W67); writes ``out`` (n, 4)."""
     sqrt = math.sqrt
-    for i in range(gyr.shape[0]):
-        gx, gy, gz = gyr[i, 0], gyr[i, 1], gyr[i, 2]
-        ax, ay, az = acc[i, 0], acc[i, 1], acc[i, 2]
+    qw, qx, qy, qz = (float(v) for v in q0)
+    hd = 0.5 * dt
+    out = []
+    app = out.append
+    gyr, acc = np.asarray(gyr, dtype=float).reshape(-1, 3), np.asarray(acc, dtype=float).reshape(-1, 3)
+    cols = [c.tolist() for c in (*gyr.T, *acc.T)]  # flat lists: the per-sample loop touches no numpy
+    for gx, gy, gz, ax, ay, az in zip(*cols, strict=True):
         n = sqrt(qw * qw + qx * qx + qy * qy + qz * qz)  # ahrs: Quaternion(q) is a versor
         qw, qx, qy, qz = qw / n, qx / n, qy / n, qz / n
         if gx == 0.0 and gy == 0.0 and gz == 0.0:  # ahrs: zero rate, attitude kept
-            out[i, 0], out[i, 1], out[i, 2], out[i, 3] = qw, qx, qy, qz
+            app((qw, qx, qy, qz))
             continue
         dw = -qx * gx - qy * gy - qz * gz  # 2 * qDot = q (x) (0, w), Madgwick eq. 12
         dx = qw * gx + qy * gz - qz * gy
@@ -229,4 +218,5 @@ def _madgwick_loop(qw, qx, qy, qz, gyr, acc, hd, gain, out):
         qw, qx, qy, qz = qw + hd * dw, qx + hd * dx, qy + hd * dy, qz + hd * dz  # eq. 13
         n = sqrt(qw * qw + qx * qx + qy * qy + qz * qz)
         qw, qx, qy, qz = qw / n, qx / n, qy / n, qz / n
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = qw, qx, qy, qz
+        app((qw, qx, qy, qz))
+    return np.array(out, dtype=float).reshape(-1, 4)
