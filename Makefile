@@ -33,7 +33,7 @@ test: $(STAMP) browser
 	$(BIN)/python -m pytest -q
 
 # Line + branch coverage of pdrlearn over the default suite (config: [tool.coverage.*] in pyproject; docs/testing.md).
-# Serial (no -n): ~10 min on one core. HTML in out/coverage/index.html; the summary lists the modules that are
+# Serial (no -n): ~11 min of CPU on one core. HTML in out/coverage/index.html; the summary lists the modules that are
 # not fully covered, the most missed statements first.
 coverage: $(STAMP) browser
 	mkdir -p out
