@@ -5,7 +5,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 export MPLBACKEND := Agg
 
-.PHONY: venv demo test bench lint clean browser external peers
+.PHONY: venv demo test coverage bench lint clean browser external peers
 
 venv: $(STAMP)
 
@@ -31,6 +31,17 @@ browser:
 
 test: $(STAMP) browser
 	$(BIN)/python -m pytest -q
+
+# Line + branch coverage of pdrlearn over the default suite (config: [tool.coverage.*] in pyproject; docs/testing.md).
+# Serial (no -n): ~11 min of CPU on one core. HTML in out/coverage/index.html; the summary lists the modules that are
+# not fully covered, the most missed statements first.
+coverage: $(STAMP) browser
+	mkdir -p out
+	rm -f out/.coverage out/.coverage.*
+	$(BIN)/python -m coverage run -m pytest -q
+	$(BIN)/python -m coverage combine -q
+	$(BIN)/python -m coverage html -q
+	$(BIN)/python -m coverage report --skip-covered --sort=-miss
 
 # Benchmarks are kept out of the test run (pytest-benchmark's --benchmark-skip in pyproject addopts).
 bench: $(STAMP)

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.io.sensors import PLACEMENTS
 
 _DIRECTIONS = {
     "forward": (1.0, 0.0, 0.0),
@@ -82,8 +83,20 @@ def frames_from_meta(meta: dict) -> dict[str, AxisFrame]:
     Uses the machine-readable ``frames`` entry when present; otherwise a known converted source
     (``source_project`` starting with ``gaitmap`` or ``mobgap``). Returns ``{}`` when nothing is declared.
     """
-    if isinstance(meta.get("frames"), dict):
-        return {placement: AxisFrame.from_dict(d) for placement, d in meta["frames"].items()}
+    frames = meta.get("frames")
+    if frames is not None:
+        # decisions B60, B61: a malformed entry is refused (it raised a TypeError, or was ignored and the frame
+        # inferred from the data in place of the declared one)
+        example = '"frames": {"foot": {"x": "forward", "y": "up", "z": "right"}}'
+        if not isinstance(frames, dict):
+            raise DataError(f'"frames" must be an object, e.g. {example}; fix or remove it')
+        for placement, d in frames.items():
+            if not isinstance(d, dict):
+                raise DataError(f'"frames" entry {placement!r} is not an object of the unit\'s axes; write e.g. '
+                                f"{example}")
+            if placement not in PLACEMENTS:
+                raise DataError(f'"frames" names the unit {placement!r}, not foot or waist; write e.g. {example}')
+        return {placement: AxisFrame.from_dict(d) for placement, d in frames.items()}
     source = str(meta.get("source_project", "")).lower()
     for key, frames in KNOWN_SOURCE_FRAMES.items():
         if source.startswith(key):

@@ -23,7 +23,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import AxisFrame
-from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, read_table
+from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, _csv_dialect, read_table
 from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.validate import (
@@ -406,8 +406,12 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
     have = ", ".join(header)
     if len(df) == 0:
         raise DataError(f"{where}: no data rows under the header ({have}); re-export the file")
-    if len(set(header)) != len(header):
-        dup = sorted({c for c in header if header.count(c) > 1})
+    # decision B62: pandas renames a repeated name ('ax', 'ax.1'), so the header line itself is checked
+    # (unnamed columns, e.g. of a header line ending in ',,', are not names)
+    raw = [c for c in (str(c).strip() for c in pd.read_csv(path, header=None, nrows=1, dtype=str,
+                                                           keep_default_na=False, **_csv_dialect(path)).iloc[0]) if c]
+    if len(set(raw)) != len(raw):
+        dup = sorted({c for c in raw if raw.count(c) > 1})
         raise DataError(f"{where}: column name(s) {', '.join(dup)} appear twice; rename them")
     columns = {k: list(v) for k, v in (columns or {}).items()}
     signs = {}
@@ -456,7 +460,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         t_num, t_unit, t_how = secs, "s", "date-time text"
     elif time_format is not None or time_zone is not None:
         raise DataError(f"{where}: --time-format/--time-zone read date-time text, but column '{time_column}' holds "
-                        f"numbers ({tcol.iloc[0]!r} ...); leave them out")
+                        f"numbers ({tcol.iloc[0]} ...); leave them out")  # B63: not np.float64(0.0)
     else:
         t_num = pd.to_numeric(tcol, errors="coerce").to_numpy(dtype=float)
         bad = np.flatnonzero(~np.isfinite(t_num))

@@ -514,10 +514,6 @@ def warn_low_rate(session: Session) -> None:
                         rate, MIN_VALIDATED_RATE_HZ, what, MIN_VALIDATED_RATE_HZ)
 
 
-def _fmt(x: np.ndarray) -> np.ndarray:
-    return np.array([repr(float(v)) for v in x], dtype=object)
-
-
 def _stream_frame(s: Stream, scale: float) -> pd.DataFrame:
     data = {"timestamp": np.round(s.t / scale, 9)}
     for j, c in enumerate(s.spec.columns):
