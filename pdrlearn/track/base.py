@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import difflib
+import inspect
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 
 import pandas as pd
@@ -50,6 +52,30 @@ def register_pipeline(name: str) -> Callable[[Pipeline], Pipeline]:
         return fn
 
     return deco
+
+
+def keyword_names(fn: Callable, *, exclude: Iterable[str] = ()) -> list[str]:
+    """The keyword arguments of ``fn`` (its keyword-only and positional-or-keyword parameters after the first,
+    the session), without ``**`` catch-alls and the names in ``exclude``."""
+    params = list(inspect.signature(fn).parameters.values())[1:]
+    kinds = (inspect.Parameter.KEYWORD_ONLY, inspect.Parameter.POSITIONAL_OR_KEYWORD)
+    return [p.name for p in params if p.kind in kinds and p.name not in set(exclude)]
+
+
+def check_keywords(pipeline: str, given: Mapping | Iterable[str], valid: Iterable[str]) -> None:
+    """Raise ``TypeError`` (as Python does for an unknown keyword) when ``given`` holds a name that is not in
+    ``valid``, naming it, the closest valid name (``difflib``) and every valid one (decision L43)."""
+    valid = list(valid)
+    unknown = [k for k in given if k not in valid]
+    if not unknown:
+        return
+    parts = []
+    for k in unknown:
+        close = difflib.get_close_matches(str(k), valid, n=1)
+        parts.append(f"{k!r}" + (f" (did you mean {close[0]!r}?)" if close else ""))
+    word = "argument" if len(unknown) == 1 else "arguments"
+    raise TypeError(f"{pipeline} pipeline: unexpected keyword {word} {', '.join(parts)}; its keyword arguments "
+                    f"are {', '.join(valid)}")
 
 
 def resolve_pipeline(name: str, session) -> str:
