@@ -65,3 +65,34 @@ def test_2d_classifiers_name_the_window_route(name, method):
     X = np.zeros((6, 17, 40))
     with pytest.raises(DataError, match=rf"takes a 2-D feature matrix .*make_estimator\('terrain', '{method}'"):
         getattr(c, name)(task="terrain").fit(X, ["flat", "up"] * 3)
+
+
+def test_detector_repr_prints_changed_settings_only():
+    from pdrlearn.steps import AccelStepDetector, PLLStepDetector, WaistICStepDetector
+
+    assert repr(AccelStepDetector()) == "AccelStepDetector()"
+    assert repr(AccelStepDetector(threshold=2.0)) == "AccelStepDetector(threshold=2.0)"
+    assert repr(PLLStepDetector(placement="pocket", loop_hz=0.3)) == "PLLStepDetector(loop_hz=0.3, placement='pocket')"
+    assert repr(WaistICStepDetector(delay_s=1.75)) == "WaistICStepDetector(delay_s=1.75)"
+
+
+@pytest.mark.parametrize("kw", [{"threshold": -1}, {"still_window_s": -0.08}, {"cutoff_hz": float("nan")},
+                                {"max_swing_s": float("inf")}])
+def test_detector_refuses_negative_or_non_finite_settings(kw):
+    from pdrlearn.steps import AccelStepDetector
+
+    name, value = next(iter(kw.items()))
+    with pytest.raises(ValueError, match=rf"AccelStepDetector: {name}={value!r} is not allowed; .*>= 0"):
+        AccelStepDetector(**kw)
+    det = AccelStepDetector()
+    with pytest.raises(ValueError, match=rf"{name}="):
+        det.set_params(**kw)
+    assert repr(det) == "AccelStepDetector()"  # a refused set_params changes nothing
+
+
+def test_detector_tuple_settings_are_checked_per_element():
+    from pdrlearn.steps import PelvicGyroStepDetector
+
+    with pytest.raises(ValueError, match="weights="):
+        PelvicGyroStepDetector(weights=(0.25, -0.1, 0.4, 0.25))
+    assert PelvicGyroStepDetector(turn_cutoff_hz=0.0).turn_cutoff_hz == 0.0  # 0 = off stays allowed
