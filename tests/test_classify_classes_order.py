@@ -63,12 +63,9 @@ def test_turn_classifier_order():
 def test_heuristic_roc_auc_scorer_on_real_strides(real_dir):
     """The trial's symptom: roc_auc_ovr read the heuristic's probability columns as sorted classes and scored
     0.17-0.34 (below chance) at 0.76 accuracy; with classes_ sorted it agrees with the accuracy."""
-    import logging
-
     from pdrlearn.features import step_windows
     from pdrlearn.io import read_session
 
-    logging.getLogger("pdrlearn").setLevel(logging.ERROR)
     Xs, ys = [], []
     for name in ("gaitmap_level_left", "gaitmap_stairs_up_left", "gaitmap_stairs_down_left"):
         sw = step_windows(read_session(real_dir / name))
