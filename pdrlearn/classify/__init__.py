@@ -3,8 +3,12 @@ training, model directories and evaluation.
 
 Main entry points: :func:`train_user` -> :class:`UserModel` (``.save(dir)``, ``.predict_steps(session,
 steps)``), :func:`load_model` (dir) -> :class:`UserModel`, :func:`evaluate_model`. The estimators
-:class:`DTWClassifier`, :class:`SVMClassifier`, :class:`NNClassifier`, :class:`UnitFusionClassifier`
-follow the scikit-learn protocol. Attributes are imported lazily (torch/sklearn load on first use).
+:class:`DTWClassifier`, :class:`SVMClassifier`, :class:`NNClassifier`, :class:`UnitFusionClassifier` and the
+heuristics follow the scikit-learn protocol (``classes_`` sorted, ``predict_proba`` columns in that order,
+decision C19). SVM and NN take a 2-D feature matrix; :func:`make_estimator` (task, method, unit) gives the
+fitted-ready pipeline on raw step windows ``(steps, channels, samples)`` (features + classifier) that
+``train_user`` cross-validates. Attributes are imported lazily (torch/sklearn load on first use);
+``dir(pdrlearn.classify)`` lists them.
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ _LAZY = {
     "train_user": "pdrlearn.classify.training",
     "UserModel": "pdrlearn.classify.training",
     "TaskModel": "pdrlearn.classify.training",
+    "make_estimator": "pdrlearn.classify.training",
     "load_model": "pdrlearn.classify.model_dir",
     "save_model": "pdrlearn.classify.model_dir",
     "evaluate_model": "pdrlearn.classify.evaluation",
@@ -34,6 +39,11 @@ def __getattr__(name: str):
     if name in _LAZY:
         return getattr(importlib.import_module(_LAZY[name]), name)
     raise AttributeError(f"module 'pdrlearn.classify' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    """The lazy attributes too (``dir()``, tab completion, ``help()``), not only those imported so far."""
+    return sorted((set(globals()) - {"annotations", "importlib"}) | set(_LAZY))
 
 
 __all__ = sorted(_LAZY)

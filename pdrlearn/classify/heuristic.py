@@ -29,7 +29,10 @@ balanced accuracy on the training steps (``max(0, 2 * bacc - 1)``), so rules tha
 user's classes stop voting.
 
 ``predict`` follows the thesis: each stage's ``R`` is rounded to the nearest class. ``predict_proba``
-gives triangular memberships of ``R`` to the class values, multiplied along the two terrain stages.
+gives triangular memberships of ``R`` to the class values, multiplied along the two terrain stages; its
+columns follow :attr:`classes_`, all the task's classes sorted as scikit-learn sorts labels
+(``np.unique``: terrain ``down, flat, up``), so probability scorers (``roc_auc_ovr``, ``neg_log_loss``)
+read the right columns (decision C19).
 """
 
 from __future__ import annotations
@@ -224,7 +227,9 @@ class _RuleClassifier(ClassifierMixin, BaseEstimator):
         if unknown:
             raise DataError(f"{type(self).__name__}: labels {unknown} are not {self.task} classes "
                             f"({', '.join(classes)}); drop or relabel those steps")
-        self.classes_ = np.array(classes, dtype=object)
+        # scikit-learn convention (decision C19): classes_ sorted as np.unique sorts them, and predict_proba's
+        # columns in that order; every internal reader aligns columns by class name
+        self.classes_ = np.array(sorted(classes), dtype=object)
         col = {n: i for i, n in enumerate(names)}
         fitted = []
         for st in stages:

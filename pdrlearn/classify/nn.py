@@ -15,7 +15,7 @@ from sklearn.model_selection import train_test_split
 from sklearn.utils.multiclass import check_classification_targets
 from sklearn.utils.validation import validate_data
 
-from pdrlearn.classify.svm import check_fitted_fast, check_X_fast
+from pdrlearn.classify.svm import check_fitted_fast, check_X_fast, refuse_step_windows
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.proba import softmax  # = scipy.special.softmax, no array-API dispatch
 
@@ -180,6 +180,7 @@ class NNClassifier(ClassifierMixin, BaseEstimator):
         return THESIS_HIDDEN.get(self.task or "", DEFAULT_HIDDEN)
 
     def fit(self, X, y):
+        refuse_step_windows(self, X, "nn")
         X, y = validate_data(self, X, y, dtype=np.float64)
         check_classification_targets(y)
         self.classes_, yi = np.unique(y, return_inverse=True)

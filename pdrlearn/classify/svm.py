@@ -126,6 +126,19 @@ def check_X_fast(est, X, *, allow_nd: bool = False, finite: bool = True) -> np.n
     return validate_data(est, X, reset=False, dtype=np.float64, allow_nd=allow_nd, ensure_all_finite=finite)
 
 
+def refuse_step_windows(est, X, method: str) -> None:
+    """A 3-D step-window array given to a classifier of 2-D feature matrices: say which pipeline takes it
+    (scikit-learn's own message was "Found array with dim 3")."""
+    if getattr(X, "ndim", None) == 3:  # not np.ndim: array-likes may refuse __array_function__
+        task = getattr(est, "task", None) or "terrain"
+        name = type(est).__name__
+        raise DataError(
+            f"{name} takes a 2-D feature matrix (steps, features), not step windows of shape {tuple(X.shape)}: "
+            f"use pdrlearn.classify.make_estimator({task!r}, {method!r}, 'foot') (features + classifier), or "
+            f"Pipeline([('features', make_features({task!r}, 'foot', {method!r})), ('clf', {name}(...))])"
+        )
+
+
 class SVMClassifier(ClassifierMixin, BaseEstimator):
     """One-vs-rest SVMs with per-class kernels behind one scikit-learn estimator.
 
@@ -164,6 +177,7 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
         self.class_weight = class_weight
 
     def fit(self, X, y):
+        refuse_step_windows(self, X, "svm")
         X, y = validate_data(self, X, y, dtype=np.float64)
         check_classification_targets(y)
         self.classes_ = np.unique(y)

@@ -1,6 +1,7 @@
 """Step detection (thesis ch.5, seeds 000/001), unit clock alignment, stance-to-stance segmentation and
 event-level evaluation. See docs/steps.md."""
 
+from pdrlearn.steps.align import align_events, align_units, apply_alignment
 from pdrlearn.steps.base import STEPS_COLUMNS, OnlineStepDetector, StepDetector, steps_frame
 from pdrlearn.steps.detectors import (
     DETECTORS,
@@ -19,11 +20,13 @@ from pdrlearn.steps.evaluate import (
     score_events,
     score_steps,
 )
+from pdrlearn.steps.segment import segment_steps
 from pdrlearn.steps.waist_ic import WaistICStepDetector
 
 __all__ = [
     "STEPS_COLUMNS", "OnlineStepDetector", "StepDetector", "steps_frame",
     "DETECTORS", "AccelStepDetector", "AccelForceStepDetector", "PelvicGyroStepDetector", "PLLStepDetector",
     "WaistICStepDetector", "get_detector", "Reference", "in_intervals", "DEFAULT_TOLERANCE_S", "match_events",
-    "reference_events", "score_events", "score_steps",
+    "reference_events", "score_events", "score_steps", "align_units", "apply_alignment", "align_events",
+    "segment_steps",
 ]

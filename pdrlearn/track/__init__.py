@@ -1,7 +1,15 @@
 """Tracking pipelines: session -> per-step table + trajectory.
 
-Pipelines register themselves in :data:`PIPELINES` (see :mod:`pdrlearn.track.base`); ``pdrlearn track
---pipeline NAME`` looks them up there.
+``get_pipeline(name)(session, **options) -> TrackResult``; :data:`PIPELINES` maps every name (``plasys``,
+``waist-pll``, ``waist-pendulum``) to its function, and :func:`get_pipeline`'s docstring lists their keyword
+arguments. ``pdrlearn track --pipeline NAME`` looks them up there; a new pipeline registers itself with
+``@register_pipeline(name)`` (see :mod:`pdrlearn.track.base`) and is listed in
+:mod:`pdrlearn.track.pipelines`.
+
+Warnings (no model, gaps, fallbacks) are ``logging`` records of the ``pdrlearn`` logger, not Python
+``warnings``, and are also returned in ``result.info["warnings"]``. Silence them with
+``logging.getLogger("pdrlearn").setLevel(logging.ERROR)``; capture them with a handler on that logger (or
+pytest's ``caplog``). ``warnings.filterwarnings`` / ``catch_warnings`` do not see them.
 """
 
 from pdrlearn.track.base import PIPELINES, TrackResult, get_pipeline, register_pipeline

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import difflib
+import inspect
+from collections.abc import Callable, Iterable, Mapping, MutableMapping
 from dataclasses import dataclass, field
 
 import pandas as pd
@@ -39,7 +41,52 @@ class TrackResult:
 
 
 Pipeline = Callable[..., TrackResult]
-PIPELINES: dict[str, Pipeline] = {}
+
+
+class PipelineRegistry(MutableMapping):
+    """Pipeline name -> function (a dict to read). Reading it first imports every module that registers a
+    pipeline (:mod:`pdrlearn.track.pipelines`), so ``list(PIPELINES)`` names them all from the first access
+    (it read ``[]`` until the first :func:`get_pipeline` call); :func:`register_pipeline` writes without that."""
+
+    def __init__(self):
+        self._fns: dict[str, Pipeline] = {}
+        self._loading = False
+        self._loaded = False
+
+    def _load(self) -> None:
+        if self._loaded or self._loading:
+            return
+        self._loading = True
+        try:
+            import pdrlearn.track.pipelines  # noqa: F401  (each module registers its pipelines)
+            self._loaded = True
+        finally:
+            self._loading = False
+
+    def __getitem__(self, name: str) -> Pipeline:
+        self._load()
+        return self._fns[name]
+
+    def __setitem__(self, name: str, fn: Pipeline) -> None:
+        self._fns[name] = fn
+
+    def __delitem__(self, name: str) -> None:
+        del self._fns[name]
+
+    def __iter__(self):
+        self._load()
+        return iter(self._fns)
+
+    def __len__(self) -> int:
+        self._load()
+        return len(self._fns)
+
+    def __repr__(self) -> str:
+        self._load()
+        return f"PIPELINES({', '.join(self._fns)})"
+
+
+PIPELINES: PipelineRegistry = PipelineRegistry()
 
 
 def register_pipeline(name: str) -> Callable[[Pipeline], Pipeline]:
@@ -50,6 +97,30 @@ def register_pipeline(name: str) -> Callable[[Pipeline], Pipeline]:
         return fn
 
     return deco
+
+
+def keyword_names(fn: Callable, *, exclude: Iterable[str] = ()) -> list[str]:
+    """The keyword arguments of ``fn`` (its keyword-only and positional-or-keyword parameters after the first,
+    the session), without ``**`` catch-alls and the names in ``exclude``."""
+    params = list(inspect.signature(fn).parameters.values())[1:]
+    kinds = (inspect.Parameter.KEYWORD_ONLY, inspect.Parameter.POSITIONAL_OR_KEYWORD)
+    return [p.name for p in params if p.kind in kinds and p.name not in set(exclude)]
+
+
+def check_keywords(pipeline: str, given: Mapping | Iterable[str], valid: Iterable[str]) -> None:
+    """Raise ``TypeError`` (as Python does for an unknown keyword) when ``given`` holds a name that is not in
+    ``valid``, naming it, the closest valid name (``difflib``) and every valid one (decision L43)."""
+    valid = list(valid)
+    unknown = [k for k in given if k not in valid]
+    if not unknown:
+        return
+    parts = []
+    for k in unknown:
+        close = difflib.get_close_matches(str(k), valid, n=1)
+        parts.append(f"{k!r}" + (f" (did you mean {close[0]!r}?)" if close else ""))
+    word = "argument" if len(unknown) == 1 else "arguments"
+    raise TypeError(f"{pipeline} pipeline: unexpected keyword {word} {', '.join(parts)}; its keyword arguments "
+                    f"are {', '.join(valid)}")
 
 
 def resolve_pipeline(name: str, session) -> str:
@@ -64,8 +135,29 @@ def resolve_pipeline(name: str, session) -> str:
 
 
 def get_pipeline(name: str) -> Pipeline:
-    import pdrlearn.track.pipelines  # noqa: F401  (imports every module that registers a pipeline)
+    """The tracking pipeline ``name``: a function ``fn(session, **options) -> TrackResult``.
 
+    Pipelines (``list(PIPELINES)``; ``help(get_pipeline("plasys"))`` documents each option):
+
+    - ``"plasys"`` (foot unit, + waist): PLASYS M1/M2/M3 (thesis ch.7). Keyword arguments: ``method``
+      (``"auto"`` default as ``pdrlearn track``: M3 with ``model``, else the M3 engine without class rules;
+      ``"M1"``, ``"M2"``, ``"M3"``), ``model`` (model directory, loaded model or ``"oracle"``), ``start``
+      ((lat, lon)), ``params`` (FootDisplacement settings), ``steps``, ``heading``, ``initial_heading``,
+      ``bounds``, ``bounds_scale``, ``down_mode``, ``min_confidence``, ``align``, ``rules`` (``"bayes"`` /
+      ``"thesis"``), ``fused_tau_s``, ``streaming``, ``distance_gain``, ``calibration``, ``gap_yaw``,
+      ``warn_out_of_domain``.
+    - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
+      step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:
+      ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``
+      (waist-pendulum's causal variant), ``heading``, ``refine_ic``, ``initial_heading``, ``resolve_signs``,
+      ``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``length_smoothing``
+      (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and unused.
+
+    An unknown keyword raises ``TypeError`` naming the closest valid one (decision L43); an unknown
+    ``name`` raises :class:`~pdrlearn.errors.DataError` listing the pipelines. Warnings (e.g. "no model")
+    are ``logging`` records of the ``pdrlearn`` logger (also in ``result.info["warnings"]``), not Python
+    ``warnings``: ``logging.getLogger("pdrlearn").setLevel(logging.ERROR)`` silences them.
+    """
     try:
         return PIPELINES[name]
     except KeyError:

@@ -52,7 +52,7 @@ from pdrlearn.kernels.distance import (
 )
 from pdrlearn.kernels.window import GROUP_STREAMS, available_groups, levelled_units
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
-from pdrlearn.track.base import TrackResult, register_pipeline
+from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
 from pdrlearn.track.gaps import drop_steps_across_gaps, gap_warnings, long_gaps, overlaps_gaps
 from pdrlearn.track.geodetic import geodetic_track
@@ -391,7 +391,7 @@ def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
 
 
 @register_pipeline("plasys")
-def track_plasys(session: Session, *, method: str = "M3", model=None, start=None, params=None,
+def track_plasys(session: Session, *, method: str = "auto", model=None, start=None, params=None,
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
                  bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
                  min_confidence: float | None = None, align: bool = False, rules: str | None = None,
@@ -402,9 +402,10 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
 
     Parameters
     ----------
-    method : "M1" | "M2" | "M3" | "auto". "auto" (decision L36): M3 when ``model`` is given; without a model
-        the M3 engine (M2's ZUPT/Kalman strides, the stance from the force sensors or the inertial detector)
-        with the class rules off, and a warning (streaming: M2's kernel)
+    method : "auto" (default, as ``pdrlearn track``; decision L44) | "M1" | "M2" | "M3". "auto" (decision
+        L36): M3 when ``model`` is given; without a model the M3 engine (M2's ZUPT/Kalman strides, the stance
+        from the force sensors or the inertial detector) with the class rules off, and a warning (streaming:
+        M2's kernel)
     model : M3 classes source: a model directory / loaded model, or ``"oracle"`` (the session's labels)
     start : (lat, lon) degrees -> ``lat``/``lon`` columns via thesis eq. 56/57
     params : optional dict overriding :class:`FootDisplacement` settings
@@ -440,9 +441,14 @@ def track_plasys(session: Session, *, method: str = "M3", model=None, start=None
     warn_out_of_domain : M3 with a trained model: warn (one line) when at least this fraction of the strides
         lie outside the model's training range (decision C16; None = no warning, the default). The
         fraction is always in ``info["out_of_domain"]``
+
+    Any other keyword argument raises ``TypeError`` naming the closest valid one (decision L43). Warnings go
+    to ``info["warnings"]`` and to the ``logging`` logger ``pdrlearn.track`` (not Python's ``warnings``).
     """
     from pdrlearn.classify.domain import check_warn_at
 
+    if opts:  # decision L43: a misspelled option is an error, as in the waist pipelines (it was ignored)
+        check_keywords("plasys", opts, keyword_names(track_plasys))
     check_warn_at(warn_out_of_domain)
     method = str(method).upper()
     no_classes = False

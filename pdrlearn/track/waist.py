@@ -23,7 +23,7 @@ import pandas as pd
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
 from pdrlearn.steps import PLLStepDetector
-from pdrlearn.track.base import TrackResult, register_pipeline
+from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
@@ -388,17 +388,28 @@ def _no_walking(session: Session, pipeline: str, p: WaistParams, o: dict, warnin
     return _result(steps, start, initial_heading, info, float(acc.t[0]))
 
 
+def _check_waist_keywords(pipeline: str, opts: dict) -> None:
+    """A misspelled keyword is a TypeError naming the closest valid one (decision L43)."""
+    if opts:
+        check_keywords(pipeline, opts, ["model", "start", "params",
+                                        *keyword_names(track_waist, exclude=("pipeline", "params", "start"))])
+
+
 @register_pipeline("waist-pll")
 def waist_pll(session: Session, *, model=None, start=None, params=None, **opts) -> TrackResult:
     """Seed 000 pipeline: PLL steps, step length linear in frequency, A-HE heading (``heading="ellipse"``
-    for the seed 001 closed form). ``model`` is unused (no step classifier)."""
+    for the seed 001 closed form). ``model`` is unused (no step classifier). Other keyword arguments: those of
+    :func:`track_waist`."""
+    _check_waist_keywords("waist-pll", opts)
     return track_waist(session, pipeline="waist-pll", params=params, start=start, **opts)
 
 
 @register_pipeline("waist-pendulum")
 def waist_pendulum(session: Session, *, model=None, start=None, params=None, **opts) -> TrackResult:
     """Seed 003 pipeline: IC/FC from waist acceleration (``realtime=True`` for the causal variant),
-    inverted-pendulum step length, gyroscope heading on turning strides."""
+    inverted-pendulum step length, gyroscope heading on turning strides. ``model`` is unused (no step
+    classifier). Other keyword arguments: those of :func:`track_waist`."""
+    _check_waist_keywords("waist-pendulum", opts)
     return track_waist(session, pipeline="waist-pendulum", params=params, start=start, **opts)
 
 
