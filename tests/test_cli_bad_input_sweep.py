@@ -200,7 +200,8 @@ WARNINGS = {
                       "wGyroscope have 1 gap", "track-M3-streaming": "gap(s) longer than 1 s",
                       "track-waist-pll": "wAccelerometer, wGyroscope have 1 gap",
                       "track-waist-pendulum": "wAccelerometer, wGyroscope have 1 gap",
-                      "calibrate": "wAccelerometer, wGyroscope have 1 gap", "run": "the runtime replays across them"}),
+                      "calibrate": "wAccelerometer, wGyroscope have 1 gap",
+                      "run": "a gap longer than 1 s (B11): the stride across it moves 0 m"}),
     # decision D8: run takes the frame inferred from the data; the bundle's only when the data does not fix it
     "meta_no_frames": (_unframed(), {"run": "inferred from the data"}),
     "meta_no_frames_yawed": (_unframed(45.0), {"run": "declares no foot frame and its data does not fix the axes"}),

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, out_folder, print_json, replaced, warn_gaps
+from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, out_folder, print_json, replaced
 
 
 def export(
@@ -254,9 +254,7 @@ def run(
         from pdrlearn.track.plasys import require_stride_cover
 
         require_stride_cover(session, [*required, *optional])  # decision B21
-        warn_gaps(session, required,
-                  "the runtime replays across them (a stride spanning one is unreliable) - re-record or trim the "
-                  "session, or use `pdrlearn track`, which ends the walk at a gap")
+        # gaps: the runtime warns once per gap and moves a stride across a foot gap over 1 s 0 m (decision E29)
         # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
         # the runtime resamples at these rates and announces it in one line; a stream behind the others
         # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)

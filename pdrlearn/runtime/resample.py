@@ -31,6 +31,11 @@ from pdrlearn.kernels.distance import classifier_rate_warning
 RATE_PROBE = 32
 RATE_PROBE_S = 1.0
 RATE_PROBE_MIN = 5
+#: decision E29: a stream whose rate is more than this factor away from the bundle's is refused rather than
+#: tracked: its timestamps are not in seconds (in ms a 20 Hz stream reads as 0.02 Hz and gives no step; real
+#: accelerometer and gyroscope rates, 10-1000 Hz, stay within it of every bundle rate, 20-100 Hz; judged on
+#: those streams only, a barometer may run at 1 Hz)
+RATE_UNIT_FACTOR = 100.0
 #: centres filtered together in one block of :meth:`StreamResampler._filter_at` (bounds its memory)
 _BLOCK = 64
 #: input intervals longer than this (s) are not bridged: the resampler ends the segment and restarts at the
@@ -284,8 +289,34 @@ class InputStage:
         if declared:
             self._decide(declared, where="declared rates")
 
+    def unit_check(self, rates: dict[str, float]) -> None:
+        """Decision E29: a one-line :class:`DataError` for a stream whose rate (Hz) is more than
+        :data:`RATE_UNIT_FACTOR` away from the bundle's: its timestamps are not in seconds."""
+        for n, r in rates.items():
+            if not n.endswith(("Accelerometer", "Gyroscope")):  # a barometer may run at 1 Hz or slower
+                continue
+            f = r / self.rate_hz
+            if f < 1.0 / RATE_UNIT_FACTOR:
+                raise DataError(f"{n}: the pushed timestamps give {r:.3g} Hz, {1.0 / f:.0f}x below the bundle's "
+                                f"{self.rate_hz:g} Hz: are they in ms (or us)? push t in seconds (t_ms / 1000)")
+            if f > RATE_UNIT_FACTOR:
+                raise DataError(f"{n}: the pushed timestamps give {r:.3g} Hz, {f:.0f}x above the bundle's "
+                                f"{self.rate_hz:g} Hz: push t in seconds")
+
+    def check_rate(self, name: str, t: np.ndarray) -> None:
+        """:meth:`unit_check` of the rate a push of ``t`` (s) would teach for a stream whose rate is being
+        learned, before any state changes (decision E29); nothing for a stream whose rate is known."""
+        if name in self.input_rates_hz or name not in self.used:
+            return
+        p = self._probe.get(name)
+        tt = np.concatenate([*p[0], t]) if p and p[0] else t
+        if len(tt) < RATE_PROBE and not (len(tt) >= RATE_PROBE_MIN and tt[-1] - tt[0] >= RATE_PROBE_S):
+            return
+        self.unit_check({name: probe_rate(tt[:RATE_PROBE])})
+
     def _decide(self, rates: dict[str, float], where: str) -> None:
         """Pass, resample or refuse the streams of ``rates`` (sensor -> input rate, Hz)."""
+        self.unit_check(rates)
         off = self.bundle.off_rate(rates)
         if off and self.resample is False:
             self.bundle.check_rates(off, where=where)
@@ -401,6 +432,10 @@ def stopped_message(name: str, t: float | None, first_s: float, newest: float, m
     what = (f"no samples since {t:.2f} s" if t is not None
             else f"no samples at all since the first sample at {first_s:.2f} s")
     behind = f"max_lag_s = {max_lag_s:g} s" + (f" + {grace_s:.2f} s of its own delivery interval" if grace_s else "")
+    if required and t is None and name.startswith("w"):  # E29: a foot-only stream, most likely; the fix first
+        return (f"{name}: {what} while other sensors are at {newest:.2f} s (more than {behind} behind): for a "
+                "foot-only stream pass units=('foot',) to Tracker (or sensors= without the waist sensors; "
+                "pdrlearn run --units foot, decision E26); else connect the waist unit and start a new Tracker")
     if required:
         return (f"{name}: {what} while other sensors are at {newest:.2f} s (more than {behind} behind; the sensor "
                 "stopped or its link dropped); reconnect it and start a new Tracker, or track without it with a "

@@ -63,6 +63,17 @@ _F64 = np.dtype(np.float64)
 _WAIST_ACC = frozenset(("waist_acc_x", "waist_acc_y", "waist_acc_z"))
 #: samples kept before a step's start: the window margin (1 s) and L31's gap-yaw look-back
 _LOOK_BACK_S = max(1.0, GAP_YAW_MAX_S)
+#: values per sample of each sensor, as ``pdrlearn.io.sensors.SENSORS[name].n_axes`` (thesis ch.4.3.3; not
+#: imported: ``pdrlearn.io`` imports pandas, the runtime numpy only)
+SENSOR_WIDTH = {"fAccelerometer": 3, "fGyroscope": 3, "fForceA": 1, "fForceB": 1, "wAccelerometer": 3,
+                "wGyroscope": 3, "wMagneticField": 3, "wBarometer": 1}
+#: decision E29: an interval between two pushed samples of a stream longer than this (s) is a gap the tracker
+#: warns about (once per gap); longer than B11's 1 s (``pdrlearn.track.gaps.MIN_GAP_S``) in a foot stream, the
+#: stride across it moves 0 m, as offline ``pdrlearn track`` (plasys) does
+GAP_WARN_S = 0.25
+GAP_LONG_S = 1.0
+#: the foot streams whose long gaps zero the stride across them (offline plasys' ``foot_gaps``, B11)
+_FOOT_GAP_STREAMS = frozenset(("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
 
 #: Default displacement parameters written into bundles. Bounds are per foot-unit *stride* = 2 x the
 #: thesis step bounds (thesis ch.6.3: short <= 0.30 m, normal 0.30-0.45 m, long > 0.45 m; ch.7.2.2: a long
@@ -146,6 +157,9 @@ class Step:
     x: float = 0.0
     y: float = 0.0
     z: float = 0.0
+    #: decision E29: the longest foot-stream gap (s, > 1 s) inside the stride; such a stride moves 0 m, keeps
+    #: the heading and has no classes (0.0 = none)
+    gap_s: float = 0.0
 
     def to_dict(self) -> dict:
         return {
@@ -239,7 +253,8 @@ class Tracker:
         ``("foot",)`` with a two-unit bundle (decision E26): a session without the waist unit, or whose
         waist failed: waist samples are ignored, no waist sensor is required, every task classifies with
         the foot model ``pdrlearn track`` picks for such a session, the heading is the foot's (``auto``).
-        Steps are detected on the foot, so a unit list without it is an error.
+        Steps are detected on the foot, so a unit list without it is an error. Decision E29: without
+        ``units``, a ``sensors`` list that lacks a sensor the bundle's waist unit requires means ``("foot",)``.
     sensors : the sensor streams the data will have (default: unknown, every model's sensors expected).
         Decision E26 amended: a task whose model reads an absent sensor (e.g. a length model on force
         sensors) classifies with the bundle's best-ranked model that reads none, else is left unclassified
@@ -255,6 +270,8 @@ class Tracker:
     _spec: tuple | None = None  # likewise: no step computed ahead (decision E24)
     _trims = 0
     speculative = False
+    _pushed_gaps: list | None = None  # decision E29 (a bare Tracker.__new__ has none)
+    _foot_gaps: list | tuple = ()
 
     def __init__(
         self,
@@ -281,7 +298,13 @@ class Tracker:
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
+        sensors = None if sensors is None else [str(n) for n in sensors]
         #: the body units tracked (decision E26), their required and used sensors
+        if units is None and sensors is not None and "foot" in self.bundle.body_units and not set(
+                self.bundle.sensors_of(("waist",))[0]) <= set(sensors):  # decision E29: the declared streams
+            units = ("foot",)  # lack a sensor the waist unit needs: tracked as a foot-only session (E26)
+            log.info("bundle %s: sensors %s lack the waist unit's: tracking the foot unit only (units=('foot',))",
+                     self.bundle.path, ", ".join(sensors))
         self.units = self.bundle.body_units if units is None else check_units(self.bundle, units)
         self.required, optional = self.bundle.sensors_of(self.units)
         self.used_sensors = [*self.required, *optional]
@@ -422,6 +445,14 @@ class Tracker:
         self.speculative = bool(speculative)
         self._spec: tuple | None = None
         self._trims = 0
+        #: decision E29: the gaps the current push opens ``(sensor, last sample before, first after)`` (s), the
+        #: gaps announced ``[start, end, long]`` (the latest few), the foot gaps over GAP_LONG_S not yet behind
+        #: the processed strides, and the streams announced as held (``max_lag_s = inf``)
+        self._pushed_gaps: list | None = None
+        self._gap_marks: list[list] = []
+        self._foot_gaps: list[tuple[float, float]] = []
+        self._held: set[str] = set()
+        self._held_s = float(self.params.get("max_wait_s", 2.0))  # a held value older than this is warned about
 
     @property
     def resampled_hz(self) -> dict[str, float]:
@@ -569,6 +600,7 @@ class Tracker:
                 ts.append(mm.t)
                 vs.append(mm.values)
             samples = grouped
+        self._check_push(samples)  # decision E29: every sensor checked before any state changes
         samples = self.inputs.push(samples)  # the same dict when every stream is at the bundle's rate (E22)
         if samples:
             self._note_resampled()
@@ -595,6 +627,8 @@ class Tracker:
                             self._latest = t0
                         continue
                 self._append(name, t, v)
+        if self._pushed_gaps:
+            self._note_gaps()
         self._detect()
         if self._pending or self._latest >= self._lag_next:  # E23: before a waiting step could go stale
             self._check_lag()
@@ -612,6 +646,101 @@ class Tracker:
         elif self._latest - self._oldest > 2.0 * self.buffer_s:
             self._trim()
         return steps
+
+    def _check_push(self, samples: dict) -> None:
+        """Decision E29: the input errors of every sensor of a push before any state changes (a push is all or
+        nothing: a refused push can be retried without its bad sensor), each one line naming the sensor and
+        the fix; and the gaps the push opens (an interval over :data:`GAP_WARN_S`), noted once per gap.
+        A one-sample float64 push of a buffered sensor is checked on Python floats (decision E17's path)."""
+        buf, used, gaps = self._buf, self.inputs.used, None
+        for name, tv in samples.items():
+            if name not in used or name in self.inputs.ignored:
+                continue  # ignored by the input stage, whatever it holds
+            try:
+                t, v = tv
+            except (TypeError, ValueError):
+                raise DataError(f"{name}: push (t, values) per sensor, got {type(tv).__name__}") from None
+            ring = buf.get(name)
+            if (ring is not None and type(t) is np.ndarray and type(v) is np.ndarray and t.shape == (1,)
+                    and v.ndim == 2 and v.shape[0] == 1 and (t.dtype is _F64 or t.dtype == _F64)
+                    and (v.dtype is _F64 or v.dtype == _F64) and name not in self.inputs.resamplers):
+                t0, vals = t.item(), v.tolist()[0]
+                if (t0 > ring.last and len(vals) == ring.v.shape[1] and math.isfinite(t0)
+                        and all(map(math.isfinite, vals))):
+                    if t0 - ring.last > GAP_WARN_S:
+                        gaps = gaps or []
+                        gaps.append((name, ring.last, t0))
+                    continue
+            t, v = self._checked_arrays(name, t, v)
+            if not len(t):
+                continue
+            raw = self.inputs.last_in(name)
+            last = raw if raw is not None else (ring.last if ring is not None else None)
+            if last is not None and not t[0] > last:
+                raise DataError(f"{name}: pushed timestamps are not increasing (at {t[0]:.3f} s after {last:.3f} s); "
+                                "push samples in time order")
+            self.inputs.check_rate(name, t)
+            tt = t if last is None else np.concatenate(([last], t))
+            if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
+                d = np.diff(tt)
+                for i in np.flatnonzero(d > GAP_WARN_S).tolist():
+                    gaps = gaps or []
+                    gaps.append((name, float(tt[i]), float(tt[i + 1])))
+        self._pushed_gaps = gaps
+
+    def _note_gaps(self) -> None:
+        """Decision E29: one warning per gap the push opened (the streams that show it, its length and where),
+        the foot gaps over :data:`GAP_LONG_S` kept for :meth:`process_step` (the stride across one moves 0 m)."""
+        gaps, self._pushed_gaps = self._pushed_gaps, None
+        new: list[list] = []  # [start, end, long, names]
+        for name, a, b in gaps:
+            long = name in _FOOT_GAP_STREAMS and b - a > GAP_LONG_S
+            if long:
+                self._foot_gaps.append((a, b))
+            for g in [*new, *self._gap_marks]:
+                if a < g[1] and b > g[0]:  # the same gap, seen in another stream
+                    if len(g) > 3:
+                        g[3].append(name)
+                        g[2] = g[2] or long
+                    elif long and not g[2]:  # a gap announced as bridged turns out to be a long foot gap
+                        g[2] = True
+                        new.append([a, b, True, [name]])
+                    break
+            else:
+                new.append([a, b, long, [name]])
+        for a, b, long, names in new:
+            self._gap_marks.append([a, b, long])
+            what = (f"a gap longer than {GAP_LONG_S:g} s (B11): the stride across it moves 0 m, keeps the heading and "
+                    "has no classes, as `pdrlearn track` counts no displacement inside such a gap" if long else
+                    f"bridged (interpolated) as `pdrlearn track` does up to {GAP_LONG_S:g} s (B11): the stride across "
+                    "it has an unreliable length, height change and heading")
+            self._warn(f"{', '.join(names)}: no samples for {b - a:.2f} s ({a:.2f}-{b:.2f} s); {what} (decision E29)")
+        del self._gap_marks[:-16]  # the latest few: a gap is seen by every stream within a few pushes
+
+    def _checked_arrays(self, name: str, t, v) -> tuple[np.ndarray, np.ndarray]:
+        """``(t (n,), values (n, k))`` as float64 with k the sensor's width, finite and increasing; else a
+        one-line :class:`DataError` naming the sensor and the expected shape (decision E29)."""
+        width = SENSOR_WIDTH.get(name)
+        try:
+            t = np.asarray(t, dtype=np.float64).reshape(-1)
+            v = np.asarray(v, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise DataError(f"{name}: push numbers: t (n,) in seconds and values (n, {width or 'k'})") from None
+        n = len(t)
+        if v.ndim == 1 and (n == 1 or (width == 1 and len(v) == n)):
+            v = v.reshape(n, -1)  # one sample as a row, or a one-value sensor as a column
+        if v.ndim != 2 or v.shape[0] != n or (width is not None and v.shape[1] != width):
+            want = f"({n}, {width})" if width else f"({n}, k)"
+            what = {3: " (x, y, z)", 1: " (one value per sample)"}.get(width, "")
+            raise DataError(f"{name}: pushed values of shape {v.shape} for {n} timestamp(s); push an array of shape "
+                            f"{want}{what}, one row per timestamp")
+        if n and not (np.isfinite(t).all() and np.isfinite(v).all()):
+            raise DataError(f"{name}: pushed samples contain NaN/inf; clean the stream before tracking")
+        if n > 1 and not (t[1:] > t[:-1]).all():
+            i = int(np.argmin(t[1:] > t[:-1])) + 1
+            raise DataError(f"{name}: pushed timestamps are not increasing (at {t[i]:.3f} s after {t[i - 1]:.3f} s); "
+                            "push samples in time order")
+        return t, v
 
     def _feed_foot(self) -> None:
         """Feed the queued one-sample foot pushes to the push-time levelling, in push order."""
@@ -658,8 +787,23 @@ class Tracker:
         stale = max(ends) - self._wait_s
         out = []
         while self._pending and (force or self._pending[0][1] + self._lookahead_s < max(latest, stale)):
+            t1 = self._pending[0][1]
+            if latest < t1 - self._held_s:  # decision E29: a stream's last value held for this step
+                self._note_held(t1)
             out.append(self.process_step(*self._pending.pop(0)))
         return out
+
+    def _note_held(self, t1: float) -> None:
+        """Decision E29: one warning per stream whose last sample is more than ``max_wait_s`` before the end of
+        a step processed without it (E9's held values: ``max_lag_s = inf``, or the end of a recording)."""
+        held = [n for n, r in self._buf.items() if r.last < t1 - self._held_s and n not in self._held]
+        if held:
+            self._held.update(held)
+            last = min(self._buf[n].last for n in held)
+            self._warn(f"{', '.join(held)}: no samples since {last:.2f} s; the step ending at {t1:.2f} s and those after "
+                       "it are measured with their last values held (max_lag_s = inf, decision E9): heading and classes "
+                       "that read them are unreliable - reconnect the sensor and start a new Tracker, or track without "
+                       "it (units=('foot',) for the waist; decision E29)")
 
     def _note_resampled(self) -> None:
         """The input stage's lines (decision E22) once each: the resampling in ``warnings`` and logged at
@@ -786,6 +930,14 @@ class Tracker:
                 spec = None
         else:
             spec = None
+        if self._foot_gaps:  # decision E29 / B11: a stride across a foot gap over 1 s moves 0 m
+            gap = max([b - a for a, b in self._foot_gaps if a < t1 and b > t0], default=0.0)
+            self._foot_gaps = [g for g in self._foot_gaps if g[1] > t0]
+            if gap:
+                self._prev_end = t1  # no L31 pivot across it either: the turn inside the gap is unknown
+                self.n_steps += 1
+                x, y, z = self.position.tolist()
+                return Step(t0, t1, {}, {}, 0.0, 0.0, self.heading, x, y, z, gap_s=gap)
         lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
         if self._prev_end is not None and t0 > self._prev_end and headed_by_foot(lev, self.heading_source):
             dyaw += gap_yaw(*self._stream("fGyroscope"), *self._stream("fAccelerometer"), self._prev_end, t0)  # L31
