@@ -63,8 +63,8 @@ def test_foot_only_replay_equals_streaming_track(root):
         assert res.steps[f"method_{task}"].iloc[0] == f"{c.method}/{c.unit}"
         assert entry_units(c.model.entry, c.unit) == {"foot"}
     # without the option the waist the bundle requires never comes: one line naming the option
-    with pytest.raises(DataError, match=r"w(Accelerometer|Gyroscope): no samples at all .*units=\('foot',\); "
-                                        "pdrlearn run --units foot"):
+    with pytest.raises(DataError, match=r"w(Accelerometer|Gyroscope): no samples at all .*pass units=\('foot',\) to "
+                                        r"Tracker .*pdrlearn run --units foot"):
         replay(Tracker(root / "bundle"), s, 0.37)
 
 

@@ -239,7 +239,7 @@ def test_one_sample_push_fast_path_checks_like_append(bundle):
         one.push({"fAccelerometer": (np.array([np.inf]), np.array([[0.0, 0.0, 9.8]]))})
     with pytest.raises(DataError, match="not increasing"):
         one.push({"fGyroscope": (np.array([t[-1]]), np.zeros((1, 3)))})
-    with pytest.raises(DataError, match="values per sample"):
+    with pytest.raises(DataError, match=r"shape \(1, 4\).*push an array of shape \(1, 3\)"):
         one.push({"fGyroscope": (np.array([5.0]), np.zeros((1, 4)))})
     n = len(one._buf["fAccelerometer"])
     one.push({"fAccelerometer": (np.array([2.5], dtype=np.float32), np.ones((1, 3), dtype=np.float32))})

@@ -254,7 +254,7 @@ def run(
         from pdrlearn.track.plasys import require_stride_cover
 
         require_stride_cover(session, [*required, *optional])  # decision B21
-        # gaps: the runtime warns once per gap and moves a stride across a foot gap over 1 s 0 m (decision E29)
+        # gaps: the runtime warns once per gap and moves a stride across a foot gap over 1 s 0 m (decision E30)
         # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
         # the runtime resamples at these rates and announces it in one line; a stream behind the others
         # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)

@@ -432,7 +432,7 @@ def stopped_message(name: str, t: float | None, first_s: float, newest: float, m
     what = (f"no samples since {t:.2f} s" if t is not None
             else f"no samples at all since the first sample at {first_s:.2f} s")
     behind = f"max_lag_s = {max_lag_s:g} s" + (f" + {grace_s:.2f} s of its own delivery interval" if grace_s else "")
-    if required and t is None and name.startswith("w"):  # E29: a foot-only stream, most likely; the fix first
+    if required and t is None and name.startswith("w"):  # E32: a foot-only stream, most likely; the fix first
         return (f"{name}: {what} while other sensors are at {newest:.2f} s (more than {behind} behind): for a "
                 "foot-only stream pass units=('foot',) to Tracker (or sensors= without the waist sensors; "
                 "pdrlearn run --units foot, decision E26); else connect the waist unit and start a new Tracker")

@@ -67,13 +67,16 @@ _LOOK_BACK_S = max(1.0, GAP_YAW_MAX_S)
 #: imported: ``pdrlearn.io`` imports pandas, the runtime numpy only)
 SENSOR_WIDTH = {"fAccelerometer": 3, "fGyroscope": 3, "fForceA": 1, "fForceB": 1, "wAccelerometer": 3,
                 "wGyroscope": 3, "wMagneticField": 3, "wBarometer": 1}
-#: decision E29: an interval between two pushed samples of a stream longer than this (s) is a gap the tracker
+#: decision E30: an interval between two pushed samples of a stream longer than this (s) is a gap the tracker
 #: warns about (once per gap); longer than B11's 1 s (``pdrlearn.track.gaps.MIN_GAP_S``) in a foot stream, the
 #: stride across it moves 0 m, as offline ``pdrlearn track`` (plasys) does
 GAP_WARN_S = 0.25
 GAP_LONG_S = 1.0
 #: the foot streams whose long gaps zero the stride across them (offline plasys' ``foot_gaps``, B11)
 _FOOT_GAP_STREAMS = frozenset(("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
+#: the foot streams whose shorter gaps (over GAP_WARN_S) leave the stride across them without classes: B11 takes
+#: the foot unit from a step overlapping a gap of its accelerometer or gyroscope
+_FOOT_IMU = frozenset(("fAccelerometer", "fGyroscope"))
 
 #: Default displacement parameters written into bundles. Bounds are per foot-unit *stride* = 2 x the
 #: thesis step bounds (thesis ch.6.3: short <= 0.30 m, normal 0.30-0.45 m, long > 0.45 m; ch.7.2.2: a long
@@ -157,7 +160,7 @@ class Step:
     x: float = 0.0
     y: float = 0.0
     z: float = 0.0
-    #: decision E29: the longest foot-stream gap (s, > 1 s) inside the stride; such a stride moves 0 m, keeps
+    #: decision E30: the longest foot-stream gap (s, > 1 s) inside the stride; such a stride moves 0 m, keeps
     #: the heading and has no classes (0.0 = none)
     gap_s: float = 0.0
 
@@ -253,7 +256,7 @@ class Tracker:
         ``("foot",)`` with a two-unit bundle (decision E26): a session without the waist unit, or whose
         waist failed: waist samples are ignored, no waist sensor is required, every task classifies with
         the foot model ``pdrlearn track`` picks for such a session, the heading is the foot's (``auto``).
-        Steps are detected on the foot, so a unit list without it is an error. Decision E29: without
+        Steps are detected on the foot, so a unit list without it is an error. Decision E32: without
         ``units``, a ``sensors`` list that lacks a sensor the bundle's waist unit requires means ``("foot",)``.
     sensors : the sensor streams the data will have (default: unknown, every model's sensors expected).
         Decision E26 amended: a task whose model reads an absent sensor (e.g. a length model on force
@@ -270,7 +273,7 @@ class Tracker:
     _spec: tuple | None = None  # likewise: no step computed ahead (decision E24)
     _trims = 0
     speculative = False
-    _pushed_gaps: list | None = None  # decision E29 (a bare Tracker.__new__ has none)
+    _pushed_gaps: list | None = None  # decision E30 (a bare Tracker.__new__ has none)
     _foot_gaps: list | tuple = ()
 
     def __init__(
@@ -301,7 +304,7 @@ class Tracker:
         sensors = None if sensors is None else [str(n) for n in sensors]
         #: the body units tracked (decision E26), their required and used sensors
         if units is None and sensors is not None and "foot" in self.bundle.body_units and not set(
-                self.bundle.sensors_of(("waist",))[0]) <= set(sensors):  # decision E29: the declared streams
+                self.bundle.sensors_of(("waist",))[0]) <= set(sensors):  # decision E32: the declared streams
             units = ("foot",)  # lack a sensor the waist unit needs: tracked as a foot-only session (E26)
             log.info("bundle %s: sensors %s lack the waist unit's: tracking the foot unit only (units=('foot',))",
                      self.bundle.path, ", ".join(sensors))
@@ -445,12 +448,12 @@ class Tracker:
         self.speculative = bool(speculative)
         self._spec: tuple | None = None
         self._trims = 0
-        #: decision E29: the gaps the current push opens ``(sensor, last sample before, first after)`` (s), the
+        #: decisions E30, E31: the gaps the current push opens ``(sensor, last sample before, first after)`` (s), the
         #: gaps announced ``[start, end, long]`` (the latest few), the foot gaps over GAP_LONG_S not yet behind
         #: the processed strides, and the streams announced as held (``max_lag_s = inf``)
         self._pushed_gaps: list | None = None
         self._gap_marks: list[list] = []
-        self._foot_gaps: list[tuple[float, float]] = []
+        self._foot_gaps: list[tuple[float, float, bool]] = []
         self._held: set[str] = set()
         self._held_s = float(self.params.get("max_wait_s", 2.0))  # a held value older than this is warned about
 
@@ -689,14 +692,14 @@ class Tracker:
         self._pushed_gaps = gaps
 
     def _note_gaps(self) -> None:
-        """Decision E29: one warning per gap the push opened (the streams that show it, its length and where),
+        """Decision E30: one warning per gap the push opened (the streams that show it, its length and where),
         the foot gaps over :data:`GAP_LONG_S` kept for :meth:`process_step` (the stride across one moves 0 m)."""
         gaps, self._pushed_gaps = self._pushed_gaps, None
         new: list[list] = []  # [start, end, long, names]
         for name, a, b in gaps:
             long = name in _FOOT_GAP_STREAMS and b - a > GAP_LONG_S
-            if long:
-                self._foot_gaps.append((a, b))
+            if long or name in _FOOT_IMU:
+                self._foot_gaps.append((a, b, long))
             for g in [*new, *self._gap_marks]:
                 if a < g[1] and b > g[0]:  # the same gap, seen in another stream
                     if len(g) > 3:
@@ -713,8 +716,9 @@ class Tracker:
             what = (f"a gap longer than {GAP_LONG_S:g} s (B11): the stride across it moves 0 m, keeps the heading and "
                     "has no classes, as `pdrlearn track` counts no displacement inside such a gap" if long else
                     f"bridged (interpolated) as `pdrlearn track` does up to {GAP_LONG_S:g} s (B11): the stride across "
-                    "it has an unreliable length, height change and heading")
-            self._warn(f"{', '.join(names)}: no samples for {b - a:.2f} s ({a:.2f}-{b:.2f} s); {what} (decision E29)")
+                    "it has an unreliable length, height change and heading, and no classes when the gap is the "
+                    "foot's")
+            self._warn(f"{', '.join(names)}: no samples for {b - a:.2f} s ({a:.2f}-{b:.2f} s); {what} (decision E30)")
         del self._gap_marks[:-16]  # the latest few: a gap is seen by every stream within a few pushes
 
     def _checked_arrays(self, name: str, t, v) -> tuple[np.ndarray, np.ndarray]:
@@ -788,13 +792,13 @@ class Tracker:
         out = []
         while self._pending and (force or self._pending[0][1] + self._lookahead_s < max(latest, stale)):
             t1 = self._pending[0][1]
-            if latest < t1 - self._held_s:  # decision E29: a stream's last value held for this step
+            if latest < t1 - self._held_s:  # decision E31: a stream's last value held for this step
                 self._note_held(t1)
             out.append(self.process_step(*self._pending.pop(0)))
         return out
 
     def _note_held(self, t1: float) -> None:
-        """Decision E29: one warning per stream whose last sample is more than ``max_wait_s`` before the end of
+        """Decision E31: one warning per stream whose last sample is more than ``max_wait_s`` before the end of
         a step processed without it (E9's held values: ``max_lag_s = inf``, or the end of a recording)."""
         held = [n for n, r in self._buf.items() if r.last < t1 - self._held_s and n not in self._held]
         if held:
@@ -803,7 +807,7 @@ class Tracker:
             self._warn(f"{', '.join(held)}: no samples since {last:.2f} s; the step ending at {t1:.2f} s and those after "
                        "it are measured with their last values held (max_lag_s = inf, decision E9): heading and classes "
                        "that read them are unreliable - reconnect the sensor and start a new Tracker, or track without "
-                       "it (units=('foot',) for the waist; decision E29)")
+                       "it (units=('foot',) for the waist; decision E31)")
 
     def _note_resampled(self) -> None:
         """The input stage's lines (decision E22) once each: the resampling in ``warnings`` and logged at
@@ -930,15 +934,20 @@ class Tracker:
                 spec = None
         else:
             spec = None
-        if self._foot_gaps:  # decision E29 / B11: a stride across a foot gap over 1 s moves 0 m
-            gap = max([b - a for a, b in self._foot_gaps if a < t1 and b > t0], default=0.0)
+        bridged = False
+        if self._foot_gaps:  # decision E30 / B11: a stride across a foot gap over 1 s moves 0 m
+            over = [(b - a, long) for a, b, long in self._foot_gaps if a < t1 and b > t0]
             self._foot_gaps = [g for g in self._foot_gaps if g[1] > t0]
+            gap = max([d for d, long in over if long], default=0.0)
             if gap:
                 self._prev_end = t1  # no L31 pivot across it either: the turn inside the gap is unknown
                 self.n_steps += 1
                 x, y, z = self.position.tolist()
                 return Step(t0, t1, {}, {}, 0.0, 0.0, self.heading, x, y, z, gap_s=gap)
+            bridged = bool(over)  # a shorter gap in the foot accelerometer / gyroscope: no classes (B11)
         lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
+        if bridged:  # as UserModel.predict_steps leaves a step without the foot unit (offline, track --streaming)
+            classes, proba = {}, {}
         if self._prev_end is not None and t0 > self._prev_end and headed_by_foot(lev, self.heading_source):
             dyaw += gap_yaw(*self._stream("fGyroscope"), *self._stream("fAccelerometer"), self._prev_end, t0)  # L31
         self._prev_end = t1

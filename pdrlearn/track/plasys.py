@@ -716,12 +716,12 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if not len(strides):
         raise DataError(f"session '{session.name}': no stance-to-stance stride found on the foot gyroscope")
     table = pd.DataFrame({"start_s": strides[:, 0], "end_s": strides[:, 1]})
-    # decision B11 / E29: as the streaming runtime (parity), a stride across a foot-stream gap over 1 s moves 0 m,
+    # decision B11 / E30: as the streaming runtime (parity), a stride across a foot-stream gap over 1 s moves 0 m,
     # keeps the heading and has no classes; a waist gap is only warned (bridged)
     foot_gaps = long_gaps(session, ("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
     warnings: list[str] = gap_warnings({**foot_gaps, **long_gaps(session, ("wAccelerometer", "wGyroscope"))},
                                        "no displacement is counted inside them (a stride across a foot gap moves 0 m, "
-                                       "as the runtime, E29)")
+                                       "as the runtime, E30)")
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(NO_WAIST_HEADING)
     classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
@@ -761,7 +761,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     bounds_scale=bounds_scale).effective_bounds() if method == "M3" else None)
     disp, dyaw, place = np.zeros((len(table), 3)), np.zeros(len(table)), np.zeros(len(table))
     foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
-    in_gap = overlaps_gaps(table, foot_gaps)  # decision E29: these strides move 0 m, turn 0, no classes
+    in_gap = overlaps_gaps(table, foot_gaps)  # decision E30: these strides move 0 m, turn 0, no classes
     for i, (t0, t1) in enumerate(strides):
         if in_gap[i]:
             continue
@@ -784,10 +784,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                        sigma_rel=sigma_rel)
     place += [SK.reversed_by_rules(bool(f), float(d[0]), float(L))  # decision L37
               for f, d, L in zip(foot_headed, disp, length, strict=True)]
-    if in_gap.any():  # decision E29: the runtime's Step for such a stride (0 m, no classes)
+    if in_gap.any():  # decision E30: the runtime's Step for such a stride (0 m, no classes)
         length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
         classes = classes.copy()
-        for c in classes.columns:
+        for c in [c for c in classes.columns if c in ("terrain", "direction", "length_class") or c.startswith("p_")]:
             num = pd.api.types.is_float_dtype(classes[c].dtype)
             classes[c] = classes[c].astype(float if num else object)
             classes.loc[in_gap, c] = np.nan if num else None
