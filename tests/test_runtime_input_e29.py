@@ -27,7 +27,8 @@ import pytest
 from pdrlearn.errors import DataError
 from pdrlearn.io import SENSORS, Session, Stream, write_session
 from pdrlearn.runtime import load_bundle
-from pdrlearn.runtime.tracker import SENSOR_WIDTH, Tracker
+from pdrlearn.runtime import tracker as T
+from pdrlearn.runtime.tracker import Tracker
 from pdrlearn.track.base import get_pipeline
 from tests.runtime_helpers import replay, synthetic_session, trained_dirs
 
@@ -68,7 +69,7 @@ def _state(tr: Tracker) -> tuple:
 
 
 def test_the_sensor_table_is_the_io_registry():
-    assert SENSOR_WIDTH == {n: s.n_axes for n, s in SENSORS.items()}
+    assert T.SENSOR_WIDTH == {n: s.n_axes for n, s in SENSORS.items()}
 
 
 @pytest.mark.parametrize("when", ["first push", "mid-stream"])
@@ -195,8 +196,8 @@ def test_a_foot_only_stream_names_the_option_and_sensors_without_the_waist_mean_
     foot = walk.copy()
     for n in ("wAccelerometer", "wGyroscope", "wBarometer"):
         del foot.streams[n]
-    with pytest.raises(DataError, match=r"^w(Accelerometer|Gyroscope): no samples at all .*: for a foot-only stream pass "
-                                        r"units=\('foot',\) to Tracker"):
+    with pytest.raises(DataError, match=r"^w(Accelerometer|Gyroscope): no samples at all .*: for a foot-only "
+                                        r"stream pass units=\('foot',\) to Tracker"):
         replay(Tracker(root / "bundle"), foot, 0.37)
     a = Tracker(root / "bundle", sensors=list(foot.streams))
     assert a.units == ("foot",)

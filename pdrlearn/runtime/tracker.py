@@ -804,10 +804,10 @@ class Tracker:
         if held:
             self._held.update(held)
             last = min(self._buf[n].last for n in held)
-            self._warn(f"{', '.join(held)}: no samples since {last:.2f} s; the step ending at {t1:.2f} s and those after "
-                       "it are measured with their last values held (max_lag_s = inf, decision E9): heading and classes "
-                       "that read them are unreliable - reconnect the sensor and start a new Tracker, or track without "
-                       "it (units=('foot',) for the waist; decision E31)")
+            self._warn(f"{', '.join(held)}: no samples since {last:.2f} s; the step ending at {t1:.2f} s and those "
+                       "after it are measured with their last values held (max_lag_s = inf, decision E9): heading and "
+                       "classes that read them are unreliable - reconnect the sensor and start a new Tracker, or track "
+                       "without it (units=('foot',) for the waist; decision E31)")
 
     def _note_resampled(self) -> None:
         """The input stage's lines (decision E22) once each: the resampling in ``warnings`` and logged at
