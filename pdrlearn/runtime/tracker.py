@@ -714,7 +714,8 @@ class Tracker:
         for a, b, long, names in new:
             self._gap_marks.append([a, b, long])
             what = (f"a gap longer than {GAP_LONG_S:g} s (B11): the stride across it moves 0 m, keeps the heading and "
-                    "has no classes, as `pdrlearn track` counts no displacement inside such a gap" if long else
+                    "has no classes; no step is counted inside it, as `pdrlearn track` counts no displacement there"
+                    if long else
                     f"bridged (interpolated) as `pdrlearn track` does up to {GAP_LONG_S:g} s (B11): the stride across "
                     "it has an unreliable length, height change and heading, and no classes when the gap is the "
                     "foot's")
