@@ -603,23 +603,21 @@ class Tracker:
                 ts.append(mm.t)
                 vs.append(mm.values)
             samples = grouped
-        self._check_push(samples)  # decision E29: every sensor checked before any state changes
+        fast = self._check_push(samples)  # decision E29: every sensor checked before any state changes
         samples = self.inputs.push(samples)  # the same dict when every stream is at the bundle's rate (E22)
         if samples:
             self._note_resampled()
-            buf, foot, fast = self._buf, self._foot_q if self._foot is not None else None, self._rate_checked
+            buf, foot = self._buf, self._foot_q if self._foot is not None else None
             for name, (t, v) in samples.items():
-                # one float64 sample of a known, rate-checked sensor that is finite and newer than its buffer:
-                # appended here without _append's frame and general checks (decision E17); anything else
-                # (a new sensor, chunks, other dtypes, NaN, old timestamps: their errors) goes through _append
-                if (name in fast and type(t) is np.ndarray and type(v) is np.ndarray and t.shape == (1,)
-                        and (t.dtype is _F64 or t.dtype == _F64) and (v.dtype is _F64 or v.dtype == _F64)
-                        and v.ndim == 2 and v.shape[0] == 1):
+                # one float64 sample of a buffered sensor, finite, newer than its buffer and of its width (checked
+                # by _check_push): appended here without _append's frame (decision E17); anything else (a new
+                # sensor, chunks, other dtypes) goes through _append
+                f = fast.get(name) if fast else None
+                if f is not None:
                     ring = buf[name]
-                    t0, vals = t.item(), v.tolist()[0]
                     i = ring.i1
-                    if (t0 > ring.last and len(vals) == ring.v.shape[1] and i < len(ring.t) and math.isfinite(t0)
-                            and all(map(math.isfinite, vals))):
+                    if i < len(ring.t):
+                        t0, vals = f
                         ring.t[i] = t0  # Ring.append1
                         ring.v[i] = vals
                         ring.i1 = i + 1
@@ -650,30 +648,36 @@ class Tracker:
             self._trim()
         return steps
 
-    def _check_push(self, samples: dict) -> None:
+    def _check_push(self, samples: dict) -> dict[str, tuple[float, list[float]]]:
         """Decision E29: the input errors of every sensor of a push before any state changes (a push is all or
         nothing: a refused push can be retried without its bad sensor), each one line naming the sensor and
         the fix; and the gaps the push opens (an interval over :data:`GAP_WARN_S`), noted once per gap.
-        A one-sample float64 push of a buffered sensor is checked on Python floats (decision E17's path)."""
-        buf, used, gaps = self._buf, self.inputs.used, None
+        A one-sample float64 push of a buffered sensor is checked on Python floats (decision E17's path) and
+        returned, sensor -> ``(t, values)``, for :meth:`push` to append without checking it again."""
+        buf, gaps, fast = self._buf, None, {}
+        resampled = self.inputs.resamplers
         for name, tv in samples.items():
-            if name not in used or name in self.inputs.ignored:
+            ring = buf.get(name)
+            if ring is not None and type(tv) is tuple and len(tv) == 2:  # the one-sample path on Python floats
+                t, v = tv
+                if (type(t) is np.ndarray and type(v) is np.ndarray and t.shape == (1,) and v.ndim == 2
+                        and v.shape[0] == 1 and (t.dtype is _F64 or t.dtype == _F64)
+                        and (v.dtype is _F64 or v.dtype == _F64) and name not in resampled):
+                    t0, vals = t.item(), v.tolist()[0]
+                    last = ring.last
+                    if (t0 > last and len(vals) == ring.v.shape[1] and math.isfinite(t0)
+                            and all(map(math.isfinite, vals))):
+                        fast[name] = (t0, vals)
+                        if t0 - last > GAP_WARN_S:
+                            gaps = gaps or []
+                            gaps.append((name, last, t0))
+                        continue
+            if name not in self.inputs.used or name in self.inputs.ignored:
                 continue  # ignored by the input stage, whatever it holds
             try:
                 t, v = tv
             except (TypeError, ValueError):
                 raise DataError(f"{name}: push (t, values) per sensor, got {type(tv).__name__}") from None
-            ring = buf.get(name)
-            if (ring is not None and type(t) is np.ndarray and type(v) is np.ndarray and t.shape == (1,)
-                    and v.ndim == 2 and v.shape[0] == 1 and (t.dtype is _F64 or t.dtype == _F64)
-                    and (v.dtype is _F64 or v.dtype == _F64) and name not in self.inputs.resamplers):
-                t0, vals = t.item(), v.tolist()[0]
-                if (t0 > ring.last and len(vals) == ring.v.shape[1] and math.isfinite(t0)
-                        and all(map(math.isfinite, vals))):
-                    if t0 - ring.last > GAP_WARN_S:
-                        gaps = gaps or []
-                        gaps.append((name, ring.last, t0))
-                    continue
             t, v = self._checked_arrays(name, t, v)
             if not len(t):
                 continue
@@ -690,6 +694,7 @@ class Tracker:
                     gaps = gaps or []
                     gaps.append((name, float(tt[i]), float(tt[i + 1])))
         self._pushed_gaps = gaps
+        return fast
 
     def _note_gaps(self) -> None:
         """Decision E30: one warning per gap the push opened (the streams that show it, its length and where),
