@@ -238,7 +238,7 @@ def _doc_example() -> str:
 
 def test_the_embedding_example_of_the_docs_runs(root, walk, tmp_path):
     code = _doc_example()
-    assert len(code.strip().splitlines()) <= 25
+    assert len(code.strip().splitlines()) <= 22
     assert 'BUNDLE = "out/bundle/u1"' in code and 'SESSION = "out/sim/D_u1"' in code
     write_session(walk, tmp_path / "walk")
     code = code.replace('"out/bundle/u1"', repr(str(root / "bundle"))).replace('"out/sim/D_u1"',
