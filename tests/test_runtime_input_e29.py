@@ -47,9 +47,12 @@ def walk():
 
 def _per_timestamp(s: Session) -> list[dict]:
     """One push per sample time, every sensor that has a sample then (a live stream, sample by sample)."""
+    times = np.unique(np.concatenate([st.t for st in s.streams.values()]))
+    idx = {n: np.searchsorted(st.t, times) for n, st in s.streams.items()}
     out = []
-    for i in range(len(s.streams["fAccelerometer"].t)):
-        out.append({n: (st.t[i:i + 1], st.values[i:i + 1]) for n, st in s.streams.items() if i < len(st.t)})
+    for k, when in enumerate(times):
+        out.append({n: (st.t[i:i + 1], st.values[i:i + 1]) for n, st in s.streams.items()
+                    if (i := int(idx[n][k])) < len(st.t) and st.t[i] == when})
     return out
 
 
@@ -179,6 +182,18 @@ def test_a_waist_gap_is_warned_and_does_not_zero_the_stride(root, walk):
     lines = [w for w in tr.warnings if "no samples for" in w]
     assert len(lines) == 1 and lines[0].startswith("wAccelerometer") and "bridged" in lines[0], tr.warnings
     assert all(st.gap_s == 0.0 and st.classes for st in steps)
+
+
+def test_a_slow_barometer_has_no_gaps(root, walk):
+    """A 1 Hz barometer: its 1 s intervals are its rate, not gaps (the gap is 1.5 of its intervals, as B11)."""
+    s = walk.copy()
+    b = s.streams["wBarometer"]
+    s.streams["wBarometer"] = Stream("wBarometer", b.t[::20], b.values[::20])
+    tr = Tracker(root / "bundle")
+    assert len(replay(tr, s, 0.37)) >= 20 and not [w for w in tr.warnings if "no samples for" in w], tr.warnings
+    tr = Tracker(root / "bundle")
+    assert [st for c in _per_timestamp(s) for st in tr.push(c)] and not [w for w in tr.warnings
+                                                                       if "no samples for" in w], tr.warnings
 
 
 def test_held_values_of_a_stopped_stream_are_warned_once(root, walk):

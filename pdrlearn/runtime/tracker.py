@@ -668,7 +668,7 @@ class Tracker:
                     if (t0 > last and len(vals) == ring.v.shape[1] and math.isfinite(t0)
                             and all(map(math.isfinite, vals))):
                         fast[name] = (t0, vals)
-                        if t0 - last > GAP_WARN_S:
+                        if t0 - last > GAP_WARN_S and t0 - last > self._gap_limit(name):
                             gaps = gaps or []
                             gaps.append((name, last, t0))
                         continue
@@ -690,11 +690,24 @@ class Tracker:
             tt = t if last is None else np.concatenate(([last], t))
             if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
                 d = np.diff(tt)
-                for i in np.flatnonzero(d > GAP_WARN_S).tolist():
+                for i in np.flatnonzero(d > self._gap_limit(name, d)).tolist():
                     gaps = gaps or []
                     gaps.append((name, float(tt[i]), float(tt[i + 1])))
         self._pushed_gaps = gaps
         return fast
+
+    def _gap_limit(self, name: str, d: np.ndarray | None = None) -> float:
+        """Decision E30: the interval (s) beyond which two samples of ``name`` enclose a gap: GAP_WARN_S, or 1.5
+        of its sample intervals for a slow stream (B11's gap; a 1 Hz barometer has no gap every second). The
+        interval is the stream's known rate's, else the median of its intervals so far (those being probed, E22,
+        and ``d``, the push's); with fewer than 3 of them, none is a gap yet."""
+        rate = self.inputs.input_rates_hz.get(name)
+        if rate:
+            return max(GAP_WARN_S, 1.5 / rate)
+        p = self.inputs._probe.get(name)
+        seen = [np.diff(np.concatenate(p[0]))] if p and p[0] else []
+        d = np.concatenate([*seen, d]) if d is not None else (seen[0] if seen else np.empty(0))
+        return max(GAP_WARN_S, 1.5 * float(np.median(d))) if len(d) >= 3 else math.inf
 
     def _note_gaps(self) -> None:
         """Decision E30: one warning per gap the push opened (the streams that show it, its length and where),
