@@ -275,6 +275,7 @@ class Tracker:
     speculative = False
     _pushed_gaps: list | None = None  # decision E30 (a bare Tracker.__new__ has none)
     _foot_gaps: list | tuple = ()
+    _held_s = math.inf  # decision E31: set per tracker in __init__
 
     def __init__(
         self,
