@@ -199,6 +199,17 @@ class WaistTracker:
         self._seen_seq = False
         self._n_gaps = 0
 
+    def state_size(self) -> int:
+        """Numbers the tracker holds to process what comes (not :attr:`steps`): its sample buffer and pending rows,
+        the held samples of W65 and the W31 detector's window; bounded over any stream length (decision W64)."""
+        n = 4 * self._bt.size + 5 * len(self._rows) + len(self._absorbed) + len(self._span_start)
+        n += sum(a.size for a in self._hold_t) + sum(a.size for a in self._hold_v)
+        p = self._proc
+        if p is not None:
+            n += sum(np.size(v) for v in p.buf.values()) + 3 * len(p.decided) + sum(np.size(r[1]) for r in p.raw)
+            n += p.bridge.tail_v.size + p.bridge.tail_t.size + 2 * sum(len(g) for g in p.gaps.values())
+        return int(n)
+
     # -- input -------------------------------------------------------------------------------------------
     def push(self, t, acc, gyr) -> list[LiveStep]:
         """Add samples: ``t`` (n,) s increasing, ``acc`` (n, 3) m/s^2 with gravity, ``gyr`` (n, 3) rad/s, in the
@@ -306,8 +317,11 @@ class WaistTracker:
 
     def _idx(self, ts: float) -> int:
         """Buffer index of the sample at time ``ts`` (a contact is a sample)."""
-        i = int(np.searchsorted(self._bt, ts - 0.25 / self.fs))
-        return min(i, self._bt.size - 1)
+        i = min(int(np.searchsorted(self._bt, ts - 0.25 / self.fs)), self._bt.size - 1)
+        if not abs(self._bt[i] - ts) < 0.5 / self.fs:  # an internal error, not the caller's: say so
+            raise RuntimeError(f"WaistTracker: the sample at {ts:.3f} s left the buffer "
+                               f"({self._bt[0]:.3f}-{self._bt[-1]:.3f} s); please report this")
+        return i
 
     def _trim(self) -> None:
         """Drop the samples no future report reads: contacts still to come have their IC after the detector's
