@@ -89,9 +89,15 @@ def import_time() -> str:
     return f"import pdrlearn.waist: {out}"
 
 
-def long_stream(hours: float, fs: float = 20.0) -> list[str]:
-    import tracemalloc
+def _rss_kib() -> int:
+    """Resident memory of this process (KiB; Linux /proc, else 0)."""
+    try:
+        return int(Path("/proc/self/statm").read_text().split()[1]) * 4
+    except (OSError, IndexError, ValueError):
+        return 0
 
+
+def long_stream(hours: float, fs: float = 20.0) -> list[str]:
     from pdrlearn.sim import simulate
     from pdrlearn.waist import WaistTracker
 
@@ -100,18 +106,17 @@ def long_stream(hours: float, fs: float = 20.0) -> list[str]:
     t1 = a.t - a.t[0]
     period = t1[-1] + 1.0 / fs
     tr = WaistTracker(fs, meta=s.meta, frame=s.require_frame("waist"), keep_steps=1000)
-    tracemalloc.start()
-    k, c0, rows, m = 0, time.process_time(), [], int(fs)
+    k, c0, rows, m, n = 0, time.process_time(), [], int(fs), 0
     while k * period < hours * 3600:
         for i in range(0, len(t1), m):
-            tr.push(t1[i:i + m] + k * period, a.values[i:i + m], g.values[i:i + m])
+            n += len(tr.push(t1[i:i + m] + k * period, a.values[i:i + m], g.values[i:i + m]))
         k += 1
-        rows.append((k * period / 60, tr.state_size(), tracemalloc.get_traced_memory()[0] // 1024))
-    tr.flush()
-    out = [f"{k} loops of a {period:.0f} s simulated walk = {k * period / 3600:.2f} h at {fs:g} Hz in 1 s pushes, "
-           f"{time.process_time() - c0:.0f} s CPU"]
-    for mnt, size, kib in rows[:: max(1, len(rows) // 6)] + rows[-1:]:
-        out.append(f"  minute {mnt:5.1f}: state_size {size} numbers, traced memory {kib} KiB")
+        rows.append((k * period / 60, tr.state_size(), len(tr._rows), _rss_kib()))
+    n += len(tr.flush())
+    out = [f"{k} loops of a {period:.0f} s simulated walk = {k * period / 3600:.2f} h at {fs:g} Hz in 1 s pushes: "
+           f"{n} steps, {time.process_time() - c0:.0f} s CPU"]
+    for mnt, size, nrows, kib in rows[:: max(1, len(rows) // 6)] + rows[-1:]:
+        out.append(f"  minute {mnt:5.1f}: state_size {size} numbers ({nrows} contact rows), process RSS {kib} KiB")
     return out
 
 

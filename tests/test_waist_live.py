@@ -208,3 +208,20 @@ def test_the_docs_example_runs(monkeypatch, capsys):
     assert len(ns["tracker"].steps) > 50 and ns["tracker"].position != (0.0, 0.0)
     shown = re.search(r"```console\n(.*?)```", section, re.S).group(1).splitlines()[1:]  # (the log line: stderr)
     assert capsys.readouterr().out.splitlines() == shown
+
+
+def test_frame_inferred_after_a_long_stand():
+    """W65: the held samples are capped at INFER_MAX_S; inference keeps trying after the cap."""
+    from pdrlearn.waist.live import INFER_MAX_S
+
+    s = simulate("B", 1, speed="slow", rate_hz=20.0)
+    a, g = s["wAccelerometer"], s["wGyroscope"]
+    r = s.require_frame("waist").matrix()  # body = r @ sensor: standing, the specific force is up in the body frame
+    n0 = int((INFER_MAX_S + 10.0) * 20)
+    t = np.concatenate([np.arange(n0) / 20.0, a.t - a.t[0] + n0 / 20.0])
+    acc = np.vstack([np.tile(r.T @ np.array([0.0, 0.0, 9.81]), (n0, 1)), a.values])
+    gyr = np.vstack([np.zeros((n0, 3)), g.values])
+    tr = WaistTracker(20.0, sensor_height_m=0.95)
+    n = sum(len(tr.push(t[i:i + 20], acc[i:i + 20], gyr[i:i + 20])) for i in range(0, len(t), 20))
+    n += len(tr.flush())
+    assert any("decision W65" in w for w in tr.warnings) and n > 20

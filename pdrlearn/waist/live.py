@@ -175,7 +175,7 @@ class WaistTracker:
         self._proc = None
         self._hold_t: list[np.ndarray] = []  # W65: raw samples held until the frame is inferred
         self._hold_v: list[np.ndarray] = []
-        self._next_try = 0.0
+        self._next_try = -np.inf
         self._last_t = -np.inf
         # samples of the navigation frame (absolute index b0 + i) since the oldest one a pending step needs
         self._b0 = 0
@@ -259,16 +259,14 @@ class WaistTracker:
             return t, v
         self._hold_t.append(t)
         self._hold_v.append(v)
-        tt = np.concatenate(self._hold_t)
+        if t[-1] - self._hold_t[0][0] < MIN_WALK_S or t[-1] < self._next_try:
+            return None  # (joined only when tried: no quadratic cost for 1-sample pushes)
+        tt, vv = np.concatenate(self._hold_t), np.concatenate(self._hold_v)
         if tt[-1] - tt[0] > INFER_MAX_S:  # hold at most INFER_MAX_S s
             keep = tt >= tt[-1] - INFER_MAX_S
-            vv = np.concatenate(self._hold_v)[keep]
-            tt = tt[keep]
-            self._hold_t, self._hold_v = [tt], [vv]
-        if tt[-1] - tt[0] < max(MIN_WALK_S, self._next_try):
-            return None
-        self._next_try = tt[-1] - tt[0] + INFER_EVERY_S
-        vv = np.concatenate(self._hold_v)
+            tt, vv = tt[keep], vv[keep]
+        self._hold_t, self._hold_v = [tt], [vv]
+        self._next_try = tt[-1] + INFER_EVERY_S  # (a time on the pushed clock)
         try:
             found = infer_waist_frame(vv[:, :3], vv[:, 3:], self.fs)
         except FrameInferenceError:
