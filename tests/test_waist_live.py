@@ -162,7 +162,7 @@ def test_standing_without_a_frame_tracks_nothing_with_one_warning():
 
 @pytest.mark.slow
 def test_state_stays_bounded_on_a_long_stream():
-    """Decision W64: a stream of 12 loops of a simulated walk (about 12 min at 20 Hz; the hour of
+    """Decision W64: a stream of 12 loops of a 40 s simulated walk (8 min at 20 Hz; the hour of
     experiments/waist_live.py --hours 1 likewise) keeps a bounded state: the sample buffer, the pending rows (at
     most FRAGMENT_CONTEXT_STEPS + 3) and the W31 window."""
     s = simulate("B", 1, speed="slow", rate_hz=20.0)
