@@ -251,6 +251,15 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "merge_fragments": True, "length_smoothing": "none"}
 
 
+def resolve_options(p: WaistParams, given: dict) -> dict:
+    """The pipeline options: each of ``given`` that is not None, else ``p.options``' value, else
+    :data:`OPTION_DEFAULTS` (shared by :func:`track_waist` and :class:`pdrlearn.waist.live.WaistTracker`)."""
+    unknown = sorted(set(p.options or {}) - set(OPTION_DEFAULTS))
+    if unknown:
+        raise DataError(f"params options: unknown {', '.join(unknown)}; use some of {', '.join(OPTION_DEFAULTS)}")
+    return {k: (v if v is not None else (p.options or {}).get(k, OPTION_DEFAULTS[k])) for k, v in given.items()}
+
+
 def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool | None = None,
                 heading: str | None = None, refine_ic: bool | None = None, initial_heading: float | None = None,
                 resolve_signs: bool | None = None, integrate_stops: bool | None = None,
@@ -295,10 +304,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
              "merge_fragments": merge_fragments, "length_smoothing": length_smoothing}
-    unknown = sorted(set(p.options or {}) - set(OPTION_DEFAULTS))
-    if unknown:
-        raise DataError(f"params options: unknown {', '.join(unknown)}; use some of {', '.join(OPTION_DEFAULTS)}")
-    o = {k: (v if v is not None else (p.options or {}).get(k, OPTION_DEFAULTS[k])) for k, v in given.items()}
+    o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
     integrate_stops = bool(o["integrate_stops"])
