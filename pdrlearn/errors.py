@@ -27,3 +27,8 @@ class MissingSensorError(DataError):
 
 class ModelError(PdrlearnError):
     """A model directory or bundle is missing, altered or from another schema version."""
+
+
+class InternalError(PdrlearnError, RuntimeError):
+    """A numerical state of pdrlearn itself went wrong (non-finite, or no longer what it must be) on data that
+    passed every input check: a bug to report, not bad data (decision E27). One line, as every other error."""

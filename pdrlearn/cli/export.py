@@ -153,6 +153,30 @@ def _units_for(bundle, units: str | None, have: set[str] | None, where: str):
     return check_units(bundle, ("foot",)), True
 
 
+#: a sample this close to a chunk boundary (in chunk lengths) belongs to the chunk the boundary starts (E28)
+CHUNK_TOLERANCE = 1e-9
+
+
+def replay_chunks(streams: dict, chunk_s: float):
+    """``pdrlearn run``'s replay (decision E28): ``{sensor: (t, values)}`` cut into pushes of ``chunk_s``
+    seconds, one per chunk index ``k = floor((t - t0) / chunk_s + CHUNK_TOLERANCE)`` from the earliest sample
+    ``t0`` of any stream, so every sample is in exactly one push (bounds ``t0 + k * chunk_s`` computed per
+    chunk put a sample on a rounded boundary into two). Every chunk, empty or not, holds every stream."""
+    import numpy as np
+
+    streams = {n: (np.asarray(t, dtype=np.float64), v) for n, (t, v) in streams.items()}
+    ts = [t for t, _ in streams.values() if len(t)]
+    if not ts:
+        return
+    t0 = min(float(t[0]) for t in ts)
+    idx = {n: np.floor((t - t0) / chunk_s + CHUNK_TOLERANCE).astype(np.int64) for n, (t, _) in streams.items()}
+    n_chunks = max(int(i[-1]) for i in idx.values() if len(i)) + 1
+    ks = np.arange(n_chunks + 1)
+    cuts = {n: np.searchsorted(i, ks, side="left") for n, i in idx.items()}  # first sample of each chunk
+    for k in range(n_chunks):
+        yield {n: (t[cuts[n][k]:cuts[n][k + 1]], v[cuts[n][k]:cuts[n][k + 1]]) for n, (t, v) in streams.items()}
+
+
 def run(
     bundle_dir: Path = typer.Argument(..., help="Bundle folder written by 'pdrlearn export'."),
     session_dir: Path = typer.Argument(None, help="PLASYS session folder to replay (omit with --protocol)."),
@@ -189,8 +213,6 @@ def run(
 
         pdrlearn run out/bundle/u1 out/sim/D_u1 --units foot --out out/run_foot
     """
-    import numpy as np
-
     from pdrlearn.errors import DataError
     from pdrlearn.runtime import load_bundle
     from pdrlearn.runtime.tracker import Tracker
@@ -270,12 +292,7 @@ def run(
             from pdrlearn.track.plasys import NO_WAIST_HEADING
 
             logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, NO_WAIST_HEADING)
-        t_all = np.concatenate([st.t for st in session.streams.values()])
-        for a in np.arange(t_all.min(), t_all.max() + chunk_s, chunk_s):
-            chunk = {}
-            for n, st in session.streams.items():
-                i0, i1 = np.searchsorted(st.t, [a, a + chunk_s])
-                chunk[n] = (st.t[i0:i1], st.values[i0:i1])
+        for chunk in replay_chunks({n: (st.t, st.values) for n, st in session.streams.items()}, chunk_s):
             t0 = time.perf_counter()
             new = tracker.push(chunk)
             if new:

@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, InternalError
 from pdrlearn.kernels.rotation import gravity_rotation_xyz, rotvec_to_matrix, vec_norm
 from pdrlearn.kernels.stats import (
     principal_horizontal_xy,
@@ -236,12 +236,14 @@ class FootLevelling:
         m = self.i1 - self.i0
         cap = cap if m + n <= cap // 2 else 2 * max(cap, m + n)
         new = {k: np.empty((cap,) + sh) for k, sh in self._SHAPES.items()}
-        for k, arr in self.a.items():
-            new[k][:m] = arr[self.i0:self.i1]
-        if m:  # restart the product at the oldest kept sample: Q'_k = Q_a^T Q_k, Z'_k = Z_k Q_a
-            qa = new["Q"][0].copy()
-            new["Q"][:m] = qa.T @ new["Q"][:m]
-            new["Z"][:m] = new["Z"][:m] @ qa
+        for k in ("t", "acc", "gyr", "an", "gn"):
+            new[k][:m] = self.a[k][self.i0:self.i1]
+        # restart the product at the oldest kept sample, recomputed from the kept samples' increments (decision
+        # E27). Not Q'_k = Q_a^T Q_k: Q_a is orthogonal only to rounding, Q_a^T Q_a = I + 2D doubles the
+        # deviation D at every re-anchoring (2^n after n reallocations: the stride lengths of a walk exploded
+        # after 6-8 minutes at 20 Hz); rebuilt, Q never carries more products than the arrays hold.
+        if m:
+            self._products(new, 0, m, False)
         self.a, self.i0, self.i1 = new, 0, m
         self._q_at = -1  # re-anchored
         self.gen += 1
@@ -256,6 +258,15 @@ class FootLevelling:
         a["gyr"][i:i + n] = gyr
         a["an"][i:i + n] = row_norm(acc)
         a["gn"][i:i + n] = row_norm(gyr)
+        self._products(a, i, n, prev)
+        self.i1 += n
+        self.last = float(t[-1])
+        self._q_at = -1
+
+    def _products(self, a: dict, i: int, n: int, prev: bool) -> None:
+        """``Q`` and ``Z`` of the samples ``[i, i + n)`` of the arrays ``a`` (their ``t``, ``acc``, ``gyr``
+        written): the running product continued from ``Q[i - 1]`` when ``prev``, else from the identity at ``i``."""
+        t, acc, gyr = a["t"][i:i + n], a["acc"][i:i + n], a["gyr"][i:i + n]
         # attitude increments: the mean rate over each sample interval (levelled_vectors' formula)
         if prev:
             tt, gg = a["t"][i - 1:i + n], a["gyr"][i - 1:i + n]
@@ -278,9 +289,6 @@ class FootLevelling:
         X[:, 1] = gyr
         X[:, 2] = self.forward
         np.matmul(X, Q[i:i + n].transpose(0, 2, 1), out=a["Z"][i:i + n])  # rows (Q_k x)^T
-        self.i1 += n
-        self.last = float(t[-1])
-        self._q_at = -1
 
     def drop_before(self, keep_from: float) -> None:
         """Drop the samples older than ``keep_from`` (s), keeping at least the newest one (as :class:`Ring`)."""
@@ -363,7 +371,9 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
     Q = arr["Q"][j0:j1]
     A = r0.dot(Q[k0].T)
     Y = arr["Z"][j0:j1].reshape(-1, 3).dot(A.T).reshape(n, 3, 3)  # rows (A Q_k x)^T
-    Y = tilt_corrected(Y, A.dot(Q[k1].dot(g1)), k0, k1)
+    g_lev = A.dot(Q[k1].dot(g1))
+    _check_rotation(g_lev, g1, float(t[k1]))
+    Y = tilt_corrected(Y, g_lev, k0, k1)
     s0 = start_index(t, t0)
     dpsi, psi0 = stride_headings(state.fwd_list, acc, Y, s0, t)  # decisions L30, L33-L35 (before gravity is removed)
     a_lev = Y[:, 0]
@@ -374,6 +384,28 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
     yaw_t = np.array((ex, -ey, 0.0, ey, ex, 0.0, 0.0, 0.0, 1.0)).reshape(3, 3)  # heading_rotation((ex, ey)).T
     out = Y.reshape(-1, 3).dot(yaw_t).reshape(n, 3, 3)
     return t, out[:, 0], out[:, 1], an, dpsi, step_direction((ex, ey), psi0)  # decision L34
+
+
+#: the largest relative change of a vector's length the push-time rotations may make (decision E27): rounding
+#: makes ~1e-14 (products over the few hundred samples the state holds); a state that lost its orthogonality is
+#: an internal error long before its strides are visibly wrong
+ROTATION_NORM_TOL = 1e-6
+
+
+def _check_rotation(g_lev: np.ndarray, g: np.ndarray, t: float) -> None:
+    """Decision E27: the push-time state rotated the end rest's specific force ``g`` into ``g_lev``; a rotation
+    keeps its length. A state that does not (non-finite, or off by more than ``ROTATION_NORM_TOL``) on finite
+    data is pdrlearn's fault, not the data's: an :class:`InternalError` saying so, not gravity_rotation's
+    "estimate it from a standstill period"."""
+    gx, gy, gz = g.tolist()
+    lx, ly, lz = g_lev.tolist()
+    n = math.sqrt(gx * gx + gy * gy + gz * gz)
+    nl = math.sqrt(lx * lx + ly * ly + lz * lz)
+    if math.isfinite(n) and not abs(nl - n) <= ROTATION_NORM_TOL * n:  # NaN/inf nl fails the comparison
+        raise InternalError(
+            f"internal error in pdrlearn.runtime: the push-time foot levelling state (decision E15) no longer "
+            f"holds a rotation at t = {t:.3f} s (it turns a {n:.6g} m/s^2 vector into {nl:.6g}); this is a bug, "
+            "not bad data - please report it; Tracker(bundle, incremental=False) tracks without that state")
 
 
 def _segment(streams, name: str, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
