@@ -27,3 +27,7 @@ class MissingSensorError(DataError):
 
 class ModelError(PdrlearnError):
     """A model directory or bundle is missing, altered or from another schema version."""
+
+
+class NotASessionError(DataError, TypeError):
+    """A public entry point was given something other than a session (decision B51): a dict, a DataFrame ..."""
