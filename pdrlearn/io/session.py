@@ -78,6 +78,8 @@ class Stream:
         (B49: :func:`session_entry`)."""
         from pdrlearn.io.validate import check_samples
 
+        if isinstance(self.name, SensorSpec):  # Stream(SENSORS["fAccelerometer"], ...) means that sensor
+            self.name = self.name.name
         if not isinstance(self.name, str) or self.name not in SENSORS:
             raise DataError(f"Stream {self.name!r}: unknown sensor name; use one of {', '.join(SENSORS)} "
                             "(pdrlearn.io.SENSORS: the name says the unit, placement and columns)")

@@ -420,8 +420,9 @@ def check_samples(name: str, t: np.ndarray, values: np.ndarray, where: str) -> N
         raise DataError(f"{where}: values have shape {values.shape}, one column per sample; a Stream holds one row "
                         f"per sample, shape ({n}, {k}): pass values.T")
     if values.ndim != 2 or values.shape[0] != n:
-        raise DataError(f"{where}: {n} timestamps but values of shape {values.shape}; pass one row of "
-                        f"{k} value(s) per timestamp, shape ({n}, {k})")
+        rows = values.shape[0] if values.ndim else 0
+        raise DataError(f"{where}: {n} timestamps but {rows} rows of values (shape {values.shape}); pass one row "
+                        f"of {k} value(s) per timestamp, shape ({n}, {k})")
     if values.shape[1] != k:
         raise DataError(f"{where}: expected {k} value columns ({', '.join(SENSORS[name].columns)}), got "
                         f"{values.shape[1]}")
