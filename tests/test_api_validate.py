@@ -165,6 +165,15 @@ def test_not_a_session_is_a_type_error_saying_how_to_get_one(obj, run):
     assert isinstance(exc.value, TypeError) and isinstance(exc.value, DataError)
 
 
+def test_streams_that_are_not_streams_are_named(foot):
+    acc = foot["fAccelerometer"]
+    with pytest.raises(DataError, match=r"^session 'd', stream fAccelerometer: is a tuple, not a pdrlearn Stream; "
+                                        r"build it with pdrlearn\.io\.Stream\('fAccelerometer', t_seconds, values\)$"):
+        AccelStepDetector().detect(Session("d", {"fAccelerometer": (acc.t, acc.values)}))
+    with pytest.raises(DataError, match=r"^session 'l': streams is a list; it must be a dict"):
+        AccelStepDetector().detect(Session("l", [acc]))
+
+
 def test_a_folder_path_is_read(foot):
     assert AccelStepDetector().detect(str(LEVEL)).equals(AccelStepDetector().detect(foot))
     assert round(_plasys(LEVEL).distance_m, 2) == round(_plasys(foot).distance_m, 2)

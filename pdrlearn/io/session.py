@@ -277,6 +277,8 @@ class Session:
         time, the sum of its times and of its values (NaN or inf in either never equals the cached one: a NaN
         compares unequal); ``None`` when a stream is not a Stream."""
         out: list = [self.check_units]
+        if not isinstance(self.streams, dict):
+            return None
         for key, s in self.streams.items():
             if not isinstance(s, Stream) or len(s) == 0:
                 return None

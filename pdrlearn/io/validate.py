@@ -448,6 +448,9 @@ def check_session(session) -> None:
     from pdrlearn.io.sensors import SENSORS
     from pdrlearn.io.session import Stream
 
+    if not isinstance(session.streams, dict):
+        raise DataError(f"{session.where}: streams is a {type(session.streams).__name__}; it must be a dict of sensor "
+                        "name -> pdrlearn.io.Stream")
     for key, s in session.streams.items():
         where = f"{session.where}, stream {key}"
         if not isinstance(s, Stream):
