@@ -259,7 +259,7 @@ class Session:
         All of it runs when the streams differ from the last time they passed (or from what ``read_session``
         checked), by :meth:`_fingerprint`: sums that any rescaling, shift, NaN or inf changes, also when the
         arrays are changed in place; else only the order of the timestamps is checked again (a 1 h session of
-        8 streams at 20 Hz: ~1 ms instead of ~30-50 ms, docs/decisions/bad-input.md B49)."""
+        8 streams at 20 Hz: 2.98 ms instead of 36.1 ms CPU, experiments/api_validate.py, decision B49)."""
         from pdrlearn.io.validate import check_samples, check_session
 
         fp = self._fingerprint()
