@@ -32,3 +32,7 @@ class ModelError(PdrlearnError):
 class InternalError(PdrlearnError, RuntimeError):
     """A numerical state of pdrlearn itself went wrong (non-finite, or no longer what it must be) on data that
     passed every input check: a bug to report, not bad data (decision E27). One line, as every other error."""
+
+
+class NotASessionError(DataError, TypeError):
+    """A public entry point was given something other than a session (decision B51): a dict, a DataFrame ..."""

@@ -203,7 +203,7 @@ def test_step_windows_bad_input(level):
         step_windows(noframe)
     in_g = level.copy()
     in_g.streams["fAccelerometer"].values /= 9.80665
-    with pytest.raises(DataError, match="looks like g"):
+    with pytest.raises(DataError, match="looks like units of g"):  # decision B52: read_session's check
         step_windows(in_g)
     in_deg = level.copy()
     in_deg.streams["fGyroscope"].values *= 180 / np.pi

@@ -236,7 +236,10 @@ def test_bad_sessions():
     with pytest.raises(MissingSensorError, match="wAccelerometer"):
         PLLStepDetector().detect(Session("foot-only", foot_session()[0].streams))
     t = np.arange(10) / 20.0
-    s = Session("nan", {"fAccelerometer": Stream("fAccelerometer", t, np.full((10, 3), np.nan))})
+    with pytest.raises(DataError, match="NaN"):  # decision B50: refused when the Stream is built
+        Stream("fAccelerometer", t, np.full((10, 3), np.nan))
+    s = Session("nan", {"fAccelerometer": Stream("fAccelerometer", t, np.full((10, 3), 9.8))})
+    s.streams["fAccelerometer"].values[3] = np.nan  # changed in place: refused at the entry point (B49)
     with pytest.raises(DataError, match="NaN"):
         AccelStepDetector().detect(s)
     with pytest.raises(DataError, match="unknown step detector"):

@@ -30,7 +30,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.features.batch import batch_applicable, fill_windows_batch
-from pdrlearn.io.session import DIRECTION_CLASSES, LENGTH_CLASSES, TERRAIN_CLASSES, Session, Stream
+from pdrlearn.io.session import DIRECTION_CLASSES, LENGTH_CLASSES, TERRAIN_CLASSES, Session, session_entry
 from pdrlearn.kernels.window import (  # noqa: F401 (the layout and rest rule are part of this module's API)
     BOUNDARIES,
     CHANNEL_INDEX,
@@ -151,23 +151,6 @@ def _check_steps(steps: pd.DataFrame, session: Session) -> tuple[np.ndarray, np.
     return start, end
 
 
-def _check_units(session: str, s: Stream) -> None:
-    """Catch the common unit mistakes: acceleration in g, angular rate in deg/s."""
-    if s.kind == "accelerometer":
-        med = float(np.median(s.norm()))
-        if med < 4.0:
-            raise DataError(f"session '{session}': {s.name} has a median |a| of {med:.2f}; it looks like g, "
-                            "not m/s^2 - multiply by 9.80665")
-        if med > 40.0:
-            raise DataError(f"session '{session}': {s.name} has a median |a| of {med:.1f}; expected m/s^2 "
-                            "(~9.8 at rest) - check the unit (mg? raw counts?)")
-    elif s.kind == "gyroscope":
-        p99 = float(np.percentile(s.norm(), 99))
-        if p99 > 35.0:  # 2000 deg/s full scale (thesis ch. 4.2.1.2) is 34.9 rad/s
-            raise DataError(f"session '{session}': {s.name} reaches {p99:.0f} (99th percentile); it looks like "
-                            "deg/s, not rad/s - multiply by pi/180")
-
-
 #: Sensor groups of each unit and the groups whose stream gaps blank the unit (decision B11).
 UNIT_GROUPS: dict[str, tuple[str, ...]] = {"foot": ("foot_acc", "foot_gyr", "force"),
                                            "waist": ("waist_acc", "waist_gyr", "waist_baro")}
@@ -217,6 +200,7 @@ def _blank_gap_steps(X: np.ndarray, gaps: dict[str, np.ndarray], available: tupl
         log.warning("%s: %s; their %s channels are missing (NaN)", session, counts, " and ".join(gaps))
 
 
+@session_entry  # decision B49: units and clock checked once (io.validate.check_session), as read_session does
 def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_samples: int = 40,
                  heading: str = "pca", rest_search_s: float = 0.3, batch: bool = True,
                  boundaries: str = "given") -> StepWindows:
@@ -224,7 +208,8 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
 
     Parameters
     ----------
-    session : the recording; sensors it lacks give NaN channels (see ``StepWindows.available``)
+    session : the recording (or its folder's path); sensors it lacks give NaN channels (see
+        ``StepWindows.available``); checked as :func:`pdrlearn.io.read_session` checks files (decision B49)
     steps : DataFrame with ``start_s``/``end_s`` (s; stance-to-stance windows); default ``session.steps``
     n_samples : samples per resampled step (40 ~ a 1 s step at the PLASYS 20 Hz plus margin)
     heading : ``"pca"`` (principal horizontal axis of the foot's acceleration, signed by the declared
@@ -266,7 +251,6 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
             if not np.all(np.isfinite(s.values)):
                 raise DataError(f"session '{session.name}': stream {name} contains NaN/inf values; "
                                 "clean or interpolate it first")
-            _check_units(session.name, s)
             if start.min() < s.t[0] - 0.5 or end.max() > s.t[-1] + 0.5:
                 raise DataError(f"session '{session.name}': steps span {start.min():.2f}-{end.max():.2f} s "
                                 f"but {name} covers {s.t[0]:.2f}-{s.t[-1]:.2f} s; align the clocks or "

@@ -478,7 +478,9 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     except DataError as exc:
         raise DataError(f"{meta_path}: {exc}") from None
     session = Session(name=str(meta.get("session", folder.name)), streams=streams, steps=steps,
-                      trajectory=traj, extras=extras, meta=meta, frames=frames, folder=folder)
+                      trajectory=traj, extras=extras, meta=meta, frames=frames, folder=folder,
+                      check_units=check_units)
+    session._valid = session._fingerprint()  # decision B49: the entry points need not repeat this function's checks
     for label, table in [*([("steps", steps)] if steps is not None else []), *extras.items()]:
         check_label_times(table, session.t_start, session.t_end, str(folder / f"{label}.csv"))
     if traj is not None:  # decision B25: on the sensors' clock, in their unit

@@ -36,29 +36,46 @@ def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str) -> np.
     return arr
 
 
-def check_timestamps(t: np.ndarray, where: str) -> None:
-    """Timestamps must be strictly increasing (no duplicates, sorted)."""
+def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False) -> None:
+    """Timestamps must be strictly increasing (no duplicates, sorted). ``in_memory``: ``t`` is a
+    :class:`~pdrlearn.io.Stream`'s (decision B49): the messages count samples and say how to fix the arrays."""
     if t.size == 0:
-        raise DataError(f"{where}: no samples (empty file); record data or remove the file")
+        raise DataError(f"{where}: no samples" + ("; drop the empty stream from the session" if in_memory else
+                                                  " (empty file); record data or remove the file"))
     dt = np.diff(t)
     dup = np.flatnonzero(dt == 0)
     if dup.size:
+        if in_memory:
+            raise DataError(f"{where}: {dup.size} duplicate timestamp(s) (first at index {dup[0] + 1}); drop the "
+                            "duplicated samples (keep = np.unique(t, return_index=True)[1])")
         raise DataError(
             f"{where}: {dup.size} duplicate timestamp(s) (first at line {dup[0] + 3}); drop the duplicated rows"
         )
-    back = np.flatnonzero(dt < 0)
+    back = np.flatnonzero(~(dt > 0))  # NaN intervals count as backwards
     if back.size:
+        if in_memory:
+            raise DataError(f"{where}: timestamps are not increasing {back.size} time(s) (first at index "
+                            f"{back[0] + 1}); sort the samples by time (order = np.argsort(t): t[order], "
+                            "values[order])")
         raise DataError(
             f"{where}: timestamps go backwards {back.size} time(s) (first at line {back[0] + 3}); "
             "sort the file by timestamp"
         )
 
 
+def _or(declare: str | None, default: str) -> str:
+    """The alternative fix of a unit message: ``declare`` (``""``: none, decision B49) or ``default``."""
+    if declare == "":
+        return ""
+    return ", or " + (declare or default)
+
+
 def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str | None = None) -> None:
     """Detect values recorded in the wrong unit from their magnitudes and say how to convert.
 
     ``declare`` replaces the meta.json way of declaring the unit in the messages (``pdrlearn import``: its
-    unit option, e.g. ``"pass --acc-unit g"``; decision B37).
+    unit option, e.g. ``"pass --acc-unit g"``; decision B37); ``""`` leaves the conversion as the only fix
+    (a :class:`~pdrlearn.io.Stream` built in Python, decision B49).
 
     The limits are physical: gravity dominates the median accelerometer norm; a MEMS gyroscope's
     full scale is 2000 deg/s = 34.9 rad/s (thesis Tables 5, 13); the Earth's field is 25-65 uT;
@@ -72,8 +89,8 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
         if 0.5 <= med <= 2.0:
             raise DataError(
                 f"{where}: median |acc| is {med:.2f}, which looks like units of g; "
-                f"multiply by {STANDARD_GRAVITY} to get m/s^2, or "
-                + (declare or f"declare \"units\": {{\"{spec.name}\": \"g\"}} in meta.json")
+                f"multiply by {STANDARD_GRAVITY} to get m/s^2"
+                + _or(declare, f"declare \"units\": {{\"{spec.name}\": \"g\"}} in meta.json")
             )
         if med > 200:
             raise DataError(
@@ -87,8 +104,8 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
         if p99 > 40.0:
             raise DataError(
                 f"{where}: 99th percentile |rate| is {p99:.0f}, beyond a 2000 deg/s gyroscope in rad/s; "
-                "the file looks like deg/s: multiply by pi/180, or "
-                + (declare or f"declare \"units\": {{\"{spec.name}\": \"deg/s\"}} in meta.json")
+                f"the {'values look' if declare == '' else 'file looks'} like deg/s: multiply by pi/180"
+                + _or(declare, f"declare \"units\": {{\"{spec.name}\": \"deg/s\"}} in meta.json")
             )
     elif spec.kind == "magnetometer":
         med = float(np.median(np.linalg.norm(values, axis=1)))
@@ -143,12 +160,20 @@ def check_gravity(values: np.ndarray, where: str) -> None:
 RATE_LIMITS_HZ = (0.5, 5000.0)
 
 
-def check_rate(t: np.ndarray, where: str) -> None:
-    """The median sample interval of ``t`` (s) must give a plausible rate; else name the likely unit."""
+def check_rate(t: np.ndarray, where: str, *, in_memory: bool = False) -> None:
+    """The median sample interval of ``t`` (s) must give a plausible rate; else name the likely unit.
+    ``in_memory``: ``t`` is a :class:`~pdrlearn.io.Stream`'s, which must be seconds (decision B49); the message
+    names the unit the values fit (:func:`time_unit_candidates`) and the factor."""
     if t.size < 3:
         return
     rate = 1.0 / float(np.median(np.diff(t)))
     lo, hi = RATE_LIMITS_HZ
+    if in_memory and not lo <= rate <= hi:
+        fits = [(u, k) for u, k in time_unit_candidates(t) if u != "s"]
+        fix = (f"they look like {dict(_UNIT_NAMES)[fits[0][0]]}: divide by {1 / fits[0][1]:g}" if fits
+               else "convert them to seconds")
+        raise DataError(f"{where}: timestamps give {rate:.4g} Hz, implausible for a body-worn sensor "
+                        f"({lo:g}-{hi:g} Hz); Stream.t must be seconds, {fix}")
     if rate > hi:
         raise DataError(
             f"{where}: timestamps give {rate:.0f} Hz, so they are not milliseconds (seconds?); convert them to ms "
@@ -163,6 +188,7 @@ def check_rate(t: np.ndarray, where: str) -> None:
 
 #: timestamp units a session that declares none may be in (B22), milliseconds first (the default)
 _TIME_UNITS = (("ms", 1e-3), ("s", 1.0), ("us", 1e-6), ("ns", 1e-9))
+_UNIT_NAMES = (("ms", "milliseconds"), ("s", "seconds"), ("us", "microseconds"), ("ns", "nanoseconds"))
 
 
 def time_unit_candidates(t_raw: np.ndarray, declared_rate_hz: float | None = None) -> list[tuple[str, float]]:
@@ -377,3 +403,64 @@ def check_imu_pair(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro:
             f"(gyroscope columns?); export the raw (total) accelerometer, gravity included ({GRAVITY_HINT}), "
             f"or {acc_fix}"
         )
+
+
+def check_samples(name: str, t: np.ndarray, values: np.ndarray, where: str) -> None:
+    """Decision B50: the structure of one :class:`~pdrlearn.io.Stream` (``t`` float (n,), ``values`` float 2-D):
+    one row of values per timestamp, the sensor's number of columns (values given transposed, (k, n), are named),
+    no NaN or inf, timestamps strictly increasing. Cheap (O(n)); run when a Stream is built and when a session
+    enters a public entry point (:func:`check_session`)."""
+    from pdrlearn.io.sensors import SENSORS
+
+    k = SENSORS[name].n_axes
+    if t.ndim != 1:
+        raise DataError(f"{where}: timestamps must be one-dimensional (n,), got shape {t.shape}; pass t.ravel()")
+    n = t.shape[0]
+    if values.shape == (k, n) and n != k:
+        raise DataError(f"{where}: values have shape {values.shape}, one column per sample; a Stream holds one row "
+                        f"per sample, shape ({n}, {k}): pass values.T")
+    if values.ndim != 2 or values.shape[0] != n:
+        rows = values.shape[0] if values.ndim else 0
+        raise DataError(f"{where}: {n} timestamps but {rows} rows of values (shape {values.shape}); pass one row "
+                        f"of {k} value(s) per timestamp, shape ({n}, {k})")
+    if values.shape[1] != k:
+        raise DataError(f"{where}: expected {k} value columns ({', '.join(SENSORS[name].columns)}), got "
+                        f"{values.shape[1]}")
+    if n and not np.isfinite(values).all():
+        rows = np.flatnonzero(~np.isfinite(values).all(axis=1))
+        raise DataError(f"{where}: {rows.size} sample(s) with NaN or infinite values (first at index {rows[0]}); "
+                        "drop or interpolate those samples")
+    if n and not np.isfinite(t).all():
+        bad = np.flatnonzero(~np.isfinite(t))
+        raise DataError(f"{where}: {bad.size} NaN or infinite timestamp(s) (first at index {bad[0]}); drop "
+                        "those samples")
+    if n > 1:
+        check_timestamps(t, where, in_memory=True)
+
+
+def check_session(session) -> None:
+    """Decision B49: what :func:`pdrlearn.io.read_session` checks in each sensor file, on every stream of a
+    session as it is in memory (built in Python, or read and then changed): :func:`check_samples`, the
+    timestamps' rate (:func:`check_rate`: ``Stream.t`` in seconds) and, unless ``session.check_units`` is
+    False, the values' units (:func:`check_units`, with B30's gravity). Each failure is one :class:`DataError`
+    naming the session and the stream and saying how to fix the arrays. Run once per call of a public entry
+    point (:func:`pdrlearn.io.session.session_entry`)."""
+    from pdrlearn.io.sensors import SENSORS
+    from pdrlearn.io.session import Stream
+
+    if not isinstance(session.streams, dict):
+        raise DataError(f"{session.where}: streams is a {type(session.streams).__name__}; it must be a dict of sensor "
+                        "name -> pdrlearn.io.Stream")
+    for key, s in session.streams.items():
+        where = f"{session.where}, stream {key}"
+        if not isinstance(s, Stream):
+            raise DataError(f"{where}: is a {type(s).__name__}, not a pdrlearn Stream; build it with "
+                            f"pdrlearn.io.Stream({key!r}, t_seconds, values)")
+        if key != s.name:
+            raise DataError(f"{where}: holds a Stream named {s.name!r}; key session.streams by the Stream's name")
+        check_samples(s.name, s.t, s.values, where)
+        if len(s) == 0:
+            raise DataError(f"{where}: no samples; drop the empty stream from session.streams")
+        check_rate(s.t, where, in_memory=True)
+        if session.check_units:
+            check_units(SENSORS[s.name], s.values, where, declare="")

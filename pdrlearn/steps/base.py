@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
-from pdrlearn.io.session import Session, Stream
+from pdrlearn.io.session import Session, Stream, session_entry
 from pdrlearn.signal.filters import interp_rows
 from pdrlearn.steps._kernels import Event
 
@@ -168,8 +168,13 @@ class StepDetector:
         detector; :meth:`detect` computes it from the session)."""
         return OnlineStepDetector(self, fs, **context)
 
+    @session_entry(arg=1)
     def detect(self, session: Session) -> pd.DataFrame:
-        """Detect the steps of a whole session; returns the steps table (docs/architecture.md)."""
+        """Detect the steps of a whole session; returns the steps table (docs/architecture.md).
+
+        ``session``: a :class:`Session` or a session folder's path (read with :func:`pdrlearn.io.read_session`);
+        its streams are checked as a folder's files are (units, clock: decision B49) unless this runs inside
+        another entry point."""
         t, values, context = self._inputs(session)
         if t.shape[0] < 2:
             raise DataError(f"session '{session.name}': too few samples for {self.name} step detection")

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.io.session import session_entry
 
 #: Per-step table columns every pipeline fills (others may be added).
 STEP_TABLE_COLUMNS = ("start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m")
@@ -93,8 +94,10 @@ def register_pipeline(name: str) -> Callable[[Pipeline], Pipeline]:
     """Decorator: ``@register_pipeline("waist-pll")`` on ``fn(session, **options) -> TrackResult``."""
 
     def deco(fn: Pipeline) -> Pipeline:
-        PIPELINES[name] = fn
-        return fn
+        # decision B49/B51: the session (or a folder path) is checked once, at the outermost entry point
+        wrapped = session_entry(fn, caller=f"pipeline '{name}'")
+        PIPELINES[name] = wrapped
+        return wrapped
 
     return deco
 
