@@ -280,3 +280,20 @@ def test_a_push_refused_for_its_rate_changes_nothing(root, walk):
         tr.push({"fGyroscope": (t[3:], v[3:])})
     assert _state(tr) == before
 
+
+def test_one_sample_pushes_take_the_general_checks_when_not_plainly_finite(root, walk):
+    """E17's one-sample path tests finiteness on the sum of the values: a NaN or inf anywhere is the one-line error,
+    and finite values whose sum overflows are taken (by the general path)."""
+    chunks = _per_timestamp(walk)
+    tr = Tracker(root / "bundle")
+    for c in chunks[:100]:
+        tr.push(c)
+    t, v = chunks[100]["fAccelerometer"]
+    for bad_t, bad_v in ((np.array([np.nan]), v), (t, np.array([[1.0, 2.0, np.inf]])),
+                         (t, np.array([[np.inf, -np.inf, 1.0]]))):
+        before = _state(tr)
+        with pytest.raises(DataError, match=r"^fAccelerometer: pushed samples contain NaN/inf"):
+            tr.push({"fAccelerometer": (bad_t, bad_v)})
+        assert _state(tr) == before
+    tr.push({"fAccelerometer": (t, np.array([[1e308, 1e308, 0.0]]))})
+    assert tr._buf["fAccelerometer"].last == float(t[0])
