@@ -264,3 +264,36 @@ def test_the_embedding_example_of_the_docs_runs(root, walk, tmp_path):
     assert len(lines) >= 21 and re.match(r"\s*\d+\.\d\d s .* m at \(", lines[0]), out.stdout
     ref = replay(Tracker(root / "bundle"), walk, 0.37)
     assert lines[-1] == f"{len(ref)} steps, final position ({ref[-1].x:.2f}, {ref[-1].y:.2f}, {ref[-1].z:.2f}) m"
+
+
+def test_a_push_refused_for_its_rate_changes_nothing(root, walk):
+    """E29's all-or-nothing also for a stream whose learned rate ``resample=False`` refuses: the probe of its earlier
+    pushes stays (before: the refusal came after the input stage had taken the probe, so the state changed)."""
+    g = walk.streams["fGyroscope"]
+    t = g.t[0] + np.arange(40) / 50.0  # 50 Hz for a 20 Hz bundle
+    v = np.repeat(g.values[:1], 40, axis=0)
+    tr = Tracker(root / "bundle", resample=False)
+    tr.push({"fGyroscope": (t[:3], v[:3])})  # too few to learn the rate: held by the probe
+    before = _state(tr)
+    assert before[1] == {"fGyroscope": 1}
+    with pytest.raises(DataError, match=r"fGyroscope is sampled at 50 Hz but bundle .* was trained at 20 Hz"):
+        tr.push({"fGyroscope": (t[3:], v[3:])})
+    assert _state(tr) == before
+
+
+def test_one_sample_pushes_take_the_general_checks_when_not_plainly_finite(root, walk):
+    """E17's one-sample path tests finiteness on the sum of the values: a NaN or inf anywhere is the one-line error,
+    and finite values whose sum overflows are taken (by the general path)."""
+    chunks = _per_timestamp(walk)
+    tr = Tracker(root / "bundle")
+    for c in chunks[:100]:
+        tr.push(c)
+    t, v = chunks[100]["fAccelerometer"]
+    for bad_t, bad_v in ((np.array([np.nan]), v), (t, np.array([[1.0, 2.0, np.inf]])),
+                         (t, np.array([[np.inf, -np.inf, 1.0]]))):
+        before = _state(tr)
+        with pytest.raises(DataError, match=r"^fAccelerometer: pushed samples contain NaN/inf"):
+            tr.push({"fAccelerometer": (bad_t, bad_v)})
+        assert _state(tr) == before
+    tr.push({"fAccelerometer": (t, np.array([[1e308, 1e308, 0.0]]))})
+    assert tr._buf["fAccelerometer"].last == float(t[0])

@@ -228,3 +228,22 @@ def test_frame_inferred_after_a_long_stand():
     n = sum(len(tr.push(t[i:i + 20], acc[i:i + 20], gyr[i:i + 20])) for i in range(0, len(t), 20))
     n += len(tr.flush())
     assert any("decision W65" in w for w in tr.warnings) and n > 20
+
+
+@pytest.mark.parametrize("pushes", ["per sample", "one chunk"])
+def test_timestamps_in_ms_are_refused_in_one_line(pushes):
+    """E29's unit check as the runtime's (before: in ms the W31 detector re-ran its window on every sample, for
+    minutes on 90 s of walking, and gave no step)."""
+    s = _session("sim")
+    a, g = s["wAccelerometer"], s["wGyroscope"]
+    tr = WaistTracker(a.rate_hz, frame=s.require_frame("waist"), sensor_height_m=0.95)
+    with pytest.raises(DataError, match=r"^WaistTracker.push: the pushed timestamps give 0\.1 Hz, 1000x below "
+                                        r"fs=100 Hz: are they in ms .*push t in seconds"):
+        if pushes == "one chunk":
+            tr.push(a.t * 1000.0, a.values, g.values)
+        for i in range(10):
+            tr.push(a.t[i:i + 1] * 1000.0, a.values[i:i + 1], g.values[i:i + 1])
+    if pushes == "per sample":
+        assert i == 5  # the fifth interval
+    out = _run(s, [1] * 50)[0]  # in seconds, sample by sample: the check passes once and tracks
+    assert len(out) > 20

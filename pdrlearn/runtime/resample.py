@@ -304,22 +304,29 @@ class InputStage:
                                 f"{self.rate_hz:g} Hz: push t in seconds")
 
     def check_rate(self, name: str, t: np.ndarray) -> None:
-        """:meth:`unit_check` of the rate a push of ``t`` (s) would teach for a stream whose rate is being
-        learned, before any state changes (decision E29); nothing for a stream whose rate is known."""
+        """:meth:`refuse` the rate a push of ``t`` (s) would teach for a stream whose rate is being learned,
+        before any state changes (decision E29); nothing for a stream whose rate is known."""
         if name in self.input_rates_hz or name not in self.used:
             return
         p = self._probe.get(name)
         tt = np.concatenate([*p[0], t]) if p and p[0] else t
         if len(tt) < RATE_PROBE and not (len(tt) >= RATE_PROBE_MIN and tt[-1] - tt[0] >= RATE_PROBE_S):
             return
-        self.unit_check({name: probe_rate(tt[:RATE_PROBE])})
+        self.refuse({name: probe_rate(tt[:RATE_PROBE])}, where="pushed " + name)
 
-    def _decide(self, rates: dict[str, float], where: str) -> None:
-        """Pass, resample or refuse the streams of ``rates`` (sensor -> input rate, Hz)."""
+    def refuse(self, rates: dict[str, float], where: str) -> dict[str, float]:
+        """The one-line :class:`DataError` of a stream whose rate (sensor -> Hz) is refused: timestamps not in
+        seconds (:meth:`unit_check`) or, with ``resample=False``, a rate off the bundle's; else the off-rate
+        streams (decision E29: :meth:`check_rate` asks it before a push changes anything, :meth:`_decide` after)."""
         self.unit_check(rates)
         off = self.bundle.off_rate(rates)
         if off and self.resample is False:
             self.bundle.check_rates(off, where=where)
+        return off
+
+    def _decide(self, rates: dict[str, float], where: str) -> None:
+        """Pass, resample or refuse the streams of ``rates`` (sensor -> input rate, Hz)."""
+        off = self.refuse(rates, where)
         self.input_rates_hz.update(rates)
         if self.resample == "native":  # E22 amended: the data's own rate, as track --streaming
             self.passed.update(rates)

@@ -59,6 +59,7 @@ log = logging.getLogger(__name__)
 #: float64 in native byte order. Arrays made here share this dtype object (``is`` is the cheap test), but
 #: unpickled arrays (multiprocessing queues, pickled sessions) carry an equal copy of it (``==``, decision E21)
 _F64 = np.dtype(np.float64)
+_ONE = (1,)
 #: the window channels of the waist's levelled acceleration (computed only when one of them is needed, E17)
 _WAIST_ACC = frozenset(("waist_acc_x", "waist_acc_y", "waist_acc_z"))
 #: samples kept before a step's start: the window margin (1 s) and L31's gap-yaw look-back
@@ -656,18 +657,18 @@ class Tracker:
         A one-sample float64 push of a buffered sensor is checked on Python floats (decision E17's path) and
         returned, sensor -> ``(t, values)``, for :meth:`push` to append without checking it again."""
         buf, gaps, fast = self._buf, None, {}
-        resampled = self.inputs.resamplers
+        resampled, isfinite = self.inputs.resamplers, math.isfinite
         for name, tv in samples.items():
             ring = buf.get(name)
             if ring is not None and type(tv) is tuple and len(tv) == 2:  # the one-sample path on Python floats
                 t, v = tv
-                if (type(t) is np.ndarray and type(v) is np.ndarray and t.shape == (1,) and v.ndim == 2
-                        and v.shape[0] == 1 and (t.dtype is _F64 or t.dtype == _F64)
+                if (type(t) is np.ndarray and type(v) is np.ndarray and t.shape == _ONE
+                        and v.shape == (1, ring.v.shape[1]) and (t.dtype is _F64 or t.dtype == _F64)
                         and (v.dtype is _F64 or v.dtype == _F64) and name not in resampled):
                     t0, vals = t.item(), v.tolist()[0]
                     last = ring.last
-                    if (t0 > last and len(vals) == ring.v.shape[1] and math.isfinite(t0)
-                            and all(map(math.isfinite, vals))):
+                    # finite iff the sum is (finite values overflow only beyond 1e308: the general path then)
+                    if t0 > last and isfinite(sum(vals, t0)):
                         fast[name] = (t0, vals)
                         if t0 - last > GAP_WARN_S and t0 - last > self._gap_limit(name):
                             gaps = gaps or []

@@ -177,6 +177,7 @@ class WaistTracker:
         self._hold_v: list[np.ndarray] = []
         self._next_try = -np.inf
         self._last_t = -np.inf
+        self._dts: list[float] | None = []  # the first sample intervals, until the unit check (E29)
         # samples of the navigation frame (absolute index b0 + i) since the oldest one a pending step needs
         self._b0 = 0
         self._bt = np.zeros(0)
@@ -227,6 +228,8 @@ class WaistTracker:
             raise DataError("WaistTracker.push: NaN or inf in the pushed samples; drop those samples")
         if t[0] <= self._last_t or (t.size > 1 and np.any(np.diff(t) <= 0)):
             raise DataError("WaistTracker.push: timestamps must increase strictly across pushes (seconds)")
+        if self._dts is not None:
+            self._unit_check(t)
         self._last_t = float(t[-1])
         v = np.column_stack([acc, gyr])
         if self._proc is None:
@@ -235,6 +238,26 @@ class WaistTracker:
                 return []
             t, v = v_t
         return self._feed(self._proc.process(t, v), final=False)
+
+    def _unit_check(self, t: np.ndarray) -> None:
+        """Decision E29 as the runtime's: the first RATE_PROBE_MIN sample intervals give a rate more than
+        RATE_UNIT_FACTOR away from ``fs``: the timestamps are not in seconds (in ms the W31 detector re-ran its
+        window on every sample, for minutes, and gave no step). One line, before anything is fed."""
+        from pdrlearn.runtime.resample import RATE_PROBE_MIN, RATE_UNIT_FACTOR
+
+        d = np.diff(t, prepend=self._last_t) if np.isfinite(self._last_t) else np.diff(t)
+        dts = self._dts + d[:RATE_PROBE_MIN].tolist()
+        if len(dts) < RATE_PROBE_MIN:
+            self._dts = dts
+            return
+        f = 1.0 / float(np.median(dts[:RATE_PROBE_MIN])) / self.fs
+        if f < 1.0 / RATE_UNIT_FACTOR:
+            raise DataError(f"WaistTracker.push: the pushed timestamps give {f * self.fs:.3g} Hz, {1.0 / f:.0f}x below "
+                            f"fs={self.fs:g} Hz: are they in ms (or us)? push t in seconds (t_ms / 1000)")
+        if f > RATE_UNIT_FACTOR:
+            raise DataError(f"WaistTracker.push: the pushed timestamps give {f * self.fs:.3g} Hz, {f:.0f}x above "
+                            f"fs={self.fs:g} Hz: push t in seconds")
+        self._dts = None  # judged once
 
     def flush(self) -> list[LiveStep]:
         """End of the stream: decide the last contacts and report every step left."""
