@@ -250,6 +250,19 @@ def _cat(parts, k: int) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
 
 
+def check_rate_unit(name: str, rate_hz: float, nominal_hz: float, nominal_what: str = "") -> None:
+    """Decision E29: a one-line :class:`DataError` when pushed timestamps give a rate more than
+    :data:`RATE_UNIT_FACTOR` away from the nominal one: they are not in seconds. ``name`` opens the message;
+    ``nominal_what`` names the nominal rate (e.g. ``"the bundle's "``, ``"fs="``)."""
+    f = rate_hz / nominal_hz
+    if f < 1.0 / RATE_UNIT_FACTOR:
+        raise DataError(f"{name}: the pushed timestamps give {rate_hz:.3g} Hz, {1.0 / f:.0f}x below {nominal_what}"
+                        f"{nominal_hz:g} Hz: are they in ms (or us)? push t in seconds (t_ms / 1000)")
+    if f > RATE_UNIT_FACTOR:
+        raise DataError(f"{name}: the pushed timestamps give {rate_hz:.3g} Hz, {f:.0f}x above {nominal_what}"
+                        f"{nominal_hz:g} Hz: push t in seconds")
+
+
 class InputStage:
     """The tracker's input side for streams whose rate may differ from the bundle's (decision E22).
 
@@ -295,13 +308,7 @@ class InputStage:
         for n, r in rates.items():
             if not n.endswith(("Accelerometer", "Gyroscope")):  # a barometer may run at 1 Hz or slower
                 continue
-            f = r / self.rate_hz
-            if f < 1.0 / RATE_UNIT_FACTOR:
-                raise DataError(f"{n}: the pushed timestamps give {r:.3g} Hz, {1.0 / f:.0f}x below the bundle's "
-                                f"{self.rate_hz:g} Hz: are they in ms (or us)? push t in seconds (t_ms / 1000)")
-            if f > RATE_UNIT_FACTOR:
-                raise DataError(f"{n}: the pushed timestamps give {r:.3g} Hz, {f:.0f}x above the bundle's "
-                                f"{self.rate_hz:g} Hz: push t in seconds")
+            check_rate_unit(n, r, self.rate_hz, "the bundle's ")
 
     def check_rate(self, name: str, t: np.ndarray) -> None:
         """:meth:`refuse` the rate a push of ``t`` (s) would teach for a stream whose rate is being learned,

@@ -243,20 +243,14 @@ class WaistTracker:
         """Decision E29 as the runtime's: the first RATE_PROBE_MIN sample intervals give a rate more than
         RATE_UNIT_FACTOR away from ``fs``: the timestamps are not in seconds (in ms the W31 detector re-ran its
         window on every sample, for minutes, and gave no step). One line, before anything is fed."""
-        from pdrlearn.runtime.resample import RATE_PROBE_MIN, RATE_UNIT_FACTOR
+        from pdrlearn.runtime.resample import RATE_PROBE_MIN, check_rate_unit
 
         d = np.diff(t, prepend=self._last_t) if np.isfinite(self._last_t) else np.diff(t)
         dts = self._dts + d[:RATE_PROBE_MIN].tolist()
         if len(dts) < RATE_PROBE_MIN:
             self._dts = dts
             return
-        f = 1.0 / float(np.median(dts[:RATE_PROBE_MIN])) / self.fs
-        if f < 1.0 / RATE_UNIT_FACTOR:
-            raise DataError(f"WaistTracker.push: the pushed timestamps give {f * self.fs:.3g} Hz, {1.0 / f:.0f}x below "
-                            f"fs={self.fs:g} Hz: are they in ms (or us)? push t in seconds (t_ms / 1000)")
-        if f > RATE_UNIT_FACTOR:
-            raise DataError(f"WaistTracker.push: the pushed timestamps give {f * self.fs:.3g} Hz, {f:.0f}x above "
-                            f"fs={self.fs:g} Hz: push t in seconds")
+        check_rate_unit("WaistTracker.push", 1.0 / float(np.median(dts[:RATE_PROBE_MIN])), self.fs, "fs=")
         self._dts = None  # judged once
 
     def flush(self) -> list[LiveStep]:
