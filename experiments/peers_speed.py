@@ -52,6 +52,7 @@ import sys  # noqa: E402
 import time  # noqa: E402
 import warnings  # noqa: E402
 from collections.abc import Callable  # noqa: E402
+from functools import partial  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -87,6 +88,14 @@ def per_minute(seconds: float, duration_s: float) -> float:
     if not duration_s > 0:
         raise ValueError(f"recording duration must be > 0 s (got {duration_s})")
     return 60.0 * seconds / duration_s
+
+
+def _add_row(rows: list, base: dict, dur: float, repeats: int, stage: str, tool: str, fn):
+    """Time ``fn`` (min of ``repeats``) and append its row: CPU and wall seconds, and per minute of recording."""
+    c, w, out = time_min(fn, repeats)
+    rows.append({**base, "stage": stage, "tool": tool, "cpu_s": c, "wall_s": w,
+                 "cpu_per_min": per_minute(c, dur), "wall_per_min": per_minute(w, dur)})
+    return out
 
 
 def summarize(rows: pd.DataFrame) -> pd.DataFrame:
@@ -178,11 +187,7 @@ def time_waist(ext: Path, repeats: int, ours_only: bool, only: str = "*") -> tup
         dur = _duration_s(s["wAccelerometer"])
         base = {"part": "lower back", "session": name, "duration_s": dur}
 
-        def add(stage, tool, fn, base=base, dur=dur):
-            c, w, out = time_min(fn, repeats)
-            rows.append({**base, "stage": stage, "tool": tool, "cpu_s": c, "wall_s": w,
-                         "cpu_per_min": per_minute(c, dur), "wall_per_min": per_minute(w, dur)})
-            return out
+        add = partial(_add_row, rows, base, dur, repeats)
 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -245,11 +250,7 @@ def time_foot(dirs: list[Path], repeats: int, ours_only: bool) -> tuple[list[dic
         dur = _duration_s(s["fAccelerometer"])
         base = {"part": "foot", "session": d.name, "duration_s": dur}
 
-        def add(stage, tool, fn, base=base, dur=dur):
-            c, w, out = time_min(fn, repeats)
-            rows.append({**base, "stage": stage, "tool": tool, "cpu_s": c, "wall_s": w,
-                         "cpu_per_min": per_minute(c, dur), "wall_per_min": per_minute(w, dur)})
-            return out
+        add = partial(_add_row, rows, base, dur, repeats)
 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
