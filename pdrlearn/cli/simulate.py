@@ -11,12 +11,18 @@ from pdrlearn.errors import DataError
 
 
 def simulate_cmd(
-    scenario: str = typer.Option(
-        ...,
+    scenario: str | None = typer.Option(
+        None,
         "--scenario",
         "-s",
         help="A, B, C, D (thesis ch.7.3), terrain, direction, length (calibration "
-        "exercises), standstill, rotations or walk.",
+        "exercises), standstill, rotations or walk. Give this or --route.",
+    ),
+    route: str | None = typer.Option(
+        None,
+        "--route",
+        help="Your own path instead of a scenario, e.g. 'straight:10, up:12, turn:180, down:12, "
+        "backward:3, stand:2, curve:90:2' (degrees; docs/simulator.md).",
     ),
     user_seed: int = typer.Option(..., "--user-seed", "-u", help="Selects the simulated user (>= 0)."),
     out: Path = typer.Option(..., "--out", "-o", help="Session folder to create (must not exist or be empty)."),
@@ -50,13 +56,20 @@ def simulate_cmd(
 
         pdrlearn simulate --scenario walk --length-m 1000 --user-seed 3 --clock-offset 0.3 \\
             --clock-drift-ppm 50 --drop-rate 0.01 --out out/sim/walk1km
+
+        pdrlearn simulate --route "straight:5, up:17, turn:180, down:17, backward:3" --user-seed 2 \\
+            --out out/sim/floors_u2
     """
     from pdrlearn.io import write_session
-    from pdrlearn.sim import SCENARIOS, SPEEDS, simulate
+    from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path
     from pdrlearn.sim.body import PELVIS_MODES
+    from pdrlearn.sim.route import parse_route
 
-    if scenario not in SCENARIOS:
+    if (scenario is None) == (route is None):
+        raise DataError("simulate: give either --scenario NAME or --route 'straight:10, up:12, ...' (one of them)")
+    if scenario is not None and scenario not in SCENARIOS:
         raise DataError(f"--scenario {scenario!r}: must be one of {', '.join(SCENARIOS)}")
+    segments = None if route is None else parse_route(route)  # decision S28
     if speed not in SPEEDS:
         raise DataError(f"--speed {speed!r}: must be one of {', '.join(SPEEDS)}")
     if pelvis not in PELVIS_MODES:  # the simulator's own list (S27)
@@ -67,29 +80,38 @@ def simulate_cmd(
         raise DataError(f"--foot-mount-pitch {foot_mount_pitch:g}: give a tilt between -90 and 90 degrees")
     if out.exists() and (not out.is_dir() or any(out.iterdir())):
         raise DataError(f"{out}: already exists and is not an empty folder; choose another --out or remove it")
-    with progress(f"simulating {scenario}", total=2, enabled=not as_json) as advance:
-        session = simulate(
-            scenario,
-            user_seed,
-            speed,
-            rate_hz=rate,
-            seed=seed,
-            length_m=length_m,
-            clock_offset_s=clock_offset_s,
-            clock_drift_ppm=clock_drift_ppm,
-            drop_rate=drop_rate,
-            irregular_rate=irregular_rate,
-            foot_mount_pitch_deg=foot_mount_pitch,
-            noise=not no_noise,
-            pelvis=pelvis,
-        )
+    knobs = dict(
+        clock_offset_s=clock_offset_s,
+        clock_drift_ppm=clock_drift_ppm,
+        drop_rate=drop_rate,
+        irregular_rate=irregular_rate,
+        foot_mount_pitch_deg=foot_mount_pitch,
+        noise=not no_noise,
+        pelvis=pelvis,
+    )
+    label = scenario or "route"
+    with progress(f"simulating {label}", total=2, enabled=not as_json) as advance:
+        if segments is None:
+            session = simulate(scenario, user_seed, speed, rate_hz=rate, seed=seed, length_m=length_m, **knobs)
+        else:
+            session = simulate_path(
+                segments,
+                UserProfile.from_seed(user_seed),
+                speed=speed,
+                rate_hz=rate,
+                seed=seed,
+                name=f"route_u{user_seed}_{speed}_s{seed}",
+                scenario="route",
+                **knobs,
+            )
         advance()
         write_session(session, out)
         advance()
     st = session.steps
     summary = {
         "out": str(out),
-        "scenario": scenario,
+        "scenario": label,
+        **({} if route is None else {"route": route}),
         "user_seed": user_seed,
         "speed": speed,
         "seed": seed,
@@ -104,8 +126,9 @@ def simulate_cmd(
     if as_json:
         print_json(json_safe(summary))
     else:
+        what = "route" if route is not None else f"scenario {scenario}"
         typer.echo(
-            f"{out}: scenario {scenario}, user {user_seed}, {speed}, {summary['duration_s']:.1f} s, "
+            f"{out}: {what}, user {user_seed}, {speed}, {summary['duration_s']:.1f} s, "
             f"{summary['strides']} strides of the right foot, {summary['distance_m']:.1f} m, "
             f"{rate:g} Hz"
         )

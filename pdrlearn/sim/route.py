@@ -1,0 +1,93 @@
+"""A walking path written as text, for ``pdrlearn simulate --route`` (decision S28).
+
+``"straight:10, up:12, turn:180, down:12, backward:3, stand:2, curve:90:2"`` -> the segments of
+:mod:`pdrlearn.sim.path`. Items are separated by commas; each is ``kind:value[:value...]``:
+
+| item | meaning |
+|---|---|
+| ``straight:M[:GAIT]`` | walk M metres straight ahead; GAIT short, normal (default) or long |
+| ``curve:DEG:RADIUS[:GAIT]`` | walk an arc turning DEG degrees (> 0 left) of RADIUS metres |
+| ``up:N[:RISE:RUN]`` / ``down:N[:RISE:RUN]`` | climb / descend N stairs (default 0.17 m x 0.28 m) |
+| ``backward:N`` | N backward steps |
+| ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
+| ``stand:S`` | stand still S seconds |
+
+Angles are in degrees here (the Python segments take radians).
+"""
+
+from __future__ import annotations
+
+import math
+
+from pdrlearn.errors import DataError
+from pdrlearn.sim.path import Backward, Curve, Segment, Stairs, Stand, Straight, Turn
+from pdrlearn.sim.user import GAITS
+
+ROUTE_KINDS = ("straight", "curve", "up", "down", "backward", "turn", "stand")
+_USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curve:90:2'"
+
+
+def _number(item: str, text: str, *, integer: bool = False, positive: bool = True) -> float:
+    try:
+        value = int(text) if integer else float(text)
+    except ValueError:
+        kind = "a whole number" if integer else "a number"
+        raise DataError(f"--route item {item!r}: {text!r} is not {kind}; {_USAGE}") from None
+    if not math.isfinite(value) or (positive and value <= 0):
+        raise DataError(f"--route item {item!r}: {text!r} must be a positive number; {_USAGE}")
+    return value
+
+
+def _gait(item: str, parts: list[str], at: int) -> str:
+    if len(parts) <= at:
+        return "normal"
+    if parts[at] not in GAITS:
+        raise DataError(f"--route item {item!r}: gait {parts[at]!r} must be one of {', '.join(GAITS)}")
+    return parts[at]
+
+
+def _arity(item: str, parts: list[str], allowed: tuple[int, ...]) -> None:
+    if len(parts) - 1 not in allowed:
+        want = " or ".join(str(n) for n in allowed)
+        raise DataError(f"--route item {item!r}: '{parts[0]}' takes {want} value(s); {_USAGE}")
+
+
+def parse_route(spec: str) -> list[Segment]:
+    """The path segments of a route text (module docstring); a bad item is one :class:`DataError` line."""
+    items = [s.strip() for s in str(spec).split(",")]
+    if not any(items):
+        raise DataError(f"--route is empty; give walking segments, {_USAGE}")
+    segments: list[Segment] = []
+    for item in items:
+        if not item:
+            raise DataError(f"--route {spec!r}: an empty item between commas; {_USAGE}")
+        parts = [p.strip() for p in item.split(":")]
+        kind = parts[0].lower()
+        if kind not in ROUTE_KINDS:
+            raise DataError(f"--route item {item!r}: unknown kind {parts[0]!r}; use one of {', '.join(ROUTE_KINDS)}")
+        if kind == "straight":
+            _arity(item, parts, (1, 2))
+            segments.append(Straight(_number(item, parts[1]), gait=_gait(item, parts, 2)))
+        elif kind == "curve":
+            _arity(item, parts, (2, 3))
+            angle = _number(item, parts[1], positive=False)
+            if angle == 0:
+                raise DataError(f"--route item {item!r}: a curve needs a non-zero angle (use straight)")
+            segments.append(Curve(math.radians(angle), _number(item, parts[2]), gait=_gait(item, parts, 3)))
+        elif kind in ("up", "down"):
+            _arity(item, parts, (1, 3))
+            size = {} if len(parts) == 2 else {"rise_m": _number(item, parts[2]), "run_m": _number(item, parts[3])}
+            segments.append(Stairs(int(_number(item, parts[1], integer=True)), up=kind == "up", **size))
+        elif kind == "backward":
+            _arity(item, parts, (1,))
+            segments.append(Backward(int(_number(item, parts[1], integer=True))))
+        elif kind == "turn":
+            _arity(item, parts, (1,))
+            angle = _number(item, parts[1], positive=False)
+            if angle == 0:
+                raise DataError(f"--route item {item!r}: a turn needs a non-zero angle")
+            segments.append(Turn(math.radians(angle)))
+        else:  # stand
+            _arity(item, parts, (1,))
+            segments.append(Stand(_number(item, parts[1])))
+    return segments
