@@ -60,7 +60,7 @@ from pdrlearn.features.windows import TASK_CLASSES, StepWindows
 
 log = logging.getLogger(__name__)
 
-THESIS_RATE_HZ = 20.0  # PLASYS sampling period 50 ms (thesis ch. 4.3.2): thesis sample counts -> s
+THESIS_RATE_HZ = 20.0  # PLASYS period 50 ms (thesis ch. 4.2.3; waist also 20 Hz, ch. 4.3): thesis counts -> s
 WAIST_COUNT_RATE_HZ = 100.0  # Table 31 counts (75, 110 samples) read as 100 Hz phone samples (decision)
 
 
