@@ -373,8 +373,9 @@ class PLLStepDetector(StepDetector):
     Gate settings (decisions 6 and 18, docs/decisions/steps.md): seed 001's 4 s / 1.5 m^2/s^4 were set for
     a phone in a trouser pocket; at the waist a 2 s window halves the latency and keeps the first and last
     steps of a bout, and the threshold is the waist motion gate's (decision W4: std 0.5 m/s^2, so
-    0.25 m^2/s^4; standing < 0.1; seed 000 sec. II-B's gate is 1.5 m/s^2 for brisk walks): the slow daily-activity walking of the Test11
-    recordings has a std of 0.5-0.7 m/s^2 in places, which decision 6's 0.5 m^2/s^4 dropped (decision 18).
+    0.25 m^2/s^4; standing < 0.1; seed 000 sec. II-B's gate is 1.5 m/s^2 for brisk walks): the slow
+    daily-activity walking of the Test11 recordings has a std of 0.5-0.7 m/s^2 in places, which decision
+    6's 0.5 m^2/s^4 dropped (decision 18).
 
     Loop gains (decision): natural frequency ``loop_hz`` and damping ``damping`` of the linearised loop,
     ``kp = 2 zeta wn / Kd``, ``ki = wn^2 / Kd`` with the phase-detector gain ``Kd = 1/sqrt(2)`` of a
