@@ -433,7 +433,7 @@ def step_probability(x: np.ndarray) -> np.ndarray:
 
 
 def yaw_stats(ps: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """Yaw-rate statistics from :func:`peak_stats` of the waist yaw rate (thesis Table 24, ch. 6.2.1):
+    """Yaw-rate statistics from :func:`peak_stats` of the waist yaw rate (thesis Table 31, ch. 6.3.1):
     ``amplitude`` (half the range, rad/s), ``left``/``right`` (s before/after the maximum),
     ``left_minus_right`` (s), ``duration`` (s)."""
     left = ps["t_max"]
