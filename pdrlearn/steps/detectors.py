@@ -44,7 +44,8 @@ from pdrlearn.steps.waist_ic import WaistICStepDetector
 log = logging.getLogger(__name__)
 
 THESIS_RATE_HZ = 20.0  # thesis ch.4.3: both BSUs sample at 20 Hz
-GATE_CUTOFF_HZ = 5.0  # the PLL's input low-pass, on which the waist motion gate was measured (decision 18)
+GATE_CUTOFF_HZ = 5.0  # the PLL's input low-pass, on which the waist motion gate was measured (decision 18);
+# seed 001 Sec. 2.2.2 uses a Chebyshev IIR at 15 Hz: why ours differs in decision 24
 
 
 def _cutoff(cutoff_hz: float, fs: float) -> float:
