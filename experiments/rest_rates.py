@@ -2,7 +2,7 @@
 
 The four gaitmap foot sessions of ``datasets/real`` (94 strides with a terrain class), foot unit, methods
 dtw / svm / nn / ensemble (decision C14), seeds 0-2. ``--blocks k`` averages blocks of k samples first
-(k=10: 204.8 -> 20.48 Hz, the PLASYS firmware's averaging, thesis ch. 4.3.2; k=4: 51.2 Hz). Prints one
+(k=10: 204.8 -> 20.48 Hz, the PLASYS firmware's averaging, thesis ch. 4.2.3; k=4: 51.2 Hz). Prints one
 line per boundary mode; the numbers of decision C15 (docs/decisions/classifiers.md).
 
     .venv/bin/python experiments/rest_rates.py --blocks 1 4 10

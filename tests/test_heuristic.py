@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import json
 import pickle
 
 import numpy as np
@@ -21,6 +22,7 @@ from pdrlearn.classify._rules import (
     stage_score,
 )
 from pdrlearn.classify.heuristic import (
+    LENGTH_RULES,
     TERRAIN_FUSION_WEIGHTS,
     TERRAIN_STAGE1,
     TERRAIN_STAGE2,
@@ -43,6 +45,71 @@ def test_apply_rule_interval_closure():
     np.testing.assert_array_equal(apply_rule(v, (-5.0,), (1, 2), upper_closed=True), [1, 1, 2])  # <= -5 -> C1
     three = apply_rule(np.array([0, 7, 9, 10]), (6.5, 9.0), (1, 2, 3), True)
     np.testing.assert_array_equal(three, [1, 2, 2, 3])
+
+
+# Each thesis rule-table row at its cut points: (source, feature value at the cut, class the table prints).
+# Sample counts are thesis 20 Hz samples (Table 31 #3: 100 Hz phone samples), features decision 4.
+THESIS_CUTS = [
+    ("thesis Table 22 #1", -5.0, 2), ("thesis Table 22 #2", 3.0, 1), ("thesis Table 22 #3", 10 / 20, 1),
+    ("thesis Table 22 #4", 7.0, 4), ("thesis Table 22 #5", 9 / 20, 3), ("thesis Table 22 #6", 20 / 20, 4),
+    ("thesis Table 22 #7", 25 / 20, 4), ("thesis Table 22 #8", 10.0, 4),
+    ("thesis Table 23 #1", -10.0, 2), ("thesis Table 23 #2", 14 / 20, 2), ("thesis Table 23 #3", 0.0, 1),
+    ("thesis Table 23 #4", 6.0, 4), ("thesis Table 23 #5", 0.0, 4), ("thesis Table 23 #6", 35 / 20, 4),
+    ("thesis Table 24 #1", 20 / 20, 2), ("thesis Table 24 #2", 15 / 20, 1), ("thesis Table 24 #3", 0.0, 1),
+    ("thesis Table 24 #4", 20 / 20, 3), ("thesis Table 24 #5", 0.7, 4), ("thesis Table 24 #6", 0.0, 4),
+    ("thesis Table 29 #1", 17 / 20, 2), ("thesis Table 29 #1", 21 / 20, 3),
+    ("thesis Table 29 #2", 4 / 20, 2), ("thesis Table 29 #2", 7 / 20, 1),
+    ("thesis Table 29 #3", 85.0, 2.5), ("thesis Table 29 #4", 90.0, 2.5),
+    ("thesis Table 30 #1", 6.5, 1), ("thesis Table 30 #1", 9.0, 2),
+    ("thesis Table 30 #2", 9 / 20, 1), ("thesis Table 30 #2", 12 / 20, 3),  # <= 9 -> C1, >= 12 -> C3
+    ("thesis Table 30 #3", 135 / 20, 2), ("thesis Table 30 #3", 190 / 20, 3),
+    ("thesis Table 31 #1", 0.45, 1), ("thesis Table 31 #1", 0.60, 2), ("thesis Table 31 #2", 0.0, 2.5),
+    ("thesis Table 31 #3", 75 / 100, 1), ("thesis Table 31 #3", 110 / 100, 2),
+]
+
+
+@pytest.mark.parametrize("source,value,expected", THESIS_CUTS)
+def test_thesis_tables_closure_at_every_cut_point(source, value, expected):
+    """A feature value exactly at a cut point gets the class its thesis table prints (features decision 15)."""
+    (rule,) = [r for r in TERRAIN_STAGE1 + TERRAIN_STAGE2 + LENGTH_RULES if r.source == source]
+    assert apply_rule(np.array([value]), rule.thresholds, rule.classes, rule.upper_closed)[0] == expected
+
+
+def test_every_thesis_rule_is_pinned_at_its_cut_points():
+    pinned = {}
+    for source, _, _ in THESIS_CUTS:
+        pinned[source] = pinned.get(source, 0) + 1
+    for r in TERRAIN_STAGE1 + TERRAIN_STAGE2 + LENGTH_RULES:
+        assert pinned.get(r.source) == len(r.thresholds), r.source
+
+
+def test_table30_rule2_boundaries_in_the_length_classifier():
+    """Thesis Table 30 #2 with thresholds="thesis": 9 samples is C1 like 8, 12 samples is C3 like 13."""
+    clf = HeuristicLengthClassifier(unit="foot", thresholds="thesis")
+    names = clf._feature_names(clf._stages())
+    j = names.index("foot_acc_fwd:abs_dt_peaks")
+    F = np.zeros((4, len(names)))
+    F[:, j] = np.array([8, 9, 12, 13]) / 20
+    clf.fit(F, ["normal"] * 4)
+    r = clf.decision_scores(F)[:, 0]
+    assert r[0] == pytest.approx(r[1]) and r[2] == pytest.approx(r[3])
+    assert r[2] - r[1] == pytest.approx(0.50 * (3 - 1))  # weight 0.50, C1 -> C3
+
+
+def test_per_cut_closure_mechanics_and_round_trip():
+    v = np.array([8.0, 9.0, 10.0, 12.0, 13.0, np.nan])
+    np.testing.assert_array_equal(apply_rule(v, (9.0, 12.0), (1, 2, 3), (True, False)), [1, 1, 2, 3, 3, 3])
+    np.testing.assert_array_equal(apply_rule(v, (9.0, 12.0), (1, 2, 3), (False, True)), [1, 2, 2, 2, 3, 3])
+    # a uniform tuple is the same as the bool
+    for closed in (True, False):
+        np.testing.assert_array_equal(apply_rule(v, (9.0, 12.0), (1, 2, 3), (closed, closed)),
+                                      apply_rule(v, (9.0, 12.0), (1, 2, 3), closed))
+    (r,) = [r for r in LENGTH_RULES if r.source == "thesis Table 30 #2"]
+    d = json.loads(json.dumps(r.to_dict()))  # the exported bundle's params (runtime Rule.from_dict)
+    assert Rule.from_dict(d) == r and d["upper_closed"] == [True, False]
+    assert Rule.from_dict(dict(d, upper_closed=True)).upper_closed is True  # older bundles: one bool
+    with pytest.raises(ValueError, match="2 cut points"):
+        apply_rule(v, (9.0, 12.0), (1, 2, 3), (True,))
 
 
 def test_weight_sums_match_thesis():

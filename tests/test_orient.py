@@ -35,6 +35,32 @@ def test_tilt_from_accel_recovers_roll_pitch(roll, pitch):
     assert p[0] == pytest.approx(pitch, abs=1e-9)
 
 
+
+def _thesis_eq39_roll(acc):
+    """Thesis eq. 39, roll = arctan(z / sqrt(x^2 + y^2)) in its foot frame (y up, z lateral), in FLU axes
+    (lateral = y, up = z), signed to agree with ours at zero pitch."""
+    return np.arctan(acc[:, 1] / np.hypot(acc[:, 0], acc[:, 2]))
+
+
+def _rest_force(roll, pitch):
+    """Specific force at rest of the body-to-level rotation Ry(pitch) @ Rx(roll) (tilt_from_accel's model)."""
+    return G * np.column_stack([-np.sin(pitch), np.sin(roll) * np.cos(pitch), np.cos(roll) * np.cos(pitch)])
+
+
+def test_tilt_roll_replaces_thesis_eq39_when_pitched():
+    """Decision L4: our roll is atan2(y, z), not thesis eq. 39; equal at zero pitch, different when pitched,
+    and only ours rebuilds the measured gravity with eq. 38's pitch (same rotation order)."""
+    level = _rest_force(np.array([0.3]), np.array([0.0]))
+    assert _thesis_eq39_roll(level)[0] == pytest.approx(tilt_from_accel(level)[0][0], abs=1e-12)
+    acc = _rest_force(np.array([0.3]), np.array([0.6]))  # a pitched rest pose
+    r, p = tilt_from_accel(acc)
+    r39 = _thesis_eq39_roll(acc)
+    assert r[0] == pytest.approx(0.3, abs=1e-12) and p[0] == pytest.approx(0.6, abs=1e-12)
+    assert r39[0] == pytest.approx(np.arcsin(np.sin(0.3) * np.cos(0.6)), abs=1e-12)  # 0.246 rad
+    assert abs(r39[0] - r[0]) > 0.05
+    np.testing.assert_allclose(_rest_force(r, p), acc, atol=1e-12)
+    assert np.max(np.abs(_rest_force(r39, p) - acc)) > 0.3  # m/s^2: eq. 39 + eq. 38 miss the gravity
+
 def test_tilt_compensated_heading_on_tilted_body():
     rng = np.random.default_rng(0)
     yaw = rng.uniform(-np.pi, np.pi, 50)

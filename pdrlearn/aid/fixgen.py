@@ -59,7 +59,8 @@ def gnss_fixes(
 
     Parameters
     ----------
-    rate_hz : fix rate (Hz); smartphones give 1 Hz, at most 4 Hz (seed 001 Sec. 2.2.6).
+    rate_hz : fix rate (Hz); default 1 Hz, our choice (a common phone fix rate; seed 001 Sec. 2.2.6 says
+        only that GNSS updates at 4 Hz at most).
     accuracy_m : median reported accuracy (m, 68 % horizontal radius) in open sky.
     accuracy_spread : log-normal spread of the reported accuracy from fix to fix.
     correlation_s : correlation time (s) of the position error (first-order Gauss-Markov); 0 = white.

@@ -26,7 +26,9 @@ class Rule:
     thresholds : ascending cut points in the feature's SI unit
     classes : class value of each interval (``len(thresholds) + 1``)
     weight : the rule's weight (thesis tables)
-    upper_closed : True when a value equal to a cut point falls in the lower interval (``<= t``)
+    upper_closed : True when a value equal to a cut point falls in the lower interval (``<= t``); a tuple
+        of one bool per cut point when the thesis closes its cuts differently (Table 30 #2: ``<= 9``,
+        ``< 12``; features decision 15)
     source : citation of the row
     confidence : optional rule feature (0..1) multiplying the weight per step (thesis eq. 32)
     """
@@ -37,7 +39,7 @@ class Rule:
     thresholds: tuple[float, ...]
     classes: tuple[float, ...]
     weight: float
-    upper_closed: bool = True
+    upper_closed: bool | tuple[bool, ...] = True
     source: str = ""
     confidence: str = ""
 
@@ -48,22 +50,42 @@ class Rule:
         return {"sensor": self.sensor, "number": self.number, "feature": self.feature,
                 "thresholds": [float(t) for t in self.thresholds],
                 "classes": [float(c) for c in self.classes],
-                "weight": float(self.weight), "upper_closed": bool(self.upper_closed), "source": self.source,
-                "confidence": self.confidence}
+                "weight": float(self.weight), "upper_closed": _closure_to_json(self.upper_closed),
+                "source": self.source, "confidence": self.confidence}
 
     @classmethod
     def from_dict(cls, d: dict) -> Rule:
         return cls(sensor=d["sensor"], number=int(d["number"]), feature=d["feature"],
                    thresholds=tuple(float(t) for t in d["thresholds"]),
                    classes=tuple(float(c) for c in d["classes"]), weight=float(d["weight"]),
-                   upper_closed=bool(d["upper_closed"]), source=d.get("source", ""),
+                   upper_closed=_closure_from_json(d["upper_closed"]), source=d.get("source", ""),
                    confidence=d.get("confidence", ""))
 
 
-def apply_rule(values: np.ndarray, thresholds, classes, upper_closed: bool) -> np.ndarray:
-    """Class value of each feature value (n,)."""
-    side = "left" if upper_closed else "right"
-    idx = np.searchsorted(np.asarray(thresholds, dtype=float), values, side=side)
+def _closure_to_json(upper_closed) -> bool | list[bool]:
+    if isinstance(upper_closed, (bool, np.bool_)):
+        return bool(upper_closed)
+    return [bool(c) for c in upper_closed]
+
+
+def _closure_from_json(v) -> bool | tuple[bool, ...]:
+    return tuple(bool(c) for c in v) if isinstance(v, (list, tuple)) else bool(v)
+
+
+def apply_rule(values: np.ndarray, thresholds, classes, upper_closed) -> np.ndarray:
+    """Class value of each feature value (n,).
+
+    ``upper_closed``: one bool for every cut point, or a tuple of one bool per cut point (features
+    decision 15). A NaN value falls in the last interval either way (``searchsorted`` order).
+    """
+    t = np.asarray(thresholds, dtype=float)
+    if isinstance(upper_closed, (bool, np.bool_)):
+        idx = np.searchsorted(t, values, side="left" if upper_closed else "right")
+    else:
+        if len(upper_closed) != len(t):
+            raise ValueError(f"upper_closed has {len(upper_closed)} entries for {len(t)} cut points")
+        idx = sum(np.searchsorted(t[i:i + 1], values, side="left" if c else "right")
+                  for i, c in enumerate(upper_closed))
     return np.asarray(classes, dtype=float)[idx]
 
 

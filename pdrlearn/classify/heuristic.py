@@ -60,7 +60,7 @@ from pdrlearn.features.windows import TASK_CLASSES, StepWindows
 
 log = logging.getLogger(__name__)
 
-THESIS_RATE_HZ = 20.0  # PLASYS sampling period 50 ms (thesis ch. 4.3.2): thesis sample counts -> s
+THESIS_RATE_HZ = 20.0  # PLASYS period 50 ms (thesis ch. 4.2.3; waist also 20 Hz, ch. 4.3): thesis counts -> s
 WAIST_COUNT_RATE_HZ = 100.0  # Table 31 counts (75, 110 samples) read as 100 Hz phone samples (decision)
 
 
@@ -70,7 +70,9 @@ def _s(samples: float, rate: float = THESIS_RATE_HZ) -> float:
 
 
 # -- rule tables -------------------------------------------------------------------------------------
-# Rule(sensor, number, feature, thresholds, classes, weight, upper_closed, source)
+# Rule(sensor, number, feature, thresholds, classes, weight, upper_closed, source); upper_closed as printed
+# in each thesis table row (True: ``<= t`` is the lower class), pinned at every cut point by
+# tests/test_heuristic.py::test_thesis_tables_closure_at_every_cut_point
 # Terrain: C1 = 1 normal (flat), C2 = 2 stairs; C3 = 3 ascending (up), C4 = 4 descending (down).
 
 TERRAIN_STAGE1 = [
@@ -123,7 +125,9 @@ LENGTH_RULES = [
     Rule("force", 3, "force:peak_mean_4", (85.0,), (1, 2.5), 0.10, False, "thesis Table 29 #3"),
     Rule("force", 4, "force:contact_force_2", (90.0,), (1, 2.5), 0.10, False, "thesis Table 29 #4"),
     Rule("foot_acc", 1, "foot_acc_fwd:range", (6.5, 9.0), (1, 2, 3), 0.05, True, "thesis Table 30 #1"),
-    Rule("foot_acc", 2, "foot_acc_fwd:abs_dt_peaks", (_s(9), _s(12)), (1, 2, 3), 0.50, True,
+    # thesis Table 30 #2: <= 9 -> C1, > 9 & < 12 -> C2, >= 12 -> C3: the two cuts close differently
+    # (features decision 15)
+    Rule("foot_acc", 2, "foot_acc_fwd:abs_dt_peaks", (_s(9), _s(12)), (1, 2, 3), 0.50, (True, False),
          "thesis Table 30 #2"),
     Rule("foot_acc", 3, "foot_acc_fwd:range_x_air_time", (_s(135), _s(190)), (1, 2, 3), 0.08, False,
          "thesis Table 30 #3"),

@@ -146,7 +146,7 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
     ----------
     task : ``"terrain"``, ``"direction"``, ``"length"`` or ``None`` (rbf for every class).
     C : soft-margin penalty of every binary model, or ``"cv"``: the value of ``C_grid`` with the best
-        inner stratified 3-fold CV accuracy (thesis ch. 3: "each combination of parameter choices is
+        inner stratified 3-fold CV accuracy (thesis ch. 2.4.2.2: "each combination of parameter choices is
         checked using cross validation, and the parameters with best cross validation accuracy are
         chosen"); ties -> the smallest C (widest margin).
     C_grid : candidates for ``C="cv"``.

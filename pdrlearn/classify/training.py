@@ -91,7 +91,7 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
 
     ``unit="fused"`` gives a :class:`UnitFusionClassifier` over the foot and waist models (``weights``
     given, or learned on a validation split when ``None``), except for ``method="fusion"`` (heuristic
-    fusion with the thesis weights, thesis Table 26).
+    fusion with the thesis weights: Table 26 terrain, ch. 6.2.2.3 direction 0.6/0.4, Table 32 length).
     """
     from pdrlearn.features import make_features
 

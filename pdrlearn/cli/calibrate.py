@@ -27,8 +27,8 @@ def register(app: typer.Typer) -> None:
                                     help="Signed full turns walked (+1 = one left 360), to fit the gyro "
                                          "bias (seed 003 eq. 2)."),
         fit_turns: bool = typer.Option(False, "--fit-turns",
-                                       help="Also fit the straight/turning GMM on the walks' strides "
-                                            "(needs >= 20 strides with turns; seed 003)."),
+                                       help="Also fit seed 003's straight/turning GMM on the walks' strides "
+                                            "(needs >= 20 strides with turns; decision W14)."),
         shrink: bool = typer.Option(False, "--shrink",
                                     help="waist-pendulum: shrink the calibrated K toward the population K by its "
                                          "standard error (decision W48; measured, not the default)."),

@@ -280,7 +280,7 @@ class _Builder:
             one = peak_sigs == ["waist_yaw"]  # the block's statistics are already its (n, 1) columns (E18)
             st = {s: self.op("Gather", [v, j], s, axis=1) if s != "duration" and not one else v
                   for s, v in self.peak_block(peak_sigs, sorted({s for y in yaw for s in yaw_need[y]})).items()}
-            table = {  # kernels.stats.yaw_stats (thesis Table 24, ch. 6.2.1)
+            table = {  # kernels.stats.yaw_stats (thesis Table 31, ch. 6.3.1)
                 "amplitude": lambda: self.op("Mul", [st["range"], self.const(np.array(0.5), "half")]),
                 "duration": lambda: st["duration"],
                 "left": lambda: st["t_max"],

@@ -60,7 +60,7 @@ def resample_rows(t_new: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray
     B, L, k = v.shape
     if t_new.shape[1] > 1 and L > 2:
         w = np.rint((t_new[:, 1] - t_new[:, 0]) * (L - 1) / (t[:, -1] - t[:, 0])).astype(int)
-        w = 2 * (w // 2) + 1  # odd: a centred box (thesis ch. 4.3.2: firmware averaging)
+        w = 2 * (w // 2) + 1  # odd: a centred box (thesis ch. 4.2.3: firmware averaging)
         if np.any(w > 1):
             v = v.copy()
             for width in np.unique(w[w > 1]):

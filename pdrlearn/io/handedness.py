@@ -59,7 +59,8 @@ MIN_SEGMENTS = 4
 WAIST_WINDOW_S = 2.0
 WAIST_HOP_S = 1.0
 #: A waist window counts when the standard deviation of |specific force| in it exceeds this (m/s^2):
-#: walking at the lower back swings it by 1-3 m/s^2 (seed 003 Fig. 2), standing by less than 0.2.
+#: walking at the lower back swings it by 1-3 m/s^2 (trunk accelerations: seed 003 Fig. 1), standing by
+#: less than 0.2.
 WAIST_MIN_ACC_SD = 0.5
 #: Axis agreement (D11 amendment): strides (at most, evenly spaced) on which all 48 permutations are tried,
 #: and the rate (Hz) they are block-averaged to (not below it): 8 strides at ~30 Hz add 0.04-1.31 times D11's

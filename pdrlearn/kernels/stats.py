@@ -372,7 +372,7 @@ def force_stats(force: np.ndarray, t: np.ndarray, *, zero_fraction: float = 0.05
     """Force-sensor statistics of each step (thesis Table 29 and ch. 6.3.1), rows of ``force`` (n, m).
 
     A sample is "zero" (foot in the air) when below ``zero_fraction`` x the step's peak force. The
-    thesis counts PLASYS samples (20 Hz, thesis ch. 4.3.2: 50 ms); here counts are times (s) and
+    thesis counts PLASYS samples (20 Hz, thesis ch. 4.2.3: 50 ms); here counts are times (s) and
     "the k-th measurement" is ``k * sample_s`` seconds.
 
     Returns (n,) arrays: ``air_time`` (s of zero force; Table 29 #1), ``time_to_peak`` (s from the last
@@ -433,7 +433,7 @@ def step_probability(x: np.ndarray) -> np.ndarray:
 
 
 def yaw_stats(ps: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """Yaw-rate statistics from :func:`peak_stats` of the waist yaw rate (thesis Table 24, ch. 6.2.1):
+    """Yaw-rate statistics from :func:`peak_stats` of the waist yaw rate (thesis Table 31, ch. 6.3.1):
     ``amplitude`` (half the range, rad/s), ``left``/``right`` (s before/after the maximum),
     ``left_minus_right`` (s), ``duration`` (s)."""
     left = ps["t_max"]

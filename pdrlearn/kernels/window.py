@@ -102,7 +102,7 @@ def box_filter(v: np.ndarray, width: int) -> np.ndarray:
 def resample(t_new: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Resample the columns of ``v`` (n, k) at ``t_new`` -> (k, len(t_new)); when downsampling, each output
     sample is the mean over its own interval first (box anti-alias filter, like the PLASYS firmware's
-    5-sample averaging, thesis ch. 4.3.2), so impact peaks do not alias and 20/100/204.8 Hz data agree."""
+    5-sample averaging, thesis ch. 4.2.3), so impact peaks do not alias and 20/100/204.8 Hz data agree."""
     width = 1
     if len(t_new) > 1 and len(t) > 2:
         width = int(round((t_new[1] - t_new[0]) * (len(t) - 1) / float(t[-1] - t[0])))  # mean spacing

@@ -21,13 +21,18 @@ def tilt_from_accel(acc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Roll and pitch (rad) of a FLU body from its specific force (m/s^2), thesis eq. 38/39.
 
     Angles of the body-to-level rotation ``R = Ry(pitch) @ Rx(roll)``; at rest the body measures
-    ``g * (-sin(pitch), sin(roll) cos(pitch), cos(roll) cos(pitch))``. Eq. 38 carries over unchanged;
-    eq. 39 is written for the thesis foot frame (y up) and becomes ``atan2(y, z)`` in FLU (z up).
+    ``g * (-sin(pitch), sin(roll) cos(pitch), cos(roll) cos(pitch))``. Eq. 38 carries over unchanged.
+    Eq. 39 is NOT used: it is ``roll = arctan(z / sqrt(x^2 + y^2))`` in the thesis foot frame (y up,
+    z lateral), ``atan(+-y / hypot(x, z))`` in FLU, i.e. ``asin`` of the lateral gravity component - the
+    roll of the other rotation order (``Rx @ Ry``). Paired with eq. 38 (the ``Ry @ Rx`` pitch) it does not
+    rebuild the measured gravity once the foot is pitched; ``atan2(y, z)`` is the roll of the same
+    ``Ry @ Rx`` as the pitch, so (roll, pitch) reproduce the rest specific force exactly. Both agree at
+    zero pitch (decision L4; test ``test_tilt_roll_replaces_thesis_eq39_when_pitched``).
     """
     acc = np.atleast_2d(acc)
     x, y, z = acc[:, 0], acc[:, 1], acc[:, 2]
     pitch = np.arctan2(-x, np.hypot(y, z))  # thesis eq. 38
-    roll = np.arctan2(y, z)  # thesis eq. 39 (FLU axes)
+    roll = np.arctan2(y, z)  # replaces thesis eq. 39: the roll of the same Ry @ Rx as eq. 38 (decision L4)
     return roll, pitch
 
 

@@ -60,7 +60,7 @@ class StepKind:
 
 WALK_IMPACT = (0.85, -0.5)  # (forward, vertical) heel velocity before a level contact / user impact speed
 # Values follow the thesis' qualitative descriptions (ch.6.1.1, Figs. 59-60): on stairs the force is
-# concentrated on the forefoot and the heel load is negligible (thesis ch.2.5, ref [115]); descending
+# concentrated on the forefoot and the heel load is negligible (thesis ch.2.1.2, ref [115]); descending
 # steps land toe first with a higher impact force; ascending steps rotate the foot up then down and
 # descending ones the opposite. Magnitudes are set so that peak |acc|, peak pitch rate and stride time
 # fall in the range of the real foot recordings (tests/test_sim_vs_real.py).
@@ -547,7 +547,7 @@ def foot_loads(
 
     Heel-first contact: the heel loads from initial contact to foot flat and unloads by heel-off; the
     forefoot loads from foot flat and peaks in push-off, ending at toe-off. Toe-first contacts (stairs
-    down, backward) load the forefoot first. On stairs the heel load is negligible (thesis ch.2.5 [115]).
+    down, backward) load the forefoot first. On stairs the heel load is negligible (thesis ch.2.1.2 [115]).
     Standing (foot flat for more than 1 s): each foot carries half the body weight, half on the heel.
     """
     bw = user.mass_kg * 9.80665

@@ -94,7 +94,7 @@ class UserProfile:
         if not isinstance(seed, int | np.integer) or int(seed) < 0:
             raise DataError(f"user seed {seed!r}: must be a non-negative integer")
         rng = np.random.default_rng([int(seed), 0x5EED])
-        # the thesis pedestrians were 1.65 m and 1.90 m tall (thesis ch.7.3.2.2)
+        # the thesis pedestrians were 1.65 m and 1.90 m tall (thesis ch.7.3, introduction)
         height = float(rng.uniform(1.55, 1.95))
         bmi = float(np.clip(rng.normal(23.0, 2.5), 18.5, 30.0))
         # step length ~0.41 x stature at a comfortable speed; cadence ~100-120 steps/min

@@ -312,7 +312,7 @@ def pelvic_flush(state: PelvicState, p: PelvicParams) -> list[Event]:
 
 
 # ---------------------------------------------------------------------------------------------------
-# phase-locked loop on vertical acceleration (seed 000 Sec. II-B, seed 001 Sec. 2.2.2)
+# phase-locked loop on vertical acceleration (seed 000 Sec. II-C, seed 001 Sec. 2.2.2)
 @dataclass
 class PLLParams:
     f0_hz: float  # free-running frequency (seed 000/001: 1.8 Hz)

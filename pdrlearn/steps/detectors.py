@@ -44,7 +44,8 @@ from pdrlearn.steps.waist_ic import WaistICStepDetector
 log = logging.getLogger(__name__)
 
 THESIS_RATE_HZ = 20.0  # thesis ch.4.3: both BSUs sample at 20 Hz
-GATE_CUTOFF_HZ = 5.0  # the PLL's input low-pass, on which the waist motion gate was measured (decision 18)
+GATE_CUTOFF_HZ = 5.0  # the PLL's input low-pass, on which the waist motion gate was measured (decision 18);
+# seed 001 Sec. 2.2.2 uses a Chebyshev IIR at 15 Hz: why ours differs in decision 24
 
 
 def _cutoff(cutoff_hz: float, fs: float) -> float:
@@ -357,7 +358,7 @@ class _PLLProcessor:
 
 
 class PLLStepDetector(StepDetector):
-    """Phase-locked-loop step detector on the vertical acceleration (seed 000 Sec. II-B; seed 001 Sec. 2.2.2).
+    """Phase-locked-loop step detector on the vertical acceleration (seed 000 Sec. II-C; seed 001 Sec. 2.2.2).
 
     The waist acceleration is projected on the gravity direction (slow causal low-pass of the
     accelerometer, so any mounting frame works), gravity is removed, the signal is low-pass filtered and
@@ -372,9 +373,10 @@ class PLLStepDetector(StepDetector):
 
     Gate settings (decisions 6 and 18, docs/decisions/steps.md): seed 001's 4 s / 1.5 m^2/s^4 were set for
     a phone in a trouser pocket; at the waist a 2 s window halves the latency and keeps the first and last
-    steps of a bout, and the threshold is the waist motion gate's (seed 000 sec. II-B, decision W4:
-    std 0.5 m/s^2, so 0.25 m^2/s^4; standing < 0.1): the slow daily-activity walking of the Test11
-    recordings has a std of 0.5-0.7 m/s^2 in places, which decision 6's 0.5 m^2/s^4 dropped (decision 18).
+    steps of a bout, and the threshold is the waist motion gate's (decision W4: std 0.5 m/s^2, so
+    0.25 m^2/s^4; standing < 0.1; seed 000 sec. II-B's gate is 1.5 m/s^2 for brisk walks): the slow
+    daily-activity walking of the Test11 recordings has a std of 0.5-0.7 m/s^2 in places, which decision
+    6's 0.5 m^2/s^4 dropped (decision 18).
 
     Loop gains (decision): natural frequency ``loop_hz`` and damping ``damping`` of the linearised loop,
     ``kp = 2 zeta wn / Kd``, ``ki = wn^2 / Kd`` with the phase-detector gain ``Kd = 1/sqrt(2)`` of a
@@ -386,12 +388,12 @@ class PLLStepDetector(StepDetector):
     input_columns = ("acc_x", "acc_y", "acc_z")
     extra_columns = ("step_freq_hz",)
 
-    def __init__(self, *, f0_hz: float = 1.8,  # seed 000 Sec. II-B, seed 001 Sec. 2.2.2
+    def __init__(self, *, f0_hz: float = 1.8,  # seed 000 Sec. II-C, seed 001 Sec. 2.2.2
                  loop_hz: float = 0.5, damping: float = 0.707, f_min_hz: float = 0.8, f_max_hz: float = 3.2,
                  cutoff_hz: float = GATE_CUTOFF_HZ, agc_tau_s: float = 1.0, gravity_cutoff_hz: float = 0.3,
                  gate_window_s: float = 2.0,  # seed 001 Sec. 2.2.2 uses 4 s; decision: 2 s
-                 gate_var: float = 0.25,  # seed 001: 1.5 m^2/s^4 for a pocket; decision 18: W4's
-                 # waist motion gate (std 0.5 m/s^2, seed 000 sec. II-B) squared
+                 gate_var: float = 0.25,  # seed 001: 1.5 m^2/s^4 for a pocket; decision 18: decision W4's
+                 # waist motion gate (std 0.5 m/s^2; seed 000 sec. II-B's own is 1.5) squared
                  refine_frac: float = 0.25, placement: str = "waist"):
         self._store(locals())
 

@@ -292,7 +292,8 @@ class WaistICStepDetector(StepDetector):
     max_step_s : contacts further apart end a walking sequence (s; the pipeline's 1.5)
     rhythm, alternate, weight_shift, end_steps : the sequence rules W18, W20, W23, W28 (default on)
     learned : the W33 learned second stage (off by default; ``True`` = the shipped model, or a path)
-    ahrs_gain : Madgwick gain (Madgwick 2010 / seed 001 sec. 2.2.1: 0.033)
+    ahrs_gain : Madgwick gain (decision W5: 0.033, the `ahrs` package's IMU default from Madgwick 2010;
+        seed 001 sec. 2.2.1 uses a Madgwick filter but gives no gain)
     delay_s : ``None`` (default): the offline detector, every contact reported at the end (decision 17);
         a number: the realtime IC detector of decision W31 on a stream, each contact decided ``delay_s`` to
         ``delay_s + hop_s`` after it (W31: 1.75 s, the thesis' < 2 s) from the last ``history_s`` seconds
@@ -315,7 +316,7 @@ class WaistICStepDetector(StepDetector):
                  max_step_s: float = 1.5,  # the pipeline's MAX_STEP_S (pdrlearn.track.waist)
                  rhythm: bool = True, alternate: bool = True, weight_shift: bool = True, end_steps: bool = True,
                  learned: bool | str = False,
-                 ahrs_gain: float = 0.033,  # Madgwick 2010 IMU gain, seed 001 sec. 2.2.1 (ahrs.MADGWICK_GAIN)
+                 ahrs_gain: float = 0.033,  # W5: Madgwick 2010 / `ahrs` IMU default (waist.ahrs.MADGWICK_GAIN)
                  delay_s: float | None = None, hop_s: float = 0.25, history_s: float = 10.0):  # W31
         self._store(locals())
 

@@ -527,7 +527,8 @@ def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nd
                 fc_search_s: float = 0.25, mean_s: float = 1.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Causal initial-contact detection (seed 003 sec. 3.1, real-time variant).
 
-    The AP acceleration passes an 11th-order causal FIR (seed 003 sec. 3.1); each positive-to-negative
+    The AP acceleration passes an 11th-order causal FIR (seed 003 sec. 3.1, which gives no cut-off: the
+    offline filter's 2.5 Hz is reused and the order stays in samples, decision W68); each positive-to-negative
     zero crossing of its output is an IC candidate. The positive lobe before a true crossing is about as
     long as the previous ones, a false crossing's lobe is much longer (seed 003): a candidate is rejected
     when its lobe lasts more than ``lobe_ratio`` times the running median of the accepted lobes of the

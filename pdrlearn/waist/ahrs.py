@@ -31,7 +31,7 @@ ACC, GYR = "wAccelerometer", "wGyroscope"
 #: bridged gaps longer than this (s) are filled as a rest (decision B11: reported, they end the walking
 #: sequence; pdrlearn.track.gaps.MIN_GAP_S)
 LONG_GAP_S = 1.0
-MADGWICK_GAIN = 0.033  # Madgwick 2010 IMU gain (ahrs default), the filter seed 001 sec. 2.2.1 uses
+MADGWICK_GAIN = 0.033  # Madgwick 2010 IMU gain (ahrs default, W5); seed 001 sec. 2.2.1 uses the filter, gives no gain
 
 
 @dataclass

@@ -20,6 +20,7 @@ SCHEMA = "pdrlearn.waist-params/1"
 DEFAULT_HEIGHT_M = 1.70  # used only when meta.json gives no height (a warning says so)
 # Anthropometric ratios (Drillis & Contini 1966, as tabulated by Winter, Biomechanics of Human Movement):
 LEG_PER_HEIGHT = 0.53  # greater-trochanter height / body height
+# (the pendulum's L is the sensor height, W10/W69; seed 003's malleolus-to-trochanter L2 is not used)
 #: the start of the warning line for a leg length taken from the height (decision W62)
 NO_SENSOR_HEIGHT = "meta.json gives no sensor height"
 FOOT_PER_HEIGHT = 0.152  # foot length / body height
