@@ -19,6 +19,7 @@ the bundled recordings (decision L47).
 
 from __future__ import annotations
 
+import functools
 import re
 import shlex
 from dataclasses import dataclass, field
@@ -211,6 +212,7 @@ def _cli():
     return typer.main.get_command(app)
 
 
+@functools.cache
 def _make_targets() -> set[str]:
     text = (ROOT / "Makefile").read_text(encoding="utf-8")
     return {t for m in re.finditer(r"^([A-Za-z0-9_.-]+(?:[ \t]+[A-Za-z0-9_.-]+)*)[ \t]*:(?!=)", text, re.M)
@@ -344,7 +346,8 @@ def _value_error(cmd_name: str, param, value: str, validators) -> str | None:
     return None
 
 
-def _script_options(path: Path) -> set[str] | None:
+@functools.cache
+def _script_options(path: Path) -> frozenset[str] | None:
     """Every option a script can read: the string constants of its source that look like one (``"--users"``
     of ``add_argument`` or of a hand-made ``sys.argv`` parser); None when the script does not exist."""
     import ast
@@ -352,8 +355,8 @@ def _script_options(path: Path) -> set[str] | None:
     if not path.is_file():
         return None
     tree = ast.parse(path.read_text(encoding="utf-8"))
-    return {n.value for n in ast.walk(tree) if isinstance(n, ast.Constant) and isinstance(n.value, str)
-            and re.match(r"^--?[A-Za-z][\w-]*$", n.value)}
+    return frozenset(n.value for n in ast.walk(tree) if isinstance(n, ast.Constant) and isinstance(n.value, str)
+                     and re.match(r"^--?[A-Za-z][\w-]*$", n.value))
 
 
 def _check_script(c: Command) -> list[str]:
