@@ -610,7 +610,8 @@ def _span(session: Session) -> tuple[float, float] | None:
 def merge_span_warning(base: Session, add: Session) -> str | None:
     """The ``--merge`` warning when ``add``'s time span (s, on the session's clock) and ``base``'s overlap by
     less than :data:`MERGE_MIN_OVERLAP` of the longer span (decision D12, second amendment); else ``None``.
-    A warning, not a refusal: two units' clocks can legitimately differ (``track --align`` aligns them)."""
+    A warning, not a refusal: two units' clocks can legitimately differ (:func:`pdrlearn.steps.align_units`
+    estimates an offset of up to ``max_offset_s``, 2 s by default; the CLI has no option for it, decision L48)."""
     sa, sb = _span(add), _span(base)
     if sa is None or sb is None:
         return None
@@ -622,7 +623,8 @@ def merge_span_warning(base: Session, add: Session) -> str | None:
     return (f"the added {unit} unit spans {sa[0]:.1f}-{sa[1]:.1f} s ({sa[1] - sa[0]:.1f} s) but the session's "
             f"{', '.join(sorted(base.streams))} span {sb[0]:.1f}-{sb[1]:.1f} s ({sb[1] - sb[0]:.1f} s): they overlap "
             f"{overlap:.1f} s, under half of the longer (decision D12); check that both exports record the same "
-            "walk (if their clocks differ, align them with 'pdrlearn track --align')")
+            "walk (clocks up to 2 s apart: pdrlearn.steps.align_units and apply_alignment in Python; `pdrlearn track` "
+            "has no option for it, decision L48)")
 
 
 def _shifted_table(path: Path, origin_s: float) -> pd.DataFrame:

@@ -1,0 +1,669 @@
+"""Every command the documentation prints is one that is accepted (decision L46): ``pdrlearn ...``, ``make ...``
+and ``python experiments/X.py ...`` / ``python -m pdrlearn.X ...``.
+
+tests/test_docs_imports.py checks the Python snippets; this checks the shell ones WITHOUT running them, in the
+code blocks and inline code spans of README.md, docs/*.md, docs/decisions/*.md and the data/model READMEs,
+and in the examples of every command's ``--help``: the sub-command exists; every option is one of that
+sub-command's (read from the click command typer builds for the console script); an option that takes a value
+has one; a number is a number in the option's range; a choice (``--detector``, ``--pipeline``, ``--method``,
+``--tasks`` ...) is one the command accepts (checked with the library's own lists and parsers: ``DETECTORS``,
+``PIPELINES``, ``check_settings``, ``parse_start`` ...); a complete command has its required arguments and
+options; a ``make`` target is in the Makefile; an experiment script reads each option it is given.
+Placeholders (``DIR``, ``PARAMS.json``, ``LAT,LON``, ``<session>``, ``...``) stand for any value, yet a
+misspelled option or value still fails (:func:`test_the_checker_catches_stale_commands`; and
+:func:`test_every_documented_option_and_value_is_checked` misspells each option and checked value of every
+documented command in turn). Commands shown with an ``error: ...`` output line (bad-input demonstrations) get
+only their names checked. ``test_readme_quick_start_runs`` (``slow``, ~5 s) runs seven documented commands on
+the bundled recordings (decision L47).
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+import shlex
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+#: the documentation (CHANGELOG.md, a history, is not: it quotes commands of its time)
+DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")), *sorted((ROOT / "docs" / "decisions").glob("*.md")),
+        ROOT / "datasets" / "real" / "README.md", ROOT / "models" / "README.md"]
+FENCE = re.compile(r"^[ \t]*```([^\n`]*)\n(.*?)^[ \t]*```", re.S | re.M)
+INLINE = re.compile(r"(?<!`)`((?:pdrlearn|make|(?:\S*/)?python3? \S+|experiments/\w+\.py) [^`]+?)`(?!`)")  # may wrap
+# a placeholder for a value: <...>, $VAR, an UPPER_CASE word (DIR, MODEL_DIR, PARAMS.json, FIXES.(nmea|csv))
+_ANGLE = re.compile(r"<[^<>\s][^<>\n]*>")
+_UPPER = re.compile(r"^[A-Z][A-Z0-9_]*(?:\.[\w().|]+)?$")
+_SKIP_LANGS = {"python", "json", "yaml", "toml"}
+_SHELL_WORDS = {"do", "then", "else", "time", "exec", "nohup", "!"}
+_ALT = "\x00"  # stands for the | of a usage line's alternatives (a|b) while the shell words are split
+
+
+@dataclass
+class Command:
+    """One documented command: where, its words after ``pdrlearn`` / ``make``, and how it is shown."""
+
+    doc: str
+    line: int
+    tool: str  # "pdrlearn" or "make"
+    words: list[str]
+    complete: bool  # a whole command line (a code block), not an inline mention such as `track --streaming`
+    error_demo: bool = False  # shown with an `error: ...` output line: only its names are checked
+    text: str = field(default="", repr=False)
+
+    @property
+    def where(self) -> str:
+        return f"{self.doc}:{self.line}"
+
+
+# ---------------------------------------------------------------------------------------------------- extraction
+
+
+def _split_shell(text: str) -> list[list[str]]:
+    """The simple commands of one shell line (``a && b | c ; d``), redirections dropped, ``#`` comments cut."""
+    text = _ANGLE.sub("PLACEHOLDER", text)
+    text = re.sub(r"(^|\s)\d?(?:>>?|<)&?\s*(?:\S+)", " ", text)  # > out.json, 2>&1, < in.txt
+    text = re.sub(r"(^|\s)\[|\](?=\s|$)", " ", text)  # usage brackets: [--start S --end S]
+    text = re.sub(r"(?<=\S)\|(?=\S)", _ALT, text)  # a|b is an alternative of a usage line, a | b a pipe
+    lex = shlex.shlex(text, posix=True, punctuation_chars=";&|")
+    lex.whitespace_split = True
+    lex.commenters = ""
+    try:
+        tokens = list(lex)
+    except ValueError:  # an unbalanced quote in prose-like text: not a command
+        return []
+    out, cur = [], []
+    for tok in tokens:
+        if tok.startswith("#"):
+            break
+        if tok and set(tok) <= set(";&|"):
+            out.append(cur)
+            cur = []
+        else:
+            cur.append(tok.replace(_ALT, "|"))
+    out.append(cur)
+    return [c for c in out if c]
+
+
+def _tool(words: list[str]) -> tuple[str | None, list[str]]:
+    """(``"pdrlearn"`` / ``"make"`` / ``"script"`` / None, the words after it) of a simple command (``VAR=x``
+    prefixes and ``do``/``time``/... skipped). A script is ``python experiments/X.py`` or ``python -m
+    pdrlearn.X`` (its words start with the script's path); an inline ``experiments/X.py --opt`` is one too."""
+    k = 0
+    while k < len(words) and (re.match(r"^[A-Za-z_]\w*=", words[k]) or words[k] in _SHELL_WORDS):
+        k += 1
+    if k >= len(words):
+        return None, []
+    head = words[k]
+    if head == "pdrlearn" or head.endswith("/pdrlearn"):
+        return "pdrlearn", words[k + 1:]
+    if head == "make":
+        return "make", words[k + 1:]
+    if re.match(r"^experiments/\w+\.py$", head):
+        return "script", words[k:]
+    if re.match(r"^(?:\S*/)?python3?(?:\.\d+)?$", head):
+        rest = words[k + 1:]
+        while rest and rest[0] in ("-u", "-X", "-W", "-B"):
+            rest = rest[1:]
+        if rest and rest[0].endswith(".py"):
+            return "script", rest
+        if len(rest) > 1 and rest[0] == "-m" and rest[1].startswith("pdrlearn."):
+            return "script", [rest[1].replace(".", "/") + ".py", *rest[2:]]
+    return None, []
+
+
+def _logical_lines(body: str, first_line: int) -> list[tuple[int, str, str | None]]:
+    """``(line number, command text, next output line)`` of a code block: ``\\``-continued lines joined; in a
+    block with ``$`` prompts only the prompted lines are commands (the rest is output)."""
+    lines = body.split("\n")
+    prompted = any(re.match(r"^\s*\$ ", ln) for ln in lines)
+    out, k = [], 0
+    while k < len(lines):
+        start, ln = k, lines[k]
+        if prompted:
+            m = re.match(r"^\s*\$ (.*)$", ln)
+            if not m:
+                k += 1
+                continue
+            ln = m.group(1)
+        while k + 1 < len(lines) and (ln.rstrip().endswith("\\") or re.match(r"^\s+\[-", lines[k + 1])):
+            k += 1  # a continued line, or a usage line's next [--option ...] line
+            ln = ln.rstrip().removesuffix("\\") + " " + lines[k].strip()
+        k += 1
+        following = lines[k] if prompted and k < len(lines) else None
+        out.append((first_line + start, ln, following))
+    return out
+
+
+def _blocks(text: str) -> list[tuple[int, str]]:
+    """``(first line number, body)`` of every shell-like code block: fenced (not python/json) and indented
+    ``$ ...`` console examples."""
+    out, fenced = [], []
+    for m in FENCE.finditer(text):
+        fenced.append((m.start(), m.end()))
+        if m.group(1).strip().lower() in _SKIP_LANGS:
+            continue
+        out.append((text.count("\n", 0, m.start(2)) + 1, m.group(2)))
+    # indented console examples (4 spaces, "$ " prompt) outside the fences
+    pos = 0
+    for ln in text.split("\n"):
+        if re.match(r"^ {4,}\$ pdrlearn ", ln) and not any(a <= pos < b for a, b in fenced):
+            out.append((text.count("\n", 0, pos) + 1, ln + "\n" + _line_after(text, pos + len(ln) + 1)))
+        pos += len(ln) + 1
+    return out
+
+
+def _line_after(text: str, pos: int) -> str:
+    end = text.find("\n", pos)
+    return text[pos:] if end < 0 else text[pos:end]
+
+
+def documented_commands(docs=DOCS) -> list[Command]:
+    """Every ``pdrlearn`` / ``make`` command of the docs' shell blocks and inline code spans."""
+    out: list[Command] = []
+    for doc in docs:
+        text = doc.read_text(encoding="utf-8")
+        name = doc.relative_to(ROOT).as_posix() if doc.is_relative_to(ROOT) else doc.name
+        for first, body in _blocks(text):
+            for line, cmd, following in _logical_lines(body, first):
+                for words in _split_shell(cmd):
+                    tool, rest = _tool(words)
+                    if tool is not None:
+                        demo = bool(following and following.strip().startswith("error:"))
+                        out.append(Command(name, line, tool, rest, complete=True, error_demo=demo, text=cmd))
+        spans = [(m.start(), m.end()) for m in FENCE.finditer(text)]
+        for m in INLINE.finditer(text):
+            if any(a <= m.start() < b for a, b in spans):
+                continue
+            line = text.count("\n", 0, m.start()) + 1
+            if "\n\n" in m.group(1):
+                continue
+            for words in _split_shell(" ".join(m.group(1).split())):
+                tool, rest = _tool(words)
+                if tool is not None:
+                    out.append(Command(name, line, tool, rest, complete=False, text=" ".join(m.group(1).split())))
+    return out
+
+
+def help_commands() -> list[Command]:
+    """The examples of every command's ``--help`` (its docstring's indented lines and ``Then: ...``)."""
+    out = []
+    for name, cmd in _cli().commands.items():
+        lines = [re.sub(r"^Then: ", "    ", ln) for ln in (cmd.help or "").splitlines()]
+        body = "\n".join(re.sub(r"\s{2,}\([^()]*\)$", "", ln) if ln.startswith(" ") else "" for ln in lines)
+        for line, text, _ in _logical_lines(body, 1):
+            for words in _split_shell(text):
+                tool, rest = _tool(words)
+                if tool is not None:
+                    out.append(Command(f"pdrlearn {name} --help", line, tool, rest, complete=True, text=text.strip()))
+    return out
+
+
+# ------------------------------------------------------------------------------------------------------ checking
+
+
+def _cli():
+    import typer.main
+
+    from pdrlearn.cli import app
+
+    return typer.main.get_command(app)
+
+
+@functools.cache
+def _make_targets() -> set[str]:
+    text = (ROOT / "Makefile").read_text(encoding="utf-8")
+    return {t for m in re.finditer(r"^([A-Za-z0-9_.-]+(?:[ \t]+[A-Za-z0-9_.-]+)*)[ \t]*:(?!=)", text, re.M)
+            for t in m.group(1).split()}
+
+
+def _is_placeholder(value: str, strict: bool) -> bool:
+    """A value that stands for one: ``...``, ``PLACEHOLDER`` (was ``<...>``), ``$VAR``, an UPPER_CASE word or a
+    comma list of them (``LAT,LON``). A choice option (``strict``) takes no one- or two-letter word as one:
+    ``--scenario D``, ``--method M3`` are values and are checked."""
+    if "..." in value or value.startswith("$") or value == "PLACEHOLDER":
+        return True
+    parts = value.split(",") if "(" not in value else [value]
+    return all(_UPPER.match(p) and (not strict or len(re.match(r"[A-Z0-9_]*", p).group(0)) >= 3) for p in parts)
+
+
+def _alternatives(value: str) -> list[str]:
+    """``{a,b,c}`` -> a, b, c; ``X|y`` -> X, y (a placeholder with an alternative extension stays whole);
+    ``a,b[,c]`` -> a,b and a,b,c."""
+    if value.startswith("{") and value.endswith("}"):
+        return [v for v in value[1:-1].split(",") if v]
+    if "|" in value and not _UPPER.match(value):
+        return [v for alt in value.split("|") if alt for v in _alternatives(alt)]
+    if re.search(r"\[[^\[\]]*\]", value):
+        return [re.sub(r"\[[^\[\]]*\]", "", value), value.replace("[", "").replace("]", "")]
+    return [value]
+
+
+def _one_of(choices, *, case=True, listed=False):
+    """A validator: the value (or, ``listed``, each item of a comma list) is one of ``choices``."""
+    allowed = [str(c) for c in choices]
+
+    def check(value: str) -> None:
+        items = [v.strip() for v in value.split(",")] if listed else [value]
+        for v in items:
+            if (v if case else v.upper()) not in (allowed if case else [a.upper() for a in allowed]):
+                raise ValueError(f"{v!r} is not one of {', '.join(allowed)}")
+
+    return check
+
+
+def _validators() -> dict[tuple[str, str], object]:
+    """(command, parameter name) -> a function that raises on a value the command refuses, from the lists the
+    commands check against (so a renamed choice fails here as it would for the user)."""
+    from pdrlearn.classify.training import METHODS, check_settings
+    from pdrlearn.io.external import SOURCES
+    from pdrlearn.io.importer import _TIME_SCALE, _resolve_unit, _time_word, parse_frame
+    from pdrlearn.io.sensors import PLACEMENTS
+    from pdrlearn.kernels.bayes import RULES
+    from pdrlearn.kernels.window import BOUNDARIES
+    from pdrlearn.runtime.bundle import UNITS as BODY_UNITS
+    from pdrlearn.sim import SCENARIOS, SPEEDS
+    from pdrlearn.sim.body import PELVIS_MODES
+    from pdrlearn.steps.detectors import DETECTORS
+    from pdrlearn.track.base import PIPELINES
+    from pdrlearn.track.geodetic import parse_start
+    from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
+
+    def settings(kind):
+        return lambda v: check_settings(**{kind: [s.strip() for s in v.split(",")]})
+
+    def unit_word(kind):
+        return lambda v: _resolve_unit(kind, v, [], "doc")
+
+    def time_unit(v):
+        if _time_word(v) not in _TIME_SCALE:
+            raise ValueError(f"time unit {v!r} is not one of {', '.join(_TIME_SCALE)}")
+
+    def two_numbers(v):
+        if len([float(x) for x in v.split(",")]) != 2:
+            raise ValueError(f"{v!r}: two numbers")
+
+    # pdrlearn/waist/calibration.py calibrate_waist: the two pipelines calibrate fits (checked there by name)
+    calibrated = ("waist-pendulum", "waist-pll")
+    assert set(calibrated) <= set(PIPELINES)
+    v = {
+        ("steps", "detector"): _one_of(["auto", *DETECTORS]),
+        ("track", "pipeline"): _one_of(["auto", *PIPELINES]),
+        ("track", "method"): _one_of(["auto", *PLASYS_METHODS], case=False),
+        ("track", "rules"): _one_of(RULES),
+        ("track", "start"): parse_start,
+        ("track", "length_bounds"): two_numbers,
+        ("export", "length_bounds"): two_numbers,
+        ("export", "methods"): _one_of(METHODS, listed=True),
+        ("run", "rules"): _one_of(RULES),
+        ("run", "units"): _one_of(BODY_UNITS, listed=True),
+        ("train", "boundaries"): _one_of(BOUNDARIES),
+        ("calibrate", "pipeline"): _one_of(calibrated),
+        ("simulate", "scenario"): _one_of(SCENARIOS),
+        ("simulate", "speed"): _one_of(SPEEDS),
+        ("simulate", "pelvis"): _one_of(PELVIS_MODES),
+        ("fetch", "source"): _one_of(SOURCES),
+        ("import", "unit"): _one_of(PLACEMENTS),
+        ("import", "time_unit"): time_unit,
+        ("import", "acc_unit"): unit_word("acc"),
+        ("import", "gyro_unit"): unit_word("gyro"),
+        ("import", "frames"): parse_frame,
+    }
+    for cmd in ("train", "train-all"):
+        v[(cmd, "tasks")] = settings("tasks")
+        v[(cmd, "methods")] = settings("methods")
+        v[(cmd, "units")] = settings("units")
+    return v
+
+
+#: text options that take any value (a name, a path, a column, an address): nothing to check
+FREE_TEXT = {("track", "model"), ("run", "protocol"), ("train", "user"),
+             ("train-all", "scheduler"), ("evaluate-all", "scheduler"), ("report", "title"), ("import", "time"),
+             ("import", "acc"), ("import", "gyro"), ("import", "mag"), ("import", "baro"), ("import", "heel"),
+             ("import", "toe"), ("import", "time_format"), ("import", "time_zone"), ("import", "name")}
+
+
+def _value_error(cmd_name: str, param, value: str, validators) -> str | None:
+    """Why ``value`` is refused by ``param`` of ``cmd_name`` (None: accepted or a placeholder)."""
+    annotation = param.type_descriptor.annotation
+    base = getattr(annotation, "__args__", (annotation,))[0] if hasattr(annotation, "__origin__") else annotation
+    check = validators.get((cmd_name, param.name))
+    for alt in _alternatives(value):
+        if _is_placeholder(alt, strict=check is not None):
+            continue
+        try:
+            if base in (int, float):
+                num = base(alt)
+                lo, hi = getattr(param, "min", None), getattr(param, "max", None)
+                if (lo is not None and num < lo) or (hi is not None and num > hi):
+                    return f"{alt} is outside [{lo}, {hi}]"
+            if check is not None:
+                check(alt)
+        except Exception as exc:  # noqa: BLE001 - any refusal is the finding
+            return f"{alt!r}: {' '.join(str(exc).split())}"
+    return None
+
+
+@functools.cache
+def _script_options(path: Path) -> frozenset[str] | None:
+    """Every option a script can read: the string constants of its source that look like one (``"--users"``
+    of ``add_argument`` or of a hand-made ``sys.argv`` parser); None when the script does not exist."""
+    import ast
+
+    if not path.is_file():
+        return None
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    return frozenset(n.value for n in ast.walk(tree) if isinstance(n, ast.Constant) and isinstance(n.value, str)
+                     and re.match(r"^--?[A-Za-z][\w-]*$", n.value))
+
+
+def _check_script(c: Command) -> list[str]:
+    """An experiment script's (or ``python -m pdrlearn.X`` module's) documented options are ones it reads."""
+    script, words = c.words[0], c.words[1:]
+    if _is_placeholder(Path(script).stem, strict=False):  # experiments/X.py, python -m pdrlearn.X
+        return []
+    known = _script_options(ROOT / script)
+    if known is None:
+        return [f"{script}: no such script"]
+    return [f"{script} {w.split('=')[0]}: the script reads no such option"
+            for w in words if re.match(r"^--?[A-Za-z]", w) and w.split("=")[0] not in known]
+
+
+def check_command(c: Command, cli=None, validators=None) -> list[str]:
+    """The problems of one documented command (empty: the CLI accepts it)."""
+    if c.tool == "script":
+        return _check_script(c)
+    if c.tool == "make":
+        targets = _make_targets()
+        return [f"make {w}: no such Makefile target" for w in c.words
+                if not w.startswith("-") and "=" not in w and w not in targets and not _is_placeholder(w, True)]
+    cli = cli or _cli()
+    validators = _validators() if validators is None else validators
+    words = list(c.words)
+    root_opts = {o for p in cli.params for o in (*p.opts, *p.secondary_opts)}
+    while words and words[0].startswith("-"):
+        w = words.pop(0)
+        if w not in root_opts:
+            return [f"pdrlearn {w}: no such option of pdrlearn (it has {', '.join(sorted(root_opts))})"]
+    if not words or words[0] in ("...", "PLACEHOLDER") or _UPPER.match(words[0]):
+        return []  # `pdrlearn --help`, `pdrlearn COMMAND --help`
+    name, words = words[0], words[1:]
+    cmd = cli.commands.get(name)
+    if cmd is None:
+        return [f"pdrlearn {name}: no such command (commands: {', '.join(sorted(cli.commands))})"]
+    params = {o: p for p in cmd.params for o in (*p.opts, *p.secondary_opts) if p.param_type_name == "option"}
+    params.update({o: p for p in cli.params for o in p.opts if o in ("-v", "--verbose")})  # hoisted (B13)
+    problems, positional, given, ellipsis, k, only_args = [], [], set(), False, 0, False
+    while k < len(words):
+        w = words[k]
+        k += 1
+        if w == "--" and not only_args:
+            only_args = True
+        elif "..." in w:
+            ellipsis = True
+        elif not only_args and "/--" in w and w.startswith("--"):  # --gnss/--fixes: either option
+            words[k:k] = w.split("/")
+        elif not only_args and w.startswith("-") and w != "-" and not re.match(r"^-[\d.]", w):
+            opt, eq, val = w.partition("=")
+            p = params.get(opt)
+            if p is None:
+                known = sorted(o for o in params if o.startswith("--"))
+                problems.append(f"pdrlearn {name} {opt}: no such option (it has {', '.join(known)})")
+                continue
+            given.add(p.name)
+            takes_value = not p.is_flag and not p.count
+            if not takes_value:
+                if eq:
+                    problems.append(f"pdrlearn {name} {opt}: a flag, given the value {val!r}")
+                continue
+            if not eq:
+                if k >= len(words) or (words[k].startswith("--") and not c.error_demo):
+                    if c.complete:
+                        problems.append(f"pdrlearn {name} {opt}: needs a value")
+                    continue
+                val = words[k]
+                k += 1
+            if not c.error_demo:
+                why = _value_error(name, p, val, validators)
+                if why:
+                    problems.append(f"pdrlearn {name} {opt} {why}")
+        else:
+            positional.append(w)
+    args = [p for p in cmd.params if p.param_type_name == "argument"]
+    unlimited = any(p.nargs < 0 for p in args)
+    if len(positional) > len(args) and not unlimited:
+        problems.append(f"pdrlearn {name}: {len(positional)} arguments ({' '.join(positional)}); it takes "
+                        f"{len(args)} ({', '.join(p.name.upper() for p in args)})")
+    if not c.error_demo:
+        for p, val in zip(args, positional, strict=False):
+            why = _value_error(name, p, val, validators) if (name, p.name) in validators else None
+            if why:
+                problems.append(f"pdrlearn {name} {p.name.upper()} {why}")
+    if c.complete and not ellipsis and "help" not in given:
+        need = [p for p in args if p.required]
+        if len(positional) < len(need):
+            problems.append(f"pdrlearn {name}: misses {', '.join(p.name.upper() for p in need[len(positional):])}")
+        missing = [p.opts[0] for p in cmd.params if p.param_type_name == "option" and p.required
+                   and p.name not in given]
+        if missing:
+            problems.append(f"pdrlearn {name}: misses the required {', '.join(missing)}")
+    return problems
+
+
+_QUOTED = re.compile(r"(['`])(pdrlearn [a-z][^'`]*)\1")
+
+
+def code_commands() -> list[Command]:
+    """``'pdrlearn ...'`` / `` `pdrlearn ...` `` quoted in the strings of the package and the experiments: the
+    commands error messages, warnings and docstrings tell the user to run (an f-string's fields are
+    placeholders)."""
+    import ast
+
+    out, seen = [], set()
+    for f in [*sorted((ROOT / "pdrlearn").rglob("*.py")), *sorted((ROOT / "experiments").glob("*.py"))]:
+        for node in ast.walk(ast.parse(f.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str):
+                s = node.value
+            elif isinstance(node, ast.JoinedStr):
+                s = "".join(p.value if isinstance(p, ast.Constant) else "PLACEHOLDER" for p in node.values)
+            else:
+                continue
+            for m in _QUOTED.finditer(s):
+                text = " ".join(m.group(2).split())
+                for words in _split_shell(text):
+                    tool, rest = _tool(words)
+                    if tool == "pdrlearn" and (f, node.lineno, text) not in seen:  # an f-string: once
+                        seen.add((f, node.lineno, text))
+                        out.append(Command(f.relative_to(ROOT).as_posix(), node.lineno, tool, rest, complete=False,
+                                           text=text))
+    return out
+
+
+# --------------------------------------------------------------------------------------------------------- tests
+
+COMMANDS = documented_commands() + help_commands() + code_commands()
+
+
+def test_the_docs_have_shell_commands():
+    # the scan finds them (a changed fence style or prompt would silently check nothing)
+    assert sum(c.tool == "pdrlearn" and c.complete for c in COMMANDS) > 80
+    assert sum(c.tool == "pdrlearn" and not c.complete for c in COMMANDS) > 50
+    assert sum(c.tool == "make" for c in COMMANDS) >= 5
+    assert sum(c.tool == "script" for c in COMMANDS) > 50
+    assert sum(c.doc.endswith("--help") for c in COMMANDS) > 30
+    assert sum(c.doc.endswith(".py") for c in COMMANDS) > 100
+    names = {c.words[0] for c in COMMANDS if c.tool == "pdrlearn" and c.words}
+    assert set(_cli().commands) <= names, "a command no doc shows"
+
+
+def test_documented_commands_are_accepted():
+    cli, validators = _cli(), _validators()
+    bad = [f"{c.where}: {p}\n    {c.text}" for c in COMMANDS for p in check_command(c, cli, validators)]
+    assert not bad, f"{len(bad)} stale command(s) in the docs:\n" + "\n".join(bad)
+
+
+def test_every_choice_option_is_checked():
+    """A text option of a command is either checked against its choices here or listed as free text: a new
+    choice option must be added to :func:`_validators`, or the docs' values of it would go unchecked."""
+    validators = _validators()
+    cli = _cli()
+    unchecked = [f"{n} --{p.name}" for n, cmd in cli.commands.items() for p in cmd.params
+                 if p.type_descriptor.annotation is str and (n, p.name) not in validators
+                 and (n, p.name) not in FREE_TEXT]
+    assert not unchecked, f"add these to _validators (a choice) or FREE_TEXT (any text): {unchecked}"
+
+
+# deliberately wrong commands: each must be refused by the same checker (the placeholders do not make it vacuous)
+STALE = [
+    ("pdrlearn steps DIR --detecter accel", "no such option"),
+    ("pdrlearn steps DIR --detector acel", "not one of"),
+    ("pdrlearn steps DIR --detector {auto,accel,pll,waist_ic}", "not one of"),
+    ("pdrlearn track DIR --method M4 --out OUT", "not one of"),
+    ("pdrlearn track DIR --pipeline waist-pendulm --out OUT", "not one of"),
+    ("pdrlearn track DIR --model MODEL_DIR --rules bayesian --out OUT", "not one of"),
+    ("pdrlearn track DIR --realtim --out OUT", "no such option"),
+    ("pdrlearn track DIR --start 41.178 --out OUT", "LAT,LON"),
+    ("pdrlearn track DIR", "misses the required --out"),
+    ("pdrlearn track DIR --out", "needs a value"),
+    ("pdrlearn track --min-confidence 1.5 DIR --out OUT", "outside"),
+    ("pdrlearn train DIR --out M --tasks terrain,lenght", "unknown task"),
+    ("pdrlearn train DIR --out M --methods svm,cnn", "unknown method"),
+    ("pdrlearn train DIR --out M --cv ten", "invalid literal"),
+    ("pdrlearn train DIR --out M --boundaries middle", "not one of"),
+    ("pdrlearn simulate --scenario E --user-seed 1 --out DIR", "not one of"),
+    ("pdrlearn simulate --scenario D --user-seed 1 --speed jog --out DIR", "not one of"),
+    ("pdrlearn fetch physionet --out DIR", "not one of"),
+    ("pdrlearn run BUNDLE SESSION --units foot,arm", "not one of"),
+    ("pdrlearn export MODEL --out B --methods svm,rf", "not one of"),
+    ("pdrlearn import x.csv --out DIR --acc-unit G2", "not one of"),
+    ("pdrlearn calibrate DIR --pipeline plasys --out P.json", "not one of"),
+    ("pdrlearn info DIR --json --force", "no such option"),
+    ("pdrlearn track --gnss/--fix", "no such option"),
+    ("pdrlearn track --align", "no such option"),  # named by the --merge warning until decision L48
+    ("pdrlearn info DIR DIR2", "arguments"),
+    ("pdrlearn trak DIR --out OUT", "no such command"),
+    ("pdrlearn --verbos track DIR --out OUT", "no such option"),
+    ("make tests", "no such Makefile target"),
+    ("python experiments/sim_to_real.py --rest-fix", "reads no such option"),  # a flag removed in session 3
+    (".venv/bin/python experiments/step_counts.py --users 10", "no such script"),
+    ("python -m pdrlearn.features.report --sim --user 3", "reads no such option"),
+]
+
+
+@pytest.mark.parametrize("text, why", STALE, ids=[s for s, _ in STALE])
+def test_the_checker_catches_stale_commands(text, why):
+    (words,) = _split_shell(text)
+    tool, rest = _tool(words)
+    problems = check_command(Command("x.md", 1, tool, rest, complete=True, text=text))
+    assert problems and any(why in p for p in problems), problems
+
+
+@pytest.mark.parametrize("text", [
+    "pdrlearn steps DIR --detector {auto,accel,accel-force,pelvic-gyro,pll,waist-ic} --out steps.csv --json",
+    "pdrlearn track DIR --method M3 --model MODEL_DIR|oracle --start LAT,LON --out OUT --json -v",
+    "pdrlearn simulate --scenario D --user-seed 1 --out walks/D",
+    "pdrlearn train a b c --out models/u1 --tasks terrain --methods heuristic,dtw,svm,nn,ensemble --cv 5",
+    "pdrlearn run BUNDLE --protocol - --out OUT",
+    "pdrlearn run BUNDLE SESSION --resample/--no-resample",
+    "make demo test",
+])
+def test_the_checker_accepts_valid_commands(text):
+    (words,) = _split_shell(text)
+    tool, rest = _tool(words)
+    assert check_command(Command("x.md", 1, tool, rest, complete=True, text=text)) == []
+
+
+def test_extraction_handles_shell_syntax(tmp_path):
+    doc = tmp_path / "d.md"
+    doc.write_text("x\n```bash\nmkdir -p r && pdrlearn evaluate M S --report r/e --json > r/e.json  # c\n"
+                   "pdrlearn train a \\\n    b --out m\ncat c.txt | pdrlearn run B --protocol - --out o\n```\n"
+                   "```console\n$ pdrlearn info <session>\nerror: <session>: no such folder\npdrlearn output\n```\n"
+                   "    $ pdrlearn plot s --out x.png --start abc\n    error: bad\n"
+                   "and `pdrlearn track DIR [--start LAT,LON] --out O`, `make lint`.\n", encoding="utf-8")
+    cmds = documented_commands([doc])
+    assert [(c.line, c.tool, c.words, c.complete, c.error_demo) for c in cmds] == [
+        (3, "pdrlearn", ["evaluate", "M", "S", "--report", "r/e", "--json"], True, False),
+        (4, "pdrlearn", ["train", "a", "b", "--out", "m"], True, False),
+        (6, "pdrlearn", ["run", "B", "--protocol", "-", "--out", "o"], True, False),
+        (9, "pdrlearn", ["info", "PLACEHOLDER"], True, True),
+        (13, "pdrlearn", ["plot", "s", "--out", "x.png", "--start", "abc"], True, True),
+        (15, "pdrlearn", ["track", "DIR", "--start", "LAT,LON", "--out", "O"], False, False),
+        (15, "make", ["lint"], False, False),
+    ]
+
+
+def test_documented_inputs_exist():
+    """A bundled input a command names (``datasets/real/...``, ``models/plasys-...``) is in the repository."""
+    bad = sorted({f"{c.where}: {w}" for c in COMMANDS for w in c.words
+                  if w.startswith(("datasets/real/", "models/plasys")) and not list(ROOT.glob(w.rstrip("/")))})
+    assert not bad, f"documented inputs that are not bundled: {bad}"
+
+
+#: README quick-start commands run on the bundled data, in order, in one temporary folder: (doc, the start of
+#: the documented command, placeholder -> value). The text run is the docs' own (found again on every run).
+QUICK = [
+    ("README.md", "pdrlearn simulate --scenario D --user-seed 1 --out walks/D", {}),
+    ("README.md", "pdrlearn track datasets/real/gaitmap_level_right --out results/real_r", {}),
+    ("README.md", "pdrlearn info DIR --json", {"DIR": "datasets/real/mobgap_HA001_Test5_Trial1"}),
+    ("README.md", "pdrlearn steps DIR", {"DIR": "datasets/real/gaitmap_level_left",
+                                         "{auto,accel,accel-force,pelvic-gyro,pll,waist-ic}": "accel"}),
+    ("docs/waist.md", "pdrlearn calibrate datasets/real/mobgap_HA001_Test5_Trial1", {}),
+    ("docs/waist.md", "pdrlearn track datasets/real/mobgap_HA001_Test5_Trial2", {}),
+    ("docs/real-data-sweep.md", "pdrlearn run models/plasys-sim-default DIR", {"DIR": "walks/D"}),
+]
+
+
+@pytest.mark.slow  # ~5 s: seven commands in-process on the bundled recordings
+def test_readme_quick_start_runs(tmp_path, monkeypatch, capsys):
+    from pdrlearn.cli import main
+
+    (tmp_path / "datasets").mkdir()  # datasets/real only (datasets/external is not bundled)
+    (tmp_path / "datasets" / "real").symlink_to(ROOT / "datasets" / "real", target_is_directory=True)
+    (tmp_path / "models").mkdir()
+    (tmp_path / "models" / "plasys-sim-default").symlink_to(ROOT / "models" / "plasys-sim-default",
+                                                            target_is_directory=True)
+    monkeypatch.chdir(tmp_path)
+    for doc, start, values in QUICK:
+        found = [c for c in COMMANDS if c.doc == doc and c.tool == "pdrlearn" and c.text.startswith(start)]
+        assert found, f"{doc} no longer shows `{start} ...`: update QUICK"
+        argv = [values.get(w, w) for w in found[0].words]
+        rc = main(argv)
+        out = capsys.readouterr()
+        assert rc == 0, f"{found[0].where}: pdrlearn {' '.join(argv)} exited {rc}: {out.err.strip()[-500:]}"
+
+
+def _mutations(c: Command, cli, validators):
+    """Copies of a documented command with one option name or one checked value misspelled (+ "zz")."""
+    if c.tool == "script":
+        for i, w in enumerate(c.words):
+            if w.startswith("--"):
+                yield i, c.words[:i] + [w.split("=")[0] + "zz"] + c.words[i + 1:]
+        return
+    if c.tool != "pdrlearn" or c.error_demo or not c.words or c.words[0] not in cli.commands:
+        return
+    cmd = cli.commands[c.words[0]]
+    opts = {o: p for p in cmd.params for o in (*p.opts, *p.secondary_opts) if p.param_type_name == "option"}
+    for i, w in enumerate(c.words):
+        if w.startswith("--") and "=" not in w:
+            yield i, c.words[:i] + [w + "zz"] + c.words[i + 1:]
+        p = opts.get(c.words[i - 1]) if i > 1 else None
+        if p is not None and not p.is_flag and not _is_placeholder(w, strict=True) and "..." not in w and (
+                (c.words[0], p.name) in validators or p.type_descriptor.annotation in (int, float)):
+            yield i, c.words[:i] + [w + "zz"] + c.words[i + 1:]
+
+
+def test_every_documented_option_and_value_is_checked():
+    """Misspelling any one option or checked value of any documented command makes the checker fail: the
+    placeholders, alternatives and usage brackets hide nothing from it."""
+    cli, validators = _cli(), _validators()
+    tried, missed = 0, []
+    for c in COMMANDS:
+        for _i, words in _mutations(c, cli, validators):
+            tried += 1
+            bad = Command(c.doc, c.line, c.tool, words, complete=c.complete, text=" ".join(words))
+            if not check_command(bad, cli, validators):
+                missed.append(f"{c.where}: {' '.join(words)}")
+    assert tried > 500
+    assert not missed, f"{len(missed)} misspellings not caught: {missed[:20]}"
