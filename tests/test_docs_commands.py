@@ -268,6 +268,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.sim.body import PELVIS_MODES
     from pdrlearn.steps.detectors import DETECTORS
     from pdrlearn.track.base import PIPELINES
+    from pdrlearn.sim.route import parse_route
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
 
@@ -302,6 +303,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("train", "boundaries"): _one_of(BOUNDARIES),
         ("calibrate", "pipeline"): _one_of(calibrated),
         ("simulate", "scenario"): _one_of(SCENARIOS),
+        ("simulate", "route"): parse_route,
         ("simulate", "speed"): _one_of(SPEEDS),
         ("simulate", "pelvis"): _one_of(PELVIS_MODES),
         ("fetch", "source"): _one_of(SOURCES),
