@@ -88,3 +88,19 @@ def test_tracked_down_strides_move_their_true_horizontal_length(stairs_down, str
     assert projected < 0.03 < norm
     with pytest.raises(DataError, match="down_mode"):
         track_plasys(stairs_down, down_mode="diagonal", **kw)
+
+
+def test_offline_and_streamed_tracks_share_one_reference_altitude(stairs_down):
+    """Decision L54: the streamed track's strides start at other times than offline's; both are measured
+    against the same reference altitude change (the labelled strides' height_m), and both report the
+    agreement of their classes with the labels (L53)."""
+    from pdrlearn.track.evaluate import evaluate_track
+    from pdrlearn.track.plasys import track_plasys
+
+    off = track_plasys(stairs_down, method="M3", model="oracle")
+    on = track_plasys(stairs_down, method="M3", model="oracle", streaming=True)
+    assert off.trajectory["t"].iloc[0] != on.trajectory["t"].iloc[0]
+    a, b = evaluate_track(off, stairs_down), evaluate_track(on, stairs_down)
+    assert a["altitude_change_ref_m"] == b["altitude_change_ref_m"] == pytest.approx(
+        stairs_down.steps["height_m"].sum())
+    assert a["terrain_agreement"] == pytest.approx(1.0)  # the oracle's classes are the labels
