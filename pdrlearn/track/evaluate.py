@@ -147,7 +147,7 @@ def _basic(result: TrackResult, out: dict) -> None:
     if last is not None and "lat" in tr:
         out["final_position"].update(lat=float(last["lat"]), lon=float(last["lon"]))
     # the tracked altitude change, with or without ground truth (session 14 trial finding 2)
-    out["altitude_change_m"] = float(tr["z"].iloc[-1] - tr["z"].iloc[0]) if len(tr) else 0.0
+    out["altitude_change_m"] = float(tr["z"].iloc[-1] - tr["z"].iloc[0]) if len(tr) and "z" in tr else 0.0
 
 
 def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[float | None, str]:
