@@ -26,7 +26,9 @@ def results(tmp_path):
     (d / "cohort_summary.csv").write_text("user,status,terrain_accuracy\nu1,ok,0.98\nu2,failed,\n")
     run = d / "track_A"
     run.mkdir()
-    (run / "summary.json").write_text(json.dumps({"distance_m": 20.1, "distance_error_pct": 0.5}))
+    (run / "summary.json").write_text(json.dumps({"distance_m": 20.1, "distance_error_pct": 0.5,
+                                                  "altitude_change_m": -3.31, "altitude_change_ref_m": 0.0,
+                                                  "final_altitude_error_m": 3.31, "terrain_agreement": 0.928}))
     for name in ("confusion_terrain.png", "track_A/path.png"):
         fig, ax = plt.subplots(figsize=(3, 2))
         ax.imshow(np.eye(3), cmap="viridis")
@@ -43,6 +45,9 @@ def test_report_contains_every_section(results, tmp_path):
     assert "http://" not in page and "https://" not in page  # no network resources
     md = (out / "report.md").read_text()
     assert "| svm " in md and "![confusion_terrain.png](img/" in md
+    # session 14 trial finding 2 (L52): the altitude change and its error show in the tracking table
+    assert "altitude_change_m" in md and "-3.31" in md and "final_altitude_error_m" in md
+    assert "terrain_agreement" in md  # L53
     assert len(list((out / "img").iterdir())) == 2
     titles = [s.title for s in collect(results)]
     assert "Evaluation — terrain" in titles and "Confusion matrices" in titles and "Trajectories" in titles

@@ -70,7 +70,7 @@ def test_one_stride_float_kernels_equal_the_array_paths():
         te, di, lc = (rng.choice(x) for x in (["flat", "up", "down", None], ["forward", "backward", None],
                                               ["short", "normal", "long", None]))
         for b in (None, bounds):
-            for dm in ("norm3", "horizontal"):
+            for dm in ("norm3", "projected", "horizontal"):  # L51: "projected" too
                 one = SK.stride_rules_one(*d.tolist(), te, di, lc, bounds=b, down_mode=dm)
                 arr = SK.apply_stride_rules(np.vstack([d, d]), [te, te], [di, di], [lc, lc], bounds=b, down_mode=dm)
                 assert one == (arr[0][0], arr[1][0])

@@ -97,7 +97,7 @@ def test_one_stride_rules_equal_the_array_path():
     for te, di, lc, b, dm in itertools.product(["flat", "up", "down", None, "", float("nan")],
                                                ["forward", "backward", "left", None],
                                                ["short", "normal", "long", "huge", None], [bounds, None],
-                                               ["norm3", "horizontal"]):
+                                               ["norm3", "projected", "horizontal"]):  # L51
         d = rng.normal(size=3) * [1.0, 0.3, 0.2]
         one = SK.apply_stride_rules(d, [te], [di], [lc], bounds=b, down_mode=dm)
         two = SK.apply_stride_rules(np.vstack([d, d]), [te, te], [di, di], [lc, lc], bounds=b, down_mode=dm)

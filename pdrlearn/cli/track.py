@@ -187,8 +187,12 @@ def track(
                   f"{summary['distance_matched_error_pct']:+.2f} %)"  # a reference labelling part of the walk
                   if "distance_matched_error_pct" in summary and "stride_length_matched" in summary
                   and err is not None and summary["stride_length_matched"] < summary["n_steps"] else "")
-               + (f", final position error {summary['final_position_error_m']:.2f} m"
+               + (f", final position error {summary['final_position_error_m']:.2f} m horizontal"
                   if "final_position_error_m" in summary else "")
+               # L52: the altitude change, with its reference when the session has one
+               + (f", altitude change {summary['altitude_change_m']:+.2f} m" if "altitude_change_m" in summary else "")
+               + (f" (reference {summary['altitude_change_ref_m']:+.2f} m)" if "altitude_change_ref_m" in summary
+                  else "")
                # decision C16: how much of the walk the model's training data covered
                + (f"; {100 * summary['out_of_domain_fraction']:.0f} % of the strides outside the model's "
                   "training range" if summary.get("out_of_domain_fraction") is not None else ""))

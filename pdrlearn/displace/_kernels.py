@@ -14,9 +14,11 @@ from scipy.interpolate import make_interp_spline
 from scipy.spatial.transform import Rotation
 
 from pdrlearn.kernels.stride import (  # noqa: F401 (numpy-only rules, shared with the runtime)
+    DOWN_MODES,
     altitude_change,
     apply_direction,
     clamp_length,
+    horizontal_part,
     terrain_distance,
 )
 

@@ -55,7 +55,8 @@ class StepRules:
     bounds : length class -> (min, max) in metres of the unit the displacement is measured for (a
         foot-unit stride); default: the thesis step bounds scaled by ``bounds_scale``
     bounds_scale : factor applied to the default bounds (2.0 turns thesis step bounds into stride bounds)
-    down_mode : ``"norm3"`` (thesis eq. 61) or ``"horizontal"`` for descending stairs
+    down_mode : ``"norm3"`` (thesis eq. 61), ``"projected"`` (decision L51: the norm's horizontal part moves
+        x/y) or ``"horizontal"`` for descending stairs
     clamp, sign, altitude : switch each rule on/off (for ablations)
     mode : ``"thesis"`` (the class prevails: sign flip, hard clamp, altitude from the terrain class) or
         ``"bayes"`` (docs/decisions/localization.md L14): the length is the posterior mean given the
@@ -70,8 +71,8 @@ class StepRules:
                  down_mode: str = "norm3", clamp: bool = True, sign: bool = True, altitude: bool = True,
                  mode: str = "thesis", sigma_rel: float = KB.SIGMA_REL, sigma_min: float = KB.SIGMA_MIN,
                  dz_min: float = KB.DZ_MIN):
-        if down_mode not in ("norm3", "horizontal"):
-            raise DataError(f"StepRules: down_mode '{down_mode}' is not 'norm3' or 'horizontal'")
+        if down_mode not in K.DOWN_MODES:
+            raise DataError(f"StepRules: down_mode '{down_mode}' is not one of {', '.join(K.DOWN_MODES)}")
         if mode not in ("thesis", "bayes"):
             raise DataError(f"StepRules: mode '{mode}' is not 'thesis' or 'bayes'")
         self.mode = mode
@@ -92,7 +93,10 @@ class StepRules:
         return {k: (lo * sc, hi * sc) for k, (lo, hi) in THESIS_STEP_BOUNDS.items()}
 
     def apply(self, disp: np.ndarray, classes: pd.DataFrame) -> pd.DataFrame:
-        """Per-stride ``length_m`` (signed) and ``dz_m`` from displacements (B, 3) and classes.
+        """Per-stride ``length_m`` (signed; what moves x/y) and ``dz_m`` from displacements (B, 3) and classes.
+        A stride classed down gets the thesis' 3-axis norm (``down_mode="norm3"``, the default: the norm moves
+        x/y), its horizontal part (``"projected"``, decision L51: the path length is ``hypot(length_m, dz_m)``)
+        or the horizontal distance (``"horizontal"``).
 
         ``classes`` has ``terrain``, ``direction``, ``length_class``; a missing value means "no rule":
         horizontal distance and the estimated vertical change / the sign of the estimate / no clamp.
@@ -128,5 +132,6 @@ class StepRules:
         if self.altitude:
             ruled = np.where(known_terrain, K.altitude_change(disp[:, 2], terrain), dz)
             dz = np.where(np.abs(dz) > self.dz_min, dz, ruled) if bayes else ruled
+        length = K.horizontal_part(length, dz, terrain, down_mode=self.down_mode)  # decision L51
         return pd.DataFrame({"length_m": length, "dz_m": dz, "raw_dx_m": disp[:, 0], "raw_dy_m": disp[:, 1],
                              "raw_dz_m": disp[:, 2]})

@@ -371,13 +371,37 @@ def terrain_distance(disp: np.ndarray, terrain: np.ndarray, *, down_mode: str = 
     """Unsigned distance (m) of each stride from its displacement (B, 3) according to its terrain class.
 
     flat/up: the displacement along the direction of travel (horizontal, the thesis' "x-axis" filter);
-    down: the norm of the three axes, thesis eq. 61 (``down_mode="horizontal"`` uses the flat rule).
+    down: the norm of the three axes, thesis eq. 61 (``down_mode="horizontal"`` uses the flat rule; under
+    ``"projected"`` the norm is the path length whose horizontal part :func:`horizontal_part` gives, L51).
     """
     horiz = np.hypot(disp[:, 0], disp[:, 1])
     if down_mode == "horizontal":
         return horiz
     norm3 = np.sqrt(np.add.reduce(disp * disp, axis=1))  # thesis eq. 61 (= np.linalg.norm(disp, axis=1))
     return np.where(np.asarray(terrain) == "down", norm3, horiz)
+
+
+#: the down-stride rules: "norm3" (thesis eq. 61, the norm moves x/y), "projected" (decision L51: the norm is
+#: the path length, its horizontal part moves x/y), "horizontal" (the flat/up rule)
+DOWN_MODES = ("norm3", "projected", "horizontal")
+
+
+def horizontal_part(length, dz, terrain, *, down_mode: str = "norm3"):
+    """Decision L51 (an option, ``down_mode="projected"``): the signed horizontal length that moves x/y. A
+    stride classed down has the thesis' 3-axis norm (eq. 61) as its path length ``length``; its horizontal part
+    is sign(length) * sqrt(max(length^2 - dz^2, 0)), ``dz`` the altitude change the rules give the stride.
+    Other modes and other strides: ``length`` as it is. Arrays or Python floats (the runtime, decision E17)."""
+    if isinstance(length, float):  # the runtime's one stride (decision E17: Python floats)
+        if down_mode != "projected" or terrain != "down":
+            return length
+        h = math.sqrt(max(length * length - dz * dz, 0.0))
+        return -h if length < 0 else h
+    length = np.asarray(length, dtype=float)
+    if down_mode != "projected":
+        return length
+    dz = np.asarray(dz, dtype=float)
+    h = np.sqrt(np.maximum(length * length - dz * dz, 0.0))
+    return np.where(np.asarray(terrain, dtype=object) == "down", np.where(length < 0, -h, h), length)
 
 
 def apply_direction(distance: np.ndarray, direction: np.ndarray) -> np.ndarray:
@@ -450,7 +474,7 @@ def apply_stride_rules(disp: np.ndarray, terrain=None, direction=None, length_cl
         length = clamp_length(length, np.where(has_lc, length_class, ""), bounds)
     has_t = _known(terrain)
     dz = np.where(has_t, altitude_change(disp[:, 2], np.where(has_t, terrain, "flat")), disp[:, 2])
-    return length, dz
+    return horizontal_part(length, dz, terrain, down_mode=down_mode), dz  # decision L51
 
 
 def stride_rules_one(dx: float, dy: float, dz: float, terrain=None, direction=None, length_class=None, *,
@@ -487,7 +511,7 @@ def stride_rules_one(dx: float, dy: float, dz: float, terrain=None, direction=No
         length = -mag if length < 0 else mag
     if _known_one(terrain) and not (bayes and abs(dz) > dz_min):  # altitude_change (L14: a clear dz stays)
         dz = abs(dz) if terrain == "up" else -abs(dz) if terrain == "down" else 0.0
-    return length, dz
+    return horizontal_part(float(length), dz, terrain, down_mode=down_mode), dz  # decision L51
 
 
 # -- position -----------------------------------------------------------------------------------------

@@ -27,6 +27,7 @@ from pdrlearn.errors import DataError, ModelError
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
 from pdrlearn.kernels.stride import (
+    DOWN_MODES,
     GAP_YAW_MAX_S,
     HEADING_SOURCES,
     StanceSegmenter,
@@ -85,7 +86,7 @@ _FOOT_IMU = frozenset(("fAccelerometer", "fGyroscope"))
 DEFAULT_DISPLACEMENT = {
     "unit": "foot stride",
     "length_bounds_m": {"short": [0.0, 0.60], "normal": [0.60, 0.90], "long": [0.92, 20.0]},
-    "down_mode": "norm3",  # thesis eq. 61: 3-axis norm on descending stairs
+    "down_mode": "norm3",  # thesis eq. 61: 3-axis norm on descending stairs ("projected": its horizontal part, L51)
     "stance_gyro_rad_s": 0.8,  # decision E7: stance = foot rate below this for >= min_stance_s
     "min_stance_s": 0.1,
     "stance_half_s": 0.3,
@@ -367,6 +368,9 @@ class Tracker:
         b = self.params.get("length_bounds_m")
         self.bounds = None if b is None else {str(k): (float(v[0]), float(v[1])) for k, v in b.items()}
         self._down_mode = str(self.params.get("down_mode", "norm3"))
+        if self._down_mode not in DOWN_MODES:  # decision L51: "projected" is an option
+            raise DataError(f"bundle {self.bundle.path}: displacement down_mode {self._down_mode!r} is not one of "
+                            f"{', '.join(DOWN_MODES)}; fix the \"displacement\" entry of its manifest.json")
         #: decision L40 / E25: the class rules and their confidence gate (absent from older bundles: thesis, 0)
         self.rules = str(self.params.get("rules", LEGACY_RULES) if rules is None else rules)
         if min_confidence is None and rules is not None:  # L41: a rule asked for brings its own gate, as track's

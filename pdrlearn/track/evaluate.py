@@ -146,6 +146,29 @@ def _basic(result: TrackResult, out: dict) -> None:
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
     if last is not None and "lat" in tr:
         out["final_position"].update(lat=float(last["lat"]), lon=float(last["lon"]))
+    # the tracked altitude change, with or without ground truth (session 14 trial finding 2)
+    out["altitude_change_m"] = float(tr["z"].iloc[-1] - tr["z"].iloc[0]) if len(tr) and "z" in tr else 0.0
+
+
+def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[float | None, str]:
+    """The reference altitude change (m) of a walk and its source. A ``steps.csv`` whose rows all have a
+    ``height_m`` gives their sum (the floor-level change of the labelled strides, as ``distance_ref_m`` sums
+    their ``length_m``; strides of two feet: the mean of the feet's sums, each foot's strides tile the walk),
+    the same for every tracker of the session; else the ground-truth trajectory's z from ``t0`` to ``t1``
+    (the track's first and last time). Before, the trajectory was always read at the track's own times, so
+    ``track`` and ``run`` (whose first stride starts 0.02 s apart) differed by the body's sway (3.0514 vs
+    3.0494 m on one walk)."""
+    st = session.steps
+    if st is not None and len(st) and "height_m" in st and st["height_m"].notna().all():
+        h = st["height_m"].astype(float)
+        if "foot" in st and st["foot"].nunique() >= 2:
+            return float(h.groupby(st["foot"]).sum().mean()), "steps.csv height_m (mean of the feet's sums)"
+        return float(h.sum()), "steps.csv height_m"
+    gt = session.trajectory
+    if gt is not None and len(gt) > 1 and "z" in gt:
+        t, z = gt["t"].to_numpy(float), gt["z"].to_numpy(float)
+        return float(np.interp(t1, t, z) - np.interp(t0, t, z)), "trajectory.csv z at the track's first and last time"
+    return None, ""
 
 
 def _reference_distance(session: Session, *, waist: bool = False) -> tuple[float | None, str]:
@@ -181,11 +204,27 @@ def _ground_truth(result: TrackResult, session: Session, out: dict) -> None:
         est = tr[["x", "y", "z"]].to_numpy(float)
         d_true = p1 - p0
         d_est = est[-1] - est[0]
-        out["final_position_error_m"] = float(np.hypot(*(d_est[:2] - d_true[:2])))
-        out["altitude_change_m"] = float(d_est[2])
-        out["altitude_change_ref_m"] = float(d_true[2])
-        if abs(d_true[2]) > 0.5:
-            out["altitude_error_pct"] = 100.0 * abs(d_est[2] - d_true[2]) / abs(d_true[2])
+        out["final_position_error_m"] = float(np.hypot(*(d_est[:2] - d_true[:2])))  # horizontal
+
+
+def _altitude(result: TrackResult, session: Session, out: dict) -> None:
+    """``altitude_change_ref_m`` (:func:`reference_altitude_change`), ``final_altitude_error_m`` (|tracked -
+    reference altitude change|), ``final_position_error_3d_m`` (with the horizontal ``final_position_error_m``)
+    and ``altitude_error_pct`` (a reference change over 0.5 m)."""
+    tr = result.trajectory
+    if not len(tr):
+        return
+    ref, source = reference_altitude_change(session, float(tr["t"].iloc[0]), float(tr["t"].iloc[-1]))
+    if ref is None:
+        return
+    est = out["altitude_change_m"]
+    out["altitude_change_ref_m"] = ref
+    out["altitude_ref_source"] = source
+    out["final_altitude_error_m"] = abs(est - ref)
+    if "final_position_error_m" in out:
+        out["final_position_error_3d_m"] = float(np.hypot(out["final_position_error_m"], est - ref))
+    if abs(ref) > 0.5:
+        out["altitude_error_pct"] = 100.0 * abs(est - ref) / abs(ref)
 
 
 def _composed_strides(est: pd.DataFrame, ref: pd.DataFrame, used_est: set, used_ref: set, *,
@@ -239,6 +278,34 @@ def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
             out["stride_length_mae_pct_turns"] = float(100.0 * np.mean((err / np.abs(r))[turn]))
 
 
+#: the class columns of a tracked step table compared with the labels (steps.csv), decision L53
+CLASS_TASKS = ("terrain", "direction", "length_class")
+
+
+def _class_agreement(result: TrackResult, session: Session, out: dict) -> None:
+    """Foot tracks on sessions with class labels (decision L53): per task, the fraction of tracked strides
+    matched to a labelled stride (time overlap, IoU >= 0.5) whose class is the label, ``<task>_agreement``,
+    and the strides compared, ``class_agreement_strides``. This scores the classes of the tracker's own
+    stride windows (what the rules used), not the labelled windows ``pdrlearn evaluate`` scores."""
+    st, lab = result.steps, session.steps
+    if lab is None or not len(lab) or not len(st) or "unit" not in st or not (st["unit"] == "foot").all():
+        return
+    tasks = [c for c in CLASS_TASKS if c in st and c in lab and st[c].notna().any() and lab[c].notna().any()]
+    if not tasks:
+        return
+    lab = lab.reset_index(drop=True)
+    pairs = match_by_overlap(st, lab)
+    n = 0
+    for c in tasks:
+        both = [(st[c].iloc[i], lab[c].iloc[j]) for i, j in pairs
+                if pd.notna(st[c].iloc[i]) and pd.notna(lab[c].iloc[j])]
+        if both:
+            out[f"{c}_agreement"] = float(np.mean([str(a) == str(b) for a, b in both]))
+            n = max(n, len(both))
+    if n:
+        out["class_agreement_strides"] = n
+
+
 def _foot_stride_f1(result: TrackResult, session: Session, out: dict) -> None:
     """Foot tracks on sessions with ground-truth strides: ``step_f1`` (with ``step_precision`` /
     ``step_recall``) of the tracked strides against the labelled ones, matched by time overlap (IoU >= 0.5,
@@ -290,12 +357,15 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
 
 
 #: metric helpers run in order by :func:`evaluate_track`; append to extend.
-METRICS = [_basic, _ground_truth, _stride_lengths, _foot_stride_f1, _waist_references, _turns]
+METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _waist_references, _turns,
+           _class_agreement]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:
-    """Summary metrics: ``distance_m``, ``n_steps``, ``final_position`` and, with ground truth,
-    ``distance_error_pct``, ``final_position_error_m`` (horizontal, start-aligned), altitude errors and
+    """Summary metrics: ``distance_m``, ``n_steps``, ``final_position``, ``altitude_change_m`` and, with
+    ground truth, ``distance_error_pct``, ``final_position_error_m`` (horizontal, start-aligned),
+    ``altitude_change_ref_m``, ``final_altitude_error_m``, ``final_position_error_3d_m``, ``altitude_error_pct``,
+    per-task class agreement with the labels (``terrain_agreement``, ..., decision L53) and
     ``stride_length_mae_m`` / ``stride_length_mae_pct`` (strides matched by time overlap) and, with
     reference turns, ``n_turns``, ``turn_angle_mae_deg`` and ``turn_sign_agreement`` (decision L42)."""
     out: dict = {}

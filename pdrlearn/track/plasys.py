@@ -416,7 +416,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     initial_heading : ENU heading (rad) at the start when the heading is relative (foot, or no magnetometer)
     bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
         (the foot unit measures strides = two steps, see docs/decisions/localization.md)
-    down_mode : "norm3" (thesis eq. 61) or "horizontal" for descending stairs
+    down_mode : "norm3" (thesis eq. 61, the norm moves x/y), "projected" (decision L51: the norm's horizontal
+        part sqrt(L^2 - dz^2) moves x/y) or "horizontal" for descending stairs
     rules : "thesis" (the classes prevail, ch.7.2.2) or "bayes" (class probabilities weighed against the
         estimate's uncertainty, docs/decisions/localization.md L14). Default None: "bayes" with a model's
         classes, "thesis" with ``model="oracle"`` labels (decision L18), streaming too (L40, L41)
@@ -461,6 +462,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                              "a trained model (--model DIR, `pdrlearn train`) or --model oracle")
     if method not in METHODS:
         raise DataError(f"plasys: method '{method}' is not one of auto, M1, M2, M3")
+    if down_mode not in SK.DOWN_MODES:  # decision L51: offline and streamed alike
+        raise DataError(f"plasys: down_mode '{down_mode}' is not one of {', '.join(SK.DOWN_MODES)}")
     if streaming:
         if steps != "detector" or align:
             raise DataError("plasys streaming=True: steps and align are not streamable; leave them at their "
