@@ -40,6 +40,7 @@ from pdrlearn.kernels.stride import (
 )
 from pdrlearn.kernels.window import (
     BOUNDARIES,
+    BRIDGE_GAP_S,
     GROUP_STREAMS,
     GROUPS,
     _fill_channels,
@@ -71,7 +72,7 @@ SENSOR_WIDTH = {"fAccelerometer": 3, "fGyroscope": 3, "fForceA": 1, "fForceB": 1
 #: decision E30: an interval between two pushed samples of a stream longer than this (s) is a gap the tracker
 #: warns about (once per gap); longer than B11's 1 s (``pdrlearn.track.gaps.MIN_GAP_S``) in a foot stream, the
 #: stride across it moves 0 m, as offline ``pdrlearn track`` (plasys) does
-GAP_WARN_S = 0.25
+GAP_WARN_S = BRIDGE_GAP_S  # 0.25 s; decision E36: a stride over such a gap is measured on the gap clock
 GAP_LONG_S = 1.0
 #: the foot streams whose long gaps zero the stride across them (offline plasys' ``foot_gaps``, B11)
 _FOOT_GAP_STREAMS = frozenset(("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
@@ -966,9 +967,16 @@ class Tracker:
                 x, y, z = self.position.tolist()
                 return Step(t0, t1, {}, {}, 0.0, 0.0, self.heading, x, y, z, gap_s=gap)
             bridged = bool(over)  # a shorter gap in the foot accelerometer / gyroscope: no classes (B11)
-        lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
-        if bridged:  # as UserModel.predict_steps leaves a step without the foot unit (offline, track --streaming)
+        if bridged:  # no classes, as UserModel.predict_steps leaves a step without the foot unit (offline, track
+            # --streaming); decision E36: levelled and integrated with the gap counted as one sample interval, as
+            # offline and track --streaming (by the shared kernel: the push-time state has the real clock)
             classes, proba = {}, {}
+            streams = _Views(self._buf)
+            lev = levelled_units(streams, t0, t1, available=available_groups(streams), forward=self.forward,
+                                 rest_search_s=self.rest_search_s, heading=self.heading_mode, bridge_gaps=True)
+            disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
+        else:
+            lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
         if self._prev_end is not None and t0 > self._prev_end and headed_by_foot(lev, self.heading_source):
             dyaw += gap_yaw(*self._stream("fGyroscope"), *self._stream("fAccelerometer"), self._prev_end, t0)  # L31
         self._prev_end = t1
