@@ -156,9 +156,9 @@ def test_a_long_gap_in_every_stream_is_warned_once_and_its_stride_moves_0_m_as_t
 @pytest.mark.parametrize("incremental", [True, False])
 def test_a_short_gap_is_bridged_unclassified_as_track_streaming_and_warned_once(root, walk, incremental):
     """A 0.5 s gap: bridged; the strides overlapping the foot's gap have no classes, as offline's B11 leaves them
-    (before: classified from the interpolated window). Positions equal track --streaming's with the shared
-    kernel (``incremental=False``); the push-time levelling (E15) differs on the stride that starts inside the
-    gap (0.11 m here; left to the incremental levelling's own review)."""
+    (before: classified from the interpolated window). Positions equal track --streaming's (E30: with the shared
+    kernel only, ``incremental=False``; since E36 a stride over a foot gap is levelled by the shared kernel on the
+    gap clock in both, and the push-time levelling's 0.11 m on the stride that starts inside the gap is gone)."""
     s = _without(walk, 10.2, 10.7)
     tr = Tracker(root / "bundle", incremental=incremental)
     steps = replay(tr, s, 0.37)
@@ -170,9 +170,8 @@ def test_a_short_gap_is_bridged_unclassified_as_track_streaming_and_warned_once(
     unclassified = [i for i, st in enumerate(steps) if not st.classes]
     assert unclassified == list(np.flatnonzero(res.steps["terrain"].isna())) and len(unclassified) == 2
     assert all(steps[i].start_s < 10.7 and steps[i].end_s > 10.15 for i in unclassified)
-    if not incremental:
-        got = np.array([[st.x, st.y, st.z] for st in steps])
-        assert np.abs(got - res.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
+    got = np.array([[st.x, st.y, st.z] for st in steps])
+    assert np.abs(got - res.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
 
 
 def test_a_waist_gap_is_warned_and_does_not_zero_the_stride(root, walk):

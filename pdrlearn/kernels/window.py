@@ -468,8 +468,32 @@ def available_groups(streams: Streams) -> tuple[str, ...]:
 Levelled = dict[str, tuple[np.ndarray, np.ndarray, "np.ndarray | None", "np.ndarray | None", float]]
 
 
+#: Decision E36: an interval between two foot-accelerometer samples of a stride longer than this (s) is a gap:
+#: the runtime's warned gap (``GAP_WARN_S``, decision E30; shorter ones cannot hide a stance)
+BRIDGE_GAP_S = 0.25
+
+
+def gap_clock(t: np.ndarray, gap_s: float = BRIDGE_GAP_S) -> np.ndarray:
+    """Decision E36: a stride's sample times ``t`` (s) with each interval longer than ``gap_s`` counted as one
+    sample interval (the median of the other intervals), the later samples moved earlier by the difference:
+    the clock offline ``pdrlearn track`` integrates a stride on (``FootDisplacement``: dt = 1 / fs per sample,
+    so a gap bridged by B11 counts as one interval). ``t`` itself when it has no such interval (the same
+    numbers, bit for bit)."""
+    if len(t) < 2:
+        return t
+    d = t[1:] - t[:-1]
+    big = d > gap_s
+    if not big.any():
+        return t
+    small = d[~big]
+    nominal = float(np.median(small)) if len(small) else float(gap_s)  # no regular interval: the gap limit
+    shift = np.concatenate(([0.0], np.cumsum(np.where(big, d - nominal, 0.0))))
+    return t - shift
+
+
 def levelled_units(streams: Streams, t0: float, t1: float, *, available: tuple[str, ...],
-                   forward: Mapping[str, np.ndarray], rest_search_s: float, heading: str) -> Levelled:
+                   forward: Mapping[str, np.ndarray], rest_search_s: float, heading: str,
+                   bridge_gaps: bool = False) -> Levelled:
     """Each unit's samples of the step ``[t0, t1]`` at the unit's own rate, in the step frame.
 
     Returns placement -> ``(t (n,) s, acc (n, 3) m/s^2 gravity removed, gyr (n, 3) rad/s or None,
@@ -477,13 +501,22 @@ def levelled_units(streams: Streams, t0: float, t1: float, *, available: tuple[s
     (:func:`foot_levelled`; the foot's tuple has a sixth value, the step frame's direction relative to
     the foot's heading at the stride's start, decision L34) and ``waist`` (:func:`waist_levelled`)
     when their accelerometer is available and their forward axis is declared.
+
+    ``bridge_gaps`` (decision E36, the stride kernel's callers): the foot is levelled on :func:`gap_clock` of its
+    times, which it returns as its times (what the displacement is integrated on): a gap in the foot
+    accelerometer inside the stride counts as one sample interval, as offline (the step window's training side
+    keeps the real clock).
     """
     out: Levelled = {}
     if "foot_acc" in available and "foot" in forward:
         ta, acc = segment(*streams["fAccelerometer"], t0, t1)
         gyr = resample(ta, *segment(*streams["fGyroscope"], t0, t1)).T if "foot_gyr" in available else None
+        tf, s0 = (gap_clock(ta) if bridge_gaps else ta), t0
+        if tf is not ta:  # the stride's start on the same sample of the moved clock (start_index: 0 or 1)
+            s0 = float(tf[1]) if start_index(ta, t0) else t0
+            ta = tf
         a, g, an, dpsi, direction = foot_levelled(ta, acc, gyr, forward["foot"], rest_search_s=rest_search_s,
-                                                  heading=heading, t0=t0, frame=True)
+                                                  heading=heading, t0=s0, frame=True)
         out["foot"] = (ta, a, g, an, dpsi, direction)
     if "waist_acc" in available and "waist" in forward:
         tw, wacc = segment(*streams["wAccelerometer"], t0, t1)

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pdrlearn.errors import DataError, ModelError
+from pdrlearn.errors import DataError, InternalError, ModelError
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
 from pdrlearn.kernels.stride import (
@@ -41,6 +41,7 @@ from pdrlearn.kernels.stride import (
 )
 from pdrlearn.kernels.window import (
     BOUNDARIES,
+    BRIDGE_GAP_S,
     GROUP_STREAMS,
     GROUPS,
     _fill_channels,
@@ -72,8 +73,12 @@ SENSOR_WIDTH = {"fAccelerometer": 3, "fGyroscope": 3, "fForceA": 1, "fForceB": 1
 #: decision E30: an interval between two pushed samples of a stream longer than this (s) is a gap the tracker
 #: warns about (once per gap); longer than B11's 1 s (``pdrlearn.track.gaps.MIN_GAP_S``) in a foot stream, the
 #: stride across it moves 0 m, as offline ``pdrlearn track`` (plasys) does
-GAP_WARN_S = 0.25
+GAP_WARN_S = BRIDGE_GAP_S  # 0.25 s; decision E36: a stride over such a gap is measured on the gap clock
 GAP_LONG_S = 1.0
+#: decision E39: a stream's last value counts as held (E31's warning) when it is older than ``max_wait_s`` and than
+#: this many of the stream's own sample intervals: one missed sample plus up to one interval of delivery delay
+#: (E23's grace is one delivery interval; E30 calls 1.5 intervals a gap)
+HELD_INTERVALS = 2.0
 #: the foot streams whose long gaps zero the stride across them (offline plasys' ``foot_gaps``, B11)
 _FOOT_GAP_STREAMS = frozenset(("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
 #: the foot streams whose shorter gaps (over GAP_WARN_S) leave the stride across them without classes: B11 takes
@@ -178,6 +183,7 @@ class Step:
             "x": self.x,
             "y": self.y,
             "z": self.z,
+            "gap_s": self.gap_s,  # decision E37: pdrlearn run's steps.csv
         }
 
 
@@ -194,6 +200,14 @@ def calibration_record(displacement: dict) -> dict | None:
         return None
     return {"gain": float(displacement["distance_gain"]), "rate_hz": displacement.get("distance_gain_rate_hz"),
             "stride_sd": displacement.get("stride_sigma_rel"), "reason": None}
+
+
+def _no_samples(tv) -> bool:
+    """Whether a sensor's ``(t, values)`` of a push holds no timestamp (decision E40)."""
+    try:
+        return len(tv[0]) == 0
+    except (TypeError, IndexError, KeyError):
+        return False
 
 
 @functools.lru_cache(maxsize=8)
@@ -424,7 +438,6 @@ class Tracker:
         self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
         self._det_t = -np.inf
-        self._rate_checked: set[str] = set()
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
         self.n_steps = 0
         self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
@@ -591,17 +604,15 @@ class Tracker:
                 self._foot.feed(name, t, v)
         if ring.last > self._latest:
             self._latest = ring.last
-        if name not in self._rate_checked:  # the input stage judged its rate (decision E22)
-            self._rate_checked.add(name)
 
     def push(self, samples) -> list[Step]:
         """Add samples; returns the steps completed by them (possibly none).
 
         ``samples`` : mapping sensor name -> ``(t (n,) s, values (n, k))``, or an iterable of
         measurements with ``t``, ``sensor`` and ``values`` attributes (the Bluetooth parser's output).
+        A push without any sample (``{}``, ``[]``, ``{sensor: ([], [])}``) returns no step and changes nothing
+        (decision E40).
         """
-        if self._foot_q:  # the foot samples of a push that completed a step (decision E21)
-            self._feed_foot()
         if not isinstance(samples, dict):  # Bluetooth measurements: grouped per sensor
             grouped: dict[str, tuple[list, list]] = {}
             for mm in samples:
@@ -610,6 +621,10 @@ class Tracker:
                 vs.append(mm.values)
             samples = grouped
         fast = self._check_push(samples)  # decision E29: every sensor checked before any state changes
+        if fast is None:  # decision E40: no sample at all, nothing to do
+            return []
+        if self._foot_q:  # the foot samples of a push that completed a step (decision E21)
+            self._feed_foot()
         samples = self.inputs.push(samples)  # the same dict when every stream is at the bundle's rate (E22)
         if samples:
             self._note_resampled()
@@ -654,13 +669,14 @@ class Tracker:
             self._trim()
         return steps
 
-    def _check_push(self, samples: dict) -> dict[str, tuple[float, list[float]]]:
+    def _check_push(self, samples: dict) -> dict[str, tuple[float, list[float]]] | None:
         """Decision E29: the input errors of every sensor of a push before any state changes (a push is all or
         nothing: a refused push can be retried without its bad sensor), each one line naming the sensor and
         the fix; and the gaps the push opens (an interval over :data:`GAP_WARN_S`), noted once per gap.
         A one-sample float64 push of a buffered sensor is checked on Python floats (decision E17's path) and
-        returned, sensor -> ``(t, values)``, for :meth:`push` to append without checking it again."""
-        buf, gaps, fast = self._buf, None, {}
+        returned, sensor -> ``(t, values)``, for :meth:`push` to append without checking it again; None for a
+        push without any sample (decision E40)."""
+        buf, gaps, fast, some = self._buf, None, {}, False
         resampled, isfinite = self.inputs.resamplers, math.isfinite
         for name, tv in samples.items():
             ring = buf.get(name)
@@ -679,6 +695,7 @@ class Tracker:
                             gaps.append((name, last, t0))
                         continue
             if name not in self.inputs.used or name in self.inputs.ignored:
+                some = some or not _no_samples(tv)
                 continue  # ignored by the input stage, whatever it holds
             try:
                 t, v = tv
@@ -687,6 +704,7 @@ class Tracker:
             t, v = self._checked_arrays(name, t, v)
             if not len(t):
                 continue
+            some = True
             raw = self.inputs.last_in(name)
             last = raw if raw is not None else (ring.last if ring is not None else None)
             if last is not None and not t[0] > last:
@@ -700,7 +718,7 @@ class Tracker:
                     gaps = gaps or []
                     gaps.append((name, float(tt[i]), float(tt[i + 1])))
         self._pushed_gaps = gaps
-        return fast
+        return fast if some or fast else None
 
     def _gap_limit(self, name: str, d: np.ndarray | None = None) -> float:
         """Decision E30: the interval (s) beyond which two samples of ``name`` enclose a gap: GAP_WARN_S, or 1.5
@@ -756,6 +774,8 @@ class Tracker:
         except (TypeError, ValueError):
             raise DataError(f"{name}: push numbers: t (n,) in seconds and values (n, {width or 'k'})") from None
         n = len(t)
+        if not n and not v.size:  # no sample (decision E40): any empty values
+            return t, v.reshape(0, width or 0)
         if v.ndim == 1 and (n == 1 or (width == 1 and len(v) == n)):
             v = v.reshape(n, -1)  # one sample as a row, or a one-value sensor as a column
         if v.ndim != 2 or v.shape[0] != n or (width is not None and v.shape[1] != width):
@@ -824,8 +844,9 @@ class Tracker:
 
     def _note_held(self, t1: float) -> None:
         """Decision E31: one warning per stream whose last sample is more than ``max_wait_s`` before the end of
-        a step processed without it (E9's held values: ``max_lag_s = inf``, or the end of a recording)."""
-        held = [n for n, r in self._buf.items() if r.last < t1 - self._held_s and n not in self._held]
+        a step processed without it (E9's held values: ``max_lag_s = inf``, or the end of a recording); E39: and
+        more than :data:`HELD_INTERVALS` of its own sample intervals (a 0.2 Hz barometer is not held after 2 s)."""
+        held = [n for n, r in self._buf.items() if r.last < t1 - self._held_limit(n) and n not in self._held]
         if held:
             self._held.update(held)
             last = min(self._buf[n].last for n in held)
@@ -833,6 +854,16 @@ class Tracker:
                        "after it are measured with their last values held (max_lag_s = inf, decision E9): heading and "
                        "classes that read them are unreliable - reconnect the sensor and start a new Tracker, or track "
                        "without it (units=('foot',) for the waist; decision E31)")
+
+    def _held_limit(self, name: str) -> float:
+        """Decision E39: how long (s) a stream may have sent nothing before the end of a step before its last value
+        counts as held: ``max_wait_s``, or :data:`HELD_INTERVALS` of its own sample intervals when longer (its
+        known rate, E22, else the median interval of its buffer; none yet: ``max_wait_s``)."""
+        rate = self.inputs.input_rates_hz.get(name)
+        if rate:
+            return max(self._held_s, HELD_INTERVALS / rate)
+        t = self._buf[name].view()[0]
+        return max(self._held_s, HELD_INTERVALS * float(np.median(np.diff(t)))) if len(t) > 2 else self._held_s
 
     def _note_resampled(self) -> None:
         """The input stage's lines (decision E22) once each: the resampling in ``warnings`` and logged at
@@ -886,7 +917,6 @@ class Tracker:
                 raise DataError(msg)
             self.inputs.ignore(n, "it stopped")
             self._buf.pop(n, None)
-            self._rate_checked.discard(n)
             self.warnings.append(msg)
             log.warning("bundle %s: %s", self.bundle.path, msg)
 
@@ -970,9 +1000,16 @@ class Tracker:
                 x, y, z = self.position.tolist()
                 return Step(t0, t1, {}, {}, 0.0, 0.0, self.heading, x, y, z, gap_s=gap)
             bridged = bool(over)  # a shorter gap in the foot accelerometer / gyroscope: no classes (B11)
-        lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
-        if bridged:  # as UserModel.predict_steps leaves a step without the foot unit (offline, track --streaming)
+        if bridged:  # no classes, as UserModel.predict_steps leaves a step without the foot unit (offline, track
+            # --streaming); decision E36: levelled and integrated with the gap counted as one sample interval, as
+            # offline and track --streaming (by the shared kernel: the push-time state has the real clock)
             classes, proba = {}, {}
+            streams = _Views(self._buf)
+            lev = levelled_units(streams, t0, t1, available=available_groups(streams), forward=self.forward,
+                                 rest_search_s=self.rest_search_s, heading=self.heading_mode, bridge_gaps=True)
+            disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
+        else:
+            lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
         if self._prev_end is not None and t0 > self._prev_end and headed_by_foot(lev, self.heading_source):
             dyaw += gap_yaw(*self._stream("fGyroscope"), *self._stream("fAccelerometer"), self._prev_end, t0)  # L31
         self._prev_end = t1
@@ -993,13 +1030,27 @@ class Tracker:
                 confident_one(get("direction"), pget("direction"), g), confident_one(get("length"), pget("length"), g),
                 bounds=self.bounds, down_mode=self._down_mode, rules=self.rules, length_proba=pget("length"),
                 sigma_rel=self._sigma_rel)
-        self.heading += dyaw
-        direction = (self.heading + placement_offset(lev, self.heading_source, disp)  # decision L34
+        heading = self.heading + dyaw
+        direction = (heading + placement_offset(lev, self.heading_source, disp)  # decision L34
                      + reversed_by_rules(headed_by_foot(lev, self.heading_source), dx, length))  # L37
         x, y, z = advance_xyz(*self.position.tolist(), direction, length, dz)
+        if not math.isfinite(direction + x + y + z):  # decision E38: NaN / inf fail (also inf - inf)
+            self._non_finite(t0, t1, heading, direction, (x, y, z), (length, dz))
+        self.heading = heading
         self.position = np.array((x, y, z))
         self.n_steps += 1
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z)
+
+    def _non_finite(self, t0: float, t1: float, heading: float, direction: float, xyz: tuple, motion: tuple) -> None:
+        """Decision E38: a stride of data that passed every input check left a non-finite heading or position:
+        pdrlearn's fault (:class:`InternalError`, as E27's levelling check), raised before the tracker takes it
+        (its heading and position stay those of the previous step)."""
+        what = "heading" if not math.isfinite(direction) else "position"
+        raise InternalError(
+            f"internal error in pdrlearn.runtime: the stride {t0:.3f}-{t1:.3f} s gave a non-finite {what} (heading "
+            f"{heading:.6g} rad, direction {direction:.6g} rad, position ({xyz[0]:.6g}, {xyz[1]:.6g}, {xyz[2]:.6g}) "
+            f"m, length {motion[0]:.6g} m, dz {motion[1]:.6g} m) from finite samples; this is a bug, not bad data - "
+            "please report it; the tracker keeps the previous step's heading and position")
 
     def _warn(self, msg: str) -> None:
         """One warning line: kept in ``warnings`` and logged."""

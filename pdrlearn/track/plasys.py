@@ -768,8 +768,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     for i, (t0, t1) in enumerate(strides):
         if in_gap[i]:
             continue
-        lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,
-                             rest_search_s=rest_search_s, heading=step_heading)
+        lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,  # E36: a short
+                             rest_search_s=rest_search_s, heading=step_heading, bridge_gaps=True)  # gap = 1 interval
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1))
         place[i] = SK.placement_offset(lev, heading, disp[i])  # decision L34
         foot_headed[i] = SK.headed_by_foot(lev, heading)

@@ -214,9 +214,12 @@ class WaistTracker:
     # -- input -------------------------------------------------------------------------------------------
     def push(self, t, acc, gyr) -> list[LiveStep]:
         """Add samples: ``t`` (n,) s increasing, ``acc`` (n, 3) m/s^2 with gravity, ``gyr`` (n, 3) rad/s, in the
-        unit's sensor frame. Returns the steps reported by this push (decision W64: once final)."""
+        unit's sensor frame. Returns the steps reported by this push (decision W64: once final); a push without
+        samples (``push([], [], [])``) returns none and changes nothing (decision E40)."""
         t = np.asarray(t, dtype=np.float64).reshape(-1)
         acc, gyr = np.asarray(acc, dtype=np.float64), np.asarray(gyr, dtype=np.float64)
+        if not t.size and not acc.size and not gyr.size:  # decision E40: an empty push is a no-op
+            return []
         if acc.ndim == 1 and acc.size == 3 and t.size == 1:
             acc, gyr = acc.reshape(1, 3), gyr.reshape(1, 3)
         if acc.shape != (t.size, 3) or gyr.shape != (t.size, 3):
