@@ -101,8 +101,9 @@ def test_manifest_contents(trained):
     m = json.loads((path / "manifest.json").read_text())
     assert m["schema_version"] == 1 and m["n_samples"] == 40
     assert m["tasks"]["terrain"]["classes"] == ["flat", "up", "down"]
-    assert m["tasks"]["length"]["chosen"]["unit"] == "fused"
-    assert set(m["tasks"]["direction"]["models"]["svm"]) == {"foot", "waist", "fused"}
+    assert m["tasks"]["length"]["chosen"]["unit"] in ("fused", "combined")  # the two-unit models (C8, C23)
+    assert set(m["tasks"]["direction"]["models"]["svm"]) == {"foot", "waist", "fused", "combined"}
+    assert m["tasks"]["direction"]["feature_spec"]["svm"]["combined"]["params"]["unit"] == "both"  # C22
     assert "torch" in m["versions"] and m["training_data"]["steps"]["terrain"]["per_class"]["up"] == 24
     spec = m["tasks"]["terrain"]["feature_spec"]["svm"]["foot"]
     assert spec["transformer"] == "TerrainSVMFeatures" and len(spec["features"]) == 11

@@ -25,4 +25,5 @@ def test_train_on_foot_only_data_prints_each_reason_once(tmp_path, capsys):
                  "heuristic,svm", "--cv", "3"]) == 0
     skipped = [ln.strip() for ln in capsys.readouterr().out.splitlines() if ln.strip().startswith("skipped ")]
     assert skipped == ["skipped heuristic/waist, svm/waist: no session has the waist unit",
+                       "skipped svm/combined: needs both units",
                        "skipped svm/fused: needs a trained foot and waist model on the same steps"], skipped

@@ -15,7 +15,8 @@ from pdrlearn.errors import DataError, MissingSensorError
 
 log = logging.getLogger(__name__)
 
-#: Row order of the result tables (thesis Tables 27, 28, 33: per-unit methods, then the fused ones).
+#: Row order of the result tables (thesis Tables 27, 28, 33: per-unit methods, then the fused ones: soft vote
+#: ``fused``, decision C7, beside the thesis' combined feature vector ``combined``, decision C22).
 ROW_ORDER = [
     ("heuristic", "waist"),
     ("heuristic", "foot"),
@@ -29,6 +30,8 @@ ROW_ORDER = [
     ("dtw", "fused"),
     ("svm", "fused"),
     ("nn", "fused"),
+    ("svm", "combined"),  # one model on both units' features, thesis ch. 6.1.1 (decision C22)
+    ("nn", "combined"),
     ("ensemble", "waist"),
     ("ensemble", "foot"),
     ("ensemble", "fused"),
@@ -246,7 +249,7 @@ def evaluate_model(
 
 
 def _has_unit(unit: str, available) -> bool:
-    """The session recorded ``unit`` (``fused``: both units)."""
+    """The session recorded ``unit`` (``fused``, ``combined``: both units)."""
     foot, waist = "foot_acc" in available, "waist_acc" in available
     return {"foot": foot, "waist": waist}.get(unit, foot and waist)
 
