@@ -135,8 +135,10 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
             train = [simulate(task, user_seed=user, seed=k) for k in range(train_walks)]
             test = [simulate(task, user_seed=user, seed=1000 + k) for k in range(test_walks)]
             t0 = time.perf_counter()
+            # every unit named: the svm/nn soft votes are trained beside the combined models, which replace them
+            # by default (decision C23), so that both are compared
             model = train_user(train, tasks=[task], cv=cv, seed=seed, user=f"u{user}", boundaries=boundaries,
-                               methods=methods)
+                               methods=methods, units=["foot", "waist", "fused", "combined"])
             dt = time.perf_counter() - t0
             t_user += dt
             tm = model.tasks[task]
@@ -216,7 +218,7 @@ def soft_vote_vs_combined(results: dict, cv_results: dict) -> str:
     from pdrlearn.classify.training import _score_key
 
     head = ["task", "svm fused", "svm combined", "nn fused", "nn combined", "chosen without combined",
-            "chosen with combined"]
+            "chosen with combined", "chosen, default (svm/nn soft votes replaced)"]
     lines = ["### soft vote (fused) vs combined features (decision C23): pooled test accuracy %", "",
              "| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for task in results:
@@ -230,16 +232,20 @@ def soft_vote_vs_combined(results: dict, cv_results: dict) -> str:
                         ok += r["accuracy"] * r["n_steps"]
                         n += r["n_steps"]
                 cells.append(f"{100 * ok / n:.1f}" if n else "-")
-        picks = {"without": [], "with": []}
+        picks = {"without": [], "with": [], "default": []}
+        hits["default"] = [0, 0]
         for res, tm in zip(results[task], cv_results[task], strict=True):
-            without = min(((m, u) for m, per in tm.cv.items() for u in per if u == "fused"),
-                          key=lambda p: _score_key(tm.cv[p[0]][p[1]], p[0], p[1]))
-            for key, pair in (("without", without), ("with", tm.chosen)):
+            def best(keep, tm=tm):
+                return min(((m, u) for m, per in tm.cv.items() for u in per if keep(m, u)),
+                           key=lambda p: _score_key(tm.cv[p[0]][p[1]], p[0], p[1]))
+            without = best(lambda m, u: u == "fused")
+            default = best(lambda m, u: u == "combined" or (u == "fused" and m not in ("svm", "nn")))
+            for key, pair in (("without", without), ("with", tm.chosen), ("default", default)):
                 r = res["tasks"][task]["methods"][pair[0]]["units"][pair[1]]
                 hits[key][0] += r["accuracy"] * r["n_steps"]
                 hits[key][1] += r["n_steps"]
                 picks[key].append("/".join(pair))
-        for key in ("without", "with"):
+        for key in ("without", "with", "default"):
             cells.append(f"{100 * hits[key][0] / hits[key][1]:.1f} ({', '.join(picks[key])})")
         lines.append("| " + " | ".join([task, *cells]) + " |")
     return "\n".join(lines)

@@ -29,7 +29,7 @@ WAIST = ("wAccelerometer", "wGyroscope", "wBarometer")
 def combined(tmp_path_factory):
     """svm and nn trained on foot, waist, fused and combined units (two synthetic sessions), saved."""
     train = [labelled_session(1, 12), labelled_session(2, 12)]
-    model = train_user(train, methods=["svm", "nn"], cv=3, seed=0)
+    model = train_user(train, methods=["svm", "nn"], cv=3, seed=0, units=["foot", "waist", "fused", "combined"])
     path = tmp_path_factory.mktemp("combined") / "u1"
     model.save(path)
     return model, path
@@ -74,6 +74,20 @@ def test_chosen_among_two_unit_models_and_predicts_held_out_steps(combined):
     a = model.predict_steps(test, method="svm", unit="combined")
     b = loaded.predict_steps(test, method="svm", unit="combined")
     assert a.equals(b)
+
+
+def test_default_units_replace_the_svm_and_nn_soft_votes():
+    """Decision C23: with the units left at their default, svm and nn get the combined model and no soft vote;
+    dtw (no combined form) and heuristic fusion keep their fused model; naming the units trains both."""
+    s = [labelled_session(1, 8)]
+    m = train_user(s, tasks=["terrain"], methods=["fusion", "dtw", "svm"], cv=2)
+    tm = m.tasks["terrain"]
+    assert set(tm.models["svm"]) == {"foot", "waist", "combined"}
+    assert set(tm.models["dtw"]) == {"foot", "waist", "fused"} and set(tm.models["fusion"]) == {"fused"}
+    assert m.settings["fused_methods"] == ["fusion", "dtw"] and tm.chosen[1] in TWO_UNIT
+    named = train_user(s, tasks=["terrain"], methods=["svm"], cv=2, units=["foot", "waist", "fused", "combined"])
+    assert set(named.tasks["terrain"].models["svm"]) == {"foot", "waist", "fused", "combined"}
+    assert named.settings["fused_methods"] is None
 
 
 def test_equal_scores_prefer_combined_over_soft_vote():

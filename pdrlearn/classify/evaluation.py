@@ -76,8 +76,9 @@ def evaluate_model(
     "per_class", "confusion", "classes", "methods": {method: {"accuracy", "unit", "units": {unit:
     {"accuracy", "balanced_accuracy", "per_class", "confusion", "latency_ms"}}}}, "skipped"}},
     "windows_ms_per_step", "boundaries", "skipped"}``. ``methods.<m>.accuracy`` is the accuracy of that
-    method's fused model when it could run, else of its best-ranked unit. ``tasks.<t>.accuracy`` is the model's chosen
-    method (or, for sessions lacking one of its units, the best-ranked method they can run).
+    method's best-ranked two-unit model (fused or combined) when it could run, else of its best-ranked unit.
+    ``tasks.<t>.accuracy`` is the model's chosen method (or, for sessions lacking one of its units, the
+    best-ranked method they can run).
     """
     from pdrlearn.classify.domain import (
         NO_RANGES_NOTE,
@@ -162,7 +163,8 @@ def evaluate_model(
             if not units:
                 continue
             ranked = [u for mm, u in tm.ranking() if mm == method and u in units]
-            best_unit = "fused" if "fused" in units else (ranked or sorted(units))[0]
+            two = [u for u in ranked if u in ("fused", "combined")]  # the two-unit models first (C8, C23)
+            best_unit = (two or ranked or sorted(units))[0]
             res["methods"][method] = {
                 "accuracy": units[best_unit]["accuracy"],
                 "unit": best_unit,

@@ -553,8 +553,10 @@ def train_task(
     cv: int,
     seed: int,
     advance: Callable[[int], None] = lambda n=1: None,
+    soft_vote_methods: Sequence[str] | None = None,
 ) -> TaskModel:
-    """Cross-validate and fit every method x unit of one task (see :func:`train_user`)."""
+    """Cross-validate and fit every method x unit of one task (see :func:`train_user`). ``soft_vote_methods``: the
+    methods whose ``fused`` soft vote is trained when ``units`` has it (None: every method)."""
     from pdrlearn.features import TASK_CLASSES
 
     classes = np.asarray(TASK_CLASSES[data.task])
@@ -640,7 +642,9 @@ def train_task(
                 n_folds=len(folds),
             )
             advance(1)
-        if not want_fused or method in ("fusion", "heuristic"):
+        if not want_fused or method in ("fusion", "heuristic") or (
+            soft_vote_methods is not None and method not in soft_vote_methods
+        ):
             continue
         if isinstance(subsets.get("fused"), str) or not {"foot", "waist"} <= set(tm.models.get(method, {})):
             tm.skipped.append(f"{method}/fused: needs a trained foot and waist model on the same steps")
@@ -755,8 +759,11 @@ def train_user(
         ``terrain`` / ``direction`` / ``length_class`` labels).
     tasks, methods, units : subsets of :data:`TASKS`, :data:`METHODS`, :data:`UNITS` (default: all tasks
         and units, the thesis' five methods :data:`DEFAULT_METHODS`); ``fused`` also trains the foot and
-        waist models it combines; ``ensemble`` (opt-in, decision C14) is the equal-weight soft vote of the
-        unit's nn, svm and dtw models and needs them in the same run.
+        waist models it combines; ``combined`` trains svm and nn on the thesis' feature vector of both units
+        (decision C22); with ``units`` left at None the combined models replace the svm and nn soft votes
+        (decision C23: dtw, heuristic fusion and ensemble keep their ``fused`` model), units named explicitly
+        train every soft vote they allow; ``ensemble`` (opt-in, decision C14) is the equal-weight soft vote of
+        the unit's nn, svm and dtw models and needs them in the same run.
     cv : folds of the stratified cross-validation that scores every model (thesis ch. 6: 10-fold);
         reduced to the smallest class size when a class has fewer steps.
     seed : seed of the folds, the DTW reference choice and the network initialisation.
@@ -774,8 +781,8 @@ def train_user(
 
     Returns
     -------
-    :class:`UserModel` with, per task, the fitted models, CV metrics and the chosen fused method (the best
-    balanced CV accuracy among the fused models, or among all when only one unit was trained).
+    :class:`UserModel` with, per task, the fitted models, CV metrics and the chosen two-unit model (the best
+    balanced CV accuracy among the fused and combined models, or among all when only one unit was trained).
     """
     from datetime import UTC, datetime
 
@@ -784,6 +791,9 @@ def train_user(
     if not sessions:
         raise DataError("train: no sessions given; pass at least one labelled session folder")
     strict = (tasks is not None) if strict is None else strict
+    # decision C23: by default the combined feature vector replaces the soft vote of the svm and nn unit models;
+    # units named explicitly (e.g. "foot,waist,fused,combined") train every soft vote they allow
+    voted = None if units is not None else [m for m in (methods or DEFAULT_METHODS) if m not in COMBINED_METHODS]
     tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
     from pdrlearn.features.windows import BOUNDARIES
 
@@ -805,7 +815,8 @@ def train_user(
             skipped.append(str(exc))
             log.info("skipped %s", exc)
             continue
-        out[task] = train_task(data, methods=methods, units=units, cv=cv, seed=seed, advance=advance)
+        out[task] = train_task(data, methods=methods, units=units, cv=cv, seed=seed, advance=advance,
+                               soft_vote_methods=voted)
     calibration = None
     if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
         from pdrlearn.displace.calibration import calibrate_distance
@@ -848,6 +859,8 @@ def train_user(
             "seed": seed,
             "methods": list(methods),
             "units": list(units),
+            # methods whose unit fused model was trained (soft vote; heuristic fusion); None = every method (C23)
+            "fused_methods": None if voted is None else [m for m in methods if m in voted],
             "min_steps_per_class": MIN_STEPS_PER_CLASS,
             "boundaries": boundaries,
             "package_version": pdrlearn.__version__,
