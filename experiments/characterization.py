@@ -85,6 +85,11 @@ THESIS = {
         ("nn", "fused"): {"short": 100, "normal": 90.0, "long": 96.2},
     },
 }
+# The thesis' "SVM/NN Fusion" rows are one model on both units' features (ch. 6.1.1.1, 6.1.1.2, 6.2.1, 6.3.1):
+# our unit "combined" (decision C22); "fused" (soft vote, C7) is shown beside the same thesis numbers.
+for _t in THESIS.values():
+    for _m in ("svm", "nn"):
+        _t[(_m, "combined")] = _t[(_m, "fused")]
 TABLE_NO = {"terrain": 27, "direction": 28, "length": 33}
 ROWS = ROW_ORDER  # thesis Tables 27, 28, 33 row order
 #: Training / test set sizes of the thesis (steps): terrain 970 + 170 validation / 540 test (ch. 6.1.1),
@@ -130,8 +135,10 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
             train = [simulate(task, user_seed=user, seed=k) for k in range(train_walks)]
             test = [simulate(task, user_seed=user, seed=1000 + k) for k in range(test_walks)]
             t0 = time.perf_counter()
+            # every unit named: the svm/nn soft votes are trained beside the combined models, which replace them
+            # by default (decision C23), so that both are compared
             model = train_user(train, tasks=[task], cv=cv, seed=seed, user=f"u{user}", boundaries=boundaries,
-                               methods=methods)
+                               methods=methods, units=["foot", "waist", "fused", "combined"])
             dt = time.perf_counter() - t0
             t_user += dt
             tm = model.tasks[task]
@@ -200,7 +207,48 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
         ch = [f"u{u}: {c[0][0]}/{c[0][1]} {100 * c[1]:.1f} %" for u, c in zip(users, chosen[task], strict=True)]
         lines += ["", f"Chosen method per user (test accuracy): {'; '.join(ch)}"]
         md.append("\n".join(lines))
+    md.append(soft_vote_vs_combined(results, cv_results))
     return md, rows, timing
+
+
+def soft_vote_vs_combined(results: dict, cv_results: dict) -> str:
+    """Decision C23: pooled test accuracy of the soft vote (unit fused) and the combined feature vector
+    (unit combined) for svm and nn per task, and of the model C8 chooses with and without the combined
+    models among its candidates (without: the best fused model by the same CV key)."""
+    from pdrlearn.classify.training import _score_key
+
+    head = ["task", "svm fused", "svm combined", "nn fused", "nn combined", "chosen without combined",
+            "chosen with combined", "chosen, default (svm/nn soft votes replaced)"]
+    lines = ["### soft vote (fused) vs combined features (decision C23): pooled test accuracy %", "",
+             "| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for task in results:
+        cells, hits = [], {"without": [0, 0], "with": [0, 0]}
+        for m in ("svm", "nn"):
+            for u in ("fused", "combined"):
+                ok = n = 0
+                for res in results[task]:
+                    r = res["tasks"][task]["methods"].get(m, {}).get("units", {}).get(u)
+                    if r is not None:
+                        ok += r["accuracy"] * r["n_steps"]
+                        n += r["n_steps"]
+                cells.append(f"{100 * ok / n:.1f}" if n else "-")
+        picks = {"without": [], "with": [], "default": []}
+        hits["default"] = [0, 0]
+        for res, tm in zip(results[task], cv_results[task], strict=True):
+            def best(keep, tm=tm):
+                return min(((m, u) for m, per in tm.cv.items() for u in per if keep(m, u)),
+                           key=lambda p: _score_key(tm.cv[p[0]][p[1]], p[0], p[1]))
+            without = best(lambda m, u: u == "fused")
+            default = best(lambda m, u: u == "combined" or (u == "fused" and m not in ("svm", "nn")))
+            for key, pair in (("without", without), ("with", tm.chosen), ("default", default)):
+                r = res["tasks"][task]["methods"][pair[0]]["units"][pair[1]]
+                hits[key][0] += r["accuracy"] * r["n_steps"]
+                hits[key][1] += r["n_steps"]
+                picks[key].append("/".join(pair))
+        for key in ("without", "with", "default"):
+            cells.append(f"{100 * hits[key][0] / hits[key][1]:.1f} ({', '.join(picks[key])})")
+        lines.append("| " + " | ".join([task, *cells]) + " |")
+    return "\n".join(lines)
 
 
 def _append_method_rows(res: dict, study: str, cols: list[str], row_class: str, lines: list, rows: list) -> None:

@@ -4,8 +4,8 @@ Every stage is a ``pdrlearn`` CLI command (the same calls a user types), run in-
 
 1. simulate user 1's calibration exercises (terrain, direction, length) and a held-out repetition,
    plus thesis scenario D (90 m with 21 stairs);
-2. ``train`` the user's classifiers (5 methods x foot/waist/fused, 5-fold CV) and ``evaluate`` them on the
-   held-out exercises (tables + confusion matrices);
+2. ``train`` the user's classifiers (5 methods x foot/waist/fused, svm/nn also combined, 5-fold CV) and
+   ``evaluate`` them on the held-out exercises (tables + confusion matrices);
 3. ``track`` scenario D with M1, M2 and M3 (M3 uses the trained model);
 4. real recordings: ``steps`` on the foot and lower-back data, ``track`` the foot level walk (stride
    lengths vs motion capture), ``calibrate`` the waist pendulum on a straight walk and ``track`` the
@@ -122,7 +122,7 @@ def main(argv: list[str] | None = None) -> int:
 
     # 2. train + evaluate -----------------------------------------------------------------------
     train = run(["train", out / f"sim/u{u}", "--out", out / f"models/u{u}", "--cv", a.cv, "--json"],
-                log, f"train 3 tasks x 5 methods x 3 units ({a.cv}-fold CV)")
+                log, f"train 3 tasks x 5 methods x foot/waist/fused + svm/nn combined ({a.cv}-fold CV)")
     ev = run(["evaluate", out / f"models/u{u}", out / f"sim/u{u}_test", "--report", out / "eval", "--json"],
              log, "evaluate on held-out exercises")
     (out / "eval" / "evaluation.json").write_text(json.dumps(ev, indent=1))

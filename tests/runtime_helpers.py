@@ -124,6 +124,8 @@ _CACHE: dict = {}
 
 #: every method of issue 5, exported by the "bundle_all" bundle
 ALL_METHODS = ["heuristic", "fusion", "dtw", "svm", "nn"]
+#: every unit: body units, the soft vote (decision C7) and the combined feature vector (decision C22)
+ALL_UNITS = ("foot", "waist", "fused", "combined")
 
 
 def trained_dirs(tmp_path_factory) -> dict:
@@ -136,7 +138,9 @@ def trained_dirs(tmp_path_factory) -> dict:
 
     root = tmp_path_factory.mktemp("trained")
     train = synthetic_session(90, seed=0)
-    train_user([train], cv=2, seed=0).save(root / "model")
+    # every unit named: the soft votes (fused) beside the combined models, which replace the svm/nn soft votes
+    # by default (decision C23), so that the bundles hold both kinds
+    train_user([train], cv=2, seed=0, units=list(ALL_UNITS)).save(root / "model")
     export_model(root / "model", root / "bundle_all", methods=ALL_METHODS)
     export_model(root / "model", root / "bundle")
     foot = train.copy()

@@ -77,7 +77,7 @@ def labelled_session(
 @pytest.fixture(scope="module")
 def trained(tmp_path_factory):
     train = [labelled_session(1, 12), labelled_session(2, 12)]
-    model = train_user(train, methods=["dtw", "svm", "nn"], cv=3, seed=0)
+    model = train_user(train, methods=["dtw", "svm", "nn"], cv=3, seed=0, units=["foot", "waist", "fused", "combined"])
     path = tmp_path_factory.mktemp("model") / "u1"
     model.save(path)
     return model, path
@@ -101,8 +101,9 @@ def test_manifest_contents(trained):
     m = json.loads((path / "manifest.json").read_text())
     assert m["schema_version"] == 1 and m["n_samples"] == 40
     assert m["tasks"]["terrain"]["classes"] == ["flat", "up", "down"]
-    assert m["tasks"]["length"]["chosen"]["unit"] == "fused"
-    assert set(m["tasks"]["direction"]["models"]["svm"]) == {"foot", "waist", "fused"}
+    assert m["tasks"]["length"]["chosen"]["unit"] in ("fused", "combined")  # the two-unit models (C8, C23)
+    assert set(m["tasks"]["direction"]["models"]["svm"]) == {"foot", "waist", "fused", "combined"}
+    assert m["tasks"]["direction"]["feature_spec"]["svm"]["combined"]["params"]["unit"] == "both"  # C22
     assert "torch" in m["versions"] and m["training_data"]["steps"]["terrain"]["per_class"]["up"] == 24
     spec = m["tasks"]["terrain"]["feature_spec"]["svm"]["foot"]
     assert spec["transformer"] == "TerrainSVMFeatures" and len(spec["features"]) == 11
@@ -137,9 +138,9 @@ def test_evaluate_shape(trained):
     r = evaluate_model(model, [labelled_session(5, 5)], latency_steps=3)
     t = r["tasks"]["terrain"]
     assert t["n_steps"] == 15 and 0 <= t["accuracy"] <= 1
-    assert set(t["methods"]) == {"dtw", "svm", "nn"} and t["methods"]["svm"]["unit"] == "fused"
+    assert set(t["methods"]) == {"dtw", "svm", "nn"} and t["methods"]["svm"]["unit"] in ("fused", "combined")
     assert t["methods"]["dtw"]["units"]["foot"]["latency_ms"] > 0
-    assert "| svm | fused |" in markdown_tables(r)
+    assert "| svm | fused |" in markdown_tables(r) and "| svm | combined |" in markdown_tables(r)
     assert r["boundaries"] == "given"  # the model's step-window cut (decision C13)
 
 
@@ -190,7 +191,7 @@ def test_foot_only_sessions_train_foot_models():
     m = train_user([s], tasks=["terrain"], methods=["svm", "nn"], cv=3)
     tm = m.tasks["terrain"]
     assert set(tm.models["svm"]) == {"foot"} and tm.chosen[1] == "foot"
-    assert any("svm/fused" in x for x in tm.skipped)
+    assert any(x.startswith("svm/combined: needs both units") for x in tm.skipped)
 
 
 def test_real_gaitmap_terrain_cross_validated(real_dir):

@@ -24,5 +24,6 @@ def test_train_on_foot_only_data_prints_each_reason_once(tmp_path, capsys):
     assert main(["train", *sessions, "--out", str(tmp_path / "m"), "--tasks", "terrain", "--methods",
                  "heuristic,svm", "--cv", "3"]) == 0
     skipped = [ln.strip() for ln in capsys.readouterr().out.splitlines() if ln.strip().startswith("skipped ")]
+    # default units: svm's two-unit model is the combined one (its soft vote is not trained, decision C23)
     assert skipped == ["skipped heuristic/waist, svm/waist: no session has the waist unit",
-                       "skipped svm/fused: needs a trained foot and waist model on the same steps"], skipped
+                       "skipped svm/combined: needs both units"], skipped

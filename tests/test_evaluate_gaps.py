@@ -27,7 +27,7 @@ def model():
     from tests.test_classify_training import labelled_session
 
     return train_user([labelled_session(1, 12), labelled_session(2, 12)], tasks=["terrain"],
-                      methods=["svm"], cv=3, seed=0)
+                      methods=["svm"], cv=3, seed=0, units=["foot", "waist", "fused", "combined"])
 
 
 def _gap_rows(s, model, unit):
@@ -51,7 +51,7 @@ def test_a_waist_gap_is_scored_like_track_classifies_it(model):
     assert res["accuracy"] == pytest.approx(expected)
     units = res["methods"]["svm"]["units"]
     assert units["foot"]["n_steps"] == len(s.steps)
-    assert units["waist"]["n_steps"] == units["fused"]["n_steps"] == int((~gap).sum())
+    assert units["waist"]["n_steps"] == units["fused"]["n_steps"] == units["combined"]["n_steps"] == int((~gap).sum())
 
 
 def test_a_gap_in_every_unit_leaves_those_steps_out_with_one_warning(model, caplog):

@@ -74,7 +74,7 @@ def test_bundle_records_the_foot_model_track_picks(root):
     model = load_model(root / "model")
     b = load_bundle(root / "bundle")
     for task, tm in model.tasks.items():
-        assert tm.chosen[1] == "fused"  # the case of E26: the chosen model reads the waist
+        assert tm.chosen[1] in ("fused", "combined")  # the case of E26: the chosen model reads the waist
         want = next(p for p in [tm.chosen, *tm.ranking()] if p[1] == "foot")  # UserModel._candidates' order
         assert b.tasks[task]["foot_only"] == {"method": want[0], "unit": "foot"}
         assert "foot" in b.tasks[task]["methods"][want[0]]
@@ -95,11 +95,15 @@ def test_failed_waist_is_ignored_with_units_foot(root):
 
 
 def test_bundle_exported_before_e26_uses_the_fused_models_foot_member_and_says_so(root, tmp_path):
+    # a bundle of before E26 (and C22): no foot_only record, the chosen model a soft vote of the units; the
+    # every-method bundle holds the fused models of the method whose foot model E26 records
     b = tmp_path / "old"
-    shutil.copytree(root / "bundle", b)
+    shutil.copytree(root / "bundle_all", b)
     m = json.loads((b / "manifest.json").read_text())
     for spec in m["tasks"].values():
-        spec.pop("foot_only")
+        fo = spec.pop("foot_only")
+        assert "fused" in spec["methods"][fo["method"]]
+        spec["chosen"] = {"method": fo["method"], "unit": "fused"}
     (b / "manifest.json").write_text(json.dumps(m))
     (b / "manifest.sha256").write_text(sha256_file(b / "manifest.json"))
     tr = Tracker(b, units=("foot",))
@@ -123,8 +127,9 @@ def test_unit_requests_the_runtime_cannot_serve_are_one_line_errors(root):
         Tracker(root / "bundle", units=("waist",))
     with pytest.raises(DataError, match="waist-gyro needs the waist unit"):
         Tracker(root / "bundle", units=("foot",), heading_source="waist-gyro")
-    with pytest.raises(ModelError, match="task terrain has the svm/fused model that reads the foot unit only"):
-        Tracker(root / "bundle", units=("foot",), methods={"terrain": "svm/fused"})
+    chosen = "/".join(load_bundle(root / "bundle").tasks["terrain"]["chosen"].values())
+    with pytest.raises(ModelError, match=f"task terrain has the {chosen} model that reads the foot unit only"):
+        Tracker(root / "bundle", units=("foot",), methods={"terrain": chosen})
     assert Tracker(root / "bundle", units="foot").units == ("foot",)
     assert Tracker(root / "bundle", units=("waist", "foot")).units == ("foot", "waist")
 

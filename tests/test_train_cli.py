@@ -49,7 +49,9 @@ def test_simulate_train_evaluate(sim_dirs, tmp_path, capsys):
         assert set(t["methods"]) == {"svm", "dtw"}
         assert all(0 <= m["accuracy"] <= 1 for m in t["methods"].values())
         assert (report / f"confusion_{task}.png").stat().st_size > 1000
-    assert "| svm | fused |" in (report / "report.md").read_text()
+    # default units: the combined svm replaces the svm soft vote, dtw keeps its soft vote (decision C23)
+    text = (report / "report.md").read_text()
+    assert "| svm | combined |" in text and "| dtw | fused |" in text and "| svm | fused |" not in text
 
 
 def test_train_without_distance_calibration(sim_dirs, tmp_path, capsys):

@@ -15,7 +15,8 @@ from pdrlearn.errors import DataError, MissingSensorError
 
 log = logging.getLogger(__name__)
 
-#: Row order of the result tables (thesis Tables 27, 28, 33: per-unit methods, then the fused ones).
+#: Row order of the result tables (thesis Tables 27, 28, 33: per-unit methods, then the fused ones: soft vote
+#: ``fused``, decision C7, beside the thesis' combined feature vector ``combined``, decision C22).
 ROW_ORDER = [
     ("heuristic", "waist"),
     ("heuristic", "foot"),
@@ -29,6 +30,8 @@ ROW_ORDER = [
     ("dtw", "fused"),
     ("svm", "fused"),
     ("nn", "fused"),
+    ("svm", "combined"),  # one model on both units' features, thesis ch. 6.1.1 (decision C22)
+    ("nn", "combined"),
     ("ensemble", "waist"),
     ("ensemble", "foot"),
     ("ensemble", "fused"),
@@ -73,8 +76,9 @@ def evaluate_model(
     "per_class", "confusion", "classes", "methods": {method: {"accuracy", "unit", "units": {unit:
     {"accuracy", "balanced_accuracy", "per_class", "confusion", "latency_ms"}}}}, "skipped"}},
     "windows_ms_per_step", "boundaries", "skipped"}``. ``methods.<m>.accuracy`` is the accuracy of that
-    method's fused model when it could run, else of its best-ranked unit. ``tasks.<t>.accuracy`` is the model's chosen
-    method (or, for sessions lacking one of its units, the best-ranked method they can run).
+    method's best-ranked two-unit model (fused or combined) when it could run, else of its best-ranked unit.
+    ``tasks.<t>.accuracy`` is the model's chosen method (or, for sessions lacking one of its units, the
+    best-ranked method they can run).
     """
     from pdrlearn.classify.domain import (
         NO_RANGES_NOTE,
@@ -159,7 +163,8 @@ def evaluate_model(
             if not units:
                 continue
             ranked = [u for mm, u in tm.ranking() if mm == method and u in units]
-            best_unit = "fused" if "fused" in units else (ranked or sorted(units))[0]
+            two = [u for u in ranked if u in ("fused", "combined")]  # the two-unit models first (C8, C23)
+            best_unit = (two or ranked or sorted(units))[0]
             res["methods"][method] = {
                 "accuracy": units[best_unit]["accuracy"],
                 "unit": best_unit,
@@ -246,7 +251,7 @@ def evaluate_model(
 
 
 def _has_unit(unit: str, available) -> bool:
-    """The session recorded ``unit`` (``fused``: both units)."""
+    """The session recorded ``unit`` (``fused``, ``combined``: both units)."""
     foot, waist = "foot_acc" in available, "waist_acc" in available
     return {"foot": foot, "waist": waist}.get(unit, foot and waist)
 

@@ -43,7 +43,12 @@ METHODS = ("heuristic", "fusion", "dtw", "svm", "nn", "ensemble")
 DEFAULT_METHODS = ("heuristic", "fusion", "dtw", "svm", "nn")
 #: Members of the per-unit ``ensemble`` method, an equal-weight soft vote (decision C14).
 ENSEMBLE_MEMBERS = ("nn", "svm", "dtw")
-UNITS = ("foot", "waist", "fused")
+UNITS = ("foot", "waist", "fused", "combined")
+#: Units of models that read both body units: ``fused`` = soft vote of the foot and waist models (decision C7),
+#: ``combined`` = one SVM / NN on the thesis' combined feature vector (decision C22). C8 chooses among these.
+TWO_UNIT = ("fused", "combined")
+#: Methods with a ``combined`` model: the thesis' learned fusion rows (thesis ch. 6.1.1.1, 6.1.1.2, 6.2.1, 6.3.1).
+COMBINED_METHODS = ("svm", "nn")
 #: Per-unit methods; "fusion" (heuristic fusion, thesis ch. 6.1.2.3) exists only fused.
 UNIT_METHODS = ("heuristic", "dtw", "svm", "nn")
 #: Fewest labelled steps per class for training and CV (decision: docs/decisions/classifiers.md).
@@ -92,8 +97,17 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
     ``unit="fused"`` gives a :class:`UnitFusionClassifier` over the foot and waist models (``weights``
     given, or learned on a validation split when ``None``), except for ``method="fusion"`` (heuristic
     fusion with the thesis weights: Table 26 terrain, ch. 6.2.2.3 direction 0.6/0.4, Table 32 length).
+    ``unit="combined"`` (svm, nn) is one classifier on the thesis' feature vector of both units (decision
+    C22): terrain 17 SVM features (thesis ch. 6.1.1.1) or 72 NN inputs (ch. 6.1.1.2), direction 25
+    (ch. 6.2.1), length 29 (ch. 6.3.1).
     """
     from pdrlearn.features import make_features
+
+    if unit == "combined":
+        if method not in COMBINED_METHODS:
+            raise DataError(f"unit 'combined' (one model on both units' features, thesis ch. 6.1.1) exists for "
+                            f"{' and '.join(COMBINED_METHODS)} only, not {method!r}; use unit 'fused' for {method}")
+        unit = "both"  # the feature transformers' name of the combined vector (pdrlearn.features)
 
     if method == "fusion" or (method == "heuristic" and unit != "fused"):
         mod = _heuristic_module()
@@ -253,8 +267,14 @@ def class_metrics(y_true: np.ndarray, y_pred: np.ndarray, classes: Sequence[str]
     }
 
 
-def _score_key(metrics: dict, method: str) -> tuple:
-    return (-(metrics["balanced_accuracy"] or 0.0), -(metrics["accuracy"] or 0.0), PREFERENCE.index(method))
+#: Tie-break between units of one method with equal scores: the order they were always trained in, with the
+#: thesis' combined feature vector (one model) before our soft vote of two (decision C23).
+UNIT_PREFERENCE = ("foot", "waist", "combined", "fused")
+
+
+def _score_key(metrics: dict, method: str, unit: str = "fused") -> tuple:
+    return (-(metrics["balanced_accuracy"] or 0.0), -(metrics["accuracy"] or 0.0), PREFERENCE.index(method),
+            UNIT_PREFERENCE.index(unit) if unit in UNIT_PREFERENCE else len(UNIT_PREFERENCE))
 
 
 # --------------------------------------------------------------------------------------------------
@@ -277,7 +297,7 @@ class TaskModel:
     def ranking(self) -> list[tuple[str, str]]:
         """(method, unit) pairs from best to worst CV score."""
         pairs = [(m, u) for m, per in self.cv.items() for u in per if u in self.models.get(m, {})]
-        return sorted(pairs, key=lambda p: _score_key(self.cv[p[0]][p[1]], p[0]))
+        return sorted(pairs, key=lambda p: _score_key(self.cv[p[0]][p[1]], p[0], p[1]))
 
 
 @dataclass
@@ -482,11 +502,13 @@ def _folds(y: np.ndarray, cv: int, seed: int, task: str) -> list:
     return list(StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y))
 
 
-def _split_units(units: Sequence[str]) -> tuple[list[str], bool]:
-    """Per-unit models to train and whether to fuse; the fused model needs both unit models."""
+def _split_units(units: Sequence[str]) -> tuple[list[str], bool, bool]:
+    """Per-unit models to train, whether to fuse (the fused model needs both unit models) and whether to train
+    the combined-feature models (decision C22; they need no unit model)."""
+    combined = "combined" in units
     if "fused" in units:
-        return ["foot", "waist"], True
-    return [u for u in ("foot", "waist") if u in units], False
+        return ["foot", "waist"], True, combined
+    return [u for u in ("foot", "waist") if u in units], False, combined
 
 
 def _check_choice(name: str, values: Sequence[str], allowed: Sequence[str]) -> list[str]:
@@ -531,18 +553,20 @@ def train_task(
     cv: int,
     seed: int,
     advance: Callable[[int], None] = lambda n=1: None,
+    soft_vote_methods: Sequence[str] | None = None,
 ) -> TaskModel:
-    """Cross-validate and fit every method x unit of one task (see :func:`train_user`)."""
+    """Cross-validate and fit every method x unit of one task (see :func:`train_user`). ``soft_vote_methods``: the
+    methods whose ``fused`` soft vote is trained when ``units`` has it (None: every method)."""
     from pdrlearn.features import TASK_CLASSES
 
     classes = np.asarray(TASK_CLASSES[data.task])
     tm = TaskModel(data.task, list(classes), n_steps=len(data.y), n_skipped_labels=data.n_skipped)
-    per_unit, want_fused = _split_units(units)
+    per_unit, want_fused, want_combined = _split_units(units)
     subsets: dict[str, tuple[np.ndarray, list] | str] = {}  # unit -> (step mask, folds) or skip reason
-    for unit in [*per_unit, *(["fused"] if want_fused else [])]:
+    for unit in [*per_unit, *(["fused"] if want_fused else []), *(["combined"] if want_combined else [])]:
         mask = data.unit_mask(unit)
         if not mask.any():
-            subsets[unit] = f"no session has the {unit} unit" if unit != "fused" else "needs both units"
+            subsets[unit] = f"no session has the {unit} unit" if unit not in TWO_UNIT else "needs both units"
             continue
         try:
             check_classes(data, y=data.y[mask])
@@ -554,6 +578,11 @@ def train_task(
     for method in sorted(methods, key=lambda m: m == "ensemble"):  # the ensemble reuses its members
         oof: dict[str, np.ndarray] = {}
         unit_list = ["fused"] if method == "fusion" else list(per_unit)
+        if want_combined and method in COMBINED_METHODS:
+            unit_list.append("combined")  # one model on both units' features (decision C22)
+        elif want_combined and not per_unit and method != "fusion":
+            tm.skipped.append(f"{method}/combined: only {' and '.join(COMBINED_METHODS)} have a combined-feature "
+                              "model (decision C22)")
         for unit in unit_list:
             if unit == "fused" and not want_fused:
                 continue
@@ -603,7 +632,7 @@ def train_task(
                 tm.skipped.append(f"{method}/{unit}: failed ({type(exc).__name__}: {exc})")
                 log.warning("task %s: %s/%s failed: %s: %s", data.task, method, unit, type(exc).__name__, exc)
                 continue
-            if mask.all():
+            if mask.all() and unit in ("foot", "waist"):
                 oof[unit] = P
             oof_by[(method, unit)] = P
             tm.models.setdefault(method, {})[unit] = est
@@ -613,7 +642,9 @@ def train_task(
                 n_folds=len(folds),
             )
             advance(1)
-        if not want_fused or method in ("fusion", "heuristic"):
+        if not want_fused or method in ("fusion", "heuristic") or (
+            soft_vote_methods is not None and method not in soft_vote_methods
+        ):
             continue
         if isinstance(subsets.get("fused"), str) or not {"foot", "waist"} <= set(tm.models.get(method, {})):
             tm.skipped.append(f"{method}/fused: needs a trained foot and waist model on the same steps")
@@ -652,7 +683,8 @@ def train_task(
         for per in tm.models.values():
             if unit in per:
                 attach_ranges(per[unit], data.X[subsets[unit][0]])
-    fused = [(m, u) for m, u in tm.ranking() if u == "fused"]
+    # decision C8 / C23: the best two-unit model (soft vote or combined features), else the best of any unit
+    fused = [(m, u) for m, u in tm.ranking() if u in TWO_UNIT]
     ranking = tm.ranking()
     tm.chosen = (fused or ranking or [None])[0]
     if tm.chosen is None:
@@ -727,8 +759,11 @@ def train_user(
         ``terrain`` / ``direction`` / ``length_class`` labels).
     tasks, methods, units : subsets of :data:`TASKS`, :data:`METHODS`, :data:`UNITS` (default: all tasks
         and units, the thesis' five methods :data:`DEFAULT_METHODS`); ``fused`` also trains the foot and
-        waist models it combines; ``ensemble`` (opt-in, decision C14) is the equal-weight soft vote of the
-        unit's nn, svm and dtw models and needs them in the same run.
+        waist models it combines; ``combined`` trains svm and nn on the thesis' feature vector of both units
+        (decision C22); with ``units`` left at None the combined models replace the svm and nn soft votes
+        (decision C23: dtw, heuristic fusion and ensemble keep their ``fused`` model), units named explicitly
+        train every soft vote they allow; ``ensemble`` (opt-in, decision C14) is the equal-weight soft vote of
+        the unit's nn, svm and dtw models and needs them in the same run.
     cv : folds of the stratified cross-validation that scores every model (thesis ch. 6: 10-fold);
         reduced to the smallest class size when a class has fewer steps.
     seed : seed of the folds, the DTW reference choice and the network initialisation.
@@ -746,8 +781,8 @@ def train_user(
 
     Returns
     -------
-    :class:`UserModel` with, per task, the fitted models, CV metrics and the chosen fused method (the best
-    balanced CV accuracy among the fused models, or among all when only one unit was trained).
+    :class:`UserModel` with, per task, the fitted models, CV metrics and the chosen two-unit model (the best
+    balanced CV accuracy among the fused and combined models, or among all when only one unit was trained).
     """
     from datetime import UTC, datetime
 
@@ -756,6 +791,9 @@ def train_user(
     if not sessions:
         raise DataError("train: no sessions given; pass at least one labelled session folder")
     strict = (tasks is not None) if strict is None else strict
+    # decision C23: by default the combined feature vector replaces the soft vote of the svm and nn unit models;
+    # units named explicitly (e.g. "foot,waist,fused,combined") train every soft vote they allow
+    voted = None if units is not None else [m for m in (methods or DEFAULT_METHODS) if m not in COMBINED_METHODS]
     tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
     from pdrlearn.features.windows import BOUNDARIES
 
@@ -777,7 +815,8 @@ def train_user(
             skipped.append(str(exc))
             log.info("skipped %s", exc)
             continue
-        out[task] = train_task(data, methods=methods, units=units, cv=cv, seed=seed, advance=advance)
+        out[task] = train_task(data, methods=methods, units=units, cv=cv, seed=seed, advance=advance,
+                               soft_vote_methods=voted)
     calibration = None
     if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
         from pdrlearn.displace.calibration import calibrate_distance
@@ -820,6 +859,8 @@ def train_user(
             "seed": seed,
             "methods": list(methods),
             "units": list(units),
+            # methods whose unit fused model was trained (soft vote; heuristic fusion); None = every method (C23)
+            "fused_methods": None if voted is None else [m for m in methods if m in voted],
             "min_steps_per_class": MIN_STEPS_PER_CLASS,
             "boundaries": boundaries,
             "package_version": pdrlearn.__version__,
@@ -834,6 +875,8 @@ __all__ = [
     "METHODS",
     "DEFAULT_METHODS",
     "UNITS",
+    "TWO_UNIT",
+    "COMBINED_METHODS",
     "MIN_STEPS_PER_CLASS",
     "DTW_SIGNALS",
     "make_estimator",

@@ -183,7 +183,7 @@ def train_all(
     workers: int = typer.Option(None, help="LocalCluster worker processes (default: CPU count)."),
     tasks: str = typer.Option(None, help="Comma list of terrain,direction,length (default: all labelled)."),
     methods: str = typer.Option(None, help="Comma list of heuristic,fusion,dtw,svm,nn (default: all)."),
-    units: str = typer.Option(None, help="Comma list of foot,waist,fused (default: all)."),
+    units: str = typer.Option(None, help="Comma list of foot,waist,fused,combined (default: all)."),
     cv: int = typer.Option(10, help="Cross-validation folds per user."),
     seed: int = typer.Option(0, help="Seed (identical results serial or distributed)."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP.split(" (")[0] + " (the whole models "

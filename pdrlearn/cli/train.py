@@ -64,7 +64,9 @@ def train(
         help="Comma list of heuristic,fusion,dtw,svm,nn,ensemble (default: the thesis' five; ensemble = "
         "equal vote of the unit's nn, svm and dtw, decision C14).",
     ),
-    units: str = typer.Option(None, help="Comma list of foot,waist,fused (default: all the data allow)."),
+    units: str = typer.Option(None, help="Comma list of foot,waist,fused,combined (default: all the data allow; "
+                              "fused = soft vote of the unit models, combined = one svm/nn model on both units' "
+                              "features, decisions C7, C22)."),
     cv: int = typer.Option(10, help="Folds of the stratified cross-validation (thesis: 10)."),
     seed: int = typer.Option(0, help="Seed of folds, DTW references and network initialisation."),
     user: str = typer.Option(None, help="User name stored in the manifest (default: from the data)."),
@@ -86,7 +88,8 @@ def train(
 ) -> None:
     """Train a user's terrain / direction / length classifiers and save a model directory.
 
-    Every task x method x unit is scored by cross-validation; the best fused method per task is chosen.
+    Every task x method x unit is scored by cross-validation; the best two-unit model per task (fused or
+    combined) is chosen.
     Tasks without labels (or with a missing class) are skipped and listed, unless asked for with --tasks.
 
     Examples:

@@ -95,8 +95,11 @@ def require_signals(X: np.ndarray, names, *, task: str, unit: str) -> None:
         bad = ~np.isfinite(vals).all(axis=(1, 2))
         if bad.all():
             alt = " or unit='foot'" if group.startswith("waist") else " or unit='waist'"
+            who = f"unit='{unit}'"
+            if unit == "both":  # the combined vector of both units (training unit 'combined', decision C22)
+                who, alt = "of both units, unit 'combined'", ", or use a model of the other unit"
             raise MissingSensorError(
-                f"{task} features (unit='{unit}') need the {group.replace('_', ' ')} "
+                f"{task} features ({who}) need the {group.replace('_', ' ')} "
                 f"({', '.join(GROUP_STREAMS[group])}), which the step windows lack; record it{alt}"
             )
         if bad.any():

@@ -92,8 +92,10 @@ class RuntimeModel:
         return soft_vote(probas, self.weights)
 
 
-#: the body units of the bundles' models (thesis ch.4); a model of unit "fused" reads both
+#: the body units of the bundles' models (thesis ch.4); a model of unit "fused" (soft vote, decision C7) or
+#: "combined" (one model on both units' features, decision C22) reads both
 BODY_UNITS = ("foot", "waist")
+TWO_UNIT = ("fused", "combined")
 
 
 def entry_units(entry: dict, unit: str) -> set[str]:
@@ -101,7 +103,7 @@ def entry_units(entry: dict, unit: str) -> set[str]:
     fused model) or methods (an ``ensemble``'s nn/svm/dtw, decision C14): those read their parent's unit."""
     if entry["type"] == "fusion":
         return set().union(*(entry_units(e, u if u in BODY_UNITS else unit) for u, e in entry["members"].items()))
-    return set(BODY_UNITS) if unit == "fused" else {unit}
+    return set(BODY_UNITS) if unit in TWO_UNIT else {unit}
 
 
 def entry_sensors(bundle: Bundle, entry: dict, signals: dict) -> set[str]:
@@ -120,8 +122,9 @@ def entry_sensors(bundle: Bundle, entry: dict, signals: dict) -> set[str]:
 
 
 #: the training side's tie-break between methods of equal score (``pdrlearn.classify.training.PREFERENCE``;
-#: the runtime does not import the training side)
+#: the runtime does not import the training side), then between units (``...training.UNIT_PREFERENCE``, C23)
 _PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic", "ensemble")
+_UNIT_PREFERENCE = ("foot", "waist", "combined", "fused")
 
 
 def _ranked(spec: dict) -> list[tuple[str, str]]:
@@ -134,7 +137,8 @@ def _ranked(spec: dict) -> list[tuple[str, str]]:
     def key(p):
         s = (cv.get(p[0]) or {}).get(p[1]) or {}
         pref = _PREFERENCE.index(p[0]) if p[0] in _PREFERENCE else len(_PREFERENCE)
-        return (-(s.get("balanced_accuracy") or -1.0), -(s.get("accuracy") or -1.0), pref)
+        upref = _UNIT_PREFERENCE.index(p[1]) if p[1] in _UNIT_PREFERENCE else len(_UNIT_PREFERENCE)
+        return (-(s.get("balanced_accuracy") or -1.0), -(s.get("accuracy") or -1.0), pref, upref)
 
     chosen = spec.get("chosen") or {}
     first = [(chosen.get("method"), chosen.get("unit"))]

@@ -232,7 +232,7 @@ def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: flo
 
 
 #: the units whose sensors a classifier of ``method_<task> = "<method>/<unit>"`` reads
-_UNIT_OF = {"foot": ("foot",), "waist": ("waist",), "fused": ("foot", "waist")}
+_UNIT_OF = {"foot": ("foot",), "waist": ("waist",), "fused": ("foot", "waist"), "combined": ("foot", "waist")}
 _UNIT_ACC = {"foot": "fAccelerometer", "waist": "wAccelerometer"}
 
 
