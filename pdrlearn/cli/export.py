@@ -306,10 +306,9 @@ def run(
             from pdrlearn.track.plasys import NO_WAIST_HEADING
 
             line = NO_WAIST_HEADING
-            if "waist" not in tracker.units and any(n.startswith("w") and len(st) for n, st in session.streams.items()):
-                # the session has a waist unit the replay leaves out: say why, not "no waist unit" (L57)
-                why = "--units foot" if dropped else f"bundle {bundle.path} has no waist models"
-                line = f"waist unit not used ({why}): " + NO_WAIST_HEADING.removeprefix("no waist unit: ")
+            if dropped and any(n.startswith("w") and len(st) for n, st in session.streams.items()):
+                # decision E45: the session has a waist unit --units foot leaves out; not "no waist unit"
+                line = "waist unit not used (--units foot): " + NO_WAIST_HEADING.removeprefix("no waist unit: ")
             logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
         for chunk in replay_chunks({n: (st.t, st.values) for n, st in session.streams.items()}, chunk_s):
             t0 = time.perf_counter()
@@ -384,7 +383,8 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
         for t, c in st.classes.items():
             counts[t][c] = counts[t].get(c, 0) + 1
     out = {"source": source, **evaluate_track(result, session)}
-    out["final_position"] = dict(zip("xyz", (float(v) for v in tracker.position), strict=True))
+    geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon")}  # with --start, as track's
+    out["final_position"] = {**dict(zip("xyz", (float(v) for v in tracker.position), strict=True)), **geo}
     if session is not None:
         out["session"] = session.name
     out["pipeline"] = "runtime"
