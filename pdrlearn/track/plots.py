@@ -24,8 +24,8 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     The ground truth is shifted so that it starts where the tracks start (its position at the first
     track's start time). When the first track's heading is relative to its start (0 = east, unless
     ``initial_heading`` says otherwise; :func:`heading_is_absolute`), the ground truth is also rotated to set
-    off in that track's direction (:func:`initial_bearing`); the legend says so, and the axes are ``x`` (the
-    start direction) / ``y`` instead of east / north (L55).
+    off in that track's direction (:func:`initial_bearing`); the legend says so, and the axes are ``x`` (heading
+    0 at the start) / ``y`` instead of east / north (L55).
     """
     plt, fig = path_figure(paths, session=session, title=title)
     save_atomic(fig, Path(out))
@@ -77,8 +77,8 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
         ax.set_xlabel("east [m]")
         ax.set_ylabel("north [m]")
     else:  # a heading relative to the start: the axes are not east / north (decision L55)
-        ax.set_xlabel("x [m] (along the start direction: relative heading)")
-        ax.set_ylabel("y [m] (left of the start direction)")
+        ax.set_xlabel("x [m] (heading 0 at the start, not east: relative heading)")
+        ax.set_ylabel("y [m] (90 deg left of x, not north)")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     ax.set_title(title or (session.name if session is not None else "track"))
