@@ -44,6 +44,9 @@ def _wrapped_diff(a, b):
 def test_run_heading_is_wrapped_as_track_writes_it(root, walk, tmp_path, capsys):
     assert main(["run", str(root / "bundle"), str(walk), "--out", str(tmp_path / "r")]) == 0
     assert main(["track", str(walk), "--model", str(root / "model"), "--streaming", "--out", str(tmp_path / "t")]) == 0
+    # without --start neither summary has lat/lon keys
+    for d in ("r", "t"):
+        assert set(json.loads((tmp_path / d / "summary.json").read_text())["final_position"]) == set("xyz")
     run, trk = (pd.read_csv(tmp_path / d / "steps.csv") for d in ("r", "t"))
     h = run["heading_rad"].to_numpy(float)
     assert len(h) >= 20

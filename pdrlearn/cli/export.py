@@ -383,7 +383,8 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
         for t, c in st.classes.items():
             counts[t][c] = counts[t].get(c, 0) + 1
     out = {"source": source, **evaluate_track(result, session)}
-    geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon")}  # with --start, as track's
+    # lat/lon with --start, as track's summary (without it track has none: no NaN keys either)
+    geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon") and np.isfinite(v)}
     out["final_position"] = {**dict(zip("xyz", (float(v) for v in tracker.position), strict=True)), **geo}
     if session is not None:
         out["session"] = session.name
