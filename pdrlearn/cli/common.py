@@ -69,7 +69,7 @@ def manifest_kind(folder: Path) -> str | None:
 #: it). ``out_folder`` replaces a folder with ``--force`` only when :func:`folder_kind` finds the same kind.
 FOLDER_KINDS = {
     "track": ("a track (trajectory.csv, steps.csv, path.png, summary.json)", "pdrlearn track"),
-    "run": ("a run (steps.csv, trajectory.csv, summary.json)", "pdrlearn run"),
+    "run": ("a run (steps.csv, trajectory.csv, path.png, summary.json)", "pdrlearn run"),
     "model": ("a model directory", "pdrlearn train"),
     "bundle": ("a runtime bundle", "pdrlearn export"),
     "report": ("a report (index.html, report.md)", "pdrlearn report"),
