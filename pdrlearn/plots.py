@@ -23,7 +23,10 @@ def _figure(nrows: int, height: float = 2.0):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(nrows, 1, figsize=(11, height * nrows + 0.6), sharex=True, squeeze=False)
+    # constrained layout: the title and a figure legend take the room they need above the panels (a fixed
+    # top margin left a blank band over 8 panels and drew the legend over the title, decision L57)
+    fig, axes = plt.subplots(nrows, 1, figsize=(11, height * nrows + 0.6), sharex=True, squeeze=False,
+                             layout="constrained")
     return plt, fig, axes[:, 0]
 
 
@@ -32,6 +35,26 @@ def save_atomic(fig, path: Path, metadata: dict[str, str] | None = None) -> None
     extra PNG text chunks)."""
     with atomic_file(path, suffix=".png") as tmp:
         fig.savefig(tmp, dpi=110, bbox_inches="tight", metadata=metadata)
+
+
+def relative_luminance(rgb) -> float:
+    """WCAG 2.x relative luminance of an sRGB colour (components 0-1; alpha ignored)."""
+    c = np.asarray(rgb, dtype=float)[:3]
+    lin = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)  # WCAG 2.x sRGB linearisation
+    return float(lin @ np.array([0.2126, 0.7152, 0.0722]))
+
+
+def contrast_ratio(a, b) -> float:
+    """WCAG 2.x contrast ratio (1-21) of two colours: (L1 + 0.05) / (L2 + 0.05), L1 the lighter."""
+    la, lb = sorted((relative_luminance(a), relative_luminance(b)), reverse=True)
+    return (la + 0.05) / (lb + 0.05)
+
+
+def text_colour_on(rgb) -> str:
+    """"black" or "white", whichever contrasts more with a cell of colour ``rgb`` (the numbers of a
+    confusion matrix: black on the dark end of "Blues" was unreadable, decision L57)."""
+    black, white = (0.0, 0.0, 0.0), (1.0, 1.0, 1.0)
+    return "white" if contrast_ratio(rgb, white) > contrast_ratio(rgb, black) else "black"
 
 
 def check_window(start: float | None, end: float | None, duration_s: float, where: str) -> tuple[float, float]:
@@ -54,6 +77,14 @@ def check_window(start: float | None, end: float | None, duration_s: float, wher
 
 def plot_session(session: Session, out: Path, *, start: float | None = None, end: float | None = None) -> Path:
     """One panel per sensor stream; labelled steps shaded by terrain (or alternately when unknown)."""
+    plt, fig = session_figure(session, start=start, end=end)
+    save_atomic(fig, Path(out), metadata=dict([PLOT_MARK]))
+    plt.close(fig)
+    return Path(out)
+
+
+def session_figure(session: Session, *, start: float | None = None, end: float | None = None):
+    """The figure of :func:`plot_session` (not saved): ``(pyplot, figure)``."""
     names = list(session.streams)
     t0 = session.t_start
     start, end = check_window(start, end, session.t_end - t0, session.name)
@@ -74,10 +105,9 @@ def plot_session(session: Session, out: Path, *, start: float | None = None, end
     axes[-1].set_xlabel("time since session start [s]")
     if session.steps is not None and "terrain" in session.steps:
         handles = [plt.Rectangle((0, 0), 1, 1, color=c, alpha=0.5) for c in _TERRAIN_COLOURS.values()]
-        fig.legend(handles, list(_TERRAIN_COLOURS), loc="upper center", ncol=3, fontsize=8)
+        fig.legend(handles, list(_TERRAIN_COLOURS), loc="outside lower center", ncol=3, fontsize=8,
+                   title="labelled steps", title_fontsize=8)
     fig.suptitle(f"{session.name}: {len(names)} stream(s), "
-                 f"{0 if session.steps is None else len(session.steps)} labelled step(s)", y=1.0)
-    save_atomic(fig, Path(out), metadata=dict([PLOT_MARK]))
-    plt.close(fig)
-    return Path(out)
+                 f"{0 if session.steps is None else len(session.steps)} labelled step(s)")
+    return plt, fig
 

@@ -294,7 +294,8 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "pipeline"): _one_of(["auto", *PIPELINES]),
         ("track", "method"): _one_of(["auto", *PLASYS_METHODS], case=False),
         ("track", "rules"): _one_of(RULES),
-        ("track", "start"): parse_start,
+        ("track", "start"): lambda v: parse_start(v, altitude=True),  # LAT,LON[,ALT] (decision L56)
+        ("run", "start"): lambda v: parse_start(v, altitude=True),
         ("track", "length_bounds"): two_numbers,
         ("export", "length_bounds"): two_numbers,
         ("export", "methods"): _one_of(METHODS, listed=True),

@@ -312,7 +312,7 @@ def plot_confusions(task: str, task_result: dict, out: Path) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from pdrlearn.plots import save_atomic
+    from pdrlearn.plots import save_atomic, text_colour_on
 
     pairs = [(m, u) for m, d in task_result["methods"].items() for u in d["units"]]
     ncol = min(4, max(1, len(pairs)))
@@ -323,10 +323,11 @@ def plot_confusions(task: str, task_result: dict, out: Path) -> Path:
         ax.axis("off")
     for ax, (m, u) in zip(axes.ravel(), pairs, strict=False):
         cm = np.asarray(task_result["methods"][m]["units"][u]["confusion"], dtype=float)
-        ax.imshow(cm, cmap="Blues")
+        im = ax.imshow(cm, cmap="Blues")
         for i in range(cm.shape[0]):
-            for j in range(cm.shape[1]):
-                ax.text(j, i, f"{int(cm[i, j])}", ha="center", va="center", fontsize=8)
+            for j in range(cm.shape[1]):  # the number in the colour that contrasts with its cell (L57)
+                ax.text(j, i, f"{int(cm[i, j])}", ha="center", va="center", fontsize=8,
+                        color=text_colour_on(im.cmap(im.norm(cm[i, j]))))
         ax.set_xticks(range(len(classes)), classes, fontsize=7)
         ax.set_yticks(range(len(classes)), classes, fontsize=7)
         acc = task_result["methods"][m]["units"][u]["accuracy"]

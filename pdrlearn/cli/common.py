@@ -69,7 +69,7 @@ def manifest_kind(folder: Path) -> str | None:
 #: it). ``out_folder`` replaces a folder with ``--force`` only when :func:`folder_kind` finds the same kind.
 FOLDER_KINDS = {
     "track": ("a track (trajectory.csv, steps.csv, path.png, summary.json)", "pdrlearn track"),
-    "run": ("a run (steps.csv, trajectory.csv, summary.json)", "pdrlearn run"),
+    "run": ("a run (steps.csv, trajectory.csv, path.png, summary.json)", "pdrlearn run"),
     "model": ("a model directory", "pdrlearn train"),
     "bundle": ("a runtime bundle", "pdrlearn export"),
     "report": ("a report (index.html, report.md)", "pdrlearn report"),
@@ -323,3 +323,18 @@ def warn_gaps(session, names, consequence: str) -> None:
     log = logging.getLogger("pdrlearn.cli")
     for line in gap_lines(long_gaps(session, tuple(names)), consequence):
         log.warning("%s: %s", session.where, line)
+
+
+#: ``--start`` of ``track`` and ``run`` (decision L56)
+START_HELP = ("Start coordinate LAT,LON (degrees) -> lat/lon columns; LAT,LON,ALT also gives the start's "
+              "altitude in m, where the z column starts (default 0: z = height above the start; decision L56).")
+
+
+def start_option(start: str | None) -> tuple[tuple[float, float] | None, float]:
+    """``--start`` of ``track`` / ``run`` (decision L56): ``((lat, lon) or None, start altitude m)``."""
+    from pdrlearn.track.geodetic import parse_start
+
+    if start is None:
+        return None, 0.0
+    lat, lon, alt = parse_start(start, altitude=True)
+    return (lat, lon), alt

@@ -9,7 +9,16 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, out_folder, print_json, replaced
+from pdrlearn.cli.common import (
+    FORCE_HELP,
+    START_HELP,
+    existed,
+    json_safe,
+    out_folder,
+    print_json,
+    replaced,
+    start_option,
+)
 
 
 def export(
@@ -180,8 +189,8 @@ def replay_chunks(streams: dict, chunk_s: float):
 def run(
     bundle_dir: Path = typer.Argument(..., help="Bundle folder written by 'pdrlearn export'."),
     session_dir: Path = typer.Argument(None, help="PLASYS session folder to replay (omit with --protocol)."),
-    out: Path = typer.Option(None, "--out", "-o", help="Folder for steps.csv, trajectory.csv, summary.json "
-                             "(the files and columns of `pdrlearn track`)."),
+    out: Path = typer.Option(None, "--out", "-o", help="Folder for steps.csv, trajectory.csv, path.png, "
+                             "summary.json (the files and columns of `pdrlearn track`)."),
     protocol: str = typer.Option(None, "--protocol", help="Bluetooth text-protocol capture to read instead "
                                  "of a session ('-' = stdin)."),
     chunk_s: float = typer.Option(1.0, help="Replay chunk length (s)."),
@@ -202,6 +211,7 @@ def run(
     units: str = typer.Option(None, "--units", help="Body units to track with: foot, or foot,waist (default: "
                               "the bundle's; the foot alone when the data have no waist unit, with a warning). "
                               "foot = a two-unit bundle on a foot-only session or a failed waist (decision E26)."),
+    start: str = typer.Option(None, "--start", help=START_HELP),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -212,6 +222,8 @@ def run(
         cat capture.txt | pdrlearn run out/bundle/u1 --protocol - --out out/live
 
         pdrlearn run out/bundle/u1 out/sim/D_u1 --units foot --out out/run_foot
+
+        pdrlearn run out/bundle/u1 out/sim/D_u1 --start 41.178,-8.608,12.5 --out out/run_geo
     """
     from pdrlearn.errors import DataError
     from pdrlearn.runtime import load_bundle
@@ -221,6 +233,7 @@ def run(
         raise DataError(f"run: give a SESSION_DIR ({session_dir}) or --protocol {protocol}, not both")
     if not (chunk_s > 0 and chunk_s < float("inf")):
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
+    start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
     if out is not None:
         out_folder(out, "run", force=force, inputs=(bundle_dir, session_dir))
     bundle = load_bundle(bundle_dir)  # verified before any output
@@ -236,7 +249,7 @@ def run(
                             "Bluetooth protocol does not carry; replay the foot unit alone (--units foot)")
         tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
                           resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
-                          units=use)
+                          units=use, start=(0.0, 0.0, start_alt))
         if protocol == "-":
             stream = sys.stdin
         else:
@@ -283,6 +296,7 @@ def run(
         tracker = Tracker(bundle, frames=_frames_of(session, bundle, use),
                           resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           input_rates_hz=rates, units=use, sensors=[n for n, st in session.streams.items() if len(st)],
+                          start=(0.0, 0.0, start_alt),
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
         dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
         if tracker.heading_source == "auto" and not said and (dropped or not (
@@ -291,7 +305,11 @@ def run(
 
             from pdrlearn.track.plasys import NO_WAIST_HEADING
 
-            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, NO_WAIST_HEADING)
+            line = NO_WAIST_HEADING
+            if dropped and any(n.startswith("w") and len(st) for n, st in session.streams.items()):
+                # decision E45: the session has a waist unit --units foot leaves out; not "no waist unit"
+                line = "waist unit not used (--units foot): " + NO_WAIST_HEADING.removeprefix("no waist unit: ")
+            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
         for chunk in replay_chunks({n: (st.t, st.values) for n, st in session.streams.items()}, chunk_s):
             t0 = time.perf_counter()
             new = tracker.push(chunk)
@@ -301,12 +319,12 @@ def run(
         steps += tracker.flush()
         _warn_short_streams(session, tracker, steps)
         source = f"session {session.name}"
-    result = _result(steps)
+    result = _result(steps, start_ll, start_alt)
     summary = _summary(steps, tracker, lat, source, result, session)
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats
     if out is not None:
-        _write(out, result, summary)
+        _write(out, result, summary, session, source)
     if as_json:
         print_json(json_safe(summary))
     else:
@@ -320,25 +338,34 @@ def run(
 _STEP_COLUMNS = ("start_s", "end_s", "length_m", "heading_rad", "dz_m", "terrain", "direction", "length_class")
 
 
-def _result(steps):
+def _result(steps, start_ll=None, start_alt: float = 0.0):
     """The runtime's steps as a :class:`~pdrlearn.track.base.TrackResult` with the columns of ``track``:
-    the runtime's ``length`` class column is ``length_class`` (decision B14), ``unit`` is ``foot``, the
-    trajectory has ``t, x, y, z, lat, lon`` (lat/lon empty: ``run`` takes no start coordinate)."""
+    the runtime's ``length`` class column is ``length_class`` (decision B14), ``unit`` is ``foot``,
+    ``heading_rad`` wrapped to [-pi, pi) as ``track`` writes it (the runtime's heading is unwrapped), the
+    trajectory has ``t, x, y, z, lat, lon`` (lat/lon from ``start_ll`` = ``--start LAT,LON`` by ``track``'s
+    geodetic update, else empty; z from ``start_alt``, the altitude the Tracker started at, decision L56)."""
     import pandas as pd
 
+    from pdrlearn.orient import wrap_angle
     from pdrlearn.track.base import TrackResult
+    from pdrlearn.track.geodetic import geodetic_track
 
     df = pd.DataFrame([st.to_dict() for st in steps]).rename(columns={"length": "length_class"})
     if df.empty:
         df = pd.DataFrame(columns=["start_s", "end_s", "length_m", "heading_rad", "dz_m"])
     first = [c for c in _STEP_COLUMNS if c in df.columns]
     df = df[first + [c for c in df.columns if c not in first]]
+    heading = df["heading_rad"].to_numpy(float)
+    df["heading_rad"] = wrap_angle(heading)
     # every runtime step is a stride of the foot unit (the Tracker needs it); track's `unit` column also lets
     # evaluate_track score the strides (step_f1, decision L36) as it does for `track`
     df["unit"] = "foot"
-    traj = [{"t": steps[0].start_s, "x": 0.0, "y": 0.0, "z": 0.0}] if steps else []
+    traj = [{"t": steps[0].start_s, "x": 0.0, "y": 0.0, "z": float(start_alt)}] if steps else []
     traj += [{"t": st.end_s, "x": st.x, "y": st.y, "z": st.z} for st in steps]
     traj = pd.DataFrame(traj, columns=["t", "x", "y", "z"]).assign(lat=float("nan"), lon=float("nan"))
+    if start_ll is not None and len(traj):  # as track_streaming: eq. 56/57 along each step's direction
+        ll = geodetic_track(tuple(start_ll), df["length_m"].to_numpy(float), heading)
+        traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     return TrackResult(steps=df, trajectory=traj, info={"pipeline": "runtime"})
 
 
@@ -356,7 +383,9 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
         for t, c in st.classes.items():
             counts[t][c] = counts[t].get(c, 0) + 1
     out = {"source": source, **evaluate_track(result, session)}
-    out["final_position"] = dict(zip("xyz", (float(v) for v in tracker.position), strict=True))
+    # lat/lon with --start, as track's summary (without it track has none: no NaN keys either)
+    geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon") and np.isfinite(v)}
+    out["final_position"] = {**dict(zip("xyz", (float(v) for v in tracker.position), strict=True)), **geo}
     if session is not None:
         out["session"] = session.name
     out["pipeline"] = "runtime"
@@ -373,17 +402,20 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
     return out
 
 
-def _write(out: Path, result, summary) -> None:
-    """steps.csv, trajectory.csv and summary.json as ``track`` writes them (same names, columns, number
-    format), atomically: all three or none, and ``--force`` keeps the old run until then."""
+def _write(out: Path, result, summary, session=None, source: str = "") -> None:
+    """steps.csv, trajectory.csv, path.png and summary.json as ``track`` writes them (same names, columns,
+    number format, ``track``'s figure), atomically: all four or none, and ``--force`` keeps the old run until
+    then. ``session``: the replayed session (its ground truth in path.png; None for a capture)."""
     import json
 
     from pdrlearn.atomic import atomic_directory
+    from pdrlearn.track.plots import plot_paths
 
     was = existed(out)
     with atomic_directory(out) as tmp:
         result.steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
         result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format="%.10g")
+        plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run")
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
     replaced(out, was)
 

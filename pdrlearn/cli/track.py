@@ -9,7 +9,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import FORCE_HELP, existed, json_safe, print_json, replaced
+from pdrlearn.cli.common import FORCE_HELP, START_HELP, existed, json_safe, print_json, replaced, start_option
 from pdrlearn.errors import DataError
 
 
@@ -38,7 +38,7 @@ def track(
                                              "when at least this fraction of the strides lie outside the model's "
                                              "training range, e.g. 0.25 (off by default; the fraction is always "
                                              "in summary.json as out_of_domain_fraction, decision C16)."),
-    start: str = typer.Option(None, "--start", help="Start coordinate LAT,LON (degrees) -> lat/lon columns."),
+    start: str = typer.Option(None, "--start", help=START_HELP),
     params: Path = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline."),
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
     gnss_period: float = typer.Option(None, "--gnss-period", help="Use a GNSS fix every S seconds."),
@@ -62,6 +62,8 @@ def track(
 
         pdrlearn track out/sim/D_u1 --method M2 --start 41.178,-8.608 --out out/D
 
+        pdrlearn track out/sim/D_u1 --start 41.178,-8.608,12.5 --out out/D_alt   # z starts at 12.5 m
+
         pdrlearn track out/sim/D_u1 --method M3 --model out/models/u1 --rules bayes --out out/D3 --json
 
         pdrlearn track out/sim/D_u1 --method M3 --model out/models/u1 --streaming --out out/D3s   # = pdrlearn run
@@ -75,11 +77,10 @@ def track(
     from pdrlearn.io import read_session
     from pdrlearn.track.base import get_pipeline, resolve_pipeline
     from pdrlearn.track.evaluate import evaluate_track, turn_warning
-    from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plots import plot_paths
 
     out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes))
-    start_ll = parse_start(start) if start is not None else None
+    start_ll, start_alt = start_option(start)
     for fix_file in (gnss, fixes):  # before the tracking, which warned and worked first
         if fix_file is not None and not Path(fix_file).is_file():
             raise DataError(f"{fix_file}: no such fix file; pass an NMEA log (.nmea/.txt) or a CSV "
@@ -140,6 +141,8 @@ def track(
         aided = True
     else:
         aided = False
+    if start_alt:  # decision L56: the z column starts at the given altitude (as Tracker(start=(x, y, ALT)))
+        result.trajectory["z"] = result.trajectory["z"] + start_alt
     summary = evaluate_track(result, session)
     summary["session"] = session.name
     summary["pipeline"] = pipeline

@@ -1,4 +1,4 @@
-"""Geodetic position update of thesis ch.7.2.1 (eq. 56/57) and the ``--start LAT,LON`` parser."""
+"""Geodetic position update of thesis ch.7.2.1 (eq. 56/57) and the ``--start LAT,LON[,ALT]`` parser."""
 
 from __future__ import annotations
 
@@ -9,20 +9,31 @@ from pdrlearn.errors import DataError
 EARTH_RADIUS_KM = 6371.0  # thesis ch.7.2.1 (R = 6371 km)
 
 
-def parse_start(text: str) -> tuple[float, float]:
-    """``"LAT,LON"`` in decimal degrees -> (lat, lon); a one-line DataError on anything else."""
+def parse_start(text: str, *, altitude: bool = False) -> tuple[float, float] | tuple[float, float, float]:
+    """``"LAT,LON"`` in decimal degrees -> (lat, lon); a one-line DataError on anything else.
+
+    ``altitude=True`` (the ``--start`` of ``pdrlearn track`` / ``run``, decision L56) also accepts
+    ``"LAT,LON,ALT"`` (ALT: the start's altitude in m) and returns ``(lat, lon, alt)``, alt 0.0 when not given.
+    """
     parts = str(text).replace(";", ",").split(",")
+    form, example = ("LAT,LON[,ALT]", "--start 41.178,-8.608 or 41.178,-8.608,12.5") if altitude else \
+        ("LAT,LON", "--start 41.178,-8.608")
     try:
-        if len(parts) != 2:
+        if len(parts) not in ((2, 3) if altitude else (2,)):
             raise ValueError
-        lat, lon = (float(p) for p in parts)
+        lat, lon, *rest = (float(p) for p in parts)
     except ValueError:
-        raise DataError(f"--start '{text}': expected LAT,LON in decimal degrees, "
-                        "e.g. --start 41.178,-8.608") from None
+        raise DataError(f"--start '{text}': expected {form} in decimal degrees"
+                        + (" (ALT: the start's altitude in m)" if altitude else "") + f", e.g. {example}") from None
     if not (np.isfinite(lat) and np.isfinite(lon) and -90.0 <= lat <= 90.0 and -180.0 <= lon <= 180.0):
         raise DataError(f"--start '{text}': latitude must be in [-90, 90] and longitude in [-180, 180] "
                         "degrees")
-    return lat, lon
+    if not altitude:
+        return lat, lon
+    alt = rest[0] if rest else 0.0
+    if not np.isfinite(alt):
+        raise DataError(f"--start '{text}': the altitude ALT must be a finite number of metres, e.g. 12.5")
+    return lat, lon, alt
 
 
 def destination(lat_rad: float, lon_rad: float, azimuth_rad: float,

@@ -10,51 +10,86 @@ from pdrlearn.io.session import Session
 from pdrlearn.plots import save_atomic
 from pdrlearn.track.base import TrackResult
 
+#: decision L55: path.png gets an altitude-vs-time panel when a drawn path's height spans at least this (m):
+#: the threshold of the track evaluation's altitude error (``altitude_error_pct``, evaluate.py)
+ALTITUDE_PANEL_M = 0.5
+
 
 def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | None = None,
                title: str = "") -> Path:
-    """Plan view (x east, y north, m) of one or more tracks, with the ground truth when the session has one.
+    """Plan view of one or more tracks, with the ground truth when the session has one; below it the height
+    ``z`` against time when a track or the ground truth changes height by :data:`ALTITUDE_PANEL_M` or more
+    (the storeys of a multi-floor walk overlap in the plan view, decision L55).
 
     The ground truth is shifted so that it starts where the tracks start (its position at the first
     track's start time). When the first track's heading is relative to its start (0 = east, unless
     ``initial_heading`` says otherwise; :func:`heading_is_absolute`), the ground truth is also rotated to set
-    off in that track's direction (:func:`initial_bearing`); the legend says so.
+    off in that track's direction (:func:`initial_bearing`); the legend says so, and the axes are ``x`` (heading
+    0 at the start) / ``y`` instead of east / north (L55).
     """
+    plt, fig = path_figure(paths, session=session, title=title)
+    save_atomic(fig, Path(out))
+    plt.close(fig)
+    return Path(out)
+
+
+def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None, title: str = ""):
+    """The figure of :func:`plot_paths` (not saved): ``(pyplot, figure)``; its axes: the plan view, then the
+    altitude panel when there is one."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(7, 6))
     t0, first, first_info = None, None, {}
+    lines = []  # (label, t, x, y, z, style)
     for name, r in paths.items():
         tr = r.trajectory
-        ax.plot(tr["x"], tr["y"], "-", lw=1.4, marker=".", ms=3, label=f"{name} ({r.distance_m:.1f} m)")
+        lines.append((f"{name} ({r.distance_m:.1f} m)", *(tr[c].to_numpy(float) for c in ("t", "x", "y", "z")),
+                      {"ls": "-", "lw": 1.4, "marker": ".", "ms": 3}))
         t0 = float(tr["t"].iloc[0]) if t0 is None and len(tr) else t0
         if first is None and len(tr):
             first, first_info = tr, r.info or {}
+    absolute = first is None or session is None or heading_is_absolute(first_info, session)
     if session is not None and session.trajectory is not None and len(session.trajectory) > 1:
         g = session.trajectory
         gt = g["t"].to_numpy(float)
         ref_t = gt[0] if t0 is None else t0
-        x0, y0 = np.interp(ref_t, gt, g["x"].to_numpy(float)), np.interp(ref_t, gt, g["y"].to_numpy(float))
+        x0, y0, z0 = (np.interp(ref_t, gt, g[c].to_numpy(float)) for c in ("x", "y", "z"))
         gx, gy = g["x"].to_numpy(float) - x0, g["y"].to_numpy(float) - y0
+        gz = g["z"].to_numpy(float) - z0 + (float(first["z"].iloc[0]) if first is not None else 0.0)
         label = "ground truth"
-        if first is not None and not heading_is_absolute(first_info, session):
+        if first is not None and not absolute:
             rot = rotated_to_track(gx, gy, gt >= ref_t, first["x"].to_numpy(float), first["y"].to_numpy(float))
             if rot is not None:
                 gx, gy = rot
                 label = "ground truth (rotated to the track's initial direction: relative heading)"
-        ax.plot(gx, gy, "k--", lw=1.0, label=label)
+        lines.append((label, gt, gx, gy, gz, {"ls": "--", "lw": 1.0, "color": "k"}))
+    climbs = any(len(z) and np.nanmax(z) - np.nanmin(z) >= ALTITUDE_PANEL_M for *_, z, _ in lines)
+    if climbs:
+        fig, (ax, az) = plt.subplots(2, 1, figsize=(7, 8.6), height_ratios=(3, 1.1), layout="constrained")
+    else:
+        fig, ax = plt.subplots(figsize=(7, 6), layout="constrained")
+    for label, _, x, y, _, style in lines:
+        ax.plot(x, y, label=label, **style)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("east [m]")
-    ax.set_ylabel("north [m]")
+    if absolute:
+        ax.set_xlabel("east [m]")
+        ax.set_ylabel("north [m]")
+    else:  # a heading relative to the start: the axes are not east / north (decision L55)
+        ax.set_xlabel("x [m] (heading 0 at the start, not east: relative heading)")
+        ax.set_ylabel("y [m] (90 deg left of x, not north)")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     ax.set_title(title or (session.name if session is not None else "track"))
-    save_atomic(fig, Path(out))
-    plt.close(fig)
-    return Path(out)
+    if climbs:
+        for label, t, _, _, z, style in lines:
+            az.plot(t, z, label=label, **{**style, "ms": 2})
+        az.set_xlabel("time [s]")
+        az.set_ylabel("height z [m]")
+        az.grid(alpha=0.3)
+        az.set_title("height over time", fontsize=9)
+    return plt, fig
 
 
 def initial_bearing(x: np.ndarray, y: np.ndarray, *, min_dist_m: float = 2.0) -> float | None:
