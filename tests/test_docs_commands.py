@@ -266,9 +266,9 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.runtime.bundle import UNITS as BODY_UNITS
     from pdrlearn.sim import SCENARIOS, SPEEDS
     from pdrlearn.sim.body import PELVIS_MODES
+    from pdrlearn.sim.route import parse_route
     from pdrlearn.steps.detectors import DETECTORS
     from pdrlearn.track.base import PIPELINES
-    from pdrlearn.sim.route import parse_route
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
 
