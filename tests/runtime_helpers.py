@@ -207,3 +207,21 @@ def scaled_foot_acc(s: Session, k: float) -> Session:
     streams = {**s.streams, "fAccelerometer": Stream("fAccelerometer", acc.t, acc.values * k)}
     return Session(name=s.name, streams=streams, steps=s.steps, trajectory=s.trajectory, extras=s.extras,
                    meta=s.meta, frames=s.frames)
+
+
+def per_timestamp(s: Session) -> list[dict]:
+    """One push per sample time, every sensor that has a sample then (a live stream, sample by sample)."""
+    times = np.unique(np.concatenate([st.t for st in s.streams.values()]))
+    idx = {n: np.searchsorted(st.t, times) for n, st in s.streams.items()}
+    return [{n: (st.t[i:i + 1], st.values[i:i + 1]) for n, st in s.streams.items()
+             if (i := int(idx[n][k])) < len(st.t) and st.t[i] == when} for k, when in enumerate(times)]
+
+
+def without(s: Session, a: float, b: float, names=None) -> Session:
+    """``s`` without the samples of ``names`` (default: every stream) in ``[a, b)`` s."""
+    c = s.copy()
+    for n, st in s.streams.items():
+        if names is None or n in names:
+            m = ~((st.t >= a) & (st.t < b))
+            c.streams[n] = Stream(n, st.t[m], st.values[m])
+    return c

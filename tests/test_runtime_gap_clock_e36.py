@@ -9,11 +9,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pdrlearn.io import Stream
 from pdrlearn.kernels.window import gap_clock
 from pdrlearn.runtime.tracker import Tracker
 from pdrlearn.track.base import get_pipeline
-from tests.runtime_helpers import trained_dirs
+from tests.runtime_helpers import per_timestamp, trained_dirs, without
 
 
 @pytest.fixture(scope="module")
@@ -27,20 +26,6 @@ def scenario_d():
     return sim.simulate("D", 1)  # the trial's D (out/sim/D_u1 of make demo)
 
 
-def _without(s, a: float, b: float, names=None):
-    c = s.copy()
-    for n, st in s.streams.items():
-        if names is None or n in names:
-            m = ~((st.t >= a) & (st.t < b))
-            c.streams[n] = Stream(n, st.t[m], st.values[m])
-    return c
-
-
-def _per_timestamp(s) -> list[dict]:
-    times = np.unique(np.concatenate([st.t for st in s.streams.values()]))
-    idx = {n: np.searchsorted(st.t, times) for n, st in s.streams.items()}
-    return [{n: (st.t[i:i + 1], st.values[i:i + 1]) for n, st in s.streams.items()
-             if (i := int(idx[n][k])) < len(st.t) and st.t[i] == when} for k, when in enumerate(times)]
 
 
 def test_the_gap_clock_counts_a_gap_as_one_sample_interval_and_leaves_a_regular_clock_alone():
@@ -58,9 +43,9 @@ def test_the_gap_clock_counts_a_gap_as_one_sample_interval_and_leaves_a_regular_
 @pytest.mark.parametrize("incremental", [True, False])
 def test_a_stride_across_a_short_foot_gap_is_integrated_as_offline_without_the_phantom_height(
         root, scenario_d, incremental):
-    s = _without(scenario_d, 50.0, 50.5)
+    s = without(scenario_d, 50.0, 50.5)
     tr = Tracker(root / "bundle", incremental=incremental)
-    steps = [st for c in _per_timestamp(s) for st in tr.push(c)] + tr.flush()
+    steps = [st for c in per_timestamp(s) for st in tr.push(c)] + tr.flush()
     across = [st for st in steps if st.start_s < 50.5 and st.end_s > 49.95]
     assert len(across) == 1 and not across[0].classes and across[0].gap_s == 0.0
     dz = across[0].dz_m

@@ -25,12 +25,12 @@ import pandas as pd
 import pytest
 
 from pdrlearn.errors import DataError
-from pdrlearn.io import SENSORS, Session, Stream, write_session
+from pdrlearn.io import SENSORS, Stream, write_session
 from pdrlearn.runtime import load_bundle
 from pdrlearn.runtime import tracker as T
 from pdrlearn.runtime.tracker import Tracker
 from pdrlearn.track.base import get_pipeline
-from tests.runtime_helpers import replay, synthetic_session, trained_dirs
+from tests.runtime_helpers import per_timestamp, replay, synthetic_session, trained_dirs, without
 
 DOCS = Path(__file__).resolve().parents[1] / "docs" / "deploying.md"
 
@@ -45,25 +45,6 @@ def walk():
     return synthetic_session(24, seed=11, name="walk", turn_rad_per_step=0.3)
 
 
-def _per_timestamp(s: Session) -> list[dict]:
-    """One push per sample time, every sensor that has a sample then (a live stream, sample by sample)."""
-    times = np.unique(np.concatenate([st.t for st in s.streams.values()]))
-    idx = {n: np.searchsorted(st.t, times) for n, st in s.streams.items()}
-    out = []
-    for k, when in enumerate(times):
-        out.append({n: (st.t[i:i + 1], st.values[i:i + 1]) for n, st in s.streams.items()
-                    if (i := int(idx[n][k])) < len(st.t) and st.t[i] == when})
-    return out
-
-
-def _without(s: Session, a: float, b: float, names=None) -> Session:
-    """``s`` without the samples of ``names`` (default: every stream) in ``[a, b)`` s."""
-    c = s.copy()
-    for n, st in s.streams.items():
-        if names is None or n in names:
-            m = ~((st.t >= a) & (st.t < b))
-            c.streams[n] = Stream(n, st.t[m], st.values[m])
-    return c
 
 
 def _state(tr: Tracker) -> tuple:
@@ -77,7 +58,7 @@ def test_the_sensor_table_is_the_io_registry():
 
 @pytest.mark.parametrize("when", ["first push", "mid-stream"])
 def test_a_refused_push_changes_nothing_and_its_retry_without_the_bad_sensor_goes_on(root, walk, when):
-    chunks = _per_timestamp(walk)
+    chunks = per_timestamp(walk)
     k = 0 if when == "first push" else 200
     ref = Tracker(root / "bundle")
     want = [st for c in chunks for st in ref.push(c)] + ref.flush()
@@ -126,10 +107,10 @@ def test_timestamps_in_ms_are_refused_naming_the_unit(root, walk):
 
 @pytest.mark.parametrize("pushes", ["per sample", "chunks"])
 def test_a_long_gap_in_every_stream_is_warned_once_and_its_stride_moves_0_m_as_track_streaming(root, walk, pushes):
-    s = _without(walk, 10.2, 11.7)
+    s = without(walk, 10.2, 11.7)
     tr = Tracker(root / "bundle")
     if pushes == "per sample":
-        steps = [st for c in _per_timestamp(s) for st in tr.push(c)] + tr.flush()
+        steps = [st for c in per_timestamp(s) for st in tr.push(c)] + tr.flush()
     else:
         steps = replay(tr, s, 0.37)
     lines = [w for w in tr.warnings if "no samples for" in w]
@@ -159,7 +140,7 @@ def test_a_short_gap_is_bridged_unclassified_as_track_streaming_and_warned_once(
     (before: classified from the interpolated window). Positions equal track --streaming's (E30: with the shared
     kernel only, ``incremental=False``; since E36 a stride over a foot gap is levelled by the shared kernel on the
     gap clock in both, and the push-time levelling's 0.11 m on the stride that starts inside the gap is gone)."""
-    s = _without(walk, 10.2, 10.7)
+    s = without(walk, 10.2, 10.7)
     tr = Tracker(root / "bundle", incremental=incremental)
     steps = replay(tr, s, 0.37)
     lines = [w for w in tr.warnings if "no samples for" in w]
@@ -175,7 +156,7 @@ def test_a_short_gap_is_bridged_unclassified_as_track_streaming_and_warned_once(
 
 
 def test_a_waist_gap_is_warned_and_does_not_zero_the_stride(root, walk):
-    s = _without(walk, 10.2, 11.7, names=("wAccelerometer", "wGyroscope", "wBarometer"))
+    s = without(walk, 10.2, 11.7, names=("wAccelerometer", "wGyroscope", "wBarometer"))
     tr = Tracker(root / "bundle")
     steps = replay(tr, s, 0.37)
     lines = [w for w in tr.warnings if "no samples for" in w]
@@ -191,12 +172,12 @@ def test_a_slow_barometer_has_no_gaps(root, walk):
     tr = Tracker(root / "bundle")
     assert len(replay(tr, s, 0.37)) >= 20 and not [w for w in tr.warnings if "no samples for" in w], tr.warnings
     tr = Tracker(root / "bundle")
-    assert [st for c in _per_timestamp(s) for st in tr.push(c)] and not [w for w in tr.warnings
+    assert [st for c in per_timestamp(s) for st in tr.push(c)] and not [w for w in tr.warnings
                                                                        if "no samples for" in w], tr.warnings
 
 
 def test_held_values_of_a_stopped_stream_are_warned_once(root, walk):
-    s = _without(walk, 12.0, 1e9, names=("wAccelerometer", "wGyroscope", "wBarometer"))
+    s = without(walk, 12.0, 1e9, names=("wAccelerometer", "wGyroscope", "wBarometer"))
     tr = Tracker(root / "bundle", max_lag_s=float("inf"))
     steps = replay(tr, s, 0.37)
     assert len(steps) >= 20
@@ -283,7 +264,7 @@ def test_a_push_refused_for_its_rate_changes_nothing(root, walk):
 def test_one_sample_pushes_take_the_general_checks_when_not_plainly_finite(root, walk):
     """E17's one-sample path tests finiteness on the sum of the values: a NaN or inf anywhere is the one-line error,
     and finite values whose sum overflows are taken (by the general path)."""
-    chunks = _per_timestamp(walk)
+    chunks = per_timestamp(walk)
     tr = Tracker(root / "bundle")
     for c in chunks[:100]:
         tr.push(c)

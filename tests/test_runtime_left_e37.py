@@ -20,7 +20,7 @@ from pdrlearn.errors import DataError, InternalError
 from pdrlearn.io import Stream, write_session
 from pdrlearn.runtime import tracker as T
 from pdrlearn.runtime.tracker import Tracker
-from tests.runtime_helpers import replay, synthetic_session, trained_dirs
+from tests.runtime_helpers import per_timestamp, replay, synthetic_session, trained_dirs, without
 
 
 @pytest.fixture(scope="module")
@@ -33,27 +33,13 @@ def walk():
     return synthetic_session(24, seed=11, name="walk", turn_rad_per_step=0.3)
 
 
-def _without(s, a: float, b: float, names=None):
-    c = s.copy()
-    for n, st in s.streams.items():
-        if names is None or n in names:
-            m = ~((st.t >= a) & (st.t < b))
-            c.streams[n] = Stream(n, st.t[m], st.values[m])
-    return c
-
-
-def _per_timestamp(s) -> list[dict]:
-    times = np.unique(np.concatenate([st.t for st in s.streams.values()]))
-    idx = {n: np.searchsorted(st.t, times) for n, st in s.streams.items()}
-    return [{n: (st.t[i:i + 1], st.values[i:i + 1]) for n, st in s.streams.items()
-             if (i := int(idx[n][k])) < len(st.t) and st.t[i] == when} for k, when in enumerate(times)]
 
 
 # -- E37 ---------------------------------------------------------------------------------------------------------
 def test_run_writes_the_gap_s_of_each_stride_in_steps_csv(root, walk, tmp_path, capsys):
     from pdrlearn.cli import main
 
-    write_session(_without(walk, 10.2, 11.7), tmp_path / "gap")
+    write_session(without(walk, 10.2, 11.7), tmp_path / "gap")
     assert main(["run", str(root / "bundle"), str(tmp_path / "gap"), "--out", str(tmp_path / "run"), "--json"]) == 0
     capsys.readouterr()
     steps = pd.read_csv(tmp_path / "run" / "steps.csv")
@@ -104,12 +90,12 @@ def test_a_slow_barometer_is_not_held_and_a_stuck_accelerometer_is(root, walk, p
     s = _slow_baro(walk, 100)  # 0.2 Hz (5 s between samples)
     tr = Tracker(root / "bundle", max_lag_s=float("inf"))
     steps = (replay(tr, s, 0.37) if pushes == "chunks"
-             else [st for c in _per_timestamp(s) for st in tr.push(c)] + tr.flush())
+             else [st for c in per_timestamp(s) for st in tr.push(c)] + tr.flush())
     assert len(steps) >= 20 and not [w for w in tr.warnings if "last values held" in w], tr.warnings
-    stuck = _without(s, 12.0, 1e9, names=("wAccelerometer",))
+    stuck = without(s, 12.0, 1e9, names=("wAccelerometer",))
     tr = Tracker(root / "bundle", max_lag_s=float("inf"))
     steps = (replay(tr, stuck, 0.37) if pushes == "chunks"
-             else [st for c in _per_timestamp(stuck) for st in tr.push(c)] + tr.flush())
+             else [st for c in per_timestamp(stuck) for st in tr.push(c)] + tr.flush())
     held = [w for w in tr.warnings if "last values held" in w]
     assert len(held) == 1 and held[0].startswith("wAccelerometer: no samples since 11.95 s"), tr.warnings
 
@@ -123,7 +109,7 @@ def _state(tr: Tracker) -> tuple:
 
 @pytest.mark.parametrize("k", [0, 150])
 def test_an_empty_push_is_a_no_op(root, walk, k):
-    chunks = _per_timestamp(walk)
+    chunks = per_timestamp(walk)
     tr = Tracker(root / "bundle")
     for c in chunks[:k]:
         tr.push(c)
