@@ -9,11 +9,14 @@ turns.csv, ics.csv feet; for this analysis only, no detector reads them):
 - missed contacts (FN): bout start (first two contacts of a bout), bout end (last two), inside a reference
   turn, in a short bout (< 10 timed contacts), slow (the contact's mean reference interval to its
   neighbours > 0.75 s, i.e. cadence < 80 steps/min), motion gate closed (2 s std of the vertical
-  acceleration <= 0.5 m/s^2, W4), and "timing miss" (an unmatched scored detection 0.25-0.5 s away: the
-  step was seen, too far from the INDIP time);
+  acceleration <= 0.5 m/s^2, W4), "timing miss" (an unmatched scored detection 0.25-0.5 s away: the
+  step was seen, too far from the INDIP time) and "IC late" (a kept vertical maximum 0.25-0.6 s after the
+  contact whose IC lies more than 0.25 s after it, whether or not that detection is scored);
 - false detections (FP): timing miss (an unmatched reference contact 0.25-0.5 s away), in a reference gap
   > 1.2 s, inside one step (between two contacts of opposite feet less than 1.2 s apart), bout start/end
   (before the second or after the second-last contact), inside a reference turn;
+- whether the lab's second reference (Stereophoto, `ics_stereophoto.csv`, docs/external-data.md X4; only inside
+  its capture volume) has a contact within 0.25 s of the error;
 - the signed offsets of the matched contacts against the tolerance (histogram of |dt|);
 - stairs: the reference's `terrain` column (steps.csv) -- every Test11 stride of these subjects is `flat`.
 The categories overlap (a contact can be a bout start in a turn); each row counts it once per category.
@@ -23,11 +26,14 @@ mobgap's own IC detector on the same recordings: the F1 of the raw ICs of its pi
 here, not re-run).
 
 Run: PYTHONPATH=$PWD python experiments/waist_ic_context.py [--external datasets/external]
+Writes experiments/results/waist_ic_context.md.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
 import logging
 import warnings
 from pathlib import Path
@@ -47,6 +53,7 @@ from pdrlearn.steps.evaluate import (
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist import events as E
 from pdrlearn.waist.ahrs import waist_imu
+from pdrlearn.waist.events import InitialContactDetector
 
 ROOT = Path(__file__).resolve().parents[1]
 SUBJECTS = ("HA001", "HA002", "MS001")
@@ -75,8 +82,12 @@ def analyse(session, ev: np.ndarray) -> dict:
     wb = ics["wb_id"].to_numpy()
     turns = session.extras.get("turns")
     tw = turns[["start_s", "end_s"]].to_numpy(float) if turns is not None and len(turns) else np.empty((0, 2))
+    so = session.extras.get("ics_stereophoto")
+    st = np.sort(so["ic_s"].dropna().to_numpy(float)) if so is not None and "ic_s" in so else np.empty(0)
     imu = waist_imu(session)
     sigma = K.rolling_std(imu.acc_v, imu.fs, causal=False)
+    det = InitialContactDetector().detect(imu)  # the same contacts as `ev` (waist-ic = this detector)
+    vmax_t, ic_t = imu.t[det.anchor_], imu.t[det.ic_]
 
     def gate_closed(t):
         return sigma[int(np.argmin(np.abs(imu.t - t)))] <= E.WALK_THRESHOLD_MPS2
@@ -95,22 +106,30 @@ def analyse(session, ev: np.ndarray) -> dict:
         fn_rows.append({"t": t, "start": pos <= 1, "end": pos >= same.size - 2,
                         "turn": bool(in_intervals(np.array([t]), tw)[0]), "short": same.size < SHORT_BOUT,
                         "slow": interval > SLOW_S, "gate": gate_closed(t),
-                        "timing": bool(np.any((d > TOL) & (d <= NEAR_S)))})
+                        "timing": bool(np.any((d > TOL) & (d <= NEAR_S))),
+                        # the step was found, its IC too late: a kept vertical maximum 0.25-0.6 s after the
+                        # contact whose IC (W3: last AP maximum <= 0.25 s before it) lies > 0.25 s after it
+                        "late_ic": bool(np.any((vmax_t - t > TOL) & (vmax_t - t <= 0.6) & (ic_t - t > TOL))),
+                        "stereo": bool(st.size and np.min(np.abs(st - t)) <= TOL)})
     for t in un_d:
         j = int(np.searchsorted(it, t))
         a, b = (it[j - 1] if j > 0 else -np.inf), (it[j] if j < it.size else np.inf)
         same_bout = 0 < j < it.size and wb[j - 1] == wb[j]
+        if same_bout:  # position of the contact before it in its bout
+            members = np.flatnonzero(wb == wb[j - 1])
+            pos, n = int(np.searchsorted(members, j - 1)), members.size
+            edge = pos == 0 or pos >= n - 2  # before the second or after the second-last contact
+        else:
+            edge = True  # before the first / after the last contact of a bout (inside its tolerance)
         d = np.abs(un_r - t)
         fp_rows.append({"t": t, "timing": bool(np.any((d > TOL) & (d <= NEAR_S))),
                         "gap": same_bout and b - a > GAP_S,
                         "in_step": same_bout and b - a <= GAP_S and foot[j - 1] != foot[j],
-                        "edge": not same_bout or j <= 1 or j >= it.size - 1
-                        or (j < it.size and (wb[j - 2] != wb[j - 1] if j >= 2 else True))
-                        or (j + 1 < it.size and wb[j + 1] != wb[j]),
-                        "turn": bool(in_intervals(np.array([t]), tw)[0]), "gate": gate_closed(t)})
+                        "edge": edge, "turn": bool(in_intervals(np.array([t]), tw)[0]), "gate": gate_closed(t),
+                        "stereo": bool(st.size and np.min(np.abs(st - t)) <= TOL)})
     dt = sc[i_d] - rt[i_r]
     return {"tp": int(i_d.size), "det": int(sc.size), "ref": int(rt.size), "fn": fn_rows, "fp": fp_rows,
-            "dt": dt}
+            "dt": dt, "n_stereo": int(st.size)}
 
 
 def f1(tp: int, det: int, ref: int) -> float:
@@ -133,20 +152,25 @@ def main() -> None:
         terrain = s.steps["terrain"].astype(str).value_counts().to_dict() if s.steps is not None else {}
         res[sub]["terrain"] = terrain
     print("## waist-ic on Test11: F1 and errors by context (categories overlap)\n")
-    print("| subject | F1 (TP/det/ref) | FN | FN bout start | FN bout end | FN turn | FN short bout | FN slow "
-          "(>0.75 s) | FN gate closed | FN timing miss | FP | FP timing miss | FP ref gap >1.2 s | FP inside a "
-          "step | FP bout edge | FP turn | FP gate closed | stairs |")
-    print("|" + "---|" * 18)
+    cols = ["subject", "F1 (TP/det/ref)", "FN", "FN bout start", "FN bout end", "FN turn", "FN short bout",
+            "FN slow (>0.75 s)", "FN gate closed", "FN timing miss", "FN step found, IC > 0.25 s late",
+            "FN Stereophoto contact within 0.25 s", "FP", "FP timing miss", "FP ref gap >1.2 s",
+            "FP inside a step", "FP bout edge", "FP turn", "FP gate closed", "FP Stereophoto contact within 0.25 s",
+            "Stereophoto contacts", "stairs"]
+    print("| " + " | ".join(cols) + " |")
+    print("|" + "---|" * 22)
     tot = {"tp": 0, "det": 0, "ref": 0}
     for sub, r in res.items():
         for k in tot:
             tot[k] += r[k]
         fn, fp = pd.DataFrame(r["fn"]), pd.DataFrame(r["fp"])
-        c = [int(fn[k].sum()) if len(fn) else 0 for k in ("start", "end", "turn", "short", "slow", "gate", "timing")]
-        p = [int(fp[k].sum()) if len(fp) else 0 for k in ("timing", "gap", "in_step", "edge", "turn", "gate")]
+        c = [int(fn[k].sum()) if len(fn) else 0 for k in ("start", "end", "turn", "short", "slow", "gate", "timing",
+                                                       "late_ic", "stereo")]
+        p = [int(fp[k].sum()) if len(fp) else 0 for k in ("timing", "gap", "in_step", "edge", "turn", "gate", "stereo")]
         stairs = ", ".join(f"{k} {v}" for k, v in r["terrain"].items())
         print(f"| {sub} | {f1(r['tp'], r['det'], r['ref']):.3f} ({r['tp']}/{r['det']}/{r['ref']}) | {len(fn)} | "
-              + " | ".join(map(str, c)) + f" | {len(fp)} | " + " | ".join(map(str, p)) + f" | {stairs} |")
+              + " | ".join(map(str, c)) + f" | {len(fp)} | " + " | ".join(map(str, p))
+              + f" | {r['n_stereo']} | {stairs} |")
     print(f"\npooled F1 {f1(tot['tp'], tot['det'], tot['ref']):.3f} ({tot['tp']}/{tot['det']}/{tot['ref']})")
     print("\n## Offsets of the matched contacts (detection - INDIP), against the 0.25 s tolerance\n")
     bins = [0, 0.05, 0.1, 0.15, 0.2, 0.25]
@@ -177,4 +201,8 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        main()
+    (ROOT / "experiments" / "results" / "waist_ic_context.md").write_text(buf.getvalue())
+    print(buf.getvalue(), end="")
