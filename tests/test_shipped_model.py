@@ -21,3 +21,20 @@ def test_shipped_bundle_runs(tmp_path, capsys):
     assert set(out["classes"]) == {"terrain", "direction", "length"}
     assert out["classes"]["terrain"].get("flat", 0) >= 0.8 * out["n_steps"]
     assert 15.0 < out["distance_m"] < 25.0  # 20 m walk
+
+
+def test_shipped_bundle_has_the_current_default_units():
+    """The bundle was trained with this version's default units (decision C26): with the units left at their
+    default, svm and nn train the combined model instead of the soft vote (C23), so the manifest lists no svm/nn
+    in ``fused_methods`` and no task chose an svm/nn soft vote. Fails when the default changes and the shipped
+    bundle was not retrained (``experiments/train_default_model.py``)."""
+    from pdrlearn.classify.training import COMBINED_METHODS, UNITS
+
+    manifest = json.loads((BUNDLE / "manifest.json").read_text())
+    settings = manifest["training"]["settings"]
+    assert settings["units"] == list(UNITS)
+    assert settings["fused_methods"] == [m for m in settings["methods"] if m not in COMBINED_METHODS]
+    for task, t in manifest["tasks"].items():
+        chosen = t["chosen"]
+        assert not (chosen["method"] in COMBINED_METHODS and chosen["unit"] == "fused"), task
+        assert t["foot_only"]["unit"] == "foot", task
