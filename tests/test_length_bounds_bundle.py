@@ -121,20 +121,29 @@ def test_old_bundle_with_the_thesis_fallback_runs_like_a_new_one(case, tmp_path)
     old = tmp_path / "old"
     shutil.copytree(tmp_path / "new", old)
     _rewrite(old, lambda d: d.update(length_bounds_m=FALLBACK, length_bounds_source=THESIS_FALLBACK_SOURCE))
+    older = tmp_path / "older"  # exported before the source field (8e1520d): the fallback in every bundle, no source
+    shutil.copytree(old, older)
+    _rewrite(older, lambda d: d.pop("length_bounds_source"))
     s = case["A"]
     for rules in ("thesis", "bayes"):
-        new_tr, old_tr = Tracker(tmp_path / "new", rules=rules), Tracker(old, rules=rules)
-        assert old_tr.bounds is None
-        lines = [w for w in old_tr.warnings if NO_BOUNDS in w]
-        assert len(lines) == 1 and "exported before decision L59" in lines[0] and FIX in lines[0]
-        np.testing.assert_array_equal(_xyz(replay(old_tr, s)), _xyz(replay(new_tr, s)))
-    # the same fallback bounds given as the user's (source "user") still clamp: only the source string marks them
+        new_xyz = _xyz(replay(Tracker(tmp_path / "new", rules=rules), s))
+        for b in (old, older):
+            old_tr = Tracker(b, rules=rules)
+            assert old_tr.bounds is None
+            lines = [w for w in old_tr.warnings if NO_BOUNDS in w]
+            assert len(lines) == 1 and "exported before decision L59" in lines[0] and FIX in lines[0]
+            np.testing.assert_array_equal(_xyz(replay(old_tr, s)), new_xyz)
+    # the same fallback bounds given as the user's (source "user"), or other bounds without a source, still clamp
     user = tmp_path / "user_fallback"
     shutil.copytree(old, user)
     _rewrite(user, lambda d: d.update(length_bounds_source="user"))
     tr = Tracker(user, rules="thesis")
     assert tr.bounds is not None and not any(NO_BOUNDS in w for w in tr.warnings)
     assert sum(abs(st.length_m) for st in replay(tr, s)) < 0.85 * float(s.steps["length_m"].sum())  # L50: -27 %
+    hand = tmp_path / "hand_written"
+    shutil.copytree(older, hand)
+    _rewrite(hand, lambda d: d.update(length_bounds_m={**FALLBACK, "normal": [0.60, 0.95]}))
+    assert Tracker(hand, rules="thesis").bounds["normal"] == (0.60, 0.95)
 
 
 def test_bundle_with_the_users_bounds_is_unchanged(case, tmp_path):

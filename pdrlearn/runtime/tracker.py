@@ -30,13 +30,13 @@ from pdrlearn.kernels.stride import (
     DOWN_MODES,
     GAP_YAW_MAX_S,
     HEADING_SOURCES,
-    THESIS_FALLBACK_SOURCE,
     StanceSegmenter,
     advance_xyz,
     gap_yaw,
     headed_by_foot,
     no_length_bounds_warning,
     placement_offset,
+    pre_l59_fallback,
     reversed_by_rules,
     stride_motion,
     stride_rules_one,
@@ -385,7 +385,7 @@ class Tracker:
         b = self.params.get("length_bounds_m")
         #: decision L59: a bundle exported before it from a model without bounds stored the thesis step bounds
         #: x 2 as if they were the user's (its length_bounds_source says so): read as no bounds, as since L59
-        self._fallback_bounds = b is not None and self.params.get("length_bounds_source") == THESIS_FALLBACK_SOURCE
+        self._fallback_bounds = pre_l59_fallback(self.params)
         self.bounds = (None if b is None or self._fallback_bounds
                        else {str(k): (float(v[0]), float(v[1])) for k, v in b.items()})
         self._down_mode = str(self.params.get("down_mode", "norm3"))
