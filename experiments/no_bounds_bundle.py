@@ -6,10 +6,10 @@ meta.json's `length_class_bounds_m` removed from both, and `length_m` removed fr
 steps.csv (classes kept: the model has no bounds); `pdrlearn train LEN --tasks length --methods heuristic
 --units foot`; `pdrlearn export MODEL` (no bounds), the same bundle rewritten as an export before L59 wrote it
 (the thesis step bounds x 2 with `length_bounds_source` "thesis ch.6.3 step bounds x 2 (stride)"), and
-`pdrlearn export MODEL --length-bounds E1,E2` with the user's own edges (the simulator's). Then, for the bayes
+`pdrlearn export MODEL --length-bounds 1.0241,1.5196`, the user's own edges (the simulator's). Then, for the bayes
 (default) and thesis rules: `pdrlearn track A --method M3 --model MODEL [--streaming]` and `pdrlearn run BUNDLE
-A`. Prints per run: distance, its error against the labelled strides, the final position error, the stride
-lengths and the length-bounds warning (if any).
+A`. Prints per run: distance, its error against the labelled strides, the final position error, whether the
+length-bounds warning was printed, and the stride lengths (|steps.csv length_m|).
 
 Run: PYTHONPATH=. .venv/bin/python experiments/no_bounds_bundle.py
 """
@@ -59,7 +59,8 @@ def report(label: str, out: str, err: str, folder: Path) -> None:
           f"({s['distance_error_pct']:+.2f} %), final position error {s['final_position_error_m']:.3f} m, "
           f"{len(lengths)} strides {lengths.min():.2f}-{lengths.max():.2f} m "
           f"(middle 14: {lengths.iloc[1:-1].min():.2f}-{lengths.iloc[1:-1].max():.2f} m)")
-    print(f"{'':58s} bounds warning: {'yes' if warn else 'no'}")
+    print(f"{'':58s} bounds warning: {'yes' if warn else 'no'}; stride lengths "
+          f"{' '.join(f'{v:.2f}' for v in lengths)} m")
 
 
 def main(argv: list[str]) -> None:
