@@ -122,6 +122,16 @@ def synthetic_session(
 
 _CACHE: dict = {}
 
+#: the synthetic user's stride-length class bounds, recorded in the models of :func:`trained_dirs` /
+#: :func:`rest_dirs` (their training session has no ``length_m``): the thesis step bounds x 2 that every bundle
+#: carried before decision L59 (docs/decisions/localization.md), so the runtime tests keep their length rule
+SYNTHETIC_BOUNDS = {"short": [0.0, 0.60], "normal": [0.60, 0.90], "long": [0.92, 20.0]}
+
+
+def _with_bounds(model):
+    model.data_summary["length_bounds_m"] = SYNTHETIC_BOUNDS
+    return model
+
 #: every method of issue 5, exported by the "bundle_all" bundle
 ALL_METHODS = ["heuristic", "fusion", "dtw", "svm", "nn"]
 #: every unit: body units, the soft vote (decision C7) and the combined feature vector (decision C22)
@@ -140,13 +150,13 @@ def trained_dirs(tmp_path_factory) -> dict:
     train = synthetic_session(90, seed=0)
     # every unit named: the soft votes (fused) beside the combined models, which replace the svm/nn soft votes
     # by default (decision C23), so that the bundles hold both kinds
-    train_user([train], cv=2, seed=0, units=list(ALL_UNITS)).save(root / "model")
+    _with_bounds(train_user([train], cv=2, seed=0, units=list(ALL_UNITS))).save(root / "model")
     export_model(root / "model", root / "bundle_all", methods=ALL_METHODS)
     export_model(root / "model", root / "bundle")
     foot = train.copy()
     for name in ("wAccelerometer", "wGyroscope", "wBarometer"):
         del foot.streams[name]
-    train_user([foot], cv=2, seed=0, units=["foot"], methods=["svm", "dtw"]).save(root / "model_foot")
+    _with_bounds(train_user([foot], cv=2, seed=0, units=["foot"], methods=["svm", "dtw"])).save(root / "model_foot")
     export_model(root / "model_foot", root / "bundle_foot")
     _CACHE.update(root=root)
     return _CACHE
@@ -168,7 +178,8 @@ def rest_dirs(tmp_path_factory) -> dict:
     foot = synthetic_session(90, seed=0)
     for name in ("wAccelerometer", "wGyroscope", "wBarometer"):
         del foot.streams[name]
-    train_user([foot], cv=2, seed=0, units=["foot"], methods=REST_METHODS, boundaries="rest").save(root / "model")
+    _with_bounds(train_user([foot], cv=2, seed=0, units=["foot"], methods=REST_METHODS, boundaries="rest")).save(
+        root / "model")
     export_model(root / "model", root / "bundle", methods=REST_METHODS)
     _CACHE.update(rest_root=root)
     return _CACHE

@@ -27,7 +27,8 @@ def export(
     methods: str = typer.Option(None, help="Comma-separated methods to export for every task "
                                 "(heuristic,fusion,dtw,svm,nn,ensemble); default: each task's chosen method."),
     length_bounds: str = typer.Option(None, "--length-bounds", help="Stride-length class edges (m) "
-                                      "SHORT_NORMAL,NORMAL_LONG; default: model's, else 2x thesis ch.6.3."),
+                                      "SHORT_NORMAL,NORMAL_LONG; default: the model's; a model without them: none "
+                                      "(the length rule is skipped, with a warning)."),
     force: bool = typer.Option(False, "--force", "--overwrite", help=FORCE_HELP + " --overwrite is the old name."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:

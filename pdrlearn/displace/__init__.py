@@ -33,7 +33,7 @@ from pdrlearn.displace.calibration import (
     streaming_calibration,
 )
 from pdrlearn.displace.foot import FootDisplacement, force_stance, inertial_stance, rest_to_rest, stance_runs
-from pdrlearn.displace.rules import THESIS_STEP_BOUNDS, StepRules, parse_bounds
+from pdrlearn.displace.rules import THESIS_STEP_BOUNDS, StepRules, model_length_bounds, parse_bounds
 
 __all__ = [
     "LEVEL_DZ_M", "RATE_TOLERANCE", "calibrate_distance", "calibrate_streaming", "distance_gain",
@@ -42,7 +42,7 @@ __all__ = [
     "FootDisplacement", "StepRules", "THESIS_STEP_BOUNDS", "altitude_change", "apply_direction", "bayes_length",
     "clamp_length",
     "double_integrate", "error_clock", "force_stance", "heel_rocker_samples", "horizontal_part", "move_reference",
-    "rotation_pivot", "inertial_stance", "parse_bounds", "rest_to_rest", "stance_runs",
+    "rotation_pivot", "inertial_stance", "model_length_bounds", "parse_bounds", "rest_to_rest", "stance_runs",
     "strapdown", "stride_attitude",
     "stride_index", "terrain_distance", "wnj_displacement", "wnj_kalman", "wnj_matrices",
 ]

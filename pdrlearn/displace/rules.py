@@ -36,6 +36,18 @@ def parse_bounds(obj) -> dict[str, tuple[float, float]]:
     return {"short": (0.0, edges[0]), "normal": (edges[0], edges[1]), "long": (edges[1], 10.0)}
 
 
+def model_length_bounds(model):
+    """The user's length-class bounds a trained model carries (``pdrlearn train``'s ``length_bounds_m``: in its
+    settings or training summary, or set on the object), or None. One reading for ``pdrlearn track`` and
+    ``pdrlearn export`` (decision L59: a model without them gets none, not the thesis fallback)."""
+    bounds = None
+    for holder in (getattr(model, "settings", None) or {}, getattr(model, "data_summary", None) or {}):
+        for key in ("length_bounds_m", "length_bounds"):
+            if key in holder:
+                bounds = holder[key]
+    return getattr(model, "length_bounds_m", bounds)
+
+
 def _class_proba(classes: pd.DataFrame, task: str, names: list[str], labels: np.ndarray) -> np.ndarray:
     """(B, C) probabilities of ``names`` from ``p_<task>_<name>`` columns, else one-hot of ``labels``."""
     cols = [f"p_{task}_{c}" for c in names]

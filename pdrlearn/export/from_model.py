@@ -194,7 +194,9 @@ def export_model(
         :data:`pdrlearn.runtime.tracker.DEFAULT_DISPLACEMENT`).
     length_bounds : per-user stride-length class bounds (m): ``{"short": [lo, hi], ...}`` or two edges
         ``[short/normal, normal/long]``; default: the model's ``length_bounds_m`` (settings or training
-        summary, as ``pdrlearn track`` reads them), else twice the thesis step bounds (ch.6.3).
+        summary, as ``pdrlearn track`` reads them); a model without them gets none (``length_bounds_m`` None,
+        ``length_bounds_source`` "none", one warning; decision L59: the runtime then skips the length rule, as
+        ``pdrlearn track --model``; the thesis step bounds x 2 clamp typical strides, L50).
     """
     from pdrlearn.classify.model_dir import load_model, read_manifest
     from pdrlearn.features import CHANNELS
@@ -299,7 +301,8 @@ def export_model(
         },
         frames=frames or {u: DEFAULT_FRAMES[u] for u in sorted(used_units)},
         features=features,
-        displacement=_displacement(displacement, length_bounds, model),
+        displacement=_displacement(displacement, length_bounds, model,
+                                   f"model {model_dir}" if model_dir else "the model"),
         training={
             "data": model.data_summary,
             "settings": model.settings,
@@ -318,11 +321,12 @@ def export_model(
     )
 
 
-def _displacement(displacement: dict | None, length_bounds, model) -> dict:
-    """Displacement parameters with the length-class bounds resolved (see :func:`export_model`)."""
+def _displacement(displacement: dict | None, length_bounds, model, where: str = "the model") -> dict:
+    """Displacement parameters with the length-class bounds resolved (see :func:`export_model`); ``where``
+    names the model in the warning of a model without bounds (decision L59)."""
     from pdrlearn.displace.calibration import PRE_L41_CALIBRATION, predates_streaming_calibration
-    from pdrlearn.displace.rules import parse_bounds
-    from pdrlearn.kernels.stride import STANCE_L27_DEFAULTS
+    from pdrlearn.displace.rules import model_length_bounds, parse_bounds
+    from pdrlearn.kernels.stride import NO_BOUNDS_SOURCE, STANCE_L27_DEFAULTS, no_length_bounds_warning
     from pdrlearn.runtime.tracker import DEFAULT_DISPLACEMENT
 
     out = {**STANCE_L27_DEFAULTS, **DEFAULT_DISPLACEMENT}  # decision L27: the stance rule's settings
@@ -340,10 +344,18 @@ def _displacement(displacement: dict | None, length_bounds, model) -> dict:
             out.pop(k, None)
     out.update(explicit)
     if length_bounds is None:
-        for holder in (getattr(model, "settings", None) or {}, getattr(model, "data_summary", None) or {}):
-            length_bounds = holder.get("length_bounds_m", length_bounds)
+        length_bounds = explicit.get("length_bounds_m")
     if length_bounds is None:
-        out["length_bounds_source"] = "thesis ch.6.3 step bounds x 2 (stride)"
+        length_bounds = model_length_bounds(model)  # as pdrlearn track reads them
+    if length_bounds is None:
+        # decision L59: no bounds measured for this user -> the bundle records none (its runtime skips the length
+        # rule, as pdrlearn track does), not the thesis fallback as if it were the user's (L50: -27 % on scenario A)
+        out["length_bounds_m"] = None
+        out["length_bounds_source"] = NO_BOUNDS_SOURCE
+        if "length" in (getattr(model, "tasks", None) or {}):
+            log.warning("%s", no_length_bounds_warning(
+                where, 'the bundle records none (displacement.length_bounds_source "none") and '
+                "`pdrlearn run` skips the length rule, as `pdrlearn track --model` does"))
         return out
     if isinstance(length_bounds, dict):
         bounds = {str(k): [float(v[0]), float(v[1])] for k, v in length_bounds.items()}

@@ -29,6 +29,45 @@ from pdrlearn.errors import DataError
 from pdrlearn.kernels import bayes as B
 from pdrlearn.kernels.window import TIE_S, Levelled, interp
 
+# -- length-class bounds -------------------------------------------------------------------------------
+#: Decision L59 (docs/decisions/localization.md): the ``length_bounds_source`` an export wrote before L59 when
+#: the model had no bounds of its own, beside the thesis step bounds x 2 (ch.6.3) stored as if they were the
+#: user's. L50: those bounds clamp a typical 1.3 m stride to 0.90 / 0.60 m, so the runtime reads a bundle with
+#: this source as one without bounds, as a bundle exported since (``length_bounds_source`` "none").
+THESIS_FALLBACK_SOURCE = "thesis ch.6.3 step bounds x 2 (stride)"
+#: the bounds those exports wrote (thesis ch.6.3 step bounds x 2 per stride; ch.7.2.2: long from 0.46 m per
+#: step); an export before the source field (commit 8e1520d) wrote them into every bundle, with no source
+THESIS_FALLBACK_BOUNDS = {"short": (0.0, 0.60), "normal": (0.60, 0.90), "long": (0.92, 20.0)}
+#: the ``length_bounds_source`` of a bundle exported since L59 from a model without bounds
+NO_BOUNDS_SOURCE = "none"
+
+
+def pre_l59_fallback(displacement: Mapping) -> bool:
+    """Decision L59: a bundle's ``displacement`` holds the thesis fallback an export before L59 stored as the
+    user's bounds: its ``length_bounds_source`` says so, or (exported before that field) it has no source and
+    exactly those bounds."""
+    b, src = displacement.get("length_bounds_m"), displacement.get("length_bounds_source")
+    if b is None:
+        return False
+    if src is not None:
+        return src == THESIS_FALLBACK_SOURCE
+    try:
+        return {str(k): (float(v[0]), float(v[1])) for k, v in b.items()} == THESIS_FALLBACK_BOUNDS
+    except (AttributeError, TypeError, ValueError, IndexError):
+        return False
+
+
+def no_length_bounds_warning(subject: str = "the model", effect: str = "") -> str:
+    """Decision L59: the one line ``pdrlearn track`` (offline and ``--streaming``), ``pdrlearn export`` and the
+    runtime print when a model / bundle that classifies stride length has no length-class bounds: the length
+    rule (thesis clamp or bayes weighing, L14) is skipped and each stride keeps its measured length; the fix."""
+    effect = effect or ("the length rule is skipped (each stride keeps its measured length; the thesis step "
+                        "bounds x 2 would clamp typical strides, L50)")
+    return (f"{subject} carries no length-class bounds (length_bounds_m): {effect}; train with the user's "
+            "lengths (length_m labels on the length exercise, or the calibration walk's meta.json "
+            "length_class_bounds_m) or give --length-bounds SHORT_NORMAL,NORMAL_LONG (track, export)")
+
+
 # -- stride detection ---------------------------------------------------------------------------------
 #: Decision L27 (docs/decisions/localization.md): the stance threshold follows the walker's own stance
 #: rotation. ``stance_floor_factor`` x the floor (the lowest ``min_stance_s`` mean of |w| within

@@ -34,7 +34,9 @@ from pdrlearn.kernels.stride import (
     advance_xyz,
     gap_yaw,
     headed_by_foot,
+    no_length_bounds_warning,
     placement_offset,
+    pre_l59_fallback,
     reversed_by_rules,
     stride_motion,
     stride_rules_one,
@@ -85,12 +87,13 @@ _FOOT_GAP_STREAMS = frozenset(("fAccelerometer", "fGyroscope", "fForceA", "fForc
 #: the foot unit from a step overlapping a gap of its accelerometer or gyroscope
 _FOOT_IMU = frozenset(("fAccelerometer", "fGyroscope"))
 
-#: Default displacement parameters written into bundles. Bounds are per foot-unit *stride* = 2 x the
-#: thesis step bounds (thesis ch.6.3: short <= 0.30 m, normal 0.30-0.45 m, long > 0.45 m; ch.7.2.2: a long
-#: step is at least 0.46 m).
+#: Default displacement parameters written into bundles. ``length_bounds_m``: the user's per foot-unit *stride*
+#: class bounds, set by the export from the model (or --length-bounds); none by default (decision L59: a bundle
+#: of a model without measured bounds skips the length rule, as ``pdrlearn track --model``, instead of the
+#: thesis step bounds x 2 that an export before L59 wrote here, which clamp typical strides: L50).
 DEFAULT_DISPLACEMENT = {
     "unit": "foot stride",
-    "length_bounds_m": {"short": [0.0, 0.60], "normal": [0.60, 0.90], "long": [0.92, 20.0]},
+    "length_bounds_m": None,
     "down_mode": "norm3",  # thesis eq. 61: 3-axis norm on descending stairs ("projected": its horizontal part, L51)
     "stance_gyro_rad_s": 0.8,  # decision E7: stance = foot rate below this for >= min_stance_s
     "min_stance_s": 0.1,
@@ -380,7 +383,11 @@ class Tracker:
             raise DataError(f"heading_source waist-gyro needs the waist unit, and the tracker follows "
                             f"{'+'.join(self.units)} only; use heading_source auto or foot")
         b = self.params.get("length_bounds_m")
-        self.bounds = None if b is None else {str(k): (float(v[0]), float(v[1])) for k, v in b.items()}
+        #: decision L59: a bundle exported before it from a model without bounds stored the thesis step bounds
+        #: x 2 as if they were the user's (its length_bounds_source says so): read as no bounds, as since L59
+        self._fallback_bounds = pre_l59_fallback(self.params)
+        self.bounds = (None if b is None or self._fallback_bounds
+                       else {str(k): (float(v[0]), float(v[1])) for k, v in b.items()})
         self._down_mode = str(self.params.get("down_mode", "norm3"))
         if self._down_mode not in DOWN_MODES:  # decision L51: "projected" is an option
             raise DataError(f"bundle {self.bundle.path}: displacement down_mode {self._down_mode!r} is not one of "
@@ -409,6 +416,10 @@ class Tracker:
                        f"which every {'/'.join(self.units)} model of the bundle for {it} reads; "
                        f"the stride rules act as without a model ({rules}), as `pdrlearn track` does "
                        "(push those sensors, or export a model trained without them)")
+        if self.bounds is None and "length" in self.classifiers:  # decision L59: offline track's line, once
+            self._warn(no_length_bounds_warning(
+                "the bundle (exported before decision L59: its length_bounds_m are the thesis step bounds x 2, "
+                "not the user's, and are ignored)" if self._fallback_bounds else "the bundle"))
         notes = [c.note for c in self.classifiers.values() if c.note]
         if notes:  # decision E26: a bundle exported before it records no foot-only models; one line
             self._warn(f"{'+'.join(self.units)} only: no {'+'.join(self.units)}-only models recorded (exported "

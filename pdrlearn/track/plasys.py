@@ -33,6 +33,7 @@ from pdrlearn.displace import (
     force_stance,
     inertial_stance,
     model_distance_calibration,
+    model_length_bounds,
     parse_bounds,
     predates_streaming_calibration,
     stance_runs,
@@ -200,12 +201,7 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
     pred = model.predict_steps(session, steps).reset_index(drop=True)
     if len(pred) != len(steps):
         raise ModelError(f"model predicted {len(pred)} rows for {len(steps)} strides")
-    bounds = None
-    for holder in (getattr(model, "settings", None) or {}, getattr(model, "data_summary", None) or {}):
-        for key in ("length_bounds_m", "length_bounds"):
-            if key in holder:
-                bounds = holder[key]
-    bounds = getattr(model, "length_bounds_m", bounds)
+    bounds = model_length_bounds(model)
     if "confidence" not in pred:
         maxima = [pred[[c for c in pred.columns if c.startswith(f"p_{task}_")]].max(axis=1)
                   for task in _TASK_COLUMNS if any(c.startswith(f"p_{task}_") for c in pred.columns)]
@@ -574,8 +570,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                             f"{bounds_scale:g} used")
         else:
             clamp = False
-            warnings.append("the model carries no length-class bounds (length_bounds_m): the length rule is "
-                            "skipped; pass bounds=... or retrain with the user's bounds")
+            warnings.append(SK.no_length_bounds_warning("the model"))  # decision L59: one line, track and runtime
     if rules is None:  # decision L18: a model's probabilities are weighed, certain labels prevail
         rules = "thesis" if isinstance(model, str) and model == "oracle" else DEFAULT_MODEL_RULES
     # decision L26: the bayes rule weighs the classes against the user's own calibrated stride accuracy
@@ -760,8 +755,15 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     # decision L26: the bayes rule weighs the classes against the user's own calibrated stride accuracy
     sigma_rel = float(stride_sd) if stride_sd and rules == "bayes" else SIGMA_REL
     use_bounds = bounds if bounds is not None else model_bounds
-    rb = (StepRules(bounds=parse_bounds(use_bounds) if use_bounds is not None else None,
-                    bounds_scale=bounds_scale).effective_bounds() if method == "M3" else None)
+    rb = None
+    if method == "M3":  # decision L60: the bounds as offline M3 takes them (above, L9 / L59)
+        if use_bounds is not None or (isinstance(model, str) and model == "oracle"):
+            rb = StepRules(bounds=parse_bounds(use_bounds) if use_bounds is not None else None,
+                           bounds_scale=bounds_scale).effective_bounds()
+            if use_bounds is None:  # oracle labels: L9's fallback, with offline's line
+                warnings.append(f"no length-class bounds in the session: thesis step bounds x {bounds_scale:g} used")
+        elif "length" not in untrained:  # a model without the user's bounds: no length rule (L59; C17: no class)
+            warnings.append(SK.no_length_bounds_warning("the model"))
     disp, dyaw, place = np.zeros((len(table), 3)), np.zeros(len(table)), np.zeros(len(table))
     foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
     in_gap = overlaps_gaps(table, foot_gaps)  # decision E30: these strides move 0 m, turn 0, no classes
