@@ -50,7 +50,7 @@ def run_arms(session) -> list[tuple[float, float]]:
             st = session.steps
             h0 = _truth_heading(session, float(st["start_s"].iloc[0])) if st is not None and len(st) else 0.0
             res = track_streaming(session, method="M3", model="oracle", initial_heading=h0,
-                                  waist_gap_yaw=arm != "off")
+                                  waist_gap_yaw=arm != "off")  # explicit: independent of the default
         ev = evaluate_track(res, session)
         s = res.steps
         head = np.unwrap(s["heading_rad"].to_numpy(float))
@@ -65,9 +65,11 @@ def _report(name: str, rows: list[list[tuple[float, float]]]) -> None:
     a = np.array(rows)  # (runs, arms, 2)
     fin = " / ".join(f"{v:.2f}" for v in a[:, :, 0].mean(axis=0))
     turn = " / ".join(f"{v:.1f}" for v in a[:, :, 1].mean(axis=0))
-    better = int((a[:, 1, 0] < a[:, 0, 0] - 1e-9).sum())
+    d = a[:, 1, 0] - a[:, 0, 0]
+    better, worse = int((d < -1e-9).sum()), int((d > 1e-9).sum())
     print(f"{name:10s} runs {len(rows):2d} | mean final position error m ({' / '.join(ARMS)}): {fin} | "
-          f"mean |total-turn error| deg: {turn} | L61 better on {better} of {len(rows)}", flush=True)
+          f"mean |total-turn error| deg: {turn} | L61 better on {better}, worse on {worse} of {len(rows)} "
+          f"(largest increase {max(d.max(), 0.0):.2f} m)", flush=True)
 
 
 def _users(spec: str) -> list[int]:

@@ -318,7 +318,7 @@ class Tracker:
         min_confidence: float | None = None,
         units=None,
         sensors=None,
-        waist_gap_yaw: bool = False,
+        waist_gap_yaw: bool = True,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest

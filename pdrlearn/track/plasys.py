@@ -683,7 +683,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     heading: str = "auto", initial_heading: float = 0.0, bounds=None, bounds_scale: float = 2.0,
                     down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca",
                     distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = True,
-                    waist_gap_yaw: bool = False, rules: str | None = None, min_confidence: float | None = None,
+                    waist_gap_yaw: bool = True, rules: str | None = None, min_confidence: float | None = None,
                     warn_out_of_domain: float | None = None) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
