@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 from collections import deque
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 
 import numpy as np
 
@@ -342,6 +342,29 @@ def gap_yaw(t_gyr: np.ndarray, gyr: np.ndarray, t_acc: np.ndarray, acc: np.ndarr
     if i1 - i0 < 2 or j1 <= j0:
         return 0.0
     return pivot_yaw(t_gyr[i0:i1], gyr[i0:i1], np.add.reduce(acc[j0:j1], axis=0) / (j1 - j0), still_rad_s=still_rad_s)
+
+
+#: Decision L61: the waist's turn between strides is integrated ungated (the waist-gyro heading inside a
+#: stride integrates every sample; L31's 0.4 rad/s gate is a still foot's rule)
+WAIST_GAP_STILL_RAD_S = 0.0
+
+
+def stride_gap_yaw(levelled: Levelled, heading_source: str, stream: Callable[[str], tuple[np.ndarray, np.ndarray]],
+                   prev_end: float | None, t0: float, *, foot: bool = True, waist: bool = False) -> float:
+    """Decisions L31 / L61: the turn (rad) in the gap between the previous stride's end ``prev_end`` and this
+    stride's start ``t0`` (s), by the unit that heads the stride (:func:`stride_motion`): the foot's pivot
+    (:func:`gap_yaw` of ``fGyroscope`` / ``fAccelerometer``, L31) when ``foot`` and the stride is headed by the
+    foot; the waist's turn (the same :func:`gap_yaw` of ``wGyroscope`` / ``wAccelerometer``, not gated:
+    :data:`WAIST_GAP_STILL_RAD_S`, L61) when ``waist`` and the stride is headed by the waist gyroscope; else 0.
+    ``stream(name)`` -> ``(t, values)`` of a whole buffered stream (offline: the session's; the runtime: its
+    ring buffer), so ``track --streaming`` and ``pdrlearn run`` call the same code."""
+    if prev_end is None or not t0 > prev_end:
+        return 0.0
+    if headed_by_foot(levelled, heading_source):
+        return gap_yaw(*stream("fGyroscope"), *stream("fAccelerometer"), prev_end, t0) if foot else 0.0
+    if not waist:
+        return 0.0
+    return gap_yaw(*stream("wGyroscope"), *stream("wAccelerometer"), prev_end, t0, still_rad_s=WAIST_GAP_STILL_RAD_S)
 
 
 #: Heading sources of a streamed stride: the foot's attitude change from rest to rest, the waist's

@@ -32,12 +32,12 @@ from pdrlearn.kernels.stride import (
     HEADING_SOURCES,
     StanceSegmenter,
     advance_xyz,
-    gap_yaw,
     headed_by_foot,
     no_length_bounds_warning,
     placement_offset,
     pre_l59_fallback,
     reversed_by_rules,
+    stride_gap_yaw,
     stride_motion,
     stride_rules_one,
 )
@@ -286,6 +286,9 @@ class Tracker:
         (:meth:`StanceSegmenter.closing_stride`), used when that push completes exactly that step from the
         same data, else recomputed. The same numbers bit for bit; the step-completing push then does only
         the step's heading and position, and the push before it the rest. False = all at the step event.
+    waist_gap_yaw : a stride headed by the waist gyroscope adds the waist's turn between two strides that do not
+        touch (decision L61; ``pdrlearn track --streaming``'s ``waist_gap_yaw``); the foot's pivot is always
+        added to a stride headed by the foot (L31).
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -318,6 +321,7 @@ class Tracker:
         min_confidence: float | None = None,
         units=None,
         sensors=None,
+        waist_gap_yaw: bool = True,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -452,6 +456,7 @@ class Tracker:
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
         self.n_steps = 0
         self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
+        self.waist_gap_yaw = bool(waist_gap_yaw)  # decision L61
         #: the input side (decision E22): streams at another rate than the bundle's are tracked at their own
         #: rate (``resample="native"``, the default, as ``pdrlearn track --streaming``), resampled to the
         #: bundle's (``True``) or refused (``False``); ``inputs.input_rates_hz`` / ``resampled_hz`` tell which
@@ -1021,8 +1026,8 @@ class Tracker:
             disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
         else:
             lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
-        if self._prev_end is not None and t0 > self._prev_end and headed_by_foot(lev, self.heading_source):
-            dyaw += gap_yaw(*self._stream("fGyroscope"), *self._stream("fAccelerometer"), self._prev_end, t0)  # L31
+        # decisions L31 / L61: the heading unit's turn between strides (track --streaming's call)
+        dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, self._prev_end, t0, waist=self.waist_gap_yaw)
         self._prev_end = t1
         if self.distance_gain is None:
             self._resolve_calibration()

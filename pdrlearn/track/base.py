@@ -147,7 +147,7 @@ def get_pipeline(name: str) -> Pipeline:
       ``"M1"``, ``"M2"``, ``"M3"``), ``model`` (model directory, loaded model or ``"oracle"``), ``start``
       ((lat, lon)), ``params`` (FootDisplacement settings), ``steps``, ``heading``, ``initial_heading``,
       ``bounds``, ``bounds_scale``, ``down_mode``, ``min_confidence``, ``align``, ``rules`` (``"bayes"`` /
-      ``"thesis"``), ``fused_tau_s``, ``streaming``, ``distance_gain``, ``calibration``, ``gap_yaw``,
+      ``"thesis"``), ``fused_tau_s``, ``streaming``, ``distance_gain``, ``calibration``, ``gap_yaw``, ``waist_gap_yaw``,
       ``warn_out_of_domain``.
     - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
       step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:

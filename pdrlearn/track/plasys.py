@@ -392,8 +392,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
                  min_confidence: float | None = None, align: bool = False, rules: str | None = None,
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
-                 calibration: bool = True, gap_yaw: bool | None = None, warn_out_of_domain: float | None = None,
-                 **opts) -> TrackResult:
+                 calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
+                 warn_out_of_domain: float | None = None, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -432,6 +432,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         any method (e.g. M2); 1.0 = off
     gap_yaw : streaming: add the foot's turn between two strides that do not touch (decision L31; None = the
         :func:`track_streaming` default); offline this is ``params={"gap_yaw": ...}`` (L28, on by default)
+    waist_gap_yaw : streaming: a stride headed by the waist gyroscope adds the waist's turn between two strides
+        that do not touch (decision L61; None = the :func:`track_streaming` default); offline not used (the
+        waist heading filter integrates the whole session)
     calibration : M3 with a trained model: use the model's distance calibration (L26): its gain (unless
         ``distance_gain`` is given) and, for the bayes rules, its measured stride-length sd in place of the
         3 % default. False: neither
@@ -469,7 +472,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                               bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
                               calibration=calibration, rules=rules, min_confidence=min_confidence,
                               warn_out_of_domain=warn_out_of_domain,
-                              **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}))
+                              **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}),
+                              **({} if waist_gap_yaw is None else {"waist_gap_yaw": bool(waist_gap_yaw)}))
         if no_classes:
             res.info["method"] = "M3 engine, no classes"
             _level_without_classes(res)  # decision L39, as offline
@@ -674,7 +678,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     heading: str = "auto", initial_heading: float = 0.0, bounds=None, bounds_scale: float = 2.0,
                     down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca",
                     distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = True,
-                    rules: str | None = None, min_confidence: float | None = None,
+                    waist_gap_yaw: bool = True, rules: str | None = None, min_confidence: float | None = None,
                     warn_out_of_domain: float | None = None) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
@@ -695,6 +699,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     calibrated stride sd when the calibration applies (L26). ``gap_yaw``
     (decision L31, as the runtime): a stride headed by the foot adds the turn of the foot
     pivoting in the gap before it (:func:`~pdrlearn.kernels.stride.gap_yaw`, the streamed form of L28).
+    ``waist_gap_yaw`` (decision L61, as the runtime's): a stride headed by the waist gyroscope adds the waist's
+    turn in the gap before it (:func:`~pdrlearn.kernels.stride.stride_gap_yaw`).
     """
     if method not in ("M2", "M3"):
         raise DataError(f"plasys streaming: method '{method}' is not streamable; use M2 or M3")
@@ -775,9 +781,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1))
         place[i] = SK.placement_offset(lev, heading, disp[i])  # decision L34
         foot_headed[i] = SK.headed_by_foot(lev, heading)
-        if gap_yaw and i and SK.headed_by_foot(lev, heading):  # decision L31: the foot's pivot between strides
-            dyaw[i] += SK.gap_yaw(*streams["fGyroscope"], *streams["fAccelerometer"], float(strides[i - 1, 1]),
-                                  float(t0))
+        if i:  # decisions L31 / L61: the heading unit's turn between strides (the runtime's call)
+            dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, float(strides[i - 1, 1]), float(t0),
+                                         foot=gap_yaw, waist=waist_gap_yaw)
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
     rule_classes = _confident(classes, gate) if method == "M3" else classes  # decision L18 / L40
     length, dz = SK.apply_stride_rules(disp, *(rule_classes[c].to_numpy(dtype=object)
