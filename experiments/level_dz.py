@@ -158,6 +158,18 @@ def sim_rows(chosen: str) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def sim_dz_rows() -> pd.DataFrame:
+    """Per-stride integrated dz (before L39) of the simulator's flat scenarios A-C, users 1-2, normal speed."""
+    from pdrlearn.sim import simulate
+
+    rows = []
+    for scen in "ABC":
+        for user in (1, 2):
+            r = dz_row(f"sim {scen} user {user}", raw_track(simulate(scen, user_seed=user, speed="normal"), {}))
+            rows.append(r)
+    return pd.DataFrame(rows)
+
+
 def labelled_rows(chosen: str) -> pd.DataFrame:
     rows = []
     for name in ("gaitmap_level_left", "gaitmap_level_right"):
@@ -199,6 +211,9 @@ def main(argv: list[str] | None = None) -> None:
     print(off.pivot(index="recording", columns="gyro_shift_ms", values="altitude_per_100m").round(2).to_string())
     print(off.pivot(index="recording", columns="gyro_shift_ms", values="med_abs_dz").round(3).to_string())
     if not args.no_sim:
+        print("\n## Simulator flat scenarios: per-stride integrated dz (before L39)")
+        print(sim_dz_rows()[["recording", "strides", "distance_m", "altitude_m", "med_abs_dz", "p90_abs_dz",
+                             "max_abs_dz", "n_ge_0.10"]].round(3).to_string(index=False))
         print("\n## Simulator A-D, users 1-2, normal speed")
         sim = sim_rows(chosen)
         print(sim.groupby(["scenario", "method", "variant"])[["final_m", "alt_err_m"]].mean().round(3).to_string())
