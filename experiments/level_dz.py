@@ -32,7 +32,12 @@ LEVEL = ["gaitmap_level_left", "gaitmap_level_right", "gaitmap_walk4x10_left", "
          "gaitmap_lwalk"]
 STAIRS = ["gaitmap_stairs_up_left", "gaitmap_stairs_up_right", "gaitmap_stairs_down_left",
           "gaitmap_stairs_down_right"]
-VARIANTS = {"off": {}, "time": {"tilt_dedrift": True}, "rotation": {"tilt_dedrift": True, "tilt_clock": "rotation"}}
+VARIANTS = {"off": {}, "time": {"tilt_dedrift": True, "tilt_clock": "time"},
+            "rotation": {"tilt_dedrift": True, "tilt_clock": "rotation"}}
+#: the diagnosis: other settings of the same integration (decisions L6, L21, L22, L5)
+SETTINGS = {"default": {}, "L21 error clock off": {"accel_scale_error": 0.0},
+            "double integration": {"integrator": "integration"}, "heel point (L22)": {"reference_point": "heel"},
+            "start attitude from the accelerometer": {"attitude": "accel"}}
 
 
 def folder(name: str) -> Path | None:
@@ -131,6 +136,39 @@ def offset_rows(names: list[str], shifts_ms=(-20, -10, -5, 0, 5, 10, 20)) -> pd.
     return pd.DataFrame(rows)
 
 
+def settings_rows(names: list[str]) -> pd.DataFrame:
+    rows = []
+    for name in names:
+        d = folder(name)
+        if d is None:
+            continue
+        s = read_session(d)
+        for label, params in SETTINGS.items():
+            med = dz_row(name, raw_track(s, params))["med_abs_dz"]
+            rows.append({"recording": name, "setting": label, "med_abs_dz": med})
+    return pd.DataFrame(rows)
+
+
+def rate_rows(names: list[str], rate: float = 102.4) -> pd.DataFrame:
+    """The same recordings resampled (anti-aliased, experiments/robustness.py) to ``rate`` Hz."""
+    import sys
+
+    sys.path.insert(0, str(ROOT / "experiments"))
+    from robustness import resample
+
+    rows = []
+    for name in names:
+        d = folder(name)
+        if d is None:
+            continue
+        s = read_session(d)
+        for label, ses in (("native", s), (f"{rate:g} Hz", resample(s, rate))):
+            r = dz_row(name, raw_track(ses, {}))
+            rows.append({"recording": name, "rate": label, "med_abs_dz": r["med_abs_dz"],
+                         "max_abs_dz": r["max_abs_dz"], "altitude_per_100m": 100.0 * r["altitude_m"] / r["distance_m"]})
+    return pd.DataFrame(rows)
+
+
 def pooled(df: pd.DataFrame) -> pd.DataFrame:
     out = []
     for v, g in df.groupby("variant", sort=False):
@@ -206,6 +244,11 @@ def main(argv: list[str] | None = None) -> None:
     print(st[cols].round(3).to_string(index=False))
     print("\n## Labelled level strides (M3 oracle, steps=labels)")
     print(labelled_rows(chosen).round(3).to_string(index=False))
+    print("\n## Diagnosis: the rate (recordings resampled to 102.4 Hz)")
+    print(rate_rows(["gaitmap_level_left", "gaitmap_level_right", "gaitmap_lwalk"]).round(3).to_string(index=False))
+    print("\n## Diagnosis: median |dz| under other settings of the integration")
+    print(settings_rows(CHOOSE + LEVEL).pivot(index="recording", columns="setting", values="med_abs_dz")
+          .round(3).to_string())
     print("\n## Diagnosis: altitude change against a gyroscope time shift (level recordings)")
     off = offset_rows(CHOOSE + LEVEL)
     print(off.pivot(index="recording", columns="gyro_shift_ms", values="altitude_per_100m").round(2).to_string())

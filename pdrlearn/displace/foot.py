@@ -172,8 +172,9 @@ class FootDisplacement:
         heading of the unit's x axis at the stride end (the former rule; ill-conditioned when the mount
         pitches the x axis far from horizontal)
     tilt_dedrift : decision L68: remove the tilt error found at each stride end (gravity measured where the foot
-        rests again) along the stride, linearly in ``tilt_clock`` ("time" or "rotation": accumulated |w|), as
-        the ZUPT removes the velocity error; False (default) = the attitude of the gyroscope alone
+        rests again) along the stride, linearly in ``tilt_clock`` ("rotation": accumulated |w|, the choice of L68,
+        or "time"), as the ZUPT removes the velocity error; False (default; L68: not adopted) = the attitude of
+        the gyroscope alone
 
     Attributes
     ----------
@@ -192,7 +193,7 @@ class FootDisplacement:
                  max_stride_s: float = 3.0, accel_scale_error: float = 0.01,
                  reference_point: str = "sensor", min_rocker_samples: int = 20, gap_yaw: bool = True,
                  zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
-                 tilt_clock: str = "time"):
+                 tilt_clock: str = "rotation"):
         if tilt_clock not in ("time", "rotation"):
             raise DataError(f"FootDisplacement: tilt_clock '{tilt_clock}' is not 'time' or 'rotation'")
         self.tilt_dedrift, self.tilt_clock = bool(tilt_dedrift), tilt_clock

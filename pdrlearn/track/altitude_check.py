@@ -25,7 +25,7 @@ CONFLICT_MIN_FRACTION = 0.10
 #: or when the strides classed flat add at least this much (m) to the altitude change
 FLAT_ALTITUDE_M = 0.5
 
-_ACCURACY = (f"on level walks a stride's integrated height reached {LEVEL_STRIDE_DZ_MAX_M:.2f} m and "
+_ACCURACY = (f"level walks measured gave integrated heights up to {LEVEL_STRIDE_DZ_MAX_M:.2f} m per stride and "
              f"{LEVEL_ALTITUDE_PER_100M_MAX_M:.1f} m per 100 m (L68)")
 
 
