@@ -65,7 +65,7 @@ def main(argv: list[str] | None = None) -> None:
         a = track_plasys(s, method="auto")
         m = track_plasys(s, model=model)
         ac, tc = a.info["altitude_check"], m.info["terrain_dz_check"]
-        counts = m.steps["terrain"].value_counts().to_dict()
+        counts = {str(k): int(v) for k, v in m.steps["terrain"].value_counts().items()}
         ood = (m.info.get("out_of_domain") or {}).get("out_of_domain_fraction", np.nan)
         tag = " (training)" if name in TRAIN else ""
         print(f"{name + tag:26s} | {a.steps['dz_m'].sum():+6.2f} {ac['strides_with_height']:3d}/{ac['strides']:3d} "
