@@ -45,6 +45,7 @@ def fired(res, key: str) -> str:
 def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--model", help="a trained terrain model (default: train the trial's model)")
+    ap.add_argument("--train", nargs="+", default=TRAIN, help="recordings to train the terrain model on")
     args = ap.parse_args(argv)
     logging.disable(logging.WARNING)
     from pdrlearn.classify import load_model, train_user
@@ -52,10 +53,10 @@ def main(argv: list[str] | None = None) -> None:
     if args.model:
         model = load_model(args.model)
     else:
-        model = train_user([read_session(folder(n)) for n in TRAIN], tasks=["terrain"], cv=10, seed=0)
-    print(f"model trained on {', '.join(TRAIN)} (terrain)" if not args.model else f"model {args.model}")
+        model = train_user([read_session(folder(n)) for n in args.train], tasks=["terrain"], cv=10, seed=0)
+    print(f"model trained on {', '.join(args.train)} (terrain)" if not args.model else f"model {args.model}")
     print(f"{'recording':26s} | no model: alt m, strides kept, L69 | model: classes, alt m, "
-          "against sign, flat>=0.10, alt from flat m, C28 | ood, rate mismatch")
+          "against sign, flat>=0.10, alt from flat m, C28 | ood, rate mismatch, max p of up/down")
     for name in RECORDINGS:
         d = folder(name)
         if d is None:
@@ -67,11 +68,13 @@ def main(argv: list[str] | None = None) -> None:
         ac, tc = a.info["altitude_check"], m.info["terrain_dz_check"]
         counts = {str(k): int(v) for k, v in m.steps["terrain"].value_counts().items()}
         ood = (m.info.get("out_of_domain") or {}).get("out_of_domain_fraction", np.nan)
-        tag = " (training)" if name in TRAIN else ""
+        tag = " (training)" if name in args.train else ""
+        stair = m.steps["terrain"].isin(["up", "down"]).to_numpy()
+        pmax = float(m.steps["confidence"].to_numpy(float)[stair].max()) if stair.any() else np.nan
         print(f"{name + tag:26s} | {a.steps['dz_m'].sum():+6.2f} {ac['strides_with_height']:3d}/{ac['strides']:3d} "
               f"{fired(a, 'integrated height'):4s} | {counts} {m.steps['dz_m'].sum():+6.2f} "
               f"{tc['stairs_against_sign']:3d} {tc['flat_with_height']:3d} {tc['altitude_from_flat_m']:+6.2f} "
-              f"{fired(m, 'contradict'):4s} | {ood:.2f} {bool(m.info['classifier_rate_mismatch'])}")
+              f"{fired(m, 'contradict'):4s} | {ood:.2f} {bool(m.info['classifier_rate_mismatch'])} {pmax:.3f}")
     from pdrlearn.sim import simulate
 
     for scen in ("A", "D"):
