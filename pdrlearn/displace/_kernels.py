@@ -161,6 +161,57 @@ def _qrotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
     return v + q[..., :1] * t + np.cross(u, t)
 
 
+def _qmul(p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Hamilton products p q of quaternions (..., 4) [w, x, y, z]."""
+    pw, px, py, pz = np.moveaxis(p, -1, 0)
+    qw, qx, qy, qz = np.moveaxis(q, -1, 0)
+    return np.stack([pw * qw - px * qx - py * qy - pz * qz, pw * qx + px * qw + py * qz - pz * qy,
+                     pw * qy - px * qz + py * qw + pz * qx, pw * qz + px * qy - py * qx + pz * qw], axis=-1)
+
+
+def end_tilt(q: np.ndarray, acc: np.ndarray, idx: np.ndarray, mask: np.ndarray, half_w: int
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """Decision L68: tilt error of each stride's propagated attitude at its end, where the foot rests again.
+    Gravity there is the mean specific force over +-``half_w`` samples around the last stride sample (as
+    ``g_body`` at the start, L6); the attitude ``q`` (B, L, 4) of the last sample rotates it to ``v`` in the
+    navigation frame. Returns the unit horizontal axes (B, 3) and angles (B,) rad of the rotations taking
+    ``v`` to +z (the correction of the end attitude)."""
+    B = idx.shape[0]
+    n = mask.sum(axis=1)
+    last = idx[np.arange(B), n - 1]
+    csum = np.concatenate([np.zeros((1, 3)), np.cumsum(np.asarray(acc, dtype=float), axis=0)])
+    lo = np.clip(last - half_w, 0, len(acc))
+    hi = np.clip(last + half_w + 1, 0, len(acc))
+    g_end = (csum[hi] - csum[lo]) / np.maximum(hi - lo, 1)[:, None]
+    v = _qrotate(q[np.arange(B), n - 1], g_end)
+    v = v / np.maximum(np.linalg.norm(v, axis=1, keepdims=True), 1e-300)
+    axis = np.cross(v, np.array([0.0, 0.0, 1.0]))
+    s = np.linalg.norm(axis, axis=1)
+    unit = np.where(s[:, None] > 1e-12, axis / np.maximum(s, 1e-300)[:, None], np.array([1.0, 0.0, 0.0]))
+    return unit, np.arctan2(s, v[:, 2])
+
+
+def dedrift_tilt(q: np.ndarray, acc: np.ndarray, idx: np.ndarray, mask: np.ndarray, half_w: int,
+                 clock: np.ndarray | None = None) -> np.ndarray:
+    """Decision L68: attitudes (B, L, 4) with the tilt error found at each stride end (:func:`end_tilt`)
+    removed along the stride, as the velocity ZUPT removes the velocity error (L6): sample j is rotated
+    about the error's horizontal axis by c_j x its angle, c_j = ``clock`` (B, L) normalised from 0 at the
+    start to 1 at the end (default: the time fraction). Padded samples keep the corrected last attitude."""
+    B, L = mask.shape
+    if B == 0:
+        return q
+    n = mask.sum(axis=1)
+    axis, ang = end_tilt(q, acc, idx, mask, half_w)
+    tau = np.broadcast_to(np.arange(L, dtype=float)[None, :], (B, L)) if clock is None else np.asarray(clock, float)
+    t0 = tau[:, :1]
+    t1 = tau[np.arange(B), n - 1][:, None]
+    c = np.clip((tau - t0) / np.maximum(t1 - t0, 1e-300), 0.0, 1.0)
+    c = np.where(mask, c, 1.0)
+    half = 0.5 * ang[:, None] * c
+    dq = np.concatenate([np.cos(half)[..., None], np.sin(half)[..., None] * axis[:, None, :]], axis=2)
+    return _qmul(dq, q)
+
+
 def _cumtrapz(x: np.ndarray, dt: float) -> np.ndarray:
     out = np.zeros_like(x)
     out[:, 1:] = np.cumsum(0.5 * (x[:, 1:] + x[:, :-1]) * dt, axis=1)

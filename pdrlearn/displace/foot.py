@@ -171,6 +171,10 @@ class FootDisplacement:
         of the foot's attitude change from rest to rest (swing-twist decomposition), or ``"x-axis"`` = the
         heading of the unit's x axis at the stride end (the former rule; ill-conditioned when the mount
         pitches the x axis far from horizontal)
+    tilt_dedrift : decision L68: remove the tilt error found at each stride end (gravity measured where the foot
+        rests again) along the stride, linearly in ``tilt_clock`` ("rotation": accumulated |w|, the choice of L68,
+        or "time"), as the ZUPT removes the velocity error; False (default; L68: not adopted) = the attitude of
+        the gyroscope alone
 
     Attributes
     ----------
@@ -188,7 +192,11 @@ class FootDisplacement:
                  rest_s: float = 0.05, zupt_erode: float = 0.25, upsample: int | None = None,
                  max_stride_s: float = 3.0, accel_scale_error: float = 0.01,
                  reference_point: str = "sensor", min_rocker_samples: int = 20, gap_yaw: bool = True,
-                 zaru_gyro_rad_s: float = 0.4, yaw: str = "twist"):
+                 zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
+                 tilt_clock: str = "rotation"):
+        if tilt_clock not in ("time", "rotation"):
+            raise DataError(f"FootDisplacement: tilt_clock '{tilt_clock}' is not 'time' or 'rotation'")
+        self.tilt_dedrift, self.tilt_clock = bool(tilt_dedrift), tilt_clock
         if yaw not in ("twist", "x-axis"):
             raise DataError(f"FootDisplacement: yaw '{yaw}' is not 'twist' or 'x-axis'")
         self.yaw = yaw
@@ -281,6 +289,11 @@ class FootDisplacement:
             bias = np.tile(self._standstill_bias(unit.acc, unit.gyr, fs0), (B, 1))
         idx, mask = K.stride_index(i0, i1)
         q = K.stride_attitude(gyr, dt, idx, mask, g_body, bias, init) if B else None
+        if self.tilt_dedrift and B:  # decision L68: the tilt found at the stride end, removed along the stride
+            clock = None
+            if self.tilt_clock == "rotation":
+                clock = np.cumsum(np.where(mask, np.linalg.norm(gyr[idx], axis=2), 0.0), axis=1)
+            q = K.dedrift_tilt(q, acc, idx, mask, w, clock=clock)
         a_nav, self.yaw_change_ = K.strapdown(acc, gyr, dt, idx, mask, g_body, bias, init, q=q)
         if self.yaw == "twist" and B:
             self.yaw_change_ = twist_yaw(q[:, 0], q[np.arange(B), mask.sum(axis=1) - 1])

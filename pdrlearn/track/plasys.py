@@ -53,6 +53,7 @@ from pdrlearn.kernels.distance import (
 )
 from pdrlearn.kernels.window import GROUP_STREAMS, available_groups, levelled_units
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
+from pdrlearn.track.altitude_check import integrated_altitude_check, terrain_dz_check
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
 from pdrlearn.track.gaps import drop_steps_across_gaps, gap_warnings, long_gaps, overlaps_gaps
@@ -477,8 +478,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if no_classes:
             res.info["method"] = "M3 engine, no classes"
             _level_without_classes(res)  # decision L39, as offline
-            res.info["warnings"] = [NO_MODEL_WARNING, *res.info.get("warnings", [])]
+            msg, res.info["altitude_check"] = integrated_altitude_check(res.steps["dz_m"].to_numpy(float))  # L69
+            res.info["warnings"] = [NO_MODEL_WARNING, *res.info.get("warnings", []), *([msg] if msg else [])]
             log.warning("%s: %s", session.where, NO_MODEL_WARNING)
+            if msg:
+                log.warning("%s: %s", session.where, msg)
         return res
     cfg = {**METHODS[method], "rules": False} if no_classes else METHODS[method]
     warnings: list[str] = [NO_MODEL_WARNING] if no_classes else []
@@ -592,6 +596,14 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if no_classes or "terrain" in untrained:  # decision L39 (C17: also a model without terrain classes)
         dz = level_dz(dz)
     length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
+    altitude_check, terrain_check = None, None
+    if no_classes or "terrain" in untrained:  # decision L69: the altitude is the foot's integrated height
+        msg, altitude_check = integrated_altitude_check(dz)
+        warnings += [msg] if msg else []
+    elif cfg["rules"] and not (isinstance(model, str) and model == "oracle"):  # decision C28
+        msg, terrain_check = terrain_dz_check(np.where(in_gap, None, classes["terrain"].to_numpy(dtype=object)),
+                                              disp[:, 2], dz)
+        warnings += [msg] if msg else []
 
     hsrc = heading or cfg["heading"]
     if hsrc in ("waist", "fused") and not has_waist:
@@ -658,6 +670,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                    "accel_scale_error", "reference_point", "yaw")},
             # decision L22: heel contact - sensor (body frame, m) when the heel is the reference point
             "lever_arm_m": None if fd.lever_arm_ is None else [round(float(v), 4) for v in fd.lever_arm_],
+            "altitude_check": altitude_check, "terrain_dz_check": terrain_check,  # decisions L69, C28
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.where, w)
@@ -802,6 +815,11 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             num = pd.api.types.is_float_dtype(classes[c].dtype)
             classes[c] = classes[c].astype(float if num else object)
             classes.loc[in_gap, c] = np.nan if num else None
+    terrain_check = None
+    if method == "M3" and not (isinstance(model, str) and model == "oracle") and "terrain" in classes:  # C28
+        msg, terrain_check = terrain_dz_check(np.where(in_gap, None, classes["terrain"].to_numpy(dtype=object)),
+                                              raw_disp[:, 2], dz)
+        warnings += [msg] if msg else []
     head = initial_heading + np.cumsum(dyaw) + place  # decision L34: the direction each stride is placed along
     xyz = np.zeros((len(table) + 1, 3))
     for i in range(len(table)):  # the runtime's own position update, stride by stride
@@ -830,6 +848,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             "distance_gain": gain, "distance_gain_source": gain_source, "stride_sd_calibrated": stride_sd,
             "out_of_domain": domain,  # decision C16
             "classifier_rate_mismatch": off_rate,  # decision C18
+            "terrain_dz_check": terrain_check,  # decision C28
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.where, w)
