@@ -184,3 +184,13 @@ def test_the_strides_across_a_foot_gap_are_one_row_of_zero_metres():
     assert any("one row of 0 m with its gap_s" in w for w in res.info["warnings"])
     pd.testing.assert_series_equal(t["length_m"].drop(index=i).reset_index(drop=True),
                                    t.loc[t["gap_s"] == 0, "length_m"].reset_index(drop=True))
+
+
+def test_the_streamed_track_marks_its_gap_row_as_run_does():
+    from pdrlearn.io import read_session
+    from pdrlearn.track import get_pipeline
+
+    t = get_pipeline("plasys")(_cut(read_session(REAL / "gaitmap_level_right"), 10.0, 11.5), streaming=True).steps
+    gap = t[t["gap_s"] > 0]
+    assert len(gap) == 1 and gap["length_m"].iloc[0] == 0 and gap["gap_s"].iloc[0] > 1.0
+    assert list(t.columns[-2:]) == ["gap_s", "unit"]

@@ -846,6 +846,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                           if "direction" in table else None)
     table.insert(3, "length_m", rep_length)
     table.insert(5, "heading_rad", wrap_angle(rep_head))
+    table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["unit"] = "foot"
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
                          "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2]})
