@@ -40,6 +40,7 @@ from pdrlearn.kernels.stride import (
     stride_gap_yaw,
     stride_motion,
     stride_rules_one,
+    travel_sign_one,
 )
 from pdrlearn.kernels.window import (
     BOUNDARIES,
@@ -1055,6 +1056,7 @@ class Tracker:
         self.heading = heading
         self.position = np.array((x, y, z))
         self.n_steps += 1
+        length, direction = travel_sign_one(length, direction, classes.get("direction"))  # L65: after the position
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z)
 
     def _non_finite(self, t0: float, t1: float, heading: float, direction: float, xyz: tuple, motion: tuple) -> None:

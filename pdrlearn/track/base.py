@@ -25,9 +25,11 @@ class TrackResult:
     Attributes
     ----------
     steps : one row per detected step: ``start_s``, ``end_s``, ``event_s`` (s), ``length_m`` (m, signed
-        horizontal displacement along the heading; negative = backward), ``heading_rad`` (ENU, 0 = east,
-        counter-clockwise), ``dz_m`` (altitude change), and where known ``terrain``, ``direction``,
-        ``length_class``, ``confidence``.
+        horizontal displacement along the heading; negative only with a ``backward`` direction class, decision
+        L65), ``heading_rad`` (ENU, 0 = east, counter-clockwise), ``dz_m`` (altitude change), and where known
+        ``terrain``, ``direction``, ``length_class``, ``confidence``; the foot pipeline adds the gait columns
+        ``stride_time_s``, ``cadence_spm``, ``speed_mps``, ``turn_angle_rad`` (decision L66) and ``gap_s``
+        (L67; docs/localization.md "steps.csv columns").
     trajectory : ``t``, ``x``, ``y``, ``z`` (+ ``lat``, ``lon``) — position after each step (first row = start).
     info : pipeline name, method, parameters used, warnings (e.g. "no model: M3 unavailable").
     """

@@ -148,6 +148,10 @@ def _basic(result: TrackResult, out: dict) -> None:
         out["final_position"].update(lat=float(last["lat"]), lon=float(last["lon"]))
     # the tracked altitude change, with or without ground truth (session 14 trial finding 2)
     out["altitude_change_m"] = float(tr["z"].iloc[-1] - tr["z"].iloc[0]) if len(tr) and "z" in tr else 0.0
+    # decision L66: median stride time, cadence and speed of a table with the gait columns (foot pipeline)
+    from pdrlearn.track.gait import gait_summary
+
+    out.update(gait_summary(result.steps))
 
 
 def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[float | None, str]:

@@ -95,3 +95,29 @@ def drop_steps_across_gaps(steps: pd.DataFrame, gaps: dict[str, list[tuple[float
     out = steps.loc[~overlaps_gaps(steps, gaps)].reset_index(drop=True)
     out.attrs = dict(steps.attrs)
     return out
+
+
+def longest_gap_in(start_s, end_s, gaps: dict[str, list[tuple[float, float]]]) -> np.ndarray:
+    """(n_rows,) s: the longest of ``gaps`` overlapping each ``start_s``..``end_s`` (0.0: none), as the
+    runtime's ``Step.gap_s`` (decision E30/E37; offline decision L67)."""
+    st, en = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
+    if not gaps or not len(st):
+        return np.zeros(len(st))
+    iv = np.array([ab for g in gaps.values() for ab in g])
+    over = (st[:, None] < iv[None, :, 1]) & (en[:, None] > iv[None, :, 0])
+    return np.where(over, (iv[:, 1] - iv[:, 0])[None, :], 0.0).max(axis=1)
+
+
+def gap_rows(steps: pd.DataFrame, gaps: dict[str, list[tuple[float, float]]]) -> pd.DataFrame:
+    """Decision L67: one row (``start_s``, ``end_s``, ``gap_s``, ``before``) for each stretch between two
+    consecutive strides of ``steps`` that one of ``gaps`` overlaps: the strides dropped there (a stride across
+    a foot-stream gap is not integrated) become one row of 0 m, as the runtime's Step across a gap (E30).
+    ``before``: the index of the stride the row goes before."""
+    cols = ["start_s", "end_s", "gap_s", "before"]
+    if not gaps or len(steps) < 2:
+        return pd.DataFrame(columns=cols)
+    a = steps["end_s"].to_numpy(float)[:-1]
+    b = steps["start_s"].to_numpy(float)[1:]
+    dur = longest_gap_in(a, b, gaps)
+    k = np.flatnonzero((b > a) & (dur > 0))
+    return pd.DataFrame({"start_s": a[k], "end_s": b[k], "gap_s": dur[k], "before": k + 1})

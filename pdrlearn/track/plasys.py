@@ -56,7 +56,15 @@ from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.track.altitude_check import integrated_altitude_check, terrain_dz_check
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
-from pdrlearn.track.gaps import drop_steps_across_gaps, gap_warnings, long_gaps, overlaps_gaps
+from pdrlearn.track.gait import add_gait_columns
+from pdrlearn.track.gaps import (
+    drop_steps_across_gaps,
+    gap_rows,
+    gap_warnings,
+    long_gaps,
+    longest_gap_in,
+    overlaps_gaps,
+)
 from pdrlearn.track.geodetic import geodetic_track
 
 log = logging.getLogger(__name__)
@@ -504,7 +512,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     # decision B11: report long stream gaps; no foot stride spans a foot-stream gap
     foot_gaps = long_gaps(session, ("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
     warnings += gap_warnings({**foot_gaps, **long_gaps(session, ("wAccelerometer", "wGyroscope"))},
-                             "no displacement is counted inside them (a stride across one moves 0 m)")
+                             "no displacement is counted inside them: a stride across a foot gap is one row "
+                             "of 0 m with its gap_s in steps.csv (L67)")
     strides = drop_steps_across_gaps(strides, foot_gaps)
     if not len(strides):
         raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?")
@@ -622,6 +631,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         head = fd.foot_heading(initial_heading) + lateral
     else:
         raise DataError(f"plasys: heading '{hsrc}' is not waist, foot or fused")
+    if cfg["rules"] and hsrc in ("foot", "fused"):  # decision L65: offline as the streamed L37 - a stride whose
+        # sign the rules turned against its measured x (a turnaround classed forward) goes along its displacement
+        head = head + np.where((length != 0) & ((length < 0) != (disp[:, 0] < 0)), np.pi, 0.0)
 
     table = strides[["start_s", "end_s"]].copy()
     table["event_s"] = strides["event_s"] if "event_s" in strides else strides["end_s"]
@@ -638,6 +650,28 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if windows is not None:  # decision L38: the windows the classes come from
         table["window_start_s"], table["window_end_s"] = (windows[c].to_numpy(float) for c in ("start_s", "end_s"))
     table["unit"] = "foot"
+    # decision L66: gait parameters (IC-to-IC stride time from event_s, swing from the stance detection, the
+    # foot's own turn over the stride)
+    add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap)
+    table["gap_s"] = longest_gap_in(table["start_s"], table["end_s"], foot_gaps)  # decision L67 (run's E37)
+    table = table[[c for c in table.columns if c != "unit"] + ["unit"]]  # gap_s before unit, as run's steps.csv
+    head = np.asarray(head, dtype=float)
+    extra = gap_rows(table, foot_gaps)
+    if len(extra):  # decision L67: the strides dropped at a foot gap are one row of 0 m, as `pdrlearn run`'s
+        at = extra["before"].to_numpy(int)
+        rows = pd.DataFrame({"start_s": extra["start_s"], "end_s": extra["end_s"], "event_s": np.nan,
+                             "length_m": 0.0, "raw_length_m": np.nan,
+                             "heading_rad": table["heading_rad"].to_numpy()[at - 1],
+                             "dz_m": 0.0, "confidence": np.nan, "unit": "foot", "gap_s": extra["gap_s"]})
+        table = pd.concat([table, rows], ignore_index=True)
+        length = np.concatenate([length, np.zeros(len(at))])
+        dz = np.concatenate([dz, np.zeros(len(at))])
+        head = np.concatenate([head, head[at - 1]])
+        order = np.argsort(table["start_s"].to_numpy(float), kind="stable")
+        table = table.iloc[order].reset_index(drop=True)
+        length, dz, head = length[order], dz[order], head[order]
+        add_gait_columns(table, turn_rad=table["turn_angle_rad"].to_numpy(float),  # the rows next to a gap row
+                         valid=table["gap_s"].to_numpy(float) == 0)
 
     xyz = np.zeros((len(table) + 1, 3))
     xyz[1:, 0] = np.cumsum(length * np.cos(head))
@@ -648,6 +682,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if start is not None:
         ll = geodetic_track(tuple(start), length, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
+    # decision L65: a negative length only with a backward class (else |length| along heading + pi, same path)
+    rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object))
+    table["length_m"], table["heading_rad"] = rep_length, wrap_angle(rep_head)
     oracle = isinstance(model, str) and model == "oracle"
     info = {"pipeline": "plasys", "method": "M3 engine, no classes" if no_classes else method,
             "heading_source": hsrc, "stance_source": stance_source,
@@ -825,13 +862,17 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     for i in range(len(table)):  # the runtime's own position update, stride by stride
         xyz[i + 1] = SK.advance(xyz[i], float(head[i]), float(length[i]), float(dz[i]))
     table["event_s"] = table["end_s"]
-    table["length_m"] = length
     table["raw_length_m"] = np.hypot(raw_disp[:, 0], raw_disp[:, 1]) * np.where(raw_disp[:, 0] < 0, -1.0, 1.0)
-    table["heading_rad"] = wrap_angle(head)
     table["dz_m"] = dz
     for c in classes.columns:
         if not c.startswith("ood_feature_"):
             table[c] = classes[c].to_numpy()
+    # decision L65 (as the runtime's Step): a negative length only with a backward class; the path is the same
+    rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object)
+                                          if "direction" in table else None)
+    table.insert(3, "length_m", rep_length)
+    table.insert(5, "heading_rad", wrap_angle(rep_head))
+    table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["unit"] = "foot"
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
                          "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2]})
