@@ -47,7 +47,7 @@ def split_choices(*, tasks: str | None, methods: str | None, units: str | None):
 
 #: The ``--force`` option every command that writes an output takes (docs/decisions/bad-input.md B12).
 #: ``--dpi`` of every command that writes a figure (decision L70)
-DPI_HELP = "Resolution of the figure(s) in dots per inch (default 110; 20-1200)."
+DPI_HELP = "Resolution of the figure(s) in dots per inch (default 110)."
 FORCE_HELP = "Replace an existing output of this command (atomically: the old one stays until the new one is complete)."
 
 
