@@ -88,8 +88,9 @@ TURN_MAX_DEG = 30.0
 TURN_MIN_GRAVITY = 0.5 * 9.80665
 #: Mirrored foot data (decision L71): the axis to negate back is named when the gyroscope's principal axis
 #: (the foot's pitch axis in walking: the sagittal rotation dominates the foot's angular rate) lies within
-#: this of one sensor axis. Measured (docs/decisions/localization.md L71): 2.0-26.3 deg on the 12 gaitmap
-#: foot recordings and the trial's export, 9.0-9.3 deg on simulated A and D; 54.7 deg is the most possible.
+#: this of one sensor axis. Measured (experiments/pitch_axis.py, docs/decisions/localization.md L71): 2.0-26.3
+#: deg on the 11 gaitmap foot recordings and the trial's export, 9.0-9.3 deg on simulated A and D (always the
+#: declared lateral axis); 54.7 deg is the most the nearest axis can be off.
 PITCH_AXIS_MAX_DEG = 35.0
 
 
