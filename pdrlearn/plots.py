@@ -22,9 +22,9 @@ FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 #: Resolution (dots per inch) of every figure written (``--dpi`` overrides it, decision L70); a vector
 #: figure's (PDF, SVG) lines and text do not depend on it.
 DEFAULT_DPI = 110
-#: ``--dpi`` bounds: below 20 the text is unreadable; 1200 dpi makes an 11 in wide figure 13200 px (about
-#: 0.5 GB of RGBA for 8 panels), the most a figure of this size needs for print.
-DPI_RANGE = (20, 1200)
+#: ``--dpi`` bounds (the CLI's ``min``/``max``): below 20 the text is unreadable; 600 dpi is print resolution,
+#: and ``plot``'s 11 x 16.6 in figure of 8 streams is then 11 * 16.6 * 600^2 * 4 bytes = 263 MB of RGBA.
+DPI_RANGE = (20, 600)
 
 _TERRAIN_COLOURS = {"flat": "#9ecae1", "up": "#a1d99b", "down": "#fdae6b"}
 

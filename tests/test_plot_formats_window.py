@@ -59,7 +59,10 @@ def test_dpi_scales_the_plot_and_the_track_figure(stairs, tmp_path, capsys):
                      *(["--dpi", str(dpi)] if dpi else [])]) == 0, capsys.readouterr().err
         sizes[("track", dpi)] = _png_size(out / "path.png")
     assert 0.45 < sizes[("track", 55)][0] / sizes[("track", None)][0] < 0.55, sizes
-    assert main(["plot", str(stairs), "--out", str(tmp_path / "x.png"), "--dpi", "5000"]) == 2  # typer's range
+    for cmd in ("plot", "track", "run"):  # the bounds of every --dpi are DPI_RANGE
+        assert main([cmd, "--help"]) == 0
+        assert f"{DPI_RANGE[0]}<=x<={DPI_RANGE[1]}" in capsys.readouterr().out
+    assert main(["plot", str(stairs), "--out", str(tmp_path / "x.png"), "--dpi", str(DPI_RANGE[1] + 1)]) == 2
     capsys.readouterr()
     assert main(["run", str(tmp_path / "no_bundle"), str(stairs), "--dpi", "200"]) == 2  # no --out: refused
     assert "only --out writes" in capsys.readouterr().err

@@ -83,7 +83,7 @@ def plot(
     steps: str = typer.Option("labels", "--steps", help="Steps to shade: labels (the session's steps.csv), "
                               "detected (found by `pdrlearn steps`' default detector), or a steps table "
                               "(`pdrlearn steps --out`, a track's steps.csv) or a `track`/`run` output folder."),
-    dpi: int = typer.Option(None, "--dpi", min=20, max=1200, help=DPI_HELP),
+    dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
 ) -> None:
     """Plot every sensor stream with the labelled (or detected) steps shaded.

@@ -213,7 +213,7 @@ def run(
                               "the bundle's; the foot alone when the data have no waist unit, with a warning). "
                               "foot = a two-unit bundle on a foot-only session or a failed waist (decision E26)."),
     start: str = typer.Option(None, "--start", help=START_HELP),
-    dpi: int = typer.Option(None, "--dpi", min=20, max=1200, help=DPI_HELP),
+    dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 

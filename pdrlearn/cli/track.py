@@ -53,7 +53,7 @@ def track(
                                         "tracked: sensor (the unit, default) or heel (the heel contact, lever arm "
                                         "estimated from the recording, decision L22; = \"reference_point\" in "
                                         "--params)."),
-    dpi: int = typer.Option(None, "--dpi", min=20, max=1200, help=DPI_HELP),
+    dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
 ) -> None:
