@@ -13,6 +13,18 @@ from pdrlearn.io.session import Session
 #: PNG text chunk (key, value) that marks a figure of ``pdrlearn plot`` (:func:`plot_session`), so that
 #: ``plot --force`` replaces only such a figure (decision B26, ``cli.common.file_kind``).
 PLOT_MARK = ("pdrlearn", "plot")
+#: The same mark in a PDF or SVG figure (decision L70): its "Creator" metadata (matplotlib's PDF and SVG
+#: backends take only their standard keys; PNG takes any text chunk).
+PLOT_CREATOR = "pdrlearn plot"
+#: The figure formats every figure writer takes, by file suffix (decision L70): matplotlib's Agg, PDF and SVG
+#: backends, chosen by ``savefig`` from the suffix.
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
+#: Resolution (dots per inch) of every figure written (``--dpi`` overrides it, decision L70); a vector
+#: figure's (PDF, SVG) lines and text do not depend on it.
+DEFAULT_DPI = 110
+#: ``--dpi`` bounds (the CLI's ``min``/``max``): below 20 the text is unreadable; 600 dpi is print resolution,
+#: and ``plot``'s 11 x 16.6 in figure of 8 streams is then 11 * 16.6 * 600^2 * 4 bytes = 263 MB of RGBA.
+DPI_RANGE = (20, 600)
 
 _TERRAIN_COLOURS = {"flat": "#9ecae1", "up": "#a1d99b", "down": "#fdae6b"}
 
@@ -30,11 +42,39 @@ def _figure(nrows: int, height: float = 2.0):
     return plt, fig, axes[:, 0]
 
 
-def save_atomic(fig, path: Path, metadata: dict[str, str] | None = None) -> None:
-    """Save a figure via a temporary file so an interrupted run leaves no half-written PNG (``metadata``:
-    extra PNG text chunks)."""
-    with atomic_file(path, suffix=".png") as tmp:
-        fig.savefig(tmp, dpi=110, bbox_inches="tight", metadata=metadata)
+def save_atomic(fig, path: Path, metadata: dict[str, str] | None = None, *, dpi: float | None = None) -> None:
+    """Save a figure via a temporary file so an interrupted run leaves no half-written figure. The format
+    follows the suffix of ``path`` (:data:`FIGURE_SUFFIXES`; anything else is PNG, as before); ``metadata``:
+    extra PNG text chunks (a PDF or SVG gets "Creator" :data:`PLOT_CREATOR` instead when ``metadata`` is
+    :data:`PLOT_MARK`); ``dpi``: default :data:`DEFAULT_DPI` (decision L70)."""
+    path = Path(path)
+    fmt = path.suffix.lower().lstrip(".")
+    if "." + fmt not in FIGURE_SUFFIXES:
+        fmt = "png"
+    if fmt != "png" and metadata:  # PDF/SVG take only their standard keys (decision L70)
+        metadata = {"Creator": PLOT_CREATOR} if metadata == dict([PLOT_MARK]) else None
+    with atomic_file(path, suffix="." + fmt) as tmp:
+        fig.savefig(tmp, format=fmt, dpi=DEFAULT_DPI if dpi is None else float(dpi), bbox_inches="tight",
+                    metadata=metadata)
+
+
+def is_plot_figure(path: Path) -> bool:
+    """True when ``path`` is a figure of ``pdrlearn plot`` (:data:`PLOT_MARK` in a PNG, "Creator"
+    :data:`PLOT_CREATOR` in a PDF or SVG; decisions B26, L70)."""
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".png":
+        from pdrlearn.cli.common import png_text
+
+        return png_text(path).get(PLOT_MARK[0]) == PLOT_MARK[1]
+    if suffix == ".pdf":
+        data = path.read_bytes()
+        return data[:5] == b"%PDF-" and f"/Creator ({PLOT_CREATOR})".encode() in data
+    if suffix == ".svg":
+        with open(path, "rb") as f:
+            head = f.read(4096)  # matplotlib writes the metadata before the drawing
+        return b"<svg" in head and f"<dc:title>{PLOT_CREATOR}</dc:title>".encode() in head
+    return False
 
 
 def relative_luminance(rgb) -> float:
@@ -75,20 +115,45 @@ def check_window(start: float | None, end: float | None, duration_s: float, wher
     return lo, hi
 
 
-def plot_session(session: Session, out: Path, *, start: float | None = None, end: float | None = None) -> Path:
-    """One panel per sensor stream; labelled steps shaded by terrain (or alternately when unknown)."""
-    plt, fig = session_figure(session, start=start, end=end)
-    save_atomic(fig, Path(out), metadata=dict([PLOT_MARK]))
+def plot_session(session: Session, out: Path, *, start: float | None = None, end: float | None = None,
+                 steps=None, steps_what: str | None = None, dpi: float | None = None) -> Path:
+    """One panel per sensor stream; steps shaded by terrain (or alternately when unknown): the labelled
+    ones, or ``steps`` (arguments of :func:`session_figure`). The format follows the suffix of ``out``
+    (PNG, PDF or SVG; ``dpi`` default :data:`DEFAULT_DPI`, decision L70)."""
+    plt, fig = session_figure(session, start=start, end=end, steps=steps, steps_what=steps_what)
+    save_atomic(fig, Path(out), metadata=dict([PLOT_MARK]), dpi=dpi)
     plt.close(fig)
     return Path(out)
 
 
-def session_figure(session: Session, *, start: float | None = None, end: float | None = None):
-    """The figure of :func:`plot_session` (not saved): ``(pyplot, figure)``."""
+def steps_in_window(steps, lo: float, hi: float):
+    """The rows of a steps table (``start_s``, ``end_s`` on the session's clock) that overlap ``[lo, hi]``
+    (s), and how many of them the window cuts (start before ``lo`` or end after ``hi``)."""
+    if steps is None or not len(steps):
+        return steps, 0
+    s, e = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    keep = (e >= lo) & (s <= hi)
+    cut = int((keep & ((s < lo) | (e > hi))).sum())
+    return steps[keep], cut
+
+
+def session_figure(session: Session, *, start: float | None = None, end: float | None = None, steps=None,
+                   steps_what: str | None = None):
+    """The figure of :func:`plot_session` (not saved): ``(pyplot, figure)``.
+
+    ``steps``: a table with ``start_s``, ``end_s`` (s, the session's clock) and optionally ``terrain`` to
+    shade instead of the session's labelled steps, ``steps_what`` what they are ("detected stride(s) (accel)");
+    default the labelled steps. The time axis is the window ``[start, end]`` exactly (default the session),
+    a step it cuts is shaded inside it only, and the title counts the steps shaded (decision L70).
+    """
     names = list(session.streams)
     t0 = session.t_start
     start, end = check_window(start, end, session.t_end - t0, session.name)
     lo, hi = t0 + start, t0 + end
+    if steps is None:
+        steps, steps_what = session.steps, "labelled step(s)"
+    steps_what = steps_what or "step(s)"
+    shown, cut = steps_in_window(steps, lo, hi)
     plt, fig, axes = _figure(len(names))
     for ax, name in zip(axes, names, strict=True):
         s = session.streams[name].slice(lo, hi + 1e-9)
@@ -96,18 +161,23 @@ def session_figure(session: Session, *, start: float | None = None, end: float |
             ax.plot(s.t - t0, s.values[:, j], lw=0.8, label=col)
         ax.set_ylabel(f"{name}\n[{s.unit}]", fontsize=8)
         ax.legend(loc="upper right", fontsize=7, ncol=3)
-        if session.steps is not None:
-            for i, row in enumerate(session.steps.itertuples()):
-                if row.end_s < lo or row.start_s > hi:
-                    continue
-                colour = _TERRAIN_COLOURS.get(getattr(row, "terrain", None), "#dddddd" if i % 2 else "#f0f0f0")
-                ax.axvspan(row.start_s - t0, row.end_s - t0, color=colour, alpha=0.35, lw=0)
+        if shown is not None:
+            for i, row in enumerate(shown.itertuples()):
+                terrain = getattr(row, "terrain", None)
+                colour = _TERRAIN_COLOURS.get(terrain if isinstance(terrain, str) else None,
+                                              "#dddddd" if i % 2 else "#f0f0f0")
+                # decision L70: clipped to the window (a stride it cuts widened the axis before)
+                ax.axvspan(max(row.start_s, lo) - t0, min(row.end_s, hi) - t0, color=colour, alpha=0.35, lw=0)
+    axes[-1].set_xlim(start, end)  # decision L70: the window exactly (shared by every panel)
     axes[-1].set_xlabel("time since session start [s]")
-    if session.steps is not None and "terrain" in session.steps:
+    if shown is not None and "terrain" in shown and shown["terrain"].isin(list(_TERRAIN_COLOURS)).any():
         handles = [plt.Rectangle((0, 0), 1, 1, color=c, alpha=0.5) for c in _TERRAIN_COLOURS.values()]
         fig.legend(handles, list(_TERRAIN_COLOURS), loc="outside lower center", ncol=3, fontsize=8,
-                   title="labelled steps", title_fontsize=8)
-    fig.suptitle(f"{session.name}: {len(names)} stream(s), "
-                 f"{0 if session.steps is None else len(session.steps)} labelled step(s)")
+                   title=steps_what.replace("(s)", "s"), title_fontsize=8)
+    whole = start <= 0 and end >= session.t_end - t0
+    n = 0 if shown is None else len(shown)
+    window = "" if whole else f", {start:g}-{end:g} s of {session.t_end - t0:.1f} s"
+    cuts = f" ({cut} cut by the window)" if cut else ""
+    fig.suptitle(f"{session.name}: {len(names)} stream(s){window}, {n} {steps_what}"
+                 f"{' in the window' if not whole else ''}{cuts}")
     return plt, fig
-

@@ -46,7 +46,7 @@ def test_plot_writes_png(real_dir, tmp_path, capsys):
     assert code == 0, err
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     code, _, err = run_cli(["plot", str(real_dir / "gaitmap_stairs_up_left"), "--out", str(tmp_path / "p.jpg")], capsys)
-    assert code == 2 and "must end in .png" in err
+    assert code == 2 and "must end in .png, .pdf or .svg" in err
 
 
 def test_console_script_no_traceback(tmp_path):

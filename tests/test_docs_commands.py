@@ -258,6 +258,7 @@ def _validators() -> dict[tuple[str, str], object]:
     """(command, parameter name) -> a function that raises on a value the command refuses, from the lists the
     commands check against (so a renamed choice fails here as it would for the user)."""
     from pdrlearn.classify.training import METHODS, check_settings
+    from pdrlearn.displace.foot import REFERENCE_POINTS
     from pdrlearn.io.external import SOURCES
     from pdrlearn.io.importer import _TIME_SCALE, _resolve_unit, _time_word, parse_frame
     from pdrlearn.io.sensors import PLACEMENTS
@@ -297,6 +298,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "start"): lambda v: parse_start(v, altitude=True),  # LAT,LON[,ALT] (decision L56)
         ("run", "start"): lambda v: parse_start(v, altitude=True),
         ("track", "length_bounds"): two_numbers,
+        ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72
         ("export", "length_bounds"): two_numbers,
         ("export", "methods"): _one_of(METHODS, listed=True),
         ("run", "rules"): _one_of(RULES),
@@ -325,7 +327,8 @@ def _validators() -> dict[tuple[str, str], object]:
 FREE_TEXT = {("track", "model"), ("run", "protocol"), ("train", "user"),
              ("train-all", "scheduler"), ("evaluate-all", "scheduler"), ("report", "title"), ("import", "time"),
              ("import", "acc"), ("import", "gyro"), ("import", "mag"), ("import", "baro"), ("import", "heel"),
-             ("import", "toe"), ("import", "time_format"), ("import", "time_zone"), ("import", "name")}
+             ("import", "toe"), ("import", "time_format"), ("import", "time_zone"), ("import", "name"),
+             ("plot", "steps")}  # labels, detected or a path (decision L70)
 
 
 def _value_error(cmd_name: str, param, value: str, validators) -> str | None:

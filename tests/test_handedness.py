@@ -71,7 +71,7 @@ def test_mirrored_foot_recording_warns_once_naming_the_files_and_the_fix(tmp_pat
     d = _mirrored_copy(FOOT, tmp_path / "m", "f", axis)
     _, m = _one_foot_warning(d, caplog, "mirrored")
     assert str(d) in m and "fAccelerometer.csv" in m and "fGyroscope.csv" in m
-    assert "left-handed" in m and "negate that axis back" in m and "D11" in m
+    assert "left-handed" in m and "negate the y axis back" in m and "D11" in m  # L71: the lateral axis
 
 
 def test_truthful_foot_and_waist_recordings_do_not_warn(caplog):

@@ -34,5 +34,5 @@ def test_mirrored_foot_without_frames_names_the_mirroring(tmp_path, capsys):
     err = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("error: ")]
     assert rc == 2 and len(err) == 1, err
     assert "mirrored in one axis" in err[0] and "left-handed export" in err[0]
-    assert "D11" in err[0] and "negate the mirrored axis back" in err[0]
+    assert "D11" in err[0] and "negate the y axis back" in err[0]  # decision L71: the axis named
     assert "add a \"frames\" entry" not in err[0]  # a frames entry cannot fix mirrored data

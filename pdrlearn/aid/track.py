@@ -202,8 +202,10 @@ def check_sorted(steps: pd.DataFrame) -> pd.DataFrame:
     return steps.sort_values("end_s", kind="stable").reset_index(drop=True)
 
 
-def plot_aided(result: TrackResult, out, *, truth: pd.DataFrame | None = None, title: str | None = None) -> Path:
-    """Overlay PDR-only path, fixes and fused path (and the truth when given); PNG, atomic save."""
+def plot_aided(result: TrackResult, out, *, truth: pd.DataFrame | None = None, title: str | None = None,
+               dpi: float | None = None) -> Path:
+    """Overlay PDR-only path, fixes and fused path (and the truth when given); PNG, atomic save (``dpi``:
+    :func:`pdrlearn.plots.save_atomic`)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -242,6 +244,6 @@ def plot_aided(result: TrackResult, out, *, truth: pd.DataFrame | None = None, t
     ax.grid(alpha=0.3)
     ax.legend(loc="best", fontsize=8)
     ax.set_title(title or f"{result.info.get('pipeline', 'track')}: PDR, fixes and fused path")
-    save_atomic(fig, Path(out))
+    save_atomic(fig, Path(out), dpi=dpi)
     plt.close(fig)
     return Path(out)

@@ -46,6 +46,8 @@ def split_choices(*, tasks: str | None, methods: str | None, units: str | None):
 
 
 #: The ``--force`` option every command that writes an output takes (docs/decisions/bad-input.md B12).
+#: ``--dpi`` of every command that writes a figure (decision L70)
+DPI_HELP = "Resolution of the figure(s) in dots per inch (default 110)."
 FORCE_HELP = "Replace an existing output of this command (atomically: the old one stays until the new one is complete)."
 
 
@@ -213,10 +215,10 @@ def file_kind(path: Path) -> str | None:
 
             d = json.loads(path.read_text())
             return "params" if isinstance(d, dict) and d.get("schema") == SCHEMA else None
-        if suffix == ".png":
-            from pdrlearn.plots import PLOT_MARK
+        if suffix in (".png", ".pdf", ".svg"):  # decision L70: a figure in any of plot's formats
+            from pdrlearn.plots import is_plot_figure
 
-            return "plot" if png_text(path).get(PLOT_MARK[0]) == PLOT_MARK[1] else None
+            return "plot" if is_plot_figure(path) else None
     except (OSError, ValueError):
         return None
     return None
@@ -230,10 +232,11 @@ def out_file(path: Path, suffixes: tuple[str, ...], kind: str, *, force: bool = 
     whose next replacement would delete it); and an existing file only with ``force`` and only when it is a
     previous output of the same kind (decision B26: never a session's raw file or labels, a model's
     manifest.json, another command's output). Nothing is created here; writers create the parent folder."""
+    one_of = " or ".join(suffixes) if len(suffixes) < 3 else f"{', '.join(suffixes[:-1])} or {suffixes[-1]}"
     if path.suffix.lower() not in suffixes:
-        raise DataError(f"{path}: output must end in {' or '.join(suffixes)}")
+        raise DataError(f"{path}: output must end in {one_of}")
     if path.is_dir():
-        raise DataError(f"{path}: is a folder; give a file name ending in {' or '.join(suffixes)}")
+        raise DataError(f"{path}: is a folder; give a file name ending in {one_of}")
     for parent in path.parents:
         if parent.exists():
             if not parent.is_dir():

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import FORCE_HELP, console, existed, json_safe, out_file, print_json, replaced
+from pdrlearn.cli.common import DPI_HELP, FORCE_HELP, console, existed, json_safe, out_file, print_json, replaced
 
 
 def info(
@@ -77,27 +77,89 @@ def _deg(v) -> str:
 
 def plot(
     session_dir: Path = typer.Argument(..., help="PLASYS session folder."),
-    out: Path = typer.Option(..., "--out", "-o", help="PNG file to write."),
+    out: Path = typer.Option(..., "--out", "-o", help="Figure file to write: .png, .pdf or .svg."),
     start: float = typer.Option(None, help="First second to show (default: whole session)."),
     end: float = typer.Option(None, help="Last second to show."),
+    steps: str = typer.Option("labels", "--steps", help="Steps to shade: labels (the session's steps.csv), "
+                              "detected (found by `pdrlearn steps`' default detector), or a steps table "
+                              "(`pdrlearn steps --out`, a track's steps.csv) or a `track`/`run` output folder."),
+    dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
 ) -> None:
-    """Plot every sensor stream with the labelled steps shaded.
+    """Plot every sensor stream with the labelled (or detected) steps shaded.
 
-    Example:
+    Examples:
 
         pdrlearn plot datasets/real/gaitmap_stairs_up_left --out out/stairs.png --start 5 --end 12
+
+        pdrlearn plot datasets/real/gaitmap_level_left --out out/level.pdf --steps detected
+
+        pdrlearn plot datasets/real/gaitmap_level_right --out out/right.svg --steps out/track_right --dpi 200
     """
     from pdrlearn.io import read_session
-    from pdrlearn.plots import check_window, plot_session
+    from pdrlearn.plots import FIGURE_SUFFIXES, check_window, plot_session
 
-    out = out_file(out, (".png",), "plot", force=force)
+    out = out_file(out, FIGURE_SUFFIXES, "plot", force=force)
     was = existed(out)
     s = read_session(session_dir)
     check_window(start, end, s.t_end - s.t_start, str(session_dir))
-    plot_session(s, out, start=start, end=end)
+    table, what = _steps_to_shade(steps, s)
+    plot_session(s, out, start=start, end=end, steps=table, steps_what=what, dpi=dpi)
     replaced(out, was)
     typer.echo(str(out))
+
+
+def _steps_to_shade(source: str, session):
+    """``plot --steps`` (decision L70): ``(table or None, what)``; None = the session's labelled steps."""
+    import pandas as pd
+
+    from pdrlearn.errors import DataError
+
+    if source == "labels":
+        return None, None
+    if source == "detected":
+        from pdrlearn.cli.steps import auto_detector
+
+        det = auto_detector(session)
+        table = det.detect(session)
+        return table, f"detected {'stride' if det.unit == 'foot' else 'step'}(s) ({det.name})"
+    path = Path(source)
+    if path.is_dir():
+        table_path = path / "steps.csv"
+        if not table_path.is_file():
+            raise DataError(f"--steps {source}: a folder without steps.csv; give labels, detected, a steps table "
+                            "or a `pdrlearn track`/`run` output folder")
+        summary = path / "summary.json"
+        try:
+            made_from = json.loads(summary.read_text()).get("session") if summary.is_file() else None
+        except (OSError, ValueError, AttributeError):
+            made_from = None
+        if isinstance(made_from, str) and made_from != session.name:
+            import logging
+
+            logging.getLogger("pdrlearn.cli").warning("%s: tracked from session '%s', not '%s'; its strides are "
+                                                      "shaded on this session's clock", path, made_from, session.name)
+    elif path.is_file():
+        table_path = path
+    else:
+        raise DataError(f"--steps {source}: not labels, detected, a steps table or a track output folder "
+                        "(no such file or folder)")
+    try:
+        table = pd.read_csv(table_path)
+    except (OSError, ValueError) as exc:
+        raise DataError(f"{table_path}: cannot read it as a steps table ({type(exc).__name__}); give a CSV with "
+                        "start_s and end_s columns (`pdrlearn steps --out`, a track's steps.csv)") from None
+    missing = [c for c in ("start_s", "end_s") if c not in table]
+    if missing:
+        raise DataError(f"{table_path}: no {' or '.join(missing)} column; give a steps table with start_s and end_s "
+                        "in s (`pdrlearn steps --out`, a track's steps.csv)")
+    table = table[pd.to_numeric(table["start_s"], errors="coerce").notna()
+                  & pd.to_numeric(table["end_s"], errors="coerce").notna()].astype({"start_s": float, "end_s": float})
+    if len(table) and (table["end_s"].max() < session.t_start or table["start_s"].min() > session.t_end):
+        raise DataError(f"{table_path}: its steps ({table['start_s'].min():.1f}-{table['end_s'].max():.1f} s) lie "
+                        f"outside session '{session.name}' ({session.t_start:.1f}-{session.t_end:.1f} s); was it "
+                        "made from another session?")
+    return table, f"step(s) of {table_path}"
 
 
 def fetch(

@@ -10,6 +10,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import (
+    DPI_HELP,
     FORCE_HELP,
     START_HELP,
     existed,
@@ -213,6 +214,7 @@ def run(
                               "the bundle's; the foot alone when the data have no waist unit, with a warning). "
                               "foot = a two-unit bundle on a foot-only session or a failed waist (decision E26)."),
     start: str = typer.Option(None, "--start", help=START_HELP),
+    dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -235,6 +237,9 @@ def run(
     if not (chunk_s > 0 and chunk_s < float("inf")):
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
+    if dpi is not None and out is None:  # decision L70: it would be ignored
+        raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
+                        "FOLDER or drop --dpi")
     if out is not None:
         out_folder(out, "run", force=force, inputs=(bundle_dir, session_dir))
     bundle = load_bundle(bundle_dir)  # verified before any output
@@ -325,7 +330,7 @@ def run(
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats
     if out is not None:
-        _write(out, result, summary, session, source)
+        _write(out, result, summary, session, source, dpi=dpi)
     if as_json:
         print_json(json_safe(summary))
     else:
@@ -403,7 +408,7 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
     return out
 
 
-def _write(out: Path, result, summary, session=None, source: str = "") -> None:
+def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None) -> None:
     """steps.csv, trajectory.csv, path.png and summary.json as ``track`` writes them (same names, columns,
     number format, ``track``'s figure), atomically: all four or none, and ``--force`` keeps the old run until
     then. ``session``: the replayed session (its ground truth in path.png; None for a capture)."""
@@ -416,7 +421,7 @@ def _write(out: Path, result, summary, session=None, source: str = "") -> None:
     with atomic_directory(out) as tmp:
         result.steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
         result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format="%.10g")
-        plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run")
+        plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run", dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
     replaced(out, was)
 

@@ -217,6 +217,7 @@ def import_command(
                                       taken=() if base is None else tuple(base.extras), relative=labels_relative)
         record["labels"] = {f"{n}.csv": {"file": Path(p).name, "rows": rows[n]} for n, p in
                             zip(rows, labels, strict=True)}
+    axes_warning = _check_axes(session, unit, record, csv)  # decision L71: before anything is written
     span_warning = None
     if base is not None:
         span_warning = merge_span_warning(base, session)  # trial 2, finding 11 (decision D12)
@@ -230,6 +231,40 @@ def import_command(
                     "frames": {p: f.to_dict() for p, f in session.frames.items()}})
     if span_warning:
         typer.echo(f"warning: {out}: {span_warning}", err=True)
+    if axes_warning:
+        typer.echo(f"warning: {out}: {axes_warning}", err=True)
+
+
+def _check_axes(session, unit: str, record: dict, csv: Path) -> str | None:
+    """Decision L71: the axis checks every command runs on the unit (D11 and its amendment,
+    :func:`pdrlearn.io.handedness.check_handedness`), at import. Mirrored data (a left-handed pair, which
+    ``track`` refuses or tracks wrongly) are refused, naming the axis and the --acc/--gyro options that
+    negate it back; a gyroscope whose axes differ from the accelerometer's is returned as a warning."""
+    import shlex
+
+    from pdrlearn.io.handedness import check_handedness, mirrored_message
+
+    h, msg = check_handedness(session, unit, ratio=False)
+    if h is None or not h.mirrored or h.axes_differ:
+        return msg
+    prefix = "f" if unit == "foot" else "w"
+
+    def option(kind: str, sensor: str, axis: str | None) -> str | None:
+        r = record["streams"].get(prefix + sensor)
+        if r is None or axis is None:
+            return None
+        neg = set(r.get("negated", ()))
+        k = "xyz".index(axis)
+        cols = ",".join(f"-{c}" if (c in neg) != (i == k) else c for i, c in enumerate(r["columns"]))
+        return shlex.quote(f"--{kind}={cols}")
+
+    def how(axis: str | None) -> str:
+        acc, gyr = option("acc", "Accelerometer", axis), option("gyro", "Gyroscope", axis)
+        if acc is None or gyr is None:
+            return "in both --acc and --gyro (-NAME negates a column) and import again"
+        return f"in both sensors: import again with {acc} {gyr}"
+
+    raise DataError(f"{csv}: {mirrored_message(h, unit, how=how)} (nothing written)")
 
 
 def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:

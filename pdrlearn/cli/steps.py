@@ -56,9 +56,8 @@ def steps(
         out = out_file(out, (".csv",), "steps", force=force)
     was = out is not None and existed(out)
     session = read_session(session_dir)
-    if detector == "auto":  # a foot unit's strides, else the lower back's steps (decision 17)
-        det = get_detector("accel" if session.has("fAccelerometer") or not session.has("wAccelerometer")
-                           else "waist-ic" if session.has("wGyroscope") else "pll")
+    if detector == "auto":
+        det = auto_detector(session)
     u = det.unit[0]  # "f" or "w": the unit's inertial streams (+ the force sensors of accel-force)
     warn_gaps(session, [f"{u}Accelerometer", f"{u}Gyroscope", *(("fForceA", "fForceB") if "force" in det.name else ())],
               "no step is detected inside them (recall counts the labelled ones as missed) - re-record or trim "
@@ -106,6 +105,15 @@ def steps(
                        f"+- {score['timing_error_sd_s']:.3f} s")
     if out is not None:
         typer.echo(str(out))
+
+
+def auto_detector(session):
+    """The detector of ``--detector auto``: a foot unit's strides, else the lower back's steps (decision 17);
+    also ``pdrlearn plot --steps detected`` (decision L70)."""
+    from pdrlearn.steps import get_detector
+
+    return get_detector("accel" if session.has("fAccelerometer") or not session.has("wAccelerometer")
+                        else "waist-ic" if session.has("wGyroscope") else "pll")
 
 
 def register(app: typer.Typer) -> None:

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import FORCE_HELP, START_HELP, existed, json_safe, print_json, replaced, start_option
+from pdrlearn.cli.common import DPI_HELP, FORCE_HELP, START_HELP, existed, json_safe, print_json, replaced, start_option
 from pdrlearn.errors import DataError
 
 
@@ -49,6 +49,11 @@ def track(
     realtime: bool = typer.Option(False, "--realtime", help="waist-pendulum: the causal initial-contact "
                                   "detector (each contact decided < 2 s after it, decision W31) instead of the "
                                   "zero-lag offline one; = \"options\": {\"realtime\": true} in --params."),
+    reference_point: str = typer.Option(None, "--reference-point", help="plasys: the point whose path is "
+                                        "tracked: sensor (the unit, default) or heel (the heel contact, lever arm "
+                                        "estimated from the recording, decision L22; = \"reference_point\" in "
+                                        "--params)."),
+    dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
 ) -> None:
@@ -109,6 +114,8 @@ def track(
                             gnss=gnss, gnss_period=gnss_period, fixes=fixes, fix_period=fix_period)
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
+    if reference_point is not None:  # decision L72
+        par = _reference_point(reference_point, par, params, pipeline, streaming)
     # waist pipelines read the file themselves, so that their errors name it
     kw = {"model": model, "start": start_ll, "params": par if pipeline == "plasys" or par is None else str(params)}
     if realtime:
@@ -169,11 +176,11 @@ def track(
     with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
         if aided:
             plot_aided(result, tmp / "aided.png", truth=session.trajectory,
-                       title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes")
+                       title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
         _write_csv(traj, tmp / "trajectory.csv")
         _write_csv(result.steps, tmp / "steps.csv")
         plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, tmp / "path.png",
-                   session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}")
+                   session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     replaced(out, was)
     if as_json:
@@ -232,6 +239,31 @@ def _refuse_ignored_options(pipeline: str, method: str, given: dict[str, bool], 
         if period is not None and source is None:
             raise DataError(f"track: {name} {period:g} thins the fixes of {src_name} FILE, which is not given; "
                             f"pass {src_name} FILE or drop {name}")
+
+
+def _reference_point(point: str, par, params: Path | None, pipeline: str, streaming: bool) -> dict:
+    """``--reference-point`` (decision L72) as the ``reference_point`` setting of ``--params``: the plasys
+    offline pipeline only (the streaming kernel and the runtime track the sensor); one that contradicts the
+    --params file is an error (which one was meant?)."""
+    from pdrlearn.displace.foot import REFERENCE_POINTS
+
+    if point not in REFERENCE_POINTS:
+        raise DataError(f"--reference-point {point}: not one of {', '.join(REFERENCE_POINTS)}")
+    if pipeline != "plasys":
+        raise DataError(f"--reference-point applies to the plasys (foot) pipeline only (got --pipeline {pipeline}, "
+                        "whose lower-back step length has no reference point); drop it, or track the foot unit "
+                        "with --pipeline plasys")
+    if streaming:
+        raise DataError("track: --reference-point: the --streaming kernel (and `pdrlearn run`) track the sensor "
+                        "point only; drop --streaming to track the heel, or drop --reference-point")
+    par = {} if par is None else par
+    if not isinstance(par, dict):
+        raise DataError(f"{params}: the parameters JSON is not an object; pass a file such as "
+                        "{\"reference_point\": \"heel\"}")
+    if par.get("reference_point", point) != point:
+        raise DataError(f"track: --reference-point {point} contradicts \"reference_point\": "
+                        f"\"{par['reference_point']}\" in {params}; give one of them")
+    return {**par, "reference_point": point}
 
 
 def _refuse_waist_params(par: dict, path: Path, session) -> None:

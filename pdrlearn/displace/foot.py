@@ -133,6 +133,9 @@ def twist_yaw(q_start: np.ndarray, q_end: np.ndarray) -> np.ndarray:
     return 2.0 * np.arctan2(z * np.sign(np.where(w == 0, 1.0, w)), np.abs(w))
 
 
+#: The points a foot track can follow (``reference_point``; ``pdrlearn track --reference-point``, decision L72)
+REFERENCE_POINTS = ("sensor", "heel")
+
 class FootDisplacement:
     """Displacement of each stride of the foot unit between two rests.
 
@@ -200,7 +203,7 @@ class FootDisplacement:
         if yaw not in ("twist", "x-axis"):
             raise DataError(f"FootDisplacement: yaw '{yaw}' is not 'twist' or 'x-axis'")
         self.yaw = yaw
-        if reference_point not in ("sensor", "heel"):
+        if reference_point not in REFERENCE_POINTS:
             raise DataError(f"FootDisplacement: reference_point '{reference_point}' is not 'sensor' or 'heel'")
         self.reference_point = reference_point
         self.gap_yaw = bool(gap_yaw)

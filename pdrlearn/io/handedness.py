@@ -86,6 +86,12 @@ TURN_MAX_DEG = 30.0
 #: ("linear") acceleration averages to about 0 and points anywhere (the new-user trial's ph_linacc sessions
 #: scored 84-86 deg: a wrong "axes differ" without this).
 TURN_MIN_GRAVITY = 0.5 * 9.80665
+#: Mirrored foot data (decision L71): the axis to negate back is named when the gyroscope's principal axis
+#: (the foot's pitch axis in walking: the sagittal rotation dominates the foot's angular rate) lies within
+#: this of one sensor axis. Measured (experiments/pitch_axis.py, docs/decisions/localization.md L71): 2.0-26.3
+#: deg on the 11 gaitmap foot recordings and the trial's export, 9.0-9.3 deg on simulated A and D (always the
+#: declared lateral axis); 54.7 deg is the most the nearest axis can be off.
+PITCH_AXIS_MAX_DEG = 35.0
 
 
 def signed_permutations() -> np.ndarray:
@@ -167,6 +173,18 @@ class Handedness:
     turn_deg: float = float("nan")
     turn_windows: int = 0
     turn_axes: tuple[int, int] = (-1, -1)
+    #: Foot (decision L71, :func:`pitch_axis`): the sensor axis (0-2, -1 unknown) nearest the gyroscope's
+    #: principal axis, the foot's medio-lateral pitch axis, and the angle (deg) between them.
+    pitch_axis: int = -1
+    pitch_deg: float = float("nan")
+
+    @property
+    def mirror_axis(self) -> str | None:
+        """The axis ("x", "y" or "z") a left/right mirror negates, when the data show it (decision L71): the
+        medio-lateral axis the foot pitches about, within :data:`PITCH_AXIS_MAX_DEG`; else None."""
+        if self.pitch_axis < 0 or not self.pitch_deg <= PITCH_AXIS_MAX_DEG:
+            return None
+        return "xyz"[self.pitch_axis]
 
     @property
     def axes_differ(self) -> bool:
@@ -232,6 +250,39 @@ def _end_speed(acc: np.ndarray, gyr: np.ndarray, fs: float, i0: np.ndarray, i1: 
     return np.linalg.norm(v[np.arange(len(i0)), mask.sum(axis=1) - 1], axis=1)
 
 
+def pitch_axis(gyr: np.ndarray) -> tuple[int, float]:
+    """The sensor axis (0-2) nearest the principal axis of the angular rate ``gyr`` (n, 3) and the angle
+    (deg) between them; ``(-1, nan)`` without rotation. On a walking foot it is the medio-lateral axis the
+    foot pitches about (decision L71). Pure function."""
+    g = np.asarray(gyr, dtype=float)
+    m = g.T @ g if len(g) else np.zeros((3, 3))
+    if not (np.isfinite(m).all() and np.trace(m) > 0):
+        return -1, float("nan")
+    u = np.linalg.eigh(m)[1][:, -1]
+    k = int(np.argmax(np.abs(u)))
+    return k, float(np.degrees(np.arccos(min(1.0, abs(float(u[k]))))))
+
+
+def mirror_fix_text(h: Handedness, acc_n: str, gyr_n: str, *, how=None) -> str:
+    """The fix of a mirrored (left-handed) pair, naming the axis when the data show it (decision L71): the
+    medio-lateral axis :attr:`Handedness.mirror_axis`, which a left/right mirror negates. Negating any one
+    axis in both files makes the pair right-handed; the data cannot say which one the export negated, so
+    the text says so. ``how(axis)``: where to negate ``axis`` ("x"/"y"/"z", None when unknown); default in
+    both files (``pdrlearn import`` gives its own ``--acc``/``--gyro`` options). The one wording of ``info``,
+    ``track`` and ``import``."""
+    ax = h.mirror_axis
+    where = (how(ax) if how is not None else None) or f"in both {acc_n}.csv and {gyr_n}.csv"
+    if ax is None:
+        return (f"negate the mirrored axis back {where} (the data do not show which axis: the foot's pitch axis "
+                "is not near one sensor axis; or re-export without mirroring)")
+    how = where
+    return (f"negate the {ax} axis back {how}: the foot pitches about its {ax} axis (the gyroscope's main "
+            f"rotation axis is {h.pitch_deg:.0f} deg from it), "
+            f"the medio-lateral axis a left/right mirror negates (negating any one axis makes the pair "
+            f"right-handed; if the export negated another one, negate that one instead, or re-export without "
+            f"mirroring)")
+
+
 def foot_handedness(acc: np.ndarray, gyr: np.ndarray, fs: float) -> Handedness:
     """Handedness test of a foot unit: specific force (n, 3) m/s^2 and angular rate (n, 3) rad/s on one
     clock of ``fs`` Hz. Pure function (the stance detector and stride integration of ``displace``)."""
@@ -240,8 +291,9 @@ def foot_handedness(acc: np.ndarray, gyr: np.ndarray, fs: float) -> Handedness:
 
     acc, gyr = np.asarray(acc, dtype=float), np.asarray(gyr, dtype=float)
     i0, i1 = rest_to_rest(inertial_stance(acc, gyr, fs), fs)
+    pk, pdeg = pitch_axis(gyr)
     if not len(i0):
-        return Handedness("foot", float("nan"), 0)
+        return Handedness("foot", float("nan"), 0, pitch_axis=pk, pitch_deg=pdeg)
     vp, vm = _end_speed(acc, gyr, fs, i0, i1), _end_speed(acc, -gyr, fs, i0, i1)
     r = np.log(np.maximum(vm, 1e-9) / np.maximum(vp, 1e-9))
     P, ra = foot_axes(acc, gyr, fs, i0, i1)
@@ -251,7 +303,7 @@ def foot_handedness(acc: np.ndarray, gyr: np.ndarray, fs: float) -> Handedness:
     elif r_axes > AXES_MIN_LOG_RATIO:  # a candidate: confirmed on every stride at the full rate
         va = _end_speed(acc, gyr @ P.T, fs, i0, i1)
         r_axes = float(np.median(np.log(np.maximum(vp, 1e-9) / np.maximum(va, 1e-9))))
-    return Handedness("foot", float(np.median(r)), int(len(r)), P, r_axes)
+    return Handedness("foot", float(np.median(r)), int(len(r)), P, r_axes, pitch_axis=pk, pitch_deg=pdeg)
 
 
 def foot_axes(acc: np.ndarray, gyr: np.ndarray, fs: float, i0: np.ndarray, i1: np.ndarray,
@@ -426,18 +478,26 @@ def check_handedness(session, placement: str, *, ratio: bool = True) -> tuple[Ha
                f"{np.exp(h.axes_log_ratio):.1f} times smaller with them (median of {h.segments}; decision D11 "
                f"amendment); {axes_fix_text(P, acc_n, gyr_n)}")
         return h, msg
+    return h, mirrored_message(h, placement)
+
+
+def mirrored_message(h: Handedness, placement: str, *, how=None) -> str:
+    """The warning (``info``, ``track``) or refusal (``import``, decision L71) of a mirrored pair: the test's
+    numbers and :func:`mirror_fix_text` (``how`` as there)."""
+    from pdrlearn.io.sensors import UNIT_IMU
+
+    acc_n, gyr_n = UNIT_IMU[placement]
     err = ("the end-of-stride velocity error of the ZUPT integration" if placement == "foot"
            else "the velocity error of the walking windows")
-    msg = (f"the {placement} unit's {acc_n} and {gyr_n} turn like a left-handed (mirrored) pair: {err} is "
-           f"{np.exp(-h.log_ratio):.1f} times smaller with the gyroscope reversed (median of {h.segments}; "
-           f"decision D11); the data were probably mirrored (one axis negated in both files, e.g. left-foot "
-           f"data mirrored to look like a right foot, or a left-handed export): negate that axis back in both "
-           f"{acc_n}.csv and {gyr_n}.csv (or re-export without mirroring); a \"frames\" entry cannot fix this")
-    return h, msg
+    return (f"the {placement} unit's {acc_n} and {gyr_n} turn like a left-handed (mirrored) pair: {err} is "
+            f"{np.exp(-h.log_ratio):.1f} times smaller with the gyroscope reversed (median of {h.segments}; "
+            f"decision D11); the data were probably mirrored (one axis negated in both files, e.g. left-foot "
+            f"data mirrored to look like a right foot, or a left-handed export): "
+            f"{mirror_fix_text(h, acc_n, gyr_n, how=how)}; a \"frames\" entry cannot fix this")
 
 
 __all__ = ["Handedness", "foot_handedness", "foot_axes", "signed_permutations", "axes_label", "axes_fix",
-           "axes_fix_acc", "axes_fix_text",
+           "axes_fix_acc", "axes_fix_text", "pitch_axis", "mirror_fix_text", "mirrored_message", "PITCH_AXIS_MAX_DEG",
            "turn_axis", "PERMUTATIONS", "AXES_PLACEMENTS", "AXES_STRIDES", "AXES_RATE_HZ", "AXES_MIN_LOG_RATIO",
            "TURN_WINDOW_S", "TURN_HOP_S", "TURN_MIN_DEG", "TURN_MIN_WINDOWS", "TURN_MAX_DEG",
            "TURN_MIN_GRAVITY",           "waist_handedness", "session_handedness", "check_handedness",

@@ -373,13 +373,14 @@ class Session:
             reason = f" and its data does not fix the axes ({known})"
             h = self._handed.get(placement)
             if h is not None and h.mirrored:  # B29: a "frames" entry cannot fix mirrored data (D11)
+                from pdrlearn.io.handedness import mirror_fix_text
                 from pdrlearn.io.sensors import UNIT_IMU
 
                 acc_n, gyr_n = UNIT_IMU[placement]
-                raise DataError(
+                raise DataError(  # decision L71: the axis named (mirror_fix_text, shared with the warning)
                     f"{where} declares no axis frame for the {placement} unit{reason}; the D11 test finds its {acc_n} "
-                    f"and {gyr_n} {h.describe()}, a left-handed pair: negate the mirrored axis back in both "
-                    f"{acc_n}.csv and {gyr_n}.csv (or re-export without mirroring); a \"frames\" entry cannot fix that")
+                    f"and {gyr_n} {h.describe()}, a left-handed pair: {mirror_fix_text(h, acc_n, gyr_n)}; "
+                    f"a \"frames\" entry cannot fix that")
             if h is not None and h.axes_differ:  # trial 2, finding 8: the D11 amendment's fix, not a frames entry
                 from pdrlearn.io.handedness import axes_fix_text
                 from pdrlearn.io.sensors import UNIT_IMU

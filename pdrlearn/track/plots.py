@@ -16,10 +16,11 @@ ALTITUDE_PANEL_M = 0.5
 
 
 def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | None = None,
-               title: str = "") -> Path:
+               title: str = "", dpi: float | None = None) -> Path:
     """Plan view of one or more tracks, with the ground truth when the session has one; below it the height
     ``z`` against time when a track or the ground truth changes height by :data:`ALTITUDE_PANEL_M` or more
-    (the storeys of a multi-floor walk overlap in the plan view, decision L55).
+    (the storeys of a multi-floor walk overlap in the plan view, decision L55). ``dpi``: as
+    :func:`pdrlearn.plots.save_atomic` (default 110, ``--dpi`` of track and run, decision L70).
 
     The ground truth is shifted so that it starts where the tracks start (its position at the first
     track's start time). When the first track's heading is relative to its start (0 = east, unless
@@ -28,7 +29,7 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     0 at the start) / ``y`` instead of east / north (L55).
     """
     plt, fig = path_figure(paths, session=session, title=title)
-    save_atomic(fig, Path(out))
+    save_atomic(fig, Path(out), dpi=dpi)
     plt.close(fig)
     return Path(out)
 
