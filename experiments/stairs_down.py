@@ -16,9 +16,9 @@ mean |distance error| % and final position error per scenario.
 ``--down-mode projected`` applies decision L51's option (default: the thesis norm); ``--sim-cache`` keeps the
 simulated walks so both runs track the same data.
 
-Decision L63 (walks whose descents do not retrace; ``--routes`` R1,R2,R3 of :data:`ROUTES`, as ``pdrlearn
-simulate --route R --user-seed U``; two modes compared walk by walk with medians and counts of walks made
-worse; ``--runtime N``: ``pdrlearn run`` with a bundle exported per mode for the first N users)::
+Decision L63 (walks whose descents do not retrace; ``--routes`` R1,R2,R3 of :data:`ROUTES`, simulated as the
+``simulate`` command's ``--route`` option does; two modes compared walk by walk with medians and counts of walks
+made worse; ``--runtime N``: ``pdrlearn run`` with a bundle exported per mode for the first N users)::
 
     PYTHONPATH=$PWD python experiments/stairs_down.py --first-user 21 --routes R1,R2,R3 \
         --down-mode norm3,projected --model-cache CACHE --sim-cache SIMS --runtime 3
@@ -62,7 +62,8 @@ WORSE_BY = {"final_position_error_m": 0.02, "final_position_error_3d_m": 0.02, "
 
 
 def route_walk(route: str, user: int):
-    """``pdrlearn simulate --route ROUTES[route] --user-seed USER`` (normal speed, seed 0, 20 Hz)."""
+    """The walk ``simulate``'s ``--route`` option makes of ``ROUTES[route]`` for ``--user-seed`` ``user``
+    (normal speed, seed 0, 20 Hz)."""
     from pdrlearn.sim import UserProfile, simulate_path
     from pdrlearn.sim.route import parse_route
 
