@@ -82,13 +82,9 @@ def test_stride_rules_kernel():
     length, dz = SK.apply_stride_rules(disp, ["up", "down", "flat", None], ["forward", None, "backward", None],
                                        ["long", "normal", "normal", None], bounds=bounds)
     # up: horizontal 1.0 inside long; down: 3-axis norm 0.539 (eq. 61) with the estimate's sign, clamped up
-    # to normal's 0.6, whose horizontal part sqrt(0.6^2 - 0.2^2) moves x/y (L51, the default since L63);
-    # backward prevails over the estimate and 1.2 is clamped to normal's 0.9; no class: raw
-    np.testing.assert_allclose(length, [1.0, -np.sqrt(0.6**2 - 0.2**2), -0.9, 0.5])
+    # to normal's 0.6; backward prevails over the estimate and 1.2 is clamped to normal's 0.9; no class: raw
+    np.testing.assert_allclose(length, [1.0, -0.6, -0.9, 0.5])
     np.testing.assert_allclose(dz, [0.3, -0.2, 0.0, 0.1])  # stairs |dz|, flat 0, unknown terrain: estimate
-    norm3, _ = SK.apply_stride_rules(disp, ["up", "down", "flat", None], ["forward", None, "backward", None],
-                                     ["long", "normal", "normal", None], bounds=bounds, down_mode="norm3")
-    np.testing.assert_allclose(norm3, [1.0, -0.6, -0.9, 0.5])  # the thesis' rule: the clamped norm moves x/y
 
 
 def test_one_stride_rules_equal_the_array_path():

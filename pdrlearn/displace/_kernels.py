@@ -14,7 +14,6 @@ from scipy.interpolate import make_interp_spline
 from scipy.spatial.transform import Rotation
 
 from pdrlearn.kernels.stride import (  # noqa: F401 (numpy-only rules, shared with the runtime)
-    DEFAULT_DOWN_MODE,
     DOWN_MODES,
     altitude_change,
     apply_direction,

@@ -429,16 +429,7 @@ def headed_by_foot(levelled: Levelled, heading_source: str) -> bool:
 
 
 # -- rules (thesis ch.7.2.2) --------------------------------------------------------------------------
-#: the down-stride rules: "norm3" (thesis eq. 61, the norm moves x/y), "projected" (decision L51: the norm is
-#: the path length, its horizontal part moves x/y), "horizontal" (the flat/up rule)
-DOWN_MODES = ("norm3", "projected", "horizontal")
-#: decision L63: the default since session 15 (offline, streamed, the runtime and bundle exports alike); on
-#: held-out users 21-30 walking stairs down that do not retrace (30 walks) the median final position error
-#: offline 1.253 -> 0.719 m and |distance error| 6.16 -> 0.31 %. "norm3" stays the thesis' rule (ch.7.2.2).
-DEFAULT_DOWN_MODE = "projected"
-
-
-def terrain_distance(disp: np.ndarray, terrain: np.ndarray, *, down_mode: str = DEFAULT_DOWN_MODE) -> np.ndarray:
+def terrain_distance(disp: np.ndarray, terrain: np.ndarray, *, down_mode: str = "norm3") -> np.ndarray:
     """Unsigned distance (m) of each stride from its displacement (B, 3) according to its terrain class.
 
     flat/up: the displacement along the direction of travel (horizontal, the thesis' "x-axis" filter);
@@ -452,8 +443,13 @@ def terrain_distance(disp: np.ndarray, terrain: np.ndarray, *, down_mode: str = 
     return np.where(np.asarray(terrain) == "down", norm3, horiz)
 
 
-def horizontal_part(length, dz, terrain, *, down_mode: str = DEFAULT_DOWN_MODE):
-    """Decision L51 (``down_mode="projected"``, the default since L63): the signed horizontal length that moves x/y. A
+#: the down-stride rules: "norm3" (thesis eq. 61, the norm moves x/y), "projected" (decision L51: the norm is
+#: the path length, its horizontal part moves x/y), "horizontal" (the flat/up rule)
+DOWN_MODES = ("norm3", "projected", "horizontal")
+
+
+def horizontal_part(length, dz, terrain, *, down_mode: str = "norm3"):
+    """Decision L51 (an option, ``down_mode="projected"``): the signed horizontal length that moves x/y. A
     stride classed down has the thesis' 3-axis norm (eq. 61) as its path length ``length``; its horizontal part
     is sign(length) * sqrt(max(length^2 - dz^2, 0)), ``dz`` the altitude change the rules give the stride.
     Other modes and other strides: ``length`` as it is. Arrays or Python floats (the runtime, decision E17)."""
@@ -510,7 +506,7 @@ def _known(x: np.ndarray) -> np.ndarray:
 
 def apply_stride_rules(disp: np.ndarray, terrain=None, direction=None, length_class=None, *,
                        bounds: Mapping[str, tuple[float, float]] | None = None,
-                       down_mode: str = DEFAULT_DOWN_MODE, rules: str = "thesis", length_proba=None,
+                       down_mode: str = "norm3", rules: str = "thesis", length_proba=None,
                        sigma_rel: float = B.SIGMA_REL, sigma_min: float = B.SIGMA_MIN, dz_min: float = B.DZ_MIN
                        ) -> tuple[np.ndarray, np.ndarray]:
     """The M3 rules (thesis ch.7.2.2) on displacements ``disp (B, 3)``: signed length and altitude change.
@@ -544,7 +540,7 @@ def apply_stride_rules(disp: np.ndarray, terrain=None, direction=None, length_cl
 
 
 def stride_rules_one(dx: float, dy: float, dz: float, terrain=None, direction=None, length_class=None, *,
-                     bounds: Mapping[str, tuple[float, float]] | None = None, down_mode: str = DEFAULT_DOWN_MODE,
+                     bounds: Mapping[str, tuple[float, float]] | None = None, down_mode: str = "norm3",
                      rules: str = "thesis", length_proba: Mapping[str, float] | None = None,
                      sigma_rel: float = B.SIGMA_REL, sigma_min: float = B.SIGMA_MIN, dz_min: float = B.DZ_MIN
                      ) -> tuple[float, float]:

@@ -27,7 +27,6 @@ from pdrlearn.errors import DataError, InternalError, ModelError
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
 from pdrlearn.kernels.stride import (
-    DEFAULT_DOWN_MODE,
     DOWN_MODES,
     GAP_YAW_MAX_S,
     HEADING_SOURCES,
@@ -95,9 +94,7 @@ _FOOT_IMU = frozenset(("fAccelerometer", "fGyroscope"))
 DEFAULT_DISPLACEMENT = {
     "unit": "foot stride",
     "length_bounds_m": None,
-    # decision L63 (L51): a stride down moves x/y by the horizontal part of the thesis' 3-axis norm (eq. 61);
-    # "norm3" (the norm moves x/y) stays selectable; bundles exported before L63 say "norm3" and keep it
-    "down_mode": DEFAULT_DOWN_MODE,
+    "down_mode": "norm3",  # thesis eq. 61: 3-axis norm on descending stairs ("projected": its horizontal part, L51)
     "stance_gyro_rad_s": 0.8,  # decision E7: stance = foot rate below this for >= min_stance_s
     "min_stance_s": 0.1,
     "stance_half_s": 0.3,
@@ -113,8 +110,6 @@ DEFAULT_DISPLACEMENT = {
     "rules": "bayes",
     "min_confidence": 0.95,
 }
-#: the down-stride rule of a bundle without ``down_mode`` (decision L63: every bundle exported so far has it)
-LEGACY_DOWN_MODE = "norm3"
 #: the class rules of a bundle without ``rules`` / ``min_confidence`` (exported before decision E25)
 LEGACY_RULES, LEGACY_MIN_CONFIDENCE = "thesis", 0.0
 _DIRECTIONS = {
@@ -397,9 +392,8 @@ class Tracker:
         self._fallback_bounds = pre_l59_fallback(self.params)
         self.bounds = (None if b is None or self._fallback_bounds
                        else {str(k): (float(v[0]), float(v[1])) for k, v in b.items()})
-        # a bundle without the key (hand-written) keeps the rule bundles had before decision L63: "norm3"
-        self._down_mode = str(self.params.get("down_mode", LEGACY_DOWN_MODE))
-        if self._down_mode not in DOWN_MODES:  # decisions L51, L63
+        self._down_mode = str(self.params.get("down_mode", "norm3"))
+        if self._down_mode not in DOWN_MODES:  # decision L51: "projected" is an option
             raise DataError(f"bundle {self.bundle.path}: displacement down_mode {self._down_mode!r} is not one of "
                             f"{', '.join(DOWN_MODES)}; fix the \"displacement\" entry of its manifest.json")
         #: decision L40 / E25: the class rules and their confidence gate (absent from older bundles: thesis, 0)
