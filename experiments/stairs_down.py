@@ -15,6 +15,15 @@ mean |distance error| % and final position error per scenario.
 
 ``--down-mode projected`` applies decision L51's option (default: the thesis norm); ``--sim-cache`` keeps the
 simulated walks so both runs track the same data.
+
+Decision L63 (walks whose descents do not retrace; ``--routes`` R1,R2,R3 of :data:`ROUTES`, simulated as the
+``simulate`` command's ``--route`` option does; two modes compared walk by walk with medians and counts of walks
+made worse; ``--runtime N``: ``pdrlearn run`` with a bundle exported per mode for the first N users)::
+
+    PYTHONPATH=$PWD python experiments/stairs_down.py --first-user 21 --routes R1,R2,R3 \
+        --down-mode norm3,projected --model-cache CACHE --sim-cache SIMS --runtime 3
+    PYTHONPATH=$PWD python experiments/stairs_down.py --first-user 1 --users 5 --scenarios A,B,C,D \
+        --down-mode norm3,projected --model-cache CACHE --sim-cache SIMS
 """
 
 from __future__ import annotations
@@ -42,6 +51,26 @@ def descending_walk(user: int):
                          name=f"stairs_down_u{user}", device_errors=True)
 
 
+#: decision L63: routes whose descents do not retrace (``pdrlearn simulate --route``, decision S28)
+ROUTES = {
+    "R1": "straight:5, down:17, straight:5, turn:90, down:17, straight:3",  # two flights at right angles
+    "R2": "straight:4, down:12, straight:2, down:12, straight:4",  # two flights in one direction
+    "R3": "straight:3, up:12, turn:90, straight:3, down:12, straight:3",  # up, then down at right angles
+}
+#: decision L63: a walk is "worse" with a candidate when an error rises by more than this
+WORSE_BY = {"final_position_error_m": 0.02, "final_position_error_3d_m": 0.02, "abs_distance_error_pct": 0.05}
+
+
+def route_walk(route: str, user: int):
+    """The walk ``simulate``'s ``--route`` option makes of ``ROUTES[route]`` for ``--user-seed`` ``user``
+    (normal speed, seed 0, 20 Hz)."""
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    return simulate_path(parse_route(ROUTES[route]), UserProfile.from_seed(user), speed="normal", rate_hz=20.0,
+                         seed=0, name=f"route_u{user}_normal_s0", scenario="route")
+
+
 def _cached(cache: Path | None, name: str, make):
     from pdrlearn.io import read_session, write_session
 
@@ -62,33 +91,97 @@ def down_error(res, session) -> tuple[float, int]:
     return (float(np.mean(err)) if err else float("nan")), len(err)
 
 
+def _row(res, s, ev) -> dict:
+    de, nd = down_error(res, s)
+    last = res.trajectory.iloc[-1] if len(res.trajectory) else None
+    return {"down_len_err_m": de, "n_down": nd,
+            "distance_error_pct": ev.get("distance_error_pct", np.nan),
+            "final_position_error_m": ev.get("final_position_error_m", np.nan),
+            "final_position_error_3d_m": ev.get("final_position_error_3d_m", np.nan),
+            "altitude_change_m": ev.get("altitude_change_m", np.nan),
+            "altitude_change_ref_m": ev.get("altitude_change_ref_m", np.nan),
+            "x": float(last["x"]) if last is not None else np.nan,
+            "y": float(last["y"]) if last is not None else np.nan}
+
+
+def runtime_run(model, session_dir: Path, bundle_dir: Path, down_mode: str) -> dict:
+    """``pdrlearn run BUNDLE SESSION --json`` (in-process) with a bundle exported with ``down_mode``."""
+    import contextlib
+    import io
+    import json
+
+    from pdrlearn.cli.export import run as cli_run
+    from pdrlearn.export import export_model
+
+    if not bundle_dir.exists():
+        export_model(None, bundle_dir, model=model, displacement={"down_mode": down_mode})
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        cli_run(bundle_dir=bundle_dir, session_dir=session_dir, out=None, protocol=None, chunk_s=1.0, force=False,
+                as_json=True, resample=False, no_resample=False, rules=None, min_confidence=None, units=None,
+                start=None)
+    return json.loads(buf.getvalue())
+
+
 def run(users: list[int], scenarios: list[str] | None, cache: Path | None, sim_cache: Path | None,
-        down_mode: str = "norm3") -> pd.DataFrame:
+        down_mode: str = "norm3", routes: list[str] | None = None, runtime_users: int = 0) -> pd.DataFrame:
     from pdrlearn.sim import simulate
 
     sim = partial(simulate, device_errors=True)  # decision S22, as experiments/localization.py
+    modes = down_mode.split(",")
     rows = []
-    for user in users:
+    for k, user in enumerate(users):
         model, _ = train_model(sim, user, False, cache, ("slow", "normal", "fast"))
         if scenarios:
             walks = {s: _cached(sim_cache, f"{s}_u{user}", partial(sim, s, user_seed=user, speed="normal"))
                      for s in scenarios}
             runs = {"offline": dict(model=model)}
         else:
-            walks = {"down": _cached(sim_cache, f"down_u{user}", partial(descending_walk, user))}
+            if routes:
+                walks = {r: _cached(sim_cache, f"{r}_u{user}", partial(route_walk, r, user)) for r in routes}
+            else:
+                walks = {"down": _cached(sim_cache, f"down_u{user}", partial(descending_walk, user))}
             runs = {"offline": dict(model=model), "streaming": dict(model=model, streaming=True),
                     "oracle": dict(model="oracle")}
         for scen, s in walks.items():
-            for name, kw in runs.items():
-                res = track_plasys(s, method="M3", down_mode=down_mode, **kw)
-                ev = evaluate_track(res, s)
-                de, nd = down_error(res, s)
-                rows.append({"user": user, "scenario": scen, "run": name, "down_len_err_m": de, "n_down": nd,
-                             "distance_error_pct": ev.get("distance_error_pct", np.nan),
-                             "final_position_error_m": ev.get("final_position_error_m", np.nan),
-                             "altitude_change_m": ev.get("altitude_change_m", np.nan),
-                             "altitude_change_ref_m": ev.get("altitude_change_ref_m", np.nan)})
+            for mode in modes:
+                for name, kw in runs.items():
+                    res = track_plasys(s, method="M3", down_mode=mode, **kw)
+                    rows.append({"user": user, "scenario": scen, "run": name, "mode": mode,
+                                 **_row(res, s, evaluate_track(res, s))})
+                if k < runtime_users and sim_cache is not None and not scenarios:
+                    summ = runtime_run(model, sim_cache / f"{scen}_u{user}", sim_cache / f"bundle_u{user}_{mode}", mode)
+                    fp = summ["final_position"]
+                    rows.append({"user": user, "scenario": scen, "run": "run", "mode": mode,
+                                 "distance_error_pct": summ.get("distance_error_pct", np.nan),
+                                 "final_position_error_m": summ.get("final_position_error_m", np.nan),
+                                 "final_position_error_3d_m": summ.get("final_position_error_3d_m", np.nan),
+                                 "x": fp["x"], "y": fp["y"]})
     return pd.DataFrame(rows)
+
+
+def compare(df: pd.DataFrame, base: str, cand: str) -> str:
+    """Decision L63: per run and error, the medians of both modes and how many walks the candidate made worse."""
+    df = df.assign(abs_distance_error_pct=df["distance_error_pct"].abs())
+    key = ["user", "scenario", "run"]
+    a = df[df["mode"] == base].set_index(key)
+    b = df[df["mode"] == cand].set_index(key)
+    lines = [f"| run | error | median {base} | median {cand} | walks worse (> tolerance) | walks |",
+             "|---|---|---|---|---|---|"]
+    for r in dict.fromkeys(df["run"]):
+        ia = a.xs(r, level="run")
+        ib = b.xs(r, level="run").loc[ia.index]
+        for col, tol in WORSE_BY.items():
+            worse = int(((ib[col] - ia[col]) > tol).sum())
+            lines.append(f"| {r} | {col} | {ia[col].median():.4f} | {ib[col].median():.4f} | {worse} | {len(ia)} |")
+    if (a.index.get_level_values("run") == "run").any():
+        for mode, d in ((base, a), (cand, b)):
+            rr = d.xs("run", level="run")
+            st = d.xs("streaming", level="run").loc[rr.index]
+            gap = float(np.hypot(rr["x"] - st["x"], rr["y"] - st["y"]).max())
+            lines.append(f"{mode}: run vs streaming=True, largest final position difference {gap:.2e} m "
+                         f"({len(rr)} walks)")
+    return "\n".join(lines)
 
 
 def table(df: pd.DataFrame) -> str:
@@ -112,16 +205,24 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--scenarios", default="", help="README scenarios instead of the descending walk, e.g. A,B,C,D")
     p.add_argument("--model-cache", type=Path, default=None)
     p.add_argument("--sim-cache", type=Path, default=None, help="folder caching the simulated sessions")
-    p.add_argument("--down-mode", default="norm3", help="norm3 (default), projected (decision L51) or horizontal")
+    p.add_argument("--down-mode", default="norm3", help="norm3 (default), projected (decision L51) or horizontal; "
+                   "two, comma-separated, are compared walk by walk (decision L63)")
+    p.add_argument("--routes", default="", help="routes of ROUTES instead of the descending walk, e.g. R1,R2,R3 (L63)")
+    p.add_argument("--runtime", type=int, default=0, help="also `pdrlearn run` the first N users' walks (needs "
+                   "--sim-cache; decision L63)")
     p.add_argument("--csv", type=Path, default=None)
     a = p.parse_args(argv)
     logging.basicConfig(level=logging.ERROR)
     users = list(range(a.first_user, a.first_user + a.users))
-    df = run(users, [s for s in a.scenarios.split(",") if s], a.model_cache, a.sim_cache, a.down_mode)
-    print(f"down_mode {a.down_mode}")
+    df = run(users, [s for s in a.scenarios.split(",") if s], a.model_cache, a.sim_cache, a.down_mode,
+             [r for r in a.routes.split(",") if r], a.runtime)
     if a.csv is not None:
         df.to_csv(a.csv, index=False)
-    print(table(df))
+    for mode in a.down_mode.split(","):
+        print(f"down_mode {mode}")
+        print(table(df[df["mode"] == mode]))
+    if len(a.down_mode.split(",")) == 2:
+        print(compare(df, *a.down_mode.split(",")))
 
 
 if __name__ == "__main__":

@@ -28,7 +28,8 @@ def results(tmp_path):
     run.mkdir()
     (run / "summary.json").write_text(json.dumps({"distance_m": 20.1, "distance_error_pct": 0.5,
                                                   "altitude_change_m": -3.31, "altitude_change_ref_m": 0.0,
-                                                  "final_altitude_error_m": 3.31, "terrain_agreement": 0.928}))
+                                                  "final_altitude_error_m": 3.31, "terrain_agreement": 0.928,
+                                                  "floors_up": 0, "floors_down": 1}))
     for name in ("confusion_terrain.png", "track_A/path.png"):
         fig, ax = plt.subplots(figsize=(3, 2))
         ax.imshow(np.eye(3), cmap="viridis")
@@ -48,6 +49,7 @@ def test_report_contains_every_section(results, tmp_path):
     # session 14 trial finding 2 (L52): the altitude change and its error show in the tracking table
     assert "altitude_change_m" in md and "-3.31" in md and "final_altitude_error_m" in md
     assert "terrain_agreement" in md  # L53
+    assert "floors_up" in md and "floors_down" in md  # L64
     assert len(list((out / "img").iterdir())) == 2
     titles = [s.title for s in collect(results)]
     assert "Evaluation — terrain" in titles and "Confusion matrices" in titles and "Trajectories" in titles

@@ -104,3 +104,63 @@ def test_offline_and_streamed_tracks_share_one_reference_altitude(stairs_down):
     assert a["altitude_change_ref_m"] == b["altitude_change_ref_m"] == pytest.approx(
         stairs_down.steps["height_m"].sum())
     assert a["terrain_agreement"] == pytest.approx(1.0)  # the oracle's classes are the labels
+
+
+def test_every_path_defaults_to_the_same_down_mode():
+    """Decision L63 (not adopted): offline (StepRules, the kernels, ``track_plasys``), streamed
+    (``track_streaming``) and the runtime (the bundle export's ``displacement``) keep one default, the thesis'
+    "norm3"."""
+    import inspect
+
+    from pdrlearn.runtime import tracker as RT
+    from pdrlearn.track.plasys import track_plasys, track_streaming
+
+    defaults = {"StepRules": StepRules().down_mode, "runtime bundle": RT.DEFAULT_DISPLACEMENT["down_mode"]}
+    for fn in (track_plasys, track_streaming, SK.apply_stride_rules, SK.stride_rules_one, SK.horizontal_part):
+        defaults[fn.__name__] = inspect.signature(fn).parameters["down_mode"].default
+    assert set(defaults.values()) == {"norm3"}, defaults
+
+
+def test_runtime_bundle_moves_down_strides_like_the_streamed_track(stairs_down, tmp_path):
+    """Decisions L51, L63: a bundle exported by default moves a stride classed down by the thesis' norm, as
+    ``track_plasys(streaming=True)`` does by default, and so does a bundle without the key; a bundle exported
+    with ``down_mode="projected"`` moves it by the norm's horizontal part, as the streamed track with that
+    option."""
+    import json
+    import shutil
+
+    from pdrlearn.classify import train_user
+    from pdrlearn.export.from_model import export_model
+    from pdrlearn.runtime.bundle import MANIFEST_SHA, sha256_file
+    from pdrlearn.runtime.tracker import Tracker
+    from pdrlearn.sim import simulate
+    from pdrlearn.track.plasys import track_plasys
+    from tests.runtime_helpers import replay
+
+    model = train_user([simulate("terrain", user_seed=11, speed="normal")], tasks=["terrain"], methods=["svm"],
+                       units=["foot"], cv=2)
+    model.save(tmp_path / "model")
+    export_model(tmp_path / "model", tmp_path / "bundle")
+    export_model(tmp_path / "model", tmp_path / "projected", displacement={"down_mode": "projected"})
+
+    def xyz(bundle):
+        tracker = Tracker(bundle, heading_source="foot", rules="thesis")  # every class applies (no 0.95 gate)
+        return np.array([[st.x, st.y, st.z] for st in replay(tracker, stairs_down)])
+
+    kw = dict(method="M3", model=str(tmp_path / "model"), streaming=True, heading="foot", rules="thesis")
+    streamed = track_plasys(stairs_down, **kw)
+    assert (streamed.steps["terrain"] == "down").sum() >= 2
+    norm = xyz(tmp_path / "bundle")
+    assert np.abs(norm - streamed.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
+    projected = xyz(tmp_path / "projected")
+    ref = track_plasys(stairs_down, down_mode="projected", **kw).trajectory[["x", "y", "z"]].to_numpy()[1:]
+    assert np.abs(projected - ref).max() < 1e-3
+    # the norm walks further in the plan than its horizontal part
+    assert np.hypot(*norm[-1, :2]) > np.hypot(*projected[-1, :2]) + 0.05
+    old = tmp_path / "old"
+    shutil.copytree(tmp_path / "bundle", old)
+    m = json.loads((old / "manifest.json").read_text())
+    del m["displacement"]["down_mode"]
+    (old / "manifest.json").write_text(json.dumps(m))
+    (old / MANIFEST_SHA).write_text(f"{sha256_file(old / 'manifest.json')}  manifest.json\n")
+    np.testing.assert_allclose(xyz(old), norm, atol=1e-9)

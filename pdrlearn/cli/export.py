@@ -337,7 +337,11 @@ def run(
         err = summary.get("distance_error_pct")
         typer.echo(f"{source}: {summary['n_steps']} steps, {summary['distance_m']:.2f} m"
                    + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
-                   f"{[round(summary['final_position'][k], 2) for k in 'xyz']}" + (f" -> {out}" if out else ""))
+                   f"{[round(summary['final_position'][k], 2) for k in 'xyz']}"
+                   # L64: the storeys climbed and descended, when the track changed floors
+                   + (f", floors up {summary['floors_up']} / down {summary['floors_down']}"
+                      if summary.get("floors_up") or summary.get("floors_down") else "")
+                   + (f" -> {out}" if out else ""))
 
 
 #: Step table columns in the order of ``pdrlearn track`` (decision B14); the runtime's extra columns follow.

@@ -203,6 +203,9 @@ def track(
                + (f", altitude change {summary['altitude_change_m']:+.2f} m" if "altitude_change_m" in summary else "")
                + (f" (reference {summary['altitude_change_ref_m']:+.2f} m)" if "altitude_change_ref_m" in summary
                   else "")
+               # L64: the storeys climbed and descended, when the track changed floors
+               + (f", floors up {summary['floors_up']} / down {summary['floors_down']}"
+                  if summary.get("floors_up") or summary.get("floors_down") else "")
                # decision C16: how much of the walk the model's training data covered
                + (f"; {100 * summary['out_of_domain_fraction']:.0f} % of the strides outside the model's "
                   "training range" if summary.get("out_of_domain_fraction") is not None else ""))

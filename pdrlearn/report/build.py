@@ -179,12 +179,13 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
 
 #: The tracking summary columns shown in reports (the full JSON stays in each run's summary.json).
 #: ``final_position_error_m`` is horizontal; the altitude columns (session 14 trial finding 2, L52) and the
-#: class agreement of the tracked strides (L53) show when the summary has them.
+#: class agreement of the tracked strides (L53) and the storeys climbed / descended (L64) show when the summary
+#: has them.
 TRACK_COLUMNS = ("run", "pipeline", "distance_m", "distance_ref_m", "n_steps", "distance_error_pct",
                  "final_position_error_m", "altitude_change_m", "altitude_change_ref_m", "final_altitude_error_m",
-                 "final_position_error_3d_m", "stride_length_mae_pct", "stride_length_mae_pct_straight",
-                 "step_f1", "altitude_error_pct", "terrain_agreement", "direction_agreement",
-                 "length_class_agreement")
+                 "final_position_error_3d_m", "floors_up", "floors_down", "stride_length_mae_pct",
+                 "stride_length_mae_pct_straight", "step_f1", "altitude_error_pct", "terrain_agreement",
+                 "direction_agreement", "length_class_agreement")
 
 _CSS = """body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;color:#222}
 table{border-collapse:collapse;margin:.6em 0 1.4em}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}

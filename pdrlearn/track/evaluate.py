@@ -138,6 +138,42 @@ def turn_warning(summary: dict) -> str | None:
             "-1 rather than declaring flipped axes in meta.json \"frames\")")
 
 
+#: decision L64: the storey height (m) the floor count assumes, between the thesis' 2.5 m storeys (ch.4, the
+#: barometer test of Figure 44: "the height difference between floors is 2.5 meters") and its 3.8 m scenario D
+#: climb (ch.7.3.2.1); the simulator's stairwell storey is 18 stairs x 0.17 m = 3.06 m
+STOREY_HEIGHT_M = 3.0
+#: decision L64: floor k (k storeys above the start) is reached when the altitude comes within this fraction of
+#: a storey of k * STOREY_HEIGHT_M; between the bands (0.4-0.6 of a storey: a half-storey landing) the floor
+#: stays the last one reached, so sway and landings do not count
+STOREY_BAND = 0.4
+
+
+def count_floors(z, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOREY_BAND) -> tuple[int, int, int]:
+    """Storeys climbed and descended along an altitude track ``z`` (m, in walking order) and the floor it ends
+    on, relative to its first value: ``(floors_up, floors_down, storeys_changed)`` (decision L64). A floor k is
+    reached when ``|z - z[0] - k h| <= band h`` (h = ``storey_height_m``); each change of the floor reached adds
+    its storeys to the up or down count. Non-finite values are skipped."""
+    z = np.asarray(z, dtype=float).ravel()
+    z = z[np.isfinite(z)]
+    level = up = down = 0
+    if not len(z):
+        return 0, 0, 0
+    rel = (z - z[0]) / storey_height_m
+    nearest = np.rint(rel)
+    for k in nearest[np.abs(rel - nearest) <= band].astype(int).tolist():  # the altitudes inside a floor's band
+        if k > level:
+            up += k - level
+        elif k < level:
+            down += level - k
+        level = k
+    return up, down, level
+
+
+def _floors(z, out: dict, suffix: str = "") -> None:
+    up, down, net = count_floors(z)
+    out[f"floors_up{suffix}"], out[f"floors_down{suffix}"], out[f"storeys_changed{suffix}"] = up, down, net
+
+
 def _basic(result: TrackResult, out: dict) -> None:
     tr = result.trajectory
     out["distance_m"] = result.distance_m
@@ -152,6 +188,9 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.track.gait import gait_summary
 
     out.update(gait_summary(result.steps))
+    # decision L64: the storeys the track climbed and descended (storeys of STOREY_HEIGHT_M)
+    _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out)
+    out["storey_height_m"] = STOREY_HEIGHT_M
 
 
 def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[float | None, str]:
@@ -173,6 +212,25 @@ def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[f
         t, z = gt["t"].to_numpy(float), gt["z"].to_numpy(float)
         return float(np.interp(t1, t, z) - np.interp(t0, t, z)), "trajectory.csv z at the track's first and last time"
     return None, ""
+
+
+def reference_altitude_track(session: Session, t0: float, t1: float) -> np.ndarray | None:
+    """The reference altitudes of a walk in walking order (decision L64), from the source of
+    :func:`reference_altitude_change`: the running sum of one foot's labelled ``height_m`` (the first foot
+    named) or the ground-truth trajectory's z from ``t0`` to ``t1``; None without either."""
+    st = session.steps
+    if st is not None and len(st) and "height_m" in st and st["height_m"].notna().all():
+        if "foot" in st and st["foot"].nunique() >= 2:
+            st = st[st["foot"] == st["foot"].iloc[0]]
+        if "start_s" in st:
+            st = st.sort_values("start_s", kind="stable")
+        return np.concatenate([[0.0], np.cumsum(st["height_m"].to_numpy(float))])
+    gt = session.trajectory
+    if gt is not None and len(gt) > 1 and "z" in gt:
+        t, z = gt["t"].to_numpy(float), gt["z"].to_numpy(float)
+        inside = (t >= t0) & (t <= t1)
+        return np.concatenate([[np.interp(t0, t, z)], z[inside], [np.interp(t1, t, z)]])
+    return None
 
 
 def _reference_distance(session: Session, *, waist: bool = False) -> tuple[float | None, str]:
@@ -221,6 +279,9 @@ def _altitude(result: TrackResult, session: Session, out: dict) -> None:
     ref, source = reference_altitude_change(session, float(tr["t"].iloc[0]), float(tr["t"].iloc[-1]))
     if ref is None:
         return
+    z_ref = reference_altitude_track(session, float(tr["t"].iloc[0]), float(tr["t"].iloc[-1]))
+    if z_ref is not None:  # decision L64: the reference's storeys, counted by the same rule
+        _floors(z_ref, out, "_ref")
     est = out["altitude_change_m"]
     out["altitude_change_ref_m"] = ref
     out["altitude_ref_source"] = source
@@ -366,7 +427,9 @@ METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:
-    """Summary metrics: ``distance_m``, ``n_steps``, ``final_position``, ``altitude_change_m`` and, with
+    """Summary metrics: ``distance_m``, ``n_steps``, ``final_position``, ``altitude_change_m``, the storeys
+    climbed / descended and the floor reached (``floors_up``, ``floors_down``, ``storeys_changed``, storeys of
+    ``storey_height_m``; with a reference altitude also ``floors_up_ref`` ..., decision L64) and, with
     ground truth, ``distance_error_pct``, ``final_position_error_m`` (horizontal, start-aligned),
     ``altitude_change_ref_m``, ``final_altitude_error_m``, ``final_position_error_3d_m``, ``altitude_error_pct``,
     per-task class agreement with the labels (``terrain_agreement``, ..., decision L53) and

@@ -1,0 +1,77 @@
+"""Decision L64: the storeys a track climbed and descended (``floors_up`` / ``floors_down``) and the floor it
+ends on (``storeys_changed``), counted from its altitude in storeys of ``STOREY_HEIGHT_M`` (3.0 m) with a band
+of 0.4 storey around each floor, in ``evaluate_track`` (so ``track`` and ``run`` summaries alike)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.track.base import TrackResult
+from pdrlearn.track.evaluate import STOREY_HEIGHT_M, count_floors, evaluate_track
+
+
+def _flight(z0: float, storeys: float, stairs: int = 18) -> np.ndarray:
+    return z0 + np.linspace(0.0, storeys * 3.06, stairs + 1)[1:]  # the simulator's 18 x 0.17 m storey
+
+
+def test_a_storey_up_and_down_counts_one_each():
+    z = np.concatenate([[0.0, 0.0], _flight(0.0, 1), [3.06, 3.06], _flight(3.06, -1)])
+    assert count_floors(z) == (1, 1, 0)
+
+
+@pytest.mark.parametrize("height", [2.5, 3.06, 3.8])  # thesis ch.4 Figure 44 storey, the simulator's, scenario D
+def test_one_storey_of_the_thesis_heights_is_one_floor(height):
+    assert count_floors(np.linspace(0.0, height, 23)) == (1, 0, 1)
+    assert count_floors(np.linspace(0.0, -height, 23)) == (0, 1, -1)
+
+
+def test_two_up_one_down_and_half_storey_landings():
+    """Two storeys up with a landing at each half storey, one down: the landings are no floor."""
+    up = np.concatenate([_flight(0.0, 0.5, 9), [1.53] * 3, _flight(1.53, 0.5, 9), [3.06] * 3,
+                         _flight(3.06, 0.5, 9), [4.59] * 3, _flight(4.59, 0.5, 9)])
+    z = np.concatenate([[0.0], up, [6.12] * 4, _flight(6.12, -1)])
+    assert count_floors(z) == (2, 1, 1)
+
+
+def test_sway_and_drift_inside_a_floor_do_not_count():
+    rng = np.random.default_rng(0)
+    z = 0.3 * np.sin(np.linspace(0, 60, 400)) + rng.normal(scale=0.1, size=400)  # +-0.4 m around the start
+    assert count_floors(z) == (0, 0, 0)
+    # hovering at the edge of a floor's band enters it once, and leaves it only inside another floor's band
+    edge = 0.6 * STOREY_HEIGHT_M
+    assert count_floors([0.0, edge - 0.05, edge + 0.05, edge - 0.05, edge + 0.05, edge - 0.05]) == (1, 0, 1)
+    assert count_floors([]) == (0, 0, 0)
+    assert count_floors([np.nan, 0.0, 3.0, np.nan]) == (1, 0, 1)
+
+
+def test_a_storey_count_depends_on_the_storey_height():
+    assert count_floors(np.linspace(0.0, 6.0, 30)) == (2, 0, 2)
+    assert count_floors(np.linspace(0.0, 6.0, 30), storey_height_m=2.0) == (3, 0, 3)
+
+
+def test_the_summary_counts_the_tracked_and_the_reference_storeys(tmp_path, capsys):
+    """A simulated walk up two storeys, along the top, and one storey down, tracked with the oracle's classes;
+    ``pdrlearn track`` says the count in its one line."""
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+    from pdrlearn.track.plasys import track_plasys
+
+    s = simulate_path(parse_route("straight:2, up:18, turn:180, up:18, straight:2, turn:180, down:18, straight:2"),
+                      UserProfile.from_seed(3), speed="normal", rate_hz=20.0, seed=0, name="floors")
+    out = evaluate_track(track_plasys(s, method="M3", model="oracle"), s)
+    write_session(s, tmp_path / "floors")
+    assert main(["track", str(tmp_path / "floors"), "--method", "M3", "--model", "oracle",
+                 "--out", str(tmp_path / "t")]) == 0
+    assert "floors up 2 / down 1" in capsys.readouterr().out
+    assert (out["floors_up_ref"], out["floors_down_ref"], out["storeys_changed_ref"]) == (2, 1, 1)
+    assert (out["floors_up"], out["floors_down"], out["storeys_changed"]) == (2, 1, 1)
+    assert out["storey_height_m"] == STOREY_HEIGHT_M
+    # a level track: no floor changes, and the keys are there
+    level = TrackResult(steps=pd.DataFrame({"start_s": [0.0], "end_s": [1.0], "length_m": [1.0],
+                                            "heading_rad": [0.0], "dz_m": [0.0]}),
+                        trajectory=pd.DataFrame({"t": [0.0, 1.0], "x": [0.0, 1.0], "y": 0.0, "z": 0.0}), info={})
+    assert (evaluate_track(level)["floors_up"], evaluate_track(level)["floors_down"]) == (0, 0)
