@@ -95,8 +95,9 @@ def train(
 ) -> None:
     """Train a user's terrain / direction / length classifiers and save a model directory.
 
-    Every task x method x unit is scored by cross-validation; the best two-unit model per task (fused or
-    combined) is chosen.
+    Every task x method x unit is scored by cross-validation (stratified folds of the pooled steps; with
+    --cv-groups user and sessions of several users, folds of whole users); the best two-unit model per task
+    (fused or combined) is chosen.
     Tasks without labels (or with a missing class) are skipped and listed, unless asked for with --tasks.
 
     Examples:
