@@ -257,7 +257,7 @@ def _one_of(choices, *, case=True, listed=False):
 def _validators() -> dict[tuple[str, str], object]:
     """(command, parameter name) -> a function that raises on a value the command refuses, from the lists the
     commands check against (so a renamed choice fails here as it would for the user)."""
-    from pdrlearn.classify.training import METHODS, check_settings
+    from pdrlearn.classify.training import CV_GROUPS, METHODS, check_settings
     from pdrlearn.displace.foot import REFERENCE_POINTS
     from pdrlearn.io.external import SOURCES
     from pdrlearn.io.importer import _TIME_SCALE, _resolve_unit, _time_word, parse_frame
@@ -304,6 +304,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("run", "rules"): _one_of(RULES),
         ("run", "units"): _one_of(BODY_UNITS, listed=True),
         ("train", "boundaries"): _one_of(BOUNDARIES),
+        ("train", "cv_groups"): _one_of(CV_GROUPS),  # decision C29
         ("calibrate", "pipeline"): _one_of(calibrated),
         ("simulate", "scenario"): _one_of(SCENARIOS),
         ("simulate", "route"): parse_route,
@@ -538,6 +539,7 @@ STALE = [
     ("pdrlearn train DIR --out M --methods svm,cnn", "unknown method"),
     ("pdrlearn train DIR --out M --cv ten", "invalid literal"),
     ("pdrlearn train DIR --out M --boundaries middle", "not one of"),
+    ("pdrlearn train DIR --out M --cv-groups subject", "not one of"),
     ("pdrlearn simulate --scenario E --user-seed 1 --out DIR", "not one of"),
     ("pdrlearn simulate --scenario D --user-seed 1 --speed jog --out DIR", "not one of"),
     ("pdrlearn fetch physionet --out DIR", "not one of"),

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 from sklearn.base import clone
-from sklearn.model_selection import StratifiedKFold
+from sklearn.model_selection import GroupKFold, StratifiedKFold
 from sklearn.pipeline import Pipeline
 from sklearn.preprocessing import FunctionTransformer
 
@@ -494,12 +494,42 @@ def _oof_proba(est, X, y, folds, classes) -> np.ndarray:
     return P
 
 
-def _folds(y: np.ndarray, cv: int, seed: int, task: str) -> list:
-    """Stratified, shuffled folds; fewer than ``cv`` when the smallest class has fewer steps."""
+CV_GROUPS = ("steps", "user")  # train's --cv-groups (decision C29)
+
+
+def session_user(session) -> str | None:
+    """The user a session was recorded from, from its ``meta.json`` (decision C29): ``user`` (a string, or an
+    object with ``id`` or ``seed``, as the simulator writes) or ``subject`` (a string, or an object with ``id``
+    or ``participant_id``, as the mobgap converter writes); ``None`` when the session names none."""
+    meta = getattr(session, "meta", None) or {}
+    for key, ids in (("user", ("id", "seed")), ("subject", ("id", "participant_id"))):
+        v = meta.get(key)
+        if isinstance(v, str) and v.strip():
+            return f"{key}:{v.strip()}"
+        if isinstance(v, dict):
+            for k in ids:
+                if v.get(k) is not None and str(v[k]).strip():
+                    return f"{key}.{k}:{v[k]}"
+    return None
+
+
+def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | None = None) -> tuple[list, int]:
+    """Stratified, shuffled folds; fewer than ``cv`` when the smallest class has fewer steps. With ``groups``
+    (the user of each step, decision C29) and at least two users: folds of whole users (leave-one-user-out when
+    there are at most ``cv`` users), unless a training fold would then lack a class (stratified, one line).
+    Returns the folds and the number of users they hold out (0: stratified over steps)."""
+    if groups is not None and len(np.unique(groups)) >= 2:
+        n_users = len(np.unique(groups))
+        folds = list(GroupKFold(n_splits=min(cv, n_users)).split(np.zeros(len(y)), y, groups))
+        short = [i for i, (tr, _) in enumerate(folds) if len(np.unique(y[tr])) < len(np.unique(y))]
+        if not short:
+            return folds, n_users
+        log.warning("task %s: CV by user not possible (a training fold of whole users lacks a class); "
+                    "stratified folds over steps instead", task)
     n_splits = int(min(cv, min(np.sum(y == c) for c in np.unique(y))))
     if n_splits < cv:
         log.warning("task %s: %d-fold CV instead of %d (smallest class has %d steps)", task, n_splits, cv, n_splits)
-    return list(StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y))
+    return list(StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y)), 0
 
 
 def _split_units(units: Sequence[str]) -> tuple[list[str], bool, bool]:
@@ -554,15 +584,18 @@ def train_task(
     seed: int,
     advance: Callable[[int], None] = lambda n=1: None,
     soft_vote_methods: Sequence[str] | None = None,
+    groups: np.ndarray | None = None,
 ) -> TaskModel:
     """Cross-validate and fit every method x unit of one task (see :func:`train_user`). ``soft_vote_methods``: the
-    methods whose ``fused`` soft vote is trained when ``units`` has it (None: every method)."""
+    methods whose ``fused`` soft vote is trained when ``units`` has it (None: every method). ``groups``: the user
+    of every step; folds then hold out whole users when there are two or more (decision C29)."""
     from pdrlearn.features import TASK_CLASSES
 
     classes = np.asarray(TASK_CLASSES[data.task])
     tm = TaskModel(data.task, list(classes), n_steps=len(data.y), n_skipped_labels=data.n_skipped)
     per_unit, want_fused, want_combined = _split_units(units)
     subsets: dict[str, tuple[np.ndarray, list] | str] = {}  # unit -> (step mask, folds) or skip reason
+    cv_users: dict[str, int] = {}  # unit -> users its folds hold out (0: stratified over steps, C29)
     for unit in [*per_unit, *(["fused"] if want_fused else []), *(["combined"] if want_combined else [])]:
         mask = data.unit_mask(unit)
         if not mask.any():
@@ -573,7 +606,9 @@ def train_task(
         except DataError as exc:
             subsets[unit] = f"steps with the {unit} unit: {exc}"
             continue
-        subsets[unit] = (mask, _folds(data.y[mask], cv, seed, data.task))
+        folds, cv_users[unit] = _folds(data.y[mask], cv, seed, data.task,
+                                       None if groups is None else groups[mask])
+        subsets[unit] = (mask, folds)
     oof_by: dict[tuple[str, str], np.ndarray] = {}  # (method, unit) -> out-of-fold probabilities
     for method in sorted(methods, key=lambda m: m == "ensemble"):  # the ensemble reuses its members
         oof: dict[str, np.ndarray] = {}
@@ -610,6 +645,7 @@ def train_task(
                     class_metrics(y, classes[P.argmax(1)], classes),
                     cv_seconds=time.perf_counter() - t0,
                     n_folds=len(folds),
+                    cv_users=cv_users[unit],
                 )
                 oof_by[(method, unit)] = P
                 if mask.all():
@@ -640,6 +676,7 @@ def train_task(
                 class_metrics(y, classes[P.argmax(1)], classes),
                 cv_seconds=time.perf_counter() - t0,
                 n_folds=len(folds),
+                cv_users=cv_users[unit],
             )
             advance(1)
         if not want_fused or method in ("fusion", "heuristic") or (
@@ -671,6 +708,7 @@ def train_task(
         tm.cv[method]["fused"] = dict(
             class_metrics(y, classes[P.argmax(1)], classes),
             n_folds=len(folds),
+            cv_users=cv_users["fused"],
             weights={"foot": float(w[0]), "waist": float(w[1])},
             cv_seconds=time.perf_counter() - t0,
         )
@@ -750,6 +788,7 @@ def train_user(
     strict: bool | None = None,
     distance_calibration: bool = True,
     advance: Callable[[int], None] = lambda n=1: None,
+    cv_groups: str = "steps",
 ) -> UserModel:
     """Train a user's step classifiers from labelled sessions.
 
@@ -766,6 +805,10 @@ def train_user(
         the unit's nn, svm and dtw models and needs them in the same run.
     cv : folds of the stratified cross-validation that scores every model (thesis ch. 6: 10-fold);
         reduced to the smallest class size when a class has fewer steps.
+    cv_groups : ``"steps"`` (default): stratified folds of steps, pooled over the sessions; ``"user"``: when the
+        sessions come from two or more users (:func:`session_user`), folds of whole users (leave-one-user-out
+        with at most ``cv`` users), so a model is scored on users it was not fitted on (decision C29); one user,
+        or a session without a user in its meta.json: stratified folds as with ``"steps"``.
     seed : seed of the folds, the DTW reference choice and the network initialisation.
     n_samples : samples per resampled step window.
     boundaries : ``"given"`` (default) cuts each step at its labelled ``start_s``/``end_s``; ``"rest"``
@@ -799,7 +842,18 @@ def train_user(
 
     if boundaries not in BOUNDARIES:
         raise DataError(f"train: boundaries {boundaries!r}; choose one of {', '.join(BOUNDARIES)}")
+    if cv_groups not in CV_GROUPS:
+        raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
     windows = session_windows(sessions, n_samples=n_samples, boundaries=boundaries)
+    users = [session_user(s) for s in sessions] if cv_groups == "user" else []
+    n_users = 0
+    if cv_groups == "user":
+        if None in users:
+            log.warning("train: --cv-groups user: session '%s' names no user (meta.json 'user' or 'subject'); "
+                        "stratified folds over steps", sessions[users.index(None)].name)
+            users = []
+        else:
+            n_users = len(set(users))
     out: dict[str, TaskModel] = {}
     skipped: list[str] = []
     datas: dict[str, TaskData] = {}
@@ -815,8 +869,9 @@ def train_user(
             skipped.append(str(exc))
             log.info("skipped %s", exc)
             continue
+        groups = np.asarray(users, dtype=object)[data.session] if n_users >= 2 else None  # decision C29
         out[task] = train_task(data, methods=methods, units=units, cv=cv, seed=seed, advance=advance,
-                               soft_vote_methods=voted)
+                               soft_vote_methods=voted, groups=groups)
     calibration = None
     if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
         from pdrlearn.displace.calibration import calibrate_distance
@@ -856,6 +911,8 @@ def train_user(
         data_summary=summary,
         settings={
             "cv": cv,
+            "cv_groups": cv_groups,
+            "cv_users": n_users,  # users in the training data when grouped by user (decision C29)
             "seed": seed,
             "methods": list(methods),
             "units": list(units),
@@ -882,6 +939,8 @@ __all__ = [
     "make_estimator",
     "train_user",
     "train_task",
+    "session_user",
+    "CV_GROUPS",
     "UserModel",
     "TaskModel",
     "class_metrics",

@@ -68,6 +68,13 @@ def train(
                               "fused = soft vote of the unit models, combined = one svm/nn model on both units' "
                               "features, decisions C7, C22)."),
     cv: int = typer.Option(10, help="Folds of the stratified cross-validation (thesis: 10)."),
+    cv_groups: str = typer.Option(
+        "steps", "--cv-groups",
+        help="How the CV folds are drawn: 'steps' (stratified folds of the pooled steps) or 'user' (when the "
+        "sessions come from two or more users, named by meta.json 'user' or 'subject': folds of whole users, "
+        "leave-one-user-out with at most --cv users, so the choice scores models on users they were not fitted "
+        "on; one user: as 'steps'; decision C29).",
+    ),
     seed: int = typer.Option(0, help="Seed of folds, DTW references and network initialisation."),
     user: str = typer.Option(None, help="User name stored in the manifest (default: from the data)."),
     boundaries: str = typer.Option(
@@ -88,8 +95,9 @@ def train(
 ) -> None:
     """Train a user's terrain / direction / length classifiers and save a model directory.
 
-    Every task x method x unit is scored by cross-validation; the best two-unit model per task (fused or
-    combined) is chosen.
+    Every task x method x unit is scored by cross-validation (stratified folds of the pooled steps; with
+    --cv-groups user and sessions of several users, folds of whole users); the best two-unit model per task
+    (fused or combined) is chosen.
     Tasks without labels (or with a missing class) are skipped and listed, unless asked for with --tasks.
 
     Examples:
@@ -107,6 +115,10 @@ def train(
 
     if boundaries not in BOUNDARIES:
         raise DataError(f"train: --boundaries {boundaries!r}; choose one of {', '.join(BOUNDARIES)}")
+    from pdrlearn.classify.training import CV_GROUPS
+
+    if cv_groups not in CV_GROUPS:
+        raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
     t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
     t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
@@ -118,6 +130,7 @@ def train(
         model = train_user(
             sessions, tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, user=user,
             boundaries=boundaries, advance=advance, distance_calibration=distance_calibration,
+            cv_groups=cv_groups,
         )
     seconds = time.perf_counter() - t0
     model.save(out)
@@ -128,6 +141,8 @@ def train(
         "sessions": len(sessions),
         "boundaries": model.boundaries,
         "seconds": round(seconds, 2),
+        "cv_groups": model.settings["cv_groups"],
+        "cv_users": model.settings["cv_users"],
         "skipped": model.skipped,
         "distance_calibration": model.data_summary.get("distance_calibration"),
         "tasks": {
@@ -149,7 +164,9 @@ def train(
     c = console()
     for t, tm in model.tasks.items():
         # the title as its own line: as a table title rich wrapped it to the table's width
-        c.print(f"{t}: {tm.n_steps} steps, {tm.cv[tm.chosen[0]][tm.chosen[1]]['n_folds']}-fold CV accuracy "
+        r0 = tm.cv[tm.chosen[0]][tm.chosen[1]]
+        by = f" (folds of whole users, {r0['cv_users']} users)" if r0.get("cv_users") else ""  # decision C29
+        c.print(f"{t}: {tm.n_steps} steps, {r0['n_folds']}-fold CV accuracy{by} "
                 f"(chosen: {tm.chosen[0]}/{tm.chosen[1]})", markup=False)
         tab = Table()
         tab.add_column("method")
