@@ -115,14 +115,14 @@ def test_simulated_flat_walk_has_no_integrated_height_warning():
 
 
 def test_terrain_dz_check_rules():
-    terr = np.array(["up", "down", "flat", "flat", "up", None, "flat", "flat", "flat", "flat"], dtype=object)
-    raw = np.array([-0.05, 0.02, 0.25, 0.05, 0.30, 0.9, 0.0, 0.0, 0.0, 0.0])
+    terr = np.array(["up", "down", "flat", "flat", "flat", "flat", "up", None, "flat", "flat"], dtype=object)
+    raw = np.array([-0.05, 0.02, 0.0, 0.25, 0.05, 0.0, 0.30, 0.9, 0.0, 0.0])
     msg, info = terrain_dz_check(terr, raw, raw)
     assert info == {"strides_classified": 9, "stairs_against_sign": 2, "flat_with_height": 1,
-                    "altitude_from_flat_m": pytest.approx(0.30)}
+                    "altitude_from_flat_m": pytest.approx(0.30), "flat_next_to_stairs": 2}
     assert msg.startswith("3 of 9 strides' terrain classes contradict") and "pdrlearn evaluate" in msg
     # two contradictions are not enough (C28: at least 3 and 10 %) ...
-    msg, _ = terrain_dz_check(terr[:4], raw[:4] * [1, 1, 0, 1], raw[:4] * 0)
+    msg, _ = terrain_dz_check(terr[:4], raw[:4] * [1, 1, 0, 0], raw[:4] * 0)
     assert msg is None
     # ... but flat strides that add 0.5 m are, whatever the count
     msg, info = terrain_dz_check(np.array(["flat"] * 20, dtype=object), np.full(20, 0.03), np.full(20, 0.03))
@@ -131,6 +131,19 @@ def test_terrain_dz_check_rules():
     msg, _ = terrain_dz_check(np.array(["up"] * 10 + ["flat"] * 2, dtype=object), np.r_[np.full(10, 0.3), 0.02, -0.03],
                               np.r_[np.full(10, 0.3), 0.0, 0.0])
     assert msg is None
+
+
+def test_terrain_dz_check_skips_a_staircase_first_and_last_strides():
+    """C30: a flat stride next to an up/down stride is a transition that climbs; the demo's scenario D warned on
+    three of them (+0.74 m) with right classes."""
+    terr = np.array(["flat"] * 5 + ["up"] * 10 + ["flat"] * 5, dtype=object)
+    dz = np.r_[np.zeros(4), 0.3, np.full(10, 0.3), 0.3, np.zeros(4)]
+    msg, info = terrain_dz_check(terr, dz, dz)
+    assert msg is None and info["flat_next_to_stairs"] == 2 and info["flat_with_height"] == 0
+    # the same heights one stride further from the stairs are counted (and add 0.6 m: a warning)
+    dz2 = np.r_[np.zeros(3), 0.3, 0.0, np.full(10, 0.3), 0.0, 0.3, np.zeros(3)]
+    msg, info = terrain_dz_check(terr, dz2, dz2)
+    assert msg is not None and info["flat_with_height"] == 2 and "+0.60 m" in msg
 
 
 def test_track_with_a_model_checks_its_terrain_classes(real_dir, level_right):
@@ -146,7 +159,11 @@ def test_track_with_a_model_checks_its_terrain_classes(real_dir, level_right):
             chk = res.info["terrain_dz_check"]
             st = res.steps
             assert chk["strides_classified"] == int(st["terrain"].isin(["flat", "up", "down"]).sum()) > 0
-            flat = (st["terrain"] == "flat").to_numpy()
+            terr = st["terrain"].to_numpy()
+            stairs = np.isin(terr, ["up", "down"])
+            near = np.r_[False, stairs[:-1]] | np.r_[stairs[1:], False]  # C30: transitions are not counted
+            flat = (terr == "flat") & ~near
+            assert chk["flat_next_to_stairs"] == int(((terr == "flat") & near).sum())
             assert chk["altitude_from_flat_m"] == pytest.approx(float(st["dz_m"].to_numpy()[flat].sum()))
             warned = [w for w in res.info["warnings"] if "contradict their integrated height" in w]
             n_bad = chk["stairs_against_sign"] + chk["flat_with_height"]

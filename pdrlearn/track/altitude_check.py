@@ -54,17 +54,25 @@ def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str |
     fin = np.asarray(dz, dtype=float)
     up, down, flat = terr == "up", terr == "down", terr == "flat"
     sign = (up & (raw <= 0)) | (down & (raw >= 0))
+    # decision C30: a flat stride next to an up/down stride is a stair's first or last stride (a transition
+    # that does climb); it is not counted against its class, nor in the height the flat strides add
+    stairs = up | down
+    near = np.zeros(len(terr), dtype=bool)
+    near[1:] |= stairs[:-1]
+    near[:-1] |= stairs[1:]
+    flat = flat & ~near
     level = flat & (np.abs(raw) >= LEVEL_DZ_M)
-    n = int((up | down | flat).sum())
+    n = int((up | down | (terr == "flat")).sum())
     bad = int(sign.sum() + level.sum())
     flat_alt = float(fin[flat].sum())
     info = {"strides_classified": n, "stairs_against_sign": int(sign.sum()), "flat_with_height": int(level.sum()),
-            "altitude_from_flat_m": flat_alt}
+            "altitude_from_flat_m": flat_alt,
+            "flat_next_to_stairs": int(((terr == "flat") & near).sum())}
     many = bad >= CONFLICT_MIN_STRIDES and n and bad >= CONFLICT_MIN_FRACTION * n
     if not (many or abs(flat_alt) >= FLAT_ALTITUDE_M):
         return None, info
     msg = (f"{bad} of {n} strides' terrain classes contradict their integrated height change ({int(sign.sum())} "
            f"up/down against its sign, {int(level.sum())} flat with |dz| >= {LEVEL_DZ_M:.2f} m); strides classed "
-           f"flat add {flat_alt:+.2f} m to the altitude change: the classes or the foot's integrated height are "
+           f"flat (not next to stairs, C30) add {flat_alt:+.2f} m to the altitude change: the classes or the foot's integrated height are "
            f"wrong ({_ACCURACY}); check the model on this user's own labelled walk (`pdrlearn evaluate MODEL DIR`)")
     return msg, info
