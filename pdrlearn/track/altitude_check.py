@@ -74,5 +74,6 @@ def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str |
     msg = (f"{bad} of {n} strides' terrain classes contradict their integrated height change ({int(sign.sum())} "
            f"up/down against its sign, {int(level.sum())} flat with |dz| >= {LEVEL_DZ_M:.2f} m); strides classed "
            f"flat (not next to stairs, C30) add {flat_alt:+.2f} m to the altitude change: the classes or the "
-           f"foot's integrated height are wrong ({_ACCURACY}); check the model on this user's own labelled walk (`pdrlearn evaluate MODEL DIR`)")
+           f"foot's integrated height are wrong ({_ACCURACY}); check the model on this user's own labelled walk "
+           "(`pdrlearn evaluate MODEL DIR`)")
     return msg, info
