@@ -174,3 +174,20 @@ def test_track_with_a_model_checks_its_terrain_classes(real_dir, level_right):
     # the stairs' own labels are the reference, not checked; nor is a track without classes
     assert track_plasys(up, method="M3", model="oracle").info["terrain_dz_check"] is None
     assert track_plasys(up, method="auto").info["terrain_dz_check"] is None
+
+
+def test_streamed_model_without_terrain_classes_says_the_altitude_is_integrated():
+    """L69 covers a model without terrain classes (C17) offline and --streaming: the streamed track keeps each
+    stride's raw height (no L39), so its altitude is an integration too and gets the same one line."""
+    from pdrlearn.classify import train_user
+
+    cal = sim.simulate("length", user_seed=2, speed="normal")
+    model = train_user([cal], tasks=["length"], methods=["heuristic"], units=["foot"], cv=2,
+                       distance_calibration=False)
+    d = sim.simulate("D", user_seed=2, speed="normal")
+    for streaming in (False, True):
+        res = track_plasys(d, model=model, streaming=streaming)
+        kept = int((np.abs(res.steps["dz_m"]) >= 0.10).sum())
+        assert kept >= 1 and res.info["altitude_check"]["strides_with_height"] == kept
+        warned = [w for w in res.info["warnings"] if "integrated height" in w]
+        assert len(warned) == 1 and ("L39 zeroes" in warned[0]) != streaming

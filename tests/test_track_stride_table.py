@@ -194,3 +194,25 @@ def test_the_streamed_track_marks_its_gap_row_as_run_does():
     gap = t[t["gap_s"] > 0]
     assert len(gap) == 1 and gap["length_m"].iloc[0] == 0 and gap["gap_s"].iloc[0] > 1.0
     assert list(t.columns[-2:]) == ["gap_s", "unit"]
+
+
+def test_a_gap_row_is_not_scored_as_a_stride_estimate():
+    """E30 / L67: the 0 m row across a foot gap is no estimate of the labelled stride it overlaps; the stride
+    length scores (offline and --streaming alike) leave it out."""
+    from pdrlearn.io import read_session
+    from pdrlearn.track import get_pipeline
+    from pdrlearn.track.evaluate import evaluate_track, match_by_overlap
+
+    s = _cut(read_session(REAL / "gaitmap_level_right"), 20.0, 21.3)
+    ref = s.steps[s.steps["length_m"].notna()].reset_index(drop=True)
+    for streaming in (False, True):
+        res = get_pipeline("plasys")(s, streaming=streaming)
+        t = res.steps
+        pairs = match_by_overlap(t, ref)
+        assert any(t["gap_s"].iloc[i] > 0 for i, _ in pairs)  # the gap row overlaps a labelled stride
+        kept = [(i, j) for i, j in pairs if t["gap_s"].iloc[i] == 0]
+        err = [abs(abs(t["length_m"].iloc[i]) - abs(ref["length_m"].iloc[j])) / abs(ref["length_m"].iloc[j])
+               for i, j in kept]
+        out = evaluate_track(res, s)
+        assert out["stride_length_composed"] == 0 and out["stride_length_matched"] == len(kept)
+        assert out["stride_length_mae_pct"] == pytest.approx(100.0 * np.mean(err))

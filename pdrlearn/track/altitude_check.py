@@ -29,9 +29,10 @@ _ACCURACY = (f"level walks measured gave integrated heights up to {LEVEL_STRIDE_
              f"{LEVEL_ALTITUDE_PER_100M_MAX_M:.1f} m per 100 m (L68)")
 
 
-def integrated_altitude_check(dz: np.ndarray) -> tuple[str | None, dict]:
+def integrated_altitude_check(dz: np.ndarray, levelled: bool = True) -> tuple[str | None, dict]:
     """Decision L69: ``dz`` (m) the strides' final height changes of a track without terrain classes (after
-    L39). Returns the warning (None when every stride is level) and ``info["altitude_check"]``."""
+    L39; ``levelled`` False: the streamed rules of a model without terrain classes keep every stride's raw
+    height, C17). Returns the warning (None when every stride is level) and ``info["altitude_check"]``."""
     dz = np.asarray(dz, dtype=float)
     kept = np.abs(dz) >= LEVEL_DZ_M
     info = {"source": "integrated (no terrain classes)", "strides": len(dz), "strides_with_height": int(kept.sum()),
@@ -39,8 +40,9 @@ def integrated_altitude_check(dz: np.ndarray) -> tuple[str | None, dict]:
     if not kept.any():
         return None, info
     msg = (f"altitude change {dz.sum():+.2f} m is the foot's integrated height without terrain classes: "
-           f"{int(kept.sum())} of {len(dz)} strides kept a height change >= {LEVEL_DZ_M:.2f} m (L39 zeroes the "
-           f"others); {_ACCURACY}, so it may be drift, not stairs; a model with terrain classes (`pdrlearn train`) "
+           f"{int(kept.sum())} of {len(dz)} strides kept a height change >= {LEVEL_DZ_M:.2f} m "
+           f"{'(L39 zeroes the others)' if levelled else '(streamed: no L39 level rule, each keeps its own)'}; "
+           f"{_ACCURACY}, so it may be drift, not stairs; a model with terrain classes (`pdrlearn train`) "
            "decides which strides climb")
     return msg, info
 

@@ -317,9 +317,15 @@ def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
         return
     ref = st[st["length_m"].notna()].reset_index(drop=True)
     pairs = match_by_overlap(result.steps, ref)
+    # decisions E30 / L67: a row across a foot-stream gap (gap_s > 0) is 0 m by rule, no estimate of the
+    # labelled stride it overlaps: that stride is not scored (nor composed of its neighbours)
+    gap = (result.steps["gap_s"].to_numpy(float) > 0 if "gap_s" in result.steps
+           else np.zeros(len(result.steps), dtype=bool))
+    used_est, used_ref = {i for i, _ in pairs} | set(np.flatnonzero(gap).tolist()), {j for _, j in pairs}
+    pairs = [(i, j) for i, j in pairs if not gap[i]]
     e_list = [float(result.steps["length_m"].iloc[i]) for i, _ in pairs]
     r_idx = [j for _, j in pairs]
-    for j, length in _composed_strides(result.steps, ref, {i for i, _ in pairs}, set(r_idx)):
+    for j, length in _composed_strides(result.steps, ref, used_est, used_ref):
         e_list.append(length)
         r_idx.append(j)
     if not r_idx:

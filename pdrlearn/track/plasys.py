@@ -852,8 +852,11 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             num = pd.api.types.is_float_dtype(classes[c].dtype)
             classes[c] = classes[c].astype(float if num else object)
             classes.loc[in_gap, c] = np.nan if num else None
-    terrain_check = None
-    if method == "M3" and not (isinstance(model, str) and model == "oracle") and "terrain" in classes:  # C28
+    terrain_check, altitude_check = None, None
+    if method == "M3" and "terrain" in untrained:  # decision L69 (C17): a model without terrain classes, as offline
+        msg, altitude_check = integrated_altitude_check(dz, levelled=False)
+        warnings += [msg] if msg else []
+    elif method == "M3" and not (isinstance(model, str) and model == "oracle") and "terrain" in classes:  # C28
         msg, terrain_check = terrain_dz_check(np.where(in_gap, None, classes["terrain"].to_numpy(dtype=object)),
                                               raw_disp[:, 2], dz)
         warnings += [msg] if msg else []
@@ -889,7 +892,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             "distance_gain": gain, "distance_gain_source": gain_source, "stride_sd_calibrated": stride_sd,
             "out_of_domain": domain,  # decision C16
             "classifier_rate_mismatch": off_rate,  # decision C18
-            "terrain_dz_check": terrain_check,  # decision C28
+            "terrain_dz_check": terrain_check, "altitude_check": altitude_check,  # decisions C28, L69
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.where, w)
