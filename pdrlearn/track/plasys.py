@@ -402,7 +402,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  min_confidence: float | None = None, align: bool = False, rules: str | None = None,
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
-                 warn_out_of_domain: float | None = None, **opts) -> TrackResult:
+                 warn_out_of_domain: float | None = None, toe_off: bool = False, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -450,6 +450,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     warn_out_of_domain : M3 with a trained model: warn (one line) when at least this fraction of the strides
         lie outside the model's training range (decision C16; None = no warning, the default). The
         fraction is always in ``info["out_of_domain"]``
+    toe_off : add the toe-off ``tc_s`` and ``stance_time_s``, ``swing_time_s``, ``stance_pct`` to every stride
+        row (decision L73, ``pdrlearn.track.toeoff``; offline only)
 
     Any other keyword argument raises ``TypeError`` naming the closest valid one (decision L43). Warnings go
     to ``info["warnings"]`` and to the ``logging`` logger ``pdrlearn.track`` (not Python's ``warnings``).
@@ -652,7 +654,12 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     table["unit"] = "foot"
     # decision L66: gait parameters (IC-to-IC stride time from event_s, swing from the stance detection, the
     # foot's own turn over the stride)
-    add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap)
+    tc = None
+    if toe_off:  # decision L73: toe-off from the foot gyroscope at its native rate, stance/swing split
+        from pdrlearn.track.toeoff import toe_off_times
+
+        tc = toe_off_times(foot.t, foot.gyr, table["start_s"], table["end_s"], table["event_s"])
+    add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap, tc_s=tc)
     table["gap_s"] = longest_gap_in(table["start_s"], table["end_s"], foot_gaps)  # decision L67 (run's E37)
     table = table[[c for c in table.columns if c != "unit"] + ["unit"]]  # gap_s before unit, as run's steps.csv
     head = np.asarray(head, dtype=float)
@@ -671,7 +678,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         table = table.iloc[order].reset_index(drop=True)
         length, dz, head = length[order], dz[order], head[order]
         add_gait_columns(table, turn_rad=table["turn_angle_rad"].to_numpy(float),  # the rows next to a gap row
-                         valid=table["gap_s"].to_numpy(float) == 0)
+                         valid=table["gap_s"].to_numpy(float) == 0,
+                         tc_s=table["tc_s"].to_numpy(float) if "tc_s" in table else None)
 
     xyz = np.zeros((len(table) + 1, 3))
     xyz[1:, 0] = np.cumsum(length * np.cos(head))
