@@ -53,6 +53,10 @@ def track(
                                         "tracked: sensor (the unit, default) or heel (the heel contact, lever arm "
                                         "estimated from the recording, decision L22; = \"reference_point\" in "
                                         "--params)."),
+    toe_off: bool = typer.Option(False, "--toe-off", help="plasys, offline: add the toe-off tc_s and "
+                                 "stance_time_s, swing_time_s, stance_pct to steps.csv (decision L73: an option, "
+                                 "not the default - its toe-off runs ~21 ms early against mocap, see "
+                                 "docs/localization.md)."),
     dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
@@ -98,7 +102,7 @@ def track(
             raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
                             "pass the file written by `pdrlearn calibrate`") from None
     session = read_session(session_dir)
-    if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming):
+    if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
     fn = get_pipeline(pipeline)
@@ -110,7 +114,7 @@ def track(
                                                "--rules": rules is not None,
                                                "--min-confidence": min_confidence is not None,
                                                "--length-bounds": length_bounds is not None,
-                                               "--streaming": streaming},
+                                               "--streaming": streaming, "--toe-off": toe_off},
                             gnss=gnss, gnss_period=gnss_period, fixes=fixes, fix_period=fix_period)
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
@@ -124,6 +128,11 @@ def track(
         kw["method"] = method
         if streaming:
             kw["streaming"] = True
+        if toe_off:  # decision L73
+            if streaming:
+                raise DataError("track: --toe-off needs the offline tracker's initial contacts; the --streaming "
+                                "kernel (and `pdrlearn run`) has none - drop --streaming or --toe-off")
+            kw["toe_off"] = True
         if rules is not None:
             kw["rules"] = rules
         if min_confidence is not None:
@@ -213,7 +222,8 @@ def track(
 
 
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
-_PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming")
+_PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming",
+                   "--toe-off")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
 
