@@ -6,6 +6,9 @@ of consecutive strides), ``cadence_spm`` (steps per minute: two steps per stride
 No stance/swing times: the pipeline's stance detection (the ZUPT rest, :func:`swing_times`) is the foot at
 rest, not initial contact to toe-off; against the mocap of the gaitmap level walks its "swing" came out
 +488 / +453 ms long (``experiments/gait_parameters.py``), so it is not given as the gait-lab swing (L66).
+Decision L73: with ``toe_off`` (``track --toe-off``, not the default: its adoption rule was not met) the toe-off
+from the foot gyroscope (``pdrlearn.track.toeoff``) splits the stride time into ``stance_time_s`` and
+``swing_time_s`` (:data:`TOE_OFF_COLUMNS`).
 A value that cannot be had is NaN (an empty cell in steps.csv): no stride time at a bout
 start (the previous stride does not end where this one starts: a rest longer than the stride bounds' reach, a
 gap row, the first stride), or when either stride's event lies outside its own window.
