@@ -5,9 +5,11 @@ calibration exercises (terrain, direction, length) of several simulated users at
 to ONNX. Per-user training on the user's own exercises is better (thesis ch.6); see the model card.
 The model is then evaluated (`pdrlearn evaluate`) on the same exercises of simulated users it was not
 trained on (seeds after the training users', decision C26): the printed "held-out" accuracies.
+`--train-seeds` / `--held-out-seeds` name the simulated users explicitly (decision C31: the same recipe on
+more training users); the default is the shipped recipe.
 
-    .venv/bin/python experiments/train_default_model.py [--users 3] [--held-out-users 2]
-        [--out models/plasys-sim-default]
+    OMP_NUM_THREADS=1 .venv/bin/python experiments/train_default_model.py [--users 3] [--held-out-users 2]
+        [--train-seeds 101 102 ...] [--held-out-seeds 121 122 ...] [--out models/plasys-sim-default]
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ import json
 import shutil
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -35,31 +38,46 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--cv", type=int, default=5)
     ap.add_argument("--held-out-users", type=int, default=2,
                     help="simulated users (seeds after the training users') the model is evaluated on; 0 = none")
+    ap.add_argument("--train-seeds", type=int, nargs="+", default=None,
+                    help="seeds of the simulated training users (default: 101 ... 100 + --users)")
+    ap.add_argument("--held-out-seeds", type=int, nargs="+", default=None,
+                    help="seeds of the held-out users (default: the --held-out-users seeds after the training users)")
     ap.add_argument("--out", type=Path, default=ROOT / "models" / "plasys-sim-default")
     a = ap.parse_args(argv)
+    train_seeds = a.train_seeds if a.train_seeds is not None else [100 + u for u in range(1, a.users + 1)]
+    held_seeds = (a.held_out_seeds if a.held_out_seeds is not None
+                  else [max(train_seeds) + u for u in range(1, a.held_out_users + 1)])
+    if not train_seeds or len(set(train_seeds)) != len(train_seeds) or min(train_seeds + held_seeds) < 0:
+        raise SystemExit("error: --train-seeds must be distinct non-negative seeds")
+    if set(train_seeds) & set(held_seeds):
+        raise SystemExit("error: --train-seeds and --held-out-seeds overlap: held-out users must be new")
     work = Path(tempfile.mkdtemp(prefix="pdrlearn_default_"))
     try:
-        for u in range(1, a.users + a.held_out_users + 1):
-            folder = "calib" if u <= a.users else "heldout"
-            for sp in ("slow", "normal", "fast"):
-                for ex in ("terrain", "direction", "length"):
-                    write_session(simulate(ex, user_seed=100 + u, speed=sp), work / folder / f"u{u}_{sp}_{ex}")
+        # the session folders keep the shipped recipe's names (u1, u2, ... in training order) so that the
+        # default run reproduces the shipped bundle byte for byte (C26)
+        for folder, seeds in (("calib", train_seeds), ("heldout", held_seeds)):
+            for i, seed in enumerate(seeds):
+                u = i + 1 if folder == "calib" else len(train_seeds) + i + 1
+                for sp in ("slow", "normal", "fast"):
+                    for ex in ("terrain", "direction", "length"):
+                        write_session(simulate(ex, user_seed=seed, speed=sp), work / folder / f"u{u}_{sp}_{ex}")
         buf = io.StringIO()
+        c0 = time.process_time()
         with contextlib.redirect_stdout(buf):
             code = cli(["train", str(work / "calib"), "--out", str(work / "model"), "--cv", str(a.cv),
                         "--methods", "heuristic,fusion,svm,nn", "--user", "simulated-default",
                         "--no-distance-calibration", "--json"])
+            train_cpu = time.process_time() - c0
             if code == 0:
                 code = cli(["export", str(work / "model"), "--out", str(a.out), "--overwrite", "--json"])
-            if code == 0 and a.held_out_users > 0:
+            if code == 0 and held_seeds:
                 code = cli(["evaluate", str(work / "model"), str(work / "heldout"), "--json"])
         if code != 0:
             raise SystemExit(f"training/export/evaluation failed (exit {code})")
         lines = [json.loads(x) for x in buf.getvalue().splitlines() if x.startswith("{")]
-        if a.held_out_users > 0:
-            seeds = [100 + u for u in range(a.users + 1, a.users + a.held_out_users + 1)]
+        if held_seeds:
             manifest = json.loads((a.out / "manifest.json").read_text())
-            lines[2] = held_out_summary(lines[2], manifest, seeds)
+            lines[2] = held_out_summary(lines[2], manifest, held_seeds)
         (a.out.parent / f"{a.out.name}.training.json").write_text(json.dumps(lines, indent=1) + "\n")
         # decisions L26/E14: the default model pools several simulated users (devices), so it carries no
         # distance calibration (a pooled gain corrects no one's sensor); the bundle tracks with gain 1
@@ -67,7 +85,9 @@ def main(argv: list[str] | None = None) -> None:
         if disp.get("distance_gain") is not None:
             raise SystemExit(f"{a.out}: the default bundle must not carry a distance calibration")
         print(json.dumps(lines[0]["tasks"], indent=1))
-        if a.held_out_users > 0:
+        print(f"trained on simulated users {train_seeds} ({len(train_seeds) * 9} sessions), "
+              f"training CPU {train_cpu:.1f} s (this process)")
+        if held_seeds:
             print(f"held-out users (seeds {lines[2]['user_seeds']}), accuracy of the chosen model and of the "
                   "foot_only model (no waist unit):")
             for task, r in lines[2]["tasks"].items():
@@ -75,6 +95,7 @@ def main(argv: list[str] | None = None) -> None:
                       f"(balanced {100 * r['balanced_accuracy']:.1f} %, per class "
                       + ", ".join(f"{c} {100 * v:.1f}" for c, v in r["per_class"].items())
                       + f"), {r['foot_only']} {100 * r['foot_only_accuracy']:.1f} %")
+                print("    every svm/nn model: " + ", ".join(f"{k} {100 * v:.1f}" for k, v in r["models"].items()))
         print(f"bundle written to {a.out}")
     finally:
         shutil.rmtree(work, ignore_errors=True)
@@ -91,7 +112,10 @@ def held_out_summary(ev: dict, manifest: dict, seeds: list[int]) -> dict:
         out["tasks"][task] = {
             "chosen": f"{ch['method']}/{ch['unit']}", "n_steps": r["n_steps"], "accuracy": r["accuracy"],
             "balanced_accuracy": r["balanced_accuracy"], "per_class": r["per_class"],
-            "foot_only": f"{fm}/foot", "foot_only_accuracy": r["methods"][fm]["units"]["foot"]["accuracy"]}
+            "foot_only": f"{fm}/foot", "foot_only_accuracy": r["methods"][fm]["units"]["foot"]["accuracy"],
+            "models": {f"{m}/{u}": r["methods"][m]["units"][u]["accuracy"] for m in ("svm", "nn")
+                       if m in r["methods"] for u in ("foot", "combined")
+                       if r["methods"][m]["units"].get(u, {}).get("accuracy") is not None}}
     return out
 
 
