@@ -326,6 +326,7 @@ def run(
         _warn_short_streams(session, tracker, steps)
         source = f"session {session.name}"
     result = _result(steps, start_ll, start_alt)
+    result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
     summary = _summary(steps, tracker, lat, source, result, session)
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats

@@ -15,6 +15,7 @@ Modules
 - :mod:`~pdrlearn.kernels.proba` - softmax, class alignment, soft vote.
 - :mod:`~pdrlearn.kernels.stride` - per-stride displacement (ZUPT, M3 rules) and position update.
 - :mod:`~pdrlearn.kernels.bayes` - the bayes class rule's stride length and the confidence gate (L14, L18).
+- :mod:`~pdrlearn.kernels.altitude_check` - the height warnings of a foot track (L69, C28; E47: track and run).
 
 This ``__init__`` imports nothing (importing a submodule never loads the others).
 """

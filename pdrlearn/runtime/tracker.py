@@ -298,6 +298,13 @@ class Tracker:
     speculative = False
     _pushed_gaps: list | None = None  # decision E30 (a bare Tracker.__new__ has none)
     _foot_gaps: list | tuple = ()
+    #: decision E46: the long foot gaps (start, end) not yet behind the last emitted stride, the pending gap row
+    #: ([start, gap_s] or None), the end / reported heading / position of the last emitted stride
+    _row_gaps: list | tuple = ()
+    _gap_row: list | None = None
+    _kept: tuple | None = None
+    #: decision E47: (terrain class or None, integrated dz before gain and rules, final dz) per processed stride
+    _heights: list | tuple = ()
     _held_s = math.inf  # decision E31: set per tracker in __init__
 
     def __init__(
@@ -457,6 +464,7 @@ class Tracker:
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
         self.n_steps = 0
         self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
+        self._row_gaps, self._heights = [], []  # decisions E46, E47
         self.waist_gap_yaw = bool(waist_gap_yaw)  # decision L61
         #: the input side (decision E22): streams at another rate than the bundle's are tracked at their own
         #: rate (``resample="native"``, the default, as ``pdrlearn track --streaming``), resampled to the
@@ -759,6 +767,8 @@ class Tracker:
             long = name in _FOOT_GAP_STREAMS and b - a > GAP_LONG_S
             if long or name in _FOOT_IMU:
                 self._foot_gaps.append((a, b, long))
+            if long:  # decision E46: the stretch it lies in becomes one gap row
+                self._row_gaps.append((a, b))
             for g in [*new, *self._gap_marks]:
                 if a < g[1] and b > g[0]:  # the same gap, seen in another stream
                     if len(g) > 3:
@@ -839,6 +849,7 @@ class Tracker:
         self._detect()
         steps = self._process_ready(force=True)
         self._trim()
+        self.height_checks()  # decision E47: the end of a recording
         return steps
 
     def _process_ready(self, force: bool = False) -> list[Step]:
@@ -856,7 +867,55 @@ class Tracker:
             t1 = self._pending[0][1]
             if latest < t1 - self._held_s:  # decision E31: a stream's last value held for this step
                 self._note_held(t1)
-            out.append(self.process_step(*self._pending.pop(0)))
+            out += self._emit(self.process_step(*self._pending.pop(0)))
+        return out
+
+    def _emit(self, step: Step) -> list[Step]:
+        """Decision E46 (L67's rule on the streamed strides): a stride that touches a foot gap is not emitted; the
+        stretch from the last emitted stride's end to the next stride that touches none, when a foot gap over
+        :data:`GAP_LONG_S` lies in it, is emitted as one 0 m row just before that stride (``gap_s``: the longest
+        such gap; ``heading_rad``: the previous row's, decision L76). None before the first emitted stride."""
+        if step.gap_s > 0:
+            if self._kept is not None and self._gap_row is None:
+                self._gap_row = [self._kept[0], step.gap_s]
+            elif self._gap_row is not None:
+                self._gap_row[1] = max(self._gap_row[1], step.gap_s)
+            return []
+        out = []
+        if self._kept is not None:
+            a, b = self._kept[0], step.start_s
+            longest = max([g1 - g0 for g0, g1 in self._row_gaps if g0 < b and g1 > a], default=0.0)
+            if self._gap_row is not None:
+                longest = max(longest, self._gap_row[1])
+            if longest > 0 and b > a:
+                x, y, z = self._kept[2]
+                out.append(Step(a, b, {}, {}, 0.0, 0.0, self._kept[1], x, y, z, gap_s=longest))
+                self.n_steps += 1
+        self._gap_row = None
+        self._kept = (step.end_s, step.heading_rad, (step.x, step.y, step.z))
+        self._row_gaps = [g for g in self._row_gaps if g[1] > step.end_s]
+        out.append(step)
+        return out
+
+    def height_checks(self) -> dict:
+        """Decisions L69 / C28 (E47) over the strides processed so far, with ``pdrlearn track --streaming``'s
+        arguments and the one implementation (:mod:`pdrlearn.kernels.altitude_check`): without a terrain
+        classifier, whether the altitude is the foot's integrated height (the streamed rules keep each stride's
+        height, no L39); with one, whether its classes contradict the integrated heights. Each warning is logged
+        and added to ``warnings`` once. Returns ``{"altitude_check": ..., "terrain_dz_check": ...}`` (the one
+        that does not apply is None), as ``track``'s ``info``."""
+        from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
+
+        out = {"altitude_check": None, "terrain_dz_check": None}
+        if not self._heights:
+            return out
+        terrain, raw, dz = zip(*self._heights, strict=True)
+        if "terrain" in self.classifiers:
+            msg, out["terrain_dz_check"] = terrain_dz_check(terrain, np.array(raw), np.array(dz))
+        else:
+            msg, out["altitude_check"] = integrated_altitude_check(np.array(dz), levelled=False)
+        if msg and msg not in self.warnings:
+            self._warn(msg)
         return out
 
     def _note_held(self, t1: float) -> None:
@@ -1013,7 +1072,7 @@ class Tracker:
             gap = max([d for d, long in over if long], default=0.0)
             if gap:
                 self._prev_end = t1  # no L31 pivot across it either: the turn inside the gap is unknown
-                self.n_steps += 1
+                self._heights.append((None, 0.0, 0.0))  # decision E47: no class, 0 m (as --streaming's)
                 x, y, z = self.position.tolist()
                 return Step(t0, t1, {}, {}, 0.0, 0.0, self.heading, x, y, z, gap_s=gap)
             bridged = bool(over)  # a shorter gap in the foot accelerometer / gyroscope: no classes (B11)
@@ -1035,6 +1094,7 @@ class Tracker:
         # the one-stride kernels on Python floats: the same arithmetic as apply_level_gain, apply_stride_rules
         # and advance (decision E17)
         dx, dy, dz = disp.tolist()
+        raw_dz = dz
         if self.distance_gain != 1.0:  # decision L26 / E14, as pdrlearn track
             dx, dy, dz = apply_level_gain_one(dx, dy, dz, self.distance_gain)
         if self.rules == "thesis" and self.min_confidence <= 0:
@@ -1056,6 +1116,7 @@ class Tracker:
         self.heading = heading
         self.position = np.array((x, y, z))
         self.n_steps += 1
+        self._heights.append((classes.get("terrain"), raw_dz, dz))  # decision E47
         length, direction = travel_sign_one(length, direction, classes.get("direction"))  # L65: after the position
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z)
 

@@ -42,6 +42,7 @@ from pdrlearn.displace import (
 from pdrlearn.errors import DataError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
+from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
 from pdrlearn.kernels.distance import (
     applicable_calibration,
@@ -53,7 +54,6 @@ from pdrlearn.kernels.distance import (
 )
 from pdrlearn.kernels.window import GROUP_STREAMS, available_groups, levelled_units
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
-from pdrlearn.track.altitude_check import integrated_altitude_check, terrain_dz_check
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
 from pdrlearn.track.gait import add_gait_columns
@@ -677,6 +677,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         order = np.argsort(table["start_s"].to_numpy(float), kind="stable")
         table = table.iloc[order].reset_index(drop=True)
         length, dz, head = length[order], dz[order], head[order]
+        inserted = np.flatnonzero(order >= len(order) - len(at))  # the gap rows' new places
         add_gait_columns(table, turn_rad=table["turn_angle_rad"].to_numpy(float),  # the rows next to a gap row
                          valid=table["gap_s"].to_numpy(float) == 0,
                          tc_s=table["tc_s"].to_numpy(float) if "tc_s" in table else None)
@@ -692,6 +693,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     # decision L65: a negative length only with a backward class (else |length| along heading + pi, same path)
     rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object))
+    if len(extra):  # decision L76: a gap row reports the heading of the row before it (after L65's sign)
+        for i in inserted[inserted > 0]:
+            rep_head[i] = rep_head[i - 1]
     table["length_m"], table["heading_rad"] = rep_length, wrap_angle(rep_head)
     oracle = isinstance(model, str) and model == "oracle"
     info = {"pipeline": "plasys", "method": "M3 engine, no classes" if no_classes else method,
@@ -730,6 +734,38 @@ def _level_without_classes(res: TrackResult) -> None:
     if len(res.trajectory) == len(dz) + 1:
         z0 = float(res.trajectory["z"].iloc[0])
         res.trajectory["z"] = z0 + np.concatenate([[0.0], np.cumsum(dz)])
+
+
+def _one_row_per_gap(table: pd.DataFrame, traj: pd.DataFrame, in_gap: np.ndarray,
+                     gaps: dict) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Decision E46: the streamed strides that touch a foot gap (``in_gap``, 0 m each) replaced by offline's
+    gap rows (L67, :func:`~pdrlearn.track.gaps.gap_rows` on the other strides): one 0 m row per stretch between
+    two kept strides that a foot gap overlaps, the previous row's reported heading (L76), the position it
+    leaves unchanged; the runtime's ``Tracker`` emits the same rows one stride at a time."""
+    keep = np.flatnonzero(~in_gap)
+    if not len(keep):
+        return table.iloc[:0].reset_index(drop=True), traj.iloc[:1].reset_index(drop=True)
+    kt = table.iloc[keep].reset_index(drop=True)
+    kj = traj.iloc[np.concatenate([[0], keep + 1])].reset_index(drop=True)
+    kj.loc[0, "t"] = kt["start_s"].iloc[0]  # the gap strides dropped before the first kept one moved 0 m
+    extra = gap_rows(kt, gaps)
+    if not len(extra):
+        return kt, kj
+    at = extra["before"].to_numpy(int)
+    rows = pd.DataFrame({c: [None if kt[c].dtype == object else np.nan] * len(at) for c in kt.columns})
+    rows["start_s"], rows["end_s"] = extra["start_s"].to_numpy(float), extra["end_s"].to_numpy(float)
+    rows["event_s"] = rows["end_s"]  # as every streamed row: the stride end
+    rows["length_m"], rows["raw_length_m"], rows["dz_m"] = 0.0, 0.0, 0.0
+    rows["heading_rad"] = kt["heading_rad"].to_numpy(float)[at - 1]  # decision L76
+    rows["gap_s"], rows["unit"] = extra["gap_s"].to_numpy(float), "foot"
+    prev = kj.iloc[at].reset_index(drop=True)  # the position after the kept row before (the row moves 0 m)
+    prev["t"] = rows["end_s"].to_numpy(float)
+    key = np.concatenate([np.arange(len(kt), dtype=float), at - 0.5])
+    order = np.argsort(key, kind="stable")
+    table = pd.concat([kt, rows], ignore_index=True).iloc[order].reset_index(drop=True)
+    traj = pd.concat([kj.iloc[:1], pd.concat([kj.iloc[1:], prev], ignore_index=True).iloc[order]],
+                     ignore_index=True)
+    return table, traj
 
 
 def track_streaming(session: Session, *, method: str = "M3", model=None, start=None, params=None,
@@ -890,6 +926,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if start is not None:
         ll = geodetic_track(tuple(start), length, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
+    if any(len(g) for g in foot_gaps.values()):  # decision E46: one 0 m row per stretch with a foot gap (L67)
+        table, traj = _one_row_per_gap(table, traj, in_gap, foot_gaps)
     info = {"pipeline": "plasys", "method": method, "streaming": True, "heading_source": heading,
             "steps_source": "stance (streaming)",
             "classes_source": (None if method == "M2" else ("oracle" if isinstance(model, str)

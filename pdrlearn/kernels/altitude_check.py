@@ -1,0 +1,84 @@
+"""Plausibility of a foot track's height (decisions L69, C28): a warning where the altitude change would
+otherwise be silently wrong.
+
+- Without terrain classes (L69) the height of a stride is its integrated vertical displacement; on level foot
+  recordings that reached 0.47 m per stride (L68), so the altitude change is said to be an integration.
+- With a trained model's terrain classes (C28) a stride whose class contradicts its integrated height change
+  (``up`` with dz <= 0, ``down`` with dz >= 0, ``flat`` with |dz| >= 0.10 m) is counted; many of them, or
+  strides classed ``flat`` that add height, give one warning.
+
+Numpy only: ``pdrlearn track`` (offline, ``--streaming``) and the streaming runtime (``Tracker.height_checks``,
+``pdrlearn run``; decision E47) call these same functions.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.kernels.distance import LEVEL_DZ_M
+
+#: Decision L68 (experiments/level_dz.py): the largest integrated |dz| of a level stride on the gaitmap foot
+#: recordings measured (gaitmap_ms_right) and the largest altitude change per 100 m of level walking there
+#: (gaitmap_ms_left, dz before L39) - the accuracy the warnings quote.
+LEVEL_STRIDE_DZ_MAX_M = 0.47
+LEVEL_ALTITUDE_PER_100M_MAX_M = 4.7
+#: Decision C28: a warning when at least this many strides, and this fraction of them, contradict their class,
+CONFLICT_MIN_STRIDES = 3
+CONFLICT_MIN_FRACTION = 0.10
+#: or when the strides classed flat add at least this much (m) to the altitude change
+FLAT_ALTITUDE_M = 0.5
+
+_ACCURACY = (f"level walks measured gave integrated heights up to {LEVEL_STRIDE_DZ_MAX_M:.2f} m per stride and "
+             f"{LEVEL_ALTITUDE_PER_100M_MAX_M:.1f} m per 100 m (L68)")
+
+
+def integrated_altitude_check(dz: np.ndarray, levelled: bool = True) -> tuple[str | None, dict]:
+    """Decision L69: ``dz`` (m) the strides' final height changes of a track without terrain classes (after
+    L39; ``levelled`` False: the streamed rules of a model without terrain classes keep every stride's raw
+    height, C17). Returns the warning (None when every stride is level) and ``info["altitude_check"]``."""
+    dz = np.asarray(dz, dtype=float)
+    kept = np.abs(dz) >= LEVEL_DZ_M
+    info = {"source": "integrated (no terrain classes)", "strides": len(dz), "strides_with_height": int(kept.sum()),
+            "altitude_change_m": float(dz.sum())}
+    if not kept.any():
+        return None, info
+    msg = (f"altitude change {dz.sum():+.2f} m is the foot's integrated height without terrain classes: "
+           f"{int(kept.sum())} of {len(dz)} strides kept a height change >= {LEVEL_DZ_M:.2f} m "
+           f"{'(L39 zeroes the others)' if levelled else '(streamed: no L39 level rule, each keeps its own)'}; "
+           f"{_ACCURACY}, so it may be drift, not stairs; a model with terrain classes (`pdrlearn train`) "
+           "decides which strides climb")
+    return msg, info
+
+
+def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str | None, dict]:
+    """Decision C28: ``terrain`` (n,) a model's classes (None/NaN: not classified, not counted), ``raw_dz`` (n,)
+    the integrated height changes before the rules, ``dz`` (n,) the track's final ones. Returns the warning
+    (None when the classes and heights agree well enough) and ``info["terrain_dz_check"]``."""
+    terr = np.array([t if isinstance(t, str) else "" for t in terrain], dtype=object)
+    raw = np.asarray(raw_dz, dtype=float)
+    fin = np.asarray(dz, dtype=float)
+    up, down, flat = terr == "up", terr == "down", terr == "flat"
+    sign = (up & (raw <= 0)) | (down & (raw >= 0))
+    # decision C30: a flat stride next to an up/down stride is a stair's first or last stride (a transition
+    # that does climb); it is not counted against its class, nor in the height the flat strides add
+    stairs = up | down
+    near = np.zeros(len(terr), dtype=bool)
+    near[1:] |= stairs[:-1]
+    near[:-1] |= stairs[1:]
+    flat = flat & ~near
+    level = flat & (np.abs(raw) >= LEVEL_DZ_M)
+    n = int((up | down | (terr == "flat")).sum())
+    bad = int(sign.sum() + level.sum())
+    flat_alt = float(fin[flat].sum())
+    info = {"strides_classified": n, "stairs_against_sign": int(sign.sum()), "flat_with_height": int(level.sum()),
+            "altitude_from_flat_m": flat_alt,
+            "flat_next_to_stairs": int(((terr == "flat") & near).sum())}
+    many = bad >= CONFLICT_MIN_STRIDES and n and bad >= CONFLICT_MIN_FRACTION * n
+    if not (many or abs(flat_alt) >= FLAT_ALTITUDE_M):
+        return None, info
+    msg = (f"{bad} of {n} strides' terrain classes contradict their integrated height change ({int(sign.sum())} "
+           f"up/down against its sign, {int(level.sum())} flat with |dz| >= {LEVEL_DZ_M:.2f} m); strides classed "
+           f"flat (not next to stairs, C30) add {flat_alt:+.2f} m to the altitude change: the classes or the "
+           f"foot's integrated height are wrong ({_ACCURACY}); check the model on this user's own labelled walk "
+           "(`pdrlearn evaluate MODEL DIR`)")
+    return msg, info
