@@ -96,6 +96,11 @@ def import_command(
     labels_relative: bool = typer.Option(False, "--labels-relative", help="The --steps and --labels times are "
                                          "ms from this export's first sample (also with --merge), not on the "
                                          "export's clock (B42)."),
+    skip_rows: int = typer.Option(None, "--skip-rows", help="Rows directly under the header that are not data "
+                                  "(default: a units row such as ms, m/(s^2), deg/s is recognised, skipped and read "
+                                  "for the units; B66)."),
+    force_frame: bool = typer.Option(False, "--force-frame", help="Write the --frames axes even when the data "
+                                     "contradict them (refused otherwise, B67)."),
     name: str = typer.Option(None, "--name", help="Session name (default: the CSV's name)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
                                "unit's files, labels and meta.json are kept)."),
@@ -107,7 +112,9 @@ def import_command(
     Columns are guessed from common names (acc_x, ax, AccX, accelerometer_x, gyr_x, gx, GyroX, acc_x_g ...;
     units from hints such as 'AccX (g)', 'Time (ms)', 'gyr_x_dps' or 'time_s') unless given; every guess is
     printed on stderr and kept in meta.json ("imported"). Comma, semicolon and tab separated files with
-    decimal commas are read (B24).
+    decimal commas are read (B24), and Shimmer Consensys exports: a 'sep=' first line, a units row under the
+    header (ms, m/(s^2), deg/s: used for the units), Shimmer_XXXX_..._CAL names (B66). A --frames entry the
+    data contradict is refused (--force-frame keeps it, B67).
     Timestamps are written in ms since the export's first one (its value is kept in meta.json; --steps
     and --labels tables on the export's clock are shifted alike). Check the result with 'pdrlearn info'.
 
@@ -201,7 +208,7 @@ def import_command(
                                  sensor_height_m=sensor_height if sensor_height is not None
                                  else m.get("sensor_height_m"), name=name or (None if merge else out.name),
                                  subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
-                                 rate_hz=rate, time_format=time_format, time_zone=time_zone)
+                                 rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows)
     if steps is not None:
         if base is not None and base.steps is not None:
             raise DataError(f"{out}: already has steps.csv; --steps with --merge would replace it -- leave --steps out")
@@ -218,6 +225,7 @@ def import_command(
         record["labels"] = {f"{n}.csv": {"file": Path(p).name, "rows": rows[n]} for n, p in
                             zip(rows, labels, strict=True)}
     axes_warning = _check_axes(session, unit, record, csv)  # decision L71: before anything is written
+    frame_warning = _check_frame(session, unit, record, csv, force_frame)  # decision B67: before writing too
     span_warning = None
     if base is not None:
         span_warning = merge_span_warning(base, session)  # trial 2, finding 11 (decision D12)
@@ -233,6 +241,8 @@ def import_command(
         typer.echo(f"warning: {out}: {span_warning}", err=True)
     if axes_warning:
         typer.echo(f"warning: {out}: {axes_warning}", err=True)
+    if frame_warning:
+        typer.echo(f"warning: {out}: {frame_warning}", err=True)
 
 
 def _check_axes(session, unit: str, record: dict, csv: Path) -> str | None:
@@ -267,14 +277,72 @@ def _check_axes(session, unit: str, record: dict, csv: Path) -> str | None:
     raise DataError(f"{csv}: {mirrored_message(h, unit, how=how)} (nothing written)")
 
 
+def _origin_text(origin_s: float) -> str:
+    """Decision B68: the origin in s with millisecond precision, and as a UTC time when it is a clock since
+    the epoch (B39's EPOCH_START), in the ISO form the date-time summary uses."""
+    from datetime import UTC, datetime
+
+    from pdrlearn.io.importer import EPOCH_START
+
+    text = f"{origin_s:.3f} s"
+    if abs(origin_s) >= EPOCH_START:
+        try:
+            iso = datetime.fromtimestamp(origin_s, tz=UTC).isoformat(timespec="milliseconds")
+        except (OverflowError, OSError, ValueError):
+            return text
+        text += f" ({iso})"
+    return text
+
+
+def _check_frame(session, unit: str, record: dict, csv: Path, force: bool) -> str | None:
+    """Decision B67: a --frames entry the unit's data contradict with confidence (D10's test: an up, forward or
+    left more than 60 deg from the measured one) is refused before anything is written, naming the frame the
+    data give; ``--force-frame`` writes it anyway (recorded, and returned as a warning). A left-handed frame the
+    data cannot judge (no confident inference) is written, and commands warn of it as before (D10)."""
+    frame = session.frames.get(unit)
+    if frame is None:
+        return None
+    from pdrlearn.track.frame_inference import CHECK_SPAN_S, frame_disagreement, infer_session_frame
+
+    try:
+        found = infer_session_frame(session, unit, max_s=CHECK_SPAN_S)
+    except DataError:
+        return None  # the data do not fix the axes: the declared frame stands (D8, D10)
+    off = frame_disagreement(frame, found)
+    if not off:
+        return None
+    given = ",".join(f"{k}={v}" for k, v in frame.to_dict().items())
+    data = ",".join(f"{k}={v}" for k, v in found.frame.to_dict().items())
+    hand = "left-handed and " if not frame.right_handed else ""
+    angles = ", ".join(f"{k} {v:.0f} deg off" for k, v in off.items())
+    if force:
+        record["frame_forced"] = {"declared": frame.to_dict(), "data": found.frame.to_dict()}
+        return (f"--frames {given} is {hand}contradicted by the data ({data}; {angles}); written as given "
+                "(--force-frame)")
+    extra = ""
+    if set(off) == {"left"}:  # up and forward agree: the declaration mirrors the data (D10)
+        extra = "; if the device really has those axes, its data are mirrored: negate that axis with --acc/--gyro"
+    raise DataError(f"{csv}: --frames {given} is {hand}contradicted by the data, which give {data} ({angles}); "
+                    f"nothing written: import again with --frames {data} (or without "
+                    f"--frames){extra}, or pass --force-frame to keep yours")
+
+
 def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
     """What was mapped and guessed (stderr, one line each); the folder on stdout."""
     def err(msg: str) -> None:
         typer.echo(msg, err=True)
 
     t = record["time"]
-    err(f"time: column '{t['column']}' in {t['unit']} ({t['source']}); 0 ms = {t['origin_s']:.10g} s on the "
+    err(f"time: column '{t['column']}' in {t['unit']} ({t['source']}); 0 ms = {_origin_text(t['origin_s'])} on the "
         "export's clock")
+    sk = record.get("skipped_rows")
+    if sk:  # decision B66
+        if sk.get("units"):
+            shown = ", ".join(dict.fromkeys(sk["units"].values()))
+            err(f"note: line {sk['line']} read as a units row ({shown}): not data; the units it names are used "
+                "(--skip-rows 0 reads it as data)")
+        else:
+            err(f"note: {sk['rows']} row(s) under the header skipped ({sk['source']})")
     dt = t.get("datetime")
     if dt:  # decision B43: what the date-time text was read as
         err(f"time: date-time text read {dt.get('order', 'as written')}: {dt['first']} to {dt['last']} (UTC); "
@@ -283,7 +351,7 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         # no recorded origin to share: the added unit was moved like a first import (its first timestamp
         # taken off), so an offset it had on a clock shared with the session is gone
         err(f"note: the session was not imported, so its clock's origin is unknown: the added unit starts at 0 ms "
-            f"({t['origin_s']:.10g} s on the export's clock taken off), as the session's files do; if both were "
+            f"({_origin_text(t['origin_s'])} on the export's clock taken off), as the session's files do; if both were "
             "on one clock with another origin, import both units (clocks up to 2 s apart: pdrlearn.steps.align_units "
             "and apply_alignment in Python; `pdrlearn track` has no option for it, decision L48)")
     for sensor, r in record["streams"].items():

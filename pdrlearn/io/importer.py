@@ -93,13 +93,27 @@ def _suffix_unit(column: str) -> tuple[str, str] | None:
 
 
 def _unit_word(text: str) -> str:
-    w = text.strip().lower().replace(" ", "")
+    w = text.strip().lower().replace(" ", "").replace("(", "").replace(")", "")  # m/(s^2): Shimmer's units row
     return _UNIT_ALIASES.get(w, w)
+
+
+#: decision B66: a Shimmer Consensys name ``Shimmer_7A1F_Accel_LN_X_CAL``: the device prefix, the
+#: calibration suffix and the accelerometer range tag (LN low noise, WR wide range) say nothing of the channel
+_VENDOR_PREFIX = re.compile(r"^shimmer[_\s]*[0-9a-f]{2,}[_\s]+", re.IGNORECASE)
+_VENDOR_SUFFIX = re.compile(r"[_\s]+(?:cal|uncal|raw)$", re.IGNORECASE)
+_VENDOR_RANGE = re.compile(r"[_\s]+(?:ln|wr)(?=[_\s])", re.IGNORECASE)
+
+
+def _vendor_name(column: str) -> str:
+    """``Shimmer_7A1F_Accel_LN_X_CAL`` -> ``Accel_X``; other names unchanged (decision B66)."""
+    if not _VENDOR_PREFIX.match(column):
+        return column
+    return _VENDOR_RANGE.sub("", _VENDOR_SUFFIX.sub("", _VENDOR_PREFIX.sub("", column.strip())))
 
 
 def _stem(column: str) -> str:
     """A column name without a trailing unit hint ``(g)`` / ``[deg/s]``, lower case, letters and digits only."""
-    name = _HINT.sub("", column)
+    name = _HINT.sub("", _vendor_name(column))
     if not _HINT.search(column) and _suffix_unit(name):
         name = _suffix_unit(name)[0]
     return re.sub(r"[^a-z0-9]", "", name.lower())
@@ -149,7 +163,8 @@ def guess_time_column(columns: list[str]) -> str | None:
     """The one column named like a time (``timestamp``, ``Time (ms)``, ``t``), else the one whose name starts
     with ``time`` (``timestamp_ms``, ``time_since_start``); None when there is none or several."""
     for hits in ([c for c in columns if _stem(c) in _TIME_NAMES],
-                 [c for c in columns if _stem(c).startswith("time")]):
+                 [c for c in columns if _stem(c).startswith("time")],
+                 [c for c in columns if "timestamp" in _stem(c)]):  # B66: Shimmer_7A1F_Timestamp_Unix_CAL
         if len(hits) == 1:
             return hits[0]
         if hits:
@@ -157,8 +172,10 @@ def guess_time_column(columns: list[str]) -> str | None:
     return None
 
 
-def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str) -> tuple[str, float, str]:
-    """(unit, factor, source) of a kind's values: the given unit, else the header's hint, else SI."""
+def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str,
+                  row_units: dict[str, str] | None = None) -> tuple[str, float, str]:
+    """(unit, factor, source) of a kind's values: the given unit, else the units row's (decision B66), else the
+    header's hint, else SI."""
     table = UNITS[kind]
     by_word = {k.lower(): k for k in table}  # unit words are matched case-insensitively
     si = next(iter(table))
@@ -167,14 +184,15 @@ def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str) 
         if u is None:
             raise DataError(f"{where}: {kind} unit {given!r} is not one of {', '.join(table)}")
         return u, table[u], "given"
-    hints = {by_word.get(_header_unit(c) or "") for c in columns} - {None}
+    row = {by_word.get(_unit_word((row_units or {}).get(c) or "")) for c in columns} - {None}
+    hints = set(row) or {by_word.get(_header_unit(c) or "") for c in columns} - {None}
     if len(hints) > 1:  # never one of them for all the columns: some would be converted wrongly
         raise DataError(f"{where}: the {kind} columns {', '.join(columns)} carry different units "
                         f"({', '.join(sorted(hints))}); convert them to one unit, or give it with "
                         f"{_UNIT_OPTION.get(kind, '--mapping units')}")
     if len(hints) == 1:
         u = hints.pop()
-        return u, table[u], "header"
+        return u, table[u], "units row" if row else "header"
     return si, 1.0, "default"
 
 
@@ -184,7 +202,8 @@ def _time_word(text: str) -> str:
     return _TIME_ALIASES.get(w, w)
 
 
-def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str) -> tuple[str, str]:
+def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
+               row_unit: str | None = None) -> tuple[str, str]:
     """(unit, source) of the timestamps: given, the header's hint, else decision B22's inference (the units
     in which the timestamps give a plausible rate; ms when ms is one of them, as read_session does)."""
     if given is not None:
@@ -192,6 +211,9 @@ def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str) ->
         if u not in _TIME_SCALE:
             raise DataError(f"{where}: time unit {given!r} is not one of {', '.join(_TIME_SCALE)}")
         return u, "given"
+    row = _time_word(row_unit) if row_unit else None
+    if row in _TIME_SCALE:  # decision B66: the units row under the header
+        return row, "units row"
     hint = _header_unit(column)
     hint = _TIME_ALIASES.get(hint, hint) if hint else None
     if hint in _TIME_SCALE:
@@ -360,12 +382,64 @@ def signed_columns(cols: list[str], header: list[str]) -> tuple[list[str], np.nd
     return names, np.array(signs)
 
 
+def _is_number(text) -> bool:
+    t = str(text).strip()
+    return bool(re.fullmatch(r"[+-]?(?:\d+(?:[.,]\d*)?|[.,]\d+)(?:[eE][+-]?\d+)?", t)) or t.lower() in ("nan", "inf")
+
+
+def units_row(df: pd.DataFrame) -> dict[str, str] | None:
+    """Decision B66: column -> text of the first row under the header when it is a units row (``ms``,
+    ``m/(s^2)``, ``deg/s``, as Shimmer Consensys writes): every non-empty cell of it is text that is not a
+    number, and some column is numbers in every later row. Else None."""
+    if len(df) < 2:
+        return None
+    first = df.iloc[0]
+    cells = {c: str(v).strip() for c, v in first.items() if pd.notna(v) and str(v).strip()}
+    if not cells or any(_is_number(v) for v in cells.values()):
+        return None
+    rest = df.iloc[1:]
+    if not any(rest[c].notna().all() and rest[c].map(_is_number).all() for c in rest.columns):
+        return None
+    return cells
+
+
+def _drop_rows(df: pd.DataFrame, n: int) -> pd.DataFrame:
+    """``df`` without its first ``n`` rows, text columns that are now all numbers read as numbers (B24's
+    decimal commas too), as :func:`read_table` would have read the file without those rows."""
+    from pdrlearn.io.plasys import _decimal_comma_columns
+
+    out = df.iloc[n:].reset_index(drop=True).copy()
+    for c in out.columns:
+        col = out[c]
+        if col.dtype.kind in "biufc":
+            continue
+        num = pd.to_numeric(col, errors="coerce")
+        if num[col.notna()].notna().all():
+            out[c] = num
+    _decimal_comma_columns(out)
+    return out
+
+
+def _units_row_hint(df: pd.DataFrame, row: int, first_line: int) -> str:
+    """Decision B66: for a bad value in the first data row, what that row looks like and the option."""
+    if row != 0 or len(df) < 2:
+        return ""
+    cells = [str(v).strip() for v in df.iloc[0] if pd.notna(v) and str(v).strip()]
+    texts = [v for v in cells if not _is_number(v)]
+    if len(texts) * 2 < max(len(cells), 1):
+        return ""
+    show = ", ".join(texts[:4]) + (" ..." if len(texts) > 4 else "")
+    return (f"; line {first_line} ({show}) looks like a units row or a second header: pass --skip-rows 1 to skip "
+            "it (and --acc-unit/--gyro-unit/--time-unit for the units it names)")
+
+
 def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str, list[str]] | None = None,
                time_column: str | None = None, time_unit: str | None = None, units: dict[str, str] | None = None,
                frame=None, sensor_height_m: float | None = None, name: str | None = None,
                origin_s: float | None = None, guess: bool = True,
                subject_height_m: float | None = None, rate_hz: float | None = None,
-               time_format: str | None = None, time_zone: str | None = None) -> tuple[Session, dict]:
+               time_format: str | None = None, time_zone: str | None = None,
+               skip_rows: int | None = None) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -381,6 +455,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
     time_format : a strftime format of a date-time text column (``%d/%m/%Y %H:%M:%S``); needed when the
         day and month cannot be told apart (decision B43)
     time_zone : the zone of date-time texts without one (default UTC, said in the record; decision B43)
+    skip_rows : rows directly under the header that are not data (decision B66); default: a units row
+        (every cell text, e.g. ``ms``, ``m/(s^2)``, ``deg/s``) is recognised, skipped and read for the units
     units : kind -> unit of its values (``acc``: ``m/s2`` | ``g``; ``gyro``: ``rad/s`` | ``deg/s``; ``mag``:
         ``uT`` | ``nT`` | ``gauss``; ``baro``: ``hPa`` | ``Pa`` | ``kPa``); default: the header's hint, else SI
     frame : the unit's axis frame (:func:`parse_frame` input or :class:`AxisFrame`), written to ``frames``
@@ -402,14 +478,33 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
     if unit not in PLACEMENTS:
         raise DataError(f"import: unit {unit!r} is not one of {', '.join(PLACEMENTS)}")
     df = read_table(path)  # B24: ';' / tab separators and decimal commas, as every session file
+    dialect = _csv_dialect(path)
     header = list(df.columns)
     have = ", ".join(header)
+    # decision B66: the file line of data row i is i + first_line (a "sep=" line and skipped rows above it)
+    first_line = 2 + len(dialect.get("skiprows", ()))
+    row_units: dict[str, str] = {}
+    skipped: dict | None = None
+    if skip_rows is not None:
+        n = int(skip_rows)
+        if n < 0 or n >= len(df):
+            raise DataError(f"{where}: --skip-rows {skip_rows} leaves no data rows (the file has {len(df)} under "
+                            "its header)")
+        if n:
+            df, first_line = _drop_rows(df, n), first_line + n
+            skipped = {"rows": n, "source": "given (--skip-rows)"}
+    else:
+        found = units_row(df)
+        if found is not None:
+            row_units = found
+            df, first_line = _drop_rows(df, 1), first_line + 1
+            skipped = {"rows": 1, "source": "units row", "line": first_line - 1, "units": row_units}
     if len(df) == 0:
         raise DataError(f"{where}: no data rows under the header ({have}); re-export the file")
     # decision B62: pandas renames a repeated name ('ax', 'ax.1'), so the header line itself is checked
     # (unnamed columns, e.g. of a header line ending in ',,', are not names)
     raw = [c for c in (str(c).strip() for c in pd.read_csv(path, header=None, nrows=1, dtype=str,
-                                                           keep_default_na=False, **_csv_dialect(path)).iloc[0]) if c]
+                                                           keep_default_na=False, **dialect).iloc[0]) if c]
     if len(set(raw)) != len(raw):
         dup = sorted({c for c in raw if raw.count(c) > 1})
         raise DataError(f"{where}: column name(s) {', '.join(dup)} appear twice; rename them")
@@ -443,15 +538,18 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
             raise DataError(f"{where}: no time column {time_column!r}; the file's columns are: {have}")
     if time_column in {c for v in columns.values() for c in v}:
         raise DataError(f"{where}: column {time_column!r} is mapped as time and as a channel; map it once")
-    if not columns:
-        raise DataError(f"{where}: no accelerometer/gyroscope columns recognised among: {have}; map them with "
-                        "--acc X,Y,Z --gyro X,Y,Z (or --mapping FILE.json)")
     prefix = "f" if unit == "foot" else "w"
-    for kind in columns:
+    for kind in list(columns):
         sensor = prefix + KINDS[kind][0]
+        if sensor not in SENSORS and sources[kind] == "guessed":  # B66: a Shimmer's Mag_X on a foot unit: unused
+            del columns[kind]
+            continue
         if sensor not in SENSORS:
             raise DataError(f"import: the {unit} unit has no {kind} sensor (the {unit} unit's files: "
                             f"{', '.join(n for n, s in SENSORS.items() if s.placement == unit)})")
+    if not columns:
+        raise DataError(f"{where}: no accelerometer/gyroscope columns recognised among: {have}; map them with "
+                        "--acc X,Y,Z --gyro X,Y,Z (or --mapping FILE.json)")
 
     tcol = df[time_column]
     parsed = _datetime_seconds(tcol, where, time_format, time_zone)
@@ -466,11 +564,12 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         bad = np.flatnonzero(~np.isfinite(t_num))
         if bad.size:
             raise DataError(f"{where}: column {time_column!r} has {bad.size} non-numeric or empty value(s) (first at "
-                            f"line {bad[0] + 2}); timestamps must be numbers (or date-times) in every row")
+                            f"line {bad[0] + first_line}); timestamps must be numbers (or date-times) in every row"
+                            + _units_row_hint(df, bad[0], first_line))
         if rate_hz is None and time_unit is not None and _time_word(time_unit) == "samples":
             raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")
         if rate_hz is None:
-            t_unit, t_how = _time_unit(t_num, time_unit, time_column, where)
+            t_unit, t_how = _time_unit(t_num, time_unit, time_column, where, row_units.get(time_column))
     if rate_hz is not None:  # decision B39: the time column holds sample numbers at rate_hz
         r = float(rate_hz)
         if not (math.isfinite(r) and r > 0):
@@ -491,6 +590,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                     "time": {"column": time_column, "unit": t_unit, "source": f"{t_source} column, unit {t_how}",
                              "origin_s": origin},
                     "streams": {}, "dropped_rows": {}}
+    if skipped is not None:  # decision B66
+        record["skipped_rows"] = skipped
     if parsed is not None:  # decision B43: what the date-time text was read as, for the summary
         record["time"]["datetime"] = parsed[1]
     streams: dict[str, Stream] = {}
@@ -503,12 +604,13 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         partial = np.flatnonzero(finite.any(axis=1) & ~keep)
         if partial.size:
             raise DataError(f"{where}: {partial.size} row(s) with some of {', '.join(cols)} empty or not numeric "
-                            f"(first at line {partial[0] + 2}); repair or remove them")
+                            f"(first at line {partial[0] + first_line}); repair or remove them"
+                            + _units_row_hint(df, partial[0], first_line))
         if not keep.any():
             raise DataError(f"{where}: columns {', '.join(cols)} ({kind}) hold no numbers")
         if (~keep).any():  # a multi-rate export leaves a slower sensor's cells empty between its samples
             record["dropped_rows"][sensor] = int((~keep).sum())
-        u, factor, u_src = _resolve_unit(kind, units.get(kind), cols, where)
+        u, factor, u_src = _resolve_unit(kind, units.get(kind), cols, where, row_units)
         t = t_all[keep]
         check_timestamps(t, f"{where} ({time_column})")
         _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where)
@@ -547,7 +649,9 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                        gyro_big_fix=("pass --gyro-unit deg/s" if g["unit"] != "deg/s"
                                      else "check the gyroscope's unit (--gyro-unit rad/s | deg/s)"))
     used = {time_column, *(c for v in columns.values() for c in v)}
-    record["unused_columns"] = [c for c in header if c not in used]
+    # an unnamed empty column (a tab or comma ending every line, as Shimmer writes) is no column (B66)
+    record["unused_columns"] = [c for c in header if c not in used
+                                and not (c.startswith("Unnamed: ") and df[c].isna().all())]
     meta: dict = {"session": name or path.stem, "placement": unit,
                   "units": {s: f"{SENSORS[s].unit} (source {r['unit']}, x {r['factor']:.10g})"
                             for s, r in record["streams"].items()},

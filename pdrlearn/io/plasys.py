@@ -175,14 +175,36 @@ def _csv_dialect(path: Path) -> dict:
     try:
         with open(path, encoding="utf-8", errors="replace") as f:
             header, first = f.readline(), f.readline()
+            declared = _sep_line(header)
+            if declared is not None:  # decision B66: Excel's "sep=X" first line (Shimmer Consensys exports)
+                header, first = first, f.readline()
     except OSError:
         return {}
-    if "," in header:
-        return {}
-    sep = ";" if ";" in header else "\t" if "\t" in header else None
+    skip = {"skiprows": [0]} if declared is not None else {}
+    if declared:
+        sep = declared
+    elif "," in header:
+        return skip
+    else:
+        sep = ";" if ";" in header else "\t" if "\t" in header else None
     if sep is None:
-        return {}
-    return {"sep": sep, **({"decimal": ","} if "," in first and "." not in first else {})}
+        return skip
+    if sep == ",":
+        return skip
+    return {"sep": sep, **skip, **({"decimal": ","} if "," in first and "." not in first else {})}
+
+
+def _sep_line(line: str) -> str | None:
+    """Decision B66: the separator an Excel-style first line ``sep=X`` declares (``sep=\\t`` or a tab is a tab;
+    the line may be quoted); ``""`` when the line is ``sep=`` with nothing recognisable after it (the
+    separator is then detected from the header line); ``None`` when the line is not a ``sep=`` line."""
+    text = line.rstrip("\r\n").lstrip("\ufeff").strip("\"'")
+    if not text.lower().startswith("sep="):
+        return None
+    val = text[4:].strip("\"'")
+    if val.startswith("\\t") or val.startswith("\t"):
+        return "\t"
+    return val[0] if val and val[0] in ",;|" else ""
 
 
 def read_stream(path: str | os.PathLike, name: str | None = None, *, time_scale: float = 1e-3,
