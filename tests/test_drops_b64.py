@@ -50,21 +50,22 @@ def _distance(folder) -> float:
     return track_plasys(read_session(folder)).distance_m
 
 
-def test_scattered_drops_keep_the_clean_distance(tmp_path, monkeypatch):
+def test_scattered_drops_keep_the_clean_distance_when_bridged(tmp_path, caplog):
     clean, truth = _walk(tmp_path, 0.0, "clean")
     dropped, _ = _walk(tmp_path, 0.03, "dropped")
-    d_clean, d_drop = _distance(clean), _distance(dropped)
-    assert abs(d_drop - d_clean) / truth < 0.015  # the rule's bound per walk: 1.5 pp
-    monkeypatch.setattr(plasys, "BRIDGE_DROPS", False)
-    assert (d_clean - _distance(dropped)) / truth > 0.015  # without the bridge the walk comes out short
-    assert _distance(clean) == d_clean  # and the clean copy is the same
+    d_clean = _distance(clean)
+    d_bridged = track_plasys(read_session(dropped, bridge_drops=True)).distance_m
+    assert abs(d_bridged - d_clean) / truth < 0.015  # the rule's bound per walk: 1.5 pp
+    assert track_plasys(read_session(clean, bridge_drops=True)).distance_m == d_clean
+    with caplog.at_level(logging.WARNING):
+        d_default = _distance(dropped)  # B64 not adopted: the default leaves them, and says so
+    assert (d_clean - d_default) / truth > 0.015
+    assert len([r for r in caplog.records if "B64" in r.getMessage()]) == 1
 
 
-def test_clean_session_reads_bit_identical(tmp_path, monkeypatch):
+def test_clean_session_reads_bit_identical(tmp_path):
     clean, _ = _walk(tmp_path, 0.0, "clean")
-    on = read_session(clean)
-    monkeypatch.setattr(plasys, "BRIDGE_DROPS", False)
-    off = read_session(clean)
+    on, off = read_session(clean, bridge_drops=True), read_session(clean)
     for n, s in on.streams.items():
         assert np.array_equal(s.t, off[n].t) and np.array_equal(s.values, off[n].values)
 
@@ -79,21 +80,25 @@ def _with_interval(tmp_path, seconds: float):
     return write_session(s, tmp_path / f"s{seconds:g}")
 
 
-def test_unbridged_drops_are_warned_once(tmp_path, caplog, monkeypatch):
-    folder = _with_interval(tmp_path, 0.3)
-    with caplog.at_level(logging.WARNING):
-        read_session(folder)
-    lines = [r.getMessage() for r in caplog.records if "B64" in r.getMessage()]
-    assert len(lines) == 1
-    assert str(folder) in lines[0] and "fAccelerometer, fGyroscope have 1 interval(s)" in lines[0]
-    assert "longest 0.300 s" in lines[0] and "not bridged" in lines[0]
-    caplog.clear()
-    short = _with_interval(tmp_path, 0.02)  # one sample: bridged, nothing to warn
-    with caplog.at_level(logging.WARNING):
-        assert not read_session(short)["fAccelerometer"].gaps()
-    assert not [r for r in caplog.records if "B64" in r.getMessage()]
-    monkeypatch.setattr(plasys, "BRIDGE_DROPS", False)
+def _b64(caplog) -> list[str]:
+    return [r.getMessage() for r in caplog.records if "B64" in r.getMessage()]
+
+
+def test_dropped_samples_are_warned_once(tmp_path, caplog, monkeypatch):
+    short = _with_interval(tmp_path, 0.02)  # one sample
     with caplog.at_level(logging.WARNING):
         assert read_session(short)["fAccelerometer"].gaps()
-    lines = [r.getMessage() for r in caplog.records if "B64" in r.getMessage()]
-    assert len(lines) == 1 and "bridging is off" in lines[0] and "longest 0.020 s" in lines[0]
+    lines = _b64(caplog)
+    assert len(lines) == 1 and str(short) in lines[0] and "fAccelerometer, fGyroscope have 1 interval(s)" in lines[0]
+    assert "longest 0.020 s" in lines[0] and "not bridged" in lines[0]
+    caplog.clear()
+    with caplog.at_level(logging.WARNING):  # bridged on request: nothing left to warn
+        assert not read_session(short, bridge_drops=True)["fAccelerometer"].gaps()
+        assert not read_session(short, bridge_drops=False)["fAccelerometer"].bridged().gaps()
+    assert not _b64(caplog)
+    monkeypatch.setattr(plasys, "BRIDGE_DROPS", True)
+    longer = _with_interval(tmp_path, 0.3)
+    with caplog.at_level(logging.WARNING):
+        read_session(longer)
+    lines = _b64(caplog)
+    assert len(lines) == 1 and "longest 0.300 s" in lines[0] and "of 0.1-1 s, not bridged" in lines[0]

@@ -305,8 +305,10 @@ def _uniform_clocks(streams: dict[str, Stream], folder: Path) -> None:
                     "as the methods integrate with a fixed sample interval", folder, ", ".join(done), s.rate_hz)
 
 
-#: decision B64: bridge short intervals of dropped samples (up to :data:`MAX_BRIDGED_S`) when a session is read
-BRIDGE_DROPS = True
+#: decision B64: bridge short intervals of dropped samples (up to :data:`MAX_BRIDGED_S`) when a session is read.
+#: Off: its adoption rule failed at 20 Hz (experiments/results/drops_31-36.md); ``read_session(...,
+#: bridge_drops=True)`` asks for it. Off or on, the intervals left as they are get one warning per session
+BRIDGE_DROPS = False
 #: intervals longer than this (s) are B11's gaps, warned by the pipelines (``track.gaps``); shorter unbridged ones
 #: are warned here
 _GAP_WARNED_S = 1.0
@@ -337,14 +339,15 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool) -> Non
                  ", ".join(f"{n} {k} interval(s), {m} sample(s)" for n, k, m in done))
     if left:
         what = (f"of {MAX_BRIDGED_S:g}-1 s, not bridged" if bridge
-                else "of 1 s or less, not bridged (bridging is off)")
+                else "of 1 s or less, not bridged")
         counts = {k for _, k, _ in left}
         count = (str(left[0][1]) if len(counts) == 1
                  else "/".join(str(k) for _, k, _ in left) + " (in that order)")
-        log.warning("%s: %s have %s interval(s) of dropped samples %s (longest %.3f s); the methods "
-                    "integrate with a fixed sample interval, so each shortens the stride it falls in (decision "
-                    "B64) - check the Bluetooth link or re-record", folder, ", ".join(n for n, _, _ in left),
-                    count, what, max(m for _, _, m in left))
+        log.warning("%s: %s have %s interval(s) of dropped samples %s (longest %.3f s): the offline methods "
+                    "integrate with a fixed sample interval, so each shortens the stride it falls in (1 %% of the "
+                    "samples dropped: about -2.5 %% distance, decision B64); `track --streaming` integrates on "
+                    "the timestamps - or check the Bluetooth link and re-record", folder,
+                    ", ".join(n for n, _, _ in left), count, what, max(m for _, _, m in left))
 
 
 #: label time columns that must be filled in every row (the others, e.g. ``tc_ms``, may be blank = unknown)
