@@ -27,10 +27,16 @@ def info(
         pdrlearn info out/sim/D_u1 --json
     """
     from pdrlearn.io import read_session
+    from pdrlearn.io.plasys import BRIDGE_DROPS
+    from pdrlearn.io.session import MAX_BRIDGED_S
 
-    s = read_session(session_dir)
+    s = read_session(session_dir, bridge_drops=False)  # the gaps as recorded (decision B64)
     summary = s.summary()
     summary["frame_checks"] = s.frame_checks()  # warnings are logged (stderr) once, by the checks themselves
+    # decision B64: what the other commands do with the short intervals of dropped samples
+    summary["dropped_samples_bridged"] = {
+        n: sum(g.duration_s <= MAX_BRIDGED_S * (1.0 + 1e-9) for g in st.gaps()) if BRIDGE_DROPS else 0
+        for n, st in s.streams.items() if st.gaps()}
     if as_json:
         print_json(json_safe(summary))
         return
@@ -46,6 +52,11 @@ def info(
         t.add_row(name, d["placement"], f"{d['rate_hz']}", str(d["samples"]), f"{d['duration_s']:.2f}",
                   str(d["gaps"]), f"{d['longest_gap_s']:.3f}")
     c.print(t)
+    bridged = {n: k for n, k in summary["dropped_samples_bridged"].items() if k}
+    if bridged:
+        c.print(f"dropped samples: the other commands bridge the intervals up to {MAX_BRIDGED_S:g} s by linear "
+                f"interpolation when they read the session ({', '.join(f'{n} {k}' for n, k in bridged.items())}; "
+                "decision B64)", markup=False)
     # as meta.json writes it (JSON, pasteable); an undeclared frame is inferred when a command needs it (D8)
     frames = (json.dumps(summary["frames"]) if summary["frames"]
               else "not declared (inferred from the data when a command needs it, decision D8)")

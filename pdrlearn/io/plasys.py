@@ -25,7 +25,7 @@ from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import frames_from_meta
 from pdrlearn.io.sensors import SENSORS, UNIT_IMU, VALUE_UNITS
-from pdrlearn.io.session import STEP_COLUMNS, Session, Stream
+from pdrlearn.io.session import MAX_BRIDGED_S, STEP_COLUMNS, Session, Stream
 from pdrlearn.io.validate import (
     check_columns,
     check_label_times,
@@ -327,6 +327,51 @@ def _uniform_clocks(streams: dict[str, Stream], folder: Path) -> None:
                     "as the methods integrate with a fixed sample interval", folder, ", ".join(done), s.rate_hz)
 
 
+#: decision B64: bridge short intervals of dropped samples (up to :data:`MAX_BRIDGED_S`) when a session is read.
+#: Off: its adoption rule failed at 20 Hz (experiments/results/drops_31-36.md); ``read_session(...,
+#: bridge_drops=True)`` asks for it. Off or on, the intervals left as they are get one warning per session
+BRIDGE_DROPS = False
+#: intervals longer than this (s) are B11's gaps, warned by the pipelines (``track.gaps``); shorter unbridged ones
+#: are warned here
+_GAP_WARNED_S = 1.0
+
+
+def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool) -> None:
+    """Decision B64, in place: with ``bridge``, every stream's intervals of dropped samples up to
+    :data:`MAX_BRIDGED_S` are bridged (:meth:`Stream.bridged`, said at info level); one warning names the
+    streams whose dropped-sample intervals up to 1 s are left as they are (all of them without ``bridge``),
+    as the pipelines integrate with a fixed sample interval and each such interval shortens its stride."""
+    done, left = [], []
+    for name, s in list(streams.items()):
+        gaps = s.gaps()
+        if not gaps:
+            continue
+        if bridge:
+            b = s.bridged()
+            if b is not s:
+                n = sum(g.duration_s <= MAX_BRIDGED_S * (1.0 + 1e-9) for g in gaps)
+                done.append((name, n, len(b) - len(s)))
+                streams[name] = b
+        short = [g for g in gaps if g.duration_s <= _GAP_WARNED_S
+                 and (not bridge or g.duration_s > MAX_BRIDGED_S * (1.0 + 1e-9))]
+        if short:
+            left.append((name, len(short), max(g.duration_s for g in short)))
+    if done:
+        log.info("%s: dropped samples bridged by linear interpolation (decision B64): %s", folder,
+                 ", ".join(f"{n} {k} interval(s), {m} sample(s)" for n, k, m in done))
+    if left:
+        what = (f"of {MAX_BRIDGED_S:g}-1 s, not bridged" if bridge
+                else "of 1 s or less, not bridged")
+        counts = {k for _, k, _ in left}
+        count = (str(left[0][1]) if len(counts) == 1
+                 else "/".join(str(k) for _, k, _ in left) + " (in that order)")
+        log.warning("%s: %s have %s interval(s) of dropped samples %s (longest %.3f s): the offline methods "
+                    "integrate with a fixed sample interval, so each shortens the stride it falls in (1 %% of the "
+                    "samples dropped: about -2.5 %% distance, decision B64); `track --streaming` integrates on "
+                    "the timestamps - or check the Bluetooth link and re-record", folder,
+                    ", ".join(n for n, _, _ in left), count, what, max(m for _, _, m in left))
+
+
 #: label time columns that must be filled in every row (the others, e.g. ``tc_ms``, may be blank = unknown)
 REQUIRED_TIME_COLUMNS = ("start_ms", "end_ms", "ic_ms")
 
@@ -413,9 +458,13 @@ def _looks_like_export(path: Path) -> bool:
     return len(cols) >= 4 and not any(c.strip().endswith("_ms") for c in cols)
 
 
-def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None) -> Session:
+def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None,
+                 bridge_drops: bool | None = None) -> Session:
     """Read a PLASYS session folder. ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
-    uniform clock (decision B33; default :data:`RESAMPLE_JITTER`, off).
+    uniform clock (decision B33; default :data:`RESAMPLE_JITTER`, off). ``bridge_drops``: bridge intervals of
+    dropped samples up to :data:`MAX_BRIDGED_S` by linear interpolation and warn about the longer ones up to 1 s
+    (decision B64; default :data:`BRIDGE_DROPS`); ``False`` reads the samples as recorded, without the warning
+    (``pdrlearn info`` lists the gaps itself).
 
     Raises
     ------
@@ -472,6 +521,8 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         _check_declared_rate(streams, rate, meta_path)
     if RESAMPLE_JITTER if uniform_clock is None else uniform_clock:
         _uniform_clocks(streams, folder)
+    if bridge_drops is not False:
+        _bridge_drops(streams, folder, BRIDGE_DROPS if bridge_drops is None else True)
     if not streams:
         inner = sorted(p.name for p in folder.iterdir() if p.is_dir() and any(p.glob("[fw]*.csv")))
         if inner:  # a folder of sessions (what `train` takes) given to a one-session command

@@ -41,6 +41,11 @@ LENGTH_CLASSES = ("short", "normal", "long")  # thesis ch.6.3
 #: (D7: 4 and 5 ms intervals, SD 7 % of the period) have jitter 0; +-1 ms at 100 Hz gives 0.08, +-2 ms 0.16.
 MAX_JITTER = 0.1
 
+#: decision B64: an interval of dropped samples up to this long (s) is bridged when a session is read
+#: (:meth:`Stream.bridged`): one lost sample at PLASYS' 20 Hz, a tenth of a stride, under a stance phase;
+#: longer ones are left as they are (warned; over 1 s they are B11's gaps)
+MAX_BRIDGED_S = 0.1
+
 
 def _jittered(regular: np.ndarray, med: float) -> bool:
     """The regular intervals (0.5-1.5 medians) vary by more than :data:`MAX_JITTER` of the median and take more
@@ -174,17 +179,40 @@ class Stream:
     def duration_s(self) -> float:
         return float(self.t[-1] - self.t[0]) if len(self) else 0.0
 
+    def _gap_limit(self, factor: float = 1.5) -> float:
+        """The interval (s) over which :meth:`gaps` counts a gap."""
+        p = self.period_s
+        limit = factor * p
+        if self.jittered:  # B33: +-4 ms at 100 Hz puts 7 % of the intervals over 1.5 periods, no sample missing
+            limit = max(limit, p * (1.0 + 4.0 * self.jitter))
+        return limit
+
     def gaps(self, factor: float = 1.5) -> list[Gap]:
         """Intervals longer than ``factor`` nominal periods (dropped samples)."""
         if len(self) < 3:
             return []
         dt = np.diff(self.t)
-        p = self.period_s
-        limit = factor * p
-        if self.jittered:  # B33: +-4 ms at 100 Hz puts 7 % of the intervals over 1.5 periods, no sample missing
-            limit = max(limit, p * (1.0 + 4.0 * self.jitter))
-        idx = np.flatnonzero(dt > limit)
+        idx = np.flatnonzero(dt > self._gap_limit(factor))
         return [Gap(float(self.t[i]), float(dt[i])) for i in idx]
+
+    def bridged(self, max_s: float = MAX_BRIDGED_S) -> Stream:
+        """Decision B64: each interval of dropped samples (a :meth:`gaps` interval) at most ``max_s`` long gets
+        round(interval / period) - 1 samples at equal spacing inside it, linearly interpolated between its two
+        recorded samples (the pipelines integrate with ``dt = 1 / rate``, B33, so a missing sample took one
+        period out of its stride). The recorded samples are kept as they are; longer intervals stay. ``self``
+        (the same object) when no interval is bridged."""
+        if len(self) < 3:
+            return self
+        d = np.diff(self.t)
+        idx = np.flatnonzero((d > self._gap_limit()) & (d <= max_s * (1.0 + 1e-9)))
+        if not idx.size:
+            return self
+        k = np.maximum(np.rint(d[idx] / self.period_s).astype(np.int64) - 1, 1)  # samples missing in each
+        i = np.repeat(idx, k)
+        frac = np.concatenate([np.arange(1, m + 1) / (m + 1) for m in k])
+        t_new = self.t[i] + frac * d[i]
+        v_new = self.values[i] + frac[:, None] * (self.values[i + 1] - self.values[i])
+        return Stream(self.name, np.insert(self.t, i + 1, t_new), np.insert(self.values, i + 1, v_new, axis=0))
 
     def slice(self, t0: float, t1: float) -> Stream:
         """Samples with ``t0 <= t < t1``."""

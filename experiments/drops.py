@@ -1,0 +1,129 @@
+"""Decision B64: scattered dropped foot samples (``pdrlearn simulate --drop-rate``) and the read-time bridge.
+
+Per user: a 20 m straight walk (``--scenario walk --length-m 20``) and a 20 m curved route, at 20 Hz (default)
+and 100 Hz, copies with drop rate 0, 0.01, 0.03 (same walk and seed: only the drop mask differs). Each copy is
+tracked with ``pdrlearn track`` (no model) offline with bridging off and on (``io.plasys.BRIDGE_DROPS``) and
+with ``--streaming`` (bridging on and off). The real recordings (datasets/real) are tracked with bridging off and on and
+their steps.csv / trajectory.csv compared byte for byte, as are the 0 % copies.
+
+Usage::
+
+    OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/drops.py --users 31-36 --out /tmp/drops
+
+Writes experiments/results/drops_<users>.md and .csv.
+"""
+
+# ruff: noqa: E501
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import shutil
+from pathlib import Path
+
+import pandas as pd
+from typer.testing import CliRunner
+
+import pdrlearn.io.plasys as P
+from pdrlearn.cli import app
+
+ROUTES = {"straight": ["--scenario", "walk", "--length-m", "20"],
+          "curved": ["--route", "straight:5, curve:90:3, straight:4, curve:-90:3, straight:2"]}
+RATES = (20.0, 100.0)
+DROPS = (0.0, 0.01, 0.03)
+REAL = Path(__file__).resolve().parents[1] / "datasets" / "real"
+
+
+def cli(args: list[str]) -> tuple[int, str]:
+    r = CliRunner().invoke(app, [str(a) for a in args])
+    return r.exit_code, r.output
+
+
+def track(d: Path, out: Path, bridge: bool, streaming: bool = False) -> dict:
+    P.BRIDGE_DROPS = bridge
+    shutil.rmtree(out, ignore_errors=True)
+    code, text = cli(["track", d, "--out", out, "--json"] + (["--streaming"] if streaming else []))
+    if code:
+        raise SystemExit(f"track {d}: {text[-500:]}")
+    summary = json.loads(text[text.index("{"):])
+    summary["warned"] = "B64" in text
+    return summary
+
+
+def same(a: Path, b: Path) -> bool:
+    return all((a / f).read_bytes() == (b / f).read_bytes() for f in ("steps.csv", "trajectory.csv"))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--users", default="31-36")
+    ap.add_argument("--out", default="/tmp/drops")
+    ap.add_argument("--no-real", action="store_true")
+    a = ap.parse_args()
+    lo, hi = (int(x) for x in a.users.split("-"))
+    root = Path(a.out)
+    root.mkdir(parents=True, exist_ok=True)
+    logging.disable(logging.INFO)
+    rows = []
+    for u in range(lo, hi + 1):
+        for route, spec in ROUTES.items():
+            for rate in RATES:
+                for drop in DROPS:
+                    d = root / f"u{u}_{route}_{rate:g}_{drop:g}"
+                    shutil.rmtree(d, ignore_errors=True)
+                    code, text = cli(["simulate", *spec, "--user-seed", u, "--rate", rate, "--drop-rate", drop,
+                                      "--out", d, "--json"])
+                    if code:
+                        raise SystemExit(f"simulate {d}: {text[-500:]}")
+                    sim = json.loads(text[text.index("{"):])
+                    row = {"user": u, "route": route, "rate_hz": rate, "drop_rate": drop,
+                           "dropped": sim.get("dropped_samples", 0), "truth_m": sim["distance_m"]}
+                    for tag, bridge, streaming in (("off", False, False), ("on", True, False),
+                                                   ("stream_off", False, True), ("stream_on", True, True)):
+                        s = track(d, root / f"{d.name}_{tag}", bridge, streaming)
+                        row[f"err_{tag}"] = s.get("distance_error_pct")
+                        row[f"f1_{tag}"] = s.get("step_f1")
+                        row[f"mae_{tag}"] = s.get("stride_length_mae_pct")
+                        row[f"warned_{tag}"] = s["warned"]
+                    row["identical"] = same(root / f"{d.name}_off", root / f"{d.name}_on")
+                    rows.append(row)
+                    print(json.dumps(row), flush=True)
+    df = pd.DataFrame(rows)
+    real = []
+    if not a.no_real:
+        for d in sorted(p for p in REAL.iterdir() if p.is_dir()):
+            track(d, root / f"real_{d.name}_off", False)
+            track(d, root / f"real_{d.name}_on", True)
+            real.append((d.name, same(root / f"real_{d.name}_off", root / f"real_{d.name}_on")))
+            print(real[-1], flush=True)
+    res = Path(__file__).resolve().parent / "results"
+    df.to_csv(res / f"drops_{a.users}.csv", index=False)
+    lines = [f"# Dropped samples (decision B64), users {a.users}", "",
+             "Distance error % of `pdrlearn track` (no model) vs the simulated truth; off/on = bridging off/on "
+             "(offline), stream = `track --streaming`. Median |error| over the walks per drop rate.", "",
+             "| drop | walks | median abs err off | median abs err on | worst (abs err - abs err of 0 % copy) off | worst on | stream off median | stream on median | F1 off min | F1 on min | F1 on < off | warned off | warned on | 0 % copies identical |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    base = df[df.drop_rate == 0].set_index(["user", "route", "rate_hz"])
+    for drop in DROPS:
+        g = df[df.drop_rate == drop].set_index(["user", "route", "rate_hz"])
+        worse = {t: (g[f"err_{t}"].abs() - base[f"err_{t}"].abs()).max() for t in ("off", "on")}
+        lines.append(f"| {drop:g} | {len(g)} | {g.err_off.abs().median():.3f} | {g.err_on.abs().median():.3f} | "
+                     f"{worse['off']:+.3f} | {worse['on']:+.3f} | {g.err_stream_off.abs().median():.3f} | "
+                     f"{g.err_stream_on.abs().median():.3f} | {g.f1_off.min():.3f} | {g.f1_on.min():.3f} | "
+                     f"{int((g.f1_on < g.f1_off - 1e-12).sum())} | {int(g.warned_off.sum())} | {int(g.warned_on.sum())} | "
+                     f"{bool(g.identical.all()) if drop == 0 else '-'} |")
+    lines += ["", "Per rate and route (median distance error %, signed):", "",
+              "| drop | rate | route | off | on | stream off | stream on |", "|---|---|---|---|---|---|---|"]
+    for (drop, rate, route), g in df.groupby(["drop_rate", "rate_hz", "route"]):
+        lines.append(f"| {drop:g} | {rate:g} | {route} | {g.err_off.median():+.3f} | {g.err_on.median():+.3f} | "
+                     f"{g.err_stream_off.median():+.3f} | {g.err_stream_on.median():+.3f} |")
+    if real:
+        lines += ["", "Real recordings (datasets/real), steps.csv and trajectory.csv byte-identical off vs on: "
+                  + ", ".join(f"{n} {ok}" for n, ok in real)]
+    (res / f"drops_{a.users}.md").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
