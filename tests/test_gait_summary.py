@@ -78,6 +78,13 @@ def test_waist_summary_from_the_step_times():
     assert g["walking_time_s"] == pytest.approx(2.1 + 1.0)  # the 3.9 s between the sequences is a stop
     assert g["gait_speed_mps"] == pytest.approx(6 * 0.6 / 3.1)
     assert g["n_straight_strides"] == 5  # the turning step left out
+    # W27: a fragment merged into its neighbour (its length 0, the neighbour's the whole step) and its
+    # neighbours give no step time or stride through them; the walking time and gait speed keep them
+    m = t.assign(merged=[False, False, False, False, False, False, True, False],
+                 length_m=[0.6, 0.6, 0.6, 0.6, 0.0, 1.2, 0.0, 0.0])
+    gm = gait_summary(m)
+    assert gm["median_step_time_s"] == pytest.approx(0.5) and gm["median_speed_mps"] == pytest.approx(1.2)
+    assert gm["n_stride_times"] == 3 and gm["gait_speed_mps"] == pytest.approx(g["gait_speed_mps"])
 
 
 @pytest.mark.skipif(not (REAL / "mobgap_HA001_Test5_Trial1").exists(), reason="bundled recording missing")

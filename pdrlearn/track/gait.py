@@ -146,18 +146,25 @@ def waist_gait_summary(steps: pd.DataFrame) -> dict:
     most half of :data:`MAX_STRIDE_S`), ``median_cadence_spm`` = median of 60 / step time,
     ``median_speed_mps`` = median of ``length_m`` / step time, ``median_stride_time_s`` from contact k to
     k + 2 inside a walking sequence (the same foot's next contact, W47), the straight steps those with
-    ``turning`` 0 (the pipeline's turn flag; every step when the table has none)."""
+    ``turning`` 0 (the pipeline's turn flag; every step when the table has none). A W27 fragment (``merged``)
+    and its two neighbours give no step time (the neighbour carries the merged step's length over part of
+    its time), nor a stride time through them; walking time and gait speed keep them."""
     from pdrlearn.waist.gait_rules import positional_strides
 
     st, en = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
     has_next = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(st), bool)
     dt = en - st
-    ok = has_next & np.isfinite(dt) & (dt > 0) & (dt <= MAX_STRIDE_S / 2 + 1e-9)
+    # W27: a fragment merged into a neighbour (``merged``) gives its length to that neighbour, whose own row
+    # then spans only part of the merged step: the fragment and both its neighbours leave the per-step values
+    frag = steps["merged"].to_numpy(bool) if "merged" in steps else np.zeros(len(st), bool)
+    touched = frag | np.concatenate([frag[1:], [False]]) | np.concatenate([[False], frag[:-1]])
+    ok = has_next & ~touched & np.isfinite(dt) & (dt > 0) & (dt <= MAX_STRIDE_S / 2 + 1e-9)
     step = np.where(ok, dt, np.nan)
     length = np.abs(steps["length_m"].to_numpy(float)) if "length_m" in steps else np.full(len(st), np.nan)
     with np.errstate(invalid="ignore", divide="ignore"):
         cadence, speed = 60.0 / step, length / step
     k0, k2 = positional_strides(has_next)
+    k0, k2 = k0[~(touched[k0] | touched[k0 + 1])], k2[~(touched[k0] | touched[k0 + 1])]  # no spurious contact
     stride = st[k2] - st[k0] if len(k0) else np.zeros(0)
     stride = stride[(stride > 0) & (stride <= MAX_STRIDE_S + 1e-9)]
     out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": _median(stride),
