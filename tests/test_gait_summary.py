@@ -18,8 +18,10 @@ TUG = "stand:3, straight:3, turn:180, straight:3, turn:180, stand:3"
 
 
 @pytest.fixture(autouse=True)
-def _quiet():
-    logging.getLogger("pdrlearn").setLevel(logging.ERROR)
+def _quiet():  # restored after each test: a level left behind hides other tests' warnings
+    logging.disable(logging.WARNING)
+    yield
+    logging.disable(logging.NOTSET)
 
 
 def test_walking_time_splits_at_stops_and_gap_rows():
