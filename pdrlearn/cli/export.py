@@ -343,6 +343,9 @@ def run(
                    + (f", floors up {summary['floors_up']} / down {summary['floors_down']}"
                       if summary.get("floors_up") or summary.get("floors_down") else "")
                    + (f" -> {out}" if out else ""))
+        if summary.get("gait_speed_mps") is not None:  # decision E48: track's L79 line, what run can give
+            typer.echo(f"gait speed {summary['gait_speed_mps']:.2f} m/s ({summary['distance_m']:.2f} m in "
+                       f"{summary['walking_time_s']:.2f} s walking)")
 
 
 #: Step table columns in the order of ``pdrlearn track`` (decision B14); the runtime's extra columns follow.

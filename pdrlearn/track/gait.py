@@ -203,6 +203,21 @@ def waist_gait_summary(steps: pd.DataFrame) -> dict:
     return out
 
 
+def streamed_gait_summary(steps: pd.DataFrame) -> dict:
+    """Decision E48: the L79 keys a streamed foot table (``pdrlearn run``, ``track --streaming``: rest-to-rest
+    strides with ``start_s``, ``end_s``, ``length_m`` and ``gap_s``, no initial contact) can give:
+    ``walking_time_s`` and ``gait_speed_mps`` from :func:`walking_time` (a gap row, ``gap_s`` > 0, ends a
+    piece, L67/E46). The streamed strides have no initial contact (their ``event_s`` is the stride's end), so no
+    stride time, cadence or per-stride speed (L66), and so no ``median_speed_straight_mps``: it stays None and
+    ``n_straight_strides`` 0."""
+    n = len(steps)
+    valid = (steps["gap_s"].to_numpy(float) == 0) if "gap_s" in steps else np.ones(n, bool)
+    out: dict = {}
+    _speed_fields(out, steps["length_m"].to_numpy(float), steps["start_s"].to_numpy(float),
+                  steps["end_s"].to_numpy(float), valid, np.full(n, np.nan), np.zeros(n, bool))
+    return out
+
+
 def gait_summary(steps: pd.DataFrame) -> dict:
     """Medians over the strides that have them: ``median_stride_time_s``, ``median_cadence_spm``,
     ``median_speed_mps`` and ``n_stride_times`` (how many strides have a stride time); decision L79 adds
@@ -210,15 +225,18 @@ def gait_summary(steps: pd.DataFrame) -> dict:
     ``median_speed_straight_mps`` (strides turning less than 15 deg) and ``n_straight_strides``; decision L73:
     ``median_stance_time_s``, ``median_swing_time_s``, ``median_stance_pct`` and ``n_stance_times`` (None / 0
     without the toe-off columns). A waist
-    table (every row ``unit`` waist, with ``has_next``) gets :func:`waist_gait_summary` (W70). A table
-    without either (``--streaming``, ``pdrlearn run``) gets the same keys, None and 0, so every summary has
-    them (``run``'s summary carries every key of ``track``'s, B14)."""
+    table (every row ``unit`` waist, with ``has_next``) gets :func:`waist_gait_summary` (W70); a streamed foot
+    table (``--streaming``, ``pdrlearn run``: no gait columns) :func:`streamed_gait_summary` (E48: walking time
+    and gait speed only). Every table gets the same keys, None and 0 where it cannot give them, so every
+    summary has them (``run``'s summary carries every key of ``track``'s, B14)."""
     out: dict = {k: (0 if k.startswith("n_") else None) for k in SUMMARY_KEYS}
     if not len(steps):
         return out
     if "stride_time_s" not in steps:
         if "has_next" in steps and "unit" in steps and (steps["unit"] == "waist").all():
             out.update(waist_gait_summary(steps))
+        elif "unit" in steps and (steps["unit"] == "foot").all() and {"start_s", "end_s", "length_m"} <= set(steps):
+            out.update(streamed_gait_summary(steps))
         return out
     st = steps["stride_time_s"].to_numpy(float)
     out["n_stride_times"] = int(np.isfinite(st).sum())
