@@ -58,9 +58,11 @@ def test_foot_summary_gait_speed_and_straight_strides():
     assert g["n_straight_strides"] == 5
     assert g["median_speed_straight_mps"] == pytest.approx(1.2 / 1.1)
     assert g["median_speed_mps"] < g["median_speed_straight_mps"]
-    # a table without gait columns (streaming, run) gets the keys, None / 0 (B14)
+    # a table without gait columns (streaming, run) gets the keys (B14): walking time and gait speed from its
+    # rest-to-rest strides (E48), None / 0 for what needs an initial contact
     none = gait_summary(t.drop(columns=["stride_time_s", "cadence_spm", "speed_mps", "turn_angle_rad"]))
-    assert set(SUMMARY_KEYS) <= set(none) and none["gait_speed_mps"] is None and none["n_stride_times"] == 0
+    assert set(SUMMARY_KEYS) <= set(none) and none["n_stride_times"] == 0 and none["median_speed_straight_mps"] is None
+    assert none["walking_time_s"] == g["walking_time_s"] and none["gait_speed_mps"] == g["gait_speed_mps"]
 
 
 def test_waist_summary_from_the_step_times():
