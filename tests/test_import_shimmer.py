@@ -198,3 +198,15 @@ def test_a_truthful_frame_and_one_the_data_cannot_judge_are_written(walk10, tmp_
     assert main(["import", str(SHIMMER), "--out", str(tmp_path / "b"), "--frames", "x=forward,y=up,z=left"]) == 0
     capsys.readouterr()
     assert read_session(tmp_path / "b").frames["foot"].to_dict() == {"x": "forward", "y": "up", "z": "left"}
+
+
+def test_force_frame_without_frames_is_refused(tmp_path, capsys):
+    """B69: --force-frame without a frame to keep was silently ignored; now one line naming the fix."""
+    err = _refused([str(PLAIN), "--force-frame"], tmp_path / "o", capsys)
+    assert err.startswith(f"{PLAIN}: --force-frame keeps a --frames entry the data contradict (B67)")
+    assert "add --frames AXES" in err and "drop --force-frame" in err
+    # a frame from the --mapping file is one to keep: accepted
+    m = tmp_path / "map.json"
+    m.write_text(json.dumps({"frames": {"x": "forward", "y": "up", "z": "right"}}))
+    assert main(["import", str(PLAIN), "--mapping", str(m), "--force-frame", "--out", str(tmp_path / "m")]) == 0
+    assert read_session(tmp_path / "m").frames["foot"].to_dict() == {"x": "forward", "y": "up", "z": "right"}

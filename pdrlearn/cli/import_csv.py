@@ -142,6 +142,9 @@ def import_command(
     )
 
     m = _mapping_file(mapping)
+    if force_frame and frames is None and m.get("frames") is None:  # decision B69: it would be ignored
+        raise DataError(f"{csv}: --force-frame keeps a --frames entry the data contradict (B67), and none is given; "
+                        "add --frames AXES (e.g. x=forward,y=up,z=right) or drop --force-frame")
     unit = unit or m.get("unit") or "foot"
     columns: dict[str, list[str]] = {}
     for kind in KINDS:
