@@ -285,7 +285,7 @@ def run(
             raise DataError("run: give a SESSION_DIR or --protocol FILE")
         from pdrlearn.io import read_session
 
-        session = read_session(session_dir)
+        session = read_session(session_dir, streamed=True)  # decision L77: its drops warning
         rates = {n: st.rate_hz for n, st in session.streams.items()}
         where = f"session '{session.name}'"
         use, said = _units_for(bundle, units, set(session.streams), where)

@@ -101,7 +101,7 @@ def track(
         except (OSError, json.JSONDecodeError) as exc:
             raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
                             "pass the file written by `pdrlearn calibrate`") from None
-    session = read_session(session_dir)
+    session = read_session(session_dir, streamed=streaming)  # L77: the drops warning of its path
     if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)

@@ -331,16 +331,33 @@ def _uniform_clocks(streams: dict[str, Stream], folder: Path) -> None:
 #: Off: its adoption rule failed at 20 Hz (experiments/results/drops_31-36.md); ``read_session(...,
 #: bridge_drops=True)`` asks for it. Off or on, the intervals left as they are get one warning per session
 BRIDGE_DROPS = False
+#: decision L77: the B64 warning of the streamed paths (``pdrlearn run``, ``track --streaming``), which integrate
+#: each stride on its timestamps (E36) and keep the distance (L78: median |distance error| 0.370 % at 1 %, 0.691 %
+#: at 3 % drops, 0.289 % clean); an interval over 0.25 s still counts as one sample interval there (E36)
+STREAMED_DROPS = ("%s: %s have %s interval(s) of dropped samples of 1 s or less (longest %.3f s): integrated on "
+                  "the timestamps here, so they cost little distance (decisions B64, L78; an interval over 0.25 s "
+                  "counts as one sample interval, E36); if they are many, check the Bluetooth link")
+
+
+def _per_stream(left: list[tuple[str, int, float]]) -> str:
+    """The count of :data:`STREAMED_DROPS`: one number when every stream has as many intervals, else each
+    stream's, in the order named (as the offline warning counts them)."""
+    counts = [k for _, k, _ in left]
+    return str(counts[0]) if len(set(counts)) == 1 else "/".join(map(str, counts)) + " (in that order)"
+
+
 #: intervals longer than this (s) are B11's gaps, warned by the pipelines (``track.gaps``); shorter unbridged ones
 #: are warned here
 _GAP_WARNED_S = 1.0
 
 
-def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool) -> None:
+def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, streamed: bool = False) -> None:
     """Decision B64, in place: with ``bridge``, every stream's intervals of dropped samples up to
     :data:`MAX_BRIDGED_S` are bridged (:meth:`Stream.bridged`, said at info level); one warning names the
     streams whose dropped-sample intervals up to 1 s are left as they are (all of them without ``bridge``),
-    as the pipelines integrate with a fixed sample interval and each such interval shortens its stride."""
+    as the pipelines integrate with a fixed sample interval and each such interval shortens its stride.
+    ``streamed``: the caller integrates on the timestamps (``pdrlearn run``, ``track --streaming``); the
+    warning says what that does with them instead (:data:`STREAMED_DROPS`, decision L77)."""
     done, left = [], []
     for name, s in list(streams.items()):
         gaps = s.gaps()
@@ -359,6 +376,10 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool) -> Non
     if done:
         log.info("%s: dropped samples bridged by linear interpolation (decision B64): %s", folder,
                  ", ".join(f"{n} {k} interval(s), {m} sample(s)" for n, k, m in done))
+    if left and streamed:  # decision L77: the streamed paths integrate on the timestamps (E36, L78)
+        log.warning(STREAMED_DROPS, folder, ", ".join(n for n, _, _ in left), _per_stream(left),
+                    max(m for _, _, m in left))
+        return
     if left:
         what = (f"of {MAX_BRIDGED_S:g}-1 s, not bridged" if bridge
                 else "of 1 s or less, not bridged")
@@ -459,12 +480,13 @@ def _looks_like_export(path: Path) -> bool:
 
 
 def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None,
-                 bridge_drops: bool | None = None) -> Session:
+                 bridge_drops: bool | None = None, streamed: bool = False) -> Session:
     """Read a PLASYS session folder. ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
     uniform clock (decision B33; default :data:`RESAMPLE_JITTER`, off). ``bridge_drops``: bridge intervals of
     dropped samples up to :data:`MAX_BRIDGED_S` by linear interpolation and warn about the longer ones up to 1 s
     (decision B64; default :data:`BRIDGE_DROPS`); ``False`` reads the samples as recorded, without the warning
-    (``pdrlearn info`` lists the gaps itself).
+    (``pdrlearn info`` lists the gaps itself). ``streamed``: the caller integrates on the timestamps
+    (``pdrlearn run``, ``track --streaming``): that warning says so (decision L77).
 
     Raises
     ------
@@ -522,7 +544,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     if RESAMPLE_JITTER if uniform_clock is None else uniform_clock:
         _uniform_clocks(streams, folder)
     if bridge_drops is not False:
-        _bridge_drops(streams, folder, BRIDGE_DROPS if bridge_drops is None else True)
+        _bridge_drops(streams, folder, BRIDGE_DROPS if bridge_drops is None else True, streamed=streamed)
     if not streams:
         inner = sorted(p.name for p in folder.iterdir() if p.is_dir() and any(p.glob("[fw]*.csv")))
         if inner:  # a folder of sessions (what `train` takes) given to a one-session command
