@@ -386,13 +386,15 @@ class FootDisplacement:
             bias[s] = gyr[a:b].mean(axis=0)
         return bias
 
-    def _gap_yaw(self, acc: np.ndarray, gyr: np.ndarray, t: np.ndarray, i0: np.ndarray, i1: np.ndarray,
+    def _gap_yaw(self, acc: np.ndarray, gyr: np.ndarray, t: float | np.ndarray, i0: np.ndarray, i1: np.ndarray,
                  bias: np.ndarray | None) -> np.ndarray:
         """Decision L28: heading change (rad, CCW) between the end of the previous stride and the start of
         each stride (0 for the first and for contiguous strides): the rate about gravity (the mean specific
         force over the gap; the foot is loaded) integrated over the samples that are not still by the fixed
         rule (|w| >= ``zaru_gyro_rad_s``): a foot pivoting on the ground turns, a still foot does not (ZARU)."""
         out = np.zeros(len(i0))
+        if np.ndim(t) == 0:  # a sample period: the sample clock; else the clock (n,) s (decision L83)
+            t = np.arange(len(gyr)) * float(t)
         for k in range(1, len(i0)):
             a, b = int(i1[k - 1]), int(i0[k])
             if b - a < 2:
