@@ -115,13 +115,19 @@ def test_gaitmap_ms_turnarounds_are_not_negative():
 
 
 # -- L66: gait columns -------------------------------------------------------------------------------------
-def test_stride_times_only_between_touching_strides_with_their_own_events():
+def test_stride_times_between_consecutive_strides_with_their_own_events():
     from pdrlearn.track.gait import stride_times
 
     st = stride_times([0.0, 1.0, 2.0, 3.5, 4.5], [1.0, 2.0, 3.0, 4.5, 5.5], [0.8, 1.9, 2.8, 4.3, 5.35],
                       valid=[True, True, True, True, True])
-    assert np.isnan(st[0]) and np.isnan(st[3])  # first stride; a rest before stride 3 (3.0 -> 3.5)
-    np.testing.assert_allclose(st[[1, 2, 4]], [1.1, 0.9, 1.05])
+    assert np.isnan(st[0])  # the first stride has no previous contact
+    # decision L80: a short rest before stride 3 (3.0 -> 3.5, a turn) keeps its IC-to-IC time (L66 dropped it)
+    np.testing.assert_allclose(st[1:], [1.1, 0.9, 1.5, 1.05])
+    # a stop: contacts more than 3 s apart (Mobilise-D's longest stride) give none; an invalid row none
+    st = stride_times([0.0, 1.0, 5.0, 6.0], [1.0, 2.0, 6.0, 7.0], [0.8, 1.8, 5.8, 6.8], valid=[1, 1, 1, 0])
+    assert np.isnan(st[2]) and np.isnan(st[3]) and st[1] == pytest.approx(1.0)
+    st = stride_times([0.0, 0.9], [1.0, 2.0], [0.5, 1.6])  # overlapping windows: not the next stride
+    assert np.isnan(st).all()
     st = stride_times([0.0, 1.0, 2.0], [1.0, 2.0, 3.0], [0.8, 2.5, 2.8])  # the 2nd event outside its stride
     assert np.isnan(st).all()
 

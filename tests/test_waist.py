@@ -338,7 +338,7 @@ def test_ellipse_axis_properties(theta, phase, a, ratio, rot):
 
 
 def test_gyro_heading_integrate_stops_option():
-    """A 90-degree turn made while standing between two walks is kept only with integrate_stops."""
+    """A 90-degree turn made while standing between two walks is kept only with integrate_stops (default, W73)."""
     from pdrlearn.track.waist import track_waist
 
     a = synth_session(duration=12.0, rest=2.0)
@@ -351,8 +351,8 @@ def test_gyro_heading_integrate_stops_option():
     s = Session(name="stop-turn", streams={"wAccelerometer": Stream("wAccelerometer", t, acc),
                                            "wGyroscope": Stream("wGyroscope", t, gyr)},
                 meta=a.meta, frames=a.frames)
-    off = track_waist(s, pipeline="waist-pendulum")
-    on = track_waist(s, pipeline="waist-pendulum", integrate_stops=True)
+    off = track_waist(s, pipeline="waist-pendulum", integrate_stops=False)
+    on = track_waist(s, pipeline="waist-pendulum")  # the default since W73
     last = on.steps[on.steps["has_next"]].iloc[-1]["heading_rad"]
     assert abs(last - np.pi / 2) < np.radians(10)
     assert abs(off.steps[off.steps["has_next"]].iloc[-1]["heading_rad"]) < np.radians(10)

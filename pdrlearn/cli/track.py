@@ -218,6 +218,13 @@ def track(
                # decision C16: how much of the walk the model's training data covered
                + (f"; {100 * summary['out_of_domain_fraction']:.0f} % of the strides outside the model's "
                   "training range" if summary.get("out_of_domain_fraction") is not None else ""))
+    if summary.get("gait_speed_mps") is not None:  # decisions L79 / W70: the clinical walking speed
+        straight = summary.get("median_speed_straight_mps")
+        cad = summary.get("median_cadence_spm")
+        typer.echo(f"gait speed {summary['gait_speed_mps']:.2f} m/s ({summary['distance_m']:.2f} m in "
+                   f"{summary['walking_time_s']:.2f} s walking)"
+                   + (f", straight strides {straight:.2f} m/s" if straight is not None else "")
+                   + (f", cadence {cad:.1f} steps/min" if cad is not None else ""))
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json")
 
 

@@ -158,7 +158,11 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
             rows.append({"run": str(p.parent.relative_to(root)) or ".", **d})
         df = pd.DataFrame(rows)
         key = [c for c in TRACK_COLUMNS if c in df.columns]
-        sections.append(Section("Tracking", tables=[("trajectory summaries", df[key])]))
+        tables = [("trajectory summaries", df[key])]
+        gait = [c for c in GAIT_COLUMNS if c in df.columns]  # decision L81: the gait parameters, own table
+        if len(gait) > 1 and df[gait[1:]].notna().any().any():
+            tables.append(("gait parameters", df[gait]))
+        sections.append(Section("Tracking", tables=tables))
     images = find("*.png")
     if images:
         by_kind: dict[str, list[Path]] = {}
@@ -182,10 +186,16 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
 #: class agreement of the tracked strides (L53) and the storeys climbed / descended (L64) show when the summary
 #: has them.
 TRACK_COLUMNS = ("run", "pipeline", "distance_m", "distance_ref_m", "n_steps", "distance_error_pct",
+                 "distance_error_scope", "distance_in_ref_bouts_m",
                  "final_position_error_m", "altitude_change_m", "altitude_change_ref_m", "final_altitude_error_m",
                  "final_position_error_3d_m", "floors_up", "floors_down", "stride_length_mae_pct",
                  "stride_length_mae_pct_straight", "step_f1", "altitude_error_pct", "terrain_agreement",
                  "direction_agreement", "length_class_agreement")
+#: The gait parameters of each summary (decisions L66, L79, W70), a table of their own (decision L81): the
+#: clinical walking speed (distance / walking time), the straight strides' median speed, cadence, stride time.
+GAIT_COLUMNS = ("run", "walking_time_s", "gait_speed_mps", "median_speed_straight_mps", "median_speed_mps",
+                "median_cadence_spm", "median_stride_time_s", "median_step_time_s", "n_stride_times",
+                "n_straight_strides")
 
 _CSS = """body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;color:#222}
 table{border-collapse:collapse;margin:.6em 0 1.4em}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}

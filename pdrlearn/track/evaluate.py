@@ -256,6 +256,7 @@ def _ground_truth(result: TrackResult, session: Session, out: dict) -> None:
     out["distance_ref_m"] = ref
     out["distance_ref_source"] = source
     out["distance_error_pct"] = 100.0 * (out["distance_m"] - ref) / ref
+    out["distance_error_scope"] = "whole track"  # decision W71: what distance_error_pct compares
     gt = session.trajectory
     tr = result.trajectory
     if gt is not None and len(gt) > 1 and len(tr):
@@ -421,6 +422,10 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
     if "distance_error_pct" in m:  # the bouts, not the sum of overlapping stride lengths, are the reference
         out["distance_ref_m"] = m["bout_reference_m"]
         out["distance_ref_source"] = "bouts.csv length_m (distance tracked inside the bouts)"
+        # decision W71: the error compares the distance tracked inside the reference bouts (not distance_m)
+        # with distance_ref_m; say so next to the number
+        out["distance_error_scope"] = "reference bouts"
+        out["distance_in_ref_bouts_m"] = m["bout_distance_m"]
     for k in ("stride_length_matched", "stride_length_composed", "stride_length_mae_pct",
               "stride_length_mae_pct_straight", "stride_length_mae_pct_turns", "distance_matched_error_pct"):
         out.pop(k, None)  # step rows are not strides: the stride metric of waist_metrics replaces these

@@ -9,9 +9,14 @@ rest, not initial contact to toe-off; against the mocap of the gaitmap level wal
 Decision L73: with ``toe_off`` (``track --toe-off``, not the default: its adoption rule was not met) the toe-off
 from the foot gyroscope (``pdrlearn.track.toeoff``) splits the stride time into ``stance_time_s`` and
 ``swing_time_s`` (:data:`TOE_OFF_COLUMNS`).
-A value that cannot be had is NaN (an empty cell in steps.csv): no stride time at a bout
-start (the previous stride does not end where this one starts: a rest longer than the stride bounds' reach, a
-gap row, the first stride), or when either stride's event lies outside its own window.
+A value that cannot be had is NaN (an empty cell in steps.csv): no stride time for the first stride, after a
+gap row, when the initial contacts are more than :data:`MAX_STRIDE_S` apart (a stop, not a stride), or when
+either stride's event lies outside its own window. A short rest between two strides (the foot standing a
+little longer in a turn) no longer drops the stride time (decision L80).
+
+The summary (decision L79, waist W70): ``walking_time_s`` (the strides' span, first start to last end, less
+the rests over :data:`MAX_STRIDE_S` between strides), ``gait_speed_mps`` (``distance / walking_time_s``) and
+``median_speed_straight_mps`` (the median speed of the strides that turn less than :data:`STRAIGHT_MAX_RAD`).
 """
 
 from __future__ import annotations
@@ -25,12 +30,21 @@ GAIT_COLUMNS = ("stride_time_s", "cadence_spm", "speed_mps", "turn_angle_rad")
 TOE_OFF_COLUMNS = ("tc_s", "stance_time_s", "swing_time_s", "stance_pct")
 #: two strides touch when the first ends within this of the second's start (s; both are samples of one clock)
 TOUCH_S = 1e-6
+#: longest IC-to-IC time that is a stride (s): Mobilise-D stride selection, mobgap StrideSelection mobilised
+#: default (duration <= 3 s, pdrlearn.waist.gait_rules.MAX_STRIDE_S); also the longest rest inside a walk
+#: (mobgap WbAssembly MaxBreakCriteria(max_break_s=3)) for ``walking_time_s`` (decisions L79, L80)
+MAX_STRIDE_S = 3.0
+#: a stride turning less than this (|turn_angle_rad|) is straight for ``median_speed_straight_mps`` (L79):
+#: 15 deg, above the straight-pass strides' -10..+11 deg and below the turnaround strides' 20..121 deg of L66
+STRAIGHT_MAX_RAD = float(np.deg2rad(15.0))
 
 
-def stride_times(start_s, end_s, event_s, valid=None) -> np.ndarray:
-    """(B,) s: ``event_s[i] - event_s[i-1]`` where stride ``i-1`` ends where stride ``i`` starts, both events lie
-    inside their own windows, both strides are ``valid`` (not across a gap) and the difference is positive;
-    else NaN (decision L66: initial contact to initial contact, the gait-lab stride time)."""
+def stride_times(start_s, end_s, event_s, valid=None, *, max_s: float = MAX_STRIDE_S) -> np.ndarray:
+    """(B,) s: ``event_s[i] - event_s[i-1]`` where stride ``i-1`` ends no later than stride ``i`` starts, both
+    events lie inside their own windows, both strides are ``valid`` (not across a gap: a gap row between two
+    strides is an invalid row, L67) and the difference is positive and at most ``max_s``; else NaN
+    (decision L66: initial contact to initial contact, the gait-lab stride time; decision L80: a rest between
+    the strides shorter than a stop keeps it - L66 required the strides to touch)."""
     st, en, ev = (np.asarray(v, dtype=float) for v in (start_s, end_s, event_s))
     n = len(st)
     out = np.full(n, np.nan)
@@ -39,9 +53,9 @@ def stride_times(start_s, end_s, event_s, valid=None) -> np.ndarray:
     ok = (ev >= st) & (ev <= en) & np.isfinite(ev)
     if valid is not None:
         ok &= np.asarray(valid, dtype=bool)
-    touch = np.abs(st[1:] - en[:-1]) <= TOUCH_S
+    follows = st[1:] >= en[:-1] - TOUCH_S  # the next stride of the foot, not an overlapping window
     d = ev[1:] - ev[:-1]
-    good = touch & ok[1:] & ok[:-1] & (d > 0)
+    good = follows & ok[1:] & ok[:-1] & (d > 0) & (d <= max_s + 1e-9)
     out[1:] = np.where(good, d, np.nan)
     return out
 
@@ -103,31 +117,122 @@ def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=Non
     return table
 
 
+def walking_time(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRIDE_S) -> float | None:
+    """Decision L79: the time spent walking (s): the rows' span from the first start to the last end, split
+    where a row starts more than ``max_break_s`` after the previous row's end (a stop: mobgap WbAssembly
+    MaxBreakCriteria(max_break_s=3)) or where an invalid row (a gap row, L67; a waist contact without a next
+    one) lies between two rows, the pieces summed. Rows with no positive duration are left out. None without
+    a row."""
+    st, en = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
+    ok = np.isfinite(st) & np.isfinite(en) & (en > st)
+    if valid is not None:
+        ok &= np.asarray(valid, dtype=bool)
+    total, t0, t1 = 0.0, None, None
+    for i in range(len(st)):
+        if not ok[i]:  # an invalid row between two rows ends the piece (its time is not known to be walking)
+            if t0 is not None and np.isfinite(en[i]) and en[i] > st[i]:
+                total, t0, t1 = total + (t1 - t0), None, None
+            continue
+        if t0 is not None and st[i] - t1 > max_break_s + 1e-9:
+            total, t0 = total + (t1 - t0), None
+        if t0 is None:
+            t0 = st[i]
+        t1 = max(en[i], t1) if t1 is not None else en[i]
+    if t0 is not None:
+        total += t1 - t0
+    return float(total) if ok.any() else None
+
+
+def _median(v) -> float | None:
+    v = np.asarray(v, dtype=float)
+    v = v[np.isfinite(v)]
+    return float(np.median(v)) if len(v) else None
+
+
+#: every summary carries these keys (None / 0 when the table cannot give them, B14)
+SUMMARY_KEYS = ("n_stride_times", "median_stride_time_s", "median_cadence_spm", "median_speed_mps",
+                "median_step_time_s", "walking_time_s", "gait_speed_mps", "median_speed_straight_mps",
+                "n_straight_strides", "n_stance_times", "median_stance_time_s", "median_swing_time_s",
+                "median_stance_pct")
+
+
+def _speed_fields(out: dict, length, start_s, end_s, valid, speed, straight) -> None:
+    """``walking_time_s``, ``gait_speed_mps`` (the rows' |length| summed over ``valid`` rows / walking time),
+    ``median_speed_straight_mps`` (median ``speed`` where ``straight``) and ``n_straight_strides``."""
+    wt = walking_time(start_s, end_s, valid)
+    dist = float(np.nansum(np.abs(np.asarray(length, dtype=float))[np.asarray(valid, dtype=bool)]))
+    out["walking_time_s"] = wt
+    out["gait_speed_mps"] = dist / wt if wt else None
+    sp = np.where(np.asarray(straight, dtype=bool), np.asarray(speed, dtype=float), np.nan)
+    out["n_straight_strides"] = int(np.isfinite(sp).sum())
+    out["median_speed_straight_mps"] = _median(sp)
+
+
+def waist_gait_summary(steps: pd.DataFrame) -> dict:
+    """Decision W70: the gait summary of a waist steps table (one row per initial contact, ``start_s`` this
+    contact, ``end_s`` the next, ``has_next``): step time ``end_s - start_s`` of a contact with a next one (at
+    most half of :data:`MAX_STRIDE_S`), ``median_cadence_spm`` = median of 60 / step time,
+    ``median_speed_mps`` = median of ``length_m`` / step time, ``median_stride_time_s`` from contact k to
+    k + 2 inside a walking sequence (the same foot's next contact, W47), the straight steps those with
+    ``turning`` 0 (the pipeline's turn flag; every step when the table has none). A W27 fragment (``merged``)
+    and its two neighbours give no step time (the neighbour carries the merged step's length over part of
+    its time), nor a stride time through them; walking time and gait speed keep them."""
+    from pdrlearn.waist.gait_rules import positional_strides
+
+    st, en = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    has_next = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(st), bool)
+    dt = en - st
+    # W27: a fragment merged into a neighbour (``merged``) gives its length to that neighbour, whose own row
+    # then spans only part of the merged step: the fragment and both its neighbours leave the per-step values
+    frag = steps["merged"].to_numpy(bool) if "merged" in steps else np.zeros(len(st), bool)
+    touched = frag | np.concatenate([frag[1:], [False]]) | np.concatenate([[False], frag[:-1]])
+    ok = has_next & ~touched & np.isfinite(dt) & (dt > 0) & (dt <= MAX_STRIDE_S / 2 + 1e-9)
+    step = np.where(ok, dt, np.nan)
+    length = np.abs(steps["length_m"].to_numpy(float)) if "length_m" in steps else np.full(len(st), np.nan)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cadence, speed = 60.0 / step, length / step
+    k0, k2 = positional_strides(has_next)
+    k0, k2 = k0[~(touched[k0] | touched[k0 + 1])], k2[~(touched[k0] | touched[k0 + 1])]  # no spurious contact
+    stride = st[k2] - st[k0] if len(k0) else np.zeros(0)
+    stride = stride[(stride > 0) & (stride <= MAX_STRIDE_S + 1e-9)]
+    out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": _median(stride),
+                 "median_cadence_spm": _median(cadence), "median_speed_mps": _median(speed),
+                 "median_step_time_s": _median(step)}
+    straight = (steps["turning"].to_numpy(float) == 0) if "turning" in steps else np.ones(len(st), bool)
+    _speed_fields(out, length, st, en, has_next, speed, straight)
+    return out
+
+
 def gait_summary(steps: pd.DataFrame) -> dict:
     """Medians over the strides that have them: ``median_stride_time_s``, ``median_cadence_spm``,
-    ``median_speed_mps`` and ``n_stride_times`` (how many strides have a stride time); decision L73:
+    ``median_speed_mps`` and ``n_stride_times`` (how many strides have a stride time); decision L79 adds
+    ``walking_time_s``, ``gait_speed_mps`` (distance / walking time: the clinical walking speed),
+    ``median_speed_straight_mps`` (strides turning less than 15 deg) and ``n_straight_strides``; decision L73:
     ``median_stance_time_s``, ``median_swing_time_s``, ``median_stance_pct`` and ``n_stance_times`` (None / 0
-    without the toe-off columns). A table without the
-    gait columns (waist pipelines, ``--streaming``, ``pdrlearn run``) gets the same keys, None and 0, so every
-    summary has them (``run``'s summary carries every key of ``track``'s, B14)."""
-    empty = {"n_stride_times": 0, "median_stride_time_s": None, "median_cadence_spm": None,
-             "median_speed_mps": None, "n_stance_times": 0, "median_stance_time_s": None,
-             "median_swing_time_s": None, "median_stance_pct": None}
-    if "stride_time_s" not in steps or not len(steps):
-        return empty
+    without the toe-off columns). A waist
+    table (every row ``unit`` waist, with ``has_next``) gets :func:`waist_gait_summary` (W70). A table
+    without either (``--streaming``, ``pdrlearn run``) gets the same keys, None and 0, so every summary has
+    them (``run``'s summary carries every key of ``track``'s, B14)."""
+    out: dict = {k: (0 if k.startswith("n_") else None) for k in SUMMARY_KEYS}
+    if not len(steps):
+        return out
+    if "stride_time_s" not in steps:
+        if "has_next" in steps and "unit" in steps and (steps["unit"] == "waist").all():
+            out.update(waist_gait_summary(steps))
+        return out
     st = steps["stride_time_s"].to_numpy(float)
-    ok = np.isfinite(st)
-    out: dict = {**empty, "n_stride_times": int(ok.sum())}
+    out["n_stride_times"] = int(np.isfinite(st).sum())
     for key, col in (("median_stride_time_s", "stride_time_s"), ("median_cadence_spm", "cadence_spm"),
                      ("median_speed_mps", "speed_mps")):
-        v = steps[col].to_numpy(float)
-        v = v[np.isfinite(v)]
-        out[key] = float(np.median(v)) if len(v) else None
+        out[key] = _median(steps[col].to_numpy(float))
+    valid = (steps["gap_s"].to_numpy(float) == 0) if "gap_s" in steps else np.ones(len(st), bool)
+    turn = np.abs(steps["turn_angle_rad"].to_numpy(float))
+    _speed_fields(out, steps["length_m"].to_numpy(float), steps["start_s"].to_numpy(float),
+                  steps["end_s"].to_numpy(float), valid, steps["speed_mps"].to_numpy(float),
+                  turn < STRAIGHT_MAX_RAD)
     if "stance_time_s" in steps:  # decision L73
         out["n_stance_times"] = int(np.isfinite(steps["stance_time_s"].to_numpy(float)).sum())
         for key, col in (("median_stance_time_s", "stance_time_s"), ("median_swing_time_s", "swing_time_s"),
                          ("median_stance_pct", "stance_pct")):
-            v = steps[col].to_numpy(float)
-            v = v[np.isfinite(v)]
-            out[key] = float(np.median(v)) if len(v) else None
+            out[key] = _median(steps[col].to_numpy(float))
     return out

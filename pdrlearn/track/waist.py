@@ -36,10 +36,13 @@ from pdrlearn.waist.events import (
 )
 from pdrlearn.waist.heading import (
     HARMONIC_METHODS,
+    UNTRACKED_TURN_WARN_DEG,
     TurnClassifier,
     average_two,
     gyro_headings,
     harmonic_directions,
+    untracked_turn,
+    untracked_turn_message,
 )
 from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params
 from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
@@ -245,9 +248,27 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
     return steps.assign(heading_rad=_fill_nan_headings(headings, 0.0), turning=turning, mean_rate_rps=mean_rate)
 
 
+def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str,
+                            integrate_stops: bool, warnings: list[str]) -> float | None:
+    """Decision W74: the gyro heading's largest shortfall against the waist's integrated yaw (deg, over the steps
+    that carry a length), and one warning when it reaches :data:`UNTRACKED_TURN_WARN_DEG`; None for the
+    harmonic headings (absolute directions, nothing is dropped between steps)."""
+    if method != "gyro" or not len(steps):
+        return None
+    moving = steps["has_next"].to_numpy(bool) & (steps["length_m"].to_numpy(float) > 0)
+    if not moving.any():
+        return 0.0
+    diff, t_end = untracked_turn(imu, steps["event_s"].to_numpy(float)[:1], steps["end_s"].to_numpy(float)[moving],
+                                 steps["heading_rad"].to_numpy(float)[moving], bias_rps=p.gyro_bias_rps)
+    deg = float(np.degrees(diff))
+    if abs(deg) >= UNTRACKED_TURN_WARN_DEG:
+        warnings.append(untracked_turn_message(deg, t_end, integrate_stops))
+    return deg
+
+
 #: pipeline options a PARAMS.json may set under "options" (so ``pdrlearn track --params`` reaches them)
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
-                   "resolve_signs": True, "integrate_stops": False, "turn_factor": True, "rhythm": True,
+                   "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none"}
 
 
@@ -281,7 +302,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         ``"gyro"`` (default of waist-pendulum, seed 003)
     resolve_signs : harmonic headings: fix 180-degree sign errors with the unit's yaw (W13)
     integrate_stops : gyro heading: also integrate the rate between walking sequences (turns made while
-        standing); seed 003 integrates only during walking, so the default is False
+        standing or during undetected steps); default True since decision W73 (seed 003 integrates only during
+        walking: ``False``)
     turn_factor : shorten steps during which the pelvis turns, ``x cos(turn)`` (decision W19; the papers'
         models assume straight steps); default True
     rhythm : offline IC detector (pendulum, and the PLL's IC refinement): complete walking sequences at
@@ -341,6 +363,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = _step_lengths(steps, imu, p, pipeline, thr, turn_factor=bool(o["turn_factor"]),
                           merge_fragments=bool(o["merge_fragments"]), length_smoothing=smoothing)
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops)
+    untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
     n = len(steps)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"
     info = {
@@ -353,6 +376,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "warnings": warnings,
         "n_contacts": int(n),
         "rate_hz": imu.fs,
+        "untracked_turn_deg": untracked,
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)

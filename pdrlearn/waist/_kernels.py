@@ -36,6 +36,13 @@ def rolling_std(x: np.ndarray, fs: float, *, window_s: float = GATE_WINDOW_S,
     return np.sqrt(np.maximum(m2 - m * m, 0.0))
 
 
+def rolling_mean(x: np.ndarray, fs: float, *, window_s: float = GATE_WINDOW_S, causal: bool = True) -> np.ndarray:
+    """Mean of ``x`` over the sliding window of :func:`rolling_std` (same length, same causal / centred origin)."""
+    x = np.asarray(x, dtype=np.float64)
+    w = max(3, int(round(window_s * fs)) | 1)
+    return uniform_filter1d(x, w, mode="nearest", origin=(w - 1) // 2 if causal else 0)
+
+
 def motion_state(sigma_z: np.ndarray, *, walk_threshold: float, run_threshold: float = RUN_THRESHOLD_MPS2
                  ) -> np.ndarray:
     """0 = stopped, 1 = walking, 2 = running from the rolling std of vertical acceleration (m/s^2)."""

@@ -31,11 +31,16 @@ def causal_lowpass_delay_s(cutoff_hz: float, fs: float, *, at_hz: float = 1.0) -
     return float(gd[0]) / fs
 
 
-def walking_gate(imu: WaistIMU, *, walk_threshold: float = WALK_THRESHOLD_MPS2, causal: bool = False
-                 ) -> np.ndarray:
-    """Samples where the motion state (seed 000 sec. II-B) is walking or running."""
+def walking_gate(imu: WaistIMU, *, walk_threshold: float = WALK_THRESHOLD_MPS2, causal: bool = False,
+                 turn_gate_rps: float | None = None) -> np.ndarray:
+    """Samples where the motion state (seed 000 sec. II-B) is walking or running; with ``turn_gate_rps``
+    (decision 28 of docs/decisions/steps.md) also where the levelled vertical rate's mean over the same window
+    reaches it in absolute value (the pelvis turns: a turn on the spot bounces too little for the std)."""
     sigma = K.rolling_std(imu.acc_v, imu.fs, causal=causal)
-    return K.motion_state(sigma, walk_threshold=walk_threshold) > 0
+    gate = K.motion_state(sigma, walk_threshold=walk_threshold) > 0
+    if turn_gate_rps is not None:
+        gate |= np.abs(K.rolling_mean(imu.w_z, imu.fs, causal=causal)) >= turn_gate_rps
+    return gate
 
 
 def steps_from_events(t: np.ndarray, ic: np.ndarray, fc: np.ndarray | None = None, *,
@@ -100,6 +105,9 @@ class InitialContactDetector:
         gradient-boosted trees (:mod:`pdrlearn.waist.learned`, shipped as JSON) score it from local features
         and the rule detector's outcomes, and the kept candidates are at least the shortest step (0.3 s)
         apart. ``True`` = the shipped model; a path = a model file of the same form
+    turn_gate_rps : the motion gate is also open where the pelvis's mean yaw rate over the gate window reaches
+        this (rad/s; decision 28 of docs/decisions/steps.md: 0.45, the turning component of W7's mixture, finds
+        a TUG's turning steps but lowers MS001 Test11's F1, not adopted); ``None`` (default) = the std gate alone (W4)
 
     Attributes
     ----------
@@ -116,8 +124,10 @@ class InitialContactDetector:
                  lobe_ratio: float | None = None, weight_shift: bool = True, end_steps: bool = True,
                  ap_above_mean: bool = False, learned: bool | str = False,
                  delay_s: float | None = K.DECISION_DELAY_S,
-                 hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S):
+                 hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S,
+                 turn_gate_rps: float | None = None):
         self.realtime = realtime
+        self.turn_gate_rps = turn_gate_rps
         self.delay_s = delay_s
         self.hop_s = hop_s
         self.history_s = history_s
@@ -137,7 +147,8 @@ class InitialContactDetector:
     def _offline(self, imu: WaistIMU) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The offline detector's contacts (zero-lag filters, sequence rules) on ``imu``."""
         fs = imu.fs
-        gate = walking_gate(imu, walk_threshold=self.walk_threshold, causal=False)
+        gate = walking_gate(imu, walk_threshold=self.walk_threshold, causal=False,
+                            turn_gate_rps=self.turn_gate_rps)
         ap = lowpass(imu.acc_ap, min(self.ap_cutoff_hz, 0.4 * fs), fs, causal=False)
         ic, fc, vmax = K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
                                     fir_order_s=self.fir_order_s, rhythm=self.rhythm, max_step_s=self.max_step_s,
@@ -165,7 +176,8 @@ class InitialContactDetector:
                 len(imu.t), fs, lambda lo, hi: self._offline(_window(imu, lo, hi)), delay_s=self.delay_s,
                 hop_s=self.hop_s, history_s=self.history_s, final=final)
         elif self.realtime:
-            gate = walking_gate(imu, walk_threshold=self.walk_threshold, causal=True)
+            gate = walking_gate(imu, walk_threshold=self.walk_threshold, causal=True,
+                                turn_gate_rps=self.turn_gate_rps)
             cut = min(self.ap_cutoff_hz, 0.4 * fs)
             ap = lowpass(imu.acc_ap, cut, fs, causal=True)
             ic, fc, ref = K.ic_realtime(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,

@@ -191,3 +191,38 @@ def gyro_headings(imu: WaistIMU, events: np.ndarray, *, classifier: TurnClassifi
             h += dpsi[k]
         heading[k] = h
     return heading, turning
+
+
+#: Decision W74: a gyro-headed waist track warns when the waist's own yaw, integrated from the first contact to the
+#: end of a step, and that step's heading differ by this much (deg) at some step: a turn the headings dropped
+UNTRACKED_TURN_WARN_DEG = 60.0
+
+
+def untracked_turn(imu: WaistIMU, events: np.ndarray, ends: np.ndarray, headings: np.ndarray, *,
+                   bias_rps: float = 0.0, cum: np.ndarray | None = None) -> tuple[float, float]:
+    """Decision W74: the largest difference (rad, signed: gyroscope minus heading) between the vertical rate
+    integrated from ``events[0]`` to each step's end ``ends[k]`` and the step's gyro heading ``headings[k]``
+    (rad, 0 at the first contact, as :func:`gyro_headings` and the pipelines' ``integrate_stops`` give it), and
+    the time (s) of that step's end. ``(0.0, nan)`` without steps. The heading drops a turn made during
+    undetected steps or while standing (``integrate_stops`` off), or on strides the turn classifier calls
+    straight; an uncalibrated gyroscope bias adds ``bias x time``."""
+    ev, en = np.asarray(events, np.float64), np.asarray(ends, np.float64)
+    hd = np.unwrap(np.asarray(headings, np.float64))
+    if ev.size == 0 or en.size == 0:
+        return 0.0, float("nan")
+    w = imu.w_z - bias_rps
+    cum = K.rate_integral(imu.t, w) if cum is None else cum
+    diff = np.asarray(K.integrate_rate(imu.t, w, np.full(en.shape, ev[0]), en, cum=cum)) - hd
+    k = int(np.argmax(np.abs(diff)))
+    return float(diff[k]), float(en[k])
+
+
+def untracked_turn_message(diff_deg: float, t_s: float, integrate_stops: bool) -> str:
+    """The one warning line of decision W74 (shared with :class:`pdrlearn.waist.live.WaistTracker`)."""
+    cause = ("turns made during undetected steps or while standing are dropped with integrate_stops off: set "
+             "\"options\": {\"integrate_stops\": true} in the PARAMS.json (or integrate_stops=True)"
+             if not integrate_stops else
+             "a turn on strides the turn classifier called straight, or a gyroscope bias: fit both on a walk with "
+             "a full turn ('pdrlearn calibrate --turns 1 --fit-turns')")
+    return (f"the step headings miss {diff_deg:+.0f} deg of the waist gyroscope's turn by {t_s:.1f} s "
+            f"(decision W74): the positions after it are off; {cause}")

@@ -199,6 +199,8 @@ class WaistTracker:
         self._stop_cum: float | None = None  # running integral at the last sequence's closing contact
         self._seen_seq = False
         self._n_gaps = 0
+        self._cum_first: float | None = None  # running integral at the first contact (W74)
+        self._untracked_warned = False
 
     def state_size(self) -> int:
         """Numbers the tracker holds to process what comes (not :attr:`steps`): its sample buffer and pending rows,
@@ -386,6 +388,20 @@ class WaistTracker:
             self.warnings.append(w)
             log.warning("live waist tracker: %s", w)
 
+    def _check_untracked(self, row: dict, h: float) -> None:
+        """Decision W74, as ``track_waist``: one warning when a step's heading ``h`` (rad, before the start rotation)
+        misses :data:`pdrlearn.waist.heading.UNTRACKED_TURN_WARN_DEG` of the yaw turned since the first contact."""
+        from pdrlearn.waist.heading import UNTRACKED_TURN_WARN_DEG, untracked_turn_message
+
+        if self._untracked_warned or self._cum_first is None:
+            return
+        diff = np.degrees(float(np.interp(row["end"], self._bt, self._bc)) - self._cum_first - h)
+        if abs(diff) >= UNTRACKED_TURN_WARN_DEG:
+            self._untracked_warned = True
+            msg = untracked_turn_message(float(diff), float(row["end"]), bool(self.options["integrate_stops"]))
+            self.warnings.append(msg)
+            log.warning("live waist tracker: %s", msg)
+
     @staticmethod
     def _horizon(k: int) -> int:
         """W64: the last row row ``k``'s report reads."""
@@ -421,6 +437,8 @@ class WaistTracker:
         p, o = self.params, self.options
         row = self._rows[k]
         s = row["seq"]
+        if self._cum_first is None:
+            self._cum_first = float(np.interp(row["t"], self._bt, self._bc))
         if k == s:  # a walking sequence starts: track_waist's ``current`` (and the turn made standing, W: opt)
             if self._seen_seq and o["integrate_stops"] and self._stop_cum is not None:
                 self._cur_gyro += float(np.interp(row["t"], self._bt, self._bc)) - self._stop_cum
@@ -477,6 +495,7 @@ class WaistTracker:
                 if o["turn_factor"]:
                     length *= float(K.turning_step_factor(np.array([dyaw]))[0])
             head = h
+            self._check_untracked(row, h)
         else:  # a contact closing its sequence: no displacement, the sequence's last heading
             head = self._h_seq if self._h_seq is not None else self._cur_out
             if self._h_seq is not None:
