@@ -77,6 +77,20 @@ def stride_index(starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.n
     return np.minimum(idx, ends[:, None]), mask
 
 
+def _step(dt):
+    """Decision L83: a sample interval ``dt`` is a scalar (s) or per stride step (B, L - 1) s; shaped to multiply
+    (B, L - 1, k) arrays."""
+    return dt if np.ndim(dt) == 0 else np.asarray(dt, dtype=float)[:, :, None]
+
+
+def step_clock(dt, B: int, L: int) -> np.ndarray:
+    """Time (B, L) s since each stride's start for per-step intervals ``dt`` (B, L - 1) (decision L83); the
+    sample index times ``dt`` for a scalar."""
+    if np.ndim(dt) == 0:
+        return np.broadcast_to(np.arange(L, dtype=float)[None, :] * float(dt), (B, L))
+    return np.concatenate([np.zeros((B, 1)), np.cumsum(np.asarray(dt, dtype=float), axis=1)], axis=1)
+
+
 def level_rotation(g_body: np.ndarray) -> Rotation:
     """Minimal rotations (batch) taking each body gravity vector ``g_body`` (B, 3) to +z."""
     g = np.asarray(g_body, dtype=float)
@@ -89,7 +103,7 @@ def level_rotation(g_body: np.ndarray) -> Rotation:
     return Rotation.from_rotvec(unit * ang[:, None])
 
 
-def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float, idx: np.ndarray, mask: np.ndarray,
+def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float | np.ndarray, idx: np.ndarray, mask: np.ndarray,
               g_body: np.ndarray, gyro_bias: np.ndarray | None = None,
               init: Rotation | None = None, q: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Rotate each stride's specific force into its navigation frame and remove gravity.
@@ -97,7 +111,7 @@ def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float, idx: np.ndarray, mask
     Parameters
     ----------
     acc, gyr : (n, 3) FLU specific force (m/s^2) and angular rate (rad/s)
-    dt : sample period (s)
+    dt : sample period (s), or the interval of every stride step (B, L - 1) s (decision L83: the timestamps)
     idx, mask : from :func:`stride_index`
     g_body : (B, 3) gravity as measured at each stride's start (its direction sets the initial attitude,
         its norm is the local gravity that is removed, so a sensor scale error cancels)
@@ -124,7 +138,7 @@ def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float, idx: np.ndarray, mask
     return a_nav, np.arctan2(f[:, 1], f[:, 0])
 
 
-def stride_attitude(gyr: np.ndarray, dt: float, idx: np.ndarray, mask: np.ndarray, g_body: np.ndarray,
+def stride_attitude(gyr: np.ndarray, dt: float | np.ndarray, idx: np.ndarray, mask: np.ndarray, g_body: np.ndarray,
                     gyro_bias: np.ndarray | None = None, init: Rotation | None = None) -> np.ndarray:
     """Attitude (B, L, 4) quaternions [w, x, y, z] body -> navigation frame of every stride sample:
     the gravity (or ``init``) attitude at the stride start propagated with the gyroscope (midpoint rate,
@@ -135,7 +149,7 @@ def stride_attitude(gyr: np.ndarray, dt: float, idx: np.ndarray, mask: np.ndarra
     bias = np.zeros((B, 3)) if gyro_bias is None else np.asarray(gyro_bias, dtype=float)
     # body-frame rotation increments of every step (midpoint rate), as quaternions [w, x, y, z]
     w = 0.5 * (gyr[idx[:, :-1]] + gyr[idx[:, 1:]]) - bias[:, None, :]
-    w = np.where(mask[:, 1:, None], w, 0.0) * dt
+    w = np.where(mask[:, 1:, None], w, 0.0) * _step(dt)
     ang = np.linalg.norm(w, axis=2, keepdims=True)
     half = 0.5 * ang
     dq = np.concatenate([np.cos(half), w * np.where(ang > 1e-12, np.sin(half) / np.maximum(ang, 1e-300), 0.5)],
@@ -212,9 +226,9 @@ def dedrift_tilt(q: np.ndarray, acc: np.ndarray, idx: np.ndarray, mask: np.ndarr
     return _qmul(dq, q)
 
 
-def _cumtrapz(x: np.ndarray, dt: float) -> np.ndarray:
+def _cumtrapz(x: np.ndarray, dt: float | np.ndarray) -> np.ndarray:
     out = np.zeros_like(x)
-    out[:, 1:] = np.cumsum(0.5 * (x[:, 1:] + x[:, :-1]) * dt, axis=1)
+    out[:, 1:] = np.cumsum(0.5 * (x[:, 1:] + x[:, :-1]) * _step(dt), axis=1)
     return out
 
 
@@ -229,7 +243,7 @@ def zupt_mask(stance: np.ndarray, idx: np.ndarray, mask: np.ndarray) -> np.ndarr
     return z
 
 
-def double_integrate(a_nav: np.ndarray, mask: np.ndarray, dt: float, *, zupt_end: bool = True,
+def double_integrate(a_nav: np.ndarray, mask: np.ndarray, dt: float | np.ndarray, *, zupt_end: bool = True,
                      zupt: np.ndarray | None = None, clock: np.ndarray | None = None) -> np.ndarray:
     """Displacement (B, 3) of each stride by double integration (equations of motion, thesis ch.7.2.1).
 
@@ -248,7 +262,7 @@ def double_integrate(a_nav: np.ndarray, mask: np.ndarray, dt: float, *, zupt_end
     return p[np.arange(B), mask.sum(axis=1) - 1]
 
 
-def zupt_velocity(a_nav: np.ndarray, mask: np.ndarray, dt: float, *, zupt_end: bool = True,
+def zupt_velocity(a_nav: np.ndarray, mask: np.ndarray, dt: float | np.ndarray, *, zupt_end: bool = True,
                   zupt: np.ndarray | None = None, clock: np.ndarray | None = None) -> np.ndarray:
     """Velocity (B, L, 3) m/s of each stride sample with the ZUPT drift correction of
     :func:`double_integrate` (same arguments); zero on padded samples."""
@@ -258,7 +272,11 @@ def zupt_velocity(a_nav: np.ndarray, mask: np.ndarray, dt: float, *, zupt_end: b
     if zupt_end:
         if zupt is None:
             v_end = v[np.arange(B), n - 1]
-            frac = np.minimum(np.arange(L)[None, :] / np.maximum(n - 1, 1)[:, None], 1.0)
+            if np.ndim(dt) == 0:
+                frac = np.minimum(np.arange(L)[None, :] / np.maximum(n - 1, 1)[:, None], 1.0)
+            else:  # decision L83: the time fraction on the timestamps
+                tau = step_clock(dt, B, L)
+                frac = np.minimum(tau / np.maximum(tau[np.arange(B), n - 1], 1e-300)[:, None], 1.0)
             v = v - frac[:, :, None] * v_end[:, None, :]
         else:
             v = v - _interp_between(v, zupt & mask, clock)
@@ -313,7 +331,8 @@ def rotation_pivot(v_b: np.ndarray, w_b: np.ndarray) -> tuple[np.ndarray, float]
     return rho, (1.0 - float(np.sum((A @ rho - y) ** 2)) / ss) if ss > 0 else 0.0
 
 
-def error_clock(a_nav: np.ndarray, mask: np.ndarray, *, r: float, scale_error: float) -> np.ndarray:
+def error_clock(a_nav: np.ndarray, mask: np.ndarray, *, r: float, scale_error: float,
+                weight: np.ndarray | None = None) -> np.ndarray:
     """Accumulated variance (B, L), in units of the white-noise variance per sample, of the velocity error
     of each stride (decision L21).
 
@@ -323,9 +342,12 @@ def error_clock(a_nav: np.ndarray, mask: np.ndarray, *, r: float, scale_error: f
     increment variance ``r + (scale_error |a|)^2``. The ZUPT correction interpolated linearly in this
     variable is the Brownian-bridge estimate of the velocity error between zero-velocity samples, so the
     drift found at a stance is attributed to the hard accelerations of the swing and heel strike rather
-    than spread evenly in time. ``scale_error = 0`` gives time.
+    than spread evenly in time. ``scale_error = 0`` gives time. ``weight`` (B, L): each sample's interval in
+    nominal periods (decision L83: a sample after dropped ones carries their noise too); None = 1.
     """
     w = 1.0 + (scale_error ** 2 / r) * np.sum(np.asarray(a_nav, dtype=float) ** 2, axis=2)
+    if weight is not None:
+        w = w * weight
     w = np.where(mask, w, 0.0)
     w[:, 0] = 0.0
     return np.cumsum(w, axis=1)
@@ -373,7 +395,7 @@ def _inv3_sym(M: np.ndarray) -> np.ndarray:
     return inv / det[..., None, None]
 
 
-def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1.8, r: float = 0.01,
+def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float | np.ndarray, *, sw: float = 1.8, r: float = 0.01,
                zupt: bool = True, zupt_at: np.ndarray | None = None, r_zupt: float = 1e-6,
                smooth: bool = True, q_vel: np.ndarray | None = None) -> np.ndarray:
     """White-noise-jerk Kalman filter (state [d, v, a], thesis eq. 44-55) on a batch of signals.
@@ -383,6 +405,7 @@ def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1
     a_meas : (N, L) or (N, L, A) measured acceleration (m/s^2); the A axes of a row share the sample
         times, so they share one covariance (thesis eq. 58-60: one filter per axis, same model)
     mask : (N, L) valid samples (each signal starts at j = 0)
+    dt : sample period (s), or the interval of every step (N, L - 1) s (decision L83; filter only)
     sw : power spectral density of the jerk (thesis ch.7.2.1: 1.8)
     r : acceleration measurement variance (thesis eq. 55: 0.01)
     zupt : add v = 0 pseudo-measurements (variance ``r_zupt``) at the samples ``zupt_at`` (N, L)
@@ -401,9 +424,13 @@ def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1
     squeeze = a_meas.ndim == 2
     am = a_meas[:, :, None] if squeeze else a_meas
     N, L, A = am.shape
-    F, Q = wnj_matrices(dt, sw)
-    T, h = dt, dt * dt / 2
-    q00, q01, q02, q11, q12, q22 = Q[0, 0], Q[0, 1], Q[0, 2], Q[1, 1], Q[1, 2], Q[2, 2]
+    steps = np.ndim(dt) != 0  # decision L83: one interval per row and step (N, L - 1), from the timestamps
+    if steps and smooth:
+        raise ValueError("wnj_kalman: per-step intervals are supported by the filter only (smooth=False)")
+    if not steps:
+        F, Q = wnj_matrices(dt, sw)
+        T, h = dt, dt * dt / 2
+        q00, q01, q02, q11, q12, q22 = Q[0, 0], Q[0, 1], Q[0, 2], Q[1, 1], Q[1, 2], Q[2, 2]
     # state (N, A, 3); covariance kept as its six distinct elements, each (N,), shared by the A axes
     x = np.zeros((N, A, 3))
     x[:, :, 2] = am[:, 0]
@@ -434,7 +461,16 @@ def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1
     for j in range(1, L):
         act = mask[:, j]
         # predict: x = F x, P = F P F^T + Q (thesis eq. 53/54), written out for the 3x3 F
-        xn = x @ F.T
+        if steps:  # F and Q of each row's own interval (thesis eq. 53/54 with T = t_j - t_{j-1})
+            T = np.asarray(dt[:, j - 1], dtype=float)
+            h = T * T / 2
+            q00, q01, q02 = sw * T ** 5 / 20, sw * T ** 4 / 8, sw * T ** 3 / 6
+            q11, q12, q22 = sw * T ** 3 / 3, sw * T ** 2 / 2, sw * T
+            Tc, hc = T[:, None], h[:, None]
+            xn = np.stack([x[:, :, 0] + Tc * x[:, :, 1] + hc * x[:, :, 2], x[:, :, 1] + Tc * x[:, :, 2],
+                           x[:, :, 2]], axis=2)
+        else:
+            xn = x @ F.T
         x = np.where(act[:, None, None], xn, x)
         a00 = p["00"] + T * p["01"] + h * p["02"]
         a01 = p["01"] + T * p["11"] + h * p["12"]
@@ -468,7 +504,7 @@ def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float, *, sw: float = 1
     return xs[:, :, 0] if squeeze else xs
 
 
-def wnj_displacement(a_nav: np.ndarray, mask: np.ndarray, dt: float, **kw) -> np.ndarray:
+def wnj_displacement(a_nav: np.ndarray, mask: np.ndarray, dt: float | np.ndarray, **kw) -> np.ndarray:
     """Displacement (B, 3) of each stride from one white-noise-jerk filter per axis (thesis eq. 58-60)."""
     B = a_nav.shape[0]
     if B == 0:

@@ -135,6 +135,8 @@ def twist_yaw(q_start: np.ndarray, q_end: np.ndarray) -> np.ndarray:
 
 #: The points a foot track can follow (``reference_point``; ``pdrlearn track --reference-point``, decision L72)
 REFERENCE_POINTS = ("sensor", "heel")
+#: decision L83: the foot strides are integrated on the sample timestamps (``FootDisplacement(timestamps=...)``)
+TIMESTAMPS = False
 
 class FootDisplacement:
     """Displacement of each stride of the foot unit between two rests.
@@ -178,6 +180,10 @@ class FootDisplacement:
         rests again) along the stride, linearly in ``tilt_clock`` ("rotation": accumulated |w|, the choice of L68,
         or "time"), as the ZUPT removes the velocity error; False (default; L68: not adopted) = the attitude of
         the gyroscope alone
+    timestamps : decision L83: integrate each stride step over its own sample interval t_k - t_(k-1)
+        (dropped samples lengthen it; an interval over B11's 1 s gap counts one period, as the stride
+        across it is zeroed); a clock uniform to 1e-6 uses the fixed ``1 / rate`` bit for bit.
+        False = the fixed ``1 / rate`` everywhere (the former rule)
 
     Attributes
     ----------
@@ -196,10 +202,11 @@ class FootDisplacement:
                  max_stride_s: float = 3.0, accel_scale_error: float = 0.01,
                  reference_point: str = "sensor", min_rocker_samples: int = 20, gap_yaw: bool = True,
                  zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
-                 tilt_clock: str = "rotation"):
+                 tilt_clock: str = "rotation", timestamps: bool = TIMESTAMPS):
         if tilt_clock not in ("time", "rotation"):
             raise DataError(f"FootDisplacement: tilt_clock '{tilt_clock}' is not 'time' or 'rotation'")
         self.tilt_dedrift, self.tilt_clock = bool(tilt_dedrift), tilt_clock
+        self.timestamps = bool(timestamps)
         if yaw not in ("twist", "x-axis"):
             raise DataError(f"FootDisplacement: yaw '{yaw}' is not 'twist' or 'x-axis'")
         self.yaw = yaw
@@ -253,7 +260,7 @@ class FootDisplacement:
         self.t_ = t
         self.stance_ = np.repeat(stance0, k)
         zupt_stance = np.repeat(zupt0, k)
-        dt = 1.0 / fs
+        period = 1.0 / fs
         st = steps["start_s"].to_numpy(dtype=float)
         en = steps["end_s"].to_numpy(dtype=float)
         i0, i1, self.rows_ = rest_to_rest(t, self.stance_, st, en, max_rest_s=self.max_rest_s)
@@ -291,38 +298,57 @@ class FootDisplacement:
         elif self.gyro_bias == "standstill" and B:
             bias = np.tile(self._standstill_bias(unit.acc, unit.gyr, fs0), (B, 1))
         idx, mask = K.stride_index(i0, i1)
+        dt, tclock, weight = self._intervals(t, period, idx, mask)
         q = K.stride_attitude(gyr, dt, idx, mask, g_body, bias, init) if B else None
         if self.tilt_dedrift and B:  # decision L68: the tilt found at the stride end, removed along the stride
             clock = None
             if self.tilt_clock == "rotation":
                 clock = np.cumsum(np.where(mask, np.linalg.norm(gyr[idx], axis=2), 0.0), axis=1)
+            elif np.ndim(dt):  # decision L83: the time fraction on the timestamps
+                clock = K.step_clock(dt, B, idx.shape[1])
             q = K.dedrift_tilt(q, acc, idx, mask, w, clock=clock)
         a_nav, self.yaw_change_ = K.strapdown(acc, gyr, dt, idx, mask, g_body, bias, init, q=q)
         if self.yaw == "twist" and B:
             self.yaw_change_ = twist_yaw(q[:, 0], q[np.arange(B), mask.sum(axis=1) - 1])
-        self.gap_yaw_ = self._gap_yaw(acc, gyr, dt, i0, i1, bias) if self.gap_yaw else np.zeros(B)
+        self.gap_yaw_ = self._gap_yaw(acc, gyr, tclock, i0, i1, bias) if self.gap_yaw else np.zeros(B)
         zm = K.zupt_mask(zupt_stance, idx, mask)
         s2 = self.accel_scale_error ** 2
         if self.integrator == "kalman":
             # decision L21: velocity errors proportional to |a| (scale, bandwidth, clipped impacts)
-            q_vel = s2 * np.sum(a_nav ** 2, axis=2) * dt * dt if s2 > 0 else None
+            dts = dt if np.ndim(dt) == 0 else np.concatenate([np.zeros((B, 1)), dt], axis=1)
+            q_vel = s2 * np.sum(a_nav ** 2, axis=2) * dts * dts if s2 > 0 else None
             self.disp_ = K.wnj_displacement(a_nav, mask, dt, sw=self.sw, r=self.r, zupt=self.zupt_end,
                                             zupt_at=zm, q_vel=q_vel)
         else:
-            clock = K.error_clock(a_nav, mask, r=self.r, scale_error=self.accel_scale_error) if s2 > 0 else None
+            clock = (K.error_clock(a_nav, mask, r=self.r, scale_error=self.accel_scale_error, weight=weight)
+                     if s2 > 0 else None)
             self.disp_ = K.double_integrate(a_nav, mask, dt, zupt_end=self.zupt_end, zupt=zm, clock=clock)
         self.lever_arm_ = None
         if self.reference_point == "heel" and B:
-            self._to_heel(a_nav, mask, dt, zm, q, gyr[idx], self.stance_[idx])
+            self._to_heel(a_nav, mask, dt, zm, q, gyr[idx], self.stance_[idx], period, weight)
         return self
 
-    def _to_heel(self, a_nav, mask, dt, zm, q, gyr_b, stance_b) -> None:
+    def _intervals(self, t: np.ndarray, period: float, idx: np.ndarray, mask: np.ndarray):
+        """Decision L83: the sample intervals the strides are integrated over. Returns ``dt`` (``period``, or
+        (B, L - 1) s per stride step from the timestamps), the clock (n,) s of every sample and the
+        interval of every stride sample in periods (B, L) (None on a uniform clock)."""
+        from pdrlearn.track.gaps import MIN_GAP_S  # B11's gap (imported here: pdrlearn.track imports this module)
+
+        d = np.diff(np.asarray(t, dtype=float))
+        d = np.where(d > MIN_GAP_S, period, d)  # B11's gap: one period, as before (its stride is zeroed)
+        if not self.timestamps or not len(d) or np.all(np.abs(d - period) <= 1e-6 * period):
+            return period, np.arange(len(t)) * period, None
+        dt = np.where(mask[:, 1:], d[np.minimum(idx[:, :-1], len(d) - 1)], 0.0)
+        weight = np.concatenate([np.ones((len(idx), 1)), dt / period], axis=1)
+        return dt, np.concatenate([[0.0], np.cumsum(d)]), weight
+
+    def _to_heel(self, a_nav, mask, dt, zm, q, gyr_b, stance_b, period, weight) -> None:
         """Decision L22: move the displacement from the sensor to the heel, the point strides are measured
         at in gait analysis: heel = sensor + R(t) r, r = heel contact - sensor (body frame), estimated from
         the heel rocker (the foot rolls about the heel contact between heel strike and foot flat)."""
-        clock = K.error_clock(a_nav, mask, r=self.r, scale_error=self.accel_scale_error)
+        clock = K.error_clock(a_nav, mask, r=self.r, scale_error=self.accel_scale_error, weight=weight)
         v = K.zupt_velocity(a_nav, mask, dt, zupt_end=True, zupt=zm, clock=clock)
-        sel = K.heel_rocker_samples(a_nav, gyr_b, stance_b, mask, dt)
+        sel = K.heel_rocker_samples(a_nav, gyr_b, stance_b, mask, period)
         n_sel = int(sel.sum())
         if n_sel < self.min_rocker_samples:
             self.warnings_.append(f"heel reference: only {n_sel} heel-rocker samples (< "
@@ -360,14 +386,15 @@ class FootDisplacement:
             bias[s] = gyr[a:b].mean(axis=0)
         return bias
 
-    def _gap_yaw(self, acc: np.ndarray, gyr: np.ndarray, dt: float, i0: np.ndarray, i1: np.ndarray,
+    def _gap_yaw(self, acc: np.ndarray, gyr: np.ndarray, t: float | np.ndarray, i0: np.ndarray, i1: np.ndarray,
                  bias: np.ndarray | None) -> np.ndarray:
         """Decision L28: heading change (rad, CCW) between the end of the previous stride and the start of
         each stride (0 for the first and for contiguous strides): the rate about gravity (the mean specific
         force over the gap; the foot is loaded) integrated over the samples that are not still by the fixed
         rule (|w| >= ``zaru_gyro_rad_s``): a foot pivoting on the ground turns, a still foot does not (ZARU)."""
         out = np.zeros(len(i0))
-        t = np.arange(len(gyr)) * dt
+        if np.ndim(t) == 0:  # a sample period: the sample clock; else the clock (n,) s (decision L83)
+            t = np.arange(len(gyr)) * float(t)
         for k in range(1, len(i0)):
             a, b = int(i1[k - 1]), int(i0[k])
             if b - a < 2:

@@ -389,7 +389,8 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, stream
         log.warning("%s: %s have %s interval(s) of dropped samples %s (longest %.3f s): the offline methods "
                     "integrate with a fixed sample interval, so each shortens the stride it falls in (1 %% of the "
                     "samples dropped: about -2.5 %% distance, decision B64); `track --streaming` integrates on "
-                    "the timestamps - or check the Bluetooth link and re-record", folder,
+                    "the timestamps, as does the offline foot with a --params file holding {\"timestamps\": true} "
+                    "(decision L83/B65, not the default) - or check the Bluetooth link and re-record", folder,
                     ", ".join(n for n, _, _ in left), count, what, max(m for _, _, m in left))
 
 
