@@ -136,16 +136,22 @@ def _axis_of(stem: str, kind: str) -> str | None:
     return None
 
 
+def _axis_candidates(columns: list[str], kind: str) -> dict[str, list[str]]:
+    """Axis -> the columns whose names say they are that axis of ``kind``, in the file's order."""
+    found: dict[str, list[str]] = {}
+    for c in columns:
+        axis = _axis_of(_stem(c), kind)
+        if axis:
+            found.setdefault(axis, []).append(c)
+    return found
+
+
 def guess_columns(columns: list[str]) -> dict[str, list[str]]:
     """Kind -> the columns whose names say so (``acc_x``/``ax``/``AccX (g)``/``accelerometer_x`` ...), in
     x, y, z order; kinds with no complete set are left out. A name two kinds claim is used by neither."""
     out: dict[str, list[str]] = {}
     for kind in _STEMS:
-        found: dict[str, list[str]] = {}
-        for c in columns:
-            axis = _axis_of(_stem(c), kind)
-            if axis:
-                found.setdefault(axis, []).append(c)
+        found = _axis_candidates(columns, kind)
         if all(len(found.get(a, [])) == 1 for a in "xyz"):
             out[kind] = [found[a][0] for a in "xyz"]
     for kind, names in _SINGLE.items():
@@ -157,6 +163,18 @@ def guess_columns(columns: list[str]) -> dict[str, list[str]]:
         for c in cols:
             used[c] = used.get(c, 0) + 1
     return {k: v for k, v in out.items() if all(used[c] == 1 for c in v)}
+
+
+def ambiguous_columns(columns: list[str]) -> dict[str, list[str]]:
+    """Kind -> every column named like one of its axes, for the kinds :func:`guess_columns` leaves out because
+    an axis has more than one candidate (a Shimmer3's low-noise ``Accel_LN_X`` and wide-range ``Accel_WR_X``):
+    ``pdrlearn import`` names them instead of saying that none was recognised."""
+    out: dict[str, list[str]] = {}
+    for kind in _STEMS:
+        found = _axis_candidates(columns, kind)
+        if all(found.get(a) for a in "xyz") and any(len(found[a]) > 1 for a in "xyz"):
+            out[kind] = [c for c in columns if any(c in found[a] for a in "xyz")]
+    return out
 
 
 def guess_time_column(columns: list[str]) -> str | None:
@@ -649,6 +667,9 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                        gyro_big_fix=("pass --gyro-unit deg/s" if g["unit"] != "deg/s"
                                      else "check the gyroscope's unit (--gyro-unit rad/s | deg/s)"))
     used = {time_column, *(c for v in columns.values() for c in v)}
+    ambiguous = {k: v for k, v in ambiguous_columns(header).items() if k not in columns and not set(v) & used}
+    if guess and ambiguous:  # several candidate sets for a kind: none was guessed, the import names them
+        record["ambiguous_columns"] = ambiguous
     # an unnamed empty column (a tab or comma ending every line, as Shimmer writes) is no column (B66)
     record["unused_columns"] = [c for c in header if c not in used
                                 and not (c.startswith("Unnamed: ") and df[c].isna().all())]
