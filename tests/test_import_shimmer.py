@@ -239,3 +239,21 @@ def test_shimmer_ln_and_wr_accelerometers_are_named_not_dropped_silently(tmp_pat
     assert main(["import", str(PLAIN), "--out", str(tmp_path / "c"), "--frames", FRAME]) == 0
     capsys.readouterr()
     assert "ambiguous_columns" not in json.loads((tmp_path / "c" / "meta.json").read_text())["imported"]
+
+
+def test_units_row_hint_counts_every_text_row_and_the_rows_already_skipped(tmp_path, capsys):
+    """A row of CAL above the units row: the hint asks for both rows to be skipped (--skip-rows 2), and with
+    --skip-rows 1 already given it still asks for 2 (it said --skip-rows 1 again before)."""
+    lines = SHIMMER.read_text().splitlines()
+    cal = "\t".join(["CAL"] * len(lines[1].rstrip("\t").split("\t")))
+    src = tmp_path / "calrow.csv"
+    src.write_text("\n".join([lines[0], lines[1], cal, *lines[2:]]) + "\n")
+    assert main(["import", str(src), "--out", str(tmp_path / "a")]) != 0
+    err = capsys.readouterr().err
+    assert ("lines 3-4 (the first: CAL, CAL, CAL, CAL ...) look like units rows or more header rows: pass "
+            "--skip-rows 2 to skip them") in err
+    assert main(["import", str(src), "--skip-rows", "1", "--out", str(tmp_path / "b")]) != 0
+    err = capsys.readouterr().err
+    assert "line 4 (ms, m/(s^2), m/(s^2), m/(s^2) ...) looks like a units row or a second header: pass " \
+           "--skip-rows 2 to skip it" in err
+    assert not (tmp_path / "a").exists() and not (tmp_path / "b").exists()
