@@ -102,3 +102,27 @@ def test_dropped_samples_are_warned_once(tmp_path, caplog, monkeypatch):
         read_session(longer)
     lines = _b64(caplog)
     assert len(lines) == 1 and "longest 0.300 s" in lines[0] and "of 0.1-1 s, not bridged" in lines[0]
+
+
+def test_waist_only_drops_are_not_warned_with_the_foot_advice(tmp_path, caplog):
+    """A waist-only session: the B64 line says that the waist pipelines interpolate the dropped samples (W34),
+    not the foot's -2.5 % figure nor `track --streaming` (a foot option that refuses a waist-only session); a
+    foot stream keeps the foot line."""
+    t = np.arange(2000) * 0.01
+    cut = (t > 5.0) & (t < 5.015)
+    acc = np.column_stack([0.1 * np.sin(t), np.full_like(t, 9.81), 0.1 * np.cos(t)])
+    gyr = np.column_stack([np.zeros_like(t), 0.1 * np.sin(2 * t), np.zeros_like(t)])
+    s = Session(name="wdrops", streams={"wAccelerometer": Stream("wAccelerometer", t[~cut], acc[~cut]),
+                                        "wGyroscope": Stream("wGyroscope", t[~cut], gyr[~cut])})
+    folder = write_session(s, tmp_path / "w")
+    with caplog.at_level(logging.WARNING):
+        read_session(folder)
+    lines = _b64(caplog)
+    assert len(lines) == 1 and "wAccelerometer, wGyroscope have 1 interval(s)" in lines[0]
+    assert "the waist pipelines interpolate them onto a uniform clock (decision W34" in lines[0]
+    assert "-2.5 %" not in lines[0] and "`track --streaming` integrates" not in lines[0]
+    assert "not bridged" not in lines[0] and "of 1 s or less (longest 0.020 s)" in lines[0]
+    caplog.clear()
+    with caplog.at_level(logging.WARNING):
+        read_session(_with_interval(tmp_path, 0.02))
+    assert "`track --streaming` integrates on the timestamps" in _b64(caplog)[0]

@@ -210,3 +210,50 @@ def test_force_frame_without_frames_is_refused(tmp_path, capsys):
     m.write_text(json.dumps({"frames": {"x": "forward", "y": "up", "z": "right"}}))
     assert main(["import", str(PLAIN), "--mapping", str(m), "--force-frame", "--out", str(tmp_path / "m")]) == 0
     assert read_session(tmp_path / "m").frames["foot"].to_dict() == {"x": "forward", "y": "up", "z": "right"}
+
+
+def test_shimmer_ln_and_wr_accelerometers_are_named_not_dropped_silently(tmp_path, capsys):
+    """A Shimmer3 export with both the low-noise (LN) and the wide-range (WR) accelerometer: no set is guessed
+    (two candidates per axis), and the import names both sets and which one a foot needs, instead of saying that
+    no accelerometer column was recognised; mapping WR with --acc imports it."""
+    lines = SHIMMER.read_text().splitlines()
+    split = [ln.rstrip("\t").split("\t") for ln in lines[1:]]
+    wr = [c.replace("_LN_", "_WR_") for c in split[0][1:4]]
+    rows = [split[0][:4] + wr + split[0][4:], split[1][:4] + split[1][1:4] + split[1][4:]]
+    rows += [r[:4] + [f"{float(v) + 0.01:.6f}" for v in r[1:4]] + r[4:] for r in split[2:]]
+    src = tmp_path / "lnwr.csv"
+    src.write_text("\n".join(["sep=;"] + [";".join(r) for r in rows]) + "\n")
+    assert main(["import", str(src), "--out", str(tmp_path / "a"), "--frames", FRAME]) == 0
+    err = capsys.readouterr().err
+    assert "no accelerometer columns recognised" not in err
+    assert ("note: several accelerometer column sets (Shimmer_7A1F_Accel_LN_X_CAL, Shimmer_7A1F_Accel_LN_Y_CAL, "
+            "Shimmer_7A1F_Accel_LN_Z_CAL, Shimmer_7A1F_Accel_WR_X_CAL, Shimmer_7A1F_Accel_WR_Y_CAL, "
+            "Shimmer_7A1F_Accel_WR_Z_CAL): none guessed (Shimmer3: Accel_WR is the wide-range accelerometer") in err
+    meta = json.loads((tmp_path / "a" / "meta.json").read_text())
+    assert meta["imported"]["ambiguous_columns"]["acc"][3:] == wr
+    assert main(["import", str(src), "--out", str(tmp_path / "b"), "--frames", FRAME, "--acc", ",".join(wr)]) == 0
+    err = capsys.readouterr().err
+    assert "note: several" not in err
+    assert f"fAccelerometer: {','.join(wr)} (given) in m/s2 (units row)" in err
+    # the plain fixture's names give one set per axis: nothing is said to be ambiguous
+    assert main(["import", str(PLAIN), "--out", str(tmp_path / "c"), "--frames", FRAME]) == 0
+    capsys.readouterr()
+    assert "ambiguous_columns" not in json.loads((tmp_path / "c" / "meta.json").read_text())["imported"]
+
+
+def test_units_row_hint_counts_every_text_row_and_the_rows_already_skipped(tmp_path, capsys):
+    """A row of CAL above the units row: the hint asks for both rows to be skipped (--skip-rows 2), and with
+    --skip-rows 1 already given it still asks for 2 (it said --skip-rows 1 again before)."""
+    lines = SHIMMER.read_text().splitlines()
+    cal = "\t".join(["CAL"] * len(lines[1].rstrip("\t").split("\t")))
+    src = tmp_path / "calrow.csv"
+    src.write_text("\n".join([lines[0], lines[1], cal, *lines[2:]]) + "\n")
+    assert main(["import", str(src), "--out", str(tmp_path / "a")]) != 0
+    err = capsys.readouterr().err
+    assert ("lines 3-4 (the first: CAL, CAL, CAL, CAL ...) look like units rows or more header rows: pass "
+            "--skip-rows 2 to skip them") in err
+    assert main(["import", str(src), "--skip-rows", "1", "--out", str(tmp_path / "b")]) != 0
+    err = capsys.readouterr().err
+    assert "line 4 (ms, m/(s^2), m/(s^2), m/(s^2) ...) looks like a units row or a second header: pass " \
+           "--skip-rows 2 to skip it" in err
+    assert not (tmp_path / "a").exists() and not (tmp_path / "b").exists()

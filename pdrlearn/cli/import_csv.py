@@ -372,8 +372,20 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
     if record["unused_columns"]:
         err(f"unused columns: {', '.join(record['unused_columns'])}")
     prefix = "f" if record["unit"] == "foot" else "w"
-    for kind, sensor, opt in (("accelerometer", "Accelerometer", "--acc"), ("gyroscope", "Gyroscope", "--gyro")):
-        if prefix + sensor not in record["streams"]:  # every pipeline needs both (README "Session folders")
+    ambiguous = record.get("ambiguous_columns") or {}
+    for key, kind, sensor, opt in (("acc", "accelerometer", "Accelerometer", "--acc"),
+                                   ("gyro", "gyroscope", "Gyroscope", "--gyro")):
+        if prefix + sensor in record["streams"]:
+            continue
+        if key in ambiguous:  # several sets, none guessed: name them (a Shimmer3's LN and WR accelerometers)
+            cols = ambiguous[key]
+            shimmer = (" (Shimmer3: Accel_WR is the wide-range accelerometer, Accel_LN the low-noise one of "
+                       "+-2 g, which a foot's heel strikes exceed)"
+                       if key == "acc" and any("_WR_" in c.upper() for c in cols)
+                       and any("_LN_" in c.upper() for c in cols) else "")
+            err(f"note: several {kind} column sets ({', '.join(cols)}): none guessed{shimmer}; the pipelines need "
+                f"one: map it with {opt} X,Y,Z")
+        else:  # every pipeline needs both (README "Session folders")
             err(f"note: no {kind} columns recognised; the pipelines need one: map them with {opt} X,Y,Z")
     unit = record["unit"]
     if unit in session.frames:

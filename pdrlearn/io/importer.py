@@ -136,16 +136,22 @@ def _axis_of(stem: str, kind: str) -> str | None:
     return None
 
 
+def _axis_candidates(columns: list[str], kind: str) -> dict[str, list[str]]:
+    """Axis -> the columns whose names say they are that axis of ``kind``, in the file's order."""
+    found: dict[str, list[str]] = {}
+    for c in columns:
+        axis = _axis_of(_stem(c), kind)
+        if axis:
+            found.setdefault(axis, []).append(c)
+    return found
+
+
 def guess_columns(columns: list[str]) -> dict[str, list[str]]:
     """Kind -> the columns whose names say so (``acc_x``/``ax``/``AccX (g)``/``accelerometer_x`` ...), in
     x, y, z order; kinds with no complete set are left out. A name two kinds claim is used by neither."""
     out: dict[str, list[str]] = {}
     for kind in _STEMS:
-        found: dict[str, list[str]] = {}
-        for c in columns:
-            axis = _axis_of(_stem(c), kind)
-            if axis:
-                found.setdefault(axis, []).append(c)
+        found = _axis_candidates(columns, kind)
         if all(len(found.get(a, [])) == 1 for a in "xyz"):
             out[kind] = [found[a][0] for a in "xyz"]
     for kind, names in _SINGLE.items():
@@ -157,6 +163,18 @@ def guess_columns(columns: list[str]) -> dict[str, list[str]]:
         for c in cols:
             used[c] = used.get(c, 0) + 1
     return {k: v for k, v in out.items() if all(used[c] == 1 for c in v)}
+
+
+def ambiguous_columns(columns: list[str]) -> dict[str, list[str]]:
+    """Kind -> every column named like one of its axes, for the kinds :func:`guess_columns` leaves out because
+    an axis has more than one candidate (a Shimmer3's low-noise ``Accel_LN_X`` and wide-range ``Accel_WR_X``):
+    ``pdrlearn import`` names them instead of saying that none was recognised."""
+    out: dict[str, list[str]] = {}
+    for kind in _STEMS:
+        found = _axis_candidates(columns, kind)
+        if all(found.get(a) for a in "xyz") and any(len(found[a]) > 1 for a in "xyz"):
+            out[kind] = [c for c in columns if any(c in found[a] for a in "xyz")]
+    return out
 
 
 def guess_time_column(columns: list[str]) -> str | None:
@@ -420,17 +438,30 @@ def _drop_rows(df: pd.DataFrame, n: int) -> pd.DataFrame:
     return out
 
 
-def _units_row_hint(df: pd.DataFrame, row: int, first_line: int) -> str:
-    """Decision B66: for a bad value in the first data row, what that row looks like and the option."""
+def _text_cells(df: pd.DataFrame, i: int) -> list[str] | None:
+    """The non-number cells of row ``i`` when they are at least half of its non-empty cells, else None."""
+    cells = [str(v).strip() for v in df.iloc[i] if pd.notna(v) and str(v).strip()]
+    texts = [v for v in cells if not _is_number(v)]
+    return texts if texts and len(texts) * 2 >= len(cells) else None
+
+
+def _units_row_hint(df: pd.DataFrame, row: int, first_line: int, skipped: int = 0) -> str:
+    """Decision B66: for a bad value in the first data row, what that row looks like and the option;
+    ``skipped`` rows were skipped already (``--skip-rows``): the option counts them and every text row on top
+    (a row of CAL / RAW above the units row), so that following it gets past them all."""
     if row != 0 or len(df) < 2:
         return ""
-    cells = [str(v).strip() for v in df.iloc[0] if pd.notna(v) and str(v).strip()]
-    texts = [v for v in cells if not _is_number(v)]
-    if len(texts) * 2 < max(len(cells), 1):
+    texts = _text_cells(df, 0)
+    if texts is None:
         return ""
+    n = 1
+    while n < len(df) - 1 and _text_cells(df, n) is not None:
+        n += 1
     show = ", ".join(texts[:4]) + (" ..." if len(texts) > 4 else "")
-    return (f"; line {first_line} ({show}) looks like a units row or a second header: pass --skip-rows 1 to skip "
-            "it (and --acc-unit/--gyro-unit/--time-unit for the units it names)")
+    where = (f"line {first_line} ({show}) looks like a units row or a second header" if n == 1 else
+             f"lines {first_line}-{first_line + n - 1} (the first: {show}) look like units rows or more header rows")
+    return (f"; {where}: pass --skip-rows {skipped + n} to skip {'it' if n == 1 else 'them'} (and "
+            f"--acc-unit/--gyro-unit/--time-unit for the units {'it names' if n == 1 else 'they name'})")
 
 
 def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str, list[str]] | None = None,
@@ -565,7 +596,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         if bad.size:
             raise DataError(f"{where}: column {time_column!r} has {bad.size} non-numeric or empty value(s) (first at "
                             f"line {bad[0] + first_line}); timestamps must be numbers (or date-times) in every row"
-                            + _units_row_hint(df, bad[0], first_line))
+                            + _units_row_hint(df, bad[0], first_line, (skipped or {}).get("rows", 0)))
         if rate_hz is None and time_unit is not None and _time_word(time_unit) == "samples":
             raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")
         if rate_hz is None:
@@ -605,7 +636,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         if partial.size:
             raise DataError(f"{where}: {partial.size} row(s) with some of {', '.join(cols)} empty or not numeric "
                             f"(first at line {partial[0] + first_line}); repair or remove them"
-                            + _units_row_hint(df, partial[0], first_line))
+                            + _units_row_hint(df, partial[0], first_line,
+                                               (skipped or {}).get("rows", 0)))
         if not keep.any():
             raise DataError(f"{where}: columns {', '.join(cols)} ({kind}) hold no numbers")
         if (~keep).any():  # a multi-rate export leaves a slower sensor's cells empty between its samples
@@ -649,6 +681,9 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                        gyro_big_fix=("pass --gyro-unit deg/s" if g["unit"] != "deg/s"
                                      else "check the gyroscope's unit (--gyro-unit rad/s | deg/s)"))
     used = {time_column, *(c for v in columns.values() for c in v)}
+    ambiguous = {k: v for k, v in ambiguous_columns(header).items() if k not in columns and not set(v) & used}
+    if guess and ambiguous:  # several candidate sets for a kind: none was guessed, the import names them
+        record["ambiguous_columns"] = ambiguous
     # an unnamed empty column (a tab or comma ending every line, as Shimmer writes) is no column (B66)
     record["unused_columns"] = [c for c in header if c not in used
                                 and not (c.startswith("Unnamed: ") and df[c].isna().all())]

@@ -386,12 +386,25 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, stream
         counts = {k for _, k, _ in left}
         count = (str(left[0][1]) if len(counts) == 1
                  else "/".join(str(k) for _, k, _ in left) + " (in that order)")
+        if not any(n in SENSORS and SENSORS[n].placement == "foot" for n, _, _ in left):
+            # waist streams only: the foot's figure and `--streaming` (a foot option) do not apply
+            log.warning(WAIST_DROPS, folder, ", ".join(n for n, _, _ in left), count,
+                        what.removesuffix(", not bridged"), max(m for _, _, m in left))
+            return
         log.warning("%s: %s have %s interval(s) of dropped samples %s (longest %.3f s): the offline methods "
                     "integrate with a fixed sample interval, so each shortens the stride it falls in (1 %% of the "
                     "samples dropped: about -2.5 %% distance, decision B64); `track --streaming` integrates on "
                     "the timestamps, as does the offline foot with a --params file holding {\"timestamps\": true} "
                     "(decision L83/B65, not the default) - or check the Bluetooth link and re-record", folder,
                     ", ".join(n for n, _, _ in left), count, what, max(m for _, _, m in left))
+
+
+#: decision B64's warning when only waist streams drop samples: the waist pipelines interpolate them onto a
+#: uniform clock themselves (decision W34, ``pdrlearn.waist.ahrs``), so the foot's fixed-interval loss and its
+#: advice (`track --streaming`, a foot option that refuses a waist-only session) do not apply
+WAIST_DROPS = ("%s: %s have %s interval(s) of dropped samples %s (longest %.3f s): the waist pipelines "
+               "interpolate them onto a uniform clock (decision W34; the foot's loss of distance, B64, does not "
+               "apply here) - if there are many, check the Bluetooth link")
 
 
 #: label time columns that must be filled in every row (the others, e.g. ``tc_ms``, may be blank = unknown)
