@@ -40,19 +40,37 @@ def cli(args: list[str]) -> tuple[int, str]:
     return r.exit_code, r.output
 
 
+def cli_json(args: list[str]) -> tuple[dict, str]:
+    """Run a ``--json`` command: its JSON (parsed from stdout alone: a warning on stderr may hold braces, as
+    B65's names ``{"timestamps": true}``) and the whole output (warnings included)."""
+    r = CliRunner().invoke(app, [str(a) for a in args])
+    if r.exit_code:
+        raise SystemExit(f"{args[0]} {args[1]}: {r.output[-500:]}")
+    return json.loads(r.stdout[r.stdout.index("{"):]), r.output
+
+
 def track(d: Path, out: Path, bridge: bool, streaming: bool = False) -> dict:
     P.BRIDGE_DROPS = bridge
     shutil.rmtree(out, ignore_errors=True)
-    code, text = cli(["track", d, "--out", out, "--json"] + (["--streaming"] if streaming else []))
-    if code:
-        raise SystemExit(f"track {d}: {text[-500:]}")
-    summary = json.loads(text[text.index("{"):])
+    summary, text = cli_json(["track", d, "--out", out, "--json"] + (["--streaming"] if streaming else []))
     summary["warned"] = "B64" in text
     return summary
 
 
 def same(a: Path, b: Path) -> bool:
     return all((a / f).read_bytes() == (b / f).read_bytes() for f in ("steps.csv", "trajectory.csv"))
+
+
+def simulate_walk(root: Path, u: int, route: str, spec, rate: float, drop: float) -> tuple[Path, dict]:
+    """Simulate one walk with dropped samples into ``root``; its folder and the row's truth columns."""
+    d = root / f"u{u}_{route}_{rate:g}_{drop:g}"
+    shutil.rmtree(d, ignore_errors=True)
+    code, text = cli(["simulate", *spec, "--user-seed", u, "--rate", rate, "--drop-rate", drop, "--out", d, "--json"])
+    if code:
+        raise SystemExit(f"simulate {d}: {text[-500:]}")
+    sim = json.loads(text[text.index("{"):])
+    return d, {"user": u, "route": route, "rate_hz": rate, "drop_rate": drop,
+               "dropped": sim.get("dropped_samples", 0), "truth_m": sim["distance_m"]}
 
 
 def main() -> None:
@@ -70,15 +88,7 @@ def main() -> None:
         for route, spec in ROUTES.items():
             for rate in RATES:
                 for drop in DROPS:
-                    d = root / f"u{u}_{route}_{rate:g}_{drop:g}"
-                    shutil.rmtree(d, ignore_errors=True)
-                    code, text = cli(["simulate", *spec, "--user-seed", u, "--rate", rate, "--drop-rate", drop,
-                                      "--out", d, "--json"])
-                    if code:
-                        raise SystemExit(f"simulate {d}: {text[-500:]}")
-                    sim = json.loads(text[text.index("{"):])
-                    row = {"user": u, "route": route, "rate_hz": rate, "drop_rate": drop,
-                           "dropped": sim.get("dropped_samples", 0), "truth_m": sim["distance_m"]}
+                    d, row = simulate_walk(root, u, route, spec, rate, drop)
                     for tag, bridge, streaming in (("off", False, False), ("on", True, False),
                                                    ("stream_off", False, True), ("stream_on", True, True)):
                         s = track(d, root / f"{d.name}_{tag}", bridge, streaming)

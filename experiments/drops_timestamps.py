@@ -26,7 +26,7 @@ import numpy as np
 import pandas as pd
 
 import pdrlearn.io.plasys as P
-from experiments.drops import DROPS, RATES, REAL, ROUTES, cli
+from experiments.drops import DROPS, RATES, REAL, ROUTES, cli_json, simulate_walk
 
 TAGS = {"fixed": False, "ts": True}
 
@@ -34,10 +34,7 @@ TAGS = {"fixed": False, "ts": True}
 def track(d: Path, out: Path, params: Path) -> dict:
     P.BRIDGE_DROPS = False
     shutil.rmtree(out, ignore_errors=True)
-    code, text = cli(["track", d, "--out", out, "--json", "--params", params])
-    if code:
-        raise SystemExit(f"track {d}: {text[-500:]}")
-    return json.loads(text[text.index("{"):])
+    return cli_json(["track", d, "--out", out, "--json", "--params", params])[0]
 
 
 def compare(a: Path, b: Path) -> tuple[bool, float]:
@@ -69,15 +66,7 @@ def main() -> None:
         for route, spec in ROUTES.items():
             for rate in RATES:
                 for drop in DROPS:
-                    d = root / f"u{u}_{route}_{rate:g}_{drop:g}"
-                    shutil.rmtree(d, ignore_errors=True)
-                    code, text = cli(["simulate", *spec, "--user-seed", u, "--rate", rate, "--drop-rate", drop,
-                                      "--out", d, "--json"])
-                    if code:
-                        raise SystemExit(f"simulate {d}: {text[-500:]}")
-                    sim = json.loads(text[text.index("{"):])
-                    row = {"user": u, "route": route, "rate_hz": rate, "drop_rate": drop,
-                           "dropped": sim.get("dropped_samples", 0), "truth_m": sim["distance_m"]}
+                    d, row = simulate_walk(root, u, route, spec, rate, drop)
                     for tag in TAGS:
                         s = track(d, root / f"{d.name}_{tag}", par[tag])
                         row[f"err_{tag}"] = s.get("distance_error_pct")
