@@ -257,3 +257,19 @@ def test_units_row_hint_counts_every_text_row_and_the_rows_already_skipped(tmp_p
     assert "line 4 (ms, m/(s^2), m/(s^2), m/(s^2) ...) looks like a units row or a second header: pass " \
            "--skip-rows 2 to skip it" in err
     assert not (tmp_path / "a").exists() and not (tmp_path / "b").exists()
+
+
+def test_two_time_like_columns_are_named_and_time_picks_one(tmp_path, capsys):
+    """Decision B70: a Shimmer export with Timestamp_Unix and TimestampSync_Unix columns names both instead of
+    saying no timestamp column was found; --time picks one and the import goes through."""
+    p = tmp_path / "two.csv"
+    v = read_session_values()
+    rows = ["S_Timestamp_Unix_CAL,S_TimestampSync_Unix_CAL,ax,ay,az,gx,gy,gz"]
+    rows += [",".join([f"{r[0] * 1e3:.1f}", f"{r[0] * 1e3 + 5:.1f}", *(f"{x:.5f}" for x in r[1:])]) for r in v]
+    p.write_text("\n".join(rows) + "\n")
+    err = _refused([str(p)], tmp_path / "o", capsys)
+    assert "several columns look like the time: S_Timestamp_Unix_CAL, S_TimestampSync_Unix_CAL" in err
+    assert "no timestamp column found" not in err
+    assert main(["import", str(p), "--out", str(tmp_path / "o"), "--time", "S_Timestamp_Unix_CAL",
+                 "--time-unit", "ms", "--acc-unit", "g"]) == 0
+    assert len(read_session(tmp_path / "o").streams["fAccelerometer"]) == len(v)

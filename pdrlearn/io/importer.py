@@ -177,17 +177,22 @@ def ambiguous_columns(columns: list[str]) -> dict[str, list[str]]:
     return out
 
 
-def guess_time_column(columns: list[str]) -> str | None:
-    """The one column named like a time (``timestamp``, ``Time (ms)``, ``t``), else the one whose name starts
-    with ``time`` (``timestamp_ms``, ``time_since_start``); None when there is none or several."""
+def time_column_candidates(columns: list[str]) -> list[str]:
+    """The columns named like a time, by the first rule that names any: exactly a time name (``timestamp``,
+    ``Time (ms)``, ``t``), else a name starting with ``time`` (``timestamp_ms``, ``time_since_start``), else one
+    containing ``timestamp`` (B66: ``Shimmer_7A1F_Timestamp_Unix_CAL``)."""
     for hits in ([c for c in columns if _stem(c) in _TIME_NAMES],
                  [c for c in columns if _stem(c).startswith("time")],
-                 [c for c in columns if "timestamp" in _stem(c)]):  # B66: Shimmer_7A1F_Timestamp_Unix_CAL
-        if len(hits) == 1:
-            return hits[0]
+                 [c for c in columns if "timestamp" in _stem(c)]):
         if hits:
-            return None
-    return None
+            return hits
+    return []
+
+
+def guess_time_column(columns: list[str]) -> str | None:
+    """The one time-like column (:func:`time_column_candidates`); None when there is none or several."""
+    hits = time_column_candidates(columns)
+    return hits[0] if len(hits) == 1 else None
 
 
 def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str,
@@ -562,6 +567,10 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         time_column = guess_time_column(header)
         t_source = "guessed"
         if time_column is None:
+            several = time_column_candidates(header)
+            if several:  # decision B70: say which columns compete (a Shimmer's Timestamp_Unix and TimestampSync_Unix)
+                raise DataError(f"{where}: several columns look like the time: {', '.join(several)}; name the one "
+                                "to use with --time COLUMN")
             raise DataError(f"{where}: no timestamp column found among: {have}; name it with --time COLUMN")
     else:
         t_source = "given"
