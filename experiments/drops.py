@@ -73,6 +73,15 @@ def simulate_walk(root: Path, u: int, route: str, spec, rate: float, drop: float
                "dropped": sim.get("dropped_samples", 0), "truth_m": sim["distance_m"]}
 
 
+def walks(lo: int, hi: int, root: Path):
+    """(folder, row) of every simulated walk of users ``lo``-``hi``: ROUTES x RATES x DROPS."""
+    for u in range(lo, hi + 1):
+        for route, spec in ROUTES.items():
+            for rate in RATES:
+                for drop in DROPS:
+                    yield simulate_walk(root, u, route, spec, rate, drop)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--users", default="31-36")
@@ -84,21 +93,17 @@ def main() -> None:
     root.mkdir(parents=True, exist_ok=True)
     logging.disable(logging.INFO)
     rows = []
-    for u in range(lo, hi + 1):
-        for route, spec in ROUTES.items():
-            for rate in RATES:
-                for drop in DROPS:
-                    d, row = simulate_walk(root, u, route, spec, rate, drop)
-                    for tag, bridge, streaming in (("off", False, False), ("on", True, False),
-                                                   ("stream_off", False, True), ("stream_on", True, True)):
-                        s = track(d, root / f"{d.name}_{tag}", bridge, streaming)
-                        row[f"err_{tag}"] = s.get("distance_error_pct")
-                        row[f"f1_{tag}"] = s.get("step_f1")
-                        row[f"mae_{tag}"] = s.get("stride_length_mae_pct")
-                        row[f"warned_{tag}"] = s["warned"]
-                    row["identical"] = same(root / f"{d.name}_off", root / f"{d.name}_on")
-                    rows.append(row)
-                    print(json.dumps(row), flush=True)
+    for d, row in walks(lo, hi, root):
+        for tag, bridge, streaming in (("off", False, False), ("on", True, False),
+                                       ("stream_off", False, True), ("stream_on", True, True)):
+            s = track(d, root / f"{d.name}_{tag}", bridge, streaming)
+            row[f"err_{tag}"] = s.get("distance_error_pct")
+            row[f"f1_{tag}"] = s.get("step_f1")
+            row[f"mae_{tag}"] = s.get("stride_length_mae_pct")
+            row[f"warned_{tag}"] = s["warned"]
+        row["identical"] = same(root / f"{d.name}_off", root / f"{d.name}_on")
+        rows.append(row)
+        print(json.dumps(row), flush=True)
     df = pd.DataFrame(rows)
     real = []
     if not a.no_real:

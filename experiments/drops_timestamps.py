@@ -26,7 +26,7 @@ import numpy as np
 import pandas as pd
 
 import pdrlearn.io.plasys as P
-from experiments.drops import DROPS, RATES, REAL, ROUTES, cli_json, simulate_walk
+from experiments.drops import DROPS, REAL, cli_json, walks
 
 TAGS = {"fixed": False, "ts": True}
 
@@ -62,18 +62,14 @@ def main() -> None:
         par[tag] = root / f"params_{tag}.json"
         par[tag].write_text(json.dumps({"timestamps": on}))
     rows = []
-    for u in range(lo, hi + 1):
-        for route, spec in ROUTES.items():
-            for rate in RATES:
-                for drop in DROPS:
-                    d, row = simulate_walk(root, u, route, spec, rate, drop)
-                    for tag in TAGS:
-                        s = track(d, root / f"{d.name}_{tag}", par[tag])
-                        row[f"err_{tag}"] = s.get("distance_error_pct")
-                        row[f"f1_{tag}"] = s.get("step_f1")
-                    row["steps_same"], row["max_pos_diff_m"] = compare(root / f"{d.name}_fixed", root / f"{d.name}_ts")
-                    rows.append(row)
-                    print(json.dumps(row), flush=True)
+    for d, row in walks(lo, hi, root):
+        for tag in TAGS:
+            s = track(d, root / f"{d.name}_{tag}", par[tag])
+            row[f"err_{tag}"] = s.get("distance_error_pct")
+            row[f"f1_{tag}"] = s.get("step_f1")
+        row["steps_same"], row["max_pos_diff_m"] = compare(root / f"{d.name}_fixed", root / f"{d.name}_ts")
+        rows.append(row)
+        print(json.dumps(row), flush=True)
     df = pd.DataFrame(rows)
     real = []
     for d in sorted(p for p in REAL.iterdir() if p.is_dir()):

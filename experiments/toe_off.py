@@ -58,15 +58,20 @@ def errors(res, ref, check_span: bool = True) -> dict:
     return out
 
 
-def level() -> bool:
-    ok = True
-    for rel in LEVEL:
+def tracked(rels: list[str], missing: str = ""):
+    """(rel, session, result of the plasys pipeline with toe-off) for each recording that is there."""
+    for rel in rels:
         path = ROOT / rel
         if not path.exists():
-            print(f"{rel}: missing")
+            print(f"{rel}: missing{missing}")
             continue
         s = read_session(path)
-        res = get_pipeline("plasys")(s, toe_off=True)
+        yield rel, s, get_pipeline("plasys")(s, toe_off=True)
+
+
+def level() -> bool:
+    ok = True
+    for rel, s, res in tracked(LEVEL):
         e = errors(res, s.steps)
         print(f"{rel}: reference {e['n'][0]}, matched {e['n'][1]}, tracked {e['n'][2]}")
         for k in ("tc", "stance", "swing"):
@@ -116,13 +121,7 @@ def simulated() -> bool:
 
 
 def others() -> None:
-    for rel in OTHER:
-        path = ROOT / rel
-        if not path.exists():
-            print(f"{rel}: missing (link datasets/external)")
-            continue
-        s = read_session(path)
-        res = get_pipeline("plasys")(s, toe_off=True)
+    for rel, s, res in tracked(OTHER, " (link datasets/external)"):
         t = res.steps
         line = [f"{rel}: {len(t)} strides, tc_s on {int(np.isfinite(t['tc_s']).sum())}"]
         for c, sc in (("stance_time_s", 1000), ("swing_time_s", 1000), ("stance_pct", 1)):
