@@ -113,7 +113,9 @@ def analyse(session, ev: np.ndarray, kw: dict | None = None) -> dict:
         nb = [abs(it[same][j] - x) for j in (pos - 1, pos + 1) if 0 <= j < same.size]
         spm = 60.0 / float(np.mean(nb)) if nb else np.nan
         return {"turning": turning(x), "cad": spm, "start": pos <= 1, "end": pos >= same.size - 2,
-                "short": same.size < 4, "stairs": stairs(x)}
+                "short": same.size < 4, "stairs": stairs(x),
+                # a reference contact closer than W16's shortest step (0.3 s) to a neighbour of its bout
+                "close": bool(nb) and min(nb) < 0.3}
 
     fn_idx = np.setdiff1d(np.arange(rt.size), i_r)
     fp_idx = np.setdiff1d(np.arange(sc.size), i_d)
@@ -253,14 +255,14 @@ def main() -> None:
     print("\n## Missed contacts by detail, Test11 pooled (turning = |1 s mean yaw rate| >= 0.45 rad/s)\n")
     fn = allr[(allr["kind"] == "ref") & (allr["cause"] != "tp")]
     reason = fn["why"].fillna("").str.replace(r" \(side.*", "", regex=True).replace("", "timing (found, > 0.25 s)")
-    print("| detail | FN | of them turning |\n|---|---|---|")
+    print("| detail | FN | of them turning | of them < 0.3 s from a reference neighbour |\n|---|---|---|---|")
     for k, g in fn.groupby(reason):
-        print(f"| {k} | {len(g)} | {int(g['turning'].sum())} |")
+        print(f"| {k} | {len(g)} | {int(g['turning'].sum())} | {int(g['close'].sum())} |")
     print("\n## Every error (recording, kind, t s, cause, detail, context)\n")
     for n in names:
         df = res[n]["rows"]
         for r in df[(df["kind"] == "fp") | (df["cause"] != "tp")].itertuples():
-            ctx = [k for k in ("turning", "start", "end", "short", "stairs") if getattr(r, k)]
+            ctx = [k for k in ("turning", "start", "end", "short", "stairs", "close") if getattr(r, k)]
             detail = r.why if isinstance(r.why, str) else ""
             if r.kind == "fp":
                 detail += " acc" if r.acc else " rule-added"
