@@ -87,8 +87,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
                cutoff_hz: float = 2.5, fir_order_s: float = 0.3, min_step_s: float = 0.3,  # windows: W16
                search_s: float = 0.25, fc_search_s: float = 0.25, min_peak_mps2: float = 0.1,
                rhythm: bool = False, max_step_s: float = 1.5, acc_ml: np.ndarray | None = None,
-               unshifted: bool = True, end_steps: bool = False, ap_above_mean: bool = False
-               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+               unshifted: bool = True, end_steps: bool = False, ap_above_mean: bool = False,
+               turning: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
 
     The vertical acceleration is low-passed with a zero-lag FIR (seed 003: order 30, 2.5 Hz, here the
@@ -113,6 +113,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         sequence end on the alternating side (:func:`extend_alternating`, decision W28)
     ap_above_mean : the IC is the last local AP maximum above the AP signal's mean over the motion
         gate's window (``GATE_WINDOW_S``, centred), when the search window holds one (decision W29)
+    turning : (n,) bool, samples where the pelvis turns; maxima there are exempt from ``unshifted``
+        (decision 29 of docs/decisions/steps.md; ``None`` = none exempt)
 
     Returns
     -------
@@ -131,7 +133,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         side = None if acc_ml is None else step_sides(lateral_velocity(acc_ml, fs)[cand], strong)
         keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2,
                                min_step_s=min_step_s, max_step_s=max_step_s, side=side,
-                               unshifted=unshifted, end_steps=end_steps)
+                               unshifted=unshifted, end_steps=end_steps,
+                               turning=None if turning is None else np.asarray(turning, dtype=bool)[cand])
         peaks = cand[keep]
     else:
         peaks, _ = _sig.find_peaks(vf, height=min_peak_mps2, distance=dist)
@@ -263,14 +266,16 @@ def prune_same_side(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
 
 
 def drop_unshifted(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, accepted: np.ndarray,
-                   side: np.ndarray, fs: float, *, max_step_s: float = 1.5, n_neighbours: int = 2) -> np.ndarray:
+                   side: np.ndarray, fs: float, *, max_step_s: float = 1.5, n_neighbours: int = 2,
+                   exempt: np.ndarray | None = None) -> np.ndarray:
     """Drop a maximum that shows neither cue of a step (decision W23): accepted by the fixed height
     threshold only (not a W18 rhythm fill), no weight shift (undecided side: the pelvis's lateral velocity
     under a third of its typical value, W20), and under ``PRUNE_HEIGHT_FRAC`` of the median height of its
     walking-sequence neighbours (up to ``n_neighbours`` kept maxima on each side, consecutive maxima at
     most ``max_step_s`` apart). Every step moves the body's weight from one foot to the other, so a weak
     vertical bounce without that lateral shift is no step (a bounce inside a slow step, a postural move).
-    Decided on the mask as given (order-independent). Returns the new mask."""
+    Decided on the mask as given (order-independent). Maxima flagged in ``exempt`` are not judged (decision 29
+    of docs/decisions/steps.md: the pelvis turns there). Returns the new mask."""
     cand = np.asarray(cand, dtype=np.int64)
     h = np.asarray(height, dtype=np.float64)
     keep = np.asarray(keep, dtype=bool)
@@ -279,7 +284,7 @@ def drop_unshifted(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, accep
     t = cand[sel]
     max_gap = _max_gap(max_step_s, fs)
     for j, c in enumerate(sel):
-        if side[c] != 0 or not accepted[c]:
+        if side[c] != 0 or not accepted[c] or (exempt is not None and exempt[c]):
             continue
         nb = []
         for step in (-1, 1):
@@ -343,7 +348,7 @@ def ap_mean_level(ap: np.ndarray, fs: float, *, window_s: float = GATE_WINDOW_S)
 def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, fs: float, *,
                     min_peak: float, min_step_s: float = 0.3, max_step_s: float = 1.5,
                     tol: float = RHYTHM_TOL, side: np.ndarray | None = None, unshifted: bool = True,
-                    end_steps: bool = False) -> np.ndarray:
+                    end_steps: bool = False, turning: np.ndarray | None = None) -> np.ndarray:
     """Complete walking sequences of accepted vertical maxima with the gait rhythm (decision W18).
 
     Steps come at a regular period: (1) inside a sequence, a gap of ``m + 1`` local periods
@@ -371,6 +376,9 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     accepted : (n,) bool, maxima accepted by the height threshold and the motion gate
     fs : rate (Hz); min_step_s, max_step_s : shortest step (s), longest step inside a sequence (s)
     side : (n,) int, +1 / -1 / 0 (undecided) step side of each candidate (:func:`step_sides`) or None
+    turning : (n,) bool, candidates where the pelvis turns: W23 does not judge them (decision 29 of
+        docs/decisions/steps.md: in a pivot the weight moves along the turn and the centripetal acceleration
+        enters the lateral signal, so no lateral swing is no evidence against a step); None = all judged
 
     Returns
     -------
@@ -421,7 +429,8 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
                     add.append(i)
     keep[np.asarray(add, dtype=np.int64)] = True
     if side is not None and unshifted:  # W23: no weight shift and a weak bounce: no step
-        keep = drop_unshifted(cand, h, keep, np.asarray(accepted, dtype=bool), sd, fs, max_step_s=max_step_s)
+        keep = drop_unshifted(cand, h, keep, np.asarray(accepted, dtype=bool), sd, fs, max_step_s=max_step_s,
+                              exempt=turning)
     if side is not None and end_steps:  # W28: initiation / termination step on the alternating side
         keep = extend_alternating(cand, h, keep, sd, fs, min_peak=min_peak, max_step_s=max_step_s, tol=tol)
     # the completed set must still respect the shortest step: drop the lower of two too-close maxima

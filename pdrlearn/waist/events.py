@@ -108,6 +108,9 @@ class InitialContactDetector:
     turn_gate_rps : the motion gate is also open where the pelvis's mean yaw rate over the gate window reaches
         this (rad/s; decision 28 of docs/decisions/steps.md: 0.45, the turning component of W7's mixture, finds
         a TUG's turning steps but lowers MS001 Test11's F1, not adopted); ``None`` (default) = the std gate alone (W4)
+    turn_shift_rps : offline (and realtime with ``delay_s``): a maximum where the pelvis's mean yaw rate over the
+        gate window (centred) reaches this (rad/s) is exempt from W23's weight-shift test (``weight_shift``;
+        decision 29 of docs/decisions/steps.md: 0.45, decision 28's turning test); ``None`` (default) = W23 everywhere
 
     Attributes
     ----------
@@ -125,8 +128,9 @@ class InitialContactDetector:
                  ap_above_mean: bool = False, learned: bool | str = False,
                  delay_s: float | None = K.DECISION_DELAY_S,
                  hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S,
-                 turn_gate_rps: float | None = None):
+                 turn_gate_rps: float | None = None, turn_shift_rps: float | None = None):
         self.realtime = realtime
+        self.turn_shift_rps = turn_shift_rps
         self.turn_gate_rps = turn_gate_rps
         self.delay_s = delay_s
         self.hop_s = hop_s
@@ -150,10 +154,12 @@ class InitialContactDetector:
         gate = walking_gate(imu, walk_threshold=self.walk_threshold, causal=False,
                             turn_gate_rps=self.turn_gate_rps)
         ap = lowpass(imu.acc_ap, min(self.ap_cutoff_hz, 0.4 * fs), fs, causal=False)
+        turning = (None if self.turn_shift_rps is None  # decision 29: W23 suspended while the pelvis turns
+                   else np.abs(K.rolling_mean(imu.w_z, fs, causal=False)) >= self.turn_shift_rps)
         ic, fc, vmax = K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
                                     fir_order_s=self.fir_order_s, rhythm=self.rhythm, max_step_s=self.max_step_s,
                                     acc_ml=imu.acc_ml if self.alternate else None, unshifted=self.weight_shift,
-                                    end_steps=self.end_steps, ap_above_mean=self.ap_above_mean)
+                                    end_steps=self.end_steps, ap_above_mean=self.ap_above_mean, turning=turning)
         if self.learned is False or self.learned is None:
             return ic, fc, vmax
         from pdrlearn.waist import learned as L  # W33: the rule outcomes are features of the learned stage
