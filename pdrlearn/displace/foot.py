@@ -138,7 +138,9 @@ REFERENCE_POINTS = ("sensor", "heel")
 #: decision L83: the foot strides are integrated on the sample timestamps (``FootDisplacement(timestamps=...)``)
 TIMESTAMPS = False
 #: decision L87: at 20 Hz each evenly spaced run (between dropped samples) is upsampled on its own
-#: (``FootDisplacement(upsample_runs=...)``; with ``timestamps`` the long interval of a drop keeps its length)
+#: (``FootDisplacement(upsample_runs=...)``; with ``timestamps`` the long interval of a drop keeps its length).
+#: Off: its rule failed at 20 Hz (worst walk +3.851 pp at 3 % drops; the spline's free run ends ring after an
+#: impact; experiments/results/drops_runs_43-54.md)
 UPSAMPLE_RUNS = False
 
 class FootDisplacement:
@@ -190,7 +192,8 @@ class FootDisplacement:
     upsample_runs : decision L87: with ``upsample`` > 1, split the samples where an interval exceeds 1.5 periods
         (a dropped sample) and upsample each run on its own, so no block mean is widened across the drop
         (L24's spline puts the block edges halfway between neighbours); meant with ``timestamps`` (the drop's
-        interval then keeps its length). A clock without a drop is unchanged bit for bit
+        interval then keeps its length). A clock without a drop is unchanged bit for bit. False (default;
+        L87: not adopted, the free spline ends of the runs ring after an impact)
 
     Attributes
     ----------
