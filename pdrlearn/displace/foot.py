@@ -137,6 +137,11 @@ def twist_yaw(q_start: np.ndarray, q_end: np.ndarray) -> np.ndarray:
 REFERENCE_POINTS = ("sensor", "heel")
 #: decision L83: the foot strides are integrated on the sample timestamps (``FootDisplacement(timestamps=...)``)
 TIMESTAMPS = False
+#: decision L87: at 20 Hz each evenly spaced run (between dropped samples) is upsampled on its own
+#: (``FootDisplacement(upsample_runs=...)``; with ``timestamps`` the long interval of a drop keeps its length).
+#: Off: its rule failed at 20 Hz (worst walk +3.851 pp at 3 % drops; the spline's free run ends ring after an
+#: impact; experiments/results/drops_runs_43-54.md)
+UPSAMPLE_RUNS = False
 
 class FootDisplacement:
     """Displacement of each stride of the foot unit between two rests.
@@ -184,6 +189,11 @@ class FootDisplacement:
         (dropped samples lengthen it; an interval over B11's 1 s gap counts one period, as the stride
         across it is zeroed); a clock uniform to 1e-6 uses the fixed ``1 / rate`` bit for bit.
         False = the fixed ``1 / rate`` everywhere (the former rule)
+    upsample_runs : decision L87: with ``upsample`` > 1, split the samples where an interval exceeds 1.5 periods
+        (a dropped sample) and upsample each run on its own, so no block mean is widened across the drop
+        (L24's spline puts the block edges halfway between neighbours); meant with ``timestamps`` (the drop's
+        interval then keeps its length). A clock without a drop is unchanged bit for bit. False (default;
+        L87: not adopted, the free spline ends of the runs ring after an impact)
 
     Attributes
     ----------
@@ -202,11 +212,13 @@ class FootDisplacement:
                  max_stride_s: float = 3.0, accel_scale_error: float = 0.01,
                  reference_point: str = "sensor", min_rocker_samples: int = 20, gap_yaw: bool = True,
                  zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
-                 tilt_clock: str = "rotation", timestamps: bool = TIMESTAMPS):
+                 tilt_clock: str = "rotation", timestamps: bool = TIMESTAMPS,
+                 upsample_runs: bool = UPSAMPLE_RUNS):
         if tilt_clock not in ("time", "rotation"):
             raise DataError(f"FootDisplacement: tilt_clock '{tilt_clock}' is not 'time' or 'rotation'")
         self.tilt_dedrift, self.tilt_clock = bool(tilt_dedrift), tilt_clock
         self.timestamps = bool(timestamps)
+        self.upsample_runs = bool(upsample_runs)
         if yaw not in ("twist", "x-axis"):
             raise DataError(f"FootDisplacement: yaw '{yaw}' is not 'twist' or 'x-axis'")
         self.yaw = yaw
@@ -254,7 +266,9 @@ class FootDisplacement:
         k = self.upsample if self.upsample is not None else (5 if fs0 < 50.0 else 1)
         t, acc, gyr, fs = unit.t, unit.acc, unit.gyr, fs0
         if k > 1:
-            t, both = K.upsample_block_means(unit.t, np.hstack([unit.acc, unit.gyr]), k)
+            both = np.hstack([unit.acc, unit.gyr])
+            t, both = (K.upsample_runs(unit.t, both, k, 1.0 / fs0) if self.upsample_runs  # decision L87
+                       else K.upsample_block_means(unit.t, both, k))
             acc, gyr = both[:, :3], both[:, 3:]
             fs = fs0 * k
         self.t_ = t
