@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import logging
-
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
@@ -67,7 +65,6 @@ def _walk(route: str, offset_sensor: np.ndarray):
 
 
 def test_track_fits_the_hard_iron_on_a_turning_walk_not_on_a_straight_one():
-    logging.getLogger("pdrlearn").setLevel(logging.ERROR)
     plasys = get_pipeline("plasys")
     offset = np.array([0.3, 0.0, -4.7])  # sensor x = left, z = forward: FLU (-4.7, 0.3, 0)
     route = "straight:5, curve:90:1.5, straight:5, curve:90:1.5, straight:5, curve:90:1.5, straight:5"
