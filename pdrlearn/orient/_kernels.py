@@ -66,6 +66,30 @@ def tilt_compensated_heading(acc: np.ndarray, mag: np.ndarray) -> np.ndarray:
     return wrap_angle(np.pi / 2 - np.arctan2(my, mx))  # thesis eq. 35
 
 
+def fit_horizontal_hard_iron(m_fwd: np.ndarray, m_left: np.ndarray, psi: np.ndarray) -> tuple[np.ndarray, float, float]:
+    """Horizontal hard-iron offset from level field components seen at known relative headings (decision L84).
+
+    With the forward axis at heading ``psi + c`` (``psi`` known up to the unknown constant ``c``) the level
+    components of thesis eq. 33/34 are ``m_fwd = H sin(psi + c) + b_f`` and ``m_left = H cos(psi + c) + b_l``;
+    expanded, ``m_fwd = A sin psi + B cos psi + b_f`` and ``m_left = A cos psi - B sin psi + b_l`` with
+    ``A = H cos c``, ``B = H sin c``: linear least squares in (A, B, b_f, b_l). The offset is separable from
+    ``c`` only when ``psi`` varies (a straight walk confounds them).
+
+    Returns
+    -------
+    b : (2,) (b_f, b_l) in the field's unit;  field : fitted horizontal field ``H = hypot(A, B)``;
+    resultant : resultant length of ``psi`` (1 = one heading, 0 = headings spread evenly)
+    """
+    psi = np.asarray(psi, dtype=float)
+    s, c = np.sin(psi), np.cos(psi)
+    one, zero = np.ones_like(psi), np.zeros_like(psi)
+    X = np.vstack([np.column_stack([s, c, one, zero]), np.column_stack([c, -s, zero, one])])
+    y = np.concatenate([np.asarray(m_fwd, dtype=float), np.asarray(m_left, dtype=float)])
+    coef = np.linalg.lstsq(X, y, rcond=None)[0]
+    resultant = float(np.hypot(s.mean(), c.mean())) if psi.size else 1.0
+    return coef[2:4].copy(), float(np.hypot(coef[0], coef[1])), resultant
+
+
 def yaw_rate(acc: np.ndarray, gyr: np.ndarray) -> np.ndarray:
     """Rate of turn about the vertical (rad/s, CCW positive): gyroscope projected on the up direction."""
     acc = np.atleast_2d(acc)

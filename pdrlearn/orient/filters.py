@@ -82,6 +82,8 @@ class WaistHeading:
     gravity_cutoff_hz : low-pass cutoff (Hz) of the accelerometer used as the gravity direction
     use_magnetometer : ``False`` -> gyroscope-only heading relative to ``initial_heading``
     initial_heading : ENU heading (rad) at the start when there is no magnetometer
+    hard_iron_ut : (3,) offset (uT, body FLU) subtracted from the magnetometer before the compass, e.g. the
+        fit of :func:`pdrlearn.track.plasys.fit_waist_hard_iron` (decision L84); None = none
 
     Attributes
     ----------
@@ -90,13 +92,15 @@ class WaistHeading:
     """
 
     def __init__(self, *, phi: float = 0.92, phi_rate_hz: float = 20.0, threshold: float = 0.035,
-                 gravity_cutoff_hz: float = 1.0, use_magnetometer: bool = True, initial_heading: float = 0.0):
+                 gravity_cutoff_hz: float = 1.0, use_magnetometer: bool = True, initial_heading: float = 0.0,
+                 hard_iron_ut=None):
         self.phi = phi  # thesis ch.7.1
         self.phi_rate_hz = phi_rate_hz  # thesis ch.7.1: 20 Hz samples
         self.threshold = threshold  # thesis ch.7.1: 0.035 rad
         self.gravity_cutoff_hz = gravity_cutoff_hz
         self.use_magnetometer = use_magnetometer
         self.initial_heading = initial_heading
+        self.hard_iron_ut = hard_iron_ut
 
     def estimate(self, t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, mag: np.ndarray | None = None,
                  *, fs: float | None = None) -> WaistHeading:
@@ -111,6 +115,8 @@ class WaistHeading:
         rate = K.yaw_rate(grav, gyr)
         self.warnings_: list[str] = []
         if mag is not None and self.use_magnetometer:
+            if self.hard_iron_ut is not None:  # decision L84
+                mag = np.asarray(mag, dtype=float) - np.asarray(self.hard_iron_ut, dtype=float)
             self.compass_ = K.tilt_compensated_heading(grav, mag)
             phi = K.phi_for_rate(dt, phi=self.phi, rate_hz=self.phi_rate_hz)
             theta = K.complementary_filter(self.compass_, rate, dt, phi=phi)

@@ -54,6 +54,8 @@ from pdrlearn.kernels.distance import (
 )
 from pdrlearn.kernels.window import GROUP_STREAMS, available_groups, levelled_units
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
+from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
+from pdrlearn.signal import lowpass
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
 from pdrlearn.track.gait import add_gait_columns
@@ -296,6 +298,48 @@ def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, t
     return np.asarray(relative) + offset
 
 
+#: decision L84: "fused" fits the waist magnetometer's horizontal hard-iron offset from the walk (not adopted:
+#: the rule's measurement is in docs/decisions/localization.md); ``track_plasys(hard_iron_fit=True)`` turns it on
+HARD_IRON_FIT = False
+#: L84's gates, fixed before measuring: the walk's stride headings spread enough (resultant length), enough
+#: strides, and an offset no larger than the fitted horizontal field
+HARD_IRON_MAX_RESULTANT = 0.5
+HARD_IRON_MIN_STRIDES = 8
+
+
+def fit_waist_hard_iron(session: Session, strides: pd.DataFrame, psi: np.ndarray,
+                        keep: np.ndarray | None = None) -> tuple[np.ndarray | None, dict]:
+    """The waist magnetometer's horizontal hard-iron offset (uT, body FLU, z = 0) fitted on the walk itself
+    (decision L84): per kept stride the mean level-forward / level-left field (thesis eq. 33/34) over its
+    window against the foot's relative heading ``psi`` (rad), :func:`~pdrlearn.orient._kernels.
+    fit_horizontal_hard_iron`. None (with the reason in the dict) when the session has no waist magnetometer,
+    the walk turns too little (resultant length of ``psi`` > :data:`HARD_IRON_MAX_RESULTANT`), has fewer than
+    :data:`HARD_IRON_MIN_STRIDES` strides, or the fitted offset exceeds the fitted horizontal field."""
+    u = unit_data(session, "waist", purpose="waist heading")
+    if u.mag is None:
+        return None, {"applied": False, "reason": "no waist magnetometer"}
+    _, fwd, left = level_axes(lowpass(u.acc, min(1.0, 0.4 * u.fs), u.fs))
+    m_f, m_l = np.einsum("ij,ij->i", u.mag, fwd), np.einsum("ij,ij->i", u.mag, left)
+    s = strides["start_s"].to_numpy(float)
+    e = strides["end_s"].to_numpy(float)
+    lo, hi = np.searchsorted(u.t, s, side="left"), np.searchsorted(u.t, e, side="right")
+    ok = (hi > lo) & (np.ones(len(s), bool) if keep is None else np.asarray(keep, bool))
+    cf, cl = np.concatenate([[0.0], np.cumsum(m_f)]), np.concatenate([[0.0], np.cumsum(m_l)])
+    n = np.maximum(hi - lo, 1)
+    mf_i, ml_i = ((cf[hi] - cf[lo]) / n)[ok], ((cl[hi] - cl[lo]) / n)[ok]
+    psi_i = np.asarray(psi, dtype=float)[ok]
+    out = {"applied": False, "n_strides": int(ok.sum())}
+    if ok.sum() < HARD_IRON_MIN_STRIDES:
+        return None, {**out, "reason": f"fewer than {HARD_IRON_MIN_STRIDES} strides"}
+    b, field, resultant = fit_horizontal_hard_iron(mf_i, ml_i, psi_i)
+    out.update({"resultant": resultant, "field_ut": field, "offset_ut": [float(b[0]), float(b[1])]})
+    if resultant > HARD_IRON_MAX_RESULTANT:
+        return None, {**out, "reason": "the walk turns too little to separate the offset from the heading"}
+    if float(np.hypot(*b)) > field:
+        return None, {**out, "reason": "fitted offset larger than the fitted field"}
+    return np.array([b[0], b[1], 0.0]), {**out, "applied": True}
+
+
 _TASK_COLUMNS = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
 # decision L18: DEFAULT_MODEL_RULES ("bayes") and DEFAULT_MIN_CONFIDENCE (0.95), the default rule with a model's
 # classes and its confidence gate, live in pdrlearn.kernels.bayes since L40 (the streaming runtime applies them)
@@ -402,7 +446,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  min_confidence: float | None = None, align: bool = False, rules: str | None = None,
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
-                 warn_out_of_domain: float | None = None, toe_off: bool = False, **opts) -> TrackResult:
+                 warn_out_of_domain: float | None = None, toe_off: bool = False,
+                 hard_iron_fit: bool | None = None, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -452,6 +497,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         fraction is always in ``info["out_of_domain"]``
     toe_off : add the toe-off ``tc_s`` and ``stance_time_s``, ``swing_time_s``, ``stance_pct`` to every stride
         row (decision L73, ``pdrlearn.track.toeoff``; offline only)
+    hard_iron_fit : heading "fused": fit the waist magnetometer's horizontal hard-iron offset on the walk when
+        it turns enough (decision L84, :func:`fit_waist_hard_iron`; None = :data:`HARD_IRON_FIT`); the fit
+        is in ``info["hard_iron"]``
 
     Any other keyword argument raises ``TypeError`` naming the closest valid one (decision L43). Warnings go
     to ``info["warnings"]`` and to the ``logging`` logger ``pdrlearn.track`` (not Python's ``warnings``).
@@ -617,13 +665,18 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         warnings += [msg] if msg else []
 
     hsrc = heading or cfg["heading"]
+    hard_iron_info = None
     if hsrc in ("waist", "fused") and not has_waist:
         warnings.append(NO_WAIST_HEADING)
         hsrc = "foot"
     lateral = np.arctan2(disp[:, 1], np.abs(disp[:, 0])) * np.where(disp[:, 0] < 0, -1.0, 1.0)
     if hsrc in ("waist", "fused"):
         work.require_cover("fAccelerometer", "wAccelerometer")  # B21: the waist heading is read at the strides
-        wh = WaistHeading().fit_session(work)
+        hard_iron = None
+        if hsrc == "fused" and (HARD_IRON_FIT if hard_iron_fit is None else hard_iron_fit):  # decision L84
+            hard_iron, hard_iron_info = fit_waist_hard_iron(work, strides, fd.foot_heading(0.0) + lateral,
+                                                            keep=~in_gap)
+        wh = WaistHeading(hard_iron_ut=hard_iron).fit_session(work)
         warnings += wh.warnings_
         head = _stride_heading(wh, strides)
         if hsrc == "fused":
@@ -700,6 +753,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     oracle = isinstance(model, str) and model == "oracle"
     info = {"pipeline": "plasys", "method": "M3 engine, no classes" if no_classes else method,
             "heading_source": hsrc, "stance_source": stance_source,
+            "hard_iron": hard_iron_info,  # decision L84 (None: the fit was not asked)
             "steps_source": source,
             "classes_source": ("oracle" if oracle else ("model" if cfg["rules"] else None)),
             # decision L38: strides classified on the streaming segmenter's window / on their own bounds
