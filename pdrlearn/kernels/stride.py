@@ -367,6 +367,16 @@ def stride_gap_yaw(levelled: Levelled, heading_source: str, stream: Callable[[st
     return gap_yaw(*stream("wGyroscope"), *stream("wAccelerometer"), prev_end, t0, still_rad_s=WAIST_GAP_STILL_RAD_S)
 
 
+def waist_bridge_yaw(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float) -> float:
+    """Decision L91: the waist's turn (rad, CCW) over ``[t0, t1]`` (s), an interval the foot gyroscope did not
+    record (it overlaps a foot gap over 1 s, B11): :func:`gap_yaw` of ``wGyroscope`` / ``wAccelerometer`` over the
+    whole interval, ungated as L61 (:data:`WAIST_GAP_STILL_RAD_S`); 0 when ``t1 <= t0``."""
+    if not t1 > t0:
+        return 0.0
+    return gap_yaw(*stream("wGyroscope"), *stream("wAccelerometer"), float(t0), float(t1),
+                   still_rad_s=WAIST_GAP_STILL_RAD_S, max_s=float(t1) - float(t0))
+
+
 #: Heading sources of a streamed stride: the foot's attitude change from rest to rest, the waist's
 #: levelled vertical rate integrated over the stride, or "auto" (the waist when the stride has waist
 #: samples, else the foot).

@@ -41,6 +41,7 @@ from pdrlearn.kernels.stride import (
     stride_motion,
     stride_rules_one,
     travel_sign_one,
+    waist_bridge_yaw,
 )
 from pdrlearn.kernels.window import (
     BOUNDARIES,
@@ -290,6 +291,9 @@ class Tracker:
     waist_gap_yaw : a stride headed by the waist gyroscope adds the waist's turn between two strides that do not
         touch (decision L61; ``pdrlearn track --streaming``'s ``waist_gap_yaw``); the foot's pivot is always
         added to a stride headed by the foot (L31).
+    waist_bridge : the stride across a foot accelerometer / gyroscope gap over 1 s turns by the waist gyroscope's
+        turn (decision L91, an option: not adopted as the default; ``pdrlearn track --streaming``'s
+        ``waist_bridge``) when the waist heads the strides; default: it keeps the heading (E30, L90).
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -330,6 +334,7 @@ class Tracker:
         units=None,
         sensors=None,
         waist_gap_yaw: bool = True,
+        waist_bridge: bool = False,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -466,6 +471,7 @@ class Tracker:
         self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
         self._row_gaps, self._heights = [], []  # decisions E46, E47
         self.waist_gap_yaw = bool(waist_gap_yaw)  # decision L61
+        self.waist_bridge = bool(waist_bridge)  # decision L91
         #: the input side (decision E22): streams at another rate than the bundle's are tracked at their own
         #: rate (``resample="native"``, the default, as ``pdrlearn track --streaming``), resampled to the
         #: bundle's (``True``) or refused (``False``); ``inputs.input_rates_hz`` / ``resampled_hz`` tell which
@@ -497,7 +503,7 @@ class Tracker:
         #: the processed strides, and the streams announced as held (``max_lag_s = inf``)
         self._pushed_gaps: list | None = None
         self._gap_marks: list[list] = []
-        self._foot_gaps: list[tuple[float, float, bool]] = []
+        self._foot_gaps: list[tuple[float, float, bool, bool]] = []  # (start, end, long, a foot IMU stream's)
         self._held: set[str] = set()
         self._held_s = float(self.params.get("max_wait_s", 2.0))  # a held value older than this is warned about
 
@@ -766,7 +772,7 @@ class Tracker:
         for name, a, b in gaps:
             long = name in _FOOT_GAP_STREAMS and b - a > GAP_LONG_S
             if long or name in _FOOT_IMU:
-                self._foot_gaps.append((a, b, long))
+                self._foot_gaps.append((a, b, long, name in _FOOT_IMU))
             if long:  # decision E46: the stretch it lies in becomes one gap row
                 self._row_gaps.append((a, b))
             for g in [*new, *self._gap_marks]:
@@ -782,7 +788,10 @@ class Tracker:
                 new.append([a, b, long, [name]])
         for a, b, long, names in new:
             self._gap_marks.append([a, b, long])
-            what = (f"a gap longer than {GAP_LONG_S:g} s (B11): the stride across it moves 0 m, keeps the heading and "
+            turn = ("turns with the waist gyroscope (L91)" if self._bridged() else
+                    "keeps the heading: the turn inside the gap is unknown, the heading after it is uncertain (L90)"
+                    ) if _FOOT_IMU.intersection(names) else "keeps the heading"  # decision L92
+            what = (f"a gap longer than {GAP_LONG_S:g} s (B11): the stride across it moves 0 m, {turn} and "
                     "has no classes; no step is counted inside it, as `pdrlearn track` counts no displacement there"
                     if long else
                     f"bridged (interpolated) as `pdrlearn track` does up to {GAP_LONG_S:g} s (B11): the stride across "
@@ -790,6 +799,12 @@ class Tracker:
                     "foot's")
             self._warn(f"{', '.join(names)}: no samples for {b - a:.2f} s ({a:.2f}-{b:.2f} s); {what} (decision E30)")
         del self._gap_marks[:-16]  # the latest few: a gap is seen by every stream within a few pushes
+
+    def _bridged(self) -> bool:
+        """Decision L91: a stride across a foot IMU gap turns by the waist gyroscope (the waist heads the
+        strides: heading_source auto / waist-gyro with the waist unit's accelerometer and gyroscope)."""
+        return (self.waist_bridge and self.heading_source in ("auto", "waist-gyro") and "waist" in self.units
+                and "waist" in self.forward and "wGyroscope" in self._buf and "wAccelerometer" in self._buf)
 
     def _checked_arrays(self, name: str, t, v) -> tuple[np.ndarray, np.ndarray]:
         """``(t (n,), values (n, k))`` as float64 with k the sensor's width, finite and increasing; else a
@@ -1066,12 +1081,18 @@ class Tracker:
         else:
             spec = None
         bridged = False
+        prev = self._prev_end
+        pause_gap = False  # decision L90: the pause before this stride overlaps a foot IMU gap over 1 s
         if self._foot_gaps:  # decision E30 / B11: a stride across a foot gap over 1 s moves 0 m
-            over = [(b - a, long) for a, b, long in self._foot_gaps if a < t1 and b > t0]
+            pause_gap = prev is not None and prev < t0 and any(
+                long and imu and a < t0 and b > prev for a, b, long, imu in self._foot_gaps)
+            over = [(b - a, long, imu) for a, b, long, imu in self._foot_gaps if a < t1 and b > t0]
             self._foot_gaps = [g for g in self._foot_gaps if g[1] > t0]
-            gap = max([d for d, long in over if long], default=0.0)
+            gap = max([d for d, long, _ in over if long], default=0.0)
             if gap:
-                self._prev_end = t1  # no L31 pivot across it either: the turn inside the gap is unknown
+                if self._bridged() and any(long and imu for _, long, imu in over):  # decision L91
+                    self.heading += waist_bridge_yaw(self._stream, min(t0, t0 if prev is None else prev), t1)
+                self._prev_end = t1  # no L31 pivot across it either: the foot's turn inside the gap is unknown
                 self._heights.append((None, 0.0, 0.0))  # decision E47: no class, 0 m (as --streaming's)
                 x, y, z = self.position.tolist()
                 return Step(t0, t1, {}, {}, 0.0, 0.0, self.heading, x, y, z, gap_s=gap)
@@ -1086,8 +1107,14 @@ class Tracker:
             disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
         else:
             lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
-        # decisions L31 / L61: the heading unit's turn between strides (track --streaming's call)
-        dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, self._prev_end, t0, waist=self.waist_gap_yaw)
+        if pause_gap:  # decisions L90 / L91 (track --streaming's): no foot pivot over a foot gap; the waist's turn
+            if self._bridged():
+                dyaw += waist_bridge_yaw(self._stream, prev, t0)
+            elif not headed_by_foot(lev, self.heading_source):  # L61's waist look-back is measured, kept
+                dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, foot=False,
+                                       waist=self.waist_gap_yaw)
+        else:  # decisions L31 / L61: the heading unit's turn between strides (track --streaming's call)
+            dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, waist=self.waist_gap_yaw)
         self._prev_end = t1
         if self.distance_gain is None:
             self._resolve_calibration()
@@ -1178,6 +1205,8 @@ class Tracker:
             keep_from = max(keep_from, self.segmenter.last_boundary - _LOOK_BACK_S)
         if self._pending:  # keep what the waiting steps need
             keep_from = min(keep_from, self._pending[0][0] - _LOOK_BACK_S)
+        if self._prev_end is not None and any(g[2] and g[3] for g in self._foot_gaps):  # decision L91: the waist's
+            keep_from = min(keep_from, self._prev_end - _LOOK_BACK_S)  # turn from the last stride's end is bridged
         if keep_from <= self._drop_at:  # nothing to drop (the common case between two steps)
             return
         self._trims += 1  # a computed-ahead step is recomputed (decision E24)

@@ -17,6 +17,30 @@ from pdrlearn.io.session import Session
 MIN_GAP_S = 1.0
 
 
+#: the foot streams whose gaps lose the foot's turn (decisions L90 / L91): the gyroscope, and the accelerometer
+#: whose clock the offline foot integrates the gyroscope on
+FOOT_IMU = ("fAccelerometer", "fGyroscope")
+
+
+def overlaps_any(a: float, b: float, gaps: dict[str, list[tuple[float, float]]]) -> bool:
+    """Whether ``a``..``b`` (s) overlaps one of ``gaps`` (the test of :func:`overlaps_gaps`, one interval)."""
+    return any(g0 < b and g1 > a for g in gaps.values() for g0, g1 in g)
+
+
+def gap_heading_clause(foot_gaps: dict[str, list[tuple[float, float]]], how: str) -> str:
+    """Decision L92: what a foot gap does to the heading, for the gap warning ("" when no foot accelerometer or
+    gyroscope gap). ``how``: "bridged" (the waist gyroscope's turn, L91), "fused" (each stretch aligned to the
+    waist heading on its own, L90), "waist" (the waist heading, not touched by a foot gap) or "none" (the turn
+    is unknown, taken as 0, L90)."""
+    if not any(foot_gaps.get(n) for n in FOOT_IMU):
+        return ""
+    return {"bridged": "; the turn inside them is the waist gyroscope's (L91)",
+            "fused": "; the foot's turn inside them is unknown: the heading of each stretch between them is aligned "
+                     "to the waist heading on its own (L90)",
+            "waist": "; the heading is the waist unit's, which they do not touch",
+            "none": "; the turn inside them is unknown (taken as 0, L90): the heading after them is uncertain"}[how]
+
+
 def long_gaps(session: Session, names: tuple[str, ...], *, min_gap_s: float = MIN_GAP_S
               ) -> dict[str, list[tuple[float, float]]]:
     """Stream name -> ``[(start_s, end_s), ...]`` of its gaps longer than ``min_gap_s`` (s)."""

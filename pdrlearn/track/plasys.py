@@ -60,11 +60,14 @@ from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, regi
 from pdrlearn.track.evaluate import match_by_overlap
 from pdrlearn.track.gait import add_gait_columns
 from pdrlearn.track.gaps import (
+    FOOT_IMU,
     drop_steps_across_gaps,
+    gap_heading_clause,
     gap_rows,
     gap_warnings,
     long_gaps,
     longest_gap_in,
+    overlaps_any,
     overlaps_gaps,
 )
 from pdrlearn.track.geodetic import geodetic_track
@@ -446,7 +449,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  min_confidence: float | None = None, align: bool = False, rules: str | None = None,
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
-                 warn_out_of_domain: float | None = None, toe_off: bool = False,
+                 waist_bridge: bool = False, warn_out_of_domain: float | None = None, toe_off: bool = False,
                  hard_iron_fit: bool | None = None, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
@@ -489,6 +492,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     waist_gap_yaw : streaming: a stride headed by the waist gyroscope adds the waist's turn between two strides
         that do not touch (decision L61; None = the :func:`track_streaming` default); offline not used (the
         waist heading filter integrates the whole session)
+    waist_bridge : decision L91 (an option, not adopted as the default): the turn over a foot-IMU gap (over 1 s,
+        B11) is the waist gyroscope's, offline (the stride across the gap and the pause before the first stride
+        after it) and streamed (the stride across it and the pause before the next); False (default), or no waist
+        gyroscope: 0 (L90: the foot's interpolated gyroscope is never integrated there)
     calibration : M3 with a trained model: use the model's distance calibration (L26): its gain (unless
         ``distance_gain`` is given) and, for the bayes rules, its measured stride-length sd in place of the
         3 % default. False: neither
@@ -530,7 +537,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                               heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
                               bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
                               calibration=calibration, rules=rules, min_confidence=min_confidence,
-                              warn_out_of_domain=warn_out_of_domain,
+                              warn_out_of_domain=warn_out_of_domain, waist_bridge=waist_bridge,
                               **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}),
                               **({} if waist_gap_yaw is None else {"waist_gap_yaw": bool(waist_gap_yaw)}))
         if no_classes:
@@ -561,9 +568,13 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     strides = _detect_strides(session, kind, steps, foot.t, stance, warnings).reset_index(drop=True)
     # decision B11: report long stream gaps; no foot stride spans a foot-stream gap
     foot_gaps = long_gaps(session, ("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
+    bridged = waist_bridge and session.has("wGyroscope", "wAccelerometer")  # decision L91
+    waist_heads = (heading or cfg["heading"]) in ("waist", "fused") and session.has(
+        "wAccelerometer", "wGyroscope") and session.has_frame("waist")
+    how = (heading or cfg["heading"]) if waist_heads else ("bridged" if bridged else "none")  # decision L92
     warnings += gap_warnings({**foot_gaps, **long_gaps(session, ("wAccelerometer", "wGyroscope"))},
                              "no displacement is counted inside them: a stride across a foot gap is one row "
-                             "of 0 m with its gap_s in steps.csv (L67)")
+                             "of 0 m with its gap_s in steps.csv (L67)" + gap_heading_clause(foot_gaps, how))
     strides = drop_steps_across_gaps(strides, foot_gaps)
     if not len(strides):
         raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?")
@@ -664,6 +675,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                               disp[:, 2], dz)
         warnings += [msg] if msg else []
 
+    bridge_foot_yaw(fd, foot_gaps, (lambda n: (work.streams[n].t, work.streams[n].values)) if bridged else None)
     hsrc = heading or cfg["heading"]
     hard_iron_info = None
     if hsrc in ("waist", "fused") and not has_waist:
@@ -680,8 +692,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         warnings += wh.warnings_
         head = _stride_heading(wh, strides)
         if hsrc == "fused":
-            head = fuse_heading(fd.foot_heading(0.0) + lateral, head, strides["end_s"].to_numpy(float),
-                                tau_s=fused_tau_s)
+            head = fuse_by_segment(fd.foot_heading(0.0) + lateral, head, strides["start_s"].to_numpy(float),
+                                   strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s)
     elif hsrc == "foot":
         head = fd.foot_heading(initial_heading) + lateral
     else:
@@ -780,6 +792,53 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     return TrackResult(steps=table, trajectory=traj, info=info)
 
 
+def fuse_by_segment(relative: np.ndarray, absolute: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
+                    foot_gaps: dict, *, tau_s: float = 60.0) -> np.ndarray:
+    """Decision L90: :func:`fuse_heading` on each stretch of strides between two foot-IMU gaps (``fAccelerometer``
+    / ``fGyroscope``, over 1 s) on its own: the foot's relative heading loses its link at such a gap (the turn
+    inside it was not measured), so each stretch gets its own offset to the waist heading, from its own strides -
+    the strides before a gap do not depend on anything after it, and after it the waist heading re-anchors the
+    foot's. A stride belongs to the stretch after every gap that ended by its start. Without such a gap: one
+    :func:`fuse_heading` call, as before."""
+    ends = sorted(b for k, g in foot_gaps.items() if k in FOOT_IMU for _, b in g)
+    if not ends or not len(relative):
+        return fuse_heading(relative, absolute, end_s, tau_s=tau_s)
+    seg = np.searchsorted(np.asarray(ends), np.asarray(start_s, float), side="right")
+    out = np.empty(len(relative))
+    for k in np.unique(seg):
+        m = seg == k
+        out[m] = fuse_heading(np.asarray(relative)[m], np.asarray(absolute)[m], np.asarray(end_s)[m], tau_s=tau_s)
+    return out
+
+
+def bridge_foot_yaw(fd: FootDisplacement, foot_gaps: dict, stream=None) -> None:
+    """Decisions L90 / L91: the foot's turn is not integrated over a foot-IMU gap (``fAccelerometer`` /
+    ``fGyroscope``, over 1 s): the gyroscope there is an interpolated line (``orient.unit_data``), so the yaw of a
+    stride whose bounds overlap a gap (``fd.yaw_change_``) and the pivot before a stride whose pause from the
+    previous stride overlaps one (``fd.gap_yaw_``, L28) become the waist's turn over the same interval
+    (:func:`~pdrlearn.kernels.stride.waist_bridge_yaw`; ``stream(name)`` -> ``(t, values)``) or, with ``stream``
+    None (no waist gyroscope), 0. Strides and pauses that overlap no such gap keep their values bit for bit."""
+    imu = {k: v for k, v in foot_gaps.items() if k in FOOT_IMU and v}
+    if not imu or not len(fd.yaw_change_):
+        return
+    st, en = np.asarray(fd.start_s_, float), np.asarray(fd.end_s_, float)
+
+    def over(a: float, b: float) -> bool:
+        return overlaps_any(a, b, imu)
+
+    def turn(a: float, b: float) -> float:
+        return 0.0 if stream is None else SK.waist_bridge_yaw(stream, a, b)
+
+    yc = np.array(fd.yaw_change_, dtype=float)
+    gy = np.array(getattr(fd, "gap_yaw_", np.zeros(len(yc))), dtype=float)
+    for k in range(len(yc)):
+        if over(st[k], en[k]):
+            yc[k] = turn(st[k], en[k])
+        if k and en[k - 1] < st[k] and over(en[k - 1], st[k]):
+            gy[k] = turn(en[k - 1], st[k])
+    fd.yaw_change_, fd.gap_yaw_ = yc, gy
+
+
 def _level_without_classes(res: TrackResult) -> None:
     """Decision L39 on a streamed track without classes: the level strides' ``dz_m`` set to 0 and the
     trajectory's height re-accumulated (one trajectory row per stride after the start row)."""
@@ -826,7 +885,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     heading: str = "auto", initial_heading: float = 0.0, bounds=None, bounds_scale: float = 2.0,
                     down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca",
                     distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = True,
-                    waist_gap_yaw: bool = True, rules: str | None = None, min_confidence: float | None = None,
+                    waist_gap_yaw: bool = True, waist_bridge: bool = False, rules: str | None = None,
+                    min_confidence: float | None = None,
                     warn_out_of_domain: float | None = None) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
@@ -869,11 +929,15 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         raise DataError(f"session '{session.name}': no stance-to-stance stride found on the foot gyroscope")
     table = pd.DataFrame({"start_s": strides[:, 0], "end_s": strides[:, 1]})
     # decision B11 / E30: as the streaming runtime (parity), a stride across a foot-stream gap over 1 s moves 0 m,
-    # keeps the heading and has no classes; a waist gap is only warned (bridged)
+    # keeps the heading (L91: turns with the waist gyroscope when it heads the strides) and has no classes; a
+    # waist gap is only warned (bridged)
     foot_gaps = long_gaps(session, ("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
+    bridged = bool(waist_bridge and heading in ("auto", "waist-gyro") and "waist" in forward
+                   and "waist_gyr" in available and "waist_acc" in available)  # decision L91
     warnings: list[str] = gap_warnings({**foot_gaps, **long_gaps(session, ("wAccelerometer", "wGyroscope"))},
                                        "no displacement is counted inside them (a stride across a foot gap moves 0 m, "
-                                       "as the runtime, E30)")
+                                       "as the runtime, E30)"
+                                       + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"))
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(NO_WAIST_HEADING)
     classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
@@ -921,16 +985,28 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     disp, dyaw, place = np.zeros((len(table), 3)), np.zeros(len(table)), np.zeros(len(table))
     foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
     in_gap = overlaps_gaps(table, foot_gaps)  # decision E30: these strides move 0 m, turn 0, no classes
+    imu_gaps = {k: v for k, v in foot_gaps.items() if k in FOOT_IMU}
+    imu_gap = overlaps_gaps(table, imu_gaps)  # decisions L90 / L91: the foot's yaw is lost over these strides
     for i, (t0, t1) in enumerate(strides):
-        if in_gap[i]:
+        prev = float(strides[i - 1, 1]) if i else None
+        if in_gap[i]:  # decision L91: the waist's turn from the previous stride's end, else 0 (L90)
+            if bridged and imu_gap[i]:
+                dyaw[i] = SK.waist_bridge_yaw(streams.__getitem__, min(float(t0), prev if prev is not None
+                                                                      else float(t0)), float(t1))
             continue
         lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,  # E36: a short
                              rest_search_s=rest_search_s, heading=step_heading, bridge_gaps=True)  # gap = 1 interval
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1))
         place[i] = SK.placement_offset(lev, heading, disp[i])  # decision L34
         foot_headed[i] = SK.headed_by_foot(lev, heading)
-        if i:  # decisions L31 / L61: the heading unit's turn between strides (the runtime's call)
-            dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, float(strides[i - 1, 1]), float(t0),
+        if i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps):  # L90: no foot pivot over a foot gap;
+            if bridged:  # L91: the waist's turn over the whole pause
+                dyaw[i] += SK.waist_bridge_yaw(streams.__getitem__, prev, float(t0))
+            elif not foot_headed[i]:  # L61's waist look-back is measured, kept
+                dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0), foot=False,
+                                             waist=waist_gap_yaw)
+        elif i:  # decisions L31 / L61: the heading unit's turn between strides (the runtime's call)
+            dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0),
                                          foot=gap_yaw, waist=waist_gap_yaw)
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
     rule_classes = _confident(classes, gate) if method == "M3" else classes  # decision L18 / L40
