@@ -346,7 +346,7 @@ def _batch_warnings(sessions: list[tuple[str, str]], results: list[JobResult]) -
 
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
     tmp = path.with_name(f".{path.name}.tmp")
-    df.to_csv(tmp, index=False, float_format="%.10g")
+    df.to_csv(tmp, index=False)  # full precision: groups.csv = a groupby of sessions.csv as read back
     tmp.replace(path)
 
 
