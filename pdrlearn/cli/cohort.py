@@ -322,6 +322,10 @@ def _session_row(rel: str, group: str, r: JobResult) -> dict:
 
 def _sessions_table(rows: list[dict]) -> pd.DataFrame:
     df = pd.DataFrame(rows)
+    for c in df.columns:  # counts stay integers beside a failed session's empty cells (58, not 58.0)
+        values = [v for v in (r.get(c) for r in rows) if v is not None]
+        if values and all(isinstance(v, int) and not isinstance(v, bool) for v in values):
+            df[c] = df[c].astype("Int64")
     rest = sorted(c for c in df.columns if c not in SESSION_COLUMNS)
     return df.reindex(columns=[*SESSION_COLUMNS, *rest])
 
