@@ -5,8 +5,8 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import pandas as pd
 import typer
 
 from pdrlearn.atomic import atomic_directory
@@ -35,6 +35,9 @@ from pdrlearn.cohort import (
     user_sessions,
 )
 from pdrlearn.errors import DataError
+
+if TYPE_CHECKING:  # pandas is imported where it is used: `pdrlearn --version/--help` stay light (C14)
+    import pandas as pd
 
 #: Numeric libraries of the train/evaluate jobs, loaded before each job's one-thread limit is applied so
 #: that their BLAS/OpenMP pools are limited in a serial run too (pdrlearn.cohort.single_threaded).
@@ -77,6 +80,8 @@ def _evaluate_job(args: dict) -> dict:
 
 
 def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
+    import pandas as pd
+
     rows = []
     for r in results:
         row = {"user": r.name, "status": "ok" if r.ok else "failed", "seconds": round(r.seconds, 2),
@@ -96,6 +101,8 @@ def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
 
 
 def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool) -> None:
+    import pandas as pd
+
     failed = [r for r in results if not r.ok]
     if as_json:
         print_json(json_safe({"users": df.to_dict(orient="records"), "n_users": len(results),
@@ -321,6 +328,8 @@ def _session_row(rel: str, group: str, r: JobResult) -> dict:
 
 
 def _sessions_table(rows: list[dict]) -> pd.DataFrame:
+    import pandas as pd
+
     df = pd.DataFrame(rows)
     for c in df.columns:  # counts stay integers beside a failed session's empty cells (58, not 58.0)
         values = [v for v in (r.get(c) for r in rows) if v is not None]
@@ -356,6 +365,8 @@ def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
 
 def _groups_text(groups: pd.DataFrame) -> pd.DataFrame:
     """groups.csv as printed: per metric ``mean ± sd (n)``, so the groups compare at a glance."""
+    import pandas as pd
+
     shown = groups[["group", "n_sessions", "n_failed"]].copy()
     for m in ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "median_stride_length_m"):
         if f"{m}_mean" in groups:

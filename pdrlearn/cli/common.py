@@ -11,7 +11,21 @@ from pdrlearn.atomic import expect_unchanged
 from pdrlearn.cohort import is_session_dir as is_session_folder
 from pdrlearn.cohort import session_files
 from pdrlearn.errors import DataError
-from pdrlearn.io.plasys import json_default, json_safe  # noqa: F401  (json_safe: re-exported)
+
+
+def json_default(o):
+    """:func:`pdrlearn.io.plasys.json_default`, imported when used: numpy and pandas stay out of
+    ``pdrlearn --version`` / ``--help`` (decision C14)."""
+    from pdrlearn.io.plasys import json_default as default
+
+    return default(o)
+
+
+def json_safe(obj):
+    """:func:`pdrlearn.io.plasys.json_safe` (NaN/inf -> None, recursively), imported when used."""
+    from pdrlearn.io.plasys import json_safe as safe
+
+    return safe(obj)
 
 
 def print_json(obj) -> None:
