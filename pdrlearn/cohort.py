@@ -81,8 +81,47 @@ class JobResult:
     extra: dict = field(default_factory=dict)
 
 
-def _is_session_dir(p: Path) -> bool:
-    return p.is_dir() and any(p.glob("*Accelerometer.csv"))
+def session_files() -> tuple[str, ...]:
+    """The files that make a folder a session: ``meta.json`` and every sensor file name."""
+    from pdrlearn.io.sensors import SENSORS
+
+    return ("meta.json", *(s.filename for s in SENSORS.values()))
+
+
+def is_session_dir(p: str | os.PathLike) -> bool:
+    """Whether ``p`` is a session folder: it holds ``meta.json`` or a sensor CSV (``fAccelerometer.csv``, ...).
+    The one test of what a session is, shared by ``train-all``/``evaluate-all`` (:func:`user_sessions`),
+    ``track-all`` (:func:`find_sessions`) and the output-folder checks (decision C12)."""
+    p = Path(p)
+    return p.is_dir() and any((p / n).is_file() for n in session_files())
+
+
+def find_sessions(root: str | os.PathLike) -> list[Path]:
+    """Every session folder under ``root`` at any depth (sorted by relative path; hidden folders and the
+    inside of a session folder are not searched). ``root`` itself being a session is an error: a batch
+    command wants a folder of sessions (decision C12)."""
+    root = Path(root)
+    if not root.is_dir():
+        raise DataError(f"{root}: folder not found; pass the folder that holds the session folders")
+    if is_session_dir(root):
+        raise DataError(f"{root}: is one session (it holds meta.json / sensor files); track it with "
+                        f"'pdrlearn track {root} --out DIR', or pass the folder above it")
+    found: list[Path] = []
+
+    def walk(d: Path) -> None:
+        for p in sorted(d.iterdir()):
+            if not p.is_dir() or p.name.startswith("."):
+                continue
+            if is_session_dir(p):
+                found.append(p)
+            else:
+                walk(p)
+
+    walk(root)
+    if not found:
+        raise DataError(f"{root}: no session folders (a folder with meta.json or a sensor CSV such as "
+                        "fAccelerometer.csv) found at any depth")
+    return found
 
 
 def user_sessions(user_dir: Path, part: str | None = None) -> list[Path]:
@@ -91,11 +130,11 @@ def user_sessions(user_dir: Path, part: str | None = None) -> list[Path]:
     if part and base is user_dir and part == "test":
         raise DataError(f"{user_dir}: no test/ folder with held-out sessions; add {user_dir / 'test'} (one "
                         "folder per session), or score this user with 'pdrlearn evaluate MODEL_DIR SESSION...'")
-    if _is_session_dir(base):
+    if is_session_dir(base):
         return [base]
-    sessions = sorted(p for p in base.iterdir() if _is_session_dir(p))
+    sessions = sorted(p for p in base.iterdir() if is_session_dir(p))
     if not sessions:
-        raise DataError(f"{base}: no session folders (with *Accelerometer.csv) found")
+        raise DataError(f"{base}: no session folders (with meta.json or a sensor CSV) found")
     return sessions
 
 
@@ -263,3 +302,69 @@ def run_cohort(
         client.close()
         if cluster is not None:
             cluster.close()
+
+
+@contextmanager
+def captured_warnings(logger: str = "pdrlearn") -> Iterator[list[str]]:
+    """Collect the WARNING (and worse) records of ``logger`` and its children raised in the body into the
+    yielded list instead of letting the logger's handlers print them (records below WARNING pass as
+    before). ``track-all`` tracks each session inside it and says each distinct warning once per batch with
+    the sessions it concerns (decision C12): the ~250-character "no model" line was printed per session."""
+    log_ = logging.getLogger(logger)
+    messages: list[str] = []
+
+    class _Collect(logging.Handler):
+        def emit(self, record: logging.LogRecord) -> None:
+            messages.append(record.getMessage())
+
+    def below_warning(record: logging.LogRecord) -> bool:
+        return record.levelno < logging.WARNING
+
+    others = list(log_.handlers)
+    for h in others:
+        h.addFilter(below_warning)
+    collect = _Collect(logging.WARNING)
+    log_.addHandler(collect)
+    try:
+        yield messages
+    finally:
+        log_.removeHandler(collect)
+        for h in others:
+            h.removeFilter(below_warning)
+
+
+def session_group(rel_path: str, depth: int = 1) -> str:
+    """The group of a session at ``rel_path`` (relative to the batch root, ``/``-separated): its first
+    ``depth`` folder components (``siteA/p01/clinic`` -> ``siteA`` at depth 1, ``siteA/p01`` at depth 2),
+    never the session folder itself; ``.`` for a session directly under the root (decision C12)."""
+    parts = rel_path.split("/")
+    return "/".join(parts[:min(depth, len(parts) - 1)]) or "."
+
+
+#: Per-session columns that ``groups.csv`` summarises (decision C12), where sessions.csv has values.
+GROUP_METRICS = ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "median_stride_length_m")
+
+
+def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
+    """``groups.csv`` from ``sessions.csv`` (a DataFrame): one row per ``group`` (sorted) with
+    ``n_sessions`` (tracked), ``n_failed``, and for each metric column that has a value in some tracked session
+    ``<metric>_n`` (sessions with a value), ``_mean``, ``_sd`` (sample standard deviation, n - 1; empty for
+    one session) and ``_median`` over the group's tracked sessions. Plain pandas ``groupby`` statistics
+    (decision C12)."""
+    import pandas as pd
+
+    ok = sessions[sessions["status"] == "ok"]
+    groups = sorted(sessions["group"].astype(str).unique())
+    out = pd.DataFrame({"group": groups})
+    out["n_sessions"] = [int((ok["group"].astype(str) == g).sum()) for g in groups]
+    out["n_failed"] = [int(((sessions["group"].astype(str) == g) & (sessions["status"] != "ok")).sum())
+                       for g in groups]
+    for m in metrics:
+        if m not in ok or not pd.to_numeric(ok[m], errors="coerce").notna().any():
+            continue
+        stats = (pd.to_numeric(ok[m], errors="coerce").groupby(ok["group"].astype(str))
+                 .agg(["count", "mean", "std", "median"]).reindex(groups))
+        out[f"{m}_n"] = stats["count"].fillna(0).astype(int).to_numpy()
+        for s, name in (("mean", "mean"), ("std", "sd"), ("median", "median")):
+            out[f"{m}_{name}"] = stats[s].to_numpy()
+    return out

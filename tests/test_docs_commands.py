@@ -317,6 +317,8 @@ def _validators() -> dict[tuple[str, str], object]:
         ("import", "gyro_unit"): unit_word("gyro"),
         ("import", "frames"): parse_frame,
     }
+    for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point"):  # cohort C12
+        v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):
         v[(cmd, "tasks")] = settings("tasks")
         v[(cmd, "methods")] = settings("methods")
@@ -325,7 +327,7 @@ def _validators() -> dict[tuple[str, str], object]:
 
 
 #: text options that take any value (a name, a path, a column, an address): nothing to check
-FREE_TEXT = {("track", "model"), ("run", "protocol"), ("train", "user"),
+FREE_TEXT = {("track", "model"), ("track-all", "model"), ("run", "protocol"), ("train", "user"),
              ("train-all", "scheduler"), ("evaluate-all", "scheduler"), ("report", "title"), ("import", "time"),
              ("import", "acc"), ("import", "gyro"), ("import", "mag"), ("import", "baro"), ("import", "heel"),
              ("import", "toe"), ("import", "time_format"), ("import", "time_zone"), ("import", "name"),

@@ -1,14 +1,16 @@
-"""``pdrlearn train-all`` / ``pdrlearn evaluate-all``: one per-user job per cohort subfolder, on Dask."""
+"""``pdrlearn train-all`` / ``pdrlearn evaluate-all``: one per-user job per cohort subfolder, on Dask;
+``pdrlearn track-all``: every session under a folder, tracked in this process (or on Dask with --jobs)."""
 # ruff: noqa: B008  (typer options are declared as defaults)
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import pandas as pd
 import typer
 
 from pdrlearn.atomic import atomic_directory
+from pdrlearn.cli import track as _track
 from pdrlearn.cli.common import (
     FORCE_HELP,
     console,
@@ -21,8 +23,21 @@ from pdrlearn.cli.common import (
     replaced,
     split_choices,
 )
-from pdrlearn.cohort import JobResult, cohort_users, folder_bytes, run_cohort, user_sessions
+from pdrlearn.cohort import (
+    JobResult,
+    captured_warnings,
+    cohort_users,
+    find_sessions,
+    folder_bytes,
+    group_table,
+    run_cohort,
+    session_group,
+    user_sessions,
+)
 from pdrlearn.errors import DataError
+
+if TYPE_CHECKING:  # pandas is imported where it is used: `pdrlearn --version/--help` stay light (C14)
+    import pandas as pd
 
 #: Numeric libraries of the train/evaluate jobs, loaded before each job's one-thread limit is applied so
 #: that their BLAS/OpenMP pools are limited in a serial run too (pdrlearn.cohort.single_threaded).
@@ -65,6 +80,8 @@ def _evaluate_job(args: dict) -> dict:
 
 
 def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
+    import pandas as pd
+
     rows = []
     for r in results:
         row = {"user": r.name, "status": "ok" if r.ok else "failed", "seconds": round(r.seconds, 2),
@@ -84,6 +101,8 @@ def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
 
 
 def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool) -> None:
+    import pandas as pd
+
     failed = [r for r in results if not r.ok]
     if as_json:
         print_json(json_safe({"users": df.to_dict(orient="records"), "n_users": len(results),
@@ -264,6 +283,197 @@ def evaluate_all(
     _exit_if_any_failed(results)
 
 
+#: Modules of the tracking jobs loaded before each job's one-thread limit (see JOB_LIBRARIES).
+TRACK_LIBRARIES = ("scipy.linalg", "scipy.signal")
+
+#: sessions.csv's leading columns, always present and in this order (decision C12); the other scalar fields
+#: of summary.json follow, sorted by name. Units are in the names (_m, _pct, _s, _mps, _spm).
+SESSION_COLUMNS = ("path", "group", "status", "error", "track_time_s", "session", "input_dir", "pipeline",
+                   "method", "n_steps", "distance_m", "distance_ref_m", "distance_error_pct",
+                   "final_position_error_m", "walking_time_s", "gait_speed_mps", "median_cadence_spm",
+                   "median_stride_length_m", "median_stride_time_s", "median_speed_mps", "n_warnings")
+
+
+def _track_job(args: dict) -> dict:
+    """Track one session (in this process or on a Dask worker) into ``args["out"]`` (atomically: the
+    session's folder is complete or absent); its warnings are returned, not printed (said once per batch)."""
+    from pdrlearn.cli.track import track_session, write_track
+
+    with captured_warnings() as warned:
+        tracked = track_session(Path(args["session_dir"]), args["settings"])
+        with atomic_directory(Path(args["out"])) as tmp:
+            summary, _ = write_track(tmp, tracked)
+    steps = tracked["result"].steps
+    stride = None  # foot pipeline: one row per stride (decision C12); the waist tables hold steps
+    if tracked["pipeline"] == "plasys" and len(steps) and "length_m" in steps:
+        stride = float(steps["length_m"].abs().median())
+    return {"summary": summary, "warnings": warned, "median_stride_length_m": stride}
+
+
+def _session_row(rel: str, group: str, r: JobResult) -> dict:
+    row = {"path": rel, "group": group, "status": "ok" if r.ok else "failed", "error": None if r.ok else r.error,
+           "track_time_s": round(r.seconds, 2)}
+    if not r.ok:
+        return row
+    summary = r.value["summary"]
+    for k, v in summary.items():
+        if k == "final_position" and isinstance(v, dict):
+            row.update({f"final_{a}_m": v.get(a) for a in ("x", "y", "z")})
+        elif v is None or isinstance(v, str | int | float | bool):
+            row[k] = v
+    row["method"] = summary.get("info", {}).get("method")
+    row["median_stride_length_m"] = r.value["median_stride_length_m"]
+    row["n_warnings"] = len(r.value["warnings"])
+    return row
+
+
+def _sessions_table(rows: list[dict]) -> pd.DataFrame:
+    import pandas as pd
+
+    df = pd.DataFrame(rows)
+    for c in df.columns:  # counts stay integers beside a failed session's empty cells (58, not 58.0)
+        values = [v for v in (r.get(c) for r in rows) if v is not None]
+        if values and all(isinstance(v, int) and not isinstance(v, bool) for v in values):
+            df[c] = df[c].astype("Int64")
+    rest = sorted(c for c in df.columns if c not in SESSION_COLUMNS)
+    return df.reindex(columns=[*SESSION_COLUMNS, *rest])
+
+
+def _batch_warnings(sessions: list[tuple[str, str]], results: list[JobResult]) -> None:
+    """Each distinct warning once, with how many sessions raised it and the first of them (decision C12).
+    A warning naming its session folder first (``DIR: message``, decision B34) is grouped by the message."""
+    import logging
+
+    seen: dict[str, list[str]] = {}
+    for (rel, given), r in zip(sessions, results, strict=True):
+        if not r.ok:
+            continue
+        for msg in dict.fromkeys(r.value["warnings"]):
+            text = msg[len(given) + 2:] if msg.startswith(given + ": ") else msg
+            seen.setdefault(text, []).append(rel)
+    log = logging.getLogger("pdrlearn.cli")
+    for text, rels in seen.items():
+        shown = ", ".join(rels[:3]) + (f" and {len(rels) - 3} more" if len(rels) > 3 else "")
+        log.warning("%s [%d of %d sessions: %s]", text, len(rels), len(results), shown)
+
+
+def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
+    tmp = path.with_name(f".{path.name}.tmp")
+    df.to_csv(tmp, index=False)  # full precision: groups.csv = a groupby of sessions.csv as read back
+    tmp.replace(path)
+
+
+def _groups_text(groups: pd.DataFrame) -> pd.DataFrame:
+    """groups.csv as printed: per metric ``mean ± sd (n)``, so the groups compare at a glance."""
+    import pandas as pd
+
+    shown = groups[["group", "n_sessions", "n_failed"]].copy()
+    for m in ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "median_stride_length_m"):
+        if f"{m}_mean" in groups:
+            shown[m] = [("" if pd.isna(mu) else f"{mu:.3g}" + ("" if pd.isna(sd) else f" ± {sd:.2g}") + f" ({n})")
+                        for mu, sd, n in zip(groups[f"{m}_mean"], groups[f"{m}_sd"], groups[f"{m}_n"], strict=True)]
+    return shown
+
+
+def track_all(
+    root: Path = typer.Argument(..., help="Folder holding session folders at any depth (a session folder has "
+                                "meta.json or a sensor CSV), e.g. study/siteA/p01/clinic."),
+    out: Path = typer.Option(..., "--out", "-o", help="Output folder: OUT/<session path>/ per session (as "
+                             "`track --out`), OUT/sessions.csv and OUT/groups.csv."),
+    pipeline: str = _track.PIPELINE_OPT,
+    method: str = _track.METHOD_OPT,
+    model: str = _track.MODEL_OPT,
+    rules: str = _track.RULES_OPT,
+    min_confidence: float = _track.MIN_CONFIDENCE_OPT,
+    length_bounds: str = _track.LENGTH_BOUNDS_OPT,
+    warn_out_of_domain: float = _track.WARN_OOD_OPT,
+    start: str = _track.START_OPT,
+    params: Path = _track.PARAMS_OPT,
+    streaming: bool = _track.STREAMING_OPT,
+    realtime: bool = _track.REALTIME_OPT,
+    reference_point: str = _track.REFERENCE_POINT_OPT,
+    toe_off: bool = _track.TOE_OFF_OPT,
+    dpi: int = _track.DPI_OPT,
+    group_depth: int = typer.Option(1, "--group-depth", min=1, help="Folder levels below ROOT that name a "
+                                    "session's group in sessions.csv and groups.csv (1: siteA of "
+                                    "siteA/p01/clinic; 2: siteA/p01)."),
+    jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Sessions tracked at once: 1 = one after the other "
+                             "in this process (default); N > 1 = a Dask LocalCluster of N single-threaded "
+                             "worker processes."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP.split(" (")[0] + " (the whole batch folder "
+                               "is replaced atomically)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object (sessions and groups)."),
+) -> None:
+    """Track every session under ROOT in one process: per-session outputs, sessions.csv and groups.csv.
+
+    Each session folder found under ROOT (at any depth) is tracked as `pdrlearn track` would, with the same
+    options (applied to every session; --gnss/--fixes are per-recording and left to `track`), into
+    OUT/<its path under ROOT>/. OUT/sessions.csv has one row per session: path, group, status (ok / failed),
+    the one-line error of a failed session, and the fields of its summary.json (input_dir, distance_m,
+    distance_error_pct, gait_speed_mps, median_cadence_spm, ...). OUT/groups.csv has per group n, mean, sd
+    and median of the distance error, gait speed, cadence and stride length. A session that cannot be
+    tracked is reported and skipped. Progress: one line per session on stderr; each warning is said once
+    per batch, with the sessions it concerns.
+
+    Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input
+    or when every session failed (nothing is written).
+
+    Examples:
+
+        pdrlearn track-all study/ --out results/batch
+
+        pdrlearn track-all study/ --out results/batch --group-depth 2 --pipeline plasys --method M2
+
+        pdrlearn track-all study/ --out results/batch --jobs 2 --force
+    """
+    from pdrlearn.cli.track import track_settings
+
+    settings = track_settings(pipeline=pipeline, method=method, model=model, rules=rules,
+                              min_confidence=min_confidence, length_bounds=length_bounds,
+                              warn_out_of_domain=warn_out_of_domain, start=start, params=params,
+                              streaming=streaming, realtime=realtime, reference_point=reference_point,
+                              toe_off=toe_off, dpi=dpi)
+    found = find_sessions(root)
+    out_folder(out, "track-all", force=force, inputs=(root, params))
+    was = existed(out)
+    rels = [p.relative_to(root).as_posix() for p in found]
+    with atomic_directory(out) as tmp:
+        items = [(rel, {"session_dir": str(p), "out": str(tmp / rel), "settings": settings})
+                 for rel, p in zip(rels, found, strict=True)]
+        done = [0]
+
+        def progress_line(r: JobResult) -> None:
+            done[0] += 1
+            what = (f"ok, {r.value['summary']['distance_m']:.1f} m" if r.ok else f"failed: {r.error}")
+            typer.echo(f"[{done[0]}/{len(items)}] {r.name}: {what} ({r.seconds:.1f} s)", err=True)
+
+        results = run_cohort(_track_job, items, serial=jobs == 1, n_workers=jobs,
+                             costs=[folder_bytes(p) for p in found], preload=TRACK_LIBRARIES,
+                             on_done=progress_line)
+        _batch_warnings([(rel, str(p)) for rel, p in zip(rels, found, strict=True)], results)
+        failed = [r for r in results if not r.ok]
+        if len(failed) == len(results):
+            raise DataError(f"every session failed; first error: {failed[0].name}: {failed[0].error}")
+        sessions = _sessions_table([_session_row(rel, session_group(rel, group_depth), r)
+                                    for rel, r in zip(rels, results, strict=True)])
+        groups = group_table(sessions)
+        _write_csv_atomic(sessions, tmp / "sessions.csv")
+        _write_csv_atomic(groups, tmp / "groups.csv")
+    replaced(out, was)
+    if as_json:
+        print_json(json_safe({"sessions": sessions.to_dict(orient="records"),
+                              "groups": groups.to_dict(orient="records"), "n_sessions": len(results),
+                              "n_failed": len(failed)}))
+    else:
+        typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked; wrote {out}/"
+                   "<session>/, sessions.csv, groups.csv")
+        print(_groups_text(groups).to_markdown(index=False))
+        for r in failed:
+            typer.echo(f"failed {r.name}: {r.error}")
+    _exit_if_any_failed(results)
+
+
 def register(app: typer.Typer) -> None:
     app.command("train-all")(train_all)
     app.command("evaluate-all")(evaluate_all)
+    app.command("track-all")(track_all)

@@ -7,27 +7,30 @@ import sys
 from contextlib import contextmanager
 from pathlib import Path
 
-import numpy as np
-
 from pdrlearn.atomic import expect_unchanged
+from pdrlearn.cohort import is_session_dir as is_session_folder
+from pdrlearn.cohort import session_files
 from pdrlearn.errors import DataError
-from pdrlearn.io.plasys import json_default
+
+
+def json_default(o):
+    """:func:`pdrlearn.io.plasys.json_default`, imported when used: numpy and pandas stay out of
+    ``pdrlearn --version`` / ``--help`` (decision C14)."""
+    from pdrlearn.io.plasys import json_default as default
+
+    return default(o)
+
+
+def json_safe(obj):
+    """:func:`pdrlearn.io.plasys.json_safe` (NaN/inf -> None, recursively), imported when used."""
+    from pdrlearn.io.plasys import json_safe as safe
+
+    return safe(obj)
 
 
 def print_json(obj) -> None:
     """Print one JSON object on stdout (the machine-readable contract of ``--json``)."""
     sys.stdout.write(json.dumps(obj, default=json_default, allow_nan=False) + "\n")
-
-
-def json_safe(obj):
-    """Replace NaN/inf by None recursively so the output is strict JSON."""
-    if isinstance(obj, dict):
-        return {k: json_safe(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
-        return [json_safe(v) for v in obj]
-    if isinstance(obj, float | np.floating) and not np.isfinite(obj):
-        return None
-    return obj
 
 
 def split_list(value: str | None, option: str) -> list[str] | None:
@@ -78,20 +81,9 @@ FOLDER_KINDS = {
     "evaluation": ("an evaluation report", "pdrlearn evaluate --report"),
     "train-all": ("per-user model directories", "pdrlearn train-all"),
     "evaluate-all": ("a cohort summary", "pdrlearn evaluate-all"),
+    "track-all": ("a batch of tracks (sessions.csv, groups.csv, one folder per session)", "pdrlearn track-all"),
 }
 _TRACK_FILES = ("summary.json", "steps.csv", "trajectory.csv")
-
-
-def session_files() -> tuple[str, ...]:
-    """The files that make a folder a session: ``meta.json`` and every sensor file name."""
-    from pdrlearn.io.sensors import SENSORS
-
-    return ("meta.json", *(s.filename for s in SENSORS.values()))
-
-
-def is_session_folder(folder: Path) -> bool:
-    """Whether ``folder`` holds a session's own files (``meta.json`` or a sensor CSV): an input, never an output."""
-    return folder.is_dir() and any((folder / n).is_file() for n in session_files())
 
 
 def folder_kind(folder: Path) -> str | None:
@@ -105,6 +97,8 @@ def folder_kind(folder: Path) -> str | None:
         return {"a runtime bundle": "bundle", "a model directory": "model"}.get(manifest_kind(folder) or "")
     if (folder / "cohort_summary.csv").is_file():
         return "train-all" if any(folder.glob("*/manifest.json")) else "evaluate-all"
+    if (folder / "sessions.csv").is_file() and (folder / "groups.csv").is_file():
+        return "track-all"
     if all((folder / n).is_file() for n in _TRACK_FILES):
         try:
             summary = json.loads((folder / "summary.json").read_text())

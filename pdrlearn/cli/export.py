@@ -402,6 +402,8 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
     out["final_position"] = {**dict(zip("xyz", (float(v) for v in tracker.position), strict=True)), **geo}
     if session is not None:
         out["session"] = session.name
+        # cohort C13: the folder tracked, as track's summary.json (copies of a session share its name)
+        out["input_dir"] = str(session.folder.resolve()) if session.folder is not None else None
     out["pipeline"] = "runtime"
     out["info"] = result.info
     if session is not None and session.frames_inferred:  # D8, as track's summary.json gives them

@@ -4,12 +4,11 @@
 from __future__ import annotations
 
 import json
-import logging
 from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import DPI_HELP, FORCE_HELP, START_HELP, existed, json_safe, print_json, replaced, start_option
+from pdrlearn.cli.common import DPI_HELP, FORCE_HELP, START_HELP, existed, print_json, replaced, start_option
 from pdrlearn.errors import DataError
 
 
@@ -17,47 +16,65 @@ def _write_csv(df, path: Path) -> None:
     df.to_csv(path, index=False, float_format="%.10g")
 
 
+#: The tracking options, shared by ``track`` and ``track-all`` (one declaration each, so the two commands
+#: cannot drift apart). ``--gnss``/``--fixes`` are per-recording files and belong to ``track`` only.
+PIPELINE_OPT = typer.Option("auto", help="Tracking pipeline: plasys, waist-pll, waist-pendulum; auto = plasys "
+                            "for a session with a foot unit, else waist-pendulum.")
+METHOD_OPT = typer.Option("auto", help="PLASYS method: M1 (accelerometer), M2 (+ force), M3 (+ classes); "
+                          "auto = M3 with --model, else the M3 engine without the class rules (warned).")
+MODEL_OPT = typer.Option(None, "--model", help="Trained model directory (M3); 'oracle' = the session's "
+                         "own step labels.")
+RULES_OPT = typer.Option(None, "--rules", help="M3 class rules: thesis (classes prevail) or bayes "
+                         "(class probabilities weighed against the estimate); default bayes with a "
+                         "model, thesis with --model oracle, offline and --streaming (decisions L40, L41).")
+MIN_CONFIDENCE_OPT = typer.Option(None, "--min-confidence", min=0.0, max=1.0,
+                                  help="M3: apply a class rule only when the model's probability of the "
+                                  "class reaches this (default 0.95; 0 = always, as the thesis).")
+LENGTH_BOUNDS_OPT = typer.Option(None, "--length-bounds", help="M3 stride-length class edges "
+                                 "SHORT_MAX,NORMAL_MAX in m (default: the model's, else thesis x 2).")
+WARN_OOD_OPT = typer.Option(None, "--warn-out-of-domain", help="With --model: warn (one line) "
+                            "when at least this fraction of the strides lie outside the model's "
+                            "training range, e.g. 0.25 (off by default; the fraction is always "
+                            "in summary.json as out_of_domain_fraction, decision C16).")
+START_OPT = typer.Option(None, "--start", help=START_HELP)
+PARAMS_OPT = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline.")
+STREAMING_OPT = typer.Option(False, "--streaming", help="plasys M2/M3 with the stride-local kernel of "
+                             "the streaming runtime: the trajectory `pdrlearn run` reproduces to 1 mm.")
+REALTIME_OPT = typer.Option(False, "--realtime", help="waist-pendulum: the causal initial-contact "
+                            "detector (each contact decided < 2 s after it, decision W31) instead of the "
+                            "zero-lag offline one; = \"options\": {\"realtime\": true} in --params.")
+REFERENCE_POINT_OPT = typer.Option(None, "--reference-point", help="plasys: the point whose path is "
+                                   "tracked: sensor (the unit, default) or heel (the heel contact, lever arm "
+                                   "estimated from the recording, decision L22; = \"reference_point\" in "
+                                   "--params).")
+TOE_OFF_OPT = typer.Option(False, "--toe-off", help="plasys, offline: add the toe-off tc_s and "
+                           "stance_time_s, swing_time_s, stance_pct to steps.csv (decision L73: an option, "
+                           "not the default - its toe-off runs ~21 ms early against mocap, see "
+                           "docs/localization.md).")
+DPI_OPT = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP)
+
+
 def track(
     session_dir: Path = typer.Argument(..., help="Session folder (PLASYS format)."),
     out: Path = typer.Option(..., "--out", "-o", help="Output folder (created; an existing track only with --force)."),
-    pipeline: str = typer.Option("auto", help="Tracking pipeline: plasys, waist-pll, waist-pendulum; auto = plasys "
-                                 "for a session with a foot unit, else waist-pendulum."),
-    method: str = typer.Option("auto", help="PLASYS method: M1 (accelerometer), M2 (+ force), M3 (+ classes); "
-                               "auto = M3 with --model, else the M3 engine without the class rules (warned)."),
-    model: str = typer.Option(None, "--model", help="Trained model directory (M3); 'oracle' = the session's "
-                              "own step labels."),
-    rules: str = typer.Option(None, "--rules", help="M3 class rules: thesis (classes prevail) or bayes "
-                              "(class probabilities weighed against the estimate); default bayes with a "
-                              "model, thesis with --model oracle, offline and --streaming (decisions L40, L41)."),
-    min_confidence: float = typer.Option(None, "--min-confidence", min=0.0, max=1.0,
-                                         help="M3: apply a class rule only when the model's probability of the "
-                                         "class reaches this (default 0.95; 0 = always, as the thesis)."),
-    length_bounds: str = typer.Option(None, "--length-bounds", help="M3 stride-length class edges "
-                                      "SHORT_MAX,NORMAL_MAX in m (default: the model's, else thesis x 2)."),
-    warn_out_of_domain: float = typer.Option(None, "--warn-out-of-domain", help="With --model: warn (one line) "
-                                             "when at least this fraction of the strides lie outside the model's "
-                                             "training range, e.g. 0.25 (off by default; the fraction is always "
-                                             "in summary.json as out_of_domain_fraction, decision C16)."),
-    start: str = typer.Option(None, "--start", help=START_HELP),
-    params: Path = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline."),
+    pipeline: str = PIPELINE_OPT,
+    method: str = METHOD_OPT,
+    model: str = MODEL_OPT,
+    rules: str = RULES_OPT,
+    min_confidence: float = MIN_CONFIDENCE_OPT,
+    length_bounds: str = LENGTH_BOUNDS_OPT,
+    warn_out_of_domain: float = WARN_OOD_OPT,
+    start: str = START_OPT,
+    params: Path = PARAMS_OPT,
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
     gnss_period: float = typer.Option(None, "--gnss-period", help="Use a GNSS fix every S seconds."),
     fixes: Path = typer.Option(None, "--fixes", help="Sporadic absolute fixes CSV for aiding."),
     fix_period: float = typer.Option(None, "--fix-period", help="Use a fix every S seconds."),
-    streaming: bool = typer.Option(False, "--streaming", help="plasys M2/M3 with the stride-local kernel of "
-                                   "the streaming runtime: the trajectory `pdrlearn run` reproduces to 1 mm."),
-    realtime: bool = typer.Option(False, "--realtime", help="waist-pendulum: the causal initial-contact "
-                                  "detector (each contact decided < 2 s after it, decision W31) instead of the "
-                                  "zero-lag offline one; = \"options\": {\"realtime\": true} in --params."),
-    reference_point: str = typer.Option(None, "--reference-point", help="plasys: the point whose path is "
-                                        "tracked: sensor (the unit, default) or heel (the heel contact, lever arm "
-                                        "estimated from the recording, decision L22; = \"reference_point\" in "
-                                        "--params)."),
-    toe_off: bool = typer.Option(False, "--toe-off", help="plasys, offline: add the toe-off tc_s and "
-                                 "stance_time_s, swing_time_s, stance_pct to steps.csv (decision L73: an option, "
-                                 "not the default - its toe-off runs ~21 ms early against mocap, see "
-                                 "docs/localization.md)."),
-    dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
+    streaming: bool = STREAMING_OPT,
+    realtime: bool = REALTIME_OPT,
+    reference_point: str = REFERENCE_POINT_OPT,
+    toe_off: bool = TOE_OFF_OPT,
+    dpi: int = DPI_OPT,
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
 ) -> None:
@@ -80,15 +97,38 @@ def track(
         pdrlearn track datasets/real/gaitmap_level_left --model out/models/u1 --warn-out-of-domain 0.25 --out out/L
 
         pdrlearn track datasets/real/mobgap_HA001_Test5_Trial1 --pipeline waist-pendulum --realtime --out out/W
+
+    Many sessions at once: pdrlearn track-all ROOT --out OUTDIR (docs/cohort.md).
     """
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.common import out_folder
-    from pdrlearn.io import read_session
-    from pdrlearn.track.base import get_pipeline, resolve_pipeline
-    from pdrlearn.track.evaluate import evaluate_track, turn_warning
-    from pdrlearn.track.plots import plot_paths
 
     out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes))
+    settings = track_settings(pipeline=pipeline, method=method, model=model, rules=rules,
+                              min_confidence=min_confidence, length_bounds=length_bounds,
+                              warn_out_of_domain=warn_out_of_domain, start=start, params=params, gnss=gnss,
+                              gnss_period=gnss_period, fixes=fixes, fix_period=fix_period, streaming=streaming,
+                              realtime=realtime, reference_point=reference_point, toe_off=toe_off, dpi=dpi)
+    was = existed(out)
+    tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
+    with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
+        summary, aided = write_track(tmp, tracked)
+    replaced(out, was)
+    if as_json:
+        print_json(summary)
+        return
+    _print_summary(summary, out, aided)
+
+
+def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str | None = None,
+                   rules: str | None = None, min_confidence: float | None = None, length_bounds: str | None = None,
+                   warn_out_of_domain: float | None = None, start: str | None = None, params: Path | None = None,
+                   gnss: Path | None = None, gnss_period: float | None = None, fixes: Path | None = None,
+                   fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
+                   reference_point: str | None = None, toe_off: bool = False, dpi: int | None = None) -> dict:
+    """The tracking options as one plain dict, with what does not depend on the session checked and read
+    once (fix files exist, ``--start`` parsed, ``--params`` JSON read): a batch checks them before its first
+    session, and the dict travels to a Dask worker as it is (``track-all --jobs``)."""
     start_ll, start_alt = start_option(start)
     for fix_file in (gnss, fixes):  # before the tracking, which warned and worked first
         if fix_file is not None and not Path(fix_file).is_file():
@@ -101,28 +141,55 @@ def track(
         except (OSError, json.JSONDecodeError) as exc:
             raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
                             "pass the file written by `pdrlearn calibrate`") from None
+    if length_bounds is not None:
+        try:
+            bounds = [float(v) for v in length_bounds.split(",")]
+        except ValueError:
+            raise DataError(f"--length-bounds '{length_bounds}': expected two numbers in m, e.g. "
+                            "1.02,1.52") from None
+    else:
+        bounds = None
+    return {"pipeline": pipeline, "method": method, "model": model, "rules": rules,
+            "min_confidence": min_confidence, "bounds": bounds, "length_bounds_given": length_bounds is not None,
+            "warn_out_of_domain": warn_out_of_domain, "start_ll": start_ll, "start_alt": start_alt,
+            "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
+            "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
+            "reference_point": reference_point, "toe_off": toe_off, "dpi": dpi}
+
+
+def track_session(session_dir: Path, settings: dict) -> dict:
+    """Read and track one session with :func:`track_settings`'s options; return what :func:`write_track`
+    writes (the session, the result, its summary.json dict, the pipeline, whether it was aided)."""
+    from pdrlearn.io import read_session
+    from pdrlearn.track.base import get_pipeline, resolve_pipeline
+    from pdrlearn.track.evaluate import track_summary
+
+    o = settings
+    pipeline, method, model, streaming, toe_off = o["pipeline"], o["method"], o["model"], o["streaming"], o["toe_off"]
+    params, par, gnss, fixes, dpi = o["params"], o["par"], o["gnss"], o["fixes"], o["dpi"]
     session = read_session(session_dir, streamed=streaming)  # L77: the drops warning of its path
     if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
     fn = get_pipeline(pipeline)
-    if realtime and pipeline != "waist-pendulum":  # decision W60: the flag the docs named
+    if o["realtime"] and pipeline != "waist-pendulum":  # decision W60: the flag the docs named
         raise DataError(f"track: --realtime applies to the waist-pendulum pipeline only (got --pipeline {pipeline}, "
                         "which has no causal variant); add --pipeline waist-pendulum on a session with a waist "
                         "unit, or drop --realtime")
     _refuse_ignored_options(pipeline, method, {"--method": method.lower() != "auto", "--model": model is not None,
-                                               "--rules": rules is not None,
-                                               "--min-confidence": min_confidence is not None,
-                                               "--length-bounds": length_bounds is not None,
+                                               "--rules": o["rules"] is not None,
+                                               "--min-confidence": o["min_confidence"] is not None,
+                                               "--length-bounds": o["length_bounds_given"],
                                                "--streaming": streaming, "--toe-off": toe_off},
-                            gnss=gnss, gnss_period=gnss_period, fixes=fixes, fix_period=fix_period)
+                            gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"])
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
-    if reference_point is not None:  # decision L72
-        par = _reference_point(reference_point, par, params, pipeline, streaming)
+    if o["reference_point"] is not None:  # decision L72
+        par = _reference_point(o["reference_point"], par, params, pipeline, streaming)
     # waist pipelines read the file themselves, so that their errors name it
-    kw = {"model": model, "start": start_ll, "params": par if pipeline == "plasys" or par is None else str(params)}
-    if realtime:
+    kw = {"model": model, "start": o["start_ll"],
+          "params": par if pipeline == "plasys" or par is None else str(params)}
+    if o["realtime"]:
         kw["realtime"] = True
     if pipeline == "plasys":
         kw["method"] = method
@@ -133,71 +200,56 @@ def track(
                 raise DataError("track: --toe-off needs the offline tracker's initial contacts; the --streaming "
                                 "kernel (and `pdrlearn run`) has none - drop --streaming or --toe-off")
             kw["toe_off"] = True
-        if rules is not None:
-            kw["rules"] = rules
-        if min_confidence is not None:
-            kw["min_confidence"] = min_confidence
-        if warn_out_of_domain is not None:
-            kw["warn_out_of_domain"] = warn_out_of_domain
-        if length_bounds is not None:
-            try:
-                kw["bounds"] = [float(v) for v in length_bounds.split(",")]
-            except ValueError:
-                raise DataError(f"--length-bounds '{length_bounds}': expected two numbers in m, e.g. "
-                                "1.02,1.52") from None
+        for k in ("rules", "min_confidence", "warn_out_of_domain", "bounds"):
+            if o[k] is not None:
+                kw[k] = o[k]
     result = fn(session, **kw)
-    if any(v is not None for v in (gnss, fixes)):
+    aided = gnss is not None or fixes is not None
+    if aided:
         try:
-            from pdrlearn.aid import aid_track, plot_aided
+            from pdrlearn.aid import aid_track
         except ImportError:
             raise DataError("aiding (--gnss/--fixes) needs pdrlearn.aid.aid_track, which is not installed "
                             "in this version; run without those options") from None
-        result = aid_track(result, session, gnss_path=gnss, gnss_period_s=gnss_period, fixes_path=fixes,
-                           fix_period_s=fix_period, start=start_ll)
-        aided = True
-    else:
-        aided = False
-    if start_alt:  # decision L56: the z column starts at the given altitude (as Tracker(start=(x, y, ALT)))
-        result.trajectory["z"] = result.trajectory["z"] + start_alt
-    summary = evaluate_track(result, session)
-    summary["session"] = session.name
-    summary["pipeline"] = pipeline
-    summary["info"] = dict(result.info)
-    mirrored = turn_warning(summary)  # decision L42: the turns against turns.csv
-    if mirrored:
-        logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, mirrored)
-        summary["info"]["warnings"] = [*summary["info"].get("warnings", []), mirrored]
-    dom = result.info.get("out_of_domain")
-    if isinstance(dom, dict):  # decision C16: share of strides outside the model's training range
-        summary["out_of_domain_fraction"] = dom.get("out_of_domain_fraction")
-    aid = summary["info"].get("aid")
-    if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary
-        summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}
-    if session.frames_inferred:  # D8: undeclared frames taken from the data, to paste into meta.json
-        summary["frames_inferred"] = session.frames_inferred
-    summary = json_safe(json.loads(json.dumps(
-        summary, default=lambda o: o.item() if hasattr(o, "item") else str(o))))
+        result = aid_track(result, session, gnss_path=gnss, gnss_period_s=o["gnss_period"], fixes_path=fixes,
+                           fix_period_s=o["fix_period"], start=o["start_ll"])
+    if o["start_alt"]:  # decision L56: the z column starts at the given altitude (as Tracker(start=(x, y, ALT)))
+        result.trajectory["z"] = result.trajectory["z"] + o["start_alt"]
+    summary = track_summary(result, session, pipeline=pipeline)  # C13, C14: the API's TrackResult.summary
+    return {"session": session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
+            "dpi": dpi}
+
+
+def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
+    """Write :func:`track_session`'s track into the existing folder ``dest`` (the caller's temporary folder):
+    ``trajectory.csv``, ``steps.csv``, ``path.png`` (``aided.png`` with fixes) and ``summary.json``; return
+    the summary and whether the track was aided."""
+    from pdrlearn.track.plots import plot_paths
+
+    session, result, summary, pipeline, aided, dpi = (tracked[k] for k in ("session", "result", "summary",
+                                                                              "pipeline", "aided", "dpi"))
     traj = result.trajectory.copy()
     for c in ("lat", "lon"):
         if c not in traj:
             traj[c] = float("nan")
-    was = existed(out)
-    with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
-        if aided:
-            plot_aided(result, tmp / "aided.png", truth=session.trajectory,
-                       title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
-        _write_csv(traj, tmp / "trajectory.csv")
-        _write_csv(result.steps, tmp / "steps.csv")
-        plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, tmp / "path.png",
-                   session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
-        (tmp / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
-    replaced(out, was)
-    if as_json:
-        print_json(summary)
-        return
+    if aided:
+        from pdrlearn.aid import plot_aided
+
+        plot_aided(result, dest / "aided.png", truth=session.trajectory,
+                   title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
+    _write_csv(traj, dest / "trajectory.csv")
+    _write_csv(result.steps, dest / "steps.csv")
+    plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
+               session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
+    (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    return summary, aided
+
+
+def _print_summary(summary: dict, out: Path, aided: bool) -> None:
+    name = summary["session"]
     err = summary.get("distance_error_pct")
     bouts = err is not None and "bout_distance_m" in summary and "bout_reference_m" in summary
-    typer.echo(f"{session.name}: {summary['n_steps']} steps, {summary['distance_m']:.2f} m"
+    typer.echo(f"{name}: {summary['n_steps']} steps, {summary['distance_m']:.2f} m"
                # W21: the lower-back error counts the reference bouts only; say so before the number
                + (f"; inside the reference bouts {summary['bout_distance_m']:.2f} m vs "
                   f"{summary['bout_reference_m']:.2f} m" if bouts else "")
@@ -226,6 +278,8 @@ def track(
                    + (f", straight strides {straight:.2f} m/s" if straight is not None else "")
                    + (f", cadence {cad:.1f} steps/min" if cad is not None else ""))
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json")
+
+
 
 
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier

@@ -42,6 +42,15 @@ class TrackResult:
     def distance_m(self) -> float:
         return float(self.steps["length_m"].abs().sum()) if len(self.steps) else 0.0
 
+    def summary(self, session, *, pipeline: str | None = None) -> dict:
+        """The dict ``pdrlearn track`` writes as ``summary.json`` for this track of ``session``: distance,
+        errors against the session's ground truth (``distance_error_pct``, ...), gait speed and cadence
+        (``gait_speed_mps``, ``median_cadence_spm``), ``session``, ``input_dir``, ``pipeline``, ``info``
+        (:func:`pdrlearn.track.evaluate.track_summary`; decision C14)."""
+        from pdrlearn.track.evaluate import track_summary
+
+        return track_summary(self, session, pipeline=pipeline)
+
 
 Pipeline = Callable[..., TrackResult]
 

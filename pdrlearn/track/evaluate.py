@@ -6,6 +6,8 @@ to the result dictionary (add new ones, e.g. step F1 or bout distance, the same 
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 
@@ -453,3 +455,45 @@ def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:
         elif session is not None:
             fn(result, session, out)
     return out
+
+
+def track_summary(result: TrackResult, session: Session, *, pipeline: str | None = None) -> dict:
+    """The summary of a track, exactly as ``pdrlearn track`` writes it to ``summary.json`` (strict JSON:
+    NaN -> None, numpy scalars -> Python numbers): :func:`evaluate_track`'s metrics (with the session's
+    ground truth when it has some, :func:`pdrlearn.track.gait.gait_summary`'s gait speed and cadence
+    included), ``session`` (meta.json's name), ``input_dir`` (the session folder, resolved; decision C13),
+    ``pipeline``, ``info`` (the pipeline's settings and warnings), and where they apply
+    ``out_of_domain_fraction`` (C16) and ``frames_inferred`` (D8). Mirrored turns against turns.csv are
+    warned here (L42). Also :meth:`TrackResult.summary`.
+
+    Parameters
+    ----------
+    result : the pipeline's output (``get_pipeline(name)(session, ...)``).
+    session : the session that was tracked (its ground truth, name and folder).
+    pipeline : name written as ``pipeline``; default ``result.info["pipeline"]``.
+    """
+    import json
+    import logging
+
+    from pdrlearn.io.plasys import json_safe
+
+    summary = evaluate_track(result, session)
+    summary["session"] = session.name
+    folder = getattr(session, "folder", None)
+    summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None
+    summary["pipeline"] = pipeline if pipeline is not None else result.info.get("pipeline")
+    summary["info"] = dict(result.info)
+    mirrored = turn_warning(summary)  # decision L42: the turns against turns.csv
+    if mirrored:
+        logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, mirrored)
+        summary["info"]["warnings"] = [*summary["info"].get("warnings", []), mirrored]
+    dom = result.info.get("out_of_domain")
+    if isinstance(dom, dict):  # decision C16: share of strides outside the model's training range
+        summary["out_of_domain_fraction"] = dom.get("out_of_domain_fraction")
+    aid = summary["info"].get("aid")
+    if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary
+        summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}
+    if session.frames_inferred:  # D8: undeclared frames taken from the data, to paste into meta.json
+        summary["frames_inferred"] = session.frames_inferred
+    return json_safe(json.loads(json.dumps(
+        summary, default=lambda o: o.item() if hasattr(o, "item") else str(o))))

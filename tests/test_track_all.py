@@ -1,0 +1,138 @@
+"""`pdrlearn track-all` (decisions C12-C14): every session under a folder tracked in one process, sessions.csv
+and groups.csv, summary.json's input_dir, TrackResult.summary == summary.json."""
+
+from __future__ import annotations
+
+import csv
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.cli.cohort import SESSION_COLUMNS
+from pdrlearn.cohort import find_sessions, group_table, session_group, user_sessions
+from pdrlearn.errors import DataError
+
+
+@pytest.fixture(scope="module")
+def tree(tmp_path_factory) -> Path:
+    """study/siteA/p01/walk, study/siteA/p02/walk, study/siteB/p03/walk (short simulated walks) and
+    study/siteB/p04/broken (timestamps going backwards)."""
+    from pdrlearn import sim
+    from pdrlearn.io import write_session
+
+    root = tmp_path_factory.mktemp("batch") / "study"
+    for site, p, seed, length in (("siteA", "p01", 1, 12), ("siteA", "p02", 2, 14), ("siteB", "p03", 3, 12)):
+        write_session(sim.simulate("walk", seed, length_m=length), root / site / p / "walk")
+    broken = root / "siteB" / "p04" / "broken"
+    shutil.copytree(root / "siteB" / "p03" / "walk", broken)
+    acc = broken / "fAccelerometer.csv"
+    lines = acc.read_text().splitlines()
+    lines[50], lines[51] = lines[51], lines[50]  # one timestamp going backwards
+    acc.write_text("\n".join(lines) + "\n")
+    return root
+
+
+@pytest.fixture(scope="module")
+def batch(tree, tmp_path_factory):
+    import contextlib
+    import io
+
+    out = tmp_path_factory.mktemp("out") / "b"
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        rc = main(["track-all", str(tree), "--out", str(out)])
+    return rc, out, err.getvalue()
+
+
+def test_track_all_tracks_each_session_and_skips_the_broken_one(tree, batch):
+    rc, out, err = batch
+    assert rc == 1  # some failed (documented exit code)
+    sessions = pd.read_csv(out / "sessions.csv")
+    assert list(sessions.columns[:len(SESSION_COLUMNS)]) == list(SESSION_COLUMNS)
+    assert list(sessions["path"]) == ["siteA/p01/walk", "siteA/p02/walk", "siteB/p03/walk", "siteB/p04/broken"]
+    assert list(sessions["group"]) == ["siteA", "siteA", "siteB", "siteB"]
+    assert list(sessions["status"]) == ["ok", "ok", "ok", "failed"]
+    bad = sessions.iloc[3]
+    assert "fAccelerometer.csv" in bad["error"] and "\n" not in bad["error"] and pd.isna(bad["distance_m"])
+    assert sessions["error"].iloc[:3].isna().all()
+    with open(out / "sessions.csv", newline="") as f:  # counts written as integers beside the failed row's blanks
+        assert [r["n_steps"] for r in csv.DictReader(f)][:3] == [str(int(v)) for v in sessions["n_steps"].iloc[:3]]
+    for rel in sessions["path"].iloc[:3]:  # the same outputs as `track --out`
+        for f in ("trajectory.csv", "steps.csv", "path.png", "summary.json"):
+            assert (out / rel / f).is_file()
+        summary = json.loads((out / rel / "summary.json").read_text())
+        assert summary["input_dir"] == str((tree / rel).resolve())  # C13
+        row = sessions.set_index("path").loc[rel]
+        assert row["input_dir"] == summary["input_dir"]
+        assert row["distance_m"] == pytest.approx(summary["distance_m"], rel=1e-9)
+        assert row["gait_speed_mps"] == pytest.approx(summary["gait_speed_mps"], rel=1e-9)
+    assert not (out / "siteB" / "p04").exists()  # nothing half-written for the failed session
+    assert not list(out.rglob(".*tmp*"))
+    # progress: one line per session with a counter; the "no model" warning once for the batch
+    assert "[4/4]" in err and sum(line.startswith("[") for line in err.splitlines()) == 4
+    assert err.count("no model:") == 1 and "[3 of 4 sessions" in err
+
+
+def test_groups_csv_is_a_pandas_groupby_of_sessions_csv(batch):
+    _, out, _ = batch
+    sessions = pd.read_csv(out / "sessions.csv")
+    groups = pd.read_csv(out / "groups.csv")
+    ok = sessions[sessions["status"] == "ok"]
+    assert list(groups["group"]) == ["siteA", "siteB"]
+    assert list(groups["n_sessions"]) == [2, 1] and list(groups["n_failed"]) == [0, 1]
+    for m in ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "median_stride_length_m"):
+        ref = ok.groupby("group")[m].agg(["count", "mean", "std", "median"])
+        np.testing.assert_array_equal(groups[f"{m}_n"], ref["count"])
+        for s, name in (("mean", "mean"), ("std", "sd"), ("median", "median")):
+            np.testing.assert_allclose(groups[f"{m}_{name}"], ref[s], rtol=1e-12)
+    assert groups["gait_speed_mps_sd"].isna().tolist() == [False, True]  # one session: no sd
+
+
+def test_api_summary_equals_summary_json(tree, batch):
+    from pdrlearn.io import read_session
+    from pdrlearn.track import get_pipeline
+
+    _, out, _ = batch
+    session = read_session(tree / "siteA" / "p02" / "walk")
+    result = get_pipeline("plasys")(session)
+    assert result.summary(session) == json.loads((out / "siteA" / "p02" / "walk" / "summary.json").read_text())
+
+
+def test_track_summary_json_has_input_dir(tree, tmp_path):
+    rc = main(["track", str(tree / "siteA" / "p01" / "walk"), "--method", "M2", "--out", str(tmp_path / "t")])
+    assert rc == 0
+    summary = json.loads((tmp_path / "t" / "summary.json").read_text())
+    assert summary["input_dir"] == str((tree / "siteA" / "p01" / "walk").resolve())
+
+
+def test_every_session_failed_writes_nothing(tree, tmp_path, capsys):
+    root = tmp_path / "only_broken"
+    shutil.copytree(tree / "siteB" / "p04", root / "p04")
+    rc = main(["track-all", str(root), "--out", str(tmp_path / "o")])
+    assert rc == 2 and not (tmp_path / "o").exists()
+    assert "every session failed" in capsys.readouterr().err
+
+
+def test_session_discovery_is_shared(tree):
+    """track-all and train-all/evaluate-all find sessions with the same test (is_session_dir)."""
+    assert [p.relative_to(tree).as_posix() for p in find_sessions(tree)] == [
+        "siteA/p01/walk", "siteA/p02/walk", "siteB/p03/walk", "siteB/p04/broken"]
+    assert user_sessions(tree / "siteB" / "p03") == [tree / "siteB" / "p03" / "walk"]
+    with pytest.raises(DataError, match="is one session"):
+        find_sessions(tree / "siteA" / "p01" / "walk")
+    assert session_group("siteA/p01/walk") == "siteA" and session_group("siteA/p01/walk", 2) == "siteA/p01"
+    assert session_group("walk") == "." and session_group("siteA/walk", 3) == "siteA"
+
+
+def test_group_table_by_hand():
+    df = pd.DataFrame({"group": ["a", "a", "a", "b"], "status": ["ok", "ok", "failed", "ok"],
+                       "gait_speed_mps": [1.0, 2.0, np.nan, 3.0]})
+    g = group_table(df, metrics=("gait_speed_mps", "absent"))
+    assert g["n_sessions"].tolist() == [2, 1] and g["n_failed"].tolist() == [1, 0]
+    assert g["gait_speed_mps_mean"].tolist() == [1.5, 3.0] and g["gait_speed_mps_median"].tolist() == [1.5, 3.0]
+    assert g["gait_speed_mps_sd"].iloc[0] == pytest.approx(np.sqrt(0.5)) and "absent_mean" not in g
