@@ -185,3 +185,9 @@ def test_train_all_skip_bad_sessions_trains_on_the_rest_and_lists_them(mixed, tm
     assert "warning: u1: session bad skipped (--skip-bad-sessions)" in err
     df = pd.read_csv(out / "cohort_summary.csv")
     assert df["skipped_sessions"].tolist() == [1, 0] and (out / "u1" / "manifest.json").is_file()
+
+
+def test_shuffled_rows_are_a_misordering_not_a_clock_reset():
+    t = np.random.default_rng(0).permutation(np.arange(0, 20, 0.01))
+    with pytest.raises(DataError, match="not increasing .* sort the samples"):
+        Stream("fAccelerometer", t, np.tile([0.0, 9.81, 0.0], (t.size, 1)))

@@ -39,6 +39,8 @@ def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str) -> np.
 #: decision B73: a backward step of the timestamps larger than this (s) is a clock reset, not samples out of order:
 #: B11's gap; no sensor buffers or re-sends a second of samples out of order
 CLOCK_RESET_S = 1.0
+#: decision B73: more such jumps than this is rows out of order (a shuffled file), not restarts of the recorder
+MAX_CLOCK_RESETS = 3
 
 
 def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False) -> None:
@@ -58,7 +60,9 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False) -> N
         )
     back = np.flatnonzero(~(dt > 0))  # NaN intervals count as backwards
     reset = np.flatnonzero(dt < -CLOCK_RESET_S)
-    if reset.size:  # decision B73: a clock reset; sorting (the advice below) interleaves two recordings
+    # decision B73: a clock reset (a few large backward jumps, increasing in between); sorting (the advice below)
+    # interleaves two recordings. Shuffled rows (many backward steps, most of them small) keep the sort advice
+    if 1 <= reset.size <= MAX_CLOCK_RESETS and back.size - reset.size <= 0.01 * dt.size:
         i = int(reset[0])
         at = f"index {i + 1}" if in_memory else f"line {i + 3}"
         more = f" ({reset.size} such jumps)" if reset.size > 1 else ""
