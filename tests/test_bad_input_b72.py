@@ -182,7 +182,7 @@ def test_train_all_skip_bad_sessions_trains_on_the_rest_and_lists_them(mixed, tm
     assert users["u1"]["status"] == "ok" and users["u1"]["sessions"] == 1 and users["u1"]["skipped_sessions"] == 1
     assert users["u1"]["skipped"].startswith("bad: ") and "non-numeric" in users["u1"]["skipped"]
     assert users["u2"]["skipped_sessions"] == 0
-    assert "warning: u1: session bad skipped (--skip-bad-sessions)" in err
+    assert "warning: u1: session bad skipped (--skip-bad-sessions): " in err and "; remove or repair those rows" in err
     df = pd.read_csv(out / "cohort_summary.csv")
     assert df["skipped_sessions"].tolist() == [1, 0] and (out / "u1" / "manifest.json").is_file()
 
@@ -191,3 +191,21 @@ def test_shuffled_rows_are_a_misordering_not_a_clock_reset():
     t = np.random.default_rng(0).permutation(np.arange(0, 20, 0.01))
     with pytest.raises(DataError, match="not increasing .* sort the samples"):
         Stream("fAccelerometer", t, np.tile([0.0, 9.81, 0.0], (t.size, 1)))
+
+
+def test_evaluate_all_skip_bad_sessions(tmp_path, capsys):
+    root = tmp_path / "cohort"
+    write_session(synthetic_session(60, seed=1, name="tr"), root / "u1" / "train" / "s1")
+    write_session(synthetic_session(60, seed=2, name="te"), root / "u1" / "test" / "ok")
+    write_session(synthetic_session(60, seed=4, name="te2"), root / "u1" / "test" / "reset")
+    df = pd.read_csv(root / "u1" / "test" / "reset" / "wGyroscope.csv")
+    df.loc[len(df) // 2:, "timestamp"] -= df.timestamp.iloc[len(df) // 2]
+    (root / "u1" / "test" / "reset" / "wGyroscope.csv").write_text(df.to_csv(index=False))
+    assert main(["train-all", str(root), "--out", str(tmp_path / "m"), *ARGS]) == 0
+    assert main(["evaluate-all", str(tmp_path / "m"), str(root), "--serial", "--json"]) == 2  # its only user fails
+    assert "--skip-bad-sessions" in capsys.readouterr().err
+    assert main(["evaluate-all", str(tmp_path / "m"), str(root), "--serial", "--json", "--skip-bad-sessions"]) == 0
+    res, err = capsys.readouterr()
+    u1 = json.loads(res)["users"][0]
+    assert u1["sessions"] == 1 and u1["skipped_sessions"] == 1 and "clock reset" in u1["skipped"], u1
+    assert "warning: u1: session reset skipped" in err

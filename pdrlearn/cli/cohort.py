@@ -51,7 +51,7 @@ def _read_sessions(user_dir: Path, part: str, skip_bad: bool) -> tuple[list, dic
             bad.append(f"{p.name}: {exc}")
     if not sessions:
         raise DataError(f"{user_dir}: every session is bad ({len(bad)}); first: {bad[0]}")
-    extra = {"skipped_sessions": len(bad), "skipped": "; ".join(bad)} if skip_bad else {}
+    extra = {"skipped_sessions": len(bad), "skipped": bad} if skip_bad else {}
     return sessions, extra
 
 
@@ -102,6 +102,8 @@ def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
                "cpu_seconds": round(r.cpu_seconds, 2)}
         if r.ok:
             row.update(r.value)
+            if isinstance(row.get("skipped"), list):  # decision C11: one cell, "name: error; name: error"
+                row["skipped"] = "; ".join(row["skipped"])
         else:
             row["error"] = r.error
         rows.append(row)
@@ -147,7 +149,7 @@ def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool
             c.print(f"[red]failed[/red] {r.name}: {r.error}", highlight=False)
     for r in results:  # decision C11: what --skip-bad-sessions left out, on stderr (with --json too)
         if r.ok and isinstance(r.value, dict) and r.value.get("skipped"):
-            for item in r.value["skipped"].split("; "):
+            for item in r.value["skipped"]:
                 typer.echo(f"warning: {r.name}: session {item.split(': ', 1)[0]} skipped (--skip-bad-sessions): "
                            f"{item.split(': ', 1)[-1]}", err=True)
 
