@@ -44,7 +44,7 @@ def test_a_truncated_sensor_file_is_refused_naming_it_and_the_spans(tmp_path, ca
     d = tmp_path / "cut"
     shutil.copytree(GAITMAP, d)
     _head(d / "fAccelerometer.csv", 20.0)
-    with pytest.raises(DataError, match=r"fAccelerometer.csv: spans 20.00 s \(.*\) but the other 1 stream\(s\) 38.7"):
+    with pytest.raises(DataError, match=r"fAccelerometer.csv: spans 20.00 s \(.*\) but the other 1 foot stream\(s\) 38.7"):
         read_session(d)
     assert main(["track", str(d), "--out", str(tmp_path / "t")]) == 2
     err = _errors(capsys)
@@ -76,6 +76,14 @@ def test_spans_within_a_second_pass_and_units_on_offset_clocks_pass(walk, tmp_pa
         s.streams[n] = Stream(n, st.t + 5.0, st.values)
     write_session(s, tmp_path / "offset")
     read_session(tmp_path / "offset")
+
+
+def test_two_units_of_different_lengths_are_two_devices_not_a_cut(walk, tmp_path):
+    d = tmp_path / "waist_short"
+    shutil.copytree(walk, d)
+    for f in d.glob("w[A-Z]*.csv"):  # the phone stopped 10 s early: every waist file alike
+        _head(f, read_session(walk)[f.stem].duration_s - 10.0)
+    read_session(d, spans="refuse")
 
 
 @pytest.mark.parametrize("name", sorted(p.name for p in REAL.iterdir() if p.is_dir()))

@@ -493,7 +493,7 @@ def _looks_like_export(path: Path) -> bool:
     return len(cols) >= 4 and not any(c.strip().endswith("_ms") for c in cols)
 
 
-#: decision B72: a stream whose span (last minus first timestamp) is shorter than the longest stream's by more than
+#: decision B72: a stream whose span (last minus first timestamp) is shorter than the longest of its unit's by more than
 #: this (s), plus one sample interval, was cut short: B11's gap and B21's missing end, so what is missing at a
 #: stream's ends is already refused where it is interpolated; the spans, not the ends, as the two units' clocks may be
 #: offset (decision B22); unit clock drift changes a span by 0.36 s per hour at 100 ppm
@@ -502,39 +502,43 @@ SPAN_TOLERANCE_S = 1.0
 
 def check_stream_spans(streams: dict[str, Stream], folder: Path, *, mode: str = "refuse") -> str | None:
     """Decision B72: refuse (``mode="refuse"``) or warn about (``"warn"``, ``pdrlearn info``) a stream whose span
-    is shorter than the longest stream's by more than :data:`SPAN_TOLERANCE_S` plus the larger sample interval of
-    the two (a file cut at a row boundary: 45.10 s of fAccelerometer beside 75.14 s of the rest tracked -36.66 %
-    without a word). Returns the message (``None``: the spans agree); ``"off"`` checks nothing."""
+    is shorter than the longest span of its unit's streams (foot, waist) by more than :data:`SPAN_TOLERANCE_S`
+    plus the larger sample interval of the two (a file cut at a row boundary: 45.10 s of fAccelerometer beside
+    75.14 s of the rest tracked -36.66 % without a word). Within a unit only: two units are two devices, which
+    may stop apart (``pdrlearn import --merge`` of two exports; B21 refuses where a method needs one unit to
+    cover the other). Returns the message (``None``: the spans agree); ``"off"`` checks nothing."""
     if mode == "off":
         return None
-    spans = {n: s for n, s in streams.items() if len(s) >= 2}
-    if len(spans) < 2:
-        return None
-    longest = max(spans, key=lambda n: spans[n].duration_s)
-    full = spans[longest].duration_s
 
     def period(s: Stream) -> float:
         p = s.period_s
         return p if math.isfinite(p) else 0.0
 
-    short = [n for n, s in spans.items()
-             if full - s.duration_s > SPAN_TOLERANCE_S + max(period(s), period(spans[longest]))]
-    if not short:
-        return None
-    short.sort(key=lambda n: spans[n].duration_s)
-    first = spans[short[0]]
-    others = [n for n in spans if n not in short]
-    o_lo = min(float(spans[n].duration_s) for n in others)
-    o_span = f"{full:.2f} s" if full - o_lo < 0.005 else f"{o_lo:.2f}-{full:.2f} s"
-    also = f" (also short: {', '.join(SENSORS[n].filename for n in short[1:])})" if len(short) > 1 else ""
-    msg = (f"{folder / SENSORS[short[0]].filename}: spans {first.duration_s:.2f} s ({first.t[0]:.2f}-{first.t[-1]:.2f}"
-           f" s) but the other {len(others)} stream(s) {o_span}{also}; the file was cut short (a truncated copy?), so "
-           "a track would cover only part of the walk its labels describe -- restore the whole file from the "
-           "recording, or re-record (decision B72)")
-    if mode == "warn":
-        log.warning("%s", msg)
-        return msg
-    raise DataError(msg)
+    for unit in ("foot", "waist"):
+        spans = {n: s for n, s in streams.items() if len(s) >= 2 and SENSORS[n].placement == unit}
+        if len(spans) < 2:
+            continue
+        longest = max(spans, key=lambda n: spans[n].duration_s)
+        full = spans[longest].duration_s
+        short = [n for n, s in spans.items()
+                 if full - s.duration_s > SPAN_TOLERANCE_S + max(period(s), period(spans[longest]))]
+        if not short:
+            continue
+        short.sort(key=lambda n: spans[n].duration_s)
+        first = spans[short[0]]
+        others = [n for n in spans if n not in short]
+        o_lo = min(float(spans[n].duration_s) for n in others)
+        o_span = f"{full:.2f} s" if full - o_lo < 0.005 else f"{o_lo:.2f}-{full:.2f} s"
+        also = f" (also short: {', '.join(SENSORS[n].filename for n in short[1:])})" if len(short) > 1 else ""
+        msg = (f"{folder / SENSORS[short[0]].filename}: spans {first.duration_s:.2f} s ({first.t[0]:.2f}-"
+               f"{first.t[-1]:.2f} s) but the other {len(others)} {unit} stream(s) {o_span}{also}; the file was cut "
+               "short (a truncated copy?), so a track would cover only part of the walk its labels describe -- "
+               "restore the whole file from the recording, or re-record (decision B72)")
+        if mode == "warn":
+            log.warning("%s", msg)
+            return msg
+        raise DataError(msg)
+    return None
 
 
 def _sensor_copy_of(stem: str) -> str | None:
