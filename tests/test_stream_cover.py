@@ -62,7 +62,8 @@ def test_cli_steps_one_error_line(tmp_path, capsys):
     (d / "wGyroscope.csv").write_text("\n".join(lines[:601]) + "\n")  # 0-6 s of 137.6 s
     assert main(["steps", str(d)]) == 2
     err = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
-    assert len(err) == 1 and err[0].startswith(f"error: {d / 'wGyroscope.csv'} covers 0.00-5.99 s"), err
+    # a folder read by a command is refused by decision B72 (the file's span), before B21's per-method check
+    assert len(err) == 1 and err[0].startswith(f"error: {d / 'wGyroscope.csv'}: spans 5.99 s (0.00-5.99 s)"), err
 
 
 def test_a_too_short_lower_back_recording_names_the_file_and_the_command():

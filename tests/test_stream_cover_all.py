@@ -101,7 +101,7 @@ def test_plasys_refuses_a_force_sensor_or_waist_stopping_early(walk, tmp_path, n
 
     d = _cut_file(walk, tmp_path / "cut", name, 10.0)
     with pytest.raises(DataError) as exc:
-        get_pipeline("plasys")(read_session(d), method="M2")
+        get_pipeline("plasys")(read_session(d, spans="off"), method="M2")  # B72 first otherwise
     assert "but fAccelerometer" in _one_line(exc, d, name)
 
 
@@ -111,7 +111,7 @@ def test_streaming_kernel_refuses_a_stream_stopping_early(walk, tmp_path, name):
 
     d = _cut_file(walk, tmp_path / "cut", name, 10.0)
     with pytest.raises(DataError) as exc:
-        track_streaming(read_session(d), method="M2")
+        track_streaming(read_session(d, spans="off"), method="M2")
     assert "but fGyroscope" in _one_line(exc, d, name)
 
 
@@ -122,4 +122,5 @@ def test_run_replay_one_error_line(walk, tmp_path, tmp_path_factory, capsys):
     d = _cut_file(walk, tmp_path / "cut", "wAccelerometer", 10.0)
     assert main(["run", str(bundle), str(d)]) == 2
     err = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
-    assert len(err) == 1 and err[0].startswith(f"error: {d / 'wAccelerometer.csv'} covers 0.00-10."), err
+    # a folder read by a command is refused by decision B72 (the file's span), before B21's per-method check
+    assert len(err) == 1 and err[0].startswith(f"error: {d / 'wAccelerometer.csv'}: spans 10."), err

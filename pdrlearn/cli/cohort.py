@@ -44,16 +44,41 @@ if TYPE_CHECKING:  # pandas is imported where it is used: `pdrlearn --version/--
 JOB_LIBRARIES = ("scipy.linalg", "scipy.signal", "sklearn.svm")
 
 
+def _read_sessions(user_dir: Path, part: str, skip_bad: bool) -> tuple[list, dict]:
+    """Decision C11: a user's sessions and, with ``skip_bad`` (``--skip-bad-sessions``), the summary columns of
+    the ones that could not be read (``skipped_sessions``, ``skipped``: ``name: error``; :func:`_print` says
+    each on stderr, as a job on a Dask worker cannot). Without it the first bad session fails the user, as
+    before, and its error names the option when the user has other sessions. A user whose every session is
+    bad fails either way."""
+    from pdrlearn.io import read_session
+
+    paths = user_sessions(user_dir, part)
+    sessions, bad = [], []
+    for p in paths:
+        try:
+            sessions.append(read_session(p))
+        except DataError as exc:
+            if not skip_bad:
+                if len(paths) > 1:
+                    raise DataError(f"{exc} (or pass --skip-bad-sessions to use {user_dir.name}'s other "
+                                    f"{len(paths) - 1} session(s))") from None
+                raise
+            bad.append(f"{p.name}: {exc}")
+    if not sessions:
+        raise DataError(f"{user_dir}: every session is bad ({len(bad)}); first: {bad[0]}")
+    extra = {"skipped_sessions": len(bad), "skipped": bad} if skip_bad else {}
+    return sessions, extra
+
+
 def _train_job(args: dict) -> dict:
     """Train one user (runs on a Dask worker): read sessions, train, save; return a summary row."""
     from pdrlearn.classify import train_user
-    from pdrlearn.io import read_session
 
-    sessions = [read_session(p) for p in user_sessions(Path(args["user_dir"]), "train")]
+    sessions, skipped = _read_sessions(Path(args["user_dir"]), "train", args.get("skip_bad", False))
     model = train_user(sessions, tasks=args["tasks"], methods=args["methods"], units=args["units"],
                        cv=args["cv"], seed=args["seed"], user=Path(args["user_dir"]).name)
     model.save(Path(args["out"]))
-    row = {"sessions": len(sessions), "skipped_tasks": len(model.skipped)}
+    row = {"sessions": len(sessions), **skipped, "skipped_tasks": len(model.skipped)}
     for t, tm in model.tasks.items():
         m, u = tm.chosen
         row[f"{t}_method"] = f"{m}/{u}"
@@ -65,18 +90,24 @@ def _train_job(args: dict) -> dict:
 def _evaluate_job(args: dict) -> dict:
     """Evaluate one user's model on that user's held-out sessions (``test/``)."""
     from pdrlearn.classify import evaluate_model, load_model
-    from pdrlearn.io import read_session
 
     model = load_model(Path(args["model_dir"]))
-    sessions = [read_session(p) for p in user_sessions(Path(args["user_dir"]), "test")]
+    sessions, skipped = _read_sessions(Path(args["user_dir"]), "test", args.get("skip_bad", False))
     res = evaluate_model(model, sessions, latency=False)
     if not res["tasks"]:
         raise DataError(f"{args['user_dir']}: held-out sessions have no labels for the model's tasks")
-    row = {"sessions": len(sessions)}
+    row = {"sessions": len(sessions), **skipped}
     for t, r in res["tasks"].items():
         row[f"{t}_accuracy"] = r["accuracy"]
         row[f"{t}_n_steps"] = r["n_steps"]
     return row
+
+
+#: decision C11: summary columns that count things, written as integers
+COUNT_COLUMNS = ("sessions", "skipped_sessions", "skipped_tasks")
+
+SKIP_BAD_HELP = ("Skip a user's sessions that cannot be read (listed in cohort_summary.csv's skipped column) "
+                 "instead of failing the user (decision C11).")
 
 
 def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
@@ -88,16 +119,27 @@ def _summarise(results: list[JobResult], out: Path) -> pd.DataFrame:
                "cpu_seconds": round(r.cpu_seconds, 2)}
         if r.ok:
             row.update(r.value)
+            if isinstance(row.get("skipped"), list):  # decision C11: one cell, "name: error; name: error"
+                row["skipped"] = "; ".join(row["skipped"])
         else:
             row["error"] = r.error
         rows.append(row)
     df = pd.DataFrame(rows)
+    for c in df.columns:  # decision C11: counts stay integers (2, not 2.0) when a failed user leaves them empty
+        if c in COUNT_COLUMNS or c.endswith("_n_steps"):
+            df[c] = pd.to_numeric(df[c]).round().astype("Int64")
     out.mkdir(parents=True, exist_ok=True)
     tmp = out / ".cohort_summary.csv.tmp"
     df.to_csv(tmp, index=False)
     tmp.replace(out / "cohort_summary.csv")
-    (out / "cohort_summary.md").write_text(df.to_markdown(index=False, floatfmt=".4g") + "\n")
+    (out / "cohort_summary.md").write_text(_blank_missing(df).to_markdown(index=False, floatfmt=".4g") + "\n")
     return df
+
+
+def _blank_missing(df: pd.DataFrame) -> pd.DataFrame:
+    """``df`` with missing cells as None: an empty Markdown cell and a JSON null (an Int64 column's ``pd.NA``
+    printed as ``<NA>`` and is not JSON)."""
+    return df.astype(object).where(df.notna(), None)
 
 
 def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool) -> None:
@@ -105,7 +147,7 @@ def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool
 
     failed = [r for r in results if not r.ok]
     if as_json:
-        print_json(json_safe({"users": df.to_dict(orient="records"), "n_users": len(results),
+        print_json(json_safe({"users": _blank_missing(df).to_dict(orient="records"), "n_users": len(results),
                               "n_failed": len(failed)}))
     else:
         from rich.table import Table
@@ -121,9 +163,14 @@ def _print(df: pd.DataFrame, results: list[JobResult], title: str, as_json: bool
             c.print(t)
         else:  # piped or logged: the same Markdown table as cohort_summary.md, never squeezed to 80 columns
             print(title)
-            print(shown.to_markdown(index=False, floatfmt=".4g"))
+            print(_blank_missing(shown).to_markdown(index=False, floatfmt=".4g"))
         for r in failed:
             c.print(f"[red]failed[/red] {r.name}: {r.error}", highlight=False)
+    for r in results:  # decision C11: what --skip-bad-sessions left out, on stderr (with --json too)
+        if r.ok and isinstance(r.value, dict) and r.value.get("skipped"):
+            for item in r.value["skipped"]:
+                typer.echo(f"warning: {r.name}: session {item.split(': ', 1)[0]} skipped (--skip-bad-sessions): "
+                           f"{item.split(': ', 1)[-1]}", err=True)
 
 
 def _exit_if_any_failed(results: list[JobResult]) -> None:
@@ -205,6 +252,7 @@ def train_all(
     units: str = typer.Option(None, help="Comma list of foot,waist,fused,combined (default: all)."),
     cv: int = typer.Option(10, help="Cross-validation folds per user."),
     seed: int = typer.Option(0, help="Seed (identical results serial or distributed)."),
+    skip_bad: bool = typer.Option(False, "--skip-bad-sessions", help=SKIP_BAD_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP.split(" (")[0] + " (the whole models "
                                "folder is replaced atomically: users no longer in the cohort, or failing now, "
                                "keep no old model)."),
@@ -238,7 +286,7 @@ def train_all(
     # leaves no model of a user who is no longer in the cohort, or who failed this time
     with atomic_directory(out) as tmp:
         items = [(u.name, {"user_dir": str(u), "out": str(tmp / u.name), "tasks": t_list,
-                           "methods": m_list, "units": u_list, "cv": cv, "seed": seed})
+                           "methods": m_list, "units": u_list, "cv": cv, "seed": seed, "skip_bad": skip_bad})
                  for u in users]
         results = _run(_train_job, items, scheduler, serial, workers, as_json, "train")
         _check_any_ok(results)
@@ -258,6 +306,7 @@ def evaluate_all(
     scheduler: str = typer.Option(None, help="Dask scheduler address (default: a LocalCluster)."),
     serial: bool = typer.Option(False, help="Run in this process, without Dask."),
     workers: int = typer.Option(None, help="LocalCluster worker processes."),
+    skip_bad: bool = typer.Option(False, "--skip-bad-sessions", help=SKIP_BAD_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP.split(" (")[0] + "."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
@@ -274,7 +323,8 @@ def evaluate_all(
     out = out_folder(out or models_dir / "eval", "evaluate-all", force=force, inputs=(models_dir, cohort_dir))
     was = existed(out)
     users = cohort_users(cohort_dir)
-    items = [(u.name, {"user_dir": str(u), "model_dir": str(models_dir / u.name)}) for u in users]
+    items = [(u.name, {"user_dir": str(u), "model_dir": str(models_dir / u.name), "skip_bad": skip_bad})
+             for u in users]
     results = _run(_evaluate_job, items, scheduler, serial, workers, as_json, "test")
     _check_any_ok(results)
     df = _summarise(results, out)

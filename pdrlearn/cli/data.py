@@ -30,7 +30,8 @@ def info(
     from pdrlearn.io.plasys import BRIDGE_DROPS
     from pdrlearn.io.session import MAX_BRIDGED_S
 
-    s = read_session(session_dir, bridge_drops=False)  # the gaps as recorded (decision B64)
+    # the gaps as recorded (decision B64); a stream cut short is shown and warned about, not refused (B72)
+    s = read_session(session_dir, bridge_drops=False, spans="warn")
     summary = s.summary()
     summary["frame_checks"] = s.frame_checks()  # warnings are logged (stderr) once, by the checks themselves
     # decision B64: what the other commands do with the short intervals of dropped samples

@@ -493,14 +493,102 @@ def _looks_like_export(path: Path) -> bool:
     return len(cols) >= 4 and not any(c.strip().endswith("_ms") for c in cols)
 
 
+#: decision B72: a stream whose span (last minus first timestamp) is shorter than the longest of its unit's by more than
+#: this (s), plus one sample interval, was cut short: B11's gap and B21's missing end, so what is missing at a
+#: stream's ends is already refused where it is interpolated; the spans, not the ends, as the two units' clocks may be
+#: offset (decision B22); unit clock drift changes a span by 0.36 s per hour at 100 ppm
+SPAN_TOLERANCE_S = 1.0
+
+
+def check_stream_spans(streams: dict[str, Stream], folder: Path, *, mode: str = "refuse") -> str | None:
+    """Decision B72: refuse (``mode="refuse"``) or warn about (``"warn"``, ``pdrlearn info``) a stream whose span
+    is shorter than the longest span of its unit's streams (foot, waist) by more than :data:`SPAN_TOLERANCE_S`
+    plus the larger sample interval of the two (a file cut at a row boundary: 45.10 s of fAccelerometer beside
+    75.14 s of the rest tracked -36.66 % without a word). Within a unit only: two units are two devices, which
+    may stop apart (``pdrlearn import --merge`` of two exports; B21 refuses where a method needs one unit to
+    cover the other). Returns the message (``None``: the spans agree); ``"off"`` checks nothing."""
+    if mode == "off":
+        return None
+
+    def period(s: Stream) -> float:
+        p = s.period_s
+        return p if math.isfinite(p) else 0.0
+
+    for unit in ("foot", "waist"):
+        spans = {n: s for n, s in streams.items() if len(s) >= 2 and SENSORS[n].placement == unit}
+        if len(spans) < 2:
+            continue
+        longest = max(spans, key=lambda n: spans[n].duration_s)
+        full = spans[longest].duration_s
+        short = [n for n, s in spans.items()
+                 if full - s.duration_s > SPAN_TOLERANCE_S + max(period(s), period(spans[longest]))]
+        if not short:
+            continue
+        short.sort(key=lambda n: spans[n].duration_s)
+        first = spans[short[0]]
+        others = [n for n in spans if n not in short]
+        o_lo = min(float(spans[n].duration_s) for n in others)
+        o_span = f"{full:.2f} s" if full - o_lo < 0.005 else f"{o_lo:.2f}-{full:.2f} s"
+        also = f" (also short: {', '.join(SENSORS[n].filename for n in short[1:])})" if len(short) > 1 else ""
+        msg = (f"{folder / SENSORS[short[0]].filename}: spans {first.duration_s:.2f} s ({first.t[0]:.2f}-"
+               f"{first.t[-1]:.2f} s) but the other {len(others)} {unit} stream(s) {o_span}{also}; the file was cut "
+               "short (a truncated copy?), so a track would cover only part of the walk its labels describe -- "
+               "restore the whole file from the recording, or re-record (decision B72)")
+        if mode == "warn":
+            log.warning("%s", msg)
+            return msg
+        raise DataError(msg)
+    return None
+
+
+def _sensor_copy_of(stem: str) -> str | None:
+    """Decision B74: the sensor whose file ``stem`` names a copy of (``fAccelerometer (1)``, ``Copy of fGyroscope``,
+    ``wBarometer_old``): its letters, lower-cased, contain a sensor's name; else None."""
+    letters = re.sub(r"[^a-z]", "", stem.lower())
+    return next((n for n in sorted(SENSORS, key=len, reverse=True) if n.lower() in letters), None)
+
+
+def _not_labels(path: Path, table: pd.DataFrame, folder: Path) -> bool:
+    """Decision B74: True for a CSV that is not a label table and is left out of ``Session.extras`` with one
+    warning: a copy of a sensor file identical to it, or a table whose columns are a sensor stream's
+    (``timestamp`` + x,y,z or x, no ``*_ms`` column) under a name that does not say ``trajectory`` (the
+    ground-truth ``trajectory.csv``, ``foot_trajectory.csv`` have those columns). A copy that differs from its
+    sensor file (or has none beside it) is a :class:`DataError`: which one is the recording is not known."""
+    copy_of = _sensor_copy_of(path.stem)
+    if copy_of is not None:
+        original = folder / SENSORS[copy_of].filename
+        if original.is_file() and original.read_bytes() == path.read_bytes():
+            log.warning("%s: is a copy of %s (identical): ignored, not read as a label table; delete it", path,
+                        original.name)
+            return True
+        if original.is_file():
+            raise DataError(f"{path}: looks like a copy of {original.name} (its name) but differs from it; keep the "
+                            f"right recording as {original.name} and move the other out of the session folder "
+                            "(decision B74)")
+        raise DataError(f"{path}: looks like a copy of {original.name} (its name), and there is no {original.name}; "
+                        f"rename it to {original.name} if it is that recording, or move it out of the session "
+                        "folder (decision B74)")
+    cols = [c for c in table.columns if c != "timestamp"]
+    stream_like = ("timestamp" in table.columns and not any(str(c).endswith("_ms") for c in table.columns)
+                   and any(tuple(cols) == spec.columns for spec in SENSORS.values()))
+    if stream_like and "trajectory" not in path.stem.lower():
+        log.warning("%s: its columns (%s) are a sensor stream's, not a label table's: ignored (nothing reads it); "
+                    "name it after its sensor (%s) if it is one, or move it out of the session folder", path,
+                    ",".join(map(str, table.columns)), ", ".join(SENSORS[n].filename for n in SENSORS))
+        return True
+    return False
+
+
 def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None,
-                 bridge_drops: bool | None = None, streamed: bool = False) -> Session:
+                 bridge_drops: bool | None = None, streamed: bool = False, spans: str = "refuse") -> Session:
     """Read a PLASYS session folder. ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
     uniform clock (decision B33; default :data:`RESAMPLE_JITTER`, off). ``bridge_drops``: bridge intervals of
     dropped samples up to :data:`MAX_BRIDGED_S` by linear interpolation and warn about the longer ones up to 1 s
     (decision B64; default :data:`BRIDGE_DROPS`); ``False`` reads the samples as recorded, without the warning
     (``pdrlearn info`` lists the gaps itself). ``streamed``: the caller integrates on the timestamps
-    (``pdrlearn run``, ``track --streaming``): that warning says so (decision L77).
+    (``pdrlearn run``, ``track --streaming``): that warning says so (decision L77). ``spans``: a stream whose
+    time span is over 1 s shorter than the others' (a file cut short) is refused (``"refuse"``), warned about
+    (``"warn"``, ``pdrlearn info``) or not checked (``"off"``; decision B72).
 
     Raises
     ------
@@ -555,6 +643,9 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
                     ", ".join(f"{n} {s.rate_hz:.4g} Hz" for n, s in streams.items()), unit)
     if rate is not None:
         _check_declared_rate(streams, rate, meta_path)
+    if spans not in ("refuse", "warn", "off"):
+        raise ValueError(f"spans={spans!r}: use 'refuse', 'warn' or 'off'")
+    check_stream_spans(streams, folder, mode=spans)  # decision B72: before a gap warning about a cut file
     if RESAMPLE_JITTER if uniform_clock is None else uniform_clock:
         _uniform_clocks(streams, folder)
     if bridge_drops is not False:
@@ -580,6 +671,8 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         if p.stem in SENSORS or p.stem in LABEL_FILES:
             continue
         table = read_table(p)
+        if _not_labels(p, table, folder):  # decision B74: a copy of a sensor file, or a sensor stream
+            continue
         check_label_table(table, p.stem, str(p))
         extras[p.stem] = _ms_to_s(table, str(p))
     try:

@@ -36,6 +36,13 @@ def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str) -> np.
     return arr
 
 
+#: decision B73: a backward step of the timestamps larger than this (s) is a clock reset, not samples out of order:
+#: B11's gap; no sensor buffers or re-sends a second of samples out of order
+CLOCK_RESET_S = 1.0
+#: decision B73: more such jumps than this is rows out of order (a shuffled file), not restarts of the recorder
+MAX_CLOCK_RESETS = 3
+
+
 def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False) -> None:
     """Timestamps must be strictly increasing (no duplicates, sorted). ``in_memory``: ``t`` is a
     :class:`~pdrlearn.io.Stream`'s (decision B49): the messages count samples and say how to fix the arrays."""
@@ -52,6 +59,19 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False) -> N
             f"{where}: {dup.size} duplicate timestamp(s) (first at line {dup[0] + 3}); drop the duplicated rows"
         )
     back = np.flatnonzero(~(dt > 0))  # NaN intervals count as backwards
+    reset = np.flatnonzero(dt < -CLOCK_RESET_S)
+    # decision B73: a clock reset (a few large backward jumps, increasing in between); sorting (the advice below)
+    # interleaves two recordings. Shuffled rows (many backward steps, most of them small) keep the sort advice
+    if 1 <= reset.size <= MAX_CLOCK_RESETS and back.size - reset.size <= 0.01 * dt.size:
+        i = int(reset[0])
+        at = f"index {i + 1}" if in_memory else f"line {i + 3}"
+        more = f" ({reset.size} such jumps)" if reset.size > 1 else ""
+        split = ("split the arrays there into two sessions" if in_memory else
+                 f"split the session into two there (this file before line {i + 3} and from it on; every other file "
+                 "and the labels where their own clock restarts)")
+        raise DataError(f"{where}: the timestamps jump back from {t[i]:.2f} s to {t[i + 1]:.2f} s at {at}{more}: a "
+                        "clock reset (the recorder restarted), not samples out of order, so sorting would interleave "
+                        f"two recordings -- {split} (decision B73)")
     if back.size:
         if in_memory:
             raise DataError(f"{where}: timestamps are not increasing {back.size} time(s) (first at index "
