@@ -9,7 +9,17 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import DPI_HELP, FORCE_HELP, START_HELP, existed, json_safe, print_json, replaced, start_option
+from pdrlearn.cli.common import (
+    DPI_HELP,
+    FORCE_HELP,
+    START_HELP,
+    existed,
+    gait_line,
+    json_safe,
+    print_json,
+    replaced,
+    start_option,
+)
 from pdrlearn.errors import DataError
 
 
@@ -57,6 +67,9 @@ def track(
                                  "stance_time_s, swing_time_s, stance_pct to steps.csv (decision L73: an option, "
                                  "not the default - its toe-off runs ~21 ms early against mocap, see "
                                  "docs/localization.md)."),
+    contacts: bool = typer.Option(False, "--contacts", help="plasys --streaming: each stride's initial contact "
+                                  "(force onset, else the accelerometer impact) and so stride_time_s, cadence_spm, "
+                                  "speed_mps (decisions E49-E51; `pdrlearn run --contacts` gives the same)."),
     dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
@@ -102,7 +115,7 @@ def track(
             raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
                             "pass the file written by `pdrlearn calibrate`") from None
     session = read_session(session_dir, streamed=streaming)  # L77: the drops warning of its path
-    if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off):
+    if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
     fn = get_pipeline(pipeline)
@@ -114,7 +127,8 @@ def track(
                                                "--rules": rules is not None,
                                                "--min-confidence": min_confidence is not None,
                                                "--length-bounds": length_bounds is not None,
-                                               "--streaming": streaming, "--toe-off": toe_off},
+                                               "--streaming": streaming, "--toe-off": toe_off,
+                                               "--contacts": contacts},
                             gnss=gnss, gnss_period=gnss_period, fixes=fixes, fix_period=fix_period)
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
@@ -128,6 +142,11 @@ def track(
         kw["method"] = method
         if streaming:
             kw["streaming"] = True
+        if contacts:  # decisions E49-E51
+            if not streaming:
+                raise DataError("track: --contacts gives the --streaming kernel initial contacts; offline track "
+                                "has its detector's contacts already - add --streaming or drop --contacts")
+            kw["contacts"] = True
         if toe_off:  # decision L73
             if streaming:
                 raise DataError("track: --toe-off needs the offline tracker's initial contacts; the --streaming "
@@ -219,18 +238,13 @@ def track(
                + (f"; {100 * summary['out_of_domain_fraction']:.0f} % of the strides outside the model's "
                   "training range" if summary.get("out_of_domain_fraction") is not None else ""))
     if summary.get("gait_speed_mps") is not None:  # decisions L79 / W70: the clinical walking speed
-        straight = summary.get("median_speed_straight_mps")
-        cad = summary.get("median_cadence_spm")
-        typer.echo(f"gait speed {summary['gait_speed_mps']:.2f} m/s ({summary['distance_m']:.2f} m in "
-                   f"{summary['walking_time_s']:.2f} s walking)"
-                   + (f", straight strides {straight:.2f} m/s" if straight is not None else "")
-                   + (f", cadence {cad:.1f} steps/min" if cad is not None else ""))
+        typer.echo(gait_line(summary))
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json")
 
 
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
 _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming",
-                   "--toe-off")
+                   "--toe-off", "--contacts")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
 
