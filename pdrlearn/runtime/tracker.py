@@ -175,9 +175,10 @@ class Step:
     #: decision E30: the longest foot-stream gap (s, > 1 s) inside the stride; such a stride moves 0 m, keeps
     #: the heading and has no classes (0.0 = none)
     gap_s: float = 0.0
-    #: decision E49: the stride's initial contact (s; the foot accelerometer's impact, offline's rule; NaN: none)
+    #: decisions E49 / E50: the stride's initial contact (s; the force sensors' stance onset, else the foot
+    #: accelerometer's impact, offline's rules; NaN: none, or ``Tracker(contacts=False)``, the default)
     event_s: float = math.nan
-    #: decision E50: initial contact to the previous emitted stride's (s, L66/L80's rule; NaN: none) and the
+    #: decision E51: initial contact to the previous emitted stride's (s, L66/L80's rule; NaN: none) and the
     #: stride's own turn (rad: its heading unit's yaw over the stride, without the pivot before it)
     stride_time_s: float = math.nan
     turn_angle_rad: float = math.nan
@@ -195,7 +196,7 @@ class Step:
             "x": self.x,
             "y": self.y,
             "z": self.z,
-            "stride_time_s": self.stride_time_s,  # decision E50
+            "stride_time_s": self.stride_time_s,  # decision E51
             "turn_angle_rad": self.turn_angle_rad,
             "gap_s": self.gap_s,  # decision E37: pdrlearn run's steps.csv
         }
@@ -905,7 +906,7 @@ class Tracker:
                 out.append(Step(a, b, {}, {}, 0.0, 0.0, self._kept[1], x, y, z, gap_s=longest))
                 self.n_steps += 1
         self._gap_row = None
-        # decision E50: IC to IC with the row emitted before (a gap row between: none), L66/L80's rule
+        # decision E51: IC to IC with the row emitted before (a gap row between: none), L66/L80's rule
         prev = self._kept[3] if self._kept is not None and not out else None
         if prev is not None:
             step.stride_time_s = float(stride_times((prev[0], step.start_s), (prev[1], step.end_s),
@@ -1105,7 +1106,7 @@ class Tracker:
             disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
         else:
             lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
-        turn = dyaw  # decision E50: the stride's own turn, before the pivot between strides
+        turn = dyaw  # decision E51: the stride's own turn, before the pivot between strides
         # decisions L31 / L61: the heading unit's turn between strides (track --streaming's call)
         dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, self._prev_end, t0, waist=self.waist_gap_yaw)
         self._prev_end = t1

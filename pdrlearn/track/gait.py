@@ -95,7 +95,7 @@ def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=Non
 
 
 def streamed_gait_columns(table: pd.DataFrame) -> pd.DataFrame:
-    """Decision E50: the :data:`GAIT_COLUMNS` of a streamed foot table (``track --streaming``, ``pdrlearn run``:
+    """Decision E51: the :data:`GAIT_COLUMNS` of a streamed foot table (``track --streaming``, ``pdrlearn run``:
     ``event_s`` the runtime's initial contact, E49, NaN on a gap row; ``turn_angle_rad`` the stride's own turn;
     ``gap_s``) by :func:`add_gait_columns` (a gap row, ``gap_s`` > 0, is no stride, L67), placed as offline's
     steps.csv places them (before ``gap_s`` and ``unit``). In place; returned."""
@@ -198,9 +198,10 @@ def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     """Decision E48: the L79 keys a streamed foot table (``pdrlearn run``, ``track --streaming``: rest-to-rest
     strides with ``start_s``, ``end_s``, ``length_m`` and ``gap_s``, no initial contact) can give:
     ``walking_time_s`` and ``gait_speed_mps`` from :func:`walking_time` (a gap row, ``gap_s`` > 0, ends a
-    piece, L67/E46). The streamed strides have no initial contact (their ``event_s`` is the stride's end), so no
+    piece, L67/E46). Such a table (an older `run` output: no ``stride_time_s`` column) has no initial contact, so no
     stride time, cadence or per-stride speed (L66), and so no ``median_speed_straight_mps``: it stays None and
-    ``n_straight_strides`` 0."""
+    ``n_straight_strides`` 0. Since E51 the streamed tables carry the gait columns (:func:`streamed_gait_columns`;
+    empty without ``--contacts``) and take :func:`gait_summary`'s own path."""
     n = len(steps)
     valid = (steps["gap_s"].to_numpy(float) == 0) if "gap_s" in steps else np.ones(n, bool)
     out: dict = {}
@@ -216,8 +217,8 @@ def gait_summary(steps: pd.DataFrame) -> dict:
     ``median_speed_straight_mps`` (strides turning less than 15 deg) and ``n_straight_strides``; decision L73:
     ``median_stance_time_s``, ``median_swing_time_s``, ``median_stance_pct`` and ``n_stance_times`` (None / 0
     without the toe-off columns). A waist
-    table (every row ``unit`` waist, with ``has_next``) gets :func:`waist_gait_summary` (W70); a streamed foot
-    table (``--streaming``, ``pdrlearn run``: no gait columns) :func:`streamed_gait_summary` (E48: walking time
+    table (every row ``unit`` waist, with ``has_next``) gets :func:`waist_gait_summary` (W70); a foot table without
+    gait columns (``--streaming``, ``pdrlearn run`` before E51) :func:`streamed_gait_summary` (E48: walking time
     and gait speed only). Every table gets the same keys, None and 0 where it cannot give them, so every
     summary has them (``run``'s summary carries every key of ``track``'s, B14)."""
     out: dict = {k: (0 if k.startswith("n_") else None) for k in SUMMARY_KEYS}

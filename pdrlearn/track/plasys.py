@@ -871,7 +871,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         elif "length" not in untrained:  # a model without the user's bounds: no length rule (L59; C17: no class)
             warnings.append(SK.no_length_bounds_warning("the model"))
     disp, dyaw, place = np.zeros((len(table), 3)), np.zeros(len(table)), np.zeros(len(table))
-    ic, turn = np.full(len(table), np.nan), np.full(len(table), np.nan)  # decisions E49 / E50
+    ic, turn = np.full(len(table), np.nan), np.full(len(table), np.nan)  # decisions E49-E51
     fa_t, fa_v = streams["fAccelerometer"]
     has_force = "fForceA" in streams and "fForceB" in streams
     foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
@@ -882,7 +882,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,  # E36: a short
                              rest_search_s=rest_search_s, heading=step_heading, bridge_gaps=True)  # gap = 1 interval
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1))
-        turn[i] = dyaw[i]  # decision E50: the stride's own turn (the runtime's), before the pivot below
+        turn[i] = dyaw[i]  # decision E51: the stride's own turn (the runtime's), before the pivot below
         a, b = np.searchsorted(fa_t, t0, side="left"), np.searchsorted(fa_t, t1, side="right")
         if contacts:  # decisions E49-E51 (an option): the runtime's initial contact
             force = force_at(fa_t[a:b], [streams[n] for n in ("fForceA", "fForceB")]) if has_force else None
@@ -922,7 +922,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     xyz = np.zeros((len(table) + 1, 3))
     for i in range(len(table)):  # the runtime's own position update, stride by stride
         xyz[i + 1] = SK.advance(xyz[i], float(head[i]), float(length[i]), float(dz[i]))
-    table["event_s"] = ic  # decision E49 (it was the stride end)
+    table["event_s"] = ic  # decisions E49-E51 (it was the stride end; NaN without contacts)
     table["raw_length_m"] = np.hypot(raw_disp[:, 0], raw_disp[:, 1]) * np.where(raw_disp[:, 0] < 0, -1.0, 1.0)
     table["dz_m"] = dz
     for c in classes.columns:
@@ -933,7 +933,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                           if "direction" in table else None)
     table.insert(3, "length_m", rep_length)
     table.insert(5, "heading_rad", wrap_angle(rep_head))
-    table["turn_angle_rad"] = np.angle(np.exp(1j * turn))  # decision E50, wrapped as offline's L66 column
+    table["turn_angle_rad"] = np.angle(np.exp(1j * turn))  # decision E51, wrapped as offline's L66 column
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["unit"] = "foot"
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
@@ -943,7 +943,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     if any(len(g) for g in foot_gaps.values()):  # decision E46: one 0 m row per stretch with a foot gap (L67)
         table, traj = _one_row_per_gap(table, traj, in_gap, foot_gaps)
-    table = streamed_gait_columns(table)  # decision E50
+    table = streamed_gait_columns(table)  # decision E51
     info = {"pipeline": "plasys", "method": method, "streaming": True, "heading_source": heading,
             "steps_source": "stance (streaming)",
             "classes_source": (None if method == "M2" else ("oracle" if isinstance(model, str)
