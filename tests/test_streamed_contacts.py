@@ -187,3 +187,14 @@ def test_streamed_contacts_equal_offline_on_a_real_foot_recording():
     both = np.isfinite(a) & np.isfinite(b)
     assert both.sum() >= 28
     np.testing.assert_allclose(a[both], b[both], rtol=0, atol=1e-9)
+
+
+def test_track_contacts_without_streaming_is_one_line(tmp_path, capsys):
+    from pdrlearn.cli import main
+
+    out = tmp_path / "out"
+    assert main(["track", str(ROOT / "datasets" / "real" / "gaitmap_level_left"), "--contacts", "--out",
+                 str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error: track: --contacts") and "--streaming" in err and "\n" not in err, err
+    assert not out.exists()
