@@ -908,9 +908,10 @@ class Tracker:
         self._gap_row = None
         # decision E51: IC to IC with the row emitted before (a gap row between: none), L66/L80's rule
         prev = self._kept[3] if self._kept is not None and not out else None
-        if prev is not None:
-            step.stride_time_s = float(stride_times((prev[0], step.start_s), (prev[1], step.end_s),
-                                                    (prev[2], step.event_s))[1])
+        if prev is not None and step.event_s == step.event_s:
+            d = float(stride_times((prev[0], step.start_s), (prev[1], step.end_s), (prev[2], step.event_s))[1])
+            if d == d:  # a missing value stays the one math.nan (steps compare equal as dicts, E21/E24's tests)
+                step.stride_time_s = d
         self._kept = (step.end_s, step.heading_rad, (step.x, step.y, step.z),
                       (step.start_s, step.end_s, step.event_s))
         self._row_gaps = [g for g in self._row_gaps if g[1] > step.end_s]
