@@ -112,7 +112,8 @@ def scenario_d(tmp_path_factory):
 
     root = tmp_path_factory.mktemp("run_chunks")
     write_session(sim.simulate("D", 1), root / "D")
-    assert main(["run", str(SHIPPED), str(root / "D"), "--chunk-s", "100000", "--out", str(root / "one")]) == 0
+    assert main(["run", str(SHIPPED), str(root / "D"), "--chunk-s", "100000", "--contacts",  # E51: the contacts too
+                 "--out", str(root / "one")]) == 0
     return root
 
 
@@ -127,10 +128,11 @@ def test_run_chunks_put_every_sample_in_one_push(scenario_d, tmp_path, capsys, c
     from pdrlearn.cli.export import replay_chunks
     from pdrlearn.io import read_session
 
-    assert main(["run", str(SHIPPED), str(scenario_d / "D"), "--chunk-s", str(chunk_s), "--out",
+    assert main(["run", str(SHIPPED), str(scenario_d / "D"), "--chunk-s", str(chunk_s), "--contacts", "--out",
                  str(tmp_path / "c")]) == 0, capsys.readouterr().err
     a, b = pd.read_csv(scenario_d / "one" / "steps.csv"), pd.read_csv(tmp_path / "c" / "steps.csv")
     assert list(a.columns) == list(b.columns) and len(a) == len(b) > 50
+    assert np.isfinite(a["stride_time_s"]).sum() > 50  # decisions E49-E51: the contacts do not depend on chunks
     for c in a.columns:
         if a[c].dtype.kind == "f":
             np.testing.assert_allclose(b[c], a[c], rtol=0, atol=1e-9)
@@ -139,6 +141,8 @@ def test_run_chunks_put_every_sample_in_one_push(scenario_d, tmp_path, capsys, c
     sa = json.loads((scenario_d / "one" / "summary.json").read_text())
     sb = json.loads((tmp_path / "c" / "summary.json").read_text())
     assert sa["n_steps"] == sb["n_steps"] and abs(sa["distance_m"] - sb["distance_m"]) < 1e-9
+    assert sa["n_stride_times"] == sb["n_stride_times"] > 50
+    assert sa["median_stride_time_s"] == pytest.approx(sb["median_stride_time_s"], abs=1e-9)
     # every sample of every stream in exactly one chunk, in time order
     streams = {n: (st.t, st.values) for n, st in read_session(scenario_d / "D").streams.items()}
     got = {n: [] for n in streams}

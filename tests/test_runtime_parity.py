@@ -173,7 +173,7 @@ def test_kernels_package_imports_numpy_only():
     import sys
 
     code = ("import sys, pdrlearn.kernels.window, pdrlearn.kernels.dtw, pdrlearn.kernels.proba, "
-            "pdrlearn.kernels.stride; "
+            "pdrlearn.kernels.stride, pdrlearn.kernels.contact; "
             "print(sorted(m for m in ('scipy', 'pandas', 'sklearn', 'torch') if m in sys.modules))")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0, r.stderr[-2000:]

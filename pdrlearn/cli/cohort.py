@@ -443,6 +443,7 @@ def track_all(
     realtime: bool = _track.REALTIME_OPT,
     reference_point: str = _track.REFERENCE_POINT_OPT,
     toe_off: bool = _track.TOE_OFF_OPT,
+    contacts: bool = _track.CONTACTS_OPT,
     dpi: int = _track.DPI_OPT,
     group_depth: int = typer.Option(1, "--group-depth", min=1, help="Folder levels below ROOT that name a "
                                     "session's group in sessions.csv and groups.csv (1: siteA of "
@@ -482,7 +483,7 @@ def track_all(
                               min_confidence=min_confidence, length_bounds=length_bounds,
                               warn_out_of_domain=warn_out_of_domain, start=start, params=params,
                               streaming=streaming, realtime=realtime, reference_point=reference_point,
-                              toe_off=toe_off, dpi=dpi)
+                              toe_off=toe_off, contacts=contacts, dpi=dpi)
     found = find_sessions(root)
     out_folder(out, "track-all", force=force, inputs=(root, params))
     was = existed(out)

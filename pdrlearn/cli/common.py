@@ -335,3 +335,14 @@ def start_option(start: str | None) -> tuple[tuple[float, float] | None, float]:
         return None, 0.0
     lat, lon, alt = parse_start(start, altitude=True)
     return (lat, lon), alt
+
+
+def gait_line(summary: dict) -> str:
+    """The console's gait line of ``track`` and ``run`` (decisions L79, W70, E48, E51): gait speed, distance and
+    walking time, the straight strides' speed and the cadence when the summary has them."""
+    straight = summary.get("median_speed_straight_mps")
+    cad = summary.get("median_cadence_spm")
+    return (f"gait speed {summary['gait_speed_mps']:.2f} m/s ({summary['distance_m']:.2f} m in "
+            f"{summary['walking_time_s']:.2f} s walking)"
+            + (f", straight strides {straight:.2f} m/s" if straight is not None else "")
+            + (f", cadence {cad:.1f} steps/min" if cad is not None else ""))

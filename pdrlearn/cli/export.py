@@ -14,6 +14,7 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     START_HELP,
     existed,
+    gait_line,
     json_safe,
     out_folder,
     print_json,
@@ -215,6 +216,9 @@ def run(
                               "foot = a two-unit bundle on a foot-only session or a failed waist (decision E26)."),
     start: str = typer.Option(None, "--start", help=START_HELP),
     dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
+    contacts: bool = typer.Option(False, "--contacts", help="Each stride's initial contact (force onset, else the "
+                                  "accelerometer impact) and so stride_time_s, cadence_spm, speed_mps and the "
+                                  "summary's stride medians (decisions E49-E51; as `track --streaming --contacts`)."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -255,7 +259,7 @@ def run(
                             "Bluetooth protocol does not carry; replay the foot unit alone (--units foot)")
         tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
                           resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
-                          units=use, start=(0.0, 0.0, start_alt))
+                          units=use, start=(0.0, 0.0, start_alt), contacts=contacts)
         if protocol == "-":
             stream = sys.stdin
         else:
@@ -302,7 +306,7 @@ def run(
         tracker = Tracker(bundle, frames=_frames_of(session, bundle, use),
                           resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           input_rates_hz=rates, units=use, sensors=[n for n, st in session.streams.items() if len(st)],
-                          start=(0.0, 0.0, start_alt),
+                          start=(0.0, 0.0, start_alt), contacts=contacts,
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
         dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
         if tracker.heading_source == "auto" and not said and (dropped or not (
@@ -343,13 +347,13 @@ def run(
                    + (f", floors up {summary['floors_up']} / down {summary['floors_down']}"
                       if summary.get("floors_up") or summary.get("floors_down") else "")
                    + (f" -> {out}" if out else ""))
-        if summary.get("gait_speed_mps") is not None:  # decision E48: track's L79 line, what run can give
-            typer.echo(f"gait speed {summary['gait_speed_mps']:.2f} m/s ({summary['distance_m']:.2f} m in "
-                       f"{summary['walking_time_s']:.2f} s walking)")
+        if summary.get("gait_speed_mps") is not None:  # decisions E48 / E51: track's L79 line, what run can give
+            typer.echo(gait_line(summary))
 
 
 #: Step table columns in the order of ``pdrlearn track`` (decision B14); the runtime's extra columns follow.
-_STEP_COLUMNS = ("start_s", "end_s", "length_m", "heading_rad", "dz_m", "terrain", "direction", "length_class")
+_STEP_COLUMNS = ("start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "terrain", "direction",
+                 "length_class")
 
 
 def _result(steps, start_ll=None, start_alt: float = 0.0):
@@ -362,11 +366,12 @@ def _result(steps, start_ll=None, start_alt: float = 0.0):
 
     from pdrlearn.orient import wrap_angle
     from pdrlearn.track.base import TrackResult
+    from pdrlearn.track.gait import streamed_gait_columns
     from pdrlearn.track.geodetic import geodetic_track
 
     df = pd.DataFrame([st.to_dict() for st in steps]).rename(columns={"length": "length_class"})
     if df.empty:
-        df = pd.DataFrame(columns=["start_s", "end_s", "length_m", "heading_rad", "dz_m"])
+        df = pd.DataFrame(columns=["start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "gap_s"])
     first = [c for c in _STEP_COLUMNS if c in df.columns]
     df = df[first + [c for c in df.columns if c not in first]]
     heading = df["heading_rad"].to_numpy(float)
@@ -374,6 +379,7 @@ def _result(steps, start_ll=None, start_alt: float = 0.0):
     # every runtime step is a stride of the foot unit (the Tracker needs it); track's `unit` column also lets
     # evaluate_track score the strides (step_f1, decision L36) as it does for `track`
     df["unit"] = "foot"
+    df = streamed_gait_columns(df)  # decision E50: stride time, cadence, speed from the runtime's contacts (E49)
     traj = [{"t": steps[0].start_s, "x": 0.0, "y": 0.0, "z": float(start_alt)}] if steps else []
     traj += [{"t": st.end_s, "x": st.x, "y": st.y, "z": st.z} for st in steps]
     traj = pd.DataFrame(traj, columns=["t", "x", "y", "z"]).assign(lat=float("nan"), lon=float("nan"))

@@ -8,7 +8,16 @@ from pathlib import Path
 
 import typer
 
-from pdrlearn.cli.common import DPI_HELP, FORCE_HELP, START_HELP, existed, print_json, replaced, start_option
+from pdrlearn.cli.common import (
+    DPI_HELP,
+    FORCE_HELP,
+    START_HELP,
+    existed,
+    gait_line,
+    print_json,
+    replaced,
+    start_option,
+)
 from pdrlearn.errors import DataError
 
 
@@ -51,6 +60,9 @@ TOE_OFF_OPT = typer.Option(False, "--toe-off", help="plasys, offline: add the to
                            "stance_time_s, swing_time_s, stance_pct to steps.csv (decision L73: an option, "
                            "not the default - its toe-off runs ~21 ms early against mocap, see "
                            "docs/localization.md).")
+CONTACTS_OPT = typer.Option(False, "--contacts", help="plasys --streaming: each stride's initial contact "
+                            "(force onset, else the accelerometer impact) and so stride_time_s, cadence_spm, "
+                            "speed_mps (decisions E49-E51; `pdrlearn run --contacts` gives the same).")
 DPI_OPT = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP)
 
 
@@ -74,6 +86,7 @@ def track(
     realtime: bool = REALTIME_OPT,
     reference_point: str = REFERENCE_POINT_OPT,
     toe_off: bool = TOE_OFF_OPT,
+    contacts: bool = CONTACTS_OPT,
     dpi: int = DPI_OPT,
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
@@ -108,7 +121,8 @@ def track(
                               min_confidence=min_confidence, length_bounds=length_bounds,
                               warn_out_of_domain=warn_out_of_domain, start=start, params=params, gnss=gnss,
                               gnss_period=gnss_period, fixes=fixes, fix_period=fix_period, streaming=streaming,
-                              realtime=realtime, reference_point=reference_point, toe_off=toe_off, dpi=dpi)
+                              realtime=realtime, reference_point=reference_point, toe_off=toe_off,
+                              contacts=contacts, dpi=dpi)
     was = existed(out)
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
     with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
@@ -125,7 +139,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    warn_out_of_domain: float | None = None, start: str | None = None, params: Path | None = None,
                    gnss: Path | None = None, gnss_period: float | None = None, fixes: Path | None = None,
                    fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
-                   reference_point: str | None = None, toe_off: bool = False, dpi: int | None = None) -> dict:
+                   reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
+                   dpi: int | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start`` parsed, ``--params`` JSON read): a batch checks them before its first
     session, and the dict travels to a Dask worker as it is (``track-all --jobs``)."""
@@ -154,7 +169,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "warn_out_of_domain": warn_out_of_domain, "start_ll": start_ll, "start_alt": start_alt,
             "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
-            "reference_point": reference_point, "toe_off": toe_off, "dpi": dpi}
+            "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi}
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:
@@ -166,9 +181,10 @@ def track_session(session_dir: Path, settings: dict) -> dict:
 
     o = settings
     pipeline, method, model, streaming, toe_off = o["pipeline"], o["method"], o["model"], o["streaming"], o["toe_off"]
+    contacts = o["contacts"]
     params, par, gnss, fixes, dpi = o["params"], o["par"], o["gnss"], o["fixes"], o["dpi"]
     session = read_session(session_dir, streamed=streaming)  # L77: the drops warning of its path
-    if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off):
+    if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
     fn = get_pipeline(pipeline)
@@ -180,7 +196,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                                                "--rules": o["rules"] is not None,
                                                "--min-confidence": o["min_confidence"] is not None,
                                                "--length-bounds": o["length_bounds_given"],
-                                               "--streaming": streaming, "--toe-off": toe_off},
+                                               "--streaming": streaming, "--toe-off": toe_off,
+                                               "--contacts": contacts},
                             gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"])
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
@@ -195,6 +212,11 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         kw["method"] = method
         if streaming:
             kw["streaming"] = True
+        if contacts:  # decisions E49-E51
+            if not streaming:
+                raise DataError("track: --contacts gives the --streaming kernel initial contacts; offline track "
+                                "has its detector's contacts already - add --streaming or drop --contacts")
+            kw["contacts"] = True
         if toe_off:  # decision L73
             if streaming:
                 raise DataError("track: --toe-off needs the offline tracker's initial contacts; the --streaming "
@@ -271,12 +293,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
                + (f"; {100 * summary['out_of_domain_fraction']:.0f} % of the strides outside the model's "
                   "training range" if summary.get("out_of_domain_fraction") is not None else ""))
     if summary.get("gait_speed_mps") is not None:  # decisions L79 / W70: the clinical walking speed
-        straight = summary.get("median_speed_straight_mps")
-        cad = summary.get("median_cadence_spm")
-        typer.echo(f"gait speed {summary['gait_speed_mps']:.2f} m/s ({summary['distance_m']:.2f} m in "
-                   f"{summary['walking_time_s']:.2f} s walking)"
-                   + (f", straight strides {straight:.2f} m/s" if straight is not None else "")
-                   + (f", cadence {cad:.1f} steps/min" if cad is not None else ""))
+        typer.echo(gait_line(summary))
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json")
 
 
@@ -284,7 +301,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
 
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
 _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming",
-                   "--toe-off")
+                   "--toe-off", "--contacts")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
 

@@ -25,6 +25,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError, InternalError, ModelError
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
+from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
 from pdrlearn.kernels.stride import (
     DOWN_MODES,
@@ -175,11 +176,19 @@ class Step:
     #: decision E30: the longest foot-stream gap (s, > 1 s) inside the stride; such a stride moves 0 m, keeps
     #: the heading and has no classes (0.0 = none)
     gap_s: float = 0.0
+    #: decisions E49 / E50: the stride's initial contact (s; the force sensors' stance onset, else the foot
+    #: accelerometer's impact, offline's rules; NaN: none, or ``Tracker(contacts=False)``, the default)
+    event_s: float = math.nan
+    #: decision E51: initial contact to the previous emitted stride's (s, L66/L80's rule; NaN: none) and the
+    #: stride's own turn (rad: its heading unit's yaw over the stride, without the pivot before it)
+    stride_time_s: float = math.nan
+    turn_angle_rad: float = math.nan
 
     def to_dict(self) -> dict:
         return {
             "start_s": self.start_s,
             "end_s": self.end_s,
+            "event_s": self.event_s,  # decision E49
             **self.classes,
             **{f"p_{t}_{c}": v for t, p in self.proba.items() for c, v in p.items()},
             "length_m": self.length_m,
@@ -188,6 +197,8 @@ class Step:
             "x": self.x,
             "y": self.y,
             "z": self.z,
+            "stride_time_s": self.stride_time_s,  # decision E51
+            "turn_angle_rad": self.turn_angle_rad,
             "gap_s": self.gap_s,  # decision E37: pdrlearn run's steps.csv
         }
 
@@ -335,6 +346,7 @@ class Tracker:
         sensors=None,
         waist_gap_yaw: bool = True,
         waist_bridge: bool = False,
+        contacts: bool = False,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -496,6 +508,8 @@ class Tracker:
         #: trims that dropped samples (part of the stamp: the data a step reads is final once every stream
         #: has a sample past it, and changes only by a trim or a re-anchored foot state)
         self.speculative = bool(speculative)
+        #: decisions E49-E51: give each stride its initial contact and stride time (an option: E50's rule not met)
+        self.contacts = bool(contacts)
         self._spec: tuple | None = None
         self._trims = 0
         #: decisions E30, E31: the gaps the current push opens ``(sensor, last sample before, first after)`` (s), the
@@ -907,7 +921,14 @@ class Tracker:
                 out.append(Step(a, b, {}, {}, 0.0, 0.0, self._kept[1], x, y, z, gap_s=longest))
                 self.n_steps += 1
         self._gap_row = None
-        self._kept = (step.end_s, step.heading_rad, (step.x, step.y, step.z))
+        # decision E51: IC to IC with the row emitted before (a gap row between: none), L66/L80's rule
+        prev = self._kept[3] if self._kept is not None and not out else None
+        if prev is not None and step.event_s == step.event_s:
+            d = float(stride_times((prev[0], step.start_s), (prev[1], step.end_s), (prev[2], step.event_s))[1])
+            if d == d:  # a missing value stays the one math.nan (steps compare equal as dicts, E21/E24's tests)
+                step.stride_time_s = d
+        self._kept = (step.end_s, step.heading_rad, (step.x, step.y, step.z),
+                      (step.start_s, step.end_s, step.event_s))
         self._row_gaps = [g for g in self._row_gaps if g[1] > step.end_s]
         out.append(step)
         return out
@@ -1107,6 +1128,7 @@ class Tracker:
             disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
         else:
             lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
+        turn = dyaw  # decision E51: the stride's own turn, before the pivot between strides
         if pause_gap:  # decisions L90 / L91 (track --streaming's): no foot pivot over a foot gap; the waist's turn
             if self._bridged():
                 dyaw += waist_bridge_yaw(self._stream, prev, t0)
@@ -1145,7 +1167,23 @@ class Tracker:
         self.n_steps += 1
         self._heights.append((classes.get("terrain"), raw_dz, dz))  # decision E47
         length, direction = travel_sign_one(length, direction, classes.get("direction"))  # L65: after the position
-        return Step(t0, t1, classes, proba, length, dz, direction, x, y, z)
+        return Step(t0, t1, classes, proba, length, dz, direction, x, y, z,
+                    event_s=self._contact(t0, t1) if self.contacts else math.nan,
+                    turn_angle_rad=float(np.angle(np.exp(1j * turn))))
+
+    def _contact(self, t0: float, t1: float) -> float:
+        """Decisions E49 / E50: the initial contact (s) of the stride ``[t0, t1]`` from its buffered samples
+        (:func:`pdrlearn.kernels.contact.stride_contact`: the force sensors' stance onset when they are buffered,
+        else the foot accelerometer's impact; offline's sources), NaN when it has none."""
+        ring = self._buf.get("fAccelerometer")
+        if ring is None:
+            return math.nan
+        t, v = ring.view()
+        i0, i1 = int(t.searchsorted(t0, side="left")), int(t.searchsorted(t1, side="right"))
+        t, v = t[i0:i1], v[i0:i1, :3]
+        fa, fb = self._buf.get("fForceA"), self._buf.get("fForceB")
+        force = None if fa is None or fb is None else force_at(t, (fa.view(), fb.view()))
+        return stride_contact(t, v, force)
 
     def _non_finite(self, t0: float, t1: float, heading: float, direction: float, xyz: tuple, motion: tuple) -> None:
         """Decision E38: a stride of data that passed every input check left a non-finite heading or position:

@@ -18,6 +18,9 @@ import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 from scipy.signal import lfilter
 
+# decision E50: the force detector's kernel lives with the streamed IC (numpy only); re-exported here
+from pdrlearn.kernels.contact import ForceParams, ForceState, force_kernel, last_impact  # noqa: F401
+
 Event = tuple[float, float, float, float, dict]
 
 
@@ -139,8 +142,8 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
             s.active = False
             dur = ti - s.i0_t
             span = s.mx - s.mn
-            level = p.rest + p.peak_frac * (s.emx - p.rest)
-            t_ev, e_ev = next(((pt, pa) for pt, pa in reversed(s.peaks) if pa >= level), (s.mx_t, s.emx))
+            k = last_impact([pa for _, pa in s.peaks], s.emx, p.rest, p.peak_frac)  # E49: the streamed IC's rule
+            t_ev, e_ev = s.peaks[k] if k >= 0 else (s.mx_t, s.emx)
             if s.pending is not None and t_ev - s.pending[0] < p.min_stride_s and span > p.amp:
                 # the same swing split by a brief false rest: merge; the event stays the last impact
                 # (a wobble below the threshold while standing is ignored, it never moves the event)
@@ -168,51 +171,6 @@ def burst_flush(state: BurstState) -> list[Event]:
 
 # ---------------------------------------------------------------------------------------------------
 # force-gated stance detector (thesis ch.5.2)
-@dataclass
-class ForceParams:
-    amp: float  # max - min of the filtered acceleration during the swing (m/s^2; thesis ch.5.2: 1)
-    on_frac: float  # combined force above this fraction of its running maximum = stance
-    off_frac: float  # below this fraction = swing (hysteresis)
-    min_swing_s: float  # shortest swing (s)
-
-
-@dataclass
-class ForceState:
-    fmax: float = 0.0
-    stance: bool = True
-    swing_t0: float = math.nan
-    mx: float = -math.inf
-    mn: float = math.inf
-    last_event_t: float = math.nan
-
-
-def force_kernel(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: ForceState,
-                 p: ForceParams) -> tuple[list[Event], ForceState]:
-    """Thesis ch.5.2: while the combined heel+toe force is ~0 (swing) keep the max and min of the
-    filtered acceleration; at the stance onset count a step when max - min > ``p.amp``. The event is
-    the stance onset (initial contact); the window runs from the swing start to the stance onset."""
-    out: list[Event] = []
-    s = state
-    for ti, ai, fi in zip(t.tolist(), a.tolist(), f.tolist(), strict=True):
-        if fi > s.fmax:
-            s.fmax = fi
-        if s.stance:
-            if s.fmax > 0 and fi < p.off_frac * s.fmax:
-                s.stance, s.swing_t0, s.mx, s.mn = False, ti, ai, ai
-        else:
-            if ai > s.mx:
-                s.mx = ai
-            if ai < s.mn:
-                s.mn = ai
-            if fi > p.on_frac * s.fmax:
-                s.stance = True
-                span = s.mx - s.mn
-                if span > p.amp and ti - s.swing_t0 >= p.min_swing_s:
-                    out.append((ti, s.swing_t0, ti, min(1.0, span / (2.0 * p.amp)), {"amplitude": span}))
-                    s.last_event_t = ti
-    return out, s
-
-
 # ---------------------------------------------------------------------------------------------------
 # pelvic rotation lobes (thesis ch.5.3, eq. 27)
 @dataclass

@@ -15,6 +15,14 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
+from pdrlearn.kernels.contact import (
+    EVENT_CUTOFF_HZ,
+    FORCE_AMP,
+    FORCE_MIN_SWING_S,
+    FORCE_OFF_FRAC,
+    FORCE_ON_FRAC,
+    PEAK_FRAC,
+)
 from pdrlearn.signal.conditioning import G, calibrate_standstill
 from pdrlearn.signal.filters import CausalLowpass, lowpass_delay_s, magnitude
 from pdrlearn.steps._kernels import (
@@ -158,7 +166,7 @@ class AccelStepDetector(StepDetector):
                  min_quiet_s: float = 0.1, max_quiet_s: float = 0.2, quiet_frac: float = 0.5,
                  quiet_rank: int = 2, rests_only: bool = True,
                  min_swing_s: float = 0.2, max_swing_s: float = 2.5,
-                 min_stride_s: float = 0.6, peak_frac: float = 0.3, event_cutoff_hz: float = 8.0,
+                 min_stride_s: float = 0.6, peak_frac: float = PEAK_FRAC, event_cutoff_hz: float = EVENT_CUTOFF_HZ,
                  gravity: float = G):
         if int(quiet_rank) != quiet_rank or quiet_rank < 1:
             raise DataError(f"accel detector: quiet_rank must be an integer >= 1 (1 = the longest recent rest, "
@@ -216,8 +224,9 @@ class AccelForceStepDetector(StepDetector):
     input_columns = ("acc_x", "acc_y", "acc_z", "force_heel", "force_toe")
     extra_columns = ("amplitude",)
 
-    def __init__(self, *, cutoff_hz: float = 3.0, order: int = 3, threshold: float = 1.0,  # thesis ch.5.2
-                 force_on_frac: float = 0.10, force_off_frac: float = 0.05, min_swing_s: float = 0.15):
+    def __init__(self, *, cutoff_hz: float = 3.0, order: int = 3, threshold: float = FORCE_AMP,  # thesis ch.5.2
+                 force_on_frac: float = FORCE_ON_FRAC, force_off_frac: float = FORCE_OFF_FRAC,
+                 min_swing_s: float = FORCE_MIN_SWING_S):
         self._store(locals())
 
     def _inputs(self, session: Session):

@@ -24,40 +24,17 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+# decision E49: one implementation (numpy only), shared with the streaming runtime, which gives each stride its
+# stride time as it emits it
+from pdrlearn.kernels.contact import MAX_STRIDE_S, TOUCH_S, stride_times  # noqa: F401
+
 #: the gait columns, in the order steps.csv carries them (after the stride's own columns)
 GAIT_COLUMNS = ("stride_time_s", "cadence_spm", "speed_mps", "turn_angle_rad")
 #: decision L73: toe-off (terminal contact) and the stance/swing split of the stride time, after GAIT_COLUMNS
 TOE_OFF_COLUMNS = ("tc_s", "stance_time_s", "swing_time_s", "stance_pct")
-#: two strides touch when the first ends within this of the second's start (s; both are samples of one clock)
-TOUCH_S = 1e-6
-#: longest IC-to-IC time that is a stride (s): Mobilise-D stride selection, mobgap StrideSelection mobilised
-#: default (duration <= 3 s, pdrlearn.waist.gait_rules.MAX_STRIDE_S); also the longest rest inside a walk
-#: (mobgap WbAssembly MaxBreakCriteria(max_break_s=3)) for ``walking_time_s`` (decisions L79, L80)
-MAX_STRIDE_S = 3.0
 #: a stride turning less than this (|turn_angle_rad|) is straight for ``median_speed_straight_mps`` (L79):
 #: 15 deg, above the straight-pass strides' -10..+11 deg and below the turnaround strides' 20..121 deg of L66
 STRAIGHT_MAX_RAD = float(np.deg2rad(15.0))
-
-
-def stride_times(start_s, end_s, event_s, valid=None, *, max_s: float = MAX_STRIDE_S) -> np.ndarray:
-    """(B,) s: ``event_s[i] - event_s[i-1]`` where stride ``i-1`` ends no later than stride ``i`` starts, both
-    events lie inside their own windows, both strides are ``valid`` (not across a gap: a gap row between two
-    strides is an invalid row, L67) and the difference is positive and at most ``max_s``; else NaN
-    (decision L66: initial contact to initial contact, the gait-lab stride time; decision L80: a rest between
-    the strides shorter than a stop keeps it - L66 required the strides to touch)."""
-    st, en, ev = (np.asarray(v, dtype=float) for v in (start_s, end_s, event_s))
-    n = len(st)
-    out = np.full(n, np.nan)
-    if n < 2:
-        return out
-    ok = (ev >= st) & (ev <= en) & np.isfinite(ev)
-    if valid is not None:
-        ok &= np.asarray(valid, dtype=bool)
-    follows = st[1:] >= en[:-1] - TOUCH_S  # the next stride of the foot, not an overlapping window
-    d = ev[1:] - ev[:-1]
-    good = follows & ok[1:] & ok[:-1] & (d > 0) & (d <= max_s + 1e-9)
-    out[1:] = np.where(good, d, np.nan)
-    return out
 
 
 def swing_times(t: np.ndarray, stance: np.ndarray, i0: np.ndarray, i1: np.ndarray) -> np.ndarray:
@@ -115,6 +92,20 @@ def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=Non
         for name, col in zip(TOE_OFF_COLUMNS, cols, strict=True):
             table[name] = col
     return table
+
+
+def streamed_gait_columns(table: pd.DataFrame) -> pd.DataFrame:
+    """Decision E51: the :data:`GAIT_COLUMNS` of a streamed foot table (``track --streaming``, ``pdrlearn run``:
+    ``event_s`` the runtime's initial contact, E49, NaN on a gap row; ``turn_angle_rad`` the stride's own turn;
+    ``gap_s``) by :func:`add_gait_columns` (a gap row, ``gap_s`` > 0, is no stride, L67), placed as offline's
+    steps.csv places them (before ``gap_s`` and ``unit``). In place; returned."""
+    valid = (table["gap_s"].to_numpy(float) == 0) if "gap_s" in table else None
+    turn = table["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in table else None
+    add_gait_columns(table, turn_rad=turn, valid=valid)
+    tail = [c for c in ("gap_s", "unit") if c in table]
+    gait = [c for c in GAIT_COLUMNS if c in table]
+    order = [c for c in table.columns if c not in gait and c not in tail] + gait + tail
+    return table.reindex(columns=order) if list(table.columns) != order else table
 
 
 def walking_time(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRIDE_S) -> float | None:
@@ -207,9 +198,10 @@ def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     """Decision E48: the L79 keys a streamed foot table (``pdrlearn run``, ``track --streaming``: rest-to-rest
     strides with ``start_s``, ``end_s``, ``length_m`` and ``gap_s``, no initial contact) can give:
     ``walking_time_s`` and ``gait_speed_mps`` from :func:`walking_time` (a gap row, ``gap_s`` > 0, ends a
-    piece, L67/E46). The streamed strides have no initial contact (their ``event_s`` is the stride's end), so no
+    piece, L67/E46). Such a table (an older `run` output: no ``stride_time_s`` column) has no initial contact, so no
     stride time, cadence or per-stride speed (L66), and so no ``median_speed_straight_mps``: it stays None and
-    ``n_straight_strides`` 0."""
+    ``n_straight_strides`` 0. Since E51 the streamed tables carry the gait columns (:func:`streamed_gait_columns`;
+    empty without ``--contacts``) and take :func:`gait_summary`'s own path."""
     n = len(steps)
     valid = (steps["gap_s"].to_numpy(float) == 0) if "gap_s" in steps else np.ones(n, bool)
     out: dict = {}
@@ -225,8 +217,8 @@ def gait_summary(steps: pd.DataFrame) -> dict:
     ``median_speed_straight_mps`` (strides turning less than 15 deg) and ``n_straight_strides``; decision L73:
     ``median_stance_time_s``, ``median_swing_time_s``, ``median_stance_pct`` and ``n_stance_times`` (None / 0
     without the toe-off columns). A waist
-    table (every row ``unit`` waist, with ``has_next``) gets :func:`waist_gait_summary` (W70); a streamed foot
-    table (``--streaming``, ``pdrlearn run``: no gait columns) :func:`streamed_gait_summary` (E48: walking time
+    table (every row ``unit`` waist, with ``has_next``) gets :func:`waist_gait_summary` (W70); a foot table without
+    gait columns (``--streaming``, ``pdrlearn run`` before E51) :func:`streamed_gait_summary` (E48: walking time
     and gait speed only). Every table gets the same keys, None and 0 where it cannot give them, so every
     summary has them (``run``'s summary carries every key of ``track``'s, B14)."""
     out: dict = {k: (0 if k.startswith("n_") else None) for k in SUMMARY_KEYS}

@@ -44,6 +44,7 @@ from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
+from pdrlearn.kernels.contact import force_at, stride_contact
 from pdrlearn.kernels.distance import (
     applicable_calibration,
     apply_level_gain,
@@ -58,7 +59,7 @@ from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
 from pdrlearn.signal import lowpass
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
-from pdrlearn.track.gait import add_gait_columns
+from pdrlearn.track.gait import add_gait_columns, streamed_gait_columns
 from pdrlearn.track.gaps import (
     FOOT_IMU,
     drop_steps_across_gaps,
@@ -450,7 +451,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
                  waist_bridge: bool = False, warn_out_of_domain: float | None = None, toe_off: bool = False,
-                 hard_iron_fit: bool | None = None, **opts) -> TrackResult:
+                 hard_iron_fit: bool | None = None, contacts: bool = False, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -507,6 +508,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     hard_iron_fit : heading "fused": fit the waist magnetometer's horizontal hard-iron offset on the walk when
         it turns enough (decision L84, :func:`fit_waist_hard_iron`; None = :data:`HARD_IRON_FIT`); the fit
         is in ``info["hard_iron"]``
+    contacts : streaming: give each stride its initial contact (``event_s``: the force sensors' stance onset, else
+        the accelerometer impact, decisions E49/E50) and so ``stride_time_s``, ``cadence_spm``, ``speed_mps``
+        and the summary's stride medians (E51; an option: E50's adoption rule was not met). Offline strides always
+        have their detector's contacts
 
     Any other keyword argument raises ``TypeError`` naming the closest valid one (decision L43). Warnings go
     to ``info["warnings"]`` and to the ``logging`` logger ``pdrlearn.track`` (not Python's ``warnings``).
@@ -537,7 +542,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                               heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
                               bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
                               calibration=calibration, rules=rules, min_confidence=min_confidence,
-                              warn_out_of_domain=warn_out_of_domain, waist_bridge=waist_bridge,
+                              warn_out_of_domain=warn_out_of_domain, waist_bridge=waist_bridge, contacts=contacts,
                               **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}),
                               **({} if waist_gap_yaw is None else {"waist_gap_yaw": bool(waist_gap_yaw)}))
         if no_classes:
@@ -867,7 +872,7 @@ def _one_row_per_gap(table: pd.DataFrame, traj: pd.DataFrame, in_gap: np.ndarray
     at = extra["before"].to_numpy(int)
     rows = pd.DataFrame({c: [None if kt[c].dtype == object else np.nan] * len(at) for c in kt.columns})
     rows["start_s"], rows["end_s"] = extra["start_s"].to_numpy(float), extra["end_s"].to_numpy(float)
-    rows["event_s"] = rows["end_s"]  # as every streamed row: the stride end
+    rows["event_s"] = np.nan  # no initial contact (decision E49; offline's gap rows, L67)
     rows["length_m"], rows["raw_length_m"], rows["dz_m"] = 0.0, 0.0, 0.0
     rows["heading_rad"] = kt["heading_rad"].to_numpy(float)[at - 1]  # decision L76
     rows["gap_s"], rows["unit"] = extra["gap_s"].to_numpy(float), "foot"
@@ -887,7 +892,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = True,
                     waist_gap_yaw: bool = True, waist_bridge: bool = False, rules: str | None = None,
                     min_confidence: float | None = None,
-                    warn_out_of_domain: float | None = None) -> TrackResult:
+                    warn_out_of_domain: float | None = None, contacts: bool = False) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -983,6 +988,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         elif "length" not in untrained:  # a model without the user's bounds: no length rule (L59; C17: no class)
             warnings.append(SK.no_length_bounds_warning("the model"))
     disp, dyaw, place = np.zeros((len(table), 3)), np.zeros(len(table)), np.zeros(len(table))
+    ic, turn = np.full(len(table), np.nan), np.full(len(table), np.nan)  # decisions E49-E51
+    fa_t, fa_v = streams["fAccelerometer"]
+    has_force = "fForceA" in streams and "fForceB" in streams
     foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
     in_gap = overlaps_gaps(table, foot_gaps)  # decision E30: these strides move 0 m, turn 0, no classes
     imu_gaps = {k: v for k, v in foot_gaps.items() if k in FOOT_IMU}
@@ -997,6 +1005,11 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,  # E36: a short
                              rest_search_s=rest_search_s, heading=step_heading, bridge_gaps=True)  # gap = 1 interval
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1))
+        turn[i] = dyaw[i]  # decision E51: the stride's own turn (the runtime's), before the pivot below
+        a, b = np.searchsorted(fa_t, t0, side="left"), np.searchsorted(fa_t, t1, side="right")
+        if contacts:  # decisions E49-E51 (an option): the runtime's initial contact
+            force = force_at(fa_t[a:b], [streams[n] for n in ("fForceA", "fForceB")]) if has_force else None
+            ic[i] = stride_contact(fa_t[a:b], fa_v[a:b, :3], force)
         place[i] = SK.placement_offset(lev, heading, disp[i])  # decision L34
         foot_headed[i] = SK.headed_by_foot(lev, heading)
         if i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps):  # L90: no foot pivot over a foot gap;
@@ -1038,7 +1051,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     xyz = np.zeros((len(table) + 1, 3))
     for i in range(len(table)):  # the runtime's own position update, stride by stride
         xyz[i + 1] = SK.advance(xyz[i], float(head[i]), float(length[i]), float(dz[i]))
-    table["event_s"] = table["end_s"]
+    table["event_s"] = ic  # decisions E49-E51 (it was the stride end; NaN without contacts)
     table["raw_length_m"] = np.hypot(raw_disp[:, 0], raw_disp[:, 1]) * np.where(raw_disp[:, 0] < 0, -1.0, 1.0)
     table["dz_m"] = dz
     for c in classes.columns:
@@ -1049,6 +1062,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                           if "direction" in table else None)
     table.insert(3, "length_m", rep_length)
     table.insert(5, "heading_rad", wrap_angle(rep_head))
+    table["turn_angle_rad"] = np.angle(np.exp(1j * turn))  # decision E51, wrapped as offline's L66 column
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["unit"] = "foot"
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
@@ -1058,6 +1072,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     if any(len(g) for g in foot_gaps.values()):  # decision E46: one 0 m row per stretch with a foot gap (L67)
         table, traj = _one_row_per_gap(table, traj, in_gap, foot_gaps)
+    table = streamed_gait_columns(table)  # decision E51
     info = {"pipeline": "plasys", "method": method, "streaming": True, "heading_source": heading,
             "steps_source": "stance (streaming)",
             "classes_source": (None if method == "M2" else ("oracle" if isinstance(model, str)

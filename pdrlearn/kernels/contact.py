@@ -1,0 +1,223 @@
+"""The foot's initial contact (IC) of one stride: the accelerometer detector's impact rule (decision E49).
+
+Offline, :class:`pdrlearn.steps.AccelStepDetector` (thesis ch.5.1, steps decision 14) puts a stride's IC at the
+last local maximum of the causally low-passed acceleration magnitude (2nd-order Butterworth, 8 Hz) that rises at
+least ``peak_frac`` of the swing's largest rise above gravity, moved back by the filter's group delay at 1 Hz.
+:func:`last_impact` is that selection (``steps._kernels.burst_kernel`` calls it); :func:`impact_time` applies the
+whole rule to the samples of one streamed stride (``pdrlearn run``, ``track --streaming``, E49). The filter is the
+closed-form bilinear 2nd-order Butterworth (equal to ``scipy.signal.butter(2, ...)`` to rounding, pinned by
+``tests/test_streamed_contacts.py``), so the runtime needs numpy only.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+#: standard gravity (m/s^2), the rest level of |acc| (thesis ch.4.2.1.1)
+GRAVITY = 9.80665
+#: the impact's low-pass cutoff (Hz) and order: AccelStepDetector's ``event_cutoff_hz`` (steps decision 14)
+EVENT_CUTOFF_HZ = 8.0
+#: the impact must rise at least this fraction of the swing's largest rise (AccelStepDetector ``peak_frac``)
+PEAK_FRAC = 0.3
+#: a cutoff is kept below this fraction of the sampling rate (``steps.detectors._cutoff``)
+MAX_CUTOFF_FRAC = 0.45
+#: two strides touch when the first ends within this of the second's start (s; both are samples of one clock)
+TOUCH_S = 1e-6
+#: longest IC-to-IC time that is a stride (s): Mobilise-D stride selection, mobgap StrideSelection mobilised
+#: default (duration <= 3 s, pdrlearn.waist.gait_rules.MAX_STRIDE_S); also the longest rest inside a walk
+#: (mobgap WbAssembly MaxBreakCriteria(max_break_s=3)) for ``walking_time_s`` (decisions L79, L80)
+MAX_STRIDE_S = 3.0
+
+
+def butter2(cutoff_hz: float, fs: float) -> tuple[np.ndarray, np.ndarray]:
+    """(b, a) of the 2nd-order Butterworth low-pass at ``cutoff_hz`` (Hz) for rate ``fs`` (Hz): the bilinear
+    transform with pre-warping, as ``scipy.signal.butter(2, cutoff_hz / (fs / 2))``."""
+    k = math.tan(math.pi * cutoff_hz / fs)
+    n = 1.0 / (1.0 + math.sqrt(2.0) * k + k * k)
+    b0 = k * k * n
+    a = np.array([1.0, 2.0 * (k * k - 1.0) * n, (1.0 - math.sqrt(2.0) * k + k * k) * n])
+    return np.array([b0, 2.0 * b0, b0]), a
+
+
+def group_delay_s(b: np.ndarray, a: np.ndarray, fs: float, at_hz: float = 1.0) -> float:
+    """Group delay (s) of the filter ``(b, a)`` at ``at_hz``: Re(sum k c_k z^-k / sum c_k z^-k) of b less that
+    of a, z = exp(j 2 pi at_hz / fs) (as ``pdrlearn.signal.lowpass_delay_s``, decision E49)."""
+    z = np.exp(-1j * 2.0 * np.pi * at_hz / fs * np.arange(max(len(b), len(a))))
+
+    def tau(c):
+        c = np.asarray(c, dtype=float)
+        zc = z[:len(c)]
+        return float(np.real(np.sum(np.arange(len(c)) * c * zc) / np.sum(c * zc)))
+
+    return (tau(b) - tau(a)) / fs
+
+
+def lowpass2(x: np.ndarray, b: np.ndarray, a: np.ndarray) -> np.ndarray:
+    """Causal biquad ``(b, a)`` over ``x`` (n,), started at the steady state of ``x[0]`` (a constant passes
+    unchanged, as ``pdrlearn.signal.lowpass(causal=True)``)."""
+    x = np.asarray(x, dtype=float)
+    y = np.empty_like(x)
+    if not len(x):
+        return y
+    b0, b1, b2 = (float(v) for v in b)
+    _, a1, a2 = (float(v) for v in a)
+    x1 = x2 = float(x[0])
+    y1 = y2 = float(x[0]) * (b0 + b1 + b2) / (1.0 + a1 + a2)
+    for i, xi in enumerate(x.tolist()):
+        yi = b0 * xi + b1 * x1 + b2 * x2 - a1 * y1 - a2 * y2
+        y[i] = yi
+        x2, x1, y2, y1 = x1, xi, y1, yi
+    return y
+
+
+def last_impact(peak_values, emx: float, rest: float, peak_frac: float) -> int:
+    """Index of the last of the swing's local maxima ``peak_values`` that reaches ``rest + peak_frac (emx - rest)``
+    (``emx`` the swing's largest value), -1 when none does (AccelStepDetector's IC, steps decision 14)."""
+    level = rest + peak_frac * (emx - rest)
+    for i in range(len(peak_values) - 1, -1, -1):
+        if peak_values[i] >= level:
+            return i
+    return -1
+
+
+def local_maxima(e: np.ndarray) -> np.ndarray:
+    """Indices ``i`` where ``e`` rose into sample ``i`` and does not rise after it (``e[i-1] < e[i] >= e[i+1]``):
+    the peaks ``burst_kernel`` collects."""
+    e = np.asarray(e, dtype=float)
+    if len(e) < 3:
+        return np.zeros(0, dtype=int)
+    return np.flatnonzero((e[1:-1] > e[:-2]) & (e[2:] <= e[1:-1])) + 1
+
+
+def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_frac: float = PEAK_FRAC,
+                cutoff_hz: float = EVENT_CUTOFF_HZ) -> float:
+    """Decision E49: the IC (s) of one stride from its foot accelerometer samples ``t`` (n,) s, ``acc`` (n, 3)
+    m/s^2 (stance to stance): |acc| low-passed by :func:`butter2` (cutoff below 0.45 x the rate), the last local
+    maximum reaching ``peak_frac`` of the largest rise above ``rest`` (:func:`last_impact`), less the filter's
+    group delay at 1 Hz. NaN with fewer than 3 samples, no such peak, or an IC before ``t[0]``."""
+    t = np.asarray(t, dtype=float)
+    if len(t) < 3:
+        return math.nan
+    fs = 1.0 / float(np.median(np.diff(t)))
+    b, a = butter2(min(cutoff_hz, MAX_CUTOFF_FRAC * fs), fs)
+    acc = np.asarray(acc, dtype=float)
+    e = lowpass2(np.sqrt(np.einsum("ij,ij->i", acc, acc)), b, a)
+    pk = local_maxima(e)
+    k = last_impact(e[pk], float(e.max()), rest, peak_frac)
+    if k < 0:
+        return math.nan
+    ic = float(t[pk[k]]) - group_delay_s(b, a, fs)
+    return ic if ic >= t[0] else math.nan
+
+
+def stride_times(start_s, end_s, event_s, valid=None, *, max_s: float = MAX_STRIDE_S) -> np.ndarray:
+    """(B,) s: ``event_s[i] - event_s[i-1]`` where stride ``i-1`` ends no later than stride ``i`` starts, both
+    events lie inside their own windows, both strides are ``valid`` (not across a gap: a gap row between two
+    strides is an invalid row, L67) and the difference is positive and at most ``max_s``; else NaN
+    (decision L66: initial contact to initial contact, the gait-lab stride time; decision L80: a rest between
+    the strides shorter than a stop keeps it - L66 required the strides to touch)."""
+    st, en, ev = (np.asarray(v, dtype=float) for v in (start_s, end_s, event_s))
+    n = len(st)
+    out = np.full(n, np.nan)
+    if n < 2:
+        return out
+    ok = (ev >= st) & (ev <= en) & np.isfinite(ev)
+    if valid is not None:
+        ok &= np.asarray(valid, dtype=bool)
+    follows = st[1:] >= en[:-1] - TOUCH_S  # the next stride of the foot, not an overlapping window
+    d = ev[1:] - ev[:-1]
+    good = follows & ok[1:] & ok[:-1] & (d > 0) & (d <= max_s + 1e-9)
+    out[1:] = np.where(good, d, np.nan)
+    return out
+
+
+# force-gated stance detector (thesis ch.5.2), shared by AccelForceStepDetector and the streamed IC (E50)
+@dataclass
+class ForceParams:
+    amp: float  # max - min of the filtered acceleration during the swing (m/s^2; thesis ch.5.2: 1)
+    on_frac: float  # combined force above this fraction of its running maximum = stance
+    off_frac: float  # below this fraction = swing (hysteresis)
+    min_swing_s: float  # shortest swing (s)
+
+
+@dataclass
+class ForceState:
+    fmax: float = 0.0
+    stance: bool = True
+    swing_t0: float = math.nan
+    mx: float = -math.inf
+    mn: float = math.inf
+    last_event_t: float = math.nan
+
+
+def force_kernel(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: ForceState,
+                 p: ForceParams) -> tuple[list, ForceState]:
+    """Thesis ch.5.2: while the combined heel+toe force is ~0 (swing) keep the max and min of the
+    filtered acceleration; at the stance onset count a step when max - min > ``p.amp``. The event is
+    the stance onset (initial contact); the window runs from the swing start to the stance onset."""
+    out: list = []
+    s = state
+    for ti, ai, fi in zip(t.tolist(), a.tolist(), f.tolist(), strict=True):
+        if fi > s.fmax:
+            s.fmax = fi
+        if s.stance:
+            if s.fmax > 0 and fi < p.off_frac * s.fmax:
+                s.stance, s.swing_t0, s.mx, s.mn = False, ti, ai, ai
+        else:
+            if ai > s.mx:
+                s.mx = ai
+            if ai < s.mn:
+                s.mn = ai
+            if fi > p.on_frac * s.fmax:
+                s.stance = True
+                span = s.mx - s.mn
+                if span > p.amp and ti - s.swing_t0 >= p.min_swing_s:
+                    out.append((ti, s.swing_t0, ti, min(1.0, span / (2.0 * p.amp)), {"amplitude": span}))
+                    s.last_event_t = ti
+    return out, s
+
+
+
+
+#: AccelForceStepDetector's settings (thesis ch.5.2): stance when the combined force exceeds FORCE_ON_FRAC of its
+#: running maximum, swing below FORCE_OFF_FRAC; the swing's |acc| must span FORCE_AMP m/s^2 and last FORCE_MIN_SWING_S
+FORCE_ON_FRAC, FORCE_OFF_FRAC, FORCE_AMP, FORCE_MIN_SWING_S = 0.10, 0.05, 1.0, 0.15
+
+
+def force_onset(t: np.ndarray, acc: np.ndarray, force: np.ndarray) -> float:
+    """Decision E50: the last stance onset (s) in one stride's samples by :func:`force_kernel` (a fresh state: the
+    running maximum is the stride's), ``force`` (n, 2) heel and toe at the times ``t`` of ``acc`` (n, 3); the swing
+    check on the raw |acc|. NaN without one."""
+    acc = np.asarray(acc, dtype=float)
+    f = np.asarray(force, dtype=float)
+    if len(t) < 3 or f.ndim != 2 or f.shape[1] < 2:
+        return math.nan
+    ev, _ = force_kernel(np.asarray(t, dtype=float), np.sqrt(np.einsum("ij,ij->i", acc, acc)), f[:, 0] + f[:, 1],
+                         ForceState(), ForceParams(amp=FORCE_AMP, on_frac=FORCE_ON_FRAC, off_frac=FORCE_OFF_FRAC,
+                                                   min_swing_s=FORCE_MIN_SWING_S))
+    return float(ev[-1][0]) if ev else math.nan
+
+
+def stride_contact(t: np.ndarray, acc: np.ndarray, force: np.ndarray | None = None) -> float:
+    """Decisions E49 / E50: the initial contact (s) of one streamed stride (stance to stance; ``t`` (n,) s, foot
+    ``acc`` (n, 3) m/s^2, ``force`` (n, 2) heel and toe at ``t`` or None): offline's source - the force sensors'
+    stance onset (:func:`force_onset`) when given and found, else the accelerometer impact (:func:`impact_time`)."""
+    if force is not None:
+        ic = force_onset(t, acc, force)
+        if math.isfinite(ic):
+            return ic
+    return impact_time(t, acc)
+
+
+def force_at(t: np.ndarray, streams) -> np.ndarray | None:
+    """(n, 2) heel and toe force at the times ``t``, linearly interpolated (offline's ``stream_on``) from
+    ``streams`` = ((tA, vA), (tB, vB)); None when either has fewer than 2 samples."""
+    out = []
+    for ts, vs in streams:
+        if len(ts) < 2:
+            return None
+        out.append(np.interp(t, ts, np.asarray(vs, dtype=float).reshape(len(ts), -1)[:, 0]))
+    return np.column_stack(out)
