@@ -39,7 +39,7 @@ from pdrlearn.displace import (
     stance_runs,
     streaming_calibration,
 )
-from pdrlearn.errors import DataError, MissingSensorError, ModelError
+from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
@@ -395,6 +395,24 @@ def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
     return wh.heading_at(grid.ravel()).reshape(grid.shape).mean(axis=1)
 
 
+def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.ndarray,
+                     warnings: list[str]) -> tuple[np.ndarray, np.ndarray]:
+    """Decision L94: a stride faster than any human moves 0 m (a gap), with one warning line for the session,
+    never summed into the distance; a non-finite one is an :class:`InternalError` (a bug, as the runtime's E38)."""
+    nonfinite = ~(np.isfinite(length) & np.isfinite(dz))
+    if nonfinite.any():
+        i = int(np.flatnonzero(nonfinite)[0])
+        raise InternalError(SK.non_finite_stride_error("pdrlearn.track (plasys)", float(t0[i]), float(t1[i]),
+                                                       float(length[i]), float(dz[i])))
+    bad = SK.impossible_strides(length, dz, np.asarray(t1, dtype=float) - np.asarray(t0, dtype=float))
+    if not bad.any():
+        return length, dz
+    i = int(np.flatnonzero(bad)[0])
+    warnings.append(SK.impossible_stride_warning(int(bad.sum()), float(t0[i]), float(t1[i]), float(length[i]),
+                                                 float(dz[i])))
+    return np.where(bad, 0.0, length), np.where(bad, 0.0, dz)
+
+
 @register_pipeline("plasys")
 def track_plasys(session: Session, *, method: str = "auto", model=None, start=None, params=None,
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
@@ -607,6 +625,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if no_classes or "terrain" in untrained:  # decision L39 (C17: also a model without terrain classes)
         dz = level_dz(dz)
     length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
+    length, dz = _drop_impossible(length, dz, strides["start_s"].to_numpy(float), strides["end_s"].to_numpy(float),
+                                  warnings)  # decision L94
     altitude_check, terrain_check = None, None
     if no_classes or "terrain" in untrained:  # decision L69: the altitude is the foot's integrated height
         msg, altitude_check = integrated_altitude_check(dz)
@@ -889,6 +909,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                        sigma_rel=sigma_rel)
     place += [SK.reversed_by_rules(bool(f), float(d[0]), float(L))  # decision L37
               for f, d, L in zip(foot_headed, disp, length, strict=True)]
+    length, dz = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # decision L94, as the runtime
     if in_gap.any():  # decision E30: the runtime's Step for such a stride (0 m, no classes)
         length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
         classes = classes.copy()
