@@ -86,6 +86,7 @@ def track(
     from pdrlearn.io import read_session
     from pdrlearn.track.base import get_pipeline, resolve_pipeline
     from pdrlearn.track.evaluate import evaluate_track, turn_warning
+    from pdrlearn.track.gait import gait_range_warning
     from pdrlearn.track.plots import plot_paths
 
     out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes))
@@ -170,6 +171,10 @@ def track(
     dom = result.info.get("out_of_domain")
     if isinstance(dom, dict):  # decision C16: share of strides outside the model's training range
         summary["out_of_domain_fraction"] = dom.get("out_of_domain_fraction")
+    out_of_range = gait_range_warning(summary)  # decision L95: running / very slow walking
+    if out_of_range:
+        logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, out_of_range)
+        summary["info"]["warnings"] = [*summary["info"].get("warnings", []), out_of_range]
     aid = summary["info"].get("aid")
     if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary
         summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}
