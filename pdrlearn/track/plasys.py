@@ -395,6 +395,29 @@ def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
     return wh.heading_at(grid.ravel()).reshape(grid.shape).mean(axis=1)
 
 
+def split_events(strides: pd.DataFrame, rows: np.ndarray, t: np.ndarray, stance: np.ndarray) -> np.ndarray:
+    """Decision L96: the ``event_s`` (initial contact, s) of rest-to-rest strides ``strides`` whose input rows
+    ``rows`` repeat (one detected window split at the rests inside it, :func:`pdrlearn.displace.rest_to_rest`):
+    each piece of a split window gets the start of the rest that ends it (the foot lands; as
+    :func:`stance_strides`'s event), instead of the window's one contact repeated in every piece (which gave
+    none of them a stride time). Rows used once keep their detector's event."""
+    ev = strides["event_s"].to_numpy(dtype=float).copy()
+    rows = np.asarray(rows)
+    _, inv, counts = np.unique(rows, return_inverse=True, return_counts=True)
+    split = counts[inv] > 1
+    if not split.any():
+        return ev
+    rr = stance_runs(t, stance)
+    if not len(rr):
+        return np.where(split, np.nan, ev)
+    rs = t[rr[:, 0]]
+    st, en = strides["start_s"].to_numpy(dtype=float), strides["end_s"].to_numpy(dtype=float)
+    k = np.searchsorted(rs, en, side="right") - 1  # the last rest starting by the piece's end
+    land = np.where(k >= 0, rs[np.clip(k, 0, len(rs) - 1)], np.nan)
+    land = np.where((land > st) & (land <= en), land, np.nan)
+    return np.where(split, land, ev)
+
+
 def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.ndarray,
                      warnings: list[str]) -> tuple[np.ndarray, np.ndarray]:
     """Decision L94: a stride faster than any human moves 0 m (a gap), with one warning line for the session,
@@ -553,6 +576,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     source = strides.attrs.get("detector", steps)
     strides = strides.iloc[fd.rows_].reset_index(drop=True)
     strides["start_s"], strides["end_s"] = fd.start_s_, fd.end_s_
+    if "event_s" in strides:  # decision L96: the pieces of a split detection get their own landing
+        strides["event_s"] = split_events(strides, fd.rows_, fd.t_, fd.stance_)
     # decision B11: the rest-to-rest bounds may reach across a gap; such strides move 0 m
     in_gap = overlaps_gaps(strides, foot_gaps)
     if in_gap.any():
