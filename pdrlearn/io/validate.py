@@ -118,18 +118,19 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
         return
     if spec.kind == "accelerometer":
         check_gravity(values, where)
-        if 4.0 <= float(np.median(np.linalg.norm(values, axis=1))) <= 25.0:
+        whole = float(np.median(np.linalg.norm(values, axis=1)))
+        if 4.0 <= whole <= 25.0:
             return  # plausible on the whole file (the check before B78): unchanged
         med = quiet_acc_norm(values, t)  # B78: else judged where the unit rests (|acc| ~ g), e.g. a running foot
-        if 0.5 <= med <= 2.0:
+        if 0.5 <= whole <= 2.0 or 0.5 <= med <= 2.0:  # the whole file's figure when it tells (as before B78)
             raise DataError(
-                f"{where}: median |acc| is {med:.2f}, which looks like units of g; "
+                f"{where}: median |acc| is {whole if 0.5 <= whole <= 2.0 else med:.2f}, which looks like units of g; "
                 f"multiply by {STANDARD_GRAVITY} to get m/s^2"
                 + _or(declare, f"declare \"units\": {{\"{spec.name}\": \"g\"}} in meta.json")
             )
-        if med > 200:
+        if whole > 200 or med > 200:
             raise DataError(
-                f"{where}: median |acc| is {med:.0f}, which looks like raw counts or mm/s^2; "
+                f"{where}: median |acc| is {whole if whole > 200 else med:.0f}, which looks like raw counts or mm/s^2; "
                 "convert to m/s^2 (thesis eq. 24: counts / 256 * 9.81 for the ADXL345 at +-16 g)"
             )
         if not 4.0 <= med <= 25.0:

@@ -365,15 +365,15 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
                                   "m/s^2 in 4 s windows)")
         err.walk_s = walk_s  # W61: a waist track of such a recording has no steps to place
         raise err
-    n_fast, n_walk = fast[0]
-    if n_walk and n_fast > MAX_FAST_FRACTION * n_walk:  # decision B79
-        raise FrameInferenceError(f"the vertical acceleration peaks above 3 Hz (over 180 steps/min) in {n_fast} of "
-                                  f"{n_walk} walking windows: faster than the 72-180 steps/min the waist axis test "
-                                  "reads (running is not supported, L95)")
     if rhythm < MIN_RHYTHM_SIGMA:
         raise FrameInferenceError(f"no walking rhythm: the vertical acceleration of the {walk_s:.0f} s that move "
                                   f"repeats at no step or stride period of {RHYTHM_LAG_S[0]:g}-{RHYTHM_LAG_S[1]:g} s "
                                   f"(autocorrelation {rhythm:.1f} < {MIN_RHYTHM_SIGMA:g} noise standard deviations)")
+    n_fast, n_walk = fast[0]  # after the rhythm check: noise has no rhythm, and no step band
+    if n_walk and n_fast > MAX_FAST_FRACTION * n_walk:  # decision B79
+        raise FrameInferenceError(f"the vertical acceleration peaks above 3 Hz (over 180 steps/min) in {n_fast} of "
+                                  f"{n_walk} walking windows: faster than the 72-180 steps/min the waist axis test "
+                                  "reads (running is not supported, L95)")
     w, vecs = np.linalg.eigh(C)
     ratio = float(w[1] / max(w[0], 1e-12))
     if ratio < MIN_AP_POWER_RATIO:
