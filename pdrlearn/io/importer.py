@@ -660,12 +660,12 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         opt = _UNIT_OPTION.get(kind, "--mapping units")
         try:
             check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})",
-                        declare=f"give the unit with {opt} ({' | '.join(UNITS[kind])})")
+                        declare=f"give the unit with {opt} ({' | '.join(UNITS[kind])})", t=t)
         except DataError as exc:
             if factor == 1.0:
                 raise
             try:  # decision B45: the values are plausible as they are, so the conversion is the mistake
-                check_units(SENSORS[sensor], vals[keep], where)
+                check_units(SENSORS[sensor], vals[keep], where, t=t)
             except DataError:
                 raise exc from None
             si = next(iter(UNITS[kind]))

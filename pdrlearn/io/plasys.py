@@ -237,7 +237,7 @@ def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: 
     values = arr[:, 1:] * factor if factor != 1.0 else arr[:, 1:]  # B32: a declared unit, converted to SI
     if check_unit:
         try:
-            check_units(SENSORS[name], values, str(path))
+            check_units(SENSORS[name], values, str(path), t=t)
         except DataError as exc:
             if declared is None:
                 raise
@@ -689,6 +689,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         check_trajectory_times(traj["t"].to_numpy() / scale, scale, session.t_start, session.t_end,
                                str(folder / "trajectory.csv"))
     warn_low_rate(session)
+    warn_saturation(session)
     for name, s in streams.items():
         gaps = s.gaps()
         if gaps:
@@ -716,6 +717,20 @@ def warn_low_rate(session: Session) -> None:
             log.warning("%s: the %s unit is sampled at %.3g Hz, below the %g Hz its step detectors are validated at "
                         "(thesis ch.4; docs/robustness.md): expect lost %s; record at %g Hz or more", where, unit,
                         rate, MIN_VALIDATED_RATE_HZ, what, MIN_VALIDATED_RATE_HZ)
+
+
+def warn_saturation(session: Session) -> None:
+    """Decision B77: one warning per accelerometer / gyroscope file with clipped samples (runs of an axis's
+    extreme value at a sensor's full scale), naming the file, the fraction clipped and the consequence."""
+    from pdrlearn.io.validate import clipped_samples, saturation_warning
+
+    for name, s in session.streams.items():
+        kind = SENSORS[name].kind
+        n, top = clipped_samples(s.values, kind)
+        if n:
+            where = (str(Path(session.folder) / SENSORS[name].filename) if session.folder is not None
+                     else f"session '{session.name}', stream {name}")
+            log.warning("%s", saturation_warning(where, kind, n, len(s), top))
 
 
 def _stream_frame(s: Stream, scale: float) -> pd.DataFrame:

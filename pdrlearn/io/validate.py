@@ -90,7 +90,38 @@ def _or(declare: str | None, default: str) -> str:
     return ", or " + (declare or default)
 
 
-def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str | None = None) -> None:
+#: decision B78: the accelerometer's unit is judged on the median |acc| of its quietest windows (the
+#: :data:`QUIET_FRACTION` of windows of :data:`QUIET_WINDOW_S`, at least 3 samples, with the lowest sd of |acc|),
+#: where a foot is in foot-flat and |acc| ~ g even in running (a running foot's whole-file median |acc| is
+#: 30 m/s^2, trial of session 17), as well as on the whole file's median (a waist unit: |acc| averages g over the
+#: gait cycle); a unit mistake (g, mg, counts) scales both alike.
+QUIET_WINDOW_S, QUIET_FRACTION = 0.1, 0.1
+
+
+def quiet_acc_norm(values: np.ndarray, t: np.ndarray | None = None) -> float:
+    """Decision B78: the median |acc| over the samples of the quietest :data:`QUIET_FRACTION` (at least one) of
+    the windows of ``t`` (s) :data:`QUIET_WINDOW_S` long, or 3 sample intervals when longer; without ``t`` (or
+    with fewer than 3 samples) the whole file's median |acc|."""
+    norm = np.linalg.norm(values, axis=1)
+    if t is None or len(t) != len(norm) or len(norm) < 3:
+        return float(np.median(norm))
+    t = np.asarray(t, dtype=float)
+    width = max(QUIET_WINDOW_S, 3.0 * float(np.median(np.diff(t))))
+    idx = np.floor((t - t[0]) / width).astype(np.int64)
+    cnt = np.bincount(idx)
+    s1, s2 = np.bincount(idx, norm), np.bincount(idx, norm * norm)
+    full = np.flatnonzero(cnt >= 3)
+    if full.size == 0:
+        return float(np.median(norm))
+    m = s1[full] / cnt[full]
+    sd = np.sqrt(np.maximum(s2[full] / cnt[full] - m * m, 0.0))
+    k = max(1, int(np.ceil(QUIET_FRACTION * full.size)))
+    quiet = full[np.argsort(sd, kind="stable")[:k]]
+    return float(np.median(norm[np.isin(idx, quiet)]))
+
+
+def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str | None = None,
+                t: np.ndarray | None = None) -> None:
     """Detect values recorded in the wrong unit from their magnitudes and say how to convert.
 
     ``declare`` replaces the meta.json way of declaring the unit in the messages (``pdrlearn import``: its
@@ -99,26 +130,32 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
 
     The limits are physical: gravity dominates the median accelerometer norm; a MEMS gyroscope's
     full scale is 2000 deg/s = 34.9 rad/s (thesis Tables 5, 13); the Earth's field is 25-65 uT;
-    ambient pressure is 300-1100 hPa (thesis Table 17).
+    ambient pressure is 300-1100 hPa (thesis Table 17). The accelerometer's magnitude is judged on its quietest
+    windows of the timestamps ``t`` (s; decision B78, :func:`quiet_acc_norm`), so that vigorous motion (running)
+    does not look like a unit mistake.
     """
     if values.size == 0:
         return
     if spec.kind == "accelerometer":
-        med = float(np.median(np.linalg.norm(values, axis=1)))
         check_gravity(values, where)
-        if 0.5 <= med <= 2.0:
+        whole = float(np.median(np.linalg.norm(values, axis=1)))
+        if 4.0 <= whole <= 25.0:
+            return  # plausible on the whole file (the check before B78): unchanged
+        med = quiet_acc_norm(values, t)  # B78: else judged where the unit rests (|acc| ~ g), e.g. a running foot
+        if 0.5 <= whole <= 2.0 or 0.5 <= med <= 2.0:  # the whole file's figure when it tells (as before B78)
             raise DataError(
-                f"{where}: median |acc| is {med:.2f}, which looks like units of g; "
+                f"{where}: median |acc| is {whole if 0.5 <= whole <= 2.0 else med:.2f}, which looks like units of g; "
                 f"multiply by {STANDARD_GRAVITY} to get m/s^2"
                 + _or(declare, f"declare \"units\": {{\"{spec.name}\": \"g\"}} in meta.json")
             )
-        if med > 200:
+        if whole > 200 or med > 200:
             raise DataError(
-                f"{where}: median |acc| is {med:.0f}, which looks like raw counts or mm/s^2; "
+                f"{where}: median |acc| is {whole if whole > 200 else med:.0f}, which looks like raw counts or mm/s^2; "
                 "convert to m/s^2 (thesis eq. 24: counts / 256 * 9.81 for the ADXL345 at +-16 g)"
             )
         if not 4.0 <= med <= 25.0:
-            raise DataError(f"{where}: median |acc| is {med:.2f} m/s^2, implausible for a body-worn unit")
+            raise DataError(f"{where}: median |acc| is {med:.2f} m/s^2 in its quietest windows "
+                            "(gravity, 9.81 m/s^2, at rest), implausible for a body-worn unit; convert to m/s^2")
     elif spec.kind == "gyroscope":
         p99 = float(np.percentile(np.abs(values), 99))
         if p99 > 40.0:
@@ -483,4 +520,50 @@ def check_session(session) -> None:
             raise DataError(f"{where}: no samples; drop the empty stream from session.streams")
         check_rate(s.t, where, in_memory=True)
         if session.check_units:
-            check_units(SENSORS[s.name], s.values, where, declare="")
+            check_units(SENSORS[s.name], s.values, where, declare="", t=s.t)
+
+
+#: decision B77: the smallest full scale of a body-worn accelerometer / gyroscope (2 g: MEMS ranges are +-2, 4, 8,
+#: 16 g; 250 deg/s: +-250 ... 2000 deg/s, thesis Tables 5, 13). An axis's extreme value at or beyond it, held by
+#: :data:`CLIP_RUN` or more consecutive samples, is a clipped (saturated) reading (3: a smooth peak sampled
+#: symmetrically and rounded repeats its top value twice).
+CLIP_LEVEL = {"accelerometer": 2.0 * STANDARD_GRAVITY, "gyroscope": float(np.deg2rad(250.0))}
+CLIP_RUN = 3
+
+
+def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
+    """Decision B77: (number of samples with a clipped axis, the largest clipped |value|) of an accelerometer
+    or gyroscope file: on each axis, the samples equal to the axis's maximum (or minimum) over the file, where
+    that extreme is at least :data:`CLIP_LEVEL` in magnitude, in runs of :data:`CLIP_RUN` or more equal
+    consecutive samples (a sensor at its full scale repeats it; a real peak is not held)."""
+    level = CLIP_LEVEL.get(kind)
+    v = np.asarray(values, dtype=float)
+    if level is None or v.ndim != 2 or v.shape[0] < CLIP_RUN:
+        return 0, 0.0
+    hit = np.zeros(v.shape[0], dtype=bool)
+    top = 0.0
+    for j in range(v.shape[1]):
+        col = v[:, j]
+        for ext in (col.max(), col.min()):
+            if not abs(ext) >= level:
+                continue
+            at = col == ext
+            # runs of equal extreme samples: a sample counts when its run is CLIP_RUN long or more
+            edges = np.diff(np.concatenate([[0], at.astype(np.int8), [0]]))
+            starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+            for a, b in zip(starts, ends, strict=True):
+                if b - a >= CLIP_RUN:
+                    hit[a:b] = True
+                    top = max(top, abs(float(ext)))
+    return int(hit.sum()), top
+
+
+def saturation_warning(where: str, kind: str, n: int, total: int, top: float) -> str:
+    """Decision B77's one line: the file, the fraction of clipped samples and what it does to the results."""
+    unit = "m/s^2" if kind == "accelerometer" else "rad/s"
+    rng = f"{top / STANDARD_GRAVITY:.3g} g" if kind == "accelerometer" else f"{np.rad2deg(top):.4g} deg/s"
+    effect = ("the foot's integrated stride lengths and the step detector's impact peaks are cut short"
+              if kind == "accelerometer" else "the integrated attitude and heading lose the rotation beyond it")
+    return (f"{where}: {n} of {total} samples ({100.0 * n / total:.2g} %) are clipped at +-{top:.4g} {unit} (the "
+            f"sensor's full scale, held for {CLIP_RUN}+ samples): {effect}, so distances and headings come out "
+            f"wrong there; record with a range above +-{rng} (decision B77)")

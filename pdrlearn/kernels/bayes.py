@@ -34,29 +34,37 @@ _INV_SQRT2 = 1.0 / math.sqrt(2.0)
 _INV_SQRT2PI = 1.0 / math.sqrt(2.0 * math.pi)
 
 
-def _normal(x: float) -> tuple[float, float]:
-    """Standard normal cdf, 0.5 erfc(-x / sqrt 2) (accurate in both tails), and density at ``x``."""
-    return 0.5 * math.erfc(-x * _INV_SQRT2), _INV_SQRT2PI * math.exp(-0.5 * x * x)
+def _normal(x: float) -> tuple[float, float, float]:
+    """Standard normal cdf, 0.5 erfc(-x / sqrt 2), survival function 0.5 erfc(x / sqrt 2) (each accurate in
+    its small tail) and density at ``x``."""
+    return (0.5 * math.erfc(-x * _INV_SQRT2), 0.5 * math.erfc(x * _INV_SQRT2),
+            _INV_SQRT2PI * math.exp(-0.5 * x * x))
 
 
-_normal_ufunc = np.frompyfunc(_normal, 1, 2)  # the same math calls element by element (object arrays out)
+_normal_ufunc = np.frompyfunc(_normal, 1, 3)  # the same math calls element by element (object arrays out)
 
 
-def _normal_array(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    c, d = _normal_ufunc(x)
-    return c.astype(float), d.astype(float)
+def _normal_array(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    c, s, d = _normal_ufunc(x)
+    return c.astype(float), s.astype(float), d.astype(float)
 
 
 def _posterior(d, sg, proba: Sequence, bounds: Sequence[tuple[float, float]], normal):
     """(z, num): the posterior mass and first moment of L given the estimate ``d`` (m) with sd ``sg`` and
     the class prior (``proba[c]`` on ``bounds[c]``); ``d``, ``sg``, ``proba[c]`` are floats or arrays of one
-    shape (operators only, so one formula serves both; ``normal(x)`` = (cdf, pdf)). Per class: the mass
+    shape (operators only, so one formula serves both; ``normal(x)`` = (cdf, survival, pdf)). Per class: the mass
     P(L in class | d) = Phi(b) - Phi(a) and the integral of L N(d; L, sg) over the class, d mass + sg (phi(a)
-    - phi(b)), with a, b = (lo - d) / sg, (hi - d) / sg (truncated normal moments), weighed by p_c / width_c."""
+    - phi(b)), with a, b = (lo - d) / sg, (hi - d) / sg (truncated normal moments), weighed by p_c / width_c.
+    A class above the estimate (a > 0) takes its mass from the upper tail, Q(a) - Q(b) (Q = 1 - Phi): there
+    Phi(b) - Phi(a) is a difference of two numbers next to 1 and cancels to 0 (a = 9.3: exactly 0 while
+    phi(a) is still 1e-19), which made the ratio num / z of a stride 9 sd below the class 1e30 m (decision
+    L93)."""
     z = num = 0.0
     for p, (lo, hi) in zip(proba, bounds, strict=True):
-        (ca, pa), (cb, pb) = normal((lo - d) / sg), normal((hi - d) / sg)
-        mass = cb - ca
+        a, b = (lo - d) / sg, (hi - d) / sg
+        (ca, sa, pa), (cb, sb, pb) = normal(a), normal(b)
+        upper = a > 0  # bool or bool array: operators only, so one formula serves floats and arrays
+        mass = upper * (sa - sb) + (1 - upper) * (cb - ca)
         w = p / max(hi - lo, 1e-9)
         z = z + w * mass
         num = num + w * (d * mass + sg * (pa - pb))

@@ -620,3 +620,42 @@ def advance_xyz(x: float, y: float, z: float, heading_rad: float, length_m: floa
                 ) -> tuple[float, float, float]:
     """:func:`advance` on Python floats (the runtime keeps its position as floats, decision E17)."""
     return x + length_m * math.cos(heading_rad), y + length_m * math.sin(heading_rad), z + dz_m
+
+
+# -- last-line guard (decision L94) --------------------------------------------------------------------------
+#: A stride's displacement over its time above this speed (m/s) is physically impossible: strides tile the walk
+#: stance to stance (one gait cycle each), so |displacement| / duration is the walker's mean speed over the cycle,
+#: and no human has run faster than ~12.4 m/s (the 100 m world record's fastest 20 m split, Berlin 2009). Running
+#: is out of the validated range (decision L95) but must not be dropped here: a 4.5 m/s run is a third of it.
+MAX_STRIDE_SPEED_MPS = 12.5
+
+
+def impossible_stride_one(length_m: float, dz_m: float, duration_s: float) -> bool:
+    """Decision L94: True when the stride's finite 3-D displacement (``length_m``, ``dz_m``, m) exceeds
+    :data:`MAX_STRIDE_SPEED_MPS` x ``duration_s`` (s). Python floats (the runtime's step). A non-finite value is
+    not "impossible" but a bug (:func:`non_finite_stride_error`, as decision E38)."""
+    d = math.hypot(length_m, dz_m)
+    return math.isfinite(d) and d > MAX_STRIDE_SPEED_MPS * max(duration_s, 0.0)
+
+
+def impossible_strides(length_m: np.ndarray, dz_m: np.ndarray, duration_s: np.ndarray) -> np.ndarray:
+    """:func:`impossible_stride_one` of B strides (arrays of one shape) -> bool (B,)."""
+    d = np.hypot(np.asarray(length_m, dtype=float), np.asarray(dz_m, dtype=float))
+    with np.errstate(invalid="ignore"):
+        return np.isfinite(d) & (d > MAX_STRIDE_SPEED_MPS * np.maximum(np.asarray(duration_s, dtype=float), 0.0))
+
+
+def impossible_stride_warning(n: int, t0: float, t1: float, length_m: float, dz_m: float) -> str:
+    """Decision L94's one line (offline, ``track --streaming``, the runtime): ``n`` strides moved 0 m, the first
+    at ``t0``-``t1`` s with the rules' ``length_m`` / ``dz_m``."""
+    return (f"{n} stride(s) gave a physically impossible displacement (first {t0:.3f}-{t1:.3f} s: length "
+            f"{length_m:.6g} m, height {dz_m:.6g} m in {t1 - t0:.3f} s; the bound is {MAX_STRIDE_SPEED_MPS:g} m/s "
+            "x the stride's time, faster than any human sprint) and moved 0 m, as a gap, left out of the distance "
+            "(decision L94): a bug in pdrlearn, not bad data - please report it")
+
+
+def non_finite_stride_error(where: str, t0: float, t1: float, length_m: float, dz_m: float) -> str:
+    """Decision L94 (E38's rule for the offline paths): a non-finite stride length or height from data that
+    passed every input check is pdrlearn's fault; the message of the :class:`InternalError` raised."""
+    return (f"internal error in {where}: the stride {t0:.3f}-{t1:.3f} s gave a non-finite length ({length_m:.6g} "
+            f"m) or height change ({dz_m:.6g} m) from finite samples; this is a bug, not bad data - please report it")

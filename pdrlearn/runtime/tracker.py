@@ -34,6 +34,8 @@ from pdrlearn.kernels.stride import (
     StanceSegmenter,
     advance_xyz,
     headed_by_foot,
+    impossible_stride_one,
+    impossible_stride_warning,
     no_length_bounds_warning,
     placement_offset,
     pre_l59_fallback,
@@ -1156,6 +1158,9 @@ class Tracker:
                 confident_one(get("direction"), pget("direction"), g), confident_one(get("length"), pget("length"), g),
                 bounds=self.bounds, down_mode=self._down_mode, rules=self.rules, length_proba=pget("length"),
                 sigma_rel=self._sigma_rel)
+        if impossible_stride_one(length, dz, t1 - t0):  # decision L94: never summed, as pdrlearn track
+            self._warn(impossible_stride_warning(1, t0, t1, length, dz))
+            length, dz = 0.0, 0.0
         heading = self.heading + dyaw
         direction = (heading + placement_offset(lev, self.heading_source, disp)  # decision L34
                      + reversed_by_rules(headed_by_foot(lev, self.heading_source), dx, length))  # L37

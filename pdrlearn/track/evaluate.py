@@ -463,8 +463,8 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     ground truth when it has some, :func:`pdrlearn.track.gait.gait_summary`'s gait speed and cadence
     included), ``session`` (meta.json's name), ``input_dir`` (the session folder, resolved; decision C13),
     ``pipeline``, ``info`` (the pipeline's settings and warnings), and where they apply
-    ``out_of_domain_fraction`` (C16) and ``frames_inferred`` (D8). Mirrored turns against turns.csv are
-    warned here (L42). Also :meth:`TrackResult.summary`.
+    ``out_of_domain_fraction`` (C16) and ``frames_inferred`` (D8). Mirrored turns against turns.csv (L42) and a
+    cadence or speed outside the validated walking range (L95) are warned here. Also :meth:`TrackResult.summary`.
 
     Parameters
     ----------
@@ -490,6 +490,12 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     dom = result.info.get("out_of_domain")
     if isinstance(dom, dict):  # decision C16: share of strides outside the model's training range
         summary["out_of_domain_fraction"] = dom.get("out_of_domain_fraction")
+    from pdrlearn.track.gait import gait_range_warning
+
+    out_of_range = gait_range_warning(summary)  # decision L95: running / very slow walking
+    if out_of_range:
+        logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, out_of_range)
+        summary["info"]["warnings"] = [*summary["info"].get("warnings", []), out_of_range]
     aid = summary["info"].get("aid")
     if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary
         summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}

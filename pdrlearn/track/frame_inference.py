@@ -265,8 +265,16 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     })
 
 
+#: decision B79: the band the waist test takes the step frequency from is 1.2-3.0 Hz (cadence 72-180 steps/min);
+#: above it (running, 220 steps/min) its vertical peak in the band is the stride frequency, where the
+#: medio-lateral sway dominates, and the lateral axis looked forward. A window whose vertical peak over
+#: 1.2-:data:`FAST_BAND_HZ` Hz lies above 3.0 Hz is "fast"; more than :data:`MAX_FAST_FRACTION` of the walking
+#: windows fast: no waist inference (real lower-back recordings: at most 15 of 49 windows, MS001 Test11).
+FAST_BAND_HZ, MAX_FAST_FRACTION = 4.5, 0.5
+
+
 def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: float = 4.0,
-                  walk_std: float = 0.5) -> tuple[np.ndarray, np.ndarray, float, float]:
+                  walk_std: float = 0.5, fast_out: list | None = None) -> tuple[np.ndarray, np.ndarray, float, float]:
     """Summed cross-spectra at step frequency over walking windows, and their gait rhythm.
 
     Returns ``C`` (2, 2) real horizontal cross-power and ``z`` (2,) complex horizontal x vertical
@@ -274,12 +282,16 @@ def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: 
     the walking windows cover (vertical std over ``walk_std`` m/s^2, the W4 motion gate), and the rhythm
     significance: the highest autocorrelation of the vertical acceleration (summed over the walking
     windows, normalised, unbiased) at a lag of :data:`RHYTHM_LAG_S`, in units of its white-noise standard
-    deviation 1/sqrt(N) (Bartlett), N the samples the walking windows cover."""
+    deviation 1/sqrt(N) (Bartlett), N the samples the walking windows cover. ``fast_out`` (a list) receives the
+    fraction of the walking windows whose vertical peak over 1.2-:data:`FAST_BAND_HZ` Hz lies above the band
+    (decision B79)."""
     n = max(int(round(window_s * fs)), 8)
     hop = n // 2
     hann = np.hanning(n)
     freqs = np.fft.rfftfreq(n, 1.0 / fs)
     band = (freqs >= 1.2) & (freqs <= min(3.0, 0.45 * fs))  # cadence 72-180 steps/min
+    wide = (freqs >= 1.2) & (freqs <= min(FAST_BAND_HZ, 0.45 * fs))  # B79: cadence up to 270 steps/min
+    n_walk = n_fast = 0
     C = np.zeros((2, 2))
     z = np.zeros(2, dtype=complex)
     ac = np.zeros(n)
@@ -293,6 +305,8 @@ def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: 
         V = np.fft.rfft((v - v.mean()) * hann)
         if not band.any():
             break
+        n_walk += 1
+        n_fast += bool(freqs[wide][np.argmax(np.abs(V[wide]))] > 3.0)
         k = int(np.flatnonzero(band)[np.argmax(np.abs(V[band]))])
         H = np.fft.rfft((acc_h[a:a + n] - acc_h[a:a + n].mean(0)) * hann[:, None], axis=0)[k]
         C += np.real(np.outer(H, np.conj(H)))
@@ -304,6 +318,8 @@ def _step_spectra(acc_v: np.ndarray, acc_h: np.ndarray, fs: float, *, window_s: 
     if ac[0] > 0 and sel.any():
         r = ac / ac[0] * n / (n - lags)  # normalised, unbiased
         rhythm = float(r[sel].max() * np.sqrt(covered.sum()))
+    if fast_out is not None:
+        fast_out.append((n_fast, n_walk))
     return C, z, float(covered.sum()) / fs, rhythm
 
 
@@ -340,7 +356,8 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
     b = [_unit(e[i] - (e[i] @ up) * up) for i in hor]
     b[1] = _unit(b[1] - (b[1] @ b[0]) * b[0])
     B = np.column_stack(b)
-    C, z, walk_s, rhythm = _step_spectra(acc @ up, acc @ B, fs)
+    fast: list = []
+    C, z, walk_s, rhythm = _step_spectra(acc @ up, acc @ B, fs, fast_out=fast)
     # half a sample of tolerance: one 4 s window of walking covers 400 samples, which at a rate of 100.000000000001 Hz
     # (a clock in ms read back) are 3.99999999999996 s; it was refused as "less than 4 s" (review of W61)
     if walk_s < MIN_WALK_S - 0.5 / fs:
@@ -352,6 +369,11 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
         raise FrameInferenceError(f"no walking rhythm: the vertical acceleration of the {walk_s:.0f} s that move "
                                   f"repeats at no step or stride period of {RHYTHM_LAG_S[0]:g}-{RHYTHM_LAG_S[1]:g} s "
                                   f"(autocorrelation {rhythm:.1f} < {MIN_RHYTHM_SIGMA:g} noise standard deviations)")
+    n_fast, n_walk = fast[0]  # after the rhythm check: noise has no rhythm, and no step band
+    if n_walk and n_fast > MAX_FAST_FRACTION * n_walk:  # decision B79
+        raise FrameInferenceError(f"the vertical acceleration peaks above 3 Hz (over 180 steps/min) in {n_fast} of "
+                                  f"{n_walk} walking windows: faster than the 72-180 steps/min the waist axis test "
+                                  "reads (running is not supported, L95)")
     w, vecs = np.linalg.eigh(C)
     ratio = float(w[1] / max(w[0], 1e-12))
     if ratio < MIN_AP_POWER_RATIO:

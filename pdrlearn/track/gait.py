@@ -246,3 +246,38 @@ def gait_summary(steps: pd.DataFrame) -> dict:
                          ("median_stance_pct", "stance_pct")):
             out[key] = _median(steps[col].to_numpy(float))
     return out
+
+
+#: decision L95: the gait the pipelines are validated on is walking - the simulator's users at 100-118
+#: steps/min x its speed factors (83-137 steps/min, docs/simulator.md), 0.7-2.1 m/s; the real recordings at
+#: 98-110 steps/min, 0.95-1.26 m/s (L66, W70). A session whose median cadence (steps/min) or speed (m/s) lies
+#: outside these bounds (the validated ranges with a margin; the adult walk-run transition is ~2 m/s) gets one
+#: warning line from `pdrlearn track`.
+CADENCE_RANGE_SPM, SPEED_RANGE_MPS = (70.0, 160.0), (0.5, 2.5)
+
+
+def gait_range_warning(summary: dict) -> str | None:
+    """Decision L95: one line when the summary's median cadence or speed (``median_speed_mps``, else
+    ``gait_speed_mps``) lies outside :data:`CADENCE_RANGE_SPM` / :data:`SPEED_RANGE_MPS`; None inside (or with
+    neither figure). Adds the out-of-domain fraction of a model's classes when the summary has one (C16)."""
+    cad = summary.get("median_cadence_spm")
+    speed = summary.get("median_speed_mps")
+    if speed is None:
+        speed = summary.get("gait_speed_mps")
+    cad = float(cad) if cad is not None and np.isfinite(cad) else None
+    speed = float(speed) if speed is not None and np.isfinite(speed) else None
+    figs = ", ".join([*([f"median cadence {cad:.0f} steps/min"] if cad is not None else []),
+                      *([f"speed {speed:.2f} m/s"] if speed is not None else [])])
+    fast = (cad is not None and cad > CADENCE_RANGE_SPM[1]) or (speed is not None and speed > SPEED_RANGE_MPS[1])
+    slow = (cad is not None and cad < CADENCE_RANGE_SPM[0]) or (speed is not None and speed < SPEED_RANGE_MPS[0])
+    if not (fast or slow):
+        return None
+    validated = (f"the pipelines are validated on walking at {CADENCE_RANGE_SPM[0]:.0f}-{CADENCE_RANGE_SPM[1]:.0f} "
+                 f"steps/min and {SPEED_RANGE_MPS[0]:g}-{SPEED_RANGE_MPS[1]:g} m/s (decision L95)")
+    what = ("this looks like running, and running is not supported: " if fast
+            else "this is slower than the walking the pipelines were validated on: ")
+    ood = summary.get("out_of_domain_fraction")
+    extra = (f"; {100 * float(ood):.0f} % of the strides lie outside the model's training range" if ood is not None
+             else "")
+    return (f"{figs}: {what}{validated}; the distance, the terrain / length classes and the floors are not "
+            f"reliable{extra}")

@@ -39,7 +39,7 @@ from pdrlearn.displace import (
     stance_runs,
     streaming_calibration,
 )
-from pdrlearn.errors import DataError, MissingSensorError, ModelError
+from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
@@ -443,6 +443,47 @@ def _stride_heading(wh: WaistHeading, steps: pd.DataFrame) -> np.ndarray:
     return wh.heading_at(grid.ravel()).reshape(grid.shape).mean(axis=1)
 
 
+def split_events(strides: pd.DataFrame, rows: np.ndarray, t: np.ndarray, stance: np.ndarray) -> np.ndarray:
+    """Decision L96: the ``event_s`` (initial contact, s) of rest-to-rest strides ``strides`` whose input rows
+    ``rows`` repeat (one detected window split at the rests inside it, :func:`pdrlearn.displace.rest_to_rest`):
+    each piece of a split window gets the start of the rest that ends it (the foot lands; as
+    :func:`stance_strides`'s event), instead of the window's one contact repeated in every piece (which gave
+    none of them a stride time). Rows used once keep their detector's event."""
+    ev = strides["event_s"].to_numpy(dtype=float).copy()
+    rows = np.asarray(rows)
+    _, inv, counts = np.unique(rows, return_inverse=True, return_counts=True)
+    split = counts[inv] > 1
+    if not split.any():
+        return ev
+    rr = stance_runs(t, stance)
+    if not len(rr):
+        return np.where(split, np.nan, ev)
+    rs = t[rr[:, 0]]
+    st, en = strides["start_s"].to_numpy(dtype=float), strides["end_s"].to_numpy(dtype=float)
+    k = np.searchsorted(rs, en, side="right") - 1  # the last rest starting by the piece's end
+    land = np.where(k >= 0, rs[np.clip(k, 0, len(rs) - 1)], np.nan)
+    land = np.where((land > st) & (land <= en), land, np.nan)
+    return np.where(split, land, ev)
+
+
+def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.ndarray,
+                     warnings: list[str]) -> tuple[np.ndarray, np.ndarray]:
+    """Decision L94: a stride faster than any human moves 0 m (a gap), with one warning line for the session,
+    never summed into the distance; a non-finite one is an :class:`InternalError` (a bug, as the runtime's E38)."""
+    nonfinite = ~(np.isfinite(length) & np.isfinite(dz))
+    if nonfinite.any():
+        i = int(np.flatnonzero(nonfinite)[0])
+        raise InternalError(SK.non_finite_stride_error("pdrlearn.track (plasys)", float(t0[i]), float(t1[i]),
+                                                       float(length[i]), float(dz[i])))
+    bad = SK.impossible_strides(length, dz, np.asarray(t1, dtype=float) - np.asarray(t0, dtype=float))
+    if not bad.any():
+        return length, dz
+    i = int(np.flatnonzero(bad)[0])
+    warnings.append(SK.impossible_stride_warning(int(bad.sum()), float(t0[i]), float(t1[i]), float(length[i]),
+                                                 float(dz[i])))
+    return np.where(bad, 0.0, length), np.where(bad, 0.0, dz)
+
+
 @register_pipeline("plasys")
 def track_plasys(session: Session, *, method: str = "auto", model=None, start=None, params=None,
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
@@ -599,6 +640,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     source = strides.attrs.get("detector", steps)
     strides = strides.iloc[fd.rows_].reset_index(drop=True)
     strides["start_s"], strides["end_s"] = fd.start_s_, fd.end_s_
+    if "event_s" in strides:  # decision L96: the pieces of a split detection get their own landing
+        strides["event_s"] = split_events(strides, fd.rows_, fd.t_, fd.stance_)
     # decision B11: the rest-to-rest bounds may reach across a gap; such strides move 0 m
     in_gap = overlaps_gaps(strides, foot_gaps)
     if in_gap.any():
@@ -671,6 +714,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if no_classes or "terrain" in untrained:  # decision L39 (C17: also a model without terrain classes)
         dz = level_dz(dz)
     length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
+    length, dz = _drop_impossible(length, dz, strides["start_s"].to_numpy(float), strides["end_s"].to_numpy(float),
+                                  warnings)  # decision L94
     altitude_check, terrain_check = None, None
     if no_classes or "terrain" in untrained:  # decision L69: the altitude is the foot's integrated height
         msg, altitude_check = integrated_altitude_check(dz)
@@ -1032,6 +1077,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                        sigma_rel=sigma_rel)
     place += [SK.reversed_by_rules(bool(f), float(d[0]), float(L))  # decision L37
               for f, d, L in zip(foot_headed, disp, length, strict=True)]
+    length, dz = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # decision L94, as the runtime
     if in_gap.any():  # decision E30: the runtime's Step for such a stride (0 m, no classes)
         length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
         classes = classes.copy()

@@ -1,0 +1,46 @@
+"""Decision L95 (docs/decisions/localization.md): a tracked session whose median cadence or speed is outside the
+validated walking range gets one default warning ("running is not supported" / slower than validated)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from pdrlearn.track.gait import gait_range_warning
+
+
+@pytest.mark.parametrize(("summary", "want"), [
+    ({"median_cadence_spm": 206.9, "median_speed_mps": 4.147, "out_of_domain_fraction": 1.0},
+     "running is not supported"),
+    ({"median_cadence_spm": 150.0, "median_speed_mps": 2.7}, "running is not supported"),
+    ({"median_cadence_spm": 64.3, "median_speed_mps": 0.42}, "slower than the walking"),
+    ({"median_cadence_spm": None, "median_speed_mps": None, "gait_speed_mps": 3.9}, "running"),  # streamed (E48)
+    ({"median_cadence_spm": 110.2, "median_speed_mps": 1.246}, None),
+    ({"median_cadence_spm": 132.1, "median_speed_mps": 2.058}, None),  # the MS patient's fast walk
+    ({"median_cadence_spm": 80.0, "median_speed_mps": 0.568, "gait_speed_mps": 0.477}, None),  # per-step first
+    ({"median_cadence_spm": None, "median_speed_mps": None}, None),
+])
+def test_gait_range_warning(summary, want):
+    got = gait_range_warning(summary)
+    if want is None:
+        assert got is None
+    else:
+        assert want in got and "decision L95" in got and "\n" not in got
+    if summary.get("out_of_domain_fraction") == 1.0:
+        assert "100 % of the strides lie outside the model's training range" in got
+
+
+def test_track_prints_and_stores_the_range_warning(tmp_path, monkeypatch, capsys):
+    from pdrlearn.cli import main
+    from pdrlearn.track import evaluate as E
+
+    real = E.evaluate_track
+    monkeypatch.setattr(E, "evaluate_track", lambda *a, **k: {**real(*a, **k), "median_cadence_spm": 195.0})
+    assert main(["track", "datasets/real/gaitmap_level_left", "--out", str(tmp_path / "o"), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    lines = [w for w in out["info"]["warnings"] if "decision L95" in w]
+    assert len(lines) == 1 and lines[0].startswith("median cadence 195 steps/min, speed 1.25 m/s: this looks like "
+                                                   "running, and running is not supported")
+    saved = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert [w for w in saved["info"]["warnings"] if "decision L95" in w] == lines

@@ -1,0 +1,108 @@
+"""Decisions L93 / L94 (docs/decisions/localization.md): the bayes rule's posterior mean of a stride far below
+the class it is given stays inside the classes' bounds (the upper-tail mass no longer cancels to 0), and a
+stride faster than any human is never summed: offline, ``track --streaming`` and the runtime move it 0 m with
+one warning; a non-finite one is an internal error offline as in the runtime (E38)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from pdrlearn.errors import InternalError
+from pdrlearn.kernels import bayes as KB
+from pdrlearn.kernels import stride as SK
+from pdrlearn.runtime import tracker as T
+from pdrlearn.runtime.tracker import Tracker
+from pdrlearn.track import plasys as P
+from pdrlearn.track.base import get_pipeline
+from tests.runtime_helpers import replay, synthetic_session, trained_dirs
+
+#: the trial's stride (session st_v450, 4.87-5.70 s): estimate 1.333 m, classed short with p 0.974, the
+#: user's bounds and the stride sd (sigma_min 0.02 m)
+BOUNDS = [(0.0, 1.0241), (1.0241, 1.5196), (1.5196, 10.0)]
+PROBA = [0.9737783629, 5.496836084e-74, 0.02622163711]
+
+
+def test_bayes_length_of_a_stride_far_below_its_class_stays_in_the_bounds():
+    one = KB.bayes_length_one(1.333028231, PROBA, BOUNDS, 0.02)
+    arr = KB.bayes_length(np.array([1.333028231]), np.array([PROBA]), BOUNDS, np.array([0.02]))
+    assert math.isfinite(one) and 0.0 <= one <= 10.0, one  # was 2.465864934e+30
+    assert arr.tolist() == [one]
+    # the short class is 15 sd away, the long one 9 sd: the long class's lower edge (truncated normal mean)
+    assert one == pytest.approx(1.5196 + 0.02 * 0.02 / (1.5196 - 1.333028231), abs=2e-4)
+    # far into either tail, with one class certain, the mean stays in that class
+    for d in (0.2, 3.0, 12.0):
+        for k, (lo, hi) in enumerate(BOUNDS):
+            p = [0.0, 0.0, 0.0]
+            p[k] = 1.0
+            got = KB.bayes_length_one(d, p, BOUNDS, 0.02)
+            assert lo - 1e-9 <= got <= hi + 1e-9 or got == d, (d, k, got)
+
+
+def test_guard_kernel():
+    assert not SK.impossible_stride_one(5.5, 0.0, 0.45)  # a sprint stride (12.2 m/s)
+    assert SK.impossible_stride_one(2.465864934e30, 0.0, 0.83)
+    assert SK.impossible_stride_one(7.0, 0.0, 0.5)
+    assert not SK.impossible_stride_one(float("nan"), 0.0, 1.0)  # non-finite: an internal error, not a gap
+    got = SK.impossible_strides(np.array([1.3, 1e30, np.inf, 2.0]), np.zeros(4), np.array([1.0, 1.0, 1.0, 0.1]))
+    assert got.tolist() == [False, True, False, True]
+
+
+@pytest.fixture(scope="module")
+def walk():
+    return synthetic_session(24, seed=11, name="walk")
+
+
+def _blow_up(arr, i=3):
+    arr = np.array(arr, dtype=float)
+    arr[i] = arr[i] * 1e30
+    return arr
+
+
+@pytest.mark.parametrize("streaming", [False, True])
+def test_track_moves_an_impossible_stride_zero_metres_with_one_warning(walk, monkeypatch, streaming):
+    track = get_pipeline("plasys")
+    clean = track(walk, model="oracle", streaming=streaming)
+    if streaming:
+        real = SK.apply_stride_rules
+        monkeypatch.setattr(SK, "apply_stride_rules", lambda *a, **k: (lambda L, dz: (_blow_up(L), dz))(*real(*a, **k)))
+    else:
+        real = P.StepRules.apply
+        monkeypatch.setattr(P.StepRules, "apply",
+                            lambda self, d, c: real(self, d, c).assign(length_m=lambda t: _blow_up(t["length_m"])))
+    res = track(walk, model="oracle", streaming=streaming)
+    warn = [w for w in res.info["warnings"] if "physically impossible" in w]
+    assert len(warn) == 1 and warn[0].startswith("1 stride(s)") and "decision L94" in warn[0], res.info["warnings"]
+    got = res.steps["length_m"].to_numpy(float)
+    assert np.isfinite(got).all() and got[3] == 0.0
+    want = clean.steps["length_m"].to_numpy(float)
+    assert np.abs(got).sum() == pytest.approx(np.abs(want).sum() - abs(want[3]), rel=1e-9)
+    assert np.isfinite(res.trajectory[["x", "y", "z"]].to_numpy()).all()
+
+
+def test_track_refuses_a_non_finite_stride_as_an_internal_error(walk, monkeypatch):
+    real = P.StepRules.apply
+    monkeypatch.setattr(P.StepRules, "apply", lambda self, d, c: real(self, d, c).assign(
+        length_m=lambda t: _blow_up(t["length_m"]) * np.where(np.arange(len(t)) == 3, np.nan, 1.0)))
+    with pytest.raises(InternalError, match=r"^internal error in pdrlearn\.track \(plasys\): the stride .* non-finite"):
+        get_pipeline("plasys")(walk, model="oracle")
+
+
+def test_runtime_moves_an_impossible_stride_zero_metres_with_one_warning(tmp_path_factory, walk, monkeypatch):
+    root = trained_dirs(tmp_path_factory)["root"]
+    real, calls = T.stride_rules_one, []
+
+    def broken(*a, **k):
+        length, dz = real(*a, **k)
+        calls.append(1)
+        return (length * 1e30 if len(calls) == 4 else length), dz
+
+    monkeypatch.setattr(T, "stride_rules_one", broken)
+    tr = Tracker(root / "bundle", speculative=False)
+    steps = replay(tr, walk, 0.37)
+    warn = [w for w in tr.warnings if "physically impossible" in w]
+    assert len(warn) == 1 and "decision L94" in warn[0], tr.warnings
+    assert steps[3].length_m == 0.0 and np.isfinite(tr.position).all()
+    assert max(abs(st.length_m) for st in steps) < 10.0

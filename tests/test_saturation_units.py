@@ -1,0 +1,81 @@
+"""Decisions B77 / B78 (docs/decisions/bad-input.md): clipped accelerometer / gyroscope samples get one warning
+naming the file, the fraction and the consequence; the accelerometer's unit is judged on its quietest 0.5 s
+windows, so a running foot (whole-file median |acc| ~30 m/s^2) is read while g / mg / counts files are refused."""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+import pytest
+
+from pdrlearn.errors import DataError
+from pdrlearn.io import read_session
+from pdrlearn.io.sensors import SENSORS
+from pdrlearn.io.validate import check_units, clipped_samples
+
+G = 9.80665
+
+
+def _running_foot(seconds: float = 20.0, fs: float = 100.0, seed: int = 0):
+    """A foot accelerometer of continuous running: per 0.7 s cycle a 0.12 s stance at gravity and a swing of
+    large specific force (|acc| ~25-50 m/s^2; mostly the centripetal pull along the shank, sensor +y, as the
+    simulator's running foot, plus a forward swing): whole-file median |acc| above 25."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, seconds, 1.0 / fs)
+    ph = (t % 0.7) / 0.7
+    swing = ph > 0.17
+    ang = 2 * np.pi * ph * 3
+    mag = 35.0 + 10.0 * np.sin(2 * np.pi * ph * 5)
+    v = np.column_stack([0.6 * mag * np.cos(ang), G + mag * (0.8 + 0.2 * np.sin(ang)), 3 * np.sin(ang / 2)])
+    v[~swing] = [0.0, G, 0.0]
+    return t, v + rng.normal(0, 0.05, v.shape)
+
+
+def test_running_foot_passes_the_unit_check_and_unit_mistakes_do_not():
+    t, v = _running_foot()
+    assert np.median(np.linalg.norm(v, axis=1)) > 25.0  # the whole-file median refused it before B78
+    spec = SENSORS["fAccelerometer"]
+    check_units(spec, v, "f.csv", t=t)  # no error
+    with pytest.raises(DataError, match="implausible for a body-worn unit"):
+        check_units(spec, v, "f.csv")  # without timestamps: the whole-file median (the old check)
+    with pytest.raises(DataError, match=r"f\.csv: median \|acc\| is 1\.00, which looks like "
+                                        "units of g"):
+        check_units(spec, v / G, "f.csv", t=t)
+    with pytest.raises(DataError, match="raw counts or mm/s"):
+        check_units(spec, v / G * 1000.0, "f.csv", t=t)  # mg
+
+
+def _write(folder, name, t, v):
+    folder.mkdir(exist_ok=True)
+    rows = "\n".join(f"{round(a * 1000)},{x:.6f},{y:.6f},{z:.6f}" for a, (x, y, z) in zip(t, v, strict=True))
+    (folder / f"{name}.csv").write_text("timestamp,x,y,z\n" + rows + "\n")
+
+
+def test_clipped_samples_get_one_warning_naming_the_file_and_fraction(tmp_path, caplog):
+    t, v = _running_foot()
+    full = 16 * G
+    clipped = v * 5.0
+    clipped[~(np.linalg.norm(v, axis=1) < 11)] = np.clip(clipped[~(np.linalg.norm(v, axis=1) < 11)], -full, full)
+    clipped[np.linalg.norm(v, axis=1) < 11] = v[np.linalg.norm(v, axis=1) < 11]
+    n, top = clipped_samples(clipped, "accelerometer")
+    assert n > 50 and top == pytest.approx(full)
+    assert clipped_samples(v, "accelerometer") == (0, 0.0)  # the unclipped run
+    gyr = np.column_stack([np.zeros_like(t), np.zeros_like(t), 12.0 * np.sin(2 * np.pi * t / 0.7)])
+    _write(tmp_path / "s", "fAccelerometer", t, clipped)
+    _write(tmp_path / "s", "fGyroscope", t, np.clip(gyr, -8.7266, 8.7266))  # a 500 deg/s gyroscope
+    with caplog.at_level(logging.WARNING):
+        read_session(tmp_path / "s")
+    lines = [r.getMessage() for r in caplog.records if "clipped" in r.getMessage()]
+    assert len(lines) == 2, lines
+    acc = next(m for m in lines if "fAccelerometer.csv" in m)
+    assert f"{n} of {len(t)} samples (" in acc and "%) are clipped at +-156.9 m/s^2" in acc and "decision B77" in acc
+    assert "stride lengths" in acc and "record with a range above +-16 g" in acc
+    gy = next(m for m in lines if "fGyroscope.csv" in m)
+    assert "are clipped at +-8.727 rad/s" in gy and "heading" in gy and "above +-500 deg/s" in gy
+    caplog.clear()
+    _write(tmp_path / "c", "fAccelerometer", t, v)
+    _write(tmp_path / "c", "fGyroscope", t, gyr)
+    with caplog.at_level(logging.WARNING):
+        read_session(tmp_path / "c")
+    assert not [r for r in caplog.records if "clipped" in r.getMessage()]  # its gyroscope peak: 2 equal samples
