@@ -154,3 +154,14 @@ def test_median_stride_length_leaves_out_gap_rows(monkeypatch, tmp_path):
     tracked["pipeline"] = "waist-pendulum"  # rows are steps: no stride length
     assert _track_job({"session_dir": str(tmp_path), "settings": {}, "out": str(tmp_path / "o2")})[
         "median_stride_length_m"] is None
+
+
+def test_find_sessions_walks_a_symlinked_folder_once(tree, tmp_path, caplog):
+    """A symbolic link back up the tree (a loop) found the same session ~40 times (until the OS's link limit)."""
+    root = tmp_path / "looped"
+    shutil.copytree(tree / "siteA" / "p01", root / "a" / "p01")
+    (root / "a" / "back").symlink_to(root, target_is_directory=True)
+    (root / "again").symlink_to(root / "a" / "p01" / "walk", target_is_directory=True)
+    with caplog.at_level("WARNING", logger="pdrlearn.cohort"):
+        assert [p.relative_to(root).as_posix() for p in find_sessions(root)] == ["a/p01/walk"]
+    assert sum("symbolic link" in r.getMessage() for r in caplog.records) == 2
