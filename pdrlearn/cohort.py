@@ -98,8 +98,9 @@ def is_session_dir(p: str | os.PathLike) -> bool:
 
 def find_sessions(root: str | os.PathLike) -> list[Path]:
     """Every session folder under ``root`` at any depth (sorted by relative path; hidden folders and the
-    inside of a session folder are not searched). ``root`` itself being a session is an error: a batch
-    command wants a folder of sessions (decision C12)."""
+    inside of a session folder are not searched; a folder reached again through a symbolic link is searched
+    once, with a warning). ``root`` itself being a session is an error: a batch command wants a folder of
+    sessions (decision C12)."""
     root = Path(root)
     if not root.is_dir():
         raise DataError(f"{root}: folder not found; pass the folder that holds the session folders")
@@ -107,11 +108,17 @@ def find_sessions(root: str | os.PathLike) -> list[Path]:
         raise DataError(f"{root}: is one session (it holds meta.json / sensor files); track it with "
                         f"'pdrlearn track {root} --out DIR', or pass the folder above it")
     found: list[Path] = []
+    seen = {root.resolve(): root}  # a folder reached again through a symbolic link (a loop: forever) is walked once
 
     def walk(d: Path) -> None:
         for p in sorted(d.iterdir()):
             if not p.is_dir() or p.name.startswith("."):
                 continue
+            real = p.resolve()
+            if real in seen:
+                log.warning("%s: the same folder as %s (a symbolic link): searched once", p, seen[real])
+                continue
+            seen[real] = p
             if is_session_dir(p):
                 found.append(p)
             else:

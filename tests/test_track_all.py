@@ -136,3 +136,32 @@ def test_group_table_by_hand():
     assert g["n_sessions"].tolist() == [2, 1] and g["n_failed"].tolist() == [1, 0]
     assert g["gait_speed_mps_mean"].tolist() == [1.5, 3.0] and g["gait_speed_mps_median"].tolist() == [1.5, 3.0]
     assert g["gait_speed_mps_sd"].iloc[0] == pytest.approx(np.sqrt(0.5)) and "absent_mean" not in g
+
+
+def test_median_stride_length_leaves_out_gap_rows(monkeypatch, tmp_path):
+    """A foot gap's 0 m row (gap_s > 0, L67) is no stride: it must not pull sessions.csv's median stride down."""
+    from types import SimpleNamespace
+
+    import pdrlearn.cli.track as cli_track
+    from pdrlearn.cli.cohort import _track_job
+
+    steps = pd.DataFrame({"length_m": [1.3, 1.4, 0.0, 1.5, -1.2], "gap_s": [0.0, 0.0, 2.6, 0.0, 0.0]})
+    tracked = {"result": SimpleNamespace(steps=steps), "pipeline": "plasys"}
+    monkeypatch.setattr(cli_track, "track_session", lambda d, s: tracked)
+    monkeypatch.setattr(cli_track, "write_track", lambda dest, t: ({"distance_m": 5.4}, False))
+    value = _track_job({"session_dir": str(tmp_path), "settings": {}, "out": str(tmp_path / "o")})
+    assert value["median_stride_length_m"] == pytest.approx(1.35)  # of 1.3, 1.4, 1.5, 1.2 (1.3 with the gap row)
+    tracked["pipeline"] = "waist-pendulum"  # rows are steps: no stride length
+    assert _track_job({"session_dir": str(tmp_path), "settings": {}, "out": str(tmp_path / "o2")})[
+        "median_stride_length_m"] is None
+
+
+def test_find_sessions_walks_a_symlinked_folder_once(tree, tmp_path, caplog):
+    """A symbolic link back up the tree (a loop) found the same session ~40 times (until the OS's link limit)."""
+    root = tmp_path / "looped"
+    shutil.copytree(tree / "siteA" / "p01", root / "a" / "p01")
+    (root / "a" / "back").symlink_to(root, target_is_directory=True)
+    (root / "again").symlink_to(root / "a" / "p01" / "walk", target_is_directory=True)
+    with caplog.at_level("WARNING", logger="pdrlearn.cohort"):
+        assert [p.relative_to(root).as_posix() for p in find_sessions(root)] == ["a/p01/walk"]
+    assert sum("symbolic link" in r.getMessage() for r in caplog.records) == 2

@@ -353,11 +353,20 @@ def _track_job(args: dict) -> dict:
         tracked = track_session(Path(args["session_dir"]), args["settings"])
         with atomic_directory(Path(args["out"])) as tmp:
             summary, _ = write_track(tmp, tracked)
-    steps = tracked["result"].steps
-    stride = None  # foot pipeline: one row per stride (decision C12); the waist tables hold steps
-    if tracked["pipeline"] == "plasys" and len(steps) and "length_m" in steps:
-        stride = float(steps["length_m"].abs().median())
-    return {"summary": summary, "warnings": warned, "median_stride_length_m": stride}
+    return {"summary": summary, "warnings": warned,
+            "median_stride_length_m": median_stride_length(tracked["result"].steps, tracked["pipeline"])}
+
+
+def median_stride_length(steps: pd.DataFrame, pipeline: str) -> float | None:
+    """sessions.csv's ``median_stride_length_m`` (decision C12): the median |length_m| of a foot track's strides,
+    without the 0 m rows that stand for a foot gap (``gap_s`` > 0, L67: no stride); None for a lower-back track
+    (its rows are steps) or a track without strides."""
+    if pipeline != "plasys" or not len(steps) or "length_m" not in steps:
+        return None
+    length = steps["length_m"].abs()
+    if "gap_s" in steps:
+        length = length[~(steps["gap_s"].to_numpy(float) > 0)]
+    return float(length.median()) if len(length) else None
 
 
 def _session_row(rel: str, group: str, r: JobResult) -> dict:

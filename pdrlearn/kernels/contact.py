@@ -180,8 +180,6 @@ def force_kernel(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: ForceState,
     return out, s
 
 
-
-
 #: AccelForceStepDetector's settings (thesis ch.5.2): stance when the combined force exceeds FORCE_ON_FRAC of its
 #: running maximum, swing below FORCE_OFF_FRAC; the swing's |acc| must span FORCE_AMP m/s^2 and last FORCE_MIN_SWING_S
 FORCE_ON_FRAC, FORCE_OFF_FRAC, FORCE_AMP, FORCE_MIN_SWING_S = 0.10, 0.05, 1.0, 0.15

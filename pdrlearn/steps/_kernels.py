@@ -170,7 +170,8 @@ def burst_flush(state: BurstState) -> list[Event]:
 
 
 # ---------------------------------------------------------------------------------------------------
-# force-gated stance detector (thesis ch.5.2)
+# force-gated stance detector (thesis ch.5.2): ForceParams, ForceState, force_kernel live in
+# pdrlearn.kernels.contact (decision E50) and are imported above
 # ---------------------------------------------------------------------------------------------------
 # pelvic rotation lobes (thesis ch.5.3, eq. 27)
 @dataclass
