@@ -44,3 +44,29 @@ def test_track_prints_and_stores_the_range_warning(tmp_path, monkeypatch, capsys
                                                    "running, and running is not supported")
     saved = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert [w for w in saved["info"]["warnings"] if "decision L95" in w] == lines
+
+
+def test_run_prints_and_stores_the_range_warning(tmp_path, monkeypatch, capsys):
+    """`pdrlearn run`'s summary warns as track's does (L95; the review found run silent)."""
+    from pathlib import Path
+
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import simulate
+    from pdrlearn.track import evaluate as E
+
+    session = tmp_path / "walk"
+    write_session(simulate("A", user_seed=3, speed="fast"), session)
+    bundle = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
+    assert main(["run", str(bundle), str(session), "--out", str(tmp_path / "quiet"), "--json"]) == 0
+    quiet = json.loads(capsys.readouterr().out)
+    assert not [w for w in quiet["info"].get("warnings", []) if "decision L95" in w]
+    real = E.evaluate_track
+    monkeypatch.setattr(E, "evaluate_track", lambda *a, **k: {**real(*a, **k), "gait_speed_mps": 3.9})
+    assert main(["run", str(bundle), str(session), "--out", str(tmp_path / "o"), "--json"]) == 0
+    captured = capsys.readouterr()
+    out = json.loads(captured.out)
+    lines = [w for w in out["info"]["warnings"] if "decision L95" in w]
+    assert len(lines) == 1 and "running is not supported" in lines[0] and "decision L95" in captured.err
+    saved = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert [w for w in saved["info"]["warnings"] if "decision L95" in w] == lines

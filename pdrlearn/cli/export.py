@@ -412,6 +412,15 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
         out["input_dir"] = str(session.folder.resolve()) if session.folder is not None else None
     out["pipeline"] = "runtime"
     out["info"] = result.info
+    if session is not None:  # decision L95, as track's summary: running / very slow walking
+        import logging
+
+        from pdrlearn.track.gait import gait_range_warning
+
+        line = gait_range_warning(out)
+        if line:
+            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
+            out["info"] = {**result.info, "warnings": [*result.info.get("warnings", []), line]}
     if session is not None and session.frames_inferred:  # D8, as track's summary.json gives them
         out["frames_inferred"] = session.frames_inferred
     out.update({
