@@ -82,6 +82,27 @@ def walks(lo: int, hi: int, root: Path):
                     yield simulate_walk(root, u, route, spec, rate, drop)
 
 
+WALK = ["user", "route", "rate_hz"]  # a walk's copies differ by drop rate alone
+
+
+def by_drop(df: pd.DataFrame, tags):
+    """Per drop rate of ``df`` (one row a tracked copy, ``err_<tag>`` its distance error %): the rate, its copies
+    indexed by walk, and per tag of ``tags`` the worst: max over the walks of (|error| - |error| of its 0 % copy)."""
+    base = df[df.drop_rate == 0].set_index(WALK)
+    for drop in DROPS:
+        g = df[df.drop_rate == drop].set_index(WALK)
+        yield drop, g, {t: (g[f"err_{t}"].abs() - base[f"err_{t}"].abs()).max() for t in tags}
+
+
+def by_rate_route(df: pd.DataFrame, tags=()):
+    """Per (drop rate, rate, route) of ``df``: those, the copies, and per tag of ``tags`` each copy's |error| -
+    |error| of its walk's 0 % copy (indexed by walk)."""
+    base = df[df.drop_rate == 0].set_index(WALK)
+    for (drop, rate, route), g in df.groupby(["drop_rate", "rate_hz", "route"]):
+        gi = g.set_index(WALK)
+        yield drop, rate, route, g, {t: gi[f"err_{t}"].abs() - base.loc[gi.index, f"err_{t}"].abs() for t in tags}
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--users", default="31-36")
@@ -119,10 +140,7 @@ def main() -> None:
              "(offline), stream = `track --streaming`. Median |error| over the walks per drop rate.", "",
              "| drop | walks | median abs err off | median abs err on | worst (abs err - abs err of 0 % copy) off | worst on | stream off median | stream on median | F1 off min | F1 on min | F1 on < off | warned off | warned on | 0 % copies identical |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    base = df[df.drop_rate == 0].set_index(["user", "route", "rate_hz"])
-    for drop in DROPS:
-        g = df[df.drop_rate == drop].set_index(["user", "route", "rate_hz"])
-        worse = {t: (g[f"err_{t}"].abs() - base[f"err_{t}"].abs()).max() for t in ("off", "on")}
+    for drop, g, worse in by_drop(df, ("off", "on")):
         lines.append(f"| {drop:g} | {len(g)} | {g.err_off.abs().median():.3f} | {g.err_on.abs().median():.3f} | "
                      f"{worse['off']:+.3f} | {worse['on']:+.3f} | {g.err_stream_off.abs().median():.3f} | "
                      f"{g.err_stream_on.abs().median():.3f} | {g.f1_off.min():.3f} | {g.f1_on.min():.3f} | "
@@ -130,7 +148,7 @@ def main() -> None:
                      f"{bool(g.identical.all()) if drop == 0 else '-'} |")
     lines += ["", "Per rate and route (median distance error %, signed):", "",
               "| drop | rate | route | off | on | stream off | stream on |", "|---|---|---|---|---|---|---|"]
-    for (drop, rate, route), g in df.groupby(["drop_rate", "rate_hz", "route"]):
+    for drop, rate, route, g, _ in by_rate_route(df):
         lines.append(f"| {drop:g} | {rate:g} | {route} | {g.err_off.median():+.3f} | {g.err_on.median():+.3f} | "
                      f"{g.err_stream_off.median():+.3f} | {g.err_stream_on.median():+.3f} |")
     if real:

@@ -20,15 +20,16 @@ import argparse
 import json
 import logging
 import shutil
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 import pdrlearn.io.plasys as P
-from experiments.drops import DROPS, REAL, cli_json, walks
+from experiments.drops import REAL, by_drop, by_rate_route, cli_json, walks
 
-TAGS = {"fixed": False, "ts": True}
+TAGS = {"fixed": {"timestamps": False}, "ts": {"timestamps": True}}  # --params of each configuration
 
 
 def track(d: Path, out: Path, params: Path) -> dict:
@@ -48,29 +49,38 @@ def compare(a: Path, b: Path) -> tuple[bool, float]:
     return same_steps, diff
 
 
+def track_walks(users: str, root: Path, tags: dict[str, dict], pair: tuple[str, str],
+                columns: Callable[[Path, Path], dict]) -> tuple[pd.DataFrame, dict[str, Path]]:
+    """Every walk of ``users`` ("lo-hi", ``walks``) tracked in ``root`` with each tag's ``--params``: a row a walk
+    (printed as it comes) with ``err_<tag>`` and ``f1_<tag>`` and the columns ``columns(a, b)`` gives for the
+    outputs of the two tags of ``pair``; the rows and the params file of each tag."""
+    lo, hi = (int(x) for x in users.split("-"))
+    root.mkdir(parents=True, exist_ok=True)
+    logging.disable(logging.INFO)
+    par = {}
+    for tag, p in tags.items():
+        par[tag] = root / f"params_{tag}.json"
+        par[tag].write_text(json.dumps(p))
+    rows = []
+    for d, row in walks(lo, hi, root):
+        for tag in tags:
+            s = track(d, root / f"{d.name}_{tag}", par[tag])
+            row[f"err_{tag}"] = s.get("distance_error_pct")
+            row[f"f1_{tag}"] = s.get("step_f1")
+        row.update(columns(*(root / f"{d.name}_{t}" for t in pair)))
+        rows.append(row)
+        print(json.dumps(row), flush=True)
+    return pd.DataFrame(rows), par
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--users", default="37-42")
     ap.add_argument("--out", default="/tmp/drops_ts")
     a = ap.parse_args()
-    lo, hi = (int(x) for x in a.users.split("-"))
     root = Path(a.out)
-    root.mkdir(parents=True, exist_ok=True)
-    logging.disable(logging.INFO)
-    par = {}
-    for tag, on in TAGS.items():
-        par[tag] = root / f"params_{tag}.json"
-        par[tag].write_text(json.dumps({"timestamps": on}))
-    rows = []
-    for d, row in walks(lo, hi, root):
-        for tag in TAGS:
-            s = track(d, root / f"{d.name}_{tag}", par[tag])
-            row[f"err_{tag}"] = s.get("distance_error_pct")
-            row[f"f1_{tag}"] = s.get("step_f1")
-        row["steps_same"], row["max_pos_diff_m"] = compare(root / f"{d.name}_fixed", root / f"{d.name}_ts")
-        rows.append(row)
-        print(json.dumps(row), flush=True)
-    df = pd.DataFrame(rows)
+    df, par = track_walks(a.users, root, TAGS, ("fixed", "ts"),
+                          lambda x, y: dict(zip(("steps_same", "max_pos_diff_m"), compare(x, y), strict=True)))
     real = []
     for d in sorted(p for p in REAL.iterdir() if p.is_dir()):
         if not (d / "fAccelerometer.csv").exists():  # a waist recording: no foot integration, L83 does not apply
@@ -83,26 +93,21 @@ def main() -> None:
         print(real[-1], flush=True)
     res = Path(__file__).resolve().parent / "results"
     df.to_csv(res / f"drops_timestamps_{a.users}.csv", index=False)
-    base = df[df.drop_rate == 0].set_index(["user", "route", "rate_hz"])
     lines = [f"# Offline foot on the timestamps (decision L83), users {a.users}", "",
              "Distance error % of `pdrlearn track` (no model, bridging off) vs the simulated truth; fixed = "
              "`timestamps: false` (dt = 1 / rate), ts = `timestamps: true`. Median |error| over the walks.", "",
              "| drop | walks | median abs err fixed | median abs err ts | median ts - median ts of 0 % | worst (abs err - abs err of 0 % copy) fixed | worst ts | F1 ts != fixed | 0 % steps.csv identical | 0 % max position diff (m) |",
              "|---|---|---|---|---|---|---|---|---|---|"]
-    m0 = base.err_ts.abs().median()
-    for drop in DROPS:
-        g = df[df.drop_rate == drop].set_index(["user", "route", "rate_hz"])
-        worse = {t: (g[f"err_{t}"].abs() - base[f"err_{t}"].abs()).max() for t in TAGS}
+    m0 = df[df.drop_rate == 0].err_ts.abs().median()
+    for drop, g, worse in by_drop(df, TAGS):
         lines.append(f"| {drop:g} | {len(g)} | {g.err_fixed.abs().median():.3f} | {g.err_ts.abs().median():.3f} | "
                      f"{g.err_ts.abs().median() - m0:+.3f} | {worse['fixed']:+.3f} | {worse['ts']:+.3f} | "
                      f"{int((g.f1_ts != g.f1_fixed).sum())} | "
                      + (f"{bool(g.steps_same.all())} | {g.max_pos_diff_m.max():.3g} |" if drop == 0 else "- | - |"))
     lines += ["", "Per rate and route (median distance error %, signed):", "",
               "| drop | rate | route | fixed | ts | worst ts - its 0 % copy (pp) |", "|---|---|---|---|---|---|"]
-    for (drop, rate, route), g in df.groupby(["drop_rate", "rate_hz", "route"]):
-        gi = g.set_index(["user", "route", "rate_hz"])
-        w = (gi.err_ts.abs() - base.loc[gi.index, "err_ts"].abs()).max()
-        lines.append(f"| {drop:g} | {rate:g} | {route} | {g.err_fixed.median():+.3f} | {g.err_ts.median():+.3f} | {w:+.3f} |")
+    for drop, rate, route, g, w in by_rate_route(df, ("ts",)):
+        lines.append(f"| {drop:g} | {rate:g} | {route} | {g.err_fixed.median():+.3f} | {g.err_ts.median():+.3f} | {w['ts'].max():+.3f} |")
     lines += ["", "Real recordings (datasets/real), fixed vs ts: steps.csv identical, max trajectory.csv difference (m): "
               + ", ".join(f"{n} {ok}" + (f" {diff:.3g}" if ok != "no foot unit" else "") for n, ok, diff in real)]
     (res / f"drops_timestamps_{a.users}.md").write_text("\n".join(lines) + "\n")
