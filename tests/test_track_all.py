@@ -165,3 +165,21 @@ def test_find_sessions_walks_a_symlinked_folder_once(tree, tmp_path, caplog):
     with caplog.at_level("WARNING", logger="pdrlearn.cohort"):
         assert [p.relative_to(root).as_posix() for p in find_sessions(root)] == ["a/p01/walk"]
     assert sum("symbolic link" in r.getMessage() for r in caplog.records) == 2
+
+
+@pytest.mark.parametrize(("make", "args", "says"), [
+    (None, [], "nothere: folder not found"),                                   # a missing ROOT
+    ("empty", [], "no session folders"),                                       # an empty ROOT
+    ("empty", ["--group-depth", "0"], "Invalid value for '--group-depth'"),   # a bad value
+    ("empty", ["--jobs", "0"], "Invalid value for '--jobs'"),
+])
+def test_track_all_bad_input_is_one_line_and_writes_nothing(tmp_path, capsys, make, args, says):
+    from pdrlearn.cli import main
+
+    root = tmp_path / (make or "nothere")
+    if make:
+        root.mkdir()
+    assert main(["track-all", str(root), "--out", str(tmp_path / "o"), *args]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("error: ") and says in err[0], err
+    assert not (tmp_path / "o").exists()
