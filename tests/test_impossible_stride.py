@@ -106,3 +106,64 @@ def test_runtime_moves_an_impossible_stride_zero_metres_with_one_warning(tmp_pat
     assert len(warn) == 1 and "decision L94" in warn[0], tr.warnings
     assert steps[3].length_m == 0.0 and np.isfinite(tr.position).all()
     assert max(abs(st.length_m) for st in steps) < 10.0
+
+
+# -- decision L97: a zeroed stride is no stride for the gait parameters (as a gap row) --------------------------
+
+
+@pytest.mark.parametrize("streaming", [False, True])
+def test_zeroed_stride_is_left_out_of_the_gait_parameters(walk, monkeypatch, streaming):
+    from pdrlearn.track.gait import gait_summary
+
+    track = get_pipeline("plasys")
+    kw = {"contacts": True} if streaming else {}
+    clean = track(walk, model="oracle", streaming=streaming, **kw)
+    if streaming:
+        real = SK.apply_stride_rules
+        monkeypatch.setattr(SK, "apply_stride_rules", lambda *a, **k: (lambda L, dz: (_blow_up(L), dz))(*real(*a, **k)))
+    else:
+        real = P.StepRules.apply
+        monkeypatch.setattr(P.StepRules, "apply",
+                            lambda self, d, c: real(self, d, c).assign(length_m=lambda t: _blow_up(t["length_m"])))
+    res = track(walk, model="oracle", streaming=streaming, **kw)
+    warn = [w for w in res.info["warnings"] if "physically impossible" in w][0]
+    assert "left out of the distance and of the gait parameters" in warn and "L97" in warn
+    s = res.steps
+    assert s["impossible"].tolist() == [i == 3 for i in range(len(s))]
+    assert np.isfinite(clean.steps["stride_time_s"].iloc[3]) and np.isfinite(clean.steps["speed_mps"].iloc[3])
+    for c in ("stride_time_s", "cadence_spm", "speed_mps"):
+        assert np.isnan(s[c].iloc[3]), c  # was a stride with speed 0 m/s
+    assert (s["speed_mps"].dropna() > 0).all()
+    got, want = gait_summary(s), gait_summary(clean.steps)
+    assert got["n_stride_times"] <= want["n_stride_times"] - 1
+    # the zeroed stride's time is not walking time: the walk is cut there, as at a gap row (from the end of the
+    # stride before to the start of the stride after)
+    dur = float(s["start_s"].iloc[4] - s["end_s"].iloc[2])
+    assert got["walking_time_s"] == pytest.approx(want["walking_time_s"] - dur, abs=1e-6)
+
+
+def test_runtime_zeroed_stride_is_left_out_of_the_gait_parameters(tmp_path_factory, walk, monkeypatch):
+    from pdrlearn.cli.export import _result
+    from pdrlearn.track.gait import gait_summary
+
+    root = trained_dirs(tmp_path_factory)["root"]
+    clean = replay(Tracker(root / "bundle", speculative=False, contacts=True), walk, 0.37)
+    real, calls = T.stride_rules_one, []
+
+    def broken(*a, **k):
+        length, dz = real(*a, **k)
+        calls.append(1)
+        return (length * 1e30 if len(calls) == 4 else length), dz
+
+    monkeypatch.setattr(T, "stride_rules_one", broken)
+    tr = Tracker(root / "bundle", speculative=False, contacts=True)
+    steps = replay(tr, walk, 0.37)
+    assert [st.impossible for st in steps] == [i == 3 for i in range(len(steps))]
+    assert math.isfinite(clean[3].stride_time_s) and math.isfinite(clean[4].stride_time_s)
+    assert math.isnan(steps[3].stride_time_s) and math.isnan(steps[4].stride_time_s)
+    table = _result(steps).steps
+    assert table["impossible"].tolist() == [i == 3 for i in range(len(steps))]
+    assert np.isnan(table["speed_mps"].iloc[3]) and (table["speed_mps"].dropna() > 0).all()
+    got, want = gait_summary(table), gait_summary(_result(clean).steps)
+    dur = steps[4].start_s - steps[2].end_s
+    assert got["walking_time_s"] == pytest.approx(want["walking_time_s"] - dur, abs=1e-6)

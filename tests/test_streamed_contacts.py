@@ -134,8 +134,9 @@ def test_run_contacts_fill_the_steps_and_summary_as_track_streaming(sim_a, tmp_p
     for c in ("event_s", "stride_time_s", "cadence_spm", "speed_mps"):  # run = track --streaming (E49-E51)
         np.testing.assert_allclose(a[c], b[c], rtol=0, atol=1e-6)
     cols = list(a.columns)
-    assert cols.index("event_s") == 2 and cols[-6:] == ["stride_time_s", "cadence_spm", "speed_mps",
-                                                         "turn_angle_rad", "gap_s", "unit"]  # track's order
+    tail = ["stride_time_s", "cadence_spm", "speed_mps", "turn_angle_rad", "impossible", "gap_s", "unit"]  # L97
+    assert cols.index("event_s") == 2 and cols[-7:] == tail  # track's order
+    assert list(b.columns)[-7:] == tail and list(pd.read_csv(tmp_path / "t" / "steps.csv").columns)[-7:] == tail
     assert run["n_stride_times"] == trk["n_stride_times"] == 14
     assert run["median_stride_time_s"] == pytest.approx(trk["median_stride_time_s"], abs=1e-9)
     assert run["median_cadence_spm"] == pytest.approx(stm["median_cadence_spm"], abs=1e-9)

@@ -359,13 +359,18 @@ def _track_job(args: dict) -> dict:
 
 def median_stride_length(steps: pd.DataFrame, pipeline: str) -> float | None:
     """sessions.csv's ``median_stride_length_m`` (decision C12): the median |length_m| of a foot track's strides,
-    without the 0 m rows that stand for a foot gap (``gap_s`` > 0, L67: no stride); None for a lower-back track
-    (its rows are steps) or a track without strides."""
+    without the 0 m rows that stand for a foot gap (``gap_s`` > 0, L67: no stride) or a stride the last-line
+    guard moved 0 m (``impossible``, L97); None for a lower-back track (its rows are steps) or a track without
+    strides."""
+    import numpy as np
+
     if pipeline != "plasys" or not len(steps) or "length_m" not in steps:
         return None
     length = steps["length_m"].abs()
-    if "gap_s" in steps:
-        length = length[~(steps["gap_s"].to_numpy(float) > 0)]
+    drop = steps["gap_s"].to_numpy(float) > 0 if "gap_s" in steps else np.zeros(len(steps), bool)
+    if "impossible" in steps:
+        drop = drop | steps["impossible"].eq(True).to_numpy(bool)
+    length = length[~drop]
     return float(length.median()) if len(length) else None
 
 

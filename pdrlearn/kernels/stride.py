@@ -651,7 +651,8 @@ def impossible_stride_warning(n: int, t0: float, t1: float, length_m: float, dz_
     return (f"{n} stride(s) gave a physically impossible displacement (first {t0:.3f}-{t1:.3f} s: length "
             f"{length_m:.6g} m, height {dz_m:.6g} m in {t1 - t0:.3f} s; the bound is {MAX_STRIDE_SPEED_MPS:g} m/s "
             "x the stride's time, faster than any human sprint) and moved 0 m, as a gap, left out of the distance "
-            "(decision L94): a bug in pdrlearn, not bad data - please report it")
+            "and of the gait parameters (stride time, cadence, speed, walking time; column impossible in "
+            "steps.csv) (decision L94, L97): a bug in pdrlearn, not bad data - please report it")
 
 
 def non_finite_stride_error(where: str, t0: float, t1: float, length_m: float, dz_m: float) -> str:

@@ -185,6 +185,9 @@ class Step:
     #: stride's own turn (rad: its heading unit's yaw over the stride, without the pivot before it)
     stride_time_s: float = math.nan
     turn_angle_rad: float = math.nan
+    #: decision L97: the last-line guard (L94) moved this stride 0 m; it is no stride for the gait parameters
+    #: (no stride time, cadence, speed or walking time, as a gap row)
+    impossible: bool = False
 
     def to_dict(self) -> dict:
         return {
@@ -201,6 +204,7 @@ class Step:
             "z": self.z,
             "stride_time_s": self.stride_time_s,  # decision E51
             "turn_angle_rad": self.turn_angle_rad,
+            "impossible": self.impossible,  # decision L97
             "gap_s": self.gap_s,  # decision E37: pdrlearn run's steps.csv
         }
 
@@ -925,12 +929,12 @@ class Tracker:
         self._gap_row = None
         # decision E51: IC to IC with the row emitted before (a gap row between: none), L66/L80's rule
         prev = self._kept[3] if self._kept is not None and not out else None
-        if prev is not None and step.event_s == step.event_s:
+        if prev is not None and step.event_s == step.event_s and not step.impossible:  # L97: no stride time
             d = float(stride_times((prev[0], step.start_s), (prev[1], step.end_s), (prev[2], step.event_s))[1])
             if d == d:  # a missing value stays the one math.nan (steps compare equal as dicts, E21/E24's tests)
                 step.stride_time_s = d
-        self._kept = (step.end_s, step.heading_rad, (step.x, step.y, step.z),
-                      (step.start_s, step.end_s, step.event_s))
+        self._kept = (step.end_s, step.heading_rad, (step.x, step.y, step.z),  # L97: a zeroed stride ends none
+                      (step.start_s, step.end_s, math.nan if step.impossible else step.event_s))
         self._row_gaps = [g for g in self._row_gaps if g[1] > step.end_s]
         out.append(step)
         return out
@@ -1158,7 +1162,8 @@ class Tracker:
                 confident_one(get("direction"), pget("direction"), g), confident_one(get("length"), pget("length"), g),
                 bounds=self.bounds, down_mode=self._down_mode, rules=self.rules, length_proba=pget("length"),
                 sigma_rel=self._sigma_rel)
-        if impossible_stride_one(length, dz, t1 - t0):  # decision L94: never summed, as pdrlearn track
+        impossible = impossible_stride_one(length, dz, t1 - t0)
+        if impossible:  # decision L94: never summed, as pdrlearn track
             self._warn(impossible_stride_warning(1, t0, t1, length, dz))
             length, dz = 0.0, 0.0
         heading = self.heading + dyaw
@@ -1174,7 +1179,7 @@ class Tracker:
         length, direction = travel_sign_one(length, direction, classes.get("direction"))  # L65: after the position
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z,
                     event_s=self._contact(t0, t1) if self.contacts else math.nan,
-                    turn_angle_rad=float(np.angle(np.exp(1j * turn))))
+                    turn_angle_rad=float(np.angle(np.exp(1j * turn))), impossible=impossible)
 
     def _contact(self, t0: float, t1: float) -> float:
         """Decisions E49 / E50: the initial contact (s) of the stride ``[t0, t1]`` from its buffered samples

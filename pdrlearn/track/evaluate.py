@@ -324,6 +324,8 @@ def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:
     # labelled stride it overlaps: that stride is not scored (nor composed of its neighbours)
     gap = (result.steps["gap_s"].to_numpy(float) > 0 if "gap_s" in result.steps
            else np.zeros(len(result.steps), dtype=bool))
+    if "impossible" in result.steps:  # decision L97: nor is a stride the last-line guard (L94) moved 0 m
+        gap = gap | result.steps["impossible"].eq(True).to_numpy(bool)
     used_est, used_ref = {i for i, _ in pairs} | set(np.flatnonzero(gap).tolist()), {j for _, j in pairs}
     pairs = [(i, j) for i, j in pairs if not gap[i]]
     e_list = [float(result.steps["length_m"].iloc[i]) for i, _ in pairs]

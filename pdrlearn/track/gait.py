@@ -37,6 +37,17 @@ TOE_OFF_COLUMNS = ("tc_s", "stance_time_s", "swing_time_s", "stance_pct")
 STRAIGHT_MAX_RAD = float(np.deg2rad(15.0))
 
 
+def stride_rows(table: pd.DataFrame) -> np.ndarray:
+    """(B,) bool: the rows of a foot steps table that are strides for the gait parameters - not a gap row
+    (``gap_s`` > 0, L67) and not a stride the last-line guard moved 0 m (``impossible``, decisions L94 / L97:
+    its 0 m is no measurement, so it gives no stride time, cadence, speed or walking time, as a gap row)."""
+    n = len(table)
+    valid = (table["gap_s"].to_numpy(float) == 0) if "gap_s" in table else np.ones(n, bool)
+    if "impossible" in table:
+        valid = valid & ~table["impossible"].eq(True).to_numpy(bool)
+    return valid
+
+
 def swing_times(t: np.ndarray, stance: np.ndarray, i0: np.ndarray, i1: np.ndarray) -> np.ndarray:
     """(B,) s: per stride (sample indices ``i0``..``i1`` of ``t``, from rest to rest), the time from its first
     to its last sample outside ``stance`` (+ one sample interval): the foot off its rest. NaN when the stride
@@ -99,10 +110,10 @@ def streamed_gait_columns(table: pd.DataFrame) -> pd.DataFrame:
     ``event_s`` the runtime's initial contact, E49, NaN on a gap row; ``turn_angle_rad`` the stride's own turn;
     ``gap_s``) by :func:`add_gait_columns` (a gap row, ``gap_s`` > 0, is no stride, L67), placed as offline's
     steps.csv places them (before ``gap_s`` and ``unit``). In place; returned."""
-    valid = (table["gap_s"].to_numpy(float) == 0) if "gap_s" in table else None
+    valid = stride_rows(table) if "gap_s" in table or "impossible" in table else None  # L67, L97
     turn = table["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in table else None
     add_gait_columns(table, turn_rad=turn, valid=valid)
-    tail = [c for c in ("gap_s", "unit") if c in table]
+    tail = [c for c in ("impossible", "gap_s", "unit") if c in table]
     gait = [c for c in GAIT_COLUMNS if c in table]
     order = [c for c in table.columns if c not in gait and c not in tail] + gait + tail
     return table.reindex(columns=order) if list(table.columns) != order else table
@@ -203,7 +214,7 @@ def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     ``n_straight_strides`` 0. Since E51 the streamed tables carry the gait columns (:func:`streamed_gait_columns`;
     empty without ``--contacts``) and take :func:`gait_summary`'s own path."""
     n = len(steps)
-    valid = (steps["gap_s"].to_numpy(float) == 0) if "gap_s" in steps else np.ones(n, bool)
+    valid = stride_rows(steps)  # decisions L67, L97
     out: dict = {}
     _speed_fields(out, steps["length_m"].to_numpy(float), steps["start_s"].to_numpy(float),
                   steps["end_s"].to_numpy(float), valid, np.full(n, np.nan), np.zeros(n, bool))
@@ -235,7 +246,7 @@ def gait_summary(steps: pd.DataFrame) -> dict:
     for key, col in (("median_stride_time_s", "stride_time_s"), ("median_cadence_spm", "cadence_spm"),
                      ("median_speed_mps", "speed_mps")):
         out[key] = _median(steps[col].to_numpy(float))
-    valid = (steps["gap_s"].to_numpy(float) == 0) if "gap_s" in steps else np.ones(len(st), bool)
+    valid = stride_rows(steps)  # decisions L67, L97
     turn = np.abs(steps["turn_angle_rad"].to_numpy(float))
     _speed_fields(out, steps["length_m"].to_numpy(float), steps["start_s"].to_numpy(float),
                   steps["end_s"].to_numpy(float), valid, steps["speed_mps"].to_numpy(float),

@@ -59,7 +59,7 @@ from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
 from pdrlearn.signal import lowpass
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
-from pdrlearn.track.gait import add_gait_columns, streamed_gait_columns
+from pdrlearn.track.gait import add_gait_columns, streamed_gait_columns, stride_rows
 from pdrlearn.track.gaps import (
     FOOT_IMU,
     drop_steps_across_gaps,
@@ -467,9 +467,11 @@ def split_events(strides: pd.DataFrame, rows: np.ndarray, t: np.ndarray, stance:
 
 
 def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.ndarray,
-                     warnings: list[str]) -> tuple[np.ndarray, np.ndarray]:
+                     warnings: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Decision L94: a stride faster than any human moves 0 m (a gap), with one warning line for the session,
-    never summed into the distance; a non-finite one is an :class:`InternalError` (a bug, as the runtime's E38)."""
+    never summed into the distance; a non-finite one is an :class:`InternalError` (a bug, as the runtime's E38).
+    Returns (length, dz, bad): ``bad`` (B,) the zeroed strides, which decision L97 leaves out of the gait
+    parameters (steps.csv column ``impossible``)."""
     nonfinite = ~(np.isfinite(length) & np.isfinite(dz))
     if nonfinite.any():
         i = int(np.flatnonzero(nonfinite)[0])
@@ -477,11 +479,11 @@ def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.
                                                        float(length[i]), float(dz[i])))
     bad = SK.impossible_strides(length, dz, np.asarray(t1, dtype=float) - np.asarray(t0, dtype=float))
     if not bad.any():
-        return length, dz
+        return length, dz, bad
     i = int(np.flatnonzero(bad)[0])
     warnings.append(SK.impossible_stride_warning(int(bad.sum()), float(t0[i]), float(t1[i]), float(length[i]),
                                                  float(dz[i])))
-    return np.where(bad, 0.0, length), np.where(bad, 0.0, dz)
+    return np.where(bad, 0.0, length), np.where(bad, 0.0, dz), bad
 
 
 @register_pipeline("plasys")
@@ -714,8 +716,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if no_classes or "terrain" in untrained:  # decision L39 (C17: also a model without terrain classes)
         dz = level_dz(dz)
     length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
-    length, dz = _drop_impossible(length, dz, strides["start_s"].to_numpy(float), strides["end_s"].to_numpy(float),
-                                  warnings)  # decision L94
+    length, dz, impossible = _drop_impossible(length, dz, strides["start_s"].to_numpy(float),
+                                              strides["end_s"].to_numpy(float), warnings)  # decision L94
     altitude_check, terrain_check = None, None
     if no_classes or "terrain" in untrained:  # decision L69: the altitude is the foot's integrated height
         msg, altitude_check = integrated_altitude_check(dz)
@@ -774,7 +776,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         from pdrlearn.track.toeoff import toe_off_times
 
         tc = toe_off_times(foot.t, foot.gyr, table["start_s"], table["end_s"], table["event_s"])
-    add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap, tc_s=tc)
+    add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap & ~impossible, tc_s=tc)  # L97: no stride
+    table["impossible"] = impossible  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = longest_gap_in(table["start_s"], table["end_s"], foot_gaps)  # decision L67 (run's E37)
     table = table[[c for c in table.columns if c != "unit"] + ["unit"]]  # gap_s before unit, as run's steps.csv
     head = np.asarray(head, dtype=float)
@@ -784,7 +787,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         rows = pd.DataFrame({"start_s": extra["start_s"], "end_s": extra["end_s"], "event_s": np.nan,
                              "length_m": 0.0, "raw_length_m": np.nan,
                              "heading_rad": table["heading_rad"].to_numpy()[at - 1],
-                             "dz_m": 0.0, "confidence": np.nan, "unit": "foot", "gap_s": extra["gap_s"]})
+                             "dz_m": 0.0, "confidence": np.nan, "unit": "foot", "impossible": False,
+                             "gap_s": extra["gap_s"]})
         table = pd.concat([table, rows], ignore_index=True)
         length = np.concatenate([length, np.zeros(len(at))])
         dz = np.concatenate([dz, np.zeros(len(at))])
@@ -794,7 +798,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         length, dz, head = length[order], dz[order], head[order]
         inserted = np.flatnonzero(order >= len(order) - len(at))  # the gap rows' new places
         add_gait_columns(table, turn_rad=table["turn_angle_rad"].to_numpy(float),  # the rows next to a gap row
-                         valid=table["gap_s"].to_numpy(float) == 0,
+                         valid=stride_rows(table),  # decisions L67, L97
                          tc_s=table["tc_s"].to_numpy(float) if "tc_s" in table else None)
 
     xyz = np.zeros((len(table) + 1, 3))
@@ -921,6 +925,8 @@ def _one_row_per_gap(table: pd.DataFrame, traj: pd.DataFrame, in_gap: np.ndarray
     rows["length_m"], rows["raw_length_m"], rows["dz_m"] = 0.0, 0.0, 0.0
     rows["heading_rad"] = kt["heading_rad"].to_numpy(float)[at - 1]  # decision L76
     rows["gap_s"], rows["unit"] = extra["gap_s"].to_numpy(float), "foot"
+    if "impossible" in rows:  # decision L97: a gap row is no zeroed stride
+        rows["impossible"] = False
     prev = kj.iloc[at].reset_index(drop=True)  # the position after the kept row before (the row moves 0 m)
     prev["t"] = rows["end_s"].to_numpy(float)
     key = np.concatenate([np.arange(len(kt), dtype=float), at - 0.5])
@@ -1077,7 +1083,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                        sigma_rel=sigma_rel)
     place += [SK.reversed_by_rules(bool(f), float(d[0]), float(L))  # decision L37
               for f, d, L in zip(foot_headed, disp, length, strict=True)]
-    length, dz = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # decision L94, as the runtime
+    length, dz, impossible = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # L94, as run
     if in_gap.any():  # decision E30: the runtime's Step for such a stride (0 m, no classes)
         length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
         classes = classes.copy()
@@ -1109,6 +1115,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table.insert(3, "length_m", rep_length)
     table.insert(5, "heading_rad", wrap_angle(rep_head))
     table["turn_angle_rad"] = np.angle(np.exp(1j * turn))  # decision E51, wrapped as offline's L66 column
+    table["impossible"] = impossible & ~in_gap  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["unit"] = "foot"
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
