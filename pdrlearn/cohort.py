@@ -197,11 +197,27 @@ def _guarded(fn: Callable, name: str, arg, threads: int | None = 1,
             value = fn(arg)
         return done(ok=True, value=value)
     except PdrlearnError as exc:
-        return done(ok=False, error=str(exc))
+        return done(ok=False, error=str(exc), extra=_job_extra(exc))
     except Exception as exc:  # a bug in one user's job must not stop the cohort; keep the cause
         last = traceback.extract_tb(exc.__traceback__)[-1]
         msg = f"{type(exc).__name__}: {exc} (at {Path(last.filename).name}:{last.lineno})"
-        return done(ok=False, error=" ".join(msg.split()))
+        return done(ok=False, error=" ".join(msg.split()), extra=_job_extra(exc))
+
+
+def _job_extra(exc: BaseException) -> dict:
+    """What a failing job attached to its exception for its :class:`JobResult` (``extra``): cohort C15,
+    ``track-all``'s job attaches the warnings its session raised before it failed (:func:`attach_to_error`)."""
+    extra = getattr(exc, "pdrlearn_job_extra", None)
+    return dict(extra) if isinstance(extra, dict) else {}
+
+
+def attach_to_error(exc: BaseException, **extra) -> None:
+    """Cohort C15: keep ``extra`` (e.g. ``warnings=[...]``) with a job's exception, so that the failed
+    :class:`JobResult` carries it in ``extra`` (serially and from Dask workers alike)."""
+    try:
+        exc.pdrlearn_job_extra = {**_job_extra(exc), **extra}
+    except AttributeError:  # an exception type without a __dict__: the error alone is reported
+        pass
 
 
 def biggest_first(costs: Sequence[float]) -> list[int]:

@@ -183,3 +183,31 @@ def test_track_all_bad_input_is_one_line_and_writes_nothing(tmp_path, capsys, ma
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("error: ") and says in err[0], err
     assert not (tmp_path / "o").exists()
+
+
+def test_a_failed_session_keeps_the_warnings_it_raised(tree, tmp_path, monkeypatch, capsys):
+    """Cohort C15: a session that warns and then fails keeps its warnings in sessions.csv, the printed summary
+    and the batch's warning lines, beside its error."""
+    from pdrlearn.cli import track as T
+
+    root = tmp_path / "two"
+    for p in ("p01", "p02"):
+        shutil.copytree(tree / "siteA" / p, root / p)
+    real = T.write_track
+
+    def fails_for_p02(tmp, tracked):  # tracking p02 warned ("no model: ..."), then writing it fails
+        if "p02" in str(tmp):
+            raise DataError(f"{tmp}: cannot write the output (disk full)")
+        return real(tmp, tracked)
+
+    monkeypatch.setattr(T, "write_track", fails_for_p02)
+    rc = main(["track-all", str(root), "--out", str(tmp_path / "o")])
+    out, err = capsys.readouterr()
+    assert rc == 1
+    s = pd.read_csv(tmp_path / "o" / "sessions.csv").set_index("path")
+    bad, good = s.loc["p02/walk"], s.loc["p01/walk"]
+    assert bad["status"] == "failed" and "disk full" in bad["error"]
+    assert bad["n_warnings"] >= 1 and "no model:" in bad["warnings"]  # was empty / dropped
+    assert good["n_warnings"] >= 1 and "no model:" in good["warnings"]
+    assert "failed p02/walk: " in out and "  warned before: no model:" in out
+    assert "[2 of 2 sessions: p01/walk, p02/walk]" in err  # the batch line counts the failed session too

@@ -25,6 +25,7 @@ from pdrlearn.cli.common import (
 )
 from pdrlearn.cohort import (
     JobResult,
+    attach_to_error,
     captured_warnings,
     cohort_users,
     find_sessions,
@@ -341,7 +342,10 @@ TRACK_LIBRARIES = ("scipy.linalg", "scipy.signal")
 SESSION_COLUMNS = ("path", "group", "status", "error", "track_time_s", "session", "input_dir", "pipeline",
                    "method", "n_steps", "distance_m", "distance_ref_m", "distance_error_pct",
                    "final_position_error_m", "walking_time_s", "gait_speed_mps", "median_cadence_spm",
-                   "median_stride_length_m", "median_stride_time_s", "median_speed_mps", "n_warnings")
+                   "median_stride_length_m", "median_stride_time_s", "median_speed_mps", "n_warnings",
+                   "warnings")
+#: cohort C15: the separator of the ``warnings`` cell (one session's warnings, in the order raised)
+WARNINGS_SEP = " | "
 
 
 def _track_job(args: dict) -> dict:
@@ -350,9 +354,13 @@ def _track_job(args: dict) -> dict:
     from pdrlearn.cli.track import track_session, write_track
 
     with captured_warnings() as warned:
-        tracked = track_session(Path(args["session_dir"]), args["settings"])
-        with atomic_directory(Path(args["out"])) as tmp:
-            summary, _ = write_track(tmp, tracked)
+        try:
+            tracked = track_session(Path(args["session_dir"]), args["settings"])
+            with atomic_directory(Path(args["out"])) as tmp:
+                summary, _ = write_track(tmp, tracked)
+        except Exception as exc:  # cohort C15: the warnings raised before the failure stay with its error
+            attach_to_error(exc, warnings=list(warned))
+            raise
     return {"summary": summary, "warnings": warned,
             "median_stride_length_m": median_stride_length(tracked["result"].steps, tracked["pipeline"])}
 
@@ -374,9 +382,22 @@ def median_stride_length(steps: pd.DataFrame, pipeline: str) -> float | None:
     return float(length.median()) if len(length) else None
 
 
-def _session_row(rel: str, group: str, r: JobResult) -> dict:
+def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
+    """The warnings a track-all job raised, in order, each once: a tracked session's, or (cohort C15) those a
+    failed session raised before its error; the ``DIR: `` prefix naming the session folder as ``given``
+    (decision B34) removed."""
+    got = r.value["warnings"] if r.ok else r.extra.get("warnings", [])
+    if given:
+        got = [m[len(given) + 2:] if m.startswith(given + ": ") else m for m in got]
+    return list(dict.fromkeys(got))
+
+
+def _session_row(rel: str, group: str, r: JobResult, given: str | None = None) -> dict:
     row = {"path": rel, "group": group, "status": "ok" if r.ok else "failed", "error": None if r.ok else r.error,
            "track_time_s": round(r.seconds, 2)}
+    warned = job_warnings(r, given)  # cohort C15: a failed session keeps its warnings beside its error
+    row["n_warnings"] = len(r.value["warnings"]) if r.ok else len(r.extra.get("warnings", []))
+    row["warnings"] = WARNINGS_SEP.join(warned) if warned else None
     if not r.ok:
         return row
     summary = r.value["summary"]
@@ -387,7 +408,6 @@ def _session_row(rel: str, group: str, r: JobResult) -> dict:
             row[k] = v
     row["method"] = summary.get("info", {}).get("method")
     row["median_stride_length_m"] = r.value["median_stride_length_m"]
-    row["n_warnings"] = len(r.value["warnings"])
     return row
 
 
@@ -410,10 +430,7 @@ def _batch_warnings(sessions: list[tuple[str, str]], results: list[JobResult]) -
 
     seen: dict[str, list[str]] = {}
     for (rel, given), r in zip(sessions, results, strict=True):
-        if not r.ok:
-            continue
-        for msg in dict.fromkeys(r.value["warnings"]):
-            text = msg[len(given) + 2:] if msg.startswith(given + ": ") else msg
+        for text in job_warnings(r, given):  # cohort C15: a failed session's warnings too
             seen.setdefault(text, []).append(rel)
     log = logging.getLogger("pdrlearn.cli")
     for text, rels in seen.items():
@@ -519,8 +536,8 @@ def track_all(
         failed = [r for r in results if not r.ok]
         if len(failed) == len(results):
             raise DataError(f"every session failed; first error: {failed[0].name}: {failed[0].error}")
-        sessions = _sessions_table([_session_row(rel, session_group(rel, group_depth), r)
-                                    for rel, r in zip(rels, results, strict=True)])
+        sessions = _sessions_table([_session_row(rel, session_group(rel, group_depth), r, str(p))
+                                    for rel, r, p in zip(rels, results, found, strict=True)])
         groups = group_table(sessions)
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")
@@ -533,8 +550,11 @@ def track_all(
         typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked; wrote {out}/"
                    "<session>/, sessions.csv, groups.csv")
         print(_groups_text(groups).to_markdown(index=False))
+        given = {rel: str(p) for rel, p in zip(rels, found, strict=True)}
         for r in failed:
             typer.echo(f"failed {r.name}: {r.error}")
+            for w in job_warnings(r, given.get(r.name)):  # cohort C15: what it warned before it failed
+                typer.echo(f"  warned before: {w}")
     _exit_if_any_failed(results)
 
 
