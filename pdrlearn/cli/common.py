@@ -327,6 +327,25 @@ START_HELP = ("Start coordinate LAT,LON (degrees) -> lat/lon columns; LAT,LON,AL
               "altitude in m, where the z column starts (default 0: z = height above the start; decision L56).")
 
 
+INITIAL_HEADING_HELP = ("Direction the walker sets off in, DEG degrees in the track's ENU frame: counter-clockwise "
+                        "from east (0 = east, the default; 90 = north; -90 = south; a compass bearing B, clockwise "
+                        "from north, is 90 - B). For a relative heading (foot or gyroscope heading, --streaming, "
+                        "no magnetometer); refused when the heading is absolute (decision L98).")
+
+
+def initial_heading_option(deg: float | None) -> float | None:
+    """``--initial-heading DEG`` of ``track`` / ``run`` (decision L98): ENU degrees (counter-clockwise from east)
+    -> radians, None when not given; a non-finite value is one error line."""
+    import math
+
+    if deg is None:
+        return None
+    if not math.isfinite(deg):
+        raise DataError(f"--initial-heading {deg}: give the start direction as a finite number of degrees "
+                        "counter-clockwise from east (0 = east, 90 = north; a compass bearing B is 90 - B)")
+    return math.radians(deg)
+
+
 def start_option(start: str | None) -> tuple[tuple[float, float] | None, float]:
     """``--start`` of ``track`` / ``run`` (decision L56): ``((lat, lon) or None, start altitude m)``."""
     from pdrlearn.track.geodetic import parse_start

@@ -12,9 +12,11 @@ import typer
 from pdrlearn.cli.common import (
     DPI_HELP,
     FORCE_HELP,
+    INITIAL_HEADING_HELP,
     START_HELP,
     existed,
     gait_line,
+    initial_heading_option,
     json_safe,
     out_folder,
     print_json,
@@ -215,6 +217,9 @@ def run(
                               "the bundle's; the foot alone when the data have no waist unit, with a warning). "
                               "foot = a two-unit bundle on a foot-only session or a failed waist (decision E26)."),
     start: str = typer.Option(None, "--start", help=START_HELP),
+    initial_heading: float = typer.Option(None, "--initial-heading", metavar="DEG",
+                                          help=INITIAL_HEADING_HELP.split(" For a relative")[0]
+                                          + " (the runtime's heading is relative: gyroscopes only)."),
     dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
     contacts: bool = typer.Option(False, "--contacts", help="Each stride's initial contact (force onset, else the "
                                   "accelerometer impact) and so stride_time_s, cadence_spm, speed_mps and the "
@@ -231,6 +236,8 @@ def run(
         pdrlearn run out/bundle/u1 out/sim/D_u1 --units foot --out out/run_foot
 
         pdrlearn run out/bundle/u1 out/sim/D_u1 --start 41.178,-8.608,12.5 --out out/run_geo
+
+        pdrlearn run out/bundle/u1 out/sim/D_u1 --initial-heading 90 --out out/run_north   # sets off north
     """
     from pdrlearn.errors import DataError
     from pdrlearn.runtime import load_bundle
@@ -241,6 +248,7 @@ def run(
     if not (chunk_s > 0 and chunk_s < float("inf")):
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
+    heading0 = initial_heading_option(initial_heading)  # decision L98, as `pdrlearn track`
     if dpi is not None and out is None:  # decision L70: it would be ignored
         raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
                         "FOLDER or drop --dpi")
@@ -259,7 +267,7 @@ def run(
                             "Bluetooth protocol does not carry; replay the foot unit alone (--units foot)")
         tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
                           resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
-                          units=use, start=(0.0, 0.0, start_alt), contacts=contacts)
+                          units=use, start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0)
         if protocol == "-":
             stream = sys.stdin
         else:
@@ -306,7 +314,7 @@ def run(
         tracker = Tracker(bundle, frames=_frames_of(session, bundle, use),
                           resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           input_rates_hz=rates, units=use, sensors=[n for n, st in session.streams.items() if len(st)],
-                          start=(0.0, 0.0, start_alt), contacts=contacts,
+                          start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0,
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
         dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
         if tracker.heading_source == "auto" and not said and (dropped or not (
@@ -330,6 +338,8 @@ def run(
         _warn_short_streams(session, tracker, steps)
         source = f"session {session.name}"
     result = _result(steps, start_ll, start_alt)
+    if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
+        result.info["initial_heading_rad"] = heading0
     result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
     summary = _summary(steps, tracker, lat, source, result, session)
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"

@@ -11,9 +11,11 @@ import typer
 from pdrlearn.cli.common import (
     DPI_HELP,
     FORCE_HELP,
+    INITIAL_HEADING_HELP,
     START_HELP,
     existed,
     gait_line,
+    initial_heading_option,
     print_json,
     replaced,
     start_option,
@@ -77,6 +79,7 @@ def track(
     length_bounds: str = LENGTH_BOUNDS_OPT,
     warn_out_of_domain: float = WARN_OOD_OPT,
     start: str = START_OPT,
+    initial_heading: float = typer.Option(None, "--initial-heading", metavar="DEG", help=INITIAL_HEADING_HELP),
     params: Path = PARAMS_OPT,
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
     gnss_period: float = typer.Option(None, "--gnss-period", help="Use a GNSS fix every S seconds."),
@@ -103,6 +106,8 @@ def track(
 
         pdrlearn track out/sim/D_u1 --start 41.178,-8.608,12.5 --out out/D_alt   # z starts at 12.5 m
 
+        pdrlearn track out/sim/D_u1 --streaming --initial-heading 90 --out out/D_north   # sets off north
+
         pdrlearn track out/sim/D_u1 --method M3 --model out/models/u1 --rules bayes --out out/D3 --json
 
         pdrlearn track out/sim/D_u1 --method M3 --model out/models/u1 --streaming --out out/D3s   # = pdrlearn run
@@ -122,7 +127,7 @@ def track(
                               warn_out_of_domain=warn_out_of_domain, start=start, params=params, gnss=gnss,
                               gnss_period=gnss_period, fixes=fixes, fix_period=fix_period, streaming=streaming,
                               realtime=realtime, reference_point=reference_point, toe_off=toe_off,
-                              contacts=contacts, dpi=dpi)
+                              contacts=contacts, dpi=dpi, initial_heading=initial_heading)
     was = existed(out)
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
     with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
@@ -140,11 +145,12 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    gnss: Path | None = None, gnss_period: float | None = None, fixes: Path | None = None,
                    fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
                    reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
-                   dpi: int | None = None) -> dict:
+                   dpi: int | None = None, initial_heading: float | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start`` parsed, ``--params`` JSON read): a batch checks them before its first
     session, and the dict travels to a Dask worker as it is (``track-all --jobs``)."""
     start_ll, start_alt = start_option(start)
+    heading0 = initial_heading_option(initial_heading)  # decision L98: degrees ENU -> rad
     for fix_file in (gnss, fixes):  # before the tracking, which warned and worked first
         if fix_file is not None and not Path(fix_file).is_file():
             raise DataError(f"{fix_file}: no such fix file; pass an NMEA log (.nmea/.txt) or a CSV "
@@ -169,7 +175,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "warn_out_of_domain": warn_out_of_domain, "start_ll": start_ll, "start_alt": start_alt,
             "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
-            "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi}
+            "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
+            "initial_heading_rad": heading0}
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:
@@ -208,6 +215,9 @@ def track_session(session_dir: Path, settings: dict) -> dict:
           "params": par if pipeline == "plasys" or par is None else str(params)}
     if o["realtime"]:
         kw["realtime"] = True
+    heading0 = o.get("initial_heading_rad")
+    if heading0 is not None:  # decision L98: every pipeline's API takes it (ENU rad)
+        kw["initial_heading"] = heading0
     if pipeline == "plasys":
         kw["method"] = method
         if streaming:
@@ -227,6 +237,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                 kw[k] = o[k]
     result = fn(session, **kw)
     aided = gnss is not None or fixes is not None
+    if heading0 is not None:
+        _check_relative_heading(result, session, aided, heading0)
     if aided:
         try:
             from pdrlearn.aid import aid_track
@@ -240,6 +252,23 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     summary = track_summary(result, session, pipeline=pipeline)  # C13, C14: the API's TrackResult.summary
     return {"session": session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
             "dpi": dpi}
+
+
+def _check_relative_heading(result, session, aided: bool, heading0: float) -> None:
+    """Decision L98: ``--initial-heading`` turns a relative heading only; a track whose heading is absolute (the
+    waist magnetometer's, or position fixes) would ignore it - one error line (B27's rule) instead. Given and
+    used, it is recorded in ``info`` (``initial_heading_rad``), and path.png draws the track in ENU."""
+    from pdrlearn.track.plots import heading_is_absolute
+
+    if aided:
+        raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
+                        "--fixes give the track its direction; drop --initial-heading")
+    if heading_is_absolute(result.info, session):
+        raise DataError(f"track: --initial-heading sets the start direction of a relative heading, but this "
+                        f"track's heading is absolute ({result.info.get('heading_source')} heading with the waist "
+                        "magnetometer of the session); drop --initial-heading, or track with --streaming (gyroscope "
+                        "heading) to set the start direction")
+    result.info["initial_heading_rad"] = heading0
 
 
 def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:

@@ -740,7 +740,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if hsrc == "fused" and (HARD_IRON_FIT if hard_iron_fit is None else hard_iron_fit):  # decision L84
             hard_iron, hard_iron_info = fit_waist_hard_iron(work, strides, fd.foot_heading(0.0) + lateral,
                                                             keep=~in_gap)
-        wh = WaistHeading(hard_iron_ut=hard_iron).fit_session(work)
+        # decision L98: without a magnetometer the waist heading starts at initial_heading, as the docstring says
+        wh = WaistHeading(hard_iron_ut=hard_iron, initial_heading=initial_heading).fit_session(work)
         warnings += wh.warnings_
         head = _stride_heading(wh, strides)
         if hsrc == "fused":

@@ -117,14 +117,15 @@ def rotated_to_track(gx: np.ndarray, gy: np.ndarray, after: np.ndarray, tx: np.n
 
 
 def heading_is_absolute(info: dict, session: Session) -> bool:
-    """True when a track's heading is referenced to north, from its ``info``: aided by position fixes; the
+    """True when a track's heading is referenced to north, from its ``info``: aided by position fixes; given its
+    start direction (``initial_heading_rad``, ``track --initial-heading``, decision L98); the
     offline plasys waist or fused heading on a session with a waist magnetometer (the waist filter's compass).
     Relative (heading 0 = the start's direction): ``--streaming`` (gyroscopes only), the foot's integrated yaw,
     the lower-back pipelines (their heading starts at the unit's initial facing, docs/waist.md, W5), a
     magnetometer in the session or not. A track without a pipeline in its ``info``: absolute when the session
     has a magnetometer."""
     has_compass = any("Magnetic" in k for k in session.streams)
-    if info.get("aid"):
+    if info.get("aid") or info.get("initial_heading_rad") is not None:  # L98: the user gave the start direction
         return True
     if "pipeline" not in info:
         return has_compass

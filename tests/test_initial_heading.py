@@ -1,0 +1,77 @@
+"""Decision L98 (docs/decisions/localization.md): `pdrlearn track` (offline and --streaming) and `pdrlearn run`
+take --initial-heading DEG (ENU degrees, counter-clockwise from east): a relative-heading track set off at 90
+degrees is the default track turned by 90 degrees about its start; a non-finite value and an absolute heading
+(the waist magnetometer) are one error line."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+
+BUNDLE = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
+
+
+@pytest.fixture(scope="module")
+def walks(tmp_path_factory):
+    """A simulated 12 m walk with its waist magnetometer (``mag``) and without it (``nomag``)."""
+    from pdrlearn import sim
+    from pdrlearn.io import write_session
+
+    root = tmp_path_factory.mktemp("heading")
+    write_session(sim.simulate("walk", 1, length_m=12), root / "mag")
+    write_session(sim.simulate("walk", 1, length_m=12), root / "nomag")
+    (root / "nomag" / "wMagneticField.csv").unlink()
+    return root
+
+
+def _end(out: Path) -> tuple[float, float]:
+    tr = pd.read_csv(out / "trajectory.csv")
+    return float(tr["x"].iloc[-1]), float(tr["y"].iloc[-1])
+
+
+def _turned_90(a: tuple[float, float], b: tuple[float, float]) -> None:
+    # ENU: 90 degrees counter-clockwise about the start (the origin): (x, y) -> (-y, x)
+    assert math.hypot(*a) > 8.0  # the walk went somewhere
+    assert b == pytest.approx((-a[1], a[0]), abs=1e-6)
+
+
+@pytest.mark.parametrize("where, extra", [("nomag", []), ("mag", ["--streaming"])])
+def test_track_initial_heading_turns_the_track(walks, tmp_path, where, extra):
+    args = ["track", str(walks / where), *extra]
+    assert main([*args, "--out", str(tmp_path / "a")]) == 0
+    assert main([*args, "--initial-heading", "90", "--out", str(tmp_path / "b")]) == 0
+    _turned_90(_end(tmp_path / "a"), _end(tmp_path / "b"))
+    info = json.loads((tmp_path / "b" / "summary.json").read_text())["info"]
+    assert info["initial_heading_rad"] == pytest.approx(math.pi / 2)
+    # a negative value is a value, not an option: -90 = south
+    assert main([*args, "--initial-heading", "-90", "--out", str(tmp_path / "c")]) == 0
+    a = _end(tmp_path / "a")
+    assert _end(tmp_path / "c") == pytest.approx((a[1], -a[0]), abs=1e-6)
+
+
+def test_run_initial_heading_turns_the_track(walks, tmp_path):
+    assert main(["run", str(BUNDLE), str(walks / "mag"), "--out", str(tmp_path / "a")]) == 0
+    assert main(["run", str(BUNDLE), str(walks / "mag"), "--initial-heading", "90", "--out", str(tmp_path / "b")]) == 0
+    _turned_90(_end(tmp_path / "a"), _end(tmp_path / "b"))
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf"])
+def test_non_finite_initial_heading_is_one_error_line(walks, tmp_path, capsys, value):
+    for cmd in (["track", str(walks / "nomag")], ["run", str(BUNDLE), str(walks / "nomag")]):
+        assert main([*cmd, "--initial-heading", value, "--out", str(tmp_path / "o")]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and "--initial-heading" in err[0] and "finite number of degrees" in err[0], err
+        assert not (tmp_path / "o").exists()
+
+
+def test_initial_heading_with_an_absolute_heading_is_refused(walks, tmp_path, capsys):
+    assert main(["track", str(walks / "mag"), "--initial-heading", "90", "--out", str(tmp_path / "o")]) == 2
+    err = [line for line in capsys.readouterr().err.strip().splitlines() if not line.startswith("warning:")]
+    assert len(err) == 1 and "absolute" in err[0] and "drop --initial-heading" in err[0], err
+    assert not (tmp_path / "o").exists()
