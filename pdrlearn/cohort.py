@@ -391,3 +391,16 @@ def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
         for s, name in (("mean", "mean"), ("std", "sd"), ("median", "median")):
             out[f"{m}_{name}"] = stats[s].to_numpy()
     return out
+
+
+def groups_text(groups):
+    """groups.csv as printed (``track-all``) and shown in a batch report (``pdrlearn report``, cohort C16):
+    per metric ``mean ± sd (n)``, so the groups compare at a glance."""
+    import pandas as pd
+
+    shown = groups[["group", "n_sessions", "n_failed"]].copy()
+    for m in GROUP_METRICS:
+        if f"{m}_mean" in groups:
+            shown[m] = [("" if pd.isna(mu) else f"{mu:.3g}" + ("" if pd.isna(sd) else f" ± {sd:.2g}") + f" ({n})")
+                        for mu, sd, n in zip(groups[f"{m}_mean"], groups[f"{m}_sd"], groups[f"{m}_n"], strict=True)]
+    return shown

@@ -211,3 +211,64 @@ def test_a_failed_session_keeps_the_warnings_it_raised(tree, tmp_path, monkeypat
     assert good["n_warnings"] >= 1 and "no model:" in good["warnings"]
     assert "failed p02/walk: " in out and "  warned before: no model:" in out
     assert "[2 of 2 sessions: p01/walk, p02/walk]" in err  # the batch line counts the failed session too
+
+
+def test_report_renders_a_track_all_folder(batch, tmp_path):
+    """Cohort C16: `pdrlearn report OUTDIR` on a track-all output: per-session and per-group tables, the failed
+    session with its error, a figure drawn into the report."""
+    _, out, _ = batch
+    assert main(["report", str(out), "--out", str(tmp_path / "r")]) == 0
+    md = (tmp_path / "r" / "report.md").read_text()
+    html = (tmp_path / "r" / "index.html").read_text()
+    assert "## Batch (track-all)" in md and "3 of 4 sessions tracked, 1 failed, in 2 group(s)" in md
+    for caption in ("**per session**", "**per group (mean ± sd (n) over the tracked sessions)**",
+                    "**failed sessions**"):
+        assert caption in md
+    failed = md.split("**failed sessions**")[1].split("**")[0]
+    assert "siteB/p04/broken" in failed and "fAccelerometer.csv" in failed and "siteA/p01/walk" not in failed
+    groups = md.split("**per group")[1].split("**failed")[0]
+    assert "siteA" in groups and "siteB" in groups and " ± " in groups
+    png = tmp_path / "r" / "img" / "000_batch_sessions.png"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and "](img/000_batch_sessions.png)" in md
+    assert "failed sessions" in html and html.count("data:image/png;base64") >= 1
+
+
+def _bad_batch(folder: Path, kind: str) -> None:
+    folder.mkdir()
+    ok = "path,group,status,error,distance_m\nsiteA/p01,siteA,ok,,12.0\n"
+    if kind == "groups only":
+        (folder / "groups.csv").write_text("group,n_sessions,n_failed\nsiteA,1,0\n")
+    elif kind == "empty":
+        (folder / "sessions.csv").write_text("")
+        (folder / "groups.csv").write_text("group,n_sessions,n_failed\nsiteA,1,0\n")
+    elif kind == "header only":
+        (folder / "sessions.csv").write_text(ok.splitlines()[0] + "\n")
+    elif kind == "wrong columns":
+        (folder / "sessions.csv").write_text("user,status,seconds\nu1,ok,3.2\n")
+    elif kind == "bad groups":
+        (folder / "sessions.csv").write_text(ok)
+        (folder / "groups.csv").write_text("user,n\nu1,1\n")
+
+
+@pytest.mark.parametrize("kind, says", [
+    ("groups only", "sessions.csv: not found"),
+    ("empty", "sessions.csv: file is empty"),
+    ("header only", "sessions.csv: has no session rows"),
+    ("wrong columns", "not a track-all sessions.csv (no column path, group, error"),
+    ("bad groups", "groups.csv: not a track-all groups.csv (no column group, n_sessions, n_failed)"),
+])
+def test_report_bad_batch_folder_is_one_error_line(tmp_path, capsys, kind, says):
+    _bad_batch(tmp_path / "b", kind)
+    assert main(["report", str(tmp_path / "b"), "--out", str(tmp_path / "r")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and says in err[0], err
+    assert not (tmp_path / "r").exists()
+
+
+def test_report_recomputes_a_missing_groups_csv(batch, tmp_path):
+    _, out, _ = batch
+    (tmp_path / "b").mkdir()
+    shutil.copyfile(out / "sessions.csv", tmp_path / "b" / "sessions.csv")
+    assert main(["report", str(tmp_path / "b"), "--out", str(tmp_path / "r")]) == 0
+    md = (tmp_path / "r" / "report.md").read_text()
+    assert "**per group" in md and "siteB" in md.split("**per group")[1]

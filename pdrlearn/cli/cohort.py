@@ -31,6 +31,7 @@ from pdrlearn.cohort import (
     find_sessions,
     folder_bytes,
     group_table,
+    groups_text,
     run_cohort,
     session_group,
     user_sessions,
@@ -444,18 +445,6 @@ def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
     tmp.replace(path)
 
 
-def _groups_text(groups: pd.DataFrame) -> pd.DataFrame:
-    """groups.csv as printed: per metric ``mean ± sd (n)``, so the groups compare at a glance."""
-    import pandas as pd
-
-    shown = groups[["group", "n_sessions", "n_failed"]].copy()
-    for m in ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "median_stride_length_m"):
-        if f"{m}_mean" in groups:
-            shown[m] = [("" if pd.isna(mu) else f"{mu:.3g}" + ("" if pd.isna(sd) else f" ± {sd:.2g}") + f" ({n})")
-                        for mu, sd, n in zip(groups[f"{m}_mean"], groups[f"{m}_sd"], groups[f"{m}_n"], strict=True)]
-    return shown
-
-
 def track_all(
     root: Path = typer.Argument(..., help="Folder holding session folders at any depth (a session folder has "
                                 "meta.json or a sensor CSV), e.g. study/siteA/p01/clinic."),
@@ -549,7 +538,7 @@ def track_all(
     else:
         typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked; wrote {out}/"
                    "<session>/, sessions.csv, groups.csv")
-        print(_groups_text(groups).to_markdown(index=False))
+        print(groups_text(groups).to_markdown(index=False))
         given = {rel: str(p) for rel, p in zip(rels, found, strict=True)}
         for r in failed:
             typer.echo(f"failed {r.name}: {r.error}")

@@ -11,7 +11,8 @@ from pdrlearn.cli.common import FORCE_HELP, existed, out_folder, replaced
 
 def report(
     source: Path = typer.Argument(..., help="Model directory (manifest.json) or a results folder "
-                                  "(evaluation.json, cohort_summary.csv, summary.json, PNG figures)."),
+                                  "(evaluation.json, cohort_summary.csv, a track-all output: sessions.csv + "
+                                  "groups.csv, summary.json, PNG figures)."),
     out: Path = typer.Option(..., "--out", "-o", help="Report folder to write (index.html + report.md)."),
     title: str = typer.Option(None, help="Page title."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -26,6 +27,11 @@ def report(
             --json > out/eval_u1/evaluation.json
 
         pdrlearn report out/eval_u1 --out out/report_u1
+
+        pdrlearn track-all study/ --out results/batch && pdrlearn report results/batch --out results/batch_report
+
+    A track-all output gets a batch section (cohort C16): the per-session and per-group tables, the failed
+    sessions with their errors and warnings, and a figure of each session's distance and gait speed.
     """
     from pdrlearn.report import build_report
 

@@ -8,6 +8,7 @@ import html
 import json
 import os
 import shutil
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -24,6 +25,8 @@ class Section:
     text: str = ""
     tables: list[tuple[str, pd.DataFrame]] = field(default_factory=list)
     images: list[tuple[str, Path]] = field(default_factory=list)
+    #: figures drawn into the report itself (cohort C16): (caption, file name, draw(path) -> bool drawn)
+    plots: list[tuple[str, str, Callable[[Path], bool]]] = field(default_factory=list)
 
 
 def _read_json(p: Path) -> dict:
@@ -148,6 +151,9 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
 
     for p in find("evaluation.json"):
         sections.extend(_evaluation_sections_of(p))
+    batches = {p.parent for p in find("sessions.csv")} | {p.parent for p in find("groups.csv")}
+    for folder in sorted(batches):  # cohort C16: a track-all output folder (groups.csv alone: one error line)
+        sections.append(_batch_section(folder, root))
     for p in find("cohort_summary.csv"):
         sections.append(Section(f"Cohort — {p.parent.name}", tables=[("per-user results", read_table(p))]))
     tracks = find("summary.json")
@@ -177,8 +183,20 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
             sections.append(Section(kind, images=[(str(p.relative_to(root)), p) for p in ps]))
     if not sections:
         raise DataError(f"{root}: nothing to report (no manifest.json, evaluation.json, cohort_summary.csv, "
-                        "summary.json or PNG); run pdrlearn train/evaluate/track first")
+                        "sessions.csv, summary.json or PNG); run pdrlearn train/evaluate/track/track-all first")
     return sections
+
+
+def _batch_section(folder: Path, root: Path) -> Section:
+    """Cohort C16: the section of a track-all output folder (:mod:`pdrlearn.report.batch`)."""
+    from pdrlearn.report.batch import batch_tables, plot_batch, read_batch
+
+    sessions, groups = read_batch(folder)
+    text, tables = batch_tables(sessions, groups)
+    rel = folder.relative_to(root).as_posix()
+    return Section(f"Batch (track-all) — {folder.resolve().name if rel == '.' else rel}", text=text, tables=tables,
+                   plots=[("distance and gait speed per session (sessions.csv)", "batch_sessions.png",
+                           lambda path: plot_batch(sessions, path))])
 
 
 #: The tracking summary columns shown in reports (the full JSON stays in each run's summary.json).
@@ -250,7 +268,16 @@ def build_report(source: str | os.PathLike, out: str | os.PathLike, *, title: st
         names: dict[Path, str] = {}
         (tmp / "img").mkdir()
         for s in sections:
+            drawn = []
+            for caption, fname, draw in s.plots:  # cohort C16: drawn into the report's own img/
+                name = f"img/{len(names):03d}_{fname}"
+                if draw(tmp / name):
+                    names[tmp / name] = name
+                    drawn.append((caption, tmp / name))
+            s.images = drawn + s.images
             for _, p in s.images:
+                if p in names:
+                    continue
                 name = f"img/{len(names):03d}_{p.name}"
                 shutil.copyfile(p, tmp / name)
                 names[p] = name

@@ -1,0 +1,115 @@
+"""Cohort decision C16: the report section of a ``pdrlearn track-all`` output folder (``sessions.csv`` +
+``groups.csv``): the per-session table, the per-group table, the failed sessions with their errors (and the
+warnings they raised first, C15) and a figure of each session's distance and gait speed."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+from pdrlearn.io.plasys import read_table
+
+#: the columns a sessions.csv must have to be reported (track-all's first four, decision C12)
+REQUIRED_SESSION_COLUMNS = ("path", "group", "status", "error")
+#: the per-session table's columns, those sessions.csv has (the full row stays in sessions.csv)
+SESSION_TABLE_COLUMNS = ("path", "group", "status", "n_steps", "distance_m", "distance_error_pct",
+                         "final_position_error_m", "walking_time_s", "gait_speed_mps", "median_cadence_spm",
+                         "median_stride_length_m", "median_stride_time_s", "n_warnings")
+#: the columns a groups.csv must have (``pdrlearn.cohort.group_table``)
+REQUIRED_GROUP_COLUMNS = ("group", "n_sessions", "n_failed")
+
+_REGENERATE = "regenerate the folder with `pdrlearn track-all ROOT --out OUTDIR`"
+
+
+def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """``(sessions, groups)`` of a track-all output folder, checked: a missing, empty or malformed
+    sessions.csv, one without track-all's columns or rows, or a groups.csv that does not fit it is one
+    :class:`DataError` line naming the file. A folder without groups.csv gets it recomputed from sessions.csv
+    (it is a ``groupby`` of it, C12)."""
+    from pdrlearn.cohort import group_table
+
+    folder = Path(folder)
+    path = folder / "sessions.csv"
+    if not path.is_file():
+        raise DataError(f"{path}: not found; a track-all output folder holds sessions.csv (and groups.csv) - "
+                        f"{_REGENERATE}")
+    sessions = read_table(path)
+    missing = [c for c in REQUIRED_SESSION_COLUMNS if c not in sessions.columns]
+    if missing:
+        raise DataError(f"{path}: not a track-all sessions.csv (no column {', '.join(missing)}; it has "
+                        f"{', '.join(map(str, sessions.columns[:6]))}{' ...' if len(sessions.columns) > 6 else ''});"
+                        f" {_REGENERATE}")
+    if not len(sessions):
+        raise DataError(f"{path}: has no session rows; {_REGENERATE}")
+    bad = sorted(set(sessions["status"].astype(str)) - {"ok", "failed"})
+    if bad:
+        raise DataError(f"{path}: column status must be ok or failed, found {', '.join(bad[:3])}; {_REGENERATE}")
+    sessions["group"] = sessions["group"].astype(str)
+    gpath = folder / "groups.csv"
+    if not gpath.is_file():
+        return sessions, group_table(sessions)
+    groups = read_table(gpath)
+    missing = [c for c in REQUIRED_GROUP_COLUMNS if c not in groups.columns]
+    if missing:
+        raise DataError(f"{gpath}: not a track-all groups.csv (no column {', '.join(missing)}); {_REGENERATE}")
+    groups["group"] = groups["group"].astype(str)
+    if set(groups["group"]) != set(sessions["group"]):
+        raise DataError(f"{gpath}: its groups ({', '.join(sorted(groups['group'])[:4])}) are not those of "
+                        f"sessions.csv ({', '.join(sorted(set(sessions['group']))[:4])}); {_REGENERATE}")
+    return sessions, groups
+
+
+def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame) -> tuple[str, list[tuple[str, pd.DataFrame]]]:
+    """The batch section's summary line and tables: per session, per group (``mean ± sd (n)``, as track-all
+    prints it), the failed sessions with their errors and warnings."""
+    from pdrlearn.cohort import groups_text
+
+    n, failed = len(sessions), sessions[sessions["status"] != "ok"]
+    text = (f"{n - len(failed)} of {n} sessions tracked, {len(failed)} failed, in {len(groups)} group(s); "
+            "sessions.csv and groups.csv hold every column at full precision.")
+    tables = [("per session", sessions[[c for c in SESSION_TABLE_COLUMNS if c in sessions.columns]]),
+              ("per group (mean ± sd (n) over the tracked sessions)", groups_text(groups))]
+    if len(failed):
+        cols = ["path", "group", "error"] + [c for c in ("warnings",) if c in failed.columns]
+        tables.append(("failed sessions", failed[cols].fillna("")))
+    return text, tables
+
+
+def plot_batch(sessions: pd.DataFrame, path: Path, *, dpi: float | None = None) -> bool:
+    """A figure of each tracked session's distance (m) and gait speed (m/s), one bar per session coloured by
+    its group, a failed session named on the axis with "failed" and no bar; saved at ``path``. False (no
+    figure) when no session has either value."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from pdrlearn.plots import save_atomic
+
+    metrics = [(c, label) for c, label in (("distance_m", "distance (m)"), ("gait_speed_mps", "gait speed (m/s)"))
+               if c in sessions and pd.to_numeric(sessions[c], errors="coerce").notna().any()]
+    if not metrics:
+        return False
+    groups = list(dict.fromkeys(sessions["group"].astype(str)))
+    colours = {g: plt.get_cmap("tab10")(i % 10) for i, g in enumerate(groups)}
+    y = np.arange(len(sessions))
+    fig, axes = plt.subplots(1, len(metrics), figsize=(4.5 * len(metrics) + 2, 0.32 * len(sessions) + 1.6),
+                             sharey=True, squeeze=False)
+    labels = [f"{p} (failed)" if s != "ok" else str(p) for p, s in zip(sessions["path"], sessions["status"],
+                                                                         strict=True)]
+    for ax, (col, label) in zip(axes[0], metrics, strict=True):
+        v = pd.to_numeric(sessions[col], errors="coerce").to_numpy(float)
+        ax.barh(y, np.nan_to_num(v), color=[colours[g] for g in sessions["group"].astype(str)])
+        ax.set_xlabel(label)
+        ax.grid(axis="x", alpha=0.3)
+    axes[0][0].set_yticks(y, labels, fontsize=8)
+    axes[0][0].invert_yaxis()
+    handles = [plt.Rectangle((0, 0), 1, 1, color=colours[g]) for g in groups]
+    fig.legend(handles, groups, title="group", loc="upper right", fontsize=8)
+    fig.suptitle("track-all: per session")
+    save_atomic(fig, Path(path), dpi=dpi)
+    plt.close(fig)
+    return True
