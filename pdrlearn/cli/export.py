@@ -381,7 +381,8 @@ def _result(steps, start_ll=None, start_alt: float = 0.0):
 
     df = pd.DataFrame([st.to_dict() for st in steps]).rename(columns={"length": "length_class"})
     if df.empty:
-        df = pd.DataFrame(columns=["start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "gap_s"])
+        df = pd.DataFrame(columns=["start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "impossible",
+                                   "gap_s"])
     first = [c for c in _STEP_COLUMNS if c in df.columns]
     df = df[first + [c for c in df.columns if c not in first]]
     heading = df["heading_rad"].to_numpy(float)
