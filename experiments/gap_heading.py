@@ -38,11 +38,11 @@ def _crossing(session, deg: float) -> float:
     return float(g["t"].iloc[i])
 
 
-def with_gap(session, tg: float):
-    """A copy of ``session`` without the fGyroscope samples in (tg, tg + GAP_S]."""
+def with_gap(session, tg: float, length_s: float = GAP_S):
+    """A copy of ``session`` without the fGyroscope samples in (tg, tg + length_s]."""
     s = session.copy()
     g = s.streams["fGyroscope"]
-    keep = ~((g.t > tg) & (g.t <= tg + GAP_S))
+    keep = ~((g.t > tg) & (g.t <= tg + length_s))
     s.streams["fGyroscope"] = Stream("fGyroscope", g.t[keep], g.values[keep])
     return s
 

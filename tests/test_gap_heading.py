@@ -1,5 +1,5 @@
-"""Decisions L90-L92: a foot-gyroscope gap does not turn the strides before it, its turn is the waist gyroscope's
-(L91) and the gap warning says what happens to the heading."""
+"""Decisions L90-L92, L99: a foot-gyroscope gap does not turn the strides before it, its turn is the waist
+gyroscope's (L91; the streamed default since L99) and the gap warning says what happens to the heading."""
 
 from __future__ import annotations
 
@@ -61,7 +61,7 @@ def test_the_offline_heading_after_a_gap_is_re_anchored_to_the_waist(walk):
 
 
 def test_the_streamed_turn_inside_a_foot_gap_is_the_waist_gyroscopes_with_the_option(walk):
-    """Decision L91 (an option, not the default): the stride across the gap turns by the waist gyroscope."""
+    """Decision L91: the stride across the gap turns by the waist gyroscope (streamed: the default, L99)."""
     tc = _turned_at(walk, 45.0) - 0.5
     gapped = _gap(walk, tc, tc + 1.0)
     last = track_plasys(walk, streaming=True).steps["heading_rad"].iloc[-4:].to_numpy()
@@ -70,6 +70,38 @@ def test_the_streamed_turn_inside_a_foot_gap_is_the_waist_gyroscopes_with_the_op
     assert _heading_diff(res[True].steps["heading_rad"].iloc[-4:], last).max() < 5.0
     assert any("the turn inside them is the waist gyroscope's (L91)" in w for w in res[True].info["warnings"])
     assert any("the heading after them is uncertain" in w for w in res[False].info["warnings"])
+
+
+@pytest.fixture(scope="module")
+def u_turn():
+    return simulate_path(parse_route("straight:6, turn:180, straight:6"), UserProfile.from_seed(11), speed="normal",
+                         rate_hz=20.0, seed=1, name="gap_u_turn", scenario="route")
+
+
+def test_the_streamed_default_bridges_a_gap_inside_a_180_deg_turn(u_turn):
+    """Decision L99: streamed, the stride across a 1.5 s foot-gyroscope gap in the middle of a 180 deg turn turns
+    by default with the waist gyroscope from the foot's rest before the gap to its rest after it; with L90's 0
+    (``waist_bridge=False``, the default before L99) the walk back heads the way it came."""
+    tc = _turned_at(u_turn, 90.0) - 0.75
+    gapped = _gap(u_turn, tc, tc + 1.5)
+    intact = track_plasys(u_turn, streaming=True).steps["heading_rad"].iloc[-4:].to_numpy()
+    default, off = track_plasys(gapped, streaming=True), track_plasys(gapped, streaming=True, waist_bridge=False)
+    assert (default.steps["gap_s"] > 1.0).sum() == 1  # the gap is one stride of 0 m (E30 / E46)
+    assert _heading_diff(default.steps["heading_rad"].iloc[-4:], intact).max() < 5.0
+    assert _heading_diff(off.steps["heading_rad"].iloc[-4:], intact).min() > 90.0
+    truth = u_turn.trajectory
+    end = np.interp(default.steps["end_s"].iloc[-1], truth["t"], np.unwrap(truth["heading_rad"]))
+    assert _heading_diff(default.steps["heading_rad"].iloc[-1], end) < 10.0
+    assert any("the turn inside them is the waist gyroscope's (L91)" in w for w in default.info["warnings"])
+
+
+def test_offline_keeps_l90_by_default(u_turn):
+    """L99 changes the streamed paths only: offline the default is still L90's (L91's bridge an option)."""
+    tc = _turned_at(u_turn, 90.0) - 0.75
+    gapped = _gap(u_turn, tc, tc + 1.5)
+    a, b = track_plasys(gapped), track_plasys(gapped, waist_bridge=False)
+    assert a.steps.equals(b.steps) and a.trajectory.equals(b.trajectory)
+    assert not any("(L91)" in w for w in a.info["warnings"])
 
 
 def test_without_a_waist_the_gap_warning_says_the_heading_is_uncertain(walk):

@@ -70,14 +70,26 @@ def test_run_and_track_streaming_make_one_gap_row_per_foot_gap(root, walk, cut):
 
 
 def test_a_gap_row_keeps_the_position_and_the_tracker_heading(root, walk):
-    """The held gap row is emitted at the next stride, at the position before it; the running heading of the
-    tracker (E30: kept across the gap) is what it was without E46's rows."""
+    """The held gap row is emitted at the next stride, at the position before it (E46)."""
     tr = Tracker(root / "bundle")
     steps = replay(tr, without(walk, 10.2, 11.7), 1.0)
     i = next(k for k, s in enumerate(steps) if s.gap_s > 0)
     assert (steps[i].x, steps[i].y, steps[i].z) == (steps[i - 1].x, steps[i - 1].y, steps[i - 1].z)
     assert np.hypot(steps[i + 1].x - steps[i].x, steps[i + 1].y - steps[i].y) == pytest.approx(
         abs(steps[i + 1].length_m), abs=1e-9)
+
+
+def test_run_bridges_a_foot_gyroscope_gap_by_default_as_track_streaming(root, walk):
+    """Decision L99: `Tracker` (so `pdrlearn run`) turns the stride across a 1.5 s foot-gyroscope gap by the waist
+    gyroscope by default, as `track --streaming` does; ``waist_bridge=False`` keeps L90's turn 0."""
+    s = without(walk, 10.0, 11.5, names=["fGyroscope"])
+    clean = replay(Tracker(root / "bundle"), walk, 1.0)[-1].heading_rad
+    run, off = (_rows(replay(Tracker(root / "bundle", **kw), s, 1.0)) for kw in ({}, {"waist_bridge": False}))
+    st = get_pipeline("plasys")(s, model=str(root / "model"), streaming=True).steps
+    assert (run["gap_s"] > 1.0).sum() == 1
+    assert _same_heading(run["heading_rad"], st["heading_rad"])  # parity, 1e-6 rad
+    assert np.degrees(abs(wrap_angle(run["heading_rad"].iloc[-1] - clean))) < 5.0
+    assert np.degrees(abs(wrap_angle(off["heading_rad"].iloc[-1] - clean))) > 20.0
 
 
 def test_no_gap_row_before_the_first_stride(root, walk):

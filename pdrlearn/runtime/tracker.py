@@ -309,8 +309,9 @@ class Tracker:
         touch (decision L61; ``pdrlearn track --streaming``'s ``waist_gap_yaw``); the foot's pivot is always
         added to a stride headed by the foot (L31).
     waist_bridge : the stride across a foot accelerometer / gyroscope gap over 1 s turns by the waist gyroscope's
-        turn (decision L91, an option: not adopted as the default; ``pdrlearn track --streaming``'s
-        ``waist_bridge``) when the waist heads the strides; default: it keeps the heading (E30, L90).
+        turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest after it)
+        when the waist heads the strides (decision L99, the default; L91's mechanism; ``pdrlearn track
+        --streaming``'s ``waist_bridge``); False: it keeps the heading (E30, L90).
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -351,7 +352,7 @@ class Tracker:
         units=None,
         sensors=None,
         waist_gap_yaw: bool = True,
-        waist_bridge: bool = False,
+        waist_bridge: bool = True,
         contacts: bool = False,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
@@ -489,7 +490,7 @@ class Tracker:
         self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
         self._row_gaps, self._heights = [], []  # decisions E46, E47
         self.waist_gap_yaw = bool(waist_gap_yaw)  # decision L61
-        self.waist_bridge = bool(waist_bridge)  # decision L91
+        self.waist_bridge = bool(waist_bridge)  # decisions L91 / L99 (the default)
         #: the input side (decision E22): streams at another rate than the bundle's are tracked at their own
         #: rate (``resample="native"``, the default, as ``pdrlearn track --streaming``), resampled to the
         #: bundle's (``True``) or refused (``False``); ``inputs.input_rates_hz`` / ``resampled_hz`` tell which

@@ -159,9 +159,9 @@ def get_pipeline(name: str) -> Pipeline:
       ((lat, lon)), ``params`` (FootDisplacement settings), ``steps``, ``heading``, ``initial_heading``,
       ``bounds``, ``bounds_scale``, ``down_mode``, ``min_confidence``, ``align``, ``rules`` (``"bayes"`` /
       ``"thesis"``), ``fused_tau_s``, ``streaming``, ``distance_gain``, ``calibration``, ``gap_yaw``, ``waist_gap_yaw``,
-      ``waist_bridge`` (decision L91, an option), ``warn_out_of_domain``, ``toe_off`` (decision L73: the
-      toe-off / stance / swing columns, offline), ``hard_iron_fit`` (decision L84), ``contacts`` (decisions
-      E49-E51: with ``streaming``, each stride's initial contact and stride time).
+      ``waist_bridge`` (decisions L91 / L99: streamed on by default), ``warn_out_of_domain``, ``toe_off``
+      (decision L73: the toe-off / stance / swing columns, offline), ``hard_iron_fit`` (decision L84),
+      ``contacts`` (decisions E49-E51: with ``streaming``, each stride's initial contact and stride time).
     - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
       step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``

@@ -493,7 +493,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  min_confidence: float | None = None, align: bool = False, rules: str | None = None,
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
-                 waist_bridge: bool = False, warn_out_of_domain: float | None = None, toe_off: bool = False,
+                 waist_bridge: bool | None = None, warn_out_of_domain: float | None = None, toe_off: bool = False,
                  hard_iron_fit: bool | None = None, contacts: bool = False, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
@@ -536,9 +536,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     waist_gap_yaw : streaming: a stride headed by the waist gyroscope adds the waist's turn between two strides
         that do not touch (decision L61; None = the :func:`track_streaming` default); offline not used (the
         waist heading filter integrates the whole session)
-    waist_bridge : decision L91 (an option, not adopted as the default): the turn over a foot-IMU gap (over 1 s,
-        B11) is the waist gyroscope's, offline (the stride across the gap and the pause before the first stride
-        after it) and streamed (the stride across it and the pause before the next); False (default), or no waist
+    waist_bridge : the turn over a foot-IMU gap (over 1 s, B11) is the waist gyroscope's, offline (the stride
+        across the gap and the pause before the first stride after it; decision L91, an option) and streamed (the
+        stride across it, from the foot's rest before the gap to its rest after it, and the pause before the next;
+        decision L99, the streamed default). None (default): True streamed, False offline; False, or no waist
         gyroscope: 0 (L90: the foot's interpolated gyroscope is never integrated there)
     calibration : M3 with a trained model: use the model's distance calibration (L26): its gain (unless
         ``distance_gain`` is given) and, for the bayes rules, its measured stride-length sd in place of the
@@ -585,7 +586,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                               heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
                               bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
                               calibration=calibration, rules=rules, min_confidence=min_confidence,
-                              warn_out_of_domain=warn_out_of_domain, waist_bridge=waist_bridge, contacts=contacts,
+                              warn_out_of_domain=warn_out_of_domain, contacts=contacts,
+                              **({} if waist_bridge is None else {"waist_bridge": bool(waist_bridge)}),
                               **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}),
                               **({} if waist_gap_yaw is None else {"waist_gap_yaw": bool(waist_gap_yaw)}))
         if no_classes:
@@ -616,7 +618,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     strides = _detect_strides(session, kind, steps, foot.t, stance, warnings).reset_index(drop=True)
     # decision B11: report long stream gaps; no foot stride spans a foot-stream gap
     foot_gaps = long_gaps(session, ("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
-    bridged = waist_bridge and session.has("wGyroscope", "wAccelerometer")  # decision L91
+    bridged = bool(waist_bridge) and session.has("wGyroscope", "wAccelerometer")  # decision L91 (offline: off)
     waist_heads = (heading or cfg["heading"]) in ("waist", "fused") and session.has(
         "wAccelerometer", "wGyroscope") and session.has_frame("waist")
     how = (heading or cfg["heading"]) if waist_heads else ("bridged" if bridged else "none")  # decision L92
@@ -942,7 +944,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     heading: str = "auto", initial_heading: float = 0.0, bounds=None, bounds_scale: float = 2.0,
                     down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca",
                     distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = True,
-                    waist_gap_yaw: bool = True, waist_bridge: bool = False, rules: str | None = None,
+                    waist_gap_yaw: bool = True, waist_bridge: bool = True, rules: str | None = None,
                     min_confidence: float | None = None,
                     warn_out_of_domain: float | None = None, contacts: bool = False) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
@@ -965,7 +967,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     (decision L31, as the runtime): a stride headed by the foot adds the turn of the foot
     pivoting in the gap before it (:func:`~pdrlearn.kernels.stride.gap_yaw`, the streamed form of L28).
     ``waist_gap_yaw`` (decision L61, as the runtime's): a stride headed by the waist gyroscope adds the waist's
-    turn in the gap before it (:func:`~pdrlearn.kernels.stride.stride_gap_yaw`).
+    turn in the gap before it (:func:`~pdrlearn.kernels.stride.stride_gap_yaw`). ``waist_bridge`` (decision L99,
+    as the runtime's; L91's mechanism): a stride headed by the waist gyroscope across a foot-IMU gap over 1 s turns
+    by the waist's turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest
+    after it); False: 0 (L90).
     """
     if method not in ("M2", "M3"):
         raise DataError(f"plasys streaming: method '{method}' is not streamable; use M2 or M3")
@@ -986,11 +991,11 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         raise DataError(f"session '{session.name}': no stance-to-stance stride found on the foot gyroscope")
     table = pd.DataFrame({"start_s": strides[:, 0], "end_s": strides[:, 1]})
     # decision B11 / E30: as the streaming runtime (parity), a stride across a foot-stream gap over 1 s moves 0 m,
-    # keeps the heading (L91: turns with the waist gyroscope when it heads the strides) and has no classes; a
+    # turns with the waist gyroscope when it heads the strides (L99; else keeps the heading, L90) and has no classes; a
     # waist gap is only warned (bridged)
     foot_gaps = long_gaps(session, ("fAccelerometer", "fGyroscope", "fForceA", "fForceB"))
     bridged = bool(waist_bridge and heading in ("auto", "waist-gyro") and "waist" in forward
-                   and "waist_gyr" in available and "waist_acc" in available)  # decision L91
+                   and "waist_gyr" in available and "waist_acc" in available)  # decisions L91 / L99
     warnings: list[str] = gap_warnings({**foot_gaps, **long_gaps(session, ("wAccelerometer", "wGyroscope"))},
                                        "no displacement is counted inside them (a stride across a foot gap moves 0 m, "
                                        "as the runtime, E30)"
