@@ -160,7 +160,7 @@ def import_command(
         if clash:
             raise DataError(f"{csv}: --split-at-clock-reset writes one session per recording and cannot take "
                             f"{', '.join(clash)} (which recording their rows belong to is not known); import without "
-                            "them, then add the labels to each part's folder")
+                            "them, then put each part's labels in its folder (ms from that part's first sample)")
     unit = unit or m.get("unit") or "foot"
     columns: dict[str, list[str]] = {}
     for kind in KINDS:

@@ -568,9 +568,9 @@ def cut_to_common_span(streams: dict[str, Stream], folder: Path) -> tuple[float,
         return None
     t0, t1, units = found
     if t1 - t0 < SPAN_TOLERANCE_S:
-        raise DataError(f"{folder}: the {' and '.join(units)} files have no common time span (latest start {t0:.2f} s, "
-                        f"earliest end {t1:.2f} s); --common-span cannot cut them -- restore the whole files from "
-                        "the recording (decision B81)")
+        raise DataError(f"{folder}: the {' and '.join(units)} files cover under {SPAN_TOLERANCE_S:g} s in common "
+                        f"({t0:.2f}-{t1:.2f} s), nothing to track; --common-span cannot cut them to it -- restore the "
+                        "whole files from the recording (decision B81)")
     dropped = []
     for n, s in list(streams.items()):
         keep = (s.t >= t0 - 1e-9) & (s.t <= t1 + 1e-9)
