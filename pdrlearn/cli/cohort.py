@@ -465,6 +465,7 @@ def track_all(
     toe_off: bool = _track.TOE_OFF_OPT,
     contacts: bool = _track.CONTACTS_OPT,
     dpi: int = _track.DPI_OPT,
+    common_span: bool = _track.COMMON_SPAN_OPT,
     group_depth: int = typer.Option(1, "--group-depth", min=1, help="Folder levels below ROOT that name a "
                                     "session's group in sessions.csv and groups.csv (1: siteA of "
                                     "siteA/p01/clinic; 2: siteA/p01)."),
@@ -503,7 +504,7 @@ def track_all(
                               min_confidence=min_confidence, length_bounds=length_bounds,
                               warn_out_of_domain=warn_out_of_domain, start=start, params=params,
                               streaming=streaming, realtime=realtime, reference_point=reference_point,
-                              toe_off=toe_off, contacts=contacts, dpi=dpi)
+                              toe_off=toe_off, contacts=contacts, dpi=dpi, common_span=common_span)
     found = find_sessions(root)
     out_folder(out, "track-all", force=force, inputs=(root, params))
     was = existed(out)

@@ -104,6 +104,10 @@ def import_command(
     name: str = typer.Option(None, "--name", help="Session name (default: the CSV's name)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
                                "unit's files, labels and meta.json are kept)."),
+    split_at_clock_reset: bool = typer.Option(False, "--split-at-clock-reset", help="The export's clock restarts "
+                                              "(a jump back of over 1 s, B73): write one session per recording, "
+                                              "--out/part1, --out/part2 ... (refused without it; not with --merge, "
+                                              "--steps or --labels; B80)."),
     force: bool = typer.Option(False, "--force", help="Replace a session folder that 'pdrlearn import' wrote."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object with every mapping choice."),
 ) -> None:
@@ -114,7 +118,9 @@ def import_command(
     printed on stderr and kept in meta.json ("imported"). Comma, semicolon and tab separated files with
     decimal commas are read (B24), and Shimmer Consensys exports: a 'sep=' first line, a units row under the
     header (ms, m/(s^2), deg/s: used for the units), Shimmer_XXXX_..._CAL names (B66). A --frames entry the
-    data contradict is refused (--force-frame keeps it, B67).
+    data contradict is refused (--force-frame keeps it, B67). An export whose clock restarts (the time jumps
+    back by over 1 s) is refused; --split-at-clock-reset writes each recording as its own session, OUT/part1,
+    OUT/part2 ... (B80).
     Timestamps are written in ms since the export's first one (its value is kept in meta.json; --steps
     and --labels tables on the export's clock are shifted alike). Check the result with 'pdrlearn info'.
 
@@ -129,12 +135,15 @@ def import_command(
 
         pdrlearn import lowback.csv --out sessions/lb1 --unit waist --steps strides.csv --labels ics.csv \\
             --labels bouts.csv --labels turns.csv
+
+        pdrlearn import restarted.csv --out sessions/walk2 --split-at-clock-reset   # walk2/part1, walk2/part2
     """
     from pdrlearn.atomic import expect_unchanged
     from pdrlearn.io import read_session, write_session
     from pdrlearn.io.importer import (
         KINDS,
         import_csv,
+        import_csv_parts,
         import_labels,
         import_steps,
         merge_sessions,
@@ -145,6 +154,13 @@ def import_command(
     if force_frame and frames is None and m.get("frames") is None:  # decision B69: it would be ignored
         raise DataError(f"{csv}: --force-frame keeps a --frames entry the data contradict (B67), and none is given; "
                         "add --frames AXES (e.g. x=forward,y=up,z=right) or drop --force-frame")
+    if split_at_clock_reset:  # decision B80: labels on a clock that restarted belong to which part? not known
+        clash = [o for o, given in (("--merge", merge), ("--steps", steps is not None), ("--labels", bool(labels)),
+                                    ("--labels-relative", labels_relative)) if given]
+        if clash:
+            raise DataError(f"{csv}: --split-at-clock-reset writes one session per recording and cannot take "
+                            f"{', '.join(clash)} (which recording their rows belong to is not known); import without "
+                            "them, then put each part's labels in its folder (ms from that part's first sample)")
     unit = unit or m.get("unit") or "foot"
     columns: dict[str, list[str]] = {}
     for kind in KINDS:
@@ -175,6 +191,9 @@ def import_command(
         if other:
             raise DataError(f"{out}: holds {', '.join(other[:3])}, which a session rewrite would drop; move them "
                             "out first")
+    elif out.is_dir() and any(out.iterdir()) and _split_written(out):  # decision B80: an earlier split import
+        if not force:
+            raise DataError(f"{out}: already holds the parts of an imported session; pass --force to replace them")
     elif out.is_dir() and any(out.iterdir()):
         meta = out / "meta.json"
         try:
@@ -205,13 +224,20 @@ def import_command(
         recs = recs if isinstance(recs, list) else [recs] if isinstance(recs, dict) else []
         origin = next((r["time"]["origin_s"] for r in recs if isinstance(r, dict)
                        and isinstance(r.get("time"), dict) and r["time"].get("origin_s") is not None), None)
-    session, record = import_csv(csv, unit=unit, origin_s=origin, columns=columns, time_column=time or m.get("time"),
-                                 time_unit=time_unit or mu.get("time"), units=units,
-                                 frame=frames if frames is not None else m.get("frames"),
-                                 sensor_height_m=sensor_height if sensor_height is not None
-                                 else m.get("sensor_height_m"), name=name or (None if merge else out.name),
-                                 subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
-                                 rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows)
+    kw = dict(unit=unit, columns=columns, time_column=time or m.get("time"), time_unit=time_unit or mu.get("time"),
+              units=units, frame=frames if frames is not None else m.get("frames"),
+              sensor_height_m=sensor_height if sensor_height is not None else m.get("sensor_height_m"),
+              name=name or (None if merge else out.name),
+              subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
+              rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows)
+    if split_at_clock_reset:
+        parts = import_csv_parts(csv, **kw)
+        if len(parts) > 1:
+            _write_parts(parts, csv, unit, out, force_frame, as_json)
+            return
+        session, record = parts[0]
+    else:
+        session, record = import_csv(csv, origin_s=origin, **kw)
     if steps is not None:
         if base is not None and base.steps is not None:
             raise DataError(f"{out}: already has steps.csv; --steps with --merge would replace it -- leave --steps out")
@@ -237,6 +263,9 @@ def import_command(
     write_session(session, out, overwrite=True)
     if not as_json:
         _say(record, session, out, merge, existed)
+        if split_at_clock_reset:
+            typer.echo(f"note: {csv}: no clock reset found, so nothing to split: one session written to {out} "
+                       "(B80)", err=True)
     else:
         print_json({"out": str(out), "merged": merge, "imported": record,
                     "frames": {p: f.to_dict() for p, f in session.frames.items()}})
@@ -246,6 +275,60 @@ def import_command(
         typer.echo(f"warning: {out}: {axes_warning}", err=True)
     if frame_warning:
         typer.echo(f"warning: {out}: {frame_warning}", err=True)
+
+
+def _split_written(folder: Path) -> bool:
+    """Decision B80: ``folder`` holds only what ``pdrlearn import --split-at-clock-reset`` wrote there: folders
+    ``part1``, ``part2`` ..., each holding only the files its import wrote (meta.json ``"imported"``)."""
+    import re
+
+    entries = list(folder.iterdir())
+    for p in entries:
+        if not (p.is_dir() and re.fullmatch(r"part\d+", p.name)):
+            return False
+        try:
+            meta = json.loads((p / "meta.json").read_text())
+        except (OSError, ValueError):
+            return False
+        if not isinstance(meta, dict) or "imported" not in meta:
+            return False
+        if any(q.name not in _import_written(meta) for q in p.iterdir()):
+            return False
+    return bool(entries)
+
+
+def _write_parts(parts: list, csv: Path, unit: str, out: Path, force_frame: bool, as_json: bool) -> None:
+    """Decision B80: check every part of a split export as one import is checked (L71's axes, B67's frame), then
+    write them as ``out/part1``, ``out/part2`` ... in one atomic step (all parts or none), and say what was
+    written: each part's summary, then one line listing the parts."""
+    from pdrlearn.atomic import atomic_directory
+    from pdrlearn.io import write_session
+
+    warnings = []
+    for session, record in parts:
+        lines = record["part"]["lines"]
+        for w in (_check_axes(session, unit, record, csv), _check_frame(session, unit, record, csv, force_frame)):
+            if w:
+                warnings.append(f"{lines}: {w}")
+    existed = out.is_dir() and any(out.iterdir())
+    with atomic_directory(out) as tmp:  # all parts or none; --force keeps the old parts until then
+        for k, (session, _) in enumerate(parts, start=1):
+            write_session(session, tmp / f"part{k}")
+    listed = [f"{out / f'part{k}'} ({r['part']['lines']}, {s.t_end - s.t_start:.2f} s)"
+              for k, (s, r) in enumerate(parts, start=1)]
+    if as_json:
+        print_json({"out": str(out), "merged": False,
+                    "parts": [{"out": str(out / f"part{k}"), "imported": r,
+                               "frames": {p: f.to_dict() for p, f in s.frames.items()}}
+                              for k, (s, r) in enumerate(parts, start=1)]})
+    else:
+        for k, (session, record) in enumerate(parts, start=1):
+            _say(record, session, out / f"part{k}", False, False)
+        verb = "replaced" if existed else "written"
+        typer.echo(f"clock reset(s): {csv} split into {len(parts)} sessions, {verb}: {'; '.join(listed)}",
+                   err=True)
+    for w in warnings:
+        typer.echo(f"warning: {out}: {w}", err=True)
 
 
 def _check_axes(session, unit: str, record: dict, csv: Path) -> str | None:

@@ -66,6 +66,10 @@ CONTACTS_OPT = typer.Option(False, "--contacts", help="plasys --streaming: each 
                             "(force onset, else the accelerometer impact) and so stride_time_s, cadence_spm, "
                             "speed_mps (decisions E49-E51; `pdrlearn run --contacts` gives the same).")
 DPI_OPT = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP)
+COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a unit is over 1 s shorter than the "
+                               "unit's others (cut short, refused by B72): track only the time all of them cover, "
+                               "every file and label table cut to it, with one warning naming the seconds dropped "
+                               "from each file (decision B81).")
 
 
 def track(
@@ -91,6 +95,7 @@ def track(
     toe_off: bool = TOE_OFF_OPT,
     contacts: bool = CONTACTS_OPT,
     dpi: int = DPI_OPT,
+    common_span: bool = COMMON_SPAN_OPT,
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
 ) -> None:
@@ -127,7 +132,8 @@ def track(
                               warn_out_of_domain=warn_out_of_domain, start=start, params=params, gnss=gnss,
                               gnss_period=gnss_period, fixes=fixes, fix_period=fix_period, streaming=streaming,
                               realtime=realtime, reference_point=reference_point, toe_off=toe_off,
-                              contacts=contacts, dpi=dpi, initial_heading=initial_heading)
+                              contacts=contacts, dpi=dpi, initial_heading=initial_heading,
+                              common_span=common_span)
     was = existed(out)
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
     with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
@@ -145,7 +151,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    gnss: Path | None = None, gnss_period: float | None = None, fixes: Path | None = None,
                    fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
                    reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
-                   dpi: int | None = None, initial_heading: float | None = None) -> dict:
+                   dpi: int | None = None, initial_heading: float | None = None,
+                   common_span: bool = False) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start`` parsed, ``--params`` JSON read): a batch checks them before its first
     session, and the dict travels to a Dask worker as it is (``track-all --jobs``)."""
@@ -176,7 +183,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
-            "initial_heading_rad": heading0}
+            "initial_heading_rad": heading0, "common_span": common_span}
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:
@@ -190,7 +197,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     pipeline, method, model, streaming, toe_off = o["pipeline"], o["method"], o["model"], o["streaming"], o["toe_off"]
     contacts = o["contacts"]
     params, par, gnss, fixes, dpi = o["params"], o["par"], o["gnss"], o["fixes"], o["dpi"]
-    session = read_session(session_dir, streamed=streaming)  # L77: the drops warning of its path
+    # L77: the drops warning of its path; B81: a unit's file cut short, tracked over the time all its files cover
+    session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse")
     if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)

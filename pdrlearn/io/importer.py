@@ -27,11 +27,14 @@ from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, _csv_dialect, read_ta
 from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.validate import (
+    CLOCK_RESET_S,
     STANDARD_GRAVITY,
     check_imu_pair,
     check_rate,
     check_timestamps,
     check_units,
+    clock_reset_message,
+    clock_resets,
     time_unit_candidates,
 )
 
@@ -509,6 +512,29 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
     (session, record): ``record`` holds the columns, units and their sources (given / header / guessed /
     inferred), the columns left unused and the rows dropped, as written to ``meta.json["imported"]``.
     """
+    kw = dict(locals())
+    return _import_parts(kw.pop("path"), False, **kw)[0]
+
+
+def import_csv_parts(path: str | os.PathLike, **kwargs) -> list[tuple[Session, dict]]:
+    """Decision B80 (``pdrlearn import --split-at-clock-reset``): :func:`import_csv` (the same keywords but
+    ``origin_s``) cut at the export's clock resets (decision B73's :func:`~pdrlearn.io.validate.clock_resets`),
+    one ``(session, record)`` per recording in file order (one when there is no reset). Each part starts its
+    clock at its own first sample, is named ``NAME_partK`` (K from 1), has ``record["part"]`` (its number, the
+    count, its lines) and is checked as a whole export is; a part under 1 s (or 3 rows) is refused."""
+    return _import_parts(path, True, **kwargs)
+
+
+def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
+                  columns: dict[str, list[str]] | None = None,
+                  time_column: str | None = None, time_unit: str | None = None, units: dict[str, str] | None = None,
+                  frame=None, sensor_height_m: float | None = None, name: str | None = None,
+                  origin_s: float | None = None, guess: bool = True,
+                  subject_height_m: float | None = None, rate_hz: float | None = None,
+                  time_format: str | None = None, time_zone: str | None = None,
+                  skip_rows: int | None = None) -> list[tuple[Session, dict]]:
+    """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
+    recording between its clock resets (decision B80)."""
     path = Path(path)
     where = str(path)
     if unit not in PLACEMENTS:
@@ -623,99 +649,126 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         t_unit, t_how = "samples", f"sample numbers at {r:g} Hz (given with --rate)"
     # the origin is taken off in the file's own unit: epoch milliseconds keep their exact 10 ms steps
     scale = 1.0 / float(rate_hz) if t_unit == "samples" else _TIME_SCALE[t_unit]
-    origin_raw = float(t_num[0]) if origin_s is None else float(origin_s) / scale
-    t_all = (t_num - origin_raw) * scale
-    origin = origin_raw * scale
-    record: dict = {"file": path.name, "unit": unit,
-                    "time": {"column": time_column, "unit": t_unit, "source": f"{t_source} column, unit {t_how}",
-                             "origin_s": origin},
-                    "streams": {}, "dropped_rows": {}}
-    if skipped is not None:  # decision B66
-        record["skipped_rows"] = skipped
-    if parsed is not None:  # decision B43: what the date-time text was read as, for the summary
-        record["time"]["datetime"] = parsed[1]
-    streams: dict[str, Stream] = {}
-    units = {k: v for k, v in (units or {}).items() if v is not None}
-    for kind, cols in columns.items():
-        sensor = prefix + KINDS[kind][0]
-        vals = df[cols].apply(pd.to_numeric, errors="coerce").to_numpy(dtype=float)
-        finite = np.isfinite(vals)
-        keep = finite.all(axis=1)
-        partial = np.flatnonzero(finite.any(axis=1) & ~keep)
-        if partial.size:
-            raise DataError(f"{where}: {partial.size} row(s) with some of {', '.join(cols)} empty or not numeric "
-                            f"(first at line {partial[0] + first_line}); repair or remove them"
-                            + _units_row_hint(df, partial[0], first_line,
-                                               (skipped or {}).get("rows", 0)))
-        if not keep.any():
-            raise DataError(f"{where}: columns {', '.join(cols)} ({kind}) hold no numbers")
-        if (~keep).any():  # a multi-rate export leaves a slower sensor's cells empty between its samples
-            record["dropped_rows"][sensor] = int((~keep).sum())
-        u, factor, u_src = _resolve_unit(kind, units.get(kind), cols, where, row_units)
-        t = t_all[keep]
-        check_timestamps(t, f"{where} ({time_column})")
-        _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where)
-        sign = signs.get(kind, np.ones(len(cols)))
-        stream = Stream(sensor, t, vals[keep] * factor * sign)
-        opt = _UNIT_OPTION.get(kind, "--mapping units")
-        try:
-            check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})",
-                        declare=f"give the unit with {opt} ({' | '.join(UNITS[kind])})", t=t)
-        except DataError as exc:
-            if factor == 1.0:
-                raise
-            try:  # decision B45: the values are plausible as they are, so the conversion is the mistake
-                check_units(SENSORS[sensor], vals[keep], where, t=t)
-            except DataError:
-                raise exc from None
-            si = next(iter(UNITS[kind]))
-            fix = (f"drop {opt} {u} (or pass {opt} {si})" if u_src == "given"
-                   else f"the column names say {u}, but the values are not: pass {opt} {si}")
-            raise DataError(f"{exc}; read without the conversion from {u} they are plausible {si}: {fix}") from None
-        streams[sensor] = stream
-        record["streams"][sensor] = {"columns": cols, "columns_source": sources[kind], "unit": u,
-                                     "unit_source": u_src, "factor": factor,
-                                     "rate_hz": round(float(stream.rate_hz), 4), "samples": len(stream)}
-        if (sign < 0).any():  # B48
-            record["streams"][sensor]["negated"] = [c for c, g in zip(cols, sign, strict=True) if g < 0]
-    acc_name, gyro_name = UNIT_IMU[unit]
-    if acc_name in streams and gyro_name in streams:  # decisions B36, B37: the two judged together
-        a, g = record["streams"][acc_name], record["streams"][gyro_name]
-        gfix = ("drop --gyro-unit deg/s (or the declared unit)" if g["unit"] == "deg/s"
-                else "check the gyroscope's unit (--gyro-unit rad/s | deg/s)")
-        check_imu_pair(streams[acc_name].t, streams[acc_name].values, streams[gyro_name].t,
-                       streams[gyro_name].values, unit, f"{where} ({', '.join(a['columns'])} as {a['unit']})",
-                       f"{where} ({', '.join(g['columns'])} as {g['unit']})", gyro_fix=gfix,
-                       acc_fix="give the right --acc-unit (m/s2 | g | mg)",
-                       gyro_big_fix=("pass --gyro-unit deg/s" if g["unit"] != "deg/s"
-                                     else "check the gyroscope's unit (--gyro-unit rad/s | deg/s)"))
-    used = {time_column, *(c for v in columns.values() for c in v)}
-    ambiguous = {k: v for k, v in ambiguous_columns(header).items() if k not in columns and not set(v) & used}
-    if guess and ambiguous:  # several candidate sets for a kind: none was guessed, the import names them
-        record["ambiguous_columns"] = ambiguous
-    # an unnamed empty column (a tab or comma ending every line, as Shimmer writes) is no column (B66)
-    record["unused_columns"] = [c for c in header if c not in used
-                                and not (c.startswith("Unnamed: ") and df[c].isna().all())]
-    meta: dict = {"session": name or path.stem, "placement": unit,
-                  "units": {s: f"{SENSORS[s].unit} (source {r['unit']}, x {r['factor']:.10g})"
-                            for s, r in record["streams"].items()},
-                  "imported": record}
-    if sensor_height_m is not None:
-        h = float(sensor_height_m)
-        if not (math.isfinite(h) and 0 < h <= 2.0):  # as meta.json's sensor_height_m (B16): metres, anatomy
-            raise DataError(f"import: sensor height {sensor_height_m!r} is not a height in m (0-2 m)")
-        meta["sensor_height_m"] = h
-    if subject_height_m is not None:
-        h = float(subject_height_m)
-        if not (math.isfinite(h) and 0.5 <= h <= 2.5):  # a person's height in m (meta.json height_m, B16)
-            raise DataError(f"import: subject height {subject_height_m!r} is not a person's height in m "
-                            "(0.5-2.5 m; 1.75, not 175)")
-        meta["height_m"] = h
-    frames = {}
-    f = frame if isinstance(frame, AxisFrame) or frame is None else parse_frame(frame)
-    if f is not None:
-        frames[unit] = f
-    return Session(name=meta["session"], streams=streams, meta=meta, frames=frames), record
+    # decision B73 on the export's rows (all of them share the time column), in s; B80: split there on request
+    resets = clock_resets(t_num * scale)
+    fix = (f"pass --split-at-clock-reset to write one session per recording, or split the export at line "
+           f"{int(resets[0]) + 1 + first_line} into two files" if resets.size else "")
+    if resets.size and not split:
+        raise DataError(clock_reset_message(t_num * scale, resets, f"{where} ({time_column})",
+                                            f"line {int(resets[0]) + 1 + first_line}", fix))
+    if split and origin_s is not None:
+        raise DataError("import: --split-at-clock-reset starts each part's clock at its own first sample; it "
+                        "cannot share an origin with another export (--merge)")
+    bounds = [0, *(int(i) + 1 for i in resets), len(df)]
+    full_df, full_t, line0 = df, t_num, first_line
+    parts: list[tuple[Session, dict]] = []
+    n_parts = len(bounds) - 1
+    for part, (a, b) in enumerate(zip(bounds[:-1], bounds[1:], strict=True), start=1):
+        df, t_num, first_line = full_df.iloc[a:b].reset_index(drop=True), full_t[a:b], line0 + a
+        lines = f"lines {first_line}-{first_line + b - a - 1}"
+        if n_parts > 1:  # decision B80: each part must be a recording of its own
+            span = (float(t_num[-1]) - float(t_num[0])) * scale
+            if b - a < 3 or span < CLOCK_RESET_S:
+                raise DataError(f"{where}: part {part} of {n_parts} ({lines}, between clock resets) holds {b - a} "
+                                f"row(s) over {span:.2f} s, too short to be a recording; delete those rows and import "
+                                "again (nothing written)")
+        origin_raw = float(t_num[0]) if origin_s is None else float(origin_s) / scale
+        t_all = (t_num - origin_raw) * scale
+        origin = origin_raw * scale
+        record: dict = {"file": path.name, "unit": unit,
+                        "time": {"column": time_column, "unit": t_unit, "source": f"{t_source} column, unit {t_how}",
+                                 "origin_s": origin},
+                        "streams": {}, "dropped_rows": {}}
+        if skipped is not None:  # decision B66
+            record["skipped_rows"] = skipped
+        if parsed is not None:  # decision B43: what the date-time text was read as, for the summary
+            record["time"]["datetime"] = parsed[1]
+        streams: dict[str, Stream] = {}
+        units = {k: v for k, v in (units or {}).items() if v is not None}
+        for kind, cols in columns.items():
+            sensor = prefix + KINDS[kind][0]
+            vals = df[cols].apply(pd.to_numeric, errors="coerce").to_numpy(dtype=float)
+            finite = np.isfinite(vals)
+            keep = finite.all(axis=1)
+            partial = np.flatnonzero(finite.any(axis=1) & ~keep)
+            if partial.size:
+                raise DataError(f"{where}: {partial.size} row(s) with some of {', '.join(cols)} empty or not numeric "
+                                f"(first at line {partial[0] + first_line}); repair or remove them"
+                                + _units_row_hint(df, partial[0], first_line,
+                                                   (skipped or {}).get("rows", 0)))
+            if not keep.any():
+                raise DataError(f"{where}: columns {', '.join(cols)} ({kind}) hold no numbers")
+            if (~keep).any():  # a multi-rate export leaves a slower sensor's cells empty between its samples
+                record["dropped_rows"][sensor] = int((~keep).sum())
+            u, factor, u_src = _resolve_unit(kind, units.get(kind), cols, where, row_units)
+            t = t_all[keep]
+            check_timestamps(t, f"{where} ({time_column})", reset_fix=fix or None)
+            _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where)
+            sign = signs.get(kind, np.ones(len(cols)))
+            stream = Stream(sensor, t, vals[keep] * factor * sign)
+            opt = _UNIT_OPTION.get(kind, "--mapping units")
+            try:
+                check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})",
+                            declare=f"give the unit with {opt} ({' | '.join(UNITS[kind])})", t=t)
+            except DataError as exc:
+                if factor == 1.0:
+                    raise
+                try:  # decision B45: the values are plausible as they are, so the conversion is the mistake
+                    check_units(SENSORS[sensor], vals[keep], where, t=t)
+                except DataError:
+                    raise exc from None
+                si = next(iter(UNITS[kind]))
+                fix = (f"drop {opt} {u} (or pass {opt} {si})" if u_src == "given"
+                       else f"the column names say {u}, but the values are not: pass {opt} {si}")
+                raise DataError(f"{exc}; read without the conversion from {u} they are plausible {si}: {fix}") from None
+            streams[sensor] = stream
+            record["streams"][sensor] = {"columns": cols, "columns_source": sources[kind], "unit": u,
+                                         "unit_source": u_src, "factor": factor,
+                                         "rate_hz": round(float(stream.rate_hz), 4), "samples": len(stream)}
+            if (sign < 0).any():  # B48
+                record["streams"][sensor]["negated"] = [c for c, g in zip(cols, sign, strict=True) if g < 0]
+        acc_name, gyro_name = UNIT_IMU[unit]
+        if acc_name in streams and gyro_name in streams:  # decisions B36, B37: the two judged together
+            a, g = record["streams"][acc_name], record["streams"][gyro_name]
+            gfix = ("drop --gyro-unit deg/s (or the declared unit)" if g["unit"] == "deg/s"
+                    else "check the gyroscope's unit (--gyro-unit rad/s | deg/s)")
+            check_imu_pair(streams[acc_name].t, streams[acc_name].values, streams[gyro_name].t,
+                           streams[gyro_name].values, unit, f"{where} ({', '.join(a['columns'])} as {a['unit']})",
+                           f"{where} ({', '.join(g['columns'])} as {g['unit']})", gyro_fix=gfix,
+                           acc_fix="give the right --acc-unit (m/s2 | g | mg)",
+                           gyro_big_fix=("pass --gyro-unit deg/s" if g["unit"] != "deg/s"
+                                         else "check the gyroscope's unit (--gyro-unit rad/s | deg/s)"))
+        used = {time_column, *(c for v in columns.values() for c in v)}
+        ambiguous = {k: v for k, v in ambiguous_columns(header).items() if k not in columns and not set(v) & used}
+        if guess and ambiguous:  # several candidate sets for a kind: none was guessed, the import names them
+            record["ambiguous_columns"] = ambiguous
+        # an unnamed empty column (a tab or comma ending every line, as Shimmer writes) is no column (B66)
+        record["unused_columns"] = [c for c in header if c not in used
+                                    and not (c.startswith("Unnamed: ") and df[c].isna().all())]
+        stem = name or path.stem
+        meta: dict = {"session": f"{stem}_part{part}" if n_parts > 1 else stem, "placement": unit,
+                      "units": {s: f"{SENSORS[s].unit} (source {r['unit']}, x {r['factor']:.10g})"
+                                for s, r in record["streams"].items()},
+                      "imported": record}
+        if sensor_height_m is not None:
+            h = float(sensor_height_m)
+            if not (math.isfinite(h) and 0 < h <= 2.0):  # as meta.json's sensor_height_m (B16): metres, anatomy
+                raise DataError(f"import: sensor height {sensor_height_m!r} is not a height in m (0-2 m)")
+            meta["sensor_height_m"] = h
+        if subject_height_m is not None:
+            h = float(subject_height_m)
+            if not (math.isfinite(h) and 0.5 <= h <= 2.5):  # a person's height in m (meta.json height_m, B16)
+                raise DataError(f"import: subject height {subject_height_m!r} is not a person's height in m "
+                                "(0.5-2.5 m; 1.75, not 175)")
+            meta["height_m"] = h
+        frames = {}
+        f = frame if isinstance(frame, AxisFrame) or frame is None else parse_frame(frame)
+        if f is not None:
+            frames[unit] = f
+        if n_parts > 1:  # decision B80: where this part lies in the export
+            record["part"] = {"part": part, "of": n_parts, "lines": lines}
+        parts.append((Session(name=meta["session"], streams=streams, meta=meta, frames=frames), record))
+    return parts
 
 
 def merge_sessions(base: Session, add: Session) -> Session:

@@ -506,7 +506,8 @@ def check_stream_spans(streams: dict[str, Stream], folder: Path, *, mode: str = 
     plus the larger sample interval of the two (a file cut at a row boundary: 45.10 s of fAccelerometer beside
     75.14 s of the rest tracked -36.66 % without a word). Within a unit only: two units are two devices, which
     may stop apart (``pdrlearn import --merge`` of two exports; B21 refuses where a method needs one unit to
-    cover the other). Returns the message (``None``: the spans agree); ``"off"`` checks nothing."""
+    cover the other). Returns the message (``None``: the spans agree); ``"off"`` checks nothing; ``"common"``
+    returns it without a word (:func:`cut_to_common_span` decides, decision B81)."""
     if mode == "off":
         return None
 
@@ -533,12 +534,80 @@ def check_stream_spans(streams: dict[str, Stream], folder: Path, *, mode: str = 
         msg = (f"{folder / SENSORS[short[0]].filename}: spans {first.duration_s:.2f} s ({first.t[0]:.2f}-"
                f"{first.t[-1]:.2f} s) but the other {len(others)} {unit} stream(s) {o_span}{also}; the file was cut "
                "short (a truncated copy?), so a track would cover only part of the walk its labels describe -- "
-               "restore the whole file from the recording, or re-record (decision B72)")
+               "restore the whole file from the recording, or re-record, or track only the time every "
+               f"{unit} file covers with --common-span (decisions B72, B81)")
+        if mode == "common":  # decision B81: the caller cuts the session to this unit's common span
+            return msg
         if mode == "warn":
             log.warning("%s", msg)
             return msg
         raise DataError(msg)
     return None
+
+
+def common_span(streams: dict[str, Stream], folder: Path) -> tuple[float, float, list[str]] | None:
+    """Decision B81: the time ``(t0, t1, units)`` every stream of the units that B72 refuses (``units``) covers:
+    the latest first sample to the earliest last one; None when :func:`check_stream_spans` accepts the spans."""
+    units = [u for u in ("foot", "waist")
+             if check_stream_spans({n: s for n, s in streams.items() if SENSORS[n].placement == u}, folder,
+                                   mode="common") is not None]
+    if not units:
+        return None
+    cut = [s for n, s in streams.items() if SENSORS[n].placement in units and len(s)]
+    return max(float(s.t[0]) for s in cut), min(float(s.t[-1]) for s in cut), units
+
+
+def cut_to_common_span(streams: dict[str, Stream], folder: Path) -> tuple[float, float, str] | None:
+    """Decision B81 (``read_session(spans="common")``, ``pdrlearn track --common-span``): instead of B72's refusal,
+    cut every stream of the session to :func:`common_span` (in place; the other unit too, so that each method
+    sees one walk and the labels cut alike by :func:`cut_labels_to_span` describe it). Returns ``(t0, t1,
+    text)``, ``text`` naming the seconds dropped from each file, or None when the spans agree (nothing cut).
+    A stream left with under 2 samples in that time is refused (the units do not overlap)."""
+    found = common_span(streams, folder)
+    if found is None:
+        return None
+    t0, t1, units = found
+    if t1 - t0 < SPAN_TOLERANCE_S:
+        raise DataError(f"{folder}: the {' and '.join(units)} files cover under {SPAN_TOLERANCE_S:g} s in common "
+                        f"({t0:.2f}-{t1:.2f} s), nothing to track; --common-span cannot cut them to it -- restore the "
+                        "whole files from the recording (decision B81)")
+    dropped = []
+    for n, s in list(streams.items()):
+        keep = (s.t >= t0 - 1e-9) & (s.t <= t1 + 1e-9)
+        if keep.all():
+            continue
+        if keep.sum() < 2:
+            raise DataError(f"{folder / SENSORS[n].filename}: holds no samples in {t0:.2f}-{t1:.2f} s, the time every "
+                            f"{' and '.join(units)} file covers; --common-span cannot keep it -- move it out of the "
+                            "session folder, or restore the files (decision B81)")
+        gone = (float(s.t[keep][0]) - float(s.t[0])) + (float(s.t[-1]) - float(s.t[keep][-1]))
+        dropped.append(f"{gone:.2f} s of {SENSORS[n].filename}")
+        streams[n] = Stream(n, s.t[keep], s.values[keep])
+    return t0, t1, ", ".join(dropped)
+
+
+def cut_labels_to_span(table: pd.DataFrame | None, t0: float, t1: float, time_columns) -> tuple:
+    """Decision B81: the rows of a label table that lie in ``t0``-``t1`` (s), and the number of rows dropped
+    (``(None, 0)`` for no table): an interval (``start_s`` and ``end_s``) whose middle lies in it, so that a
+    stride the recording holds most of counts, as the tracker completes it at the last foot-flat; otherwise a
+    row whose filled ``time_columns`` all lie in it."""
+    if table is None:
+        return None, 0
+    cols = [c for c in time_columns if c in table.columns]
+    if {"start_s", "end_s"} <= set(table.columns):
+        cols = ["mid"]
+        table_t = ((pd.to_numeric(table["start_s"], errors="coerce") + pd.to_numeric(table["end_s"], errors="coerce"))
+                   / 2).to_frame("mid")
+    elif not cols:
+        return table, 0
+    else:
+        table_t = table[cols]
+    v = table_t.apply(pd.to_numeric, errors="coerce").to_numpy(float)
+    inside = ((v >= t0 - 1e-9) & (v <= t1 + 1e-9)) | np.isnan(v)
+    keep = inside.all(axis=1)
+    out = table[keep].reset_index(drop=True)
+    out.attrs = dict(table.attrs)
+    return out, int((~keep).sum())
 
 
 def _sensor_copy_of(stem: str) -> str | None:
@@ -588,7 +657,9 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     (``pdrlearn info`` lists the gaps itself). ``streamed``: the caller integrates on the timestamps
     (``pdrlearn run``, ``track --streaming``): that warning says so (decision L77). ``spans``: a stream whose
     time span is over 1 s shorter than the others' (a file cut short) is refused (``"refuse"``), warned about
-    (``"warn"``, ``pdrlearn info``) or not checked (``"off"``; decision B72).
+    (``"warn"``, ``pdrlearn info``) or not checked (``"off"``; decision B72); ``"common"`` (``pdrlearn track
+    --common-span``) cuts every stream, and the label tables, to the time all the short unit's files cover, with
+    one warning naming the seconds dropped from each file (decision B81).
 
     Raises
     ------
@@ -643,9 +714,10 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
                     ", ".join(f"{n} {s.rate_hz:.4g} Hz" for n, s in streams.items()), unit)
     if rate is not None:
         _check_declared_rate(streams, rate, meta_path)
-    if spans not in ("refuse", "warn", "off"):
-        raise ValueError(f"spans={spans!r}: use 'refuse', 'warn' or 'off'")
-    check_stream_spans(streams, folder, mode=spans)  # decision B72: before a gap warning about a cut file
+    if spans not in ("refuse", "warn", "off", "common"):
+        raise ValueError(f"spans={spans!r}: use 'refuse', 'warn', 'off' or 'common'")
+    # decision B72: before a gap warning about a cut file; B81: "common" cuts the session instead of refusing
+    cut = cut_to_common_span(streams, folder) if spans == "common" else check_stream_spans(streams, folder, mode=spans)
     if RESAMPLE_JITTER if uniform_clock is None else uniform_clock:
         _uniform_clocks(streams, folder)
     if bridge_drops is not False:
@@ -675,6 +747,19 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
             continue
         check_label_table(table, p.stem, str(p))
         extras[p.stem] = _ms_to_s(table, str(p))
+    if spans == "common" and cut is not None:  # decision B81: the labels describe the walk that is kept
+        t0, t1, dropped = cut
+        labels = []
+        steps, n = cut_labels_to_span(steps, t0, t1, ("start_s", "end_s"))
+        labels += [f"{n} of {n + len(steps)} rows of steps.csv"] if n else []
+        traj, n = cut_labels_to_span(traj, t0, t1, ("t",))
+        labels += [f"{n} of {n + len(traj)} rows of trajectory.csv"] if n else []
+        for k, table in list(extras.items()):
+            extras[k], n = cut_labels_to_span(table, t0, t1, table.attrs.get("time_columns", DEFAULT_TIME_COLUMNS))
+            labels += [f"{n} of {n + len(extras[k])} rows of {k}.csv"] if n else []
+        log.warning("%s: --common-span: cut to %.2f-%.2f s, the time every file of the unit(s) cut short covers "
+                    "(B72): dropped %s%s; the track and its reference cover that time only (decision B81)", folder,
+                    t0, t1, dropped, "; labels outside it dropped: " + ", ".join(labels) if labels else "")
     try:
         frames = frames_from_meta(meta)
     except DataError as exc:

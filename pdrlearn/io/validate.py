@@ -43,9 +43,37 @@ CLOCK_RESET_S = 1.0
 MAX_CLOCK_RESETS = 3
 
 
-def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False) -> None:
+def clock_resets(t: np.ndarray) -> np.ndarray:
+    """Decision B73: the indices ``i`` where ``t`` jumps back from ``t[i]`` to ``t[i + 1]`` by more than
+    :data:`CLOCK_RESET_S` when those are clock resets: 1 to :data:`MAX_CLOCK_RESETS` such jumps and no more than
+    1 % of the other intervals going backwards (a shuffled file is rows out of order, not restarts). Empty
+    otherwise. ``pdrlearn import --split-at-clock-reset`` cuts an export at these rows (decision B80)."""
+    t = np.asarray(t, dtype=float)
+    if t.size < 2:
+        return np.empty(0, dtype=np.int64)
+    dt = np.diff(t)
+    back = np.flatnonzero(~(dt > 0))  # NaN intervals count as backwards
+    reset = np.flatnonzero(dt < -CLOCK_RESET_S)
+    if 1 <= reset.size <= MAX_CLOCK_RESETS and back.size - reset.size - np.count_nonzero(dt == 0) <= 0.01 * dt.size:
+        return reset
+    return np.empty(0, dtype=np.int64)
+
+
+def clock_reset_message(t: np.ndarray, reset: np.ndarray, where: str, at: str, fix: str) -> str:
+    """Decision B73's one line for the clock resets ``reset`` (:func:`clock_resets`) of ``t`` (s), the first
+    at ``at`` (``line 1902``), ending with ``fix``."""
+    i = int(reset[0])
+    more = f" ({reset.size} such jumps)" if reset.size > 1 else ""
+    return (f"{where}: the timestamps jump back from {t[i]:.2f} s to {t[i + 1]:.2f} s at {at}{more}: a clock reset "
+            "(the recorder restarted), not samples out of order, so sorting would interleave two recordings -- "
+            f"{fix} (decision B73)")
+
+
+def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, reset_fix: str | None = None) -> None:
     """Timestamps must be strictly increasing (no duplicates, sorted). ``in_memory``: ``t`` is a
-    :class:`~pdrlearn.io.Stream`'s (decision B49): the messages count samples and say how to fix the arrays."""
+    :class:`~pdrlearn.io.Stream`'s (decision B49): the messages count samples and say how to fix the arrays.
+    ``reset_fix``: the fix a clock reset's message gives instead of splitting the session by hand
+    (``pdrlearn import`` names its ``--split-at-clock-reset``, decision B80)."""
     if t.size == 0:
         raise DataError(f"{where}: no samples" + ("; drop the empty stream from the session" if in_memory else
                                                   " (empty file); record data or remove the file"))
@@ -59,19 +87,16 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False) -> N
             f"{where}: {dup.size} duplicate timestamp(s) (first at line {dup[0] + 3}); drop the duplicated rows"
         )
     back = np.flatnonzero(~(dt > 0))  # NaN intervals count as backwards
-    reset = np.flatnonzero(dt < -CLOCK_RESET_S)
     # decision B73: a clock reset (a few large backward jumps, increasing in between); sorting (the advice below)
     # interleaves two recordings. Shuffled rows (many backward steps, most of them small) keep the sort advice
-    if 1 <= reset.size <= MAX_CLOCK_RESETS and back.size - reset.size <= 0.01 * dt.size:
+    reset = clock_resets(t)
+    if reset.size:
         i = int(reset[0])
         at = f"index {i + 1}" if in_memory else f"line {i + 3}"
-        more = f" ({reset.size} such jumps)" if reset.size > 1 else ""
-        split = ("split the arrays there into two sessions" if in_memory else
+        split = ("split the arrays there into two sessions" if in_memory else reset_fix if reset_fix else
                  f"split the session into two there (this file before line {i + 3} and from it on; every other file "
                  "and the labels where their own clock restarts)")
-        raise DataError(f"{where}: the timestamps jump back from {t[i]:.2f} s to {t[i + 1]:.2f} s at {at}{more}: a "
-                        "clock reset (the recorder restarted), not samples out of order, so sorting would interleave "
-                        f"two recordings -- {split} (decision B73)")
+        raise DataError(clock_reset_message(t, reset, where, at, split))
     if back.size:
         if in_memory:
             raise DataError(f"{where}: timestamps are not increasing {back.size} time(s) (first at index "
