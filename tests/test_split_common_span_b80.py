@@ -97,6 +97,12 @@ def test_split_is_all_or_nothing(restarted, tmp_path, capsys):
     err = _refused(["import", str(bad), "--out", str(tmp_path / "o"), "--split-at-clock-reset"], tmp_path / "o",
                    capsys)
     assert f"line {n1 + 102}" in err, err
+    dup = tmp_path / "dup.csv"  # a repeated row in the second recording: named by its line in the file
+    df = pd.read_csv(csv)
+    pd.concat([df.iloc[:n1 + 50], df.iloc[n1 + 49:]]).to_csv(dup, index=False)
+    err = _refused(["import", str(dup), "--out", str(tmp_path / "o"), "--split-at-clock-reset"], tmp_path / "o",
+                   capsys)
+    assert f"duplicate timestamp(s) (first at line {n1 + 52})" in err, err
     short = tmp_path / "short.csv"  # a third "recording" of 5 rows (0.2 s): not a recording
     pd.concat([pd.read_csv(csv), pd.read_csv(csv).iloc[:5]]).to_csv(short, index=False)
     err = _refused(["import", str(short), "--out", str(tmp_path / "o"), "--split-at-clock-reset"], tmp_path / "o",
@@ -160,6 +166,7 @@ def cut(tmp_path_factory):
 
     d = tmp_path_factory.mktemp("b81") / "cut"
     write_session(simulate("walk", 1, length_m=60), d)
+    shutil.copytree(d, d.parent / "whole")
     df = pd.read_csv(d / "fAccelerometer.csv")
     df[df.timestamp <= df.timestamp.iloc[-1] - 30e3].to_csv(d / "fAccelerometer.csv", index=False)
     return d
@@ -192,6 +199,14 @@ def test_read_session_common_cuts_streams_and_labels(cut):
     assert ((s.steps.start_s + s.steps.end_s) / 2 <= end).all()
     whole = read_session(cut, spans="warn")
     assert len(s.steps) < len(whole.steps)
+
+
+def test_common_span_leaves_a_whole_session_as_it_is(cut, caplog):
+    whole = cut.parent / "whole"
+    s, ref = read_session(whole, spans="common"), read_session(whole)
+    assert {n: len(st) for n, st in s.streams.items()} == {n: len(st) for n, st in ref.streams.items()}
+    assert len(s.steps) == len(ref.steps) and len(s.trajectory) == len(ref.trajectory)
+    assert "--common-span" not in caplog.text
 
 
 def test_track_all_takes_common_span(cut, tmp_path, capsys):

@@ -702,7 +702,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 record["dropped_rows"][sensor] = int((~keep).sum())
             u, factor, u_src = _resolve_unit(kind, units.get(kind), cols, where, row_units)
             t = t_all[keep]
-            check_timestamps(t, f"{where} ({time_column})", reset_fix=fix or None)
+            check_timestamps(t, f"{where} ({time_column})", reset_fix=fix or None,
+                             lines=np.flatnonzero(keep) + first_line)  # B80: the file's lines, in any part
             _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where)
             sign = signs.get(kind, np.ones(len(cols)))
             stream = Stream(sensor, t, vals[keep] * factor * sign)

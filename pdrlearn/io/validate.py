@@ -69,11 +69,17 @@ def clock_reset_message(t: np.ndarray, reset: np.ndarray, where: str, at: str, f
             f"{fix} (decision B73)")
 
 
-def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, reset_fix: str | None = None) -> None:
+def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, reset_fix: str | None = None,
+                     lines: np.ndarray | None = None) -> None:
     """Timestamps must be strictly increasing (no duplicates, sorted). ``in_memory``: ``t`` is a
     :class:`~pdrlearn.io.Stream`'s (decision B49): the messages count samples and say how to fix the arrays.
     ``reset_fix``: the fix a clock reset's message gives instead of splitting the session by hand
-    (``pdrlearn import`` names its ``--split-at-clock-reset``, decision B80)."""
+    (``pdrlearn import`` names its ``--split-at-clock-reset``, decision B80). ``lines``: the file line of each
+    sample (default: sample k on line k + 2, under a header line); import gives them for the rows it kept."""
+
+    def line(k: int) -> int:
+        return int(lines[k]) if lines is not None else k + 2
+
     if t.size == 0:
         raise DataError(f"{where}: no samples" + ("; drop the empty stream from the session" if in_memory else
                                                   " (empty file); record data or remove the file"))
@@ -84,7 +90,7 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
             raise DataError(f"{where}: {dup.size} duplicate timestamp(s) (first at index {dup[0] + 1}); drop the "
                             "duplicated samples (keep = np.unique(t, return_index=True)[1])")
         raise DataError(
-            f"{where}: {dup.size} duplicate timestamp(s) (first at line {dup[0] + 3}); drop the duplicated rows"
+            f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}); drop the duplicated rows"
         )
     back = np.flatnonzero(~(dt > 0))  # NaN intervals count as backwards
     # decision B73: a clock reset (a few large backward jumps, increasing in between); sorting (the advice below)
@@ -92,10 +98,10 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
     reset = clock_resets(t)
     if reset.size:
         i = int(reset[0])
-        at = f"index {i + 1}" if in_memory else f"line {i + 3}"
+        at = f"index {i + 1}" if in_memory else f"line {line(i + 1)}"
         split = ("split the arrays there into two sessions" if in_memory else reset_fix if reset_fix else
-                 f"split the session into two there (this file before line {i + 3} and from it on; every other file "
-                 "and the labels where their own clock restarts)")
+                 f"split the session into two there (this file before line {line(i + 1)} and from it on; every other "
+                 "file and the labels where their own clock restarts)")
         raise DataError(clock_reset_message(t, reset, where, at, split))
     if back.size:
         if in_memory:
@@ -103,7 +109,7 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
                             f"{back[0] + 1}); sort the samples by time (order = np.argsort(t): t[order], "
                             "values[order])")
         raise DataError(
-            f"{where}: timestamps go backwards {back.size} time(s) (first at line {back[0] + 3}); "
+            f"{where}: timestamps go backwards {back.size} time(s) (first at line {line(back[0] + 1)}); "
             "sort the file by timestamp"
         )
 
