@@ -12,7 +12,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.classify.evaluation import evaluate_model
-from pdrlearn.classify.labels import clean_steps, misaligned_text
+from pdrlearn.classify.labels import bad_label_warning, clean_steps, misaligned_text
 from pdrlearn.classify.training import (
     TaskModel,
     _folds,
@@ -64,6 +64,10 @@ def test_labels_that_are_no_class_are_named_and_any_case_is_a_class(terrain, cap
     line = [r.getMessage() for r in caplog.records if "not a terrain class" in r.getMessage()]
     assert len(line) == 1 and "'stairs'" in line[0] and "(empty)" in line[0] and "flat, up, down" in line[0]
     assert clean_steps(s, st)["terrain"].iloc[0] == "flat"
+    # 'unclear' (the converters' marker of a step without a class) is left out and counted, not warned
+    st = terrain.steps.copy().astype({"terrain": object})
+    st.loc[0, "terrain"] = "unclear"
+    assert bad_label_warning(terrain, st, "terrain") == (1, None)
 
 
 def test_labels_shifted_against_the_foot_rest_are_said(terrain):

@@ -22,6 +22,9 @@ log = logging.getLogger(__name__)
 #: Two label rows are the same step when their start and end times agree to this (s): 1 ms, far below a
 #: sample period of any recording (decision C32).
 SAME_STEP_S = 1e-3
+#: The label that marks a step as deliberately without a class (the gaitmap/mobgap converters write it):
+#: left out and counted like any other non-class value, but not warned about (decision C33).
+UNCLEAR = "unclear"
 #: A session's label boundaries are reported as misaligned when fewer than this share of them lie in (or
 #: within :data:`REST_SLACK_S` of) a foot rest period (decision C37: 0.97-1.0 on the simulator's and the real
 #: gaitmap labels, 0.39-0.69 with the labels 200 ms late, 0.07-0.11 at 500 ms).
@@ -103,7 +106,8 @@ def clean_steps(session, steps: pd.DataFrame) -> pd.DataFrame:
 def bad_label_warning(session, steps: pd.DataFrame, task: str) -> tuple[int, str | None]:
     """The rows of ``task``'s label column that are neither a class nor empty in an unlabelled column, and
     the warning line naming the file, the count, the distinct values and the classes (decision C33).
-    Empty cells count when the column labels other steps of the session (a step left unlabelled)."""
+    Empty cells count when the column labels other steps of the session (a step left unlabelled); values
+    ``unclear`` count but alone give no warning (the documented way to leave a step out)."""
     from pdrlearn.features import TASK_CLASSES, TASK_COLUMNS
 
     col = TASK_COLUMNS[task]
@@ -111,8 +115,9 @@ def bad_label_warning(session, steps: pd.DataFrame, task: str) -> tuple[int, str
         return 0, None
     vals = steps[col]
     bad = ~vals.isin(TASK_CLASSES[task])
-    if not bad.any():
-        return 0, None
+    marked = vals.map(lambda v: isinstance(v, str) and v.strip().lower() == UNCLEAR).to_numpy()
+    if not (bad & ~marked).any():  # only steps marked 'unclear' (by intent, as the converters write): no warning
+        return int(bad.sum()), None
     counts: dict[str, int] = {}
     for v in vals[bad]:
         name = "(empty)" if v is None or (isinstance(v, float) and np.isnan(v)) else repr(str(v))
