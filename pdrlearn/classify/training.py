@@ -186,8 +186,9 @@ def session_windows(sessions, *, n_samples: int, boundaries: str = "given", purp
             w = step_windows(s, steps, n_samples=n_samples, boundaries=boundaries)
         except DataError as exc:
             msg = str(exc)
-            if s.folder is not None:  # the folder, not the meta.json name a copied folder keeps (B34)
-                msg = msg.replace(f"session '{s.name}'", str(s.folder))
+            head = f"session '{s.name}'"  # step_windows' prefix: the folder instead, as a copied folder keeps
+            if s.folder is not None and msg.startswith(head):  # its meta.json name (B34, decision C37)
+                msg = str(s.folder) + msg[len(head):]
             if shifted is not None:  # the frame check fails on steps cut mid-swing: say what is likelier
                 msg = f"{shifted} (cutting the step windows then failed: {msg})"
             raise DataError(msg) from None
