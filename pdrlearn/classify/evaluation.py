@@ -109,9 +109,11 @@ def evaluate_model(
         "boundaries": model.boundaries,  # how the step windows were cut (decision C13)
         "skipped": [],
     }
+    _held_out_checks(model, sessions, out)  # decision C34: training sessions, another rate
+    _untrained_tasks(model, windows, out)  # decision C36: labelled tasks the model has no classifier of
     domain: dict[str, dict] = {}
     for task, tm in model.tasks.items():
-        data = task_data(windows, task)
+        data = task_data(windows, task, sessions)
         if data is None or len(data.y) == 0:
             out["skipped"].append(f"{task}: the sessions have no {task} labels")
             advance(sum(len(per) for per in tm.models.values()))
@@ -228,6 +230,8 @@ def evaluate_model(
             accuracy=m["accuracy"],
             balanced_accuracy=m["balanced_accuracy"],
             per_class=m["per_class"],
+            precision=m["precision"],
+            f1=m["f1"],
             confusion=m["confusion"],
             chosen={"method": chosen[0], "unit": chosen[1]},
         )
@@ -248,6 +252,51 @@ def evaluate_model(
         write_report(out, Path(report_dir))
         advance(1)
     return out
+
+
+def _held_out_checks(model, sessions, out: dict) -> None:
+    """Decision C34: warn (and record in ``out``) when evaluated sessions are among the model's training sessions
+    (manifest ``training_data.sessions``; the accuracy is then not held-out) and when a unit runs at another rate
+    than the model's classifiers were trained at (decision C18's line, as ``pdrlearn track`` gives it)."""
+    from pdrlearn.kernels.distance import classifier_rate_warning, rate_differs
+
+    trained = set((model.data_summary or {}).get("sessions") or [])
+    seen = [s for s in sessions if s.name in trained]
+    out["training_sessions"] = [s.name for s in seen]
+    if seen:
+        names = ", ".join(s.where for s in seen[:3]) + (f" and {len(seen) - 3} more" if len(seen) > 3 else "")
+        log.warning("evaluate: %d of %d session(s) were used to train the model (%s; named in its manifest): the "
+                    "accuracy on them is not held-out", len(seen), len(sessions), names)
+    rates = getattr(model, "sampling_rate_hz", None) or {}
+    out["rate_mismatch"] = {}
+    lines: dict[str, list[str]] = {}
+    for s in sessions:
+        off = {}
+        for unit, name in (("foot", "fAccelerometer"), ("waist", "wAccelerometer")):
+            if rates.get(name) and name in s.streams:
+                fs = float(s.streams[name].rate_hz)
+                if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
+                    off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
+        if off:
+            out["rate_mismatch"][s.name] = off
+            lines.setdefault(classifier_rate_warning(off), []).append(s.where)
+    for line, where in lines.items():  # one line per distinct rate pair, naming the sessions
+        log.warning("%s%s: %s", where[0], f" and {len(where) - 1} more" if len(where) > 1 else "", line)
+
+
+def _untrained_tasks(model, windows, out: dict) -> None:
+    """Decision C36: a task the sessions label but the model has no classifier of is listed in ``skipped``
+    (with the reason training gave, when the manifest has it) instead of vanishing from the output."""
+    from pdrlearn.features import TASK_COLUMNS
+
+    for task, col in TASK_COLUMNS.items():
+        if task in model.tasks:
+            continue
+        if not any(col in w.steps and w.steps[col].notna().any() for w in windows):
+            continue
+        why = next((r for r in (model.skipped or []) if r.startswith(f"task {task}")), None)
+        out["skipped"].append(f"{task}: the sessions label it but the model has no {task} classifier"
+                              + (f" (training skipped it: {why})" if why else ""))
 
 
 def _has_unit(unit: str, available) -> bool:

@@ -169,6 +169,7 @@ def session_windows(sessions, *, n_samples: int, boundaries: str = "given", purp
     """Step windows of every labelled step of every session (one :class:`StepWindows` per session);
     ``boundaries`` as :func:`pdrlearn.features.step_windows` (``"rest"``: rest-to-rest windows);
     ``purpose`` ("train" | "evaluate") words the error for a session without labelled steps."""
+    from pdrlearn.classify.labels import clean_steps, misaligned_text
     from pdrlearn.features import step_windows
 
     out = []
@@ -179,19 +180,46 @@ def session_windows(sessions, *, n_samples: int, boundaries: str = "given", purp
                    "evaluate needs labelled sessions: label its steps, or track an unlabelled walk with "
                    "`pdrlearn track SESSION --model MODEL`")
             raise DataError(f"{where}: no labelled steps (steps.csv); {fix}")
-        out.append(step_windows(s, s.steps, n_samples=n_samples, boundaries=boundaries))
+        steps = clean_steps(s, s.steps)  # labels any case, each step once (decisions C32, C33)
+        shifted = misaligned_text(s, steps, boundaries)  # labels off the foot's rest periods (C37)
+        try:
+            w = step_windows(s, steps, n_samples=n_samples, boundaries=boundaries)
+        except DataError as exc:
+            msg = str(exc)
+            head = f"session '{s.name}'"  # step_windows' prefix: the folder instead, as a copied folder keeps
+            if s.folder is not None and msg.startswith(head):  # its meta.json name (B34, decision C37)
+                msg = str(s.folder) + msg[len(head):]
+            if shifted is not None:  # the frame check fails on steps cut mid-swing: say what is likelier
+                msg = f"{shifted} (cutting the step windows then failed: {msg})"
+            raise DataError(msg) from None
+        if shifted is not None:
+            log.warning(shifted)
+        out.append(w)
     return out
 
 
-def task_data(windows, task: str) -> TaskData | None:
-    """Pool the steps labelled for ``task``; ``None`` when no session has that label column."""
+def _named(w):
+    """A stand-in naming a session by its windows' session name (no folder known)."""
+    from types import SimpleNamespace
+
+    return SimpleNamespace(folder=None, where=f"session '{w.session}'")
+
+
+def task_data(windows, task: str, sessions=None) -> TaskData | None:
+    """Pool the steps labelled for ``task``; ``None`` when no session has that label column. ``sessions`` (the
+    windows' sessions, in order) name the files in the warnings about left-out labels (decision C33)."""
+    from pdrlearn.classify.labels import bad_label_warning
     from pdrlearn.features import TASK_COLUMNS, task_labels
 
     Xs, ys, sess, skipped, foot, waist = [], [], [], 0, [], []
     for i, w in enumerate(windows):
         if TASK_COLUMNS[task] not in w.steps or w.steps[TASK_COLUMNS[task]].notna().sum() == 0:
             continue
-        y, keep, n_skip = task_labels(w.steps, task, source=f"session '{w.session}'")
+        y, keep, _ = task_labels(w.steps, task, source=f"session '{w.session}'")
+        # decision C33: the left-out labels (empty cells too) named in one warning per session and task
+        n_skip, line = bad_label_warning(sessions[i] if sessions is not None else _named(w), w.steps, task)
+        if line:
+            log.warning(line)
         skipped += n_skip
         Xs.append(w.X[keep])
         ys.append(y)
@@ -250,15 +278,23 @@ def check_classes(
 # metrics
 # --------------------------------------------------------------------------------------------------
 def class_metrics(y_true: np.ndarray, y_pred: np.ndarray, classes: Sequence[str]) -> dict:
-    """Accuracy, balanced accuracy, per-class recall ("accuracy per class" of thesis Tables 27, 28, 33)
-    and the confusion matrix (rows = true class, columns = predicted, in ``classes`` order)."""
+    """Accuracy, balanced accuracy, per-class recall ("accuracy per class" of thesis Tables 27, 28, 33),
+    per-class ``precision`` and ``f1`` (decision C37) and the confusion matrix (rows = true class, columns =
+    predicted, in ``classes`` order)."""
     from sklearn.metrics import confusion_matrix
 
     y_true, y_pred = np.asarray(y_true).astype(str), np.asarray(y_pred).astype(str)
     classes = [str(c) for c in classes]
     per_class = {c: (float(np.mean(y_pred[y_true == c] == c)) if np.any(y_true == c) else None) for c in classes}
     present = [v for v in per_class.values() if v is not None]
+    # decision C37: per-class precision (None: never predicted) and F1 beside the recall
+    precision = {c: (float(np.mean(y_true[y_pred == c] == c)) if np.any(y_pred == c) else None) for c in classes}
+    f1 = {c: (None if per_class[c] is None or precision[c] is None else
+              (0.0 if per_class[c] + precision[c] == 0 else
+               2 * per_class[c] * precision[c] / (per_class[c] + precision[c]))) for c in classes}
     return {
+        "precision": precision,
+        "f1": f1,
         "accuracy": float(np.mean(y_true == y_pred)) if len(y_true) else None,
         "balanced_accuracy": float(np.mean(present)) if present else None,
         "per_class": per_class,
@@ -513,22 +549,25 @@ def session_user(session) -> str | None:
     return None
 
 
-def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | None = None) -> tuple[list, int]:
+def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | None = None,
+           notes: list[str] | None = None) -> tuple[list, int]:
     """Stratified, shuffled folds; fewer than ``cv`` when the smallest class has fewer steps. With ``groups``
     (the user of each step, decision C29) and at least two users: folds of whole users (leave-one-user-out when
     there are at most ``cv`` users), unless a training fold would then lack a class (stratified, one line).
-    Returns the folds and the number of users they hold out (0: stratified over steps)."""
+    Returns the folds and the number of users they hold out (0: stratified over steps). ``notes``: collect the
+    warning lines there (the caller logs each once, decision C36) instead of logging them."""
+    say = notes.append if notes is not None else log.warning
     if groups is not None and len(np.unique(groups)) >= 2:
         n_users = len(np.unique(groups))
         folds = list(GroupKFold(n_splits=min(cv, n_users)).split(np.zeros(len(y)), y, groups))
         short = [i for i, (tr, _) in enumerate(folds) if len(np.unique(y[tr])) < len(np.unique(y))]
         if not short:
             return folds, n_users
-        log.warning("task %s: CV by user not possible (a training fold of whole users lacks a class); "
-                    "stratified folds over steps instead", task)
+        say(f"task {task}: CV by user not possible (a training fold of whole users lacks a class); "
+            "stratified folds over steps instead")
     n_splits = int(min(cv, min(np.sum(y == c) for c in np.unique(y))))
     if n_splits < cv:
-        log.warning("task %s: %d-fold CV instead of %d (smallest class has %d steps)", task, n_splits, cv, n_splits)
+        say(f"task {task}: {n_splits}-fold CV instead of {cv} (smallest class has {n_splits} steps)")
     return list(StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y)), 0
 
 
@@ -596,6 +635,7 @@ def train_task(
     per_unit, want_fused, want_combined = _split_units(units)
     subsets: dict[str, tuple[np.ndarray, list] | str] = {}  # unit -> (step mask, folds) or skip reason
     cv_users: dict[str, int] = {}  # unit -> users its folds hold out (0: stratified over steps, C29)
+    notes: list[str] = []  # the folds' warnings, each logged once for the task (decision C36)
     for unit in [*per_unit, *(["fused"] if want_fused else []), *(["combined"] if want_combined else [])]:
         mask = data.unit_mask(unit)
         if not mask.any():
@@ -607,8 +647,10 @@ def train_task(
             subsets[unit] = f"steps with the {unit} unit: {exc}"
             continue
         folds, cv_users[unit] = _folds(data.y[mask], cv, seed, data.task,
-                                       None if groups is None else groups[mask])
+                                       None if groups is None else groups[mask], notes=notes)
         subsets[unit] = (mask, folds)
+    for line in dict.fromkeys(notes):
+        log.warning(line)
     oof_by: dict[tuple[str, str], np.ndarray] = {}  # (method, unit) -> out-of-fold probabilities
     for method in sorted(methods, key=lambda m: m == "ensemble"):  # the ensemble reuses its members
         oof: dict[str, np.ndarray] = {}
@@ -845,20 +887,30 @@ def train_user(
     if cv_groups not in CV_GROUPS:
         raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
     windows = session_windows(sessions, n_samples=n_samples, boundaries=boundaries)
-    users = [session_user(s) for s in sessions] if cv_groups == "user" else []
+    users = [session_user(s) for s in sessions]
+    named = sorted({u for u in users if u is not None})  # the users the sessions name (decision C35)
     n_users = 0
     if cv_groups == "user":
         if None in users:
-            log.warning("train: --cv-groups user: session '%s' names no user (meta.json 'user' or 'subject'); "
-                        "stratified folds over steps", sessions[users.index(None)].name)
+            log.warning("train: --cv-groups user: %s names no user (meta.json 'user' or 'subject'); "
+                        "stratified folds over steps", sessions[users.index(None)].where)
             users = []
         else:
             n_users = len(set(users))
+            if n_users < 2:  # decision C35: say the fallback, the header alone read "10-fold CV"
+                log.warning("train: --cv-groups user: every session is of one user (%s); stratified folds over "
+                            "steps instead (folds of whole users need two or more)", named[0])
+    elif len(named) > 1:  # decision C35: pooled users, folds of steps score on users the models were fitted on
+        cal = ("; the distance calibration pools their strides into one gain (--no-distance-calibration for a "
+               "pooled model)" if distance_calibration else "")
+        log.warning("train: the sessions come from %d users (%s): the CV folds mix their steps, so a model is "
+                    "scored on users it was fitted on (optimistic for a new user); --cv-groups user scores on "
+                    "held-out users%s", len(named), ", ".join(named), cal)
     out: dict[str, TaskModel] = {}
     skipped: list[str] = []
     datas: dict[str, TaskData] = {}
     for task in tasks:
-        data = datas[task] = task_data(windows, task)  # logs its gap steps once (B13)
+        data = datas[task] = task_data(windows, task, sessions)  # logs its gap steps once (B13)
         try:
             if data is None:
                 raise DataError(_no_labels_message(task, sessions))
@@ -890,7 +942,8 @@ def train_user(
     for s in sessions:
         for name, st in s.streams.items():
             rates.setdefault(name, round(float(st.rate_hz), 3))
-    summary = {"sessions": [s.name for s in sessions], "n_sessions": len(sessions), "steps": {}}
+    summary = {"sessions": [s.name for s in sessions], "n_sessions": len(sessions), "steps": {},
+               "users": named}  # every user the sessions name (decision C35)
     bounds = length_class_bounds(sessions)
     if bounds is not None:
         summary["length_bounds_m"] = bounds
@@ -904,7 +957,9 @@ def train_user(
             "per_class": {c: int(np.sum(data.y == c)) for c in m.classes},
         }
     return UserModel(
-        user=user or (sessions[0].meta.get("user") or sessions[0].meta.get("subject") or sessions[0].name),
+        # decision C35: a model pooled over users is not the first user's ("pooled: <users>")
+        user=user or (f"pooled: {', '.join(named)}" if len(named) > 1 else
+                      sessions[0].meta.get("user") or sessions[0].meta.get("subject") or sessions[0].name),
         tasks=out,
         n_samples=n_samples,
         sampling_rate_hz=rates,

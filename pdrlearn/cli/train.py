@@ -138,6 +138,7 @@ def train(
     summary = {
         "out": str(out),
         "user": model.user,
+        "users": model.data_summary.get("users", []),  # decision C35
         "sessions": len(sessions),
         "boundaries": model.boundaries,
         "seconds": round(seconds, 2),
@@ -151,6 +152,8 @@ def train(
                 "n_steps": tm.n_steps,
                 "n_skipped_labels": tm.n_skipped_labels,
                 "cv": {m: {u: r["accuracy"] for u, r in per.items()} for m, per in tm.cv.items()},
+                "cv_balanced": {m: {u: r["balanced_accuracy"] for u, r in per.items()} for m, per in tm.cv.items()},
+                "chosen_reason": chosen_reason(tm),
                 "skipped": tm.skipped,
             }
             for t, tm in model.tasks.items()
@@ -170,18 +173,19 @@ def train(
                 f"(chosen: {tm.chosen[0]}/{tm.chosen[1]})", markup=False)
         tab = Table()
         tab.add_column("method")
-        for col in (*tm.classes, "all", "unit"):
+        # decision C36: the rows are ranked by balanced accuracy (mean of the class columns), so it is shown
+        for col in (*tm.classes, "all", "balanced", "unit"):
             tab.add_column(col)
         for m, u in tm.ranking():
             r = tm.cv[m][u]
             tab.add_row(
-                m, *[f"{100 * r['per_class'][k]:.1f}" for k in tm.classes], f"{100 * r['accuracy']:.1f}", u
+                m, *[f"{100 * r['per_class'][k]:.1f}" for k in tm.classes], f"{100 * r['accuracy']:.1f}",
+                f"{100 * (r['balanced_accuracy'] or 0.0):.1f}", u
             )
         c.print(tab)
+        c.print(f"  {chosen_reason(tm)}", markup=False)
         for s in grouped_skips(tm.skipped):
             c.print(f"  skipped {s}", markup=False)
-        if tm.n_skipped_labels:
-            c.print(f"  ignored {tm.n_skipped_labels} step label(s) that are not {t} classes")
     for s in model.skipped:
         c.print(f"skipped {s}", markup=False)
     if not model.tasks:  # decision C17
@@ -193,10 +197,33 @@ def train(
     elif cal.get("reason"):
         c.print(f"distance calibration: gain 1 ({cal['reason']})")
     else:
-        c.print(f"distance calibration: gain {cal['gain']:.4f} from {cal['n_strides']} straight level strides "
-                f"(decision L26; offline M3 applies it){_streamed_gain(cal)}")
+        users = model.data_summary.get("users") or []
+        pooled = f", pooled over {len(users)} users" if len(users) > 1 else ""  # decision C35
+        c.print(f"distance calibration: gain {cal['gain']:.4f} from {cal['n_strides']} straight level strides"
+                f"{pooled} (decision L26; offline M3 applies it){_streamed_gain(cal)}")
     c.print(f"step windows: {model.boundaries} boundaries")
     c.print(f"model written to {out} ({seconds:.1f} s)")
+
+
+def chosen_reason(tm) -> str:
+    """Why ``tm.chosen`` was chosen (decision C36): the best balanced CV accuracy among the two-unit models
+    (decision C8/C23), and the one-unit models that rank above it."""
+    from pdrlearn.classify.training import TWO_UNIT
+
+    m, u = tm.chosen
+    bal = tm.cv[m][u]["balanced_accuracy"] or 0.0
+    if u not in TWO_UNIT:
+        return f"chosen: {m}/{u}, the best balanced CV accuracy ({100 * bal:.1f} %)"
+    above = []
+    for mm, uu in tm.ranking():
+        if (mm, uu) == (m, u):
+            break
+        above.append(f"{mm}/{uu} {100 * (tm.cv[mm][uu]['balanced_accuracy'] or 0.0):.1f} %")
+    why = (f"chosen: {m}/{u}, the best balanced CV accuracy ({100 * bal:.1f} %) among the models reading both "
+           "units (fused, combined; decision C8)")
+    if above:
+        why += f"; ranked higher but reading one unit: {', '.join(above)}"
+    return why
 
 
 def _streamed_gain(cal: dict) -> str:
@@ -279,6 +306,9 @@ def evaluate(
         for row in results_table(r):
             tab.add_row(*row)
         c.print(tab)
+        c.print("  chosen model per class, precision / recall / F1 %: " + ", ".join(  # decision C37
+            f"{k} {_pct(r['precision'][k])} / {_pct(r['per_class'][k])} / {_pct(r['f1'][k])}"
+            for k in r["classes"]), markup=False)
         for s in r["skipped"]:
             c.print(f"  skipped {s}")
     c.print(f"step windows: {result.get('boundaries', model.boundaries)} boundaries, "
@@ -290,6 +320,10 @@ def evaluate(
         c.print(f"skipped {s}")
     if report is not None:
         c.print(f"report written to {report}")
+
+
+def _pct(v) -> str:
+    return "-" if v is None else f"{100 * v:.1f}"
 
 
 def register(app: typer.Typer) -> None:
