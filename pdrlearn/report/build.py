@@ -24,6 +24,8 @@ class Section:
     text: str = ""
     tables: list[tuple[str, pd.DataFrame]] = field(default_factory=list)
     images: list[tuple[str, Path]] = field(default_factory=list)
+    #: warning lines shown as a highlighted list above the tables (decision L102)
+    warnings: list[str] = field(default_factory=list)
 
 
 def _read_json(p: Path) -> dict:
@@ -163,6 +165,9 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         if len(gait) > 1 and df[gait[1:]].notna().any().any():
             tables.append(("gait parameters", df[gait]))
         sections.append(Section("Tracking", tables=tables))
+        warned = _track_warnings(tracks, root)
+        if warned is not None:  # decision L102: first, before any table, so the caveat travels with the numbers
+            sections.insert(0, warned)
     images = find("*.png")
     if images:
         by_kind: dict[str, list[Path]] = {}
@@ -179,6 +184,28 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         raise DataError(f"{root}: nothing to report (no manifest.json, evaluation.json, cohort_summary.csv, "
                         "summary.json or PNG); run pdrlearn train/evaluate/track first")
     return sections
+
+
+def _track_warnings(tracks: list[Path], root: Path) -> Section | None:
+    """Decision L102: the warnings of each tracked session (``summary.json`` ``info.warnings``: the slow-gait
+    "not reliable" line of L95, no calibration, no model, mirrored turns, ...) as one section, each line
+    prefixed with the run it belongs to; None when no run warned. Before, the report dropped them (session 18
+    rehab trial: the shared report lost "the distance ... not reliable")."""
+    lines = []
+    for p in tracks:
+        info = _read_json(p).get("info")
+        warns = info.get("warnings") if isinstance(info, dict) else None
+        if isinstance(warns, str):
+            warns = [warns]
+        if not isinstance(warns, list):
+            continue
+        run = str(p.parent.relative_to(root)) or "."
+        lines += [f"{run}: {w}" for w in warns if isinstance(w, str) and w.strip()]
+    if not lines:
+        return None
+    n = len({ln.split(": ", 1)[0] for ln in lines})
+    return Section("Warnings", text=f"{len(lines)} warning(s) from {n} tracked run(s); read them before the "
+                   "numbers below (each run's summary.json info.warnings).", warnings=lines)
 
 
 #: The tracking summary columns shown in reports (the full JSON stays in each run's summary.json).
@@ -201,7 +228,8 @@ _CSS = """body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto
 table{border-collapse:collapse;margin:.6em 0 1.4em}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}
 th{background:#f2f2f2}img{max-width:100%;border:1px solid #ddd;margin:4px 0}
 h2{border-bottom:2px solid #4a7;padding-bottom:2px}
-figure{margin:0 0 1em}figcaption{font-size:12px;color:#555}"""
+figure{margin:0 0 1em}figcaption{font-size:12px;color:#555}
+.warnings{background:#fff4e5;border-left:4px solid #e08a00;padding:.4em 1.2em}"""
 
 
 def _html(sections: list[Section], title: str) -> str:
@@ -212,6 +240,9 @@ def _html(sections: list[Section], title: str) -> str:
         parts.append(f"<section><h2>{html.escape(s.title)}</h2>")
         if s.text:
             parts.append(f"<p>{html.escape(s.text)}</p>")
+        if s.warnings:  # decision L102
+            parts.append("<ul class='warnings'>" + "".join(f"<li>&#9888; {html.escape(w)}</li>" for w in s.warnings)
+                         + "</ul>")
         for caption, df in s.tables:
             parts.append(f"<h3>{html.escape(caption)}</h3>")
             parts.append(df.to_html(index=False, float_format=lambda v: f"{v:.4g}", border=0, na_rep="-"))
@@ -230,6 +261,8 @@ def _markdown(sections: list[Section], title: str, image_names: dict[Path, str])
         lines += [f"## {s.title}", ""]
         if s.text:
             lines += [s.text, ""]
+        if s.warnings:  # decision L102
+            lines += [f"- **Warning** {w}" for w in s.warnings] + [""]
         for caption, df in s.tables:
             lines += [f"**{caption}**", "", df.to_markdown(index=False, floatfmt=".4g"), ""]
         for caption, p in s.images:
