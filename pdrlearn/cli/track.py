@@ -12,11 +12,13 @@ from pdrlearn.cli.common import (
     DPI_HELP,
     FORCE_HELP,
     START_HELP,
+    count_phrase,
     existed,
     gait_line,
     print_json,
     replaced,
     start_option,
+    walk_line,
 )
 from pdrlearn.errors import DataError
 
@@ -271,7 +273,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
     name = summary["session"]
     err = summary.get("distance_error_pct")
     bouts = err is not None and "bout_distance_m" in summary and "bout_reference_m" in summary
-    typer.echo(f"{name}: {summary['n_steps']} steps, {summary['distance_m']:.2f} m"
+    typer.echo(f"{name}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
                # W21: the lower-back error counts the reference bouts only; say so before the number
                + (f"; inside the reference bouts {summary['bout_distance_m']:.2f} m vs "
                   f"{summary['bout_reference_m']:.2f} m" if bouts else "")
@@ -294,6 +296,9 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
                   "training range" if summary.get("out_of_domain_fraction") is not None else ""))
     if summary.get("gait_speed_mps") is not None:  # decisions L79 / W70: the clinical walking speed
         typer.echo(gait_line(summary))
+        walk = walk_line(summary)  # decision L104
+        if walk:
+            typer.echo(walk)
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json")
 
 

@@ -158,7 +158,7 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         for p in tracks:
             d = _flat_scalars(_read_json(p))
             rows.append({"run": str(p.parent.relative_to(root)) or ".", **d})
-        df = pd.DataFrame(rows)
+        df = _step_count_columns(pd.DataFrame(rows))  # decision L103
         key = [c for c in TRACK_COLUMNS if c in df.columns]
         tables = [("trajectory summaries", df[key])]
         gait = [c for c in GAIT_COLUMNS if c in df.columns]  # decision L81: the gait parameters, own table
@@ -208,11 +208,38 @@ def _track_warnings(tracks: list[Path], root: Path) -> Section | None:
                    "numbers below (each run's summary.json info.warnings).", warnings=lines)
 
 
+#: decision L103: the report's step-count columns, labelled by what they count (summary.json ``n_steps`` counts
+#: strides of the tracked foot for a foot track but steps for a lower-back one; one "n_steps" column mixed them)
+STEPS_COLUMN, STRIDES_COLUMN = "steps (both feet)", "strides (tracked foot)"
+
+
+def _step_count_columns(df: pd.DataFrame) -> pd.DataFrame:
+    """Decision L103: :data:`STEPS_COLUMN` from ``n_steps_both_feet`` and :data:`STRIDES_COLUMN` from
+    ``n_strides_one_foot``; a summary written before L103 (no such keys) gets them from ``n_steps`` and its
+    ``pipeline`` (plasys / runtime: strides of the tracked foot, x 2 for the steps; waist-*: steps)."""
+    df = df.copy()
+    n = pd.to_numeric(df["n_steps"], errors="coerce") if "n_steps" in df else pd.Series(float("nan"), df.index)
+    pipe = df["pipeline"].astype(str) if "pipeline" in df else pd.Series("", df.index)
+    foot = pipe.isin(["plasys", "runtime"])
+    waist = pipe.str.startswith("waist")
+    steps = pd.to_numeric(df.get("n_steps_both_feet"), errors="coerce") if "n_steps_both_feet" in df else None
+    strides = pd.to_numeric(df.get("n_strides_one_foot"), errors="coerce") if "n_strides_one_foot" in df else None
+    old_steps = n.where(waist, 2 * n.where(foot))
+    old_strides = n.where(foot)
+    df[STEPS_COLUMN] = old_steps if steps is None else steps.fillna(old_steps)
+    df[STRIDES_COLUMN] = old_strides if strides is None else strides.fillna(old_strides)
+    for c in (STEPS_COLUMN, STRIDES_COLUMN):
+        df[c] = df[c].astype("Int64")
+    if df[[STEPS_COLUMN, STRIDES_COLUMN]].isna().all().all():
+        return df.drop(columns=[STEPS_COLUMN, STRIDES_COLUMN])
+    return df
+
+
 #: The tracking summary columns shown in reports (the full JSON stays in each run's summary.json).
 #: ``final_position_error_m`` is horizontal; the altitude columns (session 14 trial finding 2, L52) and the
 #: class agreement of the tracked strides (L53) and the storeys climbed / descended (L64) show when the summary
 #: has them.
-TRACK_COLUMNS = ("run", "pipeline", "distance_m", "distance_ref_m", "n_steps", "distance_error_pct",
+TRACK_COLUMNS = ("run", "pipeline", "distance_m", "distance_ref_m", STEPS_COLUMN, STRIDES_COLUMN, "distance_error_pct",
                  "distance_error_scope", "distance_in_ref_bouts_m",
                  "final_position_error_m", "altitude_change_m", "altitude_change_ref_m", "final_altitude_error_m",
                  "final_position_error_3d_m", "floors_up", "floors_down", "stride_length_mae_pct",
@@ -222,7 +249,8 @@ TRACK_COLUMNS = ("run", "pipeline", "distance_m", "distance_ref_m", "n_steps", "
 #: clinical walking speed (distance / walking time), the straight strides' median speed, cadence, stride time.
 GAIT_COLUMNS = ("run", "walking_time_s", "gait_speed_mps", "median_speed_straight_mps", "median_speed_mps",
                 "median_cadence_spm", "median_stride_time_s", "median_step_time_s", "n_stride_times",
-                "n_straight_strides")
+                "n_straight_strides", "n_walking_bouts", "n_pauses", "pause_time_s", "turn_count",
+                "stride_time_cv_pct")  # the last five: decision L104
 
 _CSS = """body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;color:#222}
 table{border-collapse:collapse;margin:.6em 0 1.4em}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}
