@@ -90,6 +90,10 @@ def track(
     toe_off: bool = TOE_OFF_OPT,
     contacts: bool = CONTACTS_OPT,
     dpi: int = DPI_OPT,
+    window: str = typer.Option(None, "--window", help="START,END in seconds from the session start: track the "
+                               "whole session, then keep the steps whose middle lies inside (e.g. 0,120: a "
+                               "2-minute walk; decision L105). The summary, steps.csv and trajectory.csv are the "
+                               "window's; its references are cut the same way."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
 ) -> None:
@@ -113,6 +117,8 @@ def track(
 
         pdrlearn track datasets/real/mobgap_HA001_Test5_Trial1 --pipeline waist-pendulum --realtime --out out/W
 
+        pdrlearn track out/sim/A_u1 --window 5,15 --out out/A_middle   # the steps between 5 s and 15 s
+
     Many sessions at once: pdrlearn track-all ROOT --out OUTDIR (docs/cohort.md).
     """
     from pdrlearn.atomic import atomic_directory
@@ -125,6 +131,9 @@ def track(
                               gnss_period=gnss_period, fixes=fixes, fix_period=fix_period, streaming=streaming,
                               realtime=realtime, reference_point=reference_point, toe_off=toe_off,
                               contacts=contacts, dpi=dpi)
+    from pdrlearn.track.window import parse_window
+
+    settings["window"] = parse_window(window)  # decision L105: a bad window is one line before any tracking
     was = existed(out)
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
     with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
@@ -186,6 +195,11 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     contacts = o["contacts"]
     params, par, gnss, fixes, dpi = o["params"], o["par"], o["gnss"], o["fixes"], o["dpi"]
     session = read_session(session_dir, streamed=streaming)  # L77: the drops warning of its path
+    win = None
+    if o.get("window") is not None:  # decision L105: inside the recording, checked before tracking
+        from pdrlearn.track.window import check_window
+
+        win = check_window(o["window"], session)
     if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
@@ -239,7 +253,14 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                            fix_period_s=o["fix_period"], start=o["start_ll"])
     if o["start_alt"]:  # decision L56: the z column starts at the given altitude (as Tracker(start=(x, y, ALT)))
         result.trajectory["z"] = result.trajectory["z"] + o["start_alt"]
-    summary = track_summary(result, session, pipeline=pipeline)  # C13, C14: the API's TrackResult.summary
+    tracked_session = session
+    if win is not None:  # decision L105: the whole session tracked, then the window's steps kept
+        from pdrlearn.track.window import window_track
+
+        result, tracked_session = window_track(result, session, *win)
+    summary = track_summary(result, tracked_session, pipeline=pipeline)  # C13, C14: the API's TrackResult.summary
+    if win is not None:
+        summary["window_start_s"], summary["window_end_s"] = (float(v) for v in o["window"])
     return {"session": session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
             "dpi": dpi}
 
@@ -271,6 +292,8 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
 
 def _print_summary(summary: dict, out: Path, aided: bool) -> None:
     name = summary["session"]
+    if summary.get("window_start_s") is not None:  # decision L105
+        name += f" [{summary['window_start_s']:g}-{summary['window_end_s']:g} s]"
     err = summary.get("distance_error_pct")
     bouts = err is not None and "bout_distance_m" in summary and "bout_reference_m" in summary
     typer.echo(f"{name}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
