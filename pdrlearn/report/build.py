@@ -238,8 +238,9 @@ def _step_count_columns(df: pd.DataFrame) -> pd.DataFrame:
 #: The tracking summary columns shown in reports (the full JSON stays in each run's summary.json).
 #: ``final_position_error_m`` is horizontal; the altitude columns (session 14 trial finding 2, L52) and the
 #: class agreement of the tracked strides (L53) and the storeys climbed / descended (L64) show when the summary
-#: has them.
-TRACK_COLUMNS = ("run", "pipeline", "distance_m", "distance_ref_m", STEPS_COLUMN, STRIDES_COLUMN, "distance_error_pct",
+#: has them; the window of `track --window` (L105) too.
+TRACK_COLUMNS = ("run", "pipeline", "window_start_s", "window_end_s", "distance_m", "distance_ref_m", STEPS_COLUMN,
+                 STRIDES_COLUMN, "distance_error_pct",
                  "distance_error_scope", "distance_in_ref_bouts_m",
                  "final_position_error_m", "altitude_change_m", "altitude_change_ref_m", "final_altitude_error_m",
                  "final_position_error_3d_m", "floors_up", "floors_down", "stride_length_mae_pct",
