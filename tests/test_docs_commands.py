@@ -272,6 +272,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.track.base import PIPELINES
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
+    from pdrlearn.track.window import parse_window
 
     def settings(kind):
         return lambda v: check_settings(**{kind: [s.strip() for s in v.split(",")]})
@@ -299,6 +300,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("run", "start"): lambda v: parse_start(v, altitude=True),
         ("track", "length_bounds"): two_numbers,
         ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72
+        ("track", "window"): parse_window,  # decision L105
         ("export", "length_bounds"): two_numbers,
         ("export", "methods"): _one_of(METHODS, listed=True),
         ("run", "rules"): _one_of(RULES),

@@ -110,3 +110,24 @@ def test_report_inside_its_source_does_not_grow(results):
     first = (results / "report" / "index.html").read_text().count("<img")
     build_report(results, results / "report")
     assert (results / "report" / "index.html").read_text().count("<img") == first == 2
+
+
+def test_report_shows_the_tracks_warnings_first(results, tmp_path):
+    """Decision L102 (session 18 rehab trial): summary.json info.warnings reach the report, as its first section."""
+    slow = ("median cadence 80 steps/min, speed 0.39 m/s: this is slower than the walking the pipelines were "
+            "validated on; the distance ... are not reliable")
+    run = results / "track_slow"
+    run.mkdir()
+    (run / "summary.json").write_text(json.dumps({"distance_m": 14.1, "n_steps": 24, "pipeline": "plasys",
+                                                  "info": {"warnings": ["no model: the M3 engine", slow]}}))
+    out = build_report(results, tmp_path / "report")
+    page, md = (out / "index.html").read_text(), (out / "report.md").read_text()
+    for text in (page, md):
+        assert "track_slow: " + slow.split(":")[0] in text and "not reliable" in text and "validated" in text
+        assert "no model: the M3 engine" in text
+        assert text.index("Warnings") < text.index("Tracking")  # before the numbers it qualifies
+    assert "class='warnings'" in page
+    assert collect(results)[0].title == "Warnings"
+    # a folder whose tracks did not warn has no such section
+    run.joinpath("summary.json").write_text(json.dumps({"distance_m": 14.1, "info": {"warnings": []}}))
+    assert "Warnings" not in [s.title for s in collect(results)]

@@ -356,6 +356,29 @@ def start_option(start: str | None) -> tuple[tuple[float, float] | None, float]:
     return (lat, lon), alt
 
 
+def count_phrase(summary: dict) -> str:
+    """Decision L103: what ``n_steps`` counts, said in ``track``'s and ``run``'s first line: "24 strides of the
+    tracked foot (~48 steps)" for a foot track, "48 steps" for a lower-back one."""
+    n = summary["n_steps"]
+    if summary.get("n_steps_counts") == "strides of the tracked foot":
+        both = summary.get("n_steps_both_feet")
+        return f"{n} strides of the tracked foot" + (f" (~{both} steps)" if both is not None else "")
+    return f"{n} steps"
+
+
+def walk_line(summary: dict) -> str | None:
+    """Decision L104: ``track``'s line of the walk's pauses, bouts, turns and stride-time variability; None when
+    the summary has none of them."""
+    if summary.get("n_walking_bouts") is None:
+        return None
+    n, cv = summary.get("n_pauses", 0), summary.get("stride_time_cv_pct")
+    return (f"{summary['n_walking_bouts']} walking bout(s), {n} pause(s) of >= 1 s"
+            + (f" ({summary['pause_time_s']:.1f} s in all)" if n else "")
+            + f", {summary.get('turn_count', 0)} turn(s) of >= {summary.get('turn_count_min_deg', 80):g} deg"
+            + (f", stride-time CV {cv:.1f} % ({summary.get('n_cv_strides')} steady strides)" if cv is not None
+               else ""))
+
+
 def gait_line(summary: dict) -> str:
     """The console's gait line of ``track`` and ``run`` (decisions L79, W70, E48, E51): gait speed, distance and
     walking time, the straight strides' speed and the cadence when the summary has them."""

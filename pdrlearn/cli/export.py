@@ -14,6 +14,7 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     INITIAL_HEADING_HELP,
     START_HELP,
+    count_phrase,
     existed,
     gait_line,
     initial_heading_option,
@@ -350,7 +351,7 @@ def run(
         print_json(json_safe(summary))
     else:
         err = summary.get("distance_error_pct")
-        typer.echo(f"{source}: {summary['n_steps']} steps, {summary['distance_m']:.2f} m"
+        typer.echo(f"{source}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
                    + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
                    f"{[round(summary['final_position'][k], 2) for k in 'xyz']}"
                    # L64: the storeys climbed and descended, when the track changed floors

@@ -9,6 +9,11 @@ import typer
 from pdrlearn.cli.common import json_safe, print_json, progress
 from pdrlearn.errors import DataError
 
+#: decision S30: the step length (m) and step time (s) `simulate --step-length/--step-time` accept: from a 0.1 m
+#: shuffle to a 1.0 m stride-long step, from 24 to 150 steps/min (0.04-2.5 m/s); the simulator walked all four
+#: corners (0.1 m x 0.4 / 2.5 s, 1.0 m x 0.4 / 2.5 s) with the steps asked for
+STEP_LENGTH_RANGE_M, STEP_TIME_RANGE_S = (0.1, 1.0), (0.4, 2.5)
+
 
 def simulate_cmd(
     scenario: str | None = typer.Option(
@@ -43,6 +48,14 @@ def simulate_cmd(
         help="model (default) or realistic: the pelvis rolls toward the stance side with a smaller sway, "
         "drawn per user (decision S27).",
     ),
+    step_length: float | None = typer.Option(
+        None, "--step-length", help="With --route: the step length (m, one foot to the other) walked on the "
+        f"route's normal-gait items at --speed, {STEP_LENGTH_RANGE_M[0]:g}-{STEP_LENGTH_RANGE_M[1]:g} "
+        "(default: the user's own; short/long items scale it; decision S30)."),
+    step_time: float | None = typer.Option(
+        None, "--step-time", help="With --route: the step time (s, contact to the other foot's contact) at "
+        f"--speed, {STEP_TIME_RANGE_S[0]:g}-{STEP_TIME_RANGE_S[1]:g} (cadence = 60 / step time; default: the "
+        "user's own; decision S30)."),
     no_noise: bool = typer.Option(False, "--no-noise", help="Exact physics: no noise, bias or quantisation."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -59,6 +72,9 @@ def simulate_cmd(
 
         pdrlearn simulate --route "straight:5, up:17, turn:180, down:17, backward:3" --user-seed 2 \\
             --out out/sim/floors_u2
+
+        pdrlearn simulate --route "stand:3, straight:14, stand:3" --step-length 0.3 --step-time 0.75 \\
+            --user-seed 1 --out out/sim/tenmwt_040   # a 0.4 m/s walker: 0.3 m steps at 80 steps/min
     """
     from pdrlearn.io import write_session
     from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path
@@ -78,6 +94,8 @@ def simulate_cmd(
         raise DataError("--user-seed and --seed must be non-negative integers")
     if not -90.0 <= foot_mount_pitch <= 90.0:  # beyond +-90 deg the unit would be mounted upside down
         raise DataError(f"--foot-mount-pitch {foot_mount_pitch:g}: give a tilt between -90 and 90 degrees")
+    user = UserProfile.from_seed(user_seed)
+    custom = _custom_gait(user, speed, step_length, step_time, route)  # decision S30
     if out.exists() and (not out.is_dir() or any(out.iterdir())):
         raise DataError(f"{out}: already exists and is not an empty folder; choose another --out or remove it")
     knobs = dict(
@@ -96,11 +114,12 @@ def simulate_cmd(
         else:
             session = simulate_path(
                 segments,
-                UserProfile.from_seed(user_seed),
+                custom or user,
                 speed=speed,
                 rate_hz=rate,
                 seed=seed,
-                name=f"route_u{user_seed}_{speed}_s{seed}",
+                name=f"route_u{user_seed}_{speed}_s{seed}" + (
+                    f"_step{custom.step_length(speed):.3g}m_{custom.step_time(speed):.3g}s" if custom else ""),
                 scenario="route",
                 **knobs,
             )
@@ -114,6 +133,9 @@ def simulate_cmd(
         **({} if route is None else {"route": route}),
         "user_seed": user_seed,
         "speed": speed,
+        # decision S30: the step length and time walked on normal-gait items (the user's own, or the given ones)
+        "step_length_m": round((custom or user).step_length(speed), 4),
+        "step_time_s": round((custom or user).step_time(speed), 4),
         "seed": seed,
         "rate_hz": rate,
         "duration_s": round(session.duration_s, 3),
@@ -130,8 +152,37 @@ def simulate_cmd(
         typer.echo(
             f"{out}: {what}, user {user_seed}, {speed}, {summary['duration_s']:.1f} s, "
             f"{summary['strides']} strides of the right foot, {summary['distance_m']:.1f} m, "
-            f"{rate:g} Hz"
+            f"{rate:g} Hz" + (f", steps {summary['step_length_m']:g} m in {summary['step_time_s']:g} s "
+                              f"({summary['step_length_m'] / summary['step_time_s']:.2f} m/s)" if custom else "")
         )
+
+
+def _custom_gait(user, speed: str, step_length: float | None, step_time: float | None, route: str | None):
+    """The user with the step length / time walked at ``speed`` set to the given values (decision S30), or None
+    when neither is given; one error line for a value outside its range or without --route."""
+    import dataclasses
+    import math
+
+    from pdrlearn.sim.user import SPEED_FACTORS
+
+    if step_length is None and step_time is None:
+        return None
+    given = [o for o, v in (("--step-length", step_length), ("--step-time", step_time)) if v is not None]
+    if route is None:
+        verb = "sets" if len(given) == 1 else "set"
+        raise DataError(f"simulate: {' and '.join(given)} {verb} the gait of a --route walk; the scenarios keep "
+                        "the user's own gait - use --route 'stand:3, straight:14, stand:3' (docs/simulator.md)")
+    for name, v, (lo, hi), unit in (("--step-length", step_length, STEP_LENGTH_RANGE_M, "m"),
+                                    ("--step-time", step_time, STEP_TIME_RANGE_S, "s")):
+        if v is not None and not (math.isfinite(v) and lo <= v <= hi):
+            raise DataError(f"simulate: {name} {v:g}: give {lo:g}-{hi:g} {unit}")
+    f_len, f_time = SPEED_FACTORS[speed]
+    changes = {}
+    if step_length is not None:
+        changes["step_length_m"] = step_length / f_len
+    if step_time is not None:
+        changes["step_time_s"] = step_time / f_time
+    return dataclasses.replace(user, **changes)
 
 
 def register(app: typer.Typer) -> None:

@@ -13,12 +13,14 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     INITIAL_HEADING_HELP,
     START_HELP,
+    count_phrase,
     existed,
     gait_line,
     initial_heading_option,
     print_json,
     replaced,
     start_option,
+    walk_line,
 )
 from pdrlearn.errors import DataError
 
@@ -96,6 +98,10 @@ def track(
     contacts: bool = CONTACTS_OPT,
     dpi: int = DPI_OPT,
     common_span: bool = COMMON_SPAN_OPT,
+    window: str = typer.Option(None, "--window", help="START,END in seconds from the session start: track the "
+                               "whole session, then keep the steps whose middle lies inside (e.g. 0,120: a "
+                               "2-minute walk; decision L105). The summary, steps.csv and trajectory.csv are the "
+                               "window's; its references are cut the same way."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
 ) -> None:
@@ -121,6 +127,8 @@ def track(
 
         pdrlearn track datasets/real/mobgap_HA001_Test5_Trial1 --pipeline waist-pendulum --realtime --out out/W
 
+        pdrlearn track out/sim/A_u1 --window 5,15 --out out/A_middle   # the steps between 5 s and 15 s
+
     Many sessions at once: pdrlearn track-all ROOT --out OUTDIR (docs/cohort.md).
     """
     from pdrlearn.atomic import atomic_directory
@@ -134,6 +142,9 @@ def track(
                               realtime=realtime, reference_point=reference_point, toe_off=toe_off,
                               contacts=contacts, dpi=dpi, initial_heading=initial_heading,
                               common_span=common_span)
+    from pdrlearn.track.window import parse_window
+
+    settings["window"] = parse_window(window)  # decision L105: a bad window is one line before any tracking
     was = existed(out)
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
     with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
@@ -199,6 +210,11 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     params, par, gnss, fixes, dpi = o["params"], o["par"], o["gnss"], o["fixes"], o["dpi"]
     # L77: the drops warning of its path; B81: a unit's file cut short, tracked over the time all its files cover
     session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse")
+    win = None
+    if o.get("window") is not None:  # decision L105: inside the recording, checked before tracking
+        from pdrlearn.track.window import check_window
+
+        win = check_window(o["window"], session)
     if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
@@ -257,7 +273,14 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                            fix_period_s=o["fix_period"], start=o["start_ll"])
     if o["start_alt"]:  # decision L56: the z column starts at the given altitude (as Tracker(start=(x, y, ALT)))
         result.trajectory["z"] = result.trajectory["z"] + o["start_alt"]
-    summary = track_summary(result, session, pipeline=pipeline)  # C13, C14: the API's TrackResult.summary
+    tracked_session = session
+    if win is not None:  # decision L105: the whole session tracked, then the window's steps kept
+        from pdrlearn.track.window import window_track
+
+        result, tracked_session = window_track(result, session, *win)
+    summary = track_summary(result, tracked_session, pipeline=pipeline)  # C13, C14: the API's TrackResult.summary
+    if win is not None:
+        summary["window_start_s"], summary["window_end_s"] = (float(v) for v in o["window"])
     return {"session": session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
             "dpi": dpi}
 
@@ -306,9 +329,11 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
 
 def _print_summary(summary: dict, out: Path, aided: bool) -> None:
     name = summary["session"]
+    if summary.get("window_start_s") is not None:  # decision L105
+        name += f" [{summary['window_start_s']:g}-{summary['window_end_s']:g} s]"
     err = summary.get("distance_error_pct")
     bouts = err is not None and "bout_distance_m" in summary and "bout_reference_m" in summary
-    typer.echo(f"{name}: {summary['n_steps']} steps, {summary['distance_m']:.2f} m"
+    typer.echo(f"{name}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
                # W21: the lower-back error counts the reference bouts only; say so before the number
                + (f"; inside the reference bouts {summary['bout_distance_m']:.2f} m vs "
                   f"{summary['bout_reference_m']:.2f} m" if bouts else "")
@@ -331,6 +356,9 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
                   "training range" if summary.get("out_of_domain_fraction") is not None else ""))
     if summary.get("gait_speed_mps") is not None:  # decisions L79 / W70: the clinical walking speed
         typer.echo(gait_line(summary))
+        walk = walk_line(summary)  # decision L104
+        if walk:
+            typer.echo(walk)
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json")
 
 

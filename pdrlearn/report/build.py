@@ -27,6 +27,8 @@ class Section:
     images: list[tuple[str, Path]] = field(default_factory=list)
     #: figures drawn into the report itself (cohort C16): (caption, file name, draw(path) -> bool drawn)
     plots: list[tuple[str, str, Callable[[Path], bool]]] = field(default_factory=list)
+    #: warning lines shown as a highlighted list above the tables (decision L102)
+    warnings: list[str] = field(default_factory=list)
 
 
 def _read_json(p: Path) -> dict:
@@ -162,13 +164,16 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         for p in tracks:
             d = _flat_scalars(_read_json(p))
             rows.append({"run": str(p.parent.relative_to(root)) or ".", **d})
-        df = pd.DataFrame(rows)
+        df = _step_count_columns(pd.DataFrame(rows))  # decision L103
         key = [c for c in TRACK_COLUMNS if c in df.columns]
         tables = [("trajectory summaries", df[key])]
         gait = [c for c in GAIT_COLUMNS if c in df.columns]  # decision L81: the gait parameters, own table
         if len(gait) > 1 and df[gait[1:]].notna().any().any():
             tables.append(("gait parameters", df[gait]))
         sections.append(Section("Tracking", tables=tables))
+        warned = _track_warnings(tracks, root)
+        if warned is not None:  # decision L102: first, before any table, so the caveat travels with the numbers
+            sections.insert(0, warned)
     images = find("*.png")
     if images:
         by_kind: dict[str, list[Path]] = {}
@@ -199,11 +204,61 @@ def _batch_section(folder: Path, root: Path) -> Section:
                            lambda path: plot_batch(sessions, path))])
 
 
+def _track_warnings(tracks: list[Path], root: Path) -> Section | None:
+    """Decision L102: the warnings of each tracked session (``summary.json`` ``info.warnings``: the slow-gait
+    "not reliable" line of L95, no calibration, no model, mirrored turns, ...) as one section, each line
+    prefixed with the run it belongs to; None when no run warned. Before, the report dropped them (session 18
+    rehab trial: the shared report lost "the distance ... not reliable")."""
+    lines = []
+    for p in tracks:
+        info = _read_json(p).get("info")
+        warns = info.get("warnings") if isinstance(info, dict) else None
+        if isinstance(warns, str):
+            warns = [warns]
+        if not isinstance(warns, list):
+            continue
+        run = str(p.parent.relative_to(root)) or "."
+        lines += [f"{run}: {w}" for w in warns if isinstance(w, str) and w.strip()]
+    if not lines:
+        return None
+    n = len({ln.split(": ", 1)[0] for ln in lines})
+    return Section("Warnings", text=f"{len(lines)} warning(s) from {n} tracked run(s); read them before the "
+                   "numbers below (each run's summary.json info.warnings).", warnings=lines)
+
+
+#: decision L103: the report's step-count columns, labelled by what they count (summary.json ``n_steps`` counts
+#: strides of the tracked foot for a foot track but steps for a lower-back one; one "n_steps" column mixed them)
+STEPS_COLUMN, STRIDES_COLUMN = "steps (both feet)", "strides (tracked foot)"
+
+
+def _step_count_columns(df: pd.DataFrame) -> pd.DataFrame:
+    """Decision L103: :data:`STEPS_COLUMN` from ``n_steps_both_feet`` and :data:`STRIDES_COLUMN` from
+    ``n_strides_one_foot``; a summary written before L103 (no such keys) gets them from ``n_steps`` and its
+    ``pipeline`` (plasys / runtime: strides of the tracked foot, x 2 for the steps; waist-*: steps)."""
+    df = df.copy()
+    n = pd.to_numeric(df["n_steps"], errors="coerce") if "n_steps" in df else pd.Series(float("nan"), df.index)
+    pipe = df["pipeline"].astype(str) if "pipeline" in df else pd.Series("", df.index)
+    foot = pipe.isin(["plasys", "runtime"])
+    waist = pipe.str.startswith("waist")
+    steps = pd.to_numeric(df.get("n_steps_both_feet"), errors="coerce") if "n_steps_both_feet" in df else None
+    strides = pd.to_numeric(df.get("n_strides_one_foot"), errors="coerce") if "n_strides_one_foot" in df else None
+    old_steps = n.where(waist, 2 * n.where(foot))
+    old_strides = n.where(foot)
+    df[STEPS_COLUMN] = old_steps if steps is None else steps.fillna(old_steps)
+    df[STRIDES_COLUMN] = old_strides if strides is None else strides.fillna(old_strides)
+    for c in (STEPS_COLUMN, STRIDES_COLUMN):
+        df[c] = df[c].astype("Int64")
+    if df[[STEPS_COLUMN, STRIDES_COLUMN]].isna().all().all():
+        return df.drop(columns=[STEPS_COLUMN, STRIDES_COLUMN])
+    return df
+
+
 #: The tracking summary columns shown in reports (the full JSON stays in each run's summary.json).
 #: ``final_position_error_m`` is horizontal; the altitude columns (session 14 trial finding 2, L52) and the
 #: class agreement of the tracked strides (L53) and the storeys climbed / descended (L64) show when the summary
-#: has them.
-TRACK_COLUMNS = ("run", "pipeline", "distance_m", "distance_ref_m", "n_steps", "distance_error_pct",
+#: has them; the window of `track --window` (L105) too.
+TRACK_COLUMNS = ("run", "pipeline", "window_start_s", "window_end_s", "distance_m", "distance_ref_m", STEPS_COLUMN,
+                 STRIDES_COLUMN, "distance_error_pct",
                  "distance_error_scope", "distance_in_ref_bouts_m",
                  "final_position_error_m", "altitude_change_m", "altitude_change_ref_m", "final_altitude_error_m",
                  "final_position_error_3d_m", "floors_up", "floors_down", "stride_length_mae_pct",
@@ -213,13 +268,15 @@ TRACK_COLUMNS = ("run", "pipeline", "distance_m", "distance_ref_m", "n_steps", "
 #: clinical walking speed (distance / walking time), the straight strides' median speed, cadence, stride time.
 GAIT_COLUMNS = ("run", "walking_time_s", "gait_speed_mps", "median_speed_straight_mps", "median_speed_mps",
                 "median_cadence_spm", "median_stride_time_s", "median_step_time_s", "n_stride_times",
-                "n_straight_strides")
+                "n_straight_strides", "n_walking_bouts", "n_pauses", "pause_time_s", "turn_count",
+                "stride_time_cv_pct")  # the last five: decision L104
 
 _CSS = """body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;color:#222}
 table{border-collapse:collapse;margin:.6em 0 1.4em}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}
 th{background:#f2f2f2}img{max-width:100%;border:1px solid #ddd;margin:4px 0}
 h2{border-bottom:2px solid #4a7;padding-bottom:2px}
-figure{margin:0 0 1em}figcaption{font-size:12px;color:#555}"""
+figure{margin:0 0 1em}figcaption{font-size:12px;color:#555}
+.warnings{background:#fff4e5;border-left:4px solid #e08a00;padding:.4em 1.2em}"""
 
 
 def _html(sections: list[Section], title: str) -> str:
@@ -230,6 +287,9 @@ def _html(sections: list[Section], title: str) -> str:
         parts.append(f"<section><h2>{html.escape(s.title)}</h2>")
         if s.text:
             parts.append(f"<p>{html.escape(s.text)}</p>")
+        if s.warnings:  # decision L102
+            parts.append("<ul class='warnings'>" + "".join(f"<li>&#9888; {html.escape(w)}</li>" for w in s.warnings)
+                         + "</ul>")
         for caption, df in s.tables:
             parts.append(f"<h3>{html.escape(caption)}</h3>")
             parts.append(df.to_html(index=False, float_format=lambda v: f"{v:.4g}", border=0, na_rep="-"))
@@ -248,6 +308,8 @@ def _markdown(sections: list[Section], title: str, image_names: dict[Path, str])
         lines += [f"## {s.title}", ""]
         if s.text:
             lines += [s.text, ""]
+        if s.warnings:  # decision L102
+            lines += [f"- **Warning** {w}" for w in s.warnings] + [""]
         for caption, df in s.tables:
             lines += [f"**{caption}**", "", df.to_markdown(index=False, floatfmt=".4g"), ""]
         for caption, p in s.images:

@@ -186,6 +186,14 @@ def _rz(psi: float) -> np.ndarray:
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
+def _drawn_user(user: UserProfile) -> bool:
+    """Whether ``user`` is :meth:`UserProfile.from_seed` of its own seed, unchanged."""
+    try:
+        return user == UserProfile.from_seed(user.seed)
+    except (DataError, TypeError, ValueError):
+        return False
+
+
 def simulate_path(
     segments: list[Segment],
     user: UserProfile,
@@ -193,7 +201,7 @@ def simulate_path(
     speed: str = "normal",
     rate_hz: float = 20.0,
     seed: int | None = 0,
-    name: str = "sim",
+    name: str | None = None,
     scenario: str = "custom",
     **knobs,
 ) -> Session:
@@ -206,6 +214,10 @@ def simulate_path(
     speed : "slow", "normal" or "fast"
     rate_hz : output rate (Hz); 100 Hz divided by an integer. 20 Hz = the PLASYS firmware (5-sample mean).
     seed : randomness of this walk (gait variability, noise, biases)
+    name : the session's name (meta.json ``session``, the name in messages); default
+        ``sim_u{user.seed}_{speed}_s{seed}`` (``sim_{scenario}_...`` for another ``scenario`` than "custom"),
+        ``_custom_user`` added for a user changed from
+        ``UserProfile.from_seed(user.seed)`` (e.g. by ``dataclasses.replace``; decision S30: every session was "sim")
     **knobs : see :data:`KNOBS`
 
     Returns
@@ -220,6 +232,9 @@ def simulate_path(
     seed = 0 if seed is None else seed
     if not isinstance(seed, int | np.integer) or isinstance(seed, bool) or seed < 0:
         raise DataError(f"seed {seed!r}: must be a non-negative integer")
+    if name is None:  # decision S30
+        name = ("sim" if scenario == "custom" else f"sim_{scenario}") + f"_u{user.seed}_{speed}_s{seed}" + (
+            "" if _drawn_user(user) else "_custom_user")
     noise = bool(opt["noise"])
     rng = _rng(user.seed, int(seed), scenario, speed, "walk")
     steps, initial, end_pause = plan_footsteps(

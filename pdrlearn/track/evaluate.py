@@ -176,10 +176,34 @@ def _floors(z, out: dict, suffix: str = "") -> None:
     out[f"floors_up{suffix}"], out[f"floors_down{suffix}"], out[f"storeys_changed{suffix}"] = up, down, net
 
 
+#: decision L103: the value of ``n_steps_counts`` per unit of the step table
+STEP_COUNT_KINDS = {"foot": "strides of the tracked foot", "waist": "steps of both feet"}
+
+
+def step_counts(steps: pd.DataFrame) -> dict:
+    """Decision L103: ``n_steps`` (the rows of steps.csv, the JSON contract's key) counts strides of the tracked
+    foot for a foot track and steps of either foot for a lower-back track; say which and give both counts.
+    ``n_steps_counts``: :data:`STEP_COUNT_KINDS`' text (None for an empty table); ``n_strides_one_foot``: foot,
+    the rows that are strides (a gap row, ``gap_s`` > 0, is none, L67); None on the lower back, which does not
+    tell the feet apart; ``n_steps_both_feet``: lower back, its detected steps (= ``n_steps``); foot, 2 per
+    stride of the tracked foot - an estimate, the other foot is not measured (each walking bout can end with
+    one step more or less: the closing step)."""
+    units = set(steps["unit"].astype(str)) if len(steps) and "unit" in steps else set()
+    if units == {"foot"}:
+        n = int((steps["gap_s"].to_numpy(float) == 0).sum()) if "gap_s" in steps else int(len(steps))
+        return {"n_steps_counts": STEP_COUNT_KINDS["foot"], "n_strides_one_foot": n, "n_steps_both_feet": 2 * n}
+    if units == {"waist"}:
+        return {"n_steps_counts": STEP_COUNT_KINDS["waist"], "n_strides_one_foot": None,
+                "n_steps_both_feet": int(len(steps))}
+    return {"n_steps_counts": None, "n_strides_one_foot": None if len(steps) else 0,
+            "n_steps_both_feet": None if len(steps) else 0}
+
+
 def _basic(result: TrackResult, out: dict) -> None:
     tr = result.trajectory
     out["distance_m"] = result.distance_m
     out["n_steps"] = int(len(result.steps))
+    out.update(step_counts(result.steps))  # decision L103: what n_steps counts, and the steps of both feet
     last = tr.iloc[-1] if len(tr) else None
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
     if last is not None and "lat" in tr:
@@ -190,6 +214,9 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.track.gait import gait_summary
 
     out.update(gait_summary(result.steps))
+    from pdrlearn.track.clinical import clinical_summary
+
+    out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
     # decision L64: the storeys the track climbed and descended (storeys of STOREY_HEIGHT_M)
     _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out)
     out["storey_height_m"] = STOREY_HEIGHT_M

@@ -1,0 +1,153 @@
+"""Clinical walk measures of a tracked step table (decision L104, docs/decisions/localization.md): turns, pauses
+and walking bouts, stride-time variability.
+
+Every measure works on the rows of ``steps.csv`` of either pipeline: a foot track's rows are the tracked foot's
+strides (rest to rest, ``start_s`` the rest before the stride), a lower-back track's rows its steps (``start_s``
+the initial contact). Definitions (seconds and degrees, no sample counts):
+
+* **pause**: the interval from one row's ``start_s`` to the next row's is at least :data:`PAUSE_MIN_S` longer
+  than the walk's median such interval (the walker's own rhythm: one stride of the tracked foot, one step on the
+  lower back); the excess is the pause's length. So a pause is standing (no step of the tracked foot / of either
+  foot) for about a second or more beyond the usual rhythm; the rests of a slow walker's ordinary stance are no
+  pause. Rows across a foot-data gap (``gap_s`` > 0, L67) are not judged: a sensor gap is not a pause.
+* **walking bout**: the walk between pauses: ``n_walking_bouts`` = ``n_pauses`` + 1 (0 without a row).
+* **turn**: a run of consecutive rows whose heading changes at :data:`TURN_RATE_MIN_DPS` deg/s or more from
+  one row to the next (heading change / time between the rows' starts; one slower row between two such rows
+  belongs to the turn), its angle the summed (signed) change;
+  ``turn_count`` counts the turns of at least :data:`TURN_COUNT_MIN_DEG` degrees (turnarounds, corners); a gentle
+  curve (below 15 deg/s, e.g. a 5 m radius at 1.2 m/s) or a pause is no turn. The heading of a foot row is the
+  foot's own yaw, summed over ``turn_angle_rad`` where every row has it (the stride's displacement direction of
+  a turn on the spot is short and noisy), else ``heading_rad``.
+* **stride-time variability** (foot tracks): ``stride_time_cv_pct`` = 100 x SD / mean (SD with n - 1) of the
+  stride times (initial contact to initial contact, L66) of the steady straight strides: a stride turning under
+  15 deg (L79) with a stride time, not next to a pause, whose previous and next strides are such strides too
+  (the strides into and out of a turn or a stop slow down; a stride time across a short stop is no rhythm);
+  None with fewer than :data:`CV_MIN_STRIDES` of them. None on the lower back: its contacts scatter (on
+  simulated straight walks whose true CV is 1.7-2.1 % it gave 6.2-9.7 %).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+#: a pause is at least this much (s) longer than the walk's median row-to-row interval
+PAUSE_MIN_S = 1.0
+#: an interval across which the heading changes this much (deg) or more is a turn, not a pause
+PAUSE_MAX_TURN_DEG = 30.0
+#: a row turns when its heading changes at this rate (deg/s) or more from the previous row
+TURN_RATE_MIN_DPS = 15.0
+#: ``turn_count`` counts turns of at least this angle (deg)
+TURN_COUNT_MIN_DEG = 80.0
+#: ``stride_time_cv_pct`` needs at least this many straight strides with a stride time
+CV_MIN_STRIDES = 10
+
+#: the keys :func:`clinical_summary` gives every summary (None / 0 when the table cannot give them)
+CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts", "turn_count",
+                 "turn_count_min_deg", "stride_time_cv_pct", "n_cv_strides")
+
+
+def _valid(steps: pd.DataFrame) -> np.ndarray:
+    return (steps["gap_s"].to_numpy(float) == 0) if "gap_s" in steps else np.ones(len(steps), bool)
+
+
+def pauses(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S) -> np.ndarray:
+    """(P,) the lengths (s) of the walk's pauses (module docstring), in time order."""
+    if len(steps) < 2:
+        return np.zeros(0)
+    excess, is_pause = _intervals(steps.sort_values("start_s", kind="stable").reset_index(drop=True), min_s)
+    return excess[is_pause]
+
+
+def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray, np.ndarray]:
+    """(N - 1,) each row-to-row interval's excess over the median interval (s) and whether it is a pause; rows
+    in time order."""
+    t = st["start_s"].to_numpy(float)
+    ok = _valid(st)
+    d = np.diff(t)
+    pair = ok[:-1] & ok[1:] & np.isfinite(d)
+    if not pair.any():
+        return np.zeros(len(d)), np.zeros(len(d), bool)
+    excess = d - float(np.median(d[pair]))
+    if "heading_rad" in st:  # a walker who stands does not turn: a slow turn on the spot is no pause
+        with np.errstate(invalid="ignore"):
+            pair &= ~(np.abs(np.diff(np.degrees(_heading(st)))) >= PAUSE_MAX_TURN_DEG)
+    return excess, pair & (excess >= min_s)
+
+
+def _heading(steps: pd.DataFrame) -> np.ndarray:
+    """Unwrapped heading (rad) of each row, time order: a foot table's summed ``turn_angle_rad`` when every
+    valid row has one, else ``heading_rad``."""
+    if "turn_angle_rad" in steps and "unit" in steps and (steps["unit"] == "foot").all():
+        turn = steps["turn_angle_rad"].to_numpy(float)
+        ok = _valid(steps)
+        if ok.any() and np.isfinite(turn[ok]).all():
+            return np.cumsum(np.where(ok, turn, 0.0))
+    return np.unwrap(steps["heading_rad"].to_numpy(float))
+
+
+def turns(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS) -> np.ndarray:
+    """(T,) the signed angles (deg, left positive) of the walk's turns (module docstring), any size."""
+    if len(steps) < 2 or "heading_rad" not in steps:
+        return np.zeros(0)
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    h = np.degrees(_heading(st))
+    t = st["start_s"].to_numpy(float)
+    ok = _valid(st)
+    dh, dt = np.diff(h), np.diff(t)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        turning = ok[:-1] & ok[1:] & np.isfinite(dh) & (dt > 0) & (np.abs(dh) / dt >= min_rate_dps)
+    # one row under the rate between two turning rows (a turn's slower step) does not split the turn
+    turning[1:-1] |= turning[:-2] & turning[2:] & ok[1:-2] & ok[2:-1] & ok[3:] & np.isfinite(dh[1:-1])
+    out, cur = [], None
+    for i, on in enumerate(turning):
+        if on:
+            cur = dh[i] if cur is None else cur + dh[i]
+        elif cur is not None:
+            out.append(cur)
+            cur = None
+    if cur is not None:
+        out.append(cur)
+    return np.asarray(out, dtype=float)
+
+
+def _straight_stride_times(steps: pd.DataFrame) -> np.ndarray:
+    """The stride times (s) of a foot table's steady straight strides (module docstring); none for a lower-back
+    table (its contact timing scatters too much for a variability, decision L104)."""
+    from pdrlearn.track.gait import STRAIGHT_MAX_RAD
+
+    if "stride_time_s" in steps:
+        st = steps.sort_values("start_s", kind="stable")
+        s = st["stride_time_s"].to_numpy(float)
+        turn = st["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in st else np.zeros(len(s))
+        with np.errstate(invalid="ignore"):
+            ok = np.isfinite(s) & (np.abs(turn) < STRAIGHT_MAX_RAD) & _valid(st)
+        if len(st) > 1:  # a stride time across a pause (IC to IC over a short stop, L80) is no stride's rhythm
+            _, is_pause = _intervals(st.reset_index(drop=True))
+            ok &= ~np.concatenate([[False], is_pause]) & ~np.concatenate([is_pause, [False]])
+        # steady: the strides before and after are straight strides with a stride time too (no turn, start
+        # or stop next to it: the strides around a turn or a stop slow down)
+        steady = ok & np.concatenate([[False], ok[:-1]]) & np.concatenate([ok[1:], [False]])
+        return s[steady]
+    return np.zeros(0)
+
+
+def clinical_summary(steps: pd.DataFrame) -> dict:
+    """Decision L104: :data:`CLINICAL_KEYS` of a tracked step table (module docstring): ``n_pauses``,
+    ``pause_time_s`` (summed), ``longest_pause_s``, ``n_walking_bouts``, ``turn_count`` (turns of at least
+    ``turn_count_min_deg``), ``stride_time_cv_pct`` over ``n_cv_strides`` straight strides."""
+    out: dict = {"n_pauses": 0, "pause_time_s": 0.0, "longest_pause_s": None, "n_walking_bouts": 0,
+                 "turn_count": 0, "turn_count_min_deg": TURN_COUNT_MIN_DEG, "stride_time_cv_pct": None,
+                 "n_cv_strides": 0}
+    if not len(steps) or "start_s" not in steps:
+        return out
+    p = pauses(steps)
+    out["n_pauses"], out["pause_time_s"] = int(len(p)), float(p.sum())
+    out["longest_pause_s"] = float(p.max()) if len(p) else None
+    out["n_walking_bouts"] = int(len(p)) + 1
+    out["turn_count"] = int((np.abs(turns(steps)) >= TURN_COUNT_MIN_DEG).sum())
+    s = _straight_stride_times(steps)
+    out["n_cv_strides"] = int(len(s))
+    if len(s) >= CV_MIN_STRIDES and s.mean() > 0:
+        out["stride_time_cv_pct"] = float(100.0 * s.std(ddof=1) / s.mean())
+    return out

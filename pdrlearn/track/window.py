@@ -1,0 +1,105 @@
+"""A time window of a track (decision L105, ``pdrlearn track --window START,END``): the 2-minute-walk distance at
+120 s, the speed over the middle of a 10 m walk.
+
+The whole session is tracked (the trackers keep their start-up: the foot's first rest, the lower back's heading)
+and the track is then cut: a step (a stride of the tracked foot, a step on the lower back) belongs to the
+window when its midpoint lies inside (the accounting rule of the lower-back evaluation and calibration, W21:
+strides across either edge count once, on the side of their larger part). The session's references are cut by
+the same rule (labelled strides by their midpoint, initial contacts by their time, reference bouts and turns
+only when wholly inside), so the summary's errors compare the window with the window.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+from pdrlearn.io.session import Session
+from pdrlearn.track.base import TrackResult
+
+WINDOW_USAGE = "give --window START,END in seconds from the session start, e.g. --window 0,120 or 5,15"
+
+
+def parse_window(text: str | None) -> tuple[float, float] | None:
+    """``"START,END"`` (s) -> ``(start, end)``; None for None. One :class:`DataError` line for a text that is not
+    two finite numbers with 0 <= START < END."""
+    if text is None:
+        return None
+    parts = [p.strip() for p in str(text).split(",")]
+    try:
+        if len(parts) != 2:
+            raise ValueError
+        start, end = float(parts[0]), float(parts[1])
+    except ValueError:
+        raise DataError(f"--window {text!r}: expected two numbers START,END; {WINDOW_USAGE}") from None
+    if not (math.isfinite(start) and math.isfinite(end)):
+        raise DataError(f"--window {text!r}: START and END must be finite numbers; {WINDOW_USAGE}")
+    if start < 0:
+        raise DataError(f"--window {text!r}: START {start:g} s is before the session start (0); {WINDOW_USAGE}")
+    if end <= start:
+        raise DataError(f"--window {text!r}: END {end:g} s must be later than START {start:g} s; {WINDOW_USAGE}")
+    return start, end
+
+
+def check_window(window: tuple[float, float], session: Session) -> tuple[float, float]:
+    """The window in the session's own clock (``session.t_start`` + START, + END); one :class:`DataError` line
+    when it does not lie inside the recording."""
+    start, end = window
+    dur = session.duration_s
+    if start >= dur or end > dur + 1e-6:
+        raise DataError(f"{session.where}: --window {start:g},{end:g} lies outside the recording, which lasts "
+                        f"{dur:.2f} s; give START < END <= {dur:.2f}")
+    return session.t_start + start, session.t_start + end
+
+
+def _mid_inside(df: pd.DataFrame | None, t0: float, t1: float) -> pd.DataFrame | None:
+    if df is None or not {"start_s", "end_s"} <= set(df):
+        return df
+    mid = 0.5 * (df["start_s"].to_numpy(float) + df["end_s"].to_numpy(float))
+    return df[(mid >= t0) & (mid <= t1)].reset_index(drop=True)
+
+
+def _inside(df: pd.DataFrame, t0: float, t1: float) -> pd.DataFrame:
+    if "ic_s" in df:
+        t = df["ic_s"].to_numpy(float)
+        return df[(t >= t0) & (t <= t1)].reset_index(drop=True)
+    if {"after_s", "before_s"} <= set(df):
+        return df[(df["after_s"] >= t0) & (df["before_s"] <= t1)].reset_index(drop=True)
+    if {"start_s", "end_s"} <= set(df):
+        return df[(df["start_s"] >= t0) & (df["end_s"] <= t1)].reset_index(drop=True)
+    return df
+
+
+def window_track(result: TrackResult, session: Session, t0: float, t1: float) -> tuple[TrackResult, Session]:
+    """The track and the session cut to ``[t0, t1]`` (the session's clock; module docstring). The trajectory keeps
+    the position at the first kept step's start (the last row at or before it) and the rows after it up to the
+    last kept step's end. ``info["window"]`` records the window."""
+    steps = result.steps
+    if len(steps):
+        mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
+        steps = steps[(mid >= t0) & (mid <= t1)].reset_index(drop=True)
+    traj = result.trajectory
+    if len(steps) and len(traj):
+        a, b = float(steps["start_s"].min()), float(steps["end_s"].max())
+        t = traj["t"].to_numpy(float)
+        first = int(np.searchsorted(t, a + 1e-9, side="right")) - 1
+        keep = (np.arange(len(t)) >= max(first, 0)) & (t <= b + 1e-9)
+        traj = traj[keep].reset_index(drop=True)
+    else:  # no step inside: the position where the window starts, as one row
+        t = traj["t"].to_numpy(float)
+        traj = traj.iloc[[max(int(np.searchsorted(t, t0, side="right")) - 1, 0)]].reset_index(drop=True) \
+            if len(traj) else traj
+    info = {**result.info, "window": {"start_s": t0 - session.t_start, "end_s": t1 - session.t_start}}
+    gt = session.trajectory
+    if gt is not None and len(gt) and len(traj):
+        tt = gt["t"].to_numpy(float)
+        gt = gt[(tt >= float(traj["t"].iloc[0]) - 1e-9) & (tt <= float(traj["t"].iloc[-1]) + 1e-9)]
+        gt = gt.reset_index(drop=True) if len(gt) > 1 else None
+    cut = dataclasses.replace(session, steps=_mid_inside(session.steps, t0, t1), trajectory=gt,
+                              extras={k: (_inside(v, t0, t1) if isinstance(v, pd.DataFrame) else v)
+                                      for k, v in session.extras.items()})
+    return TrackResult(steps=steps, trajectory=traj, info=info), cut

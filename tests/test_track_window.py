@@ -1,0 +1,66 @@
+"""`pdrlearn track --window START,END` (decision L105): the steps whose middle lies in the window, its
+references cut alike; bad windows are one error line, nothing written."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.io import write_session
+from pdrlearn.sim import UserProfile, simulate_path
+from pdrlearn.sim.route import parse_route
+
+
+@pytest.fixture(scope="module")
+def walk(tmp_path_factory):
+    root = tmp_path_factory.mktemp("window")
+    s = simulate_path(parse_route("stand:2, straight:24, turn:180, straight:10, stand:2"), UserProfile.from_seed(1),
+                      speed="slow", rate_hz=20, seed=0)
+    write_session(s, root / "walk")
+    return root, s
+
+
+def _track(root, *args):
+    out = root / ("t" + "_".join(a.replace(",", "-") for a in args))
+    assert main(["track", str(root / "walk"), "--out", str(out), "--json", *args]) == 0
+    return json.loads((out / "summary.json").read_text()), out
+
+
+@pytest.mark.parametrize("pipeline", ["plasys", "waist-pendulum"])
+def test_window_keeps_the_steps_inside_and_cuts_the_reference(walk, pipeline, capsys):
+    root, s = walk
+    full, _ = _track(root, "--pipeline", pipeline)
+    win, out = _track(root, "--pipeline", pipeline, "--window", "12,22")
+    capsys.readouterr()
+    assert win["window_start_s"] == 12.0 and win["window_end_s"] == 22.0
+    assert win["info"]["window"] == {"start_s": 12.0, "end_s": 22.0}
+    steps = np.loadtxt(out / "steps.csv", delimiter=",", skiprows=1, usecols=(0, 1))
+    mid = steps.mean(axis=1) - s.t_start
+    assert len(steps) == win["n_steps"] and ((mid >= 12) & (mid <= 22)).all()
+    assert 0 < win["n_steps"] < full["n_steps"]
+    # the middle of the 24 m straight (walking from ~7 s to ~34 s): about 10 s of it at the straight speed
+    speed = full["median_speed_straight_mps"]
+    assert 0.8 * 10 * speed <= win["distance_m"] <= 1.2 * 10 * speed
+    # the reference is the window's too: its error is small (the whole walk's reference is ~36 m)
+    assert win["distance_ref_m"] < 0.5 * full["distance_ref_m"]
+    assert abs(win["distance_m"] - win["distance_ref_m"]) <= 0.2 * win["distance_ref_m"] + 0.1
+    # a window over the whole recording is the whole track
+    whole, _ = _track(root, "--pipeline", pipeline, "--window", f"0,{s.duration_s:.6f}")
+    assert whole["n_steps"] == full["n_steps"] and whole["distance_m"] == pytest.approx(full["distance_m"])
+
+
+@pytest.mark.parametrize("window, message", [("15,5", "must be later than START"), ("5,5", "must be later"),
+                                             ("0,nan", "finite"), ("inf,5", "finite"), ("-1,5", "before the session"),
+                                             ("5", "two numbers"), ("a,b", "two numbers"),
+                                             ("0,9999", "lies outside the recording"),
+                                             ("9000,9999", "lies outside the recording")])
+def test_bad_window_is_one_line_and_writes_nothing(walk, window, message, capsys):
+    root, _ = walk
+    out = root / "bad"
+    assert main(["track", str(root / "walk"), "--out", str(out), "--window", window]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error: ") and message in err and "\n" not in err, err
+    assert "--window" in err and not out.exists()
