@@ -22,6 +22,8 @@ from __future__ import annotations
 
 import argparse
 import logging
+import shlex
+import sys
 import time
 from pathlib import Path
 
@@ -318,6 +320,7 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
                          f"({', '.join(EXTERNAL_FOOT)}); results get the suffix _ext")
     ap.add_argument("--steady-train", action="store_true",
                     help="train on the steady simulated strides only (no turns on the spot / closing steps)")
+    argv = sys.argv[1:] if argv is None else list(argv)
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.WARNING)
     apply_variant(args.variant)
@@ -371,6 +374,8 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
     text = (
         f"# Sim-to-real: terrain (foot unit), simulator at {args.rate:g} Hz"
         + ("" if args.variant == "none" else f", variant '{args.variant}' (not the shipped simulator)") + "\n\n"
+        # the command that wrote the file: its options decide which sections (LORO, diagnosis) it has
+        f"Command: `{shlex.join(['.venv/bin/python', 'experiments/sim_to_real.py', *argv])}`\n\n"
         f"Trained on {len(sims)} simulated terrain exercises ({args.users} users, seeds {args.first_user}.."
         f"{args.first_user + args.users - 1}, x 3 speeds, {args.rate:g} Hz, "
         f"{sum(len(s.steps) for s in sims)} strides, simulated in {sim_s:.1f} s); tested on the {n_real} "
