@@ -36,20 +36,35 @@ def test_no_steps_warns_with_the_gate_the_level_and_a_fix_that_works():
     """W76: 0 steps on the damped walk is one warning naming the gate, the data's SD and the params fix; the
     threshold it suggests finds the walk's steps."""
     s = _damped_patient()
-    r = track_waist(s, pipeline="waist-pendulum")
+    r = track_waist(s, pipeline="waist-pendulum", relative_gate=False)  # W4's fixed gate
     assert not r.steps["has_next"].any()
     msg = [w for w in r.info["warnings"] if w.startswith("no steps found")]
     assert len(msg) == 1, r.info["warnings"]
     assert ">= 0.50 m/s^2" in msg[0] and "largest 2 s SD is" in msg[0] and "walk_threshold_mps2" in msg[0]
     x = float(re.search(r'"walk_threshold_mps2": ([0-9.]+)', msg[0]).group(1))
     assert 0.15 <= x < 0.5
-    r2 = track_waist(s, pipeline="waist-pendulum", params={"walk_threshold_mps2": x})
+    r2 = track_waist(s, pipeline="waist-pendulum", params={"walk_threshold_mps2": x}, relative_gate=False)
     n_true = len(s.extras["ics"])
     assert r2.steps["has_next"].sum() >= 0.9 * (n_true - 1), (len(r2.steps), n_true)
     assert not any(w.startswith("no steps found") for w in r2.info["warnings"])
-    # the walk with steps has no such line; the candidate's option (W76, off by default) finds them too
-    r3 = track_waist(s, pipeline="waist-pendulum", relative_gate=True)
+    # W76's session-relative gate (the default) finds them with no params
+    r3 = track_waist(s, pipeline="waist-pendulum")
     assert r3.steps["has_next"].sum() >= 0.9 * (n_true - 1) and r3.info["walk_threshold_mps2"] < 0.5
+    assert not any(w.startswith("no steps found") for w in r3.info["warnings"])
+
+
+def test_relative_gate_leaves_a_normal_walk_and_standing_alone():
+    """W76: a normal walk keeps W4's 0.5 exactly (same steps, same distance); a standing-only recording gets the
+    0.15 floor, no step, and the no-steps line (the gate never opened)."""
+    u = UserProfile.from_seed(3)
+    walk = simulate_path([Stand(2), Straight(12), Stand(2)], u, speed="normal", rate_hz=20, seed=1)
+    a = track_waist(walk, pipeline="waist-pendulum")
+    b = track_waist(walk, pipeline="waist-pendulum", relative_gate=False)
+    assert a.info["walk_threshold_mps2"] == 0.5 and a.steps["length_m"].sum() == b.steps["length_m"].sum()
+    still = simulate_path([Stand(20)], u, speed="normal", rate_hz=20, seed=1)
+    r = track_waist(still, pipeline="waist-pendulum")
+    assert len(r.steps) == 0 and r.info["walk_threshold_mps2"] == 0.15
+    assert any(w.startswith("no steps found") and "never opened" in w for w in r.info["warnings"])
 
 
 def test_slow_line_of_an_uncalibrated_waist_names_the_calibration():

@@ -269,7 +269,7 @@ def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, 
 #: pipeline options a PARAMS.json may set under "options" (so ``pdrlearn track --params`` reaches them)
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
-                   "merge_fragments": True, "length_smoothing": "none", "relative_gate": False}
+                   "merge_fragments": True, "length_smoothing": "none", "relative_gate": True}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -315,8 +315,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         Hampel + per-second smoothing of the step lengths, decision W56), ``"hampel"`` or ``"seconds"`` (its two
         parts alone)
     relative_gate : offline, when the params do not set ``walk_threshold_mps2``: the motion gate's threshold is
-        ``min(0.5, max(0.15, 0.5 x P90))`` of the session's own 2 s vertical SD (decision W76's candidate,
-        :func:`~pdrlearn.waist._kernels.relative_walk_threshold`); default False (W4's 0.5)
+        ``min(0.5, max(0.15, 0.5 x P90))`` of the session's own 2 s vertical SD (decision W76,
+        :func:`~pdrlearn.waist._kernels.relative_walk_threshold`); default True since W76's rule held (False:
+        W4's 0.5)
 
     Options left at ``None`` take the value of ``params.options`` (a PARAMS.json ``"options"`` object)
     and else :data:`OPTION_DEFAULTS`.
