@@ -68,6 +68,14 @@ def test_slow_patient_waist_distance_with_the_pendulum_bounce():
     assert abs(out["pendulum"] - 14.0) < 0.15 * 14.0, out
 
 
+def test_pendulum_bounce_on_a_standstill():
+    """A route without steps simulates with the pendulum bounce as with the constant one (no step to scale)."""
+    u = UserProfile.from_seed(2)
+    a = simulate_path([Stand(4)], u, rate_hz=20, seed=0, bounce="pendulum")
+    b = simulate_path([Stand(4)], u, rate_hz=20, seed=0)
+    assert np.array_equal(a.streams["wAccelerometer"].values, b.streams["wAccelerometer"].values)
+
+
 def test_cli_bounce_option(tmp_path, capsys):
     """`pdrlearn simulate --bounce pendulum` writes the knob into meta.json; a bad value is one error line."""
     out = tmp_path / "pend"

@@ -512,7 +512,7 @@ def pelvis_pose(
         ph = PchipInterpolator(ev.ic, np.array(ph_k, float), extrapolate=True)(t)
     else:
         ph = np.zeros_like(t)
-    if bounce_amp is None:
+    if bounce_amp is None or not len(steps):  # no step: no bounce envelope either
         amp_t = user.pelvis_bounce_m
     else:  # S29: each step's amplitude at its mid-stance, interpolated between the steps
         amp_t = np.interp(t, ev.ic - 0.5 * ev.step_s, bounce_amp)
