@@ -374,7 +374,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops)
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
-        warnings.append(no_steps_message(thr, sigma, p.walk_threshold_mps2 is not None))
+        warnings.append(no_steps_message(thr, sigma, "params" if p.walk_threshold_mps2 is not None
+                                         else "relative" if thr != WALK_THRESHOLD_MPS2 else "fixed"))
     n = len(steps)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"
     info = {
@@ -395,13 +396,14 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     return _result(steps, start, initial_heading, info, float(imu.t[0]))
 
 
-def no_steps_message(thr: float, sigma: np.ndarray, from_params: bool) -> str:
+def no_steps_message(thr: float, sigma: np.ndarray, source: str) -> str:
     """Decision W76: the one line of a waist track that found no step - the motion gate (threshold and where it
     comes from), the largest 2 s SD of the vertical acceleration the data reached, and the fix."""
     top = float(np.nanmax(sigma)) if np.size(sigma) else 0.0
     opened = "never opened" if top < thr else "opened but no step was found in it"
     suggest = max(K.RELATIVE_GATE_FLOOR_MPS2, round(0.5 * top, 2))
-    src = "the params' walk_threshold_mps2" if from_params else "decision W4's default"
+    src = {"params": "the params' walk_threshold_mps2", "relative": "decision W76's session-relative gate"}.get(
+        source, "decision W4's fixed gate")
     return (f"no steps found: the walking gate (2 s SD of the vertical acceleration >= {thr:.2f} m/s^2, {src}) "
             f"{opened}; the data's largest 2 s SD is {top:.2f} m/s^2. If the person walked with little trunk "
             f"movement (walking aid, rollator, very slow), pass a params JSON with {{\"walk_threshold_mps2\": "
