@@ -266,7 +266,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.kernels.window import BOUNDARIES
     from pdrlearn.runtime.bundle import UNITS as BODY_UNITS
     from pdrlearn.sim import SCENARIOS, SPEEDS
-    from pdrlearn.sim.body import PELVIS_MODES
+    from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES
     from pdrlearn.sim.route import parse_route
     from pdrlearn.steps.detectors import DETECTORS
     from pdrlearn.track.base import PIPELINES
@@ -312,6 +312,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("simulate", "route"): parse_route,
         ("simulate", "speed"): _one_of(SPEEDS),
         ("simulate", "pelvis"): _one_of(PELVIS_MODES),
+        ("simulate", "bounce"): _one_of(BOUNCE_MODES),  # decision S29
         ("fetch", "source"): _one_of(SOURCES),
         ("import", "unit"): _one_of(PLACEMENTS),
         ("import", "time_unit"): time_unit,

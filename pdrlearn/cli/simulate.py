@@ -56,6 +56,12 @@ def simulate_cmd(
         None, "--step-time", help="With --route: the step time (s, contact to the other foot's contact) at "
         f"--speed, {STEP_TIME_RANGE_S[0]:g}-{STEP_TIME_RANGE_S[1]:g} (cadence = 60 / step time; default: the "
         "user's own; decision S30)."),
+    bounce: str = typer.Option(
+        "constant",
+        "--bounce",
+        help="constant (default): the user's pelvis bounce on every step; pendulum: scaled by the inverted "
+        "pendulum's rise for each step's length, so short slow steps bounce less (decision S29).",
+    ),
     no_noise: bool = typer.Option(False, "--no-noise", help="Exact physics: no noise, bias or quantisation."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -78,7 +84,7 @@ def simulate_cmd(
     """
     from pdrlearn.io import write_session
     from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path
-    from pdrlearn.sim.body import PELVIS_MODES
+    from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES
     from pdrlearn.sim.route import parse_route
 
     if (scenario is None) == (route is None):
@@ -90,6 +96,8 @@ def simulate_cmd(
         raise DataError(f"--speed {speed!r}: must be one of {', '.join(SPEEDS)}")
     if pelvis not in PELVIS_MODES:  # the simulator's own list (S27)
         raise DataError(f"--pelvis {pelvis!r}: must be {' or '.join(PELVIS_MODES)}")
+    if bounce not in BOUNCE_MODES:  # decision S29
+        raise DataError(f"--bounce {bounce!r}: must be {' or '.join(BOUNCE_MODES)}")
     if user_seed < 0 or seed < 0:
         raise DataError("--user-seed and --seed must be non-negative integers")
     if not -90.0 <= foot_mount_pitch <= 90.0:  # beyond +-90 deg the unit would be mounted upside down
@@ -106,6 +114,7 @@ def simulate_cmd(
         foot_mount_pitch_deg=foot_mount_pitch,
         noise=not no_noise,
         pelvis=pelvis,
+        bounce=bounce,
     )
     label = scenario or "route"
     with progress(f"simulating {label}", total=2, enabled=not as_json) as advance:

@@ -361,6 +361,8 @@ PELVIS_SWAY_GAIN = 1.0
 # 0.07-0.34 m/s^2 at the stride frequency, roll -43..+52 deg from the lateral acceleration, lateral
 # acceleration 0.40-0.93 m/s^2). Drawn per user, uniform over these ranges.
 PELVIS_MODES = ("model", "realistic")
+BOUNCE_MODES = ("constant", "pendulum")  # decision S29
+COMFORTABLE_STEP_PER_HEIGHT = 0.415  # step length / stature at a comfortable speed (UserProfile.from_seed's mean)
 REALISTIC_ROLL_DEG = (0.4, 2.0)  # roll amplitude toward the stance side
 REALISTIC_ROLL_PHASE_DEG = (-45.0, 45.0)  # roll phase ahead of the sway acceleration
 REALISTIC_SWAY_ACC_MPS2 = (0.4, 0.9)  # lateral sway acceleration amplitude
@@ -422,6 +424,30 @@ def _bouts(steps: list[Footstep], ev: Events) -> list[tuple[int, int]]:
     return [(starts[i], starts[i + 1] - 1) for i in range(len(starts) - 1)]
 
 
+def pendulum_rise(step_m: np.ndarray, leg_m: float) -> np.ndarray:
+    """Rise (m) of an inverted pendulum of length ``leg_m`` vaulting over a step ``step_m`` (m):
+    ``h = L - sqrt(L^2 - (s/2)^2)`` (seed 003 eq. 2 solved for h; Zijlstra & Hof 2003)."""
+    half = np.minimum(0.5 * np.abs(np.asarray(step_m, float)), 0.999 * leg_m)
+    return leg_m - np.sqrt(leg_m**2 - half**2)
+
+
+def pendulum_bounce(steps: list[Footstep], ev: Events, initial: dict, user: UserProfile) -> np.ndarray:
+    """Peak-to-peak pelvis bounce (m) of each step (decision S29): ``pelvis_bounce_m x h(s_k) / h(s_user)``, with
+    ``h`` :func:`pendulum_rise` of the user's leg, ``s_k`` the step's heel-to-heel distance along the landing
+    foot's heading and ``s_user`` the comfortable step of the user's stature, 0.415 x height (the mean that
+    :meth:`UserProfile.from_seed` draws around): a comfortable step keeps the user's bounce, and a profile whose
+    ``step_length_m`` was shortened (a slow patient) bounces as its steps, not as its stature."""
+    last = {f: np.asarray(h, float) for f, (h, _) in initial.items()}
+    s = np.zeros(len(steps))
+    for k, st in enumerate(steps):
+        other = "left" if st.foot == "right" else "right"
+        d = np.asarray(st.heel, float)[:2] - last[other][:2]
+        s[k] = abs(d[0] * np.cos(st.yaw) + d[1] * np.sin(st.yaw))
+        last[st.foot] = np.asarray(st.heel, float)
+    ref = float(pendulum_rise(np.array([COMFORTABLE_STEP_PER_HEIGHT * user.height_m]), user.leg_length_m)[0])
+    return user.pelvis_bounce_m * pendulum_rise(s, user.leg_length_m) / max(ref, 1e-9)
+
+
 def pelvis_pose(
     t: np.ndarray,
     steps: list[Footstep],
@@ -431,10 +457,15 @@ def pelvis_pose(
     rng: np.random.Generator | None = None,
     trunk_noise: float = 1.0,
     pelvis: PelvisParams | None = None,
+    bounce_mode: str = "constant",
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pelvis reference point (n, 3) at the waist-unit height, orientation (n, 3, 3) and base heading (n,).
 
-    ``pelvis``: None = the model's sway and obliquity; :func:`realistic_pelvis` = decision S27's."""
+    ``pelvis``: None = the model's sway and obliquity; :func:`realistic_pelvis` = decision S27's.
+    ``bounce_mode``: ``"constant"`` = the user's ``pelvis_bounce_m`` on every step; ``"pendulum"`` = scaled per
+    step by the inverted pendulum's rise for the step's length (decision S29, :func:`pendulum_bounce`)."""
+    bounce_amp = (pendulum_bounce(steps, ev, initial, user) if bounce_mode == "pendulum"
+                  else None)
     feet = {f: (np.asarray(h, float), y) for f, (h, y) in initial.items()}
 
     def config() -> tuple[float, ...]:
@@ -481,7 +512,11 @@ def pelvis_pose(
         ph = PchipInterpolator(ev.ic, np.array(ph_k, float), extrapolate=True)(t)
     else:
         ph = np.zeros_like(t)
-    bounce = -env * 0.5 * user.pelvis_bounce_m * (1.0 + np.cos(2 * np.pi * ph))
+    if bounce_amp is None or not len(steps):  # no step: no bounce envelope either
+        amp_t = user.pelvis_bounce_m
+    else:  # S29: each step's amplitude at its mid-stance, interpolated between the steps
+        amp_t = np.interp(t, ev.ic - 0.5 * ev.step_s, bounce_amp)
+    bounce = -env * 0.5 * amp_t * (1.0 + np.cos(2 * np.pi * ph))
     # forward surge of an inverted pendulum: the trunk accelerates forward through single support until
     # the next contact and is braked in the loading response (lower-trunk forward acceleration peaks at
     # initial contact, Zijlstra & Hof 2003); the drop is centred in the loading response (decisions S17)

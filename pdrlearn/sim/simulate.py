@@ -16,6 +16,7 @@ from pdrlearn.io.frames import THESIS_FOOT_FRAME, THESIS_WAIST_FRAME
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.sim import sensors as sn
 from pdrlearn.sim.body import (
+    BOUNCE_MODES,
     HEEL_OFF_FRACTION,
     LOAD_FRACTION,
     PELVIS_MODES,
@@ -63,6 +64,7 @@ KNOBS: dict[str, object] = {
     "foot_mount_pitch_deg": 0.0,  # extra toes-down tilt of the foot unit (e.g. 50 for an instep mount)
     "device_errors": True,  # accelerometer scale factors per unit (the user's own), not per session (S22)
     "pelvis": "model",  # "realistic": roll toward the stance side and a smaller sway, drawn per user (S27)
+    "bounce": "constant",  # "pendulum": the pelvis bounce scales with the step length (S29)
 }
 
 
@@ -93,6 +95,8 @@ def _check_knobs(knobs: dict) -> dict:
             raise DataError(f"simulate: {k}={out[k]!r} must be True or False")
     if out["pelvis"] not in PELVIS_MODES:
         raise DataError(f"simulate: pelvis={out['pelvis']!r} must be one of {', '.join(PELVIS_MODES)}")
+    if out["bounce"] not in BOUNCE_MODES:
+        raise DataError(f"simulate: bounce={out['bounce']!r} must be one of {', '.join(BOUNCE_MODES)}")
     for k, default in KNOBS.items():
         v = out[k]
         if isinstance(default, bool | str):
@@ -297,6 +301,7 @@ def simulate_path(
         rng=_rng(user.seed, int(seed), scenario, speed, "trunk"),
         trunk_noise=trunk,
         pelvis=pelvis,
+        bounce_mode=str(opt["bounce"]),
     )
     p_w = p_pel + R_p @ r_waist
     fw_body = block_mean(specific_force_body(p_w, R_p, dt), OVERSAMPLE)
@@ -408,7 +413,7 @@ def simulate_path(
         },
         "earth_field_enu_ut": [float(v) for v in b_enu],
         # the default pelvis is left out so that default sessions (and their meta.json) are as before S27
-        "knobs": {k: v for k, v in opt.items() if k != "pelvis" or v != KNOBS["pelvis"]},
+        "knobs": {k: v for k, v in opt.items() if k not in ("pelvis", "bounce") or v != KNOBS[k]},
         "n_steps": len(steps),
         "n_strides": int(len(strides)),
         "distance_m": float(strides["length_m"].sum()) if len(strides) else 0.0,

@@ -290,5 +290,11 @@ def gait_range_warning(summary: dict) -> str | None:
     ood = summary.get("out_of_domain_fraction")
     extra = (f"; {100 * float(ood):.0f} % of the strides lie outside the model's training range" if ood is not None
              else "")
+    info = summary.get("info") or {}
+    if slow and str(info.get("pipeline") or "").startswith("waist") and info.get("params_source") == "defaults":
+        # decision W77: an uncalibrated waist's step length at slow cadence is the default model's guess
+        extra += ("; the waist step length is uncalibrated and the default model is not validated at slow "
+                  "cadence: the distance and speed depend on a calibration on this walker's own walk of known "
+                  "length ('pdrlearn calibrate DIR --distance M', e.g. a 10 m walk test)")
     return (f"{figs}: {what}{validated}; the distance, the terrain / length classes and the floors are not "
             f"reliable{extra}")

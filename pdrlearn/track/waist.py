@@ -269,7 +269,7 @@ def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, 
 #: pipeline options a PARAMS.json may set under "options" (so ``pdrlearn track --params`` reaches them)
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
-                   "merge_fragments": True, "length_smoothing": "none"}
+                   "merge_fragments": True, "length_smoothing": "none", "relative_gate": True}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -285,7 +285,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 heading: str | None = None, refine_ic: bool | None = None, initial_heading: float | None = None,
                 resolve_signs: bool | None = None, integrate_stops: bool | None = None,
                 turn_factor: bool | None = None, rhythm: bool | None = None,
-                merge_fragments: bool | None = None, length_smoothing: str | None = None) -> TrackResult:
+                merge_fragments: bool | None = None, length_smoothing: str | None = None,
+                relative_gate: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -313,6 +314,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     length_smoothing : pendulum, offline detector: ``"none"`` (default), ``"mobgap"`` (mobgap SlZijlstra's
         Hampel + per-second smoothing of the step lengths, decision W56), ``"hampel"`` or ``"seconds"`` (its two
         parts alone)
+    relative_gate : offline, when the params do not set ``walk_threshold_mps2``: the motion gate's threshold is
+        ``min(0.5, max(0.15, 0.5 x P90))`` of the session's own 2 s vertical SD (decision W76,
+        :func:`~pdrlearn.waist._kernels.relative_walk_threshold`); default True since W76's rule held (False:
+        W4's 0.5)
 
     Options left at ``None`` take the value of ``params.options`` (a PARAMS.json ``"options"`` object)
     and else :data:`OPTION_DEFAULTS`.
@@ -325,7 +330,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     given = {"realtime": realtime, "heading": heading, "refine_ic": refine_ic,
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
-             "merge_fragments": merge_fragments, "length_smoothing": length_smoothing}
+             "merge_fragments": merge_fragments, "length_smoothing": length_smoothing,
+             "relative_gate": relative_gate}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -347,6 +353,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
             raise
         return _no_walking(session, pipeline, p, o, warnings, float(exc.walk_s), start, initial_heading)
     thr = p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None else WALK_THRESHOLD_MPS2
+    sigma = K.rolling_std(imu.acc_v, imu.fs, causal=False)  # the W4 gate's signal (offline: centred)
+    if bool(o["relative_gate"]) and p.walk_threshold_mps2 is None and not realtime:  # W76's candidate
+        thr = K.relative_walk_threshold(sigma, thr)
     if pipeline == "waist-pendulum":
         det = InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
                                      rhythm=bool(o["rhythm"])).detect(imu)
@@ -364,6 +373,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                           merge_fragments=bool(o["merge_fragments"]), length_smoothing=smoothing)
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops)
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
+    if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
+        warnings.append(no_steps_message(thr, sigma, "params" if p.walk_threshold_mps2 is not None
+                                         else "relative" if thr != WALK_THRESHOLD_MPS2 else "fixed"))
     n = len(steps)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"
     info = {
@@ -377,10 +389,26 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_contacts": int(n),
         "rate_hz": imu.fs,
         "untracked_turn_deg": untracked,
+        "walk_threshold_mps2": float(thr),
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]))
+
+
+def no_steps_message(thr: float, sigma: np.ndarray, source: str) -> str:
+    """Decision W76: the one line of a waist track that found no step - the motion gate (threshold and where it
+    comes from), the largest 2 s SD of the vertical acceleration the data reached, and the fix."""
+    top = float(np.nanmax(sigma)) if np.size(sigma) else 0.0
+    opened = "never opened" if top < thr else "opened but no step was found in it"
+    suggest = max(K.RELATIVE_GATE_FLOOR_MPS2, round(0.5 * top, 2))
+    src = {"params": "the params' walk_threshold_mps2", "relative": "decision W76's session-relative gate"}.get(
+        source, "decision W4's fixed gate")
+    return (f"no steps found: the walking gate (2 s SD of the vertical acceleration >= {thr:.2f} m/s^2, {src}) "
+            f"{opened}; the data's largest 2 s SD is {top:.2f} m/s^2. If the person walked with little trunk "
+            f"movement (walking aid, rollator, very slow), pass a params JSON with {{\"walk_threshold_mps2\": "
+            f"{suggest:.2f}}} ('pdrlearn track DIR --params P.json'; docs/waist.md), or try 'pdrlearn steps DIR "
+            "--detector pelvic-gyro'")
 
 
 #: the columns of a waist steps table (the pendulum's; the PLL's lacks h_m and merged)

@@ -50,6 +50,23 @@ def motion_state(sigma_z: np.ndarray, *, walk_threshold: float, run_threshold: f
     return (s >= walk_threshold).astype(np.int8) + (s >= run_threshold).astype(np.int8)
 
 
+#: decision W76 (candidate): the session-relative gate's floor (m/s^2; the rehab trial's workaround, several times
+#: the standing noise), fraction of the walking level and the percentile that measures that level
+RELATIVE_GATE_FLOOR_MPS2, RELATIVE_GATE_FRACTION, RELATIVE_GATE_PERCENTILE = 0.15, 0.5, 90.0
+
+
+def relative_walk_threshold(sigma_z: np.ndarray, base: float) -> float:
+    """Decision W76's candidate gate: ``min(base, max(floor, fraction x P90(sigma_z)))`` (m/s^2), ``sigma_z`` the
+    session's centred 2 s SD of the vertical acceleration. A session walking a tenth of the time or more has its
+    walking level at P90; half of it keeps the start and end steps. ``base`` (W4's 0.5) whenever P90 >= 2 base."""
+    s = np.asarray(sigma_z, dtype=np.float64)
+    s = s[np.isfinite(s)]
+    if not s.size:
+        return float(base)
+    level = float(np.percentile(s, RELATIVE_GATE_PERCENTILE))
+    return float(min(base, max(RELATIVE_GATE_FLOOR_MPS2, RELATIVE_GATE_FRACTION * level)))
+
+
 # --------------------------------------------------------------------------------------------------
 # zero-lag FIR filtering and gait events (seed 003 sec. 3.1)
 # --------------------------------------------------------------------------------------------------

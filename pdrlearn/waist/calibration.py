@@ -119,7 +119,8 @@ def gap_notes(session: Session, t0: float, t1: float) -> list[str]:
 #: K itself when W39 chose the range). Our calibrations span 0.83-1.22 as K (W39: the five mobgap Test5 walks
 #: with bouts, both pipelines, and the simulated users), 0.72-1.06 as the ratio since W46; seed
 #: 003 sec. 3.2's pendulum needs no gain at all (accuracy 100.96 %). Outside the range the walk's distance is
-#: more likely wrong (a --distance of a longer walk, a walk that was not all recorded) than the user unusual.
+#: wrong (a --distance of a longer walk, a walk that was not all recorded) or the user unusual (a slow
+#: shuffle, a walking aid); the warning names both (W78) and the calibration is kept.
 PLAUSIBLE_GAIN = (0.6, 1.8)
 
 
@@ -148,10 +149,15 @@ def check_gain(walks: list[CalibrationWalk], pipeline: str, base: WaistParams) -
     for w in walks:
         lw = default_lengths(w, pipeline, base)
         g = w.distance_m / lw if lw > 0 else float("inf")
-        if not lo <= g <= hi:
+        if not lo <= g <= hi:  # W78: a true slow shuffle / a damped trunk is as likely as a wrong --distance
+            why = ("much shorter steps than the default model assumes for their trunk motion (a slow, shuffling "
+                   "walker)" if g < lo else "a trunk that moves much less than the default model assumes for "
+                   "their steps (a walking aid or rollator, a very smooth gait)")
             out.append(f"{w.name}: the known distance {w.distance_m:g} m is {g:.2f} x what the default model "
-                       f"gives its {len(w.f_hz)} steps ({lw:.2f} m; plausible {lo:g}-{hi:g}, decision W39): "
-                       "check --distance (the length from the first to the last heel strike of this walk)")
+                       f"gives its {len(w.f_hz)} steps ({lw:.2f} m; usual {lo:g}-{hi:g}, decision W39). Either "
+                       "--distance is wrong (give the length from the first to the last heel strike of this walk), "
+                       f"or the walker takes {why}: then this calibration is what the walker needs (it is kept; "
+                       "decision W78)")
     return out
 
 
