@@ -64,3 +64,27 @@ def test_bad_window_is_one_line_and_writes_nothing(walk, window, message, capsys
     err = capsys.readouterr().err.strip()
     assert err.startswith("error: ") and message in err and "\n" not in err, err
     assert "--window" in err and not out.exists()
+
+
+def test_window_counts_from_the_recording_start_with_common_span(walk, tmp_path, capsys):
+    """--window with --common-span (decisions L105 / B81): a cut that drops the start of the files does not move
+    the window's seconds - "5,15" keeps the same steps as on the whole session (it kept those of 8-18 s)."""
+    import shutil
+
+    import pandas as pd
+
+    root, s = walk
+    d = tmp_path / "late"
+    shutil.copytree(root / "walk", d)
+    g = pd.read_csv(d / "fGyroscope.csv")
+    g[g.timestamp >= g.timestamp.iloc[0] + 3e3].to_csv(d / "fGyroscope.csv", index=False)  # starts 3 s late
+    whole, _ = _track(root, "--window", "5,15")
+    out = tmp_path / "cut"
+    assert main(["track", str(d), "--out", str(out), "--json", "--common-span", "--window", "5,15"]) == 0
+    capsys.readouterr()
+    cut = json.loads((out / "summary.json").read_text())
+    assert cut["info"]["window"] == {"start_s": 5.0, "end_s": 15.0}
+    a = np.loadtxt(out / "steps.csv", delimiter=",", skiprows=1, usecols=(0, 1))
+    mid = a.mean(axis=1) - s.t_start
+    assert len(a) and ((mid >= 5) & (mid <= 15)).all(), mid
+    assert abs(cut["n_steps"] - whole["n_steps"]) <= 1
