@@ -64,3 +64,48 @@ def test_bad_window_is_one_line_and_writes_nothing(walk, window, message, capsys
     err = capsys.readouterr().err.strip()
     assert err.startswith("error: ") and message in err and "\n" not in err, err
     assert "--window" in err and not out.exists()
+
+
+def test_window_counts_from_the_recording_start_with_common_span(walk, tmp_path, capsys):
+    """--window with --common-span (decisions L105 / B81): a cut that drops the start of the files does not move
+    the window's seconds - "5,15" keeps the same steps as on the whole session (it kept those of 8-18 s)."""
+    import shutil
+
+    import pandas as pd
+
+    root, s = walk
+    d = tmp_path / "late"
+    shutil.copytree(root / "walk", d)
+    g = pd.read_csv(d / "fGyroscope.csv")
+    g[g.timestamp >= g.timestamp.iloc[0] + 3e3].to_csv(d / "fGyroscope.csv", index=False)  # starts 3 s late
+    whole, _ = _track(root, "--window", "5,15")
+    out = tmp_path / "cut"
+    assert main(["track", str(d), "--out", str(out), "--json", "--common-span", "--window", "5,15"]) == 0
+    capsys.readouterr()
+    cut = json.loads((out / "summary.json").read_text())
+    assert cut["info"]["window"] == {"start_s": 5.0, "end_s": 15.0}
+    a = np.loadtxt(out / "steps.csv", delimiter=",", skiprows=1, usecols=(0, 1))
+    mid = a.mean(axis=1) - s.t_start
+    assert len(a) and ((mid >= 5) & (mid <= 15)).all(), mid
+    assert abs(cut["n_steps"] - whole["n_steps"]) <= 1
+
+
+def test_window_path_png_draws_the_windows_reference_from_the_tracks_start(walk):
+    """path.png of a window (L105): the reference drawn is the window's, starting at the track's first point
+    (the walker's position at the window start), not the whole walk shifted to the origin."""
+    from pdrlearn.cli.track import track_session, track_settings
+    from pdrlearn.track.plots import path_figure
+    from pdrlearn.track.window import parse_window
+
+    root, _ = walk
+    settings = track_settings(streaming=True)
+    settings["window"] = parse_window("15,25")
+    tracked = track_session(root / "walk", settings)
+    tr = tracked["result"].trajectory
+    assert np.hypot(tr["x"].iloc[0], tr["y"].iloc[0]) > 4.0  # the window starts metres into the walk
+    plt, fig = path_figure({"track": tracked["result"]}, session=tracked["session"])
+    gx, gy = fig.axes[0].lines[-1].get_data()
+    plt.close(fig)
+    assert np.hypot(gx[0] - tr["x"].iloc[0], gy[0] - tr["y"].iloc[0]) < 0.3
+    # only the window's reference: about the track's own length, not the whole ~36 m walk
+    assert np.hypot(np.diff(gx), np.diff(gy)).sum() < 1.5 * tracked["result"].distance_m + 1.0

@@ -281,7 +281,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     summary = track_summary(result, tracked_session, pipeline=pipeline)  # C13, C14: the API's TrackResult.summary
     if win is not None:
         summary["window_start_s"], summary["window_end_s"] = (float(v) for v in o["window"])
-    return {"session": session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
+    # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
+    return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
             "dpi": dpi}
 
 

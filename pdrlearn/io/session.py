@@ -265,6 +265,9 @@ class Session:
     _checked: dict[str, str | None] = field(default_factory=dict, repr=False, compare=False)
     _handed: dict[object, object] = field(default_factory=dict, repr=False, compare=False)
     _valid: tuple | None = field(default=None, repr=False, compare=False)
+    #: decision B81: the recording's first sample (s) before ``read_session(spans="common")`` cut the session to
+    #: its common span (None: not cut); ``track --window`` counts its seconds from it (L105)
+    _t_start_uncut: float | None = field(default=None, repr=False, compare=False)
 
     # -- access -----------------------------------------------------------------------------------
     def __getitem__(self, name: str) -> Stream:
@@ -508,6 +511,13 @@ class Session:
     @property
     def duration_s(self) -> float:
         return self.t_end - self.t_start
+
+    @property
+    def t_recording_start(self) -> float:
+        """The recording's first sample (s): :attr:`t_start`, or before a ``--common-span`` cut (decision B81)
+        the first sample of the files as recorded, so that times "from the session start" (``track --window``,
+        L105) mean the same with and without the cut."""
+        return self.t_start if self._t_start_uncut is None else min(self._t_start_uncut, self.t_start)
 
     def labelled(self, column: str) -> bool:
         """True when the steps table has ``column`` with at least one non-missing value."""

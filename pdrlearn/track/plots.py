@@ -23,7 +23,8 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     :func:`pdrlearn.plots.save_atomic` (default 110, ``--dpi`` of track and run, decision L70).
 
     The ground truth is shifted so that it starts where the tracks start (its position at the first
-    track's start time). When the first track's heading is relative to its start (0 = east, unless
+    track's start time onto the first track's first point: the origin, or for ``track --window`` the
+    position at the window's start). When the first track's heading is relative to its start (0 = east, unless
     ``initial_heading`` says otherwise; :func:`heading_is_absolute`), the ground truth is also rotated to set
     off in that track's direction (:func:`initial_bearing`); the legend says so, and the axes are ``x`` (heading
     0 at the start) / ``y`` instead of east / north (L55).
@@ -65,6 +66,8 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
             if rot is not None:
                 gx, gy = rot
                 label = "ground truth (rotated to the track's initial direction: relative heading)"
+        if first is not None:  # L105: a windowed track starts where the walk was then, not at the origin
+            gx, gy = gx + float(first["x"].iloc[0]), gy + float(first["y"].iloc[0])
         lines.append((label, gt, gx, gy, gz, {"ls": "--", "lw": 1.0, "color": "k"}))
     climbs = any(len(z) and np.nanmax(z) - np.nanmin(z) >= ALTITUDE_PANEL_M for *_, z, _ in lines)
     if climbs:

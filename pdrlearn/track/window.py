@@ -46,14 +46,16 @@ def parse_window(text: str | None) -> tuple[float, float] | None:
 
 
 def check_window(window: tuple[float, float], session: Session) -> tuple[float, float]:
-    """The window in the session's own clock (``session.t_start`` + START, + END); one :class:`DataError` line
+    """The window in the session's own clock (the recording's start + START, + END; a ``--common-span`` cut,
+    decision B81, does not move that start); one :class:`DataError` line
     when it does not lie inside the recording."""
     start, end = window
-    dur = session.duration_s
+    t0 = session.t_recording_start  # B81: a --common-span cut does not move the session start (its seconds)
+    dur = session.t_end - t0
     if start >= dur or end > dur + 1e-6:
         raise DataError(f"{session.where}: --window {start:g},{end:g} lies outside the recording, which lasts "
                         f"{dur:.2f} s; give START < END <= {dur:.2f}")
-    return session.t_start + start, session.t_start + end
+    return t0 + start, t0 + end
 
 
 def _mid_inside(df: pd.DataFrame | None, t0: float, t1: float) -> pd.DataFrame | None:
@@ -93,7 +95,8 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
         t = traj["t"].to_numpy(float)
         traj = traj.iloc[[max(int(np.searchsorted(t, t0, side="right")) - 1, 0)]].reset_index(drop=True) \
             if len(traj) else traj
-    info = {**result.info, "window": {"start_s": t0 - session.t_start, "end_s": t1 - session.t_start}}
+    t_rec = session.t_recording_start  # the seconds of check_window (B81's cut does not move them)
+    info = {**result.info, "window": {"start_s": t0 - t_rec, "end_s": t1 - t_rec}}
     gt = session.trajectory
     if gt is not None and len(gt) and len(traj):
         tt = gt["t"].to_numpy(float)
