@@ -158,3 +158,20 @@ def test_bundle_with_a_combined_model_streams_like_predict_steps(tmp_path):
     tr_foot = Tracker(tmp_path / "bundle", units=("foot",))
     fsteps = replay(tr_foot, foot)
     assert fsteps and all(tr_foot.classifiers[t].unit == "foot" for t in model.tasks)
+
+
+def test_length_units_choose_the_length_task_among_soft_votes(tmp_path):
+    """Decision C38: ``length_units`` gives the length task its own units (every soft vote they allow, no
+    combined model, so C8 chooses among foot/waist/fused); terrain keeps the default combined model."""
+    s = [labelled_session(1, 8)]
+    m = train_user(s, tasks=["terrain", "length"], methods=["svm"], cv=2, length_units=["foot", "waist", "fused"])
+    assert set(m.tasks["length"].models["svm"]) == {"foot", "waist", "fused"}
+    assert m.tasks["length"].chosen == ("svm", "fused")
+    assert set(m.tasks["terrain"].models["svm"]) == {"foot", "waist", "combined"}
+    assert m.settings["length_units"] == ["foot", "waist", "fused"]
+    m.save(tmp_path / "u")
+    assert load_model(tmp_path / "u").tasks["length"].chosen == ("svm", "fused")
+    default = train_user(s, tasks=["length"], methods=["svm"], cv=2)
+    assert default.tasks["length"].chosen == ("svm", "combined") and default.settings["length_units"] is None
+    with pytest.raises(DataError, match="^--length-units: unknown unit hand"):
+        train_user(s, tasks=["length"], methods=["svm"], cv=2, length_units=["hand"])

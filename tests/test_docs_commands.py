@@ -326,6 +326,7 @@ def _validators() -> dict[tuple[str, str], object]:
         v[(cmd, "tasks")] = settings("tasks")
         v[(cmd, "methods")] = settings("methods")
         v[(cmd, "units")] = settings("units")
+    v[("train", "length_units")] = settings("units")  # decision C38: the length task's own units
     return v
 
 
@@ -545,6 +546,7 @@ STALE = [
     ("pdrlearn train DIR --out M --cv ten", "invalid literal"),
     ("pdrlearn train DIR --out M --boundaries middle", "not one of"),
     ("pdrlearn train DIR --out M --cv-groups subject", "not one of"),
+    ("pdrlearn train DIR --out M --length-units foot,combind", "unknown unit"),
     ("pdrlearn simulate --scenario E --user-seed 1 --out DIR", "not one of"),
     ("pdrlearn simulate --scenario D --user-seed 1 --speed jog --out DIR", "not one of"),
     ("pdrlearn fetch physionet --out DIR", "not one of"),

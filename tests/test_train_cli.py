@@ -164,3 +164,21 @@ def test_real_gaitmap_terrain_rest_ensemble_from_the_cli(tmp_path, capsys):
     steps = pd.read_csv(tmp_path / "run" / "steps.csv")
     # a training session (this checks the exported pipeline end to end, not accuracy): mostly "up" strides
     assert (steps["terrain"] == "up").mean() > 0.6
+
+
+def test_train_length_units(tmp_path, capsys):
+    """Decision C38: --length-units gives the length task its own units; a bad one is a one-line error."""
+    from pdrlearn.sim.simulate import simulate
+
+    data = tmp_path / "length"
+    write_session(simulate("length", user_seed=3), data)
+    rc = main(["train", str(data), "--out", str(tmp_path / "bad"), "--length-units", "foot,hand"])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and err.startswith("error: --length-units: unknown unit hand") and "\n" not in err
+    assert not (tmp_path / "bad").exists()
+    rc = main(["train", str(data), "--out", str(tmp_path / "m"), "--tasks", "length", "--methods", "svm", "--cv", "3",
+               "--length-units", "foot,waist,fused", "--json"])
+    out = capsys.readouterr()
+    assert rc == 0, out.err
+    t = json.loads(out.out)["tasks"]["length"]
+    assert set(t["cv"]["svm"]) == {"foot", "waist", "fused"} and t["chosen"] == {"method": "svm", "unit": "fused"}

@@ -614,6 +614,14 @@ def check_settings(
     return out[0], out[1], out[2]
 
 
+def check_length_units(units: Sequence[str]) -> list[str]:
+    """The length task's own units (decision C38), checked as ``--units`` is; the error names ``--length-units``."""
+    try:
+        return check_settings(units=units)[2]
+    except DataError as exc:
+        raise DataError(str(exc).replace("--units:", "--length-units:", 1)) from None
+
+
 def train_task(
     data: TaskData,
     *,
@@ -831,6 +839,7 @@ def train_user(
     distance_calibration: bool = True,
     advance: Callable[[int], None] = lambda n=1: None,
     cv_groups: str = "steps",
+    length_units: Sequence[str] | None = None,
 ) -> UserModel:
     """Train a user's step classifiers from labelled sessions.
 
@@ -845,6 +854,9 @@ def train_user(
         (decision C23: dtw, heuristic fusion and ensemble keep their ``fused`` model), units named explicitly
         train every soft vote they allow; ``ensemble`` (opt-in, decision C14) is the equal-weight soft vote of
         the unit's nn, svm and dtw models and needs them in the same run.
+    length_units : units of the length task only (default None: ``units``); named, they train every soft vote
+        they allow, e.g. ``("foot", "waist", "fused")``: the length task as before C22 (no combined model, C8
+        chooses among the soft votes), terrain and direction as ``units`` (decision C38).
     cv : folds of the stratified cross-validation that scores every model (thesis ch. 6: 10-fold);
         reduced to the smallest class size when a class has fewer steps.
     cv_groups : ``"steps"`` (default): stratified folds of steps, pooled over the sessions; ``"user"``: when the
@@ -880,6 +892,8 @@ def train_user(
     # units named explicitly (e.g. "foot,waist,fused,combined") train every soft vote they allow
     voted = None if units is not None else [m for m in (methods or DEFAULT_METHODS) if m not in COMBINED_METHODS]
     tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
+    if length_units is not None:  # decision C38: the length task's own units (named: every soft vote they allow)
+        length_units = check_length_units(length_units)
     from pdrlearn.features.windows import BOUNDARIES
 
     if boundaries not in BOUNDARIES:
@@ -922,8 +936,9 @@ def train_user(
             log.info("skipped %s", exc)
             continue
         groups = np.asarray(users, dtype=object)[data.session] if n_users >= 2 else None  # decision C29
-        out[task] = train_task(data, methods=methods, units=units, cv=cv, seed=seed, advance=advance,
-                               soft_vote_methods=voted, groups=groups)
+        own = task == "length" and length_units is not None  # decision C38
+        out[task] = train_task(data, methods=methods, units=length_units if own else units, cv=cv, seed=seed,
+                               advance=advance, soft_vote_methods=None if own else voted, groups=groups)
     calibration = None
     if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
         from pdrlearn.displace.calibration import calibrate_distance
@@ -971,6 +986,7 @@ def train_user(
             "seed": seed,
             "methods": list(methods),
             "units": list(units),
+            "length_units": length_units,  # the length task's own units, None = "units" (decision C38)
             # methods whose unit fused model was trained (soft vote; heuristic fusion); None = every method (C23)
             "fused_methods": None if voted is None else [m for m in methods if m in voted],
             "min_steps_per_class": MIN_STEPS_PER_CLASS,
