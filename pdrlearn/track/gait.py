@@ -114,7 +114,7 @@ def streamed_gait_columns(table: pd.DataFrame) -> pd.DataFrame:
     turn = table["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in table else None
     add_gait_columns(table, turn_rad=turn, valid=valid)
     tail = [c for c in ("impossible", "gap_s", "unit") if c in table]
-    gait = [c for c in (*GAIT_COLUMNS, "pivot_rad") if c in table]  # L106: the turn between strides, after it
+    gait = [c for c in GAIT_COLUMNS if c in table]
     order = [c for c in table.columns if c not in gait and c not in tail] + gait + tail
     return table.reindex(columns=order) if list(table.columns) != order else table
 
