@@ -120,3 +120,28 @@ def test_what_n_steps_counts_in_summary_cli_and_report(walks, tmp_path, capsys):
     md = (tmp_path / "rep" / "report.md").read_text()
     header = next(ln for ln in md.splitlines() if ln.startswith("| run"))
     assert "steps (both feet)" in header and "strides (tracked foot)" in header and "| n_steps " not in header
+
+
+#: decision L106: 180 and 90 deg turns; the streamed stride's own turn (E51) left out the turn between strides
+STREAM_ROUTE = "straight:8, turn:180, straight:8, turn:90, straight:6"
+
+
+def test_streamed_turn_count_matches_offline_and_run(tmp_path, capsys):
+    """L106: track --streaming and pdrlearn run count the turns offline track counts (the streamed rows' own turn
+    plus ``pivot_rad``, the turn between strides); run and track --streaming give the same clinical summary."""
+    from pathlib import Path
+
+    bundle = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
+    s = simulate_path(parse_route(STREAM_ROUTE), UserProfile.from_seed(3), speed="normal", rate_hz=20, seed=0)
+    write_session(s, tmp_path / "sess")
+    runs = {}
+    cmds = {"offline": ["track"], "streaming": ["track", "--streaming"], "run": ["run", str(bundle)]}
+    for name, argv in cmds.items():
+        assert main([*argv, str(tmp_path / "sess"), "--out", str(tmp_path / name)]) == 0, capsys.readouterr().err
+        runs[name] = json.loads((tmp_path / name / "summary.json").read_text())
+    assert runs["offline"]["turn_count"] == 2
+    assert runs["streaming"]["turn_count"] == runs["offline"]["turn_count"]
+    assert all(runs["run"][k] == runs["streaming"][k] for k in CLINICAL_KEYS), (runs["run"], runs["streaming"])
+    st = pd.read_csv(tmp_path / "streaming" / "steps.csv")
+    total = np.degrees((st["turn_angle_rad"] + st["pivot_rad"]).sum())
+    assert abs(total - 270.0) <= 20.0, total  # the whole turn, not the ~80 % the rows' own turns hold

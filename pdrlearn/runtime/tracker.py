@@ -185,6 +185,9 @@ class Step:
     #: stride's own turn (rad: its heading unit's yaw over the stride, without the pivot before it)
     stride_time_s: float = math.nan
     turn_angle_rad: float = math.nan
+    #: decision L106: the heading unit's turn between the previous stride and this one (rad: the pivot L31 / L61
+    #: / L90 adds to the heading before the stride; ``turn_angle_rad`` + ``pivot_rad`` = the heading's change)
+    pivot_rad: float = math.nan
     #: decision L97: the last-line guard (L94) moved this stride 0 m; it is no stride for the gait parameters
     #: (no stride time, cadence, speed or walking time, as a gap row)
     impossible: bool = False
@@ -204,6 +207,7 @@ class Step:
             "z": self.z,
             "stride_time_s": self.stride_time_s,  # decision E51
             "turn_angle_rad": self.turn_angle_rad,
+            "pivot_rad": self.pivot_rad,  # decision L106
             "impossible": self.impossible,  # decision L97
             "gap_s": self.gap_s,  # decision E37: pdrlearn run's steps.csv
         }
@@ -1180,7 +1184,8 @@ class Tracker:
         length, direction = travel_sign_one(length, direction, classes.get("direction"))  # L65: after the position
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z,
                     event_s=self._contact(t0, t1) if self.contacts else math.nan,
-                    turn_angle_rad=float(np.angle(np.exp(1j * turn))), impossible=impossible)
+                    turn_angle_rad=float(np.angle(np.exp(1j * turn))), impossible=impossible,
+                    pivot_rad=float(np.angle(np.exp(1j * (dyaw - turn)))))  # decision L106
 
     def _contact(self, t0: float, t1: float) -> float:
         """Decisions E49 / E50: the initial contact (s) of the stride ``[t0, t1]`` from its buffered samples

@@ -77,9 +77,12 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray
 
 def _heading(steps: pd.DataFrame) -> np.ndarray:
     """Unwrapped heading (rad) of each row, time order: a foot table's summed ``turn_angle_rad`` when every
-    valid row has one, else ``heading_rad``."""
+    valid row has one (a streamed table's plus its ``pivot_rad``, the turn between strides, decision L106), else
+    ``heading_rad``."""
     if "turn_angle_rad" in steps and "unit" in steps and (steps["unit"] == "foot").all():
         turn = steps["turn_angle_rad"].to_numpy(float)
+        if "pivot_rad" in steps:  # L106: a streamed stride's own turn leaves out the pivot before it (E51)
+            turn = turn + steps["pivot_rad"].to_numpy(float)
         ok = _valid(steps)
         if ok.any() and np.isfinite(turn[ok]).all():
             return np.cumsum(np.where(ok, turn, 0.0))

@@ -12,6 +12,7 @@ only when wholly inside), so the summary's errors compare the window with the wi
 from __future__ import annotations
 
 import dataclasses
+import logging
 import math
 
 import numpy as np
@@ -81,9 +82,21 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
     the position at the first kept step's start (the last row at or before it) and the rows after it up to the
     last kept step's end. ``info["window"]`` records the window."""
     steps = result.steps
+    t_rec = session.t_recording_start  # the seconds of check_window (B81's cut does not move them)
+    warnings = []
     if len(steps):
         mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
-        steps = steps[(mid >= t0) & (mid <= t1)].reset_index(drop=True)
+        kept = steps[(mid >= t0) & (mid <= t1)].reset_index(drop=True)
+        if not len(kept):  # decision L107: say so, with the span the steps cover, not a silent "0 steps"
+            warnings.append(f"--window {t0 - t_rec:g},{t1 - t_rec:g} holds no step (the session's "
+                            f"steps lie between {float(steps['start_s'].min()) - t_rec:.1f} and "
+                            f"{float(steps['end_s'].max()) - t_rec:.1f} s); pick a window inside that span")
+        steps = kept
+    else:
+        warnings.append(f"--window {t0 - t_rec:g},{t1 - t_rec:g} holds no step: the track of the "
+                        "whole session has none")
+    for line in warnings:  # one "warning:" line each on the command line (decision B13)
+        logging.getLogger(__name__).warning("%s: %s", session.where, line)
     traj = result.trajectory
     if len(steps) and len(traj):
         a, b = float(steps["start_s"].min()), float(steps["end_s"].max())
@@ -95,8 +108,9 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
         t = traj["t"].to_numpy(float)
         traj = traj.iloc[[max(int(np.searchsorted(t, t0, side="right")) - 1, 0)]].reset_index(drop=True) \
             if len(traj) else traj
-    t_rec = session.t_recording_start  # the seconds of check_window (B81's cut does not move them)
     info = {**result.info, "window": {"start_s": t0 - t_rec, "end_s": t1 - t_rec}}
+    if warnings:
+        info["warnings"] = [*result.info.get("warnings", []), *warnings]
     gt = session.trajectory
     if gt is not None and len(gt) and len(traj):
         tt = gt["t"].to_numpy(float)
