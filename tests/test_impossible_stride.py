@@ -90,8 +90,8 @@ def test_track_refuses_a_non_finite_stride_as_an_internal_error(walk, monkeypatc
         get_pipeline("plasys")(walk, model="oracle")
 
 
-def test_runtime_moves_an_impossible_stride_zero_metres_with_one_warning(tmp_path_factory, walk, monkeypatch):
-    root = trained_dirs(tmp_path_factory)["root"]
+def _break_fourth_runtime_stride(monkeypatch):
+    """The runtime's fourth stride comes out 1e30 times its length (the L94 guard's case)."""
     real, calls = T.stride_rules_one, []
 
     def broken(*a, **k):
@@ -100,6 +100,11 @@ def test_runtime_moves_an_impossible_stride_zero_metres_with_one_warning(tmp_pat
         return (length * 1e30 if len(calls) == 4 else length), dz
 
     monkeypatch.setattr(T, "stride_rules_one", broken)
+
+
+def test_runtime_moves_an_impossible_stride_zero_metres_with_one_warning(tmp_path_factory, walk, monkeypatch):
+    root = trained_dirs(tmp_path_factory)["root"]
+    _break_fourth_runtime_stride(monkeypatch)
     tr = Tracker(root / "bundle", speculative=False)
     steps = replay(tr, walk, 0.37)
     warn = [w for w in tr.warnings if "physically impossible" in w]
@@ -148,14 +153,7 @@ def test_runtime_zeroed_stride_is_left_out_of_the_gait_parameters(tmp_path_facto
 
     root = trained_dirs(tmp_path_factory)["root"]
     clean = replay(Tracker(root / "bundle", speculative=False, contacts=True), walk, 0.37)
-    real, calls = T.stride_rules_one, []
-
-    def broken(*a, **k):
-        length, dz = real(*a, **k)
-        calls.append(1)
-        return (length * 1e30 if len(calls) == 4 else length), dz
-
-    monkeypatch.setattr(T, "stride_rules_one", broken)
+    _break_fourth_runtime_stride(monkeypatch)
     tr = Tracker(root / "bundle", speculative=False, contacts=True)
     steps = replay(tr, walk, 0.37)
     assert [st.impossible for st in steps] == [i == 3 for i in range(len(steps))]
