@@ -169,6 +169,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     session, and the dict travels to a Dask worker as it is (``track-all --jobs``)."""
     start_ll, start_alt = start_option(start)
     heading0 = initial_heading_option(initial_heading)  # decision L98: degrees ENU -> rad
+    if heading0 is not None and (gnss is not None or fixes is not None):  # L98: known before any tracking
+        raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
+                        "--fixes give the track its direction; drop --initial-heading")
     for fix_file in (gnss, fixes):  # before the tracking, which warned and worked first
         if fix_file is not None and not Path(fix_file).is_file():
             raise DataError(f"{fix_file}: no such fix file; pass an NMEA log (.nmea/.txt) or a CSV "
@@ -262,7 +265,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     result = fn(session, **kw)
     aided = gnss is not None or fixes is not None
     if heading0 is not None:
-        _check_relative_heading(result, session, aided, heading0)
+        _check_relative_heading(result, session, heading0)
     if aided:
         try:
             from pdrlearn.aid import aid_track
@@ -286,15 +289,13 @@ def track_session(session_dir: Path, settings: dict) -> dict:
             "dpi": dpi}
 
 
-def _check_relative_heading(result, session, aided: bool, heading0: float) -> None:
+def _check_relative_heading(result, session, heading0: float) -> None:
     """Decision L98: ``--initial-heading`` turns a relative heading only; a track whose heading is absolute (the
-    waist magnetometer's, or position fixes) would ignore it - one error line (B27's rule) instead. Given and
-    used, it is recorded in ``info`` (``initial_heading_rad``), and path.png draws the track in ENU."""
+    waist magnetometer's; position fixes are refused before tracking, in :func:`track_settings`) would ignore
+    it - one error line (B27's rule) instead. Given and used, it is recorded in ``info``
+    (``initial_heading_rad``), and path.png draws the track in ENU."""
     from pdrlearn.track.plots import heading_is_absolute
 
-    if aided:
-        raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
-                        "--fixes give the track its direction; drop --initial-heading")
     if heading_is_absolute(result.info, session):
         raise DataError(f"track: --initial-heading sets the start direction of a relative heading, but this "
                         f"track's heading is absolute ({result.info.get('heading_source')} heading with the waist "
