@@ -174,3 +174,24 @@ def test_train_all_errors(tmp_path, capsys):
     (tmp_path / "empty").mkdir()
     assert main(["train-all", str(tmp_path / "empty"), "--out", str(tmp_path / "m"), "--serial"]) == 2
     assert "no user subfolders" in capsys.readouterr().err
+
+
+def test_train_all_length_units_reach_the_bundle(tmp_path, capsys):
+    """Decision C40: train-all takes --length-units as train does (the same parser) and passes it to every
+    user's training; a bad unit is one line naming the option, before anything is written."""
+    from pdrlearn.classify import load_model
+
+    write_session(simulate("length", user_seed=3), tmp_path / "cohort" / "u3" / "train" / "length")
+    rc = main(["train-all", str(tmp_path / "cohort"), "--out", str(tmp_path / "bad"), "--serial",
+               "--length-units", "foot,hand"])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and err.startswith("error: --length-units: unknown unit hand") and "\n" not in err
+    assert not (tmp_path / "bad").exists()
+    rc = main(["train-all", str(tmp_path / "cohort"), "--out", str(tmp_path / "m"), "--serial", "--tasks", "length",
+               "--methods", "svm", "--cv", "3", "--length-units", "foot,waist,fused", "--json"])
+    out = capsys.readouterr()
+    assert rc == 0, out.err
+    assert json.loads(out.out)["users"][0]["length_method"] == "svm/fused"
+    model = load_model(tmp_path / "m" / "u3")
+    assert model.settings["length_units"] == ["foot", "waist", "fused"]
+    assert set(model.tasks["length"].cv["svm"]) == {"foot", "waist", "fused"}  # no combined model

@@ -326,7 +326,7 @@ def _validators() -> dict[tuple[str, str], object]:
         v[(cmd, "tasks")] = settings("tasks")
         v[(cmd, "methods")] = settings("methods")
         v[(cmd, "units")] = settings("units")
-    v[("train", "length_units")] = settings("units")  # decision C38: the length task's own units
+        v[(cmd, "length_units")] = settings("units")  # decisions C38, C40: the length task's own units
     return v
 
 

@@ -13,6 +13,7 @@ from pdrlearn.atomic import atomic_directory
 from pdrlearn.cli import track as _track
 from pdrlearn.cli.common import (
     FORCE_HELP,
+    LENGTH_UNITS_HELP,
     console,
     existed,
     json_safe,
@@ -22,6 +23,7 @@ from pdrlearn.cli.common import (
     progress,
     replaced,
     split_choices,
+    split_length_units,
 )
 from pdrlearn.cohort import (
     JobResult,
@@ -78,7 +80,8 @@ def _train_job(args: dict) -> dict:
 
     sessions, skipped = _read_sessions(Path(args["user_dir"]), "train", args.get("skip_bad", False))
     model = train_user(sessions, tasks=args["tasks"], methods=args["methods"], units=args["units"],
-                       cv=args["cv"], seed=args["seed"], user=Path(args["user_dir"]).name)
+                       cv=args["cv"], seed=args["seed"], user=Path(args["user_dir"]).name,
+                       length_units=args.get("length_units"))  # decision C40
     model.save(Path(args["out"]))
     row = {"sessions": len(sessions), **skipped, "skipped_tasks": len(model.skipped)}
     for t, tm in model.tasks.items():
@@ -252,6 +255,7 @@ def train_all(
     tasks: str = typer.Option(None, help="Comma list of terrain,direction,length (default: all labelled)."),
     methods: str = typer.Option(None, help="Comma list of heuristic,fusion,dtw,svm,nn (default: all)."),
     units: str = typer.Option(None, help="Comma list of foot,waist,fused,combined (default: all)."),
+    length_units: str = typer.Option(None, "--length-units", help=LENGTH_UNITS_HELP),  # decision C40
     cv: int = typer.Option(10, help="Cross-validation folds per user."),
     seed: int = typer.Option(0, help="Seed (identical results serial or distributed)."),
     skip_bad: bool = typer.Option(False, "--skip-bad-sessions", help=SKIP_BAD_HELP),
@@ -278,6 +282,7 @@ def train_all(
     t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
     # bad settings fail here, once, before a cluster is started and before anything is written
     check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
+    l_list = split_length_units(length_units)  # decision C40: as train's, before anything starts
     _check_workers(workers)
     _check_outside_cohort(out, cohort_dir)
     _check_only_train_all_output(out)
@@ -288,7 +293,8 @@ def train_all(
     # leaves no model of a user who is no longer in the cohort, or who failed this time
     with atomic_directory(out) as tmp:
         items = [(u.name, {"user_dir": str(u), "out": str(tmp / u.name), "tasks": t_list,
-                           "methods": m_list, "units": u_list, "cv": cv, "seed": seed, "skip_bad": skip_bad})
+                           "methods": m_list, "units": u_list, "length_units": l_list, "cv": cv, "seed": seed,
+                           "skip_bad": skip_bad})
                  for u in users]
         results = _run(_train_job, items, scheduler, serial, workers, as_json, "train")
         _check_any_ok(results)

@@ -48,6 +48,24 @@ def split_choices(*, tasks: str | None, methods: str | None, units: str | None):
     return split_list(tasks, "--tasks"), split_list(methods, "--methods"), split_list(units, "--units")
 
 
+#: ``--length-units`` of the training commands, ``train`` and ``train-all`` (decisions C38, C40)
+LENGTH_UNITS_HELP = (
+    "Comma list of units for the length task only (default: as --units). 'foot,waist,fused' trains the length "
+    "task's soft votes and no combined model, as before decision C22 (decision C38: an option; on four fresh "
+    "simulated users it did not meet its adoption rule).")
+
+
+def split_length_units(value: str | None) -> list[str] | None:
+    """``--length-units`` of ``train`` and ``train-all`` as ``train_user``'s ``length_units``, checked before any
+    data is read (decisions C38, C40); ``None`` when the option was not given."""
+    items = split_list(value, "--length-units")
+    if items is None:
+        return None
+    from pdrlearn.classify.training import check_length_units
+
+    return check_length_units(items)
+
+
 #: The ``--force`` option every command that writes an output takes (docs/decisions/bad-input.md B12).
 #: ``--dpi`` of every command that writes a figure (decision L70)
 DPI_HELP = "Resolution of the figure(s) in dots per inch (default 110)."

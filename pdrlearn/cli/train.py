@@ -10,6 +10,7 @@ import typer
 
 from pdrlearn.cli.common import (
     FORCE_HELP,
+    LENGTH_UNITS_HELP,
     console,
     existed,
     grouped_skips,
@@ -19,7 +20,7 @@ from pdrlearn.cli.common import (
     progress,
     replaced,
     split_choices,
-    split_list,
+    split_length_units,
 )
 from pdrlearn.errors import DataError
 
@@ -68,11 +69,7 @@ def train(
     units: str = typer.Option(None, help="Comma list of foot,waist,fused,combined (default: all the data allow; "
                               "fused = soft vote of the unit models, combined = one svm/nn model on both units' "
                               "features, decisions C7, C22)."),
-    length_units: str = typer.Option(
-        None, "--length-units",
-        help="Comma list of units for the length task only (default: as --units). 'foot,waist,fused' trains "
-        "the length task's soft votes and no combined model, as before decision C22 (decision C38: an option; "
-        "on four fresh simulated users it did not meet its adoption rule)."),
+    length_units: str = typer.Option(None, "--length-units", help=LENGTH_UNITS_HELP),
     cv: int = typer.Option(10, help="Folds of the stratified cross-validation (thesis: 10)."),
     cv_groups: str = typer.Option(
         "steps", "--cv-groups",
@@ -116,7 +113,7 @@ def train(
         pdrlearn train datasets/real/gaitmap_* --out models/gaitmap --tasks terrain \\
             --boundaries rest --methods heuristic,dtw,svm,nn,ensemble
     """
-    from pdrlearn.classify.training import check_length_units, check_settings, train_user
+    from pdrlearn.classify.training import check_settings, train_user
     from pdrlearn.features.windows import BOUNDARIES
 
     if boundaries not in BOUNDARIES:
@@ -127,9 +124,7 @@ def train(
         raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
     t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
     t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
-    l_list = split_list(length_units, "--length-units")
-    if l_list is not None:  # decision C38: checked before any data is read
-        check_length_units(l_list)
+    l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     was = existed(out)
     sessions = _read_all(data_dirs)
