@@ -51,8 +51,8 @@ def split_choices(*, tasks: str | None, methods: str | None, units: str | None):
 #: ``--length-units`` of the training commands, ``train`` and ``train-all`` (decisions C38, C40)
 LENGTH_UNITS_HELP = (
     "Comma list of units for the length task only (default: as --units). 'foot,waist,fused' trains the length "
-    "task's soft votes and no combined model, as before decision C22 (decision C38: an option; on four fresh "
-    "simulated users it did not meet its adoption rule).")
+    "task's soft votes and no combined model, as before decision C22 (decisions C38, C39: an option; on fresh "
+    "simulated users, with calibration at one speed and at three, it did not meet its adoption rule).")
 
 
 def split_length_units(value: str | None) -> list[str] | None:
