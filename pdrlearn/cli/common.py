@@ -169,6 +169,7 @@ FILE_KINDS = {
     "steps": ("a detected steps table", "pdrlearn steps --out"),
     "params": ("a waist parameters file", "pdrlearn calibrate"),
     "plot": ("a session plot", "pdrlearn plot"),
+    "predictions": ("a step predictions table", "pdrlearn evaluate --predictions-out"),  # decision C42
 }
 #: The columns every ``pdrlearn steps`` table starts with (the ``steps`` detectors' tables).
 STEPS_COLUMNS = ("start_s", "end_s", "event_s", "unit", "confidence")
@@ -203,7 +204,11 @@ def file_kind(path: Path) -> str | None:
         if suffix == ".csv":
             with open(path, encoding="utf-8", errors="replace") as f:
                 header = tuple(c.strip() for c in f.readline().strip().split(","))
-            return "steps" if header[:len(STEPS_COLUMNS)] == STEPS_COLUMNS else None
+            if header[:len(STEPS_COLUMNS)] == STEPS_COLUMNS:
+                return "steps"
+            from pdrlearn.classify.evaluation import PREDICTION_COLUMNS
+
+            return "predictions" if header[:len(PREDICTION_COLUMNS)] == PREDICTION_COLUMNS else None
         if suffix == ".json":
             from pdrlearn.waist.params import SCHEMA
 
