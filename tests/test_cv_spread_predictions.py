@@ -9,7 +9,7 @@ import pytest
 
 from pdrlearn.classify.evaluation import PREDICTION_COLUMNS, evaluate_model, write_predictions
 from pdrlearn.classify.spread import fold_spread, spread_text, t_interval
-from pdrlearn.classify.training import _cv_entry, train_user
+from pdrlearn.classify.training import _cv_entry, _folds, train_user
 from pdrlearn.cli.common import file_kind, out_file
 from pdrlearn.cli.train import cv_title, louo_line
 from pdrlearn.errors import DataError
@@ -108,11 +108,21 @@ def test_run_method_resolves_against_what_the_bundle_exported():
     with pytest.raises(DataError, match="no task 'direction'"):
         b.choose_methods("direction=svm")
     one = _bundle({"terrain": {"nn": {"combined": {}}}}, [{"method": "nn", "unit": "combined"}])
-    with pytest.raises(DataError, match="chosen model only: export others"):
+    with pytest.raises(DataError, match="chosen method only: export others"):
         one.choose_methods("svm")
     two = _bundle({"terrain": {"svm": {"foot": {}, "waist": {}}}}, [{"method": "svm", "unit": "foot"}])
     assert two.choose_methods("svm") == {"terrain": "svm/foot"}
+    # the chosen model reads both units: the method's two-unit model, combined before fused
+    assert b.choose_methods("length=dtw") == {"length": "dtw/fused"}
     three = _bundle({"terrain": {"nn": {"fused": {}}, "svm": {"foot": {}, "waist": {}}}},
                     [{"method": "nn", "unit": "fused"}])
     with pytest.raises(DataError, match="give one, e.g. --method terrain=svm/foot"):
         three.choose_methods("svm")
+
+
+def test_user_folds_impossible_name_the_user_and_the_class(caplog):
+    y = np.array(["a", "b", "c"] * 4 + ["a", "b"] * 4)
+    g = np.array(["u0"] * 12 + ["u1"] * 8)  # only u0 walked class c
+    folds, n_users = _folds(y, 5, 0, "toy", groups=g)
+    assert n_users == 0
+    assert "holding out u0 leaves no c step to train on (only u0 walked it)" in caplog.text

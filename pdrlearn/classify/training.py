@@ -566,8 +566,12 @@ def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | No
         short = [i for i, (tr, _) in enumerate(folds) if len(np.unique(y[tr])) < len(np.unique(y))]
         if not short:
             return folds, n_users
-        say(f"task {task}: CV by user not possible (a training fold of whole users lacks a class); "
-            "stratified folds over steps instead")
+        tr, te = folds[short[0]]  # decision C43: say which user's steps hold which class alone
+        lack = [str(c) for c in np.unique(y) if c not in set(y[tr])]
+        out_users = ", ".join(sorted({str(u) for u in groups[te]}))
+        only = ", ".join(sorted({str(u) for u in groups[np.isin(y, lack)]}))
+        say(f"task {task}: CV by user not possible: holding out {out_users} leaves no {', '.join(lack)} step to "
+            f"train on (only {only} walked it); stratified folds over steps instead")
     n_splits = int(min(cv, min(np.sum(y == c) for c in np.unique(y))))
     if n_splits < cv:
         say(f"task {task}: {n_splits}-fold CV instead of {cv} (smallest class has {n_splits} steps)")

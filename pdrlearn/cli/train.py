@@ -297,6 +297,9 @@ def evaluate(
 ) -> None:
     """Accuracy per class x method x unit (thesis Tables 27/28/33), confusion matrices, per-step latency.
 
+    The model is scored as fitted, on the sessions given (no cross-validation): for leave-one-user-out scores
+    train with `pdrlearn train ... --cv-groups user` (decisions C29, C43).
+
     Examples:
 
         pdrlearn evaluate out/models/u1 out/sim/u1_test --report out/eval_u1

@@ -165,7 +165,8 @@ class Bundle:
     def choose_methods(self, spec: str) -> dict[str, str]:
         """``run --method`` (decision E52): ``spec`` is a comma list of ``METHOD``, ``METHOD/UNIT`` (every
         task) or ``TASK=METHOD[/UNIT]`` (one task; it wins over an every-task item). A method without a unit
-        takes the task's chosen unit when the method has it, else the method's only exported unit. Returns
+        takes the task's chosen unit when the method has it, else a two-unit model when the chosen one reads
+        both units (combined, else fused), else the method's only exported unit. Returns
         task -> ``"method/unit"`` for :class:`Tracker` ``methods``; a task the bundle lacks, a method it did not
         export for a task or an ambiguous unit is a :class:`DataError` naming what the bundle holds."""
         every, per_task = None, {}
@@ -195,16 +196,19 @@ class Bundle:
         methods = self.tasks[task]["methods"]
         have = self.exported(task)
         if method not in methods or (unit and unit not in methods[method]):
-            only = ("; the bundle holds each task's chosen model only: export others with `pdrlearn export MODEL "
-                    "--out BUNDLE --methods nn,svm,...`" if all(len(self.exported(t)) == 1 for t in self.tasks)
-                    else "; export it with `pdrlearn export --methods`")
+            one = all(len(self.tasks[t]["methods"]) == 1 for t in self.tasks)  # `pdrlearn export`'s default
+            only = ("; the bundle holds each task's chosen method only: export others with `pdrlearn export MODEL "
+                    "--out BUNDLE --methods nn,svm,...`" if one else "; export it with `pdrlearn export --methods`")
             raise DataError(f"run --method {mu}: bundle {self.path} has no {mu} model for {task} (it has "
                             f"{', '.join(have)}){only}")
         if not unit:
             chosen = (self.tasks[task].get("chosen") or {}).get("unit")
             units = list(methods[method])
+            same = [u for u in ("combined", "fused") if u in units] if chosen in ("combined", "fused") else []
             if chosen in units:
                 unit = chosen
+            elif same:  # a model reading both units, as the chosen one (combined before fused, decision C23)
+                unit = same[0]
             elif len(units) == 1:
                 unit = units[0]
             else:
