@@ -297,6 +297,22 @@ def console():
     return c
 
 
+def print_table(c, table) -> None:
+    """Print a rich table; piped (no terminal), at the width it needs: rich assumed 80 columns and cut cells
+    ("heurist…") once `train`'s table had its fold-spread columns (decision C41). A terminal keeps its width."""
+    if c.is_terminal:
+        c.print(table)
+        return
+    width = c.width
+    c.width = 1000
+    need = c.measure(table).maximum
+    c.width = max(width, need)
+    try:
+        c.print(table)
+    finally:
+        c.width = width
+
+
 @contextmanager
 def progress(description: str, total: int | None, enabled: bool = True):
     """A rich progress bar on stderr (silent when not a terminal or disabled); yields ``advance(n=1, total=None)``

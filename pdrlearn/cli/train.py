@@ -16,6 +16,7 @@ from pdrlearn.cli.common import (
     json_safe,
     out_folder,
     print_json,
+    print_table,
     progress,
     replaced,
     split_choices,
@@ -193,7 +194,7 @@ def train(
                 m, *[f"{100 * r['per_class'][k]:.1f}" for k in tm.classes], f"{100 * r['accuracy']:.1f}",
                 f"{100 * (r['balanced_accuracy'] or 0.0):.1f}", *spread_text(r.get("folds")), u
             )
-        c.print(tab)
+        print_table(c, tab)  # decision C41: piped, the wider table is not cut to 80 columns
         c.print(f"  {SPREAD_NOTE}", markup=False)
         users_line = louo_line(r0)
         if users_line:
