@@ -327,6 +327,14 @@ def _validators() -> dict[tuple[str, str], object]:
         v[(cmd, "methods")] = settings("methods")
         v[(cmd, "units")] = settings("units")
         v[(cmd, "length_units")] = settings("units")  # decisions C38, C40: the length task's own units
+
+    def run_method(value):  # decision E52: [TASK=]METHOD[/UNIT],...; the bundle decides what it holds
+        for item in value.split(","):
+            task, _, mu = item.strip().rpartition("=")
+            method, _, unit = mu.partition("/")
+            check_settings(tasks=[task] if task else None, methods=[method], units=[unit] if unit else None)
+
+    v[("run", "method")] = run_method
     return v
 
 

@@ -49,6 +49,18 @@ def test_export_cli_json_and_run_cli(dirs, capsys, tmp_path):
     assert (tmp_path / "run" / "steps.csv").is_file() and (tmp_path / "run" / "trajectory.csv").is_file()
 
 
+def test_run_method_classifies_with_another_exported_model(dirs, capsys):
+    """Decision E52: --method picks an exported model instead of the chosen one; one that is not exported is
+    one line naming what the bundle holds, before any output."""
+    assert main(["run", str(dirs["root"] / "bundle_all"), str(dirs["walk"]), "--method", "dtw,terrain=svm/foot",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["methods"]["terrain"] == "svm/foot" and out["methods"]["direction"].startswith("dtw/")
+    assert main(["run", str(dirs["root"] / "bundle"), str(dirs["walk"]), "--method", "heuristic"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "has no heuristic model for" in err[0] and "chosen method only" in err[0]
+
+
 def test_run_reads_the_bluetooth_protocol(dirs, capsys, tmp_path):
     s = synthetic_session(15, seed=11)
     cap = tmp_path / "capture.txt"

@@ -182,3 +182,31 @@ def test_train_length_units(tmp_path, capsys):
     assert rc == 0, out.err
     t = json.loads(out.out)["tasks"]["length"]
     assert set(t["cv"]["svm"]) == {"foot", "waist", "fused"} and t["chosen"] == {"method": "svm", "unit": "fused"}
+
+
+def test_train_table_fold_spread_and_evaluate_predictions_out(sim_dirs, tmp_path, capsys):
+    """Decisions C41, C42: the piped train table shows the folds' mean±sd and 95 % t-interval uncut, its JSON
+    every fold's accuracy; evaluate --predictions-out writes one row per scored step and refuses to overwrite."""
+    train, test = sim_dirs
+    model = tmp_path / "model"
+    rc = main(["train", str(train / "terrain_0"), "--out", str(model), "--tasks", "terrain", "--units", "foot",
+               "--methods", "heuristic,svm", "--cv", "3", "--no-distance-calibration"])
+    out = capsys.readouterr()
+    assert rc == 0, out.err
+    row = next(line for line in out.out.splitlines() if "│ heuristic " in line)  # not cut to "heurist…"
+    assert "±" in row and "foot" in row
+    assert "95 % CI: t-interval of that mean over the folds" in out.out
+    rc = main(["train", str(train / "terrain_0"), "--out", str(model), "--tasks", "terrain", "--units", "foot",
+               "--methods", "svm", "--cv", "3", "--no-distance-calibration", "--json", "--force"])
+    folds = json.loads(capsys.readouterr().out)["tasks"]["terrain"]["cv_folds"]["svm"]["foot"]
+    assert len(folds["accuracy"]) == 3 and folds["interval"] == "t over folds" and len(folds["ci95"]) == 2
+    pred = tmp_path / "pred.csv"
+    rc = main(["evaluate", str(model), str(test / "terrain_7"), "--predictions-out", str(pred), "--json"])
+    out = capsys.readouterr()
+    assert rc == 0, out.err
+    result = json.loads(out.out)
+    rows = pred.read_text().splitlines()
+    assert rows[0].startswith("session,step,start_s,end_s,task,true,predicted,correct,method,unit,p_flat")
+    assert len(rows) - 1 == result["n_predictions"] == result["tasks"]["terrain"]["n_steps"]
+    rc = main(["evaluate", str(model), str(test / "terrain_7"), "--predictions-out", str(pred)])
+    assert rc == 2 and "file exists; pass --force" in capsys.readouterr().err

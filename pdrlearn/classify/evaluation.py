@@ -62,6 +62,7 @@ def evaluation_stages(model, *, report: bool = False) -> int:
 def evaluate_model(
     model, sessions, *, report_dir: Path | None = None, latency: bool = True, latency_steps: int = 20,
     advance: Callable[[int], None] = lambda n=1: None, warn_out_of_domain: float | None = None,
+    step_predictions: list | None = None,
 ) -> dict:
     """Score every trained task x method x unit of ``model`` on the labelled steps of ``sessions``.
 
@@ -79,6 +80,10 @@ def evaluate_model(
     method's best-ranked two-unit model (fused or combined) when it could run, else of its best-ranked unit.
     ``tasks.<t>.accuracy`` is the model's chosen method (or, for sessions lacking one of its units, the
     best-ranked method they can run).
+
+    ``step_predictions``: a list to which one DataFrame per scored task is appended, a row per step the
+    task's score counts (:data:`PREDICTION_COLUMNS`, then ``p_<class>`` per class: the probabilities of the model
+    that classified the step, decision C42).
     """
     from pdrlearn.classify.domain import (
         NO_RANGES_NOTE,
@@ -192,12 +197,13 @@ def evaluate_model(
                 res["skipped"].append(f"chosen: no model runs on {windows[i].session}")
                 continue
             pred = np.full(len(rows), None, dtype=object)
+            src = np.full(len(rows), None, dtype=object)  # the (method, unit) that classified each step
             pos = {r: k for k, r in enumerate(rows)}
             for p in runs:
                 got_rows, got_pred = preds[p][i]
                 for r, c in zip(got_rows, got_pred, strict=True):
                     if pred[pos[r]] is None:
-                        pred[pos[r]] = c
+                        pred[pos[r]], src[pos[r]] = c, p
             done = np.array([c is not None for c in pred], dtype=bool)
             if not done.all():
                 msg = (f"session '{windows[i].session}': {task}: {int((~done).sum())} of {len(rows)} labelled "
@@ -213,6 +219,9 @@ def evaluate_model(
                 y_true.append(data.y[rows[done]])
                 y_pred.append(pred[done].astype(str))
                 used.append(runs[0])
+                if step_predictions is not None:  # decision C42
+                    step_predictions.append(prediction_rows(
+                        tm, data, windows[i], rows[done], pred[done], src[done]))
         res["n_gap_unclassified"] = n_gap  # labelled steps lost to sensor gaps of every usable unit (B17)
         if not used:
             out["skipped"].append(
@@ -252,6 +261,58 @@ def evaluate_model(
         write_report(out, Path(report_dir))
         advance(1)
     return out
+
+
+#: the first columns of ``evaluate --predictions-out`` (decision C42); ``p_<class>`` columns follow
+PREDICTION_COLUMNS = ("session", "step", "start_s", "end_s", "task", "true", "predicted", "correct",
+                      "method", "unit")
+
+
+def prediction_rows(tm, data, windows, rows: np.ndarray, pred: np.ndarray, src: np.ndarray):
+    """One session's scored steps of one task as a table (decision C42): the step's row in the session's
+    steps table and its times, the true and predicted class, the method/unit that classified it and that
+    model's probability of every class of the task (``p_<class>``, in ``tm.classes`` order)."""
+    import pandas as pd
+
+    from pdrlearn.kernels.proba import align_proba
+
+    classes = np.asarray(tm.classes)
+    proba = np.full((len(rows), len(classes)), np.nan)
+    for mu in dict.fromkeys(src):
+        k = np.array([j for j, v in enumerate(src) if v == mu])
+        est = tm.models[mu[0]][mu[1]]
+        proba[k] = align_proba(est.predict_proba(data.X[rows[k]]), np.asarray(est.classes_).astype(str), classes)
+    step = data.step[rows]
+    table = windows.steps
+    out = pd.DataFrame({
+        "session": windows.session,
+        "step": step,
+        "start_s": table["start_s"].to_numpy(dtype=float)[step],
+        "end_s": table["end_s"].to_numpy(dtype=float)[step],
+        "task": tm.task,
+        "true": data.y[rows],
+        "predicted": pred.astype(str),
+        "correct": data.y[rows] == pred.astype(str),
+        "method": [mu[0] for mu in src],
+        "unit": [mu[1] for mu in src],
+    })
+    for j, c in enumerate(classes):
+        out[f"p_{c}"] = proba[:, j]
+    return out
+
+
+def write_predictions(tables: list, path: Path) -> int:
+    """Write the step tables of :func:`evaluate_model`'s ``step_predictions`` to one CSV, atomically (a
+    temporary sibling replaced when complete, :func:`pdrlearn.atomic.atomic_file`); tasks' different class
+    columns are the union, empty where a task has no such class. Returns the number of rows."""
+    import pandas as pd
+
+    from pdrlearn.atomic import atomic_file
+
+    df = pd.concat(tables, ignore_index=True) if tables else pd.DataFrame(columns=list(PREDICTION_COLUMNS))
+    with atomic_file(path) as tmp:
+        df.to_csv(tmp, index=False)
+    return int(len(df))
 
 
 def _held_out_checks(model, sessions, out: dict) -> None:

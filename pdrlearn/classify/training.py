@@ -155,6 +155,7 @@ class TaskData:
     n_skipped: int = 0  # rows whose label is not a class of the task (e.g. 'unclear')
     foot: np.ndarray | None = None  # per step: its session has the foot accelerometer (and no gap, B11)
     waist: np.ndarray | None = None  # per step: its session has the waist accelerometer (and no gap, B11)
+    step: np.ndarray | None = None  # per step: its row in its session's (cleaned) steps table (decision C42)
 
     def unit_mask(self, unit: str) -> np.ndarray:
         """Steps whose session has the unit (``fused``: both units)."""
@@ -211,7 +212,7 @@ def task_data(windows, task: str, sessions=None) -> TaskData | None:
     from pdrlearn.classify.labels import bad_label_warning
     from pdrlearn.features import TASK_COLUMNS, task_labels
 
-    Xs, ys, sess, skipped, foot, waist = [], [], [], 0, [], []
+    Xs, ys, sess, skipped, foot, waist, rows = [], [], [], 0, [], [], []
     for i, w in enumerate(windows):
         if TASK_COLUMNS[task] not in w.steps or w.steps[TASK_COLUMNS[task]].notna().sum() == 0:
             continue
@@ -224,6 +225,7 @@ def task_data(windows, task: str, sessions=None) -> TaskData | None:
         Xs.append(w.X[keep])
         ys.append(y)
         sess.append(np.full(len(y), i))
+        rows.append(np.flatnonzero(keep))
         lost = getattr(w, "gap_steps", {})  # steps overlapping a sensor gap lose that unit (decision B11)
         for unit, has, acc in (("foot", foot, "foot_acc"), ("waist", waist, "waist_acc")):
             ok = np.full(len(y), acc in w.available)
@@ -242,6 +244,7 @@ def task_data(windows, task: str, sessions=None) -> TaskData | None:
         skipped,
         np.concatenate(foot),
         np.concatenate(waist),
+        np.concatenate(rows),
     )
 
 
@@ -563,12 +566,25 @@ def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | No
         short = [i for i, (tr, _) in enumerate(folds) if len(np.unique(y[tr])) < len(np.unique(y))]
         if not short:
             return folds, n_users
-        say(f"task {task}: CV by user not possible (a training fold of whole users lacks a class); "
-            "stratified folds over steps instead")
+        tr, te = folds[short[0]]  # decision C43: say which user's steps hold which class alone
+        lack = [str(c) for c in np.unique(y) if c not in set(y[tr])]
+        out_users = ", ".join(sorted({str(u) for u in groups[te]}))
+        only = ", ".join(sorted({str(u) for u in groups[np.isin(y, lack)]}))
+        say(f"task {task}: CV by user not possible: holding out {out_users} leaves no {', '.join(lack)} step to "
+            f"train on (only {only} walked it); stratified folds over steps instead")
     n_splits = int(min(cv, min(np.sum(y == c) for c in np.unique(y))))
     if n_splits < cv:
         say(f"task {task}: {n_splits}-fold CV instead of {cv} (smallest class has {n_splits} steps)")
     return list(StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y)), 0
+
+
+def _cv_entry(y, y_pred, classes, folds, cv_users: int, groups=None, **extra) -> dict:
+    """One method x unit's CV record: the pooled out-of-fold metrics (:func:`class_metrics`), the folds'
+    spread (decision C41), ``n_folds``, ``cv_users`` (decision C29) and ``extra``."""
+    from pdrlearn.classify.spread import fold_spread
+
+    return dict(class_metrics(y, y_pred, classes), folds=fold_spread(y, y_pred, folds, groups),
+                n_folds=len(folds), cv_users=cv_users, **extra)
 
 
 def _split_units(units: Sequence[str]) -> tuple[list[str], bool, bool]:
@@ -644,6 +660,7 @@ def train_task(
     subsets: dict[str, tuple[np.ndarray, list] | str] = {}  # unit -> (step mask, folds) or skip reason
     cv_users: dict[str, int] = {}  # unit -> users its folds hold out (0: stratified over steps, C29)
     notes: list[str] = []  # the folds' warnings, each logged once for the task (decision C36)
+    fold_groups: dict[str, np.ndarray] = {}  # unit -> the user of each of its steps, when folds hold out users
     for unit in [*per_unit, *(["fused"] if want_fused else []), *(["combined"] if want_combined else [])]:
         mask = data.unit_mask(unit)
         if not mask.any():
@@ -656,6 +673,8 @@ def train_task(
             continue
         folds, cv_users[unit] = _folds(data.y[mask], cv, seed, data.task,
                                        None if groups is None else groups[mask], notes=notes)
+        if cv_users[unit]:  # folds of whole users: each fold names the users it held out (decision C43)
+            fold_groups[unit] = groups[mask]
         subsets[unit] = (mask, folds)
     for line in dict.fromkeys(notes):
         log.warning(line)
@@ -691,12 +710,9 @@ def train_task(
                 est = fused_from_fitted(template.units, [tm.models[m][unit] for m in ENSEMBLE_MEMBERS], w,
                                         n_features_in=X.shape[1], random_state=seed)
                 tm.models.setdefault(method, {})[unit] = est
-                tm.cv.setdefault(method, {})[unit] = dict(
-                    class_metrics(y, classes[P.argmax(1)], classes),
-                    cv_seconds=time.perf_counter() - t0,
-                    n_folds=len(folds),
-                    cv_users=cv_users[unit],
-                )
+                tm.cv.setdefault(method, {})[unit] = _cv_entry(
+                    y, classes[P.argmax(1)], classes, folds, cv_users[unit], fold_groups.get(unit),
+                    cv_seconds=time.perf_counter() - t0)
                 oof_by[(method, unit)] = P
                 if mask.all():
                     oof[unit] = P
@@ -722,12 +738,9 @@ def train_task(
                 oof[unit] = P
             oof_by[(method, unit)] = P
             tm.models.setdefault(method, {})[unit] = est
-            tm.cv.setdefault(method, {})[unit] = dict(
-                class_metrics(y, classes[P.argmax(1)], classes),
-                cv_seconds=time.perf_counter() - t0,
-                n_folds=len(folds),
-                cv_users=cv_users[unit],
-            )
+            tm.cv.setdefault(method, {})[unit] = _cv_entry(
+                y, classes[P.argmax(1)], classes, folds, cv_users[unit], fold_groups.get(unit),
+                cv_seconds=time.perf_counter() - t0)
             advance(1)
         if not want_fused or method in ("fusion", "heuristic") or (
             soft_vote_methods is not None and method not in soft_vote_methods
@@ -755,13 +768,9 @@ def train_task(
             template.units, fitted, w, n_features_in=X.shape[1], random_state=seed
         )
         tm.fusion_weights[method] = [float(v) for v in w]
-        tm.cv[method]["fused"] = dict(
-            class_metrics(y, classes[P.argmax(1)], classes),
-            n_folds=len(folds),
-            cv_users=cv_users["fused"],
-            weights={"foot": float(w[0]), "waist": float(w[1])},
-            cv_seconds=time.perf_counter() - t0,
-        )
+        tm.cv[method]["fused"] = _cv_entry(
+            y, classes[P.argmax(1)], classes, folds, cv_users["fused"], fold_groups.get("fused"),
+            weights={"foot": float(w[0]), "waist": float(w[1])}, cv_seconds=time.perf_counter() - t0)
         advance(1)
     # decision C16: every leaf model keeps the range of its own inputs over its training steps (units first,
     # so that fused/ensemble members fitted on the unit's steps keep that range)

@@ -187,6 +187,7 @@ FILE_KINDS = {
     "steps": ("a detected steps table", "pdrlearn steps --out"),
     "params": ("a waist parameters file", "pdrlearn calibrate"),
     "plot": ("a session plot", "pdrlearn plot"),
+    "predictions": ("a step predictions table", "pdrlearn evaluate --predictions-out"),  # decision C42
 }
 #: The columns every ``pdrlearn steps`` table starts with (the ``steps`` detectors' tables).
 STEPS_COLUMNS = ("start_s", "end_s", "event_s", "unit", "confidence")
@@ -221,7 +222,11 @@ def file_kind(path: Path) -> str | None:
         if suffix == ".csv":
             with open(path, encoding="utf-8", errors="replace") as f:
                 header = tuple(c.strip() for c in f.readline().strip().split(","))
-            return "steps" if header[:len(STEPS_COLUMNS)] == STEPS_COLUMNS else None
+            if header[:len(STEPS_COLUMNS)] == STEPS_COLUMNS:
+                return "steps"
+            from pdrlearn.classify.evaluation import PREDICTION_COLUMNS
+
+            return "predictions" if header[:len(PREDICTION_COLUMNS)] == PREDICTION_COLUMNS else None
         if suffix == ".json":
             from pdrlearn.waist.params import SCHEMA
 
@@ -308,6 +313,22 @@ def console():
     if not c.is_terminal:
         c.soft_wrap = True
     return c
+
+
+def print_table(c, table) -> None:
+    """Print a rich table; piped (no terminal), at the width it needs: rich assumed 80 columns and cut cells
+    ("heurist…") once `train`'s table had its fold-spread columns (decision C41). A terminal keeps its width."""
+    if c.is_terminal:
+        c.print(table)
+        return
+    width = c.width
+    c.width = 1000
+    need = c.measure(table).maximum
+    c.width = max(width, need)
+    try:
+        c.print(table)
+    finally:
+        c.width = width
 
 
 @contextmanager

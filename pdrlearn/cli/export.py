@@ -222,6 +222,10 @@ def run(
                                           help=INITIAL_HEADING_HELP.split(" For a relative")[0]
                                           + " (the runtime's heading is relative: gyroscopes only)."),
     dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
+    method: str = typer.Option(None, "--method", metavar="[TASK=]METHOD[/UNIT],...",
+                               help="Classify with another exported model than the bundle's chosen one: e.g. svm "
+                               "(every task; its chosen unit, else its only one), svm/foot, or terrain=dtw/foot "
+                               "(one task). The bundle must hold it (`pdrlearn export --methods`); decision E52."),
     contacts: bool = typer.Option(False, "--contacts", help="Each stride's initial contact (force onset, else the "
                                   "accelerometer impact) and so stride_time_s, cadence_spm, speed_mps and the "
                                   "summary's stride medians (decisions E49-E51; as `track --streaming --contacts`)."),
@@ -239,6 +243,8 @@ def run(
         pdrlearn run out/bundle/u1 out/sim/D_u1 --start 41.178,-8.608,12.5 --out out/run_geo
 
         pdrlearn run out/bundle/u1 out/sim/D_u1 --initial-heading 90 --out out/run_north   # sets off north
+
+        pdrlearn run out/bundle_u1_all out/sim/D_u1 --method svm --out out/run_svm   # an exported non-chosen method
     """
     from pdrlearn.errors import DataError
     from pdrlearn.runtime import load_bundle
@@ -256,6 +262,7 @@ def run(
     if out is not None:
         out_folder(out, "run", force=force, inputs=(bundle_dir, session_dir))
     bundle = load_bundle(bundle_dir)  # verified before any output
+    methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
     if protocol is not None:
         from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
@@ -268,7 +275,8 @@ def run(
                             "Bluetooth protocol does not carry; replay the foot unit alone (--units foot)")
         tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
                           resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
-                          units=use, start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0)
+                          units=use, start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0,
+                          methods=methods)
         if protocol == "-":
             stream = sys.stdin
         else:
@@ -315,7 +323,7 @@ def run(
         tracker = Tracker(bundle, frames=_frames_of(session, bundle, use),
                           resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           input_rates_hz=rates, units=use, sensors=[n for n, st in session.streams.items() if len(st)],
-                          start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0,
+                          start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0, methods=methods,
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
         dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
         if tracker.heading_source == "auto" and not said and (dropped or not (

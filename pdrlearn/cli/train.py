@@ -17,6 +17,7 @@ from pdrlearn.cli.common import (
     json_safe,
     out_folder,
     print_json,
+    print_table,
     progress,
     replaced,
     split_choices,
@@ -113,6 +114,7 @@ def train(
         pdrlearn train datasets/real/gaitmap_* --out models/gaitmap --tasks terrain \\
             --boundaries rest --methods heuristic,dtw,svm,nn,ensemble
     """
+    from pdrlearn.classify.spread import spread_text
     from pdrlearn.classify.training import check_settings, train_user
     from pdrlearn.features.windows import BOUNDARIES
 
@@ -157,6 +159,8 @@ def train(
                 "n_skipped_labels": tm.n_skipped_labels,
                 "cv": {m: {u: r["accuracy"] for u, r in per.items()} for m, per in tm.cv.items()},
                 "cv_balanced": {m: {u: r["balanced_accuracy"] for u, r in per.items()} for m, per in tm.cv.items()},
+                # decision C41: each fold's accuracy, mean, sd and the 95 % t-interval over the folds
+                "cv_folds": {m: {u: r.get("folds") for u, r in per.items()} for m, per in tm.cv.items()},
                 "chosen_reason": chosen_reason(tm),
                 "skipped": tm.skipped,
             }
@@ -172,21 +176,24 @@ def train(
     for t, tm in model.tasks.items():
         # the title as its own line: as a table title rich wrapped it to the table's width
         r0 = tm.cv[tm.chosen[0]][tm.chosen[1]]
-        by = f" (folds of whole users, {r0['cv_users']} users)" if r0.get("cv_users") else ""  # decision C29
-        c.print(f"{t}: {tm.n_steps} steps, {r0['n_folds']}-fold CV accuracy{by} "
-                f"(chosen: {tm.chosen[0]}/{tm.chosen[1]})", markup=False)
+        c.print(f"{t}: {tm.n_steps} steps, {cv_title(r0)} (chosen: {tm.chosen[0]}/{tm.chosen[1]})", markup=False)
         tab = Table()
         tab.add_column("method")
-        # decision C36: the rows are ranked by balanced accuracy (mean of the class columns), so it is shown
-        for col in (*tm.classes, "all", "balanced", "unit"):
-            tab.add_column(col)
+        # decision C36: the rows are ranked by balanced accuracy (mean of the class columns), so it is shown;
+        # decision C41: the folds' spread of the accuracy beside the pooled one
+        for col in (*tm.classes, "all", "balanced", "folds", "95 % CI", "unit"):
+            tab.add_column(col, no_wrap=col in ("folds", "95 % CI", "unit"))
         for m, u in tm.ranking():
             r = tm.cv[m][u]
             tab.add_row(
                 m, *[f"{100 * r['per_class'][k]:.1f}" for k in tm.classes], f"{100 * r['accuracy']:.1f}",
-                f"{100 * (r['balanced_accuracy'] or 0.0):.1f}", u
+                f"{100 * (r['balanced_accuracy'] or 0.0):.1f}", *spread_text(r.get("folds")), u
             )
-        c.print(tab)
+        print_table(c, tab)  # decision C41: piped, the wider table is not cut to 80 columns
+        c.print(f"  {SPREAD_NOTE}", markup=False)
+        users_line = louo_line(r0)
+        if users_line:
+            c.print(f"  {users_line}", markup=False)
         c.print(f"  {chosen_reason(tm)}", markup=False)
         for s in grouped_skips(tm.skipped):
             c.print(f"  skipped {s}", markup=False)
@@ -207,6 +214,33 @@ def train(
                 f"{pooled} (decision L26; offline M3 applies it){_streamed_gain(cal)}")
     c.print(f"step windows: {model.boundaries} boundaries")
     c.print(f"model written to {out} ({seconds:.1f} s)")
+
+
+#: how the train table's spread columns are computed (decision C41), printed under each table
+SPREAD_NOTE = ("all, balanced: pooled over the steps; folds: mean±sd of the folds' accuracies; 95 % CI: "
+               "t-interval of that mean over the folds (optimistic: folds share training steps; decision C41)")
+
+
+def cv_title(r: dict) -> str:
+    """The CV part of a task's title line (decisions C29, C43): ``10-fold CV accuracy``, ``leave-one-user-out CV
+    accuracy (3 users)`` or ``5-fold CV accuracy (folds of whole users, 12 users)``."""
+    n, users = r["n_folds"], r.get("cv_users") or 0
+    if users and n == users:
+        return f"leave-one-user-out CV accuracy ({users} users)"
+    if users:
+        return f"{n}-fold CV accuracy (folds of whole users, {users} users)"
+    return f"{n}-fold CV accuracy"
+
+
+def louo_line(r: dict) -> str | None:
+    """The chosen model's accuracy on each held-out user of a leave-one-user-out CV (decision C43), e.g.
+    ``chosen model per held-out user: user:u1 93.0 %, user:u2 97.5 %``; None for folds of steps."""
+    f = r.get("folds") or {}
+    if not f.get("users"):
+        return None
+    what = "user" if r["n_folds"] == r.get("cv_users") else "fold of users"
+    return f"chosen model per held-out {what}: " + ", ".join(
+        f"{who} {100 * a:.1f} % ({n} steps)" for who, a, n in zip(f["users"], f["accuracy"], f["n_steps"], strict=True))
 
 
 def chosen_reason(tm) -> str:
@@ -251,17 +285,32 @@ def evaluate(
                                              "this fraction of the labelled steps lie outside the model's training "
                                              "range, e.g. 0.25 (off by default; the fraction is always in the "
                                              "result as out_of_domain_fraction, decision C16)."),
+    predictions_out: Path = typer.Option(
+        None, "--predictions-out", metavar="FILE.csv",
+        help="Write one row per scored step: session, step (row of its steps.csv after repeated rows are "
+        "merged), start_s, end_s, task, true, predicted, correct, the method and unit that classified it and "
+        "their probability of each class (p_<class>); written atomically (decision C42)."),
 ) -> None:
     """Accuracy per class x method x unit (thesis Tables 27/28/33), confusion matrices, per-step latency.
+
+    The model is scored as fitted, on the sessions given (no cross-validation): for leave-one-user-out scores
+    train with `pdrlearn train ... --cv-groups user` (decisions C29, C43).
 
     Examples:
 
         pdrlearn evaluate out/models/u1 out/sim/u1_test --report out/eval_u1
 
         pdrlearn evaluate out/models/u1 out/sim/u1_test --json
+
+        pdrlearn evaluate out/models/u1 out/sim/u1_test --predictions-out out/eval_u1_steps.csv
     """
     from pdrlearn.classify import evaluate_model, load_model
-    from pdrlearn.classify.evaluation import evaluation_stages, results_table
+    from pdrlearn.classify.evaluation import evaluation_stages, results_table, write_predictions
+    from pdrlearn.cli.common import out_file
+
+    if predictions_out is not None:  # checked before the work (decision B26: --force replaces only its own kind)
+        out_file(predictions_out, (".csv",), "predictions", force=force)
+    had_predictions = predictions_out is not None and existed(predictions_out)
 
     if report is not None:
         # evaluation.json alone is the documented `--json > DIR/evaluation.json` redirect, made by the shell
@@ -282,8 +331,9 @@ def evaluate(
         for d in dirs:
             sessions.append(read_session(d))
             advance(1)
+        tables: list | None = [] if predictions_out is not None else None
         result = evaluate_model(model, sessions, report_dir=report, advance=advance,
-                                warn_out_of_domain=warn_out_of_domain)
+                                warn_out_of_domain=warn_out_of_domain, step_predictions=tables)
     if not model.tasks:  # decision C17: a model trained on level walks only holds a distance calibration
         raise DataError(f"evaluate: {model_dir} has no trained classifier to evaluate (training skipped every "
                         "task), only a distance calibration; evaluate its tracking with `pdrlearn track SESSION "
@@ -295,6 +345,10 @@ def evaluate(
         )
     if was:
         replaced(report, was)
+    if predictions_out is not None:
+        result["predictions_out"] = str(predictions_out)
+        result["n_predictions"] = write_predictions(tables, predictions_out)
+        replaced(predictions_out, had_predictions)
     if as_json:
         print_json(json_safe(result))
         return
@@ -324,6 +378,8 @@ def evaluate(
         c.print(f"skipped {s}")
     if report is not None:
         c.print(f"report written to {report}")
+    if predictions_out is not None:
+        c.print(f"{result['n_predictions']} step predictions written to {predictions_out}", markup=False)
 
 
 def _pct(v) -> str:

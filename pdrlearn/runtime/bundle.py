@@ -158,6 +158,64 @@ class Bundle:
     def classes(self, task: str) -> list[str]:
         return list(self.manifest["tasks"][task]["classes"])
 
+    def exported(self, task: str) -> list[str]:
+        """The ``method/unit`` models exported for ``task``, in the manifest's order."""
+        return [f"{m}/{u}" for m, per in self.tasks[task]["methods"].items() for u in per]
+
+    def choose_methods(self, spec: str) -> dict[str, str]:
+        """``run --method`` (decision E52): ``spec`` is a comma list of ``METHOD``, ``METHOD/UNIT`` (every
+        task) or ``TASK=METHOD[/UNIT]`` (one task; it wins over an every-task item). A method without a unit
+        takes the task's chosen unit when the method has it, else a two-unit model when the chosen one reads
+        both units (combined, else fused), else the method's only exported unit. Returns
+        task -> ``"method/unit"`` for :class:`Tracker` ``methods``; a task the bundle lacks, a method it did not
+        export for a task or an ambiguous unit is a :class:`DataError` naming what the bundle holds."""
+        every, per_task = None, {}
+        for item in (v.strip() for v in spec.split(",")):
+            if not item:
+                continue
+            task, _, mu = item.rpartition("=")
+            if not task:
+                every = mu
+            elif task not in self.tasks:
+                raise DataError(f"run --method {item}: bundle {self.path} has no task {task!r} (it has "
+                                f"{', '.join(self.tasks)})")
+            else:
+                per_task[task] = mu
+        if every is None and not per_task:
+            raise DataError("run --method: give METHOD, METHOD/UNIT or TASK=METHOD[/UNIT], e.g. --method svm")
+        out = {}
+        for task in self.tasks:
+            mu = per_task.get(task, every)
+            if mu is not None:
+                out[task] = self._method_unit(task, mu)
+        return out
+
+    def _method_unit(self, task: str, mu: str) -> str:
+        """One task's ``method[/unit]`` resolved to an exported ``method/unit`` (:meth:`choose_methods`)."""
+        method, _, unit = mu.strip().partition("/")
+        methods = self.tasks[task]["methods"]
+        have = self.exported(task)
+        if method not in methods or (unit and unit not in methods[method]):
+            one = all(len(self.tasks[t]["methods"]) == 1 for t in self.tasks)  # `pdrlearn export`'s default
+            only = ("; the bundle holds each task's chosen method only: export others with `pdrlearn export MODEL "
+                    "--out BUNDLE --methods nn,svm,...`" if one else "; export it with `pdrlearn export --methods`")
+            raise DataError(f"run --method {mu}: bundle {self.path} has no {mu} model for {task} (it has "
+                            f"{', '.join(have)}){only}")
+        if not unit:
+            chosen = (self.tasks[task].get("chosen") or {}).get("unit")
+            units = list(methods[method])
+            same = [u for u in ("combined", "fused") if u in units] if chosen in ("combined", "fused") else []
+            if chosen in units:
+                unit = chosen
+            elif same:  # a model reading both units, as the chosen one (combined before fused, decision C23)
+                unit = same[0]
+            elif len(units) == 1:
+                unit = units[0]
+            else:
+                raise DataError(f"run --method {mu}: {task} has {method} for the units {', '.join(units)}; give "
+                                f"one, e.g. --method {task}={method}/{units[0]}")
+        return f"{method}/{unit}"
+
     # -- files --------------------------------------------------------------------------------------
     def file(self, rel: str) -> Path:
         if rel not in self.manifest["files"]:

@@ -1,0 +1,69 @@
+"""Spread of a cross-validated score over its folds (decision C41): each fold's accuracy and balanced accuracy,
+their mean and sample standard deviation, and a 95 % Student-t interval of the mean over the folds."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+#: what ``ci95`` is, written next to it in every output
+INTERVAL = "t over folds"
+
+
+def t_interval(values: Sequence[float], level: float = 0.95) -> tuple[float, float] | None:
+    """Student-t interval of the mean of ``values`` (at least two): mean -+ t_{(1+level)/2, k-1} * sd / sqrt(k),
+    with the sample sd (ddof 1), clipped to [0, 1] (the values are shares). # Student (1908), Biometrika 6(1),
+    the interval of a mean from k observations; Bengio & Grandvalet (2004), JMLR 5 (no unbiased estimator of
+    the variance of k-fold CV: the folds' training sets overlap, so it is optimistic), cited in decision C41."""
+    from scipy.stats import t as student_t
+
+    v = np.asarray(values, dtype=float)
+    k = len(v)
+    if k < 2:
+        return None
+    half = float(student_t.ppf((1 + level) / 2, k - 1) * v.std(ddof=1) / np.sqrt(k))
+    mean = float(v.mean())
+    return max(0.0, mean - half), min(1.0, mean + half)
+
+
+def fold_spread(y_true: np.ndarray, y_pred: np.ndarray, folds: Sequence[tuple[np.ndarray, np.ndarray]],
+                groups: np.ndarray | None = None) -> dict:
+    """Per-fold scores of out-of-fold predictions ``y_pred`` (one per step, as the pooled CV score uses them).
+
+    Returns ``{"accuracy": [...], "balanced_accuracy": [...], "n_steps": [...], "mean", "sd", "ci95": [lo, hi],
+    "balanced_mean", "balanced_sd", "balanced_ci95", "interval"}``; a fold's balanced accuracy is the mean recall
+    over the classes present in its test steps. ``groups`` (the user of each step, folds of whole users): each
+    fold's held-out users as ``users`` (one name per fold with leave-one-user-out: the fold's score is that
+    user's, decision C43). ``sd`` / ``ci95`` are None with fewer than two folds."""
+    y_true, y_pred = np.asarray(y_true).astype(str), np.asarray(y_pred).astype(str)
+    acc, bal, n = [], [], []
+    for _, te in folds:
+        yt, yp = y_true[te], y_pred[te]
+        acc.append(float(np.mean(yt == yp)))
+        bal.append(float(np.mean([np.mean(yp[yt == c] == c) for c in np.unique(yt)])))
+        n.append(int(len(te)))
+    out: dict = {"accuracy": acc, "balanced_accuracy": bal, "n_steps": n, "interval": INTERVAL}
+    for key, vals in (("", acc), ("balanced_", bal)):
+        ci = t_interval(vals)
+        out[f"{key}mean"] = float(np.mean(vals)) if vals else None
+        out[f"{key}sd"] = float(np.std(vals, ddof=1)) if len(vals) > 1 else None
+        out[f"{key}ci95"] = None if ci is None else [ci[0], ci[1]]
+    if groups is not None:
+        out["users"] = [", ".join(sorted({str(g) for g in np.asarray(groups)[te]})) for _, te in folds]
+    return out
+
+
+def spread_text(spread: dict | None) -> tuple[str, str]:
+    """The train table's two cells: ``"mean +- sd"`` (%) of the folds' accuracies and the 95 % interval."""
+    if not spread or spread.get("mean") is None:
+        return "-", "-"
+    sd = spread.get("sd")
+    ms = f"{_pct(spread['mean'])}±{_pct(sd)}" if sd is not None else _pct(spread["mean"])
+    ci = spread.get("ci95")
+    return ms, ("-" if ci is None else f"{_pct(ci[0])}-{_pct(ci[1])}")
+
+
+def _pct(v: float) -> str:
+    """A share as a percentage with one decimal, ``100`` and ``0`` without (the table's cells stay narrow)."""
+    return f"{100 * v:.1f}".removesuffix(".0") if v in (0.0, 1.0) else f"{100 * v:.1f}"
