@@ -146,6 +146,7 @@ def import_command(
         import_csv_parts,
         import_labels,
         import_steps,
+        merge_offset_note,
         merge_sessions,
         merge_span_warning,
     )
@@ -255,9 +256,10 @@ def import_command(
                             zip(rows, labels, strict=True)}
     axes_warning = _check_axes(session, unit, record, csv)  # decision L71: before anything is written
     frame_warning = _check_frame(session, unit, record, csv, force_frame)  # decision B67: before writing too
-    span_warning = None
+    span_warning = offset_note = None
     if base is not None:
         span_warning = merge_span_warning(base, session)  # trial 2, finding 11 (decision D12)
+        offset_note = None if span_warning else merge_offset_note(base, session)  # decision B83
         session = merge_sessions(base, session)
     existed = out.is_dir() and any(out.iterdir())
     write_session(session, out, overwrite=True)
@@ -271,6 +273,8 @@ def import_command(
                     "frames": {p: f.to_dict() for p, f in session.frames.items()}})
     if span_warning:
         typer.echo(f"warning: {out}: {span_warning}", err=True)
+    if offset_note:
+        typer.echo(f"note: {out}: {offset_note}", err=True)
     if axes_warning:
         typer.echo(f"warning: {out}: {axes_warning}", err=True)
     if frame_warning:

@@ -829,6 +829,22 @@ def merge_span_warning(base: Session, add: Session) -> str | None:
             "has no option for it, decision L48)")
 
 
+def merge_offset_note(base: Session, add: Session) -> str | None:
+    """Decision B83: the ``--merge`` note when the added unit starts or stops more than
+    :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` apart from the session's (two devices switched on a few seconds
+    apart): ``track`` refuses such a session (B21) and ``--common-span`` tracks the time both have data."""
+    from pdrlearn.io.plasys import SPAN_TOLERANCE_S
+
+    sa, sb = _span(add), _span(base)
+    if sa is None or sb is None or max(abs(sa[0] - sb[0]), abs(sa[1] - sb[1])) <= SPAN_TOLERANCE_S:
+        return None
+    unit = add.meta.get("placement", "added")
+    lo, hi = max(sa[0], sb[0]), min(sa[1], sb[1])
+    return (f"the added {unit} unit covers {sa[0]:.2f}-{sa[1]:.2f} s, the session's other files {sb[0]:.2f}-"
+            f"{sb[1]:.2f} s (started {sa[0] - sb[0]:+.2f} s, stopped {sa[1] - sb[1]:+.2f} s apart); track the "
+            f"{lo:.2f}-{hi:.2f} s both cover with `pdrlearn track --common-span` (decision B83)")
+
+
 def _shifted_table(path: Path, origin_s: float) -> pd.DataFrame:
     """A label table of ``path`` with its ``*_ms`` columns (ms on the export's clock) moved onto the session's
     clock (``origin_s`` taken off) and read as seconds (``*_s``), as ``read_session`` reads label files."""

@@ -350,7 +350,8 @@ class Session:
                 where = (f"{self.folder / (name + '.csv')}" if self.folder is not None
                          else f"session '{self.name}': {name}")
                 lo, hi = max(float(m.t[0]), float(s.t[0])), min(float(m.t[-1]), float(s.t[-1]))
-                fix = (f"trim the session to {lo:.2f}-{hi:.2f} s, where both have data, or re-record" if hi > lo
+                fix = (f"track only {lo:.2f}-{hi:.2f} s, where both have data, with `pdrlearn track --common-span` "
+                       "(decision B83), or re-record" if hi > lo
                        else "they do not overlap: re-record")
                 raise DataError(
                     f"{where} covers {s.t[0]:.2f}-{s.t[-1]:.2f} s but {master} {m.t[0]:.2f}-{m.t[-1]:.2f} s; "
