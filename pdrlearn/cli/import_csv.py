@@ -434,7 +434,9 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         else:
             err(f"note: {sk['rows']} row(s) under the header skipped ({sk['source']})")
     dt = t.get("datetime")
-    if dt:  # decision B43: what the date-time text was read as
+    if dt and dt.get("time_of_day"):  # decision B86
+        err(f"time: read {dt['order']}: {dt['first']} to {dt['last']}")
+    elif dt:  # decision B43: what the date-time text was read as
         err(f"time: date-time text read {dt.get('order', 'as written')}: {dt['first']} to {dt['last']} (UTC); "
             f"zone {dt['zone']}")
     if merge and len(session.meta.get("imported", [])) < 2:

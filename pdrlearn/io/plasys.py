@@ -150,11 +150,13 @@ def read_table(path: str | os.PathLike) -> pd.DataFrame:
 #: a number written with a decimal comma (or an integer): what a text column of a ';' / tab file must hold
 #: throughout to be read as numbers (decision B24)
 _DECIMAL_COMMA = r"[+-]?(?:\d+(?:,\d*)?|,\d+)(?:[eE][+-]?\d+)?"
+#: decision B85: a decimal-comma number with points grouping its thousands (German Excel's ``#.##0,0``: ``1.002,3``)
+_GROUPED_DECIMAL_COMMA = r"[+-]?(?:\d{1,3}(?:\.\d{3})+|\d+)(?:,\d*)?"
 
 
 def _decimal_comma_columns(df: pd.DataFrame) -> None:
     """Decision B24, in place: a column read as text whose every value is a number written with a decimal
-    comma (or an integer) becomes numbers: in a file separated by ';' or tabs whose first data line, which
+    comma (or an integer; decision B85: with points grouping its thousands, ``1.002,3``) becomes numbers: in a file separated by ';' or tabs whose first data line, which
     :func:`_csv_dialect` looks at, held integers only, and in a comma file whose values are quoted ("0,5", a
     spreadsheet's comma export in a decimal-comma locale). Other text columns are kept; numeric columns cost
     nothing."""
@@ -165,6 +167,10 @@ def _decimal_comma_columns(df: pd.DataFrame) -> None:
         text = col.dropna().astype(str).str.strip()
         if len(text) and text.str.contains(",", regex=False).any() and text.str.fullmatch(_DECIMAL_COMMA).all():
             df[c] = pd.to_numeric(text.str.replace(",", ".", regex=False)).reindex(df.index)
+        elif (len(text) and text.str.contains(",", regex=False).any() and text.str.contains(".", regex=False).any()
+              and text.str.fullmatch(_GROUPED_DECIMAL_COMMA).all()):  # B85: beside a decimal comma a point groups
+            df[c] = pd.to_numeric(text.str.replace(".", "", regex=False).str.replace(",", ".", regex=False)
+                                  ).reindex(df.index)
 
 
 def _csv_dialect(path: Path) -> dict:
