@@ -103,3 +103,20 @@ def test_times_of_day_get_no_date_made_up(rest, tmp_path, capsys):
     meta = _time(tmp_path / "s")
     assert meta["origin_s"] == pytest.approx(10 * 3600 + 15 * 60 + 2.123, abs=1e-6)
     assert "20" not in meta["datetime"]["first"][:2]  # no year
+
+
+@pytest.mark.parametrize("terrain, warned", [(["eben", "hoch", "runter"], True), ([" Flat", "up", "DOWN"], False)])
+def test_labels_that_are_no_class_are_said_at_import(rest, tmp_path, capsys, terrain, warned):
+    """Decision C46: German class names passed `import --steps` and failed first at `train`."""
+    csv = _excel(rest, tmp_path / "e.csv", "%Y-%m-%d %H:%M:%S.%f")
+    steps = tmp_path / "schritte.csv"
+    pd.DataFrame({"start_ms": [1000, 2000, 3000], "end_ms": [2000, 3000, 4000], "terrain": terrain,
+                  "direction": "forward", "length_m": 1.2}).to_csv(steps, index=False)
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *ARGS, "--steps", str(steps),
+                 "--labels-relative"]) == 0
+    lines = [ln for ln in _err(capsys) if "decision C46" in ln]
+    if warned:
+        assert len(lines) == 1 and lines[0].startswith(f"warning: {steps}: 3 of 3 step(s)"), lines
+        assert "'eben'" in lines[0] and "flat, up, down" in lines[0]
+    else:
+        assert lines == []

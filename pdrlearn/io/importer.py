@@ -1023,6 +1023,10 @@ def import_steps(path: str | os.PathLike, session: Session, origin_s: float, *, 
     check_columns(steps, STEP_COLUMNS, f"{path} (times in ms on the export's clock: start_ms,end_ms)")
     check_numeric(steps, STEP_COLUMNS, str(path))
     _check_shifted_labels(steps, path, session, origin_s, relative)
+    from pdrlearn.classify.labels import import_label_warnings
+
+    for line in import_label_warnings(session, steps, str(path)):  # decision C46: not first at train
+        log.warning("%s", line)
     return Session(name=session.name, streams=session.streams, steps=steps, trajectory=session.trajectory,
                    extras=session.extras, meta=session.meta, frames=session.frames)
 
