@@ -101,8 +101,8 @@ def import_command(
                                   "for the units; B66)."),
     force_frame: bool = typer.Option(False, "--force-frame", help="Write the --frames axes even when the data "
                                      "contradict them (refused otherwise, B67)."),
-    name: str = typer.Option(None, "--name", help="Session name, written to meta.json (default: the --out folder's name; "
-                            "with --merge the session's own)."),
+    name: str = typer.Option(None, "--name", help="Session name, written to meta.json (default: the --out "
+                             "folder's name; with --merge the session's own)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
                                "unit's files, labels and meta.json are kept)."),
     split_at_clock_reset: bool = typer.Option(False, "--split-at-clock-reset", help="The export's clock restarts "

@@ -156,10 +156,10 @@ _GROUPED_DECIMAL_COMMA = r"[+-]?(?:\d{1,3}(?:\.\d{3})+|\d+)(?:,\d*)?"
 
 def _decimal_comma_columns(df: pd.DataFrame) -> None:
     """Decision B24, in place: a column read as text whose every value is a number written with a decimal
-    comma (or an integer; decision B85: with points grouping its thousands, ``1.002,3``) becomes numbers: in a file separated by ';' or tabs whose first data line, which
-    :func:`_csv_dialect` looks at, held integers only, and in a comma file whose values are quoted ("0,5", a
-    spreadsheet's comma export in a decimal-comma locale). Other text columns are kept; numeric columns cost
-    nothing."""
+    comma (or an integer; decision B85: with points grouping its thousands, ``1.002,3``) becomes numbers: in a
+    file separated by ';' or tabs whose first data line, which :func:`_csv_dialect` looks at, held integers only,
+    and in a comma file whose values are quoted ("0,5", a spreadsheet's comma export in a decimal-comma locale).
+    Other text columns are kept; numeric columns cost nothing."""
     for c in df.columns:
         col = df[c]
         if col.dtype.kind in "biufc":
@@ -787,7 +787,8 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
             extras[k], n = cut_labels_to_span(table, t0, t1, table.attrs.get("time_columns", DEFAULT_TIME_COLUMNS))
             labels += [f"{n} of {n + len(extras[k])} rows of {k}.csv"] if n else []
         log.warning("%s: --common-span: cut to %.2f-%.2f s, %s: dropped %s%s; the track and its reference cover "
-                    "that time only (decision B81)", folder, t0, t1, why, dropped, "; labels outside it dropped: " + ", ".join(labels) if labels else "")
+                    "that time only (decision B81)", folder, t0, t1, why, dropped,
+                    "; labels outside it dropped: " + ", ".join(labels) if labels else "")
     try:
         frames = frames_from_meta(meta)
     except DataError as exc:
