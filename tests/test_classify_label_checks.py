@@ -86,7 +86,7 @@ def test_evaluate_warns_on_training_sessions_and_another_rate(model, terrain, ca
     assert not out["rate_mismatch"]
     other = copy.copy(model)
     other.sampling_rate_hz = {k: 100.0 for k in model.sampling_rate_hz}
-    other.data_summary = {**model.data_summary, "sessions": []}
+    other.data_summary = {**model.data_summary, "sessions": [], "session_ids": []}
     caplog.clear()
     with caplog.at_level(logging.WARNING):
         out = evaluate_model(other, [terrain], latency=False)

@@ -99,6 +99,7 @@ def evaluate_model(
 
     if not sessions:
         raise DataError("evaluate: no sessions given; pass at least one labelled session folder")
+    ids = [s.content_id() for s in sessions]  # decision B87: before anything reads the streams
     t0 = time.perf_counter()
     windows = session_windows(sessions, n_samples=model.n_samples, boundaries=model.boundaries,
                                purpose="evaluate")
@@ -114,7 +115,7 @@ def evaluate_model(
         "boundaries": model.boundaries,  # how the step windows were cut (decision C13)
         "skipped": [],
     }
-    _held_out_checks(model, sessions, out)  # decision C34: training sessions, another rate
+    _held_out_checks(model, sessions, out, ids)  # decision C34: training sessions, another rate
     _untrained_tasks(model, windows, out)  # decision C36: labelled tasks the model has no classifier of
     domain: dict[str, dict] = {}
     for task, tm in model.tasks.items():
@@ -315,19 +316,28 @@ def write_predictions(tables: list, path: Path) -> int:
     return int(len(df))
 
 
-def _held_out_checks(model, sessions, out: dict) -> None:
+def _held_out_checks(model, sessions, out: dict, ids: list[str] | None = None) -> None:
     """Decision C34: warn (and record in ``out``) when evaluated sessions are among the model's training sessions
-    (manifest ``training_data.sessions``; the accuracy is then not held-out) and when a unit runs at another rate
-    than the model's classifiers were trained at (decision C18's line, as ``pdrlearn track`` gives it)."""
+    (the accuracy is then not held-out) and when a unit runs at another rate than the model's classifiers were
+    trained at (decision C18's line, as ``pdrlearn track`` gives it). Decision B87: a session is a training
+    session when its :meth:`~pdrlearn.io.session.Session.content_id` (``ids``) is among the manifest's
+    ``training_data.session_ids``; a model trained before B87 has none, and its ``sessions`` names are matched."""
     from pdrlearn.kernels.distance import classifier_rate_warning, rate_differs
 
-    trained = set((model.data_summary or {}).get("sessions") or [])
-    seen = [s for s in sessions if s.name in trained]
+    summary = model.data_summary or {}
+    trained_ids = summary.get("session_ids")
+    if trained_ids is not None and ids is not None:
+        seen = [s for s, i in zip(sessions, ids, strict=True) if i in set(trained_ids)]
+        how = "the same recordings as in its manifest"
+    else:
+        trained = set(summary.get("sessions") or [])
+        seen = [s for s in sessions if s.name in trained]
+        how = "named in its manifest; a model trained before decision B87 is matched by session name"
     out["training_sessions"] = [s.name for s in seen]
     if seen:
         names = ", ".join(s.where for s in seen[:3]) + (f" and {len(seen) - 3} more" if len(seen) > 3 else "")
-        log.warning("evaluate: %d of %d session(s) were used to train the model (%s; named in its manifest): the "
-                    "accuracy on them is not held-out", len(seen), len(sessions), names)
+        log.warning("evaluate: %d of %d session(s) were used to train the model (%s; %s): the "
+                    "accuracy on them is not held-out", len(seen), len(sessions), names, how)
     rates = getattr(model, "sampling_rate_hz", None) or {}
     out["rate_mismatch"] = {}
     lines: dict[str, list[str]] = {}

@@ -103,9 +103,10 @@ def clean_steps(session, steps: pd.DataFrame) -> pd.DataFrame:
     return out[~drop]
 
 
-def bad_label_warning(session, steps: pd.DataFrame, task: str) -> tuple[int, str | None]:
+def bad_label_warning(session, steps: pd.DataFrame, task: str, where: str | None = None) -> tuple[int, str | None]:
     """The rows of ``task``'s label column that are neither a class nor empty in an unlabelled column, and
-    the warning line naming the file, the count, the distinct values and the classes (decision C33).
+    the warning line naming the file (``where``, default the session's steps.csv), the count, the distinct
+    values and the classes (decision C33).
     Empty cells count when the column labels other steps of the session (a step left unlabelled); values
     ``unclear`` count but alone give no warning (the documented way to leave a step out)."""
     from pdrlearn.features import TASK_CLASSES, TASK_COLUMNS
@@ -124,9 +125,20 @@ def bad_label_warning(session, steps: pd.DataFrame, task: str) -> tuple[int, str
         counts[name] = counts.get(name, 0) + 1
     what = ", ".join(f"{k} x{n}" if n > 1 else k for k, n in counts.items())
     n = int(bad.sum())
-    return n, (f"{steps_file(session)}: {n} of {len(vals)} step(s) have a '{col}' label that is not a {task} "
+    return n, (f"{where or steps_file(session)}: {n} of {len(vals)} step(s) have a '{col}' label that is not a {task} "
                f"class and are left out of the {task} task: {what}; the classes are "
                f"{', '.join(TASK_CLASSES[task])} (any case)")
+
+
+def import_label_warnings(session, steps: pd.DataFrame, where: str) -> list[str]:
+    """Decision C46 (``pdrlearn import --steps``): :func:`bad_label_warning`'s line for each task whose labels
+    in ``steps`` (the file ``where``) are not all classes, said at import rather than first at ``train``
+    (German ``eben`` / ``hoch`` passed import and failed at train)."""
+    from pdrlearn.features import TASK_COLUMNS
+
+    norm = normalise_labels(steps)
+    lines = [bad_label_warning(session, norm, task, where)[1] for task in TASK_COLUMNS]
+    return [f"{ln}; rename them in the file and import again to train on them (decision C46)" for ln in lines if ln]
 
 
 def label_offset(session, steps: pd.DataFrame) -> dict | None:

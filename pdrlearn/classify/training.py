@@ -536,6 +536,11 @@ def _oof_proba(est, X, y, folds, classes) -> np.ndarray:
 CV_GROUPS = ("steps", "user")  # train's --cv-groups (decision C29)
 
 
+#: the model's user when no session names one in meta.json ``user`` / ``subject`` and ``--user`` is not given
+#: (decision B88: not the first session's folder name, which ``pdrlearn import`` takes from ``--out``)
+UNNAMED_USER = "unnamed"
+
+
 def session_user(session) -> str | None:
     """The user a session was recorded from, from its ``meta.json`` (decision C29): ``user`` (a string, or an
     object with ``id`` or ``seed``, as the simulator writes) or ``subject`` (a string, or an object with ``id``
@@ -909,6 +914,7 @@ def train_user(
         raise DataError(f"train: boundaries {boundaries!r}; choose one of {', '.join(BOUNDARIES)}")
     if cv_groups not in CV_GROUPS:
         raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
+    ids = [s.content_id() for s in sessions]  # decision B87: before anything reads the streams
     windows = session_windows(sessions, n_samples=n_samples, boundaries=boundaries)
     users = [session_user(s) for s in sessions]
     named = sorted({u for u in users if u is not None})  # the users the sessions name (decision C35)
@@ -966,7 +972,7 @@ def train_user(
     for s in sessions:
         for name, st in s.streams.items():
             rates.setdefault(name, round(float(st.rate_hz), 3))
-    summary = {"sessions": [s.name for s in sessions], "n_sessions": len(sessions), "steps": {},
+    summary = {"sessions": [s.name for s in sessions], "session_ids": ids, "n_sessions": len(sessions), "steps": {},
                "users": named}  # every user the sessions name (decision C35)
     bounds = length_class_bounds(sessions)
     if bounds is not None:
@@ -983,7 +989,7 @@ def train_user(
     return UserModel(
         # decision C35: a model pooled over users is not the first user's ("pooled: <users>")
         user=user or (f"pooled: {', '.join(named)}" if len(named) > 1 else
-                      sessions[0].meta.get("user") or sessions[0].meta.get("subject") or sessions[0].name),
+                      sessions[0].meta.get("user") or sessions[0].meta.get("subject") or UNNAMED_USER),
         tasks=out,
         n_samples=n_samples,
         sampling_rate_hz=rates,

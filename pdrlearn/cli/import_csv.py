@@ -101,7 +101,8 @@ def import_command(
                                   "for the units; B66)."),
     force_frame: bool = typer.Option(False, "--force-frame", help="Write the --frames axes even when the data "
                                      "contradict them (refused otherwise, B67)."),
-    name: str = typer.Option(None, "--name", help="Session name (default: the CSV's name)."),
+    name: str = typer.Option(None, "--name", help="Session name, written to meta.json (default: the --out "
+                             "folder's name; with --merge the session's own)."),
     merge: bool = typer.Option(False, "--merge", help="Add this unit to the existing session --out (the other "
                                "unit's files, labels and meta.json are kept)."),
     split_at_clock_reset: bool = typer.Option(False, "--split-at-clock-reset", help="The export's clock restarts "
@@ -146,6 +147,7 @@ def import_command(
         import_csv_parts,
         import_labels,
         import_steps,
+        merge_offset_note,
         merge_sessions,
         merge_span_warning,
     )
@@ -255,9 +257,10 @@ def import_command(
                             zip(rows, labels, strict=True)}
     axes_warning = _check_axes(session, unit, record, csv)  # decision L71: before anything is written
     frame_warning = _check_frame(session, unit, record, csv, force_frame)  # decision B67: before writing too
-    span_warning = None
+    span_warning = offset_note = None
     if base is not None:
         span_warning = merge_span_warning(base, session)  # trial 2, finding 11 (decision D12)
+        offset_note = None if span_warning else merge_offset_note(base, session)  # decision B83
         session = merge_sessions(base, session)
     existed = out.is_dir() and any(out.iterdir())
     write_session(session, out, overwrite=True)
@@ -271,6 +274,8 @@ def import_command(
                     "frames": {p: f.to_dict() for p, f in session.frames.items()}})
     if span_warning:
         typer.echo(f"warning: {out}: {span_warning}", err=True)
+    if offset_note:
+        typer.echo(f"note: {out}: {offset_note}", err=True)
     if axes_warning:
         typer.echo(f"warning: {out}: {axes_warning}", err=True)
     if frame_warning:
@@ -430,7 +435,9 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         else:
             err(f"note: {sk['rows']} row(s) under the header skipped ({sk['source']})")
     dt = t.get("datetime")
-    if dt:  # decision B43: what the date-time text was read as
+    if dt and dt.get("time_of_day"):  # decision B86
+        err(f"time: read {dt['order']}: {dt['first']} to {dt['last']}")
+    elif dt:  # decision B43: what the date-time text was read as
         err(f"time: date-time text read {dt.get('order', 'as written')}: {dt['first']} to {dt['last']} (UTC); "
             f"zone {dt['zone']}")
     if merge and len(session.meta.get("imported", [])) < 2:

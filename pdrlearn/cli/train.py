@@ -80,7 +80,8 @@ def train(
         "on; one user: as 'steps'; decision C29).",
     ),
     seed: int = typer.Option(0, help="Seed of folds, DTW references and network initialisation."),
-    user: str = typer.Option(None, help="User name stored in the manifest (default: from the data)."),
+    user: str = typer.Option(None, help="User name stored in the manifest (default: the sessions' meta.json 'user' or "
+                      "'subject', else 'unnamed'; B88)."),
     boundaries: str = typer.Option(
         "given",
         help="Step-window boundaries: 'given' (the labelled start/end) or 'rest' (each boundary moved to the "

@@ -293,6 +293,46 @@ def _check_import_rate(t: np.ndarray, t_raw: np.ndarray, t_unit: str, t_how: str
                         f"{looks}") from None
 
 
+def _whole_seconds(secs: np.ndarray) -> bool:
+    """Decision B84: date-times that lost their fraction of a second (Excel's default cell format
+    ``2026-11-03 10:15:02``): every value a whole second and over half of the rows repeating the one before."""
+    return bool(secs.size >= 3 and np.all(secs == np.round(secs)) and np.mean(np.diff(secs) == 0) > 0.5)
+
+
+def _whole_seconds_message(secs: np.ndarray, where: str, column: str, first) -> str:
+    """Decision B84: the refusal of whole-second date-times without --rate, naming the rows per second."""
+    counts = np.unique(secs, return_counts=True)[1]
+    per_s = int(np.median(counts[1:-1] if counts.size > 2 else counts))
+    return (f"{where}: column '{column}' holds whole seconds only ({first!r} ...), {per_s} rows in a typical "
+            f"second, so {int(np.sum(np.diff(secs) == 0))} of {secs.size} rows repeat a timestamp: the export lost "
+            "the milliseconds (Excel's default cell format), the rows are not duplicates -- export the time with "
+            f"milliseconds, or pass --rate {per_s} (the sampling rate in Hz) to time the rows from the first "
+            "date-time (decision B84)")
+
+
+#: ``--rate`` with date-times (decision B84): the rows' times may disagree with their date-times by this much
+#: (s) beyond the date-times' own truncation before the rate (or a row lost) is the suspect
+RATE_DATETIME_TOLERANCE_S = 1.0
+
+
+def rows_at_rate(secs: np.ndarray, rate: float, where: str, column: str, first_line: int) -> np.ndarray:
+    """Decision B84 (``import --rate HZ`` on a date-time column): row ``i`` at ``origin + i / rate`` (s since the
+    epoch). Whole-second date-times (:func:`_whole_seconds`) hold the true time cut down to the second, so the
+    origin is the middle of the offsets for which every row's time cuts down to its date-time (the start found
+    to within about one sample); other date-times give the middle of the offsets that fit them. Refused, naming
+    the row, when they disagree by over :data:`RATE_DATETIME_TOLERANCE_S` (a wrong rate, or rows lost)."""
+    i = np.arange(secs.size) / rate
+    cut = 1.0 if _whole_seconds(secs) else 0.0
+    lo, hi = float(np.max(secs - i)), float(np.min(secs + cut - i))
+    if lo - hi > RATE_DATETIME_TOLERANCE_S:
+        drift = secs - (secs[0] + i)
+        k = int(np.argmax(np.abs(drift)))
+        raise DataError(f"{where}: --rate {rate:g} puts line {k + first_line} at {i[k]:.2f} s after the first row "
+                        f"but column '{column}' at {secs[k] - secs[0]:.2f} s: the rate is wrong or rows are missing "
+                        "-- give the rate the device recorded at, or leave --rate out (decision B84)")
+    return (lo + hi) / 2 + i
+
+
 #: a numeric date at the start of a text: d/m/y or m/d/y (``10/12/2020``, ``10.12.20``, ``10-12-2020``)
 _NUMERIC_DATE = re.compile(r"^\s*(\d{1,2})([/.\-])(\d{1,2})\2(\d{2}|\d{4})\b")
 
@@ -313,6 +353,21 @@ def _date_formats(text: str) -> tuple[str, str]:
     return f"%d{sep}%m{sep}{year}{tail}", f"%m{sep}%d{sep}{year}{tail}"
 
 
+#: a time of day without a date (``10:15:02.123``, ``10:15:02,123``): decision B86
+_TIME_OF_DAY = r"\s*\d{1,2}:\d{2}:\d{2}(?:[.,]\d+)?\s*"
+
+
+def _time_of_day_seconds(text: pd.Series, zone: str | None) -> tuple[np.ndarray, dict]:
+    """Decision B86: times of day without a date, as seconds since midnight (pandas gave them today's date, shown
+    as the recording's date); a step back of over 12 h is the clock passing midnight."""
+    secs = pd.to_timedelta(text.str.strip().str.replace(",", ".", regex=False)).dt.total_seconds().to_numpy(float)
+    secs = secs + 86400.0 * np.r_[0, np.cumsum(np.diff(secs) < -43200.0)]
+    info = {"order": "as times of day without a date: seconds since midnight, no date made up (decision B86)",
+            "zone": "none (a time of day)" + (" (--time-zone not used)" if zone else ""), "time_of_day": True,
+            "first": text.iloc[0].strip(), "last": text.iloc[-1].strip()}
+    return secs, info
+
+
 def _datetime_seconds(col: pd.Series, where: str = "", time_format: str | None = None,
                       zone: str | None = None) -> tuple[np.ndarray, dict] | None:
     """Seconds since the epoch of a column of date-time texts (ISO 8601 and the like) and what was read
@@ -325,6 +380,8 @@ def _datetime_seconds(col: pd.Series, where: str = "", time_format: str | None =
     if col.dtype.kind in "biufc":
         return None
     text = col.astype(str)
+    if time_format is None and len(text) and text.str.fullmatch(_TIME_OF_DAY).all():  # decision B86
+        return _time_of_day_seconds(text, zone)
     info: dict = {}
     try:
         if time_format is not None:
@@ -636,17 +693,24 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")
         if rate_hz is None:
             t_unit, t_how = _time_unit(t_num, time_unit, time_column, where, row_units.get(time_column))
+    if secs is not None and rate_hz is None and _whole_seconds(secs):  # decision B84: not duplicated rows
+        raise DataError(_whole_seconds_message(secs, f"{where}", time_column, tcol.iloc[0]))
     if rate_hz is not None:  # decision B39: the time column holds sample numbers at rate_hz
         r = float(rate_hz)
         if not (math.isfinite(r) and r > 0):
             raise DataError(f"import: --rate {rate_hz!r} is not a sampling rate in Hz")
-        if secs is not None or np.any(t_num != np.round(t_num)):
+        if secs is None and np.any(t_num != np.round(t_num)):
             raise DataError(f"{where}: --rate says column '{time_column}' holds sample numbers, but it holds "
-                            f"{'date-times' if secs is not None else 'fractions'}; leave --rate out")
+                            "fractions; leave --rate out")
         if time_unit is not None and _time_word(time_unit) != "samples":
             raise DataError(f"import: --rate reads the time column as sample numbers; leave --time-unit "
                             f"{time_unit} out")
-        t_unit, t_how = "samples", f"sample numbers at {r:g} Hz (given with --rate)"
+        if secs is not None:  # decision B84: rows at r Hz from the date-times, which only place the first
+            t_num = rows_at_rate(secs, r, where, time_column, first_line)
+            t_how = (f"rows at {r:g} Hz (given with --rate) from the date-time text"
+                     + (" (whole seconds: the start placed within one sample)" if _whole_seconds(secs) else ""))
+        else:
+            t_unit, t_how = "samples", f"sample numbers at {r:g} Hz (given with --rate)"
     # the origin is taken off in the file's own unit: epoch milliseconds keep their exact 10 ms steps
     scale = 1.0 / float(rate_hz) if t_unit == "samples" else _TIME_SCALE[t_unit]
     # decision B73 on the export's rows (all of them share the time column), in s; B80: split there on request
@@ -697,7 +761,10 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                                 + _units_row_hint(df, partial[0], first_line,
                                                    (skipped or {}).get("rows", 0)))
             if not keep.any():
-                raise DataError(f"{where}: columns {', '.join(cols)} ({kind}) hold no numbers")
+                text = df[cols[0]].dropna().astype(str)
+                shown = (f" (first value {text.iloc[0]!r}); write them as numbers, 1002.3 or 1002,3 (points group "
+                         "thousands only beside a decimal comma, 1.002,3; decision B85)" if len(text) else "")
+                raise DataError(f"{where}: columns {', '.join(cols)} ({kind}) hold no numbers{shown}")
             if (~keep).any():  # a multi-rate export leaves a slower sensor's cells empty between its samples
                 record["dropped_rows"][sensor] = int((~keep).sum())
             u, factor, u_src = _resolve_unit(kind, units.get(kind), cols, where, row_units)
@@ -829,6 +896,22 @@ def merge_span_warning(base: Session, add: Session) -> str | None:
             "has no option for it, decision L48)")
 
 
+def merge_offset_note(base: Session, add: Session) -> str | None:
+    """Decision B83: the ``--merge`` note when the added unit starts or stops more than
+    :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` apart from the session's (two devices switched on a few seconds
+    apart): ``track`` refuses such a session (B21) and ``--common-span`` tracks the time both have data."""
+    from pdrlearn.io.plasys import SPAN_TOLERANCE_S
+
+    sa, sb = _span(add), _span(base)
+    if sa is None or sb is None or max(abs(sa[0] - sb[0]), abs(sa[1] - sb[1])) <= SPAN_TOLERANCE_S:
+        return None
+    unit = add.meta.get("placement", "added")
+    lo, hi = max(sa[0], sb[0]), min(sa[1], sb[1])
+    return (f"the added {unit} unit covers {sa[0]:.2f}-{sa[1]:.2f} s, the session's other files {sb[0]:.2f}-"
+            f"{sb[1]:.2f} s (started {sa[0] - sb[0]:+.2f} s, stopped {sa[1] - sb[1]:+.2f} s apart); track the "
+            f"{lo:.2f}-{hi:.2f} s both cover with `pdrlearn track --common-span` (decision B83)")
+
+
 def _shifted_table(path: Path, origin_s: float) -> pd.DataFrame:
     """A label table of ``path`` with its ``*_ms`` columns (ms on the export's clock) moved onto the session's
     clock (``origin_s`` taken off) and read as seconds (``*_s``), as ``read_session`` reads label files."""
@@ -940,6 +1023,10 @@ def import_steps(path: str | os.PathLike, session: Session, origin_s: float, *, 
     check_columns(steps, STEP_COLUMNS, f"{path} (times in ms on the export's clock: start_ms,end_ms)")
     check_numeric(steps, STEP_COLUMNS, str(path))
     _check_shifted_labels(steps, path, session, origin_s, relative)
+    from pdrlearn.classify.labels import import_label_warnings
+
+    for line in import_label_warnings(session, steps, str(path)):  # decision C46: not first at train
+        log.warning("%s", line)
     return Session(name=session.name, streams=session.streams, steps=steps, trajectory=session.trajectory,
                    extras=session.extras, meta=session.meta, frames=session.frames)
 

@@ -150,14 +150,16 @@ def read_table(path: str | os.PathLike) -> pd.DataFrame:
 #: a number written with a decimal comma (or an integer): what a text column of a ';' / tab file must hold
 #: throughout to be read as numbers (decision B24)
 _DECIMAL_COMMA = r"[+-]?(?:\d+(?:,\d*)?|,\d+)(?:[eE][+-]?\d+)?"
+#: decision B85: a decimal-comma number with points grouping its thousands (German Excel's ``#.##0,0``: ``1.002,3``)
+_GROUPED_DECIMAL_COMMA = r"[+-]?(?:\d{1,3}(?:\.\d{3})+|\d+)(?:,\d*)?"
 
 
 def _decimal_comma_columns(df: pd.DataFrame) -> None:
     """Decision B24, in place: a column read as text whose every value is a number written with a decimal
-    comma (or an integer) becomes numbers: in a file separated by ';' or tabs whose first data line, which
-    :func:`_csv_dialect` looks at, held integers only, and in a comma file whose values are quoted ("0,5", a
-    spreadsheet's comma export in a decimal-comma locale). Other text columns are kept; numeric columns cost
-    nothing."""
+    comma (or an integer; decision B85: with points grouping its thousands, ``1.002,3``) becomes numbers: in a
+    file separated by ';' or tabs whose first data line, which :func:`_csv_dialect` looks at, held integers only,
+    and in a comma file whose values are quoted ("0,5", a spreadsheet's comma export in a decimal-comma locale).
+    Other text columns are kept; numeric columns cost nothing."""
     for c in df.columns:
         col = df[c]
         if col.dtype.kind in "biufc":
@@ -165,6 +167,10 @@ def _decimal_comma_columns(df: pd.DataFrame) -> None:
         text = col.dropna().astype(str).str.strip()
         if len(text) and text.str.contains(",", regex=False).any() and text.str.fullmatch(_DECIMAL_COMMA).all():
             df[c] = pd.to_numeric(text.str.replace(",", ".", regex=False)).reindex(df.index)
+        elif (len(text) and text.str.contains(",", regex=False).any() and text.str.contains(".", regex=False).any()
+              and text.str.fullmatch(_GROUPED_DECIMAL_COMMA).all()):  # B85: beside a decimal comma a point groups
+            df[c] = pd.to_numeric(text.str.replace(".", "", regex=False).str.replace(",", ".", regex=False)
+                                  ).reindex(df.index)
 
 
 def _csv_dialect(path: Path) -> dict:
@@ -552,21 +558,43 @@ def common_span(streams: dict[str, Stream], folder: Path) -> tuple[float, float,
              if check_stream_spans({n: s for n, s in streams.items() if SENSORS[n].placement == u}, folder,
                                    mode="common") is not None]
     if not units:
-        return None
+        units = units_apart(streams)  # decision B83: two devices started or stopped apart
+        if units is None:
+            return None
     cut = [s for n, s in streams.items() if SENSORS[n].placement in units and len(s)]
     return max(float(s.t[0]) for s in cut), min(float(s.t[-1]) for s in cut), units
+
+
+def units_apart(streams: dict[str, Stream]) -> list[str] | None:
+    """Decision B83: ``["foot", "waist"]`` when the session holds both units and one starts or stops more than
+    :data:`SPAN_TOLERANCE_S` apart from the other (two devices switched on a few seconds apart: a method that
+    needs one unit to cover the other refuses it, B21); else None."""
+    ends = {}
+    for unit in ("foot", "waist"):
+        ts = [s for n, s in streams.items() if SENSORS[n].placement == unit and len(s) >= 2]
+        if ts:
+            ends[unit] = (min(float(s.t[0]) for s in ts), max(float(s.t[-1]) for s in ts))
+    if len(ends) < 2:
+        return None
+    (f0, f1), (w0, w1) = ends["foot"], ends["waist"]
+    return ["foot", "waist"] if max(abs(f0 - w0), abs(f1 - w1)) > SPAN_TOLERANCE_S else None
 
 
 def cut_to_common_span(streams: dict[str, Stream], folder: Path) -> tuple[float, float, str] | None:
     """Decision B81 (``read_session(spans="common")``, ``pdrlearn track --common-span``): instead of B72's refusal,
     cut every stream of the session to :func:`common_span` (in place; the other unit too, so that each method
     sees one walk and the labels cut alike by :func:`cut_labels_to_span` describe it). Returns ``(t0, t1,
-    text)``, ``text`` naming the seconds dropped from each file, or None when the spans agree (nothing cut).
+    text, why)``, ``text`` naming the seconds dropped from each file, ``why`` what time was kept (B72's cut
+    files, or B83's two units started or stopped apart), or None when the spans agree (nothing cut).
     A stream left with under 2 samples in that time is refused (the units do not overlap)."""
     found = common_span(streams, folder)
     if found is None:
         return None
     t0, t1, units = found
+    why = ("the time every file of the unit(s) cut short covers (B72)" if check_stream_spans(
+        {n: s for n, s in streams.items() if SENSORS[n].placement in units}, folder, mode="common") is not None
+        else "the time both units have data: they started or stopped over "
+             f"{SPAN_TOLERANCE_S:g} s apart (decision B83)")
     if t1 - t0 < SPAN_TOLERANCE_S:
         raise DataError(f"{folder}: the {' and '.join(units)} files cover under {SPAN_TOLERANCE_S:g} s in common "
                         f"({t0:.2f}-{t1:.2f} s), nothing to track; --common-span cannot cut them to it -- restore the "
@@ -583,7 +611,7 @@ def cut_to_common_span(streams: dict[str, Stream], folder: Path) -> tuple[float,
         gone = (float(s.t[keep][0]) - float(s.t[0])) + (float(s.t[-1]) - float(s.t[keep][-1]))
         dropped.append(f"{gone:.2f} s of {SENSORS[n].filename}")
         streams[n] = Stream(n, s.t[keep], s.values[keep])
-    return t0, t1, ", ".join(dropped)
+    return t0, t1, ", ".join(dropped), why
 
 
 def cut_labels_to_span(table: pd.DataFrame | None, t0: float, t1: float, time_columns) -> tuple:
@@ -749,7 +777,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         check_label_table(table, p.stem, str(p))
         extras[p.stem] = _ms_to_s(table, str(p))
     if spans == "common" and cut is not None:  # decision B81: the labels describe the walk that is kept
-        t0, t1, dropped = cut
+        t0, t1, dropped, why = cut
         labels = []
         steps, n = cut_labels_to_span(steps, t0, t1, ("start_s", "end_s"))
         labels += [f"{n} of {n + len(steps)} rows of steps.csv"] if n else []
@@ -758,9 +786,9 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         for k, table in list(extras.items()):
             extras[k], n = cut_labels_to_span(table, t0, t1, table.attrs.get("time_columns", DEFAULT_TIME_COLUMNS))
             labels += [f"{n} of {n + len(extras[k])} rows of {k}.csv"] if n else []
-        log.warning("%s: --common-span: cut to %.2f-%.2f s, the time every file of the unit(s) cut short covers "
-                    "(B72): dropped %s%s; the track and its reference cover that time only (decision B81)", folder,
-                    t0, t1, dropped, "; labels outside it dropped: " + ", ".join(labels) if labels else "")
+        log.warning("%s: --common-span: cut to %.2f-%.2f s, %s: dropped %s%s; the track and its reference cover "
+                    "that time only (decision B81)", folder, t0, t1, why, dropped,
+                    "; labels outside it dropped: " + ", ".join(labels) if labels else "")
     try:
         frames = frames_from_meta(meta)
     except DataError as exc:

@@ -317,6 +317,21 @@ class Session:
                         float(s.values.sum())))
         return tuple(out)
 
+    def content_id(self) -> str:
+        """Decision B87: what identifies the recording, whatever its folder is named: a hash (SHA-1, 16 hex
+        digits) of every sensor stream's name, times and values, in name order. ``evaluate`` matches it against
+        the model's training sessions (``training_data.session_ids``); a copy or re-import of the same data
+        gives the same id, two recordings in folders of one name do not."""
+        import hashlib
+
+        h = hashlib.sha1()
+        for key in sorted(self.streams):
+            st = self.streams[key]
+            h.update(key.encode())
+            h.update(np.ascontiguousarray(st.t, dtype=float).tobytes())
+            h.update(np.ascontiguousarray(st.values, dtype=float).tobytes())
+        return h.hexdigest()[:16]
+
     def has(self, *names: str) -> bool:
         return all(n in self.streams for n in names)
 
@@ -350,7 +365,8 @@ class Session:
                 where = (f"{self.folder / (name + '.csv')}" if self.folder is not None
                          else f"session '{self.name}': {name}")
                 lo, hi = max(float(m.t[0]), float(s.t[0])), min(float(m.t[-1]), float(s.t[-1]))
-                fix = (f"trim the session to {lo:.2f}-{hi:.2f} s, where both have data, or re-record" if hi > lo
+                fix = (f"track only {lo:.2f}-{hi:.2f} s, where both have data, with `pdrlearn track --common-span` "
+                       "(decision B83), or re-record" if hi > lo
                        else "they do not overlap: re-record")
                 raise DataError(
                     f"{where} covers {s.t[0]:.2f}-{s.t[-1]:.2f} s but {master} {m.t[0]:.2f}-{m.t[-1]:.2f} s; "
