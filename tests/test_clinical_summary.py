@@ -145,3 +145,51 @@ def test_streamed_turn_count_matches_offline_and_run(tmp_path, capsys):
     st = pd.read_csv(tmp_path / "streaming" / "steps.csv")
     total = np.degrees((st["turn_angle_rad"] + st["pivot_rad"]).sum())
     assert abs(total - 270.0) <= 20.0, total  # the whole turn, not the ~80 % the rows' own turns hold
+
+
+def test_stride_time_cv_withheld_when_contact_timing_scatters():
+    """L113 (an option, not adopted): contacts that jump between two times of the stride (0 or +0.1 s after the
+    swing onset's rhythm) withhold the CV with a warning; the same strides with contacts as steady as their
+    onsets keep it; by default (the rule failed) the CV is printed."""
+    from pdrlearn.track.clinical import CONTACT_SCATTER_OPTION_S, stride_cv_warning
+
+    starts = np.arange(20) * 1.1 + np.random.default_rng(0).normal(0.0, 0.01, 20)
+    table = _foot_table(starts)
+    ic = starts + 0.8 + np.where(np.arange(20) % 3 == 0, 0.1, 0.0)  # bimodal contact: 0 or +0.1 s late
+    table["stride_time_s"] = np.diff(ic, prepend=np.nan)
+    default = clinical_summary(table)
+    assert default["stride_time_cv_pct"] > 5 and default["stride_time_cv_withheld"] is None
+    c = clinical_summary(table, contact_scatter_max_s=CONTACT_SCATTER_OPTION_S)
+    assert c["stride_time_cv_pct"] is None and c["n_cv_strides"] == 17
+    w = c["stride_time_cv_withheld"]
+    assert w["contact_scatter_s"] >= CONTACT_SCATTER_OPTION_S and w["contact_cv_pct"] > 3 * w["swing_onset_cv_pct"]
+    assert w["contact_cv_pct"] == pytest.approx(default["stride_time_cv_pct"])
+    assert "stride-time CV withheld" in stride_cv_warning(c)
+    table["stride_time_s"] = np.diff(starts + 0.8, prepend=np.nan)  # contacts as steady as the onsets
+    c = clinical_summary(table, contact_scatter_max_s=CONTACT_SCATTER_OPTION_S)
+    assert c["stride_time_cv_withheld"] is None and 0.5 < c["stride_time_cv_pct"] < 2.0
+    assert stride_cv_warning(c) is None
+
+
+def test_track_without_force_sensors_withholds_a_scattered_cv(tmp_path, capsys, monkeypatch):
+    """L113 with the check switched on (its option), the session 19 trial's case: simulated user 5 (scenario A's
+    20 m) without force sensors. Its accelerometer contacts jump between the heel strike and a peak ~0.1 s later
+    (true CV 1.37 %, the contacts' 12.98 %): track prints a warning and no CV; with the force sensors the CV
+    stays (2.2 %)."""
+    from pdrlearn.track import clinical
+
+    monkeypatch.setattr(clinical, "CONTACT_SCATTER_MAX_S", clinical.CONTACT_SCATTER_OPTION_S)
+    sess = tmp_path / "A5"
+    assert main(["simulate", "--scenario", "A", "--user-seed", "5", "--out", str(sess)]) == 0
+    assert main(["track", str(sess), "--model", "oracle", "--out", str(tmp_path / "f")]) == 0
+    with_force = json.loads((tmp_path / "f" / "summary.json").read_text())
+    assert 1.0 < with_force["stride_time_cv_pct"] < 4.0 and with_force["stride_time_cv_withheld"] is None
+    for name in ("fForceA.csv", "fForceB.csv"):
+        (sess / name).unlink()
+    capsys.readouterr()
+    assert main(["track", str(sess), "--model", "oracle", "--out", str(tmp_path / "nf")]) == 0
+    out = capsys.readouterr()
+    summary = json.loads((tmp_path / "nf" / "summary.json").read_text())
+    assert summary["stride_time_cv_pct"] is None and summary["stride_time_cv_withheld"]["contact_cv_pct"] > 10
+    assert "stride-time CV withheld" in out.err and "stride-time CV withheld" in out.out
+    assert any("stride-time CV withheld" in w for w in summary["info"]["warnings"])

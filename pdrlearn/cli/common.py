@@ -415,7 +415,8 @@ def walk_line(summary: dict) -> str | None:
             + (f" ({summary['pause_time_s']:.1f} s in all)" if n else "")
             + f", {summary.get('turn_count', 0)} turn(s) of >= {summary.get('turn_count_min_deg', 80):g} deg"
             + (f", stride-time CV {cv:.1f} % ({summary.get('n_cv_strides')} steady strides)" if cv is not None
-               else ""))
+               else ", stride-time CV withheld (contact timing unreliable, see the warning)"
+               if summary.get("stride_time_cv_withheld") else ""))
 
 
 def gait_line(summary: dict) -> str:

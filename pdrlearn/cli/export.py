@@ -432,15 +432,14 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
         out["input_dir"] = str(session.folder.resolve()) if session.folder is not None else None
     out["pipeline"] = "runtime"
     out["info"] = result.info
-    if session is not None:  # decision L95, as track's summary: running / very slow walking
+    if session is not None:  # decisions L95 / L113, as track's summary: gait range, withheld stride-time CV
         import logging
 
-        from pdrlearn.track.gait import gait_range_warning
+        from pdrlearn.track.evaluate import summary_warnings
 
-        line = gait_range_warning(out)
-        if line:
+        for line in summary_warnings(out):
             logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
-            out["info"] = {**result.info, "warnings": [*result.info.get("warnings", []), line]}
+            out["info"] = {**out["info"], "warnings": [*out["info"].get("warnings", []), line]}
     if session is not None and session.frames_inferred:  # D8, as track's summary.json gives them
         out["frames_inferred"] = session.frames_inferred
     out.update({

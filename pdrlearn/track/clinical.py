@@ -24,9 +24,19 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   (the strides into and out of a turn or a stop slow down; a stride time across a short stop is no rhythm);
   None with fewer than :data:`CV_MIN_STRIDES` of them. None on the lower back: its contacts scatter (on
   simulated straight walks whose true CV is 1.7-2.1 % it gave 6.2-9.7 %).
+* **contact timing check** (decision L113): the same strides' swing onsets (``start_s``) recur with the gait
+  period too, so with contacts timed as well as the onsets the two stride-time SDs agree. Each contact's own
+  timing scatter, estimated as sqrt((SD_contacts^2 - SD_onsets^2) / 2) (independent scatter of both contacts of
+  a stride time adds twice its variance), of :data:`CONTACT_SCATTER_MAX_S` or more makes the CV the contacts'
+  scatter rather than the walker's rhythm: ``stride_time_cv_pct`` is then None, ``stride_time_cv_withheld``
+  holds both CVs and :func:`stride_cv_warning` says why (a foot IMU without force sensors whose contact moves
+  between the heel strike and a later peak, trial of session 19). Not adopted as the default (L113's rule
+  failed on one user): off unless ``contact_scatter_max_s`` is given (:data:`CONTACT_SCATTER_OPTION_S`).
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import pandas as pd
@@ -42,9 +52,16 @@ TURN_COUNT_MIN_DEG = 80.0
 #: ``stride_time_cv_pct`` needs at least this many straight strides with a stride time
 CV_MIN_STRIDES = 10
 
+#: decision L113's candidate: a contact timing scatter (s) of this much or more withholds ``stride_time_cv_pct``
+#: (it adds sqrt(2) x 30 ms = 42 ms to the SD of a ~1.1 s stride, 3.9 %, more than a healthy walker's CV of 1-3 %)
+CONTACT_SCATTER_OPTION_S = 0.030
+#: the default: off (inf). L113's rule was not met (R2: one printed CV 3.89 % > 2 x 1.38 % + 1), so the check is
+#: an option: ``clinical_summary(steps, contact_scatter_max_s=CONTACT_SCATTER_OPTION_S)``
+CONTACT_SCATTER_MAX_S = math.inf
+
 #: the keys :func:`clinical_summary` gives every summary (None / 0 when the table cannot give them)
 CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts", "turn_count",
-                 "turn_count_min_deg", "stride_time_cv_pct", "n_cv_strides")
+                 "turn_count_min_deg", "stride_time_cv_pct", "n_cv_strides", "stride_time_cv_withheld")
 
 
 def _valid(steps: pd.DataFrame) -> np.ndarray:
@@ -114,9 +131,10 @@ def turns(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS) -> np
     return np.asarray(out, dtype=float)
 
 
-def _straight_stride_times(steps: pd.DataFrame) -> np.ndarray:
-    """The stride times (s) of a foot table's steady straight strides (module docstring); none for a lower-back
-    table (its contact timing scatters too much for a variability, decision L104)."""
+def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
+    """The stride times (s) of a foot table's steady straight strides (module docstring) and the same strides'
+    swing-onset intervals (``start_s`` to the previous row's, s; decision L113); none for a lower-back table (its
+    contact timing scatters too much for a variability, decision L104)."""
     from pdrlearn.track.gait import STRAIGHT_MAX_RAD
 
     if "stride_time_s" in steps:
@@ -131,17 +149,29 @@ def _straight_stride_times(steps: pd.DataFrame) -> np.ndarray:
         # steady: the strides before and after are straight strides with a stride time too (no turn, start
         # or stop next to it: the strides around a turn or a stop slow down)
         steady = ok & np.concatenate([[False], ok[:-1]]) & np.concatenate([ok[1:], [False]])
-        return s[steady]
-    return np.zeros(0)
+        onset = np.diff(st["start_s"].to_numpy(float), prepend=np.nan)
+        return s[steady], onset[steady]
+    return np.zeros(0), np.zeros(0)
 
 
-def clinical_summary(steps: pd.DataFrame) -> dict:
+def contact_scatter_s(stride_s: np.ndarray, onset_s: np.ndarray) -> float:
+    """Decision L113: each contact's timing scatter (s) estimated from the stride times ``stride_s`` (contact to
+    contact) and the same strides' swing-onset intervals ``onset_s``: sqrt((SD_contacts^2 - SD_onsets^2) / 2),
+    0 when the contacts vary less than the onsets (SD with n - 1)."""
+    excess = float(np.var(stride_s, ddof=1) - np.var(onset_s, ddof=1))
+    return float(np.sqrt(excess / 2.0)) if excess > 0 else 0.0
+
+
+def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None = None) -> dict:
     """Decision L104: :data:`CLINICAL_KEYS` of a tracked step table (module docstring): ``n_pauses``,
     ``pause_time_s`` (summed), ``longest_pause_s``, ``n_walking_bouts``, ``turn_count`` (turns of at least
-    ``turn_count_min_deg``), ``stride_time_cv_pct`` over ``n_cv_strides`` straight strides."""
+    ``turn_count_min_deg``), ``stride_time_cv_pct`` over ``n_cv_strides`` straight strides, withheld (decision
+    L113) when the contacts' timing scatter reaches ``contact_scatter_max_s`` (s; None = the module's
+    :data:`CONTACT_SCATTER_MAX_S`, off)."""
+    limit = CONTACT_SCATTER_MAX_S if contact_scatter_max_s is None else float(contact_scatter_max_s)
     out: dict = {"n_pauses": 0, "pause_time_s": 0.0, "longest_pause_s": None, "n_walking_bouts": 0,
                  "turn_count": 0, "turn_count_min_deg": TURN_COUNT_MIN_DEG, "stride_time_cv_pct": None,
-                 "n_cv_strides": 0}
+                 "n_cv_strides": 0, "stride_time_cv_withheld": None}
     if not len(steps) or "start_s" not in steps:
         return out
     p = pauses(steps)
@@ -149,8 +179,27 @@ def clinical_summary(steps: pd.DataFrame) -> dict:
     out["longest_pause_s"] = float(p.max()) if len(p) else None
     out["n_walking_bouts"] = int(len(p)) + 1
     out["turn_count"] = int((np.abs(turns(steps)) >= TURN_COUNT_MIN_DEG).sum())
-    s = _straight_stride_times(steps)
+    s, onset = _straight_stride_times(steps)
     out["n_cv_strides"] = int(len(s))
     if len(s) >= CV_MIN_STRIDES and s.mean() > 0:
-        out["stride_time_cv_pct"] = float(100.0 * s.std(ddof=1) / s.mean())
+        cv = float(100.0 * s.std(ddof=1) / s.mean())
+        scatter = contact_scatter_s(s, onset) if np.isfinite(onset).all() else 0.0
+        if scatter >= limit:  # decision L113: the contacts' timing, not the walker's rhythm
+            out["stride_time_cv_withheld"] = {
+                "contact_cv_pct": cv, "swing_onset_cv_pct": float(100.0 * onset.std(ddof=1) / onset.mean()),
+                "contact_scatter_s": scatter}
+        else:
+            out["stride_time_cv_pct"] = cv
     return out
+
+
+def stride_cv_warning(summary: dict) -> str | None:
+    """Decision L113: one line when the summary's stride-time CV was withheld for the contacts' timing scatter;
+    None otherwise."""
+    w = summary.get("stride_time_cv_withheld")
+    if not w:
+        return None
+    return (f"stride-time CV withheld: the initial contacts' timing scatters by ~{1000 * w['contact_scatter_s']:.0f} "
+            f"ms per contact (their stride-time CV {w['contact_cv_pct']:.1f} % against {w['swing_onset_cv_pct']:.1f} % "
+            f"from the same strides' swing onsets; decision L113), so a CV would measure the detector, not the "
+            f"walker; force sensors (fForceA/fForceB) time the contacts")

@@ -468,6 +468,15 @@ METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _
            _class_agreement]
 
 
+def summary_warnings(summary: dict) -> list[str]:
+    """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range and
+    decision L113's withheld stride-time CV."""
+    from pdrlearn.track.clinical import stride_cv_warning
+    from pdrlearn.track.gait import gait_range_warning
+
+    return [w for w in (gait_range_warning(summary), stride_cv_warning(summary)) if w]
+
+
 def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:
     """Summary metrics: ``distance_m``, ``n_steps``, ``final_position``, ``altitude_change_m``, the storeys
     climbed / descended and the floor reached (``floors_up``, ``floors_down``, ``storeys_changed``, storeys of
@@ -519,12 +528,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     dom = result.info.get("out_of_domain")
     if isinstance(dom, dict):  # decision C16: share of strides outside the model's training range
         summary["out_of_domain_fraction"] = dom.get("out_of_domain_fraction")
-    from pdrlearn.track.gait import gait_range_warning
-
-    out_of_range = gait_range_warning(summary)  # decision L95: running / very slow walking
-    if out_of_range:
-        logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, out_of_range)
-        summary["info"]["warnings"] = [*summary["info"].get("warnings", []), out_of_range]
+    for line in summary_warnings(summary):  # decisions L95 (running / very slow walking), L113 (CV withheld)
+        logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
+        summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     aid = summary["info"].get("aid")
     if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary
         summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}
