@@ -48,6 +48,14 @@ def stride_rows(table: pd.DataFrame) -> np.ndarray:
     return valid
 
 
+def turn_rows(table: pd.DataFrame) -> np.ndarray:
+    """(B,) bool: the rows whose ``turn_angle_rad`` is the foot's measured turn - every row but a gap row
+    (``gap_s`` > 0, L67: no foot yaw across it). A stride the last-line guard moved 0 m (``impossible``, L94)
+    keeps its turn (decision L109): the guard judged its displacement; the foot's yaw over it was measured as
+    every stride's, and the track's heading after it holds that turn."""
+    return (table["gap_s"].to_numpy(float) == 0) if "gap_s" in table else np.ones(len(table), bool)
+
+
 def swing_times(t: np.ndarray, stance: np.ndarray, i0: np.ndarray, i1: np.ndarray) -> np.ndarray:
     """(B,) s: per stride (sample indices ``i0``..``i1`` of ``t``, from rest to rest), the time from its first
     to its last sample outside ``stance`` (+ one sample interval): the foot off its rest. NaN when the stride
@@ -82,16 +90,19 @@ def stance_swing(start_s, end_s, event_s, tc_s, stride_s, valid=None) -> tuple[n
     return tc, stance, swing, 100.0 * stance / sd
 
 
-def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=None) -> pd.DataFrame:
+def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=None, turn_valid=None) -> pd.DataFrame:
     """``table`` (a strides table with ``start_s``, ``end_s``, ``event_s``, ``length_m``) with the
     :data:`GAIT_COLUMNS` added in place and returned; ``turn_rad`` (B,) the foot's turn over each stride (NaN
-    when None); ``valid`` (B,) bool: False for rows that are no stride (across a gap). ``tc_s`` (B,): each
+    when None); ``valid`` (B,) bool: False for rows that are no stride (across a gap, or moved 0 m by the
+    guard, L97). ``turn_valid`` (B,) bool: the rows whose turn was measured (:func:`turn_rows`: not a gap row,
+    decision L109; default ``valid``); the others get a NaN turn. ``tc_s`` (B,): each
     stride's toe-off (``pdrlearn.track.toeoff``); given, the :data:`TOE_OFF_COLUMNS` are added too (L73)."""
     n = len(table)
     stride = stride_times(table["start_s"], table["end_s"], table["event_s"], valid)
     turn = np.full(n, np.nan) if turn_rad is None else np.angle(np.exp(1j * np.asarray(turn_rad, dtype=float)))
-    if valid is not None:
-        turn[~np.asarray(valid, dtype=bool)] = np.nan
+    turn_valid = valid if turn_valid is None else turn_valid
+    if turn_valid is not None:
+        turn[~np.asarray(turn_valid, dtype=bool)] = np.nan
     with np.errstate(invalid="ignore", divide="ignore"):
         table["stride_time_s"] = stride
         table["cadence_spm"] = 120.0 / stride  # two steps per stride of one foot, per minute
@@ -112,7 +123,7 @@ def streamed_gait_columns(table: pd.DataFrame) -> pd.DataFrame:
     steps.csv places them (before ``gap_s`` and ``unit``). In place; returned."""
     valid = stride_rows(table) if "gap_s" in table or "impossible" in table else None  # L67, L97
     turn = table["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in table else None
-    add_gait_columns(table, turn_rad=turn, valid=valid)
+    add_gait_columns(table, turn_rad=turn, valid=valid, turn_valid=turn_rows(table))  # L109: a zeroed stride's turn
     tail = [c for c in ("impossible", "gap_s", "unit") if c in table]
     gait = [c for c in GAIT_COLUMNS if c in table]
     order = [c for c in table.columns if c not in gait and c not in tail] + gait + tail
