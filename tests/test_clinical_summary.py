@@ -92,6 +92,30 @@ def test_pause_and_turn_definitions():
     assert empty["n_walking_bouts"] == 0 and empty["turn_count"] == 0 and empty["stride_time_cv_pct"] is None
 
 
+def test_walking_speed_leaves_out_the_pauses():
+    """L110: ``walking_speed_mps`` = distance / the walking time outside the pauses; ``gait_speed_mps`` (L79)
+    keeps a short stop's time. Strides of 1 m every 1.2 s, one of them 2.5 s (a 1.3 s pause inside the walking
+    time: L79 cuts stops over 3 s only), then a 4.2 s stop (a 3 s pause, outside the walking time already)."""
+    from pdrlearn.track.gait import gait_summary
+
+    t = np.cumsum([0] + [1.2] * 5 + [2.5] + [1.2] * 5)
+    table = _foot_table(t).assign(length_m=1.0, speed_mps=1.0 / 1.2, cadence_spm=100.0)
+    g = gait_summary(table)
+    assert g["walking_time_s"] == pytest.approx(15.7) and g["gait_speed_mps"] == pytest.approx(12 / 15.7)
+    assert g["walking_time_no_pauses_s"] == pytest.approx(15.7 - 1.3)
+    assert g["walking_speed_mps"] == pytest.approx(12 / 14.4)
+    # a stop over 3 s: L79 leaves its time out of the walking time already, so nothing more is taken away
+    stop = table.copy()
+    stop.loc[5, "end_s"] = stop.loc[5, "start_s"] + 1.2  # stride 5 ends; the walker stands until row 6 starts
+    stop.loc[6:, ["start_s", "end_s"]] += 3.0  # 4.3 s from the end of stride 5 to the start of stride 6
+    g = gait_summary(stop)
+    assert clinical_summary(stop)["longest_pause_s"] == pytest.approx(4.3)
+    assert g["walking_time_s"] == pytest.approx(15.7 - 1.3) and g["walking_time_no_pauses_s"] == pytest.approx(14.4)
+    # no pause: the two speeds agree
+    g = gait_summary(_foot_table(np.arange(10) * 1.2).assign(length_m=1.0, speed_mps=1.0 / 1.2, cadence_spm=100.0))
+    assert g["walking_speed_mps"] == pytest.approx(g["gait_speed_mps"]) == pytest.approx(10 / 12.0)
+
+
 def test_what_n_steps_counts_in_summary_cli_and_report(walks, tmp_path, capsys):
     """L103: n_steps keeps its meaning (steps.csv rows); n_steps_counts says what they are, n_steps_both_feet
     and n_strides_one_foot give both counts; track's line and report's columns say what they count."""

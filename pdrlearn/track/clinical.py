@@ -42,6 +42,9 @@ TURN_COUNT_MIN_DEG = 80.0
 #: ``stride_time_cv_pct`` needs at least this many straight strides with a stride time
 CV_MIN_STRIDES = 10
 
+#: ``step_time_asymmetry_pct``: a walking sequence counts with at least this many step times of each foot
+ASYMMETRY_MIN_STEPS = 4
+
 #: the keys :func:`clinical_summary` gives every summary (None / 0 when the table cannot give them)
 CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts", "turn_count",
                  "turn_count_min_deg", "stride_time_cv_pct", "n_cv_strides")
@@ -57,6 +60,18 @@ def pauses(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S) -> np.ndarray:
         return np.zeros(0)
     excess, is_pause = _intervals(steps.sort_values("start_s", kind="stable").reset_index(drop=True), min_s)
     return excess[is_pause]
+
+
+def pause_spans(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S) -> np.ndarray:
+    """(P, 2) each pause's time span (s, the session's clock): the last ``excess`` seconds before the row that
+    ends it starts - the standing before the walker sets off again (decision L110: the time
+    ``walking_speed_mps`` leaves out). Its length is :func:`pauses`'s."""
+    if len(steps) < 2:
+        return np.zeros((0, 2))
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    excess, is_pause = _intervals(st, min_s)
+    t_next = st["start_s"].to_numpy(float)[1:][is_pause]
+    return np.column_stack([t_next - excess[is_pause], t_next])
 
 
 def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray, np.ndarray]:
@@ -133,6 +148,41 @@ def _straight_stride_times(steps: pd.DataFrame) -> np.ndarray:
         steady = ok & np.concatenate([[False], ok[:-1]]) & np.concatenate([ok[1:], [False]])
         return s[steady]
     return np.zeros(0)
+
+
+def symmetry_index_pct(a: float, b: float) -> float:
+    """The symmetry index of two sides' values, 100 x |a - b| / (0.5 x (a + b)) % (Robinson, Herzog & Nigg 1987,
+    J Manipulative Physiol Ther 10(4):172-176, SI; 0 = symmetric; which side is which does not matter)."""
+    return float(100.0 * abs(a - b) / (0.5 * (a + b)))
+
+
+def step_time_asymmetry(step_s, has_next, broken=None, *, min_steps: int = ASYMMETRY_MIN_STEPS
+                        ) -> tuple[float | None, int]:
+    """Decision L111: ``(step_time_asymmetry_pct, n_asymmetry_steps)`` of a lower-back step table, one row per
+    initial contact in time order: ``step_s`` (B,) each contact's step time to the next contact (NaN where none
+    is measured), ``has_next`` (B,) whether the next contact is in the same walking sequence, ``broken`` (B,)
+    rows that end a sequence too (a W27 fragment and its neighbours: a spurious contact shifts the feet). Inside
+    a sequence the contacts alternate feet (W20), so the step times at even and odd places are the two feet's
+    (which is left is not known and does not matter to the index). Per sequence with at least ``min_steps``
+    step times of each foot, :func:`symmetry_index_pct` of the two feet's median step times; the sequences'
+    indices averaged weighted by their step times (a new sequence may start on either foot, so the feet are
+    not matched across sequences). ``(None, 0)`` without such a sequence."""
+    step = np.asarray(step_s, dtype=float)
+    hn = np.asarray(has_next, dtype=bool)
+    cut = np.zeros(len(step), bool) if broken is None else np.asarray(broken, dtype=bool)
+    indices, weights, start = [], [], 0
+    for i in range(len(step)):
+        if i + 1 == len(step) or not hn[i] or cut[i] or cut[i + 1]:  # the sequence ends after row i
+            seq = step[start:i + 1]
+            feet = [seq[0::2], seq[1::2]]
+            feet = [f[np.isfinite(f)] for f in feet]
+            if min(len(f) for f in feet) >= min_steps:
+                indices.append(symmetry_index_pct(float(np.mean(feet[0])), float(np.mean(feet[1]))))
+                weights.append(sum(len(f) for f in feet))
+            start = i + 1
+    if not indices:
+        return None, 0
+    return float(np.average(indices, weights=weights)), int(sum(weights))
 
 
 def clinical_summary(steps: pd.DataFrame) -> dict:

@@ -134,26 +134,34 @@ def walking_time(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRIDE_
     """Decision L79: the time spent walking (s): the rows' span from the first start to the last end, split
     where a row starts more than ``max_break_s`` after the previous row's end (a stop: mobgap WbAssembly
     MaxBreakCriteria(max_break_s=3)) or where an invalid row (a gap row, L67; a waist contact without a next
-    one) lies between two rows, the pieces summed. Rows with no positive duration are left out. None without
-    a row."""
+    one) lies between two rows, the pieces (:func:`walking_pieces`) summed. Rows with no positive duration are
+    left out. None without a row."""
+    pieces = walking_pieces(start_s, end_s, valid, max_break_s=max_break_s)
+    return float(sum(t1 - t0 for t0, t1 in pieces)) if pieces else None
+
+
+def walking_pieces(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRIDE_S) -> list[tuple[float, float]]:
+    """The walking time's pieces ``(t0, t1)`` (s; :func:`walking_time`'s rule), in time order."""
     st, en = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
     ok = np.isfinite(st) & np.isfinite(en) & (en > st)
     if valid is not None:
         ok &= np.asarray(valid, dtype=bool)
-    total, t0, t1 = 0.0, None, None
+    pieces, t0, t1 = [], None, None
     for i in range(len(st)):
         if not ok[i]:  # an invalid row between two rows ends the piece (its time is not known to be walking)
             if t0 is not None and np.isfinite(en[i]) and en[i] > st[i]:
-                total, t0, t1 = total + (t1 - t0), None, None
+                pieces.append((t0, t1))
+                t0, t1 = None, None
             continue
         if t0 is not None and st[i] - t1 > max_break_s + 1e-9:
-            total, t0 = total + (t1 - t0), None
+            pieces.append((t0, t1))
+            t0 = None
         if t0 is None:
             t0 = st[i]
         t1 = max(en[i], t1) if t1 is not None else en[i]
     if t0 is not None:
-        total += t1 - t0
-    return float(total) if ok.any() else None
+        pieces.append((t0, t1))
+    return [(float(a), float(b)) for a, b in pieces]
 
 
 def _median(v) -> float | None:
@@ -166,16 +174,26 @@ def _median(v) -> float | None:
 SUMMARY_KEYS = ("n_stride_times", "median_stride_time_s", "median_cadence_spm", "median_speed_mps",
                 "median_step_time_s", "walking_time_s", "gait_speed_mps", "median_speed_straight_mps",
                 "n_straight_strides", "n_stance_times", "median_stance_time_s", "median_swing_time_s",
-                "median_stance_pct")
+                "median_stance_pct", "walking_time_no_pauses_s", "walking_speed_mps", "step_time_asymmetry_pct",
+                "n_asymmetry_steps")
 
 
-def _speed_fields(out: dict, length, start_s, end_s, valid, speed, straight) -> None:
+def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight) -> None:
     """``walking_time_s``, ``gait_speed_mps`` (the rows' |length| summed over ``valid`` rows / walking time),
-    ``median_speed_straight_mps`` (median ``speed`` where ``straight``) and ``n_straight_strides``."""
-    wt = walking_time(start_s, end_s, valid)
+    ``walking_time_no_pauses_s`` and ``walking_speed_mps`` (the same distance / the walking time outside the
+    pauses of :func:`pdrlearn.track.clinical.pause_spans`, decision L110), ``median_speed_straight_mps``
+    (median ``speed`` where ``straight``) and ``n_straight_strides``."""
+    from pdrlearn.track.clinical import pause_spans
+
+    pieces = walking_pieces(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), valid)
+    wt = float(sum(t1 - t0 for t0, t1 in pieces)) if pieces else None
     dist = float(np.nansum(np.abs(np.asarray(length, dtype=float))[np.asarray(valid, dtype=bool)]))
     out["walking_time_s"] = wt
     out["gait_speed_mps"] = dist / wt if wt else None
+    if wt:  # L110: a pause's time inside the walking time (a stop over 3 s is outside it already, L79)
+        moving = float(wt - sum(max(0.0, min(b, p1) - max(a, p0)) for a, b in pieces for p0, p1 in pause_spans(steps)))
+        out["walking_time_no_pauses_s"] = moving
+        out["walking_speed_mps"] = dist / moving if moving > 0 else None
     sp = np.where(np.asarray(straight, dtype=bool), np.asarray(speed, dtype=float), np.nan)
     out["n_straight_strides"] = int(np.isfinite(sp).sum())
     out["median_speed_straight_mps"] = _median(sp)
@@ -211,8 +229,12 @@ def waist_gait_summary(steps: pd.DataFrame) -> dict:
     out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": _median(stride),
                  "median_cadence_spm": _median(cadence), "median_speed_mps": _median(speed),
                  "median_step_time_s": _median(step)}
+    from pdrlearn.track.clinical import step_time_asymmetry
+
+    # L111: the two feet's step times alternate inside a walking sequence; a fragment and its neighbours end one
+    out["step_time_asymmetry_pct"], out["n_asymmetry_steps"] = step_time_asymmetry(step, has_next, touched)
     straight = (steps["turning"].to_numpy(float) == 0) if "turning" in steps else np.ones(len(st), bool)
-    _speed_fields(out, length, st, en, has_next, speed, straight)
+    _speed_fields(out, steps, length, has_next, speed, straight)
     return out
 
 
@@ -227,8 +249,7 @@ def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     n = len(steps)
     valid = stride_rows(steps)  # decisions L67, L97
     out: dict = {}
-    _speed_fields(out, steps["length_m"].to_numpy(float), steps["start_s"].to_numpy(float),
-                  steps["end_s"].to_numpy(float), valid, np.full(n, np.nan), np.zeros(n, bool))
+    _speed_fields(out, steps, steps["length_m"].to_numpy(float), valid, np.full(n, np.nan), np.zeros(n, bool))
     return out
 
 
@@ -259,8 +280,7 @@ def gait_summary(steps: pd.DataFrame) -> dict:
         out[key] = _median(steps[col].to_numpy(float))
     valid = stride_rows(steps)  # decisions L67, L97
     turn = np.abs(steps["turn_angle_rad"].to_numpy(float))
-    _speed_fields(out, steps["length_m"].to_numpy(float), steps["start_s"].to_numpy(float),
-                  steps["end_s"].to_numpy(float), valid, steps["speed_mps"].to_numpy(float),
+    _speed_fields(out, steps, steps["length_m"].to_numpy(float), valid, steps["speed_mps"].to_numpy(float),
                   turn < STRAIGHT_MAX_RAD)
     if "stance_time_s" in steps:  # decision L73
         out["n_stance_times"] = int(np.isfinite(steps["stance_time_s"].to_numpy(float)).sum())
