@@ -5,7 +5,7 @@ in the decision before this script was run on its users.
 Fresh users 260-279 (``UserProfile.from_seed``), route "stand:2, straight:30, stand:2", normal speed, 100 Hz (the
 Mobilise-D lower-back rate), seed 0. The simulator draws both feet's step times from one distribution
 (``pdrlearn.sim.body.schedule``): every walker is symmetric, so an index well above 0 is the measurement's error.
-`pdrlearn track --pipeline waist-pendulum`'s steps (``track_waist``), ``waist_gait_summary``'s index.
+`pdrlearn track --pipeline waist-pendulum`'s steps, ``waist_gait_summary``'s step times (``waist_step_times``).
 
 Run: PYTHONPATH=. .venv/bin/python experiments/step_asymmetry.py [--users 260-279]
 """
@@ -20,7 +20,8 @@ import numpy as np
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.base import get_pipeline
-from pdrlearn.track.gait import waist_gait_summary
+from pdrlearn.track.clinical import step_time_asymmetry
+from pdrlearn.track.gait import waist_step_times
 
 ROUTE = "stand:2, straight:30, stand:2"
 #: the rule (decision L111): under LIMIT_PCT on at least MIN_UNDER of the walks and a mean under MEAN_PCT
@@ -37,8 +38,7 @@ def main() -> None:
     rows = []
     for u in range(a, b + 1):
         s = simulate_path(parse_route(ROUTE), UserProfile.from_seed(u), speed="normal", rate_hz=100, seed=0)
-        g = waist_gait_summary(track(s).steps)
-        rows.append((u, g["step_time_asymmetry_pct"], g["n_asymmetry_steps"]))
+        rows.append((u, *step_time_asymmetry(*waist_step_times(track(s).steps))))
         si = "None" if rows[-1][1] is None else f"{rows[-1][1]:.2f}"
         print(f"user {u}: step_time_asymmetry_pct {si} over {rows[-1][2]} step times")
     si = np.array([np.nan if r[1] is None else r[1] for r in rows])

@@ -174,8 +174,7 @@ def _median(v) -> float | None:
 SUMMARY_KEYS = ("n_stride_times", "median_stride_time_s", "median_cadence_spm", "median_speed_mps",
                 "median_step_time_s", "walking_time_s", "gait_speed_mps", "median_speed_straight_mps",
                 "n_straight_strides", "n_stance_times", "median_stance_time_s", "median_swing_time_s",
-                "median_stance_pct", "walking_time_no_pauses_s", "walking_speed_mps", "step_time_asymmetry_pct",
-                "n_asymmetry_steps")
+                "median_stance_pct", "walking_time_no_pauses_s", "walking_speed_mps")
 
 
 def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight) -> None:
@@ -199,6 +198,22 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
     out["median_speed_straight_mps"] = _median(sp)
 
 
+def waist_step_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(step_s, has_next, touched)`` (B,) of a waist steps table (:func:`waist_gait_summary`'s rule): each
+    contact's step time to the next one (NaN without a next contact, longer than half :data:`MAX_STRIDE_S`, or
+    touched by a W27 fragment), whether the next contact is in the same sequence, and the fragments with their
+    neighbours."""
+    st, en = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    has_next = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(st), bool)
+    dt = en - st
+    # W27: a fragment merged into a neighbour (``merged``) gives its length to that neighbour, whose own row
+    # then spans only part of the merged step: the fragment and both its neighbours leave the per-step values
+    frag = steps["merged"].to_numpy(bool) if "merged" in steps else np.zeros(len(st), bool)
+    touched = frag | np.concatenate([frag[1:], [False]]) | np.concatenate([[False], frag[:-1]])
+    ok = has_next & ~touched & np.isfinite(dt) & (dt > 0) & (dt <= MAX_STRIDE_S / 2 + 1e-9)
+    return np.where(ok, dt, np.nan), has_next, touched
+
+
 def waist_gait_summary(steps: pd.DataFrame) -> dict:
     """Decision W70: the gait summary of a waist steps table (one row per initial contact, ``start_s`` this
     contact, ``end_s`` the next, ``has_next``): step time ``end_s - start_s`` of a contact with a next one (at
@@ -210,15 +225,8 @@ def waist_gait_summary(steps: pd.DataFrame) -> dict:
     its time), nor a stride time through them; walking time and gait speed keep them."""
     from pdrlearn.waist.gait_rules import positional_strides
 
-    st, en = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
-    has_next = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(st), bool)
-    dt = en - st
-    # W27: a fragment merged into a neighbour (``merged``) gives its length to that neighbour, whose own row
-    # then spans only part of the merged step: the fragment and both its neighbours leave the per-step values
-    frag = steps["merged"].to_numpy(bool) if "merged" in steps else np.zeros(len(st), bool)
-    touched = frag | np.concatenate([frag[1:], [False]]) | np.concatenate([[False], frag[:-1]])
-    ok = has_next & ~touched & np.isfinite(dt) & (dt > 0) & (dt <= MAX_STRIDE_S / 2 + 1e-9)
-    step = np.where(ok, dt, np.nan)
+    st = steps["start_s"].to_numpy(float)
+    step, has_next, touched = waist_step_times(steps)
     length = np.abs(steps["length_m"].to_numpy(float)) if "length_m" in steps else np.full(len(st), np.nan)
     with np.errstate(invalid="ignore", divide="ignore"):
         cadence, speed = 60.0 / step, length / step
@@ -229,10 +237,6 @@ def waist_gait_summary(steps: pd.DataFrame) -> dict:
     out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": _median(stride),
                  "median_cadence_spm": _median(cadence), "median_speed_mps": _median(speed),
                  "median_step_time_s": _median(step)}
-    from pdrlearn.track.clinical import step_time_asymmetry
-
-    # L111: the two feet's step times alternate inside a walking sequence; a fragment and its neighbours end one
-    out["step_time_asymmetry_pct"], out["n_asymmetry_steps"] = step_time_asymmetry(step, has_next, touched)
     straight = (steps["turning"].to_numpy(float) == 0) if "turning" in steps else np.ones(len(st), bool)
     _speed_fields(out, steps, length, has_next, speed, straight)
     return out
