@@ -104,6 +104,10 @@ def test_walking_speed_leaves_out_the_pauses():
     assert g["walking_time_s"] == pytest.approx(15.7) and g["gait_speed_mps"] == pytest.approx(12 / 15.7)
     assert g["walking_time_no_pauses_s"] == pytest.approx(15.7 - 1.3)
     assert g["walking_speed_mps"] == pytest.approx(12 / 14.4)
+    from pdrlearn.cli.common import gait_line
+
+    line = gait_line({**g, "distance_m": 12.0})
+    assert "12.00 m in 15.70 s walking; 0.83 m/s in the 14.40 s outside pauses)" in line, line
     # a stop over 3 s: L79 leaves its time out of the walking time already, so nothing more is taken away
     stop = table.copy()
     stop.loc[5, "end_s"] = stop.loc[5, "start_s"] + 1.2  # stride 5 ends; the walker stands until row 6 starts
@@ -114,6 +118,7 @@ def test_walking_speed_leaves_out_the_pauses():
     # no pause: the two speeds agree
     g = gait_summary(_foot_table(np.arange(10) * 1.2).assign(length_m=1.0, speed_mps=1.0 / 1.2, cadence_spm=100.0))
     assert g["walking_speed_mps"] == pytest.approx(g["gait_speed_mps"]) == pytest.approx(10 / 12.0)
+    assert "outside pauses" not in gait_line({**g, "distance_m": 10.0})
 
 
 def test_step_time_asymmetry_by_hand():
