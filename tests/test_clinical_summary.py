@@ -92,6 +92,61 @@ def test_pause_and_turn_definitions():
     assert empty["n_walking_bouts"] == 0 and empty["turn_count"] == 0 and empty["stride_time_cv_pct"] is None
 
 
+def test_walking_speed_leaves_out_the_pauses():
+    """L110: ``walking_speed_mps`` = distance / the walking time outside the pauses; ``gait_speed_mps`` (L79)
+    keeps a short stop's time. Strides of 1 m every 1.2 s, one of them 2.5 s (a 1.3 s pause inside the walking
+    time: L79 cuts stops over 3 s only), then a 4.2 s stop (a 3 s pause, outside the walking time already)."""
+    from pdrlearn.track.gait import gait_summary
+
+    t = np.cumsum([0] + [1.2] * 5 + [2.5] + [1.2] * 5)
+    table = _foot_table(t).assign(length_m=1.0, speed_mps=1.0 / 1.2, cadence_spm=100.0)
+    g = gait_summary(table)
+    assert g["walking_time_s"] == pytest.approx(15.7) and g["gait_speed_mps"] == pytest.approx(12 / 15.7)
+    assert g["walking_time_no_pauses_s"] == pytest.approx(15.7 - 1.3)
+    assert g["walking_speed_mps"] == pytest.approx(12 / 14.4)
+    from pdrlearn.cli.common import gait_line
+
+    line = gait_line({**g, "distance_m": 12.0})
+    assert "12.00 m in 15.70 s walking; 0.83 m/s in the 14.40 s outside pauses)" in line, line
+    # a stop over 3 s: L79 leaves its time out of the walking time already, so nothing more is taken away
+    stop = table.copy()
+    stop.loc[5, "end_s"] = stop.loc[5, "start_s"] + 1.2  # stride 5 ends; the walker stands until row 6 starts
+    stop.loc[6:, ["start_s", "end_s"]] += 3.0  # 4.3 s from the end of stride 5 to the start of stride 6
+    g = gait_summary(stop)
+    assert clinical_summary(stop)["longest_pause_s"] == pytest.approx(4.3)
+    assert g["walking_time_s"] == pytest.approx(15.7 - 1.3) and g["walking_time_no_pauses_s"] == pytest.approx(14.4)
+    # no pause: the two speeds agree
+    g = gait_summary(_foot_table(np.arange(10) * 1.2).assign(length_m=1.0, speed_mps=1.0 / 1.2, cadence_spm=100.0))
+    assert g["walking_speed_mps"] == pytest.approx(g["gait_speed_mps"]) == pytest.approx(10 / 12.0)
+    assert "outside pauses" not in gait_line({**g, "distance_m": 10.0})
+
+
+def test_step_time_asymmetry_by_hand():
+    """L111 (Python API): the symmetry index 100 |a - b| / (0.5 (a + b)) of the two feet's mean step times, the
+    feet alternating inside a walking sequence; a new sequence may start on either foot; a short one is left out."""
+    from pdrlearn.track.clinical import step_time_asymmetry, symmetry_index_pct
+
+    assert symmetry_index_pct(0.5, 0.6) == pytest.approx(100 * 0.1 / 0.55) == symmetry_index_pct(0.6, 0.5)
+    one = np.tile([0.5, 0.6], 5)  # 10 steps: 5 of each foot
+    seq = np.r_[one, np.nan]  # the sequence's last contact has no step time
+    hn = np.r_[np.ones(10, bool), False]
+    assert step_time_asymmetry(seq, hn) == (pytest.approx(18.181818), 10)
+    # a second sequence starting on the other foot (0.6 first) reads the same; a 3-and-3 one is too short
+    two = np.r_[seq, np.r_[np.tile([0.6, 0.5], 5), np.nan], np.r_[np.tile([0.5, 0.9], 3), np.nan]]
+    hn2 = np.r_[hn, hn, np.ones(6, bool), False]
+    assert step_time_asymmetry(two, hn2) == (pytest.approx(18.181818), 20)
+    # unequal sequences weigh by their step times: 10 at 18.18 %, 8 symmetric at 0 %
+    sym = np.r_[np.full(8, 0.55), np.nan]
+    got, n = step_time_asymmetry(np.r_[seq, sym], np.r_[hn, np.ones(8, bool), False])
+    assert n == 18 and got == pytest.approx(18.181818 * 10 / 18)
+    # a spurious contact (a W27 fragment) ends the sequence: the feet after it are not mixed with those before
+    frag = np.r_[np.tile([0.5, 0.6], 4), 0.1, np.tile([0.6, 0.5], 4), np.nan]
+    broken = np.zeros(len(frag), bool)
+    broken[8] = True
+    assert step_time_asymmetry(frag, np.r_[np.ones(len(frag) - 1, bool), False], broken)[0] == pytest.approx(18.181818)
+    assert step_time_asymmetry(np.full(5, np.nan), np.ones(5, bool)) == (None, 0)
+
+
 def test_what_n_steps_counts_in_summary_cli_and_report(walks, tmp_path, capsys):
     """L103: n_steps keeps its meaning (steps.csv rows); n_steps_counts says what they are, n_steps_both_feet
     and n_strides_one_foot give both counts; track's line and report's columns say what they count."""

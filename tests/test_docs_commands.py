@@ -320,7 +320,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("import", "gyro_unit"): unit_word("gyro"),
         ("import", "frames"): parse_frame,
     }
-    for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point"):  # cohort C12
+    for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window"):  # C12, L108
         v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):
         v[(cmd, "tasks")] = settings("tasks")

@@ -61,22 +61,24 @@ def _blow_up(arr, i=3):
     return arr
 
 
-def _break_fourth_stride(monkeypatch, streaming):
-    """The fourth stride's length comes out 1e30 times too long in the offline or the streamed rules."""
+def _break_stride(monkeypatch, streaming, i=3):
+    """The stride ``i``'s (default the fourth) length comes out 1e30 times too long in the offline or the streamed
+    rules."""
     if streaming:
         real = SK.apply_stride_rules
-        monkeypatch.setattr(SK, "apply_stride_rules", lambda *a, **k: (lambda L, dz: (_blow_up(L), dz))(*real(*a, **k)))
+        monkeypatch.setattr(SK, "apply_stride_rules",
+                            lambda *a, **k: (lambda L, dz: (_blow_up(L, i), dz))(*real(*a, **k)))
     else:
         real = P.StepRules.apply
         monkeypatch.setattr(P.StepRules, "apply",
-                            lambda self, d, c: real(self, d, c).assign(length_m=lambda t: _blow_up(t["length_m"])))
+                            lambda self, d, c: real(self, d, c).assign(length_m=lambda t: _blow_up(t["length_m"], i)))
 
 
 @pytest.mark.parametrize("streaming", [False, True])
 def test_track_moves_an_impossible_stride_zero_metres_with_one_warning(walk, monkeypatch, streaming):
     track = get_pipeline("plasys")
     clean = track(walk, model="oracle", streaming=streaming)
-    _break_fourth_stride(monkeypatch, streaming)
+    _break_stride(monkeypatch, streaming)
     res = track(walk, model="oracle", streaming=streaming)
     warn = [w for w in res.info["warnings"] if "physically impossible" in w]
     assert len(warn) == 1 and warn[0].startswith("1 stride(s)") and "decision L94" in warn[0], res.info["warnings"]
@@ -128,7 +130,7 @@ def test_zeroed_stride_is_left_out_of_the_gait_parameters(walk, monkeypatch, str
     track = get_pipeline("plasys")
     kw = {"contacts": True} if streaming else {}
     clean = track(walk, model="oracle", streaming=streaming, **kw)
-    _break_fourth_stride(monkeypatch, streaming)
+    _break_stride(monkeypatch, streaming)
     res = track(walk, model="oracle", streaming=streaming, **kw)
     warn = [w for w in res.info["warnings"] if "physically impossible" in w][0]
     assert "left out of the distance and of the gait parameters" in warn and "L97" in warn
@@ -164,3 +166,38 @@ def test_runtime_zeroed_stride_is_left_out_of_the_gait_parameters(tmp_path_facto
     got, want = gait_summary(table), gait_summary(_result(clean).steps)
     dur = steps[4].start_s - steps[2].end_s
     assert got["walking_time_s"] == pytest.approx(want["walking_time_s"] - dur, abs=1e-6)
+
+
+# -- decision L109: a zeroed stride keeps its measured turn, so a turn through it is counted as without the guard --
+
+
+@pytest.fixture(scope="module")
+def turning_walk():
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    return simulate_path(parse_route("straight:8, turn:180, straight:8, turn:90, straight:6"), UserProfile.from_seed(3),
+                         rate_hz=20, seed=0)
+
+
+@pytest.mark.parametrize("streaming", [False, True])
+def test_zeroed_stride_inside_a_turn_keeps_its_turn(turning_walk, monkeypatch, streaming):
+    """The stride turning most (inside the 180 deg turn) moved 0 m by the guard: its turn_angle_rad is the foot's
+    measured turn (it was NaN, and the turn count fell back to the displacement headings for the whole walk: the
+    180 deg turn came out -180.5 deg offline, the 90 deg one 99.5 deg; streamed -273.3 deg)."""
+    from pdrlearn.track.clinical import clinical_summary, turns
+
+    track = get_pipeline("plasys")
+    clean = track(turning_walk, streaming=streaming).steps
+    own = clean["turn_angle_rad"].to_numpy(float) + (clean["pivot_rad"].to_numpy(float) if streaming else 0.0)
+    i = int(np.nanargmax(np.abs(own)))
+    assert np.degrees(abs(own[i])) > 90  # a stride inside the turnaround
+    _break_stride(monkeypatch, streaming, i)
+    got = track(turning_walk, streaming=streaming).steps
+    assert got["impossible"].tolist() == [k == i for k in range(len(got))]
+    assert np.isnan(got["speed_mps"].iloc[i]) and got["length_m"].iloc[i] == 0.0  # L97 unchanged
+    assert got["turn_angle_rad"].iloc[i] == pytest.approx(clean["turn_angle_rad"].iloc[i], abs=1e-9)
+    want = turns(clean)
+    assert len(want) == 2 and abs(want[0]) > 170 and abs(want[1]) > 80
+    np.testing.assert_allclose(turns(got), want, atol=1e-6)
+    assert clinical_summary(got)["turn_count"] == clinical_summary(clean)["turn_count"] == 2

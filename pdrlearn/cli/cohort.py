@@ -464,6 +464,7 @@ def track_all(
     length_bounds: str = _track.LENGTH_BOUNDS_OPT,
     warn_out_of_domain: float = _track.WARN_OOD_OPT,
     start: str = _track.START_OPT,
+    initial_heading: float = _track.INITIAL_HEADING_OPT,
     params: Path = _track.PARAMS_OPT,
     streaming: bool = _track.STREAMING_OPT,
     realtime: bool = _track.REALTIME_OPT,
@@ -472,6 +473,7 @@ def track_all(
     contacts: bool = _track.CONTACTS_OPT,
     dpi: int = _track.DPI_OPT,
     common_span: bool = _track.COMMON_SPAN_OPT,
+    window: str = _track.WINDOW_OPT,
     group_depth: int = typer.Option(1, "--group-depth", min=1, help="Folder levels below ROOT that name a "
                                     "session's group in sessions.csv and groups.csv (1: siteA of "
                                     "siteA/p01/clinic; 2: siteA/p01)."),
@@ -486,7 +488,10 @@ def track_all(
 
     Each session folder found under ROOT (at any depth) is tracked as `pdrlearn track` would, with the same
     options (applied to every session; --gnss/--fixes are per-recording and left to `track`), into
-    OUT/<its path under ROOT>/. OUT/sessions.csv has one row per session: path, group, status (ok / failed),
+    OUT/<its path under ROOT>/. --window START,END counts from each session's own start (a session whose
+    recording ends before END fails, its error in sessions.csv); --initial-heading DEG sets every session off in
+    DEG (a session whose heading is absolute, the waist magnetometer's, fails) (decision L108).
+    OUT/sessions.csv has one row per session: path, group, status (ok / failed),
     the one-line error of a failed session, and the fields of its summary.json (input_dir, distance_m,
     distance_error_pct, gait_speed_mps, median_cadence_spm, ...). OUT/groups.csv has per group n, mean, sd
     and median of the distance error, gait speed, cadence and stride length. A session that cannot be
@@ -503,6 +508,8 @@ def track_all(
         pdrlearn track-all study/ --out results/batch --group-depth 2 --pipeline plasys --method M2
 
         pdrlearn track-all study/ --out results/batch --jobs 2 --force
+
+        pdrlearn track-all study/ --out results/2mwt --window 0,120 --streaming --initial-heading 90
     """
     from pdrlearn.cli.track import track_settings
 
@@ -510,7 +517,8 @@ def track_all(
                               min_confidence=min_confidence, length_bounds=length_bounds,
                               warn_out_of_domain=warn_out_of_domain, start=start, params=params,
                               streaming=streaming, realtime=realtime, reference_point=reference_point,
-                              toe_off=toe_off, contacts=contacts, dpi=dpi, common_span=common_span)
+                              toe_off=toe_off, contacts=contacts, dpi=dpi, common_span=common_span,
+                              initial_heading=initial_heading, window=window)
     found = find_sessions(root)
     out_folder(out, "track-all", force=force, inputs=(root, params))
     was = existed(out)

@@ -421,10 +421,16 @@ def walk_line(summary: dict) -> str | None:
 
 def gait_line(summary: dict) -> str:
     """The console's gait line of ``track`` and ``run`` (decisions L79, W70, E48, E51): gait speed, distance and
-    walking time, the straight strides' speed and the cadence when the summary has them."""
+    walking time (and the speed outside the pauses, L110), the straight strides' speed and the cadence when the
+    summary has them."""
     straight = summary.get("median_speed_straight_mps")
     cad = summary.get("median_cadence_spm")
+    moving, wt = summary.get("walking_time_no_pauses_s"), summary["walking_time_s"]
     return (f"gait speed {summary['gait_speed_mps']:.2f} m/s ({summary['distance_m']:.2f} m in "
-            f"{summary['walking_time_s']:.2f} s walking)"
+            f"{wt:.2f} s walking"
+            # decision L110: the speed outside the pauses, when some pause lies inside the walking time
+            + (f"; {summary['walking_speed_mps']:.2f} m/s in the {moving:.2f} s outside pauses"
+               if moving is not None and summary.get("walking_speed_mps") is not None and moving < wt - 1e-9
+               else "") + ")"
             + (f", straight strides {straight:.2f} m/s" if straight is not None else "")
             + (f", cadence {cad:.1f} steps/min" if cad is not None else ""))

@@ -72,6 +72,11 @@ COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a 
                                "unit's others (cut short, refused by B72): track only the time all of them cover, "
                                "every file and label table cut to it, with one warning naming the seconds dropped "
                                "from each file (decision B81).")
+INITIAL_HEADING_OPT = typer.Option(None, "--initial-heading", metavar="DEG", help=INITIAL_HEADING_HELP)
+WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the session start (track-all: from "
+                          "each session's start): track the whole session, then keep the steps whose middle lies "
+                          "inside (e.g. 0,120: a 2-minute walk; decisions L105, L108). The summary, steps.csv and "
+                          "trajectory.csv are the window's; its references are cut the same way.")
 
 
 def track(
@@ -85,7 +90,7 @@ def track(
     length_bounds: str = LENGTH_BOUNDS_OPT,
     warn_out_of_domain: float = WARN_OOD_OPT,
     start: str = START_OPT,
-    initial_heading: float = typer.Option(None, "--initial-heading", metavar="DEG", help=INITIAL_HEADING_HELP),
+    initial_heading: float = INITIAL_HEADING_OPT,
     params: Path = PARAMS_OPT,
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
     gnss_period: float = typer.Option(None, "--gnss-period", help="Use a GNSS fix every S seconds."),
@@ -98,10 +103,7 @@ def track(
     contacts: bool = CONTACTS_OPT,
     dpi: int = DPI_OPT,
     common_span: bool = COMMON_SPAN_OPT,
-    window: str = typer.Option(None, "--window", help="START,END in seconds from the session start: track the "
-                               "whole session, then keep the steps whose middle lies inside (e.g. 0,120: a "
-                               "2-minute walk; decision L105). The summary, steps.csv and trajectory.csv are the "
-                               "window's; its references are cut the same way."),
+    window: str = WINDOW_OPT,
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
 ) -> None:
@@ -141,10 +143,7 @@ def track(
                               gnss_period=gnss_period, fixes=fixes, fix_period=fix_period, streaming=streaming,
                               realtime=realtime, reference_point=reference_point, toe_off=toe_off,
                               contacts=contacts, dpi=dpi, initial_heading=initial_heading,
-                              common_span=common_span)
-    from pdrlearn.track.window import parse_window
-
-    settings["window"] = parse_window(window)  # decision L105: a bad window is one line before any tracking
+                              common_span=common_span, window=window)
     was = existed(out)
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
     with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
@@ -163,12 +162,17 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
                    reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
                    dpi: int | None = None, initial_heading: float | None = None,
-                   common_span: bool = False) -> dict:
+                   common_span: bool = False, window: str | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
-    once (fix files exist, ``--start`` parsed, ``--params`` JSON read): a batch checks them before its first
-    session, and the dict travels to a Dask worker as it is (``track-all --jobs``)."""
+    once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
+    a batch checks them before its first session, and the dict travels to a Dask worker as it is
+    (``track-all --jobs``). What depends on the session (a window inside its recording, L105; a relative
+    heading for ``--initial-heading``, L98) is checked per session in :func:`track_session` (decision L108)."""
+    from pdrlearn.track.window import parse_window
+
     start_ll, start_alt = start_option(start)
     heading0 = initial_heading_option(initial_heading)  # decision L98: degrees ENU -> rad
+    win = parse_window(window)  # decision L105: a bad window is one line before any tracking
     if heading0 is not None and (gnss is not None or fixes is not None):  # L98: known before any tracking
         raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
                         "--fixes give the track its direction; drop --initial-heading")
@@ -197,7 +201,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
-            "initial_heading_rad": heading0, "common_span": common_span}
+            "initial_heading_rad": heading0, "common_span": common_span, "window": win}
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:

@@ -266,10 +266,11 @@ TRACK_COLUMNS = ("run", "pipeline", "window_start_s", "window_end_s", "distance_
                  "direction_agreement", "length_class_agreement")
 #: The gait parameters of each summary (decisions L66, L79, W70), a table of their own (decision L81): the
 #: clinical walking speed (distance / walking time), the straight strides' median speed, cadence, stride time.
-GAIT_COLUMNS = ("run", "walking_time_s", "gait_speed_mps", "median_speed_straight_mps", "median_speed_mps",
+GAIT_COLUMNS = ("run", "walking_time_s", "gait_speed_mps", "walking_speed_mps", "median_speed_straight_mps",
+                "median_speed_mps",
                 "median_cadence_spm", "median_stride_time_s", "median_step_time_s", "n_stride_times",
                 "n_straight_strides", "n_walking_bouts", "n_pauses", "pause_time_s", "turn_count",
-                "stride_time_cv_pct")  # the last five: decision L104
+                "stride_time_cv_pct")  # the last five: decision L104; walking_speed_mps: L110
 
 _CSS = """body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;color:#222}
 table{border-collapse:collapse;margin:.6em 0 1.4em}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}

@@ -58,6 +58,8 @@ CONTACT_SCATTER_OPTION_S = 0.030
 #: the default: off (inf). L113's rule was not met (R2: one printed CV 3.89 % > 2 x 1.38 % + 1), so the check is
 #: an option: ``clinical_summary(steps, contact_scatter_max_s=CONTACT_SCATTER_OPTION_S)``
 CONTACT_SCATTER_MAX_S = math.inf
+#: ``step_time_asymmetry_pct``: a walking sequence counts with at least this many step times of each foot
+ASYMMETRY_MIN_STEPS = 4
 
 #: the keys :func:`clinical_summary` gives every summary (None / 0 when the table cannot give them)
 CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts", "turn_count",
@@ -74,6 +76,18 @@ def pauses(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S) -> np.ndarray:
         return np.zeros(0)
     excess, is_pause = _intervals(steps.sort_values("start_s", kind="stable").reset_index(drop=True), min_s)
     return excess[is_pause]
+
+
+def pause_spans(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S) -> np.ndarray:
+    """(P, 2) each pause's time span (s, the session's clock): the last ``excess`` seconds before the row that
+    ends it starts - the standing before the walker sets off again (decision L110: the time
+    ``walking_speed_mps`` leaves out). Its length is :func:`pauses`'s."""
+    if len(steps) < 2:
+        return np.zeros((0, 2))
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    excess, is_pause = _intervals(st, min_s)
+    t_next = st["start_s"].to_numpy(float)[1:][is_pause]
+    return np.column_stack([t_next - excess[is_pause], t_next])
 
 
 def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray, np.ndarray]:
@@ -160,6 +174,44 @@ def contact_scatter_s(stride_s: np.ndarray, onset_s: np.ndarray) -> float:
     0 when the contacts vary less than the onsets (SD with n - 1)."""
     excess = float(np.var(stride_s, ddof=1) - np.var(onset_s, ddof=1))
     return float(np.sqrt(excess / 2.0)) if excess > 0 else 0.0
+
+
+def symmetry_index_pct(a: float, b: float) -> float:
+    """The symmetry index of two sides' values, 100 x |a - b| / (0.5 x (a + b)) % (Robinson, Herzog & Nigg 1987,
+    J Manipulative Physiol Ther 10(4):172-176, SI; 0 = symmetric; which side is which does not matter)."""
+    return float(100.0 * abs(a - b) / (0.5 * (a + b)))
+
+
+def step_time_asymmetry(step_s, has_next, broken=None, *, min_steps: int = ASYMMETRY_MIN_STEPS
+                        ) -> tuple[float | None, int]:
+    """Decision L111 (Python API only, not in the summary: its rule failed - on simulated symmetric walkers the
+    lower back read 3.31 % on average, over 5 % on 3 of 20): ``(index %, step times used)`` of a lower-back step
+    table (:func:`pdrlearn.track.gait.waist_step_times`), one row per initial contact in time order: ``step_s``
+    (B,) each contact's step time to the next contact (NaN where none is measured), ``has_next`` (B,) whether
+    the next contact is in the same walking sequence, ``broken`` (B,) rows that end a sequence too (a W27
+    fragment and its neighbours: a spurious contact shifts the feet). Inside a sequence the contacts alternate
+    feet (W20), so the step times at even and odd places are the two feet's (which is left is not known and does
+    not matter to the index). Per sequence with at least ``min_steps`` step times of each foot,
+    :func:`symmetry_index_pct` of the two feet's mean step times (a median of whole-sample step times moves in
+    steps of ~10 % at 20 Hz); the sequences' indices averaged weighted by their step times (a new sequence may
+    start on either foot, so the feet are not matched across sequences). ``(None, 0)`` without such a
+    sequence."""
+    step = np.asarray(step_s, dtype=float)
+    hn = np.asarray(has_next, dtype=bool)
+    cut = np.zeros(len(step), bool) if broken is None else np.asarray(broken, dtype=bool)
+    indices, weights, start = [], [], 0
+    for i in range(len(step)):
+        if i + 1 == len(step) or not hn[i] or cut[i] or cut[i + 1]:  # the sequence ends after row i
+            seq = step[start:i + 1]
+            feet = [seq[0::2], seq[1::2]]
+            feet = [f[np.isfinite(f)] for f in feet]
+            if min(len(f) for f in feet) >= min_steps:
+                indices.append(symmetry_index_pct(float(np.mean(feet[0])), float(np.mean(feet[1]))))
+                weights.append(sum(len(f) for f in feet))
+            start = i + 1
+    if not indices:
+        return None, 0
+    return float(np.average(indices, weights=weights)), int(sum(weights))
 
 
 def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None = None) -> dict:

@@ -48,6 +48,14 @@ def stride_rows(table: pd.DataFrame) -> np.ndarray:
     return valid
 
 
+def turn_rows(table: pd.DataFrame) -> np.ndarray:
+    """(B,) bool: the rows whose ``turn_angle_rad`` is the foot's measured turn - every row but a gap row
+    (``gap_s`` > 0, L67: no foot yaw across it). A stride the last-line guard moved 0 m (``impossible``, L94)
+    keeps its turn (decision L109): the guard judged its displacement; the foot's yaw over it was measured as
+    every stride's, and the track's heading after it holds that turn."""
+    return (table["gap_s"].to_numpy(float) == 0) if "gap_s" in table else np.ones(len(table), bool)
+
+
 def swing_times(t: np.ndarray, stance: np.ndarray, i0: np.ndarray, i1: np.ndarray) -> np.ndarray:
     """(B,) s: per stride (sample indices ``i0``..``i1`` of ``t``, from rest to rest), the time from its first
     to its last sample outside ``stance`` (+ one sample interval): the foot off its rest. NaN when the stride
@@ -82,16 +90,19 @@ def stance_swing(start_s, end_s, event_s, tc_s, stride_s, valid=None) -> tuple[n
     return tc, stance, swing, 100.0 * stance / sd
 
 
-def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=None) -> pd.DataFrame:
+def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=None, turn_valid=None) -> pd.DataFrame:
     """``table`` (a strides table with ``start_s``, ``end_s``, ``event_s``, ``length_m``) with the
     :data:`GAIT_COLUMNS` added in place and returned; ``turn_rad`` (B,) the foot's turn over each stride (NaN
-    when None); ``valid`` (B,) bool: False for rows that are no stride (across a gap). ``tc_s`` (B,): each
+    when None); ``valid`` (B,) bool: False for rows that are no stride (across a gap, or moved 0 m by the
+    guard, L97). ``turn_valid`` (B,) bool: the rows whose turn was measured (:func:`turn_rows`: not a gap row,
+    decision L109; default ``valid``); the others get a NaN turn. ``tc_s`` (B,): each
     stride's toe-off (``pdrlearn.track.toeoff``); given, the :data:`TOE_OFF_COLUMNS` are added too (L73)."""
     n = len(table)
     stride = stride_times(table["start_s"], table["end_s"], table["event_s"], valid)
     turn = np.full(n, np.nan) if turn_rad is None else np.angle(np.exp(1j * np.asarray(turn_rad, dtype=float)))
-    if valid is not None:
-        turn[~np.asarray(valid, dtype=bool)] = np.nan
+    turn_valid = valid if turn_valid is None else turn_valid
+    if turn_valid is not None:
+        turn[~np.asarray(turn_valid, dtype=bool)] = np.nan
     with np.errstate(invalid="ignore", divide="ignore"):
         table["stride_time_s"] = stride
         table["cadence_spm"] = 120.0 / stride  # two steps per stride of one foot, per minute
@@ -112,7 +123,7 @@ def streamed_gait_columns(table: pd.DataFrame) -> pd.DataFrame:
     steps.csv places them (before ``gap_s`` and ``unit``). In place; returned."""
     valid = stride_rows(table) if "gap_s" in table or "impossible" in table else None  # L67, L97
     turn = table["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in table else None
-    add_gait_columns(table, turn_rad=turn, valid=valid)
+    add_gait_columns(table, turn_rad=turn, valid=valid, turn_valid=turn_rows(table))  # L109: a zeroed stride's turn
     tail = [c for c in ("impossible", "gap_s", "unit") if c in table]
     gait = [c for c in GAIT_COLUMNS if c in table]
     order = [c for c in table.columns if c not in gait and c not in tail] + gait + tail
@@ -123,26 +134,34 @@ def walking_time(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRIDE_
     """Decision L79: the time spent walking (s): the rows' span from the first start to the last end, split
     where a row starts more than ``max_break_s`` after the previous row's end (a stop: mobgap WbAssembly
     MaxBreakCriteria(max_break_s=3)) or where an invalid row (a gap row, L67; a waist contact without a next
-    one) lies between two rows, the pieces summed. Rows with no positive duration are left out. None without
-    a row."""
+    one) lies between two rows, the pieces (:func:`walking_pieces`) summed. Rows with no positive duration are
+    left out. None without a row."""
+    pieces = walking_pieces(start_s, end_s, valid, max_break_s=max_break_s)
+    return float(sum(t1 - t0 for t0, t1 in pieces)) if pieces else None
+
+
+def walking_pieces(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRIDE_S) -> list[tuple[float, float]]:
+    """The walking time's pieces ``(t0, t1)`` (s; :func:`walking_time`'s rule), in time order."""
     st, en = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
     ok = np.isfinite(st) & np.isfinite(en) & (en > st)
     if valid is not None:
         ok &= np.asarray(valid, dtype=bool)
-    total, t0, t1 = 0.0, None, None
+    pieces, t0, t1 = [], None, None
     for i in range(len(st)):
         if not ok[i]:  # an invalid row between two rows ends the piece (its time is not known to be walking)
             if t0 is not None and np.isfinite(en[i]) and en[i] > st[i]:
-                total, t0, t1 = total + (t1 - t0), None, None
+                pieces.append((t0, t1))
+                t0, t1 = None, None
             continue
         if t0 is not None and st[i] - t1 > max_break_s + 1e-9:
-            total, t0 = total + (t1 - t0), None
+            pieces.append((t0, t1))
+            t0 = None
         if t0 is None:
             t0 = st[i]
         t1 = max(en[i], t1) if t1 is not None else en[i]
     if t0 is not None:
-        total += t1 - t0
-    return float(total) if ok.any() else None
+        pieces.append((t0, t1))
+    return [(float(a), float(b)) for a, b in pieces]
 
 
 def _median(v) -> float | None:
@@ -155,19 +174,44 @@ def _median(v) -> float | None:
 SUMMARY_KEYS = ("n_stride_times", "median_stride_time_s", "median_cadence_spm", "median_speed_mps",
                 "median_step_time_s", "walking_time_s", "gait_speed_mps", "median_speed_straight_mps",
                 "n_straight_strides", "n_stance_times", "median_stance_time_s", "median_swing_time_s",
-                "median_stance_pct")
+                "median_stance_pct", "walking_time_no_pauses_s", "walking_speed_mps")
 
 
-def _speed_fields(out: dict, length, start_s, end_s, valid, speed, straight) -> None:
+def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight) -> None:
     """``walking_time_s``, ``gait_speed_mps`` (the rows' |length| summed over ``valid`` rows / walking time),
-    ``median_speed_straight_mps`` (median ``speed`` where ``straight``) and ``n_straight_strides``."""
-    wt = walking_time(start_s, end_s, valid)
+    ``walking_time_no_pauses_s`` and ``walking_speed_mps`` (the same distance / the walking time outside the
+    pauses of :func:`pdrlearn.track.clinical.pause_spans`, decision L110), ``median_speed_straight_mps``
+    (median ``speed`` where ``straight``) and ``n_straight_strides``."""
+    from pdrlearn.track.clinical import pause_spans
+
+    pieces = walking_pieces(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), valid)
+    wt = float(sum(t1 - t0 for t0, t1 in pieces)) if pieces else None
     dist = float(np.nansum(np.abs(np.asarray(length, dtype=float))[np.asarray(valid, dtype=bool)]))
     out["walking_time_s"] = wt
     out["gait_speed_mps"] = dist / wt if wt else None
+    if wt:  # L110: a pause's time inside the walking time (a stop over 3 s is outside it already, L79)
+        moving = float(wt - sum(max(0.0, min(b, p1) - max(a, p0)) for a, b in pieces for p0, p1 in pause_spans(steps)))
+        out["walking_time_no_pauses_s"] = moving
+        out["walking_speed_mps"] = dist / moving if moving > 0 else None
     sp = np.where(np.asarray(straight, dtype=bool), np.asarray(speed, dtype=float), np.nan)
     out["n_straight_strides"] = int(np.isfinite(sp).sum())
     out["median_speed_straight_mps"] = _median(sp)
+
+
+def waist_step_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(step_s, has_next, touched)`` (B,) of a waist steps table (:func:`waist_gait_summary`'s rule): each
+    contact's step time to the next one (NaN without a next contact, longer than half :data:`MAX_STRIDE_S`, or
+    touched by a W27 fragment), whether the next contact is in the same sequence, and the fragments with their
+    neighbours."""
+    st, en = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    has_next = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(st), bool)
+    dt = en - st
+    # W27: a fragment merged into a neighbour (``merged``) gives its length to that neighbour, whose own row
+    # then spans only part of the merged step: the fragment and both its neighbours leave the per-step values
+    frag = steps["merged"].to_numpy(bool) if "merged" in steps else np.zeros(len(st), bool)
+    touched = frag | np.concatenate([frag[1:], [False]]) | np.concatenate([[False], frag[:-1]])
+    ok = has_next & ~touched & np.isfinite(dt) & (dt > 0) & (dt <= MAX_STRIDE_S / 2 + 1e-9)
+    return np.where(ok, dt, np.nan), has_next, touched
 
 
 def waist_gait_summary(steps: pd.DataFrame) -> dict:
@@ -181,15 +225,8 @@ def waist_gait_summary(steps: pd.DataFrame) -> dict:
     its time), nor a stride time through them; walking time and gait speed keep them."""
     from pdrlearn.waist.gait_rules import positional_strides
 
-    st, en = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
-    has_next = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(st), bool)
-    dt = en - st
-    # W27: a fragment merged into a neighbour (``merged``) gives its length to that neighbour, whose own row
-    # then spans only part of the merged step: the fragment and both its neighbours leave the per-step values
-    frag = steps["merged"].to_numpy(bool) if "merged" in steps else np.zeros(len(st), bool)
-    touched = frag | np.concatenate([frag[1:], [False]]) | np.concatenate([[False], frag[:-1]])
-    ok = has_next & ~touched & np.isfinite(dt) & (dt > 0) & (dt <= MAX_STRIDE_S / 2 + 1e-9)
-    step = np.where(ok, dt, np.nan)
+    st = steps["start_s"].to_numpy(float)
+    step, has_next, touched = waist_step_times(steps)
     length = np.abs(steps["length_m"].to_numpy(float)) if "length_m" in steps else np.full(len(st), np.nan)
     with np.errstate(invalid="ignore", divide="ignore"):
         cadence, speed = 60.0 / step, length / step
@@ -201,7 +238,7 @@ def waist_gait_summary(steps: pd.DataFrame) -> dict:
                  "median_cadence_spm": _median(cadence), "median_speed_mps": _median(speed),
                  "median_step_time_s": _median(step)}
     straight = (steps["turning"].to_numpy(float) == 0) if "turning" in steps else np.ones(len(st), bool)
-    _speed_fields(out, length, st, en, has_next, speed, straight)
+    _speed_fields(out, steps, length, has_next, speed, straight)
     return out
 
 
@@ -216,8 +253,7 @@ def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     n = len(steps)
     valid = stride_rows(steps)  # decisions L67, L97
     out: dict = {}
-    _speed_fields(out, steps["length_m"].to_numpy(float), steps["start_s"].to_numpy(float),
-                  steps["end_s"].to_numpy(float), valid, np.full(n, np.nan), np.zeros(n, bool))
+    _speed_fields(out, steps, steps["length_m"].to_numpy(float), valid, np.full(n, np.nan), np.zeros(n, bool))
     return out
 
 
@@ -248,8 +284,7 @@ def gait_summary(steps: pd.DataFrame) -> dict:
         out[key] = _median(steps[col].to_numpy(float))
     valid = stride_rows(steps)  # decisions L67, L97
     turn = np.abs(steps["turn_angle_rad"].to_numpy(float))
-    _speed_fields(out, steps["length_m"].to_numpy(float), steps["start_s"].to_numpy(float),
-                  steps["end_s"].to_numpy(float), valid, steps["speed_mps"].to_numpy(float),
+    _speed_fields(out, steps, steps["length_m"].to_numpy(float), valid, steps["speed_mps"].to_numpy(float),
                   turn < STRAIGHT_MAX_RAD)
     if "stance_time_s" in steps:  # decision L73
         out["n_stance_times"] = int(np.isfinite(steps["stance_time_s"].to_numpy(float)).sum())

@@ -59,7 +59,7 @@ from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
 from pdrlearn.signal import lowpass
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
-from pdrlearn.track.gait import add_gait_columns, streamed_gait_columns, stride_rows
+from pdrlearn.track.gait import add_gait_columns, streamed_gait_columns, stride_rows, turn_rows
 from pdrlearn.track.gaps import (
     FOOT_IMU,
     drop_steps_across_gaps,
@@ -779,7 +779,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         from pdrlearn.track.toeoff import toe_off_times
 
         tc = toe_off_times(foot.t, foot.gyr, table["start_s"], table["end_s"], table["event_s"])
-    add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap & ~impossible, tc_s=tc)  # L97: no stride
+    add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap & ~impossible, tc_s=tc,  # L97: no stride
+                     turn_valid=~in_gap)  # L109: a stride moved 0 m by the guard keeps its measured turn
     table["impossible"] = impossible  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = longest_gap_in(table["start_s"], table["end_s"], foot_gaps)  # decision L67 (run's E37)
     table = table[[c for c in table.columns if c != "unit"] + ["unit"]]  # gap_s before unit, as run's steps.csv
@@ -801,7 +802,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         length, dz, head = length[order], dz[order], head[order]
         inserted = np.flatnonzero(order >= len(order) - len(at))  # the gap rows' new places
         add_gait_columns(table, turn_rad=table["turn_angle_rad"].to_numpy(float),  # the rows next to a gap row
-                         valid=stride_rows(table),  # decisions L67, L97
+                         valid=stride_rows(table), turn_valid=turn_rows(table),  # decisions L67, L97, L109
                          tc_s=table["tc_s"].to_numpy(float) if "tc_s" in table else None)
 
     xyz = np.zeros((len(table) + 1, 3))
