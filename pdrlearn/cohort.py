@@ -26,7 +26,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from pdrlearn.errors import DataError, PdrlearnError
+from pdrlearn.errors import DataError, PdrlearnError, shell_quote
 
 log = logging.getLogger(__name__)
 
@@ -106,7 +106,7 @@ def find_sessions(root: str | os.PathLike) -> list[Path]:
         raise DataError(f"{root}: folder not found; pass the folder that holds the session folders")
     if is_session_dir(root):
         raise DataError(f"{root}: is one session (it holds meta.json / sensor files); track it with "
-                        f"'pdrlearn track {root} --out DIR', or pass the folder above it")
+                        f"`pdrlearn track {shell_quote(root)} --out DIR`, or pass the folder above it")
     found: list[Path] = []
     seen = {root.resolve(): root}  # a folder reached again through a symbolic link (a loop: forever) is walked once
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import print_json, split_list
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, shell_quote
 
 
 def _mapping_file(path: Path | None) -> dict:
@@ -140,6 +140,7 @@ def import_command(
     """
     from pdrlearn.atomic import expect_unchanged
     from pdrlearn.io import read_session, write_session
+    from pdrlearn.io.unit_check import unit_mixup
     from pdrlearn.io.importer import (
         KINDS,
         import_csv,
@@ -259,6 +260,9 @@ def import_command(
     if base is not None:
         span_warning = merge_span_warning(base, session)  # trial 2, finding 11 (decision D12)
         session = merge_sessions(base, session)
+        mixup = unit_mixup(session)  # decision B91: before anything is written
+        if mixup:
+            raise DataError(f"{csv}: {mixup} (nothing written)")
     existed = out.is_dir() and any(out.iterdir())
     write_session(session, out, overwrite=True)
     if not as_json:
@@ -336,8 +340,6 @@ def _check_axes(session, unit: str, record: dict, csv: Path) -> str | None:
     :func:`pdrlearn.io.handedness.check_handedness`), at import. Mirrored data (a left-handed pair, which
     ``track`` refuses or tracks wrongly) are refused, naming the axis and the --acc/--gyro options that
     negate it back; a gyroscope whose axes differ from the accelerometer's is returned as a warning."""
-    import shlex
-
     from pdrlearn.io.handedness import check_handedness, mirrored_message
 
     h, msg = check_handedness(session, unit, ratio=False)
@@ -352,7 +354,7 @@ def _check_axes(session, unit: str, record: dict, csv: Path) -> str | None:
         neg = set(r.get("negated", ()))
         k = "xyz".index(axis)
         cols = ",".join(f"-{c}" if (c in neg) != (i == k) else c for i, c in enumerate(r["columns"]))
-        return shlex.quote(f"--{kind}={cols}")
+        return shell_quote(f"--{kind}={cols}")
 
     def how(axis: str | None) -> str:
         acc, gyr = option("acc", "Accelerometer", axis), option("gyro", "Gyroscope", axis)
@@ -476,7 +478,7 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
     else:
         err(f"{unit} frame: not declared; commands infer it from the data (decision D8); pass --frames to declare it")
     verb = "added to" if merge else ("replaced" if existed else "written to")
-    err(f"{unit} unit {verb} {out}; check it with: pdrlearn info {out}")
+    err(f"{unit} unit {verb} {out}; check it with: pdrlearn info {shell_quote(out)}")
     typer.echo(str(out))
 
 

@@ -21,7 +21,7 @@ from pdrlearn.cli.common import (
     split_choices,
     split_list,
 )
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, shell_quote
 
 
 def find_session_dirs(paths: list[Path]) -> list[Path]:
@@ -41,9 +41,10 @@ def find_session_dirs(paths: list[Path]) -> list[Path]:
             continue
         subs = sorted(q for q in p.iterdir() if is_session(q)) if p.is_dir() else []
         if not subs:
-            raise DataError(
-                f"{p}: neither a session folder (fAccelerometer.csv, ...) nor a folder of sessions"
-            )
+            from pdrlearn.io.plasys import export_import_hint
+
+            raise DataError(f"{p}: neither a session folder (fAccelerometer.csv, ...) nor a folder of sessions"
+                            + (export_import_hint(p) if p.is_dir() else ""))
         out.extend(subs)
     return out
 
@@ -292,7 +293,7 @@ def evaluate(
     if not model.tasks:  # decision C17: a model trained on level walks only holds a distance calibration
         raise DataError(f"evaluate: {model_dir} has no trained classifier to evaluate (training skipped every "
                         "task), only a distance calibration; evaluate its tracking with `pdrlearn track SESSION "
-                        f"--model {model_dir}`")
+                        f"--model {shell_quote(model_dir)}`")
     if not result["tasks"]:
         raise DataError(
             f"evaluate: the sessions have no labels for the model's tasks ({', '.join(model.tasks)}); "
