@@ -328,11 +328,12 @@ def run_cohort(
 
 
 @contextmanager
-def captured_warnings(logger: str = "pdrlearn") -> Iterator[list[str]]:
+def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterator[list[str]]:
     """Collect the WARNING (and worse) records of ``logger`` and its children raised in the body into the
     yielded list instead of letting the logger's handlers print them (records below WARNING pass as
     before). ``track-all`` tracks each session inside it and says each distinct warning once per batch with
-    the sessions it concerns (decision C12): the ~250-character "no model" line was printed per session."""
+    the sessions it concerns (decision C12): the ~250-character "no model" line was printed per session.
+    ``echo=True``: the handlers print them too (``evaluate`` keeps its printed warnings in its JSON, B95)."""
     log_ = logging.getLogger(logger)
     messages: list[str] = []
 
@@ -343,7 +344,7 @@ def captured_warnings(logger: str = "pdrlearn") -> Iterator[list[str]]:
     def below_warning(record: logging.LogRecord) -> bool:
         return record.levelno < logging.WARNING
 
-    others = list(log_.handlers)
+    others = [] if echo else list(log_.handlers)
     for h in others:
         h.addFilter(below_warning)
     collect = _Collect(logging.WARNING)

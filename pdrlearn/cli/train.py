@@ -280,7 +280,10 @@ def evaluate(
     # the same progress bar as train (stderr, a terminal only, not with --json): loading the model (~2 s),
     # reading each session, then evaluate_model's stages (its total is known once the model is loaded);
     # -v logs each scored model
-    with progress("evaluating", None, enabled=not as_json) as advance:
+    from pdrlearn.cohort import captured_warnings
+
+    # decision B95: the warnings printed (held-out, out-of-domain, rate ...) also go into the JSON, for `report`
+    with captured_warnings(echo=True) as warned, progress("evaluating", None, enabled=not as_json) as advance:
         model = load_model(model_dir)  # checked before the sessions, as before the bar
         dirs = find_session_dirs(data_dirs)
         advance(1, total=1 + len(dirs) + evaluation_stages(model, report=report is not None))
@@ -290,6 +293,7 @@ def evaluate(
             advance(1)
         result = evaluate_model(model, sessions, report_dir=report, advance=advance,
                                 warn_out_of_domain=warn_out_of_domain)
+    result["warnings"] = list(dict.fromkeys(warned))
     if not model.tasks:  # decision C17: a model trained on level walks only holds a distance calibration
         raise DataError(f"evaluate: {model_dir} has no trained classifier to evaluate (training skipped every "
                         "task), only a distance calibration; evaluate its tracking with `pdrlearn track SESSION "
