@@ -394,9 +394,8 @@ def write_report(result: dict, report_dir: Path) -> None:
     """``report.json``, ``report.md`` (tables) and ``confusion_<task>.png`` into ``report_dir``."""
     import json
 
-    from pdrlearn.cli.common import json_safe
-
     from pdrlearn.atomic import note_written
+    from pdrlearn.cli.common import json_safe
 
     report_dir.mkdir(parents=True, exist_ok=True)
     note_written(report_dir, in_place=True)  # decision B96: for the line of an interrupted evaluate

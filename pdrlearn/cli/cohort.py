@@ -320,7 +320,8 @@ def evaluate_all(
     """
     _check_workers(workers)
     if not models_dir.is_dir():
-        raise DataError(f"{models_dir}: models folder not found; run `pdrlearn train-all COHORT --out {shell_quote(models_dir)}`")
+        raise DataError(f"{models_dir}: models folder not found; run "
+                        f"`pdrlearn train-all COHORT --out {shell_quote(models_dir)}`")
     _check_outside_cohort(out or models_dir / "eval", cohort_dir)
     out = out_folder(out or models_dir / "eval", "evaluate-all", force=force, inputs=(models_dir, cohort_dir))
     was = existed(out)

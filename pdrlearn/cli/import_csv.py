@@ -140,7 +140,6 @@ def import_command(
     """
     from pdrlearn.atomic import expect_unchanged
     from pdrlearn.io import read_session, write_session
-    from pdrlearn.io.unit_check import unit_mixup
     from pdrlearn.io.importer import (
         KINDS,
         import_csv,
@@ -150,6 +149,7 @@ def import_command(
         merge_sessions,
         merge_span_warning,
     )
+    from pdrlearn.io.unit_check import unit_mixup
 
     m = _mapping_file(mapping)
     if force_frame and frames is None and m.get("frames") is None:  # decision B69: it would be ignored

@@ -275,12 +275,11 @@ def evaluate(
                    allow=("evaluation.json",))
     # not atomic: the folder may hold the file the shell is redirecting --json into (written in place)
     was = report is not None and (report / "report.md").is_file()
-    from pdrlearn.io import read_session
-
     # the same progress bar as train (stderr, a terminal only, not with --json): loading the model (~2 s),
     # reading each session, then evaluate_model's stages (its total is known once the model is loaded);
     # -v logs each scored model
     from pdrlearn.cohort import captured_warnings
+    from pdrlearn.io import read_session
 
     # decision B95: the warnings printed (held-out, out-of-domain, rate ...) also go into the JSON, for `report`
     with captured_warnings(echo=True) as warned, progress("evaluating", None, enabled=not as_json) as advance:

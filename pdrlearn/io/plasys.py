@@ -495,8 +495,8 @@ def _looks_like_export(path: Path) -> bool:
 
 #: decision B93: words in an export's file name that say which unit it holds (the import hint only)
 UNIT_NAME_WORDS = {"foot": ("foot", "feet", "fuss", "fuß", "fuesse", "füße", "shoe", "schuh", "ankle", "pied"),
-                   "waist": ("waist", "hip", "hüfte", "huefte", "pelvis", "becken", "lumbar", "lowback", "lowerback", "belt",
-                             "trunk", "sacrum", "taille", "hanche")}
+                   "waist": ("waist", "hip", "hüfte", "huefte", "pelvis", "becken", "lumbar", "lowback", "lowerback",
+                             "belt", "trunk", "sacrum", "taille", "hanche")}
 
 
 def export_import_hint(folder: Path) -> str:

@@ -58,17 +58,17 @@ def unit_mixup(session) -> str | None:
     foot, waist = _files(session, "foot"), _files(session, "waist")
     imported = isinstance(session.meta.get("imported"), (list, dict))
     if _same(s[fg].values, s[wg].values) and _same(s[fa].values, s[wa].values):
-        fix = (f"import the waist unit's own file with --unit waist --merge" if imported
+        fix = ("import the waist unit's own file with --unit waist --merge" if imported
                else "write the waist unit's own recording to wAccelerometer.csv and wGyroscope.csv")
         return (f"the foot unit ({foot}) and the waist unit ({waist}) hold the same data (one recording given as "
                 f"both units; decision B91): {fix}, or remove the waist files to track the foot alone")
     f99, w99 = swing_rate(s[fg].values), swing_rate(s[wg].values)
     if f99 < FOOT_NO_SWING and w99 > WAIST_SWINGS:
-        fix = (f"import {waist} as the foot unit (--unit foot) and {foot} with --unit waist --merge, into a new --out" if imported
-               else "swap the f* and w* files (fAccelerometer.csv <-> wAccelerometer.csv, fGyroscope.csv <-> "
-                    "wGyroscope.csv) and their \"frames\" entries in meta.json")
+        fix = (f"import {waist} as the foot unit (--unit foot) and {foot} with --unit waist --merge, into a new "
+               "--out" if imported else "swap the f* and w* files (fAccelerometer.csv <-> wAccelerometer.csv, "
+               "fGyroscope.csv <-> wGyroscope.csv) and their \"frames\" entries in meta.json")
         deg = np.degrees
         return (f"the foot and waist files look swapped: the foot unit ({foot}) turns at {deg(f99):.0f} deg/s "
-                f"(99th percentile of |gyro|) while the waist unit ({waist}) swings at {deg(w99):.0f} deg/s, as a foot does "
-                f"(decision B91); {fix}")
+                f"(99th percentile of |gyro|) while the waist unit ({waist}) swings at {deg(w99):.0f} deg/s, as a "
+                f"foot does (decision B91); {fix}")
     return None
