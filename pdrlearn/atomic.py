@@ -38,6 +38,19 @@ _PROCESS_START = time.time()
 _checked: ContextVar[dict[Path, frozenset] | None] = ContextVar("pdrlearn_checked_outputs", default=None)
 
 
+#: decision B96: what the command has written so far (completed atomic outputs, in-place writes as begun), for
+#: the one line an interrupted command prints. ``None`` outside :func:`checked_outputs`.
+_written: ContextVar[list[str] | None] = ContextVar("pdrlearn_written_outputs", default=None)
+
+
+def note_written(path: str | os.PathLike, *, in_place: bool = False) -> None:
+    """Decision B96: record an output the command wrote (atomic outputs when complete; ``in_place``: a
+    folder written file by file, recorded before its first file, so it may be incomplete)."""
+    written = _written.get()
+    if written is not None:
+        written.append(f"{path} (written in place, maybe incomplete)" if in_place else str(path))
+
+
 class OutputChangedError(PdrlearnError):
     """An output folder changed between the command's check and its replacement; it was not replaced."""
 
@@ -65,13 +78,16 @@ def fingerprint(folder: str | os.PathLike) -> frozenset:
 
 
 @contextmanager
-def checked_outputs() -> Iterator[None]:
-    """Scope (one CLI command) inside which :func:`expect_unchanged` records are kept and compared."""
-    token = _checked.set({})
+def checked_outputs() -> Iterator[list[str]]:
+    """Scope (one CLI command) inside which :func:`expect_unchanged` records are kept and compared; yields the
+    list of what was written (:func:`note_written`, decision B96), which stays readable after the scope."""
+    written: list[str] = []
+    token, token_w = _checked.set({}), _written.set(written)
     try:
-        yield
+        yield written
     finally:
         _checked.reset(token)
+        _written.reset(token_w)
 
 
 def expect_unchanged(folder: str | os.PathLike) -> None:
@@ -183,6 +199,7 @@ def atomic_directory(target: str | os.PathLike) -> Iterator[Path]:
             if old is not None:  # put the previous result back under its own name
                 _put_back(old, target)
             raise
+        note_written(target)
         if old is not None:
             shutil.rmtree(old, ignore_errors=True)
     except BaseException:
@@ -202,6 +219,7 @@ def atomic_file(target: str | os.PathLike, suffix: str = "") -> Iterator[Path]:
     try:
         yield tmp
         os.replace(tmp, target)
+        note_written(target)
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise

@@ -26,7 +26,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from pdrlearn.errors import DataError, PdrlearnError
+from pdrlearn.errors import DataError, PdrlearnError, shell_quote
 
 log = logging.getLogger(__name__)
 
@@ -106,7 +106,7 @@ def find_sessions(root: str | os.PathLike) -> list[Path]:
         raise DataError(f"{root}: folder not found; pass the folder that holds the session folders")
     if is_session_dir(root):
         raise DataError(f"{root}: is one session (it holds meta.json / sensor files); track it with "
-                        f"'pdrlearn track {root} --out DIR', or pass the folder above it")
+                        f"`pdrlearn track {shell_quote(root)} --out DIR`, or pass the folder above it")
     found: list[Path] = []
     seen = {root.resolve(): root}  # a folder reached again through a symbolic link (a loop: forever) is walked once
 
@@ -328,11 +328,12 @@ def run_cohort(
 
 
 @contextmanager
-def captured_warnings(logger: str = "pdrlearn") -> Iterator[list[str]]:
+def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterator[list[str]]:
     """Collect the WARNING (and worse) records of ``logger`` and its children raised in the body into the
     yielded list instead of letting the logger's handlers print them (records below WARNING pass as
     before). ``track-all`` tracks each session inside it and says each distinct warning once per batch with
-    the sessions it concerns (decision C12): the ~250-character "no model" line was printed per session."""
+    the sessions it concerns (decision C12): the ~250-character "no model" line was printed per session.
+    ``echo=True``: the handlers print them too (``evaluate`` keeps its printed warnings in its JSON, B95)."""
     log_ = logging.getLogger(logger)
     messages: list[str] = []
 
@@ -343,7 +344,7 @@ def captured_warnings(logger: str = "pdrlearn") -> Iterator[list[str]]:
     def below_warning(record: logging.LogRecord) -> bool:
         return record.levelno < logging.WARNING
 
-    others = list(log_.handlers)
+    others = [] if echo else list(log_.handlers)
     for h in others:
         h.addFilter(below_warning)
     collect = _Collect(logging.WARNING)

@@ -36,3 +36,12 @@ class InternalError(PdrlearnError, RuntimeError):
 
 class NotASessionError(DataError, TypeError):
     """A public entry point was given something other than a session (decision B51): a dict, a DataFrame ..."""
+
+
+def shell_quote(arg: object) -> str:
+    """``arg`` (a path, a column list ...) as it must be typed in a shell command that a message prints as
+    advice (``pdrlearn info 'Sitzungen/Messung 5'``), so that the printed command can be copied as it is:
+    quoted only when it holds a space, a quote or another character the shell reads (decision B92)."""
+    import shlex
+
+    return shlex.quote(str(arg))

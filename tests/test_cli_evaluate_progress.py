@@ -64,3 +64,14 @@ def test_evaluate_verbose_logs_each_scored_model_on_stderr(base, capsys):
     assert len(cap.out.strip().splitlines()) == 1
     lines = [ln for ln in cap.err.splitlines() if "evaluate terrain: heuristic/" in ln]
     assert len(lines) == 2 and all(ln.startswith("INFO ") for ln in lines), cap.err
+
+
+def test_evaluate_json_keeps_the_warnings_it_printed(base, capsys):
+    """Decision B95: the warnings evaluate prints (here C34's "not held-out": the model was trained on the
+    session) are also in its JSON, so that `pdrlearn report` can list them with the tracks' warnings."""
+    session, model = base
+    assert main(["evaluate", str(model), str(session), "--json"]) == 0
+    cap = capsys.readouterr()
+    warns = json.loads(cap.out)["warnings"]
+    assert [w for w in warns if "not held-out" in w] and len(warns) == len(set(warns))
+    assert "warning: evaluate: 1 of 1 session(s) were used to train the model" in cap.err  # still printed

@@ -131,3 +131,32 @@ def test_report_shows_the_tracks_warnings_first(results, tmp_path):
     # a folder whose tracks did not warn has no such section
     run.joinpath("summary.json").write_text(json.dumps({"distance_m": 14.1, "info": {"warnings": []}}))
     assert "Warnings" not in [s.title for s in collect(results)]
+
+
+def test_a_second_report_inside_the_results_skips_the_first(results):
+    """Decision B94 (session 19 teaching trial): `report results --out results/report2` after `--out
+    results/report` showed the first report's copies: a stale trajectory and every confusion matrix twice."""
+    build_report(results, results / "report")
+    first = (results / "report" / "index.html").read_text().count("<img")
+    out = build_report(results, results / "report2")
+    page = (out / "index.html").read_text()
+    assert page.count("<img") == first == 2
+    assert "report/img/" not in page and "report/img/" not in (out / "report.md").read_text()
+    # an evaluate --report folder (report.md, no index.html) is results, not a report: its figures stay
+    ev = results / "eval"
+    ev.mkdir()
+    (ev / "report.md").write_text("# Step characterization\n")
+    shutil.copyfile(results / "confusion_terrain.png", ev / "confusion_length.png")
+    assert build_report(results, results / "report3").joinpath("index.html").read_text().count("<img") == 3
+
+
+def test_report_lists_the_evaluations_warnings(results, tmp_path):
+    """Decision B95: evaluation.json's warnings (evaluate --json keeps what it printed) join the track warnings."""
+    held = "evaluate: 1 of 1 session(s) were used to train the model (Test; named in its manifest): not held-out"
+    ev = json.loads((results / "evaluation.json").read_text())
+    (results / "evaluation.json").write_text(json.dumps({**ev, "warnings": [held]}))
+    sections = collect(results)
+    assert sections[0].title == "Warnings" and sections[0].warnings == [f". (evaluate): {held}"]
+    assert "1 warning(s) from 1 run(s)" in sections[0].text
+    md = (build_report(results, tmp_path / "r") / "report.md").read_text()
+    assert md.index("not held-out") < md.index("Evaluation")

@@ -465,9 +465,11 @@ def write_report(result: dict, report_dir: Path) -> None:
     """``report.json``, ``report.md`` (tables) and ``confusion_<task>.png`` into ``report_dir``."""
     import json
 
+    from pdrlearn.atomic import note_written
     from pdrlearn.cli.common import json_safe
 
     report_dir.mkdir(parents=True, exist_ok=True)
+    note_written(report_dir, in_place=True)  # decision B96: for the line of an interrupted evaluate
     (report_dir / "report.json").write_text(json.dumps(json_safe(result), indent=2))
     (report_dir / "report.md").write_text(
         f"# Step characterization of user {result['user']}\n\n" + markdown_tables(result)

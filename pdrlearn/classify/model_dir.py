@@ -21,7 +21,7 @@ import logging
 from pathlib import Path
 
 from pdrlearn.atomic import atomic_directory
-from pdrlearn.errors import ModelError
+from pdrlearn.errors import ModelError, shell_quote
 
 log = logging.getLogger(__name__)
 
@@ -158,7 +158,8 @@ def read_manifest(path) -> dict:
     """Read and validate ``manifest.json`` of a model directory (:class:`ModelError` on any problem)."""
     path = Path(path)
     if not path.is_dir():
-        raise ModelError(f"{path}: no such model directory; train one with 'pdrlearn train ... --out {path}'")
+        raise ModelError(f"{path}: no such model directory; train one with "
+                         f"`pdrlearn train ... --out {shell_quote(path)}`")
     mf = path / MANIFEST
     if not mf.is_file():
         hint = " -- it is a session folder (arguments swapped?)" if any(path.glob("*Accelerometer.csv")) else ""

@@ -198,8 +198,9 @@ def main(argv: list[str] | None = None) -> int:
         argv = sys.argv[1:]
     from pdrlearn.atomic import checked_outputs
 
+    written: list[str] = []
     try:
-        with _stderr_logging(), checked_outputs():  # an output folder is replaced only as checked (B20)
+        with _stderr_logging(), checked_outputs() as written:  # an output folder is replaced only as checked (B20)
             # with standalone_mode=False click returns a command's `typer.Exit(code)` instead of raising it
             rc = app(args=_hoist_verbose(list(argv)), standalone_mode=False)
     except PdrlearnError as exc:
@@ -207,6 +208,8 @@ def main(argv: list[str] | None = None) -> int:
         return exc.exit_code
     except typer.Exit as exc:  # explicit exits from commands
         return int(exc.exit_code or 0)
+    except KeyboardInterrupt:  # Ctrl-C outside the command (while the CLI starts)
+        return _interrupted(written)
     except typer.Abort:
         print("error: aborted", file=sys.stderr)
         return 130
@@ -228,7 +231,18 @@ def main(argv: list[str] | None = None) -> int:
         hint = f" (see '{command} --help')"
         print(f"error: {message}{hint}", file=sys.stderr)
         return exc.exit_code
+    if rc == 130:  # typer turns Ctrl-C into Exit(130), which click returns (no command exits with 130 itself)
+        return _interrupted(written)
     return rc if isinstance(rc, int) else 0
+
+
+def _interrupted(written: list[str]) -> int:
+    """Decision B96: Ctrl-C ends a command with one line saying what it left (outputs are written whole or not
+    at all, atomic.py), exit code 130 (128 + SIGINT)."""
+    kept = (f"written before it: {', '.join(dict.fromkeys(written))}; nothing else" if written
+            else "nothing written")
+    print(f"error: interrupted (Ctrl-C); {kept}", file=sys.stderr)
+    return 130
 
 
 def _click_exceptions() -> tuple[type, ...]:

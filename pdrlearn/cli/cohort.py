@@ -38,7 +38,7 @@ from pdrlearn.cohort import (
     session_group,
     user_sessions,
 )
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, shell_quote
 
 if TYPE_CHECKING:  # pandas is imported where it is used: `pdrlearn --version/--help` stay light (C14)
     import pandas as pd
@@ -326,7 +326,8 @@ def evaluate_all(
     """
     _check_workers(workers)
     if not models_dir.is_dir():
-        raise DataError(f"{models_dir}: models folder not found; run 'pdrlearn train-all COHORT --out {models_dir}'")
+        raise DataError(f"{models_dir}: models folder not found; run "
+                        f"`pdrlearn train-all COHORT --out {shell_quote(models_dir)}`")
     _check_outside_cohort(out or models_dir / "eval", cohort_dir)
     out = out_folder(out or models_dir / "eval", "evaluate-all", force=force, inputs=(models_dir, cohort_dir))
     was = existed(out)

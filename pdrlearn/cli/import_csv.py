@@ -9,7 +9,7 @@ from pathlib import Path
 import typer
 
 from pdrlearn.cli.common import print_json, split_list
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, shell_quote
 
 
 def _mapping_file(path: Path | None) -> dict:
@@ -151,6 +151,7 @@ def import_command(
         merge_sessions,
         merge_span_warning,
     )
+    from pdrlearn.io.unit_check import unit_mixup
 
     m = _mapping_file(mapping)
     if force_frame and frames is None and m.get("frames") is None:  # decision B69: it would be ignored
@@ -262,6 +263,9 @@ def import_command(
         span_warning = merge_span_warning(base, session)  # trial 2, finding 11 (decision D12)
         offset_note = None if span_warning else merge_offset_note(base, session)  # decision B83
         session = merge_sessions(base, session)
+        mixup = unit_mixup(session)  # decision B91: before anything is written
+        if mixup:
+            raise DataError(f"{csv}: {mixup} (nothing written)")
     existed = out.is_dir() and any(out.iterdir())
     write_session(session, out, overwrite=True)
     if not as_json:
@@ -341,8 +345,6 @@ def _check_axes(session, unit: str, record: dict, csv: Path) -> str | None:
     :func:`pdrlearn.io.handedness.check_handedness`), at import. Mirrored data (a left-handed pair, which
     ``track`` refuses or tracks wrongly) are refused, naming the axis and the --acc/--gyro options that
     negate it back; a gyroscope whose axes differ from the accelerometer's is returned as a warning."""
-    import shlex
-
     from pdrlearn.io.handedness import check_handedness, mirrored_message
 
     h, msg = check_handedness(session, unit, ratio=False)
@@ -357,7 +359,7 @@ def _check_axes(session, unit: str, record: dict, csv: Path) -> str | None:
         neg = set(r.get("negated", ()))
         k = "xyz".index(axis)
         cols = ",".join(f"-{c}" if (c in neg) != (i == k) else c for i, c in enumerate(r["columns"]))
-        return shlex.quote(f"--{kind}={cols}")
+        return shell_quote(f"--{kind}={cols}")
 
     def how(axis: str | None) -> str:
         acc, gyr = option("acc", "Accelerometer", axis), option("gyro", "Gyroscope", axis)
@@ -483,7 +485,7 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
     else:
         err(f"{unit} frame: not declared; commands infer it from the data (decision D8); pass --frames to declare it")
     verb = "added to" if merge else ("replaced" if existed else "written to")
-    err(f"{unit} unit {verb} {out}; check it with: pdrlearn info {out}")
+    err(f"{unit} unit {verb} {out}; check it with: pdrlearn info {shell_quote(out)}")
     typer.echo(str(out))
 
 

@@ -23,7 +23,7 @@ from pdrlearn.cli.common import (
     split_choices,
     split_length_units,
 )
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, shell_quote
 
 
 def find_session_dirs(paths: list[Path]) -> list[Path]:
@@ -43,9 +43,10 @@ def find_session_dirs(paths: list[Path]) -> list[Path]:
             continue
         subs = sorted(q for q in p.iterdir() if is_session(q)) if p.is_dir() else []
         if not subs:
-            raise DataError(
-                f"{p}: neither a session folder (fAccelerometer.csv, ...) nor a folder of sessions"
-            )
+            from pdrlearn.io.plasys import export_import_hint
+
+            raise DataError(f"{p}: neither a session folder (fAccelerometer.csv, ...) nor a folder of sessions"
+                            + (export_import_hint(p) if p.is_dir() else ""))
         out.extend(subs)
     return out
 
@@ -319,12 +320,14 @@ def evaluate(
                    allow=("evaluation.json",))
     # not atomic: the folder may hold the file the shell is redirecting --json into (written in place)
     was = report is not None and (report / "report.md").is_file()
-    from pdrlearn.io import read_session
-
     # the same progress bar as train (stderr, a terminal only, not with --json): loading the model (~2 s),
     # reading each session, then evaluate_model's stages (its total is known once the model is loaded);
     # -v logs each scored model
-    with progress("evaluating", None, enabled=not as_json) as advance:
+    from pdrlearn.cohort import captured_warnings
+    from pdrlearn.io import read_session
+
+    # decision B95: the warnings printed (held-out, out-of-domain, rate ...) also go into the JSON, for `report`
+    with captured_warnings(echo=True) as warned, progress("evaluating", None, enabled=not as_json) as advance:
         model = load_model(model_dir)  # checked before the sessions, as before the bar
         dirs = find_session_dirs(data_dirs)
         advance(1, total=1 + len(dirs) + evaluation_stages(model, report=report is not None))
@@ -335,10 +338,11 @@ def evaluate(
         tables: list | None = [] if predictions_out is not None else None
         result = evaluate_model(model, sessions, report_dir=report, advance=advance,
                                 warn_out_of_domain=warn_out_of_domain, step_predictions=tables)
+    result["warnings"] = list(dict.fromkeys(warned))
     if not model.tasks:  # decision C17: a model trained on level walks only holds a distance calibration
         raise DataError(f"evaluate: {model_dir} has no trained classifier to evaluate (training skipped every "
                         "task), only a distance calibration; evaluate its tracking with `pdrlearn track SESSION "
-                        f"--model {model_dir}`")
+                        f"--model {shell_quote(model_dir)}`")
     if not result["tasks"]:
         raise DataError(
             f"evaluate: the sessions have no labels for the model's tasks ({', '.join(model.tasks)}); "

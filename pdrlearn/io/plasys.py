@@ -22,7 +22,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.atomic import atomic_directory
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, shell_quote
 from pdrlearn.io.frames import frames_from_meta
 from pdrlearn.io.sensors import SENSORS, UNIT_IMU, VALUE_UNITS
 from pdrlearn.io.session import MAX_BRIDGED_S, STEP_COLUMNS, Session, Stream
@@ -499,6 +499,40 @@ def _looks_like_export(path: Path) -> bool:
     return len(cols) >= 4 and not any(c.strip().endswith("_ms") for c in cols)
 
 
+#: decision B93: words in an export's file name that say which unit it holds (the import hint only)
+UNIT_NAME_WORDS = {"foot": ("foot", "feet", "fuss", "fuß", "fuesse", "füße", "shoe", "schuh", "ankle", "pied"),
+                   "waist": ("waist", "hip", "hüfte", "huefte", "pelvis", "becken", "lumbar", "lowback", "lowerback",
+                             "belt", "trunk", "sacrum", "taille", "hanche")}
+
+
+def export_import_hint(folder: Path) -> str:
+    """Decision B93 (D12's hint): "; ..." naming the `pdrlearn import` command(s) that turn the one-file lab
+    exports in ``folder`` into a session (paths quoted, B92), or "" when it holds none. Two or more exports:
+    the file whose name says foot (UNIT_NAME_WORDS) is imported as the foot unit, the one that says waist with
+    ``--unit waist --merge``; names that say neither are listed with both commands left to the user."""
+    exports = sorted((p for p in folder.glob("*.csv") if _looks_like_export(p)),
+                     key=lambda p: (-p.stat().st_size, p.name))  # the largest first
+    if not exports:
+        return ""
+    q = shell_quote
+    if len(exports) == 1:
+        return (f"; a lab export in one CSV becomes a session with `pdrlearn import {q(exports[0])} --out SESSION` "
+                "(the foot unit; add --unit waist for a waist unit's; decision D12)")
+
+    def named(unit: str) -> list[Path]:
+        return [p for p in exports if any(w in p.stem.lower() for w in UNIT_NAME_WORDS[unit])]
+
+    foot, waist = named("foot"), named("waist")
+    if len(foot) == 1 and len(waist) == 1 and foot != waist:
+        return (f"; the lab exports here become one session with `pdrlearn import {q(foot[0])} --out SESSION` "
+                f"(the foot unit, by its name) and `pdrlearn import {q(waist[0])} --unit waist --merge --out "
+                f"SESSION` (the waist unit) (decisions D12, B93)")
+    names = ", ".join(q(p.name) for p in exports[:4]) + (f" and {len(exports) - 4} more" if len(exports) > 4 else "")
+    return (f"; lab exports ({names}) become a session with `pdrlearn import FOOT.csv --out SESSION` for the foot "
+            f"unit and `pdrlearn import WAIST.csv --unit waist --merge --out SESSION` for the waist unit, with "
+            f"the files of {q(folder)} (decisions D12, B93)")
+
+
 #: decision B72: a stream whose span (last minus first timestamp) is shorter than the longest of its unit's by more than
 #: this (s), plus one sample interval, was cut short: B11's gap and B21's missing end, so what is missing at a
 #: stream's ends is already refused where it is interpolated; the spans, not the ends, as the two units' clocks may be
@@ -757,13 +791,9 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
             more = f" and {len(inner) - 3} more" if len(inner) > 3 else ""
             raise DataError(f"{folder}: holds session folders ({', '.join(inner[:3])}{more}), not one session's "
                             f"sensor files; pass one of them, e.g. {folder / inner[0]}")
-        exports = sorted((p for p in folder.glob("*.csv") if _looks_like_export(p)),
-                         key=lambda p: (-p.stat().st_size, p.name))  # the largest
-        hint = (f"; a lab export in one CSV becomes a session with `pdrlearn import {exports[0]} --out SESSION` "
-                "(decision D12)" if exports else "")
         raise DataError(
             f"{folder}: no sensor files found; expected at least one of "
-            f"{', '.join(s.filename for s in SENSORS.values())}{hint}"
+            f"{', '.join(s.filename for s in SENSORS.values())}{export_import_hint(folder)}"
         )
     steps = _read_steps(folder / "steps.csv") if (folder / "steps.csv").exists() else None
     traj = _read_trajectory(folder / "trajectory.csv", scale) if (folder / "trajectory.csv").exists() else None

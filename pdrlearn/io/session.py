@@ -381,11 +381,19 @@ class Session:
         when the data does not fix the axes, a :class:`DataError` naming the session's ``meta.json`` and
         the entry to add (the one wording of every method that needs a unit's axes, decision B18).
         With ``infer_frames`` the unit's accelerometer and gyroscope are also checked once for mirrored
-        (left-handed) data, one warning naming the files and the fix (decision D11)."""
+        (left-handed) data, one warning naming the files and the fix (decision D11), and the foot and waist
+        units once for swapped or duplicated files, a :class:`DataError` (decision B91)."""
         where = (f"{self.folder / 'meta.json'}: session '{self.name}'" if self.folder is not None
                  else f"session '{self.name}' (its meta.json)")
         if self.infer_frames:
             from pdrlearn.io.handedness import AXES_PLACEMENTS, WARN_PLACEMENTS
+
+            if "units" not in self._checked:  # decision B91: swapped or duplicated unit files, once per session
+                from pdrlearn.io.unit_check import unit_mixup
+
+                self._checked["units"] = unit_mixup(self)
+            if self._checked["units"]:
+                raise DataError(f"{where}: {self._checked['units']}")
 
             if placement in WARN_PLACEMENTS:  # the waist ratio is not adopted: not paid for here
                 self.handedness(placement)

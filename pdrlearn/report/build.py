@@ -145,13 +145,24 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
     if (root / "manifest.json").exists():
         sections.append(_model_section(_verified_manifest(root), root))
     skip = Path(exclude).resolve() if exclude is not None else None
+    reports: dict[Path, bool] = {}
+
+    def in_report(p: Path) -> bool:  # decision B94: under an earlier report's folder (below root)
+        for d in p.relative_to(root).parents:
+            if d != Path("."):
+                if (root / d) not in reports:
+                    reports[root / d] = is_report_dir(root / d)
+                if reports[root / d]:
+                    return True
+        return False
 
     def find(pattern: str) -> list[Path]:
         return sorted(p for p in root.rglob(pattern)
                       if not any(part.startswith(".") for part in p.relative_to(root).parts)
-                      and (skip is None or not p.resolve().is_relative_to(skip)))
+                      and (skip is None or not p.resolve().is_relative_to(skip)) and not in_report(p))
 
-    for p in find("evaluation.json"):
+    evaluations = find("evaluation.json")
+    for p in evaluations:
         sections.extend(_evaluation_sections_of(p))
     batches = {p.parent for p in find("sessions.csv")} | {p.parent for p in find("groups.csv")}
     for folder in sorted(batches):  # cohort C16: a track-all output folder (groups.csv alone: one error line)
@@ -159,6 +170,7 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
     for p in find("cohort_summary.csv"):
         sections.append(Section(f"Cohort — {p.parent.name}", tables=[("per-user results", read_table(p))]))
     tracks = find("summary.json")
+    warned = _run_warnings(tracks, evaluations, root)
     if tracks:
         rows = []
         for p in tracks:
@@ -171,9 +183,8 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
         if len(gait) > 1 and df[gait[1:]].notna().any().any():
             tables.append(("gait parameters", df[gait]))
         sections.append(Section("Tracking", tables=tables))
-        warned = _track_warnings(tracks, root)
-        if warned is not None:  # decision L102: first, before any table, so the caveat travels with the numbers
-            sections.insert(0, warned)
+    if warned is not None:  # decision L102: first, before any table, so the caveat travels with the numbers
+        sections.insert(0, warned)
     images = find("*.png")
     if images:
         by_kind: dict[str, list[Path]] = {}
@@ -204,26 +215,44 @@ def _batch_section(folder: Path, root: Path) -> Section:
                            lambda path: plot_batch(sessions, path))])
 
 
-def _track_warnings(tracks: list[Path], root: Path) -> Section | None:
+#: decision B94: the files `pdrlearn report` writes into its --out; a folder holding both is an earlier report
+REPORT_FILES = ("index.html", "report.md")
+
+
+def is_report_dir(folder: Path) -> bool:
+    """Decision B94: ``folder`` is a report `pdrlearn report` wrote (its index.html and report.md): its img/
+    copies of figures and its tables are not results to report again (a second report inside the results
+    folder showed the first one's stale trajectory and every confusion matrix twice)."""
+    return all((folder / f).is_file() for f in REPORT_FILES)
+
+
+def _run_warnings(tracks: list[Path], evaluations: list[Path], root: Path) -> Section | None:
     """Decision L102: the warnings of each tracked session (``summary.json`` ``info.warnings``: the slow-gait
-    "not reliable" line of L95, no calibration, no model, mirrored turns, ...) as one section, each line
-    prefixed with the run it belongs to; None when no run warned. Before, the report dropped them (session 18
-    rehab trial: the shared report lost "the distance ... not reliable")."""
-    lines = []
-    for p in tracks:
+    "not reliable" line of L95, no calibration, no model, mirrored turns, ...) and, decision B95, of each
+    evaluation (``evaluation.json`` ``warnings``: not held-out, out of the training range, ...) as one section,
+    each line prefixed with the run it belongs to; None when nothing warned. Before, the report dropped them
+    (session 18 rehab trial: the shared report lost "the distance ... not reliable")."""
+    def info_of(p: Path) -> dict:
         info = _read_json(p).get("info")
-        warns = info.get("warnings") if isinstance(info, dict) else None
+        return info if isinstance(info, dict) else {}
+
+    lines, runs = [], set()
+    for p, warns in ([(p, info_of(p).get("warnings")) for p in tracks]
+                     + [(p, _read_json(p).get("warnings")) for p in evaluations]):
         if isinstance(warns, str):
             warns = [warns]
         if not isinstance(warns, list):
             continue
         run = str(p.parent.relative_to(root)) or "."
-        lines += [f"{run}: {w}" for w in warns if isinstance(w, str) and w.strip()]
+        run = run if p.name == "summary.json" else f"{run} (evaluate)"
+        got = [f"{run}: {w}" for w in warns if isinstance(w, str) and w.strip()]
+        runs |= {run} if got else set()
+        lines += got
     if not lines:
         return None
-    n = len({ln.split(": ", 1)[0] for ln in lines})
-    return Section("Warnings", text=f"{len(lines)} warning(s) from {n} tracked run(s); read them before the "
-                   "numbers below (each run's summary.json info.warnings).", warnings=lines)
+    return Section("Warnings", text=f"{len(lines)} warning(s) from {len(runs)} run(s); read them before the "
+                   "numbers below (each track's summary.json info.warnings, each evaluation.json's warnings).",
+                   warnings=lines)
 
 
 #: decision L103: the report's step-count columns, labelled by what they count (summary.json ``n_steps`` counts

@@ -1,0 +1,74 @@
+"""Decision B91: foot and waist files swapped, or one recording given as both units, told from the signals.
+
+A foot unit swings forward at several hundred deg/s every stride; a waist unit turns with the pelvis and the
+walking direction, a few tens of deg/s. The statistic is the 99th percentile of the gyroscope magnitude over the
+unit's whole recording (:func:`swing_rate`). The units are swapped when the foot unit's stays below
+:data:`FOOT_NO_SWING` and the waist unit's exceeds :data:`WAIST_SWINGS`: a foot that never swings beside a
+waist that does. A standing-only recording has both low and is never called swapped.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.io.sensors import UNIT_IMU
+
+#: B91: the percentile of |gyro| (rad/s) that tells a swinging foot from a waist
+SWING_PERCENTILE = 99.0
+#: B91: a foot unit whose percentile stays below this never swung (rad/s; walking feet measured >= 6.2)
+FOOT_NO_SWING = 3.0
+#: B91: a waist unit whose percentile exceeds this swung like a foot (rad/s; walking waists measured <= 2.4)
+WAIST_SWINGS = 4.0
+#: B91: relative tolerance of "the same data" (magnitudes, so that another declared frame does not hide it)
+SAME_RTOL = 1e-6
+
+
+def swing_rate(values: np.ndarray) -> float:
+    """The 99th percentile of the gyroscope magnitude (rad/s) of an (n, 3) array; nan when empty."""
+    v = np.asarray(values, dtype=float)
+    if v.ndim != 2 or len(v) == 0:
+        return float("nan")
+    return float(np.nanpercentile(np.linalg.norm(v, axis=1), SWING_PERCENTILE))
+
+
+def _same(a, b) -> bool:
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    if a.shape != b.shape or a.ndim != 2 or len(a) == 0:
+        return False
+    return bool(np.allclose(np.linalg.norm(a, axis=1), np.linalg.norm(b, axis=1), rtol=SAME_RTOL, atol=1e-9))
+
+
+def _files(session, unit: str) -> str:
+    """The CSV the unit was imported from (meta.json's import record), else its session files."""
+    recs = session.meta.get("imported")
+    recs = recs if isinstance(recs, list) else [recs] if isinstance(recs, dict) else []
+    for r in recs:
+        if isinstance(r, dict) and r.get("unit") == unit and r.get("file"):
+            return str(r["file"])
+    return " and ".join(f"{n}.csv" for n in UNIT_IMU[unit])
+
+
+def unit_mixup(session) -> str | None:
+    """Decision B91: why the session's foot and waist IMU files cannot be what they say (one line without the
+    session's name), or None. Needs both units' accelerometer + gyroscope; otherwise None."""
+    (fa, fg), (wa, wg) = UNIT_IMU["foot"], UNIT_IMU["waist"]
+    if not session.has(fa, fg, wa, wg):
+        return None
+    s = session.streams
+    foot, waist = _files(session, "foot"), _files(session, "waist")
+    imported = isinstance(session.meta.get("imported"), (list, dict))
+    if _same(s[fg].values, s[wg].values) and _same(s[fa].values, s[wa].values):
+        fix = ("import the waist unit's own file with --unit waist --merge" if imported
+               else "write the waist unit's own recording to wAccelerometer.csv and wGyroscope.csv")
+        return (f"the foot unit ({foot}) and the waist unit ({waist}) hold the same data (one recording given as "
+                f"both units; decision B91): {fix}, or remove the waist files to track the foot alone")
+    f99, w99 = swing_rate(s[fg].values), swing_rate(s[wg].values)
+    if f99 < FOOT_NO_SWING and w99 > WAIST_SWINGS:
+        fix = (f"import {waist} as the foot unit (--unit foot) and {foot} with --unit waist --merge, into a new "
+               "--out" if imported else "swap the f* and w* files (fAccelerometer.csv <-> wAccelerometer.csv, "
+               "fGyroscope.csv <-> wGyroscope.csv) and their \"frames\" entries in meta.json")
+        deg = np.degrees
+        return (f"the foot and waist files look swapped: the foot unit ({foot}) turns at {deg(f99):.0f} deg/s "
+                f"(99th percentile of |gyro|) while the waist unit ({waist}) swings at {deg(w99):.0f} deg/s, as a "
+                f"foot does (decision B91); {fix}")
+    return None
