@@ -14,6 +14,7 @@ from scipy.spatial.transform import Rotation
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import THESIS_FOOT_FRAME, THESIS_WAIST_FRAME
 from pdrlearn.io.session import Session, Stream
+from pdrlearn.kernels.barometer import STANDARD_P0_HPA, pressure_hpa  # one formula: simulator and tracker (W89)
 from pdrlearn.sim import sensors as sn
 from pdrlearn.sim.body import (
     BOUNCE_MODES,
@@ -31,7 +32,6 @@ from pdrlearn.sim.kernels import (
     angular_rate_body,
     block_mean,
     earth_field_enu,
-    pressure_hpa,
     specific_force_body,
 )
 from pdrlearn.sim.path import Footstep, Segment, plan_footsteps
@@ -324,7 +324,7 @@ def simulate_path(
         dist = np.column_stack([np.interp(t100, t100[::10], coarse[:, j]) for j in range(3)])
     b_body = np.einsum("nji,nj->ni", R_p100, b_enu[None, :] + dist)
     mag_w, e_m = sn.magnetometer_readout(_to_sensor(b_body, waist_m, mis_w), s_rng, noise=noise)
-    p0 = float(env_rng.uniform(*sn.BARO_P0_RANGE)) if noise else 1013.25
+    p0 = float(env_rng.uniform(*sn.BARO_P0_RANGE)) if noise else STANDARD_P0_HPA
     baro, e_b = sn.barometer_readout(
         pressure_hpa(sn.BUILDING_ALTITUDE_M + p_w100[:, 2], p0),
         t100,
