@@ -258,6 +258,7 @@ def _validators() -> dict[tuple[str, str], object]:
     """(command, parameter name) -> a function that raises on a value the command refuses, from the lists the
     commands check against (so a renamed choice fails here as it would for the user)."""
     from pdrlearn.classify.training import CV_GROUPS, METHODS, check_settings
+    from pdrlearn.cli.simulate import parse_mount
     from pdrlearn.displace.foot import REFERENCE_POINTS
     from pdrlearn.io.external import SOURCES
     from pdrlearn.io.importer import _TIME_SCALE, _resolve_unit, _time_word, parse_frame
@@ -310,6 +311,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("calibrate", "pipeline"): _one_of(calibrated),
         ("simulate", "scenario"): _one_of(SCENARIOS),
         ("simulate", "route"): parse_route,
+        ("simulate", "waist_mount"): parse_mount,  # AXIS:DEG[,AXIS:DEG] (decision S34)
         ("simulate", "speed"): _one_of(SPEEDS),
         ("simulate", "pelvis"): _one_of(PELVIS_MODES),
         ("simulate", "bounce"): _one_of(BOUNCE_MODES),  # decision S29

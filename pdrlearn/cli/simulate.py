@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import typer
@@ -13,6 +14,11 @@ from pdrlearn.errors import DataError
 #: shuffle to a 1.0 m stride-long step, from 24 to 150 steps/min (0.04-2.5 m/s); the simulator walked all four
 #: corners (0.1 m x 0.4 / 2.5 s, 1.0 m x 0.4 / 2.5 s) with the steps asked for
 STEP_LENGTH_RANGE_M, STEP_TIME_RANGE_S = (0.1, 1.0), (0.4, 2.5)
+#: decision S33: `simulate --mag-disturbance` (uT, sd of the indoor field disturbances): from none to twice the
+#: 45 uT Earth field the simulator uses (a steel-framed corridor); the Python knob has no upper bound
+MAG_DISTURBANCE_MAX_UT = 90.0
+#: decision S34: the body axes `--waist-mount AXIS:DEG` turns the waist unit about (forward, left, up)
+MOUNT_AXES = {"x": 0, "y": 1, "z": 2}
 
 
 def simulate_cmd(
@@ -62,6 +68,17 @@ def simulate_cmd(
         help="constant (default): the user's pelvis bounce on every step; pendulum: scaled by the inverted "
         "pendulum's rise for each step's length, so short slow steps bounce less (decision S29).",
     ),
+    heading0: float = typer.Option(
+        0.0, "--heading0", help="Initial walking direction (deg, ENU: 0 = east, 90 = north, counter-clockwise), "
+        "-360 to 360; the magnetometer sees it, a waist-only track does not (decision S32)."),
+    mag_disturbance: float = typer.Option(
+        3.0, "--mag-disturbance", help=f"SD of the indoor magnetic field disturbances (uT), 0-"
+        f"{MAG_DISTURBANCE_MAX_UT:g} (default 3; 0 = the clean Earth field; decision S33)."),
+    waist_mount: str | None = typer.Option(
+        None, "--waist-mount", help="Turn the waist unit on the belt, AXIS:DEG about the body's x (forward), y "
+        "(left) or z (up), e.g. 'z:90' or 'z:90,x:180' (applied right to left as rotations of the unit); "
+        "meta.json keeps the belt frame, so the tracker's frame inference and its warnings are what this "
+        "exercises (decision S34)."),
     no_noise: bool = typer.Option(False, "--no-noise", help="Exact physics: no noise, bias or quantisation."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -102,6 +119,12 @@ def simulate_cmd(
         raise DataError("--user-seed and --seed must be non-negative integers")
     if not -90.0 <= foot_mount_pitch <= 90.0:  # beyond +-90 deg the unit would be mounted upside down
         raise DataError(f"--foot-mount-pitch {foot_mount_pitch:g}: give a tilt between -90 and 90 degrees")
+    if not (math.isfinite(heading0) and -360.0 <= heading0 <= 360.0):  # decision S32
+        raise DataError(f"--heading0 {heading0:g}: give the initial direction in degrees, -360 to 360 "
+                        "(0 = east, 90 = north)")
+    if not (math.isfinite(mag_disturbance) and 0.0 <= mag_disturbance <= MAG_DISTURBANCE_MAX_UT):  # S33
+        raise DataError(f"--mag-disturbance {mag_disturbance:g}: give 0-{MAG_DISTURBANCE_MAX_UT:g} uT")
+    mount = parse_mount(waist_mount)  # decision S34
     user = UserProfile.from_seed(user_seed)
     custom = _custom_gait(user, speed, step_length, step_time, route)  # decision S30
     if out.exists() and (not out.is_dir() or any(out.iterdir())):
@@ -115,6 +138,9 @@ def simulate_cmd(
         noise=not no_noise,
         pelvis=pelvis,
         bounce=bounce,
+        heading0_deg=heading0,
+        mag_disturbance_ut=mag_disturbance,
+        waist_mount_deg=mount,
     )
     label = scenario or "route"
     with progress(f"simulating {label}", total=2, enabled=not as_json) as advance:
@@ -166,11 +192,34 @@ def simulate_cmd(
         )
 
 
+def parse_mount(spec: str | None) -> tuple[float, float, float]:
+    """Decision S34: ``--waist-mount 'z:90,x:180'`` -> the rotation vector (deg) of the unit's turn about the body
+    axes (:data:`MOUNT_AXES`), the items applied right to left; None or empty -> no turn. One error line for a
+    malformed item."""
+    from scipy.spatial.transform import Rotation
+
+    if spec is None or not spec.strip():
+        return (0.0, 0.0, 0.0)
+    rot = Rotation.identity()
+    for item in spec.split(","):
+        axis, _, deg = item.strip().partition(":")
+        try:
+            angle = float(deg)
+        except ValueError:
+            angle = math.nan
+        if axis.strip().lower() not in MOUNT_AXES or not math.isfinite(angle) or not -360 <= angle <= 360:
+            raise DataError(f"--waist-mount {spec!r}: '{item.strip()}' is not AXIS:DEG; give x, y or z (forward, "
+                            "left, up) and -360 to 360 degrees, e.g. 'z:90' or 'z:90,x:180'")
+        vec = [0.0, 0.0, 0.0]
+        vec[MOUNT_AXES[axis.strip().lower()]] = math.radians(angle)
+        rot = rot * Rotation.from_rotvec(vec)
+    return tuple(round(float(v), 9) for v in math.degrees(1.0) * rot.as_rotvec())
+
+
 def _custom_gait(user, speed: str, step_length: float | None, step_time: float | None, route: str | None):
     """The user with the step length / time walked at ``speed`` set to the given values (decision S30), or None
     when neither is given; one error line for a value outside its range or without --route."""
     import dataclasses
-    import math
 
     from pdrlearn.sim.user import SPEED_FACTORS
 

@@ -16,6 +16,7 @@ Modules
 - :mod:`~pdrlearn.kernels.stride` - per-stride displacement (ZUPT, M3 rules) and position update.
 - :mod:`~pdrlearn.kernels.bayes` - the bayes class rule's stride length and the confidence gate (L14, L18).
 - :mod:`~pdrlearn.kernels.altitude_check` - the height warnings of a foot track (L69, C28; E47: track and run).
+- :mod:`~pdrlearn.kernels.barometer` - the barometric formula and the relative altitude of a barometer (W89).
 
 This ``__init__`` imports nothing (importing a submodule never loads the others).
 """

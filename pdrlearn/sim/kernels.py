@@ -213,11 +213,6 @@ def block_mean(x: np.ndarray, k: int) -> np.ndarray:
 
 
 # -- environment -----------------------------------------------------------------------------------
-def pressure_hpa(altitude_m: np.ndarray, p0_hpa: float) -> np.ndarray:
-    """International barometric formula: pressure (hPa) at ``altitude_m`` for sea-level ``p0_hpa``."""
-    return p0_hpa * (1.0 - 2.25577e-5 * np.asarray(altitude_m, dtype=float)) ** 5.25588
-
-
 def earth_field_enu(total_ut: float, inclination_deg: float, declination_deg: float = 0.0) -> np.ndarray:
     """Earth magnetic field vector (uT) in ENU: horizontal toward magnetic north, dipping down."""
     inc, dec = np.radians(inclination_deg), np.radians(declination_deg)

@@ -14,6 +14,7 @@ from scipy.spatial.transform import Rotation
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import THESIS_FOOT_FRAME, THESIS_WAIST_FRAME
 from pdrlearn.io.session import Session, Stream
+from pdrlearn.kernels.barometer import STANDARD_P0_HPA, pressure_hpa  # one formula: simulator and tracker (W89)
 from pdrlearn.sim import sensors as sn
 from pdrlearn.sim.body import (
     BOUNCE_MODES,
@@ -31,7 +32,6 @@ from pdrlearn.sim.kernels import (
     angular_rate_body,
     block_mean,
     earth_field_enu,
-    pressure_hpa,
     specific_force_body,
 )
 from pdrlearn.sim.path import Footstep, Segment, plan_footsteps
@@ -62,6 +62,9 @@ KNOBS: dict[str, object] = {
     "baro_drift_hpa_per_h": 0.3,  # sd of the weather drift slope
     "length_m": 1000.0,  # scenario "walk" only: path length
     "foot_mount_pitch_deg": 0.0,  # extra toes-down tilt of the foot unit (e.g. 50 for an instep mount)
+    # the waist unit turned on the belt: a rotation vector (deg) about the body's forward, left and up axes, on top
+    # of the user's few-degree misalignment; meta.json's frame stays the belt's (decision S34)
+    "waist_mount_deg": (0.0, 0.0, 0.0),
     "device_errors": True,  # accelerometer scale factors per unit (the user's own), not per session (S22)
     "pelvis": "model",  # "realistic": roll toward the stance side and a smaller sway, drawn per user (S27)
     "bounce": "constant",  # "pendulum": the pelvis bounce scales with the step length (S29)
@@ -97,9 +100,17 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError(f"simulate: pelvis={out['pelvis']!r} must be one of {', '.join(PELVIS_MODES)}")
     if out["bounce"] not in BOUNCE_MODES:
         raise DataError(f"simulate: bounce={out['bounce']!r} must be one of {', '.join(BOUNCE_MODES)}")
+    mount = out["waist_mount_deg"]
+    try:
+        ok = len(mount) == 3 and all(math.isfinite(float(v)) and not isinstance(v, bool) for v in mount)
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
+        raise DataError(f"simulate: waist_mount_deg={mount!r} must be three finite numbers (a rotation vector, deg)")
+    out["waist_mount_deg"] = tuple(float(v) for v in mount)
     for k, default in KNOBS.items():
         v = out[k]
-        if isinstance(default, bool | str):
+        if isinstance(default, bool | str | tuple):
             continue
         if isinstance(v, bool) or not isinstance(v, int | float | np.number) or not math.isfinite(v):
             raise DataError(f"simulate: {k}={v!r} must be a finite number")
@@ -306,7 +317,9 @@ def simulate_path(
     p_w = p_pel + R_p @ r_waist
     fw_body = block_mean(specific_force_body(p_w, R_p, dt), OVERSAMPLE)
     ww_body = block_mean(angular_rate_body(R_p, dt), OVERSAMPLE)
-    mis_w = _misalignment(user.waist_misalignment_deg)
+    mis_w = _misalignment(list(opt["waist_mount_deg"])) @ _misalignment(user.waist_misalignment_deg)  # S34
+    waist_mis_deg = (user.waist_misalignment_deg if not any(opt["waist_mount_deg"]) else
+                     [round(float(v), 9) for v in np.degrees(Rotation.from_matrix(mis_w).as_rotvec())])
     waist_m = THESIS_WAIST_FRAME.matrix()
     acc_w, e_aw = sn.imu_readout(
         _to_sensor(fw_body, waist_m, mis_w), sn.WAIST_ACC, s_rng, noise=noise, device_rng=unit("wAccelerometer")
@@ -324,7 +337,7 @@ def simulate_path(
         dist = np.column_stack([np.interp(t100, t100[::10], coarse[:, j]) for j in range(3)])
     b_body = np.einsum("nji,nj->ni", R_p100, b_enu[None, :] + dist)
     mag_w, e_m = sn.magnetometer_readout(_to_sensor(b_body, waist_m, mis_w), s_rng, noise=noise)
-    p0 = float(env_rng.uniform(*sn.BARO_P0_RANGE)) if noise else 1013.25
+    p0 = float(env_rng.uniform(*sn.BARO_P0_RANGE)) if noise else STANDARD_P0_HPA
     baro, e_b = sn.barometer_readout(
         pressure_hpa(sn.BUILDING_ALTITUDE_M + p_w100[:, 2], p0),
         t100,
@@ -402,7 +415,7 @@ def simulate_path(
         "clock_drift_ppm": float(opt["clock_drift_ppm"]),
         "time_base": "foot unit clock; labels and trajectory use it; waist = foot * (1 + drift) + offset",
         "dropped_samples": int((~foot_keep).sum()),
-        "misalignment_deg": {"foot": foot_mis_deg, "waist": user.waist_misalignment_deg},
+        "misalignment_deg": {"foot": foot_mis_deg, "waist": waist_mis_deg},
         "sensor_errors": {
             "fAccelerometer": e_af,
             "fGyroscope": e_gf,
@@ -413,7 +426,8 @@ def simulate_path(
         },
         "earth_field_enu_ut": [float(v) for v in b_enu],
         # the default pelvis is left out so that default sessions (and their meta.json) are as before S27
-        "knobs": {k: v for k, v in opt.items() if k not in ("pelvis", "bounce") or v != KNOBS[k]},
+        "knobs": {k: (list(v) if isinstance(v, tuple) else v) for k, v in opt.items()
+                  if k not in ("pelvis", "bounce", "waist_mount_deg") or v != KNOBS[k]},
         "n_steps": len(steps),
         "n_strides": int(len(strides)),
         "distance_m": float(strides["length_m"].sum()) if len(strides) else 0.0,

@@ -98,9 +98,11 @@ def _start(start, initial_heading: float) -> tuple[float, float, float, tuple[fl
     raise DataError(f"start {start!r}: pass (lat, lon) in degrees or a dict with x, y (m) and heading_rad")
 
 
-def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: float) -> TrackResult:
+def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: float,
+            z: np.ndarray | None = None) -> TrackResult:
     """TrackResult from a steps table with ``length_m`` and navigation-frame ``heading_rad``: headings
-    rotated by the start heading (ENU), trajectory = cumulative positions (plus lat/lon)."""
+    rotated by the start heading (ENU), trajectory = cumulative positions (plus lat/lon). ``z``: the altitude
+    (m) at ``t0`` and at each step's end (decision W89; None: 0 throughout), each step's ``dz_m`` its change."""
     from pdrlearn.track.geodetic import geodetic_track
 
     x0, y0, h0, latlon = _start(start, initial_heading)
@@ -108,15 +110,57 @@ def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: 
     lengths = out["length_m"].to_numpy(float)
     head = np.angle(np.exp(1j * (out["heading_rad"].to_numpy(float) + h0)))
     out["heading_rad"] = head
-    out["dz_m"] = 0.0
+    z = np.zeros(len(out) + 1) if z is None else np.asarray(z, dtype=float)
+    out["dz_m"] = np.diff(z)
     traj = pd.DataFrame({"t": np.concatenate([[t0], out["end_s"].to_numpy(float)]),
                          "x": x0 + np.concatenate([[0.0], np.cumsum(lengths * np.cos(head))]),
                          "y": y0 + np.concatenate([[0.0], np.cumsum(lengths * np.sin(head))]),
-                         "z": 0.0})
+                         "z": z})
     if latlon is not None:
         ll = geodetic_track(latlon, lengths, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     return TrackResult(steps=out, trajectory=traj, info=info)
+
+
+#: decision W90: the one line of a lower-back track without a barometer
+NO_BAROMETER = ("no barometer (wBarometer.csv): a lower-back track has no altitude - z stays 0 and no floors "
+                "are counted, also on stairs")
+#: decision W91 (candidate, option ``stairs_length``): a step is on stairs when the barometric altitude changes
+#: by at least this rate (m/s) over :data:`STAIRS_RATE_WINDOW_S` centred on it: half the rate of a 0.17 m riser
+#: (the simulator's stair) climbed at 1.2 steps/s, a slow climb; level walking changes no altitude
+STAIRS_RATE_MPS = 0.1
+STAIRS_RATE_WINDOW_S = 2.0
+#: decision W91: the horizontal length of a step on stairs is at most the tread, "about 30cm" (thesis
+#: ch.7.3.2.1, scenario D's stairs)
+STAIR_TREAD_M = 0.30
+
+
+def _altitude(session: Session, t: np.ndarray, warnings: list[str]) -> np.ndarray | None:
+    """Decision W89: the altitude (m, relative to ``t[0]``) at the times ``t`` from the waist barometer
+    (:func:`pdrlearn.kernels.barometer.relative_altitude`); None, with :data:`NO_BAROMETER` added to
+    ``warnings`` (W90), when the session has none."""
+    from pdrlearn.kernels.barometer import relative_altitude
+
+    if not session.has("wBarometer") or not len(session["wBarometer"]):
+        warnings.append(NO_BAROMETER)
+        return None
+    b = session["wBarometer"]
+    return relative_altitude(b.t, b.values[:, 0], t)
+
+
+def _stairs_steps(session: Session, steps: pd.DataFrame) -> np.ndarray:
+    """Decision W91: the steps on stairs - the barometric altitude changes by :data:`STAIRS_RATE_MPS` or more
+    over :data:`STAIRS_RATE_WINDOW_S` centred on the step's middle (all False without a barometer)."""
+    from pdrlearn.kernels.barometer import relative_altitude
+
+    if not session.has("wBarometer") or not len(steps):
+        return np.zeros(len(steps), dtype=bool)
+    b = session["wBarometer"]
+    mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
+    half = 0.5 * STAIRS_RATE_WINDOW_S
+    h = relative_altitude(b.t, b.values[:, 0], np.concatenate([mid - half, mid + half]))
+    n = len(mid)
+    return np.abs(h[n:] - h[:n]) / STAIRS_RATE_WINDOW_S >= STAIRS_RATE_MPS
 
 
 def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
@@ -269,7 +313,8 @@ def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, 
 #: pipeline options a PARAMS.json may set under "options" (so ``pdrlearn track --params`` reaches them)
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
-                   "merge_fragments": True, "length_smoothing": "none", "relative_gate": True}
+                   "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
+                   "stairs_length": False}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -286,7 +331,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 resolve_signs: bool | None = None, integrate_stops: bool | None = None,
                 turn_factor: bool | None = None, rhythm: bool | None = None,
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
-                relative_gate: bool | None = None) -> TrackResult:
+                relative_gate: bool | None = None, stairs_length: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -318,6 +363,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         ``min(0.5, max(0.15, 0.5 x P90))`` of the session's own 2 s vertical SD (decision W76,
         :func:`~pdrlearn.waist._kernels.relative_walk_threshold`); default True since W76's rule held (False:
         W4's 0.5)
+    stairs_length : a step on stairs (the barometric altitude changes by 0.1 m/s or more) is at most the
+        0.30 m tread long (decision W91's candidate; default False)
+
+    The altitude (trajectory ``z``, steps ``dz_m``) is the waist barometer's, relative to the start (decision
+    W89); without a barometer it stays 0 with one warning (W90).
 
     Options left at ``None`` take the value of ``params.options`` (a PARAMS.json ``"options"`` object)
     and else :data:`OPTION_DEFAULTS`.
@@ -331,7 +381,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
              "merge_fragments": merge_fragments, "length_smoothing": length_smoothing,
-             "relative_gate": relative_gate}
+             "relative_gate": relative_gate, "stairs_length": stairs_length}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -371,7 +421,13 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = cut_steps_at_gaps(steps, gaps)
     steps = _step_lengths(steps, imu, p, pipeline, thr, turn_factor=bool(o["turn_factor"]),
                           merge_fragments=bool(o["merge_fragments"]), length_smoothing=smoothing)
+    stairs = _stairs_steps(session, steps)
+    if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
+        steps = steps.assign(length_m=np.where(stairs, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
+                                               steps["length_m"].to_numpy(float)))
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops)
+    steps = steps.assign(stairs=stairs)
+    z = _altitude(session, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float)]), warnings)
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
         warnings.append(no_steps_message(thr, sigma, "params" if p.walk_threshold_mps2 is not None
@@ -393,7 +449,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)
-    return _result(steps, start, initial_heading, info, float(imu.t[0]))
+    return _result(steps, start, initial_heading, info, float(imu.t[0]), z)
 
 
 def no_steps_message(thr: float, sigma: np.ndarray, source: str) -> str:
@@ -415,7 +471,7 @@ def no_steps_message(thr: float, sigma: np.ndarray, source: str) -> str:
 _STEP_COLUMNS = {"start_s": float, "end_s": float, "event_s": float, "unit": "string", "confidence": float,
                  "fc_s": float, "has_next": bool, "h_m": float, "merged": bool, "length_m": float,
                  "frequency_hz": float, "dyaw_rad": float, "heading_rad": float, "turning": "int64",
-                 "mean_rate_rps": float}
+                 "mean_rate_rps": float, "stairs": bool}
 
 
 def no_walking_message(walk_s: float, outcome: str) -> str:
