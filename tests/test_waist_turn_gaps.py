@@ -45,6 +45,18 @@ def test_untracked_turn_measures_a_turn_the_headings_drop():
     assert untracked_turn(imu, np.zeros(0), np.zeros(0), np.zeros(0))[0] == 0.0
 
 
+def test_untracked_turn_wraps_the_difference_of_wrapped_headings():
+    """W80: a 190 deg turn whose step headings are wrapped to -170 deg is kept, not a missed 360 deg."""
+    t = np.arange(0, 10, 0.01)
+    turn = np.radians(190.0)
+    w = np.where((t > 4) & (t < 6), turn / 2.0, 0.0)
+    ends = np.array([2.0, 3.0, 7.0, 8.0])
+    wrapped = np.angle(np.exp(1j * np.array([0.0, 0.0, turn, turn])))
+    assert wrapped[-1] < 0  # the input really is wrapped at +-180 deg
+    diff, _ = untracked_turn(SimpleNamespace(t=t, w_z=w), np.array([1.0]), ends, wrapped)
+    assert abs(diff) < np.radians(1)
+
+
 def test_tug_turns_made_during_undetected_steps_are_kept_by_default():
     """W72/W73: the default keeps the yaw turned between walking sequences; without it the track warns (W74)."""
     s = _tug()

@@ -198,6 +198,12 @@ def gyro_headings(imu: WaistIMU, events: np.ndarray, *, classifier: TurnClassifi
 UNTRACKED_TURN_WARN_DEG = 60.0
 
 
+def turn_gap(gyro_yaw, heading):
+    """Decision W80: gyroscope yaw minus step heading (rad) as a direction difference, wrapped to (-pi, pi]: either
+    may be wrapped, and a wrapped U-turn must not read as a missed full turn."""
+    return np.angle(np.exp(1j * (np.asarray(gyro_yaw, np.float64) - np.asarray(heading, np.float64))))
+
+
 def untracked_turn(imu: WaistIMU, events: np.ndarray, ends: np.ndarray, headings: np.ndarray, *,
                    bias_rps: float = 0.0, cum: np.ndarray | None = None) -> tuple[float, float]:
     """Decision W74: the largest difference (rad, signed: gyroscope minus heading) between the vertical rate
@@ -205,14 +211,14 @@ def untracked_turn(imu: WaistIMU, events: np.ndarray, ends: np.ndarray, headings
     (rad, 0 at the first contact, as :func:`gyro_headings` and the pipelines' ``integrate_stops`` give it), and
     the time (s) of that step's end. ``(0.0, nan)`` without steps. The heading drops a turn made during
     undetected steps or while standing (``integrate_stops`` off), or on strides the turn classifier calls
-    straight; an uncalibrated gyroscope bias adds ``bias x time``."""
+    straight; an uncalibrated gyroscope bias adds ``bias x time``. The difference is wrapped (:func:`turn_gap`)."""
     ev, en = np.asarray(events, np.float64), np.asarray(ends, np.float64)
-    hd = np.unwrap(np.asarray(headings, np.float64))
+    hd = np.asarray(headings, np.float64)
     if ev.size == 0 or en.size == 0:
         return 0.0, float("nan")
     w = imu.w_z - bias_rps
     cum = K.rate_integral(imu.t, w) if cum is None else cum
-    diff = np.asarray(K.integrate_rate(imu.t, w, np.full(en.shape, ev[0]), en, cum=cum)) - hd
+    diff = turn_gap(K.integrate_rate(imu.t, w, np.full(en.shape, ev[0]), en, cum=cum), hd)  # decision W80
     k = int(np.argmax(np.abs(diff)))
     return float(diff[k]), float(en[k])
 

@@ -391,11 +391,11 @@ class WaistTracker:
     def _check_untracked(self, row: dict, h: float) -> None:
         """Decision W74, as ``track_waist``: one warning when a step's heading ``h`` (rad, before the start rotation)
         misses :data:`pdrlearn.waist.heading.UNTRACKED_TURN_WARN_DEG` of the yaw turned since the first contact."""
-        from pdrlearn.waist.heading import UNTRACKED_TURN_WARN_DEG, untracked_turn_message
+        from pdrlearn.waist.heading import UNTRACKED_TURN_WARN_DEG, turn_gap, untracked_turn_message
 
         if self._untracked_warned or self._cum_first is None:
             return
-        diff = np.degrees(float(np.interp(row["end"], self._bt, self._bc)) - self._cum_first - h)
+        diff = np.degrees(float(turn_gap(float(np.interp(row["end"], self._bt, self._bc)) - self._cum_first, h)))
         if abs(diff) >= UNTRACKED_TURN_WARN_DEG:
             self._untracked_warned = True
             msg = untracked_turn_message(float(diff), float(row["end"]), bool(self.options["integrate_stops"]))
