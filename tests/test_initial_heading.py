@@ -91,3 +91,19 @@ def test_initial_heading_with_fixes_is_refused_before_tracking(walks, tmp_path, 
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and len(err) == 1 and "--gnss / --fixes give the track its direction" in err[0], err
     assert not (tmp_path / "x").exists()
+
+
+@pytest.mark.parametrize("where", ["initial_heading", "start"])
+def test_python_api_refuses_a_heading_in_degrees(where):
+    """W81: the Python API takes radians; 90 (degrees, as the CLI's --initial-heading) is one error line naming the
+    unit, for the live WaistTracker and track_waist alike; 1.57 rad is taken."""
+    from pdrlearn.errors import DataError
+    from pdrlearn.waist import WaistTracker
+
+    def make(v):
+        kw = {"initial_heading": v} if where == "initial_heading" else {"start": {"x": 0.0, "y": 0.0, "heading_rad": v}}
+        return WaistTracker(50.0, sensor_height_m=1.0, **kw)
+
+    with pytest.raises(DataError, match=r"in radians.*math\.radians\(90"):
+        make(90)
+    assert make(math.pi / 2).heading == pytest.approx(math.pi / 2)

@@ -79,9 +79,26 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine
     return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector="pll+ic" if refine_ic else "pll")
 
 
+def heading_in_radians(value: float, name: str) -> float:
+    """Decision W81: a start heading given to the Python API is in radians; a magnitude above 2 pi is a value in
+    degrees (the CLI's ``--initial-heading DEG``) and is one error line naming the unit, not a silent 90 rad."""
+    import math
+
+    v = float(value)
+    if not math.isfinite(v) or abs(v) > 2 * math.pi:
+        raise DataError(f"{name}={value!r}: the heading is in radians (ENU, counter-clockwise from east; "
+                        f"|value| <= 2 pi); for degrees pass math.radians({value!r}) (the CLI's --initial-heading "
+                        "takes degrees)")
+    return v
+
+
 def _start(start, initial_heading: float) -> tuple[float, float, float, tuple[float, float] | None]:
     """``(x0, y0, heading0, latlon)`` from ``start``: None, a dict ``x``/``y``/``heading_rad`` (m, rad)
-    or a ``(lat, lon)`` pair in degrees (the ``pdrlearn track --start`` form)."""
+    or a ``(lat, lon)`` pair in degrees (the ``pdrlearn track --start`` form). Headings are checked to be radians
+    (:func:`heading_in_radians`, decision W81)."""
+    initial_heading = heading_in_radians(initial_heading, "initial_heading")
+    if isinstance(start, dict) and isinstance(start.get("heading_rad"), int | float):
+        start = {**start, "heading_rad": heading_in_radians(start["heading_rad"], "start heading_rad")}
     if start is None:
         return 0.0, 0.0, initial_heading, None
     if isinstance(start, dict):
@@ -295,7 +312,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         from meta.json, with a warning)
     start : ``(lat, lon)`` degrees (adds ``lat``/``lon`` columns) or a dict ``x``, ``y`` (m),
         ``heading_rad`` (rad, ENU; 0 = east); default: origin
-    initial_heading : ENU heading (rad) given to the unit's initial facing direction (no magnetometer)
+    initial_heading : ENU heading (rad, |value| <= 2 pi, else refused: W81) given to the unit's initial facing
+        direction (no magnetometer)
     realtime : pendulum only: the causal IC detector instead of the zero-lag offline one
     refine_ic : PLL only: report each step at the initial contact next to its PLL peak (W11)
     heading : ``"ahe"`` (default of waist-pll, seed 000), ``"ellipse"`` (seed 001 closed form on the

@@ -111,7 +111,9 @@ class WaistTracker:
         "forward"}``, ``"x=up,y=right,z=forward"`` or a 3x3 sensor -> body FLU matrix); None: ``meta``'s, else
         inferred from the first walking (W65)
     start : ``{"x": m, "y": m, "heading_rad": rad}`` (ENU) or None (origin); ``(lat, lon)`` is not supported live
-    initial_heading, integrate_stops, turn_factor, rhythm, merge_fragments : as :func:`pdrlearn.track.waist.
+    initial_heading : the direction the walker sets off in, radians ENU (counter-clockwise from east; 0 = east, the
+        default); a magnitude above 2 pi (degrees, as the CLI's ``--initial-heading``) is refused (decision W81)
+    integrate_stops, turn_factor, rhythm, merge_fragments : as :func:`pdrlearn.track.waist.
         track_waist` (None: ``params.options``, else its defaults)
     keep_steps : how many reported steps :attr:`steps` keeps (None: all)
 
