@@ -199,6 +199,15 @@ def test_inputs_checked_in_one_line():
         WaistTracker(0.0)
 
 
+def test_a_params_heading_the_live_tracker_cannot_honour_is_warned():
+    """W82: PARAMS.json "options": {"heading": "ellipse"} is not silently replaced by the gyro heading live."""
+    asked = WaistTracker(100.0, frame="x=up,y=right,z=forward", params={"options": {"heading": "ellipse"}})
+    assert asked.options["heading"] == "gyro"
+    assert [w for w in asked.warnings if "heading 'ellipse'" in w and "W82" in w]
+    plain = WaistTracker(100.0, frame="x=up,y=right,z=forward", params={"options": {"heading": "gyro"}})
+    assert not [w for w in plain.warnings if "W82" in w]
+
+
 def test_the_docs_example_runs(monkeypatch, capsys):
     """docs/waist.md "Live tracking": the example runs and prints what the docs show."""
     monkeypatch.chdir(ROOT)

@@ -57,6 +57,30 @@ def test_untracked_turn_wraps_the_difference_of_wrapped_headings():
     assert abs(diff) < np.radians(1)
 
 
+def test_w74_line_names_the_curve_remedies():
+    """W82: with integrate_stops on, the line names what tracks a curve (ellipse heading, waist-pll) and the bias fit."""
+    from pdrlearn.waist.heading import untracked_turn_message
+
+    line = untracked_turn_message(184.0, 30.0, True)
+    assert '"heading": "ellipse"' in line and "--pipeline waist-pll" in line and "--fit-turns" in line
+
+
+def test_gentle_curves_are_kept_by_the_gyro_heading():
+    """W82: the indoor trial's gentle curves (15 and 25 m radii, 0.09 / 0.05 rad/s, under the GMM's 0.136 rad/s
+    boundary) are integrated by the 5-stride window; seed 003's classifier alone drops them."""
+    from pdrlearn.waist import heading as H
+
+    s = simulate_path(parse_route("straight:10, curve:90:15, straight:10, curve:90:25, straight:10"),
+                      UserProfile.from_seed(3), speed="normal", rate_hz=50.0, seed=4, name="g", scenario="route",
+                      bounce="pendulum")
+    kept = track_waist(s, pipeline="waist-pendulum")
+    assert evaluate_track(kept, s)["final_position_error_m"] < 15.0 and not _w74(kept.info["warnings"])
+    mrz = np.array([0.0, 0.03, 0.04, 0.05, 0.04, 0.03, 0.0])
+    assert H.slow_turn_strides(mrz, None).sum() == 0 and H.slow_turn_strides(mrz, 0.035)[3]
+    assert not H.slow_turn_strides(np.full(9, 0.02), 0.035).any()
+    assert not H.slow_turn_strides(np.tile([0.06, -0.06], 5), 0.035)[2:-2].any()  # a sway, not a curve
+
+
 def test_tug_turns_made_during_undetected_steps_are_kept_by_default():
     """W72/W73: the default keeps the yaw turned between walking sequences; without it the track warns (W74)."""
     s = _tug()

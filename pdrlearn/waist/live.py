@@ -157,6 +157,11 @@ class WaistTracker:
         if p.source == "calibrated" and p.pipeline not in (None, "waist-pendulum"):
             warnings.append(f"the parameters were calibrated for {p.pipeline}: the waist-pendulum step length "
                             "keeps its defaults (run 'pdrlearn calibrate --pipeline waist-pendulum')")
+        asked = (p.options or {}).get("heading")
+        if asked not in (None, "gyro"):  # decision W82: no silent override of the PARAMS.json heading
+            warnings.append(f"the PARAMS.json option heading '{asked}' is not available live: the live tracker uses "
+                            "the gyro heading, which drops gentle curves (decision W82); for those track the "
+                            "recording offline ('pdrlearn track' honours it)")
         self.options = o
         if isinstance(start, list | tuple):
             raise DataError("WaistTracker: start=(lat, lon) is not supported live; pass {'x': m, 'y': m, "
