@@ -107,3 +107,18 @@ def test_python_api_refuses_a_heading_in_degrees(where):
     with pytest.raises(DataError, match=r"in radians.*math\.radians\(90"):
         make(90)
     assert make(math.pi / 2).heading == pytest.approx(math.pi / 2)
+
+
+def test_waist_track_says_its_heading_is_relative_and_the_magnetometer_unused():
+    """W83: a waist track without a given start direction says its heading is relative to the start, and names a
+    recorded wMagneticField.csv as unused; given a start direction and no magnetometer, it says nothing."""
+    from pdrlearn import sim
+    from pdrlearn.track.waist import relative_heading_note, track_waist
+
+    walk = sim.simulate("walk", 1, length_m=12)
+    lines = [w for w in track_waist(walk, pipeline="waist-pendulum").info["warnings"] if "relative to the start" in w]
+    assert len(lines) == 1 and "--initial-heading" in lines[0] and "wMagneticField.csv is not used" in lines[0]
+    assert relative_heading_note(None, 0.0, False).startswith("waist heading relative to the start")
+    assert "wMagneticField" not in relative_heading_note(None, 0.0, False)
+    assert relative_heading_note(None, 1.0, False) is None
+    assert relative_heading_note({"x": 0.0, "y": 0.0, "heading_rad": 0.0}, 0.0, True).endswith("yourself")

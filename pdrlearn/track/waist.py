@@ -394,6 +394,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
         warnings.append(no_steps_message(thr, sigma, "params" if p.walk_threshold_mps2 is not None
                                          else "relative" if thr != WALK_THRESHOLD_MPS2 else "fixed"))
+    note = relative_heading_note(start, o["initial_heading"], "wMagneticField" in session)
+    if note:
+        warnings.append(note)
     n = len(steps)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"
     info = {
@@ -412,6 +415,21 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]))
+
+
+def relative_heading_note(start, initial_heading: float, has_magnetometer: bool) -> str | None:
+    """Decision W83: the one line saying a waist track's heading is relative to the start (no compass: W5), when
+    the start direction was not given, and that a recorded wMagneticField.csv is not used; None otherwise."""
+    given = bool(initial_heading) or (isinstance(start, dict) and "heading_rad" in start)
+    if given and not has_magnetometer:
+        return None
+    line = ("waist heading relative to the start (0 = the unit's initial facing, drawn as east); give the start "
+            "direction with --initial-heading DEG (initial_heading= rad in Python)" if not given else
+            "waist heading relative to the start, turned by the start direction given")
+    if has_magnetometer:
+        line += ("; wMagneticField.csv is not used: the waist pipelines have no compass heading (decision W5), "
+                 "so take the start direction from the phone's compass yourself")
+    return line
 
 
 def no_steps_message(thr: float, sigma: np.ndarray, source: str) -> str:
