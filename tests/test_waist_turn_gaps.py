@@ -58,27 +58,32 @@ def test_untracked_turn_wraps_the_difference_of_wrapped_headings():
 
 
 def test_w74_line_names_the_curve_remedies():
-    """W82: with integrate_stops on, the line names what tracks a curve (ellipse heading, waist-pll) and the bias fit."""
+    """W82: with integrate_stops on, the line names what tracks a curve (slow_turn_rps, ellipse heading, waist-pll)
+    and the bias fit."""
     from pdrlearn.waist.heading import untracked_turn_message
 
     line = untracked_turn_message(184.0, 30.0, True)
-    assert '"heading": "ellipse"' in line and "--pipeline waist-pll" in line and "--fit-turns" in line
+    assert '"slow_turn_rps": 0.035' in line and '"heading": "ellipse"' in line and "--pipeline waist-pll" in line
+    assert "--fit-turns" in line
 
 
-def test_gentle_curves_are_kept_by_the_gyro_heading():
+def test_gentle_curves_are_kept_with_the_slow_turn_option():
     """W82: the indoor trial's gentle curves (15 and 25 m radii, 0.09 / 0.05 rad/s, under the GMM's 0.136 rad/s
-    boundary) are integrated by the 5-stride window; seed 003's classifier alone drops them."""
+    boundary) are dropped by seed 003's classifier (the default, with the W74 warning) and kept by the 5-stride
+    window (k-3..k+1) of ``slow_turn_rps``."""
     from pdrlearn.waist import heading as H
 
     s = simulate_path(parse_route("straight:10, curve:90:15, straight:10, curve:90:25, straight:10"),
                       UserProfile.from_seed(3), speed="normal", rate_hz=50.0, seed=4, name="g", scenario="route",
                       bounce="pendulum")
-    kept = track_waist(s, pipeline="waist-pendulum")
+    dropped = track_waist(s, pipeline="waist-pendulum")
+    kept = track_waist(s, pipeline="waist-pendulum", slow_turn_rps=H.SLOW_TURN_RPS)
+    assert evaluate_track(dropped, s)["final_position_error_m"] > 50.0 and _w74(dropped.info["warnings"])
     assert evaluate_track(kept, s)["final_position_error_m"] < 15.0 and not _w74(kept.info["warnings"])
     mrz = np.array([0.0, 0.03, 0.04, 0.05, 0.04, 0.03, 0.0])
-    assert H.slow_turn_strides(mrz, None).sum() == 0 and H.slow_turn_strides(mrz, 0.035)[3]
+    assert H.slow_turn_strides(mrz, 0.0).sum() == 0 and H.slow_turn_strides(mrz, 0.035)[4]
     assert not H.slow_turn_strides(np.full(9, 0.02), 0.035).any()
-    assert not H.slow_turn_strides(np.tile([0.06, -0.06], 5), 0.035)[2:-2].any()  # a sway, not a curve
+    assert not H.slow_turn_strides(np.tile([0.06, -0.06], 5), 0.035)[3:-1].any()  # a sway, not a curve
 
 
 def test_tug_turns_made_during_undetected_steps_are_kept_by_default():

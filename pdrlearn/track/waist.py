@@ -216,7 +216,7 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
 
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
-                   resolve_signs: bool, integrate_stops: bool = False) -> pd.DataFrame:
+                   resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0) -> pd.DataFrame:
     """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
     (gyro method) and ``mean_rate_rps`` (stride mean vertical rate, MRZ of seed 003 sec. 3.3). Headings
     carry over between walking sequences; a sequence-closing contact keeps the last heading."""
@@ -240,7 +240,7 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
                 current += K.integrate_rate(imu.t, w, ev_all[seqs[j - 1][-1]], ev_all[seq[0]], cum=cum)
             if len(seq) > 1:
                 hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
-                                       heading0=current, cum=cum)
+                                       heading0=current, cum=cum, slow_turn_rps=slow_turn_rps)
                 turning[seq[:-1]] = tr
                 current = float(hd[-1])
                 per_seq.append(hd)
@@ -286,7 +286,7 @@ def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, 
 #: pipeline options a PARAMS.json may set under "options" (so ``pdrlearn track --params`` reaches them)
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
-                   "merge_fragments": True, "length_smoothing": "none", "relative_gate": True}
+                   "merge_fragments": True, "length_smoothing": "none", "relative_gate": True, "slow_turn_rps": 0.0}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -303,7 +303,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 resolve_signs: bool | None = None, integrate_stops: bool | None = None,
                 turn_factor: bool | None = None, rhythm: bool | None = None,
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
-                relative_gate: bool | None = None) -> TrackResult:
+                relative_gate: bool | None = None, slow_turn_rps: float | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -336,6 +336,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         ``min(0.5, max(0.15, 0.5 x P90))`` of the session's own 2 s vertical SD (decision W76,
         :func:`~pdrlearn.waist._kernels.relative_walk_threshold`); default True since W76's rule held (False:
         W4's 0.5)
+    slow_turn_rps : gyro heading: also integrate the strides whose 5-stride mean vertical rate reaches this (rad/s),
+        so gentle curves are kept (decision W82; 0.035 tested, not the default: it failed its rule on sharp turns
+        by 0.01 m); 0 (default) = seed 003's classifier alone
 
     Options left at ``None`` take the value of ``params.options`` (a PARAMS.json ``"options"`` object)
     and else :data:`OPTION_DEFAULTS`.
@@ -349,7 +352,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
              "merge_fragments": merge_fragments, "length_smoothing": length_smoothing,
-             "relative_gate": relative_gate}
+             "relative_gate": relative_gate, "slow_turn_rps": slow_turn_rps}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -389,7 +392,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = cut_steps_at_gaps(steps, gaps)
     steps = _step_lengths(steps, imu, p, pipeline, thr, turn_factor=bool(o["turn_factor"]),
                           merge_fragments=bool(o["merge_fragments"]), length_smoothing=smoothing)
-    steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops)
+    steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
+                           slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
         warnings.append(no_steps_message(thr, sigma, "params" if p.walk_threshold_mps2 is not None

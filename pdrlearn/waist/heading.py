@@ -155,35 +155,38 @@ class TurnClassifier(ClassifierMixin, BaseEstimator):
         return {"means": m.tolist(), "sds": s.tolist(), "weights": w.tolist()}
 
 
-#: Decision W82 (adopted by its rule): a straight-called stride is integrated too when the mean rate of the strides
-#: k-2..k+2 (within the sequence) reaches this (rad/s), so gentle curves are kept; None = seed 003 as published
-SLOW_TURN_RPS: float | None = 0.035
-SLOW_TURN_HALF_WINDOW = 2
+#: Decision W82: the ``slow_turn_rps`` the W74 line suggests for gentle curves (rad/s, 2 deg/s): a straight-called
+#: stride is integrated too when the mean rate of the strides k-3..k+1 (within the sequence) reaches it. An option,
+#: not the default: it failed its adoption rule on sharp turns by 0.01 m
+SLOW_TURN_RPS = 0.035
+#: strides before / after stride k in its window: one after, because the live tracker (W64) knows stride k+1 but not
+#: always k+2 when it reports k
+SLOW_TURN_WINDOW = (3, 1)
 
 
 def slow_turn_strides(mrz: np.ndarray, threshold_rps: float | None) -> np.ndarray:
-    """Decision W82: strides inside a gentle curve, whose centred 5-stride mean rate reaches ``threshold_rps``."""
+    """Decision W82: strides inside a gentle curve, whose 5-stride (:data:`SLOW_TURN_WINDOW`) mean rate reaches
+    ``threshold_rps``."""
     x = np.nan_to_num(np.asarray(mrz, np.float64))
-    if threshold_rps is None or x.size == 0:
+    if not threshold_rps or x.size == 0:
         return np.zeros(x.shape, dtype=bool)
     c = np.concatenate([[0.0], np.cumsum(x)])
     k = np.arange(x.size)
-    lo = np.maximum(k - SLOW_TURN_HALF_WINDOW, 0)
-    hi = np.minimum(k + SLOW_TURN_HALF_WINDOW + 1, x.size)
+    lo = np.maximum(k - SLOW_TURN_WINDOW[0], 0)
+    hi = np.minimum(k + SLOW_TURN_WINDOW[1] + 1, x.size)
     return np.abs((c[hi] - c[lo]) / (hi - lo)) >= threshold_rps
 
 
 def gyro_headings(imu: WaistIMU, events: np.ndarray, *, classifier: TurnClassifier | None = None,
                   bias_rps: float = 0.0, heading0: float = 0.0, cum: np.ndarray | None = None,
-                  slow_turn_rps: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+                  slow_turn_rps: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Per-step heading from the vertical gyroscope, integrated only over turning strides
     (seed 003 sec. 3.3).
 
     Each step's stride mean rate is classified; the rate (minus ``bias_rps``, seed 003 eq. 2) is
     integrated over the steps classified as turning and over the step before and after each of them
     (seed 003: "integrate two straight steps occurring before and after a curved walking step"), and over
-    the strides of a gentle curve (:func:`slow_turn_strides`, ``slow_turn_rps``, default
-    :data:`SLOW_TURN_RPS`; decision W82).
+    the strides of a gentle curve when ``slow_turn_rps`` > 0 (:func:`slow_turn_strides`, decision W82).
     ``cum``: :func:`pdrlearn.waist._kernels.rate_integral` of ``(imu.t, imu.w_z - bias_rps)`` when the
     caller integrates the same rate over many sequences (one pass over the recording, W43).
 
@@ -203,7 +206,7 @@ def gyro_headings(imu: WaistIMU, events: np.ndarray, *, classifier: TurnClassifi
     integrate = turning.astype(bool).copy()
     integrate[1:] |= turning[:-1].astype(bool)
     integrate[:-1] |= turning[1:].astype(bool)
-    integrate |= slow_turn_strides(mrz, SLOW_TURN_RPS if slow_turn_rps is None else slow_turn_rps)  # W82
+    integrate |= slow_turn_strides(mrz, slow_turn_rps)  # W82, off by default
     dpsi = K.integrate_rate(imu.t, w, ev[:-1], ev[1:], cum=cum)
     heading = np.empty(n)
     h = heading0
@@ -249,9 +252,9 @@ def untracked_turn_message(diff_deg: float, t_s: float, integrate_stops: bool) -
     cause = ("turns made during undetected steps or while standing are dropped with integrate_stops off: set "
              "\"options\": {\"integrate_stops\": true} in the PARAMS.json (or integrate_stops=True)"
              if not integrate_stops else
-             "a turn on strides the turn classifier called straight (a curve gentler than decision W82's 2 deg/s) "
-             "or a gyroscope bias; for curves set \"options\": {\"heading\": \"ellipse\"} in the PARAMS.json "
-             "or use '--pipeline waist-pll' (stride directions, no classifier); for a bias calibrate on a walk "
-             "with a full turn ('pdrlearn calibrate --turns 1 --fit-turns')")
+             "a turn on strides the turn classifier called straight (a gentle curve, under 8 deg/s: decision W82) "
+             "or a gyroscope bias; for curves set \"options\": {\"slow_turn_rps\": 0.035} (live too) or "
+             "{\"heading\": \"ellipse\"} in the PARAMS.json, or use '--pipeline waist-pll'; for a bias calibrate "
+             "on a walk with a full turn ('pdrlearn calibrate --turns 1 --fit-turns')")
     return (f"the step headings miss {diff_deg:+.0f} deg of the waist gyroscope's turn by {t_s:.1f} s "
             f"(decision W74): the positions after it are off; {cause}")
