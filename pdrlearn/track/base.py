@@ -166,8 +166,8 @@ def get_pipeline(name: str) -> Pipeline:
       step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``
       (waist-pendulum's causal variant), ``heading``, ``refine_ic``, ``initial_heading``, ``resolve_signs``,
-      ``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``length_smoothing``, ``relative_gate``
-      (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and unused.
+      ``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``length_smoothing``, ``relative_gate``,
+      ``slow_turn_rps`` (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and unused.
 
     An unknown keyword raises ``TypeError`` naming the closest valid one (decision L43); an unknown
     ``name`` raises :class:`~pdrlearn.errors.DataError` listing the pipelines. Warnings (e.g. "no model")
