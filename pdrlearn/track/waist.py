@@ -421,15 +421,40 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     return _result(steps, start, initial_heading, info, float(imu.t[0]))
 
 
+RELATIVE_HEADING = "waist heading relative to the start"
+
+
+class _NoHeadingNote(logging.Filter):
+    """Drops W83's line from this module's log: a calibration tracks walks for their distance, not their heading."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        return RELATIVE_HEADING not in record.getMessage()
+
+
+def without_heading_note():
+    """Context manager: :func:`track_waist` calls inside it do not log W83's line (``calibrate``'s walks)."""
+    from contextlib import contextmanager
+
+    @contextmanager
+    def ctx():
+        f = _NoHeadingNote()
+        log.addFilter(f)
+        try:
+            yield
+        finally:
+            log.removeFilter(f)
+    return ctx()
+
+
 def relative_heading_note(start, initial_heading: float, has_magnetometer: bool) -> str | None:
     """Decision W83: the one line saying a waist track's heading is relative to the start (no compass: W5), when
     the start direction was not given, and that a recorded wMagneticField.csv is not used; None otherwise."""
     given = bool(initial_heading) or (isinstance(start, dict) and "heading_rad" in start)
     if given and not has_magnetometer:
         return None
-    line = ("waist heading relative to the start (0 = the unit's initial facing, drawn as east); give the start "
-            "direction with --initial-heading DEG (initial_heading= rad in Python)" if not given else
-            "waist heading relative to the start, turned by the start direction given")
+    line = (f"{RELATIVE_HEADING} (0 = the unit's initial facing, drawn as east); give the start direction with "
+            "--initial-heading DEG (initial_heading= rad in Python)" if not given else
+            f"{RELATIVE_HEADING}, turned by the start direction given")
     if has_magnetometer:
         line += ("; wMagneticField.csv is not used: the waist pipelines have no compass heading (decision W5), "
                  "so take the start direction from the phone's compass yourself")
