@@ -91,3 +91,34 @@ def test_initial_heading_with_fixes_is_refused_before_tracking(walks, tmp_path, 
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and len(err) == 1 and "--gnss / --fixes give the track its direction" in err[0], err
     assert not (tmp_path / "x").exists()
+
+
+@pytest.mark.parametrize("where", ["initial_heading", "start"])
+def test_python_api_refuses_a_heading_in_degrees(where):
+    """W81: the Python API takes radians; 90 (degrees, as the CLI's --initial-heading) is one error line naming the
+    unit, for the live WaistTracker and track_waist alike; 1.57 rad is taken."""
+    from pdrlearn.errors import DataError
+    from pdrlearn.waist import WaistTracker
+
+    def make(v):
+        kw = {"initial_heading": v} if where == "initial_heading" else {"start": {"x": 0.0, "y": 0.0, "heading_rad": v}}
+        return WaistTracker(50.0, sensor_height_m=1.0, **kw)
+
+    with pytest.raises(DataError, match=r"in radians.*math\.radians\(90"):
+        make(90)
+    assert make(math.pi / 2).heading == pytest.approx(math.pi / 2)
+
+
+def test_waist_track_says_its_heading_is_relative_and_the_magnetometer_unused():
+    """W83: a waist track without a given start direction says its heading is relative to the start, and names a
+    recorded wMagneticField.csv as unused; given a start direction and no magnetometer, it says nothing."""
+    from pdrlearn import sim
+    from pdrlearn.track.waist import relative_heading_note, track_waist
+
+    walk = sim.simulate("walk", 1, length_m=12)
+    lines = [w for w in track_waist(walk, pipeline="waist-pendulum").info["warnings"] if "relative to the start" in w]
+    assert len(lines) == 1 and "--initial-heading" in lines[0] and "wMagneticField.csv is not used" in lines[0]
+    assert relative_heading_note(None, 0.0, False).startswith("waist heading relative to the start")
+    assert "wMagneticField" not in relative_heading_note(None, 0.0, False)
+    assert relative_heading_note(None, 1.0, False) is None
+    assert relative_heading_note({"x": 0.0, "y": 0.0, "heading_rad": 0.0}, 0.0, True).endswith("yourself")

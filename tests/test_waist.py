@@ -260,7 +260,7 @@ def test_real_calibrate_cli_then_track(tmp_path):
     assert m["step_f1"] >= 0.95
     assert abs(m["ic_timing_mean_ms"]) <= 40
     assert abs(m["distance_error_pct"]) < 10
-    assert res.info["warnings"] == []
+    assert [w for w in res.info["warnings"] if not w.startswith("waist heading relative to the start")] == []
     res0 = get_pipeline("waist-pendulum")(test)
     assert any("no per-user calibration" in w for w in res0.info["warnings"])
     other = get_pipeline("waist-pll")(test, params=str(out))  # calibrated for the other pipeline

@@ -81,6 +81,13 @@ def test_simulated_walk_equals_the_realtime_replay(how):
     assert tr.position == (out[-1].x, out[-1].y) and len(tr.steps) == len(out)
 
 
+def test_slow_turn_option_equals_the_realtime_replay():
+    """W82: the gentle-curve option reads one stride ahead, which the live tracker always knows: live = replay."""
+    s = _session("sim")
+    out, _ = _run(s, list(np.random.default_rng(7).integers(1, 300, 4000)), slow_turn_rps=0.035)
+    _assert_equals_replay(s, out, slow_turn_rps=0.035)
+
+
 @pytest.mark.parametrize("how", ["all", "random"])
 def test_ha001_test11_without_fragment_merging_equals_the_replay(how):
     """W64: with merge_fragments off nothing is judged on the sequence so far: the replay's steps exactly."""
@@ -197,6 +204,15 @@ def test_inputs_checked_in_one_line():
         WaistTracker(100.0, frame="x=up,y=right,z=forward", params={"options": {"length_smoothing": "mobgap"}})
     with pytest.raises(DataError, match="sampling rate"):
         WaistTracker(0.0)
+
+
+def test_a_params_heading_the_live_tracker_cannot_honour_is_warned():
+    """W82: PARAMS.json "options": {"heading": "ellipse"} is not silently replaced by the gyro heading live."""
+    asked = WaistTracker(100.0, frame="x=up,y=right,z=forward", params={"options": {"heading": "ellipse"}})
+    assert asked.options["heading"] == "gyro"
+    assert [w for w in asked.warnings if "heading 'ellipse'" in w and "W82" in w]
+    plain = WaistTracker(100.0, frame="x=up,y=right,z=forward", params={"options": {"heading": "gyro"}})
+    assert not [w for w in plain.warnings if "W82" in w]
 
 
 def test_the_docs_example_runs(monkeypatch, capsys):

@@ -45,6 +45,47 @@ def test_untracked_turn_measures_a_turn_the_headings_drop():
     assert untracked_turn(imu, np.zeros(0), np.zeros(0), np.zeros(0))[0] == 0.0
 
 
+def test_untracked_turn_wraps_the_difference_of_wrapped_headings():
+    """W80: a 190 deg turn whose step headings are wrapped to -170 deg is kept, not a missed 360 deg."""
+    t = np.arange(0, 10, 0.01)
+    turn = np.radians(190.0)
+    w = np.where((t > 4) & (t < 6), turn / 2.0, 0.0)
+    ends = np.array([2.0, 3.0, 7.0, 8.0])
+    wrapped = np.angle(np.exp(1j * np.array([0.0, 0.0, turn, turn])))
+    assert wrapped[-1] < 0  # the input really is wrapped at +-180 deg
+    diff, _ = untracked_turn(SimpleNamespace(t=t, w_z=w), np.array([1.0]), ends, wrapped)
+    assert abs(diff) < np.radians(1)
+
+
+def test_w74_line_names_the_curve_remedies():
+    """W82: with integrate_stops on, the line names what tracks a curve (slow_turn_rps, ellipse heading, waist-pll)
+    and the bias fit."""
+    from pdrlearn.waist.heading import untracked_turn_message
+
+    line = untracked_turn_message(184.0, 30.0, True)
+    assert '"slow_turn_rps": 0.035' in line and '"heading": "ellipse"' in line and "--pipeline waist-pll" in line
+    assert "--fit-turns" in line
+
+
+def test_gentle_curves_are_kept_with_the_slow_turn_option():
+    """W82: the indoor trial's gentle curves (15 and 25 m radii, 0.09 / 0.05 rad/s, under the GMM's 0.136 rad/s
+    boundary) are dropped by seed 003's classifier (the default, with the W74 warning) and kept by the 5-stride
+    window (k-3..k+1) of ``slow_turn_rps``."""
+    from pdrlearn.waist import heading as H
+
+    s = simulate_path(parse_route("straight:10, curve:90:15, straight:10, curve:90:25, straight:10"),
+                      UserProfile.from_seed(3), speed="normal", rate_hz=50.0, seed=4, name="g", scenario="route",
+                      bounce="pendulum")
+    dropped = track_waist(s, pipeline="waist-pendulum")
+    kept = track_waist(s, pipeline="waist-pendulum", slow_turn_rps=H.SLOW_TURN_RPS)
+    assert evaluate_track(dropped, s)["final_position_error_m"] > 50.0 and _w74(dropped.info["warnings"])
+    assert evaluate_track(kept, s)["final_position_error_m"] < 15.0 and not _w74(kept.info["warnings"])
+    mrz = np.array([0.0, 0.03, 0.04, 0.05, 0.04, 0.03, 0.0])
+    assert H.slow_turn_strides(mrz, 0.0).sum() == 0 and H.slow_turn_strides(mrz, 0.035)[4]
+    assert not H.slow_turn_strides(np.full(9, 0.02), 0.035).any()
+    assert not H.slow_turn_strides(np.tile([0.06, -0.06], 5), 0.035)[3:-1].any()  # a sway, not a curve
+
+
 def test_tug_turns_made_during_undetected_steps_are_kept_by_default():
     """W72/W73: the default keeps the yaw turned between walking sequences; without it the track warns (W74)."""
     s = _tug()

@@ -167,8 +167,9 @@ def get_pipeline(name: str) -> Pipeline:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``
       (waist-pendulum's causal variant), ``heading``, ``refine_ic``, ``initial_heading``, ``resolve_signs``,
       ``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``length_smoothing``, ``relative_gate``,
-      ``stairs_length`` (decision W91, off) (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and
-      unused. With ``wBarometer`` the track's altitude is the barometer's (W89); without, one warning (W90).
+      ``stairs_length`` (decision W91, off), ``slow_turn_rps`` (decision W82, off)
+      (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and unused. With ``wBarometer`` the
+      track's altitude is the barometer's (W89); without, one warning (W90).
 
     An unknown keyword raises ``TypeError`` naming the closest valid one (decision L43); an unknown
     ``name`` raises :class:`~pdrlearn.errors.DataError` listing the pipelines. Warnings (e.g. "no model")

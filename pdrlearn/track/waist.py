@@ -79,9 +79,26 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine
     return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector="pll+ic" if refine_ic else "pll")
 
 
+def heading_in_radians(value: float, name: str) -> float:
+    """Decision W81: a start heading given to the Python API is in radians; a magnitude above 2 pi is a value in
+    degrees (the CLI's ``--initial-heading DEG``) and is one error line naming the unit, not a silent 90 rad."""
+    import math
+
+    v = float(value)
+    if not math.isfinite(v) or abs(v) > 2 * math.pi:
+        raise DataError(f"{name}={value!r}: the heading is in radians (ENU, counter-clockwise from east; "
+                        f"|value| <= 2 pi); for degrees pass math.radians({value!r}) (the CLI's --initial-heading "
+                        "takes degrees)")
+    return v
+
+
 def _start(start, initial_heading: float) -> tuple[float, float, float, tuple[float, float] | None]:
     """``(x0, y0, heading0, latlon)`` from ``start``: None, a dict ``x``/``y``/``heading_rad`` (m, rad)
-    or a ``(lat, lon)`` pair in degrees (the ``pdrlearn track --start`` form)."""
+    or a ``(lat, lon)`` pair in degrees (the ``pdrlearn track --start`` form). Headings are checked to be radians
+    (:func:`heading_in_radians`, decision W81)."""
+    initial_heading = heading_in_radians(initial_heading, "initial_heading")
+    if isinstance(start, dict) and isinstance(start.get("heading_rad"), int | float):
+        start = {**start, "heading_rad": heading_in_radians(start["heading_rad"], "start heading_rad")}
     if start is None:
         return 0.0, 0.0, initial_heading, None
     if isinstance(start, dict):
@@ -243,7 +260,7 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
 
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
-                   resolve_signs: bool, integrate_stops: bool = False) -> pd.DataFrame:
+                   resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0) -> pd.DataFrame:
     """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
     (gyro method) and ``mean_rate_rps`` (stride mean vertical rate, MRZ of seed 003 sec. 3.3). Headings
     carry over between walking sequences; a sequence-closing contact keeps the last heading."""
@@ -267,7 +284,7 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
                 current += K.integrate_rate(imu.t, w, ev_all[seqs[j - 1][-1]], ev_all[seq[0]], cum=cum)
             if len(seq) > 1:
                 hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
-                                       heading0=current, cum=cum)
+                                       heading0=current, cum=cum, slow_turn_rps=slow_turn_rps)
                 turning[seq[:-1]] = tr
                 current = float(hd[-1])
                 per_seq.append(hd)
@@ -314,7 +331,7 @@ def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, 
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
-                   "stairs_length": False}
+                   "stairs_length": False, "slow_turn_rps": 0.0}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -331,7 +348,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 resolve_signs: bool | None = None, integrate_stops: bool | None = None,
                 turn_factor: bool | None = None, rhythm: bool | None = None,
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
-                relative_gate: bool | None = None, stairs_length: bool | None = None) -> TrackResult:
+                relative_gate: bool | None = None, stairs_length: bool | None = None,
+                slow_turn_rps: float | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -340,7 +358,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         from meta.json, with a warning)
     start : ``(lat, lon)`` degrees (adds ``lat``/``lon`` columns) or a dict ``x``, ``y`` (m),
         ``heading_rad`` (rad, ENU; 0 = east); default: origin
-    initial_heading : ENU heading (rad) given to the unit's initial facing direction (no magnetometer)
+    initial_heading : ENU heading (rad, |value| <= 2 pi, else refused: W81) given to the unit's initial facing
+        direction (no magnetometer)
     realtime : pendulum only: the causal IC detector instead of the zero-lag offline one
     refine_ic : PLL only: report each step at the initial contact next to its PLL peak (W11)
     heading : ``"ahe"`` (default of waist-pll, seed 000), ``"ellipse"`` (seed 001 closed form on the
@@ -365,6 +384,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         W4's 0.5)
     stairs_length : a step on stairs (the barometric altitude changes by 0.1 m/s or more) is at most the
         0.30 m tread long (decision W91's candidate; default False)
+    slow_turn_rps : gyro heading: also integrate the strides whose 5-stride mean vertical rate reaches this (rad/s),
+        so gentle curves are kept (decision W82; 0.035 tested, not the default: it failed its rule on sharp turns
+        by 0.01 m); 0 (default) = seed 003's classifier alone
 
     The altitude (trajectory ``z``, steps ``dz_m``) is the waist barometer's, relative to the start (decision
     W89); without a barometer it stays 0 with one warning (W90).
@@ -381,7 +403,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
              "merge_fragments": merge_fragments, "length_smoothing": length_smoothing,
-             "relative_gate": relative_gate, "stairs_length": stairs_length}
+             "relative_gate": relative_gate, "stairs_length": stairs_length, "slow_turn_rps": slow_turn_rps}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -425,13 +447,17 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
         steps = steps.assign(length_m=np.where(stairs, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
                                                steps["length_m"].to_numpy(float)))
-    steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops)
+    steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
+                           slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
     steps = steps.assign(stairs=stairs)
     z = _altitude(session, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float)]), warnings)
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
         warnings.append(no_steps_message(thr, sigma, "params" if p.walk_threshold_mps2 is not None
                                          else "relative" if thr != WALK_THRESHOLD_MPS2 else "fixed"))
+    note = relative_heading_note(start, o["initial_heading"], "wMagneticField" in session)
+    if note:
+        warnings.append(note)
     n = len(steps)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"
     info = {
@@ -450,6 +476,46 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]), z)
+
+
+RELATIVE_HEADING = "waist heading relative to the start"
+
+
+class _NoHeadingNote(logging.Filter):
+    """Drops W83's line from this module's log: a calibration tracks walks for their distance, not their heading."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        return RELATIVE_HEADING not in record.getMessage()
+
+
+def without_heading_note():
+    """Context manager: :func:`track_waist` calls inside it do not log W83's line (``calibrate``'s walks)."""
+    from contextlib import contextmanager
+
+    @contextmanager
+    def ctx():
+        f = _NoHeadingNote()
+        log.addFilter(f)
+        try:
+            yield
+        finally:
+            log.removeFilter(f)
+    return ctx()
+
+
+def relative_heading_note(start, initial_heading: float, has_magnetometer: bool) -> str | None:
+    """Decision W83: the one line saying a waist track's heading is relative to the start (no compass: W5), when
+    the start direction was not given, and that a recorded wMagneticField.csv is not used; None otherwise."""
+    given = bool(initial_heading) or (isinstance(start, dict) and "heading_rad" in start)
+    if given and not has_magnetometer:
+        return None
+    line = (f"{RELATIVE_HEADING} (0 = the unit's initial facing, drawn as east); give the start direction with "
+            "--initial-heading DEG (initial_heading= rad in Python)" if not given else
+            f"{RELATIVE_HEADING}, turned by the start direction given")
+    if has_magnetometer:
+        line += ("; wMagneticField.csv is not used: the waist pipelines have no compass heading (decision W5), "
+                 "so take the start direction from the phone's compass yourself")
+    return line
 
 
 def no_steps_message(thr: float, sigma: np.ndarray, source: str) -> str:

@@ -38,10 +38,13 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     ``span_s`` (with ``distance_m``): ``(start, end)`` in seconds from the recording's start (either None =
     open): only the steps whose both contacts lie inside count (decision W61, ``calibrate --start/--end``).
     """
-    from pdrlearn.track.waist import track_waist
+    from pdrlearn.track.waist import track_waist, without_heading_note
 
     p, _ = resolve_params(session, params)
-    res = result if result is not None else track_waist(session, pipeline=pipeline, params=p)
+    if result is None:
+        with without_heading_note():  # W83's line is about a track's heading, which calibration does not use
+            result = track_waist(session, pipeline=pipeline, params=p)
+    res = result
     st = res.steps[res.steps["has_next"]]
     if "g_m" in st:  # the g the tracker multiplies by K, smoothed if it is (W56), so D = sum c (K g + F) (W21)
         g = st["g_m"].to_numpy(float)
@@ -253,7 +256,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     if spans is not None and len(spans) not in (1, len(sessions)):
         raise DataError(f"calibrate: {len(spans)} --start/--end stretches for {len(sessions)} sessions; "
                         "give one per session or one for all")
-    from pdrlearn.track.waist import track_waist
+    from pdrlearn.track.waist import track_waist, without_heading_note
 
     base, _ = resolve_params(sessions[0], params)
     walks: list[CalibrationWalk] = []
@@ -261,7 +264,8 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     notes_gap: list[str] = []
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
-        res = track_waist(s, pipeline=pipeline, params=base)
+        with without_heading_note():  # W83: calibration does not use the heading
+            res = track_waist(s, pipeline=pipeline, params=base)
         if not res.steps["has_next"].any():  # W61: a standing-only recording, not a model failure
             raise DataError(f"calibrate: 0 steps detected in {s.folder or s.name}; calibrate needs a walk of known "
                             "length (give a recording of walking, with --distance or bouts.csv)")

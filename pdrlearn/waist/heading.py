@@ -155,15 +155,38 @@ class TurnClassifier(ClassifierMixin, BaseEstimator):
         return {"means": m.tolist(), "sds": s.tolist(), "weights": w.tolist()}
 
 
+#: Decision W82: the ``slow_turn_rps`` the W74 line suggests for gentle curves (rad/s, 2 deg/s): a straight-called
+#: stride is integrated too when the mean rate of the strides k-3..k+1 (within the sequence) reaches it. An option,
+#: not the default: it failed its adoption rule on sharp turns by 0.01 m
+SLOW_TURN_RPS = 0.035
+#: strides before / after stride k in its window: one after, because the live tracker (W64) knows stride k+1 but not
+#: always k+2 when it reports k
+SLOW_TURN_WINDOW = (3, 1)
+
+
+def slow_turn_strides(mrz: np.ndarray, threshold_rps: float | None) -> np.ndarray:
+    """Decision W82: strides inside a gentle curve, whose 5-stride (:data:`SLOW_TURN_WINDOW`) mean rate reaches
+    ``threshold_rps``."""
+    x = np.nan_to_num(np.asarray(mrz, np.float64))
+    if not threshold_rps or x.size == 0:
+        return np.zeros(x.shape, dtype=bool)
+    c = np.concatenate([[0.0], np.cumsum(x)])
+    k = np.arange(x.size)
+    lo = np.maximum(k - SLOW_TURN_WINDOW[0], 0)
+    hi = np.minimum(k + SLOW_TURN_WINDOW[1] + 1, x.size)
+    return np.abs((c[hi] - c[lo]) / (hi - lo)) >= threshold_rps
+
+
 def gyro_headings(imu: WaistIMU, events: np.ndarray, *, classifier: TurnClassifier | None = None,
-                  bias_rps: float = 0.0, heading0: float = 0.0, cum: np.ndarray | None = None
-                  ) -> tuple[np.ndarray, np.ndarray]:
+                  bias_rps: float = 0.0, heading0: float = 0.0, cum: np.ndarray | None = None,
+                  slow_turn_rps: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Per-step heading from the vertical gyroscope, integrated only over turning strides
     (seed 003 sec. 3.3).
 
     Each step's stride mean rate is classified; the rate (minus ``bias_rps``, seed 003 eq. 2) is
     integrated over the steps classified as turning and over the step before and after each of them
-    (seed 003: "integrate two straight steps occurring before and after a curved walking step").
+    (seed 003: "integrate two straight steps occurring before and after a curved walking step"), and over
+    the strides of a gentle curve when ``slow_turn_rps`` > 0 (:func:`slow_turn_strides`, decision W82).
     ``cum``: :func:`pdrlearn.waist._kernels.rate_integral` of ``(imu.t, imu.w_z - bias_rps)`` when the
     caller integrates the same rate over many sequences (one pass over the recording, W43).
 
@@ -183,6 +206,7 @@ def gyro_headings(imu: WaistIMU, events: np.ndarray, *, classifier: TurnClassifi
     integrate = turning.astype(bool).copy()
     integrate[1:] |= turning[:-1].astype(bool)
     integrate[:-1] |= turning[1:].astype(bool)
+    integrate |= slow_turn_strides(mrz, slow_turn_rps)  # W82, off by default
     dpsi = K.integrate_rate(imu.t, w, ev[:-1], ev[1:], cum=cum)
     heading = np.empty(n)
     h = heading0
@@ -198,6 +222,12 @@ def gyro_headings(imu: WaistIMU, events: np.ndarray, *, classifier: TurnClassifi
 UNTRACKED_TURN_WARN_DEG = 60.0
 
 
+def turn_gap(gyro_yaw, heading):
+    """Decision W80: gyroscope yaw minus step heading (rad) as a direction difference, wrapped to (-pi, pi]: either
+    may be wrapped, and a wrapped U-turn must not read as a missed full turn."""
+    return np.angle(np.exp(1j * (np.asarray(gyro_yaw, np.float64) - np.asarray(heading, np.float64))))
+
+
 def untracked_turn(imu: WaistIMU, events: np.ndarray, ends: np.ndarray, headings: np.ndarray, *,
                    bias_rps: float = 0.0, cum: np.ndarray | None = None) -> tuple[float, float]:
     """Decision W74: the largest difference (rad, signed: gyroscope minus heading) between the vertical rate
@@ -205,14 +235,14 @@ def untracked_turn(imu: WaistIMU, events: np.ndarray, ends: np.ndarray, headings
     (rad, 0 at the first contact, as :func:`gyro_headings` and the pipelines' ``integrate_stops`` give it), and
     the time (s) of that step's end. ``(0.0, nan)`` without steps. The heading drops a turn made during
     undetected steps or while standing (``integrate_stops`` off), or on strides the turn classifier calls
-    straight; an uncalibrated gyroscope bias adds ``bias x time``."""
+    straight; an uncalibrated gyroscope bias adds ``bias x time``. The difference is wrapped (:func:`turn_gap`)."""
     ev, en = np.asarray(events, np.float64), np.asarray(ends, np.float64)
-    hd = np.unwrap(np.asarray(headings, np.float64))
+    hd = np.asarray(headings, np.float64)
     if ev.size == 0 or en.size == 0:
         return 0.0, float("nan")
     w = imu.w_z - bias_rps
     cum = K.rate_integral(imu.t, w) if cum is None else cum
-    diff = np.asarray(K.integrate_rate(imu.t, w, np.full(en.shape, ev[0]), en, cum=cum)) - hd
+    diff = turn_gap(K.integrate_rate(imu.t, w, np.full(en.shape, ev[0]), en, cum=cum), hd)  # decision W80
     k = int(np.argmax(np.abs(diff)))
     return float(diff[k]), float(en[k])
 
@@ -222,7 +252,9 @@ def untracked_turn_message(diff_deg: float, t_s: float, integrate_stops: bool) -
     cause = ("turns made during undetected steps or while standing are dropped with integrate_stops off: set "
              "\"options\": {\"integrate_stops\": true} in the PARAMS.json (or integrate_stops=True)"
              if not integrate_stops else
-             "a turn on strides the turn classifier called straight, or a gyroscope bias: fit both on a walk with "
-             "a full turn ('pdrlearn calibrate --turns 1 --fit-turns')")
+             "a turn on strides the turn classifier called straight (a gentle curve, under 8 deg/s: decision W82) "
+             "or a gyroscope bias; for curves set \"options\": {\"slow_turn_rps\": 0.035} (live too) or "
+             "{\"heading\": \"ellipse\"} in the PARAMS.json, or use '--pipeline waist-pll'; for a bias calibrate "
+             "on a walk with a full turn ('pdrlearn calibrate --turns 1 --fit-turns')")
     return (f"the step headings miss {diff_deg:+.0f} deg of the waist gyroscope's turn by {t_s:.1f} s "
             f"(decision W74): the positions after it are off; {cause}")

@@ -43,6 +43,9 @@ log = logging.getLogger(__name__)
 FRAGMENT_CONTEXT_STEPS = 100
 #: W64: a step is reported once this many later contacts of its walking sequence are decided (or it ended)
 LOOKAHEAD_ROWS = 2
+#: rows before the reported one that its heading window reads: W82's slow-turn window reads 3 strides back, and the
+#: window's first step has no step before it for its stride rate (W24), so one more
+HEADING_LOOKBACK_ROWS = 4
 #: W65: without a declared frame, inference is tried on the held samples every INFER_EVERY_S of new data, from
 #: frame_inference.MIN_WALK_S on; at most the last INFER_MAX_S seconds are held meanwhile
 INFER_EVERY_S = 2.0
@@ -111,7 +114,9 @@ class WaistTracker:
         "forward"}``, ``"x=up,y=right,z=forward"`` or a 3x3 sensor -> body FLU matrix); None: ``meta``'s, else
         inferred from the first walking (W65)
     start : ``{"x": m, "y": m, "heading_rad": rad}`` (ENU) or None (origin); ``(lat, lon)`` is not supported live
-    initial_heading, integrate_stops, turn_factor, rhythm, merge_fragments : as :func:`pdrlearn.track.waist.
+    initial_heading : the direction the walker sets off in, radians ENU (counter-clockwise from east; 0 = east, the
+        default); a magnitude above 2 pi (degrees, as the CLI's ``--initial-heading``) is refused (decision W81)
+    integrate_stops, turn_factor, rhythm, merge_fragments, slow_turn_rps : as :func:`pdrlearn.track.waist.
         track_waist` (None: ``params.options``, else its defaults)
     keep_steps : how many reported steps :attr:`steps` keeps (None: all)
 
@@ -125,7 +130,8 @@ class WaistTracker:
     def __init__(self, fs: float, *, params=None, meta: dict | None = None, sensor_height_m: float | None = None,
                  height_m: float | None = None, frame=None, start=None, initial_heading: float | None = None,
                  integrate_stops: bool | None = None, turn_factor: bool | None = None, rhythm: bool | None = None,
-                 merge_fragments: bool | None = None, keep_steps: int | None = None):
+                 merge_fragments: bool | None = None, slow_turn_rps: float | None = None,
+                 keep_steps: int | None = None):
         from collections import deque
 
         from pdrlearn.io.session import Session
@@ -147,7 +153,8 @@ class WaistTracker:
         p = self.params
         given = {"realtime": True, "heading": "gyro", "refine_ic": None, "initial_heading": initial_heading,
                  "resolve_signs": None, "integrate_stops": integrate_stops, "turn_factor": turn_factor,
-                 "rhythm": rhythm, "merge_fragments": merge_fragments, "length_smoothing": None}
+                 "rhythm": rhythm, "merge_fragments": merge_fragments, "length_smoothing": None,
+                 "slow_turn_rps": slow_turn_rps}
         o = resolve_options(p, given)
         if o["length_smoothing"] != "none":
             raise DataError(f"length_smoothing '{o['length_smoothing']}' looks up to 1 s ahead and the live tracker "
@@ -155,6 +162,11 @@ class WaistTracker:
         if p.source == "calibrated" and p.pipeline not in (None, "waist-pendulum"):
             warnings.append(f"the parameters were calibrated for {p.pipeline}: the waist-pendulum step length "
                             "keeps its defaults (run 'pdrlearn calibrate --pipeline waist-pendulum')")
+        asked = (p.options or {}).get("heading")
+        if asked not in (None, "gyro"):  # decision W82: no silent override of the PARAMS.json heading
+            warnings.append(f"the PARAMS.json option heading '{asked}' is not available live: the live tracker uses "
+                            "the gyro heading, which drops gentle curves unless the option slow_turn_rps is set "
+                            "(0.035, decision W82)")
         self.options = o
         if isinstance(start, list | tuple):
             raise DataError("WaistTracker: start=(lat, lon) is not supported live; pass {'x': m, 'y': m, "
@@ -345,10 +357,11 @@ class WaistTracker:
 
     def _trim(self) -> None:
         """Drop the samples no future report reads: contacts still to come have their IC after the detector's
-        ``done``; the pending ones (the detector's and ours, from two rows before the next) are kept."""
+        ``done``; the pending ones (the detector's and ours, from HEADING_LOOKBACK_ROWS rows before the next) are
+        kept."""
         lows = [self._proc.decider.done + 1 - self._b0]
         lows += [i - self._b0 for i, *_ in self._proc.decided]
-        k = max(self._next - LOOKAHEAD_ROWS, 0)
+        k = max(self._next - HEADING_LOOKBACK_ROWS, 0)
         if k in self._rows:
             lows.append(self._idx(self._rows[k]["t"]))
         drop = max(0, min(lows) - 2)
@@ -391,11 +404,11 @@ class WaistTracker:
     def _check_untracked(self, row: dict, h: float) -> None:
         """Decision W74, as ``track_waist``: one warning when a step's heading ``h`` (rad, before the start rotation)
         misses :data:`pdrlearn.waist.heading.UNTRACKED_TURN_WARN_DEG` of the yaw turned since the first contact."""
-        from pdrlearn.waist.heading import UNTRACKED_TURN_WARN_DEG, untracked_turn_message
+        from pdrlearn.waist.heading import UNTRACKED_TURN_WARN_DEG, turn_gap, untracked_turn_message
 
         if self._untracked_warned or self._cum_first is None:
             return
-        diff = np.degrees(float(np.interp(row["end"], self._bt, self._bc)) - self._cum_first - h)
+        diff = np.degrees(float(turn_gap(float(np.interp(row["end"], self._bt, self._bc)) - self._cum_first, h)))
         if abs(diff) >= UNTRACKED_TURN_WARN_DEG:
             self._untracked_warned = True
             msg = untracked_turn_message(float(diff), float(row["end"]), bool(self.options["integrate_stops"]))
@@ -448,7 +461,7 @@ class WaistTracker:
         merged, length, turning = False, 0.0, 0
         if row["has_next"]:
             # -- heading (seed 003 sec. 3.3 via gyro_headings on the sequence from two steps before) -------
-            lw = max(s, k - 2, ids[0])
+            lw = max(s, k - HEADING_LOOKBACK_ROWS, ids[0])
             ev = [self._rows[j]["t"] for j in ids if j >= lw]
             if self._rows[ids[-1]]["has_next"]:  # the open sequence's next contact is decided (its end)
                 ev.append(self._rows[ids[-1]]["end"])
@@ -456,7 +469,7 @@ class WaistTracker:
             i1 = self._idx(ev[-1]) + 2
             win = SimpleNamespace(t=self._bt[i0:i1], w_z=self._bw[i0:i1])
             hd, tr = gyro_headings(win, np.asarray(ev), classifier=self._clf, bias_rps=p.gyro_bias_rps,
-                                   heading0=0.0, cum=self._bc[i0:i1])
+                                   heading0=0.0, cum=self._bc[i0:i1], slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
             j = k - lw
             turning = int(tr[j])
             if k == s:
