@@ -114,3 +114,27 @@ def test_track_warns_when_no_fix_lies_within_the_track(walk, capsys, tmp_path):
     assert rc == 0
     summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert not any("none of the" in w for w in summary["info"].get("warnings", []))
+
+
+def test_track_uses_sporadic_fixes_by_default(walk, capsys, tmp_path):
+    """D14: three map-matching fixes at irregular times were silently unused (queries at multiples of their
+    median interval); now each is used, and with --fix-period the unused ones are named in one line (D18)."""
+    import pandas as pd
+
+    d, truth = walk
+    t = truth["t"].to_numpy(float)
+    times = np.array([30.0, 60.0, 85.0])
+    pd.DataFrame({"t": times, "x": np.interp(times, t, truth["x"]), "y": np.interp(times, t, truth["y"]),
+                  "accuracy_m": 1.0}).to_csv(tmp_path / "fix.csv", index=False)
+    args = ["track", str(d / "walk"), "--pipeline", "waist-pll", "--fixes", str(tmp_path / "fix.csv"), "--json"]
+    assert main(args + ["--out", str(tmp_path / "o")]) == 0
+    summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    info = summary["info"]["aid"]["fixes"]
+    assert info["fixes_used"] == 3 and info["fixes_unused"] == 0 and info["fixes_read"] == 3
+    assert not any("not used" in w for w in summary["info"].get("warnings", []))
+    tr = pd.read_csv(tmp_path / "o" / "trajectory.csv")
+    assert np.hypot(tr["x"] - tr["x_pdr"], tr["y"] - tr["y_pdr"]).max() > 0.5
+    assert main(args + ["--fix-period", "27.5", "--out", str(tmp_path / "o2")]) == 0
+    out = capsys.readouterr()
+    line = [w for w in json.loads(out.out.strip().splitlines()[-1])["info"]["warnings"] if "not used" in w]
+    assert len(line) == 1 and "--fix-period" in line[0] and "not used" in out.err

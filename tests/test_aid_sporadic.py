@@ -99,3 +99,79 @@ def test_aid_track_bad_input(tmp_path):
     pd.DataFrame({"t": [0.0], "lat": [46.0]}).to_csv(bad, index=False)
     with pytest.raises(DataError, match="missing column"):
         aid_track(pdr, ses, fixes_path=bad)
+
+
+def _irregular_fixes(truth, times, sigma_m=0.05, seed=0):
+    rng = np.random.default_rng(seed)
+    t = truth["t"].to_numpy(float)
+    times = np.asarray(times, float)
+    return pd.DataFrame({
+        "t": times,
+        "x": np.interp(times, t, truth["x"]) + sigma_m * rng.standard_normal(times.size),
+        "y": np.interp(times, t, truth["y"]) + sigma_m * rng.standard_normal(times.size),
+        "accuracy_m": 1.51 * sigma_m,
+    })
+
+
+def test_sporadic_fixes_at_irregular_times_are_all_used():
+    """D14: fixes at irregular times (map matching at doors) are each used at the step they fall in; the
+    old default (queries at multiples of the median interval, 0.5 s tolerance) used none of these."""
+    steps_true, truth = synthetic_walk(6, length_m=300, stop_every_m=100.0)
+    pdr = pdr_with_drift(steps_true, 6, heading_bias_deg=6.0)
+    t1 = float(truth["t"].iloc[-1])
+    times = np.array([13.3, 41.7, 68.2, 97.9, 121.4, 152.6])
+    times = times[times < t1 - 2.0]
+    fx = _irregular_fixes(truth, np.r_[-5.0, times, t1 + 10.0])  # one before and one after the walk
+    f = SporadicFixFusion(period_s=None).run(pdr.steps, fx)
+    st = f.stats_
+    assert st["fixes_used"] == len(times) and st["fixes_unused"] == 2 == st["fixes_outside_track"]
+    assert st["fixes_not_queried"] == 0 and st["fixes_superseded"] == 0
+    e = np.sqrt(np.mean(position_errors(f.trajectory_, truth) ** 2))
+    e_pdr = np.sqrt(np.mean(position_errors(pdr.trajectory, truth) ** 2))
+    assert e < 0.5 * e_pdr
+    # the step each fix went to is the first one ending at or after it
+    ends = pdr.steps["end_s"].to_numpy()
+    t_used = f.trajectory_["t"][f.trajectory_["fix_used"]].to_numpy()
+    assert t_used == pytest.approx(ends[np.searchsorted(ends, times)])
+    # two fixes in one step interval: the later one, the other counted
+    k = int(np.searchsorted(ends, times[0]))
+    two = pd.concat([fx, _irregular_fixes(truth, [ends[k] - 1e-3], seed=1)]).sort_values("t")
+    f2 = SporadicFixFusion(period_s=None).run(pdr.steps, two)
+    assert f2.stats_["fixes_used"] == len(times) and f2.stats_["fixes_superseded"] == 1
+
+
+def test_a_fix_is_used_once_and_the_path_does_not_jump_after_the_last_one():
+    """D15: a query period shorter than the fix spacing used the same fix at two queries (5 used from 3
+    lines in the trial); D16: the stretched path ends on the last fix, the causal one on the EKF
+    posterior, and the output jumped between them after the last fix (32 m in the trial)."""
+    steps_true, truth = synthetic_walk(7, length_m=200)
+    pdr = pdr_with_drift(steps_true, 7, heading_bias_deg=25.0)
+    fx = _irregular_fixes(truth, [30.0, 60.0, 85.0], sigma_m=0.66)
+    f = SporadicFixFusion(period_s=0.5).run(pdr.steps, fx)
+    assert f.stats_["fixes_used"] == 3
+    tr = f.trajectory_
+    last = int(np.flatnonzero(tr["fix_used"])[-1])
+    move = np.hypot(np.diff(tr["x"].to_numpy()[last:]), np.diff(tr["y"].to_numpy()[last:]))
+    # the EKF posterior is metres from the fix, so the causal path alone would jump
+    assert np.hypot(tr["x"][last] - tr["x_rt"][last], tr["y"][last] - tr["y_rt"][last]) > 2.0
+    assert move.max() <= 1.5 * pdr.steps["length_m"].max()
+    assert tr["x"].iloc[-1] - tr["x_rt"].iloc[-1] == pytest.approx(tr["x"][last] - tr["x_rt"][last])
+
+
+def test_aid_track_default_uses_every_fix_and_names_the_unused_ones(tmp_path, caplog):
+    """D14/D17/D18 through aid_track: no fix_period_s = every fix; the reader's row count is fixes_read (not
+    'used'); fixes left unused by --fix-period are warned in one line with the reason and the option."""
+    steps_true, truth = synthetic_walk(8, length_m=200)
+    pdr = pdr_with_drift(steps_true, 8, heading_bias_deg=6.0)
+    path = tmp_path / "fix.csv"
+    _irregular_fixes(truth, [30.0, 60.0, 85.0]).to_csv(path, index=False)
+    ses = Session("synthetic")
+    r = aid_track(pdr, ses, fixes_path=path)
+    info = r.info["aid"]["fixes"]
+    assert info["fixes_read"] == 3 == info["fixes_used"] and "used" not in info and info["period_s"] is None
+    assert not r.info.get("warnings")
+    assert not np.allclose(r.trajectory["x"], r.trajectory["x_pdr"])
+    r = aid_track(pdr, ses, fixes_path=path, fix_period_s=27.5)  # the old default for these times
+    w = [x for x in r.info["warnings"] if "not used" in x]
+    assert len(w) == 1 and "3 of the 3 fixes" in w[0] and "--fix-period" in w[0] and "every 27.5 s" in w[0]
+    assert r.info["aid"]["fixes"]["fixes_not_queried"] == 3

@@ -34,8 +34,20 @@ def stretched_trajectory(t, out: np.ndarray, used, *, keep_causal: np.ndarray,
     ``out[:, 0:2]`` holds the stretched (smoothed between two fixes) positions, ``out[:, 2:4]`` the causal
     real-time ones; rows where ``keep_causal`` is true (after the last fix, or everywhere without
     stretching) take the causal position. Columns ``t, x, y, x_rt, y_rt`` + ``extra`` + ``fix_used``.
+
+    The stretched path ends on the last fix itself (seed 004 eq. 26 closes the gap l(k) in full), the
+    causal one on the EKF's posterior, which lies between the prediction and the fix; rows after the last
+    stretched row therefore keep that row's offset stretched - causal (the last correction held, a
+    zero-slope continuation of eq. 26), so the output does not jump after the last fix (decision D16).
     """
-    out[keep_causal, 0:2] = out[keep_causal, 2:4]
+    keep = np.asarray(keep_causal, bool)
+    smoothed = np.flatnonzero(~keep)
+    if len(smoothed):
+        a = smoothed[-1]
+        after = keep & (np.arange(len(keep)) > a)
+        out[after, 0:2] = out[after, 2:4] + (out[a, 0:2] - out[a, 2:4])
+        keep = keep & ~after
+    out[keep, 0:2] = out[keep, 2:4]
     cols = {"t": t, "x": out[:, 0], "y": out[:, 1], "x_rt": out[:, 2], "y_rt": out[:, 3]}
     cols.update(extra or {})
     cols["fix_used"] = used

@@ -15,6 +15,14 @@ def step_increment(length_m: float, heading_rad: float) -> np.ndarray:
     return np.array([length_m * np.cos(heading_rad), length_m * np.sin(heading_rad)])
 
 
+def fix_at_step(z: np.ndarray, t_fix: float, t_step: float, t_from: float, increment: np.ndarray) -> np.ndarray:
+    """A fix taken at ``t_fix`` moved to the end of the step ``(t_from, t_step]``: plus the fraction of the step's
+    displacement walked after the fix (seed 001 Sec. 2.2.6, "associate the last valid GNSS data with the last
+    step"); a fix before ``t_from`` gets the whole step."""
+    frac = (t_step - t_fix) / max(t_step - t_from, 1e-9)
+    return np.asarray(z, float) + min(max(frac, 0.0), 1.0) * np.asarray(increment, float)
+
+
 def kf_predict(
     x: np.ndarray,
     P: np.ndarray,

@@ -351,6 +351,7 @@ class ColomboTracker(ParamsMixin):
         anchor, anchor_i, l_start = p.copy(), -1, np.zeros(2)
         yaw_meas = None
         counts = dict(queries=0, fixes_used=0, fixes_missing=0, still_skipped=0)
+        fix_done = np.zeros(len(ft), bool)
         for k in range(n):
             dt = t[k] - t[k - 1] if k else 1.0 / fs
             # tilt compensation with the attitude predicted from the gyroscope (not the accelerometer, which
@@ -395,11 +396,13 @@ class ColomboTracker(ParamsMixin):
                 else:
                     counts["queries"] += 1
                     j = int(np.searchsorted(ft, t[k]))
-                    cand = [c for c in (j - 1, j) if 0 <= c < len(ft) and abs(ft[c] - t[k]) <= self.query_tolerance_s]
+                    cand = [c for c in (j - 1, j) if 0 <= c < len(ft) and not fix_done[c]
+                            and abs(ft[c] - t[k]) <= self.query_tolerance_s]
                     if not cand:
                         counts["fixes_missing"] += 1
                     else:
                         c = min(cand, key=lambda c: abs(ft[c] - t[k]))
+                        fix_done[c] = True  # a fix is used at most once (decision D15)
                         z = fxy[c]
                         l_end = z - p
                         inc_a = np.asarray(seg_inc)

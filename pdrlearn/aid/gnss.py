@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.aid._base import ParamsMixin
-from pdrlearn.aid._kernels import kf_predict, kf_update, scalar_kf, wrap_angle
+from pdrlearn.aid._kernels import fix_at_step, kf_predict, kf_update, scalar_kf, wrap_angle
 from pdrlearn.aid.fixes import sigma_from_accuracy
 from pdrlearn.errors import DataError
 
@@ -307,8 +307,7 @@ class GnssPdrFusion(ParamsMixin):
                     counts["fixes_inaccurate"] += len(ready) - len(valid)
                     if valid:
                         i = valid[-1]
-                        frac = (t_k - ft[i]) / max(t_k - prev_t, 1e-9)
-                        z = fxy[i] + min(frac, 1.0) * inc  # seed 001 Sec. 2.2.6: last fix -> last step
+                        z = fix_at_step(fxy[i], ft[i], t_k, prev_t, inc)  # seed 001 Sec. 2.2.6: last fix -> last step
                         xn, Pn, _, nis = kf_update(x, P, z, fsig[i : i + 1])
                         if self.gate_chi2 is not None and nis > self.gate_chi2:
                             counts["fixes_gated"] += 1

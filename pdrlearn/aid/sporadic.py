@@ -1,7 +1,9 @@
 """Sporadic absolute fixes with heading stretching (seed 004, Colombo et al. 2014), step-triggered.
 
 The planar position EKF (seed 004 eqs. 16-23) is driven by PDR steps; an external infrastructure is
-queried every ``period_s`` (T_p) only while the walker moves (eq. 19); between two adjustments the
+queried every ``period_s`` (T_p) only while the walker moves (eq. 19), or, with ``period_s=None``, every
+fix of the stream is used at the step it falls in (sporadic fixes: map matching at doors, beacons;
+decision D14); each fix is used at most once (D15). Between two adjustments the
 estimated path is linearly stretched onto the fixes (eqs. 24-26) and the stretched yaw (eq. 28) is fed
 back to the heading of the following steps. The per-sample version of the same EKF, with the attitude
 EKF and the hybrid-automaton velocity, is :class:`pdrlearn.aid.colombo.ColomboTracker`.
@@ -13,7 +15,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.aid._base import ParamsMixin, stretched_trajectory
-from pdrlearn.aid._kernels import kf_predict, kf_update, stretch_segment, wrap_angle
+from pdrlearn.aid._kernels import fix_at_step, kf_predict, kf_update, stretch_segment, wrap_angle
 from pdrlearn.aid.fixes import sigma_from_accuracy
 from pdrlearn.aid.gnss import check_steps
 from pdrlearn.errors import DataError
@@ -28,7 +30,9 @@ class SporadicFixFusion(ParamsMixin):
 
     Parameters (keyword-only)
     ----------
-    period_s : T_p, the infrastructure query period (s); seed 004 tests 1-16 s.
+    period_s : T_p, the infrastructure query period (s); seed 004 tests 1-16 s. ``None``: no query policy,
+        every fix is used at the step whose interval holds it (moved to the step's end, D14), the latest
+        when one step interval holds several.
     moving_gap_s : the walker counts as moving at a query instant when two steps are at most this far
         apart (s) around it (the step-level form of the guard sigma_a > sigma_a_min of seed 004 eq. 19).
     query_tolerance_s : the fix closest to the query instant must be at most this far from it (s).
@@ -47,7 +51,7 @@ class SporadicFixFusion(ParamsMixin):
     def __init__(
         self,
         *,
-        period_s: float = 8.0,
+        period_s: float | None = 8.0,
         moving_gap_s: float = 1.5,
         query_tolerance_s: float = 0.5,
         sigma_length_rel: float = 0.05,
@@ -85,9 +89,17 @@ class SporadicFixFusion(ParamsMixin):
 
         Results: ``trajectory_`` (``t``, ``x``, ``y`` = stretched where two adjustments bracket the step,
         else real-time; ``x_rt``, ``y_rt`` real-time EKF; ``x_pdr``, ``y_pdr``; ``fix_used``),
-        ``stats_`` (queries, fixes used, missing, yaw corrections), ``heading_offset_rad_``.
+        ``stats_`` (counts, below), ``heading_offset_rad_``.
+
+        ``stats_``: ``fixes_used`` (adjustments made, one fix each), ``fixes_unused`` (fixes of the stream
+        never used) split into ``fixes_outside_track`` (before the first step's interval or after the last
+        step), ``fixes_not_queried`` (no T_p query instant within ``query_tolerance_s``; T_p mode only) and
+        ``fixes_superseded`` (a later fix in the same step interval; ``period_s=None`` only);
+        ``queries`` / ``fixes_missing`` / ``stops_skipped`` (T_p mode: query instants while moving, those
+        without an unused fix within ``query_tolerance_s``, those skipped while standing), ``yaw_corrections``,
+        ``queries_per_min``.
         """
-        if not self.period_s > 0:
+        if self.period_s is not None and not self.period_s > 0:
             raise DataError(f"SporadicFixFusion: period_s (T_p) must be > 0 s, got {self.period_s}")
         if self.yaw_feedback not in ("last", "mean", None):
             raise DataError(f"SporadicFixFusion: yaw_feedback '{self.yaw_feedback}' unknown; use last, mean or None")
@@ -118,6 +130,9 @@ class SporadicFixFusion(ParamsMixin):
         seg_head: list[float] = []
         anchor_xy, anchor_row, l_start = x.copy(), 0, np.zeros(2)
         counts = dict(queries=0, fixes_used=0, fixes_missing=0, yaw_corrections=0, stops_skipped=0)
+        fix_done = np.zeros(len(ft), bool)  # D15: a fix is one measurement, used (or passed over) once
+        applied = np.zeros(len(ft), bool)
+        superseded = 0
         prev_t = t0
         for k in range(n):
             t_k = float(st.at[k, "end_s"])
@@ -141,55 +156,67 @@ class SporadicFixFusion(ParamsMixin):
             seg_head.append(hc)
             out[k + 1, 2:4] = x
             out[k + 1, 4:6] = raw
+            c = None
+            if self.period_s is None:  # D14: every fix in (prev_t, t_k], the latest one, at the step's end
+                inside = np.flatnonzero((ft > prev_t) & (ft <= t_k))
+                if len(inside):
+                    c = int(inside[-1])
+                    superseded += len(inside) - 1
+                    fix_done[inside] = True
+                    t_from = max(prev_t, float(st.at[k, "start_s"]))
+                    z = fix_at_step(fxy[c], ft[c], t_k, t_from, x - x_prev)
             # query instant i*T_p inside (prev_t, t_k] while moving (seed 004 eq. 19)
-            i_q = np.floor(t_k / self.period_s)
-            if i_q * self.period_s > prev_t:
+            elif np.floor(t_k / self.period_s) * self.period_s > prev_t:
                 moving = t_k - prev_t <= self.moving_gap_s
                 if not moving:
                     counts["stops_skipped"] += 1
                 else:
                     counts["queries"] += 1
                     j = int(np.searchsorted(ft, t_k))
-                    best = [c for c in (j - 1, j) if 0 <= c < len(ft) and abs(ft[c] - t_k) <= self.query_tolerance_s]
+                    best = [c for c in (j - 1, j) if 0 <= c < len(ft) and not fix_done[c]
+                            and abs(ft[c] - t_k) <= self.query_tolerance_s]
                     if not best:
                         counts["fixes_missing"] += 1
                     else:
                         c = min(best, key=lambda c: abs(ft[c] - t_k))
+                        fix_done[c] = True
                         z = fxy[c]
-                        l_end = z - x  # seed 004: l(k) = L_b(bar) - L_b(hat)
-                        inc = np.asarray(seg_inc)
-                        stretched, _, theta_bar = stretch_segment(inc, l_start, l_end)
-                        if self.stretch:
-                            out[seg_rows, 0:2] = anchor_xy + l_start + np.cumsum(stretched, axis=0)
-                        if self.yaw_feedback is not None and len(inc):
-                            lens = np.hypot(inc[:, 0], inc[:, 1])
-                            dth = wrap_angle(theta_bar - np.asarray(seg_head))
-                            chord = float(np.hypot(*np.sum(stretched, axis=0)))
-                            geo = 2.0 * fsig[c] ** 2 / max(chord, 0.5) ** 2
-                            if self.yaw_feedback == "last":
-                                innov, r = float(dth[-1]), self.sigma_heading_rad**2 + geo
-                            else:
-                                w = lens / max(lens.sum(), 1e-9)
-                                innov = float(np.arctan2(np.sum(w * np.sin(dth)), np.sum(w * np.cos(dth))))
-                                r = self.sigma_heading_rad**2 / len(inc) + geo
-                            gain = p_off / (p_off + r)
-                            offset = float(wrap_angle(offset + gain * innov))
-                            p_off *= 1.0 - gain
-                            counts["yaw_corrections"] += 1
-                        if self.scale_feedback and len(inc):
-                            lens = np.hypot(inc[:, 0], inc[:, 1])
-                            ratio = np.hypot(stretched[:, 0], stretched[:, 1]).sum() / max(lens.sum(), 1e-9)
-                            if ratio > 0:
-                                r = self.sigma_length_rel**2 / len(inc) + 2.0 * fsig[c] ** 2 / max(lens.sum(), 0.5) ** 2
-                                gain = p_scale / (p_scale + r) if p_scale > 0 else 0.0
-                                log_scale = float(np.clip(log_scale + gain * np.log(ratio), -0.7, 0.7))
-                                p_scale *= 1.0 - gain
-                        x, P, _, _ = kf_update(x, P, z, fsig[c : c + 1])  # seed 004 eqs. 20-22
-                        out[k + 1, 2:4] = x
-                        used[k + 1] = True
-                        counts["fixes_used"] += 1
-                        anchor_xy, anchor_row, l_start = x.copy(), k + 1, z - x
-                        seg_inc, seg_rows, seg_head = [], [], []
+            if c is not None:
+                l_end = z - x  # seed 004: l(k) = L_b(bar) - L_b(hat)
+                inc = np.asarray(seg_inc)
+                stretched, _, theta_bar = stretch_segment(inc, l_start, l_end)
+                if self.stretch:
+                    out[seg_rows, 0:2] = anchor_xy + l_start + np.cumsum(stretched, axis=0)
+                if self.yaw_feedback is not None and len(inc):
+                    lens = np.hypot(inc[:, 0], inc[:, 1])
+                    dth = wrap_angle(theta_bar - np.asarray(seg_head))
+                    chord = float(np.hypot(*np.sum(stretched, axis=0)))
+                    geo = 2.0 * fsig[c] ** 2 / max(chord, 0.5) ** 2
+                    if self.yaw_feedback == "last":
+                        innov, r = float(dth[-1]), self.sigma_heading_rad**2 + geo
+                    else:
+                        w = lens / max(lens.sum(), 1e-9)
+                        innov = float(np.arctan2(np.sum(w * np.sin(dth)), np.sum(w * np.cos(dth))))
+                        r = self.sigma_heading_rad**2 / len(inc) + geo
+                    gain = p_off / (p_off + r)
+                    offset = float(wrap_angle(offset + gain * innov))
+                    p_off *= 1.0 - gain
+                    counts["yaw_corrections"] += 1
+                if self.scale_feedback and len(inc):
+                    lens = np.hypot(inc[:, 0], inc[:, 1])
+                    ratio = np.hypot(stretched[:, 0], stretched[:, 1]).sum() / max(lens.sum(), 1e-9)
+                    if ratio > 0:
+                        r = self.sigma_length_rel**2 / len(inc) + 2.0 * fsig[c] ** 2 / max(lens.sum(), 0.5) ** 2
+                        gain = p_scale / (p_scale + r) if p_scale > 0 else 0.0
+                        log_scale = float(np.clip(log_scale + gain * np.log(ratio), -0.7, 0.7))
+                        p_scale *= 1.0 - gain
+                x, P, _, _ = kf_update(x, P, z, fsig[c : c + 1])  # seed 004 eqs. 20-22
+                out[k + 1, 2:4] = x
+                used[k + 1] = True
+                counts["fixes_used"] += 1
+                applied[c] = True
+                anchor_xy, anchor_row, l_start = x.copy(), k + 1, z - x
+                seg_inc, seg_rows, seg_head = [], [], []
             prev_t = t_k
         # rows after the last adjustment (or all rows without stretching) keep the real-time estimate
         tail = np.ones(n + 1, bool)
@@ -201,6 +228,12 @@ class SporadicFixFusion(ParamsMixin):
                                                 extra={"x_pdr": out[:, 4], "y_pdr": out[:, 5]})
         dur = max(t[-1] - t0, 1e-9)
         counts["queries_per_min"] = counts["queries"] / dur * 60.0
+        unused = ~applied
+        outside = unused & ((ft <= t0) | (ft > t[-1]))
+        counts["fixes_unused"] = int(unused.sum())
+        counts["fixes_outside_track"] = int(outside.sum())
+        counts["fixes_superseded"] = superseded
+        counts["fixes_not_queried"] = int(np.sum(unused & ~outside)) - superseded
         self.stats_ = counts
         self.heading_offset_rad_ = offset
         return self

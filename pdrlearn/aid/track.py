@@ -56,6 +56,29 @@ def _load(path, session: Session) -> FixLog:
     return out
 
 
+def _file_stats(stats: dict) -> dict:
+    """The reader's counters for the summary; its ``used`` (rows kept from the file) is ``fixes_read`` there, so
+    it cannot be mistaken for the filter's ``fixes_used`` (decision D17)."""
+    return {("fixes_read" if k == "used" else k): v for k, v in stats.items()}
+
+
+def _unused_fixes_line(f: SporadicFixFusion, n: int, path, period_s: float | None, t_end: float) -> str:
+    """One line: how many fixes were not used, why, and the option that changes it (decision D18)."""
+    st = f.stats_
+    why = []
+    if st["fixes_outside_track"]:
+        why.append(f"{st['fixes_outside_track']} outside the track's steps (up to {t_end:.1f} s)")
+    if st["fixes_not_queried"]:
+        why.append(
+            f"{st['fixes_not_queried']} not within {f.query_tolerance_s:g} s of a query instant every "
+            f"{period_s:g} s while walking (--fix-period / fix_period_s; omit it to use every fix)"
+        )
+    if st["fixes_superseded"]:
+        why.append(f"{st['fixes_superseded']} followed by a later fix before the same step ended (the later one "
+                   "is used)")
+    return f"aid: {st['fixes_unused']} of the {n} fixes in {path} not used: " + "; ".join(why)
+
+
 def _steps_from_path(x: np.ndarray, y: np.ndarray, steps: pd.DataFrame) -> pd.DataFrame:
     """Steps whose lengths/headings reproduce a path (to chain a second filter after the first)."""
     dx, dy = np.diff(x), np.diff(y)
@@ -86,14 +109,18 @@ def aid_track(
         ``gnss_period_s`` seconds (seed 001 uses 60 and 180 s).
     fixes_path : fix CSV (``t, lat, lon, accuracy_m`` or ``t, x, y, accuracy_m``) of an external
         infrastructure (cameras, beacons) for the sporadic-fix EKF with heading stretching.
-    fix_period_s : T_p (s), fixes used every T_p seconds while moving; ``None`` = the median fix interval.
+    fix_period_s : T_p (s): the fix stream is queried every T_p seconds while moving (seed 004; thins a dense
+        stream such as 10 Hz cameras); ``None`` (default) = every fix is used at the step it falls in
+        (sporadic fixes, decision D14).
     start : start coordinate ``(lat, lon)`` or ``"lat,lon"`` (degrees): origin of the local frame, where
         the track starts. Default: the first fix (the walk is assumed to start there).
 
     Returns
     -------
     TrackResult with the fused trajectory (``x``, ``y``; ``x_pdr``, ``y_pdr`` = PDR only; ``lat``/``lon``
-    when the origin is geodetic) and ``info['aid']`` (fixes used/skipped, GNSS-on fraction, fix table).
+    when the origin is geodetic) and ``info['aid']`` (fixes read/used/unused and why, GNSS-on fraction, fix
+    table; the keys are documented in docs/aided.md, decision D17). Fixes that are not used are warned in
+    one line with the reason (D18).
     """
     if gnss_path is None and fixes_path is None:
         raise DataError("aid_track: give gnss_path (--gnss) and/or fixes_path (--fixes)")
@@ -127,10 +154,12 @@ def aid_track(
             continue
         flog = _load(path, session)
         fx, origin = to_local(flog.fixes, origin)
+        all_outside = False
         if t_start is not None and len(fx):
             t_end = float(traj0["t"].iloc[-1])
             ft = fx["t"].to_numpy(float)
             if not ((ft >= t_start) & (ft <= t_end)).any():
+                all_outside = True
                 warnings.append(
                     f"aid: none of the {len(fx)} fixes in {path} lies within the track ({t_start:.1f} to "
                     f"{t_end:.1f} s; fixes at {ft.min():.1f} to {ft.max():.1f} s), so none is used; a fix CSV's t "
@@ -151,21 +180,21 @@ def aid_track(
                 "file": str(path),
                 "mode": mode,
                 "period_s": gnss_period_s,
-                **flog.stats,
+                **_file_stats(flog.stats),
                 **f.stats_,
                 "length_scale": f.scale_,
                 "heading_bias_deg": float(np.degrees(f.heading_bias_rad_)),
             }
         else:
             tp = fix_period_s
-            if tp is None:
-                tp = float(np.median(np.diff(fx["t"].to_numpy()))) if len(fx) > 1 else 1.0
             f = SporadicFixFusion(period_s=tp, initial_sigma_m=sigma0)
             f.run(cur_steps, fx, start_xy=x0, t_start=t_start)
+            if f.stats_["fixes_unused"] and not all_outside:
+                warnings.append(_unused_fixes_line(f, len(fx), path, tp, float(cur_steps["end_s"].iloc[-1])))
             info["fixes"] = {
                 "file": str(path),
                 "period_s": tp,
-                **flog.stats,
+                **_file_stats(flog.stats),
                 **f.stats_,
                 "heading_offset_deg": float(np.degrees(f.heading_offset_rad_)),
             }

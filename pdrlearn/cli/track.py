@@ -95,7 +95,8 @@ def track(
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
     gnss_period: float = typer.Option(None, "--gnss-period", help="Use a GNSS fix every S seconds."),
     fixes: Path = typer.Option(None, "--fixes", help="Sporadic absolute fixes CSV for aiding."),
-    fix_period: float = typer.Option(None, "--fix-period", help="Use a fix every S seconds."),
+    fix_period: float = typer.Option(None, "--fix-period", help="Query the --fixes stream every S seconds while "
+                                     "walking (seed 004; thins a dense stream). Default: every fix is used."),
     streaming: bool = STREAMING_OPT,
     realtime: bool = REALTIME_OPT,
     reference_point: str = REFERENCE_POINT_OPT,
