@@ -64,18 +64,33 @@ def test_rate_times_whole_second_rows_from_the_first_date_time(rest, tmp_path, c
     assert abs(origin - true) < 0.011, origin - true  # the start found within about one sample, not at :02.000
 
 
-def test_rate_on_exact_date_times_keeps_their_start(rest, tmp_path, capsys):
+def test_rate_on_exact_date_times_is_refused(rest, tmp_path, capsys):
+    """Decision B111: date-times with milliseconds time the rows; --rate would throw that timing away."""
     csv = _excel(rest, tmp_path / "e.csv", "%Y-%m-%d %H:%M:%S.%f")
-    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *ARGS, "--rate", "100"]) == 0
-    origin = _time(tmp_path / "s")["origin_s"]
-    assert abs(origin - (START - pd.Timestamp("1970-01-01")).total_seconds()) < 1e-3
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *ARGS, "--rate", "100"]) == 2
+    err = _err(capsys)
+    assert len(err) == 1 and "the date-times already time the rows; leave --rate out" in err[0], err
+    assert not (tmp_path / "s").exists()
 
 
 def test_a_rate_the_date_times_contradict_is_one_line(rest, tmp_path, capsys):
     csv = _excel(rest, tmp_path / "e.csv", "%Y-%m-%d %H:%M:%S")
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), *ARGS, "--rate", "50"]) == 2
     err = _err(capsys)
-    assert len(err) == 1 and "--rate 50 puts line" in err[0] and "decision B84" in err[0], err
+    assert len(err) == 1 and "--rate 50 does not fit" in err[0] and "decision B111" in err[0], err
+    assert not (tmp_path / "s").exists()
+
+
+def test_rows_lost_under_a_second_are_not_hidden_by_rate(rest, tmp_path, capsys):
+    """Decision B111: 0.8 s of rows lost in a whole-second export is refused naming the line, not closed up
+    (the 1 s allowance of B84 moved every later row 0.8 s earlier without a word)."""
+    lost = rest.drop(index=range(400, 480)).reset_index(drop=True)
+    csv = _excel(lost, tmp_path / "e.csv", "%Y-%m-%d %H:%M:%S")
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *ARGS, "--rate", "100"]) == 2
+    err = _err(capsys)
+    assert len(err) == 1 and "rows are missing before line 4" in err[0], err  # line 402 + under a second
+    line = int(err[0].split("from line ")[1].split()[0])
+    assert 402 <= line <= 402 + 100, line
     assert not (tmp_path / "s").exists()
 
 
