@@ -110,6 +110,30 @@ def test_thousands_points_beside_a_decimal_comma_are_read(rest, tmp_path, capsys
     assert np.median(acc[:, 1]) == pytest.approx(9.80665, abs=0.05)
 
 
+@pytest.mark.parametrize("first_ay", [1012, 998])  # "1.012" first: pandas reads points; "998": decimal=","
+def test_integers_grouped_with_points_in_a_decimal_comma_file_are_read(rest, tmp_path, capsys, first_ay):
+    """Decision B112: German Excel's ``#.##0`` integers (``1.012`` next to ``998``) in a file whose other
+    columns write decimal commas (``-0,2``) group thousands: read as 1012, not 1.012 (which --acc-unit mg then
+    refused with advice pointing at the unit)."""
+    def de(v: float, fmt: str) -> str:
+        return format(v, fmt).replace(",", "X").replace(".", ",").replace("X", ".")
+
+    ay = np.round(rest.ay * 1000)
+    ay.iloc[0] = first_ay
+    mg = rest.assign(t=rest.t.dt.strftime("%Y-%m-%d %H:%M:%S,%f").str[:-3],
+                     **{c: [de(v, ",.0f") for v in rest[c] * 1000] for c in ("ax", "az")},
+                     ay=[de(v, ",.0f") for v in ay],
+                     **{c: [de(v, ",.1f") for v in rest[c]] for c in ("gx", "gy", "gz")})
+    assert mg.ay.str.contains(".", regex=False).any() and not mg.ay.str.contains(",", regex=False).any()
+    csv = tmp_path / "mg.csv"
+    mg.to_csv(csv, sep=";", index=False)
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *ARGS[:6], "--acc-unit", "mg",
+                 "--gyro-unit", "deg/s"]) == 0, capsys.readouterr().err
+    acc = read_session(tmp_path / "s")["fAccelerometer"].values
+    assert np.median(acc[:, 1]) == pytest.approx(9.80665, abs=0.05)
+    assert acc[0, 1] == pytest.approx(first_ay * 0.00980665)
+
+
 def test_times_of_day_get_no_date_made_up(rest, tmp_path, capsys):
     csv = _excel(rest, tmp_path / "e.csv", "%H:%M:%S.%f")
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), *ARGS]) == 0

@@ -499,6 +499,7 @@ def _drop_rows(df: pd.DataFrame, n: int) -> pd.DataFrame:
     from pdrlearn.io.plasys import _decimal_comma_columns
 
     out = df.iloc[n:].reset_index(drop=True).copy()
+    _decimal_comma_columns(out)  # first: B112 reads "1.012" beside a decimal comma as text, before to_numeric
     for c in out.columns:
         col = out[c]
         if col.dtype.kind in "biufc":
@@ -506,7 +507,6 @@ def _drop_rows(df: pd.DataFrame, n: int) -> pd.DataFrame:
         num = pd.to_numeric(col, errors="coerce")
         if num[col.notna()].notna().all():
             out[c] = num
-    _decimal_comma_columns(out)
     return out
 
 
