@@ -290,8 +290,8 @@ def evaluate(
     predictions_out: Path = typer.Option(
         None, "--predictions-out", metavar="FILE.csv",
         help="Write one row per scored step: session, step (its data row in the session's steps.csv, 0 = the "
-        "first row under the header), start_s, end_s, task, true, predicted, correct, the method and unit that classified it and "
-        "their probability of each class (p_<class>); written atomically (decision C42)."),
+        "first row under the header), start_s, end_s, task, true, predicted, correct, the method and unit that "
+        "classified it and their probability of each class (p_<class>); written atomically (decision C42)."),
 ) -> None:
     """Accuracy per class x method x unit (thesis Tables 27/28/33), confusion matrices, per-step latency.
 
