@@ -272,7 +272,8 @@ PREDICTION_COLUMNS = ("session", "step", "start_s", "end_s", "task", "true", "pr
 def prediction_rows(tm, data, windows, rows: np.ndarray, pred: np.ndarray, src: np.ndarray):
     """One session's scored steps of one task as a table (decision C42): the step's data row in the session's
     steps.csv (decision C47: also after contradicting labels left rows out) and its times, the true and predicted
-    class, the method/unit that classified it and that model's probability of every class of the task (``p_<class>``, in ``tm.classes`` order)."""
+    class, the method/unit that classified it and that model's probability of every class of the task
+    (``p_<class>``, in ``tm.classes`` order)."""
     import pandas as pd
 
     from pdrlearn.kernels.proba import align_proba
