@@ -118,6 +118,13 @@ def test_run_method_resolves_against_what_the_bundle_exported():
                     [{"method": "nn", "unit": "fused"}])
     with pytest.raises(DataError, match="give one, e.g. --method terrain=svm/foot"):
         three.choose_methods("svm")
+    # decision E56: two every-task items are refused (the last one won without a word); an empty TASK= named
+    with pytest.raises(DataError, match="nn and svm are both for every task; give one, or one per task as "
+                       "TASK=METHOD .the bundle's tasks: terrain, length"):
+        b.choose_methods("nn,svm")
+    with pytest.raises(DataError, match="run --method terrain=: give a method after terrain=, e.g. --method "
+                       "terrain=svm"):
+        b.choose_methods("terrain=")
 
 
 def test_user_folds_impossible_name_the_user_and_the_class(caplog):

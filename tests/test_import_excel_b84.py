@@ -64,18 +64,33 @@ def test_rate_times_whole_second_rows_from_the_first_date_time(rest, tmp_path, c
     assert abs(origin - true) < 0.011, origin - true  # the start found within about one sample, not at :02.000
 
 
-def test_rate_on_exact_date_times_keeps_their_start(rest, tmp_path, capsys):
+def test_rate_on_exact_date_times_is_refused(rest, tmp_path, capsys):
+    """Decision B111: date-times with milliseconds time the rows; --rate would throw that timing away."""
     csv = _excel(rest, tmp_path / "e.csv", "%Y-%m-%d %H:%M:%S.%f")
-    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *ARGS, "--rate", "100"]) == 0
-    origin = _time(tmp_path / "s")["origin_s"]
-    assert abs(origin - (START - pd.Timestamp("1970-01-01")).total_seconds()) < 1e-3
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *ARGS, "--rate", "100"]) == 2
+    err = _err(capsys)
+    assert len(err) == 1 and "the date-times already time the rows; leave --rate out" in err[0], err
+    assert not (tmp_path / "s").exists()
 
 
 def test_a_rate_the_date_times_contradict_is_one_line(rest, tmp_path, capsys):
     csv = _excel(rest, tmp_path / "e.csv", "%Y-%m-%d %H:%M:%S")
     assert main(["import", str(csv), "--out", str(tmp_path / "s"), *ARGS, "--rate", "50"]) == 2
     err = _err(capsys)
-    assert len(err) == 1 and "--rate 50 puts line" in err[0] and "decision B84" in err[0], err
+    assert len(err) == 1 and "--rate 50 does not fit" in err[0] and "decision B111" in err[0], err
+    assert not (tmp_path / "s").exists()
+
+
+def test_rows_lost_under_a_second_are_not_hidden_by_rate(rest, tmp_path, capsys):
+    """Decision B111: 0.8 s of rows lost in a whole-second export is refused naming the line, not closed up
+    (the 1 s allowance of B84 moved every later row 0.8 s earlier without a word)."""
+    lost = rest.drop(index=range(400, 480)).reset_index(drop=True)
+    csv = _excel(lost, tmp_path / "e.csv", "%Y-%m-%d %H:%M:%S")
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *ARGS, "--rate", "100"]) == 2
+    err = _err(capsys)
+    assert len(err) == 1 and "rows are missing before line 4" in err[0], err  # line 402 + under a second
+    line = int(err[0].split("from line ")[1].split()[0])
+    assert 402 <= line <= 402 + 100, line
     assert not (tmp_path / "s").exists()
 
 
@@ -93,6 +108,30 @@ def test_thousands_points_beside_a_decimal_comma_are_read(rest, tmp_path, capsys
                  "--gyro-unit", "deg/s"]) == 0
     acc = read_session(tmp_path / "s")["fAccelerometer"].values
     assert np.median(acc[:, 1]) == pytest.approx(9.80665, abs=0.05)
+
+
+@pytest.mark.parametrize("first_ay", [1012, 998])  # "1.012" first: pandas reads points; "998": decimal=","
+def test_integers_grouped_with_points_in_a_decimal_comma_file_are_read(rest, tmp_path, capsys, first_ay):
+    """Decision B112: German Excel's ``#.##0`` integers (``1.012`` next to ``998``) in a file whose other
+    columns write decimal commas (``-0,2``) group thousands: read as 1012, not 1.012 (which --acc-unit mg then
+    refused with advice pointing at the unit)."""
+    def de(v: float, fmt: str) -> str:
+        return format(v, fmt).replace(",", "X").replace(".", ",").replace("X", ".")
+
+    ay = np.round(rest.ay * 1000)
+    ay.iloc[0] = first_ay
+    mg = rest.assign(t=rest.t.dt.strftime("%Y-%m-%d %H:%M:%S,%f").str[:-3],
+                     **{c: [de(v, ",.0f") for v in rest[c] * 1000] for c in ("ax", "az")},
+                     ay=[de(v, ",.0f") for v in ay],
+                     **{c: [de(v, ",.1f") for v in rest[c]] for c in ("gx", "gy", "gz")})
+    assert mg.ay.str.contains(".", regex=False).any() and not mg.ay.str.contains(",", regex=False).any()
+    csv = tmp_path / "mg.csv"
+    mg.to_csv(csv, sep=";", index=False)
+    assert main(["import", str(csv), "--out", str(tmp_path / "s"), *ARGS[:6], "--acc-unit", "mg",
+                 "--gyro-unit", "deg/s"]) == 0, capsys.readouterr().err
+    acc = read_session(tmp_path / "s")["fAccelerometer"].values
+    assert np.median(acc[:, 1]) == pytest.approx(9.80665, abs=0.05)
+    assert acc[0, 1] == pytest.approx(first_ay * 0.00980665)
 
 
 def test_times_of_day_get_no_date_made_up(rest, tmp_path, capsys):

@@ -210,3 +210,42 @@ def test_train_table_fold_spread_and_evaluate_predictions_out(sim_dirs, tmp_path
     assert len(rows) - 1 == result["n_predictions"] == result["tasks"]["terrain"]["n_steps"]
     rc = main(["evaluate", str(model), str(test / "terrain_7"), "--predictions-out", str(pred)])
     assert rc == 2 and "file exists; pass --force" in capsys.readouterr().err
+
+
+def test_predictions_index_steps_csv_after_a_contradiction_and_the_user_is_named(sim_dirs, tmp_path, capsys):
+    """Decision C47: `step` of --predictions-out is the step's data row in steps.csv also after a step labelled
+    twice with different labels is left out (it was the row in the cleaned table, two off after it). Decision
+    C48: a model of one simulated user is named by session_user ("user.seed:3"), not the raw meta dict."""
+    import shutil
+
+    import numpy as np
+    import pandas as pd
+
+    train, test = sim_dirs
+    model = tmp_path / "model"
+    assert main(["train", str(train / "terrain_0"), "--out", str(model), "--tasks", "terrain", "--units", "foot",
+                 "--methods", "svm", "--cv", "3", "--no-distance-calibration"]) == 0
+    assert json.loads((model / "manifest.json").read_text())["user"] == "user.seed:3"
+    session = tmp_path / "dup"
+    shutil.copytree(test / "terrain_7", session)
+    steps = pd.read_csv(session / "steps.csv")
+    twice = steps.iloc[[3]].assign(terrain="up" if steps.terrain.iloc[3] != "up" else "down")
+    pd.concat([steps.iloc[:4], twice, steps.iloc[4:]]).to_csv(session / "steps.csv", index=False)
+    pred = tmp_path / "pred.csv"
+    capsys.readouterr()
+    assert main(["evaluate", str(model), str(session), "--predictions-out", str(pred)]) == 0
+    assert "labelled twice with different labels" in capsys.readouterr().err
+    p = pd.read_csv(pred)
+    start = pd.read_csv(session / "steps.csv").start_ms.to_numpy() / 1000
+    assert len(p) > 20 and 3 not in set(p.step) and 4 not in set(p.step)
+    assert np.allclose(start[p.step], p.start_s, atol=1e-3)
+
+
+def test_predictions_out_inside_the_report_folder_is_refused(sim_dirs, tmp_path, capsys):
+    """Review 19, finding 6: a predictions file under --report would be deleted by the next --report --force."""
+    train, test = sim_dirs
+    report = tmp_path / "rep"
+    assert main(["evaluate", str(tmp_path / "no_model"), str(test / "terrain_7"), "--report", str(report),
+                 "--predictions-out", str(report / "p.csv")]) == 2
+    err = capsys.readouterr().err
+    assert "inside the --report folder" in err and len(err.strip().splitlines()) == 1, err

@@ -270,9 +270,10 @@ PREDICTION_COLUMNS = ("session", "step", "start_s", "end_s", "task", "true", "pr
 
 
 def prediction_rows(tm, data, windows, rows: np.ndarray, pred: np.ndarray, src: np.ndarray):
-    """One session's scored steps of one task as a table (decision C42): the step's row in the session's
-    steps table and its times, the true and predicted class, the method/unit that classified it and that
-    model's probability of every class of the task (``p_<class>``, in ``tm.classes`` order)."""
+    """One session's scored steps of one task as a table (decision C42): the step's data row in the session's
+    steps.csv (decision C47: also after contradicting labels left rows out) and its times, the true and predicted
+    class, the method/unit that classified it and that model's probability of every class of the task
+    (``p_<class>``, in ``tm.classes`` order)."""
     import pandas as pd
 
     from pdrlearn.kernels.proba import align_proba
@@ -287,7 +288,7 @@ def prediction_rows(tm, data, windows, rows: np.ndarray, pred: np.ndarray, src: 
     table = windows.steps
     out = pd.DataFrame({
         "session": windows.session,
-        "step": step,
+        "step": step if windows.source_rows is None else windows.source_rows[step],  # steps.csv's row (C47)
         "start_s": table["start_s"].to_numpy(dtype=float)[step],
         "end_s": table["end_s"].to_numpy(dtype=float)[step],
         "task": tm.task,

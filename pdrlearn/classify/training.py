@@ -557,6 +557,18 @@ def session_user(session) -> str | None:
     return None
 
 
+def _one_user(session) -> str | None:
+    """The name of a one-user model (decisions B88, C48): the session's ``user``/``subject`` text as written
+    (``anna``), else :func:`session_user`'s name of an object (``user.seed:3`` for a simulated session, not the
+    object itself); None when it names none."""
+    meta = getattr(session, "meta", None) or {}
+    for key in ("user", "subject"):
+        v = meta.get(key)
+        if isinstance(v, str) and v.strip():
+            return v.strip()
+    return session_user(session)
+
+
 def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | None = None,
            notes: list[str] | None = None) -> tuple[list, int]:
     """Stratified, shuffled folds; fewer than ``cv`` when the smallest class has fewer steps. With ``groups``
@@ -988,8 +1000,7 @@ def train_user(
         }
     return UserModel(
         # decision C35: a model pooled over users is not the first user's ("pooled: <users>")
-        user=user or (f"pooled: {', '.join(named)}" if len(named) > 1 else
-                      sessions[0].meta.get("user") or sessions[0].meta.get("subject") or UNNAMED_USER),
+        user=user or (f"pooled: {', '.join(named)}" if len(named) > 1 else _one_user(sessions[0]) or UNNAMED_USER),
         tasks=out,
         n_samples=n_samples,
         sampling_rate_hz=rates,

@@ -289,9 +289,9 @@ def evaluate(
                                              "result as out_of_domain_fraction, decision C16)."),
     predictions_out: Path = typer.Option(
         None, "--predictions-out", metavar="FILE.csv",
-        help="Write one row per scored step: session, step (row of its steps.csv after repeated rows are "
-        "merged), start_s, end_s, task, true, predicted, correct, the method and unit that classified it and "
-        "their probability of each class (p_<class>); written atomically (decision C42)."),
+        help="Write one row per scored step: session, step (its data row in the session's steps.csv, 0 = the "
+        "first row under the header), start_s, end_s, task, true, predicted, correct, the method and unit that "
+        "classified it and their probability of each class (p_<class>); written atomically (decision C42)."),
 ) -> None:
     """Accuracy per class x method x unit (thesis Tables 27/28/33), confusion matrices, per-step latency.
 
@@ -310,6 +310,11 @@ def evaluate(
     from pdrlearn.classify.evaluation import evaluation_stages, results_table, write_predictions
     from pdrlearn.cli.common import out_file
 
+    if predictions_out is not None and report is not None and Path(predictions_out).resolve().is_relative_to(
+            Path(report).resolve()):  # the next `--report --force` would delete it (decision C47)
+        raise DataError(f"evaluate: --predictions-out {predictions_out} is inside the --report folder {report}, "
+                        "which --report --force replaces; write it outside, e.g. "
+                        f"{Path(report).parent / (Path(report).name + '_steps.csv')}")
     if predictions_out is not None:  # checked before the work (decision B26: --force replaces only its own kind)
         out_file(predictions_out, (".csv",), "predictions", force=force)
     had_predictions = predictions_out is not None and existed(predictions_out)

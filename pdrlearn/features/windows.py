@@ -66,6 +66,9 @@ class StepWindows:
     session : name of the source session
     gap_steps : unit (``"foot"``/``"waist"``) -> (n_steps,) bool, the steps whose window overlaps a gap
         in that unit's accelerometer/gyroscope stream; their channels of that unit are NaN (decision B11)
+    source_rows : (n_steps,) each step's row label in the table given to :func:`step_windows` (its index before
+        the reset: a session's steps.csv data row, also after :func:`pdrlearn.classify.labels.clean_steps` left
+        rows out; decision C47); None when not known
     """
 
     X: np.ndarray
@@ -75,6 +78,7 @@ class StepWindows:
     steps: pd.DataFrame = field(default_factory=pd.DataFrame)
     session: str = ""
     gap_steps: dict[str, np.ndarray] = field(default_factory=dict)
+    source_rows: np.ndarray | None = None
 
     def __len__(self) -> int:
         return int(self.X.shape[0])
@@ -93,7 +97,8 @@ class StepWindows:
         idx = np.flatnonzero(mask) if np.asarray(mask).dtype == bool else np.asarray(mask, dtype=int)
         steps = self.steps.iloc[idx].reset_index(drop=True) if len(self.steps) else self.steps
         return StepWindows(self.X[idx], self.durations_s[idx], self.channels, self.available, steps,
-                           self.session, {u: m[idx] for u, m in self.gap_steps.items()})
+                           self.session, {u: m[idx] for u, m in self.gap_steps.items()},
+                           None if self.source_rows is None else self.source_rows[idx])
 
 
 def task_labels(steps: pd.DataFrame, task: str, *,
@@ -287,4 +292,5 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
                 raise DataError(f"session '{session.name}', step {i} ({t0:.2f}-{t1:.2f} s): {exc}") from None
     _blank_gap_steps(X, gaps, available, session.where)
     return StepWindows(X=X, durations_s=end - start, channels=CHANNELS, available=available,
-                       steps=out_steps, session=session.name, gap_steps=gaps)
+                       steps=out_steps, session=session.name, gap_steps=gaps,
+                       source_rows=np.asarray(steps.index) if steps.index.dtype.kind in "iu" else None)

@@ -310,27 +310,34 @@ def _whole_seconds_message(secs: np.ndarray, where: str, column: str, first) -> 
             "date-time (decision B84)")
 
 
-#: ``--rate`` with date-times (decision B84): the rows' times may disagree with their date-times by this much
-#: (s) beyond the date-times' own truncation before the rate (or a row lost) is the suspect
-RATE_DATETIME_TOLERANCE_S = 1.0
+#: ``--rate`` on whole-second date-times (decisions B84, B111): the rows at the rate may disagree with their
+#: date-times by this many sample periods beyond the date-times' truncation to the second before rows lost (or a
+#: wrong rate) are the cause; the rows' fit to the second boundaries pins the start to about one sample
+RATE_DRIFT_SAMPLES = 1.5
 
 
-def rows_at_rate(secs: np.ndarray, rate: float, where: str, column: str, first_line: int) -> np.ndarray:
-    """Decision B84 (``import --rate HZ`` on a date-time column): row ``i`` at ``origin + i / rate`` (s since the
-    epoch). Whole-second date-times (:func:`_whole_seconds`) hold the true time cut down to the second, so the
-    origin is the middle of the offsets for which every row's time cuts down to its date-time (the start found
-    to within about one sample); other date-times give the middle of the offsets that fit them. Refused, naming
-    the row, when they disagree by over :data:`RATE_DATETIME_TOLERANCE_S` (a wrong rate, or rows lost)."""
+def rows_at_rate(secs: np.ndarray, rate: float, where: str, column: str, first_line: int) -> tuple[np.ndarray, float]:
+    """Decisions B84, B111 (``import --rate HZ`` on whole-second date-times, :func:`_whole_seconds`): row ``i`` at
+    ``origin + i / rate`` (s since the epoch) and the half-width (s) of the origins that fit. The date-times hold
+    the true time cut down to the second, so the origins that fit are those for which every row's time cuts down
+    to its date-time; the origin is their middle (within about one sample of the true start when the rows cross
+    a second boundary; within half a second in a recording under a second). Rows lost shift every later row
+    against its date-time: refused, naming the first line that no longer fits, once the shift exceeds
+    :data:`RATE_DRIFT_SAMPLES` sample periods (a shorter gap, under ~2.5 samples, is not seen)."""
     i = np.arange(secs.size) / rate
-    cut = 1.0 if _whole_seconds(secs) else 0.0
-    lo, hi = float(np.max(secs - i)), float(np.min(secs + cut - i))
-    if lo - hi > RATE_DATETIME_TOLERANCE_S:
-        drift = secs - (secs[0] + i)
-        k = int(np.argmax(np.abs(drift)))
-        raise DataError(f"{where}: --rate {rate:g} puts line {k + first_line} at {i[k]:.2f} s after the first row "
-                        f"but column '{column}' at {secs[k] - secs[0]:.2f} s: the rate is wrong or rows are missing "
-                        "-- give the rate the device recorded at, or leave --rate out (decision B84)")
-    return (lo + hi) / 2 + i
+    lo_k, hi_k = np.maximum.accumulate(secs - i), np.minimum.accumulate(secs + 1.0 - i)
+    bad = np.flatnonzero(lo_k - hi_k > RATE_DRIFT_SAMPLES / rate)
+    if bad.size:
+        k = int(bad[0])
+        lo, hi = float(lo_k[-1]), float(hi_k[-1])
+        per_s = (secs.size - 1) / max(float(secs[-1] - secs[0]), 1.0)
+        raise DataError(f"{where}: --rate {rate:g} does not fit the whole-second date-times of column '{column}' "
+                        f"from line {k + first_line} on (at {rate:g} Hz the rows drift at least {lo - hi:.2f} s "
+                        f"from them; the file holds about {per_s:.1f} rows per second): rows are missing before "
+                        f"line {k + first_line} or the rate is wrong -- give the rate the device recorded at, or "
+                        "export the time with milliseconds and leave --rate out (decision B111)")
+    lo, hi = float(lo_k[-1]), float(hi_k[-1])
+    return (lo + hi) / 2 + i, max(hi - lo, 0.0) / 2
 
 
 #: a numeric date at the start of a text: d/m/y or m/d/y (``10/12/2020``, ``10.12.20``, ``10-12-2020``)
@@ -492,6 +499,7 @@ def _drop_rows(df: pd.DataFrame, n: int) -> pd.DataFrame:
     from pdrlearn.io.plasys import _decimal_comma_columns
 
     out = df.iloc[n:].reset_index(drop=True).copy()
+    _decimal_comma_columns(out)  # first: B112 reads "1.012" beside a decimal comma as text, before to_numeric
     for c in out.columns:
         col = out[c]
         if col.dtype.kind in "biufc":
@@ -499,7 +507,6 @@ def _drop_rows(df: pd.DataFrame, n: int) -> pd.DataFrame:
         num = pd.to_numeric(col, errors="coerce")
         if num[col.notna()].notna().all():
             out[c] = num
-    _decimal_comma_columns(out)
     return out
 
 
@@ -705,10 +712,14 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         if time_unit is not None and _time_word(time_unit) != "samples":
             raise DataError(f"import: --rate reads the time column as sample numbers; leave --time-unit "
                             f"{time_unit} out")
-        if secs is not None:  # decision B84: rows at r Hz from the date-times, which only place the first
-            t_num = rows_at_rate(secs, r, where, time_column, first_line)
-            t_how = (f"rows at {r:g} Hz (given with --rate) from the date-time text"
-                     + (" (whole seconds: the start placed within one sample)" if _whole_seconds(secs) else ""))
+        if secs is not None and not _whole_seconds(secs):  # decision B111: they time the rows themselves
+            raise DataError(f"{where}: column '{time_column}' holds date-times with fractions of a second "
+                            f"({tcol.iloc[0]!r} ...): the date-times already time the rows; leave --rate out "
+                            "(decision B111)")
+        if secs is not None:  # decision B84: rows at r Hz, placed by the whole-second date-times
+            t_num, half = rows_at_rate(secs, r, where, time_column, first_line)
+            t_how = (f"rows at {r:g} Hz (given with --rate) from the whole-second date-time text (the start "
+                     f"placed to +/-{half * 1000:.0f} ms)")
         else:
             t_unit, t_how = "samples", f"sample numbers at {r:g} Hz (given with --rate)"
     # the origin is taken off in the file's own unit: epoch milliseconds keep their exact 10 ms steps

@@ -143,7 +143,13 @@ def read_table(path: str | os.PathLike) -> pd.DataFrame:
         first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise DataError(f"{path}: not a valid CSV ({first}); fix or re-export the file") from None
     df.columns = [str(c).strip() for c in df.columns]
-    _decimal_comma_columns(df)
+
+    def text() -> pd.DataFrame:  # the cells as written, for decision B112 (read only when a column may need it)
+        raw = pd.read_csv(path, dtype=str, **dialect)
+        raw.columns = df.columns
+        return raw
+
+    _decimal_comma_columns(df, text, comma=dialect.get("decimal") == ",")
     return df
 
 
@@ -154,23 +160,61 @@ _DECIMAL_COMMA = r"[+-]?(?:\d+(?:,\d*)?|,\d+)(?:[eE][+-]?\d+)?"
 _GROUPED_DECIMAL_COMMA = r"[+-]?(?:\d{1,3}(?:\.\d{3})+|\d+)(?:,\d*)?"
 
 
-def _decimal_comma_columns(df: pd.DataFrame) -> None:
+def _decimal_comma_columns(df: pd.DataFrame, text=None, *, comma: bool = False) -> None:
     """Decision B24, in place: a column read as text whose every value is a number written with a decimal
     comma (or an integer; decision B85: with points grouping its thousands, ``1.002,3``) becomes numbers: in a
     file separated by ';' or tabs whose first data line, which :func:`_csv_dialect` looks at, held integers only,
     and in a comma file whose values are quoted ("0,5", a spreadsheet's comma export in a decimal-comma locale).
-    Other text columns are kept; numeric columns cost nothing."""
+    Decision B112, per file: when a column was read or written with a decimal comma (``comma``: the file was
+    read with ``decimal=","``), the file's points group thousands, so a column of integers with grouping points
+    (``#.##0``: ``1.012`` next to ``998``) is read as integers (:func:`_grouped_integer_columns`; ``text()`` gives
+    the cells as written, for a column pandas already read as decimal points). Other text columns are kept;
+    numeric columns cost nothing."""
     for c in df.columns:
         col = df[c]
         if col.dtype.kind in "biufc":
             continue
-        text = col.dropna().astype(str).str.strip()
-        if len(text) and text.str.contains(",", regex=False).any() and text.str.fullmatch(_DECIMAL_COMMA).all():
-            df[c] = pd.to_numeric(text.str.replace(",", ".", regex=False)).reindex(df.index)
-        elif (len(text) and text.str.contains(",", regex=False).any() and text.str.contains(".", regex=False).any()
-              and text.str.fullmatch(_GROUPED_DECIMAL_COMMA).all()):  # B85: beside a decimal comma a point groups
-            df[c] = pd.to_numeric(text.str.replace(".", "", regex=False).str.replace(",", ".", regex=False)
+        text_c = col.dropna().astype(str).str.strip()
+        if not (len(text_c) and text_c.str.contains(",", regex=False).any()):
+            continue
+        if text_c.str.fullmatch(_DECIMAL_COMMA).all():
+            df[c] = pd.to_numeric(text_c.str.replace(",", ".", regex=False)).reindex(df.index)
+            comma = True
+        elif text_c.str.contains(".", regex=False).any() and text_c.str.fullmatch(_GROUPED_DECIMAL_COMMA).all():
+            # B85: beside a decimal comma a point groups
+            df[c] = pd.to_numeric(text_c.str.replace(".", "", regex=False).str.replace(",", ".", regex=False)
                                   ).reindex(df.index)
+            comma = True
+    if comma:
+        _grouped_integer_columns(df, text)
+
+
+#: decision B112: an integer with points grouping its thousands (``1.012``, ``12.345.678``), or without (``998``)
+_GROUPED_INTEGER = r"[+-]?(?:[1-9]\d{0,2}(?:\.\d{3})+|\d+)"
+
+
+def _grouped_integer_columns(df: pd.DataFrame, text=None) -> None:
+    """Decision B112, in place, for a file that writes decimal commas: each column whose cells all read as
+    integers, some with points grouping thousands (``1.012``, ``998``), becomes those integers. A text column is
+    checked as it is; a column pandas read as decimal points (1.012, 998.0) only when every value could be such
+    a cell (a multiple of 0.001, the fractions between 1 and 1000), on its cells as written (``text()``)."""
+    raw = None
+    for c in df.columns:
+        col = df[c]
+        if col.dtype.kind == "f":
+            v = col.dropna().to_numpy(float)
+            frac = v != np.round(v)
+            if not (frac.any() and np.allclose(v * 1000, np.round(v * 1000), rtol=0, atol=1e-6)
+                    and np.all((np.abs(v[frac]) > 1) & (np.abs(v[frac]) < 1000)) and text is not None):
+                continue
+            raw = text() if raw is None else raw
+            col = raw[c]
+        elif col.dtype.kind in "biuc":
+            continue
+        cells = col.dropna().astype(str).str.strip()
+        if (len(cells) and cells.str.contains(".", regex=False).any()
+                and cells.str.fullmatch(_GROUPED_INTEGER).all()):
+            df[c] = pd.to_numeric(cells.str.replace(".", "", regex=False)).reindex(df.index)
 
 
 def _csv_dialect(path: Path) -> dict:

@@ -163,8 +163,9 @@ class Bundle:
         return [f"{m}/{u}" for m, per in self.tasks[task]["methods"].items() for u in per]
 
     def choose_methods(self, spec: str) -> dict[str, str]:
-        """``run --method`` (decision E52): ``spec`` is a comma list of ``METHOD``, ``METHOD/UNIT`` (every
-        task) or ``TASK=METHOD[/UNIT]`` (one task; it wins over an every-task item). A method without a unit
+        """``run --method`` (decision E52): ``spec`` is a comma list of at most one ``METHOD``/``METHOD/UNIT``
+        (every task; two are refused, decision E56) and ``TASK=METHOD[/UNIT]`` (one task; it wins over the
+        every-task item). A method without a unit
         takes the task's chosen unit when the method has it, else a two-unit model when the chosen one reads
         both units (combined, else fused), else the method's only exported unit. Returns
         task -> ``"method/unit"`` for :class:`Tracker` ``methods``; a task the bundle lacks, a method it did not
@@ -174,6 +175,11 @@ class Bundle:
             if not item:
                 continue
             task, _, mu = item.rpartition("=")
+            if "=" in item and not mu.strip():
+                raise DataError(f"run --method {item}: give a method after {item}, e.g. --method {item}svm")
+            if not task and every is not None:  # decision E56: one every-task item; the last silently won
+                raise DataError(f"run --method {spec}: {every} and {mu} are both for every task; give one, or "
+                                f"one per task as TASK=METHOD (the bundle's tasks: {', '.join(self.tasks)})")
             if not task:
                 every = mu
             elif task not in self.tasks:

@@ -53,7 +53,8 @@ TURN_COUNT_MIN_DEG = 80.0
 CV_MIN_STRIDES = 10
 
 #: decision L113's candidate: a contact timing scatter (s) of this much or more withholds ``stride_time_cv_pct``
-#: (it adds sqrt(2) x 30 ms = 42 ms to the SD of a ~1.1 s stride, 3.9 %, more than a healthy walker's CV of 1-3 %)
+#: (two contacts per stride time: it contributes sqrt(2) x 30 ms = 42 ms (in quadrature) to the SD of a ~1.1 s
+#: stride, 3.9 %, more than a healthy walker's CV of 1-3 %)
 CONTACT_SCATTER_OPTION_S = 0.030
 #: the default: off (inf). L113's rule was not met (R2: one printed CV 3.89 % > 2 x 1.38 % + 1), so the check is
 #: an option: ``clinical_summary(steps, contact_scatter_max_s=CONTACT_SCATTER_OPTION_S)``
@@ -171,7 +172,8 @@ def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]
 def contact_scatter_s(stride_s: np.ndarray, onset_s: np.ndarray) -> float:
     """Decision L113: each contact's timing scatter (s) estimated from the stride times ``stride_s`` (contact to
     contact) and the same strides' swing-onset intervals ``onset_s``: sqrt((SD_contacts^2 - SD_onsets^2) / 2),
-    0 when the contacts vary less than the onsets (SD with n - 1)."""
+    0 when the contacts vary less than the onsets (SD with n - 1). Derived here (no document gives it):
+    independent errors add variances, and a stride time holds two contacts' errors."""
     excess = float(np.var(stride_s, ddof=1) - np.var(onset_s, ddof=1))
     return float(np.sqrt(excess / 2.0)) if excess > 0 else 0.0
 
