@@ -151,6 +151,22 @@ def quiet_acc_norm(values: np.ndarray, t: np.ndarray | None = None) -> float:
     return float(np.median(norm[np.isin(idx, quiet)]))
 
 
+#: decision B97: a still accelerometer reads gravity; the median |acc| of its quietest windows (B78's
+#: :func:`quiet_acc_norm`) must lie within this fraction of :data:`STANDARD_GRAVITY`. Seen on correctly scaled
+#: units: 9.47-9.93 m/s^2 (-3.4 .. +1.2 %) on the 11 real foot and 12 lower-back recordings (datasets/real,
+#: datasets/external), 9.58-10.26 (-2.3 .. +4.6 %) on the trial simulations of B78; 10 % is twice the widest. A
+#: wrong full scale or counts-per-g (powers of two: x0.5, x2.048, ...) is far outside; a 2.4 % slip (1024 counts/g
+#: read as mg) lies inside the spread of correct units and cannot be told from them.
+GRAVITY_TOLERANCE = 0.10
+
+
+def gravity_scale(rest_norm: float) -> float | None:
+    """Decision B97: ``rest_norm`` (m/s^2, |acc| at rest) over gravity when it lies outside
+    :data:`GRAVITY_TOLERANCE`, else ``None``."""
+    scale = rest_norm / STANDARD_GRAVITY
+    return scale if abs(scale - 1.0) > GRAVITY_TOLERANCE else None
+
+
 def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str | None = None,
                 t: np.ndarray | None = None) -> None:
     """Detect values recorded in the wrong unit from their magnitudes and say how to convert.
@@ -170,9 +186,9 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
     if spec.kind == "accelerometer":
         check_gravity(values, where)
         whole = float(np.median(np.linalg.norm(values, axis=1)))
-        if 4.0 <= whole <= 25.0:
-            return  # plausible on the whole file (the check before B78): unchanged
-        med = quiet_acc_norm(values, t)  # B78: else judged where the unit rests (|acc| ~ g), e.g. a running foot
+        med = quiet_acc_norm(values, t)  # B78: judged where the unit rests (|acc| ~ g), e.g. a running foot
+        if 4.0 <= whole <= 25.0 and (t is None or gravity_scale(med) is None):
+            return  # plausible on the whole file (the check before B78) and ~1 g at rest (B97)
         if 0.5 <= whole <= 2.0 or 0.5 <= med <= 2.0:  # the whole file's figure when it tells (as before B78)
             raise DataError(
                 f"{where}: median |acc| is {whole if 0.5 <= whole <= 2.0 else med:.2f}, which looks like units of g; "
@@ -187,6 +203,14 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
         if not 4.0 <= med <= 25.0:
             raise DataError(f"{where}: median |acc| is {med:.2f} m/s^2 in its quietest windows "
                             "(gravity, 9.81 m/s^2, at rest), implausible for a body-worn unit; convert to m/s^2")
+        scale = gravity_scale(med)
+        if t is not None and scale is not None:  # decision B97: ~1 g at rest, else the values are mis-scaled
+            raise DataError(
+                f"{where}: at rest (its quietest windows) |acc| is {med:.2f} m/s^2, {scale:.3f} times gravity "
+                f"({STANDARD_GRAVITY} m/s^2, +-{GRAVITY_TOLERANCE:.0%} allowed): the values look {scale:.3f} times too "
+                f"{'large' if scale > 1 else 'small'} (a wrong full scale or counts per g, e.g. counts at 2048/g read "
+                f"as mg); divide them by {scale:.4g}"
+                + _or(declare, f"declare the unit that gives m/s^2 as \"units\": {{\"{spec.name}\": ...}} in meta.json"))
     elif spec.kind == "gyroscope":
         p99 = float(np.percentile(np.abs(values), 99))
         if p99 > 40.0:
