@@ -210,7 +210,7 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
                 f"({STANDARD_GRAVITY} m/s^2, +-{GRAVITY_TOLERANCE:.0%} allowed): the values look {scale:.3f} times too "
                 f"{'large' if scale > 1 else 'small'} (a wrong full scale or counts per g, e.g. counts at 2048/g read "
                 f"as mg); divide them by {scale:.4g}"
-                + _or(declare, f"declare the unit that gives m/s^2 as \"units\": {{\"{spec.name}\": ...}} in meta.json"))
+                + _or(declare, f"declare the unit that gives m/s^2 (\"units\": {{\"{spec.name}\": ...}}) in meta.json"))
     elif spec.kind == "gyroscope":
         p99 = float(np.percentile(np.abs(values), 99))
         if p99 > 40.0:
@@ -387,6 +387,25 @@ def check_trajectory_times(t_raw: np.ndarray, scale: float, t_start: float, t_en
                         f"timestamps in {unit} like the sensor files, on their time base")
     raise DataError(f"{what}; the trajectory does not lie on the sensors' clock: write its timestamps in {unit} "
                     f"on the sensor files' time base (shift by the offset between the two clocks)")
+
+
+#: decision B39: timestamps at or above this are a clock since an epoch (epoch s >= 1e9 since 2001-09, epoch ms
+#: ~1.6e12), not sample numbers counted from the start of a recording
+EPOCH_START = 1e9
+
+
+def sample_numbers(t_raw: np.ndarray) -> bool:
+    """True when timestamps look like sample numbers (decision B39): integers stepping by exactly 1 (at least 95 %
+    of the steps; dropped samples make a few larger integer steps), starting under :data:`EPOCH_START`. Read as
+    ms they are a 1000 Hz clock, which a genuine 1000 Hz logger in ms since its start also writes; a clock since
+    an epoch (1.6e12 ms) is not taken for sample numbers."""
+    t = np.asarray(t_raw, dtype=float)
+    if t.size < 3 or not np.all(np.isfinite(t)) or abs(float(t[0])) >= EPOCH_START:
+        return False
+    d = np.diff(t)
+    if np.any(d <= 0) or np.any(t != np.round(t)):
+        return False
+    return bool(np.mean(d == 1.0) >= 0.95)
 
 
 #: walking rhythm bounds (s) for :func:`implausible_rhythm` (decision B31): the shortest step of a walk or run

@@ -1,0 +1,81 @@
+"""Trial `rates` (session 19): a mis-scaled accelerometer (B97) and sample-counter timestamps (B98)."""
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.errors import DataError
+from pdrlearn.io import read_session
+from pdrlearn.io.session import Stream
+from pdrlearn.io.validate import check_session
+
+ROOT = Path(__file__).resolve().parents[1]
+LEVEL = ROOT / "datasets" / "real" / "gaitmap_level_left"  # foot, 204.8 Hz
+WAIST = ROOT / "datasets" / "real" / "mobgap_HA001_Test5_Trial1"  # lower back, 100 Hz
+
+
+def _scaled(src: Path, dst: Path, name: str, factor: float) -> Path:
+    shutil.copytree(src, dst)
+    df = pd.read_csv(dst / f"{name}.csv")
+    df[["x", "y", "z"]] *= factor
+    df.to_csv(dst / f"{name}.csv", index=False, float_format="%.10g")
+    return dst
+
+
+# -- B97: ~1 g at rest -----------------------------------------------------------------------------------------
+@pytest.mark.parametrize(("src", "name"), [(LEVEL, "fAccelerometer"), (WAIST, "wAccelerometer")])
+def test_accelerometer_scaled_2048_is_refused_naming_the_factor(tmp_path, capsys, src, name):
+    d = _scaled(src, tmp_path / "x2048", name, 2.048)
+    assert main(["info", str(d)]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err
+    assert str(d / f"{name}.csv") in err[0] and "times gravity" in err[0]
+    factor = float(err[0].split("divide them by ")[1].split(",")[0].split()[0])
+    assert factor == pytest.approx(2.048, rel=0.04)
+
+
+def test_accelerometer_scaled_half_is_refused_and_1024_passes(tmp_path):
+    with pytest.raises(DataError, match=r"0\.\d+ times gravity.*too small"):
+        read_session(_scaled(LEVEL, tmp_path / "half", "fAccelerometer", 0.5))
+    s = read_session(_scaled(LEVEL, tmp_path / "x1024", "fAccelerometer", 1.024))  # inside the spread: B97
+    assert len(s["fAccelerometer"]) > 0
+
+
+def test_a_mis_scaled_stream_built_in_python_is_refused(tmp_path):
+    s = read_session(LEVEL)
+    acc = s["fAccelerometer"]
+    s.streams["fAccelerometer"] = Stream(acc.name, acc.t, acc.values * 2.048)
+    with pytest.raises(DataError, match="times gravity"):
+        check_session(s)
+
+
+# -- B98: sample counters without rate_hz ----------------------------------------------------------------------
+def _counter(dst: Path, meta_update: dict) -> Path:
+    """The foot recording with its timestamps replaced by sample numbers 0, 1, 2 ... (a 204.8 Hz counter)."""
+    shutil.copytree(LEVEL, dst)
+    for name in ("fAccelerometer", "fGyroscope"):
+        df = pd.read_csv(dst / f"{name}.csv")
+        df["timestamp"] = np.arange(len(df))
+        df.to_csv(dst / f"{name}.csv", index=False, float_format="%.10g")
+    for label in ("steps.csv", "trajectory.csv"):
+        (dst / label).unlink(missing_ok=True)
+    meta = {k: v for k, v in json.loads((dst / "meta.json").read_text()).items() if k != "rate_hz"}
+    (dst / "meta.json").write_text(json.dumps({**meta, **meta_update}))
+    return dst
+
+
+def test_sample_counter_with_declared_ms_and_no_rate_is_refused_and_read_with_rate_hz(tmp_path, capsys):
+    d = _counter(tmp_path / "idx", {"units": {"timestamp": "ms since the first sample"}})
+    assert main(["steps", str(d)]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err
+    assert "sample counters" in err[0] and '"rate_hz"' in err[0] and '"samples"' in err[0]
+    t = read_session(_counter(tmp_path / "rate", {"rate_hz": 204.8, "units": {"timestamp": "samples"}}))[
+        "fAccelerometer"].t
+    assert 1.0 / np.median(np.diff(t)) == pytest.approx(204.8)
