@@ -79,3 +79,21 @@ def test_sample_counter_with_declared_ms_and_no_rate_is_refused_and_read_with_ra
     t = read_session(_counter(tmp_path / "rate", {"rate_hz": 204.8, "units": {"timestamp": "samples"}}))[
         "fAccelerometer"].t
     assert 1.0 / np.median(np.diff(t)) == pytest.approx(204.8)
+
+
+# -- W87: the waist calibration records its rate ----------------------------------------------------------------
+def test_waist_params_applied_at_another_rate_warn_naming_calibrate(tmp_path):
+    from pdrlearn.track import get_pipeline
+    from pdrlearn.waist.calibration import calibrate
+    from pdrlearn.waist.params import load_params
+    from tests.test_waist import synth_session
+
+    p = calibrate([synth_session(fs=100.0)], "waist-pendulum", distances=[12.0])
+    assert p.rate_hz == pytest.approx(100.0)
+    path = p.save(tmp_path / "p.json")
+    assert load_params(path).rate_hz == pytest.approx(100.0)  # round trip
+    track = get_pipeline("waist-pendulum")
+    same = track(synth_session(fs=100.0), params=path).info["warnings"]
+    assert not [w for w in same if "calibrated at" in w]
+    other = [w for w in track(synth_session(fs=25.0), params=path).info["warnings"] if "calibrated at" in w]
+    assert len(other) == 1 and str(path) in other[0] and "25 Hz" in other[0] and "pdrlearn calibrate" in other[0]
