@@ -97,3 +97,49 @@ def test_waist_params_applied_at_another_rate_warn_naming_calibrate(tmp_path):
     assert not [w for w in same if "calibrated at" in w]
     other = [w for w in track(synth_session(fs=25.0), params=path).info["warnings"] if "calibrated at" in w]
     assert len(other) == 1 and str(path) in other[0] and "25 Hz" in other[0] and "pdrlearn calibrate" in other[0]
+
+
+# -- features 16: the step windows' gap rule has a floor in seconds ---------------------------------------------
+def _dropped(rate: float, missing: int) -> Stream:
+    """10 s at ``rate`` Hz with ``missing`` samples in a row dropped at 5 s."""
+    t = np.arange(0.0, 10.0, 1.0 / rate)
+    i = int(5.0 * rate)
+    t = np.delete(t, np.arange(i, i + missing))
+    return Stream("fAccelerometer", t, np.tile([0.0, 9.81, 0.0], (t.size, 1)))
+
+
+def test_window_gaps_bridge_up_to_25_ms_at_any_rate():
+    from pdrlearn.features.windows import window_gaps
+
+    assert window_gaps(_dropped(1000.0, 2)) == []  # a 3 ms hole: bridged (was a gap: 3 > 2.5 periods)
+    assert window_gaps(_dropped(1000.0, 20)) == []  # 21 ms
+    assert len(window_gaps(_dropped(1000.0, 30))) == 1  # 31 ms: a gap
+    assert window_gaps(_dropped(100.0, 1)) == []  # B46 unchanged at 100 Hz and below
+    assert len(window_gaps(_dropped(100.0, 2))) == 1
+    assert window_gaps(_dropped(25.0, 1)) == [] and len(window_gaps(_dropped(25.0, 2))) == 1
+
+
+# -- B99, B100: raw counts named by their counts per g; a scale factor in meta.json ------------------------------
+def _counts(dst: Path, per_g: float, unit: str | None) -> Path:
+    """The lower-back recording's accelerometer as int16 counts at ``per_g`` LSB/g, meta.json declaring ``unit``."""
+    shutil.copytree(WAIST, dst)
+    df = pd.read_csv(dst / "wAccelerometer.csv")
+    df[["x", "y", "z"]] = np.round(df[["x", "y", "z"]] / 9.80665 * per_g)
+    df.to_csv(dst / "wAccelerometer.csv", index=False)
+    meta = json.loads((dst / "meta.json").read_text())
+    units = {k: v for k, v in meta.get("units", {}).items() if k != "wAccelerometer"}
+    meta["units"] = {**units, **({"wAccelerometer": unit} if unit else {})}
+    (dst / "meta.json").write_text(json.dumps(meta))
+    return dst
+
+
+def test_raw_counts_error_names_the_counts_per_g(tmp_path):
+    with pytest.raises(DataError, match=r"about 20\d\d per g \(a 2048 LSB/g sensor\?\)"):
+        read_session(_counts(tmp_path / "raw", 2048.0, None))
+
+
+@pytest.mark.parametrize("unit", ["1/2048 g", "0.0047884 m/s^2"])
+def test_a_scale_factor_in_meta_json_converts_raw_counts(tmp_path, unit):
+    ref = read_session(WAIST)["wAccelerometer"].values
+    got = read_session(_counts(tmp_path / "raw", 2048.0, unit))["wAccelerometer"].values
+    np.testing.assert_allclose(got, ref, atol=0.01)  # 1 count = 0.0048 m/s^2

@@ -108,12 +108,30 @@ def _value_unit(meta: dict, name: str, where: str) -> tuple[float, str | None]:
     if not isinstance(units, dict) or name not in units or table is None:
         return 1.0, None
     text = str(units[name]).strip()
-    word = text.split()[0].strip("(),;:").lower() if text else ""
+    words = text.split()
+    scale = _scale_factor(words[0]) if len(words) > 1 else None  # decision B100: "0.0047884 m/s^2" per count
+    if scale is not None:
+        words = words[1:]
+    word = words[0].strip("(),;:").lower() if words else ""
     if word not in table:
         raise DataError(f"{where}: units.{name} {text[:40]!r} does not start with a {spec.kind} unit pdrlearn "
-                        f"converts from ({', '.join(dict.fromkeys(table))}); write the unit first, e.g. "
-                        f"\"{spec.unit}\", or remove the entry")
-    return table[word], word
+                        f"converts from ({', '.join(dict.fromkeys(table))}), or a scale factor and one (a raw count "
+                        f"as \"0.0047884 m/s^2\" or \"1/2048 g\"); write the unit first, e.g. \"{spec.unit}\", or "
+                        "remove the entry")
+    if scale is None:
+        return table[word], word
+    return scale * table[word], f"{text.split()[0]} {word}"
+
+
+def _scale_factor(token: str) -> float | None:
+    """Decision B100: a positive finite number (``0.0047884``, ``4.79e-3``) or fraction (``1/2048``) that leads a
+    declared value unit: the size of one count in that unit; ``None`` when ``token`` is not one."""
+    num, _, den = token.partition("/")
+    try:
+        v = float(num) / (float(den) if den else 1.0)
+    except (ValueError, ZeroDivisionError):
+        return None
+    return v if math.isfinite(v) and v > 0 else None
 
 
 def _check_body_fields(meta: dict, where: str) -> None:

@@ -167,6 +167,24 @@ def gravity_scale(rest_norm: float) -> float | None:
     return scale if abs(scale - 1.0) > GRAVITY_TOLERANCE else None
 
 
+#: decision B99: what an accelerometer file at rest reads per g in each common scale: MEMS sensitivities (LSB/g,
+#: powers of two: 256 for the ADXL345 at +-16 g, thesis eq. 24; 2048 for an int16 at +-16 g; 16384 at +-2 g),
+#: mg and mm/s^2
+PER_G_SCALES = {**{2.0 ** k: f"a {2 ** k} LSB/g sensor" for k in range(6, 16)}, 1000.0: "mg",
+                1000.0 * STANDARD_GRAVITY: "mm/s^2"}
+
+
+def counts_per_g_hint(rest_norm: float) -> str:
+    """Decision B99: how to convert an accelerometer file whose |acc| at rest is ``rest_norm`` (raw counts, mg or
+    mm/s^2): at rest |acc| is 1 g, so ``rest_norm`` is the file's value per g; the :data:`PER_G_SCALES` entry
+    within 5 % of it, if any, is named."""
+    near = min(PER_G_SCALES, key=lambda k: abs(math.log(rest_norm / k))) if rest_norm > 0 else None
+    guess = f" ({PER_G_SCALES[near]}?)" if near and abs(rest_norm / near - 1.0) <= 0.05 else ""
+    return (f"at rest it reads about {rest_norm:.0f} per g{guess}: divide by the sensor's counts per g and multiply "
+            f"by {STANDARD_GRAVITY} (mg: 1000 per g; mm/s^2: divide by 1000; thesis eq. 24's counts / 256 * 9.81 is "
+            "the ADXL345 at +-16 g)")
+
+
 def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str | None = None,
                 t: np.ndarray | None = None) -> None:
     """Detect values recorded in the wrong unit from their magnitudes and say how to convert.
@@ -198,7 +216,7 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
         if whole > 200 or med > 200:
             raise DataError(
                 f"{where}: median |acc| is {whole if whole > 200 else med:.0f}, which looks like raw counts or mm/s^2; "
-                "convert to m/s^2 (thesis eq. 24: counts / 256 * 9.81 for the ADXL345 at +-16 g)"
+                f"convert to m/s^2: {counts_per_g_hint(med if t is not None else whole)}"
             )
         if not 4.0 <= med <= 25.0:
             raise DataError(f"{where}: median |acc| is {med:.2f} m/s^2 in its quietest windows "
