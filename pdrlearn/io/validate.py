@@ -208,8 +208,9 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
         # B97: ~1 g at rest (quiet windows: a foot's foot-flat) or on the whole file's median (a waist that walks
         # without a pause: its quiet windows sit on the bounce's peaks, 11.7 m/s^2 for a +-2 m/s^2 sine)
         at_g = t is None or gravity_scale(med) is None or gravity_scale(whole) is None
-        if 4.0 <= whole <= 25.0 and at_g:
-            return  # plausible on the whole file (the check before B78) and ~1 g at rest (B97)
+        if 4.0 <= whole <= 25.0 and (at_g or not 4.0 <= med <= 25.0):
+            return  # plausible on the whole file (before B78) and ~1 g at rest (B97; a quiet median off any scale
+            # of g, gravity removed, is B30's / B36's)
         if 0.5 <= whole <= 2.0 or 0.5 <= med <= 2.0:  # the whole file's figure when it tells (as before B78)
             raise DataError(
                 f"{where}: median |acc| is {whole if 0.5 <= whole <= 2.0 else med:.2f}, which looks like units of g; "
