@@ -105,8 +105,11 @@ def test_sample_index_timestamps_with_rate_hz_are_read_at_that_rate(tmp_path, ca
     np.testing.assert_allclose(read_session(decl)["fGyroscope"].t, clean["fGyroscope"].t, atol=1e-9)
 
 
-def test_a_genuine_1000_hz_ms_clock_is_read_as_ms(tmp_path):
-    d = _at_100hz(tmp_path / "k1000", times=lambda g: np.arange(g[0], g[-1], 1.0))
+def test_a_genuine_1000_hz_ms_clock_is_read_as_ms_with_rate_hz(tmp_path):
+    # decision B98: without rate_hz consecutive integers are refused (sample counters write the same numbers)
+    with pytest.raises(DataError, match="sample counters"):
+        read_session(_at_100hz(tmp_path / "bare", times=lambda g: np.arange(g[0], g[-1], 1.0)))
+    d = _at_100hz(tmp_path / "k1000", times=lambda g: np.arange(g[0], g[-1], 1.0), meta={"rate_hz": 1000})
     s = read_session(d)
     assert s["fAccelerometer"].rate_hz == pytest.approx(1000.0)
 

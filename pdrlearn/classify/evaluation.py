@@ -380,14 +380,14 @@ def _has_unit(unit: str, available) -> bool:
 def _gap_text(session, gap_steps: dict) -> str:
     """The longest gap in the streams of the units that lost steps, e.g. ``5.0 s at 10.0 s in
     fAccelerometer`` (decision B17)."""
-    from pdrlearn.features.windows import BRIDGED_PERIODS, GAP_GROUPS, GROUP_STREAMS
+    from pdrlearn.features.windows import GAP_GROUPS, GROUP_STREAMS, window_gaps
 
     best = None
     for unit in gap_steps:
         for g in GAP_GROUPS.get(unit, ()):
             for name in GROUP_STREAMS[g]:
                 st = session.streams.get(name)
-                for gap in st.gaps(BRIDGED_PERIODS) if st is not None else ():  # B46
+                for gap in window_gaps(st) if st is not None else ():  # B46, features 16
                     if best is None or gap.duration_s > best[0]:
                         best = (gap.duration_s, gap.start_s, name)
     if best is None:

@@ -376,7 +376,7 @@ def _origin_text(origin_s: float) -> str:
     the epoch (B39's EPOCH_START), in the ISO form the date-time summary uses."""
     from datetime import UTC, datetime
 
-    from pdrlearn.io.importer import EPOCH_START
+    from pdrlearn.io.validate import EPOCH_START
 
     text = f"{origin_s:.3f} s"
     if abs(origin_s) >= EPOCH_START:

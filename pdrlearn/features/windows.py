@@ -166,13 +166,22 @@ GAP_GROUPS: dict[str, tuple[str, ...]] = {"foot": ("foot_acc", "foot_gyr"), "wai
 #: allowance) is bridged by the windows' time interpolation, as the waist pipelines bridge it (W34) and
 #: :meth:`Stream.on_uniform_clock` does (B33); only a longer one (two or more samples in a row) is a gap
 BRIDGED_PERIODS = 2.5
+#: features decision 16: ... and never less than this (s): what B46 bridges at 100 Hz (the rate the features were
+#: validated at) is bridged at every higher rate, where two samples missing in a row are a hole of a few ms
+BRIDGED_S = 0.025
+
+
+def window_gaps(stream) -> list:
+    """The gaps of ``stream`` that blank a step window (decision B46, features decision 16): intervals longer
+    than :data:`BRIDGED_PERIODS` nominal periods and than :data:`BRIDGED_S` seconds (:meth:`Stream.gaps`)."""
+    return stream.gaps(max(BRIDGED_PERIODS, BRIDGED_S / stream.period_s))
 
 
 def gap_steps(session: Session, start: np.ndarray, end: np.ndarray,
               available: tuple[str, ...]) -> dict[str, np.ndarray]:
-    """Per unit, the steps ``[start, end]`` (s) overlapping a gap (interval > :data:`BRIDGED_PERIODS` nominal
-    periods, :meth:`Stream.gaps`; decision B46) of the unit's accelerometer or gyroscope; only units with such
-    steps."""
+    """Per unit, the steps ``[start, end]`` (s) overlapping a gap (:func:`window_gaps`: an interval over
+    :data:`BRIDGED_PERIODS` nominal periods and :data:`BRIDGED_S`; decision B46, features 16) of the unit's
+    accelerometer or gyroscope; only units with such steps."""
     out = {}
     for unit, groups in GAP_GROUPS.items():
         mask = np.zeros(len(start), dtype=bool)
@@ -180,7 +189,7 @@ def gap_steps(session: Session, start: np.ndarray, end: np.ndarray,
             if g not in available:
                 continue
             for name in GROUP_STREAMS[g]:
-                for gap in session.streams[name].gaps(BRIDGED_PERIODS):
+                for gap in window_gaps(session.streams[name]):
                     mask |= (start < gap.start_s + gap.duration_s) & (end > gap.start_s)
         if mask.any():
             out[unit] = mask

@@ -35,6 +35,7 @@ from pdrlearn.io.validate import (
     check_units,
     clock_reset_message,
     clock_resets,
+    sample_numbers,
     time_unit_candidates,
 )
 
@@ -259,23 +260,6 @@ def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
     return cands[0], "inferred (B22)" + (f"; also fits {', '.join(cands[1:])}" if len(cands) > 1 else "")
 
 
-#: decision B39: timestamps at or above this are a clock since an epoch (epoch s >= 1e9 since 2001-09, epoch ms
-#: ~1.6e12), not sample numbers counted from the start of a recording
-EPOCH_START = 1e9
-
-
-def sample_numbers(t_raw: np.ndarray) -> bool:
-    """True when timestamps look like sample numbers (decision B39): integers stepping by exactly 1 (at least 95 %
-    of the steps; dropped samples make a few larger integer steps), starting under :data:`EPOCH_START`. Read as
-    ms they are a 1000 Hz clock, which a genuine 1000 Hz logger in ms since its start also writes; a clock since
-    an epoch (1.6e12 ms) is not taken for sample numbers."""
-    t = np.asarray(t_raw, dtype=float)
-    if t.size < 3 or not np.all(np.isfinite(t)) or abs(float(t[0])) >= EPOCH_START:
-        return False
-    d = np.diff(t)
-    if np.any(d <= 0) or np.any(t != np.round(t)):
-        return False
-    return bool(np.mean(d == 1.0) >= 0.95)
 
 
 def _check_import_rate(t: np.ndarray, t_raw: np.ndarray, t_unit: str, t_how: str, column: str, where: str) -> None:

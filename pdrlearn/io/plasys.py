@@ -35,6 +35,7 @@ from pdrlearn.io.validate import (
     check_trajectory_times,
     check_units,
     implausible_rhythm,
+    sample_numbers,
     time_unit_candidates,
 )
 
@@ -107,12 +108,30 @@ def _value_unit(meta: dict, name: str, where: str) -> tuple[float, str | None]:
     if not isinstance(units, dict) or name not in units or table is None:
         return 1.0, None
     text = str(units[name]).strip()
-    word = text.split()[0].strip("(),;:").lower() if text else ""
+    words = text.split()
+    scale = _scale_factor(words[0]) if len(words) > 1 else None  # decision B100: "0.0047884 m/s^2" per count
+    if scale is not None:
+        words = words[1:]
+    word = words[0].strip("(),;:").lower() if words else ""
     if word not in table:
         raise DataError(f"{where}: units.{name} {text[:40]!r} does not start with a {spec.kind} unit pdrlearn "
-                        f"converts from ({', '.join(dict.fromkeys(table))}); write the unit first, e.g. "
-                        f"\"{spec.unit}\", or remove the entry")
-    return table[word], word
+                        f"converts from ({', '.join(dict.fromkeys(table))}), or a scale factor and one (a raw count "
+                        f"as \"0.0047884 m/s^2\" or \"1/2048 g\"); write the unit first, e.g. \"{spec.unit}\", or "
+                        "remove the entry")
+    if scale is None:
+        return table[word], word
+    return scale * table[word], f"{text.split()[0]} {word}"
+
+
+def _scale_factor(token: str) -> float | None:
+    """Decision B100: a positive finite number (``0.0047884``, ``4.79e-3``) or fraction (``1/2048``) that leads a
+    declared value unit: the size of one count in that unit; ``None`` when ``token`` is not one."""
+    num, _, den = token.partition("/")
+    try:
+        v = float(num) / (float(den) if den else 1.0)
+    except (ValueError, ZeroDivisionError):
+        return None
+    return v if math.isfinite(v) and v > 0 else None
 
 
 def _check_body_fields(meta: dict, where: str) -> None:
@@ -318,31 +337,36 @@ def _session_time_unit(raw: dict[str, np.ndarray], rate_hz: float | None, meta_p
 
 
 def _index_clock(raw: dict[str, np.ndarray]) -> bool:
-    """True when every accelerometer/gyroscope file's timestamps step by exactly 1 (sample indices 0, 1, 2 ...,
-    or a 1000 Hz clock in integer ms; decision B31)."""
+    """True when every accelerometer/gyroscope file's timestamps are sample numbers (integers stepping by 1 from
+    near 0, B39's :func:`~pdrlearn.io.validate.sample_numbers`; or a 1000 Hz clock in integer ms; decisions B31,
+    B98)."""
     imu = [a[:, 0] for n, a in raw.items() if SENSORS[n].kind in ("accelerometer", "gyroscope")]
-    return bool(imu) and all(t.size >= 3 and np.all(np.diff(t) == 1.0) for t in imu)
+    return bool(imu) and all(sample_numbers(t) for t in imu)
 
 
-def _index_unit(raw: dict[str, np.ndarray], rate_hz: float | None, folder: Path, meta_path: Path) -> str | None:
-    """Decision B31, for a session whose IMU timestamps step by exactly 1 and declare no unit: ``"samples"``
-    when meta.json's ``rate_hz`` contradicts the 1000 Hz of an ms reading (by more than B22's 10 %); with no
-    ``rate_hz``, a :class:`DataError` when the accelerometer's walking rhythm read at 1000 Hz is implausible
-    (:func:`pdrlearn.io.validate.implausible_rhythm`: 100 Hz sample indices put a 1 s stride at 0.1 s);
-    else ``None`` (ms: a genuine 1000 Hz clock)."""
+def _index_unit(raw: dict[str, np.ndarray], rate_hz: float | None, folder: Path, meta_path: Path, *,
+                declared: bool = False) -> str | None:
+    """Decisions B31, B98, for a session whose IMU timestamps step by 1 and declare no unit: ``"samples"``
+    when meta.json's ``rate_hz`` contradicts the 1000 Hz of an ms reading (by more than B22's 10 %), ``None``
+    (ms) when it agrees; with no ``rate_hz`` a :class:`DataError`: sample counters (a 1024, 800 or 400 Hz
+    counter) and a 1000 Hz clock in ms write the same numbers, and only ``rate_hz`` tells them apart (B98; the
+    walking rhythm of :func:`pdrlearn.io.validate.implausible_rhythm`, B31, is named when it tells).
+    ``declared``: meta.json declares the timestamps ms (a template's "ms since the first sample"); the fix then
+    also names the ``samples`` unit."""
     if rate_hz is not None:
         return "samples" if abs(1000.0 - rate_hz) > 0.1 * rate_hz else None
     acc = next((n for n in raw if SENSORS[n].kind == "accelerometer"), None)
-    if acc is None:
-        return None
-    lag = implausible_rhythm(raw[acc][:, 1:], 1000.0)
-    if lag is None:
-        return None
-    t = raw[acc][:, 0]
-    raise DataError(f"{folder / SENSORS[acc].filename}: its timestamps are consecutive integers "
-                    f"({t[0]:.0f}-{t[-1]:.0f}), sample indices rather than ms: read as ms (1000 Hz) its walking rhythm "
-                    f"repeats every {1e3 * lag:.0f} ms, faster than any gait; write each sample's time in ms, or give "
-                    f"the sampling rate in {meta_path.name}: \"rate_hz\": <Hz>")
+    name = acc or next(n for n in raw if SENSORS[n].kind == "gyroscope")
+    lag = implausible_rhythm(raw[acc][:, 1:], 1000.0) if acc is not None else None
+    t = raw[name][:, 0]
+    rhythm = (f"; read as ms (1000 Hz) its walking rhythm repeats every {1e3 * lag:.0f} ms, faster than any gait"
+              if lag is not None else "")
+    unit = ("; and \"units\": {\"timestamp\": \"samples\"} instead of ms if they count samples" if declared
+            else "")
+    raise DataError(f"{folder / SENSORS[name].filename}: its timestamps are consecutive integers "
+                    f"({t[0]:.0f}-{t[-1]:.0f}): these look like sample counters, not ms{rhythm}; give the sampling "
+                    f"rate in {meta_path.name}: \"rate_hz\": <Hz> (1000 if they are ms{unit}), or write each "
+                    "sample's time in ms")
 
 
 def _check_declared_rate(streams: dict[str, Stream], rate_hz: float, meta_path: Path) -> None:
@@ -799,9 +823,11 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         p = folder / spec.filename
         if p.exists():
             raw[name] = _read_raw(p, name)[1]
-    unit = _session_time_unit(raw, rate, meta_path) if raw and not _timestamp_declared(meta) else None
-    if unit is None and raw and not _timestamp_declared(meta) and _index_clock(raw):
-        unit = _index_unit(raw, rate, folder, meta_path)  # decision B31: sample indices, not ms
+    declared = _timestamp_declared(meta)
+    unit = _session_time_unit(raw, rate, meta_path) if raw and not declared else None
+    # decisions B31, B98: sample counters, not ms (a declared ms unit too, unless rate_hz says which)
+    if unit is None and raw and (not declared or (scale == 1e-3 and rate is None)) and _index_clock(raw):
+        unit = _index_unit(raw, rate, folder, meta_path, declared=declared)
     if unit == "samples":
         scale = 1.0 / rate
     elif unit is not None:  # decision B22: one unit for every file, said once

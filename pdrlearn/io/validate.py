@@ -151,6 +151,42 @@ def quiet_acc_norm(values: np.ndarray, t: np.ndarray | None = None) -> float:
     return float(np.median(norm[np.isin(idx, quiet)]))
 
 
+#: decision B97: a still accelerometer reads gravity; the median |acc| of its quietest windows (B78's
+#: :func:`quiet_acc_norm`) over :data:`STANDARD_GRAVITY` must lie within [1 / this, this]. Seen on correctly scaled
+#: units: 9.47-9.93 m/s^2 (-3.4 .. +1.2 %) on the 11 real foot and 12 lower-back recordings (datasets/real,
+#: datasets/external), 9.58-10.26 (-2.3 .. +4.6 %) on the trial simulations of B78; but a foot with very short
+#: foot-flats reads up to 1.30 g in its quietest windows (the hand-made feet of tests/test_steps_quiet*.py: 12.76-
+#: 12.82 m/s^2), so a +-10 % band (the first candidate) refused correct files. A wrong full scale or counts-per-g
+#: is a power of two (x0.5, x2, x2.048, ...), far outside x1.5; a 2.4 % slip (1024 counts/g read as mg) lies inside
+#: the spread of correct units and cannot be told from them (decision B97, amended in the lead's merge).
+GRAVITY_FACTOR_MAX = 1.5
+
+
+def gravity_scale(rest_norm: float) -> float | None:
+    """Decision B97: ``rest_norm`` (m/s^2, |acc| at rest) over gravity when it lies outside
+    [1 / :data:`GRAVITY_FACTOR_MAX`, :data:`GRAVITY_FACTOR_MAX`], else ``None``."""
+    scale = rest_norm / STANDARD_GRAVITY
+    return scale if not 1.0 / GRAVITY_FACTOR_MAX <= scale <= GRAVITY_FACTOR_MAX else None
+
+
+#: decision B99: what an accelerometer file at rest reads per g in each common scale: MEMS sensitivities (LSB/g,
+#: powers of two: 256 for the ADXL345 at +-16 g, thesis eq. 24; 2048 for an int16 at +-16 g; 16384 at +-2 g),
+#: mg and mm/s^2
+PER_G_SCALES = {**{2.0 ** k: f"a {2 ** k} LSB/g sensor" for k in range(6, 16)}, 1000.0: "mg",
+                1000.0 * STANDARD_GRAVITY: "mm/s^2"}
+
+
+def counts_per_g_hint(rest_norm: float) -> str:
+    """Decision B99: how to convert an accelerometer file whose |acc| at rest is ``rest_norm`` (raw counts, mg or
+    mm/s^2): at rest |acc| is 1 g, so ``rest_norm`` is the file's value per g; the :data:`PER_G_SCALES` entry
+    within 5 % of it, if any, is named."""
+    near = min(PER_G_SCALES, key=lambda k: abs(math.log(rest_norm / k))) if rest_norm > 0 else None
+    guess = f" ({PER_G_SCALES[near]}?)" if near and abs(rest_norm / near - 1.0) <= 0.05 else ""
+    return (f"at rest it reads about {rest_norm:.0f} per g{guess}: divide by the sensor's counts per g and multiply "
+            f"by {STANDARD_GRAVITY} (mg: 1000 per g; mm/s^2: divide by 1000; thesis eq. 24's counts / 256 * 9.81 is "
+            "the ADXL345 at +-16 g)")
+
+
 def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str | None = None,
                 t: np.ndarray | None = None) -> None:
     """Detect values recorded in the wrong unit from their magnitudes and say how to convert.
@@ -170,9 +206,13 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
     if spec.kind == "accelerometer":
         check_gravity(values, where)
         whole = float(np.median(np.linalg.norm(values, axis=1)))
-        if 4.0 <= whole <= 25.0:
-            return  # plausible on the whole file (the check before B78): unchanged
-        med = quiet_acc_norm(values, t)  # B78: else judged where the unit rests (|acc| ~ g), e.g. a running foot
+        med = quiet_acc_norm(values, t)  # B78: judged where the unit rests (|acc| ~ g), e.g. a running foot
+        # B97: ~1 g at rest (quiet windows: a foot's foot-flat) or on the whole file's median (a waist that walks
+        # without a pause: its quiet windows sit on the bounce's peaks, 11.7 m/s^2 for a +-2 m/s^2 sine)
+        at_g = t is None or gravity_scale(med) is None or gravity_scale(whole) is None
+        if 4.0 <= whole <= 25.0 and (at_g or not 4.0 <= med <= 25.0):
+            return  # plausible on the whole file (before B78) and ~1 g at rest (B97; a quiet median off any scale
+            # of g, gravity removed, is B30's / B36's)
         if 0.5 <= whole <= 2.0 or 0.5 <= med <= 2.0:  # the whole file's figure when it tells (as before B78)
             raise DataError(
                 f"{where}: median |acc| is {whole if 0.5 <= whole <= 2.0 else med:.2f}, which looks like units of g; "
@@ -182,11 +222,20 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
         if whole > 200 or med > 200:
             raise DataError(
                 f"{where}: median |acc| is {whole if whole > 200 else med:.0f}, which looks like raw counts or mm/s^2; "
-                "convert to m/s^2 (thesis eq. 24: counts / 256 * 9.81 for the ADXL345 at +-16 g)"
+                f"convert to m/s^2: {counts_per_g_hint(med if t is not None else whole)}"
             )
         if not 4.0 <= med <= 25.0:
             raise DataError(f"{where}: median |acc| is {med:.2f} m/s^2 in its quietest windows "
                             "(gravity, 9.81 m/s^2, at rest), implausible for a body-worn unit; convert to m/s^2")
+        scale = gravity_scale(med)
+        if not at_g:  # decision B97: ~1 g at rest, else the values are mis-scaled
+            raise DataError(
+                f"{where}: at rest (its quietest windows) |acc| is {med:.2f} m/s^2, {scale:.3f} times gravity "
+                f"({STANDARD_GRAVITY} m/s^2, x{1 / GRAVITY_FACTOR_MAX:.2f}-x{GRAVITY_FACTOR_MAX:g} allowed): "
+                f"the values look {scale:.3f} times too "
+                f"{'large' if scale > 1 else 'small'} (a wrong full scale or counts per g, e.g. counts at 2048/g read "
+                f"as mg); divide them by {scale:.4g}"
+                + _or(declare, f"declare the unit that gives m/s^2 (\"units\": {{\"{spec.name}\": ...}}) in meta.json"))
     elif spec.kind == "gyroscope":
         p99 = float(np.percentile(np.abs(values), 99))
         if p99 > 40.0:
@@ -363,6 +412,25 @@ def check_trajectory_times(t_raw: np.ndarray, scale: float, t_start: float, t_en
                         f"timestamps in {unit} like the sensor files, on their time base")
     raise DataError(f"{what}; the trajectory does not lie on the sensors' clock: write its timestamps in {unit} "
                     f"on the sensor files' time base (shift by the offset between the two clocks)")
+
+
+#: decision B39: timestamps at or above this are a clock since an epoch (epoch s >= 1e9 since 2001-09, epoch ms
+#: ~1.6e12), not sample numbers counted from the start of a recording
+EPOCH_START = 1e9
+
+
+def sample_numbers(t_raw: np.ndarray) -> bool:
+    """True when timestamps look like sample numbers (decision B39): integers stepping by exactly 1 (at least 95 %
+    of the steps; dropped samples make a few larger integer steps), starting under :data:`EPOCH_START`. Read as
+    ms they are a 1000 Hz clock, which a genuine 1000 Hz logger in ms since its start also writes; a clock since
+    an epoch (1.6e12 ms) is not taken for sample numbers."""
+    t = np.asarray(t_raw, dtype=float)
+    if t.size < 3 or not np.all(np.isfinite(t)) or abs(float(t[0])) >= EPOCH_START:
+        return False
+    d = np.diff(t)
+    if np.any(d <= 0) or np.any(t != np.round(t)):
+        return False
+    return bool(np.mean(d == 1.0) >= 0.95)
 
 
 #: walking rhythm bounds (s) for :func:`implausible_rhythm` (decision B31): the shortest step of a walk or run

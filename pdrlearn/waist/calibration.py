@@ -282,6 +282,9 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     replaced_note = _FITTED_NOTE.get(pipeline)
     out.notes = [n for n in base.notes if not (replaced_note and re.match(replaced_note, n))]
     out.k_shrinkage = None
+    # decision W87: the rate the step length is calibrated at (the calibrated factor depends on it)
+    out.rate_hz = round(float(np.median([s["wAccelerometer"].rate_hz for s in sessions if s.has("wAccelerometer")]
+                                        or [float("nan")])), 4)
     total = sum(w.distance_m for w in walks)
     n_steps = sum(len(w.f_hz) for w in walks)
     if pipeline not in ("waist-pendulum", "waist-pll"):

@@ -51,7 +51,9 @@ class WaistParams:
     turning classifier on |MRZ| (rad/s); walk_threshold_mps2 : motion gate; source : "defaults" or
     "calibrated"; pipeline : the pipeline the step length was calibrated for; options : pipeline options
     (``realtime``, ``heading``, ``integrate_stops`` ..., see :data:`pdrlearn.track.waist.OPTION_DEFAULTS`);
-    k_shrinkage : the calibrated K's standard error and what shrinking it toward :data:`DEFAULT_K` gives (decision
+    rate_hz : the waist accelerometer's rate (Hz) of the walks the step length was calibrated on (decision W87;
+    NaN when not recorded: defaults, or a file written before W87); k_shrinkage : the calibrated K's standard
+    error and what shrinking it toward :data:`DEFAULT_K` gives (decision
     W48: ``k_cal``, ``se``, ``n_strides``, ``k0``, ``tau``, ``k_shrunk``, ``k``, ``applied``); notes : how each value
     was obtained.
     """
@@ -70,6 +72,7 @@ class WaistParams:
     pipeline: str | None = None
     options: dict | None = None
     k_shrinkage: dict | None = None
+    rate_hz: float = float("nan")
     notes: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict:
@@ -190,6 +193,24 @@ def default_params(session: Session) -> tuple[WaistParams, list[str]]:
     return p, warnings
 
 
+#: decision W87: a calibrated step length applied at a rate more than this fraction off its calibration rate warns
+#: (the trial's K: 1.0674 at 100 Hz, 1.1032 at 25 Hz; cross-applied -3.75 / +3.13 % distance); B22's 10 %
+RATE_MISMATCH = 0.1
+
+
+def rate_mismatch(p: WaistParams, session: Session, where: str = "the waist parameters") -> str | None:
+    """Decision W87: the warning line when ``p`` was calibrated at a waist rate more than :data:`RATE_MISMATCH` off
+    the session's waist accelerometer rate, else ``None``."""
+    if p.source != "calibrated" or not np.isfinite(p.rate_hz) or not session.has("wAccelerometer"):
+        return None
+    rate = float(session["wAccelerometer"].rate_hz)
+    if abs(rate - p.rate_hz) <= RATE_MISMATCH * p.rate_hz:
+        return None
+    return (f"{where}: step length calibrated at {p.rate_hz:.4g} Hz, applied to a {rate:.4g} Hz recording: the "
+            "calibrated factor depends on the rate (a few % of distance, decision W87); re-calibrate on a walk "
+            f"recorded at {rate:.4g} Hz: pdrlearn calibrate WALK --distance METERS --out PARAMS.json")
+
+
 def resolve_params(session: Session, params) -> tuple[WaistParams, list[str]]:
     """User parameters completed with the session's defaults for any value left undefined."""
     user = load_params(params)
@@ -201,4 +222,6 @@ def resolve_params(session: Session, params) -> tuple[WaistParams, list[str]]:
         v = getattr(merged, f.name)
         if isinstance(v, float) and not np.isfinite(v):
             setattr(merged, f.name, getattr(base, f.name))
-    return merged, []
+    where = str(params) if isinstance(params, str | os.PathLike) else "the waist parameters"
+    line = rate_mismatch(merged, session, where)  # decision W87
+    return merged, [line] if line else []
