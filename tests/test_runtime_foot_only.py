@@ -123,7 +123,7 @@ def test_unit_requests_the_runtime_cannot_serve_are_one_line_errors(root):
         Tracker(root / "bundle_foot", units=("waist",))
     with pytest.raises(DataError, match="has no waist models"):
         Tracker(root / "bundle_foot", units=("foot", "waist"))
-    with pytest.raises(DataError, match="needs the foot unit .*waist-pll"):
+    with pytest.raises(DataError, match="needs the foot unit .*--pipeline waist-pendulum --params"):
         Tracker(root / "bundle", units=("waist",))
     with pytest.raises(DataError, match="waist-gyro needs the waist unit"):
         Tracker(root / "bundle", units=("foot",), heading_source="waist-gyro")
