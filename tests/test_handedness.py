@@ -355,3 +355,32 @@ def test_wrong_accelerometer_column_order_names_both_rewrites_and_track_names_th
     a, g = s["fAccelerometer"], s["fGyroscope"]
     acc = a.values[:, [1, 0, 2]]
     assert foot_handedness(acc, interp_rows(a.t, g.t, g.values), a.rate_hz).verdict == "right-handed"
+
+
+# -- B106: a unit turned in its holster mid-walk is not "axes differ" ---------------------------------------------
+def _holster_turn(fs=50.0, gyr_perm=(0, 1, 2)):
+    """60 s of a waist unit: gravity along y, turned 90 deg about z (forward) over 25-26 s (gravity then along x),
+    and two walker turns of 90 deg about gravity after it; ``gyr_perm`` reorders the gyroscope columns."""
+    t = np.arange(0.0, 60.0, 1.0 / fs)
+    ang = np.radians(90.0) * np.clip(t - 25.0, 0.0, 1.0)
+    g = 9.81 * np.column_stack([np.sin(ang), np.cos(ang), np.zeros_like(t)])
+    acc = g + 1.5 * np.sin(2 * np.pi * 1.8 * t)[:, None] * g / 9.81  # walking bounce along gravity
+    gyr = np.zeros_like(acc)
+    gyr[:, 2] = np.where((t >= 25.0) & (t <= 26.0), np.radians(90.0), 0.0)  # the holster turn
+    for t0 in (40.0, 50.0):
+        on = (t >= t0) & (t < t0 + 2.0)
+        gyr[on] += np.radians(45.0) * g[on] / 9.81  # a walker's turn: about gravity
+    gyr += 0.05 * np.sin(2 * np.pi * 0.9 * t)[:, None]  # the pelvis's oscillation
+    return acc, gyr[:, list(gyr_perm)], fs
+
+
+def test_a_unit_turned_in_its_holster_is_not_read_as_disagreeing_axes():
+    from pdrlearn.io.handedness import TURN_MAX_DEG, turn_axis, waist_handedness
+
+    acc, gyr, fs = _holster_turn()
+    ang, n, _, _ = turn_axis(acc, gyr, fs)
+    assert n >= 3 and ang < TURN_MAX_DEG  # before B106: the holster turn and the mixed gravity gave > 30 deg
+    assert not waist_handedness(acc, gyr, fs, ratio=False).axes_differ
+    acc, gyr, fs = _holster_turn(gyr_perm=(2, 0, 1))  # gyroscope columns really permuted: still caught
+    ang, n, _, _ = turn_axis(acc, gyr, fs)
+    assert n >= 3 and ang > TURN_MAX_DEG and waist_handedness(acc, gyr, fs, ratio=False).axes_differ

@@ -123,7 +123,7 @@ def test_unit_requests_the_runtime_cannot_serve_are_one_line_errors(root):
         Tracker(root / "bundle_foot", units=("waist",))
     with pytest.raises(DataError, match="has no waist models"):
         Tracker(root / "bundle_foot", units=("foot", "waist"))
-    with pytest.raises(DataError, match="needs the foot unit .*waist-pll"):
+    with pytest.raises(DataError, match="needs the foot unit .*--pipeline waist-pendulum --params"):
         Tracker(root / "bundle", units=("waist",))
     with pytest.raises(DataError, match="waist-gyro needs the waist unit"):
         Tracker(root / "bundle", units=("foot",), heading_source="waist-gyro")
@@ -289,3 +289,33 @@ def test_runtime_ranking_tie_break_is_the_training_sides():
     from pdrlearn.runtime.classify import _PREFERENCE
 
     assert _PREFERENCE == PREFERENCE
+
+
+# -- B107 / E53 / E55: a waist-only user is told what is possible ----------------------------------------------
+HINT = "--pipeline waist-pendulum --params"
+
+
+def test_a_waist_only_session_with_a_bundle_names_the_waist_pipeline(root, tmp_path, capsys):
+    s = synthetic_session(24, seed=11, name="waist_walk")
+    for n in ("fAccelerometer", "fGyroscope"):
+        del s.streams[n]
+    walk = str(write_session(s, tmp_path / "waist_walk"))
+    _errors_once(capsys, ["run", str(root / "bundle"), walk], HINT)  # B107
+    _errors_once(capsys, ["run", str(root / "bundle"), walk, "--units", "waist"], HINT)
+    assert main(["run", str(root / "bundle"), walk]) == 2 and "export a bundle" not in capsys.readouterr().err
+
+
+def test_a_tracker_declared_without_the_foot_sensors_is_refused_at_construction(root):
+    from pdrlearn.errors import MissingSensorError
+
+    with pytest.raises(MissingSensorError, match=r"sensors=\[.*has no fAccelerometer, fGyroscope.*waist-pendulum"):
+        Tracker(root / "bundle", sensors=["wAccelerometer", "wGyroscope"])  # E55: was ~4 s into the stream
+    Tracker(root / "bundle", sensors=["fAccelerometer", "fGyroscope"])  # the foot unit alone: E32, as before
+
+
+def test_exporting_a_waist_calibration_says_it_is_used_as_it_is(tmp_path, capsys):
+    cal = tmp_path / "p3.json"
+    cal.write_text(json.dumps({"leg_m": 0.92, "k": 1.37, "source": "calibrated", "pipeline": "waist-pendulum"}))
+    _errors_once(capsys, ["export", str(cal), "--out", str(tmp_path / "b")], f"{HINT} {cal}")  # E53
+    assert main(["export", str(cal), "--out", str(tmp_path / "b")]) == 2
+    assert "train one" not in capsys.readouterr().err

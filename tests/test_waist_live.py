@@ -3,6 +3,7 @@ size it gives the steps and positions of ``track_waist(session, pipeline="waist-
 
 from __future__ import annotations
 
+import json
 import re
 from pathlib import Path
 
@@ -263,3 +264,34 @@ def test_timestamps_in_ms_are_refused_in_one_line(pushes):
         assert i == 5  # the fifth interval
     out = _run(s, [1] * 50)[0]  # in seconds, sample by sample: the check passes once and tracks
     assert len(out) > 20
+
+
+# -- B108: the frame hint is JSON; a declared frame is checked against the data as offline ----------------------
+def _push_all(s, **kw):
+    a, g = s["wAccelerometer"], s["wGyroscope"]
+    tr = WaistTracker(a.rate_hz, **kw)
+    for i in range(0, len(a.t), 50):
+        tr.push(a.t[i:i + 50], a.values[i:i + 50], g.values[i:i + 50])
+    tr.flush()
+    return tr
+
+
+def test_the_inferred_frame_hint_is_json_to_paste_into_meta_json():
+    s = _session("ha001")
+    meta = {k: v for k, v in s.meta.items() if k not in ("source_project", "frames")}
+    (w,) = [w for w in _push_all(s, meta=meta, merge_fragments=False).warnings if "inferred from the first" in w]
+    frames, _ = json.JSONDecoder().raw_decode(w[w.index('"frames": ') + len('"frames": '):])
+    assert frames == {"waist": s.require_frame("waist").to_dict()}
+
+
+def test_a_declared_frame_the_data_contradict_is_warned_live_as_offline():
+    s = _session("ha001")
+    flip = {"up": "down", "down": "up", "left": "right", "right": "left", "forward": "forward",
+            "backward": "backward"}  # 180 deg about forward: right-handed, up and left reversed
+    wrong = {k: flip[v] for k, v in s.require_frame("waist").to_dict().items()}
+    for kw in ({"frame": wrong}, {"meta": {**s.meta, "frames": {"waist": wrong}}}):
+        lines = [w for w in _push_all(s, **kw).warnings if "contradicts its data" in w]
+        assert len(lines) == 1 and "decision D8" in lines[0] and "the declared frame is still used" in lines[0]
+        fix = lines[0][lines[0].index('write "frames": ') + len('write "frames": '):]
+        assert json.JSONDecoder().raw_decode(fix)[0] == {"waist": s.require_frame("waist").to_dict()}
+    assert not [w for w in _push_all(s, frame=s.require_frame("waist")).warnings if "contradicts" in w]

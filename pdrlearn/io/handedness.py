@@ -399,11 +399,27 @@ def turn_axis(acc: np.ndarray, gyr: np.ndarray, fs: float) -> tuple[float, int, 
     c = np.vstack([np.zeros(3), np.cumsum(gyr, axis=0) / fs])
     st = np.arange(0, len(gyr) - L, hop)
     th = c[st + L] - c[st]
-    big = th[np.linalg.norm(th, axis=1) > np.radians(TURN_MIN_DEG)]
+    # decision B106: a window in which the accelerometer's gravity itself turns (its two halves' means more than
+    # TURN_MAX_DEG apart) is the unit turned over on the body (a phone rotated in its holster), not the walker
+    # turning about gravity: left out. The walker's turns, which the test is about, keep gravity in place.
+    ca = np.vstack([np.zeros(3), np.cumsum(acc, axis=0)])
+    h = L // 2
+    g1, g2 = ca[st + h] - ca[st], ca[st + L] - ca[st + h]
+    cos12 = np.sum(g1 * g2, axis=1) / np.maximum(np.linalg.norm(g1, axis=1) * np.linalg.norm(g2, axis=1), 1e-12)
+    on = (np.linalg.norm(th, axis=1) > np.radians(TURN_MIN_DEG)) & (cos12 >= np.cos(np.radians(TURN_MAX_DEG)))
+    big = th[on]
     if len(big) < 2:
         return float("nan"), int(len(big)), -1, int(np.argmax(np.abs(g)))
     u = np.linalg.eigh(big.T @ big)[1][:, -1]
     ang = float(np.degrees(np.arccos(min(1.0, abs(float(u @ g))))))
+    # B106: when the turn windows' gravity directions differ (the unit was turned between them), each window's
+    # rotation is compared with its own gravity (its mean specific force) and the median angle reported; a fixed
+    # mount (every turn window's gravity within TURN_MAX_DEG of the mean) keeps the principal-axis test above
+    gw = g1[on] + g2[on]
+    gw /= np.maximum(np.linalg.norm(gw, axis=1), 1e-12)[:, None]
+    if float(np.degrees(np.arccos(np.clip(np.min(gw @ g), -1.0, 1.0)))) > TURN_MAX_DEG:
+        cos = np.abs(np.sum(big * gw, axis=1)) / np.linalg.norm(big, axis=1)
+        ang = float(np.median(np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))))
     return ang, int(len(big)), int(np.argmax(np.abs(u))), int(np.argmax(np.abs(g)))
 
 

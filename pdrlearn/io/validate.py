@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import logging
 import math
 
 import numpy as np
@@ -11,6 +12,8 @@ from pdrlearn.errors import DataError
 from pdrlearn.io.sensors import SensorSpec
 
 STANDARD_GRAVITY = 9.80665  # m/s^2 (thesis ch.4.2.1.1)
+
+log = logging.getLogger(__name__)
 
 
 def check_columns(df: pd.DataFrame, required: tuple[str, ...], where: str) -> None:
@@ -204,7 +207,7 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
     if values.size == 0:
         return
     if spec.kind == "accelerometer":
-        check_gravity(values, where)
+        check_gravity(values, where, t)
         whole = float(np.median(np.linalg.norm(values, axis=1)))
         med = quiet_acc_norm(values, t)  # B78: judged where the unit rests (|acc| ~ g), e.g. a running foot
         # B97: ~1 g at rest (quiet windows: a foot's foot-flat) or on the whole file's median (a waist that walks
@@ -273,16 +276,63 @@ GRAVITY_HINT = ("a phone export's 'total acceleration', or its linear accelerati
                 "column by column")
 
 
-def check_gravity(values: np.ndarray, where: str) -> None:
+#: decision B105: window (s) over which an accelerometer's mean vector is gravity in the unit's frame at that time
+GRAVITY_WINDOW_S = 4.0
+
+
+def _window_gravity(values: np.ndarray, t: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+    """Mean acceleration vector of each :data:`GRAVITY_WINDOW_S` window (or of each 200 samples without ``t``)
+    and its start time (s from the first sample; NaN without ``t``)."""
+    if t is not None and t.size == values.shape[0] and t[-1] > t[0]:
+        idx = np.floor((t - t[0]) / GRAVITY_WINDOW_S).astype(np.int64)
+    else:
+        idx = np.arange(values.shape[0]) // 200
+    cnt = np.bincount(idx)
+    full = np.flatnonzero(cnt >= max(3, int(0.5 * np.median(cnt[cnt > 0]))))
+    means = np.stack([np.bincount(idx, values[:, j])[full] / cnt[full] for j in range(3)], axis=1)
+    start = full * GRAVITY_WINDOW_S if t is not None and t.size == values.shape[0] else np.full(full.size, np.nan)
+    return means, start
+
+
+def orientation_change(values: np.ndarray, t: np.ndarray | None = None) -> tuple[float, float] | None:
+    """Decision B105: ``(time s, angle deg)`` of the largest turn of the gravity direction between consecutive
+    :data:`GRAVITY_WINDOW_S` windows, when every window's mean vector is gravity (|mean| >= half the median
+    |acc|, as in a recording with gravity: B30's 0.93-1.13) but the file's mean is not (B30's test fails):
+    the unit was turned over during the session (a phone flipped in its holster), gravity was not removed.
+    ``None`` when the windows' means are small too (gravity removed: B30's error stands)."""
+    means, start = _window_gravity(values, t)
+    if means.shape[0] < 2:
+        return None
+    med = float(np.median(np.linalg.norm(values, axis=1)))
+    norms = np.linalg.norm(means, axis=1)
+    if float(np.median(norms)) < 0.5 * med:
+        return None
+    u = means / np.maximum(norms, 1e-12)[:, None]
+    ang = np.degrees(np.arccos(np.clip(np.sum(u[1:] * u[:-1], axis=1), -1.0, 1.0)))
+    k = int(np.argmax(ang))
+    return float(start[k + 1]), float(np.degrees(np.arccos(np.clip(float(u[0] @ u[-1]), -1.0, 1.0))))
+
+
+def check_gravity(values: np.ndarray, where: str, t: np.ndarray | None = None) -> None:
     """Refuse an accelerometer file whose gravity has been removed (decision B30): its mean vector is ~0 in
     either unit (m/s^2 or g), while a specific force always averages to gravity (|mean| ~ median |acc|). Its
     median |acc| looked like units of g (0.80: "multiply by 9.80665", then +218 % distance) or passed (foot:
-    -50 % distance without a word)."""
+    -50 % distance without a word). A file whose every window holds gravity but whose gravity direction turned
+    during the session (``t``: its times, s) is a unit turned over, not gravity removed: tracked, with one
+    warning naming the time (decision B105, :func:`orientation_change`)."""
     if values.shape[0] < 10:
         return
     med = float(np.median(np.linalg.norm(values, axis=1)))
     mean = float(np.linalg.norm(values.mean(axis=0)))
     if med > 0 and mean < GRAVITY_REMOVED_RATIO * med:
+        turned = orientation_change(values, t)
+        if turned is not None:
+            at = "" if math.isnan(turned[0]) else f" at about {turned[0]:.0f} s"
+            log.warning("%s: the unit's orientation changed during the session%s (gravity turns by %.0f deg; "
+                        "every %g s window holds it): tracked on, the heading and frame after it are less certain; "
+                        "if the track looks wrong there, split the session at that time (decision B105)",
+                        where, at, turned[1], GRAVITY_WINDOW_S)
+            return
         raise DataError(
             f"{where}: the mean acceleration vector is {mean:.3g} against a median |acc| of {med:.3g}, so gravity has "
             "been removed (linear / free acceleration), or these columns are not an accelerometer (gyroscope "

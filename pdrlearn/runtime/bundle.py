@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pdrlearn.errors import DataError, MissingSensorError, ModelError
+from pdrlearn.errors import DataError, MissingSensorError, ModelError, shell_quote
 
 log = logging.getLogger(__name__)
 
@@ -53,6 +53,17 @@ REQUIRED_KEYS = (
 DEFAULT_RATE_TOLERANCE = 0.05
 #: The body units of a bundle (thesis ch.4: the foot unit and the waist unit / smartphone).
 UNITS = ("foot", "waist")
+
+def waist_only_hint(params: str | None = None) -> str:
+    """Decisions B107/E53: what a waist-only (belt phone) user can do, named where a bundle or model directory
+    cannot serve them: bundles detect steps on the foot gyroscope (E7) and have no waist-only export; the waist
+    pipelines are calibrated, not trained (docs/waist.md). ``params``: the user's calibration file, if known."""
+    first = ("" if params else "calibrate on a walk of known length (pdrlearn calibrate WALK --distance M --out "
+             "cal.json), then ")
+    params = params or "cal.json"
+    return (f"a waist-only recording is tracked without a bundle: {first}pdrlearn track SESSION --pipeline "
+            f"waist-pendulum --params {shell_quote(params)}, or live "
+            f"pdrlearn.waist.WaistTracker(rate_hz, params='{params}')")
 
 
 def sha256_file(path: str | Path, *, chunk: int = 1 << 20) -> str:
@@ -266,10 +277,11 @@ class Bundle:
         if missing:
             raise MissingSensorError(
                 f"{where} has no {', '.join(missing)}, which bundle {self.path} needs "
-                f"(it has: {', '.join(rates_hz) or 'none'}); record those sensors or "
-                + ("track the foot unit alone (pdrlearn run --units foot, decision E26)"
+                f"(it has: {', '.join(rates_hz) or 'none'}); record those sensors"
+                + (" or track the foot unit alone (pdrlearn run --units foot, decision E26)"
                    if "foot" in self.body_units and all(s.startswith("w") for s in missing)
-                   else "export a bundle for the sensors you have")
+                   else f"; {waist_only_hint()}" if {"wAccelerometer", "wGyroscope"} <= set(rates_hz)  # B107: no
+                   else " or export a bundle for the sensors you have")  # waist-only bundle exists (E7)
             )
         self.check_rates(rates_hz, where=where)
 

@@ -59,7 +59,7 @@ from pdrlearn.kernels.window import (
     rest_boundaries,
     segment,
 )
-from pdrlearn.runtime.bundle import Bundle, load_bundle
+from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
@@ -144,8 +144,7 @@ def check_units(bundle: Bundle, units) -> tuple[str, ...]:
                         f"give {' or '.join(have) if have == ('foot',) else 'foot or foot,waist'}")
     if "foot" not in asked:
         raise DataError(f"units {','.join(asked)}: the runtime detects steps on the foot unit's gyroscope, so it "
-                        "needs the foot unit (give foot or foot,waist); waist-only tracking: pdrlearn track "
-                        "--pipeline waist-pll")
+                        f"needs the foot unit (give foot or foot,waist); {waist_only_hint()}")
     return tuple(u for u in have if u in asked)
 
 
@@ -370,6 +369,8 @@ class Tracker:
                      self.bundle.path, ", ".join(sensors))
         self.units = self.bundle.body_units if units is None else check_units(self.bundle, units)
         self.required, optional = self.bundle.sensors_of(self.units)
+        if sensors is not None:  # decision E55: a declared stream set that lacks a required sensor, refused now
+            self.bundle.check_streams(dict.fromkeys(sensors, math.nan), where=f"sensors={sensors}", units=self.units)
         self.used_sensors = [*self.required, *optional]
         fm = m["features"]
         self.channels = list(fm["channels"])

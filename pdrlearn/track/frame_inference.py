@@ -461,14 +461,22 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> str | 
         found = infer_session_frame(session, placement, max_s=CHECK_SPAN_S)
     except DataError:
         found = None
-    off = frame_disagreement(declared, found) if found is not None else {}
-    left_handed = not declared.right_handed
-    if not off and not left_handed:
-        return None
     if isinstance(session.meta.get("frames"), dict):
         origin = 'declared in "frames"'
     else:
         origin = f"implied by source_project {json.dumps(str(session.meta.get('source_project', '')))}"
+    return declared_frame_warning(placement, declared, found, origin)
+
+
+def declared_frame_warning(placement: str, declared: AxisFrame, found: InferredFrame | None, origin: str,
+                           used: str = "the meta.json frame") -> str | None:
+    """Decision D10's warning for a ``declared`` frame (``origin``: where it was declared) against the frame
+    ``found`` in the data (``None``: the data did not fix it), or ``None`` when there is nothing to say. Shared by
+    :func:`check_declared_frame` (offline) and the live ``WaistTracker`` (decision B108, ``used``: what it keeps)."""
+    off = frame_disagreement(declared, found) if found is not None else {}
+    left_handed = not declared.right_handed
+    if not off and not left_handed:
+        return None
     what = f"the {placement} unit's frame {json.dumps(declared.to_dict())} ({origin})"
     issues = []
     if left_handed:
@@ -487,7 +495,7 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> str | 
         fix = (f"{fix}; but if the declared axes are right, the accelerometer reports gravity as -1 g (iOS Core "
                f"Motion exports do): negate all three columns of {acc_n}.csv (pdrlearn import --acc=-X,-Y,-Z) "
                "instead, since writing the data's frame would mirror every turn")
-    return f"{what} {' and '.join(issues)}; the meta.json frame is still used (decision D8): {fix}"
+    return f"{what} {' and '.join(issues)}; {used} is still used (decision D8): {fix}"
 
 
 def remount(session, placement: str, rotation: np.ndarray):
@@ -533,6 +541,6 @@ def right_handed_orientations() -> list[np.ndarray]:
 
 
 __all__ = ["FrameInferenceError", "InferredFrame", "infer_foot_frame", "infer_waist_frame", "frame_from_axes",
-           "infer_session_frame", "frame_disagreement", "check_declared_frame",
+           "infer_session_frame", "frame_disagreement", "check_declared_frame", "declared_frame_warning",
            "rest_to_rest", "stride_displacements", "swing_pitch_extremes", "remount",
            "right_handed_orientations", "INFER", "UNIT_STREAMS"]

@@ -28,6 +28,7 @@ held -- and the track starts at the first held sample (the replay infers it from
 
 from __future__ import annotations
 
+import json
 import logging
 from dataclasses import dataclass
 from types import SimpleNamespace
@@ -74,30 +75,34 @@ class LiveStep:
     side: str | None = None
 
 
-def _frame_matrix(frame, meta: dict | None) -> np.ndarray | None:
-    """Sensor -> body FLU rotation from ``frame`` (AxisFrame, dict ``{"x": "up", ...}``, ``"x=up,y=right,
-    z=forward"`` or a 3x3 matrix) or, without one, from ``meta`` as a session's meta.json declares it."""
+def _declared_frame(frame, meta: dict | None):
+    """``(rotation, AxisFrame or None, origin)``: the sensor -> body FLU rotation from ``frame`` (AxisFrame, dict
+    ``{"x": "up", ...}``, ``"x=up,y=right,z=forward"`` or a 3x3 matrix) or, without one, from ``meta`` as a
+    session's meta.json declares it; the AxisFrame (None for a matrix) and where it came from, for the data check
+    (decision B108). ``(None, None, "")`` without a frame."""
     from pdrlearn.io.frames import AxisFrame, frames_from_meta
 
     if frame is None:
         f = frames_from_meta(meta or {}).get("waist")
-        return None if f is None else f.matrix()
+        return (None, None, "") if f is None else (f.matrix(), f, 'declared in meta "frames"')
     if isinstance(frame, AxisFrame):
-        return frame.matrix()
+        return frame.matrix(), frame, "given as frame="
     if isinstance(frame, dict):
-        return AxisFrame.from_dict(frame).matrix()
+        f = AxisFrame.from_dict(frame)
+        return f.matrix(), f, "given as frame="
     if isinstance(frame, str):
         try:
             d = dict(part.split("=") for part in frame.replace(" ", "").split(","))
         except ValueError:
             raise DataError(f"frame {frame!r}: write it as 'x=up,y=right,z=forward' (each sensor axis = a body "
                             "direction)") from None
-        return AxisFrame.from_dict(d).matrix()
+        f = AxisFrame.from_dict(d)
+        return f.matrix(), f, "given as frame="
     r = np.asarray(frame, dtype=float)
     if r.shape != (3, 3) or not np.all(np.isfinite(r)) or abs(abs(np.linalg.det(r)) - 1.0) > 1e-6:
         raise DataError(f"frame: a 3x3 rotation (sensor -> body forward/left/up) was expected, got shape {r.shape}; "
                         "or pass {'x': 'up', 'y': 'right', 'z': 'forward'}")
-    return r
+    return r, None, "given as frame="
 
 
 class WaistTracker:
@@ -183,7 +188,10 @@ class WaistTracker:
         self._thr = p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None else WALK_THRESHOLD_MPS2
         self._max_step_s = MAX_STEP_S
         self._clf = TurnClassifier(**(p.turn_gmm or {}))
-        self._rot = _frame_matrix(frame, meta)
+        self._rot, self._declared, self._declared_origin = _declared_frame(frame, meta)
+        self._chk_t: list[np.ndarray] = []  # B108: raw samples held until the declared frame is checked
+        self._chk_v: list[np.ndarray] = []
+        self._next_chk = -np.inf
         self._proc = None
         self._hold_t: list[np.ndarray] = []  # W65: raw samples held until the frame is inferred
         self._hold_v: list[np.ndarray] = []
@@ -249,6 +257,8 @@ class WaistTracker:
             self._unit_check(t)
         self._last_t = float(t[-1])
         v = np.column_stack([acc, gyr])
+        if self._declared is not None:
+            self._check_declared(t, v)
         if self._proc is None:
             v_t = self._hold(t, v)
             if v_t is None:
@@ -306,13 +316,44 @@ class WaistTracker:
         except FrameInferenceError:
             return None
         self._rot = found.frame.matrix()
-        msg = (f"no axis frame given: inferred from the first {tt[-1] - tt[0]:.0f} s: \"frames\": {{\"waist\": "
-               f"{found.frame.to_dict()}}} ({found.describe()}); pass frame= if that is wrong (decision W65)")
+        msg = (f"no axis frame given: inferred from the first {tt[-1] - tt[0]:.0f} s: \"frames\": "
+               f"{json.dumps({'waist': found.frame.to_dict()})} ({found.describe()}); pass frame= if that is wrong "
+               "(decision W65, B108: valid JSON for meta.json)")
         self.warnings.append(msg)
         log.warning("live waist tracker: %s", msg)
         self._hold_t, self._hold_v = [], []
         self._start_proc()
         return tt, vv
+
+    def _check_declared(self, t: np.ndarray, v: np.ndarray) -> None:
+        """Decision B108: once the held samples fix the unit's frame (as W65's inference, tried every
+        INFER_EVERY_S s, on at most INFER_MAX_S s), the declared frame is checked against it once, with offline's
+        check (:func:`~pdrlearn.track.frame_inference.declared_frame_warning`); nothing is held after that."""
+        from pdrlearn.track.frame_inference import (
+            MIN_WALK_S,
+            FrameInferenceError,
+            declared_frame_warning,
+            infer_waist_frame,
+        )
+
+        self._chk_t.append(t)
+        self._chk_v.append(v)
+        if t[-1] - self._chk_t[0][0] < MIN_WALK_S or t[-1] < self._next_chk:
+            return
+        tt, vv = np.concatenate(self._chk_t), np.concatenate(self._chk_v)
+        self._chk_t, self._chk_v = [tt], [vv]
+        self._next_chk = tt[-1] + INFER_EVERY_S
+        try:
+            found = infer_waist_frame(vv[:, :3], vv[:, 3:], self.fs)
+        except FrameInferenceError:
+            if tt[-1] - tt[0] < INFER_MAX_S:
+                return
+            found = None  # the data do not fix the axes: the declared frame stays unquestioned (as offline)
+        declared, self._declared, self._chk_t, self._chk_v = self._declared, None, [], []
+        msg = declared_frame_warning("waist", declared, found, self._declared_origin, used="the declared frame")
+        if msg is not None:
+            self.warnings.append(msg)
+            log.warning("live waist tracker: %s", msg)
 
     def _start_proc(self) -> None:
         if self._proc is not None:
