@@ -137,5 +137,6 @@ def test_track_uses_sporadic_fixes_by_default(walk, capsys, tmp_path):
     assert np.hypot(tr["x"] - tr["x_pdr"], tr["y"] - tr["y_pdr"]).max() > 0.5
     assert main(args + ["--fix-period", "27.5", "--out", str(tmp_path / "o2")]) == 0
     out = capsys.readouterr()
-    line = [w for w in json.loads(out.out.strip().splitlines()[-1])["info"]["warnings"] if w.startswith("aid:") and "not used" in w]
+    warned = json.loads(out.out.strip().splitlines()[-1])["info"]["warnings"]
+    line = [w for w in warned if w.startswith("aid:") and "not used" in w]
     assert len(line) == 1 and "--fix-period" in line[0] and "not used" in out.err

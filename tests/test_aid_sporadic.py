@@ -175,3 +175,14 @@ def test_aid_track_default_uses_every_fix_and_names_the_unused_ones(tmp_path, ca
     w = [x for x in r.info["warnings"] if "not used" in x]
     assert len(w) == 1 and "3 of the 3 fixes" in w[0] and "--fix-period" in w[0] and "every 27.5 s" in w[0]
     assert r.info["aid"]["fixes"]["fixes_not_queried"] == 3
+
+
+def test_a_fix_at_the_walk_start_is_used():
+    """D14 (review of session 19): a fix exactly at the first step's start (a start fix) was counted outside the
+    track and never used, as every step took only fixes after the previous step's end."""
+    steps_true, truth = synthetic_walk(6, length_m=120, stop_every_m=1000.0)
+    pdr = pdr_with_drift(steps_true, 6, heading_bias_deg=6.0)
+    t0 = float(pdr.steps["start_s"].iloc[0])
+    fx = _irregular_fixes(truth, [t0, 41.7])
+    st = SporadicFixFusion(period_s=None).run(pdr.steps, fx).stats_
+    assert st["fixes_used"] == 2 and st["fixes_outside_track"] == 0 and st["fixes_unused"] == 0

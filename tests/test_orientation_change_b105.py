@@ -55,3 +55,14 @@ def test_gravity_removed_is_still_refused_and_not_called_a_turn():
         check_gravity(lin, "lin.csv", t)
     still = np.tile([0.0, 0.0, 9.81], (3000, 1)) + rng.normal(0.0, 0.5, (3000, 3))  # a unit at rest: no change
     check_gravity(still, "still.csv", t)
+
+
+def test_a_unit_turned_over_and_back_reports_the_turn_not_zero():
+    """B105 (review of session 19): the angle was the first window's gravity against the last's, so a unit
+    turned over and back again read ~0 deg."""
+    t = np.arange(4000) / 100.0
+    g = np.tile([0.0, 0.0, 9.81], (4000, 1))
+    g[1500:2500] *= -1.0  # upside down from 15 s to 25 s
+    g += np.random.default_rng(1).normal(0.0, 0.3, g.shape)
+    found = orientation_change(g, t)
+    assert found is not None and found[1] > 170.0

@@ -40,6 +40,18 @@ def test_accelerometer_scaled_2048_is_refused_naming_the_factor(tmp_path, capsys
     assert factor == pytest.approx(2.048, rel=0.04)
 
 
+def test_a_walking_waist_scaled_half_is_told_to_divide_by_half(tmp_path):
+    """B97 (review of session 19): the refusal named the measured ratio (the quiet windows of a waist walking
+    without a pause sit on the bounce's peaks: x0.5 read as ~x0.59), which would leave the values 16 % off."""
+    from pdrlearn.io.validate import MISSCALES, likely_misscale
+
+    assert likely_misscale(0.593) == 0.5 and likely_misscale(2.041) == 2.048 and likely_misscale(2.6) == 2.6
+    with pytest.raises(DataError) as e:
+        read_session(_scaled(WAIST, tmp_path / "half_w", "wAccelerometer", 0.5))
+    factor = float(str(e.value).split("divide them by ")[1].split(",")[0])
+    assert any(factor == pytest.approx(m, rel=1e-3) for m in MISSCALES) and factor == pytest.approx(0.5, rel=0.03)
+
+
 def test_accelerometer_scaled_half_is_refused_and_1024_passes(tmp_path):
     with pytest.raises(DataError, match=r"0\.\d+ times gravity.*too small"):
         read_session(_scaled(LEVEL, tmp_path / "half", "fAccelerometer", 0.5))

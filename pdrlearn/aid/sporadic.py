@@ -158,7 +158,8 @@ class SporadicFixFusion(ParamsMixin):
             out[k + 1, 4:6] = raw
             c = None
             if self.period_s is None:  # D14: every fix in (prev_t, t_k], the latest one, at the step's end
-                inside = np.flatnonzero((ft > prev_t) & (ft <= t_k))
+                # the first step also takes a fix at its very start (t0, e.g. a start fix at t = 0)
+                inside = np.flatnonzero(((ft > prev_t) | ((k == 0) & (ft >= prev_t))) & (ft <= t_k))
                 if len(inside):
                     c = int(inside[-1])
                     superseded += len(inside) - 1
@@ -229,7 +230,7 @@ class SporadicFixFusion(ParamsMixin):
         dur = max(t[-1] - t0, 1e-9)
         counts["queries_per_min"] = counts["queries"] / dur * 60.0
         unused = ~applied
-        outside = unused & ((ft <= t0) | (ft > t[-1]))
+        outside = unused & ((ft < t0) | (ft > t[-1]) | ((ft == t0) & (self.period_s is not None)))
         counts["fixes_unused"] = int(unused.sum())
         counts["fixes_outside_track"] = int(outside.sum())
         counts["fixes_superseded"] = superseded

@@ -68,7 +68,7 @@ def _unused_fixes_line(f: SporadicFixFusion, n: int, path, period_s: float | Non
     why = []
     if st["fixes_outside_track"]:
         why.append(f"{st['fixes_outside_track']} outside the track's steps (up to {t_end:.1f} s)")
-    if st["fixes_not_queried"]:
+    if st["fixes_not_queried"] and period_s is not None:  # none without a query period (D14)
         why.append(
             f"{st['fixes_not_queried']} not within {f.query_tolerance_s:g} s of a query instant every "
             f"{period_s:g} s while walking (--fix-period / fix_period_s; omit it to use every fix)"

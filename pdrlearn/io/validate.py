@@ -172,6 +172,21 @@ def gravity_scale(rest_norm: float) -> float | None:
     return scale if not 1.0 / GRAVITY_FACTOR_MAX <= scale <= GRAVITY_FACTOR_MAX else None
 
 
+#: decision B97 (review of session 19): the mis-scales a wrong full scale or counts per g gives (powers of two,
+#: 2048 or 4096 counts/g read as mg, g read as m/s^2 and back), named in the refusal instead of the measured ratio
+#: when within 20 % of it: a waist walking without a pause has its quietest windows on the bounce's peaks (x0.5
+#: measured as x0.593), so dividing by the measured ratio would leave the values 16 % off, inside B97's band
+MISSCALES = tuple(sorted({2.0 ** k for k in range(-6, 7)} | {2.048, 1 / 2.048, 4.096, 1 / 4.096,
+                                                              STANDARD_GRAVITY, 1 / STANDARD_GRAVITY}))
+
+
+def likely_misscale(scale: float) -> float:
+    """Decision B97: the :data:`MISSCALES` entry within 20 % of the measured ``scale`` (the nearest in log), else
+    ``scale`` itself."""
+    near = min(MISSCALES, key=lambda m: abs(math.log(scale / m)))
+    return near if abs(math.log(scale / near)) <= math.log(1.2) else scale
+
+
 #: decision B99: what an accelerometer file at rest reads per g in each common scale: MEMS sensitivities (LSB/g,
 #: powers of two: 256 for the ADXL345 at +-16 g, thesis eq. 24; 2048 for an int16 at +-16 g; 16384 at +-2 g),
 #: mg and mm/s^2
@@ -231,13 +246,14 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
             raise DataError(f"{where}: median |acc| is {med:.2f} m/s^2 in its quietest windows "
                             "(gravity, 9.81 m/s^2, at rest), implausible for a body-worn unit; convert to m/s^2")
         scale = gravity_scale(med)
-        if not at_g:  # decision B97: ~1 g at rest, else the values are mis-scaled
+        if not at_g:
+            suggest = likely_misscale(scale)  # decision B97: ~1 g at rest, else the values are mis-scaled
             raise DataError(
                 f"{where}: at rest (its quietest windows) |acc| is {med:.2f} m/s^2, {scale:.3f} times gravity "
                 f"({STANDARD_GRAVITY} m/s^2, x{1 / GRAVITY_FACTOR_MAX:.2f}-x{GRAVITY_FACTOR_MAX:g} allowed): "
                 f"the values look {scale:.3f} times too "
                 f"{'large' if scale > 1 else 'small'} (a wrong full scale or counts per g, e.g. counts at 2048/g read "
-                f"as mg); divide them by {scale:.4g}"
+                f"as mg); divide them by {suggest:.4g}"
                 + _or(declare, f"declare the unit that gives m/s^2 (\"units\": {{\"{spec.name}\": ...}}) in meta.json"))
     elif spec.kind == "gyroscope":
         p99 = float(np.percentile(np.abs(values), 99))
@@ -295,11 +311,12 @@ def _window_gravity(values: np.ndarray, t: np.ndarray | None) -> tuple[np.ndarra
 
 
 def orientation_change(values: np.ndarray, t: np.ndarray | None = None) -> tuple[float, float] | None:
-    """Decision B105: ``(time s, angle deg)`` of the largest turn of the gravity direction between consecutive
-    :data:`GRAVITY_WINDOW_S` windows, when every window's mean vector is gravity (|mean| >= half the median
-    |acc|, as in a recording with gravity: B30's 0.93-1.13) but the file's mean is not (B30's test fails):
-    the unit was turned over during the session (a phone flipped in its holster), gravity was not removed.
-    ``None`` when the windows' means are small too (gravity removed: B30's error stands)."""
+    """Decision B105: ``(time s, angle deg)``: the time of the largest turn of the gravity direction between
+    consecutive :data:`GRAVITY_WINDOW_S` windows and the largest angle a window's gravity makes with the first's,
+    when every window's mean vector is gravity (|mean| >= half the median |acc|, as in a recording with gravity:
+    B30's 0.93-1.13) but the file's mean is not (B30's test fails): the unit was turned over during the session
+    (a phone flipped in its holster), gravity was not removed. ``None`` when the windows' means are small too
+    (gravity removed: B30's error stands)."""
     means, start = _window_gravity(values, t)
     if means.shape[0] < 2:
         return None
@@ -310,7 +327,9 @@ def orientation_change(values: np.ndarray, t: np.ndarray | None = None) -> tuple
     u = means / np.maximum(norms, 1e-12)[:, None]
     ang = np.degrees(np.arccos(np.clip(np.sum(u[1:] * u[:-1], axis=1), -1.0, 1.0)))
     k = int(np.argmax(ang))
-    return float(start[k + 1]), float(np.degrees(np.arccos(np.clip(float(u[0] @ u[-1]), -1.0, 1.0))))
+    # the angle: the largest any window's gravity makes with the first window's (a unit turned over and back, or a
+    # turn spread over two windows, is not read as ~0 deg)
+    return float(start[k + 1]), float(np.degrees(np.arccos(np.clip(float(np.min(u[1:] @ u[0])), -1.0, 1.0))))
 
 
 def check_gravity(values: np.ndarray, where: str, t: np.ndarray | None = None) -> None:
