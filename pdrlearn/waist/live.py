@@ -105,6 +105,39 @@ def _declared_frame(frame, meta: dict | None):
     return r, None, "given as frame="
 
 
+class _HeldSamples:
+    """Raw samples held while a frame inference waits (W65's inference, B108's check of a declared frame): the
+    pushed chunks are joined only when an attempt is due, every INFER_EVERY_S s of pushed time from
+    ``frame_inference.MIN_WALK_S`` on (no quadratic cost for 1-sample pushes); ``trim`` keeps at most the last
+    INFER_MAX_S s."""
+
+    def __init__(self, trim: bool):
+        self.trim = trim
+        self.t: list[np.ndarray] = []
+        self.v: list[np.ndarray] = []
+        self.next_try = -np.inf
+
+    def push(self, t: np.ndarray, v: np.ndarray, min_s: float):
+        """Hold ``(t, v)``; the held ``(tt, vv)`` when an attempt is due, else None."""
+        self.t.append(t)
+        self.v.append(v)
+        if t[-1] - self.t[0][0] < min_s or t[-1] < self.next_try:
+            return None
+        tt, vv = np.concatenate(self.t), np.concatenate(self.v)
+        if self.trim and tt[-1] - tt[0] > INFER_MAX_S:  # hold at most INFER_MAX_S s
+            keep = tt >= tt[-1] - INFER_MAX_S
+            tt, vv = tt[keep], vv[keep]
+        self.t, self.v = [tt], [vv]
+        self.next_try = tt[-1] + INFER_EVERY_S  # (a time on the pushed clock)
+        return tt, vv
+
+    def clear(self) -> None:
+        self.t, self.v = [], []
+
+    def size(self) -> int:
+        return sum(a.size for a in self.t) + sum(a.size for a in self.v)
+
+
 class WaistTracker:
     """Live waist-pendulum tracking of a lower-back unit (decisions W31, W64, W65; docs/waist.md "Live tracking").
 
@@ -189,13 +222,9 @@ class WaistTracker:
         self._max_step_s = MAX_STEP_S
         self._clf = TurnClassifier(**(p.turn_gmm or {}))
         self._rot, self._declared, self._declared_origin = _declared_frame(frame, meta)
-        self._chk_t: list[np.ndarray] = []  # B108: raw samples held until the declared frame is checked
-        self._chk_v: list[np.ndarray] = []
-        self._next_chk = -np.inf
+        self._chk = _HeldSamples(trim=False)  # B108: raw samples held until the declared frame is checked
         self._proc = None
-        self._hold_t: list[np.ndarray] = []  # W65: raw samples held until the frame is inferred
-        self._hold_v: list[np.ndarray] = []
-        self._next_try = -np.inf
+        self._held = _HeldSamples(trim=True)  # W65: raw samples held until the frame is inferred
         self._last_t = -np.inf
         self._dts: list[float] | None = []  # the first sample intervals, until the unit check (E29)
         # samples of the navigation frame (absolute index b0 + i) since the oldest one a pending step needs
@@ -226,7 +255,7 @@ class WaistTracker:
         """Numbers the tracker holds to process what comes (not :attr:`steps`): its sample buffer and pending rows,
         the held samples of W65 and the W31 detector's window; bounded over any stream length (decision W64)."""
         n = 4 * self._bt.size + 5 * len(self._rows) + len(self._absorbed) + len(self._span_start)
-        n += sum(a.size for a in self._hold_t) + sum(a.size for a in self._hold_v)
+        n += self._held.size() + self._chk.size()
         p = self._proc
         if p is not None:
             n += sum(np.size(v) for v in p.buf.values()) + 3 * len(p.decided) + sum(np.size(r[1]) for r in p.raw)
@@ -283,13 +312,13 @@ class WaistTracker:
     def flush(self) -> list[LiveStep]:
         """End of the stream: decide the last contacts and report every step left."""
         if self._proc is None:
-            if self._hold_t:
-                tt = np.concatenate(self._hold_t)
+            if self._held.t:
+                tt = np.concatenate(self._held.t)
                 msg = (f"no walking to track: no axis frame given and the {tt[-1] - tt[0]:.0f} s pushed do not fix "
                        "one (decision W65): 0 steps, 0 m; pass frame= if the unit did walk")
                 self.warnings.append(msg)
                 log.warning("live waist tracker: %s", msg)
-                self._hold_t, self._hold_v = [], []
+                self._held.clear()
             return []
         return self._feed(self._proc.flush(), final=True)
 
@@ -301,16 +330,10 @@ class WaistTracker:
         if self._rot is not None:
             self._start_proc()
             return t, v
-        self._hold_t.append(t)
-        self._hold_v.append(v)
-        if t[-1] - self._hold_t[0][0] < MIN_WALK_S or t[-1] < self._next_try:
-            return None  # (joined only when tried: no quadratic cost for 1-sample pushes)
-        tt, vv = np.concatenate(self._hold_t), np.concatenate(self._hold_v)
-        if tt[-1] - tt[0] > INFER_MAX_S:  # hold at most INFER_MAX_S s
-            keep = tt >= tt[-1] - INFER_MAX_S
-            tt, vv = tt[keep], vv[keep]
-        self._hold_t, self._hold_v = [tt], [vv]
-        self._next_try = tt[-1] + INFER_EVERY_S  # (a time on the pushed clock)
+        held = self._held.push(t, v, MIN_WALK_S)
+        if held is None:
+            return None
+        tt, vv = held
         try:
             found = infer_waist_frame(vv[:, :3], vv[:, 3:], self.fs)
         except FrameInferenceError:
@@ -321,7 +344,7 @@ class WaistTracker:
                "(decision W65, B108: valid JSON for meta.json)")
         self.warnings.append(msg)
         log.warning("live waist tracker: %s", msg)
-        self._hold_t, self._hold_v = [], []
+        self._held.clear()
         self._start_proc()
         return tt, vv
 
@@ -336,20 +359,18 @@ class WaistTracker:
             infer_waist_frame,
         )
 
-        self._chk_t.append(t)
-        self._chk_v.append(v)
-        if t[-1] - self._chk_t[0][0] < MIN_WALK_S or t[-1] < self._next_chk:
+        held = self._chk.push(t, v, MIN_WALK_S)
+        if held is None:
             return
-        tt, vv = np.concatenate(self._chk_t), np.concatenate(self._chk_v)
-        self._chk_t, self._chk_v = [tt], [vv]
-        self._next_chk = tt[-1] + INFER_EVERY_S
+        tt, vv = held
         try:
             found = infer_waist_frame(vv[:, :3], vv[:, 3:], self.fs)
         except FrameInferenceError:
             if tt[-1] - tt[0] < INFER_MAX_S:
                 return
             found = None  # the data do not fix the axes: the declared frame stays unquestioned (as offline)
-        declared, self._declared, self._chk_t, self._chk_v = self._declared, None, [], []
+        declared, self._declared = self._declared, None
+        self._chk.clear()
         msg = declared_frame_warning("waist", declared, found, self._declared_origin, used="the declared frame")
         if msg is not None:
             self.warnings.append(msg)
