@@ -267,7 +267,7 @@ def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[st
             if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
                 off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
     if off:
-        warnings.append(classifier_rate_warning(off))
+        warnings.append(classifier_rate_warning(off, resample_hint=True))
     return off or None
 
 
@@ -399,16 +399,21 @@ def _length_proba(classes: pd.DataFrame) -> list[dict[str, float] | None]:
     return [dict(zip(cols, row, strict=True)) for row in p.tolist()]
 
 
-def _distance_gain(requested: float | None, model, fs: float, warnings: list[str],
+def _distance_gain(requested: float | None, model, session: Session, warnings: list[str],
                    calibration: bool = True, streaming: bool = False) -> tuple[float, str, float | None]:
     """The distance gain to apply (decision L26), where it comes from, and the user's calibrated relative
     sd of one stride's length estimate (None: no applicable calibration). ``streaming``: the record of the
-    streamed stride kernel when the model has one (decision L41), else the offline engine's."""
+    streamed stride kernel when the model has one (decision L41), else the offline engine's. The calibration
+    is judged at the foot's recorded rate, also when the session was resampled to the model's (decisions E22,
+    B113: resampling does not restore what the recording rate lost)."""
+    from pdrlearn.io.resample import recorded_rate
+
+    fs, resampled_hz = recorded_rate(session, "fAccelerometer")
     rec = model_distance_calibration(model) if calibration and not (model is None or isinstance(model, str)) \
         else None
     if streaming:
         rec = streaming_calibration(rec)
-    rec, warning = applicable_calibration(rec, fs)  # the runtime's own rate check (decision E14)
+    rec, warning = applicable_calibration(rec, fs, resampled_hz=resampled_hz)  # the runtime's check (E14)
     if warning:
         warnings.append(warning)
     sd = calibrated_stride_sd(rec)
@@ -688,7 +693,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             untrained = untrained_tasks(classes)
             if untrained:
                 warnings.append(untrained_warning(untrained))
-    gain, gain_source, stride_sd = _distance_gain(distance_gain, model if cfg["rules"] else None, foot.fs,
+    gain, gain_source, stride_sd = _distance_gain(distance_gain, model if cfg["rules"] else None, session,
                                                   warnings, calibration)
     # decision L26: the user's calibration on the level strides' horizontal displacement
     disp = apply_level_gain(disp, gain)
@@ -1019,7 +1024,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             warnings.append(untrained_warning(untrained, streaming=True))
         off_rate = rate_check(model, session, classes, warnings)  # decision C18
     gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
-                                                  session.streams["fAccelerometer"].rate_hz, warnings, calibration,
+                                                  session, warnings, calibration,
                                                   streaming=True)  # decision L41: the stride kernel's own gain
     # decision L41 (L40 amended): streamed, offline's default too - bayes with the 0.95 gate with a model's
     # classes, the thesis rule with oracle labels (with the stride kernel's own gain: better distance on A-D
