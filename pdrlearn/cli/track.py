@@ -178,9 +178,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
     (``track-all --jobs``). What depends on the session (a window inside its recording, L105; a relative
     heading for ``--initial-heading``, L98) is checked per session in :func:`track_session` (decision L108)."""
-    from pdrlearn.track.window import parse_window
-
     from pdrlearn.io.resample import resample_mode
+    from pdrlearn.track.window import parse_window
 
     rate_mode = resample_mode(resample, no_resample)  # decision B113
     if rate_mode != "native" and model is None:

@@ -440,9 +440,9 @@ def resampled_text(resamplers: dict[str, StreamResampler], *, latency: bool = Tr
 
 def resample_message(resamplers: dict[str, StreamResampler], rate_out: float) -> str:
     """The one line that announces the resampled streams (decision E22), grouped by input rate."""
-    return (f"{resampled_text(resamplers)}, the bundle at {rate_out:.4g} Hz: resampling to {rate_out:.4g} Hz as the samples "
-            "stream in; the resampled windows are not the ones the classifiers were trained on, and on simulated "
-            "50 Hz walks into a 20 Hz bundle most strides came out backward (E22): prefer the default, which "
+    return (f"{resampled_text(resamplers)}, the bundle at {rate_out:.4g} Hz: resampling to {rate_out:.4g} Hz as "
+            "the samples stream in; the resampled windows are not the ones the classifiers were trained on, and on "
+            "simulated 50 Hz walks into a 20 Hz bundle most strides came out backward (E22): prefer the default, which "
             "tracks the data at its own rate as `pdrlearn track --streaming` does; --no-resample / "
             "Tracker(resample=False) refuses instead")
 
