@@ -6,7 +6,8 @@ A session folder holds one CSV per sensor (``fAccelerometer.csv`` ... ``wBaromet
 
 Decision (docs/decisions.md D1): on disk, ``timestamp`` and every ``*_ms`` label column are
 **milliseconds**, as in the converted real recordings; in memory they are seconds (``*_s``). A
-``meta.json`` may declare ``"units": {"timestamp": "s ..."}`` (or ``"ns ..."``) for other files.
+``meta.json`` may declare ``"units": {"timestamp": "s ..."}`` (or ``"ns ..."``) for other files, and
+``"clocks"`` a unit's own rate, timestamp unit and clock offset (decision B115, :mod:`pdrlearn.io.clocks`).
 """
 
 from __future__ import annotations
