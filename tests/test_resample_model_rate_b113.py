@@ -13,7 +13,7 @@ import pytest
 
 from pdrlearn.cli import main
 from pdrlearn.io import Session, Stream, read_session
-from pdrlearn.io.resample import at_model_rate, resample_session
+from pdrlearn.io.resample import at_model_rate, recorded_rate, resample_session
 from pdrlearn.runtime.resample import StreamResampler
 from tests.cli_helpers import simulated_session_and_model
 
@@ -105,5 +105,7 @@ def test_the_distance_calibration_is_judged_at_the_recorded_rate(sim):
     up = at_model_rate(s, model, True, command="track")
     assert up.streams["fAccelerometer"].rate_hz == pytest.approx(100.0)
     warnings: list[str] = []
-    gain, source, _ = _distance_gain(None, model, up, warnings)
+    fs, to_hz = recorded_rate(up, "fAccelerometer")  # what track_plasys passes
+    assert (round(fs, 6), to_hz) == (20.0, 100.0)
+    gain, source, _ = _distance_gain(None, model, fs, warnings, resampled_hz=to_hz)
     assert gain == 1.0 and len(warnings) == 1 and "recorded at 20 Hz (resampled to 100 Hz" in warnings[0]

@@ -40,6 +40,7 @@ from pdrlearn.displace import (
     streaming_calibration,
 )
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError
+from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
@@ -399,16 +400,14 @@ def _length_proba(classes: pd.DataFrame) -> list[dict[str, float] | None]:
     return [dict(zip(cols, row, strict=True)) for row in p.tolist()]
 
 
-def _distance_gain(requested: float | None, model, session: Session, warnings: list[str],
-                   calibration: bool = True, streaming: bool = False) -> tuple[float, str, float | None]:
+def _distance_gain(requested: float | None, model, fs: float, warnings: list[str],
+                   calibration: bool = True, streaming: bool = False,
+                   resampled_hz: float | None = None) -> tuple[float, str, float | None]:
     """The distance gain to apply (decision L26), where it comes from, and the user's calibrated relative
     sd of one stride's length estimate (None: no applicable calibration). ``streaming``: the record of the
-    streamed stride kernel when the model has one (decision L41), else the offline engine's. The calibration
-    is judged at the foot's recorded rate, also when the session was resampled to the model's (decisions E22,
-    B113: resampling does not restore what the recording rate lost)."""
-    from pdrlearn.io.resample import recorded_rate
-
-    fs, resampled_hz = recorded_rate(session, "fAccelerometer")
+    streamed stride kernel when the model has one (decision L41), else the offline engine's. ``fs``: the foot's
+    recorded rate, also when the session was resampled to the model's ``resampled_hz`` (decisions E22, B113:
+    resampling does not restore what the recording rate lost)."""
     rec = model_distance_calibration(model) if calibration and not (model is None or isinstance(model, str)) \
         else None
     if streaming:
@@ -693,8 +692,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             untrained = untrained_tasks(classes)
             if untrained:
                 warnings.append(untrained_warning(untrained))
-    gain, gain_source, stride_sd = _distance_gain(distance_gain, model if cfg["rules"] else None, session,
-                                                  warnings, calibration)
+    fs0, resampled_hz = recorded_rate(session, "fAccelerometer")  # decision B113: judged at the recorded rate
+    gain, gain_source, stride_sd = _distance_gain(distance_gain, model if cfg["rules"] else None,
+                                                  foot.fs if resampled_hz is None else fs0, warnings, calibration,
+                                                  resampled_hz=resampled_hz)
     # decision L26: the user's calibration on the level strides' horizontal displacement
     disp = apply_level_gain(disp, gain)
     use_bounds = bounds if bounds is not None else model_bounds
@@ -1023,9 +1024,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         if untrained:  # C17's line, with what the streamed rules do instead (they keep the raw height change)
             warnings.append(untrained_warning(untrained, streaming=True))
         off_rate = rate_check(model, session, classes, warnings)  # decision C18
-    gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
-                                                  session, warnings, calibration,
-                                                  streaming=True)  # decision L41: the stride kernel's own gain
+    fs0, resampled_hz = recorded_rate(session, "fAccelerometer")  # decision B113: judged at the recorded rate
+    gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None, fs0, warnings,
+                                                  calibration, streaming=True,  # L41: the stride kernel's gain
+                                                  resampled_hz=resampled_hz)
     # decision L41 (L40 amended): streamed, offline's default too - bayes with the 0.95 gate with a model's
     # classes, the thesis rule with oracle labels (with the stride kernel's own gain: better distance on A-D
     # and altitude on D than the thesis rule, held-out users 11-20)
