@@ -72,6 +72,11 @@ COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a 
                                "unit's others (cut short, refused by B72): track only the time all of them cover, "
                                "every file and label table cut to it, with one warning naming the seconds dropped "
                                "from each file (decision B81).")
+RESAMPLE_OPT = typer.Option(False, "--resample", help="With --model: a session recorded at another rate than the "
+                            "model's is resampled to the model's rate first (the `pdrlearn run --resample` "
+                            "resampler, decision B113); default: tracked at its own rate with a warning.")
+NO_RESAMPLE_OPT = typer.Option(False, "--no-resample", help="With --model: refuse a session recorded at another "
+                               "rate than the model's (decision B113).")
 INITIAL_HEADING_OPT = typer.Option(None, "--initial-heading", metavar="DEG", help=INITIAL_HEADING_HELP)
 WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the session start (track-all: from "
                           "each session's start): track the whole session, then keep the steps whose middle lies "
@@ -105,6 +110,8 @@ def track(
     dpi: int = DPI_OPT,
     common_span: bool = COMMON_SPAN_OPT,
     window: str = WINDOW_OPT,
+    resample: bool = RESAMPLE_OPT,
+    no_resample: bool = NO_RESAMPLE_OPT,
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
 ) -> None:
@@ -144,7 +151,8 @@ def track(
                               gnss_period=gnss_period, fixes=fixes, fix_period=fix_period, streaming=streaming,
                               realtime=realtime, reference_point=reference_point, toe_off=toe_off,
                               contacts=contacts, dpi=dpi, initial_heading=initial_heading,
-                              common_span=common_span, window=window)
+                              common_span=common_span, window=window, resample=resample,
+                              no_resample=no_resample)
     was = existed(out)
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
     with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
@@ -163,14 +171,20 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
                    reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
                    dpi: int | None = None, initial_heading: float | None = None,
-                   common_span: bool = False, window: str | None = None) -> dict:
+                   common_span: bool = False, window: str | None = None, resample: bool = False,
+                   no_resample: bool = False) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
     (``track-all --jobs``). What depends on the session (a window inside its recording, L105; a relative
     heading for ``--initial-heading``, L98) is checked per session in :func:`track_session` (decision L108)."""
+    from pdrlearn.io.resample import resample_mode
     from pdrlearn.track.window import parse_window
 
+    rate_mode = resample_mode(resample, no_resample)  # decision B113
+    if rate_mode != "native" and model is None:
+        raise DataError(f"track: {'--resample' if resample else '--no-resample'} compares the session's rate with "
+                        "the model's: pass --model DIR, or drop it (without a model nothing depends on the rate)")
     start_ll, start_alt = start_option(start)
     heading0 = initial_heading_option(initial_heading)  # decision L98: degrees ENU -> rad
     win = parse_window(window)  # decision L105: a bad window is one line before any tracking
@@ -202,7 +216,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
-            "initial_heading_rad": heading0, "common_span": common_span, "window": win}
+            "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode}
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:
@@ -240,6 +254,13 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                             gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"])
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
+    if o.get("resample", "native") != "native":  # decision B113: the session at the model's rate, or refused
+        from pdrlearn.classify import load_model
+        from pdrlearn.io.resample import at_model_rate
+
+        if model != "oracle":
+            model = load_model(model)
+        session = at_model_rate(session, model, o["resample"], command="track")
     if o["reference_point"] is not None:  # decision L72
         par = _reference_point(o["reference_point"], par, params, pipeline, streaming)
     # waist pipelines read the file themselves, so that their errors name it

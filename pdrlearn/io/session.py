@@ -268,6 +268,9 @@ class Session:
     #: decision B81: the recording's first sample (s) before ``read_session(spans="common")`` cut the session to
     #: its common span (None: not cut); ``track --window`` counts its seconds from it (L105)
     _t_start_uncut: float | None = field(default=None, repr=False, compare=False)
+    #: decision B113: the recording's :meth:`content_id` when this session is its copy resampled to a model's
+    #: rate (``pdrlearn evaluate --resample``): the held-out check (B87) still knows the recording
+    _source_id: str | None = field(default=None, repr=False, compare=False)
 
     # -- access -----------------------------------------------------------------------------------
     def __getitem__(self, name: str) -> Stream:
@@ -324,6 +327,8 @@ class Session:
         gives the same id, two recordings in folders of one name do not."""
         import hashlib
 
+        if self._source_id is not None:  # decision B113: a resampled copy is still the recording
+            return self._source_id
         h = hashlib.sha1()
         for key in sorted(self.streams):
             st = self.streams[key]
