@@ -27,7 +27,8 @@ from pdrlearn.cli.common import (
 
 
 def export(
-    model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train'."),
+    model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train' (its files are pickle: "
+                                     "only one you trust; share the bundle instead)."),
     out: Path = typer.Option(..., "--out", "-o", help="Bundle folder to create."),
     methods: str = typer.Option(None, help="Comma-separated methods to export for every task "
                                 "(heuristic,fusion,dtw,svm,nn,ensemble); default: each task's chosen method."),
