@@ -12,8 +12,7 @@ import numpy as np
 import pytest
 
 from pdrlearn.cli import main
-from pdrlearn.io import write_session
-from tests.runtime_helpers import synthetic_session, trained_dirs
+from tests.runtime_helpers import trained_dirs_and_walk
 
 #: methods whose models hold training samples (DTW references, SVM support vectors; the ensemble has both)
 SAMPLE_METHODS = ("dtw", "svm", "ensemble")
@@ -21,12 +20,7 @@ SAMPLE_METHODS = ("dtw", "svm", "ensemble")
 
 @pytest.fixture(scope="module")
 def dirs(tmp_path_factory):
-    d = dict(trained_dirs(tmp_path_factory))
-    root = tmp_path_factory.mktemp("privacy")
-    write_session(synthetic_session(20, seed=9, name="walk"), root / "walk")
-    d["walk"] = root / "walk"
-    d["tmp"] = root
-    return d
+    return trained_dirs_and_walk(tmp_path_factory, "privacy")
 
 
 def _manifest(bundle) -> dict:
