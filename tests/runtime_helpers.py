@@ -162,6 +162,19 @@ def trained_dirs(tmp_path_factory) -> dict:
     return _CACHE
 
 
+def trained_dirs_and_walk(tmp_path_factory, name: str = "cli") -> dict:
+    """:func:`trained_dirs` plus ``walk``: a 20-stride synthetic session written to a new folder (seed 9), and
+    ``tmp``: that folder's parent (for the CLI tests of export and run)."""
+    from pdrlearn.io import write_session
+
+    d = dict(trained_dirs(tmp_path_factory))
+    root = tmp_path_factory.mktemp(name)
+    write_session(synthetic_session(20, seed=9, name="walk"), root / "walk")
+    d["walk"] = root / "walk"
+    d["tmp"] = root
+    return d
+
+
 #: methods of the rest-boundary model: the ensemble (decision C14) and its members
 REST_METHODS = ["nn", "svm", "dtw", "ensemble"]
 

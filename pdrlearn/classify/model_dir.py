@@ -11,6 +11,11 @@ The directory is written to a temporary sibling and renamed into place, so a rea
 half-written model. The joblib files are for the training side (Python, scikit-learn, torch); the runtime
 bundle (ONNX, no pickles) is written by ``pdrlearn.export``. Every file's SHA-256 is in the manifest and
 checked on load.
+
+joblib files are pickle: loading one runs the code it names. The checksums catch a damaged or half-copied
+file, not a deliberate change (whoever edits a file can update its checksum in the manifest), so load model
+directories only from sources you trust and exchange bundles instead (docs/deploying.md, "Model folders are
+pickle"; decision B125).
 """
 
 from __future__ import annotations
@@ -218,6 +223,8 @@ def verify_model_dir(path) -> dict:
 
 def load_model(path):
     """Load a model directory written by :meth:`UserModel.save` -> :class:`UserModel`.
+
+    The files are unpickled (joblib): only load directories from a trusted source (see the module docstring).
 
     Raises :class:`ModelError` (one line) for a missing directory/manifest/model file, a changed file
     (SHA-256 mismatch) or another schema version.

@@ -27,13 +27,18 @@ from pdrlearn.cli.common import (
 
 
 def export(
-    model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train'."),
+    model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train' (its files are pickle: "
+                                     "only one you trust; share the bundle instead)."),
     out: Path = typer.Option(..., "--out", "-o", help="Bundle folder to create."),
     methods: str = typer.Option(None, help="Comma-separated methods to export for every task "
                                 "(heuristic,fusion,dtw,svm,nn,ensemble); default: each task's chosen method."),
     length_bounds: str = typer.Option(None, "--length-bounds", help="Stride-length class edges (m) "
                                       "SHORT_NORMAL,NORMAL_LONG; default: the model's; a model without them: none "
                                       "(the length rule is skipped, with a warning)."),
+    no_training_samples: bool = typer.Option(False, "--no-training-samples", help="Leave out the models that "
+                                             "embed the user's training samples (DTW references, SVM support "
+                                             "vectors, soft votes with them): each task gets the best-ranked model "
+                                             "without them (docs/deploying.md, privacy; decision E68)."),
     force: bool = typer.Option(False, "--force", "--overwrite", help=FORCE_HELP + " --overwrite is the old name."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
 ) -> None:
@@ -44,6 +49,8 @@ def export(
         pdrlearn export out/models/u1 --out out/bundle_u1
 
         pdrlearn export out/models/u1 --out out/bundle_u1_all --methods svm,nn,dtw --json
+
+        pdrlearn export out/models/u1 --out out/bundle_u1_shared --no-training-samples
     """
     from pdrlearn.errors import DataError
     from pdrlearn.export.bundle import bundle_size_bytes
@@ -59,7 +66,8 @@ def export(
             raise DataError(f"--length-bounds {length_bounds!r}: give two numbers, e.g. 0.6,0.9") from None
     out_folder(out, "bundle", force=force, inputs=(model_dir,))
     was = existed(out)
-    path = export_model(model_dir, out, methods=meths, length_bounds=bounds, overwrite=force)
+    path = export_model(model_dir, out, methods=meths, length_bounds=bounds, overwrite=force,
+                        training_samples=not no_training_samples)
     replaced(out, was)
     b = load_bundle(path)
     summary = {
@@ -69,6 +77,7 @@ def export(
         "tasks": {t: {"chosen": v["chosen"], "methods": {m: sorted(per) for m, per in v["methods"].items()}}
                   for t, v in b.tasks.items()},
         "skipped": b.manifest.get("export", {}).get("skipped", []),
+        "training_samples": b.manifest.get("export", {}).get("training_samples", True),
     }
     if as_json:
         print_json(json_safe(summary))

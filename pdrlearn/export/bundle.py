@@ -175,8 +175,7 @@ def rebuild_step_graph(bundle_dir: str | Path, out_dir: str | Path | None = None
         elif rel.endswith(".json"):
             json_files[rel] = _json.loads((src / rel).read_text())
         elif rel.endswith(".npz"):
-            with np.load(src / rel, allow_pickle=False) as z:
-                npz_files[rel] = {k: z[k] for k in z.files}
+            npz_files[rel] = b.npz(rel)  # numeric arrays only, one line otherwise (decision B125)
         else:
             raise ModelError(f"bundle {src.name}: file '{rel}' has no known type; re-export the bundle")
     step = build_step_graph(manifest["tasks"], onnx_models, manifest["features"])

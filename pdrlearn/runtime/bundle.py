@@ -18,6 +18,7 @@ import hashlib
 import json
 import logging
 import math
+import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -107,7 +108,13 @@ class OnnxModel:
                 opts.intra_op_num_threads = 1  # one step at a time: threads only add latency
                 opts.inter_op_num_threads = 1
                 opts.log_severity_level = 3
-                self._sess = ort.InferenceSession(str(self.path), sess_options=opts, providers=["CPUExecutionProvider"])
+                try:
+                    self._sess = ort.InferenceSession(str(self.path), sess_options=opts,
+                                                      providers=["CPUExecutionProvider"])
+                except Exception as exc:  # noqa: BLE001 - onnxruntime's own error types (InvalidProtobuf, Fail, ...)
+                    why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+                    raise ModelError(f"{self.path}: onnxruntime cannot open this model ({why}); restore the original "
+                                     "bundle or re-export it with 'pdrlearn export' (decision B125)") from None
                 self._names = [o.name for o in self._sess.get_outputs()]
                 self._wanted = [n for n in self.outputs.values() if n in self._names]
                 return "onnxruntime"
@@ -248,14 +255,38 @@ class Bundle:
 
     def json(self, rel: str) -> dict:
         if rel not in self._cache:
-            self._cache[rel] = json.loads(self.file(rel).read_text())
+            try:
+                self._cache[rel] = json.loads(self.file(rel).read_text())
+            except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+                raise self._bad_file(rel, "a JSON file", exc) from None
         return self._cache[rel]  # type: ignore[return-value]
 
-    def npz(self, rel: str) -> dict[str, np.ndarray]:
+    def npz(self, rel: str, keys: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
+        """The arrays of the NPZ file ``rel``, read without pickle; a file that is not an NPZ archive of numeric
+        arrays (e.g. an object array, which only pickle could load) or lacks one of ``keys`` is a one-line
+        :class:`ModelError` (decision B125), whatever its checksum says."""
         if rel not in self._cache:
-            with np.load(self.file(rel), allow_pickle=False) as z:
-                self._cache[rel] = {k: z[k] for k in z.files}
-        return self._cache[rel]  # type: ignore[return-value]
+            try:
+                z = np.load(self.file(rel), allow_pickle=False)
+                if not isinstance(z, np.lib.npyio.NpzFile):
+                    raise ValueError("a single .npy array, not an .npz archive")
+                with z:
+                    self._cache[rel] = {k: z[k] for k in z.files}
+            except (ValueError, OSError, EOFError, zipfile.BadZipFile) as exc:
+                raise self._bad_file(rel, "an NPZ archive of numeric arrays (bundles never need pickle)", exc
+                                     ) from None
+        out: dict[str, np.ndarray] = self._cache[rel]  # type: ignore[assignment]
+        missing = [k for k in keys if k not in out]
+        if missing:
+            raise self._bad_file(rel, "the NPZ archive this model needs", ValueError(f"no array {', '.join(missing)}"))
+        return out
+
+    def _bad_file(self, rel: str, what: str, exc: Exception) -> ModelError:
+        """Decision B125: a bundle file whose checksum matches but whose content is not what the bundle writes
+        (the manifest's checksums were re-made after an edit, or a buggy writer)."""
+        why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        return _fail(self.path, f"file '{rel}' is not {what} ({why}); restore the original bundle or re-export it "
+                                "with 'pdrlearn export'")
 
     # -- compatibility with data --------------------------------------------------------------------
     def check_streams(self, rates_hz: dict[str, float], *, where: str = "data", units=None) -> None:
