@@ -7,7 +7,7 @@ true CV of the labelled steady strides (as L113) and the median cadence against 
 time. R3: ``--users100`` at 100 Hz, scenario A, both foot detectors scored against the labels. R4: the real gaitmap
 level walks with the accelerometer detector.
 
-    OMP_NUM_THREADS=1 python experiments/subsample_contacts.py --users 440-459 --users100 440-449 --out /tmp/s32
+    OMP_NUM_THREADS=1 python experiments/subsample_contacts.py --users 460-479 --users100 460-469 --out /tmp/s32b
 """
 
 from __future__ import annotations
@@ -42,11 +42,15 @@ def quiet(args: list) -> None:
 
 
 def truth(session: Path) -> tuple[float, float]:
-    """(true CV %, true median cadence steps/min) of the right foot's labelled contacts."""
+    """(true CV %, true median cadence steps/min) of the right foot's labelled contacts: the CV of the IC-to-IC
+    times between two steady strides (decision 32's amended rule), the median of every IC-to-IC time <= 3 s."""
     st = pd.read_csv(session / "steps.csv")
     st = st[st["foot"] == "right"].reset_index(drop=True)
     d = np.diff(st["ic_ms"].to_numpy(float) / 1000.0, prepend=np.nan)
-    steady = d[st["steady"].astype(bool).to_numpy()]
+    sd = st["steady"].astype(bool).to_numpy()
+    # the amended rule: a time between two steady contacts (the first steady stride after a turn starts at the
+    # turn's last contact: its IC-to-IC time holds the turn)
+    steady = d[sd & np.concatenate([[False], sd[:-1]])]
     steady = steady[np.isfinite(steady)]
     ok = d[np.isfinite(d) & (d <= contact.MAX_STRIDE_S)]
     return float(100.0 * steady.std(ddof=1) / steady.mean()), float(120.0 / np.median(ok))
@@ -144,8 +148,8 @@ def report_timing(name: str, res: list[dict]) -> bool:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--users", default="440-459")
-    ap.add_argument("--users100", default="440-449")
+    ap.add_argument("--users", default="460-479")  # 440-459: the first run, whose rule's true CV was wrong
+    ap.add_argument("--users100", default="460-469")
     ap.add_argument("--out", type=Path, required=True)
     ap.add_argument("--skip-clinical", action="store_true")
     a = ap.parse_args()
