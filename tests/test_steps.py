@@ -200,17 +200,18 @@ _SESSIONS = {}
 
 def _inputs(name):
     if name not in _SESSIONS:
-        if name in ("accel", "accel-force"):
+        base = name.removesuffix("-sub")  # decision 32: the foot contacts between samples, chunked too
+        if base in ("accel", "accel-force"):
             s, _ = foot_session(fs=20.0, force=True, n_strides=12, seed=5)
         else:
             s, _ = waist_session(fs=20.0, n_steps=30, seed=5)
-        det = get_detector(name)
+        det = get_detector(base, **({"subsample": True} if name.endswith("-sub") else {}))
         _SESSIONS[name] = (s, det, det._inputs(s))
     return _SESSIONS[name]
 
 
-@settings(max_examples=12, deadline=None)
-@given(name=st.sampled_from(["accel", "accel-force", "pelvic-gyro", "pll"]),
+@settings(max_examples=18, deadline=None)
+@given(name=st.sampled_from(["accel", "accel-force", "pelvic-gyro", "pll", "accel-sub", "accel-force-sub"]),
        cuts=st.lists(st.integers(0, 60), min_size=1, max_size=12))
 def test_online_equals_offline(name, cuts):
     s, det, inputs = _inputs(name)
