@@ -32,7 +32,7 @@ TOUCH_S = 1e-6
 MAX_STRIDE_S = 3.0
 #: steps decision 32: the foot contacts' times between the samples (the impact peak's parabola, the force crossing's
 #: line) when True; whole samples when False. The detectors' ``subsample=None`` and the streamed contacts read it
-SUBSAMPLE = False
+SUBSAMPLE = True
 
 
 def butter2(cutoff_hz: float, fs: float) -> tuple[np.ndarray, np.ndarray]:
