@@ -282,7 +282,7 @@ def contact_timing(session, steps: pd.DataFrame) -> dict:
     rate = float(session.streams[name].rate_hz) if name and session.has(name) else math.nan
     if not (math.isfinite(rate) and rate > 0):
         return {"timing_resolution_s": None, "contact_timing": None}
-    return {"timing_resolution_s": 1.0 / rate,
+    return {"timing_resolution_s": round(1.0 / rate, 9),  # the median period of timestamps in ms: 1e-9 s is noise
             "contact_timing": BETWEEN_SAMPLES if unit == "foot" and contact.SUBSAMPLE else WHOLE_SAMPLES}
 
 
