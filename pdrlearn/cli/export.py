@@ -436,6 +436,9 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
     geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon") and np.isfinite(v)}
     out["final_position"] = {**dict(zip("xyz", (float(v) for v in tracker.position), strict=True)), **geo}
     if session is not None:
+        from pdrlearn.track.clinical import contact_timing
+
+        out.update(contact_timing(session, result.steps))  # decision L116, as track's summary
         out["session"] = session.name
         # cohort C13: the folder tracked, as track's summary.json (copies of a session share its name)
         out["input_dir"] = str(session.folder.resolve()) if session.folder is not None else None

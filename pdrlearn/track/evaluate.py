@@ -469,12 +469,12 @@ METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _
 
 
 def summary_warnings(summary: dict) -> list[str]:
-    """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range and
-    decision L113's withheld stride-time CV."""
-    from pdrlearn.track.clinical import stride_cv_warning
+    """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range,
+    decision L113's withheld stride-time CV and decision L116's whole-sample rounding of the CV."""
+    from pdrlearn.track.clinical import resolution_warning, stride_cv_warning
     from pdrlearn.track.gait import gait_range_warning
 
-    return [w for w in (gait_range_warning(summary), stride_cv_warning(summary)) if w]
+    return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:
@@ -514,8 +514,10 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     import logging
 
     from pdrlearn.io.plasys import json_safe
+    from pdrlearn.track.clinical import contact_timing
 
     summary = evaluate_track(result, session)
+    summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None
