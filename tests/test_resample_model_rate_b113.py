@@ -109,3 +109,23 @@ def test_the_distance_calibration_is_judged_at_the_recorded_rate(sim):
     assert (round(fs, 6), to_hz) == (20.0, 100.0)
     gain, source, _ = _distance_gain(None, model, fs, warnings, resampled_hz=to_hz)
     assert gain == 1.0 and len(warnings) == 1 and "recorded at 20 Hz (resampled to 100 Hz" in warnings[0]
+
+
+@pytest.mark.parametrize("streaming", [False, True])
+def test_track_resample_applies_the_calibration_made_at_the_recorded_rate(sim, tmp_path, caplog, streaming):
+    """B113 through the CLI: the model's distance calibration was made at the recording's 20 Hz, the model's
+    classifiers at 100 Hz; ``track --resample`` (offline and ``--streaming``) tracks at 100 Hz and still applies
+    the calibration, judged at the recorded 20 Hz (a tracker judging it at 100 Hz drops it with a warning)."""
+    folder, _, off = sim
+    rec = json.loads((off / "manifest.json").read_text())["training_data"]["distance_calibration"]
+    assert round(rec["rate_hz"], 6) == 20.0
+    out = tmp_path / "t"
+    with caplog.at_level(logging.WARNING):
+        assert main(["track", str(folder), "--model", str(off), "--out", str(out), "--json", "--resample"]
+                    + (["--streaming"] if streaming else [])) == 0
+    assert len(_lines(caplog, "resampled to the model's 100 Hz before tracking")) == 1
+    assert _lines(caplog, "distance calibration was made at") == []
+    summary = json.loads((out / "summary.json").read_text())["info"]
+    assert summary["distance_gain_source"] == "model"
+    want = rec["streaming"]["gain"] if streaming else rec["gain"]
+    assert summary["distance_gain"] == pytest.approx(want) and summary["distance_gain"] != 1.0
