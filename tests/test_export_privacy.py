@@ -94,14 +94,19 @@ def _resign(bundle, rel: str) -> None:
     (bundle / "manifest.sha256").write_text(f"{digest}  manifest.json\n")
 
 
-@pytest.mark.parametrize("kind", ["object_array", "not_a_zip", "missing_array"])
+@pytest.mark.parametrize("kind", ["object_array", "not_a_zip", "missing_array", "json_list", "json_no_keys",
+                                  "json_garbage"])
 def test_resigned_npz_is_one_line(dirs, tmp_path, capsys, kind):
     """Decision B125: an NPZ with an object array (which only pickle loads), a file that is not an archive, or one
-    without the DTW arrays: `pdrlearn run` prints one line naming the file instead of a traceback."""
+    without the DTW arrays, and a heuristic's JSON that is not JSON, not an object or without its keys (amended,
+    review): `pdrlearn run` prints one line naming the file instead of a traceback."""
     bundle = tmp_path / "b"
     shutil.copytree(dirs["root"] / "bundle_all", bundle)
-    rel = next(f for f in _manifest(bundle)["files"] if f.endswith(".npz") and "terrain_dtw" in f)
-    if kind == "object_array":
+    method = "heuristic" if kind.startswith("json") else "dtw"
+    rel = next(f for f in _manifest(bundle)["files"] if f"terrain_{method}_foot." in f)
+    if kind.startswith("json"):
+        (bundle / rel).write_text({"json_list": "[1, 2]", "json_no_keys": '{"x": 1}', "json_garbage": "{not"}[kind])
+    elif kind == "object_array":
         with open(bundle / rel, "wb") as f:
             np.savez(f, references=np.array([{"a": 1}], dtype=object), reference_labels=np.zeros(1),
                      channel_mean=np.zeros(3), channel_std=np.ones(3))
@@ -111,7 +116,7 @@ def test_resigned_npz_is_one_line(dirs, tmp_path, capsys, kind):
         with open(bundle / rel, "wb") as f:
             np.savez(f, references=np.zeros((2, 3, 40)))
     _resign(bundle, rel)
-    assert main(["run", str(bundle), str(dirs["walk"]), "--method", "terrain=dtw/foot"]) == 2
+    assert main(["run", str(bundle), str(dirs["walk"]), "--method", f"terrain={method}/foot"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and f"file '{rel}' is not" in err[0] and "re-export" in err[0], err
 

@@ -253,13 +253,21 @@ class Bundle:
             self._models[rel] = OnnxModel(self.file(rel), spec, backend=self.backend, fallback_path=fb)
         return self._models[rel]
 
-    def json(self, rel: str) -> dict:
+    def json(self, rel: str, keys: tuple[str, ...] = ()) -> dict:
+        """The JSON object of the file ``rel``; a file that is not JSON, not an object or lacks one of ``keys``
+        is a one-line :class:`ModelError` (decision B125, as :meth:`npz`), whatever its checksum says."""
         if rel not in self._cache:
             try:
                 self._cache[rel] = json.loads(self.file(rel).read_text())
             except (UnicodeDecodeError, json.JSONDecodeError) as exc:
                 raise self._bad_file(rel, "a JSON file", exc) from None
-        return self._cache[rel]  # type: ignore[return-value]
+        out = self._cache[rel]
+        if not isinstance(out, dict):
+            raise self._bad_file(rel, "the JSON object this model needs", ValueError(f"a {type(out).__name__}"))
+        missing = [k for k in keys if k not in out]
+        if missing:
+            raise self._bad_file(rel, "the JSON object this model needs", ValueError(f"no key {', '.join(missing)}"))
+        return out
 
     def npz(self, rel: str, keys: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
         """The arrays of the NPZ file ``rel``, read without pickle; a file that is not an NPZ archive of numeric

@@ -25,6 +25,9 @@ from pdrlearn.kernels.window import GROUP_STREAMS, GROUPS
 from pdrlearn.runtime.bundle import Bundle, OnnxModel
 from pdrlearn.runtime.features import compute_features, recipe_channels
 
+#: the keys of a heuristic model's JSON file in a bundle (``export`` writes them; decision B125 checks them)
+HEURISTIC_KEYS = ("feature_names", "stages")
+
 
 class RuntimeModel:
     """One model entry of a bundle; :meth:`proba` maps windows ``(n, channels, samples)`` to
@@ -48,7 +51,7 @@ class RuntimeModel:
             self.window = None if entry.get("window") is None else int(entry["window"])
             self.temperature = float(entry["temperature"])
         elif self.type == "heuristic":
-            spec = bundle.json(entry["file"])
+            spec = bundle.json(entry["file"], keys=HEURISTIC_KEYS)
             self.recipe = [["rule", n] for n in spec["feature_names"]]
             self.col = {n: i for i, n in enumerate(spec["feature_names"])}
             self.stages = spec["stages"]
@@ -114,7 +117,7 @@ def entry_sensors(bundle: Bundle, entry: dict, signals: dict) -> set[str]:
     if entry["type"] == "dtw":
         recipe = [["signals", entry["signals"]]]
     elif entry["type"] == "heuristic":
-        recipe = [["rule", n] for n in bundle.json(entry["file"])["feature_names"]]
+        recipe = [["rule", n] for n in bundle.json(entry["file"], keys=HEURISTIC_KEYS)["feature_names"]]
     else:
         recipe = entry["features"]
     chans = set(recipe_channels(recipe, signals))
