@@ -134,3 +134,34 @@ def test_a_session_written_back_is_not_shifted_twice(sessions, tmp_path):
     c = read_session(tmp_path / "w")
     for name, st in b.streams.items():
         assert np.allclose(c.streams[name].t, st.t, atol=1e-9), name
+
+
+def test_with_clocks_trajectory_csv_follows_the_sensor_files_unit(sessions, tmp_path, capsys):
+    """B115 amended (review): every file in s with no declared unit (B22 infers s on each unit) and "clocks": the
+    trajectory is read in s too, as without clocks (B25); when the units' files were read in different units
+    and none is declared, a trajectory that does not fit the default ms is refused naming "clocks"."""
+    orig, units = sessions
+    c = tmp_path / "s"
+    shutil.copytree(orig, c)
+    for f in [*c.glob("[fw]*.csv"), c / "trajectory.csv"]:
+        if f.stem != "foot_trajectory":
+            d = pd.read_csv(f)
+            d["timestamp"] = d["timestamp"] / 1000.0
+            d.to_csv(f, index=False)
+    meta = json.loads((c / "meta.json").read_text())
+    meta.get("units", {}).pop("timestamp", None)
+    meta.pop("rate_hz", None)
+    meta["clocks"] = {"foot": {"rate_hz": 50}}
+    (c / "meta.json").write_text(json.dumps(meta))
+    got, want = read_session(c).trajectory, read_session(orig).trajectory
+    assert np.allclose(got["t"], want["t"], atol=1e-9)
+    m = tmp_path / "mixed"  # foot counting samples, waist in ms: the trajectory in s fits neither
+    shutil.copytree(units, m)
+    d = pd.read_csv(m / "trajectory.csv")
+    d["timestamp"] = d["timestamp"] / 1000.0
+    d.to_csv(m / "trajectory.csv", index=False)
+    _set_meta(m, units={k: v for k, v in json.loads((m / "meta.json").read_text())["units"].items()
+                        if k != "timestamp"})
+    assert main(["info", str(m)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "trajectory.csv" in err[0] and "\"clocks\"" in err[0], err

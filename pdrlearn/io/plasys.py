@@ -100,6 +100,22 @@ def _timestamp_scale(meta: dict, where: str = "meta.json", rate_hz: float | None
     return _TIME_SCALE[unit]
 
 
+def _trajectory_scale(scales: dict[str, float], clocks: dict, meta: dict, meta_path: Path,
+                      rate: float | None) -> tuple[float, str]:
+    """Seconds per trajectory.csv timestamp and what decided it (for a refusal): the sensor files' unit (B25),
+    also with per-unit ``"clocks"`` when every unit's files were read in one unit; a declared
+    ``units.timestamp`` with clocks; else the default ms, which names the clocks (B115 amended, review)."""
+    units = meta.get("units") if isinstance(meta.get("units"), dict) else {}
+    same = set(scales.values())
+    if scales and len(same) == 1 and not (clocks and "timestamp" in units):
+        return same.pop(), "the sensor files' unit"
+    if clocks and "timestamp" not in units and len(same) > 1:
+        return (_timestamp_scale(meta, str(meta_path), rate),
+                "the default, as the units' \"clocks\" read their files in different units; declare "
+                "\"units\": {\"timestamp\": ...} for it")
+    return _timestamp_scale(meta, str(meta_path), rate), "meta.json's units.timestamp"
+
+
 def _value_unit(meta: dict, name: str, where: str) -> tuple[float, str | None]:
     """Factor to the SI unit and the declared unit of a sensor file's values, from ``units.<file stem>``
     (its first word, :data:`pdrlearn.io.sensors.VALUE_UNITS`; decision B32): ``(1.0, None)`` when none is
@@ -852,9 +868,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         sc, unit = _group_time_scale({n: raw[n] for n in names}, m, r, folder, meta_path)
         scales.update(dict.fromkeys(names, sc))
         read_as.append((names, r, unit))
-    # trajectory.csv's time unit: the sensor files' (B25); with per-unit clocks the session's declared unit (B115)
-    scale = (scales[read_as[0][0][0]] if read_as and read_as[0][0] and not clocks
-             else _timestamp_scale(meta, str(meta_path), rate))
+    scale, basis = _trajectory_scale(scales, clocks, meta, meta_path, rate)
     streams = {name: _to_stream(folder / SENSORS[name].filename, name, arr, scales[name], check_units,
                                 _value_unit(meta, name, str(meta_path)))
                for name, arr in raw.items()}
@@ -929,7 +943,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         check_label_times(table, session.t_start, session.t_end, str(folder / f"{label}.csv"))
     if traj is not None:  # decision B25: on the sensors' clock, in their unit
         check_trajectory_times(traj["t"].to_numpy() / scale, scale, session.t_start, session.t_end,
-                               str(folder / "trajectory.csv"))
+                               str(folder / "trajectory.csv"), basis=basis)
     warn_low_rate(session)
     warn_saturation(session)
     for name, s in streams.items():

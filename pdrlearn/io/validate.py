@@ -441,7 +441,8 @@ def check_label_times(table: pd.DataFrame, t_start: float, t_end: float, where: 
             )
 
 
-def check_trajectory_times(t_raw: np.ndarray, scale: float, t_start: float, t_end: float, where: str) -> None:
+def check_trajectory_times(t_raw: np.ndarray, scale: float, t_start: float, t_end: float, where: str,
+                           basis: str = "the sensor files' unit") -> None:
     """A ground-truth trajectory's timestamps (``t_raw``, in the file's unit; ``scale`` s per unit, the
     session's unit: declared, B22-inferred or ms) must lie on the sensors' clock (decision B25). Refused, one
     line naming the file and the fix: a rate implausible in that unit or most of the trajectory outside the
@@ -469,7 +470,7 @@ def check_trajectory_times(t_raw: np.ndarray, scale: float, t_start: float, t_en
         return
     t0, t1 = t_raw[0] * scale, t_raw[-1] * scale
     rate = (1.0 / float(np.median(np.diff(t_raw)) * scale)) if t_raw.size >= 3 else float("nan")
-    what = (f"{where}: its timestamps read as {unit} (the sensor files' unit) give {t0:.6g}-{t1:.6g} s at "
+    what = (f"{where}: its timestamps read as {unit} ({basis}) give {t0:.6g}-{t1:.6g} s at "
             f"{rate:.4g} Hz, but the sensors cover {t_start:.2f}-{t_end:.2f} s")
     if fits:
         u = fits[0]
