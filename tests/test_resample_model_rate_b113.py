@@ -129,3 +129,25 @@ def test_track_resample_applies_the_calibration_made_at_the_recorded_rate(sim, t
     assert summary["distance_gain_source"] == "model"
     want = rec["streaming"]["gain"] if streaming else rec["gain"]
     assert summary["distance_gain"] == pytest.approx(want) and summary["distance_gain"] != 1.0
+
+
+@pytest.mark.parametrize("which", ["oracle", "no_rates"])
+def test_track_all_resample_without_model_rates_is_refused_once_before_the_batch(sim, tmp_path, capsys, which):
+    """B113 (review): ``track-all --resample`` / ``--no-resample`` with ``--model oracle`` or a model whose
+    manifest has no ``sampling_rate_hz`` is one line before the first session, not one failure per session."""
+    folder, model_dir, _ = sim
+    for name in ("a", "b"):
+        shutil.copytree(folder, tmp_path / "root" / name)
+    model = "oracle"
+    if which == "no_rates":
+        model = str(tmp_path / "old")
+        shutil.copytree(model_dir, model)
+        manifest = json.loads((tmp_path / "old" / "manifest.json").read_text())
+        del manifest["sampling_rate_hz"]
+        (tmp_path / "old" / "manifest.json").write_text(json.dumps(manifest))
+    for flag in ("--resample", "--no-resample"):
+        assert main(["track-all", str(tmp_path / "root"), "--model", model, flag, "--out", str(tmp_path / "o")]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        words = "--model oracle has no rate" if which == "oracle" else "records no sampling_rate_hz"
+        assert len(err) == 1 and words in err[0] and f"drop {flag}" in err[0], err
+        assert not (tmp_path / "o").exists()

@@ -185,6 +185,12 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     if rate_mode != "native" and model is None:
         raise DataError(f"track: {'--resample' if resample else '--no-resample'} compares the session's rate with "
                         "the model's: pass --model DIR, or drop it (without a model nothing depends on the rate)")
+    if rate_mode != "native":  # B113: oracle or a model without rates, once before a batch's first session
+        from pdrlearn.classify.model_dir import read_manifest
+        from pdrlearn.io.resample import positive_rates, require_rates
+
+        rates = {} if str(model) == "oracle" else positive_rates(read_manifest(model).get("sampling_rate_hz") or {})
+        require_rates(str(model), rates, rate_mode, command="track")
     start_ll, start_alt = start_option(start)
     heading0 = initial_heading_option(initial_heading)  # decision L98: degrees ENU -> rad
     win = parse_window(window)  # decision L105: a bad window is one line before any tracking

@@ -41,8 +41,25 @@ def resample_mode(resample: bool, no_resample: bool) -> bool | str:
 def model_rates(model) -> dict[str, float]:
     """Sensor -> the rate (Hz) the model's training sessions had (``manifest.json`` ``sampling_rate_hz``);
     empty for oracle labels or a model without rates."""
-    rates = getattr(model, "sampling_rate_hz", None) or {}
+    return positive_rates(getattr(model, "sampling_rate_hz", None) or {})
+
+
+def positive_rates(rates: Mapping) -> dict[str, float]:
+    """Sensor -> Hz of a manifest's ``sampling_rate_hz``, the finite positive rates only."""
     return {n: float(r) for n, r in rates.items() if r and math.isfinite(float(r)) and float(r) > 0}
+
+
+def require_rates(model, rates: Mapping[str, float], mode: bool | str, *, command: str) -> None:
+    """Decision B113: ``--resample`` / ``--no-resample`` (``mode`` not ``"native"``) need the model's rates
+    ``rates``; ``--model oracle`` or a model without them is a one-line :class:`DataError` (``track-all``
+    checks it once before its first session, review of B113)."""
+    if mode == "native" or rates:
+        return
+    flag = "--resample" if mode is True else "--no-resample"
+    raise DataError(f"{command}: {flag} compares the session's rate with the model's, but "
+                    + ("--model oracle has no rate" if isinstance(model, str) and model == "oracle" else
+                       "the model's manifest.json records no sampling_rate_hz (trained before it was stored)")
+                    + f"; drop {flag}")
 
 
 def off_rates(session: Session, rates: Mapping[str, float]) -> dict[str, tuple[float, float]]:
@@ -102,12 +119,7 @@ def at_model_rate(session: Session, model, mode: bool | str, *, command: str) ->
     if mode not in RESAMPLE_MODES:
         raise ValueError(f"mode must be one of {RESAMPLE_MODES}, not {mode!r}")
     rates = model_rates(model)
-    if mode != "native" and not rates:
-        flag = "--resample" if mode is True else "--no-resample"
-        raise DataError(f"{command}: {flag} compares the session's rate with the model's, but "
-                        + ("--model oracle has no rate" if isinstance(model, str) else
-                           "the model's manifest.json records no sampling_rate_hz (trained before it was stored)")
-                        + f"; drop {flag}")
+    require_rates(model, rates, mode, command=command)
     off = off_rates(session, rates)
     if not off or mode == "native":
         return session
