@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import logging
 import shutil
 
 import numpy as np
@@ -58,6 +59,8 @@ def test_no_training_samples_drops_dtw_and_svm_and_chooses_as_training(dirs, tmp
         assert spec["foot_only"] == {"method": foot[0], "unit": "foot"}
         assert not set(spec["methods"]) & set(SAMPLE_METHODS)
         replaced += model.tasks[task].chosen[0] in SAMPLE_METHODS
+        chosen = "/".join(model.tasks[task].chosen)
+        assert (f"{task} {chosen}" in m["export"]["dropped"]) == (model.tasks[task].chosen[0] in SAMPLE_METHODS)
     assert replaced >= 1  # the fixture's model chooses an SVM somewhere, so the rule was exercised
     for rel in m["files"]:  # no SVM graph (its support vectors are an initializer named svT)
         if rel.endswith(".onnx"):
@@ -69,11 +72,20 @@ def test_no_training_samples_drops_dtw_and_svm_and_chooses_as_training(dirs, tmp
     assert json.loads(capsys.readouterr().out)["n_steps"] >= 18
 
 
-def test_no_training_samples_with_methods_keeps_the_others(dirs, tmp_path, capsys):
-    assert main(["export", str(dirs["root"] / "model"), "--out", str(tmp_path / "b"), "--methods", "svm,nn,dtw",
-                 "--no-training-samples"]) == 0
+def test_no_training_samples_with_methods_keeps_the_others(dirs, tmp_path, capsys, caplog):
+    """E68 amended (review): the manifest records what was left out, and one warning per requested method."""
+    with caplog.at_level(logging.WARNING):
+        assert main(["export", str(dirs["root"] / "model"), "--out", str(tmp_path / "b"), "--methods",
+                     "svm,nn,dtw", "--no-training-samples"]) == 0
     m = _manifest(tmp_path / "b")
     assert {meth for t in m["tasks"].values() for meth in t["methods"]} == {"nn"}
+    from pdrlearn.classify.model_dir import load_model
+
+    model = load_model(dirs["root"] / "model")
+    want = {f"{t} {meth}/{u}" for t, tm in model.tasks.items() for meth in ("svm", "dtw") for u in tm.models[meth]}
+    assert set(m["export"]["dropped"]) == want
+    lines = [r.getMessage() for r in caplog.records if "--no-training-samples:" in r.getMessage()]
+    assert len(lines) == 2 and "--methods svm left out" in lines[0] and "--methods dtw left out" in lines[1], lines
 
 
 def test_no_training_samples_refuses_a_task_left_without_a_model(dirs, tmp_path, capsys):

@@ -159,6 +159,25 @@ def _nn_module(clf):
     return MLP().eval()
 
 
+def _foot_only(tm, chosen, methods, allowed=lambda p: True):
+    """Decision E26: the foot model of a task's bundle entry: the chosen one when it reads the foot only, else
+    the best-ranked foot model (of ``methods`` when given, of those ``allowed``); None when there is none."""
+    return next((p for p in dict.fromkeys(([chosen] if chosen else []) + tm.ranking())
+                 if p[1] == "foot" and (not methods or p[0] in methods) and allowed(p)), None)
+
+
+def _warn_dropped(dropped: list[str], methods) -> None:
+    """Decision E68 amended (review): one warning per requested method that ``--no-training-samples`` left out
+    (with ``--methods``), else one for the task models the default export would have held."""
+    by = {m: [d for d in dropped if d.split()[1].split("/")[0] == m] for m in (methods or [])}
+    groups = ([(f"--methods {m}", ds) for m, ds in by.items()] if methods else
+              [("the chosen or foot-only models", dropped)])
+    for what, ds in groups:
+        if ds:
+            log.warning("export --no-training-samples: %s left out (%s: they embed training samples; manifest "
+                        "export.dropped lists them)", what, ", ".join(ds))
+
+
 def embeds_training_samples(est) -> bool:
     """Decision E68: whether a fitted model carries the user's training samples into a bundle: a DTW classifier
     (its references are the standardised training step windows, reversible with the stored mean and sd) or an
@@ -241,6 +260,7 @@ def export_model(
     tasks: dict = {}
     used_units: set[str] = set()
     skipped: list[str] = []
+    dropped: list[str] = []  # decision E68: models left out by --no-training-samples
     for task, tm in model.tasks.items():
         chosen = tm.chosen
 
@@ -263,8 +283,11 @@ def export_model(
         # decision E26: the model `pdrlearn track` (UserModel.predict_steps) classifies a session without the
         # waist unit with: the chosen one when it reads the foot only, else the best-ranked foot model (of the
         # methods asked for, as the chosen one)
-        foot_only = next((p for p in dict.fromkeys(([chosen] if chosen else []) + tm.ranking())
-                          if p[1] == "foot" and (not methods or p[0] in methods) and allowed(p)), None)
+        foot_only = _foot_only(tm, chosen, methods, allowed)
+        if not training_samples:  # E68 amended (review): what the request would have exported without the option
+            asked = ([(m, u) for m in methods for u in tm.models.get(m, {})] if methods else
+                     [p for p in (tm.chosen, _foot_only(tm, tm.chosen, methods)) if p])
+            dropped += [f"{task} {m}/{u}" for m, u in dict.fromkeys(asked) if not allowed((m, u))]
         if foot_only is not None and foot_only not in wanted:
             wanted = [*wanted, foot_only]
         entries: dict = {}
@@ -304,6 +327,7 @@ def export_model(
         }
     if not tasks:
         raise ModelError(f"{model_dir}: no task could be exported ({'; '.join(skipped)})")
+    _warn_dropped(dropped, methods)
     rates = {k: float(v) for k, v in (model.sampling_rate_hz or {}).items()}
     core = [s for u in sorted(used_units) for s in UNIT_SENSORS[u]]
     rate = float(np.median([rates[s] for s in core if s in rates])) if any(s in rates for s in core) else 20.0
@@ -348,7 +372,7 @@ def export_model(
         },
         metrics={t: v["cv"] for t, v in tasks.items()},
         export={"methods": list(methods) if methods else "chosen", "skipped": skipped,
-                "training_samples": bool(training_samples)},  # decision E68
+                "training_samples": bool(training_samples), "dropped": dropped},  # decision E68
     )
     if step is not None:
         col.onnx[STEP_GRAPH_FILE] = step[0]
