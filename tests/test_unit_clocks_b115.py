@@ -165,3 +165,18 @@ def test_with_clocks_trajectory_csv_follows_the_sensor_files_unit(sessions, tmp_
     assert main(["info", str(m)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "trajectory.csv" in err[0] and "\"clocks\"" in err[0], err
+
+
+def test_a_session_wide_rate_beside_unit_clocks_is_not_written_back(sessions, tmp_path):
+    """B115 amended (review): foot at 50 Hz by its clock, "rate_hz": 25 for the waist; the written copy (in ms)
+    kept rate_hz 25, which its 50 Hz foot then contradicted on re-reading."""
+    _, units = sessions
+    c = tmp_path / "c"
+    shutil.copytree(units, c)
+    _set_meta(c, rate_hz=25)
+    b = read_session(c)
+    write_session(b, tmp_path / "w")
+    assert "rate_hz" not in json.loads((tmp_path / "w" / "meta.json").read_text())
+    again = read_session(tmp_path / "w")
+    assert again.streams["fAccelerometer"].rate_hz == pytest.approx(50.0)
+    assert again.streams["wAccelerometer"].rate_hz == pytest.approx(25.0)

@@ -1009,7 +1009,9 @@ def write_session(session: Session, folder: str | os.PathLike, *, overwrite: boo
     with atomic_directory(folder) as tmp:
         meta = dict(session.meta)
         meta.setdefault("session", session.name)
-        meta.pop("clocks", None)  # decision B115: the times written are on the session's clock, in ms
+        clocks = meta.pop("clocks", None)  # decision B115: the times written are on the session's clock, in ms
+        if isinstance(clocks, dict) and any(isinstance(c, dict) and "rate_hz" in c for c in clocks.values()):
+            meta.pop("rate_hz", None)  # B115 amended (review): one unit's rate, not the session's, once in ms
         units = dict(meta.get("units", {}))
         units["timestamp"] = "ms since the first sample"
         for name in session.streams:  # B32: values are in memory in SI, whatever unit meta.json declared
