@@ -75,6 +75,8 @@ def test_evaluate_resample_scores_at_the_models_rate_and_still_knows_the_trainin
         assert main(["evaluate", str(off), str(folder), "--json", "--resample"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["rate_mismatch"] == {}  # C18: the session was scored at the model's rate
+    got = out["resampled"][read_session(folder).name]["fAccelerometer"]  # and says so (B113 amended, review)
+    assert (round(got["from_hz"], 6), got["to_hz"]) == (20.0, 100.0)
     assert out["training_sessions"] == [read_session(folder).name]  # B87: the resampled copy is the recording
     assert len(_lines(caplog, "resampled to the model's 100 Hz before scoring")) == 1
 
@@ -129,6 +131,8 @@ def test_track_resample_applies_the_calibration_made_at_the_recorded_rate(sim, t
     assert summary["distance_gain_source"] == "model"
     want = rec["streaming"]["gain"] if streaming else rec["gain"]
     assert summary["distance_gain"] == pytest.approx(want) and summary["distance_gain"] != 1.0
+    got = summary["resampled"]["fAccelerometer"]  # the results file says its data was resampled (review)
+    assert (round(got["from_hz"], 6), got["to_hz"]) == (20.0, 100.0)
 
 
 @pytest.mark.parametrize("which", ["oracle", "no_rates"])

@@ -341,6 +341,8 @@ def _held_out_checks(model, sessions, out: dict, ids: list[str] | None = None) -
                     "accuracy on them is not held-out", len(seen), len(sessions), names, how)
     rates = getattr(model, "sampling_rate_hz", None) or {}
     out["rate_mismatch"] = {}
+    # decision B113 amended (review): the sessions scored resampled (--resample), sensor -> from_hz / to_hz
+    out["resampled"] = {s.name: s.meta["resampled"] for s in sessions if s.meta.get("resampled")}
     lines: dict[str, list[str]] = {}
     for s in sessions:
         off = {}

@@ -839,6 +839,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             "unit_alignment": alignment,
             "out_of_domain": domain,  # decision C16: strides outside the model's training range
             "classifier_rate_mismatch": off_rate,  # decision C18
+            "resampled": session.meta.get("resampled") or None,  # B113 amended (review): from_hz / to_hz
             "length_bounds_m": step_rules.effective_bounds() if clamp else None,
             "rules": rules if cfg["rules"] else None,
             "min_confidence": gate if cfg["rules"] else None,
@@ -1151,6 +1152,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             "distance_gain": gain, "distance_gain_source": gain_source, "stride_sd_calibrated": stride_sd,
             "out_of_domain": domain,  # decision C16
             "classifier_rate_mismatch": off_rate,  # decision C18
+            "resampled": session.meta.get("resampled") or None,  # B113 amended (review): from_hz / to_hz
             "terrain_dz_check": terrain_check, "altitude_check": altitude_check,  # decisions C28, L69
             "warnings": warnings}
     for w in warnings:
