@@ -67,6 +67,12 @@ def test_no_resample_refuses_in_one_line_and_both_flags_contradict(sim, tmp_path
     assert "pass --model DIR" in capsys.readouterr().err
     assert main(["evaluate", str(off), str(folder), "--no-resample"]) == 2
     assert "(--no-resample)" in capsys.readouterr().err
+    # run checks the two flags with the same function (review: it had its own copy, in other words)
+    assert main(["export", str(model_dir), "--out", str(tmp_path / "bundle")]) == 0
+    capsys.readouterr()
+    assert main(["run", str(tmp_path / "bundle"), str(folder), "--resample", "--no-resample"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--resample and --no-resample contradict each other" in err[0], err
 
 
 def test_evaluate_resample_scores_at_the_models_rate_and_still_knows_the_training_session(sim, caplog, capsys):

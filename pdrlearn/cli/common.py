@@ -69,6 +69,23 @@ def split_length_units(value: str | None) -> list[str] | None:
 #: The ``--force`` option every command that writes an output takes (docs/decisions/bad-input.md B12).
 #: ``--dpi`` of every command that writes a figure (decision L70)
 DPI_HELP = "Resolution of the figure(s) in dots per inch (default 110)."
+def resample_options(verb: str, when: str = "") -> tuple:
+    """Decision B113: the ``--resample`` / ``--no-resample`` options of ``track`` (``track-all``) and ``evaluate``,
+    one text; ``verb``: what the default does with the session (tracked, scored), ``when``: a condition first."""
+    import typer
+
+    def say(text: str) -> str:
+        text = f"{when}{text}"
+        return text[0].upper() + text[1:]
+
+    return (typer.Option(False, "--resample", help=say(
+                "a session recorded at another rate than the model's is resampled to the model's rate first (the "
+                f"`pdrlearn run --resample` resampler, decision B113); default: {verb} at its own rate with a "
+                "warning.")),
+            typer.Option(False, "--no-resample", help=say(
+                "refuse a session recorded at another rate than the model's (decision B113).")))
+
+
 FORCE_HELP = "Replace an existing output of this command (atomically: the old one stays until the new one is complete)."
 
 

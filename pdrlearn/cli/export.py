@@ -143,15 +143,6 @@ def _warn_short_streams(session, tracker, steps) -> None:
                 "sensor has data, or re-record", session.name, n, end, short, float(g.t[-1]), what)
 
 
-def _rate_mode(resample: bool, no_resample: bool) -> bool | str:
-    """``Tracker(resample=...)`` from ``run``'s two flags (decision E22 amended)."""
-    from pdrlearn.errors import DataError
-
-    if resample and no_resample:
-        raise DataError("run: --resample and --no-resample exclude each other; give one")
-    return True if resample else False if no_resample else "native"
-
-
 def _units_for(bundle, units: str | None, have: set[str] | None, where: str):
     """The body units ``run`` replays (decision E26): ``--units`` as given; without it, the bundle's, or the foot
     alone when the data lack a waist sensor the bundle requires (``have`` = the data's sensors; None = the
@@ -256,6 +247,7 @@ def run(
         pdrlearn run out/bundle_u1_all out/sim/D_u1 --method svm --out out/run_svm   # an exported non-chosen method
     """
     from pdrlearn.errors import DataError
+    from pdrlearn.io.resample import resample_mode  # decision B113: one check of the two flags, as track's
     from pdrlearn.runtime import load_bundle
     from pdrlearn.runtime.tracker import Tracker
 
@@ -283,7 +275,7 @@ def run(
             raise DataError(f"bundle {bundle.path} needs {', '.join(need)}, which the foot unit's "
                             "Bluetooth protocol does not carry; replay the foot unit alone (--units foot)")
         tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
-                          resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
+                          resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           units=use, start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0,
                           methods=methods)
         if protocol == "-":
@@ -330,7 +322,7 @@ def run(
         # the runtime resamples at these rates and announces it in one line; a stream behind the others
         # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
         tracker = Tracker(bundle, frames=_frames_of(session, bundle, use),
-                          resample=_rate_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
+                          resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           input_rates_hz=rates, units=use, sensors=[n for n, st in session.streams.items() if len(st)],
                           start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0, methods=methods,
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})

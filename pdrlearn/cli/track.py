@@ -19,6 +19,7 @@ from pdrlearn.cli.common import (
     initial_heading_option,
     print_json,
     replaced,
+    resample_options,
     start_option,
     walk_line,
 )
@@ -72,11 +73,7 @@ COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a 
                                "unit's others (cut short, refused by B72): track only the time all of them cover, "
                                "every file and label table cut to it, with one warning naming the seconds dropped "
                                "from each file (decision B81).")
-RESAMPLE_OPT = typer.Option(False, "--resample", help="With --model: a session recorded at another rate than the "
-                            "model's is resampled to the model's rate first (the `pdrlearn run --resample` "
-                            "resampler, decision B113); default: tracked at its own rate with a warning.")
-NO_RESAMPLE_OPT = typer.Option(False, "--no-resample", help="With --model: refuse a session recorded at another "
-                               "rate than the model's (decision B113).")
+RESAMPLE_OPT, NO_RESAMPLE_OPT = resample_options("tracked", "with --model: ")
 INITIAL_HEADING_OPT = typer.Option(None, "--initial-heading", metavar="DEG", help=INITIAL_HEADING_HELP)
 WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the session start (track-all: from "
                           "each session's start): track the whole session, then keep the steps whose middle lies "

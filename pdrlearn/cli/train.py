@@ -20,10 +20,13 @@ from pdrlearn.cli.common import (
     print_table,
     progress,
     replaced,
+    resample_options,
     split_choices,
     split_length_units,
 )
 from pdrlearn.errors import DataError, shell_quote
+
+EVAL_RESAMPLE_OPT, EVAL_NO_RESAMPLE_OPT = resample_options("scored")  # decision B113, track's text
 
 
 def find_session_dirs(paths: list[Path]) -> list[Path]:
@@ -292,11 +295,8 @@ def evaluate(
         help="Write one row per scored step: session, step (its data row in the session's steps.csv, 0 = the "
         "first row under the header), start_s, end_s, task, true, predicted, correct, the method and unit that "
         "classified it and their probability of each class (p_<class>); written atomically (decision C42)."),
-    resample: bool = typer.Option(False, "--resample", help="A session recorded at another rate than the model's "
-                                  "is resampled to the model's rate first (the `pdrlearn run --resample` "
-                                  "resampler, decision B113); default: scored at its own rate with a warning."),
-    no_resample: bool = typer.Option(False, "--no-resample", help="Refuse a session recorded at another rate "
-                                     "than the model's (decision B113)."),
+    resample: bool = EVAL_RESAMPLE_OPT,
+    no_resample: bool = EVAL_NO_RESAMPLE_OPT,
 ) -> None:
     """Accuracy per class x method x unit (thesis Tables 27/28/33), confusion matrices, per-step latency.
 
