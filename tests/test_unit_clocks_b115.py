@@ -180,3 +180,23 @@ def test_a_session_wide_rate_beside_unit_clocks_is_not_written_back(sessions, tm
     again = read_session(tmp_path / "w")
     assert again.streams["fAccelerometer"].rate_hz == pytest.approx(50.0)
     assert again.streams["wAccelerometer"].rate_hz == pytest.approx(25.0)
+
+
+def test_a_declared_1000_hz_ms_clock_on_one_unit_is_not_refused(sessions, tmp_path, capsys):
+    """B116 amended (review): "units": {"timestamp": "ms"} with "rate_hz": 1000 says that consecutive integers are
+    ms at 1000 Hz: the foot's are read so (as before B116), with B32's warning for the 25 Hz waist, not refused."""
+    _, units = sessions
+    c = tmp_path / "ms1000"
+    shutil.copytree(units, c)
+    meta = json.loads((c / "meta.json").read_text())
+    meta.pop("clocks")
+    meta["units"]["timestamp"] = "ms"
+    meta["rate_hz"] = 1000
+    (c / "meta.json").write_text(json.dumps(meta))
+    s = read_session(c)
+    assert s.streams["fAccelerometer"].rate_hz == pytest.approx(1000.0)
+    assert s.streams["wAccelerometer"].rate_hz == pytest.approx(25.0)
+    meta["rate_hz"] = 100  # a 100 Hz counter declared as ms is still refused naming the unit's clock
+    (c / "meta.json").write_text(json.dumps(meta))
+    assert main(["info", str(c)]) == 2
+    assert "the foot unit's timestamps are consecutive integers" in capsys.readouterr().err

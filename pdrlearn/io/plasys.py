@@ -100,6 +100,15 @@ def _timestamp_scale(meta: dict, where: str = "meta.json", rate_hz: float | None
     return _TIME_SCALE[unit]
 
 
+def _declares_integer_clock(meta: dict, meta_path: Path, rate: float | None) -> bool:
+    """B116 amended (review): meta.json declares a timestamp unit (not samples) and a ``rate_hz`` whose period is
+    that unit (``"ms"`` and 1000 Hz): consecutive integer timestamps are then that clock, not a counter to refuse."""
+    units = meta.get("units") if isinstance(meta.get("units"), dict) else {}
+    if rate is None or "timestamp" not in units or str(units["timestamp"]).split()[:1] == ["samples"]:
+        return False
+    return abs(rate * _timestamp_scale(meta, str(meta_path), rate) - 1.0) < 0.01
+
+
 def _trajectory_scale(scales: dict[str, float], clocks: dict, meta: dict, meta_path: Path,
                       rate: float | None) -> tuple[float, str]:
     """Seconds per trajectory.csv timestamp and what decided it (for a refusal): the sensor files' unit (B25),
@@ -860,7 +869,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         p = folder / spec.filename
         if p.exists():
             raw[name] = _read_raw(p, name)[1]
-    if not clocks:
+    if not clocks and not _declares_integer_clock(meta, meta_path, rate):
         one_unit_counting(raw, folder, meta_path)  # decision B116: a counter on one unit needs its own clock
     scales: dict[str, float] = {}
     read_as = []
