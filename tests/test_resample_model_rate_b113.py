@@ -161,3 +161,16 @@ def test_track_all_resample_without_model_rates_is_refused_once_before_the_batch
         words = "--model oracle has no rate" if which == "oracle" else "records no sampling_rate_hz"
         assert len(err) == 1 and words in err[0] and f"drop {flag}" in err[0], err
         assert not (tmp_path / "o").exists()
+
+
+def test_evaluate_resample_groups_its_line_over_sessions(sim, tmp_path, caplog, capsys):
+    """B113 amended (review): the resampling line of ``evaluate --resample`` is grouped as C18's, one line per
+    distinct text naming the first session and how many more, not one line per session."""
+    folder, _, off = sim
+    for name in ("a", "b", "c"):
+        shutil.copytree(folder, tmp_path / name)
+    with caplog.at_level(logging.WARNING):
+        assert main(["evaluate", str(off), *(str(tmp_path / n) for n in "abc"), "--json", "--resample"]) == 0
+    capsys.readouterr()
+    done = _lines(caplog, "resampled to the model's 100 Hz before scoring")
+    assert len(done) == 1 and " and 2 more: " in done[0], done

@@ -323,6 +323,7 @@ def _held_out_checks(model, sessions, out: dict, ids: list[str] | None = None) -
     trained at (decision C18's line, as ``pdrlearn track`` gives it). Decision B87: a session is a training
     session when its :meth:`~pdrlearn.io.session.Session.content_id` (``ids``) is among the manifest's
     ``training_data.session_ids``; a model trained before B87 has none, and its ``sessions`` names are matched."""
+    from pdrlearn.io.resample import log_grouped
     from pdrlearn.kernels.distance import classifier_rate_warning, rate_differs
 
     summary = model.data_summary or {}
@@ -354,8 +355,7 @@ def _held_out_checks(model, sessions, out: dict, ids: list[str] | None = None) -
         if off:
             out["rate_mismatch"][s.name] = off
             lines.setdefault(classifier_rate_warning(off, resample_hint=True), []).append(s.where)
-    for line, where in lines.items():  # one line per distinct rate pair, naming the sessions
-        log.warning("%s%s: %s", where[0], f" and {len(where) - 1} more" if len(where) > 1 else "", line)
+    log_grouped(lines)  # one line per distinct rate pair, naming the sessions
 
 
 def _untrained_tasks(model, windows, out: dict) -> None:

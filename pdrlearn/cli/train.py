@@ -314,7 +314,7 @@ def evaluate(
     from pdrlearn.classify import evaluate_model, load_model
     from pdrlearn.classify.evaluation import evaluation_stages, results_table, write_predictions
     from pdrlearn.cli.common import out_file
-    from pdrlearn.io.resample import at_model_rate, resample_mode
+    from pdrlearn.io.resample import at_model_rate, log_grouped, resample_mode
 
     rate_mode = resample_mode(resample, no_resample)  # decision B113
 
@@ -344,10 +344,11 @@ def evaluate(
         model = load_model(model_dir)  # checked before the sessions, as before the bar
         dirs = find_session_dirs(data_dirs)
         advance(1, total=1 + len(dirs) + evaluation_stages(model, report=report is not None))
-        sessions = []
+        sessions, said = [], {}
         for d in dirs:
-            sessions.append(at_model_rate(read_session(d), model, rate_mode, command="evaluate"))  # B113
+            sessions.append(at_model_rate(read_session(d), model, rate_mode, command="evaluate", said=said))  # B113
             advance(1)
+        log_grouped(said)
         tables: list | None = [] if predictions_out is not None else None
         result = evaluate_model(model, sessions, report_dir=report, advance=advance,
                                 warn_out_of_domain=warn_out_of_domain, step_predictions=tables)

@@ -76,6 +76,13 @@ def off_rates(session: Session, rates: Mapping[str, float]) -> dict[str, tuple[f
     return out
 
 
+def log_grouped(said: dict[str, list[str]]) -> None:
+    """One warning per distinct line of :func:`at_model_rate`'s ``said``, naming the first session and how many
+    more (decision C18's grouping, for ``evaluate --resample``)."""
+    for line, where in said.items():
+        log.warning("%s%s: %s", where[0], f" and {len(where) - 1} more" if len(where) > 1 else "", line)
+
+
 def resample_stream(stream: Stream, rate_hz: float) -> Stream:
     """``stream`` on the grid ``k / rate_hz`` (s) by the runtime's causal resampler (decision E22): one push of
     the whole stream, then its flush."""
@@ -111,10 +118,12 @@ def recorded_rate(session: Session, name: str) -> tuple[float, float | None]:
     return float(session.streams[name].rate_hz), None
 
 
-def at_model_rate(session: Session, model, mode: bool | str, *, command: str) -> Session:
+def at_model_rate(session: Session, model, mode: bool | str, *, command: str,
+                  said: dict[str, list[str]] | None = None) -> Session:
     """Decision B113: the session as ``command`` (``track``, ``evaluate``) uses it with ``model``: unchanged at
     the model's rate or with ``mode="native"`` (decision C18's warning, from the tracker / evaluation, names
-    ``--resample``); resampled to the model's rates with ``mode=True`` (one warning line); with ``mode=False`` a
+    ``--resample``); resampled to the model's rates with ``mode=True`` (one warning line, or its text added to
+    ``said``: text -> sessions, for a caller grouping the lines of many sessions); with ``mode=False`` a
     stream at another rate is a one-line :class:`DataError` naming the rates and the fixes."""
     if mode not in RESAMPLE_MODES:
         raise ValueError(f"mode must be one of {RESAMPLE_MODES}, not {mode!r}")
@@ -135,7 +144,11 @@ def at_model_rate(session: Session, model, mode: bool | str, *, command: str) ->
 
     out = resample_session(session, {n: r for n, (_, r) in off.items()})
     done = {n: StreamResampler(fs, r) for n, (fs, r) in off.items()}
-    log.warning("%s: %s: resampled to the model's %s Hz before %s (--resample, decision B113: the runtime's "
-                "resampler, E22); the distance calibration is still judged at the recorded rate", session.where,
-                resampled_text(done, latency=False), model_hz, "tracking" if command == "track" else "scoring")
+    line = (f"{resampled_text(done, latency=False)}: resampled to the model's {model_hz} Hz before "
+            f"{'tracking' if command == 'track' else 'scoring'} (--resample, decision B113: the runtime's resampler, "
+            "E22); the distance calibration is still judged at the recorded rate")
+    if said is None:
+        log.warning("%s: %s", session.where, line)
+    else:  # the caller logs one line per distinct text, naming its sessions (as C18's, evaluate)
+        said.setdefault(line, []).append(session.where)
     return out
