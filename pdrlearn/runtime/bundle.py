@@ -327,8 +327,33 @@ def _fail(path: Path, msg: str) -> ModelError:
     return ModelError(f"bundle {path}: {msg}")
 
 
-def read_manifest(path: str | Path) -> dict:
-    """Parse and check ``manifest.json`` of a bundle folder (schema and version, required keys)."""
+#: decision E57: a waist-only bundle (``pdrlearn export CAL.json``) has its own schema, read by
+#: :func:`pdrlearn.runtime.waist.load_waist_bundle`
+WAIST_SCHEMA_NAME = "pdrlearn-waist-bundle"
+WAIST_SCHEMA_VERSION = 1
+WAIST_REQUIRED_KEYS = ("schema", "schema_version", "package_version", "created_utc", "user", "pipeline", "sampling",
+                       "sensors", "units", "frames", "params", "options", "files")
+#: what each bundle kind is and how to run it (decision E58: a bundle of the other kind is one line naming this)
+_KINDS = {SCHEMA_NAME: "a foot-unit bundle ('pdrlearn export MODEL_DIR'): run it with pdrlearn.runtime.Tracker("
+                       "load_bundle(PATH)) or 'pdrlearn run'",
+          WAIST_SCHEMA_NAME: "a waist-only bundle ('pdrlearn export CAL.json'): run it with pdrlearn.runtime."
+                             "WaistTracker(load_waist_bundle(PATH)) or 'pdrlearn run'"}
+
+
+def bundle_kind(path: str | Path) -> str | None:
+    """The ``schema`` of the bundle folder ``path`` (None when it has no readable manifest): how ``pdrlearn run``
+    tells a waist-only bundle from a foot one before loading it."""
+    try:
+        m = json.loads((Path(path) / MANIFEST).read_text())
+    except (OSError, ValueError):
+        return None
+    return m.get("schema") if isinstance(m, dict) else None
+
+
+def read_manifest(path: str | Path, *, schema: str = SCHEMA_NAME) -> dict:
+    """Parse and check ``manifest.json`` of a bundle folder (schema and version, required keys); ``schema``: the
+    kind expected (:data:`SCHEMA_NAME` or :data:`WAIST_SCHEMA_NAME`; the other kind is refused naming how it
+    runs, decision E58)."""
     path = Path(path)
     if not path.is_dir():
         raise _fail(path, "not a folder; give the folder written by 'pdrlearn export'")
@@ -339,16 +364,20 @@ def read_manifest(path: str | Path) -> dict:
         manifest = json.loads(mpath.read_text())
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise _fail(path, f"{MANIFEST} is not valid JSON ({exc}); re-export the bundle") from None
-    if not isinstance(manifest, dict) or manifest.get("schema") != SCHEMA_NAME:
-        raise _fail(path, f"{MANIFEST} is not a {SCHEMA_NAME} manifest; re-export with 'pdrlearn export'")
+    found = manifest.get("schema") if isinstance(manifest, dict) else None
+    if found in _KINDS and found != schema:
+        raise _fail(path, f"this is {_KINDS[found]}, not {_KINDS[schema].split(':')[0]}")
+    if found != schema:
+        raise _fail(path, f"{MANIFEST} is not a {schema} manifest; re-export with 'pdrlearn export'")
+    want = SCHEMA_VERSION if schema == SCHEMA_NAME else WAIST_SCHEMA_VERSION
     version = manifest.get("schema_version")
-    if version != SCHEMA_VERSION:
+    if version != want:
         raise _fail(
             path,
-            f"schema version {version!r}, but this runtime reads version {SCHEMA_VERSION}; "
+            f"schema version {version!r}, but this runtime reads version {want}; "
             "re-export the model with this pdrlearn version",
         )
-    missing = [k for k in REQUIRED_KEYS if k not in manifest]
+    missing = [k for k in (REQUIRED_KEYS if schema == SCHEMA_NAME else WAIST_REQUIRED_KEYS) if k not in manifest]
     if missing:
         raise _fail(path, f"{MANIFEST} lacks {', '.join(missing)}; re-export the bundle")
     return manifest
