@@ -52,11 +52,11 @@ def export(
 
         pdrlearn export out/cal.json --out out/bundle_waist --frame x=up,y=right,z=forward
     """
-    from pdrlearn.classify.model_dir import _is_waist_calibration
     from pdrlearn.errors import DataError
     from pdrlearn.export.bundle import bundle_size_bytes
     from pdrlearn.export.from_model import export_model
     from pdrlearn.runtime import load_bundle
+    from pdrlearn.runtime.bundle import _is_waist_calibration
 
     if _is_waist_calibration(model_dir):  # decision E57: a belt-phone user's calibration -> a waist bundle
         if methods or length_bounds:
@@ -428,8 +428,9 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                heading0: float | None, dpi: int | None) -> None:
     """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
     pushed in ``chunk_s`` slices through :class:`pdrlearn.runtime.WaistTracker` (the gyroscope read at the
-    accelerometer's times, as ``track``'s ``body_data``); the frame is the session's declared one, else the bundle's, else
-    inferred, D8; a declared frame wins over the bundle's, warned when they differ). Writes and prints what ``run`` does for a foot bundle, with ``track``'s waist columns."""
+    accelerometer's times, as ``track``'s ``body_data``). The frame is the session's declared one (warned when the
+    bundle records another), else the bundle's, else inferred from the data (D8). Writes and prints what ``run``
+    does for a foot bundle, with ``track``'s waist step columns."""
     import numpy as np
     import pandas as pd
 
