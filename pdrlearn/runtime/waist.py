@@ -20,6 +20,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.runtime.fixes import FixInput
 
 log = logging.getLogger(__name__)
 
@@ -59,7 +60,7 @@ class LiveStep:
     side: str | None = None
 
 
-class WaistStream:
+class WaistStream(FixInput):
     """The live waist-pendulum tracker's stream processing (decisions W31, W64, W92): shared by
     :class:`WaistTracker` (a waist bundle) and :class:`pdrlearn.waist.WaistTracker` (a PARAMS.json), which differ
     only in where the parameters and the axis frame come from.
@@ -87,6 +88,7 @@ class WaistStream:
         self._sx = self._sy = 0.0  # running sums of the displacements (as track_waist's cumsum)
         self.position = (x0, y0)
         self.heading = float(self._h0)
+        self._init_fixes((x0, y0))  # decisions D19-D21: add_fix
         self.warnings: list[str] = list(warnings)
         for w in warnings:
             log.warning("live waist tracker: %s", w)
@@ -201,7 +203,9 @@ class WaistStream:
         if self._proc is None:
             self._no_frame_at_end()
             return []
-        return self._feed(self._proc.flush(), final=True)
+        out = self._feed(self._proc.flush(), final=True)
+        self._warn_unused_fixes()  # decision D21
+        return out
 
     def _start_proc(self) -> None:
         if self._proc is not None:
@@ -400,6 +404,9 @@ class WaistStream:
         self._sy += length * np.sin(enu)
         x, y = self._xy0[0] + self._sx, self._xy0[1] + self._sy
         self.position, self.heading = (float(x), float(y)), enu
+        fused = self._fuse_step(row["t"], row["end"], length, enu)  # decisions D19-D21
+        if fused is not None:
+            x, y = fused
         step = LiveStep(t=row["t"], end_s=row["end"], length_m=length, heading_rad=enu, x=float(x), y=float(y),
                         has_next=row["has_next"], merged=merged, turning=turning)
         self.steps.append(step)
