@@ -24,6 +24,7 @@ from pdrlearn.sim import simulate
 from pdrlearn.track.waist import track_waist
 from pdrlearn.waist import WaistTracker as LiveWaistTracker
 from pdrlearn.waist.calibration import calibrate
+from tests.runtime_helpers import push_waist
 
 ROOT = Path(__file__).resolve().parents[1]
 HA001 = ROOT / "datasets" / "real" / "mobgap_HA001_Test11_Trial1"
@@ -44,18 +45,6 @@ def sim(tmp_path_factory):
     return {"dir": d, "cal": d / "cal.json", "bundle": d / "wb", "session": s}
 
 
-def _push(tr, s, chunks):
-    a, g = s["wAccelerometer"], s["wGyroscope"]
-    out, i = [], 0
-    for c in chunks:
-        if i >= len(a.t):
-            break
-        out += tr.push(a.t[i:i + c], a.values[i:i + c], g.values[i:i + c])
-        i += c
-    out += tr.push(a.t[i:], a.values[i:], g.values[i:]) if i < len(a.t) else []
-    return out + tr.flush()
-
-
 def _xy(out):
     return np.array([[o.t, o.end_s, o.length_m, o.x, o.y] for o in out])
 
@@ -67,8 +56,8 @@ def test_a_simulated_walk_on_the_waist_bundle_equals_the_live_tracker_and_the_re
     chunks = [1] * n if how == "one" else list(np.random.default_rng(5).integers(1, 300, 2000))
     bundle = load_waist_bundle(sim["bundle"])
     assert bundle.rate_hz == pytest.approx(100.0) and bundle.params.source == "calibrated"  # W87's rate kept
-    out = _push(WaistTracker(bundle, fs=100.0), s, chunks)
-    live = _push(LiveWaistTracker(100.0, params=str(sim["cal"]), meta=s.meta, frame=s.require_frame("waist")), s,
+    out = push_waist(WaistTracker(bundle, fs=100.0), s, chunks)
+    live = push_waist(LiveWaistTracker(100.0, params=str(sim["cal"]), meta=s.meta, frame=s.require_frame("waist")), s,
                  [n])
     assert len(out) == len(live) > 20
     np.testing.assert_allclose(_xy(out), _xy(live), atol=1e-9, rtol=0)
@@ -87,9 +76,9 @@ def test_a_real_lower_back_recording_on_the_waist_bundle_equals_the_live_tracker
                                "options": {"merge_fragments": merge}}))
     export_waist(cal, tmp_path / "wb", frame=_frame_arg(s))
     a = s["wAccelerometer"]
-    out = _push(WaistTracker(load_waist_bundle(tmp_path / "wb"), fs=a.rate_hz), s,
+    out = push_waist(WaistTracker(load_waist_bundle(tmp_path / "wb"), fs=a.rate_hz), s,
                 list(np.random.default_rng(7).integers(1, 400, 3000)))
-    live = _push(LiveWaistTracker(a.rate_hz, params=str(cal), meta=s.meta), s, [len(a.t)])
+    live = push_waist(LiveWaistTracker(a.rate_hz, params=str(cal), meta=s.meta), s, [len(a.t)])
     assert len(out) == len(live) > 50
     np.testing.assert_allclose(_xy(out), _xy(live), atol=1e-9, rtol=0)
     if not merge:  # W64: with W27's merges off the live steps are the replay's
