@@ -148,6 +148,9 @@ def test_bad_input_is_one_line(sim, tmp_path, capsys):
     _one_line(capsys, ["run", str(sim["bundle"]), str(walk), "--units", "foot"], "--units is for a foot-unit bundle")
     with pytest.raises(DataError, match="not radians"):
         WaistTracker(sim["bundle"], heading_rad=90.0)
+    pll = tmp_path / "pll.json"
+    pll.write_text(json.dumps({"leg_m": 0.9, "k": 1.1, "source": "calibrated", "pipeline": "waist-pll"}))
+    _one_line(capsys, ["export", str(pll), "--out", str(tmp_path / "pb")], "calibrated for waist-pll")
     nof = tmp_path / "nof"
     export_waist(sim["cal"], nof)
     with pytest.raises(DataError, match="no waist axis frame; pass frame="):

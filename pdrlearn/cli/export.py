@@ -118,6 +118,10 @@ def _export_waist(cal: Path, out: Path, frame: str | None, force: bool, as_json:
     if as_json:
         print_json(json_safe(summary))
         return
+    import logging
+
+    for w in summary["warnings"]:  # the calibration's (e.g. a leg length from a default height, W62)
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", cal, w)
     rate = f"calibrated at {b.rate_hz:.4g} Hz" if b.rate_hz == b.rate_hz else "no calibration rate recorded"
     fr = (",".join(f"{k}={v}" for k, v in summary["frame"].items()) if summary["frame"]
           else "no frame (pass --frame, or run takes the session's)")
