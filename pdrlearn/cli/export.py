@@ -50,7 +50,7 @@ def export(
 
         pdrlearn export out/models/u1 --out out/bundle_u1_all --methods svm,nn,dtw --json
 
-        pdrlearn export out/cal.json --out out/bundle_waist --frame x=up,y=right,z=forward
+        pdrlearn export p.json --out wbundle --frame x=up,y=right,z=forward   # a waist calibration (calibrate)
     """
     from pdrlearn.errors import DataError
     from pdrlearn.export.bundle import bundle_size_bytes
