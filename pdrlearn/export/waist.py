@@ -20,7 +20,7 @@ def waist_manifest(params_path: str | Path, *, frame: str | None = None, user: s
     import numpy as np
 
     from pdrlearn.export.bundle import base_manifest
-    from pdrlearn.io.frames import AxisFrame
+    from pdrlearn.io.importer import parse_frame
     from pdrlearn.io.session import Session
     from pdrlearn.runtime.bundle import WAIST_SCHEMA_NAME, WAIST_SCHEMA_VERSION
     from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
@@ -35,11 +35,7 @@ def waist_manifest(params_path: str | Path, *, frame: str | None = None, user: s
     options = live_options(p, warnings)
     frames = {"waist": None, "waist_matrix": None}
     if frame is not None:
-        try:
-            f = AxisFrame.from_dict(dict(part.split("=") for part in frame.replace(" ", "").split(",")))
-        except ValueError:
-            raise DataError(f"--frame {frame!r}: write the waist unit's axes as x=up,y=right,z=forward (each "
-                            "sensor axis = a body direction)") from None
+        f = parse_frame(frame, "--frame")  # as `pdrlearn import --frames`
         frames = {"waist": f.to_dict(), "waist_matrix": np.asarray(f.matrix(), dtype=float).tolist()}
     pd = p.to_dict()
     rate = pd.get("rate_hz")
