@@ -321,6 +321,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("import", "acc_unit"): unit_word("acc"),
         ("import", "gyro_unit"): unit_word("gyro"),
         ("import", "frames"): parse_frame,
+        ("export", "frame"): parse_frame,  # decision E57: the waist unit's axes, as import --frames
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window"):  # C12, L108
         v[("track-all", opt)] = v[("track", opt)]

@@ -61,6 +61,7 @@ from pdrlearn.kernels.window import (
 )
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
+from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
 
@@ -271,7 +272,7 @@ class _Views(dict):
         return self[name] if name in self._buf else default
 
 
-class Tracker:
+class Tracker(FixInput):
     """Classify and track steps as samples stream in (numpy + onnxruntime only).
 
     Parameters
@@ -487,6 +488,7 @@ class Tracker:
         #: push that completes no step, else at the next push (decision E21), or before a step needs them
         self._foot_q: list[tuple[str, float, list[float]]] = []
         self.position = np.asarray(start, dtype=float).reshape(3).copy()
+        self._init_fixes(self.position[:2])  # decisions D19-D21: add_fix
         self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
         self._det_t = -np.inf
@@ -891,6 +893,7 @@ class Tracker:
         steps = self._process_ready(force=True)
         self._trim()
         self.height_checks()  # decision E47: the end of a recording
+        self._warn_unused_fixes()  # decision D21
         return steps
 
     def _process_ready(self, force: bool = False) -> list[Step]:
@@ -943,6 +946,10 @@ class Tracker:
                       (step.start_s, step.end_s, math.nan if step.impossible else step.event_s))
         self._row_gaps = [g for g in self._row_gaps if g[1] > step.end_s]
         out.append(step)
+        for st in out:  # decisions D19-D21: the fixes added so far, used at the step their time falls in
+            fused = self._fuse_step(st.start_s, st.end_s, st.length_m, st.heading_rad)
+            if fused is not None:
+                st.x, st.y = fused
         return out
 
     def height_checks(self) -> dict:
