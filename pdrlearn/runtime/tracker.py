@@ -516,6 +516,7 @@ class Tracker:
         unclassified; run by ``__init__`` and when an optional stream stops (decision B121: the steps go on as
         a session without it would)."""
         tasks, methods, units, step_graph = self._model_args
+        was = set(getattr(self, "unclassified", ()))  # B121: a task left unclassified before is not told again
         fm = self.bundle.manifest["features"]
         ctx = {"signals": fm["signals"], "channel_index": self.ci}
         self.classifiers: dict[str, TaskClassifier] = {}
@@ -544,11 +545,12 @@ class Tracker:
         self._all_channels = frozenset(self.channels)
         self._step_channels = (None if g is None or set(g.tasks) != set(self.classifiers)
                                else frozenset({"t_s"} | {self.channels[j] for j in g.channels.tolist()}))
-        if self.unclassified:  # one line (decision E26 amended; the no-class rules: C17's streamed ones)
-            miss = sorted({s for v in self.unclassified.values() for s in v})
-            it = "it" if len(self.unclassified) == 1 else "them"
-            rules = "; ".join(f"{t}: {_NO_CLASS_RULE.get(t, 'no class')}" for t in self.unclassified)
-            self._warn(f"{', '.join(self.unclassified)} left unclassified: the stream has no {', '.join(miss)}, "
+        new = {t: v for t, v in self.unclassified.items() if t not in was}
+        if new:  # one line (decision E26 amended; the no-class rules: C17's streamed ones)
+            miss = sorted({s for v in new.values() for s in v})
+            it = "it" if len(new) == 1 else "them"
+            rules = "; ".join(f"{t}: {_NO_CLASS_RULE.get(t, 'no class')}" for t in new)
+            self._warn(f"{', '.join(new)} left unclassified: the stream has no {', '.join(miss)}, "
                        f"which every {'/'.join(self.units)} model of the bundle for {it} reads; "
                        f"the stride rules act as without a model ({rules}), as `pdrlearn track` does "
                        "(push those sensors, or export a model trained without them)")
@@ -579,6 +581,15 @@ class Tracker:
         streams = {k: self._stream(k) for k in self._buf}
         W = np.full((len(self.channels), self.n_samples), np.nan)
         w0, w1 = self.window_bounds(t0, t1, streams)
+        short = [(k, float(t[0]), float(t[-1])) for k, (t, _) in streams.items()
+                 if len(t) and (t[0] > w0 or t[-1] < w1)]
+        if short or not streams:  # decision E63: samples trimmed (or not pushed yet) are not made up
+            k, a, b = short[0] if short else ("any sensor", math.nan, math.nan)
+            held = f"{k} from {a:.3f} to {b:.3f} s" if short else "no samples"
+            raise DataError(f"window({t0:.3f}, {t1:.3f}): the tracker holds {held} only (it drops the samples "
+                            "behind the last step boundary less 1 s, and keeps at most buffer_s = "
+                            f"{self.buffer_s:g} s); take a step's window in the push that returns the step, before the "
+                            "next push (decision E63)")
         fill_step_window(W, streams, w0, w1, channel_index=self.ci, available=available_groups(streams),
                          forward=self.forward, rest_search_s=self.rest_search_s, heading=self.heading_mode)
         return W
@@ -857,6 +868,10 @@ class Tracker:
             what = (f"a gap longer than {GAP_LONG_S:g} s (B11): the stride across it moves 0 m, {turn} and "
                     "has no classes; no step is counted inside it, as `pdrlearn track` counts no displacement there"
                     if long else
+                    f"longer than {GAP_LONG_S:g} s in a stream whose gaps do not stop the strides (B11 zeroes only a "
+                    "foot stream's): the strides go on with it interpolated across the gap, as `pdrlearn track` "
+                    "does, so the heading and classes of the strides across it are unreliable (decision E64)"
+                    if b - a > GAP_LONG_S else
                     f"bridged (interpolated) as `pdrlearn track` does up to {GAP_LONG_S:g} s (B11): the stride across "
                     "it has an unreliable length, height change and heading, and no classes when the gap is the "
                     "foot's")
@@ -947,9 +962,31 @@ class Tracker:
         while self._pending and (force or self._pending[0][1] + self._lookahead_s < max(latest, stale)):
             t1 = self._pending[0][1]
             if latest < t1 - self._held_s:  # decision E31: a stream's last value held for this step
-                self._note_held(t1)
-            out += self._emit(self.process_step(*self._pending.pop(0)))
+                self._note_held(t1, force)
+            t0, t1 = self._pending.pop(0)
+            try:
+                out += self._emit(self.process_step(t0, t1))
+            except DataError as exc:  # decision B123: the kernel's zero gravity, named by sensor and time
+                if not str(exc).startswith("gravity_rotation:"):
+                    raise
+                raise DataError(self._no_gravity(t0, t1)) from None
         return out
+
+    def _no_gravity(self, t0: float, t1: float) -> str:
+        """Decision B123: the line for a step whose accelerometer gives no gravity to level it by (the stride
+        kernel's ``gravity_rotation``): the accelerometers reading ~0 over the step and its look-back, and when."""
+        dead = []
+        for name in ("fAccelerometer", "wAccelerometer"):
+            if name in self._buf:
+                t, v = self._stream(name)
+                k = (t >= t0 - _LOOK_BACK_S) & (t <= t1)
+                zero = np.linalg.norm(v[k], axis=1) < 1e-6
+                if zero.any():
+                    dead.append(f"{name} reads 0 in {int(zero.sum())} of its {int(k.sum())} samples of "
+                                f"{float(t[k][zero][0]):.2f}-{float(t[k][zero][-1]):.2f} s")
+        what = "; ".join(dead) or "fAccelerometer / wAccelerometer give a zero or non-finite mean at rest"
+        return (f"{what}: the step {t0:.2f}-{t1:.2f} s has no gravity to level the unit by (an accelerometer that "
+                "stopped or sends zeros); reconnect it and start a new Tracker (decision B123)")
 
     def _emit(self, step: Step) -> list[Step]:
         """Decision E46 (L67's rule on the streamed strides): a stride that touches a foot gap is not emitted; the
@@ -1006,7 +1043,7 @@ class Tracker:
             self._warn(msg)
         return out
 
-    def _note_held(self, t1: float) -> None:
+    def _note_held(self, t1: float, force: bool = False) -> None:
         """Decision E31: one warning per stream whose last sample is more than ``max_wait_s`` before the end of
         a step processed without it (E9's held values: ``max_lag_s = inf``, or the end of a recording); E39: and
         more than :data:`HELD_INTERVALS` of its own sample intervals (a 0.2 Hz barometer is not held after 2 s)."""
@@ -1014,8 +1051,10 @@ class Tracker:
         if held:
             self._held.update(held)
             last = min(self._buf[n].last for n in held)
+            why = ("max_lag_s = inf, decision E9" if self.max_lag_s == math.inf else  # decision E65: the reason
+                   "flush() at the end of the stream" if force else f"up to max_wait_s = {self._wait_s:g} s")
             self._warn(f"{', '.join(held)}: no samples since {last:.2f} s; the step ending at {t1:.2f} s and those "
-                       "after it are measured with their last values held (max_lag_s = inf, decision E9): heading and "
+                       f"after it are measured with their last values held ({why}): heading and "
                        "classes that read them are unreliable - reconnect the sensor and start a new Tracker, or track "
                        "without it (units=('foot',) for the waist; decision E31)")
 
