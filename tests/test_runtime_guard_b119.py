@@ -60,11 +60,12 @@ def _state(tr: Tracker) -> tuple:
 def test_a_stream_in_the_wrong_unit_is_refused_naming_the_sensor_and_nothing_is_taken(root, walk, name, k, match):
     tr = Tracker(root / "bundle")
     chunks = per_timestamp(_scaled(walk, name, k))
+    n = 0
     with pytest.raises(DataError, match=match):
-        for i, c in enumerate(chunks):
+        for n, c in enumerate(chunks):  # noqa: B007 - n: the push that raised
             before = _state(tr)
             tr.push(c)
-    assert i < 20 * 12  # within its first windows (20 Hz)
+    assert n < 20 * 12  # within its first windows (20 Hz)
     assert _state(tr) == before  # the refused push took nothing (E29)
     # the right units: not refused (the same session, every sample)
     ok = Tracker(root / "bundle")
@@ -97,8 +98,8 @@ def test_a_frozen_sensor_is_warned_once_naming_it_and_its_time(root, walk, tmp_p
             replay(tr, s, chunk_s)
         frozen = [w for w in tr.warnings if "frozen" in w]
         assert len(frozen) == 1, (chunk_s, tr.warnings)
-        assert re.match(r"^fGyroscope: \d+ identical consecutive samples \(.*\) since 7\.95 s \([2-4]\.\d s so far\): the "
-                        r"sensor looks frozen .*decision B120", frozen[0]), frozen
+        assert re.match(r"^fGyroscope: \d+ identical consecutive samples \(.*\) since 7\.95 s \([2-4]\.\d s so far\): "
+                        r"the sensor looks frozen .*decision B120", frozen[0]), frozen
     tr = Tracker(root / "bundle")
     replay(tr, walk, 0.5)
     assert not [w for w in tr.warnings if "frozen" in w]
