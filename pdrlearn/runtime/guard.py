@@ -58,6 +58,12 @@ class UnitGuard:
         self.judged: set[str] = set()  # accelerometers checked; gyroscopes seen in motion (B91 judged)
         self.rates: dict[str, float] = {}  # B91's swing rate of each gyroscope judged in motion (rad/s)
 
+    def wanted(self) -> list[str]:
+        """The streams whose pushed samples :meth:`check` still reads: every gyroscope; an accelerometer until it is
+        checked and its gyroscope has been seen in motion."""
+        return [n for n in self.held if GUARDED[n] == "gyroscope" or n not in self.judged
+                or (n[0] + "Gyroscope" in self.held and n[0] + "Gyroscope" not in self.judged)]
+
     @staticmethod
     def _joined(chunks, t0: float = -math.inf, t1: float = math.inf):
         if not chunks:

@@ -715,9 +715,9 @@ class Tracker:
         self._check_stopped({**{n: (f[0], f[0]) for n, f in fast.items()},  # decision B122: E23 before any change
                              **{n: (float(t[0]), float(t[-1])) for n, (t, _) in checked.items()}})
         guard = self._guard
-        if guard is not None:  # decision B119: the units of each stream's first seconds
+        if guard is not None:  # decision B119: the units of the accelerometers' first seconds, the gyroscopes' windows
             arrays = {n: checked[n] if n in checked else (np.array([fast[n][0]]), np.array([fast[n][1]]))
-                      for n in guard.held if n in checked or n in fast}
+                      for n in guard.wanted() if n in checked or n in fast}
             guard.take(arrays, guard.check(arrays))
         if self._foot_q:  # the foot samples of a push that completed a step (decision E21)
             self._feed_foot()
@@ -869,8 +869,8 @@ class Tracker:
                     "has no classes; no step is counted inside it, as `pdrlearn track` counts no displacement there"
                     if long else
                     f"longer than {GAP_LONG_S:g} s in a stream whose gaps do not stop the strides (B11 zeroes only a "
-                    "foot stream's): the strides go on with it interpolated across the gap, as `pdrlearn track` "
-                    "does, so the heading and classes of the strides across it are unreliable (decision E64)"
+                    "foot stream's; E64): the strides go on with it interpolated across the gap, as `pdrlearn track` "
+                    "does, so the heading and classes of the strides across it are unreliable"
                     if b - a > GAP_LONG_S else
                     f"bridged (interpolated) as `pdrlearn track` does up to {GAP_LONG_S:g} s (B11): the stride across "
                     "it has an unreliable length, height change and heading, and no classes when the gap is the "
