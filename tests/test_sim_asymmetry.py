@@ -12,6 +12,7 @@ from pdrlearn.io import read_session
 from pdrlearn.sim import UserProfile, simulate, simulate_path
 from pdrlearn.sim.body import step_time_factor
 from pdrlearn.sim.route import parse_route
+from pdrlearn.track.clinical import step_time_asymmetry
 from tests.test_sim import DEFAULT_DIGESTS, _digest
 
 ROUTE = "stand:2, straight:20, stand:2"
@@ -80,3 +81,17 @@ def test_bad_cli_values_are_one_line(tmp_path, capsys, value):
 def test_bad_python_values_are_one_line(value):
     with pytest.raises(DataError, match="step_time_asymmetry"):
         simulate_path(parse_route(ROUTE), UserProfile.from_seed(1), step_time_asymmetry=value)
+
+
+def test_tracker_index_of_the_true_contacts_is_the_knobs():
+    """The project's asymmetry measure (L111's step-time symmetry index, Robinson et al. 1987) on the labels' true
+    contacts reads 200 a / (2 + a) %: a = 0.39 -> 32.64 % (the trial's hand patch, ratio 1.5, read 39.1 %)."""
+    s = simulate_path(parse_route(ROUTE), UserProfile.from_seed(401), rate_hz=20.0, seed=3, scenario="route",
+                      step_time_asymmetry=0.39)
+    ics = s.extras["ics"].sort_values("ic_s")
+    t, kind = ics["ic_s"].to_numpy(float), ics["kind"].to_numpy()
+    step = np.r_[np.diff(t), np.nan]
+    has_next = np.r_[(np.diff(t) < 3.0) & (kind[1:] == "walk") & (kind[:-1] == "walk"), False]
+    index, n = step_time_asymmetry(np.where(has_next, step, np.nan), has_next)
+    print(f"true-contact index {index:.2f} % over {n} step times (want {200 * 0.39 / 2.39:.2f} %)")
+    assert n >= 20 and abs(index - 200 * 0.39 / 2.39) < 1.5, (index, n)
