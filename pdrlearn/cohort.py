@@ -88,12 +88,39 @@ def session_files() -> tuple[str, ...]:
     return ("meta.json", *(s.filename for s in SENSORS.values()))
 
 
-def is_session_dir(p: str | os.PathLike) -> bool:
-    """Whether ``p`` is a session folder: it holds ``meta.json`` or a sensor CSV (``fAccelerometer.csv``, ...).
-    The one test of what a session is, shared by ``train-all``/``evaluate-all`` (:func:`user_sessions`),
-    ``track-all`` (:func:`find_sessions`) and the output-folder checks (decision C12)."""
+def is_session_dir(p: str | os.PathLike, _seen: frozenset = frozenset()) -> bool:
+    """Whether ``p`` is a session folder: it holds a sensor CSV (``fAccelerometer.csv``, ...), or ``meta.json``
+    and no session folder below it (decision C17: a site's or a subject's own ``meta.json`` above the session
+    level hid every session under it; a folder with only ``meta.json`` and nothing below stays a session, so
+    that ``track-all`` reports it as one without sensor files). The one test of what a session is, shared by
+    ``train-all``/``evaluate-all`` (:func:`user_sessions`), ``track-all`` (:func:`find_sessions`) and the
+    output-folder checks (decision C12)."""
     p = Path(p)
-    return p.is_dir() and any((p / n).is_file() for n in session_files())
+    if not p.is_dir():
+        return False
+    names = session_files()
+    if any((p / n).is_file() for n in names[1:]):
+        return True
+    if not (p / names[0]).is_file():
+        return False
+    return not _session_below(p, _seen)
+
+
+def _session_below(p: Path, seen: frozenset = frozenset()) -> bool:
+    """Whether a session folder lies below ``p`` at any depth (decision C17)."""
+    real = p.resolve()
+    if real in seen:  # a symbolic link back up the tree
+        return False
+    seen = seen | {real}
+    return any(is_session_dir(c, seen) or _session_below(c, seen) for c in _subfolders(p))
+
+
+def _subfolders(p: Path) -> list[Path]:
+    """The folders directly in ``p`` that a search for sessions enters (not hidden ones), sorted by name."""
+    try:
+        return sorted(c for c in p.iterdir() if c.is_dir() and not c.name.startswith("."))
+    except OSError:
+        return []
 
 
 def find_sessions(root: str | os.PathLike) -> list[Path]:
