@@ -474,6 +474,7 @@ def track_all(
     contacts: bool = _track.CONTACTS_OPT,
     dpi: int = _track.DPI_OPT,
     common_span: bool = _track.COMMON_SPAN_OPT,
+    units: str = _track.UNITS_OPT,
     window: str = _track.WINDOW_OPT,
     group_depth: int = typer.Option(1, "--group-depth", min=1, help="Folder levels below ROOT that name a "
                                     "session's group in sessions.csv and groups.csv (1: siteA of "
@@ -519,7 +520,7 @@ def track_all(
                               warn_out_of_domain=warn_out_of_domain, start=start, params=params,
                               streaming=streaming, realtime=realtime, reference_point=reference_point,
                               toe_off=toe_off, contacts=contacts, dpi=dpi, common_span=common_span,
-                              initial_heading=initial_heading, window=window)
+                              initial_heading=initial_heading, window=window, units=units)
     found = find_sessions(root)
     out_folder(out, "track-all", force=force, inputs=(root, params))
     was = existed(out)
