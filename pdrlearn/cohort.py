@@ -384,6 +384,13 @@ def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterat
             h.removeFilter(below_warning)
 
 
+def grouped_warning(text: str, names: Sequence[str], total: int, noun: str = "sessions") -> str:
+    """One warning said once for the ``names`` (of ``total`` ``noun``) that raised it, the first three named:
+    ``text [21 of 23 runs: a, b, c and 18 more]`` (decision C12's batch warnings; decision C21: the report)."""
+    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    return f"{text} [{len(names)} of {total} {noun}: {shown}]"
+
+
 def session_group(rel_path: str, depth: int = 1) -> str:
     """The group of a session at ``rel_path`` (relative to the batch root, ``/``-separated): its first
     ``depth`` folder components (``siteA/p01/clinic`` -> ``siteA`` at depth 1, ``siteA/p01`` at depth 2),

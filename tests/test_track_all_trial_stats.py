@@ -10,7 +10,6 @@ from pathlib import Path
 
 import pytest
 
-from pdrlearn.cli import main
 from pdrlearn.cohort import find_sessions, user_sessions
 
 
@@ -40,3 +39,20 @@ def test_a_site_meta_json_above_the_sessions_hides_none_of_them(site_tree, tmp_p
     assert user_sessions(root / "centreA" / "S01") == [root / "centreA" / "S01" / "visit1"]  # train-all alike
     (root / "meta.json").write_text('{"study": "6MWT"}')  # the study's own meta.json: still a folder of sessions
     assert len(find_sessions(root)) == 4
+
+
+def test_the_report_says_a_repeated_warning_once_with_its_runs(tmp_path):
+    """C21: report.md listed the identical "no model" warning 21 times (one per session); now once, with how many
+    runs raised it and the first of them, as track-all prints it (a warning of one run keeps its run prefix)."""
+    from pdrlearn.report.build import collect
+
+    for i in range(5):
+        d = tmp_path / "batch" / f"s{i}"
+        d.mkdir(parents=True)
+        warns = ["no model: the M3 engine without the class rules"] + (["slow gait: not reliable"] if i == 3 else [])
+        (d / "summary.json").write_text(json.dumps({"distance_m": 10.0 + i, "n_steps": 8, "info": {"warnings": warns}}))
+    section = collect(tmp_path / "batch")[0]
+    assert section.title == "Warnings"
+    assert section.warnings == ["no model: the M3 engine without the class rules [5 of 5 runs: s0, s1, s2 and 2 more]",
+                                "s3: slow gait: not reliable"]
+    assert "6 warning(s) from 5 run(s), 2 distinct" in section.text

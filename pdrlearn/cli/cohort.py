@@ -33,6 +33,7 @@ from pdrlearn.cohort import (
     find_sessions,
     folder_bytes,
     group_table,
+    grouped_warning,
     groups_text,
     run_cohort,
     session_group,
@@ -442,8 +443,7 @@ def _batch_warnings(sessions: list[tuple[str, str]], results: list[JobResult]) -
             seen.setdefault(text, []).append(rel)
     log = logging.getLogger("pdrlearn.cli")
     for text, rels in seen.items():
-        shown = ", ".join(rels[:3]) + (f" and {len(rels) - 3} more" if len(rels) > 3 else "")
-        log.warning("%s [%d of %d sessions: %s]", text, len(rels), len(results), shown)
+        log.warning("%s", grouped_warning(text, rels, len(results)))
 
 
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:

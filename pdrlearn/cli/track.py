@@ -186,6 +186,10 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         if fix_file is not None and not Path(fix_file).is_file():
             raise DataError(f"{fix_file}: no such fix file; pass an NMEA log (.nmea/.txt) or a CSV "
                             "(t, lat, lon, accuracy_m)")
+    if model is not None and str(model) != "oracle":  # decision B128: a bad --model fails once, before any session
+        from pdrlearn.classify.model_dir import verify_model_dir
+
+        verify_model_dir(model)
     par = None
     if params is not None:
         try:
