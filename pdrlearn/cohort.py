@@ -405,16 +405,20 @@ GROUP_METRICS = ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "
 
 def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
     """``groups.csv`` from ``sessions.csv`` (a DataFrame): one row per ``group`` (sorted) with
-    ``n_sessions`` (tracked), ``n_failed``, and for each metric column that has a value in some tracked session
+    ``n_tracked`` (sessions tracked; decision C19: was ``n_sessions``, which ``track-all --json`` uses for every
+    session found), ``n_failed``, and for each metric column that has a value in some tracked session
     ``<metric>_n`` (sessions with a value), ``_mean``, ``_sd`` (sample standard deviation, n - 1; empty for
-    one session) and ``_median`` over the group's tracked sessions. Plain pandas ``groupby`` statistics
+    one session), ``_median`` and (decision C20) ``_ci95_low`` / ``_ci95_high``, the 95 % t-interval of the mean
+    (empty under two sessions) over the group's tracked sessions. Plain pandas ``groupby`` statistics
     (decision C12)."""
+    import numpy as np
     import pandas as pd
+    from scipy import stats as st
 
     ok = sessions[sessions["status"] == "ok"]
     groups = sorted(sessions["group"].astype(str).unique())
     out = pd.DataFrame({"group": groups})
-    out["n_sessions"] = [int((ok["group"].astype(str) == g).sum()) for g in groups]
+    out["n_tracked"] = [int((ok["group"].astype(str) == g).sum()) for g in groups]
     out["n_failed"] = [int(((sessions["group"].astype(str) == g) & (sessions["status"] != "ok")).sum())
                        for g in groups]
     for m in metrics:
@@ -422,9 +426,17 @@ def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
             continue
         stats = (pd.to_numeric(ok[m], errors="coerce").groupby(ok["group"].astype(str))
                  .agg(["count", "mean", "std", "median"]).reindex(groups))
-        out[f"{m}_n"] = stats["count"].fillna(0).astype(int).to_numpy()
+        n = stats["count"].fillna(0).astype(int).to_numpy()
+        out[f"{m}_n"] = n
         for s, name in (("mean", "mean"), ("std", "sd"), ("median", "median")):
             out[f"{m}_{name}"] = stats[s].to_numpy()
+        # Student's t-interval of a mean, mean ± t(0.975, n - 1) · sd / √n (NIST/SEMATECH e-Handbook of
+        # Statistical Methods, 7.2.2.1 "Confidence limits for the mean")
+        with np.errstate(invalid="ignore", divide="ignore"):
+            half = np.where(n >= 2, st.t.ppf(0.975, np.maximum(n - 1, 1)) * stats["std"].to_numpy(float)
+                            / np.sqrt(np.maximum(n, 1)), np.nan)
+        out[f"{m}_ci95_low"] = stats["mean"].to_numpy(float) - half
+        out[f"{m}_ci95_high"] = stats["mean"].to_numpy(float) + half
     return out
 
 
@@ -433,7 +445,7 @@ def groups_text(groups):
     per metric ``mean ± sd (n)``, so the groups compare at a glance."""
     import pandas as pd
 
-    shown = groups[["group", "n_sessions", "n_failed"]].copy()
+    shown = groups[["group", "n_tracked", "n_failed"]].copy()
     for m in GROUP_METRICS:
         if f"{m}_mean" in groups:
             shown[m] = [("" if pd.isna(mu) else f"{mu:.3g}" + ("" if pd.isna(sd) else f" ± {sd:.2g}") + f" ({n})")

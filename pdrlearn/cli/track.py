@@ -229,6 +229,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     params, par, gnss, fixes, dpi = o["params"], o["par"], o["gnss"], o["fixes"], o["dpi"]
     # L77: the drops warning of its path; B81: a unit's file cut short, tracked over the time all its files cover
     session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse")
+    content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
     if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
@@ -304,7 +305,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         summary["window_start_s"], summary["window_end_s"] = (float(v) for v in o["window"])
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
-            "dpi": dpi}
+            "dpi": dpi, "content_id": content_id}
 
 
 def _check_relative_heading(result, session, heading0: float) -> None:
