@@ -72,6 +72,8 @@ def runs(site_tree, tmp_path_factory):
     first = base / "here" / "study"
     shutil.copytree(site_tree, first)
     shutil.copytree(first / "centreA" / "S01" / "visit1", first / "centreA" / "S01" / "visit2")
+    (first / "centreB" / "S05" / "visit1").mkdir(parents=True)  # fails: its error names its folder
+    (first / "centreB" / "S05" / "visit1" / "meta.json").write_text('{"name": "no data"}')
     second = base / "elsewhere" / "deeper" / "study"
     shutil.copytree(first, second)
     got = []
@@ -89,15 +91,17 @@ def test_run_json_records_version_and_options_and_the_tables_reproduce(runs):
     from pdrlearn import __version__
 
     root, ((rc1, o1, _), (rc2, o2, _)) = runs
-    assert rc1 == rc2 == 0
+    assert rc1 == rc2 == 1
     for name in ("sessions.csv", "groups.csv"):
         assert (o1 / name).read_bytes() == (o2 / name).read_bytes(), name
     sessions = pd.read_csv(o1 / "sessions.csv")
-    assert "track_time_s" not in sessions and list(sessions["input_dir"]) == list(sessions["path"])
-    assert set(sessions["pdrlearn_version"]) == {__version__}
+    ok = sessions[sessions["status"] == "ok"]
+    assert "track_time_s" not in sessions and list(ok["input_dir"]) == list(ok["path"])
+    assert sessions.set_index("path").loc["centreB/S05/visit1", "error"].startswith("centreB/S05/visit1: ")
+    assert set(ok["pdrlearn_version"]) == {__version__}
     run = json.loads((o1 / "run.json").read_text())
     assert run["pdrlearn_version"] == __version__ and run["command"] == "track-all"
-    assert run["root"] == str(root.resolve()) and run["n_sessions"] == 4 and run["n_tracked"] == 4
+    assert run["root"] == str(root.resolve()) and run["n_sessions"] == 5 and run["n_tracked"] == 4
     assert run["options"]["method"] == "M2" and run["options"]["group_depth"] == 1 and run["options"]["jobs"] == 1
     assert "window" in run["options"] and run["options"]["window"] is None
     assert set(run["track_time_s"]) == set(sessions["path"])
@@ -111,6 +115,7 @@ def test_session_and_group_columns_say_what_they_count(runs):
     n_sessions counted tracked sessions while --json's counted all; no sampling rate."""
     _, ((_, o1, _), _) = runs
     sessions = pd.read_csv(o1 / "sessions.csv")
+    sessions = sessions[sessions["status"] == "ok"]
     cols = list(sessions.columns)
     assert cols[cols.index("n_steps"):cols.index("n_steps") + 4] == [
         "n_steps", "n_steps_counts", "n_strides_one_foot", "n_steps_both_feet"]

@@ -387,7 +387,10 @@ def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
 
 
 def _session_row(rel: str, group: str, r: JobResult, given: str | None = None) -> dict:
-    row = {"path": rel, "group": group, "status": "ok" if r.ok else "failed", "error": None if r.ok else r.error}
+    error = None if r.ok else r.error
+    if error and given:  # decision C18: the folder relative to ROOT, as path and input_dir (the same for a copy)
+        error = error.replace(given, rel)
+    row = {"path": rel, "group": group, "status": "ok" if r.ok else "failed", "error": error}
     warned = job_warnings(r, given)  # cohort C15: a failed session keeps its warnings beside its error
     row["n_warnings"] = len(r.value["warnings"]) if r.ok else len(r.extra.get("warnings", []))
     row["warnings"] = WARNINGS_SEP.join(warned) if warned else None
@@ -524,9 +527,11 @@ def track_all(
     DEG (a session whose heading is absolute, the waist magnetometer's, fails) (decision L108).
     OUT/sessions.csv has one row per session: path, group, status (ok / failed),
     the one-line error of a failed session, and the fields of its summary.json (input_dir, distance_m,
-    distance_error_pct, gait_speed_mps, median_cadence_spm, ...). OUT/groups.csv has per group n, mean, sd
-    and median of the distance error, gait speed, cadence and stride length. A session that cannot be
-    tracked is reported and skipped. Progress: one line per session on stderr; each warning is said once
+    distance_error_pct, gait_speed_mps, median_cadence_spm, ...; input_dir relative to ROOT). OUT/groups.csv
+    has per group n_tracked, n_failed and the n, mean, sd, median and 95 % t-interval of the mean of the
+    distance error, gait speed, cadence and stride length. OUT/run.json records the pdrlearn version, the
+    options and each session's time (decision C18). Sessions holding identical sensor data are warned
+    (duplicate_of, C20). A session that cannot be tracked is reported and skipped. Progress: one line per session on stderr; each warning is said once
     per batch, with the sessions it concerns.
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input
