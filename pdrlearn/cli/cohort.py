@@ -531,8 +531,8 @@ def track_all(
     has per group n_tracked, n_failed and the n, mean, sd, median and 95 % t-interval of the mean of the
     distance error, gait speed, cadence and stride length. OUT/run.json records the pdrlearn version, the
     options and each session's time (decision C18). Sessions holding identical sensor data are warned
-    (duplicate_of, C20). A session that cannot be tracked is reported and skipped. Progress: one line per session on stderr; each warning is said once
-    per batch, with the sessions it concerns.
+    (duplicate_of, C20). A session that cannot be tracked is reported and skipped. Progress: one line per
+    session on stderr; each warning is said once per batch, with the sessions it concerns.
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input
     or when every session failed (nothing is written).
