@@ -11,10 +11,8 @@ from __future__ import annotations
 import dataclasses
 
 from pdrlearn.errors import DataError, shell_quote
+from pdrlearn.io.sensors import PLACEMENTS as UNITS  # the units ``--units`` accepts (decision B127)
 from pdrlearn.io.session import Session
-
-#: the units ``--units`` accepts (decision B127)
-UNITS = ("foot", "waist")
 
 
 def parse_units(text: str | None) -> tuple[str, ...] | None:
