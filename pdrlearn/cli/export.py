@@ -576,6 +576,11 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
         # cohort C13: the folder tracked, as track's summary.json (copies of a session share its name)
         out["input_dir"] = str(session.folder.resolve()) if session.folder is not None else None
     out["pipeline"] = "runtime"
+    from pdrlearn import __version__
+    from pdrlearn.track.evaluate import tracked_rate_hz
+
+    out["rate_hz"] = tracked_rate_hz(session, "runtime") if session is not None else None  # as track's (C19)
+    out["pdrlearn_version"] = __version__  # decision C18
     out["info"] = result.info
     if session is not None:  # decisions L95 / L113, as track's summary: gait range, withheld stride-time CV
         import logging

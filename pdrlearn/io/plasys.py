@@ -36,6 +36,7 @@ from pdrlearn.io.validate import (
     check_timestamps,
     check_trajectory_times,
     check_units,
+    ends_mid_line,
     implausible_rhythm,
     sample_numbers,
     time_unit_candidates,
@@ -296,7 +297,7 @@ def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np
         raise DataError(f"{path}: file not found")
     df = read_table(path)
     check_columns(df, ("timestamp", *spec.columns), str(path))
-    return name, check_numeric(df, ("timestamp", *spec.columns), str(path))
+    return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=ends_mid_line(path))
 
 
 def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: float, check_unit: bool,

@@ -53,18 +53,41 @@ def check_columns(df: pd.DataFrame, required: tuple[str, ...], where: str) -> No
         )
 
 
-def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str) -> np.ndarray:
-    """Return ``df[columns]`` as float64, failing on non-numeric, NaN or infinite values."""
+def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str, *, cut_mid_line: bool = False) -> np.ndarray:
+    """Return ``df[columns]`` as float64, failing on non-numeric, NaN or infinite values. ``cut_mid_line``: the
+    file does not end with a line break (decision B128): a bad last row is then said to be a line cut short."""
     out = df.loc[:, list(columns)].apply(pd.to_numeric, errors="coerce")
     arr = out.to_numpy(dtype=np.float64)
     bad = ~np.isfinite(arr)
     if bad.any():
         rows = np.flatnonzero(bad.any(axis=1))
+        if cut_mid_line and rows[-1] == len(df) - 1:  # decision B128: a copy cut mid-line, not a bad value
+            others = f" (and {len(rows) - 1} other row(s) with bad values, first at line {rows[0] + 2})" \
+                if len(rows) > 1 else ""
+            raise DataError(
+                f"{where}: last line incomplete (line {len(df) + 1} stops mid-row, no line break at the end): file "
+                f"truncated?{others} -- restore the whole file from the recording (deleting the line leaves a file "
+                "cut short, decision B72)")
         raise DataError(
             f"{where}: {len(rows)} row(s) with non-numeric, NaN or infinite values (first at line {rows[0] + 2}); "
             "remove or repair those rows"
         )
     return arr
+
+
+def ends_mid_line(path) -> bool:
+    """Decision B128: whether a non-empty file's last byte is not a line break (a copy or download cut short)."""
+    import os
+
+    try:
+        with open(path, "rb") as f:
+            f.seek(0, os.SEEK_END)
+            if f.tell() == 0:
+                return False
+            f.seek(-1, os.SEEK_END)
+            return f.read(1) not in (b"\n", b"\r")
+    except OSError:
+        return False
 
 
 #: decision B73: a backward step of the timestamps larger than this (s) is a clock reset, not samples out of order:
