@@ -1,13 +1,18 @@
 """Session 20's trial `aids`: a waist track whose steps do not alternate left/right says so (decision W98): a
-wheelchair user's arm pushes and a walker's doubled step count; a normal walk does not warn."""
+wheelchair user's arm pushes and a walker's doubled step count; a normal walk does not warn. `calibrate` says when
+the walk's waist contact count and the pelvic-gyro detector's disagree (W99)."""
 
 from __future__ import annotations
+
+import dataclasses
+import re
 
 import numpy as np
 
 from pdrlearn.io.session import Stream
 from pdrlearn.sim import Stand, Straight, Turn, UserProfile, simulate_path
 from pdrlearn.track.waist import track_waist
+from pdrlearn.waist.calibration import calibrate
 from pdrlearn.waist.plausibility import alternation_index
 
 
@@ -70,3 +75,23 @@ def test_normal_walk_does_not_warn():
     r = track_waist(s, pipeline="waist-pendulum")
     assert r.info["alternation_index"] > 0.8
     assert not _w98(r)
+
+
+def _w99(params) -> list[str]:
+    return [n for n in params.notes if "the pelvic-gyro detector" in n]
+
+
+def test_calibrate_on_a_doubled_step_count_names_the_pelvic_gyro_count():
+    """Trial finding 3: a 0.15 m / 1.5 s walker (user 411); the waist IC detector finds about 1.5x the pelvic-gyro
+    detector's steps on the 5 m calibration walk (truth ~34) and calibrate fitted K to it without a word."""
+    u = dataclasses.replace(UserProfile.from_seed(411), step_length_m=0.15, step_time_s=1.5)
+    s = simulate_path([Stand(3), Straight(5), Stand(3)], u, speed="normal", rate_hz=100, seed=5)
+    (line,) = _w99(calibrate([s], "waist-pendulum", distances=[5.0]))
+    n_waist, n_gyro = (int(x) for x in re.findall(r"counted (\d+) contacts.*detector (\d+) ", line)[0])
+    assert n_waist > 1.3 * n_gyro
+    assert "--detector pelvic-gyro" in line
+
+
+def test_calibrate_on_a_normal_walk_has_no_count_warning():
+    s = simulate_path([Stand(3), Straight(10), Stand(3)], UserProfile.from_seed(7), speed="normal", rate_hz=20, seed=7)
+    assert not _w99(calibrate([s], "waist-pendulum", distances=[10.0]))
