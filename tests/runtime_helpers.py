@@ -249,3 +249,18 @@ def without(s: Session, a: float, b: float, names=None) -> Session:
             m = ~((st.t >= a) & (st.t < b))
             c.streams[n] = Stream(n, st.t[m], st.values[m])
     return c
+
+
+def push_waist(tr, s, chunks) -> list:
+    """Push ``s``'s waist samples into the waist tracker ``tr`` in pieces of ``chunks`` sizes (the rest at once),
+    then flush; the reported steps (``pdrlearn.waist.WaistTracker`` and ``pdrlearn.runtime.WaistTracker``)."""
+    a, g = s["wAccelerometer"], s["wGyroscope"]
+    out, i = [], 0
+    for c in chunks:
+        if i >= len(a.t):
+            break
+        out += tr.push(a.t[i:i + c], a.values[i:i + c], g.values[i:i + c])
+        i += c
+    if i < len(a.t):
+        out += tr.push(a.t[i:], a.values[i:], g.values[i:])
+    return out + tr.flush()

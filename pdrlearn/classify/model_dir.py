@@ -159,26 +159,15 @@ def _json_default(o):
         return str(o)
 
 
-def _is_waist_calibration(path: Path) -> bool:
-    """A JSON file written by ``pdrlearn calibrate`` (its ``pipeline`` a waist one, decision E53)."""
-    if not path.is_file() or path.suffix.lower() != ".json":
-        return False
-    try:
-        d = json.loads(path.read_text())
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError):
-        return False
-    return isinstance(d, dict) and str(d.get("pipeline", "")).startswith("waist")
-
-
 def read_manifest(path) -> dict:
     """Read and validate ``manifest.json`` of a model directory (:class:`ModelError` on any problem)."""
     path = Path(path)
     if not path.is_dir():
-        if _is_waist_calibration(path):  # decision E53: the belt-phone user's file names their way
-            from pdrlearn.runtime.bundle import waist_only_hint
+        from pdrlearn.runtime.bundle import _is_waist_calibration, waist_only_hint
 
+        if _is_waist_calibration(path):  # decision E53: the belt-phone user's file names their way
             raise ModelError(f"{path}: a waist calibration ('pdrlearn calibrate'), not a model directory: waist "
-                             f"pipelines are calibrated, not trained or exported; {waist_only_hint(str(path))}")
+                             f"pipelines are calibrated, not trained; {waist_only_hint(str(path))}")
         raise ModelError(f"{path}: no such model directory; train one with "
                          f"`pdrlearn train ... --out {shell_quote(path)}`")
     mf = path / MANIFEST

@@ -36,6 +36,7 @@ from pdrlearn.io.validate import (
     check_timestamps,
     check_trajectory_times,
     check_units,
+    ends_mid_line,
     implausible_rhythm,
     sample_numbers,
     time_unit_candidates,
@@ -321,7 +322,7 @@ def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np
         raise DataError(f"{path}: file not found")
     df = read_table(path)
     check_columns(df, ("timestamp", *spec.columns), str(path))
-    return name, check_numeric(df, ("timestamp", *spec.columns), str(path))
+    return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=ends_mid_line(path))
 
 
 def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: float, check_unit: bool,
@@ -955,6 +956,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
                                str(folder / "trajectory.csv"), basis=basis)
     warn_low_rate(session)
     warn_saturation(session)
+    warn_frozen(session)  # decision B120
     for name, s in streams.items():
         gaps = s.gaps()
         if gaps:
@@ -996,6 +998,20 @@ def warn_saturation(session: Session) -> None:
             where = (str(Path(session.folder) / SENSORS[name].filename) if session.folder is not None
                      else f"session '{session.name}', stream {name}")
             log.warning("%s", saturation_warning(where, kind, n, len(s), top))
+
+
+def warn_frozen(session: Session) -> None:
+    """Decision B120: one warning per run of bit-identical consecutive samples of a 3-axis sensor file lasting
+    :data:`~pdrlearn.kernels.units.FROZEN_S` or more (a frozen sensor), naming the file and the span."""
+    from pdrlearn.kernels.units import frozen_message, frozen_spans
+
+    for name, s in session.streams.items():
+        if s.values.ndim != 2 or s.values.shape[1] != 3:
+            continue
+        where = (str(Path(session.folder) / SENSORS[name].filename) if session.folder is not None
+                 else f"session '{session.name}', stream {name}")
+        for a, b, n in frozen_spans(s.t, s.values):
+            log.warning("%s", frozen_message(where, a, b, n, s.values[int(np.searchsorted(s.t, a))]))
 
 
 def _stream_frame(s: Stream, scale: float) -> pd.DataFrame:

@@ -56,15 +56,16 @@ DEFAULT_RATE_TOLERANCE = 0.05
 UNITS = ("foot", "waist")
 
 def waist_only_hint(params: str | None = None) -> str:
-    """Decisions B107/E53: what a waist-only (belt phone) user can do, named where a bundle or model directory
-    cannot serve them: bundles detect steps on the foot gyroscope (E7) and have no waist-only export; the waist
-    pipelines are calibrated, not trained (docs/waist.md). ``params``: the user's calibration file, if known."""
+    """Decisions B107/E53/E55, amended by E59: what a waist-only (belt phone) user can do, named where a foot-unit
+    bundle or a model directory cannot serve them: export the calibration as a waist bundle (E57) and run it, or
+    track the recording offline with the calibration. ``params``: the user's calibration file, if known."""
     first = ("" if params else "calibrate on a walk of known length (pdrlearn calibrate WALK --distance M --out "
              "cal.json), then ")
-    params = params or "cal.json"
-    return (f"a waist-only recording is tracked without a bundle: {first}pdrlearn track SESSION --pipeline "
-            f"waist-pendulum --params {shell_quote(params)}, or live "
-            f"pdrlearn.waist.WaistTracker(rate_hz, params='{params}')")
+    p = shell_quote(params or "cal.json")
+    return (f"a waist-only recording runs on a waist bundle: {first}pdrlearn export {p} --out WAIST_BUNDLE "
+            "--frame x=up,y=right,z=forward (the unit's axes), then pdrlearn run WAIST_BUNDLE SESSION, or live "
+            "pdrlearn.runtime.WaistTracker(load_waist_bundle('WAIST_BUNDLE')); offline: pdrlearn track SESSION "
+            f"--pipeline waist-pendulum --params {p}")
 
 
 def sha256_file(path: str | Path, *, chunk: int = 1 << 20) -> str:
@@ -366,10 +367,46 @@ def _fail(path: Path, msg: str) -> ModelError:
     return ModelError(f"bundle {path}: {msg}")
 
 
-def read_manifest(path: str | Path) -> dict:
-    """Parse and check ``manifest.json`` of a bundle folder (schema and version, required keys)."""
+#: decision E57: a waist-only bundle (``pdrlearn export CAL.json``) has its own schema, read by
+#: :func:`pdrlearn.runtime.waist.load_waist_bundle`
+WAIST_SCHEMA_NAME = "pdrlearn-waist-bundle"
+WAIST_SCHEMA_VERSION = 1
+WAIST_REQUIRED_KEYS = ("schema", "schema_version", "package_version", "created_utc", "user", "pipeline", "sampling",
+                       "sensors", "units", "frames", "params", "options", "files")
+#: what each bundle kind is and how to run it (decision E58: a bundle of the other kind is one line naming this)
+_KINDS = {SCHEMA_NAME: "a foot-unit bundle ('pdrlearn export MODEL_DIR'): run it with pdrlearn.runtime.Tracker("
+                       "load_bundle(PATH)) or 'pdrlearn run'",
+          WAIST_SCHEMA_NAME: "a waist-only bundle ('pdrlearn export CAL.json'): run it with pdrlearn.runtime."
+                             "WaistTracker(load_waist_bundle(PATH)) or 'pdrlearn run'"}
+
+
+def bundle_kind(path: str | Path) -> str | None:
+    """The ``schema`` of the bundle folder ``path`` (None when it has no readable manifest): how ``pdrlearn run``
+    tells a waist-only bundle from a foot one before loading it."""
+    try:
+        m = json.loads((Path(path) / MANIFEST).read_text())
+    except (OSError, ValueError):
+        return None
+    return m.get("schema") if isinstance(m, dict) else None
+
+
+def _is_waist_calibration(path: Path) -> bool:
+    """Whether ``path`` is a JSON file of a waist pipeline's parameters (``pdrlearn calibrate``'s PARAMS.json)."""
+    try:
+        d = json.loads(path.read_text()) if path.is_file() and path.suffix.lower() == ".json" else None
+    except (OSError, UnicodeDecodeError, ValueError):
+        return False
+    return isinstance(d, dict) and str(d.get("pipeline", "")).startswith("waist")
+
+
+def read_manifest(path: str | Path, *, schema: str = SCHEMA_NAME) -> dict:
+    """Parse and check ``manifest.json`` of a bundle folder (schema and version, required keys); ``schema``: the
+    kind expected (:data:`SCHEMA_NAME` or :data:`WAIST_SCHEMA_NAME`; the other kind is refused naming how it
+    runs, decision E58)."""
     path = Path(path)
     if not path.is_dir():
+        if _is_waist_calibration(path):  # decision E59: the belt-phone user's calibration is exported first
+            raise _fail(path, f"a waist calibration ('pdrlearn calibrate'), not a bundle; {waist_only_hint(str(path))}")
         raise _fail(path, "not a folder; give the folder written by 'pdrlearn export'")
     mpath = path / MANIFEST
     if not mpath.is_file():
@@ -378,16 +415,20 @@ def read_manifest(path: str | Path) -> dict:
         manifest = json.loads(mpath.read_text())
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise _fail(path, f"{MANIFEST} is not valid JSON ({exc}); re-export the bundle") from None
-    if not isinstance(manifest, dict) or manifest.get("schema") != SCHEMA_NAME:
-        raise _fail(path, f"{MANIFEST} is not a {SCHEMA_NAME} manifest; re-export with 'pdrlearn export'")
+    found = manifest.get("schema") if isinstance(manifest, dict) else None
+    if found in _KINDS and found != schema:
+        raise _fail(path, f"this is {_KINDS[found]}, not {_KINDS[schema].split(':')[0]}")
+    if found != schema:
+        raise _fail(path, f"{MANIFEST} is not a {schema} manifest; re-export with 'pdrlearn export'")
+    want = SCHEMA_VERSION if schema == SCHEMA_NAME else WAIST_SCHEMA_VERSION
     version = manifest.get("schema_version")
-    if version != SCHEMA_VERSION:
+    if version != want:
         raise _fail(
             path,
-            f"schema version {version!r}, but this runtime reads version {SCHEMA_VERSION}; "
+            f"schema version {version!r}, but this runtime reads version {want}; "
             "re-export the model with this pdrlearn version",
         )
-    missing = [k for k in REQUIRED_KEYS if k not in manifest]
+    missing = [k for k in (REQUIRED_KEYS if schema == SCHEMA_NAME else WAIST_REQUIRED_KEYS) if k not in manifest]
     if missing:
         raise _fail(path, f"{MANIFEST} lacks {', '.join(missing)}; re-export the bundle")
     return manifest

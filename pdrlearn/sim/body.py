@@ -106,6 +106,27 @@ SHOD = True  # the foot rolls over the front of the shoe's sole, beyond the toes
 STAIR_TOE_CLEARANCE = 2.0  # toe clearance over a stair nosing / the user's level toe clearance (S24)
 
 
+#: decision S35: the leg whose steps are slow in an asymmetric gait (``step_time_asymmetry``); the foot unit is on the
+#: right foot, so its strides span one slow and one normal step
+AFFECTED_FOOT = "left"
+#: decision S35: ``step_time_asymmetry`` must be below this: at 1 (symmetry ratio 2) the affected leg's stance is
+#: (1/2 + 2 s - 1) / (2 (1 - s)) = 0.97-1.34 x its swing for the users' stance fractions s 0.62-0.68; beyond, its
+#: swing outlasts its stance (a hop over the sound leg, not a walk)
+STEP_TIME_ASYMMETRY_MAX = 1.0
+
+
+def step_time_factor(foot: str, asymmetry: float) -> float:
+    """Decision S35: the factor on the step time of a step landing on ``foot`` for a step-time asymmetry ``a``.
+
+    Asymmetry is the symmetry ratio minus 1, the ratio being affected / unaffected step time (Patterson et al.
+    2010, Gait Posture 31:241-246, recommend the ratio for post-stroke gait): a = 0.39 makes each step onto the
+    affected foot (:data:`AFFECTED_FOOT`) 1.39 x the step onto the other. The two factors 2 r / (1 + r) and
+    2 / (1 + r) (r = 1 + a) average 1, so the stride time, cadence and speed stay the user's; a = 0 gives 1.0
+    exactly (default sessions bit for bit)."""
+    r = 1.0 + asymmetry
+    return 2.0 * r / (1.0 + r) if foot == AFFECTED_FOOT else 2.0 / (1.0 + r)
+
+
 @dataclass
 class Events:
     """Per-footstep gait events (s) and swing parameters, arrays aligned with the footstep list."""
@@ -141,8 +162,12 @@ def schedule(
     stand_s: float,
     variability: float = 1.0,
     rocker: str = "hermite",
+    step_time_asymmetry: float = 0.0,
 ) -> Events:
     """Assign gait-event times to the footsteps (both feet) and draw per-step swing parameters.
+
+    ``step_time_asymmetry``: the steps onto :data:`AFFECTED_FOOT` are 1 + this times as long as the others
+    (:func:`step_time_factor`, decision S35).
 
     ``rocker``: "hermite" (the foot is flat and still ``LOAD_FRACTION`` of the cycle after the contact) or "smooth"
     (still only ``ROCKER_FRACTION`` after it, decisions S31; the foot-flat event stays at ``LOAD_FRACTION``).
@@ -174,6 +199,8 @@ def schedule(
         dfac, pfac, (vf, vz), clear = kd.duration, kd.toe_off, kd.impact, kd.clearance_m
         ic_pitch = None if kd.contact_deg is None else np.radians(kd.contact_deg)
         d = user.step_time(speed, st.gait) * dfac * max(0.7, 1.0 + rng.normal(0.0, cv))
+        if step_time_asymmetry:  # decision S35 (skipped at 0: default sessions bit for bit)
+            d *= step_time_factor(st.foot, step_time_asymmetry)
         if st.irregular:
             d *= 1.3
         T = 2.0 * d
