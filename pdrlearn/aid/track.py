@@ -9,12 +9,13 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pdrlearn.aid.fixes import FixLog, parse_nmea_lines, read_fix_csv, sigma_from_accuracy, to_local
+from pdrlearn.aid.fixes import FixLog, parse_nmea_lines, read_fix_csv, to_local
 from pdrlearn.aid.geo import enu_to_geodetic
 from pdrlearn.aid.gnss import GnssPdrFusion
 from pdrlearn.aid.sporadic import SporadicFixFusion
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
+from pdrlearn.kernels.fixes import initial_fix_sigma
 from pdrlearn.track.base import TrackResult
 
 log = logging.getLogger(__name__)
@@ -167,11 +168,8 @@ def aid_track(
                 )
         info["origin"] = list(origin) if origin else None
         # start known (or local fixes around the track's own origin): 1 m; else the first fix's sigma
-        sigma0 = (
-            1.0
-            if start is not None or "x" in flog.fixes.columns
-            else float(sigma_from_accuracy(fx["accuracy_m"].iloc[0]))
-        )
+        sigma0 = initial_fix_sigma(start_known=start is not None, xy_fixes="x" in flog.fixes.columns,
+                                   first_accuracy_m=fx["accuracy_m"].iloc[0] if len(fx) else None)
         if kind == "gnss":
             mode = "saving" if gnss_period_s else "best"
             f = GnssPdrFusion(mode=mode, period_s=float(gnss_period_s or 60.0), initial_sigma_m=sigma0)

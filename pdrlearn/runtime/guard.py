@@ -53,7 +53,8 @@ class UnitGuard:
     the first gyroscope window in which its unit's accelerometer shows movement (B37's |acc| sd over
     :data:`~pdrlearn.kernels.units.WALKING_ACC_STD`)."""
 
-    def __init__(self, used):
+    def __init__(self, used, who: str = "Tracker"):
+        self.who = who  # the class named in the lines (the foot Tracker, a WaistTracker)
         self.held: dict[str, list] = {n: [] for n in GUARDED if n in set(used)}
         self.judged: set[str] = set()  # accelerometers checked; gyroscopes seen in motion (B91 judged)
         self.rates: dict[str, float] = {}  # B91's swing rate of each gyroscope judged in motion (rad/s)
@@ -109,7 +110,7 @@ class UnitGuard:
             span = float(t[-1] - t[0])
             what = (f"its first {span:.1f} s" if name not in self.judged
                     else f"its samples of {float(t[0]):.1f}-{float(t[-1]):.1f} s")
-            check_units(_Kind(name, GUARDED[name]), v, f"{name} ({what} pushed to the Tracker, decision B119)",
+            check_units(_Kind(name, GUARDED[name]), v, f"{name} ({what} pushed to the {self.who}, decision B119)",
                         declare="", t=t)
         rates = {**self.rates, **{n: swing_rate(ready[n][1]) for n in moving}}
         f99, w99 = rates.get("fGyroscope", math.nan), rates.get("wGyroscope", math.nan)
