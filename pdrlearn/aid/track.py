@@ -118,7 +118,8 @@ def aid_track(
 
     Returns
     -------
-    TrackResult with the fused trajectory (``x``, ``y``; ``x_pdr``, ``y_pdr`` = PDR only; ``lat``/``lon``
+    TrackResult with the fused trajectory (``x``, ``y``; ``x_pdr``, ``y_pdr`` = PDR only; ``x_rt``, ``y_rt`` = the
+    causal estimate at each step, what the live trackers' ``add_fix`` gives (D19); ``lat``/``lon``
     when the origin is geodetic) and ``info['aid']`` (fixes read/used/unused and why, GNSS-on fraction, fix
     table; the keys are documented in docs/aided.md, decision D17). Fixes that are not used are warned in
     one line with the reason (D18).
@@ -201,6 +202,8 @@ def aid_track(
             fused = tr.copy()
         else:
             fused["x"], fused["y"] = tr["x"].to_numpy(), tr["y"].to_numpy()
+            if "x_rt" in tr:
+                fused["x_rt"], fused["y_rt"] = tr["x_rt"].to_numpy(), tr["y_rt"].to_numpy()
             fused["fix_used"] = fused["fix_used"].to_numpy(bool) | tr["fix_used"].to_numpy(bool)
         cur_steps = _steps_from_path(tr["x"].to_numpy(), tr["y"].to_numpy(), check_sorted(steps))
         all_fixes.append(fx.assign(source=kind))
@@ -211,6 +214,8 @@ def aid_track(
         out["x_pdr"], out["y_pdr"] = traj0["x"].to_numpy(), traj0["y"].to_numpy()
     if "fix_used" in fused:
         out["fix_used"] = fused["fix_used"].to_numpy()
+    if "x_rt" in fused and len(fused) == len(out):  # the causal estimate: what a live tracker shows (D19)
+        out["x_rt"], out["y_rt"] = fused["x_rt"].to_numpy(), fused["y_rt"].to_numpy()
     if origin is not None:
         out["lat"], out["lon"] = enu_to_geodetic(out["x"].to_numpy(), out["y"].to_numpy(), *origin)
     fixes = pd.concat(all_fixes, ignore_index=True)
