@@ -193,3 +193,17 @@ def test_the_window_of_a_trimmed_step_is_refused(root, walk):
     with pytest.raises(DataError, match=rf"^window\({first.start_s:.3f}, {first.end_s:.3f}\): the tracker holds "
                                         r"\w+ from \d+\.\d{3} to \d+\.\d{3} s only .*decision E63"):
         tr.window(first.start_s, first.end_s)
+
+
+def test_a_refusal_at_flush_is_given_once_and_the_next_flush_ends_the_stream(root, walk):
+    """Review 2: ``flush`` checked a stream shorter than GUARD_S and raised; every later ``flush`` raised again (the
+    guard was kept), so D21's unused-fix line was never given."""
+    short = without(_scaled(walk, "fAccelerometer", 1 / 9.80665), 3.0, 1e9)  # 3 s in g: the window never completes
+    tr = Tracker(root / "bundle")
+    tr.add_fix(100.0, 1.0, 1.0, accuracy_m=2.0)  # after the stream: unused
+    for c in per_timestamp(short):  # the first 3 s: not judged while pushed (the window never completes)
+        tr.push(c)
+    with pytest.raises(DataError, match=r"^fAccelerometer \(its first 3\.0 s pushed to the Tracker.*units of g"):
+        tr.flush()
+    tr.flush()  # the stream ends: the refusal is not repeated
+    assert tr.warnings[-1].startswith("1 of 1 fixes not used")  # D21

@@ -939,9 +939,9 @@ class Tracker(FixInput):
         resampled streams' last samples (their filter's delay, decision E22) are buffered first."""
         if self._foot_q:
             self._feed_foot()
-        if self._guard is not None:  # decision B119: a stream shorter than GUARD_S, checked on what it has
-            self._guard.finish()
-            self._guard = None
+        guard, self._guard = self._guard, None  # checked once: a refusal here does not repeat on every flush
+        if guard is not None:  # decision B119: a stream shorter than GUARD_S, checked on what it has
+            guard.finish()
         for name, (t, v) in self.inputs.flush().items():
             self._append(name, t, v)
         self._detect()
