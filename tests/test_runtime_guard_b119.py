@@ -207,3 +207,27 @@ def test_a_refusal_at_flush_is_given_once_and_the_next_flush_ends_the_stream(roo
         tr.flush()
     tr.flush()  # the stream ends: the refusal is not repeated
     assert tr.warnings[-1].startswith("1 of 1 fixes not used")  # D21
+
+
+def test_a_foot_accelerometer_arriving_after_its_gyroscope_is_not_taken_as_movement():
+    """Review 2: a gyroscope window whose accelerometer had not arrived was judged "in motion", so a still foot's
+    ~0 rad/s was taken as its swing and the waist's first fast turn refused as swapped units (B91)."""
+    from pdrlearn.kernels.units import WAIST_SWINGS
+    from pdrlearn.runtime.guard import UnitGuard
+
+    rng = np.random.default_rng(3)
+    t = np.arange(0, 5.5, 0.01)
+    still_g = rng.normal(0, 0.01, (len(t), 3))  # the foot stands
+    still_a = np.array([0.0, 9.81, 0.0]) + rng.normal(0, 0.02, (len(t), 3))
+    turn = np.column_stack([np.zeros(len(t)), np.zeros(len(t)), (WAIST_SWINGS + 1.0) * np.sin(2 * np.pi * t)])
+    walk_a = np.array([0.0, 9.81, 0.0]) + rng.normal(0, 2.0, (len(t), 3))  # the waist walks and pivots
+    g = UnitGuard(["fAccelerometer", "fGyroscope", "wAccelerometer", "wGyroscope"])
+    first = {"fGyroscope": (t, still_g), "wAccelerometer": (t, walk_a), "wGyroscope": (t, turn)}
+    g.take(first, g.check(first))  # the foot accelerometer's samples come later (another link)
+    late = {"fAccelerometer": (t, still_a)}
+    g.take(late, g.check(late))
+    assert "fGyroscope" not in g.rates  # not judged in motion on a window without its accelerometer
+    later = {"fGyroscope": (t + 5.5, still_g), "fAccelerometer": (t + 5.5, still_a),
+             "wAccelerometer": (t + 5.5, walk_a), "wGyroscope": (t + 5.5, turn)}
+    g.take(later, g.check(later))  # the foot still stands: still no B91 judgement, no refusal
+    assert "fGyroscope" not in g.rates and g.rates["wGyroscope"] > WAIST_SWINGS

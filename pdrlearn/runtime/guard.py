@@ -22,6 +22,10 @@ from pdrlearn.kernels.units import FROZEN_S, WALKING_ACC_STD, check_units, froze
 #: decision B119: seconds of a stream the unit checks judge (5 s: a few strides of foot-flats for B78's quietest
 #: windows, B91's swing needs walking; the steps of these seconds are emitted before the check, so short)
 GUARD_S = 5.0
+#: B91's movement test waits for the accelerometer to reach this close (s) to the end of its gyroscope's window:
+#: a foot whose accelerometer arrives later than its gyroscope (another Bluetooth link) is not taken as moving and
+#: its still gyroscope's ~0 rad/s does not make the waist's first fast turn look like swapped units (review 2)
+ACC_COVER_S = 0.25
 #: the sensors whose units are checked (the streamed tracker's IMUs; the kind check_units judges each by)
 GUARDED = {"fAccelerometer": "accelerometer", "fGyroscope": "gyroscope", "wAccelerometer": "accelerometer",
            "wGyroscope": "gyroscope"}
@@ -51,7 +55,8 @@ class UnitGuard:
     windows of :data:`GUARD_S` seconds for as long as it streams (a rate beyond a 2000 deg/s gyroscope in rad/s
     can not be rad/s: a waist in deg/s shows it at its first turn, not in a straight line); B91's swapped units on
     the first gyroscope window in which its unit's accelerometer shows movement (B37's |acc| sd over
-    :data:`~pdrlearn.kernels.units.WALKING_ACC_STD`)."""
+    :data:`~pdrlearn.kernels.units.WALKING_ACC_STD`; a window its accelerometer does not cover yet,
+    :data:`ACC_COVER_S`, is left to a later one)."""
 
     def __init__(self, used, who: str = "Tracker"):
         self.who = who  # the class named in the lines (the foot Tracker, a WaistTracker)
@@ -90,8 +95,10 @@ class UnitGuard:
         for name, (t, _) in ready.items():
             acc = name[0] + "Accelerometer"
             if GUARDED[name] == "gyroscope" and name not in self.judged:
-                a = self._joined([*self.held.get(acc, ()), arrays[acc]] if acc in arrays else self.held.get(acc, ()),
-                                 float(t[0]), float(t[-1]))
+                chunks = [*self.held.get(acc, ()), arrays[acc]] if acc in arrays else self.held.get(acc, ())
+                if acc in self.held and (not chunks or float(chunks[-1][0][-1]) < float(t[-1]) - ACC_COVER_S):
+                    continue  # its accelerometer has not arrived for this window yet (a later window judges B91)
+                a = self._joined(chunks, float(t[0]), float(t[-1]))
                 if a is None or len(a[0]) < 3 or float(np.std(np.linalg.norm(a[1], axis=1))) > WALKING_ACC_STD:
                     moving.add(name)
         self._judge(ready, moving)
