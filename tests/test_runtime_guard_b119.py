@@ -231,3 +231,49 @@ def test_a_foot_accelerometer_arriving_after_its_gyroscope_is_not_taken_as_movem
              "wAccelerometer": (t + 5.5, walk_a), "wGyroscope": (t + 5.5, turn)}
     g.take(later, g.check(later))  # the foot still stands: still no B91 judgement, no refusal
     assert "fGyroscope" not in g.rates and g.rates["wGyroscope"] > WAIST_SWINGS
+
+
+def _coarse_rest(seed: int = 0):
+    """30 s of a unit lying still at 100 Hz: a 10-bit +-16 g accelerometer (31 mg/LSB, 1.5 mg noise: its reading
+    repeats for seconds) and a gyroscope with 0.005 rad/s noise."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0, 30, 0.01)
+    lsb = 1 / 32
+    acc = np.round((np.array([0.03, -0.02, 1.0]) + rng.normal(0, 0.0015, (len(t), 3))) / lsb) * lsb * 9.80665
+    gyr = rng.normal(0, 0.005, (len(t), 3))
+    return t, acc, gyr
+
+
+def test_a_coarse_accelerometer_at_rest_is_not_called_frozen_live_or_offline(caplog):
+    """Review 2 (B120 amended): the rule fired on a coarsely quantised accelerometer lying still (runs of one
+    reading up to 8.1 s); a run is frozen only while the unit's other sensor shows it moving."""
+    from pdrlearn.io.plasys import warn_frozen
+    from pdrlearn.io.session import Session
+    from pdrlearn.runtime.guard import FrozenWatch
+
+    t, acc, gyr = _coarse_rest()
+    assert max(b - a for a, b, _ in frozen_spans(t, acc)) > FROZEN_S  # the runs are there
+    w = FrozenWatch()
+    msgs = []
+    for i in range(0, len(t), 25):
+        for name, v in (("fAccelerometer", acc), ("fGyroscope", gyr)):
+            w.note(name, t[i:i + 25], v[i:i + 25])
+        msgs += [w.feed(n, t[i:i + 25], v[i:i + 25]) for n, v in (("fAccelerometer", acc), ("fGyroscope", gyr))]
+    assert not any(msgs)
+    s = Session(name="rest", streams={"fAccelerometer": Stream("fAccelerometer", t, acc),
+                                      "fGyroscope": Stream("fGyroscope", t, gyr)})
+    caplog.clear()
+    with caplog.at_level(logging.WARNING):
+        warn_frozen(s)
+    assert not [r for r in caplog.records if "frozen" in r.getMessage()]
+    # the same accelerometer reading while the gyroscope turns (the unit moves): frozen, live and offline
+    gyr_turn = gyr + np.array([0.0, 0.0, 1.5])
+    w = FrozenWatch()
+    w.note("fGyroscope", t, gyr_turn)
+    frozen = np.tile(acc[0], (len(t), 1))
+    assert w.feed("fAccelerometer", t, frozen).startswith("fAccelerometer: 3000 identical consecutive samples")
+    s.streams["fGyroscope"] = Stream("fGyroscope", t, gyr_turn)
+    s.streams["fAccelerometer"] = Stream("fAccelerometer", t, frozen)
+    with caplog.at_level(logging.WARNING):
+        warn_frozen(s)
+    assert len([r for r in caplog.records if "frozen" in r.getMessage()]) == 1

@@ -17,7 +17,17 @@ import math
 import numpy as np
 
 from pdrlearn.errors import DataError
-from pdrlearn.kernels.units import FROZEN_S, WALKING_ACC_STD, check_units, frozen_message, swapped_units, swing_rate
+from pdrlearn.kernels.units import (
+    FROZEN_PARTNER,
+    FROZEN_S,
+    WALKING_ACC_STD,
+    check_units,
+    frozen_message,
+    moving_norm,
+    moving_samples,
+    swapped_units,
+    swing_rate,
+)
 
 #: decision B119: seconds of a stream the unit checks judge (5 s: a few strides of foot-flats for B78's quietest
 #: windows, B91's swing needs walking; the steps of these seconds are emitted before the check, so short)
@@ -151,14 +161,42 @@ class UnitGuard:
             self.held[name] = [c for c in chunks if c[0][-1] >= start] if users else []
 
 
+_NONE = np.zeros(0)
+
+
 class FrozenWatch:
     """Decision B120: one warning per run of bit-identical consecutive samples of a 3-axis stream lasting
-    :data:`~pdrlearn.kernels.units.FROZEN_S` or more, given by the push in which the run reaches it (the streamed
-    form of :func:`~pdrlearn.kernels.units.frozen_spans`)."""
+    :data:`~pdrlearn.kernels.units.FROZEN_S` or more while the unit's other sensor shows movement (:meth:`note`;
+    a quantised sensor at rest repeats too), given by the push in which both hold (the streamed form of
+    ``pdrlearn.io.plasys.warn_frozen``)."""
 
     def __init__(self):
         #: stream -> (first time of its current run of identical samples, samples in it, the sample, warned)
         self.run: dict[str, tuple[float, int, list, bool]] = {}
+        #: stream -> (its last moving sample before its latest chunk, the latest chunk's moving times): the unit's
+        #: movement evidence for its other sensor (B120 amended)
+        self.moved: dict[str, tuple[float, np.ndarray]] = {}
+
+    def note(self, name: str, t: np.ndarray, v: np.ndarray) -> None:
+        """The movement evidence of a pushed chunk of ``name`` (call for every watched stream of a push before
+        :meth:`feed`)."""
+        last, now = self.moved.get(name, (-math.inf, _NONE))
+        self.moved[name] = (max(last, float(now[-1])) if len(now) else last, t[moving_samples(name, v)])
+
+    def note1(self, name: str, t: float, vals: list) -> None:
+        """:meth:`note` of one sample on Python floats (decision E17)."""
+        last, now = self.moved.get(name, (-math.inf, _NONE))
+        if len(now):
+            last = max(last, float(now[-1]))
+        self.moved[name] = (last, np.array([t]) if moving_norm(name, math.hypot(*vals)) else _NONE)
+
+    def _moves(self, name: str, first: float, last: float) -> bool:
+        """Whether the unit of ``name`` moved between ``first`` and ``last`` by its other sensor (True when that
+        sensor is not streamed: the run alone decides, as before)."""
+        m = self.moved.get(FROZEN_PARTNER.get(name, ""))
+        if m is None:
+            return True
+        return m[0] >= first or bool(np.any((m[1] >= first) & (m[1] <= last)))
 
     def feed1(self, name: str, t: float, vals: list) -> str | None:
         """:meth:`feed` of one sample on Python floats (the tracker's one-sample path, decision E17)."""
@@ -168,7 +206,7 @@ class FrozenWatch:
             return None
         first, n, warned = r[0], r[1] + 1, r[3]
         msg = None
-        if not warned and t - first >= FROZEN_S:
+        if not warned and t - first >= FROZEN_S and self._moves(name, first, t):
             msg, warned = frozen_message(name, first, t, n, vals, ongoing=True), True
         self.run[name] = (first, n, vals, warned)
         return msg
@@ -188,7 +226,7 @@ class FrozenWatch:
             go_on = i == 0 and bool(same[0])  # the run held before this push goes on
             first, n = (prev[0], prev[1] + j + 1) if go_on else (float(t[i]), j - i + 1)
             warned = go_on and prev[3]
-            if not warned and float(t[j]) - first >= FROZEN_S and msg is None:
+            if not warned and float(t[j]) - first >= FROZEN_S and msg is None and self._moves(name, first, float(t[j])):
                 msg = frozen_message(name, first, float(t[j]), n, v[j], ongoing=j == len(t) - 1)
                 warned = True
             if j == len(t) - 1:

@@ -748,6 +748,12 @@ class Tracker(FixInput):
                         continue
                 self._append(name, t, v)
         frozen = self._frozen  # decision B120: a frozen sensor, one warning per run of identical samples
+        for name in _WATCHED:  # the unit's movement first (a run is frozen only while the other sensor moves)
+            f = fast.get(name)
+            if f is not None:
+                frozen.note1(name, *f)
+            elif name in checked:
+                frozen.note(name, *checked[name])
         for name in _WATCHED:
             f = fast.get(name)
             msg = (frozen.feed1(name, *f) if f is not None else

@@ -189,7 +189,9 @@ class WaistStream(FixInput):
         if self._fixes.t_start is None:  # aid_track's t_start: the track's first sample (decision D19, amended)
             self._fixes.t_start = float(t[0])
         self._last_t = float(t[-1])
-        for name, v in zip(WAIST_SENSORS, (acc, gyr), strict=True):  # decision B120
+        for name, v in zip(WAIST_SENSORS, (acc, gyr), strict=True):  # decision B120: the unit's movement first
+            self._frozen.note(name, t, v)
+        for name, v in zip(WAIST_SENSORS, (acc, gyr), strict=True):
             msg = self._frozen.feed(name, t, v)
             if msg:
                 self.warnings.append(msg)
