@@ -2,7 +2,8 @@
 
 A unit's axes are written as each sensor axis's body direction, ``x=up,y=right,z=forward`` (or the same as a dict /
 JSON object); the body frame is FLU (x forward, y left, z up). A 3x3 sensor -> body matrix must be a rotation
-(decision W95): orthonormal and right-handed (det +1).
+(decision W95): orthonormal; a mirrored one (det -1) is used with a warning, as D10 uses a left-handed declared
+frame.
 """
 
 from __future__ import annotations
@@ -50,8 +51,8 @@ def axes_dict(text, where: str) -> dict:
 
 def check_rotation(r, where: str) -> np.ndarray:
     """Decision W95: ``r`` as a 3x3 sensor -> body FLU rotation, or one line naming ``where``: the shape, finite
-    values, orthonormal within :data:`ORTHO_TOL` (a scaled or sheared matrix changes step lengths silently) and
-    det +1 (a mirrored frame turns every turn the other way)."""
+    values, orthonormal within :data:`ORTHO_TOL` (a scaled or sheared matrix changes step lengths silently); a
+    mirrored one (det -1) passes, for :func:`mirrored_line`."""
     try:
         m = np.asarray(r, dtype=float)
     except (TypeError, ValueError):
@@ -63,10 +64,16 @@ def check_rotation(r, where: str) -> np.ndarray:
     if err > ORTHO_TOL:
         raise DataError(f"{where}: the matrix is not a rotation (|R R^T - I| up to {err:.3g}: scaled or sheared axes "
                         "change the step lengths); give an orthonormal matrix or the axes as 'x=up,y=right,z=forward'")
-    if np.linalg.det(m) < 0:
-        raise DataError(f"{where}: the matrix is mirrored (det -1, a left-handed frame turns every turn the other "
-                        "way); one axis has the wrong sign: check the unit's axes")
     return m
+
+
+def mirrored_line(r: np.ndarray, where: str) -> str | None:
+    """Decision W95 (D10's rule for a declared frame): a mirrored rotation (det -1) is used -- it is right for
+    mirrored data -- with this warning line; None for a proper rotation."""
+    if np.linalg.det(r) > 0:
+        return None
+    return (f"{where}: the frame is mirrored (left-handed, det -1): every turn is turned the other way unless the "
+            "data are mirrored too; check the unit's axes (decision W95)")
 
 
 def frame_rotation(frame, where: str) -> np.ndarray:

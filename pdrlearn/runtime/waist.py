@@ -507,7 +507,7 @@ class WaistTracker(WaistStream):
     start : ``(x, y)`` or ``(x, y, z)`` (m, ENU; z is not tracked); heading_rad : the direction set off in (rad, ENU,
         0 = east; W81: a value over 2 pi, degrees, is refused)
     frame : the unit's axes, ``"x=up,y=right,z=forward"`` (as ``export --frame``) or a 3x3 sensor -> body FLU
-        rotation (decision W95: orthonormal, det +1), when the bundle has none (or to override it)
+        rotation (decision W95: orthonormal; mirrored: warned), when the bundle has none (or to override it)
     keep_steps : how many reported steps :attr:`steps` keeps (None: all)
     check_input : check the units of the first seconds (decision B119: acceleration in g or mg, a gyroscope in
         deg/s is one line) -- False only for data already checked
@@ -515,7 +515,7 @@ class WaistTracker(WaistStream):
 
     def __init__(self, bundle, *, fs: float | None = None, start=(0.0, 0.0), heading_rad: float = 0.0,
                  frame=None, keep_steps: int | None = None, check_input: bool = True):
-        from pdrlearn.kernels.frames import frame_rotation
+        from pdrlearn.kernels.frames import frame_rotation, mirrored_line
         from pdrlearn.kernels.waist import rate_mismatch_line
 
         b = bundle if isinstance(bundle, WaistBundle) else load_waist_bundle(bundle)
@@ -538,6 +538,9 @@ class WaistTracker(WaistStream):
             raise DataError(f"WaistTracker: heading_rad={h0!r} is not radians (|value| <= 2 pi); convert degrees "
                             "with math.radians")
         warnings = list(b.manifest.get("warnings") or [])
+        line = mirrored_line(rot, "WaistTracker: frame=" if frame is not None else f"waist bundle {b.path}")
+        if line:
+            warnings.append(line)
         line = rate_mismatch_line(b.rate_hz if b.params.source == "calibrated" else math.nan, float(fs),
                                   f"waist bundle {b.path}")
         if line:

@@ -178,6 +178,12 @@ class WaistTracker(WaistStream):
                             "'heading_rad': rad} and convert the positions yourself")
         x0, y0, h0, _ = _start(start, float(o["initial_heading"]))
         rot, self._declared, self._declared_origin = _declared_frame(frame, meta)
+        if rot is not None and self._declared is None:  # a matrix (an AxisFrame gets B108's check)
+            from pdrlearn.kernels.frames import mirrored_line
+
+            line = mirrored_line(rot, "WaistTracker: frame=")
+            if line:
+                warnings.append(line)
         self._chk = _HeldSamples(trim=False)  # B108: raw samples held until the declared frame is checked
         self._held = _HeldSamples(trim=True)  # W65: raw samples held until the frame is inferred
         super().__init__(fs, params=p, options=o, rotation=rot, start=(x0, y0, h0), warnings=warnings,
