@@ -1,7 +1,8 @@
 """Live position fixes (decisions D19-D21): ``tracker.add_fix(t, x, y, accuracy_m)`` on the foot runtime's
 ``Tracker`` and on the waist trackers is used at the step its time falls in, as ``pdrlearn track --fixes`` uses a fix
-file (D14): the live steps carry the causal estimate of ``SporadicFixFusion(period_s=None)`` on the same steps and
-fixes (its ``x_rt``, ``y_rt``), with the same counters; a fix pushed after its step was reported is counted late."""
+file (D14): the live steps carry the causal estimate of ``aid_track`` (``pdrlearn track --fixes``) on the same steps
+and fixes (its ``x_rt``, ``y_rt``: the same start sigma, and for the waist the same start time, so a fix before the
+first step is used), with the same counters; a fix pushed after its step was reported is counted late."""
 
 from __future__ import annotations
 
@@ -12,12 +13,14 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pdrlearn.aid.sporadic import SporadicFixFusion
+from pdrlearn.aid.track import aid_track
 from pdrlearn.errors import DataError
 from pdrlearn.export.waist import export_waist
 from pdrlearn.kernels.fixes import sigma_from_accuracy
 from pdrlearn.runtime import Tracker, WaistTracker, load_bundle
 from pdrlearn.sim import simulate
+from pdrlearn.track.base import TrackResult
+from pdrlearn.track.waist import track_waist
 
 ROOT = Path(__file__).resolve().parents[1]
 SHIPPED = ROOT / "models" / "plasys-sim-default"
@@ -32,27 +35,27 @@ def _fixes(t0: float, t1: float, seed: int) -> list[tuple[float, float, float, f
     return [(float(t), float(rng.normal(0, 5)), float(rng.normal(0, 5)), float(rng.uniform(1, 4))) for t in ts]
 
 
-def _offline(out, fixes, start_of, end_of, length_of, heading_of):
-    steps = pd.DataFrame({"start_s": [start_of(o) for o in out], "end_s": [end_of(o) for o in out],
-                          "length_m": [length_of(o) for o in out], "heading_rad": [heading_of(o) for o in out]})
-    fx = pd.DataFrame(fixes, columns=["t", "x", "y", "accuracy_m"])
-    return SporadicFixFusion(period_s=None).run(steps, fx)
+def _aid(result: TrackResult, session, fixes, tmp_path) -> TrackResult:
+    """``pdrlearn track --fixes FIXES.csv`` on a pipeline's result: :func:`aid_track` with an x, y fix file."""
+    csv = tmp_path / "fixes.csv"
+    pd.DataFrame(fixes, columns=["t", "x", "y", "accuracy_m"]).to_csv(csv, index=False)
+    return aid_track(result, session, fixes_path=csv)
 
 
-def _compare(out, f, late: int, live_stats: dict):
-    tj = f.trajectory_
+def _compare(out, aided: TrackResult, late: int, live_stats: dict, outside: int):
+    tj = aided.trajectory
     np.testing.assert_allclose([o.x for o in out], tj["x_rt"].to_numpy()[1:], atol=1e-9, rtol=0)
     np.testing.assert_allclose([o.y for o in out], tj["y_rt"].to_numpy()[1:], atol=1e-9, rtol=0)
-    off = f.stats_
+    off = aided.info["aid"]["fixes"]
     assert live_stats["fixes_used"] == off["fixes_used"] >= 3
     assert live_stats["fixes_superseded"] == off["fixes_superseded"] >= 1
-    assert live_stats["fixes_outside_track"] == off["fixes_outside_track"] == 2
+    assert live_stats["fixes_outside_track"] == off["fixes_outside_track"] == outside
     assert live_stats["fixes_late"] == late
     assert live_stats["fixes_unused"] == off["fixes_unused"] + late
     assert live_stats["fixes_read"] == live_stats["fixes_used"] + live_stats["fixes_unused"]
 
 
-def test_the_foot_runtime_uses_pushed_fixes_as_track_fixes_does():
+def test_the_foot_runtime_uses_pushed_fixes_as_track_fixes_does(tmp_path):
     s = simulate("A", 405)
     bundle = load_bundle(SHIPPED)
     data = {n: (st.t, st.values) for n, st in s.streams.items() if n in Tracker(bundle).used_sensors}
@@ -78,9 +81,15 @@ def test_the_foot_runtime_uses_pushed_fixes_as_track_fixes_does():
     out += tr.flush()
     assert len(out) == len(ref) > 10
     assert [o.length_m for o in out] == [o.length_m for o in ref]  # the fixes do not touch the PDR steps
-    f = _offline(out, fixes, lambda o: o.start_s, lambda o: o.end_s, lambda o: o.length_m, lambda o: o.heading_rad)
-    _compare(out, f, 1, tr.fix_stats())
-    first = int(np.flatnonzero(f.trajectory_["fix_used"].to_numpy()[1:])[0])
+    # the plasys pipeline's result on these steps: its trajectory starts at the first step's start (so a fix before
+    # it is outside the track), at the tracker's start position
+    steps = pd.DataFrame({"start_s": [o.start_s for o in ref], "end_s": [o.end_s for o in ref],
+                          "length_m": [o.length_m for o in ref], "heading_rad": [o.heading_rad for o in ref]})
+    traj = pd.DataFrame({"t": [ref[0].start_s, *[o.end_s for o in ref]], "x": [0.0, *[o.x for o in ref]],
+                         "y": [0.0, *[o.y for o in ref]], "z": 0.0})
+    aided = _aid(TrackResult(steps, traj, {}), s, fixes, tmp_path)
+    _compare(out, aided, 1, tr.fix_stats(), outside=2)
+    first = int(np.flatnonzero(aided.trajectory["fix_used"].to_numpy()[1:])[0])
     assert [(o.x, o.y) for o in out[:first]] == [(o.x, o.y) for o in ref[:first]]  # PDR until the first fix
     assert max(abs(o.x - r.x) for o, r in zip(out, ref, strict=True)) > 0.5  # the fixes moved the track
     st = tr.fix_stats()
@@ -108,8 +117,12 @@ def test_the_waist_runtime_uses_pushed_fixes_as_track_fixes_does(tmp_path):
         out += tr.push(a.t[i:i + 10], a.values[i:i + 10], g.values[i:i + 10])
     out += tr.flush()
     assert [o.length_m for o in out] == [o.length_m for o in ref]
-    f = _offline(out, fixes, lambda o: o.t, lambda o: o.end_s, lambda o: o.length_m, lambda o: o.heading_rad)
-    _compare(out, f, 0, tr.fix_stats())
+    offline = track_waist(s, pipeline="waist-pendulum", realtime=True, params=str(cal))  # what track runs
+    assert len(offline.steps) == len(out)
+    aided = _aid(offline, s, fixes, tmp_path)
+    # the fix before the first step is used at it, as offline (whose track starts at the session's first sample)
+    assert fixes[0][0] < out[0].t and aided.trajectory["fix_used"].iloc[1]
+    _compare(out, aided, 0, tr.fix_stats(), outside=1)
 
 
 def test_a_bad_fix_is_one_line():

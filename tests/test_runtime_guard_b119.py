@@ -193,3 +193,87 @@ def test_the_window_of_a_trimmed_step_is_refused(root, walk):
     with pytest.raises(DataError, match=rf"^window\({first.start_s:.3f}, {first.end_s:.3f}\): the tracker holds "
                                         r"\w+ from \d+\.\d{3} to \d+\.\d{3} s only .*decision E63"):
         tr.window(first.start_s, first.end_s)
+
+
+def test_a_refusal_at_flush_is_given_once_and_the_next_flush_ends_the_stream(root, walk):
+    """Review 2: ``flush`` checked a stream shorter than GUARD_S and raised; every later ``flush`` raised again (the
+    guard was kept), so D21's unused-fix line was never given."""
+    short = without(_scaled(walk, "fAccelerometer", 1 / 9.80665), 3.0, 1e9)  # 3 s in g: the window never completes
+    tr = Tracker(root / "bundle")
+    tr.add_fix(100.0, 1.0, 1.0, accuracy_m=2.0)  # after the stream: unused
+    for c in per_timestamp(short):  # the first 3 s: not judged while pushed (the window never completes)
+        tr.push(c)
+    with pytest.raises(DataError, match=r"^fAccelerometer \(its first 3\.0 s pushed to the Tracker.*units of g"):
+        tr.flush()
+    tr.flush()  # the stream ends: the refusal is not repeated
+    assert tr.warnings[-1].startswith("1 of 1 fixes not used")  # D21
+
+
+def test_a_foot_accelerometer_arriving_after_its_gyroscope_is_not_taken_as_movement():
+    """Review 2: a gyroscope window whose accelerometer had not arrived was judged "in motion", so a still foot's
+    ~0 rad/s was taken as its swing and the waist's first fast turn refused as swapped units (B91)."""
+    from pdrlearn.kernels.units import WAIST_SWINGS
+    from pdrlearn.runtime.guard import UnitGuard
+
+    rng = np.random.default_rng(3)
+    t = np.arange(0, 5.5, 0.01)
+    still_g = rng.normal(0, 0.01, (len(t), 3))  # the foot stands
+    still_a = np.array([0.0, 9.81, 0.0]) + rng.normal(0, 0.02, (len(t), 3))
+    turn = np.column_stack([np.zeros(len(t)), np.zeros(len(t)), (WAIST_SWINGS + 1.0) * np.sin(2 * np.pi * t)])
+    walk_a = np.array([0.0, 9.81, 0.0]) + rng.normal(0, 2.0, (len(t), 3))  # the waist walks and pivots
+    g = UnitGuard(["fAccelerometer", "fGyroscope", "wAccelerometer", "wGyroscope"])
+    first = {"fGyroscope": (t, still_g), "wAccelerometer": (t, walk_a), "wGyroscope": (t, turn)}
+    g.take(first, g.check(first))  # the foot accelerometer's samples come later (another link)
+    late = {"fAccelerometer": (t, still_a)}
+    g.take(late, g.check(late))
+    assert "fGyroscope" not in g.rates  # not judged in motion on a window without its accelerometer
+    later = {"fGyroscope": (t + 5.5, still_g), "fAccelerometer": (t + 5.5, still_a),
+             "wAccelerometer": (t + 5.5, walk_a), "wGyroscope": (t + 5.5, turn)}
+    g.take(later, g.check(later))  # the foot still stands: still no B91 judgement, no refusal
+    assert "fGyroscope" not in g.rates and g.rates["wGyroscope"] > WAIST_SWINGS
+
+
+def _coarse_rest(seed: int = 0):
+    """30 s of a unit lying still at 100 Hz: a 10-bit +-16 g accelerometer (31 mg/LSB, 1.5 mg noise: its reading
+    repeats for seconds) and a gyroscope with 0.005 rad/s noise."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0, 30, 0.01)
+    lsb = 1 / 32
+    acc = np.round((np.array([0.03, -0.02, 1.0]) + rng.normal(0, 0.0015, (len(t), 3))) / lsb) * lsb * 9.80665
+    gyr = rng.normal(0, 0.005, (len(t), 3))
+    return t, acc, gyr
+
+
+def test_a_coarse_accelerometer_at_rest_is_not_called_frozen_live_or_offline(caplog):
+    """Review 2 (B120 amended): the rule fired on a coarsely quantised accelerometer lying still (runs of one
+    reading up to 8.1 s); a run is frozen only while the unit's other sensor shows it moving."""
+    from pdrlearn.io.plasys import warn_frozen
+    from pdrlearn.io.session import Session
+    from pdrlearn.runtime.guard import FrozenWatch
+
+    t, acc, gyr = _coarse_rest()
+    assert max(b - a for a, b, _ in frozen_spans(t, acc)) > FROZEN_S  # the runs are there
+    w = FrozenWatch()
+    msgs = []
+    for i in range(0, len(t), 25):
+        for name, v in (("fAccelerometer", acc), ("fGyroscope", gyr)):
+            w.note(name, t[i:i + 25], v[i:i + 25])
+        msgs += [w.feed(n, t[i:i + 25], v[i:i + 25]) for n, v in (("fAccelerometer", acc), ("fGyroscope", gyr))]
+    assert not any(msgs)
+    s = Session(name="rest", streams={"fAccelerometer": Stream("fAccelerometer", t, acc),
+                                      "fGyroscope": Stream("fGyroscope", t, gyr)})
+    caplog.clear()
+    with caplog.at_level(logging.WARNING):
+        warn_frozen(s)
+    assert not [r for r in caplog.records if "frozen" in r.getMessage()]
+    # the same accelerometer reading while the gyroscope turns (the unit moves): frozen, live and offline
+    gyr_turn = gyr + np.array([0.0, 0.0, 1.5])
+    w = FrozenWatch()
+    w.note("fGyroscope", t, gyr_turn)
+    frozen = np.tile(acc[0], (len(t), 1))
+    assert w.feed("fAccelerometer", t, frozen).startswith("fAccelerometer: 3000 identical consecutive samples")
+    s.streams["fGyroscope"] = Stream("fGyroscope", t, gyr_turn)
+    s.streams["fAccelerometer"] = Stream("fAccelerometer", t, frozen)
+    with caplog.at_level(logging.WARNING):
+        warn_frozen(s)
+    assert len([r for r in caplog.records if "frozen" in r.getMessage()]) == 1

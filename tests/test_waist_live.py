@@ -190,7 +190,7 @@ def test_inputs_checked_in_one_line():
         tr.push([0.01], np.zeros((1, 3)), np.zeros((1, 3)))
     with pytest.raises(DataError, match="NaN"):
         tr.push([0.02], np.full((1, 3), np.nan), np.zeros((1, 3)))
-    with pytest.raises(DataError, match="x=up,y=right,z=forward"):
+    with pytest.raises(DataError, match=r"^WaistTracker: frame= .up-right-forward.: write e.g. x=forward,y=up,z=right"):
         WaistTracker(100.0, frame="up-right-forward")
     with pytest.raises(DataError, match="not supported live"):
         WaistTracker(100.0, frame="x=up,y=right,z=forward", start=(52.0, 13.0))

@@ -9,12 +9,13 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pdrlearn.aid.fixes import FixLog, parse_nmea_lines, read_fix_csv, sigma_from_accuracy, to_local
+from pdrlearn.aid.fixes import FixLog, parse_nmea_lines, read_fix_csv, to_local
 from pdrlearn.aid.geo import enu_to_geodetic
 from pdrlearn.aid.gnss import GnssPdrFusion
 from pdrlearn.aid.sporadic import SporadicFixFusion
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
+from pdrlearn.kernels.fixes import initial_fix_sigma
 from pdrlearn.track.base import TrackResult
 
 log = logging.getLogger(__name__)
@@ -117,7 +118,8 @@ def aid_track(
 
     Returns
     -------
-    TrackResult with the fused trajectory (``x``, ``y``; ``x_pdr``, ``y_pdr`` = PDR only; ``lat``/``lon``
+    TrackResult with the fused trajectory (``x``, ``y``; ``x_pdr``, ``y_pdr`` = PDR only; ``x_rt``, ``y_rt`` = the
+    causal estimate at each step, what the live trackers' ``add_fix`` gives (D19); ``lat``/``lon``
     when the origin is geodetic) and ``info['aid']`` (fixes read/used/unused and why, GNSS-on fraction, fix
     table; the keys are documented in docs/aided.md, decision D17). Fixes that are not used are warned in
     one line with the reason (D18).
@@ -167,11 +169,8 @@ def aid_track(
                 )
         info["origin"] = list(origin) if origin else None
         # start known (or local fixes around the track's own origin): 1 m; else the first fix's sigma
-        sigma0 = (
-            1.0
-            if start is not None or "x" in flog.fixes.columns
-            else float(sigma_from_accuracy(fx["accuracy_m"].iloc[0]))
-        )
+        sigma0 = initial_fix_sigma(start_known=start is not None, xy_fixes="x" in flog.fixes.columns,
+                                   first_accuracy_m=fx["accuracy_m"].iloc[0] if len(fx) else None)
         if kind == "gnss":
             mode = "saving" if gnss_period_s else "best"
             f = GnssPdrFusion(mode=mode, period_s=float(gnss_period_s or 60.0), initial_sigma_m=sigma0)
@@ -203,6 +202,8 @@ def aid_track(
             fused = tr.copy()
         else:
             fused["x"], fused["y"] = tr["x"].to_numpy(), tr["y"].to_numpy()
+            if "x_rt" in tr:
+                fused["x_rt"], fused["y_rt"] = tr["x_rt"].to_numpy(), tr["y_rt"].to_numpy()
             fused["fix_used"] = fused["fix_used"].to_numpy(bool) | tr["fix_used"].to_numpy(bool)
         cur_steps = _steps_from_path(tr["x"].to_numpy(), tr["y"].to_numpy(), check_sorted(steps))
         all_fixes.append(fx.assign(source=kind))
@@ -213,6 +214,8 @@ def aid_track(
         out["x_pdr"], out["y_pdr"] = traj0["x"].to_numpy(), traj0["y"].to_numpy()
     if "fix_used" in fused:
         out["fix_used"] = fused["fix_used"].to_numpy()
+    if "x_rt" in fused and len(fused) == len(out):  # the causal estimate: what a live tracker shows (D19)
+        out["x_rt"], out["y_rt"] = fused["x_rt"].to_numpy(), fused["y_rt"].to_numpy()
     if origin is not None:
         out["lat"], out["lon"] = enu_to_geodetic(out["x"].to_numpy(), out["y"].to_numpy(), *origin)
     fixes = pd.concat(all_fixes, ignore_index=True)

@@ -458,8 +458,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     gyr = g.values if len(g) == len(a) and np.allclose(g.t, a.t, atol=1e-6) else interp_rows(a.t, g.t, g.values)
     declared = session.frames.get("waist")  # as the foot run's frames: the session's declared frame first
     frame = None
-    if declared is not None:
-        frame = declared.matrix()
+    if declared is not None:  # checked against the data once, as the foot run's frames (D10, with its warning)
+        frame = session.require_frame("waist").matrix()
         if bundle.rotation is not None and not np.allclose(frame, bundle.rotation):
             import logging
 

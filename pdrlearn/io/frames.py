@@ -16,15 +16,9 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.sensors import PLACEMENTS
+from pdrlearn.kernels.frames import DIRECTIONS
 
-_DIRECTIONS = {
-    "forward": (1.0, 0.0, 0.0),
-    "backward": (-1.0, 0.0, 0.0),
-    "left": (0.0, 1.0, 0.0),
-    "right": (0.0, -1.0, 0.0),
-    "up": (0.0, 0.0, 1.0),
-    "down": (0.0, 0.0, -1.0),
-}
+_DIRECTIONS = DIRECTIONS
 
 
 @dataclass(frozen=True)

@@ -38,6 +38,7 @@ from pdrlearn.io.validate import (
     sample_numbers,
     time_unit_candidates,
 )
+from pdrlearn.kernels.frames import axes_dict
 
 log = logging.getLogger(__name__)
 
@@ -420,26 +421,9 @@ def parse_frame(text: str | dict | None, where: str = "--frames") -> AxisFrame |
     """An axis frame from ``{"x": "forward", ...}`` (dict or JSON text) or ``x=forward,y=up,z=right``."""
     if text is None:
         return None
-    if isinstance(text, str):
-        s = text.strip()
-        if s.startswith("{"):
-            import json
-
-            try:
-                d = json.loads(s)
-            except json.JSONDecodeError:
-                raise DataError(f"{where}: not valid JSON; write e.g. x=forward,y=up,z=right") from None
-        else:
-            try:
-                d = dict(p.split("=", 1) for p in s.replace(" ", "").split(","))
-            except ValueError:
-                raise DataError(f"{where} {text!r}: write e.g. x=forward,y=up,z=right") from None
-    else:
-        d = text
-    if not isinstance(d, dict):
-        raise DataError(f"{where}: expected an object such as {{\"x\": \"forward\", \"y\": \"up\", \"z\": \"right\"}}")
+    d = axes_dict(text, where)
     try:
-        return AxisFrame.from_dict({k.strip().lower(): str(v).strip().lower() for k, v in d.items()})
+        return AxisFrame.from_dict(d)
     except DataError as exc:
         raise DataError(f"{where}: {exc}") from None
 

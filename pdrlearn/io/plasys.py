@@ -1002,15 +1002,20 @@ def warn_saturation(session: Session) -> None:
 
 def warn_frozen(session: Session) -> None:
     """Decision B120: one warning per run of bit-identical consecutive samples of a 3-axis sensor file lasting
-    :data:`~pdrlearn.kernels.units.FROZEN_S` or more (a frozen sensor), naming the file and the span."""
-    from pdrlearn.kernels.units import frozen_message, frozen_spans
+    :data:`~pdrlearn.kernels.units.FROZEN_S` or more while the unit's other sensor shows it moving (a frozen
+    sensor; without that sensor, every such run), naming the file and the span."""
+    from pdrlearn.kernels.units import FROZEN_PARTNER, frozen_message, frozen_spans, moving_samples
 
     for name, s in session.streams.items():
         if s.values.ndim != 2 or s.values.shape[1] != 3:
             continue
         where = (str(Path(session.folder) / SENSORS[name].filename) if session.folder is not None
                  else f"session '{session.name}', stream {name}")
+        other = session.streams.get(FROZEN_PARTNER.get(name, ""))
+        moved = None if other is None else other.t[moving_samples(other.name, other.values)]
         for a, b, n in frozen_spans(s.t, s.values):
+            if moved is not None and not np.any((moved >= a) & (moved <= b)):
+                continue  # the unit rests (its other sensor shows no movement): a quantised reading, not frozen
             log.warning("%s", frozen_message(where, a, b, n, s.values[int(np.searchsorted(s.t, a))]))
 
 

@@ -158,6 +158,15 @@ def sigma_from_accuracy(accuracy_m) -> np.ndarray:
     return np.asarray(accuracy_m, dtype=float) / RADIUS68_PER_SIGMA
 
 
+def initial_fix_sigma(*, start_known: bool, xy_fixes: bool, first_accuracy_m: float | None = None) -> float:
+    """The step EKF's start standard deviation (m) in ``pdrlearn track --fixes`` and the live trackers (decision
+    D19, amended): 1 m when the start is known (a given start, or fixes in the track's own x, y frame around its
+    origin); else the first fix's per-axis sigma (the walk is assumed to start at the first fix)."""
+    if start_known or xy_fixes:
+        return 1.0
+    return float(sigma_from_accuracy(first_accuracy_m))
+
+
 def fixes_in_step(ft: np.ndarray, prev_t: float, t_k: float, first: bool) -> np.ndarray:
     """Decision D14: indices of the fixes (times ``ft``, s) in the step interval ``(prev_t, t_k]``; the first step
     also takes a fix at its very start (``prev_t`` itself, e.g. a start fix at t = 0). The step uses the last."""
@@ -253,6 +262,9 @@ class LiveFixes:
 
     def __init__(self, cfg, *, start_xy=(0.0, 0.0), initial_sigma_m: float | None = None):
         self.cfg = cfg
+        #: the track's start time (s): offline ``aid_track``'s ``t_start`` (the trajectory's first row); None: the
+        #: first step's start (a fix before it is outside the track)
+        self.t_start: float | None = None
         self._start = np.asarray(start_xy, float)
         self._sigma0 = cfg.initial_sigma_m if initial_sigma_m is None else float(initial_sigma_m)
         self.state: StepFixState | None = None
@@ -270,9 +282,10 @@ class LiveFixes:
     def step(self, start_s: float, end_s: float, length: float, heading: float) -> tuple[np.ndarray, bool]:
         """The fused (causal) position after one reported step and whether a fix was used at it."""
         if self.state is None:
-            self.state = StepFixState(self.cfg, self._start, self._sigma0, start_s)
-            outside = [f for f in self._pending if f[0] < start_s]  # before the track: never used (D17)
-            self._pending = [f for f in self._pending if f[0] >= start_s]
+            t0 = start_s if self.t_start is None else min(self.t_start, start_s)
+            self.state = StepFixState(self.cfg, self._start, self._sigma0, t0)
+            outside = [f for f in self._pending if f[0] < t0]  # before the track: never used (D17)
+            self._pending = [f for f in self._pending if f[0] >= t0]
             self.outside_before = len(outside)
         s = self.state
         self._k += 1

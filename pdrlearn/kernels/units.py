@@ -300,6 +300,34 @@ def swapped_units(foot_rate: float, waist_rate: float) -> bool:
 FROZEN_S = 2.0
 
 
+#: decision B120 (amended, review 2): a run of identical samples is a frozen sensor only while the unit moves, by its
+#: other sensor's evidence: a coarsely quantised accelerometer at rest repeats its reading for seconds (10-bit
+#: +-16 g, 31 mg/LSB, with 1.5 mg noise: runs up to 8.1 s), as a frozen one does; a moving unit changes every sensor
+FROZEN_PARTNER = {"fAccelerometer": "fGyroscope", "fGyroscope": "fAccelerometer", "wAccelerometer": "wGyroscope",
+                  "wGyroscope": "wAccelerometer", "wMagneticField": "wGyroscope"}
+#: a gyroscope sample shows movement over this rate (rad/s): above B36's still 0.3 rad/s and a standing body's sway
+MOVING_RPS = 0.5
+#: an accelerometer sample shows movement when |acc| is this far from gravity (m/s^2): twice B37's walking sd
+#: (0.5), over 3 steps of a 31 mg/LSB accelerometer at rest
+MOVING_ACC = 2 * WALKING_ACC_STD
+
+
+def moving_samples(name: str, values) -> np.ndarray:
+    """Decision B120: which samples of stream ``name`` (n, 3) show the unit moving (:data:`MOVING_RPS`,
+    :data:`MOVING_ACC`); a magnetometer shows none."""
+    v = np.asarray(values, dtype=float)
+    return np.asarray(moving_norm(name, np.linalg.norm(v.reshape(len(v), -1), axis=1)), dtype=bool)
+
+
+def moving_norm(name: str, norm):
+    """:func:`moving_samples` on the samples' norms (an array, or one float: the tracker's one-sample path)."""
+    if name.endswith("Gyroscope"):
+        return norm > MOVING_RPS
+    if name.endswith("Accelerometer"):
+        return abs(norm - STANDARD_GRAVITY) > MOVING_ACC
+    return norm != norm  # a magnetometer: no evidence (False; NaN never comes, the push checks it)
+
+
 def frozen_spans(t: np.ndarray, values: np.ndarray, min_s: float = FROZEN_S) -> list[tuple[float, float, int]]:
     """Decision B120: ``(first time, last time, samples)`` of each run of bit-identical consecutive rows of
     ``values`` (n, k) lasting ``min_s`` seconds or more (by ``t``, s)."""

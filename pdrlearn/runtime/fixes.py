@@ -21,9 +21,11 @@ class FixInput:
     """``add_fix`` / ``fix_stats`` for a tracker; the tracker calls :meth:`_fuse_step` on every step it reports."""
 
     def _init_fixes(self, start_xy) -> None:
-        from pdrlearn.kernels.fixes import FixConfig, LiveFixes
+        from pdrlearn.kernels.fixes import FixConfig, LiveFixes, initial_fix_sigma
 
-        self._fixes = LiveFixes(FixConfig(), start_xy=start_xy)
+        # add_fix takes x, y in the track's frame: ``track --fixes``' start sigma for an x, y fix file (D19)
+        self._fixes = LiveFixes(FixConfig(), start_xy=start_xy,
+                                initial_sigma_m=initial_fix_sigma(start_known=True, xy_fixes=True))
         self.fix_position: tuple[float, float] | None = None  # the fused position once a fix was used
         self._fix_warned = False
 

@@ -17,11 +17,25 @@ import math
 import numpy as np
 
 from pdrlearn.errors import DataError
-from pdrlearn.kernels.units import FROZEN_S, WALKING_ACC_STD, check_units, frozen_message, swapped_units, swing_rate
+from pdrlearn.kernels.units import (
+    FROZEN_PARTNER,
+    FROZEN_S,
+    WALKING_ACC_STD,
+    check_units,
+    frozen_message,
+    moving_norm,
+    moving_samples,
+    swapped_units,
+    swing_rate,
+)
 
 #: decision B119: seconds of a stream the unit checks judge (5 s: a few strides of foot-flats for B78's quietest
 #: windows, B91's swing needs walking; the steps of these seconds are emitted before the check, so short)
 GUARD_S = 5.0
+#: B91's movement test waits for the accelerometer to reach this close (s) to the end of its gyroscope's window:
+#: a foot whose accelerometer arrives later than its gyroscope (another Bluetooth link) is not taken as moving and
+#: its still gyroscope's ~0 rad/s does not make the waist's first fast turn look like swapped units (review 2)
+ACC_COVER_S = 0.25
 #: the sensors whose units are checked (the streamed tracker's IMUs; the kind check_units judges each by)
 GUARDED = {"fAccelerometer": "accelerometer", "fGyroscope": "gyroscope", "wAccelerometer": "accelerometer",
            "wGyroscope": "gyroscope"}
@@ -51,9 +65,11 @@ class UnitGuard:
     windows of :data:`GUARD_S` seconds for as long as it streams (a rate beyond a 2000 deg/s gyroscope in rad/s
     can not be rad/s: a waist in deg/s shows it at its first turn, not in a straight line); B91's swapped units on
     the first gyroscope window in which its unit's accelerometer shows movement (B37's |acc| sd over
-    :data:`~pdrlearn.kernels.units.WALKING_ACC_STD`)."""
+    :data:`~pdrlearn.kernels.units.WALKING_ACC_STD`; a window its accelerometer does not cover yet,
+    :data:`ACC_COVER_S`, is left to a later one)."""
 
-    def __init__(self, used):
+    def __init__(self, used, who: str = "Tracker"):
+        self.who = who  # the class named in the lines (the foot Tracker, a WaistTracker)
         self.held: dict[str, list] = {n: [] for n in GUARDED if n in set(used)}
         self.judged: set[str] = set()  # accelerometers checked; gyroscopes seen in motion (B91 judged)
         self.rates: dict[str, float] = {}  # B91's swing rate of each gyroscope judged in motion (rad/s)
@@ -89,8 +105,10 @@ class UnitGuard:
         for name, (t, _) in ready.items():
             acc = name[0] + "Accelerometer"
             if GUARDED[name] == "gyroscope" and name not in self.judged:
-                a = self._joined([*self.held.get(acc, ()), arrays[acc]] if acc in arrays else self.held.get(acc, ()),
-                                 float(t[0]), float(t[-1]))
+                chunks = [*self.held.get(acc, ()), arrays[acc]] if acc in arrays else self.held.get(acc, ())
+                if acc in self.held and (not chunks or float(chunks[-1][0][-1]) < float(t[-1]) - ACC_COVER_S):
+                    continue  # its accelerometer has not arrived for this window yet (a later window judges B91)
+                a = self._joined(chunks, float(t[0]), float(t[-1]))
                 if a is None or len(a[0]) < 3 or float(np.std(np.linalg.norm(a[1], axis=1))) > WALKING_ACC_STD:
                     moving.add(name)
         self._judge(ready, moving)
@@ -109,7 +127,7 @@ class UnitGuard:
             span = float(t[-1] - t[0])
             what = (f"its first {span:.1f} s" if name not in self.judged
                     else f"its samples of {float(t[0]):.1f}-{float(t[-1]):.1f} s")
-            check_units(_Kind(name, GUARDED[name]), v, f"{name} ({what} pushed to the Tracker, decision B119)",
+            check_units(_Kind(name, GUARDED[name]), v, f"{name} ({what} pushed to the {self.who}, decision B119)",
                         declare="", t=t)
         rates = {**self.rates, **{n: swing_rate(ready[n][1]) for n in moving}}
         f99, w99 = rates.get("fGyroscope", math.nan), rates.get("wGyroscope", math.nan)
@@ -143,14 +161,42 @@ class UnitGuard:
             self.held[name] = [c for c in chunks if c[0][-1] >= start] if users else []
 
 
+_NONE = np.zeros(0)
+
+
 class FrozenWatch:
     """Decision B120: one warning per run of bit-identical consecutive samples of a 3-axis stream lasting
-    :data:`~pdrlearn.kernels.units.FROZEN_S` or more, given by the push in which the run reaches it (the streamed
-    form of :func:`~pdrlearn.kernels.units.frozen_spans`)."""
+    :data:`~pdrlearn.kernels.units.FROZEN_S` or more while the unit's other sensor shows movement (:meth:`note`;
+    a quantised sensor at rest repeats too), given by the push in which both hold (the streamed form of
+    ``pdrlearn.io.plasys.warn_frozen``)."""
 
     def __init__(self):
         #: stream -> (first time of its current run of identical samples, samples in it, the sample, warned)
         self.run: dict[str, tuple[float, int, list, bool]] = {}
+        #: stream -> (its last moving sample before its latest chunk, the latest chunk's moving times): the unit's
+        #: movement evidence for its other sensor (B120 amended)
+        self.moved: dict[str, tuple[float, np.ndarray]] = {}
+
+    def note(self, name: str, t: np.ndarray, v: np.ndarray) -> None:
+        """The movement evidence of a pushed chunk of ``name`` (call for every watched stream of a push before
+        :meth:`feed`)."""
+        last, now = self.moved.get(name, (-math.inf, _NONE))
+        self.moved[name] = (max(last, float(now[-1])) if len(now) else last, t[moving_samples(name, v)])
+
+    def note1(self, name: str, t: float, vals: list) -> None:
+        """:meth:`note` of one sample on Python floats (decision E17)."""
+        last, now = self.moved.get(name, (-math.inf, _NONE))
+        if len(now):
+            last = max(last, float(now[-1]))
+        self.moved[name] = (last, np.array([t]) if moving_norm(name, math.hypot(*vals)) else _NONE)
+
+    def _moves(self, name: str, first: float, last: float) -> bool:
+        """Whether the unit of ``name`` moved between ``first`` and ``last`` by its other sensor (True when that
+        sensor is not streamed: the run alone decides, as before)."""
+        m = self.moved.get(FROZEN_PARTNER.get(name, ""))
+        if m is None:
+            return True
+        return m[0] >= first or bool(np.any((m[1] >= first) & (m[1] <= last)))
 
     def feed1(self, name: str, t: float, vals: list) -> str | None:
         """:meth:`feed` of one sample on Python floats (the tracker's one-sample path, decision E17)."""
@@ -160,7 +206,7 @@ class FrozenWatch:
             return None
         first, n, warned = r[0], r[1] + 1, r[3]
         msg = None
-        if not warned and t - first >= FROZEN_S:
+        if not warned and t - first >= FROZEN_S and self._moves(name, first, t):
             msg, warned = frozen_message(name, first, t, n, vals, ongoing=True), True
         self.run[name] = (first, n, vals, warned)
         return msg
@@ -180,7 +226,7 @@ class FrozenWatch:
             go_on = i == 0 and bool(same[0])  # the run held before this push goes on
             first, n = (prev[0], prev[1] + j + 1) if go_on else (float(t[i]), j - i + 1)
             warned = go_on and prev[3]
-            if not warned and float(t[j]) - first >= FROZEN_S and msg is None:
+            if not warned and float(t[j]) - first >= FROZEN_S and msg is None and self._moves(name, first, float(t[j])):
                 msg = frozen_message(name, first, float(t[j]), n, v[j], ongoing=j == len(t) - 1)
                 warned = True
             if j == len(t) - 1:

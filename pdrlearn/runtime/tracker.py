@@ -748,6 +748,12 @@ class Tracker(FixInput):
                         continue
                 self._append(name, t, v)
         frozen = self._frozen  # decision B120: a frozen sensor, one warning per run of identical samples
+        for name in _WATCHED:  # the unit's movement first (a run is frozen only while the other sensor moves)
+            f = fast.get(name)
+            if f is not None:
+                frozen.note1(name, *f)
+            elif name in checked:
+                frozen.note(name, *checked[name])
         for name in _WATCHED:
             f = fast.get(name)
             msg = (frozen.feed1(name, *f) if f is not None else
@@ -939,9 +945,9 @@ class Tracker(FixInput):
         resampled streams' last samples (their filter's delay, decision E22) are buffered first."""
         if self._foot_q:
             self._feed_foot()
-        if self._guard is not None:  # decision B119: a stream shorter than GUARD_S, checked on what it has
-            self._guard.finish()
-            self._guard = None
+        guard, self._guard = self._guard, None  # checked once: a refusal here does not repeat on every flush
+        if guard is not None:  # decision B119: a stream shorter than GUARD_S, checked on what it has
+            guard.finish()
         for name, (t, v) in self.inputs.flush().items():
             self._append(name, t, v)
         self._detect()

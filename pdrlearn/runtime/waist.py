@@ -74,11 +74,12 @@ class WaistStream(FixInput):
     _name = "WaistTracker"
 
     def __init__(self, fs: float, *, params, options: dict, walk_threshold: float, rotation, start: tuple,
-                 warnings: list[str], keep_steps: int | None = None):
+                 warnings: list[str], keep_steps: int | None = None, check_input: bool = True):
         from collections import deque
 
         from pdrlearn.kernels.waist import TurnPrior
         from pdrlearn.kernels.waist_stream import MAX_STEP_S
+        from pdrlearn.runtime.guard import FrozenWatch, UnitGuard
 
         self.fs = float(fs)
         self.params = params
@@ -89,6 +90,9 @@ class WaistStream(FixInput):
         self.position = (x0, y0)
         self.heading = float(self._h0)
         self._init_fixes((x0, y0))  # decisions D19-D21: add_fix
+        #: decision B119: the units of the first seconds (None: checked, or ``check_input=False``); B120: frozen
+        self._guard = UnitGuard(WAIST_SENSORS, self._name) if check_input else None
+        self._frozen = FrozenWatch()
         self.warnings: list[str] = list(warnings)
         for w in warnings:
             log.warning("live waist tracker: %s", w)
@@ -173,9 +177,25 @@ class WaistStream(FixInput):
             raise DataError(f"{self._name}.push: NaN or inf in the pushed samples; drop those samples")
         if t[0] <= self._last_t or (t.size > 1 and np.any(np.diff(t) <= 0)):
             raise DataError(f"{self._name}.push: timestamps must increase strictly across pushes (seconds)")
+        guard = self._guard
+        if guard is not None:  # decision B119, before any state changes (a refused push changes nothing)
+            arrays = {n: tv for n, tv in zip(WAIST_SENSORS, ((t, acc), (t, gyr)), strict=True)
+                      if n in guard.wanted()}
+            judged = guard.check(arrays)
         if self._dts is not None:
             self._unit_check(t)
+        if guard is not None:
+            guard.take(arrays, judged)
+        if self._fixes.t_start is None:  # aid_track's t_start: the track's first sample (decision D19, amended)
+            self._fixes.t_start = float(t[0])
         self._last_t = float(t[-1])
+        for name, v in zip(WAIST_SENSORS, (acc, gyr), strict=True):  # decision B120: the unit's movement first
+            self._frozen.note(name, t, v)
+        for name, v in zip(WAIST_SENSORS, (acc, gyr), strict=True):
+            msg = self._frozen.feed(name, t, v)
+            if msg:
+                self.warnings.append(msg)
+                log.warning("live waist tracker: %s", msg)
         v = np.column_stack([acc, gyr])
         if self._proc is None or self._frame_pending():
             v_t = self._frame(t, v)
@@ -200,6 +220,9 @@ class WaistStream(FixInput):
 
     def flush(self) -> list[LiveStep]:
         """End of the stream: decide the last contacts and report every step left."""
+        guard, self._guard = self._guard, None
+        if guard is not None:  # decision B119: a stream shorter than GUARD_S, checked on what it has
+            guard.finish()
         if self._proc is None:
             self._no_frame_at_end()
             return []
@@ -467,15 +490,6 @@ def load_waist_bundle(path: str | Path, *, verify: bool = True) -> WaistBundle:
     return WaistBundle(path, m, params, dict(m["options"]), rot)
 
 
-def _rotation(frame) -> np.ndarray:
-    r = np.asarray(frame, dtype=float)
-    if r.shape != (3, 3) or not np.all(np.isfinite(r)) or abs(abs(np.linalg.det(r)) - 1.0) > 1e-6:
-        raise DataError(f"WaistTracker: frame= must be the 3x3 rotation sensor -> body forward/left/up, got shape "
-                        f"{r.shape}; or export the bundle with 'pdrlearn export CAL.json --frame x=up,y=right,"
-                        "z=forward'")
-    return r
-
-
 class WaistTracker(WaistStream):
     """Live waist-only tracking from a waist bundle, numpy only (decisions E57, W92-W94; docs/deploying.md).
 
@@ -492,12 +506,16 @@ class WaistTracker(WaistStream):
         by more than 10 % warns (decision W87)
     start : ``(x, y)`` or ``(x, y, z)`` (m, ENU; z is not tracked); heading_rad : the direction set off in (rad, ENU,
         0 = east; W81: a value over 2 pi, degrees, is refused)
-    frame : a 3x3 sensor -> body FLU matrix when the bundle has none (or to override it)
+    frame : the unit's axes, ``"x=up,y=right,z=forward"`` (as ``export --frame``) or a 3x3 sensor -> body FLU
+        rotation (decision W95: orthonormal; mirrored: warned), when the bundle has none (or to override it)
     keep_steps : how many reported steps :attr:`steps` keeps (None: all)
+    check_input : check the units of the first seconds (decision B119: acceleration in g or mg, a gyroscope in
+        deg/s is one line) -- False only for data already checked
     """
 
     def __init__(self, bundle, *, fs: float | None = None, start=(0.0, 0.0), heading_rad: float = 0.0,
-                 frame=None, keep_steps: int | None = None):
+                 frame=None, keep_steps: int | None = None, check_input: bool = True):
+        from pdrlearn.kernels.frames import frame_rotation, mirrored_line
         from pdrlearn.kernels.waist import rate_mismatch_line
 
         b = bundle if isinstance(bundle, WaistBundle) else load_waist_bundle(bundle)
@@ -507,7 +525,7 @@ class WaistTracker(WaistStream):
         if not (isinstance(fs, int | float) and math.isfinite(fs) and fs > 0):
             raise DataError(f"WaistTracker: fs={fs!r} must be the sampling rate in Hz (the bundle {b.path} records "
                             "no calibration rate)")
-        rot = _rotation(frame) if frame is not None else b.rotation
+        rot = frame_rotation(frame, "WaistTracker: frame=") if frame is not None else b.rotation
         if rot is None:
             raise DataError(f"WaistTracker: bundle {b.path} has no waist axis frame; pass frame= (3x3 sensor -> "
                             "body FLU) or re-export with 'pdrlearn export CAL.json --frame x=up,y=right,z=forward'")
@@ -520,6 +538,9 @@ class WaistTracker(WaistStream):
             raise DataError(f"WaistTracker: heading_rad={h0!r} is not radians (|value| <= 2 pi); convert degrees "
                             "with math.radians")
         warnings = list(b.manifest.get("warnings") or [])
+        line = mirrored_line(rot, "WaistTracker: frame=" if frame is not None else f"waist bundle {b.path}")
+        if line:
+            warnings.append(line)
         line = rate_mismatch_line(b.rate_hz if b.params.source == "calibrated" else math.nan, float(fs),
                                   f"waist bundle {b.path}")
         if line:
@@ -527,4 +548,4 @@ class WaistTracker(WaistStream):
         thr = b.params.walk_threshold_mps2
         super().__init__(fs, params=b.params, options=b.options, rotation=rot, start=(x0, y0, h0),
                          warnings=warnings, walk_threshold=thr if thr is not None else b.manifest["walk_threshold"],
-                         keep_steps=keep_steps)
+                         keep_steps=keep_steps, check_input=check_input)

@@ -56,22 +56,13 @@ def _declared_frame(frame, meta: dict | None):
         return (None, None, "") if f is None else (f.matrix(), f, 'declared in meta "frames"')
     if isinstance(frame, AxisFrame):
         return frame.matrix(), frame, "given as frame="
-    if isinstance(frame, dict):
-        f = AxisFrame.from_dict(frame)
+    from pdrlearn.kernels.frames import axes_dict, check_rotation
+
+    if isinstance(frame, dict | str):
+        f = AxisFrame.from_dict(axes_dict(frame, "WaistTracker: frame="))
         return f.matrix(), f, "given as frame="
-    if isinstance(frame, str):
-        try:
-            d = dict(part.split("=") for part in frame.replace(" ", "").split(","))
-        except ValueError:
-            raise DataError(f"frame {frame!r}: write it as 'x=up,y=right,z=forward' (each sensor axis = a body "
-                            "direction)") from None
-        f = AxisFrame.from_dict(d)
-        return f.matrix(), f, "given as frame="
-    r = np.asarray(frame, dtype=float)
-    if r.shape != (3, 3) or not np.all(np.isfinite(r)) or abs(abs(np.linalg.det(r)) - 1.0) > 1e-6:
-        raise DataError(f"frame: a 3x3 rotation (sensor -> body forward/left/up) was expected, got shape {r.shape}; "
-                        "or pass {'x': 'up', 'y': 'right', 'z': 'forward'}")
-    return r, None, "given as frame="
+
+    return check_rotation(frame, "WaistTracker: frame="), None, "given as frame="
 
 
 def live_options(p, warnings: list[str], **given) -> dict:
@@ -151,6 +142,7 @@ class WaistTracker(WaistStream):
     integrate_stops, turn_factor, rhythm, merge_fragments, slow_turn_rps : as :func:`pdrlearn.track.waist.
         track_waist` (None: ``params.options``, else its defaults)
     keep_steps : how many reported steps :attr:`steps` keeps (None: all)
+    check_input : check the units of the first seconds (decision B119) -- False only for data already checked
 
     Attributes
     ----------
@@ -163,7 +155,7 @@ class WaistTracker(WaistStream):
                  height_m: float | None = None, frame=None, start=None, initial_heading: float | None = None,
                  integrate_stops: bool | None = None, turn_factor: bool | None = None, rhythm: bool | None = None,
                  merge_fragments: bool | None = None, slow_turn_rps: float | None = None,
-                 keep_steps: int | None = None):
+                 keep_steps: int | None = None, check_input: bool = True):
         from pdrlearn.io.session import Session
         from pdrlearn.track.waist import _start
         from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
@@ -186,11 +178,17 @@ class WaistTracker(WaistStream):
                             "'heading_rad': rad} and convert the positions yourself")
         x0, y0, h0, _ = _start(start, float(o["initial_heading"]))
         rot, self._declared, self._declared_origin = _declared_frame(frame, meta)
+        if rot is not None and self._declared is None:  # a matrix (an AxisFrame gets B108's check)
+            from pdrlearn.kernels.frames import mirrored_line
+
+            line = mirrored_line(rot, "WaistTracker: frame=")
+            if line:
+                warnings.append(line)
         self._chk = _HeldSamples(trim=False)  # B108: raw samples held until the declared frame is checked
         self._held = _HeldSamples(trim=True)  # W65: raw samples held until the frame is inferred
         super().__init__(fs, params=p, options=o, rotation=rot, start=(x0, y0, h0), warnings=warnings,
                          walk_threshold=p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None
-                         else WALK_THRESHOLD_MPS2, keep_steps=keep_steps)
+                         else WALK_THRESHOLD_MPS2, keep_steps=keep_steps, check_input=check_input)
 
     # -- W65: the frame ---------------------------------------------------------------------------------
     def _hold(self, t: np.ndarray, v: np.ndarray):
