@@ -9,13 +9,17 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   than the walk's median such interval (the walker's own rhythm: one stride of the tracked foot, one step on the
   lower back); the excess is the pause's length. So a pause is standing (no step of the tracked foot / of either
   foot) for about a second or more beyond the usual rhythm; the rests of a slow walker's ordinary stance are no
-  pause. Rows across a foot-data gap (``gap_s`` > 0, L67) are not judged: a sensor gap is not a pause.
+  pause. Rows across a foot-data gap (``gap_s`` > 0, L67) are not judged: a sensor gap is not a pause. An
+  interval across which the heading turns :data:`PAUSE_MAX_TURN_DEG` or more holds a turn: the time that turn
+  takes at :data:`TURN_ON_SPOT_MIN_DPS` is turning (a slow turn on the spot is no pause), only the excess beyond
+  it is standing (decision L119: a long stand before or after a turn is a pause and the turn still counts).
 * **walking bout**: the walk between pauses: ``n_walking_bouts`` = ``n_pauses`` + 1 (0 without a row).
 * **turn**: a run of consecutive rows whose heading changes at :data:`TURN_RATE_MIN_DPS` deg/s or more from
   one row to the next (heading change / time between the rows' starts; one slower row between two such rows
   belongs to the turn), its angle the summed (signed) change;
   ``turn_count`` counts the turns of at least :data:`TURN_COUNT_MIN_DEG` degrees (turnarounds, corners); a gentle
-  curve (below 15 deg/s, e.g. a 5 m radius at 1.2 m/s) or a pause is no turn. The heading of a foot row is the
+  curve (below 15 deg/s, e.g. a 5 m radius at 1.2 m/s) or a pause is no turn; an interval holding a pause and a
+  heading change of :data:`PAUSE_MAX_TURN_DEG` or more turns (L119: the turn took the time beside the standing). The heading of a foot row is the
   foot's own yaw, summed over ``turn_angle_rad`` where every row has it (the stride's displacement direction of
   a turn on the spot is short and noisy), else ``heading_rad``.
 * **stride-time variability** (foot tracks): ``stride_time_cv_pct`` = 100 x SD / mean (SD with n - 1) of the
@@ -43,8 +47,12 @@ import pandas as pd
 
 #: a pause is at least this much (s) longer than the walk's median row-to-row interval
 PAUSE_MIN_S = 1.0
-#: an interval across which the heading changes this much (deg) or more is a turn, not a pause
+#: an interval across which the heading changes this much (deg) or more holds a turn: the time the turn may take
+#: (:data:`TURN_ON_SPOT_MIN_DPS`) is no pause (decision L119)
 PAUSE_MAX_TURN_DEG = 30.0
+#: decision L119: the slowest turn on the spot the pause rule allows for (deg/s): a 180 deg turn in 9 s; the time
+#: of an interval's turn at this rate is turning, the rest beyond the walk's rhythm standing
+TURN_ON_SPOT_MIN_DPS = 20.0
 #: a row turns when its heading changes at this rate (deg/s) or more from the previous row
 TURN_RATE_MIN_DPS = 15.0
 #: ``turn_count`` counts turns of at least this angle (deg)
@@ -101,9 +109,10 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray
     if not pair.any():
         return np.zeros(len(d)), np.zeros(len(d), bool)
     excess = d - float(np.median(d[pair]))
-    if "heading_rad" in st:  # a walker who stands does not turn: a slow turn on the spot is no pause
+    if "heading_rad" in st:  # decision L119: a turn across the interval takes its time, the rest is standing
         with np.errstate(invalid="ignore"):
-            pair &= ~(np.abs(np.diff(np.degrees(_heading(st)))) >= PAUSE_MAX_TURN_DEG)
+            dh = np.abs(np.diff(np.degrees(_heading(st))))
+            excess = excess - np.where(dh >= PAUSE_MAX_TURN_DEG, dh / TURN_ON_SPOT_MIN_DPS, 0.0)
     return excess, pair & (excess >= min_s)
 
 
@@ -132,6 +141,8 @@ def turns(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS) -> np
     dh, dt = np.diff(h), np.diff(t)
     with np.errstate(invalid="ignore", divide="ignore"):
         turning = ok[:-1] & ok[1:] & np.isfinite(dh) & (dt > 0) & (np.abs(dh) / dt >= min_rate_dps)
+        # decision L119: a turn beside a pause turns in the time the pause rule left it (TURN_ON_SPOT_MIN_DPS)
+        turning |= _intervals(st)[1] & (np.abs(dh) >= PAUSE_MAX_TURN_DEG)
     # one row under the rate between two turning rows (a turn's slower step) does not split the turn
     turning[1:-1] |= turning[:-2] & turning[2:] & ok[1:-2] & ok[2:-1] & ok[3:] & np.isfinite(dh[1:-1])
     out, cur = [], None
