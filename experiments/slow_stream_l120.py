@@ -11,9 +11,8 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.cli import main as cli
-from pdrlearn.io import read_session
-from pdrlearn.track.evaluate import track_summary
-from pdrlearn.track.plasys import track_plasys, track_streaming
+from pdrlearn.cli.track import track_session, track_settings
+from pdrlearn.errors import DataError
 
 USERS = range(420, 425)
 SLOW = [(0.45, 1.0), (0.3, 1.0), (0.15, 1.5)]
@@ -28,36 +27,41 @@ def _sim(out: Path, user: int, rate: int, gait=None) -> Path:
     return out
 
 
-def _run(session, **kw) -> tuple[int, float]:
-    res = track_streaming(session, **kw) if kw.pop("_streaming", True) else track_plasys(session)
-    s = track_summary(res, session)
-    return len(res.steps), float(s["distance_error_pct"])
+def _run(folder: Path, *, streaming: bool = True, params: Path | None = None) -> tuple:
+    """``pdrlearn track [--streaming] [--params]`` (no model): (rows of steps.csv, distance error %), or (None,
+    the error line) when the track fails (the old segmenter's false stance can fail the foot frame check)."""
+    try:
+        out = track_session(folder, track_settings(pipeline="plasys", streaming=streaming, params=params))
+    except DataError as exc:
+        return None, str(exc)[:60]
+    return len(out["result"].steps), round(float(out["summary"]["distance_error_pct"]), 2)
 
 
 def main() -> int:
     tmp = Path(tempfile.mkdtemp(prefix="l120_"))
+    old_gap = tmp / "old.json"  # L120 off: the stance survives the fixed stance_gap_s alone
+    old_gap.write_text('{"stance_gap_swing_frac": 0.0}')
     rows = []
     for user in USERS:
         for gait in SLOW:
-            s = read_session(_sim(tmp / f"slow_{user}_{gait[0]}_{gait[1]}", user, 100, gait))
-            off = _run(s, _streaming=False)
-            old = _run(s, params={"stance_gap_s": 0.03})
-            new = _run(s)
+            s = _sim(tmp / f"slow_{user}_{gait[0]}_{gait[1]}", user, 100, gait)
+            off, old, new = _run(s, streaming=False), _run(s, params=old_gap), _run(s)
             rows.append(("slow", user, f"{gait[0]}/{gait[1]} 100Hz", off, old, new))
             print(*rows[-1], flush=True)
         for rate in (100, 20):
-            s = read_session(_sim(tmp / f"normal_{user}_{rate}", user, rate))
-            off = _run(s, _streaming=False)
-            old = _run(s, params={"stance_gap_s": 0.03})
-            new = _run(s)
+            s = _sim(tmp / f"normal_{user}_{rate}", user, rate)
+            off, old, new = _run(s, streaming=False), _run(s, params=old_gap), _run(s)
             rows.append(("normal", user, f"normal {rate}Hz", off, old, new))
             print(*rows[-1], flush=True)
     slow = [r for r in rows if r[0] == "slow"]
     normal = [r for r in rows if r[0] == "normal"]
-    a1 = all(abs(r[5][0] - r[3][0]) <= 1 for r in slow)
+    ok = [r for r in slow if r[3][0] is not None and r[5][0] is not None]
+    a1 = len(ok) == len(slow) and all(abs(r[5][0] - r[3][0]) <= 1 for r in slow)
     m_off = np.mean([abs(r[3][1]) for r in slow])
     m_new = np.mean([abs(r[5][1]) for r in slow])
-    m_old_slow = np.mean([abs(r[4][1]) for r in slow])
+    old_ok = [r for r in slow if r[4][0] is not None]
+    m_old_slow = np.mean([abs(r[4][1]) for r in old_ok])
+    print(f"old segmenter failed on {len(slow) - len(old_ok)} slow walk(s); its mean over the others")
     b1 = all(r[4][0] == r[5][0] for r in normal)
     n_old = np.mean([abs(r[4][1]) for r in normal])
     n_new = np.mean([abs(r[5][1]) for r in normal])

@@ -17,7 +17,6 @@ from pdrlearn.sim.route import parse_route
 from pdrlearn.track.base import get_pipeline
 from pdrlearn.track.clinical import CLINICAL_KEYS, clinical_summary, pauses, turns
 from pdrlearn.track.evaluate import track_summary
-
 from tests.conftest import REAL
 
 #: two 3 s stops, turns of 180, 90 and -45 deg, a gentle 90 deg curve (8 m radius, ~9 deg/s): 3 bouts, 2 turns
@@ -296,3 +295,24 @@ def test_track_without_force_sensors_withholds_a_scattered_cv(tmp_path, capsys, 
     assert summary["stride_time_cv_pct"] is None and summary["stride_time_cv_withheld"]["contact_cv_pct"] > 10
     assert "stride-time CV withheld" in out.err and "stride-time CV withheld" in out.out
     assert any("stride-time CV withheld" in w for w in summary["info"]["warnings"])
+
+
+def test_step_time_asymmetry_report_says_what_it_can():
+    """L121 (session 20 rehab trial): one foot's table cannot give a step-time asymmetry (None, why); on the lower
+    back an index under 20 % is the contacts' timing (symmetric walkers read up to 18.8 %): None with the raw
+    index; 20 % or more is reported with the caveat that the size is over-read."""
+    from pdrlearn.track.clinical import ASYMMETRY_FLOOR_PCT, step_time_asymmetry_report
+
+    foot = step_time_asymmetry_report(_foot_table(np.arange(12) * 1.2))
+    assert foot["step_time_asymmetry_pct"] is None and "one foot" in foot["reason"]
+
+    def waist(a, b, n=12):
+        t = np.cumsum(np.r_[0.0, np.tile([a, b], n // 2)])
+        return pd.DataFrame({"start_s": t[:-1], "end_s": t[1:], "has_next": True, "unit": "waist"})
+
+    small = step_time_asymmetry_report(waist(0.50, 0.55))  # SI 9.5 %
+    assert small["step_time_asymmetry_pct"] is None and small["raw_pct"] == pytest.approx(100 * 0.05 / 0.525)
+    assert f"{ASYMMETRY_FLOOR_PCT:.0f} %" in small["reason"]
+    big = step_time_asymmetry_report(waist(0.45, 0.75))  # SI 50 %
+    assert big["step_time_asymmetry_pct"] == pytest.approx(50.0) and big["n_step_times"] == 12
+    assert "over-reads" in big["reason"]

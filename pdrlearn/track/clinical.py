@@ -19,9 +19,9 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   belongs to the turn), its angle the summed (signed) change;
   ``turn_count`` counts the turns of at least :data:`TURN_COUNT_MIN_DEG` degrees (turnarounds, corners); a gentle
   curve (below 15 deg/s, e.g. a 5 m radius at 1.2 m/s) or a pause is no turn; an interval holding a pause and a
-  heading change of :data:`PAUSE_MAX_TURN_DEG` or more turns (L119: the turn took the time beside the standing). The heading of a foot row is the
-  foot's own yaw, summed over ``turn_angle_rad`` where every row has it (the stride's displacement direction of
-  a turn on the spot is short and noisy), else ``heading_rad``.
+  heading change of :data:`PAUSE_MAX_TURN_DEG` or more turns (L119: the turn took the time beside the
+  standing). The heading of a foot row is the foot's own yaw, summed over ``turn_angle_rad`` where every row has
+  it (the stride's displacement direction of a turn on the spot is short and noisy), else ``heading_rad``.
 * **stride-time variability** (foot tracks): ``stride_time_cv_pct`` = 100 x SD / mean (SD with n - 1) of the
   stride times (initial contact to initial contact, L66) of the steady straight strides: a stride turning under
   15 deg (L79) with a stride time, not next to a pause, whose previous and next strides are such strides too
@@ -225,6 +225,44 @@ def step_time_asymmetry(step_s, has_next, broken=None, *, min_steps: int = ASYMM
     if not indices:
         return None, 0
     return float(np.average(indices, weights=weights)), int(sum(weights))
+
+
+#: decision L121: a lower-back step-time symmetry index under this (%) is not told apart from the detector's own
+#: left/right contact timing (symmetric simulated walkers read up to 18.8 %: session 20's trial, festination)
+ASYMMETRY_FLOOR_PCT = 20.0
+
+
+def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
+    """Decision L121 (Python API): what a tracked step table can honestly say about the step-time asymmetry.
+    ``{"step_time_asymmetry_pct", "raw_pct", "n_step_times", "reason"}``:
+
+    * a **foot** table (one foot's strides): ``None`` - a step time runs from one foot's contact to the other
+      foot's, which a unit on one foot does not see (L104); ``reason`` says so;
+    * a **lower-back** table: :func:`step_time_asymmetry`'s index (``raw_pct``) on its alternating contacts, given
+      as ``step_time_asymmetry_pct`` only when it reaches :data:`ASYMMETRY_FLOOR_PCT` (then ``reason`` says it
+      is over-read: a simulated 39.1 % read 55.2 %); under it ``None``: symmetric simulated walkers read
+      3-19 % from the contacts' timing alone (L111, the session-20 trial), so a smaller index tells nothing.
+      A lower-back table of something that is no walk (a wheelchair's pushes, the trial's finding 1) still
+      gives contacts: the index does not check that they are steps."""
+    out = {"step_time_asymmetry_pct": None, "raw_pct": None, "n_step_times": 0, "reason": None}
+    if "unit" in steps and len(steps) and (steps["unit"] == "foot").all() or "stride_time_s" in steps:
+        out["reason"] = ("not observable from one foot's unit: a step time runs from one foot's contact to the "
+                         "other foot's; use a lower-back unit (or a unit on each foot)")
+        return out
+    from pdrlearn.track.gait import waist_step_times
+
+    pct, n = step_time_asymmetry(*waist_step_times(steps))
+    out["raw_pct"], out["n_step_times"] = pct, n
+    if pct is None:
+        out["reason"] = (f"no walking sequence with {ASYMMETRY_MIN_STEPS} step times of each foot")
+    elif pct < ASYMMETRY_FLOOR_PCT:
+        out["reason"] = (f"index {pct:.1f} % is under {ASYMMETRY_FLOOR_PCT:.0f} %: the lower back's contact timing "
+                         "alone reads up to 18.8 % on walkers whose feet step alike (decision L121)")
+    else:
+        out["step_time_asymmetry_pct"] = pct
+        out["reason"] = ("asymmetric; the lower back over-reads the size (a simulated 39.1 % read 55.2 %, "
+                         "decision L121)")
+    return out
 
 
 def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None = None) -> dict:
