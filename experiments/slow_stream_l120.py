@@ -1,6 +1,7 @@
 """Decision L120's measurement (rule written before it, docs/decisions/localization.md): streamed vs offline foot
 strides on slow simulated walks, and the streamed default stance gap (0.03 s before, 0.2 s candidate) on normal
-walks. Fresh users 420-424. Run: ``OMP_NUM_THREADS=1 PYTHONPATH=. python experiments/slow_stream_l120.py``."""
+walks. Users 420-424 (first candidate), 430-434 (the amended one): ``OMP_NUM_THREADS=1 PYTHONPATH=. python
+experiments/slow_stream_l120.py [FIRST_USER LAST_USER]``."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ from pdrlearn.cli import main as cli
 from pdrlearn.cli.track import track_session, track_settings
 from pdrlearn.errors import DataError
 
-USERS = range(420, 425)
+USERS = range(int(sys.argv[1]), int(sys.argv[2]) + 1) if len(sys.argv) > 2 else range(420, 425)
 SLOW = [(0.45, 1.0), (0.3, 1.0), (0.15, 1.5)]
 ROUTE = "stand:3, straight:12, stand:3"
 

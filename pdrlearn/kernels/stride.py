@@ -157,6 +157,8 @@ class StanceSegmenter:
         self.last_boundary: float | None = None
         self.prev_stance_end: float | None = None  # decision L120: the last stance's last still sample (s)
         self.moved = False  # decision L120: a sample since the last still one was not still
+        self.run_start = -np.inf  # decision L120: the start (s) of the stance's current still run
+        self.best_run: tuple[float, float] | None = None  # and its longest earlier run
         # decision L27: trailing min_stance_s window of [t, |w|, threshold] (running sum of |w|) and the
         # trailing minimum of its mean (monotonic deque)
         self._mean_q: deque = deque()
@@ -175,9 +177,13 @@ class StanceSegmenter:
         ``stance_gap_swing_frac`` x the swing before it (previous stance's end to this one's start) when
         longer, at most ``stance_gap_max_s``, while the stance has not closed the stride (a stance lasting
         2 ``stance_half_s`` closes it early: a slow walker's foot-flat; the swing after it may dip under the
-        threshold and must end it)."""
+        threshold and must end it) and none of its still runs has lasted ``stance_half_s`` (a foot-flat: an
+        instep mount's fragmented stances must end on the fixed gap, or swing dips chain strides together)."""
         if self.prev_stance_end is None or self.stance_start is None or self.closed:
             return self.gap  # a stance that closed its stride (a long foot-flat) ends on the fixed gap
+        s0, s1 = self._stance_run()
+        if s1 - s0 >= self.half - TIE_S:  # a still run of stance_half_s is a foot-flat, no terminal-swing moment
+            return self.gap
         swing = self.stance_start - self.prev_stance_end
         return max(self.gap, min(self.swing_frac * swing, self.gap_max))
 
@@ -232,22 +238,23 @@ class StanceSegmenter:
                 ti, still = tn, wn < th
             if still:
                 if self.stance_start is None:
-                    self.stance_start, self.closed = ti, False
+                    self.stance_start, self.run_start, self.best_run, self.closed = ti, ti, None, False
                 elif self.moved and ti - self.last_still > self.gap + TIE_S:
-                    self.stance_start = ti  # L120: still again after motion only L120's gap bridged: the rest is here
+                    self._keep_run()  # L120: a new still run after motion only L120's gap bridged
+                    self.run_start = ti
                 self.last_still, self.moved = ti, False
-                if not self.closed and ti - self.stance_start >= max(2 * self.half, min_run) - TIE_S:
-                    self._close(self.stance_start + self.half, out)  # long stance: close the stride now
+                if not self.closed and ti - self.run_start >= max(2 * self.half, min_run) - TIE_S:
+                    self._close(self.run_start + self.half, out)  # long stance: close the stride now
                 continue
             self.moved = True
             if self.stance_start is not None and ti - self.last_still > self._gap_now() + TIE_S:  # L27, L120
-                s0, s1 = self.stance_start, self.last_still
+                s0, s1 = self._stance_run()
                 if s1 - s0 >= min_run - TIE_S:
                     mid = 0.5 * (s0 + s1)
                     if not self.closed:
                         self._close(mid, out)
                     self.open_s = max(mid, s1 - self.half)
-                    self.prev_stance_end = s1
+                    self.prev_stance_end = self.last_still
                 self.stance_start = None
         return out
 
@@ -266,9 +273,10 @@ class StanceSegmenter:
         stance of the minimum length, already closed, no stride open, out of ``min_step_s``..``max_step_s``).
         The sample judged next is taken to be the one after the last centre; irregular clocks may judge
         another first: a likely stride, never a certain one."""
-        s0, s1, start = self.stance_start, self.last_still, self.open_s
-        if s0 is None or start is None or self.closed:
+        start = self.open_s
+        if self.stance_start is None or start is None or self.closed:
             return None
+        s0, s1 = self._stance_run()
         mean_rule = self.mean_min > 0
         min_run = self.mean_min if mean_rule else self.min_stance_s
         mq = self._mean_q
@@ -276,16 +284,30 @@ class StanceSegmenter:
             # the sample judged next: usually the one after the last centre (with a steady clock)
             tn, wn, thn = mq[(len(mq) - 1) // 2 + 1]
             if wn < thn:  # still for certain: no stance ends there, but a long one may close early
-                if tn - s0 < max(2 * self.half, min_run) - TIE_S:
+                if tn - self.run_start < max(2 * self.half, min_run) - TIE_S:
                     return None
-                end = s0 + self.half  # update's long-stance close
+                end = self.run_start + self.half  # update's long-stance close
                 return (start, end) if self._step_ok(end - start) else None
-            if tn - s1 <= self._gap_now() + TIE_S:  # a sample within the gap (L27, L120) ends no stance
+            if tn - self.last_still <= self._gap_now() + TIE_S:  # within the gap (L27, L120): ends no stance
                 return None
         if s1 - s0 < min_run - TIE_S:
             return None
         end = 0.5 * (s0 + s1)
         return (start, end) if self._step_ok(end - start) else None
+
+    def _keep_run(self) -> None:
+        """Decision L120: remember the still run that just ended inside a bridged stance when it is the longest."""
+        cur = (self.run_start, self.last_still)
+        if self.best_run is None or cur[1] - cur[0] > self.best_run[1] - self.best_run[0]:
+            self.best_run = cur
+
+    def _stance_run(self) -> tuple[float, float]:
+        """Decision L120: the still run ``(start, end)`` (s) whose middle bounds the strides - the stance's longest
+        (a slow walker's foot-flat, not the terminal swing's moment under the threshold before it, nor a blip
+        after a short real foot-flat); the stance's only run without L120."""
+        cur = (self.run_start, self.last_still)
+        best = self.best_run
+        return best if best is not None and best[1] - best[0] > cur[1] - cur[0] else cur
 
     def _step_ok(self, duration: float) -> bool:
         return self.min_step_s - TIE_S <= duration <= self.max_step_s + TIE_S
