@@ -10,7 +10,10 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
-from pdrlearn.kernels.stride import StanceSegmenter, stance_strides
+from pdrlearn.kernels.stride import STANCE_GAP_SWING_FRAC_OPTION, StanceSegmenter, stance_strides
+
+#: decision L120's option (not the default: its rule failed on the 0.1 m/s walks)
+L120 = {"stance_gap_swing_frac": STANCE_GAP_SWING_FRAC_OPTION}
 
 
 @pytest.fixture(scope="module")
@@ -28,17 +31,17 @@ def _track(session, out, *extra) -> dict:
 
 
 def test_streamed_slow_strides_are_not_split(slow_walk, tmp_path):
-    """L120: the slow terminal swing's ~0.1 s under the threshold before the heel strike, and the heel rocker
+    """L120 (an option): the slow terminal swing's ~0.1 s under the threshold before the heel strike, and the heel rocker
     after it, no longer end a streamed stance: streamed = offline = the truth (the trial: 22 streamed for 12)."""
     off = _track(slow_walk, tmp_path / "off")
-    st = _track(slow_walk, tmp_path / "st", "--streaming")
+    (tmp_path / "l120.json").write_text(json.dumps(L120))
+    st = _track(slow_walk, tmp_path / "st", "--streaming", "--params", str(tmp_path / "l120.json"))
     n_true = len(pd.read_csv(slow_walk / "steps.csv"))
     assert off["n_strides_one_foot"] == st["n_strides_one_foot"] == n_true, (off["n_strides_one_foot"],
                                                                              st["n_strides_one_foot"], n_true)
     assert abs(st["distance_error_pct"]) < 5.0
-    # the option off (stance_gap_swing_frac 0) is the old segmenter: the split comes back
-    (tmp_path / "p.json").write_text('{"stance_gap_swing_frac": 0.0}')
-    old = _track(slow_walk, tmp_path / "old", "--streaming", "--params", str(tmp_path / "p.json"))
+    # the default (the option off) is the old segmenter: the split is there
+    old = _track(slow_walk, tmp_path / "old", "--streaming")
     assert old["n_strides_one_foot"] >= 1.5 * n_true
 
 
@@ -53,9 +56,9 @@ def test_a_long_foot_flat_ends_on_the_fixed_gap():
         w[sw] = 3.0
         w[(t >= a + 0.4) & (t < a + 0.45)] = 0.1
     gyr = np.column_stack([w, np.zeros_like(w), np.zeros_like(w)])
-    assert len(stance_strides(t, gyr)) == 3
-    seg = StanceSegmenter()
-    assert seg.swing_frac == 0.35 and seg.gap_max == 0.5
+    assert len(stance_strides(t, gyr, L120)) == len(stance_strides(t, gyr)) == 3
+    seg = StanceSegmenter.from_params(L120)
+    assert seg.swing_frac == 0.35 and seg.gap_max == 0.5 and StanceSegmenter().swing_frac == 0.0
 
 
 def test_steps_counts_the_strides_track_integrates(tmp_path):

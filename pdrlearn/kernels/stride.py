@@ -80,10 +80,14 @@ def no_length_bounds_warning(subject: str = "the model", effect: str = "") -> st
 #: survives motion shorter than ``stance_gap_swing_frac`` x the swing before it (the motion from the previous
 #: stance's end to its start), at most ``stance_gap_max_s``: a slow walker's terminal swing passes under the
 #: threshold for ~0.1 s before the heel strike, and the heel rocker after it (0.2-0.3 s) must not end that stance
-#: (offline drops a swing under 0.2 s, ``track.plasys.stance_strides``); 0 = the fixed ``stance_gap_s`` alone.
+#: (offline drops a swing under 0.2 s, ``track.plasys.stance_strides``); 0 (the default) = the fixed
+#: ``stance_gap_s`` alone.
 STANCE_L27_DEFAULTS = {"stance_floor_factor": 2.0, "stance_floor_window_s": 1.0, "stance_gyro_max_rad_s": 2.0,
                        "stance_gap_s": 0.03, "stance_mean_min_s": 0.07,
-                       "stance_gap_swing_frac": 0.35, "stance_gap_max_s": 0.5}
+                       "stance_gap_swing_frac": 0.0, "stance_gap_max_s": 0.5}
+#: decision L120's option (not adopted as the default: its rule failed on the 0.1 m/s walks): give
+#: ``{"stance_gap_swing_frac": STANCE_GAP_SWING_FRAC_OPTION}`` (bundle ``displacement``, ``track --streaming --params``)
+STANCE_GAP_SWING_FRAC_OPTION = 0.35
 
 
 def stance_gyro_threshold(floor: np.ndarray | float, base: float, *, factor: float = 2.0,
@@ -239,7 +243,7 @@ class StanceSegmenter:
             if still:
                 if self.stance_start is None:
                     self.stance_start, self.run_start, self.best_run, self.closed = ti, ti, None, False
-                elif self.moved and ti - self.last_still > self.gap + TIE_S:
+                elif self.swing_frac > 0 and self.moved and ti - self.last_still > self.gap + TIE_S:
                     self._keep_run()  # L120: a new still run after motion only L120's gap bridged
                     self.run_start = ti
                 self.last_still, self.moved = ti, False
