@@ -31,8 +31,9 @@ def _track(session, out, *extra) -> dict:
 
 
 def test_streamed_slow_strides_are_not_split(slow_walk, tmp_path):
-    """L120 (an option): the slow terminal swing's ~0.1 s under the threshold before the heel strike, and the heel rocker
-    after it, no longer end a streamed stance: streamed = offline = the truth (the trial: 22 streamed for 12)."""
+    """L120 (an option): the slow terminal swing's ~0.1 s under the threshold before the heel strike, and the heel
+    rocker after it, no longer end a streamed stance: streamed = offline = the truth (the trial: 22 streamed for
+    12)."""
     off = _track(slow_walk, tmp_path / "off")
     (tmp_path / "l120.json").write_text(json.dumps(L120))
     st = _track(slow_walk, tmp_path / "st", "--streaming", "--params", str(tmp_path / "l120.json"))
