@@ -88,12 +88,39 @@ def session_files() -> tuple[str, ...]:
     return ("meta.json", *(s.filename for s in SENSORS.values()))
 
 
-def is_session_dir(p: str | os.PathLike) -> bool:
-    """Whether ``p`` is a session folder: it holds ``meta.json`` or a sensor CSV (``fAccelerometer.csv``, ...).
-    The one test of what a session is, shared by ``train-all``/``evaluate-all`` (:func:`user_sessions`),
-    ``track-all`` (:func:`find_sessions`) and the output-folder checks (decision C12)."""
+def is_session_dir(p: str | os.PathLike, _seen: frozenset = frozenset()) -> bool:
+    """Whether ``p`` is a session folder: it holds a sensor CSV (``fAccelerometer.csv``, ...), or ``meta.json``
+    and no session folder below it (decision C17: a site's or a subject's own ``meta.json`` above the session
+    level hid every session under it; a folder with only ``meta.json`` and nothing below stays a session, so
+    that ``track-all`` reports it as one without sensor files). The one test of what a session is, shared by
+    ``train-all``/``evaluate-all`` (:func:`user_sessions`), ``track-all`` (:func:`find_sessions`) and the
+    output-folder checks (decision C12)."""
     p = Path(p)
-    return p.is_dir() and any((p / n).is_file() for n in session_files())
+    if not p.is_dir():
+        return False
+    names = session_files()
+    if any((p / n).is_file() for n in names[1:]):
+        return True
+    if not (p / names[0]).is_file():
+        return False
+    return not _session_below(p, _seen)
+
+
+def _session_below(p: Path, seen: frozenset = frozenset()) -> bool:
+    """Whether a session folder lies below ``p`` at any depth (decision C17)."""
+    real = p.resolve()
+    if real in seen:  # a symbolic link back up the tree
+        return False
+    seen = seen | {real}
+    return any(is_session_dir(c, seen) or _session_below(c, seen) for c in _subfolders(p))
+
+
+def _subfolders(p: Path) -> list[Path]:
+    """The folders directly in ``p`` that a search for sessions enters (not hidden ones), sorted by name."""
+    try:
+        return sorted(c for c in p.iterdir() if c.is_dir() and not c.name.startswith("."))
+    except OSError:
+        return []
 
 
 def find_sessions(root: str | os.PathLike) -> list[Path]:
@@ -357,6 +384,13 @@ def captured_warnings(logger: str = "pdrlearn", *, echo: bool = False) -> Iterat
             h.removeFilter(below_warning)
 
 
+def grouped_warning(text: str, names: Sequence[str], total: int, noun: str = "sessions") -> str:
+    """One warning said once for the ``names`` (of ``total`` ``noun``) that raised it, the first three named:
+    ``text [21 of 23 runs: a, b, c and 18 more]`` (decision C12's batch warnings; decision C21: the report)."""
+    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    return f"{text} [{len(names)} of {total} {noun}: {shown}]"
+
+
 def session_group(rel_path: str, depth: int = 1) -> str:
     """The group of a session at ``rel_path`` (relative to the batch root, ``/``-separated): its first
     ``depth`` folder components (``siteA/p01/clinic`` -> ``siteA`` at depth 1, ``siteA/p01`` at depth 2),
@@ -371,16 +405,20 @@ GROUP_METRICS = ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "
 
 def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
     """``groups.csv`` from ``sessions.csv`` (a DataFrame): one row per ``group`` (sorted) with
-    ``n_sessions`` (tracked), ``n_failed``, and for each metric column that has a value in some tracked session
+    ``n_tracked`` (sessions tracked; decision C19: was ``n_sessions``, which ``track-all --json`` uses for every
+    session found), ``n_failed``, and for each metric column that has a value in some tracked session
     ``<metric>_n`` (sessions with a value), ``_mean``, ``_sd`` (sample standard deviation, n - 1; empty for
-    one session) and ``_median`` over the group's tracked sessions. Plain pandas ``groupby`` statistics
+    one session), ``_median`` and (decision C20) ``_ci95_low`` / ``_ci95_high``, the 95 % t-interval of the mean
+    (empty under two sessions) over the group's tracked sessions. Plain pandas ``groupby`` statistics
     (decision C12)."""
+    import numpy as np
     import pandas as pd
+    from scipy import stats as st
 
     ok = sessions[sessions["status"] == "ok"]
     groups = sorted(sessions["group"].astype(str).unique())
     out = pd.DataFrame({"group": groups})
-    out["n_sessions"] = [int((ok["group"].astype(str) == g).sum()) for g in groups]
+    out["n_tracked"] = [int((ok["group"].astype(str) == g).sum()) for g in groups]
     out["n_failed"] = [int(((sessions["group"].astype(str) == g) & (sessions["status"] != "ok")).sum())
                        for g in groups]
     for m in metrics:
@@ -388,9 +426,17 @@ def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
             continue
         stats = (pd.to_numeric(ok[m], errors="coerce").groupby(ok["group"].astype(str))
                  .agg(["count", "mean", "std", "median"]).reindex(groups))
-        out[f"{m}_n"] = stats["count"].fillna(0).astype(int).to_numpy()
+        n = stats["count"].fillna(0).astype(int).to_numpy()
+        out[f"{m}_n"] = n
         for s, name in (("mean", "mean"), ("std", "sd"), ("median", "median")):
             out[f"{m}_{name}"] = stats[s].to_numpy()
+        # Student's t-interval of a mean, mean ± t(0.975, n - 1) · sd / √n (NIST/SEMATECH e-Handbook of
+        # Statistical Methods, 7.2.2.1 "Confidence limits for the mean")
+        with np.errstate(invalid="ignore", divide="ignore"):
+            half = np.where(n >= 2, st.t.ppf(0.975, np.maximum(n - 1, 1)) * stats["std"].to_numpy(float)
+                            / np.sqrt(np.maximum(n, 1)), np.nan)
+        out[f"{m}_ci95_low"] = stats["mean"].to_numpy(float) - half
+        out[f"{m}_ci95_high"] = stats["mean"].to_numpy(float) + half
     return out
 
 
@@ -399,7 +445,7 @@ def groups_text(groups):
     per metric ``mean ± sd (n)``, so the groups compare at a glance."""
     import pandas as pd
 
-    shown = groups[["group", "n_sessions", "n_failed"]].copy()
+    shown = groups[["group", "n_tracked", "n_failed"]].copy()
     for m in GROUP_METRICS:
         if f"{m}_mean" in groups:
             shown[m] = [("" if pd.isna(mu) else f"{mu:.3g}" + ("" if pd.isna(sd) else f" ± {sd:.2g}") + f" ({n})")

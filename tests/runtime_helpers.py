@@ -162,6 +162,19 @@ def trained_dirs(tmp_path_factory) -> dict:
     return _CACHE
 
 
+def trained_dirs_and_walk(tmp_path_factory, name: str = "cli") -> dict:
+    """:func:`trained_dirs` plus ``walk``: a 20-stride synthetic session written to a new folder (seed 9), and
+    ``tmp``: that folder's parent (for the CLI tests of export and run)."""
+    from pdrlearn.io import write_session
+
+    d = dict(trained_dirs(tmp_path_factory))
+    root = tmp_path_factory.mktemp(name)
+    write_session(synthetic_session(20, seed=9, name="walk"), root / "walk")
+    d["walk"] = root / "walk"
+    d["tmp"] = root
+    return d
+
+
 #: methods of the rest-boundary model: the ensemble (decision C14) and its members
 REST_METHODS = ["nn", "svm", "dtw", "ensemble"]
 
@@ -236,3 +249,18 @@ def without(s: Session, a: float, b: float, names=None) -> Session:
             m = ~((st.t >= a) & (st.t < b))
             c.streams[n] = Stream(n, st.t[m], st.values[m])
     return c
+
+
+def push_waist(tr, s, chunks) -> list:
+    """Push ``s``'s waist samples into the waist tracker ``tr`` in pieces of ``chunks`` sizes (the rest at once),
+    then flush; the reported steps (``pdrlearn.waist.WaistTracker`` and ``pdrlearn.runtime.WaistTracker``)."""
+    a, g = s["wAccelerometer"], s["wGyroscope"]
+    out, i = [], 0
+    for c in chunks:
+        if i >= len(a.t):
+            break
+        out += tr.push(a.t[i:i + c], a.values[i:i + c], g.values[i:i + c])
+        i += c
+    if i < len(a.t):
+        out += tr.push(a.t[i:], a.values[i:], g.values[i:])
+    return out + tr.flush()

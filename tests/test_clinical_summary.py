@@ -297,6 +297,49 @@ def test_track_without_force_sensors_withholds_a_scattered_cv(tmp_path, capsys, 
     assert any("stride-time CV withheld" in w for w in summary["info"]["warnings"])
 
 
+def test_quantisation_of_whole_sample_contacts_by_hand():
+    """L116: rounding both contacts of a 1.1 s stride to 20 Hz samples adds 100 x 0.05 / sqrt(6) / 1.1 = 1.856 % in
+    quadrature (a true 2.01 % reads 2.74 %, the session 20 trial's 2.81 %), and the median cadence moves by 120 / 1.10
+    - 120 / 1.15 = 4.74 steps/min (the trial's 109.09 -> 104.35); at 100 Hz 0.371 %. The warning: a reported 2.81 %
+    at 20 Hz (the rounding raises it by 33 %, from 2.11 %) warns, at 100 Hz (0.9 %) not, nor contacts between
+    samples."""
+    from pdrlearn.track.clinical import (
+        BETWEEN_SAMPLES,
+        WHOLE_SAMPLES,
+        cadence_step_spm,
+        quantisation_cv_pct,
+        resolution_warning,
+    )
+
+    assert quantisation_cv_pct(0.05, 1.1) == pytest.approx(1.8557, abs=1e-4)
+    assert quantisation_cv_pct(0.01, 1.1) == pytest.approx(0.371135, abs=1e-6)
+    assert cadence_step_spm(0.05, 1.1) == pytest.approx(109.0909 - 104.3478, abs=1e-3)
+    s = {"stride_time_cv_pct": 2.81, "timing_resolution_s": 0.05, "median_stride_time_s": 1.1,
+         "contact_timing": WHOLE_SAMPLES}
+    w = resolution_warning(s)
+    assert w is not None and "2.81 %" in w and "~1.86 %" in w and "~2.11 %" in w and "4.7 steps/min" in w
+    assert "20 Hz" in w and "L116" in w
+    assert resolution_warning({**s, "timing_resolution_s": 0.01}) is None
+    assert resolution_warning({**s, "contact_timing": BETWEEN_SAMPLES}) is None
+    assert resolution_warning({**s, "stride_time_cv_pct": None}) is None
+    assert resolution_warning({**s, "stride_time_cv_pct": 1.5}) is not None  # under the rounding's own 1.86 %
+
+
+@pytest.mark.parametrize("pipeline", ["plasys", "waist-pendulum"])
+def test_summary_says_the_contacts_timing_resolution(walks, pipeline, monkeypatch):
+    """L116: every track summary says one sample period of the contacts' stream (0.05 s at 20 Hz) and whether the
+    contacts lie on whole samples (the lower back's always; the foot's unless steps decision 32 is on)."""
+    from pdrlearn.kernels import contact
+    from pdrlearn.track.clinical import BETWEEN_SAMPLES, WHOLE_SAMPLES
+
+    s = walks["normal"]
+    for sub in (False, True):
+        monkeypatch.setattr(contact, "SUBSAMPLE", sub)
+        summary = track_summary(get_pipeline(pipeline)(s), s, pipeline=pipeline)
+        assert summary["timing_resolution_s"] == pytest.approx(0.05)
+        foot_between = sub and pipeline == "plasys"
+        assert summary["contact_timing"] == (BETWEEN_SAMPLES if foot_between else WHOLE_SAMPLES)
+
 def test_step_time_asymmetry_report_says_what_it_can():
     """L121 (session 20 rehab trial): one foot's table cannot give a step-time asymmetry (None, why); on the lower
     back an index under 20 % is the contacts' timing (symmetric walkers read up to 18.8 %): None with the raw

@@ -273,6 +273,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.track.base import PIPELINES
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
+    from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
 
     def settings(kind):
@@ -302,6 +303,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "length_bounds"): two_numbers,
         ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72
         ("track", "window"): parse_window,  # decision L105
+        ("track", "units"): parse_units,  # decision B127
         ("export", "length_bounds"): two_numbers,
         ("export", "methods"): _one_of(METHODS, listed=True),
         ("run", "rules"): _one_of(RULES),
@@ -321,8 +323,10 @@ def _validators() -> dict[tuple[str, str], object]:
         ("import", "acc_unit"): unit_word("acc"),
         ("import", "gyro_unit"): unit_word("gyro"),
         ("import", "frames"): parse_frame,
+        ("export", "frame"): parse_frame,  # decision E57: the waist unit's axes, as import --frames
     }
-    for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window"):  # C12, L108
+    for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window",
+                "units"):  # C12, L108, B127
         v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):
         v[(cmd, "tasks")] = settings("tasks")
@@ -561,6 +565,7 @@ STALE = [
     ("pdrlearn simulate --scenario D --user-seed 1 --speed jog --out DIR", "not one of"),
     ("pdrlearn fetch physionet --out DIR", "not one of"),
     ("pdrlearn run BUNDLE SESSION --units foot,arm", "not one of"),
+    ("pdrlearn track DIR --units foot,arm --out OUT", "expected foot, waist"),  # decision B127
     ("pdrlearn export MODEL --out B --methods svm,rf", "not one of"),
     ("pdrlearn import x.csv --out DIR --acc-unit G2", "not one of"),
     ("pdrlearn calibrate DIR --pipeline plasys --out P.json", "not one of"),

@@ -12,17 +12,12 @@ import pytest
 from pdrlearn.cli import main
 from pdrlearn.io import format_protocol, write_session
 from pdrlearn.signal import resample_stream
-from tests.runtime_helpers import synthetic_session, trained_dirs
+from tests.runtime_helpers import synthetic_session, trained_dirs_and_walk
 
 
 @pytest.fixture(scope="module")
 def dirs(tmp_path_factory):
-    d = dict(trained_dirs(tmp_path_factory))
-    root = tmp_path_factory.mktemp("cli")
-    write_session(synthetic_session(20, seed=9, name="walk"), root / "walk")
-    d["walk"] = root / "walk"
-    d["tmp"] = root
-    return d
+    return trained_dirs_and_walk(tmp_path_factory, "cli")
 
 
 def _copy_bundle(dirs, name: str):

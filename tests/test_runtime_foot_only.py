@@ -291,8 +291,8 @@ def test_runtime_ranking_tie_break_is_the_training_sides():
     assert _PREFERENCE == PREFERENCE
 
 
-# -- B107 / E53 / E55: a waist-only user is told what is possible ----------------------------------------------
-HINT = "--pipeline waist-pendulum --params"
+# -- B107 / E53 / E55 (E59): a waist-only user is told what is possible ----------------------------------------
+HINT = "runs on a waist bundle: calibrate on a walk"  # E59: B107 / E55 name the waist bundle (E57)
 
 
 def test_a_waist_only_session_with_a_bundle_names_the_waist_pipeline(root, tmp_path, capsys):
@@ -308,14 +308,15 @@ def test_a_waist_only_session_with_a_bundle_names_the_waist_pipeline(root, tmp_p
 def test_a_tracker_declared_without_the_foot_sensors_is_refused_at_construction(root):
     from pdrlearn.errors import MissingSensorError
 
-    with pytest.raises(MissingSensorError, match=r"sensors=\[.*has no fAccelerometer, fGyroscope.*waist-pendulum"):
+    with pytest.raises(MissingSensorError, match=r"sensors=\[.*has no fAccelerometer, fGyroscope.*waist bundle"):
         Tracker(root / "bundle", sensors=["wAccelerometer", "wGyroscope"])  # E55: was ~4 s into the stream
     Tracker(root / "bundle", sensors=["fAccelerometer", "fGyroscope"])  # the foot unit alone: E32, as before
 
 
-def test_exporting_a_waist_calibration_says_it_is_used_as_it_is(tmp_path, capsys):
+def test_exporting_a_waist_calibration_writes_a_waist_bundle(tmp_path, capsys):
     cal = tmp_path / "p3.json"
     cal.write_text(json.dumps({"leg_m": 0.92, "k": 1.37, "source": "calibrated", "pipeline": "waist-pendulum"}))
-    _errors_once(capsys, ["export", str(cal), "--out", str(tmp_path / "b")], f"{HINT} {cal}")  # E53
-    assert main(["export", str(cal), "--out", str(tmp_path / "b")]) == 2
-    assert "train one" not in capsys.readouterr().err
+    assert main(["export", str(cal), "--out", str(tmp_path / "b")]) == 0  # E57 (E53 refused it with the hint)
+    assert capsys.readouterr().out.startswith(f"waist bundle {tmp_path / 'b'} (")
+    # E59: the calibration where a bundle is expected names the export, in one line
+    _errors_once(capsys, ["run", str(cal), str(tmp_path)], f"pdrlearn export {cal} --out WAIST_BUNDLE")

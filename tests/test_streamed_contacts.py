@@ -80,8 +80,9 @@ def test_force_onset_wins_over_the_impact_and_falls_back_to_it():
     t, acc = _bumps(fs, [(0.5, 8.0), (1.0, 20.0)])
     f = np.where((t > 0.3) & (t < 0.95), 0.0, 600.0)  # swing 0.3-0.95 s, heel strike at 0.95 s
     force = np.column_stack([0.6 * f, 0.4 * f])
-    assert C.force_onset(t, acc, force) == pytest.approx(0.95, abs=1e-9)
-    assert C.stride_contact(t, acc, force) == pytest.approx(0.95, abs=1e-9)
+    # steps decision 32: the 10 % level (60 N) on the line from 0 N at 0.94 s to 600 N at 0.95 s
+    assert C.force_onset(t, acc, force) == pytest.approx(0.941, abs=1e-9)
+    assert C.stride_contact(t, acc, force) == pytest.approx(0.941, abs=1e-9)
     assert C.stride_contact(t, acc, np.zeros_like(force)) == pytest.approx(1.0, abs=0.02)  # no onset: the impact
     assert C.stride_contact(t, acc, None) == C.impact_time(t, acc)
 
@@ -111,8 +112,11 @@ def test_streamed_stride_times_equal_offline_within_one_sample_on_a_simulated_wa
     both = np.isfinite(a) & np.isfinite(b)
     assert both.sum() == 14 and np.isfinite(a).sum() == np.isfinite(b).sum()
     assert np.abs(a - b)[both].max() <= 0.05 + 1e-9
-    assert (np.abs(a - b)[both] < 1e-9).sum() >= 9
-    assert np.median(a[both]) == pytest.approx(np.median(b[both]), abs=1e-9)
+    # steps decision 32: the onsets lie between the samples, where the two thresholds (the stride's own maximum's,
+    # the session's) cross the same line at slightly different times: within 10 ms, the medians within 2 ms (on
+    # whole samples most were equal and the rest one sample apart)
+    assert np.abs(a - b)[both].max() < 0.01
+    assert np.median(a[both]) == pytest.approx(np.median(b[both]), abs=0.002)
     np.testing.assert_allclose(st["cadence_spm"], 120.0 / st["stride_time_s"])
     np.testing.assert_allclose(st["speed_mps"], st["length_m"].abs() / st["stride_time_s"])
     # without the option (E51: E50's rule was not met) no contact, as E48
@@ -138,7 +142,9 @@ def test_run_contacts_fill_the_steps_and_summary_as_track_streaming(sim_a, tmp_p
     assert cols.index("event_s") == 2 and cols[-7:] == tail  # track's order
     assert list(b.columns)[-7:] == tail and list(pd.read_csv(tmp_path / "t" / "steps.csv").columns)[-7:] == tail
     assert run["n_stride_times"] == trk["n_stride_times"] == 14
-    assert run["median_stride_time_s"] == pytest.approx(trk["median_stride_time_s"], abs=1e-9)
+    # offline's force threshold is the session's maximum's, the streamed one the stride's (E50): with the onsets
+    # between the samples (steps decision 32) their medians differ by ~1 ms
+    assert run["median_stride_time_s"] == pytest.approx(trk["median_stride_time_s"], abs=0.002)
     assert run["median_cadence_spm"] == pytest.approx(stm["median_cadence_spm"], abs=1e-9)
     assert run["n_straight_strides"] == 14 and 1.0 < run["median_speed_straight_mps"] < 1.4
 

@@ -68,7 +68,7 @@ def test_track_all_tracks_each_session_and_skips_the_broken_one(tree, batch):
         summary = json.loads((out / rel / "summary.json").read_text())
         assert summary["input_dir"] == str((tree / rel).resolve())  # C13
         row = sessions.set_index("path").loc[rel]
-        assert row["input_dir"] == summary["input_dir"]
+        assert row["input_dir"] == rel  # C18: relative to ROOT in sessions.csv
         assert row["distance_m"] == pytest.approx(summary["distance_m"], rel=1e-9)
         assert row["gait_speed_mps"] == pytest.approx(summary["gait_speed_mps"], rel=1e-9)
     assert not (out / "siteB" / "p04").exists()  # nothing half-written for the failed session
@@ -84,7 +84,7 @@ def test_groups_csv_is_a_pandas_groupby_of_sessions_csv(batch):
     groups = pd.read_csv(out / "groups.csv")
     ok = sessions[sessions["status"] == "ok"]
     assert list(groups["group"]) == ["siteA", "siteB"]
-    assert list(groups["n_sessions"]) == [2, 1] and list(groups["n_failed"]) == [0, 1]
+    assert list(groups["n_tracked"]) == [2, 1] and list(groups["n_failed"]) == [0, 1]
     for m in ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "median_stride_length_m"):
         ref = ok.groupby("group")[m].agg(["count", "mean", "std", "median"])
         np.testing.assert_array_equal(groups[f"{m}_n"], ref["count"])
@@ -133,27 +133,20 @@ def test_group_table_by_hand():
     df = pd.DataFrame({"group": ["a", "a", "a", "b"], "status": ["ok", "ok", "failed", "ok"],
                        "gait_speed_mps": [1.0, 2.0, np.nan, 3.0]})
     g = group_table(df, metrics=("gait_speed_mps", "absent"))
-    assert g["n_sessions"].tolist() == [2, 1] and g["n_failed"].tolist() == [1, 0]
+    assert g["n_tracked"].tolist() == [2, 1] and g["n_failed"].tolist() == [1, 0]
     assert g["gait_speed_mps_mean"].tolist() == [1.5, 3.0] and g["gait_speed_mps_median"].tolist() == [1.5, 3.0]
     assert g["gait_speed_mps_sd"].iloc[0] == pytest.approx(np.sqrt(0.5)) and "absent_mean" not in g
 
 
-def test_median_stride_length_leaves_out_gap_rows(monkeypatch, tmp_path):
-    """A foot gap's 0 m row (gap_s > 0, L67) is no stride: it must not pull sessions.csv's median stride down."""
-    from types import SimpleNamespace
+def test_median_stride_length_leaves_out_gap_rows():
+    """A foot gap's 0 m row (gap_s > 0, L67) is no stride: it must not pull the median stride length down
+    (summary.json's since C19, sessions.csv's since C12)."""
+    from pdrlearn.track.evaluate import median_stride_length
 
-    import pdrlearn.cli.track as cli_track
-    from pdrlearn.cli.cohort import _track_job
-
-    steps = pd.DataFrame({"length_m": [1.3, 1.4, 0.0, 1.5, -1.2], "gap_s": [0.0, 0.0, 2.6, 0.0, 0.0]})
-    tracked = {"result": SimpleNamespace(steps=steps), "pipeline": "plasys"}
-    monkeypatch.setattr(cli_track, "track_session", lambda d, s: tracked)
-    monkeypatch.setattr(cli_track, "write_track", lambda dest, t: ({"distance_m": 5.4}, False))
-    value = _track_job({"session_dir": str(tmp_path), "settings": {}, "out": str(tmp_path / "o")})
-    assert value["median_stride_length_m"] == pytest.approx(1.35)  # of 1.3, 1.4, 1.5, 1.2 (1.3 with the gap row)
-    tracked["pipeline"] = "waist-pendulum"  # rows are steps: no stride length
-    assert _track_job({"session_dir": str(tmp_path), "settings": {}, "out": str(tmp_path / "o2")})[
-        "median_stride_length_m"] is None
+    steps = pd.DataFrame({"length_m": [1.3, 1.4, 0.0, 1.5, -1.2], "gap_s": [0.0, 0.0, 2.6, 0.0, 0.0],
+                          "unit": "foot"})
+    assert median_stride_length(steps) == pytest.approx(1.35)  # of 1.3, 1.4, 1.5, 1.2 (1.3 with the gap row)
+    assert median_stride_length(steps.assign(unit="waist")) is None  # rows are steps: no stride length
 
 
 def test_find_sessions_walks_a_symlinked_folder_once(tree, tmp_path, caplog):
@@ -255,7 +248,7 @@ def _bad_batch(folder: Path, kind: str) -> None:
     ("empty", "sessions.csv: file is empty"),
     ("header only", "sessions.csv: has no session rows"),
     ("wrong columns", "not a track-all sessions.csv (no column path, group, error"),
-    ("bad groups", "groups.csv: not a track-all groups.csv (no column group, n_sessions, n_failed)"),
+    ("bad groups", "groups.csv: not a track-all groups.csv (no column group, n_tracked, n_failed)"),
 ])
 def test_report_bad_batch_folder_is_one_error_line(tmp_path, capsys, kind, says):
     _bad_batch(tmp_path / "b", kind)

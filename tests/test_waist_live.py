@@ -17,6 +17,7 @@ from pdrlearn.sim import simulate
 from pdrlearn.track.waist import track_waist
 from pdrlearn.waist import WaistTracker
 from pdrlearn.waist.live import FRAGMENT_CONTEXT_STEPS
+from tests.runtime_helpers import push_waist
 
 ROOT = Path(__file__).resolve().parents[1]
 HA001 = ROOT / "datasets" / "real" / "mobgap_HA001_Test11_Trial1"
@@ -31,18 +32,10 @@ def _session(name: str):
 
 def _run(s, chunks, **kw):
     """Push ``s``'s waist samples in pieces of ``chunks`` sizes (the rest at once), then flush."""
-    a, g = s["wAccelerometer"], s["wGyroscope"]
+    a = s["wAccelerometer"]
     kw.setdefault("frame", s.require_frame("waist"))
     tr = WaistTracker(a.rate_hz, meta=s.meta, **kw)
-    out, i = [], 0
-    for c in chunks:
-        if i >= len(a.t):
-            break
-        out += tr.push(a.t[i:i + c], a.values[i:i + c], g.values[i:i + c])
-        i += c
-    if i < len(a.t):
-        out += tr.push(a.t[i:], a.values[i:], g.values[i:])
-    return out + tr.flush(), tr
+    return push_waist(tr, s, chunks), tr
 
 
 def _columns(out):

@@ -30,4 +30,4 @@ def test_waist_steps_are_not_matched_one_to_one_with_strides(tmp_path, capsys):
     for k in ("stride_length_mae_pct", "stride_length_matched", "distance_matched_error_pct"):
         assert k not in got, k
     assert got["stride_length_mae_m"] == pytest.approx(res["refs"]["stride_length_mae_m"], rel=1e-9)
-    assert got["n_strides"] == res["refs"]["n_strides"] > 0
+    assert got["n_reference_strides"] == res["refs"]["n_reference_strides"] > 0  # C19: was n_strides

@@ -10,7 +10,6 @@ position with 68 % probability, the Android convention), and ``lat``/``lon`` (de
 from __future__ import annotations
 
 import logging
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -22,8 +21,8 @@ from pdrlearn.errors import DataError
 
 log = logging.getLogger(__name__)
 
-#: Horizontal 68 % radius -> per-axis standard deviation: for a circular Gaussian, P(r <= 1.51 s) = 0.68.
-RADIUS68_PER_SIGMA = math.sqrt(-2.0 * math.log(1.0 - 0.68))
+from pdrlearn.kernels.fixes import RADIUS68_PER_SIGMA, sigma_from_accuracy  # noqa: E402,F401  (D19)
+
 #: User-equivalent range error (m) turning a GGA HDOP into an accuracy (decision, docs/decisions/aided.md).
 DEFAULT_UERE_M = 4.0
 #: Accuracy (m) given to an RMC fix that has no HDOP (no GGA at the same epoch).
@@ -48,11 +47,6 @@ class FixLog:
 
     def __len__(self) -> int:
         return len(self.fixes)
-
-
-def sigma_from_accuracy(accuracy_m) -> np.ndarray:
-    """Per-axis standard deviation (m) of a fix whose reported 68 % horizontal radius is ``accuracy_m``."""
-    return np.asarray(accuracy_m, dtype=float) / RADIUS68_PER_SIGMA
 
 
 # -- NMEA 0183 ------------------------------------------------------------------------------------------

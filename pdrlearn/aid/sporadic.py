@@ -15,14 +15,12 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.aid._base import ParamsMixin, stretched_trajectory
-from pdrlearn.aid._kernels import fix_at_step, kf_predict, kf_update, stretch_segment, wrap_angle
+from pdrlearn.aid._kernels import P_P0_M2, Q_C_M2, FixConfig, StepFixState, fix_at_step, fixes_in_step  # noqa: F401
 from pdrlearn.aid.fixes import sigma_from_accuracy
 from pdrlearn.aid.gnss import check_steps
 from pdrlearn.errors import DataError
 
-#: Second EKF defaults (seed 004 Sec. V): P_p(0) = diag(0.1, 0.1) m^2, Q_c(0) = diag(0.0025, 0.0025) m^2.
-P_P0_M2 = 0.1
-Q_C_M2 = 0.0025
+_D = FixConfig()  # the defaults (decision D19: one set, shared with the live trackers)
 
 
 class SporadicFixFusion(ParamsMixin):
@@ -54,14 +52,14 @@ class SporadicFixFusion(ParamsMixin):
         period_s: float | None = 8.0,
         moving_gap_s: float = 1.5,
         query_tolerance_s: float = 0.5,
-        sigma_length_rel: float = 0.05,
-        sigma_length_m: float = 0.02,
-        sigma_heading_rad: float = np.radians(5.0),
+        sigma_length_rel: float = _D.sigma_length_rel,
+        sigma_length_m: float = _D.sigma_length_m,
+        sigma_heading_rad: float = _D.sigma_heading_rad,
         stretch: bool = True,
-        yaw_feedback: str | None = "last",
+        yaw_feedback: str | None = _D.yaw_feedback,
         scale_feedback: bool = False,
-        heading_drift_rad: float = np.radians(0.3),
-        initial_sigma_m: float = float(np.sqrt(P_P0_M2)),
+        heading_drift_rad: float = _D.heading_drift_rad,
+        initial_sigma_m: float = _D.initial_sigma_m,
         fix_sigma_m: float | None = None,
     ):
         self.period_s = period_s
@@ -116,56 +114,29 @@ class SporadicFixFusion(ParamsMixin):
             else sigma_from_accuracy(fx["accuracy_m"].to_numpy(float))
         )
         t0 = float(st["start_s"].iloc[0]) if t_start is None and len(st) else float(t_start or 0.0)
-        x = np.asarray(start_xy, float).copy()
-        P = np.eye(2) * self.initial_sigma_m**2
-        raw = x.copy()
-        offset, p_off = 0.0, 0.0  # heading offset fed back from the stretched yaw, and its variance
-        log_scale, p_scale = 0.0, 0.0  # log step-length scale fed back from the stretched speeds
+        s = StepFixState(self, start_xy, self.initial_sigma_m, t0)  # the one step-wise EKF (decision D19)
         n = len(st)
         out = np.zeros((n + 1, 6))  # x, y (stretched), x_rt, y_rt, x_pdr, y_pdr
-        out[0] = [x[0], x[1], x[0], x[1], raw[0], raw[1]]
+        out[0] = [s.x[0], s.x[1], s.x[0], s.x[1], s.raw[0], s.raw[1]]
         used = np.zeros(n + 1, bool)
-        seg_inc: list[np.ndarray] = []
-        seg_rows: list[int] = []
-        seg_head: list[float] = []
-        anchor_xy, anchor_row, l_start = x.copy(), 0, np.zeros(2)
         counts = dict(queries=0, fixes_used=0, fixes_missing=0, yaw_corrections=0, stops_skipped=0)
         fix_done = np.zeros(len(ft), bool)  # D15: a fix is one measurement, used (or passed over) once
         applied = np.zeros(len(ft), bool)
         superseded = 0
-        prev_t = t0
         for k in range(n):
-            t_k = float(st.at[k, "end_s"])
-            length, heading = float(st.at[k, "length_m"]), float(st.at[k, "heading_rad"])
-            raw = raw + length * np.array([np.cos(heading), np.sin(heading)])
-            hc = heading + offset
-            length = length * np.exp(log_scale)
-            x_prev = x
-            x, P = kf_predict(
-                x,
-                P,
-                length,
-                hc,
-                sigma_length_m=self.sigma_length_rel * abs(length) + self.sigma_length_m,
-                sigma_heading_rad=self.sigma_heading_rad,
-            )  # seed 004 eqs. 16-17
-            p_off += self.heading_drift_rad**2
-            p_scale += (0.1 * self.heading_drift_rad) ** 2  # scale random walk, 1/10 of the heading's (rad ~ rel.)
-            seg_inc.append(x - x_prev)
-            seg_rows.append(k + 1)
-            seg_head.append(hc)
-            out[k + 1, 2:4] = x
-            out[k + 1, 4:6] = raw
+            t_k, prev_t = float(st.at[k, "end_s"]), s.prev_t
+            x_prev = s.predict(float(st.at[k, "length_m"]), float(st.at[k, "heading_rad"]), k + 1)
+            out[k + 1, 2:4] = s.x
+            out[k + 1, 4:6] = s.raw
             c = None
             if self.period_s is None:  # D14: every fix in (prev_t, t_k], the latest one, at the step's end
-                # the first step also takes a fix at its very start (t0, e.g. a start fix at t = 0)
-                inside = np.flatnonzero(((ft > prev_t) | ((k == 0) & (ft >= prev_t))) & (ft <= t_k))
+                inside = fixes_in_step(ft, prev_t, t_k, k == 0)
                 if len(inside):
                     c = int(inside[-1])
                     superseded += len(inside) - 1
                     fix_done[inside] = True
                     t_from = max(prev_t, float(st.at[k, "start_s"]))
-                    z = fix_at_step(fxy[c], ft[c], t_k, t_from, x - x_prev)
+                    z = fix_at_step(fxy[c], ft[c], t_k, t_from, s.x - x_prev)
             # query instant i*T_p inside (prev_t, t_k] while moving (seed 004 eq. 19)
             elif np.floor(t_k / self.period_s) * self.period_s > prev_t:
                 moving = t_k - prev_t <= self.moving_gap_s
@@ -183,42 +154,16 @@ class SporadicFixFusion(ParamsMixin):
                         fix_done[c] = True
                         z = fxy[c]
             if c is not None:
-                l_end = z - x  # seed 004: l(k) = L_b(bar) - L_b(hat)
-                inc = np.asarray(seg_inc)
-                stretched, _, theta_bar = stretch_segment(inc, l_start, l_end)
+                rows, pos = s.correct(z, float(fsig[c]), k + 1)
                 if self.stretch:
-                    out[seg_rows, 0:2] = anchor_xy + l_start + np.cumsum(stretched, axis=0)
-                if self.yaw_feedback is not None and len(inc):
-                    lens = np.hypot(inc[:, 0], inc[:, 1])
-                    dth = wrap_angle(theta_bar - np.asarray(seg_head))
-                    chord = float(np.hypot(*np.sum(stretched, axis=0)))
-                    geo = 2.0 * fsig[c] ** 2 / max(chord, 0.5) ** 2
-                    if self.yaw_feedback == "last":
-                        innov, r = float(dth[-1]), self.sigma_heading_rad**2 + geo
-                    else:
-                        w = lens / max(lens.sum(), 1e-9)
-                        innov = float(np.arctan2(np.sum(w * np.sin(dth)), np.sum(w * np.cos(dth))))
-                        r = self.sigma_heading_rad**2 / len(inc) + geo
-                    gain = p_off / (p_off + r)
-                    offset = float(wrap_angle(offset + gain * innov))
-                    p_off *= 1.0 - gain
-                    counts["yaw_corrections"] += 1
-                if self.scale_feedback and len(inc):
-                    lens = np.hypot(inc[:, 0], inc[:, 1])
-                    ratio = np.hypot(stretched[:, 0], stretched[:, 1]).sum() / max(lens.sum(), 1e-9)
-                    if ratio > 0:
-                        r = self.sigma_length_rel**2 / len(inc) + 2.0 * fsig[c] ** 2 / max(lens.sum(), 0.5) ** 2
-                        gain = p_scale / (p_scale + r) if p_scale > 0 else 0.0
-                        log_scale = float(np.clip(log_scale + gain * np.log(ratio), -0.7, 0.7))
-                        p_scale *= 1.0 - gain
-                x, P, _, _ = kf_update(x, P, z, fsig[c : c + 1])  # seed 004 eqs. 20-22
-                out[k + 1, 2:4] = x
+                    out[rows, 0:2] = pos
+                out[k + 1, 2:4] = s.x
                 used[k + 1] = True
                 counts["fixes_used"] += 1
                 applied[c] = True
-                anchor_xy, anchor_row, l_start = x.copy(), k + 1, z - x
-                seg_inc, seg_rows, seg_head = [], [], []
-            prev_t = t_k
+            s.prev_t = t_k
+        counts["yaw_corrections"] = s.yaw_corrections
+        anchor_row, offset = s.anchor_row, s.offset
         # rows after the last adjustment (or all rows without stretching) keep the real-time estimate
         tail = np.ones(n + 1, bool)
         if self.stretch:

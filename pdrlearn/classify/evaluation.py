@@ -351,7 +351,7 @@ def _held_out_checks(model, sessions, out: dict, ids: list[str] | None = None) -
                     off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
         if off:
             out["rate_mismatch"][s.name] = off
-            lines.setdefault(classifier_rate_warning(off), []).append(s.where)
+            lines.setdefault(classifier_rate_warning(off, resample_hint=True), []).append(s.where)
     for line, where in lines.items():  # one line per distinct rate pair, naming the sessions
         log.warning("%s%s: %s", where[0], f" and {len(where) - 1} more" if len(where) > 1 else "", line)
 

@@ -11,6 +11,11 @@ The directory is written to a temporary sibling and renamed into place, so a rea
 half-written model. The joblib files are for the training side (Python, scikit-learn, torch); the runtime
 bundle (ONNX, no pickles) is written by ``pdrlearn.export``. Every file's SHA-256 is in the manifest and
 checked on load.
+
+joblib files are pickle: loading one runs the code it names. The checksums catch a damaged or half-copied
+file, not a deliberate change (whoever edits a file can update its checksum in the manifest), so load model
+directories only from sources you trust and exchange bundles instead (docs/deploying.md, "Model folders are
+pickle"; decision B125).
 """
 
 from __future__ import annotations
@@ -154,26 +159,15 @@ def _json_default(o):
         return str(o)
 
 
-def _is_waist_calibration(path: Path) -> bool:
-    """A JSON file written by ``pdrlearn calibrate`` (its ``pipeline`` a waist one, decision E53)."""
-    if not path.is_file() or path.suffix.lower() != ".json":
-        return False
-    try:
-        d = json.loads(path.read_text())
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError):
-        return False
-    return isinstance(d, dict) and str(d.get("pipeline", "")).startswith("waist")
-
-
 def read_manifest(path) -> dict:
     """Read and validate ``manifest.json`` of a model directory (:class:`ModelError` on any problem)."""
     path = Path(path)
     if not path.is_dir():
-        if _is_waist_calibration(path):  # decision E53: the belt-phone user's file names their way
-            from pdrlearn.runtime.bundle import waist_only_hint
+        from pdrlearn.runtime.bundle import _is_waist_calibration, waist_only_hint
 
+        if _is_waist_calibration(path):  # decision E53: the belt-phone user's file names their way
             raise ModelError(f"{path}: a waist calibration ('pdrlearn calibrate'), not a model directory: waist "
-                             f"pipelines are calibrated, not trained or exported; {waist_only_hint(str(path))}")
+                             f"pipelines are calibrated, not trained; {waist_only_hint(str(path))}")
         raise ModelError(f"{path}: no such model directory; train one with "
                          f"`pdrlearn train ... --out {shell_quote(path)}`")
     mf = path / MANIFEST
@@ -218,6 +212,8 @@ def verify_model_dir(path) -> dict:
 
 def load_model(path):
     """Load a model directory written by :meth:`UserModel.save` -> :class:`UserModel`.
+
+    The files are unpickled (joblib): only load directories from a trusted source (see the module docstring).
 
     Raises :class:`ModelError` (one line) for a missing directory/manifest/model file, a changed file
     (SHA-256 mismatch) or another schema version.

@@ -311,6 +311,12 @@ def class_metrics(y_true: np.ndarray, y_pred: np.ndarray, classes: Sequence[str]
 UNIT_PREFERENCE = ("foot", "waist", "combined", "fused")
 
 
+def best_pair(ranking: list[tuple[str, str]]) -> tuple[str, str] | None:
+    """Decision C8 / C23: the chosen ``(method, unit)`` of a task's ``ranking`` (best first): the best two-unit
+    model (soft vote or combined features), else the best of any unit; None for an empty ranking."""
+    return next((p for p in ranking if p[1] in TWO_UNIT), ranking[0] if ranking else None)
+
+
 def _score_key(metrics: dict, method: str, unit: str = "fused") -> tuple:
     return (-(metrics["balanced_accuracy"] or 0.0), -(metrics["accuracy"] or 0.0), PREFERENCE.index(method),
             UNIT_PREFERENCE.index(unit) if unit in UNIT_PREFERENCE else len(UNIT_PREFERENCE))
@@ -797,10 +803,7 @@ def train_task(
         for per in tm.models.values():
             if unit in per:
                 attach_ranges(per[unit], data.X[subsets[unit][0]])
-    # decision C8 / C23: the best two-unit model (soft vote or combined features), else the best of any unit
-    fused = [(m, u) for m, u in tm.ranking() if u in TWO_UNIT]
-    ranking = tm.ranking()
-    tm.chosen = (fused or ranking or [None])[0]
+    tm.chosen = best_pair(tm.ranking())
     if tm.chosen is None:
         raise DataError(f"task {data.task}: no method could be trained ({'; '.join(tm.skipped)})")
     return tm

@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -33,6 +34,7 @@ from pdrlearn.cohort import (
     find_sessions,
     folder_bytes,
     group_table,
+    grouped_warning,
     groups_text,
     run_cohort,
     session_group,
@@ -346,12 +348,14 @@ def evaluate_all(
 TRACK_LIBRARIES = ("scipy.linalg", "scipy.signal")
 
 #: sessions.csv's leading columns, always present and in this order (decision C12); the other scalar fields
-#: of summary.json follow, sorted by name. Units are in the names (_m, _pct, _s, _mps, _spm).
-SESSION_COLUMNS = ("path", "group", "status", "error", "track_time_s", "session", "input_dir", "pipeline",
-                   "method", "n_steps", "distance_m", "distance_ref_m", "distance_error_pct",
-                   "final_position_error_m", "walking_time_s", "gait_speed_mps", "median_cadence_spm",
-                   "median_stride_length_m", "median_stride_time_s", "median_speed_mps", "n_warnings",
-                   "warnings")
+#: of summary.json follow, sorted by name. Units are in the names (_m, _pct, _s, _mps, _spm). Decision C18: no
+#: wall time (run.json has it) and ``input_dir`` relative to ROOT, so a re-run or a copy elsewhere writes the same
+#: file; C19: what ``n_steps`` counts beside it, the two counts by name, the tracked unit's ``rate_hz``.
+SESSION_COLUMNS = ("path", "group", "status", "error", "session", "input_dir", "pipeline", "method", "rate_hz",
+                   "n_steps", "n_steps_counts", "n_strides_one_foot", "n_steps_both_feet", "distance_m",
+                   "distance_ref_m", "distance_error_pct", "final_position_error_m", "walking_time_s",
+                   "gait_speed_mps", "median_cadence_spm", "median_stride_length_m", "median_stride_time_s",
+                   "median_speed_mps", "n_warnings", "warnings", "content_id", "duplicate_of")
 #: cohort C15: the separator of the ``warnings`` cell (one session's warnings, in the order raised)
 WARNINGS_SEP = " | "
 
@@ -369,25 +373,7 @@ def _track_job(args: dict) -> dict:
         except Exception as exc:  # cohort C15: the warnings raised before the failure stay with its error
             attach_to_error(exc, warnings=list(warned))
             raise
-    return {"summary": summary, "warnings": warned,
-            "median_stride_length_m": median_stride_length(tracked["result"].steps, tracked["pipeline"])}
-
-
-def median_stride_length(steps: pd.DataFrame, pipeline: str) -> float | None:
-    """sessions.csv's ``median_stride_length_m`` (decision C12): the median |length_m| of a foot track's strides,
-    without the 0 m rows that stand for a foot gap (``gap_s`` > 0, L67: no stride) or a stride the last-line
-    guard moved 0 m (``impossible``, L97); None for a lower-back track (its rows are steps) or a track without
-    strides."""
-    import numpy as np
-
-    if pipeline != "plasys" or not len(steps) or "length_m" not in steps:
-        return None
-    length = steps["length_m"].abs()
-    drop = steps["gap_s"].to_numpy(float) > 0 if "gap_s" in steps else np.zeros(len(steps), bool)
-    if "impossible" in steps:
-        drop = drop | steps["impossible"].eq(True).to_numpy(bool)
-    length = length[~drop]
-    return float(length.median()) if len(length) else None
+    return {"summary": summary, "warnings": warned, "content_id": tracked.get("content_id")}
 
 
 def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
@@ -401,8 +387,10 @@ def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
 
 
 def _session_row(rel: str, group: str, r: JobResult, given: str | None = None) -> dict:
-    row = {"path": rel, "group": group, "status": "ok" if r.ok else "failed", "error": None if r.ok else r.error,
-           "track_time_s": round(r.seconds, 2)}
+    error = None if r.ok else r.error
+    if error and given:  # decision C18: the folder relative to ROOT, as path and input_dir (the same for a copy)
+        error = error.replace(given, rel)
+    row = {"path": rel, "group": group, "status": "ok" if r.ok else "failed", "error": error}
     warned = job_warnings(r, given)  # cohort C15: a failed session keeps its warnings beside its error
     row["n_warnings"] = len(r.value["warnings"]) if r.ok else len(r.extra.get("warnings", []))
     row["warnings"] = WARNINGS_SEP.join(warned) if warned else None
@@ -415,7 +403,8 @@ def _session_row(rel: str, group: str, r: JobResult, given: str | None = None) -
         elif v is None or isinstance(v, str | int | float | bool):
             row[k] = v
     row["method"] = summary.get("info", {}).get("method")
-    row["median_stride_length_m"] = r.value["median_stride_length_m"]
+    row["input_dir"] = rel  # decision C18: relative to ROOT (summary.json keeps the resolved folder, C13)
+    row["content_id"] = r.value.get("content_id")  # decision C20: B87's fingerprint of the sensor data
     return row
 
 
@@ -442,8 +431,51 @@ def _batch_warnings(sessions: list[tuple[str, str]], results: list[JobResult]) -
             seen.setdefault(text, []).append(rel)
     log = logging.getLogger("pdrlearn.cli")
     for text, rels in seen.items():
-        shown = ", ".join(rels[:3]) + (f" and {len(rels) - 3} more" if len(rels) > 3 else "")
-        log.warning("%s [%d of %d sessions: %s]", text, len(rels), len(results), shown)
+        log.warning("%s", grouped_warning(text, rels, len(results)))
+
+
+def _duplicates(rels: list[str], results: list[JobResult]) -> dict[str, str]:
+    """Decision C20: the tracked sessions whose sensor data are identical to an earlier one's (B87's
+    ``Session.content_id``: a visit-1 folder uploaded again as visit 2), ``{path: path of the first}``; one
+    warning per recording naming every folder that holds it. Both stay tracked and counted (which of them is
+    the real visit is not in the data); sessions.csv's ``duplicate_of`` marks the copies."""
+    import logging
+
+    first: dict[str, str] = {}
+    dup: dict[str, str] = {}
+    for rel, r in zip(rels, results, strict=True):
+        cid = r.value.get("content_id") if r.ok else None
+        if cid is None:
+            continue
+        if cid in first:
+            dup[rel] = first[cid]
+        else:
+            first[cid] = rel
+    copies: dict[str, list[str]] = {}
+    for rel, orig in dup.items():
+        copies.setdefault(orig, []).append(rel)
+    for orig, more in copies.items():
+        logging.getLogger("pdrlearn.cli").warning(
+            "%s and %s hold identical sensor data (the same recording, decision B87's fingerprint): a duplicate "
+            "upload? Each is tracked and counted in groups.csv (sessions.csv duplicate_of); remove the copy or put "
+            "the right recording in its place (decision C20)", orig, " and ".join(more))
+    return dup
+
+
+def _run_record(root: Path, options: dict, rels: list[str], results: list[JobResult]) -> dict:
+    """Decision C18: OUT/run.json, the record of a track-all run: the pdrlearn version, the command's options as
+    given, ROOT (resolved), when it finished and each session's wall and CPU time - what differs from run to
+    run is here, so that sessions.csv and groups.csv are the same for the same data, version and options."""
+    from datetime import UTC, datetime
+
+    from pdrlearn import __version__
+
+    ok = sum(r.ok for r in results)
+    return {"command": "track-all", "pdrlearn_version": __version__, "root": str(Path(root).resolve()),
+            "options": options, "finished_utc": datetime.now(UTC).isoformat(timespec="seconds"),
+            "n_sessions": len(results), "n_tracked": ok, "n_failed": len(results) - ok,
+            "track_time_s": {rel: round(r.seconds, 2) for rel, r in zip(rels, results, strict=True)},
+            "cpu_time_s": {rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)}}
 
 
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
@@ -474,7 +506,10 @@ def track_all(
     contacts: bool = _track.CONTACTS_OPT,
     dpi: int = _track.DPI_OPT,
     common_span: bool = _track.COMMON_SPAN_OPT,
+    units: str = _track.UNITS_OPT,
     window: str = _track.WINDOW_OPT,
+    resample: bool = _track.RESAMPLE_OPT,
+    no_resample: bool = _track.NO_RESAMPLE_OPT,
     group_depth: int = typer.Option(1, "--group-depth", min=1, help="Folder levels below ROOT that name a "
                                     "session's group in sessions.csv and groups.csv (1: siteA of "
                                     "siteA/p01/clinic; 2: siteA/p01)."),
@@ -494,10 +529,12 @@ def track_all(
     DEG (a session whose heading is absolute, the waist magnetometer's, fails) (decision L108).
     OUT/sessions.csv has one row per session: path, group, status (ok / failed),
     the one-line error of a failed session, and the fields of its summary.json (input_dir, distance_m,
-    distance_error_pct, gait_speed_mps, median_cadence_spm, ...). OUT/groups.csv has per group n, mean, sd
-    and median of the distance error, gait speed, cadence and stride length. A session that cannot be
-    tracked is reported and skipped. Progress: one line per session on stderr; each warning is said once
-    per batch, with the sessions it concerns.
+    distance_error_pct, gait_speed_mps, median_cadence_spm, ...; input_dir relative to ROOT). OUT/groups.csv
+    has per group n_tracked, n_failed and the n, mean, sd, median and 95 % t-interval of the mean of the
+    distance error, gait speed, cadence and stride length. OUT/run.json records the pdrlearn version, the
+    options and each session's time (decision C18). Sessions holding identical sensor data are warned
+    (duplicate_of, C20). A session that cannot be tracked is reported and skipped. Progress: one line per
+    session on stderr; each warning is said once per batch, with the sessions it concerns.
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input
     or when every session failed (nothing is written).
@@ -512,6 +549,9 @@ def track_all(
 
         pdrlearn track-all study/ --out results/2mwt --window 0,120 --streaming --initial-heading 90
     """
+    # decision C18: every option as given (a new option is recorded without a change here), for run.json
+    options = {k: (str(v) if isinstance(v, Path) else v) for k, v in locals().items()
+               if k not in ("root", "out", "force", "as_json")}
     from pdrlearn.cli.track import track_settings
 
     settings = track_settings(pipeline=pipeline, method=method, model=model, rules=rules,
@@ -519,7 +559,8 @@ def track_all(
                               warn_out_of_domain=warn_out_of_domain, start=start, params=params,
                               streaming=streaming, realtime=realtime, reference_point=reference_point,
                               toe_off=toe_off, contacts=contacts, dpi=dpi, common_span=common_span,
-                              initial_heading=initial_heading, window=window)
+                              initial_heading=initial_heading, window=window, resample=resample,
+                              no_resample=no_resample, units=units)
     found = find_sessions(root)
     out_folder(out, "track-all", force=force, inputs=(root, params))
     was = existed(out)
@@ -541,19 +582,25 @@ def track_all(
         failed = [r for r in results if not r.ok]
         if len(failed) == len(results):
             raise DataError(f"every session failed; first error: {failed[0].name}: {failed[0].error}")
-        sessions = _sessions_table([_session_row(rel, session_group(rel, group_depth), r, str(p))
-                                    for rel, r, p in zip(rels, results, found, strict=True)])
+        dup = _duplicates(rels, results)
+        rows = [_session_row(rel, session_group(rel, group_depth), r, str(p))
+                for rel, r, p in zip(rels, results, found, strict=True)]
+        for row in rows:
+            row["duplicate_of"] = dup.get(row["path"])
+        sessions = _sessions_table(rows)
         groups = group_table(sessions)
+        run = _run_record(root, options, rels, results)
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")
+        (tmp / "run.json").write_text(json.dumps(json_safe(run), indent=2) + "\n")
     replaced(out, was)
-    if as_json:
+    if as_json:  # decision C19: n_sessions counts every session found, n_tracked those tracked (groups.csv's)
         print_json(json_safe({"sessions": sessions.to_dict(orient="records"),
                               "groups": groups.to_dict(orient="records"), "n_sessions": len(results),
-                              "n_failed": len(failed)}))
+                              "n_tracked": len(results) - len(failed), "n_failed": len(failed), "run": run}))
     else:
         typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked; wrote {out}/"
-                   "<session>/, sessions.csv, groups.csv")
+                   "<session>/, sessions.csv, groups.csv, run.json")
         print(groups_text(groups).to_markdown(index=False))
         given = {rel: str(p) for rel, p in zip(rels, found, strict=True)}
         for r in failed:

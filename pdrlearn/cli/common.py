@@ -74,6 +74,7 @@ FORCE_HELP = "Replace an existing output of this command (atomically: the old on
 
 #: ``manifest.json`` of the two folder kinds that share that marker: (field, value) -> what the folder is
 _MANIFEST_KINDS = {("schema", "pdrlearn-bundle"): "a runtime bundle",
+                   ("schema", "pdrlearn-waist-bundle"): "a runtime bundle",  # decision E57
                    ("kind", "pdrlearn user model"): "a model directory"}
 
 

@@ -27,29 +27,52 @@ from pdrlearn.cli.common import (
 
 
 def export(
-    model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train'."),
+    model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train' (its files are pickle: "
+                                     "only one you trust; share the bundle instead), or a waist calibration "
+                                     "(PARAMS.json of 'pdrlearn calibrate': a waist-only bundle, decision E57)."),
     out: Path = typer.Option(..., "--out", "-o", help="Bundle folder to create."),
     methods: str = typer.Option(None, help="Comma-separated methods to export for every task "
                                 "(heuristic,fusion,dtw,svm,nn,ensemble); default: each task's chosen method."),
     length_bounds: str = typer.Option(None, "--length-bounds", help="Stride-length class edges (m) "
                                       "SHORT_NORMAL,NORMAL_LONG; default: the model's; a model without them: none "
                                       "(the length rule is skipped, with a warning)."),
+    no_training_samples: bool = typer.Option(False, "--no-training-samples", help="Leave out the models that "
+                                             "embed the user's training samples (DTW references, SVM support "
+                                             "vectors, soft votes with them): each task gets the best-ranked model "
+                                             "without them (docs/deploying.md, privacy; decision E68)."),
     force: bool = typer.Option(False, "--force", "--overwrite", help=FORCE_HELP + " --overwrite is the old name."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
+    frame: str = typer.Option(None, "--frame", help="Waist calibration only: the waist unit's axes, e.g. "
+                              "x=up,y=right,z=forward (recorded in the waist bundle; without it the live "
+                              "WaistTracker needs frame=, and 'pdrlearn run' takes the session's)."),
 ) -> None:
-    """Export a trained model as a portable bundle (manifest.json + ONNX + JSON/NPZ, no pickle).
+    """Export a trained model as a portable bundle (manifest.json + ONNX + JSON/NPZ, no pickle); a waist
+    calibration as a waist-only bundle (decision E57).
 
     Examples:
 
         pdrlearn export out/models/u1 --out out/bundle_u1
 
         pdrlearn export out/models/u1 --out out/bundle_u1_all --methods svm,nn,dtw --json
+
+        pdrlearn export out/models/u1 --out out/bundle_u1_shared --no-training-samples
+
+        pdrlearn export p.json --out wbundle --frame x=up,y=right,z=forward   # a waist calibration (calibrate)
     """
     from pdrlearn.errors import DataError
     from pdrlearn.export.bundle import bundle_size_bytes
     from pdrlearn.export.from_model import export_model
     from pdrlearn.runtime import load_bundle
+    from pdrlearn.runtime.bundle import _is_waist_calibration
 
+    if _is_waist_calibration(model_dir):  # decision E57: a belt-phone user's calibration -> a waist bundle
+        if methods or length_bounds:
+            raise DataError(f"export {model_dir}: a waist calibration has no classifiers; drop --methods / "
+                            "--length-bounds")
+        return _export_waist(model_dir, out, frame, force, as_json)
+    if frame is not None:
+        raise DataError(f"export --frame: only for a waist calibration; {model_dir} is a model directory, whose "
+                        "bundle records its training sessions' frames")
     meths = [m.strip() for m in methods.split(",") if m.strip()] if methods else None
     bounds = None
     if length_bounds:
@@ -59,7 +82,8 @@ def export(
             raise DataError(f"--length-bounds {length_bounds!r}: give two numbers, e.g. 0.6,0.9") from None
     out_folder(out, "bundle", force=force, inputs=(model_dir,))
     was = existed(out)
-    path = export_model(model_dir, out, methods=meths, length_bounds=bounds, overwrite=force)
+    path = export_model(model_dir, out, methods=meths, length_bounds=bounds, overwrite=force,
+                        training_samples=not no_training_samples)
     replaced(out, was)
     b = load_bundle(path)
     summary = {
@@ -69,6 +93,7 @@ def export(
         "tasks": {t: {"chosen": v["chosen"], "methods": {m: sorted(per) for m, per in v["methods"].items()}}
                   for t, v in b.tasks.items()},
         "skipped": b.manifest.get("export", {}).get("skipped", []),
+        "training_samples": b.manifest.get("export", {}).get("training_samples", True),
     }
     if as_json:
         print_json(json_safe(summary))
@@ -80,6 +105,37 @@ def export(
                    + ", ".join(f"{m}/{u}" for m, us in v["methods"].items() for u in us) + ")")
     for s in summary["skipped"]:
         typer.echo(f"  skipped: {s}")
+
+
+def _export_waist(cal: Path, out: Path, frame: str | None, force: bool, as_json: bool) -> None:
+    """``pdrlearn export CAL.json``: the waist-only bundle (decision E57) and its one-line summary."""
+    from pdrlearn.export.bundle import bundle_size_bytes
+    from pdrlearn.export.waist import export_waist
+    from pdrlearn.runtime.waist import load_waist_bundle
+
+    out_folder(out, "bundle", force=force, inputs=(cal,))
+    was = existed(out)
+    path = export_waist(cal, out, frame=frame, overwrite=force)
+    replaced(out, was)
+    b = load_waist_bundle(path)
+    p = b.params
+    summary = {"bundle": str(path), "kind": "waist", "size_bytes": bundle_size_bytes(path),
+               "files": sorted(b.manifest["files"]), "pipeline": b.manifest["pipeline"], "rate_hz": b.rate_hz,
+               "params": {"leg_m": p.leg_m, "k": p.k, "f_m": p.f_m, "gyro_bias_rps": p.gyro_bias_rps,
+                          "source": p.source},
+               "frame": b.manifest["frames"].get("waist"), "warnings": b.manifest.get("warnings", [])}
+    if as_json:
+        print_json(json_safe(summary))
+        return
+    import logging
+
+    for w in summary["warnings"]:  # the calibration's (e.g. a leg length from a default height, W62)
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", cal, w)
+    rate = f"calibrated at {b.rate_hz:.4g} Hz" if b.rate_hz == b.rate_hz else "no calibration rate recorded"
+    fr = (",".join(f"{k}={v}" for k, v in summary["frame"].items()) if summary["frame"]
+          else "no frame (pass --frame, or run takes the session's)")
+    typer.echo(f"waist bundle {path} ({summary['size_bytes'] / 1e3:.1f} kB, {len(summary['files'])} file(s)): "
+               f"waist-pendulum, K {p.k:.4f}, leg {p.leg_m:.3f} m, {p.source}, {rate}; frame {fr}")
 
 
 def _frames_of(session, bundle, units=None) -> dict:
@@ -261,6 +317,17 @@ def run(
                         "FOLDER or drop --dpi")
     if out is not None:
         out_folder(out, "run", force=force, inputs=(bundle_dir, session_dir))
+    from pdrlearn.runtime.bundle import WAIST_SCHEMA_NAME, bundle_kind
+
+    if bundle_kind(bundle_dir) == WAIST_SCHEMA_NAME:  # decision E57: a waist-only bundle
+        given = [o for o, v in (("--protocol", protocol), ("--units", units), ("--method", method),
+                                ("--rules", rules), ("--min-confidence", min_confidence), ("--start", start))
+                 if v is not None] + [o for o, v in (("--contacts", contacts), ("--resample", resample),
+                                                     ("--no-resample", no_resample)) if v]
+        if given:
+            raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only bundle "
+                            "(give SESSION_DIR, and --initial-heading / --chunk-s / --out / --json)")
+        return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi)
     bundle = load_bundle(bundle_dir)  # verified before any output
     methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
@@ -370,6 +437,81 @@ def run(
             typer.echo(gait_line(summary))
 
 
+def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chunk_s: float, as_json: bool,
+               heading0: float | None, dpi: int | None) -> None:
+    """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
+    pushed in ``chunk_s`` slices through :class:`pdrlearn.runtime.WaistTracker` (the gyroscope read at the
+    accelerometer's times, as ``track``'s ``body_data``). The frame is the session's declared one (warned when the
+    bundle records another), else the bundle's, else inferred from the data (D8). Writes and prints what ``run``
+    does for a foot bundle, with ``track``'s waist step columns."""
+    import numpy as np
+    import pandas as pd
+
+    from pdrlearn.errors import DataError, MissingSensorError
+    from pdrlearn.io import read_session
+    from pdrlearn.runtime.waist import WAIST_SENSORS, WaistTracker, load_waist_bundle
+    from pdrlearn.signal import interp_rows
+    from pdrlearn.track.base import TrackResult
+    from pdrlearn.track.evaluate import evaluate_track
+
+    bundle = load_waist_bundle(bundle_dir)  # verified before any output
+    if session_dir is None:
+        raise DataError("run: give a SESSION_DIR")
+    session = read_session(session_dir, streamed=True)
+    missing = [n for n in WAIST_SENSORS if not session.has(n)]
+    if missing:
+        raise MissingSensorError(f"session '{session.name}' ({session_dir}) has no {', '.join(missing)}, which the "
+                                 f"waist bundle {bundle_dir} tracks; record the lower-back accelerometer and gyroscope")
+    a, g = session["wAccelerometer"], session["wGyroscope"]
+    gyr = g.values if len(g) == len(a) and np.allclose(g.t, a.t, atol=1e-6) else interp_rows(a.t, g.t, g.values)
+    declared = session.frames.get("waist")  # as the foot run's frames: the session's declared frame first
+    frame = None
+    if declared is not None:
+        frame = declared.matrix()
+        if bundle.rotation is not None and not np.allclose(frame, bundle.rotation):
+            import logging
+
+            logging.getLogger("pdrlearn.cli").warning(
+                "%s: the session declares the waist frame %s, the bundle records %s; using the session's",
+                session.name, declared.to_dict(), bundle.manifest["frames"].get("waist"))
+    elif bundle.rotation is None:
+        frame = session.require_frame("waist").matrix()  # inferred from the data (D8, with its warning)
+    tracker = WaistTracker(bundle, fs=a.rate_hz, heading_rad=heading0 or 0.0, frame=frame)
+    steps, lat = [], []
+    k = np.floor((a.t - a.t[0]) / chunk_s).astype(np.int64)  # decision E28's chunks, counted from the first sample
+    for c in np.unique(k):
+        i = np.flatnonzero(k == c)
+        t0 = time.perf_counter()
+        new = tracker.push(a.t[i], a.values[i], gyr[i])
+        if new:
+            lat.append((time.perf_counter() - t0) / len(new))
+        steps += new
+    steps += tracker.flush()
+    cols = ["start_s", "end_s", "event_s", "length_m", "heading_rad", "unit", "has_next", "merged", "turning"]
+    df = pd.DataFrame([{"start_s": s.t, "end_s": s.end_s, "event_s": s.t, "length_m": s.length_m,
+                        "heading_rad": s.heading_rad, "unit": "waist", "has_next": s.has_next, "merged": s.merged,
+                        "turning": s.turning} for s in steps], columns=cols)
+    traj = pd.DataFrame({"t": [float(a.t[0])] + [s.end_s for s in steps],
+                         "x": [0.0] + [s.x for s in steps], "y": [0.0] + [s.y for s in steps]})
+    traj["z"] = 0.0
+    result = TrackResult(steps=df, trajectory=traj, info={"pipeline": "runtime-waist",
+                                                          "warnings": list(tracker.warnings)})
+    summary = {"source": f"session {session.name}", **evaluate_track(result, session), "session": session.name,
+               "pipeline": "runtime", "bundle_kind": "waist", "info": result.info,
+               "final_position": {"x": tracker.position[0], "y": tracker.position[1], "z": 0.0},
+               "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
+                                       "p99": float(np.percentile(lat, 99) * 1e3) if lat else None}}
+    if out is not None:
+        _write(out, result, summary, session, summary["source"], dpi=dpi)
+    if as_json:
+        print_json(json_safe(summary))
+        return
+    err = summary.get("distance_error_pct")
+    typer.echo(f"{summary['source']}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
+               + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
+               f"{[round(summary['final_position'][k], 2) for k in 'xyz']}" + (f" -> {out}" if out else ""))
+
+
 #: Step table columns in the order of ``pdrlearn track`` (decision B14); the runtime's extra columns follow.
 _STEP_COLUMNS = ("start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "terrain", "direction",
                  "length_class")
@@ -427,10 +569,18 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
     geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon") and np.isfinite(v)}
     out["final_position"] = {**dict(zip("xyz", (float(v) for v in tracker.position), strict=True)), **geo}
     if session is not None:
+        from pdrlearn.track.clinical import contact_timing
+
+        out.update(contact_timing(session, result.steps))  # decision L116, as track's summary
         out["session"] = session.name
         # cohort C13: the folder tracked, as track's summary.json (copies of a session share its name)
         out["input_dir"] = str(session.folder.resolve()) if session.folder is not None else None
     out["pipeline"] = "runtime"
+    from pdrlearn import __version__
+    from pdrlearn.track.evaluate import tracked_rate_hz
+
+    out["rate_hz"] = tracked_rate_hz(session, "runtime") if session is not None else None  # as track's (C19)
+    out["pdrlearn_version"] = __version__  # decision C18
     out["info"] = result.info
     if session is not None:  # decisions L95 / L113, as track's summary: gait range, withheld stride-time CV
         import logging

@@ -79,6 +79,10 @@ def simulate_cmd(
         "(left) or z (up), e.g. 'z:90' or 'z:90,x:180' (applied right to left as rotations of the unit); "
         "meta.json keeps the belt frame, so the tracker's frame inference and its warnings are what this "
         "exercises (decision S34)."),
+    step_time_asymmetry: float = typer.Option(
+        0.0, "--step-time-asymmetry", help="Hemiparetic gait: each step onto the left foot lasts 1 + this times "
+        "the step onto the right (symmetry ratio - 1, Patterson et al. 2010), e.g. 0.39; the cadence stays the "
+        "user's; 0 (default) to below 1 (decision S35)."),
     no_noise: bool = typer.Option(False, "--no-noise", help="Exact physics: no noise, bias or quantisation."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -101,7 +105,7 @@ def simulate_cmd(
     """
     from pdrlearn.io import write_session
     from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path
-    from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES
+    from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES, STEP_TIME_ASYMMETRY_MAX
     from pdrlearn.sim.route import parse_route
 
     if (scenario is None) == (route is None):
@@ -125,6 +129,9 @@ def simulate_cmd(
     if not (math.isfinite(mag_disturbance) and 0.0 <= mag_disturbance <= MAG_DISTURBANCE_MAX_UT):  # S33
         raise DataError(f"--mag-disturbance {mag_disturbance:g}: give 0-{MAG_DISTURBANCE_MAX_UT:g} uT")
     mount = parse_mount(waist_mount)  # decision S34
+    if not (math.isfinite(step_time_asymmetry) and 0.0 <= step_time_asymmetry < STEP_TIME_ASYMMETRY_MAX):  # S35
+        raise DataError(f"--step-time-asymmetry {step_time_asymmetry:g}: give 0 (symmetric) to below "
+                        f"{STEP_TIME_ASYMMETRY_MAX:g} (0.39 = the left foot's steps 39 % longer than the right's)")
     user = UserProfile.from_seed(user_seed)
     custom = _custom_gait(user, speed, step_length, step_time, route)  # decision S30
     if out.exists() and (not out.is_dir() or any(out.iterdir())):
@@ -141,6 +148,7 @@ def simulate_cmd(
         heading0_deg=heading0,
         mag_disturbance_ut=mag_disturbance,
         waist_mount_deg=mount,
+        step_time_asymmetry=step_time_asymmetry,
     )
     label = scenario or "route"
     with progress(f"simulating {label}", total=2, enabled=not as_json) as advance:

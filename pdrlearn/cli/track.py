@@ -72,6 +72,14 @@ COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a 
                                "unit's others (cut short, refused by B72): track only the time all of them cover, "
                                "every file and label table cut to it, with one warning naming the seconds dropped "
                                "from each file (decision B81).")
+RESAMPLE_OPT = typer.Option(False, "--resample", help="With --model: a session recorded at another rate than the "
+                            "model's is resampled to the model's rate first (the `pdrlearn run --resample` "
+                            "resampler, decision B113); default: tracked at its own rate with a warning.")
+NO_RESAMPLE_OPT = typer.Option(False, "--no-resample", help="With --model: refuse a session recorded at another "
+                               "rate than the model's (decision B113).")
+UNITS_OPT = typer.Option(None, "--units", help="Body units to track with: foot (the waist files left out, as "
+                         "`pdrlearn run --units foot`), waist, or foot,waist (default: every unit the session has; "
+                         "decision B127), e.g. to keep the foot outcome of a session whose waist unit stopped early.")
 INITIAL_HEADING_OPT = typer.Option(None, "--initial-heading", metavar="DEG", help=INITIAL_HEADING_HELP)
 WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the session start (track-all: from "
                           "each session's start): track the whole session, then keep the steps whose middle lies "
@@ -104,7 +112,10 @@ def track(
     contacts: bool = CONTACTS_OPT,
     dpi: int = DPI_OPT,
     common_span: bool = COMMON_SPAN_OPT,
+    units: str = UNITS_OPT,
     window: str = WINDOW_OPT,
+    resample: bool = RESAMPLE_OPT,
+    no_resample: bool = NO_RESAMPLE_OPT,
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print the summary as one JSON object."),
 ) -> None:
@@ -144,7 +155,8 @@ def track(
                               gnss_period=gnss_period, fixes=fixes, fix_period=fix_period, streaming=streaming,
                               realtime=realtime, reference_point=reference_point, toe_off=toe_off,
                               contacts=contacts, dpi=dpi, initial_heading=initial_heading,
-                              common_span=common_span, window=window)
+                              common_span=common_span, units=units, window=window, resample=resample,
+                              no_resample=no_resample)
     was = existed(out)
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
     with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
@@ -163,14 +175,21 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
                    reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
                    dpi: int | None = None, initial_heading: float | None = None,
-                   common_span: bool = False, window: str | None = None) -> dict:
+                   common_span: bool = False, window: str | None = None, resample: bool = False,
+                   no_resample: bool = False, units: str | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
     (``track-all --jobs``). What depends on the session (a window inside its recording, L105; a relative
     heading for ``--initial-heading``, L98) is checked per session in :func:`track_session` (decision L108)."""
+    from pdrlearn.io.resample import resample_mode
+    from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
 
+    rate_mode = resample_mode(resample, no_resample)  # decision B113
+    if rate_mode != "native" and model is None:
+        raise DataError(f"track: {'--resample' if resample else '--no-resample'} compares the session's rate with "
+                        "the model's: pass --model DIR, or drop it (without a model nothing depends on the rate)")
     start_ll, start_alt = start_option(start)
     heading0 = initial_heading_option(initial_heading)  # decision L98: degrees ENU -> rad
     win = parse_window(window)  # decision L105: a bad window is one line before any tracking
@@ -181,6 +200,10 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         if fix_file is not None and not Path(fix_file).is_file():
             raise DataError(f"{fix_file}: no such fix file; pass an NMEA log (.nmea/.txt) or a CSV "
                             "(t, lat, lon, accuracy_m)")
+    if model is not None and str(model) != "oracle":  # decision B128: a bad --model fails once, before any session
+        from pdrlearn.classify.model_dir import verify_model_dir
+
+        verify_model_dir(model)
     par = None
     if params is not None:
         try:
@@ -202,7 +225,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
-            "initial_heading_rad": heading0, "common_span": common_span, "window": win}
+            "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
+            "units": parse_units(units)}
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:
@@ -211,6 +235,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     from pdrlearn.io import read_session
     from pdrlearn.track.base import get_pipeline, resolve_pipeline
     from pdrlearn.track.evaluate import track_summary
+    from pdrlearn.track.units import check_tracked_span, keep_units, tracked_unit
 
     o = settings
     pipeline, method, model, streaming, toe_off = o["pipeline"], o["method"], o["model"], o["streaming"], o["toe_off"]
@@ -218,14 +243,17 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     params, par, gnss, fixes, dpi = o["params"], o["par"], o["gnss"], o["fixes"], o["dpi"]
     # L77: the drops warning of its path; B81: a unit's file cut short, tracked over the time all its files cover
     session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse")
+    content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
+    session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
+    if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts):
+        pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
+    pipeline = resolve_pipeline(pipeline, session)
+    check_tracked_span(session, tracked_unit(pipeline))  # decision B126: the tracked unit covers the walk
     win = None
     if o.get("window") is not None:  # decision L105: inside the recording, checked before tracking
         from pdrlearn.track.window import check_window
 
-        win = check_window(o["window"], session)
-    if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts):
-        pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
-    pipeline = resolve_pipeline(pipeline, session)
+        win = check_window(o["window"], session, tracked_unit(pipeline))  # B126: the tracked unit's recording
     fn = get_pipeline(pipeline)
     if o["realtime"] and pipeline != "waist-pendulum":  # decision W60: the flag the docs named
         raise DataError(f"track: --realtime applies to the waist-pendulum pipeline only (got --pipeline {pipeline}, "
@@ -240,6 +268,13 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                             gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"])
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
+    if o.get("resample", "native") != "native":  # decision B113: the session at the model's rate, or refused
+        from pdrlearn.classify import load_model
+        from pdrlearn.io.resample import at_model_rate
+
+        if model != "oracle":
+            model = load_model(model)
+        session = at_model_rate(session, model, o["resample"], command="track")
     if o["reference_point"] is not None:  # decision L72
         par = _reference_point(o["reference_point"], par, params, pipeline, streaming)
     # waist pipelines read the file themselves, so that their errors name it
@@ -291,7 +326,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         summary["window_start_s"], summary["window_end_s"] = (float(v) for v in o["window"])
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
-            "dpi": dpi}
+            "dpi": dpi, "content_id": content_id}
 
 
 def _check_relative_heading(result, session, heading0: float) -> None:

@@ -292,6 +292,11 @@ def evaluate(
         help="Write one row per scored step: session, step (its data row in the session's steps.csv, 0 = the "
         "first row under the header), start_s, end_s, task, true, predicted, correct, the method and unit that "
         "classified it and their probability of each class (p_<class>); written atomically (decision C42)."),
+    resample: bool = typer.Option(False, "--resample", help="A session recorded at another rate than the model's "
+                                  "is resampled to the model's rate first (the `pdrlearn run --resample` "
+                                  "resampler, decision B113); default: scored at its own rate with a warning."),
+    no_resample: bool = typer.Option(False, "--no-resample", help="Refuse a session recorded at another rate "
+                                     "than the model's (decision B113)."),
 ) -> None:
     """Accuracy per class x method x unit (thesis Tables 27/28/33), confusion matrices, per-step latency.
 
@@ -309,6 +314,9 @@ def evaluate(
     from pdrlearn.classify import evaluate_model, load_model
     from pdrlearn.classify.evaluation import evaluation_stages, results_table, write_predictions
     from pdrlearn.cli.common import out_file
+    from pdrlearn.io.resample import at_model_rate, resample_mode
+
+    rate_mode = resample_mode(resample, no_resample)  # decision B113
 
     if predictions_out is not None and report is not None and Path(predictions_out).resolve().is_relative_to(
             Path(report).resolve()):  # the next `--report --force` would delete it (decision C47)
@@ -338,7 +346,7 @@ def evaluate(
         advance(1, total=1 + len(dirs) + evaluation_stages(model, report=report is not None))
         sessions = []
         for d in dirs:
-            sessions.append(read_session(d))
+            sessions.append(at_model_rate(read_session(d), model, rate_mode, command="evaluate"))  # B113
             advance(1)
         tables: list | None = [] if predictions_out is not None else None
         result = evaluate_model(model, sessions, report_dir=report, advance=advance,

@@ -80,6 +80,8 @@ def write_bundle(
     npz_files: dict[str, dict[str, np.ndarray]] | None = None,
     overwrite: bool = False,
     verify: bool = True,
+    required: tuple[str, ...] = REQUIRED_KEYS,
+    loader=load_bundle,
 ) -> Path:
     """Write a bundle folder atomically and return its path.
 
@@ -91,7 +93,8 @@ def write_bundle(
     json_files : relative path -> JSON-serializable object (no NaN).
     npz_files : relative path -> arrays (numeric dtypes only, so loading never needs pickle).
     overwrite : replace an existing bundle.
-    verify : re-open the written bundle with :func:`pdrlearn.runtime.load_bundle` before the rename.
+    verify : re-open the written bundle with ``loader`` (:func:`pdrlearn.runtime.load_bundle`) before the rename.
+    required : the manifest keys the bundle kind needs (a waist bundle's: ``WAIST_REQUIRED_KEYS``, decision E57).
 
     Raises
     ------
@@ -102,7 +105,7 @@ def write_bundle(
         raise ModelError(f"{out}: is a file; --out must be a folder for the bundle")
     if out.exists() and any(out.iterdir()) and not overwrite:
         raise ModelError(f"{out}: folder exists and is not empty; choose another --out or pass --overwrite")
-    missing = [k for k in REQUIRED_KEYS if k != "files" and k not in manifest]
+    missing = [k for k in required if k != "files" and k not in manifest]
     if missing:
         raise ModelError(f"bundle manifest lacks {', '.join(missing)}; build it with base_manifest()")
     with atomic_directory(out) as tmp:
@@ -139,7 +142,7 @@ def write_bundle(
         _dump_json(full, tmp / MANIFEST)
         (tmp / MANIFEST_SHA).write_text(f"{sha256_file(tmp / MANIFEST)}  {MANIFEST}\n")
         if verify:
-            load_bundle(tmp, verify=True)
+            loader(tmp, verify=True)
     log.info("wrote bundle %s (%d files)", out, len(files))
     return out
 
@@ -175,8 +178,7 @@ def rebuild_step_graph(bundle_dir: str | Path, out_dir: str | Path | None = None
         elif rel.endswith(".json"):
             json_files[rel] = _json.loads((src / rel).read_text())
         elif rel.endswith(".npz"):
-            with np.load(src / rel, allow_pickle=False) as z:
-                npz_files[rel] = {k: z[k] for k in z.files}
+            npz_files[rel] = b.npz(rel)  # numeric arrays only, one line otherwise (decision B125)
         else:
             raise ModelError(f"bundle {src.name}: file '{rel}' has no known type; re-export the bundle")
     step = build_step_graph(manifest["tasks"], onnx_models, manifest["features"])

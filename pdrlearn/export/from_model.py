@@ -159,6 +159,21 @@ def _nn_module(clf):
     return MLP().eval()
 
 
+def embeds_training_samples(est) -> bool:
+    """Decision E68: whether a fitted model carries the user's training samples into a bundle: a DTW classifier
+    (its references are the standardised training step windows, reversible with the stored mean and sd) or an
+    SVM (its support vectors are scaled training feature vectors), also as a member of a soft vote (the
+    ``fused`` unit, the ``ensemble`` method). Networks and rule tables hold fitted weights and thresholds."""
+    from pdrlearn.classify.dtw import DTWClassifier
+    from pdrlearn.classify.fusion import UnitFusionClassifier
+    from pdrlearn.classify.svm import SVMClassifier
+
+    if isinstance(est, UnitFusionClassifier):
+        return any(embeds_training_samples(e) for e in est.estimators_)
+    last = est.steps[-1][1] if getattr(est, "steps", None) else est  # a Pipeline's classifier
+    return isinstance(last, (DTWClassifier, SVMClassifier))
+
+
 def _units_of(entry: dict, unit: str) -> set[str]:
     """Body units (foot / waist) an entry of ``unit`` reads (:func:`pdrlearn.runtime.classify.entry_units`)."""
     from pdrlearn.runtime.classify import entry_units
@@ -176,6 +191,7 @@ def export_model(
     length_bounds=None,
     overwrite: bool = False,
     model=None,
+    training_samples: bool = True,
 ) -> Path:
     """Write the runtime bundle of a trained model directory.
 
@@ -197,8 +213,14 @@ def export_model(
         summary, as ``pdrlearn track`` reads them); a model without them gets none (``length_bounds_m`` None,
         ``length_bounds_source`` "none", one warning; decision L59: the runtime then skips the length rule, as
         ``pdrlearn track --model``; the thesis step bounds x 2 clamp typical strides, L50).
+    training_samples : False (``pdrlearn export --no-training-samples``, decision E68) leaves out every model
+        that embeds training samples (:func:`embeds_training_samples`: DTW, SVM, soft votes with either): a
+        task whose chosen model does is given the model training would have chosen without them (the best
+        ranked two-unit one, else the best ranked), its foot-only fallback likewise; a task left without
+        any model is a :class:`ModelError`.
     """
     from pdrlearn.classify.model_dir import load_model, read_manifest
+    from pdrlearn.classify.training import best_pair
     from pdrlearn.features import CHANNELS
     from pdrlearn.features.transformers import SIGNALS
 
@@ -221,15 +243,28 @@ def export_model(
     skipped: list[str] = []
     for task, tm in model.tasks.items():
         chosen = tm.chosen
+
+        def allowed(p, tm=tm) -> bool:  # decision E68: --no-training-samples
+            return training_samples or not embeds_training_samples(tm.models[p[0]][p[1]])
+
+        if not training_samples:
+            ok = [p for p in tm.ranking() if allowed(p) and (not methods or p[0] in methods)]
+            if not ok:
+                left = [f"{m}/{u}" for m, per in tm.models.items() for u in per if not methods or m in methods]
+                raise ModelError(f"{model_dir}: --no-training-samples leaves task {task} without a model (its "
+                                 f"{', '.join(left) or 'requested'} models embed training samples: DTW references "
+                                 "or SVM support vectors); export without --no-training-samples, or train nn or "
+                                 "heuristic models (pdrlearn train --methods nn,heuristic,fusion)")
+            chosen = chosen if chosen in ok else best_pair(ok)  # as training chooses (decisions C8, C23)
         if methods:
-            wanted = [(m, u) for m in methods for u in tm.models.get(m, {})]
+            wanted = [(m, u) for m in methods for u in tm.models.get(m, {}) if allowed((m, u))]
         else:
             wanted = [chosen] if chosen else []
         # decision E26: the model `pdrlearn track` (UserModel.predict_steps) classifies a session without the
         # waist unit with: the chosen one when it reads the foot only, else the best-ranked foot model (of the
         # methods asked for, as the chosen one)
         foot_only = next((p for p in dict.fromkeys(([chosen] if chosen else []) + tm.ranking())
-                          if p[1] == "foot" and (not methods or p[0] in methods)), None)
+                          if p[1] == "foot" and (not methods or p[0] in methods) and allowed(p)), None)
         if foot_only is not None and foot_only not in wanted:
             wanted = [*wanted, foot_only]
         entries: dict = {}
@@ -307,11 +342,13 @@ def export_model(
             "data": model.data_summary,
             "settings": model.settings,
             "model_created": model.created,
-            "source_model_dir": str(model_dir) if model_dir else None,
+            # decision E67: the folder's name only; the path as typed could name the user's home and host
+            "source_model_dir": Path(model_dir).resolve().name if model_dir else None,
             "source_package_version": src_manifest.get("package_version"),
         },
         metrics={t: v["cv"] for t, v in tasks.items()},
-        export={"methods": list(methods) if methods else "chosen", "skipped": skipped},
+        export={"methods": list(methods) if methods else "chosen", "skipped": skipped,
+                "training_samples": bool(training_samples)},  # decision E68
     )
     if step is not None:
         col.onnx[STEP_GRAPH_FILE] = step[0]

@@ -559,7 +559,10 @@ def build_step_graph(tasks: dict, onnx_models: dict[str, onnx.ModelProto], featu
                               producer_name="pdrlearn")
     model.ir_version = 8
     onnx.checker.check_model(model, full_check=True)
+    # decision E69: ``input_channels`` = the rows of W in order (the window's whole channel layout, as
+    # features.channels); ``channels`` = the rows the graph reads (the others may hold anything, NaN included)
     spec = {"input": INPUT, "dtype": "float64", "outputs": outputs,
+            "input_channels": list(features["channels"]),
             "channels": [features["channels"][j] for j in sorted(b.used_channels)]}
     return model, spec
 

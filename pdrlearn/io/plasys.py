@@ -6,7 +6,8 @@ A session folder holds one CSV per sensor (``fAccelerometer.csv`` ... ``wBaromet
 
 Decision (docs/decisions.md D1): on disk, ``timestamp`` and every ``*_ms`` label column are
 **milliseconds**, as in the converted real recordings; in memory they are seconds (``*_s``). A
-``meta.json`` may declare ``"units": {"timestamp": "s ..."}`` (or ``"ns ..."``) for other files.
+``meta.json`` may declare ``"units": {"timestamp": "s ..."}`` (or ``"ns ..."``) for other files, and
+``"clocks"`` a unit's own rate, timestamp unit and clock offset (decision B115, :mod:`pdrlearn.io.clocks`).
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ import pandas as pd
 
 from pdrlearn.atomic import atomic_directory
 from pdrlearn.errors import DataError, shell_quote
+from pdrlearn.io.clocks import apply_offsets, one_unit_counting, unit_clocks, unit_groups
 from pdrlearn.io.frames import frames_from_meta
 from pdrlearn.io.sensors import SENSORS, UNIT_IMU, VALUE_UNITS
 from pdrlearn.io.session import MAX_BRIDGED_S, STEP_COLUMNS, Session, Stream
@@ -34,6 +36,7 @@ from pdrlearn.io.validate import (
     check_timestamps,
     check_trajectory_times,
     check_units,
+    ends_mid_line,
     implausible_rhythm,
     sample_numbers,
     time_unit_candidates,
@@ -294,7 +297,7 @@ def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np
         raise DataError(f"{path}: file not found")
     df = read_table(path)
     check_columns(df, ("timestamp", *spec.columns), str(path))
-    return name, check_numeric(df, ("timestamp", *spec.columns), str(path))
+    return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=ends_mid_line(path))
 
 
 def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: float, check_unit: bool,
@@ -367,6 +370,25 @@ def _index_unit(raw: dict[str, np.ndarray], rate_hz: float | None, folder: Path,
                     f"({t[0]:.0f}-{t[-1]:.0f}): these look like sample counters, not ms{rhythm}; give the sampling "
                     f"rate in {meta_path.name}: \"rate_hz\": <Hz> (1000 if they are ms{unit}), or write each "
                     "sample's time in ms")
+
+
+def _group_time_scale(raw: dict[str, np.ndarray], meta: dict, rate: float | None, folder: Path,
+                      meta_path: Path) -> tuple[float, str | None]:
+    """Seconds per timestamp unit of sensor files that share one clock (the whole session, or one unit of a
+    session with per-unit ``clocks``, decision B115) and the unit read when meta.json declares none: the declared
+    unit (B16), else the one every file's rate allows (B22), else sample indices at ``rate`` (B31) or, without
+    ``rate``, the refusal of sample counters (B98)."""
+    scale = _timestamp_scale(meta, str(meta_path), rate)
+    declared = _timestamp_declared(meta)
+    unit = _session_time_unit(raw, rate, meta_path) if raw and not declared else None
+    # decisions B31, B98: sample counters, not ms (a declared ms unit too, unless rate_hz says which)
+    if unit is None and raw and (not declared or (scale == 1e-3 and rate is None)) and _index_clock(raw):
+        unit = _index_unit(raw, rate, folder, meta_path, declared=declared)
+    if unit == "samples":
+        scale = 1.0 / rate
+    elif unit is not None:  # decision B22: one unit for every file, said once
+        scale = _TIME_SCALE[unit]
+    return scale, unit
 
 
 def _check_declared_rate(streams: dict[str, Stream], rate_hz: float, meta_path: Path) -> None:
@@ -817,35 +839,40 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
                              or rate <= 0):
         raise DataError(f"{meta_path}: rate_hz {rate!r} is not a positive number of Hz; fix it or remove the field")
     rate = float(rate) if rate is not None else None
-    scale = _timestamp_scale(meta, str(meta_path), rate)
+    clocks = unit_clocks(meta, meta_path)  # decision B115: per-unit rates and clock offsets
     raw = {}
     for name, spec in SENSORS.items():
         p = folder / spec.filename
         if p.exists():
             raw[name] = _read_raw(p, name)[1]
-    declared = _timestamp_declared(meta)
-    unit = _session_time_unit(raw, rate, meta_path) if raw and not declared else None
-    # decisions B31, B98: sample counters, not ms (a declared ms unit too, unless rate_hz says which)
-    if unit is None and raw and (not declared or (scale == 1e-3 and rate is None)) and _index_clock(raw):
-        unit = _index_unit(raw, rate, folder, meta_path, declared=declared)
-    if unit == "samples":
-        scale = 1.0 / rate
-    elif unit is not None:  # decision B22: one unit for every file, said once
-        scale = _TIME_SCALE[unit]
-    streams = {name: _to_stream(folder / SENSORS[name].filename, name, arr, scale, check_units,
+    if not clocks:
+        one_unit_counting(raw, folder, meta_path)  # decision B116: a counter on one unit needs its own clock
+    scales: dict[str, float] = {}
+    read_as = []
+    for names, r, m in unit_groups(raw, clocks, rate, meta):  # one clock for every file, or one per unit (B115)
+        sc, unit = _group_time_scale({n: raw[n] for n in names}, m, r, folder, meta_path)
+        scales.update(dict.fromkeys(names, sc))
+        read_as.append((names, r, unit))
+    # trajectory.csv's time unit: the sensor files' (B25); with per-unit clocks the session's declared unit (B115)
+    scale = (scales[read_as[0][0][0]] if read_as and read_as[0][0] and not clocks
+             else _timestamp_scale(meta, str(meta_path), rate))
+    streams = {name: _to_stream(folder / SENSORS[name].filename, name, arr, scales[name], check_units,
                                 _value_unit(meta, name, str(meta_path)))
                for name, arr in raw.items()}
-    if unit == "samples":
-        log.warning("%s: declares no timestamp unit and the accelerometer/gyroscope timestamps are consecutive "
-                    "integers, %g times rate_hz %g read as ms: read as sample indices at %g Hz; write each sample's "
-                    "time in ms, or add \"units\": {\"timestamp\": \"samples\"} to meta.json to say so", meta_path,
-                    1000.0 / rate, rate, rate)
-    elif unit is not None:
-        log.warning("%s: declares no timestamp unit and the timestamps are not milliseconds: read as %s "
-                    "(%s); add \"units\": {\"timestamp\": \"%s\"} to meta.json to say so", meta_path, unit,
-                    ", ".join(f"{n} {s.rate_hz:.4g} Hz" for n, s in streams.items()), unit)
-    if rate is not None:
-        _check_declared_rate(streams, rate, meta_path)
+    for names, r, unit in read_as:
+        where = meta_path if not clocks else f"{meta_path} ({SENSORS[names[0]].placement} unit)"
+        if unit == "samples":
+            log.warning("%s: declares no timestamp unit and the accelerometer/gyroscope timestamps are consecutive "
+                        "integers, %g times rate_hz %g read as ms: read as sample indices at %g Hz; write each "
+                        "sample's time in ms, or add \"units\": {\"timestamp\": \"samples\"} to meta.json to say so",
+                        where, 1000.0 / r, r, r)
+        elif unit is not None:
+            log.warning("%s: declares no timestamp unit and the timestamps are not milliseconds: read as %s "
+                        "(%s); add \"units\": {\"timestamp\": \"%s\"} to meta.json to say so", where, unit,
+                        ", ".join(f"{n} {streams[n].rate_hz:.4g} Hz" for n in names), unit)
+        if r is not None:
+            _check_declared_rate({n: streams[n] for n in names}, r, meta_path)
+    apply_offsets(streams, clocks, meta_path)  # decision B115: each unit's clock onto the session's
     if spans not in ("refuse", "warn", "off", "common"):
         raise ValueError(f"spans={spans!r}: use 'refuse', 'warn', 'off' or 'common'")
     # decision B72: before a gap warning about a cut file; B81: "common" cuts the session instead of refusing
@@ -906,6 +933,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
                                str(folder / "trajectory.csv"))
     warn_low_rate(session)
     warn_saturation(session)
+    warn_frozen(session)  # decision B120
     for name, s in streams.items():
         gaps = s.gaps()
         if gaps:
@@ -949,6 +977,20 @@ def warn_saturation(session: Session) -> None:
             log.warning("%s", saturation_warning(where, kind, n, len(s), top))
 
 
+def warn_frozen(session: Session) -> None:
+    """Decision B120: one warning per run of bit-identical consecutive samples of a 3-axis sensor file lasting
+    :data:`~pdrlearn.kernels.units.FROZEN_S` or more (a frozen sensor), naming the file and the span."""
+    from pdrlearn.kernels.units import frozen_message, frozen_spans
+
+    for name, s in session.streams.items():
+        if s.values.ndim != 2 or s.values.shape[1] != 3:
+            continue
+        where = (str(Path(session.folder) / SENSORS[name].filename) if session.folder is not None
+                 else f"session '{session.name}', stream {name}")
+        for a, b, n in frozen_spans(s.t, s.values):
+            log.warning("%s", frozen_message(where, a, b, n, s.values[int(np.searchsorted(s.t, a))]))
+
+
 def _stream_frame(s: Stream, scale: float) -> pd.DataFrame:
     data = {"timestamp": np.round(s.t / scale, 9)}
     for j, c in enumerate(s.spec.columns):
@@ -969,6 +1011,7 @@ def write_session(session: Session, folder: str | os.PathLike, *, overwrite: boo
     with atomic_directory(folder) as tmp:
         meta = dict(session.meta)
         meta.setdefault("session", session.name)
+        meta.pop("clocks", None)  # decision B115: the times written are on the session's clock, in ms
         units = dict(meta.get("units", {}))
         units["timestamp"] = "ms since the first sample"
         for name in session.streams:  # B32: values are in memory in SI, whatever unit meta.json declared

@@ -268,6 +268,9 @@ class Session:
     #: decision B81: the recording's first sample (s) before ``read_session(spans="common")`` cut the session to
     #: its common span (None: not cut); ``track --window`` counts its seconds from it (L105)
     _t_start_uncut: float | None = field(default=None, repr=False, compare=False)
+    #: decision B113: the recording's :meth:`content_id` when this session is its copy resampled to a model's
+    #: rate (``pdrlearn evaluate --resample``): the held-out check (B87) still knows the recording
+    _source_id: str | None = field(default=None, repr=False, compare=False)
 
     # -- access -----------------------------------------------------------------------------------
     def __getitem__(self, name: str) -> Stream:
@@ -324,6 +327,8 @@ class Session:
         gives the same id, two recordings in folders of one name do not."""
         import hashlib
 
+        if self._source_id is not None:  # decision B113: a resampled copy is still the recording
+            return self._source_id
         h = hashlib.sha1()
         for key in sorted(self.streams):
             st = self.streams[key]
@@ -365,9 +370,12 @@ class Session:
                 where = (f"{self.folder / (name + '.csv')}" if self.folder is not None
                          else f"session '{self.name}': {name}")
                 lo, hi = max(float(m.t[0]), float(s.t[0])), min(float(m.t[-1]), float(s.t[-1]))
+                alone = ""
+                if m.placement and s.placement and m.placement != s.placement:  # B127: the master's unit alone
+                    alone = f", or the {m.placement} unit alone with --units {m.placement} (decision B127)"
                 fix = (f"track only {lo:.2f}-{hi:.2f} s, where both have data, with `pdrlearn track --common-span` "
-                       "(decision B83), or re-record" if hi > lo
-                       else "they do not overlap: re-record")
+                       f"(decision B83){alone}, or re-record" if hi > lo
+                       else f"they do not overlap: re-record{alone}")
                 raise DataError(
                     f"{where} covers {s.t[0]:.2f}-{s.t[-1]:.2f} s but {master} {m.t[0]:.2f}-{m.t[-1]:.2f} s; "
                     f"its values would be made up for the missing {max(late, 0) + max(early, 0):.2f} s -- {fix}")

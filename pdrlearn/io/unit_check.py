@@ -12,23 +12,14 @@ from __future__ import annotations
 import numpy as np
 
 from pdrlearn.io.sensors import UNIT_IMU
-
-#: B91: the percentile of |gyro| (rad/s) that tells a swinging foot from a waist
-SWING_PERCENTILE = 99.0
-#: B91: a foot unit whose percentile stays below this never swung (rad/s; walking feet measured >= 6.2)
-FOOT_NO_SWING = 3.0
-#: B91: a waist unit whose percentile exceeds this swung like a foot (rad/s; walking waists measured <= 2.4)
-WAIST_SWINGS = 4.0
-#: B91: relative tolerance of "the same data" (magnitudes, so that another declared frame does not hide it)
-SAME_RTOL = 1e-6
-
-
-def swing_rate(values: np.ndarray) -> float:
-    """The 99th percentile of the gyroscope magnitude (rad/s) of an (n, 3) array; nan when empty."""
-    v = np.asarray(values, dtype=float)
-    if v.ndim != 2 or len(v) == 0:
-        return float("nan")
-    return float(np.nanpercentile(np.linalg.norm(v, axis=1), SWING_PERCENTILE))
+from pdrlearn.kernels.units import (  # noqa: F401 - B91's rule, shared with the runtime (B119)
+    FOOT_NO_SWING,
+    SAME_RTOL,
+    SWING_PERCENTILE,
+    WAIST_SWINGS,
+    swapped_units,
+    swing_rate,
+)
 
 
 def _same(a, b) -> bool:
@@ -63,7 +54,7 @@ def unit_mixup(session) -> str | None:
         return (f"the foot unit ({foot}) and the waist unit ({waist}) hold the same data (one recording given as "
                 f"both units; decision B91): {fix}, or remove the waist files to track the foot alone")
     f99, w99 = swing_rate(s[fg].values), swing_rate(s[wg].values)
-    if f99 < FOOT_NO_SWING and w99 > WAIST_SWINGS:
+    if swapped_units(f99, w99):
         fix = (f"import {waist} as the foot unit (--unit foot) and {foot} with --unit waist --merge, into a new "
                "--out" if imported else "swap the f* and w* files (fAccelerometer.csv <-> wAccelerometer.csv, "
                "fGyroscope.csv <-> wGyroscope.csv) and their \"frames\" entries in meta.json")

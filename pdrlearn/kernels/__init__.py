@@ -17,6 +17,12 @@ Modules
 - :mod:`~pdrlearn.kernels.bayes` - the bayes class rule's stride length and the confidence gate (L14, L18).
 - :mod:`~pdrlearn.kernels.altitude_check` - the height warnings of a foot track (L69, C28; E47: track and run).
 - :mod:`~pdrlearn.kernels.barometer` - the barometric formula and the relative altitude of a barometer (W89).
+- :mod:`~pdrlearn.kernels.dsp` - FIR design, peaks, moving mean, Butterworth zero-phase filters (scipy's, W92).
+- :mod:`~pdrlearn.kernels.waist` - the waist pipelines' kernels (contacts, pendulum, gyro heading, W27; W92).
+- :mod:`~pdrlearn.kernels.ahrs` - Madgwick's IMU filter and quaternion <-> matrix (W43, W92).
+- :mod:`~pdrlearn.kernels.gaps` - stream gaps: the warning lines and the cut of a contact table (B11).
+- :mod:`~pdrlearn.kernels.waist_stream` - the waist contacts on a stream (W31, W59; the live trackers).
+- :mod:`~pdrlearn.kernels.fixes` - the fix-fusion EKF one step at a time, live fixes (seed 004; D14, D19).
 
 This ``__init__`` imports nothing (importing a submodule never loads the others).
 """

@@ -30,6 +30,9 @@ TOUCH_S = 1e-6
 #: default (duration <= 3 s, pdrlearn.waist.gait_rules.MAX_STRIDE_S); also the longest rest inside a walk
 #: (mobgap WbAssembly MaxBreakCriteria(max_break_s=3)) for ``walking_time_s`` (decisions L79, L80)
 MAX_STRIDE_S = 3.0
+#: steps decision 32: the foot contacts' times between the samples (the impact peak's parabola, the force crossing's
+#: line) when True; whole samples when False. The detectors' ``subsample=None`` and the streamed contacts read it
+SUBSAMPLE = True
 
 
 def butter2(cutoff_hz: float, fs: float) -> tuple[np.ndarray, np.ndarray]:
@@ -83,6 +86,27 @@ def last_impact(peak_values, emx: float, rest: float, peak_frac: float) -> int:
     return -1
 
 
+def peak_time(t0: float, t1: float, t2: float, e0: float, e1: float, e2: float) -> float:
+    """Steps decision 32: the time (s) of the vertex of the parabola through the samples ``(t0, e0)``, ``(t1, e1)``,
+    ``(t2, e2)`` around a local maximum at ``t1`` (Press et al., Numerical Recipes, 3rd ed., eq. 10.3.1), kept within
+    half an interval of ``t1``; ``t1`` when the three points lie on a line."""
+    a, c = t1 - t0, t1 - t2
+    den = a * (e1 - e2) - c * (e1 - e0)
+    if not den:
+        return t1
+    t = t1 - 0.5 * (a * a * (e1 - e2) - c * c * (e1 - e0)) / den  # Numerical Recipes eq. 10.3.1
+    return min(max(t, t1 - 0.5 * a), t1 - 0.5 * c)
+
+
+def crossing_time(t0: float, t1: float, f0: float, f1: float, level: float) -> float:
+    """Steps decision 32: the time (s) at which the line from ``(t0, f0)`` to ``(t1, f1)`` reaches ``level`` (a
+    threshold crossing between two samples, ``f0 <= level < f1``), kept within ``[t0, t1]``; ``t1`` when
+    ``f1 <= f0``."""
+    if not f1 > f0:
+        return t1
+    return min(max(t0 + (level - f0) / (f1 - f0) * (t1 - t0), t0), t1)
+
+
 def local_maxima(e: np.ndarray) -> np.ndarray:
     """Indices ``i`` where ``e`` rose into sample ``i`` and does not rise after it (``e[i-1] < e[i] >= e[i+1]``):
     the peaks ``burst_kernel`` collects."""
@@ -109,7 +133,9 @@ def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_f
     k = last_impact(e[pk], float(e.max()), rest, peak_frac)
     if k < 0:
         return math.nan
-    ic = float(t[pk[k]]) - group_delay_s(b, a, fs)
+    i = int(pk[k])
+    tp = peak_time(*(float(v) for v in (*t[i - 1:i + 2], *e[i - 1:i + 2]))) if SUBSAMPLE else float(t[i])
+    ic = tp - group_delay_s(b, a, fs)
     return ic if ic >= t[0] else math.nan
 
 
@@ -141,6 +167,7 @@ class ForceParams:
     on_frac: float  # combined force above this fraction of its running maximum = stance
     off_frac: float  # below this fraction = swing (hysteresis)
     min_swing_s: float  # shortest swing (s)
+    subsample: bool = False  # steps decision 32: the onset between the samples, by the crossing's line
 
 
 @dataclass
@@ -151,16 +178,20 @@ class ForceState:
     mx: float = -math.inf
     mn: float = math.inf
     last_event_t: float = math.nan
+    prev_t: float = math.nan  # the previous sample (decision 32's crossing)
+    prev_f: float = math.nan
 
 
 def force_kernel(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: ForceState,
                  p: ForceParams) -> tuple[list, ForceState]:
     """Thesis ch.5.2: while the combined heel+toe force is ~0 (swing) keep the max and min of the
     filtered acceleration; at the stance onset count a step when max - min > ``p.amp``. The event is
-    the stance onset (initial contact); the window runs from the swing start to the stance onset."""
+    the stance onset (initial contact), with ``p.subsample`` the time the line from the sample before reaches the
+    on level (steps decision 32); the window runs from the swing start to the stance onset sample."""
     out: list = []
     s = state
     for ti, ai, fi in zip(t.tolist(), a.tolist(), f.tolist(), strict=True):
+        prev_t, prev_f, s.prev_t, s.prev_f = s.prev_t, s.prev_f, ti, fi
         if fi > s.fmax:
             s.fmax = fi
         if s.stance:
@@ -175,7 +206,9 @@ def force_kernel(t: np.ndarray, a: np.ndarray, f: np.ndarray, state: ForceState,
                 s.stance = True
                 span = s.mx - s.mn
                 if span > p.amp and ti - s.swing_t0 >= p.min_swing_s:
-                    out.append((ti, s.swing_t0, ti, min(1.0, span / (2.0 * p.amp)), {"amplitude": span}))
+                    ic = (crossing_time(prev_t, ti, prev_f, fi, p.on_frac * s.fmax)
+                          if p.subsample and prev_f == prev_f else ti)
+                    out.append((ic, s.swing_t0, ti, min(1.0, span / (2.0 * p.amp)), {"amplitude": span}))
                     s.last_event_t = ti
     return out, s
 
@@ -195,7 +228,7 @@ def force_onset(t: np.ndarray, acc: np.ndarray, force: np.ndarray) -> float:
         return math.nan
     ev, _ = force_kernel(np.asarray(t, dtype=float), np.sqrt(np.einsum("ij,ij->i", acc, acc)), f[:, 0] + f[:, 1],
                          ForceState(), ForceParams(amp=FORCE_AMP, on_frac=FORCE_ON_FRAC, off_frac=FORCE_OFF_FRAC,
-                                                   min_swing_s=FORCE_MIN_SWING_S))
+                                                   min_swing_s=FORCE_MIN_SWING_S, subsample=SUBSAMPLE))
     return float(ev[-1][0]) if ev else math.nan
 
 

@@ -29,16 +29,19 @@ def rate_differs(trained_hz: float, fs_hz: float, *, tolerance: float = RATE_TOL
     return abs(float(trained_hz) - float(fs_hz)) > tolerance * float(trained_hz)
 
 
-def classifier_rate_warning(off: Mapping) -> str:
+def classifier_rate_warning(off: Mapping, *, resample_hint: bool = False) -> str:
     """Decision C18's one line for the units of ``off`` (unit -> ``{"trained_hz", "session_hz"}``) whose
     step classifiers run at another rate than they were trained at; shared by ``pdrlearn track``
-    (``track.plasys.rate_check``) and ``pdrlearn run`` (``runtime.resample.InputStage``)."""
+    (``track.plasys.rate_check``) and ``pdrlearn run`` (``runtime.resample.InputStage``, whose own line names
+    ``--resample``). ``resample_hint``: name ``--resample`` of ``track`` / ``evaluate`` (decision B113)."""
     units = " and ".join(off)
     trained = " / ".join(f"{v['trained_hz']:g}" for v in off.values())
     now = " / ".join(f"{v['session_hz']:.4g}" for v in off.values())
     return (f"the model's step classifiers were trained at {trained} Hz, the session's {units} unit"
             f"{'s run' if len(off) > 1 else ' runs'} at {now} Hz: its step classes may be unreliable; "
-            "train on the user's own data at this rate (`pdrlearn train`)")
+            "train on the user's own data at this rate (`pdrlearn train`)"
+            + (", or pass --resample to resample the session to the model's rate (decision B113)"
+               if resample_hint else ""))
 
 
 def applicable_calibration(rec: Mapping | None, fs_hz: float, *, tolerance: float = RATE_TOLERANCE,

@@ -15,11 +15,11 @@ from pdrlearn.io.plasys import read_table
 #: the columns a sessions.csv must have to be reported (track-all's first four, decision C12)
 REQUIRED_SESSION_COLUMNS = ("path", "group", "status", "error")
 #: the per-session table's columns, those sessions.csv has (the full row stays in sessions.csv)
-SESSION_TABLE_COLUMNS = ("path", "group", "status", "n_steps", "distance_m", "distance_error_pct",
-                         "final_position_error_m", "walking_time_s", "gait_speed_mps", "median_cadence_spm",
-                         "median_stride_length_m", "median_stride_time_s", "n_warnings")
+SESSION_TABLE_COLUMNS = ("path", "group", "status", "n_strides_one_foot", "n_steps_both_feet", "distance_m",
+                         "distance_error_pct", "final_position_error_m", "walking_time_s", "gait_speed_mps",
+                         "median_cadence_spm", "median_stride_length_m", "median_stride_time_s", "n_warnings")
 #: the columns a groups.csv must have (``pdrlearn.cohort.group_table``)
-REQUIRED_GROUP_COLUMNS = ("group", "n_sessions", "n_failed")
+REQUIRED_GROUP_COLUMNS = ("group", "n_tracked", "n_failed")
 
 _REGENERATE = "regenerate the folder with `pdrlearn track-all ROOT --out OUTDIR`"
 
@@ -52,6 +52,8 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     if not gpath.is_file():
         return sessions, group_table(sessions)
     groups = read_table(gpath)
+    if "n_tracked" not in groups and "n_sessions" in groups:  # decision C19: the column's name before C19
+        groups = groups.rename(columns={"n_sessions": "n_tracked"})
     missing = [c for c in REQUIRED_GROUP_COLUMNS if c not in groups.columns]
     if missing:
         raise DataError(f"{gpath}: not a track-all groups.csv (no column {', '.join(missing)}); {_REGENERATE}")

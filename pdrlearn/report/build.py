@@ -236,7 +236,10 @@ def _run_warnings(tracks: list[Path], evaluations: list[Path], root: Path) -> Se
         info = _read_json(p).get("info")
         return info if isinstance(info, dict) else {}
 
-    lines, runs = [], set()
+    from pdrlearn.cohort import grouped_warning
+
+    seen: dict[str, list[str]] = {}  # decision C21: each distinct warning once, with the runs that raised it
+    n = 0
     for p, warns in ([(p, info_of(p).get("warnings")) for p in tracks]
                      + [(p, _read_json(p).get("warnings")) for p in evaluations]):
         if isinstance(warns, str):
@@ -245,12 +248,16 @@ def _run_warnings(tracks: list[Path], evaluations: list[Path], root: Path) -> Se
             continue
         run = str(p.parent.relative_to(root)) or "."
         run = run if p.name == "summary.json" else f"{run} (evaluate)"
-        got = [f"{run}: {w}" for w in warns if isinstance(w, str) and w.strip()]
-        runs |= {run} if got else set()
-        lines += got
-    if not lines:
+        for w in dict.fromkeys(w for w in warns if isinstance(w, str) and w.strip()):
+            seen.setdefault(w, []).append(run)
+            n += 1
+    if not seen:
         return None
-    return Section("Warnings", text=f"{len(lines)} warning(s) from {len(runs)} run(s); read them before the "
+    runs = list(dict.fromkeys(r for rs in seen.values() for r in rs))
+    lines = [f"{rs[0]}: {w}" if len(rs) == 1 else grouped_warning(w, rs, len(tracks) + len(evaluations), "runs")
+             for w, rs in seen.items()]
+    return Section("Warnings", text=f"{n} warning(s) from {len(runs)} run(s)"
+                   + (f", {len(lines)} distinct" if len(lines) < n else "") + "; read them before the "
                    "numbers below (each track's summary.json info.warnings, each evaluation.json's warnings).",
                    warnings=lines)
 

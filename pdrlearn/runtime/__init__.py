@@ -6,5 +6,7 @@ is absent). Never torch, scikit-learn, scipy or pandas: ``tests/test_runtime_imp
 
 from pdrlearn.runtime.bundle import SCHEMA_VERSION, Bundle, OnnxModel, load_bundle, read_manifest
 from pdrlearn.runtime.tracker import Step, Tracker
+from pdrlearn.runtime.waist import LiveStep, WaistBundle, WaistTracker, load_waist_bundle
 
-__all__ = ["SCHEMA_VERSION", "Bundle", "OnnxModel", "load_bundle", "read_manifest", "Step", "Tracker"]
+__all__ = ["SCHEMA_VERSION", "Bundle", "OnnxModel", "load_bundle", "read_manifest", "Step", "Tracker", "LiveStep",
+           "WaistBundle", "WaistTracker", "load_waist_bundle"]

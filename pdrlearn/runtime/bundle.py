@@ -18,6 +18,7 @@ import hashlib
 import json
 import logging
 import math
+import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -55,15 +56,16 @@ DEFAULT_RATE_TOLERANCE = 0.05
 UNITS = ("foot", "waist")
 
 def waist_only_hint(params: str | None = None) -> str:
-    """Decisions B107/E53: what a waist-only (belt phone) user can do, named where a bundle or model directory
-    cannot serve them: bundles detect steps on the foot gyroscope (E7) and have no waist-only export; the waist
-    pipelines are calibrated, not trained (docs/waist.md). ``params``: the user's calibration file, if known."""
+    """Decisions B107/E53/E55, amended by E59: what a waist-only (belt phone) user can do, named where a foot-unit
+    bundle or a model directory cannot serve them: export the calibration as a waist bundle (E57) and run it, or
+    track the recording offline with the calibration. ``params``: the user's calibration file, if known."""
     first = ("" if params else "calibrate on a walk of known length (pdrlearn calibrate WALK --distance M --out "
              "cal.json), then ")
-    params = params or "cal.json"
-    return (f"a waist-only recording is tracked without a bundle: {first}pdrlearn track SESSION --pipeline "
-            f"waist-pendulum --params {shell_quote(params)}, or live "
-            f"pdrlearn.waist.WaistTracker(rate_hz, params='{params}')")
+    p = shell_quote(params or "cal.json")
+    return (f"a waist-only recording runs on a waist bundle: {first}pdrlearn export {p} --out WAIST_BUNDLE "
+            "--frame x=up,y=right,z=forward (the unit's axes), then pdrlearn run WAIST_BUNDLE SESSION, or live "
+            "pdrlearn.runtime.WaistTracker(load_waist_bundle('WAIST_BUNDLE')); offline: pdrlearn track SESSION "
+            f"--pipeline waist-pendulum --params {p}")
 
 
 def sha256_file(path: str | Path, *, chunk: int = 1 << 20) -> str:
@@ -107,7 +109,13 @@ class OnnxModel:
                 opts.intra_op_num_threads = 1  # one step at a time: threads only add latency
                 opts.inter_op_num_threads = 1
                 opts.log_severity_level = 3
-                self._sess = ort.InferenceSession(str(self.path), sess_options=opts, providers=["CPUExecutionProvider"])
+                try:
+                    self._sess = ort.InferenceSession(str(self.path), sess_options=opts,
+                                                      providers=["CPUExecutionProvider"])
+                except Exception as exc:  # noqa: BLE001 - onnxruntime's own error types (InvalidProtobuf, Fail, ...)
+                    why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+                    raise ModelError(f"{self.path}: onnxruntime cannot open this model ({why}); restore the original "
+                                     "bundle or re-export it with 'pdrlearn export' (decision B125)") from None
                 self._names = [o.name for o in self._sess.get_outputs()]
                 self._wanted = [n for n in self.outputs.values() if n in self._names]
                 return "onnxruntime"
@@ -248,14 +256,38 @@ class Bundle:
 
     def json(self, rel: str) -> dict:
         if rel not in self._cache:
-            self._cache[rel] = json.loads(self.file(rel).read_text())
+            try:
+                self._cache[rel] = json.loads(self.file(rel).read_text())
+            except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+                raise self._bad_file(rel, "a JSON file", exc) from None
         return self._cache[rel]  # type: ignore[return-value]
 
-    def npz(self, rel: str) -> dict[str, np.ndarray]:
+    def npz(self, rel: str, keys: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
+        """The arrays of the NPZ file ``rel``, read without pickle; a file that is not an NPZ archive of numeric
+        arrays (e.g. an object array, which only pickle could load) or lacks one of ``keys`` is a one-line
+        :class:`ModelError` (decision B125), whatever its checksum says."""
         if rel not in self._cache:
-            with np.load(self.file(rel), allow_pickle=False) as z:
-                self._cache[rel] = {k: z[k] for k in z.files}
-        return self._cache[rel]  # type: ignore[return-value]
+            try:
+                z = np.load(self.file(rel), allow_pickle=False)
+                if not isinstance(z, np.lib.npyio.NpzFile):
+                    raise ValueError("a single .npy array, not an .npz archive")
+                with z:
+                    self._cache[rel] = {k: z[k] for k in z.files}
+            except (ValueError, OSError, EOFError, zipfile.BadZipFile) as exc:
+                raise self._bad_file(rel, "an NPZ archive of numeric arrays (bundles never need pickle)", exc
+                                     ) from None
+        out: dict[str, np.ndarray] = self._cache[rel]  # type: ignore[assignment]
+        missing = [k for k in keys if k not in out]
+        if missing:
+            raise self._bad_file(rel, "the NPZ archive this model needs", ValueError(f"no array {', '.join(missing)}"))
+        return out
+
+    def _bad_file(self, rel: str, what: str, exc: Exception) -> ModelError:
+        """Decision B125: a bundle file whose checksum matches but whose content is not what the bundle writes
+        (the manifest's checksums were re-made after an edit, or a buggy writer)."""
+        why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        return _fail(self.path, f"file '{rel}' is not {what} ({why}); restore the original bundle or re-export it "
+                                "with 'pdrlearn export'")
 
     # -- compatibility with data --------------------------------------------------------------------
     def check_streams(self, rates_hz: dict[str, float], *, where: str = "data", units=None) -> None:
@@ -327,10 +359,46 @@ def _fail(path: Path, msg: str) -> ModelError:
     return ModelError(f"bundle {path}: {msg}")
 
 
-def read_manifest(path: str | Path) -> dict:
-    """Parse and check ``manifest.json`` of a bundle folder (schema and version, required keys)."""
+#: decision E57: a waist-only bundle (``pdrlearn export CAL.json``) has its own schema, read by
+#: :func:`pdrlearn.runtime.waist.load_waist_bundle`
+WAIST_SCHEMA_NAME = "pdrlearn-waist-bundle"
+WAIST_SCHEMA_VERSION = 1
+WAIST_REQUIRED_KEYS = ("schema", "schema_version", "package_version", "created_utc", "user", "pipeline", "sampling",
+                       "sensors", "units", "frames", "params", "options", "files")
+#: what each bundle kind is and how to run it (decision E58: a bundle of the other kind is one line naming this)
+_KINDS = {SCHEMA_NAME: "a foot-unit bundle ('pdrlearn export MODEL_DIR'): run it with pdrlearn.runtime.Tracker("
+                       "load_bundle(PATH)) or 'pdrlearn run'",
+          WAIST_SCHEMA_NAME: "a waist-only bundle ('pdrlearn export CAL.json'): run it with pdrlearn.runtime."
+                             "WaistTracker(load_waist_bundle(PATH)) or 'pdrlearn run'"}
+
+
+def bundle_kind(path: str | Path) -> str | None:
+    """The ``schema`` of the bundle folder ``path`` (None when it has no readable manifest): how ``pdrlearn run``
+    tells a waist-only bundle from a foot one before loading it."""
+    try:
+        m = json.loads((Path(path) / MANIFEST).read_text())
+    except (OSError, ValueError):
+        return None
+    return m.get("schema") if isinstance(m, dict) else None
+
+
+def _is_waist_calibration(path: Path) -> bool:
+    """Whether ``path`` is a JSON file of a waist pipeline's parameters (``pdrlearn calibrate``'s PARAMS.json)."""
+    try:
+        d = json.loads(path.read_text()) if path.is_file() and path.suffix.lower() == ".json" else None
+    except (OSError, UnicodeDecodeError, ValueError):
+        return False
+    return isinstance(d, dict) and str(d.get("pipeline", "")).startswith("waist")
+
+
+def read_manifest(path: str | Path, *, schema: str = SCHEMA_NAME) -> dict:
+    """Parse and check ``manifest.json`` of a bundle folder (schema and version, required keys); ``schema``: the
+    kind expected (:data:`SCHEMA_NAME` or :data:`WAIST_SCHEMA_NAME`; the other kind is refused naming how it
+    runs, decision E58)."""
     path = Path(path)
     if not path.is_dir():
+        if _is_waist_calibration(path):  # decision E59: the belt-phone user's calibration is exported first
+            raise _fail(path, f"a waist calibration ('pdrlearn calibrate'), not a bundle; {waist_only_hint(str(path))}")
         raise _fail(path, "not a folder; give the folder written by 'pdrlearn export'")
     mpath = path / MANIFEST
     if not mpath.is_file():
@@ -339,16 +407,20 @@ def read_manifest(path: str | Path) -> dict:
         manifest = json.loads(mpath.read_text())
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise _fail(path, f"{MANIFEST} is not valid JSON ({exc}); re-export the bundle") from None
-    if not isinstance(manifest, dict) or manifest.get("schema") != SCHEMA_NAME:
-        raise _fail(path, f"{MANIFEST} is not a {SCHEMA_NAME} manifest; re-export with 'pdrlearn export'")
+    found = manifest.get("schema") if isinstance(manifest, dict) else None
+    if found in _KINDS and found != schema:
+        raise _fail(path, f"this is {_KINDS[found]}, not {_KINDS[schema].split(':')[0]}")
+    if found != schema:
+        raise _fail(path, f"{MANIFEST} is not a {schema} manifest; re-export with 'pdrlearn export'")
+    want = SCHEMA_VERSION if schema == SCHEMA_NAME else WAIST_SCHEMA_VERSION
     version = manifest.get("schema_version")
-    if version != SCHEMA_VERSION:
+    if version != want:
         raise _fail(
             path,
-            f"schema version {version!r}, but this runtime reads version {SCHEMA_VERSION}; "
+            f"schema version {version!r}, but this runtime reads version {want}; "
             "re-export the model with this pdrlearn version",
         )
-    missing = [k for k in REQUIRED_KEYS if k not in manifest]
+    missing = [k for k in (REQUIRED_KEYS if schema == SCHEMA_NAME else WAIST_REQUIRED_KEYS) if k not in manifest]
     if missing:
         raise _fail(path, f"{MANIFEST} lacks {', '.join(missing)}; re-export the bundle")
     return manifest

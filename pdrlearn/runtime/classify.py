@@ -41,7 +41,7 @@ class RuntimeModel:
             if not lazy:
                 self.open()
         elif self.type == "dtw":
-            z = bundle.npz(entry["file"])
+            z = bundle.npz(entry["file"], keys=("references", "reference_labels", "channel_mean", "channel_std"))
             self.refs = np.ascontiguousarray(z["references"])
             self.ref_labels = z["reference_labels"].astype(int)
             self.mean, self.std = z["channel_mean"], z["channel_std"]

@@ -421,8 +421,10 @@ class InputStage:
         return out
 
 
-def resample_message(resamplers: dict[str, StreamResampler], rate_out: float) -> str:
-    """The one line that announces the resampled streams (decision E22), grouped by input rate."""
+def resampled_text(resamplers: dict[str, StreamResampler], *, latency: bool = True) -> str:
+    """The resampled streams grouped by input rate, each group with its filter (and its delay, ``latency``):
+    ``fAccelerometer, fGyroscope sampled at 100 Hz (83-tap linear-phase low-pass + linear interpolation, 420 ms
+    delay)``; shared by :func:`resample_message` and the offline ``--resample`` line (decision B113)."""
     groups: dict[float, list[str]] = {}
     for n, r in resamplers.items():
         groups.setdefault(r.rate_in, []).append(n)
@@ -431,10 +433,16 @@ def resample_message(resamplers: dict[str, StreamResampler], rate_out: float) ->
         r = resamplers[names[0]]
         how = ("linear interpolation" if r.taps is None
                else f"{len(r.taps)}-tap linear-phase low-pass + linear interpolation")
-        parts.append(f"{', '.join(names)} sampled at {rate_in:.4g} Hz ({how}, {r.latency_s * 1e3:.0f} ms delay)")
-    return (f"{'; '.join(parts)}, the bundle at {rate_out:.4g} Hz: resampling to {rate_out:.4g} Hz as the samples "
-            "stream in; the resampled windows are not the ones the classifiers were trained on, and on simulated "
-            "50 Hz walks into a 20 Hz bundle most strides came out backward (E22): prefer the default, which "
+        delay = f", {r.latency_s * 1e3:.0f} ms delay" if latency else ""
+        parts.append(f"{', '.join(names)} sampled at {rate_in:.4g} Hz ({how}{delay})")
+    return "; ".join(parts)
+
+
+def resample_message(resamplers: dict[str, StreamResampler], rate_out: float) -> str:
+    """The one line that announces the resampled streams (decision E22), grouped by input rate."""
+    return (f"{resampled_text(resamplers)}, the bundle at {rate_out:.4g} Hz: resampling to {rate_out:.4g} Hz as "
+            "the samples stream in; the resampled windows are not the ones the classifiers were trained on, and on "
+            "simulated 50 Hz walks into a 20 Hz bundle most strides came out backward (E22): prefer the default, which "
             "tracks the data at its own rate as `pdrlearn track --streaming` does; --no-resample / "
             "Tracker(resample=False) refuses instead")
 

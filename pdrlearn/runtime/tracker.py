@@ -61,6 +61,9 @@ from pdrlearn.kernels.window import (
 )
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
+from pdrlearn.runtime.fixes import FixInput
+from pdrlearn.runtime.guard import WATCHED as _WATCHED
+from pdrlearn.runtime.guard import FrozenWatch, UnitGuard
 from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
 
@@ -271,7 +274,7 @@ class _Views(dict):
         return self[name] if name in self._buf else default
 
 
-class Tracker:
+class Tracker(FixInput):
     """Classify and track steps as samples stream in (numpy + onnxruntime only).
 
     Parameters
@@ -331,6 +334,8 @@ class Tracker:
     #: decision E47: (terrain class or None, integrated dz before gain and rules, final dz) per processed stride
     _heights: list | tuple = ()
     _held_s = math.inf  # decision E31: set per tracker in __init__
+    _checked: dict = {}  # noqa: RUF012 - replaced per push, never mutated in place
+    _guard = None  # decision B119 (a bare Tracker.__new__ checks nothing)
 
     def __init__(
         self,
@@ -357,6 +362,7 @@ class Tracker:
         waist_gap_yaw: bool = True,
         waist_bridge: bool = True,
         contacts: bool = False,
+        check_input: bool = True,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -389,33 +395,9 @@ class Tracker:
         self._lookahead_s = self.rest_search_s + 0.05 if self.boundaries == "rest" else 0.0
         frames = frames or m["frames"]
         self.forward = {p: forward_vector(f) for p, f in frames.items()}
-        ctx = {"signals": fm["signals"], "channel_index": self.ci}
-        self.classifiers: dict[str, TaskClassifier] = {}
-        for task in tasks or list(self.bundle.tasks):
-            mu = (methods or {}).get(task)
-            meth, unit = mu.split("/") if mu else (None, None)
-            self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit, lazy=True,
-                                                    units=None if units is None else self.units, sensors=sensors)
-        #: decision E26 amended: tasks whose models all read a sensor the stream will not have -> those sensors;
-        #: left unclassified (no class: the stride rules act as without a model for them, as ``pdrlearn track``)
-        self.unclassified = {t: c.missing for t, c in self.classifiers.items() if c.missing}
-        for task in self.unclassified:
-            del self.classifiers[task]
-        #: one onnxruntime run per step for the chosen models (decision E10); None = per-model path
-        self.step_graph = StepGraph.open(self.bundle, self.classifiers) if step_graph else None
-        if self.step_graph is not None and sensors is not None and not {  # the graph reads every chosen model's
-                s for g, cs in GROUPS.items() if set(cs) & set(self.step_graph.channel_names)  # channels: an
-                for s in GROUP_STREAMS[g]} <= set(sensors):  # absent one is NaN -> the per-model path (same numbers)
-            self.step_graph = None
-        for task, clf in self.classifiers.items():  # per-model sessions: only where the graph does not
-            if self.step_graph is None or task not in self.step_graph.tasks:  # classify (errors show here)
-                clf.model.open()
-        #: the window channels process_step resamples: those the step graph reads when it classifies every
-        #: task, else all (None); the other rows stay NaN (decision E13)
-        g = self.step_graph
-        self._all_channels = frozenset(self.channels)
-        self._step_channels = (None if g is None or set(g.tasks) != set(self.classifiers)
-                               else frozenset({"t_s"} | {self.channels[j] for j in g.channels.tolist()}))
+        self.warnings: list[str] = []
+        self._model_args = (tasks, methods, units, step_graph)
+        self._choose_models(sensors)
         self.params = dict(m["displacement"])
         self.heading_source = heading_source or str(self.params.get("heading_source", "auto"))
         if self.heading_source not in HEADING_SOURCES:
@@ -448,15 +430,6 @@ class Tracker:
         #: applied gain on the level strides (None until the foot rate is known), calibrated stride sd
         self.distance_gain: float | None = None
         self.stride_sd: float | None = None
-        self.warnings: list[str] = []
-        if self.unclassified:  # one line (decision E26 amended; the no-class rules: C17's streamed ones)
-            miss = sorted({s for v in self.unclassified.values() for s in v})
-            it = "it" if len(self.unclassified) == 1 else "them"
-            rules = "; ".join(f"{t}: {_NO_CLASS_RULE.get(t, 'no class')}" for t in self.unclassified)
-            self._warn(f"{', '.join(self.unclassified)} left unclassified: the stream has no {', '.join(miss)}, "
-                       f"which every {'/'.join(self.units)} model of the bundle for {it} reads; "
-                       f"the stride rules act as without a model ({rules}), as `pdrlearn track` does "
-                       "(push those sensors, or export a model trained without them)")
         if self.bounds is None and "length" in self.classifiers:  # decision L59: offline track's line, once
             self._warn(no_length_bounds_warning(
                 "the bundle (exported before decision L59: its length_bounds_m are the thesis step bounds x 2, "
@@ -487,6 +460,7 @@ class Tracker:
         #: push that completes no step, else at the next push (decision E21), or before a step needs them
         self._foot_q: list[tuple[str, float, list[float]]] = []
         self.position = np.asarray(start, dtype=float).reshape(3).copy()
+        self._init_fixes(self.position[:2])  # decisions D19-D21: add_fix
         self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data
         self._det_t = -np.inf
@@ -532,6 +506,56 @@ class Tracker:
         self._foot_gaps: list[tuple[float, float, bool, bool]] = []  # (start, end, long, a foot IMU stream's)
         self._held: set[str] = set()
         self._held_s = float(self.params.get("max_wait_s", 2.0))  # a held value older than this is warned about
+        #: decision B119: the units of the first GUARD_S seconds of each IMU stream, checked as offline's (None:
+        #: checked, or ``check_input=False``); decision B120: frozen sensors
+        self._guard = UnitGuard(self.used_sensors) if check_input else None
+        self._frozen = FrozenWatch()
+
+
+    def _choose_models(self, sensors) -> None:
+        """Each task's model for a stream of ``sensors`` (None: unknown, every model's expected), the step graph
+        and the window channels it fills (decision E26 amended), with the one warning line for the tasks left
+        unclassified; run by ``__init__`` and when an optional stream stops (decision B121: the steps go on as
+        a session without it would)."""
+        tasks, methods, units, step_graph = self._model_args
+        was = set(getattr(self, "unclassified", ()))  # B121: a task left unclassified before is not told again
+        fm = self.bundle.manifest["features"]
+        ctx = {"signals": fm["signals"], "channel_index": self.ci}
+        self.classifiers: dict[str, TaskClassifier] = {}
+        for task in tasks or list(self.bundle.tasks):
+            mu = (methods or {}).get(task)
+            meth, unit = mu.split("/") if mu else (None, None)
+            self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit, lazy=True,
+                                                    units=None if units is None else self.units, sensors=sensors)
+        #: decision E26 amended: tasks whose models all read a sensor the stream will not have -> those sensors;
+        #: left unclassified (no class: the stride rules act as without a model for them, as ``pdrlearn track``)
+        self.unclassified = {t: c.missing for t, c in self.classifiers.items() if c.missing}
+        for task in self.unclassified:
+            del self.classifiers[task]
+        #: one onnxruntime run per step for the chosen models (decision E10); None = per-model path
+        self.step_graph = StepGraph.open(self.bundle, self.classifiers) if step_graph else None
+        if self.step_graph is not None and sensors is not None and not {  # the graph reads every chosen model's
+                s for g, cs in GROUPS.items() if set(cs) & set(self.step_graph.channel_names)  # channels: an
+                for s in GROUP_STREAMS[g]} <= set(sensors):  # absent one is NaN -> the per-model path (same numbers)
+            self.step_graph = None
+        for task, clf in self.classifiers.items():  # per-model sessions: only where the graph does not
+            if self.step_graph is None or task not in self.step_graph.tasks:  # classify (errors show here)
+                clf.model.open()
+        #: the window channels process_step resamples: those the step graph reads when it classifies every
+        #: task, else all (None); the other rows stay NaN (decision E13)
+        g = self.step_graph
+        self._all_channels = frozenset(self.channels)
+        self._step_channels = (None if g is None or set(g.tasks) != set(self.classifiers)
+                               else frozenset({"t_s"} | {self.channels[j] for j in g.channels.tolist()}))
+        new = {t: v for t, v in self.unclassified.items() if t not in was}
+        if new:  # one line (decision E26 amended; the no-class rules: C17's streamed ones)
+            miss = sorted({s for v in new.values() for s in v})
+            it = "it" if len(new) == 1 else "them"
+            rules = "; ".join(f"{t}: {_NO_CLASS_RULE.get(t, 'no class')}" for t in new)
+            self._warn(f"{', '.join(new)} left unclassified: the stream has no {', '.join(miss)}, "
+                       f"which every {'/'.join(self.units)} model of the bundle for {it} reads; "
+                       f"the stride rules act as without a model ({rules}), as `pdrlearn track` does "
+                       "(push those sensors, or export a model trained without them)")
 
     @property
     def resampled_hz(self) -> dict[str, float]:
@@ -559,6 +583,15 @@ class Tracker:
         streams = {k: self._stream(k) for k in self._buf}
         W = np.full((len(self.channels), self.n_samples), np.nan)
         w0, w1 = self.window_bounds(t0, t1, streams)
+        short = [(k, float(t[0]), float(t[-1])) for k, (t, _) in streams.items()
+                 if len(t) and (t[0] > w0 or t[-1] < w1)]
+        if short or not streams:  # decision E63: samples trimmed (or not pushed yet) are not made up
+            k, a, b = short[0] if short else ("any sensor", math.nan, math.nan)
+            held = f"{k} from {a:.3f} to {b:.3f} s" if short else "no samples"
+            raise DataError(f"window({t0:.3f}, {t1:.3f}): the tracker holds {held} only (it drops the samples "
+                            "behind the last step boundary less 1 s, and keeps at most buffer_s = "
+                            f"{self.buffer_s:g} s); take a step's window in the push that returns the step, before the "
+                            "next push (decision E63)")
         fill_step_window(W, streams, w0, w1, channel_index=self.ci, available=available_groups(streams),
                          forward=self.forward, rest_search_s=self.rest_search_s, heading=self.heading_mode)
         return W
@@ -680,6 +713,14 @@ class Tracker:
         fast = self._check_push(samples)  # decision E29: every sensor checked before any state changes
         if fast is None:  # decision E40: no sample at all, nothing to do
             return []
+        checked, self._checked = self._checked, {}
+        self._check_stopped({**{n: (f[0], f[0]) for n, f in fast.items()},  # decision B122: E23 before any change
+                             **{n: (float(t[0]), float(t[-1])) for n, (t, _) in checked.items()}})
+        guard = self._guard
+        if guard is not None:  # decision B119: the units of the accelerometers' first seconds, the gyroscopes' windows
+            arrays = {n: checked[n] if n in checked else (np.array([fast[n][0]]), np.array([fast[n][1]]))
+                      for n in guard.wanted() if n in checked or n in fast}
+            guard.take(arrays, guard.check(arrays))
         if self._foot_q:  # the foot samples of a push that completed a step (decision E21)
             self._feed_foot()
         samples = self.inputs.push(samples)  # the same dict when every stream is at the bundle's rate (E22)
@@ -706,6 +747,13 @@ class Tracker:
                             self._latest = t0
                         continue
                 self._append(name, t, v)
+        frozen = self._frozen  # decision B120: a frozen sensor, one warning per run of identical samples
+        for name in _WATCHED:
+            f = fast.get(name)
+            msg = (frozen.feed1(name, *f) if f is not None else
+                   frozen.feed(name, *checked[name]) if name in checked else None)
+            if msg:
+                self._warn(msg)
         if self._pushed_gaps:
             self._note_gaps()
         self._detect()
@@ -734,6 +782,7 @@ class Tracker:
         returned, sensor -> ``(t, values)``, for :meth:`push` to append without checking it again; None for a
         push without any sample (decision E40)."""
         buf, gaps, fast, some = self._buf, None, {}, False
+        self._checked = {}  # sensor -> its checked (t, values) arrays (not the one-sample path's)
         resampled, isfinite = self.inputs.resamplers, math.isfinite
         for name, tv in samples.items():
             ring = buf.get(name)
@@ -762,6 +811,7 @@ class Tracker:
             if not len(t):
                 continue
             some = True
+            self._checked[name] = (t, v)
             raw = self.inputs.last_in(name)
             last = raw if raw is not None else (ring.last if ring is not None else None)
             if last is not None and not t[0] > last:
@@ -820,6 +870,10 @@ class Tracker:
             what = (f"a gap longer than {GAP_LONG_S:g} s (B11): the stride across it moves 0 m, {turn} and "
                     "has no classes; no step is counted inside it, as `pdrlearn track` counts no displacement there"
                     if long else
+                    f"longer than {GAP_LONG_S:g} s in a stream whose gaps do not stop the strides (B11 zeroes only a "
+                    "foot stream's; E64): the strides go on with it interpolated across the gap, as `pdrlearn track` "
+                    "does, so the heading and classes of the strides across it are unreliable"
+                    if b - a > GAP_LONG_S else
                     f"bridged (interpolated) as `pdrlearn track` does up to {GAP_LONG_S:g} s (B11): the stride across "
                     "it has an unreliable length, height change and heading, and no classes when the gap is the "
                     "foot's")
@@ -885,12 +939,16 @@ class Tracker:
         resampled streams' last samples (their filter's delay, decision E22) are buffered first."""
         if self._foot_q:
             self._feed_foot()
+        if self._guard is not None:  # decision B119: a stream shorter than GUARD_S, checked on what it has
+            self._guard.finish()
+            self._guard = None
         for name, (t, v) in self.inputs.flush().items():
             self._append(name, t, v)
         self._detect()
         steps = self._process_ready(force=True)
         self._trim()
         self.height_checks()  # decision E47: the end of a recording
+        self._warn_unused_fixes()  # decision D21
         return steps
 
     def _process_ready(self, force: bool = False) -> list[Step]:
@@ -907,9 +965,31 @@ class Tracker:
         while self._pending and (force or self._pending[0][1] + self._lookahead_s < max(latest, stale)):
             t1 = self._pending[0][1]
             if latest < t1 - self._held_s:  # decision E31: a stream's last value held for this step
-                self._note_held(t1)
-            out += self._emit(self.process_step(*self._pending.pop(0)))
+                self._note_held(t1, force)
+            t0, t1 = self._pending.pop(0)
+            try:
+                out += self._emit(self.process_step(t0, t1))
+            except DataError as exc:  # decision B123: the kernel's zero gravity, named by sensor and time
+                if not str(exc).startswith("gravity_rotation:"):
+                    raise
+                raise DataError(self._no_gravity(t0, t1)) from None
         return out
+
+    def _no_gravity(self, t0: float, t1: float) -> str:
+        """Decision B123: the line for a step whose accelerometer gives no gravity to level it by (the stride
+        kernel's ``gravity_rotation``): the accelerometers reading ~0 over the step and its look-back, and when."""
+        dead = []
+        for name in ("fAccelerometer", "wAccelerometer"):
+            if name in self._buf:
+                t, v = self._stream(name)
+                k = (t >= t0 - _LOOK_BACK_S) & (t <= t1)
+                zero = np.linalg.norm(v[k], axis=1) < 1e-6
+                if zero.any():
+                    dead.append(f"{name} reads 0 in {int(zero.sum())} of its {int(k.sum())} samples of "
+                                f"{float(t[k][zero][0]):.2f}-{float(t[k][zero][-1]):.2f} s")
+        what = "; ".join(dead) or "fAccelerometer / wAccelerometer give a zero or non-finite mean at rest"
+        return (f"{what}: the step {t0:.2f}-{t1:.2f} s has no gravity to level the unit by (an accelerometer that "
+                "stopped or sends zeros); reconnect it and start a new Tracker (decision B123)")
 
     def _emit(self, step: Step) -> list[Step]:
         """Decision E46 (L67's rule on the streamed strides): a stride that touches a foot gap is not emitted; the
@@ -943,6 +1023,10 @@ class Tracker:
                       (step.start_s, step.end_s, math.nan if step.impossible else step.event_s))
         self._row_gaps = [g for g in self._row_gaps if g[1] > step.end_s]
         out.append(step)
+        for st in out:  # decisions D19-D21: the fixes added so far, used at the step their time falls in
+            fused = self._fuse_step(st.start_s, st.end_s, st.length_m, st.heading_rad)
+            if fused is not None:
+                st.x, st.y = fused
         return out
 
     def height_checks(self) -> dict:
@@ -966,7 +1050,7 @@ class Tracker:
             self._warn(msg)
         return out
 
-    def _note_held(self, t1: float) -> None:
+    def _note_held(self, t1: float, force: bool = False) -> None:
         """Decision E31: one warning per stream whose last sample is more than ``max_wait_s`` before the end of
         a step processed without it (E9's held values: ``max_lag_s = inf``, or the end of a recording); E39: and
         more than :data:`HELD_INTERVALS` of its own sample intervals (a 0.2 Hz barometer is not held after 2 s)."""
@@ -974,8 +1058,10 @@ class Tracker:
         if held:
             self._held.update(held)
             last = min(self._buf[n].last for n in held)
+            why = ("max_lag_s = inf, decision E9" if self.max_lag_s == math.inf else  # decision E65: the reason
+                   "flush() at the end of the stream" if force else f"up to max_wait_s = {self._wait_s:g} s")
             self._warn(f"{', '.join(held)}: no samples since {last:.2f} s; the step ending at {t1:.2f} s and those "
-                       "after it are measured with their last values held (max_lag_s = inf, decision E9): heading and "
+                       f"after it are measured with their last values held ({why}): heading and "
                        "classes that read them are unreliable - reconnect the sensor and start a new Tracker, or track "
                        "without it (units=('foot',) for the waist; decision E31)")
 
@@ -1021,21 +1107,7 @@ class Tracker:
         if not self._unseen and self._latest - min([r.last for r in self._buf.values()]) <= self.max_lag_s:
             return  # the common case
         required = self.required
-        last: dict[str, float | None] = {}
-        for n in [*self._buf, *self._unseen]:
-            raw = self.inputs.last_in(n)
-            r = self._buf.get(n)
-            last[n] = raw if r is None else (r.last if raw is None else max(r.last, raw))
-        any_batch = max(self._batch.values(), default=0.0)  # the caller's batches, for a stream not seen yet
-        for n, t in last.items():
-            if self._latest - (self._first_t if t is None else t) <= self.max_lag_s:
-                continue
-            if n in self._ends and (t is None or t < self._ends[n]):
-                continue  # a gap in a recording (or a later start): the stream resumes, the steps wait
-            rate = self.inputs.input_rates_hz.get(n)
-            grace = any_batch if t is None else max(self._batch.get(n, 0.0), 1.0 / rate if rate else 0.0)
-            if self._latest - (self._first_t if t is None else t) <= self.max_lag_s + grace:
-                continue  # within its own delivery interval: it can not have sent more yet
+        for n, t, grace in self._stopped(self._latest, self._first_t, self._last_times(), self._batch):
             msg = stopped_message(n, t, self._first_t, self._latest, self.max_lag_s, grace, n in required)
             if n in required:
                 raise DataError(msg)
@@ -1043,6 +1115,75 @@ class Tracker:
             self._buf.pop(n, None)
             self.warnings.append(msg)
             log.warning("bundle %s: %s", self.bundle.path, msg)
+            self._without(n)
+
+    def _last_times(self, pushed: dict[str, float] | None = None) -> dict[str, float | None]:
+        """Each buffered or not yet seen required stream's newest input time (s; None: never pushed), with the
+        newest times of a push not taken yet (``pushed``)."""
+        last: dict[str, float | None] = {}
+        for n in dict.fromkeys([*self._buf, *self._unseen, *(pushed or ())]):
+            if n not in self.required and n not in self._buf:
+                continue  # a new optional stream starts now; it can not lag yet
+            raw = self.inputs.last_in(n)
+            r = self._buf.get(n)
+            ts = [x for x in (raw, None if r is None else r.last, (pushed or {}).get(n)) if x is not None]
+            last[n] = max(ts) if ts else None
+        return last
+
+    def _stopped(self, latest: float, first_t: float, last: dict, batch: dict) -> list[tuple[str, float | None, float]]:
+        """Decision E23's rule: ``(stream, its newest time, its grace)`` of each stream further behind ``latest``
+        than ``max_lag_s`` plus its own delivery interval, outside a known gap (``stream_ends_s``)."""
+        any_batch = max(batch.values(), default=0.0)  # the caller's batches, for a stream not seen yet
+        out = []
+        for n, t in last.items():
+            if latest - (first_t if t is None else t) <= self.max_lag_s:
+                continue
+            if n in self._ends and (t is None or t < self._ends[n]):
+                continue  # a gap in a recording (or a later start): the stream resumes, the steps wait
+            rate = self.inputs.input_rates_hz.get(n)
+            grace = any_batch if t is None else max(batch.get(n, 0.0), 1.0 / rate if rate else 0.0)
+            if latest - (first_t if t is None else t) <= self.max_lag_s + grace:
+                continue  # within its own delivery interval: it can not have sent more yet
+            out.append((n, t, grace))
+        return out
+
+    def _check_stopped(self, pushed: dict[str, tuple[float, float]]) -> None:
+        """Decision B122 (E29's all or nothing for E23): a push after which a required stream would be found
+        stopped is refused before any of it is taken, with E23's line; ``pushed``: stream -> (first, last time)
+        of the push's samples. The lag tick's delivery intervals are computed as :meth:`_check_lag` would, on
+        copies."""
+        if not pushed or self.max_lag_s == math.inf:
+            return
+        latest = max(self._latest, max(b for _, b in pushed.values()))
+        if not (self._pending or latest >= self._lag_next):
+            return  # no lag check in this push (as _check_lag)
+        first_t = min(self._first_t, self._oldest, min(a for a, _ in pushed.values()))
+        last = self._last_times({n: b for n, (_, b) in pushed.items()})
+        batch = dict(self._batch)
+        if latest >= self._lag_next:  # the tick's delivery intervals, of every stream buffered after the push
+            for n in dict.fromkeys([*self._buf, *pushed]):
+                r, raw = self._buf.get(n), self.inputs.last_in(n)
+                ts = [x for x in (raw, None if r is None else r.last, pushed.get(n, (None, None))[1]) if x is not None]
+                adv = max(ts) - self._tick_last.get(n, first_t)
+                if adv > 0.0:
+                    batch[n] = adv
+        for n, t, grace in self._stopped(latest, first_t, last, batch):
+            if n in self.required:
+                raise DataError(stopped_message(n, t, first_t, latest, self.max_lag_s, grace, True))
+
+    def _without(self, name: str) -> None:
+        """Decision B121: an optional stream that stopped: each task's model re-chosen as for a stream without it
+        (the best-ranked model that reads none of the streams gone, else the task left unclassified; one warning
+        line), so that the steps go on as in a session without that sensor."""
+        gone = set(self.inputs.ignored)
+        before = {t: (c.method, c.unit) for t, c in self.classifiers.items()}
+        self._choose_models([n for n in self.used_sensors if n not in gone])
+        self._spec, self._groups = None, ((), ())
+        changed = [f"{t} {c.method}/{c.unit}" for t, c in self.classifiers.items()
+                   if (c.method, c.unit) != before.get(t)]
+        if changed:
+            self._warn(f"{name} stopped: classified from now on as a stream without it would be, with "
+                       f"{', '.join(changed)} (decision B121)")
 
     def _detect(self) -> None:
         """Online stance detection on the foot gyroscope (:class:`pdrlearn.kernels.stride.StanceSegmenter`,

@@ -19,6 +19,7 @@ from scipy.interpolate import PchipInterpolator
 
 from pdrlearn.sim.kernels import (
     clamped_spline,
+    decaying_rocker,
     euler_zyx,
     foot_rotate,
     foot_rotate_dtheta,
@@ -80,6 +81,13 @@ KINDS = {
 }
 SPEED_PITCH = {"slow": 0.88, "normal": 1.0, "fast": 1.08}
 LOAD_FRACTION = 0.10  # initial contact -> foot flat, fraction of the gait cycle
+# The gradually decaying heel rocker (decisions S31, `rocker="smooth"`): the foot is still from ROCKER_FRACTION
+# of the cycle after the contact; its pitch rate rises within ROCKER_RISE and decays with ROCKER_DECAY (both x the
+# rocker's duration). The foot-flat event of the labels and loads stays at LOAD_FRACTION.
+ROCKER_MODES = ("hermite", "smooth")
+ROCKER_FRACTION = 0.20
+ROCKER_RISE = 0.05
+ROCKER_DECAY = 0.5
 HEEL_OFF_FRACTION = 0.45  # heel-off instant, fraction of the gait cycle (decisions S14)
 TOE_TIP_FRACTION = 0.97  # push-off pivot (toe rocker: the foot rolls over the tip of the hallux), x foot length
 PUSH_OFF_RATE = 2.2  # pitch rate at toe-off / mean rate of the forefoot rocker (fast push-off)
@@ -96,6 +104,27 @@ LEVEL_SWING_TOE_LED = True  # level steps: heel height from the swing pitch and 
 ASCENT_TOE_LED = True  # stair ascent: the toes clear the next nosing right after toe-off (S24)
 SHOD = True  # the foot rolls over the front of the shoe's sole, beyond the toes (decisions S25)
 STAIR_TOE_CLEARANCE = 2.0  # toe clearance over a stair nosing / the user's level toe clearance (S24)
+
+
+#: decision S35: the leg whose steps are slow in an asymmetric gait (``step_time_asymmetry``); the foot unit is on the
+#: right foot, so its strides span one slow and one normal step
+AFFECTED_FOOT = "left"
+#: decision S35: ``step_time_asymmetry`` must be below this: at 1 (symmetry ratio 2) the affected leg's stance is
+#: (1/2 + 2 s - 1) / (2 (1 - s)) = 0.97-1.34 x its swing for the users' stance fractions s 0.62-0.68; beyond, its
+#: swing outlasts its stance (a hop over the sound leg, not a walk)
+STEP_TIME_ASYMMETRY_MAX = 1.0
+
+
+def step_time_factor(foot: str, asymmetry: float) -> float:
+    """Decision S35: the factor on the step time of a step landing on ``foot`` for a step-time asymmetry ``a``.
+
+    Asymmetry is the symmetry ratio minus 1, the ratio being affected / unaffected step time (Patterson et al.
+    2010, Gait Posture 31:241-246, recommend the ratio for post-stroke gait): a = 0.39 makes each step onto the
+    affected foot (:data:`AFFECTED_FOOT`) 1.39 x the step onto the other. The two factors 2 r / (1 + r) and
+    2 / (1 + r) (r = 1 + a) average 1, so the stride time, cadence and speed stay the user's; a = 0 gives 1.0
+    exactly (default sessions bit for bit)."""
+    r = 1.0 + asymmetry
+    return 2.0 * r / (1.0 + r) if foot == AFFECTED_FOOT else 2.0 / (1.0 + r)
 
 
 @dataclass
@@ -116,10 +145,12 @@ class Events:
     impact: np.ndarray  # (n, 2): forward, vertical pivot velocity before contact (m/s)
     clearance: np.ndarray
     bout_start: np.ndarray  # bool: first step after a standstill
+    rest: np.ndarray  # end of the loading rocker: the foot is still from here (= ff for the Hermite rocker)
+    rocker: str = "hermite"  # loading rocker shape (ROCKER_MODES, decisions S31)
 
     @property
     def end_s(self) -> float:
-        return float(self.ff.max()) if len(self.ff) else 0.0
+        return float(self.rest.max()) if len(self.rest) else 0.0
 
 
 def schedule(
@@ -130,8 +161,17 @@ def schedule(
     rng: np.random.Generator,
     stand_s: float,
     variability: float = 1.0,
+    rocker: str = "hermite",
+    step_time_asymmetry: float = 0.0,
 ) -> Events:
-    """Assign gait-event times to the footsteps (both feet) and draw per-step swing parameters."""
+    """Assign gait-event times to the footsteps (both feet) and draw per-step swing parameters.
+
+    ``step_time_asymmetry``: the steps onto :data:`AFFECTED_FOOT` are 1 + this times as long as the others
+    (:func:`step_time_factor`, decision S35).
+
+    ``rocker``: "hermite" (the foot is flat and still ``LOAD_FRACTION`` of the cycle after the contact) or "smooth"
+    (still only ``ROCKER_FRACTION`` after it, decisions S31; the foot-flat event stays at ``LOAD_FRACTION``).
+    """
     n = len(steps)
     names = (
         "ho",
@@ -147,7 +187,7 @@ def schedule(
         "swing_yaw",
         "contact_roll",
     )
-    ev = {k: np.zeros(n) for k in names}
+    ev = {k: np.zeros(n) for k in (*names, "rest")}
     impact = np.zeros((n, 2))
     bout_start = np.zeros(n, dtype=bool)
     cv = user.variability * variability
@@ -159,10 +199,13 @@ def schedule(
         dfac, pfac, (vf, vz), clear = kd.duration, kd.toe_off, kd.impact, kd.clearance_m
         ic_pitch = None if kd.contact_deg is None else np.radians(kd.contact_deg)
         d = user.step_time(speed, st.gait) * dfac * max(0.7, 1.0 + rng.normal(0.0, cv))
+        if step_time_asymmetry:  # decision S35 (skipped at 0: default sessions bit for bit)
+            d *= step_time_factor(st.foot, step_time_asymmetry)
         if st.irregular:
             d *= 1.3
         T = 2.0 * d
         swing, rock, load = (1 - stance) * T, (stance - HEEL_OFF_FRACTION) * T, LOAD_FRACTION * T
+        still = ROCKER_FRACTION * T if rocker == "smooth" else load  # contact -> the foot at rest
         start = k == 0 or st.pause_before_s > 0 or steps[k - 1].foot == st.foot
         if start:
             ho = max(settle + st.pause_before_s, last_ff[st.foot] + 0.05)
@@ -172,9 +215,10 @@ def schedule(
             ic = max(ic, ev["ic"][k - 1] + swing + 0.02, last_ff[st.foot] + 0.05 + rock + swing)
         bout_start[k] = start
         ev["ic"][k], ev["to"][k], ev["ho"][k], ev["ff"][k] = ic, ic - swing, ic - swing - rock, ic + load
+        ev["rest"][k] = ic + still
         ev["step_s"][k] = d
-        last_ff[st.foot] = ic + load
-        settle = max(settle, ic + load)
+        last_ff[st.foot] = ic + still
+        settle = max(settle, ic + still)
         jit = 1.0 + 0.05 * variability * rng.normal()
         gait_pitch = 0.6 if st.gait == "short" else (1.1 if st.gait == "long" else 1.0)
         ev["theta_to"][k] = np.radians(user.toe_off_pitch_deg) * pfac * SPEED_PITCH[speed] * gait_pitch * jit
@@ -202,7 +246,7 @@ def schedule(
         impact[k] = (vf * sp, vz * sp)
         clear = user.swing_height_m if clear is None else clear
         ev["clearance"][k] = clear * (0.5 if st.irregular else 1.0)
-    return Events(impact=impact, bout_start=bout_start, **ev)
+    return Events(impact=impact, bout_start=bout_start, rocker=rocker, **ev)
 
 
 # -- foot ---------------------------------------------------------------------------------------
@@ -252,7 +296,7 @@ def foot_pose(
     for k in np.flatnonzero([s.foot == foot for s in steps]):
         st = steps[k]
         h_b, y_b = st.heel, st.yaw
-        i_ho, i_to, i_ic, i_ff = np.searchsorted(t, [ev.ho[k], ev.to[k], ev.ic[k], ev.ff[k]])
+        i_ho, i_to, i_ic, i_ff = np.searchsorted(t, [ev.ho[k], ev.to[k], ev.ic[k], ev.rest[k]])
         heel[pos:i_ho], yaw[pos:i_ho], theta[pos:i_ho] = h_a, y_a, 0.0
         # forefoot (or heel) rocker: heel-off -> toe-off, pivot fixed on footprint A
         th_to, th_ic = ev.theta_to[k], ev.theta_ic[k]
@@ -329,7 +373,11 @@ def foot_pose(
         theta[sl] = clamped_spline(pitch_tk, pk[:, None], *w_ends, t[sl])[:, 0]
         # loading rocker: initial contact -> foot flat, pivot fixed on footprint B
         sl = slice(i_ic, i_ff)
-        th = hermite((t[sl] - ev.ic[k]) / load, th_ic, 0.0, w_ic, 0.0, load)
+        if ev.rocker == "smooth":  # decisions S31: the pitch comes to rest gradually
+            still = ev.rest[k] - ev.ic[k]
+            th = decaying_rocker(t[sl] - ev.ic[k], th_ic, w_ic, still, ROCKER_RISE * still, ROCKER_DECAY * still)
+        else:
+            th = hermite((t[sl] - ev.ic[k]) / load, th_ic, 0.0, w_ic, 0.0, load)
         heel[sl] = p_b - foot_rotate(y_b, th, r_b)
         yaw[sl], theta[sl] = y_b, th
         tau = t[sl] - ev.ic[k]

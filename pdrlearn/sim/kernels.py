@@ -98,6 +98,34 @@ def hermite(u: np.ndarray, y0, y1, m0, m1, duration: float) -> np.ndarray:
     )
 
 
+def _windowed_exp_integral(tau: np.ndarray, k: float, duration: float) -> np.ndarray:
+    """int_0^tau exp(-k s) (1 - s / duration)^2 ds, closed form (k > 0)."""
+
+    def antiderivative(s):
+        v = 1.0 - s / duration
+        return -np.exp(-k * s) * (v**2 / k - 2.0 * v / (duration * k**2) + 2.0 / (duration**2 * k**3))
+
+    return antiderivative(tau) - antiderivative(0.0)
+
+
+def decaying_rocker(tau: np.ndarray, theta0: float, rate0: float, duration: float, rise_s: float,
+                    decay_s: float) -> np.ndarray:
+    """Pitch (rad) of a heel rocker that comes to rest gradually (decisions S31), at times ``tau`` (s) after the
+    contact, clipped to [0, ``duration``].
+
+    The pitch rate is ``[rate0 e^(-tau/rise) + c (1 - e^(-tau/rise))] e^(-tau/decay) (1 - tau/duration)^2``: it
+    starts at ``rate0``, moves within a few ``rise_s`` to the rocker's largest rate, then decays (its largest
+    deceleration just after the contact, none at the end), and the window reaches rest at ``duration`` with zero
+    rate and zero angular acceleration. ``c`` makes the pitch go from ``theta0`` to exactly 0.
+    """
+    tau = np.clip(np.asarray(tau, dtype=float), 0.0, duration)
+    k_decay, k_both = 1.0 / decay_s, 1.0 / decay_s + 1.0 / rise_s
+    g_decay, g_both = (_windowed_exp_integral(np.float64(duration), k, duration) for k in (k_decay, k_both))
+    c = -(theta0 + rate0 * g_both) / (g_decay - g_both)
+    return theta0 + (rate0 - c) * _windowed_exp_integral(tau, k_both, duration) + c * _windowed_exp_integral(
+        tau, k_decay, duration)
+
+
 def clamped_spline(tk: np.ndarray, yk: np.ndarray, d0: np.ndarray, d1: np.ndarray, tq: np.ndarray) -> np.ndarray:
     """Cubic spline through knots ``(tk, yk)`` (k, m) with end slopes ``d0``, ``d1`` (m,), C2 inside.
 

@@ -21,6 +21,8 @@ from pdrlearn.sim.body import (
     HEEL_OFF_FRACTION,
     LOAD_FRACTION,
     PELVIS_MODES,
+    ROCKER_MODES,
+    STEP_TIME_ASYMMETRY_MAX,
     Events,
     foot_loads,
     foot_pose,
@@ -68,7 +70,12 @@ KNOBS: dict[str, object] = {
     "device_errors": True,  # accelerometer scale factors per unit (the user's own), not per session (S22)
     "pelvis": "model",  # "realistic": roll toward the stance side and a smaller sway, drawn per user (S27)
     "bounce": "constant",  # "pendulum": the pelvis bounce scales with the step length (S29)
+    "rocker": "hermite",  # "smooth": a heel rocker that comes to rest gradually, no second |acc| peak (S31)
+    # hemiparetic gait: the steps onto the left foot are 1 + this times the right foot's, same cadence (S35)
+    "step_time_asymmetry": 0.0,
 }
+#: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
+META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_time_asymmetry")
 
 
 NON_NEGATIVE_KNOBS = (
@@ -100,6 +107,8 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError(f"simulate: pelvis={out['pelvis']!r} must be one of {', '.join(PELVIS_MODES)}")
     if out["bounce"] not in BOUNCE_MODES:
         raise DataError(f"simulate: bounce={out['bounce']!r} must be one of {', '.join(BOUNCE_MODES)}")
+    if out["rocker"] not in ROCKER_MODES:
+        raise DataError(f"simulate: rocker={out['rocker']!r} must be one of {', '.join(ROCKER_MODES)}")
     mount = out["waist_mount_deg"]
     try:
         ok = len(mount) == 3 and all(math.isfinite(float(v)) and not isinstance(v, bool) for v in mount)
@@ -120,6 +129,9 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError("simulate: irregular_rate must be <= 1 and drop_rate < 0.5")
     if not 0 < out["mag_field_ut"] < 1000 or not -90 <= out["mag_inclination_deg"] <= 90:
         raise DataError("simulate: mag_field_ut must be in (0, 1000) uT and mag_inclination_deg in [-90, 90]")
+    if not 0 <= out["step_time_asymmetry"] < STEP_TIME_ASYMMETRY_MAX:  # decision S35
+        raise DataError(f"simulate: step_time_asymmetry={out['step_time_asymmetry']!r} must be >= 0 and < "
+                        f"{STEP_TIME_ASYMMETRY_MAX:g} (0.39 = the left foot's steps 39 % longer than the right's)")
     return out
 
 
@@ -264,7 +276,8 @@ def simulate_path(
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
     if not steps and 2 * stand + end_pause < 1.0:
         raise DataError("simulate: nothing to simulate (no steps and stand_s < 1 s); add segments or stand longer")
-    ev = schedule(steps, user, speed=speed, rng=rng, stand_s=stand, variability=float(opt["variability"]))
+    ev = schedule(steps, user, speed=speed, rng=rng, stand_s=stand, variability=float(opt["variability"]),
+                  rocker=str(opt["rocker"]), step_time_asymmetry=float(opt["step_time_asymmetry"]))
     total_s = (max(ev.end_s, stand) if steps else stand) + end_pause + stand
     k_fine = OVERSAMPLE * k_out
     fine_rate = INTERNAL_RATE_HZ * OVERSAMPLE
@@ -427,7 +440,7 @@ def simulate_path(
         "earth_field_enu_ut": [float(v) for v in b_enu],
         # the default pelvis is left out so that default sessions (and their meta.json) are as before S27
         "knobs": {k: (list(v) if isinstance(v, tuple) else v) for k, v in opt.items()
-                  if k not in ("pelvis", "bounce", "waist_mount_deg") or v != KNOBS[k]},
+                  if k not in META_ONLY_WHEN_SET or v != KNOBS[k]},
         "n_steps": len(steps),
         "n_strides": int(len(strides)),
         "distance_m": float(strides["length_m"].sum()) if len(strides) else 0.0,

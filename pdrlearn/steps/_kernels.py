@@ -19,7 +19,7 @@ from numpy.lib.stride_tricks import sliding_window_view
 from scipy.signal import lfilter
 
 # decision E50: the force detector's kernel lives with the streamed IC (numpy only); re-exported here
-from pdrlearn.kernels.contact import ForceParams, ForceState, force_kernel, last_impact  # noqa: F401
+from pdrlearn.kernels.contact import ForceParams, ForceState, force_kernel, last_impact, peak_time  # noqa: F401
 
 Event = tuple[float, float, float, float, dict]
 
@@ -62,6 +62,7 @@ class BurstParams:
     # rests_only: only still runs of at least min_still_n samples (long enough to end a swing) enter it
     quiet_rank: int = 1
     rests_only: bool = False
+    subsample: bool = False  # steps decision 32: each peak's time at the vertex of its parabola
 
 
 @dataclass
@@ -75,6 +76,8 @@ class BurstState:
     last_t: float = math.nan
     prev_a: float = math.nan
     prev_t: float = math.nan
+    prev2_a: float = math.nan  # the sample before prev (decision 32's parabola)
+    prev2_t: float = math.nan
     rising: bool = False
     emx: float = -math.inf
     peaks: list = field(default_factory=list)  # local maxima (t, a) of the current swing
@@ -102,7 +105,9 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
     ``peak_frac`` of the swing's largest rise above ``rest`` (push-off and impact peaks change order
     between feet, mountings and speeds; the impact is always the last one). Strides closer than
     ``min_stride_s`` are merged, keeping the larger one. ``e`` (default ``a``) is the signal whose peaks
-    locate the event (a less smoothed magnitude keeps the impact apart from the push-off).
+    locate the event (a less smoothed magnitude keeps the impact apart from the push-off). With
+    ``p.subsample`` a peak's time is the vertex of the parabola through it and its neighbours (steps decision 32;
+    its value, and so the choice of the peak, stays the sample's).
     """
     out: list[Event] = []
     s = state
@@ -122,16 +127,16 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
                 s.quiet = (s.quiet + [min(q, p.cap_n) if p.cap_n else q])[-p.history:]
                 s.need_n = _still_need(s, p)
             s.still_count = 0
-        was_rising, prev_a, prev_t = s.rising, s.prev_a, s.prev_t
+        was_rising, prev_a, prev_t, prev2_a, prev2_t = s.rising, s.prev_a, s.prev_t, s.prev2_a, s.prev2_t
         s.rising = ei > prev_a if prev_a == prev_a else False
-        s.prev_a, s.prev_t = ei, ti
+        s.prev2_a, s.prev2_t, s.prev_a, s.prev_t = prev_a, prev_t, ei, ti
         if not s.active:
             if not si:
                 s.active, s.i0_t, s.mx, s.mx_t, s.mn = True, ti, ai, ti, ai
                 s.peaks, s.emx = [], ei
             continue
-        if was_rising and ei <= prev_a:
-            s.peaks.append((prev_t, prev_a))
+        if was_rising and ei <= prev_a:  # a rise into prev: prev2 is a sample too
+            s.peaks.append((peak_time(prev2_t, prev_t, ti, prev2_a, prev_a, ei) if p.subsample else prev_t, prev_a))
         if ei > s.emx:
             s.emx = ei
         if ai > s.mx:

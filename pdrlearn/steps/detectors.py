@@ -15,6 +15,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
+from pdrlearn.kernels import contact as _contact
 from pdrlearn.kernels.contact import (
     EVENT_CUTOFF_HZ,
     FORCE_AMP,
@@ -59,6 +60,11 @@ GATE_CUTOFF_HZ = 5.0  # the PLL's input low-pass, on which the waist motion gate
 def _cutoff(cutoff_hz: float, fs: float) -> float:
     """Keep a low-pass cutoff below 0.45 fs so that every detector also runs on low-rate streams."""
     return min(cutoff_hz, 0.45 * fs)
+
+
+def _subsample(det: StepDetector) -> bool:
+    """Steps decision 32: the detector's ``subsample``, or the module default when None."""
+    return bool(_contact.SUBSAMPLE if det.subsample is None else det.subsample)
 
 
 def _shift(events: list, delay: float) -> list:
@@ -106,7 +112,7 @@ class _AccelProcessor:
             min_dur_s=det.min_swing_s, max_dur_s=det.max_swing_s, min_stride_s=det.min_stride_s,
             rest=det.gravity, peak_frac=det.peak_frac, max_still_n=need(det.max_quiet_s),
             quiet_frac=det.quiet_frac, history=4, window_n=self.w, cap_n=int(round(0.6 * fs)),
-            quiet_rank=det.quiet_rank, rests_only=det.rests_only)
+            quiet_rank=det.quiet_rank, rests_only=det.rests_only, subsample=_subsample(det))
         self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
@@ -154,6 +160,8 @@ class AccelStepDetector(StepDetector):
         20 Hz (1.0 s) becomes this refractory time; decision: 0.6 s, the shortest walking stride
     peak_frac : fraction of the largest rise that the initial-contact peak must reach (decision: 0.3)
     gravity : rest magnitude (m/s^2)
+    subsample : the contact's time at the vertex of the parabola through the peak and its two neighbouring
+        samples instead of the peak sample (decision 32); None = ``pdrlearn.kernels.contact.SUBSAMPLE``
     """
 
     name = "accel"
@@ -167,7 +175,7 @@ class AccelStepDetector(StepDetector):
                  quiet_rank: int = 2, rests_only: bool = True,
                  min_swing_s: float = 0.2, max_swing_s: float = 2.5,
                  min_stride_s: float = 0.6, peak_frac: float = PEAK_FRAC, event_cutoff_hz: float = EVENT_CUTOFF_HZ,
-                 gravity: float = G):
+                 gravity: float = G, subsample: bool | None = None):
         if int(quiet_rank) != quiet_rank or quiet_rank < 1:
             raise DataError(f"accel detector: quiet_rank must be an integer >= 1 (1 = the longest recent rest, "
                             f"decision 14; 2 = the second longest, decision 16), got {quiet_rank!r}")
@@ -189,7 +197,7 @@ class _ForceProcessor:
         self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
         self.state = ForceState()
         self.params = ForceParams(amp=det.threshold, on_frac=det.force_on_frac, off_frac=det.force_off_frac,
-                                  min_swing_s=det.min_swing_s)
+                                  min_swing_s=det.min_swing_s, subsample=_subsample(det))
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
         a = self.lp.push(magnitude(v[:, :3]))
@@ -217,6 +225,8 @@ class AccelForceStepDetector(StepDetector):
         maximum, swing when it drops below ``force_off_frac`` ("different from zero", with hysteresis
         against sensor noise; works for forces in N or normalised)
     min_swing_s : shortest swing (s)
+    subsample : the stance onset at the time the line between the sample before and the crossing sample reaches
+        the on level instead of the crossing sample (decision 32); None = ``pdrlearn.kernels.contact.SUBSAMPLE``
     """
 
     name = "accel-force"
@@ -226,7 +236,7 @@ class AccelForceStepDetector(StepDetector):
 
     def __init__(self, *, cutoff_hz: float = 3.0, order: int = 3, threshold: float = FORCE_AMP,  # thesis ch.5.2
                  force_on_frac: float = FORCE_ON_FRAC, force_off_frac: float = FORCE_OFF_FRAC,
-                 min_swing_s: float = FORCE_MIN_SWING_S):
+                 min_swing_s: float = FORCE_MIN_SWING_S, subsample: bool | None = None):
         self._store(locals())
 
     def _inputs(self, session: Session):

@@ -199,11 +199,37 @@ def step_counts(steps: pd.DataFrame) -> dict:
             "n_steps_both_feet": None if len(steps) else 0}
 
 
+def median_stride_length(steps: pd.DataFrame) -> float | None:
+    """``median_stride_length_m`` (decisions C12, C19): the median |length_m| of a foot track's strides, without
+    the 0 m rows that stand for a foot gap (``gap_s`` > 0, L67: no stride) or a stride the last-line guard moved
+    0 m (``impossible``, L97); None for a lower-back track (its rows are steps of either foot) or no strides."""
+    units = set(steps["unit"].astype(str)) if len(steps) and "unit" in steps else set()
+    if units != {"foot"} or "length_m" not in steps:
+        return None
+    length = steps["length_m"].abs()
+    drop = steps["gap_s"].to_numpy(float) > 0 if "gap_s" in steps else np.zeros(len(steps), bool)
+    if "impossible" in steps:
+        drop = drop | steps["impossible"].eq(True).to_numpy(bool)
+    length = length[~drop]
+    return float(length.median()) if len(length) else None
+
+
+def tracked_rate_hz(session: Session, pipeline: str | None) -> float | None:
+    """Decision C19: the sampling rate (Hz) of the tracked unit's accelerometer (the lower back's for the waist
+    pipelines, else the foot's): contact times, and so stride times and cadence, are resolved to one sample."""
+    name = "wAccelerometer" if str(pipeline).startswith("waist") else "fAccelerometer"
+    acc = session.streams.get(name)
+    if acc is None or len(acc) < 2 or not np.isfinite(acc.rate_hz):
+        return None
+    return round(float(acc.rate_hz), 4)
+
+
 def _basic(result: TrackResult, out: dict) -> None:
     tr = result.trajectory
     out["distance_m"] = result.distance_m
     out["n_steps"] = int(len(result.steps))
     out.update(step_counts(result.steps))  # decision L103: what n_steps counts, and the steps of both feet
+    out["median_stride_length_m"] = median_stride_length(result.steps)  # decision C19: as in sessions.csv
     last = tr.iloc[-1] if len(tr) else None
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
     if last is not None and "lat" in tr:
@@ -460,6 +486,8 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
     for k in ("stride_length_matched", "stride_length_composed", "stride_length_mae_pct",
               "stride_length_mae_pct_straight", "stride_length_mae_pct_turns", "distance_matched_error_pct"):
         out.pop(k, None)  # step rows are not strides: the stride metric of waist_metrics replaces these
+    if "n_strides" in m:  # decision C19: the reference strides scored, not strides tracked (sessions.csv's
+        m["n_reference_strides"] = m.pop("n_strides")  # n_strides column was 7 on the lower back, empty on the foot)
     out.update(m)
 
 
@@ -469,12 +497,12 @@ METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _
 
 
 def summary_warnings(summary: dict) -> list[str]:
-    """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range and
-    decision L113's withheld stride-time CV."""
-    from pdrlearn.track.clinical import stride_cv_warning
+    """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range,
+    decision L113's withheld stride-time CV and decision L116's whole-sample rounding of the CV."""
+    from pdrlearn.track.clinical import resolution_warning, stride_cv_warning
     from pdrlearn.track.gait import gait_range_warning
 
-    return [w for w in (gait_range_warning(summary), stride_cv_warning(summary)) if w]
+    return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:
@@ -514,12 +542,18 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     import logging
 
     from pdrlearn.io.plasys import json_safe
+    from pdrlearn.track.clinical import contact_timing
 
     summary = evaluate_track(result, session)
+    summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None
     summary["pipeline"] = pipeline if pipeline is not None else result.info.get("pipeline")
+    summary["rate_hz"] = tracked_rate_hz(session, summary["pipeline"])  # decision C19
+    from pdrlearn import __version__
+
+    summary["pdrlearn_version"] = __version__  # decision C18: which pdrlearn wrote the numbers
     summary["info"] = dict(result.info)
     mirrored = turn_warning(summary)  # decision L42: the turns against turns.csv
     if mirrored:

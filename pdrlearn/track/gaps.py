@@ -11,11 +11,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.io.session import Session
-
-#: Gaps longer than this (s) are reported and end a walking sequence: the shortest steps last ~0.4 s
-#: and 1 s of missing data can hide one or two steps (brief: "gaps longer than e.g. 1 s").
-MIN_GAP_S = 1.0
-
+from pdrlearn.kernels.gaps import MIN_GAP_S, gap_lines, gap_warnings, grouped_gaps  # noqa: F401  (W92)
 
 #: the foot streams whose gaps lose the foot's turn (decisions L90 / L91): the gyroscope, and the accelerometer
 #: whose clock the offline foot integrates the gyroscope on
@@ -55,48 +51,18 @@ def long_gaps(session: Session, names: tuple[str, ...], *, min_gap_s: float = MI
     return out
 
 
-def grouped_gaps(gaps: dict[str, list[tuple[float, float]]]) -> list[tuple[list[str], list[tuple[float, float]]]]:
-    """``(stream names, gaps)`` with the streams that share the same gaps (to 0.1 s) in one entry, in first-seen
-    order: one gap in every stream of a unit (a dropped radio link) is one line, not one per stream (B34)."""
-    groups: dict[tuple, tuple[list[str], list[tuple[float, float]]]] = {}
-    for name, g in gaps.items():
-        key = tuple((round(a, 1), round(b, 1)) for a, b in g)
-        groups.setdefault(key, ([], g))[0].append(name)
-    return list(groups.values())
-
-
-def gap_lines(gaps: dict[str, list[tuple[float, float]]], consequence: str) -> list[str]:
-    """One line per group of streams with the same gaps (:func:`grouped_gaps`): the streams, the count, the
-    longest gap and where, then ``consequence``."""
-    out = []
-    for names, g in grouped_gaps(gaps):
-        t0, t1 = max(g, key=lambda ab: ab[1] - ab[0])
-        out.append(f"{', '.join(names)} {'has' if len(names) == 1 else 'have'} {len(g)} gap(s) longer than "
-                   f"{MIN_GAP_S:g} s (longest {t1 - t0:.1f} s at {t0:.1f} s); {consequence}")
-    return out
-
-
-def gap_warnings(gaps: dict[str, list[tuple[float, float]]],
-                 consequence: str = "no displacement is counted inside them") -> list[str]:
-    """One warning per group of streams with the same gaps: the count, the longest gap and ``consequence``
-    (what the pipeline does about them; decision B34)."""
-    return gap_lines(gaps, f"{consequence} - re-record or trim the session")
-
-
 def cut_steps_at_gaps(steps: pd.DataFrame, gaps: dict[str, list[tuple[float, float]]]) -> pd.DataFrame:
     """Drop the contacts inside a gap and end each walking sequence before a gap: a step
     (``start_s``..``end_s`` with ``has_next``) spanning a gap becomes a closing contact (``end_s =
     start_s``, ``has_next = False``)."""
     if not gaps or len(steps) == 0:
         return steps
-    iv = np.array([ab for g in gaps.values() for ab in g])
-    ev = steps["start_s"].to_numpy(float)
-    inside = ((ev[:, None] > iv[None, :, 0]) & (ev[:, None] < iv[None, :, 1])).any(axis=1)
-    out = steps.loc[~inside].copy()
-    st, en = out["start_s"].to_numpy(float), out["end_s"].to_numpy(float)
-    nxt = np.append(st[1:], np.inf)
-    spans = ((st[:, None] < iv[None, :, 1]) & (np.maximum(en, nxt)[:, None] > iv[None, :, 0])).any(axis=1)
-    spans &= out["has_next"].to_numpy(bool)
+    from pdrlearn.kernels.gaps import cut_contacts_at_gaps
+
+    keep, spans = cut_contacts_at_gaps(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float),
+                                       steps["has_next"].to_numpy(bool), gaps)
+    out = steps.loc[keep].copy()
+    st = out["start_s"].to_numpy(float)
     out.loc[out.index[spans], "end_s"] = st[spans]
     out.loc[out.index[spans], "has_next"] = False
     out.attrs = dict(steps.attrs)

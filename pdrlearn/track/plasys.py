@@ -40,6 +40,7 @@ from pdrlearn.displace import (
     streaming_calibration,
 )
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError
+from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
@@ -267,7 +268,7 @@ def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[st
             if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
                 off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
     if off:
-        warnings.append(classifier_rate_warning(off))
+        warnings.append(classifier_rate_warning(off, resample_hint=True))
     return off or None
 
 
@@ -400,15 +401,18 @@ def _length_proba(classes: pd.DataFrame) -> list[dict[str, float] | None]:
 
 
 def _distance_gain(requested: float | None, model, fs: float, warnings: list[str],
-                   calibration: bool = True, streaming: bool = False) -> tuple[float, str, float | None]:
+                   calibration: bool = True, streaming: bool = False,
+                   resampled_hz: float | None = None) -> tuple[float, str, float | None]:
     """The distance gain to apply (decision L26), where it comes from, and the user's calibrated relative
     sd of one stride's length estimate (None: no applicable calibration). ``streaming``: the record of the
-    streamed stride kernel when the model has one (decision L41), else the offline engine's."""
+    streamed stride kernel when the model has one (decision L41), else the offline engine's. ``fs``: the foot's
+    recorded rate, also when the session was resampled to the model's ``resampled_hz`` (decisions E22, B113:
+    resampling does not restore what the recording rate lost)."""
     rec = model_distance_calibration(model) if calibration and not (model is None or isinstance(model, str)) \
         else None
     if streaming:
         rec = streaming_calibration(rec)
-    rec, warning = applicable_calibration(rec, fs)  # the runtime's own rate check (decision E14)
+    rec, warning = applicable_calibration(rec, fs, resampled_hz=resampled_hz)  # the runtime's check (E14)
     if warning:
         warnings.append(warning)
     sd = calibrated_stride_sd(rec)
@@ -688,8 +692,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             untrained = untrained_tasks(classes)
             if untrained:
                 warnings.append(untrained_warning(untrained))
-    gain, gain_source, stride_sd = _distance_gain(distance_gain, model if cfg["rules"] else None, foot.fs,
-                                                  warnings, calibration)
+    fs0, resampled_hz = recorded_rate(session, "fAccelerometer")  # decision B113: judged at the recorded rate
+    gain, gain_source, stride_sd = _distance_gain(distance_gain, model if cfg["rules"] else None,
+                                                  foot.fs if resampled_hz is None else fs0, warnings, calibration,
+                                                  resampled_hz=resampled_hz)
     # decision L26: the user's calibration on the level strides' horizontal displacement
     disp = apply_level_gain(disp, gain)
     use_bounds = bounds if bounds is not None else model_bounds
@@ -1018,9 +1024,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         if untrained:  # C17's line, with what the streamed rules do instead (they keep the raw height change)
             warnings.append(untrained_warning(untrained, streaming=True))
         off_rate = rate_check(model, session, classes, warnings)  # decision C18
-    gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None,
-                                                  session.streams["fAccelerometer"].rate_hz, warnings, calibration,
-                                                  streaming=True)  # decision L41: the stride kernel's own gain
+    fs0, resampled_hz = recorded_rate(session, "fAccelerometer")  # decision B113: judged at the recorded rate
+    gain, gain_source, stride_sd = _distance_gain(distance_gain, model if method == "M3" else None, fs0, warnings,
+                                                  calibration, streaming=True,  # L41: the stride kernel's gain
+                                                  resampled_hz=resampled_hz)
     # decision L41 (L40 amended): streamed, offline's default too - bayes with the 0.95 gate with a model's
     # classes, the thesis rule with oracle labels (with the stride kernel's own gain: better distance on A-D
     # and altitude on D than the thesis rule, held-out users 11-20)

@@ -45,6 +45,12 @@ from pdrlearn.waist.heading import (
     untracked_turn_message,
 )
 from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params
+from pdrlearn.waist.plausibility import (
+    ALTERNATION_MIN,
+    PLAUSIBILITY_MIN_PAIRS,
+    contact_alternation,
+    not_alternating_message,
+)
 from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
 
 log = logging.getLogger(__name__)
@@ -456,6 +462,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     note = relative_heading_note(start, o["initial_heading"], "wMagneticField" in session)
     if note:
         warnings.append(note)
+    alternation, pairs = contact_alternation(imu.t, imu.acc_ml, imu.fs, steps["event_s"].to_numpy(float),
+                                             steps["has_next"].to_numpy(bool))  # decision W98
+    if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
+        warnings.append(not_alternating_message(alternation, pairs))
     n = len(steps)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"
     info = {
@@ -470,6 +480,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "rate_hz": imu.fs,
         "untracked_turn_deg": untracked,
         "walk_threshold_mps2": float(thr),
+        "alternation_index": alternation,
+        "alternation_pairs": pairs,
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)

@@ -46,16 +46,21 @@ def parse_window(text: str | None) -> tuple[float, float] | None:
     return start, end
 
 
-def check_window(window: tuple[float, float], session: Session) -> tuple[float, float]:
+def check_window(window: tuple[float, float], session: Session, unit: str | None = None) -> tuple[float, float]:
     """The window in the session's own clock (the recording's start + START, + END; a ``--common-span`` cut,
     decision B81, does not move that start); one :class:`DataError` line
-    when it does not lie inside the recording."""
+    when it does not lie inside the recording of the tracked ``unit`` (foot / waist; None: any stream's;
+    decision B126: a foot unit that stopped at 180 s beside a waist recording to 385 s passed ``--window 5,365``)."""
+    from pdrlearn.track.units import unit_span
+
     start, end = window
     t0 = session.t_recording_start  # B81: a --common-span cut does not move the session start (its seconds)
-    dur = session.t_end - t0
+    span = unit_span(session, unit) if unit is not None else None
+    dur = (span[1] if span is not None else session.t_end) - t0
+    whose = f" (the tracked {unit} unit's, decision B126)" if span is not None else ""
     if start >= dur or end > dur + 1e-6:
         raise DataError(f"{session.where}: --window {start:g},{end:g} lies outside the recording, which lasts "
-                        f"{dur:.2f} s; give START < END <= {dur:.2f}")
+                        f"{dur:.2f} s{whose}; give START < END <= {dur:.2f}")
     return t0 + start, t0 + end
 
 

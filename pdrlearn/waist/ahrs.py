@@ -30,8 +30,7 @@ log = logging.getLogger(__name__)
 ACC, GYR = "wAccelerometer", "wGyroscope"
 #: bridged gaps longer than this (s) are filled as a rest (decision B11: reported, they end the walking
 #: sequence; pdrlearn.track.gaps.MIN_GAP_S)
-LONG_GAP_S = 1.0
-MADGWICK_GAIN = 0.033  # Madgwick 2010 IMU gain (ahrs default, W5); seed 001 sec. 2.2.1 uses the filter, gives no gain
+from pdrlearn.kernels.waist_stream import LONG_GAP_S, MADGWICK_GAIN  # noqa: E402,F401  (W92)
 
 
 @dataclass

@@ -26,6 +26,24 @@ from pdrlearn.waist.steplength import (
 log = logging.getLogger(__name__)
 
 
+def span_mask(session: Session, steps, span_s: tuple[float | None, float | None] | None) -> np.ndarray:
+    """Decision W61: the steps (rows of ``steps``) whose both contacts lie inside ``span_s`` = ``(start, end)``
+    seconds from the recording's start (either None = open; ``span_s`` None = every step)."""
+    if span_s is None:
+        return np.ones(len(steps), dtype=bool)
+    t0 = session.t_start
+    for name, v in zip(("--start", "--end"), span_s, strict=True):
+        if v is not None and not np.isfinite(float(v)):
+            raise DataError(f"calibrate: {name} {v}: give seconds from the start of {session.name} (a finite "
+                            "number, e.g. --start 5 --end 11)")
+    lo = -np.inf if span_s[0] is None else t0 + float(span_s[0])
+    hi = np.inf if span_s[1] is None else t0 + float(span_s[1])
+    if not lo < hi:
+        raise DataError(f"calibrate: --start {span_s[0]} is not before --end {span_s[1]} (seconds from the "
+                        f"start of {session.name})")
+    return (steps["start_s"].to_numpy(float) >= lo) & (steps["end_s"].to_numpy(float) <= hi)
+
+
 def calibration_walks(session: Session, pipeline: str, *, distance_m: float | None = None,
                       params=None, result=None, span_s: tuple[float | None, float | None] | None = None
                       ) -> list[CalibrationWalk]:
@@ -61,17 +79,7 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
         raise DataError("calibrate: --start/--end mark the stretch whose length --distance gives; pass --distance "
                         "METERS too (the reference bouts of bouts.csv carry their own times)")
     if span_s is not None:  # W61: the measured stretch only
-        t0 = session.t_start
-        for name, v in zip(("--start", "--end"), span_s, strict=True):
-            if v is not None and not np.isfinite(float(v)):
-                raise DataError(f"calibrate: {name} {v}: give seconds from the start of {session.name} (a finite "
-                                "number, e.g. --start 5 --end 11)")
-        lo = -np.inf if span_s[0] is None else t0 + float(span_s[0])
-        hi = np.inf if span_s[1] is None else t0 + float(span_s[1])
-        if not lo < hi:
-            raise DataError(f"calibrate: --start {span_s[0]} is not before --end {span_s[1]} (seconds from the "
-                            f"start of {session.name})")
-        keep = (st["start_s"].to_numpy(float) >= lo) & (st["end_s"].to_numpy(float) <= hi)
+        keep = span_mask(session, st, span_s)
         st, g, c, f = st[keep], g[keep], c[keep], f[keep]
         if not len(st):
             raise DataError(f"calibrate: no detected step of {session.name} lies inside --start/--end "
@@ -159,9 +167,50 @@ def check_gain(walks: list[CalibrationWalk], pipeline: str, base: WaistParams) -
             out.append(f"{w.name}: the known distance {w.distance_m:g} m is {g:.2f} x what the default model "
                        f"gives its {len(w.f_hz)} steps ({lw:.2f} m; usual {lo:g}-{hi:g}, decision W39). Either "
                        "--distance is wrong (give the length from the first to the last heel strike of this walk), "
-                       f"or the walker takes {why}: then this calibration is what the walker needs (it is kept; "
-                       "decision W78)")
+                       f"or the walker takes {why}: then, if its step count is right (decision W99), this "
+                       "calibration is what the walker needs (it is kept; decision W78)")
     return out
+
+
+#: decision W99: the waist IC count of a calibration walk and the pelvic-gyro detector's disagree when they differ
+#: by more than this fraction of the pelvic-gyro count (the lead's 30 %)
+STEP_COUNT_DISAGREE = 0.3
+STEP_COUNT_MIN = 10  # W99: walks where both counts are under this are not judged
+STEP_COUNT_MARGIN_S = 0.5  # W99: pelvic-gyro steps this far outside the first / last waist contact still count
+
+
+def step_counts(session: Session, event_s: np.ndarray) -> tuple[int, int] | None:
+    """Decision W99: ``(n_waist, n_gyro)``: the waist contacts ``event_s`` (s) of a calibration walk and the
+    pelvic-gyro detector's steps between the first and last of them (+- :data:`STEP_COUNT_MARGIN_S`); None
+    without two contacts or without a waist gyroscope."""
+    from pdrlearn.steps.detectors import PelvicGyroStepDetector
+
+    ev = np.asarray(event_s, dtype=np.float64)
+    if ev.size < 2:
+        return None
+    try:
+        gyro = PelvicGyroStepDetector().detect(session)["event_s"].to_numpy(float)
+    except DataError:  # no waist gyroscope: nothing to compare with
+        return None
+    lo, hi = ev.min() - STEP_COUNT_MARGIN_S, ev.max() + STEP_COUNT_MARGIN_S
+    return int(ev.size), int(np.count_nonzero((gyro >= lo) & (gyro <= hi)))
+
+
+def step_count_check(session: Session, event_s: np.ndarray) -> str | None:
+    """Decision W99: one warning when :func:`step_counts` disagree by more than :data:`STEP_COUNT_DISAGREE` of
+    the pelvic-gyro count (the larger count at least :data:`STEP_COUNT_MIN`); None when they agree or cannot be
+    compared."""
+    counts = step_counts(session, event_s)
+    if counts is None:
+        return None
+    n_w, n_g = counts
+    if max(n_w, n_g) < STEP_COUNT_MIN or abs(n_w - n_g) <= STEP_COUNT_DISAGREE * n_g:
+        return None
+    return (f"{session.name}: the waist step detector counted {n_w} contacts on this walk, the pelvic-gyro detector "
+            f"{n_g} (more than {100 * STEP_COUNT_DISAGREE:.0f} % apart, decision W99): the step count is doubtful, and "
+            "with it K and the step count and cadence of every track calibrated with it (a very slow walker's "
+            "phantom contacts, a walking aid's strikes); check with 'pdrlearn steps DIR --detector pelvic-gyro' "
+            "(and a foot unit if there is one) before relying on this calibration")
 
 
 def fit_turn_classifier(mean_rates: np.ndarray) -> tuple[dict | None, str]:
@@ -262,6 +311,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     walks: list[CalibrationWalk] = []
     rates = []
     notes_gap: list[str] = []
+    notes_count: list[str] = []
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
         with without_heading_note():  # W83: calibration does not use the heading
@@ -271,6 +321,13 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
                             "length (give a recording of walking, with --distance or bouts.csv)")
         span = None if spans is None else spans[i if len(spans) > 1 else 0]
         walks += calibration_walks(s, pipeline, distance_m=d, params=base, result=res, span_s=span)
+        if d is not None:  # decision W99: cross-check the walk's contact count with the pelvic gyro
+            counted = res.steps[res.steps["has_next"]]
+            counted = counted[span_mask(s, counted, span)]  # the steps the walk counts (W21, W61)
+            note = step_count_check(s, np.unique(np.concatenate([counted["start_s"].to_numpy(float),
+                                                                 counted["end_s"].to_numpy(float)])))
+            if note:
+                notes_count.append(note)
         st = res.steps
         if len(st):  # decision W34: say when a calibration walk lost samples
             notes_gap += gap_notes(s, float(st["start_s"].min()), float(st["end_s"].max()))
@@ -296,7 +353,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         out.k, out.k_shrinkage, shrunk = shrink_pendulum_gain(walks, out.k, out.f_m, how, shrink=shrink, tau=tau_k)
     else:
         out.a_walk, out.b_walk, how = fit_frequency(walks, base)
-    for n in implausible:
+    for n in implausible + notes_count:
         log.warning("calibrate: %s", n)
     if distances is not None:  # decision W21: the known length must span the counted steps
         out.notes += [f"--distance {w.distance_m:g} m counted over {len(w.f_hz)} steps, {w.name} (give the "
@@ -307,7 +364,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         out.notes.append(shrunk)
     for n in notes_gap:
         log.info("calibrate: %s", n)
-    out.notes += notes_gap + implausible
+    out.notes += notes_gap + implausible + notes_count
     if turns is not None:
         from pdrlearn.waist.ahrs import waist_imu
 

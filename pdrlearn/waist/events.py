@@ -50,11 +50,8 @@ def walking_gate(imu: WaistIMU, *, walk_threshold: float = WALK_THRESHOLD_MPS2, 
     """Samples where the motion state (seed 000 sec. II-B) is walking or running; with ``turn_gate_rps``
     (decision 28 of docs/decisions/steps.md) also where the levelled vertical rate's mean over the same window
     reaches it in absolute value (the pelvis turns: a turn on the spot bounces too little for the std)."""
-    sigma = K.rolling_std(imu.acc_v, imu.fs, causal=causal)
-    gate = K.motion_state(sigma, walk_threshold=walk_threshold) > 0
-    if turn_gate_rps is not None:
-        gate |= np.abs(K.rolling_mean(imu.w_z, imu.fs, causal=causal)) >= turn_gate_rps
-    return gate
+    return K.motion_gate(imu.acc_v, imu.w_z, imu.fs, walk_threshold=walk_threshold, causal=causal,
+                         turn_gate_rps=turn_gate_rps)
 
 
 def steps_from_events(t: np.ndarray, ic: np.ndarray, fc: np.ndarray | None = None, *,
@@ -64,11 +61,8 @@ def steps_from_events(t: np.ndarray, ic: np.ndarray, fc: np.ndarray | None = Non
     closes a walking sequence and carries no displacement). ``fc_s`` holds the FC after each IC."""
     ic = np.asarray(ic, dtype=int)
     ts = t[ic] if ic.size else np.zeros(0)
-    nxt = np.append(ts[1:], np.inf)
-    has_next = (nxt - ts) <= max_step_s
-    end = np.where(has_next, nxt, ts)
-    df = pd.DataFrame({"start_s": ts, "end_s": end, "event_s": ts, "unit": "waist",
-                       "confidence": np.where(has_next, 1.0, 0.5)})
+    end, has_next, conf = K.contact_rows(ts, max_step_s)
+    df = pd.DataFrame({"start_s": ts, "end_s": end, "event_s": ts, "unit": "waist", "confidence": conf})
     df["fc_s"] = t[np.asarray(fc, dtype=int)] if fc is not None and len(fc) == ic.size else np.nan
     df["has_next"] = has_next
     df.attrs["detector"] = detector
@@ -162,18 +156,16 @@ class InitialContactDetector:
         self.ap_cutoff_hz = ap_cutoff_hz
         self.max_step_s = max_step_s
 
+    def rule_settings(self) -> dict:
+        """The keywords of :func:`pdrlearn.kernels.waist.contacts_offline` (the lean runtime's detector, W92)."""
+        return {k: getattr(self, k) for k in ("walk_threshold", "cutoff_hz", "fir_order_s", "ap_cutoff_hz", "rhythm",
+                                              "max_step_s", "alternate", "weight_shift", "end_steps",
+                                              "ap_above_mean", "turn_gate_rps", "turn_shift_rps")}
+
     def _offline(self, imu: WaistIMU) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The offline detector's contacts (zero-lag filters, sequence rules) on ``imu``."""
         fs = imu.fs
-        gate = walking_gate(imu, walk_threshold=self.walk_threshold, causal=False,
-                            turn_gate_rps=self.turn_gate_rps)
-        ap = lowpass(imu.acc_ap, min(self.ap_cutoff_hz, 0.4 * fs), fs, causal=False)
-        turning = (None if self.turn_shift_rps is None  # decision 29: W23 suspended while the pelvis turns
-                   else np.abs(K.rolling_mean(imu.w_z, fs, causal=False)) >= self.turn_shift_rps)
-        ic, fc, vmax = K.ic_offline(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
-                                    fir_order_s=self.fir_order_s, rhythm=self.rhythm, max_step_s=self.max_step_s,
-                                    acc_ml=imu.acc_ml if self.alternate else None, unshifted=self.weight_shift,
-                                    end_steps=self.end_steps, ap_above_mean=self.ap_above_mean, turning=turning)
+        ic, fc, vmax, ap = K.contacts_offline(imu.acc_v, imu.acc_ap, imu.acc_ml, imu.w_z, fs, **self.rule_settings())
         if self.learned is False or self.learned is None:
             return ic, fc, vmax
         from pdrlearn.waist import learned as L  # W33: the rule outcomes are features of the learned stage

@@ -12,6 +12,14 @@ from sklearn.mixture import GaussianMixture
 
 from pdrlearn.errors import DataError
 from pdrlearn.waist import _kernels as K
+from pdrlearn.waist._kernels import (  # noqa: F401  (moved to the numpy kernels, W92)
+    SLOW_TURN_RPS,
+    SLOW_TURN_WINDOW,
+    UNTRACKED_TURN_WARN_DEG,
+    slow_turn_strides,
+    turn_gap,
+    untracked_turn_message,
+)
 from pdrlearn.waist.ahrs import WaistIMU
 
 # Prior straight/turning mixture on |MRZ| (rad/s) used before any fit (decision W7): straight strides
@@ -140,12 +148,7 @@ class TurnClassifier(ClassifierMixin, BaseEstimator):
         return self._prior()
 
     def predict_proba(self, X) -> np.ndarray:
-        x = self._x(X)
-        m, s, w = self._params()
-        logp = -0.5 * ((x[:, None] - m) / s) ** 2 - np.log(s) + np.log(w)
-        logp -= logp.max(axis=1, keepdims=True)
-        p = np.exp(logp)
-        return p / p.sum(axis=1, keepdims=True)
+        return K.turn_proba(self._x(X), *self._params())
 
     def predict(self, X) -> np.ndarray:
         return (self.predict_proba(X)[:, 1] > 0.5).astype(int)
@@ -155,77 +158,14 @@ class TurnClassifier(ClassifierMixin, BaseEstimator):
         return {"means": m.tolist(), "sds": s.tolist(), "weights": w.tolist()}
 
 
-#: Decision W82: the ``slow_turn_rps`` the W74 line suggests for gentle curves (rad/s, 2 deg/s): a straight-called
-#: stride is integrated too when the mean rate of the strides k-3..k+1 (within the sequence) reaches it. An option,
-#: not the default: it failed its adoption rule on sharp turns by 0.01 m
-SLOW_TURN_RPS = 0.035
-#: strides before / after stride k in its window: one after, because the live tracker (W64) knows stride k+1 but not
-#: always k+2 when it reports k
-SLOW_TURN_WINDOW = (3, 1)
-
-
-def slow_turn_strides(mrz: np.ndarray, threshold_rps: float | None) -> np.ndarray:
-    """Decision W82: strides inside a gentle curve, whose 5-stride (:data:`SLOW_TURN_WINDOW`) mean rate reaches
-    ``threshold_rps``."""
-    x = np.nan_to_num(np.asarray(mrz, np.float64))
-    if not threshold_rps or x.size == 0:
-        return np.zeros(x.shape, dtype=bool)
-    c = np.concatenate([[0.0], np.cumsum(x)])
-    k = np.arange(x.size)
-    lo = np.maximum(k - SLOW_TURN_WINDOW[0], 0)
-    hi = np.minimum(k + SLOW_TURN_WINDOW[1] + 1, x.size)
-    return np.abs((c[hi] - c[lo]) / (hi - lo)) >= threshold_rps
-
-
 def gyro_headings(imu: WaistIMU, events: np.ndarray, *, classifier: TurnClassifier | None = None,
                   bias_rps: float = 0.0, heading0: float = 0.0, cum: np.ndarray | None = None,
                   slow_turn_rps: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
-    """Per-step heading from the vertical gyroscope, integrated only over turning strides
-    (seed 003 sec. 3.3).
-
-    Each step's stride mean rate is classified; the rate (minus ``bias_rps``, seed 003 eq. 2) is
-    integrated over the steps classified as turning and over the step before and after each of them
-    (seed 003: "integrate two straight steps occurring before and after a curved walking step"), and over
-    the strides of a gentle curve when ``slow_turn_rps`` > 0 (:func:`slow_turn_strides`, decision W82).
-    ``cum``: :func:`pdrlearn.waist._kernels.rate_integral` of ``(imu.t, imu.w_z - bias_rps)`` when the
-    caller integrates the same rate over many sequences (one pass over the recording, W43).
-
-    Returns
-    -------
-    headings : (m - 1,) heading during each step (rad); turning : (m - 1,) 0/1 classification.
-    """
-    ev = np.asarray(events, dtype=np.float64)
-    n = len(ev) - 1
-    if n <= 0:
-        return np.zeros(0), np.zeros(0, dtype=int)
-    w = imu.w_z - bias_rps
-    cum = K.rate_integral(imu.t, w) if cum is None else cum
-    mrz = K.mean_rate_per_stride(imu.t, w, ev, cum=cum)
+    """:func:`pdrlearn.kernels.waist.gyro_headings` (seed 003 sec. 3.3) on ``imu``'s vertical rate, the strides
+    classified by ``classifier`` (default: the W7 prior)."""
     clf = classifier if classifier is not None else TurnClassifier()
-    turning = clf.predict(np.nan_to_num(mrz))
-    integrate = turning.astype(bool).copy()
-    integrate[1:] |= turning[:-1].astype(bool)
-    integrate[:-1] |= turning[1:].astype(bool)
-    integrate |= slow_turn_strides(mrz, slow_turn_rps)  # W82, off by default
-    dpsi = K.integrate_rate(imu.t, w, ev[:-1], ev[1:], cum=cum)
-    heading = np.empty(n)
-    h = heading0
-    for k in range(n):
-        if integrate[k]:
-            h += dpsi[k]
-        heading[k] = h
-    return heading, turning
-
-
-#: Decision W74: a gyro-headed waist track warns when the waist's own yaw, integrated from the first contact to the
-#: end of a step, and that step's heading differ by this much (deg) at some step: a turn the headings dropped
-UNTRACKED_TURN_WARN_DEG = 60.0
-
-
-def turn_gap(gyro_yaw, heading):
-    """Decision W80: gyroscope yaw minus step heading (rad) as a direction difference, wrapped to (-pi, pi]: either
-    may be wrapped, and a wrapped U-turn must not read as a missed full turn."""
-    return np.angle(np.exp(1j * (np.asarray(gyro_yaw, np.float64) - np.asarray(heading, np.float64))))
+    return K.gyro_headings(imu.t, imu.w_z, events, predict=clf.predict, bias_rps=bias_rps, heading0=heading0,
+                           cum=cum, slow_turn_rps=slow_turn_rps)
 
 
 def untracked_turn(imu: WaistIMU, events: np.ndarray, ends: np.ndarray, headings: np.ndarray, *,
@@ -245,16 +185,3 @@ def untracked_turn(imu: WaistIMU, events: np.ndarray, ends: np.ndarray, headings
     diff = turn_gap(K.integrate_rate(imu.t, w, np.full(en.shape, ev[0]), en, cum=cum), hd)  # decision W80
     k = int(np.argmax(np.abs(diff)))
     return float(diff[k]), float(en[k])
-
-
-def untracked_turn_message(diff_deg: float, t_s: float, integrate_stops: bool) -> str:
-    """The one warning line of decision W74 (shared with :class:`pdrlearn.waist.live.WaistTracker`)."""
-    cause = ("turns made during undetected steps or while standing are dropped with integrate_stops off: set "
-             "\"options\": {\"integrate_stops\": true} in the PARAMS.json (or integrate_stops=True)"
-             if not integrate_stops else
-             "a turn on strides the turn classifier called straight (a gentle curve, under 8 deg/s: decision W82) "
-             "or a gyroscope bias; for curves set \"options\": {\"slow_turn_rps\": 0.035} (live too) or "
-             "{\"heading\": \"ellipse\"} in the PARAMS.json, or use '--pipeline waist-pll'; for a bias calibrate "
-             "on a walk with a full turn ('pdrlearn calibrate --turns 1 --fit-turns')")
-    return (f"the step headings miss {diff_deg:+.0f} deg of the waist gyroscope's turn by {t_s:.1f} s "
-            f"(decision W74): the positions after it are off; {cause}")

@@ -30,49 +30,18 @@ from __future__ import annotations
 
 import json
 import logging
-from dataclasses import dataclass
-from types import SimpleNamespace
 
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.runtime.waist import FRAGMENT_CONTEXT_STEPS, LOOKAHEAD_ROWS, LiveStep, WaistStream
 
 log = logging.getLogger(__name__)
 
-#: W64: the fragment test (W27) reads at most this many steps of the open walking sequence (about a minute of
-#: walking; the recordings we have walk at most ~40 steps between stops, so it equals the replay's whole sequence)
-FRAGMENT_CONTEXT_STEPS = 100
-#: W64: a step is reported once this many later contacts of its walking sequence are decided (or it ended)
-LOOKAHEAD_ROWS = 2
-#: rows before the reported one that its heading window reads: W82's slow-turn window reads 3 strides back, and the
-#: window's first step has no step before it for its stride rate (W24), so one more
-HEADING_LOOKBACK_ROWS = 4
 #: W65: without a declared frame, inference is tried on the held samples every INFER_EVERY_S of new data, from
 #: frame_inference.MIN_WALK_S on; at most the last INFER_MAX_S seconds are held meanwhile
 INFER_EVERY_S = 2.0
 INFER_MAX_S = 120.0
-
-
-@dataclass(frozen=True)
-class LiveStep:
-    """One reported contact, as a row of ``track_waist(...).steps`` with its trajectory point.
-
-    ``t`` the initial contact (s, the pushed clock); ``end_s`` the next contact of the walking sequence
-    (``== t`` for a contact that closes one: ``length_m`` 0); ``length_m`` (m) and ``heading_rad`` (ENU, rad,
-    start heading added) of the step; ``x``, ``y`` (m) the position at ``end_s``; ``side`` is ``None`` (the
-    detector's left/right guess, W20, is internal); ``merged``: a W27 fragment whose length its neighbour carries;
-    ``turning``: the stride's straight (0) / turning (1) class (seed 003 sec. 3.3)."""
-
-    t: float
-    end_s: float
-    length_m: float
-    heading_rad: float
-    x: float
-    y: float
-    has_next: bool
-    merged: bool = False
-    turning: int = 0
-    side: str | None = None
 
 
 def _declared_frame(frame, meta: dict | None):
@@ -103,6 +72,31 @@ def _declared_frame(frame, meta: dict | None):
         raise DataError(f"frame: a 3x3 rotation (sensor -> body forward/left/up) was expected, got shape {r.shape}; "
                         "or pass {'x': 'up', 'y': 'right', 'z': 'forward'}")
     return r, None, "given as frame="
+
+
+def live_options(p, warnings: list[str], **given) -> dict:
+    """The live waist-pendulum options from the parameters ``p`` and the caller's ``given`` (None = the PARAMS.json's,
+    else the pipeline defaults: ``track_waist``'s :func:`~pdrlearn.track.waist.resolve_options`), with the lines
+    about what the live tracker cannot do added to ``warnings``; shared by :class:`WaistTracker` and ``pdrlearn
+    export CAL.json`` (the waist bundle's options, decision E57)."""
+    from pdrlearn.track.waist import resolve_options
+
+    given = {"realtime": True, "heading": "gyro", "refine_ic": None, "initial_heading": None, "resolve_signs": None,
+             "integrate_stops": None, "turn_factor": None, "rhythm": None, "merge_fragments": None,
+             "length_smoothing": None, "slow_turn_rps": None, **given}
+    o = resolve_options(p, given)
+    if o["length_smoothing"] != "none":
+        raise DataError(f"length_smoothing '{o['length_smoothing']}' looks up to 1 s ahead and the live tracker "
+                        "does not (decision W56); set the PARAMS.json option length_smoothing to none")
+    if p.source == "calibrated" and p.pipeline not in (None, "waist-pendulum"):
+        warnings.append(f"the parameters were calibrated for {p.pipeline}: the waist-pendulum step length "
+                        "keeps its defaults (run 'pdrlearn calibrate --pipeline waist-pendulum')")
+    asked = (p.options or {}).get("heading")
+    if asked not in (None, "gyro"):  # decision W82: no silent override of the PARAMS.json heading
+        warnings.append(f"the PARAMS.json option heading '{asked}' is not available live: the live tracker uses "
+                        "the gyro heading, which drops gentle curves unless the option slow_turn_rps is set "
+                        "(0.035, decision W82)")
+    return o
 
 
 class _HeldSamples:
@@ -138,7 +132,7 @@ class _HeldSamples:
         return sum(a.size for a in self.t) + sum(a.size for a in self.v)
 
 
-class WaistTracker:
+class WaistTracker(WaistStream):
     """Live waist-pendulum tracking of a lower-back unit (decisions W31, W64, W65; docs/waist.md "Live tracking").
 
     Parameters
@@ -170,157 +164,33 @@ class WaistTracker:
                  integrate_stops: bool | None = None, turn_factor: bool | None = None, rhythm: bool | None = None,
                  merge_fragments: bool | None = None, slow_turn_rps: float | None = None,
                  keep_steps: int | None = None):
-        from collections import deque
-
         from pdrlearn.io.session import Session
-        from pdrlearn.track.waist import MAX_STEP_S, _start, resolve_options
+        from pdrlearn.track.waist import _start
         from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
-        from pdrlearn.waist.heading import TurnClassifier
         from pdrlearn.waist.params import resolve_params
 
         if not (isinstance(fs, int | float) and np.isfinite(fs) and fs > 0):
             raise DataError(f"WaistTracker: fs={fs!r} must be the sampling rate in Hz (a positive number)")
-        self.fs = float(fs)
         meta = dict(meta or {})
         sub = dict(meta.get("subject") or {})
         for key, v in (("sensor_height_m", sensor_height_m), ("height_m", height_m)):
             if v is not None:
                 sub[key] = float(v)
         meta["subject"] = sub
-        self.params, warnings = resolve_params(Session(name="live", meta=meta), params)
-        p = self.params
-        given = {"realtime": True, "heading": "gyro", "refine_ic": None, "initial_heading": initial_heading,
-                 "resolve_signs": None, "integrate_stops": integrate_stops, "turn_factor": turn_factor,
-                 "rhythm": rhythm, "merge_fragments": merge_fragments, "length_smoothing": None,
-                 "slow_turn_rps": slow_turn_rps}
-        o = resolve_options(p, given)
-        if o["length_smoothing"] != "none":
-            raise DataError(f"length_smoothing '{o['length_smoothing']}' looks up to 1 s ahead and the live tracker "
-                            "does not (decision W56); set the PARAMS.json option length_smoothing to none")
-        if p.source == "calibrated" and p.pipeline not in (None, "waist-pendulum"):
-            warnings.append(f"the parameters were calibrated for {p.pipeline}: the waist-pendulum step length "
-                            "keeps its defaults (run 'pdrlearn calibrate --pipeline waist-pendulum')")
-        asked = (p.options or {}).get("heading")
-        if asked not in (None, "gyro"):  # decision W82: no silent override of the PARAMS.json heading
-            warnings.append(f"the PARAMS.json option heading '{asked}' is not available live: the live tracker uses "
-                            "the gyro heading, which drops gentle curves unless the option slow_turn_rps is set "
-                            "(0.035, decision W82)")
-        self.options = o
+        p, warnings = resolve_params(Session(name="live", meta=meta), params)
+        o = live_options(p, warnings, initial_heading=initial_heading, integrate_stops=integrate_stops,
+                         turn_factor=turn_factor, rhythm=rhythm, merge_fragments=merge_fragments,
+                         slow_turn_rps=slow_turn_rps)
         if isinstance(start, list | tuple):
             raise DataError("WaistTracker: start=(lat, lon) is not supported live; pass {'x': m, 'y': m, "
                             "'heading_rad': rad} and convert the positions yourself")
-        x0, y0, self._h0, _ = _start(start, float(o["initial_heading"]))
-        self._xy0 = (x0, y0)
-        self._sx = self._sy = 0.0  # running sums of the displacements (as track_waist's cumsum)
-        self.position = (x0, y0)
-        self.heading = float(self._h0)
-        self.warnings: list[str] = list(warnings)
-        for w in warnings:
-            log.warning("live waist tracker: %s", w)
-        self.steps: deque[LiveStep] = deque(maxlen=keep_steps)
-        self._thr = p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None else WALK_THRESHOLD_MPS2
-        self._max_step_s = MAX_STEP_S
-        self._clf = TurnClassifier(**(p.turn_gmm or {}))
-        self._rot, self._declared, self._declared_origin = _declared_frame(frame, meta)
+        x0, y0, h0, _ = _start(start, float(o["initial_heading"]))
+        rot, self._declared, self._declared_origin = _declared_frame(frame, meta)
         self._chk = _HeldSamples(trim=False)  # B108: raw samples held until the declared frame is checked
-        self._proc = None
         self._held = _HeldSamples(trim=True)  # W65: raw samples held until the frame is inferred
-        self._last_t = -np.inf
-        self._dts: list[float] | None = []  # the first sample intervals, until the unit check (E29)
-        # samples of the navigation frame (absolute index b0 + i) since the oldest one a pending step needs
-        self._b0 = 0
-        self._bt = np.zeros(0)
-        self._bv = np.zeros(0)  # vertical acceleration (gravity removed)
-        self._bw = np.zeros(0)  # vertical rate (rad/s)
-        self._bc = np.zeros(0)  # its running integral, minus the gyro bias (rad)
-        self._cum_last = 0.0
-        self._w_last: float | None = None
-        self._t_prev: float | None = None
-        # contacts reported by the detector (rows of track_waist's steps table): id -> row
-        self._rows: dict[int, dict] = {}
-        self._n_rows = 0
-        self._next = 0  # id of the next row to report
-        self._absorbed: set[int] = set()  # W27 fragments merged into the row before them
-        self._span_start: dict[int, int] = {}  # row -> first row of its merged step (a fragment before it)
-        self._h_seq: float | None = None  # heading of the last step of the open sequence (before the start rotation)
-        self._cur_gyro = 0.0  # track_waist's ``current`` of the gyro headings (with integrate_stops)
-        self._cur_out = 0.0  # and of the reported headings
-        self._stop_cum: float | None = None  # running integral at the last sequence's closing contact
-        self._seen_seq = False
-        self._n_gaps = 0
-        self._cum_first: float | None = None  # running integral at the first contact (W74)
-        self._untracked_warned = False
-
-    def state_size(self) -> int:
-        """Numbers the tracker holds to process what comes (not :attr:`steps`): its sample buffer and pending rows,
-        the held samples of W65 and the W31 detector's window; bounded over any stream length (decision W64)."""
-        n = 4 * self._bt.size + 5 * len(self._rows) + len(self._absorbed) + len(self._span_start)
-        n += self._held.size() + self._chk.size()
-        p = self._proc
-        if p is not None:
-            n += sum(np.size(v) for v in p.buf.values()) + 3 * len(p.decided) + sum(np.size(r[1]) for r in p.raw)
-            n += p.bridge.tail_v.size + p.bridge.tail_t.size + 2 * sum(len(g) for g in p.gaps.values())
-        return int(n)
-
-    # -- input -------------------------------------------------------------------------------------------
-    def push(self, t, acc, gyr) -> list[LiveStep]:
-        """Add samples: ``t`` (n,) s increasing, ``acc`` (n, 3) m/s^2 with gravity, ``gyr`` (n, 3) rad/s, in the
-        unit's sensor frame. Returns the steps reported by this push (decision W64: once final); a push without
-        samples (``push([], [], [])``) returns none and changes nothing (decision E40)."""
-        t = np.asarray(t, dtype=np.float64).reshape(-1)
-        acc, gyr = np.asarray(acc, dtype=np.float64), np.asarray(gyr, dtype=np.float64)
-        if not t.size and not acc.size and not gyr.size:  # decision E40: an empty push is a no-op
-            return []
-        if acc.ndim == 1 and acc.size == 3 and t.size == 1:
-            acc, gyr = acc.reshape(1, 3), gyr.reshape(1, 3)
-        if acc.shape != (t.size, 3) or gyr.shape != (t.size, 3):
-            raise DataError(f"WaistTracker.push: expected acc and gyr of shape ({t.size}, 3) for {t.size} "
-                            f"timestamps, got {acc.shape} and {gyr.shape}")
-        if not t.size:
-            return []
-        if not (np.isfinite(t).all() and np.isfinite(acc).all() and np.isfinite(gyr).all()):
-            raise DataError("WaistTracker.push: NaN or inf in the pushed samples; drop those samples")
-        if t[0] <= self._last_t or (t.size > 1 and np.any(np.diff(t) <= 0)):
-            raise DataError("WaistTracker.push: timestamps must increase strictly across pushes (seconds)")
-        if self._dts is not None:
-            self._unit_check(t)
-        self._last_t = float(t[-1])
-        v = np.column_stack([acc, gyr])
-        if self._declared is not None:
-            self._check_declared(t, v)
-        if self._proc is None:
-            v_t = self._hold(t, v)
-            if v_t is None:
-                return []
-            t, v = v_t
-        return self._feed(self._proc.process(t, v), final=False)
-
-    def _unit_check(self, t: np.ndarray) -> None:
-        """Decision E29 as the runtime's: the first RATE_PROBE_MIN sample intervals give a rate more than
-        RATE_UNIT_FACTOR away from ``fs``: the timestamps are not in seconds (in ms the W31 detector re-ran its
-        window on every sample, for minutes, and gave no step). One line, before anything is fed."""
-        from pdrlearn.runtime.resample import RATE_PROBE_MIN, check_rate_unit
-
-        d = np.diff(t, prepend=self._last_t) if np.isfinite(self._last_t) else np.diff(t)
-        dts = self._dts + d[:RATE_PROBE_MIN].tolist()
-        if len(dts) < RATE_PROBE_MIN:
-            self._dts = dts
-            return
-        check_rate_unit("WaistTracker.push", 1.0 / float(np.median(dts[:RATE_PROBE_MIN])), self.fs, "fs=")
-        self._dts = None  # judged once
-
-    def flush(self) -> list[LiveStep]:
-        """End of the stream: decide the last contacts and report every step left."""
-        if self._proc is None:
-            if self._held.t:
-                tt = np.concatenate(self._held.t)
-                msg = (f"no walking to track: no axis frame given and the {tt[-1] - tt[0]:.0f} s pushed do not fix "
-                       "one (decision W65): 0 steps, 0 m; pass frame= if the unit did walk")
-                self.warnings.append(msg)
-                log.warning("live waist tracker: %s", msg)
-                self._held.clear()
-            return []
-        return self._feed(self._proc.flush(), final=True)
+        super().__init__(fs, params=p, options=o, rotation=rot, start=(x0, y0, h0), warnings=warnings,
+                         walk_threshold=p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None
+                         else WALK_THRESHOLD_MPS2, keep_steps=keep_steps)
 
     # -- W65: the frame ---------------------------------------------------------------------------------
     def _hold(self, t: np.ndarray, v: np.ndarray):
@@ -376,215 +246,27 @@ class WaistTracker:
             self.warnings.append(msg)
             log.warning("live waist tracker: %s", msg)
 
-    def _start_proc(self) -> None:
-        if self._proc is not None:
-            return
-        from pdrlearn.steps.waist_ic import WaistICStepDetector, _RealtimeProcessor
-        from pdrlearn.waist._kernels import DECISION_DELAY_S
+    def _frame_pending(self) -> bool:
+        return self._declared is not None  # B108: the declared frame's check is pending
 
-        tracker = self
+    def _frame(self, t: np.ndarray, v: np.ndarray):
+        if self._declared is not None:
+            self._check_declared(t, v)
+        if self._proc is None:
+            return self._hold(t, v)
+        return t, v
 
-        class _Proc(_RealtimeProcessor):
-            def _nav(self, t, acc, gyr, first):  # the navigation-frame samples, as they are made
-                super()._nav(t, acc, gyr, first)
-                m = len(t)
-                tracker._add(self.buf["t"][-m:], self.buf["acc_v"][-m:], self.buf["gyr_nav"][-m:, 2])
+    def _held_size(self) -> int:
+        return self._held.size() + self._chk.size()
 
-        det = WaistICStepDetector(walk_threshold=self._thr, max_step_s=self._max_step_s,
-                                  rhythm=bool(self.options["rhythm"]), delay_s=DECISION_DELAY_S)
-        self._proc = _Proc(det, self.fs, rotation=self._rot)
-
-    # -- the navigation-frame samples -------------------------------------------------------------------
-    def _add(self, t: np.ndarray, acc_v: np.ndarray, w_z: np.ndarray) -> None:
-        w = w_z - self.params.gyro_bias_rps
-        if self._w_last is None:  # rate_integral: 0 at the first sample, trapezoids in order (as one cumsum)
-            inc = 0.5 * (w[1:] + w[:-1]) * np.diff(t)
-            c = np.cumsum(np.concatenate([[0.0], inc]))
-        else:
-            inc = 0.5 * (w + np.concatenate([[self._w_last], w[:-1]])) * np.diff(np.concatenate([[self._t_prev], t]))
-            c = np.cumsum(np.concatenate([[self._cum_last], inc]))[1:]
-        self._w_last, self._t_prev, self._cum_last = float(w[-1]), float(t[-1]), float(c[-1])
-        self._bt = np.concatenate([self._bt, t])
-        self._bv = np.concatenate([self._bv, acc_v])
-        self._bw = np.concatenate([self._bw, w_z])
-        self._bc = np.concatenate([self._bc, c])
-
-    def _idx(self, ts: float) -> int:
-        """Buffer index of the sample at time ``ts`` (a contact is a sample)."""
-        i = min(int(np.searchsorted(self._bt, ts - 0.25 / self.fs)), self._bt.size - 1)
-        if not abs(self._bt[i] - ts) < 0.5 / self.fs:  # an internal error, not the caller's: say so
-            raise RuntimeError(f"WaistTracker: the sample at {ts:.3f} s left the buffer "
-                               f"({self._bt[0]:.3f}-{self._bt[-1]:.3f} s); please report this")
-        return i
-
-    def _trim(self) -> None:
-        """Drop the samples no future report reads: contacts still to come have their IC after the detector's
-        ``done``; the pending ones (the detector's and ours, from HEADING_LOOKBACK_ROWS rows before the next) are
-        kept."""
-        lows = [self._proc.decider.done + 1 - self._b0]
-        lows += [i - self._b0 for i, *_ in self._proc.decided]
-        k = max(self._next - HEADING_LOOKBACK_ROWS, 0)
-        if k in self._rows:
-            lows.append(self._idx(self._rows[k]["t"]))
-        drop = max(0, min(lows) - 2)
-        if drop:
-            self._bt, self._bv, self._bw, self._bc = (a[drop:] for a in (self._bt, self._bv, self._bw, self._bc))
-            self._b0 += drop
-
-    # -- contacts -> steps ------------------------------------------------------------------------------
-    def _feed(self, contacts: list, *, final: bool) -> list[LiveStep]:
-        for ev, _start_s, end, _conf, extra in contacts:
-            k = self._n_rows
-            prev = self._rows.get(k - 1)
-            seq = k if prev is None or not prev["has_next"] else prev["seq"]
-            self._rows[k] = {"t": float(ev), "end": float(end), "has_next": bool(end > ev), "seq": seq,
-                             "fc": float(extra.get("fc_s", np.nan))}
-            self._n_rows += 1
-        if self._proc is not None and len(self._proc.gaps.get("online stream", ())) > self._n_gaps:
-            self._gap_warnings()
-        out = []
-        while self._next < self._n_rows and self._ready(self._next, final):
-            out.append(self._report(self._next))
-            self._next += 1
-            old = self._next - LOOKAHEAD_ROWS - FRAGMENT_CONTEXT_STEPS - 1
-            if old in self._rows:
-                del self._rows[old]
-        if self._proc is not None:
-            self._trim()
-        return out
-
-    def _gap_warnings(self) -> None:
-        from pdrlearn.track.gaps import gap_warnings
-
-        gaps = self._proc.gaps.get("online stream", [])
-        new = gaps[self._n_gaps:]
-        self._n_gaps = len(gaps)
-        for w in gap_warnings({"wAccelerometer, wGyroscope": new}):
-            self.warnings.append(w)
-            log.warning("live waist tracker: %s", w)
-
-    def _check_untracked(self, row: dict, h: float) -> None:
-        """Decision W74, as ``track_waist``: one warning when a step's heading ``h`` (rad, before the start rotation)
-        misses :data:`pdrlearn.waist.heading.UNTRACKED_TURN_WARN_DEG` of the yaw turned since the first contact."""
-        from pdrlearn.waist.heading import UNTRACKED_TURN_WARN_DEG, turn_gap, untracked_turn_message
-
-        if self._untracked_warned or self._cum_first is None:
-            return
-        diff = np.degrees(float(turn_gap(float(np.interp(row["end"], self._bt, self._bc)) - self._cum_first, h)))
-        if abs(diff) >= UNTRACKED_TURN_WARN_DEG:
-            self._untracked_warned = True
-            msg = untracked_turn_message(float(diff), float(row["end"]), bool(self.options["integrate_stops"]))
+    def _no_frame_at_end(self) -> None:
+        if self._held.t:
+            tt = np.concatenate(self._held.t)
+            msg = (f"no walking to track: no axis frame given and the {tt[-1] - tt[0]:.0f} s pushed do not fix "
+                   "one (decision W65): 0 steps, 0 m; pass frame= if the unit did walk")
             self.warnings.append(msg)
             log.warning("live waist tracker: %s", msg)
-
-    @staticmethod
-    def _horizon(k: int) -> int:
-        """W64: the last row row ``k``'s report reads."""
-        return k + LOOKAHEAD_ROWS
-
-    def _ready(self, k: int, final: bool) -> bool:
-        """W64: row ``k`` is final once its walking sequence has ended or the rows to its horizon are known."""
-        if final:
-            return True
-        hz = self._horizon(k)
-        for j in range(k, min(hz, self._n_rows - 1) + 1):
-            if not self._rows[j]["has_next"]:
-                return True  # the sequence is complete
-        return self._n_rows - 1 >= hz
-
-    def _seq_rows(self, k: int) -> list[int]:
-        """The rows of ``k``'s walking sequence from at most FRAGMENT_CONTEXT_STEPS before it to LOOKAHEAD_ROWS
-        after it (or its end): the same rows whatever was pushed when (W64)."""
-        s = self._rows[k]["seq"]
-        lo = max(s, k - FRAGMENT_CONTEXT_STEPS, min(self._rows))
-        ids = []
-        for j in range(lo, min(self._horizon(k) + 1, self._n_rows)):
-            ids.append(j)
-            if not self._rows[j]["has_next"]:
-                break
-        return ids
-
-    def _report(self, k: int) -> LiveStep:
-        from pdrlearn.waist import _kernels as K
-        from pdrlearn.waist.heading import gyro_headings
-        from pdrlearn.waist.steplength import fragment_windows
-
-        p, o = self.params, self.options
-        row = self._rows[k]
-        s = row["seq"]
-        if self._cum_first is None:
-            self._cum_first = float(np.interp(row["t"], self._bt, self._bc))
-        if k == s:  # a walking sequence starts: track_waist's ``current`` (and the turn made standing, W: opt)
-            if self._seen_seq and o["integrate_stops"] and self._stop_cum is not None:
-                self._cur_gyro += float(np.interp(row["t"], self._bt, self._bc)) - self._stop_cum
-            self._seen_seq = True
-            self._h_seq = None
-        ids = self._seq_rows(k)
-        merged, length, turning = False, 0.0, 0
-        if row["has_next"]:
-            # -- heading (seed 003 sec. 3.3 via gyro_headings on the sequence from two steps before) -------
-            lw = max(s, k - HEADING_LOOKBACK_ROWS, ids[0])
-            ev = [self._rows[j]["t"] for j in ids if j >= lw]
-            if self._rows[ids[-1]]["has_next"]:  # the open sequence's next contact is decided (its end)
-                ev.append(self._rows[ids[-1]]["end"])
-            i0 = max(self._idx(ev[0]) - 1, 0)
-            i1 = self._idx(ev[-1]) + 2
-            win = SimpleNamespace(t=self._bt[i0:i1], w_z=self._bw[i0:i1])
-            hd, tr = gyro_headings(win, np.asarray(ev), classifier=self._clf, bias_rps=p.gyro_bias_rps,
-                                   heading0=0.0, cum=self._bc[i0:i1], slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
-            j = k - lw
-            turning = int(tr[j])
-            if k == s:
-                h = self._cur_gyro + hd[0]
-            else:
-                h = self._h_seq + (hd[j] - hd[j - 1])
-            self._h_seq = h
-            # -- length (W10 whole-step pendulum, W27 fragments, W19 turn factor) -------------------------
-            a, b = self._span_start.pop(k, k), k
-            if k in self._absorbed:  # a fragment the step before carries (W27)
-                merged = True
-                self._absorbed.discard(k)
-            elif o["merge_fragments"]:  # W27 on the sequence so far (W64): merges are never undone
-                rel = [j for j in ids if j >= ids[0]]
-                hn = np.array([self._rows[j]["has_next"] for j in rel])
-                wins = fragment_windows(np.array([self._rows[j]["t"] for j in rel]),
-                                        np.array([self._rows[j]["end"] for j in rel]), hn)
-                owner = {f: ow for ow, (x, y) in wins.items() for f in range(x, y + 1) if f != ow}
-                jk, nb = k - ids[0], k - ids[0] + 1
-                if a == k and jk in owner:  # k is a fragment (one with a fragment merged into it is an owner)
-                    ow = owner[jk]
-                    if ow != nb and not (nb < len(rel) and hn[nb] and nb not in owner):
-                        ow = None  # its owner, the step before, is reported already and the next is no step
-                    if ow is not None:
-                        merged = True
-                        self._span_start[k + 1] = a
-                elif jk in wins and wins[jk][1] == nb:  # the fragment after k merges into k
-                    self._absorbed.add(k + 1)
-                    b = k + 1
-            if not merged:
-                end_b = self._rows[b]["end"]
-                h_m = K.vertical_excursion(self._bv, self.fs, self._idx(self._rows[a]["t"]), self._idx(end_b))
-                dyaw = sum(float(np.interp(self._rows[j]["end"], self._bt, self._bc)
-                                 - np.interp(self._rows[j]["t"], self._bt, self._bc)) for j in range(a, b + 1))
-                length = max(float(K.pendulum_length(np.array([h_m]), p.leg_m, k=p.k, f=p.f_m)[0]), 0.0)
-                if o["turn_factor"]:
-                    length *= float(K.turning_step_factor(np.array([dyaw]))[0])
-            head = h
-            self._check_untracked(row, h)
-        else:  # a contact closing its sequence: no displacement, the sequence's last heading
-            head = self._h_seq if self._h_seq is not None else self._cur_out
-            if self._h_seq is not None:
-                self._cur_gyro = self._cur_out = self._h_seq
-            self._stop_cum = float(np.interp(row["t"], self._bt, self._bc))
-        enu = float(np.angle(np.exp(1j * (head + self._h0))))
-        self._sx += length * np.cos(enu)
-        self._sy += length * np.sin(enu)
-        x, y = self._xy0[0] + self._sx, self._xy0[1] + self._sy
-        self.position, self.heading = (float(x), float(y)), enu
-        step = LiveStep(t=row["t"], end_s=row["end"], length_m=length, heading_rad=enu, x=float(x), y=float(y),
-                        has_next=row["has_next"], merged=merged, turning=turning)
-        self.steps.append(step)
-        return step
+            self._held.clear()
 
 
 __all__ = ["WaistTracker", "LiveStep", "FRAGMENT_CONTEXT_STEPS", "LOOKAHEAD_ROWS"]

@@ -195,7 +195,7 @@ def default_params(session: Session) -> tuple[WaistParams, list[str]]:
 
 #: decision W87: a calibrated step length applied at a rate more than this fraction off its calibration rate warns
 #: (the trial's K: 1.0674 at 100 Hz, 1.1032 at 25 Hz; cross-applied -3.75 / +3.13 % distance); B22's 10 %
-RATE_MISMATCH = 0.1
+from pdrlearn.kernels.waist import RATE_MISMATCH  # noqa: E402,F401  (W92)
 
 
 def rate_mismatch(p: WaistParams, session: Session, where: str = "the waist parameters") -> str | None:
@@ -203,12 +203,9 @@ def rate_mismatch(p: WaistParams, session: Session, where: str = "the waist para
     the session's waist accelerometer rate, else ``None``."""
     if p.source != "calibrated" or not np.isfinite(p.rate_hz) or not session.has("wAccelerometer"):
         return None
-    rate = float(session["wAccelerometer"].rate_hz)
-    if abs(rate - p.rate_hz) <= RATE_MISMATCH * p.rate_hz:
-        return None
-    return (f"{where}: step length calibrated at {p.rate_hz:.4g} Hz, applied to a {rate:.4g} Hz recording: the "
-            "calibrated factor depends on the rate (a few % of distance, decision W87); re-calibrate on a walk "
-            f"recorded at {rate:.4g} Hz: pdrlearn calibrate WALK --distance METERS --out PARAMS.json")
+    from pdrlearn.kernels.waist import rate_mismatch_line
+
+    return rate_mismatch_line(p.rate_hz, float(session["wAccelerometer"].rate_hz), where)
 
 
 def resolve_params(session: Session, params) -> tuple[WaistParams, list[str]]:

@@ -10,6 +10,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.waist import _kernels as K
+from pdrlearn.waist._kernels import FRAGMENT_FRAC, MIN_FRAGMENT_SEQ, fragment_windows  # noqa: F401  (W92)
 from pdrlearn.waist.params import WaistParams
 
 log = logging.getLogger(__name__)
@@ -24,8 +25,6 @@ MIN_SPREAD_HZ = 0.15  # fit a slope only when the calibration walks span this mu
 # decision W27: a step shorter than this fraction of its walking sequence's median step is a fragment of a step
 # split by a spurious contact (step-time variability within a walking sequence is a few per cent, Hausdorff
 # 2005 J NeuroEng Rehabil 2:19, so half the period is no step at that cadence; the same limit as W25/W26)
-FRAGMENT_FRAC = 0.5
-MIN_FRAGMENT_SEQ = 3  # steps a sequence needs for its median step to judge fragments by
 
 
 def pendulum_h(acc_v: np.ndarray, fs: float, i_ic: int, i_fc: int, i_next: int, *,
@@ -35,40 +34,6 @@ def pendulum_h(acc_v: np.ndarray, fs: float, i_ic: int, i_fc: int, i_next: int, 
     next IC as seed 003 sec. 3.2 describes (the whole step when the FC is not inside it)."""
     i0 = i_fc if single_stance and i_ic < i_fc < i_next - 2 else i_ic
     return K.vertical_excursion(acc_v, fs, i0, i_next)
-
-
-def fragment_windows(start_s: np.ndarray, end_s: np.ndarray, has_next: np.ndarray) -> dict[int, tuple[int, int]]:
-    """Steps that carry a split step's length (decision W27): ``{owner: (first_row, last_row)}``.
-
-    In a walking sequence (consecutive rows with ``has_next``, closed by a row without) of at least
-    :data:`MIN_FRAGMENT_SEQ` steps, a step (IC to next IC) shorter than :data:`FRAGMENT_FRAC` x the
-    sequence's median step is a fragment: it is merged with the neighbouring non-fragment step of the
-    sequence that makes the merged duration closest to the median, and that neighbour (the owner) spans
-    rows ``first_row .. last_row`` (its pendulum h is taken over the merged window); the fragment carries
-    no length. Rows not in the result keep their own window. A fragment without a non-fragment neighbour
-    is left alone.
-    """
-    t0, t1 = np.asarray(start_s, dtype=np.float64), np.asarray(end_s, dtype=np.float64)
-    hn = np.asarray(has_next, dtype=bool)
-    dur = t1 - t0
-    out: dict[int, tuple[int, int]] = {}
-    seq: list[int] = []
-    for i in range(hn.size + 1):
-        if i < hn.size and hn[i]:
-            seq.append(i)
-            continue
-        if len(seq) >= MIN_FRAGMENT_SEQ:
-            med = float(np.median(dur[seq]))
-            frag = {j for j in seq if dur[j] < FRAGMENT_FRAC * med}
-            for j in sorted(frag):
-                nbs = [k for k in (j - 1, j + 1) if k in seq and k not in frag]
-                if not nbs:
-                    continue
-                k = min(nbs, key=lambda q: abs(dur[q] + dur[j] - med))
-                a, b = out.get(k, (k, k))
-                out[k] = (min(a, j), max(b, j))
-        seq = []
-    return out
 
 
 def fragment_mask(n: int, windows: dict[int, tuple[int, int]]) -> np.ndarray:

@@ -1,0 +1,303 @@
+"""Numerical kernels of the aiding filters (numpy only; imported as ``pdrlearn.aid._kernels`` too).
+
+The functions hold no state. :class:`StepFixState` is the step-triggered position EKF of
+:class:`pdrlearn.aid.sporadic.SporadicFixFusion` (seed 004 eqs. 16-28) one step at a time, and
+:class:`LiveFixes` feeds it fixes pushed as they arrive and the steps as a live tracker reports them, with
+decision D14's rule (every fix at the step whose interval holds it): ``SporadicFixFusion.run`` and the live trackers
+of :mod:`pdrlearn.runtime` run this one implementation (decision D19).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+
+def wrap_angle(a):
+    """Wrap angle(s) to (-pi, pi] (rad)."""
+    return (np.asarray(a) + np.pi) % (2.0 * np.pi) - np.pi
+
+
+def step_increment(length_m: float, heading_rad: float) -> np.ndarray:
+    """East/north displacement (m) of one step: seed 001 eq. 24 (heading 0 = east, counter-clockwise)."""
+    return np.array([length_m * np.cos(heading_rad), length_m * np.sin(heading_rad)])
+
+
+def fix_at_step(z: np.ndarray, t_fix: float, t_step: float, t_from: float, increment: np.ndarray) -> np.ndarray:
+    """A fix taken at ``t_fix`` moved to the end of the step ``(t_from, t_step]``: plus the fraction of the step's
+    displacement walked after the fix (seed 001 Sec. 2.2.6, "associate the last valid GNSS data with the last
+    step"); a fix before ``t_from`` gets the whole step."""
+    frac = (t_step - t_fix) / max(t_step - t_from, 1e-9)
+    return np.asarray(z, float) + min(max(frac, 0.0), 1.0) * np.asarray(increment, float)
+
+
+def kf_predict(
+    x: np.ndarray,
+    P: np.ndarray,
+    length_m: float,
+    heading_rad: float,
+    *,
+    sigma_length_m: float,
+    sigma_heading_rad: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Step-triggered prediction of the east/north position (seed 001 eq. 24; seed 004 eq. 17).
+
+    The process noise maps the step-length and heading variances through the Jacobian
+    G = d(l [cos h, sin h]) / d(l, h):  P+ = P + G diag(s_l^2, s_h^2) G^T.
+    """
+    c, s = np.cos(heading_rad), np.sin(heading_rad)
+    G = np.array([[c, -length_m * s], [s, length_m * c]])
+    Q = G @ np.diag([sigma_length_m**2, sigma_heading_rad**2]) @ G.T
+    return x + np.array([length_m * c, length_m * s]), P + Q
+
+
+def kf_update(
+    x: np.ndarray,
+    P: np.ndarray,
+    z: np.ndarray,
+    sigma_m: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """Size-varying measurement update with m position fixes (seed 001 Sec. 2.2.6; seed 004 eqs. 20-22).
+
+    Parameters
+    ----------
+    x, P : state (2,) (m) and covariance (2, 2) (m^2)
+    z : (m, 2) fixes east/north (m); m = 0 leaves the state unchanged (open loop, seed 004 eq. 23)
+    sigma_m : (m,) per-axis standard deviation of each fix (m)
+
+    Returns
+    -------
+    x, P, innovation (2m,), normalised innovation squared (chi-square with 2m degrees of freedom)
+    """
+    z = np.asarray(z, float).reshape(-1, 2)
+    m = z.shape[0]
+    if m == 0:
+        return x, P, np.zeros(0), 0.0
+    H = np.tile(np.eye(2), (m, 1))
+    R = np.diag(np.repeat(np.asarray(sigma_m, float).reshape(-1) ** 2, 2))
+    nu = z.reshape(-1) - H @ x
+    S = H @ P @ H.T + R
+    K = np.linalg.solve(S, H @ P).T  # P H^T S^-1 (S symmetric)
+    x_new = x + K @ nu
+    IKH = np.eye(2) - K @ H
+    P_new = IKH @ P @ IKH.T + K @ R @ K.T  # Joseph form, stays symmetric positive definite
+    nis = float(nu @ np.linalg.solve(S, nu))
+    return x_new, P_new, nu, nis
+
+
+def stretch_segment(
+    increments: np.ndarray,
+    l_start: np.ndarray,
+    l_end: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Linear trajectory stretching between two adjustments (seed 004 eqs. 24-28).
+
+    Parameters
+    ----------
+    increments : (m, 2) per-sample (or per-step) displacements T_c s(theta) v of the estimated path (m)
+    l_start, l_end : offsets fix - estimate at the first and the last adjustment (m), l(k-m) and l(k)
+
+    Returns
+    -------
+    stretched increments (m, 2), their speeds scale factor sqrt(1 + f + h) (eq. 27) and headings (rad,
+    eq. 28). Each stretched increment is the original plus (l(k) - l(k-m)) / m (eq. 26).
+    """
+    d = np.asarray(increments, float).reshape(-1, 2)
+    m = d.shape[0]
+    if m == 0:
+        return d, np.zeros(0), np.zeros(0)
+    dl = np.asarray(l_end, float) - np.asarray(l_start, float)
+    step = np.hypot(d[:, 0], d[:, 1])  # T_c v (m)
+    theta = np.arctan2(d[:, 1], d[:, 0])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f = (dl @ dl) / (m * step) ** 2  # eq. 27, f(k, j, m)
+        h = 2.0 * (np.cos(theta) * dl[0] + np.sin(theta) * dl[1]) / (m * step)  # eq. 27, h(k, j, m)
+        scale = np.sqrt(np.maximum(1.0 + f + h, 0.0))
+    scale = np.where(step > 0, scale, np.nan)
+    phi = step * np.sin(theta) + dl[1] / m  # eq. 28, Phi
+    psi = step * np.cos(theta) + dl[0] / m  # eq. 28, Psi
+    return d + dl / m, scale, np.arctan2(phi, psi)
+
+
+def scalar_kf(estimate: float, var: float, obs: float, obs_var: float, q: float) -> tuple[float, float]:
+    """One random-walk predict (+ ``q``) and update of a scalar estimate; ``var = inf`` adopts ``obs``."""
+    if not np.isfinite(var):
+        return float(obs), float(obs_var)
+    var = var + q
+    gain = var / (var + obs_var)
+    return float(estimate + gain * (obs - estimate)), float((1.0 - gain) * var)
+
+
+#: Horizontal 68 % radius -> per-axis standard deviation: for a circular Gaussian, P(r <= 1.51 s) = 0.68
+#: (``pdrlearn.aid.fixes.RADIUS68_PER_SIGMA``)
+RADIUS68_PER_SIGMA = math.sqrt(-2.0 * math.log(1.0 - 0.68))
+#: Second EKF defaults (seed 004 Sec. V): P_p(0) = diag(0.1, 0.1) m^2, Q_c(0) = diag(0.0025, 0.0025) m^2.
+P_P0_M2 = 0.1
+Q_C_M2 = 0.0025
+
+
+@dataclass(frozen=True)
+class FixConfig:
+    """The step EKF's settings, with :class:`pdrlearn.aid.sporadic.SporadicFixFusion`'s defaults (that class takes
+    its defaults from here): per-step process noise (step length relative + absolute, m; heading, rad), the yaw /
+    scale feedback, the heading-offset random walk (rad per step) and the start standard deviation (m)."""
+
+    sigma_length_rel: float = 0.05
+    sigma_length_m: float = 0.02
+    sigma_heading_rad: float = math.radians(5.0)
+    yaw_feedback: str | None = "last"
+    scale_feedback: bool = False
+    heading_drift_rad: float = math.radians(0.3)
+    initial_sigma_m: float = math.sqrt(P_P0_M2)
+
+
+def sigma_from_accuracy(accuracy_m) -> np.ndarray:
+    """Per-axis standard deviation (m) of a fix whose reported 68 % horizontal radius is ``accuracy_m``."""
+    return np.asarray(accuracy_m, dtype=float) / RADIUS68_PER_SIGMA
+
+
+def fixes_in_step(ft: np.ndarray, prev_t: float, t_k: float, first: bool) -> np.ndarray:
+    """Decision D14: indices of the fixes (times ``ft``, s) in the step interval ``(prev_t, t_k]``; the first step
+    also takes a fix at its very start (``prev_t`` itself, e.g. a start fix at t = 0). The step uses the last."""
+    ft = np.asarray(ft, dtype=float)
+    return np.flatnonzero(((ft > prev_t) | (first & (ft >= prev_t))) & (ft <= t_k))
+
+
+class StepFixState:
+    """The state of the step-triggered position EKF with trajectory stretching and yaw / scale feedback (seed 004
+    eqs. 16-28), advanced one step at a time: :meth:`predict` for each step, :meth:`correct` with a fix. ``cfg``:
+    an object with :class:`~pdrlearn.aid.sporadic.SporadicFixFusion`'s parameters (``sigma_length_rel``,
+    ``sigma_length_m``, ``sigma_heading_rad``, ``yaw_feedback``, ``scale_feedback``, ``heading_drift_rad``).
+    ``x`` (2,) is the causal (real-time) estimate, ``raw`` the PDR position."""
+
+    def __init__(self, cfg, start_xy, initial_sigma_m: float, t0: float):
+        self.cfg = cfg
+        self.x = np.asarray(start_xy, float).copy()
+        self.P = np.eye(2) * initial_sigma_m**2
+        self.raw = self.x.copy()
+        self.offset, self.p_off = 0.0, 0.0  # heading offset fed back from the stretched yaw, and its variance
+        self.log_scale, self.p_scale = 0.0, 0.0  # log step-length scale fed back from the stretched speeds
+        self.seg_inc: list[np.ndarray] = []
+        self.seg_rows: list[int] = []
+        self.seg_head: list[float] = []
+        self.anchor_xy, self.anchor_row, self.l_start = self.x.copy(), 0, np.zeros(2)
+        self.prev_t = float(t0)
+        self.yaw_corrections = 0
+
+    def predict(self, length: float, heading: float, row: int) -> np.ndarray:
+        """One step (``length`` m, ``heading`` rad ENU) as output row ``row``: the PDR position moves, the EKF
+        predicts with the fed-back heading offset and scale (seed 004 eqs. 16-17). Returns the estimate before."""
+        c = self.cfg
+        self.raw = self.raw + length * np.array([np.cos(heading), np.sin(heading)])
+        hc = heading + self.offset
+        length = length * np.exp(self.log_scale)
+        x_prev = self.x
+        self.x, self.P = kf_predict(self.x, self.P, length, hc,
+                                    sigma_length_m=c.sigma_length_rel * abs(length) + c.sigma_length_m,
+                                    sigma_heading_rad=c.sigma_heading_rad)  # seed 004 eqs. 16-17
+        self.p_off += c.heading_drift_rad**2
+        self.p_scale += (0.1 * c.heading_drift_rad) ** 2  # scale random walk, 1/10 of the heading's (rad ~ rel.)
+        self.seg_inc.append(self.x - x_prev)
+        self.seg_rows.append(row)
+        self.seg_head.append(hc)
+        return x_prev
+
+    def correct(self, z: np.ndarray, sigma: float, row: int) -> tuple[list[int], np.ndarray]:
+        """Adjust at output row ``row`` with the fix ``z`` (m, per-axis SD ``sigma``): the segment since the last
+        adjustment is stretched onto it (seed 004 eqs. 24-26), its yaw (eq. 28) and, optionally, its speed scale
+        (eq. 27) fed back, then the EKF update (eqs. 20-22). Returns the segment's rows and their stretched
+        positions (m, (n_rows, 2))."""
+        c = self.cfg
+        l_end = z - self.x  # seed 004: l(k) = L_b(bar) - L_b(hat)
+        inc = np.asarray(self.seg_inc)
+        stretched, _, theta_bar = stretch_segment(inc, self.l_start, l_end)
+        rows = list(self.seg_rows)
+        pos = self.anchor_xy + self.l_start + np.cumsum(stretched, axis=0)
+        if c.yaw_feedback is not None and len(inc):
+            lens = np.hypot(inc[:, 0], inc[:, 1])
+            dth = wrap_angle(theta_bar - np.asarray(self.seg_head))
+            chord = float(np.hypot(*np.sum(stretched, axis=0)))
+            geo = 2.0 * sigma**2 / max(chord, 0.5) ** 2
+            if c.yaw_feedback == "last":
+                innov, r = float(dth[-1]), c.sigma_heading_rad**2 + geo
+            else:
+                w = lens / max(lens.sum(), 1e-9)
+                innov = float(np.arctan2(np.sum(w * np.sin(dth)), np.sum(w * np.cos(dth))))
+                r = c.sigma_heading_rad**2 / len(inc) + geo
+            gain = self.p_off / (self.p_off + r)
+            self.offset = float(wrap_angle(self.offset + gain * innov))
+            self.p_off *= 1.0 - gain
+            self.yaw_corrections += 1
+        if c.scale_feedback and len(inc):
+            lens = np.hypot(inc[:, 0], inc[:, 1])
+            ratio = np.hypot(stretched[:, 0], stretched[:, 1]).sum() / max(lens.sum(), 1e-9)
+            if ratio > 0:
+                r = c.sigma_length_rel**2 / len(inc) + 2.0 * sigma**2 / max(lens.sum(), 0.5) ** 2
+                gain = self.p_scale / (self.p_scale + r) if self.p_scale > 0 else 0.0
+                self.log_scale = float(np.clip(self.log_scale + gain * np.log(ratio), -0.7, 0.7))
+                self.p_scale *= 1.0 - gain
+        self.x, self.P, _, _ = kf_update(self.x, self.P, z, np.array([sigma]))  # seed 004 eqs. 20-22
+        self.anchor_xy, self.anchor_row, self.l_start = self.x.copy(), row, z - self.x
+        self.seg_inc, self.seg_rows, self.seg_head = [], [], []
+        return rows, pos
+
+
+class LiveFixes:
+    """Position fixes for a live tracker (decisions D19-D21): :meth:`add` a fix as it arrives, :meth:`step` each
+    step the tracker reports. Every fix is used at the step whose interval ``(previous step end, step end]`` holds
+    it, the latest when several do, moved to the step's end (D14, :func:`fix_at_step`), once (D15): what
+    ``SporadicFixFusion(period_s=None)`` (``pdrlearn track --fixes``) does with the same steps, whose real-time
+    estimate (``x_rt``, ``y_rt``) the steps then carry. Counters as ``track``'s (D17): :meth:`stats`."""
+
+    def __init__(self, cfg, *, start_xy=(0.0, 0.0), initial_sigma_m: float | None = None):
+        self.cfg = cfg
+        self._start = np.asarray(start_xy, float)
+        self._sigma0 = cfg.initial_sigma_m if initial_sigma_m is None else float(initial_sigma_m)
+        self.state: StepFixState | None = None
+        self._k = 0
+        self._pending: list[tuple[float, np.ndarray, float]] = []  # (t, (x, y), sigma), in the order pushed
+        self.read = self.used = self.superseded = self.late = 0
+
+    def add(self, t: float, xy: np.ndarray, sigma: float) -> None:
+        self.read += 1
+        if self.state is not None and t <= self.state.prev_t:  # D20: its step was reported already
+            self.late += 1
+            return
+        self._pending.append((float(t), np.asarray(xy, float), float(sigma)))
+
+    def step(self, start_s: float, end_s: float, length: float, heading: float) -> tuple[np.ndarray, bool]:
+        """The fused (causal) position after one reported step and whether a fix was used at it."""
+        if self.state is None:
+            self.state = StepFixState(self.cfg, self._start, self._sigma0, start_s)
+            outside = [f for f in self._pending if f[0] < start_s]  # before the track: never used (D17)
+            self._pending = [f for f in self._pending if f[0] >= start_s]
+            self.outside_before = len(outside)
+        s = self.state
+        self._k += 1
+        x_prev = s.predict(length, heading, self._k)
+        ft = np.array([f[0] for f in self._pending])
+        order = np.argsort(ft, kind="stable")  # as the offline fix table, sorted by t
+        inside = order[fixes_in_step(ft[order], s.prev_t, end_s, self._k == 1)]
+        used = False
+        if len(inside):
+            c = int(inside[-1])
+            self.superseded += len(inside) - 1
+            t_from = max(s.prev_t, start_s)
+            z = fix_at_step(self._pending[c][1], self._pending[c][0], end_s, t_from, s.x - x_prev)
+            s.correct(z, self._pending[c][2], self._k)
+            self.used += 1
+            used = True
+            drop = set(inside.tolist())
+            self._pending = [f for i, f in enumerate(self._pending) if i not in drop]
+        s.prev_t = float(end_s)
+        return s.x.copy(), used
+
+    def stats(self) -> dict:
+        """``fixes_read``, ``fixes_used``, ``fixes_unused`` (= read - used) split into ``fixes_superseded`` (a later
+        fix in the same step), ``fixes_outside_track`` (before the first step, or after the last so far: still
+        pending) and ``fixes_late`` (pushed after the step its time falls in was reported, D20)."""
+        outside = getattr(self, "outside_before", 0) + len(self._pending)
+        return {"fixes_read": self.read, "fixes_used": self.used, "fixes_unused": self.read - self.used,
+                "fixes_superseded": self.superseded, "fixes_outside_track": outside, "fixes_late": self.late}

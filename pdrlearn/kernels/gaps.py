@@ -1,0 +1,53 @@
+"""Sensor-stream gaps (decision B11): the warning lines and the cut of a contact table at the gaps, numpy only
+(:mod:`pdrlearn.track.gaps` re-exports them; the lean runtime's waist tracker uses them, decision W92)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: Gaps longer than this (s) are reported and end a walking sequence: the shortest steps last ~0.4 s
+#: and 1 s of missing data can hide one or two steps (brief: "gaps longer than e.g. 1 s").
+MIN_GAP_S = 1.0
+
+
+def grouped_gaps(gaps: dict[str, list[tuple[float, float]]]) -> list[tuple[list[str], list[tuple[float, float]]]]:
+    """``(stream names, gaps)`` with the streams that share the same gaps (to 0.1 s) in one entry, in first-seen
+    order: one gap in every stream of a unit (a dropped radio link) is one line, not one per stream (B34)."""
+    groups: dict[tuple, tuple[list[str], list[tuple[float, float]]]] = {}
+    for name, g in gaps.items():
+        key = tuple((round(a, 1), round(b, 1)) for a, b in g)
+        groups.setdefault(key, ([], g))[0].append(name)
+    return list(groups.values())
+
+
+def gap_lines(gaps: dict[str, list[tuple[float, float]]], consequence: str) -> list[str]:
+    """One line per group of streams with the same gaps (:func:`grouped_gaps`): the streams, the count, the
+    longest gap and where, then ``consequence``."""
+    out = []
+    for names, g in grouped_gaps(gaps):
+        t0, t1 = max(g, key=lambda ab: ab[1] - ab[0])
+        out.append(f"{', '.join(names)} {'has' if len(names) == 1 else 'have'} {len(g)} gap(s) longer than "
+                   f"{MIN_GAP_S:g} s (longest {t1 - t0:.1f} s at {t0:.1f} s); {consequence}")
+    return out
+
+
+def gap_warnings(gaps: dict[str, list[tuple[float, float]]],
+                 consequence: str = "no displacement is counted inside them") -> list[str]:
+    """One warning per group of streams with the same gaps: the count, the longest gap and ``consequence``
+    (what the pipeline does about them; decision B34)."""
+    return gap_lines(gaps, f"{consequence} - re-record or trim the session")
+
+
+def cut_contacts_at_gaps(start_s: np.ndarray, end_s: np.ndarray, has_next: np.ndarray,
+                         gaps: dict[str, list[tuple[float, float]]]) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`pdrlearn.track.gaps.cut_steps_at_gaps` on arrays: ``(keep, spans)``: ``keep`` (n,) the contacts
+    outside every gap; ``spans`` (n_kept,) the kept steps (``has_next``) that span a gap before the next kept
+    contact, which become closing contacts (``end_s = start_s``, ``has_next`` False)."""
+    st = np.asarray(start_s, dtype=float)
+    iv = np.array([ab for g in gaps.values() for ab in g], dtype=float).reshape(-1, 2)
+    inside = ((st[:, None] > iv[None, :, 0]) & (st[:, None] < iv[None, :, 1])).any(axis=1)
+    keep = ~inside
+    st, en = st[keep], np.asarray(end_s, dtype=float)[keep]
+    nxt = np.append(st[1:], np.inf)
+    spans = ((st[:, None] < iv[None, :, 1]) & (np.maximum(en, nxt)[:, None] > iv[None, :, 0])).any(axis=1)
+    return keep, spans & np.asarray(has_next, dtype=bool)[keep]

@@ -1,0 +1,1260 @@
+"""Pure numerical kernels of the waist-only dead-reckoning pipelines (seeds 000, 001, 003).
+
+Every function is side-effect free, takes arrays along axis 0 = time, rates in Hz, windows in seconds,
+and returns new arrays. The classes in :mod:`pdrlearn.waist` hold parameters and results and call these.
+numpy only (the filters are :mod:`pdrlearn.kernels.dsp`), so the lean runtime's waist tracker runs the same
+functions as ``pdrlearn track`` (decision W92; imported as ``pdrlearn.waist._kernels`` too).
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.kernels import dsp
+
+# --------------------------------------------------------------------------------------------------
+# motion gate (seed 000 sec. II-B)
+# --------------------------------------------------------------------------------------------------
+GATE_WINDOW_S = 2.0  # seed 000 sec. II-B: standard deviation over the last two seconds
+RUN_THRESHOLD_MPS2 = 5.0  # seed 000 sec. II-B: walking/running threshold on sigma_z
+
+
+def rolling_std(x: np.ndarray, fs: float, *, window_s: float = GATE_WINDOW_S,
+                causal: bool = True) -> np.ndarray:
+    """Standard deviation of ``x`` over a sliding window of ``window_s`` seconds.
+
+    ``causal=True`` uses the last ``window_s`` seconds (seed 000 sec. II-B, the real-time buffer);
+    ``False`` centres the window (offline).
+    """
+    x = np.asarray(x, dtype=np.float64)
+    w = max(3, int(round(window_s * fs)) | 1)  # odd length
+    origin = (w - 1) // 2 if causal else 0  # output[i] uses x[i - w + 1 .. i]
+    m = dsp.uniform_filter1d(x, w, origin=origin)
+    m2 = dsp.uniform_filter1d(x * x, w, origin=origin)
+    return np.sqrt(np.maximum(m2 - m * m, 0.0))
+
+
+def rolling_mean(x: np.ndarray, fs: float, *, window_s: float = GATE_WINDOW_S, causal: bool = True) -> np.ndarray:
+    """Mean of ``x`` over the sliding window of :func:`rolling_std` (same length, same causal / centred origin)."""
+    x = np.asarray(x, dtype=np.float64)
+    w = max(3, int(round(window_s * fs)) | 1)
+    return dsp.uniform_filter1d(x, w, origin=(w - 1) // 2 if causal else 0)
+
+
+def motion_gate(acc_v: np.ndarray, w_z: np.ndarray, fs: float, *, walk_threshold: float, causal: bool = False,
+                turn_gate_rps: float | None = None) -> np.ndarray:
+    """Samples where the motion state (seed 000 sec. II-B) is walking or running; with ``turn_gate_rps``
+    (decision 28 of docs/decisions/steps.md) also where the levelled vertical rate's mean over the same window
+    reaches it in absolute value (the pelvis turns: a turn on the spot bounces too little for the std)."""
+    gate = motion_state(rolling_std(acc_v, fs, causal=causal), walk_threshold=walk_threshold) > 0
+    if turn_gate_rps is not None:
+        gate |= np.abs(rolling_mean(w_z, fs, causal=causal)) >= turn_gate_rps
+    return gate
+
+
+def motion_state(sigma_z: np.ndarray, *, walk_threshold: float, run_threshold: float = RUN_THRESHOLD_MPS2
+                 ) -> np.ndarray:
+    """0 = stopped, 1 = walking, 2 = running from the rolling std of vertical acceleration (m/s^2)."""
+    s = np.asarray(sigma_z, dtype=np.float64)
+    return (s >= walk_threshold).astype(np.int8) + (s >= run_threshold).astype(np.int8)
+
+
+#: decision W76 (candidate): the session-relative gate's floor (m/s^2; the rehab trial's workaround, several times
+#: the standing noise), fraction of the walking level and the percentile that measures that level
+RELATIVE_GATE_FLOOR_MPS2, RELATIVE_GATE_FRACTION, RELATIVE_GATE_PERCENTILE = 0.15, 0.5, 90.0
+
+
+def relative_walk_threshold(sigma_z: np.ndarray, base: float) -> float:
+    """Decision W76's candidate gate: ``min(base, max(floor, fraction x P90(sigma_z)))`` (m/s^2), ``sigma_z`` the
+    session's centred 2 s SD of the vertical acceleration. A session walking a tenth of the time or more has its
+    walking level at P90; half of it keeps the start and end steps. ``base`` (W4's 0.5) whenever P90 >= 2 base."""
+    s = np.asarray(sigma_z, dtype=np.float64)
+    s = s[np.isfinite(s)]
+    if not s.size:
+        return float(base)
+    level = float(np.percentile(s, RELATIVE_GATE_PERCENTILE))
+    return float(min(base, max(RELATIVE_GATE_FLOOR_MPS2, RELATIVE_GATE_FRACTION * level)))
+
+
+# --------------------------------------------------------------------------------------------------
+# zero-lag FIR filtering and gait events (seed 003 sec. 3.1)
+# --------------------------------------------------------------------------------------------------
+def fir_taps(cutoff_hz: float, fs: float, order: int) -> np.ndarray:
+    """Linear-phase (Hamming) low-pass FIR of ``order`` (``order + 1`` taps, order made even)."""
+    nyq = 0.5 * fs
+    if not 0 < cutoff_hz < nyq:
+        raise DataError(f"FIR low-pass: cutoff {cutoff_hz} Hz must lie in (0, {nyq:g}) Hz at {fs:g} Hz")
+    order = max(2, int(order) + (int(order) % 2))
+    return dsp.firwin_lowpass(order + 1, cutoff_hz, fs)
+
+
+def fir_zero_lag(x: np.ndarray, taps: np.ndarray) -> np.ndarray:
+    """Apply a symmetric FIR with its group delay removed (output aligned with the input), edges
+    padded by reflection."""
+    x = np.asarray(x, dtype=np.float64)
+    h = len(taps) // 2
+    if x.shape[0] == 0:
+        return x.copy()
+    xp = np.pad(x, (h, h), mode="reflect" if x.shape[0] > h else "edge")
+    return np.convolve(xp, taps, mode="valid")
+
+
+def fir_causal(x: np.ndarray, taps: np.ndarray) -> np.ndarray:
+    """Apply an FIR causally (output delayed by ``(len(taps) - 1) / 2`` samples), started at the first
+    sample's steady state."""
+    x = np.asarray(x, dtype=np.float64)
+    if x.shape[0] == 0:
+        return x.copy()
+    xp = np.concatenate([np.full(len(taps) - 1, x[0]), x])
+    return np.convolve(xp, taps, mode="valid")
+
+
+def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
+               cutoff_hz: float = 2.5, fir_order_s: float = 0.3, min_step_s: float = 0.3,  # windows: W16
+               search_s: float = 0.25, fc_search_s: float = 0.25, min_peak_mps2: float = 0.1,
+               rhythm: bool = False, max_step_s: float = 1.5, acc_ml: np.ndarray | None = None,
+               unshifted: bool = True, end_steps: bool = False, ap_above_mean: bool = False,
+               turning: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
+
+    The vertical acceleration is low-passed with a zero-lag FIR (seed 003: order 30, 2.5 Hz, here the
+    order is ``fir_order_s`` seconds of samples so the filter is the same at every rate); each maximum of
+    it is one step. The IC is the maximum of the antero-posterior (AP) acceleration immediately before
+    the vertical maximum (the last local maximum within ``search_s``, decision W3), the FC the minimum
+    of AP acceleration just after it (within ``fc_search_s``).
+
+    Parameters
+    ----------
+    acc_v : (n,) vertical acceleration without gravity (m/s^2, up positive)
+    acc_ap : (n,) antero-posterior acceleration (m/s^2, forward positive)
+    fs : rate (Hz)
+    gate : (n,) bool, samples where the user moves; vertical maxima outside it are ignored
+    min_peak_mps2 : a vertical maximum must exceed this (filtered, m/s^2) to be a step
+    rhythm : complete the walking sequences with :func:`rhythm_complete` (decision W18)
+    max_step_s : maxima further apart than this (s) belong to different walking sequences (``rhythm``)
+    acc_ml : (n,) medio-lateral acceleration (m/s^2); with ``rhythm`` the side of each step from it
+        (:func:`step_sides`) makes the completed sequences alternate left/right (decision W20)
+    unshifted : with ``acc_ml`` and ``rhythm``, drop weak maxima without a weight shift (decision W23)
+    end_steps : with ``acc_ml`` and ``rhythm``, one step of gait initiation / termination beyond each
+        sequence end on the alternating side (:func:`extend_alternating`, decision W28)
+    ap_above_mean : the IC is the last local AP maximum above the AP signal's mean over the motion
+        gate's window (``GATE_WINDOW_S``, centred), when the search window holds one (decision W29)
+    turning : (n,) bool, samples where the pelvis turns; maxima there are exempt from ``unshifted``
+        (decision 29 of docs/decisions/steps.md; ``None`` = none exempt)
+
+    Returns
+    -------
+    ic, fc, vmax : sample indices (int arrays of equal length) of IC, FC and the vertical maximum.
+    """
+    v = np.asarray(acc_v, dtype=np.float64)
+    ap = np.asarray(acc_ap, dtype=np.float64)
+    taps = fir_taps(cutoff_hz, fs, int(round(fir_order_s * fs)))  # seed 003 sec. 3.1: order 30, 2.5 Hz
+    vf = fir_zero_lag(v - np.mean(v), taps)
+    dist = max(1, int(round(min_step_s * fs)))
+    if rhythm:  # decision W18: gaps and gate-cut sequence ends completed at the local step period
+        cand = dsp.find_peaks(vf, height=0.0, distance=dist)
+        strong = vf[cand] >= min_peak_mps2
+        if gate is not None:
+            strong &= np.asarray(gate, dtype=bool)[cand]
+        side = None if acc_ml is None else step_sides(lateral_velocity(acc_ml, fs)[cand], strong)
+        keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2,
+                               min_step_s=min_step_s, max_step_s=max_step_s, side=side,
+                               unshifted=unshifted, end_steps=end_steps,
+                               turning=None if turning is None else np.asarray(turning, dtype=bool)[cand])
+        peaks = cand[keep]
+    else:
+        peaks = dsp.find_peaks(vf, height=min_peak_mps2, distance=dist)
+        if gate is not None:
+            peaks = peaks[np.asarray(gate, dtype=bool)[peaks]]
+    ws = max(1, int(round(search_s * fs)))
+    level = ap_mean_level(ap, fs) if ap_above_mean else None
+    ic = np.array([_nearest_local_max_before(ap, p, max(0, p - ws), level=level) for p in peaks], dtype=int)
+    return ic, fc_after(ap, peaks, fs, fc_search_s), peaks
+
+
+def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, w_z: np.ndarray, fs: float, *,
+                     walk_threshold: float, cutoff_hz: float = 2.5, fir_order_s: float = 0.3,
+                     ap_cutoff_hz: float = 20.0, rhythm: bool = True, max_step_s: float = 1.5,
+                     alternate: bool = True, weight_shift: bool = True, end_steps: bool = True,
+                     ap_above_mean: bool = False, turn_gate_rps: float | None = None,
+                     turn_shift_rps: float | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The offline IC detector's rule contacts on navigation-frame arrays (the body of
+    :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
+    the AP acceleration low-passed at ``min(ap_cutoff_hz, 0.4 fs)`` (zero-phase third-order Butterworth, as
+    :func:`pdrlearn.signal.lowpass`), then :func:`ic_offline`. Returns ``(ic, fc, vmax, ap)`` (``ap`` the filtered
+    AP acceleration the learned stage reads)."""
+    gate = motion_gate(acc_v, w_z, fs, walk_threshold=walk_threshold, causal=False, turn_gate_rps=turn_gate_rps)
+    ap = dsp.lowpass(acc_ap, min(ap_cutoff_hz, 0.4 * fs), fs)
+    turning = (None if turn_shift_rps is None  # decision 29: W23 suspended while the pelvis turns
+               else np.abs(rolling_mean(w_z, fs, causal=False)) >= turn_shift_rps)
+    ic, fc, vmax = ic_offline(acc_v, ap, fs, gate=gate, cutoff_hz=cutoff_hz, fir_order_s=fir_order_s, rhythm=rhythm,
+                              max_step_s=max_step_s, acc_ml=acc_ml if alternate else None, unshifted=weight_shift,
+                              end_steps=end_steps, ap_above_mean=ap_above_mean, turning=turning)
+    return ic, fc, vmax, ap
+
+
+def contact_rows(ts: np.ndarray, max_step_s: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(end_s, has_next, confidence)`` of the contacts at times ``ts`` (s, increasing): a step ends at the next
+    contact when it follows within ``max_step_s``; else the contact closes its walking sequence (``end_s`` = its
+    own time, confidence 0.5); the rows of :func:`pdrlearn.waist.events.steps_from_events`."""
+    ts = np.asarray(ts, dtype=np.float64)
+    nxt = np.append(ts[1:], np.inf)
+    has_next = (nxt - ts) <= max_step_s
+    return np.where(has_next, nxt, ts), has_next, np.where(has_next, 1.0, 0.5)
+
+
+def fc_after(acc_ap: np.ndarray, peaks: np.ndarray, fs: float, fc_search_s: float = 0.25) -> np.ndarray:
+    """Final contacts (sample indices): the minimum of AP acceleration within ``fc_search_s`` after each
+    vertical maximum in ``peaks`` (seed 003 sec. 3.1; the offline detector and its learned stage, W33)."""
+    wf = max(1, int(round(fc_search_s * fs)))
+    return np.array([p + int(np.argmin(acc_ap[p:min(len(acc_ap), p + wf + 1)])) for p in peaks], dtype=int)
+
+
+RHYTHM_TOL = 0.35  # a filled maximum lies within +-35 % of a step period of its predicted time (W18)
+RHYTHM_MIN_STEPS = 3  # a local step period needs at least this many contacts of the sequence (W18)
+SIDE_BAND_HZ = (0.3, 3.0)  # W20: holds the stride frequency of walking (0.5-1.7 Hz), drops turns/drift
+SIDE_MIN_FRAC = 1.0 / 3.0  # W20: a side is decided when |v_ml| >= 1/3 of its median at the steps
+PRUNE_HEIGHT_FRAC = 0.5  # W20: of a same-side pair only a maximum under half the other's height goes
+
+
+def lateral_velocity(acc_ml: np.ndarray, fs: float, *, band_hz: tuple[float, float] = SIDE_BAND_HZ
+                     ) -> np.ndarray:
+    """Medio-lateral velocity of the pelvis (m/s; zero-phase, offline), from the ML acceleration
+    band-passed to the stride band, integrated and high-passed again (integration drift removed).
+
+    The pelvis sways towards the stance foot once per stride, so at the initial contacts its lateral
+    velocity has one sign for left and the other for right steps (decision W20). Zeros for inputs too
+    short to filter (< 32 samples).
+    """
+    a = np.asarray(acc_ml, dtype=np.float64)
+    if a.shape[0] < 32:
+        return np.zeros_like(a)
+    lo, hi = float(band_hz[0]), float(min(band_hz[1], 0.45 * fs))
+    v = np.cumsum(dsp.sosfiltfilt(_butter2(lo, hi, "bandpass", float(fs)), a)) / fs
+    return dsp.sosfiltfilt(_butter2(lo, None, "high", float(fs)), v)
+
+
+@functools.lru_cache(maxsize=32)
+def _butter2(lo: float, hi: float | None, btype: str, fs: float) -> np.ndarray:
+    """Second-order Butterworth sections, designed once per setting (callers take a copy): the realtime
+    detector (W31) filters a window every 0.25 s, and the design cost as much as the filtering (W43)."""
+    return dsp.butter_sos(2, lo if hi is None else (lo, hi), fs, btype)
+
+
+def step_sides(v_at: np.ndarray, accepted: np.ndarray, *, min_frac: float = SIDE_MIN_FRAC) -> np.ndarray:
+    """Side of each candidate step (+1 / -1; 0 = undecided) from the pelvis's lateral velocity at it
+    (:func:`lateral_velocity`, decision W20). Decided where ``|v| >= min_frac`` x the median ``|v|`` of
+    the ``accepted`` steps (the signal's own scale). Which sign is the left foot depends on the mounting
+    and does not matter: only equal vs opposite sides are used."""
+    v = np.asarray(v_at, dtype=np.float64)
+    acc = np.asarray(accepted, dtype=bool)
+    scale = float(np.median(np.abs(v[acc]))) if acc.any() else 0.0
+    if not np.isfinite(scale) or scale <= 0.0:
+        return np.zeros(v.shape[0], dtype=np.int8)
+    return np.where(np.abs(v) >= min_frac * scale, np.sign(v), 0.0).astype(np.int8)
+
+
+def _max_gap(max_step_s: float, fs: float) -> int:
+    """Decision W32: the longest step inside a sequence in whole samples, ``round(max_step_s * fs)``
+    (as W28 made the shortest one): two maxima exactly ``max_step_s`` apart stay in one sequence whether
+    the rate estimate is a hair under or over its nominal value (100 Hz from timestamps: 100.000000000002)."""
+    return int(round(max_step_s * fs))
+
+
+def _local_period(t: np.ndarray, k: int, side: int, max_gap: float, n: int = 3) -> float:
+    """Median of up to ``n`` step intervals of the sequence on ``side`` (-1 before, +1 after) of
+    accepted maximum ``k`` (times ``t`` in samples); NaN when fewer than ``RHYTHM_MIN_STEPS - 1``."""
+    iv = []
+    j = k
+    while len(iv) < n:
+        j2 = j + side
+        if j2 < 0 or j2 >= t.size or abs(t[j2] - t[j]) > max_gap:
+            break
+        iv.append(abs(t[j2] - t[j]))
+        j = j2
+    return float(np.median(iv)) if len(iv) >= RHYTHM_MIN_STEPS - 1 else float("nan")
+
+
+def _period_around(t: np.ndarray, k: int, max_gap: float) -> float:
+    """Local step period at accepted maximum ``k``: median of the periods before and after it."""
+    p = [x for x in (_local_period(t, k, -1, max_gap), _local_period(t, k, +1, max_gap)) if np.isfinite(x)]
+    return float(np.median(p)) if p else float("nan")
+
+
+def _missing_steps(ratio: float, side_a: int, side_b: int) -> int:
+    """Steps missing in a gap of ``ratio`` local periods between two contacts. Sides unknown (0): the
+    nearest count, ``round(ratio) - 1`` (W18). Both sides known: that count only if its parity agrees
+    with alternation -- odd between equal sides, even between opposite ones (W20) -- else 0 (no count
+    of the right parity lies within half a period of the gap)."""
+    m = int(round(ratio)) - 1
+    if m < 1:
+        return 0
+    if side_a == 0 or side_b == 0:
+        return m
+    return m if (m % 2 == 1) == (side_a == side_b) else 0
+
+
+def prune_same_side(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, side: np.ndarray,
+                    fs: float, *, max_step_s: float = 1.5) -> np.ndarray:
+    """Drop the weaker of two consecutive accepted maxima that lie on the same side and closer than
+    1.5 local step periods when it is under ``PRUNE_HEIGHT_FRAC`` of the other's height (decision W20):
+    steps alternate left/right, and a same-side pair too close to hold the missing opposite step between
+    them contains a maximum that is no step (a pelvic bounce inside a long swing). Pairs of similar
+    height (a side read wrongly is likelier) and maxima with an undecided side (0) are left alone.
+    Returns the new mask."""
+    cand = np.asarray(cand, dtype=np.int64)
+    h = np.asarray(height, dtype=np.float64)
+    keep = np.asarray(accepted, dtype=bool).copy()
+    acc = np.flatnonzero(keep)
+    t = cand[acc].astype(np.float64)
+    max_gap = _max_gap(max_step_s, fs)
+    last = -1
+    for k, i in enumerate(acc):
+        if last >= 0 and side[i] != 0 and side[i] == side[last] and cand[i] - cand[last] <= max_gap:
+            per = _period_around(t, k, max_gap)
+            lo_h, hi_h = sorted((h[i], h[last]))
+            if np.isfinite(per) and cand[i] - cand[last] < 1.5 * per and lo_h < PRUNE_HEIGHT_FRAC * hi_h:
+                drop = i if h[i] < h[last] else last
+                keep[drop] = False
+                last = last if drop == i else i
+                continue
+        last = i
+    return keep
+
+
+def drop_unshifted(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, accepted: np.ndarray,
+                   side: np.ndarray, fs: float, *, max_step_s: float = 1.5, n_neighbours: int = 2,
+                   exempt: np.ndarray | None = None) -> np.ndarray:
+    """Drop a maximum that shows neither cue of a step (decision W23): accepted by the fixed height
+    threshold only (not a W18 rhythm fill), no weight shift (undecided side: the pelvis's lateral velocity
+    under a third of its typical value, W20), and under ``PRUNE_HEIGHT_FRAC`` of the median height of its
+    walking-sequence neighbours (up to ``n_neighbours`` kept maxima on each side, consecutive maxima at
+    most ``max_step_s`` apart). Every step moves the body's weight from one foot to the other, so a weak
+    vertical bounce without that lateral shift is no step (a bounce inside a slow step, a postural move).
+    Decided on the mask as given (order-independent). Maxima flagged in ``exempt`` are not judged (decision 29
+    of docs/decisions/steps.md: the pelvis turns there). Returns the new mask."""
+    cand = np.asarray(cand, dtype=np.int64)
+    h = np.asarray(height, dtype=np.float64)
+    keep = np.asarray(keep, dtype=bool)
+    out = keep.copy()
+    sel = np.flatnonzero(keep)
+    t = cand[sel]
+    max_gap = _max_gap(max_step_s, fs)
+    for j, c in enumerate(sel):
+        if side[c] != 0 or not accepted[c] or (exempt is not None and exempt[c]):
+            continue
+        nb = []
+        for step in (-1, 1):
+            i = j
+            while len([x for x in nb if (x > j) == (step > 0)]) < n_neighbours:
+                nxt = i + step
+                if nxt < 0 or nxt >= sel.size or abs(t[nxt] - t[i]) > max_gap:
+                    break
+                nb.append(nxt)
+                i = nxt
+        if nb and h[c] < PRUNE_HEIGHT_FRAC * float(np.median(h[sel[nb]])):
+            out[c] = False
+    return out
+
+
+def extend_alternating(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, side: np.ndarray, fs: float, *,
+                       min_peak: float, max_step_s: float = 1.5, tol: float = RHYTHM_TOL) -> np.ndarray:
+    """One step of gait initiation / termination beyond each end of a walking sequence (decision W28).
+
+    W18 extends a sequence by one step at its own rhythm (one local period +- ``tol``). The first and
+    last steps of a walk are slower than its rhythm and fall where the 2 s motion gate is closed, so
+    here the evidence is the alternation instead (W20): beyond each end of a sequence of at least
+    ``RHYTHM_MIN_STEPS`` kept maxima whose end contact has a decided side, the nearest candidate of full
+    height (``>= min_peak``) on the decided *opposite* side between ``1 - tol`` local periods and
+    ``max_step_s`` (the longest step inside a sequence, W16) from the end is added. One step per end and
+    one pass: it does not chain. Returns the new mask."""
+    cand = np.asarray(cand, dtype=np.int64)
+    h = np.asarray(height, dtype=np.float64)
+    sd = np.asarray(side)
+    keep = np.asarray(keep, dtype=bool)
+    out = keep.copy()
+    sel = np.flatnonzero(keep)
+    max_gap = _max_gap(max_step_s, fs)
+    breaks = np.flatnonzero(np.diff(cand[sel]) > max_gap) + 1
+    for sq in np.split(sel, breaks):
+        if sq.size < RHYTHM_MIN_STEPS:
+            continue
+        t = cand[sq].astype(np.float64)
+        for end, direction in ((sq.size - 1, 1), (0, -1)):
+            s_end = int(sd[sq[end]])
+            per = _local_period(t, end, -direction, max_gap)
+            if s_end == 0 or not np.isfinite(per):
+                continue
+            near, far = t[end] + direction * (1.0 - tol) * per, t[end] + direction * max_gap
+            lo, hi = min(near, far), max(near, far)
+            idx = [i for i in range(np.searchsorted(cand, lo), np.searchsorted(cand, hi, side="right"))
+                   if not out[i] and h[i] >= min_peak and int(sd[i]) == -s_end]
+            if idx:
+                out[min(idx, key=lambda i: abs(cand[i] - t[end]))] = True
+    return out
+
+
+def ap_mean_level(ap: np.ndarray, fs: float, *, window_s: float = GATE_WINDOW_S) -> np.ndarray:
+    """Mean of the AP acceleration over a centred window of ``window_s`` (the motion gate's 2 s, seed 000
+    sec. II-B): the level an AP *maximum* at the initial contact must exceed (decision W29)."""
+    x = np.asarray(ap, dtype=np.float64)
+    w = max(3, int(round(window_s * fs)) | 1)
+    return dsp.uniform_filter1d(x, w)
+
+
+def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, fs: float, *,
+                    min_peak: float, min_step_s: float = 0.3, max_step_s: float = 1.5,
+                    tol: float = RHYTHM_TOL, side: np.ndarray | None = None, unshifted: bool = True,
+                    end_steps: bool = False, turning: np.ndarray | None = None) -> np.ndarray:
+    """Complete walking sequences of accepted vertical maxima with the gait rhythm (decision W18).
+
+    Steps come at a regular period: (1) inside a sequence, a gap of ``m + 1`` local periods
+    (``m >= 1``, gap > 1.5 periods) gets ``m`` maxima, the highest positive candidate within ``tol``
+    periods of each predicted time (weak maxima of turning/shuffling steps); (2) a sequence of at least
+    ``RHYTHM_MIN_STEPS`` contacts is extended by one step at each end when a candidate of full height
+    (``>= min_peak``) lies one period (``+- tol``) beyond it (the 2 s motion gate lags at walk
+    start/end). One step per end only, so noise while standing cannot chain.
+
+    With ``side`` (decision W20) the sequences must alternate left/right: same-side pairs too close for
+    a missing step lose their weaker maximum first (:func:`prune_same_side`); a gap between contacts of
+    known sides is filled only with a step count of the right parity (:func:`_missing_steps`), only by
+    candidates not on the wrong side, and only completely (all ``m`` steps found, else none); an end
+    step must not lie on the side of the contact it extends. With ``side`` and ``unshifted`` (decision
+    W23), an accepted maximum with an undecided side and under half its neighbours' height is dropped
+    (:func:`drop_unshifted`). With ``side`` and ``end_steps`` (decision W28) each sequence end then gets
+    one more step of gait initiation / termination on the alternating side (:func:`extend_alternating`).
+    The shortest step is ``round(min_step_s * fs)`` samples, the candidates' own spacing (W28: a float
+    ``min_step_s * fs`` just over it dropped maxima exactly that far apart).
+
+    Parameters
+    ----------
+    cand : (n,) sample indices of positive maxima of the filtered vertical acceleration, increasing
+    height : (n,) their filtered values (m/s^2)
+    accepted : (n,) bool, maxima accepted by the height threshold and the motion gate
+    fs : rate (Hz); min_step_s, max_step_s : shortest step (s), longest step inside a sequence (s)
+    side : (n,) int, +1 / -1 / 0 (undecided) step side of each candidate (:func:`step_sides`) or None
+    turning : (n,) bool, candidates where the pelvis turns: W23 does not judge them (decision 29 of
+        docs/decisions/steps.md: in a pivot the weight moves along the turn and the centripetal acceleration
+        enters the lateral signal, so no lateral swing is no evidence against a step); None = all judged
+
+    Returns
+    -------
+    (n,) bool: the accepted maxima plus the completed ones.
+    """
+    cand = np.asarray(cand, dtype=np.int64)
+    h = np.asarray(height, dtype=np.float64)
+    keep = np.asarray(accepted, dtype=bool).copy()
+    if cand.size == 0:
+        return keep
+    sd = np.zeros(cand.size, dtype=np.int8) if side is None else np.asarray(side, dtype=np.int8)
+    if side is not None:
+        keep = prune_same_side(cand, h, keep, sd, fs, max_step_s=max_step_s)
+    max_gap, min_gap = _max_gap(max_step_s, fs), max(1, int(round(min_step_s * fs)))  # as find_peaks' distance
+    acc = np.flatnonzero(keep)
+    t = cand[acc].astype(np.float64)
+    add: list[int] = []
+
+    def best_near(centre: float, half: float, floor: float, want: int = 0) -> int | None:
+        lo, hi = np.searchsorted(cand, centre - half), np.searchsorted(cand, centre + half, side="right")
+        idx = [i for i in range(lo, hi) if not keep[i] and h[i] >= floor and sd[i] * want >= 0]
+        return max(idx, key=lambda i: h[i]) if idx else None
+
+    for k in range(t.size):
+        s_k = int(sd[acc[k]])
+        period_b = _local_period(t, k, -1, max_gap)
+        if k + 1 < t.size and t[k + 1] - t[k] <= max_gap:  # (1) gap inside a sequence
+            period_a = _local_period(t, k + 1, +1, max_gap)
+            per = np.nanmedian([period_b, period_a]) if np.isfinite([period_b, period_a]).any() else np.nan
+            gap = t[k + 1] - t[k]
+            if np.isfinite(per) and gap > 1.5 * per:
+                s_n = int(sd[acc[k + 1]])
+                m = _missing_steps(gap / per, s_k, s_n)
+                fills = [best_near(t[k] + j * gap / (m + 1), tol * per, 0.0, s_k * (-1) ** j)
+                         for j in range(1, m + 1)]
+                found = [i for i in fills if i is not None]
+                if s_k == 0 or s_n == 0 or len(found) == m:  # W20: alternation needs all of them
+                    add.extend(found)
+        elif np.isfinite(period_b):  # (2) sequence end: one more step where the gate closed early
+            i = best_near(t[k] + period_b, tol * period_b, min_peak, -s_k)
+            if i is not None:
+                add.append(i)
+        if (k == 0 or t[k] - t[k - 1] > max_gap):  # (2) sequence start
+            period_a = _local_period(t, k, +1, max_gap)
+            if np.isfinite(period_a):
+                i = best_near(t[k] - period_a, tol * period_a, min_peak, -s_k)
+                if i is not None:
+                    add.append(i)
+    keep[np.asarray(add, dtype=np.int64)] = True
+    if side is not None and unshifted:  # W23: no weight shift and a weak bounce: no step
+        keep = drop_unshifted(cand, h, keep, np.asarray(accepted, dtype=bool), sd, fs, max_step_s=max_step_s,
+                              exempt=turning)
+    if side is not None and end_steps:  # W28: initiation / termination step on the alternating side
+        keep = extend_alternating(cand, h, keep, sd, fs, min_peak=min_peak, max_step_s=max_step_s, tol=tol)
+    # the completed set must still respect the shortest step: drop the lower of two too-close maxima
+    sel = np.flatnonzero(keep)
+    for a, b in zip(sel[:-1], sel[1:], strict=True):
+        if keep[a] and keep[b] and cand[b] - cand[a] < min_gap:
+            keep[a if h[a] < h[b] else b] = False
+    return keep
+
+
+def _nearest_local_max_before(x: np.ndarray, k: int, lo: int, *, level: np.ndarray | None = None) -> int:
+    """Index of the last local maximum of ``x`` in ``[lo, k]`` (the global maximum there if none). With
+    ``level`` (per sample), the last local maximum above it if there is one (decision W29: a ripple in an
+    AP trough is no maximum of the AP signal)."""
+    seg = x[lo:k + 1]
+    if seg.size < 3:
+        return lo + int(np.argmax(seg)) if seg.size else k
+    inner = np.flatnonzero((seg[1:-1] >= seg[:-2]) & (seg[1:-1] > seg[2:])) + 1
+    if level is not None and inner.size:
+        above = inner[seg[inner] > level[lo + inner]]
+        if above.size:
+            return lo + int(above[-1])
+    return lo + int(inner[-1]) if inner.size else lo + int(np.argmax(seg))
+
+
+DECISION_DELAY_S = 1.75  # W31: a contact is decided 1.75 to < 2.0 s after it (thesis: realtime delay < 2 s)
+DECISION_HOP_S = 0.25  # W31: decisions every 0.25 s
+DECISION_HISTORY_S = 10.0  # W31: samples before the decision window the sequence rules may look at
+DECISION_MIN_STEP_S = 0.3  # W31: a contact within the shortest step (W16: 0.3 s) of the last decided one repeats it
+
+
+class DelayedDecider:
+    """The state of decision W31's decisions, fed one stretch of samples at a time.
+
+    Decision times lie on a grid of ``hop_s`` from the first sample. At a decision time ``T`` the caller's
+    ``detect(lo, T)`` runs on the samples ``[lo, T)`` only (``lo = T - span``, clipped at 0, ``span`` =
+    ``history_s + delay_s + hop_s``) and returns ``(ic, fc, anchor)`` indices relative to ``lo``; the contacts
+    whose IC lies in ``(T - hop_s - delay_s, T - delay_s]`` are decided there, once, and never revised. A
+    contact closer than ``round(min_step_s * fs)`` samples after the last decided one is the same step seen
+    again from a later window and is not repeated. The end of the data is one more decision time that
+    decides all remaining contacts (:meth:`decide_until` with ``end``).
+
+    Used by :func:`delayed_decisions` (a whole recording) and by the ``waist-ic`` step detector's streaming
+    mode (:mod:`pdrlearn.steps.waist_ic`, steps decision 17), which keeps only the last ``span`` samples.
+    """
+
+    def __init__(self, fs: float, *, delay_s: float = DECISION_DELAY_S, hop_s: float = DECISION_HOP_S,
+                 history_s: float = DECISION_HISTORY_S, min_step_s: float = DECISION_MIN_STEP_S):
+        self.hop = max(1, int(round(hop_s * fs)))
+        self.dly = int(round(delay_s * fs))
+        self.span = int(round(history_s * fs)) + self.dly + self.hop  # samples a decision's detector sees
+        self.min_gap = max(1, int(round(min_step_s * fs)))
+        self.next_t = self.hop  # the next decision time on the grid (samples from the first one)
+        self.done = -1  # contacts with an IC up to this sample are decided
+        self.last: int | None = None  # the IC of the last decided contact
+
+    def decide_until(self, n: int, detect, *, end: bool = False) -> list[tuple[int, int, int, int]]:
+        """Decide at every grid time up to ``n`` samples (``end``: before ``n``, then at ``n`` itself, which
+        decides every contact left: the data ends there). Returns the new ``(ic, fc, anchor, decided)``
+        (absolute sample indices; ``decided`` the decision time) in increasing order."""
+        out: list[tuple[int, int, int, int]] = []
+        while self.next_t <= n and not (end and self.next_t == n):
+            self._decide(self.next_t, self.next_t - self.dly, detect, out)
+            self.next_t += self.hop
+        if end:
+            self._decide(n, n - 1, detect, out)
+        return out
+
+    def _decide(self, tt: int, upto: int, detect, out: list) -> None:
+        if upto <= self.done:
+            return
+        lo = max(0, tt - self.span)
+        ic, fc, an = detect(lo, tt)
+        for a, b, c in zip(np.asarray(ic) + lo, np.asarray(fc) + lo, np.asarray(an) + lo, strict=True):
+            if self.done < a <= upto and (self.last is None or a - self.last >= self.min_gap):
+                out.append((int(a), int(b), int(c), tt))
+                self.last = int(a)
+        self.done = upto
+
+
+def delayed_decisions(n: int, fs: float, detect, *, delay_s: float = DECISION_DELAY_S,
+                      hop_s: float = DECISION_HOP_S, history_s: float = DECISION_HISTORY_S,
+                      min_step_s: float = DECISION_MIN_STEP_S, final: bool = True
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Causal contacts with a bounded decision delay from an offline detector (decision W31), on ``n`` samples.
+
+    :class:`DelayedDecider` over the whole data: ``detect(lo, T)`` runs on the samples ``[lo, T)`` at each
+    decision time ``T`` and the contacts whose IC lies in ``(T - hop_s - delay_s, T - delay_s]`` are decided
+    there, once. A contact is thus decided at least ``delay_s`` and less than ``delay_s + hop_s`` after it
+    happens (``T - ic``), with the whole-sequence rules of the offline detector (rhythm, alternation: W18,
+    W20, W23, W28) seeing ``delay_s`` of what follows it. With ``final`` the end of the data is one more
+    decision time that decides all remaining contacts (a stream that ends); without it the last
+    ``delay_s`` stay undecided. A prefix of the data gives the same contacts as the whole data up to
+    the prefix's last decision time minus ``delay_s``.
+
+    Returns
+    -------
+    ic, fc, anchor, decided : sample indices (int arrays of equal length), increasing; ``decided`` is the
+    decision time (the first sample the decision did not see).
+    """
+    rows = DelayedDecider(fs, delay_s=delay_s, hop_s=hop_s, history_s=history_s,
+                          min_step_s=min_step_s).decide_until(n, detect, end=final)
+    cols = np.array(rows, dtype=int).reshape(-1, 4)
+    return cols[:, 0].copy(), cols[:, 1].copy(), cols[:, 2].copy(), cols[:, 3].copy()
+
+
+def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
+                cutoff_hz: float = 2.5, fir_order: int = 11, search_s: float = 0.25,  # windows: W16
+                min_step_s: float = 0.3, max_step_s: float = 1.5, lobe_ratio: float = 2.0,
+                fc_search_s: float = 0.25, mean_s: float = 1.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Causal initial-contact detection (seed 003 sec. 3.1, real-time variant).
+
+    The AP acceleration passes an 11th-order causal FIR (seed 003 sec. 3.1, which gives no cut-off: the
+    offline filter's 2.5 Hz is reused and the order stays in samples, decision W68); each positive-to-negative
+    zero crossing of its output is an IC candidate. The positive lobe before a true crossing is about as
+    long as the previous ones, a false crossing's lobe is much longer (seed 003): a candidate is rejected
+    when its lobe lasts more than ``lobe_ratio`` times the running median of the accepted lobes of the
+    current walking sequence (a gap over ``max_step_s`` starts a new one). The IC is the last local maximum
+    of the raw AP acceleration in the ``search_s`` window before the (delay-corrected) crossing; the FC
+    the minimum of AP acceleration in the ``fc_search_s`` after the IC's vertical maximum. Only samples
+    up to the crossing (plus ``fc_search_s`` for the FC) are used, so the IC is known one filter delay
+    after it happens.
+
+    Returns
+    -------
+    ic, fc, zc : sample indices of IC, FC and the (delayed) zero crossing that triggered the detection.
+    """
+    ap = np.asarray(acc_ap, dtype=np.float64)
+    v = np.asarray(acc_v, dtype=np.float64)
+    order = int(fir_order)
+    taps = dsp.firwin_lowpass(order + 1, min(cutoff_hz, 0.45 * fs), fs)
+    delay = order // 2
+    # causal mean removal over the last ``mean_s`` (about a stride) keeps the filter input centred
+    w = max(2, int(round(mean_s * fs)))
+    w |= 1
+    apc = ap - dsp.uniform_filter1d(ap, w, origin=(w - 1) // 2)
+    y = fir_causal(apc, taps)
+    zc = np.flatnonzero((y[:-1] > 0) & (y[1:] <= 0)) + 1
+    up = np.flatnonzero((y[:-1] <= 0) & (y[1:] > 0)) + 1
+    gate_arr = None if gate is None else np.asarray(gate, dtype=bool)
+    lobes: list[float] = []
+    ic_l, fc_l, zc_l = [], [], []
+    ws = max(1, int(round(search_s * fs)))
+    wf = max(1, int(round(fc_search_s * fs)))
+    min_gap = int(round(min_step_s * fs))
+    max_gap = int(round(max_step_s * fs))
+    for z in zc:
+        if gate_arr is not None and not gate_arr[z]:
+            continue
+        prev_up = up[up < z]
+        if prev_up.size == 0:
+            continue
+        lobe = (z - prev_up[-1]) / fs
+        if lobes and ic_l and z - zc_l[-1] > max_gap:  # a new walking sequence: forget the old lobes
+            lobes.clear()
+        if len(lobes) >= 3 and lobe > lobe_ratio * float(np.median(lobes[-8:])):
+            continue  # seed 003: a false crossing follows a much longer positive lobe
+        zr = z - delay  # crossing time corrected for the FIR delay
+        ic = _nearest_local_max_before(ap, zr, max(0, zr - ws))
+        if ic_l and ic - ic_l[-1] < min_gap:
+            continue
+        lobes.append(lobe)
+        hi = min(len(v), ic + wf + 1)
+        vmax = ic + int(np.argmax(v[ic:hi])) if hi > ic else ic
+        fhi = min(len(ap), vmax + wf + 1)
+        fc_l.append(vmax + int(np.argmin(ap[vmax:fhi])) if fhi > vmax else vmax)
+        ic_l.append(ic)
+        zc_l.append(z)
+    return np.array(ic_l, dtype=int), np.array(fc_l, dtype=int), np.array(zc_l, dtype=int)
+
+
+# --------------------------------------------------------------------------------------------------
+# step length models
+# --------------------------------------------------------------------------------------------------
+def pendulum_length(h: np.ndarray, leg_m: float, *, k: float = 1.0, f: float = 0.0) -> np.ndarray:
+    """Modified inverted pendulum step length (seed 003 eq. 1): ``d = K * 2 sqrt(2 L h - h^2) + F``.
+
+    Parameters
+    ----------
+    h : vertical excursion of the waist during the step's single stance (m), clipped to ``[0, L]``
+    leg_m : leg length L (m); k : gain K (-); f : double-stance term F (m, about the foot length)
+    """
+    hh = np.clip(np.asarray(h, dtype=np.float64), 0.0, leg_m)
+    return k * 2.0 * np.sqrt(np.maximum(2.0 * leg_m * hh - hh * hh, 0.0)) + f
+
+
+# decision W56: mobgap 1.2.0 SlZijlstra's step-length smoothing (`step_length_smoothing=HampelFilter(2, 3.0)`,
+# `max_interpolation_gap_s=3`, mobgap/stride_length/_sl_zijlstra.py; Zijlstra & Hof 2003 as modified by Soltani
+# et al. 2021, IEEE TNSRE 29:1955-1964); its published defaults, nothing fitted here
+HAMPEL_HALF_WINDOW = 2  # values either side of the current one (window of 5, truncated at the ends)
+HAMPEL_SIGMAS = 3.0
+MAD_TO_SD = 1.4826  # mobgap _hampel_filter_numba: MAD of a normal sample -> its standard deviation
+MAX_INTERP_GAP_S = 3.0  # seconds without a contact interpolated at most (mobgap robust_step_para_to_sec)
+LENGTH_SMOOTHING_MODES = ("none", "mobgap", "hampel", "seconds")
+
+
+def hampel(x: np.ndarray, half_window: int = HAMPEL_HALF_WINDOW, n_sigmas: float = HAMPEL_SIGMAS) -> np.ndarray:
+    """Hampel filter as mobgap's ``_hampel_filter_numba`` (decision W56): each value farther than ``n_sigmas`` x
+    1.4826 x MAD from the median of its window (``half_window`` values either side, truncated at the ends; NaN
+    ignored) is replaced by that median (a MAD of 0 replaces any value off the median); NaN stays NaN."""
+    x = np.asarray(x, dtype=np.float64)
+    out = x.copy()
+    for i in range(x.size):
+        w = x[max(0, i - half_window):i + half_window + 1]
+        w = w[np.isfinite(w)]
+        if not w.size:
+            continue
+        med = float(np.median(w))
+        if abs(x[i] - med) > n_sigmas * MAD_TO_SD * float(np.median(np.abs(w - med))):
+            out[i] = med
+    return out
+
+
+def per_second_means(t_ic: np.ndarray, values: np.ndarray, n_sec: int) -> np.ndarray:
+    """Mean of the values of the contacts ``t_ic`` (s from the sequence's first contact, sorted) inside each
+    second ``[k, k + 1]``, bounds included (mobgap ``interval_mean``, decision W56); NaN for a second without one."""
+    t = np.asarray(t_ic, dtype=np.float64)
+    v = np.asarray(values, dtype=np.float64)
+    k = np.arange(n_sec, dtype=np.float64)
+    lo, hi = np.searchsorted(t, k, side="left"), np.searchsorted(t, k + 1.0, side="right")
+    out = np.full(n_sec, np.nan)
+    for j, (a, b) in enumerate(zip(lo, hi, strict=True)):
+        seg = v[a:b][np.isfinite(v[a:b])]
+        if seg.size:
+            out[j] = float(seg.mean())
+    return out
+
+
+def interpolate_inside(x: np.ndarray, max_gap: float = MAX_INTERP_GAP_S) -> np.ndarray:
+    """NaN runs between finite values filled linearly, runs longer than ``max_gap`` values (seconds) and the
+    edges left NaN (mobgap ``robust_step_para_to_sec``, decision W56)."""
+    x = np.asarray(x, dtype=np.float64).copy()
+    ok = np.flatnonzero(np.isfinite(x))
+    for a, b in zip(ok[:-1], ok[1:], strict=True):
+        if 1 < b - a <= max_gap + 1:
+            x[a + 1:b] = np.interp(np.arange(a + 1, b), [a, b], [x[a], x[b]])
+    return x
+
+
+def smooth_step_lengths(start_s: np.ndarray, end_s: np.ndarray, lengths: np.ndarray, mode: str = "mobgap"
+                        ) -> np.ndarray:
+    """Step lengths of one walking sequence smoothed as mobgap's ``SlZijlstra`` does (decision W56).
+
+    ``start_s``/``end_s``: each step's contacts (s, sorted, step i ends where i + 1 starts); ``lengths`` the
+    per-step values (any unit; the result is equivariant to ``x -> a x + b``, a > 0). ``mode``:
+    ``"mobgap"`` -- the last value repeated for the last contact, a Hampel filter on the per-contact values,
+    the mean per second of the sequence (from its first contact), the Hampel filter on the per-second values,
+    gaps of up to 3 s interpolated, and each step the mean of that piecewise-constant per-second curve over its
+    own span; ``"hampel"`` -- only the first Hampel filter; ``"seconds"`` -- the per-second steps without either
+    Hampel filter; ``"none"`` -- the lengths unchanged.
+    """
+    v = np.asarray(lengths, dtype=np.float64)
+    if mode not in LENGTH_SMOOTHING_MODES:
+        raise DataError(f"length_smoothing '{mode}' is not one of {', '.join(LENGTH_SMOOTHING_MODES)}")
+    if mode == "none" or not v.size:
+        return v.copy()
+    t0 = float(start_s[0])
+    s = np.asarray(start_s, dtype=np.float64) - t0
+    e = np.asarray(end_s, dtype=np.float64) - t0
+    per_ic = np.append(v, v[-1])  # mobgap: the last step's value also stands for the last contact
+    use_hampel = mode in ("mobgap", "hampel")
+    if use_hampel:
+        per_ic = hampel(per_ic)
+    if mode == "hampel":
+        return per_ic[:-1]
+    t_ic = np.append(s, e[-1])
+    n_sec = int(np.floor(t_ic[-1])) + 1  # mobgap: seconds k + 0.5 of the sequence, the last contact's included
+    sec = per_second_means(t_ic, per_ic, n_sec)
+    if use_hampel:
+        sec = hampel(sec)
+    sec = interpolate_inside(sec)
+    # each step: the mean of the piecewise-constant per-second curve over [start, end] (mobgap
+    # naive_sec_paras_to_regions), seconds left NaN (longer gaps) not counted
+    ok = np.isfinite(sec)
+    knots = np.arange(n_sec + 1, dtype=np.float64)
+    area = np.concatenate([[0.0], np.cumsum(np.where(ok, sec, 0.0))])
+    cover = np.concatenate([[0.0], np.cumsum(ok.astype(np.float64))])
+    da = np.interp(e, knots, area) - np.interp(s, knots, area)
+    dc = np.interp(e, knots, cover) - np.interp(s, knots, cover)
+    at = sec[np.clip(np.floor(s).astype(int), 0, n_sec - 1)]  # a step of zero duration: its second's value
+    out = np.where(dc > 1e-12, da / np.where(dc > 1e-12, dc, 1.0), at)
+    return np.where(np.isfinite(out), out, per_ic[:-1])  # no finite second under the step: its own value
+
+
+def vertical_excursion(acc_v: np.ndarray, fs: float, i0: int, i1: int) -> float:
+    """Peak-to-peak vertical displacement (m) between samples ``i0`` and ``i1``.
+
+    Double integration of the vertical acceleration (gravity removed) with zero velocity at both ends
+    (seed 003 sec. 3.2: ZUPT at the IC) and equal height at both ends: the mean of the acceleration is
+    removed before the first integration and the linear drift of the position after the second.
+    """
+    a = np.asarray(acc_v[i0:i1 + 1], dtype=np.float64)
+    if a.size < 3:
+        return 0.0
+    dt = 1.0 / fs
+    a = a - a.mean()
+    vel = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] + a[:-1]) * dt)])
+    vel = vel - np.linspace(vel[0], vel[-1], vel.size)
+    pos = np.concatenate([[0.0], np.cumsum(0.5 * (vel[1:] + vel[:-1]) * dt)])
+    pos = pos - np.linspace(pos[0], pos[-1], pos.size)
+    return float(pos.max() - pos.min())
+
+
+def turning_step_factor(dpsi_rad: np.ndarray) -> np.ndarray:
+    """Share of a step's straight-ahead length kept when the pelvis turns by ``dpsi_rad`` during it
+    (decision W19): ``cos(min(|dpsi|, pi/2))`` -- the component of the step along the heading held at
+    both of its contacts; 1 on straight steps, 0 for a quarter turn or more in one step (turning on the
+    spot)."""
+    d = np.minimum(np.abs(np.asarray(dpsi_rad, dtype=np.float64)), 0.5 * np.pi)
+    return np.cos(d)
+
+
+def frequency_length(f_hz: np.ndarray, a: float, b: float) -> np.ndarray:
+    """Step length linear in step frequency (seed 001 eq. 23; seed 000 sec. II-D): ``SL = a f - b``."""
+    return a * np.asarray(f_hz, dtype=np.float64) - b
+
+
+def stride_gains(distance_m: float, g: np.ndarray, c: np.ndarray | None = None, f_m: float = 0.0) -> np.ndarray:
+    """The pendulum gain each stride of a calibration walk implies if every step of the walk had the same
+    length (decision W48): ``K_j = (D / sum c - F) (c_a + c_b) / (c_a g_a + c_b g_b)`` over consecutive pairs
+    ``(a, b)`` of the steps that carry length (``c > 0``, finite ``g > 0``); ``D`` the walk's known length (m),
+    ``g = 2 sqrt(2 L h - h^2)`` per step (seed 003 eq. 1 with K = 1, F = 0), ``c`` the tracker's per-step
+    factors (W19, W27; ones when ``None``), so that ``D = sum c (K g + F)`` as the tracker sums it (W21).
+    A stride (not a step) is the unit: an early contact moves length from one step to the next (W40).
+    Returns an empty array for a walk of fewer than two such steps."""
+    gg = np.asarray(g, dtype=np.float64)
+    cc = np.ones(gg.size) if c is None else np.asarray(c, dtype=np.float64)
+    if gg.size == 0 or not np.sum(cc) > 0:
+        return np.zeros(0)
+    mean_step = float(distance_m) / float(np.sum(cc)) - f_m
+    keep = (cc > 0) & np.isfinite(gg) & (gg > 0)
+    gg, cc = gg[keep], cc[keep]
+    n = gg.size // 2
+    ca = cc[:2 * n:2] + cc[1:2 * n:2]
+    cg = cc[:2 * n:2] * gg[:2 * n:2] + cc[1:2 * n:2] * gg[1:2 * n:2]
+    return mean_step * ca / cg
+
+
+def shrink_gain(k_cal: float, se: float, k0: float, tau: float) -> float:
+    """Precision-weighted mean of a calibrated gain and a population prior (decision W48; the normal-normal
+    posterior mean, Gelman et al., Bayesian Data Analysis, 3rd ed., eq. 2.12):
+    ``(k_cal / se^2 + k0 / tau^2) / (1 / se^2 + 1 / tau^2)`` = ``k0 + tau^2 / (tau^2 + se^2) (k_cal - k0)``.
+
+    ``se`` = standard error of ``k_cal`` (``inf``: no evidence -> ``k0``); ``tau`` = between-subject spread of the
+    gain about ``k0`` (``inf``: no prior -> ``k_cal``). Raises ``ValueError`` on a NaN / negative ``se`` or ``tau``
+    and on ``se = tau = 0`` (no weighting defined)."""
+    if not (se >= 0 and tau >= 0):
+        raise ValueError(f"shrink_gain: se={se!r} and tau={tau!r} must be >= 0")
+    if np.isinf(tau):
+        return float(k_cal) if np.isfinite(se) else float("nan")
+    if np.isinf(se):
+        return float(k0)
+    if se == 0 and tau == 0:
+        raise ValueError("shrink_gain: se = tau = 0 gives no weighting")
+    w = tau * tau / (tau * tau + se * se)
+    return float(k0 + w * (k_cal - k0))
+
+
+def moment_tau(k_cals: np.ndarray, ses: np.ndarray, k0: float) -> float:
+    """Between-subject spread of the gain about the prior mean ``k0`` by the method of moments (decision W48):
+    ``tau^2 = mean((k_cal_s - k0)^2) - mean(se_s^2)`` over subjects ``s`` (each its calibration gain and standard
+    error), floored at ``mean(se_s^2)`` -- a few subjects can give a moment estimate <= 0 by chance, and the floor
+    keeps a walk as long as theirs at half its weight or more. Needs at least one subject with a finite se."""
+    k, s = np.asarray(k_cals, dtype=np.float64), np.asarray(ses, dtype=np.float64)
+    ok = np.isfinite(k) & np.isfinite(s)
+    if not ok.any():
+        raise ValueError("moment_tau: no subject with a finite gain and standard error")
+    s2 = float(np.mean(s[ok] ** 2))
+    return float(np.sqrt(max(float(np.mean((k[ok] - k0) ** 2)) - s2, s2)))
+
+
+def harmonic_mean_frequency(f_hz: np.ndarray) -> float:
+    """Average step frequency of a walk, ``(mean(1/f_k))^-1`` (seed 000 eq. 1)."""
+    f = np.asarray(f_hz, dtype=np.float64)
+    f = f[np.isfinite(f) & (f > 0)]
+    return float(1.0 / np.mean(1.0 / f)) if f.size else float("nan")
+
+
+# --------------------------------------------------------------------------------------------------
+# heading from the harmonics of planar acceleration (seed 000 sec. III, seed 001 sec. 2.2.3)
+# --------------------------------------------------------------------------------------------------
+def fourier_coefficients(t: np.ndarray, x: np.ndarray, t0: float, period: float, n_harmonics: int
+                         ) -> tuple[np.ndarray, np.ndarray]:
+    """Fourier coefficients over one period starting at ``t0`` (seed 000 sec. III; seed 001 eq. 8).
+
+    ``alpha_n = 2/T int x(t) cos(2 pi n (t - t0) / T) dt`` and likewise ``beta_n`` with sine, for
+    n = 1..``n_harmonics``; ``x`` may have several columns. Trapezoidal integration over the samples.
+
+    Returns
+    -------
+    alpha, beta : (n_harmonics, k) arrays.
+    """
+    t = np.asarray(t, dtype=np.float64)
+    x = np.asarray(x, dtype=np.float64).reshape(t.shape[0], -1)
+    tau = t - t0
+    alpha = np.empty((n_harmonics, x.shape[1]))
+    beta = np.empty_like(alpha)
+    for n in range(1, n_harmonics + 1):
+        w = 2.0 * np.pi * n / period
+        alpha[n - 1] = 2.0 / period * np.trapezoid(x * np.cos(w * tau)[:, None], t, axis=0)
+        beta[n - 1] = 2.0 / period * np.trapezoid(x * np.sin(w * tau)[:, None], t, axis=0)
+    return alpha, beta
+
+
+def forward_sign(direction: np.ndarray, alpha_h: np.ndarray, beta_h: np.ndarray, alpha_v: float,
+                 beta_v: float) -> float:
+    """+1 if ``direction`` points forward, -1 if backward, from the gait's phase (decision W2).
+
+    At step frequency the waist's forward acceleration leads its vertical acceleration by 0-90 deg
+    (inverted-pendulum gait: forward acceleration while the body falls before initial contact, vertical
+    maximum at the contact; seed 003 sec. 3.1: the AP maximum comes immediately before the vertical
+    maximum). The complex amplitudes of the projection on ``direction`` and of the vertical component
+    (``alpha - i beta``) give that lead; the direction is forward when the lead lies within +-90 deg of
+    45 deg.
+    """
+    d = np.asarray(direction, dtype=np.float64)
+    cf = complex(float(alpha_h @ d), -float(beta_h @ d))
+    cv = complex(alpha_v, -beta_v)
+    if abs(cf) < 1e-12 or abs(cv) < 1e-12:
+        return 1.0
+    lead = np.angle(cf / cv)
+    return 1.0 if np.cos(lead - np.pi / 4) >= 0 else -1.0
+
+
+def ellipse_axis(alpha: np.ndarray, beta: np.ndarray) -> np.ndarray:
+    """Major semi-axis of the first-harmonic ellipse ``a(t) = alpha cos(wt) + beta sin(wt)``.
+
+    Derivation (docs/decisions/waist.md W1, replacing seed 001 eq. 16-20):
+    ``|a|^2 = (|alpha|^2 + |beta|^2)/2 + (|alpha|^2 - |beta|^2)/2 cos 2wt + (alpha.beta) sin 2wt``, which is
+    largest at ``2wt* = atan2(alpha.beta, (|alpha|^2 - |beta|^2)/2)``; the axis is ``a(t*)``.
+    Returns the (2,) vector (zero for a circle: no preferred direction).
+    """
+    al = np.asarray(alpha, dtype=np.float64)
+    be = np.asarray(beta, dtype=np.float64)
+    a_coef = 0.5 * (al @ al - be @ be)
+    b_coef = float(al @ be)
+    if abs(a_coef) < 1e-15 and abs(b_coef) < 1e-15:
+        return np.zeros(2)
+    wt = 0.5 * np.arctan2(b_coef, a_coef)
+    return al * np.cos(wt) + be * np.sin(wt)
+
+
+def ellipse_direction(t: np.ndarray, a_h: np.ndarray, a_v: np.ndarray, t0: float, t1: float) -> float:
+    """Direction (rad, atan2(y, x) in the horizontal frame) of one step ``[t0, t1]`` from the first
+    harmonic of its planar acceleration (seed 001 sec. 2.2.3, eq. 10-13, closed form of decision W1),
+    the sign chosen by :func:`forward_sign`. NaN if the step has fewer than 4 samples."""
+    m = (t >= t0) & (t <= t1)
+    if m.sum() < 4:
+        return float("nan")
+    period = t1 - t0
+    alpha, beta = fourier_coefficients(t[m], np.column_stack([a_h[m], a_v[m]]), t0, period, 1)
+    axis = ellipse_axis(alpha[0, :2], beta[0, :2])
+    if not np.any(axis):
+        return float("nan")
+    axis = axis * forward_sign(axis, alpha[0, :2], beta[0, :2], alpha[0, 2], beta[0, 2])
+    return float(np.arctan2(axis[1], axis[0]))
+
+
+def tip_to_tail_direction(t: np.ndarray, a_h: np.ndarray, a_v: np.ndarray, t0: float, t1: float,
+                          t2: float, *, n_grid: int = 256) -> float:
+    """Direction (rad) of the step ``[t1, t2]`` from the tip-to-tail vector of the unbiased second-order
+    Fourier approximation of the planar acceleration over the stride ``[t0, t2]`` (seed 000 sec. III,
+    Algorithm 1 steps a-d).
+
+    The maxima of ``|a2(t)|`` (periodic over the stride) that lie in the step, or nearest to it, are the
+    tip and the tail (the two largest when more lie inside, decision W15); the vector
+    joining them is the step's line of motion, oriented forward by :func:`forward_sign` (the
+    acceleration phase = tip, decision W2) using the step-frequency (second) harmonic of the stride.
+    """
+    m = (t >= t0) & (t <= t2)
+    if m.sum() < 8 or not (t0 < t1 < t2):
+        return float("nan")
+    period = t2 - t0
+    alpha, beta = fourier_coefficients(t[m], np.column_stack([a_h[m], a_v[m]]), t0, period, 2)
+    # the approximation is periodic over the stride: find the maxima of its magnitude over the whole
+    # stride (circularly), then keep the two that belong to the step [t1, t2]
+    tg = t0 + period * np.arange(n_grid) / n_grid
+    tau = tg - t0
+    approx = np.zeros((n_grid, 2))
+    for n in (1, 2):
+        w = 2.0 * np.pi * n / period
+        approx += np.outer(np.cos(w * tau), alpha[n - 1, :2]) + np.outer(np.sin(w * tau), beta[n - 1, :2])
+    mag = np.hypot(approx[:, 0], approx[:, 1])
+    peaks = np.flatnonzero((mag >= np.roll(mag, 1)) & (mag > np.roll(mag, -1)))
+    if peaks.size >= 2:
+        # distance (s) of each maximum from the step interval; inside = 0, ties broken by magnitude
+        dist = np.maximum(t1 - tg[peaks], 0.0) + np.maximum(tg[peaks] - t2, 0.0)
+        order = np.lexsort((-mag[peaks], dist))
+        top = np.sort(peaks[order[:2]])
+        vec = approx[top[0]] - approx[top[1]]
+    else:  # degenerate: a single maximum; use the major axis of the step-frequency harmonic
+        vec = ellipse_axis(alpha[1, :2], beta[1, :2])
+    if not np.any(vec):
+        return float("nan")
+    vec = vec * forward_sign(vec, alpha[1, :2], beta[1, :2], alpha[1, 2], beta[1, 2])
+    return float(np.arctan2(vec[1], vec[0]))
+
+
+def stride_ellipse_direction(t: np.ndarray, a_h: np.ndarray, a_v: np.ndarray, t0: float, t2: float) -> float:
+    """Direction (rad) from the major axis of the step-frequency (second) harmonic over the stride
+    ``[t0, t2]``: seed 001's closed-form ellipse (decision W1) on seed 000's stride window, where the
+    stride-frequency lateral sway falls in the first harmonic and does not tilt the axis (decision W12).
+    Sign by :func:`forward_sign`."""
+    m = (t >= t0) & (t <= t2)
+    if m.sum() < 8:
+        return float("nan")
+    alpha, beta = fourier_coefficients(t[m], np.column_stack([a_h[m], a_v[m]]), t0, t2 - t0, 2)
+    axis = ellipse_axis(alpha[1, :2], beta[1, :2])
+    if not np.any(axis):
+        return float("nan")
+    axis = axis * forward_sign(axis, alpha[1, :2], beta[1, :2], alpha[1, 2], beta[1, 2])
+    return float(np.arctan2(axis[1], axis[0]))
+
+
+def resolve_axis_signs(directions: np.ndarray, yaw: np.ndarray) -> np.ndarray:
+    """Fix 180-degree sign errors of per-step directions with the unit's heading (decision W13).
+
+    A worn unit keeps its yaw offset to the walking direction, so ``direction - yaw`` is about constant;
+    a step whose offset points the other way from the majority is flipped. The axis of the offsets is
+    their doubled-angle mean; its sign is the one most steps (each signed by :func:`forward_sign`) agree
+    on. NaN directions stay NaN.
+    """
+    d = np.asarray(directions, dtype=np.float64)
+    off = d - np.asarray(yaw, dtype=np.float64)
+    ok = np.isfinite(off)
+    if ok.sum() < 3:
+        return d.copy()
+    axis = 0.5 * np.angle(np.sum(np.exp(2j * off[ok])))
+    votes = np.cos(off[ok] - axis)
+    if np.sum(votes > 0) < np.sum(votes < 0):
+        axis += np.pi
+    out = d.copy()
+    flip = ok & (np.cos(off - axis) < 0)
+    out[flip] = np.angle(np.exp(1j * (d[flip] + np.pi)))
+    return out
+
+
+#: two directions whose unit vectors sum to less than this have no mean (decision W44)
+OPPOSITE_EPS = 1e-9
+
+
+def circular_mean2(a: float, b: float) -> float:
+    """Mean direction of two angles (rad); the A-HE average of two consecutive steps (seed 000 Alg. 1e).
+
+    Two (nearly) opposite directions have no mean (the sum of their unit vectors is rounding residue,
+    so its angle is arbitrary): the newer step ``b`` is taken (decision W44)."""
+    if not np.isfinite(a):
+        return b
+    if not np.isfinite(b):
+        return a
+    s, c = np.sin(a) + np.sin(b), np.cos(a) + np.cos(b)
+    if np.hypot(s, c) < OPPOSITE_EPS:
+        return float(b)
+    return float(np.arctan2(s, c))
+
+
+# --------------------------------------------------------------------------------------------------
+# gyroscope heading (seed 003 sec. 3.3)
+# --------------------------------------------------------------------------------------------------
+def gyro_bias_360(t: np.ndarray, w_z: np.ndarray, *, turns: float = 1.0) -> float:
+    """Vertical gyro bias (rad/s) from a closed walk that turns ``turns`` full circles
+    (seed 003 eq. 2): ``b = (int w dt - 2 pi turns) / T``; ``turns`` is signed (+ = left, CCW)."""
+    t = np.asarray(t, dtype=np.float64)
+    w = np.asarray(w_z, dtype=np.float64)
+    if t.size < 2:
+        raise DataError("gyro bias calibration: need at least two gyroscope samples")
+    total = float(np.trapezoid(w, t))
+    return (total - 2.0 * np.pi * turns) / float(t[-1] - t[0])
+
+
+def rate_integral(t: np.ndarray, w_z: np.ndarray) -> np.ndarray:
+    """Running trapezoidal integral of ``w_z`` over ``t`` (rad; 0 at ``t[0]``): pass it as ``cum`` to
+    :func:`mean_rate_per_stride` / :func:`integrate_rate` to integrate one signal over many windows in
+    one pass (the same values as computing it in each call)."""
+    return np.concatenate([[0.0], np.cumsum(0.5 * (w_z[1:] + w_z[:-1]) * np.diff(t))])
+
+
+def mean_rate_per_stride(t: np.ndarray, w_z: np.ndarray, events: np.ndarray, *,
+                         cum: np.ndarray | None = None) -> np.ndarray:
+    """Mean vertical rate (rad/s) over the stride around each step (seed 003 sec. 3.3, MRZ without the
+    absolute value): for step ``k`` (``events[k]`` to ``events[k+1]``) the stride is
+    ``[events[k-1], events[k+1]]``; the first step of a sequence takes the stride that starts with it,
+    ``[events[0], events[2]]`` (decision W24: a window of one step keeps the pelvis's per-step yaw
+    swing, which cancels only over a stride). One-step sequences use that step. Returns
+    ``len(events) - 1`` values. ``cum``: :func:`rate_integral` of ``(t, w_z)`` if already computed."""
+    ev = np.asarray(events, dtype=np.float64)
+    n = len(ev) - 1
+    out = np.full(max(n, 0), np.nan)
+    cum = rate_integral(t, w_z) if cum is None else cum
+    for k in range(n):
+        a, b = (ev[k - 1], ev[k + 1]) if k > 0 else (ev[0], ev[min(2, n)])
+        if b <= a:
+            continue
+        out[k] = (np.interp(b, t, cum) - np.interp(a, t, cum)) / (b - a)
+    return out
+
+
+def integrate_rate(t: np.ndarray, w_z: np.ndarray, t0, t1, *, cum: np.ndarray | None = None):
+    """Integral of ``w_z`` over ``[t0, t1]`` (rad), trapezoidal with interpolated ends. ``t0``/``t1``
+    may be arrays (one integral per pair, one pass over the signal); scalars give a float. ``cum``:
+    :func:`rate_integral` of ``(t, w_z)`` if already computed."""
+    cum = rate_integral(t, w_z) if cum is None else cum
+    out = np.interp(t1, t, cum) - np.interp(t0, t, cum)
+    return float(out) if np.ndim(out) == 0 else out
+
+# --------------------------------------------------------------------------------------------------
+# gyroscope heading (seed 003 sec. 3.3) and split steps (W27), shared by track_waist and the live trackers (W92)
+# --------------------------------------------------------------------------------------------------
+def turn_proba(x: np.ndarray, means, sds, weights) -> np.ndarray:
+    """(n, 2) straight / turning probabilities of ``|x|`` (rad/s) under the two-Gaussian mixture ``means``,
+    ``sds``, ``weights`` (component 0 straight; seed 003 sec. 3.3, decision W7)."""
+    x = np.abs(np.asarray(x, dtype=np.float64)).reshape(-1)
+    m, s, w = (np.asarray(v, dtype=np.float64) for v in (means, sds, weights))
+    logp = -0.5 * ((x[:, None] - m) / s) ** 2 - np.log(s) + np.log(w)
+    logp -= logp.max(axis=1, keepdims=True)
+    p = np.exp(logp)
+    return p / p.sum(axis=1, keepdims=True)
+
+
+class TurnPrior:
+    """A fixed straight / turning mixture (``pdrlearn.waist.heading.TurnClassifier`` before any fit, as the live
+    trackers use it): ``predict(x)`` 1 where the turning component is the more probable."""
+
+    def __init__(self, means, sds, weights):
+        w = np.asarray(weights, dtype=np.float64)
+        self.means, self.sds, self.weights = np.asarray(means, float), np.asarray(sds, float), w / w.sum()
+
+    def predict(self, x) -> np.ndarray:
+        return (turn_proba(x, self.means, self.sds, self.weights)[:, 1] > 0.5).astype(int)
+
+
+#: Decision W82: the ``slow_turn_rps`` the W74 line suggests for gentle curves (rad/s, 2 deg/s): a straight-called
+#: stride is integrated too when the mean rate of the strides k-3..k+1 (within the sequence) reaches it. An option,
+#: not the default: it failed its adoption rule on sharp turns by 0.01 m
+SLOW_TURN_RPS = 0.035
+#: strides before / after stride k in its window: one after, because the live tracker (W64) knows stride k+1 but not
+#: always k+2 when it reports k
+SLOW_TURN_WINDOW = (3, 1)
+
+
+def slow_turn_strides(mrz: np.ndarray, threshold_rps: float | None) -> np.ndarray:
+    """Decision W82: strides inside a gentle curve, whose 5-stride (:data:`SLOW_TURN_WINDOW`) mean rate reaches
+    ``threshold_rps``."""
+    x = np.nan_to_num(np.asarray(mrz, np.float64))
+    if not threshold_rps or x.size == 0:
+        return np.zeros(x.shape, dtype=bool)
+    c = np.concatenate([[0.0], np.cumsum(x)])
+    k = np.arange(x.size)
+    lo = np.maximum(k - SLOW_TURN_WINDOW[0], 0)
+    hi = np.minimum(k + SLOW_TURN_WINDOW[1] + 1, x.size)
+    return np.abs((c[hi] - c[lo]) / (hi - lo)) >= threshold_rps
+
+
+def gyro_headings(t: np.ndarray, w_z: np.ndarray, events: np.ndarray, *, predict,
+                  bias_rps: float = 0.0, heading0: float = 0.0, cum: np.ndarray | None = None,
+                  slow_turn_rps: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """Per-step heading from the vertical gyroscope, integrated only over turning strides
+    (seed 003 sec. 3.3).
+
+    Each step's stride mean rate is classified (``predict``: |MRZ| (m,) -> 0/1, e.g.
+    :meth:`TurnPrior.predict`); the rate (minus ``bias_rps``, seed 003 eq. 2) is
+    integrated over the steps classified as turning and over the step before and after each of them
+    (seed 003: "integrate two straight steps occurring before and after a curved walking step"), and over
+    the strides of a gentle curve when ``slow_turn_rps`` > 0 (:func:`slow_turn_strides`, decision W82).
+    ``cum``: :func:`rate_integral` of ``(t, w_z - bias_rps)`` when the
+    caller integrates the same rate over many sequences (one pass over the recording, W43).
+
+    Returns
+    -------
+    headings : (m - 1,) heading during each step (rad); turning : (m - 1,) 0/1 classification.
+    """
+    ev = np.asarray(events, dtype=np.float64)
+    n = len(ev) - 1
+    if n <= 0:
+        return np.zeros(0), np.zeros(0, dtype=int)
+    w = w_z - bias_rps
+    cum = rate_integral(t, w) if cum is None else cum
+    mrz = mean_rate_per_stride(t, w, ev, cum=cum)
+    turning = np.asarray(predict(np.nan_to_num(mrz)))
+    integrate = turning.astype(bool).copy()
+    integrate[1:] |= turning[:-1].astype(bool)
+    integrate[:-1] |= turning[1:].astype(bool)
+    integrate |= slow_turn_strides(mrz, slow_turn_rps)  # W82, off by default
+    dpsi = integrate_rate(t, w, ev[:-1], ev[1:], cum=cum)
+    heading = np.empty(n)
+    h = heading0
+    for k in range(n):
+        if integrate[k]:
+            h += dpsi[k]
+        heading[k] = h
+    return heading, turning
+
+
+#: Decision W74: a gyro-headed waist track warns when the waist's own yaw, integrated from the first contact to the
+#: end of a step, and that step's heading differ by this much (deg) at some step: a turn the headings dropped
+UNTRACKED_TURN_WARN_DEG = 60.0
+
+
+def turn_gap(gyro_yaw, heading):
+    """Decision W80: gyroscope yaw minus step heading (rad) as a direction difference, wrapped to (-pi, pi]: either
+    may be wrapped, and a wrapped U-turn must not read as a missed full turn."""
+    return np.angle(np.exp(1j * (np.asarray(gyro_yaw, np.float64) - np.asarray(heading, np.float64))))
+
+
+def untracked_turn_message(diff_deg: float, t_s: float, integrate_stops: bool) -> str:
+    """The one warning line of decision W74 (shared with :class:`pdrlearn.waist.live.WaistTracker`)."""
+    cause = ("turns made during undetected steps or while standing are dropped with integrate_stops off: set "
+             "\"options\": {\"integrate_stops\": true} in the PARAMS.json (or integrate_stops=True)"
+             if not integrate_stops else
+             "a turn on strides the turn classifier called straight (a gentle curve, under 8 deg/s: decision W82) "
+             "or a gyroscope bias; for curves set \"options\": {\"slow_turn_rps\": 0.035} (live too) or "
+             "{\"heading\": \"ellipse\"} in the PARAMS.json, or use '--pipeline waist-pll'; for a bias calibrate "
+             "on a walk with a full turn ('pdrlearn calibrate --turns 1 --fit-turns')")
+    return (f"the step headings miss {diff_deg:+.0f} deg of the waist gyroscope's turn by {t_s:.1f} s "
+            f"(decision W74): the positions after it are off; {cause}")
+
+
+FRAGMENT_FRAC = 0.5
+MIN_FRAGMENT_SEQ = 3  # steps a sequence needs for its median step to judge fragments by
+
+
+def fragment_windows(start_s: np.ndarray, end_s: np.ndarray, has_next: np.ndarray) -> dict[int, tuple[int, int]]:
+    """Steps that carry a split step's length (decision W27): ``{owner: (first_row, last_row)}``.
+
+    In a walking sequence (consecutive rows with ``has_next``, closed by a row without) of at least
+    :data:`MIN_FRAGMENT_SEQ` steps, a step (IC to next IC) shorter than :data:`FRAGMENT_FRAC` x the
+    sequence's median step is a fragment: it is merged with the neighbouring non-fragment step of the
+    sequence that makes the merged duration closest to the median, and that neighbour (the owner) spans
+    rows ``first_row .. last_row`` (its pendulum h is taken over the merged window); the fragment carries
+    no length. Rows not in the result keep their own window. A fragment without a non-fragment neighbour
+    is left alone.
+    """
+    t0, t1 = np.asarray(start_s, dtype=np.float64), np.asarray(end_s, dtype=np.float64)
+    hn = np.asarray(has_next, dtype=bool)
+    dur = t1 - t0
+    out: dict[int, tuple[int, int]] = {}
+    seq: list[int] = []
+    for i in range(hn.size + 1):
+        if i < hn.size and hn[i]:
+            seq.append(i)
+            continue
+        if len(seq) >= MIN_FRAGMENT_SEQ:
+            med = float(np.median(dur[seq]))
+            frag = {j for j in seq if dur[j] < FRAGMENT_FRAC * med}
+            for j in sorted(frag):
+                nbs = [k for k in (j - 1, j + 1) if k in seq and k not in frag]
+                if not nbs:
+                    continue
+                k = min(nbs, key=lambda q: abs(dur[q] + dur[j] - med))
+                a, b = out.get(k, (k, k))
+                out[k] = (min(a, j), max(b, j))
+        seq = []
+    return out
+
+
+#: decision W87: a calibrated step length applied more than this fraction off its calibration rate warns
+RATE_MISMATCH = 0.1
+
+
+def rate_mismatch_line(calibrated_hz: float, rate_hz: float, where: str) -> str | None:
+    """Decision W87's warning when a step length calibrated at ``calibrated_hz`` is applied at ``rate_hz`` more
+    than :data:`RATE_MISMATCH` away, else None (also for an unknown calibration rate, NaN)."""
+    if not np.isfinite(calibrated_hz) or abs(rate_hz - calibrated_hz) <= RATE_MISMATCH * calibrated_hz:
+        return None
+    return (f"{where}: step length calibrated at {calibrated_hz:.4g} Hz, applied to a {rate_hz:.4g} Hz recording: "
+            "the calibrated factor depends on the rate (a few % of distance, decision W87); re-calibrate on a walk "
+            f"recorded at {rate_hz:.4g} Hz: pdrlearn calibrate WALK --distance METERS --out PARAMS.json")

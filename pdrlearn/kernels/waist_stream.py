@@ -1,0 +1,224 @@
+"""The waist unit's contacts on a stream, numpy only (decisions W31, W59, W92).
+
+:class:`Bridge` fills dropped samples as the offline detector's input is filled (W59, W34);
+:class:`RealtimeContacts` is decision W31's realtime IC detector: a streaming Madgwick AHRS, then every ``hop_s``
+the offline detector on the last seconds decides the contacts ``delay_s`` old, once. ``pdrlearn track --pipeline
+waist-pendulum --realtime`` (through ``WaistICStepDetector(delay_s=...).online``), the live waist tracker of
+:mod:`pdrlearn.waist` and the lean runtime's :class:`pdrlearn.runtime.WaistTracker` all run this code.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.kernels import waist as K
+from pdrlearn.kernels.ahrs import madgwick_imu, quat_from_matrix, quat_matrices
+from pdrlearn.kernels.gaps import MIN_GAP_S, cut_contacts_at_gaps
+from pdrlearn.kernels.rotation import gravity_rotation
+
+#: bridged gaps longer than this (s) are filled as a rest (decision B11: reported, they end the walking sequence;
+#: MIN_GAP_S); ``pdrlearn.waist.ahrs.LONG_GAP_S``
+LONG_GAP_S = 1.0
+#: Madgwick 2010 IMU gain (the ``ahrs`` package's default, W5); seed 001 sec. 2.2.1 uses the filter, gives no gain
+MADGWICK_GAIN = 0.033
+#: contacts further apart end a walking sequence (s): the waist-pendulum pipeline's (``pdrlearn.track.waist``)
+MAX_STEP_S = 1.5
+INIT_S = 0.5  # pdrlearn.waist.ahrs.waist_imu's init_s: initial attitude from the first 0.5 s
+
+
+def rule_contacts(settings: dict | None = None):
+    """The ``offline`` detector of :class:`RealtimeContacts` from :func:`pdrlearn.kernels.waist.contacts_offline`
+    with ``settings`` (its keywords; ``walk_threshold`` at least), without the W33 learned stage."""
+    kw = dict(settings or {})
+
+    def offline(w: dict, fs: float):
+        return K.contacts_offline(w["acc_v"], w["acc_ap"], w["acc_ml"], w["gyr_nav"][:, 2], fs, **kw)[:3]
+
+    return offline
+
+
+class Bridge:
+    """Decision W59: the dropped samples of a pushed stream bridged as the offline detector's input is
+    (:func:`pdrlearn.waist.ahrs.body_data`, decision W34), so that ``online`` equals ``detect``: an interval
+    over 1.5 periods gets its missing samples at the nominal period, linearly interpolated; one over
+    ``LONG_GAP_S`` is filled as a rest (the mean of the raw samples of the second before it, zero rate); one over
+    :data:`pdrlearn.track.gaps.MIN_GAP_S` ends the walking sequence (B11), added to ``gaps``."""
+
+    def __init__(self, fs: float, gaps: dict):
+        self.fs = fs
+        self.gaps = gaps
+        self.t_last: float | None = None
+        self.v_last: np.ndarray | None = None
+        self.tail_t = np.zeros(0)
+        self.tail_v = np.zeros((0, 6))
+
+    def __call__(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        p = 1.0 / self.fs
+        prev = self.t_last is not None
+        tt = np.concatenate([[self.t_last], t]) if prev else t
+        vv = np.vstack([self.v_last, v]) if prev else v
+        raw_t, raw_v = np.concatenate([self.tail_t, t]), np.vstack([self.tail_v, v])
+        self.t_last, self.v_last = float(t[-1]), v[-1].copy()
+        keep = raw_t > raw_t[-1] - LONG_GAP_S - p
+        self.tail_t, self.tail_v = raw_t[keep], raw_v[keep]
+        d = np.diff(tt)
+        big = np.flatnonzero(d > 1.5 * p)
+        if not big.size:
+            return t, v
+        ts, vs, a = [], [], 0
+        for i in big:
+            ts.append(tt[a:i + 1])
+            vs.append(vv[a:i + 1])
+            n = int(round(d[i] * self.fs)) - 1
+            ti = tt[i] + p * np.arange(1, n + 1)
+            if d[i] > LONG_GAP_S:  # as body_data: at rest, the specific force of the last second, zero rate
+                before = (raw_t > tt[i] - LONG_GAP_S) & (raw_t <= tt[i])
+                fill = np.tile(np.concatenate([raw_v[before, :3].mean(axis=0), np.zeros(3)]), (n, 1))
+            else:
+                w = ((ti - tt[i]) / d[i])[:, None]
+                fill = (1.0 - w) * vv[i] + w * vv[i + 1]
+            ts.append(ti)
+            vs.append(fill)
+            if d[i] > MIN_GAP_S:  # decision B11: the walking sequence ends at it
+                self.gaps.setdefault("online stream", []).append((float(tt[i]), float(tt[i + 1])))
+            a = i + 1
+        ts.append(tt[a:])
+        vs.append(vv[a:])
+        out_t, out_v = np.concatenate(ts), np.vstack(vs)
+        return (out_t[1:], out_v[1:]) if prev else (out_t, out_v)
+
+
+class RealtimeContacts:
+    """Decision W31 on a stream: a streaming Madgwick AHRS, then every ``hop_s`` the offline IC detector on
+    the last ``history_s + delay_s + hop_s`` seconds decides the contacts ``delay_s`` to ``delay_s + hop_s``
+    old, once (:class:`pdrlearn.waist._kernels.DelayedDecider`, the state of ``track --realtime``'s
+    :func:`~pdrlearn.waist._kernels.delayed_decisions`, fed as the samples arrive).
+    A contact is reported once the next one is decided or no next one can follow within ``max_step_s``.
+
+    ``offline(window, fs)``: the offline detector on a window of navigation-frame arrays (``t``, ``acc_nav``,
+    ``gyr_nav``, ``yaw``, ``acc_v``, ``acc_ap``, ``acc_ml``) -> ``(ic, fc, anchor)`` window indices
+    (:func:`rule_contacts` with the pipeline's defaults, or the ``waist-ic`` detector's); ``on_nav(t, acc_v,
+    w_z)``: called with each stretch of navigation-frame samples as the AHRS makes them (the live trackers)."""
+
+    def __init__(self, fs: float, offline, *, rotation=None, gaps=None, gain: float = MADGWICK_GAIN,
+                 delay_s: float = K.DECISION_DELAY_S, hop_s: float = K.DECISION_HOP_S,
+                 history_s: float = K.DECISION_HISTORY_S, max_step_s: float = MAX_STEP_S, on_nav=None):
+        self.fs, self.offline, self.gain, self.max_step_s, self.on_nav = fs, offline, gain, max_step_s, on_nav
+        self.rotation = None if rotation is None else np.asarray(rotation, dtype=float).reshape(3, 3)
+        self.gaps = dict(gaps or {})
+        self.bridge = Bridge(fs, self.gaps)
+        self.decider = K.DelayedDecider(fs, delay_s=delay_s, hop_s=hop_s, history_s=history_s)
+        self.max_gap = K._max_gap(max_step_s, fs)
+        self.n0 = max(1, int(round(INIT_S * fs)))  # the AHRS's initial attitude (pdrlearn.waist.ahrs.waist_imu)
+        self.raw: list[np.ndarray] = []  # samples before the initial attitude is known
+        self.q: np.ndarray | None = None  # the AHRS attitude (w, x, y, z) after the last sample
+        self.g = 0.0
+        self.prev_raw_yaw = 0.0
+        self.wrap = 0
+        self.b0 = 0  # absolute index of the first buffered sample
+        self.buf: dict[str, np.ndarray] = {}
+        self.n = 0
+        self.decided: list[tuple[int, float, float]] = []  # (ic index, ic time, fc time) not yet reported
+
+    # -- AHRS ------------------------------------------------------------------------------------
+    def _nav(self, t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, first: bool) -> None:
+        dt, gain = 1.0 / self.fs, self.gain
+        if first:  # as Madgwick's batch form: the first sample is the initial attitude itself
+            q0 = self.q / np.linalg.norm(self.q)
+            q = np.vstack([q0, madgwick_imu(q0, gyr[1:], acc[1:], dt, gain=gain)])
+        else:
+            q = madgwick_imu(self.q, gyr, acc, dt, gain=gain)
+        self.q = q[-1]
+        rot = quat_matrices(q)
+        acc_nav, gyr_nav = np.einsum("nij,nj->ni", rot, acc), np.einsum("nij,nj->ni", rot, gyr)
+        fwd = rot[:, :, 0]  # the body's forward axis in the navigation frame
+        raw = np.arctan2(fwd[:, 1], fwd[:, 0])
+        if first:
+            self.prev_raw_yaw = raw[0]
+            self.g = float(np.median(acc_nav[:self.n0, 2]))  # causal: gravity of the first INIT_S
+        # unwrap with whole turns counted as integers: the same yaw whatever the chunking
+        dd = np.diff(np.concatenate([[self.prev_raw_yaw], raw]))
+        turns = self.wrap + np.cumsum(np.where(dd > np.pi, -1, np.where(dd < -np.pi, 1, 0)))
+        self.wrap, self.prev_raw_yaw = int(turns[-1]), raw[-1]
+        yaw = raw + 2 * np.pi * turns
+        c, s = np.cos(yaw), np.sin(yaw)
+        new = {"t": t, "acc_nav": acc_nav, "gyr_nav": gyr_nav, "yaw": yaw, "acc_v": acc_nav[:, 2] - self.g,
+               "acc_ap": c * acc_nav[:, 0] + s * acc_nav[:, 1], "acc_ml": -s * acc_nav[:, 0] + c * acc_nav[:, 1]}
+        self.buf = {k: np.concatenate([self.buf[k], v]) if self.buf else v for k, v in new.items()}
+        self.n += len(t)
+        if self.on_nav is not None:
+            self.on_nav(t, new["acc_v"], gyr_nav[:, 2])
+
+    # -- decisions -------------------------------------------------------------------------------
+    def _detect(self, lo: int, hi: int):
+        """The offline IC detector on the buffered samples ``[lo, hi)`` (absolute indices)."""
+        a, b = lo - self.b0, hi - self.b0
+        return self.offline({k: v[a:b] for k, v in self.buf.items()}, self.fs)
+
+    def _decide(self, end: bool) -> None:
+        t = self.buf["t"]
+        for i, f, _, _ in self.decider.decide_until(self.n, self._detect, end=end):
+            self.decided.append((i, float(t[i - self.b0]), float(t[f - self.b0])))
+
+    def _report(self, final: bool) -> list:
+        out = []
+        done = self.decider.done
+        t_done = self.buf["t"][done - self.b0] if self.buf and done >= self.b0 else -np.inf
+        while self.decided:
+            i, ti, tf = self.decided[0]
+            if len(self.decided) < 2 and not final and not t_done - ti > self.max_step_s:
+                break  # a next contact within max_step_s may still be decided
+            ts = np.array([p[1] for p in self.decided[:2]])
+            end, has_next, conf = K.contact_rows(ts, self.max_step_s)  # as steps_from_events
+            keep, spans = (np.ones(ts.size, bool), np.zeros(ts.size, bool)) if not self.gaps else \
+                cut_contacts_at_gaps(ts, end, has_next, self.gaps)  # as cut_steps_at_gaps
+            if keep[0]:  # (a contact inside a recording gap is dropped, B11)
+                end0 = ti if spans[0] else float(end[0])
+                out.append((ti, ti, end0, float(conf[0]), {"fc_s": tf}))
+            self.decided.pop(0)
+        return out
+
+    def _trim(self) -> None:
+        # keep the next decision's window, the final one's (flush at n >= next_t - hop) and t[done]
+        d = self.decider
+        drop = max(0, min(d.next_t - d.hop - d.span, d.done) - self.b0)
+        if drop > 0:
+            self.buf = {k: v[drop:] for k, v in self.buf.items()}
+            self.b0 += drop
+
+    # -- stream ----------------------------------------------------------------------------------
+    def process(self, t: np.ndarray, v: np.ndarray) -> list:
+        t, v = self.bridge(t, v)  # W59: dropped samples bridged as detect's input (W34)
+        if self.rotation is not None:
+            v = np.column_stack([v[:, :3] @ self.rotation.T, v[:, 3:6] @ self.rotation.T])
+        first = False
+        if self.q is None:
+            self.raw.append((t, v))
+            tt = np.concatenate([r[0] for r in self.raw])
+            if tt.size < self.n0:
+                return []
+            vv = np.concatenate([r[1] for r in self.raw])
+            self.raw = []
+            t, v, first = tt, vv, True
+            self._start(v)
+        self._nav(t, v[:, :3], v[:, 3:6], first)
+        self._decide(end=False)
+        out = self._report(final=False)
+        self._trim()
+        return out
+
+    def _start(self, v: np.ndarray) -> None:
+        self.q = quat_from_matrix(gravity_rotation(v[:self.n0, :3].mean(axis=0)))  # as waist_imu
+
+    def flush(self) -> list:
+        if self.q is None and self.raw:  # shorter than the initial attitude window: start anyway
+            tt = np.concatenate([r[0] for r in self.raw])
+            vv = np.concatenate([r[1] for r in self.raw])
+            self.raw = []
+            self.n0 = min(self.n0, tt.size)
+            self._start(vv)
+            self._nav(tt, vv[:, :3], vv[:, 3:6], True)
+        if self.n == 0:
+            return []
+        self._decide(end=True)
+        return self._report(final=True)

@@ -1,0 +1,188 @@
+"""The streaming tracker's input checks on the values (numpy only): units and plausibility on the first seconds of
+each stream (decision B119, offline's :mod:`pdrlearn.kernels.units` checks) and frozen sensors (decision B120).
+
+``pdrlearn run`` / ``track`` refuse a session file whose accelerometer reads ~1 g instead of ~9.81 m/s^2 at rest,
+or whose gyroscope turns faster than a 2000 deg/s sensor in rad/s; :class:`pdrlearn.runtime.Tracker` pushes did
+not (a foot accelerometer in g: 9.15 m for 89.75 m, no word). :class:`UnitGuard` holds the first
+:data:`GUARD_S` seconds of each accelerometer and gyroscope stream the tracker uses and runs the same checks on
+them, once per stream, before the push that completes them is taken (a refused push changes nothing, E29);
+the foot and waist gyroscopes together are checked for B91's swapped units. :class:`FrozenWatch` follows each
+3-axis stream for runs of bit-identical samples (:data:`pdrlearn.kernels.units.FROZEN_S`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.kernels.units import FROZEN_S, WALKING_ACC_STD, check_units, frozen_message, swapped_units, swing_rate
+
+#: decision B119: seconds of a stream the unit checks judge (5 s: a few strides of foot-flats for B78's quietest
+#: windows, B91's swing needs walking; the steps of these seconds are emitted before the check, so short)
+GUARD_S = 5.0
+#: the sensors whose units are checked (the streamed tracker's IMUs; the kind check_units judges each by)
+GUARDED = {"fAccelerometer": "accelerometer", "fGyroscope": "gyroscope", "wAccelerometer": "accelerometer",
+           "wGyroscope": "gyroscope"}
+#: the 3-axis streams watched for frozen samples (decision B120)
+WATCHED = ("fAccelerometer", "fGyroscope", "wAccelerometer", "wGyroscope", "wMagneticField")
+
+
+class _Kind:
+    """What :func:`pdrlearn.kernels.units.check_units` reads of a sensor spec (``pdrlearn.io.sensors`` imports
+    pandas; the runtime numpy only)."""
+
+    __slots__ = ("kind", "name")
+
+    def __init__(self, name: str, kind: str):
+        self.name, self.kind = name, kind
+
+
+def as_arrays(tv) -> tuple[np.ndarray, np.ndarray]:
+    """A pushed ``(t, values)`` (checked by the tracker) as float64 ``(n,)`` and ``(n, k)`` arrays."""
+    t = np.asarray(tv[0], dtype=np.float64).reshape(-1)
+    v = np.asarray(tv[1], dtype=np.float64)
+    return t, v.reshape(len(t), -1)
+
+
+class UnitGuard:
+    """Decision B119: the first :data:`GUARD_S` seconds of each accelerometer, checked once; each gyroscope's
+    windows of :data:`GUARD_S` seconds for as long as it streams (a rate beyond a 2000 deg/s gyroscope in rad/s
+    can not be rad/s: a waist in deg/s shows it at its first turn, not in a straight line); B91's swapped units on
+    the first gyroscope window in which its unit's accelerometer shows movement (B37's |acc| sd over
+    :data:`~pdrlearn.kernels.units.WALKING_ACC_STD`)."""
+
+    def __init__(self, used):
+        self.held: dict[str, list] = {n: [] for n in GUARDED if n in set(used)}
+        self.judged: set[str] = set()  # accelerometers checked; gyroscopes seen in motion (B91 judged)
+        self.rates: dict[str, float] = {}  # B91's swing rate of each gyroscope judged in motion (rad/s)
+
+    def wanted(self) -> list[str]:
+        """The streams whose pushed samples :meth:`check` still reads: every gyroscope; an accelerometer until it is
+        checked and its gyroscope has been seen in motion."""
+        return [n for n in self.held if GUARDED[n] == "gyroscope" or n not in self.judged
+                or (n[0] + "Gyroscope" in self.held and n[0] + "Gyroscope" not in self.judged)]
+
+    @staticmethod
+    def _joined(chunks, t0: float = -math.inf, t1: float = math.inf):
+        if not chunks:
+            return None
+        t = np.concatenate([c[0] for c in chunks])
+        v = np.concatenate([c[1] for c in chunks])
+        keep = (t >= t0) & (t <= t1)
+        return t[keep], v[keep]
+
+    def check(self, arrays: dict[str, tuple[np.ndarray, np.ndarray]]) -> tuple[dict, set]:
+        """Raise a one-line :class:`DataError` when a stream whose held samples plus ``arrays[name]`` (this push's)
+        complete a window of :data:`GUARD_S` fails the checks; returns those windows and the gyroscopes among
+        them seen in motion for the first time (for :meth:`take`). Changes nothing."""
+        ready = {}
+        for name, chunks in self.held.items():
+            tv = arrays.get(name)
+            if (name in self.judged and GUARDED[name] == "accelerometer") or tv is None or not len(tv[0]):
+                continue
+            t0 = float((chunks[0] if chunks else tv)[0][0])
+            if float(tv[0][-1]) - t0 >= GUARD_S:
+                ready[name] = self._joined([*chunks, tv], t0, t0 + GUARD_S)
+        moving = set()
+        for name, (t, _) in ready.items():
+            acc = name[0] + "Accelerometer"
+            if GUARDED[name] == "gyroscope" and name not in self.judged:
+                a = self._joined([*self.held.get(acc, ()), arrays[acc]] if acc in arrays else self.held.get(acc, ()),
+                                 float(t[0]), float(t[-1]))
+                if a is None or len(a[0]) < 3 or float(np.std(np.linalg.norm(a[1], axis=1))) > WALKING_ACC_STD:
+                    moving.add(name)
+        self._judge(ready, moving)
+        return ready, moving
+
+    def finish(self) -> None:
+        """The end of a stream (``flush``): the windows begun, checked on what they have (at least 10 samples, as
+        offline's checks; no B91 without movement)."""
+        ready = {n: self._joined(c) for n, c in self.held.items() if sum(len(x[0]) for x in c) >= 10
+                 and not (n in self.judged and GUARDED[n] == "accelerometer")}
+        self._judge(ready, set())
+        self.held.clear()
+
+    def _judge(self, ready: dict, moving: set) -> None:
+        for name, (t, v) in ready.items():
+            span = float(t[-1] - t[0])
+            what = (f"its first {span:.1f} s" if name not in self.judged
+                    else f"its samples of {float(t[0]):.1f}-{float(t[-1]):.1f} s")
+            check_units(_Kind(name, GUARDED[name]), v, f"{name} ({what} pushed to the Tracker, decision B119)",
+                        declare="", t=t)
+        rates = {**self.rates, **{n: swing_rate(ready[n][1]) for n in moving}}
+        f99, w99 = rates.get("fGyroscope", math.nan), rates.get("wGyroscope", math.nan)
+        if moving and swapped_units(f99, w99):
+            raise DataError(
+                f"fGyroscope, wGyroscope: the foot and waist streams look swapped: the foot unit turns at "
+                f"{np.degrees(f99):.0f} deg/s (99th percentile of |gyro| over its first seconds) while the waist unit "
+                f"swings at {np.degrees(w99):.0f} deg/s, as a foot does (decisions B91, B119); push the foot unit's "
+                "samples as fAccelerometer / fGyroscope and the waist unit's as wAccelerometer / wGyroscope (check "
+                "which Bluetooth id is which unit)")
+
+    def take(self, arrays: dict, judged: tuple[dict, set]) -> None:
+        """Hold the pushed samples; an accelerometer checked is dropped, a gyroscope's next window begun; keep an
+        accelerometer's samples while its gyroscope has not been seen in motion (the movement test reads them)."""
+        ready, moving = judged
+        for name, tv in arrays.items():
+            if name in self.held and len(tv[0]):
+                self.held[name].append(tv)
+        for name in moving:
+            self.rates[name] = swing_rate(ready[name][1])
+        self.judged.update(n for n in ready if GUARDED[n] == "accelerometer" or n in moving)
+        for name, (t, _) in ready.items():
+            if GUARDED[name] == "gyroscope":
+                self.held[name] = [c for c in self.held[name] if c[0][-1] > t[-1]]
+        for name, chunks in self.held.items():  # an accelerometer's samples: for its own window or its gyroscope's
+            if GUARDED[name] != "accelerometer":
+                continue
+            gyro = name[0] + "Gyroscope"
+            users = [n for n in (name, gyro) if n in self.held and n not in self.judged]
+            start = min([float(self.held[n][0][0][0]) for n in users if self.held[n]], default=math.inf)
+            self.held[name] = [c for c in chunks if c[0][-1] >= start] if users else []
+
+
+class FrozenWatch:
+    """Decision B120: one warning per run of bit-identical consecutive samples of a 3-axis stream lasting
+    :data:`~pdrlearn.kernels.units.FROZEN_S` or more, given by the push in which the run reaches it (the streamed
+    form of :func:`~pdrlearn.kernels.units.frozen_spans`)."""
+
+    def __init__(self):
+        #: stream -> (first time of its current run of identical samples, samples in it, the sample, warned)
+        self.run: dict[str, tuple[float, int, list, bool]] = {}
+
+    def feed1(self, name: str, t: float, vals: list) -> str | None:
+        """:meth:`feed` of one sample on Python floats (the tracker's one-sample path, decision E17)."""
+        r = self.run.get(name)
+        if r is None or r[2] != vals:
+            self.run[name] = (t, 1, vals, False)
+            return None
+        first, n, warned = r[0], r[1] + 1, r[3]
+        msg = None
+        if not warned and t - first >= FROZEN_S:
+            msg, warned = frozen_message(name, first, t, n, vals, ongoing=True), True
+        self.run[name] = (first, n, vals, warned)
+        return msg
+
+    def feed(self, name: str, t: np.ndarray, v: np.ndarray) -> str | None:
+        """The warning line for ``name`` when one of its runs of identical samples reaches the limit in this push
+        (the first such run; each run is warned about once)."""
+        prev = self.run.get(name)
+        same = np.empty(len(t), dtype=bool)
+        same[0] = prev is not None and list(prev[2]) == v[0].tolist()
+        same[1:] = np.all(v[1:] == v[:-1], axis=1)
+        starts = np.flatnonzero(~same).tolist()
+        bounds = [0, *starts] if same[0] else starts
+        msg = None
+        for k, i in enumerate(bounds):
+            j = (bounds[k + 1] if k + 1 < len(bounds) else len(t)) - 1  # the run's last row
+            go_on = i == 0 and bool(same[0])  # the run held before this push goes on
+            first, n = (prev[0], prev[1] + j + 1) if go_on else (float(t[i]), j - i + 1)
+            warned = go_on and prev[3]
+            if not warned and float(t[j]) - first >= FROZEN_S and msg is None:
+                msg = frozen_message(name, first, float(t[j]), n, v[j], ongoing=j == len(t) - 1)
+                warned = True
+            if j == len(t) - 1:
+                self.run[name] = (first, n, v[j].tolist(), warned)
+        return msg

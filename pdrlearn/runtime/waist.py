@@ -1,0 +1,530 @@
+"""The lean runtime's waist-only tracker: a belt phone or lower-back IMU, numpy only (decisions W92-W95).
+
+:class:`WaistTracker` runs a **waist bundle** (``pdrlearn export CAL.json --out BUNDLE``: the calibrated
+``waist-pendulum`` parameters (W87's rate included), the options and the unit's axis frame): ``push(t, acc, gyr)``
+returns the steps that became final, as :class:`pdrlearn.waist.WaistTracker` does with the PARAMS.json. Both are
+:class:`WaistStream` -- one implementation (W64's reporting rules, the kernels ``track_waist`` calls, W31's
+contacts from :mod:`pdrlearn.kernels.waist_stream`) -- so their steps are equal; this module imports numpy and
+:mod:`pdrlearn.kernels` only (``tests/test_runtime_imports.py``).
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.runtime.fixes import FixInput
+
+log = logging.getLogger(__name__)
+
+#: W64: the fragment test (W27) reads at most this many steps of the open walking sequence (about a minute of
+#: walking; the recordings we have walk at most ~40 steps between stops, so it equals the replay's whole sequence)
+FRAGMENT_CONTEXT_STEPS = 100
+#: W64: a step is reported once this many later contacts of its walking sequence are decided (or it ended)
+LOOKAHEAD_ROWS = 2
+#: rows before the reported one that its heading window reads: W82's slow-turn window reads 3 strides back, and the
+#: window's first step has no step before it for its stride rate (W24), so one more
+HEADING_LOOKBACK_ROWS = 4
+#: W65: without a declared frame, inference is tried on the held samples every INFER_EVERY_S of new data, from
+#: frame_inference.MIN_WALK_S on; at most the last INFER_MAX_S seconds are held meanwhile
+#: the straight / turning prior of the gyro heading (decision W7; ``pdrlearn.waist.heading.DEFAULT_TURN_GMM``)
+DEFAULT_TURN_GMM = {"means": [0.03, 0.45], "sds": [0.04, 0.25], "weights": [0.7, 0.3]}
+
+
+@dataclass(frozen=True)
+class LiveStep:
+    """One reported contact, as a row of ``track_waist(...).steps`` with its trajectory point.
+
+    ``t`` the initial contact (s, the pushed clock); ``end_s`` the next contact of the walking sequence
+    (``== t`` for a contact that closes one: ``length_m`` 0); ``length_m`` (m) and ``heading_rad`` (ENU, rad,
+    start heading added) of the step; ``x``, ``y`` (m) the position at ``end_s``; ``side`` is ``None`` (the
+    detector's left/right guess, W20, is internal); ``merged``: a W27 fragment whose length its neighbour carries;
+    ``turning``: the stride's straight (0) / turning (1) class (seed 003 sec. 3.3)."""
+
+    t: float
+    end_s: float
+    length_m: float
+    heading_rad: float
+    x: float
+    y: float
+    has_next: bool
+    merged: bool = False
+    turning: int = 0
+    side: str | None = None
+
+
+class WaistStream(FixInput):
+    """The live waist-pendulum tracker's stream processing (decisions W31, W64, W92): shared by
+    :class:`WaistTracker` (a waist bundle) and :class:`pdrlearn.waist.WaistTracker` (a PARAMS.json), which differ
+    only in where the parameters and the axis frame come from.
+
+    ``params``: an object with ``leg_m``, ``k``, ``f_m``, ``gyro_bias_rps``, ``turn_gmm`` (the resolved
+    :class:`~pdrlearn.waist.params.WaistParams`, or the bundle's); ``options``: the resolved pipeline options
+    (``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``slow_turn_rps``, ``initial_heading``);
+    ``rotation``: the sensor -> body FLU matrix (None: the subclass's ``_frame`` finds one); ``start``: ``(x0, y0,
+    h0)`` (m, m, rad ENU); ``warnings``: the lines so far (logged here)."""
+
+    _name = "WaistTracker"
+
+    def __init__(self, fs: float, *, params, options: dict, walk_threshold: float, rotation, start: tuple,
+                 warnings: list[str], keep_steps: int | None = None):
+        from collections import deque
+
+        from pdrlearn.kernels.waist import TurnPrior
+        from pdrlearn.kernels.waist_stream import MAX_STEP_S
+
+        self.fs = float(fs)
+        self.params = params
+        self.options = options
+        x0, y0, self._h0 = (float(v) for v in start)
+        self._xy0 = (x0, y0)
+        self._sx = self._sy = 0.0  # running sums of the displacements (as track_waist's cumsum)
+        self.position = (x0, y0)
+        self.heading = float(self._h0)
+        self._init_fixes((x0, y0))  # decisions D19-D21: add_fix
+        self.warnings: list[str] = list(warnings)
+        for w in warnings:
+            log.warning("live waist tracker: %s", w)
+        self.steps: deque[LiveStep] = deque(maxlen=keep_steps)
+        self._thr = float(walk_threshold)
+        self._max_step_s = MAX_STEP_S
+        gmm = params.turn_gmm or {}  # as TurnClassifier(**turn_gmm) before a fit: the W7 prior where unset
+        self._clf = TurnPrior(*(gmm.get(k) if gmm.get(k) is not None else DEFAULT_TURN_GMM[k]
+                                for k in ("means", "sds", "weights")))
+        self._rot = None if rotation is None else np.asarray(rotation, dtype=float).reshape(3, 3)
+        self._proc = None
+        self._last_t = -np.inf
+        self._dts: list[float] | None = []  # the first sample intervals, until the unit check (E29)
+        # samples of the navigation frame (absolute index b0 + i) since the oldest one a pending step needs
+        self._b0 = 0
+        self._bt = np.zeros(0)
+        self._bv = np.zeros(0)  # vertical acceleration (gravity removed)
+        self._bw = np.zeros(0)  # vertical rate (rad/s)
+        self._bc = np.zeros(0)  # its running integral, minus the gyro bias (rad)
+        self._cum_last = 0.0
+        self._w_last: float | None = None
+        self._t_prev: float | None = None
+        # contacts reported by the detector (rows of track_waist's steps table): id -> row
+        self._rows: dict[int, dict] = {}
+        self._n_rows = 0
+        self._next = 0  # id of the next row to report
+        self._absorbed: set[int] = set()  # W27 fragments merged into the row before them
+        self._span_start: dict[int, int] = {}  # row -> first row of its merged step (a fragment before it)
+        self._h_seq: float | None = None  # heading of the last step of the open sequence (before the start rotation)
+        self._cur_gyro = 0.0  # track_waist's ``current`` of the gyro headings (with integrate_stops)
+        self._cur_out = 0.0  # and of the reported headings
+        self._stop_cum: float | None = None  # running integral at the last sequence's closing contact
+        self._seen_seq = False
+        self._n_gaps = 0
+        self._cum_first: float | None = None  # running integral at the first contact (W74)
+        self._untracked_warned = False
+
+    # -- the axis frame (hooks: pdrlearn.waist.WaistTracker infers or checks it, W65 / B108) -------------
+    def _frame_pending(self) -> bool:
+        """Whether pushed samples still go through :meth:`_frame` (a frame inference or check pending)."""
+        return False
+
+    def _frame(self, t: np.ndarray, v: np.ndarray):
+        """Samples to feed once a frame is known (None while it is not): here the frame is given."""
+        self._start_proc()
+        return t, v
+
+    def _held_size(self) -> int:
+        return 0
+
+    def _no_frame_at_end(self) -> None:
+        """:meth:`flush` before any frame was known."""
+
+    def state_size(self) -> int:
+        """Numbers the tracker holds to process what comes (not :attr:`steps`): its sample buffer and pending rows,
+        the held samples of W65 and the W31 detector's window; bounded over any stream length (decision W64)."""
+        n = 4 * self._bt.size + 5 * len(self._rows) + len(self._absorbed) + len(self._span_start)
+        n += self._held_size()
+        p = self._proc
+        if p is not None:
+            n += sum(np.size(v) for v in p.buf.values()) + 3 * len(p.decided) + sum(np.size(r[1]) for r in p.raw)
+            n += p.bridge.tail_v.size + p.bridge.tail_t.size + 2 * sum(len(g) for g in p.gaps.values())
+        return int(n)
+
+    # -- input -------------------------------------------------------------------------------------------
+    def push(self, t, acc, gyr) -> list[LiveStep]:
+        """Add samples: ``t`` (n,) s increasing, ``acc`` (n, 3) m/s^2 with gravity, ``gyr`` (n, 3) rad/s, in the
+        unit's sensor frame. Returns the steps reported by this push (decision W64: once final); a push without
+        samples (``push([], [], [])``) returns none and changes nothing (decision E40)."""
+        t = np.asarray(t, dtype=np.float64).reshape(-1)
+        acc, gyr = np.asarray(acc, dtype=np.float64), np.asarray(gyr, dtype=np.float64)
+        if not t.size and not acc.size and not gyr.size:  # decision E40: an empty push is a no-op
+            return []
+        if acc.ndim == 1 and acc.size == 3 and t.size == 1:
+            acc, gyr = acc.reshape(1, 3), gyr.reshape(1, 3)
+        if acc.shape != (t.size, 3) or gyr.shape != (t.size, 3):
+            raise DataError(f"{self._name}.push: expected acc and gyr of shape ({t.size}, 3) for {t.size} "
+                            f"timestamps, got {acc.shape} and {gyr.shape}")
+        if not t.size:
+            return []
+        if not (np.isfinite(t).all() and np.isfinite(acc).all() and np.isfinite(gyr).all()):
+            raise DataError(f"{self._name}.push: NaN or inf in the pushed samples; drop those samples")
+        if t[0] <= self._last_t or (t.size > 1 and np.any(np.diff(t) <= 0)):
+            raise DataError(f"{self._name}.push: timestamps must increase strictly across pushes (seconds)")
+        if self._dts is not None:
+            self._unit_check(t)
+        self._last_t = float(t[-1])
+        v = np.column_stack([acc, gyr])
+        if self._proc is None or self._frame_pending():
+            v_t = self._frame(t, v)
+            if v_t is None:
+                return []
+            t, v = v_t
+        return self._feed(self._proc.process(t, v), final=False)
+
+    def _unit_check(self, t: np.ndarray) -> None:
+        """Decision E29 as the runtime's: the first RATE_PROBE_MIN sample intervals give a rate more than
+        RATE_UNIT_FACTOR away from ``fs``: the timestamps are not in seconds (in ms the W31 detector re-ran its
+        window on every sample, for minutes, and gave no step). One line, before anything is fed."""
+        from pdrlearn.runtime.resample import RATE_PROBE_MIN, check_rate_unit
+
+        d = np.diff(t, prepend=self._last_t) if np.isfinite(self._last_t) else np.diff(t)
+        dts = self._dts + d[:RATE_PROBE_MIN].tolist()
+        if len(dts) < RATE_PROBE_MIN:
+            self._dts = dts
+            return
+        check_rate_unit(f"{self._name}.push", 1.0 / float(np.median(dts[:RATE_PROBE_MIN])), self.fs, "fs=")
+        self._dts = None  # judged once
+
+    def flush(self) -> list[LiveStep]:
+        """End of the stream: decide the last contacts and report every step left."""
+        if self._proc is None:
+            self._no_frame_at_end()
+            return []
+        out = self._feed(self._proc.flush(), final=True)
+        self._warn_unused_fixes()  # decision D21
+        return out
+
+    def _start_proc(self) -> None:
+        if self._proc is not None:
+            return
+        from pdrlearn.kernels.waist_stream import RealtimeContacts, rule_contacts
+
+        # the waist-ic detector's defaults (W31), as ``track --pipeline waist-pendulum --realtime`` runs it
+        rules = rule_contacts({"walk_threshold": self._thr, "max_step_s": self._max_step_s,
+                               "rhythm": bool(self.options["rhythm"])})
+        self._proc = RealtimeContacts(self.fs, rules, rotation=self._rot, max_step_s=self._max_step_s,
+                                      on_nav=self._add)
+
+    # -- the navigation-frame samples -------------------------------------------------------------------
+    def _add(self, t: np.ndarray, acc_v: np.ndarray, w_z: np.ndarray) -> None:
+        w = w_z - self.params.gyro_bias_rps
+        if self._w_last is None:  # rate_integral: 0 at the first sample, trapezoids in order (as one cumsum)
+            inc = 0.5 * (w[1:] + w[:-1]) * np.diff(t)
+            c = np.cumsum(np.concatenate([[0.0], inc]))
+        else:
+            inc = 0.5 * (w + np.concatenate([[self._w_last], w[:-1]])) * np.diff(np.concatenate([[self._t_prev], t]))
+            c = np.cumsum(np.concatenate([[self._cum_last], inc]))[1:]
+        self._w_last, self._t_prev, self._cum_last = float(w[-1]), float(t[-1]), float(c[-1])
+        self._bt = np.concatenate([self._bt, t])
+        self._bv = np.concatenate([self._bv, acc_v])
+        self._bw = np.concatenate([self._bw, w_z])
+        self._bc = np.concatenate([self._bc, c])
+
+    def _idx(self, ts: float) -> int:
+        """Buffer index of the sample at time ``ts`` (a contact is a sample)."""
+        i = min(int(np.searchsorted(self._bt, ts - 0.25 / self.fs)), self._bt.size - 1)
+        if not abs(self._bt[i] - ts) < 0.5 / self.fs:  # an internal error, not the caller's: say so
+            raise RuntimeError(f"{self._name}: the sample at {ts:.3f} s left the buffer "
+                               f"({self._bt[0]:.3f}-{self._bt[-1]:.3f} s); please report this")
+        return i
+
+    def _trim(self) -> None:
+        """Drop the samples no future report reads: contacts still to come have their IC after the detector's
+        ``done``; the pending ones (the detector's and ours, from HEADING_LOOKBACK_ROWS rows before the next) are
+        kept."""
+        lows = [self._proc.decider.done + 1 - self._b0]
+        lows += [i - self._b0 for i, *_ in self._proc.decided]
+        k = max(self._next - HEADING_LOOKBACK_ROWS, 0)
+        if k in self._rows:
+            lows.append(self._idx(self._rows[k]["t"]))
+        drop = max(0, min(lows) - 2)
+        if drop:
+            self._bt, self._bv, self._bw, self._bc = (a[drop:] for a in (self._bt, self._bv, self._bw, self._bc))
+            self._b0 += drop
+
+    # -- contacts -> steps ------------------------------------------------------------------------------
+    def _feed(self, contacts: list, *, final: bool) -> list[LiveStep]:
+        for ev, _start_s, end, _conf, extra in contacts:
+            k = self._n_rows
+            prev = self._rows.get(k - 1)
+            seq = k if prev is None or not prev["has_next"] else prev["seq"]
+            self._rows[k] = {"t": float(ev), "end": float(end), "has_next": bool(end > ev), "seq": seq,
+                             "fc": float(extra.get("fc_s", np.nan))}
+            self._n_rows += 1
+        if self._proc is not None and len(self._proc.gaps.get("online stream", ())) > self._n_gaps:
+            self._gap_warnings()
+        out = []
+        while self._next < self._n_rows and self._ready(self._next, final):
+            out.append(self._report(self._next))
+            self._next += 1
+            old = self._next - LOOKAHEAD_ROWS - FRAGMENT_CONTEXT_STEPS - 1
+            if old in self._rows:
+                del self._rows[old]
+        if self._proc is not None:
+            self._trim()
+        return out
+
+    def _gap_warnings(self) -> None:
+        from pdrlearn.kernels.gaps import gap_warnings
+
+        gaps = self._proc.gaps.get("online stream", [])
+        new = gaps[self._n_gaps:]
+        self._n_gaps = len(gaps)
+        for w in gap_warnings({"wAccelerometer, wGyroscope": new}):
+            self.warnings.append(w)
+            log.warning("live waist tracker: %s", w)
+
+    def _check_untracked(self, row: dict, h: float) -> None:
+        """Decision W74, as ``track_waist``: one warning when a step's heading ``h`` (rad, before the start rotation)
+        misses :data:`pdrlearn.waist.heading.UNTRACKED_TURN_WARN_DEG` of the yaw turned since the first contact."""
+        from pdrlearn.kernels.waist import UNTRACKED_TURN_WARN_DEG, turn_gap, untracked_turn_message
+
+        if self._untracked_warned or self._cum_first is None:
+            return
+        diff = np.degrees(float(turn_gap(float(np.interp(row["end"], self._bt, self._bc)) - self._cum_first, h)))
+        if abs(diff) >= UNTRACKED_TURN_WARN_DEG:
+            self._untracked_warned = True
+            msg = untracked_turn_message(float(diff), float(row["end"]), bool(self.options["integrate_stops"]))
+            self.warnings.append(msg)
+            log.warning("live waist tracker: %s", msg)
+
+    @staticmethod
+    def _horizon(k: int) -> int:
+        """W64: the last row row ``k``'s report reads."""
+        return k + LOOKAHEAD_ROWS
+
+    def _ready(self, k: int, final: bool) -> bool:
+        """W64: row ``k`` is final once its walking sequence has ended or the rows to its horizon are known."""
+        if final:
+            return True
+        hz = self._horizon(k)
+        for j in range(k, min(hz, self._n_rows - 1) + 1):
+            if not self._rows[j]["has_next"]:
+                return True  # the sequence is complete
+        return self._n_rows - 1 >= hz
+
+    def _seq_rows(self, k: int) -> list[int]:
+        """The rows of ``k``'s walking sequence from at most FRAGMENT_CONTEXT_STEPS before it to LOOKAHEAD_ROWS
+        after it (or its end): the same rows whatever was pushed when (W64)."""
+        s = self._rows[k]["seq"]
+        lo = max(s, k - FRAGMENT_CONTEXT_STEPS, min(self._rows))
+        ids = []
+        for j in range(lo, min(self._horizon(k) + 1, self._n_rows)):
+            ids.append(j)
+            if not self._rows[j]["has_next"]:
+                break
+        return ids
+
+    def _report(self, k: int) -> LiveStep:
+        from pdrlearn.kernels import waist as K
+
+        p, o = self.params, self.options
+        row = self._rows[k]
+        s = row["seq"]
+        if self._cum_first is None:
+            self._cum_first = float(np.interp(row["t"], self._bt, self._bc))
+        if k == s:  # a walking sequence starts: track_waist's ``current`` (and the turn made standing, W: opt)
+            if self._seen_seq and o["integrate_stops"] and self._stop_cum is not None:
+                self._cur_gyro += float(np.interp(row["t"], self._bt, self._bc)) - self._stop_cum
+            self._seen_seq = True
+            self._h_seq = None
+        ids = self._seq_rows(k)
+        merged, length, turning = False, 0.0, 0
+        if row["has_next"]:
+            # -- heading (seed 003 sec. 3.3 via gyro_headings on the sequence from two steps before) -------
+            lw = max(s, k - HEADING_LOOKBACK_ROWS, ids[0])
+            ev = [self._rows[j]["t"] for j in ids if j >= lw]
+            if self._rows[ids[-1]]["has_next"]:  # the open sequence's next contact is decided (its end)
+                ev.append(self._rows[ids[-1]]["end"])
+            i0 = max(self._idx(ev[0]) - 1, 0)
+            i1 = self._idx(ev[-1]) + 2
+            win = SimpleNamespace(t=self._bt[i0:i1], w_z=self._bw[i0:i1])
+            hd, tr = K.gyro_headings(win.t, win.w_z, np.asarray(ev), predict=self._clf.predict,
+                                     bias_rps=p.gyro_bias_rps, heading0=0.0, cum=self._bc[i0:i1],
+                                     slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
+            j = k - lw
+            turning = int(tr[j])
+            if k == s:
+                h = self._cur_gyro + hd[0]
+            else:
+                h = self._h_seq + (hd[j] - hd[j - 1])
+            self._h_seq = h
+            # -- length (W10 whole-step pendulum, W27 fragments, W19 turn factor) -------------------------
+            a, b = self._span_start.pop(k, k), k
+            if k in self._absorbed:  # a fragment the step before carries (W27)
+                merged = True
+                self._absorbed.discard(k)
+            elif o["merge_fragments"]:  # W27 on the sequence so far (W64): merges are never undone
+                rel = [j for j in ids if j >= ids[0]]
+                hn = np.array([self._rows[j]["has_next"] for j in rel])
+                wins = K.fragment_windows(np.array([self._rows[j]["t"] for j in rel]),
+                                        np.array([self._rows[j]["end"] for j in rel]), hn)
+                owner = {f: ow for ow, (x, y) in wins.items() for f in range(x, y + 1) if f != ow}
+                jk, nb = k - ids[0], k - ids[0] + 1
+                if a == k and jk in owner:  # k is a fragment (one with a fragment merged into it is an owner)
+                    ow = owner[jk]
+                    if ow != nb and not (nb < len(rel) and hn[nb] and nb not in owner):
+                        ow = None  # its owner, the step before, is reported already and the next is no step
+                    if ow is not None:
+                        merged = True
+                        self._span_start[k + 1] = a
+                elif jk in wins and wins[jk][1] == nb:  # the fragment after k merges into k
+                    self._absorbed.add(k + 1)
+                    b = k + 1
+            if not merged:
+                end_b = self._rows[b]["end"]
+                h_m = K.vertical_excursion(self._bv, self.fs, self._idx(self._rows[a]["t"]), self._idx(end_b))
+                dyaw = sum(float(np.interp(self._rows[j]["end"], self._bt, self._bc)
+                                 - np.interp(self._rows[j]["t"], self._bt, self._bc)) for j in range(a, b + 1))
+                length = max(float(K.pendulum_length(np.array([h_m]), p.leg_m, k=p.k, f=p.f_m)[0]), 0.0)
+                if o["turn_factor"]:
+                    length *= float(K.turning_step_factor(np.array([dyaw]))[0])
+            head = h
+            self._check_untracked(row, h)
+        else:  # a contact closing its sequence: no displacement, the sequence's last heading
+            head = self._h_seq if self._h_seq is not None else self._cur_out
+            if self._h_seq is not None:
+                self._cur_gyro = self._cur_out = self._h_seq
+            self._stop_cum = float(np.interp(row["t"], self._bt, self._bc))
+        enu = float(np.angle(np.exp(1j * (head + self._h0))))
+        self._sx += length * np.cos(enu)
+        self._sy += length * np.sin(enu)
+        x, y = self._xy0[0] + self._sx, self._xy0[1] + self._sy
+        self.position, self.heading = (float(x), float(y)), enu
+        fused = self._fuse_step(row["t"], row["end"], length, enu)  # decisions D19-D21
+        if fused is not None:
+            x, y = fused
+        step = LiveStep(t=row["t"], end_s=row["end"], length_m=length, heading_rad=enu, x=float(x), y=float(y),
+                        has_next=row["has_next"], merged=merged, turning=turning)
+        self.steps.append(step)
+        return step
+
+
+# -- the waist bundle (decisions E57, E58) --------------------------------------------------------------
+#: the waist unit's streams a waist bundle tracks (the AHRS reads both, seed 001 sec. 2.2.1)
+WAIST_SENSORS = ("wAccelerometer", "wGyroscope")
+#: the parameter fields a waist bundle's params file must hold (``WaistParams``, resolved at export)
+PARAM_KEYS = ("leg_m", "k", "f_m", "gyro_bias_rps")
+
+
+@dataclass(frozen=True)
+class WaistBundle:
+    """A verified waist-only bundle: ``manifest`` (manifest.json), ``params`` (the resolved waist-pendulum
+    parameters: ``leg_m``, ``k``, ``f_m``, ``gyro_bias_rps``, ``turn_gmm``, ``walk_threshold_mps2``, ``rate_hz``,
+    ``source``, ``pipeline``), ``options`` (the live pipeline options) and ``rotation`` (the sensor -> body FLU matrix
+    of the waist unit, None when the export was given no frame)."""
+
+    path: Path
+    manifest: dict
+    params: SimpleNamespace
+    options: dict
+    rotation: np.ndarray | None
+
+    @property
+    def rate_hz(self) -> float:
+        """The rate (Hz) the step length was calibrated at (W87), NaN when not recorded."""
+        r = self.manifest["sampling"].get("rate_hz")
+        return float(r) if r is not None else math.nan
+
+
+def load_waist_bundle(path: str | Path, *, verify: bool = True) -> WaistBundle:
+    """Open a waist-only bundle (``pdrlearn export CAL.json --out PATH``), checking its schema, version and
+    checksums first (as :func:`pdrlearn.runtime.load_bundle`); a foot-unit bundle or another schema version is one
+    line (decision E58)."""
+    from pdrlearn.runtime.bundle import WAIST_SCHEMA_NAME, _fail, read_manifest, verify_files
+
+    path = Path(path)
+    m = read_manifest(path, schema=WAIST_SCHEMA_NAME)
+    if verify:
+        verify_files(path, m)
+    rel = m["params"]
+    if rel not in m["files"]:
+        raise _fail(path, f"manifest.json names params '{rel}', which it does not list; re-export the bundle")
+    try:
+        p = json.loads((path / rel).read_text())
+    except (OSError, ValueError) as exc:
+        raise _fail(path, f"{rel} is not valid JSON ({exc}); re-export the bundle") from None
+    bad = [k for k in PARAM_KEYS if not isinstance(p.get(k), int | float) or not math.isfinite(p[k])]
+    if bad:
+        raise _fail(path, f"{rel} has no finite {', '.join(bad)}; re-export the bundle")
+    frame = (m.get("frames") or {}).get("waist_matrix")
+    rot = None if frame is None else np.asarray(frame, dtype=float).reshape(3, 3)
+    params = SimpleNamespace(**{k: p.get(k) for k in (*PARAM_KEYS, "turn_gmm", "walk_threshold_mps2", "rate_hz",
+                                                      "source", "pipeline")})
+    return WaistBundle(path, m, params, dict(m["options"]), rot)
+
+
+def _rotation(frame) -> np.ndarray:
+    r = np.asarray(frame, dtype=float)
+    if r.shape != (3, 3) or not np.all(np.isfinite(r)) or abs(abs(np.linalg.det(r)) - 1.0) > 1e-6:
+        raise DataError(f"WaistTracker: frame= must be the 3x3 rotation sensor -> body forward/left/up, got shape "
+                        f"{r.shape}; or export the bundle with 'pdrlearn export CAL.json --frame x=up,y=right,"
+                        "z=forward'")
+    return r
+
+
+class WaistTracker(WaistStream):
+    """Live waist-only tracking from a waist bundle, numpy only (decisions E57, W92-W94; docs/deploying.md).
+
+    ``WaistTracker(load_waist_bundle(PATH), start=(x, y), heading_rad=h)`` then ``push(t, acc, gyr)`` (t (n,) s,
+    acc (n, 3) m/s^2 with gravity, gyr (n, 3) rad/s, in the unit's sensor frame) returns the steps that became final
+    (:class:`LiveStep`: length, heading, position), ``flush()`` the rest; ``add_fix(t, x, y, sigma_m)`` gives it a
+    position fix (decision D19). The steps equal :class:`pdrlearn.waist.WaistTracker` with the calibration file
+    the bundle was exported from (one implementation, :class:`WaistStream`).
+
+    Parameters
+    ----------
+    bundle : a :class:`WaistBundle` (or its folder)
+    fs : the pushed samples' rate (Hz); None: the bundle's calibration rate. Another rate than the calibration's
+        by more than 10 % warns (decision W87)
+    start : ``(x, y)`` or ``(x, y, z)`` (m, ENU; z is not tracked); heading_rad : the direction set off in (rad, ENU,
+        0 = east; W81: a value over 2 pi, degrees, is refused)
+    frame : a 3x3 sensor -> body FLU matrix when the bundle has none (or to override it)
+    keep_steps : how many reported steps :attr:`steps` keeps (None: all)
+    """
+
+    def __init__(self, bundle, *, fs: float | None = None, start=(0.0, 0.0), heading_rad: float = 0.0,
+                 frame=None, keep_steps: int | None = None):
+        from pdrlearn.kernels.waist import rate_mismatch_line
+
+        b = bundle if isinstance(bundle, WaistBundle) else load_waist_bundle(bundle)
+        self.bundle = b
+        if fs is None:
+            fs = b.rate_hz
+        if not (isinstance(fs, int | float) and math.isfinite(fs) and fs > 0):
+            raise DataError(f"WaistTracker: fs={fs!r} must be the sampling rate in Hz (the bundle {b.path} records "
+                            "no calibration rate)")
+        rot = _rotation(frame) if frame is not None else b.rotation
+        if rot is None:
+            raise DataError(f"WaistTracker: bundle {b.path} has no waist axis frame; pass frame= (3x3 sensor -> "
+                            "body FLU) or re-export with 'pdrlearn export CAL.json --frame x=up,y=right,z=forward'")
+        try:
+            x0, y0 = float(start[0]), float(start[1])
+            h0 = float(heading_rad)
+        except (TypeError, ValueError, IndexError):
+            raise DataError(f"WaistTracker: start={start!r} must be (x, y) in m and heading_rad a number") from None
+        if not abs(h0) <= 2 * math.pi:  # decision W81
+            raise DataError(f"WaistTracker: heading_rad={h0!r} is not radians (|value| <= 2 pi); convert degrees "
+                            "with math.radians")
+        warnings = list(b.manifest.get("warnings") or [])
+        line = rate_mismatch_line(b.rate_hz if b.params.source == "calibrated" else math.nan, float(fs),
+                                  f"waist bundle {b.path}")
+        if line:
+            warnings.append(line)
+        thr = b.params.walk_threshold_mps2
+        super().__init__(fs, params=b.params, options=b.options, rotation=rot, start=(x0, y0, h0),
+                         warnings=warnings, walk_threshold=thr if thr is not None else b.manifest["walk_threshold"],
+                         keep_steps=keep_steps)

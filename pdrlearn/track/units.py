@@ -1,0 +1,80 @@
+"""Which body unit a track follows, and whether it covers the walk the session recorded (decisions B126, B127).
+
+``track --units foot`` tracks the foot unit alone (the waist files left out, as ``pdrlearn run --units foot``,
+E26), ``--units waist`` the lower back alone. A session holding both units whose tracked unit starts or stops
+more than :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` inside the other's recording is refused (B126): the other
+unit shows that the walk went on, and the track (and a ``--window``) would describe only part of it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from pdrlearn.errors import DataError, shell_quote
+from pdrlearn.io.sensors import PLACEMENTS as UNITS  # the units ``--units`` accepts (decision B127)
+from pdrlearn.io.session import Session
+
+
+def parse_units(text: str | None) -> tuple[str, ...] | None:
+    """``"foot"``, ``"waist"`` or ``"foot,waist"`` -> the units (None: every unit the session has). One
+    :class:`DataError` line for another name."""
+    if text is None:
+        return None
+    units = tuple(dict.fromkeys(u.strip().lower() for u in str(text).split(",") if u.strip()))
+    bad = [u for u in units if u not in UNITS]
+    if bad or not units:
+        raise DataError(f"--units {text!r}: expected foot, waist or foot,waist (the body units to track with)")
+    return units
+
+
+def keep_units(session: Session, units: tuple[str, ...] | None) -> Session:
+    """Decision B127: the session with the sensor streams of ``units`` only (None: unchanged); one
+    :class:`DataError` line when it has none of a unit asked for."""
+    if units is None:
+        return session
+    missing = [u for u in units if not session.placement_streams(u)]
+    if missing:
+        has = ", ".join(session.placements) or "none"
+        raise DataError(f"{session.where}: --units {','.join(units)}: the session has no {' or '.join(missing)} unit "
+                        f"(it has: {has}); drop --units or name a unit it has")
+    streams = {k: s for k, s in session.streams.items() if s.placement in units}
+    return dataclasses.replace(session, streams=streams)
+
+
+def tracked_unit(pipeline: str) -> str:
+    """The unit a pipeline tracks: the foot for plasys, the lower back for the waist pipelines."""
+    return "foot" if pipeline == "plasys" else "waist"
+
+
+def unit_span(session: Session, unit: str) -> tuple[float, float] | None:
+    """The first and last sample (s) of ``unit``'s streams in the session (None: it has none)."""
+    ts = [s for s in session.placement_streams(unit).values() if len(s)]
+    if not ts:
+        return None
+    return min(float(s.t[0]) for s in ts), max(float(s.t[-1]) for s in ts)
+
+
+def check_tracked_span(session: Session, unit: str) -> None:
+    """Decision B126: refuse, one line, a session whose tracked ``unit`` starts or stops more than
+    :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` inside the other unit's recording (a foot unit whose battery ran
+    out at 180 s while the waist went on to 385 s was tracked "ok", 198.91 of the 425.7 m walked). The mirror
+    case, the other unit stopping early, is refused where a method needs it to cover the tracked one (B21, B83);
+    both name the same two ways out: ``--common-span`` (the time both cover, B83) or ``--units`` (one unit)."""
+    from pdrlearn.io.plasys import SPAN_TOLERANCE_S
+
+    other = "waist" if unit == "foot" else "foot"
+    mine, theirs = unit_span(session, unit), unit_span(session, other)
+    if mine is None or theirs is None:
+        return
+    late, early = mine[0] - theirs[0], theirs[1] - mine[1]
+    if max(late, early) <= SPAN_TOLERANCE_S:
+        return
+    what = " and ".join(p for p, v in ((f"started {late:.2f} s after", late), (f"stopped {early:.2f} s before", early))
+                        if v > SPAN_TOLERANCE_S)
+    folder = shell_quote(session.folder) if session.folder is not None else "SESSION"
+    lo, hi = max(mine[0], theirs[0]), min(mine[1], theirs[1])
+    raise DataError(f"{session.where}: the tracked {unit} unit covers {mine[0]:.2f}-{mine[1]:.2f} s but the {other} "
+                    f"unit {theirs[0]:.2f}-{theirs[1]:.2f} s: it {what} the {other} unit, so the track would describe "
+                    f"only part of the walk -- track the {lo:.2f}-{hi:.2f} s both cover with "
+                    f"`pdrlearn track {folder} --common-span` (decision B83), or the {other} unit alone with "
+                    f"--units {other}, or restore the {unit} files (decision B126)")

@@ -1,0 +1,164 @@
+"""The lean runtime's waist-only tracker (decisions E57-E59, W92-W94): ``pdrlearn export CAL.json`` writes a waist
+bundle, :class:`pdrlearn.runtime.WaistTracker` runs it with numpy alone and gives the steps of the live
+:class:`pdrlearn.waist.WaistTracker` with the same calibration and of ``track --pipeline waist-pendulum --realtime``;
+``pdrlearn run`` replays it; a bundle of the other kind, another schema version or a missing sensor is one line."""
+
+from __future__ import annotations
+
+import copy
+import json
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.errors import DataError, ModelError
+from pdrlearn.export.waist import export_waist
+from pdrlearn.io import read_session, write_session
+from pdrlearn.runtime import WaistTracker, load_bundle, load_waist_bundle
+from pdrlearn.sim import simulate
+from pdrlearn.track.waist import track_waist
+from pdrlearn.waist import WaistTracker as LiveWaistTracker
+from pdrlearn.waist.calibration import calibrate
+from tests.runtime_helpers import push_waist
+
+ROOT = Path(__file__).resolve().parents[1]
+HA001 = ROOT / "datasets" / "real" / "mobgap_HA001_Test11_Trial1"
+
+
+def _frame_arg(s) -> str:
+    return ",".join(f"{k}={v}" for k, v in s.require_frame("waist").to_dict().items())
+
+
+@pytest.fixture(scope="module")
+def sim(tmp_path_factory):
+    """A calibration walk (user 401, 20 m told), its waist bundle and another walk of the same user (402)."""
+    d = tmp_path_factory.mktemp("waist_bundle")
+    cal = calibrate([simulate("A", 401, rate_hz=100.0)], "waist-pendulum", distances=[20.0])
+    cal.save(d / "cal.json")
+    s = simulate("B", 402, rate_hz=100.0)
+    export_waist(d / "cal.json", d / "wb", frame=_frame_arg(s))
+    return {"dir": d, "cal": d / "cal.json", "bundle": d / "wb", "session": s}
+
+
+def _xy(out):
+    return np.array([[o.t, o.end_s, o.length_m, o.x, o.y] for o in out])
+
+
+@pytest.mark.parametrize("how", ["one", "random"])
+def test_a_simulated_walk_on_the_waist_bundle_equals_the_live_tracker_and_the_replay(sim, how):
+    s = sim["session"]
+    n = len(s["wAccelerometer"].t)
+    chunks = [1] * n if how == "one" else list(np.random.default_rng(5).integers(1, 300, 2000))
+    bundle = load_waist_bundle(sim["bundle"])
+    assert bundle.rate_hz == pytest.approx(100.0) and bundle.params.source == "calibrated"  # W87's rate kept
+    out = push_waist(WaistTracker(bundle, fs=100.0), s, chunks)
+    live = push_waist(LiveWaistTracker(100.0, params=str(sim["cal"]), meta=s.meta, frame=s.require_frame("waist")), s,
+                 [n])
+    assert len(out) == len(live) > 20
+    np.testing.assert_allclose(_xy(out), _xy(live), atol=1e-9, rtol=0)
+    ref = track_waist(s, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+    assert len(ref.steps) == len(out)
+    np.testing.assert_allclose(_xy(out)[:, 3], ref.trajectory["x"].to_numpy()[1:], atol=1e-9, rtol=0)
+    np.testing.assert_allclose(_xy(out)[:, 4], ref.trajectory["y"].to_numpy()[1:], atol=1e-9, rtol=0)
+
+
+@pytest.mark.parametrize("merge", [True, False])
+def test_a_real_lower_back_recording_on_the_waist_bundle_equals_the_live_tracker_and_the_replay(tmp_path, merge):
+    s = read_session(HA001)
+    cal = tmp_path / "cal.json"  # HA001's sensor height, a calibrated K (as calibrate writes them)
+    cal.write_text(json.dumps({"leg_m": 0.964, "k": 1.2137, "f_m": 0.0, "source": "calibrated",
+                               "pipeline": "waist-pendulum", "rate_hz": 100.0,
+                               "options": {"merge_fragments": merge}}))
+    export_waist(cal, tmp_path / "wb", frame=_frame_arg(s))
+    a = s["wAccelerometer"]
+    out = push_waist(WaistTracker(load_waist_bundle(tmp_path / "wb"), fs=a.rate_hz), s,
+                list(np.random.default_rng(7).integers(1, 400, 3000)))
+    live = push_waist(LiveWaistTracker(a.rate_hz, params=str(cal), meta=s.meta), s, [len(a.t)])
+    assert len(out) == len(live) > 50
+    np.testing.assert_allclose(_xy(out), _xy(live), atol=1e-9, rtol=0)
+    if not merge:  # W64: with W27's merges off the live steps are the replay's
+        ref = track_waist(s, pipeline="waist-pendulum", realtime=True, params=str(cal))
+        np.testing.assert_allclose(_xy(out)[:, 3], ref.trajectory["x"].to_numpy()[1:], atol=1e-9, rtol=0)
+        np.testing.assert_allclose(_xy(out)[:, 4], ref.trajectory["y"].to_numpy()[1:], atol=1e-9, rtol=0)
+
+
+SCRIPT = textwrap.dedent("""
+    import json, sys
+    import numpy as np
+    from pdrlearn.runtime import WaistTracker, load_waist_bundle
+    z = np.load(sys.argv[2])
+    tr = WaistTracker(load_waist_bundle(sys.argv[1]), fs=100.0)
+    out = tr.push(z["t"], z["acc"], z["gyr"]) + tr.flush()
+    heavy = sys.argv[3].split(",")
+    print(json.dumps({"loaded": sorted(m for m in heavy if m in sys.modules), "n": len(out)}))
+""")
+
+
+def test_the_waist_runtime_imports_numpy_only(sim, tmp_path):
+    s = sim["session"]
+    a, g = s["wAccelerometer"], s["wGyroscope"]
+    np.savez(tmp_path / "w.npz", t=a.t, acc=a.values, gyr=g.values)
+    heavy = "torch,sklearn,scipy,pandas,onnx,onnxruntime,matplotlib,cv2"
+    r = subprocess.run([sys.executable, "-c", SCRIPT, str(sim["bundle"]), str(tmp_path / "w.npz"), heavy],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr[-2000:]
+    out = json.loads(r.stdout.strip().splitlines()[-1])
+    assert out["loaded"] == [] and out["n"] > 20
+
+
+def test_export_and_run_of_a_waist_bundle_on_the_command_line(sim, tmp_path, capsys):
+    walk = write_session(sim["session"], tmp_path / "walk")
+    assert main(["export", str(sim["cal"]), "--out", str(tmp_path / "b"), "--frame", _frame_arg(sim["session"])]) == 0
+    assert capsys.readouterr().out.startswith(f"waist bundle {tmp_path / 'b'} (")
+    assert main(["run", str(tmp_path / "b"), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    ref = track_waist(sim["session"], pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+    assert summary["n_steps"] == len(ref.steps) and summary["pipeline"] == "runtime"
+    assert summary["distance_m"] == pytest.approx(float(ref.steps["length_m"].sum()), abs=1e-9)
+    assert main(["run", str(tmp_path / "b"), str(walk), "--out", str(tmp_path / "r"), "--force"]) == 0  # a run
+
+
+def _one_line(capsys, argv, pattern):
+    assert main(argv) == 2
+    cap = capsys.readouterr()
+    assert cap.out == "" and len(cap.err.strip().splitlines()) == 1 and pattern in cap.err, cap.err
+
+
+def test_bad_input_is_one_line(sim, tmp_path, capsys):
+    with pytest.raises(ModelError, match="waist-only bundle .*WaistTracker"):
+        load_bundle(sim["bundle"])  # a waist bundle given to the foot runtime
+    other = tmp_path / "v2"
+    other.mkdir()
+    m = json.loads((sim["bundle"] / "manifest.json").read_text())
+    (other / "manifest.json").write_text(json.dumps({**m, "schema_version": 2}))
+    with pytest.raises(ModelError, match="schema version 2, but this runtime reads version 1"):
+        load_waist_bundle(other)
+    (other / "manifest.json").write_text(json.dumps({**m, "schema": "pdrlearn-bundle"}))
+    with pytest.raises(ModelError, match="foot-unit bundle .*Tracker"):
+        load_waist_bundle(other)
+    s = copy.deepcopy(sim["session"])
+    del s.streams["wGyroscope"]
+    walk = write_session(s, tmp_path / "no_gyro")
+    _one_line(capsys, ["run", str(sim["bundle"]), str(walk)], "has no wGyroscope, which the waist bundle")
+    _one_line(capsys, ["run", str(sim["bundle"]), str(walk), "--units", "foot"], "--units is for a foot-unit bundle")
+    with pytest.raises(DataError, match="not radians"):
+        WaistTracker(sim["bundle"], heading_rad=90.0)
+    pll = tmp_path / "pll.json"
+    pll.write_text(json.dumps({"leg_m": 0.9, "k": 1.1, "source": "calibrated", "pipeline": "waist-pll"}))
+    _one_line(capsys, ["export", str(pll), "--out", str(tmp_path / "pb")], "calibrated for waist-pll")
+    nof = tmp_path / "nof"
+    export_waist(sim["cal"], nof)
+    with pytest.raises(DataError, match="no waist axis frame; pass frame="):
+        WaistTracker(nof)
+
+
+def test_a_bundle_applied_at_another_rate_warns_naming_calibrate(sim):
+    tr = WaistTracker(sim["bundle"], fs=25.0)  # decision W87, as track warns
+    assert any("calibrated at 100 Hz, applied to a 25 Hz recording" in w and "pdrlearn calibrate" in w
+               for w in tr.warnings)
+    assert not any("calibrated at" in w for w in WaistTracker(sim["bundle"], fs=100.0).warnings)

@@ -1,0 +1,166 @@
+"""Trial `stats` (session 20, a multi-centre gait trial) on `track-all`: a site's meta.json above the sessions
+(C17), the run record and reproducible tables (C18), tidy sessions.csv / groups.csv columns (C19), duplicate
+uploads and confidence intervals (C20), the report's grouped warnings (C21)."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.cohort import find_sessions, user_sessions
+
+
+@pytest.fixture(scope="module")
+def site_tree(tmp_path_factory) -> Path:
+    """study/centreA/S01/visit1, study/centreA/S02/visit1, study/centreB/S03/visit1 (short simulated walks)."""
+    from pdrlearn import sim
+    from pdrlearn.io import write_session
+
+    root = tmp_path_factory.mktemp("stats") / "study"
+    for site, subj, seed in (("centreA", "S01", 1), ("centreA", "S02", 2), ("centreB", "S03", 3)):
+        write_session(sim.simulate("walk", seed, length_m=12), root / site / subj / "visit1")
+    return root
+
+
+def test_a_site_meta_json_above_the_sessions_hides_none_of_them(site_tree, tmp_path):
+    """C17: `echo '{"site": "A"}' > centreA/meta.json` made track-all take centreA for one session without
+    sensor files (every session below it vanished); a folder with only meta.json and nothing below stays one."""
+    root = tmp_path / "s3"
+    shutil.copytree(site_tree, root)
+    (root / "centreA" / "meta.json").write_text('{"site": "A"}')
+    (root / "centreA" / "S01" / "meta.json").write_text('{"subject": "S01"}')
+    (root / "centreB" / "empty").mkdir()
+    (root / "centreB" / "empty" / "meta.json").write_text('{"name": "empty"}')
+    assert [p.relative_to(root).as_posix() for p in find_sessions(root)] == [
+        "centreA/S01/visit1", "centreA/S02/visit1", "centreB/S03/visit1", "centreB/empty"]
+    assert user_sessions(root / "centreA" / "S01") == [root / "centreA" / "S01" / "visit1"]  # train-all alike
+    (root / "meta.json").write_text('{"study": "6MWT"}')  # the study's own meta.json: still a folder of sessions
+    assert len(find_sessions(root)) == 4
+
+
+def test_the_report_says_a_repeated_warning_once_with_its_runs(tmp_path):
+    """C21: report.md listed the identical "no model" warning 21 times (one per session); now once, with how many
+    runs raised it and the first of them, as track-all prints it (a warning of one run keeps its run prefix)."""
+    from pdrlearn.report.build import collect
+
+    for i in range(5):
+        d = tmp_path / "batch" / f"s{i}"
+        d.mkdir(parents=True)
+        warns = ["no model: the M3 engine without the class rules"] + (["slow gait: not reliable"] if i == 3 else [])
+        (d / "summary.json").write_text(json.dumps({"distance_m": 10.0 + i, "n_steps": 8, "info": {"warnings": warns}}))
+    section = collect(tmp_path / "batch")[0]
+    assert section.title == "Warnings"
+    assert section.warnings == ["no model: the M3 engine without the class rules [5 of 5 runs: s0, s1, s2 and 2 more]",
+                                "s3: slow gait: not reliable"]
+    assert "6 warning(s) from 5 run(s), 2 distinct" in section.text
+
+
+@pytest.fixture(scope="module")
+def runs(site_tree, tmp_path_factory):
+    """track-all of the tree with visit1 of S01 uploaded again as its visit2, twice: once here, once from a copy
+    of the tree in another folder."""
+    import contextlib
+    import io
+
+    base = tmp_path_factory.mktemp("runs")
+    first = base / "here" / "study"
+    shutil.copytree(site_tree, first)
+    shutil.copytree(first / "centreA" / "S01" / "visit1", first / "centreA" / "S01" / "visit2")
+    (first / "centreB" / "S05" / "visit1").mkdir(parents=True)  # fails: its error names its folder
+    (first / "centreB" / "S05" / "visit1" / "meta.json").write_text('{"name": "no data"}')
+    second = base / "elsewhere" / "deeper" / "study"
+    shutil.copytree(first, second)
+    got = []
+    for root, out in ((first, base / "o1"), (second, base / "o2")):
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err):
+            rc = main(["track-all", str(root), "--out", str(out), "--method", "M2", "--group-depth", "1"])
+        got.append((rc, out, err.getvalue()))
+    return first, got
+
+
+def test_run_json_records_version_and_options_and_the_tables_reproduce(runs):
+    """C18: no version or options anywhere, and sessions.csv differed run to run (track_time_s) and between
+    copies of the data (absolute input_dir). Now run.json holds them; sessions.csv / groups.csv are identical."""
+    from pdrlearn import __version__
+
+    root, ((rc1, o1, _), (rc2, o2, _)) = runs
+    assert rc1 == rc2 == 1
+    for name in ("sessions.csv", "groups.csv"):
+        assert (o1 / name).read_bytes() == (o2 / name).read_bytes(), name
+    sessions = pd.read_csv(o1 / "sessions.csv")
+    ok = sessions[sessions["status"] == "ok"]
+    assert "track_time_s" not in sessions and list(ok["input_dir"]) == list(ok["path"])
+    assert sessions.set_index("path").loc["centreB/S05/visit1", "error"].startswith("centreB/S05/visit1: ")
+    assert set(ok["pdrlearn_version"]) == {__version__}
+    run = json.loads((o1 / "run.json").read_text())
+    assert run["pdrlearn_version"] == __version__ and run["command"] == "track-all"
+    assert run["root"] == str(root.resolve()) and run["n_sessions"] == 5 and run["n_tracked"] == 4
+    assert run["options"]["method"] == "M2" and run["options"]["group_depth"] == 1 and run["options"]["jobs"] == 1
+    assert "window" in run["options"] and run["options"]["window"] is None
+    assert set(run["track_time_s"]) == set(sessions["path"])
+    summary = json.loads((o1 / "centreA/S02/visit1/summary.json").read_text())
+    assert summary["pdrlearn_version"] == __version__
+
+
+def test_session_and_group_columns_say_what_they_count(runs):
+    """C19: n_steps mixed strides (foot) and steps (waist) with its meaning in another column; n_strides was a
+    waist-only count of reference strides; median_stride_length_m was missing in summary.json; groups.csv's
+    n_sessions counted tracked sessions while --json's counted all; no sampling rate."""
+    _, ((_, o1, _), _) = runs
+    sessions = pd.read_csv(o1 / "sessions.csv")
+    sessions = sessions[sessions["status"] == "ok"]
+    cols = list(sessions.columns)
+    assert cols[cols.index("n_steps"):cols.index("n_steps") + 4] == [
+        "n_steps", "n_steps_counts", "n_strides_one_foot", "n_steps_both_feet"]
+    assert "n_strides" not in sessions
+    assert (sessions["n_strides_one_foot"] * 2 == sessions["n_steps_both_feet"]).all()
+    from pdrlearn.io import read_session
+
+    root, _ = runs
+    rate = read_session(root / "centreA/S02/visit1").streams["fAccelerometer"].rate_hz
+    assert sessions["rate_hz"].tolist() == [pytest.approx(rate, abs=1e-4)] * 4 and 10 < rate < 200
+    for rel in sessions["path"]:
+        summary = json.loads((o1 / rel / "summary.json").read_text())
+        row = sessions.set_index("path").loc[rel]
+        assert summary["median_stride_length_m"] == pytest.approx(row["median_stride_length_m"], rel=1e-12)
+        assert summary["rate_hz"] == row["rate_hz"]
+    groups = pd.read_csv(o1 / "groups.csv")
+    assert "n_sessions" not in groups and list(groups["n_tracked"]) == [3, 1]
+
+
+def test_a_duplicate_upload_is_named_and_groups_have_a_t_interval(runs):
+    """C20: visit1 copied as visit2 gave two "ok" rows without a word; groups.csv had no confidence interval."""
+    from scipy import stats
+
+    _, ((_, o1, err), _) = runs
+    said = [ln for ln in err.splitlines() if "identical sensor data" in ln]
+    assert len(said) == 1 and "centreA/S01/visit1 and centreA/S01/visit2" in said[0], err
+    sessions = pd.read_csv(o1 / "sessions.csv").set_index("path")
+    assert sessions.loc["centreA/S01/visit2", "duplicate_of"] == "centreA/S01/visit1"
+    assert sessions["duplicate_of"].notna().sum() == 1
+    assert sessions.loc["centreA/S01/visit2", "content_id"] == sessions.loc["centreA/S01/visit1", "content_id"]
+    groups = pd.read_csv(o1 / "groups.csv").set_index("group")
+    v = sessions[sessions["group"] == "centreA"]["gait_speed_mps"].to_numpy(float)
+    half = stats.t.ppf(0.975, len(v) - 1) * v.std(ddof=1) / np.sqrt(len(v))
+    assert groups.loc["centreA", "gait_speed_mps_ci95_low"] == pytest.approx(v.mean() - half, rel=1e-12)
+    assert groups.loc["centreA", "gait_speed_mps_ci95_high"] == pytest.approx(v.mean() + half, rel=1e-12)
+    assert np.isnan(groups.loc["centreB", "gait_speed_mps_ci95_low"])  # one session: no interval
+
+
+def test_track_all_json_counts_found_and_tracked(site_tree, tmp_path, capsys):
+    root = tmp_path / "s"
+    shutil.copytree(site_tree, root)
+    (root / "centreB" / "S04" / "visit1").mkdir(parents=True)
+    (root / "centreB" / "S04" / "visit1" / "meta.json").write_text('{"name": "no data"}')
+    capsys.readouterr()
+    assert main(["track-all", str(root), "--out", str(tmp_path / "o"), "--method", "M2", "--json"]) == 1
+    got = json.loads(capsys.readouterr().out)
+    assert (got["n_sessions"], got["n_tracked"], got["n_failed"]) == (4, 3, 1)
+    assert sum(g["n_tracked"] for g in got["groups"]) == 3 and got["run"]["n_tracked"] == 3
