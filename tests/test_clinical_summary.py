@@ -17,6 +17,7 @@ from pdrlearn.sim.route import parse_route
 from pdrlearn.track.base import get_pipeline
 from pdrlearn.track.clinical import CLINICAL_KEYS, clinical_summary, pauses, turns
 from pdrlearn.track.evaluate import track_summary
+from tests.conftest import REAL
 
 #: two 3 s stops, turns of 180, 90 and -45 deg, a gentle 90 deg curve (8 m radius, ~9 deg/s): 3 bouts, 2 turns
 ROUTE = ("stand:2, straight:8, stand:3, straight:8, turn:180, straight:8, turn:90, straight:6, turn:-45, "
@@ -90,6 +91,52 @@ def test_pause_and_turn_definitions():
     assert clinical_summary(gap)["n_pauses"] == 0
     empty = clinical_summary(_foot_table([0.0]).iloc[:0])
     assert empty["n_walking_bouts"] == 0 and empty["turn_count"] == 0 and empty["stride_time_cv_pct"] is None
+
+
+def test_a_stand_then_a_turn_is_a_pause_and_a_turn():
+    """L119 (session 20 rehab trial): a 40 s stand whose next stride turns 120 deg (then 60 deg) was no pause
+    (heading change >= 30 deg across the interval: 'a turn on the spot') and, the 120 deg spread over 41 s, no
+    turn either. Now the turn's time at 20 deg/s (6 s) is turning, the rest of the excess standing."""
+    t = np.r_[np.arange(6) * 1.2, 6 * 1.2 + 40.0 + np.arange(6) * 1.2]
+    turn = np.zeros(len(t))
+    turn[6:8] = [120.0, 60.0]  # the stride after the stand turns: how the foot tracked the trial's walk
+    for table in (_foot_table(t, turn), _foot_table(t, turn).drop(columns=["turn_angle_rad", "unit"])):
+        c = clinical_summary(table)
+        assert c["n_pauses"] == 1 and c["longest_pause_s"] == pytest.approx(40.0 - 120.0 / 20.0), c
+        assert c["turn_count"] == 1 and np.allclose(turns(table), [180.0])
+
+
+def test_real_walk_with_a_long_stand_before_a_turn(tmp_path):
+    """L119 on a real recording: HA001 Test11 with 120 s of its own quiet standing spliced in at 20 s (the
+    trial's tools/splice.py) - the walker stands, then turns (Test11 turns after its first stop). Before, the
+    summary's pauses were the original's (longest 19.5 s): the 120 s stand ended in a >= 30 deg heading change."""
+    import shutil
+
+    src = REAL / "mobgap_HA001_Test11_Trial1"
+    dst = tmp_path / "t11_stand"
+    shutil.copytree(src, dst)
+    at, dur = 20.0, 120.0
+    for f in dst.glob("w*.csv"):
+        d = pd.read_csv(f)
+        t = d["timestamp"].to_numpy(float) / 1000.0
+        dt = float(np.median(np.diff(t)))
+        quiet = d[(t >= 15.0) & (t < 25.0)].drop(columns="timestamp").to_numpy()  # standing in the original
+        n = int(round(dur / dt))
+        ins = pd.DataFrame(quiet[np.arange(n) % len(quiet)], columns=d.columns[1:])
+        k = int(np.searchsorted(t, at))
+        ins.insert(0, "timestamp", (t[k - 1] + dt * (1 + np.arange(n))) * 1000.0)
+        after = d.iloc[k:].copy()
+        after["timestamp"] += n * dt * 1000.0
+        pd.concat([d.iloc[:k], ins, after]).to_csv(f, index=False)
+    for f in ("steps.csv", "ics.csv", "bouts.csv", "turns.csv"):
+        if (dst / f).exists():
+            d = pd.read_csv(dst / f)
+            for c in [c for c in d.columns if c.endswith("_ms")]:
+                d.loc[d[c] > at * 1000.0, c] += dur * 1000.0
+            d.to_csv(dst / f, index=False)
+    assert main(["track", str(dst), "--out", str(tmp_path / "o")]) == 0
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert summary["longest_pause_s"] >= 120.0 and summary["pause_time_s"] >= 120.0, summary
 
 
 def test_walking_speed_leaves_out_the_pauses():
@@ -292,3 +339,23 @@ def test_summary_says_the_contacts_timing_resolution(walks, pipeline, monkeypatc
         assert summary["timing_resolution_s"] == pytest.approx(0.05)
         foot_between = sub and pipeline == "plasys"
         assert summary["contact_timing"] == (BETWEEN_SAMPLES if foot_between else WHOLE_SAMPLES)
+
+def test_step_time_asymmetry_report_says_what_it_can():
+    """L121 (session 20 rehab trial): one foot's table cannot give a step-time asymmetry (None, why); on the lower
+    back an index under 20 % is the contacts' timing (symmetric walkers read up to 18.8 %): None with the raw
+    index; 20 % or more is reported with the caveat that the size is over-read."""
+    from pdrlearn.track.clinical import ASYMMETRY_FLOOR_PCT, step_time_asymmetry_report
+
+    foot = step_time_asymmetry_report(_foot_table(np.arange(12) * 1.2))
+    assert foot["step_time_asymmetry_pct"] is None and "one foot" in foot["reason"]
+
+    def waist(a, b, n=12):
+        t = np.cumsum(np.r_[0.0, np.tile([a, b], n // 2)])
+        return pd.DataFrame({"start_s": t[:-1], "end_s": t[1:], "has_next": True, "unit": "waist"})
+
+    small = step_time_asymmetry_report(waist(0.50, 0.55))  # SI 9.5 %
+    assert small["step_time_asymmetry_pct"] is None and small["raw_pct"] == pytest.approx(100 * 0.05 / 0.525)
+    assert f"{ASYMMETRY_FLOOR_PCT:.0f} %" in small["reason"]
+    big = step_time_asymmetry_report(waist(0.45, 0.75))  # SI 50 %
+    assert big["step_time_asymmetry_pct"] == pytest.approx(50.0) and big["n_step_times"] == 12
+    assert "over-reads" in big["reason"]

@@ -93,3 +93,51 @@ def test_implausible_calibration_factor_allows_a_slow_walker():
     assert "check --distance" not in low[0]
     high = check_gain([CalibrationWalk(11.0, np.full(9, 1.3), g, name="aid")], "waist-pendulum", base)
     assert len(high) == 1 and "walking aid" in high[0] and "--distance is wrong" in high[0]
+
+
+def test_steps_waist_ic_uses_tracks_gate_on_a_damped_real_walk(tmp_path, capsys):
+    """Decision steps 35 (session 20 rehab trial): real HA001 Test5 with the lower back's dynamic acceleration x
+    0.25 about its 2 s mean (a rollator walker, the trial's damp.py): `steps --detector waist-ic` kept W4's fixed
+    0.5 m/s^2 gate and found 0 steps, silently, while `track` (W76's relative gate) found 11. Both now share the
+    gate: the same contacts."""
+    import json
+    import shutil
+
+    from pdrlearn.cli import main
+    from tests.conftest import REAL
+
+    dst = tmp_path / "t5_damped"
+    shutil.copytree(REAL / "mobgap_HA001_Test5_Trial1", dst)
+    a = pd.read_csv(dst / "wAccelerometer.csv")
+    n = int(round(2.0 / np.median(np.diff(a["timestamp"].to_numpy(float) / 1000.0))))
+    for c in "xyz":
+        m = a[c].rolling(n, center=True, min_periods=1).mean()
+        a[c] = m + 0.25 * (a[c] - m)
+    a.to_csv(dst / "wAccelerometer.csv", index=False)
+    assert main(["steps", str(dst), "--detector", "waist-ic", "--json", "--out", str(tmp_path / "ic.csv")]) == 0
+    found = json.loads(capsys.readouterr().out)
+    assert main(["track", str(dst), "--out", str(tmp_path / "o")]) == 0
+    tracked = pd.read_csv(tmp_path / "o" / "steps.csv")
+    assert found["count"] == len(tracked) >= 9, (found["count"], len(tracked))
+    assert np.allclose(pd.read_csv(tmp_path / "ic.csv")["event_s"], tracked["event_s"])
+
+
+def test_steps_on_a_waist_only_session_scores_one_foots_contacts(tmp_path, capsys):
+    """Decision W96 (session 20 rehab trial): a lower-back detector on a session without ics.csv was scored against
+    steps.csv's strides of one foot - every other-foot step a false positive (precision 0.40 on a 0.4 m/s walk).
+    Now only that foot's recall is scored, and the output says so."""
+    import json
+
+    from pdrlearn.cli import main
+
+    s = tmp_path / "w"
+    assert main(["simulate", "--route", "stand:2, straight:6, stand:2", "--user-seed", "404", "--out", str(s)]) == 0
+    for f in [*s.glob("f*.csv"), s / "ics.csv"]:
+        f.unlink()
+    capsys.readouterr()
+    assert main(["steps", str(s), "--detector", "waist-ic", "--json"]) == 0
+    r = json.loads(capsys.readouterr().out)
+    assert r["one_foot"] == "right" and r["recall"] >= 0.8, r
+    assert r["precision"] is None and r["f1"] is None and r["count"] > 1.5 * r["reference_count"]
+    assert main(["steps", str(s), "--detector", "waist-ic"]) == 0
+    assert "precision, F1 and count error not scored" in capsys.readouterr().out

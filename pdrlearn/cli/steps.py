@@ -76,10 +76,17 @@ def steps(
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, no_walking_message(exc.walk_s, "0 steps"))
         table = pd.DataFrame({"start_s": [], "end_s": [], "event_s": [], "unit": pd.Series(dtype="string"),
                               "confidence": []})
+    merged = 0
+    if det.unit == "foot" and len(table):  # decision steps 34: one row per rest-to-rest stride, as `track`
+        table, merged = _one_per_stride(session, table)
     result: dict = {"session": session.name, "detector": det.name, "unit": det.unit, "count": int(len(table))}
+    if merged:
+        result["merged_detections"] = merged
     score = score_steps(table, session, tolerance_s=tolerance)
     if score is not None:
         result.update({k: score[k] for k in _METRICS})
+        if score.get("one_foot"):  # decision W96
+            result["one_foot"] = score["one_foot"]
     if out is not None:
         with atomic_file(out) as tmp:
             table.to_csv(tmp, index=False)
@@ -89,9 +96,16 @@ def steps(
         print_json(json_safe(result))
         return
     what = "strides" if det.unit == "foot" else "steps"
-    typer.echo(f"{session.name}: {result['count']} {what} ({det.name})")
+    typer.echo(f"{session.name}: {result['count']} {what} ({det.name})"
+               + (f"; {merged} more detection(s) between the same two rests of the foot dropped (one stride each, "
+                  "as `track` integrates it; decision steps 34)" if merged else ""))
     if score is not None:
         typer.echo(f"reference: {score['reference_count']} from {score['reference']}")
+        if score.get("one_foot"):  # decision W96: a lower-back detector against one foot's strides
+            typer.echo(f"recall {score['recall']:.3f} of the {score['one_foot']} foot's {score['reference_count']} "
+                       f"contacts ({score['true_positives']} found, tolerance {tolerance:g} s); precision, F1 and "
+                       f"count error not scored: the other foot's steps are not labelled")
+    if score is not None and not score.get("one_foot"):
         typer.echo(f"precision {score['precision']:.3f}  recall {score['recall']:.3f}  F1 {score['f1']:.3f}  "
                    f"count error {score['count_error_pct']:.1f} %  (tolerance {tolerance:g} s, "
                    f"{score['outside_labels']} detections outside the labelled span"
@@ -105,6 +119,23 @@ def steps(
                        f"+- {score['timing_error_sd_s']:.3f} s")
     if out is not None:
         typer.echo(str(out))
+
+
+def _one_per_stride(session, table):
+    """Decision steps 34: ``table`` (a foot detector's) reduced to the rows ``track`` integrates, one per
+    rest-to-rest stride (:func:`pdrlearn.displace.foot.one_per_rest_stride`, the rests of ``track``'s default
+    M3 stance: the force sensors' when recorded, else the accelerometer/gyroscope one); and how many rows were
+    dropped."""
+    from pdrlearn.displace.foot import force_stance, inertial_stance, one_per_rest_stride
+    from pdrlearn.orient import unit_data
+
+    foot = unit_data(session, "foot", purpose="the rests between strides")
+    stance = force_stance(session, foot.t, foot.gyr)
+    if stance is None:
+        stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
+    ev = table["event_s"] if "event_s" in table else table["end_s"]
+    rows = one_per_rest_stride(foot.t, stance, table["start_s"], table["end_s"], ev)
+    return table.iloc[rows].reset_index(drop=True), int(len(table) - len(rows))
 
 
 def auto_detector(session):

@@ -83,7 +83,8 @@ def stance_runs(t: np.ndarray, stance: np.ndarray, *, merge_s: float = 0.1) -> n
 
 
 def rest_to_rest(t: np.ndarray, stance: np.ndarray, starts: np.ndarray, ends: np.ndarray, *,
-                 max_rest_s: float = 0.3, tol_s: float = 0.2) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                 max_rest_s: float = 0.3, tol_s: float = 0.2, all_rows: bool = False
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Turn detected step windows into rest-to-rest strides of the foot unit.
 
     A detector may report the swing (toe-off to contact) or a stance-to-stance window; either way the
@@ -95,6 +96,7 @@ def rest_to_rest(t: np.ndarray, stance: np.ndarray, starts: np.ndarray, ends: np
     Returns
     -------
     i0, i1 : sample indices of the stride boundaries;  keep : indices of the input rows used
+    (``all_rows``: every (stride, row) pair before duplicates are dropped, for :func:`one_per_rest_stride`)
     """
     rr = stance_runs(t, stance)
     if len(rr) < 2:
@@ -116,9 +118,26 @@ def rest_to_rest(t: np.ndarray, stance: np.ndarray, starts: np.ndarray, ends: np
     k1 = k0 + 1
     i0 = np.maximum(mid[k0], rr[k0, 1] - 1 - n_rest)
     i1 = np.minimum(mid[k1], rr[k1, 0] + n_rest)
+    if all_rows:
+        return i0, i1, keep
     _, first = np.unique(np.column_stack([i0, i1]), axis=0, return_index=True)
     first = np.sort(first)
     return i0[first], i1[first], keep[first]
+
+
+def one_per_rest_stride(t: np.ndarray, stance: np.ndarray, starts, ends, events) -> np.ndarray:
+    """Decision steps 34: the rows of a foot detector's table that :func:`rest_to_rest` makes strides (what
+    ``pdrlearn track`` integrates), one per rest-to-rest stride: of several detections between the same two
+    rests (a slow stride's toe-off and landing both detected) the one with the latest ``events`` (the landing
+    just before the rest that ends the stride); detections in one rest are dropped. Sorted row indices."""
+    i0, i1, rows = rest_to_rest(t, stance, np.asarray(starts, float), np.asarray(ends, float), all_rows=True)
+    if not len(rows):
+        return np.zeros(0, dtype=int)
+    ev = np.asarray(events, dtype=float)[rows]
+    order = np.lexsort((np.nan_to_num(ev, nan=-np.inf), i1, i0))  # by stride, the latest event last
+    pair = np.column_stack([i0, i1])[order]
+    last = np.r_[np.any(pair[1:] != pair[:-1], axis=1), True]
+    return np.unique(rows[order][last])
 
 
 def twist_yaw(q_start: np.ndarray, q_end: np.ndarray) -> np.ndarray:

@@ -76,9 +76,18 @@ def no_length_bounds_warning(subject: str = "the model", effect: str = "") -> st
 #: samples above the threshold (one-sample spikes split the 0.12-0.19 s foot-flats of the MS recording).
 #: Decision L29: ``stance_mean_min_s`` > 0 also counts a sample as still when the ``min_stance_s`` mean of
 #: |w| centred on it is below the threshold (the offline rule of ``inertial_stance``), and a stance then
-#: needs to last ``stance_mean_min_s`` (not ``min_stance_s``); 0 = L27 alone.
+#: needs to last ``stance_mean_min_s`` (not ``min_stance_s``); 0 = L27 alone. Decision L120: a stance also
+#: survives motion shorter than ``stance_gap_swing_frac`` x the swing before it (the motion from the previous
+#: stance's end to its start), at most ``stance_gap_max_s``: a slow walker's terminal swing passes under the
+#: threshold for ~0.1 s before the heel strike, and the heel rocker after it (0.2-0.3 s) must not end that stance
+#: (offline drops a swing under 0.2 s, ``track.plasys.stance_strides``); 0 (the default) = the fixed
+#: ``stance_gap_s`` alone.
 STANCE_L27_DEFAULTS = {"stance_floor_factor": 2.0, "stance_floor_window_s": 1.0, "stance_gyro_max_rad_s": 2.0,
-                       "stance_gap_s": 0.03, "stance_mean_min_s": 0.07}
+                       "stance_gap_s": 0.03, "stance_mean_min_s": 0.07,
+                       "stance_gap_swing_frac": 0.0, "stance_gap_max_s": 0.5}
+#: decision L120's option (not adopted as the default: its rule failed on the 0.1 m/s walks): give
+#: ``{"stance_gap_swing_frac": STANCE_GAP_SWING_FRAC_OPTION}`` (bundle ``displacement``, ``track --streaming --params``)
+STANCE_GAP_SWING_FRAC_OPTION = 0.35
 
 
 def stance_gyro_threshold(floor: np.ndarray | float, base: float, *, factor: float = 2.0,
@@ -124,7 +133,9 @@ class StanceSegmenter:
                  stance_floor_window_s: float = STANCE_L27_DEFAULTS["stance_floor_window_s"],
                  stance_gyro_max_rad_s: float = STANCE_L27_DEFAULTS["stance_gyro_max_rad_s"],
                  stance_gap_s: float = STANCE_L27_DEFAULTS["stance_gap_s"],
-                 stance_mean_min_s: float = STANCE_L27_DEFAULTS["stance_mean_min_s"]):
+                 stance_mean_min_s: float = STANCE_L27_DEFAULTS["stance_mean_min_s"],
+                 stance_gap_swing_frac: float = STANCE_L27_DEFAULTS["stance_gap_swing_frac"],
+                 stance_gap_max_s: float = STANCE_L27_DEFAULTS["stance_gap_max_s"]):
         self.thr = float(stance_gyro_rad_s)
         self.min_stance_s = float(min_stance_s)
         self.half = float(stance_half_s)
@@ -134,6 +145,10 @@ class StanceSegmenter:
         self.cap = max(float(stance_gyro_max_rad_s), self.thr)
         self.gap = float(stance_gap_s)
         self.mean_min = float(stance_mean_min_s)
+        self.swing_frac, self.gap_max = float(stance_gap_swing_frac), float(stance_gap_max_s)
+        if not (self.swing_frac >= 0 and self.gap_max >= 0):
+            raise DataError(f"StanceSegmenter: stance_gap_swing_frac {stance_gap_swing_frac!r} and stance_gap_max_s "
+                            f"{stance_gap_max_s!r} must be >= 0 (decision L120; 0 = the fixed stance_gap_s)")
         if not (self.factor >= 0 and self.floor_window_s > 0 and self.gap >= 0 and self.mean_min >= 0):
             raise DataError(f"StanceSegmenter: stance_floor_factor {stance_floor_factor!r}, stance_gap_s "
                             f"{stance_gap_s!r} and stance_mean_min_s {stance_mean_min_s!r} must be >= 0, "
@@ -144,6 +159,10 @@ class StanceSegmenter:
         self.closed = False
         self.open_s: float | None = None  # start (s) of the stride in progress
         self.last_boundary: float | None = None
+        self.prev_stance_end: float | None = None  # decision L120: the last stance's last still sample (s)
+        self.moved = False  # decision L120: a sample since the last still one was not still
+        self.run_start = -np.inf  # decision L120: the start (s) of the stance's current still run
+        self.best_run: tuple[float, float] | None = None  # and its longest earlier run
         # decision L27: trailing min_stance_s window of [t, |w|, threshold] (running sum of |w|) and the
         # trailing minimum of its mean (monotonic deque)
         self._mean_q: deque = deque()
@@ -154,8 +173,23 @@ class StanceSegmenter:
     def from_params(cls, params: Mapping) -> StanceSegmenter:
         """From a bundle's ``displacement`` parameters (unknown keys ignored)."""
         keys = ("stance_gyro_rad_s", "min_stance_s", "stance_half_s", "min_step_s", "max_step_s",
-                *STANCE_L27_DEFAULTS)
+                *STANCE_L27_DEFAULTS)  # with decision L120's stance_gap_swing_frac, stance_gap_max_s
         return cls(**{k: float(params[k]) for k in keys if k in params})
+
+    def _gap_now(self) -> float:
+        """Decision L120: the motion (s) the stance in progress survives: ``stance_gap_s``, or
+        ``stance_gap_swing_frac`` x the swing before it (previous stance's end to this one's start) when
+        longer, at most ``stance_gap_max_s``, while the stance has not closed the stride (a stance lasting
+        2 ``stance_half_s`` closes it early: a slow walker's foot-flat; the swing after it may dip under the
+        threshold and must end it) and none of its still runs has lasted ``stance_half_s`` (a foot-flat: an
+        instep mount's fragmented stances must end on the fixed gap, or swing dips chain strides together)."""
+        if self.prev_stance_end is None or self.stance_start is None or self.closed:
+            return self.gap  # a stance that closed its stride (a long foot-flat) ends on the fixed gap
+        s0, s1 = self._stance_run()
+        if s1 - s0 >= self.half - TIE_S:  # a still run of stance_half_s is a foot-flat, no terminal-swing moment
+            return self.gap
+        swing = self.stance_start - self.prev_stance_end
+        return max(self.gap, min(self.swing_frac * swing, self.gap_max))
 
     def _push(self, ti: float, wi: float) -> tuple[float, float]:
         """Add one sample to the trailing window; its mean of |w| and the sample's stance threshold (decision
@@ -208,18 +242,23 @@ class StanceSegmenter:
                 ti, still = tn, wn < th
             if still:
                 if self.stance_start is None:
-                    self.stance_start, self.closed = ti, False
-                self.last_still = ti
-                if not self.closed and ti - self.stance_start >= max(2 * self.half, min_run) - TIE_S:
-                    self._close(self.stance_start + self.half, out)  # long stance: close the stride now
+                    self.stance_start, self.run_start, self.best_run, self.closed = ti, ti, None, False
+                elif self.swing_frac > 0 and self.moved and ti - self.last_still > self.gap + TIE_S:
+                    self._keep_run()  # L120: a new still run after motion only L120's gap bridged
+                    self.run_start = ti
+                self.last_still, self.moved = ti, False
+                if not self.closed and ti - self.run_start >= max(2 * self.half, min_run) - TIE_S:
+                    self._close(self.run_start + self.half, out)  # long stance: close the stride now
                 continue
-            if self.stance_start is not None and ti - self.last_still > self.gap + TIE_S:  # L27: bridge spikes
-                s0, s1 = self.stance_start, self.last_still
+            self.moved = True
+            if self.stance_start is not None and ti - self.last_still > self._gap_now() + TIE_S:  # L27, L120
+                s0, s1 = self._stance_run()
                 if s1 - s0 >= min_run - TIE_S:
                     mid = 0.5 * (s0 + s1)
                     if not self.closed:
                         self._close(mid, out)
                     self.open_s = max(mid, s1 - self.half)
+                    self.prev_stance_end = self.last_still
                 self.stance_start = None
         return out
 
@@ -238,9 +277,10 @@ class StanceSegmenter:
         stance of the minimum length, already closed, no stride open, out of ``min_step_s``..``max_step_s``).
         The sample judged next is taken to be the one after the last centre; irregular clocks may judge
         another first: a likely stride, never a certain one."""
-        s0, s1, start = self.stance_start, self.last_still, self.open_s
-        if s0 is None or start is None or self.closed:
+        start = self.open_s
+        if self.stance_start is None or start is None or self.closed:
             return None
+        s0, s1 = self._stance_run()
         mean_rule = self.mean_min > 0
         min_run = self.mean_min if mean_rule else self.min_stance_s
         mq = self._mean_q
@@ -248,16 +288,30 @@ class StanceSegmenter:
             # the sample judged next: usually the one after the last centre (with a steady clock)
             tn, wn, thn = mq[(len(mq) - 1) // 2 + 1]
             if wn < thn:  # still for certain: no stance ends there, but a long one may close early
-                if tn - s0 < max(2 * self.half, min_run) - TIE_S:
+                if tn - self.run_start < max(2 * self.half, min_run) - TIE_S:
                     return None
-                end = s0 + self.half  # update's long-stance close
+                end = self.run_start + self.half  # update's long-stance close
                 return (start, end) if self._step_ok(end - start) else None
-            if tn - s1 <= self.gap + TIE_S:  # a sample within stance_gap_s of the last still one ends no stance
+            if tn - self.last_still <= self._gap_now() + TIE_S:  # within the gap (L27, L120): ends no stance
                 return None
         if s1 - s0 < min_run - TIE_S:
             return None
         end = 0.5 * (s0 + s1)
         return (start, end) if self._step_ok(end - start) else None
+
+    def _keep_run(self) -> None:
+        """Decision L120: remember the still run that just ended inside a bridged stance when it is the longest."""
+        cur = (self.run_start, self.last_still)
+        if self.best_run is None or cur[1] - cur[0] > self.best_run[1] - self.best_run[0]:
+            self.best_run = cur
+
+    def _stance_run(self) -> tuple[float, float]:
+        """Decision L120: the still run ``(start, end)`` (s) whose middle bounds the strides - the stance's longest
+        (a slow walker's foot-flat, not the terminal swing's moment under the threshold before it, nor a blip
+        after a short real foot-flat); the stance's only run without L120."""
+        cur = (self.run_start, self.last_still)
+        best = self.best_run
+        return best if best is not None and best[1] - best[0] > cur[1] - cur[0] else cur
 
     def _step_ok(self, duration: float) -> bool:
         return self.min_step_s - TIE_S <= duration <= self.max_step_s + TIE_S

@@ -8,6 +8,7 @@ pairs are matched greedily from the closest, each event at most once.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -110,6 +111,8 @@ class Reference:
     ground_truth : ``False`` for a segmentation (``source=detected``): scored by window, no timing error
     from_ics : the events are lower-back initial contacts (``extras["ics"]``), which may have contacts
         without a time (``extras["ics_untimed"]``, decision 19)
+    one_foot : a lower-back detector scored against one foot's strides (no ``ics.csv``): that foot's name
+        ("the labelled" when steps.csv does not say); only its contacts' recall is scored (decision W96)
     """
 
     times: np.ndarray
@@ -118,6 +121,7 @@ class Reference:
     description: str
     ground_truth: bool = True
     from_ics: bool = False
+    one_foot: str | None = None
 
 
 def _span(times: np.ndarray, *more: np.ndarray) -> np.ndarray:
@@ -156,6 +160,20 @@ def reference_events(session: Session, unit: str, *,
       matches a stride when it falls inside the stride's ``[start_s, end_s]`` window.
     Every interval is widened by ``tolerance_s`` on both sides.
     """
+    ref = _reference_events(session, unit, tolerance_s)
+    if ref is not None and unit == "waist" and not ref.from_ics:  # decision W96: one foot's strides
+        st = session.steps
+        feet = st["foot"].dropna().astype(str).unique() if "foot" in st else []
+        if len(feet) <= 1:
+            foot = str(feet[0]) if len(feet) else "the labelled"
+            return dataclasses.replace(ref, one_foot=foot, description=(
+                f"{ref.description}; the {foot} foot's contacts only (no ics.csv labels both feet's): the recall of "
+                "that foot's contacts is scored, the other foot's steps are neither hits nor false positives, so "
+                "precision, F1 and the count error are not"))
+    return ref
+
+
+def _reference_events(session: Session, unit: str, tolerance_s: float) -> Reference | None:
     tol = float(tolerance_s)
     if unit == "waist" and "ics" in session.extras and "ic_s" in session.extras["ics"]:
         ics = np.sort(session.extras["ics"]["ic_s"].dropna().to_numpy(float))
@@ -284,6 +302,8 @@ def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = D
     lost = (same_foot_gap_mask(scored, session, tolerance_s, taken=untimed) if ref.from_ics
             else np.zeros(scored.size, dtype=bool))
     out = score_events(scored[~(untimed | lost)], ref.times, tolerance_s=ref.tolerance_s)
+    if ref.one_foot is not None:  # decision W96: the other foot's steps match nothing and are no error
+        out.update(precision=float("nan"), f1=float("nan"), count_error_pct=float("nan"), one_foot=ref.one_foot)
     out["tolerance_s"] = float(tolerance_s)
     out["scored_count"] = out["count"]
     out["outside_labels"] = int((~inside).sum())
@@ -291,7 +311,8 @@ def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = D
     out["unscored_same_foot_gap"] = int(lost.sum())
     # the F1 with those detections counted as false positives (they lie > tolerance from every contact)
     n = out["count"] + int(lost.sum()) + out["reference_count"]
-    out["f1_same_foot_gaps_scored"] = float(2 * out["true_positives"] / n) if n else float("nan")
+    out["f1_same_foot_gaps_scored"] = (float(2 * out["true_positives"] / n) if n and ref.one_foot is None
+                                       else float("nan"))
     out["total_count"] = int(ev.size)
     out["reference"] = ref.description
     out["ground_truth"] = ref.ground_truth

@@ -64,10 +64,16 @@ class _WaistICProcessor:
         if self.rotation is not None:  # sensor frame -> body frame FLU (as pdrlearn.waist.ahrs.body_data)
             acc, gyr = acc @ self.rotation.T, gyr @ self.rotation.T
         from pdrlearn.track.gaps import cut_steps_at_gaps  # lazy: pdrlearn.track imports pdrlearn.steps
+        from pdrlearn.track.waist import no_steps_message
         from pdrlearn.waist.ahrs import imu_from_body
+        from pdrlearn.waist.events import gate_threshold
 
         imu = imu_from_body(t, acc, gyr, fs=self.fs, gain=self.det.ahrs_gain)
-        steps = cut_steps_at_gaps(self.det.ic_detector().detect(imu).steps_, self.gaps)
+        # decision steps 35: the motion gate of `track`'s lower-back pipelines (W76's relative gate by default)
+        thr, sigma, source = gate_threshold(imu, self.det.walk_threshold)
+        steps = cut_steps_at_gaps(self.det.ic_detector(thr).detect(imu).steps_, self.gaps)
+        if not len(steps):  # decision W76, as track: never 0 steps without a word
+            log.warning("waist-ic: %s", no_steps_message(thr, sigma, source))
         return [(float(r.event_s), float(r.start_s), float(r.end_s), float(r.confidence), {"fc_s": float(r.fc_s)})
                 for r in steps.itertuples()]
 
@@ -104,7 +110,9 @@ class WaistICStepDetector(StepDetector):
 
     Parameters (keyword-only; defaults = the pipeline's)
     ----------
-    walk_threshold : motion-gate threshold on the std of vertical acceleration over 2 s (m/s^2; W4: 0.5)
+    walk_threshold : motion-gate threshold on the std of vertical acceleration over 2 s (m/s^2); None (default):
+        ``track``'s gate (decision steps 35): W4's 0.5, lowered for a session whose trunk moves little by W76's
+        session-relative gate (offline; the realtime variant keeps 0.5, as ``track --realtime``)
     max_step_s : contacts further apart end a walking sequence (s; the pipeline's 1.5)
     rhythm, alternate, weight_shift, end_steps : the sequence rules W18, W20, W23, W28 (default on)
     learned : the W33 learned second stage (off by default; ``True`` = the shipped model, or a path)
@@ -128,7 +136,7 @@ class WaistICStepDetector(StepDetector):
     input_columns = ("acc_x", "acc_y", "acc_z", "gyr_x", "gyr_y", "gyr_z")
     extra_columns = ("fc_s",)
 
-    def __init__(self, *, walk_threshold: float = 0.5,  # W4 (= pdrlearn.waist.events.WALK_THRESHOLD_MPS2)
+    def __init__(self, *, walk_threshold: float | None = None,  # steps 35: None = track's gate (W4 0.5, W76)
                  max_step_s: float = 1.5,  # the pipeline's MAX_STEP_S (pdrlearn.track.waist)
                  rhythm: bool = True, alternate: bool = True, weight_shift: bool = True, end_steps: bool = True,
                  learned: bool | str = False,
@@ -136,11 +144,13 @@ class WaistICStepDetector(StepDetector):
                  delay_s: float | None = None, hop_s: float = 0.25, history_s: float = 10.0):  # W31
         self._store(locals())
 
-    def ic_detector(self):
-        """The :class:`InitialContactDetector` (offline) with this detector's settings."""
-        from pdrlearn.waist.events import InitialContactDetector
+    def ic_detector(self, walk_threshold: float | None = None):
+        """The :class:`InitialContactDetector` (offline) with this detector's settings; its gate ``walk_threshold``
+        (m/s^2), else this detector's, else W4's fixed 0.5."""
+        from pdrlearn.waist.events import WALK_THRESHOLD_MPS2, InitialContactDetector
 
-        return InitialContactDetector(walk_threshold=self.walk_threshold, max_step_s=self.max_step_s,
+        thr = next((x for x in (walk_threshold, self.walk_threshold) if x is not None), WALK_THRESHOLD_MPS2)
+        return InitialContactDetector(walk_threshold=thr, max_step_s=self.max_step_s,
                                       rhythm=self.rhythm, alternate=self.alternate, weight_shift=self.weight_shift,
                                       end_steps=self.end_steps, learned=self.learned)
 

@@ -9,15 +9,19 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   than the walk's median such interval (the walker's own rhythm: one stride of the tracked foot, one step on the
   lower back); the excess is the pause's length. So a pause is standing (no step of the tracked foot / of either
   foot) for about a second or more beyond the usual rhythm; the rests of a slow walker's ordinary stance are no
-  pause. Rows across a foot-data gap (``gap_s`` > 0, L67) are not judged: a sensor gap is not a pause.
+  pause. Rows across a foot-data gap (``gap_s`` > 0, L67) are not judged: a sensor gap is not a pause. An
+  interval across which the heading turns :data:`PAUSE_MAX_TURN_DEG` or more holds a turn: the time that turn
+  takes at :data:`TURN_ON_SPOT_MIN_DPS` is turning (a slow turn on the spot is no pause), only the excess beyond
+  it is standing (decision L119: a long stand before or after a turn is a pause and the turn still counts).
 * **walking bout**: the walk between pauses: ``n_walking_bouts`` = ``n_pauses`` + 1 (0 without a row).
 * **turn**: a run of consecutive rows whose heading changes at :data:`TURN_RATE_MIN_DPS` deg/s or more from
   one row to the next (heading change / time between the rows' starts; one slower row between two such rows
   belongs to the turn), its angle the summed (signed) change;
   ``turn_count`` counts the turns of at least :data:`TURN_COUNT_MIN_DEG` degrees (turnarounds, corners); a gentle
-  curve (below 15 deg/s, e.g. a 5 m radius at 1.2 m/s) or a pause is no turn. The heading of a foot row is the
-  foot's own yaw, summed over ``turn_angle_rad`` where every row has it (the stride's displacement direction of
-  a turn on the spot is short and noisy), else ``heading_rad``.
+  curve (below 15 deg/s, e.g. a 5 m radius at 1.2 m/s) or a pause is no turn; an interval holding a pause and a
+  heading change of :data:`PAUSE_MAX_TURN_DEG` or more turns (L119: the turn took the time beside the
+  standing). The heading of a foot row is the foot's own yaw, summed over ``turn_angle_rad`` where every row has
+  it (the stride's displacement direction of a turn on the spot is short and noisy), else ``heading_rad``.
 * **stride-time variability** (foot tracks): ``stride_time_cv_pct`` = 100 x SD / mean (SD with n - 1) of the
   stride times (initial contact to initial contact, L66) of the steady straight strides: a stride turning under
   15 deg (L79) with a stride time, not next to a pause, whose previous and next strides are such strides too
@@ -43,8 +47,12 @@ import pandas as pd
 
 #: a pause is at least this much (s) longer than the walk's median row-to-row interval
 PAUSE_MIN_S = 1.0
-#: an interval across which the heading changes this much (deg) or more is a turn, not a pause
+#: an interval across which the heading changes this much (deg) or more holds a turn: the time the turn may take
+#: (:data:`TURN_ON_SPOT_MIN_DPS`) is no pause (decision L119)
 PAUSE_MAX_TURN_DEG = 30.0
+#: decision L119: the slowest turn on the spot the pause rule allows for (deg/s): a 180 deg turn in 9 s; the time
+#: of an interval's turn at this rate is turning, the rest beyond the walk's rhythm standing
+TURN_ON_SPOT_MIN_DPS = 20.0
 #: a row turns when its heading changes at this rate (deg/s) or more from the previous row
 TURN_RATE_MIN_DPS = 15.0
 #: ``turn_count`` counts turns of at least this angle (deg)
@@ -108,9 +116,10 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray
     if not pair.any():
         return np.zeros(len(d)), np.zeros(len(d), bool)
     excess = d - float(np.median(d[pair]))
-    if "heading_rad" in st:  # a walker who stands does not turn: a slow turn on the spot is no pause
+    if "heading_rad" in st:  # decision L119: a turn across the interval takes its time, the rest is standing
         with np.errstate(invalid="ignore"):
-            pair &= ~(np.abs(np.diff(np.degrees(_heading(st)))) >= PAUSE_MAX_TURN_DEG)
+            dh = np.abs(np.diff(np.degrees(_heading(st))))
+            excess = excess - np.where(dh >= PAUSE_MAX_TURN_DEG, dh / TURN_ON_SPOT_MIN_DPS, 0.0)
     return excess, pair & (excess >= min_s)
 
 
@@ -139,6 +148,8 @@ def turns(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS) -> np
     dh, dt = np.diff(h), np.diff(t)
     with np.errstate(invalid="ignore", divide="ignore"):
         turning = ok[:-1] & ok[1:] & np.isfinite(dh) & (dt > 0) & (np.abs(dh) / dt >= min_rate_dps)
+        # decision L119: a turn beside a pause turns in the time the pause rule left it (TURN_ON_SPOT_MIN_DPS)
+        turning |= _intervals(st)[1] & (np.abs(dh) >= PAUSE_MAX_TURN_DEG)
     # one row under the rate between two turning rows (a turn's slower step) does not split the turn
     turning[1:-1] |= turning[:-2] & turning[2:] & ok[1:-2] & ok[2:-1] & ok[3:] & np.isfinite(dh[1:-1])
     out, cur = [], None
@@ -221,6 +232,44 @@ def step_time_asymmetry(step_s, has_next, broken=None, *, min_steps: int = ASYMM
     if not indices:
         return None, 0
     return float(np.average(indices, weights=weights)), int(sum(weights))
+
+
+#: decision L121: a lower-back step-time symmetry index under this (%) is not told apart from the detector's own
+#: left/right contact timing (symmetric simulated walkers read up to 18.8 %: session 20's trial, festination)
+ASYMMETRY_FLOOR_PCT = 20.0
+
+
+def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
+    """Decision L121 (Python API): what a tracked step table can honestly say about the step-time asymmetry.
+    ``{"step_time_asymmetry_pct", "raw_pct", "n_step_times", "reason"}``:
+
+    * a **foot** table (one foot's strides): ``None`` - a step time runs from one foot's contact to the other
+      foot's, which a unit on one foot does not see (L104); ``reason`` says so;
+    * a **lower-back** table: :func:`step_time_asymmetry`'s index (``raw_pct``) on its alternating contacts, given
+      as ``step_time_asymmetry_pct`` only when it reaches :data:`ASYMMETRY_FLOOR_PCT` (then ``reason`` says it
+      is over-read: a simulated 39.1 % read 55.2 %); under it ``None``: symmetric simulated walkers read
+      3-19 % from the contacts' timing alone (L111, the session-20 trial), so a smaller index tells nothing.
+      A lower-back table of something that is no walk (a wheelchair's pushes, the trial's finding 1) still
+      gives contacts: the index does not check that they are steps."""
+    out = {"step_time_asymmetry_pct": None, "raw_pct": None, "n_step_times": 0, "reason": None}
+    if "unit" in steps and len(steps) and (steps["unit"] == "foot").all() or "stride_time_s" in steps:
+        out["reason"] = ("not observable from one foot's unit: a step time runs from one foot's contact to the "
+                         "other foot's; use a lower-back unit (or a unit on each foot)")
+        return out
+    from pdrlearn.track.gait import waist_step_times
+
+    pct, n = step_time_asymmetry(*waist_step_times(steps))
+    out["raw_pct"], out["n_step_times"] = pct, n
+    if pct is None:
+        out["reason"] = (f"no walking sequence with {ASYMMETRY_MIN_STEPS} step times of each foot")
+    elif pct < ASYMMETRY_FLOOR_PCT:
+        out["reason"] = (f"index {pct:.1f} % is under {ASYMMETRY_FLOOR_PCT:.0f} %: the lower back's contact timing "
+                         "alone reads up to 18.8 % on walkers whose feet step alike (decision L121)")
+    else:
+        out["step_time_asymmetry_pct"] = pct
+        out["reason"] = ("asymmetric; the lower back over-reads the size (a simulated 39.1 % read 55.2 %, "
+                         "decision L121)")
+    return out
 
 
 def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None = None) -> dict:

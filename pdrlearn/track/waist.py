@@ -28,8 +28,8 @@ from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.events import (
-    WALK_THRESHOLD_MPS2,
     InitialContactDetector,
+    gate_threshold,
     refine_to_contacts,
     steps_from_events,
     walking_gate,
@@ -430,10 +430,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         if getattr(exc, "walk_s", None) is None:
             raise
         return _no_walking(session, pipeline, p, o, warnings, float(exc.walk_s), start, initial_heading)
-    thr = p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None else WALK_THRESHOLD_MPS2
-    sigma = K.rolling_std(imu.acc_v, imu.fs, causal=False)  # the W4 gate's signal (offline: centred)
-    if bool(o["relative_gate"]) and p.walk_threshold_mps2 is None and not realtime:  # W76's candidate
-        thr = K.relative_walk_threshold(sigma, thr)
+    # the W4 gate's threshold and signal (offline: centred); W76's relative gate (not realtime); steps 35
+    thr, sigma, gate_source = gate_threshold(imu, p.walk_threshold_mps2,
+                                             relative=bool(o["relative_gate"]) and not realtime)
     if pipeline == "waist-pendulum":
         det = InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
                                      rhythm=bool(o["rhythm"])).detect(imu)
@@ -459,8 +458,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     z = _altitude(session, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float)]), warnings)
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
-        warnings.append(no_steps_message(thr, sigma, "params" if p.walk_threshold_mps2 is not None
-                                         else "relative" if thr != WALK_THRESHOLD_MPS2 else "fixed"))
+        warnings.append(no_steps_message(thr, sigma, gate_source))
     note = relative_heading_note(start, o["initial_heading"], "wMagneticField" in session)
     if note:
         warnings.append(note)

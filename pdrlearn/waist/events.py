@@ -31,6 +31,20 @@ def causal_lowpass_delay_s(cutoff_hz: float, fs: float, *, at_hz: float = 1.0) -
     return float(gd[0]) / fs
 
 
+def gate_threshold(imu: WaistIMU, walk_threshold: float | None = None, *, relative: bool = True
+                   ) -> tuple[float, np.ndarray, str]:
+    """The offline motion gate's threshold (m/s^2) of a whole recording, the centred 2 s SD of its vertical
+    acceleration it is judged on, and where the threshold comes from ("params", "relative", "fixed"): the given
+    ``walk_threshold``, else :data:`WALK_THRESHOLD_MPS2` lowered to the session-relative gate of decision W76
+    (:func:`~pdrlearn.waist._kernels.relative_walk_threshold`) when ``relative``. One rule for ``pdrlearn track``'s
+    lower-back pipelines and the ``waist-ic`` step detector (decision steps 35)."""
+    sigma = K.rolling_std(imu.acc_v, imu.fs, causal=False)
+    if walk_threshold is not None:
+        return float(walk_threshold), sigma, "params"
+    thr = K.relative_walk_threshold(sigma, WALK_THRESHOLD_MPS2) if relative else WALK_THRESHOLD_MPS2
+    return float(thr), sigma, "relative" if thr != WALK_THRESHOLD_MPS2 else "fixed"
+
+
 def walking_gate(imu: WaistIMU, *, walk_threshold: float = WALK_THRESHOLD_MPS2, causal: bool = False,
                  turn_gate_rps: float | None = None) -> np.ndarray:
     """Samples where the motion state (seed 000 sec. II-B) is walking or running; with ``turn_gate_rps``
