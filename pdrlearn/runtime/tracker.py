@@ -27,6 +27,7 @@ from pdrlearn.errors import DataError, InternalError, ModelError
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
+from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.stride import (
     DOWN_MODES,
     GAP_YAW_MAX_S,
@@ -120,14 +121,6 @@ DEFAULT_DISPLACEMENT = {
 }
 #: the class rules of a bundle without ``rules`` / ``min_confidence`` (exported before decision E25)
 LEGACY_RULES, LEGACY_MIN_CONFIDENCE = "thesis", 0.0
-_DIRECTIONS = {
-    "forward": (1, 0, 0),
-    "backward": (-1, 0, 0),
-    "left": (0, 1, 0),
-    "right": (0, -1, 0),
-    "up": (0, 0, 1),
-    "down": (0, 0, -1),
-}
 
 
 #: what the streamed stride rules do for a task without a class (decision C17, ``pdrlearn.track.plasys``)
@@ -154,7 +147,7 @@ def check_units(bundle: Bundle, units) -> tuple[str, ...]:
 def forward_vector(frame: dict) -> np.ndarray:
     """Sensor-frame vector pointing body-forward for a declared frame ``{"x": "forward", ...}``."""
     try:
-        R = np.array([_DIRECTIONS[frame["x"]], _DIRECTIONS[frame["y"]], _DIRECTIONS[frame["z"]]], float).T
+        R = np.array([DIRECTIONS[frame["x"]], DIRECTIONS[frame["y"]], DIRECTIONS[frame["z"]]], float).T
     except KeyError as exc:
         raise DataError(
             f"axis frame {frame!r}: unknown or missing axis {exc}; use forward/backward/left/"
