@@ -179,8 +179,8 @@ class WaistStream(FixInput):
             raise DataError(f"{self._name}.push: timestamps must increase strictly across pushes (seconds)")
         guard = self._guard
         if guard is not None:  # decision B119, before any state changes (a refused push changes nothing)
-            arrays = {n: tv for n, tv in zip(WAIST_SENSORS, ((t, acc), (t, gyr)), strict=True)
-                      if n in guard.wanted()}
+            wanted = guard.wanted()  # built once per push, not once per stream
+            arrays = {n: tv for n, tv in zip(WAIST_SENSORS, ((t, acc), (t, gyr)), strict=True) if n in wanted}
             judged = guard.check(arrays)
         if self._dts is not None:
             self._unit_check(t)
