@@ -328,16 +328,24 @@ def moving_norm(name: str, norm):
     return norm != norm  # a magnetometer: no evidence (False; NaN never comes, the push checks it)
 
 
+def identical_runs(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Decision B120: the first and last row (inclusive) of every maximal run of bit-identical consecutive rows
+    of ``values`` (n, k), a row unlike both neighbours a run of one; the one run splitting of
+    :func:`frozen_spans` (offline) and :class:`pdrlearn.runtime.guard.FrozenWatch` (live, per push)."""
+    v = np.asarray(values)
+    n = v.shape[0]
+    cut = np.flatnonzero(np.any(v[1:] != v[:-1], axis=1)) + 1  # rows that differ from the row before
+    return np.concatenate(([0], cut)), np.concatenate((cut - 1, [n - 1]))
+
+
 def frozen_spans(t: np.ndarray, values: np.ndarray, min_s: float = FROZEN_S) -> list[tuple[float, float, int]]:
     """Decision B120: ``(first time, last time, samples)`` of each run of bit-identical consecutive rows of
     ``values`` (n, k) lasting ``min_s`` seconds or more (by ``t``, s)."""
     v = np.asarray(values)
     if v.ndim != 2 or v.shape[0] < 2:
         return []
-    same = np.all(v[1:] == v[:-1], axis=1).astype(np.int8)
-    edges = np.diff(np.concatenate(([0], same, [0])))
-    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)  # rows starts..ends are one run
-    keep = (t[ends] - t[starts]) >= min_s
+    starts, ends = identical_runs(v)
+    keep = (ends > starts) & ((t[ends] - t[starts]) >= min_s)
     return [(float(t[a]), float(t[b]), int(b - a + 1)) for a, b in zip(starts[keep], ends[keep], strict=True)]
 
 

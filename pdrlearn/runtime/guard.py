@@ -23,6 +23,7 @@ from pdrlearn.kernels.units import (
     WALKING_ACC_STD,
     check_units,
     frozen_message,
+    identical_runs,
     moving_norm,
     moving_samples,
     swapped_units,
@@ -73,12 +74,17 @@ class UnitGuard:
         self.held: dict[str, list] = {n: [] for n in GUARDED if n in set(used)}
         self.judged: set[str] = set()  # accelerometers checked; gyroscopes seen in motion (B91 judged)
         self.rates: dict[str, float] = {}  # B91's swing rate of each gyroscope judged in motion (rad/s)
+        self._wanted = self._still_wanted()
 
     def wanted(self) -> list[str]:
-        """The streams whose pushed samples :meth:`check` still reads: every gyroscope; an accelerometer until it is
-        checked and its gyroscope has been seen in motion."""
+        """The streams whose pushed samples :meth:`check` still reads: every gyroscope (B119 judges each of its
+        windows for as long as it streams); an accelerometer until it is checked and its gyroscope has been seen in
+        motion (B91's movement test reads it). Worked out when a judgement changes it, not per push (E71)."""
+        return self._wanted
+
+    def _still_wanted(self) -> list[str]:
         return [n for n in self.held if GUARDED[n] == "gyroscope" or n not in self.judged
-                or (n[0] + "Gyroscope" in self.held and n[0] + "Gyroscope" not in self.judged)]
+                or (FROZEN_PARTNER[n] in self.held and FROZEN_PARTNER[n] not in self.judged)]
 
     @staticmethod
     def _joined(chunks, t0: float = -math.inf, t1: float = math.inf):
@@ -89,10 +95,10 @@ class UnitGuard:
         keep = (t >= t0) & (t <= t1)
         return t[keep], v[keep]
 
-    def check(self, arrays: dict[str, tuple[np.ndarray, np.ndarray]]) -> tuple[dict, set]:
+    def check(self, arrays: dict[str, tuple[np.ndarray, np.ndarray]]) -> tuple[dict, dict]:
         """Raise a one-line :class:`DataError` when a stream whose held samples plus ``arrays[name]`` (this push's)
-        complete a window of :data:`GUARD_S` fails the checks; returns those windows and the gyroscopes among
-        them seen in motion for the first time (for :meth:`take`). Changes nothing."""
+        complete a window of :data:`GUARD_S` fails the checks; returns those windows and the swing rates of the
+        gyroscopes among them seen in motion for the first time (for :meth:`take`). Changes nothing."""
         ready = {}
         for name, chunks in self.held.items():
             tv = arrays.get(name)
@@ -103,16 +109,15 @@ class UnitGuard:
                 ready[name] = self._joined([*chunks, tv], t0, t0 + GUARD_S)
         moving = set()
         for name, (t, _) in ready.items():
-            acc = name[0] + "Accelerometer"
             if GUARDED[name] == "gyroscope" and name not in self.judged:
+                acc = FROZEN_PARTNER[name]
                 chunks = [*self.held.get(acc, ()), arrays[acc]] if acc in arrays else self.held.get(acc, ())
                 if acc in self.held and (not chunks or float(chunks[-1][0][-1]) < float(t[-1]) - ACC_COVER_S):
                     continue  # its accelerometer has not arrived for this window yet (a later window judges B91)
                 a = self._joined(chunks, float(t[0]), float(t[-1]))
                 if a is None or len(a[0]) < 3 or float(np.std(np.linalg.norm(a[1], axis=1))) > WALKING_ACC_STD:
                     moving.add(name)
-        self._judge(ready, moving)
-        return ready, moving
+        return ready, self._judge(ready, moving)
 
     def finish(self) -> None:
         """The end of a stream (``flush``): the windows begun, checked on what they have (at least 10 samples, as
@@ -121,15 +126,18 @@ class UnitGuard:
                  and not (n in self.judged and GUARDED[n] == "accelerometer")}
         self._judge(ready, set())
         self.held.clear()
+        self._wanted = []
 
-    def _judge(self, ready: dict, moving: set) -> None:
+    def _judge(self, ready: dict, moving: set) -> dict[str, float]:
+        """The checks of the ``ready`` windows; returns B91's swing rate of each gyroscope in ``moving``."""
         for name, (t, v) in ready.items():
             span = float(t[-1] - t[0])
             what = (f"its first {span:.1f} s" if name not in self.judged
                     else f"its samples of {float(t[0]):.1f}-{float(t[-1]):.1f} s")
             check_units(_Kind(name, GUARDED[name]), v, f"{name} ({what} pushed to the {self.who}, decision B119)",
                         declare="", t=t)
-        rates = {**self.rates, **{n: swing_rate(ready[n][1]) for n in moving}}
+        new = {n: swing_rate(ready[n][1]) for n in moving}
+        rates = {**self.rates, **new}
         f99, w99 = rates.get("fGyroscope", math.nan), rates.get("wGyroscope", math.nan)
         if moving and swapped_units(f99, w99):
             raise DataError(
@@ -138,24 +146,27 @@ class UnitGuard:
                 f"swings at {np.degrees(w99):.0f} deg/s, as a foot does (decisions B91, B119); push the foot unit's "
                 "samples as fAccelerometer / fGyroscope and the waist unit's as wAccelerometer / wGyroscope (check "
                 "which Bluetooth id is which unit)")
+        return new
 
-    def take(self, arrays: dict, judged: tuple[dict, set]) -> None:
+    def take(self, arrays: dict, judged: tuple[dict, dict]) -> None:
         """Hold the pushed samples; an accelerometer checked is dropped, a gyroscope's next window begun; keep an
         accelerometer's samples while its gyroscope has not been seen in motion (the movement test reads them)."""
-        ready, moving = judged
+        ready, rates = judged
         for name, tv in arrays.items():
             if name in self.held and len(tv[0]):
                 self.held[name].append(tv)
-        for name in moving:
-            self.rates[name] = swing_rate(ready[name][1])
-        self.judged.update(n for n in ready if GUARDED[n] == "accelerometer" or n in moving)
+        self.rates.update(rates)  # B91's rates of the gyroscopes seen in motion, worked out once by check
+        judged_now = [n for n in ready if (GUARDED[n] == "accelerometer" or n in rates) and n not in self.judged]
+        if judged_now:
+            self.judged.update(judged_now)
+            self._wanted = self._still_wanted()
         for name, (t, _) in ready.items():
             if GUARDED[name] == "gyroscope":
                 self.held[name] = [c for c in self.held[name] if c[0][-1] > t[-1]]
         for name, chunks in self.held.items():  # an accelerometer's samples: for its own window or its gyroscope's
             if GUARDED[name] != "accelerometer":
                 continue
-            gyro = name[0] + "Gyroscope"
+            gyro = FROZEN_PARTNER[name]
             users = [n for n in (name, gyro) if n in self.held and n not in self.judged]
             start = min([float(self.held[n][0][0][0]) for n in users if self.held[n]], default=math.inf)
             self.held[name] = [c for c in chunks if c[0][-1] >= start] if users else []
@@ -213,22 +224,46 @@ class FrozenWatch:
 
     def feed(self, name: str, t: np.ndarray, v: np.ndarray) -> str | None:
         """The warning line for ``name`` when one of its runs of identical samples reaches the limit in this push
-        (the first such run; each run is warned about once)."""
+        (the first such run; each run is warned about once). The runs are those of
+        :func:`~pdrlearn.kernels.units.identical_runs` (offline's splitting), the first one joined to the run the
+        previous push ended in when its first sample repeats that run's (decision E71: no loop over the runs)."""
+        if not len(t):
+            return None
         prev = self.run.get(name)
-        same = np.empty(len(t), dtype=bool)
-        same[0] = prev is not None and list(prev[2]) == v[0].tolist()
-        same[1:] = np.all(v[1:] == v[:-1], axis=1)
-        starts = np.flatnonzero(~same).tolist()
-        bounds = [0, *starts] if same[0] else starts
-        msg = None
-        for k, i in enumerate(bounds):
-            j = (bounds[k + 1] if k + 1 < len(bounds) else len(t)) - 1  # the run's last row
-            go_on = i == 0 and bool(same[0])  # the run held before this push goes on
-            first, n = (prev[0], prev[1] + j + 1) if go_on else (float(t[i]), j - i + 1)
-            warned = go_on and prev[3]
-            if not warned and float(t[j]) - first >= FROZEN_S and msg is None and self._moves(name, first, float(t[j])):
-                msg = frozen_message(name, first, float(t[j]), n, v[j], ongoing=j == len(t) - 1)
-                warned = True
-            if j == len(t) - 1:
-                self.run[name] = (first, n, v[j].tolist(), warned)
+        starts, ends = identical_runs(v)
+        first, count, last = t[starts], ends - starts + 1, t[ends]
+        warned = np.zeros(len(starts), dtype=bool)
+        if prev is not None and prev[2] == v[0].tolist():  # the run held before this push goes on
+            first = first.copy()
+            first[0], count[0], warned[0] = prev[0], count[0] + prev[1], prev[3]
+        msg, hit = None, -1
+        for k in np.flatnonzero(~warned & (last - first >= FROZEN_S)).tolist():  # runs of 2 s or more: few
+            if self._moves(name, float(first[k]), float(last[k])):
+                hit = k
+                msg = frozen_message(name, float(first[k]), float(last[k]), int(count[k]), v[ends[k]],
+                                     ongoing=k == len(starts) - 1)
+                break
+        k = len(starts) - 1
+        self.run[name] = (float(first[k]), int(count[k]), v[-1].tolist(), bool(warned[k]) or hit == k)
         return msg
+
+    def push(self, arrays: dict, fast: dict | None = None) -> list[str]:
+        """One push of the watched streams (:data:`WATCHED`): ``arrays`` name -> ``(t (n,), values (n, 3))``, and
+        ``fast`` name -> ``(t, values)`` of one sample on Python floats (the tracker's one-sample path, decision
+        E17); a stream in neither is not in this push. The movement evidence of every stream first (a run is frozen
+        only while the unit's other sensor moves, B120), then the runs; returns the warning lines."""
+        fast = fast or {}
+        names = [n for n in WATCHED if n in fast or n in arrays]
+        for name in names:
+            f = fast.get(name)
+            if f is not None:
+                self.note1(name, *f)
+            else:
+                self.note(name, *arrays[name])
+        out = []
+        for name in names:
+            f = fast.get(name)
+            msg = self.feed1(name, *f) if f is not None else self.feed(name, *arrays[name])
+            if msg:
+                out.append(msg)
+        return out

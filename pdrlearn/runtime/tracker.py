@@ -63,7 +63,6 @@ from pdrlearn.kernels.window import (
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 from pdrlearn.runtime.fixes import FixInput
-from pdrlearn.runtime.guard import WATCHED as _WATCHED
 from pdrlearn.runtime.guard import FrozenWatch, UnitGuard
 from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
@@ -740,19 +739,8 @@ class Tracker(FixInput):
                             self._latest = t0
                         continue
                 self._append(name, t, v)
-        frozen = self._frozen  # decision B120: a frozen sensor, one warning per run of identical samples
-        for name in _WATCHED:  # the unit's movement first (a run is frozen only while the other sensor moves)
-            f = fast.get(name)
-            if f is not None:
-                frozen.note1(name, *f)
-            elif name in checked:
-                frozen.note(name, *checked[name])
-        for name in _WATCHED:
-            f = fast.get(name)
-            msg = (frozen.feed1(name, *f) if f is not None else
-                   frozen.feed(name, *checked[name]) if name in checked else None)
-            if msg:
-                self._warn(msg)
+        for msg in self._frozen.push(checked, fast):  # decision B120: a frozen sensor, one warning per run
+            self._warn(msg)
         if self._pushed_gaps:
             self._note_gaps()
         self._detect()

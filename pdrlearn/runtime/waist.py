@@ -177,10 +177,9 @@ class WaistStream(FixInput):
             raise DataError(f"{self._name}.push: NaN or inf in the pushed samples; drop those samples")
         if t[0] <= self._last_t or (t.size > 1 and np.any(np.diff(t) <= 0)):
             raise DataError(f"{self._name}.push: timestamps must increase strictly across pushes (seconds)")
-        guard = self._guard
+        guard, pushed = self._guard, dict(zip(WAIST_SENSORS, ((t, acc), (t, gyr)), strict=True))
         if guard is not None:  # decision B119, before any state changes (a refused push changes nothing)
-            wanted = guard.wanted()  # built once per push, not once per stream
-            arrays = {n: tv for n, tv in zip(WAIST_SENSORS, ((t, acc), (t, gyr)), strict=True) if n in wanted}
+            arrays = {n: pushed[n] for n in guard.wanted() if n in pushed}
             judged = guard.check(arrays)
         if self._dts is not None:
             self._unit_check(t)
@@ -189,13 +188,9 @@ class WaistStream(FixInput):
         if self._fixes.t_start is None:  # aid_track's t_start: the track's first sample (decision D19, amended)
             self._fixes.t_start = float(t[0])
         self._last_t = float(t[-1])
-        for name, v in zip(WAIST_SENSORS, (acc, gyr), strict=True):  # decision B120: the unit's movement first
-            self._frozen.note(name, t, v)
-        for name, v in zip(WAIST_SENSORS, (acc, gyr), strict=True):
-            msg = self._frozen.feed(name, t, v)
-            if msg:
-                self.warnings.append(msg)
-                log.warning("live waist tracker: %s", msg)
+        for msg in self._frozen.push(pushed):  # decision B120: a frozen sensor, one warning per run
+            self.warnings.append(msg)
+            log.warning("live waist tracker: %s", msg)
         v = np.column_stack([acc, gyr])
         if self._proc is None or self._frame_pending():
             v_t = self._frame(t, v)
