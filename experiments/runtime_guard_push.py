@@ -1,6 +1,7 @@
 """Per-push CPU cost of the live input checks (decisions B119/B120, E71): ``Tracker.push`` with one sample time per
 push and with 100-sample chunks, p50/p95 (us) of each push's wall time, with the checks on and off
-(``check_input``). Run it on two code versions to compare (the "before": ``git archive <commit> pdrlearn | tar -x
+(``check_input``; the frozen-sensor watch runs in both); then the checks alone (``UnitGuard.check`` + ``take`` and
+the ``FrozenWatch`` calls a tracker push makes) on the same pushes. Run it on two code versions to compare (the "before": ``git archive <commit> pdrlearn | tar -x
 -C /tmp/old``, then ``PYTHONPATH=/tmp/old``)::
 
     python experiments/runtime_guard_push.py out/bundle/u1 out/sim/D_u1     # make demo writes both
@@ -58,6 +59,44 @@ def main(bundle_dir: str, session_dir: str, repeat: int = 3) -> None:
                 best = us if best is None else np.minimum(best, us)  # each push's fastest pass (a loaded machine)
             print(f"{n:>3}-sample pushes ({len(pushes)}), check_input={check!s:5}: p50 {np.percentile(best, 50):7.1f} us"
                   f"  p95 {np.percentile(best, 95):7.1f} us  total {best.sum() / 1e3:7.0f} ms")
+
+    checks_alone(streams)
+
+
+def checks_alone(streams: dict, repeat: int = 5) -> None:
+    """The input checks' share of a push: what ``Tracker.push`` calls of ``runtime.guard`` on each push."""
+    from pdrlearn.runtime.guard import WATCHED, FrozenWatch, UnitGuard
+
+    used = [n for n in streams if n in WATCHED]
+    for n in (1, 100):
+        pushes = [{k: tv for k, tv in c.items() if k in used} for c in chunks_of(streams, n)]
+        fast = [{k: (float(t[0]), v[0].tolist()) for k, (t, v) in c.items()} for c in pushes] if n == 1 else None
+        best = None
+        for _ in range(repeat):
+            guard, frozen = UnitGuard(used), FrozenWatch()
+            us = np.empty(len(pushes))
+            for k, c in enumerate(pushes):
+                c0 = time.perf_counter()
+                arrays = {m: c[m] for m in guard.wanted() if m in c}
+                guard.take(arrays, guard.check(arrays))
+                f = fast[k] if fast is not None else {}
+                if hasattr(frozen, "push"):  # E71: one call
+                    frozen.push({} if f else c, f)
+                else:  # before E71: the tracker's two loops
+                    for m in WATCHED:
+                        if m in f:
+                            frozen.note1(m, *f[m])
+                        elif m in c:
+                            frozen.note(m, *c[m])
+                    for m in WATCHED:
+                        if m in f:
+                            frozen.feed1(m, *f[m])
+                        elif m in c:
+                            frozen.feed(m, *c[m])
+                us[k] = (time.perf_counter() - c0) * 1e6
+            best = us if best is None else np.minimum(best, us)
+        print(f"checks alone, {n:>3}-sample pushes ({len(pushes)}): p50 {np.percentile(best, 50):7.1f} us  "
+              f"p95 {np.percentile(best, 95):7.1f} us  total {best.sum() / 1e3:7.1f} ms")
 
 
 if __name__ == "__main__":
