@@ -1,8 +1,8 @@
 """Per-push CPU cost of the live input checks (decisions B119/B120, E71): ``Tracker.push`` with one sample time per
 push and with 100-sample chunks, p50/p95 (us) of each push's wall time, with the checks on and off
 (``check_input``; the frozen-sensor watch runs in both); then the checks alone (``UnitGuard.check`` + ``take`` and
-the ``FrozenWatch`` calls a tracker push makes) on the same pushes. Run it on two code versions to compare (the "before": ``git archive <commit> pdrlearn | tar -x
--C /tmp/old``, then ``PYTHONPATH=/tmp/old``)::
+the ``FrozenWatch`` calls a tracker push makes) on the same pushes. Run it on two code versions to compare (the
+"before": ``git archive <commit> pdrlearn | tar -x -C /tmp/old``, then ``PYTHONPATH=/tmp/old``)::
 
     python experiments/runtime_guard_push.py out/bundle/u1 out/sim/D_u1     # make demo writes both
 """
@@ -57,8 +57,9 @@ def main(bundle_dir: str, session_dir: str, repeat: int = 3) -> None:
                     us[k] = (time.perf_counter() - c0) * 1e6
                 tr.flush()
                 best = us if best is None else np.minimum(best, us)  # each push's fastest pass (a loaded machine)
-            print(f"{n:>3}-sample pushes ({len(pushes)}), check_input={check!s:5}: p50 {np.percentile(best, 50):7.1f} us"
-                  f"  p95 {np.percentile(best, 95):7.1f} us  total {best.sum() / 1e3:7.0f} ms")
+            print(f"{n:>3}-sample pushes ({len(pushes)}), check_input={check!s:5}: "
+                  f"p50 {np.percentile(best, 50):7.1f} us  p95 {np.percentile(best, 95):7.1f} us  "
+                  f"total {best.sum() / 1e3:7.0f} ms")
 
     checks_alone(streams)
 

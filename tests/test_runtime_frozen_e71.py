@@ -9,7 +9,7 @@ import re
 import numpy as np
 import pytest
 
-from pdrlearn.kernels.units import FROZEN_PARTNER, FROZEN_S, frozen_spans, identical_runs, moving_samples
+from pdrlearn.kernels.units import FROZEN_PARTNER, frozen_spans, identical_runs, moving_samples
 from pdrlearn.runtime.guard import WATCHED, FrozenWatch
 
 

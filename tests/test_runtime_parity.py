@@ -161,6 +161,11 @@ def test_numpy_kernels_equal_the_library_references():
     for width in (1, 3, 5, 11):
         np.testing.assert_allclose(box_filter(v, width), uniform_filter1d(v, width, axis=0, mode="nearest"),
                                    atol=1e-12)
+    from pdrlearn.displace._kernels import level_rotation
+    from pdrlearn.kernels.strapdown import level_quat
+
+    g = np.vstack([rng.normal(size=(5, 3)), [[0, 0, 9.8], [1e-14, 0, 9.8], [0.3, -0.2, -9.8]]])
+    np.testing.assert_allclose(level_quat(g), level_rotation(g).as_quat()[:, [3, 0, 1, 2]], atol=1e-12)  # B129
     refs = rng.normal(size=(7, 40, 2))
     q = rng.normal(size=(40, 2))
     for window in (None, 4, 1):
@@ -173,7 +178,7 @@ def test_kernels_package_imports_numpy_only():
     import sys
 
     code = ("import sys, pdrlearn.kernels.window, pdrlearn.kernels.dtw, pdrlearn.kernels.proba, "
-            "pdrlearn.kernels.stride, pdrlearn.kernels.contact; "
+            "pdrlearn.kernels.stride, pdrlearn.kernels.contact, pdrlearn.kernels.handedness; "
             "print(sorted(m for m in ('scipy', 'pandas', 'sklearn', 'torch') if m in sys.modules))")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0, r.stderr[-2000:]

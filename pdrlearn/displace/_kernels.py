@@ -13,6 +13,13 @@ import numpy as np
 from scipy.interpolate import make_interp_spline
 from scipy.spatial.transform import Rotation
 
+# the numpy core, shared with io.handedness and the runtime (decision B129); re-exported under the old names
+from pdrlearn.kernels.strapdown import cumtrapz as _cumtrapz  # noqa: F401
+from pdrlearn.kernels.strapdown import qrotate as _qrotate  # noqa: F401
+from pdrlearn.kernels.strapdown import (
+    stride_index,  # noqa: F401
+    stride_quaternions,  # noqa: F401
+)
 from pdrlearn.kernels.stride import (  # noqa: F401 (numpy-only rules, shared with the runtime)
     DOWN_MODES,
     altitude_change,
@@ -92,24 +99,6 @@ def erode_runs(mask: np.ndarray, frac: float) -> np.ndarray:
     return out
 
 
-def stride_index(starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Padded sample indices (B, L) and validity mask (B, L) of strides ``starts[b]..ends[b]`` inclusive."""
-    starts = np.asarray(starts, dtype=np.int64)
-    ends = np.asarray(ends, dtype=np.int64)
-    if starts.size == 0:
-        return np.zeros((0, 1), dtype=np.int64), np.zeros((0, 1), dtype=bool)
-    L = int(np.max(ends - starts)) + 1
-    idx = starts[:, None] + np.arange(L)[None, :]
-    mask = idx <= ends[:, None]
-    return np.minimum(idx, ends[:, None]), mask
-
-
-def _step(dt):
-    """Decision L83: a sample interval ``dt`` is a scalar (s) or per stride step (B, L - 1) s; shaped to multiply
-    (B, L - 1, k) arrays."""
-    return dt if np.ndim(dt) == 0 else np.asarray(dt, dtype=float)[:, :, None]
-
-
 def step_clock(dt, B: int, L: int) -> np.ndarray:
     """Time (B, L) s since each stride's start for per-step intervals ``dt`` (B, L - 1) (decision L83); the
     sample index times ``dt`` for a scalar."""
@@ -171,35 +160,9 @@ def stride_attitude(gyr: np.ndarray, dt: float | np.ndarray, idx: np.ndarray, ma
     the gravity (or ``init``) attitude at the stride start propagated with the gyroscope (midpoint rate,
     ``gyro_bias`` (B, 3) rad/s removed). Arguments as :func:`strapdown`; padded samples repeat the
     stride's last attitude."""
-    B, L = idx.shape
     rot = level_rotation(g_body) if init is None else init
-    bias = np.zeros((B, 3)) if gyro_bias is None else np.asarray(gyro_bias, dtype=float)
-    # body-frame rotation increments of every step (midpoint rate), as quaternions [w, x, y, z]
-    w = 0.5 * (gyr[idx[:, :-1]] + gyr[idx[:, 1:]]) - bias[:, None, :]
-    w = np.where(mask[:, 1:, None], w, 0.0) * _step(dt)
-    ang = np.linalg.norm(w, axis=2, keepdims=True)
-    half = 0.5 * ang
-    dq = np.concatenate([np.cos(half), w * np.where(ang > 1e-12, np.sin(half) / np.maximum(ang, 1e-300), 0.5)],
-                        axis=2)
     xyzw = rot.as_quat()
-    qc = np.empty((L, 4, B))  # per sample position: components w, x, y, z of every stride (contiguous)
-    qc[0] = np.vstack([xyzw[:, 3], xyzw[:, 0], xyzw[:, 1], xyzw[:, 2]])
-    d = np.ascontiguousarray(np.transpose(dq, (1, 2, 0)))  # (L - 1, 4, B)
-    for j in range(1, L):  # q_j = q_{j-1} * dq_j (Hamilton product, body-frame increment)
-        pw, px, py, pz = qc[j - 1]
-        qw_, qx_, qy_, qz_ = d[j - 1]
-        qc[j, 0] = pw * qw_ - px * qx_ - py * qy_ - pz * qz_
-        qc[j, 1] = pw * qx_ + px * qw_ + py * qz_ - pz * qy_
-        qc[j, 2] = pw * qy_ - px * qz_ + py * qw_ + pz * qx_
-        qc[j, 3] = pw * qz_ + px * qy_ - py * qx_ + pz * qw_
-    return np.transpose(qc, (2, 0, 1))  # (B, L, 4)
-
-
-def _qrotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Rotate vectors v (..., 3) by unit quaternions q (..., 4): v + 2w (u x v) + 2 u x (u x v)."""
-    u = q[..., 1:]
-    t = 2.0 * np.cross(u, v)
-    return v + q[..., :1] * t + np.cross(u, t)
+    return stride_quaternions(xyzw[:, [3, 0, 1, 2]], gyr, dt, idx, mask, gyro_bias)
 
 
 def _qmul(p: np.ndarray, q: np.ndarray) -> np.ndarray:
@@ -251,12 +214,6 @@ def dedrift_tilt(q: np.ndarray, acc: np.ndarray, idx: np.ndarray, mask: np.ndarr
     half = 0.5 * ang[:, None] * c
     dq = np.concatenate([np.cos(half)[..., None], np.sin(half)[..., None] * axis[:, None, :]], axis=2)
     return _qmul(dq, q)
-
-
-def _cumtrapz(x: np.ndarray, dt: float | np.ndarray) -> np.ndarray:
-    out = np.zeros_like(x)
-    out[:, 1:] = np.cumsum(0.5 * (x[:, 1:] + x[:, :-1]) * _step(dt), axis=1)
-    return out
 
 
 def zupt_mask(stance: np.ndarray, idx: np.ndarray, mask: np.ndarray) -> np.ndarray:

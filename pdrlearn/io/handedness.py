@@ -40,11 +40,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-#: Warn when the median per-stride / per-window log ratio (positive = right-handed) lies below this.
-#: Measured (experiments/handedness_check.py, docs/frames.md): truthful real foot units +1.88 to +3.37,
-#: their mirrored versions the negatives; truthful waist units and simulated units see docs/frames.md.
-#: -1.0 (the reversed gyroscope fits e = 2.7 times better in the median segment) is conservative.
-MIN_LOG_RATIO = -1.0
+from pdrlearn.kernels.handedness import (  # decision B129: the test's numpy core, shared with the runtime
+    MIN_LOG_RATIO,
+    MIN_SEGMENTS,
+    end_speeds,
+    log_ratio,
+    mirrored_pair_line,
+)
+from pdrlearn.kernels.handedness import mirrored as _mirrored
+
 #: Units whose test may warn. The waist test is measured but not adopted (docs/frames.md, decision D11): truthful
 #: simulated waist units score -0.25 to -0.64 (the simulated pelvis rolls against its lateral acceleration at
 #: the stride frequency, the real lower backs with it; both are right-handed: docs/decisions/simulator.md S26;
@@ -53,8 +57,6 @@ MIN_LOG_RATIO = -1.0
 WARN_PLACEMENTS = ("foot",)
 #: Units whose axis-agreement test (D11 amendment) may warn: foot (48 permutations), waist (turning axis).
 AXES_PLACEMENTS = ("foot", "waist")
-#: Least strides (foot) or moving windows (waist) for a verdict; fewer: no warning.
-MIN_SEGMENTS = 4
 #: Waist window length and hop (s): about one stride (0.8-1.4 s at 1.4-2.4 steps/s) to two.
 WAIST_WINDOW_S = 2.0
 WAIST_HOP_S = 1.0
@@ -202,8 +204,7 @@ class Handedness:
     def mirrored(self) -> bool:
         """True when the data say with confidence that the pair is left-handed (mirrored); always False
         for a unit outside :data:`WARN_PLACEMENTS`."""
-        return (self.placement in WARN_PLACEMENTS and self.segments >= MIN_SEGMENTS
-                and bool(self.log_ratio < MIN_LOG_RATIO))
+        return self.placement in WARN_PLACEMENTS and _mirrored(self.log_ratio, self.segments)
 
     @property
     def verdict(self) -> str:
@@ -239,15 +240,6 @@ class Handedness:
             out["turn_axis"] = {"angle_deg": None if not np.isfinite(self.turn_deg) else round(float(self.turn_deg), 1),
                                 "turn_windows": int(self.turn_windows)}
         return out
-
-
-def _end_speed(acc: np.ndarray, gyr: np.ndarray, fs: float, i0: np.ndarray, i1: np.ndarray) -> np.ndarray:
-    from pdrlearn.displace._kernels import strapdown, stride_index, zupt_velocity
-
-    idx, mask = stride_index(i0, i1)
-    a_nav, _ = strapdown(acc, gyr, 1.0 / fs, idx, mask, acc[i0])
-    v = zupt_velocity(a_nav, mask, 1.0 / fs, zupt_end=False)
-    return np.linalg.norm(v[np.arange(len(i0)), mask.sum(axis=1) - 1], axis=1)
 
 
 def pitch_axis(gyr: np.ndarray) -> tuple[int, float]:
@@ -294,15 +286,15 @@ def foot_handedness(acc: np.ndarray, gyr: np.ndarray, fs: float) -> Handedness:
     pk, pdeg = pitch_axis(gyr)
     if not len(i0):
         return Handedness("foot", float("nan"), 0, pitch_axis=pk, pitch_deg=pdeg)
-    vp, vm = _end_speed(acc, gyr, fs, i0, i1), _end_speed(acc, -gyr, fs, i0, i1)
-    r = np.log(np.maximum(vm, 1e-9) / np.maximum(vp, 1e-9))
+    vp, vm = end_speeds(acc, gyr, 1.0 / fs, i0, i1)
+    r = log_ratio(vm, vp)
     P, ra = foot_axes(acc, gyr, fs, i0, i1)
     r_axes = float(ra[_index(P)])
     if np.array_equal(P, -np.eye(3)):
         r_axes = -float(np.median(r))
     elif r_axes > AXES_MIN_LOG_RATIO:  # a candidate: confirmed on every stride at the full rate
-        va = _end_speed(acc, gyr @ P.T, fs, i0, i1)
-        r_axes = float(np.median(np.log(np.maximum(vp, 1e-9) / np.maximum(va, 1e-9))))
+        va = end_speeds(acc, gyr @ P.T, 1.0 / fs, i0, i1, signs=(1.0,))[0]
+        r_axes = float(np.median(log_ratio(vp, va)))
     return Handedness("foot", float(np.median(r)), int(len(r)), P, r_axes, pitch_axis=pk, pitch_deg=pdeg)
 
 
@@ -505,10 +497,9 @@ def mirrored_message(h: Handedness, placement: str, *, how=None) -> str:
     acc_n, gyr_n = UNIT_IMU[placement]
     err = ("the end-of-stride velocity error of the ZUPT integration" if placement == "foot"
            else "the velocity error of the walking windows")
-    return (f"the {placement} unit's {acc_n} and {gyr_n} turn like a left-handed (mirrored) pair: {err} is "
-            f"{np.exp(-h.log_ratio):.1f} times smaller with the gyroscope reversed (median of {h.segments}; "
-            f"decision D11); the data were probably mirrored (one axis negated in both files, e.g. left-foot "
-            f"data mirrored to look like a right foot, or a left-handed export): "
+    return (f"{mirrored_pair_line(placement, acc_n, gyr_n, h.log_ratio, h.segments, err)}; the data were "
+            f"probably mirrored (one axis negated in both files, e.g. left-foot data mirrored to look like a right "
+            f"foot, or a left-handed export): "
             f"{mirror_fix_text(h, acc_n, gyr_n, how=how)}; a \"frames\" entry cannot fix this")
 
 

@@ -23,6 +23,9 @@ Modules
 - :mod:`~pdrlearn.kernels.gaps` - stream gaps: the warning lines and the cut of a contact table (B11).
 - :mod:`~pdrlearn.kernels.waist_stream` - the waist contacts on a stream (W31, W59; the live trackers).
 - :mod:`~pdrlearn.kernels.fixes` - the fix-fusion EKF one step at a time, live fixes (seed 004; D14, D19).
+- :mod:`~pdrlearn.kernels.units` - unit, plausibility and frozen-sensor checks of the values (B119, B120).
+- :mod:`~pdrlearn.kernels.strapdown` - the stride strapdown's core: padded batches, quaternion propagation (E72).
+- :mod:`~pdrlearn.kernels.handedness` - D11's mirrored-pair test of a foot unit, offline and live (B129).
 
 This ``__init__`` imports nothing (importing a submodule never loads the others).
 """

@@ -17,6 +17,7 @@ import math
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.handedness import MIN_SEGMENTS, mirror_log_ratios, mirrored, mirrored_pair_line
 from pdrlearn.kernels.units import (
     FROZEN_PARTNER,
     FROZEN_S,
@@ -40,6 +41,10 @@ ACC_COVER_S = 0.25
 #: the sensors whose units are checked (the streamed tracker's IMUs; the kind check_units judges each by)
 GUARDED = {"fAccelerometer": "accelerometer", "fGyroscope": "gyroscope", "wAccelerometer": "accelerometer",
            "wGyroscope": "gyroscope"}
+#: decision B129: the foot strides the live mirrored-pair test (D11) decides on, once: twice D11's least
+#: :data:`~pdrlearn.kernels.handedness.MIN_SEGMENTS` (a median over 8 strides, ~10 s of walking, before the
+#: track has gone far wrong; offline's verdicts rest on 19-76 strides of the first 300 s)
+LIVE_STRIDES = 2 * MIN_SEGMENTS
 #: the 3-axis streams watched for frozen samples (decision B120)
 WATCHED = ("fAccelerometer", "fGyroscope", "wAccelerometer", "wGyroscope", "wMagneticField")
 
@@ -267,3 +272,33 @@ class FrozenWatch:
             if msg:
                 out.append(msg)
         return out
+
+
+class MirrorWatch:
+    """Decision B129: D11's mirrored-pair test (:mod:`pdrlearn.kernels.handedness`, the one ``pdrlearn info`` and
+    ``track`` run) on the first :data:`LIVE_STRIDES` foot strides of a stream, decided once: the warning line when
+    the foot gyroscope's sign is reversed against its accelerometer (or the data are mirrored in one axis)."""
+
+    def __init__(self, who: str = "Tracker"):
+        self.who = who
+        self.ratios: list[float] = []  # the per-stride log ratios so far (> 0: right-handed)
+
+    def stride(self, t_acc: np.ndarray, acc: np.ndarray, t_gyr: np.ndarray, gyr: np.ndarray) -> str | None:
+        """One rest-to-rest stride's foot samples (the gyroscope interpolated on the accelerometer's clock, as
+        offline); the warning when this stride completes the :data:`LIVE_STRIDES` and their median says mirrored."""
+        if len(t_acc) < 3 or len(t_gyr) < 2:
+            return None
+        g = np.column_stack([np.interp(t_acc, t_gyr, gyr[:, j]) for j in range(3)])
+        dt = float(np.median(np.diff(t_acc)))
+        self.ratios.append(float(mirror_log_ratios(acc, g, dt, np.array([0]), np.array([len(t_acc) - 1]))[0]))
+        if len(self.ratios) != LIVE_STRIDES:
+            return None
+        med = float(np.median(self.ratios))
+        if not mirrored(med, len(self.ratios)):
+            return None
+        return (mirrored_pair_line("foot", "fAccelerometer", "fGyroscope", med, len(self.ratios),
+                                   "the end-of-stride velocity error of the ZUPT integration",
+                                   of=f" strides pushed to the {self.who}", decision="decisions D11, B129")
+                + "; the gyroscope's sign looks reversed against the accelerometer's (another axis convention, a "
+                "mirrored mount or export): negate the gyroscope's three values before pushing (or, for data "
+                "mirrored in one axis, that axis in both sensors); until then the track turns and climbs wrong")

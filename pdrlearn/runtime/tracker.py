@@ -63,7 +63,7 @@ from pdrlearn.kernels.window import (
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 from pdrlearn.runtime.fixes import FixInput
-from pdrlearn.runtime.guard import FrozenWatch, UnitGuard
+from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenWatch, MirrorWatch, UnitGuard
 from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
 
@@ -502,6 +502,10 @@ class Tracker(FixInput):
         #: checked, or ``check_input=False``); decision B120: frozen sensors
         self._guard = UnitGuard(self.used_sensors) if check_input else None
         self._frozen = FrozenWatch()
+        #: decision B129: D11's mirrored-pair test on the first foot strides (None: decided, no foot IMU, or
+        #: ``check_input=False``)
+        self._mirror = (MirrorWatch() if check_input and {"fAccelerometer", "fGyroscope"} <= set(self.used_sensors)
+                        else None)
 
 
     def _choose_models(self, sensors) -> None:
@@ -1268,6 +1272,8 @@ class Tracker(FixInput):
             disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
         else:
             lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
+            if self._mirror is not None:
+                self._mirror_stride(t0, t1)
         turn = dyaw  # decision E51: the stride's own turn, before the pivot between strides
         if pause_gap:  # decisions L90 / L91 (track --streaming's): no foot pivot over a foot gap; the waist's turn
             if self._bridged():
@@ -1340,6 +1346,17 @@ class Tracker(FixInput):
             f"{heading:.6g} rad, direction {direction:.6g} rad, position ({xyz[0]:.6g}, {xyz[1]:.6g}, {xyz[2]:.6g}) "
             f"m, length {motion[0]:.6g} m, dz {motion[1]:.6g} m) from finite samples; this is a bug, not bad data - "
             "please report it; the tracker keeps the previous step's heading and position")
+
+    def _mirror_stride(self, t0: float, t1: float) -> None:
+        """Decision B129: the stride ``[t0, t1]``'s foot samples to :class:`MirrorWatch` (stance to stance, as
+        offline's rest-to-rest strides); once it has decided, the test is dropped."""
+        ta, a = segment(*self._stream("fAccelerometer"), t0, t1)
+        inside = (ta >= t0) & (ta <= t1)
+        msg = self._mirror.stride(ta[inside], a[inside], *segment(*self._stream("fGyroscope"), t0, t1))
+        if len(self._mirror.ratios) >= LIVE_STRIDES:
+            self._mirror = None
+        if msg:
+            self._warn(msg)
 
     def _warn(self, msg: str) -> None:
         """One warning line: kept in ``warnings`` and logged."""

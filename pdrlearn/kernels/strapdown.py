@@ -1,0 +1,83 @@
+"""The stride strapdown's numpy core (thesis ch.7.2): padded stride batches, the gyroscope's attitude propagation
+and the trapezoid integral, one implementation for :mod:`pdrlearn.displace._kernels` (which adds scipy's
+``Rotation`` start attitudes) and the numpy-only checks of :mod:`pdrlearn.kernels.handedness` (decision B129).
+
+Strides are a padded batch: ``idx`` (B, L) holds the sample index of the j-th sample of stride b (clipped at its
+last sample) and ``mask`` (B, L) marks valid samples; loops run over the sample position j only.
+Quaternions are [w, x, y, z], body -> navigation frame.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def stride_index(starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Padded sample indices (B, L) and validity mask (B, L) of strides ``starts[b]..ends[b]`` inclusive."""
+    starts = np.asarray(starts, dtype=np.int64)
+    ends = np.asarray(ends, dtype=np.int64)
+    if starts.size == 0:
+        return np.zeros((0, 1), dtype=np.int64), np.zeros((0, 1), dtype=bool)
+    L = int(np.max(ends - starts)) + 1
+    idx = starts[:, None] + np.arange(L)[None, :]
+    mask = idx <= ends[:, None]
+    return np.minimum(idx, ends[:, None]), mask
+
+
+def step_dt(dt):
+    """Decision L83: a sample interval ``dt`` is a scalar (s) or per stride step (B, L - 1) s; shaped to multiply
+    (B, L - 1, k) arrays."""
+    return dt if np.ndim(dt) == 0 else np.asarray(dt, dtype=float)[:, :, None]
+
+
+def qrotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Rotate vectors v (..., 3) by unit quaternions q (..., 4): v + 2w (u x v) + 2 u x (u x v)."""
+    u = q[..., 1:]
+    t = 2.0 * np.cross(u, v)
+    return v + q[..., :1] * t + np.cross(u, t)
+
+
+def cumtrapz(x: np.ndarray, dt: float | np.ndarray) -> np.ndarray:
+    """Trapezoid integral along axis 1 of (B, L, k) samples ``dt`` apart (:func:`step_dt`), 0 at the start."""
+    out = np.zeros_like(x)
+    out[:, 1:] = np.cumsum(0.5 * (x[:, 1:] + x[:, :-1]) * step_dt(dt), axis=1)
+    return out
+
+
+def level_quat(g_body: np.ndarray) -> np.ndarray:
+    """Quaternions (B, 4) of the minimal rotations taking each body gravity vector ``g_body`` (B, 3) to +z (the
+    start attitude of :func:`pdrlearn.displace._kernels.level_rotation`, without scipy)."""
+    g = np.asarray(g_body, dtype=float)
+    a = g / np.linalg.norm(g, axis=1, keepdims=True)
+    axis = np.cross(a, np.array([0.0, 0.0, 1.0]))
+    s = np.linalg.norm(axis, axis=1, keepdims=True)
+    half = 0.5 * np.arctan2(s[:, 0], a[:, 2])
+    unit = np.where(s > 1e-12, axis / np.maximum(s, 1e-300), np.array([1.0, 0.0, 0.0]))
+    return np.concatenate([np.cos(half)[:, None], unit * np.sin(half)[:, None]], axis=1)
+
+
+def stride_quaternions(q0: np.ndarray, gyr: np.ndarray, dt: float | np.ndarray, idx: np.ndarray, mask: np.ndarray,
+                       gyro_bias: np.ndarray | None = None) -> np.ndarray:
+    """Attitude (B, L, 4) of every stride sample: ``q0`` (B, 4) at the stride start propagated with the gyroscope
+    ``gyr`` (n, 3) rad/s (midpoint rate, ``gyro_bias`` (B, 3) removed); padded samples repeat the stride's last
+    attitude. ``dt``, ``idx``, ``mask`` as :func:`pdrlearn.displace._kernels.strapdown`."""
+    B, L = idx.shape
+    bias = np.zeros((B, 3)) if gyro_bias is None else np.asarray(gyro_bias, dtype=float)
+    # body-frame rotation increments of every step (midpoint rate), as quaternions [w, x, y, z]
+    w = 0.5 * (gyr[idx[:, :-1]] + gyr[idx[:, 1:]]) - bias[:, None, :]
+    w = np.where(mask[:, 1:, None], w, 0.0) * step_dt(dt)
+    ang = np.linalg.norm(w, axis=2, keepdims=True)
+    half = 0.5 * ang
+    dq = np.concatenate([np.cos(half), w * np.where(ang > 1e-12, np.sin(half) / np.maximum(ang, 1e-300), 0.5)],
+                        axis=2)
+    qc = np.empty((L, 4, B))  # per sample position: components w, x, y, z of every stride (contiguous)
+    qc[0] = np.asarray(q0, dtype=float).T
+    d = np.ascontiguousarray(np.transpose(dq, (1, 2, 0)))  # (L - 1, 4, B)
+    for j in range(1, L):  # q_j = q_{j-1} * dq_j (Hamilton product, body-frame increment)
+        pw, px, py, pz = qc[j - 1]
+        qw_, qx_, qy_, qz_ = d[j - 1]
+        qc[j, 0] = pw * qw_ - px * qx_ - py * qy_ - pz * qz_
+        qc[j, 1] = pw * qx_ + px * qw_ + py * qz_ - pz * qy_
+        qc[j, 2] = pw * qy_ - px * qz_ + py * qw_ + pz * qx_
+        qc[j, 3] = pw * qz_ + px * qy_ - py * qx_ + pz * qw_
+    return np.transpose(qc, (2, 0, 1))  # (B, L, 4)
