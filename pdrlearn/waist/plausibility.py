@@ -86,7 +86,7 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
     if ratio is None or n < PLAUSIBILITY_MIN_PAIRS or WALK_RATIO_BAND[0] <= ratio <= WALK_RATIO_BAND[1]:
         return None
     what = ("far under healthy gait's: a short-stepping (shuffling, festinating) gait, on which the uncalibrated "
-            "waist step length is not validated and reads long (simulated: +50 to +170 % distance)"
+            "waist step length is not validated and reads long (simulated festinating walks: +20 to +174 % distance)"
             if ratio < WALK_RATIO_BAND[0] else
             "far over healthy gait's: the uncalibrated step length is implausibly long for this cadence")
     return (f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
