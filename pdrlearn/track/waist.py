@@ -24,6 +24,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.io import Session
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
+from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
@@ -50,6 +51,8 @@ from pdrlearn.waist.plausibility import (
     PLAUSIBILITY_MIN_PAIRS,
     contact_alternation,
     not_alternating_message,
+    walk_ratio,
+    walk_ratio_message,
 )
 from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
 
@@ -466,6 +469,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                              steps["has_next"].to_numpy(bool))  # decision W98
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
         warnings.append(not_alternating_message(alternation, pairs))
+    ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime)  # decision W100
+    if ratio_line:
+        warnings.append(ratio_line)
     n = len(steps)
     length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"
     info = {
@@ -482,10 +488,20 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "walk_threshold_mps2": float(thr),
         "alternation_index": alternation,
         "alternation_pairs": pairs,
+        "walk_ratio": ratio,
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]), z)
+
+
+def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool) -> tuple[float | None, str | None]:
+    """Decision W100: the walk ratio of an offline, uncalibrated ``waist-pendulum`` track (None otherwise) and its
+    warning line (None inside the healthy band or with too few steps)."""
+    if pipeline != "waist-pendulum" or realtime or p.source != "defaults" or not len(steps):
+        return None, None
+    ratio, n, length, cadence = walk_ratio(steps["length_m"].to_numpy(float), waist_step_times(steps)[0])
+    return ratio, walk_ratio_message(ratio, n, length, cadence)
 
 
 RELATIVE_HEADING = "waist heading relative to the start"

@@ -4,6 +4,9 @@ A waist track's warnings on slow gait (L95, W77) read the estimated cadence and 
 user's arm pushes, a phantom contact inside a slow step or a cane strike corrupt themselves. Real steps move
 the weight from one foot to the other: the pelvis's medio-lateral velocity at consecutive contacts has
 opposite signs (W20). :func:`alternation_index` measures that from the contacts alone.
+:func:`walk_ratio` (decision W100) relates the two estimates an uncalibrated track has, step length and cadence:
+a short-stepping gait the default step-length model is not validated on, or a step implausibly long for its
+cadence, falls outside the healthy walk ratio.
 """
 
 from __future__ import annotations
@@ -16,6 +19,11 @@ from pdrlearn.waist import _kernels as K
 ALTERNATION_MIN = 0.5
 #: W98: fewer consecutive-contact pairs than this are not judged
 PLAUSIBILITY_MIN_PAIRS = 10
+#: W100: the walk ratio (step length / cadence, m per steps/min) of healthy adults, about constant over walking
+#: speeds (Sekiya & Nagasaki 1998, Gait & Posture 7:225-227; not in the seeds: the general gait literature's value)
+WALK_RATIO_HEALTHY = 0.0064
+#: W100: half and 1.5x the healthy walk ratio (a priori round factors, not fitted): outside warns
+WALK_RATIO_BAND = (0.5 * WALK_RATIO_HEALTHY, 1.5 * WALK_RATIO_HEALTHY)
 
 
 def alternation_index(v_at: np.ndarray, has_next: np.ndarray) -> tuple[float | None, int]:
@@ -55,3 +63,35 @@ def not_alternating_message(index: float, pairs: int) -> str:
             "no sideways weight shift from step to step, so the step count, distance and speed may not be "
             "walking (wheelchair propulsion, walking-aid strikes, phantom steps at very slow gait); check with "
             "a foot unit or 'pdrlearn steps DIR --detector pelvic-gyro'")
+
+
+def walk_ratio(length_m: np.ndarray, step_s: np.ndarray) -> tuple[float | None, int, float | None, float | None]:
+    """``(WR, n, length, cadence)``: the walk ratio ``WR = median length / median cadence`` (m per steps/min) over
+    the ``n`` steps with a finite step time ``step_s`` (s; cadence ``60 / step_s``), the median step length (m)
+    and the median cadence (steps/min) (decision W100). None when no step has a step time."""
+    st = np.asarray(step_s, dtype=np.float64)
+    ok = np.isfinite(st) & (st > 0)
+    n = int(ok.sum())
+    if n == 0:
+        return None, 0, None, None
+    length = float(np.median(np.abs(np.asarray(length_m, dtype=np.float64)[ok])))
+    cadence = float(np.median(60.0 / st[ok]))
+    return length / cadence, n, length, cadence
+
+
+def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None) -> str | None:
+    """Decision W100's one warning line for an uncalibrated waist track whose walk ratio lies outside
+    :data:`WALK_RATIO_BAND` over at least :data:`PLAUSIBILITY_MIN_PAIRS` steps; None when it is inside or not
+    judged."""
+    if ratio is None or n < PLAUSIBILITY_MIN_PAIRS or WALK_RATIO_BAND[0] <= ratio <= WALK_RATIO_BAND[1]:
+        return None
+    what = ("far under healthy gait's: a short-stepping (shuffling, festinating) gait, on which the uncalibrated "
+            "waist step length is not validated and reads long (simulated festinating walks: +20 to +174 % distance)"
+            if ratio < WALK_RATIO_BAND[0] else
+            "far over healthy gait's: the uncalibrated step length is implausibly long for this cadence")
+    return (f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
+            f"{n} steps; healthy gait ~{WALK_RATIO_HEALTHY:g}, outside {WALK_RATIO_BAND[0]:g}-"
+            f"{WALK_RATIO_BAND[1]:g} warns, decision W100) is {what}; the distance, speed and step lengths need a "
+            "calibration on this walker's own walk of known length (a 10 m walk test, or this recording if you know "
+            "the distance walked): 'pdrlearn calibrate DIR --distance M --out PARAMS.json', then track with "
+            "--params PARAMS.json")
