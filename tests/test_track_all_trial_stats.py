@@ -164,3 +164,48 @@ def test_track_all_json_counts_found_and_tracked(site_tree, tmp_path, capsys):
     got = json.loads(capsys.readouterr().out)
     assert (got["n_sessions"], got["n_tracked"], got["n_failed"]) == (4, 3, 1)
     assert sum(g["n_tracked"] for g in got["groups"]) == 3 and got["run"]["n_tracked"] == 3
+
+
+def test_track_records_its_options_in_run_json(site_tree, tmp_path, monkeypatch):
+    """L122: `track` recorded its options nowhere (track-all had run.json, C18). Now OUT/run.json: version, every
+    option (defaults too), the session as typed (relative stays relative: no absolute folder the user did not
+    type), the model; two re-runs differ in the times only, and another option is recorded as such."""
+    from pdrlearn import __version__
+
+    shutil.copytree(site_tree, tmp_path / "study")
+    monkeypatch.chdir(tmp_path)
+    session = "study/centreA/S02/visit1"
+    for out, extra in (("o1", []), ("o2", []), ("o3", ["--method", "M1"]), ("o4", ["--model", "oracle"])):
+        assert main(["track", session, "--out", out, *extra]) == 0
+    runs = {o: json.loads((tmp_path / o / "run.json").read_text()) for o in ("o1", "o2", "o3", "o4")}
+    timings = ("finished_utc", "track_time_s", "cpu_time_s")
+    assert all(k in runs["o1"] for k in timings) and runs["o1"]["track_time_s"] >= 0
+    same = [{k: v for k, v in r.items() if k not in timings} for r in (runs["o1"], runs["o2"])]
+    assert same[0] == same[1]
+    r1 = runs["o1"]
+    assert r1["command"] == "track" and r1["pdrlearn_version"] == __version__ and r1["session"] == session
+    assert r1["options"]["method"] == "auto" and r1["options"]["pipeline"] == "auto" and r1["options"]["dpi"] is None
+    assert r1["pipeline"] == "plasys" and r1["model"] is None and "window" in r1["options"]
+    assert str(tmp_path) not in (tmp_path / "o1" / "run.json").read_text()
+    assert runs["o3"]["options"]["method"] == "M1" and runs["o3"]["method"] == "M1"
+    assert {k: v for k, v in runs["o3"]["options"].items() if k != "method"} == {
+        k: v for k, v in r1["options"].items() if k != "method"}
+    assert runs["o4"]["model"] == {"path": "oracle"} and runs["o4"]["options"]["model"] == "oracle"
+    # summary.json stays the same run to run (no time in it)
+    assert (tmp_path / "o1/summary.json").read_bytes() == (tmp_path / "o2/summary.json").read_bytes()
+
+
+def test_run_json_names_a_model_directory_by_its_manifest_checksum(tmp_path):
+    """L122: a model directory is recorded with its user and the SHA-256 of its manifest.json (which lists every
+    model file's SHA-256): another model, or the same folder retrained, gives another checksum."""
+    import hashlib
+
+    from pdrlearn.cli.provenance import model_record
+
+    (tmp_path / "m").mkdir()  # what model_record reads of a model directory: its manifest (schema 1, train's)
+    (tmp_path / "m/manifest.json").write_text(json.dumps({"schema_version": 1, "user": "S01", "files": {},
+                                                          "package_version": "0.1.0", "tasks": {}}))
+    rec = model_record(tmp_path / "m")
+    assert rec["path"] == str(tmp_path / "m") and rec["user"] == "S01"
+    assert rec["manifest_sha256"] == hashlib.sha256((tmp_path / "m/manifest.json").read_bytes()).hexdigest()
+    assert model_record(None) is None

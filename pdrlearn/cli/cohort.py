@@ -4,7 +4,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -463,19 +462,17 @@ def _duplicates(rels: list[str], results: list[JobResult]) -> dict[str, str]:
 
 
 def _run_record(root: Path, options: dict, rels: list[str], results: list[JobResult]) -> dict:
-    """Decision C18: OUT/run.json, the record of a track-all run: the pdrlearn version, the command's options as
-    given, ROOT (resolved), when it finished and each session's wall and CPU time - what differs from run to
-    run is here, so that sessions.csv and groups.csv are the same for the same data, version and options."""
-    from datetime import UTC, datetime
-
-    from pdrlearn import __version__
+    """Decision C18: OUT/run.json, the record of a track-all run (:func:`pdrlearn.cli.provenance.run_record`, as
+    ``track``'s, decision L122): the pdrlearn version, the command's options as given, ROOT as given, the model,
+    when it finished and each session's wall and CPU time - what differs from run to run is here, so that
+    sessions.csv and groups.csv are the same for the same data, version and options."""
+    from pdrlearn.cli.provenance import model_record, run_record
 
     ok = sum(r.ok for r in results)
-    return {"command": "track-all", "pdrlearn_version": __version__, "root": str(Path(root).resolve()),
-            "options": options, "finished_utc": datetime.now(UTC).isoformat(timespec="seconds"),
-            "n_sessions": len(results), "n_tracked": ok, "n_failed": len(results) - ok,
-            "track_time_s": {rel: round(r.seconds, 2) for rel, r in zip(rels, results, strict=True)},
-            "cpu_time_s": {rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)}}
+    return run_record("track-all", options, root=str(root), model=model_record(options.get("model")),
+                      n_sessions=len(results), n_tracked=ok, n_failed=len(results) - ok,
+                      track_time_s={rel: round(r.seconds, 2) for rel, r in zip(rels, results, strict=True)},
+                      cpu_time_s={rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)})
 
 
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
@@ -549,10 +546,13 @@ def track_all(
 
         pdrlearn track-all study/ --out results/2mwt --window 0,120 --streaming --initial-heading 90
     """
-    # decision C18: every option as given (a new option is recorded without a change here), for run.json
-    options = {k: (str(v) if isinstance(v, Path) else v) for k, v in locals().items()
-               if k not in ("root", "out", "force", "as_json")}
+    # decision C18: every option as given (a new option is recorded without a change here), for run.json; taken
+    # before any name is defined in this function
+    arguments = dict(locals())
+    from pdrlearn.cli.provenance import given_options, write_run_json
     from pdrlearn.cli.track import track_settings
+
+    options = given_options(arguments, leave_out=("root", "out", "force", "as_json"))
 
     settings = track_settings(pipeline=pipeline, method=method, model=model, rules=rules,
                               min_confidence=min_confidence, length_bounds=length_bounds,
@@ -592,7 +592,7 @@ def track_all(
         run = _run_record(root, options, rels, results)
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")
-        (tmp / "run.json").write_text(json.dumps(json_safe(run), indent=2) + "\n")
+        write_run_json(tmp, run)
     replaced(out, was)
     if as_json:  # decision C19: n_sessions counts every session found, n_tracked those tracked (groups.csv's)
         print_json(json_safe({"sessions": sessions.to_dict(orient="records"),
