@@ -1,8 +1,8 @@
 """The record of a command's run, ``run.json``: the pdrlearn version, the options (every argument of the command,
 defaults included), its inputs as given, the model it used and when and how long it ran. One mechanism for
-``track`` (decision L122) and ``track-all`` (cohort C18). What differs from run to run (finish time, wall and CPU
-time) is in ``run.json`` only, so the files meant to be the same for the same data and options (summary.json,
-steps.csv, sessions.csv, groups.csv, changes.csv) stay the same."""
+``track`` and ``run`` (decision L122) and ``track-all`` (cohort C18). What differs from run to run (finish time,
+wall and CPU time) is in ``run.json`` only, so the files meant to be the same for the same data and options
+(track's summary.json, steps.csv, sessions.csv, groups.csv, changes.csv) stay the same."""
 
 from __future__ import annotations
 
@@ -18,11 +18,12 @@ def given_options(arguments: dict, leave_out: tuple[str, ...] = ()) -> dict:
 
 
 def model_record(model: str | Path | None) -> dict | None:
-    """What identifies the ``--model`` a track used (decision L122): the folder as given, and for a model directory
-    its ``user``, the pdrlearn version that trained it and the SHA-256 of its ``manifest.json`` (the manifest
-    holds every model file's SHA-256, so its own checksum names the whole model). ``oracle`` (the session's own
-    labels) has no files; ``None`` without ``--model``. The model was verified before the track
-    (``verify_model_dir``, decision B128)."""
+    """What identifies the model a track used (decision L122): the folder as given, and for a model directory
+    (``track --model``) or a runtime bundle (``run``) its ``user``, the pdrlearn version that made it and the
+    SHA-256 of its ``manifest.json`` (the manifest holds every model file's SHA-256, so its own checksum names the
+    whole model; a bundle's ``manifest.sha256`` holds the same digest). ``oracle`` (the session's own labels) has
+    no files; ``None`` without a model. The model was verified before the track (``verify_model_dir``, B128;
+    ``load_bundle``)."""
     if model is None:
         return None
     if str(model) == "oracle":
