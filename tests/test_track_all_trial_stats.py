@@ -209,3 +209,103 @@ def test_run_json_names_a_model_directory_by_its_manifest_checksum(tmp_path):
     assert rec["path"] == str(tmp_path / "m") and rec["user"] == "S01"
     assert rec["manifest_sha256"] == hashlib.sha256((tmp_path / "m/manifest.json").read_bytes()).hexdigest()
     assert model_record(None) is None
+
+
+@pytest.fixture(scope="module")
+def visit_runs(site_tree, tmp_path_factory):
+    """C22/C23: the site tree with meta.json subject and visit (1, 2): S01 and S02 walked again at visit 2, S03 has
+    no visit 2, S05's visit-2 folder holds no data (fails); track-all twice, here and from a copy elsewhere."""
+    import contextlib
+    import io
+
+    from pdrlearn import sim
+    from pdrlearn.io import write_session
+
+    base = tmp_path_factory.mktemp("visits")
+    root = base / "here" / "study"
+    shutil.copytree(site_tree, root)
+    for subj, seed in (("S01", 4), ("S02", 5)):
+        write_session(sim.simulate("walk", seed, length_m=14), root / "centreA" / subj / "visit2")
+    (root / "centreB/S05/visit2").mkdir(parents=True)
+    (root / "centreB/S05/visit2/meta.json").write_text('{"name": "no data"}')
+    for meta in root.glob("*/*/*/meta.json"):
+        m = json.loads(meta.read_text())
+        m.update(subject=meta.parent.parent.name, visit=int(meta.parent.name[-1]))
+        meta.write_text(json.dumps(m))
+    copy = base / "elsewhere" / "study"
+    shutil.copytree(root, copy)
+    got = []
+    for r, out in ((root, base / "o1"), (copy, base / "o2")):
+        printed = io.StringIO()
+        with contextlib.redirect_stdout(printed), contextlib.redirect_stderr(io.StringIO()):
+            rc = main(["track-all", str(r), "--out", str(out), "--method", "M2"])
+        got.append((rc, out, printed.getvalue()))
+    return root, got
+
+
+def test_paired_visits_give_change_scores_with_a_paired_t_interval(visit_runs):
+    """C22/C23: a cohort with the same subjects at two visits got no change scores (C20: not built). Now changes.csv
+    (per subject, visit 2 minus visit 1, a subject without both visits listed with the reason) and
+    changes_summary.csv (mean change, paired 95 % t-interval, n subjects, the subjects not paired); checked by hand
+    from each session's summary.json; byte-identical from a copy of the data elsewhere."""
+    root, ((rc1, o1, printed), (rc2, o2, _)) = visit_runs
+    assert rc1 == rc2 == 1  # S05's visit 2 failed
+    for name in ("changes.csv", "changes_summary.csv", "sessions.csv"):
+        assert (o1 / name).read_bytes() == (o2 / name).read_bytes(), name
+    sessions = pd.read_csv(o1 / "sessions.csv", dtype={"subject": str, "visit": str})
+    assert sessions.set_index("path").loc["centreA/S02/visit2", ["subject", "visit"]].tolist() == ["S02", "2"]
+    changes = pd.read_csv(o1 / "changes.csv").set_index("subject")
+    assert changes.index.tolist() == ["S01", "S02", "S03", "S05"]
+    assert changes["status"].tolist() == ["ok", "ok", "missing", "missing"]
+    assert changes.loc["S03", "reason"] == "2: no session"
+    assert changes.loc["S05", "reason"] == "1: no session; 2: centreB/S05/visit2 failed"
+    assert changes.loc[["S03", "S05"], "gait_speed_mps_change"].isna().all()
+
+    def speed(rel):
+        return json.loads((o1 / rel / "summary.json").read_text())["gait_speed_mps"]
+
+    d = [speed(f"centreA/{s}/visit2") - speed(f"centreA/{s}/visit1") for s in ("S01", "S02")]
+    assert changes.loc["S01", "gait_speed_mps_change"] == pytest.approx(d[0], abs=1e-12)  # later minus baseline
+    assert changes.loc["S01", "gait_speed_mps_baseline"] == pytest.approx(speed("centreA/S01/visit1"), abs=1e-12)
+    summary = pd.read_csv(o1 / "changes_summary.csv").set_index("measure")
+    row = summary.loc["gait_speed_mps"]
+    # two subjects: mean of the differences, sd = |d1 - d2| / sqrt(2), half-width t(0.975, 1) sd / sqrt(2) with
+    # t(0.975, 1) = 12.7062 (a t table; NIST/SEMATECH e-Handbook 1.3.6.7.2)
+    mean, sd = (d[0] + d[1]) / 2, abs(d[0] - d[1]) / np.sqrt(2)
+    assert row["n_subjects"] == 2 and row["mean_change"] == pytest.approx(mean, abs=1e-12)
+    assert row["ci95_low"] == pytest.approx(mean - 12.7062 * sd / np.sqrt(2), abs=1e-4)
+    assert row["ci95_high"] == pytest.approx(mean + 12.7062 * sd / np.sqrt(2), abs=1e-4)
+    assert row["visit"] == 2 and row["baseline_visit"] == 1 and row["n_not_paired"] == 2
+    assert row["not_paired"] == "S03; S05"
+    assert "paired change from the baseline visit" in printed and "S03; S05" in printed
+
+
+def test_the_report_of_a_batch_shows_the_paired_changes(visit_runs, tmp_path):
+    """C23: `pdrlearn report` on a track-all folder with visits shows the paired change per measure and the subjects
+    not paired with why (recomputed from sessions.csv, as changes.csv is)."""
+    _, ((_, o1, _), _) = visit_runs
+    assert main(["report", str(o1), "--out", str(tmp_path / "rep")]) == 0
+    md = (tmp_path / "rep" / "report.md").read_text()
+    assert "paired change from the baseline visit" in md and "subjects not paired" in md
+    assert "1: no session; 2: centreB/S05/visit2 failed" in md
+    summary = pd.read_csv(o1 / "changes_summary.csv").set_index("measure").loc["gait_speed_mps"]
+    assert f"{summary['mean_change']:+.3g} [{summary['ci95_low']:.3g}, {summary['ci95_high']:.3g}]" in md
+
+
+def test_visit_order_is_natural_and_no_second_visit_means_no_changes():
+    """C22: visits in study order (visit2 before visit10; the first is the baseline); sessions naming one visit, or
+    none, give no changes.csv; a subject with two sessions at a visit is listed as such, not averaged."""
+    from pdrlearn.visits import change_table, visit_order
+
+    assert visit_order(["visit10", "visit2", "baseline", "visit1"]) == ["baseline", "visit1", "visit2", "visit10"]
+    assert visit_order(["week12", "week4", "2", "10"]) == ["2", "10", "week4", "week12"]
+    rows = pd.DataFrame({"path": ["a", "b", "c"], "group": ["g"] * 3, "subject": ["S1", "S1", "S1"],
+                         "visit": ["v1", "v1", "v1"], "status": ["ok"] * 3, "gait_speed_mps": [1.0, 1.1, 1.2]})
+    assert change_table(rows) is None
+    rows.loc[2, "visit"] = "v2"
+    got = change_table(rows)
+    assert got["status"].tolist() == ["several"] and got["reason"].iloc[0] == "v1: 2 sessions (a, b)"
+    rows.loc[1, "visit"] = "v3"
+    got = change_table(rows).set_index("visit")
+    assert got.loc["v2", "gait_speed_mps_change"] == pytest.approx(0.2) and got.loc["v3", "baseline_path"] == "a"
+    assert got.loc["v3", "gait_speed_mps_change"] == pytest.approx(0.1)  # each visit against the baseline

@@ -37,6 +37,7 @@ from pdrlearn.cohort import (
     groups_text,
     run_cohort,
     session_group,
+    session_labels,
     user_sessions,
 )
 from pdrlearn.errors import DataError, shell_quote
@@ -350,8 +351,9 @@ TRACK_LIBRARIES = ("scipy.linalg", "scipy.signal")
 #: of summary.json follow, sorted by name. Units are in the names (_m, _pct, _s, _mps, _spm). Decision C18: no
 #: wall time (run.json has it) and ``input_dir`` relative to ROOT, so a re-run or a copy elsewhere writes the same
 #: file; C19: what ``n_steps`` counts beside it, the two counts by name, the tracked unit's ``rate_hz``.
-SESSION_COLUMNS = ("path", "group", "status", "error", "session", "input_dir", "pipeline", "method", "rate_hz",
-                   "n_steps", "n_steps_counts", "n_strides_one_foot", "n_steps_both_feet", "distance_m",
+SESSION_COLUMNS = ("path", "group", "subject", "visit", "status", "error", "session", "input_dir", "pipeline",
+                   "method", "rate_hz", "n_steps", "n_steps_counts", "n_strides_one_foot", "n_steps_both_feet",
+                   "distance_m",
                    "distance_ref_m", "distance_error_pct", "final_position_error_m", "walking_time_s",
                    "gait_speed_mps", "median_cadence_spm", "median_stride_length_m", "median_stride_time_s",
                    "median_speed_mps", "n_warnings", "warnings", "content_id", "duplicate_of")
@@ -475,6 +477,25 @@ def _run_record(root: Path, options: dict, rels: list[str], results: list[JobRes
                       cpu_time_s={rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)})
 
 
+def _changes(sessions: pd.DataFrame) -> tuple[pd.DataFrame | None, pd.DataFrame | None]:
+    """Decisions C22, C23: changes.csv and changes_summary.csv of the batch, or ``(None, None)`` when the sessions
+    name fewer than two visits; then the sessions that name a subject but no visit, or a visit but no subject, are
+    warned once (they cannot be paired, and are in no row of changes.csv)."""
+    import logging
+
+    from pdrlearn.visits import change_summary, change_table
+
+    changes = change_table(sessions)
+    if changes is None:
+        return None, None
+    half = sessions[sessions["subject"].isna() != sessions["visit"].isna()]["path"].astype(str).tolist()
+    if half:
+        logging.getLogger("pdrlearn.cli").warning(
+            "%s", grouped_warning("meta.json names a subject but no visit, or a visit but no subject: not paired in "
+                                  "changes.csv (add both, decision C22)", half, len(sessions)))
+    return changes, change_summary(changes)
+
+
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
     tmp = path.with_name(f".{path.name}.tmp")
     df.to_csv(tmp, index=False)  # full precision: groups.csv = a groupby of sessions.csv as read back
@@ -585,23 +606,36 @@ def track_all(
         dup = _duplicates(rels, results)
         rows = [_session_row(rel, session_group(rel, group_depth), r, str(p))
                 for rel, r, p in zip(rels, results, found, strict=True)]
-        for row in rows:
+        for row, p in zip(rows, found, strict=True):
             row["duplicate_of"] = dup.get(row["path"])
+            row["subject"], row["visit"] = session_labels(p)  # decision C22: meta.json's subject and visit
         sessions = _sessions_table(rows)
         groups = group_table(sessions)
+        changes, summary = _changes(sessions)
         run = _run_record(root, options, rels, results)
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")
+        if changes is not None:  # decisions C22, C23
+            _write_csv_atomic(changes, tmp / "changes.csv")
+            _write_csv_atomic(summary, tmp / "changes_summary.csv")
         write_run_json(tmp, run)
     replaced(out, was)
     if as_json:  # decision C19: n_sessions counts every session found, n_tracked those tracked (groups.csv's)
         print_json(json_safe({"sessions": sessions.to_dict(orient="records"),
                               "groups": groups.to_dict(orient="records"), "n_sessions": len(results),
-                              "n_tracked": len(results) - len(failed), "n_failed": len(failed), "run": run}))
+                              "n_tracked": len(results) - len(failed), "n_failed": len(failed), "run": run,
+                              **({} if changes is None else {"changes": changes.to_dict(orient="records"),
+                                                             "changes_summary": summary.to_dict(orient="records")})}))
     else:
         typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked; wrote {out}/"
-                   "<session>/, sessions.csv, groups.csv, run.json")
+                   "<session>/, sessions.csv, groups.csv, " + ("" if changes is None else
+                                                               "changes.csv, changes_summary.csv, ") + "run.json")
         print(groups_text(groups).to_markdown(index=False))
+        if changes is not None:  # decision C23
+            from pdrlearn.visits import changes_text
+
+            print("paired change from the baseline visit, per subject (changes.csv says why a subject is not paired):")
+            print(changes_text(summary).to_markdown(index=False))
         given = {rel: str(p) for rel, p in zip(rels, found, strict=True)}
         for r in failed:
             typer.echo(f"failed {r.name}: {r.error}")
