@@ -549,8 +549,11 @@ def track_all(
     the one-line error of a failed session, and the fields of its summary.json (input_dir, distance_m,
     distance_error_pct, gait_speed_mps, median_cadence_spm, ...; input_dir relative to ROOT). OUT/groups.csv
     has per group n_tracked, n_failed and the n, mean, sd, median and 95 % t-interval of the mean of the
-    distance error, gait speed, cadence and stride length. OUT/run.json records the pdrlearn version, the
-    options and each session's time (decision C18). Sessions holding identical sensor data are warned
+    distance error, gait speed, cadence and stride length. With sessions whose meta.json names a subject and
+    two or more visits, OUT/changes.csv has per subject each visit's change from the baseline visit (a subject
+    without both visits listed with why) and OUT/changes_summary.csv the mean change with its paired 95 %
+    t-interval (decisions C22, C23). OUT/run.json records the pdrlearn version, the options and each session's
+    time (decision C18). Sessions holding identical sensor data are warned
     (duplicate_of, C20). A session that cannot be tracked is reported and skipped. Progress: one line per
     session on stderr; each warning is said once per batch, with the sessions it concerns.
 
