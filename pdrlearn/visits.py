@@ -31,8 +31,6 @@ def visit_order(visits) -> list[str]:
 def _labelled(sessions):
     """The rows of sessions.csv that name both a subject and a visit, both as text (a column pandas read as numbers
     gives ``2``, not ``2.0``; read sessions.csv with ``dtype={"subject": str, "visit": str}`` to keep ``007``)."""
-    if "subject" not in sessions or "visit" not in sessions:
-        return sessions.iloc[0:0]
     named = sessions[sessions["subject"].notna() & sessions["visit"].notna()].copy()
     for c in ("subject", "visit"):
         named[c] = named[c].map(lambda v: str(int(v)) if isinstance(v, float) and v.is_integer() else str(v))
@@ -62,6 +60,8 @@ def change_table(sessions, metrics=GROUP_METRICS):
     import numpy as np
     import pandas as pd
 
+    if "subject" not in sessions or "visit" not in sessions:  # a sessions.csv written before C22
+        return None
     named = _labelled(sessions)
     visits = visit_order(named["visit"])
     if len(visits) < 2:

@@ -302,6 +302,7 @@ def test_visit_order_is_natural_and_no_second_visit_means_no_changes():
     rows = pd.DataFrame({"path": ["a", "b", "c"], "group": ["g"] * 3, "subject": ["S1", "S1", "S1"],
                          "visit": ["v1", "v1", "v1"], "status": ["ok"] * 3, "gait_speed_mps": [1.0, 1.1, 1.2]})
     assert change_table(rows) is None
+    assert change_table(rows.drop(columns=["subject", "visit"])) is None  # a sessions.csv written before C22
     rows.loc[2, "visit"] = "v2"
     got = change_table(rows)
     assert got["status"].tolist() == ["several"] and got["reason"].iloc[0] == "v1: 2 sessions (a, b)"
