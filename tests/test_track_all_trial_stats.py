@@ -214,7 +214,8 @@ def test_run_json_names_a_model_directory_by_its_manifest_checksum(tmp_path):
 @pytest.fixture(scope="module")
 def visit_runs(site_tree, tmp_path_factory):
     """C22/C23: the site tree with meta.json subject and visit (1, 2): S01 and S02 walked again at visit 2, S03 has
-    no visit 2, S05's visit-2 folder holds no data (fails); track-all twice, here and from a copy elsewhere."""
+    no visit 2, S05's visit-2 folder holds no data (fails), S06 names no visit; track-all twice, here and from a copy
+    elsewhere."""
     import contextlib
     import io
 
@@ -232,14 +233,16 @@ def visit_runs(site_tree, tmp_path_factory):
         m = json.loads(meta.read_text())
         m.update(subject=meta.parent.parent.name, visit=int(meta.parent.name[-1]))
         meta.write_text(json.dumps(m))
+    (root / "centreB/S06/visitX").mkdir(parents=True)  # a subject without a visit (and no data): warned, not paired
+    (root / "centreB/S06/visitX/meta.json").write_text('{"subject": "S06"}')
     copy = base / "elsewhere" / "study"
     shutil.copytree(root, copy)
     got = []
     for r, out in ((root, base / "o1"), (copy, base / "o2")):
-        printed = io.StringIO()
-        with contextlib.redirect_stdout(printed), contextlib.redirect_stderr(io.StringIO()):
+        printed, err = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(printed), contextlib.redirect_stderr(err):
             rc = main(["track-all", str(r), "--out", str(out), "--method", "M2"])
-        got.append((rc, out, printed.getvalue()))
+        got.append((rc, out, printed.getvalue() + err.getvalue()))
     return root, got
 
 
@@ -278,6 +281,8 @@ def test_paired_visits_give_change_scores_with_a_paired_t_interval(visit_runs):
     assert row["visit"] == 2 and row["baseline_visit"] == 1 and row["n_not_paired"] == 2
     assert row["not_paired"] == "S03; S05"
     assert "paired change from the baseline visit" in printed and "S03; S05" in printed
+    assert ("meta.json names a subject but no visit, or a visit but no subject: not paired in changes.csv (add both, "
+            "decision C22) [1 of 7 sessions: centreB/S06/visitX]") in printed
 
 
 def test_the_report_of_a_batch_shows_the_paired_changes(visit_runs, tmp_path):

@@ -39,13 +39,15 @@ def model_record(model: str | Path | None) -> dict | None:
 
 
 def run_record(command: str, options: dict, **fields) -> dict:
-    """The run's record: ``command``, ``pdrlearn_version``, ``options`` (:func:`given_options`), the command's own
-    ``fields`` (its inputs as given, the model, counts, timings) and ``finished_utc`` (now)."""
+    """The run's record: ``command``, ``pdrlearn_version``, the command's own ``fields`` (its inputs as given, the
+    model, counts), ``options`` (:func:`given_options`), then what differs run to run: the ``*_time_s`` fields and
+    ``finished_utc`` (now)."""
     from datetime import UTC, datetime
 
     from pdrlearn import __version__
 
-    return {"command": command, "pdrlearn_version": __version__, **fields, "options": options,
+    times = {k: fields.pop(k) for k in [k for k in fields if k.endswith("_time_s")]}
+    return {"command": command, "pdrlearn_version": __version__, **fields, "options": options, **times,
             "finished_utc": datetime.now(UTC).isoformat(timespec="seconds")}
 
 
