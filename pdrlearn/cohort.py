@@ -399,6 +399,64 @@ def session_group(rel_path: str, depth: int = 1) -> str:
     return "/".join(parts[:min(depth, len(parts) - 1)]) or "."
 
 
+def meta_user_key(meta: dict) -> str | None:
+    """The user a session was recorded from, by its ``meta.json`` (decision C29): ``user`` (a string, or an object
+    with ``id`` or ``seed``, as the simulator writes) or ``subject`` (a string, or an object with ``id`` or
+    ``participant_id``, as the mobgap converter writes), as ``user:anna`` / ``subject.id:7``; ``None`` when it
+    names none. ``train --cv-groups user``'s user (``classify.training.session_user``)."""
+    for key, ids in (("user", ("id", "seed")), ("subject", ("id", "participant_id"))):
+        v = meta.get(key)
+        if isinstance(v, str) and v.strip():
+            return f"{key}:{v.strip()}"
+        if isinstance(v, dict):
+            for k in ids:
+                if v.get(k) is not None and str(v[k]).strip():
+                    return f"{key}.{k}:{v[k]}"
+    return None
+
+
+def meta_user(meta: dict) -> str | None:
+    """A session's user or subject by name (decisions B88, C48): ``user`` / ``subject`` text as written (``anna``),
+    else :func:`meta_user_key`'s name of an object (``user.seed:3`` for a simulated session); ``None`` when the
+    meta.json names none. The one-user model's name, and track-all's ``subject`` (cohort C22)."""
+    for key in ("user", "subject"):
+        v = meta.get(key)
+        if isinstance(v, str) and v.strip():
+            return v.strip()
+    return meta_user_key(meta)
+
+
+def session_labels(folder: str | os.PathLike) -> tuple[str | None, str | None]:
+    """Cohort C22: a session folder's ``(subject, visit)`` from its meta.json - the subject by :func:`meta_user`,
+    the visit as ``visit`` is written (text, or a number as text). ``None`` for what meta.json does not name, and
+    both for a folder without a readable meta.json object (the session's own error, if any, says why)."""
+    import json
+
+    try:
+        meta = json.loads((Path(folder) / "meta.json").read_text())
+    except (OSError, ValueError):
+        return None, None
+    if not isinstance(meta, dict):
+        return None, None
+    visit = meta.get("visit")
+    if isinstance(visit, bool) or not isinstance(visit, str | int | float) or not str(visit).strip():
+        visit = None
+    return meta_user(meta), None if visit is None else str(visit).strip()
+
+
+def t_interval(mean, sd, n):
+    """The 95 % Student's t-interval of a mean, mean ± t(0.975, n - 1) · sd / √n (NIST/SEMATECH e-Handbook of
+    Statistical Methods, 7.2.2.1 "Confidence limits for the mean"), elementwise; NaN under two values. groups.csv
+    (decision C20) and, of paired differences, changes_summary.csv (C23)."""
+    import numpy as np
+    from scipy import stats as st
+
+    mean, sd, n = (np.asarray(v, dtype=float) for v in (mean, sd, n))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        half = np.where(n >= 2, st.t.ppf(0.975, np.maximum(n - 1, 1)) * sd / np.sqrt(np.maximum(n, 1)), np.nan)
+    return mean - half, mean + half
+
+
 #: Per-session columns that ``groups.csv`` summarises (decision C12), where sessions.csv has values.
 GROUP_METRICS = ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "median_stride_length_m")
 
@@ -411,9 +469,7 @@ def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
     one session), ``_median`` and (decision C20) ``_ci95_low`` / ``_ci95_high``, the 95 % t-interval of the mean
     (empty under two sessions) over the group's tracked sessions. Plain pandas ``groupby`` statistics
     (decision C12)."""
-    import numpy as np
     import pandas as pd
-    from scipy import stats as st
 
     ok = sessions[sessions["status"] == "ok"]
     groups = sorted(sessions["group"].astype(str).unique())
@@ -430,13 +486,7 @@ def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
         out[f"{m}_n"] = n
         for s, name in (("mean", "mean"), ("std", "sd"), ("median", "median")):
             out[f"{m}_{name}"] = stats[s].to_numpy()
-        # Student's t-interval of a mean, mean ± t(0.975, n - 1) · sd / √n (NIST/SEMATECH e-Handbook of
-        # Statistical Methods, 7.2.2.1 "Confidence limits for the mean")
-        with np.errstate(invalid="ignore", divide="ignore"):
-            half = np.where(n >= 2, st.t.ppf(0.975, np.maximum(n - 1, 1)) * stats["std"].to_numpy(float)
-                            / np.sqrt(np.maximum(n, 1)), np.nan)
-        out[f"{m}_ci95_low"] = stats["mean"].to_numpy(float) - half
-        out[f"{m}_ci95_high"] = stats["mean"].to_numpy(float) + half
+        out[f"{m}_ci95_low"], out[f"{m}_ci95_high"] = t_interval(stats["mean"], stats["std"], n)  # decision C20
     return out
 
 

@@ -68,6 +68,14 @@ def test_run_writes_path_png_and_lat_lon_with_start(root, walk, tmp_path, capsys
                  "--out", str(tmp_path / "t")]) == 0
     assert (out / "path.png").stat().st_size > 1000
     assert sorted(p.name for p in out.iterdir()) == sorted(p.name for p in (tmp_path / "t").iterdir())
+    # decision L122: both record their run; run's names the bundle by its manifest's SHA-256 (= manifest.sha256)
+    import json
+
+    rec_run, rec_track = (json.loads((tmp_path / d / "run.json").read_text()) for d in ("r", "t"))
+    assert rec_run["command"] == "run" and rec_run["session"] == str(walk) and rec_run["options"]["start"] == START
+    assert rec_run["bundle"]["manifest_sha256"] == (root / "bundle/manifest.sha256").read_text().split()[0]
+    assert rec_track["command"] == "track" and rec_track["options"]["streaming"] is True
+    assert rec_track["model"]["path"] == str(root / "model") and len(rec_track["model"]["manifest_sha256"]) == 64
     run, trk = (pd.read_csv(tmp_path / d / "trajectory.csv") for d in ("r", "t"))
     assert list(run.columns) == ["t", "x", "y", "z", "lat", "lon"]
     assert run[["lat", "lon"]].notna().all().all()

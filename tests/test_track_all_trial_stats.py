@@ -164,3 +164,154 @@ def test_track_all_json_counts_found_and_tracked(site_tree, tmp_path, capsys):
     got = json.loads(capsys.readouterr().out)
     assert (got["n_sessions"], got["n_tracked"], got["n_failed"]) == (4, 3, 1)
     assert sum(g["n_tracked"] for g in got["groups"]) == 3 and got["run"]["n_tracked"] == 3
+
+
+def test_track_records_its_options_in_run_json(site_tree, tmp_path, monkeypatch):
+    """L122: `track` recorded its options nowhere (track-all had run.json, C18). Now OUT/run.json: version, every
+    option (defaults too), the session as typed (relative stays relative: no absolute folder the user did not
+    type), the model; two re-runs differ in the times only, and another option is recorded as such."""
+    from pdrlearn import __version__
+
+    shutil.copytree(site_tree, tmp_path / "study")
+    monkeypatch.chdir(tmp_path)
+    session = "study/centreA/S02/visit1"
+    for out, extra in (("o1", []), ("o2", []), ("o3", ["--method", "M1"]), ("o4", ["--model", "oracle"])):
+        assert main(["track", session, "--out", out, *extra]) == 0
+    runs = {o: json.loads((tmp_path / o / "run.json").read_text()) for o in ("o1", "o2", "o3", "o4")}
+    timings = ("finished_utc", "track_time_s", "cpu_time_s")
+    assert all(k in runs["o1"] for k in timings) and runs["o1"]["track_time_s"] >= 0
+    same = [{k: v for k, v in r.items() if k not in timings} for r in (runs["o1"], runs["o2"])]
+    assert same[0] == same[1]
+    r1 = runs["o1"]
+    assert r1["command"] == "track" and r1["pdrlearn_version"] == __version__ and r1["session"] == session
+    assert r1["options"]["method"] == "auto" and r1["options"]["pipeline"] == "auto" and r1["options"]["dpi"] is None
+    assert r1["pipeline"] == "plasys" and r1["model"] is None and "window" in r1["options"]
+    assert str(tmp_path) not in (tmp_path / "o1" / "run.json").read_text()
+    assert runs["o3"]["options"]["method"] == "M1" and runs["o3"]["method"] == "M1"
+    assert {k: v for k, v in runs["o3"]["options"].items() if k != "method"} == {
+        k: v for k, v in r1["options"].items() if k != "method"}
+    assert runs["o4"]["model"] == {"path": "oracle"} and runs["o4"]["options"]["model"] == "oracle"
+    # summary.json stays the same run to run (no time in it)
+    assert (tmp_path / "o1/summary.json").read_bytes() == (tmp_path / "o2/summary.json").read_bytes()
+
+
+def test_run_json_names_a_model_directory_by_its_manifest_checksum(tmp_path):
+    """L122: a model directory is recorded with its user and the SHA-256 of its manifest.json (which lists every
+    model file's SHA-256): another model, or the same folder retrained, gives another checksum."""
+    import hashlib
+
+    from pdrlearn.cli.provenance import model_record
+
+    (tmp_path / "m").mkdir()  # what model_record reads of a model directory: its manifest (schema 1, train's)
+    (tmp_path / "m/manifest.json").write_text(json.dumps({"schema_version": 1, "user": "S01", "files": {},
+                                                          "package_version": "0.1.0", "tasks": {}}))
+    rec = model_record(tmp_path / "m")
+    assert rec["path"] == str(tmp_path / "m") and rec["user"] == "S01"
+    assert rec["manifest_sha256"] == hashlib.sha256((tmp_path / "m/manifest.json").read_bytes()).hexdigest()
+    assert model_record(None) is None
+
+
+@pytest.fixture(scope="module")
+def visit_runs(site_tree, tmp_path_factory):
+    """C22/C23: the site tree with meta.json subject and visit (1, 2): S01 and S02 walked again at visit 2, S03 has
+    no visit 2, S05's visit-2 folder holds no data (fails), S06 names no visit; track-all twice, here and from a copy
+    elsewhere."""
+    import contextlib
+    import io
+
+    from pdrlearn import sim
+    from pdrlearn.io import write_session
+
+    base = tmp_path_factory.mktemp("visits")
+    root = base / "here" / "study"
+    shutil.copytree(site_tree, root)
+    for subj, seed in (("S01", 4), ("S02", 5)):
+        write_session(sim.simulate("walk", seed, length_m=14), root / "centreA" / subj / "visit2")
+    (root / "centreB/S05/visit2").mkdir(parents=True)
+    (root / "centreB/S05/visit2/meta.json").write_text('{"name": "no data"}')
+    for meta in root.glob("*/*/*/meta.json"):
+        m = json.loads(meta.read_text())
+        m.update(subject=meta.parent.parent.name, visit=int(meta.parent.name[-1]))
+        meta.write_text(json.dumps(m))
+    (root / "centreB/S06/visitX").mkdir(parents=True)  # a subject without a visit (and no data): warned, not paired
+    (root / "centreB/S06/visitX/meta.json").write_text('{"subject": "S06"}')
+    copy = base / "elsewhere" / "study"
+    shutil.copytree(root, copy)
+    got = []
+    for r, out in ((root, base / "o1"), (copy, base / "o2")):
+        printed, err = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(printed), contextlib.redirect_stderr(err):
+            rc = main(["track-all", str(r), "--out", str(out), "--method", "M2"])
+        got.append((rc, out, printed.getvalue() + err.getvalue()))
+    return root, got
+
+
+def test_paired_visits_give_change_scores_with_a_paired_t_interval(visit_runs):
+    """C22/C23: a cohort with the same subjects at two visits got no change scores (C20: not built). Now changes.csv
+    (per subject, visit 2 minus visit 1, a subject without both visits listed with the reason) and
+    changes_summary.csv (mean change, paired 95 % t-interval, n subjects, the subjects not paired); checked by hand
+    from each session's summary.json; byte-identical from a copy of the data elsewhere."""
+    root, ((rc1, o1, printed), (rc2, o2, _)) = visit_runs
+    assert rc1 == rc2 == 1  # S05's visit 2 failed
+    for name in ("changes.csv", "changes_summary.csv", "sessions.csv"):
+        assert (o1 / name).read_bytes() == (o2 / name).read_bytes(), name
+    sessions = pd.read_csv(o1 / "sessions.csv", dtype={"subject": str, "visit": str})
+    assert sessions.set_index("path").loc["centreA/S02/visit2", ["subject", "visit"]].tolist() == ["S02", "2"]
+    changes = pd.read_csv(o1 / "changes.csv").set_index("subject")
+    assert changes.index.tolist() == ["S01", "S02", "S03", "S05"]
+    assert changes["status"].tolist() == ["ok", "ok", "missing", "missing"]
+    assert changes.loc["S03", "reason"] == "2: no session"
+    assert changes.loc["S05", "reason"] == "1: no session; 2: centreB/S05/visit2 failed"
+    assert changes.loc[["S03", "S05"], "gait_speed_mps_change"].isna().all()
+
+    def speed(rel):
+        return json.loads((o1 / rel / "summary.json").read_text())["gait_speed_mps"]
+
+    d = [speed(f"centreA/{s}/visit2") - speed(f"centreA/{s}/visit1") for s in ("S01", "S02")]
+    assert changes.loc["S01", "gait_speed_mps_change"] == pytest.approx(d[0], abs=1e-12)  # later minus baseline
+    assert changes.loc["S01", "gait_speed_mps_baseline"] == pytest.approx(speed("centreA/S01/visit1"), abs=1e-12)
+    summary = pd.read_csv(o1 / "changes_summary.csv").set_index("measure")
+    row = summary.loc["gait_speed_mps"]
+    # two subjects: mean of the differences, sd = |d1 - d2| / sqrt(2), half-width t(0.975, 1) sd / sqrt(2) with
+    # t(0.975, 1) = 12.7062 (a t table; NIST/SEMATECH e-Handbook 1.3.6.7.2)
+    mean, sd = (d[0] + d[1]) / 2, abs(d[0] - d[1]) / np.sqrt(2)
+    assert row["n_subjects"] == 2 and row["mean_change"] == pytest.approx(mean, abs=1e-12)
+    assert row["ci95_low"] == pytest.approx(mean - 12.7062 * sd / np.sqrt(2), abs=1e-4)
+    assert row["ci95_high"] == pytest.approx(mean + 12.7062 * sd / np.sqrt(2), abs=1e-4)
+    assert row["visit"] == 2 and row["baseline_visit"] == 1 and row["n_not_paired"] == 2
+    assert row["not_paired"] == "S03; S05"
+    assert "paired change from the baseline visit" in printed and "S03; S05" in printed
+    assert ("meta.json names a subject but no visit, or a visit but no subject: not paired in changes.csv (add both, "
+            "decision C22) [1 of 7 sessions: centreB/S06/visitX]") in printed
+
+
+def test_the_report_of_a_batch_shows_the_paired_changes(visit_runs, tmp_path):
+    """C23: `pdrlearn report` on a track-all folder with visits shows the paired change per measure and the subjects
+    not paired with why (recomputed from sessions.csv, as changes.csv is)."""
+    _, ((_, o1, _), _) = visit_runs
+    assert main(["report", str(o1), "--out", str(tmp_path / "rep")]) == 0
+    md = (tmp_path / "rep" / "report.md").read_text()
+    assert "paired change from the baseline visit" in md and "subjects not paired" in md
+    assert "1: no session; 2: centreB/S05/visit2 failed" in md
+    summary = pd.read_csv(o1 / "changes_summary.csv").set_index("measure").loc["gait_speed_mps"]
+    assert f"{summary['mean_change']:+.3g} [{summary['ci95_low']:.3g}, {summary['ci95_high']:.3g}]" in md
+
+
+def test_visit_order_is_natural_and_no_second_visit_means_no_changes():
+    """C22: visits in study order (visit2 before visit10; the first is the baseline); sessions naming one visit, or
+    none, give no changes.csv; a subject with two sessions at a visit is listed as such, not averaged."""
+    from pdrlearn.visits import change_table, visit_order
+
+    assert visit_order(["visit10", "visit2", "baseline", "visit1"]) == ["baseline", "visit1", "visit2", "visit10"]
+    assert visit_order(["week12", "week4", "2", "10"]) == ["2", "10", "week4", "week12"]
+    rows = pd.DataFrame({"path": ["a", "b", "c"], "group": ["g"] * 3, "subject": ["S1", "S1", "S1"],
+                         "visit": ["v1", "v1", "v1"], "status": ["ok"] * 3, "gait_speed_mps": [1.0, 1.1, 1.2]})
+    assert change_table(rows) is None
+    assert change_table(rows.drop(columns=["subject", "visit"])) is None  # a sessions.csv written before C22
+    rows.loc[2, "visit"] = "v2"
+    got = change_table(rows)
+    assert got["status"].tolist() == ["several"] and got["reason"].iloc[0] == "v1: 2 sessions (a, b)"
+    rows.loc[1, "visit"] = "v3"
+    got = change_table(rows).set_index("visit")
+    assert got.loc["v2", "gait_speed_mps_change"] == pytest.approx(0.2) and got.loc["v3", "baseline_path"] == "a"
+    assert got.loc["v3", "gait_speed_mps_change"] == pytest.approx(0.1)  # each visit against the baseline

@@ -550,29 +550,20 @@ UNNAMED_USER = "unnamed"
 def session_user(session) -> str | None:
     """The user a session was recorded from, from its ``meta.json`` (decision C29): ``user`` (a string, or an
     object with ``id`` or ``seed``, as the simulator writes) or ``subject`` (a string, or an object with ``id``
-    or ``participant_id``, as the mobgap converter writes); ``None`` when the session names none."""
-    meta = getattr(session, "meta", None) or {}
-    for key, ids in (("user", ("id", "seed")), ("subject", ("id", "participant_id"))):
-        v = meta.get(key)
-        if isinstance(v, str) and v.strip():
-            return f"{key}:{v.strip()}"
-        if isinstance(v, dict):
-            for k in ids:
-                if v.get(k) is not None and str(v[k]).strip():
-                    return f"{key}.{k}:{v[k]}"
-    return None
+    or ``participant_id``, as the mobgap converter writes); ``None`` when the session names none
+    (:func:`pdrlearn.cohort.meta_user_key`, which track-all's changes.csv reads too, cohort C22)."""
+    from pdrlearn.cohort import meta_user_key
+
+    return meta_user_key(getattr(session, "meta", None) or {})
 
 
 def _one_user(session) -> str | None:
     """The name of a one-user model (decisions B88, C48): the session's ``user``/``subject`` text as written
     (``anna``), else :func:`session_user`'s name of an object (``user.seed:3`` for a simulated session, not the
-    object itself); None when it names none."""
-    meta = getattr(session, "meta", None) or {}
-    for key in ("user", "subject"):
-        v = meta.get(key)
-        if isinstance(v, str) and v.strip():
-            return v.strip()
-    return session_user(session)
+    object itself); None when it names none (:func:`pdrlearn.cohort.meta_user`, track-all's subject, C22)."""
+    from pdrlearn.cohort import meta_user
+
+    return meta_user(getattr(session, "meta", None) or {})
 
 
 def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | None = None,

@@ -4,7 +4,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -38,6 +37,7 @@ from pdrlearn.cohort import (
     groups_text,
     run_cohort,
     session_group,
+    session_labels,
     user_sessions,
 )
 from pdrlearn.errors import DataError, shell_quote
@@ -351,8 +351,9 @@ TRACK_LIBRARIES = ("scipy.linalg", "scipy.signal")
 #: of summary.json follow, sorted by name. Units are in the names (_m, _pct, _s, _mps, _spm). Decision C18: no
 #: wall time (run.json has it) and ``input_dir`` relative to ROOT, so a re-run or a copy elsewhere writes the same
 #: file; C19: what ``n_steps`` counts beside it, the two counts by name, the tracked unit's ``rate_hz``.
-SESSION_COLUMNS = ("path", "group", "status", "error", "session", "input_dir", "pipeline", "method", "rate_hz",
-                   "n_steps", "n_steps_counts", "n_strides_one_foot", "n_steps_both_feet", "distance_m",
+SESSION_COLUMNS = ("path", "group", "subject", "visit", "status", "error", "session", "input_dir", "pipeline",
+                   "method", "rate_hz", "n_steps", "n_steps_counts", "n_strides_one_foot", "n_steps_both_feet",
+                   "distance_m",
                    "distance_ref_m", "distance_error_pct", "final_position_error_m", "walking_time_s",
                    "gait_speed_mps", "median_cadence_spm", "median_stride_length_m", "median_stride_time_s",
                    "median_speed_mps", "n_warnings", "warnings", "content_id", "duplicate_of")
@@ -463,19 +464,36 @@ def _duplicates(rels: list[str], results: list[JobResult]) -> dict[str, str]:
 
 
 def _run_record(root: Path, options: dict, rels: list[str], results: list[JobResult]) -> dict:
-    """Decision C18: OUT/run.json, the record of a track-all run: the pdrlearn version, the command's options as
-    given, ROOT (resolved), when it finished and each session's wall and CPU time - what differs from run to
-    run is here, so that sessions.csv and groups.csv are the same for the same data, version and options."""
-    from datetime import UTC, datetime
-
-    from pdrlearn import __version__
+    """Decision C18: OUT/run.json, the record of a track-all run (:func:`pdrlearn.cli.provenance.run_record`, as
+    ``track``'s, decision L122): the pdrlearn version, the command's options as given, ROOT as given, the model,
+    when it finished and each session's wall and CPU time - what differs from run to run is here, so that
+    sessions.csv and groups.csv are the same for the same data, version and options."""
+    from pdrlearn.cli.provenance import model_record, run_record
 
     ok = sum(r.ok for r in results)
-    return {"command": "track-all", "pdrlearn_version": __version__, "root": str(Path(root).resolve()),
-            "options": options, "finished_utc": datetime.now(UTC).isoformat(timespec="seconds"),
-            "n_sessions": len(results), "n_tracked": ok, "n_failed": len(results) - ok,
-            "track_time_s": {rel: round(r.seconds, 2) for rel, r in zip(rels, results, strict=True)},
-            "cpu_time_s": {rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)}}
+    return run_record("track-all", options, root=str(root), model=model_record(options.get("model")),
+                      n_sessions=len(results), n_tracked=ok, n_failed=len(results) - ok,
+                      track_time_s={rel: round(r.seconds, 2) for rel, r in zip(rels, results, strict=True)},
+                      cpu_time_s={rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)})
+
+
+def _changes(sessions: pd.DataFrame) -> tuple[pd.DataFrame | None, pd.DataFrame | None]:
+    """Decisions C22, C23: changes.csv and changes_summary.csv of the batch, or ``(None, None)`` when the sessions
+    name fewer than two visits; then the sessions that name a subject but no visit, or a visit but no subject, are
+    warned once (they cannot be paired, and are in no row of changes.csv)."""
+    import logging
+
+    from pdrlearn.visits import change_summary, change_table
+
+    changes = change_table(sessions)
+    if changes is None:
+        return None, None
+    half = sessions[sessions["subject"].isna() != sessions["visit"].isna()]["path"].astype(str).tolist()
+    if half:
+        logging.getLogger("pdrlearn.cli").warning(
+            "%s", grouped_warning("meta.json names a subject but no visit, or a visit but no subject: not paired in "
+                                  "changes.csv (add both, decision C22)", half, len(sessions)))
+    return changes, change_summary(changes)
 
 
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
@@ -531,8 +549,11 @@ def track_all(
     the one-line error of a failed session, and the fields of its summary.json (input_dir, distance_m,
     distance_error_pct, gait_speed_mps, median_cadence_spm, ...; input_dir relative to ROOT). OUT/groups.csv
     has per group n_tracked, n_failed and the n, mean, sd, median and 95 % t-interval of the mean of the
-    distance error, gait speed, cadence and stride length. OUT/run.json records the pdrlearn version, the
-    options and each session's time (decision C18). Sessions holding identical sensor data are warned
+    distance error, gait speed, cadence and stride length. With sessions whose meta.json names a subject and
+    two or more visits, OUT/changes.csv has per subject each visit's change from the baseline visit (a subject
+    without both visits listed with why) and OUT/changes_summary.csv the mean change with its paired 95 %
+    t-interval (decisions C22, C23). OUT/run.json records the pdrlearn version, the options and each session's
+    time (decision C18). Sessions holding identical sensor data are warned
     (duplicate_of, C20). A session that cannot be tracked is reported and skipped. Progress: one line per
     session on stderr; each warning is said once per batch, with the sessions it concerns.
 
@@ -549,10 +570,13 @@ def track_all(
 
         pdrlearn track-all study/ --out results/2mwt --window 0,120 --streaming --initial-heading 90
     """
-    # decision C18: every option as given (a new option is recorded without a change here), for run.json
-    options = {k: (str(v) if isinstance(v, Path) else v) for k, v in locals().items()
-               if k not in ("root", "out", "force", "as_json")}
+    # decision C18: every option as given (a new option is recorded without a change here), for run.json; taken
+    # before any name is defined in this function
+    arguments = dict(locals())
+    from pdrlearn.cli.provenance import given_options, write_run_json
     from pdrlearn.cli.track import track_settings
+
+    options = given_options(arguments, leave_out=("root", "out", "force", "as_json"))
 
     settings = track_settings(pipeline=pipeline, method=method, model=model, rules=rules,
                               min_confidence=min_confidence, length_bounds=length_bounds,
@@ -585,23 +609,36 @@ def track_all(
         dup = _duplicates(rels, results)
         rows = [_session_row(rel, session_group(rel, group_depth), r, str(p))
                 for rel, r, p in zip(rels, results, found, strict=True)]
-        for row in rows:
+        for row, p in zip(rows, found, strict=True):
             row["duplicate_of"] = dup.get(row["path"])
+            row["subject"], row["visit"] = session_labels(p)  # decision C22: meta.json's subject and visit
         sessions = _sessions_table(rows)
         groups = group_table(sessions)
+        changes, summary = _changes(sessions)
         run = _run_record(root, options, rels, results)
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")
-        (tmp / "run.json").write_text(json.dumps(json_safe(run), indent=2) + "\n")
+        if changes is not None:  # decisions C22, C23
+            _write_csv_atomic(changes, tmp / "changes.csv")
+            _write_csv_atomic(summary, tmp / "changes_summary.csv")
+        write_run_json(tmp, run)
     replaced(out, was)
     if as_json:  # decision C19: n_sessions counts every session found, n_tracked those tracked (groups.csv's)
         print_json(json_safe({"sessions": sessions.to_dict(orient="records"),
                               "groups": groups.to_dict(orient="records"), "n_sessions": len(results),
-                              "n_tracked": len(results) - len(failed), "n_failed": len(failed), "run": run}))
+                              "n_tracked": len(results) - len(failed), "n_failed": len(failed), "run": run,
+                              **({} if changes is None else {"changes": changes.to_dict(orient="records"),
+                                                             "changes_summary": summary.to_dict(orient="records")})}))
     else:
         typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked; wrote {out}/"
-                   "<session>/, sessions.csv, groups.csv, run.json")
+                   "<session>/, sessions.csv, groups.csv, " + ("" if changes is None else
+                                                               "changes.csv, changes_summary.csv, ") + "run.json")
         print(groups_text(groups).to_markdown(index=False))
+        if changes is not None:  # decision C23
+            from pdrlearn.visits import changes_text
+
+            print("paired change from the baseline visit, per subject (changes.csv says why a subject is not paired):")
+            print(changes_text(summary).to_markdown(index=False))
         given = {rel: str(p) for rel, p in zip(rels, found, strict=True)}
         for r in failed:
             typer.echo(f"failed {r.name}: {r.error}")

@@ -293,6 +293,8 @@ def run(
 
         pdrlearn run out/bundle_u1_all out/sim/D_u1 --method svm --out out/run_svm   # an exported non-chosen method
     """
+    # decision L122: every option as given (defaults included) and the start, for OUT/run.json, as track's
+    record = _run_json(dict(locals()), time.perf_counter(), time.process_time())
     from pdrlearn.errors import DataError
     from pdrlearn.io.resample import resample_mode  # decision B113: one check of the two flags, as track's
     from pdrlearn.runtime import load_bundle
@@ -319,7 +321,7 @@ def run(
         if given:
             raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only bundle "
                             "(give SESSION_DIR, and --initial-heading / --chunk-s / --out / --json)")
-        return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi)
+        return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi, record)
     bundle = load_bundle(bundle_dir)  # verified before any output
     methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
@@ -413,7 +415,7 @@ def run(
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats
     if out is not None:
-        _write(out, result, summary, session, source, dpi=dpi)
+        _write(out, result, summary, session, source, dpi=dpi, record=record())
     if as_json:
         print_json(json_safe(summary))
     else:
@@ -429,8 +431,27 @@ def run(
             typer.echo(gait_line(summary))
 
 
+def _run_json(arguments: dict, wall0: float, cpu0: float):
+    """Decision L122: ``run``'s OUT/run.json (``pdrlearn.cli.provenance``, as ``track``'s and ``track-all``'s): the
+    bundle as given with its manifest's SHA-256 (= its manifest.sha256), the session or capture as given, every
+    option, and the wall and CPU time from ``wall0`` / ``cpu0`` to when the record is made (a function: called when
+    the outputs are written)."""
+    from pdrlearn.cli.provenance import given_options, model_record, run_record
+
+    options = given_options(arguments, leave_out=("bundle_dir", "session_dir", "out", "force", "as_json"))
+    session = arguments.get("session_dir")
+
+    def record() -> dict:
+        return run_record("run", options, session=None if session is None else str(session),
+                          bundle=model_record(arguments["bundle_dir"]),
+                          track_time_s=round(time.perf_counter() - wall0, 2),
+                          cpu_time_s=round(time.process_time() - cpu0, 2))
+
+    return record
+
+
 def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chunk_s: float, as_json: bool,
-               heading0: float | None, dpi: int | None) -> None:
+               heading0: float | None, dpi: int | None, record) -> None:
     """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
     pushed in ``chunk_s`` slices through :class:`pdrlearn.runtime.WaistTracker` (the gyroscope read at the
     accelerometer's times, as ``track``'s ``body_data``). The frame is the session's declared one (warned when the
@@ -494,7 +515,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
                                        "p99": float(np.percentile(lat, 99) * 1e3) if lat else None}}
     if out is not None:
-        _write(out, result, summary, session, summary["source"], dpi=dpi)
+        _write(out, result, summary, session, summary["source"], dpi=dpi, record=record())
     if as_json:
         print_json(json_safe(summary))
         return
@@ -594,13 +615,16 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
     return out
 
 
-def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None) -> None:
-    """steps.csv, trajectory.csv, path.png and summary.json as ``track`` writes them (same names, columns,
-    number format, ``track``'s figure), atomically: all four or none, and ``--force`` keeps the old run until
-    then. ``session``: the replayed session (its ground truth in path.png; None for a capture)."""
+def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
+           record: dict) -> None:
+    """steps.csv, trajectory.csv, path.png, summary.json and run.json (``record``, decision L122) as ``track`` writes
+    them (same names, columns, number format, ``track``'s figure), atomically: all five or none, and ``--force``
+    keeps the old run until then. ``session``: the replayed session (its ground truth in path.png; None for a
+    capture)."""
     import json
 
     from pdrlearn.atomic import atomic_directory
+    from pdrlearn.cli.provenance import write_run_json
     from pdrlearn.track.plots import plot_paths
 
     was = existed(out)
@@ -609,6 +633,7 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
         result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format="%.10g")
         plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run", dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
+        write_run_json(tmp, record)
     replaced(out, was)
 
 

@@ -142,9 +142,14 @@ def track(
 
     Many sessions at once: pdrlearn track-all ROOT --out OUTDIR (docs/cohort.md).
     """
+    arguments = dict(locals())  # decision L122: every option as given, defaults included (before any other name)
+    import time
+
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.common import out_folder
+    from pdrlearn.cli.provenance import given_options, model_record, run_record, write_run_json
 
+    options = given_options(arguments, leave_out=("session_dir", "out", "force", "as_json"))  # for OUT/run.json
     out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes))
     settings = track_settings(pipeline=pipeline, method=method, model=model, rules=rules,
                               min_confidence=min_confidence, length_bounds=length_bounds,
@@ -155,9 +160,16 @@ def track(
                               common_span=common_span, units=units, window=window, resample=resample,
                               no_resample=no_resample)
     was = existed(out)
+    wall, cpu = time.perf_counter(), time.process_time()
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
-    with atomic_directory(out) as tmp:  # all four files or none; --force keeps the old track until then
+    with atomic_directory(out) as tmp:  # all five files or none; --force keeps the old track until then
         summary, aided = write_track(tmp, tracked)
+        # decision L122: the session as given (not resolved), the model and its checksum, the pipeline and method
+        # used; the times only here (summary.json and the tables stay the same run to run)
+        write_run_json(tmp, run_record(
+            "track", options, session=str(session_dir), model=model_record(model),
+            pipeline=summary.get("pipeline"), method=summary.get("info", {}).get("method"),
+            track_time_s=round(time.perf_counter() - wall, 2), cpu_time_s=round(time.process_time() - cpu, 2)))
     replaced(out, was)
     if as_json:
         print_json(summary)
@@ -404,7 +416,8 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
         walk = walk_line(summary)  # decision L104
         if walk:
             typer.echo(walk)
-    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json")
+    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json, "
+               "run.json")
 
 
 

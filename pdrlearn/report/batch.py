@@ -76,8 +76,26 @@ def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame) -> tuple[str, lis
               ("per group (mean ± sd (n) over the tracked sessions)", groups_text(groups))]
     if len(failed):
         cols = ["path", "group", "error"] + [c for c in ("warnings",) if c in failed.columns]
-        tables.append(("failed sessions", failed[cols].fillna("")))
-    return text, tables
+        tables.append(("failed sessions", failed[cols].astype(object).fillna("")))
+    return text, tables + change_tables(sessions)
+
+
+def change_tables(sessions: pd.DataFrame) -> list[tuple[str, pd.DataFrame]]:
+    """Decisions C22, C23: with sessions naming a subject and two or more visits, the paired change per visit and
+    measure (as track-all prints it) and the subjects not paired with why; recomputed from sessions.csv, as
+    changes.csv and changes_summary.csv are (none for a sessions.csv without visits, or written before C22)."""
+    from pdrlearn.visits import change_summary, change_table, changes_text
+
+    changes = change_table(sessions)
+    if changes is None:
+        return []
+    tables = [("paired change from the baseline visit (mean [95 % t-interval], n subjects; changes.csv per subject)",
+               changes_text(change_summary(changes)))]
+    unpaired = changes[changes["status"] != "ok"]
+    if len(unpaired):
+        cols = ["subject", "group", "visit", "status", "reason"]
+        tables.append(("subjects not paired", unpaired[cols].astype(object).fillna("")))
+    return tables
 
 
 def plot_batch(sessions: pd.DataFrame, path: Path, *, dpi: float | None = None) -> bool:

@@ -1,0 +1,60 @@
+"""The record of a command's run, ``run.json``: the pdrlearn version, the options (every argument of the command,
+defaults included), its inputs as given, the model it used and when and how long it ran. One mechanism for
+``track`` and ``run`` (decision L122) and ``track-all`` (cohort C18). What differs from run to run (finish time,
+wall and CPU time) is in ``run.json`` only, so the files meant to be the same for the same data and options
+(track's summary.json, steps.csv, sessions.csv, groups.csv, changes.csv) stay the same."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+
+def given_options(arguments: dict, leave_out: tuple[str, ...] = ()) -> dict:
+    """A command's options as given (the function's arguments, so a new option is recorded without a change; typer
+    fills in the defaults), paths as typed (``Path`` -> text; a relative path stays relative), minus ``leave_out``
+    (the input and output folders, which the record holds under their own names, and display flags)."""
+    return {k: (str(v) if isinstance(v, Path) else v) for k, v in arguments.items() if k not in leave_out}
+
+
+def model_record(model: str | Path | None) -> dict | None:
+    """What identifies the model a track used (decision L122): the folder as given, and for a model directory
+    (``track --model``) or a runtime bundle (``run``) its ``user``, the pdrlearn version that made it and the
+    SHA-256 of its ``manifest.json`` (the manifest holds every model file's SHA-256, so its own checksum names the
+    whole model; a bundle's ``manifest.sha256`` holds the same digest). ``oracle`` (the session's own labels) has
+    no files; ``None`` without a model. The model was verified before the track (``verify_model_dir``, B128;
+    ``load_bundle``)."""
+    if model is None:
+        return None
+    if str(model) == "oracle":
+        return {"path": "oracle"}
+    import hashlib
+
+    from pdrlearn.classify.model_dir import MANIFEST
+
+    raw = (Path(model) / MANIFEST).read_bytes()
+    manifest = json.loads(raw)
+    return {"path": str(model), "user": manifest.get("user"), "package_version": manifest.get("package_version"),
+            "manifest_sha256": hashlib.sha256(raw).hexdigest()}
+
+
+def run_record(command: str, options: dict, **fields) -> dict:
+    """The run's record: ``command``, ``pdrlearn_version``, the command's own ``fields`` (its inputs as given, the
+    model, counts), ``options`` (:func:`given_options`), then what differs run to run: the ``*_time_s`` fields and
+    ``finished_utc`` (now)."""
+    from datetime import UTC, datetime
+
+    from pdrlearn import __version__
+
+    times = {k: fields.pop(k) for k in [k for k in fields if k.endswith("_time_s")]}
+    return {"command": command, "pdrlearn_version": __version__, **fields, "options": options, **times,
+            "finished_utc": datetime.now(UTC).isoformat(timespec="seconds")}
+
+
+def write_run_json(folder: Path, record: dict) -> None:
+    """Write ``folder/run.json`` into the command's output folder while it is built: ``folder`` is the temporary
+    folder of :func:`pdrlearn.atomic.atomic_directory`, which moves into place only complete, so the record is
+    never half written nor present without the outputs it describes."""
+    from pdrlearn.cli.common import json_safe
+
+    (Path(folder) / "run.json").write_text(json.dumps(json_safe(record), indent=2) + "\n")
