@@ -133,6 +133,18 @@ def test_terrain_dz_check_rules():
     assert msg is None
 
 
+def test_terrain_dz_check_says_what_triggered_it_b135():
+    """Trial `placement` finding 5: "0 of 32 strides' terrain classes contradict ..." fired when none did (the
+    flat strides' summed height did): the line starts with what triggered it."""
+    msg, info = terrain_dz_check(np.array(["flat"] * 32, dtype=object), np.full(32, 0.02), np.full(32, 0.02))
+    assert info["stairs_against_sign"] == info["flat_with_height"] == 0
+    assert msg.startswith("strides classed flat (not next to stairs, C30) add +0.64 m to the altitude change "
+                          "(C28 warns from 0.50 m), though only 0 of 32 strides' terrain classes contradict"), msg
+    terr = np.array(["up"] * 5 + ["flat"] * 5, dtype=object)  # the count triggers: it leads
+    msg, _ = terrain_dz_check(terr, np.r_[np.full(5, -0.2), np.zeros(5)], np.zeros(10))
+    assert msg.startswith("5 of 10 strides' terrain classes contradict their integrated height change"), msg
+
+
 def test_terrain_dz_check_skips_a_staircase_first_and_last_strides():
     """C30: a flat stride next to an up/down stride is a transition that climbs; the demo's scenario D warned on
     three of them (+0.74 m) with right classes."""

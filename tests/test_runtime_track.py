@@ -249,6 +249,13 @@ def test_level_gain_kernel_touches_level_strides_only():
     assert applicable_calibration(rec, 20.1) == (rec, None)  # within 1 %
     none, warning = applicable_calibration(rec, 20.5)
     assert none is None and "20 Hz" in warning and "20.5 Hz" in warning
+    # decision B135: resampled from a lower rate lost something; from a higher one nothing (the gain is still
+    # judged at the recording's rate, B113)
+    _, low = applicable_calibration({**rec, "rate_hz": 100.0}, 50.0, resampled_hz=100.0)
+    assert "(resampled to 100 Hz, which does not restore what the recording rate lost)" in low
+    _, high = applicable_calibration({**rec, "rate_hz": 100.0}, 200.0, resampled_hz=100.0)
+    assert "was recorded at 200 Hz (resampled to 100 Hz; the gain is judged at the recording's rate, decision " \
+           "B113): not applied (recalibrate on a walk recorded at 200 Hz)" in high and "restore" not in high
     assert calibrated_stride_sd(rec) == 0.006 and calibrated_stride_sd({**rec, "reason": "few"}) is None
 
 
@@ -270,8 +277,8 @@ def test_resampled_data_says_why_the_calibration_does_not_apply(calibrated):
     tr = Tracker(root / "bundle", heading_source="foot", resample=True)
     replay(tr, s50, 0.5)
     (w,) = [w for w in tr.warnings if "distance calibration" in w]
-    assert "was recorded at 50 Hz (resampled to 20 Hz, which does not restore what the recording rate lost): " \
-           "not applied" in w, w
+    assert "was recorded at 50 Hz (resampled to 20 Hz; the gain is judged at the recording's rate, decision " \
+           "B113): not applied" in w, w  # 50 -> 20 Hz lost nothing the 50 Hz had (B135)
     assert tr.distance_gain == 1.0 and "runs at" not in w
     native = Tracker(root / "bundle", heading_source="foot")  # tracked at 50 Hz: the plain wording
     replay(native, s50, 0.5)

@@ -34,6 +34,14 @@ def info(
     s = read_session(session_dir, bridge_drops=False, spans="warn")
     summary = s.summary()
     summary["frame_checks"] = s.frame_checks()  # warnings are logged (stderr) once, by the checks themselves
+    from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats
+
+    summary["foot_rests"] = foot_rest_stats(s)  # decisions B133 (rest |acc| in g, a display), B134
+    placement = foot_placement_warning(summary["foot_rests"], s.where)
+    if placement:
+        import logging
+
+        logging.getLogger("pdrlearn.info").warning("%s", placement)
     # decision B64: what the other commands do with the short intervals of dropped samples
     summary["dropped_samples_bridged"] = {
         n: sum(g.duration_s <= MAX_BRIDGED_S * (1.0 + 1e-9) for g in st.gaps()) if BRIDGE_DROPS else 0
@@ -80,6 +88,14 @@ def info(
         # no frame: "foot axes: no frame declared or inferred (...)", not "none frame none" (trial 2, finding 10)
         axes = f"{chk['source']} frame {frame}, {check}" if chk["frame"] else f"no frame declared or inferred ({check})"
         c.print(f"{p} axes: {axes}; handedness (D11): {hand}", markup=False)
+    rests = summary["foot_rests"]
+    if rests:
+        g = rests["rest_acc_g"]
+        c.print("foot rests: " + (f"|acc| {g:.3f} g at the detected foot-flats" if g is not None else
+                                  "too few foot-flat samples for an |acc|")
+                + f" ({100 * rests['rest_fraction']:.0f} % of the samples; at rest an accelerometer reads 1 g, so "
+                "the difference is its scale error, decision B133); swing "
+                f"{rests['swing_rad_s'] * 57.29577951308232:.0f} deg/s (99th percentile of |gyro|, B91)", markup=False)
     c.print(f"labels: {json.dumps(json_safe(summary['labels']))}", markup=False)  # JSON, like the frames line
 
 

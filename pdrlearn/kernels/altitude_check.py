@@ -76,9 +76,14 @@ def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str |
     many = bad >= CONFLICT_MIN_STRIDES and n and bad >= CONFLICT_MIN_FRACTION * n
     if not (many or abs(flat_alt) >= FLAT_ALTITUDE_M):
         return None, info
-    msg = (f"{bad} of {n} strides' terrain classes contradict their integrated height change ({int(sign.sum())} "
-           f"up/down against its sign, {int(level.sum())} flat with |dz| >= {LEVEL_DZ_M:.2f} m); strides classed "
-           f"flat (not next to stairs, C30) add {flat_alt:+.2f} m to the altitude change: the classes or the "
-           f"foot's integrated height are wrong ({_ACCURACY}); check the model on this user's own labelled walk "
-           "(`pdrlearn evaluate MODEL DIR`)")
+    counts = (f"{int(sign.sum())} up/down against its sign, {int(level.sum())} flat with |dz| >= "
+              f"{LEVEL_DZ_M:.2f} m")
+    flat_part = f"strides classed flat (not next to stairs, C30) add {flat_alt:+.2f} m to the altitude change"
+    # decision B135: the line starts with what triggered it (the count, or only the flat strides' height)
+    lead = (f"{bad} of {n} strides' terrain classes contradict their integrated height change ({counts}); "
+            f"{flat_part}" if many else
+            f"{flat_part} (C28 warns from {FLAT_ALTITUDE_M:.2f} m), though only {bad} of {n} strides' terrain "
+            f"classes contradict their integrated height change ({counts})")
+    msg = (f"{lead}: the classes or the foot's integrated height are wrong ({_ACCURACY}); check the model on "
+           "this user's own labelled walk (`pdrlearn evaluate MODEL DIR`)")
     return msg, info

@@ -55,11 +55,16 @@ def applicable_calibration(rec: Mapping | None, fs_hz: float, *, tolerance: floa
         return None, None
     rate = rec.get("rate_hz")
     if rate and rate_differs(float(rate), fs_hz, tolerance=tolerance):
-        at = (f"runs at {float(fs_hz):g} Hz" if resampled_hz is None else
-              f"was recorded at {float(fs_hz):g} Hz (resampled to {float(resampled_hz):g} Hz, which does not "
-              "restore what the recording rate lost)")
+        if resampled_hz is None:
+            at = f"runs at {float(fs_hz):g} Hz"
+        elif float(fs_hz) < float(resampled_hz):
+            at = (f"was recorded at {float(fs_hz):g} Hz (resampled to {float(resampled_hz):g} Hz, which does not "
+                  "restore what the recording rate lost)")
+        else:  # decision B135: a higher recording rate lost nothing; the gain is judged at it (B113)
+            at = (f"was recorded at {float(fs_hz):g} Hz (resampled to {float(resampled_hz):g} Hz; the gain is "
+                  "judged at the recording's rate, decision B113)")
         return None, (f"the model's distance calibration was made at {float(rate):g} Hz, the foot unit {at}: "
-                      "not applied (recalibrate at this rate)")
+                      f"not applied (recalibrate on a walk recorded at {float(fs_hz):g} Hz)")
     return rec, None
 
 

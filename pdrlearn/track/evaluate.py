@@ -562,7 +562,17 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     dom = result.info.get("out_of_domain")
     if isinstance(dom, dict):  # decision C16: share of strides outside the model's training range
         summary["out_of_domain_fraction"] = dom.get("out_of_domain_fraction")
-    for line in summary_warnings(summary):  # decisions L95 (running / very slow walking), L113 (CV withheld)
+    placement = None
+    if result.info.get("pipeline") == "plasys":  # decision B134: a foot unit that never swings is not on the foot
+        from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats
+
+        placement = foot_placement_warning(foot_rest_stats(session), session.where)
+    lines = summary_warnings(summary)
+    if placement:  # its cadence is not a foot's: B134's line replaces L95's "looks like running" guess
+        from pdrlearn.track.gait import gait_range_warning
+
+        lines = [ln for ln in lines if ln != gait_range_warning(summary)] + [placement]
+    for line in lines:  # decisions L95 (running / very slow walking), L113 (CV withheld), B134
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     aid = summary["info"].get("aid")
