@@ -202,10 +202,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     (``track-all --jobs``). What depends on the session (a window inside its recording, L105; a relative
     heading for ``--initial-heading``, L98) is checked per session in :func:`track_session` (decision L108)."""
     from pdrlearn.io.resample import resample_mode
+    from pdrlearn.track.bouts import BoutRule
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
-
-    from pdrlearn.track.bouts import BoutRule
 
     rate_mode = resample_mode(resample, no_resample)  # decision B113
     bouts = BoutRule(**{k: v for k, v in (("break_s", bout_break_s), ("min_strides", bout_min_strides))
@@ -380,8 +379,8 @@ def _check_relative_heading(result, session, heading0: float) -> None:
 
 def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     """Write :func:`track_session`'s track into the existing folder ``dest`` (the caller's temporary folder):
-    ``trajectory.csv``, ``steps.csv``, ``bouts.csv`` (decision L124), ``path.png`` (``aided.png`` with fixes) and ``summary.json``; return
-    the summary and whether the track was aided."""
+    ``trajectory.csv``, ``steps.csv``, ``bouts.csv`` (decision L124), ``path.png`` (``aided.png`` with fixes) and
+    ``summary.json``; return the summary and whether the track was aided."""
     from pdrlearn.track.plots import plot_paths
 
     session, result, summary, pipeline, aided, dpi = (tracked[k] for k in ("session", "result", "summary",
@@ -436,8 +435,8 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
         walk = walk_line(summary)  # decision L104
         if walk:
             typer.echo(walk)
-    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, path.png, {'aided.png, ' if aided else ''}summary.json, "
-               "run.json")
+    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, path.png, "
+               f"{'aided.png, ' if aided else ''}summary.json, run.json")
 
 
 
