@@ -57,7 +57,9 @@ def test_bouts_of_a_known_walk_and_their_totals(walk, tracks, pipeline):
     s = track_summary(r, walk, pipeline=pipeline)
     assert b["n_steps"].sum() == s["n_steps_both_feet"]
     assert b["distance_m"].sum() == pytest.approx(s["distance_m"], abs=1e-9)
-    assert b["n_turns"].sum() == s["turn_count"] and len(b) == s["n_walking_bouts"]
+    assert b["n_turns"].sum() == s["turn_count"] and len(b) == s["n_walking_bouts"] == s["n_bouts"]
+    assert s["bout_definition"] == {"break_s": 1.0, "min_strides": 0}  # the API's summary = track's (C14)
+    assert track_summary(r, walk, pipeline=pipeline, bouts=BoutRule(break_s=6))["n_bouts"] == 1
     assert b["altitude_change_m"].sum() == pytest.approx(r.steps["dz_m"].sum(), abs=1e-9)
 
 

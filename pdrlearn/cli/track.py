@@ -349,12 +349,11 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.window import window_track
 
         result, tracked_session = window_track(result, session, *win)
-    summary = track_summary(result, tracked_session, pipeline=pipeline)  # C13, C14: the API's TrackResult.summary
-    from pdrlearn.track.bouts import BoutRule, bouts_summary, detected_bouts
+    # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition
+    summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"))
+    from pdrlearn.track.bouts import detected_bouts
 
-    rule = o.get("bouts") or BoutRule()
-    bouts = detected_bouts(result.steps, rule)  # decision L124: OUT/bouts.csv, the detected walking bouts
-    summary.update(bouts_summary(bouts, rule))
+    bouts = detected_bouts(result.steps, o.get("bouts"))  # decision L124: OUT/bouts.csv, the detected walking bouts
     if win is not None:
         summary["window_start_s"], summary["window_end_s"] = (float(v) for v in o["window"])
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary

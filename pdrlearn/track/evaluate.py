@@ -523,7 +523,7 @@ def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:
     return out
 
 
-def track_summary(result: TrackResult, session: Session, *, pipeline: str | None = None) -> dict:
+def track_summary(result: TrackResult, session: Session, *, pipeline: str | None = None, bouts=None) -> dict:
     """The summary of a track, exactly as ``pdrlearn track`` writes it to ``summary.json`` (strict JSON:
     NaN -> None, numpy scalars -> Python numbers): :func:`evaluate_track`'s metrics (with the session's
     ground truth when it has some, :func:`pdrlearn.track.gait.gait_summary`'s gait speed and cadence
@@ -537,6 +537,8 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     result : the pipeline's output (``get_pipeline(name)(session, ...)``).
     session : the session that was tracked (its ground truth, name and folder).
     pipeline : name written as ``pipeline``; default ``result.info["pipeline"]``.
+    bouts : the walking-bout definition (:class:`pdrlearn.track.bouts.BoutRule`, decision L124; None = its
+        defaults) behind ``n_bouts`` and ``bout_definition``.
     """
     import json
     import logging
@@ -546,6 +548,10 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
 
     summary = evaluate_track(result, session)
     summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
+    from pdrlearn.track.bouts import BoutRule, bouts_summary, detected_bouts
+
+    rule = bouts or BoutRule()
+    summary.update(bouts_summary(detected_bouts(result.steps, rule), rule))  # decision L124: bouts.csv's count
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
     summary["input_dir"] = str(Path(folder).resolve()) if folder is not None else None
