@@ -101,6 +101,8 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None) -> pd.Data
     return pd.DataFrame(rows, columns=list(BOUT_COLUMNS)) if rows else out
 
 
-def bouts_summary(table: pd.DataFrame, rule: BoutRule) -> dict:
-    """summary.json's keys for the table (decision L124): ``n_bouts`` and ``bout_definition``."""
-    return {"n_bouts": int(len(table)), "bout_definition": rule.record()}
+def bouts_summary(steps: pd.DataFrame, rule: BoutRule | None = None) -> dict:
+    """summary.json's keys (decision L124): ``n_bouts`` (the rows :func:`detected_bouts` gives) and
+    ``bout_definition``."""
+    rule = rule or BoutRule()
+    return {"n_bouts": int(len(detected_bouts(steps, rule))), "bout_definition": rule.record()}
