@@ -190,6 +190,7 @@ def test_run_writes_the_files_and_columns_of_track(data, tmp_path, capsys):
         assert type(rj[key]) is type(tj[key]) or {type(rj[key]), type(tj[key])} <= {int, float}, key
     assert set(rj["final_position"]) >= {"x", "y", "z"} and rj["pipeline"] == "runtime"
     assert rj["session"] == tj["session"] and rj["n_steps"] == len(rs)
+    assert rj["n_bouts"] == len(pd.read_csv(r / "bouts.csv"))  # decision L124: run's detected bouts, as track's
 
 
 @pytest.mark.parametrize("where", ["before", "after", "long-after"])

@@ -526,6 +526,8 @@ def track_all(
     common_span: bool = _track.COMMON_SPAN_OPT,
     units: str = _track.UNITS_OPT,
     window: str = _track.WINDOW_OPT,
+    bout_break_s: float = _track.BOUT_BREAK_OPT,
+    bout_min_strides: int = _track.BOUT_MIN_STRIDES_OPT,
     resample: bool = _track.RESAMPLE_OPT,
     no_resample: bool = _track.NO_RESAMPLE_OPT,
     group_depth: int = typer.Option(1, "--group-depth", min=1, help="Folder levels below ROOT that name a "
@@ -584,7 +586,8 @@ def track_all(
                               streaming=streaming, realtime=realtime, reference_point=reference_point,
                               toe_off=toe_off, contacts=contacts, dpi=dpi, common_span=common_span,
                               initial_heading=initial_heading, window=window, resample=resample,
-                              no_resample=no_resample, units=units)
+                              no_resample=no_resample, units=units, bout_break_s=bout_break_s,
+                              bout_min_strides=bout_min_strides)
     found = find_sessions(root)
     out_folder(out, "track-all", force=force, inputs=(root, params))
     was = existed(out)

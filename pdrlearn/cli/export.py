@@ -242,7 +242,7 @@ def replay_chunks(streams: dict, chunk_s: float):
 def run(
     bundle_dir: Path = typer.Argument(..., help="Bundle folder written by 'pdrlearn export'."),
     session_dir: Path = typer.Argument(None, help="PLASYS session folder to replay (omit with --protocol)."),
-    out: Path = typer.Option(None, "--out", "-o", help="Folder for steps.csv, trajectory.csv, path.png, "
+    out: Path = typer.Option(None, "--out", "-o", help="Folder for steps.csv, trajectory.csv, bouts.csv, path.png, "
                              "summary.json (the files and columns of `pdrlearn track`)."),
     protocol: str = typer.Option(None, "--protocol", help="Bluetooth text-protocol capture to read instead "
                                  "of a session ('-' = stdin)."),
@@ -617,20 +617,22 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
            record: dict) -> None:
-    """steps.csv, trajectory.csv, path.png, summary.json and run.json (``record``, decision L122) as ``track`` writes
-    them (same names, columns, number format, ``track``'s figure), atomically: all five or none, and ``--force``
-    keeps the old run until then. ``session``: the replayed session (its ground truth in path.png; None for a
-    capture)."""
+    """steps.csv, trajectory.csv, bouts.csv (L124), path.png, summary.json and run.json (``record``, decision
+    L122) as ``track`` writes them (same names, columns, number format, ``track``'s figure), atomically: all six
+    or none, and ``--force`` keeps the old run until then. ``session``: the replayed session (its ground truth
+    in path.png; None for a capture)."""
     import json
 
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.provenance import write_run_json
+    from pdrlearn.track.bouts import detected_bouts
     from pdrlearn.track.plots import plot_paths
 
     was = existed(out)
     with atomic_directory(out) as tmp:
         result.steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
         result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format="%.10g")
+        detected_bouts(result.steps).to_csv(tmp / "bouts.csv", index=False, float_format="%.10g")  # L124, as track
         plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run", dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
         write_run_json(tmp, record)

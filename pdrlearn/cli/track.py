@@ -78,6 +78,12 @@ UNITS_OPT = typer.Option(None, "--units", help="Body units to track with: foot (
                          "`pdrlearn run --units foot`), waist, or foot,waist (default: every unit the session has; "
                          "decision B127), e.g. to keep the foot outcome of a session whose waist unit stopped early.")
 INITIAL_HEADING_OPT = typer.Option(None, "--initial-heading", metavar="DEG", help=INITIAL_HEADING_HELP)
+BOUT_BREAK_OPT = typer.Option(None, "--bout-break-s", help="Walking bouts (OUT/bouts.csv, decision L124): a pause "
+                               "of at least S seconds beyond the walker's rhythm ends a bout. Default 1 (L104); "
+                               "Mobilise-D's break: 3.")
+BOUT_MIN_STRIDES_OPT = typer.Option(None, "--bout-min-strides", help="Walking bouts (OUT/bouts.csv, decision "
+                                    "L124): a bout needs at least N strides, shorter ones are left out of the "
+                                    "table. Default 0 (every bout); mobgap's Mobilise-D rule: 4.")
 WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the session start (track-all: from "
                           "each session's start): track the whole session, then keep the steps whose middle lies "
                           "inside (e.g. 0,120: a 2-minute walk; decisions L105, L108). The summary, steps.csv and "
@@ -111,6 +117,8 @@ def track(
     common_span: bool = COMMON_SPAN_OPT,
     units: str = UNITS_OPT,
     window: str = WINDOW_OPT,
+    bout_break_s: float = BOUT_BREAK_OPT,
+    bout_min_strides: int = BOUT_MIN_STRIDES_OPT,
     resample: bool = RESAMPLE_OPT,
     no_resample: bool = NO_RESAMPLE_OPT,
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -158,7 +166,8 @@ def track(
                               realtime=realtime, reference_point=reference_point, toe_off=toe_off,
                               contacts=contacts, dpi=dpi, initial_heading=initial_heading,
                               common_span=common_span, units=units, window=window, resample=resample,
-                              no_resample=no_resample)
+                              no_resample=no_resample, bout_break_s=bout_break_s,
+                              bout_min_strides=bout_min_strides)
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
@@ -185,17 +194,21 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
                    dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, resample: bool = False,
-                   no_resample: bool = False, units: str | None = None) -> dict:
+                   no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
+                   bout_min_strides: int | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
     (``track-all --jobs``). What depends on the session (a window inside its recording, L105; a relative
     heading for ``--initial-heading``, L98) is checked per session in :func:`track_session` (decision L108)."""
     from pdrlearn.io.resample import resample_mode
+    from pdrlearn.track.bouts import BoutRule
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
 
     rate_mode = resample_mode(resample, no_resample)  # decision B113
+    bouts = BoutRule(**{k: v for k, v in (("break_s", bout_break_s), ("min_strides", bout_min_strides))
+                        if v is not None})  # decision L124: checked before any session
     if rate_mode != "native" and model is None:
         raise DataError(f"track: {'--resample' if resample else '--no-resample'} compares the session's rate with "
                         "the model's: pass --model DIR, or drop it (without a model nothing depends on the rate)")
@@ -241,7 +254,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
-            "units": parse_units(units)}
+            "units": parse_units(units), "bouts": bouts}
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:
@@ -336,12 +349,16 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.window import window_track
 
         result, tracked_session = window_track(result, session, *win)
-    summary = track_summary(result, tracked_session, pipeline=pipeline)  # C13, C14: the API's TrackResult.summary
+    # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition
+    summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"))
+    from pdrlearn.track.bouts import detected_bouts
+
+    bouts = detected_bouts(result.steps, o.get("bouts"))  # decision L124: OUT/bouts.csv, the detected walking bouts
     if win is not None:
         summary["window_start_s"], summary["window_end_s"] = (float(v) for v in o["window"])
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
-            "dpi": dpi, "content_id": content_id}
+            "dpi": dpi, "content_id": content_id, "bouts": bouts}
 
 
 def _check_relative_heading(result, session, heading0: float) -> None:
@@ -361,8 +378,8 @@ def _check_relative_heading(result, session, heading0: float) -> None:
 
 def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     """Write :func:`track_session`'s track into the existing folder ``dest`` (the caller's temporary folder):
-    ``trajectory.csv``, ``steps.csv``, ``path.png`` (``aided.png`` with fixes) and ``summary.json``; return
-    the summary and whether the track was aided."""
+    ``trajectory.csv``, ``steps.csv``, ``bouts.csv`` (decision L124), ``path.png`` (``aided.png`` with fixes) and
+    ``summary.json``; return the summary and whether the track was aided."""
     from pdrlearn.track.plots import plot_paths
 
     session, result, summary, pipeline, aided, dpi = (tracked[k] for k in ("session", "result", "summary",
@@ -378,6 +395,7 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
                    title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
     _write_csv(traj, dest / "trajectory.csv")
     _write_csv(result.steps, dest / "steps.csv")
+    _write_csv(tracked["bouts"], dest / "bouts.csv")  # decision L124
     plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
     (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
@@ -416,8 +434,8 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
         walk = walk_line(summary)  # decision L104
         if walk:
             typer.echo(walk)
-    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, path.png, {'aided.png, ' if aided else ''}summary.json, "
-               "run.json")
+    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, path.png, "
+               f"{'aided.png, ' if aided else ''}summary.json, run.json")
 
 
 

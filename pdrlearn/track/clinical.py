@@ -106,6 +106,18 @@ def pause_spans(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S) -> np.ndarra
     return np.column_stack([t_next - excess[is_pause], t_next])
 
 
+def bout_rows(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S) -> list[tuple[int, int]]:
+    """The walk's walking bouts (module docstring: the rows between pauses of at least ``min_s``) as
+    ``(first, last + 1)`` row ranges of the table in ``start_s`` order (decision L124's per-bout table)."""
+    if not len(steps):
+        return []
+    if len(steps) < 2:
+        return [(0, 1)]
+    _, is_pause = _intervals(steps.sort_values("start_s", kind="stable").reset_index(drop=True), min_s)
+    cuts = [0, *(np.flatnonzero(is_pause) + 1).tolist(), len(steps)]
+    return list(zip(cuts[:-1], cuts[1:], strict=True))
+
+
 def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray, np.ndarray]:
     """(N - 1,) each row-to-row interval's excess over the median interval (s) and whether it is a pause; rows
     in time order."""
@@ -139,8 +151,14 @@ def _heading(steps: pd.DataFrame) -> np.ndarray:
 
 def turns(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS) -> np.ndarray:
     """(T,) the signed angles (deg, left positive) of the walk's turns (module docstring), any size."""
+    return turn_rows(steps, min_rate_dps=min_rate_dps)[0]
+
+
+def turn_rows(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`turns`'s angles (T,) and, for each turn, the row (index in ``start_s`` order) that ends its first
+    turning interval - the row a per-bout table (decision L124) counts the turn in."""
     if len(steps) < 2 or "heading_rad" not in steps:
-        return np.zeros(0)
+        return np.zeros(0), np.zeros(0, dtype=int)
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     h = np.degrees(_heading(st))
     t = st["start_s"].to_numpy(float)
@@ -152,16 +170,18 @@ def turns(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS) -> np
         turning |= _intervals(st)[1] & (np.abs(dh) >= PAUSE_MAX_TURN_DEG)
     # one row under the rate between two turning rows (a turn's slower step) does not split the turn
     turning[1:-1] |= turning[:-2] & turning[2:] & ok[1:-2] & ok[2:-1] & ok[3:] & np.isfinite(dh[1:-1])
-    out, cur = [], None
+    out, first, cur = [], [], None
     for i, on in enumerate(turning):
         if on:
+            if cur is None:
+                first.append(i + 1)
             cur = dh[i] if cur is None else cur + dh[i]
         elif cur is not None:
             out.append(cur)
             cur = None
     if cur is not None:
         out.append(cur)
-    return np.asarray(out, dtype=float)
+    return np.asarray(out, dtype=float), np.asarray(first, dtype=int)
 
 
 def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:

@@ -505,7 +505,7 @@ def summary_warnings(summary: dict) -> list[str]:
     return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary)) if w]
 
 
-def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:
+def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None) -> dict:
     """Summary metrics: ``distance_m``, ``n_steps``, ``final_position``, ``altitude_change_m``, the storeys
     climbed / descended and the floor reached (``floors_up``, ``floors_down``, ``storeys_changed``, storeys of
     ``storey_height_m``; with a reference altitude also ``floors_up_ref`` ..., decision L64) and, with
@@ -513,17 +513,22 @@ def evaluate_track(result: TrackResult, session: Session | None = None) -> dict:
     ``altitude_change_ref_m``, ``final_altitude_error_m``, ``final_position_error_3d_m``, ``altitude_error_pct``,
     per-task class agreement with the labels (``terrain_agreement``, ..., decision L53) and
     ``stride_length_mae_m`` / ``stride_length_mae_pct`` (strides matched by time overlap) and, with
-    reference turns, ``n_turns``, ``turn_angle_mae_deg`` and ``turn_sign_agreement`` (decision L42)."""
+    reference turns, ``n_turns``, ``turn_angle_mae_deg`` and ``turn_sign_agreement`` (decision L42); and
+    ``n_bouts``, ``bout_definition`` of the detected walking bouts under ``bouts`` (a
+    :class:`pdrlearn.track.bouts.BoutRule`, None = its defaults; decision L124)."""
+    from pdrlearn.track.bouts import bouts_summary
+
     out: dict = {}
     for fn in METRICS:
         if fn is _basic:
             fn(result, out)
         elif session is not None:
             fn(result, session, out)
+    out.update(bouts_summary(result.steps, bouts))  # decision L124: bouts.csv's rows and their definition
     return out
 
 
-def track_summary(result: TrackResult, session: Session, *, pipeline: str | None = None) -> dict:
+def track_summary(result: TrackResult, session: Session, *, pipeline: str | None = None, bouts=None) -> dict:
     """The summary of a track, exactly as ``pdrlearn track`` writes it to ``summary.json`` (strict JSON:
     NaN -> None, numpy scalars -> Python numbers): :func:`evaluate_track`'s metrics (with the session's
     ground truth when it has some, :func:`pdrlearn.track.gait.gait_summary`'s gait speed and cadence
@@ -537,6 +542,8 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     result : the pipeline's output (``get_pipeline(name)(session, ...)``).
     session : the session that was tracked (its ground truth, name and folder).
     pipeline : name written as ``pipeline``; default ``result.info["pipeline"]``.
+    bouts : the walking-bout definition (:class:`pdrlearn.track.bouts.BoutRule`, decision L124; None = its
+        defaults) behind ``n_bouts`` and ``bout_definition``.
     """
     import json
     import logging
@@ -544,7 +551,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     from pdrlearn.io.plasys import json_safe
     from pdrlearn.track.clinical import contact_timing
 
-    summary = evaluate_track(result, session)
+    summary = evaluate_track(result, session, bouts=bouts)
     summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
