@@ -230,7 +230,8 @@ class FootDisplacement:
 
     def __init__(self, *, integrator: str = "kalman", zupt_end: bool = True, gyro_bias: str = "standstill",
                  attitude: str = "kalman", sw: float = 1.8, r: float = 0.01, max_rest_s: float = 0.3,
-                 rest_s: float = 0.05, zupt_erode: float = 0.25, zupt_erode_max_s: float = 0.5, upsample: int | None = None,
+                 rest_s: float = 0.05, zupt_erode: float = 0.25, zupt_erode_max_s: float = 0.5,
+                 upsample: int | None = None,
                  max_stride_s: float = 3.0, accel_scale_error: float = 0.01,
                  reference_point: str = "sensor", min_rocker_samples: int = 20, gap_yaw: bool = True,
                  zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
