@@ -21,6 +21,11 @@ class DataError(PdrlearnError, ValueError):
     """A session folder, CSV file or array is missing, malformed or implausible."""
 
 
+class VerticalAxisError(DataError):
+    """A unit's declared forward axis points (nearly) vertically at a step's rest: a wrong frame in meta.json,
+    or, after steps whose frame was fine, a posture (kneeling, crawling: decision B131)."""
+
+
 class MissingSensorError(DataError):
     """A method needs a sensor stream that the session does not have."""
 

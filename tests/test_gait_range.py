@@ -40,8 +40,8 @@ def test_track_prints_and_stores_the_range_warning(tmp_path, monkeypatch, capsys
     assert main(["track", "datasets/real/gaitmap_level_left", "--out", str(tmp_path / "o"), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     lines = [w for w in out["info"]["warnings"] if "decision L95" in w]
-    assert len(lines) == 1 and lines[0].startswith("median cadence 195 steps/min, speed 1.25 m/s: this looks like "
-                                                   "running, and running is not supported")
+    assert len(lines) == 1 and lines[0].startswith("median cadence 195 steps/min, straight-walking speed 1.27 m/s: "
+                                                   "this looks like running, and running is not supported")
     saved = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert [w for w in saved["info"]["warnings"] if "decision L95" in w] == lines
 
@@ -70,3 +70,22 @@ def test_run_prints_and_stores_the_range_warning(tmp_path, monkeypatch, capsys):
     assert len(lines) == 1 and "running is not supported" in lines[0] and "decision L95" in captured.err
     saved = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert [w for w in saved["info"]["warnings"] if "decision L95" in w] == lines
+
+
+@pytest.mark.parametrize(("summary", "want"), [
+    # the responder trial's spins (walks/spin): 7 straight strides at 0.73 m/s, all strides 0.16 m/s, distance +0.81 %
+    ({"median_cadence_spm": 101.4, "median_speed_mps": 0.161, "median_speed_straight_mps": 0.733,
+      "n_straight_strides": 7}, None),
+    # a slow straight walk still warns, on its straight speed
+    ({"median_cadence_spm": 64.3, "median_speed_mps": 0.42, "median_speed_straight_mps": 0.43,
+      "n_straight_strides": 20}, "straight-walking speed 0.43 m/s: this is slower"),
+    ({"median_cadence_spm": 101.0, "median_speed_mps": 0.30, "median_speed_straight_mps": 0.31,
+      "n_straight_strides": 12}, "slower than the walking"),
+    # too few straight strides to judge them: all strides' median, as before
+    ({"median_cadence_spm": 101.4, "median_speed_mps": 0.161, "median_speed_straight_mps": 0.9,
+      "n_straight_strides": 2}, "speed 0.16 m/s: this is slower"),
+])
+def test_turning_on_the_spot_is_not_a_slow_walk(summary, want):
+    """Decision L123 (session 21's responder trial, finding 8): L95 judges the straight strides' speed."""
+    got = gait_range_warning(summary)
+    assert got is None if want is None else (want in got and "decision L95" in got)

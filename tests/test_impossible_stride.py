@@ -201,3 +201,13 @@ def test_zeroed_stride_inside_a_turn_keeps_its_turn(turning_walk, monkeypatch, s
     assert len(want) == 2 and abs(want[0]) > 170 and abs(want[1]) > 80
     np.testing.assert_allclose(turns(got), want, atol=1e-6)
     assert clinical_summary(got)["turn_count"] == clinical_summary(clean)["turn_count"] == 2
+
+
+def test_the_warning_blames_the_input_for_a_stride_without_rest():
+    """Decision B132 (session 21's responder trial, finding 7): a crawl's 40.6 s "stride" (no rest of the foot inside)
+    is non-walking input, not a bug; a stride of walking length that fast may be a sensor fault or a bug."""
+    long = SK.impossible_stride_warning(1, 84.6, 125.21, -1146.66, 245.79)  # the trial's crawl (walks/crawl)
+    assert "not a bug (decision B132)" in long and "did not rest for 40.6 s" in long and "report" not in long
+    assert "decision L94, L97" in long and "moved 0 m" in long
+    short = SK.impossible_stride_warning(1, 4.87, 5.70, 2.4e30, 0.0)
+    assert "bug in pdrlearn" in short and "please report it" in short and "accelerometer fault" in short

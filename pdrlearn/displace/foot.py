@@ -182,6 +182,9 @@ class FootDisplacement:
     rest_s : half-width (s) of the window averaged for gravity at a stride boundary
     zupt_erode : fraction of each stance run dropped at both ends before it is used for ZUPT (the foot
         rolls over heel and toe at the edges of stance)
+    zupt_erode_max_s : at most this much (s) is dropped at each end of a stance run: the heel and toe roll
+        lasts well under it, and a long rest (a 10-min stand) keeps its middle for ZUPT and the attitude
+        filter instead of losing 25 % at each end (stances up to 4 x this long are cut as before)
     max_stride_s : strides longer than this (s) are flagged in ``warnings_`` (a missed stance)
     accel_scale_error : relative accelerometer error proportional to the acceleration (scale factor,
         non-linearity, bandwidth, clipped impacts; default 1 %): the ZUPT drift correction attributes the
@@ -227,7 +230,8 @@ class FootDisplacement:
 
     def __init__(self, *, integrator: str = "kalman", zupt_end: bool = True, gyro_bias: str = "standstill",
                  attitude: str = "kalman", sw: float = 1.8, r: float = 0.01, max_rest_s: float = 0.3,
-                 rest_s: float = 0.05, zupt_erode: float = 0.25, upsample: int | None = None,
+                 rest_s: float = 0.05, zupt_erode: float = 0.25, zupt_erode_max_s: float = 0.5,
+                 upsample: int | None = None,
                  max_stride_s: float = 3.0, accel_scale_error: float = 0.01,
                  reference_point: str = "sensor", min_rocker_samples: int = 20, gap_yaw: bool = True,
                  zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
@@ -262,6 +266,9 @@ class FootDisplacement:
         self.max_rest_s = max_rest_s
         self.rest_s = rest_s
         self.zupt_erode = zupt_erode
+        if not np.isfinite(zupt_erode_max_s) or zupt_erode_max_s < 0:
+            raise DataError(f"FootDisplacement: zupt_erode_max_s {zupt_erode_max_s!r} must be >= 0 (e.g. 0.5)")
+        self.zupt_erode_max_s = float(zupt_erode_max_s)
         self.upsample = upsample
         self.max_stride_s = max_stride_s
         if not np.isfinite(accel_scale_error) or accel_scale_error < 0:
@@ -281,7 +288,7 @@ class FootDisplacement:
         stance0 = (inertial_stance(unit.acc, unit.gyr, fs0) if stance is None
                    else np.asarray(stance, dtype=bool))
         self.stance_source_ = "inertial" if stance is None else "given"
-        zupt0 = K.erode_runs(stance0, self.zupt_erode)
+        zupt0 = K.erode_runs(stance0, self.zupt_erode, max_cut=int(round(self.zupt_erode_max_s * fs0)))
         k = self.upsample if self.upsample is not None else (5 if fs0 < 50.0 else 1)
         t, acc, gyr, fs = unit.t, unit.acc, unit.gyr, fs0
         if k > 1:

@@ -16,7 +16,7 @@ import numpy as np
 from scipy.ndimage import uniform_filter1d
 from scipy.spatial.transform import Rotation
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, VerticalAxisError
 from pdrlearn.kernels.stats import rest_score
 from pdrlearn.kernels.window import TIE_S
 
@@ -139,7 +139,7 @@ def foot_levelled_batch(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, forward
     rn = np.linalg.norm(ref, axis=1)
     if np.any(rn < 0.1):
         i = int(first_step[np.flatnonzero(rn < 0.1)[0]])
-        raise DataError(f"step {i}: foot unit: the declared forward axis points (nearly) vertically at "
+        raise VerticalAxisError(f"step {i}: foot unit: the declared forward axis points (nearly) vertically at "
                         "rest; check the foot frame in meta.json")
     ref = ref / rn[:, None]
     if heading == "pca":  # principal horizontal axis, signed by the declared forward axis

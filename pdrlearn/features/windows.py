@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, VerticalAxisError
 from pdrlearn.features.batch import batch_applicable, fill_windows_batch
 from pdrlearn.io.session import DIRECTION_CLASSES, LENGTH_CLASSES, TERRAIN_CLASSES, Session, session_entry
 from pdrlearn.kernels.window import (  # noqa: F401 (the layout and rest rule are part of this module's API)
@@ -196,13 +196,34 @@ def gap_steps(session: Session, start: np.ndarray, end: np.ndarray,
     return out
 
 
-def _blank_gap_steps(X: np.ndarray, gaps: dict[str, np.ndarray], available: tuple[str, ...],
-                     session: str) -> None:
-    """NaN the unit's channels of the steps in ``gaps`` (no interpolated values across a gap, B11)."""
-    for unit, mask in gaps.items():
+def _blank_units(X: np.ndarray, lost: dict[str, np.ndarray], available: tuple[str, ...]) -> None:
+    """NaN the unit's channels of the steps (bool masks) in ``lost``."""
+    for unit, mask in lost.items():
         for g in UNIT_GROUPS[unit]:
             if g in available:
                 X[np.ix_(mask, [CHANNEL_INDEX[c] for c in GROUPS[g]])] = np.nan
+
+
+def _posture_steps(X: np.ndarray, gaps: dict[str, np.ndarray], bad: list[int], start, end,
+                   available: tuple[str, ...], where: str) -> None:
+    """Decision B131: the steps whose foot rests with its declared forward axis (nearly) vertical after steps whose
+    frame was fine (kneeling, crawling) lose the foot unit as a gap step does (B11: the waist classifies them)."""
+    if not bad:
+        return
+    mask = np.zeros(len(X), dtype=bool)
+    mask[bad] = True
+    _blank_units(X, {"foot": mask}, available)
+    gaps["foot"] = gaps.get("foot", np.zeros(len(X), dtype=bool)) | mask
+    log.warning("%s: %d step(s) in %.2f-%.2f s: the foot rested with its declared forward axis (nearly) vertical "
+                "(kneeling, crawling or a foot pitched far from level; the steps before had a level frame): their "
+                "foot channels are missing (NaN) and they are classified without the foot unit (decision B131)",
+                where, len(bad), float(start[bad[0]]), float(end[bad[-1]]))
+
+
+def _blank_gap_steps(X: np.ndarray, gaps: dict[str, np.ndarray], available: tuple[str, ...],
+                     session: str) -> None:
+    """NaN the unit's channels of the steps in ``gaps`` (no interpolated values across a gap, B11)."""
+    _blank_units(X, gaps, available)
     # one line for every unit (B34): a gap in both units' streams was two lines
     same: dict[bytes, list[str]] = {}  # units whose gaps hit the same steps: one phrase
     for u, m in gaps.items():
@@ -285,21 +306,34 @@ def step_windows(session: Session, steps: pd.DataFrame | None = None, *, n_sampl
     streams = {name: (s.t, s.values) for name, s in session.streams.items()}
     forward = {p: f for p, f in (("foot", fwd_foot), ("waist", fwd_waist)) if f is not None}
     gaps = gap_steps(session, start, end, available)
-    if batch and batch_applicable(streams, available):  # all steps at once (pdrlearn.features.batch)
+    per_step = not (batch and batch_applicable(streams, available))
+    if not per_step:  # all steps at once (pdrlearn.features.batch)
         try:
             fill_windows_batch(X, streams, start, end, channel_index=CHANNEL_INDEX, available=available,
                                forward=forward, rest_search_s=rest_search_s, heading=heading)
+        except VerticalAxisError:  # decision B131: step by step, to tell a posture from a wrong frame
+            per_step = True
         except DataError as exc:
             raise DataError(f"session '{session.name}': {exc}") from None
-    else:
+    posture: list[int] = []
+    if per_step:
         for i in range(n):
             t0, t1 = float(start[i]), float(end[i])
             try:
                 fill_step_window(X[i], streams, t0, t1, channel_index=CHANNEL_INDEX, available=available,
                                  forward=forward, rest_search_s=rest_search_s, heading=heading)
+            except VerticalAxisError as exc:
+                if i == len(posture):  # B131: no step before had a level frame: the frame cannot be judged
+                    raise DataError(f"session '{session.name}', step {i} ({t0:.2f}-{t1:.2f} s): {exc}") from None
+                X[i] = np.nan  # the waist's channels again, the foot's left NaN
+                fill_step_window(X[i], streams, t0, t1, channel_index=CHANNEL_INDEX, forward=forward,
+                                 available=tuple(g for g in available if g not in UNIT_GROUPS["foot"]),
+                                 rest_search_s=rest_search_s, heading=heading)
+                posture.append(i)
             except DataError as exc:
                 raise DataError(f"session '{session.name}', step {i} ({t0:.2f}-{t1:.2f} s): {exc}") from None
     _blank_gap_steps(X, gaps, available, session.where)
+    _posture_steps(X, gaps, posture, start, end, available, session.where)
     return StepWindows(X=X, durations_s=end - start, channels=CHANNELS, available=available,
                        steps=out_steps, session=session.name, gap_steps=gaps,
                        source_rows=np.asarray(steps.index) if steps.index.dtype.kind in "iu" else None)

@@ -27,6 +27,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.kernels import bayes as B
+from pdrlearn.kernels.contact import MAX_STRIDE_S
 from pdrlearn.kernels.window import TIE_S, Levelled, interp
 
 # -- length-class bounds -------------------------------------------------------------------------------
@@ -701,12 +702,22 @@ def impossible_strides(length_m: np.ndarray, dz_m: np.ndarray, duration_s: np.nd
 
 def impossible_stride_warning(n: int, t0: float, t1: float, length_m: float, dz_m: float) -> str:
     """Decision L94's one line (offline, ``track --streaming``, the runtime): ``n`` strides moved 0 m, the first
-    at ``t0``-``t1`` s with the rules' ``length_m`` / ``dz_m``."""
+    at ``t0``-``t1`` s with the rules' ``length_m`` / ``dz_m``. Decision B132: its cause by the first stride's time:
+    longer than :data:`~pdrlearn.kernels.contact.MAX_STRIDE_S` (no rest of the foot inside) the input is not
+    walking there (crawling, kneeling: integrated without a zero-velocity update); a stride of walking length
+    that fast is a sensor fault or a bug."""
+    if t1 - t0 > MAX_STRIDE_S:
+        cause = (f"the foot did not rest for {t1 - t0:.1f} s (over {MAX_STRIDE_S:g} s: non-walking motion such as "
+                 "crawling or kneeling, or a unit that is never still), so it was integrated without a zero-velocity "
+                 "update: the input is not walking there, not a bug (decision B132)")
+    else:
+        cause = ("a stride of walking length this fast means an accelerometer fault (spikes, clipping, wrong units) "
+                 "or a bug in pdrlearn: if the foot accelerometer looks sane there, please report it (decision B132)")
     return (f"{n} stride(s) gave a physically impossible displacement (first {t0:.3f}-{t1:.3f} s: length "
             f"{length_m:.6g} m, height {dz_m:.6g} m in {t1 - t0:.3f} s; the bound is {MAX_STRIDE_SPEED_MPS:g} m/s "
             "x the stride's time, faster than any human sprint) and moved 0 m, as a gap, left out of the distance "
             "and of the gait parameters (stride time, cadence, speed, walking time; column impossible in "
-            "steps.csv) (decision L94, L97): a bug in pdrlearn, not bad data - please report it")
+            f"steps.csv) (decision L94, L97): {cause}")
 
 
 def non_finite_stride_error(where: str, t0: float, t1: float, length_m: float, dz_m: float) -> str:

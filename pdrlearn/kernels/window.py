@@ -13,7 +13,7 @@ from collections.abc import Collection, Mapping
 
 import numpy as np
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, VerticalAxisError
 from pdrlearn.kernels.rotation import gravity_rotation, vec_norm
 from pdrlearn.kernels.stats import (
     heading_rotation,
@@ -191,6 +191,14 @@ def rest_boundaries(t: np.ndarray, gyr: np.ndarray, start: np.ndarray, end: np.n
     return new_start, new_end
 
 
+def posture_warning(n: int, t0: float, t1: float) -> str:
+    """Decision B131: the line for ``n`` strides in ``t0``-``t1`` s skipped because the foot rested with its declared
+    forward axis (nearly) vertical after strides whose frame was level (a posture, not a wrong meta.json)."""
+    return (f"{n} stride(s) in {t0:.2f}-{t1:.2f} s skipped: the foot rested with its declared forward axis (nearly) "
+            "vertical (kneeling, crawling or a foot pitched far from level; the strides before had a level frame): "
+            "no displacement is counted there and the position holds (decision B131)")
+
+
 def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
                   rest_search_s: float, heading: str, t0: float | None = None, frame: bool = False
                   ) -> tuple:
@@ -220,7 +228,7 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     r0 = gravity_rotation(g0)
     ref = (r0 @ forward_s)[:2]  # the attitude at k0 is r0 exactly
     if vec_norm(ref) < 0.1:
-        raise DataError("foot unit: the declared forward axis points (nearly) vertically at rest; "
+        raise VerticalAxisError("foot unit: the declared forward axis points (nearly) vertically at rest; "
                         "check the declared foot frame (meta.json or the bundle's frames)")
     ref = ref / vec_norm(ref)
     if gyr is not None:

@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from pdrlearn.errors import DataError, InternalError
+from pdrlearn.errors import InternalError, VerticalAxisError
 from pdrlearn.kernels.rotation import gravity_rotation_xyz, rotvec_to_matrix, vec_norm
 from pdrlearn.kernels.stats import (
     principal_horizontal_xy,
@@ -366,7 +366,7 @@ def foot_levelled(state: FootLevelling, t0: float, t1: float, *, rest_search_s: 
     ref = r0.dot(state.forward)[:2]  # 2-D products by ndarray.dot: @'s BLAS call without its dispatch (E20)
     nr = vec_norm(ref)
     if nr < 0.1:
-        raise DataError("foot unit: the declared forward axis points (nearly) vertically at rest; "
+        raise VerticalAxisError("foot unit: the declared forward axis points (nearly) vertically at rest; "
                         "check the declared foot frame (meta.json or the bundle's frames)")
     Q = arr["Q"][j0:j1]
     A = r0.dot(Q[k0].T)

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pdrlearn.errors import DataError, InternalError, ModelError
+from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
@@ -57,6 +57,7 @@ from pdrlearn.kernels.window import (
     available_groups,
     fill_step_window,
     levelled_units,
+    posture_warning,
     rest_boundaries,
     segment,
 )
@@ -388,6 +389,7 @@ class Tracker(FixInput):
         frames = frames or m["frames"]
         self.forward = {p: forward_vector(f) for p, f in frames.items()}
         self.warnings: list[str] = []
+        self._posture: list | None = None  # decision B131: [first s, last s, steps, index in warnings]
         self._model_args = (tasks, methods, units, step_graph)
         self._choose_models(sensors)
         self.params = dict(m["displacement"])
@@ -960,11 +962,28 @@ class Tracker(FixInput):
             t0, t1 = self._pending.pop(0)
             try:
                 out += self._emit(self.process_step(t0, t1))
+            except VerticalAxisError:
+                if not self.n_steps:  # decision B131: the session starts so: the frame cannot be judged
+                    raise
+                self._note_posture(t0, t1)
             except DataError as exc:  # decision B123: the kernel's zero gravity, named by sensor and time
                 if not str(exc).startswith("gravity_rotation:"):
                     raise
                 raise DataError(self._no_gravity(t0, t1)) from None
         return out
+
+    def _note_posture(self, t0: float, t1: float) -> None:
+        """Decision B131: a step whose foot rests with the declared forward axis (nearly) vertical after steps whose
+        frame was fine is a posture (kneeling, crawling), not a wrong meta.json: the step is skipped (the position
+        holds) and one warning says when; later such steps widen its span and count."""
+        if self._posture is None:
+            self._posture = [t0, t1, 0, len(self.warnings)]
+            self.warnings.append("")
+        p = self._posture
+        p[1], p[2] = max(p[1], t1), p[2] + 1
+        self.warnings[p[3]] = posture_warning(p[2], p[0], p[1])
+        if p[2] == 1:
+            log.warning("bundle %s: %s", self.bundle.path, self.warnings[p[3]])
 
     def _no_gravity(self, t0: float, t1: float) -> str:
         """Decision B123: the line for a step whose accelerometer gives no gravity to level it by (the stride

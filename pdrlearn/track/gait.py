@@ -300,20 +300,30 @@ def gait_summary(steps: pd.DataFrame) -> dict:
 #: outside these bounds (the validated ranges with a margin; the adult walk-run transition is ~2 m/s) gets one
 #: warning line from `pdrlearn track`.
 CADENCE_RANGE_SPM, SPEED_RANGE_MPS = (70.0, 160.0), (0.5, 2.5)
+#: decision L123: the speed L95 judges is the straight strides' median (L79) when there are at least this many; a
+#: stride turning on the spot covers little ground at a walking cadence (the trial's 360-deg spins: median 0.16
+#: m/s over all strides, 0.73 m/s straight, distance +0.81 %)
+MIN_STRAIGHT_FOR_RANGE = 5
 
 
 def gait_range_warning(summary: dict) -> str | None:
     """Decision L95: one line when the summary's median cadence or speed (``median_speed_mps``, else
     ``gait_speed_mps``) lies outside :data:`CADENCE_RANGE_SPM` / :data:`SPEED_RANGE_MPS`; None inside (or with
-    neither figure). Adds the out-of-domain fraction of a model's classes when the summary has one (C16)."""
+    neither figure). Adds the out-of-domain fraction of a model's classes when the summary has one (C16).
+    Decision L123: with at least :data:`MIN_STRAIGHT_FOR_RANGE` straight strides their median speed
+    (``median_speed_straight_mps``) is judged instead, so turning on the spot does not read as a slow walk."""
     cad = summary.get("median_cadence_spm")
-    speed = summary.get("median_speed_mps")
+    speed, what_speed = summary.get("median_speed_mps"), "speed"
+    straight = summary.get("median_speed_straight_mps")
+    if straight is not None and np.isfinite(straight) and (summary.get("n_straight_strides") or 0) >= \
+            MIN_STRAIGHT_FOR_RANGE:
+        speed, what_speed = straight, "straight-walking speed"
     if speed is None:
         speed = summary.get("gait_speed_mps")
     cad = float(cad) if cad is not None and np.isfinite(cad) else None
     speed = float(speed) if speed is not None and np.isfinite(speed) else None
     figs = ", ".join([*([f"median cadence {cad:.0f} steps/min"] if cad is not None else []),
-                      *([f"speed {speed:.2f} m/s"] if speed is not None else [])])
+                      *([f"{what_speed} {speed:.2f} m/s"] if speed is not None else [])])
     fast = (cad is not None and cad > CADENCE_RANGE_SPM[1]) or (speed is not None and speed > SPEED_RANGE_MPS[1])
     slow = (cad is not None and cad < CADENCE_RANGE_SPM[0]) or (speed is not None and speed < SPEED_RANGE_MPS[0])
     if not (fast or slow):

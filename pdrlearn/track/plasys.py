@@ -39,7 +39,7 @@ from pdrlearn.displace import (
     stance_runs,
     streaming_calibration,
 )
-from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError
+from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
@@ -54,7 +54,7 @@ from pdrlearn.kernels.distance import (
     level_dz,
     rate_differs,
 )
-from pdrlearn.kernels.window import GROUP_STREAMS, available_groups, levelled_units
+from pdrlearn.kernels.window import GROUP_STREAMS, available_groups, levelled_units, posture_warning
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
 from pdrlearn.signal import lowpass
@@ -1058,6 +1058,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     fa_t, fa_v = streams["fAccelerometer"]
     has_force = "fForceA" in streams and "fForceB" in streams
     foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
+    posture = np.zeros(len(table), dtype=bool)  # decision B131: strides skipped as the runtime skips them
     in_gap = overlaps_gaps(table, foot_gaps)  # decision E30: these strides move 0 m, turn 0, no classes
     imu_gaps = {k: v for k, v in foot_gaps.items() if k in FOOT_IMU}
     imu_gap = overlaps_gaps(table, imu_gaps)  # decisions L90 / L91: the foot's yaw is lost over these strides
@@ -1068,8 +1069,14 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                 dyaw[i] = SK.waist_bridge_yaw(streams.__getitem__, min(float(t0), prev if prev is not None
                                                                       else float(t0)), float(t1))
             continue
-        lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,  # E36: a short
-                             rest_search_s=rest_search_s, heading=step_heading, bridge_gaps=True)  # gap = 1 interval
+        try:
+            lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,  # E36: a
+                                 rest_search_s=rest_search_s, heading=step_heading, bridge_gaps=True)  # short gap
+        except VerticalAxisError:  # = 1 interval; decision B131: after level strides, a posture (the runtime's)
+            if i == int(posture.sum()):
+                raise
+            posture[i] = True
+            continue
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1))
         turn[i] = dyaw[i]  # decision E51: the stride's own turn (the runtime's), before the pivot below
         a, b = np.searchsorted(fa_t, t0, side="left"), np.searchsorted(fa_t, t1, side="right")
@@ -1099,13 +1106,17 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     place += [SK.reversed_by_rules(bool(f), float(d[0]), float(L))  # decision L37
               for f, d, L in zip(foot_headed, disp, length, strict=True)]
     length, dz, impossible = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # L94, as run
-    if in_gap.any():  # decision E30: the runtime's Step for such a stride (0 m, no classes)
-        length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
+    if posture.any():  # decision B131: the runtime's one warning; the strides are dropped below
+        warnings.append(posture_warning(int(posture.sum()), float(strides[posture][0, 0]),
+                                        float(strides[posture][-1, 1])))
+    lost = in_gap | posture
+    if lost.any():  # decision E30: the runtime's Step for such a stride (0 m, no classes)
+        length, dz = np.where(lost, 0.0, length), np.where(lost, 0.0, dz)
         classes = classes.copy()
         for c in [c for c in classes.columns if c in ("terrain", "direction", "length_class") or c.startswith("p_")]:
             num = pd.api.types.is_float_dtype(classes[c].dtype)
             classes[c] = classes[c].astype(float if num else object)
-            classes.loc[in_gap, c] = np.nan if num else None
+            classes.loc[lost, c] = np.nan if num else None
     terrain_check, altitude_check = None, None
     if method == "M3" and "terrain" in untrained:  # decision L69 (C17): a model without terrain classes, as offline
         msg, altitude_check = integrated_altitude_check(dz, levelled=False)
@@ -1139,6 +1150,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if start is not None:
         ll = geodetic_track(tuple(start), length, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
+    if posture.any():  # decision B131: no row for them, as the runtime emits none (they moved 0 m)
+        table, traj, in_gap = (table[~posture].reset_index(drop=True),
+                               traj[np.r_[True, ~posture]].reset_index(drop=True), in_gap[~posture])
     if any(len(g) for g in foot_gaps.values()):  # decision E46: one 0 m row per stretch with a foot gap (L67)
         table, traj = _one_row_per_gap(table, traj, in_gap, foot_gaps)
     table = streamed_gait_columns(table)  # decision E51
