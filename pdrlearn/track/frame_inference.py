@@ -85,6 +85,9 @@ MAX_DECLARED_OFF_DEG = 60.0
 #: axis is forward (the strides' direction sign is fixed by the push-off, D9; up by gravity at rest). Geometry:
 #: midway between a 90-degree turn and the 180-degree one, not fitted to a recording.
 OPPOSED_DEG = 120.0
+#: Decision D22: the declared forward's heading is compared only when it is at least this far from vertical
+#: (deg): a trial's foot unit pitched 64 deg from its declared forward still walked every stride backward.
+MIN_FORWARD_ELEVATION_DEG = 15.0
 
 
 class FrameInferenceError(DataError):
@@ -491,10 +494,6 @@ def forward_reversal_deg(declared: AxisFrame, up: np.ndarray | None, forward: np
     return float(np.degrees(np.arccos(np.clip(float(_unit(h) @ fw), -1.0, 1.0))))
 
 
-#: Decision D22: the declared forward's heading is compared only when it is at least this far from vertical
-#: (deg): a trial's foot unit pitched 64 deg from its declared forward still walked every stride backward.
-MIN_FORWARD_ELEVATION_DEG = 15.0
-
 @dataclass
 class DeclaredCheck:
     """What the data say of a declared frame (decisions D10, D22): ``message`` the warning or refusal text
@@ -528,9 +527,10 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
     try:
         found = infer_session_frame(session, placement, max_s=CHECK_SPAN_S)
     except FrameInferenceError as exc:
-        found, unchecked, up, fwd = None, str(exc), exc.up, exc.forward
-        compared = tuple(k for k, v in (("up", up), ("forward", fwd)) if v is not None)
-        off = directions_off(declared, up, None, OPPOSED_DEG)  # the up only: which axis is forward is unknown
+        found, unchecked, off = None, str(exc), {}
+        if exc.forward is not None:  # gave up after measuring the strides' signed direction (past D9's push-off)
+            up, fwd, compared = exc.up, exc.forward, ("up", "forward")
+            off = directions_off(declared, up, None, OPPOSED_DEG)  # up only: which axis is forward is unknown
     except DataError as exc:
         found, unchecked, off = None, str(exc), {}
     else:
