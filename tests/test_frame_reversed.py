@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import logging
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -22,6 +23,7 @@ from pdrlearn.io import write_session
 from pdrlearn.io.frames import AxisFrame
 from pdrlearn.track.frame_inference import FrameInferenceError, infer_session_frame, remount
 
+ROOT = Path(__file__).resolve().parents[1]
 HEEL = "y:180,z:-25"  # the trial's heel clip; with user 501's walk the inference gives up at the pitch edge
 RIGHT_HEEL = AxisFrame(x="backward", y="up", z="left")  # the nearest-axis frame of that mount
 
@@ -120,6 +122,10 @@ def test_info_says_refused_and_not_checked(walk, tmp_path, capsys):
     foot = out[out.index("foot axes:"):out.index("waist axes:")]
     assert "not contradicted" not in foot and "not checked (the mount is pitched" in foot
     assert main(["track", str(bad), "--out", str(tmp_path / "o")]) == 2  # exit 2 with the one line
+    # `run` took a declared frame unchecked (the trial's gaitmap heel case: every stride backward, no warning)
+    bundle = ROOT / "models" / "plasys-sim-default"
+    assert main(["run", str(bundle), str(bad), "--out", str(tmp_path / "r")]) == 2
+    assert "reversed against its data" in capsys.readouterr().err and not (tmp_path / "r").exists()
 
 
 def test_info_says_not_checked_when_nothing_could_be_measured():
