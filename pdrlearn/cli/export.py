@@ -141,7 +141,8 @@ def _export_waist(cal: Path, out: Path, frame: str | None, force: bool, as_json:
 def _frames_of(session, bundle, units=None) -> dict:
     """Each unit's frame for the runtime: declared (checked against the data, decisions D10, D23); else inferred
     from the session's data (decision D8, with its warning); else, when the data does not fix the axes, the
-    bundle's (its training sessions'), warned. A unit the replay leaves out (``units``, decision E26: ``--units foot``) keeps the bundle's, unsaid."""
+    bundle's (its training sessions'), warned. A unit the replay leaves out (``units``, decision E26:
+    ``--units foot``) keeps the bundle's, unsaid."""
     import logging
 
     from pdrlearn.errors import DataError
