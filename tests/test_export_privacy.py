@@ -129,7 +129,8 @@ def test_resigned_npz_is_one_line(dirs, tmp_path, capsys, kind):
             np.savez(f, references=np.zeros((2, 3, 40)))
     _resign(bundle, rel)
     assert main(["run", str(bundle), str(dirs["walk"]), "--method", f"terrain={method}/foot"]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
+    # `run` checks the session's frames as track does (D10/D11, D23): the synthetic walk's D11 warning is not the error
+    err = [ln for ln in capsys.readouterr().err.strip().splitlines() if not ln.startswith("warning:")]
     assert len(err) == 1 and f"file '{rel}' is not" in err[0] and "re-export" in err[0], err
 
 
@@ -140,7 +141,8 @@ def test_resigned_onnx_garbage_is_one_line(dirs, tmp_path, capsys):
     (bundle / rel).write_bytes(b"not a protobuf")
     _resign(bundle, rel)
     assert main(["run", str(bundle), str(dirs["walk"]), "--method", "terrain=nn/foot"]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
+    # `run` checks the session's frames as track does (D10/D11, D23): the synthetic walk's D11 warning is not the error
+    err = [ln for ln in capsys.readouterr().err.strip().splitlines() if not ln.startswith("warning:")]
     assert len(err) == 1 and "onnxruntime cannot open this model" in err[0] and rel in err[0], err
 
 

@@ -152,7 +152,7 @@ def test_the_check_reads_only_the_first_minutes(monkeypatch):
     real = FI.INFER["foot"]
     monkeypatch.setitem(FI.INFER, "foot", lambda acc, gyr, fs: seen.append(len(acc)) or real(acc, gyr, fs))
     monkeypatch.setattr(FI, "CHECK_SPAN_S", 10.0)
-    assert FI.check_declared_frame(s, "foot", s.frames["foot"]) is None
+    assert FI.check_declared_frame(s, "foot", s.frames["foot"]).message is None
     fs = s.streams["fAccelerometer"].rate_hz
     assert abs(seen[0] - 10.0 * fs) < 1.5 and len(seen) == 1 and seen[0] < len(s.streams["fAccelerometer"])
 

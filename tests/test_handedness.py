@@ -138,7 +138,9 @@ def test_info_json_has_the_checks_and_prints_the_warning_once(tmp_path, capsys):
     assert main(["info", str(d), "--json"]) == 0
     out, err = capsys.readouterr()
     chk = json.loads(out)["frame_checks"]["foot"]
-    assert chk["source"] == "source_project" and chk["check"] == "ok"
+    # D22: mirrored data give no forward push-off, so the inference gives up: not checked, never "ok"
+    assert chk["source"] == "source_project" and chk["status"] == "unchecked"
+    assert chk["check"].startswith("not checked (in swing the foot pitches toes-down")
     assert chk["frame"] == {"x": "forward", "y": "left", "z": "up"}
     assert chk["handedness"]["verdict"] == "mirrored" and chk["handedness"]["segments"] >= 20
     lines = [ln for ln in err.splitlines() if ln.startswith("warning:")]
@@ -154,7 +156,16 @@ def test_info_prints_a_d10_contradiction(tmp_path, capsys):
     assert main(["info", str(d), "--json"]) == 0
     out, err = capsys.readouterr()
     chk = json.loads(out)["frame_checks"]["foot"]
-    assert chk["source"] == "declared" and "contradicts its data" in chk["check"]
+    # a reversed forward: refused by the commands that need it (D23), said by info
+    assert chk["source"] == "declared" and chk["status"] == "refused" and "contradicts its data" in chk["check"]
+    assert main(["info", str(d)]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "refused by the commands that need it" in out and "contradicts its data" in out
+    meta["frames"] = {"foot": {"x": "forward", "y": "up", "z": "right"}}  # a wrong 90-degree turn: D10's warning
+    (d / "meta.json").write_text(json.dumps(meta))
+    assert main(["info", str(d), "--json"]) == 0
+    out, err = capsys.readouterr()
+    assert json.loads(out)["frame_checks"]["foot"]["status"] == "warned"
     assert sum("contradicts its data" in ln for ln in err.splitlines()) == 1
 
 

@@ -82,6 +82,6 @@ def test_declared_frame_against_an_ios_accelerometer_names_the_sign(caplog):
     s = read_session(T5)
     a = s["wAccelerometer"]
     s.streams["wAccelerometer"] = Stream(a.name, a.t, -a.values)
-    msg = check_declared_frame(s, "waist", s.frames["waist"])
+    msg = check_declared_frame(s, "waist", s.frames["waist"]).message
     assert msg is not None and "gravity as -1 g" in msg and "--acc=-X,-Y,-Z" in msg
-    assert check_declared_frame(read_session(T5), "waist", s.frames["waist"]) is None
+    assert check_declared_frame(read_session(T5), "waist", s.frames["waist"]).message is None

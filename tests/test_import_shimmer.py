@@ -191,11 +191,15 @@ def test_right_handed_contradiction_refused_and_force_frame_writes(walk10, tmp_p
     assert meta["imported"]["frame_forced"]["data"] == {"x": "forward", "y": "up", "z": "right"}
 
 
-def test_a_truthful_frame_and_one_the_data_cannot_judge_are_written(walk10, tmp_path, capsys):
+def test_a_truthful_frame_is_written_and_a_left_handed_one_only_with_force_frame(walk10, tmp_path, capsys):
     assert main(["import", str(walk10), "--out", str(tmp_path / "a"), "--frames", FRAME]) == 0
     assert "warning" not in capsys.readouterr().err
-    # the 6 m Shimmer walk has too few strides for the inference (D8): a left-handed frame is written as before
-    assert main(["import", str(SHIMMER), "--out", str(tmp_path / "b"), "--frames", "x=forward,y=up,z=left"]) == 0
+    # the 6 m Shimmer walk has too few strides for the inference (D8); a left-handed frame is refused all the same
+    # (decision B130: handedness needs no data), --force-frame writes it
+    args = ["import", str(SHIMMER), "--frames", "x=forward,y=up,z=left"]
+    assert main([*args, "--out", str(tmp_path / "b")]) == 2
+    assert "--frames x=forward,y=up,z=left is left-handed" in capsys.readouterr().err
+    assert main([*args, "--out", str(tmp_path / "b"), "--force-frame"]) == 0
     capsys.readouterr()
     assert read_session(tmp_path / "b").frames["foot"].to_dict() == {"x": "forward", "y": "up", "z": "left"}
 

@@ -111,6 +111,7 @@ def test_harmonic_heading_on_synthetic_gait(heading, method):
 
 def test_forward_sign_flips_for_backward_phase():
     s = synth_session(lead=np.pi / 3 + np.pi)  # forward acceleration in anti-phase = walking backward
+    s.meta["force_frame"] = True  # the declared frame against a walk all backward: D23 would refuse it
     imu = waist_imu(s)
     ev = s.extras["contacts"]["ic_s"].to_numpy()
     ev = ev[(ev > 4) & (ev < 16)]

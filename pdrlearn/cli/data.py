@@ -72,8 +72,9 @@ def info(
     c.print(f"frames: {frames}", markup=False)
     for p, chk in summary["frame_checks"].items():
         frame = json.dumps(chk["frame"]) if chk["frame"] else "none"
-        check = ("not contradicted by the data (D10)" if chk["check"] == "ok"
-                 else "see the warning" if chk["frame"] else chk["check"])
+        # decision D22: "not contradicted" only when the check ran; a refusal and an unchecked frame in words
+        check = {"ok": "not contradicted by the data (D10)", "warned": "see the warning",
+                 "refused": f"refused by the commands that need it: {chk['check']}"}.get(chk["status"], chk["check"])
         h = chk["handedness"]
         # frame_checks lists only units with both sensors: no result = too short or non-finite data
         hand = "not run (under 16 samples or non-finite values)" if h is None else (

@@ -139,9 +139,10 @@ def _export_waist(cal: Path, out: Path, frame: str | None, force: bool, as_json:
 
 
 def _frames_of(session, bundle, units=None) -> dict:
-    """Each unit's frame for the runtime: declared; else inferred from the session's data (decision D8, with
-    its warning); else, when the data does not fix the axes, the bundle's (its training sessions'), warned.
-    A unit the replay leaves out (``units``, decision E26: ``--units foot``) keeps the bundle's, unsaid."""
+    """Each unit's frame for the runtime: declared (checked against the data, decisions D10, D23); else inferred
+    from the session's data (decision D8, with its warning); else, when the data does not fix the axes, the
+    bundle's (its training sessions'), warned. A unit the replay leaves out (``units``, decision E26:
+    ``--units foot``) keeps the bundle's, unsaid."""
     import logging
 
     from pdrlearn.errors import DataError
@@ -149,6 +150,8 @@ def _frames_of(session, bundle, units=None) -> dict:
     frames = {p: f.to_dict() for p, f in session.frames.items()}
     for p, f in bundle.manifest["frames"].items():
         if p in frames:
+            if units is None or p in units:  # checked against the data as track does (D10; D23 refuses a reversal)
+                frames[p] = session.require_frame(p).to_dict()
             continue
         if units is not None and p not in units:  # not replayed: its frame is never used, nothing to warn about
             frames[p] = f

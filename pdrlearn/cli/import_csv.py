@@ -391,21 +391,28 @@ def _origin_text(origin_s: float) -> str:
 def _check_frame(session, unit: str, record: dict, csv: Path, force: bool) -> str | None:
     """Decision B67: a --frames entry the unit's data contradict with confidence (D10's test: an up, forward or
     left more than 60 deg from the measured one) is refused before anything is written, naming the frame the
-    data give; ``--force-frame`` writes it anyway (recorded, and returned as a warning). A left-handed frame the
-    data cannot judge (no confident inference) is written, and commands warn of it as before (D10)."""
+    data give; ``--force-frame`` writes it anyway (recorded, and returned as a warning). A left-handed frame is
+    refused whatever the data say (decision B130: its handedness needs no data), ``--force-frame`` keeps it."""
     frame = session.frames.get(unit)
     if frame is None:
         return None
     from pdrlearn.track.frame_inference import CHECK_SPAN_S, frame_disagreement, infer_session_frame
 
+    given = ",".join(f"{k}={v}" for k, v in frame.to_dict().items())
     try:
         found = infer_session_frame(session, unit, max_s=CHECK_SPAN_S)
     except DataError:
-        return None  # the data do not fix the axes: the declared frame stands (D8, D10)
-    off = frame_disagreement(frame, found)
+        found = None  # the data do not fix the axes: the declared frame stands (D8, D10) if right-handed
+    off = frame_disagreement(frame, found) if found is not None else {}
+    if not off and not frame.right_handed:  # decision B130
+        if force:
+            record["frame_forced"] = {"declared": frame.to_dict(), "data": None}
+            return f"--frames {given} is left-handed; written as given (--force-frame)"
+        raise DataError(f"{csv}: --frames {given} is left-handed (IMU axes are right-handed: one of the three "
+                        "directions is probably reversed); nothing written: import again with the axis corrected "
+                        "(or without --frames, to infer them), or pass --force-frame to keep yours")
     if not off:
         return None
-    given = ",".join(f"{k}={v}" for k, v in frame.to_dict().items())
     data = ",".join(f"{k}={v}" for k, v in found.frame.to_dict().items())
     hand = "left-handed and " if not frame.right_handed else ""
     angles = ", ".join(f"{k} {v:.0f} deg off" for k, v in off.items())

@@ -262,7 +262,7 @@ class Session:
     infer_frames: bool = True
     check_units: bool = True
     _inferred: dict[str, AxisFrame | DataError] = field(default_factory=dict, repr=False, compare=False)
-    _checked: dict[str, str | None] = field(default_factory=dict, repr=False, compare=False)
+    _checked: dict = field(default_factory=dict, repr=False, compare=False)  # placement -> DeclaredCheck
     _handed: dict[object, object] = field(default_factory=dict, repr=False, compare=False)
     _valid: tuple | None = field(default=None, repr=False, compare=False)
     #: decision B81: the recording's first sample (s) before ``read_session(spans="common")`` cut the session to
@@ -412,9 +412,12 @@ class Session:
             if self.infer_frames and placement not in self._checked:  # decision D10: once per session
                 from pdrlearn.track.frame_inference import check_declared_frame
 
-                self._checked[placement] = msg = check_declared_frame(self, placement, frame)
-                if msg:
-                    log.warning("%s: %s", where, msg)
+                self._checked[placement] = chk = check_declared_frame(self, placement, frame)
+                if chk.message and not chk.refuse:
+                    log.warning("%s: %s", where, chk.message)
+            chk = self._checked.get(placement)
+            if chk is not None and chk.refuse:
+                raise DataError(f"{where}: {chk.message}")  # decision D23: a reversed forward is refused
             return frame
         reason = ""
         if self.infer_frames:
@@ -465,6 +468,19 @@ class Session:
         err.walk_s = getattr(self._inferred.get(placement), "walk_s", None)  # W61: too little walking to infer
         raise err
 
+    def frame_forced(self, placement: str) -> bool:
+        """Decision D23's override: meta.json ``"force_frame": true`` (or a list naming the unit), or an
+        ``import --force-frame`` of this unit's frame (its ``"imported"`` record's ``frame_forced``): the
+        declared frame is used even when the data find it reversed (with D10's warning)."""
+        forced = self.meta.get("force_frame")
+        if forced is True or (isinstance(forced, list) and placement in forced):
+            return True
+        recs = self.meta.get("imported")
+        recs = recs if isinstance(recs, list) else [recs] if isinstance(recs, dict) else []
+        frame = self.frames.get(placement)
+        return frame is not None and any(isinstance(r, dict) and isinstance(r.get("frame_forced"), dict)
+                                         and r["frame_forced"].get("declared") == frame.to_dict() for r in recs)
+
     def handedness(self, placement: str, *, ratio: bool = True):
         """The mirrored-data and axis-agreement tests of the ``placement`` unit
         (:func:`pdrlearn.io.handedness.check_handedness`, decision D11 and its amendment), run once per
@@ -487,7 +503,8 @@ class Session:
         """Run the data checks of each IMU unit's axes now (what :meth:`require_frame` runs when a command
         needs them; each warning logged once) and return, per placement: ``frame`` (the frame used, or
         ``None``), ``source`` (``declared``, ``source_project``, ``inferred`` or ``none``), ``check`` (``ok``,
-        the D10 warning of a declared frame, or why the data do not fix an undeclared one) and
+        the D10 warning of a declared frame, D22's refusal, what the data could not check of it, or why the data
+        do not fix an undeclared one), ``status`` (``ok``, ``warned``, ``refused``, ``unchecked``, ``none``) and
         ``handedness`` (:meth:`pdrlearn.io.handedness.Handedness.to_dict` or ``None``, decision D11). For
         ``pdrlearn info``."""
         from pdrlearn.io.sensors import UNIT_IMU
@@ -500,14 +517,26 @@ class Session:
             try:
                 frame = self.require_frame(p)
             except DataError as exc:
-                frame, check = None, str(exc)
+                chk = self._checked.get(p) if declared else None
+                if chk is None or not chk.refuse:
+                    frame, check, status = None, str(exc), "none"
+                else:  # decision D23: the declared frame, refused
+                    frame, check, status = self.frames[p], str(exc), "refused"
             else:
-                check = ((self._checked.get(p) if declared else None) or "ok") if self.infer_frames else "not checked"
+                chk = self._checked.get(p) if declared else None
+                if not self.infer_frames:
+                    check, status = "not checked (infer_frames is off)", "unchecked"
+                elif chk is None or (not chk.message and chk.unchecked is None):
+                    check, status = "ok", "ok"
+                elif chk.message:
+                    check, status = chk.message, "warned"
+                else:  # decision D22: the data could not judge it; never "not contradicted"
+                    check, status = chk.summary(), "unchecked"
             source = ("none" if frame is None else "inferred" if not declared
                       else "declared" if isinstance(self.meta.get("frames"), dict) else "source_project")
             h = self.handedness(p) if self.infer_frames else None
             out[p] = {"frame": None if frame is None else frame.to_dict(), "source": source, "check": check,
-                      "handedness": None if h is None else h.to_dict()}
+                      "status": status, "handedness": None if h is None else h.to_dict()}
         return out
 
     @property

@@ -79,14 +79,33 @@ MIN_RHYTHM_SIGMA = 8.0
 #: pitch window accepts up to 60 deg toes-down (FOOT_PITCH_WINDOW_DEG); a wrong 90-degree turn is 90 deg off
 #: (less the mount's tilt), an upside-down unit 180. Geometry, not fitted to a recording.
 MAX_DECLARED_OFF_DEG = 60.0
+#: Decision D22: a declared up or forward more than this many degrees from the measured one is reversed, not a
+#: mount between two axes (a nearest-axis declaration is at most 45 deg off, the foot pitch window reaches 60 deg,
+#: a wrong 90-degree turn is ~90 deg less the tilt): the data contradict it even when they do not fix which sensor
+#: axis is forward (the strides' direction sign is fixed by the push-off, D9; up by gravity at rest). Geometry:
+#: midway between a 90-degree turn and the 180-degree one, not fitted to a recording.
+OPPOSED_DEG = 120.0
+#: Decision D22: the declared forward's heading is compared only when it is at least this far from vertical
+#: (deg): a trial's foot unit pitched 64 deg from its declared forward still walked every stride backward.
+MIN_FORWARD_ELEVATION_DEG = 15.0
 
 
 class FrameInferenceError(DataError):
     """The data does not fix the unit's axes with confidence (no walking, no rest, ambiguous axes).
     ``walk_s``: the seconds of walking found when there were too few to infer a waist frame (decision W61),
-    else None."""
+    else None. ``up`` and ``forward``: the directions measured before the inference gave up (unit vectors in
+    sensor axes; up from gravity, forward the strides' signed horizontal direction), else None (decision D22)."""
 
     walk_s: float | None = None
+    up: np.ndarray | None = None
+    forward: np.ndarray | None = None
+
+
+def _refuse(msg: str, up: np.ndarray | None = None, forward: np.ndarray | None = None) -> FrameInferenceError:
+    """A :class:`FrameInferenceError` carrying what was measured before giving up (decision D22)."""
+    err = FrameInferenceError(msg)
+    err.up, err.forward = up, forward
+    return err
 
 
 @dataclass
@@ -202,13 +221,13 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     walked = length > MIN_STRIDE_M
     hor = hor[walked] / length[walked, None]
     if len(hor) < MIN_STRIDES:
-        raise FrameInferenceError(f"{len(hor)} strides of more than {MIN_STRIDE_M:g} m between two rests of the "
-                                  f"foot unit (at least {MIN_STRIDES} walking strides are needed)")
+        raise _refuse(f"{len(hor)} strides of more than {MIN_STRIDE_M:g} m between two rests of the "
+                                  f"foot unit (at least {MIN_STRIDES} walking strides are needed)", up)
     mean = hor.mean(axis=0)
     resultant = float(np.linalg.norm(mean))
     if resultant < MIN_RESULTANT:
-        raise FrameInferenceError(f"the strides point in no common direction of the unit (mean resultant "
-                                  f"{resultant:.2f} < {MIN_RESULTANT:g}; walking back and forth?)")
+        raise _refuse(f"the strides point in no common direction of the unit (mean resultant "
+                      f"{resultant:.2f} < {MIN_RESULTANT:g}; walking back and forth?)", up)
     fwd = _unit(mean)
     left = np.cross(up, fwd)
     # forward walking, not backward: the strides' direction is forward only when the foot pitches toes-down
@@ -216,7 +235,7 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     down, toes_up = swing_pitch_extremes(gyr, fs, *(i[walked] for i in rest_to_rest(stance, fs)), left)
     asym = float((np.median(down) - np.median(toes_up)) / max(float(np.median(down) + np.median(toes_up)), 1e-9))
     if asym < MIN_SWING_ASYMMETRY:
-        raise FrameInferenceError(
+        raise _refuse(
             f"in swing the foot pitches toes-down {np.degrees(np.median(down)):.0f} deg and toes-up "
             f"{np.degrees(np.median(toes_up)):.0f} deg relative to its strides' direction (asymmetry {asym:.2f} < "
             f"{MIN_SWING_ASYMMETRY:g}): no forward push-off, so the strides' direction is not forward ("
@@ -224,18 +243,18 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
             # in one axis (a left-handed export, a left foot mirrored to look like a right one) give (B29)
             + ("data mirrored in one axis, e.g. a left-handed export, or backward walking?)"
                if asym < -MIN_SWING_ASYMMETRY
-               else "mostly backward walking, or data mirrored in one axis, e.g. a left-handed export?)"))
+               else "mostly backward walking, or data mirrored in one axis, e.g. a left-handed export?)"), up)
     # cross-check: the foot rotates about its medio-lateral axis (principal axis of the angular rate)
     moving = ~stance
     w, v = np.linalg.eigh(gyr[moving].T @ gyr[moving] / max(int(moving.sum()), 1))
     ang_rot = _angle_deg(v[:, 2], left)
     if ang_rot > MAX_SNAP_DEG:
-        raise FrameInferenceError(f"the foot's main rotation axis is {ang_rot:.0f} deg from the medio-lateral "
-                                  f"direction of its strides (more than {MAX_SNAP_DEG:g})")
+        raise _refuse(f"the foot's main rotation axis is {ang_rot:.0f} deg from the medio-lateral "
+                      f"direction of its strides (more than {MAX_SNAP_DEG:g})", up, fwd)
     i_ml, s_ml, ang_ml = _nearest_axis(left)
     if ang_ml > MAX_SNAP_DEG:
-        raise FrameInferenceError(f"the medio-lateral direction is {ang_ml:.0f} deg from every sensor axis "
-                                  f"(more than {MAX_SNAP_DEG:g}; a yawed mount)")
+        raise _refuse(f"the medio-lateral direction is {ang_ml:.0f} deg from every sensor axis "
+                      f"(more than {MAX_SNAP_DEG:g}; a yawed mount)", up, fwd)
     sag = [i for i in range(3) if i != i_ml]
     lo_w, hi_w = FOOT_PITCH_WINDOW_DEG
     cand = [(i, s, float(np.degrees(np.arctan2(-s * up[i], s * fwd[i])))) for i in sag for s in (1.0, -1.0)]
@@ -244,13 +263,12 @@ def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFra
     # rolled mount skews their projections, so near an edge none or two may: ambiguous, as the margin says
     if len(inside) != 1:
         pitch = min((c[2] for c in cand), key=lambda p: min(abs(p - lo_w), abs(p - hi_w)))
-        raise FrameInferenceError(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
-                                  f"deg window that decides which axis is forward ({len(inside)} sagittal axes "
-                                  "in it)")
+        raise _refuse(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
+                      f"deg window that decides which axis is forward ({len(inside)} sagittal axes in it)", up, fwd)
     i_f, s_f, pitch = inside[0]
     if min(abs(pitch - lo_w), abs(pitch - hi_w)) < PITCH_MARGIN_DEG:
-        raise FrameInferenceError(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
-                                  "deg window that decides which axis is forward")
+        raise _refuse(f"the mount is pitched {pitch:.0f} deg, at the edge of the {lo_w:g}..{hi_w:g} "
+                      "deg window that decides which axis is forward", up, fwd)
     i_u = next(i for i in sag if i != i_f)
     s_u = float(np.sign(up[i_u]) or 1.0)
     frame = frame_from_axes((i_f, s_f), (i_ml, s_ml), (i_u, s_u))
@@ -349,7 +367,7 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
     up = _unit(_walking_mean(acc, fs))
     i_u, s_u, ang_u = _nearest_axis(up)
     if ang_u > MAX_SNAP_DEG:
-        raise FrameInferenceError(f"gravity is {ang_u:.0f} deg from every sensor axis (more than {MAX_SNAP_DEG:g})")
+        raise _refuse(f"gravity is {ang_u:.0f} deg from every sensor axis (more than {MAX_SNAP_DEG:g})", up)
     hor = [i for i in range(3) if i != i_u]
     e = np.eye(3)
     # horizontal basis: the two other sensor axes made orthogonal to up (the unit's tilt removed)
@@ -390,8 +408,8 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
     fwd = ap * forward_sign(np.array([1.0]), np.array([zc.real]), np.array([-zc.imag]), 1.0, 0.0)
     i_f, s_f, ang_f = _nearest_axis(fwd, exclude=(i_u,))
     if ang_f > MAX_SNAP_DEG:
-        raise FrameInferenceError(f"the forward direction is {ang_f:.0f} deg from both horizontal sensor axes "
-                                  f"(more than {MAX_SNAP_DEG:g})")
+        raise _refuse(f"the forward direction is {ang_f:.0f} deg from both horizontal sensor axes "
+                      f"(more than {MAX_SNAP_DEG:g})", up, _unit(fwd - (fwd @ up) * up))
     left = np.cross(e[i_u] * s_u, e[i_f] * s_f)
     i_l = int(np.argmax(np.abs(left)))
     frame = frame_from_axes((i_f, s_f), (i_l, float(np.sign(left[i_l]))), (i_u, s_u))
@@ -439,41 +457,120 @@ def frame_disagreement(declared: AxisFrame, found: InferredFrame) -> dict[str, f
     lies more than :data:`MAX_DECLARED_OFF_DEG` from the direction measured in the data (``found.up``,
     ``found.forward``, left = up x forward), with the angle in degrees; ``{}`` when the declared frame is
     a possible nearest-axis declaration of what the data show (decision D10)."""
-    if found.up is None or found.forward is None:
-        return {}
+    return directions_off(declared, found.up, found.forward, MAX_DECLARED_OFF_DEG)
+
+
+def directions_off(declared: AxisFrame, up: np.ndarray | None, forward: np.ndarray | None,
+                   limit: float) -> dict[str, float]:
+    """The declared frame's body directions more than ``limit`` deg from the measured ``up`` / ``forward``
+    (sensor axes; either may be ``None``: not measured) and left = up x forward, with their angles (deg)."""
     R = declared.matrix()  # sensor -> body; its rows are the body directions in sensor axes
-    measured = {"up": found.up, "forward": found.forward, "left": np.cross(found.up, found.forward)}
+    measured = {"up": up, "forward": forward,
+                "left": None if up is None or forward is None else np.cross(up, forward)}
     body = {"forward": R[0], "left": R[1], "up": R[2]}
     out = {}
     for name in ("up", "forward", "left"):
+        if measured[name] is None:
+            continue
         ang = float(np.degrees(np.arccos(np.clip(float(_unit(body[name]) @ _unit(measured[name])), -1.0, 1.0))))
-        if ang > MAX_DECLARED_OFF_DEG:
+        if ang > limit:
             out[name] = ang
     return out
 
 
-def check_declared_frame(session, placement: str, declared: AxisFrame) -> str | None:
-    """The warning (without the ``meta.json`` location) for a declared or ``source_project`` frame that is
-    left-handed or that the data contradict with confidence (decision D10), else ``None``. The inference
-    runs once here, on the first :data:`CHECK_SPAN_S` seconds; a refusal (the data do not fix the axes)
-    leaves the declared frame unquestioned."""
+def forward_reversal_deg(declared: AxisFrame, up: np.ndarray | None, forward: np.ndarray | None) -> float | None:
+    """Decision D22: the angle (deg) between the horizontal part of the declared forward (its sensor direction
+    with the measured ``up`` removed: the heading a track levelled by gravity walks) and the measured horizontal
+    ``forward``; ``None`` when either is not measured, or the declared forward is within
+    :data:`MIN_FORWARD_ELEVATION_DEG` of vertical (no heading to compare)."""
+    if up is None or forward is None:
+        return None
+    f = declared.matrix()[0]
+    u = _unit(up)
+    h = f - (f @ u) * u
+    if float(np.linalg.norm(h)) < np.sin(np.radians(MIN_FORWARD_ELEVATION_DEG)):
+        return None
+    fw = _unit(forward - (forward @ u) * u)
+    return float(np.degrees(np.arccos(np.clip(float(_unit(h) @ fw), -1.0, 1.0))))
+
+
+@dataclass
+class DeclaredCheck:
+    """What the data say of a declared frame (decisions D10, D22): ``message`` the warning or refusal text
+    (without the ``meta.json`` location; ``None``: nothing to say), ``refuse`` True when the declared forward
+    is reversed against the data, ``unchecked`` why the data could not judge it (the inference's reason;
+    ``None`` when it ran), ``compared`` the directions the data could still compare when it gave up."""
+
+    message: str | None = None
+    refuse: bool = False
+    unchecked: str | None = None
+    compared: tuple[str, ...] = ()
+
+    def summary(self) -> str:
+        """``info``'s words for a check that raised nothing (decision D22: never "not contradicted" unchecked)."""
+        if self.unchecked is None:
+            return "not contradicted by the data (D10)"
+        if self.compared:
+            return (f"its {' and '.join(self.compared)} not reversed by the data; which axis is which not checked "
+                    f"({self.unchecked})")
+        return f"not checked ({self.unchecked})"
+
+
+def check_declared_frame(session, placement: str, declared: AxisFrame) -> DeclaredCheck:
+    """The data's word on a declared or ``source_project`` frame: a warning (without the ``meta.json``
+    location) when it is left-handed or the data contradict it with confidence (decision D10); a refusal when
+    its forward is reversed against the data (decision D22), also when the inference gives up on which
+    axis is forward but measured the strides' direction and gravity (:class:`FrameInferenceError` ``up`` /
+    ``forward``; a reversed up alone is D10's warning). The inference runs once here, on the first
+    :data:`CHECK_SPAN_S` seconds."""
+    unchecked, compared, up, fwd = None, (), None, None
     try:
         found = infer_session_frame(session, placement, max_s=CHECK_SPAN_S)
-    except DataError:
-        found = None
+    except FrameInferenceError as exc:
+        found, unchecked, off = None, str(exc), {}
+        if exc.forward is not None:  # gave up after measuring the strides' signed direction (past D9's push-off)
+            up, fwd, compared = exc.up, exc.forward, ("up", "forward")
+            off = directions_off(declared, up, None, OPPOSED_DEG)  # up only: which axis is forward is unknown
+    except DataError as exc:
+        found, unchecked, off = None, str(exc), {}
+    else:
+        up, fwd = found.up, found.forward
+        off = frame_disagreement(declared, found)
+    rev = forward_reversal_deg(declared, up, fwd)
+    reverse = rev is not None and rev > OPPOSED_DEG
+    if reverse and "forward" not in off:  # the heading reversed though the axis is pitched (D22)
+        off["forward"] = rev
     if isinstance(session.meta.get("frames"), dict):
         origin = 'declared in "frames"'
     else:
         origin = f"implied by source_project {json.dumps(str(session.meta.get('source_project', '')))}"
-    return declared_frame_warning(placement, declared, found, origin)
+    forced = reverse and session.frame_forced(placement)  # decision D23's override
+    refuse = reverse and not forced
+    used = 'the meta.json frame ("force_frame", decision D23)' if forced else "the meta.json frame"
+    msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
+                                 unchecked=unchecked)
+    return DeclaredCheck(msg, refuse, unchecked, compared)
+
+
+def _turned(declared: AxisFrame, names: set[str]) -> AxisFrame:
+    """The ``declared`` frame with the body directions ``names`` (two of forward, left, up) reversed: turned
+    180 deg about the third, still right-handed when the declared one is."""
+    opp = {"forward": "backward", "backward": "forward", "left": "right", "right": "left", "up": "down",
+           "down": "up"}
+    base = {"backward": "forward", "right": "left", "down": "up"}
+    return AxisFrame(**{a: opp[d] if base.get(d, d) in names else d for a, d in declared.to_dict().items()})
 
 
 def declared_frame_warning(placement: str, declared: AxisFrame, found: InferredFrame | None, origin: str,
-                           used: str = "the meta.json frame") -> str | None:
+                           used: str = "the meta.json frame", *, off: dict[str, float] | None = None,
+                           refuse: bool = False, unchecked: str | None = None) -> str | None:
     """Decision D10's warning for a ``declared`` frame (``origin``: where it was declared) against the frame
     ``found`` in the data (``None``: the data did not fix it), or ``None`` when there is nothing to say. Shared by
-    :func:`check_declared_frame` (offline) and the live ``WaistTracker`` (decision B108, ``used``: what it keeps)."""
-    off = frame_disagreement(declared, found) if found is not None else {}
+    :func:`check_declared_frame` (offline) and the live ``WaistTracker`` (decision B108, ``used``: what it keeps).
+    ``off`` (default: D10's disagreement with ``found``) may come from the directions measured when the
+    inference gave up (``unchecked``: its reason); ``refuse`` words it as D22's refusal."""
+    if off is None:
+        off = frame_disagreement(declared, found) if found is not None else {}
     left_handed = not declared.right_handed
     if not off and not left_handed:
         return None
@@ -481,20 +578,33 @@ def declared_frame_warning(placement: str, declared: AxisFrame, found: InferredF
     issues = []
     if left_handed:
         issues.append("is left-handed (IMU axes are right-handed: one axis is probably reversed)")
-    if off:
-        issues.append(f"contradicts its data, which give {json.dumps(found.frame.to_dict())} ("
-                      + ", ".join(f"{k} {v:.0f} deg from the declared {k}" for k, v in off.items())
-                      + f"; {found.describe()})")
-    fix = (f'if the data are right, write "frames": {json.dumps({placement: found.frame.to_dict()})} in meta.json'
-           if off else "declare the device's right-handed frame in meta.json")
+    angles = ", ".join(f"{k} {v:.0f} deg from the declared {k}" for k, v in off.items())
+    if off and found is not None:
+        issues.append(f"contradicts its data, which give {json.dumps(found.frame.to_dict())} ({angles}; "
+                      f"{found.describe()})")
+    elif off:  # D22: the inference gave up on which axis is which, but the reversal is unambiguous
+        measured = " and ".join("the strides' direction" if k == "forward" else "gravity" for k in off)
+        issues.append(f"is reversed against its data ({angles}, measured from {measured}; the data do not fix "
+                      f"which axis is which: {unchecked})")
+    if off and found is not None:
+        fix = f'if the data are right, write "frames": {json.dumps({placement: found.frame.to_dict()})} in meta.json'
+    elif off:
+        flip = set(off) if len(off) == 2 else {*off, "left"}  # turned 180 deg about the direction that agrees
+        fix = (f'if the data are right, write "frames": {json.dumps({placement: _turned(declared, flip).to_dict()})} '
+               "in meta.json (the declared frame turned 180 deg)")
+    else:
+        fix = "declare the device's right-handed frame in meta.json"
     if set(off) == {"left"}:  # up and forward agree, left reversed: a wrong entry, or mirrored data
         fix = (f"{fix}; but if the declared axes are right, the data are mirrored (one axis column negated, "
                "e.g. by a left-handed export): negate that column in the CSV files instead")
-    if set(off) == {"up", "forward"} and min(off.values()) > 150.0:  # B48: the frame turned 180 deg about left
+    if {"up", "forward"} <= set(off) and min(off["up"], off["forward"]) > 150.0:  # B48: turned 180 deg about left
         acc_n = UNIT_STREAMS[placement][0]
         fix = (f"{fix}; but if the declared axes are right, the accelerometer reports gravity as -1 g (iOS Core "
                f"Motion exports do): negate all three columns of {acc_n}.csv (pdrlearn import --acc=-X,-Y,-Z) "
                "instead, since writing the data's frame would mirror every turn")
+    if refuse:  # decision D22: a reversed track is never what is meant
+        return (f"{what} {' and '.join(issues)}; every stride would be tracked reversed, so it is not used "
+                f"(decision D23): {fix}; or, to use it anyway, add \"force_frame\": true to meta.json")
     return f"{what} {' and '.join(issues)}; {used} is still used (decision D8): {fix}"
 
 
@@ -542,5 +652,6 @@ def right_handed_orientations() -> list[np.ndarray]:
 
 __all__ = ["FrameInferenceError", "InferredFrame", "infer_foot_frame", "infer_waist_frame", "frame_from_axes",
            "infer_session_frame", "frame_disagreement", "check_declared_frame", "declared_frame_warning",
+           "DeclaredCheck", "directions_off", "forward_reversal_deg", "OPPOSED_DEG",
            "rest_to_rest", "stride_displacements", "swing_pitch_extremes", "remount",
            "right_handed_orientations", "INFER", "UNIT_STREAMS"]
