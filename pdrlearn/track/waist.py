@@ -28,7 +28,6 @@ from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
-from pdrlearn.waist.posture import tilt_gate
 from pdrlearn.waist.events import (
     InitialContactDetector,
     gate_threshold,
@@ -55,6 +54,7 @@ from pdrlearn.waist.plausibility import (
     walk_ratio,
     walk_ratio_message,
 )
+from pdrlearn.waist.posture import tilt_gate
 from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
 
 log = logging.getLogger(__name__)
