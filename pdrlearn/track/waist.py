@@ -54,6 +54,7 @@ from pdrlearn.waist.plausibility import (
     walk_ratio,
     walk_ratio_message,
 )
+from pdrlearn.waist.posture import tilt_gate
 from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
 
 log = logging.getLogger(__name__)
@@ -340,7 +341,7 @@ def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, 
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
-                   "stairs_length": False, "slow_turn_rps": 0.0}
+                   "stairs_length": False, "slow_turn_rps": 0.0, "max_tilt_deg": None}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -358,7 +359,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 turn_factor: bool | None = None, rhythm: bool | None = None,
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
                 relative_gate: bool | None = None, stairs_length: bool | None = None,
-                slow_turn_rps: float | None = None) -> TrackResult:
+                slow_turn_rps: float | None = None, max_tilt_deg: float | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -396,6 +397,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     slow_turn_rps : gyro heading: also integrate the strides whose 5-stride mean vertical rate reaches this (rad/s),
         so gentle curves are kept (decision W82; 0.035 tested, not the default: it failed its rule on sharp turns
         by 0.01 m); 0 (default) = seed 003's classifier alone
+    max_tilt_deg : a contact made while the trunk is tilted more than this (deg) from the session's walking upright is
+        no step, and the step before it ends its sequence (decision W102, :mod:`pdrlearn.waist.posture`; sit-to-stand,
+        bending); None (default) = no tilt gate
 
     The altitude (trajectory ``z``, steps ``dz_m``) is the waist barometer's, relative to the start (decision
     W89); without a barometer it stays 0 with one warning (W90).
@@ -412,7 +416,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
              "merge_fragments": merge_fragments, "length_smoothing": length_smoothing,
-             "relative_gate": relative_gate, "stairs_length": stairs_length, "slow_turn_rps": slow_turn_rps}
+             "relative_gate": relative_gate, "stairs_length": stairs_length, "slow_turn_rps": slow_turn_rps,
+             "max_tilt_deg": max_tilt_deg}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -446,6 +451,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
+    n_tilted = 0
+    if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
+        steps = tilt_gate(steps, imu, float(o["max_tilt_deg"]))
+        n_tilted = steps.attrs["n_tilted"]
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
@@ -489,6 +498,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "alternation_index": alternation,
         "alternation_pairs": pairs,
         "walk_ratio": ratio,
+        "n_tilted_contacts": n_tilted,
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)

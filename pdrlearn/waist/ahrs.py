@@ -47,6 +47,8 @@ class WaistIMU:
     acc_h : (n, 2) horizontal acceleration in the navigation frame (m/s^2)
     acc_ap, acc_ml : (n,) horizontal acceleration along / across the unit's current heading
         (antero-posterior forward +, medio-lateral left +) (m/s^2)
+    up_body : (n, 3) the AHRS's up direction (unit vector) in the body frame FLU, i.e. the attitude's tilt
+        (decision W102's trunk-tilt gate); None when the data came without it
     """
 
     t: np.ndarray
@@ -58,6 +60,7 @@ class WaistIMU:
     acc_h: np.ndarray
     acc_ap: np.ndarray
     acc_ml: np.ndarray
+    up_body: np.ndarray | None = None
 
     @property
     def w_z(self) -> np.ndarray:
@@ -166,4 +169,5 @@ def imu_from_body(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, *, fs: float 
     ml = -s * acc_nav[:, 0] + c * acc_nav[:, 1]
     log.info("AHRS: %d samples at %.1f Hz, local gravity %.3f m/s^2", len(t), fs, g)
     return WaistIMU(t=t, fs=fs, acc_nav=acc_nav, gyr_nav=gyr_nav, yaw=yaw, acc_v=acc_v,
-                    acc_h=acc_nav[:, :2].copy(), acc_ap=ap, acc_ml=ml)
+                    acc_h=acc_nav[:, :2].copy(), acc_ap=ap, acc_ml=ml,
+                    up_body=rot.inv().apply(np.tile([0.0, 0.0, 1.0], (len(t), 1))))
