@@ -160,3 +160,13 @@ def test_import_refuses_a_left_handed_frame_the_data_cannot_judge(walk, tmp_path
     assert main([*args, "--out", str(tmp_path / "lh2"), "--force-frame"]) == 0
     rec = json.loads((tmp_path / "lh2" / "meta.json").read_text())["imported"]
     assert rec["frame_forced"]["declared"] == {"x": "up", "y": "forward", "z": "right"}
+
+
+@pytest.mark.parametrize("bad", ["true", ["feet"], 1])
+def test_a_misspelt_force_frame_is_one_line_not_the_same_refusal_again(walk, bad):
+    """Decision B136: ``"force_frame": "true"`` (or an unknown unit) was ignored and the refusal repeated its advice
+    to add ``"force_frame": true``; now one line names the value and what to give."""
+    s = _remounted(walk, HEEL)
+    s.meta["force_frame"] = bad
+    with pytest.raises(DataError, match=r'"force_frame" is .*: give true \(every unit\) or a list of units'):
+        s.require_frame("foot")

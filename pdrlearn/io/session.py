@@ -21,7 +21,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError, MissingSensorError, NotASessionError
 from pdrlearn.io.frames import THESIS_FOOT_FRAME, THESIS_WAIST_FRAME, AxisFrame
-from pdrlearn.io.sensors import SENSORS, SensorSpec
+from pdrlearn.io.sensors import SENSORS, UNIT_IMU, SensorSpec
 
 #: The thesis mounting of each unit: the example of the missing-frame error (:meth:`Session.require_frame`).
 EXAMPLE_FRAMES: dict[str, AxisFrame] = {"foot": THESIS_FOOT_FRAME, "waist": THESIS_WAIST_FRAME}
@@ -473,6 +473,12 @@ class Session:
         ``import --force-frame`` of this unit's frame (its ``"imported"`` record's ``frame_forced``): the
         declared frame is used even when the data find it reversed (with D10's warning)."""
         forced = self.meta.get("force_frame")
+        if not (forced is None or isinstance(forced, bool)
+                or (isinstance(forced, list) and all(isinstance(u, str) and u in UNIT_IMU for u in forced))):
+            where = self.folder / "meta.json" if self.folder is not None else f"session '{self.name}' (its meta.json)"
+            # decision B136: a misspelt override was ignored and the same refusal repeated its own advice
+            raise DataError(f'{where}: "force_frame" is {json.dumps(forced)}: give true (every unit) or a list '
+                            f'of units, e.g. ["foot"] (one of {", ".join(UNIT_IMU)}; decision D23)')
         if forced is True or (isinstance(forced, list) and placement in forced):
             return True
         recs = self.meta.get("imported")
