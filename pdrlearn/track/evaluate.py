@@ -171,6 +171,30 @@ def count_floors(z, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOR
     return up, down, level
 
 
+#: decision L127: at most this many level strides between two stair strides of one climb (a landing and its U-turn)
+CLIMB_BRIDGE_STRIDES = 4
+
+
+def count_floors_by_climb(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOREY_BAND,
+                          bridge: int = CLIMB_BRIDGE_STRIDES) -> tuple[int, int, int]:
+    """Storeys climbed and descended counted per climb from the strides' height changes ``dz`` (m, one per
+    stride in walking order): ``(floors_up, floors_down, storeys_changed)`` (decision L127). A climb is a run of
+    stair strides (|dz| >= ``LEVEL_DZ_M``, L39) with at most ``bridge`` level strides between two of them; its
+    height H (the sum of dz from its first to its last stair stride) counts floor(|H| / h + band) storeys up or
+    down, the storeys of L64's band rule, so a slow altitude drift between climbs moves no count. Non-finite dz
+    count as 0."""
+    from pdrlearn.kernels.distance import LEVEL_DZ_M
+
+    dz = np.nan_to_num(np.asarray(dz, dtype=float).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
+    stair = np.flatnonzero(np.abs(dz) >= LEVEL_DZ_M)
+    up = down = 0
+    for run in np.split(stair, np.flatnonzero(np.diff(stair) > bridge + 1) + 1) if len(stair) else []:
+        height = float(dz[run[0]:run[-1] + 1].sum())
+        k = int(np.floor(abs(height) / storey_height_m + band))
+        up, down = (up + k, down) if height > 0 else (up, down + k)
+    return up, down, up - down
+
+
 def _floors(z, out: dict, suffix: str = "") -> None:
     up, down, net = count_floors(z)
     out[f"floors_up{suffix}"], out[f"floors_down{suffix}"], out[f"storeys_changed{suffix}"] = up, down, net
