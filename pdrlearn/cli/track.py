@@ -13,6 +13,7 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     INITIAL_HEADING_HELP,
     START_HELP,
+    STOREY_HEIGHT_HELP,
     count_phrase,
     existed,
     gait_line,
@@ -24,6 +25,7 @@ from pdrlearn.cli.common import (
     walk_line,
 )
 from pdrlearn.errors import DataError
+from pdrlearn.track.evaluate import floors_phrase
 
 
 def _write_csv(df, path: Path) -> None:
@@ -51,6 +53,7 @@ WARN_OOD_OPT = typer.Option(None, "--warn-out-of-domain", help="With --model: wa
                             "training range, e.g. 0.25 (off by default; the fraction is always "
                             "in summary.json as out_of_domain_fraction, decision C16).")
 START_OPT = typer.Option(None, "--start", help=START_HELP)
+STOREY_HEIGHT_OPT = typer.Option(3.0, "--storey-height", metavar="M", min=0.5, max=20.0, help=STOREY_HEIGHT_HELP)
 PARAMS_OPT = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline.")
 STREAMING_OPT = typer.Option(False, "--streaming", help="plasys M2/M3 with the stride-local kernel of "
                              "the streaming runtime: the trajectory `pdrlearn run` reproduces to 1 mm.")
@@ -96,6 +99,7 @@ def track(
     warn_out_of_domain: float = WARN_OOD_OPT,
     start: str = START_OPT,
     initial_heading: float = INITIAL_HEADING_OPT,
+    storey_height: float = STOREY_HEIGHT_OPT,
     params: Path = PARAMS_OPT,
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
     gnss_period: float = typer.Option(None, "--gnss-period", help="Use a GNSS fix every S seconds."),
@@ -158,7 +162,7 @@ def track(
                               realtime=realtime, reference_point=reference_point, toe_off=toe_off,
                               contacts=contacts, dpi=dpi, initial_heading=initial_heading,
                               common_span=common_span, units=units, window=window, resample=resample,
-                              no_resample=no_resample)
+                              no_resample=no_resample, storey_height=storey_height)
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
@@ -185,7 +189,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
                    dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, resample: bool = False,
-                   no_resample: bool = False, units: str | None = None) -> dict:
+                   no_resample: bool = False, units: str | None = None, storey_height: float = 3.0) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -241,7 +245,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
-            "units": parse_units(units)}
+            "units": parse_units(units), "storey_height_m": storey_height}
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:
@@ -336,7 +340,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.window import window_track
 
         result, tracked_session = window_track(result, session, *win)
-    summary = track_summary(result, tracked_session, pipeline=pipeline)  # C13, C14: the API's TrackResult.summary
+    summary = track_summary(result, tracked_session, pipeline=pipeline,  # C13, C14: the API's TrackResult.summary
+                            storey_height_m=o.get("storey_height_m", 3.0))  # decisions L64, L127
     if win is not None:
         summary["window_start_s"], summary["window_end_s"] = (float(v) for v in o["window"])
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
@@ -406,8 +411,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
                + (f" (reference {summary['altitude_change_ref_m']:+.2f} m)" if "altitude_change_ref_m" in summary
                   else "")
                # L64: the storeys climbed and descended, when the track changed floors
-               + (f", floors up {summary['floors_up']} / down {summary['floors_down']}"
-                  if summary.get("floors_up") or summary.get("floors_down") else "")
+               + floors_phrase(summary)
                # decision C16: how much of the walk the model's training data covered
                + (f"; {100 * summary['out_of_domain_fraction']:.0f} % of the strides outside the model's "
                   "training range" if summary.get("out_of_domain_fraction") is not None else ""))
