@@ -14,7 +14,6 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     INITIAL_HEADING_HELP,
     START_HELP,
-    STOREY_HEIGHT_HELP,
     count_phrase,
     existed,
     gait_line,
@@ -24,6 +23,7 @@ from pdrlearn.cli.common import (
     print_json,
     replaced,
     start_option,
+    storey_height_option,
 )
 from pdrlearn.track.evaluate import floors_phrase
 
@@ -267,8 +267,7 @@ def run(
                               "the bundle's; the foot alone when the data have no waist unit, with a warning). "
                               "foot = a two-unit bundle on a foot-only session or a failed waist (decision E26)."),
     start: str = typer.Option(None, "--start", help=START_HELP),
-    storey_height: float = typer.Option(3.0, "--storey-height", metavar="M", min=0.5, max=20.0,
-                                        help=STOREY_HEIGHT_HELP),
+    storey_height: float = storey_height_option(),
     initial_heading: float = typer.Option(None, "--initial-heading", metavar="DEG",
                                           help=INITIAL_HEADING_HELP.split(" For a relative")[0]
                                           + " (the runtime's heading is relative: gyroscopes only)."),

@@ -13,7 +13,6 @@ from pdrlearn.cli.common import (
     FORCE_HELP,
     INITIAL_HEADING_HELP,
     START_HELP,
-    STOREY_HEIGHT_HELP,
     count_phrase,
     existed,
     gait_line,
@@ -22,6 +21,7 @@ from pdrlearn.cli.common import (
     replaced,
     resample_options,
     start_option,
+    storey_height_option,
     walk_line,
 )
 from pdrlearn.errors import DataError
@@ -53,7 +53,6 @@ WARN_OOD_OPT = typer.Option(None, "--warn-out-of-domain", help="With --model: wa
                             "training range, e.g. 0.25 (off by default; the fraction is always "
                             "in summary.json as out_of_domain_fraction, decision C16).")
 START_OPT = typer.Option(None, "--start", help=START_HELP)
-STOREY_HEIGHT_OPT = typer.Option(3.0, "--storey-height", metavar="M", min=0.5, max=20.0, help=STOREY_HEIGHT_HELP)
 PARAMS_OPT = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline.")
 STREAMING_OPT = typer.Option(False, "--streaming", help="plasys M2/M3 with the stride-local kernel of "
                              "the streaming runtime: the trajectory `pdrlearn run` reproduces to 1 mm.")
@@ -99,7 +98,7 @@ def track(
     warn_out_of_domain: float = WARN_OOD_OPT,
     start: str = START_OPT,
     initial_heading: float = INITIAL_HEADING_OPT,
-    storey_height: float = STOREY_HEIGHT_OPT,
+    storey_height: float = storey_height_option(),
     params: Path = PARAMS_OPT,
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
     gnss_period: float = typer.Option(None, "--gnss-period", help="Use a GNSS fix every S seconds."),

@@ -196,7 +196,7 @@ def count_floors_by_climb(dz, storey_height_m: float = STOREY_HEIGHT_M, band: fl
 
 #: decision L127: how the tracked storeys are counted on foot strides - "climb" (per climb, from the strides' dz,
 #: :func:`count_floors_by_climb`) or "altitude" (L64's bands on the absolute z, :func:`count_floors`)
-FLOOR_COUNT = "altitude"
+FLOOR_COUNT = "climb"
 
 
 def _floors(z, out: dict, suffix: str = "", dz=None) -> None:
@@ -220,9 +220,10 @@ def _foot_dz(steps: pd.DataFrame):
 def floors_phrase(summary: dict) -> str:
     """The one-line summaries' floor part (``track`` and ``run``, decisions L64, L127): ", floors up U / down D"
     when the track changed floors, and once whether a barometer file lay unused (``barometer_unused``)."""
-    part = (f", floors up {summary['floors_up']} / down {summary['floors_down']}"
-            if summary.get("floors_up") or summary.get("floors_down") else "")
-    if summary.get("barometer_unused"):
+    if not (summary.get("floors_up") or summary.get("floors_down") or summary.get("barometer_unused")):
+        return ""
+    part = f", floors up {summary.get('floors_up', 0)} / down {summary.get('floors_down', 0)}"
+    if summary.get("barometer_unused"):  # a recorded barometer the foot track does not read: say it
         part += (f" (foot altitude, storeys of {summary.get('storey_height_m', STOREY_HEIGHT_M):g} m; "
                  "wBarometer.csv not used)")
     return part
