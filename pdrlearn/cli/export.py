@@ -25,7 +25,6 @@ from pdrlearn.cli.common import (
     start_option,
     storey_height_option,
 )
-from pdrlearn.track.evaluate import floors_phrase
 
 
 def export(
@@ -423,6 +422,8 @@ def run(
         print_json(json_safe(summary))
     else:
         err = summary.get("distance_error_pct")
+        from pdrlearn.track.evaluate import floors_phrase  # decisions L64, L127 (numpy: lazily)
+
         typer.echo(f"{source}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
                    + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
                    f"{[round(summary['final_position'][k], 2) for k in 'xyz']}"

@@ -25,7 +25,6 @@ from pdrlearn.cli.common import (
     walk_line,
 )
 from pdrlearn.errors import DataError
-from pdrlearn.track.evaluate import floors_phrase
 
 
 def _write_csv(df, path: Path) -> None:
@@ -394,6 +393,8 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
         name += f" [{summary['window_start_s']:g}-{summary['window_end_s']:g} s]"
     err = summary.get("distance_error_pct")
     bouts = err is not None and "bout_distance_m" in summary and "bout_reference_m" in summary
+    from pdrlearn.track.evaluate import floors_phrase  # decisions L64, L127 (numpy: lazily)
+
     typer.echo(f"{name}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
                # W21: the lower-back error counts the reference bouts only; say so before the number
                + (f"; inside the reference bouts {summary['bout_distance_m']:.2f} m vs "
