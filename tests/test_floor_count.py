@@ -75,3 +75,76 @@ def test_the_summary_counts_the_tracked_and_the_reference_storeys(tmp_path, caps
                                             "heading_rad": [0.0], "dz_m": [0.0]}),
                         trajectory=pd.DataFrame({"t": [0.0, 1.0], "x": [0.0, 1.0], "y": 0.0, "z": 0.0}), info={})
     assert (evaluate_track(level)["floors_up"], evaluate_track(level)["floors_down"]) == (0, 0)
+
+
+def _stairs_dz(storeys: float, stairs: int = 17, rise: float = 0.17) -> np.ndarray:
+    """One foot's stride heights up a flight (two stairs per stride, the last stride one stair when odd)."""
+    n = int(round(abs(storeys) * stairs))
+    return np.sign(storeys) * np.array([2 * rise] * (n // 2) + [rise] * (n % 2))
+
+
+def test_floors_per_climb_are_immune_to_a_slow_drift():
+    """Decision L127 (trial "responder", session 21): ten loops of 2 storeys up and down whose altitude sinks
+    0.1 m per loop between the climbs (the streamed drift of L126): L64's absolute bands lose the late loops'
+    second floor, the count per climb does not."""
+    from pdrlearn.track.evaluate import count_floors_by_climb
+
+    loop = np.concatenate([np.zeros(10), _stairs_dz(1), np.zeros(2), _stairs_dz(1), np.full(20, -0.1 / 20),
+                           _stairs_dz(-1), np.zeros(2), _stairs_dz(-1), np.zeros(30)])
+    dz = np.tile(loop * np.where(loop > 0, 0.97, 1.0), 10)  # climbs 3 % short, as streamed (L126)
+    assert count_floors_by_climb(dz) == (20, 20, 0)
+    assert count_floors(np.concatenate([[0.0], np.cumsum(dz)]))[:2] != (20, 20)  # L64's count misses floors
+    assert count_floors_by_climb(dz, storey_height_m=2.89) == (20, 20, 0)
+
+
+def test_a_climb_bridges_a_landing_and_counts_by_the_band():
+    from pdrlearn.track.evaluate import count_floors_by_climb
+
+    half = _stairs_dz(0.5)  # 9 stairs: 1.53 m
+    landing = np.zeros(4)  # a U-turn on the landing: one climb
+    assert count_floors_by_climb(np.concatenate([half, landing, half])) == (1, 0, 1)
+    assert count_floors_by_climb(np.concatenate([half, np.zeros(5), half])) == (0, 0, 0)  # two half storeys apart
+    assert count_floors_by_climb(half) == (0, 0, 0)  # a half-storey landing is no floor (L64's band)
+    assert count_floors_by_climb(np.full(400, 0.09)) == (0, 0, 0)  # level strides (< 0.10 m) never climb
+    assert count_floors_by_climb([np.nan, 0.34, np.inf] + [0.34] * 8) == (1, 0, 1)
+    assert count_floors_by_climb([]) == (0, 0, 0)
+
+
+def test_foot_tracks_count_per_climb_and_waist_tracks_by_altitude():
+    dz = np.concatenate([_stairs_dz(1), np.zeros(40), _stairs_dz(-1)])  # level strides between the climbs
+    z = np.concatenate([[0.0], np.cumsum(dz)]) - np.linspace(0.0, 2.0, len(dz) + 1)  # the z drifts 2 m down
+    steps = pd.DataFrame({"start_s": np.arange(len(dz), dtype=float), "end_s": np.arange(1, len(dz) + 1, dtype=float),
+                          "length_m": 0.7, "heading_rad": 0.0, "dz_m": dz, "unit": "foot"})
+    traj = pd.DataFrame({"t": np.arange(len(z), dtype=float), "x": 0.0, "y": 0.0, "z": z})
+    out = evaluate_track(TrackResult(steps=steps, trajectory=traj, info={}), storey_height_m=2.89)
+    assert (out["floors_up"], out["floors_down"], out["storey_height_m"]) == (1, 1, 2.89)
+    waist = evaluate_track(TrackResult(steps=steps.assign(unit="waist"), trajectory=traj, info={}))
+    assert (waist["floors_up"], waist["floors_down"]) == count_floors(z)[:2]
+    with pytest.raises(ValueError, match="storey height"):
+        evaluate_track(TrackResult(steps=steps, trajectory=traj, info={}), storey_height_m=0.0)
+
+
+def test_loops_of_floors_count_exactly_offline_and_streamed_and_say_the_barometer_is_unused(tmp_path, capsys):
+    """Decisions L126/L127: a short multi-loop session (3 x 2 storeys up and down, 17 stairs of 0.17 m per
+    storey) counts 6 / 6 offline and streamed; the one-line summary says the barometer file was not used and the
+    storey height given."""
+    import json
+
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    loop = "straight:3, up:17, turn:180, up:17, straight:3, turn:180, down:17, turn:180, down:17, straight:3, turn:180"
+    s = simulate_path(parse_route(", ".join(["stand:5"] + [loop] * 3)), UserProfile.from_seed(7), speed="normal",
+                      rate_hz=20.0, seed=1, name="loops")
+    write_session(s, tmp_path / "loops")
+    for extra in ([], ["--streaming"]):
+        out = tmp_path / f"t{len(extra)}"
+        assert main(["track", str(tmp_path / "loops"), "--method", "M3", "--model", "oracle", "--storey-height",
+                     "2.89", "--out", str(out), *extra]) == 0
+        summary = json.loads((out / "summary.json").read_text())
+        assert (summary["floors_up"], summary["floors_down"], summary["storeys_changed"]) == (6, 6, 0)
+        assert summary["barometer_unused"] is True and summary["storey_height_m"] == 2.89
+        assert "floors up 6 / down 6 (foot altitude, storeys of 2.89 m; wBarometer.csv not used)" in \
+            capsys.readouterr().out

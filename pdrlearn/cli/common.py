@@ -380,6 +380,18 @@ def warn_gaps(session, names, consequence: str) -> None:
 
 
 #: ``--start`` of ``track`` and ``run`` (decision L56)
+#: decisions L64, L127: the storey height the floor counts assume (`track` and `run`)
+STOREY_HEIGHT_HELP = ("Storey height (m) for floors_up / floors_down / storeys_changed (default 3.0; decisions L64, "
+                      "L127): e.g. 2.9 for 17 stairs of 0.17 m per storey.")
+
+
+def storey_height_option():
+    """Decisions L64, L127: the ``--storey-height`` option of ``track`` and ``run``, one definition."""
+    import typer
+
+    return typer.Option(3.0, "--storey-height", metavar="M", min=0.5, max=20.0, help=STOREY_HEIGHT_HELP)
+
+
 START_HELP = ("Start coordinate LAT,LON (degrees) -> lat/lon columns; LAT,LON,ALT also gives the start's "
               "altitude in m, where the z column starts (default 0: z = height above the start; decision L56).")
 

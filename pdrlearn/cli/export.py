@@ -23,6 +23,7 @@ from pdrlearn.cli.common import (
     print_json,
     replaced,
     start_option,
+    storey_height_option,
 )
 
 
@@ -268,6 +269,7 @@ def run(
                               "the bundle's; the foot alone when the data have no waist unit, with a warning). "
                               "foot = a two-unit bundle on a foot-only session or a failed waist (decision E26)."),
     start: str = typer.Option(None, "--start", help=START_HELP),
+    storey_height: float = storey_height_option(),
     initial_heading: float = typer.Option(None, "--initial-heading", metavar="DEG",
                                           help=INITIAL_HEADING_HELP.split(" For a relative")[0]
                                           + " (the runtime's heading is relative: gyroscopes only)."),
@@ -414,7 +416,7 @@ def run(
     if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
         result.info["initial_heading_rad"] = heading0
     result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
-    summary = _summary(steps, tracker, lat, source, result, session)
+    summary = _summary(steps, tracker, lat, source, result, session, storey_height)
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats
     if out is not None:
@@ -423,12 +425,13 @@ def run(
         print_json(json_safe(summary))
     else:
         err = summary.get("distance_error_pct")
+        from pdrlearn.track.evaluate import floors_phrase  # decisions L64, L127 (numpy: lazily)
+
         typer.echo(f"{source}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
                    + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
                    f"{[round(summary['final_position'][k], 2) for k in 'xyz']}"
                    # L64: the storeys climbed and descended, when the track changed floors
-                   + (f", floors up {summary['floors_up']} / down {summary['floors_down']}"
-                      if summary.get("floors_up") or summary.get("floors_down") else "")
+                   + floors_phrase(summary)
                    + (f" -> {out}" if out else ""))
         if summary.get("gait_speed_mps") is not None:  # decisions E48 / E51: track's L79 line, what run can give
             typer.echo(gait_line(summary))
@@ -567,7 +570,7 @@ def _result(steps, start_ll=None, start_alt: float = 0.0):
     return TrackResult(steps=df, trajectory=traj, info={"pipeline": "runtime"})
 
 
-def _summary(steps, tracker, lat, source, result, session) -> dict:
+def _summary(steps, tracker, lat, source, result, session, storey_height_m: float = 3.0) -> dict:
     """The keys of ``track``'s summary.json for the same content (``distance_m``, ``n_steps``,
     ``final_position`` {x, y, z}, ``session``, ``pipeline``, ``info``, ``frames_inferred`` when a frame was
     taken from the data and, replaying a session with ground truth, its errors), plus the runtime's
@@ -580,7 +583,7 @@ def _summary(steps, tracker, lat, source, result, session) -> dict:
     for st in steps:
         for t, c in st.classes.items():
             counts[t][c] = counts[t].get(c, 0) + 1
-    out = {"source": source, **evaluate_track(result, session)}
+    out = {"source": source, **evaluate_track(result, session, storey_height_m=storey_height_m)}
     # lat/lon with --start, as track's summary (without it track has none: no NaN keys either)
     geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon") and np.isfinite(v)}
     out["final_position"] = {**dict(zip("xyz", (float(v) for v in tracker.position), strict=True)), **geo}

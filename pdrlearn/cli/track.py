@@ -21,6 +21,7 @@ from pdrlearn.cli.common import (
     replaced,
     resample_options,
     start_option,
+    storey_height_option,
     walk_line,
 )
 from pdrlearn.errors import DataError
@@ -102,6 +103,7 @@ def track(
     warn_out_of_domain: float = WARN_OOD_OPT,
     start: str = START_OPT,
     initial_heading: float = INITIAL_HEADING_OPT,
+    storey_height: float = storey_height_option(),
     params: Path = PARAMS_OPT,
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA/CSV) for aiding."),
     gnss_period: float = typer.Option(None, "--gnss-period", help="Use a GNSS fix every S seconds."),
@@ -167,7 +169,7 @@ def track(
                               contacts=contacts, dpi=dpi, initial_heading=initial_heading,
                               common_span=common_span, units=units, window=window, resample=resample,
                               no_resample=no_resample, bout_break_s=bout_break_s,
-                              bout_min_strides=bout_min_strides)
+                              bout_min_strides=bout_min_strides, storey_height=storey_height)
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
@@ -195,7 +197,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
-                   bout_min_strides: int | None = None) -> dict:
+                   bout_min_strides: int | None = None, storey_height: float = 3.0) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -254,7 +256,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
-            "units": parse_units(units), "bouts": bouts}
+            "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height}
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:
@@ -349,8 +351,9 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.window import window_track
 
         result, tracked_session = window_track(result, session, *win)
-    # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition
-    summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"))
+    # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition; L64, L127: storeys
+    summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"),
+                            storey_height_m=o.get("storey_height_m", 3.0))
     from pdrlearn.track.bouts import detected_bouts
 
     bouts = detected_bouts(result.steps, o.get("bouts"))  # decision L124: OUT/bouts.csv, the detected walking bouts
@@ -408,6 +411,8 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
         name += f" [{summary['window_start_s']:g}-{summary['window_end_s']:g} s]"
     err = summary.get("distance_error_pct")
     bouts = err is not None and "bout_distance_m" in summary and "bout_reference_m" in summary
+    from pdrlearn.track.evaluate import floors_phrase  # decisions L64, L127 (numpy: lazily)
+
     typer.echo(f"{name}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
                # W21: the lower-back error counts the reference bouts only; say so before the number
                + (f"; inside the reference bouts {summary['bout_distance_m']:.2f} m vs "
@@ -424,8 +429,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
                + (f" (reference {summary['altitude_change_ref_m']:+.2f} m)" if "altitude_change_ref_m" in summary
                   else "")
                # L64: the storeys climbed and descended, when the track changed floors
-               + (f", floors up {summary['floors_up']} / down {summary['floors_down']}"
-                  if summary.get("floors_up") or summary.get("floors_down") else "")
+               + floors_phrase(summary)
                # decision C16: how much of the walk the model's training data covered
                + (f"; {100 * summary['out_of_domain_fraction']:.0f} % of the strides outside the model's "
                   "training range" if summary.get("out_of_domain_fraction") is not None else ""))

@@ -171,9 +171,62 @@ def count_floors(z, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOR
     return up, down, level
 
 
-def _floors(z, out: dict, suffix: str = "") -> None:
-    up, down, net = count_floors(z)
+#: decision L127: at most this many level strides between two stair strides of one climb (a landing and its U-turn)
+CLIMB_BRIDGE_STRIDES = 4
+
+
+def count_floors_by_climb(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOREY_BAND,
+                          bridge: int = CLIMB_BRIDGE_STRIDES) -> tuple[int, int, int]:
+    """Storeys climbed and descended counted per climb from the strides' height changes ``dz`` (m, one per
+    stride in walking order): ``(floors_up, floors_down, storeys_changed)`` (decision L127). A climb up (down)
+    is a run of up (down) stair strides, dz >= ``LEVEL_DZ_M`` (<= -``LEVEL_DZ_M``, L39), with at most
+    ``bridge`` other strides between two of them; its height H (the sum of dz from its first to its last stair
+    stride) counts floor(|H| / h + band) storeys, the storeys of L64's band rule, so a slow altitude drift
+    between climbs moves no count. Non-finite dz count as 0."""
+    from pdrlearn.kernels.distance import LEVEL_DZ_M
+
+    dz = np.nan_to_num(np.asarray(dz, dtype=float).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
+    counts = []
+    for stair in (np.flatnonzero(dz >= LEVEL_DZ_M), np.flatnonzero(dz <= -LEVEL_DZ_M)):
+        runs = np.split(stair, np.flatnonzero(np.diff(stair) > bridge + 1) + 1) if len(stair) else []
+        counts.append(sum(int(np.floor(abs(float(dz[r[0]:r[-1] + 1].sum())) / storey_height_m + band))
+                          for r in runs))
+    return counts[0], counts[1], counts[0] - counts[1]
+
+
+#: decision L127: how the tracked storeys are counted on foot strides - "climb" (per climb, from the strides' dz,
+#: :func:`count_floors_by_climb`) or "altitude" (L64's bands on the absolute z, :func:`count_floors`)
+FLOOR_COUNT = "climb"
+
+
+def _floors(z, out: dict, suffix: str = "", dz=None) -> None:
+    """The floor keys (decisions L64, L127) in storeys of ``out["storey_height_m"]``: per climb from the strides'
+    ``dz`` when given (foot strides and FLOOR_COUNT "climb"), else from the altitude ``z``."""
+    h = out.get("storey_height_m", STOREY_HEIGHT_M)
+    up, down, net = count_floors_by_climb(dz, h) if dz is not None else count_floors(z, h)
     out[f"floors_up{suffix}"], out[f"floors_down{suffix}"], out[f"storeys_changed{suffix}"] = up, down, net
+
+
+def _foot_dz(steps: pd.DataFrame):
+    """The strides' height changes a floor count per climb reads (decision L127): a foot track's ``dz_m``; None
+    for a lower-back track (its z is the barometer's, L64's count) or FLOOR_COUNT "altitude"."""
+    if FLOOR_COUNT != "climb" or not len(steps) or "dz_m" not in steps:
+        return None
+    if "unit" in steps and not bool((steps["unit"].astype(str) == "foot").all()):
+        return None
+    return steps["dz_m"].to_numpy(float)
+
+
+def floors_phrase(summary: dict) -> str:
+    """The one-line summaries' floor part (``track`` and ``run``, decisions L64, L127): ", floors up U / down D"
+    when the track changed floors, and once whether a barometer file lay unused (``barometer_unused``)."""
+    if not (summary.get("floors_up") or summary.get("floors_down") or summary.get("barometer_unused")):
+        return ""
+    part = f", floors up {summary.get('floors_up', 0)} / down {summary.get('floors_down', 0)}"
+    if summary.get("barometer_unused"):  # a recorded barometer the foot track does not read: say it
+        part += (f" (foot altitude, storeys of {summary.get('storey_height_m', STOREY_HEIGHT_M):g} m; "
+                 "wBarometer.csv not used)")
+    return part
 
 
 #: decision L103: the value of ``n_steps_counts`` per unit of the step table
@@ -243,9 +296,9 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.track.clinical import clinical_summary
 
     out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
-    # decision L64: the storeys the track climbed and descended (storeys of STOREY_HEIGHT_M)
-    _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out)
-    out["storey_height_m"] = STOREY_HEIGHT_M
+    # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
+    # evaluate_track)
+    _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out, dz=_foot_dz(result.steps))
 
 
 def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[float | None, str]:
@@ -337,7 +390,7 @@ def _altitude(result: TrackResult, session: Session, out: dict) -> None:
         return
     z_ref = reference_altitude_track(session, float(tr["t"].iloc[0]), float(tr["t"].iloc[-1]))
     if z_ref is not None:  # decision L64: the reference's storeys, counted by the same rule
-        _floors(z_ref, out, "_ref")
+        _floors(z_ref, out, "_ref")  # L64's count on the reference altitude
     est = out["altitude_change_m"]
     out["altitude_change_ref_m"] = ref
     out["altitude_ref_source"] = source
@@ -491,9 +544,17 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
     out.update(m)
 
 
+def _barometer(result: TrackResult, session: Session, out: dict) -> None:
+    """Decision L127: ``barometer_unused`` - the session has a waist barometer (wBarometer.csv with samples) and
+    the track is of foot strides, whose altitude is the foot's own (only lower-back tracks read the barometer)."""
+    steps = result.steps
+    foot = bool(len(steps)) and "unit" in steps and bool((steps["unit"].astype(str) == "foot").all())
+    out["barometer_unused"] = bool(foot and session.has("wBarometer") and len(session["wBarometer"]))
+
+
 #: metric helpers run in order by :func:`evaluate_track`; append to extend.
 METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _waist_references, _turns,
-           _class_agreement]
+           _class_agreement, _barometer]
 
 
 def summary_warnings(summary: dict) -> list[str]:
@@ -505,7 +566,8 @@ def summary_warnings(summary: dict) -> list[str]:
     return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary)) if w]
 
 
-def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None) -> dict:
+def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None,
+                   storey_height_m: float = STOREY_HEIGHT_M) -> dict:
     """Summary metrics: ``distance_m``, ``n_steps``, ``final_position``, ``altitude_change_m``, the storeys
     climbed / descended and the floor reached (``floors_up``, ``floors_down``, ``storeys_changed``, storeys of
     ``storey_height_m``; with a reference altitude also ``floors_up_ref`` ..., decision L64) and, with
@@ -518,7 +580,9 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
     :class:`pdrlearn.track.bouts.BoutRule`, None = its defaults; decision L124)."""
     from pdrlearn.track.bouts import bouts_summary
 
-    out: dict = {}
+    if not (np.isfinite(storey_height_m) and storey_height_m > 0):
+        raise ValueError(f"storey height {storey_height_m!r} m: give a positive number of metres (e.g. 3.0)")
+    out: dict = {"storey_height_m": float(storey_height_m)}  # decisions L64, L127: the floor counts' storey
     for fn in METRICS:
         if fn is _basic:
             fn(result, out)
@@ -528,7 +592,8 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
     return out
 
 
-def track_summary(result: TrackResult, session: Session, *, pipeline: str | None = None, bouts=None) -> dict:
+def track_summary(result: TrackResult, session: Session, *, pipeline: str | None = None, bouts=None,
+                  storey_height_m: float = STOREY_HEIGHT_M) -> dict:
     """The summary of a track, exactly as ``pdrlearn track`` writes it to ``summary.json`` (strict JSON:
     NaN -> None, numpy scalars -> Python numbers): :func:`evaluate_track`'s metrics (with the session's
     ground truth when it has some, :func:`pdrlearn.track.gait.gait_summary`'s gait speed and cadence
@@ -551,7 +616,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     from pdrlearn.io.plasys import json_safe
     from pdrlearn.track.clinical import contact_timing
 
-    summary = evaluate_track(result, session, bouts=bouts)
+    summary = evaluate_track(result, session, bouts=bouts, storey_height_m=storey_height_m)
     summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
