@@ -18,14 +18,40 @@ CHANGE_COLUMNS = ("subject", "group", "baseline_visit", "visit", "status", "reas
 STATUSES = ("ok", "missing", "failed", "several")
 
 
+#: a visit name's leading word that marks it as the baseline, or as a later visit (decision C24): ``pre`` comes before
+#: ``post`` whatever the alphabet says (text order had made ``post`` the baseline, every change's sign reversed)
+BASELINE_WORDS = frozenset({"baseline", "bl", "base", "screening", "screen", "pre", "before", "admission", "intake"})
+LATER_WORDS = frozenset({"post", "after", "discharge"})
+FOLLOW_UP_WORDS = frozenset({"followup", "follow", "fu", "final", "end", "exit"})  # after ``post``
+
+
+def _word_rank(v: str) -> int:
+    """0 for a baseline word, 2 for a later-visit word, 3 for a follow-up word, 1 otherwise (decision C24)."""
+    word = re.match(r"[a-z]*", v.lower()).group(0)
+    return 0 if word in BASELINE_WORDS else 2 if word in LATER_WORDS else 3 if word in FOLLOW_UP_WORDS else 1
+
+
 def visit_order(visits) -> list[str]:
-    """Visit names in study order: natural order, runs of digits compared as numbers (``visit2`` before
-    ``visit10``, ``week4`` before ``week12``, ``1`` before ``2``), then by the text; the first is the baseline
-    (decision C22)."""
+    """Visit names in study order: a name starting with a baseline word (``baseline``, ``pre``, ``screening``, ...)
+    first, one starting with ``post`` / ``after`` / ``discharge`` later and a follow-up (``followup``, ``fu``, ...) last (decision C24), else
+    natural order, runs of digits compared as numbers (``visit2`` before ``visit10``, ``week4`` before ``week12``,
+    ``1`` before ``2``), then by the text; the first is the baseline (decision C22)."""
     def key(v: str):
-        return [(0, int(t), "") if t.isdigit() else (1, 0, t) for t in re.split(r"(\d+)", v) if t], v
+        return _word_rank(v), [(0, int(t), "") if t.isdigit() else (1, 0, t) for t in re.split(r"(\d+)", v) if t], v
 
     return sorted({str(v) for v in visits}, key=key)
+
+
+def visit_order_guess(visits) -> str | None:
+    """The warning when the study order of ``visits`` is only the alphabet's (decision C24): no name holds a number
+    and some name is neither a baseline nor a later-visit word (``clinic`` / ``home``); None when the order is
+    known."""
+    names = visit_order(visits)
+    if len(names) < 2 or any(re.search(r"\d", v) for v in names) or all(_word_rank(v) != 1 for v in names):
+        return None
+    return (f"visits {', '.join(repr(v) for v in names)} hold no number: taken in text order, so {names[0]!r} is the "
+            "baseline of changes.csv; name them in study order (visit1, visit2, or pre / post) if it is not "
+            "(decision C24)")
 
 
 def _labelled(sessions):

@@ -304,6 +304,14 @@ def test_visit_order_is_natural_and_no_second_visit_means_no_changes():
 
     assert visit_order(["visit10", "visit2", "baseline", "visit1"]) == ["baseline", "visit1", "visit2", "visit10"]
     assert visit_order(["week12", "week4", "2", "10"]) == ["2", "10", "week4", "week12"]
+    # C24: pre before post (text order had made "post" the baseline), follow-ups last; a text-only order is warned
+    from pdrlearn.visits import visit_order_guess
+
+    assert visit_order(["post", "pre"]) == ["pre", "post"]
+    assert visit_order(["Post-op", "Pre-op", "FU6"]) == ["Pre-op", "Post-op", "FU6"]
+    assert visit_order(["followup", "visit1", "Baseline"]) == ["Baseline", "visit1", "followup"]
+    assert visit_order_guess(["post", "pre"]) is None and visit_order_guess(["v2", "v1"]) is None
+    assert "'clinic' is the baseline" in visit_order_guess(["home", "clinic"])
     rows = pd.DataFrame({"path": ["a", "b", "c"], "group": ["g"] * 3, "subject": ["S1", "S1", "S1"],
                          "visit": ["v1", "v1", "v1"], "status": ["ok"] * 3, "gait_speed_mps": [1.0, 1.1, 1.2]})
     assert change_table(rows) is None

@@ -483,11 +483,14 @@ def _changes(sessions: pd.DataFrame) -> tuple[pd.DataFrame | None, pd.DataFrame 
     warned once (they cannot be paired, and are in no row of changes.csv)."""
     import logging
 
-    from pdrlearn.visits import change_summary, change_table
+    from pdrlearn.visits import _labelled, change_summary, change_table, visit_order_guess
 
     changes = change_table(sessions)
     if changes is None:
         return None, None
+    guess = visit_order_guess(_labelled(sessions)["visit"])
+    if guess:
+        logging.getLogger("pdrlearn.cli").warning("%s", guess)
     half = sessions[sessions["subject"].isna() != sessions["visit"].isna()]["path"].astype(str).tolist()
     if half:
         logging.getLogger("pdrlearn.cli").warning(
