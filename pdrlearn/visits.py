@@ -34,8 +34,9 @@ def _word_rank(v: str) -> int:
 def visit_order(visits) -> list[str]:
     """Visit names in study order: a name starting with a baseline word (``baseline``, ``pre``, ``screening``, ...)
     first, one starting with ``post`` / ``after`` / ``discharge`` later and a follow-up (``followup``, ``fu``, ...)
-    last (decision C24), within these natural order, runs of digits compared as numbers (``visit2`` before ``visit10``, ``week4`` before ``week12``,
-    ``1`` before ``2``), then by the text; the first is the baseline (decision C22)."""
+    last (decision C24), within these natural order, runs of digits compared as numbers (``visit2`` before
+    ``visit10``, ``week4`` before ``week12``, ``1`` before ``2``), then by the text; the first is the baseline
+    (decision C22)."""
     def key(v: str):
         return _word_rank(v), [(0, int(t), "") if t.isdigit() else (1, 0, t) for t in re.split(r"(\d+)", v) if t], v
 
