@@ -170,3 +170,17 @@ def test_a_misspelt_force_frame_is_one_line_not_the_same_refusal_again(walk, bad
     s.meta["force_frame"] = bad
     with pytest.raises(DataError, match=r'"force_frame" is .*: give true \(every unit\) or a list of units'):
         s.require_frame("foot")
+
+
+def test_a_waist_frame_read_reversed_is_a_warning_not_a_refusal(walk, caplog):
+    """D23 as amended: only the foot's reversal (its strides' integrated direction) is refused; the waist's forward
+    comes from W2's gait-phase cue, which a correct frame can fail, so a stale waist frame keeps D10's warning."""
+    from pdrlearn.track.frame_inference import _turned
+
+    s = remount(walk, "waist", np.eye(3))  # a copy of the session
+    backward = _turned(walk.frames["waist"], {"forward", "left"})  # declared turned 180 deg about up
+    s.frames["waist"] = backward
+    with caplog.at_level(logging.WARNING):
+        assert s.require_frame("waist") == backward
+    said = [r.getMessage() for r in caplog.records]
+    assert any("waist unit" in m and "contradicts its data" in m and "still used" in m for m in said)

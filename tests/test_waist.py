@@ -110,8 +110,8 @@ def test_harmonic_heading_on_synthetic_gait(heading, method):
 
 
 def test_forward_sign_flips_for_backward_phase():
-    s = synth_session(lead=np.pi / 3 + np.pi)  # forward acceleration in anti-phase = walking backward
-    s.meta["force_frame"] = True  # the declared frame against a walk all backward: D23 would refuse it
+    s = synth_session(lead=np.pi / 3 + np.pi)  # forward acceleration in anti-phase = walking backward (its
+    # declared frame is read reversed by W2: a warning, not a refusal, D23 as amended for the waist)
     imu = waist_imu(s)
     ev = s.extras["contacts"]["ic_s"].to_numpy()
     ev = ev[(ev > 4) & (ev < 16)]

@@ -85,6 +85,10 @@ MAX_DECLARED_OFF_DEG = 60.0
 #: axis is forward (the strides' direction sign is fixed by the push-off, D9; up by gravity at rest). Geometry:
 #: midway between a 90-degree turn and the 180-degree one, not fitted to a recording.
 OPPOSED_DEG = 120.0
+#: the units whose reversed forward is refused (decision D23 as amended in session 21): the foot's is its strides'
+#: integrated direction; the waist's is W2's forward/vertical phase cue, a gait-phase inference that a correct frame
+#: can fail (the test helpers' synthetic waist reads backward by it), so a waist keeps D10's warning
+REFUSE_REVERSED = ("foot",)
 #: Decision D22: the declared forward's heading is compared only when it is at least this far from vertical
 #: (deg): a trial's foot unit pitched 64 deg from its declared forward still walked every stride backward.
 MIN_FORWARD_ELEVATION_DEG = 15.0
@@ -545,7 +549,7 @@ def check_declared_frame(session, placement: str, declared: AxisFrame) -> Declar
     else:
         origin = f"implied by source_project {json.dumps(str(session.meta.get('source_project', '')))}"
     forced = reverse and session.frame_forced(placement)  # decision D23's override
-    refuse = reverse and not forced
+    refuse = reverse and not forced and placement in REFUSE_REVERSED  # D23 amended: the foot only
     used = 'the meta.json frame ("force_frame", decision D23)' if forced else "the meta.json frame"
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
                                  unchecked=unchecked)
