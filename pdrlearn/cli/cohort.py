@@ -24,6 +24,7 @@ from pdrlearn.cli.common import (
     replaced,
     split_choices,
     split_length_units,
+    storey_height_option,
 )
 from pdrlearn.cohort import (
     JobResult,
@@ -519,6 +520,7 @@ def track_all(
     warn_out_of_domain: float = _track.WARN_OOD_OPT,
     start: str = _track.START_OPT,
     initial_heading: float = _track.INITIAL_HEADING_OPT,
+    storey_height: float = storey_height_option(),
     params: Path = _track.PARAMS_OPT,
     streaming: bool = _track.STREAMING_OPT,
     realtime: bool = _track.REALTIME_OPT,
@@ -590,7 +592,7 @@ def track_all(
                               toe_off=toe_off, contacts=contacts, dpi=dpi, common_span=common_span,
                               initial_heading=initial_heading, window=window, resample=resample,
                               no_resample=no_resample, units=units, bout_break_s=bout_break_s,
-                              bout_min_strides=bout_min_strides)
+                              bout_min_strides=bout_min_strides, storey_height=storey_height)
     found = find_sessions(root)
     out_folder(out, "track-all", force=force, inputs=(root, params))
     was = existed(out)
