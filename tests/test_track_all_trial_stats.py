@@ -323,3 +323,41 @@ def test_visit_order_is_natural_and_no_second_visit_means_no_changes():
     got = change_table(rows).set_index("visit")
     assert got.loc["v2", "gait_speed_mps_change"] == pytest.approx(0.2) and got.loc["v3", "baseline_path"] == "a"
     assert got.loc["v3", "gait_speed_mps_change"] == pytest.approx(0.1)  # each visit against the baseline
+
+
+def test_params_dir_gives_each_subject_its_calibration_file(site_tree, tmp_path, capsys):
+    """C26: `track-all --params-dir DIR` tracks each session with DIR/<subject>.json (the subject of its meta.json):
+    the same distance as `track --params` of that file; a subject without its file is one error line before any
+    tracking (nothing written), and --params with --params-dir is refused."""
+    from pdrlearn.waist.params import WaistParams
+
+    root = tmp_path / "study"
+    shutil.copytree(site_tree, root)
+    for subj in ("S01", "S02", "S03"):
+        site = "centreB" if subj == "S03" else "centreA"
+        meta = root / site / subj / "visit1" / "meta.json"
+        meta.write_text(json.dumps({**json.loads(meta.read_text()), "subject": subj}))
+    cal = tmp_path / "cal"
+    cal.mkdir()
+    for subj, k in (("S01", 0.5), ("S02", 0.9)):
+        WaistParams(k=k, source="calibrated", pipeline="waist-pendulum").save(cal / f"{subj}.json")
+    common = ["--pipeline", "waist-pendulum", "--params-dir", str(cal)]
+    assert main(["track-all", str(root), "--out", str(tmp_path / "bad"), *common]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "'S03'" in err[0] and "S03.json" in err[0] and "centreB/S03/visit1" in err[0], err
+    assert "'S01'" not in err[0] and not (tmp_path / "bad").exists()
+    shutil.rmtree(root / "centreB")
+    assert main(["track-all", str(root), "--out", str(tmp_path / "a"), *common]) == 0
+    table = pd.read_csv(tmp_path / "a" / "sessions.csv")
+    assert table["params_file"].tolist() == ["S01.json", "S02.json"]
+    for subj in ("S01", "S02"):
+        assert main(["track", str(root / "centreA" / subj / "visit1"), "--pipeline", "waist-pendulum", "--params",
+                     str(cal / f"{subj}.json"), "--out", str(tmp_path / f"t{subj}")]) == 0
+        one = json.loads((tmp_path / f"t{subj}" / "summary.json").read_text())
+        assert table.set_index("subject").loc[subj, "distance_m"] == pytest.approx(one["distance_m"], rel=1e-12)
+    d = table["distance_m"].to_numpy(float)
+    assert d[1] / d[0] > 1.3  # K 0.9 vs 0.5 on walks of the same length: each subject's own file was used
+    capsys.readouterr()
+    assert main(["track-all", str(root), "--out", str(tmp_path / "m"), *common, "--params",
+                 str(cal / "S01.json")]) == 2
+    assert "not both" in capsys.readouterr().err and not (tmp_path / "m").exists()

@@ -500,6 +500,46 @@ def _changes(sessions: pd.DataFrame) -> tuple[pd.DataFrame | None, pd.DataFrame 
     return changes, change_summary(changes)
 
 
+PARAMS_DIR_HELP = ("Folder of per-subject calibration files, one SUBJECT.json per subject (as `pdrlearn calibrate "
+                   "... --out DIR/SUBJECT.json` writes them); each session uses the file of the subject its meta.json "
+                   "names (\"subject\" or \"user\"). Every session must have one, checked before any tracking "
+                   "(decision C26). Instead of --params.")
+
+
+def _few(names: list[str], k: int = 3) -> str:
+    return ", ".join(names[:k]) + (f" and {len(names) - k} more" if len(names) > k else "")
+
+
+def subject_params(params_dir: Path, rels: list[str], subjects: list[str | None]) -> list[Path]:
+    """Decision C26: each session's calibration file under ``--params-dir``, ``DIR/<subject>.json`` with the subject
+    its meta.json names (cohort C22's rule, :func:`pdrlearn.cohort.session_labels`). A session naming no subject, a
+    subject that cannot be a file name, or a subject without its file is an error before any tracking, one line
+    naming them all: a silent fall back to the population defaults would mix calibrated and uncalibrated distances
+    in one table."""
+    if not params_dir.is_dir():
+        raise DataError(f"--params-dir {params_dir}: no such folder; give the folder holding one SUBJECT.json per "
+                        "subject (`pdrlearn calibrate WALK --out DIR/SUBJECT.json`), or one file with --params FILE")
+    unnamed = [rel for rel, s in zip(rels, subjects, strict=True) if s is None]
+    bad = sorted({s for s in subjects if s is not None and (Path(s).name != s or s.startswith("."))})
+    missing: dict[str, list[str]] = {}
+    for rel, s in zip(rels, subjects, strict=True):
+        if s is not None and s not in bad and not (params_dir / f"{s}.json").is_file():
+            missing.setdefault(s, []).append(rel)
+    problems = []
+    if missing:
+        problems.append(f"no calibration file for subject {_few([repr(s) for s in missing])} (expected "
+                        f"{_few([f'{s}.json' for s in missing])}; sessions {_few(sum(missing.values(), []))})")
+    if unnamed:
+        problems.append(f"{_few(unnamed)}: meta.json names no subject (add \"subject\": \"ID\")")
+    if bad:
+        problems.append(f"subject {_few([repr(s) for s in bad])} cannot name a file")
+    if problems:
+        raise DataError(f"--params-dir {params_dir}: " + "; ".join(problems) + "; write each file with `pdrlearn "
+                        "calibrate WALK --out DIR/SUBJECT.json`, or track those sessions in a track-all of their own "
+                        "(decision C26)")
+    return [params_dir / f"{s}.json" for s in subjects]
+
+
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
     tmp = path.with_name(f".{path.name}.tmp")
     df.to_csv(tmp, index=False)  # full precision: groups.csv = a groupby of sessions.csv as read back
@@ -522,6 +562,7 @@ def track_all(
     initial_heading: float = _track.INITIAL_HEADING_OPT,
     storey_height: float = storey_height_option(),
     params: Path = _track.PARAMS_OPT,
+    params_dir: Path = typer.Option(None, "--params-dir", metavar="DIR", help=PARAMS_DIR_HELP),
     streaming: bool = _track.STREAMING_OPT,
     realtime: bool = _track.REALTIME_OPT,
     reference_point: str = _track.REFERENCE_POINT_OPT,
@@ -561,8 +602,10 @@ def track_all(
     without both visits listed with why) and OUT/changes_summary.csv the mean change with its paired 95 %
     t-interval (decisions C22, C23). OUT/run.json records the pdrlearn version, the options and each session's
     time (decision C18). Sessions holding identical sensor data are warned
-    (duplicate_of, C20). A session that cannot be tracked is reported and skipped. Progress: one line per
-    session on stderr; each warning is said once per batch, with the sessions it concerns.
+    (duplicate_of, C20). --params-dir DIR gives each session DIR/<subject>.json, the subject its meta.json names
+    (every session needs one, checked first; decision C26). A session that cannot be tracked is reported and
+    skipped. Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
+    concerns.
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input
     or when every session failed (nothing is written).
@@ -576,6 +619,8 @@ def track_all(
         pdrlearn track-all study/ --out results/batch --jobs 2 --force
 
         pdrlearn track-all study/ --out results/2mwt --window 0,120 --streaming --initial-heading 90
+
+        pdrlearn track-all study/ --out results/cal --pipeline waist-pendulum --params-dir calib/   # calib/S01.json ...
     """
     # decision C18: every option as given (a new option is recorded without a change here), for run.json; taken
     # before any name is defined in this function
@@ -593,13 +638,24 @@ def track_all(
                               initial_heading=initial_heading, window=window, resample=resample,
                               no_resample=no_resample, units=units, bout_break_s=bout_break_s,
                               bout_min_strides=bout_min_strides, storey_height=storey_height)
+    if params is not None and params_dir is not None:  # decision C26: which file would a session use?
+        raise DataError("track-all: give --params FILE (one file for every session) or --params-dir DIR (one "
+                        "SUBJECT.json per subject), not both")
     found = find_sessions(root)
-    out_folder(out, "track-all", force=force, inputs=(root, params))
+    out_folder(out, "track-all", force=force, inputs=(root, params, params_dir))
     was = existed(out)
     rels = [p.relative_to(root).as_posix() for p in found]
+    labels = [session_labels(p) for p in found]  # decision C22: meta.json's subject and visit
+    per_session = [settings] * len(found)
+    if params_dir is not None:  # decision C26: each subject's file, all checked and read before any tracking
+        from pdrlearn.cli.track import read_params
+
+        files = subject_params(params_dir, rels, [s for s, _ in labels])
+        parsed = {f: read_params(f) for f in dict.fromkeys(files)}
+        per_session = [{**settings, "params": f, "par": parsed[f]} for f in files]
     with atomic_directory(out) as tmp:
-        items = [(rel, {"session_dir": str(p), "out": str(tmp / rel), "settings": settings})
-                 for rel, p in zip(rels, found, strict=True)]
+        items = [(rel, {"session_dir": str(p), "out": str(tmp / rel), "settings": st})
+                 for rel, p, st in zip(rels, found, per_session, strict=True)]
         done = [0]
 
         def progress_line(r: JobResult) -> None:
@@ -617,9 +673,11 @@ def track_all(
         dup = _duplicates(rels, results)
         rows = [_session_row(rel, session_group(rel, group_depth), r, str(p))
                 for rel, r, p in zip(rels, results, found, strict=True)]
-        for row, p in zip(rows, found, strict=True):
+        for row, label, st in zip(rows, labels, per_session, strict=True):
             row["duplicate_of"] = dup.get(row["path"])
-            row["subject"], row["visit"] = session_labels(p)  # decision C22: meta.json's subject and visit
+            row["subject"], row["visit"] = label  # decision C22: meta.json's subject and visit
+            if params_dir is not None:  # decision C26: the subject's file (its name: the same for a copy, C18)
+                row["params_file"] = Path(st["params"]).name
         sessions = _sessions_table(rows)
         groups = group_table(sessions)
         changes, summary = _changes(sessions)

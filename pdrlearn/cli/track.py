@@ -233,13 +233,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
 
         rates = {} if str(model) == "oracle" else positive_rates(read_manifest(model).get("sampling_rate_hz") or {})
         require_rates(str(model), rates, rate_mode, command="track")
-    par = None
-    if params is not None:
-        try:
-            par = json.loads(Path(params).read_text())
-        except (OSError, json.JSONDecodeError) as exc:
-            raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
-                            "pass the file written by `pdrlearn calibrate`") from None
+    par = None if params is None else read_params(params)
     if length_bounds is not None:
         try:
             bounds = [float(v) for v in length_bounds.split(",")]
@@ -256,6 +250,16 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height}
+
+
+def read_params(params: Path):
+    """The parsed ``--params`` JSON (a calibration file of ``pdrlearn calibrate`` or plasys settings), read once per
+    file; one error line naming the file when it cannot be read."""
+    try:
+        return json.loads(Path(params).read_text())
+    except (OSError, json.JSONDecodeError) as exc:
+        raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
+                        "pass the file written by `pdrlearn calibrate`") from None
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:
