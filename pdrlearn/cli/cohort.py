@@ -375,7 +375,10 @@ def _track_job(args: dict) -> dict:
         except Exception as exc:  # cohort C15: the warnings raised before the failure stay with its error
             attach_to_error(exc, warnings=list(warned))
             raise
-    return {"summary": summary, "warnings": warned, "content_id": tracked.get("content_id")}
+    from pdrlearn.track.bouts import bout_totals
+
+    return {"summary": summary, "warnings": warned, "content_id": tracked.get("content_id"),
+            "bout_totals": bout_totals(tracked["bouts"])}  # cohort C25: of bouts.csv, for subjects.csv
 
 
 def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
@@ -407,6 +410,7 @@ def _session_row(rel: str, group: str, r: JobResult, given: str | None = None) -
     row["method"] = summary.get("info", {}).get("method")
     row["input_dir"] = rel  # decision C18: relative to ROOT (summary.json keeps the resolved folder, C13)
     row["content_id"] = r.value.get("content_id")  # decision C20: B87's fingerprint of the sensor data
+    row.update(r.value.get("bout_totals", {}))  # cohort C25: the walking bouts' totals (bouts.csv summed)
     return row
 
 
@@ -681,9 +685,14 @@ def track_all(
         sessions = _sessions_table(rows)
         groups = group_table(sessions)
         changes, summary = _changes(sessions)
+        from pdrlearn.visits import subject_totals
+
+        subjects = subject_totals(sessions)  # cohort C25: None when no session names a subject
         run = _run_record(root, options, rels, results)
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")
+        if subjects is not None:
+            _write_csv_atomic(subjects, tmp / "subjects.csv")
         if changes is not None:  # decisions C22, C23
             _write_csv_atomic(changes, tmp / "changes.csv")
             _write_csv_atomic(summary, tmp / "changes_summary.csv")
@@ -693,11 +702,13 @@ def track_all(
         print_json(json_safe({"sessions": sessions.to_dict(orient="records"),
                               "groups": groups.to_dict(orient="records"), "n_sessions": len(results),
                               "n_tracked": len(results) - len(failed), "n_failed": len(failed), "run": run,
+                              **({} if subjects is None else {"subjects": subjects.to_dict(orient="records")}),
                               **({} if changes is None else {"changes": changes.to_dict(orient="records"),
                                                              "changes_summary": summary.to_dict(orient="records")})}))
     else:
         typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked; wrote {out}/"
-                   "<session>/, sessions.csv, groups.csv, " + ("" if changes is None else
+                   "<session>/, sessions.csv, groups.csv, " + ("" if subjects is None else "subjects.csv, ")
+                   + ("" if changes is None else
                                                                "changes.csv, changes_summary.csv, ") + "run.json")
         print(groups_text(groups).to_markdown(index=False))
         if changes is not None:  # decision C23

@@ -107,6 +107,18 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None) -> pd.Data
     return pd.DataFrame(rows, columns=list(BOUT_COLUMNS)) if rows else out
 
 
+#: a track's walking-bout totals (cohort C25): sessions.csv's columns, summed per subject in subjects.csv
+BOUT_TOTALS = ("bouts_distance_m", "bouts_time_s", "bouts_n_steps", "bouts_n_strides")
+
+
+def bout_totals(table: pd.DataFrame) -> dict:
+    """The totals of :func:`detected_bouts`'s ``table`` (cohort C25): ``bouts_distance_m`` (summed ``distance_m``),
+    ``bouts_time_s`` (summed ``duration_s``: the walking time in bouts), ``bouts_n_steps`` and ``bouts_n_strides``
+    (summed counts); zeros for a track without bouts."""
+    return {"bouts_distance_m": float(table["distance_m"].sum()), "bouts_time_s": float(table["duration_s"].sum()),
+            "bouts_n_steps": int(table["n_steps"].sum()), "bouts_n_strides": int(table["n_strides"].sum())}
+
+
 def bouts_summary(steps: pd.DataFrame, rule: BoutRule | None = None, table: pd.DataFrame | None = None) -> dict:
     """summary.json's keys (decision L124): ``n_bouts`` (the rows :func:`detected_bouts` gives) and
     ``bout_definition``. ``table``: :func:`detected_bouts`'s table of ``steps`` under ``rule`` when the caller has
