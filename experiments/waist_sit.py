@@ -4,6 +4,7 @@ lower-back detectors `waist-pendulum` and `waist-pll` (session 22, issue 4: sit-
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_sit.py count   # users 620-639
      ... experiments/waist_sit.py veto   # decision W104 (a), (b): users 640-659, with / without `sit_veto`
      ... experiments/waist_sit.py real   # decision W104 (c): experiments/waist.py's scoring of the mobgap recordings
+     ... experiments/waist_sit.py where  # after the measurement: where the vetoed real contacts lie (no tuning)
 Output: experiments/results/waist_sit_count.txt, waist_sit_veto.txt, waist_sit_real.txt
 """
 import logging
@@ -119,9 +120,37 @@ def real() -> None:
                                                   "n_detected", "n_reference")]].round(4).to_string(index=False))
 
 
+def where() -> None:
+    """The contacts `sit_veto` drops on the real Test11 recordings (defaults): inside / outside the reference walking
+    bouts (bouts.csv level wb) and within 0.25 s of a reference IC (ics.csv)."""
+    from pathlib import Path
+
+    import pandas as pd
+
+    from pdrlearn.io import read_session
+
+    for d in sorted(Path("datasets/external").glob("mobgap_*_Test11_*")):
+        s = read_session(d)
+        e0 = track_waist(s, pipeline="waist-pendulum").steps["event_s"].to_numpy(float)
+        e1 = track_waist(s, pipeline="waist-pendulum", sit_veto=True).steps["event_s"].to_numpy(float)
+        gone = np.array([e for e in e0 if np.abs(e1 - e).min() > 1e-9]) if e1.size else e0
+        b = pd.read_csv(d / "bouts.csv")
+        b = b[b["level"] == "wb"]
+        inside = np.zeros(gone.size, bool)
+        for s0, s1 in zip(b.start_ms / 1000, b.end_ms / 1000, strict=True):
+            inside |= (gone >= s0) & (gone <= s1)
+        ics = pd.read_csv(d / "ics.csv")
+        ic = ics["ic_ms"].to_numpy(float) / 1000.0
+        near = np.array([np.abs(ic - g).min() <= 0.25 for g in gone], bool) if gone.size else inside
+        print(f"{d.name}: vetoed {gone.size} ({np.round(gone, 2).tolist()}); inside reference bouts "
+              f"{int(inside.sum())}, outside {int((~inside).sum())}; within 0.25 s of a reference IC {int(near.sum())}")
+
+
 if sys.argv[1:] == ["count"]:
     count(range(620, 640))
 elif sys.argv[1:] == ["veto"]:
     veto()
 elif sys.argv[1:] == ["real"]:
     real()
+elif sys.argv[1:] == ["where"]:
+    where()
