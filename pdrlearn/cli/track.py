@@ -351,6 +351,12 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.window import window_track
 
         result, tracked_session = window_track(result, session, *win)
+    from pdrlearn.track.position_sigma import add_position_sigma, drop_position_sigma
+
+    if aided:  # decision L128: fixes reset the error; the dead-reckoning model does not apply
+        drop_position_sigma(result)
+    elif win is not None:  # L128: a window's uncertainty grows from its own first position
+        add_position_sigma(result, tracked_session)
     # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition; L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"),
                             storey_height_m=o.get("storey_height_m", 3.0))

@@ -599,7 +599,8 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     ground truth when it has some, :func:`pdrlearn.track.gait.gait_summary`'s gait speed and cadence
     included), ``session`` (meta.json's name), ``input_dir`` (the session folder, resolved; decision C13),
     ``pipeline``, ``info`` (the pipeline's settings and warnings), and where they apply
-    ``out_of_domain_fraction`` (C16) and ``frames_inferred`` (D8). Mirrored turns against turns.csv (L42) and a
+    ``out_of_domain_fraction`` (C16), ``frames_inferred`` (D8) and ``final_position_sigma_m`` /
+    ``max_position_sigma_m`` (the trajectory's ``pos_sigma_m``, L128). Mirrored turns against turns.csv (L42) and a
     cadence or speed outside the validated walking range (L95) are warned here. Also :meth:`TrackResult.summary`.
 
     Parameters
@@ -652,5 +653,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}
     if session.frames_inferred:  # D8: undeclared frames taken from the data, to paste into meta.json
         summary["frames_inferred"] = session.frames_inferred
+    if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: the position uncertainty
+        sigma = result.trajectory["pos_sigma_m"].to_numpy(float)
+        summary["final_position_sigma_m"] = float(sigma[-1])
+        summary["max_position_sigma_m"] = float(np.nanmax(sigma))
     return json_safe(json.loads(json.dumps(
         summary, default=lambda o: o.item() if hasattr(o, "item") else str(o))))
