@@ -93,7 +93,7 @@ def fit(args) -> None:
 
     start = np.log([0.01, 0.003, 1e-4, 0.3])
     res = minimize(nll, start, method="Nelder-Mead", options={"maxiter": 4000, "xatol": 1e-4, "fatol": 1e-3})
-    for p, v in zip(PARAMS, np.exp(res.x)):
+    for p, v in zip(PARAMS, np.exp(res.x), strict=True):
         print(f"{p} = {v:.4g}")
     print(f"negative log-likelihood {res.fun:.1f} ({'converged' if res.success else res.message})")
 
