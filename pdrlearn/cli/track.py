@@ -397,6 +397,8 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     for c in ("lat", "lon"):
         if c not in traj:
             traj[c] = float("nan")
+    if "pos_sigma_m" in traj:  # decision L128: appended after the columns trajectory.csv always had
+        traj = traj[[c for c in traj.columns if c != "pos_sigma_m"] + ["pos_sigma_m"]]
     if aided:
         from pdrlearn.aid import plot_aided
 

@@ -577,7 +577,9 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
     ``stride_length_mae_m`` / ``stride_length_mae_pct`` (strides matched by time overlap) and, with
     reference turns, ``n_turns``, ``turn_angle_mae_deg`` and ``turn_sign_agreement`` (decision L42); and
     ``n_bouts``, ``bout_definition`` of the detected walking bouts under ``bouts`` (a
-    :class:`pdrlearn.track.bouts.BoutRule`, None = its defaults; decision L124)."""
+    :class:`pdrlearn.track.bouts.BoutRule`, None = its defaults; decision L124); with the trajectory's
+    ``pos_sigma_m`` its last and largest value, ``final_position_sigma_m`` and ``max_position_sigma_m`` (m,
+    decision L128)."""
     from pdrlearn.track.bouts import bouts_summary
 
     if not (np.isfinite(storey_height_m) and storey_height_m > 0):
@@ -589,6 +591,10 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
         elif session is not None:
             fn(result, session, out)
     out.update(bouts_summary(result.steps, bouts))  # decision L124: bouts.csv's rows and their definition
+    if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: position uncertainty
+        sigma = result.trajectory["pos_sigma_m"].to_numpy(float)
+        out["final_position_sigma_m"] = float(sigma[-1])
+        out["max_position_sigma_m"] = float(np.nanmax(sigma))
     return out
 
 
@@ -599,8 +605,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     ground truth when it has some, :func:`pdrlearn.track.gait.gait_summary`'s gait speed and cadence
     included), ``session`` (meta.json's name), ``input_dir`` (the session folder, resolved; decision C13),
     ``pipeline``, ``info`` (the pipeline's settings and warnings), and where they apply
-    ``out_of_domain_fraction`` (C16), ``frames_inferred`` (D8) and ``final_position_sigma_m`` /
-    ``max_position_sigma_m`` (the trajectory's ``pos_sigma_m``, L128). Mirrored turns against turns.csv (L42) and a
+    ``out_of_domain_fraction`` (C16) and ``frames_inferred`` (D8). Mirrored turns against turns.csv (L42) and a
     cadence or speed outside the validated walking range (L95) are warned here. Also :meth:`TrackResult.summary`.
 
     Parameters
@@ -653,9 +658,5 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}
     if session.frames_inferred:  # D8: undeclared frames taken from the data, to paste into meta.json
         summary["frames_inferred"] = session.frames_inferred
-    if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: the position uncertainty
-        sigma = result.trajectory["pos_sigma_m"].to_numpy(float)
-        summary["final_position_sigma_m"] = float(sigma[-1])
-        summary["max_position_sigma_m"] = float(np.nanmax(sigma))
     return json_safe(json.loads(json.dumps(
         summary, default=lambda o: o.item() if hasattr(o, "item") else str(o))))

@@ -40,14 +40,15 @@ def sigma_regime(info: dict, session) -> str:
     return "plasys-fused" if info.get("heading_source") in ("fused", "waist") else "plasys-foot"
 
 
-def add_position_sigma(result, session) -> None:
+def add_position_sigma(result, session, regime: str | None = None) -> None:
     """Write ``pos_sigma_m`` (m, the 1-sigma radius ``sqrt(trace P)`` of the horizontal position, 0 at the start)
     into ``result.trajectory`` and the model used into ``result.info["position_sigma"]``. A trajectory row gets
-    the covariance after the last stride that ended at or before its time."""
+    the covariance after the last stride that ended at or before its time. ``regime``: a :data:`SIGMA_PARAMS`
+    key (default :func:`sigma_regime`; ``pdrlearn run`` names its own)."""
     traj, steps = result.trajectory, result.steps
     if not len(traj):
         return
-    regime = sigma_regime(result.info, session)
+    regime = regime or sigma_regime(result.info, session)
     params = SIGMA_PARAMS[regime]
     sigma = np.zeros(len(traj))
     if len(steps):
@@ -65,5 +66,5 @@ def add_position_sigma(result, session) -> None:
 
 def drop_position_sigma(result) -> None:
     """An aided track (GNSS, fixes) is outside the model: no ``pos_sigma_m``."""
-    result.trajectory.drop(columns=["pos_sigma_m"], errors="ignore", inplace=True)
+    result.trajectory = result.trajectory.drop(columns=["pos_sigma_m"], errors="ignore")
     result.info.pop("position_sigma", None)
