@@ -10,6 +10,8 @@ Usage::
 
     OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/position_sigma.py fit --users 900-905 --work W
     OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/position_sigma.py evaluate --users 660-679 --work W
+    PYTHONPATH=. .venv/bin/python experiments/position_sigma.py evaluate --work W \
+        --real datasets/real/gaitmap_level_left,datasets/real/gaitmap_level_right
 """
 
 from __future__ import annotations
@@ -56,15 +58,24 @@ def track_user(u: int, work: Path, variant: str) -> tuple[Path, Path]:
     return sim, out
 
 
-def errors(sim: Path, out: Path) -> tuple[pd.DataFrame, np.ndarray]:
+def errors(sim: Path, out: Path, *, rotate: bool = False) -> tuple[pd.DataFrame, np.ndarray]:
     """The track's rows after the start and the true horizontal position error vector (east, north) at each (m),
-    both relative to the start (as ``final_position_error_m``, track/evaluate.py)."""
+    both relative to the start (as ``final_position_error_m``, track/evaluate.py). ``rotate``: the reference
+    turned to set off in the track's initial direction (a relative heading, as path.png draws it, L55)."""
     tr = pd.read_csv(out / "trajectory.csv")
     gt = pd.read_csv(sim / "trajectory.csv")
     gt_t = gt["timestamp"].to_numpy(float) / 1000.0
     t = tr["t"].to_numpy(float)
     true = np.stack([np.interp(t, gt_t, gt[c].to_numpy(float)) for c in ("x", "y")], axis=1)
     est = tr[["x", "y"]].to_numpy(float)
+    if rotate:
+        from pdrlearn.track.plots import rotated_to_track
+
+        rel = true - true[0]
+        turned = rotated_to_track(rel[:, 0], rel[:, 1], np.ones(len(t), bool), est[:, 0] - est[0, 0],
+                                  est[:, 1] - est[0, 1])
+        if turned is not None:
+            true = np.stack(turned, axis=1)
     e = (est - est[0]) - (true - true[0])
     return tr.iloc[1:].reset_index(drop=True), e[1:]
 
@@ -98,11 +109,21 @@ def fit(args) -> None:
     print(f"negative log-likelihood {res.fun:.1f} ({'converged' if res.success else res.message})")
 
 
+def real_track(folder: Path, work: Path) -> tuple[Path, Path]:
+    """A real recording with a position reference (its trajectory.csv), tracked as ``pdrlearn track`` does."""
+    out = work / f"real_{folder.name}"
+    if not out.exists():
+        cli("track", str(folder), "--out", str(out))
+    return folder, out
+
+
 def evaluate(args) -> None:
     inside, n, final_in, final = 0, 0, 0, []
-    for u in users(args.users):
-        sim, out = track_user(u, args.work, args.variant)
-        tr, e = errors(sim, out)
+    runs = ([real_track(Path(f), args.work) for f in args.real.split(",")] if args.real
+            else [track_user(u, args.work, args.variant) for u in users(args.users)])
+    for sim, out in runs:
+        u = sim.name
+        tr, e = errors(sim, out, rotate=bool(args.real))
         e = np.hypot(e[:, 0], e[:, 1])
         s = tr["pos_sigma_m"].to_numpy(float)
         k = int(np.sum(e <= 2 * s))
@@ -118,7 +139,9 @@ def evaluate(args) -> None:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("mode", choices=("fit", "evaluate"))
-    ap.add_argument("--users", required=True, help="e.g. 660-679")
+    ap.add_argument("--users", default="", help="e.g. 660-679")
+    ap.add_argument("--real", default="", help="evaluate: comma-separated real session folders with trajectory.csv "
+                    "(foot only: relative heading, the reference turned to the track's initial direction)")
     ap.add_argument("--work", type=Path, required=True)
     ap.add_argument("--variant", choices=tuple(VARIANTS), default="offline")
     args = ap.parse_args()
