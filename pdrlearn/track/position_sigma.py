@@ -6,7 +6,8 @@ parameters were fitted (maximum likelihood) on the true position errors of simul
 route of ~530 m with turns both ways, 2 storeys up and down a loop, backward strides and stops
 (``experiments/position_sigma.py fit``, decision L128). Checked on fresh users 660-679 (L129): ``plasys-fused``
 calibrated (98.2 % of the strides, 17/20 final positions within 2 sigma); ``plasys-streaming`` uncalibrated, too
-large (99.2 %, 20/20); ``plasys-foot`` and ``waist`` not measured. It is no guarantee: magnetic disturbances,
+large (99.2 %, 20/20); ``plasys-foot`` uncalibrated, too large (100 %, 20/20); ``waist`` calibrated (98.3 %,
+20/20; waist-pendulum). It is no guarantee: magnetic disturbances,
 map constraints, real sensors worse than the simulator's and a walker other than the simulator's are outside it.
 """
 
