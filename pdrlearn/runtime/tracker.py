@@ -66,6 +66,8 @@ from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenWatch, MirrorWatch, UnitGuard
 from pdrlearn.runtime.resample import InputStage, stopped_message
+from pdrlearn.runtime.restart import drop_measured, restart_state
+from pdrlearn.runtime.restart import resume as resume_state
 from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
 
 log = logging.getLogger(__name__)
@@ -311,6 +313,9 @@ class Tracker(FixInput):
         turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest after it)
         when the waist heads the strides (decision L99, the default; L91's mechanism; ``pdrlearn track
         --streaming``'s ``waist_bridge``); False: it keeps the heading (E30, L90).
+    resume : a :meth:`restart_state` of another tracker (decision L134): go on where it stood (its position and
+        heading, the stride in progress measured whole from the samples it buffered); ``start`` and
+        ``heading_rad`` are then not used. The steps those samples complete come out with the first push.
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -329,6 +334,9 @@ class Tracker(FixInput):
     _held_s = math.inf  # decision E31: set per tracker in __init__
     _checked: dict = {}  # noqa: RUF012 - replaced per push, never mutated in place
     _guard = None  # decision B119 (a bare Tracker.__new__ checks nothing)
+    #: decision L134: a resumed tracker's last measured stride end (s; strides found again up to it are dropped)
+    _resume_end: float | None = None
+    _carry: list | tuple = ()
 
     def __init__(
         self,
@@ -356,6 +364,7 @@ class Tracker(FixInput):
         waist_bridge: bool = True,
         contacts: bool = False,
         check_input: bool = True,
+        resume: dict | None = None,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -508,7 +517,17 @@ class Tracker(FixInput):
         #: ``check_input=False``)
         self._mirror = (MirrorWatch() if check_input and {"fAccelerometer", "fGyroscope"} <= set(self.used_sensors)
                         else None)
+        #: decision L134: a restart state's position, heading and samples (the steps they complete come out with
+        #: the next push's or flush's)
+        self._carry = resume_state(self, resume) if resume is not None else []
 
+
+    def restart_state(self) -> dict:
+        """What a new tracker needs to go on where this one stands (decision L134): ``Tracker(bundle,
+        resume=tracker.restart_state())`` measures the stride in progress whole, as this tracker would have; a
+        new tracker given only ``start=`` and ``heading_rad=`` loses that stride's turn. Plain numbers and lists
+        (:func:`pdrlearn.runtime.restart.restart_state`): ``json.dumps`` saves it."""
+        return restart_state(self)
 
     def _choose_models(self, sensors) -> None:
         """Each task's model for a stream of ``sensors`` (None: unknown, every model's expected), the step graph
@@ -765,6 +784,8 @@ class Tracker(FixInput):
                 self._speculate()
         elif self._latest - self._oldest > 2.0 * self.buffer_s:
             self._trim()
+        if self._carry:  # decision L134: the steps the restart state's samples completed come first
+            steps, self._carry = [*self._carry, *steps], []
         return steps
 
     def _check_push(self, samples: dict) -> dict[str, tuple[float, list[float]]] | None:
@@ -942,6 +963,8 @@ class Tracker(FixInput):
         self._trim()
         self.height_checks()  # decision E47: the end of a recording
         self._warn_unused_fixes()  # decision D21
+        if self._carry:  # decision L134
+            steps, self._carry = [*self._carry, *steps], []
         return steps
 
     def _process_ready(self, force: bool = False) -> list[Step]:
@@ -1212,6 +1235,10 @@ class Tracker(FixInput):
             i = int(t.searchsorted(self._det_t, side="right"))
             self._pending += self.segmenter.update(t[i:], g[i:])
         self._det_t = ring.last
+        if self._resume_end is not None and self._pending:  # decision L134: the old tracker measured these
+            self._pending = drop_measured(self._pending, self._resume_end)
+            if self._pending:
+                self._resume_end = None
 
     def _stamp(self) -> tuple:
         """What a computed-ahead step's data depends on besides its times (decision E24): the buffered
