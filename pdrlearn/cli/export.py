@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from pathlib import Path
@@ -390,7 +391,8 @@ def run(
                           resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           input_rates_hz=rates, units=use, sensors=[n for n, st in session.streams.items() if len(st)],
                           start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0, methods=methods,
-                          stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
+                          stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)},
+                          max_gap_s=math.inf)  # B141: a recording's gaps are its own (its clock checked: B73)
         dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
         if tracker.heading_source == "auto" and not said and (dropped or not (
                 session.has("wAccelerometer", "wGyroscope") and "waist" in tracker.forward)):  # as track says (B17)

@@ -88,6 +88,9 @@ SENSOR_WIDTH = {"fAccelerometer": 3, "fGyroscope": 3, "fForceA": 1, "fForceB": 1
 #: stride across it moves 0 m, as offline ``pdrlearn track`` (plasys) does
 GAP_WARN_S = BRIDGE_GAP_S  # 0.25 s; decision E36: a stride over such a gap is measured on the gap clock
 GAP_LONG_S = 1.0
+#: decision B141: a push whose timestamps jump further ahead of the stream's last sample than this (s) is refused
+#: as a clock glitch (``Tracker(max_gap_s=...)``; ``math.inf`` accepts any gap, as ``pdrlearn run`` on a recording)
+MAX_GAP_S = 60.0
 #: decision E39: a stream's last value counts as held (E31's warning) when it is older than ``max_wait_s`` and than
 #: this many of the stream's own sample intervals: one missed sample plus up to one interval of delivery delay
 #: (E23's grace is one delivery interval; E30 calls 1.5 intervals a gap)
@@ -313,6 +316,9 @@ class Tracker(FixInput):
         turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest after it)
         when the waist heads the strides (decision L99, the default; L91's mechanism; ``pdrlearn track
         --streaming``'s ``waist_bridge``); False: it keeps the heading (E30, L90).
+    max_gap_s : a push whose timestamps jump further ahead than this (s; default 60) of a stream's last sample is
+        refused in one line, the tracker unchanged (decision B141: a clock glitch accepted as a gap would refuse
+        every later sample); ``math.inf`` accepts any gap.
     resume : a :meth:`restart_state` of another tracker (decision L134): go on where it stood (its position and
         heading, the stride in progress measured whole from the samples it buffered); ``start`` and
         ``heading_rad`` are then not used. The steps those samples complete come out with the first push.
@@ -365,6 +371,7 @@ class Tracker(FixInput):
         contacts: bool = False,
         check_input: bool = True,
         resume: dict | None = None,
+        max_gap_s: float = MAX_GAP_S,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -509,6 +516,11 @@ class Tracker(FixInput):
         self._foot_gaps: list[tuple[float, float, bool, bool]] = []  # (start, end, long, a foot IMU stream's)
         self._held: set[str] = set()
         self._held_s = float(self.params.get("max_wait_s", 2.0))  # a held value older than this is warned about
+        #: decision B141: a push whose timestamps jump further ahead than this (s) is refused (a clock glitch)
+        self.max_gap_s = float(max_gap_s)
+        if not self.max_gap_s > GAP_LONG_S:
+            raise DataError(f"max_gap_s {max_gap_s!r}: give a number of seconds above {GAP_LONG_S:g} (a foot gap of "
+                            "that length is a gap row, E30), or math.inf to accept any gap (decision B141)")
         #: decision B119: the units of the first GUARD_S seconds of each IMU stream, checked as offline's (None:
         #: checked, or ``check_input=False``); decision B120: frozen sensors
         self._guard = UnitGuard(self.used_sensors) if check_input else None
@@ -811,6 +823,8 @@ class Tracker(FixInput):
                     if t0 > last and isfinite(sum(vals, t0)):
                         fast[name] = (t0, vals)
                         if t0 - last > GAP_WARN_S and t0 - last > self._gap_limit(name):
+                            if t0 - last > self.max_gap_s:  # decision B141, before any state changes
+                                raise self._jump_error(name, last, t0)
                             gaps = gaps or []
                             gaps.append((name, last, t0))
                         continue
@@ -830,16 +844,40 @@ class Tracker(FixInput):
             last = raw if raw is not None else (ring.last if ring is not None else None)
             if last is not None and not t[0] > last:
                 raise DataError(f"{name}: pushed timestamps are not increasing (at {t[0]:.3f} s after {last:.3f} s); "
-                                "push samples in time order")
-            self.inputs.check_rate(name, t)
+                                f"push samples in time order{self._jumped_note(float(t[0]))}")
             tt = t if last is None else np.concatenate(([last], t))
             if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
                 d = np.diff(tt)
+                i = int(np.argmax(d))
+                if d[i] > self.max_gap_s:  # decision B141: refused before the rate check and any state change
+                    raise self._jump_error(name, float(tt[i]), float(tt[i + 1]))
+            self.inputs.check_rate(name, t)
+            if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
                 for i in np.flatnonzero(d > self._gap_limit(name, d)).tolist():
                     gaps = gaps or []
                     gaps.append((name, float(tt[i]), float(tt[i + 1])))
         self._pushed_gaps = gaps
         return fast if some or fast else None
+
+    def _jump_error(self, name: str, a: float, b: float) -> DataError:
+        """Decision B141: the line refusing a push whose ``name`` samples jump from ``a`` to ``b`` s, more than
+        ``max_gap_s`` ahead (a clock glitch accepted as a gap would refuse every later sample of the true clock)."""
+        return DataError(
+            f"{name}: pushed timestamps jump {b - a:+.2f} s ahead ({a:.3f} -> {b:.3f} s), more than max_gap_s = "
+            f"{self.max_gap_s:g} s: a clock glitch? The push is refused and the tracker is unchanged (decision B141); "
+            "push those samples with their right times, or, if the sensors really were silent that long, go on with "
+            "a new Tracker(bundle, start=tuple(old.position), heading_rad=old.heading), or give Tracker(max_gap_s=...)")
+
+    def _jumped_note(self, t: float) -> str:
+        """Decision B141: for a refused sample at ``t`` s inside a gap the tracker accepted (a forward jump of its
+        clock), what that means and the one way on; else ''."""
+        for a, b, *_ in reversed(self._gap_marks):
+            if a < t < b:
+                return (f"; the tracker accepted a jump of its clock from {a:.3f} to {b:.3f} s as a gap (warned), so "
+                        f"every sample before {b:.3f} s is refused from now on: if that jump was a clock glitch, only a "
+                        "new Tracker(bundle, start=tuple(old.position), heading_rad=old.heading) goes on (decision "
+                        f"B141; max_gap_s = {self.max_gap_s:g} s refuses longer jumps)")
+        return ""
 
     def _gap_limit(self, name: str, d: np.ndarray | None = None) -> float:
         """Decision E30: the interval (s) beyond which two samples of ``name`` enclose a gap: GAP_WARN_S, or 1.5
