@@ -34,8 +34,8 @@ def walk():
 def _chunks(s):
     t = s.streams["fAccelerometer"].t
     for t0 in np.arange(t[0], t[-1] + CHUNK_S, CHUNK_S):
-        yield float(t0), {n: (st.t[(st.t >= t0) & (st.t < t0 + CHUNK_S)], st.values[(st.t >= t0) & (st.t < t0 + CHUNK_S)])
-                          for n, st in s.streams.items()}
+        keep = {n: (st.t >= t0) & (st.t < t0 + CHUNK_S) for n, st in s.streams.items()}
+        yield float(t0), {n: (st.t[keep[n]], st.values[keep[n]]) for n, st in s.streams.items()}
 
 
 def _run(bundle, walk, restart_at=None, restart=None) -> list:

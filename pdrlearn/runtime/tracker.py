@@ -874,8 +874,8 @@ class Tracker(FixInput):
         for a, b, *_ in reversed(self._gap_marks):
             if a < t < b:
                 return (f"; the tracker accepted a jump of its clock from {a:.3f} to {b:.3f} s as a gap (warned), so "
-                        f"every sample before {b:.3f} s is refused from now on: if that jump was a clock glitch, only a "
-                        "new Tracker(bundle, start=tuple(old.position), heading_rad=old.heading) goes on (decision "
+                        f"every sample before {b:.3f} s is refused from now on: if that jump was a clock glitch, only "
+                        "a new Tracker(bundle, start=tuple(old.position), heading_rad=old.heading) goes on (decision "
                         f"B141; max_gap_s = {self.max_gap_s:g} s refuses longer jumps)")
         return ""
 
