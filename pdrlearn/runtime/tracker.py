@@ -68,7 +68,7 @@ from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenWatch, MirrorWatch, UnitG
 from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.restart import drop_measured, restart_state
 from pdrlearn.runtime.restart import resume as resume_state
-from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
+from pdrlearn.runtime.stream import FootLevelling, HeightLog, Ring, fill_resampled, foot_levelled, waist_entry
 
 log = logging.getLogger(__name__)
 #: float64 in native byte order. Arrays made here share this dtype object (``is`` is the cheap test), but
@@ -336,7 +336,8 @@ class Tracker(FixInput):
     _gap_row: list | None = None
     _kept: tuple | None = None
     #: decision E47: (terrain class or None, integrated dz before gain and rules, final dz) per processed stride
-    _heights: list | tuple = ()
+    #: (a :class:`HeightLog`, decision E75)
+    _heights: HeightLog | tuple = ()
     _held_s = math.inf  # decision E31: set per tracker in __init__
     _checked: dict = {}  # noqa: RUF012 - replaced per push, never mutated in place
     _guard = None  # decision B119 (a bare Tracker.__new__ checks nothing)
@@ -477,7 +478,7 @@ class Tracker(FixInput):
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
         self.n_steps = 0
         self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
-        self._row_gaps, self._heights = [], []  # decisions E46, E47
+        self._row_gaps, self._heights = [], HeightLog()  # decisions E46, E47 (E75: typed arrays)
         self.waist_gap_yaw = bool(waist_gap_yaw)  # decision L61
         self.waist_bridge = bool(waist_bridge)  # decisions L91 / L99 (the default)
         #: the input side (decision E22): streams at another rate than the bundle's are tracked at their own
@@ -1112,11 +1113,11 @@ class Tracker(FixInput):
         out = {"altitude_check": None, "terrain_dz_check": None}
         if not self._heights:
             return out
-        terrain, raw, dz = zip(*self._heights, strict=True)
+        terrain, raw, dz = self._heights.columns()
         if "terrain" in self.classifiers:
-            msg, out["terrain_dz_check"] = terrain_dz_check(terrain, np.array(raw), np.array(dz))
+            msg, out["terrain_dz_check"] = terrain_dz_check(terrain, raw, dz)
         else:
-            msg, out["altitude_check"] = integrated_altitude_check(np.array(dz), levelled=False)
+            msg, out["altitude_check"] = integrated_altitude_check(dz, levelled=False)
         if msg and msg not in self.warnings:
             self._warn(msg)
         return out
@@ -1342,7 +1343,7 @@ class Tracker(FixInput):
                 if self._bridged() and any(long and imu for _, long, imu in over):  # decision L91
                     self.heading += waist_bridge_yaw(self._stream, min(t0, t0 if prev is None else prev), t1)
                 self._prev_end = t1  # no L31 pivot across it either: the foot's turn inside the gap is unknown
-                self._heights.append((None, 0.0, 0.0))  # decision E47: no class, 0 m (as --streaming's)
+                self._heights.append(None, 0.0, 0.0)  # decision E47: no class, 0 m (as --streaming's)
                 x, y, z = self.position.tolist()
                 return Step(t0, t1, {}, {}, 0.0, 0.0, self.heading, x, y, z, gap_s=gap)
             bridged = bool(over)  # a shorter gap in the foot accelerometer / gyroscope: no classes (B11)
@@ -1399,7 +1400,7 @@ class Tracker(FixInput):
         self.heading = heading
         self.position = np.array((x, y, z))
         self.n_steps += 1
-        self._heights.append((classes.get("terrain"), raw_dz, dz))  # decision E47
+        self._heights.append(classes.get("terrain"), raw_dz, dz)  # decision E47
         length, direction = travel_sign_one(length, direction, classes.get("direction"))  # L65: after the position
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z,
                     event_s=self._contact(t0, t1) if self.contacts else math.nan,
