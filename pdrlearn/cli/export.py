@@ -540,7 +540,7 @@ _STEP_COLUMNS = ("start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m
 
 def _result(steps, start_ll=None, start_alt: float = 0.0):
     """The runtime's steps as a :class:`~pdrlearn.track.base.TrackResult` with the columns of ``track``:
-    the runtime's ``length`` class column is ``length_class`` (decision B14), ``unit`` is ``foot``,
+    the length class column is ``length_class`` (decisions B14, B142: ``Step.to_dict``'s), ``unit`` is ``foot``,
     ``heading_rad`` wrapped to [-pi, pi) as ``track`` writes it (the runtime's heading is unwrapped), the
     trajectory has ``t, x, y, z, lat, lon`` (lat/lon from ``start_ll`` = ``--start LAT,LON`` by ``track``'s
     geodetic update, else empty; z from ``start_alt``, the altitude the Tracker started at, decision L56)."""
@@ -551,7 +551,7 @@ def _result(steps, start_ll=None, start_alt: float = 0.0):
     from pdrlearn.track.gait import streamed_gait_columns
     from pdrlearn.track.geodetic import geodetic_track
 
-    df = pd.DataFrame([st.to_dict() for st in steps]).rename(columns={"length": "length_class"})
+    df = pd.DataFrame([st.to_dict() for st in steps])  # the length class is length_class (B14, B142)
     if df.empty:
         df = pd.DataFrame(columns=["start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "impossible",
                                    "gap_s"])

@@ -52,6 +52,7 @@ from pdrlearn.kernels.window import (
     BRIDGE_GAP_S,
     GROUP_STREAMS,
     GROUPS,
+    TASK_COLUMNS,
     _fill_channels,
     _unit_grid,
     available_groups,
@@ -193,11 +194,13 @@ class Step:
     impossible: bool = False
 
     def to_dict(self) -> dict:
+        """The step as one row of a steps table: the classes under their steps.csv columns (``terrain``,
+        ``direction``, ``length_class``; decision B142: ``length`` before), ``p_<task>_<class>``, the numbers."""
         return {
             "start_s": self.start_s,
             "end_s": self.end_s,
             "event_s": self.event_s,  # decision E49
-            **self.classes,
+            **{TASK_COLUMNS.get(t, t): c for t, c in self.classes.items()},  # B142: length -> length_class
             **{f"p_{t}_{c}": v for t, p in self.proba.items() for c, v in p.items()},
             "length_m": self.length_m,
             "dz_m": self.dz_m,
