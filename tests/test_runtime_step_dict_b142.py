@@ -18,7 +18,8 @@ def _step() -> Step:
 
 def test_to_dict_names_the_classes_by_the_steps_table_columns():
     d = _step().to_dict()
-    assert {k: d[k] for k in TASK_COLUMNS.values()} == {"terrain": "up", "direction": "forward", "length_class": "short"}
+    want = {"terrain": "up", "direction": "forward", "length_class": "short"}
+    assert {k: d[k] for k in TASK_COLUMNS.values()} == want
     assert "length" not in d and d["p_length_short"] == 0.9  # the probabilities keep the task name (p_<task>_<class>)
 
 
