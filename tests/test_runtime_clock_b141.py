@@ -9,20 +9,13 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
 
 from pdrlearn.errors import DataError
-from pdrlearn.runtime import load_bundle
 from pdrlearn.runtime.tracker import MAX_GAP_S, Tracker
-from tests.runtime_helpers import per_timestamp, synthetic_session, trained_dirs
+from tests.runtime_helpers import per_timestamp, synthetic_session, time_chunks
 
 CHUNK_S = 0.5
-
-
-@pytest.fixture(scope="module")
-def bundle(tmp_path_factory):
-    return load_bundle(trained_dirs(tmp_path_factory)["root"] / "bundle")
 
 
 @pytest.fixture(scope="module")
@@ -31,10 +24,7 @@ def walk():
 
 
 def _chunks(s, shift_at=None, shift=0.0):
-    t = s.streams["fAccelerometer"].t
-    for k, t0 in enumerate(np.arange(t[0], t[-1] + CHUNK_S, CHUNK_S)):
-        c = {n: (st.t[(st.t >= t0) & (st.t < t0 + CHUNK_S)], st.values[(st.t >= t0) & (st.t < t0 + CHUNK_S)])
-             for n, st in s.streams.items()}
+    for k, (_, c) in enumerate(time_chunks(s, CHUNK_S)):
         yield {n: (tt + shift, v) for n, (tt, v) in c.items()} if k == shift_at else c
 
 
@@ -53,9 +43,9 @@ def _state(tr) -> tuple:
             tr.segmenter.last_boundary, [len(p[0]) for p in tr.inputs._probe.values()])
 
 
-def test_a_chunk_whose_clock_jumps_ahead_is_refused_in_one_line_and_the_walk_goes_on(bundle, walk):
-    ref, _ = _replay(Tracker(bundle), _chunks(walk))
-    tr = Tracker(bundle)
+def test_a_chunk_whose_clock_jumps_ahead_is_refused_in_one_line_and_the_walk_goes_on(synthetic_bundle, walk):
+    ref, _ = _replay(Tracker(synthetic_bundle), _chunks(walk))
+    tr = Tracker(synthetic_bundle)
     chunks = list(_chunks(walk, shift_at=30, shift=1000.0))
     first = [s for c in chunks[:30] for s in tr.push(c)]
     before = _state(tr)
@@ -70,9 +60,9 @@ def test_a_chunk_whose_clock_jumps_ahead_is_refused_in_one_line_and_the_walk_goe
     assert [s.end_s for s in got if s.end_s < 14.0] == [s.end_s for s in ref if s.end_s < 14.0]
 
 
-def test_one_sample_pushes_are_refused_the_same(bundle, walk):
+def test_one_sample_pushes_are_refused_the_same(synthetic_bundle, walk):
     pushes = per_timestamp(walk)
-    tr = Tracker(bundle)
+    tr = Tracker(synthetic_bundle)
     for p in pushes[:200]:
         tr.push(p)
     before = _state(tr)
@@ -83,8 +73,9 @@ def test_one_sample_pushes_are_refused_the_same(bundle, walk):
     tr.push(pushes[200])  # the right times go on
 
 
-def test_accepted_jumps_name_the_glitch_and_the_recovery_and_real_gaps_below_the_limit_are_gaps(bundle, walk):
-    tr = Tracker(bundle, max_gap_s=math.inf)
+def test_accepted_jumps_name_the_glitch_and_the_recovery_and_real_gaps_below_the_limit_are_gaps(synthetic_bundle,
+                                                                                                   walk):
+    tr = Tracker(synthetic_bundle, max_gap_s=math.inf)
     steps, errors = _replay(tr, _chunks(walk, shift_at=30, shift=1000.0))
     assert errors and all(re_ok in e for e in errors for re_ok in (
         "pushed timestamps are not increasing", "the tracker accepted a jump of its clock from",
@@ -94,13 +85,13 @@ def test_accepted_jumps_name_the_glitch_and_the_recovery_and_real_gaps_below_the
     assert gap < MAX_GAP_S
     chunks = list(_chunks(walk))
     late = [{n: (t + gap, v) for n, (t, v) in c.items()} for c in chunks[30:]]
-    tr = Tracker(bundle)
+    tr = Tracker(synthetic_bundle)
     steps, errors = _replay(tr, chunks[:30] + late)
     assert errors == [] and any(s.gap_s >= gap for s in steps)
     assert any("no samples for 40." in w for w in tr.warnings)
 
 
 @pytest.mark.parametrize("bad", [0.5, 1.0, float("nan")])
-def test_max_gap_s_at_or_below_a_long_gap_is_refused(bundle, bad):
+def test_max_gap_s_at_or_below_a_long_gap_is_refused(synthetic_bundle, bad):
     with pytest.raises(DataError, match="max_gap_s .*: give a number of seconds above 1"):
-        Tracker(bundle, max_gap_s=bad)
+        Tracker(synthetic_bundle, max_gap_s=bad)

@@ -14,16 +14,10 @@ import numpy as np
 import pytest
 
 from pdrlearn.errors import DataError
-from pdrlearn.runtime import load_bundle
 from pdrlearn.runtime.tracker import Tracker
-from tests.runtime_helpers import synthetic_session, trained_dirs
+from tests.runtime_helpers import synthetic_session, time_chunks
 
 CHUNK_S = 0.5
-
-
-@pytest.fixture(scope="module")
-def bundle(tmp_path_factory):
-    return load_bundle(trained_dirs(tmp_path_factory)["root"] / "bundle")
 
 
 @pytest.fixture(scope="module")
@@ -31,47 +25,40 @@ def walk():
     return synthetic_session(40, seed=11, name="walk", turn_rad_per_step=0.3)
 
 
-def _chunks(s):
-    t = s.streams["fAccelerometer"].t
-    for t0 in np.arange(t[0], t[-1] + CHUNK_S, CHUNK_S):
-        keep = {n: (st.t >= t0) & (st.t < t0 + CHUNK_S) for n, st in s.streams.items()}
-        yield float(t0), {n: (st.t[keep[n]], st.values[keep[n]]) for n, st in s.streams.items()}
-
-
 def _run(bundle, walk, restart_at=None, restart=None) -> list:
     tr, out = Tracker(bundle), []
-    for t0, c in _chunks(walk):
+    for t0, c in time_chunks(walk, CHUNK_S):
         if restart_at is not None and abs(t0 - restart_at) < 1e-9:
             tr = restart(tr)
         out += tr.push(c)
     return out + tr.flush()
 
 
-
 @pytest.mark.parametrize("at", [3.0, 7.0, 15.5, 22.5, 31.0])
-def test_a_tracker_resumed_from_a_restart_state_gives_the_uninterrupted_track(bundle, walk, at):
-    ref = _run(bundle, walk)
-    got = _run(bundle, walk, at, lambda old: Tracker(bundle, resume=json.loads(json.dumps(old.restart_state()))))
-    assert len(ref) >= 35
-    assert len(got) == len(ref)
-    for a, b in zip(got, ref, strict=True):
-        assert (a.start_s, a.end_s, a.classes) == (b.start_s, b.end_s, b.classes)
+def test_a_tracker_resumed_from_a_restart_state_gives_the_uninterrupted_track(synthetic_bundle, walk, at):
+    b = synthetic_bundle
+    ref = _run(b, walk)
+    got = _run(b, walk, at, lambda old: Tracker(b, resume=json.loads(json.dumps(old.restart_state()))))
+    assert len(ref) >= 35 and len(got) == len(ref)
+    for a, r in zip(got, ref, strict=True):
+        assert (a.start_s, a.end_s, a.classes) == (r.start_s, r.end_s, r.classes)
         assert np.allclose([a.length_m, a.dz_m, a.heading_rad, a.x, a.y, a.z],
-                           [b.length_m, b.dz_m, b.heading_rad, b.x, b.y, b.z], rtol=0, atol=1e-9)
+                           [r.length_m, r.dz_m, r.heading_rad, r.x, r.y, r.z], rtol=0, atol=1e-9)
 
 
-def test_the_old_recipe_loses_the_stride_in_progress(bundle, walk):
+def test_the_old_recipe_loses_the_stride_in_progress(synthetic_bundle, walk):
     """What the trial found, on this walk: position and heading alone drop the stride in progress."""
-    ref = _run(bundle, walk)
-    got = _run(bundle, walk, 22.5, lambda old: Tracker(bundle, start=tuple(old.position), heading_rad=old.heading))
+    b = synthetic_bundle
+    ref = _run(b, walk)
+    got = _run(b, walk, 22.5, lambda old: Tracker(b, start=tuple(old.position), heading_rad=old.heading))
     assert len(got) == len(ref) - 2  # the stride in progress and the next (opened at the stance after the restart)
     assert np.hypot(got[-1].x - ref[-1].x, got[-1].y - ref[-1].y) > 0.3
 
 
-def test_a_bad_restart_state_is_one_line(bundle):
+def test_a_bad_restart_state_is_one_line(synthetic_bundle):
     with pytest.raises(DataError, match=r"^Tracker\(resume=state\): not a restart state of version 1 .*restart_state"):
-        Tracker(bundle, resume={"position": [0, 0, 0]})
-    state = Tracker(bundle).restart_state()
+        Tracker(synthetic_bundle, resume={"position": [0, 0, 0]})
+    state = Tracker(synthetic_bundle).restart_state()
     state["heading_rad"] = float("nan")
     with pytest.raises(DataError, match="not finite"):
-        Tracker(bundle, resume=state)
+        Tracker(synthetic_bundle, resume=state)

@@ -13,16 +13,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pdrlearn.runtime import load_bundle
 from pdrlearn.runtime.tracker import Tracker
-from tests.runtime_helpers import replay, synthetic_session, trained_dirs
+from tests.runtime_helpers import replay, synthetic_session, time_chunks
 
 DOCS = Path(__file__).resolve().parents[1] / "docs" / "deploying.md"
-
-
-@pytest.fixture(scope="module")
-def bundle(tmp_path_factory):
-    return load_bundle(trained_dirs(tmp_path_factory)["root"] / "bundle")
 
 
 @pytest.fixture(scope="module")
@@ -38,18 +32,10 @@ def _example() -> dict:
     return ns
 
 
-def _chunks(walk, unit: str, chunk_s: float):
-    t = walk.streams["fAccelerometer"].t
-    edges = t[0] + chunk_s * np.arange(int((t[-1] - t[0]) / chunk_s) + 2)
-    for a, b in zip(edges[:-1], edges[1:], strict=True):
-        yield {n: (st.t[(st.t >= a) & (st.t < b)], st.values[(st.t >= a) & (st.t < b)])
-               for n, st in walk.streams.items() if n.startswith(unit[0])}
-
-
-def test_the_queue_example_gives_one_trackers_steps_from_a_thread_per_unit(bundle, walk):
-    ref = replay(Tracker(bundle), walk, 0.25)
-    got = _example()["track_from_units"](Tracker(bundle), {"foot": _chunks(walk, "foot", 0.05),
-                                                         "waist": _chunks(walk, "waist", 0.3)})
+def test_the_queue_example_gives_one_trackers_steps_from_a_thread_per_unit(synthetic_bundle, walk):
+    ref = replay(Tracker(synthetic_bundle), walk, 0.25)
+    got = _example()["track_from_units"](Tracker(synthetic_bundle), {
+        "foot": (c for _, c in time_chunks(walk, 0.05, "f")), "waist": (c for _, c in time_chunks(walk, 0.3, "w"))})
     assert len(ref) >= 25 and [s.end_s for s in got] == [s.end_s for s in ref]
     assert [s.classes for s in got] == [s.classes for s in ref]
     assert np.allclose([(s.x, s.y, s.z, s.heading_rad) for s in got], [(s.x, s.y, s.z, s.heading_rad) for s in ref],
