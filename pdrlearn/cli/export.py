@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from pathlib import Path
@@ -396,7 +397,8 @@ def run(
                           resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           input_rates_hz=rates, units=use, sensors=[n for n, st in session.streams.items() if len(st)],
                           start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0, methods=methods,
-                          stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
+                          stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)},
+                          max_gap_s=math.inf)  # B141: a recording's gaps are its own (its clock checked: B73)
         dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
         if tracker.heading_source == "auto" and not said and (dropped or not (
                 session.has("wAccelerometer", "wGyroscope") and "waist" in tracker.forward)):  # as track says (B17)
@@ -555,7 +557,7 @@ _STEP_COLUMNS = ("start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m
 
 def _result(steps, start_ll=None, start_alt: float = 0.0):
     """The runtime's steps as a :class:`~pdrlearn.track.base.TrackResult` with the columns of ``track``:
-    the runtime's ``length`` class column is ``length_class`` (decision B14), ``unit`` is ``foot``,
+    the length class column is ``length_class`` (decisions B14, B142: ``Step.to_dict``'s), ``unit`` is ``foot``,
     ``heading_rad`` wrapped to [-pi, pi) as ``track`` writes it (the runtime's heading is unwrapped), the
     trajectory has ``t, x, y, z, lat, lon`` (lat/lon from ``start_ll`` = ``--start LAT,LON`` by ``track``'s
     geodetic update, else empty; z from ``start_alt``, the altitude the Tracker started at, decision L56)."""
@@ -566,7 +568,7 @@ def _result(steps, start_ll=None, start_alt: float = 0.0):
     from pdrlearn.track.gait import streamed_gait_columns
     from pdrlearn.track.geodetic import geodetic_track
 
-    df = pd.DataFrame([st.to_dict() for st in steps]).rename(columns={"length": "length_class"})
+    df = pd.DataFrame([st.to_dict() for st in steps])  # the length class is length_class (B14, B142)
     if df.empty:
         df = pd.DataFrame(columns=["start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "impossible",
                                    "gap_s"])
