@@ -477,25 +477,27 @@ def _run_record(root: Path, options: dict, rels: list[str], results: list[JobRes
                       cpu_time_s={rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)})
 
 
-def _changes(sessions: pd.DataFrame) -> tuple[pd.DataFrame | None, pd.DataFrame | None]:
-    """Decisions C22, C23: changes.csv and changes_summary.csv of the batch, or ``(None, None)`` when the sessions
-    name fewer than two visits; then the sessions that name a subject but no visit, or a visit but no subject, are
-    warned once (they cannot be paired, and are in no row of changes.csv)."""
+def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None
+             ) -> tuple[pd.DataFrame | None, pd.DataFrame | None]:
+    """Decisions C22, C23: changes.csv and changes_summary.csv of the batch (visit names by ``visit_map``, C29), or
+    ``(None, None)`` when the sessions name fewer than two visits; then the sessions that name a subject but no
+    visit, or a visit but no subject, are warned once (they cannot be paired, and are in no row of changes.csv), and
+    so are visit spellings taken as one visit, subject ids across groups and look-alike ids (C28, C32, C33)."""
     import logging
 
-    from pdrlearn.visits import _labelled, change_summary, change_table, visit_order_guess
+    from pdrlearn.visits import change_summary, change_table, label_warnings, visit_order_guess
 
-    changes = change_table(sessions)
+    changes = change_table(sessions, visit_map=visit_map)
     if changes is None:
         return None, None
-    guess = visit_order_guess(_labelled(sessions)["visit"])
-    if guess:
-        logging.getLogger("pdrlearn.cli").warning("%s", guess)
+    log = logging.getLogger("pdrlearn.cli")
+    guess = visit_order_guess(changes["baseline_visit"].tolist() + changes["visit"].tolist())
+    for line in ([guess] if guess else []) + label_warnings(sessions, visit_map):
+        log.warning("%s", line)
     half = sessions[sessions["subject"].isna() != sessions["visit"].isna()]["path"].astype(str).tolist()
     if half:
-        logging.getLogger("pdrlearn.cli").warning(
-            "%s", grouped_warning("meta.json names a subject but no visit, or a visit but no subject: not paired in "
-                                  "changes.csv (add both, decision C22)", half, len(sessions)))
+        log.warning("%s", grouped_warning("meta.json names a subject but no visit, or a visit but no subject: not "
+                                          "paired in changes.csv (add both, decision C22)", half, len(sessions)))
     return changes, change_summary(changes)
 
 
@@ -536,6 +538,10 @@ def track_all(
     group_depth: int = typer.Option(1, "--group-depth", min=1, help="Folder levels below ROOT that name a "
                                     "session's group in sessions.csv and groups.csv (1: siteA of "
                                     "siteA/p01/clinic; 2: siteA/p01)."),
+    visit_map: Path = typer.Option(None, "--visit-map", metavar="FILE", help="Visit names as written in meta.json "
+                                   "and the visit each is, for changes.csv: a CSV of two columns raw,canonical or "
+                                   "a JSON object {\"BL\": \"baseline\"}; recorded in run.json (decision C29). "
+                                   "Without it, spellings of one visit (BL, Baseline) are paired as one (C28)."),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Sessions tracked at once: 1 = one after the other "
                              "in this process (default); N > 1 = a Dask LocalCluster of N single-threaded "
                              "worker processes."),
@@ -582,6 +588,11 @@ def track_all(
     from pdrlearn.cli.track import track_settings
 
     options = given_options(arguments, leave_out=("root", "out", "force", "as_json"))
+    from pdrlearn.visits import read_visit_map
+
+    vmap = None if visit_map is None else read_visit_map(visit_map)  # decision C29: checked before any tracking
+    if vmap is not None:
+        options["visit_map"] = {"file": str(visit_map), "visits": vmap}  # its content, for run.json (C18)
 
     settings = track_settings(pipeline=pipeline, method=method, model=model, rules=rules,
                               min_confidence=min_confidence, length_bounds=length_bounds,
@@ -620,7 +631,7 @@ def track_all(
             row["subject"], row["visit"] = session_labels(p)  # decision C22: meta.json's subject and visit
         sessions = _sessions_table(rows)
         groups = group_table(sessions)
-        changes, summary = _changes(sessions)
+        changes, summary = _changes(sessions, vmap)
         run = _run_record(root, options, rels, results)
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")
