@@ -1,6 +1,7 @@
-"""Paired visits of a cohort (decisions C22, C23): per subject, the change of each summary measure from the baseline
+"""Subjects and visits of a cohort: each subject's (and visit's) walking totals (``subjects.csv``, cohort C25).
+Paired visits (decisions C22, C23): per subject, the change of each summary measure from the baseline
 visit to every later visit (``changes.csv``), and per visit and measure the mean change with its paired 95 %
-t-interval (``changes_summary.csv``). Both are functions of sessions.csv (its ``subject``, ``visit``, ``status``
+t-interval (``changes_summary.csv``). All three are functions of sessions.csv (its ``subject``, ``visit``, ``status``
 and measure columns), so they are the same for the same data, version and options, as sessions.csv is (C18).
 
 The subject and visit of a session are its meta.json's (``pdrlearn.cohort.session_labels``): a study names them
@@ -64,6 +65,57 @@ def _labelled(sessions):
     for c in ("subject", "visit"):
         named[c] = named[c].map(lambda v: str(int(v)) if isinstance(v, float) and v.is_integer() else str(v))
     return named
+
+
+#: subjects.csv's columns (cohort C25)
+SUBJECT_COLUMNS = ("subject", "visit", "group", "n_tracked", "n_failed", "paths", "distance_m", "n_bouts",
+                   "walking_time_s", "n_steps", "n_strides", "bouts_distance_m", "gait_speed_mps", "cadence_spm")
+
+
+def subject_totals(sessions):
+    """subjects.csv from sessions.csv (cohort C25), or ``None`` when no session names a subject: one row per subject
+    (natural order) and, when some session names a visit, per visit (:func:`visit_order`; a subject's sessions
+    without a visit are one row with an empty visit). ``n_tracked`` / ``n_failed``: its sessions; ``paths``: the
+    sessions counted (``; ``-separated, relative to ROOT); ``distance_m``: the tracks' distances summed;
+    ``n_bouts``, ``walking_time_s``, ``n_steps``, ``n_strides``, ``bouts_distance_m``: the detected walking bouts'
+    count, summed durations, steps (of both feet, L103), strides and distance (bouts.csv of each session, under the
+    batch's ``--bout-break-s`` / ``--bout-min-strides``); ``gait_speed_mps`` = bouts_distance_m / walking_time_s and
+    ``cadence_spm`` = 60 n_steps / walking_time_s: the bouts pooled, each weighed by its duration (empty without
+    walking time). Sessions naming no subject are in no row (sessions.csv has them)."""
+    import numpy as np
+    import pandas as pd
+
+    if "subject" not in sessions or not sessions["subject"].notna().any():
+        return None
+    named = sessions[sessions["subject"].notna()].copy()
+    for c in ("subject", "visit"):
+        named[c] = named[c].map(lambda v: None if pd.isna(v) else str(int(v)) if isinstance(v, float)
+                                and v.is_integer() else str(v))
+    by_visit = named["visit"].notna().any()
+    rows = []
+    for subject in visit_order(named["subject"]):
+        mine = named[named["subject"] == subject]
+        visits = visit_order(mine["visit"].dropna()) + ([None] if mine["visit"].isna().any() else [])
+        for visit in visits if by_visit else [None]:
+            at = mine if not by_visit else mine[mine["visit"].isna()] if visit is None else mine[mine["visit"] == visit]
+            ok = at[at["status"] == "ok"]
+
+            def total(col, ok=ok):  # empty when none of the sessions was tracked
+                return pd.to_numeric(ok[col], errors="coerce").sum() if col in ok and len(ok) else np.nan
+
+            t = total("bouts_time_s")
+            row = {"subject": subject, "visit": visit, "group": "; ".join(dict.fromkeys(at["group"].astype(str))),
+                   "n_tracked": len(ok), "n_failed": len(at) - len(ok), "paths": "; ".join(at["path"].astype(str)),
+                   "distance_m": total("distance_m"), "n_bouts": total("n_bouts"), "walking_time_s": t,
+                   "n_steps": total("bouts_n_steps"), "n_strides": total("bouts_n_strides"),
+                   "bouts_distance_m": total("bouts_distance_m")}
+            row["gait_speed_mps"] = row["bouts_distance_m"] / t if t > 0 else np.nan
+            row["cadence_spm"] = 60.0 * row["n_steps"] / t if t > 0 else np.nan
+            rows.append(row)
+    out = pd.DataFrame(rows, columns=list(SUBJECT_COLUMNS))
+    for c in ("n_tracked", "n_failed", "n_bouts", "n_steps", "n_strides"):
+        out[c] = out[c].astype("Int64")
+    return out
 
 
 def _side(rows, visit: str) -> tuple[str, str | None, object]:

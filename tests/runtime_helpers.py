@@ -115,9 +115,9 @@ def synthetic_session(
         name=name,
         streams=streams,
         steps=steps,
-        # the waist signal is not a walk's (its forward/vertical phase reads as backward, W2): the declared frames
-        # are kept with D10's warning, not refused as reversed (decision D23's override)
-        meta={"user": "synthetic", "force_frame": True},
+        # the waist signal is not a walk's (its forward/vertical phase reads as backward, W2): since D23 amended only
+        # a foot's reversed forward is refused, so the declared waist frame is kept with D10's warning, no override
+        meta={"user": "synthetic"},
         frames={"foot": THESIS_FOOT_FRAME, "waist": THESIS_WAIST_FRAME},
     )
 

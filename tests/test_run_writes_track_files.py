@@ -153,3 +153,26 @@ def test_units_foot_on_a_session_with_a_waist_does_not_say_no_waist_unit(root, w
     # a foot-only bundle on the same two-unit session: no heading line claiming the waist is absent
     assert main(["run", str(root / "bundle_foot"), str(walk), "--out", str(tmp_path / "f")]) == 0
     assert "no waist unit" not in capsys.readouterr().err
+
+
+def test_run_takes_track_bout_options_and_detects_the_bouts_once(root, walk, tmp_path, monkeypatch):
+    """L130: `run` has track's --bout-break-s / --bout-min-strides (the same typer options); E73: bouts.csv and the
+    summary's n_bouts come from one detection."""
+    import pdrlearn.track.bouts as bouts_mod
+
+    calls = []
+    real = bouts_mod.detected_bouts
+    monkeypatch.setattr(bouts_mod, "detected_bouts", lambda *a, **k: calls.append(1) or real(*a, **k))
+    assert main(["run", str(root / "bundle"), str(walk), "--out", str(tmp_path / "d")]) == 0
+    assert len(calls) == 1  # was 2: evaluate_track's n_bouts and _write's bouts.csv
+    default = json.loads((tmp_path / "d" / "summary.json").read_text())
+    assert default["n_bouts"] == len(pd.read_csv(tmp_path / "d" / "bouts.csv")) >= 1
+    assert main(["run", str(root / "bundle"), str(walk), "--bout-break-s", "3", "--bout-min-strides", "1000",
+                 "--out", str(tmp_path / "r")]) == 0
+    summary = json.loads((tmp_path / "r" / "summary.json").read_text())
+    assert summary["bout_definition"] == {"break_s": 3.0, "min_strides": 1000} and summary["n_bouts"] == 0
+    assert len(pd.read_csv(tmp_path / "r" / "bouts.csv")) == 0
+    rec = json.loads((tmp_path / "r" / "run.json").read_text())["options"]
+    assert rec["bout_break_s"] == 3.0 and rec["bout_min_strides"] == 1000
+    assert main(["run", str(root / "bundle"), str(walk), "--bout-break-s", "0", "--out", str(tmp_path / "x")]) == 2
+    assert not (tmp_path / "x").exists()

@@ -323,3 +323,80 @@ def test_visit_order_is_natural_and_no_second_visit_means_no_changes():
     got = change_table(rows).set_index("visit")
     assert got.loc["v2", "gait_speed_mps_change"] == pytest.approx(0.2) and got.loc["v3", "baseline_path"] == "a"
     assert got.loc["v3", "gait_speed_mps_change"] == pytest.approx(0.1)  # each visit against the baseline
+
+
+def test_params_dir_gives_each_subject_its_calibration_file(site_tree, tmp_path, capsys):
+    """C26: `track-all --params-dir DIR` tracks each session with DIR/<subject>.json (the subject of its meta.json):
+    the same distance as `track --params` of that file; a subject without its file is one error line before any
+    tracking (nothing written), and --params with --params-dir is refused."""
+    from pdrlearn.waist.params import WaistParams
+
+    root = tmp_path / "study"
+    shutil.copytree(site_tree, root)
+    for subj in ("S01", "S02", "S03"):
+        site = "centreB" if subj == "S03" else "centreA"
+        meta = root / site / subj / "visit1" / "meta.json"
+        meta.write_text(json.dumps({**json.loads(meta.read_text()), "subject": subj}))
+    cal = tmp_path / "cal"
+    cal.mkdir()
+    for subj, k in (("S01", 0.5), ("S02", 0.9)):
+        WaistParams(k=k, source="calibrated", pipeline="waist-pendulum").save(cal / f"{subj}.json")
+    common = ["--pipeline", "waist-pendulum", "--params-dir", str(cal)]
+    assert main(["track-all", str(root), "--out", str(tmp_path / "bad"), *common]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "'S03'" in err[0] and "S03.json" in err[0] and "centreB/S03/visit1" in err[0], err
+    assert "'S01'" not in err[0] and not (tmp_path / "bad").exists()
+    shutil.rmtree(root / "centreB")
+    assert main(["track-all", str(root), "--out", str(tmp_path / "a"), *common]) == 0
+    table = pd.read_csv(tmp_path / "a" / "sessions.csv")
+    assert table["params_file"].tolist() == ["S01.json", "S02.json"]
+    for subj in ("S01", "S02"):
+        assert main(["track", str(root / "centreA" / subj / "visit1"), "--pipeline", "waist-pendulum", "--params",
+                     str(cal / f"{subj}.json"), "--out", str(tmp_path / f"t{subj}")]) == 0
+        one = json.loads((tmp_path / f"t{subj}" / "summary.json").read_text())
+        assert table.set_index("subject").loc[subj, "distance_m"] == pytest.approx(one["distance_m"], rel=1e-12)
+    d = table["distance_m"].to_numpy(float)
+    assert d[1] / d[0] > 1.3  # K 0.9 vs 0.5 on walks of the same length: each subject's own file was used
+    capsys.readouterr()
+    assert main(["track-all", str(root), "--out", str(tmp_path / "m"), *common, "--params",
+                 str(cal / "S01.json")]) == 2
+    assert "not both" in capsys.readouterr().err and not (tmp_path / "m").exists()
+
+
+def test_subjects_csv_totals_each_subject_and_visit_from_the_bouts(site_tree, tmp_path):
+    """C25: subjects.csv sums each subject's (and visit's) walking: distance, bouts, walking time (the bouts'
+    durations), steps, strides, and pools gait speed and cadence over the bouts; checked against the sessions'
+    bouts.csv by hand. Two recordings at one visit are summed; a failed session is counted, not summed."""
+    from pdrlearn import sim
+    from pdrlearn.io import write_session
+
+    root = tmp_path / "study"
+    shutil.copytree(site_tree, root)
+    write_session(sim.simulate("walk", 7, length_m=8), root / "centreA" / "S01" / "visit1b")  # a second recording
+    write_session(sim.simulate("walk", 8, length_m=10), root / "centreA" / "S01" / "visit2")
+    (root / "centreB" / "S03" / "visit2").mkdir(parents=True)
+    (root / "centreB" / "S03" / "visit2" / "meta.json").write_text('{"subject": "S03", "visit": "2"}')  # fails
+    labels = {"centreA/S01/visit1": ("S01", 1), "centreA/S01/visit1b": ("S01", 1), "centreA/S01/visit2": ("S01", 2),
+              "centreA/S02/visit1": ("S02", 1), "centreB/S03/visit1": ("S03", 1)}
+    for rel, (subj, visit) in labels.items():
+        meta = root / rel / "meta.json"
+        meta.write_text(json.dumps({**json.loads(meta.read_text()), "subject": subj, "visit": visit}))
+    assert main(["track-all", str(root), "--out", str(tmp_path / "o")]) == 1
+    subjects = pd.read_csv(tmp_path / "o" / "subjects.csv", dtype={"visit": str})
+    assert list(subjects.columns[:6]) == ["subject", "visit", "group", "n_tracked", "n_failed", "paths"]
+    assert [(r.subject, r.visit, r.n_tracked, r.n_failed) for r in subjects.itertuples()] == [
+        ("S01", "1", 2, 0), ("S01", "2", 1, 0), ("S02", "1", 1, 0), ("S03", "1", 1, 0), ("S03", "2", 0, 1)]
+    row = subjects.iloc[0]
+    bouts = pd.concat([pd.read_csv(tmp_path / "o" / rel / "bouts.csv") for rel in ("centreA/S01/visit1",
+                                                                                   "centreA/S01/visit1b")])
+    summaries = [json.loads((tmp_path / "o" / rel / "summary.json").read_text())
+                 for rel in ("centreA/S01/visit1", "centreA/S01/visit1b")]
+    assert row["paths"] == "centreA/S01/visit1; centreA/S01/visit1b"
+    assert row["distance_m"] == pytest.approx(sum(s["distance_m"] for s in summaries), rel=1e-12)
+    assert row["n_bouts"] == len(bouts) == sum(s["n_bouts"] for s in summaries)
+    # bouts.csv is written to 10 significant digits (track's number format), subjects.csv at full precision
+    assert row["walking_time_s"] == pytest.approx(bouts["duration_s"].sum(), rel=1e-9)
+    assert (row["n_steps"], row["n_strides"]) == (bouts["n_steps"].sum(), bouts["n_strides"].sum())
+    assert row["gait_speed_mps"] == pytest.approx(bouts["distance_m"].sum() / bouts["duration_s"].sum(), rel=1e-9)
+    assert row["cadence_spm"] == pytest.approx(60 * bouts["n_steps"].sum() / bouts["duration_s"].sum(), rel=1e-9)
+    assert subjects.iloc[4].isna()[["distance_m", "walking_time_s", "gait_speed_mps"]].all()  # nothing tracked

@@ -120,3 +120,22 @@ def test_scoring_against_reference_bouts_is_unaffected(tmp_path):
     assert outs[0]["bouts"] and all(outs[0][k] == outs[1][k] for k in keys)
     assert outs[1]["n_bouts"] < outs[0]["n_bouts"] == outs[0]["n_walking_bouts"]
     assert list(pd.read_csv(tmp_path / "d" / "bouts.csv").columns) == list(BOUT_COLUMNS)
+
+
+def test_track_detects_the_bouts_once_and_track_all_takes_storey_height(walk, tmp_path, monkeypatch):
+    """E73: bouts.csv and summary.json's n_bouts come from one detection (were two); L130: track-all has track's
+    --storey-height (the same option definition)."""
+    import pdrlearn.track.bouts as bouts_mod
+    from pdrlearn.cli.track import track_session, track_settings
+
+    root = tmp_path / "study"
+    write_session(walk, root / "g" / "s1")
+    calls = []
+    real = bouts_mod.detected_bouts
+    monkeypatch.setattr(bouts_mod, "detected_bouts", lambda *a, **k: calls.append(1) or real(*a, **k))
+    tracked = track_session(root / "g" / "s1", track_settings(bout_break_s=3.0))
+    assert len(calls) == 1 and tracked["summary"]["n_bouts"] == len(tracked["bouts"]) == 3
+    monkeypatch.undo()
+    assert main(["track-all", str(root), "--out", str(tmp_path / "a"), "--storey-height", "2.5"]) == 0
+    assert pd.read_csv(tmp_path / "a" / "sessions.csv")["storey_height_m"].tolist() == [2.5]
+    assert json.loads((tmp_path / "a" / "run.json").read_text())["options"]["storey_height"] == 2.5

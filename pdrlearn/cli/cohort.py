@@ -24,6 +24,7 @@ from pdrlearn.cli.common import (
     replaced,
     split_choices,
     split_length_units,
+    storey_height_option,
 )
 from pdrlearn.cohort import (
     JobResult,
@@ -374,7 +375,10 @@ def _track_job(args: dict) -> dict:
         except Exception as exc:  # cohort C15: the warnings raised before the failure stay with its error
             attach_to_error(exc, warnings=list(warned))
             raise
-    return {"summary": summary, "warnings": warned, "content_id": tracked.get("content_id")}
+    from pdrlearn.track.bouts import bout_totals
+
+    return {"summary": summary, "warnings": warned, "content_id": tracked.get("content_id"),
+            "bout_totals": bout_totals(tracked["bouts"])}  # cohort C25: of bouts.csv, for subjects.csv
 
 
 def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
@@ -406,6 +410,7 @@ def _session_row(rel: str, group: str, r: JobResult, given: str | None = None) -
     row["method"] = summary.get("info", {}).get("method")
     row["input_dir"] = rel  # decision C18: relative to ROOT (summary.json keeps the resolved folder, C13)
     row["content_id"] = r.value.get("content_id")  # decision C20: B87's fingerprint of the sensor data
+    row.update(r.value.get("bout_totals", {}))  # cohort C25: the walking bouts' totals (bouts.csv summed)
     return row
 
 
@@ -501,6 +506,46 @@ def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None
     return changes, change_summary(changes)
 
 
+PARAMS_DIR_HELP = ("Folder of per-subject calibration files, one SUBJECT.json per subject (as `pdrlearn calibrate "
+                   "... --out DIR/SUBJECT.json` writes them); each session uses the file of the subject its meta.json "
+                   "names (\"subject\" or \"user\"). Every session must have one, checked before any tracking "
+                   "(decision C26). Instead of --params.")
+
+
+def _few(names: list[str], k: int = 3) -> str:
+    return ", ".join(names[:k]) + (f" and {len(names) - k} more" if len(names) > k else "")
+
+
+def subject_params(params_dir: Path, rels: list[str], subjects: list[str | None]) -> list[Path]:
+    """Decision C26: each session's calibration file under ``--params-dir``, ``DIR/<subject>.json`` with the subject
+    its meta.json names (cohort C22's rule, :func:`pdrlearn.cohort.session_labels`). A session naming no subject, a
+    subject that cannot be a file name, or a subject without its file is an error before any tracking, one line
+    naming them all: a silent fall back to the population defaults would mix calibrated and uncalibrated distances
+    in one table."""
+    if not params_dir.is_dir():
+        raise DataError(f"--params-dir {params_dir}: no such folder; give the folder holding one SUBJECT.json per "
+                        "subject (`pdrlearn calibrate WALK --out DIR/SUBJECT.json`), or one file with --params FILE")
+    unnamed = [rel for rel, s in zip(rels, subjects, strict=True) if s is None]
+    bad = sorted({s for s in subjects if s is not None and (Path(s).name != s or s.startswith("."))})
+    missing: dict[str, list[str]] = {}
+    for rel, s in zip(rels, subjects, strict=True):
+        if s is not None and s not in bad and not (params_dir / f"{s}.json").is_file():
+            missing.setdefault(s, []).append(rel)
+    problems = []
+    if missing:
+        problems.append(f"no calibration file for subject {_few([repr(s) for s in missing])} (expected "
+                        f"{_few([f'{s}.json' for s in missing])}; sessions {_few(sum(missing.values(), []))})")
+    if unnamed:
+        problems.append(f"{_few(unnamed)}: meta.json names no subject (add \"subject\": \"ID\")")
+    if bad:
+        problems.append(f"subject {_few([repr(s) for s in bad])} cannot name a file")
+    if problems:
+        raise DataError(f"--params-dir {params_dir}: " + "; ".join(problems) + "; write each file with `pdrlearn "
+                        "calibrate WALK --out DIR/SUBJECT.json`, or track those sessions in a track-all of their own "
+                        "(decision C26)")
+    return [params_dir / f"{s}.json" for s in subjects]
+
+
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
     tmp = path.with_name(f".{path.name}.tmp")
     df.to_csv(tmp, index=False)  # full precision: groups.csv = a groupby of sessions.csv as read back
@@ -521,7 +566,9 @@ def track_all(
     warn_out_of_domain: float = _track.WARN_OOD_OPT,
     start: str = _track.START_OPT,
     initial_heading: float = _track.INITIAL_HEADING_OPT,
+    storey_height: float = storey_height_option(),
     params: Path = _track.PARAMS_OPT,
+    params_dir: Path = typer.Option(None, "--params-dir", metavar="DIR", help=PARAMS_DIR_HELP),
     streaming: bool = _track.STREAMING_OPT,
     realtime: bool = _track.REALTIME_OPT,
     reference_point: str = _track.REFERENCE_POINT_OPT,
@@ -565,8 +612,10 @@ def track_all(
     without both visits listed with why) and OUT/changes_summary.csv the mean change with its paired 95 %
     t-interval (decisions C22, C23). OUT/run.json records the pdrlearn version, the options and each session's
     time (decision C18). Sessions holding identical sensor data are warned
-    (duplicate_of, C20). A session that cannot be tracked is reported and skipped. Progress: one line per
-    session on stderr; each warning is said once per batch, with the sessions it concerns.
+    (duplicate_of, C20). --params-dir DIR gives each session DIR/<subject>.json, the subject its meta.json names
+    (every session needs one, checked first; decision C26). A session that cannot be tracked is reported and
+    skipped. Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
+    concerns.
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input
     or when every session failed (nothing is written).
@@ -580,6 +629,8 @@ def track_all(
         pdrlearn track-all study/ --out results/batch --jobs 2 --force
 
         pdrlearn track-all study/ --out results/2mwt --window 0,120 --streaming --initial-heading 90
+
+        pdrlearn track-all study/ --out results/cal --pipeline waist-pendulum --params-dir calib/   # calib/S01.json ...
     """
     # decision C18: every option as given (a new option is recorded without a change here), for run.json; taken
     # before any name is defined in this function
@@ -601,14 +652,25 @@ def track_all(
                               toe_off=toe_off, contacts=contacts, dpi=dpi, common_span=common_span,
                               initial_heading=initial_heading, window=window, resample=resample,
                               no_resample=no_resample, units=units, bout_break_s=bout_break_s,
-                              bout_min_strides=bout_min_strides)
+                              bout_min_strides=bout_min_strides, storey_height=storey_height)
+    if params is not None and params_dir is not None:  # decision C26: which file would a session use?
+        raise DataError("track-all: give --params FILE (one file for every session) or --params-dir DIR (one "
+                        "SUBJECT.json per subject), not both")
     found = find_sessions(root)
-    out_folder(out, "track-all", force=force, inputs=(root, params))
+    out_folder(out, "track-all", force=force, inputs=(root, params, params_dir))
     was = existed(out)
     rels = [p.relative_to(root).as_posix() for p in found]
+    labels = [session_labels(p) for p in found]  # decision C22: meta.json's subject and visit
+    per_session = [settings] * len(found)
+    if params_dir is not None:  # decision C26: each subject's file, all checked and read before any tracking
+        from pdrlearn.cli.track import read_params
+
+        files = subject_params(params_dir, rels, [s for s, _ in labels])
+        parsed = {f: read_params(f) for f in dict.fromkeys(files)}
+        per_session = [{**settings, "params": f, "par": parsed[f]} for f in files]
     with atomic_directory(out) as tmp:
-        items = [(rel, {"session_dir": str(p), "out": str(tmp / rel), "settings": settings})
-                 for rel, p in zip(rels, found, strict=True)]
+        items = [(rel, {"session_dir": str(p), "out": str(tmp / rel), "settings": st})
+                 for rel, p, st in zip(rels, found, per_session, strict=True)]
         done = [0]
 
         def progress_line(r: JobResult) -> None:
@@ -626,15 +688,22 @@ def track_all(
         dup = _duplicates(rels, results)
         rows = [_session_row(rel, session_group(rel, group_depth), r, str(p))
                 for rel, r, p in zip(rels, results, found, strict=True)]
-        for row, p in zip(rows, found, strict=True):
+        for row, label, st in zip(rows, labels, per_session, strict=True):
             row["duplicate_of"] = dup.get(row["path"])
-            row["subject"], row["visit"] = session_labels(p)  # decision C22: meta.json's subject and visit
+            row["subject"], row["visit"] = label  # decision C22: meta.json's subject and visit
+            if params_dir is not None:  # decision C26: the subject's file (its name: the same for a copy, C18)
+                row["params_file"] = Path(st["params"]).name
         sessions = _sessions_table(rows)
         groups = group_table(sessions)
         changes, summary = _changes(sessions, vmap)
+        from pdrlearn.visits import subject_totals
+
+        subjects = subject_totals(sessions)  # cohort C25: None when no session names a subject
         run = _run_record(root, options, rels, results)
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")
+        if subjects is not None:
+            _write_csv_atomic(subjects, tmp / "subjects.csv")
         if changes is not None:  # decisions C22, C23
             _write_csv_atomic(changes, tmp / "changes.csv")
             _write_csv_atomic(summary, tmp / "changes_summary.csv")
@@ -644,11 +713,13 @@ def track_all(
         print_json(json_safe({"sessions": sessions.to_dict(orient="records"),
                               "groups": groups.to_dict(orient="records"), "n_sessions": len(results),
                               "n_tracked": len(results) - len(failed), "n_failed": len(failed), "run": run,
+                              **({} if subjects is None else {"subjects": subjects.to_dict(orient="records")}),
                               **({} if changes is None else {"changes": changes.to_dict(orient="records"),
                                                              "changes_summary": summary.to_dict(orient="records")})}))
     else:
         typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked; wrote {out}/"
-                   "<session>/, sessions.csv, groups.csv, " + ("" if changes is None else
+                   "<session>/, sessions.csv, groups.csv, " + ("" if subjects is None else "subjects.csv, ")
+                   + ("" if changes is None else
                                                                "changes.csv, changes_summary.csv, ") + "run.json")
         print(groups_text(groups).to_markdown(index=False))
         if changes is not None:  # decision C23

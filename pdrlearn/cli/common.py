@@ -386,7 +386,7 @@ STOREY_HEIGHT_HELP = ("Storey height (m) for floors_up / floors_down / storeys_c
 
 
 def storey_height_option():
-    """Decisions L64, L127: the ``--storey-height`` option of ``track`` and ``run``, one definition."""
+    """Decisions L64, L127, L130: the ``--storey-height`` option of ``track``, ``track-all`` and ``run``."""
     import typer
 
     return typer.Option(3.0, "--storey-height", metavar="M", min=0.5, max=20.0, help=STOREY_HEIGHT_HELP)

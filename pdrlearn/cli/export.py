@@ -9,6 +9,7 @@ from pathlib import Path
 
 import typer
 
+from pdrlearn.cli import track as _track
 from pdrlearn.cli.common import (
     DPI_HELP,
     FORCE_HELP,
@@ -270,6 +271,8 @@ def run(
                               "foot = a two-unit bundle on a foot-only session or a failed waist (decision E26)."),
     start: str = typer.Option(None, "--start", help=START_HELP),
     storey_height: float = storey_height_option(),
+    bout_break_s: float = _track.BOUT_BREAK_OPT,
+    bout_min_strides: int = _track.BOUT_MIN_STRIDES_OPT,
     initial_heading: float = typer.Option(None, "--initial-heading", metavar="DEG",
                                           help=INITIAL_HEADING_HELP.split(" For a relative")[0]
                                           + " (the runtime's heading is relative: gyroscopes only)."),
@@ -311,6 +314,9 @@ def run(
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
     heading0 = initial_heading_option(initial_heading)  # decision L98, as `pdrlearn track`
+    from pdrlearn.track.bouts import bout_rule, detected_bouts
+
+    bouts = bout_rule(bout_break_s, bout_min_strides)  # decisions L124, L130: as `pdrlearn track`, before any work
     if dpi is not None and out is None:  # decision L70: it would be ignored
         raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
                         "FOLDER or drop --dpi")
@@ -326,7 +332,7 @@ def run(
         if given:
             raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only bundle "
                             "(give SESSION_DIR, and --initial-heading / --chunk-s / --out / --json)")
-        return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi, record)
+        return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi, record, bouts)
     bundle = load_bundle(bundle_dir)  # verified before any output
     methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
@@ -416,11 +422,12 @@ def run(
     if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
         result.info["initial_heading_rad"] = heading0
     result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
-    summary = _summary(steps, tracker, lat, source, result, session, storey_height)
+    table = detected_bouts(result.steps, bouts)  # decision E73: bouts.csv and n_bouts from one detection
+    summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats
     if out is not None:
-        _write(out, result, summary, session, source, dpi=dpi, record=record())
+        _write(out, result, summary, session, source, dpi=dpi, record=record(), bouts=table)
     if as_json:
         print_json(json_safe(summary))
     else:
@@ -457,7 +464,7 @@ def _run_json(arguments: dict, wall0: float, cpu0: float):
 
 
 def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chunk_s: float, as_json: bool,
-               heading0: float | None, dpi: int | None, record) -> None:
+               heading0: float | None, dpi: int | None, record, bouts=None) -> None:
     """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
     pushed in ``chunk_s`` slices through :class:`pdrlearn.runtime.WaistTracker` (the gyroscope read at the
     accelerometer's times, as ``track``'s ``body_data``). The frame is the session's declared one (warned when the
@@ -471,6 +478,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.runtime.waist import WAIST_SENSORS, WaistTracker, load_waist_bundle
     from pdrlearn.signal import interp_rows
     from pdrlearn.track.base import TrackResult
+    from pdrlearn.track.bouts import detected_bouts
     from pdrlearn.track.evaluate import evaluate_track
 
     bundle = load_waist_bundle(bundle_dir)  # verified before any output
@@ -515,13 +523,15 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     traj["z"] = 0.0
     result = TrackResult(steps=df, trajectory=traj, info={"pipeline": "runtime-waist",
                                                           "warnings": list(tracker.warnings)})
-    summary = {"source": f"session {session.name}", **evaluate_track(result, session), "session": session.name,
+    table = detected_bouts(result.steps, bouts)  # decisions L124, E73: bouts.csv and n_bouts from one detection
+    summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table),
+               "session": session.name,
                "pipeline": "runtime", "bundle_kind": "waist", "info": result.info,
                "final_position": {"x": tracker.position[0], "y": tracker.position[1], "z": 0.0},
                "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
                                        "p99": float(np.percentile(lat, 99) * 1e3) if lat else None}}
     if out is not None:
-        _write(out, result, summary, session, summary["source"], dpi=dpi, record=record())
+        _write(out, result, summary, session, summary["source"], dpi=dpi, record=record(), bouts=table)
     if as_json:
         print_json(json_safe(summary))
         return
@@ -570,7 +580,8 @@ def _result(steps, start_ll=None, start_alt: float = 0.0):
     return TrackResult(steps=df, trajectory=traj, info={"pipeline": "runtime"})
 
 
-def _summary(steps, tracker, lat, source, result, session, storey_height_m: float = 3.0) -> dict:
+def _summary(steps, tracker, lat, source, result, session, storey_height_m: float = 3.0, bouts=None,
+             bout_table=None) -> dict:
     """The keys of ``track``'s summary.json for the same content (``distance_m``, ``n_steps``,
     ``final_position`` {x, y, z}, ``session``, ``pipeline``, ``info``, ``frames_inferred`` when a frame was
     taken from the data and, replaying a session with ground truth, its errors), plus the runtime's
@@ -583,7 +594,8 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
     for st in steps:
         for t, c in st.classes.items():
             counts[t][c] = counts[t].get(c, 0) + 1
-    out = {"source": source, **evaluate_track(result, session, storey_height_m=storey_height_m)}
+    out = {"source": source, **evaluate_track(result, session, bouts=bouts, bout_table=bout_table,
+                                              storey_height_m=storey_height_m)}
     # lat/lon with --start, as track's summary (without it track has none: no NaN keys either)
     geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon") and np.isfinite(v)}
     out["final_position"] = {**dict(zip("xyz", (float(v) for v in tracker.position), strict=True)), **geo}
@@ -622,7 +634,7 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
 
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
-           record: dict) -> None:
+           record: dict, bouts) -> None:
     """steps.csv, trajectory.csv, bouts.csv (L124), path.png, summary.json and run.json (``record``, decision
     L122) as ``track`` writes them (same names, columns, number format, ``track``'s figure), atomically: all six
     or none, and ``--force`` keeps the old run until then. ``session``: the replayed session (its ground truth
@@ -631,14 +643,13 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
 
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.provenance import write_run_json
-    from pdrlearn.track.bouts import detected_bouts
     from pdrlearn.track.plots import plot_paths
 
     was = existed(out)
     with atomic_directory(out) as tmp:
         result.steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
         result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format="%.10g")
-        detected_bouts(result.steps).to_csv(tmp / "bouts.csv", index=False, float_format="%.10g")  # L124, as track
+        bouts.to_csv(tmp / "bouts.csv", index=False, float_format="%.10g")  # L124, as track
         plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run", dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
         write_run_json(tmp, record)

@@ -204,13 +204,12 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     (``track-all --jobs``). What depends on the session (a window inside its recording, L105; a relative
     heading for ``--initial-heading``, L98) is checked per session in :func:`track_session` (decision L108)."""
     from pdrlearn.io.resample import resample_mode
-    from pdrlearn.track.bouts import BoutRule
+    from pdrlearn.track.bouts import bout_rule
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
 
     rate_mode = resample_mode(resample, no_resample)  # decision B113
-    bouts = BoutRule(**{k: v for k, v in (("break_s", bout_break_s), ("min_strides", bout_min_strides))
-                        if v is not None})  # decision L124: checked before any session
+    bouts = bout_rule(bout_break_s, bout_min_strides)  # decision L124: checked before any session
     if rate_mode != "native" and model is None:
         raise DataError(f"track: {'--resample' if resample else '--no-resample'} compares the session's rate with "
                         "the model's: pass --model DIR, or drop it (without a model nothing depends on the rate)")
@@ -234,13 +233,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
 
         rates = {} if str(model) == "oracle" else positive_rates(read_manifest(model).get("sampling_rate_hz") or {})
         require_rates(str(model), rates, rate_mode, command="track")
-    par = None
-    if params is not None:
-        try:
-            par = json.loads(Path(params).read_text())
-        except (OSError, json.JSONDecodeError) as exc:
-            raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
-                            "pass the file written by `pdrlearn calibrate`") from None
+    par = None if params is None else read_params(params)
     if length_bounds is not None:
         try:
             bounds = [float(v) for v in length_bounds.split(",")]
@@ -257,6 +250,16 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height}
+
+
+def read_params(params: Path):
+    """The parsed ``--params`` JSON (a calibration file of ``pdrlearn calibrate`` or plasys settings), read once per
+    file; one error line naming the file when it cannot be read."""
+    try:
+        return json.loads(Path(params).read_text())
+    except (OSError, json.JSONDecodeError) as exc:
+        raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
+                        "pass the file written by `pdrlearn calibrate`") from None
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:
@@ -351,12 +354,13 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.window import window_track
 
         result, tracked_session = window_track(result, session, *win)
-    # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition; L64, L127: storeys
-    summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"),
-                            storey_height_m=o.get("storey_height_m", 3.0))
     from pdrlearn.track.bouts import detected_bouts
 
     bouts = detected_bouts(result.steps, o.get("bouts"))  # decision L124: OUT/bouts.csv, the detected walking bouts
+    # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition (E73: of the table
+    # above, detected once); L64, L127: storeys
+    summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,
+                            storey_height_m=o.get("storey_height_m", 3.0))
     if win is not None:
         summary["window_start_s"], summary["window_end_s"] = (float(v) for v in o["window"])
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary

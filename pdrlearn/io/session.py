@@ -440,7 +440,6 @@ class Session:
             h = self._handed.get(placement)
             if h is not None and h.mirrored:  # B29: a "frames" entry cannot fix mirrored data (D11)
                 from pdrlearn.io.handedness import mirror_fix_text
-                from pdrlearn.io.sensors import UNIT_IMU
 
                 acc_n, gyr_n = UNIT_IMU[placement]
                 raise DataError(  # decision L71: the axis named (mirror_fix_text, shared with the warning)
@@ -449,7 +448,6 @@ class Session:
                     f"a \"frames\" entry cannot fix that")
             if h is not None and h.axes_differ:  # trial 2, finding 8: the D11 amendment's fix, not a frames entry
                 from pdrlearn.io.handedness import axes_fix_text
-                from pdrlearn.io.sensors import UNIT_IMU
 
                 acc_n, gyr_n = UNIT_IMU[placement]
                 fix = (axes_fix_text(h.axes, acc_n, gyr_n) if placement != "waist" else
@@ -513,8 +511,6 @@ class Session:
         do not fix an undeclared one), ``status`` (``ok``, ``warned``, ``refused``, ``unchecked``, ``none``) and
         ``handedness`` (:meth:`pdrlearn.io.handedness.Handedness.to_dict` or ``None``, decision D11). For
         ``pdrlearn info``."""
-        from pdrlearn.io.sensors import UNIT_IMU
-
         out: dict[str, dict] = {}
         for p in self.placements:
             if p not in UNIT_IMU or not self.has(*UNIT_IMU[p]):

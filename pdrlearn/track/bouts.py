@@ -50,6 +50,12 @@ class BoutRule:
         return asdict(self)
 
 
+def bout_rule(break_s: float | None = None, min_strides: int | None = None) -> BoutRule:
+    """The rule of ``--bout-break-s`` / ``--bout-min-strides`` (None: the default), checked once before any
+    tracking (decision L124; ``track``, ``track-all`` and ``run`` read the options with this, decision L130)."""
+    return BoutRule(**{k: v for k, v in (("break_s", break_s), ("min_strides", min_strides)) if v is not None})
+
+
 def _is_foot(steps: pd.DataFrame) -> bool:
     return "unit" in steps and len(steps) > 0 and bool((steps["unit"].astype(str) == "foot").all())
 
@@ -101,8 +107,23 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None) -> pd.Data
     return pd.DataFrame(rows, columns=list(BOUT_COLUMNS)) if rows else out
 
 
-def bouts_summary(steps: pd.DataFrame, rule: BoutRule | None = None) -> dict:
+#: a track's walking-bout totals (cohort C25): sessions.csv's columns, summed per subject in subjects.csv
+BOUT_TOTALS = ("bouts_distance_m", "bouts_time_s", "bouts_n_steps", "bouts_n_strides")
+
+
+def bout_totals(table: pd.DataFrame) -> dict:
+    """The totals of :func:`detected_bouts`'s ``table`` (cohort C25): ``bouts_distance_m`` (summed ``distance_m``),
+    ``bouts_time_s`` (summed ``duration_s``: the walking time in bouts), ``bouts_n_steps`` and ``bouts_n_strides``
+    (summed counts); zeros for a track without bouts."""
+    return {"bouts_distance_m": float(table["distance_m"].sum()), "bouts_time_s": float(table["duration_s"].sum()),
+            "bouts_n_steps": int(table["n_steps"].sum()), "bouts_n_strides": int(table["n_strides"].sum())}
+
+
+def bouts_summary(steps: pd.DataFrame, rule: BoutRule | None = None, table: pd.DataFrame | None = None) -> dict:
     """summary.json's keys (decision L124): ``n_bouts`` (the rows :func:`detected_bouts` gives) and
-    ``bout_definition``."""
+    ``bout_definition``. ``table``: :func:`detected_bouts`'s table of ``steps`` under ``rule`` when the caller has
+    it already (``track`` and ``run`` write it as bouts.csv; decision E73: the bouts are detected once)."""
     rule = rule or BoutRule()
-    return {"n_bouts": int(len(detected_bouts(steps, rule))), "bout_definition": rule.record()}
+    if table is None:
+        table = detected_bouts(steps, rule)
+    return {"n_bouts": int(len(table)), "bout_definition": rule.record()}

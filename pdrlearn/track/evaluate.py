@@ -566,7 +566,7 @@ def summary_warnings(summary: dict) -> list[str]:
     return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary)) if w]
 
 
-def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None,
+def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,
                    storey_height_m: float = STOREY_HEIGHT_M) -> dict:
     """Summary metrics: ``distance_m``, ``n_steps``, ``final_position``, ``altitude_change_m``, the storeys
     climbed / descended and the floor reached (``floors_up``, ``floors_down``, ``storeys_changed``, storeys of
@@ -577,7 +577,8 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
     ``stride_length_mae_m`` / ``stride_length_mae_pct`` (strides matched by time overlap) and, with
     reference turns, ``n_turns``, ``turn_angle_mae_deg`` and ``turn_sign_agreement`` (decision L42); and
     ``n_bouts``, ``bout_definition`` of the detected walking bouts under ``bouts`` (a
-    :class:`pdrlearn.track.bouts.BoutRule`, None = its defaults; decision L124)."""
+    :class:`pdrlearn.track.bouts.BoutRule`, None = its defaults; decision L124); ``bout_table``: their table
+    (:func:`pdrlearn.track.bouts.detected_bouts` under ``bouts``) when the caller has it (decision E73)."""
     from pdrlearn.track.bouts import bouts_summary
 
     if not (np.isfinite(storey_height_m) and storey_height_m > 0):
@@ -588,12 +589,12 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
             fn(result, out)
         elif session is not None:
             fn(result, session, out)
-    out.update(bouts_summary(result.steps, bouts))  # decision L124: bouts.csv's rows and their definition
+    out.update(bouts_summary(result.steps, bouts, bout_table))  # decision L124: bouts.csv's rows and their definition
     return out
 
 
 def track_summary(result: TrackResult, session: Session, *, pipeline: str | None = None, bouts=None,
-                  storey_height_m: float = STOREY_HEIGHT_M) -> dict:
+                  bout_table=None, storey_height_m: float = STOREY_HEIGHT_M) -> dict:
     """The summary of a track, exactly as ``pdrlearn track`` writes it to ``summary.json`` (strict JSON:
     NaN -> None, numpy scalars -> Python numbers): :func:`evaluate_track`'s metrics (with the session's
     ground truth when it has some, :func:`pdrlearn.track.gait.gait_summary`'s gait speed and cadence
@@ -609,6 +610,8 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     pipeline : name written as ``pipeline``; default ``result.info["pipeline"]``.
     bouts : the walking-bout definition (:class:`pdrlearn.track.bouts.BoutRule`, decision L124; None = its
         defaults) behind ``n_bouts`` and ``bout_definition``.
+    bout_table : :func:`pdrlearn.track.bouts.detected_bouts`'s table under ``bouts``, when the caller has it
+        (decision E73: ``track`` detects the bouts once for bouts.csv and the summary); None = detected here.
     """
     import json
     import logging
@@ -616,7 +619,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     from pdrlearn.io.plasys import json_safe
     from pdrlearn.track.clinical import contact_timing
 
-    summary = evaluate_track(result, session, bouts=bouts, storey_height_m=storey_height_m)
+    summary = evaluate_track(result, session, bouts=bouts, bout_table=bout_table, storey_height_m=storey_height_m)
     summary.update(contact_timing(session, result.steps))  # decision L116: the contacts' timing resolution
     summary["session"] = session.name
     folder = getattr(session, "folder", None)
