@@ -610,8 +610,10 @@ def track_all(
     distance error, gait speed, cadence and stride length. With sessions whose meta.json names a subject and
     two or more visits, OUT/changes.csv has per subject each visit's change from the baseline visit (a subject
     without both visits listed with why) and OUT/changes_summary.csv the mean change with its paired 95 %
-    t-interval (decisions C22, C23). OUT/run.json records the pdrlearn version, the options and each session's
-    time (decision C18). Sessions holding identical sensor data are warned
+    t-interval (decisions C22, C23): spellings of one visit (BL, Baseline, baseline) are one visit, --visit-map FILE
+    names others, each subject has its own baseline, and a pair tracked by two pipelines or holding another
+    subject's recording is flagged, not paired (C28-C31). OUT/run.json records the pdrlearn version, the options
+    and each session's time (decision C18). Sessions holding identical sensor data are warned
     (duplicate_of, C20). --params-dir DIR gives each session DIR/<subject>.json, the subject its meta.json names
     (every session needs one, checked first; decision C26). A session that cannot be tracked is reported and
     skipped. Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
