@@ -80,7 +80,7 @@ def test_a_visit_map_names_the_visits(tmp_path):
 
 def test_track_all_takes_a_visit_map_and_records_it(tmp_path, capsys):
     """C29: track-all --visit-map pairs the visits it names and run.json holds the map's content (the file may
-    change); spellings of one visit are warned (C28)."""
+    change; `report` reads it there); spellings of one visit are warned (C28); a bad map: exit 2, nothing written."""
     from pdrlearn import sim
     from pdrlearn.cli import main
     from pdrlearn.io import write_session
@@ -102,6 +102,8 @@ def test_track_all_takes_a_visit_map_and_records_it(tmp_path, capsys):
     run = json.loads((tmp_path / "o" / "run.json").read_text())
     assert run["options"]["visit_map"] == {"file": str(tmp_path / "map.json"),
                                            "visits": {"T0": "baseline", "T1": "week12"}}
+    assert main(["report", str(tmp_path / "o"), "--out", str(tmp_path / "rep")]) == 0  # the map from run.json
+    assert "week12 - baseline" in (tmp_path / "rep" / "report.md").read_text()
     assert main(["track-all", str(root), "--out", str(tmp_path / "o2"), "--visit-map", str(tmp_path / "no.csv")]) == 2
     assert "no.csv: cannot be read" in capsys.readouterr().err and not (tmp_path / "o2").exists()
 
