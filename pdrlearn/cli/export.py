@@ -419,6 +419,10 @@ def run(
         _warn_short_streams(session, tracker, steps)
         source = f"session {session.name}"
     result = _result(steps, start_ll, start_alt)
+    from pdrlearn.track.position_sigma import add_position_sigma
+
+    # decision L128, as `track --streaming`: the waist gyroscope's heading when the tracker uses the waist unit
+    add_position_sigma(result, session, "plasys-streaming" if "waist" in tracker.units else "plasys-foot")
     if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
         result.info["initial_heading_rad"] = heading0
     result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
@@ -523,6 +527,9 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     traj["z"] = 0.0
     result = TrackResult(steps=df, trajectory=traj, info={"pipeline": "runtime-waist",
                                                           "warnings": list(tracker.warnings)})
+    from pdrlearn.track.position_sigma import add_position_sigma
+
+    add_position_sigma(result, session, "waist")  # decision L128, as track's lower-back pipelines
     table = detected_bouts(result.steps, bouts)  # decisions L124, E73: bouts.csv and n_bouts from one detection
     summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table),
                "session": session.name,
