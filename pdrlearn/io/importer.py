@@ -28,6 +28,7 @@ from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.validate import (
     CLOCK_RESET_S,
+    IMU_MIN_RATE_HZ,
     STANDARD_GRAVITY,
     check_imu_pair,
     check_rate,
@@ -47,6 +48,8 @@ KINDS: dict[str, tuple[str, int]] = {
     "acc": ("Accelerometer", 3), "gyro": ("Gyroscope", 3), "mag": ("MagneticField", 3), "baro": ("Barometer", 1),
     "heel": ("ForceA", 1), "toe": ("ForceB", 1),
 }
+#: the kinds held to decision B144's IMU rate floor
+_INERTIAL = frozenset({"acc", "gyro"})
 #: name stems (lower case, letters and digits only) that say a column is of a kind, followed by the axis
 _STEMS: dict[str, tuple[str, ...]] = {
     "acc": ("accelerometer", "acceleration", "accel", "acc", "a"),
@@ -231,9 +234,11 @@ def _time_word(text: str) -> str:
 
 
 def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
-               row_unit: str | None = None) -> tuple[str, str]:
+               row_unit: str | None = None, *, inertial: bool = False) -> tuple[str, str]:
     """(unit, source) of the timestamps: given, the header's hint, else decision B22's inference (the units
-    in which the timestamps give a plausible rate; ms when ms is one of them, as read_session does)."""
+    in which the timestamps give a plausible rate, from B144's IMU floor for an ``inertial`` file, and a date
+    before 2100; ms when ms is one of them, as read_session does). When several fit, the source names the others
+    and the --time-unit that forces one (B144)."""
     if given is not None:
         u = _time_word(given)
         if u not in _TIME_SCALE:
@@ -251,26 +256,30 @@ def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
                         "step 1): sample numbers, or a 1000 Hz clock in ms? They cannot be told apart: give the "
                         "sampling rate with --rate HZ if they are sample numbers, or pass --time-unit ms if they "
                         "are milliseconds")
-    cands = [u for u, _ in time_unit_candidates(t_raw)]
+    cands = [u for u, _ in time_unit_candidates(t_raw, inertial=inertial)]
     if not cands:
         raise DataError(f"{where}: the timestamps of column '{column}' give no plausible rate in ms, s, us or ns; "
                         "pass --time-unit")
-    if "ms" in cands:
-        return "ms", "inferred (B22)" + (f"; also fits {', '.join(c for c in cands if c != 'ms')}"
-                                         if len(cands) > 1 else "")
-    return cands[0], "inferred (B22)" + (f"; also fits {', '.join(cands[1:])}" if len(cands) > 1 else "")
+    chosen = "ms" if "ms" in cands else cands[0]
+    others = [c for c in cands if c != chosen]
+    return chosen, "inferred (B22)" + (f"; also fits {', '.join(others)}: pass --time-unit {others[0]} if it is "
+                                       f"in {others[0]}" if others else "")
 
 
 
 
-def _check_import_rate(t: np.ndarray, t_raw: np.ndarray, t_unit: str, t_how: str, column: str, where: str) -> None:
+def _check_import_rate(t: np.ndarray, t_raw: np.ndarray, t_unit: str, t_how: str, column: str, where: str,
+                       *, inertial: bool = False) -> None:
     """check_rate with import's wording (decision B37): the unit the values look like and --time-unit, not
-    meta.json (which import writes)."""
+    meta.json (which import writes). An ``inertial`` stream under B144's floor is refused the same way."""
     try:
         check_rate(t, f"{where} ({column} as {t_unit})")
+        slow = inertial and t.size >= 3 and 1.0 / float(np.median(np.diff(t))) < IMU_MIN_RATE_HZ  # decision B144
     except DataError:
+        slow = True
+    if slow:
         rate = 1.0 / float(np.median(np.diff(t)))
-        fits = [u for u, _ in time_unit_candidates(t_raw)]
+        fits = [u for u, _ in time_unit_candidates(t_raw, inertial=inertial)]
         looks = (f"the values look like {' or '.join(fits)}: pass --time-unit {fits[0]}" if fits
                  else "no unit (ms, s, us, ns) gives a plausible rate: check the --time column")
         src = {"given": "given with --time-unit", "header": "the column name's unit"}.get(t_how, t_how)
@@ -667,7 +676,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         if rate_hz is None and time_unit is not None and _time_word(time_unit) == "samples":
             raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")
         if rate_hz is None:
-            t_unit, t_how = _time_unit(t_num, time_unit, time_column, where, row_units.get(time_column))
+            t_unit, t_how = _time_unit(t_num, time_unit, time_column, where, row_units.get(time_column),
+                                       inertial=bool(_INERTIAL & set(columns)))
     if secs is not None and rate_hz is None and _whole_seconds(secs):  # decision B84: not duplicated rows
         raise DataError(_whole_seconds_message(secs, f"{where}", time_column, tcol.iloc[0]))
     if rate_hz is not None:  # decision B39: the time column holds sample numbers at rate_hz
@@ -750,7 +760,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             t = t_all[keep]
             check_timestamps(t, f"{where} ({time_column})", reset_fix=fix or None,
                              lines=np.flatnonzero(keep) + first_line)  # B80: the file's lines, in any part
-            _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where)
+            _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where, inertial=kind in _INERTIAL)
             sign = signs.get(kind, np.ones(len(cols)))
             stream = Stream(sensor, t, vals[keep] * factor * sign)
             opt = _UNIT_OPTION.get(kind, "--mapping units")

@@ -348,8 +348,8 @@ def _session_time_unit(raw: dict[str, np.ndarray], rate_hz: float | None, meta_p
     file at once (a unit every file's rate allows; the accelerometer and gyroscope files held to
     ``rate_hz``, the magnetometer, force and barometer files, which may log at their own rates, not).
     ``None`` = milliseconds (also when ms fits, or nothing decides: B9's checks follow)."""
-    cands = {n: time_unit_candidates(a[:, 0], rate_hz if SENSORS[n].kind in ("accelerometer", "gyroscope")
-                                     else None)
+    imu = {n for n in raw if SENSORS[n].kind in ("accelerometer", "gyroscope")}
+    cands = {n: time_unit_candidates(a[:, 0], rate_hz if n in imu else None, inertial=n in imu)  # B144's floor
              for n, a in raw.items()}
     common = [u for u, _ in time_unit_candidates(np.zeros(0)) if all(u in [c for c, _ in v] for v in cands.values())]
     if "ms" in common or len(common) > 1:
