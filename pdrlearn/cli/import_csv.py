@@ -464,6 +464,11 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         cols = ",".join(f"-{c}" if c in neg else c for c in r["columns"])
         err(f"{sensor}: {cols} ({r['columns_source']}) in {r['unit']} ({r['unit_source']}{conv}), "
             f"{r['samples']} samples at {r['rate_hz']:g} Hz" + (f", {dropped} empty rows skipped" if dropped else ""))
+        if sensor == "wAccelerometer" and r["unit"] == "g" and len(neg) < 3:  # decision B146
+            fix = shell_quote("--acc=" + ",".join(f"-{c}" for c in r["columns"]))
+            err(f"note: an accelerometer in g at the waist: if this is an iPhone (Core Motion) export, it reports "
+                f"gravity as -1 g and every turn comes out mirrored unless negated: import again with {fix} "
+                "(decision B146)")
     if record.get("steps"):
         st = record["steps"]
         err(f"steps: {st['rows']} labelled steps from {st['file']} (shifted to the session's clock)")

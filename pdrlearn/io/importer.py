@@ -22,7 +22,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
-from pdrlearn.io.frames import AxisFrame
+from pdrlearn.io.frames import AxisFrame, right_handed
 from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, _csv_dialect, read_table
 from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU
 from pdrlearn.io.session import Session, Stream
@@ -144,6 +144,38 @@ def _axis_of(stem: str, kind: str) -> str | None:
     return None
 
 
+def _column_axis(column: str, kind: str) -> str | None:
+    """The axis a column name says it holds: ``x`` (Sensor Logger, phyphox ``X (m/s^2)``) or a kind's name
+    (``acc_x``, ``gyroZ``); None when the name does not say."""
+    stem = _stem(column)
+    return stem if stem in ("x", "y", "z") else _axis_of(stem, kind)
+
+
+def mirrored_axis_order(kind: str, cols: list[str], signs: np.ndarray) -> str | None:
+    """Decision B145: the reason a given column list of ``kind`` reads the device's axes as their mirror image
+    (an odd permutation of the named axes x, y, z: B130's test, ``right_handed``, on the implied axis map), or
+    None when it does not, the names do not say their axes, or a column is negated (a deliberate sign: L71's
+    own fix for a mirrored export negates one axis). Negating all three accelerometer columns is iOS's sign
+    convention (B48), not a deliberate mirror: it is taken out first."""
+    axes = [_column_axis(c, kind) for c in cols]
+    if len(axes) != 3 or None in axes or len(set(axes)) != 3:
+        return None
+    m = np.zeros((3, 3))
+    for row, (axis, sign) in enumerate(zip(axes, signs, strict=True)):
+        m[row, "xyz".index(axis)] = sign
+    if kind == "acc" and np.all(np.asarray(signs) < 0):
+        m = -m
+    if (m < 0).any() or right_handed(m):
+        return None
+    given = ",".join(f"-{c}" if g < 0 else c for c, g in zip(cols, signs, strict=True))
+    ordered = ",".join(f"-{c}" if g < 0 else c for _, c, g in sorted(zip(axes, cols, signs, strict=True)))
+    option = f"--{kind}{'=' if given.startswith('-') else ' '}"
+    return (f"{option}{given} lists the axes in a mirror-image order (an odd permutation of x, y, z; IMU axes are "
+            f"right-handed), which mirrors every turn: give the columns of the x, y, z axes in that order, "
+            f"{option}{ordered}, whatever the file's column order; if the device's data really are mirrored, "
+            "negate one column as well (decision B145)")
+
+
 def _axis_candidates(columns: list[str], kind: str) -> dict[str, list[str]]:
     """Axis -> the columns whose names say they are that axis of ``kind``, in the file's order."""
     found: dict[str, list[str]] = {}
@@ -188,10 +220,12 @@ def ambiguous_columns(columns: list[str]) -> dict[str, list[str]]:
 def time_column_candidates(columns: list[str]) -> list[str]:
     """The columns named like a time, by the first rule that names any: exactly a time name (``timestamp``,
     ``Time (ms)``, ``t``), else a name starting with ``time`` (``timestamp_ms``, ``time_since_start``), else one
-    containing ``timestamp`` (B66: ``Shimmer_7A1F_Timestamp_Unix_CAL``)."""
+    containing ``timestamp`` (B66: ``Shimmer_7A1F_Timestamp_Unix_CAL``), else one containing ``elapsed`` (B148:
+    Sensor Logger's ``seconds_elapsed``, which its ``time`` column wins over)."""
     for hits in ([c for c in columns if _stem(c) in _TIME_NAMES],
                  [c for c in columns if _stem(c).startswith("time")],
-                 [c for c in columns if "timestamp" in _stem(c)]):
+                 [c for c in columns if "timestamp" in _stem(c)],
+                 [c for c in columns if "elapsed" in _stem(c)]):
         if hits:
             return hits
     return []
@@ -625,6 +659,9 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         if missing:
             raise DataError(f"{where}: no column {', '.join(repr(c) for c in missing)} for {kind}; the file's columns "
                             f"are: {have}")
+        mirrored = mirrored_axis_order(kind, cols, signs[kind])
+        if mirrored:
+            raise DataError(f"{where}: {mirrored}; nothing written")
     sources = {k: "given" for k in columns}
     if guess:
         for kind, cols in guess_columns(header).items():
