@@ -145,3 +145,20 @@ def test_a_gyroscope_that_started_late_names_common_span(tmp_path, capsys):
     assert "wGyroscope.csv: starts 1.50 s after the other 1 waist stream(s)" in err and "--common-span" in err
     assert "truncated copy" not in err
     assert main(["track", str(out), "--out", str(tmp_path / "t"), "--common-span"]) == 0
+
+
+def test_drop_duplicate_timestamps_keeps_the_first_row_of_each(phone, tmp_path, capsys):
+    """Decision B150 (trial finding 7): a phone app's repeated timestamps were refused with no import option."""
+    df = pd.read_csv(phone / "Accelerometer.csv")
+    rep = df.iloc[[100, 200, 300, 400, 500]].assign(x=0.0)  # the repeats carry other values: the first is kept
+    dup = pd.concat([df, rep]).sort_values("time", kind="stable")
+    csv = tmp_path / "Accelerometer.csv"
+    dup.to_csv(csv, index=False)
+    args = ["import", str(csv), "--unit", "waist", "--acc", "x,y,z", "--out", str(tmp_path / "s")]
+    assert main(args) != 0
+    err = capsys.readouterr().err
+    assert "5 duplicate timestamp(s)" in err and "pass --drop-duplicate-timestamps" in err
+    assert main([*args, "--drop-duplicate-timestamps"]) == 0
+    assert "5 rows repeating a timestamp dropped" in capsys.readouterr().err
+    got = _quiet_read(tmp_path / "s")["wAccelerometer"]
+    assert len(got) == len(df) and np.allclose(got.values[:, 0], df["x"].to_numpy())

@@ -553,7 +553,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                origin_s: float | None = None, guess: bool = True,
                subject_height_m: float | None = None, rate_hz: float | None = None,
                time_format: str | None = None, time_zone: str | None = None,
-               skip_rows: int | None = None) -> tuple[Session, dict]:
+               skip_rows: int | None = None, drop_duplicate_timestamps: bool = False) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -571,6 +571,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
     time_zone : the zone of date-time texts without one (default UTC, said in the record; decision B43)
     skip_rows : rows directly under the header that are not data (decision B66); default: a units row
         (every cell text, e.g. ``ms``, ``m/(s^2)``, ``deg/s``) is recognised, skipped and read for the units
+    drop_duplicate_timestamps : keep the first of rows with the same timestamp (a phone app's batched samples,
+        decision B150; counted in ``record["duplicate_rows"]``); refused otherwise
     units : kind -> unit of its values (``acc``: ``m/s2`` | ``g``; ``gyro``: ``rad/s`` | ``deg/s``; ``mag``:
         ``uT`` | ``nT`` | ``gauss``; ``baro``: ``hPa`` | ``Pa`` | ``kPa``); default: the header's hint, else SI
     frame : the unit's axis frame (:func:`parse_frame` input or :class:`AxisFrame`), written to ``frames``
@@ -607,7 +609,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   origin_s: float | None = None, guess: bool = True,
                   subject_height_m: float | None = None, rate_hz: float | None = None,
                   time_format: str | None = None, time_zone: str | None = None,
-                  skip_rows: int | None = None) -> list[tuple[Session, dict]]:
+                  skip_rows: int | None = None, drop_duplicate_timestamps: bool = False) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
     path = Path(path)
@@ -793,10 +795,18 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 raise DataError(f"{where}: columns {', '.join(cols)} ({kind}) hold no numbers{shown}")
             if (~keep).any():  # a multi-rate export leaves a slower sensor's cells empty between its samples
                 record["dropped_rows"][sensor] = int((~keep).sum())
+            if drop_duplicate_timestamps:  # decision B150: the first of each run of equal timestamps is kept
+                rows = np.flatnonzero(keep)
+                again = rows[1:][np.diff(t_all[rows]) == 0]
+                keep[again] = False
+                if again.size:
+                    record.setdefault("duplicate_rows", {})[sensor] = int(again.size)
             u, factor, u_src = _resolve_unit(kind, units.get(kind), cols, where, row_units)
             t = t_all[keep]
             check_timestamps(t, f"{where} ({time_column})", reset_fix=fix or None,
-                             lines=np.flatnonzero(keep) + first_line)  # B80: the file's lines, in any part
+                             lines=np.flatnonzero(keep) + first_line,  # B80: the file's lines, in any part
+                             duplicate_fix="drop the duplicated rows, or pass --drop-duplicate-timestamps to keep "
+                             "the first of each (a phone app's batched samples; decision B150)")
             _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where, inertial=kind in _INERTIAL)
             sign = signs.get(kind, np.ones(len(cols)))
             stream = Stream(sensor, t, vals[keep] * factor * sign)

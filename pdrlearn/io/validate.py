@@ -124,12 +124,14 @@ def clock_reset_message(t: np.ndarray, reset: np.ndarray, where: str, at: str, f
 
 
 def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, reset_fix: str | None = None,
-                     lines: np.ndarray | None = None) -> None:
+                     lines: np.ndarray | None = None, duplicate_fix: str = "drop the duplicated rows") -> None:
     """Timestamps must be strictly increasing (no duplicates, sorted). ``in_memory``: ``t`` is a
     :class:`~pdrlearn.io.Stream`'s (decision B49): the messages count samples and say how to fix the arrays.
     ``reset_fix``: the fix a clock reset's message gives instead of splitting the session by hand
     (``pdrlearn import`` names its ``--split-at-clock-reset``, decision B80). ``lines``: the file line of each
-    sample (default: sample k on line k + 2, under a header line); import gives them for the rows it kept."""
+    sample (default: sample k on line k + 2, under a header line); import gives them for the rows it kept.
+    ``duplicate_fix``: the fix a file's duplicate timestamps are given (import names its
+    ``--drop-duplicate-timestamps``, decision B150)."""
 
     def line(k: int) -> int:
         return int(lines[k]) if lines is not None else k + 2
@@ -144,7 +146,7 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
             raise DataError(f"{where}: {dup.size} duplicate timestamp(s) (first at index {dup[0] + 1}); drop the "
                             "duplicated samples (keep = np.unique(t, return_index=True)[1])")
         raise DataError(
-            f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}); drop the duplicated rows"
+            f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}); {duplicate_fix}"
         )
     back = np.flatnonzero(~(dt > 0))  # NaN intervals count as backwards
     # decision B73: a clock reset (a few large backward jumps, increasing in between); sorting (the advice below)
