@@ -115,3 +115,17 @@ def test_an_imu_file_is_held_to_10_hz_and_a_date_before_2100():
     assert [u for u, _ in time_unit_candidates(1.7332164e18 + step)] == ["ns"]  # us: a date after 2100
     assert [u for u, _ in time_unit_candidates(5e12 + step)] == ["us", "ns"]  # a clock since boot: no date
     assert [u for u, _ in time_unit_candidates(5e12 + step, inertial=True)] == ["ns"]  # 1 Hz is no IMU rate
+
+
+def test_an_ambiguous_unit_names_the_option_that_forces_the_other(tmp_path, capsys):
+    """B144: a magnetometer file (no IMU floor) timed by ns since boot at 1000 Hz fits us (1 Hz) and ns; the
+    summary names the one chosen and the --time-unit of the other."""
+    from pdrlearn.cli import main
+
+    n = 50
+    df = pd.DataFrame({"time": 5_000_000_000_000 + np.arange(n) * 1_000_000, "mag_x": np.full(n, 20.0),
+                       "mag_y": np.full(n, -5.0), "mag_z": np.full(n, 40.0)})
+    df.to_csv(tmp_path / "Magnetometer.csv", index=False)
+    assert main(["import", str(tmp_path / "Magnetometer.csv"), "--unit", "waist", "--out", str(tmp_path / "s")]) == 0
+    assert "in us (guessed column, unit inferred (B22); also fits ns: pass --time-unit ns if it is in ns)" in \
+        capsys.readouterr().err
