@@ -157,8 +157,10 @@ def mirrored_axis_order(kind: str, cols: list[str], signs: np.ndarray) -> str | 
     None when it does not, the names do not say their axes, or a column is negated (a deliberate sign: L71's
     own fix for a mirrored export negates one axis). Negating all three accelerometer columns is iOS's sign
     convention (B48), not a deliberate mirror: it is taken out first."""
+    if kind not in _STEMS or len(cols) != 3:  # a force sensor's one column has no axes
+        return None
     axes = [_column_axis(c, kind) for c in cols]
-    if len(axes) != 3 or None in axes or len(set(axes)) != 3:
+    if None in axes or len(set(axes)) != 3:
         return None
     m = np.zeros((3, 3))
     for row, (axis, sign) in enumerate(zip(axes, signs, strict=True)):
