@@ -51,6 +51,8 @@ from pdrlearn.waist.plausibility import (
     PLAUSIBILITY_MIN_PAIRS,
     contact_alternation,
     not_alternating_message,
+    still_yaw_rate,
+    still_yaw_rate_message,
     walk_ratio,
     walk_ratio_message,
 )
@@ -479,6 +481,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
         warnings.append(no_steps_message(thr, sigma, gate_source))
+    bias_line = still_yaw_rate_message(still_yaw_rate(imu.t, imu.acc_nav, imu.gyr_nav, imu.fs,
+                                                      p.gyro_bias_rps))  # decision W105
+    if bias_line:
+        warnings.append(bias_line)
     note = relative_heading_note(start, o["initial_heading"], "wMagneticField" in session)
     if note:
         warnings.append(note)
