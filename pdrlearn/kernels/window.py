@@ -121,6 +121,11 @@ def resample(t_new: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
 #: step table's times, ``"rest"`` moves each boundary to the middle of the foot's rest (:func:`rest_boundaries`).
 BOUNDARIES = ("given", "rest")
 
+#: How a foot step window's forward axis is found (:func:`foot_levelled`): ``"pca"``, the principal horizontal
+#: axis of the acceleration, or ``"declared"``, the mounting's declared axis; a bundle's ``features.heading``
+#: is one of them (decision B138).
+WINDOW_HEADINGS = ("pca", "declared")
+
 
 def rest_boundaries(t: np.ndarray, gyr: np.ndarray, start: np.ndarray, end: np.ndarray, *,
                     search_s: float = 0.3, smooth_s: float = 0.05, rest_tol_rad_s: float = 0.1
