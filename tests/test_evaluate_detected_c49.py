@@ -53,3 +53,20 @@ def test_a_drop_on_the_detected_strides_is_one_warning_naming_the_fix(model, mon
     assert "85.3 % on the strides" in drop_warning("terrain", 1.0, det, "given")
     assert "--boundaries rest" not in drop_warning("terrain", 1.0, det, "rest")
     assert drop_warning("terrain", 0.9, det, "given") is None
+
+
+def test_the_cli_leads_with_the_detected_figure(model, tmp_path, capsys):
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+
+    model.save(tmp_path / "m")
+    walk = simulate("terrain", user_seed=3, seed=1)
+    write_session(walk, tmp_path / "w")
+    out = evaluate_model(model, [walk], latency=False)["tasks"]["terrain"]
+    assert main(["evaluate", str(tmp_path / "m"), str(tmp_path / "w"), "--report", str(tmp_path / "r")]) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("terrain:"))
+    det = out["detected"]
+    assert line == (f"terrain: {out['n_steps']} steps - chosen svm/foot {100 * det['accuracy']:.1f} % on the strides "
+                    f"the runtime detects ({det['n_steps']} of {det['n_labelled']} labelled steps matched); "
+                    f"{100 * out['accuracy']:.1f} % on the labelled boundaries (the table)")
+    assert line.split(" - chosen svm/foot ")[1] in (tmp_path / "r" / "report.md").read_text()

@@ -314,7 +314,7 @@ def evaluate(
         pdrlearn evaluate out/models/u1 out/sim/u1_test --predictions-out out/eval_u1_steps.csv
     """
     from pdrlearn.classify import evaluate_model, load_model
-    from pdrlearn.classify.evaluation import evaluation_stages, results_table, write_predictions
+    from pdrlearn.classify.evaluation import evaluation_stages, headline, results_table, write_predictions
     from pdrlearn.cli.common import out_file
     from pdrlearn.io.resample import at_model_rate, log_grouped, resample_mode
 
@@ -378,7 +378,7 @@ def evaluate(
     c = console()
     for task, r in result["tasks"].items():
         c.print(f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
-                f"{_headline(r)}", markup=False)
+                f"{headline(r)}", markup=False)
         tab = Table()
         for col in ("method", "unit", *[f"{k} %" for k in r["classes"]], "all %", "ms/step"):
             tab.add_column(col)
@@ -401,17 +401,6 @@ def evaluate(
         c.print(f"report written to {report}")
     if predictions_out is not None:
         c.print(f"{result['n_predictions']} step predictions written to {predictions_out}", markup=False)
-
-
-def _headline(r: dict) -> str:
-    """Decision C49: the chosen model's accuracy on the strides the runtime detects first (what the user gets),
-    the labelled-boundary figure (the table's) second; the labelled one alone without a foot gyroscope."""
-    det = r.get("detected")
-    if not det or not det["n_steps"]:
-        return f"{100 * r['accuracy']:.1f} % on the labelled boundaries"
-    return (f"{100 * det['accuracy']:.1f} % on the strides the runtime detects ({det['n_steps']} of "
-            f"{det['n_labelled']} labelled steps matched); {100 * r['accuracy']:.1f} % on the labelled "
-            "boundaries (the table)")
 
 
 def _pct(v) -> str:
