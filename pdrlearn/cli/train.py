@@ -283,8 +283,9 @@ def _streamed_gain(cal: dict) -> str:
 def evaluate(
     model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train'."),
     data_dirs: list[Path] = typer.Argument(..., help="Labelled session folders (or folders of sessions)."),
-    as_json: bool = typer.Option(False, "--json", help="Print one JSON object (tasks.<task>.accuracy on the labelled boundaries, "
-                               "tasks.<task>.detected.accuracy on the strides the runtime detects, decision C49 ...)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object (tasks.<task>.accuracy on the "
+                                 "labelled boundaries, tasks.<task>.detected.accuracy on the strides the runtime "
+                                 "detects, decision C49 ...)."),
     report: Path = typer.Option(None, "--report", help="Folder for report.md/json and confusion PNGs."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     warn_out_of_domain: float = typer.Option(None, "--warn-out-of-domain", help="Warn (one line) when at least "
