@@ -71,20 +71,3 @@ def test_the_cli_leads_with_the_detected_figure(model, tmp_path, capsys):
                     f"{100 * out['accuracy']:.1f} % on the labelled boundaries (the table)")
     assert line.split(" - chosen svm/foot ")[1] in (tmp_path / "r" / "report.md").read_text()
 
-
-def test_training_cuts_rest_to_rest_windows_by_default(tmp_path, capsys):
-    """Decision C50 (adopted by its rule): `train_user` and `pdrlearn train` default to rest boundaries, which the
-    model stores and evaluate / export / the runtime follow (C13)."""
-    import json
-
-    from pdrlearn.cli import main
-    from pdrlearn.io import write_session
-
-    calib = simulate("terrain", user_seed=3, seed=0)
-    assert train_user([calib], tasks=["terrain"], methods=["svm"], units=["foot"], cv=3,
-                      distance_calibration=False).boundaries == "rest"
-    write_session(calib, tmp_path / "calib")
-    assert main(["train", str(tmp_path / "calib"), "--out", str(tmp_path / "m"), "--tasks", "terrain", "--methods",
-                 "svm", "--units", "foot", "--cv", "3", "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["boundaries"] == "rest"
-    assert json.loads((tmp_path / "m" / "manifest.json").read_text())["settings"]["boundaries"] == "rest"

@@ -34,7 +34,6 @@ from pdrlearn.classify.fusion import (
 from pdrlearn.classify.nn import NNClassifier
 from pdrlearn.classify.svm import SVMClassifier
 from pdrlearn.errors import DataError, MissingSensorError, PdrlearnError
-from pdrlearn.kernels.window import DEFAULT_TRAIN_BOUNDARIES
 
 log = logging.getLogger(__name__)
 
@@ -854,7 +853,7 @@ def train_user(
     cv: int = 10,
     seed: int = 0,
     n_samples: int = 40,
-    boundaries: str = DEFAULT_TRAIN_BOUNDARIES,
+    boundaries: str = "given",
     user: str | None = None,
     strict: bool | None = None,
     distance_calibration: bool = True,
@@ -886,12 +885,11 @@ def train_user(
         or a session without a user in its meta.json: stratified folds as with ``"steps"``.
     seed : seed of the folds, the DTW reference choice and the network initialisation.
     n_samples : samples per resampled step window.
-    boundaries : ``"rest"`` (default since decision C50) moves each boundary to the foot's quietest sample
-        within 0.3 s first, so steps labelled at other gait phases (motion-capture events, a converter's
-        detection) become rest-to-rest windows, and the windows the runtime cuts at its detected strides
-        match the training ones (:func:`pdrlearn.features.windows.rest_boundaries`); ``"given"`` (the
-        default before C50) cuts each step at its labelled ``start_s``/``end_s``. Stored in ``settings``;
-        prediction and evaluation cut windows the same way (decision C13).
+    boundaries : ``"given"`` (default) cuts each step at its labelled ``start_s``/``end_s``; ``"rest"``
+        moves each boundary to the foot's quietest sample within 0.3 s first, so steps labelled at other
+        gait phases (motion-capture events, a converter's detection) become rest-to-rest windows
+        (:func:`pdrlearn.features.windows.rest_boundaries`). Stored in ``settings``; prediction and
+        evaluation cut windows the same way (decision C13).
     strict : raise on a task without labels / with a missing class. Default: strict when ``tasks`` is
         given explicitly; otherwise such tasks are skipped and listed in ``UserModel.skipped``.
     distance_calibration : estimate the user's distance gain from the sessions' labelled stride lengths

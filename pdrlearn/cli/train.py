@@ -25,7 +25,6 @@ from pdrlearn.cli.common import (
     split_length_units,
 )
 from pdrlearn.errors import DataError, shell_quote
-from pdrlearn.kernels.window import DEFAULT_TRAIN_BOUNDARIES
 
 EVAL_RESAMPLE_OPT, EVAL_NO_RESAMPLE_OPT = resample_options("scored")  # decision B113, track's text
 
@@ -88,11 +87,10 @@ def train(
     user: str = typer.Option(None, help="User name stored in the manifest (default: the sessions' meta.json 'user' or "
                       "'subject', else 'unnamed'; B88)."),
     boundaries: str = typer.Option(
-        DEFAULT_TRAIN_BOUNDARIES,
-        help="Step-window boundaries: 'rest' (default, decision C50: each boundary moved to the middle of the "
-        "foot's rest nearby: rest-to-rest windows, decision C13, which match the windows the runtime cuts at "
-        "its detected strides) or 'given' (the labelled start/end). Stored in the model; evaluate, predict and "
-        "the exported runtime cut windows the same way.",
+        "given",
+        help="Step-window boundaries: 'given' (the labelled start/end) or 'rest' (each boundary moved to the "
+        "middle of the foot's rest nearby: rest-to-rest windows, decision C13). Stored in the model; "
+        "evaluate, predict and the exported runtime cut windows the same way.",
     ),
     distance_calibration: bool = typer.Option(
         True, "--distance-calibration/--no-distance-calibration",

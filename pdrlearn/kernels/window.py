@@ -121,11 +121,6 @@ def resample(t_new: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
 #: step table's times, ``"rest"`` moves each boundary to the middle of the foot's rest (:func:`rest_boundaries`).
 BOUNDARIES = ("given", "rest")
 
-#: Where `train_user` / `pdrlearn train` / `train-all` cut their step windows unless told (decision C50, adopted
-#: by its rule on fresh users 800-819: on the strides the runtime detects, 100 Hz 91.5 -> 95.5 %, 20 Hz 94.1 ->
-#: 94.8 %; "given" models were brittle to the detector's boundaries a sample or two off the labels)
-DEFAULT_TRAIN_BOUNDARIES = "rest"
-
 #: How a foot step window's forward axis is found (:func:`foot_levelled`): ``"pca"``, the principal horizontal
 #: axis of the acceleration, or ``"declared"``, the mounting's declared axis; a bundle's ``features.heading``
 #: is one of them (decision B138).
