@@ -216,15 +216,25 @@ def test_foot_only_run_does_not_warn_about_the_absent_waist_frame(root, tmp_path
     assert len(err) == 1 and "waist frame" not in err[0], err
 
 
-def test_foot_only_replay_without_force_names_the_empty_channels(root, tmp_path, capsys):
+def test_foot_only_replay_without_force_names_the_sensors_to_declare(root, tmp_path, capsys):
     """Review s11: the foot-only models run on the per-model path, whose NaN-feature error did not say which
-    sensor is missing (the step graph's does: 'window channels force_a, force_b are empty'). A tracker not
-    told which sensors the stream has still says so."""
+    sensor is missing. Decision B140 (trial integrator, session 22): a tracker not told which sensors the stream
+    has learns it at the first step: the sensors nothing pushed that a task's model reads are named with the
+    ``sensors=[...]`` that tracks such a stream (it was "step features are NaN" from inside the step)."""
     s = _foot_session("no_force")
     for n in ("fForceA", "fForceB"):
         s.streams.pop(n, None)
-    with pytest.raises(DataError, match="force_a, force_b are empty"):
+    with pytest.raises(DataError) as exc:
         replay(Tracker(root / "bundle", units=("foot",)), s, 0.37)
+    msg = str(exc.value)
+    assert "\n" not in msg and "nothing pushed fForceA, fForceB by the first step" in msg
+    assert "the model of length (" in msg and "Tracker(bundle, units=('foot',), sensors=['fAccelerometer', " in msg
+    assert "NaN" not in msg
+    # the named fix runs (and is test_run_without_force_leaves_the_force_task_unclassified_as_track's tracker)
+    named = eval(msg[msg.index("sensors=") + len("sensors="):msg.index("]", msg.index("sensors=")) + 1])
+    assert len(replay(Tracker(root / "bundle", units=("foot",), sensors=named), s, 0.37)) >= 20
+    # force pushed from the start: no error (the check looks only at what was pushed)
+    assert len(replay(Tracker(root / "bundle", units=("foot",)), _foot_session(), 0.37)) >= 20
 
 
 def test_run_without_force_leaves_the_force_task_unclassified_as_track(root, tmp_path, capsys):

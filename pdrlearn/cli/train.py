@@ -283,7 +283,9 @@ def _streamed_gain(cal: dict) -> str:
 def evaluate(
     model_dir: Path = typer.Argument(..., help="Model directory written by 'pdrlearn train'."),
     data_dirs: list[Path] = typer.Argument(..., help="Labelled session folders (or folders of sessions)."),
-    as_json: bool = typer.Option(False, "--json", help="Print one JSON object (tasks.<task>.accuracy ...)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object (tasks.<task>.accuracy on the "
+                                 "labelled boundaries, tasks.<task>.detected.accuracy on the strides the runtime "
+                                 "detects, decision C49 ...)."),
     report: Path = typer.Option(None, "--report", help="Folder for report.md/json and confusion PNGs."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     warn_out_of_domain: float = typer.Option(None, "--warn-out-of-domain", help="Warn (one line) when at least "
@@ -301,7 +303,9 @@ def evaluate(
     """Accuracy per class x method x unit (thesis Tables 27/28/33), confusion matrices, per-step latency.
 
     The model is scored as fitted, on the sessions given (no cross-validation): for leave-one-user-out scores
-    train with `pdrlearn train ... --cv-groups user` (decisions C29, C43).
+    train with `pdrlearn train ... --cv-groups user` (decisions C29, C43). Each task's first figure is the
+    chosen model's accuracy on the strides the runtime and `track --model` detect (matched to the labelled
+    steps); the table scores the labelled boundaries (decision C49).
 
     Examples:
 
@@ -312,7 +316,7 @@ def evaluate(
         pdrlearn evaluate out/models/u1 out/sim/u1_test --predictions-out out/eval_u1_steps.csv
     """
     from pdrlearn.classify import evaluate_model, load_model
-    from pdrlearn.classify.evaluation import evaluation_stages, results_table, write_predictions
+    from pdrlearn.classify.evaluation import evaluation_stages, headline, results_table, write_predictions
     from pdrlearn.cli.common import out_file
     from pdrlearn.io.resample import at_model_rate, log_grouped, resample_mode
 
@@ -376,7 +380,7 @@ def evaluate(
     c = console()
     for task, r in result["tasks"].items():
         c.print(f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
-                f"{100 * r['accuracy']:.1f} %", markup=False)
+                f"{headline(r)}", markup=False)
         tab = Table()
         for col in ("method", "unit", *[f"{k} %" for k in r["classes"]], "all %", "ms/step"):
             tab.add_column(col)

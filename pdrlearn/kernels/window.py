@@ -124,6 +124,11 @@ BOUNDARIES = ("given", "rest")
 #: ``run``'s steps.csv, ``Step.to_dict()`` since decision B142): the length class is ``length_class``
 TASK_COLUMNS: dict[str, str] = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
 
+#: How a foot step window's forward axis is found (:func:`foot_levelled`): ``"pca"``, the principal horizontal
+#: axis of the acceleration, or ``"declared"``, the mounting's declared axis; a bundle's ``features.heading``
+#: is one of them (decision B138).
+WINDOW_HEADINGS = ("pca", "declared")
+
 
 def rest_boundaries(t: np.ndarray, gyr: np.ndarray, start: np.ndarray, end: np.ndarray, *,
                     search_s: float = 0.3, smooth_s: float = 0.05, rest_tol_rad_s: float = 0.1

@@ -212,11 +212,14 @@ class Bundle:
         for task in self.tasks:
             mu = per_task.get(task, every)
             if mu is not None:
-                out[task] = self._method_unit(task, mu)
+                out[task] = self.method_unit(task, mu)
         return out
 
-    def _method_unit(self, task: str, mu: str) -> str:
-        """One task's ``method[/unit]`` resolved to an exported ``method/unit`` (:meth:`choose_methods`)."""
+    def method_unit(self, task: str, mu: str, *, what: str | None = None) -> str:
+        """One task's ``method[/unit]`` resolved to an exported ``method/unit`` (:meth:`choose_methods`, and
+        :class:`Tracker`'s ``methods``, decision B139); ``what`` names the input in the errors (default ``run
+        --method MU``)."""
+        what = what or f"run --method {mu}"
         method, _, unit = mu.strip().partition("/")
         methods = self.tasks[task]["methods"]
         have = self.exported(task)
@@ -224,7 +227,7 @@ class Bundle:
             one = all(len(self.tasks[t]["methods"]) == 1 for t in self.tasks)  # `pdrlearn export`'s default
             only = ("; the bundle holds each task's chosen method only: export others with `pdrlearn export MODEL "
                     "--out BUNDLE --methods nn,svm,...`" if one else "; export it with `pdrlearn export --methods`")
-            raise DataError(f"run --method {mu}: bundle {self.path} has no {mu} model for {task} (it has "
+            raise DataError(f"{what}: bundle {self.path} has no {mu} model for {task} (it has "
                             f"{', '.join(have)}){only}")
         if not unit:
             chosen = (self.tasks[task].get("chosen") or {}).get("unit")
@@ -237,8 +240,9 @@ class Bundle:
             elif len(units) == 1:
                 unit = units[0]
             else:
-                raise DataError(f"run --method {mu}: {task} has {method} for the units {', '.join(units)}; give "
-                                f"one, e.g. --method {task}={method}/{units[0]}")
+                raise DataError(f"{what}: {task} has {method} for the units {', '.join(units)}; give one, e.g. "
+                                + (f"--method {task}={method}/{units[0]}" if what.startswith("run") else
+                                   f"methods={{{task!r}: '{method}/{units[0]}'}}"))
         return f"{method}/{unit}"
 
     # -- files --------------------------------------------------------------------------------------
@@ -477,4 +481,21 @@ def load_bundle(path: str | Path, *, verify: bool = True, backend: str = "auto")
     if verify:
         verify_files(path, manifest)
     log.info("bundle %s: user %s, tasks %s", path, manifest.get("user"), ", ".join(manifest["tasks"]))
+    line = version_warning(path, manifest)
+    if line:
+        log.warning(line)
     return Bundle(path, manifest, backend=backend)
+
+
+def version_warning(path: Path, manifest: dict) -> str | None:
+    """Decision B137: one line when the bundle was exported by another pdrlearn version than this runtime's.
+    It still loads (the schema version is the contract, checked by :func:`read_manifest`), but the user learns
+    which two versions meet."""
+    from pdrlearn import __version__
+
+    theirs = manifest.get("package_version")
+    if theirs is None or str(theirs) == __version__:
+        return None
+    return (f"bundle {path}: exported by pdrlearn {theirs}, this runtime is pdrlearn {__version__}; it loads "
+            f"(same schema version {manifest.get('schema_version')}), but re-export it with {__version__} if its "
+            "results differ from `pdrlearn track --model`")

@@ -217,6 +217,8 @@ class TaskClassifier:
                         method, unit, entry, self.missing, self.note = m, u, e, [], None
                         break
         self.method, self.unit = method, unit
+        #: the sensor streams this task's model reads (decision B140: checked against the pushed ones)
+        self.reads = entry_sensors(bundle, entry, feature_ctx["signals"])
         if self.missing:
             self.is_chosen, self.model = False, None
             return

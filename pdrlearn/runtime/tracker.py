@@ -53,6 +53,7 @@ from pdrlearn.kernels.window import (
     GROUP_STREAMS,
     GROUPS,
     TASK_COLUMNS,
+    WINDOW_HEADINGS,
     _fill_channels,
     _unit_grid,
     available_groups,
@@ -132,6 +133,34 @@ LEGACY_RULES, LEGACY_MIN_CONFIDENCE = "thesis", 0.0
 #: what the streamed stride rules do for a task without a class (decision C17, ``pdrlearn.track.plasys``)
 _NO_CLASS_RULE = {"terrain": "the stride's raw height change", "direction": "the estimate's own sign",
                   "length": "no length clamp"}
+
+
+def check_tasks(bundle: Bundle, tasks, methods) -> tuple[list[str] | None, dict[str, str] | None]:
+    """Decisions B137, B139: ``tasks`` (None: all the bundle's) and ``methods`` (task -> ``"method/unit"``, or a
+    method alone as ``run --method`` takes it: :meth:`Bundle.method_unit`) as the bundle has them, else a
+    one-line error naming the valid values: an unknown task (a typo, ``"terrian"``) was a raw KeyError in
+    ``tasks`` and silently ignored in ``methods``, a method without its unit a raw unpacking error. Returns
+    the task list and the methods resolved to ``"method/unit"``."""
+    have = list(bundle.tasks)
+    if tasks is not None:
+        tasks = [tasks] if isinstance(tasks, str) else list(tasks)
+        bad = [t for t in tasks if t not in have]
+        if bad:
+            raise DataError(f"tasks={tasks}: bundle {bundle.path} has no {', '.join(map(str, bad))} classifier; "
+                            f"its tasks: {', '.join(have)}")
+    if methods is None:
+        return tasks, None
+    out = {}
+    for task, mu in methods.items():
+        what = f"methods={{{task!r}: {mu!r}}}"
+        if task not in have:
+            raise DataError(f"{what}: bundle {bundle.path} has no {task} classifier; its tasks: {', '.join(have)}")
+        if tasks is not None and task not in tasks:
+            raise DataError(f"{what}: tasks={tasks} leaves {task} out; add it to tasks or drop it from methods")
+        if not isinstance(mu, str) or not mu.strip():
+            raise DataError(f"{what}: give \"method/unit\" or a method, e.g. {bundle.exported(task)[0]!r}")
+        out[task] = bundle.method_unit(task, mu, what=what)
+    return tasks, out
 
 
 def check_units(bundle: Bundle, units) -> tuple[str, ...]:
@@ -380,6 +409,7 @@ class Tracker(FixInput):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
         sensors = None if sensors is None else [str(n) for n in sensors]
+        self._unchecked = sensors is None  # decision B140: the first step checks the pushed streams
         #: the body units tracked (decision E26), their required and used sensors
         if units is None and sensors is not None and "foot" in self.bundle.body_units and not set(
                 self.bundle.sensors_of(("waist",))[0]) <= set(sensors):  # decision E32: the declared streams
@@ -396,6 +426,9 @@ class Tracker(FixInput):
         self.ci = {c: i for i, c in enumerate(self.channels)}
         self.n_samples = int(fm["n_samples"])
         self.heading_mode = fm.get("heading", "pca")
+        if self.heading_mode not in WINDOW_HEADINGS:  # decision B138: any other value ran as "declared"
+            raise ModelError(f"bundle {self.bundle.path}: features.heading {self.heading_mode!r} is not one of "
+                             f"{', '.join(WINDOW_HEADINGS)}; re-export it with this version")
         self.rest_search_s = float(fm.get("rest_search_s", 0.3))
         #: where classification windows are cut (decisions 13 / C13): "given" = the segmenter's stance
         #: boundaries, "rest" = each moved to the middle of the foot's rest by the training side's own
@@ -410,7 +443,7 @@ class Tracker(FixInput):
         self.forward = {p: forward_vector(f) for p, f in frames.items()}
         self.warnings: list[str] = []
         self._posture: list | None = None  # decision B131: [first s, last s, steps, index in warnings]
-        self._model_args = (tasks, methods, units, step_graph)
+        self._model_args = (*check_tasks(self.bundle, tasks, methods), units, step_graph)  # decisions B137, B139
         self._choose_models(sensors)
         self.params = dict(m["displacement"])
         self.heading_source = heading_source or str(self.params.get("heading_source", "auto"))
@@ -557,7 +590,7 @@ class Tracker(FixInput):
         self.classifiers: dict[str, TaskClassifier] = {}
         for task in tasks or list(self.bundle.tasks):
             mu = (methods or {}).get(task)
-            meth, unit = mu.split("/") if mu else (None, None)
+            meth, unit = mu.split("/") if mu else (None, None)  # checked by check_tasks (B139)
             self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit, lazy=True,
                                                     units=None if units is None else self.units, sensors=sensors)
         #: decision E26 amended: tasks whose models all read a sensor the stream will not have -> those sensors;
@@ -1021,6 +1054,8 @@ class Tracker(FixInput):
         stale = max(ends) - self._wait_s
         out = []
         while self._pending and (force or self._pending[0][1] + self._lookahead_s < max(latest, stale)):
+            if self._unchecked:  # decision B140: before the first step's window is cut
+                self._check_unpushed(*self._pending[0])
             t1 = self._pending[0][1]
             if latest < t1 - self._held_s:  # decision E31: a stream's last value held for this step
                 self._note_held(t1, force)
@@ -1036,6 +1071,27 @@ class Tracker(FixInput):
                     raise
                 raise DataError(self._no_gravity(t0, t1)) from None
         return out
+
+    def _check_unpushed(self, t0: float, t1: float) -> None:
+        """Decision B140: with no ``sensors=`` declared, a sensor a task's model reads that nothing has pushed by
+        the time the first step is classified is a one-line :class:`DataError` (raised by that push, before the
+        step is cut) naming the ``sensors=[...]`` that tracks such a stream (those tasks left to another model
+        or unclassified, as ``pdrlearn track`` does); it was "step features are NaN" from inside the step."""
+        pushed = set(self._buf) | set(self.inputs.ignored) | {n for n in self.used_sensors
+                                                              if self.inputs.last_in(n) is not None}
+        need = {t: sorted(c.reads - pushed) for t, c in self.classifiers.items() if c.reads - pushed}
+        if not need:
+            self._unchecked = False
+            return
+        gone = sorted({s for v in need.values() for s in v})
+        have = [n for n in self.used_sensors if n in pushed]
+        models = ", ".join(f"{t} ({self.classifiers[t].method}/{self.classifiers[t].unit})" for t in need)
+        units = "" if self.units == self.bundle.body_units else f"units={self.units}, "
+        it = "it" if len(gone) == 1 else "them"
+        raise DataError(f"bundle {self.bundle.path}: nothing pushed {', '.join(gone)} by the first step "
+                        f"({t0:.3f}-{t1:.3f} s), and the model of {models} reads {it}; for a stream without {it} "
+                        f"declare its sensors, Tracker(bundle, {units}sensors={have}) (then classified as `pdrlearn "
+                        f"track` does without {it}), else push {it} from the first samples")
 
     def _note_posture(self, t0: float, t1: float) -> None:
         """Decision B131: a step whose foot rests with the declared forward axis (nearly) vertical after steps whose

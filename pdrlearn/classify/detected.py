@@ -1,0 +1,103 @@
+"""Decision C49: score a user model on the strides the runtime detects, not only on the labelled boundaries.
+
+``pdrlearn evaluate`` cuts each step window at the labelled ``start_s``/``end_s``; ``pdrlearn track --model``,
+``track --streaming`` and the exported runtime cut at the strides of
+:class:`~pdrlearn.kernels.stride.StanceSegmenter` on the foot gyroscope, which lie a sample or two off the
+labels (trial session 22: median +14 ms at 100 Hz). A model trained on the labelled boundaries can be brittle to
+that shift (terrain 68/68 on the labels, 58/68 on the detected strides of the same walk), so the score the user
+gets is the one on the detected strides: each detected stride matched to a labelled step (time overlap, IoU >=
+:data:`MIN_IOU`, :func:`pdrlearn.track.evaluate.match_by_overlap`) and classified as ``track --model`` classifies
+it (:meth:`UserModel.predict_steps` on the stride's bounds, the model's own ``boundaries`` setting applied).
+"""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+import pandas as pd
+
+log = logging.getLogger(__name__)
+
+#: a detected stride is matched to the labelled step it overlaps best, with IoU at least this (0.1 s moved at
+#: each end of a 1 s stride still gives 0.82; a stride detected across two labelled steps gives <= 0.5)
+MIN_IOU = 0.6
+
+#: warn when the accuracy on the detected strides is this much (fraction) below the labelled-boundary one
+WARN_DROP = 0.05
+
+
+def detected_strides(session) -> pd.DataFrame | None:
+    """The strides the runtime's default segmenter finds in ``session`` (``start_s``, ``end_s``), as
+    :func:`pdrlearn.track.plasys.classification_windows` takes them; ``None`` without a foot gyroscope."""
+    from pdrlearn.kernels import stride as SK
+
+    gyro = session.streams.get("fGyroscope")
+    if gyro is None:
+        return None
+    seg = SK.stance_strides(gyro.t, gyro.values)
+    return pd.DataFrame({"start_s": seg[:, 0], "end_s": seg[:, 1]}) if len(seg) else None
+
+
+class DetectedPredictions:
+    """Per session, the model's classes of the detected strides, computed once and shared by the tasks."""
+
+    def __init__(self, model, sessions):
+        self.model, self.sessions, self._cache = model, sessions, {}
+
+    def session(self, i: int) -> tuple[pd.DataFrame, pd.DataFrame] | None:
+        """``(strides, predictions)`` of session ``i`` (rows aligned), or ``None`` without detected strides."""
+        if i not in self._cache:
+            strides = detected_strides(self.sessions[i])
+            self._cache[i] = None if strides is None else (
+                strides, self.model.predict_steps(self.sessions[i], strides).reset_index(drop=True))
+        return self._cache[i]
+
+
+def detected_score(task: str, classes, data, windows, sess_rows: dict, detected: DetectedPredictions) -> dict | None:
+    """The task's accuracy on the detected strides: each labelled step of ``data`` (rows of session ``i`` in
+    ``sess_rows[i]``) matched to a detected stride and compared with that stride's predicted class. ``n_steps``
+    counts the matched and classified steps, ``n_labelled`` the labelled ones, ``n_unmatched`` those no detected
+    stride matched. ``None`` when no session has a foot gyroscope (no detector runs)."""
+    from pdrlearn.classify.training import class_metrics
+    from pdrlearn.features import TASK_COLUMNS
+    from pdrlearn.track.evaluate import match_by_overlap
+
+    y_true, y_pred, n_lab, n_unmatched, ran = [], [], 0, 0, False
+    for i, rows in sess_rows.items():
+        n_lab += len(rows)
+        got = detected.session(i)
+        if got is None:
+            n_unmatched += len(rows)
+            continue
+        ran = True
+        strides, pred = got
+        steps = windows[i].steps
+        lab = steps.iloc[data.step[rows]][["start_s", "end_s"]].reset_index(drop=True)
+        pairs = match_by_overlap(strides, lab, min_iou=MIN_IOU)
+        n_unmatched += len(rows) - len(pairs)
+        col = pred[TASK_COLUMNS[task]].to_numpy(dtype=object)
+        for si, li in pairs:
+            if col[si] is not None and not (isinstance(col[si], float) and np.isnan(col[si])):
+                y_true.append(str(data.y[rows[li]]))
+                y_pred.append(str(col[si]))
+    if not ran:
+        return None
+    m = class_metrics(np.array(y_true, dtype=str), np.array(y_pred, dtype=str), list(classes)) if y_true else {
+        "accuracy": float("nan"), "balanced_accuracy": float("nan"), "n_steps": 0}
+    return {"accuracy": m["accuracy"], "balanced_accuracy": m["balanced_accuracy"], "n_steps": int(len(y_true)),
+            "n_labelled": int(n_lab), "n_unmatched": int(n_unmatched), "min_iou": MIN_IOU,
+            "segmenter": "StanceSegmenter (the runtime's and track's strides)"}
+
+
+def drop_warning(task: str, labelled: float, det: dict | None, boundaries: str) -> str | None:
+    """One line when the detected-stride accuracy is :data:`WARN_DROP` or more below the labelled one."""
+    if det is None or not det["n_steps"] or not labelled - det["accuracy"] >= WARN_DROP:
+        return None
+    fix = ("retrain with `pdrlearn train ... --boundaries rest` (windows cut at the foot's rest, where the "
+           "detector's and the labels' boundaries agree)" if boundaries == "given" else
+           "check the labels' boundaries against the foot's rest")
+    return (f"evaluate: {task}: {100 * det['accuracy']:.1f} % on the strides the runtime and `track --model` "
+            f"detect ({det['n_steps']} of {det['n_labelled']} labelled steps matched) against "
+            f"{100 * labelled:.1f} % on the labelled boundaries: the model is sensitive to where its step windows "
+            f"are cut, and the user gets the first figure; {fix} (decision C49)")
