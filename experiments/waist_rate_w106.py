@@ -2,7 +2,11 @@
 times of the vertical maxima, before (whole samples) and after, on (a) the nine real mobgap lower-back recordings
 at 100 Hz, (b) their 2x decimations (50 Hz) and (c) simulated users 860-879, scenario B, at 25 / 50 / 100 Hz.
 
-    OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/waist_rate_w106.py
+    OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/waist_rate_w106.py --w107
+
+"before" = every rule on whole samples (``peak_positions`` patched to the samples); "after" = this code: W107, the
+sub-sample times in W20's pruning only. W106's candidate (every rule on sub-sample times, not adopted) is commit
+851ab10 of branch waistrate; run this script there for its numbers.
 """
 
 from __future__ import annotations
@@ -10,6 +14,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import logging
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -60,6 +65,8 @@ def run(session) -> tuple[int, float, float, float, float]:
 
 def main() -> None:
     logging.disable(logging.WARNING)
+    print("after = W107 (W20 pruning on sub-sample times)" if "--w107" in sys.argv else
+          "after = this code (W107); W106's candidate is commit 851ab10")
     res: dict[str, dict] = {"before": {}, "after": {}}
     real = {n: read_session(EXT / n) for n in REAL}
     sims = {(u, fs): simulate("B", u, "normal", rate_hz=fs) for u in USERS for fs in SIM_RATES}

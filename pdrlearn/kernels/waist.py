@@ -116,8 +116,8 @@ def peak_positions(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
     """Sub-sample positions (float sample indices) of the local maxima ``idx`` of ``x``: the vertex of the parabola
     through each maximum and its two neighbours (quadratic peak interpolation, J. O. Smith, Spectral Audio Signal
     Processing, "Quadratic Interpolation of Spectral Peaks": offset ``0.5 (a - c) / (a - 2b + c)``, within half a
-    sample). A maximum at either end, or on a flat top, keeps its sample. Decision W106: the sequence rules then time
-    a maximum to well under a sample whatever the rate (at 50 Hz a sample is 20 ms)."""
+    sample). A maximum at either end, or on a flat top, keeps its sample. Decision W107: W20's same-side pruning times
+    the maxima so, to well under a sample whatever the rate (at 50 Hz a sample is 20 ms)."""
     x = np.asarray(x, dtype=np.float64)
     i = np.asarray(idx, dtype=np.int64)
     pos = i.astype(np.float64)
@@ -322,7 +322,7 @@ def prune_same_side(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     them contains a maximum that is no step (a pelvic bounce inside a long swing). Pairs of similar
     height (a side read wrongly is likelier) and maxima with an undecided side (0) are left alone.
     Returns the new mask."""
-    cand = np.asarray(cand, dtype=np.float64)  # sample positions, whole or sub-sample (W106)
+    cand = np.asarray(cand, dtype=np.float64)  # sample positions, whole or sub-sample (W107)
     h = np.asarray(height, dtype=np.float64)
     keep = np.asarray(accepted, dtype=bool).copy()
     acc = np.flatnonzero(keep)
@@ -353,7 +353,7 @@ def drop_unshifted(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, accep
     vertical bounce without that lateral shift is no step (a bounce inside a slow step, a postural move).
     Decided on the mask as given (order-independent). Maxima flagged in ``exempt`` are not judged (decision 29
     of docs/decisions/steps.md: the pelvis turns there). Returns the new mask."""
-    cand = np.asarray(cand, dtype=np.float64)  # sample positions, whole or sub-sample (W106)
+    cand = np.asarray(cand, dtype=np.int64)
     h = np.asarray(height, dtype=np.float64)
     keep = np.asarray(keep, dtype=bool)
     out = keep.copy()
@@ -388,7 +388,7 @@ def extend_alternating(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, s
     height (``>= min_peak``) on the decided *opposite* side between ``1 - tol`` local periods and
     ``max_step_s`` (the longest step inside a sequence, W16) from the end is added. One step per end and
     one pass: it does not chain. Returns the new mask."""
-    cand = np.asarray(cand, dtype=np.float64)  # sample positions, whole or sub-sample (W106)
+    cand = np.asarray(cand, dtype=np.int64)
     h = np.asarray(height, dtype=np.float64)
     sd = np.asarray(side)
     keep = np.asarray(keep, dtype=bool)
@@ -457,26 +457,25 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     turning : (n,) bool, candidates where the pelvis turns: W23 does not judge them (decision 29 of
         docs/decisions/steps.md: in a pivot the weight moves along the turn and the centripetal acceleration
         enters the lateral signal, so no lateral swing is no evidence against a step); None = all judged
-    at : (n,) float, the candidates' sub-sample positions (:func:`peak_positions`) the rules W18 / W20 / W23 /
-        W28 compare (decision W106: the same decision at every rate); None = ``cand``. The shortest-step check
-        stays on the whole samples of ``cand`` (W28)
+    at : (n,) float, the candidates' sub-sample positions (:func:`peak_positions`) W20's same-side pruning
+        compares (decision W107: the same decision at every rate); None = ``cand``. W18, W23 and W28 keep the whole
+        samples of ``cand`` (decision W106: timing them between samples too moved real Test11 contacts at 100 Hz)
 
     Returns
     -------
     (n,) bool: the accepted maxima plus the completed ones.
     """
-    idx = np.asarray(cand, dtype=np.int64)
-    cand = idx.astype(np.float64) if at is None else np.asarray(at, dtype=np.float64)  # W106: the rules' times
+    cand = np.asarray(cand, dtype=np.int64)
     h = np.asarray(height, dtype=np.float64)
     keep = np.asarray(accepted, dtype=bool).copy()
     if cand.size == 0:
         return keep
     sd = np.zeros(cand.size, dtype=np.int8) if side is None else np.asarray(side, dtype=np.int8)
-    if side is not None:
-        keep = prune_same_side(cand, h, keep, sd, fs, max_step_s=max_step_s)
+    if side is not None:  # W107: the pair's distance and local period between samples
+        keep = prune_same_side(cand if at is None else at, h, keep, sd, fs, max_step_s=max_step_s)
     max_gap, min_gap = _max_gap(max_step_s, fs), max(1, int(round(min_step_s * fs)))  # as find_peaks' distance
     acc = np.flatnonzero(keep)
-    t = cand[acc]
+    t = cand[acc].astype(np.float64)
     add: list[int] = []
 
     def best_near(centre: float, half: float, floor: float, want: int = 0) -> int | None:
@@ -518,7 +517,7 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     # the completed set must still respect the shortest step: drop the lower of two too-close maxima
     sel = np.flatnonzero(keep)
     for a, b in zip(sel[:-1], sel[1:], strict=True):
-        if keep[a] and keep[b] and idx[b] - idx[a] < min_gap:
+        if keep[a] and keep[b] and cand[b] - cand[a] < min_gap:
             keep[a if h[a] < h[b] else b] = False
     return keep
 
