@@ -43,7 +43,6 @@ def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: 
     """The tracker after replaying ``session_dir`` through ``bundle_dir`` and its steps, as ``pdrlearn run`` pushes
     a session (same input rates, stream ends, frames when the session declares them; decision E76)."""
     from pdrlearn.errors import DataError
-    from pdrlearn.kernels.clock import nominal_period_s
     from pdrlearn.runtime import Tracker, load_bundle
     from pdrlearn.runtime.replay import read_streams, replay_chunks, session_frames
 
@@ -56,17 +55,28 @@ def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: 
     have = [n for n, (t, _) in streams.items() if len(t)]
     tracker = Tracker(bundle, frames=session_frames(meta, bundle, asked or bundle.body_units, f"session {session_dir}"),
                       units=asked, sensors=have, methods=methods,
-                      input_rates_hz={n: 1.0 / nominal_period_s(t) for n, (t, _) in streams.items() if len(t) > 1},
+                      input_rates_hz={n: _rate_hz(t) for n, (t, _) in streams.items()},
                       stream_ends_s={n: float(t[-1]) for n, (t, _) in streams.items() if len(t)})
     if asked is None and tracker.units != bundle.body_units:  # decision E26, as pdrlearn run says it
         logging.getLogger("pdrlearn.runtime").warning(
             "session %s has no waist unit the bundle also uses: the foot unit only (--units foot chooses this "
             "without the warning)", session_dir)
     steps = []
-    for chunk in replay_chunks(streams, chunk_s):
-        steps += tracker.push(chunk)
-    steps += tracker.flush()
+    try:
+        for chunk in replay_chunks(streams, chunk_s):
+            steps += tracker.push(chunk)
+        steps += tracker.flush()
+    except DataError as exc:  # the Tracker names the stream; the line names the session's file too
+        raise DataError(f"{Path(session_dir)}: {exc}") from None
     return tracker, steps
+
+
+def _rate_hz(t) -> float:
+    """The rate ``pdrlearn run`` gives the Tracker (``Stream.rate_hz``: D7, B33); NaN when it has none."""
+    from pdrlearn.kernels.clock import nominal_period_s
+
+    p = nominal_period_s(t)
+    return 1.0 / p if p > 0 else float("nan")
 
 
 def _rows(steps) -> list[dict]:
