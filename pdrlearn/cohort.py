@@ -403,7 +403,9 @@ def meta_user_key(meta: dict) -> str | None:
     """The user a session was recorded from, by its ``meta.json`` (decision C29): ``user`` (a string, or an object
     with ``id`` or ``seed``, as the simulator writes) or ``subject`` (a string, or an object with ``id`` or
     ``participant_id``, as the mobgap converter writes), as ``user:anna`` / ``subject.id:7``; ``None`` when it
-    names none. ``train --cv-groups user``'s user (``classify.training.session_user``)."""
+    names none. ``train --cv-groups user``'s user (``classify.training.session_user``). An object's site, centre,
+    cohort or study is part of the name (cohort C32: mobgap's ``{"cohort": "HA", "participant_id": "001"}`` and
+    ``{"cohort": "MS", "participant_id": "001"}`` are two people: ``subject.cohort:HA.participant_id:001``)."""
     for key, ids in (("user", ("id", "seed")), ("subject", ("id", "participant_id"))):
         v = meta.get(key)
         if isinstance(v, str) and v.strip():
@@ -411,8 +413,14 @@ def meta_user_key(meta: dict) -> str | None:
         if isinstance(v, dict):
             for k in ids:
                 if v.get(k) is not None and str(v[k]).strip():
-                    return f"{key}.{k}:{v[k]}"
+                    scope = [f"{s}:{v[s]}" for s in SUBJECT_SCOPES
+                             if isinstance(v.get(s), str | int) and str(v[s]).strip()]
+                    return f"{key}." + ".".join([*scope, f"{k}:{v[k]}"])
     return None
+
+
+#: the keys of a meta.json subject object that say where its id is unique (cohort C32)
+SUBJECT_SCOPES = ("study", "site", "centre", "center", "cohort")
 
 
 def meta_user(meta: dict) -> str | None:

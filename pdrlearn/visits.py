@@ -14,8 +14,10 @@ import re
 from pdrlearn.cohort import GROUP_METRICS, t_interval
 
 #: changes.csv's leading columns (decision C22); ``<measure>_baseline`` and ``<measure>_change`` follow per measure
-CHANGE_COLUMNS = ("subject", "group", "baseline_visit", "visit", "status", "reason", "baseline_path", "path")
-#: what a pair of visits is when it is not ``ok`` (C22), in the order they are looked for
+CHANGE_COLUMNS = ("subject", "group", "baseline_visit", "visit", "status", "reason", "baseline_path", "path",
+                  "baseline_duplicate_of", "duplicate_of")
+#: what a pair of visits is when it is not ``ok`` (C22), in the order they are looked for; a pair of tracked
+#: sessions can still be ``pipelines`` (C30) or ``duplicate`` (C31)
 STATUSES = ("ok", "missing", "failed", "several")
 
 
@@ -128,39 +130,182 @@ def _side(rows, visit: str) -> tuple[str, str | None, object]:
     return "ok", None, row
 
 
-def change_table(sessions, metrics=GROUP_METRICS):
+#: a visit name's leading word and the word it is a spelling of (decision C28), after case and separators are
+#: dropped: ``BL`` / ``Baseline`` / ``baseline`` one visit, ``W12`` / ``wk12`` / ``Week 12`` one, ``FU`` /
+#: ``follow-up`` / ``followup`` one; a one-letter word only before a number (``W12``, not ``W``)
+VISIT_SYNONYMS = {"bl": "baseline", "base": "baseline", "w": "week", "wk": "week", "wks": "week", "weeks": "week",
+                  "fu": "followup", "follow": "followup", "m": "month", "mo": "month", "months": "month",
+                  "d": "day", "days": "day", "v": "visit"}
+
+
+def visit_key(name: str) -> str:
+    """The spelling-free form of a visit name (decision C28): lower case, without spaces, ``-``, ``_`` and other
+    separators, leading zeros of numbers dropped and the leading word by :data:`VISIT_SYNONYMS` (``Follow-up 06`` ->
+    ``followup6``, ``W12`` -> ``week12``, ``BL`` -> ``baseline``)."""
+    s = re.sub(r"\d+", lambda m: str(int(m.group())), re.sub(r"[\W_]", "", str(name).lower()))
+    word = re.match(r"[^\W\d_]*", s).group(0)
+    if len(word) == 1 and len(s) == 1:
+        return s
+    return VISIT_SYNONYMS.get(word, word) + s[len(word):]
+
+
+def read_visit_map(path) -> dict[str, str]:
+    """``track-all --visit-map FILE`` (decision C29): ``{visit as written in meta.json: the visit it is}``, from a JSON
+    object or a CSV of two columns (name as written, canonical name; a first row ``raw,canonical`` is its header).
+    Bad input: one line naming the file and the fix."""
+    import csv
+    import json
+    from pathlib import Path
+
+    from pdrlearn.errors import DataError
+
+    path = Path(path)
+    fix = ('give a JSON object {"BL": "baseline", ...} or a CSV of two columns raw,canonical (decision C29)')
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise DataError(f"--visit-map {path}: cannot be read ({exc.__class__.__name__}); {fix}") from None
+    if path.suffix.lower() == ".json":
+        try:
+            pairs = json.loads(text)
+        except ValueError as exc:
+            raise DataError(f"--visit-map {path}: not JSON ({exc}); {fix}") from None
+        if not isinstance(pairs, dict) or not all(isinstance(v, str | int) for v in pairs.values()):
+            raise DataError(f"--visit-map {path}: not an object of names; {fix}")
+        pairs = list(pairs.items())
+    else:
+        rows = [r for r in csv.reader(text.splitlines()) if any(c.strip() for c in r)]
+        if rows and [c.strip().lower() for c in rows[0]] in (["raw", "canonical"], ["visit", "canonical"]):
+            rows = rows[1:]
+        bad = next((i for i, r in enumerate(rows, 1) if len(r) != 2 or not all(c.strip() for c in r)), None)
+        if bad is not None:
+            raise DataError(f"--visit-map {path}: row {bad} is not two names; {fix}")
+        pairs = [(a, b) for a, b in rows]
+    out: dict[str, str] = {}
+    for raw, canonical in pairs:
+        raw, canonical = str(raw).strip(), str(canonical).strip()
+        if out.get(raw, canonical) != canonical:
+            raise DataError(f"--visit-map {path}: {raw!r} is mapped to both {out[raw]!r} and {canonical!r}; keep one")
+        out[raw] = canonical
+    return out
+
+
+def canonical_visits(visits, visit_map: dict[str, str] | None = None) -> tuple[dict[str, str], str | None]:
+    """Decision C28: ``{visit as written: the visit changes.csv pairs it as}`` and the warning, one line, naming the
+    spellings taken as one visit (None when there are none). ``visit_map`` (``--visit-map``, C29) is applied first;
+    then names with one :func:`visit_key` are one visit, named by that key (``BL``, ``Baseline`` -> ``baseline``); a
+    name written one way only stays as written."""
+    mapped = {v: (visit_map or {}).get(v, v) for v in sorted({str(v) for v in visits})}
+    spellings: dict[str, set[str]] = {}
+    for name in mapped.values():
+        spellings.setdefault(visit_key(name), set()).add(name)
+    label = {key: key if len(names) > 1 else next(iter(names)) for key, names in spellings.items()}
+    merged = [f"{', '.join(repr(n) for n in sorted(names))} -> {key!r}" for key, names in sorted(spellings.items())
+              if len(names) > 1]
+    warning = None if not merged else (
+        "visit names spelled differently are paired as one visit in changes.csv: " + "; ".join(merged)
+        + "; write one spelling in meta.json's visit, or give track-all --visit-map FILE (raw,canonical) to name "
+        "them yourself (decision C28)")
+    return {raw: label[visit_key(name)] for raw, name in mapped.items()}, warning
+
+
+def _baselines(named) -> dict[str, str | None]:
+    """Decision C28: each subject's baseline, the first of its own visits (:func:`visit_order`) that starts with a
+    baseline word (C24; the study's first visit when no visit name does), ``None`` for a subject without one."""
+    order = visit_order(named["visit"])
+    firsts = [v for v in order if _word_rank(v) == 0] or order[:1]
+    return {s: next((v for v in firsts if v in set(mine["visit"])), None) for s, mine in named.groupby("subject")}
+
+
+def _twins(named) -> dict[str, list[str]]:
+    """Decision C31: per session path, the other sessions holding the identical recording (C20's ``duplicate_of``
+    read both ways: the copy names the first, the first is named by its copies)."""
+    if "duplicate_of" not in named:
+        return {}
+    first = {str(p): d if isinstance(d, str) and d else str(p) for p, d in zip(named["path"], named["duplicate_of"],
+                                                                             strict=True)}
+    same: dict[str, set[str]] = {}
+    for p, root in first.items():
+        same.setdefault(root, {root}).add(p)
+    return {p: sorted(same[first[p]] - {p}) for p in first}
+
+
+def _pair_problem(b_row, v_row, subject_of: dict[str, str], twins: dict[str, list[str]]) -> tuple[str, str] | None:
+    """A tracked pair that is no change of one subject: (status, reason) - ``pipelines`` when the two visits were
+    tracked by different pipelines (C30: a foot pipeline's gait speed against a waist pipeline's is a change of
+    method), ``duplicate`` when a visit's recording is also another subject's (C31: which subject it is, is not in
+    the data) - else None."""
+    bp, vp = b_row.get("pipeline"), v_row.get("pipeline")
+    if isinstance(bp, str) and isinstance(vp, str) and bp != vp:
+        return "pipelines", (f"{b_row['path']} tracked by {bp}, {v_row['path']} by {vp}: a change across pipelines "
+                             "(units) is the methods' difference; track both visits with the same sensors and "
+                             "--pipeline (decision C30)")
+    for row in (b_row, v_row):
+        others = [q for q in twins.get(str(row["path"]), []) if subject_of.get(q) != subject_of.get(str(row["path"]))]
+        if others:
+            whose = ", ".join(sorted({subject_of.get(q) or "none named" for q in others}))
+            return "duplicate", (f"{row['path']} holds the same recording as {', '.join(others)} (subject {whose}): "
+                                 "which subject it is, is not in the data (duplicate_of, decision C31)")
+    return None
+
+
+def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | None = None):
     """changes.csv from sessions.csv (a DataFrame), or ``None`` when the sessions naming a subject and a visit name
-    fewer than two visits (decision C22). One row per subject (natural order) and later visit: the change of each
-    measure from the subject's baseline visit (the first in :func:`visit_order` of every visit found), later minus
-    baseline. A subject without a tracked session at either visit is a row too, ``status`` ``missing`` (no session),
-    ``failed`` (its session failed) or ``several`` (more than one session of the subject at that visit: which one
-    is the visit is not in the data), with the ``reason`` and empty changes - listed, never dropped. A copy of the
-    baseline recording at a later visit (C20's ``duplicate_of``) stays ``ok`` and is said in ``reason``."""
+    fewer than two visits (decision C22). Visit names are first made one per visit (:func:`canonical_visits`,
+    decisions C28, C29: ``BL`` and ``baseline`` one visit). One row per subject (natural order) and later visit: the
+    change of each measure from the subject's own baseline (:func:`_baselines`, C28), later minus baseline. The
+    later visits of a subject are those of the subjects with its baseline (a subject without a baseline visit, or
+    whose baseline nobody has a later visit of: of the most common baseline), and its own. A subject without a
+    tracked session at either visit is a row too, ``status`` ``missing`` (no session), ``failed`` (its session
+    failed) or ``several`` (more than one session of the subject at that visit: which one is the visit is not in
+    the data), with the ``reason`` and empty changes -
+    listed, never dropped; a tracked pair is ``pipelines`` when the visits were tracked by different pipelines (C30)
+    and ``duplicate`` when a recording is also another subject's (C31; ``baseline_duplicate_of`` / ``duplicate_of``
+    name the other sessions holding it). A copy of the baseline recording at a later visit of the same subject
+    (C20's ``duplicate_of``) stays ``ok`` and is said in ``reason``."""
     import numpy as np
     import pandas as pd
 
     if "subject" not in sessions or "visit" not in sessions:  # a sessions.csv written before C22
         return None
     named = _labelled(sessions)
+    named["visit"] = named["visit"].map(canonical_visits(named["visit"], visit_map)[0])
     visits = visit_order(named["visit"])
     if len(visits) < 2:
         return None
     measures = [m for m in metrics if m in sessions and pd.to_numeric(sessions[m], errors="coerce").notna().any()]
-    base = visits[0]
+    base_of = _baselines(named)
+    counts = pd.Series([b for b in base_of.values() if b is not None]).value_counts()
+    common = min(counts.index, key=lambda b: (-counts[b], visits.index(b))) if len(counts) else visits[0]
+    baselines = set(base_of.values())
+    later: dict[str, list[str]] = {}
+    for subject, mine in named.groupby("subject"):
+        if base_of[subject]:
+            later.setdefault(base_of[subject], []).extend(v for v in mine["visit"] if v not in baselines)
+    subject_of = dict(zip(named["path"].astype(str), named["subject"], strict=True))
+    twins = _twins(named)
     rows = []
     for subject in visit_order(named["subject"]):
         mine = named[named["subject"] == subject]
+        base = base_of[subject] or common
         b_status, b_reason, b_row = _side(mine[mine["visit"] == base], base)
-        for visit in visits[1:]:
+        own = (later[base] or later[common]) + [v for v in mine["visit"] if v not in baselines]
+        for visit in visit_order(own):
             v_status, v_reason, v_row = _side(mine[mine["visit"] == visit], visit)
             status = next(s for s in STATUSES[1:] + ("ok",) if s in (b_status, v_status))
             reasons = [r for r in (b_reason, v_reason) if r]
-            if status == "ok" and v_row.get("duplicate_of") == b_row["path"]:  # decision C20's copy
+            problem = _pair_problem(b_row, v_row, subject_of, twins) if status == "ok" else None
+            if problem:
+                status = problem[0]
+                reasons.append(problem[1])
+            elif status == "ok" and v_row.get("duplicate_of") == b_row["path"]:  # decision C20's copy
                 reasons.append(f"{v_row['path']} holds the same recording as {b_row['path']} (duplicate_of)")
             row = {"subject": subject, "group": mine["group"].astype(str).iloc[0], "baseline_visit": base,
                    "visit": visit, "status": status, "reason": "; ".join(reasons) or None,
                    "baseline_path": None if b_row is None else b_row["path"],
-                   "path": None if v_row is None else v_row["path"]}
+                   "path": None if v_row is None else v_row["path"],
+                   **{f"{k}duplicate_of": None if r is None else "; ".join(twins.get(str(r["path"]), [])) or None
+                      for k, r in (("baseline_", b_row), ("", v_row))}}
             for m in measures:
                 both = status == "ok"
                 b = pd.to_numeric(b_row[m], errors="coerce") if both else np.nan
@@ -172,8 +317,41 @@ def change_table(sessions, metrics=GROUP_METRICS):
                                                                   for k in ("baseline", "change"))])
 
 
+def _lookalike(subject: str) -> str:
+    """A subject id as a typo would not change it (C33): lower case, no separators, ``l`` / ``i`` as ``1``, ``o`` as
+    ``0`` (``S7l8`` and ``s718`` are ``S718``'s)."""
+    return re.sub(r"[\W_]", "", subject.lower()).translate(str.maketrans("lio", "110"))
+
+
+def label_warnings(sessions, visit_map: dict[str, str] | None = None) -> list[str]:
+    """What track-all warns about the subjects and visits of sessions.csv, one line each: visit names spelled
+    differently taken as one visit (C28), a subject id in more than one group (C32: one person, or site-local ids
+    that collide?), and subjects seen at one visit whose id looks like another subject's (C33: a typo?)."""
+    named = _labelled(sessions)
+    if named.empty:
+        return []
+    out = [w for w in (canonical_visits(named["visit"], visit_map)[1],) if w]
+    groups = named.groupby("subject")["group"].agg(lambda g: sorted(set(map(str, g))))
+    spans = [f"{s!r} ({', '.join(g)})" for s, g in groups.items() if len(g) > 1]
+    if spans:
+        out.append(f"subject id {'; '.join(spans[:5])}{' and more' if len(spans) > 5 else ''} has sessions in more "
+                   "than one group: paired as one person; if ids are per site, name the site in meta.json "
+                   '("subject": {"site": "A", "id": "001"}) (decision C32)')
+    n_visits = named.groupby("subject")["visit"].nunique()
+    by_look: dict[str, list[str]] = {}
+    for s in n_visits.index:
+        by_look.setdefault(_lookalike(s), []).append(s)
+    alike = [f"{s!r} like {', '.join(repr(o) for o in by_look[_lookalike(s)] if o != s)}" for s in
+             visit_order(n_visits.index) if n_visits[s] == 1 and len(by_look[_lookalike(s)]) > 1]
+    if alike:
+        out.append(f"subject ids seen at one visit look like another subject's: {'; '.join(alike)}: a typo in "
+                   "meta.json's subject? (decision C33)")
+    return out
+
+
 def change_summary(changes, metrics=GROUP_METRICS):
-    """changes_summary.csv from changes.csv (decision C23): one row per later visit (in order) and measure with
+    """changes_summary.csv from changes.csv (decision C23): one row per later visit and baseline (in order; subjects
+    whose baselines differ, C28, are never pooled) and measure with
     ``n_subjects`` (subjects with a change: both visits tracked and the measure present at both), ``mean_change``,
     ``sd_change`` (n - 1) and ``ci95_low`` / ``ci95_high``, the paired 95 % t-interval of the mean change (the
     one-sample interval of the differences, :func:`pdrlearn.cohort.t_interval`; empty under two subjects), and
@@ -181,8 +359,10 @@ def change_summary(changes, metrics=GROUP_METRICS):
     import pandas as pd
 
     rows = []
-    for visit in visit_order(changes["visit"]):
-        at = changes[changes["visit"] == visit]
+    order = visit_order([*changes["visit"], *changes["baseline_visit"]])
+    pairs = dict.fromkeys(zip(changes["visit"], changes["baseline_visit"], strict=True))  # decision C28
+    for visit, base in sorted(pairs, key=lambda vb: (order.index(vb[0]), order.index(vb[1]))):
+        at = changes[(changes["visit"] == visit) & (changes["baseline_visit"] == base)]
         unpaired = at[at["status"] != "ok"]["subject"].astype(str).tolist()
         for m in metrics:
             if f"{m}_change" not in at:
@@ -190,7 +370,7 @@ def change_summary(changes, metrics=GROUP_METRICS):
             d = pd.to_numeric(at[f"{m}_change"], errors="coerce").dropna()
             mean, sd = (d.mean(), d.std()) if len(d) else (float("nan"), float("nan"))
             low, high = t_interval(mean, sd, len(d))
-            rows.append({"visit": visit, "baseline_visit": at["baseline_visit"].iloc[0], "measure": m,
+            rows.append({"visit": visit, "baseline_visit": base, "measure": m,
                          "n_subjects": len(d), "mean_change": mean, "sd_change": sd, "ci95_low": float(low),
                          "ci95_high": float(high), "n_not_paired": len(unpaired),
                          "not_paired": "; ".join(unpaired) or None})

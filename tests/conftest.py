@@ -28,6 +28,15 @@ def mobgap_test5() -> Path:
     return REAL / "mobgap_HA001_Test5_Trial1"
 
 
+@pytest.fixture(scope="session")
+def synthetic_bundle(tmp_path_factory):
+    """The loaded default bundle of ``tests.runtime_helpers.trained_dirs`` (trained once per test process)."""
+    from pdrlearn.runtime import load_bundle
+    from tests.runtime_helpers import trained_dirs
+
+    return load_bundle(trained_dirs(tmp_path_factory)["root"] / "bundle")
+
+
 # -- sessions of `pdrlearn fetch` (datasets/external) ----------------------------------------------------
 _EXTERNAL_CONVERTED: dict[str, Path | None] = {}
 

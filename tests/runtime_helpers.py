@@ -211,6 +211,16 @@ def replay(tracker, session, chunk_s: float = 0.5) -> list:
     return steps + tracker.flush()
 
 
+def time_chunks(session, chunk_s: float, prefix: str = ""):
+    """``(t0, {sensor: (t, values)})`` per ``chunk_s`` slice of ``session`` (slices of whole sample indices from the
+    foot accelerometer's first time: no sample in two slices), the streams whose name starts with ``prefix``."""
+    t = session.streams["fAccelerometer"].t
+    edges = t[0] + chunk_s * np.arange(int((t[-1] - t[0]) / chunk_s) + 2)
+    for a, b in zip(edges[:-1], edges[1:], strict=True):
+        yield float(a), {n: (st.t[(st.t >= a) & (st.t < b)], st.values[(st.t >= a) & (st.t < b)])
+                         for n, st in session.streams.items() if n.startswith(prefix)}
+
+
 def calibrated_length_model(root, scenario_speed: str = "normal"):
     """A length model of simulated user 2 trained with ``distance_calibration=True``, saved in ``root/model``
     and exported to ``root/bundle``, and scenario A of the same user at ``scenario_speed`` (same unit: S22

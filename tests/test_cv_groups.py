@@ -21,7 +21,8 @@ def _meta(meta):
 def test_session_user_reads_the_meta_json_user_or_subject():
     assert session_user(_meta({"user": "anna"})) == "user:anna"
     assert session_user(_meta({"user": {"seed": 7, "height_m": 1.7}})) == "user.seed:7"
-    assert session_user(_meta({"subject": {"cohort": "HA", "participant_id": "1001"}})) == "subject.participant_id:1001"
+    assert (session_user(_meta({"subject": {"cohort": "HA", "participant_id": "1001"}}))
+            == "subject.cohort:HA.participant_id:1001")  # cohort C32: HA1001 and MS1001 are two people
     assert session_user(_meta({"subject": {"cohort": "healthy adult"}})) is None  # gaitmap: no id
     assert session_user(_meta({})) is None
 

@@ -120,6 +120,7 @@ def test_waist_only_drops_are_not_warned_with_the_foot_advice(tmp_path, caplog):
     lines = _b64(caplog)
     assert len(lines) == 1 and "wAccelerometer, wGyroscope have 1 interval(s)" in lines[0]
     assert "the waist pipelines interpolate them onto a uniform clock (decision W34" in lines[0]
+    assert "or a phone app's sampling" in lines[0]  # decision B149: a waist unit may be a phone, not Bluetooth
     assert "-2.5 %" not in lines[0] and "`track --streaming` integrates" not in lines[0]
     assert "not bridged" not in lines[0] and "of 1 s or less (longest 0.020 s)" in lines[0]
     caplog.clear()

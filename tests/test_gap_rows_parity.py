@@ -14,6 +14,7 @@ import pytest
 from pdrlearn.io import read_session, write_session
 from pdrlearn.kernels.altitude_check import integrated_altitude_check
 from pdrlearn.orient import wrap_angle
+from pdrlearn.runtime.stream import HeightLog
 from pdrlearn.runtime.tracker import Tracker
 from pdrlearn.track import get_pipeline
 from tests.runtime_helpers import replay, synthetic_session, trained_dirs, without
@@ -176,18 +177,25 @@ def test_tracker_without_a_terrain_classifier_says_the_altitude_is_integrated(ro
         assert info["strides_with_height"] == 0
 
 
+def _log(rows) -> HeightLog:
+    log = HeightLog(capacity=2)
+    for row in rows:
+        log.append(*row)
+    return log
+
+
 def test_tracker_checks_the_heights_it_was_given():
     """The check's inputs, not only its plumbing: a tracker whose strides climb 0.3 m without terrain classes
     warns, one whose strides are level does not (the kernel's threshold, L39's 0.10 m)."""
     tr = Tracker.__new__(Tracker)
     tr.classifiers, tr.warnings = {}, []
     tr.bundle = type("B", (), {"path": "b"})()
-    tr._heights = [(None, 0.3, 0.3)] * 4 + [(None, 0.0, 0.0)]
+    tr._heights = _log([(None, 0.3, 0.3)] * 4 + [(None, 0.0, 0.0)])
     c = tr.height_checks()["altitude_check"]
     assert c["strides_with_height"] == 4 and c["altitude_change_m"] == pytest.approx(1.2) and len(tr.warnings) == 1
-    tr._heights, tr.warnings = [(None, 0.05, 0.05)] * 5, []
+    tr._heights, tr.warnings = _log([(None, 0.05, 0.05)] * 5), []
     assert tr.height_checks()["altitude_check"]["strides_with_height"] == 0 and tr.warnings == []
     tr.classifiers = {"terrain": object()}
-    tr._heights = [("flat", 0.3, 0.3)] * 4
+    tr._heights = _log([("flat", 0.3, 0.3)] * 4)
     c = tr.height_checks()["terrain_dz_check"]
     assert c["flat_with_height"] == 4 and len(tr.warnings) == 1 and "terrain classes contradict" in tr.warnings[0]

@@ -129,8 +129,9 @@ def test_mapping_file_and_sample_index_time(tmp_path, capsys):
     assert main(["import", str(csv), "--out", str(tmp_path / "a"), "--mapping", str(mp), "--rate", "50"]) == 0
     assert read_session(tmp_path / "a").streams["fAccelerometer"].rate_hz == pytest.approx(50.0)
     assert "in samples (given column, unit sample numbers at 50 Hz (given with --rate))" in capsys.readouterr().err
-    assert main(["import", str(csv), "--out", str(tmp_path / "b"), "--mapping", str(mp), "--time-unit", "s"]) == 0
-    assert read_session(tmp_path / "b").streams["fAccelerometer"].rate_hz == pytest.approx(1.0)
+    # decision B144: read as s they are a 1 Hz accelerometer, under an IMU's 10 Hz floor: refused, nothing written
+    assert main(["import", str(csv), "--out", str(tmp_path / "b"), "--mapping", str(mp), "--time-unit", "s"]) != 0
+    assert "read as s (given with --time-unit) give 1 Hz" in _err(capsys) and not (tmp_path / "b").exists()
     mp.write_text(json.dumps({"acc": ["a_x", "a_y", "a_z"], "units": {"time": "s"}, "sampling": 1}))
     assert main(["import", str(csv), "--out", str(tmp_path / "c"), "--mapping", str(mp)]) != 0
     assert "unknown key(s) sampling" in capsys.readouterr().err

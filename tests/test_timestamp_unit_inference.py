@@ -72,3 +72,60 @@ def test_the_declared_rate_must_match():
     assert time_unit_candidates(t, declared_rate_hz=100.0) == [("s", 1.0)]
     assert time_unit_candidates(t, declared_rate_hz=20.0) == []
     assert time_unit_candidates(np.arange(100) * 10.0) == [("ms", 1e-3)]  # milliseconds
+
+
+def _phone_export(path: Path, rate: float, sensor: str, jitter_ns: float = 0.0) -> Path:
+    """HA001 Test5 T1's waist stream resampled at ``rate`` Hz, timed by a phone's epoch-ns clock (Sensor Logger's
+    ``time`` column, 2024-12-03), the median interval ``jitter_ns`` off the nominal one (decision B144)."""
+    s = read_session(SRC)
+    st = s[sensor]
+    dt_ns = 1e9 / rate + jitter_ns
+    t = np.arange(st.t[0], st.t[-1], dt_ns * 1e-9)
+    vals = np.column_stack([np.interp(t, st.t, st.values[:, i]) for i in range(3)])
+    ns = 1_733_216_400_000_000_000 + np.round(np.arange(t.size) * dt_ns).astype(np.int64)
+    df = pd.DataFrame({"time": ns, "x": vals[:, 0], "y": vals[:, 1], "z": vals[:, 2]})
+    df.to_csv(path, index=False)
+    return path
+
+
+@pytest.mark.parametrize("rate,jitter_ns,sensor,kind", [(1000.0, 0.0, "wAccelerometer", "--acc"),
+                                                         (500.0, 256.0, "wAccelerometer", "--acc"),
+                                                         (500.0, -128.0, "wGyroscope", "--gyro")])
+def test_a_phone_epoch_ns_clock_at_500_hz_and_up_is_nanoseconds(tmp_path, capsys, rate, jitter_ns, sensor, kind):
+    """Decision B144 (trial "phone" finding 1): epoch-ns timestamps at 1000 Hz were read as us (0.996 Hz, year
+    ~56,900, exit 0), and at 500 Hz a gyroscope 128 ns short of 2 ms was read as us (0.4971 Hz was under the
+    0.5 Hz floor, 0.5001 Hz over it): an IMU file is held to 10 Hz and a date before 2100."""
+    from pdrlearn.cli import main
+
+    csv = _phone_export(tmp_path / "Sensor.csv", rate, sensor, jitter_ns)
+    out = tmp_path / "s"
+    assert main(["import", str(csv), "--unit", "waist", kind, "x,y,z", "--out", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert "column 'time' in ns" in err and "2024-12-03" in err
+    logging.disable(logging.WARNING)
+    try:
+        got = read_session(out)[sensor]
+    finally:
+        logging.disable(logging.NOTSET)
+    assert got.rate_hz == pytest.approx(rate, rel=0.01)
+
+
+def test_an_imu_file_is_held_to_10_hz_and_a_date_before_2100():
+    step = np.arange(100) * 1e6  # 1000 Hz in ns (1 Hz in us)
+    assert [u for u, _ in time_unit_candidates(1.7332164e18 + step)] == ["ns"]  # us: a date after 2100
+    assert [u for u, _ in time_unit_candidates(5e12 + step)] == ["us", "ns"]  # a clock since boot: no date
+    assert [u for u, _ in time_unit_candidates(5e12 + step, inertial=True)] == ["ns"]  # 1 Hz is no IMU rate
+
+
+def test_an_ambiguous_unit_names_the_option_that_forces_the_other(tmp_path, capsys):
+    """B144: a magnetometer file (no IMU floor) timed by ns since boot at 1000 Hz fits us (1 Hz) and ns; the
+    summary names the one chosen and the --time-unit of the other."""
+    from pdrlearn.cli import main
+
+    n = 50
+    df = pd.DataFrame({"time": 5_000_000_000_000 + np.arange(n) * 1_000_000, "mag_x": np.full(n, 20.0),
+                       "mag_y": np.full(n, -5.0), "mag_z": np.full(n, 40.0)})
+    df.to_csv(tmp_path / "Magnetometer.csv", index=False)
+    assert main(["import", str(tmp_path / "Magnetometer.csv"), "--unit", "waist", "--out", str(tmp_path / "s")]) == 0
+    assert "in us (guessed column, unit inferred (B22); also fits ns: pass --time-unit ns if it is in ns)" in \
+        capsys.readouterr().err

@@ -1,4 +1,5 @@
-"""Decision W102: the trunk-tilt gate (option `max_tilt_deg`; measured, not adopted as the default)."""
+"""Decision W102: the trunk-tilt gate (option `max_tilt_deg`; measured, not adopted as the default); decision W104:
+the sit-to-stand veto (option `sit_veto`)."""
 
 from __future__ import annotations
 
@@ -8,10 +9,18 @@ from scipy.spatial.transform import Rotation
 
 from pdrlearn.io import Stream
 from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
+from pdrlearn.sim.route import parse_route
 from pdrlearn.track.waist import track_waist
 from pdrlearn.waist.ahrs import WaistIMU
 from pdrlearn.waist.events import steps_from_events
-from pdrlearn.waist.posture import MAX_TILT_DEG, contact_tilt_deg, tilt_gate
+from pdrlearn.waist.posture import (
+    MAX_TILT_DEG,
+    TRANSFER_HALF_S,
+    contact_tilt_deg,
+    flexion_events,
+    tilt_gate,
+    transfer_veto,
+)
 
 FS = 100.0
 
@@ -90,3 +99,44 @@ def test_the_gate_changes_no_step_of_an_upright_walk():
     off = track_waist(s, pipeline="waist-pendulum")
     on = track_waist(s, pipeline="waist-pendulum", max_tilt_deg=MAX_TILT_DEG)
     pd.testing.assert_frame_equal(on.steps, off.steps)
+
+
+def test_the_veto_finds_the_flexion_event_and_drops_the_contacts_around_its_peak():
+    t = np.arange(0.0, 20.0, 1.0 / FS)
+    steps = steps_from_events(t, np.arange(50, 1950, 50))
+    imu = _imu(Rotation.from_euler("xyz", [90.0, 25.0, -40.0], degrees=True))
+    (a, peak, b), = flexion_events(imu, steps["event_s"].to_numpy(), steps["has_next"].to_numpy())
+    # 70 deg raised cosine over 10-12 s: above 25 deg where cos(pi (t - 10)) < 1 - 50 / 70
+    half = np.arccos(1.0 - 50.0 / 70.0) / np.pi
+    assert abs(peak - 11.0) < 0.02 and abs(a - (10.0 + half)) < 0.02 and abs(b - (12.0 - half)) < 0.02
+    out = transfer_veto(steps, imu)
+    gone = sorted(set(steps["event_s"].round(2)) - set(out["event_s"].round(2)))
+    assert gone == [e for e in steps["event_s"].round(2) if abs(e - 11.0) <= TRANSFER_HALF_S]
+    assert out.attrs["n_vetoed"] == len(gone)
+    before = out[out["event_s"] < min(gone)].iloc[-1]
+    assert not before["has_next"] and before["end_s"] == before["start_s"]
+    assert transfer_veto(steps.iloc[:0], imu).empty
+
+
+def test_the_veto_removes_the_contacts_of_a_simulated_sit_to_stand():
+    s = simulate_path(parse_route("straight:10, sit:20, straight:10"), UserProfile.from_seed(621), rate_hz=100,
+                      seed=621)
+    tr = s.extras["transfers"].iloc[0]
+
+    def inside(res):
+        e = res.steps["event_s"].to_numpy(float)
+        return int(((e >= tr.start_s) & (e <= tr.end_s)).sum())
+
+    off = track_waist(s, pipeline="waist-pendulum")
+    on = track_waist(s, pipeline="waist-pendulum", sit_veto=True)
+    assert inside(off) > 0 and off.info["n_vetoed_contacts"] == 0
+    assert inside(on) == 0 and on.info["n_vetoed_contacts"] == inside(off)
+    assert len(on.steps) == len(off.steps) - inside(off)
+
+
+def test_the_veto_changes_no_step_of_an_upright_walk():
+    s = simulate_path([Stand(3.0), Straight(14.0), Stand(3.0)], UserProfile.from_seed(541), speed="normal",
+                      rate_hz=100, seed=541)
+    on = track_waist(s, pipeline="waist-pendulum", sit_veto=True)
+    pd.testing.assert_frame_equal(on.steps, track_waist(s, pipeline="waist-pendulum").steps)
+    assert on.info["n_vetoed_contacts"] == 0

@@ -482,25 +482,27 @@ def _run_record(root: Path, options: dict, rels: list[str], results: list[JobRes
                       cpu_time_s={rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)})
 
 
-def _changes(sessions: pd.DataFrame) -> tuple[pd.DataFrame | None, pd.DataFrame | None]:
-    """Decisions C22, C23: changes.csv and changes_summary.csv of the batch, or ``(None, None)`` when the sessions
-    name fewer than two visits; then the sessions that name a subject but no visit, or a visit but no subject, are
-    warned once (they cannot be paired, and are in no row of changes.csv)."""
+def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None
+             ) -> tuple[pd.DataFrame | None, pd.DataFrame | None]:
+    """Decisions C22, C23: changes.csv and changes_summary.csv of the batch (visit names by ``visit_map``, C29), or
+    ``(None, None)`` when the sessions name fewer than two visits; then the sessions that name a subject but no
+    visit, or a visit but no subject, are warned once (they cannot be paired, and are in no row of changes.csv), and
+    so are visit spellings taken as one visit, subject ids across groups and look-alike ids (C28, C32, C33)."""
     import logging
 
-    from pdrlearn.visits import _labelled, change_summary, change_table, visit_order_guess
+    from pdrlearn.visits import change_summary, change_table, label_warnings, visit_order_guess
 
-    changes = change_table(sessions)
+    changes = change_table(sessions, visit_map=visit_map)
     if changes is None:
         return None, None
-    guess = visit_order_guess(_labelled(sessions)["visit"])
-    if guess:
-        logging.getLogger("pdrlearn.cli").warning("%s", guess)
+    log = logging.getLogger("pdrlearn.cli")
+    guess = visit_order_guess(changes["baseline_visit"].tolist() + changes["visit"].tolist())
+    for line in ([guess] if guess else []) + label_warnings(sessions, visit_map):
+        log.warning("%s", line)
     half = sessions[sessions["subject"].isna() != sessions["visit"].isna()]["path"].astype(str).tolist()
     if half:
-        logging.getLogger("pdrlearn.cli").warning(
-            "%s", grouped_warning("meta.json names a subject but no visit, or a visit but no subject: not paired in "
-                                  "changes.csv (add both, decision C22)", half, len(sessions)))
+        log.warning("%s", grouped_warning("meta.json names a subject but no visit, or a visit but no subject: not "
+                                          "paired in changes.csv (add both, decision C22)", half, len(sessions)))
     return changes, change_summary(changes)
 
 
@@ -583,6 +585,10 @@ def track_all(
     group_depth: int = typer.Option(1, "--group-depth", min=1, help="Folder levels below ROOT that name a "
                                     "session's group in sessions.csv and groups.csv (1: siteA of "
                                     "siteA/p01/clinic; 2: siteA/p01)."),
+    visit_map: Path = typer.Option(None, "--visit-map", metavar="FILE", help="Visit names as written in meta.json "
+                                   "and the visit each is, for changes.csv: a CSV of two columns raw,canonical or "
+                                   "a JSON object {\"BL\": \"baseline\"}; recorded in run.json (decision C29). "
+                                   "Without it, spellings of one visit (BL, Baseline) are paired as one (C28)."),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Sessions tracked at once: 1 = one after the other "
                              "in this process (default); N > 1 = a Dask LocalCluster of N single-threaded "
                              "worker processes."),
@@ -604,8 +610,10 @@ def track_all(
     distance error, gait speed, cadence and stride length. With sessions whose meta.json names a subject and
     two or more visits, OUT/changes.csv has per subject each visit's change from the baseline visit (a subject
     without both visits listed with why) and OUT/changes_summary.csv the mean change with its paired 95 %
-    t-interval (decisions C22, C23). OUT/run.json records the pdrlearn version, the options and each session's
-    time (decision C18). Sessions holding identical sensor data are warned
+    t-interval (decisions C22, C23): spellings of one visit (BL, Baseline, baseline) are one visit, --visit-map FILE
+    names others, each subject has its own baseline, and a pair tracked by two pipelines or holding another
+    subject's recording is flagged, not paired (C28-C31). OUT/run.json records the pdrlearn version, the options
+    and each session's time (decision C18). Sessions holding identical sensor data are warned
     (duplicate_of, C20). --params-dir DIR gives each session DIR/<subject>.json, the subject its meta.json names
     (every session needs one, checked first; decision C26). A session that cannot be tracked is reported and
     skipped. Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
@@ -633,6 +641,11 @@ def track_all(
     from pdrlearn.cli.track import track_settings
 
     options = given_options(arguments, leave_out=("root", "out", "force", "as_json"))
+    from pdrlearn.visits import read_visit_map
+
+    vmap = None if visit_map is None else read_visit_map(visit_map)  # decision C29: checked before any tracking
+    if vmap is not None:
+        options["visit_map"] = {"file": str(visit_map), "visits": vmap}  # its content, for run.json (C18)
 
     settings = track_settings(pipeline=pipeline, method=method, model=model, rules=rules,
                               min_confidence=min_confidence, length_bounds=length_bounds,
@@ -684,7 +697,7 @@ def track_all(
                 row["params_file"] = Path(st["params"]).name
         sessions = _sessions_table(rows)
         groups = group_table(sessions)
-        changes, summary = _changes(sessions)
+        changes, summary = _changes(sessions, vmap)
         from pdrlearn.visits import subject_totals
 
         subjects = subject_totals(sessions)  # cohort C25: None when no session names a subject

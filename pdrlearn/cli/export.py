@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from pathlib import Path
@@ -373,7 +374,8 @@ def run(
                           resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           input_rates_hz=rates, units=use, sensors=[n for n, st in session.streams.items() if len(st)],
                           start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0, methods=methods,
-                          stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
+                          stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)},
+                          max_gap_s=math.inf)  # B141: a recording's gaps are its own (its clock checked: B73)
         dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
         if tracker.heading_source == "auto" and not said and (dropped or not (
                 session.has("wAccelerometer", "wGyroscope") and "waist" in tracker.forward)):  # as track says (B17)
@@ -396,6 +398,10 @@ def run(
         _warn_short_streams(session, tracker, steps)
         source = f"session {session.name}"
     result = _result(steps, start_ll, start_alt)
+    from pdrlearn.track.position_sigma import add_position_sigma
+
+    # decision L128, as `track --streaming`: the waist gyroscope's heading when the tracker uses the waist unit
+    add_position_sigma(result, session, "plasys-streaming" if "waist" in tracker.units else "plasys-foot")
     if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
         result.info["initial_heading_rad"] = heading0
     result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
@@ -500,6 +506,9 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     traj["z"] = 0.0
     result = TrackResult(steps=df, trajectory=traj, info={"pipeline": "runtime-waist",
                                                           "warnings": list(tracker.warnings)})
+    from pdrlearn.track.position_sigma import add_position_sigma
+
+    add_position_sigma(result, session, "waist")  # decision L128, as track's lower-back pipelines
     table = detected_bouts(result.steps, bouts)  # decisions L124, E73: bouts.csv and n_bouts from one detection
     summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table),
                "session": session.name,
@@ -520,7 +529,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
 
 def _result(steps, start_ll=None, start_alt: float = 0.0):
     """The runtime's steps as a :class:`~pdrlearn.track.base.TrackResult` with the columns of ``track``:
-    the runtime's ``length`` class column is ``length_class`` (decision B14), ``unit`` is ``foot``,
+    the length class column is ``length_class`` (decisions B14, B142: ``Step.to_dict``'s), ``unit`` is ``foot``,
     ``heading_rad`` wrapped to [-pi, pi) as ``track`` writes it (the runtime's heading is unwrapped), the
     trajectory has ``t, x, y, z, lat, lon`` (lat/lon from ``start_ll`` = ``--start LAT,LON`` by ``track``'s
     geodetic update, else empty; z from ``start_alt``, the altitude the Tracker started at, decision L56)."""
@@ -532,7 +541,7 @@ def _result(steps, start_ll=None, start_alt: float = 0.0):
     from pdrlearn.track.gait import streamed_gait_columns
     from pdrlearn.track.geodetic import geodetic_track
 
-    df = pd.DataFrame([st.to_dict() for st in steps]).rename(columns={"length": "length_class"})
+    df = pd.DataFrame([st.to_dict() for st in steps])  # the length class is length_class (B14, B142)
     if df.empty:
         df = pd.DataFrame(columns=["start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "impossible",
                                    "gap_s"])

@@ -110,6 +110,9 @@ def import_command(
                                               "(a jump back of over 1 s, B73): write one session per recording, "
                                               "--out/part1, --out/part2 ... (refused without it; not with --merge, "
                                               "--steps or --labels; B80)."),
+    drop_duplicate_timestamps: bool = typer.Option(False, "--drop-duplicate-timestamps", help="Keep the first of "
+                                                   "rows with the same timestamp (a phone app's batched samples; "
+                                                   "refused otherwise, B150)."),
     force: bool = typer.Option(False, "--force", help="Replace a session folder that 'pdrlearn import' wrote."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object with every mapping choice."),
 ) -> None:
@@ -233,7 +236,8 @@ def import_command(
               sensor_height_m=sensor_height if sensor_height is not None else m.get("sensor_height_m"),
               name=name or (None if merge else out.name),
               subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
-              rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows)
+              rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows,
+              drop_duplicate_timestamps=drop_duplicate_timestamps)
     if split_at_clock_reset:
         parts = import_csv_parts(csv, **kw)
         if len(parts) > 1:
@@ -460,10 +464,17 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
     for sensor, r in record["streams"].items():
         conv = "" if r["factor"] == 1.0 else f", x {r['factor']:.6g} to {session.streams[sensor].spec.unit}"
         dropped = record["dropped_rows"].get(sensor)
+        dups = (record.get("duplicate_rows") or {}).get(sensor)  # decision B150
         neg = set(r.get("negated", ()))  # B48: the summary shows what was read, -NAME for a negated column
         cols = ",".join(f"-{c}" if c in neg else c for c in r["columns"])
         err(f"{sensor}: {cols} ({r['columns_source']}) in {r['unit']} ({r['unit_source']}{conv}), "
-            f"{r['samples']} samples at {r['rate_hz']:g} Hz" + (f", {dropped} empty rows skipped" if dropped else ""))
+            f"{r['samples']} samples at {r['rate_hz']:g} Hz" + (f", {dropped} empty rows skipped" if dropped else "")
+            + (f", {dups} rows repeating a timestamp dropped (--drop-duplicate-timestamps)" if dups else ""))
+        if sensor == "wAccelerometer" and r["unit"] == "g" and len(neg) < 3:  # decision B146
+            fix = shell_quote("--acc=" + ",".join(f"-{c}" for c in r["columns"]))
+            err(f"note: an accelerometer in g at the waist: if this is an iPhone (Core Motion) export, it reports "
+                f"gravity as -1 g and every turn comes out mirrored unless negated: import again with {fix} "
+                "(decision B146)")
     if record.get("steps"):
         st = record["steps"]
         err(f"steps: {st['rows']} labelled steps from {st['file']} (shifted to the session's clock)")

@@ -354,6 +354,12 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.window import window_track
 
         result, tracked_session = window_track(result, session, *win)
+    from pdrlearn.track.position_sigma import add_position_sigma, drop_position_sigma
+
+    if aided:  # decision L128: fixes reset the error; the dead-reckoning model does not apply
+        drop_position_sigma(result)
+    elif win is not None:  # L128: a window's uncertainty grows from its own first position
+        add_position_sigma(result, tracked_session)
     from pdrlearn.track.bouts import detected_bouts
 
     bouts = detected_bouts(result.steps, o.get("bouts"))  # decision L124: OUT/bouts.csv, the detected walking bouts
@@ -395,6 +401,8 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     for c in ("lat", "lon"):
         if c not in traj:
             traj[c] = float("nan")
+    if "pos_sigma_m" in traj:  # decision L128: appended after the columns trajectory.csv always had
+        traj = traj[[c for c in traj.columns if c != "pos_sigma_m"] + ["pos_sigma_m"]]
     if aided:
         from pdrlearn.aid import plot_aided
 

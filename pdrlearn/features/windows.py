@@ -37,6 +37,7 @@ from pdrlearn.kernels.window import (  # noqa: F401 (the layout and rest rule ar
     CHANNELS,
     GROUP_STREAMS,
     GROUPS,
+    TASK_COLUMNS,
     fill_step_window,
     rest_boundaries,
 )
@@ -49,7 +50,6 @@ TASK_CLASSES: dict[str, tuple[str, ...]] = {
     "direction": DIRECTION_CLASSES,
     "length": LENGTH_CLASSES,
 }
-TASK_COLUMNS: dict[str, str] = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
 
 
 @dataclass

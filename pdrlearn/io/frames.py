@@ -44,7 +44,7 @@ class AxisFrame:
 
     @property
     def right_handed(self) -> bool:
-        return bool(np.linalg.det(self.matrix()) > 0)
+        return right_handed(self.matrix())
 
     def to_dict(self) -> dict[str, str]:
         return {"x": self.x, "y": self.y, "z": self.z}
@@ -55,6 +55,13 @@ class AxisFrame:
             return cls(x=str(d["x"]), y=str(d["y"]), z=str(d["z"]))
         except KeyError as exc:
             raise DataError(f"axis frame {d!r} lacks axis {exc.args[0]!r}") from None
+
+
+def right_handed(matrix: np.ndarray) -> bool:
+    """True when a 3x3 axis map keeps handedness (determinant > 0): a rotation, not a mirror image. IMU axes are
+    right-handed; a declared frame (decision B130) or a column order with negations (B145) that is not mirrors
+    every turn."""
+    return bool(np.linalg.det(np.asarray(matrix, dtype=float)) > 0)
 
 
 # Thesis ch.4 conventions (Figs. 28-29): foot y along gravity at rest, x toward the toes.

@@ -22,12 +22,13 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
-from pdrlearn.io.frames import AxisFrame
+from pdrlearn.io.frames import AxisFrame, right_handed
 from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, _csv_dialect, read_table
 from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.validate import (
     CLOCK_RESET_S,
+    IMU_MIN_RATE_HZ,
     STANDARD_GRAVITY,
     check_imu_pair,
     check_rate,
@@ -47,6 +48,8 @@ KINDS: dict[str, tuple[str, int]] = {
     "acc": ("Accelerometer", 3), "gyro": ("Gyroscope", 3), "mag": ("MagneticField", 3), "baro": ("Barometer", 1),
     "heel": ("ForceA", 1), "toe": ("ForceB", 1),
 }
+#: the kinds held to decision B144's IMU rate floor
+_INERTIAL = frozenset({"acc", "gyro"})
 #: name stems (lower case, letters and digits only) that say a column is of a kind, followed by the axis
 _STEMS: dict[str, tuple[str, ...]] = {
     "acc": ("accelerometer", "acceleration", "accel", "acc", "a"),
@@ -141,6 +144,40 @@ def _axis_of(stem: str, kind: str) -> str | None:
     return None
 
 
+def _column_axis(column: str, kind: str) -> str | None:
+    """The axis a column name says it holds: ``x`` (Sensor Logger, phyphox ``X (m/s^2)``) or a kind's name
+    (``acc_x``, ``gyroZ``); None when the name does not say."""
+    stem = _stem(column)
+    return stem if stem in ("x", "y", "z") else _axis_of(stem, kind)
+
+
+def mirrored_axis_order(kind: str, cols: list[str], signs: np.ndarray) -> str | None:
+    """Decision B145: the reason a given column list of ``kind`` reads the device's axes as their mirror image
+    (an odd permutation of the named axes x, y, z: B130's test, ``right_handed``, on the implied axis map), or
+    None when it does not, the names do not say their axes, or a column is negated (a deliberate sign: L71's
+    own fix for a mirrored export negates one axis). Negating all three accelerometer columns is iOS's sign
+    convention (B48), not a deliberate mirror: it is taken out first."""
+    if kind not in _STEMS or len(cols) != 3:  # a force sensor's one column has no axes
+        return None
+    axes = [_column_axis(c, kind) for c in cols]
+    if None in axes or len(set(axes)) != 3:
+        return None
+    m = np.zeros((3, 3))
+    for row, (axis, sign) in enumerate(zip(axes, signs, strict=True)):
+        m[row, "xyz".index(axis)] = sign
+    if kind == "acc" and np.all(np.asarray(signs) < 0):
+        m = -m
+    if (m < 0).any() or right_handed(m):
+        return None
+    given = ",".join(f"-{c}" if g < 0 else c for c, g in zip(cols, signs, strict=True))
+    ordered = ",".join(f"-{c}" if g < 0 else c for _, c, g in sorted(zip(axes, cols, signs, strict=True)))
+    option = f"--{kind}{'=' if given.startswith('-') else ' '}"
+    return (f"{option}{given} lists the axes in a mirror-image order (an odd permutation of x, y, z; IMU axes are "
+            f"right-handed), which mirrors every turn: give the columns of the x, y, z axes in that order, "
+            f"{option}{ordered}, whatever the file's column order; if the device's data really are mirrored, "
+            "negate one column as well (decision B145)")
+
+
 def _axis_candidates(columns: list[str], kind: str) -> dict[str, list[str]]:
     """Axis -> the columns whose names say they are that axis of ``kind``, in the file's order."""
     found: dict[str, list[str]] = {}
@@ -185,10 +222,12 @@ def ambiguous_columns(columns: list[str]) -> dict[str, list[str]]:
 def time_column_candidates(columns: list[str]) -> list[str]:
     """The columns named like a time, by the first rule that names any: exactly a time name (``timestamp``,
     ``Time (ms)``, ``t``), else a name starting with ``time`` (``timestamp_ms``, ``time_since_start``), else one
-    containing ``timestamp`` (B66: ``Shimmer_7A1F_Timestamp_Unix_CAL``)."""
+    containing ``timestamp`` (B66: ``Shimmer_7A1F_Timestamp_Unix_CAL``), else one containing ``elapsed`` (B148:
+    Sensor Logger's ``seconds_elapsed``, which its ``time`` column wins over)."""
     for hits in ([c for c in columns if _stem(c) in _TIME_NAMES],
                  [c for c in columns if _stem(c).startswith("time")],
-                 [c for c in columns if "timestamp" in _stem(c)]):
+                 [c for c in columns if "timestamp" in _stem(c)],
+                 [c for c in columns if "elapsed" in _stem(c)]):
         if hits:
             return hits
     return []
@@ -231,9 +270,11 @@ def _time_word(text: str) -> str:
 
 
 def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
-               row_unit: str | None = None) -> tuple[str, str]:
+               row_unit: str | None = None, *, inertial: bool = False) -> tuple[str, str]:
     """(unit, source) of the timestamps: given, the header's hint, else decision B22's inference (the units
-    in which the timestamps give a plausible rate; ms when ms is one of them, as read_session does)."""
+    in which the timestamps give a plausible rate, from B144's IMU floor for an ``inertial`` file, and a date
+    before 2100; ms when ms is one of them, as read_session does). When several fit, the source names the others
+    and the --time-unit that forces one (B144)."""
     if given is not None:
         u = _time_word(given)
         if u not in _TIME_SCALE:
@@ -251,26 +292,30 @@ def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
                         "step 1): sample numbers, or a 1000 Hz clock in ms? They cannot be told apart: give the "
                         "sampling rate with --rate HZ if they are sample numbers, or pass --time-unit ms if they "
                         "are milliseconds")
-    cands = [u for u, _ in time_unit_candidates(t_raw)]
+    cands = [u for u, _ in time_unit_candidates(t_raw, inertial=inertial)]
     if not cands:
         raise DataError(f"{where}: the timestamps of column '{column}' give no plausible rate in ms, s, us or ns; "
                         "pass --time-unit")
-    if "ms" in cands:
-        return "ms", "inferred (B22)" + (f"; also fits {', '.join(c for c in cands if c != 'ms')}"
-                                         if len(cands) > 1 else "")
-    return cands[0], "inferred (B22)" + (f"; also fits {', '.join(cands[1:])}" if len(cands) > 1 else "")
+    chosen = "ms" if "ms" in cands else cands[0]
+    others = [c for c in cands if c != chosen]
+    return chosen, "inferred (B22)" + (f"; also fits {', '.join(others)}: pass --time-unit {others[0]} if it is "
+                                       f"in {others[0]}" if others else "")
 
 
 
 
-def _check_import_rate(t: np.ndarray, t_raw: np.ndarray, t_unit: str, t_how: str, column: str, where: str) -> None:
+def _check_import_rate(t: np.ndarray, t_raw: np.ndarray, t_unit: str, t_how: str, column: str, where: str,
+                       *, inertial: bool = False) -> None:
     """check_rate with import's wording (decision B37): the unit the values look like and --time-unit, not
-    meta.json (which import writes)."""
+    meta.json (which import writes). An ``inertial`` stream under B144's floor is refused the same way."""
     try:
         check_rate(t, f"{where} ({column} as {t_unit})")
+        slow = inertial and t.size >= 3 and 1.0 / float(np.median(np.diff(t))) < IMU_MIN_RATE_HZ  # decision B144
     except DataError:
+        slow = True
+    if slow:
         rate = 1.0 / float(np.median(np.diff(t)))
-        fits = [u for u, _ in time_unit_candidates(t_raw)]
+        fits = [u for u, _ in time_unit_candidates(t_raw, inertial=inertial)]
         looks = (f"the values look like {' or '.join(fits)}: pass --time-unit {fits[0]}" if fits
                  else "no unit (ms, s, us, ns) gives a plausible rate: check the --time column")
         src = {"given": "given with --time-unit", "header": "the column name's unit"}.get(t_how, t_how)
@@ -510,7 +555,7 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                origin_s: float | None = None, guess: bool = True,
                subject_height_m: float | None = None, rate_hz: float | None = None,
                time_format: str | None = None, time_zone: str | None = None,
-               skip_rows: int | None = None) -> tuple[Session, dict]:
+               skip_rows: int | None = None, drop_duplicate_timestamps: bool = False) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -528,6 +573,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
     time_zone : the zone of date-time texts without one (default UTC, said in the record; decision B43)
     skip_rows : rows directly under the header that are not data (decision B66); default: a units row
         (every cell text, e.g. ``ms``, ``m/(s^2)``, ``deg/s``) is recognised, skipped and read for the units
+    drop_duplicate_timestamps : keep the first of rows with the same timestamp (a phone app's batched samples,
+        decision B150; counted in ``record["duplicate_rows"]``); refused otherwise
     units : kind -> unit of its values (``acc``: ``m/s2`` | ``g``; ``gyro``: ``rad/s`` | ``deg/s``; ``mag``:
         ``uT`` | ``nT`` | ``gauss``; ``baro``: ``hPa`` | ``Pa`` | ``kPa``); default: the header's hint, else SI
     frame : the unit's axis frame (:func:`parse_frame` input or :class:`AxisFrame`), written to ``frames``
@@ -564,7 +611,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   origin_s: float | None = None, guess: bool = True,
                   subject_height_m: float | None = None, rate_hz: float | None = None,
                   time_format: str | None = None, time_zone: str | None = None,
-                  skip_rows: int | None = None) -> list[tuple[Session, dict]]:
+                  skip_rows: int | None = None, drop_duplicate_timestamps: bool = False) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
     path = Path(path)
@@ -616,6 +663,9 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         if missing:
             raise DataError(f"{where}: no column {', '.join(repr(c) for c in missing)} for {kind}; the file's columns "
                             f"are: {have}")
+        mirrored = mirrored_axis_order(kind, cols, signs[kind])
+        if mirrored:
+            raise DataError(f"{where}: {mirrored}; nothing written")
     sources = {k: "given" for k in columns}
     if guess:
         for kind, cols in guess_columns(header).items():
@@ -667,7 +717,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         if rate_hz is None and time_unit is not None and _time_word(time_unit) == "samples":
             raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")
         if rate_hz is None:
-            t_unit, t_how = _time_unit(t_num, time_unit, time_column, where, row_units.get(time_column))
+            t_unit, t_how = _time_unit(t_num, time_unit, time_column, where, row_units.get(time_column),
+                                       inertial=bool(_INERTIAL & set(columns)))
     if secs is not None and rate_hz is None and _whole_seconds(secs):  # decision B84: not duplicated rows
         raise DataError(_whole_seconds_message(secs, f"{where}", time_column, tcol.iloc[0]))
     if rate_hz is not None:  # decision B39: the time column holds sample numbers at rate_hz
@@ -746,11 +797,19 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 raise DataError(f"{where}: columns {', '.join(cols)} ({kind}) hold no numbers{shown}")
             if (~keep).any():  # a multi-rate export leaves a slower sensor's cells empty between its samples
                 record["dropped_rows"][sensor] = int((~keep).sum())
+            if drop_duplicate_timestamps:  # decision B150: the first of each run of equal timestamps is kept
+                rows = np.flatnonzero(keep)
+                again = rows[1:][np.diff(t_all[rows]) == 0]
+                keep[again] = False
+                if again.size:
+                    record.setdefault("duplicate_rows", {})[sensor] = int(again.size)
             u, factor, u_src = _resolve_unit(kind, units.get(kind), cols, where, row_units)
             t = t_all[keep]
             check_timestamps(t, f"{where} ({time_column})", reset_fix=fix or None,
-                             lines=np.flatnonzero(keep) + first_line)  # B80: the file's lines, in any part
-            _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where)
+                             lines=np.flatnonzero(keep) + first_line,  # B80: the file's lines, in any part
+                             duplicate_fix="drop the duplicated rows, or pass --drop-duplicate-timestamps to keep "
+                             "the first of each (a phone app's batched samples; decision B150)")
+            _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where, inertial=kind in _INERTIAL)
             sign = signs.get(kind, np.ones(len(cols)))
             stream = Stream(sensor, t, vals[keep] * factor * sign)
             opt = _UNIT_OPTION.get(kind, "--mapping units")

@@ -348,8 +348,8 @@ def _session_time_unit(raw: dict[str, np.ndarray], rate_hz: float | None, meta_p
     file at once (a unit every file's rate allows; the accelerometer and gyroscope files held to
     ``rate_hz``, the magnetometer, force and barometer files, which may log at their own rates, not).
     ``None`` = milliseconds (also when ms fits, or nothing decides: B9's checks follow)."""
-    cands = {n: time_unit_candidates(a[:, 0], rate_hz if SENSORS[n].kind in ("accelerometer", "gyroscope")
-                                     else None)
+    imu = {n for n in raw if SENSORS[n].kind in ("accelerometer", "gyroscope")}
+    cands = {n: time_unit_candidates(a[:, 0], rate_hz if n in imu else None, inertial=n in imu)  # B144's floor
              for n, a in raw.items()}
     common = [u for u, _ in time_unit_candidates(np.zeros(0)) if all(u in [c for c, _ in v] for v in cands.values())]
     if "ms" in common or len(common) > 1:
@@ -452,12 +452,15 @@ def _uniform_clocks(streams: dict[str, Stream], folder: Path) -> None:
 #: Off: its adoption rule failed at 20 Hz (experiments/results/drops_31-36.md); ``read_session(...,
 #: bridge_drops=True)`` asks for it. Off or on, the intervals left as they are get one warning per session
 BRIDGE_DROPS = False
+#: decision B149: where dropped samples come from, for every drop warning: a sensor's radio link, or a phone app
+#: (which logs from a shared, loaded CPU and drops or batches samples: session 22's phone trial, 1 % drops)
+DROPS_CAUSE = "check the Bluetooth link, or a phone app's sampling (its rate setting, the phone's load)"
 #: decision L77: the B64 warning of the streamed paths (``pdrlearn run``, ``track --streaming``), which integrate
 #: each stride on its timestamps (E36) and keep the distance (L78: median |distance error| 0.370 % at 1 %, 0.691 %
 #: at 3 % drops, 0.289 % clean); an interval over 0.25 s still counts as one sample interval there (E36)
 STREAMED_DROPS = ("%s: %s have %s interval(s) of dropped samples of 1 s or less (longest %.3f s): integrated on "
                   "the timestamps here, so they cost little distance (decisions B64, L78; an interval over 0.25 s "
-                  "counts as one sample interval, E36); if they are many, check the Bluetooth link")
+                  "counts as one sample interval, E36); if they are many, " + DROPS_CAUSE)
 
 
 def _per_stream(left: list[tuple[str, int, float]]) -> str:
@@ -516,8 +519,8 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, stream
                     "integrate with a fixed sample interval, so each shortens the stride it falls in (1 %% of the "
                     "samples dropped: about -2.5 %% distance, decision B64); `track --streaming` integrates on "
                     "the timestamps, as does the offline foot with a --params file holding {\"timestamps\": true} "
-                    "(decision L83/B65, not the default) - or check the Bluetooth link and re-record", folder,
-                    ", ".join(n for n, _, _ in left), count, what, max(m for _, _, m in left))
+                    "(decision L83/B65, not the default) - or %s and re-record", folder,
+                    ", ".join(n for n, _, _ in left), count, what, max(m for _, _, m in left), DROPS_CAUSE)
 
 
 #: decision B64's warning when only waist streams drop samples: the waist pipelines interpolate them onto a
@@ -525,7 +528,7 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, stream
 #: advice (`track --streaming`, a foot option that refuses a waist-only session) do not apply
 WAIST_DROPS = ("%s: %s have %s interval(s) of dropped samples %s (longest %.3f s): the waist pipelines "
                "interpolate them onto a uniform clock (decision W34; the foot's loss of distance, B64, does not "
-               "apply here) - if there are many, check the Bluetooth link")
+               "apply here) - if there are many, " + DROPS_CAUSE)
 
 
 #: label time columns that must be filled in every row (the others, e.g. ``tc_ms``, may be blank = unknown)
@@ -620,6 +623,42 @@ UNIT_NAME_WORDS = {"foot": ("foot", "feet", "fuss", "fuß", "fuesse", "füße", 
                              "belt", "trunk", "sacrum", "taille", "hanche")}
 
 
+#: decision B147: a phone app's per-sensor file names (lower case, letters only: ``Accelerometer.csv``,
+#: ``Gyroscope.csv``, Android's ``gyroscope_uncalibrated.csv``), by the kind of channel they hold
+PHONE_SENSOR_FILES = {"acc": ("accelerometer", "accel", "acc", "totalacceleration"),
+                      "gyro": ("gyroscope", "gyro", "gyr"), "mag": ("magnetometer", "magneticfield", "mag")}
+
+
+def _phone_sensor_files(exports: list[Path]) -> dict[str, Path]:
+    """Decision B147: kind -> the export whose file name names that one phone sensor (the shortest name when
+    several do: ``Gyroscope.csv`` before ``GyroscopeUncalibrated.csv``)."""
+    out: dict[str, Path] = {}
+    for kind, words in PHONE_SENSOR_FILES.items():
+        hits = [p for p in exports if any(re.sub(r"[^a-z]", "", p.stem.lower()).startswith(w) for w in words)]
+        if hits:
+            out[kind] = min(hits, key=lambda p: (len(p.stem), p.name))
+    return out
+
+
+def _phone_recipe(files: dict[str, Path]) -> str:
+    """Decision B147: the commands that make one waist unit of a phone's per-sensor files, mapping the axes when
+    the header names them plain ``x``, ``y``, ``z`` (Sensor Logger writes them in the order z, y, x)."""
+    q = shell_quote
+
+    def axes(kind: str, path: Path) -> str:
+        try:
+            with open(path, encoding="utf-8", errors="replace") as f:
+                cols = {c.strip().strip('"').lower() for c in re.split(r"[,;\t]", f.readline())}
+        except OSError:
+            return ""
+        return f" --{kind} x,y,z" if {"x", "y", "z"} <= cols else ""
+
+    cmds = [f"pdrlearn import {q(p)} --unit waist{axes(k, p)}{' --merge' if i else ''} --out SESSION"
+            for i, (k, p) in enumerate(files.items())]
+    return (f"; a phone's per-sensor files become one waist unit: `{'` then `'.join(cmds)}` (one sensor per "
+            "import, --merge adding each to the same unit; decision B147)")
+
+
 def export_import_hint(folder: Path) -> str:
     """Decision B93 (D12's hint): "; ..." naming the `pdrlearn import` command(s) that turn the one-file lab
     exports in ``folder`` into a session (paths quoted, B92), or "" when it holds none. Two or more exports:
@@ -630,6 +669,9 @@ def export_import_hint(folder: Path) -> str:
     if not exports:
         return ""
     q = shell_quote
+    phone = _phone_sensor_files(exports)
+    if "acc" in phone and "gyro" in phone:  # decision B147: not a foot and a waist unit
+        return _phone_recipe(phone)
     if len(exports) == 1:
         return (f"; a lab export in one CSV becomes a session with `pdrlearn import {q(exports[0])} --out SESSION` "
                 "(the foot unit; add --unit waist for a waist unit's; decision D12)")
@@ -686,11 +728,20 @@ def check_stream_spans(streams: dict[str, Stream], folder: Path, *, mode: str = 
         o_lo = min(float(spans[n].duration_s) for n in others)
         o_span = f"{full:.2f} s" if full - o_lo < 0.005 else f"{o_lo:.2f}-{full:.2f} s"
         also = f" (also short: {', '.join(SENSORS[n].filename for n in short[1:])})" if len(short) > 1 else ""
-        msg = (f"{folder / SENSORS[short[0]].filename}: spans {first.duration_s:.2f} s ({first.t[0]:.2f}-"
-               f"{first.t[-1]:.2f} s) but the other {len(others)} {unit} stream(s) {o_span}{also}; the file was cut "
-               "short (a truncated copy?), so a track would cover only part of the walk its labels describe -- "
-               "restore the whole file from the recording, or re-record, or track only the time every "
-               f"{unit} file covers with --common-span (decisions B72, B81)")
+        o_t0 = min(float(spans[n].t[0]) for n in others)
+        o_t1 = max(float(spans[n].t[-1]) for n in others)
+        slack = SPAN_TOLERANCE_S + max(period(first), period(spans[longest]))
+        if first.t[0] - o_t0 > slack and o_t1 - first.t[-1] <= slack:  # decision B149: it started late
+            msg = (f"{folder / SENSORS[short[0]].filename}: starts {first.t[0] - o_t0:.2f} s after the other "
+                   f"{len(others)} {unit} stream(s) and ends with them{also} (a sensor that started late, as a phone "
+                   f"app's can): track the time every {unit} file covers with --common-span, or trim the other "
+                   "files to its start (decisions B72, B81, B149)")
+        else:
+            msg = (f"{folder / SENSORS[short[0]].filename}: spans {first.duration_s:.2f} s ({first.t[0]:.2f}-"
+                   f"{first.t[-1]:.2f} s) but the other {len(others)} {unit} stream(s) {o_span}{also}; the file was "
+                   "cut short (a truncated copy?), so a track would cover only part of the walk its labels describe "
+                   "-- restore the whole file from the recording, or re-record, or track only the time every "
+                   f"{unit} file covers with --common-span (decisions B72, B81)")
         if mode == "common":  # decision B81: the caller cuts the session to this unit's common span
             return msg
         if mode == "warn":

@@ -124,12 +124,14 @@ def clock_reset_message(t: np.ndarray, reset: np.ndarray, where: str, at: str, f
 
 
 def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, reset_fix: str | None = None,
-                     lines: np.ndarray | None = None) -> None:
+                     lines: np.ndarray | None = None, duplicate_fix: str = "drop the duplicated rows") -> None:
     """Timestamps must be strictly increasing (no duplicates, sorted). ``in_memory``: ``t`` is a
     :class:`~pdrlearn.io.Stream`'s (decision B49): the messages count samples and say how to fix the arrays.
     ``reset_fix``: the fix a clock reset's message gives instead of splitting the session by hand
     (``pdrlearn import`` names its ``--split-at-clock-reset``, decision B80). ``lines``: the file line of each
-    sample (default: sample k on line k + 2, under a header line); import gives them for the rows it kept."""
+    sample (default: sample k on line k + 2, under a header line); import gives them for the rows it kept.
+    ``duplicate_fix``: the fix a file's duplicate timestamps are given (import names its
+    ``--drop-duplicate-timestamps``, decision B150)."""
 
     def line(k: int) -> int:
         return int(lines[k]) if lines is not None else k + 2
@@ -144,7 +146,7 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
             raise DataError(f"{where}: {dup.size} duplicate timestamp(s) (first at index {dup[0] + 1}); drop the "
                             "duplicated samples (keep = np.unique(t, return_index=True)[1])")
         raise DataError(
-            f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}); drop the duplicated rows"
+            f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}); {duplicate_fix}"
         )
     back = np.flatnonzero(~(dt > 0))  # NaN intervals count as backwards
     # decision B73: a clock reset (a few large backward jumps, increasing in between); sorting (the advice below)
@@ -172,6 +174,14 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
 #: a few hundred Hz (PLASYS 20 Hz, thesis ch.4.2.3; real recordings 100 and 204.8 Hz). Outside this band the
 #: timestamps are in another unit than the reader assumed (docs/decisions/bad-input.md B9).
 RATE_LIMITS_HZ = (0.5, 5000.0)
+#: decision B144: the slowest plausible native rate of an accelerometer or gyroscope file (Hz). The slowest IMU the
+#: project reads logs at 20 Hz (PLASYS, thesis ch.4.2.3) and a walking step (~2 Hz) needs several samples; with
+#: B9's 5000 Hz ceiling the band spans under a factor 1000, so at most one of ms/us/ns (or s/ms) fits an IMU file
+#: (a phone's epoch-ns clock at 1000 Hz read as us gave 0.996 Hz, plausible under the 0.5 Hz barometer floor).
+IMU_MIN_RATE_HZ = 10.0
+#: decision B144: a first timestamp read as after 2100-01-01 (epoch s) is in another unit (epoch ns read as us:
+#: year ~56,900)
+EPOCH_END = 4.1e9
 
 
 def check_rate(t: np.ndarray, where: str, *, in_memory: bool = False) -> None:
@@ -205,18 +215,21 @@ _TIME_UNITS = (("ms", 1e-3), ("s", 1.0), ("us", 1e-6), ("ns", 1e-9))
 _UNIT_NAMES = (("ms", "milliseconds"), ("s", "seconds"), ("us", "microseconds"), ("ns", "nanoseconds"))
 
 
-def time_unit_candidates(t_raw: np.ndarray, declared_rate_hz: float | None = None) -> list[tuple[str, float]]:
+def time_unit_candidates(t_raw: np.ndarray, declared_rate_hz: float | None = None, *,
+                         inertial: bool = False) -> list[tuple[str, float]]:
     """The units (``(unit, seconds per unit)``, ms first) in which raw timestamps give a plausible rate
-    (:data:`RATE_LIMITS_HZ`) and, where ``meta.json`` declares a rate, that rate within 10 % (decision B22).
-    Every unit when the timestamps say nothing (fewer than 3, or not increasing: :func:`check_timestamps`'s
-    error)."""
+    (:data:`RATE_LIMITS_HZ`; from :data:`IMU_MIN_RATE_HZ` for an ``inertial`` file, decision B144) and, where
+    ``meta.json`` declares a rate, that rate within 10 % (decision B22), and a first timestamp before
+    :data:`EPOCH_END` (B144). Every unit when the timestamps say nothing (fewer than 3, or not increasing:
+    :func:`check_timestamps`'s error)."""
     if t_raw.size < 3:
         return list(_TIME_UNITS)
     d = float(np.median(np.diff(t_raw)))
     if not np.isfinite(d) or d <= 0:
         return list(_TIME_UNITS)
-    lo, hi = RATE_LIMITS_HZ
-    return [(u, k) for u, k in _TIME_UNITS if lo <= 1.0 / (d * k) <= hi
+    lo, hi = (IMU_MIN_RATE_HZ, RATE_LIMITS_HZ[1]) if inertial else RATE_LIMITS_HZ
+    t0 = abs(float(t_raw[0]))
+    return [(u, k) for u, k in _TIME_UNITS if lo <= 1.0 / (d * k) <= hi and t0 * k < EPOCH_END
             and (declared_rate_hz is None or abs(1.0 / (d * k) - declared_rate_hz) <= 0.1 * declared_rate_hz)]
 
 

@@ -120,6 +120,9 @@ def resample(t_new: np.ndarray, t: np.ndarray, v: np.ndarray) -> np.ndarray:
 #: Step-boundary modes of step windows (decision 13 in docs/decisions/features.md): ``"given"`` cuts at the
 #: step table's times, ``"rest"`` moves each boundary to the middle of the foot's rest (:func:`rest_boundaries`).
 BOUNDARIES = ("given", "rest")
+#: task -> its class column in a steps table (labels' ``steps.csv``, ``predict_steps``, ``pdrlearn track``'s and
+#: ``run``'s steps.csv, ``Step.to_dict()`` since decision B142): the length class is ``length_class``
+TASK_COLUMNS: dict[str, str] = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
 
 
 def rest_boundaries(t: np.ndarray, gyr: np.ndarray, start: np.ndarray, end: np.ndarray, *,

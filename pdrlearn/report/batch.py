@@ -64,9 +64,10 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     return sessions, groups
 
 
-def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame) -> tuple[str, list[tuple[str, pd.DataFrame]]]:
+def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[str, str] | None = None
+                 ) -> tuple[str, list[tuple[str, pd.DataFrame]]]:
     """The batch section's summary line and tables: per session, per group (``mean ± sd (n)``, as track-all
-    prints it), the failed sessions with their errors and warnings."""
+    prints it), the failed sessions with their errors and warnings, the paired changes (visits by ``visit_map``)."""
     from pdrlearn.cohort import groups_text
 
     n, failed = len(sessions), sessions[sessions["status"] != "ok"]
@@ -77,16 +78,28 @@ def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame) -> tuple[str, lis
     if len(failed):
         cols = ["path", "group", "error"] + [c for c in ("warnings",) if c in failed.columns]
         tables.append(("failed sessions", failed[cols].astype(object).fillna("")))
-    return text, tables + change_tables(sessions)
+    return text, tables + change_tables(sessions, visit_map)
 
 
-def change_tables(sessions: pd.DataFrame) -> list[tuple[str, pd.DataFrame]]:
+def run_visit_map(folder: Path) -> dict[str, str] | None:
+    """The ``--visit-map`` a track-all run used (decision C29: its content is in OUT/run.json), for the report's
+    changes to be changes.csv's; None without one."""
+    import json
+
+    try:
+        vm = json.loads((Path(folder) / "run.json").read_text()).get("options", {}).get("visit_map")
+    except (OSError, ValueError, AttributeError):
+        return None
+    return vm.get("visits") if isinstance(vm, dict) else None
+
+
+def change_tables(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None) -> list[tuple[str, pd.DataFrame]]:
     """Decisions C22, C23: with sessions naming a subject and two or more visits, the paired change per visit and
     measure (as track-all prints it) and the subjects not paired with why; recomputed from sessions.csv, as
     changes.csv and changes_summary.csv are (none for a sessions.csv without visits, or written before C22)."""
     from pdrlearn.visits import change_summary, change_table, changes_text
 
-    changes = change_table(sessions)
+    changes = change_table(sessions, visit_map=visit_map)
     if changes is None:
         return []
     tables = [("paired change from the baseline visit (mean [95 % t-interval], n subjects; changes.csv per subject)",

@@ -205,10 +205,10 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
 
 def _batch_section(folder: Path, root: Path) -> Section:
     """Cohort C16: the section of a track-all output folder (:mod:`pdrlearn.report.batch`)."""
-    from pdrlearn.report.batch import batch_tables, plot_batch, read_batch
+    from pdrlearn.report.batch import batch_tables, plot_batch, read_batch, run_visit_map
 
     sessions, groups = read_batch(folder)
-    text, tables = batch_tables(sessions, groups)
+    text, tables = batch_tables(sessions, groups, run_visit_map(folder))
     rel = folder.relative_to(root).as_posix()
     return Section(f"Batch (track-all) — {folder.resolve().name if rel == '.' else rel}", text=text, tables=tables,
                    plots=[("distance and gait speed per session (sessions.csv)", "batch_sessions.png",

@@ -52,6 +52,7 @@ from pdrlearn.kernels.window import (
     BRIDGE_GAP_S,
     GROUP_STREAMS,
     GROUPS,
+    TASK_COLUMNS,
     _fill_channels,
     _unit_grid,
     available_groups,
@@ -66,7 +67,9 @@ from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenWatch, MirrorWatch, UnitGuard
 from pdrlearn.runtime.resample import InputStage, stopped_message
-from pdrlearn.runtime.stream import FootLevelling, Ring, fill_resampled, foot_levelled, waist_entry
+from pdrlearn.runtime.restart import drop_measured, restart_state
+from pdrlearn.runtime.restart import resume as resume_state
+from pdrlearn.runtime.stream import FootLevelling, HeightLog, Ring, fill_resampled, foot_levelled, waist_entry
 
 log = logging.getLogger(__name__)
 #: float64 in native byte order. Arrays made here share this dtype object (``is`` is the cheap test), but
@@ -86,6 +89,9 @@ SENSOR_WIDTH = {"fAccelerometer": 3, "fGyroscope": 3, "fForceA": 1, "fForceB": 1
 #: stride across it moves 0 m, as offline ``pdrlearn track`` (plasys) does
 GAP_WARN_S = BRIDGE_GAP_S  # 0.25 s; decision E36: a stride over such a gap is measured on the gap clock
 GAP_LONG_S = 1.0
+#: decision B141: a push whose timestamps jump further ahead of the stream's last sample than this (s) is refused
+#: as a clock glitch (``Tracker(max_gap_s=...)``; ``math.inf`` accepts any gap, as ``pdrlearn run`` on a recording)
+MAX_GAP_S = 60.0
 #: decision E39: a stream's last value counts as held (E31's warning) when it is older than ``max_wait_s`` and than
 #: this many of the stream's own sample intervals: one missed sample plus up to one interval of delivery delay
 #: (E23's grace is one delivery interval; E30 calls 1.5 intervals a gap)
@@ -188,11 +194,13 @@ class Step:
     impossible: bool = False
 
     def to_dict(self) -> dict:
+        """The step as one row of a steps table: the classes under their steps.csv columns (``terrain``,
+        ``direction``, ``length_class``; decision B142: ``length`` before), ``p_<task>_<class>``, the numbers."""
         return {
             "start_s": self.start_s,
             "end_s": self.end_s,
             "event_s": self.event_s,  # decision E49
-            **self.classes,
+            **{TASK_COLUMNS.get(t, t): c for t, c in self.classes.items()},  # B142: length -> length_class
             **{f"p_{t}_{c}": v for t, p in self.proba.items() for c, v in p.items()},
             "length_m": self.length_m,
             "dz_m": self.dz_m,
@@ -311,6 +319,12 @@ class Tracker(FixInput):
         turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest after it)
         when the waist heads the strides (decision L99, the default; L91's mechanism; ``pdrlearn track
         --streaming``'s ``waist_bridge``); False: it keeps the heading (E30, L90).
+    max_gap_s : a push whose timestamps jump further ahead than this (s; default 60) of a stream's last sample is
+        refused in one line, the tracker unchanged (decision B141: a clock glitch accepted as a gap would refuse
+        every later sample); ``math.inf`` accepts any gap.
+    resume : a :meth:`restart_state` of another tracker (decision L134): go on where it stood (its position and
+        heading, the stride in progress measured whole from the samples it buffered); ``start`` and
+        ``heading_rad`` are then not used. The steps those samples complete come out with the first push.
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -325,10 +339,14 @@ class Tracker(FixInput):
     _gap_row: list | None = None
     _kept: tuple | None = None
     #: decision E47: (terrain class or None, integrated dz before gain and rules, final dz) per processed stride
-    _heights: list | tuple = ()
+    #: (a :class:`HeightLog`, decision E75)
+    _heights: HeightLog | tuple = ()
     _held_s = math.inf  # decision E31: set per tracker in __init__
     _checked: dict = {}  # noqa: RUF012 - replaced per push, never mutated in place
     _guard = None  # decision B119 (a bare Tracker.__new__ checks nothing)
+    #: decision L134: a resumed tracker's last measured stride end (s; strides found again up to it are dropped)
+    _resume_end: float | None = None
+    _carry: list | tuple = ()
 
     def __init__(
         self,
@@ -356,6 +374,8 @@ class Tracker(FixInput):
         waist_bridge: bool = True,
         contacts: bool = False,
         check_input: bool = True,
+        resume: dict | None = None,
+        max_gap_s: float = MAX_GAP_S,
     ):
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
@@ -461,7 +481,7 @@ class Tracker(FixInput):
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
         self.n_steps = 0
         self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
-        self._row_gaps, self._heights = [], []  # decisions E46, E47
+        self._row_gaps, self._heights = [], HeightLog()  # decisions E46, E47 (E75: typed arrays)
         self.waist_gap_yaw = bool(waist_gap_yaw)  # decision L61
         self.waist_bridge = bool(waist_bridge)  # decisions L91 / L99 (the default)
         #: the input side (decision E22): streams at another rate than the bundle's are tracked at their own
@@ -500,6 +520,11 @@ class Tracker(FixInput):
         self._foot_gaps: list[tuple[float, float, bool, bool]] = []  # (start, end, long, a foot IMU stream's)
         self._held: set[str] = set()
         self._held_s = float(self.params.get("max_wait_s", 2.0))  # a held value older than this is warned about
+        #: decision B141: a push whose timestamps jump further ahead than this (s) is refused (a clock glitch)
+        self.max_gap_s = float(max_gap_s)
+        if not self.max_gap_s > GAP_LONG_S:
+            raise DataError(f"max_gap_s {max_gap_s!r}: give a number of seconds above {GAP_LONG_S:g} (a foot gap of "
+                            "that length is a gap row, E30), or math.inf to accept any gap (decision B141)")
         #: decision B119: the units of the first GUARD_S seconds of each IMU stream, checked as offline's (None:
         #: checked, or ``check_input=False``); decision B120: frozen sensors
         self._guard = UnitGuard(self.used_sensors) if check_input else None
@@ -508,7 +533,17 @@ class Tracker(FixInput):
         #: ``check_input=False``)
         self._mirror = (MirrorWatch() if check_input and {"fAccelerometer", "fGyroscope"} <= set(self.used_sensors)
                         else None)
+        #: decision L134: a restart state's position, heading and samples (the steps they complete come out with
+        #: the next push's or flush's)
+        self._carry = resume_state(self, resume) if resume is not None else []
 
+
+    def restart_state(self) -> dict:
+        """What a new tracker needs to go on where this one stands (decision L134): ``Tracker(bundle,
+        resume=tracker.restart_state())`` measures the stride in progress whole, as this tracker would have; a
+        new tracker given only ``start=`` and ``heading_rad=`` loses that stride's turn. Plain numbers and lists
+        (:func:`pdrlearn.runtime.restart.restart_state`): ``json.dumps`` saves it."""
+        return restart_state(self)
 
     def _choose_models(self, sensors) -> None:
         """Each task's model for a stream of ``sensors`` (None: unknown, every model's expected), the step graph
@@ -765,6 +800,8 @@ class Tracker(FixInput):
                 self._speculate()
         elif self._latest - self._oldest > 2.0 * self.buffer_s:
             self._trim()
+        if self._carry:  # decision L134: the steps the restart state's samples completed come first
+            steps, self._carry = [*self._carry, *steps], []
         return steps
 
     def _check_push(self, samples: dict) -> dict[str, tuple[float, list[float]]] | None:
@@ -790,6 +827,8 @@ class Tracker(FixInput):
                     if t0 > last and isfinite(sum(vals, t0)):
                         fast[name] = (t0, vals)
                         if t0 - last > GAP_WARN_S and t0 - last > self._gap_limit(name):
+                            if t0 - last > self.max_gap_s:  # decision B141, before any state changes
+                                raise self._jump_error(name, last, t0)
                             gaps = gaps or []
                             gaps.append((name, last, t0))
                         continue
@@ -809,16 +848,40 @@ class Tracker(FixInput):
             last = raw if raw is not None else (ring.last if ring is not None else None)
             if last is not None and not t[0] > last:
                 raise DataError(f"{name}: pushed timestamps are not increasing (at {t[0]:.3f} s after {last:.3f} s); "
-                                "push samples in time order")
-            self.inputs.check_rate(name, t)
+                                f"push samples in time order{self._jumped_note(float(t[0]))}")
             tt = t if last is None else np.concatenate(([last], t))
             if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
                 d = np.diff(tt)
+                i = int(np.argmax(d))
+                if d[i] > self.max_gap_s:  # decision B141: refused before the rate check and any state change
+                    raise self._jump_error(name, float(tt[i]), float(tt[i + 1]))
+            self.inputs.check_rate(name, t)
+            if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
                 for i in np.flatnonzero(d > self._gap_limit(name, d)).tolist():
                     gaps = gaps or []
                     gaps.append((name, float(tt[i]), float(tt[i + 1])))
         self._pushed_gaps = gaps
         return fast if some or fast else None
+
+    def _jump_error(self, name: str, a: float, b: float) -> DataError:
+        """Decision B141: the line refusing a push whose ``name`` samples jump from ``a`` to ``b`` s, more than
+        ``max_gap_s`` ahead (a clock glitch accepted as a gap would refuse every later sample of the true clock)."""
+        return DataError(
+            f"{name}: pushed timestamps jump {b - a:+.2f} s ahead ({a:.3f} -> {b:.3f} s), more than max_gap_s = "
+            f"{self.max_gap_s:g} s: a clock glitch? The push is refused and the tracker is unchanged (decision B141); "
+            "push those samples with their right times, or, if the sensors really were silent that long, go on with "
+            "a new Tracker(bundle, start=tuple(old.position), heading_rad=old.heading), or give Tracker(max_gap_s=...)")
+
+    def _jumped_note(self, t: float) -> str:
+        """Decision B141: for a refused sample at ``t`` s inside a gap the tracker accepted (a forward jump of its
+        clock), what that means and the one way on; else ''."""
+        for a, b, *_ in reversed(self._gap_marks):
+            if a < t < b:
+                return (f"; the tracker accepted a jump of its clock from {a:.3f} to {b:.3f} s as a gap (warned), so "
+                        f"every sample before {b:.3f} s is refused from now on: if that jump was a clock glitch, only "
+                        "a new Tracker(bundle, start=tuple(old.position), heading_rad=old.heading) goes on (decision "
+                        f"B141; max_gap_s = {self.max_gap_s:g} s refuses longer jumps)")
+        return ""
 
     def _gap_limit(self, name: str, d: np.ndarray | None = None) -> float:
         """Decision E30: the interval (s) beyond which two samples of ``name`` enclose a gap: GAP_WARN_S, or 1.5
@@ -942,6 +1005,8 @@ class Tracker(FixInput):
         self._trim()
         self.height_checks()  # decision E47: the end of a recording
         self._warn_unused_fixes()  # decision D21
+        if self._carry:  # decision L134
+            steps, self._carry = [*self._carry, *steps], []
         return steps
 
     def _process_ready(self, force: bool = False) -> list[Step]:
@@ -1051,11 +1116,11 @@ class Tracker(FixInput):
         out = {"altitude_check": None, "terrain_dz_check": None}
         if not self._heights:
             return out
-        terrain, raw, dz = zip(*self._heights, strict=True)
+        terrain, raw, dz = self._heights.columns()
         if "terrain" in self.classifiers:
-            msg, out["terrain_dz_check"] = terrain_dz_check(terrain, np.array(raw), np.array(dz))
+            msg, out["terrain_dz_check"] = terrain_dz_check(terrain, raw, dz)
         else:
-            msg, out["altitude_check"] = integrated_altitude_check(np.array(dz), levelled=False)
+            msg, out["altitude_check"] = integrated_altitude_check(dz, levelled=False)
         if msg and msg not in self.warnings:
             self._warn(msg)
         return out
@@ -1212,6 +1277,10 @@ class Tracker(FixInput):
             i = int(t.searchsorted(self._det_t, side="right"))
             self._pending += self.segmenter.update(t[i:], g[i:])
         self._det_t = ring.last
+        if self._resume_end is not None and self._pending:  # decision L134: the old tracker measured these
+            self._pending = drop_measured(self._pending, self._resume_end)
+            if self._pending:
+                self._resume_end = None
 
     def _stamp(self) -> tuple:
         """What a computed-ahead step's data depends on besides its times (decision E24): the buffered
@@ -1277,7 +1346,7 @@ class Tracker(FixInput):
                 if self._bridged() and any(long and imu for _, long, imu in over):  # decision L91
                     self.heading += waist_bridge_yaw(self._stream, min(t0, t0 if prev is None else prev), t1)
                 self._prev_end = t1  # no L31 pivot across it either: the foot's turn inside the gap is unknown
-                self._heights.append((None, 0.0, 0.0))  # decision E47: no class, 0 m (as --streaming's)
+                self._heights.append(None, 0.0, 0.0)  # decision E47: no class, 0 m (as --streaming's)
                 x, y, z = self.position.tolist()
                 return Step(t0, t1, {}, {}, 0.0, 0.0, self.heading, x, y, z, gap_s=gap)
             bridged = bool(over)  # a shorter gap in the foot accelerometer / gyroscope: no classes (B11)
@@ -1334,7 +1403,7 @@ class Tracker(FixInput):
         self.heading = heading
         self.position = np.array((x, y, z))
         self.n_steps += 1
-        self._heights.append((classes.get("terrain"), raw_dz, dz))  # decision E47
+        self._heights.append(classes.get("terrain"), raw_dz, dz)  # decision E47
         length, direction = travel_sign_one(length, direction, classes.get("direction"))  # L65: after the position
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z,
                     event_s=self._contact(t0, t1) if self.contacts else math.nan,

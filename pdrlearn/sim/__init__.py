@@ -6,7 +6,7 @@ Entry points: :func:`simulate` (thesis scenarios and calibration exercises), :fu
 See docs/simulator.md.
 """
 
-from pdrlearn.sim.path import Backward, Curve, Footstep, Stairs, Stand, Straight, Turn, plan_footsteps
+from pdrlearn.sim.path import Backward, Curve, Footstep, Sit, Stairs, Stand, Straight, Turn, plan_footsteps
 from pdrlearn.sim.scenarios import SCENARIOS
 from pdrlearn.sim.simulate import KNOBS, simulate, simulate_path
 from pdrlearn.sim.user import GAITS, SPEEDS, UserProfile
@@ -24,6 +24,7 @@ __all__ = [
     "Stairs",
     "Backward",
     "Turn",
+    "Sit",
     "Stand",
     "Footstep",
     "plan_footsteps",

@@ -506,8 +506,12 @@ def pelvis_pose(
     trunk_noise: float = 1.0,
     pelvis: PelvisParams | None = None,
     bounce_mode: str = "constant",
+    transfer_offsets: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pelvis reference point (n, 3) at the waist-unit height, orientation (n, 3, 3) and base heading (n,).
+
+    ``transfer_offsets``: (backward m, lowering m, forward pitch rad) at ``t`` of sit-to-stand transfers
+    (:func:`pdrlearn.sim.transfer.transfer_motion`, decision S36), added to the standing pelvis.
 
     ``pelvis``: None = the model's sway and obliquity; :func:`realistic_pelvis` = decision S27's.
     ``bounce_mode``: ``"constant"`` = the user's ``pelvis_bounce_m`` on every step; ``"pendulum"`` = scaled per
@@ -606,6 +610,9 @@ def pelvis_pose(
     pos = np.empty((t.size, 3))
     fwd = surge + kick_f + vib[:, 0]
     sway = sway + kick_l + vib[:, 1]
+    if transfer_offsets is not None:  # decision S36: sitting down and standing up
+        back, lower, pitch = transfer_offsets
+        fwd, bounce, tilt = fwd - back, bounce - lower, tilt + pitch
     pos[:, 0] = base[:, 0] + ca * fwd - sa * sway
     pos[:, 1] = base[:, 1] + sa * fwd + ca * sway
     pos[:, 2] = base[:, 2] + user.sensor_height_m + bounce + kick_v + vib[:, 2]

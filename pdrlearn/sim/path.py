@@ -1,7 +1,7 @@
 """Walking paths as segments, and the planner that turns them into footprints of both feet.
 
 A path is a list of segments (:class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Backward`,
-:class:`Turn`, :class:`Stand`). :func:`plan_footsteps` walks them with a user's step length and returns
+:class:`Turn`, :class:`Stand`, :class:`Sit`). :func:`plan_footsteps` walks them with a user's step length and returns
 one :class:`Footstep` per foot placement (heel position, heading, kind), alternating feet. Walking bouts
 start and end with both feet side by side (gait initiation and a closing step).
 """
@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.sim.transfer import SIT_MARGIN_S, Transfer, draw_transfer
 from pdrlearn.sim.user import GAITS, UserProfile
 
 
@@ -70,7 +71,14 @@ class Stand:
     duration_s: float
 
 
-Segment = Straight | Curve | Stairs | Backward | Turn | Stand
+@dataclass(frozen=True)
+class Sit:
+    """Stop, sit down on a chair, stay seated ``duration_s`` seconds, stand up (no footstep; decision S36)."""
+
+    duration_s: float
+
+
+Segment = Straight | Curve | Stairs | Backward | Turn | Stand | Sit
 
 
 @dataclass
@@ -120,6 +128,7 @@ class _Walker:
         self.last_moved: str | None = None
         self.pending_pause = 0.0
         self.direction = "forward"
+        self.transfers: list[Transfer] = []
 
     def _heel(self, c: np.ndarray, z: float, psi: float, foot: str) -> np.ndarray:
         side = 1.0 if foot == "left" else -1.0
@@ -244,6 +253,15 @@ class _Walker:
     def stand(self, seg: Stand) -> None:
         self.close(pause=max(0.0, float(seg.duration_s)))
 
+    def sit(self, seg: Sit) -> None:
+        """Feet together, then a :class:`Transfer` inside the pause before the next step (decision S36)."""
+        if not (math.isfinite(seg.duration_s) and seg.duration_s >= 0):
+            raise DataError(f"{seg}: the seated time must be a finite number of seconds >= 0")
+        self.close()
+        tr = draw_transfer(len(self.steps), self.pending_pause + SIT_MARGIN_S, float(seg.duration_s), self.rng)
+        self.transfers.append(tr)
+        self.pending_pause += SIT_MARGIN_S + tr.total_s + SIT_MARGIN_S
+
 
 def path_length(segments: list[Segment], user: UserProfile | None = None) -> float:
     """Horizontal length (m) of the centre line of ``segments`` (backward steps at 0.55 step length)."""
@@ -269,14 +287,15 @@ def plan_footsteps(
     heading0_rad: float = 0.0,
     irregular_rate: float = 0.0,
     variability: float = 1.0,
-) -> tuple[list[Footstep], dict, float]:
+) -> tuple[list[Footstep], dict, float, list[Transfer]]:
     """Footprints of both feet along ``segments``.
 
     Returns
     -------
     steps : the footprints in temporal order (alternating feet within a bout)
     initial : foot -> (heel position, yaw) before the first step
-    end_pause_s : standing time requested after the last step (trailing :class:`Stand` segments)
+    end_pause_s : standing (or sitting) time requested after the last step (trailing :class:`Stand` / :class:`Sit`)
+    transfers : the sit-down / stand-up episodes of :class:`Sit` segments (:mod:`pdrlearn.sim.transfer`)
     """
     w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability)
     initial = {f: (h.copy(), y) for f, (h, y) in w.feet.items()}
@@ -287,6 +306,7 @@ def plan_footsteps(
         Backward: w.backward,
         Turn: w.turn,
         Stand: w.stand,
+        Sit: w.sit,
     }
     for seg in segments:
         if isinstance(seg, Straight | Curve) and seg.gait not in GAITS:
@@ -295,7 +315,7 @@ def plan_footsteps(
             handlers[type(seg)](seg)
         except KeyError:
             raise DataError(
-                f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Backward, Turn, Stand"
+                f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Backward, Turn, Stand, Sit"
             ) from None
     w.close()
-    return w.steps, initial, w.pending_pause
+    return w.steps, initial, w.pending_pause, w.transfers

@@ -11,6 +11,7 @@
 | ``backward:N`` | N backward steps |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
 | ``stand:S`` | stand still S seconds |
+| ``sit:S`` | sit down on a chair, stay seated S seconds, stand up (no steps; decision S36) |
 
 Angles are in degrees here (the Python segments take radians).
 """
@@ -20,10 +21,10 @@ from __future__ import annotations
 import math
 
 from pdrlearn.errors import DataError
-from pdrlearn.sim.path import Backward, Curve, Segment, Stairs, Stand, Straight, Turn
+from pdrlearn.sim.path import Backward, Curve, Segment, Sit, Stairs, Stand, Straight, Turn
 from pdrlearn.sim.user import GAITS
 
-ROUTE_KINDS = ("straight", "curve", "up", "down", "backward", "turn", "stand")
+ROUTE_KINDS = ("straight", "curve", "up", "down", "backward", "turn", "stand", "sit")
 _USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curve:90:2'"
 
 
@@ -87,6 +88,9 @@ def parse_route(spec: str) -> list[Segment]:
             if angle == 0:
                 raise DataError(f"--route item {item!r}: a turn needs a non-zero angle")
             segments.append(Turn(math.radians(angle)))
+        elif kind == "sit":
+            _arity(item, parts, (1,))
+            segments.append(Sit(_number(item, parts[1])))
         else:  # stand
             _arity(item, parts, (1,))
             segments.append(Stand(_number(item, parts[1])))

@@ -38,6 +38,7 @@ from pdrlearn.sim.kernels import (
 )
 from pdrlearn.sim.path import Footstep, Segment, plan_footsteps
 from pdrlearn.sim.scenarios import SCENARIOS
+from pdrlearn.sim.transfer import transfer_motion, transfer_starts, transfer_table
 from pdrlearn.sim.user import SPEEDS, UserProfile
 
 log = logging.getLogger(__name__)
@@ -236,7 +237,7 @@ def simulate_path(
 
     Parameters
     ----------
-    segments : path segments (Straight, Curve, Stairs, Backward, Turn, Stand)
+    segments : path segments (Straight, Curve, Stairs, Backward, Turn, Stand, Sit)
     user : the pedestrian (:meth:`UserProfile.from_seed`)
     speed : "slow", "normal" or "fast"
     rate_hz : output rate (Hz); 100 Hz divided by an integer. 20 Hz = the PLASYS firmware (5-sample mean).
@@ -250,7 +251,8 @@ def simulate_path(
     Returns
     -------
     Session with the eight PLASYS streams, ``steps`` (strides of the right foot), ``trajectory`` (waist
-    unit, ENU), ``extras["ics"]`` (initial contacts of both feet) and ``extras["foot_trajectory"]``.
+    unit, ENU), ``extras["ics"]`` (initial contacts of both feet), ``extras["foot_trajectory"]`` and, for a
+    path with :class:`~pdrlearn.sim.path.Sit`, ``extras["transfers"]`` (sit-down start to stand-up end, S36).
     """
     if speed not in SPEEDS:
         raise DataError(f"speed {speed!r}: must be one of {', '.join(SPEEDS)}")
@@ -264,7 +266,7 @@ def simulate_path(
             "" if _drawn_user(user) else "_custom_user")
     noise = bool(opt["noise"])
     rng = _rng(user.seed, int(seed), scenario, speed, "walk")
-    steps, initial, end_pause = plan_footsteps(
+    steps, initial, end_pause, transfers = plan_footsteps(
         segments,
         user,
         speed=speed,
@@ -279,6 +281,7 @@ def simulate_path(
     ev = schedule(steps, user, speed=speed, rng=rng, stand_s=stand, variability=float(opt["variability"]),
                   rocker=str(opt["rocker"]), step_time_asymmetry=float(opt["step_time_asymmetry"]))
     total_s = (max(ev.end_s, stand) if steps else stand) + end_pause + stand
+    sit_starts = transfer_starts(transfers, ev.rest, stand)  # decision S36
     k_fine = OVERSAMPLE * k_out
     fine_rate = INTERNAL_RATE_HZ * OVERSAMPLE
     n_out = int(math.floor(total_s * rate_hz)) + 1
@@ -326,6 +329,7 @@ def simulate_path(
         trunk_noise=trunk,
         pelvis=pelvis,
         bounce_mode=str(opt["bounce"]),
+        transfer_offsets=transfer_motion(t, transfers, sit_starts) if transfers else None,
     )
     p_w = p_pel + R_p @ r_waist
     fw_body = block_mean(specific_force_body(p_w, R_p, dt), OVERSAMPLE)
@@ -407,6 +411,10 @@ def simulate_path(
     ics = pd.DataFrame({"ic_s": ev.ic, "foot": [s.foot for s in steps], "kind": [s.kind for s in steps]})
     ics.attrs["time_columns"] = ["ic_s"]
     strides = _stride_table(steps, ev, initial, user, r_sensor)
+    extras = {"ics": ics, "foot_trajectory": foot_traj}
+    if transfers:  # decision S36: only sessions with a sit have the table (default label files unchanged)
+        extras["transfers"] = pd.DataFrame(transfer_table(transfers, sit_starts))
+        extras["transfers"].attrs["time_columns"] = ["start_s", "seated_s", "rise_s", "end_s"]
 
     meta = {
         "session": name,
@@ -454,7 +462,7 @@ def simulate_path(
         streams=streams,
         steps=strides if len(strides) else None,
         trajectory=trajectory,
-        extras={"ics": ics, "foot_trajectory": foot_traj},
+        extras=extras,
         meta=meta,
         frames=frames,
     )

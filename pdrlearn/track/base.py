@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import difflib
+import functools
 import inspect
 from collections.abc import Callable, Iterable, Mapping, MutableMapping
 from dataclasses import dataclass, field
@@ -30,7 +31,9 @@ class TrackResult:
         ``terrain``, ``direction``, ``length_class``, ``confidence``; the foot pipeline adds the gait columns
         ``stride_time_s``, ``cadence_spm``, ``speed_mps``, ``turn_angle_rad`` (decision L66) and ``gap_s``
         (L67; docs/localization.md "steps.csv columns").
-    trajectory : ``t``, ``x``, ``y``, ``z`` (+ ``lat``, ``lon``) — position after each step (first row = start).
+    trajectory : ``t``, ``x``, ``y``, ``z`` (+ ``lat``, ``lon``) — position after each step (first row = start);
+        every registered pipeline adds ``pos_sigma_m``, the 1-sigma radius of the horizontal position (m,
+        decision L128, :mod:`pdrlearn.track.position_sigma`).
     info : pipeline name, method, parameters used, warnings (e.g. "no model: M3 unavailable").
     """
 
@@ -105,8 +108,16 @@ def register_pipeline(name: str) -> Callable[[Pipeline], Pipeline]:
     """Decorator: ``@register_pipeline("waist-pll")`` on ``fn(session, **options) -> TrackResult``."""
 
     def deco(fn: Pipeline) -> Pipeline:
+        @functools.wraps(fn)
+        def with_sigma(session, *args, **kwargs) -> TrackResult:
+            from pdrlearn.track.position_sigma import add_position_sigma
+
+            result = fn(session, *args, **kwargs)
+            add_position_sigma(result, session)  # decision L128: every pipeline's track gets pos_sigma_m
+            return result
+
         # decision B49/B51: the session (or a folder path) is checked once, at the outermost entry point
-        wrapped = session_entry(fn, caller=f"pipeline '{name}'")
+        wrapped = session_entry(with_sigma, caller=f"pipeline '{name}'")
         PIPELINES[name] = wrapped
         return wrapped
 
@@ -168,7 +179,8 @@ def get_pipeline(name: str) -> Pipeline:
       (waist-pendulum's causal variant), ``heading``, ``refine_ic``, ``initial_heading``, ``resolve_signs``,
       ``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``length_smoothing``, ``relative_gate``,
       ``stairs_length`` (decision W91, off), ``slow_turn_rps`` (decision W82, off),
-      ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts)
+      ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104, off:
+      no contact around a sit-to-stand's trunk-flexion peak)
       (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and unused. With ``wBarometer`` the
       track's altitude is the barometer's (W89); without, one warning (W90).
 

@@ -578,7 +578,9 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
     reference turns, ``n_turns``, ``turn_angle_mae_deg`` and ``turn_sign_agreement`` (decision L42); and
     ``n_bouts``, ``bout_definition`` of the detected walking bouts under ``bouts`` (a
     :class:`pdrlearn.track.bouts.BoutRule`, None = its defaults; decision L124); ``bout_table``: their table
-    (:func:`pdrlearn.track.bouts.detected_bouts` under ``bouts``) when the caller has it (decision E73)."""
+    (:func:`pdrlearn.track.bouts.detected_bouts` under ``bouts``) when the caller has it (decision E73); with the
+    trajectory's ``pos_sigma_m`` its last and largest value, ``final_position_sigma_m`` and
+    ``max_position_sigma_m`` (m, decision L128)."""
     from pdrlearn.track.bouts import bouts_summary
 
     if not (np.isfinite(storey_height_m) and storey_height_m > 0):
@@ -590,6 +592,10 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
         elif session is not None:
             fn(result, session, out)
     out.update(bouts_summary(result.steps, bouts, bout_table))  # decision L124: bouts.csv's rows and their definition
+    if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: position uncertainty
+        sigma = result.trajectory["pos_sigma_m"].to_numpy(float)
+        out["final_position_sigma_m"] = float(sigma[-1])
+        out["max_position_sigma_m"] = float(np.nanmax(sigma))
     return out
 
 

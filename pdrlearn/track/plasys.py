@@ -54,7 +54,13 @@ from pdrlearn.kernels.distance import (
     level_dz,
     rate_differs,
 )
-from pdrlearn.kernels.window import GROUP_STREAMS, available_groups, levelled_units, posture_warning
+from pdrlearn.kernels.window import (
+    GROUP_STREAMS,
+    TASK_COLUMNS,
+    available_groups,
+    levelled_units,
+    posture_warning,
+)
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
 from pdrlearn.signal import lowpass
@@ -220,7 +226,7 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
     bounds = model_length_bounds(model)
     if "confidence" not in pred:
         maxima = [pred[[c for c in pred.columns if c.startswith(f"p_{task}_")]].max(axis=1)
-                  for task in _TASK_COLUMNS if any(c.startswith(f"p_{task}_") for c in pred.columns)]
+                  for task in TASK_COLUMNS if any(c.startswith(f"p_{task}_") for c in pred.columns)]
         pred["confidence"] = np.min(np.column_stack(maxima), axis=1) if maxima else 1.0
     return pred, bounds
 
@@ -345,7 +351,6 @@ def fit_waist_hard_iron(session: Session, strides: pd.DataFrame, psi: np.ndarray
     return np.array([b[0], b[1], 0.0]), {**out, "applied": True}
 
 
-_TASK_COLUMNS = {"terrain": "terrain", "direction": "direction", "length": "length_class"}
 # decision L18: DEFAULT_MODEL_RULES ("bayes") and DEFAULT_MIN_CONFIDENCE (0.95), the default rule with a model's
 # classes and its confidence gate, live in pdrlearn.kernels.bayes since L40 (the streaming runtime applies them)
 
@@ -358,7 +363,7 @@ _UNTRAINED_FALLBACK = {"terrain": "horizontal distance, a stride under 0.10 m of
 def untrained_tasks(classes: pd.DataFrame) -> list[str]:
     """The tasks whose classes a model gave to no stride: not trained (e.g. a model trained on level walks
     only), or not runnable on the session's sensors (decision C17)."""
-    return [t for t, col in _TASK_COLUMNS.items() if col not in classes or classes[col].isna().all()]
+    return [t for t, col in TASK_COLUMNS.items() if col not in classes or classes[col].isna().all()]
 
 
 #: the streamed stride rules (``kernels.stride.apply_stride_rules``) for a class the model does not give: C17
@@ -382,7 +387,7 @@ def _confident(classes: pd.DataFrame, min_confidence: float) -> pd.DataFrame:
     out = classes.copy()
     if min_confidence <= 0:
         return out
-    for task, col in _TASK_COLUMNS.items():
+    for task, col in TASK_COLUMNS.items():
         pcols = [c for c in classes.columns if c.startswith(f"p_{task}_")]
         if pcols and col in out:
             low = classes[pcols].max(axis=1).to_numpy(float) < min_confidence

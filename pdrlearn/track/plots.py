@@ -27,7 +27,8 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     position at the window's start). When the first track's heading is relative to its start (0 = east, unless
     ``initial_heading`` says otherwise; :func:`heading_is_absolute`), the ground truth is also rotated to set
     off in that track's direction (:func:`initial_bearing`); the legend says so, and the axes are ``x`` (heading
-    0 at the start) / ``y`` instead of east / north (L55).
+    0 at the start) / ``y`` instead of east / north (L55). A track with ``pos_sigma_m`` gets a shaded circle of
+    twice its last value about its end (decision L128).
     """
     plt, fig = path_figure(paths, session=session, title=title)
     save_atomic(fig, Path(out), dpi=dpi)
@@ -76,6 +77,12 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
         fig, ax = plt.subplots(figsize=(7, 6), layout="constrained")
     for label, _, x, y, _, style in lines:
         ax.plot(x, y, label=label, **style)
+    for r in paths.values():  # decision L128: the 2-sigma circle of the position uncertainty at the track's end
+        tr = r.trajectory
+        if "pos_sigma_m" in tr and len(tr) and float(tr["pos_sigma_m"].iloc[-1]) > 0:
+            radius = 2.0 * float(tr["pos_sigma_m"].iloc[-1])
+            ax.add_patch(plt.Circle((float(tr["x"].iloc[-1]), float(tr["y"].iloc[-1])), radius, alpha=0.15,
+                                    label=f"end position, 2-sigma radius {radius:.1f} m (model, not a guarantee)"))
     ax.set_aspect("equal", adjustable="datalim")
     if absolute:
         ax.set_xlabel("east [m]")

@@ -51,10 +51,12 @@ from pdrlearn.waist.plausibility import (
     PLAUSIBILITY_MIN_PAIRS,
     contact_alternation,
     not_alternating_message,
+    still_yaw_rate,
+    still_yaw_rate_message,
     walk_ratio,
     walk_ratio_message,
 )
-from pdrlearn.waist.posture import tilt_gate
+from pdrlearn.waist.posture import tilt_gate, transfer_veto
 from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
 
 log = logging.getLogger(__name__)
@@ -341,7 +343,8 @@ def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, 
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
-                   "stairs_length": False, "slow_turn_rps": 0.0, "max_tilt_deg": None}
+                   "stairs_length": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
+                   "sit_veto": False}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -359,7 +362,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 turn_factor: bool | None = None, rhythm: bool | None = None,
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
                 relative_gate: bool | None = None, stairs_length: bool | None = None,
-                slow_turn_rps: float | None = None, max_tilt_deg: float | None = None) -> TrackResult:
+                slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
+                sit_veto: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -400,6 +404,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     max_tilt_deg : a contact made while the trunk is tilted more than this (deg) from the session's walking upright is
         no step, and the step before it ends its sequence (decision W102, :mod:`pdrlearn.waist.posture`; sit-to-stand,
         bending); None (default) = no tilt gate
+    sit_veto : drop the contacts within 1 s of a trunk-flexion peak of more than 25 deg from the walking upright
+        (a sit-to-stand or bend event; decision W104, :func:`pdrlearn.waist.posture.transfer_veto`); default False
 
     The altitude (trajectory ``z``, steps ``dz_m``) is the waist barometer's, relative to the start (decision
     W89); without a barometer it stays 0 with one warning (W90).
@@ -417,7 +423,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
              "merge_fragments": merge_fragments, "length_smoothing": length_smoothing,
              "relative_gate": relative_gate, "stairs_length": stairs_length, "slow_turn_rps": slow_turn_rps,
-             "max_tilt_deg": max_tilt_deg}
+             "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -455,6 +461,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
         steps = tilt_gate(steps, imu, float(o["max_tilt_deg"]))
         n_tilted = steps.attrs["n_tilted"]
+    n_vetoed = 0
+    if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak
+        steps = transfer_veto(steps, imu)
+        n_vetoed = steps.attrs["n_vetoed"]
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
@@ -471,6 +481,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
         warnings.append(no_steps_message(thr, sigma, gate_source))
+    bias_line = still_yaw_rate_message(still_yaw_rate(imu.t, imu.acc_nav, imu.gyr_nav, imu.fs,
+                                                      p.gyro_bias_rps))  # decision W105
+    if bias_line:
+        warnings.append(bias_line)
     note = relative_heading_note(start, o["initial_heading"], "wMagneticField" in session)
     if note:
         warnings.append(note)
@@ -499,6 +513,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "alternation_pairs": pairs,
         "walk_ratio": ratio,
         "n_tilted_contacts": n_tilted,
+        "n_vetoed_contacts": n_vetoed,
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)

@@ -7,12 +7,15 @@ opposite signs (W20). :func:`alternation_index` measures that from the contacts 
 :func:`walk_ratio` (decision W100) relates the two estimates an uncalibrated track has, step length and cadence:
 a short-stepping gait the default step-length model is not validated on, or a step implausibly long for its
 cadence, falls outside the healthy walk ratio.
+:func:`still_yaw_rate` (decision W105) reads the vertical rate while the unit stands still: a gyroscope bias (a
+phone's uncalibrated gyroscope export) turns every heading and no other cue sees it.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from pdrlearn.signal.conditioning import runs, standstill_mask
 from pdrlearn.waist import _kernels as K
 
 #: W98: an index under this (the midpoint between walking, ~1, and no lateral weight shift, ~0; a priori)
@@ -95,3 +98,37 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
             "calibration on this walker's own walk of known length (a 10 m walk test, or this recording if you know "
             "the distance walked): 'pdrlearn calibrate DIR --distance M --out PARAMS.json', then track with "
             "--params PARAMS.json")
+
+
+#: W105: the still period read: the first standstill of at least 2 s (thesis ch.7.2's setup standstill, as
+#: ``calibrate_standstill``), up to its first 5 s (thesis ch.4.4)
+STILL_S = (2.0, 5.0)
+#: W105: a mean vertical rate at rest above this (rad/s) warns: 1.5x the largest of the six real waist recordings
+#: that start still (mobgap HA001/HA002/MS001: |rate| 0.0017-0.0104 rad/s; a priori factor, not fitted to a trial)
+STILL_YAW_RATE_WARN_RPS = 0.015
+
+
+def still_yaw_rate(t: np.ndarray, acc_nav: np.ndarray, gyr_nav: np.ndarray, fs: float,
+                   bias_rps: float = 0.0) -> tuple[float, float, float] | None:
+    """``(rate, t0, t1)``: the mean vertical angular rate (rad/s, ``gyr_nav[:, 2]`` less the calibrated
+    ``bias_rps``) over the first standstill of :data:`STILL_S` (``standstill_mask``), and its times; None when
+    the unit never stands still that long (decision W105)."""
+    lo, hi = STILL_S
+    for a, b in runs(standstill_mask(acc_nav, gyr_nav, fs)):
+        if t[b - 1] - t[a] >= lo - 1.5 / fs:
+            stop = a + int(np.searchsorted(t[a:b], t[a] + hi, side="right"))
+            return float(np.mean(gyr_nav[a:stop, 2])) - bias_rps, float(t[a]), float(t[stop - 1])
+    return None
+
+
+def still_yaw_rate_message(found: tuple[float, float, float] | None) -> str | None:
+    """Decision W105's one warning line when the rate at rest exceeds :data:`STILL_YAW_RATE_WARN_RPS`."""
+    if found is None or abs(found[0]) <= STILL_YAW_RATE_WARN_RPS:
+        return None
+    rate, t0, t1 = found
+    deg = float(np.degrees(rate))
+    return (f"the waist gyroscope reads {rate:+.4f} rad/s ({deg:+.2f} deg/s) about the vertical while the unit stands "
+            f"still ({t0:.1f}-{t1:.1f} s; over {STILL_YAW_RATE_WARN_RPS:g} warns, decision W105): a gyroscope bias, "
+            f"which turns the path by {abs(deg) * 60:.0f} deg a minute; a phone app's uncalibrated gyroscope "
+            "(Android's 'gyroscope uncalibrated') has one: export the calibrated gyroscope; for another IMU, "
+            "calibrate the bias on a walk with whole turns ('pdrlearn calibrate DIR --turns N')")

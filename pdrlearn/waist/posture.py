@@ -5,6 +5,10 @@ and passes the motion gate (W4 / W76) and the IC rules; the trunk's tilt tells t
 lower trunk leans about 10-20 deg from upright while walking, and 40 deg and more when rising from a chair or
 bending (general gait physiology); :data:`MAX_TILT_DEG` is twice the walking range's upper end, chosen before
 measuring.
+
+Decision W104: :func:`transfer_veto` drops the contacts around a sit-to-stand (or bend) *event*, a run of samples whose
+tilt from the walking upright exceeds :data:`TRANSFER_PEAK_DEG`: a brief transfer stays under W102's threshold in a
++-0.5 s mean but not at its peak.
 """
 
 from __future__ import annotations
@@ -18,16 +22,16 @@ from pdrlearn.waist.ahrs import WaistIMU
 MAX_TILT_DEG = 40.0
 #: Half-width of the window around a contact over which its trunk direction is averaged (s; one step, W102).
 TILT_HALF_WINDOW_S = 0.5
+#: A sample tilted more than this from the walking upright is part of a trunk-flexion event (deg; W104): above the
+#: walking pelvis's few degrees, below the 30-45 deg of a chair transfer (simulator S36's ranges). Not from a seed.
+TRANSFER_PEAK_DEG = 25.0
+#: Contacts within this of a flexion event's peak are dropped (s; W104): half a 2 s sit-to-stand movement.
+TRANSFER_HALF_S = 1.0
 
 
-def contact_tilt_deg(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) -> np.ndarray:
-    """Tilt (deg) of the trunk at each contact: the angle between the AHRS's up direction in the body frame
-    (``imu.up_body``) averaged over +-:data:`TILT_HALF_WINDOW_S` around the contact, and the session's upright,
-    the normalised median of those directions over the ``walking`` contacts (those that start a step). The
-    upright is the session's own, so any mounting of the unit and a walker's constant stoop read 0 (W102)."""
-    event_s = np.asarray(event_s, dtype=float)
-    if imu.up_body is None or event_s.size == 0:
-        return np.zeros(event_s.size)
+def _contact_directions(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The AHRS's up direction in the body frame averaged over +-:data:`TILT_HALF_WINDOW_S` around each contact, and
+    the session's upright: the normalised median of those directions over the ``walking`` contacts (W102)."""
     walking = np.asarray(walking, dtype=bool)
     if not walking.any():
         walking = np.ones(event_s.size, dtype=bool)
@@ -38,8 +42,65 @@ def contact_tilt_deg(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) ->
     d = (csum[hi] - csum[lo]) / (hi - lo)[:, None]
     d /= np.linalg.norm(d, axis=1, keepdims=True)
     up = np.median(d[walking], axis=0)
-    up /= np.linalg.norm(up)
+    return d, up / np.linalg.norm(up)
+
+
+def contact_tilt_deg(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) -> np.ndarray:
+    """Tilt (deg) of the trunk at each contact: the angle between the AHRS's up direction in the body frame
+    (``imu.up_body``) averaged over +-:data:`TILT_HALF_WINDOW_S` around the contact, and the session's upright,
+    the normalised median of those directions over the ``walking`` contacts (those that start a step). The
+    upright is the session's own, so any mounting of the unit and a walker's constant stoop read 0 (W102)."""
+    event_s = np.asarray(event_s, dtype=float)
+    if imu.up_body is None or event_s.size == 0:
+        return np.zeros(event_s.size)
+    d, up = _contact_directions(imu, event_s, walking)
     return np.degrees(np.arccos(np.clip(d @ up, -1.0, 1.0)))
+
+
+def flexion_events(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) -> list[tuple[float, float, float]]:
+    """Trunk-flexion events (W104): (start, peak, end) times (s) of each run of samples whose up direction is
+    more than :data:`TRANSFER_PEAK_DEG` from the session's walking upright (:func:`contact_tilt_deg`'s)."""
+    event_s = np.asarray(event_s, dtype=float)
+    if imu.up_body is None or event_s.size == 0:
+        return []
+    _, up = _contact_directions(imu, event_s, walking)
+    u = imu.up_body / np.linalg.norm(imu.up_body, axis=1, keepdims=True)
+    tilt = np.degrees(np.arccos(np.clip(u @ up, -1.0, 1.0)))
+    above = np.r_[False, tilt > TRANSFER_PEAK_DEG, False]
+    edges = np.flatnonzero(np.diff(above.astype(int)))
+    return [(float(imu.t[a]), float(imu.t[a + int(np.argmax(tilt[a:b]))]), float(imu.t[b - 1]))
+            for a, b in zip(edges[::2], edges[1::2], strict=True)]
+
+
+def _drop_contacts(steps: pd.DataFrame, keep: np.ndarray, count: str) -> pd.DataFrame:
+    """``steps`` without the contacts not in ``keep``; a kept step whose next contact is dropped ends its walking
+    sequence (``end_s`` = its start, no ``has_next``, confidence 0.5, as :func:`pdrlearn.kernels.waist.contact_rows`
+    closes a sequence). ``attrs[count]`` counts the dropped."""
+    has_next = steps["has_next"].to_numpy(bool)
+    before_dropped = has_next & np.append(~keep[1:], False)  # the step that ended on a dropped contact
+    out = steps.copy()
+    out.loc[before_dropped, "end_s"] = out.loc[before_dropped, "start_s"]
+    out.loc[before_dropped, "has_next"] = False
+    if "confidence" in out:
+        out.loc[before_dropped, "confidence"] = 0.5
+    out = out[keep].reset_index(drop=True)
+    out.attrs.update(steps.attrs)
+    out.attrs[count] = int((~keep).sum())
+    return out
+
+
+def transfer_veto(steps: pd.DataFrame, imu: WaistIMU) -> pd.DataFrame:
+    """``steps`` without the contacts inside a trunk-flexion event (:func:`flexion_events`) or within
+    :data:`TRANSFER_HALF_S` of its peak (decision W104); ``attrs["n_vetoed"]`` counts them."""
+    if steps.empty:
+        out = steps.copy()
+        out.attrs["n_vetoed"] = 0
+        return out
+    e = steps["event_s"].to_numpy(float)
+    veto = np.zeros(e.size, dtype=bool)
+    for a, peak, b in flexion_events(imu, e, steps["has_next"].to_numpy(bool)):
+        veto |= ((e >= a) & (e <= b)) | (np.abs(e - peak) <= TRANSFER_HALF_S)
+    return _drop_contacts(steps, ~veto, "n_vetoed")
 
 
 def tilt_gate(steps: pd.DataFrame, imu: WaistIMU, max_tilt_deg: float = MAX_TILT_DEG) -> pd.DataFrame:
@@ -51,16 +112,5 @@ def tilt_gate(steps: pd.DataFrame, imu: WaistIMU, max_tilt_deg: float = MAX_TILT
         out = steps.copy()
         out.attrs["n_tilted"] = 0
         return out
-    has_next = steps["has_next"].to_numpy(bool)
-    tilt = contact_tilt_deg(imu, steps["event_s"].to_numpy(float), has_next)
-    keep = tilt <= max_tilt_deg
-    before_dropped = has_next & np.append(~keep[1:], False)  # the step that ended on a dropped contact
-    out = steps.copy()
-    out.loc[before_dropped, "end_s"] = out.loc[before_dropped, "start_s"]
-    out.loc[before_dropped, "has_next"] = False
-    if "confidence" in out:
-        out.loc[before_dropped, "confidence"] = 0.5
-    out = out[keep].reset_index(drop=True)
-    out.attrs.update(steps.attrs)
-    out.attrs["n_tilted"] = int((~keep).sum())
-    return out
+    tilt = contact_tilt_deg(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool))
+    return _drop_contacts(steps, tilt <= max_tilt_deg, "n_tilted")

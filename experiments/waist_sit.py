@@ -1,0 +1,156 @@
+"""Waist contacts during simulated sit-to-stand transfers (decision S36's `sit:S`), per transfer, for the default
+lower-back detectors `waist-pendulum` and `waist-pll` (session 22, issue 4: sit-to-stand counted as steps).
+
+Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_sit.py count   # users 620-639
+     ... experiments/waist_sit.py veto   # decision W104 (a), (b): users 640-659, with / without `sit_veto`
+     ... experiments/waist_sit.py real   # decision W104 (c): experiments/waist.py's scoring of the mobgap recordings
+     ... experiments/waist_sit.py where  # after the measurement: where the vetoed real contacts lie (no tuning)
+Output: experiments/results/waist_sit_count.txt, waist_sit_veto.txt, waist_sit_real.txt
+"""
+import logging
+import sys
+
+import numpy as np
+
+from pdrlearn.sim import UserProfile, simulate_path
+from pdrlearn.sim.route import parse_route
+from pdrlearn.track.waist import track_waist
+
+logging.disable(logging.WARNING)
+
+SIT_ROUTE = "straight:10, sit:20, straight:10, sit:15, straight:10"
+PIPELINES = ("waist-pendulum", "waist-pll")
+
+
+def in_transfers(events: np.ndarray, transfers) -> np.ndarray:
+    """Number of ``events`` (s) inside each transfer [start_s, end_s]."""
+    return np.array([int(((events >= a) & (events <= b)).sum())
+                     for a, b in zip(transfers.start_s, transfers.end_s, strict=True)])
+
+
+def true_matched(events: np.ndarray, truth: np.ndarray, tol_s: float = 0.25) -> int:
+    """True contacts with a detected contact within ``tol_s`` (a loose count, not a one-to-one match)."""
+    return int(sum(np.abs(events - t).min() <= tol_s for t in truth)) if events.size else 0
+
+
+def count(users: range, **track_kw) -> dict[str, int]:
+    per = {p: [] for p in PIPELINES}
+    for u in users:
+        s = simulate_path(parse_route(SIT_ROUTE), UserProfile.from_seed(u), rate_hz=100, seed=u)
+        tr = s.extras["transfers"]
+        truth = s.extras["ics"]["ic_s"].to_numpy(float)
+        line = []
+        for p in PIPELINES:
+            res = track_waist(s, pipeline=p, **track_kw)
+            ev = res.steps["event_s"].to_numpy(float)
+            k = in_transfers(ev, tr)
+            per[p].extend(k.tolist())
+            line.append(f"{p}: {len(ev)} contacts, {true_matched(ev, truth)}/{truth.size} true matched, "
+                        f"in transfers {k.tolist()}")
+        print(f"user {u}: " + "; ".join(line), flush=True)
+    for p in PIPELINES:
+        k = np.array(per[p])
+        print(f"{p}: {k.sum()} false contacts in {k.size} transfers (mean {k.mean():.2f}, max {k.max()}, "
+              f"transfers with any {int((k > 0).sum())})")
+    return {p: int(np.sum(per[p])) for p in PIPELINES}
+
+
+WALK_ROUTES = ("stand:3, straight:14, stand:3", "straight:8, turn:180, straight:8",
+               "straight:4, up:10, turn:180, down:10, straight:4")
+
+
+def veto() -> None:
+    """W104 (a) and (b) on fresh users 640-659."""
+    users = range(640, 660)
+    print("(a) without the veto")
+    before = count(users)
+    print("(a) with the veto")
+    after = count(users, sit_veto=True)
+    for p in PIPELINES:
+        removed = 100.0 * (before[p] - after[p]) / max(before[p], 1)
+        print(f"(a) {p}: in-transfer contacts {before[p]} -> {after[p]}, removed {removed:.1f} % "
+              f"({'met' if removed >= 80.0 else 'NOT met'}: >= 80 %)")
+    lost = {p: 0 for p in PIPELINES}
+    for u in users:
+        for route in WALK_ROUTES:
+            s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=100, seed=u)
+            truth = s.extras["ics"]["ic_s"].to_numpy(float)
+            line = []
+            for p in PIPELINES:
+                m0 = true_matched(track_waist(s, pipeline=p).steps["event_s"].to_numpy(float), truth)
+                r1 = track_waist(s, pipeline=p, sit_veto=True)
+                m1 = true_matched(r1.steps["event_s"].to_numpy(float), truth)
+                lost[p] += m0 != m1
+                line.append(f"{p} matched {m0} -> {m1} (vetoed {r1.info['n_vetoed_contacts']})")
+            print(f"(b) user {u} '{route}': " + "; ".join(line), flush=True)
+    for p in PIPELINES:
+        print(f"(b) {p}: walks with a lost true contact {lost[p]} of {len(users) * len(WALK_ROUTES)} "
+              f"({'met' if lost[p] == 0 else 'NOT met'})")
+
+
+def real() -> None:
+    """W104 (c): experiments/waist.py's `real()` and `pooled()` on the mobgap recordings, with / without."""
+    from pathlib import Path
+
+    import pandas as pd
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import waist as W  # experiments/waist.py
+
+    ext = Path("datasets/external")
+    configs = [("waist-pendulum", "waist-pendulum", {}), ("waist-pll (A-HE)", "waist-pll", {}),
+               ("waist-pendulum +veto", "waist-pendulum", {"sit_veto": True}),
+               ("waist-pll (A-HE) +veto", "waist-pll", {"sit_veto": True})]
+    bouts: list = []
+    df = W.real(ext, W.external_runs(ext), configs=configs, bouts=bouts)
+    pd.set_option("display.width", 220)
+    key = ["subject", "test", "calibrated_on", "params"]
+    for base in ("waist-pendulum", "waist-pll (A-HE)"):
+        a = df[df.pipeline == base].set_index(key)["step_f1"]
+        b = df[df.pipeline == base + " +veto"].set_index(key)["step_f1"]
+        n_a = df[df.pipeline == base].set_index(key)["n_detected"]
+        n_b = df[df.pipeline == base + " +veto"].set_index(key)["n_detected"]
+        cmp = pd.DataFrame({"f1": a, "f1_veto": b, "diff": b - a, "n_det": n_a, "n_det_veto": n_b})
+        print(f"\n{base}:")
+        print(cmp.round(4).to_string())
+        print(f"rows with a lower step_f1: {int((cmp['diff'] < -1e-9).sum())} of {len(cmp)}")
+    pool = W.pooled(df, pd.DataFrame(bouts))
+    print("\npooled:")
+    print(pool[[c for c in pool.columns if c in ("pipeline", "params", "test", "kind", "step_f1", "tp",
+                                                  "n_detected", "n_reference")]].round(4).to_string(index=False))
+
+
+def where() -> None:
+    """The contacts `sit_veto` drops on the real Test11 recordings (defaults): inside / outside the reference walking
+    bouts (bouts.csv level wb) and within 0.25 s of a reference IC (ics.csv)."""
+    from pathlib import Path
+
+    import pandas as pd
+
+    from pdrlearn.io import read_session
+
+    for d in sorted(Path("datasets/external").glob("mobgap_*_Test11_*")):
+        s = read_session(d)
+        e0 = track_waist(s, pipeline="waist-pendulum").steps["event_s"].to_numpy(float)
+        e1 = track_waist(s, pipeline="waist-pendulum", sit_veto=True).steps["event_s"].to_numpy(float)
+        gone = np.array([e for e in e0 if np.abs(e1 - e).min() > 1e-9]) if e1.size else e0
+        b = pd.read_csv(d / "bouts.csv")
+        b = b[b["level"] == "wb"]
+        inside = np.zeros(gone.size, bool)
+        for s0, s1 in zip(b.start_ms / 1000, b.end_ms / 1000, strict=True):
+            inside |= (gone >= s0) & (gone <= s1)
+        ics = pd.read_csv(d / "ics.csv")
+        ic = ics["ic_ms"].to_numpy(float) / 1000.0
+        near = np.array([np.abs(ic - g).min() <= 0.25 for g in gone], bool) if gone.size else inside
+        print(f"{d.name}: vetoed {gone.size} ({np.round(gone, 2).tolist()}); inside reference bouts "
+              f"{int(inside.sum())}, outside {int((~inside).sum())}; within 0.25 s of a reference IC {int(near.sum())}")
+
+
+if sys.argv[1:] == ["count"]:
+    count(range(620, 640))
+elif sys.argv[1:] == ["veto"]:
+    veto()
+elif sys.argv[1:] == ["real"]:
+    real()
+elif sys.argv[1:] == ["where"]:
+    where()

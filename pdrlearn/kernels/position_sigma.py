@@ -1,0 +1,70 @@
+"""Horizontal position uncertainty of a dead-reckoned track, propagated stride by stride (decision L128).
+
+Pure numpy. The model linearises the position update ``p_k = p_{k-1} + L_k (cos psi_k, sin psi_k)`` (the
+stride-and-heading PDR update of thesis ch.7) about the track: a heading error ``dpsi`` moves stride ``k`` across
+itself by ``L_k dpsi``, a length error ``dL`` along itself. Four zero-mean, mutually independent sources:
+
+- ``displacement_rel``: an error proportional to the displacement ``D_k`` from the start, of the same size along
+  it (a stride-length scale error common to the track) and across it (a heading offset constant over the track:
+  start direction, compass or mounting misalignment): ``P += displacement_rel^2 |D_k|^2 I``;
+- ``heading_walk_rad``: the heading is a random walk, ``eta_k = eta_{k-1} + w_k``, step sd per stride (the
+  gyroscope's noise integrated over one stride, after ZUPT/ZARU);
+- ``bias_rps``: a residual heading rate ``b`` (rad/s, constant over the track: gyroscope bias about the vertical
+  left after ZUPT/ZARU); the heading turns by ``b t``, also while the walker stands;
+- ``point_m``: a point error that does not accumulate (sd per axis): the tracked point (the foot at rest, one
+  stride's end) is not the walker's position at that time, and one stride's own placement error.
+
+Each gives a closed form of cumulative sums (O(N)). The 1-sigma radius is ``sqrt(trace P)`` (distance root mean
+square): for a 2-D Gaussian a circle of twice that radius holds 95.4 % (round) to 98.2 % (a thin ellipse) of
+the positions.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: np.ndarray, t0_s: float, *,
+                        displacement_rel: float, heading_walk_rad: float, bias_rps: float,
+                        point_m: float) -> np.ndarray:
+    """Covariance (m^2) of the horizontal position after each stride, shape (N, 2, 2).
+
+    Parameters
+    ----------
+    length_m : signed horizontal length of each stride (m; negative = placed against ``heading_rad``).
+    heading_rad : ENU heading of each stride (rad, 0 = east, counter-clockwise).
+    t_end_s : end time of each stride (s); ``t0_s`` the track's start time (s).
+    displacement_rel : sd per axis of the error proportional to the displacement from the start (fraction).
+    heading_walk_rad : sd of the heading random walk's step per stride (rad).
+    bias_rps : sd of the residual heading rate (rad/s).
+    point_m : sd per axis of the non-accumulating point error (m).
+    """
+    L = np.asarray(length_m, float)
+    psi = np.asarray(heading_rad, float)
+    t = np.asarray(t_end_s, float) - float(t0_s)
+    if not (L.shape == psi.shape == t.shape) or L.ndim != 1:
+        raise ValueError("length_m, heading_rad and t_end_s must be 1-D arrays of one length")
+    n = np.stack([-np.sin(psi), np.cos(psi)], axis=1) * L[:, None]  # d(stride displacement)/d(heading) = L_k n_k
+
+    def outer(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        return a[:, :, None] * b[:, None, :]
+
+    C = np.cumsum(n, axis=0)  # the displacement from the start turned by 90 deg: |C_k| = |D_k|
+    eye = np.eye(2)[None]
+    P = (displacement_rel ** 2 * np.sum(C ** 2, axis=1))[:, None, None] * eye + point_m ** 2 * eye
+    B = np.cumsum(n * t[:, None], axis=0)  # bias: dpsi_j = b t_j, dp_k = b sum_j L_j n_j t_j
+    P = P + bias_rps ** 2 * outer(B, B)
+    # random walk: dp_k = sum_{i<=k} w_i (C_k - C_{i-1}) (C_0 = 0), so its covariance is
+    # sum_i (C_k - C_{i-1})(C_k - C_{i-1})^T = k C_k C_k^T - C_k S1_k^T - S1_k C_k^T + S2_k, with the cumulative
+    # sums S1_k = sum_{i<=k} C_{i-1}, S2_k = sum_{i<=k} C_{i-1} C_{i-1}^T
+    C_prev = np.vstack([np.zeros((1, 2)), C[:-1]])
+    S1 = np.cumsum(C_prev, axis=0)
+    S2 = np.cumsum(outer(C_prev, C_prev), axis=0)
+    k = np.arange(1, len(L) + 1, dtype=float)[:, None, None]
+    P = P + heading_walk_rad ** 2 * (k * outer(C, C) - outer(C, S1) - outer(S1, C) + S2)
+    return 0.5 * (P + np.swapaxes(P, 1, 2))
+
+
+def sigma_radius(cov: np.ndarray) -> np.ndarray:
+    """1-sigma radius ``sqrt(trace P)`` (m) of each 2x2 covariance in ``cov`` (N, 2, 2)."""
+    return np.sqrt(np.maximum(cov[:, 0, 0] + cov[:, 1, 1], 0.0))

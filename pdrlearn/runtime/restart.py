@@ -1,0 +1,83 @@
+"""Restarting a live tracker where another stood (decision L134, docs/decisions/localization.md).
+
+A new :class:`~pdrlearn.runtime.tracker.Tracker` made with only the old one's position and heading loses the
+stride in progress: its samples since the last emitted stride are not in the new tracker, which opens its
+first stride at the next stance, so that stride's turn is never added (a trial: -0.72 rad on every later stride,
+6.45 m off after a 90 m walk). :func:`restart_state` is what a new tracker needs instead: the position and
+heading after the last measured stride, that stride's end, and the samples the old tracker still buffers
+(from its last stride boundary less 1 s on, the stance detector's look-back). ``Tracker(bundle,
+resume=state)`` (:func:`resume`) takes the position and heading, re-pushes those samples, and drops the strides
+it finds again that end at or before the old tracker's last one: the stride in progress is measured whole,
+with the pivot before it (L31). The state is plain numbers and lists (``json.dumps`` writes it), so an app can
+save it after each step and restart after a crash.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+
+#: the restart state's format (a state of another version is refused in one line)
+STATE_VERSION = 1
+_KEYS = ("version", "position", "heading_rad", "last_end_s", "last_step", "n_steps", "samples")
+
+
+def restart_state(tracker) -> dict:
+    """Decision L134: ``{"version", "position" [x, y, z] m, "heading_rad", "last_end_s" (the last measured
+    stride's end, s, or None), "last_step" (the last emitted row's end, heading, position and stride times, for
+    E46's gap row and E51's stride time; or None), "n_steps", "samples": {sensor: {"t": [...] s, "values":
+    [[...], ...]}}}`` with the samples the tracker buffers (the input side's, after E22's resampling)."""
+    kept = tracker._kept
+    return {
+        "version": STATE_VERSION,
+        "position": [float(v) for v in tracker.position],
+        "heading_rad": float(tracker.heading),
+        "last_end_s": None if tracker._prev_end is None else float(tracker._prev_end),
+        "last_step": None if kept is None else [kept[0], kept[1], list(kept[2]), list(kept[3])],
+        "n_steps": int(tracker.n_steps),
+        "samples": {name: {"t": t.tolist(), "values": v.tolist()}
+                    for name, (t, v) in ((n, r.view()) for n, r in tracker._buf.items())},
+    }
+
+
+def resume(tracker, state: dict) -> list:
+    """Decision L134: set a new ``tracker`` (no sample pushed yet) to ``state`` (:func:`restart_state`) and push
+    the state's samples; returns the steps they complete (strides the old tracker had not emitted yet)."""
+    where = "Tracker(resume=state)"
+    if not isinstance(state, dict) or state.get("version") != STATE_VERSION or not set(_KEYS) <= set(state):
+        got = state.get("version") if isinstance(state, dict) else type(state).__name__
+        raise DataError(f"{where}: not a restart state of version {STATE_VERSION} (got {got!r}); give what "
+                        "Tracker.restart_state() returned (decision L134)")
+    try:
+        position = np.asarray(state["position"], dtype=float).reshape(3)
+        heading = float(state["heading_rad"])
+        last_end = None if state["last_end_s"] is None else float(state["last_end_s"])
+        samples = {str(n): (np.asarray(s["t"], dtype=float), np.asarray(s["values"], dtype=float))
+                   for n, s in state["samples"].items()}
+    except (TypeError, ValueError, KeyError) as exc:
+        raise DataError(f"{where}: the state's position, heading_rad, last_end_s or samples are malformed "
+                        f"({exc}); give what Tracker.restart_state() returned (decision L134)") from None
+    if not (np.isfinite(position).all() and math.isfinite(heading)):
+        raise DataError(f"{where}: the state's position {position.tolist()} or heading {heading} is not finite; "
+                        "give what Tracker.restart_state() returned (decision L134)")
+    tracker.position = position
+    tracker._init_fixes(position[:2])
+    tracker.heading = heading
+    tracker._prev_end = last_end
+    tracker._resume_end = last_end
+    ls = state["last_step"]
+    tracker._kept = None if ls is None else (float(ls[0]), float(ls[1]), tuple(map(float, ls[2])),
+                                             tuple(map(float, ls[3])))
+    tracker.n_steps = int(state["n_steps"])
+    return tracker.push({n: tv for n, tv in samples.items() if len(tv[0])}) if samples else []
+
+
+def drop_measured(pending: list, last_end: float | None) -> list:
+    """The detected strides ``(t0, t1)`` a resumed tracker measures: those ending after ``last_end`` (s), the old
+    tracker's last measured stride (the re-pushed samples show it, and the one before, again)."""
+    if last_end is None:
+        return pending
+    return [p for p in pending if p[1] > last_end + 1e-9]

@@ -1,0 +1,72 @@
+"""Per-stride horizontal position uncertainty of a track: ``pos_sigma_m`` (decision L128).
+
+The error model is :func:`pdrlearn.kernels.position_sigma.position_covariance`; this module picks its parameters
+for the pipeline and heading that made the track and writes the 1-sigma radius into the trajectory. The
+parameters were fitted (maximum likelihood) on the true position errors of simulated users 900-905, a 4-loop
+route of ~530 m with turns both ways, 2 storeys up and down a loop, backward strides and stops
+(``experiments/position_sigma.py fit``, decision L128). Checked on fresh users 660-679 (L129): ``plasys-fused``
+calibrated (98.2 % of the strides, 17/20 final positions within 2 sigma); ``plasys-streaming`` uncalibrated, too
+large (99.2 %, 20/20); ``plasys-foot`` uncalibrated, too large (100 %, 20/20); ``waist`` calibrated (98.3 %,
+20/20; waist-pendulum). It is no guarantee: magnetic disturbances,
+map constraints, real sensors worse than the simulator's and a walker other than the simulator's are outside it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.kernels.position_sigma import position_covariance, sigma_radius
+
+#: decision L128: parameters per error regime, each the maximum-likelihood fit on simulated users 900-905
+#: (``experiments/position_sigma.py fit --variant V``, printed values rounded to 2 significant digits)
+SIGMA_PARAMS: dict[str, dict[str, float]] = {
+    # plasys offline with a waist unit: foot yaw aligned to the waist compass ("fused", L17)
+    "plasys-fused": {"displacement_rel": 0.026, "heading_walk_rad": 0.0034, "bias_rps": 0.0, "point_m": 1.5},
+    # plasys with the foot's own yaw only (no waist unit, or `--units foot`)
+    "plasys-foot": {"displacement_rel": 0.0021, "heading_walk_rad": 0.062, "bias_rps": 0.0, "point_m": 0.068},
+    # plasys --streaming with a waist unit: the waist gyroscope's heading (L99)
+    "plasys-streaming": {"displacement_rel": 0.028, "heading_walk_rad": 0.011, "bias_rps": 0.00073,
+                         "point_m": 0.0},
+    # the lower-back pipelines (fitted on waist-pendulum; waist-pll shares them, not fitted)
+    "waist": {"displacement_rel": 0.0, "heading_walk_rad": 0.0083, "bias_rps": 0.00085, "point_m": 3.1},
+}
+
+
+def sigma_regime(info: dict, session) -> str:
+    """The :data:`SIGMA_PARAMS` key for a track of ``session`` with ``info`` (its pipeline, heading source,
+    streaming)."""
+    if str(info.get("pipeline", "")).startswith("waist"):
+        return "waist"
+    if info.get("streaming"):  # the streamed heading is the waist gyroscope's when there is one (L99)
+        return "plasys-streaming" if session.has("wGyroscope") else "plasys-foot"
+    return "plasys-fused" if info.get("heading_source") in ("fused", "waist") else "plasys-foot"
+
+
+def add_position_sigma(result, session, regime: str | None = None) -> None:
+    """Write ``pos_sigma_m`` (m, the 1-sigma radius ``sqrt(trace P)`` of the horizontal position, 0 at the start)
+    into ``result.trajectory`` and the model used into ``result.info["position_sigma"]``. A trajectory row gets
+    the covariance after the last stride that ended at or before its time. ``regime``: a :data:`SIGMA_PARAMS`
+    key (default :func:`sigma_regime`; ``pdrlearn run`` names its own)."""
+    traj, steps = result.trajectory, result.steps
+    if not len(traj):
+        return
+    regime = regime or sigma_regime(result.info, session)
+    params = SIGMA_PARAMS[regime]
+    sigma = np.zeros(len(traj))
+    if len(steps):
+        t0 = float(traj["t"].iloc[0])
+        cov = position_covariance(steps["length_m"].to_numpy(float), steps["heading_rad"].to_numpy(float),
+                                  steps["end_s"].to_numpy(float), t0, **params)
+        r = sigma_radius(cov)
+        r = np.maximum.accumulate(np.where(np.isfinite(r), r, 0.0))  # a radius never shrinks without a fix
+        i = np.searchsorted(steps["end_s"].to_numpy(float), traj["t"].to_numpy(float) + 1e-9, side="right") - 1
+        sigma = np.where(i >= 0, r[np.clip(i, 0, len(r) - 1)], 0.0)
+        sigma[0] = 0.0  # the start is where the track is put
+    traj["pos_sigma_m"] = sigma
+    result.info["position_sigma"] = {"model": regime, **params}
+
+
+def drop_position_sigma(result) -> None:
+    """An aided track (GNSS, fixes) is outside the model: no ``pos_sigma_m``."""
+    result.trajectory = result.trajectory.drop(columns=["pos_sigma_m"], errors="ignore")
+    result.info.pop("position_sigma", None)

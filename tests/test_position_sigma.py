@@ -1,0 +1,112 @@
+"""Decision L128: the per-stride position uncertainty (``pdrlearn.kernels.position_sigma``, ``pos_sigma_m`` in
+trajectory.csv, ``final_position_sigma_m`` / ``max_position_sigma_m`` in the summary)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.kernels.position_sigma import position_covariance, sigma_radius
+
+ZERO = {"displacement_rel": 0.0, "heading_walk_rad": 0.0, "bias_rps": 0.0, "point_m": 0.0}
+
+
+def _cov(L, psi, t=None, **params):
+    t = np.arange(1, len(L) + 1, dtype=float) if t is None else t
+    return position_covariance(np.asarray(L, float), np.asarray(psi, float), t, 0.0, **{**ZERO, **params})
+
+
+def test_zero_error_parameters_give_zero_sigma():
+    rng = np.random.default_rng(0)
+    cov = _cov(rng.uniform(0.5, 1.5, 50), rng.uniform(-np.pi, np.pi, 50))
+    assert np.all(sigma_radius(cov) == 0.0)
+
+
+def test_straight_line_heading_walk_grows_across_the_track_only():
+    """East, 1 m strides: the heading walk's cross-track variance after k strides is s^2 sum_{i<=k} (k-i+1)^2
+    (the walk step i turns every stride from i on); nothing along the track."""
+    cov = _cov(np.ones(5), np.zeros(5), heading_walk_rad=0.1)
+    for k in range(1, 6):
+        assert cov[k - 1, 1, 1] == pytest.approx(0.01 * sum(j * j for j in range(1, k + 1)))
+    assert np.allclose(cov[:, 0, 0], 0.0) and np.allclose(cov[:, 0, 1], 0.0)
+    assert np.all(np.diff(sigma_radius(cov)) > 0)
+
+
+def test_straight_line_bias_and_displacement_and_point():
+    """Bias b: the heading error at stride j is b t_j, so cross-track b sum_j L t_j; displacement_rel: sd
+    proportional to the distance on both axes; point_m: the same on every stride."""
+    cov = _cov(np.ones(4), np.zeros(4), bias_rps=0.01)
+    assert cov[:, 1, 1] == pytest.approx((0.01 * np.cumsum([1.0, 2.0, 3.0, 4.0])) ** 2)
+    cov = _cov(np.ones(4), np.zeros(4), displacement_rel=0.02)
+    assert cov[:, 0, 0] == pytest.approx((0.02 * np.arange(1, 5)) ** 2)
+    assert cov[:, 1, 1] == pytest.approx((0.02 * np.arange(1, 5)) ** 2)
+    assert sigma_radius(_cov(np.ones(3), np.zeros(3), point_m=0.3)) == pytest.approx([0.3 * np.sqrt(2)] * 3)
+
+
+def test_a_turn_by_hand():
+    """1 m east, then 1 m north: walk step 1 turns both strides, step 2 the second: dp = w1 (-1, 1) + w2 (-1, 0),
+    covariance s^2 [[2, -1], [-1, 1]]; a backward stride (negative length) moves the error as its displacement."""
+    cov = _cov([1.0, 1.0], [0.0, np.pi / 2], heading_walk_rad=0.1)
+    assert cov[1] == pytest.approx(0.01 * np.array([[2.0, -1.0], [-1.0, 1.0]]))
+    back = _cov([-1.0, -1.0], [np.pi, 3 * np.pi / 2], heading_walk_rad=0.1)  # the same displacements
+    assert back == pytest.approx(cov)
+
+
+def test_the_covariance_is_the_monte_carlo_covariance_of_a_perturbed_track():
+    """Draw the four sources, dead-reckon the perturbed strides, compare the spread of the end point."""
+    rng = np.random.default_rng(1)
+    n = 40
+    L = rng.uniform(0.6, 1.4, n)
+    psi = np.cumsum(rng.normal(0.0, 0.3, n))
+    t = np.cumsum(rng.uniform(0.9, 1.3, n))
+    par = {"displacement_rel": 0.02, "heading_walk_rad": 0.01, "bias_rps": 0.002, "point_m": 0.2}
+    true_end = np.array([np.sum(L * np.cos(psi)), np.sum(L * np.sin(psi))])
+    draws = 20000
+    walk = np.cumsum(rng.normal(0.0, par["heading_walk_rad"], (draws, n)), axis=1)
+    bias = rng.normal(0.0, par["bias_rps"], (draws, 1)) * t
+    ang = psi + walk + bias
+    ends = np.stack([np.sum(L * np.cos(ang), axis=1), np.sum(L * np.sin(ang), axis=1)], axis=1) - true_end
+    # displacement_rel is isotropic in the model: an independent error of sd displacement_rel |D| per axis
+    ends += rng.normal(0.0, 1.0, (draws, 2)) * par["displacement_rel"] * np.hypot(*true_end)
+    ends += rng.normal(0.0, par["point_m"], (draws, 2))
+    model = position_covariance(L, psi, t, 0.0, **par)[-1]
+    assert np.cov(ends.T) == pytest.approx(model, rel=0.06, abs=0.02 * np.trace(model))
+
+
+def test_track_writes_pos_sigma_and_the_summary_keys(tmp_path):
+    """`pdrlearn track` on a simulated walk with turns: pos_sigma_m in trajectory.csv (0 at the start, never
+    decreasing, positive after the first stride), its last and largest value in summary.json, and every other
+    summary key as without it; the lower-back pipeline gets one too."""
+    from pdrlearn.cli import main
+    from pdrlearn.io import read_session, write_session
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+    from pdrlearn.track.evaluate import track_summary
+
+    s = simulate_path(parse_route("straight:12, turn:90, straight:8, curve:-90:3, straight:6, turn:180, "
+                                  "straight:10"), UserProfile.from_seed(4), speed="normal", rate_hz=20.0, seed=4,
+                      name="sigma")
+    write_session(s, tmp_path / "walk")
+    for extra, regime in (((), "plasys-fused"), (("--pipeline", "waist-pendulum"), "waist")):
+        out = tmp_path / f"t_{regime}"
+        assert main(["track", str(tmp_path / "walk"), *extra, "--out", str(out)]) == 0
+        tr = pd.read_csv(out / "trajectory.csv")
+        sigma = tr["pos_sigma_m"].to_numpy(float)
+        assert sigma[0] == 0.0 and np.all(sigma[1:] > 0) and np.all(np.diff(sigma) >= 0)
+        summary = json.loads((out / "summary.json").read_text())
+        assert summary["final_position_sigma_m"] == pytest.approx(sigma[-1])
+        assert summary["max_position_sigma_m"] == pytest.approx(sigma.max())
+        assert summary["info"]["position_sigma"]["model"] == regime
+    # the summary of the same track without the column: the same keys less the two new ones
+    from pdrlearn.track import get_pipeline
+
+    result = get_pipeline("plasys")(read_session(tmp_path / "walk"))
+    with_sigma = track_summary(result, s)
+    result.trajectory = result.trajectory.drop(columns=["pos_sigma_m"])
+    result.info.pop("position_sigma")
+    without = track_summary(result, s)
+    assert set(with_sigma) - set(without) == {"final_position_sigma_m", "max_position_sigma_m"}
+    assert set(without) <= set(with_sigma)
