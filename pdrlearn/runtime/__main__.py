@@ -80,18 +80,11 @@ def _rate_hz(t) -> float:
 
 
 def _rows(steps) -> list[dict]:
-    """``pdrlearn run``'s steps.csv names for the Step fields: ``length_class`` (B14), ``heading_rad`` wrapped to
-    [-pi, pi) (E43)."""
+    """The Step rows (``Step.to_dict``, B142) with ``heading_rad`` wrapped to [-pi, pi), as ``pdrlearn run`` writes
+    it (E43)."""
     from pdrlearn.kernels.fixes import wrap_angle
 
-    rows = []
-    for st in steps:
-        d = st.to_dict()
-        if "length" in d:
-            d["length_class"] = d.pop("length")
-        d["heading_rad"] = float(wrap_angle(d["heading_rad"]))
-        rows.append(d)
-    return rows
+    return [{**d, "heading_rad": float(wrap_angle(d["heading_rad"]))} for d in (st.to_dict() for st in steps)]
 
 
 def _write(out: Path, steps, start_s: float | None) -> None:
