@@ -110,7 +110,9 @@ def _tool(words: list[str]) -> tuple[str | None, list[str]]:
         if rest and rest[0].endswith(".py"):
             return "script", rest
         if len(rest) > 1 and rest[0] == "-m" and rest[1].startswith("pdrlearn."):
-            return "script", [rest[1].replace(".", "/") + ".py", *rest[2:]]
+            mod = rest[1].replace(".", "/")  # a package runs its __main__.py (python -m pdrlearn.runtime, E76)
+            return "script", [f"{mod}/__main__.py" if (ROOT / mod / "__main__.py").is_file() else f"{mod}.py",
+                              *rest[2:]]
     return None, []
 
 
