@@ -26,7 +26,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from pdrlearn.errors import DataError, PdrlearnError, shell_quote
+from pdrlearn.errors import DISK_FULL_ERRNOS, DataError, PdrlearnError, shell_quote
 
 log = logging.getLogger(__name__)
 
@@ -225,10 +225,19 @@ def _guarded(fn: Callable, name: str, arg, threads: int | None = 1,
         return done(ok=True, value=value)
     except PdrlearnError as exc:
         return done(ok=False, error=str(exc), extra=_job_extra(exc))
+    except OSError as exc:
+        if exc.errno in DISK_FULL_ERRNOS:  # decision B151: every later job would fail alike; the batch stops
+            raise
+        return _failed(done, exc)
     except Exception as exc:  # a bug in one user's job must not stop the cohort; keep the cause
-        last = traceback.extract_tb(exc.__traceback__)[-1]
-        msg = f"{type(exc).__name__}: {exc} (at {Path(last.filename).name}:{last.lineno})"
-        return done(ok=False, error=" ".join(msg.split()), extra=_job_extra(exc))
+        return _failed(done, exc)
+
+
+def _failed(done: Callable, exc: Exception) -> JobResult:
+    """A job's unexpected exception as its failed :class:`JobResult`: the type, message and where it was raised."""
+    last = traceback.extract_tb(exc.__traceback__)[-1]
+    msg = f"{type(exc).__name__}: {exc} (at {Path(last.filename).name}:{last.lineno})"
+    return done(ok=False, error=" ".join(msg.split()), extra=_job_extra(exc))
 
 
 def _job_extra(exc: BaseException) -> dict:

@@ -21,6 +21,7 @@ from pdrlearn.cli.common import (
     out_folder,
     print_json,
     progress,
+    refused_output,
     replaced,
     split_choices,
     split_length_units,
@@ -294,7 +295,7 @@ def train_all(
     users = cohort_users(cohort_dir)
     # the whole models folder is built beside the old one and swapped in (decision B19): a --force re-run
     # leaves no model of a user who is no longer in the cohort, or who failed this time
-    with atomic_directory(out) as tmp:
+    with refused_output(out), atomic_directory(out) as tmp:  # decision B151
         items = [(u.name, {"user_dir": str(u), "out": str(tmp / u.name), "tasks": t_list,
                            "methods": m_list, "units": u_list, "length_units": l_list, "cv": cv, "seed": seed,
                            "skip_bad": skip_bad})
@@ -657,7 +658,7 @@ def track_all(
         files = subject_params(params_dir, rels, [s for s, _ in labels])
         parsed = {f: read_params(f) for f in dict.fromkeys(files)}
         per_session = [{**settings, "params": f, "par": parsed[f]} for f in files]
-    with atomic_directory(out) as tmp:
+    with refused_output(out), atomic_directory(out) as tmp:  # decision B151: a full disk stops the batch
         items = [(rel, {"session_dir": str(p), "out": str(tmp / rel), "settings": st})
                  for rel, p, st in zip(rels, found, per_session, strict=True)]
         done = [0]

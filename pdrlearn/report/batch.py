@@ -131,5 +131,4 @@ def plot_batch(sessions: pd.DataFrame, path: Path, *, dpi: float | None = None) 
     fig.legend(handles, groups, title="group", loc="upper right", fontsize=8)
     fig.suptitle("track-all: per session")
     save_atomic(fig, Path(path), dpi=dpi)
-    plt.close(fig)
     return True

@@ -29,9 +29,8 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     off in that track's direction (:func:`initial_bearing`); the legend says so, and the axes are ``x`` (heading
     0 at the start) / ``y`` instead of east / north (L55).
     """
-    plt, fig = path_figure(paths, session=session, title=title)
+    _, fig = path_figure(paths, session=session, title=title)
     save_atomic(fig, Path(out), dpi=dpi)
-    plt.close(fig)
     return Path(out)
 
 
