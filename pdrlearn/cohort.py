@@ -453,6 +453,42 @@ def session_labels(folder: str | os.PathLike) -> tuple[str | None, str | None]:
     return meta_user(meta), None if visit is None else str(visit).strip()
 
 
+#: Decision L137: meta.json fields that only name a session (who, which visit, what it is called, notes), not
+#: settings any pipeline reads; two folders of one recording that differ only in these are still a duplicate upload.
+META_LABEL_KEYS = ("subject", "visit", "session", "notes", "comment")
+
+
+def meta_settings(folder: str | os.PathLike) -> dict[str, object]:
+    """Decision L137: a session folder's meta.json flattened to dotted keys (``user.sensor_height_m``) without
+    :data:`META_LABEL_KEYS` (and ``user`` when it is only a name): what the pipelines may read. ``{}`` without a
+    readable meta.json object."""
+    import json
+
+    try:
+        meta = json.loads((Path(folder) / "meta.json").read_text())
+    except (OSError, ValueError):
+        return {}
+    if not isinstance(meta, dict):
+        return {}
+    flat: dict[str, object] = {}
+
+    def walk(obj, prefix: str) -> None:
+        if isinstance(obj, dict) and obj:
+            for k, v in obj.items():
+                walk(v, f"{prefix}{k}.")
+        else:
+            flat[prefix[:-1]] = obj
+
+    walk({k: v for k, v in meta.items() if k not in META_LABEL_KEYS and not (k == "user" and isinstance(v, str))},
+         "")
+    return flat
+
+
+def meta_differences(a: dict[str, object], b: dict[str, object]) -> list[str]:
+    """Decision L137: the keys of two :func:`meta_settings` whose values differ, as ``key a / b``, sorted."""
+    return [f"{k} {a.get(k)!r} / {b.get(k)!r}" for k in sorted(set(a) | set(b)) if a.get(k) != b.get(k)]
+
+
 def t_interval(mean, sd, n):
     """The 95 % Student's t-interval of a mean, mean ± t(0.975, n - 1) · sd / √n (NIST/SEMATECH e-Handbook of
     Statistical Methods, 7.2.2.1 "Confidence limits for the mean"), elementwise; NaN under two values. groups.csv

@@ -97,3 +97,107 @@ def test_a_figure_is_closed_when_saving_it_fails(tmp_path, monkeypatch):
     with pytest.raises(OSError):
         save_atomic(fig, tmp_path / "f.png")
     assert plt.get_fignums() == []
+
+
+@pytest.fixture(scope="module")
+def provenance_batch(tree, tmp_path_factory):
+    """p01; p02 = p01's recording with meta.json sensor_height_m edited; p03 = p01's with another subject only; p04
+    meta.json alone (fails)."""
+    import json
+
+    root = tmp_path_factory.mktemp("prov") / "study"
+    shutil.copytree(tree / "p01", root / "p01")
+    for p, edit in (("p02", {"sensor_height_m": 1.05}), ("p03", {"subject": "S99"})):
+        shutil.copytree(tree / "p01", root / p)
+        meta_file = root / p / "walk" / "meta.json"
+        meta_file.write_text(json.dumps({**json.loads(meta_file.read_text()), **edit}))
+    (root / "p04" / "walk").mkdir(parents=True)  # a folder with only meta.json: fails
+    shutil.copy(tree / "p01" / "walk" / "meta.json", root / "p04" / "walk" / "meta.json")
+    out = tmp_path_factory.mktemp("prov_out") / "o"
+    import contextlib
+    import io
+
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        rc = main(["track-all", str(root), "--out", str(out)])
+    return root, out, rc, err.getvalue()
+
+
+def test_run_json_records_the_code_libraries_and_input_hashes(provenance_batch):
+    """L136: run.json had pdrlearn_version 0.1.0 only; now the git commit, Python and library versions and the
+    SHA-256 of every input file of every session, meta.json included."""
+    import hashlib
+    import json
+    import platform
+    import re
+
+    import numpy
+    import scipy
+
+    root, out, rc, _ = provenance_batch
+    assert rc == 1  # p04 failed
+    run = json.loads((out / "run.json").read_text())
+    assert re.fullmatch(r"[0-9a-f]{40}", run["git_commit"]) and isinstance(run["git_dirty"], bool)  # a checkout
+    assert run["python"] == platform.python_version()
+    assert run["packages"]["numpy"] == numpy.__version__ and run["packages"]["scipy"] == scipy.__version__
+    assert set(run["packages"]) == {"numpy", "scipy", "pandas", "scikit-learn", "torch"}
+    assert set(run["input_sha256"]) == {"p01/walk", "p02/walk", "p03/walk", "p04/walk"}
+    assert run["input_sha256"]["p04/walk"] == {"meta.json": run["input_sha256"]["p01/walk"]["meta.json"]}
+    for rel, files in run["input_sha256"].items():
+        if rel == "p04/walk":
+            continue
+        assert "meta.json" in files and "fAccelerometer.csv" in files
+        assert files["meta.json"] == hashlib.sha256((root / rel / "meta.json").read_bytes()).hexdigest()
+    assert run["input_sha256"]["p01/walk"]["meta.json"] != run["input_sha256"]["p02/walk"]["meta.json"]
+    assert run["input_sha256"]["p01/walk"]["fAccelerometer.csv"] == run["input_sha256"]["p02/walk"]["fAccelerometer.csv"]
+
+
+def test_same_sensor_data_with_another_meta_json_is_not_a_duplicate(provenance_batch):
+    """L137: two folders of one recording whose meta.json differs in a setting (sensor_height_m) were called
+    duplicates; now they are 'same sensor data, different meta.json', naming the field. A copy that differs only
+    in its subject stays a duplicate (cohort C20)."""
+    import pandas as pd
+
+    _, out, _, err = provenance_batch
+    s = pd.read_csv(out / "sessions.csv").set_index("path")
+    assert pd.isna(s.loc["p02/walk", "duplicate_of"]) and s.loc["p02/walk", "same_sensor_data_as"] == "p01/walk"
+    assert s.loc["p03/walk", "duplicate_of"] == "p01/walk" and pd.isna(s.loc["p03/walk", "same_sensor_data_as"])
+    assert ("p01/walk and p02/walk hold identical sensor data but a different meta.json (sensor_height_m "
+            in err) and "decision L137" in err
+    assert "p01/walk and p03/walk hold identical sensor data (the same recording" in err
+
+
+def test_the_leg_length_note_names_the_meta_json_value_used():
+    """B155: the trial edited sensor_height_m and nothing changed, the note saying 'leg_length_m or
+    sensor_height_m'; it now names the key used and the value not used."""
+    from pdrlearn import sim
+    from pdrlearn.waist.params import default_params
+
+    s = sim.simulate("walk", 801, length_m=5)
+    s.meta = {**s.meta, "leg_length_m": 0.95, "sensor_height_m": 1.05}
+    p, _ = default_params(s)
+    assert p.leg_m == 0.95
+    assert ("leg length 0.950 m from meta.json leg_length_m (leg_length_m is taken before sensor_height_m; not "
+            "used: sensor_height_m 1.05 m; decision B155)") in p.notes
+    s.meta = {k: v for k, v in s.meta.items() if k != "leg_length_m"}
+    s.meta.pop("subject", None)
+    p, _ = default_params(s)
+    assert p.leg_m == 1.05 and any("from meta.json sensor_height_m" in n for n in p.notes)
+
+
+def test_the_report_says_the_duplicate_warnings_and_blanks_a_failed_row(provenance_batch, tmp_path):
+    """Cohort C34: report.md had no duplicate-upload warning (C20) and 'nan' in every cell of a failed row; now the
+    warnings are listed and the failed row shows its error beside empty cells."""
+    _, out, _, _ = provenance_batch
+    assert main(["report", str(out), "--out", str(tmp_path / "r")]) == 0
+    md = (tmp_path / "r" / "report.md").read_text()
+    assert ("- **Warning** p01/walk and p03/walk hold identical sensor data (the same recording): a duplicate upload? "
+            "Each is tracked and counted in groups.csv (decision C20)") in md
+    assert ("- **Warning** p01/walk and p02/walk hold identical sensor data but a different meta.json: not a "
+            "duplicate, the settings differ (decision L137)") in md
+    per_session = md.split("**per session**")[1].split("**per group")[0]
+    row = next(line for line in per_session.splitlines() if line.startswith("| p04/walk"))
+    import pandas as pd
+
+    error = pd.read_csv(out / "sessions.csv").set_index("path").loc["p04/walk", "error"]
+    assert "nan" not in md and "| failed " in row and error in row
