@@ -22,7 +22,7 @@ import typer
 from pdrlearn.errors import PdrlearnError
 
 COMMAND_MODULES = ["simulate", "data", "import_csv", "steps", "train", "track", "calibrate", "export", "report",
-                   "cohort"]
+                   "cohort", "columns"]
 
 app = typer.Typer(
     name="pdrlearn",
