@@ -148,8 +148,8 @@ def test_run_json_records_the_code_libraries_and_input_hashes(provenance_batch):
             continue
         assert "meta.json" in files and "fAccelerometer.csv" in files
         assert files["meta.json"] == hashlib.sha256((root / rel / "meta.json").read_bytes()).hexdigest()
-    assert run["input_sha256"]["p01/walk"]["meta.json"] != run["input_sha256"]["p02/walk"]["meta.json"]
-    assert run["input_sha256"]["p01/walk"]["fAccelerometer.csv"] == run["input_sha256"]["p02/walk"]["fAccelerometer.csv"]
+    p01, p02 = run["input_sha256"]["p01/walk"], run["input_sha256"]["p02/walk"]
+    assert p01["meta.json"] != p02["meta.json"] and p01["fAccelerometer.csv"] == p02["fAccelerometer.csv"]
 
 
 def test_same_sensor_data_with_another_meta_json_is_not_a_duplicate(provenance_batch):
