@@ -77,15 +77,20 @@ def software_record() -> dict:
 
 def input_hashes(folder: Path) -> dict[str, str]:
     """Decision L136: the SHA-256 of every file of a session folder (meta.json, the sensor CSVs, steps.csv and label
-    tables; hidden files and subfolders left out), by name: what the run read, to tell a year on whether the data
-    (a meta.json field included) are still the same."""
+    tables; hidden files and subfolders left out), by name (``None`` for a file that cannot be read): what the run
+    read, to tell a year on whether the data (a meta.json field included) are still the same."""
     import hashlib
+
+    def digest(p: Path) -> str | None:
+        try:
+            return hashlib.sha256(p.read_bytes()).hexdigest()
+        except OSError:  # unreadable (the session's own error says so): no hash, and no output error (B151)
+            return None
 
     folder = Path(folder)
     if not folder.is_dir():
         return {}
-    return {p.name: hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.iterdir()) if p.is_file() and not p.name.startswith(".")}
+    return {p.name: digest(p) for p in sorted(folder.iterdir()) if p.is_file() and not p.name.startswith(".")}
 
 
 def run_record(command: str, options: dict, **fields) -> dict:
