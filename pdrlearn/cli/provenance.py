@@ -87,10 +87,11 @@ def input_hashes(folder: Path) -> dict[str, str]:
         except OSError:  # unreadable (the session's own error says so): no hash, and no output error (B151)
             return None
 
-    folder = Path(folder)
-    if not folder.is_dir():
+    try:
+        entries = sorted(Path(folder).iterdir())
+    except OSError:  # not a folder, or not readable
         return {}
-    return {p.name: digest(p) for p in sorted(folder.iterdir()) if p.is_file() and not p.name.startswith(".")}
+    return {p.name: digest(p) for p in entries if p.is_file() and not p.name.startswith(".")}
 
 
 def run_record(command: str, options: dict, **fields) -> dict:
