@@ -201,3 +201,22 @@ def test_the_report_says_the_duplicate_warnings_and_blanks_a_failed_row(provenan
 
     error = pd.read_csv(out / "sessions.csv").set_index("path").loc["p04/walk", "error"]
     assert "nan" not in md and "| failed " in row and error in row
+
+
+def test_an_unreadable_input_file_has_no_hash_and_is_no_output_error(tmp_path, monkeypatch):
+    """L136 with B151: hashing the inputs inside track-all's output block must not turn an input's permission error
+    into 'OUT: Permission denied' (refused_output reads EACCES as the output's)."""
+    from pdrlearn.cli.provenance import input_hashes
+
+    (tmp_path / "meta.json").write_text("{}")
+    (tmp_path / "fAccelerometer.csv").write_text("timestamp,x,y,z\n")
+    real = Path.read_bytes
+
+    def locked(self):
+        if self.name == "fAccelerometer.csv":
+            raise PermissionError(errno.EACCES, "Permission denied", str(self))
+        return real(self)
+
+    monkeypatch.setattr(Path, "read_bytes", locked)
+    got = input_hashes(tmp_path)
+    assert got["fAccelerometer.csv"] is None and len(got["meta.json"]) == 64
