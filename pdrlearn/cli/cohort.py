@@ -628,8 +628,9 @@ def track_all(
     skipped. Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
     concerns.
 
-    Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input
-    or when every session failed (nothing is written).
+    Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input,
+    when every session failed, or when the disk fills or OUT cannot be written (the batch stops at once, B151):
+    nothing is written.
 
     Examples:
 
