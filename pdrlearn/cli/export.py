@@ -381,9 +381,9 @@ def run(
                 session.has("wAccelerometer", "wGyroscope") and "waist" in tracker.forward)):  # as track says (B17)
             import logging
 
-            from pdrlearn.track.plasys import NO_WAIST_HEADING
+            from pdrlearn.track.plasys import NO_WAIST_HEADING, no_waist_heading
 
-            line = NO_WAIST_HEADING
+            line = no_waist_heading(session)  # decision B153: an incomplete waist unit names its missing file
             if dropped and any(n.startswith("w") and len(st) for n, st in session.streams.items()):
                 # decision E45: the session has a waist unit --units foot leaves out; not "no waist unit"
                 line = "waist unit not used (--units foot): " + NO_WAIST_HEADING.removeprefix("no waist unit: ")
