@@ -73,6 +73,8 @@ SESSIONS: tuple[Column, ...] = (
     ("distance_ref_source", _ID, "text", "where distance_ref_m comes from"),
     ("final_altitude_error_m", "m", "number", "z error of the last position"),
     ("final_position_error_3d_m", "m", "number", "3-D distance of the last position from the true one"),
+    ("final_position_sigma_m", "m", "number", "modelled 1-sigma radius of the last position (L128; none with fixes)"),
+    ("max_position_sigma_m", "m", "number", "largest modelled 1-sigma position radius of the track (L128)"),
     ("final_x_m", "m", "number", "last tracked position, x (east, or the start heading's axis)"),
     ("final_y_m", "m", "number", "last tracked position, y"),
     ("final_z_m", "m", "number", "last tracked position, z (up)"),
