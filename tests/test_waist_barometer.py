@@ -70,3 +70,48 @@ def test_stairs_length_bounds_only_the_stair_steps_by_the_tread(stairs):
     assert (off.steps["length_m"].to_numpy()[st] > STAIR_TREAD_M).any()
     assert (on.steps["length_m"].to_numpy()[st] <= STAIR_TREAD_M).all()
     assert np.array_equal(on.steps["length_m"].to_numpy()[~st], off.steps["length_m"].to_numpy()[~st])
+
+
+def test_a_climb_is_a_run_of_one_sign_higher_than_the_floor_and_the_noise():  # decision W108
+    from pdrlearn.kernels.barometer import STAIR_CLIMB_MIN_M, climb_mask
+
+    up = np.array([0, 1, 1, 1, 1, 0, -1, -1, 1])
+    start = np.array([0.0, 0.0, 0.5, 1.0, 1.5, 2.0, 2.0, 1.8, 1.6])
+    end = np.array([0.0, 0.5, 1.0, 1.5, 2.0, 2.0, 1.8, 1.6, 1.7])
+    # the 2.0 m climb counts, the 0.4 m dip and the one-step rise do not
+    assert climb_mask(up, start, end, 0.0).tolist() == [False, True, True, True, True, False, False, False, False]
+    # a noisier barometer needs a higher climb: 3 sqrt(2) x 0.5 m = 2.12 m > 2.0 m
+    assert not climb_mask(up, start, end, 0.5).any()
+    assert STAIR_CLIMB_MIN_M == 1.5 and not climb_mask(up, start, end * 0.7, 0.0).any()  # 1.4 m: under half a storey
+    assert not climb_mask(-up, start, end, 0.0).any()  # proposed down, but the altitude rose
+
+
+def test_still_altitude_sd_is_the_wander_before_and_after_the_walk():  # decision W108
+    from pdrlearn.kernels.barometer import still_altitude_sd
+
+    t = np.arange(0.0, 20.0, 0.01)
+    wander = np.where(t < 5.0, 0.3 * np.sin(2 * np.pi * t / 4.0), 0.0)  # 0.3 m amplitude, 4 s period
+    p = pressure_hpa(50.0 + wander + np.where(t > 5.0, 3.0, 0.0), 1008.0)  # a storey while walking (5-15 s)
+    sd = still_altitude_sd(t, p, 5.5, 15.0)
+    assert 0.1 < sd < 0.3
+    assert still_altitude_sd(t, p, 0.6, 19.9) == 0.0  # under 1 s still: no noise measured
+
+
+def test_a_level_real_walk_has_no_stairs_and_stays_on_its_floor(mobgap_test5):  # decision W108
+    from pdrlearn.io import read_session
+
+    s = read_session(mobgap_test5)
+    res = get_pipeline("waist-pendulum")(s, stairs_climb=True)
+    assert not res.steps["stairs"].any()  # W91's test alone called 6 of its 11 steps stairs
+    assert abs(res.trajectory["z"].iloc[-1]) < 0.2  # W89's altitude alone ended at +0.30 m
+    assert (res.steps["dz_m"] == 0.0).all()
+
+
+def test_the_climb_keeps_the_storey_and_its_stair_steps(stairs):  # decision W108
+    res = get_pipeline("waist-pendulum")(stairs, stairs_climb=True)
+    ev = evaluate_track(res, stairs)
+    assert (ev["floors_up"], ev["floors_down"]) == (1, 0)
+    assert ev["altitude_change_m"] == pytest.approx(ev["altitude_change_ref_m"], abs=0.3)
+    st = res.steps["stairs"].to_numpy(bool)
+    assert 10 <= st.sum() <= 24
+    assert (res.steps["dz_m"].to_numpy()[~st] == 0.0).all()

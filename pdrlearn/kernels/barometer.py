@@ -52,3 +52,46 @@ def relative_altitude(t: np.ndarray, p_hpa: np.ndarray, at: np.ndarray,
     mean = (cs[hi] - cs[lo]) / (hi - lo)
     h = np.interp(at, t, altitude_m(mean))
     return h - h[0]
+
+
+#: decision W108: the least barometric height of a climb, half of L64's 3 m storey (a flight between two landings)
+STAIR_CLIMB_MIN_M = 1.5
+#: decision W108: a climb's height is at least this many SDs of a difference of two still-period altitudes
+CLIMB_NOISE_SDS = 3.0 * np.sqrt(2.0)
+#: decision W108: still barometer samples this far (s) from the walk's first / last step, at least
+#: :data:`STILL_MIN_S` of them, give the session's altitude noise
+STILL_MARGIN_S = 0.5
+STILL_MIN_S = 1.0
+
+
+def still_altitude_sd(t: np.ndarray, p_hpa: np.ndarray, walk_start_s: float, walk_end_s: float,
+                      smooth_s: float = ALTITUDE_SMOOTH_S) -> float:
+    """Decision W108: the SD (m) of the ``smooth_s``-averaged altitude over the barometer samples more than
+    :data:`STILL_MARGIN_S` before ``walk_start_s`` or after ``walk_end_s`` (the session's own still periods),
+    each period about its own mean (the walk may have changed floors between them); 0 when they span under
+    :data:`STILL_MIN_S`."""
+    t = np.asarray(t, dtype=float).ravel()
+    h = relative_altitude(t, p_hpa, t, smooth_s)
+    ok = np.isfinite(t) & np.isfinite(h)
+    periods = [m for m in (ok & (t < walk_start_s - STILL_MARGIN_S), ok & (t > walk_end_s + STILL_MARGIN_S))
+               if m.sum() > 1]
+    if sum(float(np.ptp(t[m])) for m in periods) < STILL_MIN_S:
+        return 0.0
+    dev = np.concatenate([h[m] - h[m].mean() for m in periods])
+    return float(np.sqrt(np.mean(dev ** 2)))
+
+
+def climb_mask(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray, noise_sd: float) -> np.ndarray:
+    """Decision W108: the steps of a climb. ``proposed`` is each step's signed proposal (+1 up, -1 down, 0 none;
+    W91's rate test), ``start_h`` / ``end_h`` the altitude (m) at each step's start / end. A maximal run of
+    consecutive steps proposed with one sign is a climb when its height (``end_h`` of its last step minus
+    ``start_h`` of its first) has that sign and is at least ``max(STAIR_CLIMB_MIN_M, CLIMB_NOISE_SDS *
+    noise_sd)``."""
+    s = np.asarray(proposed, dtype=int).ravel()
+    out = np.zeros(len(s), dtype=bool)
+    need = max(STAIR_CLIMB_MIN_M, CLIMB_NOISE_SDS * float(noise_sd))
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], s, [0]])) != 0)  # every change of the proposal
+    for a, b in zip(edges[:-1], edges[1:], strict=True):
+        if s[a] != 0 and s[a] * (end_h[b - 1] - start_h[a]) >= need:
+            out[a:b] = True
+    return out

@@ -178,7 +178,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``
       (waist-pendulum's causal variant), ``heading``, ``refine_ic``, ``initial_heading``, ``resolve_signs``,
       ``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``length_smoothing``, ``relative_gate``,
-      ``stairs_length`` (decision W91, off), ``slow_turn_rps`` (decision W82, off),
+      ``stairs_length`` (decision W91, off), ``stairs_climb`` (decision W108, off: stairs only inside a
+      climb above the barometer's still noise, z only on stairs), ``slow_turn_rps`` (decision W82, off),
       ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104, off:
       no contact around a sit-to-stand's trunk-flexion peak)
       (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and unused. With ``wBarometer`` the

@@ -177,19 +177,27 @@ def _altitude(session: Session, t: np.ndarray, warnings: list[str]) -> np.ndarra
     return relative_altitude(b.t, b.values[:, 0], t)
 
 
-def _stairs_steps(session: Session, steps: pd.DataFrame) -> np.ndarray:
-    """Decision W91: the steps on stairs - the barometric altitude changes by :data:`STAIRS_RATE_MPS` or more
-    over :data:`STAIRS_RATE_WINDOW_S` centred on the step's middle (all False without a barometer)."""
-    from pdrlearn.kernels.barometer import relative_altitude
+def _stairs_steps(session: Session, steps: pd.DataFrame, climb: bool) -> np.ndarray:
+    """Decision W91: the steps proposed as on stairs - the barometric altitude changes by :data:`STAIRS_RATE_MPS`
+    or more over :data:`STAIRS_RATE_WINDOW_S` centred on the step's middle (all False without a barometer).
+    ``climb`` (decision W108): only the proposed steps of a climb higher than the barometer's own still-period
+    noise allows (:func:`pdrlearn.kernels.barometer.climb_mask`)."""
+    from pdrlearn.kernels.barometer import climb_mask, relative_altitude, still_altitude_sd
 
     if not session.has("wBarometer") or not len(steps):
         return np.zeros(len(steps), dtype=bool)
     b = session["wBarometer"]
-    mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
+    t0, t1 = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    mid = 0.5 * (t0 + t1)
     half = 0.5 * STAIRS_RATE_WINDOW_S
-    h = relative_altitude(b.t, b.values[:, 0], np.concatenate([mid - half, mid + half]))
     n = len(mid)
-    return np.abs(h[n:] - h[:n]) / STAIRS_RATE_WINDOW_S >= STAIRS_RATE_MPS
+    h = relative_altitude(b.t, b.values[:, 0], np.concatenate([mid - half, mid + half, t0, t1]))
+    rise = h[n:2 * n] - h[:n]
+    proposed = np.abs(rise) / STAIRS_RATE_WINDOW_S >= STAIRS_RATE_MPS
+    if not climb:
+        return proposed
+    sd = still_altitude_sd(b.t, b.values[:, 0], float(t0.min()), float(t1.max()))
+    return climb_mask(np.where(proposed, np.sign(rise), 0), h[2 * n:3 * n], h[3 * n:], sd)
 
 
 def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
@@ -343,7 +351,7 @@ def _untracked_turn_warning(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, 
 OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initial_heading": 0.0,
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
-                   "stairs_length": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
+                   "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "sit_veto": False}
 
 
@@ -361,7 +369,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 resolve_signs: bool | None = None, integrate_stops: bool | None = None,
                 turn_factor: bool | None = None, rhythm: bool | None = None,
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
-                relative_gate: bool | None = None, stairs_length: bool | None = None,
+                relative_gate: bool | None = None, stairs_length: bool | None = None, stairs_climb: bool | None = None,
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
                 sit_veto: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
@@ -398,6 +406,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         W4's 0.5)
     stairs_length : a step on stairs (the barometric altitude changes by 0.1 m/s or more) is at most the
         0.30 m tread long (decision W91's candidate; default False)
+    stairs_climb : a step is on stairs (column ``stairs``) only inside a climb of at least 1.5 m and 3 sqrt(2)
+        still-period altitude SDs, and the altitude changes only on such steps (decision W108's candidate;
+        default False: it failed its rule on one real level recording)
     slow_turn_rps : gyro heading: also integrate the strides whose 5-stride mean vertical rate reaches this (rad/s),
         so gentle curves are kept (decision W82; 0.035 tested, not the default: it failed its rule on sharp turns
         by 0.01 m); 0 (default) = seed 003's classifier alone
@@ -422,7 +433,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
              "merge_fragments": merge_fragments, "length_smoothing": length_smoothing,
-             "relative_gate": relative_gate, "stairs_length": stairs_length, "slow_turn_rps": slow_turn_rps,
+             "relative_gate": relative_gate, "stairs_length": stairs_length, "stairs_climb": stairs_climb,
+             "slow_turn_rps": slow_turn_rps,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
@@ -470,7 +482,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = cut_steps_at_gaps(steps, gaps)
     steps = _step_lengths(steps, imu, p, pipeline, thr, turn_factor=bool(o["turn_factor"]),
                           merge_fragments=bool(o["merge_fragments"]), length_smoothing=smoothing)
-    stairs = _stairs_steps(session, steps)
+    stairs = _stairs_steps(session, steps, bool(o["stairs_climb"]))
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
         steps = steps.assign(length_m=np.where(stairs, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
                                                steps["length_m"].to_numpy(float)))
@@ -478,6 +490,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
     steps = steps.assign(stairs=stairs)
     z = _altitude(session, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float)]), warnings)
+    if z is not None and bool(o["stairs_climb"]):  # W108: a step off stairs is on a level floor
+        z = np.concatenate([[0.0], np.cumsum(np.where(stairs, np.diff(z), 0.0))])
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
         warnings.append(no_steps_message(thr, sigma, gate_source))
