@@ -141,8 +141,10 @@ VISIT_SYNONYMS = {"bl": "baseline", "base": "baseline", "w": "week", "wk": "week
 def visit_key(name: str) -> str:
     """The spelling-free form of a visit name (decision C28): lower case, without spaces, ``-``, ``_`` and other
     separators, leading zeros of numbers dropped and the leading word by :data:`VISIT_SYNONYMS` (``Follow-up 06`` ->
-    ``followup6``, ``W12`` -> ``week12``, ``BL`` -> ``baseline``)."""
-    s = re.sub(r"\d+", lambda m: str(int(m.group())), re.sub(r"[\W_]", "", str(name).lower()))
+    ``followup6``, ``W12`` -> ``week12``, ``BL`` -> ``baseline``). A separator between two numbers stays, as ``.``
+    (decision C40): ``1.5`` is not ``15``, nor ``2026-1-12`` ``2026-11-2``."""
+    parts = re.split(r"(?<=\d)[\W_]+(?=\d)", str(name).lower())
+    s = ".".join(re.sub(r"\d+", lambda m: str(int(m.group())), re.sub(r"[\W_]", "", p)) for p in parts)
     word = re.match(r"[^\W\d_]*", s).group(0)
     if len(word) == 1 and len(s) == 1:
         return s

@@ -165,3 +165,17 @@ def test_look_alike_subject_ids_get_a_hint():
     assert label_warnings(_sessions(rows)) == [
         "subject ids seen at one visit look like another subject's: 'S7l8' like 'S718'; 's719' like 'S719': a typo "
         "in meta.json's subject? (decision C33)"]
+
+
+def test_numbers_apart_are_not_one_number():
+    """C40: C28's spelling key dropped the separator between two numbers, so `month1.5` and `month15` (or the dates
+    `2026-1-12` and `2026-11-2`) were one visit: the subject's two sessions at it were `several`, nothing paired."""
+    from pdrlearn.visits import label_warnings, visit_key
+
+    assert visit_key("2026-1-12") != visit_key("2026-11-2") and visit_key("1.5") != visit_key("15")
+    assert visit_key("Week 1.5") == visit_key("week1.5") and visit_key("W01") == visit_key("week 1")
+    rows = _site("siteA", ("S1", "S2"), ("month0", "month1.5", "month15"), speeds=(1.0, 1.1, 1.3))
+    changes = change_table(_sessions(rows))
+    assert changes[["subject", "visit", "status"]].values.tolist() == [
+        ["S1", "month1.5", "ok"], ["S1", "month15", "ok"], ["S2", "month1.5", "ok"], ["S2", "month15", "ok"]]
+    assert not label_warnings(_sessions(rows))
