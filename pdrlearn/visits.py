@@ -211,12 +211,30 @@ def canonical_visits(visits, visit_map: dict[str, str] | None = None) -> tuple[d
     return {raw: label[visit_key(name)] for raw, name in mapped.items()}, warning
 
 
+def _firsts(visits) -> list[str]:
+    """The visits that can be a baseline (C24, C28): those starting with a baseline word, else the first one."""
+    order = visit_order(visits)
+    return [v for v in order if _word_rank(v) == 0] or order[:1]
+
+
 def _baselines(named) -> dict[str, str | None]:
     """Decision C28: each subject's baseline, the first of its own visits (:func:`visit_order`) that starts with a
-    baseline word (C24; the study's first visit when no visit name does), ``None`` for a subject without one."""
-    order = visit_order(named["visit"])
-    firsts = [v for v in order if _word_rank(v) == 0] or order[:1]
-    return {s: next((v for v in firsts if v in set(mine["visit"])), None) for s, mine in named.groupby("subject")}
+    baseline word (C24; the study's first visit when no visit name does), ``None`` for a subject without one. A
+    subject of a group (site) none of whose visit names is a baseline word takes its group's first visit (decision
+    C40: a site naming its visits ``T0`` / ``T1`` beside one naming them ``pre`` / ``post``)."""
+    import pandas as pd
+
+    firsts = _firsts(named["visit"])
+    group = named["group"].astype(str) if "group" in named else pd.Series("", index=named.index)
+    local = {g: _firsts(vs) for g, vs in named.groupby(group)["visit"]}
+    out = {}
+    for s, mine in named.groupby("subject"):
+        own = set(mine["visit"])
+        out[s] = next((v for v in firsts if v in own), None)
+        g = str(group[mine.index[0]])
+        if out[s] is None and _word_rank(local[g][0]) != 0:  # C40: the group names its baseline otherwise
+            out[s] = next((v for v in local[g] if v in own), None)
+    return out
 
 
 def _twins(named) -> dict[str, list[str]]:

@@ -67,7 +67,8 @@ def test_a_visit_map_names_the_visits(tmp_path):
     assert read_visit_map(tmp_path / "m.csv") == read_visit_map(tmp_path / "m.json") == {"T0": "baseline",
                                                                                          "T1": "week12"}
     rows = _site("siteA", ("S1",), ("baseline", "week12")) + _site("siteB", ("S2",), ("T0", "T1"))
-    assert change_table(_sessions(rows))["status"].tolist() == ["ok"] + ["missing"] * 3  # T0, T1 unknown
+    unmapped = change_table(_sessions(rows))  # T0 / T1 unknown: siteB's own baseline (C40), its own visit
+    assert unmapped["status"].tolist() == ["ok", "ok"] and unmapped["visit"].tolist() == ["week12", "T1"]
     changes = change_table(_sessions(rows), visit_map=read_visit_map(tmp_path / "m.csv"))
     assert changes["status"].tolist() == ["ok", "ok"] and set(changes["visit"]) == {"week12"}
     (tmp_path / "bad.csv").write_text("T0,baseline\nT1\n")
@@ -179,3 +180,17 @@ def test_numbers_apart_are_not_one_number():
     assert changes[["subject", "visit", "status"]].values.tolist() == [
         ["S1", "month1.5", "ok"], ["S1", "month15", "ok"], ["S2", "month1.5", "ok"], ["S2", "month15", "ok"]]
     assert not label_warnings(_sessions(rows))
+
+
+def test_a_site_numbering_its_visits_has_its_own_baseline_beside_a_pre_post_site():
+    """C40: C28's per-subject baseline held only for baseline words: beside a site naming its visits pre / post, a
+    site naming them T0 / T1 (or visit1 / visit2) had no baseline: every one of its subjects `missing` against
+    `pre`, nothing paired. Now a group with no baseline word takes its own first visit; a subject of a site that
+    does name one and lacks it is still listed against it."""
+    rows = (_site("siteA", ("S1", "S2"), ("pre", "post")) + _site("siteB", ("S3", "S4"), ("T0", "T1"))
+            + _site("siteC", ("S5", "S6"), ("visit1", "visit2")) + [("siteA/S7/post", "S7", "post", 1.2)])
+    changes = change_table(_sessions(rows))
+    assert changes[["subject", "baseline_visit", "visit", "status"]].values.tolist() == [
+        ["S1", "pre", "post", "ok"], ["S2", "pre", "post", "ok"], ["S3", "T0", "T1", "ok"], ["S4", "T0", "T1", "ok"],
+        ["S5", "visit1", "visit2", "ok"], ["S6", "visit1", "visit2", "ok"], ["S7", "pre", "post", "missing"]]
+    assert changes["gait_speed_mps_change"].dropna().round(12).eq(0.3).all()
