@@ -72,7 +72,7 @@ SUBJECT_COLUMNS = ("subject", "visit", "group", "n_tracked", "n_failed", "paths"
                    "walking_time_s", "n_steps", "n_strides", "bouts_distance_m", "gait_speed_mps", "cadence_spm")
 
 
-def subject_totals(sessions):
+def subject_totals(sessions, visit_map: dict[str, str] | None = None):
     """subjects.csv from sessions.csv (cohort C25), or ``None`` when no session names a subject: one row per subject
     (natural order) and, when some session names a visit, per visit (:func:`visit_order`; a subject's sessions
     without a visit are one row with an empty visit). ``n_tracked`` / ``n_failed``: its sessions; ``paths``: the
@@ -81,7 +81,9 @@ def subject_totals(sessions):
     count, summed durations, steps (of both feet, L103), strides and distance (bouts.csv of each session, under the
     batch's ``--bout-break-s`` / ``--bout-min-strides``); ``gait_speed_mps`` = bouts_distance_m / walking_time_s and
     ``cadence_spm`` = 60 n_steps / walking_time_s: the bouts pooled, each weighed by its duration (empty without
-    walking time). Sessions naming no subject are in no row (sessions.csv has them)."""
+    walking time). Sessions naming no subject are in no row (sessions.csv has them). Visits are named as changes.csv
+    names them (:func:`canonical_visits` with ``visit_map``, C28, C29; decision C40: ``BL`` and ``Baseline`` of one
+    subject had been two rows)."""
     import numpy as np
     import pandas as pd
 
@@ -92,6 +94,9 @@ def subject_totals(sessions):
         named[c] = named[c].map(lambda v: None if pd.isna(v) else str(int(v)) if isinstance(v, float)
                                 and v.is_integer() else str(v))
     by_visit = named["visit"].notna().any()
+    if by_visit:  # decision C40: the visits as changes.csv names them
+        names = canonical_visits(named["visit"].dropna(), visit_map)[0]
+        named["visit"] = named["visit"].map(lambda v: None if pd.isna(v) else names[v])
     rows = []
     for subject in visit_order(named["subject"]):
         mine = named[named["subject"] == subject]

@@ -194,3 +194,16 @@ def test_a_site_numbering_its_visits_has_its_own_baseline_beside_a_pre_post_site
         ["S1", "pre", "post", "ok"], ["S2", "pre", "post", "ok"], ["S3", "T0", "T1", "ok"], ["S4", "T0", "T1", "ok"],
         ["S5", "visit1", "visit2", "ok"], ["S6", "visit1", "visit2", "ok"], ["S7", "pre", "post", "missing"]]
     assert changes["gait_speed_mps_change"].dropna().round(12).eq(0.3).all()
+
+
+def test_subjects_csv_names_visits_as_changes_csv():
+    """C40: subjects.csv kept the visits as written, so one subject's walks at `BL` and `Baseline` were two rows
+    (totals split) while changes.csv paired them as `baseline`; a --visit-map names them in both."""
+    from pdrlearn.visits import subject_totals
+
+    rows = [("siteA/S1/a", "S1", "BL", 1.0), ("siteA/S1/b", "S1", "Baseline", 1.1), ("siteA/S1/c", "S1", "W12", 1.3)]
+    sessions = _sessions(rows).assign(distance_m=[10.0, 20.0, 30.0])
+    out = subject_totals(sessions)
+    assert out[["visit", "n_tracked", "distance_m"]].values.tolist() == [["baseline", 2, 30.0], ["W12", 1, 30.0]]
+    out = subject_totals(sessions, {"W12": "followup"})
+    assert out["visit"].tolist() == ["baseline", "followup"]
