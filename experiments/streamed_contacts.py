@@ -76,7 +76,7 @@ def run_steps(session_dir: Path, out: Path) -> pd.DataFrame:
 def latency(session) -> tuple[float, float, float]:
     """E51: median and max (newest pushed sample - IC) and max (newest pushed sample - stride end), s, with
     pushes of one sample interval."""
-    from pdrlearn.cli.export import replay_chunks
+    from pdrlearn.runtime.replay import replay_chunks
     from pdrlearn.runtime.tracker import Tracker
 
     feet = {n: (st.t, st.values) for n, st in session.streams.items() if n[0] == "f"}

@@ -26,7 +26,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from pdrlearn.errors import DataError, PdrlearnError, shell_quote
+from pdrlearn.errors import DISK_FULL_ERRNOS, DataError, PdrlearnError, shell_quote
 
 log = logging.getLogger(__name__)
 
@@ -225,10 +225,19 @@ def _guarded(fn: Callable, name: str, arg, threads: int | None = 1,
         return done(ok=True, value=value)
     except PdrlearnError as exc:
         return done(ok=False, error=str(exc), extra=_job_extra(exc))
+    except OSError as exc:
+        if exc.errno in DISK_FULL_ERRNOS:  # decision B151: every later job would fail alike; the batch stops
+            raise
+        return _failed(done, exc)
     except Exception as exc:  # a bug in one user's job must not stop the cohort; keep the cause
-        last = traceback.extract_tb(exc.__traceback__)[-1]
-        msg = f"{type(exc).__name__}: {exc} (at {Path(last.filename).name}:{last.lineno})"
-        return done(ok=False, error=" ".join(msg.split()), extra=_job_extra(exc))
+        return _failed(done, exc)
+
+
+def _failed(done: Callable, exc: Exception) -> JobResult:
+    """A job's unexpected exception as its failed :class:`JobResult`: the type, message and where it was raised."""
+    last = traceback.extract_tb(exc.__traceback__)[-1]
+    msg = f"{type(exc).__name__}: {exc} (at {Path(last.filename).name}:{last.lineno})"
+    return done(ok=False, error=" ".join(msg.split()), extra=_job_extra(exc))
 
 
 def _job_extra(exc: BaseException) -> dict:
@@ -450,6 +459,42 @@ def session_labels(folder: str | os.PathLike) -> tuple[str | None, str | None]:
     if isinstance(visit, bool) or not isinstance(visit, str | int | float) or not str(visit).strip():
         visit = None
     return meta_user(meta), None if visit is None else str(visit).strip()
+
+
+#: Decision L137: meta.json fields that only name a session (who, which visit, what it is called, notes), not
+#: settings any pipeline reads; two folders of one recording that differ only in these are still a duplicate upload.
+META_LABEL_KEYS = ("subject", "visit", "session", "notes", "comment")
+
+
+def meta_settings(folder: str | os.PathLike) -> dict[str, object]:
+    """Decision L137: a session folder's meta.json flattened to dotted keys (``user.sensor_height_m``) without
+    :data:`META_LABEL_KEYS` (and ``user`` when it is only a name): what the pipelines may read. ``{}`` without a
+    readable meta.json object."""
+    import json
+
+    try:
+        meta = json.loads((Path(folder) / "meta.json").read_text())
+    except (OSError, ValueError):
+        return {}
+    if not isinstance(meta, dict):
+        return {}
+    flat: dict[str, object] = {}
+
+    def walk(obj, prefix: str) -> None:
+        if isinstance(obj, dict) and obj:
+            for k, v in obj.items():
+                walk(v, f"{prefix}{k}.")
+        else:
+            flat[prefix[:-1]] = obj
+
+    walk({k: v for k, v in meta.items() if k not in META_LABEL_KEYS and not (k == "user" and isinstance(v, str))},
+         "")
+    return flat
+
+
+def meta_differences(a: dict[str, object], b: dict[str, object]) -> list[str]:
+    """Decision L137: the keys of two :func:`meta_settings` whose values differ, as ``key a / b``, sorted."""
+    return [f"{k} {a.get(k)!r} / {b.get(k)!r}" for k in sorted(set(a) | set(b)) if a.get(k) != b.get(k)]
 
 
 def t_interval(mean, sd, n):

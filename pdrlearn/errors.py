@@ -6,6 +6,9 @@ Every error raised on bad *input* (files, values, model bundles) is a subclass o
 
 from __future__ import annotations
 
+import errno as _errno
+import os as _os
+
 
 class PdrlearnError(Exception):
     """Base class: the message names the file/object and what to do about it."""
@@ -37,6 +40,29 @@ class ModelError(PdrlearnError):
 class InternalError(PdrlearnError, RuntimeError):
     """A numerical state of pdrlearn itself went wrong (non-finite, or no longer what it must be) on data that
     passed every input check: a bug to report, not bad data (decision E27). One line, as every other error."""
+
+
+class OutputError(PdrlearnError):
+    """The system refuses to write an output (disk full, read-only, no permission): the command stops at once,
+    exit 2, whatever else it was doing (decision B151)."""
+
+
+#: Decision B151: a disk that takes no more (full, or the user's quota): never one session's or user's fault, so
+#: a batch stops at the first instead of failing every remaining job with it.
+DISK_FULL_ERRNOS = frozenset({_errno.ENOSPC, _errno.EDQUOT})
+#: ... and an output place the system refuses (read-only file system, no permission).
+REFUSED_OUTPUT_ERRNOS = DISK_FULL_ERRNOS | {_errno.EROFS, _errno.EACCES, _errno.EPERM}
+
+
+def output_error(exc: OSError, out: object) -> OutputError | None:
+    """Decision B151: ``exc`` as one line naming the output ``out`` and the fix, when it is an output the system
+    refuses (:data:`REFUSED_OUTPUT_ERRNOS`); ``None`` for any other error."""
+    if exc.errno not in REFUSED_OUTPUT_ERRNOS:
+        return None
+    what = exc.strerror or _os.strerror(exc.errno)
+    fix = ("free space on its disk or choose an output folder on another disk" if exc.errno in DISK_FULL_ERRNOS
+           else "choose an output folder you can write to, or fix its permissions")
+    return OutputError(f"{out}: {what}; {fix} (decision B151)")
 
 
 class NotASessionError(DataError, TypeError):

@@ -46,16 +46,22 @@ def save_atomic(fig, path: Path, metadata: dict[str, str] | None = None, *, dpi:
     """Save a figure via a temporary file so an interrupted run leaves no half-written figure. The format
     follows the suffix of ``path`` (:data:`FIGURE_SUFFIXES`; anything else is PNG, as before); ``metadata``:
     extra PNG text chunks (a PDF or SVG gets "Creator" :data:`PLOT_CREATOR` instead when ``metadata`` is
-    :data:`PLOT_MARK`); ``dpi``: default :data:`DEFAULT_DPI` (decision L70)."""
+    :data:`PLOT_MARK`); ``dpi``: default :data:`DEFAULT_DPI` (decision L70). The figure is closed afterwards, saved
+    or not (decision B151)."""
     path = Path(path)
     fmt = path.suffix.lower().lstrip(".")
     if "." + fmt not in FIGURE_SUFFIXES:
         fmt = "png"
     if fmt != "png" and metadata:  # PDF/SVG take only their standard keys (decision L70)
         metadata = {"Creator": PLOT_CREATOR} if metadata == dict([PLOT_MARK]) else None
-    with atomic_file(path, suffix="." + fmt) as tmp:
-        fig.savefig(tmp, format=fmt, dpi=DEFAULT_DPI if dpi is None else float(dpi), bbox_inches="tight",
-                    metadata=metadata)
+    import matplotlib.pyplot as plt
+
+    try:
+        with atomic_file(path, suffix="." + fmt) as tmp:
+            fig.savefig(tmp, format=fmt, dpi=DEFAULT_DPI if dpi is None else float(dpi), bbox_inches="tight",
+                        metadata=metadata)
+    finally:  # decision B151: closed even when saving fails (a full disk leaked one figure per session)
+        plt.close(fig)
 
 
 def is_plot_figure(path: Path) -> bool:
@@ -120,9 +126,8 @@ def plot_session(session: Session, out: Path, *, start: float | None = None, end
     """One panel per sensor stream; steps shaded by terrain (or alternately when unknown): the labelled
     ones, or ``steps`` (arguments of :func:`session_figure`). The format follows the suffix of ``out``
     (PNG, PDF or SVG; ``dpi`` default :data:`DEFAULT_DPI`, decision L70)."""
-    plt, fig = session_figure(session, start=start, end=end, steps=steps, steps_what=steps_what)
+    _, fig = session_figure(session, start=start, end=end, steps=steps, steps_what=steps_what)
     save_atomic(fig, Path(out), metadata=dict([PLOT_MARK]), dpi=dpi)
-    plt.close(fig)
     return Path(out)
 
 

@@ -208,9 +208,9 @@ WARNINGS = {
     "meta_no_height": (_meta(lambda m: [m.pop(k) for k in ("height_m", "user")]),
                        {"track-waist-pll": "gives no subject height"}),
     # B17: the streamed path says it too (before: silent), and run with a foot-only bundle
-    "no_waist_gyroscope": (lambda d: (d / "wGyroscope.csv").unlink(),
-                           {"track-M2": "no waist unit: heading from the foot's own integrated yaw",
-                            "track-M3-streaming": "no waist unit: heading from the foot's own integrated yaw"}),
+    "no_waist_gyroscope": (lambda d: (d / "wGyroscope.csv").unlink(),  # decision B153: named, not "no waist unit"
+                           {"track-M2": "waist unit incomplete: wGyroscope.csv missing",
+                            "track-M3-streaming": "waist unit incomplete: wGyroscope.csv missing"}),
     "foot_only": (_drop_unit("w"), {"track-M2": "no waist unit: heading from the foot's own integrated yaw",
                                     "track-M3-streaming": "no waist unit: heading from the foot's own integrated yaw"}),
 }
@@ -287,8 +287,9 @@ def test_run_says_when_the_foot_heads_the_walk(base, tmp_path, capsys, kind):
     capsys.readouterr()
     assert main(["run", str(bundle), str(s), "--out", str(tmp_path / "r")]) == 0
     lines = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
-    said = [ln for ln in lines if "no waist unit: heading from the foot's own integrated yaw" in ln]
+    said = [ln for ln in lines if "heading from the foot's own integrated yaw" in ln]
     assert len(said) == (0 if kind == "both_units" else 1), lines
+    assert kind != "no_waist_gyroscope" or "waist unit incomplete: wGyroscope.csv missing" in said[0]  # B153
 
 
 RESULTS_DEFECTS = {

@@ -102,11 +102,11 @@ def test_a_file_in_the_way_of_the_output_folder_is_one_error_line(model, tmp_pat
 
 def test_an_output_the_system_refuses_is_one_error_line(model, tmp_path, capsys):
     """An output folder/file that cannot be created (here under /proc, where even root cannot mkdir) is one
-    `error:` line naming the path, not an OSError traceback."""
+    `error:` line naming the path, not an OSError traceback; exit 2, nothing written (decision B152)."""
     if not Path("/proc/self").is_dir():
         pytest.skip("needs Linux /proc")
     for argv in (["track", model["terrain"], "--method", "M2", "--out", "/proc/pdrlearn_test_out"],
                  ["steps", model["terrain"], "--out", "/proc/pdrlearn_test_out.csv"]):
         rc = main([str(a) for a in argv])
         err = capsys.readouterr().err.strip().splitlines()
-        assert rc == 1 and len(err) == 1 and err[0].startswith("error: /proc/"), err
+        assert rc == 2 and len(err) == 1 and err[0].startswith("error: /proc/"), err  # decision B152: was 1

@@ -110,7 +110,9 @@ def _tool(words: list[str]) -> tuple[str | None, list[str]]:
         if rest and rest[0].endswith(".py"):
             return "script", rest
         if len(rest) > 1 and rest[0] == "-m" and rest[1].startswith("pdrlearn."):
-            return "script", [rest[1].replace(".", "/") + ".py", *rest[2:]]
+            mod = rest[1].replace(".", "/")  # a package runs its __main__.py (python -m pdrlearn.runtime, E76)
+            return "script", [f"{mod}/__main__.py" if (ROOT / mod / "__main__.py").is_file() else f"{mod}.py",
+                              *rest[2:]]
     return None, []
 
 
@@ -259,6 +261,7 @@ def _validators() -> dict[tuple[str, str], object]:
     commands check against (so a renamed choice fails here as it would for the user)."""
     from pdrlearn.classify.training import CV_GROUPS, METHODS, check_settings
     from pdrlearn.cli.simulate import parse_mount
+    from pdrlearn.columns import TABLES as COLUMN_TABLES
     from pdrlearn.displace.foot import REFERENCE_POINTS
     from pdrlearn.io.external import SOURCES
     from pdrlearn.io.importer import _TIME_SCALE, _resolve_unit, _time_word, parse_frame
@@ -324,6 +327,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("import", "gyro_unit"): unit_word("gyro"),
         ("import", "frames"): parse_frame,
         ("export", "frame"): parse_frame,  # decision E57: the waist unit's axes, as import --frames
+        ("columns", "table"): _one_of(list(COLUMN_TABLES)),  # cohort C35
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window",
                 "units"):  # C12, L108, B127

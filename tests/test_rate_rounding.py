@@ -113,3 +113,51 @@ def test_streamed_centre_sample_mean_is_judged_on_its_own_threshold(fs):
     first = centre[moving + int(np.flatnonzero(still[moving:])[0])]
     assert t[first] > 1.5
     assert seg.stance_start == pytest.approx(t[first])
+
+
+# -- W107: W20's same-side pruning on sub-sample times of the vertical maxima -----------------------------------
+@pytest.mark.parametrize("fs", [25.0, 50.0, 100.0, 204.8])
+def test_peak_positions_time_a_sampled_maximum_between_samples(fs):
+    t0 = 1.0 + 0.37 / fs  # the true maximum lies 0.37 samples after a sample
+    n0 = int(0.7 * fs)
+    t = np.arange(n0, int(1.3 * fs)) / fs
+    x = np.cos(2 * np.pi * 1.6 * (t - t0))  # a step-frequency bounce, one maximum in 0.7-1.3 s
+    i = int(np.argmax(x))
+    pos = K.peak_positions(x, np.array([i, 0]))
+    assert abs((pos[0] + n0) / fs - t0) < 0.02 / fs  # to a fiftieth of a sample (whole samples: 0.37)
+    assert pos[1] == 0.0  # a maximum at the edge keeps its sample
+
+
+def test_same_side_pruning_is_judged_on_the_sub_sample_times():
+    # finding 5 of the session 22 phone trial, in samples of 50 Hz: a weak same-side bounce 45 samples (0.90 s)
+    # before the first step, steps every 30 samples after it; whole samples put the pair exactly at 1.5 local
+    # periods (not under: kept), the maxima's true times (4.21 / 5.09 s ...) 44 samples apart (pruned)
+    cand = np.array([210, 255, 288, 318, 346, 375])
+    at = np.array([210.5, 254.5, 287.9, 317.9, 346.4, 375.0])
+    h = np.array([0.41, 1.53, 2.14, 2.58, 2.14, 1.75])
+    side = np.array([1, 1, -1, 1, -1, 1], dtype=np.int8)
+    acc = np.ones(cand.size, dtype=bool)
+    assert K.rhythm_complete(cand, h, acc, 50.0, min_peak=0.1, side=side)[0]
+    keep = K.rhythm_complete(cand, h, acc, 50.0, min_peak=0.1, side=side, at=at)
+    assert keep.tolist() == [False] + [True] * 5
+
+
+def test_a_2x_decimated_lower_back_walk_keeps_its_steps_and_heading():
+    """Phone trial finding 5: HA001 Test5 Trial1 at 50 Hz (every other sample) had a 12th step at 4.18 s spanning the
+    pelvis's turn back to the walkway, classed turning: final (5.02, -3.57) instead of (5.90, 0.00). W107."""
+    import dataclasses
+    from pathlib import Path
+
+    from pdrlearn.io import read_session
+    from pdrlearn.io.session import Stream
+    from pdrlearn.track import get_pipeline
+
+    s = read_session(Path(__file__).resolve().parents[1] / "datasets" / "real" / "mobgap_HA001_Test5_Trial1")
+    half = dataclasses.replace(s, streams={k: Stream(v.name, v.t[::2].copy(), v.values[::2].copy())
+                                           if k in ("wAccelerometer", "wGyroscope", "wMagneticField") else v
+                                           for k, v in s.streams.items()})
+    full, dec = (get_pipeline("waist-pendulum")(x) for x in (s, half))
+    assert len(full.steps) == len(dec.steps) == 11
+    assert abs(dec.steps["start_s"].iloc[0] - full.steps["start_s"].iloc[0]) <= 0.02
+    end = dec.trajectory.iloc[-1]
+    assert abs(end["y"]) < 0.5 and end["x"] == pytest.approx(full.trajectory.iloc[-1]["x"], abs=0.1)

@@ -125,8 +125,8 @@ def test_run_chunks_put_every_sample_in_one_push(scenario_d, tmp_path, capsys, c
     import pandas as pd
 
     from pdrlearn.cli import main
-    from pdrlearn.cli.export import replay_chunks
     from pdrlearn.io import read_session
+    from pdrlearn.runtime.replay import replay_chunks
 
     assert main(["run", str(SHIPPED), str(scenario_d / "D"), "--chunk-s", str(chunk_s), "--contacts", "--out",
                  str(tmp_path / "c")]) == 0, capsys.readouterr().err
@@ -155,7 +155,7 @@ def test_run_chunks_put_every_sample_in_one_push(scenario_d, tmp_path, capsys, c
 
 def test_replay_chunks_on_boundaries_and_an_empty_stream():
     """A sample on a chunk boundary (to rounding) starts that chunk; an empty stream is in every chunk."""
-    from pdrlearn.cli.export import replay_chunks
+    from pdrlearn.runtime.replay import replay_chunks
 
     t = np.round(np.arange(0, 200) * 0.05, 10) + 3.0  # 3.00, 3.05, ...: boundaries of 0.05, 0.1, 0.15 s chunks
     for chunk_s in (0.05, 0.1, 0.15, 0.3, 0.7):

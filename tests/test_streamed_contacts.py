@@ -152,7 +152,8 @@ def test_run_contacts_fill_the_steps_and_summary_as_track_streaming(sim_a, tmp_p
 def test_runtime_steps_carry_the_stride_time_as_emitted(sim_a):
     """The Tracker's own ``stride_time_s`` (computed as each stride is emitted, E51) is the table's (L66/L80) and
     each IC lies in its stride; a gap row between two strides leaves the second one without a stride time."""
-    from pdrlearn.cli.export import _result, replay_chunks
+    from pdrlearn.cli.export import _result
+    from pdrlearn.runtime.replay import replay_chunks
     from pdrlearn.runtime.tracker import Tracker
     from tests.runtime_helpers import without
 

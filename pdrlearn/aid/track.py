@@ -277,5 +277,4 @@ def plot_aided(result: TrackResult, out, *, truth: pd.DataFrame | None = None, t
     ax.legend(loc="best", fontsize=8)
     ax.set_title(title or f"{result.info.get('pipeline', 'track')}: PDR, fixes and fused path")
     save_atomic(fig, Path(out), dpi=dpi)
-    plt.close(fig)
     return Path(out)

@@ -478,7 +478,6 @@ def plot_confusions(task: str, task_result: dict, out: Path) -> Path:
     fig.suptitle(f"{task}: confusion matrices ({task_result['n_steps']} steps)")
     fig.tight_layout()
     save_atomic(fig, out)
-    plt.close(fig)
     return out
 
 

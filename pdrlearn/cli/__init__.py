@@ -22,7 +22,7 @@ import typer
 from pdrlearn.errors import PdrlearnError
 
 COMMAND_MODULES = ["simulate", "data", "import_csv", "steps", "train", "track", "calibrate", "export", "report",
-                   "cohort"]
+                   "cohort", "columns"]
 
 app = typer.Typer(
     name="pdrlearn",
@@ -214,11 +214,14 @@ def main(argv: list[str] | None = None) -> int:
         print("error: aborted", file=sys.stderr)
         return 130
     except OSError as exc:  # an output the system refuses (unwritable or special folder, disk full): one line
-        if exc.filename is None or exc.strerror is None:
+        from pdrlearn.errors import output_error
+
+        err = output_error(exc, exc.filename or "output")
+        if err is None and (exc.filename is None or exc.strerror is None):
             raise
-        print(f"error: {exc.filename}: {exc.strerror}; choose another output location or fix its permissions",
-              file=sys.stderr)
-        return 1
+        line = err or f"{exc.filename}: {exc.strerror}; choose another output location or fix its permissions"
+        print(f"error: {line}", file=sys.stderr)
+        return 2  # decision B152: nothing was written, as for any bad input (1 = some sessions/users failed)
     except Exception as exc:  # click usage errors (bad option values, missing arguments) and the like
         if not isinstance(exc, _click_exceptions()):
             raise

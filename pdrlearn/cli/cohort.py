@@ -21,6 +21,7 @@ from pdrlearn.cli.common import (
     out_folder,
     print_json,
     progress,
+    refused_output,
     replaced,
     split_choices,
     split_length_units,
@@ -294,7 +295,7 @@ def train_all(
     users = cohort_users(cohort_dir)
     # the whole models folder is built beside the old one and swapped in (decision B19): a --force re-run
     # leaves no model of a user who is no longer in the cohort, or who failed this time
-    with atomic_directory(out) as tmp:
+    with refused_output(out), atomic_directory(out) as tmp:  # decision B151
         items = [(u.name, {"user_dir": str(u), "out": str(tmp / u.name), "tasks": t_list,
                            "methods": m_list, "units": u_list, "length_units": l_list, "cv": cv, "seed": seed,
                            "skip_bad": skip_bad})
@@ -440,43 +441,59 @@ def _batch_warnings(sessions: list[tuple[str, str]], results: list[JobResult]) -
         log.warning("%s", grouped_warning(text, rels, len(results)))
 
 
-def _duplicates(rels: list[str], results: list[JobResult]) -> dict[str, str]:
+def _duplicates(rels: list[str], results: list[JobResult], dirs: list[Path]) -> tuple[dict[str, str], dict[str, str]]:
     """Decision C20: the tracked sessions whose sensor data are identical to an earlier one's (B87's
     ``Session.content_id``: a visit-1 folder uploaded again as visit 2), ``{path: path of the first}``; one
     warning per recording naming every folder that holds it. Both stay tracked and counted (which of them is
-    the real visit is not in the data); sessions.csv's ``duplicate_of`` marks the copies."""
+    the real visit is not in the data); sessions.csv's ``duplicate_of`` marks the copies. Decision L137: folders of
+    one recording whose meta.json settings differ (:func:`pdrlearn.cohort.meta_settings`, e.g.
+    ``user.sensor_height_m``) are no duplicate: they are returned apart, ``{path: path of the first}`` for
+    ``same_sensor_data_as``, and warned naming the fields that differ."""
     import logging
+
+    from pdrlearn.cohort import meta_differences, meta_settings
 
     first: dict[str, str] = {}
     dup: dict[str, str] = {}
+    same: dict[str, str] = {}
+    metas = {rel: meta_settings(d) for rel, d, r in zip(rels, dirs, results, strict=True) if r.ok}
     for rel, r in zip(rels, results, strict=True):
         cid = r.value.get("content_id") if r.ok else None
         if cid is None:
             continue
-        if cid in first:
+        if cid not in first:
+            first[cid] = rel
+        elif metas[rel] == metas[first[cid]]:
             dup[rel] = first[cid]
         else:
-            first[cid] = rel
+            same[rel] = first[cid]
+    log = logging.getLogger("pdrlearn.cli")
     copies: dict[str, list[str]] = {}
     for rel, orig in dup.items():
         copies.setdefault(orig, []).append(rel)
     for orig, more in copies.items():
-        logging.getLogger("pdrlearn.cli").warning(
+        log.warning(
             "%s and %s hold identical sensor data (the same recording, decision B87's fingerprint): a duplicate "
             "upload? Each is tracked and counted in groups.csv (sessions.csv duplicate_of); remove the copy or put "
             "the right recording in its place (decision C20)", orig, " and ".join(more))
-    return dup
+    for rel, orig in same.items():
+        log.warning(
+            "%s and %s hold identical sensor data but a different meta.json (%s): not called a duplicate, the "
+            "settings differ; each is tracked and counted (sessions.csv same_sensor_data_as, decision L137)",
+            orig, rel, "; ".join(meta_differences(metas[orig], metas[rel])[:3]))
+    return dup, same
 
 
-def _run_record(root: Path, options: dict, rels: list[str], results: list[JobResult]) -> dict:
+def _run_record(root: Path, options: dict, rels: list[str], results: list[JobResult], found: list[Path]) -> dict:
     """Decision C18: OUT/run.json, the record of a track-all run (:func:`pdrlearn.cli.provenance.run_record`, as
     ``track``'s, decision L122): the pdrlearn version, the command's options as given, ROOT as given, the model,
     when it finished and each session's wall and CPU time - what differs from run to run is here, so that
     sessions.csv and groups.csv are the same for the same data, version and options."""
-    from pdrlearn.cli.provenance import model_record, run_record
+    from pdrlearn.cli.provenance import input_hashes, model_record, run_record
 
     ok = sum(r.ok for r in results)
     return run_record("track-all", options, root=str(root), model=model_record(options.get("model")),
+                      input_sha256={rel: input_hashes(p) for rel, p in zip(rels, found, strict=True)},  # L136
                       n_sessions=len(results), n_tracked=ok, n_failed=len(results) - ok,
                       track_time_s={rel: round(r.seconds, 2) for rel, r in zip(rels, results, strict=True)},
                       cpu_time_s={rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)})
@@ -619,8 +636,9 @@ def track_all(
     skipped. Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
     concerns.
 
-    Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input
-    or when every session failed (nothing is written).
+    Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input,
+    when every session failed, or when the disk fills or OUT cannot be written (the batch stops at once, B151):
+    nothing is written.
 
     Examples:
 
@@ -670,7 +688,7 @@ def track_all(
         files = subject_params(params_dir, rels, [s for s, _ in labels])
         parsed = {f: read_params(f) for f in dict.fromkeys(files)}
         per_session = [{**settings, "params": f, "par": parsed[f]} for f in files]
-    with atomic_directory(out) as tmp:
+    with refused_output(out), atomic_directory(out) as tmp:  # decision B151: a full disk stops the batch
         items = [(rel, {"session_dir": str(p), "out": str(tmp / rel), "settings": st})
                  for rel, p, st in zip(rels, found, per_session, strict=True)]
         done = [0]
@@ -687,11 +705,12 @@ def track_all(
         failed = [r for r in results if not r.ok]
         if len(failed) == len(results):
             raise DataError(f"every session failed; first error: {failed[0].name}: {failed[0].error}")
-        dup = _duplicates(rels, results)
+        dup, same = _duplicates(rels, results, found)
         rows = [_session_row(rel, session_group(rel, group_depth), r, str(p))
                 for rel, r, p in zip(rels, results, found, strict=True)]
         for row, label, st in zip(rows, labels, per_session, strict=True):
             row["duplicate_of"] = dup.get(row["path"])
+            row["same_sensor_data_as"] = same.get(row["path"])  # decision L137
             row["subject"], row["visit"] = label  # decision C22: meta.json's subject and visit
             if params_dir is not None:  # decision C26: the subject's file (its name: the same for a copy, C18)
                 row["params_file"] = Path(st["params"]).name
@@ -701,7 +720,7 @@ def track_all(
         from pdrlearn.visits import subject_totals
 
         subjects = subject_totals(sessions, vmap)  # cohort C25: None when no session names a subject (C40: visits)
-        run = _run_record(root, options, rels, results)
+        run = _run_record(root, options, rels, results, found)
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")
         if subjects is not None:

@@ -10,7 +10,7 @@ from pathlib import Path
 from pdrlearn.atomic import expect_unchanged
 from pdrlearn.cohort import is_session_dir as is_session_folder
 from pdrlearn.cohort import session_files
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, output_error
 
 
 def json_default(o):
@@ -293,6 +293,20 @@ def out_file(path: Path, suffixes: tuple[str, ...], kind: str, *, force: bool = 
         if not force:
             raise DataError(f"{path}: file exists; pass --force to replace it, or choose another output file")
     return path
+
+
+@contextmanager
+def refused_output(out: Path):
+    """Decision B151: an output the system refuses inside the block (disk full, read-only, no permission) stops the
+    command with one line naming ``out`` and the fix (:func:`pdrlearn.errors.output_error`, exit 2) instead of a
+    traceback; the atomic folder being written in the block is removed by its own context."""
+    try:
+        yield
+    except OSError as exc:
+        err = output_error(exc, out)
+        if err is None:
+            raise
+        raise err from None
 
 
 def replaced(path: Path, existed: bool) -> None:

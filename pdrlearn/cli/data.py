@@ -46,6 +46,10 @@ def info(
     summary["dropped_samples_bridged"] = {
         n: sum(g.duration_s <= MAX_BRIDGED_S * (1.0 + 1e-9) for g in st.gaps()) if BRIDGE_DROPS else 0
         for n, st in s.streams.items() if st.gaps()}
+    if s.has("wAccelerometer"):  # decision B155: which meta.json value the waist pipelines' pendulum uses
+        from pdrlearn.waist.params import leg_length_note
+
+        summary["waist_leg_length"] = leg_length_note(s.meta or {})
     if as_json:
         print_json(json_safe(summary))
         return
@@ -97,6 +101,8 @@ def info(
                 + f" ({100 * rests['rest_fraction']:.0f} % of the samples; at rest an accelerometer reads 1 g, so "
                 "the difference is its scale error, decision B133); swing "
                 f"{rests['swing_rad_s'] * 57.29577951308232:.0f} deg/s (99th percentile of |gyro|, B91)", markup=False)
+    if summary.get("waist_leg_length"):  # decision B155
+        c.print(f"waist step length: {summary['waist_leg_length']}", markup=False)
     c.print(f"labels: {json.dumps(json_safe(summary['labels']))}", markup=False)  # JSON, like the frames line
 
 

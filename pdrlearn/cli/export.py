@@ -221,30 +221,6 @@ def _units_for(bundle, units: str | None, have: set[str] | None, where: str):
     return check_units(bundle, ("foot",)), True
 
 
-#: a sample this close to a chunk boundary (in chunk lengths) belongs to the chunk the boundary starts (E28)
-CHUNK_TOLERANCE = 1e-9
-
-
-def replay_chunks(streams: dict, chunk_s: float):
-    """``pdrlearn run``'s replay (decision E28): ``{sensor: (t, values)}`` cut into pushes of ``chunk_s``
-    seconds, one per chunk index ``k = floor((t - t0) / chunk_s + CHUNK_TOLERANCE)`` from the earliest sample
-    ``t0`` of any stream, so every sample is in exactly one push (bounds ``t0 + k * chunk_s`` computed per
-    chunk put a sample on a rounded boundary into two). Every chunk, empty or not, holds every stream."""
-    import numpy as np
-
-    streams = {n: (np.asarray(t, dtype=np.float64), v) for n, (t, v) in streams.items()}
-    ts = [t for t, _ in streams.values() if len(t)]
-    if not ts:
-        return
-    t0 = min(float(t[0]) for t in ts)
-    idx = {n: np.floor((t - t0) / chunk_s + CHUNK_TOLERANCE).astype(np.int64) for n, (t, _) in streams.items()}
-    n_chunks = max(int(i[-1]) for i in idx.values() if len(i)) + 1
-    ks = np.arange(n_chunks + 1)
-    cuts = {n: np.searchsorted(i, ks, side="left") for n, i in idx.items()}  # first sample of each chunk
-    for k in range(n_chunks):
-        yield {n: (t[cuts[n][k]:cuts[n][k + 1]], v[cuts[n][k]:cuts[n][k + 1]]) for n, (t, v) in streams.items()}
-
-
 def run(
     bundle_dir: Path = typer.Argument(..., help="Bundle folder written by 'pdrlearn export'."),
     session_dir: Path = typer.Argument(None, help="PLASYS session folder to replay (omit with --protocol)."),
@@ -307,6 +283,7 @@ def run(
     from pdrlearn.errors import DataError
     from pdrlearn.io.resample import resample_mode  # decision B113: one check of the two flags, as track's
     from pdrlearn.runtime import load_bundle
+    from pdrlearn.runtime.replay import replay_chunks  # decision E28, shared with the lean command (E76)
     from pdrlearn.runtime.tracker import Tracker
 
     if protocol is not None and session_dir is not None:
@@ -404,9 +381,9 @@ def run(
                 session.has("wAccelerometer", "wGyroscope") and "waist" in tracker.forward)):  # as track says (B17)
             import logging
 
-            from pdrlearn.track.plasys import NO_WAIST_HEADING
+            from pdrlearn.track.plasys import NO_WAIST_HEADING, no_waist_heading
 
-            line = NO_WAIST_HEADING
+            line = no_waist_heading(session)  # decision B153: an incomplete waist unit names its missing file
             if dropped and any(n.startswith("w") and len(st) for n, st in session.streams.items()):
                 # decision E45: the session has a waist unit --units foot leaves out; not "no waist unit"
                 line = "waist unit not used (--units foot): " + NO_WAIST_HEADING.removeprefix("no waist unit: ")
@@ -550,11 +527,6 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                f"{[round(summary['final_position'][k], 2) for k in 'xyz']}" + (f" -> {out}" if out else ""))
 
 
-#: Step table columns in the order of ``pdrlearn track`` (decision B14); the runtime's extra columns follow.
-_STEP_COLUMNS = ("start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "terrain", "direction",
-                 "length_class")
-
-
 def _result(steps, start_ll=None, start_alt: float = 0.0):
     """The runtime's steps as a :class:`~pdrlearn.track.base.TrackResult` with the columns of ``track``:
     the length class column is ``length_class`` (decisions B14, B142: ``Step.to_dict``'s), ``unit`` is ``foot``,
@@ -564,6 +536,7 @@ def _result(steps, start_ll=None, start_alt: float = 0.0):
     import pandas as pd
 
     from pdrlearn.orient import wrap_angle
+    from pdrlearn.runtime.replay import STEP_COLUMNS
     from pdrlearn.track.base import TrackResult
     from pdrlearn.track.gait import streamed_gait_columns
     from pdrlearn.track.geodetic import geodetic_track
@@ -572,7 +545,7 @@ def _result(steps, start_ll=None, start_alt: float = 0.0):
     if df.empty:
         df = pd.DataFrame(columns=["start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "impossible",
                                    "gap_s"])
-    first = [c for c in _STEP_COLUMNS if c in df.columns]
+    first = [c for c in STEP_COLUMNS if c in df.columns]
     df = df[first + [c for c in df.columns if c not in first]]
     heading = df["heading_rad"].to_numpy(float)
     df["heading_rad"] = wrap_angle(heading)

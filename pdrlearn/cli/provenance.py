@@ -38,16 +38,73 @@ def model_record(model: str | Path | None) -> dict | None:
             "manifest_sha256": hashlib.sha256(raw).hexdigest()}
 
 
+#: Decision L136: the libraries whose versions a run.json records (their numbers shape the results).
+RECORDED_PACKAGES = ("numpy", "scipy", "pandas", "scikit-learn", "torch")
+
+
+def software_record() -> dict:
+    """Decision L136: what else than ``pdrlearn_version`` (0.1.0 over a thousand commits) identifies the code: the
+    git commit of the checkout pdrlearn runs from (``git_commit``, with ``git_dirty`` when tracked files differ from
+    it; both ``None`` for an installed copy or without git), the Python version and each of
+    :data:`RECORDED_PACKAGES`' installed version (``None`` when not installed; read from the package metadata, so
+    torch is not imported)."""
+    import platform
+    import subprocess
+    from importlib import metadata
+
+    import pdrlearn
+
+    repo = Path(pdrlearn.__file__).resolve().parent.parent
+    commit = dirty = None
+    if (repo / ".git").exists():
+        try:
+            def git(*args: str) -> str:
+                return subprocess.run(["git", "-C", str(repo), *args], capture_output=True, text=True, check=True,
+                                      timeout=10).stdout.strip()
+
+            commit = git("rev-parse", "HEAD")
+            dirty = bool(git("status", "--porcelain", "--untracked-files=no"))
+        except (OSError, subprocess.SubprocessError):
+            commit = dirty = None
+    packages = {}
+    for name in RECORDED_PACKAGES:
+        try:
+            packages[name] = metadata.version(name)
+        except metadata.PackageNotFoundError:
+            packages[name] = None
+    return {"git_commit": commit, "git_dirty": dirty, "python": platform.python_version(), "packages": packages}
+
+
+def input_hashes(folder: Path) -> dict[str, str]:
+    """Decision L136: the SHA-256 of every file of a session folder (meta.json, the sensor CSVs, steps.csv and label
+    tables; hidden files and subfolders left out), by name (``None`` for a file that cannot be read): what the run
+    read, to tell a year on whether the data (a meta.json field included) are still the same."""
+    import hashlib
+
+    def digest(p: Path) -> str | None:
+        try:
+            return hashlib.sha256(p.read_bytes()).hexdigest()
+        except OSError:  # unreadable (the session's own error says so): no hash, and no output error (B151)
+            return None
+
+    try:
+        entries = sorted(Path(folder).iterdir())
+    except OSError:  # not a folder, or not readable
+        return {}
+    return {p.name: digest(p) for p in entries if p.is_file() and not p.name.startswith(".")}
+
+
 def run_record(command: str, options: dict, **fields) -> dict:
-    """The run's record: ``command``, ``pdrlearn_version``, the command's own ``fields`` (its inputs as given, the
-    model, counts), ``options`` (:func:`given_options`), then what differs run to run: the ``*_time_s`` fields and
-    ``finished_utc`` (now)."""
+    """The run's record: ``command``, ``pdrlearn_version``, the code and libraries (:func:`software_record`, L136),
+    the command's own ``fields`` (its inputs as given, their ``input_sha256``, the model, counts), ``options``
+    (:func:`given_options`), then what differs run to run: the ``*_time_s`` fields and ``finished_utc`` (now)."""
     from datetime import UTC, datetime
 
     from pdrlearn import __version__
 
     times = {k: fields.pop(k) for k in [k for k in fields if k.endswith("_time_s")]}
-    return {"command": command, "pdrlearn_version": __version__, **fields, "options": options, **times,
+    return {"command": command, "pdrlearn_version": __version__, **software_record(), **fields, "options": options,
+            **times,
             "finished_utc": datetime.now(UTC).isoformat(timespec="seconds")}
 
 

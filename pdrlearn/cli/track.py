@@ -157,7 +157,7 @@ def track(
 
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.common import out_folder
-    from pdrlearn.cli.provenance import given_options, model_record, run_record, write_run_json
+    from pdrlearn.cli.provenance import given_options, input_hashes, model_record, run_record, write_run_json
 
     options = given_options(arguments, leave_out=("session_dir", "out", "force", "as_json"))  # for OUT/run.json
     out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes))
@@ -178,7 +178,8 @@ def track(
         # decision L122: the session as given (not resolved), the model and its checksum, the pipeline and method
         # used; the times only here (summary.json and the tables stay the same run to run)
         write_run_json(tmp, run_record(
-            "track", options, session=str(session_dir), model=model_record(model),
+            "track", options, session=str(session_dir), input_sha256=input_hashes(session_dir),  # decision L136
+            model=model_record(model),
             pipeline=summary.get("pipeline"), method=summary.get("info", {}).get("method"),
             track_time_s=round(time.perf_counter() - wall, 2), cpu_time_s=round(time.process_time() - cpu, 2)))
     replaced(out, was)

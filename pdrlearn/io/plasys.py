@@ -322,7 +322,32 @@ def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np
         raise DataError(f"{path}: file not found")
     df = read_table(path)
     check_columns(df, ("timestamp", *spec.columns), str(path))
+    _refuse_datetimes(df["timestamp"], path)
     return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=ends_mid_line(path))
+
+
+def _refuse_datetimes(col: pd.Series, path: Path) -> None:
+    """Decision B154: a timestamp column of date-times (``2026-03-29T00:59:50+01:00``, as the importer reads them,
+    :func:`pdrlearn.io.importer._datetime_seconds`) is refused in one line saying so and how to convert, instead of
+    "N row(s) with non-numeric values". Not converted here: a session folder's files, steps.csv and label tables
+    share one clock of numbers in ms, which a date-time column would leave to a guess."""
+    from pdrlearn.io.importer import _datetime_seconds
+
+    if col.dtype.kind in "biufc":
+        return
+    bad = pd.to_numeric(col, errors="coerce").isna() & col.notna()
+    if not bad.any():
+        return
+    first = int(np.flatnonzero(bad.to_numpy())[0])
+    try:
+        is_date = _datetime_seconds(col.iloc[first:first + 1].astype(str)) is not None
+    except DataError:  # an ambiguous day/month: still a date
+        is_date = True
+    if is_date:
+        raise DataError(f"{path}: column timestamp holds date-times ({col.iloc[first]!r} at line {first + 2}), not "
+                        "numbers; write the times as numbers in ms (since the epoch or the recording's start, the "
+                        "same clock as the session's other files and steps.csv), or turn a one-CSV export into a "
+                        "session with `pdrlearn import FILE --out DIR`, which reads date-time columns (decision B154)")
 
 
 def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: float, check_unit: bool,

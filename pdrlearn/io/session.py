@@ -22,6 +22,7 @@ import pandas as pd
 from pdrlearn.errors import DataError, MissingSensorError, NotASessionError
 from pdrlearn.io.frames import THESIS_FOOT_FRAME, THESIS_WAIST_FRAME, AxisFrame
 from pdrlearn.io.sensors import SENSORS, UNIT_IMU, SensorSpec
+from pdrlearn.kernels.clock import MAX_JITTER, nominal_period_s
 
 #: The thesis mounting of each unit: the example of the missing-frame error (:meth:`Session.require_frame`).
 EXAMPLE_FRAMES: dict[str, AxisFrame] = {"foot": THESIS_FOOT_FRAME, "waist": THESIS_WAIST_FRAME}
@@ -35,23 +36,10 @@ TERRAIN_CLASSES = ("flat", "up", "down")  # thesis ch.6.1
 DIRECTION_CLASSES = ("forward", "backward")  # thesis ch.6.2
 LENGTH_CLASSES = ("short", "normal", "long")  # thesis ch.6.3
 
-
-#: sampling jitter (:attr:`Stream.jitter`: SD of the regular intervals / period) above which a stream counts as
-#: jittered (decision B33): its period is the mean interval and its gaps allow for the jitter. Quantised clocks
-#: (D7: 4 and 5 ms intervals, SD 7 % of the period) have jitter 0; +-1 ms at 100 Hz gives 0.08, +-2 ms 0.16.
-MAX_JITTER = 0.1
-
 #: decision B64: an interval of dropped samples up to this long (s) is bridged when a session is read
 #: (:meth:`Stream.bridged`): one lost sample at PLASYS' 20 Hz, a tenth of a stride, under a stance phase;
 #: longer ones are left as they are (warned; over 1 s they are B11's gaps)
 MAX_BRIDGED_S = 0.1
-
-
-def _jittered(regular: np.ndarray, med: float) -> bool:
-    """The regular intervals (0.5-1.5 medians) vary by more than :data:`MAX_JITTER` of the median and take more
-    than two values (so not a quantised clock, D7)."""
-    return (regular.size >= 9 and float(np.std(regular)) > MAX_JITTER * med
-            and np.unique(np.round(regular, 9)).size > 2)
 
 
 @dataclass
@@ -118,21 +106,9 @@ class Stream:
 
     @property
     def period_s(self) -> float:
-        """Nominal sampling period (s): the median sample interval, unless the timestamps are quantised
-        (decision D7: 204.8 Hz written as integer ms has 4 and 5 ms intervals, median 5 ms = 200 Hz, which
-        scales every integrated stride by 2.4 %); then the mean of the regular intervals (gaps left out).
-        The regular intervals lie within 0.5-1.5 medians, symmetric about it (decision B33): with only the upper
-        bound, sampling jitter (+-4 ms at 100 Hz: intervals 2-18 ms) lost its long intervals, the mean fell to
-        9.56 ms and a 100 Hz stream read as 104.65 Hz."""
-        if len(self) < 2:
-            return float("nan")
-        d = np.diff(self.t)
-        med = float(np.median(d))
-        regular = d[(d >= 0.5 * med) & (d <= 1.5 * med)]
-        if _jittered(regular, med):  # B33: the sum of the intervals telescopes to the span, the jitter cancels
-            return float(d[d <= 2.0 * med].mean())
-        mean = float(regular.mean()) if regular.size else med
-        return mean if abs(mean - med) > 0.005 * med else med
+        """Nominal sampling period (s): :func:`pdrlearn.kernels.clock.nominal_period_s` of the timestamps (the median
+        interval, or the mean of the regular ones for a quantised or jittered clock; decisions D7, B33)."""
+        return nominal_period_s(self.t)  # decisions D7, B33 (one rule with the lean runtime's replay, E76)
 
     @property
     def jitter(self) -> float:

@@ -112,6 +112,23 @@ def fir_causal(x: np.ndarray, taps: np.ndarray) -> np.ndarray:
     return np.convolve(xp, taps, mode="valid")
 
 
+def peak_positions(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
+    """Sub-sample positions (float sample indices) of the local maxima ``idx`` of ``x``: the vertex of the parabola
+    through each maximum and its two neighbours (quadratic peak interpolation, J. O. Smith, Spectral Audio Signal
+    Processing, "Quadratic Interpolation of Spectral Peaks": offset ``0.5 (a - c) / (a - 2b + c)``, within half a
+    sample). A maximum at either end, or on a flat top, keeps its sample. Decision W107: W20's same-side pruning times
+    the maxima so, to well under a sample whatever the rate (at 50 Hz a sample is 20 ms)."""
+    x = np.asarray(x, dtype=np.float64)
+    i = np.asarray(idx, dtype=np.int64)
+    pos = i.astype(np.float64)
+    inner = (i > 0) & (i < x.shape[0] - 1)
+    a, b, c = x[i[inner] - 1], x[i[inner]], x[i[inner] + 1]
+    den = a - 2.0 * b + c
+    off = np.where(den < 0.0, 0.5 * (a - c) / np.where(den < 0.0, den, -1.0), 0.0)
+    pos[inner] += np.clip(off, -0.5, 0.5)
+    return pos
+
+
 def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
                cutoff_hz: float = 2.5, fir_order_s: float = 0.3, min_step_s: float = 0.3,  # windows: W16
                search_s: float = 0.25, fc_search_s: float = 0.25, min_peak_mps2: float = 0.1,
@@ -160,7 +177,7 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         if gate is not None:
             strong &= np.asarray(gate, dtype=bool)[cand]
         side = None if acc_ml is None else step_sides(lateral_velocity(acc_ml, fs)[cand], strong)
-        keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2,
+        keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2, at=peak_positions(vf, cand),
                                min_step_s=min_step_s, max_step_s=max_step_s, side=side,
                                unshifted=unshifted, end_steps=end_steps,
                                turning=None if turning is None else np.asarray(turning, dtype=bool)[cand])
@@ -305,7 +322,7 @@ def prune_same_side(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     them contains a maximum that is no step (a pelvic bounce inside a long swing). Pairs of similar
     height (a side read wrongly is likelier) and maxima with an undecided side (0) are left alone.
     Returns the new mask."""
-    cand = np.asarray(cand, dtype=np.int64)
+    cand = np.asarray(cand, dtype=np.float64)  # sample positions, whole or sub-sample (W107)
     h = np.asarray(height, dtype=np.float64)
     keep = np.asarray(accepted, dtype=bool).copy()
     acc = np.flatnonzero(keep)
@@ -408,7 +425,8 @@ def ap_mean_level(ap: np.ndarray, fs: float, *, window_s: float = GATE_WINDOW_S)
 def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, fs: float, *,
                     min_peak: float, min_step_s: float = 0.3, max_step_s: float = 1.5,
                     tol: float = RHYTHM_TOL, side: np.ndarray | None = None, unshifted: bool = True,
-                    end_steps: bool = False, turning: np.ndarray | None = None) -> np.ndarray:
+                    end_steps: bool = False, turning: np.ndarray | None = None,
+                    at: np.ndarray | None = None) -> np.ndarray:
     """Complete walking sequences of accepted vertical maxima with the gait rhythm (decision W18).
 
     Steps come at a regular period: (1) inside a sequence, a gap of ``m + 1`` local periods
@@ -439,6 +457,9 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     turning : (n,) bool, candidates where the pelvis turns: W23 does not judge them (decision 29 of
         docs/decisions/steps.md: in a pivot the weight moves along the turn and the centripetal acceleration
         enters the lateral signal, so no lateral swing is no evidence against a step); None = all judged
+    at : (n,) float, the candidates' sub-sample positions (:func:`peak_positions`) W20's same-side pruning
+        compares (decision W107: the same decision at every rate); None = ``cand``. W18, W23 and W28 keep the whole
+        samples of ``cand`` (decision W106: timing them between samples too moved real Test11 contacts at 100 Hz)
 
     Returns
     -------
@@ -450,8 +471,8 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     if cand.size == 0:
         return keep
     sd = np.zeros(cand.size, dtype=np.int8) if side is None else np.asarray(side, dtype=np.int8)
-    if side is not None:
-        keep = prune_same_side(cand, h, keep, sd, fs, max_step_s=max_step_s)
+    if side is not None:  # W107: the pair's distance and local period between samples
+        keep = prune_same_side(cand if at is None else at, h, keep, sd, fs, max_step_s=max_step_s)
     max_gap, min_gap = _max_gap(max_step_s, fs), max(1, int(round(min_step_s * fs)))  # as find_peaks' distance
     acc = np.flatnonzero(keep)
     t = cand[acc].astype(np.float64)

@@ -15,7 +15,7 @@ from pdrlearn.io.plasys import read_table
 #: the columns a sessions.csv must have to be reported (track-all's first four, decision C12)
 REQUIRED_SESSION_COLUMNS = ("path", "group", "status", "error")
 #: the per-session table's columns, those sessions.csv has (the full row stays in sessions.csv)
-SESSION_TABLE_COLUMNS = ("path", "group", "status", "n_strides_one_foot", "n_steps_both_feet", "distance_m",
+SESSION_TABLE_COLUMNS = ("path", "group", "status", "error", "n_strides_one_foot", "n_steps_both_feet", "distance_m",
                          "distance_error_pct", "final_position_error_m", "walking_time_s", "gait_speed_mps",
                          "median_cadence_spm", "median_stride_length_m", "median_stride_time_s", "n_warnings")
 #: the columns a groups.csv must have (``pdrlearn.cohort.group_table``)
@@ -81,6 +81,25 @@ def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[s
     return text, tables + change_tables(sessions, visit_map)
 
 
+def batch_warnings(sessions: pd.DataFrame) -> list[str]:
+    """Cohort C34: the batch's warnings about recordings that track-all said once on stderr, recomputed from
+    sessions.csv: each group of folders holding one recording (``duplicate_of``, C20) and each folder of the same
+    sensor data with another meta.json (``same_sensor_data_as``, L137)."""
+    lines = []
+    for column, says in (("duplicate_of", "hold identical sensor data (the same recording): a duplicate upload? "
+                                          "Each is tracked and counted in groups.csv (decision C20)"),
+                         ("same_sensor_data_as", "hold identical sensor data but a different meta.json: not a "
+                                                 "duplicate, the settings differ (decision L137)")):
+        if column not in sessions:
+            continue
+        copies: dict[str, list[str]] = {}
+        for path, first in zip(sessions["path"], sessions[column], strict=True):
+            if isinstance(first, str) and first:
+                copies.setdefault(first, []).append(str(path))
+        lines += [f"{first} and {' and '.join(more)} {says}" for first, more in copies.items()]
+    return lines
+
+
 def run_visit_map(folder: Path) -> dict[str, str] | None:
     """The ``--visit-map`` a track-all run used (decision C29: its content is in OUT/run.json), for the report's
     changes to be changes.csv's; None without one."""
@@ -144,5 +163,4 @@ def plot_batch(sessions: pd.DataFrame, path: Path, *, dpi: float | None = None) 
     fig.legend(handles, groups, title="group", loc="upper right", fontsize=8)
     fig.suptitle("track-all: per session")
     save_atomic(fig, Path(path), dpi=dpi)
-    plt.close(fig)
     return True

@@ -205,14 +205,15 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
 
 def _batch_section(folder: Path, root: Path) -> Section:
     """Cohort C16: the section of a track-all output folder (:mod:`pdrlearn.report.batch`)."""
-    from pdrlearn.report.batch import batch_tables, plot_batch, read_batch, run_visit_map
+    from pdrlearn.report.batch import batch_tables, batch_warnings, plot_batch, read_batch, run_visit_map
 
     sessions, groups = read_batch(folder)
     text, tables = batch_tables(sessions, groups, run_visit_map(folder))
     rel = folder.relative_to(root).as_posix()
     return Section(f"Batch (track-all) — {folder.resolve().name if rel == '.' else rel}", text=text, tables=tables,
                    plots=[("distance and gait speed per session (sessions.csv)", "batch_sessions.png",
-                           lambda path: plot_batch(sessions, path))])
+                           lambda path: plot_batch(sessions, path))],
+                   warnings=batch_warnings(sessions))  # cohort C34
 
 
 #: decision B94: the files `pdrlearn report` writes into its --out; a folder holding both is an earlier report
@@ -348,7 +349,9 @@ def _markdown(sections: list[Section], title: str, image_names: dict[Path, str])
         if s.warnings:  # decision L102
             lines += [f"- **Warning** {w}" for w in s.warnings] + [""]
         for caption, df in s.tables:
-            lines += [f"**{caption}**", "", df.to_markdown(index=False, floatfmt=".4g"), ""]
+            # cohort C34: a missing value is an empty cell (a failed session's row printed "nan" in each)
+            blank = df.astype(object).where(df.notna(), None)
+            lines += [f"**{caption}**", "", blank.to_markdown(index=False, floatfmt=".4g"), ""]
         for caption, p in s.images:
             lines += [f"![{caption}]({image_names[p]})", ""]
     return "\n".join(lines)

@@ -86,6 +86,21 @@ log = logging.getLogger(__name__)
 #: foot's own yaw: offline M2/M3 and the streamed path (decision B17), and `pdrlearn run`.
 NO_WAIST_HEADING = "no waist unit: heading from the foot's own integrated yaw (relative to the start)"
 
+
+def no_waist_heading(session) -> str:
+    """Decision B153: the warning of a session headed by the foot's yaw for want of the waist unit:
+    :data:`NO_WAIST_HEADING`, or, when the session holds some waist files but not the waist accelerometer and
+    gyroscope (an incomplete upload), the same consequence naming the missing and the present files."""
+    from pdrlearn.io.sensors import SENSORS, UNIT_IMU
+
+    present = [s.filename for n, s in SENSORS.items() if s.placement == "waist" and session.has(n)]
+    missing = [SENSORS[n].filename for n in UNIT_IMU["waist"] if not session.has(n)]
+    if not present or not missing:
+        return NO_WAIST_HEADING
+    return (f"waist unit incomplete: {' and '.join(missing)} missing ({', '.join(present)} present): "
+            f"{NO_WAIST_HEADING.removeprefix('no waist unit: ')}; add {' and '.join(missing)} to head by the waist "
+            "unit (decision B153)")
+
 _M2 = {"detector": "AccelForceStepDetector", "integrator": "kalman", "zupt_end": True,
        "gyro_bias": "standstill", "attitude": "kalman", "heading": "fused", "rules": False, "force": True}
 METHODS: dict[str, dict] = {
@@ -744,7 +759,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     hsrc = heading or cfg["heading"]
     hard_iron_info = None
     if hsrc in ("waist", "fused") and not has_waist:
-        warnings.append(NO_WAIST_HEADING)
+        warnings.append(no_waist_heading(session))
         hsrc = "foot"
     lateral = np.arctan2(disp[:, 1], np.abs(disp[:, 0])) * np.where(disp[:, 0] < 0, -1.0, 1.0)
     if hsrc in ("waist", "fused"):
@@ -1014,7 +1029,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                        "as the runtime, E30)"
                                        + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"))
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
-        warnings.append(NO_WAIST_HEADING)
+        warnings.append(no_waist_heading(session))
     classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
     model_bounds, domain, off_rate = None, None, None
     if method == "M3":

@@ -30,9 +30,8 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     0 at the start) / ``y`` instead of east / north (L55). A track with ``pos_sigma_m`` gets a shaded circle of
     twice its last value about its end (decision L128).
     """
-    plt, fig = path_figure(paths, session=session, title=title)
+    _, fig = path_figure(paths, session=session, title=title)
     save_atomic(fig, Path(out), dpi=dpi)
-    plt.close(fig)
     return Path(out)
 
 

@@ -142,12 +142,33 @@ def _subject(meta: dict) -> dict:
 
 
 def _meta_number(meta: dict, *keys: str) -> float | None:
-    for src in (_subject(meta), meta):
+    found = _meta_numbers(meta, *keys)
+    return found[0][1] if found else None
+
+
+def _meta_numbers(meta: dict, *keys: str) -> list[tuple[str, float]]:
+    """Every usable (finite, positive) value of ``keys`` in meta.json, as ``(key as written, value)``, in the order
+    they are taken: the ``subject`` object's before the top level's, each in the order of ``keys``."""
+    got = []
+    for prefix, src in (("subject.", _subject(meta)), ("", meta)):
         for k in keys:
             v = src.get(k)
-            if isinstance(v, int | float) and np.isfinite(v) and v > 0:
-                return float(v)
-    return None
+            if isinstance(v, int | float) and not isinstance(v, bool) and np.isfinite(v) and v > 0:
+                got.append((prefix + k, float(v)))
+    return got
+
+
+def leg_length_note(meta: dict) -> str | None:
+    """Decision B155: where the pendulum's leg length comes from, one line: the meta.json key used (``leg_length_m``
+    is taken before ``sensor_height_m``, waist decision W10's ``L``) and the values not used; ``None`` when meta.json
+    gives neither (then 0.53 x height, warned)."""
+    found = _meta_numbers(meta, "leg_length_m", "sensor_height_m")
+    if not found:
+        return None
+    (key, leg), rest = found[0], found[1:]
+    unused = "; not used: " + ", ".join(f"{k} {v:g} m" for k, v in rest) if rest else ""
+    return (f"leg length {leg:.3f} m from meta.json {key} (leg_length_m is taken before sensor_height_m{unused}; "
+            "decision B155)")
 
 
 def default_params(session: Session) -> tuple[WaistParams, list[str]]:
@@ -161,7 +182,7 @@ def default_params(session: Session) -> tuple[WaistParams, list[str]]:
     if height is None:
         height = DEFAULT_HEIGHT_M
         warnings.append(f"meta.json gives no subject height: assumed {DEFAULT_HEIGHT_M} m")
-    leg = _meta_number(meta, "leg_length_m", "sensor_height_m")
+    leg = _meta_number(meta, "leg_length_m", "sensor_height_m")  # B155: leg_length_m first (leg_length_note)
     if leg is None:
         leg = LEG_PER_HEIGHT * height
         notes.append(f"leg length {leg:.3f} m = {LEG_PER_HEIGHT} x height")
@@ -170,7 +191,7 @@ def default_params(session: Session) -> tuple[WaistParams, list[str]]:
                         f"{height:.2f} m (the pendulum step length grows with its square root); give the unit's "
                         "height with 'pdrlearn import --sensor-height M' or meta.json sensor_height_m")
     else:
-        notes.append(f"leg length {leg:.3f} m from meta.json (leg_length_m or sensor_height_m)")
+        notes.append(leg_length_note(meta))
     foot = _meta_number(meta, "foot_length_m")
     if foot is None:
         cm = _meta_number(meta, "foot_length_cm")

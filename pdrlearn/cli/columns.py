@@ -1,0 +1,38 @@
+"""``pdrlearn columns``: the data dictionary of track-all's tables (cohort decision C35, :mod:`pdrlearn.columns`)."""
+
+from __future__ import annotations
+
+import typer
+
+
+def columns(
+    table: str = typer.Argument(None, help="One table: sessions.csv, groups.csv, subjects.csv or bouts.csv "
+                                "(default: all)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object: table -> list of {column, unit, "
+                                 "type, meaning}."),
+) -> None:
+    """Print every column of track-all's sessions.csv, groups.csv, subjects.csv and bouts.csv with its unit, type
+    and meaning, as Markdown (docs/columns.md is this output).
+
+    Examples:
+
+        pdrlearn columns sessions.csv
+
+        pdrlearn columns --json > columns.json
+    """
+    from pdrlearn.cli.common import print_json
+    from pdrlearn.columns import TABLES, markdown
+    from pdrlearn.errors import DataError
+
+    if table is not None and table not in TABLES:
+        raise DataError(f"columns {table}: not a table of track-all; give one of {', '.join(TABLES)}")
+    names = [table] if table else list(TABLES)
+    if as_json:
+        print_json({n: [dict(zip(("column", "unit", "type", "meaning"), c, strict=True)) for c in TABLES[n]]
+                    for n in names})
+    else:
+        print(markdown(names))
+
+
+def register(app: typer.Typer) -> None:
+    app.command("columns")(columns)

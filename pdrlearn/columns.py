@@ -1,0 +1,221 @@
+"""Cohort decision C35: the data dictionary of track-all's tables - every column of sessions.csv, groups.csv,
+subjects.csv and each session's bouts.csv with its unit, type and meaning. The one source of ``pdrlearn columns``
+and docs/columns.md (written from it: ``pdrlearn columns > docs/columns.md``); a test tracks a batch and checks that
+every column written is here. Meanings follow docs/localization.md's table of summary.json keys (decisions L103, L104).
+"""
+
+from __future__ import annotations
+
+from pdrlearn.cohort import GROUP_METRICS
+
+#: (column, unit, type, meaning); ``{measure}`` in a name stands for each of :data:`GROUP_METRICS`
+Column = tuple[str, str, str, str]
+
+_ID = "-"
+
+SESSIONS: tuple[Column, ...] = (
+    ("path", _ID, "text", "the session folder relative to ROOT (the row's key)"),
+    ("group", _ID, "text", "the first --group-depth folder levels of path (siteA)"),
+    ("subject", _ID, "text", "meta.json subject (or user, when a name); empty when not given (C22)"),
+    ("visit", _ID, "text", "meta.json visit; empty when not given (C22)"),
+    ("status", _ID, "text", "ok (tracked) or failed"),
+    ("error", _ID, "text", "a failed session's one-line error; empty when ok"),
+    ("session", _ID, "text", "meta.json's session name"),
+    ("input_dir", _ID, "text", "the folder tracked, relative to ROOT (= path, C18)"),
+    ("pipeline", _ID, "text", "the pipeline used: plasys (foot) or waist-pendulum / waist-pll (lower back)"),
+    ("method", _ID, "text", "the pipeline's method (M1, M2, M3 on the foot)"),
+    ("rate_hz", "Hz", "number", "the tracked unit's accelerometer rate"),
+    ("n_steps", "count", "integer", "rows of steps.csv: strides of the tracked foot (foot) or steps (lower back)"),
+    ("n_steps_counts", _ID, "text", "what n_steps counts: 'strides of the tracked foot' or 'steps of both feet'"),
+    ("n_strides_one_foot", "count", "integer", "foot: the tracked foot's strides (gap rows left out); empty on the "
+                                               "lower back"),
+    ("n_steps_both_feet", "count", "integer", "lower back: detected steps; foot: 2 x n_strides_one_foot (estimate)"),
+    ("distance_m", "m", "number", "tracked distance"),
+    ("distance_ref_m", "m", "number", "reference distance (meta.json or labels); empty without one"),
+    ("distance_error_pct", "%", "number", "100 x (distance_m - distance_ref_m) / distance_ref_m"),
+    ("final_position_error_m", "m", "number", "horizontal distance of the last tracked position from the true one"),
+    ("walking_time_s", "s", "number", "time walking (stops over 3 s and data gaps left out, L79)"),
+    ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s"),
+    ("median_cadence_spm", "steps/min", "number", "median steps per minute"),
+    ("median_stride_length_m", "m", "number", "foot: median stride length (gap rows and impossible strides left "
+                                              "out); empty on the lower back"),
+    ("median_stride_time_s", "s", "number", "median initial contact to the same foot's next"),
+    ("median_speed_mps", "m/s", "number", "median per-stride (lower back: per-step) speed"),
+    ("n_warnings", "count", "integer", "warnings the session raised"),
+    ("warnings", _ID, "text", "those warnings, separated by ' | '"),
+    ("content_id", _ID, "text", "fingerprint of the sensor data (B87): equal for copies of one recording"),
+    ("duplicate_of", _ID, "text", "the first folder holding the same sensor data and meta.json settings (C20)"),
+    ("same_sensor_data_as", _ID, "text", "the first folder holding the same sensor data with other meta.json "
+                                         "settings: not a duplicate (L137)"),
+    ("params_file", _ID, "text", "--params-dir only: the calibration file used (C26)"),
+    ("altitude_change_m", "m", "number", "tracked z change, last minus first"),
+    ("altitude_change_ref_m", "m", "number", "reference z change"),
+    ("altitude_ref_source", _ID, "text", "where altitude_change_ref_m comes from"),
+    ("altitude_error_pct", "%", "number", "altitude change error against the reference"),
+    ("barometer_unused", _ID, "true/false", "the session has wBarometer.csv that a foot track does not read (L127)"),
+    ("bouts_distance_m", "m", "number", "bouts.csv's distance summed (C25)"),
+    ("bouts_time_s", "s", "number", "bouts.csv's durations summed (C25)"),
+    ("bouts_n_steps", "count", "integer", "bouts.csv's steps summed (C25)"),
+    ("bouts_n_strides", "count", "integer", "bouts.csv's strides summed (C25)"),
+    ("bout_distance_m", "m", "number", "lower back: tracked distance inside the reference walking bouts"),
+    ("bout_reference_m", "m", "number", "lower back: reference distance of those bouts"),
+    ("bout_distance_error_median_pct", "%", "number", "lower back: median per-bout distance error"),
+    ("bout_reference_strides_m", "m", "number", "lower back: reference stride lengths summed over the bouts"),
+    ("bout_distance_error_strides_median_pct", "%", "number", "lower back: median per-bout error against the "
+                                                              "summed reference strides"),
+    ("class_agreement_strides", "count", "integer", "tracked strides matched to a labelled one (L53)"),
+    ("contact_timing", _ID, "text", "contacts on 'whole samples' or 'between samples' (L116)"),
+    ("direction_agreement", "fraction", "number", "matched strides whose direction class is the label's (L53)"),
+    ("distance_error_scope", _ID, "text", "what distance_error_pct compares (W71, L82)"),
+    ("distance_error_strides_pct", "%", "number", "distance error against the summed reference strides"),
+    ("distance_in_ref_bouts_m", "m", "number", "tracked distance inside the reference bouts (L82)"),
+    ("distance_matched_error_pct", "%", "number", "foot: distance error over the strides matched to labels"),
+    ("distance_ref_source", _ID, "text", "where distance_ref_m comes from"),
+    ("final_altitude_error_m", "m", "number", "z error of the last position"),
+    ("final_position_error_3d_m", "m", "number", "3-D distance of the last position from the true one"),
+    ("final_position_sigma_m", "m", "number", "modelled 1-sigma radius of the last position (L128; none with fixes)"),
+    ("max_position_sigma_m", "m", "number", "largest modelled 1-sigma position radius of the track (L128)"),
+    ("final_x_m", "m", "number", "last tracked position, x (east, or the start heading's axis)"),
+    ("final_y_m", "m", "number", "last tracked position, y"),
+    ("final_z_m", "m", "number", "last tracked position, z (up)"),
+    ("floors_down", "count", "integer", "storeys descended (3.0 m or --storey-height; L127)"),
+    ("floors_down_ref", "count", "integer", "storeys descended in the reference"),
+    ("floors_up", "count", "integer", "storeys climbed"),
+    ("floors_up_ref", "count", "integer", "storeys climbed in the reference"),
+    ("frames_inferred", _ID, "text", "units whose frame was inferred from the data (D8)"),
+    ("ic_timing_mean_ms", "ms", "number", "lower back: mean initial-contact time error against the reference"),
+    ("ic_timing_sd_ms", "ms", "number", "lower back: SD of that error"),
+    ("ic_timing_stereo_mean_ms", "ms", "number", "lower back: mean contact time error, both feet matched"),
+    ("ic_timing_stereo_sd_ms", "ms", "number", "lower back: SD of that error"),
+    ("length_class_agreement", "fraction", "number", "matched strides whose length class is the label's (L53)"),
+    ("longest_pause_s", "s", "number", "the longest pause (L104)"),
+    ("median_speed_straight_mps", "m/s", "number", "median speed of the strides turning under 15 deg"),
+    ("median_stance_pct", "%", "number", "--toe-off only: median stance share of the stride (L73)"),
+    ("median_stance_time_s", "s", "number", "--toe-off only: median stance time"),
+    ("median_step_time_s", "s", "number", "lower back: median contact to the next of either foot; empty on a foot "
+                                          "track"),
+    ("median_swing_time_s", "s", "number", "--toe-off only: median swing time"),
+    ("n_bouts", "count", "integer", "rows of bouts.csv (L124)"),
+    ("n_cv_strides", "count", "integer", "steady straight strides stride_time_cv_pct is computed over"),
+    ("n_detected", "count", "integer", "lower back: detected contacts scored"),
+    ("n_pauses", "count", "integer", "stands of about 1 s or more inside the walk (L104)"),
+    ("n_reference", "count", "integer", "lower back: reference contacts"),
+    ("n_reference_strides", "count", "integer", "reference strides stride_length_mae_m compares"),
+    ("n_stance_times", "count", "integer", "--toe-off only: strides with a stance time"),
+    ("n_stereo_matched", "count", "integer", "lower back: contacts matched with both feet"),
+    ("n_straight_strides", "count", "integer", "strides turning under 15 deg"),
+    ("n_stride_times", "count", "integer", "strides with a stride time"),
+    ("n_turns", "count", "integer", "reference turns compared (turns.csv only, L42)"),
+    ("n_turns_signed", "count", "integer", "reference turns of 45 deg or more whose sign is compared (L42)"),
+    ("n_unscored", "count", "integer", "lower back: contacts outside the scored span"),
+    ("n_walking_bouts", "count", "integer", "walking bouts = pauses + 1 (L104)"),
+    ("out_of_domain_fraction", "fraction", "number", "--model only: strides outside its training range (C16)"),
+    ("pause_time_s", "s", "number", "total pause time (L104)"),
+    ("pdrlearn_version", _ID, "text", "the pdrlearn version that wrote the row (run.json names the commit, L136)"),
+    ("step_f1", "fraction", "number", "tracked strides / steps against the reference contacts, F1 (L36)"),
+    ("step_f1_all", "fraction", "number", "lower back: F1 over every reference contact"),
+    ("step_f1_same_foot_gaps_scored", "fraction", "number", "lower back: F1 with same-foot gaps scored"),
+    ("step_precision", "fraction", "number", "precision of the tracked steps / strides"),
+    ("step_recall", "fraction", "number", "recall of the tracked steps / strides"),
+    ("stereo_recall", "fraction", "number", "lower back: recall with both feet matched"),
+    ("storey_height_m", "m", "number", "the storey height floors are counted in"),
+    ("storeys_changed", "count", "integer", "net storeys (up minus down)"),
+    ("storeys_changed_ref", "count", "integer", "net storeys in the reference"),
+    ("stride_length_bias_m", "m", "number", "lower back: mean stride length error"),
+    ("stride_length_composed", "count", "integer", "foot: labelled strides tiled by several tracked pieces"),
+    ("stride_length_mae_m", "m", "number", "mean absolute stride length error"),
+    ("stride_length_mae_pct", "%", "number", "the same as a share of the reference stride length"),
+    ("stride_length_mae_pct_straight", "%", "number", "the same over straight strides"),
+    ("stride_length_mae_pct_turns", "%", "number", "the same over turning strides"),
+    ("stride_length_matched", "count", "integer", "foot: tracked strides matched to labelled ones"),
+    ("stride_time_cv_pct", "%", "number", "foot: 100 x SD / mean of the steady straight strides' times (L104)"),
+    ("stride_time_cv_withheld", _ID, "text", "why the CV was withheld (L113, an option); empty otherwise"),
+    ("terrain_agreement", "fraction", "number", "matched strides whose terrain class is the label's (L53)"),
+    ("timing_resolution_s", "s", "number", "one sample period of the stream the contacts come from (L116)"),
+    ("turn_angle_mae_deg", "deg", "number", "mean absolute error of the reference turns' angles (L42)"),
+    ("turn_count", "count", "integer", "turns of about 90 deg or more (L104)"),
+    ("turn_count_min_deg", "deg", "number", "the smallest turn turn_count counts"),
+    ("turn_sign_agreement", "fraction", "number", "reference turns whose tracked turn has the same sign (L42)"),
+    ("walking_speed_mps", "m/s", "number", "distance / walking time without the pauses (L110)"),
+    ("walking_time_no_pauses_s", "s", "number", "walking time without the pauses inside it (L110)"),
+    ("window_start_s", "s", "number", "--window only: the window's start, from the session start (L108)"),
+    ("window_end_s", "s", "number", "--window only: the window's end (L108)"),
+)
+
+GROUPS: tuple[Column, ...] = (
+    ("group", _ID, "text", "the group (sessions.csv group)"),
+    ("n_tracked", "count", "integer", "sessions of the group tracked"),
+    ("n_failed", "count", "integer", "sessions of the group that failed"),
+    ("{measure}_n", "count", "integer", "sessions with a value of the measure (the sessions.csv column)"),
+    ("{measure}_mean", "as the measure", "number", "mean over those sessions (every session of every subject "
+                                                   "and visit counted alike: descriptive only)"),
+    ("{measure}_sd", "as the measure", "number", "sample standard deviation"),
+    ("{measure}_median", "as the measure", "number", "median"),
+    ("{measure}_ci95_low", "as the measure", "number", "95 % t-interval of the mean, lower end (sessions taken "
+                                                       "as independent)"),
+    ("{measure}_ci95_high", "as the measure", "number", "95 % t-interval of the mean, upper end"),
+)
+
+SUBJECTS: tuple[Column, ...] = (
+    ("subject", _ID, "text", "meta.json subject (C25)"),
+    ("visit", _ID, "text", "meta.json visit"),
+    ("group", _ID, "text", "the group(s) of the subject's sessions"),
+    ("n_tracked", "count", "integer", "the subject's sessions of that visit tracked"),
+    ("n_failed", "count", "integer", "those that failed"),
+    ("paths", _ID, "text", "the session folders"),
+    ("distance_m", "m", "number", "the tracks' distances summed over the sessions"),
+    ("n_bouts", "count", "integer", "walking bouts"),
+    ("walking_time_s", "s", "number", "bouts' durations summed"),
+    ("n_steps", "count", "integer", "bouts' steps summed"),
+    ("n_strides", "count", "integer", "bouts' strides summed"),
+    ("bouts_distance_m", "m", "number", "the walking bouts' distance summed (bouts.csv)"),
+    ("gait_speed_mps", "m/s", "number", "bouts distance / walking time (pooled, not a mean of bouts)"),
+    ("cadence_spm", "steps/min", "number", "60 x steps / walking time"),
+)
+
+BOUTS: tuple[Column, ...] = (
+    ("bout", "index", "integer", "the bout's number in the session, from 0"),
+    ("start_s", "s", "number", "start, on the session's clock"),
+    ("end_s", "s", "number", "end, on the session's clock"),
+    ("duration_s", "s", "number", "end_s - start_s"),
+    ("n_steps", "count", "integer", "steps of both feet in the bout (L103; on a foot track an estimate from the "
+                                    "tracked foot's strides)"),
+    ("n_strides", "count", "integer", "strides of the tracked foot (foot tracks); empty on the lower back"),
+    ("distance_m", "m", "number", "tracked distance in the bout"),
+    ("speed_m_s", "m/s", "number", "distance_m / duration_s"),
+    ("cadence_spm", "steps/min", "number", "60 x n_steps / duration_s"),
+    ("n_turns", "count", "integer", "turns of about 90 deg or more in the bout (L104)"),
+    ("altitude_change_m", "m", "number", "z change over the bout"),
+)
+
+#: every table of the dictionary, in the order shown
+TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
+                                         "bouts.csv": BOUTS}
+
+
+def expanded(table: str) -> dict[str, Column]:
+    """``table``'s columns by name, ``{measure}`` entries expanded to each of :data:`GROUP_METRICS`."""
+    out: dict[str, Column] = {}
+    for col in TABLES[table]:
+        names = [col[0].format(measure=m) for m in GROUP_METRICS] if "{measure}" in col[0] else [col[0]]
+        out.update({n: (n, *col[1:]) for n in names})
+    return out
+
+
+def undocumented(table: str, columns) -> list[str]:
+    """The ``columns`` of a written ``table`` that the dictionary lacks (a test keeps this empty, C35)."""
+    known = expanded(table)
+    return [c for c in columns if c not in known]
+
+
+def markdown(tables: list[str] | None = None) -> str:
+    """The dictionary as Markdown, one section per table (docs/columns.md is this text)."""
+    lines = ["# Columns of track-all's tables", "",
+             "Generated by `pdrlearn columns` from `pdrlearn/columns.py` (cohort decision C35); `{measure}` stands "
+             f"for each of {', '.join(GROUP_METRICS)}. Empty cell = not measured for that session (a failed "
+             "session, another pipeline, no reference).", ""]
+    for name in tables or list(TABLES):
+        lines += [f"## {name}", "", "| column | unit | type | meaning |", "|---|---|---|---|"]
+        lines += [f"| `{c}` | {u} | {t} | {m} |" for c, u, t, m in TABLES[name]]
+        lines.append("")
+    return "\n".join(lines)

@@ -1,0 +1,140 @@
+"""``python -m pdrlearn.runtime BUNDLE SESSION``: replay a recorded session through the runtime with numpy (and
+onnxruntime) alone, for a runtime-only install (decision E76; ``pdrlearn run`` is the full command).
+
+Standard library argparse, no typer, pandas or matplotlib: reads the session's sensor files
+(:func:`pdrlearn.runtime.replay.read_streams`), pushes them in ``--chunk-s`` slices (decision E28, as
+``pdrlearn run``) through :class:`~pdrlearn.runtime.Tracker` and prints one line (or ``--json``); ``--out``
+writes ``steps.csv`` (the columns of ``pdrlearn run``'s runtime fields) and ``trajectory.csv``. Bad input:
+one ``error: ...`` line, exit code 2 (as ``pdrlearn``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import logging
+import sys
+from pathlib import Path
+
+from pdrlearn.errors import PdrlearnError
+
+PROG = "python -m pdrlearn.runtime"
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog=PROG, description="Replay a PLASYS session folder through a model bundle with "
+                                "the lean runtime (numpy + onnxruntime; decision E76). The full install's "
+                                "`pdrlearn run` adds path.png, bouts, summary.json, gait values and data repair.")
+    p.add_argument("bundle", type=Path, help="bundle folder written by 'pdrlearn export'")
+    p.add_argument("session", type=Path, help="PLASYS session folder (<sensor>.csv files, optional meta.json)")
+    p.add_argument("--out", "-o", type=Path, help="folder to write steps.csv and trajectory.csv into")
+    p.add_argument("--chunk-s", type=float, default=1.0, help="replay chunk length (s), default 1 (decision E28)")
+    p.add_argument("--units", help="body units to track: foot, or foot,waist (default: the bundle's; the foot "
+                   "alone when the session has no waist unit)")
+    p.add_argument("--method", metavar="[TASK=]METHOD[/UNIT],...", help="another exported model than the "
+                   "bundle's chosen one (as pdrlearn run --method, decision E52)")
+    p.add_argument("--json", action="store_true", help="print one JSON summary object")
+    return p
+
+
+def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: str | None = None,
+           method: str | None = None):
+    """The tracker after replaying ``session_dir`` through ``bundle_dir`` and its steps, as ``pdrlearn run`` pushes
+    a session (same input rates, stream ends, frames when the session declares them; decision E76)."""
+    from pdrlearn.errors import DataError
+    from pdrlearn.runtime import Tracker, load_bundle
+    from pdrlearn.runtime.replay import read_streams, replay_chunks, session_frames
+
+    if not (chunk_s > 0 and chunk_s < float("inf")):
+        raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
+    bundle = load_bundle(bundle_dir)
+    methods = bundle.choose_methods(method) if method is not None else None
+    streams, meta = read_streams(session_dir, bundle)
+    asked = None if units is None else [u for u in units.split(",") if u.strip()]
+    have = [n for n, (t, _) in streams.items() if len(t)]
+    tracker = Tracker(bundle, frames=session_frames(meta, bundle, asked or bundle.body_units, f"session {session_dir}"),
+                      units=asked, sensors=have, methods=methods,
+                      input_rates_hz={n: _rate_hz(t) for n, (t, _) in streams.items()},
+                      stream_ends_s={n: float(t[-1]) for n, (t, _) in streams.items() if len(t)})
+    if asked is None and tracker.units != bundle.body_units:  # decision E26, as pdrlearn run says it
+        logging.getLogger("pdrlearn.runtime").warning(
+            "session %s has no waist unit the bundle also uses: the foot unit only (--units foot chooses this "
+            "without the warning)", session_dir)
+    steps = []
+    try:
+        for chunk in replay_chunks(streams, chunk_s):
+            steps += tracker.push(chunk)
+        steps += tracker.flush()
+    except DataError as exc:  # the Tracker names the stream; the line names the session's file too
+        raise DataError(f"{Path(session_dir)}: {exc}") from None
+    return tracker, steps
+
+
+def _rate_hz(t) -> float:
+    """The rate ``pdrlearn run`` gives the Tracker (``Stream.rate_hz``: D7, B33); NaN when it has none."""
+    from pdrlearn.kernels.clock import nominal_period_s
+
+    p = nominal_period_s(t)
+    return 1.0 / p if p > 0 else float("nan")
+
+
+def _rows(steps) -> list[dict]:
+    """The Step rows (``Step.to_dict``, B142) with ``heading_rad`` wrapped to [-pi, pi), as ``pdrlearn run`` writes
+    it (E43)."""
+    from pdrlearn.kernels.fixes import wrap_angle
+
+    return [{**d, "heading_rad": float(wrap_angle(d["heading_rad"]))} for d in (st.to_dict() for st in steps)]
+
+
+def _write(out: Path, steps, start_s: float | None) -> None:
+    out.mkdir(parents=True, exist_ok=True)
+    from pdrlearn.runtime.replay import STEP_COLUMNS
+
+    rows = _rows(steps)
+    have = list(dict.fromkeys(k for r in rows for k in r))
+    cols = [c for c in STEP_COLUMNS if c in have] + [c for c in have if c not in STEP_COLUMNS]
+    cols = cols or ["start_s", "end_s", "length_m", "heading_rad"]
+    with (out / "steps.csv").open("w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=cols)
+        w.writeheader()
+        w.writerows({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in r.items()} for r in rows)
+    with (out / "trajectory.csv").open("w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["t", "x", "y", "z"])
+        if steps:
+            w.writerow([f"{start_s:.10g}", 0, 0, 0])
+        w.writerows([f"{v:.10g}" for v in (st.end_s, st.x, st.y, st.z)] for st in steps)
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("warning: %(message)s"))
+    handler.setLevel(logging.WARNING)
+    logging.getLogger("pdrlearn").addHandler(handler)
+    try:
+        tracker, steps = replay(args.bundle, args.session, chunk_s=args.chunk_s, units=args.units,
+                                method=args.method)
+        if args.out is not None:
+            _write(args.out, steps, steps[0].start_s if steps else None)
+    except PdrlearnError as exc:
+        print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
+        return exc.exit_code
+    finally:
+        logging.getLogger("pdrlearn").removeHandler(handler)
+    distance = float(sum(st.length_m for st in steps))
+    position = [float(v) for v in tracker.position]
+    if args.json:
+        print(json.dumps({"session": str(args.session), "n_steps": len(steps), "distance_m": distance,
+                          "final_position": dict(zip("xyz", position, strict=True)),
+                          "methods": {t: f"{c.method}/{c.unit}" for t, c in tracker.classifiers.items()},
+                          "warnings": list(tracker.warnings), "out": None if args.out is None else str(args.out)}))
+    else:
+        print(f"session {args.session}: {len(steps)} strides, {distance:.2f} m, final position "
+              f"{[round(v, 2) for v in position]}" + (f" -> {args.out}" if args.out else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,136 @@
+"""Replaying a recorded session through the runtime with numpy alone (decision E76).
+
+:func:`replay_chunks` cuts recorded streams into pushes (decision E28; ``pdrlearn run`` and the lean command
+``python -m pdrlearn.runtime`` use it). :func:`read_streams` reads the sensor files of a PLASYS session folder
+(``<sensor>.csv``: ``timestamp,x,y,z``, thesis ch.4.3.3; timestamps in ms unless ``meta.json`` declares
+``units.timestamp`` s, us or ns, decision D1) without pandas. It reads sessions as ``pdrlearn simulate``,
+``import-csv`` and ``write_session`` write them; it repairs nothing: a file the full reader would have to fix
+(decimal commas, a sample-counter clock, per-unit clocks, other value units) is refused in one line that
+names the full install's ``pdrlearn run``.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+from pathlib import Path
+
+import numpy as np
+
+from pdrlearn.errors import DataError, MissingSensorError
+
+log = logging.getLogger(__name__)
+
+#: Step table columns in the order of ``pdrlearn track`` (decision B14); the runtime's extra columns follow
+#: (``pdrlearn run`` and ``python -m pdrlearn.runtime`` write them so)
+STEP_COLUMNS = ("start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "terrain", "direction",
+                "length_class")
+
+#: a sample this close to a chunk boundary (in chunk lengths) belongs to the chunk the boundary starts (E28)
+CHUNK_TOLERANCE = 1e-9
+
+#: seconds per timestamp unit of meta.json's ``units.timestamp`` (its first word; decision D1: default ms)
+TIME_SCALES = {"ms": 1e-3, "s": 1.0, "us": 1e-6, "ns": 1e-9}
+
+#: what a refusal of the lean reader suggests (decision E76)
+FULL_READER = "replay it with the full install's `pdrlearn run` (pip install pdrlearn), which reads and repairs more"
+
+
+def replay_chunks(streams: dict, chunk_s: float):
+    """The replay of decision E28: ``{sensor: (t, values)}`` cut into pushes of ``chunk_s`` seconds, one per
+    chunk index ``k = floor((t - t0) / chunk_s + CHUNK_TOLERANCE)`` from the earliest sample ``t0`` of any
+    stream, so every sample is in exactly one push (bounds ``t0 + k * chunk_s`` computed per chunk put a sample
+    on a rounded boundary into two). Every chunk, empty or not, holds every stream."""
+    streams = {n: (np.asarray(t, dtype=np.float64), v) for n, (t, v) in streams.items()}
+    ts = [t for t, _ in streams.values() if len(t)]
+    if not ts:
+        return
+    t0 = min(float(t[0]) for t in ts)
+    idx = {n: np.floor((t - t0) / chunk_s + CHUNK_TOLERANCE).astype(np.int64) for n, (t, _) in streams.items()}
+    n_chunks = max(int(i[-1]) for i in idx.values() if len(i)) + 1
+    ks = np.arange(n_chunks + 1)
+    cuts = {n: np.searchsorted(i, ks, side="left") for n, i in idx.items()}  # first sample of each chunk
+    for k in range(n_chunks):
+        yield {n: (t[cuts[n][k]:cuts[n][k + 1]], v[cuts[n][k]:cuts[n][k + 1]]) for n, (t, v) in streams.items()}
+
+
+def read_meta(folder: Path) -> dict:
+    """The session's ``meta.json`` (``{}`` without one); refused in one line when it is not a JSON object."""
+    path = folder / "meta.json"
+    if not path.is_file():
+        return {}
+    try:
+        meta = json.loads(path.read_text())
+    except (ValueError, UnicodeDecodeError) as exc:
+        raise DataError(f"{path}: not valid JSON ({str(exc).splitlines()[0]}); fix it or remove it") from None
+    if not isinstance(meta, dict):
+        raise DataError(f"{path}: must be a JSON object such as {{\"units\": {{\"timestamp\": \"ms\"}}}}; fix it")
+    return meta
+
+
+def _time_scale(meta: dict, where: Path) -> float:
+    units = meta.get("units", {})
+    if meta.get("clocks"):
+        raise DataError(f"{where}: declares per-unit \"clocks\" (decision B115), which the lean reader does not "
+                        f"apply; {FULL_READER}")
+    word = (str(units.get("timestamp", "ms")).split() or ["ms"])[0] if isinstance(units, dict) else None
+    if word not in TIME_SCALES:
+        raise DataError(f"{where}: units.timestamp {units.get('timestamp') if isinstance(units, dict) else units!r} "
+                        f"is not ms, s, us or ns (the lean reader's units); {FULL_READER}")
+    return TIME_SCALES[word]
+
+
+def _read_csv(path: Path, n_values: int, scale: float) -> tuple[np.ndarray, np.ndarray]:
+    head = path.open().readline().strip().lower()
+    if not head.startswith("timestamp,"):
+        raise DataError(f"{path}: the first line is {head[:40]!r}, not the header 'timestamp,x,...' of a PLASYS "
+                        f"sensor file; {FULL_READER}")
+    try:
+        a = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2, dtype=np.float64)
+    except ValueError as exc:
+        raise DataError(f"{path}: {str(exc).splitlines()[0]} (the lean reader reads plain comma-separated numbers); "
+                        f"{FULL_READER}") from None
+    if a.shape[1] != 1 + n_values:
+        raise DataError(f"{path}: {a.shape[1]} columns, expected timestamp and {n_values} value(s); {FULL_READER}")
+    return a[:, 0] * scale, a[:, 1:]
+
+
+def read_streams(folder, bundle) -> tuple[dict, dict]:
+    """``({sensor: (t_s, values)}, meta)`` of the sensors of ``bundle`` (required and optional) that the PLASYS
+    session ``folder`` holds (the Tracker's ``sensors=`` then checks the required ones, decision E55)."""
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise DataError(f"{folder}: session folder not found; give a folder of <sensor>.csv files (PLASYS layout)")
+    meta = read_meta(folder)
+    scale = _time_scale(meta, folder / "meta.json")
+    declared = meta.get("units") if isinstance(meta.get("units"), dict) else {}
+    required, optional = bundle.sensors_of()
+    streams = {}
+    for name in [*required, *optional]:
+        path = folder / f"{name}.csv"
+        if not path.is_file():
+            continue
+        si = bundle.manifest["units"].get(name)
+        if name in declared and si is not None and str(declared[name]).split()[:1] != [si]:
+            raise DataError(f"{folder / 'meta.json'}: units.{name} {declared[name]!r} is not {si}, the unit the "
+                            f"lean reader takes; {FULL_READER}")
+        width = 1 if name.startswith(("fForce", "wBarometer")) else 3
+        streams[name] = _read_csv(path, width, scale)
+    if not streams:
+        raise MissingSensorError(f"{folder}: no sensor file the bundle reads ({', '.join([*required, *optional])})")
+    return streams, meta
+
+
+def session_frames(meta: dict, bundle, units, where: str) -> dict:
+    """Each body unit's axis frame: the one the session's ``meta.json`` declares (``frames``, decision D2),
+    else the bundle's (its training sessions'), with one warning. The lean path does not check a declared frame
+    against the data nor infer one (decisions D8, D10 need the full install)."""
+    declared = meta.get("frames") if isinstance(meta.get("frames"), dict) else {}
+    frames = dict(bundle.manifest["frames"])
+    for unit in units:
+        if unit in declared:
+            frames[unit] = declared[unit]
+        elif unit in frames:
+            log.warning("%s declares no %s frame; using the bundle's %s (the lean reader infers none: declare "
+                        "\"frames\" in meta.json)", where, unit, frames[unit])
+    return frames
