@@ -72,7 +72,7 @@ SUBJECT_COLUMNS = ("subject", "visit", "group", "n_tracked", "n_failed", "paths"
                    "walking_time_s", "n_steps", "n_strides", "bouts_distance_m", "gait_speed_mps", "cadence_spm")
 
 
-def subject_totals(sessions):
+def subject_totals(sessions, visit_map: dict[str, str] | None = None):
     """subjects.csv from sessions.csv (cohort C25), or ``None`` when no session names a subject: one row per subject
     (natural order) and, when some session names a visit, per visit (:func:`visit_order`; a subject's sessions
     without a visit are one row with an empty visit). ``n_tracked`` / ``n_failed``: its sessions; ``paths``: the
@@ -81,7 +81,9 @@ def subject_totals(sessions):
     count, summed durations, steps (of both feet, L103), strides and distance (bouts.csv of each session, under the
     batch's ``--bout-break-s`` / ``--bout-min-strides``); ``gait_speed_mps`` = bouts_distance_m / walking_time_s and
     ``cadence_spm`` = 60 n_steps / walking_time_s: the bouts pooled, each weighed by its duration (empty without
-    walking time). Sessions naming no subject are in no row (sessions.csv has them)."""
+    walking time). Sessions naming no subject are in no row (sessions.csv has them). Visits are named as changes.csv
+    names them (:func:`canonical_visits` with ``visit_map``, C28, C29; decision C40: ``BL`` and ``Baseline`` of one
+    subject had been two rows)."""
     import numpy as np
     import pandas as pd
 
@@ -92,6 +94,9 @@ def subject_totals(sessions):
         named[c] = named[c].map(lambda v: None if pd.isna(v) else str(int(v)) if isinstance(v, float)
                                 and v.is_integer() else str(v))
     by_visit = named["visit"].notna().any()
+    if by_visit:  # decision C40: the visits as changes.csv names them
+        names = canonical_visits(named["visit"].dropna(), visit_map)[0]
+        named["visit"] = named["visit"].map(lambda v: None if pd.isna(v) else names[v])
     rows = []
     for subject in visit_order(named["subject"]):
         mine = named[named["subject"] == subject]
@@ -141,8 +146,10 @@ VISIT_SYNONYMS = {"bl": "baseline", "base": "baseline", "w": "week", "wk": "week
 def visit_key(name: str) -> str:
     """The spelling-free form of a visit name (decision C28): lower case, without spaces, ``-``, ``_`` and other
     separators, leading zeros of numbers dropped and the leading word by :data:`VISIT_SYNONYMS` (``Follow-up 06`` ->
-    ``followup6``, ``W12`` -> ``week12``, ``BL`` -> ``baseline``)."""
-    s = re.sub(r"\d+", lambda m: str(int(m.group())), re.sub(r"[\W_]", "", str(name).lower()))
+    ``followup6``, ``W12`` -> ``week12``, ``BL`` -> ``baseline``). A separator between two numbers stays, as ``.``
+    (decision C40): ``1.5`` is not ``15``, nor ``2026-1-12`` ``2026-11-2``."""
+    parts = re.split(r"(?<=\d)[\W_]+(?=\d)", str(name).lower())
+    s = ".".join(re.sub(r"\d+", lambda m: str(int(m.group())), re.sub(r"[\W_]", "", p)) for p in parts)
     word = re.match(r"[^\W\d_]*", s).group(0)
     if len(word) == 1 and len(s) == 1:
         return s
@@ -209,12 +216,30 @@ def canonical_visits(visits, visit_map: dict[str, str] | None = None) -> tuple[d
     return {raw: label[visit_key(name)] for raw, name in mapped.items()}, warning
 
 
+def _firsts(visits) -> list[str]:
+    """The visits that can be a baseline (C24, C28): those starting with a baseline word, else the first one."""
+    order = visit_order(visits)
+    return [v for v in order if _word_rank(v) == 0] or order[:1]
+
+
 def _baselines(named) -> dict[str, str | None]:
     """Decision C28: each subject's baseline, the first of its own visits (:func:`visit_order`) that starts with a
-    baseline word (C24; the study's first visit when no visit name does), ``None`` for a subject without one."""
-    order = visit_order(named["visit"])
-    firsts = [v for v in order if _word_rank(v) == 0] or order[:1]
-    return {s: next((v for v in firsts if v in set(mine["visit"])), None) for s, mine in named.groupby("subject")}
+    baseline word (C24; the study's first visit when no visit name does), ``None`` for a subject without one. A
+    subject of a group (site) none of whose visit names is a baseline word takes its group's first visit (decision
+    C40: a site naming its visits ``T0`` / ``T1`` beside one naming them ``pre`` / ``post``)."""
+    import pandas as pd
+
+    firsts = _firsts(named["visit"])
+    group = named["group"].astype(str) if "group" in named else pd.Series("", index=named.index)
+    local = {g: _firsts(vs) for g, vs in named.groupby(group)["visit"]}
+    out = {}
+    for s, mine in named.groupby("subject"):
+        own = set(mine["visit"])
+        out[s] = next((v for v in firsts if v in own), None)
+        g = str(group[mine.index[0]])
+        if out[s] is None and _word_rank(local[g][0]) != 0:  # C40: the group names its baseline otherwise
+            out[s] = next((v for v in local[g] if v in own), None)
+    return out
 
 
 def _twins(named) -> dict[str, list[str]]:

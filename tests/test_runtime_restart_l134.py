@@ -62,3 +62,16 @@ def test_a_bad_restart_state_is_one_line(synthetic_bundle):
     state["heading_rad"] = float("nan")
     with pytest.raises(DataError, match="not finite"):
         Tracker(synthetic_bundle, resume=state)
+
+
+def test_a_resampling_tracker_refuses_a_restart_state(synthetic_bundle):
+    """Decision L140: a tracker resampling 50 Hz input to the bundle's 20 Hz cannot hand on its filter's last raw
+    samples; its resampled buffer re-pushed into a new resampling tracker lost a stride (0.20-0.28 m off), so
+    restart_state() refuses in one line naming the start=/heading_rad= restart."""
+    walk50 = synthetic_session(12, seed=3, name="walk50", rate_hz=50.0)
+    tr = Tracker(synthetic_bundle, resample=True)
+    for _, c in list(time_chunks(walk50, CHUNK_S))[:12]:
+        tr.push(c)
+    assert tr.resampled_hz
+    with pytest.raises(DataError, match=r"^restart_state\(\): this tracker resamples .*start=tuple.*L140"):
+        tr.restart_state()

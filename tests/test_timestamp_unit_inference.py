@@ -129,3 +129,23 @@ def test_an_ambiguous_unit_names_the_option_that_forces_the_other(tmp_path, caps
     assert main(["import", str(tmp_path / "Magnetometer.csv"), "--unit", "waist", "--out", str(tmp_path / "s")]) == 0
     assert "in us (guessed column, unit inferred (B22); also fits ns: pass --time-unit ns if it is in ns)" in \
         capsys.readouterr().err
+
+
+@pytest.mark.parametrize("step_s, ok", [(0.1, True), (0.101, True), (0.2, False)])
+def test_a_10_hz_imu_file_is_within_the_floor(tmp_path, capsys, step_s, ok):
+    """B160: B144's 10 Hz floor refused a 10 Hz accelerometer whose seconds, read from text, give a median step of
+    0.10000000000000142 s (600 rows: "no plausible rate"; with --time-unit s: "give 10 Hz"), and one whose clock
+    runs 1 % slow; 5 Hz is still refused."""
+    from pdrlearn.cli import main
+
+    n = 600
+    t = [float(f"{i * step_s:.3f}") for i in range(n)]
+    assert 1.0 / np.median(np.diff(t)) < 10.0  # every case is under 10.000 Hz
+    df = pd.DataFrame({"time": t, "acc_x": np.full(n, 0.1), "acc_y": np.full(n, 0.2), "acc_z": np.full(n, 9.8)})
+    df.to_csv(tmp_path / "Accelerometer.csv", index=False)
+    args = ["import", str(tmp_path / "Accelerometer.csv"), "--unit", "foot"]
+    assert main([*args, "--time-unit", "s", "--out", str(tmp_path / "given")]) == (0 if ok else 2)
+    assert "give 5 Hz" in capsys.readouterr().err or ok
+    if ok:  # the unit inferred: seconds, the one unit that fits
+        assert main([*args, "--out", str(tmp_path / "inferred")]) == 0
+        assert read_session(tmp_path / "inferred").streams["fAccelerometer"].t[-1] == pytest.approx(t[-1])

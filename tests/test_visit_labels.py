@@ -67,7 +67,8 @@ def test_a_visit_map_names_the_visits(tmp_path):
     assert read_visit_map(tmp_path / "m.csv") == read_visit_map(tmp_path / "m.json") == {"T0": "baseline",
                                                                                          "T1": "week12"}
     rows = _site("siteA", ("S1",), ("baseline", "week12")) + _site("siteB", ("S2",), ("T0", "T1"))
-    assert change_table(_sessions(rows))["status"].tolist() == ["ok"] + ["missing"] * 3  # T0, T1 unknown
+    unmapped = change_table(_sessions(rows))  # T0 / T1 unknown: siteB's own baseline (C40), its own visit
+    assert unmapped["status"].tolist() == ["ok", "ok"] and unmapped["visit"].tolist() == ["week12", "T1"]
     changes = change_table(_sessions(rows), visit_map=read_visit_map(tmp_path / "m.csv"))
     assert changes["status"].tolist() == ["ok", "ok"] and set(changes["visit"]) == {"week12"}
     (tmp_path / "bad.csv").write_text("T0,baseline\nT1\n")
@@ -165,3 +166,44 @@ def test_look_alike_subject_ids_get_a_hint():
     assert label_warnings(_sessions(rows)) == [
         "subject ids seen at one visit look like another subject's: 'S7l8' like 'S718'; 's719' like 'S719': a typo "
         "in meta.json's subject? (decision C33)"]
+
+
+def test_numbers_apart_are_not_one_number():
+    """C40: C28's spelling key dropped the separator between two numbers, so `month1.5` and `month15` (or the dates
+    `2026-1-12` and `2026-11-2`) were one visit: the subject's two sessions at it were `several`, nothing paired."""
+    from pdrlearn.visits import label_warnings, visit_key
+
+    assert visit_key("2026-1-12") != visit_key("2026-11-2") and visit_key("1.5") != visit_key("15")
+    assert visit_key("Week 1.5") == visit_key("week1.5") and visit_key("W01") == visit_key("week 1")
+    rows = _site("siteA", ("S1", "S2"), ("month0", "month1.5", "month15"), speeds=(1.0, 1.1, 1.3))
+    changes = change_table(_sessions(rows))
+    assert changes[["subject", "visit", "status"]].values.tolist() == [
+        ["S1", "month1.5", "ok"], ["S1", "month15", "ok"], ["S2", "month1.5", "ok"], ["S2", "month15", "ok"]]
+    assert not label_warnings(_sessions(rows))
+
+
+def test_a_site_numbering_its_visits_has_its_own_baseline_beside_a_pre_post_site():
+    """C40: C28's per-subject baseline held only for baseline words: beside a site naming its visits pre / post, a
+    site naming them T0 / T1 (or visit1 / visit2) had no baseline: every one of its subjects `missing` against
+    `pre`, nothing paired. Now a group with no baseline word takes its own first visit; a subject of a site that
+    does name one and lacks it is still listed against it."""
+    rows = (_site("siteA", ("S1", "S2"), ("pre", "post")) + _site("siteB", ("S3", "S4"), ("T0", "T1"))
+            + _site("siteC", ("S5", "S6"), ("visit1", "visit2")) + [("siteA/S7/post", "S7", "post", 1.2)])
+    changes = change_table(_sessions(rows))
+    assert changes[["subject", "baseline_visit", "visit", "status"]].values.tolist() == [
+        ["S1", "pre", "post", "ok"], ["S2", "pre", "post", "ok"], ["S3", "T0", "T1", "ok"], ["S4", "T0", "T1", "ok"],
+        ["S5", "visit1", "visit2", "ok"], ["S6", "visit1", "visit2", "ok"], ["S7", "pre", "post", "missing"]]
+    assert changes["gait_speed_mps_change"].dropna().round(12).eq(0.3).all()
+
+
+def test_subjects_csv_names_visits_as_changes_csv():
+    """C40: subjects.csv kept the visits as written, so one subject's walks at `BL` and `Baseline` were two rows
+    (totals split) while changes.csv paired them as `baseline`; a --visit-map names them in both."""
+    from pdrlearn.visits import subject_totals
+
+    rows = [("siteA/S1/a", "S1", "BL", 1.0), ("siteA/S1/b", "S1", "Baseline", 1.1), ("siteA/S1/c", "S1", "W12", 1.3)]
+    sessions = _sessions(rows).assign(distance_m=[10.0, 20.0, 30.0])
+    out = subject_totals(sessions)
+    assert out[["visit", "n_tracked", "distance_m"]].values.tolist() == [["baseline", 2, 30.0], ["W12", 1, 30.0]]
+    out = subject_totals(sessions, {"W12": "followup"})
+    assert out["visit"].tolist() == ["baseline", "followup"]

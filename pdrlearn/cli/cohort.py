@@ -719,7 +719,7 @@ def track_all(
         changes, summary = _changes(sessions, vmap)
         from pdrlearn.visits import subject_totals
 
-        subjects = subject_totals(sessions)  # cohort C25: None when no session names a subject
+        subjects = subject_totals(sessions, vmap)  # cohort C25: None when no session names a subject (C40: visits)
         run = _run_record(root, options, rels, results, found)
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")

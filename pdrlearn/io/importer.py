@@ -28,7 +28,7 @@ from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.validate import (
     CLOCK_RESET_S,
-    IMU_MIN_RATE_HZ,
+    IMU_FLOOR_HZ,
     STANDARD_GRAVITY,
     check_imu_pair,
     check_rate,
@@ -310,7 +310,7 @@ def _check_import_rate(t: np.ndarray, t_raw: np.ndarray, t_unit: str, t_how: str
     meta.json (which import writes). An ``inertial`` stream under B144's floor is refused the same way."""
     try:
         check_rate(t, f"{where} ({column} as {t_unit})")
-        slow = inertial and t.size >= 3 and 1.0 / float(np.median(np.diff(t))) < IMU_MIN_RATE_HZ  # decision B144
+        slow = inertial and t.size >= 3 and 1.0 / float(np.median(np.diff(t))) < IMU_FLOOR_HZ  # B144, B160
     except DataError:
         slow = True
     if slow:

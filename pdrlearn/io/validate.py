@@ -179,6 +179,10 @@ RATE_LIMITS_HZ = (0.5, 5000.0)
 #: B9's 5000 Hz ceiling the band spans under a factor 1000, so at most one of ms/us/ns (or s/ms) fits an IMU file
 #: (a phone's epoch-ns clock at 1000 Hz read as us gave 0.996 Hz, plausible under the 0.5 Hz barometer floor).
 IMU_MIN_RATE_HZ = 10.0
+#: decision B160: the rate an accelerometer or gyroscope file is refused below (Hz), B144's 10 Hz less B22's 10 %
+#: tolerance: a 10 Hz logger whose seconds read from text give a median step of 0.10000000000000142 s (9.99999 Hz)
+#: or whose clock runs 1 % slow (101 ms) is a 10 Hz file; 5000 / 9 Hz still spans under a factor 1000
+IMU_FLOOR_HZ = 0.9 * IMU_MIN_RATE_HZ
 #: decision B144: a first timestamp read as after 2100-01-01 (epoch s) is in another unit (epoch ns read as us:
 #: year ~56,900)
 EPOCH_END = 4.1e9
@@ -218,7 +222,7 @@ _UNIT_NAMES = (("ms", "milliseconds"), ("s", "seconds"), ("us", "microseconds"),
 def time_unit_candidates(t_raw: np.ndarray, declared_rate_hz: float | None = None, *,
                          inertial: bool = False) -> list[tuple[str, float]]:
     """The units (``(unit, seconds per unit)``, ms first) in which raw timestamps give a plausible rate
-    (:data:`RATE_LIMITS_HZ`; from :data:`IMU_MIN_RATE_HZ` for an ``inertial`` file, decision B144) and, where
+    (:data:`RATE_LIMITS_HZ`; from :data:`IMU_FLOOR_HZ` for an ``inertial`` file, decisions B144, B160) and, where
     ``meta.json`` declares a rate, that rate within 10 % (decision B22), and a first timestamp before
     :data:`EPOCH_END` (B144). Every unit when the timestamps say nothing (fewer than 3, or not increasing:
     :func:`check_timestamps`'s error)."""
@@ -227,7 +231,7 @@ def time_unit_candidates(t_raw: np.ndarray, declared_rate_hz: float | None = Non
     d = float(np.median(np.diff(t_raw)))
     if not np.isfinite(d) or d <= 0:
         return list(_TIME_UNITS)
-    lo, hi = (IMU_MIN_RATE_HZ, RATE_LIMITS_HZ[1]) if inertial else RATE_LIMITS_HZ
+    lo, hi = (IMU_FLOOR_HZ, RATE_LIMITS_HZ[1]) if inertial else RATE_LIMITS_HZ  # B144, B160
     t0 = abs(float(t_raw[0]))
     return [(u, k) for u, k in _TIME_UNITS if lo <= 1.0 / (d * k) <= hi and t0 * k < EPOCH_END
             and (declared_rate_hz is None or abs(1.0 / (d * k) - declared_rate_hz) <= 0.1 * declared_rate_hz)]

@@ -29,7 +29,17 @@ def restart_state(tracker) -> dict:
     """Decision L134: ``{"version", "position" [x, y, z] m, "heading_rad", "last_end_s" (the last measured
     stride's end, s, or None), "last_step" (the last emitted row's end, heading, position and stride times, for
     E46's gap row and E51's stride time; or None), "n_steps", "samples": {sensor: {"t": [...] s, "values":
-    [[...], ...]}}}`` with the samples the tracker buffers (the input side's, after E22's resampling)."""
+    [[...], ...]}}}`` with the samples the tracker buffers. A tracker that resamples (``resample=True``, E22) is
+    refused in one line (decision L140): its buffer holds resampled samples, and its low-pass filter holds the last
+    raw ones (its delay, 0.84 s from 50 to 20 Hz), which no state carries; a new tracker fed the resampled samples
+    resampled them again and lost a stride (0.20-0.28 m off at the end of a 40-stride walk)."""
+    if tracker.inputs.resamplers:
+        names = ", ".join(sorted(tracker.inputs.resamplers))
+        raise DataError(f"restart_state(): this tracker resamples {names} to {tracker.rate_hz:g} Hz (resample=True, "
+                        "E22), and its filter's last samples cannot be handed on; restart it with Tracker(bundle, "
+                        "start=tuple(old.position), heading_rad=old.heading) (the stride in progress is lost), or "
+                        "track at the data's own rate (resample='native', the default) to restart whole "
+                        "(decision L140)")
     kept = tracker._kept
     return {
         "version": STATE_VERSION,
