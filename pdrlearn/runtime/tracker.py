@@ -903,7 +903,8 @@ class Tracker(FixInput):
             f"{name}: pushed timestamps jump {b - a:+.2f} s ahead ({a:.3f} -> {b:.3f} s), more than max_gap_s = "
             f"{self.max_gap_s:g} s: a clock glitch? The push is refused and the tracker is unchanged (decision B141); "
             "push those samples with their right times, or, if the sensors really were silent that long, go on with "
-            "a new Tracker(bundle, start=tuple(old.position), heading_rad=old.heading), or give Tracker(max_gap_s=...)")
+            "old.flush() (the steps it still holds) and a new Tracker(bundle, start=tuple(old.position), "
+            "heading_rad=old.heading), or give Tracker(max_gap_s=...)")
 
     def _jumped_note(self, t: float) -> str:
         """Decision B141: for a refused sample at ``t`` s inside a gap the tracker accepted (a forward jump of its
@@ -912,7 +913,8 @@ class Tracker(FixInput):
             if a < t < b:
                 return (f"; the tracker accepted a jump of its clock from {a:.3f} to {b:.3f} s as a gap (warned), so "
                         f"every sample before {b:.3f} s is refused from now on: if that jump was a clock glitch, only "
-                        "a new Tracker(bundle, start=tuple(old.position), heading_rad=old.heading) goes on (decision "
+                        "old.flush() and a new Tracker(bundle, start=tuple(old.position), heading_rad=old.heading) "
+                        "go on (decision "
                         f"B141; max_gap_s = {self.max_gap_s:g} s refuses longer jumps)")
         return ""
 
