@@ -5,7 +5,9 @@ Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_sit.py
      ... experiments/waist_sit.py veto   # decision W104 (a), (b): users 640-659, with / without `sit_veto`
      ... experiments/waist_sit.py real   # decision W104 (c): experiments/waist.py's scoring of the mobgap recordings
      ... experiments/waist_sit.py where  # after the measurement: where the vetoed real contacts lie (no tuning)
-Output: experiments/results/waist_sit_count.txt, waist_sit_veto.txt, waist_sit_real.txt
+     ... experiments/waist_sit.py rhythm # decision W109 (a)-(c): users 910-949 and the real recordings,
+                                           sit_veto="rhythm" against no veto; Test11 contacts outside the bouts
+Output: experiments/results/waist_sit_count.txt, waist_sit_veto.txt, waist_sit_real.txt, waist_sit_rhythm.txt
 """
 import logging
 import sys
@@ -33,7 +35,9 @@ def true_matched(events: np.ndarray, truth: np.ndarray, tol_s: float = 0.25) -> 
     return int(sum(np.abs(events - t).min() <= tol_s for t in truth)) if events.size else 0
 
 
-def count(users: range, **track_kw) -> dict[str, int]:
+def count(users: range, matched: dict | None = None, **track_kw) -> dict[str, int]:
+    """Contacts inside the transfers of SIT_ROUTE per pipeline, summed over ``users``; ``matched`` (if given)
+    receives the true contacts matched per pipeline, summed."""
     per = {p: [] for p in PIPELINES}
     for u in users:
         s = simulate_path(parse_route(SIT_ROUTE), UserProfile.from_seed(u), rate_hz=100, seed=u)
@@ -45,6 +49,8 @@ def count(users: range, **track_kw) -> dict[str, int]:
             ev = res.steps["event_s"].to_numpy(float)
             k = in_transfers(ev, tr)
             per[p].extend(k.tolist())
+            if matched is not None:
+                matched[p] = matched.get(p, 0) + true_matched(ev, truth)
             line.append(f"{p}: {len(ev)} contacts, {true_matched(ev, truth)}/{truth.size} true matched, "
                         f"in transfers {k.tolist()}")
         print(f"user {u}: " + "; ".join(line), flush=True)
@@ -70,6 +76,11 @@ def veto() -> None:
         removed = 100.0 * (before[p] - after[p]) / max(before[p], 1)
         print(f"(a) {p}: in-transfer contacts {before[p]} -> {after[p]}, removed {removed:.1f} % "
               f"({'met' if removed >= 80.0 else 'NOT met'}: >= 80 %)")
+    walks(users, True)
+
+
+def walks(users: range, sit_veto) -> bool:
+    """(b) of W104 / W109: the walks without sitting, true contacts matched without and with ``sit_veto``."""
     lost = {p: 0 for p in PIPELINES}
     for u in users:
         for route in WALK_ROUTES:
@@ -78,7 +89,7 @@ def veto() -> None:
             line = []
             for p in PIPELINES:
                 m0 = true_matched(track_waist(s, pipeline=p).steps["event_s"].to_numpy(float), truth)
-                r1 = track_waist(s, pipeline=p, sit_veto=True)
+                r1 = track_waist(s, pipeline=p, sit_veto=sit_veto)
                 m1 = true_matched(r1.steps["event_s"].to_numpy(float), truth)
                 lost[p] += m0 != m1
                 line.append(f"{p} matched {m0} -> {m1} (vetoed {r1.info['n_vetoed_contacts']})")
@@ -86,10 +97,12 @@ def veto() -> None:
     for p in PIPELINES:
         print(f"(b) {p}: walks with a lost true contact {lost[p]} of {len(users) * len(WALK_ROUTES)} "
               f"({'met' if lost[p] == 0 else 'NOT met'})")
+    return all(v == 0 for v in lost.values())
 
 
-def real() -> None:
-    """W104 (c): experiments/waist.py's `real()` and `pooled()` on the mobgap recordings, with / without."""
+def real(sit_veto=True) -> bool:
+    """W104 (c) / W109 (c): experiments/waist.py's `real()` and `pooled()` on the mobgap recordings, without and
+    with ``sit_veto``; True when no row's step_f1 and no pipeline's pooled Test11 step_f1 drops."""
     from pathlib import Path
 
     import pandas as pd
@@ -98,26 +111,96 @@ def real() -> None:
     import waist as W  # experiments/waist.py
 
     ext = Path("datasets/external")
-    configs = [("waist-pendulum", "waist-pendulum", {}), ("waist-pll (A-HE)", "waist-pll", {}),
-               ("waist-pendulum +veto", "waist-pendulum", {"sit_veto": True}),
-               ("waist-pll (A-HE) +veto", "waist-pll", {"sit_veto": True})]
+    bases = (("waist-pendulum", "waist-pendulum"), ("waist-pll (A-HE)", "waist-pll"))
+    configs = [(label, pipe, {}) for label, pipe in bases]
+    configs += [(label + " +veto", pipe, {"sit_veto": sit_veto}) for label, pipe in bases]
     bouts: list = []
     df = W.real(ext, W.external_runs(ext), configs=configs, bouts=bouts)
     pd.set_option("display.width", 220)
     key = ["subject", "test", "calibrated_on", "params"]
-    for base in ("waist-pendulum", "waist-pll (A-HE)"):
+    ok = True
+    for base, _ in bases:
         a = df[df.pipeline == base].set_index(key)["step_f1"]
         b = df[df.pipeline == base + " +veto"].set_index(key)["step_f1"]
         n_a = df[df.pipeline == base].set_index(key)["n_detected"]
         n_b = df[df.pipeline == base + " +veto"].set_index(key)["n_detected"]
         cmp = pd.DataFrame({"f1": a, "f1_veto": b, "diff": b - a, "n_det": n_a, "n_det_veto": n_b})
-        print(f"\n{base}:")
+        print(f"\n{base} (+veto: sit_veto={sit_veto!r}):")
         print(cmp.round(4).to_string())
-        print(f"rows with a lower step_f1: {int((cmp['diff'] < -1e-9).sum())} of {len(cmp)}")
+        lower = int((cmp["diff"] < -1e-9).sum())
+        ok &= lower == 0
+        print(f"rows with a lower step_f1: {lower} of {len(cmp)}")
     pool = W.pooled(df, pd.DataFrame(bouts))
     print("\npooled:")
     print(pool[[c for c in pool.columns if c in ("pipeline", "params", "test", "kind", "step_f1", "tp",
                                                   "n_detected", "n_reference")]].round(4).to_string(index=False))
+    kind = "kind" if "kind" in pool else "test"
+    t11 = pool[pool[kind] == "Test11"]
+    for base, _ in bases:
+        for params, g in t11[t11.pipeline.isin([base, base + " +veto"])].groupby("params"):
+            f0 = float(g.loc[g.pipeline == base, "step_f1"].iloc[0])
+            f1 = float(g.loc[g.pipeline == base + " +veto", "step_f1"].iloc[0])
+            ok &= f1 >= f0 - 1e-9
+            print(f"pooled Test11 {base} ({params}): step_f1 {f0:.4f} -> {f1:.4f}")
+    print(f"(c) {'met' if ok else 'NOT met'}")
+    return ok
+
+
+def _outside_bouts(events: np.ndarray, d) -> np.ndarray:
+    """Per contact (s): outside every reference walking bout (bouts.csv level wb) of the recording ``d``."""
+    import pandas as pd
+
+    b = pd.read_csv(d / "bouts.csv")
+    b = b[b["level"] == "wb"]
+    inside = np.zeros(events.size, bool)
+    for s0, s1 in zip(b.start_ms / 1000, b.end_ms / 1000, strict=True):
+        inside |= (events >= s0) & (events <= s1)
+    return ~inside
+
+
+def outside(values=(False, True, "rhythm")) -> None:
+    """The Test11 contacts (uncalibrated waist-pendulum and waist-pll) outside every reference bout, per
+    ``sit_veto`` value (for information, W109)."""
+    from pathlib import Path
+
+    from pdrlearn.io import read_session
+
+    for p in PIPELINES:
+        tot = {v: 0 for v in values}
+        for d in sorted(Path("datasets/external").glob("mobgap_*_Test11_*")):
+            s = read_session(d)
+            line = []
+            for v in values:
+                e = track_waist(s, pipeline=p, sit_veto=v).steps["event_s"].to_numpy(float)
+                n_out = int(_outside_bouts(e, d).sum())
+                tot[v] += n_out
+                line.append(f"sit_veto={v!r}: {e.size} contacts, {n_out} outside")
+            print(f"{p} {d.name}: " + "; ".join(line), flush=True)
+        print(f"{p} Test11 pooled contacts outside the reference bouts: "
+              + ", ".join(f"sit_veto={v!r} {n}" for v, n in tot.items()))
+
+
+def rhythm() -> None:
+    """Decision W109: (a), (b) on fresh users 910-949, (c) on the real recordings, sit_veto="rhythm" against
+    no veto; then the Test11 contacts outside the reference bouts (information)."""
+    users = range(910, 950)
+    m0: dict = {}
+    m1: dict = {}
+    print("(a) without the veto")
+    before = count(users, m0)
+    print('(a) with sit_veto="rhythm"')
+    after = count(users, m1, sit_veto="rhythm")
+    ok_a = True
+    for p in PIPELINES:
+        removed = 100.0 * (before[p] - after[p]) / max(before[p], 1)
+        ok_a &= removed >= 80.0
+        print(f"(a) {p}: in-transfer contacts {before[p]} -> {after[p]}, removed {removed:.1f} % "
+              f"({'met' if removed >= 80.0 else 'NOT met'}: >= 80 %); true contacts matched {m0[p]} -> {m1[p]}")
+    ok_b = walks(users, "rhythm")
+    ok_c = real("rhythm")
+    print(f"W109: (a) {'met' if ok_a else 'NOT met'}, (b) {'met' if ok_b else 'NOT met'}, "
+          f"(c) {'met' if ok_c else 'NOT met'} -> {'ADOPT' if ok_a and ok_b and ok_c else 'not adopted'}")
+    outside()
 
 
 def where() -> None:
@@ -134,11 +217,7 @@ def where() -> None:
         e0 = track_waist(s, pipeline="waist-pendulum").steps["event_s"].to_numpy(float)
         e1 = track_waist(s, pipeline="waist-pendulum", sit_veto=True).steps["event_s"].to_numpy(float)
         gone = np.array([e for e in e0 if np.abs(e1 - e).min() > 1e-9]) if e1.size else e0
-        b = pd.read_csv(d / "bouts.csv")
-        b = b[b["level"] == "wb"]
-        inside = np.zeros(gone.size, bool)
-        for s0, s1 in zip(b.start_ms / 1000, b.end_ms / 1000, strict=True):
-            inside |= (gone >= s0) & (gone <= s1)
+        inside = ~_outside_bouts(gone, d)
         ics = pd.read_csv(d / "ics.csv")
         ic = ics["ic_ms"].to_numpy(float) / 1000.0
         near = np.array([np.abs(ic - g).min() <= 0.25 for g in gone], bool) if gone.size else inside
@@ -154,3 +233,5 @@ elif sys.argv[1:] == ["real"]:
     real()
 elif sys.argv[1:] == ["where"]:
     where()
+elif sys.argv[1:] == ["rhythm"]:
+    rhythm()

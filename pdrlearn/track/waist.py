@@ -353,6 +353,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "sit_veto": False}
+#: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
+SIT_VETO_VALUES = (False, True, "rhythm")
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -371,7 +373,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
                 relative_gate: bool | None = None, stairs_length: bool | None = None, stairs_climb: bool | None = None,
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
-                sit_veto: bool | None = None) -> TrackResult:
+                sit_veto: bool | str | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -415,8 +417,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     max_tilt_deg : a contact made while the trunk is tilted more than this (deg) from the session's walking upright is
         no step, and the step before it ends its sequence (decision W102, :mod:`pdrlearn.waist.posture`; sit-to-stand,
         bending); None (default) = no tilt gate
-    sit_veto : drop the contacts within 1 s of a trunk-flexion peak of more than 25 deg from the walking upright
-        (a sit-to-stand or bend event; decision W104, :func:`pdrlearn.waist.posture.transfer_veto`); default False
+    sit_veto : ``True``: drop the contacts within 1 s of a trunk-flexion peak of more than 25 deg from the walking
+        upright (a sit-to-stand or bend event; decision W104, :func:`pdrlearn.waist.posture.transfer_veto`);
+        ``"rhythm"``: the same, sparing the contacts that alternate left/right with a neighbour of their walking
+        sequence (decision W109); ``False`` (default): no veto
 
     The altitude (trajectory ``z``, steps ``dz_m``) is the waist barometer's, relative to the start (decision
     W89); without a barometer it stays 0 with one warning (W90).
@@ -447,6 +451,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if smoothing != "none" and realtime:
         raise DataError(f"length_smoothing '{smoothing}' looks up to 1 s ahead and the realtime detector does not "
                         "(decision W56); drop realtime or set length_smoothing to none")
+    if o["sit_veto"] not in SIT_VETO_VALUES:
+        raise DataError(f"sit_veto {o['sit_veto']!r} is not one of false, true, \"rhythm\" (decisions W104, W109); "
+                        "fix the option or the PARAMS.json \"options\"")
     if p.source == "calibrated" and p.pipeline not in (None, pipeline):
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
@@ -474,8 +481,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps = tilt_gate(steps, imu, float(o["max_tilt_deg"]))
         n_tilted = steps.attrs["n_tilted"]
     n_vetoed = 0
-    if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak
-        steps = transfer_veto(steps, imu)
+    if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept
+        steps = transfer_veto(steps, imu, keep_rhythm=o["sit_veto"] == "rhythm")
         n_vetoed = steps.attrs["n_vetoed"]
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))

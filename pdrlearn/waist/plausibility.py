@@ -55,8 +55,14 @@ def contact_alternation(t: np.ndarray, acc_ml: np.ndarray, fs: float, event_s: n
     ev = np.asarray(event_s, dtype=np.float64)
     if ev.size < 2:
         return None, 0
-    idx = np.clip(np.searchsorted(t, ev), 0, len(t) - 1)
-    return alternation_index(K.lateral_velocity(acc_ml, fs)[idx], has_next)
+    return alternation_index(contact_lateral_velocity(t, acc_ml, fs, ev), has_next)
+
+
+def contact_lateral_velocity(t: np.ndarray, acc_ml: np.ndarray, fs: float, event_s: np.ndarray) -> np.ndarray:
+    """W20's :func:`~pdrlearn.waist._kernels.lateral_velocity` of ``acc_ml`` at the sample of each contact
+    ``event_s`` (s, on the sample times ``t``; shared by W98's index and W109's rhythm test)."""
+    idx = np.clip(np.searchsorted(t, np.asarray(event_s, dtype=np.float64)), 0, len(t) - 1)
+    return K.lateral_velocity(acc_ml, fs)[idx]
 
 
 def not_alternating_message(index: float, pairs: int) -> str:

@@ -9,6 +9,9 @@ measuring.
 Decision W104: :func:`transfer_veto` drops the contacts around a sit-to-stand (or bend) *event*, a run of samples whose
 tilt from the walking upright exceeds :data:`TRANSFER_PEAK_DEG`: a brief transfer stays under W102's threshold in a
 +-0.5 s mean but not at its peak.
+
+Decision W109: ``keep_rhythm`` spares the contacts in that window that alternate left/right with a neighbour of their
+walking sequence (W20's sides): a transfer or a bend is sagittal and shifts no weight sideways, a step does.
 """
 
 from __future__ import annotations
@@ -16,7 +19,9 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU
+from pdrlearn.waist.plausibility import contact_lateral_velocity
 
 #: A contact whose trunk direction is further than this from the session's walking upright is no step (deg; W102).
 MAX_TILT_DEG = 40.0
@@ -89,17 +94,32 @@ def _drop_contacts(steps: pd.DataFrame, keep: np.ndarray, count: str) -> pd.Data
     return out
 
 
-def transfer_veto(steps: pd.DataFrame, imu: WaistIMU) -> pd.DataFrame:
+def alternating_pairs(side: np.ndarray, has_next: np.ndarray) -> np.ndarray:
+    """Per contact: True when it and a neighbour are consecutive contacts of one walking sequence (``has_next`` of
+    the earlier) on decided, opposite sides (``side`` from :func:`pdrlearn.waist._kernels.step_sides`: +1 / -1,
+    0 undecided) - a left/right step pair (decision W109)."""
+    side = np.asarray(side, dtype=np.int8)
+    pair = np.asarray(has_next, dtype=bool)[:-1] & (side[:-1].astype(int) * side[1:] == -1)
+    return np.append(pair, False) | np.insert(pair, 0, False)
+
+
+def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = False) -> pd.DataFrame:
     """``steps`` without the contacts inside a trunk-flexion event (:func:`flexion_events`) or within
-    :data:`TRANSFER_HALF_S` of its peak (decision W104); ``attrs["n_vetoed"]`` counts them."""
+    :data:`TRANSFER_HALF_S` of its peak (decision W104); with ``keep_rhythm`` (decision W109) the contacts of
+    that window that form a left/right pair with a neighbour (:func:`alternating_pairs`, W20's sides of the pelvis's
+    lateral velocity at the contacts) are kept. ``attrs["n_vetoed"]`` counts the dropped."""
     if steps.empty:
         out = steps.copy()
         out.attrs["n_vetoed"] = 0
         return out
     e = steps["event_s"].to_numpy(float)
+    has_next = steps["has_next"].to_numpy(bool)
     veto = np.zeros(e.size, dtype=bool)
-    for a, peak, b in flexion_events(imu, e, steps["has_next"].to_numpy(bool)):
+    for a, peak, b in flexion_events(imu, e, has_next):
         veto |= ((e >= a) & (e <= b)) | (np.abs(e - peak) <= TRANSFER_HALF_S)
+    if keep_rhythm and veto.any():
+        side = K.step_sides(contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, e), has_next)
+        veto &= ~alternating_pairs(side, has_next)
     return _drop_contacts(steps, ~veto, "n_vetoed")
 
 
