@@ -1,26 +1,34 @@
 """Decision W102: the trunk-tilt gate (option `max_tilt_deg`; measured, not adopted as the default); decision W104:
-the sit-to-stand veto (option `sit_veto`)."""
+the sit-to-stand veto (option `sit_veto`); decision W109: the veto sparing left/right step pairs (`sit_veto="rhythm"`,
+measured, not adopted); decision W110: an unknown `sit_veto` value is refused."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pandas as pd
+import pytest
 from scipy.spatial.transform import Rotation
 
-from pdrlearn.io import Stream
+from pdrlearn.errors import DataError
+from pdrlearn.io import Stream, read_session
 from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.waist import track_waist
-from pdrlearn.waist.ahrs import WaistIMU
+from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.events import steps_from_events
 from pdrlearn.waist.posture import (
     MAX_TILT_DEG,
     TRANSFER_HALF_S,
+    alternating_pairs,
     contact_tilt_deg,
     flexion_events,
     tilt_gate,
     transfer_veto,
 )
+
+from tests.conftest import external_session
 
 FS = 100.0
 
@@ -140,3 +148,62 @@ def test_the_veto_changes_no_step_of_an_upright_walk():
     on = track_waist(s, pipeline="waist-pendulum", sit_veto=True)
     pd.testing.assert_frame_equal(on.steps, track_waist(s, pipeline="waist-pendulum").steps)
     assert on.info["n_vetoed_contacts"] == 0
+
+
+def test_alternating_pairs_are_consecutive_contacts_of_a_sequence_on_decided_opposite_sides():
+    side = np.array([1, -1, 0, 1, 1, -1, 1])
+    has_next = np.array([True, True, True, True, False, True, False])
+    # 0-1 a pair; 1-2 and 2-3 undecided; 3-4 same side; 4-5 not one sequence; 5-6 a pair
+    assert alternating_pairs(side, has_next).tolist() == [True, True, False, False, False, True, True]
+
+
+def test_the_rhythm_veto_keeps_the_contacts_that_sway_left_and_right_around_a_bend():
+    t = np.arange(0.0, 20.0, 1.0 / FS)
+    steps = steps_from_events(t, np.arange(50, 1950, 50))  # a contact every 0.5 s
+    # a 1 Hz lateral sway (one stride per two contacts) everywhere except 10.5-11.5 s, the bend's middle
+    sway = np.sin(2.0 * np.pi * t) * ((t < 10.5) | (t > 11.5))
+    imu = dataclasses.replace(_imu(Rotation.identity()), acc_ml=sway)
+    gone = sorted(set(steps["event_s"].round(2)) - set(transfer_veto(steps, imu)["event_s"].round(2)))
+    assert gone == [10.0, 10.5, 11.0, 11.5, 12.0]  # W104: every contact within 1 s of the peak
+    out = transfer_veto(steps, imu, keep_rhythm=True)
+    assert sorted(set(steps["event_s"].round(2)) - set(out["event_s"].round(2))) == [11.0]  # no sway, no pair
+    assert out.attrs["n_vetoed"] == 1
+
+
+def test_the_rhythm_veto_removes_a_simulated_sit_to_stand_whose_pelvis_does_not_sway():
+    s = simulate_path(parse_route("straight:10, sit:20, straight:10"), UserProfile.from_seed(621), rate_hz=100,
+                      seed=621)
+    tr = s.extras["transfers"].iloc[0]
+    steps = track_waist(s, pipeline="waist-pendulum").steps
+    e = steps["event_s"].to_numpy(float)
+    n_in = int(((e >= tr.start_s) & (e <= tr.end_s)).sum())
+    out = transfer_veto(steps, waist_imu(s), keep_rhythm=True)
+    e1 = out["event_s"].to_numpy(float)
+    assert n_in > 0 and not ((e1 >= tr.start_s) & (e1 <= tr.end_s)).any()
+    assert out.attrs["n_vetoed"] == n_in
+
+
+def test_the_rhythm_veto_keeps_the_real_steps_w104_dropped_after_standing_up():
+    """mobgap HA001 Test11 (W109's measurement): W104 drops 3 contacts within 0.25 s of a reference contact
+    (50.81, 76.42, 122.83 s), the rhythm veto none; it drops 8 of the 16."""
+    d = external_session("mobgap_HA001_Test11_Trial1")
+    s = read_session(d)
+    ic = pd.read_csv(d / "ics.csv")["ic_ms"].to_numpy(float) / 1000.0
+    e0 = track_waist(s, pipeline="waist-pendulum").steps["event_s"].to_numpy(float)
+
+    def dropped(value):
+        e1 = track_waist(s, pipeline="waist-pendulum", sit_veto=value).steps["event_s"].to_numpy(float)
+        gone = np.array([e for e in e0 if np.abs(e1 - e).min() > 1e-9])
+        return gone, int(sum(np.abs(ic - g).min() <= 0.25 for g in gone))
+
+    (w104, near104), (w109, near109) = dropped(True), dropped("rhythm")
+    assert (len(e0), len(w104), near104) == (107, 16, 3)
+    assert (len(w109), near109) == (8, 0)
+    assert set(np.round(w109, 6)) <= set(np.round(w104, 6))  # the same window, fewer contacts
+
+
+def test_an_unknown_sit_veto_value_is_refused_in_one_line():
+    s = simulate_path([Stand(3.0), Straight(6.0), Stand(3.0)], UserProfile.from_seed(541), rate_hz=100, seed=541)
+    with pytest.raises(DataError, match=r"sit_veto 'yes' is not one of false, true, \"rhythm\"") as e:
+        track_waist(s, pipeline="waist-pendulum", sit_veto="yes")
+    assert "\n" not in str(e.value)
