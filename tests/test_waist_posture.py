@@ -27,7 +27,6 @@ from pdrlearn.waist.posture import (
     tilt_gate,
     transfer_veto,
 )
-
 from tests.conftest import external_session
 
 FS = 100.0
