@@ -19,8 +19,6 @@ Run: PYTHONPATH=. .venv/bin/python experiments/waist_bout_parts.py [--external d
 
 from __future__ import annotations
 
-import argparse
-import logging
 import sys
 from pathlib import Path
 
@@ -36,8 +34,6 @@ from pdrlearn.track import get_pipeline  # noqa: E402
 from pdrlearn.waist.calibration import calibrate  # noqa: E402
 from pdrlearn.waist.evaluate import bout_stride_length, distance_metrics, reference_bouts, steps_in_interval  # noqa: E402
 from pdrlearn.waist.params import resolve_params  # noqa: E402
-
-ROOT = Path(__file__).resolve().parents[1]
 
 
 def track(ext: Path, cal_names: list[str], test_name: str, options: dict | None = None):
@@ -114,15 +110,8 @@ def counterfactual_medians(t: pd.DataFrame) -> dict[str, float]:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
-    args = ap.parse_args()
-    logging.basicConfig(level=logging.ERROR)
-    pd.set_option("display.width", 250)
-    runs = [r for r in W.external_runs(args.external) if "_Test11_" in r[1]]
-    if not runs:
-        raise SystemExit(f"{args.external}: no mobgap Test11 sessions with a reference; run `make external` first")
-    t = pd.concat([bout_parts(*track(args.external, c, n), n.split("_")[1]) for c, n in runs], ignore_index=True)
+    external, runs = W.test11_cli()
+    t = pd.concat([bout_parts(*track(external, c, n), n.split("_")[1]) for c, n in runs], ignore_index=True)
     print("per bout (%; 1 + err_L = (1 + ref)(1 + count)(1 + step); turn + straight = err_str):")
     print(t.round(1).to_string(index=False))
     print("\npooled median |bout error| with one part removed, vs Length / vs the bouts' strides:")
@@ -130,14 +119,15 @@ def main() -> None:
     for k, v in counterfactual_medians(t).items():
         print(f"  {k}: {v:.2f} / {strides[k]:.2f} %")
     ha = [r for r in runs if r[1].split("_")[1] == "HA001"][0][1]
-    steps, s = track(args.external, [ha.replace("Test11", "Test5")], ha)
+    steps, s = track(external, [ha.replace("Test11", "Test5")], ha)
     d = distance_metrics(steps, s)
     dp = bout_parts(steps, s, "HA001")
     excess = dp.tracked_m.sum() - dp.L_m.sum()
     print(f"\ndemo (HA001 Test11, calibrated on Test5 Trial1 only): total error {d['distance_error_pct']:.2f} % "
           f"(sum tracked / sum Length - 1), median per bout {d['bout_distance_error_median_pct']:.2f} %; "
           f"excess {excess:.2f} m, of it in INDIP turns {(dp.turn / 100 * dp.L_strides_m).sum():.2f} m, "
-          f"straight {(dp.straight / 100 * dp.L_strides_m).sum():.2f} m, ref gap {(dp.L_strides_m - dp.L_m).sum():.2f} m")
+          f"straight {(dp.straight / 100 * dp.L_strides_m).sum():.2f} m, "
+          f"ref gap {(dp.L_strides_m - dp.L_m).sum():.2f} m")
 
 
 if __name__ == "__main__":
