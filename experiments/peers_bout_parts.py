@@ -10,8 +10,6 @@ Run: make peers && PYTHONPATH=. .venv-peers/bin/python experiments/peers_bout_pa
 
 from __future__ import annotations
 
-import argparse
-import logging
 import sys
 from pathlib import Path
 
@@ -21,8 +19,6 @@ import pandas as pd
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import peers as P  # noqa: E402
 import waist as W  # noqa: E402
-
-ROOT = Path(__file__).resolve().parents[1]
 
 
 def parts(b: pd.DataFrame) -> pd.DataFrame:
@@ -34,18 +30,11 @@ def parts(b: pd.DataFrame) -> pd.DataFrame:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
-    args = ap.parse_args()
-    logging.basicConfig(level=logging.ERROR)
-    pd.set_option("display.width", 250)
-    runs = [r for r in W.external_runs(args.external) if "_Test11_" in r[1]]
-    if not runs:
-        raise SystemExit(f"{args.external}: no mobgap Test11 sessions with a reference; run `make external` first")
+    external, runs = W.test11_cli()
     P._mobgap_data_dir()
-    _, mob_b, _ = P.run_mobgap(args.external, sorted({t for _, t in runs}))
+    _, mob_b, _ = P.run_mobgap(external, sorted({t for _, t in runs}))
     ours_b: list = []
-    W.real(args.external, runs, configs=[("waist-pendulum", "waist-pendulum", {})], bouts=ours_b)
+    W.real(external, runs, configs=[("waist-pendulum", "waist-pendulum", {})], bouts=ours_b)
     mob = pd.DataFrame(mob_b)
     mob = mob[mob.pipeline == "mobgap Healthy"].assign(params="all subjects")
     b = parts(pd.concat([mob, pd.DataFrame(ours_b)], ignore_index=True))

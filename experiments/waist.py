@@ -191,6 +191,20 @@ def external_runs(ext: Path) -> list[tuple[list[str], str]]:
     return runs
 
 
+def test11_cli() -> tuple[Path, list[tuple[list[str], str]]]:
+    """The command line of the per-bout Test11 scripts (``[--external DIR]``): the folder and :func:`external_runs`
+    tested on daily activities (Test11); exits with the fix when there are none."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
+    ext = ap.parse_args().external
+    logging.basicConfig(level=logging.ERROR)
+    pd.set_option("display.width", 250)
+    runs = [r for r in external_runs(ext) if "_Test11_" in r[1]]
+    if not runs:
+        raise SystemExit(f"{ext}: no mobgap Test11 sessions with a reference; run `make external` first")
+    return ext, runs
+
+
 def _pooled_timing(w: np.ndarray, mean: pd.Series, sd: pd.Series, name: str) -> dict:
     """Mean and sd over all matched contacts of several runs (w = matched contacts per run)."""
     ok = (w > 0) & np.isfinite(mean.to_numpy(float))

@@ -80,3 +80,11 @@ def test_expected_warnings_that_name_the_session_folder_path_wait_too(demo, monk
     out = capsys.readouterr().out.splitlines()
     assert out[0].startswith("expected notes:") and len(out) == 5
     assert all(ln.strip().startswith(f"warning: {where}: no ") for ln in out[2:])
+
+
+def test_the_waist_distance_row_names_total_and_median(demo):
+    # decision W112: the demo's 17.31 % was the total over the bouts, read as README's median per bout (8.0 %)
+    label, value = demo.waist_distance_row({"distance_error_pct": 17.3056, "bout_distance_error_median_pct": 11.7833})
+    assert "total / median per bout" in label and "INDIP Length" in label
+    assert value == "+17.31 % / 11.78 %"
+    assert demo.waist_distance_row({}) is None

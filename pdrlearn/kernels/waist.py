@@ -232,6 +232,7 @@ def fc_after(acc_ap: np.ndarray, peaks: np.ndarray, fs: float, fc_search_s: floa
 
 RHYTHM_TOL = 0.35  # a filled maximum lies within +-35 % of a step period of its predicted time (W18)
 RHYTHM_MIN_STEPS = 3  # a local step period needs at least this many contacts of the sequence (W18)
+RHYTHM_GAP = 1.5  # an interval over this many local periods should hold a missed step (W18; W111's pause)
 SIDE_BAND_HZ = (0.3, 3.0)  # W20: holds the stride frequency of walking (0.5-1.7 Hz), drops turns/drift
 SIDE_MIN_FRAC = 1.0 / 3.0  # W20: a side is decided when |v_ml| >= 1/3 of its median at the steps
 PRUNE_HEIGHT_FRAC = 0.5  # W20: of a same-side pair only a maximum under half the other's height goes
@@ -490,7 +491,7 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
             period_a = _local_period(t, k + 1, +1, max_gap)
             per = np.nanmedian([period_b, period_a]) if np.isfinite([period_b, period_a]).any() else np.nan
             gap = t[k + 1] - t[k]
-            if np.isfinite(per) and gap > 1.5 * per:
+            if np.isfinite(per) and gap > RHYTHM_GAP * per:
                 s_n = int(sd[acc[k + 1]])
                 m = _missing_steps(gap / per, s_k, s_n)
                 fills = [best_near(t[k] + j * gap / (m + 1), tol * per, 0.0, s_k * (-1) ** j)
@@ -822,6 +823,30 @@ def turning_step_factor(dpsi_rad: np.ndarray) -> np.ndarray:
     spot)."""
     d = np.minimum(np.abs(np.asarray(dpsi_rad, dtype=np.float64)), 0.5 * np.pi)
     return np.cos(d)
+
+
+def pause_step_factor(duration_s: np.ndarray, use: np.ndarray, closes: np.ndarray) -> np.ndarray:
+    """Share of a step's pendulum length kept when the step spans a pause (decision W111): a step longer than
+    :data:`RHYTHM_GAP` local periods -- an interval W18 should have filled with a missed step and could not --
+    keeps one period's length, ``period / duration``; 1 elsewhere. The local period is W18's: the median of the
+    medians of up to three step durations on each side inside the walking sequence (at least
+    ``RHYTHM_MIN_STEPS - 1`` on a side).
+
+    ``duration_s``: IC to next IC (s) of each row; ``use``: rows that are steps with a length (not a W27 fragment,
+    not a sequence-closing contact); ``closes``: rows that end a walking sequence (no next contact)."""
+    dur = np.asarray(duration_s, dtype=np.float64)
+    use, closes = np.asarray(use, dtype=bool), np.asarray(closes, dtype=bool)
+    out = np.ones(dur.size)
+    seq = np.concatenate([[0], np.cumsum(closes)[:-1]]) if dur.size else np.zeros(0, int)
+    for sid in np.unique(seq[use]):
+        rows = np.flatnonzero(use & (seq == sid))
+        c = np.concatenate([[0.0], np.cumsum(dur[rows])])  # the sequence's contacts, one step apart
+        for j, r in enumerate(rows):
+            per = [x for x in (_local_period(c, j, -1, np.inf), _local_period(c, j + 1, +1, np.inf))
+                   if np.isfinite(x)]
+            if per and dur[r] > RHYTHM_GAP * float(np.median(per)):
+                out[r] = float(np.median(per)) / dur[r]
+    return out
 
 
 def frequency_length(f_hz: np.ndarray, a: float, b: float) -> np.ndarray:

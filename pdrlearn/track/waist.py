@@ -229,7 +229,7 @@ def _smoothed_g(steps: pd.DataFrame, g: np.ndarray, use: np.ndarray, win: dict[i
 
 def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: str, thr: float, *,
                   turn_factor: bool = False, merge_fragments: bool = False,
-                  length_smoothing: str = "none") -> pd.DataFrame:
+                  length_smoothing: str = "none", pause_steps: bool = False) -> pd.DataFrame:
     """Steps table with ``length_m`` (0 for sequence-closing contacts), ``frequency_hz``, ``dyaw_rad``
     (vertical-gyro rotation during the step) and, for the pendulum, ``h_m`` (vertical excursion) and
     ``merged`` (True: a fragment whose length its neighbour carries).
@@ -237,7 +237,8 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
     ``merge_fragments`` (pendulum): a step shorter than half its sequence's median step is merged with a
     neighbour, whose h and rotation are taken over both (decision W27). ``length_smoothing`` (pendulum): mobgap's
     smoothing of the per-step ``g = 2 sqrt(2 L h - h^2)`` per walking sequence (decision W56), kept in ``g_m``;
-    the length is ``K g_m + F``."""
+    the length is ``K g_m + F``. ``pause_steps`` (pendulum): a step longer than 1.5 local periods keeps one period's
+    length, ``x period / duration`` (decision W111), kept in ``pause_factor`` for the calibration (W21)."""
     n, fs = len(steps), imu.fs
     idx = np.clip(np.round((steps["event_s"].to_numpy(float) - imu.t[0]) * fs).astype(int), 0, len(imu.t) - 1)
     has_next = steps["has_next"].to_numpy(bool)
@@ -265,6 +266,13 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
         sl = K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m) if length_smoothing == "none" else p.k * g + p.f_m
         lengths = np.where(use, np.maximum(sl, 0.0), 0.0)
         steps = steps.assign(h_m=h, g_m=g, merged=merged)
+        if pause_steps:  # W111: the owner of a W27 window spans the whole window
+            span = dur.copy()
+            for i, (a, b) in win.items():
+                span[i] = end[b] - steps["start_s"].to_numpy(float)[a]
+            factor = K.pause_step_factor(span, use, ~has_next)
+            lengths = lengths * factor
+            steps = steps.assign(pause_factor=factor)
     else:
         sigma = K.rolling_std(imu.acc_v, fs, causal=False)
         running = K.motion_state(sigma[idx], walk_threshold=thr) == 2
@@ -352,7 +360,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
-                   "sit_veto": False}
+                   "sit_veto": False, "pause_steps": False}
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
 
@@ -373,7 +381,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
                 relative_gate: bool | None = None, stairs_length: bool | None = None, stairs_climb: bool | None = None,
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
-                sit_veto: bool | str | None = None) -> TrackResult:
+                sit_veto: bool | str | None = None, pause_steps: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -421,6 +429,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         upright (a sit-to-stand or bend event; decision W104, :func:`pdrlearn.waist.posture.transfer_veto`);
         ``"rhythm"``: the same, sparing the contacts that alternate left/right with a neighbour of their walking
         sequence (decision W109); ``False`` (default): no veto
+    pause_steps : pendulum, offline detector (the realtime one ignores it: it looks three steps ahead): a step
+        longer than 1.5 local periods spans a pause (the stop before a turn on the spot, the restart after it) and
+        keeps one period's length (decision W111); default False
 
     The altitude (trajectory ``z``, steps ``dz_m``) is the waist barometer's, relative to the start (decision
     W89); without a barometer it stays 0 with one warning (W90).
@@ -439,7 +450,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "merge_fragments": merge_fragments, "length_smoothing": length_smoothing,
              "relative_gate": relative_gate, "stairs_length": stairs_length, "stairs_climb": stairs_climb,
              "slow_turn_rps": slow_turn_rps,
-             "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto}
+             "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -488,7 +499,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
     steps = _step_lengths(steps, imu, p, pipeline, thr, turn_factor=bool(o["turn_factor"]),
-                          merge_fragments=bool(o["merge_fragments"]), length_smoothing=smoothing)
+                          merge_fragments=bool(o["merge_fragments"]), length_smoothing=smoothing,
+                          pause_steps=bool(o["pause_steps"]) and not realtime)
     stairs = _stairs_steps(session, steps, bool(o["stairs_climb"]))
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
         steps = steps.assign(length_m=np.where(stairs, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),

@@ -72,6 +72,8 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     c = np.ones(len(st))
     if res.info.get("options", {}).get("turn_factor") and "dyaw_rad" in st:  # the same model as tracking (W19)
         c = K.turning_step_factor(st["dyaw_rad"].to_numpy(float))
+    if "pause_factor" in st:  # W111: a pause keeps one period's length, in calibration as in tracking (W21)
+        c = c * st["pause_factor"].to_numpy(float)
     if "merged" in st:  # W27: a fragment merged into its neighbour carries no length (nor an F term)
         c = np.where(st["merged"].to_numpy(bool), 0.0, c)
     f = st["frequency_hz"].to_numpy(float)

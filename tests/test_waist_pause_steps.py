@@ -1,0 +1,78 @@
+"""A step that spans a pause keeps one local period's length (decision W111, ``pause_steps``): the kernel on
+hand-made step durations, the option end to end on a simulated turn on the spot (calibration sums what the
+tracker sums, W21; the realtime detector ignores it)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from pdrlearn.waist import _kernels as K
+
+
+def _factor(durations, use=None, closes=None):
+    d = np.asarray(durations, dtype=float)
+    use = np.ones(d.size, bool) if use is None else np.asarray(use, bool)
+    closes = np.zeros(d.size, bool) if closes is None else np.asarray(closes, bool)
+    return K.pause_step_factor(d, use, closes)
+
+
+def test_a_step_over_one_and_a_half_periods_keeps_one_period():
+    # local period 0.5 s on both sides; 1.2 s > 1.5 x 0.5 -> 0.5 / 1.2; the closing contact (no length) stays 1
+    out = _factor([0.5, 0.5, 0.5, 1.2, 0.5, 0.5, 0.5, 0.0], use=[True] * 7 + [False], closes=[False] * 7 + [True])
+    np.testing.assert_allclose(out, [1, 1, 1, 0.5 / 1.2, 1, 1, 1, 1])
+
+
+def test_the_period_is_the_median_of_both_sides_and_needs_two_steps_on_a_side():
+    # before: 0.4 0.5 0.6 -> 0.5; after: 0.7 0.7 -> 0.7; period median(0.5, 0.7) = 0.6; 1.0 > 0.9 -> 0.6
+    np.testing.assert_allclose(_factor([0.4, 0.5, 0.6, 1.0, 0.7, 0.7])[3], 0.6)
+    # exactly 1.5 periods is no pause (W18's gap rule is "over 1.5")
+    assert _factor([0.5, 0.5, 0.75, 0.5, 0.5])[2] == 1.0
+    # one step on each side is no local period: nothing changes
+    np.testing.assert_array_equal(_factor([0.5, 1.5, 0.5]), 1.0)
+
+
+def test_other_sequences_and_fragments_do_not_set_the_period():
+    # two sequences: the second's slow steps are not the first's period, and the first's steps are not the second's
+    d = [0.5, 0.5, 0.5, 0.0, 1.0, 1.0, 1.0, 1.0]
+    closes = [False, False, False, True, False, False, False, False]
+    use = [True, True, True, False, True, True, True, True]
+    np.testing.assert_array_equal(_factor(d, use, closes), 1.0)
+    # a W27 fragment (0.1 s, no length of its own) neither is scaled nor shortens the period
+    # (counted, the period before row 2 would be median(0.5, 0.1) = 0.3 and the factor 0.4 / 0.8)
+    out = _factor([0.5, 0.1, 0.8, 0.5, 0.5], use=[True, False, True, True, True])
+    np.testing.assert_allclose(out, [1, 1, 0.5 / 0.8, 1, 1])
+
+
+@pytest.fixture(scope="module")
+def turn_walk():
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    route = parse_route("straight:6, turn:180, straight:6")
+    return simulate_path(route, UserProfile.from_seed(993), rate_hz=100, seed=993)
+
+
+def test_option_end_to_end_on_a_turn_on_the_spot(turn_walk):
+    from pdrlearn.track.waist import track_waist
+    from pdrlearn.waist.calibration import calibrate
+    from pdrlearn.waist.params import resolve_params
+
+    off = track_waist(turn_walk, pipeline="waist-pendulum").steps
+    on = track_waist(turn_walk, pipeline="waist-pendulum", pause_steps=True).steps
+    np.testing.assert_array_equal(on["event_s"], off["event_s"])  # only the lengths change
+    f = on["pause_factor"].to_numpy(float)
+    assert (f < 1).any() and (f <= 1).all()
+    np.testing.assert_allclose(on["length_m"], off["length_m"] * f, rtol=1e-12)
+    # the shortened steps are the long intervals at the turn, not the walking ones
+    dur = (on["end_s"] - on["start_s"]).to_numpy(float)
+    assert dur[f < 1].min() > 1.5 * np.median(dur[on["has_next"].to_numpy(bool)])
+    # W21: calibrated with the option on, tracking the calibration walk sums to its distance
+    base, _ = resolve_params(turn_walk, None)
+    base.options = {"pause_steps": True}
+    p = calibrate([turn_walk], "waist-pendulum", distances=[12.0], params=base)
+    assert track_waist(turn_walk, pipeline="waist-pendulum", params=p).steps["length_m"].sum() == pytest.approx(
+        12.0, rel=1e-9)
+    # the realtime detector does not look ahead: the option changes nothing there
+    rt = track_waist(turn_walk, pipeline="waist-pendulum", realtime=True, pause_steps=True).steps
+    assert "pause_factor" not in rt
