@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import shutil
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -367,9 +368,8 @@ WARNINGS_SEP = " | "
 def _track_job(args: dict) -> dict:
     """Track one session (in this process or on a Dask worker) into ``args["out"]`` (atomically: the
     session's folder is complete or absent); its warnings are returned, not printed (said once per batch)."""
-    from pdrlearn.cli.track import track_session, write_track
-
     from pdrlearn.cli.resume import write_record
+    from pdrlearn.cli.track import track_session, write_track
     from pdrlearn.track.bouts import bout_totals
 
     with captured_warnings() as warned:
@@ -548,6 +548,17 @@ def _reusable(out: Path, rels: list[str], keys: list[str], hashes: list[dict]
     return adopted, {rel: hit for rel, hit in hits.items() if hit is not None}
 
 
+@contextmanager
+def _resumable(done: list[int]):
+    """Cohort C41: a Ctrl-C of the batch says that the sessions done so far are kept for ``--resume``."""
+    try:
+        yield
+    except KeyboardInterrupt:
+        typer.echo(f"track-all: interrupted after {done[0]} session(s); they are kept: run the same command with "
+                   "--resume to go on from there (decision C41)", err=True)
+        raise
+
+
 def _reused(rel: str, src: Path, value: dict, dest: Path) -> JobResult:
     """Cohort C41: a session's folder from an earlier run put at ``dest``, as the job result tracking it gave."""
     import time
@@ -672,7 +683,8 @@ def track_all(
     (duplicate_of, C20). --params-dir DIR gives each session DIR/<subject>.json, the subject its meta.json names
     (every session needs one, checked first; decision C26). A session that cannot be tracked is reported and
     skipped. Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
-    concerns.
+    concerns. --resume reuses the sessions an interrupted (killed, Ctrl-C) or earlier run tracked from the same input
+    files, options, model and code, tracks the rest, and writes the tables an uninterrupted run writes (decision C41).
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input,
     when every session failed, or when the disk fills or OUT cannot be written (the batch stops at once, B151):
@@ -685,6 +697,8 @@ def track_all(
         pdrlearn track-all study/ --out results/batch --group-depth 2 --pipeline plasys --method M2
 
         pdrlearn track-all study/ --out results/batch --jobs 2 --force
+
+        pdrlearn track-all study/ --out results/batch --resume   # after a kill or Ctrl-C: the finished sessions reused
 
         pdrlearn track-all study/ --out results/2mwt --window 0,120 --streaming --initial-heading 90
 
@@ -734,8 +748,8 @@ def track_all(
     keys = session_keys(options, found, per_session, model_record(options.get("model")))
     adopted, reuse = _reusable(out, rels, keys, hashes) if resume else ([], {})
     # decision B151: a full disk stops the batch; cohort C41: a Ctrl-C leaves the sessions tracked so far, as a kill
-    with refused_output(out), atomic_directory(out, keep_on_interrupt=True) as tmp:
-        done = [0]
+    done = [0]
+    with refused_output(out), _resumable(done), atomic_directory(out, keep_on_interrupt=True) as tmp:
 
         def progress_line(r: JobResult) -> None:
             done[0] += 1
