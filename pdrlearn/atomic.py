@@ -137,6 +137,28 @@ def _alive(pid: int) -> bool:
     return True
 
 
+def _stale_leftovers(target: Path) -> list[Path]:
+    """The temporary folders of an interrupted write to ``target`` whose writer has ended (decision B44):
+    ``.NAME.tmp-PID-XXXX`` whose process is gone, ``.NAME.tmp-XXXX`` of older versions last changed before this
+    process started. Newest first."""
+    if not target.parent.is_dir():
+        return []
+    pat = re.compile(re.escape(f".{target.name}.tmp-") + r"(?:(\d+)-)?[^/]+$")
+    found = []
+    for p in target.parent.iterdir():
+        m = pat.match(p.name)
+        if not m or p.is_symlink() or not p.is_dir():
+            continue
+        try:
+            mtime = p.stat().st_mtime
+            stale = not _alive(int(m.group(1))) if m.group(1) else mtime < _PROCESS_START
+        except OSError:
+            continue
+        if stale:
+            found.append((mtime, p))
+    return [p for _, p in sorted(found, key=lambda x: -x[0])]
+
+
 def clean_leftovers(target: str | os.PathLike) -> list[Path]:
     """Decision B44: delete the temporary folders an interrupted write to ``target`` left (``.NAME.tmp-PID-XXXX``
     whose process has ended; ``.NAME.tmp-XXXX`` of older versions, when last changed before this process
@@ -144,37 +166,47 @@ def clean_leftovers(target: str | os.PathLike) -> list[Path]:
     wAccelerometer.csv that no later run removed. Set-aside previous outputs (``.NAME.old-XXXX``, B20) are
     never deleted: they may be the only copy of a result."""
     target = Path(target)
-    if not target.parent.is_dir():
-        return []
-    pat = re.compile(re.escape(f".{target.name}.tmp-") + r"(?:(\d+)-)?[^/]+$")
     gone = []
-    for p in target.parent.iterdir():
-        m = pat.match(p.name)
-        if not m or p.is_symlink() or not p.is_dir():
-            continue
-        try:
-            stale = not _alive(int(m.group(1))) if m.group(1) else p.stat().st_mtime < _PROCESS_START
-        except OSError:
-            continue
-        if stale:
-            shutil.rmtree(p, ignore_errors=True)
-            if not p.exists():
-                gone.append(p)
+    for p in _stale_leftovers(target):
+        shutil.rmtree(p, ignore_errors=True)
+        if not p.exists():
+            gone.append(p)
     if gone:
         log.warning("%s: removed %d temporary folder(s) left by an interrupted write (%s)", target, len(gone),
                     ", ".join(p.name for p in gone[:3]) + (" ..." if len(gone) > 3 else ""))
     return gone
 
 
+def adopt_leftovers(target: str | os.PathLike) -> list[Path]:
+    """Cohort C41 (``track-all --resume``): the temporary folders an interrupted write to ``target`` left (as
+    :func:`clean_leftovers` finds them, newest first), each renamed to a hidden name of this process
+    (``.NAME.tmp-PID-resumed-XXXX``), so that neither this process's :func:`atomic_directory` nor another command
+    deletes them while they are read. The caller removes them when its own output is in place; if it is
+    interrupted too, they are left by a process that has ended, and adopted (or cleaned) again."""
+    target = Path(target)
+    adopted = []
+    for p in _stale_leftovers(target):
+        mine = Path(tempfile.mkdtemp(prefix=f".{target.name}.tmp-{os.getpid()}-resumed-", dir=target.parent))
+        try:
+            p.rename(mine)  # onto the empty folder just reserved: one atomic step
+        except OSError:  # taken by another process meanwhile: not ours to read
+            mine.rmdir()
+            continue
+        adopted.append(mine)
+    return adopted
+
+
 @contextmanager
-def atomic_directory(target: str | os.PathLike) -> Iterator[Path]:
+def atomic_directory(target: str | os.PathLike, *, keep_on_interrupt: bool = False) -> Iterator[Path]:
     """Yield a temporary sibling folder of ``target``; when the block succeeds it replaces ``target``.
 
     An existing ``target`` is first renamed aside and removed only after the new folder is in place; on
     any exception the temporary folder is deleted and ``target`` is left as it was. Callers decide
     beforehand whether an existing ``target`` may be replaced; if they recorded it with
     :func:`expect_unchanged`, a ``target`` that changed since is put back and :class:`OutputChangedError`
-    raised (decision B20).
+    raised (decision B20). ``keep_on_interrupt`` (cohort C41, ``track-all``): a Ctrl-C leaves the temporary folder
+    where it is, as a kill does, for ``track-all --resume`` (:func:`adopt_leftovers`) or the next write's
+    :func:`clean_leftovers`.
     """
     target = Path(target)
     target.parent.mkdir(parents=True, exist_ok=True)
@@ -202,6 +234,10 @@ def atomic_directory(target: str | os.PathLike) -> Iterator[Path]:
         note_written(target)
         if old is not None:
             shutil.rmtree(old, ignore_errors=True)
+    except KeyboardInterrupt:
+        if not keep_on_interrupt:
+            shutil.rmtree(tmp, ignore_errors=True)
+        raise
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise

@@ -123,6 +123,22 @@ def test_export_and_run_of_a_waist_bundle_on_the_command_line(sim, tmp_path, cap
     assert main(["run", str(tmp_path / "b"), str(walk), "--out", str(tmp_path / "r"), "--force"]) == 0  # a run
 
 
+def test_run_of_a_waist_bundle_counts_floors_in_the_storey_height_given(sim, tmp_path, capsys):
+    """Decision L142: `run WAIST_BUNDLE --storey-height M` had counted storeys of 3 m, whatever was given."""
+    from pdrlearn.track.evaluate import evaluate_track
+
+    stairs = simulate("D", 402, rate_hz=100.0)  # thesis scenario D: 21 stairs
+    walk = write_session(stairs, tmp_path / "walk")
+    assert main(["run", str(sim["bundle"]), str(walk), "--storey-height", "1.5", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    ref = track_waist(stairs, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+    want = evaluate_track(ref, stairs, storey_height_m=1.5)
+    assert summary["storey_height_m"] == 1.5
+    keys = [k for k in want if k.startswith(("floors_", "storeys_")) and k.endswith("_ref")]
+    assert keys and {k: summary[k] for k in keys} == {k: want[k] for k in keys}
+    assert want["floors_up_ref"] != evaluate_track(ref, stairs)["floors_up_ref"]  # 1.5 m counts otherwise
+
+
 def _one_line(capsys, argv, pattern):
     assert main(argv) == 2
     cap = capsys.readouterr()

@@ -400,3 +400,11 @@ def test_subjects_csv_totals_each_subject_and_visit_from_the_bouts(site_tree, tm
     assert row["gait_speed_mps"] == pytest.approx(bouts["distance_m"].sum() / bouts["duration_s"].sum(), rel=1e-9)
     assert row["cadence_spm"] == pytest.approx(60 * bouts["n_steps"].sum() / bouts["duration_s"].sum(), rel=1e-9)
     assert subjects.iloc[4].isna()[["distance_m", "walking_time_s", "gait_speed_mps"]].all()  # nothing tracked
+    # cohort C42: the report shows the table (subjects.csv's numbers, rounded as the report rounds)
+    assert main(["report", str(tmp_path / "o"), "--out", str(tmp_path / "rep")]) == 0
+    md = (tmp_path / "rep" / "report.md").read_text()
+    part = md.split("per subject and visit: walking totals")[1].split("\n\n")[1]
+    lines = [line for line in part.splitlines() if line.startswith("| S0")]
+    assert [[c.strip() for c in line.split("|")[1:3]] for line in lines][:2] == [["S01", "1"], ["S01", "2"]]
+    assert len(lines) == 5
+    assert f"{row['walking_time_s']:.4g}" in lines[0] and f"{row['gait_speed_mps']:.4g}" in lines[0]

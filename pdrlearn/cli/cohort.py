@@ -4,6 +4,8 @@
 
 from __future__ import annotations
 
+import shutil
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -366,20 +368,22 @@ WARNINGS_SEP = " | "
 def _track_job(args: dict) -> dict:
     """Track one session (in this process or on a Dask worker) into ``args["out"]`` (atomically: the
     session's folder is complete or absent); its warnings are returned, not printed (said once per batch)."""
+    from pdrlearn.cli.resume import write_record
     from pdrlearn.cli.track import track_session, write_track
+    from pdrlearn.track.bouts import bout_totals
 
     with captured_warnings() as warned:
         try:
             tracked = track_session(Path(args["session_dir"]), args["settings"])
             with atomic_directory(Path(args["out"])) as tmp:
                 summary, _ = write_track(tmp, tracked)
+                value = {"summary": summary, "warnings": list(warned), "content_id": tracked.get("content_id"),
+                         "bout_totals": bout_totals(tracked["bouts"])}  # cohort C25: of bouts.csv, for subjects.csv
+                # cohort C41: what made the folder and its result, for `--resume`; written last, in the folder
+                return write_record(tmp, args["resume_key"], args["input_sha256"], value)
         except Exception as exc:  # cohort C15: the warnings raised before the failure stay with its error
             attach_to_error(exc, warnings=list(warned))
             raise
-    from pdrlearn.track.bouts import bout_totals
-
-    return {"summary": summary, "warnings": warned, "content_id": tracked.get("content_id"),
-            "bout_totals": bout_totals(tracked["bouts"])}  # cohort C25: of bouts.csv, for subjects.csv
 
 
 def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
@@ -484,17 +488,19 @@ def _duplicates(rels: list[str], results: list[JobResult], dirs: list[Path]) -> 
     return dup, same
 
 
-def _run_record(root: Path, options: dict, rels: list[str], results: list[JobResult], found: list[Path]) -> dict:
+def _run_record(root: Path, options: dict, rels: list[str], results: list[JobResult], hashes: list[dict],
+                reused: dict[str, JobResult]) -> dict:
     """Decision C18: OUT/run.json, the record of a track-all run (:func:`pdrlearn.cli.provenance.run_record`, as
     ``track``'s, decision L122): the pdrlearn version, the command's options as given, ROOT as given, the model,
     when it finished and each session's wall and CPU time - what differs from run to run is here, so that
     sessions.csv and groups.csv are the same for the same data, version and options."""
-    from pdrlearn.cli.provenance import input_hashes, model_record, run_record
+    from pdrlearn.cli.provenance import model_record, run_record
 
     ok = sum(r.ok for r in results)
+    more = {"n_reused": len(reused), "reused": list(reused)} if options.get("resume") else {}  # cohort C41
     return run_record("track-all", options, root=str(root), model=model_record(options.get("model")),
-                      input_sha256={rel: input_hashes(p) for rel, p in zip(rels, found, strict=True)},  # L136
-                      n_sessions=len(results), n_tracked=ok, n_failed=len(results) - ok,
+                      input_sha256=dict(zip(rels, hashes, strict=True)),  # L136
+                      n_sessions=len(results), n_tracked=ok, n_failed=len(results) - ok, **more,
                       track_time_s={rel: round(r.seconds, 2) for rel, r in zip(rels, results, strict=True)},
                       cpu_time_s={rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)})
 
@@ -521,6 +527,48 @@ def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None
         log.warning("%s", grouped_warning("meta.json names a subject but no visit, or a visit but no subject: not "
                                           "paired in changes.csv (add both, decision C22)", half, len(sessions)))
     return changes, change_summary(changes)
+
+
+RESUME_HELP = ("Reuse the sessions an interrupted (killed, Ctrl-C) or earlier run into OUT tracked from the same input "
+               "files, options, model and code, and track the others; the tables are rebuilt from all sessions, "
+               "as an uninterrupted run writes them (decision C41). OUT is replaced as with --force.")
+
+
+def _reusable(out: Path, rels: list[str], keys: list[str], hashes: list[dict]
+              ) -> tuple[list[Path], dict[str, tuple[Path, dict]]]:
+    """Cohort C41: the temporary folders interrupted runs into ``out`` left (adopted:
+    :func:`pdrlearn.atomic.adopt_leftovers`) and, per session, the folder of them or of ``out`` it can be reused from
+    with its job result (:func:`pdrlearn.cli.resume.reusable`)."""
+    from pdrlearn.atomic import adopt_leftovers
+    from pdrlearn.cli.resume import reusable
+
+    adopted = adopt_leftovers(out)
+    sources = [*adopted, *([out] if out.is_dir() else [])]
+    hits = {rel: reusable(sources, rel, key, h) for rel, key, h in zip(rels, keys, hashes, strict=True)}
+    return adopted, {rel: hit for rel, hit in hits.items() if hit is not None}
+
+
+@contextmanager
+def _resumable(done: list[int]):
+    """Cohort C41: a Ctrl-C of the batch says that the sessions done so far are kept for ``--resume``."""
+    try:
+        yield
+    except KeyboardInterrupt:
+        typer.echo(f"track-all: interrupted after {done[0]} session(s); they are kept: run the same command with "
+                   "--resume to go on from there (decision C41)", err=True)
+        raise
+
+
+def _reused(rel: str, src: Path, value: dict, dest: Path) -> JobResult:
+    """Cohort C41: a session's folder from an earlier run put at ``dest``, as the job result tracking it gave."""
+    import time
+
+    from pdrlearn.cli.resume import reuse_folder
+
+    t0, c0 = time.perf_counter(), time.process_time()
+    reuse_folder(src, dest)
+    return JobResult(rel, ok=True, value=value, seconds=time.perf_counter() - t0,
+                     cpu_seconds=time.process_time() - c0)
 
 
 PARAMS_DIR_HELP = ("Folder of per-subject calibration files, one SUBJECT.json per subject (as `pdrlearn calibrate "
@@ -606,6 +654,7 @@ def track_all(
                                    "and the visit each is, for changes.csv: a CSV of two columns raw,canonical or "
                                    "a JSON object {\"BL\": \"baseline\"}; recorded in run.json (decision C29). "
                                    "Without it, spellings of one visit (BL, Baseline) are paired as one (C28)."),
+    resume: bool = typer.Option(False, "--resume", help=RESUME_HELP),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Sessions tracked at once: 1 = one after the other "
                              "in this process (default); N > 1 = a Dask LocalCluster of N single-threaded "
                              "worker processes."),
@@ -634,7 +683,8 @@ def track_all(
     (duplicate_of, C20). --params-dir DIR gives each session DIR/<subject>.json, the subject its meta.json names
     (every session needs one, checked first; decision C26). A session that cannot be tracked is reported and
     skipped. Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
-    concerns.
+    concerns. --resume reuses the sessions an interrupted (killed, Ctrl-C) or earlier run tracked from the same input
+    files, options, model and code, tracks the rest, and writes the tables an uninterrupted run writes (decision C41).
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input,
     when every session failed, or when the disk fills or OUT cannot be written (the batch stops at once, B151):
@@ -647,6 +697,8 @@ def track_all(
         pdrlearn track-all study/ --out results/batch --group-depth 2 --pipeline plasys --method M2
 
         pdrlearn track-all study/ --out results/batch --jobs 2 --force
+
+        pdrlearn track-all study/ --out results/batch --resume   # after a kill or Ctrl-C: the finished sessions reused
 
         pdrlearn track-all study/ --out results/2mwt --window 0,120 --streaming --initial-heading 90
 
@@ -677,7 +729,8 @@ def track_all(
         raise DataError("track-all: give --params FILE (one file for every session) or --params-dir DIR (one "
                         "SUBJECT.json per subject), not both")
     found = find_sessions(root)
-    out_folder(out, "track-all", force=force, inputs=(root, params, params_dir))
+    # cohort C41: --resume replaces a previous output as --force does (its unchanged sessions reused)
+    out_folder(out, "track-all", force=force or resume, inputs=(root, params, params_dir))
     was = existed(out)
     rels = [p.relative_to(root).as_posix() for p in found]
     labels = [session_labels(p) for p in found]  # decision C22: meta.json's subject and visit
@@ -688,19 +741,32 @@ def track_all(
         files = subject_params(params_dir, rels, [s for s, _ in labels])
         parsed = {f: read_params(f) for f in dict.fromkeys(files)}
         per_session = [{**settings, "params": f, "par": parsed[f]} for f in files]
-    with refused_output(out), atomic_directory(out) as tmp:  # decision B151: a full disk stops the batch
-        items = [(rel, {"session_dir": str(p), "out": str(tmp / rel), "settings": st})
-                 for rel, p, st in zip(rels, found, per_session, strict=True)]
-        done = [0]
+    from pdrlearn.cli.provenance import input_hashes, model_record
+    from pdrlearn.cli.resume import session_keys
+
+    hashes = [input_hashes(p) for p in found]  # decision L136 (run.json), and cohort C41's test of a reused session
+    keys = session_keys(options, found, per_session, model_record(options.get("model")))
+    adopted, reuse = _reusable(out, rels, keys, hashes) if resume else ([], {})
+    # decision B151: a full disk stops the batch; cohort C41: a Ctrl-C leaves the sessions tracked so far, as a kill
+    done = [0]
+    with refused_output(out), _resumable(done), atomic_directory(out, keep_on_interrupt=True) as tmp:
 
         def progress_line(r: JobResult) -> None:
             done[0] += 1
-            what = (f"ok, {r.value['summary']['distance_m']:.1f} m" if r.ok else f"failed: {r.error}")
-            typer.echo(f"[{done[0]}/{len(items)}] {r.name}: {what} ({r.seconds:.1f} s)", err=True)
+            what = (f"{'reused' if r.name in reuse else 'ok'}, {r.value['summary']['distance_m']:.1f} m" if r.ok
+                    else f"failed: {r.error}")
+            typer.echo(f"[{done[0]}/{len(found)}] {r.name}: {what} ({r.seconds:.1f} s)", err=True)
 
-        results = run_cohort(_track_job, items, serial=jobs == 1, n_workers=jobs,
-                             costs=[folder_bytes(p) for p in found], preload=TRACK_LIBRARIES,
-                             on_done=progress_line)
+        reused = {rel: _reused(rel, *reuse[rel], tmp / rel) for rel in rels if rel in reuse}
+        for r in reused.values():
+            progress_line(r)
+        items = [(rel, {"session_dir": str(p), "out": str(tmp / rel), "settings": st, "resume_key": key,
+                        "input_sha256": h})
+                 for rel, p, st, key, h in zip(rels, found, per_session, keys, hashes, strict=True) if rel not in reuse]
+        tracked = iter(run_cohort(_track_job, items, serial=jobs == 1, n_workers=jobs,
+                                  costs=[folder_bytes(Path(a["session_dir"])) for _, a in items],
+                                  preload=TRACK_LIBRARIES, on_done=progress_line))
+        results = [reused[rel] if rel in reused else next(tracked) for rel in rels]
         _batch_warnings([(rel, str(p)) for rel, p in zip(rels, found, strict=True)], results)
         failed = [r for r in results if not r.ok]
         if len(failed) == len(results):
@@ -720,7 +786,7 @@ def track_all(
         from pdrlearn.visits import subject_totals
 
         subjects = subject_totals(sessions, vmap)  # cohort C25: None when no session names a subject (C40: visits)
-        run = _run_record(root, options, rels, results, found)
+        run = _run_record(root, options, rels, results, hashes, reused)
         _write_csv_atomic(sessions, tmp / "sessions.csv")
         _write_csv_atomic(groups, tmp / "groups.csv")
         if subjects is not None:
@@ -730,15 +796,19 @@ def track_all(
             _write_csv_atomic(summary, tmp / "changes_summary.csv")
         write_run_json(tmp, run)
     replaced(out, was)
+    for folder in adopted:  # cohort C41: the interrupted runs' folders, now in OUT
+        shutil.rmtree(folder, ignore_errors=True)
     if as_json:  # decision C19: n_sessions counts every session found, n_tracked those tracked (groups.csv's)
         print_json(json_safe({"sessions": sessions.to_dict(orient="records"),
                               "groups": groups.to_dict(orient="records"), "n_sessions": len(results),
                               "n_tracked": len(results) - len(failed), "n_failed": len(failed), "run": run,
+                              **({"n_reused": len(reused)} if resume else {}),  # cohort C41
                               **({} if subjects is None else {"subjects": subjects.to_dict(orient="records")}),
                               **({} if changes is None else {"changes": changes.to_dict(orient="records"),
                                                              "changes_summary": summary.to_dict(orient="records")})}))
     else:
-        typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked; wrote {out}/"
+        typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked"
+                   + (f" ({len(reused)} reused from an earlier run, --resume)" if resume else "") + f"; wrote {out}/"
                    "<session>/, sessions.csv, groups.csv, " + ("" if subjects is None else "subjects.csv, ")
                    + ("" if changes is None else
                                                                "changes.csv, changes_summary.csv, ") + "run.json")

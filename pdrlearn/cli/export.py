@@ -310,7 +310,8 @@ def run(
         if given:
             raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only bundle "
                             "(give SESSION_DIR, and --initial-heading / --chunk-s / --out / --json)")
-        return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi, record, bouts)
+        return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi, record, bouts,
+                          storey_height)  # decision L142: as the foot bundle's run
     bundle = load_bundle(bundle_dir)  # verified before any output
     methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
@@ -447,12 +448,13 @@ def _run_json(arguments: dict, wall0: float, cpu0: float):
 
 
 def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chunk_s: float, as_json: bool,
-               heading0: float | None, dpi: int | None, record, bouts=None) -> None:
+               heading0: float | None, dpi: int | None, record, bouts=None, storey_height_m: float = 3.0) -> None:
     """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
     pushed in ``chunk_s`` slices through :class:`pdrlearn.runtime.WaistTracker` (the gyroscope read at the
     accelerometer's times, as ``track``'s ``body_data``). The frame is the session's declared one (warned when the
     bundle records another), else the bundle's, else inferred from the data (D8). Writes and prints what ``run``
-    does for a foot bundle, with ``track``'s waist step columns."""
+    does for a foot bundle, with ``track``'s waist step columns; the floor counts in storeys of ``storey_height_m``
+    (``--storey-height``, decision L142: it had been left at 3 m)."""
     import numpy as np
     import pandas as pd
 
@@ -510,7 +512,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
 
     add_position_sigma(result, session, "waist")  # decision L128, as track's lower-back pipelines
     table = detected_bouts(result.steps, bouts)  # decisions L124, E73: bouts.csv and n_bouts from one detection
-    summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table),
+    summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table,
+                                                                       storey_height_m=storey_height_m),
                "session": session.name,
                "pipeline": "runtime", "bundle_kind": "waist", "info": result.info,
                "final_position": {"x": tracker.position[0], "y": tracker.position[1], "z": 0.0},

@@ -67,14 +67,16 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
 def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[str, str] | None = None
                  ) -> tuple[str, list[tuple[str, pd.DataFrame]]]:
     """The batch section's summary line and tables: per session, per group (``mean ± sd (n)``, as track-all
-    prints it), the failed sessions with their errors and warnings, the paired changes (visits by ``visit_map``)."""
+    prints it), each subject's (and visit's) walking totals (cohort C42), the failed sessions with their errors and
+    warnings, the paired changes (visits by ``visit_map``)."""
     from pdrlearn.cohort import groups_text
 
     n, failed = len(sessions), sessions[sessions["status"] != "ok"]
     text = (f"{n - len(failed)} of {n} sessions tracked, {len(failed)} failed, in {len(groups)} group(s); "
             "sessions.csv and groups.csv hold every column at full precision.")
     tables = [("per session", sessions[[c for c in SESSION_TABLE_COLUMNS if c in sessions.columns]]),
-              ("per group (mean ± sd (n) over the tracked sessions)", groups_text(groups))]
+              ("per group (mean ± sd (n) over the tracked sessions)", groups_text(groups)),
+              *subject_tables(sessions, visit_map)]
     if len(failed):
         cols = ["path", "group", "error"] + [c for c in ("warnings",) if c in failed.columns]
         tables.append(("failed sessions", failed[cols].astype(object).fillna("")))
@@ -110,6 +112,25 @@ def run_visit_map(folder: Path) -> dict[str, str] | None:
     except (OSError, ValueError, AttributeError):
         return None
     return vm.get("visits") if isinstance(vm, dict) else None
+
+
+#: cohort C42: subjects.csv's columns the report shows (``paths``, each subject's session folders, stays in the file)
+SUBJECT_TABLE_COLUMNS = ("subject", "visit", "group", "n_tracked", "n_failed", "distance_m", "n_bouts",
+                         "walking_time_s", "n_steps", "n_strides", "bouts_distance_m", "gait_speed_mps", "cadence_spm")
+
+
+def subject_tables(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None) -> list[tuple[str, pd.DataFrame]]:
+    """Cohort C42: each subject's (and visit's) walking totals, subjects.csv (C25) recomputed from sessions.csv with
+    the run's visit names (``visit_map``, C40), as the paired changes are; none when no session names a subject."""
+    from pdrlearn.visits import subject_totals
+
+    subjects = subject_totals(sessions, visit_map)
+    if subjects is None:
+        return []
+    if subjects["visit"].isna().all():
+        subjects = subjects.drop(columns=["visit"])
+    return [("per subject and visit: walking totals of the detected bouts (subjects.csv; distance_m: the tracks "
+             "summed)", subjects[[c for c in SUBJECT_TABLE_COLUMNS if c in subjects.columns]])]
 
 
 def change_tables(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None) -> list[tuple[str, pd.DataFrame]]:

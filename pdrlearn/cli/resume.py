@@ -1,0 +1,85 @@
+"""Cohort C41: ``track-all --resume``. Each session's output folder holds a record of what made it (:data:`RECORD`:
+the SHA-256 of the session's input files, a key of the options, model, calibration file, session folder and code,
+the SHA-256 of every output file, and the job's result); a resumed batch reuses a session's folder, from an
+interrupted run's temporary folder or from the previous output, when all of these still match, and tracks every
+other session. The tables are then built from all sessions' results as an uninterrupted run builds them."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import shutil
+from pathlib import Path
+
+#: the record in each session's output folder (hidden: no table or report reads it)
+RECORD = ".track-all-session.json"
+
+#: options that do not change a session's own output (how the batch runs or is tabled), or that the key holds by
+#: content instead of by name (the model's manifest, the calibration file's bytes)
+KEY_LEAVES_OUT = ("jobs", "group_depth", "visit_map", "resume", "params", "params_dir", "model")
+
+
+def _digest(obj) -> str:
+    return hashlib.sha256(json.dumps(obj, sort_keys=True, default=str).encode()).hexdigest()
+
+
+def session_keys(options: dict, sessions: list[Path], settings: list[dict], model: dict | None) -> list[str]:
+    """Per session, the SHA-256 of what its output depends on besides its input files: the options (but
+    :data:`KEY_LEAVES_OUT`), the model's record (its manifest's SHA-256, L122), the calibration file's bytes
+    (``--params`` / ``--params-dir``), the session folder (summary.json's ``input_dir``, C13) and the code
+    (pdrlearn version, git commit, libraries: L136)."""
+    from pdrlearn.cli.provenance import software_record
+
+    base = {"options": {k: v for k, v in options.items() if k not in KEY_LEAVES_OUT}, "model": model,
+            "software": software_record()}
+    keys = []
+    for folder, st in zip(sessions, settings, strict=True):
+        params = st.get("params")
+        par = None if params is None else hashlib.sha256(Path(params).read_bytes()).hexdigest()
+        keys.append(_digest({**base, "params_sha256": par, "session": str(Path(folder).resolve())}))
+    return keys
+
+
+def write_record(folder: Path, key: str, inputs: dict, value: dict) -> dict:
+    """Write ``folder``'s :data:`RECORD` (last, inside the session's temporary folder: a session folder under its
+    own name is complete) and return ``value`` as read back from it, so that a fresh and a reused result are the
+    same objects (a JSON number, not a numpy one)."""
+    from pdrlearn.cli.provenance import input_hashes
+
+    text = json.dumps({"key": key, "input_sha256": inputs, "output_sha256": input_hashes(folder), "value": value})
+    (Path(folder) / RECORD).write_text(text + "\n")
+    return json.loads(text)["value"]
+
+
+def reusable(sources: list[Path], rel: str, key: str, inputs: dict) -> tuple[Path, dict] | None:
+    """The first of ``sources`` (batch output folders, complete or interrupted) whose ``rel`` folder was made from
+    these ``inputs`` (SHA-256 by file) under ``key`` and still holds exactly the files it was written with:
+    ``(that folder, its job result)``; ``None`` when none does (the session is tracked again)."""
+    from pdrlearn.cli.provenance import input_hashes
+
+    for src in sources:
+        folder = src / rel
+        try:
+            rec = json.loads((folder / RECORD).read_text())
+        except (OSError, ValueError):
+            continue
+        if (isinstance(rec, dict) and rec.get("key") == key and rec.get("input_sha256") == inputs
+                and rec.get("output_sha256") == input_hashes(folder) and isinstance(rec.get("value"), dict)):
+            return folder, rec["value"]
+    return None
+
+
+def _link_or_copy(src: str, dst: str) -> None:
+    """A hard link (the old folder may be deleted afterwards: the files stay), a copy where links cannot be made."""
+    try:
+        os.link(src, dst)
+    except OSError:
+        shutil.copy2(src, dst)
+
+
+def reuse_folder(src: Path, dst: Path) -> None:
+    """Put a reused session folder at ``dst`` (inside the new batch's temporary folder); ``src`` stays as it is, so
+    an interruption of the resumed run loses nothing."""
+    dst.parent.mkdir(parents=True, exist_ok=True)
+    shutil.copytree(src, dst, copy_function=_link_or_copy)

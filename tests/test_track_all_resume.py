@@ -1,0 +1,113 @@
+"""Cohort C41: `track-all --resume` reuses the sessions an interrupted (killed) or earlier run tracked from the same
+inputs and options, tracks the rest, and writes the tables an uninterrupted run writes, byte for byte."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.cli.resume import RECORD
+
+REPO = Path(__file__).resolve().parent.parent
+TABLES = ("sessions.csv", "groups.csv", "subjects.csv", "changes.csv", "changes_summary.csv")
+
+
+@pytest.fixture(scope="module")
+def study(tmp_path_factory) -> Path:
+    """Three subjects x two visits (foot + waist, and waist-only sessions) and one session without sensor files."""
+    from pdrlearn import sim
+    from pdrlearn.io import write_session
+
+    root = tmp_path_factory.mktemp("resume") / "study"
+    for i in range(6):
+        d = root / ("a" if i % 2 == 0 else "b") / f"S{i // 2}" / ("v1", "v2")[i % 2]
+        write_session(sim.simulate("walk", 990 + i, length_m=10 + i), d)
+        meta = json.loads((d / "meta.json").read_text())
+        (d / "meta.json").write_text(json.dumps({**meta, "subject": f"S{i // 2}", "visit": ("v1", "v2")[i % 2]}))
+        if i % 3 == 2:
+            for f in d.glob("f*.csv"):
+                f.unlink()
+    (root / "b" / "S9" / "v1").mkdir(parents=True)
+    (root / "b" / "S9" / "v1" / "meta.json").write_text('{"subject": "S9", "visit": "v1"}')  # fails
+    return root
+
+
+def _run(*args: str) -> tuple[int, str, str]:
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        rc = main(["track-all", *map(str, args)])
+    return rc, out.getvalue(), err.getvalue()
+
+
+@pytest.fixture(scope="module")
+def reference(study, tmp_path_factory) -> Path:
+    """An uninterrupted run."""
+    out = tmp_path_factory.mktemp("ref") / "o"
+    assert _run(study, "--out", out)[0] == 1
+    return out
+
+
+def _files(folder: Path) -> dict[str, bytes]:
+    """Every file of a batch output but run.json (its times differ run to run, decision C18)."""
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*"))
+            if p.is_file() and p.name != "run.json"}
+
+
+def test_a_killed_batch_resumes_and_writes_the_uninterrupted_tables(study, reference, tmp_path):
+    out = tmp_path / "o"
+    env = {**os.environ, "PYTHONPATH": str(REPO), "OMP_NUM_THREADS": "1"}
+    proc = subprocess.Popen([sys.executable, "-m", "pdrlearn", "track-all", str(study), "--out", str(out)],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
+    seen = []
+    for line in proc.stderr:  # killed (SIGKILL: no clean-up at all) once two sessions are done
+        seen.append(line)
+        if line.startswith("[2/7]"):
+            proc.kill()
+            break
+    proc.wait()
+    proc.stderr.close()
+    assert any(s.startswith("[2/7]") for s in seen), seen
+    assert not out.exists() and list(tmp_path.glob(".o.tmp-*"))  # what the kill left: the batch's temporary folder
+    done = len(list(tmp_path.glob(f".o.tmp-*/*/*/*/{RECORD}")))  # the sessions complete when it was killed
+    assert 2 <= done < 6
+    rc, stdout, err = _run(study, "--out", out, "--resume")
+    assert rc == 1
+    n = int(stdout.split("sessions tracked (")[1].split(" reused")[0])
+    assert n == done  # each session complete before the kill, and only those
+    assert err.count(": reused, ") == n and "[7/7]" in err
+    for name in TABLES:
+        assert (out / name).read_bytes() == (reference / name).read_bytes(), name
+    assert _files(out) == _files(reference)  # the session folders too
+    run = json.loads((out / "run.json").read_text())
+    assert run["n_reused"] == n and len(run["reused"]) == n and run["options"]["resume"] is True
+    assert not list(tmp_path.glob(".o.*"))  # the interrupted run's folder went into OUT
+
+
+def test_resume_tracks_again_what_changed_or_is_incomplete(study, tmp_path):
+    root, out = tmp_path / "study", tmp_path / "o"
+    shutil.copytree(study, root)
+    assert _run(root, "--out", out)[0] == 1
+    before = (out / "sessions.csv").read_bytes()
+    rc, _, err = _run(root, "--out", out)  # without --resume an existing output is refused, as before
+    assert rc == 2 and "--force" in err
+    meta = root / "a" / "S0" / "v1" / "meta.json"
+    meta.write_text(meta.read_text().replace("}", ', "note": "x"}', 1))  # an input file changed
+    (out / "b" / "S1" / "v2" / "steps.csv").unlink()  # an output incomplete
+    rc, stdout, err = _run(root, "--out", out, "--resume")
+    assert rc == 1 and "(4 reused from an earlier run, --resume)" in stdout  # 6 tracked - 1 changed - 1 incomplete
+    for rel in ("a/S0/v1", "b/S1/v2", "b/S9/v1"):  # tracked again (a failed session is never reused)
+        assert f"] {rel}: reused" not in err
+    assert (out / "b" / "S1" / "v2" / "steps.csv").is_file() and (out / "sessions.csv").read_bytes() == before
+    rc, stdout, _ = _run(root, "--out", out, "--resume", "--storey-height", "2.9")  # an option changed
+    assert "(0 reused" in stdout
+    rc, stdout, _ = _run(root, "--out", out, "--resume", "--storey-height", "2.9", "--jobs", "1")
+    assert "(6 reused" in stdout  # --jobs is not part of a session's output
