@@ -25,10 +25,13 @@ VARIANTS = {"W16 0.3 s": 0.3, "W113 relative": None}
 
 
 def counts(session) -> dict:
+    """``{variant: (true positives, detected, reference, F1)}``; empty without timed reference contacts."""
     out = {}
     for name, ms in VARIANTS.items():
         steps = WaistICStepDetector(min_step_s=ms).detect(session)
         m = step_metrics(steps, session)
+        if "step_recall" not in m:
+            return {}
         tp = round(m["step_recall"] * m["n_reference"])
         out[name] = (tp, int(m["n_detected"]), int(m["n_reference"]), m["step_f1"])
     return out

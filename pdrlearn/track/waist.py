@@ -51,6 +51,7 @@ from pdrlearn.waist.plausibility import (
     PLAUSIBILITY_MIN_PAIRS,
     contact_alternation,
     not_alternating_message,
+    step_counts,
     still_yaw_rate,
     still_yaw_rate_message,
     walk_ratio,
@@ -505,7 +506,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     alternation, pairs = contact_alternation(imu.t, imu.acc_ml, imu.fs, steps["event_s"].to_numpy(float),
                                              steps["has_next"].to_numpy(bool))  # decision W98
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
-        warnings.append(not_alternating_message(alternation, pairs))
+        warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
+                                                step_counts(session, steps["event_s"].to_numpy(float))))
     ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime)  # decision W100
     if ratio_line:
         warnings.append(ratio_line)

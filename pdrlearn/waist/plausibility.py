@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from pdrlearn.errors import DataError
+from pdrlearn.io import Session
 from pdrlearn.signal.conditioning import runs, standstill_mask
 from pdrlearn.waist import _kernels as K
 
@@ -59,13 +61,58 @@ def contact_alternation(t: np.ndarray, acc_ml: np.ndarray, fs: float, event_s: n
     return alternation_index(K.lateral_velocity(acc_ml, fs)[idx], has_next)
 
 
-def not_alternating_message(index: float, pairs: int) -> str:
-    """Decision W98's one warning line for a waist track whose steps do not alternate left/right."""
-    return (f"the detected steps do not alternate left/right (alternation index {index:.2f} over {pairs} "
-            f"consecutive steps; walking is ~1, under {ALTERNATION_MIN:g} warns, decision W98): the pelvis shows "
-            "no sideways weight shift from step to step, so the step count, distance and speed may not be "
-            "walking (wheelchair propulsion, walking-aid strikes, phantom steps at very slow gait); check with "
-            "a foot unit or 'pdrlearn steps DIR --detector pelvic-gyro'")
+#: decision W99: the waist IC count of a calibration walk and the pelvic-gyro detector's disagree when they differ
+#: by more than this fraction of the pelvic-gyro count (the lead's 30 %)
+STEP_COUNT_DISAGREE = 0.3
+STEP_COUNT_MIN = 10  # W99: walks where both counts are under this are not judged
+STEP_COUNT_MARGIN_S = 0.5  # W99: pelvic-gyro steps this far outside the first / last waist contact still count
+
+
+def step_counts(session: Session, event_s: np.ndarray) -> tuple[int, int] | None:
+    """Decision W99: ``(n_waist, n_gyro)``: the waist contacts ``event_s`` (s) of a calibration walk and the
+    pelvic-gyro detector's steps between the first and last of them (+- :data:`STEP_COUNT_MARGIN_S`); None
+    without two contacts or without a waist gyroscope."""
+    from pdrlearn.steps.detectors import PelvicGyroStepDetector
+
+    ev = np.asarray(event_s, dtype=np.float64)
+    if ev.size < 2:
+        return None
+    try:
+        gyro = PelvicGyroStepDetector().detect(session)["event_s"].to_numpy(float)
+    except DataError:  # no waist gyroscope: nothing to compare with
+        return None
+    lo, hi = ev.min() - STEP_COUNT_MARGIN_S, ev.max() + STEP_COUNT_MARGIN_S
+    return int(ev.size), int(np.count_nonzero((gyro >= lo) & (gyro <= hi)))
+
+
+#: decision W114: what a waist contact count well under the pelvic gyroscope's means
+MISSED_STEPS_CAUSE = ("the waist detector misses steps, as when steps come faster than its shortest step (a young "
+                      "child's or a very fast cadence), so the step count, cadence and distance read low")
+
+
+def steps_missed(counts: tuple[int, int] | None) -> bool:
+    """Decision W114: the pelvic-gyro count of :func:`step_counts` ``(n_waist, n_gyro)`` exceeds the waist contacts
+    by more than :data:`STEP_COUNT_DISAGREE` of it (the larger at least :data:`STEP_COUNT_MIN`): the waist detector
+    misses steps, it does not add any."""
+    if counts is None:
+        return False
+    n_w, n_g = counts
+    return max(n_w, n_g) >= STEP_COUNT_MIN and n_g - n_w > STEP_COUNT_DISAGREE * n_g
+
+
+def not_alternating_message(index: float, pairs: int, counts: tuple[int, int] | None = None) -> str:
+    """Decision W98's one warning line for a waist track whose steps do not alternate left/right; with the
+    :func:`step_counts` ``counts`` of its contacts, decision W114: when the pelvic gyroscope counts more steps
+    (:func:`steps_missed`) the contacts are every other step of a fast gait, and the line says so instead."""
+    head = (f"the detected steps do not alternate left/right (alternation index {index:.2f} over {pairs} "
+            f"consecutive steps; walking is ~1, under {ALTERNATION_MIN:g} warns, decision W98): ")
+    if steps_missed(counts):
+        return (head + f"the pelvic-gyro detector counts {counts[1]} steps over the same span, the waist contacts "
+                f"{counts[0]} (decision W114): {MISSED_STEPS_CAUSE}; use 'pdrlearn steps DIR --detector "
+                "pelvic-gyro' for the step count and cadence, or a foot unit")
+    return (head + "the pelvis shows no sideways weight shift from step to step, so the step count, distance and "
+            "speed may not be walking (wheelchair propulsion, walking-aid strikes, phantom steps at very slow gait); "
+            "check with a foot unit or 'pdrlearn steps DIR --detector pelvic-gyro'")
 
 
 def walk_ratio(length_m: np.ndarray, step_s: np.ndarray) -> tuple[float | None, int, float | None, float | None]:
