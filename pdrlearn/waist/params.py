@@ -171,6 +171,25 @@ def leg_length_note(meta: dict) -> str | None:
             "decision B155)")
 
 
+def subject_height(meta: dict | None) -> tuple[float, str | None]:
+    """``(height m, warning)``: meta.json's ``height_m``; without it (decision W115) the leg length it gives
+    (``leg_length_m``, else ``sensor_height_m``: the pendulum's L, W10) / :data:`LEG_PER_HEIGHT`, the inverse of the
+    default that derives the leg from the height, so a 0.57 m sensor height reads a ~1.1 m child, not an adult; only
+    when it gives neither :data:`DEFAULT_HEIGHT_M`. The warning says which (None when ``height_m`` is given)."""
+    meta = meta or {}
+    height = _meta_number(meta, "height_m")
+    if height is not None:
+        return height, None
+    found = _meta_numbers(meta, "leg_length_m", "sensor_height_m")
+    if not found:
+        return DEFAULT_HEIGHT_M, f"meta.json gives no subject height: assumed {DEFAULT_HEIGHT_M} m"
+    key, leg = found[0]
+    height = leg / LEG_PER_HEIGHT
+    return height, (f"meta.json gives no subject height: {height:.2f} m inferred from its {key} {leg:g} m / "
+                    f"{LEG_PER_HEIGHT} (decision W115; give meta.json height_m, the uncalibrated step length scales "
+                    "with it)")
+
+
 def default_params(session: Session) -> tuple[WaistParams, list[str]]:
     """Defaults from ``meta.json`` (height, sensor height / leg length, foot length) and the warnings
     that say what was assumed."""
@@ -178,10 +197,9 @@ def default_params(session: Session) -> tuple[WaistParams, list[str]]:
     warnings = ["no per-user calibration: step length from meta.json defaults "
                 "(run 'pdrlearn calibrate' on a walk of known length)"]
     notes = []
-    height = _meta_number(meta, "height_m")
-    if height is None:
-        height = DEFAULT_HEIGHT_M
-        warnings.append(f"meta.json gives no subject height: assumed {DEFAULT_HEIGHT_M} m")
+    height, line = subject_height(meta)  # decision W115: from the leg / sensor height when height_m is missing
+    if line:
+        warnings.append(line)
     leg = _meta_number(meta, "leg_length_m", "sensor_height_m")  # B155: leg_length_m first (leg_length_note)
     if leg is None:
         leg = LEG_PER_HEIGHT * height
