@@ -1,7 +1,7 @@
 """Decision W115: the uncalibrated waist height inferred from the sensor height when meta.json gives no height_m,
 against its adoption rule written in docs/decisions/waist.md before this ran. Uncalibrated ``waist-pll`` distance
-error (%) of each session with meta.json's height_m set to 1.70 m (what a missing height gave before W115) and with
-height_m removed (W115: leg length / sensor height / 0.53).
+error (%) of each session with meta.json's height_m set to 1.70 m (what a missing height gives) and set to the height
+its leg length / sensor height implies (W115: / 0.53; the same numbers as the candidate, which inferred it itself).
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/waist_kid_height.py [--kids 1000-1039] [--adults 1040-1059]
      [--copy /tmp/trial_peds/real/T5_fr_noh]
@@ -22,6 +22,7 @@ from experiments.waist_kid_steps import span
 from pdrlearn.io import read_session
 from pdrlearn.sim.user import UserProfile
 from pdrlearn.track import get_pipeline
+from pdrlearn.waist.params import subject_height
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -38,9 +39,11 @@ def with_height(session, height: float | None):
 
 
 def errors(session) -> tuple[float, float]:
-    """Distance error (%) with 1.70 m assumed, and with W115's inferred height."""
+    """Distance error (%) with 1.70 m assumed, and with W115's inferred height (``subject_height(infer=True)`` of the
+    meta.json without height_m, written in as its height_m: the option is not the default, W115 failed its rule)."""
     pipe = get_pipeline("waist-pll")
-    return tuple(float(pipe(with_height(session, h)).summary(session)["distance_error_pct"]) for h in (1.70, None))
+    implied = subject_height(with_height(session, None).meta, infer=True)[0]
+    return tuple(float(pipe(with_height(session, h)).summary(session)["distance_error_pct"]) for h in (1.70, implied))
 
 
 def main() -> None:

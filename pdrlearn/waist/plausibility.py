@@ -29,6 +29,17 @@ PLAUSIBILITY_MIN_PAIRS = 10
 WALK_RATIO_HEALTHY = 0.0064
 #: W100: half and 1.5x the healthy walk ratio (a priori round factors, not fitted): outside warns
 WALK_RATIO_BAND = (0.5 * WALK_RATIO_HEALTHY, 1.5 * WALK_RATIO_HEALTHY)
+#: W116: the stature the healthy walk ratio stands for (an assumption: ``DEFAULT_HEIGHT_M``; Sekiya & Nagasaki's mean
+#: stature is not in the seeds)
+WALK_RATIO_HEIGHT_M = 1.70
+
+
+def walk_ratio_scale(height_m: float) -> float:
+    """Decision W116: the factor of the healthy walk ratio and its band for a walker ``height_m`` tall,
+    ``(height_m / WALK_RATIO_HEIGHT_M) ** 1.5``: under dynamic similarity (Hof 1996, Gait & Posture 4:222-223) a step
+    length scales with the leg length l0 and a cadence with ``sqrt(g / l0)``, so their ratio with ``l0 ** 1.5``
+    (l0 a fixed fraction of the stature)."""
+    return (float(height_m) / WALK_RATIO_HEIGHT_M) ** 1.5
 
 
 def alternation_index(v_at: np.ndarray, has_next: np.ndarray) -> tuple[float | None, int]:
@@ -129,19 +140,23 @@ def walk_ratio(length_m: np.ndarray, step_s: np.ndarray) -> tuple[float | None, 
     return length / cadence, n, length, cadence
 
 
-def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None) -> str | None:
+def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None,
+                       height_m: float = WALK_RATIO_HEIGHT_M) -> str | None:
     """Decision W100's one warning line for an uncalibrated waist track whose walk ratio lies outside
     :data:`WALK_RATIO_BAND` over at least :data:`PLAUSIBILITY_MIN_PAIRS` steps; None when it is inside or not
-    judged."""
-    if ratio is None or n < PLAUSIBILITY_MIN_PAIRS or WALK_RATIO_BAND[0] <= ratio <= WALK_RATIO_BAND[1]:
+    judged. Decision W116: the band is that of a walker ``height_m`` tall (:func:`walk_ratio_scale`: a child's healthy
+    walk ratio is smaller)."""
+    c = walk_ratio_scale(height_m)
+    lo, hi, healthy = c * WALK_RATIO_BAND[0], c * WALK_RATIO_BAND[1], c * WALK_RATIO_HEALTHY
+    if ratio is None or n < PLAUSIBILITY_MIN_PAIRS or lo <= ratio <= hi:
         return None
     what = ("far under healthy gait's: a short-stepping (shuffling, festinating) gait, on which the uncalibrated "
             "waist step length is not validated and reads long (simulated festinating walks: +20 to +174 % distance)"
-            if ratio < WALK_RATIO_BAND[0] else
+            if ratio < lo else
             "far over healthy gait's: the uncalibrated step length is implausibly long for this cadence")
     return (f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
-            f"{n} steps; healthy gait ~{WALK_RATIO_HEALTHY:g}, outside {WALK_RATIO_BAND[0]:g}-"
-            f"{WALK_RATIO_BAND[1]:g} warns, decision W100) is {what}; the distance, speed and step lengths need a "
+            f"{n} steps; healthy gait ~{healthy:.4f} at {height_m:.2f} m tall, outside {lo:.4f}-{hi:.4f} warns, "
+            f"decisions W100, W116) is {what}; the distance, speed and step lengths need a "
             "calibration on this walker's own walk of known length (a 10 m walk test, or this recording if you know "
             "the distance walked): 'pdrlearn calibrate DIR --distance M --out PARAMS.json', then track with "
             "--params PARAMS.json")
