@@ -156,7 +156,7 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
             "far over healthy gait's: the uncalibrated step length is implausibly long for this cadence")
     return (f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
             f"{n} steps; healthy gait ~{healthy:.4f} at {height_m:.2f} m tall, outside {lo:.4f}-{hi:.4f} warns, "
-            f"decisions W100, W116) is {what}; the distance, speed and step lengths need a "
+            f"decision W100, scaled to the stature by W116) is {what}; the distance, speed and step lengths need a "
             "calibration on this walker's own walk of known length (a 10 m walk test, or this recording if you know "
             "the distance walked): 'pdrlearn calibrate DIR --distance M --out PARAMS.json', then track with "
             "--params PARAMS.json")
