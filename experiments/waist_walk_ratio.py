@@ -8,7 +8,9 @@ docs/decisions/waist.md before this ran. One run, one candidate (WR outside 0.00
 For information: the short-step pairs with the default constant bounce; the warn rate per pair.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/waist_walk_ratio.py [--users 500-539]
-     [--external datasets/external] [--shared /work/shared/data]
+     [--external datasets/external] [--shared /work/shared/data] [--kids 1000-1039] [--out FILE]
+W116 (the band relative to stature): --users 1040-1059 --kids 1000-1039
+     --out experiments/results/waist_walk_ratio_w116.md
 Writes experiments/results/waist_walk_ratio.md.
 """
 
@@ -45,6 +47,9 @@ def main() -> None:
     ap.add_argument("--users", default="500-539")
     ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
     ap.add_argument("--shared", type=Path, default=Path("/work/shared/data"))
+    ap.add_argument("--kids", default=None, help="W116: also these simulated children (experiments/kid_profiles.py, "
+                    "scenario A normal, 100 Hz), e.g. 1000-1039; none by default")
+    ap.add_argument("--out", type=Path, default=ROOT / "experiments" / "results" / "waist_walk_ratio.md")
     args = ap.parse_args()
     logging.disable(logging.WARNING)
     lo, hi = (int(x) for x in args.users.split("-"))
@@ -68,6 +73,11 @@ def main() -> None:
                 group = "a short pendulum" if bounce == "pendulum" else "info short constant"
                 add(group, f"user {u} {sl}/{st} {bounce}",
                     simulate_path(ROUTE, short, speed="normal", rate_hz=100, seed=u, bounce=bounce), TRUE_M)
+    if args.kids:  # W116: children walking normally (their walk ratio is smaller)
+        from experiments.kid_profiles import child, child_age, walk
+        k0, k1 = (int(x) for x in args.kids.split("-"))
+        for u in range(k0, k1 + 1):
+            add("d children", f"user {u} age {child_age(u, k0)} A normal", walk(child(u, child_age(u, k0))))
     out = ["# W100 walk ratio (experiments/waist_walk_ratio.py)", "",
            "| group | session | steps | distance m | error % | WR | warned |", "|---|---|---|---|---|---|---|"]
     out += [f"| {r['group']} | {r['session']} | {r['steps']} | {r['dist_m']} | {r['err_pct']} | {r['WR']} | "
@@ -75,6 +85,7 @@ def main() -> None:
     a = [r for r in rows if r["group"] == "a short pendulum" and r["err_pct"] > 50.0]
     b = [r for r in rows if r["group"] == "b normal"]
     c = [r for r in rows if r["group"] == "c real"]
+    d = [r for r in rows if r["group"] == "d children"]
     info = [r for r in rows if r["group"] == "info short constant" and r["err_pct"] > 50.0]
     verdict = [f"(a) warned {sum(r['warned'] for r in a)} of {len(a)} pendulum-bounce short-step sessions read "
                f"> +50 % long (rule >= 80 %)",
@@ -91,9 +102,12 @@ def main() -> None:
     wr_b = [r["WR"] for r in b if r["WR"] is not None]
     verdict.append(f"(info) normal walks WR {min(wr_b)}-{max(wr_b)}; real WR "
                    f"{min(r['WR'] for r in c)}-{max(r['WR'] for r in c)}")
+    if d:
+        n_d = sum(r['warned'] for r in d)
+        verdict.append(f"(W116 a) warned {n_d} of {len(d)} children's normal walks (rule: none)")
     out += ["", *verdict]
     print("\n".join(verdict))
-    (ROOT / "experiments" / "results" / "waist_walk_ratio.md").write_text("\n".join(out) + "\n")
+    args.out.write_text("\n".join(out) + "\n")
 
 
 if __name__ == "__main__":

@@ -44,6 +44,7 @@ def test_decider_fed_in_pieces_equals_delayed_decisions(n, pieces, delay_s, fina
     got = np.array(rows, dtype=int).reshape(-1, 4)
     for a, b in zip(whole, got.T, strict=True):
         np.testing.assert_array_equal(a, b)
-    assert np.all(np.diff(got[:, 0]) >= round(K.DECISION_MIN_STEP_S * fs))
+    # W113: the repeat check is relative to the window's contacts; at 0.47 s steps it is W16's 0.3 s cap
+    assert np.all(np.diff(got[:, 0]) >= round(K.SHORTEST_STEP_S * fs))
     # the same windows, each at most span samples long
     assert seen == seen_all and all(hi - lo <= dec.span for lo, hi in seen)

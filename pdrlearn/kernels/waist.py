@@ -129,8 +129,57 @@ def peak_positions(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
     return pos
 
 
+#: W16: the shortest step (s), and since W113 its cap: a session's own shortest step is never longer
+SHORTEST_STEP_S = 0.3
+#: W113: a session's shortest step is this fraction of its step period (a priori: 150 steps/min and slower keep W16)
+SHORTEST_STEP_FRAC = 0.75
+#: W113: the autocorrelation lags (s) searched for the step period (400 down to 40 steps/min)
+STEP_PERIOD_LAGS_S = (0.15, 1.5)
+
+
+def step_period_s(vf: np.ndarray, fs: float, gate: np.ndarray | None = None) -> float:
+    """The step period (s) of a recording's filtered vertical acceleration ``vf`` (decision W113): the lag of the
+    first dominant peak of its autocorrelation inside the motion ``gate`` (Moe-Nilssen & Helbostad 2004, J Biomech
+    37:121-126: the first dominant peak of the vertical trunk acceleration's autocorrelation is the step, the second
+    the stride), "dominant" = a local maximum at least half the largest one in :data:`STEP_PERIOD_LAGS_S`; NaN
+    when there is none (no rhythmic motion)."""
+    x = np.asarray(vf, dtype=np.float64)
+    if gate is not None:
+        x = np.where(np.asarray(gate, dtype=bool), x, 0.0)
+    lo, hi = (int(round(s * fs)) for s in STEP_PERIOD_LAGS_S)
+    if x.size <= hi + 2 or not np.any(x):
+        return float("nan")
+    x = x - np.mean(x[x != 0.0])
+    nfft = 1 << int(np.ceil(np.log2(2 * x.size)))
+    r = np.fft.irfft(np.abs(np.fft.rfft(x, nfft)) ** 2, nfft)[:hi + 2]
+    if r[0] <= 0.0:
+        return float("nan")
+    seg = r[lo - 1:hi + 2] / r[0]
+    peaks = np.flatnonzero((seg[1:-1] > seg[:-2]) & (seg[1:-1] >= seg[2:]) & (seg[1:-1] > 0.0)) + 1
+    if peaks.size == 0:
+        return float("nan")
+    first = peaks[seg[peaks] >= 0.5 * seg[peaks].max()][0]
+    return float(lo - 1 + first) / fs
+
+
+def shortest_step_s(period_s: float) -> float:
+    """Decision W113: the shortest step (s) of a walk whose step period is ``period_s``: :data:`SHORTEST_STEP_FRAC`
+    of it, capped at W16's :data:`SHORTEST_STEP_S` (also without a period)."""
+    return min(SHORTEST_STEP_S, SHORTEST_STEP_FRAC * period_s) if np.isfinite(period_s) else SHORTEST_STEP_S
+
+
+def relative_min_gap(ts: np.ndarray, fs: float, max_step_s: float = 1.5) -> int:
+    """Decision W113 on contacts already found (sample indices ``ts``, increasing): the shortest step in samples
+    from the median spacing of the consecutive ones at most ``max_step_s`` apart (W16's when there are fewer than
+    ``RHYTHM_MIN_STEPS - 1`` such spacings)."""
+    d = np.diff(np.asarray(ts, dtype=np.float64))
+    d = d[d <= max_step_s * fs]
+    period = float(np.median(d)) / fs if d.size >= RHYTHM_MIN_STEPS - 1 else float("nan")
+    return max(1, int(round(shortest_step_s(period) * fs)))
+
+
 def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
-               cutoff_hz: float = 2.5, fir_order_s: float = 0.3, min_step_s: float = 0.3,  # windows: W16
+               cutoff_hz: float = 2.5, fir_order_s: float = 0.3, min_step_s: float | None = None,  # W16, W113
                search_s: float = 0.25, fc_search_s: float = 0.25, min_peak_mps2: float = 0.1,
                rhythm: bool = False, max_step_s: float = 1.5, acc_ml: np.ndarray | None = None,
                unshifted: bool = True, end_steps: bool = False, ap_above_mean: bool = False,
@@ -149,6 +198,9 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     acc_ap : (n,) antero-posterior acceleration (m/s^2, forward positive)
     fs : rate (Hz)
     gate : (n,) bool, samples where the user moves; vertical maxima outside it are ignored
+    min_step_s : the shortest step (s); ``None`` (default) = decision W113's: :func:`shortest_step_s` of the
+        :func:`step_period_s` of the filtered vertical acceleration inside ``gate`` (W16's 0.3 s at 150 steps/min and
+        slower, shorter for a faster rhythm)
     min_peak_mps2 : a vertical maximum must exceed this (filtered, m/s^2) to be a step
     rhythm : complete the walking sequences with :func:`rhythm_complete` (decision W18)
     max_step_s : maxima further apart than this (s) belong to different walking sequences (``rhythm``)
@@ -170,6 +222,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     ap = np.asarray(acc_ap, dtype=np.float64)
     taps = fir_taps(cutoff_hz, fs, int(round(fir_order_s * fs)))  # seed 003 sec. 3.1: order 30, 2.5 Hz
     vf = fir_zero_lag(v - np.mean(v), taps)
+    if min_step_s is None:  # decision W113: the shortest step follows the session's own step rhythm
+        min_step_s = shortest_step_s(step_period_s(vf, fs, gate))
     dist = max(1, int(round(min_step_s * fs)))
     if rhythm:  # decision W18: gaps and gate-cut sequence ends completed at the local step period
         cand = dsp.find_peaks(vf, height=0.0, distance=dist)
@@ -197,7 +251,8 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                      ap_cutoff_hz: float = 20.0, rhythm: bool = True, max_step_s: float = 1.5,
                      alternate: bool = True, weight_shift: bool = True, end_steps: bool = True,
                      ap_above_mean: bool = False, turn_gate_rps: float | None = None,
-                     turn_shift_rps: float | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                     turn_shift_rps: float | None = None, min_step_s: float | None = None
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The offline IC detector's rule contacts on navigation-frame arrays (the body of
     :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
     the AP acceleration low-passed at ``min(ap_cutoff_hz, 0.4 fs)`` (zero-phase third-order Butterworth, as
@@ -209,7 +264,8 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                else np.abs(rolling_mean(w_z, fs, causal=False)) >= turn_shift_rps)
     ic, fc, vmax = ic_offline(acc_v, ap, fs, gate=gate, cutoff_hz=cutoff_hz, fir_order_s=fir_order_s, rhythm=rhythm,
                               max_step_s=max_step_s, acc_ml=acc_ml if alternate else None, unshifted=weight_shift,
-                              end_steps=end_steps, ap_above_mean=ap_above_mean, turning=turning)
+                              end_steps=end_steps, ap_above_mean=ap_above_mean, turning=turning,
+                              min_step_s=min_step_s)
     return ic, fc, vmax, ap
 
 
@@ -541,7 +597,9 @@ def _nearest_local_max_before(x: np.ndarray, k: int, lo: int, *, level: np.ndarr
 DECISION_DELAY_S = 1.75  # W31: a contact is decided 1.75 to < 2.0 s after it (thesis: realtime delay < 2 s)
 DECISION_HOP_S = 0.25  # W31: decisions every 0.25 s
 DECISION_HISTORY_S = 10.0  # W31: samples before the decision window the sequence rules may look at
-DECISION_MIN_STEP_S = 0.3  # W31: a contact within the shortest step (W16: 0.3 s) of the last decided one repeats it
+#: W31: a contact within the shortest step of the last decided one repeats it; None (W113) = the shortest step of
+#: the decision window's own contacts (:func:`relative_min_gap`; W16's 0.3 s at 150 steps/min and slower)
+DECISION_MIN_STEP_S: float | None = None
 
 
 class DelayedDecider:
@@ -552,7 +610,8 @@ class DelayedDecider:
     ``history_s + delay_s + hop_s``) and returns ``(ic, fc, anchor)`` indices relative to ``lo``; the contacts
     whose IC lies in ``(T - hop_s - delay_s, T - delay_s]`` are decided there, once, and never revised. A
     contact closer than ``round(min_step_s * fs)`` samples after the last decided one is the same step seen
-    again from a later window and is not repeated. The end of the data is one more decision time that
+    again from a later window and is not repeated (``min_step_s=None``: decision W113's shortest step of the
+    window's own contacts, :func:`relative_min_gap`). The end of the data is one more decision time that
     decides all remaining contacts (:meth:`decide_until` with ``end``).
 
     Used by :func:`delayed_decisions` (a whole recording) and by the ``waist-ic`` step detector's streaming
@@ -560,11 +619,12 @@ class DelayedDecider:
     """
 
     def __init__(self, fs: float, *, delay_s: float = DECISION_DELAY_S, hop_s: float = DECISION_HOP_S,
-                 history_s: float = DECISION_HISTORY_S, min_step_s: float = DECISION_MIN_STEP_S):
+                 history_s: float = DECISION_HISTORY_S, min_step_s: float | None = DECISION_MIN_STEP_S):
         self.hop = max(1, int(round(hop_s * fs)))
         self.dly = int(round(delay_s * fs))
         self.span = int(round(history_s * fs)) + self.dly + self.hop  # samples a decision's detector sees
-        self.min_gap = max(1, int(round(min_step_s * fs)))
+        self.fs = fs
+        self.min_gap = None if min_step_s is None else max(1, int(round(min_step_s * fs)))
         self.next_t = self.hop  # the next decision time on the grid (samples from the first one)
         self.done = -1  # contacts with an IC up to this sample are decided
         self.last: int | None = None  # the IC of the last decided contact
@@ -586,8 +646,9 @@ class DelayedDecider:
             return
         lo = max(0, tt - self.span)
         ic, fc, an = detect(lo, tt)
+        gap = relative_min_gap(ic, self.fs) if self.min_gap is None else self.min_gap  # W113
         for a, b, c in zip(np.asarray(ic) + lo, np.asarray(fc) + lo, np.asarray(an) + lo, strict=True):
-            if self.done < a <= upto and (self.last is None or a - self.last >= self.min_gap):
+            if self.done < a <= upto and (self.last is None or a - self.last >= gap):
                 out.append((int(a), int(b), int(c), tt))
                 self.last = int(a)
         self.done = upto
@@ -595,7 +656,7 @@ class DelayedDecider:
 
 def delayed_decisions(n: int, fs: float, detect, *, delay_s: float = DECISION_DELAY_S,
                       hop_s: float = DECISION_HOP_S, history_s: float = DECISION_HISTORY_S,
-                      min_step_s: float = DECISION_MIN_STEP_S, final: bool = True
+                      min_step_s: float | None = DECISION_MIN_STEP_S, final: bool = True
                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Causal contacts with a bounded decision delay from an offline detector (decision W31), on ``n`` samples.
 
@@ -621,7 +682,7 @@ def delayed_decisions(n: int, fs: float, detect, *, delay_s: float = DECISION_DE
 
 def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.ndarray | None = None,
                 cutoff_hz: float = 2.5, fir_order: int = 11, search_s: float = 0.25,  # windows: W16
-                min_step_s: float = 0.3, max_step_s: float = 1.5, lobe_ratio: float = 2.0,
+                min_step_s: float | None = None, max_step_s: float = 1.5, lobe_ratio: float = 2.0,
                 fc_search_s: float = 0.25, mean_s: float = 1.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Causal initial-contact detection (seed 003 sec. 3.1, real-time variant).
 
@@ -634,7 +695,8 @@ def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nd
     of the raw AP acceleration in the ``search_s`` window before the (delay-corrected) crossing; the FC
     the minimum of AP acceleration in the ``fc_search_s`` after the IC's vertical maximum. Only samples
     up to the crossing (plus ``fc_search_s`` for the FC) are used, so the IC is known one filter delay
-    after it happens.
+    after it happens. Two ICs are at least ``min_step_s`` apart; ``None`` (decision W113) = the shortest step of
+    the last accepted contacts' rhythm (:func:`relative_min_gap`, W16's 0.3 s until there are three).
 
     Returns
     -------
@@ -657,7 +719,7 @@ def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nd
     ic_l, fc_l, zc_l = [], [], []
     ws = max(1, int(round(search_s * fs)))
     wf = max(1, int(round(fc_search_s * fs)))
-    min_gap = int(round(min_step_s * fs))
+    fixed_gap = None if min_step_s is None else int(round(min_step_s * fs))
     max_gap = int(round(max_step_s * fs))
     for z in zc:
         if gate_arr is not None and not gate_arr[z]:
@@ -672,6 +734,7 @@ def ic_realtime(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nd
             continue  # seed 003: a false crossing follows a much longer positive lobe
         zr = z - delay  # crossing time corrected for the FIR delay
         ic = _nearest_local_max_before(ap, zr, max(0, zr - ws))
+        min_gap = relative_min_gap(ic_l[-9:], fs, max_step_s) if fixed_gap is None else fixed_gap  # W113
         if ic_l and ic - ic_l[-1] < min_gap:
             continue
         lobes.append(lobe)

@@ -102,12 +102,13 @@ class RealtimeContacts:
 
     def __init__(self, fs: float, offline, *, rotation=None, gaps=None, gain: float = MADGWICK_GAIN,
                  delay_s: float = K.DECISION_DELAY_S, hop_s: float = K.DECISION_HOP_S,
-                 history_s: float = K.DECISION_HISTORY_S, max_step_s: float = MAX_STEP_S, on_nav=None):
+                 history_s: float = K.DECISION_HISTORY_S, max_step_s: float = MAX_STEP_S, on_nav=None,
+                 min_step_s: float | None = K.DECISION_MIN_STEP_S):
         self.fs, self.offline, self.gain, self.max_step_s, self.on_nav = fs, offline, gain, max_step_s, on_nav
         self.rotation = None if rotation is None else np.asarray(rotation, dtype=float).reshape(3, 3)
         self.gaps = dict(gaps or {})
         self.bridge = Bridge(fs, self.gaps)
-        self.decider = K.DelayedDecider(fs, delay_s=delay_s, hop_s=hop_s, history_s=history_s)
+        self.decider = K.DelayedDecider(fs, delay_s=delay_s, hop_s=hop_s, history_s=history_s, min_step_s=min_step_s)
         self.max_gap = K._max_gap(max_step_s, fs)
         self.n0 = max(1, int(round(INIT_S * fs)))  # the AHRS's initial attitude (pdrlearn.waist.ahrs.waist_imu)
         self.raw: list[np.ndarray] = []  # samples before the initial attitude is known

@@ -93,7 +93,8 @@ def _RealtimeProcessor(det: WaistICStepDetector, fs: float, rotation=None, gaps=
         return ic_det._offline(imu)
 
     return RealtimeContacts(fs, offline, rotation=rotation, gaps=gaps, gain=det.ahrs_gain, delay_s=det.delay_s,
-                            hop_s=det.hop_s, history_s=det.history_s, max_step_s=det.max_step_s, on_nav=on_nav)
+                            hop_s=det.hop_s, history_s=det.history_s, max_step_s=det.max_step_s, on_nav=on_nav,
+                            min_step_s=det.min_step_s)
 
 
 
@@ -123,6 +124,8 @@ class WaistICStepDetector(StepDetector):
         ``delay_s + hop_s`` after it (W31: 1.75 s, the thesis' < 2 s) from the last ``history_s`` seconds
         (W31: 10 s) and reported when the next one is decided (at most ``max_step_s`` later); bounded state
     hop_s, history_s : decision interval and history of the realtime variant (s; W31: 0.25, 10)
+    min_step_s : the shortest step (s; W16's 0.3); ``None`` (default, decision W113): relative to the session's own
+        step rhythm, 0.75 of its step period and at most 0.3 s (a child's 3-4 Hz steps)
 
     Online (decision 17): input columns are the waist accelerometer (m/s^2) and gyroscope (rad/s) in the
     body frame FLU at ``fs`` Hz (``online(fs, rotation=R)`` maps sensor-frame samples with the session's
@@ -141,7 +144,8 @@ class WaistICStepDetector(StepDetector):
                  rhythm: bool = True, alternate: bool = True, weight_shift: bool = True, end_steps: bool = True,
                  learned: bool | str = False,
                  ahrs_gain: float = 0.033,  # W5: Madgwick 2010 / `ahrs` IMU default (waist.ahrs.MADGWICK_GAIN)
-                 delay_s: float | None = None, hop_s: float = 0.25, history_s: float = 10.0):  # W31
+                 delay_s: float | None = None, hop_s: float = 0.25, history_s: float = 10.0,  # W31
+                 min_step_s: float | None = None):  # W16 / W113: None = relative to the session's step rhythm
         self._store(locals())
 
     def ic_detector(self, walk_threshold: float | None = None):
@@ -152,7 +156,7 @@ class WaistICStepDetector(StepDetector):
         thr = next((x for x in (walk_threshold, self.walk_threshold) if x is not None), WALK_THRESHOLD_MPS2)
         return InitialContactDetector(walk_threshold=thr, max_step_s=self.max_step_s,
                                       rhythm=self.rhythm, alternate=self.alternate, weight_shift=self.weight_shift,
-                                      end_steps=self.end_steps, learned=self.learned)
+                                      end_steps=self.end_steps, learned=self.learned, min_step_s=self.min_step_s)
 
     def _inputs(self, session: Session):
         from pdrlearn.track.gaps import long_gaps

@@ -45,12 +45,13 @@ from pdrlearn.waist.heading import (
     untracked_turn,
     untracked_turn_message,
 )
-from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params
+from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params, subject_height
 from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
     PLAUSIBILITY_MIN_PAIRS,
     contact_alternation,
     not_alternating_message,
+    step_counts,
     still_yaw_rate,
     still_yaw_rate_message,
     walk_ratio,
@@ -524,8 +525,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     alternation, pairs = contact_alternation(imu.t, imu.acc_ml, imu.fs, steps["event_s"].to_numpy(float),
                                              steps["has_next"].to_numpy(bool))  # decision W98
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
-        warnings.append(not_alternating_message(alternation, pairs))
-    ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime)  # decision W100
+        warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
+                                                step_counts(session, steps["event_s"].to_numpy(float))))
+    ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, subject_height(session.meta)[0])  # W100, W116
     if ratio_line:
         warnings.append(ratio_line)
     n = len(steps)
@@ -553,13 +555,14 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     return _result(steps, start, initial_heading, info, float(imu.t[0]), z)
 
 
-def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool) -> tuple[float | None, str | None]:
+def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool,
+                height_m: float) -> tuple[float | None, str | None]:
     """Decision W100: the walk ratio of an offline, uncalibrated ``waist-pendulum`` track (None otherwise) and its
-    warning line (None inside the healthy band or with too few steps)."""
+    warning line (None inside the healthy band of a walker ``height_m`` tall, W116, or with too few steps)."""
     if pipeline != "waist-pendulum" or realtime or p.source != "defaults" or not len(steps):
         return None, None
     ratio, n, length, cadence = walk_ratio(steps["length_m"].to_numpy(float), waist_step_times(steps)[0])
-    return ratio, walk_ratio_message(ratio, n, length, cadence)
+    return ratio, walk_ratio_message(ratio, n, length, cadence, height_m)
 
 
 RELATIVE_HEADING = "waist heading relative to the start"

@@ -14,6 +14,14 @@ from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.evaluate import reference_bouts, steps_in_interval
 from pdrlearn.waist.heading import TurnClassifier
 from pdrlearn.waist.params import DEFAULT_K, TAU_K, WaistParams, resolve_params
+from pdrlearn.waist.plausibility import (  # noqa: F401  (W99 moved to plausibility; its names stay importable here)
+    MISSED_STEPS_CAUSE,
+    STEP_COUNT_DISAGREE,
+    STEP_COUNT_MARGIN_S,
+    STEP_COUNT_MIN,
+    step_counts,
+    steps_missed,
+)
 from pdrlearn.waist.steplength import (
     MIN_GAIN_STRIDES,
     CalibrationWalk,
@@ -174,30 +182,6 @@ def check_gain(walks: list[CalibrationWalk], pipeline: str, base: WaistParams) -
     return out
 
 
-#: decision W99: the waist IC count of a calibration walk and the pelvic-gyro detector's disagree when they differ
-#: by more than this fraction of the pelvic-gyro count (the lead's 30 %)
-STEP_COUNT_DISAGREE = 0.3
-STEP_COUNT_MIN = 10  # W99: walks where both counts are under this are not judged
-STEP_COUNT_MARGIN_S = 0.5  # W99: pelvic-gyro steps this far outside the first / last waist contact still count
-
-
-def step_counts(session: Session, event_s: np.ndarray) -> tuple[int, int] | None:
-    """Decision W99: ``(n_waist, n_gyro)``: the waist contacts ``event_s`` (s) of a calibration walk and the
-    pelvic-gyro detector's steps between the first and last of them (+- :data:`STEP_COUNT_MARGIN_S`); None
-    without two contacts or without a waist gyroscope."""
-    from pdrlearn.steps.detectors import PelvicGyroStepDetector
-
-    ev = np.asarray(event_s, dtype=np.float64)
-    if ev.size < 2:
-        return None
-    try:
-        gyro = PelvicGyroStepDetector().detect(session)["event_s"].to_numpy(float)
-    except DataError:  # no waist gyroscope: nothing to compare with
-        return None
-    lo, hi = ev.min() - STEP_COUNT_MARGIN_S, ev.max() + STEP_COUNT_MARGIN_S
-    return int(ev.size), int(np.count_nonzero((gyro >= lo) & (gyro <= hi)))
-
-
 def step_count_check(session: Session, event_s: np.ndarray) -> str | None:
     """Decision W99: one warning when :func:`step_counts` disagree by more than :data:`STEP_COUNT_DISAGREE` of
     the pelvic-gyro count (the larger count at least :data:`STEP_COUNT_MIN`); None when they agree or cannot be
@@ -208,11 +192,13 @@ def step_count_check(session: Session, event_s: np.ndarray) -> str | None:
     n_w, n_g = counts
     if max(n_w, n_g) < STEP_COUNT_MIN or abs(n_w - n_g) <= STEP_COUNT_DISAGREE * n_g:
         return None
+    why = (f"fewer contacts than steps: {MISSED_STEPS_CAUSE}" if steps_missed(counts)  # decision W114
+           else "more contacts than steps: a very slow walker's phantom contacts, a walking aid's strikes")
     return (f"{session.name}: the waist step detector counted {n_w} contacts on this walk, the pelvic-gyro detector "
             f"{n_g} (more than {100 * STEP_COUNT_DISAGREE:.0f} % apart, decision W99): the step count is doubtful, and "
-            "with it K and the step count and cadence of every track calibrated with it (a very slow walker's "
-            "phantom contacts, a walking aid's strikes); check with 'pdrlearn steps DIR --detector pelvic-gyro' "
-            "(and a foot unit if there is one) before relying on this calibration")
+            f"with it K and the step count and cadence of every track calibrated with it ({why}); check with "
+            "'pdrlearn steps DIR --detector pelvic-gyro' (and a foot unit if there is one) before relying on this "
+            "calibration")
 
 
 def fit_turn_classifier(mean_rates: np.ndarray) -> tuple[dict | None, str]:

@@ -119,6 +119,9 @@ class InitialContactDetector:
     turn_shift_rps : offline (and realtime with ``delay_s``): a maximum where the pelvis's mean yaw rate over the
         gate window (centred) reaches this (rad/s) is exempt from W23's weight-shift test (``weight_shift``;
         decision 29 of docs/decisions/steps.md: 0.45, decision 28's turning test); ``None`` (default) = W23 everywhere
+    min_step_s : the shortest step (s) of every variant (W16: 0.3); ``None`` (default, decision W113) = relative to
+        the recording's own step rhythm (0.75 of its step period, at most 0.3 s), so a child's 3-4 Hz steps are
+        found; W31's repeat check and seed 003's causal variant take it from their contacts' spacing
 
     Attributes
     ----------
@@ -136,8 +139,10 @@ class InitialContactDetector:
                  ap_above_mean: bool = False, learned: bool | str = False,
                  delay_s: float | None = K.DECISION_DELAY_S,
                  hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S,
-                 turn_gate_rps: float | None = None, turn_shift_rps: float | None = None):
+                 turn_gate_rps: float | None = None, turn_shift_rps: float | None = None,
+                 min_step_s: float | None = None):
         self.realtime = realtime
+        self.min_step_s = min_step_s
         self.turn_shift_rps = turn_shift_rps
         self.turn_gate_rps = turn_gate_rps
         self.delay_s = delay_s
@@ -160,7 +165,7 @@ class InitialContactDetector:
         """The keywords of :func:`pdrlearn.kernels.waist.contacts_offline` (the lean runtime's detector, W92)."""
         return {k: getattr(self, k) for k in ("walk_threshold", "cutoff_hz", "fir_order_s", "ap_cutoff_hz", "rhythm",
                                               "max_step_s", "alternate", "weight_shift", "end_steps",
-                                              "ap_above_mean", "turn_gate_rps", "turn_shift_rps")}
+                                              "ap_above_mean", "turn_gate_rps", "turn_shift_rps", "min_step_s")}
 
     def _offline(self, imu: WaistIMU) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The offline detector's contacts (zero-lag filters, sequence rules) on ``imu``."""
@@ -186,13 +191,14 @@ class InitialContactDetector:
                 log.warning("lobe_ratio applies to seed 003's zero-crossing detector only (delay_s=None)")
             ic, fc, ref, self.decided_ = K.delayed_decisions(
                 len(imu.t), fs, lambda lo, hi: self._offline(_window(imu, lo, hi)), delay_s=self.delay_s,
-                hop_s=self.hop_s, history_s=self.history_s, final=final)
+                hop_s=self.hop_s, history_s=self.history_s, final=final, min_step_s=self.min_step_s)
         elif self.realtime:
             gate = walking_gate(imu, walk_threshold=self.walk_threshold, causal=True,
                                 turn_gate_rps=self.turn_gate_rps)
             cut = min(self.ap_cutoff_hz, 0.4 * fs)
             ap = lowpass(imu.acc_ap, cut, fs, causal=True)
             ic, fc, ref = K.ic_realtime(imu.acc_v, ap, fs, gate=gate, cutoff_hz=self.cutoff_hz,
+                                        min_step_s=self.min_step_s,
                                         lobe_ratio=np.inf if self.lobe_ratio is None else self.lobe_ratio)
             # the causal low-pass delays the AP peaks: date the contacts back by its group delay (W17)
             lag = int(round(causal_lowpass_delay_s(cut, fs) * fs))

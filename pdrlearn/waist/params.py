@@ -171,17 +171,41 @@ def leg_length_note(meta: dict) -> str | None:
             "decision B155)")
 
 
-def default_params(session: Session) -> tuple[WaistParams, list[str]]:
+def subject_height(meta: dict | None, *, infer: bool = False) -> tuple[float, str | None]:
+    """``(height m, warning)``: meta.json's ``height_m``, else :data:`DEFAULT_HEIGHT_M`. Decision W115: the leg
+    length meta.json gives (``leg_length_m``, else ``sensor_height_m``: the pendulum's L, W10) / :data:`LEG_PER_HEIGHT`
+    (the inverse of the default that derives the leg from the height) is the height it implies: the warning names it
+    (a 0.57 m sensor height is a ~1.1 m child, not a 1.70 m adult), and with ``infer`` it is used (not the default:
+    its adoption rule failed, docs/decisions/waist.md W115). The warning is None when ``height_m`` is given."""
+    meta = meta or {}
+    height = _meta_number(meta, "height_m")
+    if height is not None:
+        return height, None
+    found = _meta_numbers(meta, "leg_length_m", "sensor_height_m")
+    if not found:
+        return DEFAULT_HEIGHT_M, f"meta.json gives no subject height: assumed {DEFAULT_HEIGHT_M} m"
+    key, leg = found[0]
+    implied = leg / LEG_PER_HEIGHT
+    if infer:
+        return implied, (f"meta.json gives no subject height: {implied:.2f} m inferred from its {key} {leg:g} m / "
+                         f"{LEG_PER_HEIGHT} (decision W115; give meta.json height_m, the uncalibrated step length "
+                         "scales with it)")
+    return DEFAULT_HEIGHT_M, (f"meta.json gives no subject height: assumed {DEFAULT_HEIGHT_M} m, though its {key} "
+                              f"{leg:g} m implies about {implied:.2f} m ({key} / {LEG_PER_HEIGHT}, decision W115); the "
+                              "uncalibrated step length scales with the height: give meta.json height_m")
+
+
+def default_params(session: Session, *, infer_height: bool = False) -> tuple[WaistParams, list[str]]:
     """Defaults from ``meta.json`` (height, sensor height / leg length, foot length) and the warnings
-    that say what was assumed."""
+    that say what was assumed; ``infer_height``: without ``height_m`` the height the leg length implies (decision
+    W115, an option: :func:`subject_height`)."""
     meta = session.meta or {}
     warnings = ["no per-user calibration: step length from meta.json defaults "
                 "(run 'pdrlearn calibrate' on a walk of known length)"]
     notes = []
-    height = _meta_number(meta, "height_m")
-    if height is None:
-        height = DEFAULT_HEIGHT_M
-        warnings.append(f"meta.json gives no subject height: assumed {DEFAULT_HEIGHT_M} m")
+    height, line = subject_height(meta, infer=infer_height)  # W115: the warning names the height the leg implies
+    if line:
+        warnings.append(line)
     leg = _meta_number(meta, "leg_length_m", "sensor_height_m")  # B155: leg_length_m first (leg_length_note)
     if leg is None:
         leg = LEG_PER_HEIGHT * height

@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from pdrlearn.errors import DataError
+from pdrlearn.io import Session
 from pdrlearn.signal.conditioning import runs, standstill_mask
 from pdrlearn.waist import _kernels as K
 
@@ -27,6 +29,17 @@ PLAUSIBILITY_MIN_PAIRS = 10
 WALK_RATIO_HEALTHY = 0.0064
 #: W100: half and 1.5x the healthy walk ratio (a priori round factors, not fitted): outside warns
 WALK_RATIO_BAND = (0.5 * WALK_RATIO_HEALTHY, 1.5 * WALK_RATIO_HEALTHY)
+#: W116: the stature the healthy walk ratio stands for (an assumption: ``DEFAULT_HEIGHT_M``; Sekiya & Nagasaki's mean
+#: stature is not in the seeds)
+WALK_RATIO_HEIGHT_M = 1.70
+
+
+def walk_ratio_scale(height_m: float) -> float:
+    """Decision W116: the factor of the healthy walk ratio and its band for a walker ``height_m`` tall,
+    ``(height_m / WALK_RATIO_HEIGHT_M) ** 1.5``: under dynamic similarity (Hof 1996, Gait & Posture 4:222-223) a step
+    length scales with the leg length l0 and a cadence with ``sqrt(g / l0)``, so their ratio with ``l0 ** 1.5``
+    (l0 a fixed fraction of the stature)."""
+    return (float(height_m) / WALK_RATIO_HEIGHT_M) ** 1.5
 
 
 def alternation_index(v_at: np.ndarray, has_next: np.ndarray) -> tuple[float | None, int]:
@@ -65,13 +78,58 @@ def contact_lateral_velocity(t: np.ndarray, acc_ml: np.ndarray, fs: float, event
     return K.lateral_velocity(acc_ml, fs)[idx]
 
 
-def not_alternating_message(index: float, pairs: int) -> str:
-    """Decision W98's one warning line for a waist track whose steps do not alternate left/right."""
-    return (f"the detected steps do not alternate left/right (alternation index {index:.2f} over {pairs} "
-            f"consecutive steps; walking is ~1, under {ALTERNATION_MIN:g} warns, decision W98): the pelvis shows "
-            "no sideways weight shift from step to step, so the step count, distance and speed may not be "
-            "walking (wheelchair propulsion, walking-aid strikes, phantom steps at very slow gait); check with "
-            "a foot unit or 'pdrlearn steps DIR --detector pelvic-gyro'")
+#: decision W99: the waist IC count of a calibration walk and the pelvic-gyro detector's disagree when they differ
+#: by more than this fraction of the pelvic-gyro count (the lead's 30 %)
+STEP_COUNT_DISAGREE = 0.3
+STEP_COUNT_MIN = 10  # W99: walks where both counts are under this are not judged
+STEP_COUNT_MARGIN_S = 0.5  # W99: pelvic-gyro steps this far outside the first / last waist contact still count
+
+
+def step_counts(session: Session, event_s: np.ndarray) -> tuple[int, int] | None:
+    """Decision W99: ``(n_waist, n_gyro)``: the waist contacts ``event_s`` (s) of a calibration walk and the
+    pelvic-gyro detector's steps between the first and last of them (+- :data:`STEP_COUNT_MARGIN_S`); None
+    without two contacts or without a waist gyroscope."""
+    from pdrlearn.steps.detectors import PelvicGyroStepDetector
+
+    ev = np.asarray(event_s, dtype=np.float64)
+    if ev.size < 2:
+        return None
+    try:
+        gyro = PelvicGyroStepDetector().detect(session)["event_s"].to_numpy(float)
+    except DataError:  # no waist gyroscope: nothing to compare with
+        return None
+    lo, hi = ev.min() - STEP_COUNT_MARGIN_S, ev.max() + STEP_COUNT_MARGIN_S
+    return int(ev.size), int(np.count_nonzero((gyro >= lo) & (gyro <= hi)))
+
+
+#: decision W114: what a waist contact count well under the pelvic gyroscope's means
+MISSED_STEPS_CAUSE = ("the waist detector misses steps, as when steps come faster than its shortest step (a young "
+                      "child's or a very fast cadence), so the step count, cadence and distance read low")
+
+
+def steps_missed(counts: tuple[int, int] | None) -> bool:
+    """Decision W114: the pelvic-gyro count of :func:`step_counts` ``(n_waist, n_gyro)`` exceeds the waist contacts
+    by more than :data:`STEP_COUNT_DISAGREE` of it (the larger at least :data:`STEP_COUNT_MIN`): the waist detector
+    misses steps, it does not add any."""
+    if counts is None:
+        return False
+    n_w, n_g = counts
+    return max(n_w, n_g) >= STEP_COUNT_MIN and n_g - n_w > STEP_COUNT_DISAGREE * n_g
+
+
+def not_alternating_message(index: float, pairs: int, counts: tuple[int, int] | None = None) -> str:
+    """Decision W98's one warning line for a waist track whose steps do not alternate left/right; with the
+    :func:`step_counts` ``counts`` of its contacts, decision W114: when the pelvic gyroscope counts more steps
+    (:func:`steps_missed`) the contacts are every other step of a fast gait, and the line says so instead."""
+    head = (f"the detected steps do not alternate left/right (alternation index {index:.2f} over {pairs} "
+            f"consecutive steps; walking is ~1, under {ALTERNATION_MIN:g} warns, decision W98): ")
+    if steps_missed(counts):
+        return (head + f"the pelvic-gyro detector counts {counts[1]} steps over the same span, the waist contacts "
+                f"{counts[0]} (decision W114): {MISSED_STEPS_CAUSE}; use 'pdrlearn steps DIR --detector "
+                "pelvic-gyro' for the step count and cadence, or a foot unit")
+    return (head + "the pelvis shows no sideways weight shift from step to step, so the step count, distance and "
+            "speed may not be walking (wheelchair propulsion, walking-aid strikes, phantom steps at very slow gait); "
+            "check with a foot unit or 'pdrlearn steps DIR --detector pelvic-gyro'")
 
 
 def walk_ratio(length_m: np.ndarray, step_s: np.ndarray) -> tuple[float | None, int, float | None, float | None]:
@@ -88,19 +146,23 @@ def walk_ratio(length_m: np.ndarray, step_s: np.ndarray) -> tuple[float | None, 
     return length / cadence, n, length, cadence
 
 
-def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None) -> str | None:
+def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None,
+                       height_m: float = WALK_RATIO_HEIGHT_M) -> str | None:
     """Decision W100's one warning line for an uncalibrated waist track whose walk ratio lies outside
     :data:`WALK_RATIO_BAND` over at least :data:`PLAUSIBILITY_MIN_PAIRS` steps; None when it is inside or not
-    judged."""
-    if ratio is None or n < PLAUSIBILITY_MIN_PAIRS or WALK_RATIO_BAND[0] <= ratio <= WALK_RATIO_BAND[1]:
+    judged. Decision W116: the band is that of a walker ``height_m`` tall (:func:`walk_ratio_scale`: a child's healthy
+    walk ratio is smaller)."""
+    c = walk_ratio_scale(height_m)
+    lo, hi, healthy = c * WALK_RATIO_BAND[0], c * WALK_RATIO_BAND[1], c * WALK_RATIO_HEALTHY
+    if ratio is None or n < PLAUSIBILITY_MIN_PAIRS or lo <= ratio <= hi:
         return None
     what = ("far under healthy gait's: a short-stepping (shuffling, festinating) gait, on which the uncalibrated "
             "waist step length is not validated and reads long (simulated festinating walks: +20 to +174 % distance)"
-            if ratio < WALK_RATIO_BAND[0] else
+            if ratio < lo else
             "far over healthy gait's: the uncalibrated step length is implausibly long for this cadence")
     return (f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
-            f"{n} steps; healthy gait ~{WALK_RATIO_HEALTHY:g}, outside {WALK_RATIO_BAND[0]:g}-"
-            f"{WALK_RATIO_BAND[1]:g} warns, decision W100) is {what}; the distance, speed and step lengths need a "
+            f"{n} steps; healthy gait ~{healthy:.4f} at {height_m:.2f} m tall, outside {lo:.4f}-{hi:.4f} warns, "
+            f"decision W100, scaled to the stature by W116) is {what}; the distance, speed and step lengths need a "
             "calibration on this walker's own walk of known length (a 10 m walk test, or this recording if you know "
             "the distance walked): 'pdrlearn calibrate DIR --distance M --out PARAMS.json', then track with "
             "--params PARAMS.json")
