@@ -30,10 +30,10 @@ from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_o
 from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.stride import (
     DOWN_MODES,
+    FINE_PAD_S,
     GAP_YAW_MAX_S,
     HEADING_SOURCES,
     StanceSegmenter,
-    FINE_PAD_S,
     advance_xyz,
     fine_spec,
     headed_by_foot,
