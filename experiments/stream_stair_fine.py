@@ -76,7 +76,13 @@ def fine_bundle(w: Path) -> Path:
     return b5
 
 
-def real_check() -> None:
+def real_check(work: Path) -> None:
+    """Rule (e), printed once per ``work`` folder (cached in ``work/real_check.txt``)."""
+    cache = work / "real_check.txt"
+    if cache.exists():
+        print(cache.read_text(), end="", flush=True)
+        return
+    lines = []
     for name in REAL:
         d = next((p for p in (Path("datasets/real") / name, Path("datasets/external") / name) if p.exists()), None)
         if d is None:
@@ -86,8 +92,10 @@ def real_check() -> None:
         dz = [track_plasys(ses, method="M2", streaming=True, params={STRIDE_UPSAMPLE_KEY: k},
                            distance_gain=1.0).steps["dz_m"].to_numpy(float) for k in (1, STRIDE_UPSAMPLE_OPTION)]
         same = len(dz[0]) == len(dz[1]) and bool((dz[0] == dz[1]).all())
-        print(f"{name}: {len(dz[0])} strides, dz bit for bit equal: {same}, floors (up, down) "
-              f"{count_floors_by_climb(dz[0])[:2]} / {count_floors_by_climb(dz[1])[:2]}", flush=True)
+        lines.append(f"{name}: {len(dz[0])} strides, dz bit for bit equal: {same}, floors (up, down) "
+                     f"{count_floors_by_climb(dz[0])[:2]} / {count_floors_by_climb(dz[1])[:2]}")
+        print(lines[-1], flush=True)
+    cache.write_text("".join(f"{ln}\n" for ln in lines))
 
 
 def main() -> None:
@@ -128,7 +136,7 @@ def main() -> None:
     ch = np.array([100 * (d5 / d1 - 1) for d1, d5 in level])
     print(f"(b) level walk distance change %: max |.| {np.abs(ch).max():.3f}, mean {ch.mean():+.3f}, "
           f"total {100 * (sum(d5 for _, d5 in level) / sum(d1 for d1, _ in level) - 1):+.3f}")
-    real_check()
+    real_check(a.work)
 
 
 if __name__ == "__main__":
