@@ -13,6 +13,8 @@ import numpy as np
 from scipy.interpolate import make_interp_spline
 from scipy.spatial.transform import Rotation
 
+from pdrlearn.kernels import histospline as H
+
 # the numpy core, shared with io.handedness and the runtime (decision B129); re-exported under the old names
 from pdrlearn.kernels.strapdown import cumtrapz as _cumtrapz  # noqa: F401
 from pdrlearn.kernels.strapdown import qrotate as _qrotate  # noqa: F401
@@ -43,14 +45,10 @@ def upsample_block_means(t: np.ndarray, x: np.ndarray, k: int, *,
     """
     t = np.asarray(t, dtype=float)
     x = np.asarray(x, dtype=float)
-    dt = np.diff(t)
-    edges = np.concatenate([[t[0] - dt[0] / 2], 0.5 * (t[1:] + t[:-1]), [t[-1] + dt[-1] / 2]])
+    edges = H.block_edges(t)  # the block edges and running integral the streamed kernel shares (decision L141)
     width = np.diff(edges)
-    w = width.reshape(-1, *([1] * (x.ndim - 1)))
-    integral = np.vstack([np.zeros((1,) + x.shape[1:]), np.cumsum(x * w, axis=0)])
-    deg = int(degree)
-    while deg > 1 and deg >= len(edges):  # a short input takes the highest odd degree it supports
-        deg -= 2
+    integral = H.running_integral(edges, x)
+    deg = H.spline_degree(len(edges), degree)  # a short input takes the highest odd degree it supports
     deriv = make_interp_spline(edges, integral, k=deg, axis=0).derivative()
     frac = (np.arange(k) + 0.5) / k
     t_fine = (edges[:-1, None] + width[:, None] * frac[None, :]).ravel()

@@ -26,6 +26,7 @@ Modules
 - :mod:`~pdrlearn.kernels.units` - unit, plausibility and frozen-sensor checks of the values (B119, B120).
 - :mod:`~pdrlearn.kernels.strapdown` - the stride strapdown's core: padded batches, quaternion propagation (E72).
 - :mod:`~pdrlearn.kernels.handedness` - D11's mirrored-pair test of a foot unit, offline and live (B129).
+- :mod:`~pdrlearn.kernels.histospline` - L24's block-mean histospline without scipy (the stride kernel's, L141).
 
 This ``__init__`` imports nothing (importing a submodule never loads the others).
 """

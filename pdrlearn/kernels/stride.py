@@ -28,7 +28,8 @@ import numpy as np
 from pdrlearn.errors import DataError
 from pdrlearn.kernels import bayes as B
 from pdrlearn.kernels.contact import MAX_STRIDE_S
-from pdrlearn.kernels.window import TIE_S, Levelled, interp
+from pdrlearn.kernels.histospline import upsample_block_means
+from pdrlearn.kernels.window import TIE_S, Levelled, foot_levelled, interp, resample, segment
 
 # -- length-class bounds -------------------------------------------------------------------------------
 #: Decision L59 (docs/decisions/localization.md): the ``length_bounds_source`` an export wrote before L59 when
@@ -438,14 +439,86 @@ def waist_bridge_yaw(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0:
 HEADING_SOURCES = ("auto", "foot", "waist-gyro")
 
 
+#: Decision L141 (L132's candidate): the stride kernel's displacement is integrated on L24's histospline
+#: ``stride_upsample`` times finer (1 = at the unit's own rate) when the foot's rate is below
+#: :data:`FINE_BELOW_HZ`, the spline fitted on the stride's samples and :data:`FINE_PAD_S` either side; the
+#: bundle's ``displacement`` / ``track --streaming --params`` key, default :data:`STRIDE_UPSAMPLE_DEFAULT`
+STRIDE_UPSAMPLE_KEY = "stride_upsample"
+STRIDE_UPSAMPLE_DEFAULT = 1
+#: decision L141: offline ``FootDisplacement``'s factor below 50 Hz (L16, L24), and the padding L132 measured
+#: (without it the spline's free ends ring: down strides 0.93-0.95 of their height)
+STRIDE_UPSAMPLE_OPTION = 5
+FINE_BELOW_HZ = 50.0
+FINE_PAD_S = 0.5
+
+
+def stride_upsample(params: Mapping | None, where: str = "params") -> int:
+    """Decision L141: the stride kernel's upsampling factor from a bundle's ``displacement`` / the streamed
+    ``params`` (an integer >= 1; one clear line naming ``where`` otherwise)."""
+    v = (params or {}).get(STRIDE_UPSAMPLE_KEY, STRIDE_UPSAMPLE_DEFAULT)
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or v != int(v) or int(v) < 1:
+        raise DataError(f"{where}: {STRIDE_UPSAMPLE_KEY} {v!r} must be an integer >= 1 (1 = the unit's own rate, "
+                        f"{STRIDE_UPSAMPLE_OPTION} = decision L141's block-mean spline below {FINE_BELOW_HZ:g} Hz)")
+    return int(v)
+
+
+def fine_spec(params: Mapping | None, stream: Callable[[str], tuple[np.ndarray, np.ndarray]],
+              forward: Mapping[str, np.ndarray], *, rest_search_s: float, heading: str,
+              where: str = "params") -> dict | None:
+    """Decision L141: :func:`stride_motion`'s ``fine`` keywords for the streamed settings ``params`` (the bundle's
+    ``displacement``, ``track --streaming --params``), or None when the stride kernel stays at the unit's rate
+    (``stride_upsample`` 1, or no declared foot frame). ``track --streaming`` and the runtime call this."""
+    factor = stride_upsample(params, where)
+    if factor <= 1 or "foot" not in forward:
+        return None
+    return {"stream": stream, "forward_s": forward["foot"], "rest_search_s": float(rest_search_s),
+            "heading": heading, "factor": factor}
+
+
+def fine_stride_displacement(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float,
+                             forward_s: np.ndarray, *, rest_search_s: float, heading: str, factor: int,
+                             pad_s: float = FINE_PAD_S) -> np.ndarray | None:
+    """Decision L141: the stride ``[t0, t1]`` (s)'s displacement (3,) m in the step frame, levelled and integrated on
+    L24's block-mean histospline ``factor`` times finer (:func:`pdrlearn.kernels.histospline.upsample_block_means`,
+    fitted on the foot's samples from ``t0 - pad_s`` to ``t1 + pad_s``, the gyroscope on the accelerometer's clock,
+    then cut to the stride): a 20 Hz sample is a 50 ms block mean, within which the swinging foot pitches by ~0.5
+    rad, so one attitude per block leaves part of gravity in the vertical (L132: stair strides 2-4 % short).
+    ``stream(name)`` -> ``(t, values)`` of a buffered stream (``track --streaming``: the session's; the runtime:
+    its ring buffer, which holds ``pad_s`` past the stride before the step is measured). None (the caller keeps
+    the native-rate displacement) when ``factor`` is 1, the foot's median rate there is ``FINE_BELOW_HZ`` or more
+    (offline does not upsample either), the foot gyroscope is missing, fewer than 3 samples, or an interval over
+    1.5 median intervals (a dropped sample: the block would widen across it, L87)."""
+    if factor <= 1:
+        return None
+    try:
+        ta, acc = segment(*stream("fAccelerometer"), t0 - pad_s, t1 + pad_s)
+        tg, gyr = segment(*stream("fGyroscope"), t0 - pad_s, t1 + pad_s)
+    except KeyError:
+        return None
+    if len(ta) < 3 or len(tg) < 2:
+        return None
+    d = np.diff(ta)
+    period = float(np.median(d))
+    if not period > 0 or 1.0 / period >= FINE_BELOW_HZ or float(d.max()) > 1.5 * period:
+        return None
+    tf, v = upsample_block_means(ta, np.hstack([acc[:, :3], resample(ta, tg, gyr[:, :3]).T]), factor)
+    ts, vs = segment(tf, v, t0, t1)
+    a = foot_levelled(ts, vs[:, :3], vs[:, 3:], forward_s, rest_search_s=rest_search_s, heading=heading, t0=t0)[0]
+    return zupt_displacement(ts, a)
+
+
 def stride_motion(levelled: Levelled, heading_source: str = "auto", *, t0: float = -np.inf,
-                  t1: float = np.inf) -> tuple[np.ndarray, float]:
+                  t1: float = np.inf, fine: Mapping | None = None) -> tuple[np.ndarray, float]:
     """Displacement (3,) m in the step frame (foot, ZUPT at both stances) and heading change (rad) of
-    the stride ``[t0, t1]`` (s) from :func:`pdrlearn.kernels.window.levelled_units`."""
+    the stride ``[t0, t1]`` (s) from :func:`pdrlearn.kernels.window.levelled_units`. ``fine`` (decision L141):
+    the keywords of :func:`fine_stride_displacement` but the times (``stream``, ``forward_s``, ``rest_search_s``,
+    ``heading``, ``factor``): the displacement on the histospline below 50 Hz (the heading change stays the
+    native rate's)."""
     if "foot" not in levelled:
         raise DataError("stride displacement needs the foot unit's accelerometer and its declared frame")
     ta, a, g, _, dpsi = levelled["foot"][:5]
-    disp = zupt_displacement(ta, a)
+    fine_disp = None if fine is None else fine_stride_displacement(t0=t0, t1=t1, **fine)
+    disp = zupt_displacement(ta, a) if fine_disp is None else fine_disp
     src = heading_source
     if src == "auto":
         src = "waist-gyro" if "waist" in levelled and levelled["waist"][2] is not None else "foot"

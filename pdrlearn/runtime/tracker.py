@@ -30,10 +30,12 @@ from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_o
 from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.stride import (
     DOWN_MODES,
+    FINE_PAD_S,
     GAP_YAW_MAX_S,
     HEADING_SOURCES,
     StanceSegmenter,
     advance_xyz,
+    fine_spec,
     headed_by_foot,
     impossible_stride_one,
     impossible_stride_warning,
@@ -471,6 +473,13 @@ class Tracker(FixInput):
         check_rules(self.rules, self.min_confidence, f"bundle {self.bundle.path}")
         self._sigma_rel = SIGMA_REL  # the bayes rule's relative stride sd: the calibrated one once resolved (L26)
         self.segmenter = StanceSegmenter.from_params(self.params)
+        #: decision L141: the stride kernel's displacement on the histospline below 50 Hz (None: the unit's rate),
+        #: from the ring buffers; a step then waits for FINE_PAD_S of samples past its end (the spline's padding)
+        self._fine = fine_spec(self.params, self._stream, self.forward, rest_search_s=self.rest_search_s,
+                               heading=self.heading_mode,
+                               where=f"bundle {self.bundle.path} (the \"displacement\" entry of its manifest.json)")
+        if self._fine is not None:
+            self._lookahead_s = max(self._lookahead_s, FINE_PAD_S)
         #: the user's distance calibration carried by the bundle (decision E14; absent = gain 1), resolved
         #: against the pushed foot rate at the first step (the rate check of ``pdrlearn track``, L26)
         self._calibration = calibration_record(self.params)
@@ -1361,7 +1370,8 @@ class Tracker(FixInput):
         self._spec = None
         t0, t1 = cand
         # the samples a step reads end at the first one at or after its end (window_bounds: its search pad)
-        need = t1 + (self.rest_search_s + 0.1 if self.boundaries == "rest" else 0.0)
+        need = t1 + max(self.rest_search_s + 0.1 if self.boundaries == "rest" else 0.0,
+                        FINE_PAD_S if self._fine is not None else 0.0)  # decision L141: the spline's padding
         required = self.required
         if (any(n not in self._buf for n in required) or min(r.last for r in self._buf.values()) <= need
                 or (self._foot is not None and self._foot.ok and self._foot.last <= need)):
@@ -1377,7 +1387,7 @@ class Tracker(FixInput):
         probabilities, displacement (step frame) and heading change."""
         W, lev = self._window(t0, t1)
         classes, proba = self._classify_step(W)
-        disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
+        disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1, fine=self._fine)
         return lev, classes, proba, disp, dyaw
 
     def process_step(self, t0: float, t1: float) -> Step:
@@ -1415,7 +1425,7 @@ class Tracker(FixInput):
             streams = _Views(self._buf)
             lev = levelled_units(streams, t0, t1, available=available_groups(streams), forward=self.forward,
                                  rest_search_s=self.rest_search_s, heading=self.heading_mode, bridge_gaps=True)
-            disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1)
+            disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1, fine=self._fine)
         else:
             lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
             if self._mirror is not None:

@@ -1014,6 +1014,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     forward = {p: _declared_forward(session, p) for p in ("foot", "waist")
                if f"{p}_acc" in available and session.has_frame(p)}
     seg_params = dict(params or {})
+    fine = SK.fine_spec(seg_params, streams.__getitem__, forward, rest_search_s=rest_search_s,  # decision L141
+                        heading=step_heading)
     strides = SK.stance_strides(*streams["fGyroscope"], seg_params)
     if not len(strides):
         raise DataError(f"session '{session.name}': no stance-to-stance stride found on the foot gyroscope")
@@ -1097,7 +1099,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                 raise
             posture[i] = True
             continue
-        disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1))
+        disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1), fine=fine)
         turn[i] = dyaw[i]  # decision E51: the stride's own turn (the runtime's), before the pivot below
         a, b = np.searchsorted(fa_t, t0, side="left"), np.searchsorted(fa_t, t1, side="right")
         if contacts:  # decisions E49-E51 (an option): the runtime's initial contact
