@@ -29,6 +29,7 @@ from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.validate import (
     CLOCK_RESET_S,
     IMU_FLOOR_HZ,
+    IMU_MIN_RATE_HZ,
     STANDARD_GRAVITY,
     check_imu_pair,
     check_rate,
@@ -37,6 +38,8 @@ from pdrlearn.io.validate import (
     clock_reset_message,
     clock_resets,
     sample_numbers,
+    slow_seconds_message,
+    slow_seconds_rate,
     time_unit_candidates,
 )
 from pdrlearn.kernels.frames import axes_dict
@@ -293,6 +296,9 @@ def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
                         "sampling rate with --rate HZ if they are sample numbers, or pass --time-unit ms if they "
                         "are milliseconds")
     cands = [u for u, _ in time_unit_candidates(t_raw, inertial=inertial)]
+    slow = slow_seconds_message(t_raw, f"{where} (column '{column}')", "pass --time-unit ms") if inertial else None
+    if not cands and slow:  # decision B161
+        raise DataError(slow)
     if not cands:
         raise DataError(f"{where}: the timestamps of column '{column}' give no plausible rate in ms, s, us or ns; "
                         "pass --time-unit")
@@ -318,6 +324,11 @@ def _check_import_rate(t: np.ndarray, t_raw: np.ndarray, t_unit: str, t_how: str
         fits = [u for u, _ in time_unit_candidates(t_raw, inertial=inertial)]
         looks = (f"the values look like {' or '.join(fits)}: pass --time-unit {fits[0]}" if fits
                  else "no unit (ms, s, us, ns) gives a plausible rate: check the --time column")
+        secs = slow_seconds_rate(t_raw) if inertial and not fits else None
+        if secs is not None:  # decision B161: seconds of a slow logger
+            looks = ("" if t_unit == "s" else f"read as seconds they give {secs:.3g} Hz, and ") + (
+                f"an accelerometer or gyroscope needs {IMU_FLOOR_HZ:g} Hz or more (decisions B144, B160): record "
+                f"again at {IMU_MIN_RATE_HZ:g} Hz or more (a phone app's rate setting; decision B161)")
         src = {"given": "given with --time-unit", "header": "the column name's unit"}.get(t_how, t_how)
         raise DataError(f"{where}: timestamps of column '{column}' read as {t_unit} ({src}) give {rate:.3g} Hz; "
                         f"{looks}") from None

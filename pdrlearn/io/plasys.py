@@ -39,6 +39,7 @@ from pdrlearn.io.validate import (
     ends_mid_line,
     implausible_rhythm,
     sample_numbers,
+    slow_seconds_message,
     time_unit_candidates,
 )
 
@@ -374,6 +375,11 @@ def _session_time_unit(raw: dict[str, np.ndarray], rate_hz: float | None, meta_p
     ``rate_hz``, the magnetometer, force and barometer files, which may log at their own rates, not).
     ``None`` = milliseconds (also when ms fits, or nothing decides: B9's checks follow)."""
     imu = {n for n in raw if SENSORS[n].kind in ("accelerometer", "gyroscope")}
+    for n in sorted(imu):  # decision B161: seconds of a slow logger are neither an IMU's seconds nor its ms
+        slow = slow_seconds_message(raw[n][:, 0], str(meta_path.parent / SENSORS[n].filename),
+                                    "declare \"units\": {\"timestamp\": \"ms\"} in meta.json")
+        if slow:
+            raise DataError(slow)
     cands = {n: time_unit_candidates(a[:, 0], rate_hz if n in imu else None, inertial=n in imu)  # B144's floor
              for n, a in raw.items()}
     common = [u for u, _ in time_unit_candidates(np.zeros(0)) if all(u in [c for c, _ in v] for v in cands.values())]
