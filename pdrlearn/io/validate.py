@@ -34,6 +34,8 @@ from pdrlearn.kernels.units import (  # noqa: F401 - re-exported: the checks liv
     check_imu_pair,
     check_units,
     counts_per_g_hint,
+    gravity_removed,
+    gravity_removed_message,
     gravity_scale,
     likely_misscale,
     orientation_change,
