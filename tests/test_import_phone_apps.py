@@ -5,7 +5,6 @@
 
 from __future__ import annotations
 
-import logging
 import shlex
 from pathlib import Path
 
@@ -14,19 +13,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
-from pdrlearn.io import read_session
-
-ROOT = Path(__file__).resolve().parents[1]
-T5 = ROOT / "datasets" / "real" / "mobgap_HA001_Test5_Trial1"
-EPOCH_NS = 1_733_216_400_000_000_000  # 2024-12-03 09:00 UTC
-
-
-def _quiet_read(path: Path):
-    logging.disable(logging.WARNING)
-    try:
-        return read_session(path)
-    finally:
-        logging.disable(logging.NOTSET)
+from tests.test_import_phone import EPOCH_NS, T5, _quiet_read
 
 
 @pytest.fixture(scope="module")

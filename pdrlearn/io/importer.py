@@ -871,7 +871,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                                     f"{np.linalg.norm(values.mean(axis=0)):.3g} against a median |acc| of {med:.3g}): "
                                     "adding it again doubles it; leave --add-gravity out (decision B166)")
                 values = values + sign * _gravity_at(Path(add_gravity), t, cols, time_column,
-                                                     None if parsed is not None else t_unit, u, unit, origin)
+                                                     None if parsed is not None else t_unit, u, unit, origin,
+                                                     drop_duplicate_timestamps)
             elif add_gravity is not None and "acc" not in columns:
                 raise DataError(f"import: --add-gravity adds gravity to the accelerometer columns, and {where} has "
                                 "none mapped; map them with --acc X,Y,Z (decision B166)")
@@ -948,16 +949,17 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
 
 
 def _gravity_at(path: Path, t: np.ndarray, cols: list[str], time_column: str, time_unit: str | None, acc_unit: str,
-                unit: str, origin_s: float) -> np.ndarray:
+                unit: str, origin_s: float, drop_duplicate_timestamps: bool = False) -> np.ndarray:
     """Decision B166: the gravity file ``path`` (columns ``cols``, read as :func:`import_csv` reads an
-    accelerometer: the same time column, unit and origin, the accelerometer's unit) interpolated onto the
+    accelerometer: the same time column, unit, origin and B150 option, the accelerometer's unit) interpolated onto the
     accelerometer's times ``t`` (s). Refused when it does not cover them (another recording) or is not gravity
     (B30's check on it: a mean vector near zero)."""
     if not path.is_file():
         raise DataError(f"--add-gravity {path}: no such file; give the gravity file of the same recording "
                         "(Sensor Logger's Gravity.csv beside Accelerometer.csv)")
     g, _ = import_csv(path, unit=unit, columns={"acc": list(cols)}, time_column=time_column, time_unit=time_unit,
-                      units={"acc": acc_unit}, origin_s=origin_s, guess=False)
+                      units={"acc": acc_unit}, origin_s=origin_s, guess=False,
+                      drop_duplicate_timestamps=drop_duplicate_timestamps)
     acc_name = UNIT_IMU[unit][0]
     gt, gv = g[acc_name].t, g[acc_name].values
     tol = 1.5 * float(np.median(np.diff(gt))) if gt.size > 1 else 0.0
