@@ -28,6 +28,7 @@ from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.validate import (
     CLOCK_RESET_S,
+    GRAVITY_HINT,
     IMU_FLOOR_HZ,
     IMU_MIN_RATE_HZ,
     STANDARD_GRAVITY,
@@ -248,9 +249,9 @@ def guess_time_column(columns: list[str]) -> str | None:
 #: Core Motion's "userAccelerationX", Xsens' "FreeAcc_X"): not an accelerometer's specific force
 _GRAVITY_FREE = ("linearacc", "useracc", "freeacc")
 #: decision B163/B164: where to get acceleration with gravity from the phone apps the README names
-WITH_GRAVITY = ("export the accelerometer with gravity: phyphox's 'Acceleration with g' experiment (columns "
-                "'Acceleration x (m/s^2)' ...), Sensor Logger's TotalAcceleration.csv (Android) or its "
-                "Accelerometer.csv with --add-gravity Gravity.csv (iOS)")
+WITH_GRAVITY = (f"export the raw (total) accelerometer, gravity included ({GRAVITY_HINT}): phyphox's 'Acceleration "
+                "with g' experiment (columns 'Acceleration x (m/s^2)' ...), Sensor Logger's TotalAcceleration.csv "
+                "(Android) or its Accelerometer.csv with --add-gravity Gravity.csv (iOS)")
 
 
 def gravity_free_columns(columns: list[str]) -> list[str]:
@@ -745,8 +746,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
     free = [c for c in gravity_free_columns(header) if c not in {c for v in columns.values() for c in v}]
     if "acc" not in columns and free and all(v == "guessed" for v in sources.values()):  # decision B163
         raise DataError(f"{where}: column(s) {', '.join(free)} hold acceleration without gravity (linear / user / free "
-                        "acceleration), which pdrlearn cannot use: it needs the specific force, gravity included "
-                        f"(decision B30); {WITH_GRAVITY} (decision B163); nothing written")
+                        f"acceleration), which pdrlearn cannot use (decision B30); {WITH_GRAVITY} (decision B163); "
+                        "nothing written")
     if not columns:
         raise DataError(f"{where}: no accelerometer/gyroscope columns recognised among: {have}; map them with "
                         "--acc X,Y,Z --gyro X,Y,Z (or --mapping FILE.json)")
