@@ -110,3 +110,37 @@ def test_track_writes_pos_sigma_and_the_summary_keys(tmp_path):
     without = track_summary(result, s)
     assert set(with_sigma) - set(without) == {"final_position_sigma_m", "max_position_sigma_m"}
     assert set(without) <= set(with_sigma)
+
+
+def test_a_nan_stride_gets_nan_and_the_later_strides_keep_growing(caplog):
+    """Decision L143 (review of L128/L129): a NaN stride length made every later radius NaN, replaced by 0 and
+    frozen by the running maximum at the last finite value. Now that stride's rows are NaN, the later strides are
+    modelled without it (its length 0: the same radii as a track with a zero-length stride there), one warning."""
+    from types import SimpleNamespace
+
+    from pdrlearn.track.position_sigma import SIGMA_PARAMS, add_position_sigma
+
+    n = 20
+    end = np.arange(1, n + 1, dtype=float)
+    steps = pd.DataFrame({"start_s": end - 1.0, "end_s": end, "length_m": np.full(n, 1.2),
+                          "heading_rad": np.linspace(0.0, 1.5, n)})
+    traj = pd.DataFrame({"t": np.arange(0.0, n + 0.5, 0.5)})
+
+    def sigma(lengths):
+        res = SimpleNamespace(trajectory=traj.copy(), steps=steps.assign(length_m=lengths), info={})
+        add_position_sigma(res, None, "plasys-streaming")
+        return res.trajectory.set_index("t")["pos_sigma_m"]
+
+    with_nan = np.full(n, 1.2)
+    with_nan[9] = np.nan  # stride 10 (9-10 s)
+    with caplog.at_level("WARNING"):
+        got = sigma(with_nan)
+    assert "1 stride(s) with a non-finite length" in caplog.text and "stride 10, starting 9.00 s" in caplog.text
+    assert got.loc[10.0:10.5].isna().all() and got.drop(got.loc[10.0:10.5].index).notna().all()
+    zero = with_nan.copy()
+    zero[9] = 0.0
+    expect = sigma(zero)
+    later = got.loc[11.0:]
+    assert np.allclose(later, expect.loc[11.0:]) and later.iloc[-1] > got.loc[9.5] * 1.2  # grows on, not frozen
+    assert np.all(np.diff(later.to_numpy()) >= 0)
+    assert SIGMA_PARAMS["plasys-streaming"]["heading_walk_rad"] > 0

@@ -149,3 +149,61 @@ def test_a_10_hz_imu_file_is_within_the_floor(tmp_path, capsys, step_s, ok):
     if ok:  # the unit inferred: seconds, the one unit that fits
         assert main([*args, "--out", str(tmp_path / "inferred")]) == 0
         assert read_session(tmp_path / "inferred").streams["fAccelerometer"].t[-1] == pytest.approx(t[-1])
+
+
+def _slow_file(path: Path, rate: float, start_s: float = 0.0, n: int = 600) -> Path:
+    t = [start_s + float(f"{i / rate:.4f}") for i in range(n)]
+    pd.DataFrame({"time": t, "acc_x": np.full(n, 0.1), "acc_y": np.full(n, 0.2),
+                  "acc_z": np.full(n, 9.8)}).to_csv(path, index=False)
+    return path
+
+
+@pytest.mark.parametrize("rate,start_s", [(4.0, 0.0), (5.0, 0.0), (4.0, 1_733_216_400.0), (2.0, 0.0)])
+def test_a_slow_file_in_seconds_is_refused_not_read_as_ms(tmp_path, capsys, rate, start_s):
+    """Decision B161 (review of B144): a 4 Hz accelerometer in seconds was read as ms at 4000 Hz (every time 1000x
+    too short, exit 0); at 5 Hz the refusal said "read as ms give 5e+03 Hz; the values look like ms: pass
+    --time-unit ms". Now one line names the file, both readings, the start date of epoch seconds and both fixes;
+    nothing is written."""
+    from pdrlearn.cli import main
+
+    csv = _slow_file(tmp_path / "Accelerometer.csv", rate, start_s)
+    out = tmp_path / "s"
+    assert main(["import", str(csv), "--unit", "foot", "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "Traceback" not in err[0]
+    line = err[0]
+    assert str(csv) in line and f"read as seconds give {rate:g} Hz" in line and f"read as ms {1000 * rate:g} Hz" in line
+    assert "record again at 10 Hz or more" in line and "pass --time-unit ms" in line and "decision B161" in line
+    assert ("starting 2024-12-03 09:00 UTC" in line) == (start_s > 0)
+    assert not out.exists()
+    # told it is seconds: the rate is named with the fix; told it is ms: the user's word is taken
+    assert main(["import", str(csv), "--unit", "foot", "--time-unit", "s", "--out", str(out)]) == 2
+    assert "an accelerometer or gyroscope needs 9 Hz or more" in capsys.readouterr().err and not out.exists()
+    if rate < 5.0:  # 5000.000x Hz in ms is over B9's ceiling: refused, naming the seconds' rate
+        assert main(["import", str(csv), "--unit", "foot", "--time-unit", "ms", "--out", str(out)]) == 0
+    else:
+        assert main(["import", str(csv), "--unit", "foot", "--time-unit", "ms", "--out", str(out)]) == 2
+        assert "read as seconds they give 5 Hz, and an accelerometer" in capsys.readouterr().err
+
+
+def test_a_session_file_in_slow_seconds_names_the_meta_json_unit(tmp_path):
+    """B161 in read_session: a session's accelerometer at 4 Hz in seconds, meta.json declaring no unit, was read
+    as ms at 4000 Hz; now refused naming the file and meta.json's units.timestamp; declared ms is read as told."""
+    d = tmp_path / "walk"
+    d.mkdir()
+    t = np.arange(600) / 4.0
+    pd.DataFrame({"timestamp": t, "x": 0.1, "y": 0.2, "z": 9.8}).to_csv(d / "fAccelerometer.csv", index=False)
+    (d / "meta.json").write_text(json.dumps({"session": "walk"}))
+    with pytest.raises(DataError, match=r"fAccelerometer.csv: the timestamps read as seconds give 4 Hz.*declare "
+                                        r"\"units\": \{\"timestamp\": \"ms\"\} in meta.json \(decision B161\)"):
+        read_session(d)
+    (d / "meta.json").write_text(json.dumps({"session": "walk", "units": {"timestamp": "ms"}}))
+    assert read_session(d)["fAccelerometer"].rate_hz == pytest.approx(4000.0)
+
+
+@pytest.mark.parametrize("step,start", [(2.0, 0.0), (1.0, 1.7332164e12), (0.5, 1.7332164e12), (0.95, 5e6)])
+def test_fast_ms_clocks_are_still_ms(step, start):
+    """B161 leaves ms alone where seconds are no sensor rate or no date: 500 Hz from 0 (seconds: 0.5 Hz), 1000 and
+    2000 Hz epoch ms (seconds after 2100), 1053 Hz since boot (under 1100 Hz in ms)."""
+    t = start + np.arange(200) * step
+    assert [u for u, _ in time_unit_candidates(t, inertial=True)][0] == "ms"

@@ -113,6 +113,10 @@ def import_command(
     drop_duplicate_timestamps: bool = typer.Option(False, "--drop-duplicate-timestamps", help="Keep the first of "
                                                    "rows with the same timestamp (a phone app's batched samples; "
                                                    "refused otherwise, B150)."),
+    add_gravity: Path = typer.Option(None, "--add-gravity", help="A gravity file of the same recording (Sensor "
+                                     "Logger's Gravity.csv) added to the --acc columns sample by sample, for an "
+                                     "accelerometer written without gravity (iOS Sensor Logger's Accelerometer.csv; "
+                                     "B166)."),
     force: bool = typer.Option(False, "--force", help="Replace a session folder that 'pdrlearn import' wrote."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object with every mapping choice."),
 ) -> None:
@@ -237,7 +241,7 @@ def import_command(
               name=name or (None if merge else out.name),
               subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
               rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows,
-              drop_duplicate_timestamps=drop_duplicate_timestamps)
+              drop_duplicate_timestamps=drop_duplicate_timestamps, add_gravity=add_gravity)
     if split_at_clock_reset:
         parts = import_csv_parts(csv, **kw)
         if len(parts) > 1:
@@ -469,7 +473,13 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         cols = ",".join(f"-{c}" if c in neg else c for c in r["columns"])
         err(f"{sensor}: {cols} ({r['columns_source']}) in {r['unit']} ({r['unit_source']}{conv}), "
             f"{r['samples']} samples at {r['rate_hz']:g} Hz" + (f", {dropped} empty rows skipped" if dropped else "")
-            + (f", {dups} rows repeating a timestamp dropped (--drop-duplicate-timestamps)" if dups else ""))
+            + (f", {dups} rows repeating a timestamp dropped (--drop-duplicate-timestamps)" if dups else "")
+            + (f", plus the gravity of {r['gravity_added']} (--add-gravity)" if r.get("gravity_added") else ""))
+        if r.get("gravity_added") and len(neg) < 3:  # decisions B166, B146: Core Motion's sign
+            fix = shell_quote("--acc=" + ",".join(f"-{c}" for c in r["columns"]))
+            err(f"note: gravity added from {r['gravity_added']}: Sensor Logger on iOS (Core Motion) reports gravity "
+                "as -1 g and every turn comes out mirrored unless negated: if this is an iPhone's, import again with "
+                f"{fix} (decisions B146, B166)")
         if sensor == "wAccelerometer" and r["unit"] == "g" and len(neg) < 3:  # decision B146
             fix = shell_quote("--acc=" + ",".join(f"-{c}" for c in r["columns"]))
             err(f"note: an accelerometer in g at the waist: if this is an iPhone (Core Motion) export, it reports "

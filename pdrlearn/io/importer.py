@@ -23,12 +23,14 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.frames import AxisFrame, right_handed
-from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, _csv_dialect, read_table
+from pdrlearn.io.plasys import _TIME_ALIASES, _TIME_SCALE, GRAVITY_FILE, TOTAL_ACC_FILE, _csv_dialect, read_table
 from pdrlearn.io.sensors import PLACEMENTS, SENSORS, UNIT_IMU
 from pdrlearn.io.session import Session, Stream
 from pdrlearn.io.validate import (
     CLOCK_RESET_S,
+    GRAVITY_HINT,
     IMU_FLOOR_HZ,
+    IMU_MIN_RATE_HZ,
     STANDARD_GRAVITY,
     check_imu_pair,
     check_rate,
@@ -36,7 +38,11 @@ from pdrlearn.io.validate import (
     check_units,
     clock_reset_message,
     clock_resets,
+    gravity_removed,
+    gravity_removed_message,
     sample_numbers,
+    slow_seconds_message,
+    slow_seconds_rate,
     time_unit_candidates,
 )
 from pdrlearn.kernels.frames import axes_dict
@@ -239,6 +245,35 @@ def guess_time_column(columns: list[str]) -> str | None:
     return hits[0] if len(hits) == 1 else None
 
 
+#: decision B163: name stems of acceleration columns without gravity (phyphox's "Linear Acceleration x (m/s^2)",
+#: Core Motion's "userAccelerationX", Xsens' "FreeAcc_X"): not an accelerometer's specific force
+_GRAVITY_FREE = ("linearacc", "useracc", "freeacc")
+#: decision B163/B164: where to get acceleration with gravity from the phone apps the README names
+WITH_GRAVITY = (f"export the raw (total) accelerometer, gravity included ({GRAVITY_HINT}): phyphox's 'Acceleration "
+                "with g' experiment (columns 'Acceleration x (m/s^2)' ...), Sensor Logger's TotalAcceleration.csv "
+                "(Android) or its Accelerometer.csv with --add-gravity Gravity.csv (iOS)")
+
+
+def gravity_free_columns(columns: list[str]) -> list[str]:
+    """Decision B163: the columns named as acceleration without gravity (:data:`_GRAVITY_FREE`)."""
+    return [c for c in columns if any(w in _stem(c) for w in _GRAVITY_FREE)]
+
+
+def gravity_fix(path: Path) -> str:
+    """Decision B164: the fix for an accelerometer file without gravity: the phone files beside it that hold it
+    (Sensor Logger's :data:`TOTAL_ACC_FILE`, else its :data:`GRAVITY_FILE` to add), else :data:`WITH_GRAVITY`."""
+    from pdrlearn.errors import shell_quote
+
+    total, gravity = path.parent / TOTAL_ACC_FILE, path.parent / GRAVITY_FILE
+    if total.is_file() and total.resolve() != path.resolve():
+        return (f"import {shell_quote(total)} instead (a phone app's acceleration with gravity; Sensor Logger's "
+                "Accelerometer.csv is without it)")
+    if gravity.is_file() and gravity.resolve() != path.resolve():
+        return (f"add the gravity file beside it, --add-gravity {shell_quote(gravity)} (Sensor Logger on iOS writes "
+                "its accelerometer without gravity and the gravity apart)")
+    return WITH_GRAVITY
+
+
 def _resolve_unit(kind: str, given: str | None, columns: list[str], where: str,
                   row_units: dict[str, str] | None = None) -> tuple[str, float, str]:
     """(unit, factor, source) of a kind's values: the given unit, else the units row's (decision B66), else the
@@ -293,6 +328,9 @@ def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
                         "sampling rate with --rate HZ if they are sample numbers, or pass --time-unit ms if they "
                         "are milliseconds")
     cands = [u for u, _ in time_unit_candidates(t_raw, inertial=inertial)]
+    slow = slow_seconds_message(t_raw, f"{where} (column '{column}')", "pass --time-unit ms") if inertial else None
+    if not cands and slow:  # decision B161
+        raise DataError(slow)
     if not cands:
         raise DataError(f"{where}: the timestamps of column '{column}' give no plausible rate in ms, s, us or ns; "
                         "pass --time-unit")
@@ -318,6 +356,11 @@ def _check_import_rate(t: np.ndarray, t_raw: np.ndarray, t_unit: str, t_how: str
         fits = [u for u, _ in time_unit_candidates(t_raw, inertial=inertial)]
         looks = (f"the values look like {' or '.join(fits)}: pass --time-unit {fits[0]}" if fits
                  else "no unit (ms, s, us, ns) gives a plausible rate: check the --time column")
+        secs = slow_seconds_rate(t_raw) if inertial and not fits else None
+        if secs is not None:  # decision B161: seconds of a slow logger
+            looks = ("" if t_unit == "s" else f"read as seconds they give {secs:.3g} Hz, and ") + (
+                f"an accelerometer or gyroscope needs {IMU_FLOOR_HZ:g} Hz or more (decisions B144, B160): record "
+                f"again at {IMU_MIN_RATE_HZ:g} Hz or more (a phone app's rate setting; decision B161)")
         src = {"given": "given with --time-unit", "header": "the column name's unit"}.get(t_how, t_how)
         raise DataError(f"{where}: timestamps of column '{column}' read as {t_unit} ({src}) give {rate:.3g} Hz; "
                         f"{looks}") from None
@@ -555,7 +598,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                origin_s: float | None = None, guess: bool = True,
                subject_height_m: float | None = None, rate_hz: float | None = None,
                time_format: str | None = None, time_zone: str | None = None,
-               skip_rows: int | None = None, drop_duplicate_timestamps: bool = False) -> tuple[Session, dict]:
+               skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
+               add_gravity: str | os.PathLike | None = None) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -575,6 +619,9 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
         (every cell text, e.g. ``ms``, ``m/(s^2)``, ``deg/s``) is recognised, skipped and read for the units
     drop_duplicate_timestamps : keep the first of rows with the same timestamp (a phone app's batched samples,
         decision B150; counted in ``record["duplicate_rows"]``); refused otherwise
+    add_gravity : a gravity file of the same recording (Sensor Logger's ``Gravity.csv``), added sample by sample
+        to the accelerometer columns, which hold acceleration without gravity (decision B166): its columns of the
+        same names, read with the same time column and units, interpolated onto the accelerometer's times
     units : kind -> unit of its values (``acc``: ``m/s2`` | ``g``; ``gyro``: ``rad/s`` | ``deg/s``; ``mag``:
         ``uT`` | ``nT`` | ``gauss``; ``baro``: ``hPa`` | ``Pa`` | ``kPa``); default: the header's hint, else SI
     frame : the unit's axis frame (:func:`parse_frame` input or :class:`AxisFrame`), written to ``frames``
@@ -611,7 +658,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   origin_s: float | None = None, guess: bool = True,
                   subject_height_m: float | None = None, rate_hz: float | None = None,
                   time_format: str | None = None, time_zone: str | None = None,
-                  skip_rows: int | None = None, drop_duplicate_timestamps: bool = False) -> list[tuple[Session, dict]]:
+                  skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
+                  add_gravity: str | os.PathLike | None = None) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
     path = Path(path)
@@ -695,6 +743,11 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
         if sensor not in SENSORS:
             raise DataError(f"import: the {unit} unit has no {kind} sensor (the {unit} unit's files: "
                             f"{', '.join(n for n, s in SENSORS.items() if s.placement == unit)})")
+    free = [c for c in gravity_free_columns(header) if c not in {c for v in columns.values() for c in v}]
+    if "acc" not in columns and free and all(v == "guessed" for v in sources.values()):  # decision B163
+        raise DataError(f"{where}: column(s) {', '.join(free)} hold acceleration without gravity (linear / user / free "
+                        f"acceleration), which pdrlearn cannot use (decision B30); {WITH_GRAVITY} (decision B163); "
+                        "nothing written")
     if not columns:
         raise DataError(f"{where}: no accelerometer/gyroscope columns recognised among: {have}; map them with "
                         "--acc X,Y,Z --gyro X,Y,Z (or --mapping FILE.json)")
@@ -811,12 +864,29 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                              "the first of each (a phone app's batched samples; decision B150)")
             _check_import_rate(t, t_num[keep], t_unit, t_how, time_column, where, inertial=kind in _INERTIAL)
             sign = signs.get(kind, np.ones(len(cols)))
-            stream = Stream(sensor, t, vals[keep] * factor * sign)
+            values = vals[keep] * factor * sign
+            if kind == "acc" and add_gravity is not None:  # decision B166
+                if gravity_removed(values, where, t) is None:
+                    med = float(np.median(np.linalg.norm(values, axis=1)))
+                    raise DataError(f"{where} ({', '.join(cols)}): already holds gravity (mean acceleration vector "
+                                    f"{np.linalg.norm(values.mean(axis=0)):.3g} against a median |acc| of {med:.3g}): "
+                                    "adding it again doubles it; leave --add-gravity out (decision B166)")
+                values = values + sign * _gravity_at(Path(add_gravity), t, cols, time_column,
+                                                     None if parsed is not None else t_unit, u, unit, origin,
+                                                     drop_duplicate_timestamps)
+            elif add_gravity is not None and "acc" not in columns:
+                raise DataError(f"import: --add-gravity adds gravity to the accelerometer columns, and {where} has "
+                                "none mapped; map them with --acc X,Y,Z (decision B166)")
+            stream = Stream(sensor, t, values)
             opt = _UNIT_OPTION.get(kind, "--mapping units")
             try:
                 check_units(SENSORS[sensor], stream.values, f"{where} ({', '.join(cols)} as {u})",
                             declare=f"give the unit with {opt} ({' | '.join(UNITS[kind])})", t=t)
             except DataError as exc:
+                removed = gravity_removed(stream.values, where, t) if kind == "acc" else None
+                if removed is not None:  # decision B164: name the phone files that hold gravity
+                    raise DataError(gravity_removed_message(f"{where} ({', '.join(cols)} as {u})", *removed,
+                                                            gravity_fix(path)) + " (decision B164)") from None
                 if factor == 1.0:
                     raise
                 try:  # decision B45: the values are plausible as they are, so the conversion is the mistake
@@ -831,6 +901,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             record["streams"][sensor] = {"columns": cols, "columns_source": sources[kind], "unit": u,
                                          "unit_source": u_src, "factor": factor,
                                          "rate_hz": round(float(stream.rate_hz), 4), "samples": len(stream)}
+            if kind == "acc" and add_gravity is not None:  # decision B166
+                record["streams"][sensor]["gravity_added"] = Path(add_gravity).name
             if (sign < 0).any():  # B48
                 record["streams"][sensor]["negated"] = [c for c, g in zip(cols, sign, strict=True) if g < 0]
         acc_name, gyro_name = UNIT_IMU[unit]
@@ -875,6 +947,28 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             record["part"] = {"part": part, "of": n_parts, "lines": lines}
         parts.append((Session(name=meta["session"], streams=streams, meta=meta, frames=frames), record))
     return parts
+
+
+def _gravity_at(path: Path, t: np.ndarray, cols: list[str], time_column: str, time_unit: str | None, acc_unit: str,
+                unit: str, origin_s: float, drop_duplicate_timestamps: bool = False) -> np.ndarray:
+    """Decision B166: the gravity file ``path`` (columns ``cols``, read as :func:`import_csv` reads an
+    accelerometer: the same time column, unit, origin and B150 option, the accelerometer's unit) interpolated onto the
+    accelerometer's times ``t`` (s). Refused when it does not cover them (another recording) or is not gravity
+    (B30's check on it: a mean vector near zero)."""
+    if not path.is_file():
+        raise DataError(f"--add-gravity {path}: no such file; give the gravity file of the same recording "
+                        "(Sensor Logger's Gravity.csv beside Accelerometer.csv)")
+    g, _ = import_csv(path, unit=unit, columns={"acc": list(cols)}, time_column=time_column, time_unit=time_unit,
+                      units={"acc": acc_unit}, origin_s=origin_s, guess=False,
+                      drop_duplicate_timestamps=drop_duplicate_timestamps)
+    acc_name = UNIT_IMU[unit][0]
+    gt, gv = g[acc_name].t, g[acc_name].values
+    tol = 1.5 * float(np.median(np.diff(gt))) if gt.size > 1 else 0.0
+    if gt[0] > t[0] + tol or gt[-1] < t[-1] - tol:
+        raise DataError(f"--add-gravity {path}: covers {gt[0]:.2f}-{gt[-1]:.2f} s and the accelerometer "
+                        f"{t[0]:.2f}-{t[-1]:.2f} s (on the accelerometer file's clock): give the gravity file of the "
+                        "same recording (decision B166); nothing written")
+    return np.column_stack([np.interp(t, gt, gv[:, j]) for j in range(gv.shape[1])])
 
 
 def merge_sessions(base: Session, add: Session) -> Session:

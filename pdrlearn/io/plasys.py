@@ -39,6 +39,7 @@ from pdrlearn.io.validate import (
     ends_mid_line,
     implausible_rhythm,
     sample_numbers,
+    slow_seconds_message,
     time_unit_candidates,
 )
 
@@ -374,6 +375,11 @@ def _session_time_unit(raw: dict[str, np.ndarray], rate_hz: float | None, meta_p
     ``rate_hz``, the magnetometer, force and barometer files, which may log at their own rates, not).
     ``None`` = milliseconds (also when ms fits, or nothing decides: B9's checks follow)."""
     imu = {n for n in raw if SENSORS[n].kind in ("accelerometer", "gyroscope")}
+    for n in sorted(imu):  # decision B161: seconds of a slow logger are neither an IMU's seconds nor its ms
+        slow = slow_seconds_message(raw[n][:, 0], str(meta_path.parent / SENSORS[n].filename),
+                                    "declare \"units\": {\"timestamp\": \"ms\"} in meta.json")
+        if slow:
+            raise DataError(slow)
     cands = {n: time_unit_candidates(a[:, 0], rate_hz if n in imu else None, inertial=n in imu)  # B144's floor
              for n, a in raw.items()}
     common = [u for u, _ in time_unit_candidates(np.zeros(0)) if all(u in [c for c, _ in v] for v in cands.values())]
@@ -654,14 +660,24 @@ PHONE_SENSOR_FILES = {"acc": ("accelerometer", "accel", "acc", "totalacceleratio
                       "gyro": ("gyroscope", "gyro", "gyr"), "mag": ("magnetometer", "magneticfield", "mag")}
 
 
+#: decision B164: the phone files, beside a gravity-free accelerometer file, that give the specific force
+#: (Sensor Logger: TotalAcceleration.csv on Android; Gravity.csv to add on iOS, which writes no total)
+TOTAL_ACC_FILE, GRAVITY_FILE = "TotalAcceleration.csv", "Gravity.csv"
+
+
+def _letters(path: Path) -> str:
+    return re.sub(r"[^a-z]", "", path.stem.lower())
+
+
 def _phone_sensor_files(exports: list[Path]) -> dict[str, Path]:
     """Decision B147: kind -> the export whose file name names that one phone sensor (the shortest name when
-    several do: ``Gyroscope.csv`` before ``GyroscopeUncalibrated.csv``)."""
+    several do: ``Gyroscope.csv`` before ``GyroscopeUncalibrated.csv``). Decision B165: a ``TotalAcceleration``
+    file is the accelerometer whenever there is one (Sensor Logger's ``Accelerometer.csv`` is without gravity)."""
     out: dict[str, Path] = {}
     for kind, words in PHONE_SENSOR_FILES.items():
-        hits = [p for p in exports if any(re.sub(r"[^a-z]", "", p.stem.lower()).startswith(w) for w in words)]
+        hits = [p for p in exports if any(_letters(p).startswith(w) for w in words)]
         if hits:
-            out[kind] = min(hits, key=lambda p: (len(p.stem), p.name))
+            out[kind] = min(hits, key=lambda p: (not _letters(p).startswith("totalacc"), len(p.stem), p.name))
     return out
 
 
@@ -678,7 +694,12 @@ def _phone_recipe(files: dict[str, Path]) -> str:
             return ""
         return f" --{kind} x,y,z" if {"x", "y", "z"} <= cols else ""
 
-    cmds = [f"pdrlearn import {q(p)} --unit waist{axes(k, p)}{' --merge' if i else ''} --out SESSION"
+    def gravity(kind: str, path: Path) -> str:  # decision B165: iOS Sensor Logger's accelerometer has no gravity
+        g = path.parent / GRAVITY_FILE
+        return (f" --add-gravity {q(g)}" if kind == "acc" and not _letters(path).startswith("totalacc")
+                and g.is_file() else "")
+
+    cmds = [f"pdrlearn import {q(p)} --unit waist{axes(k, p)}{gravity(k, p)}{' --merge' if i else ''} --out SESSION"
             for i, (k, p) in enumerate(files.items())]
     return (f"; a phone's per-sensor files become one waist unit: `{'` then `'.join(cmds)}` (one sensor per "
             "import, --merge adding each to the same unit; decision B147)")

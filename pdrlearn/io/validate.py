@@ -34,6 +34,8 @@ from pdrlearn.kernels.units import (  # noqa: F401 - re-exported: the checks liv
     check_imu_pair,
     check_units,
     counts_per_g_hint,
+    gravity_removed,
+    gravity_removed_message,
     gravity_scale,
     likely_misscale,
     orientation_change,
@@ -186,6 +188,11 @@ IMU_FLOOR_HZ = 0.9 * IMU_MIN_RATE_HZ
 #: decision B144: a first timestamp read as after 2100-01-01 (epoch s) is in another unit (epoch ns read as us:
 #: year ~56,900)
 EPOCH_END = 4.1e9
+#: decision B161: the fastest an accelerometer or gyroscope file is read in ms while its timestamps are also a
+#: plausible sensor rate in seconds: a ms clock's whole steps reach 1000 Hz (plus B22's 10 % tolerance); the IMUs
+#: the project reads log at 20-500 Hz (PLASYS 20 Hz, thesis ch.4.2.3; real 100, 204.8 Hz; phones up to 500 Hz). A
+#: 4 Hz file in seconds read as ms is 4000 Hz, every time 1000x too short
+IMU_MS_MAX_HZ = 1.1 * 1000.0
 
 
 def check_rate(t: np.ndarray, where: str, *, in_memory: bool = False) -> None:
@@ -233,8 +240,45 @@ def time_unit_candidates(t_raw: np.ndarray, declared_rate_hz: float | None = Non
         return list(_TIME_UNITS)
     lo, hi = (IMU_FLOOR_HZ, RATE_LIMITS_HZ[1]) if inertial else RATE_LIMITS_HZ  # B144, B160
     t0 = abs(float(t_raw[0]))
+    slow = inertial and slow_seconds_rate(t_raw) is not None  # B161: seconds of a slow logger, not fast ms
     return [(u, k) for u, k in _TIME_UNITS if lo <= 1.0 / (d * k) <= hi and t0 * k < EPOCH_END
+            and not (slow and u == "ms")
             and (declared_rate_hz is None or abs(1.0 / (d * k) - declared_rate_hz) <= 0.1 * declared_rate_hz)]
+
+
+def slow_seconds_rate(t_raw: np.ndarray) -> float | None:
+    """Decision B161: the rate (Hz) of an accelerometer or gyroscope file's raw timestamps read as seconds when
+    that reading is a plausible sensor rate (B9's 0.5 Hz floor, a start before 2100) under the IMU floor
+    (:data:`IMU_FLOOR_HZ`) and the ms reading is faster than :data:`IMU_MS_MAX_HZ`: a slow logger in seconds
+    (a phone app at 4-5 Hz), which B144 read as ms at 4000-5000 Hz, or refused as ms over 5000 Hz. None otherwise
+    (fewer than 3 timestamps, not increasing, another case)."""
+    t_raw = np.asarray(t_raw, dtype=float)
+    if t_raw.size < 3:
+        return None
+    d = float(np.median(np.diff(t_raw)))
+    if not np.isfinite(d) or d <= 0:
+        return None
+    rate = 1.0 / d
+    ok = RATE_LIMITS_HZ[0] <= rate < IMU_FLOOR_HZ and 1000.0 * rate > IMU_MS_MAX_HZ
+    return rate if ok and abs(float(t_raw[0])) < EPOCH_END else None
+
+
+def slow_seconds_message(t_raw: np.ndarray, where: str, ms_fix: str) -> str | None:
+    """Decision B161's one line for a file :func:`slow_seconds_rate` names (else None): the rate read as
+    seconds (and the date they start on, when they are epoch seconds), why neither reading is an IMU's, and the
+    fixes: record again at 10 Hz or more, or, if they are ms, ``ms_fix`` (import's ``--time-unit ms``,
+    read_session's meta.json ``units.timestamp``)."""
+    rate = slow_seconds_rate(t_raw)
+    if rate is None:
+        return None
+    t0 = abs(float(np.asarray(t_raw, dtype=float)[0]))
+    date = ""
+    if EPOCH_START <= t0 < EPOCH_END:  # epoch seconds: the start date says they are seconds
+        date = f", starting {pd.Timestamp(t0, unit='s'):%Y-%m-%d %H:%M} UTC"
+    return (f"{where}: the timestamps read as seconds give {rate:.3g} Hz{date}, too slow for an accelerometer or "
+            f"gyroscope ({IMU_FLOOR_HZ:g} Hz or more, decisions B144, B160), and read as ms {1000.0 * rate:.4g} Hz, "
+            f"faster than an IMU clock in ms ({IMU_MS_MAX_HZ:g} Hz at most): record again at {IMU_MIN_RATE_HZ:g} Hz or "
+            f"more (a phone app's rate setting); if they really are ms, {ms_fix} (decision B161)")
 
 
 def check_label_times(table: pd.DataFrame, t_start: float, t_end: float, where: str) -> None:

@@ -239,6 +239,37 @@ def orientation_change(values: np.ndarray, t: np.ndarray | None = None) -> tuple
     return float(start[k + 1]), float(np.degrees(np.arccos(np.clip(float(np.min(u[1:] @ u[0])), -1.0, 1.0))))
 
 
+def gravity_removed(values: np.ndarray, where: str, t: np.ndarray | None = None) -> tuple[float, float] | None:
+    """Decision B30's test: ``(|mean acceleration vector|, median |acc|)`` of an accelerometer file whose gravity
+    has been removed (the mean under :data:`GRAVITY_REMOVED_RATIO` of the median, and not a unit turned over,
+    B105's :func:`orientation_change`, which warns here), else None. Shared by :func:`check_gravity` and
+    ``pdrlearn import`` (decision B164, which names a phone app's files with gravity)."""
+    if values.shape[0] < 10:
+        return None
+    med = float(np.median(np.linalg.norm(values, axis=1)))
+    mean = float(np.linalg.norm(values.mean(axis=0)))
+    if not (med > 0 and mean < GRAVITY_REMOVED_RATIO * med):
+        return None
+    turned = orientation_change(values, t)
+    if turned is not None:
+        at = "" if math.isnan(turned[0]) else f" at about {turned[0]:.0f} s"
+        log.warning("%s: the unit's orientation changed during the session%s (gravity turns by %.0f deg; "
+                    "every %g s window holds it): tracked on, the heading and frame after it are less certain; "
+                    "if the track looks wrong there, split the session at that time (decision B105)",
+                    where, at, turned[1], GRAVITY_WINDOW_S)
+        return None
+    return mean, med
+
+
+def gravity_removed_message(where: str, mean: float, med: float, fix: str | None = None) -> str:
+    """B30's one line for :func:`gravity_removed`'s numbers, ending with ``fix`` (default: what to export,
+    :data:`GRAVITY_HINT`)."""
+    return (f"{where}: the mean acceleration vector is {mean:.3g} against a median |acc| of {med:.3g}, so gravity has "
+            "been removed (linear / free acceleration), or these columns are not an accelerometer (gyroscope "
+            "columns?); pdrlearn needs the specific force: "
+            + (fix or f"export the raw (total) accelerometer, gravity included ({GRAVITY_HINT})"))
+
+
 def check_gravity(values: np.ndarray, where: str, t: np.ndarray | None = None) -> None:
     """Refuse an accelerometer file whose gravity has been removed (decision B30): its mean vector is ~0 in
     either unit (m/s^2 or g), while a specific force always averages to gravity (|mean| ~ median |acc|). Its
@@ -246,25 +277,9 @@ def check_gravity(values: np.ndarray, where: str, t: np.ndarray | None = None) -
     -50 % distance without a word). A file whose every window holds gravity but whose gravity direction turned
     during the session (``t``: its times, s) is a unit turned over, not gravity removed: tracked, with one
     warning naming the time (decision B105, :func:`orientation_change`)."""
-    if values.shape[0] < 10:
-        return
-    med = float(np.median(np.linalg.norm(values, axis=1)))
-    mean = float(np.linalg.norm(values.mean(axis=0)))
-    if med > 0 and mean < GRAVITY_REMOVED_RATIO * med:
-        turned = orientation_change(values, t)
-        if turned is not None:
-            at = "" if math.isnan(turned[0]) else f" at about {turned[0]:.0f} s"
-            log.warning("%s: the unit's orientation changed during the session%s (gravity turns by %.0f deg; "
-                        "every %g s window holds it): tracked on, the heading and frame after it are less certain; "
-                        "if the track looks wrong there, split the session at that time (decision B105)",
-                        where, at, turned[1], GRAVITY_WINDOW_S)
-            return
-        raise DataError(
-            f"{where}: the mean acceleration vector is {mean:.3g} against a median |acc| of {med:.3g}, so gravity has "
-            "been removed (linear / free acceleration), or these columns are not an accelerometer (gyroscope "
-            "columns?); pdrlearn needs the specific force: export the raw (total) accelerometer, gravity included"
-            f" ({GRAVITY_HINT})"
-        )
+    removed = gravity_removed(values, where, t)
+    if removed is not None:
+        raise DataError(gravity_removed_message(where, *removed))
 
 
 #: B91: the percentile of |gyro| (rad/s) that tells a swinging foot from a waist

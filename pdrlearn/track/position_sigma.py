@@ -13,7 +13,10 @@ map constraints, real sensors worse than the simulator's and a walker other than
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
+import pandas as pd
 
 from pdrlearn.kernels.position_sigma import position_covariance, sigma_radius
 
@@ -30,6 +33,8 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # the lower-back pipelines (fitted on waist-pendulum; waist-pll shares them, not fitted)
     "waist": {"displacement_rel": 0.0, "heading_walk_rad": 0.0083, "bias_rps": 0.00085, "point_m": 3.1},
 }
+
+log = logging.getLogger(__name__)
 
 
 def sigma_regime(info: dict, session) -> str:
@@ -55,11 +60,22 @@ def add_position_sigma(result, session, regime: str | None = None) -> None:
     sigma = np.zeros(len(traj))
     if len(steps):
         t0 = float(traj["t"].iloc[0])
-        cov = position_covariance(steps["length_m"].to_numpy(float), steps["heading_rad"].to_numpy(float),
-                                  steps["end_s"].to_numpy(float), t0, **params)
-        r = sigma_radius(cov)
-        r = np.maximum.accumulate(np.where(np.isfinite(r), r, 0.0))  # a radius never shrinks without a fix
-        i = np.searchsorted(steps["end_s"].to_numpy(float), traj["t"].to_numpy(float) + 1e-9, side="right") - 1
+        length, heading, end = (steps[c].to_numpy(float) for c in ("length_m", "heading_rad", "end_s"))
+        # decision L143: a stride of unknown length, heading or end has no known displacement: its rows get NaN,
+        # the later strides are modelled without it (its length taken as 0; an unknown end as the stride before's)
+        bad = ~(np.isfinite(length) & np.isfinite(heading) & np.isfinite(end))
+        if bad.any():
+            k = int(np.flatnonzero(bad)[0])
+            log.warning("pos_sigma_m: %d stride(s) with a non-finite length, heading or end time (the first: stride "
+                        "%d, starting %.2f s): their rows get NaN and the later strides are modelled without them, "
+                        "a slightly smaller radius than the walk's (decision L143)", int(bad.sum()), k + 1,
+                        float(steps["start_s"].iloc[k]) if "start_s" in steps else float("nan"))
+            length, heading = np.where(bad, 0.0, length), np.where(bad, 0.0, heading)
+            end = pd.Series(np.where(np.isfinite(end), end, np.nan)).ffill().fillna(t0).to_numpy(float)
+        cov = position_covariance(length, heading, end, t0, **params)
+        r = np.maximum.accumulate(sigma_radius(cov))  # a radius never shrinks without a fix
+        r[bad] = np.nan
+        i = np.searchsorted(end, traj["t"].to_numpy(float) + 1e-9, side="right") - 1
         sigma = np.where(i >= 0, r[np.clip(i, 0, len(r) - 1)], 0.0)
         sigma[0] = 0.0  # the start is where the track is put
     traj["pos_sigma_m"] = sigma
