@@ -176,18 +176,22 @@ CLIMB_BRIDGE_STRIDES = 4
 
 
 def count_floors_by_climb(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOREY_BAND,
-                          bridge: int = CLIMB_BRIDGE_STRIDES) -> tuple[int, int, int]:
+                          bridge: int = CLIMB_BRIDGE_STRIDES, slope: bool | None = None) -> tuple[int, int, int]:
     """Storeys climbed and descended counted per climb from the strides' height changes ``dz`` (m, one per
     stride in walking order): ``(floors_up, floors_down, storeys_changed)`` (decision L127). A climb up (down)
     is a run of up (down) stair strides, dz >= ``LEVEL_DZ_M`` (<= -``LEVEL_DZ_M``, L39), with at most
     ``bridge`` other strides between two of them; its height H (the sum of dz from its first to its last stair
     stride) counts floor(|H| / h + band) storeys, the storeys of L64's band rule, so a slow altitude drift
-    between climbs moves no count. Non-finite dz count as 0."""
-    from pdrlearn.kernels.distance import LEVEL_DZ_M
+    between climbs moves no count. Non-finite dz count as 0. ``slope`` (default ``SUSTAINED_SLOPE``, decision
+    L144): the strides of a sustained slope (``kernels.distance.sustained_slope``) count as stair strides too."""
+    from pdrlearn.kernels import distance
 
     dz = np.nan_to_num(np.asarray(dz, dtype=float).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
+    sloped = (distance.sustained_slope(dz) if (distance.SUSTAINED_SLOPE if slope is None else slope)
+              else np.zeros(len(dz), dtype=bool))
     counts = []
-    for stair in (np.flatnonzero(dz >= LEVEL_DZ_M), np.flatnonzero(dz <= -LEVEL_DZ_M)):
+    for stair in (np.flatnonzero((dz >= distance.LEVEL_DZ_M) | (sloped & (dz > 0))),
+                  np.flatnonzero((dz <= -distance.LEVEL_DZ_M) | (sloped & (dz < 0)))):
         runs = np.split(stair, np.flatnonzero(np.diff(stair) > bridge + 1) + 1) if len(stair) else []
         counts.append(sum(int(np.floor(abs(float(dz[r[0]:r[-1] + 1].sum())) / storey_height_m + band))
                           for r in runs))
