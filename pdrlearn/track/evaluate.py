@@ -303,6 +303,19 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
     _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out, dz=_foot_dz(result.steps))
+    _ascent(result, out)
+
+
+def _ascent(result: TrackResult, out: dict) -> None:
+    """Decision L146: ``ascent_m`` / ``descent_m``, the cumulative climb and descent of the track's z (a hill
+    walked up and down has both, its ``altitude_change_m`` ~0); a lower-back track's barometric z within the
+    hysteresis band ``ASCENT_BAND_BARO_M``, a foot track's strides as they are."""
+    from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, ascent_descent
+
+    tr, steps = result.trajectory, result.steps
+    z = tr["z"].to_numpy(float) if len(tr) and "z" in tr else np.zeros(0)
+    foot = bool(len(steps)) and "unit" in steps and bool((steps["unit"].astype(str) == "foot").all())
+    out["ascent_m"], out["descent_m"] = ascent_descent(z, 0.0 if foot or not len(steps) else ASCENT_BAND_BARO_M)
 
 
 def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[float | None, str]:
@@ -554,6 +567,37 @@ def _barometer(result: TrackResult, session: Session, out: dict) -> None:
     steps = result.steps
     foot = bool(len(steps)) and "unit" in steps and bool((steps["unit"].astype(str) == "foot").all())
     out["barometer_unused"] = bool(foot and session.has("wBarometer") and len(session["wBarometer"]))
+    if out["barometer_unused"]:  # decision L145: the barometer's altitude change over the track, to compare
+        from pdrlearn.kernels.barometer import relative_altitude
+
+        b = session["wBarometer"]
+        span = [float(steps["start_s"].min()), float(steps["end_s"].max())]
+        out["barometer_altitude_change_m"] = float(relative_altitude(b.t, b.values[:, 0], span)[1])
+
+
+#: decision L145: a foot track's altitude change and the unused waist barometer's may differ by this much (m)
+#: before a warning: 1 m is a third of a storey and ~14 strides of a 5 % slope that L39 reads level
+BAROMETER_DISAGREE_M = 1.0
+
+
+def barometer_warning(summary: dict) -> str | None:
+    """Decision L145: one line when a foot track's ``altitude_change_m`` and the session's waist barometer
+    (``barometer_altitude_change_m``, recorded but not read by the foot pipeline) differ by more than
+    :data:`BAROMETER_DISAGREE_M`, with the height L39 set to 0 (``info.altitude_check.level_zeroed_m``) when
+    known; None otherwise."""
+    baro, foot = summary.get("barometer_altitude_change_m"), summary.get("altitude_change_m")
+    if baro is None or foot is None or not abs(float(foot) - float(baro)) > BAROMETER_DISAGREE_M:
+        return None
+    check = (summary.get("info") or {}).get("altitude_check") or {}
+    zeroed = check.get("level_zeroed_m")
+    why = ("" if zeroed is None else
+           f"; L39 set {check.get('level_zeroed_strides', 0)} strides under 0.10 m of height change to level, "
+           f"{float(zeroed):+.2f} m in all (a slope under ~7 % reads level on the foot)")
+    return (f"foot altitude change {float(foot):+.2f} m disagrees with the waist barometer's {float(baro):+.2f} m "
+            f"(wBarometer.csv, not read by foot tracks) by {abs(float(foot) - float(baro)):.2f} m{why}; "
+            "the foot's height is integrated stride by stride and misses slopes and hills, the barometer drifts "
+            "with the weather (~2.5 m per hour at 0.3 hPa/h): for altitude on slopes, hills and ramps track the "
+            "lower back, `--pipeline waist-pendulum`")
 
 
 #: metric helpers run in order by :func:`evaluate_track`; append to extend.
@@ -563,11 +607,13 @@ METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _
 
 def summary_warnings(summary: dict) -> list[str]:
     """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range,
-    decision L113's withheld stride-time CV and decision L116's whole-sample rounding of the CV."""
+    decision L113's withheld stride-time CV, decision L116's whole-sample rounding of the CV and decision L145's
+    foot altitude against the unused barometer."""
     from pdrlearn.track.clinical import resolution_warning, stride_cv_warning
     from pdrlearn.track.gait import gait_range_warning
 
-    return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary)) if w]
+    return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary),
+                        barometer_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,
