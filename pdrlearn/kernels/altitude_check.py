@@ -106,19 +106,22 @@ ASCENT_BAND_BARO_M = 0.5
 def ascent_descent(z: np.ndarray, band_m: float = 0.0) -> tuple[float, float]:
     """Decision L146: the cumulative ascent and descent (m, both >= 0) of the altitudes ``z`` (walking order):
     a change counts once z has moved at least ``band_m`` from the last counted level (a hysteresis; 0 = every
-    rise and every drop). Non-finite values are skipped. ascent - descent is the net change within ``band_m``."""
+    rise and every drop), and the last level's difference to the final z is counted at the end, so ascent -
+    descent is the net change exactly. Non-finite values are skipped."""
     z = np.asarray(z, dtype=float).ravel()
     z = z[np.isfinite(z)]
     if len(z) < 2:
         return 0.0, 0.0
     if band_m <= 0:
         d = np.diff(z)
-        return float(d[d > 0].sum()), float(-d[d < 0].sum())
+        return float(d[d > 0].sum()) + 0.0, float(-d[d < 0].sum()) + 0.0
     up = down = 0.0
     ref = float(z[0])
-    for v in z[1:]:
-        if v - ref >= band_m:
-            up, ref = up + v - ref, float(v)
-        elif ref - v >= band_m:
-            down, ref = down + ref - v, float(v)
+    for v in (*z[1:], None):
+        last = v is None
+        v = float(z[-1]) if last else float(v)
+        if v - ref >= (0.0 if last else band_m):
+            up, ref = up + v - ref, v
+        elif ref - v >= (0.0 if last else band_m):
+            down, ref = down + ref - v, v
     return up, down

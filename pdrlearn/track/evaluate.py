@@ -573,20 +573,26 @@ def _barometer(result: TrackResult, session: Session, out: dict) -> None:
         b = session["wBarometer"]
         span = [float(steps["start_s"].min()), float(steps["end_s"].max())]
         out["barometer_altitude_change_m"] = float(relative_altitude(b.t, b.values[:, 0], span)[1])
+        out["barometer_disagree_limit_m"] = BAROMETER_DISAGREE_M + BAROMETER_DRIFT_M_PER_H * (span[1] - span[0]) / 3600
 
 
 #: decision L145: a foot track's altitude change and the unused waist barometer's may differ by this much (m)
-#: before a warning: 1 m is a third of a storey and ~14 strides of a 5 % slope that L39 reads level
-BAROMETER_DISAGREE_M = 1.0
+#: plus the weather's drift over the track before a warning: 0.5 m is ~4 SDs of one barometer sample's altitude
+#: noise (0.13 m, W89) and ~7 strides of a 5 % slope that L39 reads level
+BAROMETER_DISAGREE_M = 0.5
+#: decision L145: the weather's pressure drift, 0.3 hPa per hour (the simulator's 1-SD trend, decision S4, from
+#: thesis Table 18's 30-day range) = ~2.5 m of barometric altitude per hour
+BAROMETER_DRIFT_M_PER_H = 2.5
 
 
 def barometer_warning(summary: dict) -> str | None:
     """Decision L145: one line when a foot track's ``altitude_change_m`` and the session's waist barometer
     (``barometer_altitude_change_m``, recorded but not read by the foot pipeline) differ by more than
-    :data:`BAROMETER_DISAGREE_M`, with the height L39 set to 0 (``info.altitude_check.level_zeroed_m``) when
+    ``barometer_disagree_limit_m`` (:data:`BAROMETER_DISAGREE_M` + the weather's drift over the track), with the height L39 set to 0 (``info.altitude_check.level_zeroed_m``) when
     known; None otherwise."""
     baro, foot = summary.get("barometer_altitude_change_m"), summary.get("altitude_change_m")
-    if baro is None or foot is None or not abs(float(foot) - float(baro)) > BAROMETER_DISAGREE_M:
+    limit = summary.get("barometer_disagree_limit_m", BAROMETER_DISAGREE_M)
+    if baro is None or foot is None or not abs(float(foot) - float(baro)) > float(limit):
         return None
     check = (summary.get("info") or {}).get("altitude_check") or {}
     zeroed = check.get("level_zeroed_m")
@@ -594,10 +600,10 @@ def barometer_warning(summary: dict) -> str | None:
            f"; L39 set {check.get('level_zeroed_strides', 0)} strides under 0.10 m of height change to level, "
            f"{float(zeroed):+.2f} m in all (a slope under ~7 % reads level on the foot)")
     return (f"foot altitude change {float(foot):+.2f} m disagrees with the waist barometer's {float(baro):+.2f} m "
-            f"(wBarometer.csv, not read by foot tracks) by {abs(float(foot) - float(baro)):.2f} m{why}; "
-            "the foot's height is integrated stride by stride and misses slopes and hills, the barometer drifts "
-            "with the weather (~2.5 m per hour at 0.3 hPa/h): for altitude on slopes, hills and ramps track the "
-            "lower back, `--pipeline waist-pendulum`")
+            f"(wBarometer.csv, not read by foot tracks) by {abs(float(foot) - float(baro)):.2f} m (more than "
+            f"{float(limit):.2f} m){why}; "
+            "the foot's height is integrated stride by stride and misses slopes and hills (L144): for altitude on "
+            "slopes, hills and ramps track the lower back, `--pipeline waist-pendulum`")
 
 
 #: metric helpers run in order by :func:`evaluate_track`; append to extend.
