@@ -85,7 +85,8 @@ def main() -> None:
             worst = max(worst, abs(v["cand"]["net"] - v["now"]["net"]))
             print(f"level {sc} u{u}: now net {v['now']['net']:+.3f} floors {v['now']['floors']}, cand net "
                   f"{v['cand']['net']:+.3f} floors {v['cand']['floors']}", flush=True)
-    print(f"(b) level sims: tracks with a floor (cand) {bad_floor} (0), largest altitude change {worst:.3f} m (<= 0.05)")
+    print(f"(b) level sims: tracks with a floor (cand) {bad_floor} (0), largest altitude change {worst:.3f} m "
+          "(<= 0.05)")
     if a.no_real:
         return
     # (c), (d) real recordings

@@ -588,8 +588,8 @@ BAROMETER_DRIFT_M_PER_H = 2.5
 def barometer_warning(summary: dict) -> str | None:
     """Decision L145: one line when a foot track's ``altitude_change_m`` and the session's waist barometer
     (``barometer_altitude_change_m``, recorded but not read by the foot pipeline) differ by more than
-    ``barometer_disagree_limit_m`` (:data:`BAROMETER_DISAGREE_M` + the weather's drift over the track), with the height L39 set to 0 (``info.altitude_check.level_zeroed_m``) when
-    known; None otherwise."""
+    ``barometer_disagree_limit_m`` (:data:`BAROMETER_DISAGREE_M` + the weather's drift over the track), with
+    the height L39 set to 0 (``info.altitude_check.level_zeroed_m``) when known; None otherwise."""
     baro, foot = summary.get("barometer_altitude_change_m"), summary.get("altitude_change_m")
     limit = summary.get("barometer_disagree_limit_m", BAROMETER_DISAGREE_M)
     if baro is None or foot is None or not abs(float(foot) - float(baro)) > float(limit):

@@ -751,7 +751,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                               strides["end_s"].to_numpy(float), warnings)  # decision L94
     altitude_check, terrain_check = None, None
     if no_classes or "terrain" in untrained:  # decision L69: the altitude is the foot's integrated height
-        msg, altitude_check = integrated_altitude_check(dz, raw_dz=np.where(in_gap | impossible, 0.0, raw_dz))  # L69, L145
+        msg, altitude_check = integrated_altitude_check(  # decisions L69, L145
+            dz, raw_dz=np.where(in_gap | impossible, 0.0, raw_dz))
         warnings += [msg] if msg else []
     elif cfg["rules"] and not (isinstance(model, str) and model == "oracle"):  # decision C28
         msg, terrain_check = terrain_dz_check(np.where(in_gap, None, classes["terrain"].to_numpy(dtype=object)),
