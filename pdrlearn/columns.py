@@ -53,6 +53,12 @@ SESSIONS: tuple[Column, ...] = (
     ("altitude_ref_source", _ID, "text", "where altitude_change_ref_m comes from"),
     ("altitude_error_pct", "%", "number", "altitude change error against the reference"),
     ("barometer_unused", _ID, "true/false", "the session has wBarometer.csv that a foot track does not read (L127)"),
+    ("barometer_altitude_change_m", "m", "number", "foot tracks with wBarometer.csv: the barometer's altitude change "
+                                                   "over the track (L145)"),
+    ("barometer_disagree_limit_m", "m", "number", "how far altitude_change_m may differ from it before a warning "
+                                                  "(L145)"),
+    ("ascent_m", "m", "number", "cumulative climb (foot: strides' dz; lower back: barometric z, 0.5 m band; L146)"),
+    ("descent_m", "m", "number", "cumulative descent, >= 0 (ascent_m - descent_m = altitude_change_m; L146)"),
     ("bouts_distance_m", "m", "number", "bouts.csv's distance summed (C25)"),
     ("bouts_time_s", "s", "number", "bouts.csv's durations summed (C25)"),
     ("bouts_n_steps", "count", "integer", "bouts.csv's steps summed (C25)"),

@@ -32,14 +32,21 @@ _ACCURACY = (f"level walks measured gave integrated heights up to {LEVEL_STRIDE_
              f"{LEVEL_ALTITUDE_PER_100M_MAX_M:.1f} m per 100 m (L68)")
 
 
-def integrated_altitude_check(dz: np.ndarray, levelled: bool = True) -> tuple[str | None, dict]:
+def integrated_altitude_check(dz: np.ndarray, levelled: bool = True, raw_dz: np.ndarray | None = None
+                               ) -> tuple[str | None, dict]:
     """Decision L69: ``dz`` (m) the strides' final height changes of a track without terrain classes (after
     L39; ``levelled`` False: the streamed rules of a model without terrain classes keep every stride's raw
-    height, C17). Returns the warning (None when every stride is level) and ``info["altitude_check"]``."""
+    height, C17). Returns the warning (None when every stride is level) and ``info["altitude_check"]``.
+    ``raw_dz`` (the heights before L39, decision L145): ``info["level_zeroed_m"]``, the net height L39 set to 0
+    (sum of raw minus final dz), and ``level_zeroed_strides``, how many strides it zeroed."""
     dz = np.asarray(dz, dtype=float)
     kept = np.abs(dz) >= LEVEL_DZ_M
     info = {"source": "integrated (no terrain classes)", "strides": len(dz), "strides_with_height": int(kept.sum()),
             "altitude_change_m": float(dz.sum())}
+    if raw_dz is not None and len(raw_dz) == len(dz):  # decision L145: what L39 discarded
+        raw = np.nan_to_num(np.asarray(raw_dz, dtype=float))
+        info["level_zeroed_m"] = float((raw - np.nan_to_num(dz)).sum())
+        info["level_zeroed_strides"] = int(((dz == 0) & (raw != 0)).sum())
     if not kept.any():
         return None, info
     msg = (f"altitude change {dz.sum():+.2f} m is the foot's integrated height without terrain classes: "
@@ -87,3 +94,34 @@ def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str |
     msg = (f"{lead}: the classes or the foot's integrated height are wrong ({_ACCURACY}); check the model on "
            "this user's own labelled walk (`pdrlearn evaluate MODEL DIR`)")
     return msg, info
+
+
+#: Decision L146: the hysteresis band (m) of the cumulative ascent / descent of a lower-back track, whose z is the
+#: barometer's: 4 x the BMP280's 0.13 m per-sample altitude noise (thesis Table 18: 0.0157 hPa; W89), so level
+#: walking's barometer noise adds no ascent. Foot tracks use 0: their strides' heights are already levelled
+#: (L39) or set by terrain classes.
+ASCENT_BAND_BARO_M = 0.5
+
+
+def ascent_descent(z: np.ndarray, band_m: float = 0.0) -> tuple[float, float]:
+    """Decision L146: the cumulative ascent and descent (m, both >= 0) of the altitudes ``z`` (walking order):
+    a change counts once z has moved at least ``band_m`` from the last counted level (a hysteresis; 0 = every
+    rise and every drop), and the last level's difference to the final z is counted at the end, so ascent -
+    descent is the net change exactly. Non-finite values are skipped."""
+    z = np.asarray(z, dtype=float).ravel()
+    z = z[np.isfinite(z)]
+    if len(z) < 2:
+        return 0.0, 0.0
+    if band_m <= 0:
+        d = np.diff(z)
+        return float(d[d > 0].sum()) + 0.0, float(-d[d < 0].sum()) + 0.0
+    up = down = 0.0
+    ref = float(z[0])
+    for v in (*z[1:], None):
+        last = v is None
+        v = float(z[-1]) if last else float(v)
+        if v - ref >= (0.0 if last else band_m):
+            up, ref = up + v - ref, v
+        elif ref - v >= (0.0 if last else band_m):
+            down, ref = down + ref - v, v
+    return up, down

@@ -20,6 +20,13 @@ LEVEL_DZ_M = 0.10
 #: Relative foot-rate difference beyond which a calibration does not apply: the 20 Hz averaging bias the
 #: gain corrects is rate specific (L26).
 RATE_TOLERANCE = 0.01
+#: Decision L144 (candidate, measured; see docs/decisions/localization.md): a "sustained slope" is a run of at
+#: least SLOPE_RUN_STRIDES consecutive strides whose height changes share a sign and are each >= SLOPE_DZ_M (m):
+#: 0.04 m is 3 % of a 1.3 m stride, 6 strides ~8 m of walking. None = off (L39 alone).
+SLOPE_DZ_M = 0.04
+SLOPE_RUN_STRIDES = 6
+#: Decision L144: whether L39's level rule and L127's floor count keep a sustained slope (the measured candidate)
+SUSTAINED_SLOPE = False
 
 
 def rate_differs(trained_hz: float, fs_hz: float, *, tolerance: float = RATE_TOLERANCE) -> bool:
@@ -76,12 +83,30 @@ def calibrated_stride_sd(rec: Mapping | None) -> float | None:
     return float(rec["stride_sd"])
 
 
-def level_dz(dz: np.ndarray, *, level_dz_m: float = LEVEL_DZ_M) -> np.ndarray:
+def sustained_slope(dz: np.ndarray, *, slope_dz_m: float = SLOPE_DZ_M, run: int = SLOPE_RUN_STRIDES) -> np.ndarray:
+    """Decision L144: boolean mask of the strides (``dz`` m, walking order) inside a run of at least ``run``
+    consecutive strides whose height changes share a sign and are each at least ``slope_dz_m`` in size - a
+    slope climbed or descended stride after stride, which L39's per-stride threshold alone calls level."""
+    dz = np.nan_to_num(np.asarray(dz, dtype=np.float64).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
+    sign = np.where(dz >= slope_dz_m, 1, np.where(dz <= -slope_dz_m, -1, 0))
+    mask = np.zeros(len(dz), dtype=bool)
+    edges = np.flatnonzero(np.diff(sign)) + 1
+    for a, b in zip(np.r_[0, edges], np.r_[edges, len(dz)], strict=True):
+        if sign[a] != 0 and b - a >= run:
+            mask[a:b] = True
+    return mask
+
+
+def level_dz(dz: np.ndarray, *, level_dz_m: float = LEVEL_DZ_M, slope: bool | None = None) -> np.ndarray:
     """Height changes ``dz`` (m) with the level strides' (|dz| < ``level_dz_m``, half a stair rise) set to 0:
     the altitude rule of the thesis (ch. 7.2.2: a flat step keeps its altitude) decided by the stride's own
-    height change where there are no terrain classes (decision L39). A new array."""
+    height change where there are no terrain classes (decision L39). ``slope`` (default
+    :data:`SUSTAINED_SLOPE`, decision L144): a stride of a :func:`sustained_slope` keeps its height. A new array."""
     dz = np.asarray(dz, dtype=np.float64)
-    return np.where(np.abs(dz) < level_dz_m, 0.0, dz)
+    level = np.abs(dz) < level_dz_m
+    if SUSTAINED_SLOPE if slope is None else slope:
+        level &= ~sustained_slope(dz)
+    return np.where(level, 0.0, dz)
 
 
 def apply_level_gain(disp: np.ndarray, gain: float, *, level_dz_m: float = LEVEL_DZ_M) -> np.ndarray:

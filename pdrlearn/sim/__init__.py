@@ -1,12 +1,12 @@
 """Physics-based gait simulator: foot and waist PLASYS sessions with ground truth.
 
 Entry points: :func:`simulate` (thesis scenarios and calibration exercises), :func:`simulate_path`
-(your own path of :class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Backward`, :class:`Turn`,
+(your own path of :class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`, :class:`Turn`,
 :class:`Stand` segments) and :class:`UserProfile` (anthropometry, gait, mounting, sensor errors).
 See docs/simulator.md.
 """
 
-from pdrlearn.sim.path import Backward, Curve, Footstep, Sit, Stairs, Stand, Straight, Turn, plan_footsteps
+from pdrlearn.sim.path import Backward, Curve, Footstep, Sit, Slope, Stairs, Stand, Straight, Turn, plan_footsteps
 from pdrlearn.sim.scenarios import SCENARIOS
 from pdrlearn.sim.simulate import KNOBS, simulate, simulate_path
 from pdrlearn.sim.user import GAITS, SPEEDS, UserProfile
@@ -22,6 +22,7 @@ __all__ = [
     "Straight",
     "Curve",
     "Stairs",
+    "Slope",
     "Backward",
     "Turn",
     "Sit",

@@ -1,6 +1,6 @@
 """Walking paths as segments, and the planner that turns them into footprints of both feet.
 
-A path is a list of segments (:class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Backward`,
+A path is a list of segments (:class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`,
 :class:`Turn`, :class:`Stand`, :class:`Sit`). :func:`plan_footsteps` walks them with a user's step length and returns
 one :class:`Footstep` per foot placement (heel position, heading, kind), alternating feet. Walking bouts
 start and end with both feet side by side (gait initiation and a closing step).
@@ -47,6 +47,16 @@ class Stairs:
 
 
 @dataclass(frozen=True)
+class Slope:
+    """Walk ``length_m`` metres (horizontal) straight ahead on a ramp of ``grade`` (rise / run; > 0 uphill,
+    < 0 downhill) with level-walking steps (decision S37): each footprint is ``grade`` x its distance higher."""
+
+    length_m: float
+    grade: float
+    gait: str = "normal"
+
+
+@dataclass(frozen=True)
 class Backward:
     """``n_steps`` backward steps (the body keeps facing forward)."""
 
@@ -62,6 +72,8 @@ class Turn:
 
 IRREGULAR_SHORTENING = 0.4  # an irregular step lands this fraction of a step short
 MAX_TURN_STEP_RAD = math.pi / 3  # largest heading change of one stepping-turn step
+#: decision S37: the steepest ramp walked with level steps (30 %, 17 deg; steeper streets are climbed otherwise)
+MAX_SLOPE_GRADE = 0.30
 
 
 @dataclass(frozen=True)
@@ -78,7 +90,7 @@ class Sit:
     duration_s: float
 
 
-Segment = Straight | Curve | Stairs | Backward | Turn | Stand | Sit
+Segment = Straight | Curve | Stairs | Slope | Backward | Turn | Stand | Sit
 
 
 @dataclass
@@ -230,6 +242,17 @@ class _Walker:
                 c0 + j * seg.run_m * u, z0 + sign * j * seg.rise_m, self.psi, "stairs_up" if seg.up else "stairs_down"
             )
 
+    def slope(self, seg: Slope) -> None:
+        """Decision S37: level-walking steps whose footprints follow the ramp's height; the swing takes the
+        geometric branch of the height change (toe-led rise or straight-line drop, :mod:`pdrlearn.sim.body`)
+        and the foot lands level (a ramp's few-degree foot tilt is not modelled)."""
+        self._change_direction("forward")
+        if not (math.isfinite(seg.grade) and abs(seg.grade) <= MAX_SLOPE_GRADE):
+            raise DataError(f"{seg}: grade must be finite and within +-{MAX_SLOPE_GRADE:g} (rise / run)")
+        c0, z0, u = self.c.copy(), self.z, _ahead(self.psi)
+        for s, irr in zip(*self._progress(seg.length_m, self.user.step_length(self.speed, seg.gait)), strict=True):
+            self.step(c0 + s * u, z0 + seg.grade * s, self.psi, "walk", gait=seg.gait, irregular=bool(irr))
+
     def backward(self, seg: Backward) -> None:
         self._change_direction("backward")
         c0, u = self.c.copy(), -_ahead(self.psi)
@@ -273,6 +296,8 @@ def path_length(segments: list[Segment], user: UserProfile | None = None) -> flo
             total += abs(seg.angle_rad) * seg.radius_m
         elif isinstance(seg, Stairs):
             total += seg.n * seg.run_m
+        elif isinstance(seg, Slope):
+            total += seg.length_m
         elif isinstance(seg, Backward) and user is not None:
             total += seg.n_steps * 0.55 * user.step_length_m
     return total
@@ -303,19 +328,20 @@ def plan_footsteps(
         Straight: w.straight,
         Curve: w.curve,
         Stairs: w.stairs,
+        Slope: w.slope,
         Backward: w.backward,
         Turn: w.turn,
         Stand: w.stand,
         Sit: w.sit,
     }
     for seg in segments:
-        if isinstance(seg, Straight | Curve) and seg.gait not in GAITS:
+        if isinstance(seg, Straight | Curve | Slope) and seg.gait not in GAITS:
             raise DataError(f"{seg}: gait must be one of {', '.join(GAITS)}")
         try:
             handlers[type(seg)](seg)
         except KeyError:
             raise DataError(
-                f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Backward, Turn, Stand, Sit"
+                f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Slope, Backward, Turn, Stand, Sit"
             ) from None
     w.close()
     return w.steps, initial, w.pending_pause, w.transfers

@@ -8,6 +8,7 @@
 | ``straight:M[:GAIT]`` | walk M metres straight ahead; GAIT short, normal (default) or long |
 | ``curve:DEG:RADIUS[:GAIT]`` | walk an arc turning DEG degrees (> 0 left) of RADIUS metres |
 | ``up:N[:RISE:RUN]`` / ``down:N[:RISE:RUN]`` | climb / descend N stairs (default 0.17 m x 0.28 m) |
+| ``slope:M:PCT[:GAIT]`` | walk M metres (horizontal) on a ramp of PCT percent (< 0 downhill; decision S37) |
 | ``backward:N`` | N backward steps |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
 | ``stand:S`` | stand still S seconds |
@@ -21,10 +22,10 @@ from __future__ import annotations
 import math
 
 from pdrlearn.errors import DataError
-from pdrlearn.sim.path import Backward, Curve, Segment, Sit, Stairs, Stand, Straight, Turn
+from pdrlearn.sim.path import Backward, Curve, Segment, Sit, Slope, Stairs, Stand, Straight, Turn
 from pdrlearn.sim.user import GAITS
 
-ROUTE_KINDS = ("straight", "curve", "up", "down", "backward", "turn", "stand", "sit")
+ROUTE_KINDS = ("straight", "curve", "slope", "up", "down", "backward", "turn", "stand", "sit")
 _USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curve:90:2'"
 
 
@@ -75,6 +76,10 @@ def parse_route(spec: str) -> list[Segment]:
             if angle == 0:
                 raise DataError(f"--route item {item!r}: a curve needs a non-zero angle (use straight)")
             segments.append(Curve(math.radians(angle), _number(item, parts[2]), gait=_gait(item, parts, 3)))
+        elif kind == "slope":
+            _arity(item, parts, (2, 3))
+            grade = _number(item, parts[2], positive=False) / 100.0
+            segments.append(Slope(_number(item, parts[1]), grade, gait=_gait(item, parts, 3)))
         elif kind in ("up", "down"):
             _arity(item, parts, (1, 3))
             size = {} if len(parts) == 2 else {"rise_m": _number(item, parts[2]), "run_m": _number(item, parts[3])}

@@ -176,18 +176,22 @@ CLIMB_BRIDGE_STRIDES = 4
 
 
 def count_floors_by_climb(dz, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOREY_BAND,
-                          bridge: int = CLIMB_BRIDGE_STRIDES) -> tuple[int, int, int]:
+                          bridge: int = CLIMB_BRIDGE_STRIDES, slope: bool | None = None) -> tuple[int, int, int]:
     """Storeys climbed and descended counted per climb from the strides' height changes ``dz`` (m, one per
     stride in walking order): ``(floors_up, floors_down, storeys_changed)`` (decision L127). A climb up (down)
     is a run of up (down) stair strides, dz >= ``LEVEL_DZ_M`` (<= -``LEVEL_DZ_M``, L39), with at most
     ``bridge`` other strides between two of them; its height H (the sum of dz from its first to its last stair
     stride) counts floor(|H| / h + band) storeys, the storeys of L64's band rule, so a slow altitude drift
-    between climbs moves no count. Non-finite dz count as 0."""
-    from pdrlearn.kernels.distance import LEVEL_DZ_M
+    between climbs moves no count. Non-finite dz count as 0. ``slope`` (default ``SUSTAINED_SLOPE``, decision
+    L144): the strides of a sustained slope (``kernels.distance.sustained_slope``) count as stair strides too."""
+    from pdrlearn.kernels import distance
 
     dz = np.nan_to_num(np.asarray(dz, dtype=float).ravel(), nan=0.0, posinf=0.0, neginf=0.0)
+    sloped = (distance.sustained_slope(dz) if (distance.SUSTAINED_SLOPE if slope is None else slope)
+              else np.zeros(len(dz), dtype=bool))
     counts = []
-    for stair in (np.flatnonzero(dz >= LEVEL_DZ_M), np.flatnonzero(dz <= -LEVEL_DZ_M)):
+    for stair in (np.flatnonzero((dz >= distance.LEVEL_DZ_M) | (sloped & (dz > 0))),
+                  np.flatnonzero((dz <= -distance.LEVEL_DZ_M) | (sloped & (dz < 0)))):
         runs = np.split(stair, np.flatnonzero(np.diff(stair) > bridge + 1) + 1) if len(stair) else []
         counts.append(sum(int(np.floor(abs(float(dz[r[0]:r[-1] + 1].sum())) / storey_height_m + band))
                           for r in runs))
@@ -299,6 +303,19 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
     _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out, dz=_foot_dz(result.steps))
+    _ascent(result, out)
+
+
+def _ascent(result: TrackResult, out: dict) -> None:
+    """Decision L146: ``ascent_m`` / ``descent_m``, the cumulative climb and descent of the track's z (a hill
+    walked up and down has both, its ``altitude_change_m`` ~0); a lower-back track's barometric z within the
+    hysteresis band ``ASCENT_BAND_BARO_M``, a foot track's strides as they are."""
+    from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, ascent_descent
+
+    tr, steps = result.trajectory, result.steps
+    z = tr["z"].to_numpy(float) if len(tr) and "z" in tr else np.zeros(0)
+    foot = bool(len(steps)) and "unit" in steps and bool((steps["unit"].astype(str) == "foot").all())
+    out["ascent_m"], out["descent_m"] = ascent_descent(z, 0.0 if foot or not len(steps) else ASCENT_BAND_BARO_M)
 
 
 def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[float | None, str]:
@@ -550,6 +567,43 @@ def _barometer(result: TrackResult, session: Session, out: dict) -> None:
     steps = result.steps
     foot = bool(len(steps)) and "unit" in steps and bool((steps["unit"].astype(str) == "foot").all())
     out["barometer_unused"] = bool(foot and session.has("wBarometer") and len(session["wBarometer"]))
+    if out["barometer_unused"]:  # decision L145: the barometer's altitude change over the track, to compare
+        from pdrlearn.kernels.barometer import relative_altitude
+
+        b = session["wBarometer"]
+        span = [float(steps["start_s"].min()), float(steps["end_s"].max())]
+        out["barometer_altitude_change_m"] = float(relative_altitude(b.t, b.values[:, 0], span)[1])
+        out["barometer_disagree_limit_m"] = BAROMETER_DISAGREE_M + BAROMETER_DRIFT_M_PER_H * (span[1] - span[0]) / 3600
+
+
+#: decision L145: a foot track's altitude change and the unused waist barometer's may differ by this much (m)
+#: plus the weather's drift over the track before a warning: 0.5 m is ~4 SDs of one barometer sample's altitude
+#: noise (0.13 m, W89) and ~7 strides of a 5 % slope that L39 reads level
+BAROMETER_DISAGREE_M = 0.5
+#: decision L145: the weather's pressure drift, 0.3 hPa per hour (the simulator's 1-SD trend, decision S4, from
+#: thesis Table 18's 30-day range) = ~2.5 m of barometric altitude per hour
+BAROMETER_DRIFT_M_PER_H = 2.5
+
+
+def barometer_warning(summary: dict) -> str | None:
+    """Decision L145: one line when a foot track's ``altitude_change_m`` and the session's waist barometer
+    (``barometer_altitude_change_m``, recorded but not read by the foot pipeline) differ by more than
+    ``barometer_disagree_limit_m`` (:data:`BAROMETER_DISAGREE_M` + the weather's drift over the track), with
+    the height L39 set to 0 (``info.altitude_check.level_zeroed_m``) when known; None otherwise."""
+    baro, foot = summary.get("barometer_altitude_change_m"), summary.get("altitude_change_m")
+    limit = summary.get("barometer_disagree_limit_m", BAROMETER_DISAGREE_M)
+    if baro is None or foot is None or not abs(float(foot) - float(baro)) > float(limit):
+        return None
+    check = (summary.get("info") or {}).get("altitude_check") or {}
+    zeroed = check.get("level_zeroed_m")
+    why = ("" if zeroed is None else
+           f"; L39 set {check.get('level_zeroed_strides', 0)} strides under 0.10 m of height change to level, "
+           f"{float(zeroed):+.2f} m in all (a slope under ~7 % reads level on the foot)")
+    return (f"foot altitude change {float(foot):+.2f} m disagrees with the waist barometer's {float(baro):+.2f} m "
+            f"(wBarometer.csv, not read by foot tracks) by {abs(float(foot) - float(baro)):.2f} m (more than "
+            f"{float(limit):.2f} m){why}; "
+            "the foot's height is integrated stride by stride and misses slopes and hills (L144): for altitude on "
+            "slopes, hills and ramps track the lower back, `--pipeline waist-pendulum`")
 
 
 #: metric helpers run in order by :func:`evaluate_track`; append to extend.
@@ -559,11 +613,13 @@ METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _
 
 def summary_warnings(summary: dict) -> list[str]:
     """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range,
-    decision L113's withheld stride-time CV and decision L116's whole-sample rounding of the CV."""
+    decision L113's withheld stride-time CV, decision L116's whole-sample rounding of the CV and decision L145's
+    foot altitude against the unused barometer."""
     from pdrlearn.track.clinical import resolution_warning, stride_cv_warning
     from pdrlearn.track.gait import gait_range_warning
 
-    return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary)) if w]
+    return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary),
+                        barometer_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,

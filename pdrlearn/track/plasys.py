@@ -616,8 +616,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                               **({} if waist_gap_yaw is None else {"waist_gap_yaw": bool(waist_gap_yaw)}))
         if no_classes:
             res.info["method"] = "M3 engine, no classes"
+            raw_dz = res.steps["dz_m"].to_numpy(float) if len(res.steps) else np.zeros(0)
             _level_without_classes(res)  # decision L39, as offline
-            msg, res.info["altitude_check"] = integrated_altitude_check(res.steps["dz_m"].to_numpy(float))  # L69
+            msg, res.info["altitude_check"] = integrated_altitude_check(res.steps["dz_m"].to_numpy(float),
+                                                                        raw_dz=raw_dz)  # L69, L145
             res.info["warnings"] = [NO_MODEL_WARNING, *res.info.get("warnings", []), *([msg] if msg else [])]
             log.warning("%s: %s", session.where, NO_MODEL_WARNING)
             if msg:
@@ -741,6 +743,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     applied = step_rules.apply(disp, rule_classes)
     length = applied["length_m"].to_numpy()
     dz = applied["dz_m"].to_numpy() if cfg["rules"] else disp[:, 2]
+    raw_dz = dz
     if no_classes or "terrain" in untrained:  # decision L39 (C17: also a model without terrain classes)
         dz = level_dz(dz)
     length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
@@ -748,7 +751,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                               strides["end_s"].to_numpy(float), warnings)  # decision L94
     altitude_check, terrain_check = None, None
     if no_classes or "terrain" in untrained:  # decision L69: the altitude is the foot's integrated height
-        msg, altitude_check = integrated_altitude_check(dz)
+        msg, altitude_check = integrated_altitude_check(  # decisions L69, L145
+            dz, raw_dz=np.where(in_gap | impossible, 0.0, raw_dz))
         warnings += [msg] if msg else []
     elif cfg["rules"] and not (isinstance(model, str) and model == "oracle"):  # decision C28
         msg, terrain_check = terrain_dz_check(np.where(in_gap, None, classes["terrain"].to_numpy(dtype=object)),
