@@ -93,6 +93,8 @@ SESSIONS: tuple[Column, ...] = (
     ("ic_timing_sd_ms", "ms", "number", "lower back: SD of that error"),
     ("ic_timing_stereo_mean_ms", "ms", "number", "lower back: mean contact time error, both feet matched"),
     ("ic_timing_stereo_sd_ms", "ms", "number", "lower back: SD of that error"),
+    ("leg_length_m", "m", "number", "the walker's leg length from meta.json, by which L95's range is scaled (L148)"),
+    ("leg_length_source", _ID, "text", "the meta.json key leg_length_m came from (L148)"),
     ("length_class_agreement", "fraction", "number", "matched strides whose length class is the label's (L53)"),
     ("longest_pause_s", "s", "number", "the longest pause (L104)"),
     ("median_speed_straight_mps", "m/s", "number", "median speed of the strides turning under 15 deg"),

@@ -89,3 +89,76 @@ def test_turning_on_the_spot_is_not_a_slow_walk(summary, want):
     """Decision L123 (session 21's responder trial, finding 8): L95 judges the straight strides' speed."""
     got = gait_range_warning(summary)
     assert got is None if want is None else (want in got and "decision L95" in got)
+
+
+def test_the_range_scales_with_leg_length():
+    """Decision L148 (session 23 paediatric trial, finding 5): dynamic similarity (Hof 1996) scales L95's range."""
+    from pdrlearn.track.gait import CADENCE_RANGE_SPM, SPEED_RANGE_MPS, gait_ranges, leg_length, reference_leg_m
+
+    assert reference_leg_m() == pytest.approx(0.901)
+    assert gait_ranges(None) == (CADENCE_RANGE_SPM, SPEED_RANGE_MPS) == gait_ranges(reference_leg_m())
+    (c0, c1), (v0, v1) = gait_ranges(0.45)
+    assert (c0, c1) == pytest.approx((70 * (0.901 / 0.45) ** 0.5, 160 * (0.901 / 0.45) ** 0.5))  # 99-226 steps/min
+    assert (v0, v1) == pytest.approx((0.5 * (0.45 / 0.901) ** 0.5, 2.5 * (0.45 / 0.901) ** 0.5))
+    assert leg_length({"subject": {"leg_length_m": 0.45}, "leg_length_m": 0.9}) == {
+        "leg_length_m": 0.45, "leg_length_source": "meta.json subject.leg_length_m"}
+    assert leg_length({"sensor_height_m": 0.57})["leg_length_m"] == 0.57  # the waist pendulum's L (B155)
+    assert leg_length({"subject": {"height_m": 1.0}}) == {"leg_length_m": pytest.approx(0.53),
+                                                          "leg_length_source": "0.53 x meta.json subject.height_m"}
+    assert leg_length({}) == {} == leg_length(None)
+
+
+@pytest.mark.parametrize(("summary", "want"), [
+    # the trial's children: a 3-year-old's normal walk (196 steps/min) and a 7-year-old's fast one (182) are walks
+    ({"median_cadence_spm": 196.0, "median_speed_mps": 1.18, "leg_length_m": 0.45}, None),
+    ({"median_cadence_spm": 182.0, "median_speed_mps": 1.5, "leg_length_m": 0.61}, None),
+    # the same figures for an adult leg (or none given) still warn; a child's run still warns
+    ({"median_cadence_spm": 196.0, "median_speed_mps": 1.18, "leg_length_m": 0.9}, "running is not supported"),
+    ({"median_cadence_spm": 196.0, "median_speed_mps": 1.18}, "running is not supported"),
+    ({"median_cadence_spm": 250.0, "median_speed_mps": 2.2, "leg_length_m": 0.45,
+      "leg_length_source": "meta.json leg_length_m"}, "for the 0.45 m leg of meta.json leg_length_m 99-226 steps/min"),
+    ({"median_cadence_spm": 206.9, "median_speed_mps": 4.147, "leg_length_m": 0.95}, "running is not supported"),
+    ({"median_cadence_spm": 120.0, "median_speed_mps": 0.45, "leg_length_m": 0.45}, None),  # >= 0.35 m/s for 0.45 m
+])
+def test_a_childs_walk_is_no_run(summary, want):
+    got = gait_range_warning(summary)
+    assert got is None if want is None else (want in got and "decision L95" in got), got
+    if got and "leg_length_m" in summary:
+        assert "decision L148" in got and "Hof 1996" in got
+
+
+def test_track_a_simulated_three_year_old_is_quiet(tmp_path, capsys):
+    """End to end: a 3-year-old (0.95 m, 0.45 m legs, 200 steps/min) tracked on the foot gets no running line."""
+    from pdrlearn.cli import main
+
+    kid = tmp_path / "age3"
+    assert main(["simulate", "--route", "stand:2, straight:12, stand:2", "--height", "0.95", "--leg-length", "0.45",
+                 "--step-length", "0.36", "--step-time", "0.3", "--user-seed", "1162", "--rate", "100",
+                 "--out", str(kid)]) == 0
+    capsys.readouterr()
+    assert main(["track", str(kid), "--out", str(tmp_path / "t"), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["median_cadence_spm"] > 190 and abs(out["distance_error_pct"]) < 3
+    assert out["leg_length_m"] == 0.45 and out["leg_length_source"] == "meta.json leg_length_m"
+    assert not [w for w in out["info"].get("warnings", []) if "decision L95" in w]
+
+
+def test_track_all_groups_the_range_warning_of_several_sessions(tmp_path, capsys, caplog, monkeypatch):
+    """Decision L148: track-all says L95's line once for every session it fires on, though their figures differ."""
+    import logging
+
+    from pdrlearn.cli import main
+    from pdrlearn.track import evaluate as E
+
+    for u in (1163, 1164):
+        out = tmp_path / "in" / f"u{u}"
+        assert main(["simulate", "--scenario", "A", "--user-seed", str(u), "--out", str(out)]) == 0
+    real = E.evaluate_track
+    monkeypatch.setattr(E, "evaluate_track", lambda *a, **k: {**real(*a, **k), "median_cadence_spm": 195.0})
+    capsys.readouterr()
+    with caplog.at_level(logging.WARNING):
+        assert main(["track-all", str(tmp_path / "in"), "--out", str(tmp_path / "o"), "--json"]) == 0
+    lines = [r.getMessage() for r in caplog.records if "decision L95" in r.getMessage() and "of 2 sessions" in
+             r.getMessage()]
+    assert len(lines) == 1 and "[2 of 2 sessions: u1163, u1164]" in lines[0], lines
+    assert "(the figures are u1163's; each session's own are in sessions.csv's warnings column)" in lines[0]

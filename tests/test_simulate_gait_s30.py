@@ -43,8 +43,8 @@ def test_only_one_of_them_keeps_the_users_other(tmp_path, capsys):
 @pytest.mark.parametrize("args, message", [
     (["--step-length", "0.05"], "--step-length 0.05: give 0.1-1 m"),
     (["--step-length", "1.5"], "give 0.1-1 m"), (["--step-length", "nan"], "give 0.1-1 m"),
-    (["--step-time", "0.2"], "--step-time 0.2: give 0.4-2.5 s"), (["--step-time", "inf"], "give 0.4-2.5 s"),
-    (["--step-time", "-1"], "give 0.4-2.5 s")])
+    (["--step-time", "0.2"], "--step-time 0.2: give 0.25-2.5 s"), (["--step-time", "inf"], "give 0.25-2.5 s"),
+    (["--step-time", "-1"], "give 0.25-2.5 s")])  # decision S38: down to a fast 3-year-old's 0.25 s
 def test_bad_step_values_are_one_line(tmp_path, capsys, args, message):
     out = tmp_path / "bad"
     assert main(["simulate", "--route", "straight:4", "--user-seed", "1", *args, "--out", str(out)]) == 2

@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import re
 import shutil
 from contextlib import contextmanager
 from pathlib import Path
@@ -431,18 +432,28 @@ def _sessions_table(rows: list[dict]) -> pd.DataFrame:
     return df.reindex(columns=[*SESSION_COLUMNS, *rest])
 
 
+#: decision L148: the numbers masked when grouping the batch's warnings
+_NUMBER = re.compile(r"[-+]?\d+(?:\.\d+)?")
+
+
 def _batch_warnings(sessions: list[tuple[str, str]], results: list[JobResult]) -> None:
     """Each distinct warning once, with how many sessions raised it and the first of them (decision C12).
     A warning naming its session folder first (``DIR: message``, decision B34) is grouped by the message."""
     import logging
 
-    seen: dict[str, list[str]] = {}
+    seen: dict[str, tuple[list[str], set[str], str]] = {}
     for (rel, given), r in zip(sessions, results, strict=True):
         for text in job_warnings(r, given):  # cohort C15: a failed session's warnings too
-            seen.setdefault(text, []).append(rel)
+            # decision L148: one warning whose figures differ per session (L95's cadence and speed) is one group
+            rels, texts, _ = seen.setdefault(_NUMBER.sub("#", text), ([], set(), text))
+            if rel not in rels:
+                rels.append(rel)
+            texts.add(text)
     log = logging.getLogger("pdrlearn.cli")
-    for text, rels in seen.items():
-        log.warning("%s", grouped_warning(text, rels, len(results)))
+    for rels, texts, first in seen.values():
+        shown = first if len(texts) == 1 else (f"{first} (the figures are {rels[0]}'s; each session's own are in "
+                                               "sessions.csv's warnings column)")
+        log.warning("%s", grouped_warning(shown, rels, len(results)))
 
 
 def _duplicates(rels: list[str], results: list[JobResult], dirs: list[Path]) -> tuple[dict[str, str], dict[str, str]]:

@@ -11,9 +11,13 @@ from pdrlearn.cli.common import json_safe, print_json, progress
 from pdrlearn.errors import DataError
 
 #: decision S30: the step length (m) and step time (s) `simulate --step-length/--step-time` accept: from a 0.1 m
-#: shuffle to a 1.0 m stride-long step, from 24 to 150 steps/min (0.04-2.5 m/s); the simulator walked all four
-#: corners (0.1 m x 0.4 / 2.5 s, 1.0 m x 0.4 / 2.5 s) with the steps asked for
-STEP_LENGTH_RANGE_M, STEP_TIME_RANGE_S = (0.1, 1.0), (0.4, 2.5)
+#: shuffle to a 1.0 m stride-long step, from 24 steps/min; the simulator walked all four corners with the steps
+#: asked for. Decision S38: the shortest step time 0.25 s (240 steps/min, a fast 3-year-old; S30's 0.4 s was the
+#: adults' walking range, not a simulator limit: it walks 0.25 s steps as asked, tests/test_sim_child.py)
+STEP_LENGTH_RANGE_M, STEP_TIME_RANGE_S = (0.1, 1.0), (0.25, 2.5)
+#: decision S38: `simulate --height` (m: a 1-year-old to a very tall adult) and `--leg-length` (as a fraction of
+#: the stature: a toddler's ~0.4 to a long-legged adult's 0.6; the simulator's adults are 0.53)
+HEIGHT_RANGE_M, LEG_PER_HEIGHT_RANGE = (0.7, 2.2), (0.35, 0.6)
 #: decision S33: `simulate --mag-disturbance` (uT, sd of the indoor field disturbances): from none to twice the
 #: 45 uT Earth field the simulator uses (a steel-framed corridor); the Python knob has no upper bound
 MAG_DISTURBANCE_MAX_UT = 90.0
@@ -83,6 +87,14 @@ def simulate_cmd(
         0.0, "--step-time-asymmetry", help="Hemiparetic gait: each step onto the left foot lasts 1 + this times "
         "the step onto the right (symmetry ratio - 1, Patterson et al. 2010), e.g. 0.39; the cadence stays the "
         "user's; 0 (default) to below 1 (decision S35)."),
+    height: float | None = typer.Option(
+        None, "--height", help=f"The user at this stature (m, {HEIGHT_RANGE_M[0]:g}-{HEIGHT_RANGE_M[1]:g}, e.g. 0.95 "
+        "for a 3-year-old): foot, waist-unit height, swing, pelvis bounce and sway scaled by stature, step length "
+        "and step time by dynamic similarity on the leg length (Hof 1996; decision S38)."),
+    leg_length: float | None = typer.Option(
+        None, "--leg-length", help=f"With --height: the leg length (m, greater-trochanter height, "
+        f"{LEG_PER_HEIGHT_RANGE[0]:g}-{LEG_PER_HEIGHT_RANGE[1]:g} x the height; default the user's own proportion, "
+        "0.53)."),
     no_noise: bool = typer.Option(False, "--no-noise", help="Exact physics: no noise, bias or quantisation."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -102,6 +114,9 @@ def simulate_cmd(
 
         pdrlearn simulate --route "stand:3, straight:14, stand:3" --step-length 0.3 --step-time 0.75 \\
             --user-seed 1 --out out/sim/tenmwt_040   # a 0.4 m/s walker: 0.3 m steps at 80 steps/min
+
+        pdrlearn simulate --route "stand:2, straight:20, stand:2" --height 0.95 --leg-length 0.45 \\
+            --step-length 0.36 --step-time 0.3 --user-seed 1 --rate 100 --out out/sim/age3   # a 3-year-old
     """
     from pdrlearn.io import write_session
     from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path
@@ -132,7 +147,7 @@ def simulate_cmd(
     if not (math.isfinite(step_time_asymmetry) and 0.0 <= step_time_asymmetry < STEP_TIME_ASYMMETRY_MAX):  # S35
         raise DataError(f"--step-time-asymmetry {step_time_asymmetry:g}: give 0 (symmetric) to below "
                         f"{STEP_TIME_ASYMMETRY_MAX:g} (0.39 = the left foot's steps 39 % longer than the right's)")
-    user = UserProfile.from_seed(user_seed)
+    user = scaled_user(UserProfile.from_seed(user_seed), height, leg_length)  # decision S38
     custom = _custom_gait(user, speed, step_length, step_time, route)  # decision S30
     if out.exists() and (not out.is_dir() or any(out.iterdir())):
         raise DataError(f"{out}: already exists and is not an empty folder; choose another --out or remove it")
@@ -153,7 +168,7 @@ def simulate_cmd(
     label = scenario or "route"
     with progress(f"simulating {label}", total=2, enabled=not as_json) as advance:
         if segments is None:
-            session = simulate(scenario, user_seed, speed, rate_hz=rate, seed=seed, length_m=length_m, **knobs)
+            session = simulate(scenario, user, speed, rate_hz=rate, seed=seed, length_m=length_m, **knobs)  # S39
         else:
             session = simulate_path(
                 segments,
@@ -161,7 +176,7 @@ def simulate_cmd(
                 speed=speed,
                 rate_hz=rate,
                 seed=seed,
-                name=f"route_u{user_seed}_{speed}_s{seed}" + (
+                name=f"route_u{user_seed}_{speed}_s{seed}" + (f"_h{height:g}m" if height is not None else "") + (
                     f"_step{custom.step_length(speed):.3g}m_{custom.step_time(speed):.3g}s" if custom else ""),
                 scenario="route",
                 **knobs,
@@ -176,6 +191,8 @@ def simulate_cmd(
         **({} if route is None else {"route": route}),
         "user_seed": user_seed,
         "speed": speed,
+        "height_m": user.height_m,  # decision S38: the user's stature and leg length (scaled with --height)
+        "leg_length_m": user.leg_length_m,
         # decision S30: the step length and time walked on normal-gait items (the user's own, or the given ones)
         "step_length_m": round((custom or user).step_length(speed), 4),
         "step_time_s": round((custom or user).step_time(speed), 4),
@@ -198,6 +215,25 @@ def simulate_cmd(
             f"{rate:g} Hz" + (f", steps {summary['step_length_m']:g} m in {summary['step_time_s']:g} s "
                               f"({summary['step_length_m'] / summary['step_time_s']:.2f} m/s)" if custom else "")
         )
+
+
+def scaled_user(user, height: float | None, leg_length: float | None):
+    """Decision S38: ``user`` at ``--height`` / ``--leg-length`` (:meth:`UserProfile.scaled`), ``user`` itself
+    without them; one error line for a value outside :data:`HEIGHT_RANGE_M` / :data:`LEG_PER_HEIGHT_RANGE`."""
+    if height is None:
+        if leg_length is not None:
+            raise DataError("simulate: --leg-length needs --height (the stature the body is scaled to), e.g. "
+                            "--height 0.95 --leg-length 0.45")
+        return user
+    lo, hi = HEIGHT_RANGE_M
+    if not (math.isfinite(height) and lo <= height <= hi):
+        raise DataError(f"simulate: --height {height:g}: give the stature in metres, {lo:g}-{hi:g}")
+    if leg_length is not None:
+        lo, hi = (f * height for f in LEG_PER_HEIGHT_RANGE)
+        if not (math.isfinite(leg_length) and lo <= leg_length <= hi):
+            raise DataError(f"simulate: --leg-length {leg_length:g}: give {lo:.2f}-{hi:.2f} m for --height "
+                            f"{height:g} ({LEG_PER_HEIGHT_RANGE[0]:g}-{LEG_PER_HEIGHT_RANGE[1]:g} x the height)")
+    return user.scaled(height, leg_length)
 
 
 def parse_mount(spec: str | None) -> tuple[float, float, float]:

@@ -125,19 +125,23 @@ def rest_to_rest(t: np.ndarray, stance: np.ndarray, starts: np.ndarray, ends: np
     return i0[first], i1[first], keep[first]
 
 
-def one_per_rest_stride(t: np.ndarray, stance: np.ndarray, starts, ends, events) -> np.ndarray:
+def one_per_rest_stride(t: np.ndarray, stance: np.ndarray, starts, ends, events, *,
+                        count_strides: bool = False) -> np.ndarray | tuple[np.ndarray, int]:
     """Decision steps 34: the rows of a foot detector's table that :func:`rest_to_rest` makes strides (what
     ``pdrlearn track`` integrates), one per rest-to-rest stride: of several detections between the same two
     rests (a slow stride's toe-off and landing both detected) the one with the latest ``events`` (the landing
-    just before the rest that ends the stride); detections in one rest are dropped. Sorted row indices."""
+    just before the rest that ends the stride); detections in one rest are dropped. Sorted row indices; with
+    ``count_strides`` also the number of rest-to-rest strides they cover (more than the rows when a detection
+    spans several strides, which ``track`` splits at the rests, L96; steps decision 38)."""
     i0, i1, rows = rest_to_rest(t, stance, np.asarray(starts, float), np.asarray(ends, float), all_rows=True)
     if not len(rows):
-        return np.zeros(0, dtype=int)
+        return (np.zeros(0, dtype=int), 0) if count_strides else np.zeros(0, dtype=int)
     ev = np.asarray(events, dtype=float)[rows]
     order = np.lexsort((np.nan_to_num(ev, nan=-np.inf), i1, i0))  # by stride, the latest event last
     pair = np.column_stack([i0, i1])[order]
     last = np.r_[np.any(pair[1:] != pair[:-1], axis=1), True]
-    return np.unique(rows[order][last])
+    kept = np.unique(rows[order][last])
+    return (kept, int(last.sum())) if count_strides else kept
 
 
 def twist_yaw(q_start: np.ndarray, q_end: np.ndarray) -> np.ndarray:

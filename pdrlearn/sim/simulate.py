@@ -473,7 +473,8 @@ def _yaw_of(R: np.ndarray) -> np.ndarray:
 
 
 def simulate(
-    scenario: str, user_seed: int, speed: str = "normal", *, rate_hz: float = 20.0, seed: int | None = None, **knobs
+    scenario: str, user_seed: int | UserProfile, speed: str = "normal", *, rate_hz: float = 20.0,
+    seed: int | None = None, **knobs
 ) -> Session:
     """Simulate one of the thesis scenarios or calibration exercises.
 
@@ -481,7 +482,9 @@ def simulate(
     ----------
     scenario : "A", "B", "C", "D" (thesis ch.7.3.2.1), "terrain", "direction", "length" (calibration
         exercises, ch.7.2.2), "standstill" (60 s, Table 34), "rotations" (Table 35), "walk" (knob ``length_m``)
-    user_seed : non-negative integer selecting the user (:meth:`UserProfile.from_seed`)
+    user_seed : non-negative integer selecting the user (:meth:`UserProfile.from_seed`), or the
+        :class:`UserProfile` itself (decision S39: a custom profile such as ``UserProfile.from_seed(1).scaled(0.95)``
+        walks the same scenario, with the random draws of its seed)
     speed : "slow", "normal" or "fast"
     rate_hz : output rate (Hz), 100 Hz divided by an integer; 20 Hz as the PLASYS firmware
     seed : randomness of the walk and sensors (default 0); same arguments -> identical session
@@ -494,13 +497,13 @@ def simulate(
     seed = 0 if seed is None else seed
     if not isinstance(seed, int | np.integer) or seed < 0:
         raise DataError(f"seed {seed!r}: must be a non-negative integer")
-    user = UserProfile.from_seed(user_seed)
+    user = user_seed if isinstance(user_seed, UserProfile) else UserProfile.from_seed(user_seed)  # decision S39
     opt = _check_knobs(knobs)
     path_rng = _rng(user.seed, int(seed), scenario, speed, "path")
     segments = SCENARIOS[scenario](user, speed, path_rng, length_m=float(opt["length_m"]))
     if scenario == "standstill":
         knobs = {**knobs, "stand_s": 30.0}
-    name = f"sim_{scenario}_u{user_seed}_{speed}_s{seed}"
+    name = f"sim_{scenario}_u{user.seed}_{speed}_s{seed}" + ("" if _drawn_user(user) else "_custom_user")
     return simulate_path(
         segments, user, speed=speed, rate_hz=rate_hz, seed=int(seed), name=name, scenario=scenario, **knobs
     )

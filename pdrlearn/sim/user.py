@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+import math
+from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 
@@ -134,6 +135,39 @@ class UserProfile:
             # the sole's rim: 1-3 cm (decisions S25)
             shoe_toe_allowance_m=round(float(rng.uniform(0.01, 0.03)), 4),
         )
+
+    def scaled(self, height_m: float, leg_length_m: float | None = None) -> UserProfile:
+        """This user at another stature (decision S38): a child, or a shorter / taller adult.
+
+        Body lengths (foot, waist-unit height, step width, swing height, toe clearance, pelvis bounce and sway)
+        scale with the stature ratio ``height_m / self.height_m`` (geometric similarity) and the mass with its
+        cube; the gait by dynamic similarity on the leg length L (Hof 1996, "Scaling gait data to body size",
+        Gait & Posture 4:222-223: step length / L, step time / sqrt(L / g) and speed / sqrt(g L) are the same for
+        the scaled walker): step length x L'/L, step time and impact speed x sqrt(L'/L). ``leg_length_m``:
+        the new leg length (m; default the stature ratio times this user's). Children younger than about five
+        step faster than dynamic similarity predicts: give their step time with ``dataclasses.replace`` or
+        ``simulate --step-time``. The seed, mounting and sensor errors stay this user's.
+        """
+        if not (isinstance(height_m, int | float) and math.isfinite(height_m) and height_m > 0):
+            raise DataError(f"height {height_m!r}: give the stature in metres, e.g. 0.95 for a 3-year-old")
+        r = float(height_m) / self.height_m
+        leg = self.leg_length_m * r if leg_length_m is None else leg_length_m
+        if not (isinstance(leg, int | float) and math.isfinite(leg) and leg > 0):
+            raise DataError(f"leg length {leg_length_m!r}: give the greater-trochanter height in metres, e.g. 0.45")
+        rl = float(leg) / self.leg_length_m
+
+        def by(v: float, f: float) -> float:
+            return round(v * f, 4)
+
+        return replace(
+            self, height_m=round(float(height_m), 4), mass_kg=round(self.mass_kg * r**3, 2),
+            leg_length_m=round(float(leg), 4),
+            foot_length_m=by(self.foot_length_m, r), sensor_height_m=by(self.sensor_height_m, r),
+            step_width_m=by(self.step_width_m, r), swing_height_m=by(self.swing_height_m, r),
+            toe_clearance_m=by(self.toe_clearance_m, r), pelvis_bounce_m=by(self.pelvis_bounce_m, r),
+            pelvis_sway_m=by(self.pelvis_sway_m, r),
+            step_length_m=by(self.step_length_m, rl), step_time_s=by(self.step_time_s, math.sqrt(rl)),  # Hof 1996
+            impact_speed_mps=by(self.impact_speed_mps, math.sqrt(rl)))
 
     # -- derived gait parameters -------------------------------------------------------------------
     def step_length(self, speed: str = "normal", gait: str = "normal") -> float:

@@ -93,6 +93,9 @@ class _GravityTracker:
 MIN_STILL_SAMPLES = 2
 #: a standard deviation over fewer than 3 samples is no estimate (decision 14)
 MIN_STILL_WINDOW_SAMPLES = 3
+#: steps decision 37: detections closer than this (s) are one stride of the foot; 0.6 s (decision 3) merged the
+#: strides of children at 200+ steps/min (experiments/results/child_strides.md)
+MIN_STRIDE_S = 0.4
 
 
 class _AccelProcessor:
@@ -157,7 +160,8 @@ class AccelStepDetector(StepDetector):
         look quiet for 0.08-0.15 s. ``quiet_frac=0`` always uses ``min_quiet_s``
     min_swing_s, max_swing_s : accepted swing durations (s)
     min_stride_s : events closer than this are one stride (s). The thesis' 20-sample step period at
-        20 Hz (1.0 s) becomes this refractory time; decision: 0.6 s, the shortest walking stride
+        20 Hz (1.0 s, "in average", ch.5.1) becomes this refractory time; steps decision 37: 0.4 s, below a
+        fast 3-year-old's 0.52 s stride (decision 3's 0.6 s, an adult's shortest stride, merged children's)
     peak_frac : fraction of the largest rise that the initial-contact peak must reach (decision: 0.3)
     gravity : rest magnitude (m/s^2)
     subsample : the contact's time at the vertex of the parabola through the peak and its two neighbouring
@@ -174,7 +178,8 @@ class AccelStepDetector(StepDetector):
                  min_quiet_s: float = 0.1, max_quiet_s: float = 0.2, quiet_frac: float = 0.5,
                  quiet_rank: int = 2, rests_only: bool = True,
                  min_swing_s: float = 0.2, max_swing_s: float = 2.5,
-                 min_stride_s: float = 0.6, peak_frac: float = PEAK_FRAC, event_cutoff_hz: float = EVENT_CUTOFF_HZ,
+                 min_stride_s: float = MIN_STRIDE_S, peak_frac: float = PEAK_FRAC,
+                 event_cutoff_hz: float = EVENT_CUTOFF_HZ,
                  gravity: float = G, subsample: bool | None = None):
         if int(quiet_rank) != quiet_rank or quiet_rank < 1:
             raise DataError(f"accel detector: quiet_rank must be an integer >= 1 (1 = the longest recent rest, "

@@ -606,9 +606,17 @@ def barometer_warning(summary: dict) -> str | None:
             "slopes, hills and ramps track the lower back, `--pipeline waist-pendulum`")
 
 
+def _leg_length(result: TrackResult, session: Session, out: dict) -> None:
+    """Decision L148: the walker's leg length from meta.json (``leg_length_m``, ``leg_length_source``), by which
+    L95's walking range is scaled."""
+    from pdrlearn.track.gait import leg_length
+
+    out.update(leg_length(session.meta))
+
+
 #: metric helpers run in order by :func:`evaluate_track`; append to extend.
 METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _waist_references, _turns,
-           _class_agreement, _barometer]
+           _class_agreement, _barometer, _leg_length]
 
 
 def summary_warnings(summary: dict) -> list[str]:

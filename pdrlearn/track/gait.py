@@ -306,10 +306,48 @@ CADENCE_RANGE_SPM, SPEED_RANGE_MPS = (70.0, 160.0), (0.5, 2.5)
 MIN_STRAIGHT_FOR_RANGE = 5
 
 
+def leg_length(meta: dict | None) -> dict:
+    """Decision L148: the walker's leg length for L95's range, from meta.json as the waist pendulum takes it
+    (``leg_length_m``, then ``sensor_height_m``, the ``subject`` object's first; waist decision B155), else
+    ``LEG_PER_HEIGHT`` x ``height_m``: ``{"leg_length_m", "leg_length_source"}``, empty when meta.json gives none of
+    them (then L95's adult range stands)."""
+    from pdrlearn.waist.params import LEG_PER_HEIGHT, _meta_numbers
+
+    found = _meta_numbers(meta or {}, "leg_length_m", "sensor_height_m")
+    if found:
+        return {"leg_length_m": found[0][1], "leg_length_source": f"meta.json {found[0][0]}"}
+    height = _meta_numbers(meta or {}, "height_m")
+    if height:
+        return {"leg_length_m": LEG_PER_HEIGHT * height[0][1],
+                "leg_length_source": f"{LEG_PER_HEIGHT} x meta.json {height[0][0]}"}
+    return {}
+
+
+def reference_leg_m() -> float:
+    """Decision L148: the leg length L95's adult range holds for: the waist pipelines' default adult (1.70 m x
+    0.53 = 0.901 m), so a session without a body measure keeps L95's range exactly."""
+    from pdrlearn.waist.params import DEFAULT_HEIGHT_M, LEG_PER_HEIGHT
+
+    return DEFAULT_HEIGHT_M * LEG_PER_HEIGHT
+
+
+def gait_ranges(leg_m: float | None) -> tuple[tuple[float, float], tuple[float, float]]:
+    """Decision L148: L95's cadence (steps/min) and speed (m/s) ranges for a walker with leg length ``leg_m`` (m;
+    None = the adult range). Dynamic similarity (Hof 1996, "Scaling gait data to body size", Gait & Posture
+    4:222-223): walkers of leg lengths L and L0 walk alike at equal dimensionless step frequency f / sqrt(g / L) and
+    speed v / sqrt(g L), so the bounds scale as cadence x sqrt(L0 / L) and speed x sqrt(L / L0), L0 =
+    :func:`reference_leg_m`."""
+    if leg_m is None or not np.isfinite(leg_m) or leg_m <= 0:
+        return CADENCE_RANGE_SPM, SPEED_RANGE_MPS
+    k = float(np.sqrt(reference_leg_m() / leg_m))  # Hof 1996: f ~ sqrt(g / L), v ~ sqrt(g L)
+    return ((CADENCE_RANGE_SPM[0] * k, CADENCE_RANGE_SPM[1] * k), (SPEED_RANGE_MPS[0] / k, SPEED_RANGE_MPS[1] / k))
+
+
 def gait_range_warning(summary: dict) -> str | None:
     """Decision L95: one line when the summary's median cadence or speed (``median_speed_mps``, else
     ``gait_speed_mps``) lies outside :data:`CADENCE_RANGE_SPM` / :data:`SPEED_RANGE_MPS`; None inside (or with
-    neither figure). Adds the out-of-domain fraction of a model's classes when the summary has one (C16).
+    neither figure); decision L148: the ranges scaled to the summary's ``leg_length_m`` (:func:`gait_ranges`, a
+    child's walk is no run). Adds the out-of-domain fraction of a model's classes when the summary has one (C16).
     Decision L123: with at least :data:`MIN_STRAIGHT_FOR_RANGE` straight strides their median speed
     (``median_speed_straight_mps``) is judged instead, so turning on the spot does not read as a slow walk."""
     cad = summary.get("median_cadence_spm")
@@ -324,12 +362,20 @@ def gait_range_warning(summary: dict) -> str | None:
     speed = float(speed) if speed is not None and np.isfinite(speed) else None
     figs = ", ".join([*([f"median cadence {cad:.0f} steps/min"] if cad is not None else []),
                       *([f"{what_speed} {speed:.2f} m/s"] if speed is not None else [])])
-    fast = (cad is not None and cad > CADENCE_RANGE_SPM[1]) or (speed is not None and speed > SPEED_RANGE_MPS[1])
-    slow = (cad is not None and cad < CADENCE_RANGE_SPM[0]) or (speed is not None and speed < SPEED_RANGE_MPS[0])
+    leg = summary.get("leg_length_m")
+    leg = float(leg) if isinstance(leg, int | float) and np.isfinite(leg) and leg > 0 else None
+    cad_range, speed_range = gait_ranges(leg)  # decision L148
+    fast = (cad is not None and cad > cad_range[1]) or (speed is not None and speed > speed_range[1])
+    slow = (cad is not None and cad < cad_range[0]) or (speed is not None and speed < speed_range[0])
     if not (fast or slow):
         return None
     validated = (f"the pipelines are validated on walking at {CADENCE_RANGE_SPM[0]:.0f}-{CADENCE_RANGE_SPM[1]:.0f} "
                  f"steps/min and {SPEED_RANGE_MPS[0]:g}-{SPEED_RANGE_MPS[1]:g} m/s (decision L95)")
+    if leg is not None:
+        validated += (f", for the {leg:.2f} m leg of {summary.get('leg_length_source') or 'meta.json'} "
+                      f"{cad_range[0]:.0f}-{cad_range[1]:.0f} steps/min and {speed_range[0]:.2f}-{speed_range[1]:.2f} "
+                      f"m/s (scaled to a {reference_leg_m():.2f} m adult leg by dynamic similarity, Hof 1996; "
+                      "decision L148)")
     what = ("this looks like running, and running is not supported: " if fast
             else "this is slower than the walking the pipelines were validated on: ")
     ood = summary.get("out_of_domain_fraction")
