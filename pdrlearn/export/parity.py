@@ -56,8 +56,8 @@ def check_bundle_parity(bundle, models: dict, W: np.ndarray, *, atol: float = PA
             for unit, entry in per.items():
                 est = models[task][method][unit]
                 classes = [str(c) for c in entry["classes"]]
-                got = align_proba(RuntimeModel(bundle, entry, ctx).proba(W), classes, classes)
-                want = align_proba(np.asarray(est.predict_proba(W), dtype=float),
+                got = align_proba(RuntimeModel(bundle, entry, ctx).proba(W.copy()), classes, classes)
+                want = align_proba(np.asarray(est.predict_proba(W.copy()), dtype=float),
                                    [str(c) for c in est.classes_], classes)
                 diff = float(np.abs(got - want).max()) if W.size else 0.0
                 name = f"{task} {method}/{unit}"

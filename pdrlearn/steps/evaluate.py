@@ -323,7 +323,8 @@ def _table_events(steps, session: Session, unit: str | None) -> tuple[np.ndarray
     ev = pd.to_numeric(steps["event_s"], errors="coerce").to_numpy(float)
     if np.isnan(ev).sum() > steps["event_s"].isna().sum():
         raise DataError("score_steps: column event_s has non-numeric values; give the step times in seconds")
-    check_event_span(ev, session.t_start, session.t_end, "score_steps")
+    if any(len(st) for st in session.streams.values()):  # a labels-only session has no clock span to check
+        check_event_span(ev, session.t_start, session.t_end, "score_steps")
     return ev, unit
 
 
