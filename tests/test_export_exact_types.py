@@ -77,3 +77,28 @@ def test_export_writes_no_bundle_whose_probabilities_differ_from_predict_proba(f
     assert not (tmp_path / "b").exists() and not list(tmp_path.iterdir())
     clf.predict_proba = plain  # the same model as trained exports
     assert export_model(None, tmp_path / "b", model=m).exists()
+
+
+def test_export_checks_the_step_graph_too(foot, tmp_path, monkeypatch):
+    """E80: the step graph (what the Tracker runs for the chosen models, E10) is compared as well: here it is built
+    from another SVM's graph (fitted on shuffled labels) while the per-model file stays right."""
+    from pdrlearn.export import from_model
+    from pdrlearn.export.onnx_convert import svm_decision_to_onnx
+
+    est = Pipeline([("features", make_features("terrain", "foot", "svm")), ("clf", SVMClassifier(task="terrain"))])
+    m = _inject(foot, est)
+    _, X, y = foot
+    other = Pipeline([("features", make_features("terrain", "foot", "svm")), ("clf", SVMClassifier(task="terrain"))])
+    other.fit(X, np.random.default_rng(3).permutation(y))
+    clf = other.steps[-1][1]
+    wrong = svm_decision_to_onnx(clf.mean_, clf.scale_, clf.decision_params_, [str(c) for c in clf.classes_],
+                                 name="terrain_svm_foot")[0]
+    real = from_model.build_step_graph
+
+    def tampered(tasks, onnx_models, features):
+        return real(tasks, {**onnx_models, "models/terrain_svm_foot.onnx": wrong}, features)
+
+    monkeypatch.setattr(from_model, "build_step_graph", tampered)
+    with pytest.raises(ModelError, match=r"terrain step graph \(svm/foot\) \(Pipeline\) gives probabilities up to"):
+        export_model(None, tmp_path / "b", model=m)
+    assert not (tmp_path / "b").exists()

@@ -40,13 +40,14 @@ def parity_windows(n_samples: int, boundaries: str = "given") -> np.ndarray:
 
 
 def check_bundle_parity(bundle, models: dict, W: np.ndarray, *, atol: float = PARITY_ATOL) -> dict:
-    """Compare every model entry of an opened ``bundle`` with its estimator on windows ``W``.
+    """Compare every model entry of an opened ``bundle``, and its step graph (decision E10: what the Tracker
+    runs for the chosen models), with the estimators on windows ``W``.
 
     ``models``: task -> method -> unit -> fitted estimator (``UserModel.tasks[task].models``). Returns
-    ``{"task method/unit": max abs difference}``; raises :class:`ModelError` naming the first entry that differs.
+    ``{"task method/unit": max abs difference}`` (the graph's as ``"task step graph"``); raises
+    :class:`ModelError` naming the first that differs.
     """
-    from pdrlearn.kernels.proba import align_proba
-    from pdrlearn.runtime.classify import RuntimeModel
+    from pdrlearn.runtime.classify import RuntimeModel, StepGraph, TaskClassifier
 
     fm = bundle.manifest["features"]
     ctx = {"signals": fm["signals"], "channel_index": {c: i for i, c in enumerate(fm["channels"])}}
@@ -54,18 +55,30 @@ def check_bundle_parity(bundle, models: dict, W: np.ndarray, *, atol: float = PA
     for task, spec in bundle.tasks.items():
         for method, per in spec["methods"].items():
             for unit, entry in per.items():
-                est = models[task][method][unit]
-                classes = [str(c) for c in entry["classes"]]
-                got = align_proba(RuntimeModel(bundle, entry, ctx).proba(W.copy()), classes, classes)
-                want = align_proba(np.asarray(est.predict_proba(W.copy()), dtype=float),
-                                   [str(c) for c in est.classes_], classes)
-                diff = float(np.abs(got - want).max()) if W.size else 0.0
-                name = f"{task} {method}/{unit}"
-                out[name] = diff
-                if not diff <= atol:
-                    raise ModelError(
-                        f"export: the bundle's {name} model ({type(est).__name__}) gives probabilities up to "
-                        f"{diff:.3g} away from its predict_proba on {len(W)} simulated steps, so no bundle was "
-                        "written (decision E80); use the model in Python (pdrlearn track --model) or export "
-                        "pdrlearn's own classes (pdrlearn train)")
+                got = RuntimeModel(bundle, entry, ctx).proba(W.copy())
+                out[f"{task} {method}/{unit}"] = _compare(f"{task} {method}/{unit} model", models[task][method][unit],
+                                                          got, entry["classes"], W, atol)
+    graph = StepGraph.open(bundle, {t: TaskClassifier(bundle, t, ctx) for t in bundle.tasks})
+    if graph is not None:
+        probs = graph.predict(np.ascontiguousarray(W, dtype=np.float64))
+        for task in graph.tasks:
+            chosen = bundle.tasks[task]["chosen"]
+            est = models[task][chosen["method"]][chosen["unit"]]
+            out[f"{task} step graph"] = _compare(f"{task} step graph ({chosen['method']}/{chosen['unit']})", est,
+                                                 probs[task], bundle.tasks[task]["classes"], W, atol)
     return out
+
+
+def _compare(name: str, est, got: np.ndarray, classes, W: np.ndarray, atol: float) -> float:
+    """The largest difference of the bundle's probabilities ``got`` (columns ``classes``) from ``est``'s."""
+    from pdrlearn.kernels.proba import align_proba
+
+    classes = [str(c) for c in classes]
+    want = align_proba(np.asarray(est.predict_proba(W.copy()), dtype=float), [str(c) for c in est.classes_], classes)
+    diff = float(np.abs(np.asarray(got, dtype=float) - want).max()) if W.size else 0.0
+    if not diff <= atol:
+        raise ModelError(
+            f"export: the bundle's {name} ({type(est).__name__}) gives probabilities up to {diff:.3g} away from its "
+            f"predict_proba on {len(W)} simulated steps, so no bundle was written (decision E80); use the model in "
+            "Python (pdrlearn track --model) or export pdrlearn's own classes (pdrlearn train)")
+    return diff
