@@ -153,7 +153,7 @@ BAD_OPTIONS = [
     (["train-all", "{root}", "--out", "{out}/m", "--workers", "0"], "--workers 0"),
     (["evaluate-all", "{out}/none", "{root}", "--serial"], "models folder not found"),
     (["steps", "{good}", "--detector", "magic"], "unknown step detector 'magic'"),
-    (["steps", "{good}", "--tolerance", "0"], "--tolerance 0.0: give the event matching tolerance"),
+    (["steps", "{good}", "--tolerance", "0"], "--tolerance 0.0: the tolerance is in seconds"),
     (["steps", "{good}", "--tolerance", "nan"], "--tolerance nan"),
     (["steps", "{good}", "--out", "{out}/steps.txt"], "must end in .csv"),
     (["plot", "{good}", "--out", "{out}/p.png", "--start", "abc"], "Invalid value for '--start'"),

@@ -229,7 +229,13 @@ def load_model(path):
         f = path / rel
         try:
             models[rel] = joblib.load(f)
-        except Exception as exc:  # noqa: BLE001 - any unpickling failure is a model problem
+        except (ModuleNotFoundError, AttributeError) as exc:  # decision B173: a class the pickle names is missing
+            raise ModelError(
+                f"{f}: cannot be loaded ({type(exc).__name__}: {exc}): the model holds a class this Python cannot "
+                "import (your own estimator's module?); put its folder on PYTHONPATH (or import the module before "
+                "loading), or install the pdrlearn version that trained it"
+            ) from None
+        except Exception as exc:  # noqa: BLE001 - any other unpickling failure is a model problem
             raise ModelError(
                 f"{f}: cannot be loaded ({type(exc).__name__}: {exc}); retrain the model"
             ) from None

@@ -392,13 +392,13 @@ class UserModel:
         for m, u in self._candidates(tm, windows, method, unit):
             est = tm.models[m][u]
             try:
-                proba = est.predict_proba(windows.X)
+                proba = estimator_proba(est, windows.X, tm.classes, f"model task {tm.task} {m}/{u}")
             except MissingSensorError as exc:  # e.g. a length model needing force sensors
                 if method is not None or unit is not None:
                     raise
                 reasons.append(f"{m}/{u}: {exc}")
                 continue
-            return m, u, align_proba(proba, np.asarray(est.classes_).astype(str), np.asarray(tm.classes))
+            return m, u, proba
         raise MissingSensorError(
             f"session '{windows.session}' lacks the sensors of every {tm.task} model "
             f"(it has {', '.join(windows.available) or 'none'}){'; ' if reasons else ''}{'; '.join(reasons)}"
@@ -527,6 +527,33 @@ def _units_available(unit: str, available: Sequence[str], method: str) -> bool:
     return foot and waist
 
 
+def estimator_proba(est, X, classes, where: str) -> np.ndarray:
+    """Probabilities ``(n, len(classes))`` of a fitted estimator in the task's class order (decision B172).
+
+    DESIGN.md ("Models"): an estimator gives ``predict_proba`` or ``decision_function``; decision values become
+    probabilities by a row softmax (a binary ``(n,)`` score d as ``[-d, d]``), the SVM's own rule (decision E4).
+    An estimator fitted on other labels (encoded integers, other class names) or with neither method is one line
+    naming ``where`` (the model) and the fix, not a KeyError / AttributeError from inside."""
+    from pdrlearn.kernels.proba import softmax
+
+    name = type(est).__name__
+    own = np.asarray(getattr(est, "classes_", [])).astype(str)
+    alien = [c for c in own if c not in set(map(str, classes))]
+    if alien or not own.size:
+        raise DataError(f"{where}: {name} predicts classes {', '.join(alien) or '(none: not fitted?)'}, not the "
+                        f"task's {', '.join(map(str, classes))}; fit it on the label strings (y from "
+                        "StepWindows.labels), not encoded integers")
+    if hasattr(est, "predict_proba"):
+        proba = np.asarray(est.predict_proba(X), dtype=float)
+    elif hasattr(est, "decision_function"):
+        d = np.asarray(est.decision_function(X), dtype=float)
+        proba = softmax(np.column_stack([-d, d]) if d.ndim == 1 else d)
+    else:
+        raise DataError(f"{where}: {name} has neither predict_proba nor decision_function (DESIGN.md, Models); "
+                        "wrap it, e.g. sklearn.calibration.CalibratedClassifierCV")
+    return align_proba(proba, own, np.asarray(classes))
+
+
 # --------------------------------------------------------------------------------------------------
 # training
 # --------------------------------------------------------------------------------------------------
@@ -610,8 +637,24 @@ def _split_units(units: Sequence[str]) -> tuple[list[str], bool, bool]:
     return [u for u in ("foot", "waist") if u in units], False, combined
 
 
+def as_names(values, name: str):
+    """Decision B171: tasks / methods / units of the Python API as a list of names: a string is one name or
+    comma-separated names, as the CLI's ``--methods svm,nn`` (``methods="svm"`` was read letter by letter); an
+    object that is no name (an estimator) is one line. ``None`` stays ``None`` (the defaults)."""
+    if values is None:
+        return None
+    if isinstance(values, str):
+        values = values.split(",")
+    bad = [type(v).__name__ for v in values if not isinstance(v, str)]
+    if bad:
+        own = (" (your own estimator trains on step_windows + make_features: docs/characterization.md)"
+               if name == "method" else "")
+        raise DataError(f"{name}s: give names, e.g. {name}s=['...'], not {', '.join(bad)} objects{own}")
+    return [v.strip() for v in values if v.strip()]
+
+
 def _check_choice(name: str, values: Sequence[str], allowed: Sequence[str]) -> list[str]:
-    values = [v.strip() for v in values if v.strip()]
+    values = as_names(values, name)
     bad = [v for v in values if v not in allowed]
     if bad or not values:
         raise DataError(
@@ -910,6 +953,7 @@ def train_user(
     strict = (tasks is not None) if strict is None else strict
     # decision C23: by default the combined feature vector replaces the soft vote of the svm and nn unit models;
     # units named explicitly (e.g. "foot,waist,fused,combined") train every soft vote they allow
+    tasks, methods, units = (as_names(v, n) for v, n in ((tasks, "task"), (methods, "method"), (units, "unit")))
     voted = None if units is not None else [m for m in (methods or DEFAULT_METHODS) if m not in COMBINED_METHODS]
     tasks, methods, units = check_settings(tasks=tasks, methods=methods, units=units, cv=cv, seed=seed)
     if length_units is not None:  # decision C38: the length task's own units (named: every soft vote they allow)

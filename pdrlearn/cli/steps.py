@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import typer
@@ -51,11 +50,11 @@ def steps(
     from pdrlearn.atomic import atomic_file
     from pdrlearn.io import read_session
     from pdrlearn.steps import get_detector, score_steps
+    from pdrlearn.steps.evaluate import check_tolerance
 
     if detector != "auto":
         det = get_detector(detector)
-    if not tolerance > 0 or not math.isfinite(tolerance):
-        raise DataError(f"--tolerance {tolerance}: give the event matching tolerance in seconds (> 0, e.g. 0.25)")
+    check_tolerance(tolerance, "--tolerance")  # decision B167: seconds, > 0, at most 2 s
     if out is not None:
         out = out_file(out, (".csv",), "steps", force=force)
     was = out is not None and existed(out)

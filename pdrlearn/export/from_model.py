@@ -17,6 +17,7 @@ import numpy as np
 from pdrlearn.errors import ModelError
 from pdrlearn.export.bundle import base_manifest, write_bundle
 from pdrlearn.export.onnx_convert import svm_decision_to_onnx, torch_to_onnx
+from pdrlearn.export.parity import check_bundle_parity, parity_windows
 from pdrlearn.export.step_graph import build_step_graph
 
 STEP_GRAPH_FILE = "models/step.onnx"
@@ -38,14 +39,15 @@ def feature_recipe(transformer) -> list:
     from pdrlearn.features import transformers as T
 
     name = type(transformer).__name__
-    if isinstance(transformer, T.TerrainSVMFeatures):
+    kind = type(transformer)  # decision E79: exact types (a subclass's overrides would not reach the runtime)
+    if kind is T.TerrainSVMFeatures:
         return [["peak", sig, stat] for sig, stat in transformer._spec()]
-    if isinstance(transformer, T.SegmentFeatures):
+    if kind is T.SegmentFeatures:
         return [["segments", c, int(transformer.n_segments)] for c in transformer.channels]
-    if isinstance(transformer, T.DirectionFeatures):
+    if kind is T.DirectionFeatures:
         out = [["segments", transformer._acc(), int(transformer.n_segments)]]
         return out + ([["yaw_sign"]] if transformer.unit != "foot" else [])
-    if isinstance(transformer, T.LengthFeatures):
+    if kind is T.LengthFeatures:
         out = []
         if transformer.unit != "waist":
             out.append(["segments", "foot_acc_fwd", int(transformer.n_segments)])
@@ -54,6 +56,54 @@ def feature_recipe(transformer) -> list:
             out += [["yaw", s] for s in T.LENGTH_WAIST_STATS]
         return out
     raise ModelError(f"feature transformer {name} has no runtime recipe; see docs/decisions/export.md")
+
+
+def _exportable_types() -> tuple:
+    """The estimator and transformer classes the bundle has a runtime translation of (decision E79)."""
+    from sklearn.pipeline import Pipeline
+    from sklearn.preprocessing import FunctionTransformer
+
+    from pdrlearn.classify import heuristic as H
+    from pdrlearn.classify.dtw import DTWClassifier
+    from pdrlearn.classify.fusion import UnitFusionClassifier
+    from pdrlearn.classify.nn import NNClassifier
+    from pdrlearn.classify.svm import SVMClassifier
+    from pdrlearn.features import transformers as T
+
+    return (Pipeline, FunctionTransformer, UnitFusionClassifier, DTWClassifier, NNClassifier, SVMClassifier,
+            T.TerrainSVMFeatures, T.SegmentFeatures, T.DirectionFeatures, T.LengthFeatures,
+            H.HeuristicTerrainClassifier, H.HeuristicDirectionClassifier, H.HeuristicLengthClassifier,
+            H.HeuristicFusionClassifier)
+
+
+def _check_exportable(est, stem: str) -> None:
+    """Decision E79: refuse, in one line, what the runtime would run as something else: a subclass of an
+    exportable class (its overrides never reach the bundle, which holds the base class's formula) and a pipeline
+    that is not (feature transformer or signal selection, classifier): the bundle keeps exactly two steps."""
+    from sklearn.pipeline import Pipeline
+
+    from pdrlearn.classify.dtw import DTWClassifier
+    from pdrlearn.classify.training import select_signals
+
+    known = _exportable_types()
+    parts = [est] + ([s for _, s in est.steps] if isinstance(est, Pipeline) else [])
+    for obj in parts:
+        base = next((k for k in known if isinstance(obj, k)), None)
+        if base is not None and type(obj) not in known:
+            raise ModelError(
+                f"{stem}: {type(obj).__name__} is a subclass of {base.__name__}; a bundle would run "
+                f"{base.__name__}'s own formula, not the subclass's overrides. Use it in Python (pdrlearn track "
+                f"--model), or export a model of {base.__name__} itself (decision E79)")
+    if isinstance(est, Pipeline):
+        names = [n for n, _ in est.steps]
+        first, clf = est.steps[0][1], est.steps[-1][1]
+        selects = getattr(first, "func", None) is select_signals
+        if len(est.steps) != 2 or (type(clf) is DTWClassifier) != selects:
+            raise ModelError(
+                f"{stem}: a Pipeline of {len(names)} steps ({', '.join(names)}) cannot be exported: a bundle runs "
+                "(feature transformer, classifier) or, for DTW, (select_signals, DTWClassifier) pipelines only. "
+                "Fold the extra step into the classifier, or use the model in Python (pdrlearn track --model) "
+                "(decision E79)")
 
 
 class _Collector:
@@ -72,7 +122,8 @@ class _Collector:
         from pdrlearn.classify.nn import NNClassifier
         from pdrlearn.classify.svm import SVMClassifier
 
-        if isinstance(est, UnitFusionClassifier):
+        _check_exportable(est, stem)  # decision E79
+        if type(est) is UnitFusionClassifier:
             members = {u: self.entry(e, f"{stem}_{u}") for u, e in zip(est.unit_names_, est.estimators_, strict=True)}
             return {
                 "type": "fusion",
@@ -95,11 +146,11 @@ class _Collector:
                 ],
             }
             return {"type": "heuristic", "file": rel, "classes": [str(c) for c in est.classes_]}
-        if not isinstance(est, Pipeline):
+        if type(est) is not Pipeline:
             raise ModelError(f"{stem}: {type(est).__name__} cannot be exported yet (see docs/decisions/export.md)")
         first, clf = est.steps[0][1], est.steps[-1][1]
         classes = [str(c) for c in clf.classes_]
-        if isinstance(clf, DTWClassifier):
+        if type(clf) is DTWClassifier:
             rel = f"params/{stem}.npz"
             self.npz[rel] = {
                 "references": clf.references_,
@@ -119,10 +170,10 @@ class _Collector:
         recipe = feature_recipe(first)
         n_features = int(clf.n_features_in_)
         rel = f"models/{stem}.onnx"
-        if isinstance(clf, SVMClassifier):
+        if type(clf) is SVMClassifier:
             # exact float64 graph of SVMClassifier's own decision formula (decision E4)
             model, spec = svm_decision_to_onnx(clf.mean_, clf.scale_, clf.decision_params_, classes, name=stem)
-        elif isinstance(clf, NNClassifier):
+        elif type(clf) is NNClassifier:
             model, spec = torch_to_onnx(_nn_module(clf), n_features, classes=classes, name=stem, dtype="float64")
             # float32 twin for OpenCV's dnn module (the documented fallback without onnxruntime)
             self.onnx[f"models/{stem}.f32.onnx"] = torch_to_onnx(
@@ -377,9 +428,18 @@ def export_model(
     if step is not None:
         col.onnx[STEP_GRAPH_FILE] = step[0]
         manifest["step_graph"] = {"file": STEP_GRAPH_FILE, **step[1]}
-    return write_bundle(
-        out_dir, manifest, onnx_models=col.onnx, npz_files=col.npz, json_files=col.json, overwrite=overwrite
-    )
+    models = {t: tm.models for t, tm in model.tasks.items()}
+    W = parity_windows(int(model.n_samples), model.boundaries or "given")
+
+    def verified(path, verify=True):  # decision E80: the bundle reproduces predict_proba before it is renamed
+        from pdrlearn.runtime import load_bundle
+
+        bundle = load_bundle(path, verify=verify)
+        check_bundle_parity(bundle, models, W)
+        return bundle
+
+    return write_bundle(out_dir, manifest, onnx_models=col.onnx, npz_files=col.npz, json_files=col.json,
+                        overwrite=overwrite, loader=verified)
 
 
 def _displacement(displacement: dict | None, length_bounds, model, where: str = "the model") -> dict:

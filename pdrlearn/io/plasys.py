@@ -619,6 +619,14 @@ def _read_steps(path: Path) -> pd.DataFrame:
     bad = np.flatnonzero(se[:, 1] < se[:, 0])
     if bad.size:
         raise DataError(f"{path}: {bad.size} step(s) end before they start (first at line {bad[0] + 2})")
+    if "ic_s" in df:  # decision B169: an ic_ms column written in seconds lies outside every stride
+        ic = pd.to_numeric(df["ic_s"], errors="coerce").to_numpy(float)
+        ok = np.isfinite(ic)
+        if ok.sum() >= 3 and not ((ic[ok] >= se[ok, 0]) & (ic[ok] <= se[ok, 1])).any():
+            raise DataError(f"{path}: none of the {int(ok.sum())} ic_ms values lies within its own stride's "
+                            f"[start_ms, end_ms] (ic {1e3 * ic[ok].min():g}-{1e3 * ic[ok].max():g} ms, strides "
+                            f"{1e3 * se[:, 0].min():g}-{1e3 * se[:, 1].max():g} ms); ic_ms must be milliseconds on the "
+                            "session clock, like start_ms (written in seconds? multiply by 1000)")
     return df
 
 

@@ -20,11 +20,38 @@ log = logging.getLogger(__name__)
 
 #: columns of every detector's steps table (docs/architecture.md)
 STEPS_COLUMNS = ("start_s", "end_s", "event_s", "unit", "confidence")
+#: decision B168: the body units a steps table is of (foot: one event per stride of the instrumented foot;
+#: waist: every initial contact of both feet); scoring picks its reference by it
+STEP_UNITS = ("foot", "waist")
+#: decision B169: how far (s) a step event may lie before the session's first or after its last sample (a stride)
+SPAN_MARGIN_S = 2.0
+
+
+def check_unit(unit, where: str) -> str:
+    """Decision B168: ``unit`` is one of :data:`STEP_UNITS` (exact spelling), else one line naming it."""
+    if not isinstance(unit, str) or unit not in STEP_UNITS:
+        raise DataError(f"{where}: unit {unit!r} is not a steps-table unit; use one of {', '.join(STEP_UNITS)} "
+                        "(lower case: 'foot' scores against the foot's strides, 'waist' against both feet's "
+                        "initial contacts)")
+    return unit
+
+
+def check_event_span(events, t_start: float, t_end: float, where: str) -> None:
+    """Decision B169: step events (s) lie on the session's clock, within ``SPAN_MARGIN_S`` of its samples; else
+    one line (a detector that returns sample indices or milliseconds gives events past the recording's end)."""
+    ev = np.asarray(events, dtype=float)
+    ev = ev[np.isfinite(ev)]
+    out = ev[(ev < t_start - SPAN_MARGIN_S) | (ev > t_end + SPAN_MARGIN_S)]
+    if out.size:
+        raise DataError(f"{where}: {out.size} of {ev.size} step event(s) ({out.min():g}-{out.max():g} s) lie outside "
+                        f"the session's {t_start:g}-{t_end:g} s; event_s must be times in seconds on the session "
+                        "clock (sample indices? divide by the rate and add the first sample's time)")
 
 
 def steps_frame(events: list[Event], *, unit: str, detector: str,
                 extra_columns: tuple[str, ...] = ()) -> pd.DataFrame:
     """Build the steps table from kernel events (sorted by event time)."""
+    check_unit(unit, f"detector {detector}")  # decision B168: set the class's unit to foot or waist
     rows = sorted(events, key=lambda e: e[0])
     data: dict[str, Any] = {
         "start_s": np.array([e[1] for e in rows], dtype=float),
@@ -182,6 +209,7 @@ class StepDetector:
         det = self.online(fs, **context)
         parts = [det.push(t, values), det.flush()]
         df = pd.concat(parts, ignore_index=True) if any(len(p) for p in parts) else parts[0]
+        check_event_span(df["event_s"], float(t[0]), float(t[-1]), f"{self.name} on '{session.name}'")  # B169
         df.attrs["detector"] = self.name
         df.attrs["unit"] = self.unit
         df.attrs["rate_hz"] = fs

@@ -16,20 +16,41 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
+from pdrlearn.steps.base import check_event_span, check_unit
 
 DEFAULT_TOLERANCE_S = 0.25
+#: decision B167: the largest matching tolerance accepted (s). A stride lasts about 1-1.4 s, so a tolerance above
+#: 2 s matches a detection with steps it is not; a tolerance typed in milliseconds (50, 250) lands far above it
+MAX_TOLERANCE_S = 2.0
 
 
-def match_events(detected: np.ndarray, reference: np.ndarray,
-                 tolerance_s: float | np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Indices ``(i_det, i_ref)`` into the *sorted* inputs of one-to-one matched pairs, closest first.
+def check_tolerance(tolerance_s, where: str = "tolerance_s") -> float:
+    """Decision B167: a matching tolerance in seconds, finite, > 0 and at most :data:`MAX_TOLERANCE_S`; else one
+    :class:`DataError` line naming ``where`` (the argument or CLI option)."""
+    try:
+        tol = float(tolerance_s)
+    except (TypeError, ValueError):
+        raise DataError(f"{where} {tolerance_s!r}: give the event matching tolerance in seconds, e.g. 0.25") from None
+    if not (np.isfinite(tol) and 0 < tol <= MAX_TOLERANCE_S):
+        hint = f" (it looks like milliseconds: {tol:g} ms is {tol / 1000:g} s)" if tol > MAX_TOLERANCE_S else ""
+        raise DataError(f"{where} {tolerance_s!r}: the tolerance is in seconds, > 0 and at most "
+                        f"{MAX_TOLERANCE_S:g} s{hint}; e.g. 0.25")
+    return tol
 
-    ``tolerance_s`` is a scalar or one tolerance per reference event (s).
+
+def match_events(detected, reference, tolerance_s: float | np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Indices ``(i_det, i_ref)`` into the caller's ``detected`` and ``reference`` (any order) of one-to-one
+    matched pairs, matched closest first and returned in reference-time order (steps decision 36):
+    ``detected[i_det[k]]`` is matched with ``reference[i_ref[k]]``.
+
+    ``tolerance_s`` is a scalar or one tolerance per reference event (s), in the order of ``reference``.
     """
-    d = np.sort(np.asarray(detected, dtype=float))
-    order_r = np.argsort(np.asarray(reference, dtype=float), kind="stable")
-    r = np.asarray(reference, dtype=float)[order_r]
-    tol = np.broadcast_to(np.asarray(tolerance_s, dtype=float), np.asarray(reference).shape)[order_r]
+    d_in = np.asarray(detected, dtype=float).ravel()
+    r_in = np.asarray(reference, dtype=float).ravel()
+    order_d = np.argsort(d_in, kind="stable")
+    order_r = np.argsort(r_in, kind="stable")
+    d, r = d_in[order_d], r_in[order_r]
+    tol = np.broadcast_to(np.asarray(tolerance_s, dtype=float), r_in.shape)[order_r]
     if d.size == 0 or r.size == 0:
         return np.zeros(0, int), np.zeros(0, int)
     tmax = float(tol.max())
@@ -48,7 +69,7 @@ def match_events(detected: np.ndarray, reference: np.ndarray,
             out_d.append(i)
             out_r.append(j)
     order = np.argsort(out_r)
-    return np.asarray(out_d, int)[order], np.asarray(out_r, int)[order]
+    return order_d[np.asarray(out_d, int)[order]], order_r[np.asarray(out_r, int)[order]]
 
 
 def score_events(detected_times, reference_times, *, tolerance_s: float = DEFAULT_TOLERANCE_S) -> dict:
@@ -66,15 +87,16 @@ def score_events(detected_times, reference_times, *, tolerance_s: float = DEFAUL
     Tables 20-21 measure), ``timing_error_mean_s`` and ``timing_error_sd_s`` (detected - reference over
     matched pairs; NaN when none), ``tolerance_s``.
     """
-    d = np.sort(np.asarray(detected_times, dtype=float).ravel())
-    r_in = np.asarray(reference_times, dtype=float).ravel()
-    tol = np.broadcast_to(np.asarray(tolerance_s, dtype=float), r_in.shape)
-    r = np.sort(r_in)
+    d = np.asarray(detected_times, dtype=float).ravel()
+    r = np.asarray(reference_times, dtype=float).ravel()
+    if np.ndim(tolerance_s) == 0:  # a caller's tolerance (per-reference arrays come from reference_events)
+        check_tolerance(tolerance_s, "score_events: tolerance_s")
+    tol = np.broadcast_to(np.asarray(tolerance_s, dtype=float), r.shape)
     if not (np.all(np.isfinite(d)) and np.all(np.isfinite(r))):
         raise DataError("score_events: event times contain NaN or inf; drop undefined events first")
     if tol.size and not np.all(tol > 0):
         raise DataError(f"score_events: tolerance {tolerance_s} s must be positive")
-    i_d, i_r = match_events(d, r_in, tol)
+    i_d, i_r = match_events(d, r, tol)
     tp = int(i_d.size)
     fp, fn = int(d.size - tp), int(r.size - tp)
     precision = tp / d.size if d.size else float("nan")
@@ -160,7 +182,8 @@ def reference_events(session: Session, unit: str, *,
       matches a stride when it falls inside the stride's ``[start_s, end_s]`` window.
     Every interval is widened by ``tolerance_s`` on both sides.
     """
-    ref = _reference_events(session, unit, tolerance_s)
+    check_unit(unit, "reference_events")  # decision B168: 'Waist' was scored as the foot's strides
+    ref = _reference_events(session, unit, check_tolerance(tolerance_s, "reference_events: tolerance_s"))
     if ref is not None and unit == "waist" and not ref.from_ics:  # decision W96: one foot's strides
         st = session.steps
         feet = st["foot"].dropna().astype(str).unique() if "foot" in st else []
@@ -278,6 +301,33 @@ def same_foot_gap_mask(ev: np.ndarray, session: Session, tolerance_s: float = DE
     return out
 
 
+def _table_events(steps, session: Session, unit: str | None) -> tuple[np.ndarray, str]:
+    """The event times and unit of a steps table to score, checked (decisions B168-B170): a DataFrame with
+    ``event_s`` (s, on the session's clock) and one known ``unit`` (its column, ``attrs``, or ``unit=``)."""
+    if not isinstance(steps, pd.DataFrame):
+        raise DataError(f"score_steps: steps is a {type(steps).__name__}, not a steps table; pass a DataFrame with "
+                        "event_s (s) and unit columns as StepDetector.detect returns, e.g. "
+                        "pd.DataFrame({'event_s': times, 'unit': 'foot'})")
+    if "event_s" not in steps:
+        raise DataError(f"score_steps: the steps table has no event_s column (the step times in s); it has "
+                        f"{', '.join(map(str, steps.columns)) or 'no columns'}")
+    if unit is None:
+        units = sorted(set(steps["unit"].astype(str))) if "unit" in steps and len(steps) else []
+        if len(units) > 1:
+            raise DataError(f"score_steps: the steps table mixes units {', '.join(units)}; score each unit's rows "
+                            "on their own")
+        unit = units[0] if units else steps.attrs.get("unit", None if len(steps) else "foot")
+        if unit is None:
+            raise DataError("score_steps: the steps table has no unit column; add one (foot or waist) or pass unit=")
+    check_unit(unit, "score_steps")
+    ev = pd.to_numeric(steps["event_s"], errors="coerce").to_numpy(float)
+    if np.isnan(ev).sum() > steps["event_s"].isna().sum():
+        raise DataError("score_steps: column event_s has non-numeric values; give the step times in seconds")
+    if any(len(st) for st in session.streams.values()):  # a labels-only session has no clock span to check
+        check_event_span(ev, session.t_start, session.t_end, "score_steps")
+    return ev, unit
+
+
 def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = DEFAULT_TOLERANCE_S,
                 unit: str | None = None) -> dict | None:
     """Score a detector's steps table against the session's labels (``None`` without labels).
@@ -290,11 +340,12 @@ def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = D
     detection per same-foot gap of the reference (:func:`same_foot_gap_mask`, ``unscored_same_foot_gap``,
     decision 20; ``f1_same_foot_gaps_scored`` is the F1 with them counted as false positives).
     """
-    unit = unit or (str(steps["unit"].iloc[0]) if len(steps) else steps.attrs.get("unit", "foot"))
+    tolerance_s = check_tolerance(tolerance_s, "score_steps: tolerance_s")  # decision B167
+    ev, unit = _table_events(steps, session, unit)
     ref = reference_events(session, unit, tolerance_s=tolerance_s)
     if ref is None:
         return None
-    ev = np.sort(steps["event_s"].to_numpy(float))
+    ev = np.sort(ev)
     inside = in_intervals(ev, ref.intervals)
     scored = ev[inside]
     untimed = (untimed_mask(scored, session, tolerance_s) if ref.from_ics

@@ -136,6 +136,10 @@ def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3
     return df
 
 
+#: where track_plasys's strides come from (its ``steps`` option)
+STEP_SOURCES = ("detector", "stance", "labels")
+
+
 def _detect_strides(session: Session, kind: str, steps: str, t: np.ndarray, stance: np.ndarray,
                     warnings: list[str]) -> pd.DataFrame:
     """Stride windows of the foot unit: ``steps`` = "detector" | "stance" | "labels"."""
@@ -163,7 +167,7 @@ def _detect_strides(session: Session, kind: str, steps: str, t: np.ndarray, stan
         except DataError as exc:
             warnings.append(f"{kind} failed ({exc}); strides from the stance segmentation")
     elif steps != "stance":
-        raise DataError(f"plasys: steps='{steps}' is not detector, stance or labels")
+        raise DataError(f"plasys: steps='{steps}' is not {', '.join(STEP_SOURCES)}")
     return stance_strides(t, stance)
 
 
@@ -530,7 +534,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     model : M3 classes source: a model directory / loaded model, or ``"oracle"`` (the session's labels)
     start : (lat, lon) degrees -> ``lat``/``lon`` columns via thesis eq. 56/57
     params : optional dict overriding :class:`FootDisplacement` settings
-    steps : "detector" (pdrlearn.steps detectors), "stance" (stance segmentation) or "labels"
+    steps : where the strides come from, a string: "detector" (pdrlearn.steps detectors), "stance" (stance
+        segmentation) or "labels" (the session's steps table: to track your own strides, set ``session.steps``)
     heading : "waist" | "foot" | "fused" (default per method; "foot" when there is no waist unit).
         "fused": the foot's stride-by-stride yaw aligned to the waist heading by an offset averaged over
         +-``fused_tau_s`` s (decision L17)
@@ -589,6 +594,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if opts:  # decision L43: a misspelled option is an error, as in the waist pipelines (it was ignored)
         check_keywords("plasys", opts, keyword_names(track_plasys))
     check_warn_at(warn_out_of_domain)
+    if not isinstance(steps, str) or steps not in STEP_SOURCES:  # decision B173: a table was a pandas traceback
+        raise DataError(f"plasys: steps={type(steps).__name__ if not isinstance(steps, str) else repr(steps)} is "
+                        f"not one of {', '.join(STEP_SOURCES)}; steps names where the strides come from (a mode "
+                        "string), not a table: to track with your own strides put them in the session's steps "
+                        "(session.steps = table with start_s, end_s, ic_s) and pass steps='labels'")
     method = str(method).upper()
     no_classes = False
     if method == "AUTO":  # decision L36: M3 with a model; without one the M3 engine, its class rules off
