@@ -78,11 +78,11 @@ class Registry(MutableMapping):
             self._load()
         if not isinstance(name, str) or not name or name != name.strip():
             raise DataError(f"{self.kind} name {name!r}: give a non-empty string without surrounding blanks")
-        if self._adapt is not None and not builtin:
-            obj = self._adapt(name, obj)
         if name in self.builtin and not replace and self._items.get(name) is not obj:
             raise DataError(f"'{name}' is a built-in {self.kind}; {self.helper}('{name}', ..., replace=True) "
                             "replaces it, or choose another name")
+        if self._adapt is not None and not builtin:
+            obj = self._adapt(name, obj)
         if name in self.builtin and not builtin:
             log.info("built-in %s '%s' replaced by %s", self.kind, name, _describe(obj))
             self.builtin.discard(name)
