@@ -156,9 +156,9 @@ def score_steps_command(
 
     Examples:
 
-        pdrlearn score-steps datasets/real/gaitmap_level_left out/my_detections.csv
+        pdrlearn score-steps out/sim/D_u1 out/A_steps.csv
 
-        pdrlearn score-steps datasets/real/mobgap_HA001_Test11_Trial1 out/ics.csv --unit waist --json
+        pdrlearn score-steps out/sim/D_u1 out/A_steps.csv --all-rows --tolerance 0.1 --json
     """
     from pdrlearn.io import read_session
 
