@@ -16,10 +16,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pdrlearn.cli.steps import _one_per_stride
 from pdrlearn.io import read_session
 from pdrlearn.sim import UserProfile, simulate
-from pdrlearn.steps import AccelStepDetector, score_steps
+from pdrlearn.steps import AccelStepDetector, one_per_stride, score_steps
 
 ROOT = Path(__file__).resolve().parents[1]
 FLOORS = (0.6, 0.4)
@@ -38,7 +37,7 @@ def child(user: int) -> UserProfile:
 def score(s, floor: float, cli: bool = True) -> dict:
     table = AccelStepDetector(min_stride_s=floor).detect(s)
     if cli and len(table):
-        table = _one_per_stride(s, table)[0]
+        table = one_per_stride(table, s)[0]
     sc = score_steps(table, s)
     return {"count": sc["count"], "reference": sc["reference_count"], "tp": sc["true_positives"], "f1": sc["f1"]}
 

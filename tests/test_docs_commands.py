@@ -299,6 +299,8 @@ def _validators() -> dict[tuple[str, str], object]:
     v = {
         ("steps", "detector"): _one_of(["auto", *DETECTORS]),
         ("track", "pipeline"): _one_of(["auto", *PIPELINES]),
+        ("track", "detector"): _one_of([n for n in DETECTORS if DETECTORS[n].unit == "foot"]),  # decision L149
+        ("score-steps", "unit"): _one_of(["foot", "waist"]),  # decision steps 39
         ("track", "method"): _one_of(["auto", *PLASYS_METHODS], case=False),
         ("track", "rules"): _one_of(RULES),
         ("track", "start"): lambda v: parse_start(v, altitude=True),  # LAT,LON[,ALT] (decision L56)

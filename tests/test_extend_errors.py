@@ -72,11 +72,14 @@ def test_an_estimator_with_a_decision_function_only_classifies(foot, session):
     np.testing.assert_allclose(p.sum(axis=1), 1.0)
 
 
-def test_plasys_steps_is_a_mode_string_not_a_table(real_dir):
+def test_plasys_steps_of_another_kind_is_one_line(real_dir):
+    # B173 as amended by L149: a table or a foot detector is accepted (tests/test_plugins.py); anything else, or an
+    # unknown name, is one line naming what plasys takes
     s = read_session(real_dir / "gaitmap_level_left")
-    with pytest.raises(DataError, match="plasys: steps=DataFrame is not one of detector, stance, labels; steps names "
-                                        "where the strides come from"):
-        get_pipeline("plasys")(s, steps=s.steps)
+    for bad, shown in ((s.steps["ic_s"].tolist(), "a list"), ("acel", "'acel'")):
+        with pytest.raises(DataError, match=f"plasys: steps={shown} is not detector, stance, labels, a foot "
+                                            "detector's name"):
+            get_pipeline("plasys")(s, steps=bad)
 
 
 def test_a_model_whose_custom_class_cannot_be_imported_names_pythonpath(foot, tmp_path, monkeypatch):

@@ -26,7 +26,8 @@ def steps(
     detector: str = typer.Option("auto", "--detector", "-d",
                                  help="accel | accel-force (foot strides) | pelvic-gyro | pll | waist-ic (waist "
                                  "steps); auto = accel with a foot unit, else waist-ic (the waist-pendulum "
-                                 "pipeline's initial contacts; pll without a waist gyroscope)."),
+                                 "pipeline's initial contacts; pll without a waist gyroscope); or a registered or "
+                                 "installed plug-in detector (docs/extending.md)."),
     out: Path = typer.Option(None, "--out", "-o", help="Write the steps table to this CSV (times in s)."),
     tolerance: float = typer.Option(0.25, "--tolerance", help="Event matching tolerance in seconds."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -47,9 +48,8 @@ def steps(
 
         pdrlearn steps out/sim/D_u1 --detector accel-force --out out/A_steps.csv
     """
-    from pdrlearn.atomic import atomic_file
     from pdrlearn.io import read_session
-    from pdrlearn.steps import get_detector, score_steps
+    from pdrlearn.steps import get_detector
     from pdrlearn.steps.evaluate import check_tolerance
 
     if detector != "auto":
@@ -79,10 +79,24 @@ def steps(
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, no_walking_message(exc.walk_s, "0 steps"))
         table = pd.DataFrame({"start_s": [], "end_s": [], "event_s": [], "unit": pd.Series(dtype="string"),
                               "confidence": []})
+    report(session, table, name=det.name, unit=det.unit, tolerance=tolerance, out=out, was=was, as_json=as_json,
+           detector=det)
+
+
+def report(session, table, *, name: str, unit: str, tolerance: float, out: Path | None = None, was: bool = False,
+           as_json: bool = False, per_stride: bool = True, detector=None) -> None:
+    """Score ``table`` against ``session``'s labels and print the result (``steps`` and ``score-steps``): a foot
+    table is first reduced to one row per rest-to-rest stride (decision steps 34) unless ``per_stride`` is False,
+    with one warning when the kept rows cover many more rest-to-rest strides (decision steps 38; ``detector``, when
+    given, names its shortest stride there); ``out`` gets the scored table."""
+    from pdrlearn.atomic import atomic_file
+    from pdrlearn.steps import score_steps
+    from pdrlearn.steps.strides import one_per_stride_counted
+
     merged = spanned = 0
-    if det.unit == "foot" and len(table):  # decision steps 34: one row per rest-to-rest stride, as `track`
-        table, merged, spanned = _one_per_stride(session, table)
-    result: dict = {"session": session.name, "detector": det.name, "unit": det.unit, "count": int(len(table))}
+    if unit == "foot" and len(table) and per_stride:  # decision steps 34: one row per rest-to-rest stride, as `track`
+        table, merged, spanned = one_per_stride_counted(table, session)
+    result: dict = {"session": session.name, "detector": name, "unit": unit, "count": int(len(table))}
     if merged:
         result["merged_detections"] = merged
     if spanned:  # decision steps 38: strides merged into one detection (track splits them at the rests)
@@ -91,8 +105,8 @@ def steps(
         import logging
 
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where,
-                                                   spanned_warning(len(table), spanned, det))
-    score = score_steps(table, session, tolerance_s=tolerance)
+                                                   spanned_warning(len(table), spanned, detector))
+    score = score_steps(table, session, tolerance_s=tolerance, unit=unit)
     if score is not None:
         result.update({k: score[k] for k in _METRICS})
         if score.get("one_foot"):  # decision W96
@@ -105,8 +119,8 @@ def steps(
     if as_json:
         print_json(json_safe(result))
         return
-    what = "strides" if det.unit == "foot" else "steps"
-    typer.echo(f"{session.name}: {result['count']} {what} ({det.name})"
+    what = "strides" if unit == "foot" else "steps"
+    typer.echo(f"{session.name}: {result['count']} {what} ({name})"
                + (f"; {merged} more detection(s) between the same two rests of the foot dropped (one stride each, "
                   "as `track` integrates it; decision steps 34)" if merged else ""))
     if score is not None:
@@ -131,23 +145,6 @@ def steps(
         typer.echo(str(out))
 
 
-def _one_per_stride(session, table):
-    """Decision steps 34: ``table`` (a foot detector's) reduced to the rows ``track`` integrates, one per
-    rest-to-rest stride (:func:`pdrlearn.displace.foot.one_per_rest_stride`, the rests of ``track``'s default
-    M3 stance: the force sensors' when recorded, else the accelerometer/gyroscope one); how many rows were
-    dropped; and how many more rest-to-rest strides the kept rows cover (steps decision 38)."""
-    from pdrlearn.displace.foot import force_stance, inertial_stance, one_per_rest_stride
-    from pdrlearn.orient import unit_data
-
-    foot = unit_data(session, "foot", purpose="the rests between strides")
-    stance = force_stance(session, foot.t, foot.gyr)
-    if stance is None:
-        stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
-    ev = table["event_s"] if "event_s" in table else table["end_s"]
-    rows, n_strides = one_per_rest_stride(foot.t, stance, table["start_s"], table["end_s"], ev, count_strides=True)
-    return table.iloc[rows].reset_index(drop=True), int(len(table) - len(rows)), n_strides - len(rows)
-
-
 def spanned_warning(count: int, spanned: int, det) -> str:
     """Decision steps 38: the line when ``spanned`` more rest-to-rest strides of the foot lie inside the ``count``
     detections (one detection across several strides: strides merged, e.g. a child's shorter than the detector's
@@ -161,6 +158,72 @@ def spanned_warning(count: int, spanned: int, det) -> str:
             f"{count + spanned} (decision steps 38)")
 
 
+def score_steps_command(
+    session_dir: Path = typer.Argument(..., help="PLASYS session folder with labels (steps.csv or ics.csv)."),
+    detections: Path = typer.Argument(..., help="Detections CSV: event_s (s since the session's first sample); "
+                                      "start_s, end_s for a foot table; unit (foot | waist) or --unit."),
+    unit: str = typer.Option(None, "--unit", help="foot (strides of the instrumented foot, scored against "
+                             "steps.csv) or waist (every step, scored against ics.csv); default: the CSV's unit "
+                             "column."),
+    tolerance: float = typer.Option(0.25, "--tolerance", help="Event matching tolerance in seconds."),
+    all_rows: bool = typer.Option(False, "--all-rows", help="Score every row of a foot table (default: one per "
+                                  "rest-to-rest stride, as `pdrlearn steps`; decision steps 34)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
+) -> None:
+    """Score an existing detections CSV (your own detector's, or `pdrlearn steps --out`'s) against a session's
+    labels, with the rules of `pdrlearn steps` (decision steps 39): a foot table is first reduced to one row per
+    rest-to-rest stride (pdrlearn.steps.one_per_stride) unless --all-rows.
+
+    Examples:
+
+        pdrlearn score-steps out/sim/D_u1 out/A_steps.csv
+
+        pdrlearn score-steps out/sim/D_u1 out/A_steps.csv --all-rows --tolerance 0.1 --json
+    """
+    from pdrlearn.io import read_session
+    from pdrlearn.steps.evaluate import check_tolerance
+
+    check_tolerance(tolerance, "--tolerance")  # decision B167
+    table, unit = read_detections(detections, unit=unit, per_stride=not all_rows)
+    session = read_session(session_dir)
+    report(session, table, name=detections.name, unit=unit, tolerance=tolerance, as_json=as_json,
+           per_stride=not all_rows)
+
+
+def read_detections(path: Path, *, unit: str | None = None, per_stride: bool = True):
+    """A detections CSV as a steps table (times in s) and its unit; bad input: one line naming the file."""
+    import pandas as pd
+
+    if not path.is_file():
+        raise DataError(f"{path}: no such file; give the detections CSV (event_s column, times in s)")
+    try:
+        table = pd.read_csv(path)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
+        raise DataError(f"{path}: not a readable CSV ({' '.join(str(exc).split())}); write it with a header row "
+                        "and an event_s column") from None
+    if "event_s" not in table:
+        hint = " (times in ms: divide by 1000 and name the column event_s)" if "event_ms" in table else ""
+        raise DataError(f"{path}: no event_s column{hint}; give each detection's time in s since the session's "
+                        f"first sample (columns: {', '.join(map(str, table.columns))})")
+    units = sorted(set(table["unit"].dropna().astype(str))) if "unit" in table else []
+    if unit is None:
+        if len(units) != 1:
+            raise DataError(f"{path}: " + (f"the unit column holds {', '.join(units)}; score one unit's rows"
+                                           if units else "no unit column") + "; pass --unit foot or --unit waist")
+        unit = units[0]
+    if unit not in ("foot", "waist"):
+        raise DataError(f"{path}: unit '{unit}' is not foot or waist; pass --unit foot or --unit waist")
+    for col in ("event_s", "start_s", "end_s"):
+        if col in table and not pd.api.types.is_numeric_dtype(table[col]):
+            raise DataError(f"{path}: column {col} is not numeric; give times in s")
+    if unit == "foot" and per_stride and not {"start_s", "end_s"} <= set(table.columns):
+        raise DataError(f"{path}: a foot table needs start_s and end_s (each stride's span, s) to keep one row per "
+                        "rest-to-rest stride; add them or pass --all-rows")
+    table = table.copy()
+    table["unit"] = unit
+    return table, unit
+
+
 def auto_detector(session):
     """The detector of ``--detector auto``: a foot unit's strides, else the lower back's steps (decision 17);
     also ``pdrlearn plot --steps detected`` (decision L70)."""
@@ -172,3 +235,4 @@ def auto_detector(session):
 
 def register(app: typer.Typer) -> None:
     app.command("steps")(steps)
+    app.command("score-steps")(score_steps_command)

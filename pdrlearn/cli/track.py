@@ -115,6 +115,9 @@ def track(
     reference_point: str = REFERENCE_POINT_OPT,
     toe_off: bool = TOE_OFF_OPT,
     contacts: bool = CONTACTS_OPT,
+    detector: str = typer.Option(None, "--detector", help="plasys: the foot strides from this step detector "
+                                 "(accel, accel-force or a registered / installed plug-in, docs/extending.md; "
+                                 "decision L149). Default: the method's own detector."),
     dpi: int = DPI_OPT,
     common_span: bool = COMMON_SPAN_OPT,
     units: str = UNITS_OPT,
@@ -169,7 +172,7 @@ def track(
                               contacts=contacts, dpi=dpi, initial_heading=initial_heading,
                               common_span=common_span, units=units, window=window, resample=resample,
                               no_resample=no_resample, bout_break_s=bout_break_s,
-                              bout_min_strides=bout_min_strides, storey_height=storey_height)
+                              bout_min_strides=bout_min_strides, storey_height=storey_height, detector=detector)
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
@@ -198,7 +201,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
-                   bout_min_strides: int | None = None, storey_height: float = 3.0) -> dict:
+                   bout_min_strides: int | None = None, storey_height: float = 3.0,
+                   detector: str | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -235,6 +239,16 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         rates = {} if str(model) == "oracle" else positive_rates(read_manifest(model).get("sampling_rate_hz") or {})
         require_rates(str(model), rates, rate_mode, command="track")
     par = None if params is None else read_params(params)
+    if detector is not None:  # decision L149: an unknown or waist detector fails once, before any session
+        from pdrlearn.steps import get_detector
+
+        if get_detector(detector).unit != "foot":
+            raise DataError(f"track: --detector {detector} detects lower-back steps; the plasys pipeline integrates "
+                            "the foot's strides: choose a foot detector (accel, accel-force or a plug-in with "
+                            "unit 'foot')")
+        if streaming:
+            raise DataError("track: --detector chooses the offline strides; the --streaming kernel segments its "
+                            "own - drop one of them")
     if length_bounds is not None:
         try:
             bounds = [float(v) for v in length_bounds.split(",")]
@@ -250,7 +264,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
-            "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height}
+            "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
+            "detector": detector}
 
 
 def read_params(params: Path):
@@ -279,7 +294,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse")
     content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
-    if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts):
+    if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts
+                               or o.get("detector") is not None):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
     check_tracked_span(session, tracked_unit(pipeline))  # decision B126: the tracked unit covers the walk
@@ -298,7 +314,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                                                "--min-confidence": o["min_confidence"] is not None,
                                                "--length-bounds": o["length_bounds_given"],
                                                "--streaming": streaming, "--toe-off": toe_off,
-                                               "--contacts": contacts},
+                                               "--contacts": contacts,
+                                               "--detector": o.get("detector") is not None},
                             gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"])
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
@@ -328,6 +345,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                 raise DataError("track: --contacts gives the --streaming kernel initial contacts; offline track "
                                 "has its detector's contacts already - add --streaming or drop --contacts")
             kw["contacts"] = True
+        if o.get("detector") is not None:  # decision L149
+            kw["steps"] = o["detector"]
         if toe_off:  # decision L73
             if streaming:
                 raise DataError("track: --toe-off needs the offline tracker's initial contacts; the --streaming "
@@ -459,7 +478,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
 
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
 _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming",
-                   "--toe-off", "--contacts")
+                   "--toe-off", "--contacts", "--detector")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
 

@@ -2,7 +2,7 @@
 event-level evaluation. See docs/steps.md."""
 
 from pdrlearn.steps.align import align_events, align_units, apply_alignment
-from pdrlearn.steps.base import STEPS_COLUMNS, OnlineStepDetector, StepDetector, steps_frame
+from pdrlearn.steps.base import STEPS_COLUMNS, Event, OnlineStepDetector, StepDetector, StepProcessor, steps_frame
 from pdrlearn.steps.detectors import (
     DETECTORS,
     AccelForceStepDetector,
@@ -10,6 +10,7 @@ from pdrlearn.steps.detectors import (
     PelvicGyroStepDetector,
     PLLStepDetector,
     get_detector,
+    register_detector,
 )
 from pdrlearn.steps.evaluate import (
     DEFAULT_TOLERANCE_S,
@@ -21,12 +22,13 @@ from pdrlearn.steps.evaluate import (
     score_steps,
 )
 from pdrlearn.steps.segment import segment_steps
+from pdrlearn.steps.strides import one_per_stride
 from pdrlearn.steps.waist_ic import WaistICStepDetector
 
 __all__ = [
-    "STEPS_COLUMNS", "OnlineStepDetector", "StepDetector", "steps_frame",
+    "STEPS_COLUMNS", "Event", "OnlineStepDetector", "StepDetector", "StepProcessor", "steps_frame",
     "DETECTORS", "AccelStepDetector", "AccelForceStepDetector", "PelvicGyroStepDetector", "PLLStepDetector",
-    "WaistICStepDetector", "get_detector", "Reference", "in_intervals", "DEFAULT_TOLERANCE_S", "match_events",
-    "reference_events", "score_events", "score_steps", "align_units", "apply_alignment", "align_events",
-    "segment_steps",
+    "WaistICStepDetector", "get_detector", "register_detector", "Reference", "in_intervals", "DEFAULT_TOLERANCE_S",
+    "match_events", "one_per_stride", "reference_events", "score_events", "score_steps", "align_units",
+    "apply_alignment", "align_events", "segment_steps",
 ]

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import inspect
 import logging
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 import pandas as pd
@@ -68,6 +68,19 @@ def steps_frame(events: list[Event], *, unit: str, detector: str,
     return df
 
 
+class StepProcessor(Protocol):
+    """What :meth:`StepDetector._make_processor` returns (docs/extending.md). ``process(t, values)`` gets the
+    next chunk (``t``: (n,) s, strictly increasing across calls; ``values``: (n, len(input_columns))) and returns
+    the events that became final; ``flush()`` returns the rest at the end of the recording. An event is a tuple
+    ``(event_s, start_s, end_s, confidence, extras)`` (:data:`pdrlearn.steps.Event`; times in s on the
+    session's clock, ``extras`` a dict holding the detector's ``extra_columns``). Whatever the chunk sizes, the
+    events returned must be the same: the online == offline contract (tests/test_detector_contract.py)."""
+
+    def process(self, t: np.ndarray, values: np.ndarray) -> list[Event]: ...
+
+    def flush(self) -> list[Event]: ...
+
+
 class OnlineStepDetector:
     """Streaming detector: ``push(t_chunk, values_chunk)`` returns the steps that became final,
     ``flush()`` the steps still held back at the end. Concatenating all returned tables equals
@@ -111,8 +124,12 @@ class OnlineStepDetector:
 
 
 class StepDetector:
-    """Base class: subclasses set ``name``, ``unit``, ``input_columns``, ``extra_columns`` and implement
-    ``_inputs(session) -> (t, values, context)`` and ``_make_processor(fs, **context)``.
+    """Base class: subclasses set ``name``, ``unit`` ("foot": one event per stride of the instrumented foot;
+    "waist": every step), ``input_columns``, ``extra_columns`` and implement the two hooks
+    ``_inputs(session) -> (t, values, context)`` (the samples, times in s, and keyword context for the processor)
+    and ``_make_processor(fs, **context)`` (a :class:`StepProcessor`). The hooks carry a leading underscore
+    because users call :meth:`detect` and :meth:`online`, not them; overriding them is the supported way to
+    write a detector (docs/extending.md; :func:`pdrlearn.steps.register_detector` makes it a CLI name).
 
     Settings are keyword-only ``__init__`` arguments stored as attributes (scikit-learn style;
     :meth:`get_params` lists them). Windows and thresholds are in seconds / SI units.

@@ -24,6 +24,7 @@ from pdrlearn.kernels.contact import (
     FORCE_ON_FRAC,
     PEAK_FRAC,
 )
+from pdrlearn.plugins import Registry
 from pdrlearn.signal.conditioning import G, calibrate_standstill
 from pdrlearn.signal.filters import CausalLowpass, lowpass_delay_s, magnitude
 from pdrlearn.steps._kernels import (
@@ -441,19 +442,42 @@ class PLLStepDetector(StepDetector):
         return _PLLProcessor(self, fs)
 
 
-DETECTORS: dict[str, type[StepDetector]] = {
-    "accel": AccelStepDetector,
-    "accel-force": AccelForceStepDetector,
-    "pelvic-gyro": PelvicGyroStepDetector,
-    "pll": PLLStepDetector,
-    "waist-ic": WaistICStepDetector,  # the waist-pendulum pipeline's IC detector (pdrlearn/steps/waist_ic.py)
-}
+def _check_detector(name: str, cls) -> type[StepDetector]:
+    """A plug-in detector is a :class:`StepDetector` subclass named as registered, on a foot or waist unit."""
+    if not (isinstance(cls, type) and issubclass(cls, StepDetector)):
+        raise DataError(f"step detector '{name}': {cls!r} is not a StepDetector subclass (docs/extending.md)")
+    if cls.name != name:
+        raise DataError(f"step detector '{name}': the class's name attribute is {cls.name!r}; set "
+                        f"name = {name!r} in {cls.__name__} (its tables and the CLI name it so)")
+    if cls.unit not in ("foot", "waist"):
+        raise DataError(f"step detector '{name}': unit {cls.unit!r} is not 'foot' or 'waist'; set the class "
+                        "attribute unit (it chooses the reference the steps are scored against)")
+    return cls
+
+
+#: CLI name -> detector class (decisions E81, E82): the built-ins below, those added by
+#: :func:`register_detector` and installed plug-ins (entry point group ``pdrlearn.detectors``)
+DETECTORS = Registry("step detector", "pdrlearn.detectors", adapt=_check_detector, helper="register_detector")
+for _cls in (AccelStepDetector, AccelForceStepDetector, PelvicGyroStepDetector, PLLStepDetector,
+             WaistICStepDetector):  # waist-ic: the waist-pendulum pipeline's IC detector (steps/waist_ic.py)
+    DETECTORS.register(_cls.name, _cls)
+
+
+def register_detector(name: str, cls: type[StepDetector], *, replace: bool = False) -> type[StepDetector]:
+    """Make the :class:`StepDetector` subclass ``cls`` available as ``name`` to :func:`get_detector`,
+    ``pdrlearn steps --detector NAME`` (in a launcher that registers it first, or as an installed plug-in:
+    entry point group ``pdrlearn.detectors``), ``pdrlearn track --detector NAME`` and the plasys pipeline's
+    ``steps=NAME``. ``cls.name`` must equal ``name``; ``cls.unit`` is "foot" or "waist". A built-in name
+    is refused unless ``replace=True`` (decision E81). Returns ``cls``, so it also works as a decorator's body.
+    See docs/extending.md."""
+    return DETECTORS.register(name, cls, replace=replace)
 
 
 def get_detector(name: str, **params) -> StepDetector:
-    """Detector by CLI name (``accel``, ``accel-force``, ``pelvic-gyro``, ``pll``, ``waist-ic``)."""
+    """Detector by CLI name (``accel``, ``accel-force``, ``pelvic-gyro``, ``pll``, ``waist-ic`` and any
+    registered with :func:`register_detector` or installed as a plug-in)."""
     try:
         cls = DETECTORS[name]
     except KeyError:
-        raise DataError(f"unknown step detector '{name}'; choose one of {', '.join(DETECTORS)}") from None
+        raise DETECTORS.unknown(name) from None
     return cls(**params)

@@ -339,6 +339,10 @@ def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = D
     ``step_f1`` (decision 19): the same contacts get the same F1 from ``steps`` and ``track``; nor is one
     detection per same-foot gap of the reference (:func:`same_foot_gap_mask`, ``unscored_same_foot_gap``,
     decision 20; ``f1_same_foot_gaps_scored`` is the F1 with them counted as false positives).
+
+    ``steps`` is scored as given. ``pdrlearn steps`` and ``pdrlearn score-steps`` first reduce a foot table to
+    one row per rest-to-rest stride (:func:`pdrlearn.steps.one_per_stride`, decision steps 34/39): call it
+    before this to get their numbers for a detector that fires more than once per stride.
     """
     tolerance_s = check_tolerance(tolerance_s, "score_steps: tolerance_s")  # decision B167
     ev, unit = _table_events(steps, session, unit)

@@ -5,13 +5,14 @@ from __future__ import annotations
 import difflib
 import functools
 import inspect
-from collections.abc import Callable, Iterable, Mapping, MutableMapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 
 import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import session_entry
+from pdrlearn.plugins import Registry
 
 #: Per-step table columns every pipeline fills (others may be added).
 STEP_TABLE_COLUMNS = ("start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m")
@@ -58,67 +59,48 @@ class TrackResult:
 Pipeline = Callable[..., TrackResult]
 
 
-class PipelineRegistry(MutableMapping):
-    """Pipeline name -> function (a dict to read). Reading it first imports every module that registers a
-    pipeline (:mod:`pdrlearn.track.pipelines`), so ``list(PIPELINES)`` names them all from the first access
-    (it read ``[]`` until the first :func:`get_pipeline` call); :func:`register_pipeline` writes without that."""
-
-    def __init__(self):
-        self._fns: dict[str, Pipeline] = {}
-        self._loading = False
-        self._loaded = False
-
-    def _load(self) -> None:
-        if self._loaded or self._loading:
-            return
-        self._loading = True
-        try:
-            import pdrlearn.track.pipelines  # noqa: F401  (each module registers its pipelines)
-            self._loaded = True
-        finally:
-            self._loading = False
-
-    def __getitem__(self, name: str) -> Pipeline:
-        self._load()
-        return self._fns[name]
-
-    def __setitem__(self, name: str, fn: Pipeline) -> None:
-        self._fns[name] = fn
-
-    def __delitem__(self, name: str) -> None:
-        del self._fns[name]
-
-    def __iter__(self):
-        self._load()
-        return iter(self._fns)
-
-    def __len__(self) -> int:
-        self._load()
-        return len(self._fns)
-
-    def __repr__(self) -> str:
-        self._load()
-        return f"PIPELINES({', '.join(self._fns)})"
+def _load_builtin_pipelines() -> None:
+    import pdrlearn.track.pipelines  # noqa: F401  (each module registers its pipelines)
 
 
-PIPELINES: PipelineRegistry = PipelineRegistry()
+def _wrap(name: str, fn: Pipeline) -> Pipeline:
+    """``fn`` as every pipeline runs: the session checked once at the entry point (decisions B49/B51) and the
+    track's ``pos_sigma_m`` added (decision L128)."""
+    @functools.wraps(fn)
+    def with_sigma(session, *args, **kwargs) -> TrackResult:
+        from pdrlearn.track.position_sigma import add_position_sigma
+
+        result = fn(session, *args, **kwargs)
+        add_position_sigma(result, session)  # decision L128: every pipeline's track gets pos_sigma_m
+        return result
+
+    return session_entry(with_sigma, caller=f"pipeline '{name}'")
 
 
-def register_pipeline(name: str) -> Callable[[Pipeline], Pipeline]:
-    """Decorator: ``@register_pipeline("waist-pll")`` on ``fn(session, **options) -> TrackResult``."""
+def _adapt_pipeline(name: str, fn) -> Pipeline:
+    if not callable(fn):
+        raise DataError(f"pipeline '{name}': {fn!r} is not a function fn(session, **options) -> TrackResult")
+    return fn if getattr(fn, "_pdrlearn_pipeline", False) else _wrap(name, fn)
+
+
+#: Pipeline name -> function (a dict to read). Reading it first imports every module that registers a
+#: built-in pipeline (:mod:`pdrlearn.track.pipelines`) and the installed plug-ins (entry point group
+#: ``pdrlearn.pipelines``, decision E82), so ``list(PIPELINES)`` names them all from the first access; a built-in
+#: name is not replaced silently (decision E81).
+PIPELINES = Registry("pipeline", "pdrlearn.pipelines", load_builtins=_load_builtin_pipelines,
+                     adapt=_adapt_pipeline, helper="register_pipeline")
+
+
+def register_pipeline(name: str, *, replace: bool = False) -> Callable[[Pipeline], Pipeline]:
+    """Decorator: ``@register_pipeline("waist-pll")`` on ``fn(session, **options) -> TrackResult``. A built-in
+    name (``plasys``, ``waist-pendulum``, ``waist-pll``) is refused unless ``replace=True`` (decision E81); an
+    installed package can declare its pipeline as an entry point of group ``pdrlearn.pipelines`` instead
+    (docs/extending.md)."""
 
     def deco(fn: Pipeline) -> Pipeline:
-        @functools.wraps(fn)
-        def with_sigma(session, *args, **kwargs) -> TrackResult:
-            from pdrlearn.track.position_sigma import add_position_sigma
-
-            result = fn(session, *args, **kwargs)
-            add_position_sigma(result, session)  # decision L128: every pipeline's track gets pos_sigma_m
-            return result
-
-        # decision B49/B51: the session (or a folder path) is checked once, at the outermost entry point
-        wrapped = session_entry(with_sigma, caller=f"pipeline '{name}'")
-        PIPELINES[name] = wrapped
+        wrapped = _wrap(name, fn)
+        wrapped._pdrlearn_pipeline = True
+        PIPELINES.register(name, wrapped, replace=replace)
         return wrapped
 
     return deco
@@ -195,4 +177,4 @@ def get_pipeline(name: str) -> Pipeline:
     try:
         return PIPELINES[name]
     except KeyError:
-        raise DataError(f"unknown pipeline '{name}'; choose one of {', '.join(sorted(PIPELINES))}") from None
+        raise PIPELINES.unknown(name) from None

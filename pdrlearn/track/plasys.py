@@ -140,9 +140,13 @@ def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3
 STEP_SOURCES = ("detector", "stance", "labels")
 
 
-def _detect_strides(session: Session, kind: str, steps: str, t: np.ndarray, stance: np.ndarray,
+def _detect_strides(session: Session, kind: str, steps, t: np.ndarray, stance: np.ndarray,
                     warnings: list[str]) -> pd.DataFrame:
-    """Stride windows of the foot unit: ``steps`` = "detector" | "stance" | "labels"."""
+    """Stride windows of the foot unit: ``steps`` = "detector" | "stance" | "labels", a registered foot detector's
+    name, a :class:`~pdrlearn.steps.StepDetector` or a steps table (decision L149)."""
+    custom = _custom_strides(session, steps)
+    if custom is not None:
+        return custom
     if steps == "labels":
         if session.steps is None or not len(session.steps):
             raise DataError(f"session '{session.name}': steps='labels' but the session has no steps.csv")
@@ -167,8 +171,60 @@ def _detect_strides(session: Session, kind: str, steps: str, t: np.ndarray, stan
         except DataError as exc:
             warnings.append(f"{kind} failed ({exc}); strides from the stance segmentation")
     elif steps != "stance":
-        raise DataError(f"plasys: steps='{steps}' is not {', '.join(STEP_SOURCES)}")
+        from pdrlearn.steps import DETECTORS
+
+        raise DataError(f"plasys: steps='{steps}' is not detector, stance, labels, a foot detector's name "
+                        f"({', '.join(n for n in DETECTORS if DETECTORS[n].unit == 'foot')}), a StepDetector or a "
+                        "steps table")
     return stance_strides(t, stance)
+
+
+def _check_steps_arg(steps) -> None:
+    """Decisions B173 / L149: ``steps`` is a mode string, a registered foot detector's name, a
+    :class:`~pdrlearn.steps.StepDetector` or a steps table; anything else is one :class:`DataError` line."""
+    import pdrlearn.steps as steps_mod
+
+    if isinstance(steps, (pd.DataFrame, steps_mod.StepDetector)):
+        return
+    if isinstance(steps, str) and (steps in STEP_SOURCES or steps in steps_mod.DETECTORS):
+        return
+    what = repr(steps) if isinstance(steps, str) else f"a {type(steps).__name__}"
+    raise DataError(f"plasys: steps={what} is not {', '.join(STEP_SOURCES)}, a foot detector's name "
+                    f"({', '.join(n for n in steps_mod.DETECTORS if steps_mod.DETECTORS[n].unit == 'foot')}), a "
+                    "StepDetector or a steps table with start_s, end_s in s (docs/extending.md)")
+
+
+def _custom_strides(session: Session, steps) -> pd.DataFrame | None:
+    """Decision L149: the strides of a user's foot detector (a :class:`StepDetector` or a registered name) or
+    table (``start_s``, ``end_s`` in s, optional ``event_s``, ``confidence``); None for the built-in modes. A
+    detector that finds nothing or a table without strides is an error (it was asked for: no stance fallback)."""
+    import pdrlearn.steps as steps_mod
+
+    if isinstance(steps, str):
+        if steps in ("detector", "stance", "labels") or steps not in steps_mod.DETECTORS:
+            return None
+        steps = steps_mod.get_detector(steps)
+    if isinstance(steps, steps_mod.StepDetector):
+        if steps.unit != "foot":
+            raise DataError(f"plasys: steps={steps!r} is a {steps.unit} detector; the plasys pipeline integrates "
+                            "the foot unit's strides: give a foot detector (unit = 'foot')")
+        df = steps.detect(session)
+        what = f"steps={steps!r}"
+    elif isinstance(steps, pd.DataFrame):
+        df, what = steps.copy(), "the steps table"
+        missing = [c for c in ("start_s", "end_s") if c not in df]
+        if missing:
+            raise DataError(f"plasys: {what} has no {', '.join(missing)} column; give each stride's start_s and "
+                            "end_s in s on the session's clock (docs/extending.md)")
+        df["event_s"] = df["event_s"] if "event_s" in df else df["end_s"]
+        df["confidence"] = df["confidence"] if "confidence" in df else 1.0
+        df["unit"] = "foot"
+        df.attrs.setdefault("detector", "table")
+    else:
+        return None
+    if not len(df):
+        raise DataError(f"session '{session.name}': {what} gave no strides")
+    return df.reset_index(drop=True)
 
 
 #: Decision L38: an offline stride is classified on the streaming segmenter's stride when the two cover the same
@@ -534,8 +590,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     model : M3 classes source: a model directory / loaded model, or ``"oracle"`` (the session's labels)
     start : (lat, lon) degrees -> ``lat``/``lon`` columns via thesis eq. 56/57
     params : optional dict overriding :class:`FootDisplacement` settings
-    steps : where the strides come from, a string: "detector" (pdrlearn.steps detectors), "stance" (stance
-        segmentation) or "labels" (the session's steps table: to track your own strides, set ``session.steps``)
+    steps : "detector" (pdrlearn.steps detectors), "stance" (stance segmentation), "labels", or your own
+        strides (decision L149): a foot detector's registered name (:func:`pdrlearn.steps.register_detector`),
+        a :class:`~pdrlearn.steps.StepDetector` instance with ``unit = "foot"`` or a steps table (``start_s``,
+        ``end_s``, optional ``event_s``, ``confidence``; s on the session's clock). Offline only
     heading : "waist" | "foot" | "fused" (default per method; "foot" when there is no waist unit).
         "fused": the foot's stride-by-stride yaw aligned to the waist heading by an offset averaged over
         +-``fused_tau_s`` s (decision L17)
@@ -594,11 +652,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if opts:  # decision L43: a misspelled option is an error, as in the waist pipelines (it was ignored)
         check_keywords("plasys", opts, keyword_names(track_plasys))
     check_warn_at(warn_out_of_domain)
-    if not isinstance(steps, str) or steps not in STEP_SOURCES:  # decision B173: a table was a pandas traceback
-        raise DataError(f"plasys: steps={type(steps).__name__ if not isinstance(steps, str) else repr(steps)} is "
-                        f"not one of {', '.join(STEP_SOURCES)}; steps names where the strides come from (a mode "
-                        "string), not a table: to track with your own strides put them in the session's steps "
-                        "(session.steps = table with start_s, end_s, ic_s) and pass steps='labels'")
+    _check_steps_arg(steps)  # decision B173 (a bad value was a pandas traceback), L149 (own strides accepted)
     method = str(method).upper()
     no_classes = False
     if method == "AUTO":  # decision L36: M3 with a model; without one the M3 engine, its class rules off
@@ -613,7 +667,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if down_mode not in SK.DOWN_MODES:  # decision L51: offline and streamed alike
         raise DataError(f"plasys: down_mode '{down_mode}' is not one of {', '.join(SK.DOWN_MODES)}")
     if streaming:
-        if steps != "detector" or align:
+        if not (isinstance(steps, str) and steps == "detector") or align:
             raise DataError("plasys streaming=True: steps and align are not streamable; leave them at their "
                             "defaults")
         res = track_streaming(session, method=method, model=model, start=start, params=params,
@@ -677,7 +731,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if len(fd.rows_) < len(strides):
         log.info("%s: %d detected step(s) without a swing between two rests dropped", session.name,
                  len(strides) - len(fd.rows_))
-    source = strides.attrs.get("detector", steps)
+    source = strides.attrs.get("detector", steps if isinstance(steps, str) else "table")
     strides = strides.iloc[fd.rows_].reset_index(drop=True)
     strides["start_s"], strides["end_s"] = fd.start_s_, fd.end_s_
     if "event_s" in strides:  # decision L96: the pieces of a split detection get their own landing

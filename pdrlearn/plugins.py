@@ -1,0 +1,127 @@
+"""Registries of the pluggable parts: step detectors (:data:`pdrlearn.steps.DETECTORS`) and tracking pipelines
+(:data:`pdrlearn.track.PIPELINES`). See docs/extending.md.
+
+A built-in entry (one registered by a module of the ``pdrlearn`` package) is not replaced silently: writing its
+name raises one line naming ``replace=True`` (decision E81). Installed packages add entries through Python entry
+points (groups ``pdrlearn.detectors`` and ``pdrlearn.pipelines``), loaded on the registry's first read; a plug-in
+that fails to load is left out with one warning naming it and the reason, and asking for it by name repeats that
+reason (decision E82).
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable, MutableMapping
+from typing import Any
+
+from pdrlearn.errors import DataError
+
+log = logging.getLogger(__name__)
+
+
+def is_builtin(obj: Any) -> bool:
+    """True for a class or function defined in the ``pdrlearn`` package."""
+    return str(getattr(obj, "__module__", "")).split(".")[0] == "pdrlearn"
+
+
+class Registry(MutableMapping):
+    """Name -> object (a dict to read). ``kind`` names the entries in messages ("step detector"); ``group`` is
+    the entry-point group; ``load_builtins()`` imports the modules that register the built-ins (called on the
+    first read); ``adapt(name, obj)`` checks (raising :class:`DataError`) or wraps an object before it is stored."""
+
+    def __init__(self, kind: str, group: str, *, load_builtins: Callable[[], None] | None = None,
+                 adapt: Callable[[str, Any], Any] | None = None, helper: str = "register"):
+        self.kind, self.group, self.helper = kind, group, helper
+        self._load_builtins, self._adapt = load_builtins, adapt
+        self._items: dict[str, Any] = {}
+        self.builtin: set[str] = set()
+        #: plug-in name -> why it was not loaded (decision E82)
+        self.failed: dict[str, str] = {}
+        self._loading = self._loaded = False
+
+    # -- loading -----------------------------------------------------------------------------------
+    def _load(self) -> None:
+        if self._loaded or self._loading:
+            return
+        self._loading = True
+        try:
+            if self._load_builtins is not None:
+                self._load_builtins()
+            self._load_entry_points()
+            self._loaded = True
+        finally:
+            self._loading = False
+
+    def _load_entry_points(self) -> None:
+        from importlib.metadata import entry_points
+
+        for ep in entry_points(group=self.group):
+            where = f"{ep.value}, entry point group {self.group}"
+            if ep.name in self._items:
+                reason = (f"the name is taken by the built-in {self.kind}" if ep.name in self.builtin
+                          else f"the name is taken by {_describe(self._items[ep.name])}")
+            else:
+                try:
+                    obj = ep.load()
+                    self._items[ep.name] = self._adapt(ep.name, obj) if self._adapt else obj
+                    continue
+                except Exception as exc:  # noqa: BLE001  (any broken plug-in: one line, never a traceback)
+                    reason = f"{type(exc).__name__}: {' '.join(str(exc).split())}"
+            self.failed[ep.name] = f"{self.kind} plug-in '{ep.name}' ({where}) not loaded: {reason}"
+            log.warning("%s; fix or uninstall the package that declares it", self.failed[ep.name])
+
+    # -- writing -----------------------------------------------------------------------------------
+    def register(self, name: str, obj: Any, *, replace: bool = False) -> Any:
+        """Add ``obj`` under ``name``; a built-in name is replaced only with ``replace=True`` (decision E81)."""
+        builtin = is_builtin(obj)
+        if not builtin:  # the built-ins (and installed plug-ins) first, so that a clash is seen now
+            self._load()
+        if not isinstance(name, str) or not name or name != name.strip():
+            raise DataError(f"{self.kind} name {name!r}: give a non-empty string without surrounding blanks")
+        if name in self.builtin and not replace and self._items.get(name) is not obj:
+            raise DataError(f"'{name}' is a built-in {self.kind}; {self.helper}('{name}', ..., replace=True) "
+                            "replaces it, or choose another name")
+        if self._adapt is not None and not builtin:
+            obj = self._adapt(name, obj)
+        if name in self.builtin and not builtin:
+            log.info("built-in %s '%s' replaced by %s", self.kind, name, _describe(obj))
+            self.builtin.discard(name)
+        elif builtin:
+            self.builtin.add(name)
+        self._items[name] = obj
+        self.failed.pop(name, None)
+        return obj
+
+    def __setitem__(self, name: str, obj: Any) -> None:
+        self.register(name, obj)
+
+    def __delitem__(self, name: str) -> None:
+        del self._items[name]
+        self.builtin.discard(name)
+
+    # -- reading -----------------------------------------------------------------------------------
+    def __getitem__(self, name: str) -> Any:
+        self._load()
+        return self._items[name]
+
+    def __iter__(self):
+        self._load()
+        return iter(self._items)
+
+    def __len__(self) -> int:
+        self._load()
+        return len(self._items)
+
+    def __repr__(self) -> str:
+        self._load()
+        return f"{type(self).__name__}({self.kind}: {', '.join(self._items)})"
+
+    def unknown(self, name: str) -> DataError:
+        """The error for a name that is not registered: a failed plug-in's reason, else the valid names."""
+        if name in self.failed:
+            return DataError(f"{self.failed[name]}; fix or uninstall the package that declares it")
+        return DataError(f"unknown {self.kind} '{name}'; choose one of {', '.join(sorted(self))}")
+
+
+def _describe(obj: Any) -> str:
+    return f"{getattr(obj, '__module__', '?')}.{getattr(obj, '__qualname__', type(obj).__name__)}"
