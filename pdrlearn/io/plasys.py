@@ -165,15 +165,18 @@ def _scale_factor(token: str) -> float | None:
 
 def _check_body_fields(meta: dict, where: str) -> None:
     """Body measures in meta.json must be positive numbers in metres (decision B16): a text or a value in
-    cm would otherwise be replaced by a default or scale every waist step length silently."""
-    for name, most in _BODY_FIELDS:
-        if name not in meta or meta[name] is None:
-            continue
-        v = meta[name]
-        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v) or v <= 0:
-            raise DataError(f"{where}: {name} {v!r} is not a positive number in m; fix it or remove the field")
-        if v > most:
-            raise DataError(f"{where}: {name} {v:g} m is implausible (over {most:g} m; centimetres?); give metres")
+    cm would otherwise be replaced by a default or scale every waist step length silently. Decision B174: the
+    ``subject`` object's measures too (waist B155 and track L148 take them before the top level's)."""
+    sub = meta.get("subject")
+    for prefix, src in (("", meta), ("subject.", sub if isinstance(sub, dict) else {})):
+        for name, most in _BODY_FIELDS:
+            if name not in src or src[name] is None:
+                continue
+            v, key = src[name], prefix + name
+            if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v) or v <= 0:
+                raise DataError(f"{where}: {key} {v!r} is not a positive number in m; fix it or remove the field")
+            if v > most:
+                raise DataError(f"{where}: {key} {v:g} m is implausible (over {most:g} m; centimetres?); give metres")
 
 
 def read_table(path: str | os.PathLike) -> pd.DataFrame:
