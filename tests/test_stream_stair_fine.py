@@ -101,7 +101,7 @@ def test_the_fine_kernel_leaves_50hz_and_faster_data_bit_for_bit():
 
 
 def test_a_bad_stride_upsample_is_one_clear_line():
-    for bad in (0, 2.5, "5", True):
+    for bad in (0, 2.5, "5", True, float("nan"), float("inf")):  # B176: NaN, Infinity raised ValueError
         with pytest.raises(DataError, match=r"my bundle: stride_upsample .* must be an integer >= 1"):
             SK.stride_upsample({"stride_upsample": bad}, "my bundle")
     assert SK.stride_upsample({}) == SK.STRIDE_UPSAMPLE_DEFAULT
