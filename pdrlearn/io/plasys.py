@@ -179,15 +179,15 @@ def _check_body_fields(meta: dict, where: str) -> None:
                 raise DataError(f"{where}: {key} {v:g} m is implausible (over {most:g} m; centimetres?); give metres")
 
 
-def read_table(path: str | os.PathLike) -> pd.DataFrame:
+def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = ()) -> pd.DataFrame:
     """Read a CSV file with stripped column names; a missing, empty or malformed file is a one-line
-    :class:`DataError`."""
+    :class:`DataError`. ``text_columns``: columns kept as written (``007`` stays ``007``, not the number 7)."""
     path = Path(path)
     if not path.is_file():
         raise DataError(f"{path}: file not found")
     try:
         dialect = _csv_dialect(path)
-        df = pd.read_csv(path, **dialect)
+        df = pd.read_csv(path, dtype=dict.fromkeys(text_columns, str) or None, **dialect)
     except pd.errors.EmptyDataError:
         raise DataError(f"{path}: file is empty (not even a header line); re-export or remove it") from None
     except (pd.errors.ParserError, UnicodeDecodeError) as exc:
