@@ -418,8 +418,10 @@ def test_the_report_keeps_zero_padded_subjects_and_visits(tmp_path):
     (tmp_path / "sessions.csv").write_text(
         "path,group,status,error,subject,visit,distance_m,n_bouts,bouts_time_s,bouts_n_steps,bouts_n_strides,"
         "bouts_distance_m\n"
-        "a/007/01,a,ok,,007,01,10.0,1,10.0,16,8,10.0\n"
-        "a/007/02,a,ok,,007,02,12.0,1,11.0,18,9,12.0\n")
-    sessions, _ = read_batch(tmp_path)
+        "010/007/01,010,ok,,007,01,10.0,1,10.0,16,8,10.0\n"
+        "010/007/02,010,ok,,007,02,12.0,1,11.0,18,9,12.0\n")
+    (tmp_path / "groups.csv").write_text("group,n_tracked,n_failed\n010,2,0\n")  # a site "010" as groups.csv has it
+    sessions, groups = read_batch(tmp_path)
+    assert list(groups["group"]) == ["010"]
     [(_, table)] = subject_tables(sessions)
     assert [(r.subject, r.visit) for r in table.itertuples()] == [("007", "01"), ("007", "02")]

@@ -54,7 +54,7 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     gpath = folder / "groups.csv"
     if not gpath.is_file():
         return sessions, group_table(sessions)
-    groups = read_table(gpath)
+    groups = read_table(gpath, text_columns=("group",))  # as sessions.csv's (LABEL_COLUMNS)
     if "n_tracked" not in groups and "n_sessions" in groups:  # decision C19: the column's name before C19
         groups = groups.rename(columns={"n_sessions": "n_tracked"})
     missing = [c for c in REQUIRED_GROUP_COLUMNS if c not in groups.columns]
