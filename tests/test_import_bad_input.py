@@ -66,8 +66,9 @@ def test_a_header_without_rows(export, tmp_path, capsys):
     (["--sensor-height", "5"], "import: sensor height 5.0 is not a height in m (0-2 m)"),
     # decision B175: meta.json's sensor_height_m is the waist's (W10, L148 took a foot's 0.1 m as the leg)
     (["--unit", "foot", "--sensor-height", "0.1"], "import: --sensor-height is the waist unit's height above the "
-     "ground (the waist pendulum's leg length, and the leg by which the walking range is scaled); a foot unit's is "
-     "not used: drop it, or give the walker's leg with meta.json leg_length_m (decision B175)"),
+     "ground (the waist pendulum's leg length, and the leg by which the walking range is scaled), and this is a foot "
+     "unit's import (the default --unit foot): for a waist unit add --unit waist; for a foot unit drop it (the "
+     "walker's leg: meta.json leg_length_m; decision B175)"),
     (["--acc-unit", "furlong"], "{csv}: acc unit 'furlong' is not one of m/s2, g, mg"),
     (["--time-unit", "fortnight"], "{csv}: time unit 'fortnight' is not one of ms, s, us, ns"),
     (["--frames", "{x: forward"], "--frames: not valid JSON; write e.g. x=forward,y=up,z=right"),

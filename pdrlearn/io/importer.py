@@ -935,9 +935,10 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                 raise DataError(f"import: sensor height {sensor_height_m!r} is not a height in m (0-2 m)")
             if unit == "foot":  # decision B175: meta.json's sensor_height_m is the waist unit's (W10, B155, L148)
                 raise DataError("import: --sensor-height is the waist unit's height above the ground (the waist "
-                                "pendulum's leg length, and the leg by which the walking range is scaled); a foot "
-                                "unit's is not used: drop it, or give the walker's leg with meta.json leg_length_m "
-                                "(decision B175)")
+                                "pendulum's leg length, and the leg by which the walking range is scaled), and this "
+                                "is a foot unit's import (the default --unit foot): for a waist unit add --unit "
+                                "waist; for a foot unit drop it (the walker's leg: meta.json leg_length_m; "
+                                "decision B175)")
             meta["sensor_height_m"] = h
         if subject_height_m is not None:
             h = float(subject_height_m)
