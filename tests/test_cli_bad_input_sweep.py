@@ -100,6 +100,9 @@ ERRORS = {
     "meta_height_text": (_meta(lambda m: m.update(height_m="tall")), "height_m 'tall' is not a positive number",
                          "meta.json"),
     "meta_height_cm": (_meta(lambda m: m.update(height_m=175)), "centimetres", "meta.json"),
+    # B174: the subject object's measures are taken first (B155, L148) and were not checked
+    "meta_subject_height_cm": (_meta(lambda m: m.update(subject={"height_m": 175})), "subject.height_m 175 m",
+                               "meta.json"),
 }
 
 

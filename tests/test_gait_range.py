@@ -162,3 +162,13 @@ def test_track_all_groups_the_range_warning_of_several_sessions(tmp_path, capsys
              r.getMessage()]
     assert len(lines) == 1 and "[2 of 2 sessions: u1163, u1164]" in lines[0], lines
     assert "(the figures are u1163's; each session's own are in sessions.csv's warnings column)" in lines[0]
+
+
+def test_a_foot_sessions_sensor_height_is_not_the_leg():
+    """Decision B175: a foot-only import's sensor_height_m (the foot unit's, written before B175) gave L148 a 0.1 m
+    leg, which scaled the walking range to 210-480 steps/min; the waist's and a leg_length_m still count."""
+    from pdrlearn.track.gait import leg_length
+
+    assert leg_length({"placement": "foot", "sensor_height_m": 0.1}) == {}
+    assert leg_length({"placement": "foot", "sensor_height_m": 0.1, "leg_length_m": 0.8})["leg_length_m"] == 0.8
+    assert leg_length({"placement": "foot+waist", "sensor_height_m": 0.95})["leg_length_m"] == 0.95

@@ -64,6 +64,11 @@ def test_a_header_without_rows(export, tmp_path, capsys):
      "{csv}: column 'time_ms' is mapped as time and as a channel; map it once"),
     (["--rate", "0"], "import: --rate 0.0 is not a sampling rate in Hz"),
     (["--sensor-height", "5"], "import: sensor height 5.0 is not a height in m (0-2 m)"),
+    # decision B175: meta.json's sensor_height_m is the waist's (W10, L148 took a foot's 0.1 m as the leg)
+    (["--unit", "foot", "--sensor-height", "0.1"], "import: --sensor-height is the waist unit's height above the "
+     "ground (the waist pendulum's leg length, and the leg by which the walking range is scaled), and this is a foot "
+     "unit's import (the default --unit foot): for a waist unit add --unit waist; for a foot unit drop it (the "
+     "walker's leg: meta.json leg_length_m; decision B175)"),
     (["--acc-unit", "furlong"], "{csv}: acc unit 'furlong' is not one of m/s2, g, mg"),
     (["--time-unit", "fortnight"], "{csv}: time unit 'fortnight' is not one of ms, s, us, ns"),
     (["--frames", "{x: forward"], "--frames: not valid JSON; write e.g. x=forward,y=up,z=right"),
@@ -76,8 +81,9 @@ def test_a_header_without_rows(export, tmp_path, capsys):
     # decision B63: the first value was shown as np.float64(0.0)
     (["--time-format", "%H:%M"], "{csv}: --time-format/--time-zone read date-time text, but column 'time_ms' "
                                  "holds numbers (0.0 ...); leave them out"),
-], ids=["unit", "time-column", "mapped-twice", "rate-zero", "sensor-height", "acc-unit", "time-unit",
-        "frames-json", "frames-text", "frames-degenerate", "labels-relative-alone", "labels-not-csv", "time-format"])
+], ids=["unit", "time-column", "mapped-twice", "rate-zero", "sensor-height", "foot-sensor-height", "acc-unit",
+        "time-unit", "frames-json", "frames-text", "frames-degenerate", "labels-relative-alone", "labels-not-csv",
+        "time-format"])
 def test_bad_options_are_one_line(export, tmp_path, capsys, args, message):
     csv = _write(export, tmp_path / "e.csv")
     assert _refused([str(csv), *args], tmp_path / "s", capsys) == message.format(csv=csv)

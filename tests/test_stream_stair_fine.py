@@ -101,7 +101,7 @@ def test_the_fine_kernel_leaves_50hz_and_faster_data_bit_for_bit():
 
 
 def test_a_bad_stride_upsample_is_one_clear_line():
-    for bad in (0, 2.5, "5", True):
+    for bad in (0, 2.5, "5", True, float("nan"), float("inf")):  # B176: NaN, Infinity raised ValueError
         with pytest.raises(DataError, match=r"my bundle: stride_upsample .* must be an integer >= 1"):
             SK.stride_upsample({"stride_upsample": bad}, "my bundle")
     assert SK.stride_upsample({}) == SK.STRIDE_UPSAMPLE_DEFAULT
@@ -135,3 +135,16 @@ def test_the_live_tracker_equals_track_streaming_with_the_fine_kernel(stairs, tm
         live = np.array([[s.x, s.y, s.z] for s in steps])
         assert live.shape == ref.shape, chunk
         assert np.abs(live - ref).max() < 1e-6, chunk
+
+
+def test_track_names_the_params_file_of_a_bad_stride_upsample(tmp_path, capsys):
+    """B176: ``track --streaming --params p.json`` with ``{"stride_upsample": NaN}`` was a ValueError traceback;
+    the line names the file, checked before any session is read."""
+    from pdrlearn.cli import main
+
+    p = tmp_path / "p.json"
+    p.write_text('{"stride_upsample": NaN}')
+    assert main(["track", str(tmp_path), "--streaming", "--params", str(p), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"error: {p}: stride_upsample nan must be an integer >= 1 (1 = the unit's own rate, 5 = decision "
+                   "L141's block-mean spline below 50 Hz)"]

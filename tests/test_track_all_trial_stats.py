@@ -408,3 +408,20 @@ def test_subjects_csv_totals_each_subject_and_visit_from_the_bouts(site_tree, tm
     assert [[c.strip() for c in line.split("|")[1:3]] for line in lines][:2] == [["S01", "1"], ["S01", "2"]]
     assert len(lines) == 5
     assert f"{row['walking_time_s']:.4g}" in lines[0] and f"{row['gait_speed_mps']:.4g}" in lines[0]
+
+
+def test_the_report_keeps_zero_padded_subjects_and_visits(tmp_path):
+    """Cohort C42's subject table read sessions.csv's subject "007" and visit "01" as the numbers 7 and 1, so the
+    report named subjects and visits other than subjects.csv does."""
+    from pdrlearn.report.batch import read_batch, subject_tables
+
+    (tmp_path / "sessions.csv").write_text(
+        "path,group,status,error,subject,visit,distance_m,n_bouts,bouts_time_s,bouts_n_steps,bouts_n_strides,"
+        "bouts_distance_m\n"
+        "010/007/01,010,ok,,007,01,10.0,1,10.0,16,8,10.0\n"
+        "010/007/02,010,ok,,007,02,12.0,1,11.0,18,9,12.0\n")
+    (tmp_path / "groups.csv").write_text("group,n_tracked,n_failed\n010,2,0\n")  # a site "010" as groups.csv has it
+    sessions, groups = read_batch(tmp_path)
+    assert list(groups["group"]) == ["010"]
+    [(_, table)] = subject_tables(sessions)
+    assert [(r.subject, r.visit) for r in table.itertuples()] == [("007", "01"), ("007", "02")]

@@ -14,7 +14,7 @@ from pdrlearn.errors import DataError, shell_quote
 
 def _mapping_file(path: Path | None) -> dict:
     """The ``--mapping`` JSON: ``{"time": COL, "acc": [X, Y, Z], "gyro": [...], "units": {"time": "ms",
-    "acc": "g", "gyro": "deg/s"}, "unit": "foot", "frames": {...}, "sensor_height_m": 0.95}`` (all optional)."""
+    "acc": "g", "gyro": "deg/s"}, "unit": "waist", "frames": {...}, "sensor_height_m": 0.95}`` (all optional)."""
     if path is None:
         return {}
     try:
@@ -85,7 +85,9 @@ def import_command(
     gyro_unit: str = typer.Option(None, "--gyro-unit", help="rad/s or deg/s (default: the header's, else rad/s)."),
     frames: str = typer.Option(None, "--frames", help="The unit's axes, e.g. x=forward,y=up,z=right (default: "
                                "none; commands infer it from the data, decision D8)."),
-    sensor_height: float = typer.Option(None, "--sensor-height", help="The unit's height above the ground (m)."),
+    sensor_height: float = typer.Option(None, "--sensor-height", help="The waist unit's height above "
+                                        "the ground (m; the waist pendulum's leg length, W10; refused with --unit "
+                                        "foot, B175)."),
     subject_height: float = typer.Option(None, "--subject-height", help="The subject's height (m), written to "
                                          "meta.json height_m (default: none; commands assume 1.7 m and say so)."),
     steps: Path = typer.Option(None, "--steps", help="Labelled steps (start_ms,end_ms,terrain,... as steps.csv) in "

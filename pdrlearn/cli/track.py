@@ -239,6 +239,10 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         rates = {} if str(model) == "oracle" else positive_rates(read_manifest(model).get("sampling_rate_hz") or {})
         require_rates(str(model), rates, rate_mode, command="track")
     par = None if params is None else read_params(params)
+    if isinstance(par, dict) and "stride_upsample" in par:  # B176: checked once, naming the file (L141's line)
+        from pdrlearn.kernels.stride import stride_upsample
+
+        stride_upsample(par, str(params))
     if detector is not None:  # decision L149: an unknown or waist detector fails once, before any session
         from pdrlearn.steps import get_detector
 

@@ -625,7 +625,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
     units : kind -> unit of its values (``acc``: ``m/s2`` | ``g``; ``gyro``: ``rad/s`` | ``deg/s``; ``mag``:
         ``uT`` | ``nT`` | ``gauss``; ``baro``: ``hPa`` | ``Pa`` | ``kPa``); default: the header's hint, else SI
     frame : the unit's axis frame (:func:`parse_frame` input or :class:`AxisFrame`), written to ``frames``
-    sensor_height_m : the unit's height above the ground (m), written to ``meta.json``
+    sensor_height_m : the waist unit's height above the ground (m), written to ``meta.json`` (refused for a foot
+        unit, B175)
     subject_height_m : the subject's height (m), written to ``meta.json`` ``height_m``
     name : session name (default: the CSV's stem)
     origin_s : the export's time (s, on its clock) that becomes 0 (default: its first timestamp); the
@@ -932,6 +933,12 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             h = float(sensor_height_m)
             if not (math.isfinite(h) and 0 < h <= 2.0):  # as meta.json's sensor_height_m (B16): metres, anatomy
                 raise DataError(f"import: sensor height {sensor_height_m!r} is not a height in m (0-2 m)")
+            if unit == "foot":  # decision B175: meta.json's sensor_height_m is the waist unit's (W10, B155, L148)
+                raise DataError("import: --sensor-height is the waist unit's height above the ground (the waist "
+                                "pendulum's leg length, and the leg by which the walking range is scaled), and this "
+                                "is a foot unit's import (the default --unit foot): for a waist unit add --unit "
+                                "waist; for a foot unit drop it (the walker's leg: meta.json leg_length_m; "
+                                "decision B175)")
             meta["sensor_height_m"] = h
         if subject_height_m is not None:
             h = float(subject_height_m)

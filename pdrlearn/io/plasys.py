@@ -165,26 +165,29 @@ def _scale_factor(token: str) -> float | None:
 
 def _check_body_fields(meta: dict, where: str) -> None:
     """Body measures in meta.json must be positive numbers in metres (decision B16): a text or a value in
-    cm would otherwise be replaced by a default or scale every waist step length silently."""
-    for name, most in _BODY_FIELDS:
-        if name not in meta or meta[name] is None:
-            continue
-        v = meta[name]
-        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v) or v <= 0:
-            raise DataError(f"{where}: {name} {v!r} is not a positive number in m; fix it or remove the field")
-        if v > most:
-            raise DataError(f"{where}: {name} {v:g} m is implausible (over {most:g} m; centimetres?); give metres")
+    cm would otherwise be replaced by a default or scale every waist step length silently. Decision B174: the
+    ``subject`` object's measures too (waist B155 and track L148 take them before the top level's)."""
+    sub = meta.get("subject")
+    for prefix, src in (("", meta), ("subject.", sub if isinstance(sub, dict) else {})):
+        for name, most in _BODY_FIELDS:
+            if name not in src or src[name] is None:
+                continue
+            v, key = src[name], prefix + name
+            if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v) or v <= 0:
+                raise DataError(f"{where}: {key} {v!r} is not a positive number in m; fix it or remove the field")
+            if v > most:
+                raise DataError(f"{where}: {key} {v:g} m is implausible (over {most:g} m; centimetres?); give metres")
 
 
-def read_table(path: str | os.PathLike) -> pd.DataFrame:
+def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = ()) -> pd.DataFrame:
     """Read a CSV file with stripped column names; a missing, empty or malformed file is a one-line
-    :class:`DataError`."""
+    :class:`DataError`. ``text_columns``: columns kept as written (``007`` stays ``007``, not the number 7)."""
     path = Path(path)
     if not path.is_file():
         raise DataError(f"{path}: file not found")
     try:
         dialect = _csv_dialect(path)
-        df = pd.read_csv(path, **dialect)
+        df = pd.read_csv(path, dtype=dict.fromkeys(text_columns, str) or None, **dialect)
     except pd.errors.EmptyDataError:
         raise DataError(f"{path}: file is empty (not even a header line); re-export or remove it") from None
     except (pd.errors.ParserError, UnicodeDecodeError) as exc:

@@ -456,7 +456,8 @@ def stride_upsample(params: Mapping | None, where: str = "params") -> int:
     """Decision L141: the stride kernel's upsampling factor from a bundle's ``displacement`` / the streamed
     ``params`` (an integer >= 1; one clear line naming ``where`` otherwise)."""
     v = (params or {}).get(STRIDE_UPSAMPLE_KEY, STRIDE_UPSAMPLE_DEFAULT)
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or v != int(v) or int(v) < 1:
+    # B176: NaN / Infinity (JSON accepts them) fail the finiteness test before int() would raise
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v) or v != int(v) or int(v) < 1:
         raise DataError(f"{where}: {STRIDE_UPSAMPLE_KEY} {v!r} must be an integer >= 1 (1 = the unit's own rate, "
                         f"{STRIDE_UPSAMPLE_OPTION} = decision L141's block-mean spline below {FINE_BELOW_HZ:g} Hz)")
     return int(v)

@@ -14,6 +14,8 @@ from pdrlearn.io.plasys import read_table
 
 #: the columns a sessions.csv must have to be reported (track-all's first four, decision C12)
 REQUIRED_SESSION_COLUMNS = ("path", "group", "status", "error")
+#: sessions.csv's label columns, read as text (cohort C42's subject table: ``007`` is not the number 7)
+LABEL_COLUMNS = ("group", "subject", "visit")
 #: the per-session table's columns, those sessions.csv has (the full row stays in sessions.csv)
 SESSION_TABLE_COLUMNS = ("path", "group", "status", "error", "n_strides_one_foot", "n_steps_both_feet", "distance_m",
                          "distance_error_pct", "final_position_error_m", "walking_time_s", "gait_speed_mps",
@@ -36,7 +38,8 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     if not path.is_file():
         raise DataError(f"{path}: not found; a track-all output folder holds sessions.csv (and groups.csv) - "
                         f"{_REGENERATE}")
-    sessions = read_table(path)
+    # cohort C42/C25: the labels as written (a subject "007", a visit "01" stay text, as track-all's subjects.csv)
+    sessions = read_table(path, text_columns=LABEL_COLUMNS)
     missing = [c for c in REQUIRED_SESSION_COLUMNS if c not in sessions.columns]
     if missing:
         raise DataError(f"{path}: not a track-all sessions.csv (no column {', '.join(missing)}; it has "
@@ -51,7 +54,7 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     gpath = folder / "groups.csv"
     if not gpath.is_file():
         return sessions, group_table(sessions)
-    groups = read_table(gpath)
+    groups = read_table(gpath, text_columns=("group",))  # as sessions.csv's (LABEL_COLUMNS)
     if "n_tracked" not in groups and "n_sessions" in groups:  # decision C19: the column's name before C19
         groups = groups.rename(columns={"n_sessions": "n_tracked"})
     missing = [c for c in REQUIRED_GROUP_COLUMNS if c not in groups.columns]

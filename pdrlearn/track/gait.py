@@ -313,10 +313,13 @@ def leg_length(meta: dict | None) -> dict:
     them (then L95's adult range stands)."""
     from pdrlearn.waist.params import LEG_PER_HEIGHT, _meta_numbers
 
-    found = _meta_numbers(meta or {}, "leg_length_m", "sensor_height_m")
+    meta = meta or {}
+    # decision B175: a foot-only session's sensor_height_m (written by imports before B175) is the foot unit's
+    keys = ("leg_length_m",) if meta.get("placement") == "foot" else ("leg_length_m", "sensor_height_m")
+    found = _meta_numbers(meta, *keys)
     if found:
         return {"leg_length_m": found[0][1], "leg_length_source": f"meta.json {found[0][0]}"}
-    height = _meta_numbers(meta or {}, "height_m")
+    height = _meta_numbers(meta, "height_m")
     if height:
         return {"leg_length_m": LEG_PER_HEIGHT * height[0][1],
                 "leg_length_source": f"{LEG_PER_HEIGHT} x meta.json {height[0][0]}"}
