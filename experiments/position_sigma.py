@@ -26,6 +26,7 @@ import pandas as pd
 from scipy.optimize import minimize
 
 from pdrlearn.kernels.position_sigma import position_covariance
+from pdrlearn.track.position_sigma import SIGMA_PARAMS, sigma_per_row
 
 #: about 140 m a loop: straights, on-the-spot and walked turns both ways, 2 storeys up and down, backward, a stop
 LOOP = ("straight:30, turn:90, straight:15, curve:90:3, straight:20, up:17, turn:180, up:17, straight:8, turn:-90, "
@@ -44,9 +45,12 @@ def users(spec: str) -> list[int]:
 
 
 #: how each variant is tracked: plasys offline (waist unit present: fused heading), foot only (foot yaw),
-#: --streaming (waist gyroscope heading), the lower-back pendulum pipeline
+#: --streaming (waist gyroscope heading), streamed foot only (L150), the lower-back pendulum pipeline
 VARIANTS = {"offline": (), "foot": ("--units", "foot"), "streaming": ("--streaming",),
-            "waist": ("--pipeline", "waist-pendulum")}
+            "foot-streaming": ("--streaming", "--units", "foot"), "waist": ("--pipeline", "waist-pendulum")}
+#: the SIGMA_PARAMS regime each variant's track gets (pdrlearn.track.position_sigma.sigma_regime)
+REGIME = {"offline": "plasys-fused", "foot": "plasys-foot", "streaming": "plasys-streaming",
+          "foot-streaming": "plasys-foot-streaming", "waist": "waist"}
 
 
 def track_user(u: int, work: Path, variant: str) -> tuple[Path, Path]:
@@ -104,9 +108,28 @@ def fit(args) -> None:
 
     start = np.log([0.01, 0.003, 1e-4, 0.3])
     res = minimize(nll, start, method="Nelder-Mead", options={"maxiter": 4000, "xatol": 1e-4, "fatol": 1e-3})
-    for p, v in zip(PARAMS, np.exp(res.x), strict=True):
+    ml = np.exp(res.x)
+    for p, v in zip(PARAMS, ml, strict=True):
         print(f"{p} = {v:.4g}")
     print(f"negative log-likelihood {res.fun:.1f} ({'converged' if res.success else res.message})")
+    c = coverage_scale(data, ml)
+    print(f"coverage scale c = {c:.4g} (decision L150): " + ", ".join(
+        f"{p} = {v:.2g}" for p, v in zip(PARAMS, c * ml, strict=True)))
+
+
+def coverage_scale(data: list, ml: np.ndarray, strides: float = 0.955, finals: int = 17) -> float:
+    """Decision L150: the common scale c of the four parameters (the radius scales by c) with which a fraction
+    ``strides`` of all strides and ``finals`` of the users' final positions lie within 2 sigma:
+    c = max(quantile of e_k / (2 s_k), the ``finals``-th smallest final ratio)."""
+    ratios, last = [], []
+    for comps, e in data:
+        s = np.sqrt(np.maximum(np.einsum("p,pnii->n", ml ** 2, comps), 1e-18))  # sqrt(trace P), unscaled
+        s = np.maximum.accumulate(s)  # as shipped (sigma_per_row)
+        r = np.hypot(e[:, 0], e[:, 1]) / (2 * s)
+        ratios.append(r)
+        last.append(r[-1])
+    k = min(finals, len(last)) - 1
+    return float(max(np.quantile(np.concatenate(ratios), strides), np.sort(last)[k]))
 
 
 def real_track(folder: Path, work: Path) -> tuple[Path, Path]:
@@ -126,6 +149,9 @@ def evaluate(args) -> None:
         tr, e = errors(sim, out, rotate=bool(args.real))
         e = np.hypot(e[:, 0], e[:, 1])
         s = tr["pos_sigma_m"].to_numpy(float)
+        if args.recompute:  # the current SIGMA_PARAMS on the stored track (as a fresh `track` would write them)
+            t = pd.read_csv(out / "trajectory.csv")["t"].to_numpy(float)
+            s = sigma_per_row(pd.read_csv(out / "steps.csv"), t, SIGMA_PARAMS[REGIME[args.variant]])[1:]
         k = int(np.sum(e <= 2 * s))
         inside, n = inside + k, n + len(e)
         final_in += int(e[-1] <= 2 * s[-1])
@@ -144,6 +170,8 @@ def main() -> None:
                     "(foot only: relative heading, the reference turned to the track's initial direction)")
     ap.add_argument("--work", type=Path, required=True)
     ap.add_argument("--variant", choices=tuple(VARIANTS), default="offline")
+    ap.add_argument("--recompute", action="store_true", help="evaluate: pos_sigma_m from steps.csv with the "
+                    "current SIGMA_PARAMS of the variant's regime instead of the stored trajectory.csv's")
     args = ap.parse_args()
     args.work.mkdir(parents=True, exist_ok=True)
     (fit if args.mode == "fit" else evaluate)(args)

@@ -18,14 +18,19 @@ import numpy as np
 from pdrlearn.kernels.position_sigma import position_covariance, sigma_radius
 
 #: decision L128: parameters per error regime, each the maximum-likelihood fit on simulated users 900-905
-#: (``experiments/position_sigma.py fit --variant V``, printed values rounded to 2 significant digits)
+#: (``experiments/position_sigma.py fit --variant V``, printed values rounded to 2 significant digits); decision
+#: L150: the streamed and foot-only regimes refitted on users 1160-1179, the maximum-likelihood parameters times
+#: one coverage scale (95.5 % of the strides, 17/20 finals within 2 sigma on those users)
 SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # plasys offline with a waist unit: foot yaw aligned to the waist compass ("fused", L17)
     "plasys-fused": {"displacement_rel": 0.026, "heading_walk_rad": 0.0034, "bias_rps": 0.0, "point_m": 1.5},
-    # plasys with the foot's own yaw only (no waist unit, or `--units foot`)
-    "plasys-foot": {"displacement_rel": 0.0021, "heading_walk_rad": 0.062, "bias_rps": 0.0, "point_m": 0.068},
-    # plasys --streaming with a waist unit: the waist gyroscope's heading (L99)
-    "plasys-streaming": {"displacement_rel": 0.028, "heading_walk_rad": 0.011, "bias_rps": 0.00073,
+    # plasys with the foot's own yaw only (no waist unit, or `--units foot`; L150)
+    "plasys-foot": {"displacement_rel": 0.0017, "heading_walk_rad": 0.026, "bias_rps": 0.0, "point_m": 0.044},
+    # plasys --streaming without a waist unit (or `--units foot`): the foot's own yaw, streamed (L150)
+    "plasys-foot-streaming": {"displacement_rel": 0.0021, "heading_walk_rad": 0.062, "bias_rps": 0.0,
+                              "point_m": 0.068},
+    # plasys --streaming with a waist unit: the waist gyroscope's heading (L99; L150)
+    "plasys-streaming": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,
                          "point_m": 0.0},
     # the lower-back pipelines (fitted on waist-pendulum; waist-pll shares them, not fitted)
     "waist": {"displacement_rel": 0.0, "heading_walk_rad": 0.0083, "bias_rps": 0.00085, "point_m": 3.1},
@@ -38,8 +43,26 @@ def sigma_regime(info: dict, session) -> str:
     if str(info.get("pipeline", "")).startswith("waist"):
         return "waist"
     if info.get("streaming"):  # the streamed heading is the waist gyroscope's when there is one (L99)
-        return "plasys-streaming" if session.has("wGyroscope") else "plasys-foot"
+        return "plasys-streaming" if session.has("wGyroscope") else "plasys-foot-streaming"
     return "plasys-fused" if info.get("heading_source") in ("fused", "waist") else "plasys-foot"
+
+
+def sigma_per_row(steps, t, params: dict[str, float]) -> np.ndarray:
+    """The 1-sigma radius (m) at each time ``t`` (a track's trajectory times, the first its start) of a track
+    with ``steps`` (steps.csv columns ``length_m``, ``heading_rad``, ``end_s``) under the model ``params``: the
+    covariance after the last stride that ended at or before the time, 0 at the start, never decreasing."""
+    t = np.asarray(t, float)
+    sigma = np.zeros(len(t))
+    if len(steps) and len(t):
+        end = steps["end_s"].to_numpy(float)
+        cov = position_covariance(steps["length_m"].to_numpy(float), steps["heading_rad"].to_numpy(float),
+                                  end, float(t[0]), **params)
+        r = sigma_radius(cov)
+        r = np.maximum.accumulate(np.where(np.isfinite(r), r, 0.0))  # a radius never shrinks without a fix
+        i = np.searchsorted(end, t + 1e-9, side="right") - 1
+        sigma = np.where(i >= 0, r[np.clip(i, 0, len(r) - 1)], 0.0)
+        sigma[0] = 0.0  # the start is where the track is put
+    return sigma
 
 
 def add_position_sigma(result, session, regime: str | None = None) -> None:
@@ -47,22 +70,12 @@ def add_position_sigma(result, session, regime: str | None = None) -> None:
     into ``result.trajectory`` and the model used into ``result.info["position_sigma"]``. A trajectory row gets
     the covariance after the last stride that ended at or before its time. ``regime``: a :data:`SIGMA_PARAMS`
     key (default :func:`sigma_regime`; ``pdrlearn run`` names its own)."""
-    traj, steps = result.trajectory, result.steps
+    traj = result.trajectory
     if not len(traj):
         return
     regime = regime or sigma_regime(result.info, session)
     params = SIGMA_PARAMS[regime]
-    sigma = np.zeros(len(traj))
-    if len(steps):
-        t0 = float(traj["t"].iloc[0])
-        cov = position_covariance(steps["length_m"].to_numpy(float), steps["heading_rad"].to_numpy(float),
-                                  steps["end_s"].to_numpy(float), t0, **params)
-        r = sigma_radius(cov)
-        r = np.maximum.accumulate(np.where(np.isfinite(r), r, 0.0))  # a radius never shrinks without a fix
-        i = np.searchsorted(steps["end_s"].to_numpy(float), traj["t"].to_numpy(float) + 1e-9, side="right") - 1
-        sigma = np.where(i >= 0, r[np.clip(i, 0, len(r) - 1)], 0.0)
-        sigma[0] = 0.0  # the start is where the track is put
-    traj["pos_sigma_m"] = sigma
+    traj["pos_sigma_m"] = sigma_per_row(result.steps, traj["t"].to_numpy(float), params)
     result.info["position_sigma"] = {"model": regime, **params}
 
 
