@@ -26,9 +26,11 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     "plasys-fused": {"displacement_rel": 0.026, "heading_walk_rad": 0.0034, "bias_rps": 0.0, "point_m": 1.5},
     # plasys with the foot's own yaw only (no waist unit, or `--units foot`; L150)
     "plasys-foot": {"displacement_rel": 0.0017, "heading_walk_rad": 0.026, "bias_rps": 9.6e-11, "point_m": 0.044},
-    # plasys --streaming without a waist unit (or `--units foot`): the foot's own yaw, streamed (L150)
-    "plasys-foot-streaming": {"displacement_rel": 0.0055, "heading_walk_rad": 0.030, "bias_rps": 2.5e-07,
-                              "point_m": 0.0096},
+    # plasys --streaming without a waist unit (or `--units foot`): the foot's own yaw, streamed. L150's refit
+    # (0.0055, 0.030, 2.5e-07, 0.0096) failed its rule (89.5 % of the test strides within 2 sigma, rule 93-98.5 %):
+    # L128's plasys-foot constants, as before L150 (uncalibrated, too large)
+    "plasys-foot-streaming": {"displacement_rel": 0.0021, "heading_walk_rad": 0.062, "bias_rps": 0.0,
+                              "point_m": 0.068},
     # plasys --streaming with a waist unit: the waist gyroscope's heading (L99; L150)
     "plasys-streaming": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,
                          "point_m": 5.1e-174},
