@@ -5,9 +5,11 @@ for the pipeline and heading that made the track and writes the 1-sigma radius i
 parameters were fitted (maximum likelihood) on the true position errors of simulated users 900-905, a 4-loop
 route of ~530 m with turns both ways, 2 storeys up and down a loop, backward strides and stops
 (``experiments/position_sigma.py fit``, decision L128). Checked on fresh users 660-679 (L129): ``plasys-fused``
-calibrated (98.2 % of the strides, 17/20 final positions within 2 sigma); ``plasys-streaming`` uncalibrated, too
-large (99.2 %, 20/20); ``plasys-foot`` uncalibrated, too large (100 %, 20/20); ``waist`` calibrated (98.3 %,
-20/20; waist-pendulum). It is no guarantee: magnetic disturbances,
+calibrated (98.2 % of the strides, 17/20 final positions within 2 sigma); ``waist`` calibrated (98.3 %, 20/20;
+waist-pendulum). ``plasys-streaming`` and ``plasys-foot`` were too large (99.2 % and 100 %) and were refitted
+on users 1160-1179 (L150), then tested on users 1180-1199 (L151): calibrated (94.8 % and 96.5 %, 20/20 each).
+``plasys-foot-streaming`` (streamed foot-only): the refit failed (89.5 %); it keeps L128's ``plasys-foot``
+constants, uncalibrated, too large (100 %, 20/20). It is no guarantee: magnetic disturbances,
 map constraints, real sensors worse than the simulator's and a walker other than the simulator's are outside it.
 """
 
