@@ -1,15 +1,22 @@
-"""Decision L128/L129: the per-stride position uncertainty (``pos_sigma_m``) on long simulated foot tracks.
+"""Decisions L128/L129, L150/L151: the per-stride position uncertainty (``pos_sigma_m``) on long simulated tracks.
 
 ``fit``: on simulated users (a multi-loop route, tracked with ``pdrlearn track``), the five parameters of
 :func:`pdrlearn.kernels.position_sigma.position_covariance` by maximum likelihood of the true position error
-vectors after each stride (strides of all users pooled).
+vectors after each stride (strides of all users pooled), then (L150) the coverage scale of the four parameters
+that puts 95.5 % of the strides and 17/20 finals within 2 sigma on the same users.
 ``evaluate``: the coverage of the shipped ``pos_sigma_m`` (trajectory.csv): the fraction of strides whose true
-position error is within 2 ``pos_sigma_m`` (pooled), and of users whose final position error is.
+position error is within 2 ``pos_sigma_m`` (pooled), and of users whose final position error is;
+``--recompute``: ``pos_sigma_m`` from the stored steps.csv with the current ``SIGMA_PARAMS`` (L151).
 
 Usage::
 
     OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/position_sigma.py fit --users 900-905 --work W
     OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/position_sigma.py evaluate --users 660-679 --work W
+    # L150/L151, V in streaming, foot, foot-streaming
+    OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/position_sigma.py fit --users 1160-1179 --work W \
+        --variant V
+    OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/position_sigma.py evaluate --users 1180-1199 \
+        --work W --variant V --recompute
     PYTHONPATH=. .venv/bin/python experiments/position_sigma.py evaluate --work W \
         --real datasets/real/gaitmap_level_left,datasets/real/gaitmap_level_right
 """
