@@ -1,6 +1,6 @@
 """Decisions L128/L129, L150/L151: the per-stride position uncertainty (``pos_sigma_m``) on long simulated tracks.
 
-``fit``: on simulated users (a multi-loop route, tracked with ``pdrlearn track``), the five parameters of
+``fit``: on simulated users (a multi-loop route, tracked with ``pdrlearn track``), the four parameters of
 :func:`pdrlearn.kernels.position_sigma.position_covariance` by maximum likelihood of the true position error
 vectors after each stride (strides of all users pooled), then (L150) the coverage scale of the four parameters
 that puts 95.5 % of the strides and 17/20 finals within 2 sigma on the same users.
