@@ -1,15 +1,22 @@
-"""Decision L128/L129: the per-stride position uncertainty (``pos_sigma_m``) on long simulated foot tracks.
+"""Decisions L128/L129, L150/L151: the per-stride position uncertainty (``pos_sigma_m``) on long simulated tracks.
 
-``fit``: on simulated users (a multi-loop route, tracked with ``pdrlearn track``), the five parameters of
+``fit``: on simulated users (a multi-loop route, tracked with ``pdrlearn track``), the four parameters of
 :func:`pdrlearn.kernels.position_sigma.position_covariance` by maximum likelihood of the true position error
-vectors after each stride (strides of all users pooled).
+vectors after each stride (strides of all users pooled), then (L150) the coverage scale of the four parameters
+that puts 95.5 % of the strides and 17/20 finals within 2 sigma on the same users.
 ``evaluate``: the coverage of the shipped ``pos_sigma_m`` (trajectory.csv): the fraction of strides whose true
-position error is within 2 ``pos_sigma_m`` (pooled), and of users whose final position error is.
+position error is within 2 ``pos_sigma_m`` (pooled), and of users whose final position error is;
+``--recompute``: ``pos_sigma_m`` from the stored steps.csv with the current ``SIGMA_PARAMS`` (L151).
 
 Usage::
 
     OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/position_sigma.py fit --users 900-905 --work W
     OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/position_sigma.py evaluate --users 660-679 --work W
+    # L150/L151, V in streaming, foot, foot-streaming
+    OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/position_sigma.py fit --users 1160-1179 --work W \
+        --variant V
+    OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/position_sigma.py evaluate --users 1180-1199 \
+        --work W --variant V --recompute
     PYTHONPATH=. .venv/bin/python experiments/position_sigma.py evaluate --work W \
         --real datasets/real/gaitmap_level_left,datasets/real/gaitmap_level_right
 """
@@ -26,6 +33,7 @@ import pandas as pd
 from scipy.optimize import minimize
 
 from pdrlearn.kernels.position_sigma import position_covariance
+from pdrlearn.track.position_sigma import SIGMA_PARAMS, sigma_per_row
 
 #: about 140 m a loop: straights, on-the-spot and walked turns both ways, 2 storeys up and down, backward, a stop
 LOOP = ("straight:30, turn:90, straight:15, curve:90:3, straight:20, up:17, turn:180, up:17, straight:8, turn:-90, "
@@ -44,9 +52,12 @@ def users(spec: str) -> list[int]:
 
 
 #: how each variant is tracked: plasys offline (waist unit present: fused heading), foot only (foot yaw),
-#: --streaming (waist gyroscope heading), the lower-back pendulum pipeline
+#: --streaming (waist gyroscope heading), streamed foot only (L150), the lower-back pendulum pipeline
 VARIANTS = {"offline": (), "foot": ("--units", "foot"), "streaming": ("--streaming",),
-            "waist": ("--pipeline", "waist-pendulum")}
+            "foot-streaming": ("--streaming", "--units", "foot"), "waist": ("--pipeline", "waist-pendulum")}
+#: the SIGMA_PARAMS regime each variant's track gets (pdrlearn.track.position_sigma.sigma_regime)
+REGIME = {"offline": "plasys-fused", "foot": "plasys-foot", "streaming": "plasys-streaming",
+          "foot-streaming": "plasys-foot-streaming", "waist": "waist"}
 
 
 def track_user(u: int, work: Path, variant: str) -> tuple[Path, Path]:
@@ -104,9 +115,28 @@ def fit(args) -> None:
 
     start = np.log([0.01, 0.003, 1e-4, 0.3])
     res = minimize(nll, start, method="Nelder-Mead", options={"maxiter": 4000, "xatol": 1e-4, "fatol": 1e-3})
-    for p, v in zip(PARAMS, np.exp(res.x), strict=True):
+    ml = np.exp(res.x)
+    for p, v in zip(PARAMS, ml, strict=True):
         print(f"{p} = {v:.4g}")
     print(f"negative log-likelihood {res.fun:.1f} ({'converged' if res.success else res.message})")
+    c = coverage_scale(data, ml)
+    print(f"coverage scale c = {c:.4g} (decision L150): " + ", ".join(
+        f"{p} = {v:.2g}" for p, v in zip(PARAMS, c * ml, strict=True)))
+
+
+def coverage_scale(data: list, ml: np.ndarray, strides: float = 0.955, finals: int = 17) -> float:
+    """Decision L150: the common scale c of the four parameters (the radius scales by c) with which a fraction
+    ``strides`` of all strides and ``finals`` of the users' final positions lie within 2 sigma:
+    c = max(quantile of e_k / (2 s_k), the ``finals``-th smallest final ratio)."""
+    ratios, last = [], []
+    for comps, e in data:
+        s = np.sqrt(np.maximum(np.einsum("p,pnii->n", ml ** 2, comps), 1e-18))  # sqrt(trace P), unscaled
+        s = np.maximum.accumulate(s)  # as shipped (sigma_per_row)
+        r = np.hypot(e[:, 0], e[:, 1]) / (2 * s)
+        ratios.append(r)
+        last.append(r[-1])
+    k = min(finals, len(last)) - 1
+    return float(max(np.quantile(np.concatenate(ratios), strides), np.sort(last)[k]))
 
 
 def real_track(folder: Path, work: Path) -> tuple[Path, Path]:
@@ -126,6 +156,9 @@ def evaluate(args) -> None:
         tr, e = errors(sim, out, rotate=bool(args.real))
         e = np.hypot(e[:, 0], e[:, 1])
         s = tr["pos_sigma_m"].to_numpy(float)
+        if args.recompute:  # the current SIGMA_PARAMS on the stored track (as a fresh `track` would write them)
+            t = pd.read_csv(out / "trajectory.csv")["t"].to_numpy(float)
+            s = sigma_per_row(pd.read_csv(out / "steps.csv"), t, SIGMA_PARAMS[REGIME[args.variant]])[1:]
         k = int(np.sum(e <= 2 * s))
         inside, n = inside + k, n + len(e)
         final_in += int(e[-1] <= 2 * s[-1])
@@ -144,6 +177,8 @@ def main() -> None:
                     "(foot only: relative heading, the reference turned to the track's initial direction)")
     ap.add_argument("--work", type=Path, required=True)
     ap.add_argument("--variant", choices=tuple(VARIANTS), default="offline")
+    ap.add_argument("--recompute", action="store_true", help="evaluate: pos_sigma_m from steps.csv with the "
+                    "current SIGMA_PARAMS of the variant's regime instead of the stored trajectory.csv's")
     args = ap.parse_args()
     args.work.mkdir(parents=True, exist_ok=True)
     (fit if args.mode == "fit" else evaluate)(args)

@@ -179,3 +179,20 @@ def test_run_takes_track_bout_options_and_detects_the_bouts_once(root, walk, tmp
     assert rec["bout_break_s"] == 3.0 and rec["bout_min_strides"] == 1000
     assert main(["run", str(root / "bundle"), str(walk), "--bout-break-s", "0", "--out", str(tmp_path / "x")]) == 2
     assert not (tmp_path / "x").exists()
+
+
+def test_streamed_foot_only_tracks_get_their_own_sigma_model(root, walk, tmp_path):
+    """L150: a foot-only streamed track (`run` of a foot-only bundle, `run --units foot`, `track --streaming
+    --units foot`) gets the `plasys-foot-streaming` parameters, not the offline foot-only `plasys-foot` ones, and
+    run and track write the same pos_sigma_m."""
+    from pdrlearn.track.position_sigma import SIGMA_PARAMS
+
+    assert main(["run", str(root / "bundle_foot"), str(walk), "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", str(root / "bundle"), str(walk), "--units", "foot", "--out", str(tmp_path / "u")]) == 0
+    assert main(["track", str(walk), "--model", str(root / "model_foot"), "--streaming", "--units", "foot",
+                 "--out", str(tmp_path / "t")]) == 0
+    for d in ("r", "u", "t"):
+        info = json.loads((tmp_path / d / "summary.json").read_text())["info"]["position_sigma"]
+        assert info == {"model": "plasys-foot-streaming", **SIGMA_PARAMS["plasys-foot-streaming"]}, d
+    run, trk = (pd.read_csv(tmp_path / d / "trajectory.csv") for d in ("r", "t"))
+    np.testing.assert_allclose(run["pos_sigma_m"], trk["pos_sigma_m"], atol=0.01)

@@ -401,8 +401,8 @@ def run(
     result = _result(steps, start_ll, start_alt)
     from pdrlearn.track.position_sigma import add_position_sigma
 
-    # decision L128, as `track --streaming`: the waist gyroscope's heading when the tracker uses the waist unit
-    add_position_sigma(result, session, "plasys-streaming" if "waist" in tracker.units else "plasys-foot")
+    # decisions L128/L150, as `track --streaming`: the waist gyroscope's heading when the tracker uses the waist unit
+    add_position_sigma(result, session, "plasys-streaming" if "waist" in tracker.units else "plasys-foot-streaming")
     if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
         result.info["initial_heading_rad"] = heading0
     result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
