@@ -10,7 +10,6 @@ Writes experiments/results/waist_kid_pll.md.
 
 from __future__ import annotations
 
-import argparse
 import functools
 import logging
 from collections import defaultdict
@@ -20,7 +19,7 @@ import numpy as np
 
 import pdrlearn.track.waist as track_waist
 from experiments.kid_profiles import child, child_age, walk
-from experiments.waist_kid_steps import span
+from experiments.waist_kid_steps import cohort_args, span
 from pdrlearn.io import read_session
 from pdrlearn.sim.user import UserProfile
 from pdrlearn.steps import PLLStepDetector
@@ -57,12 +56,7 @@ def pooled(rows) -> tuple[float, float]:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--kids", default="1200-1239")
-    ap.add_argument("--adults", default="1240-1259")
-    ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
-    ap.add_argument("--shared", type=Path, default=Path("/work/shared/data"))
-    args = ap.parse_args()
+    args = cohort_args(__doc__, "1200-1239", "1240-1259")
     logging.disable(logging.WARNING)
     groups: dict[str, dict[str, list]] = defaultdict(lambda: defaultdict(list))
     lines = ["# W117 / W118 (experiments/waist_kid_pll.py)", "", "Per session: F1 and distance error % per variant "
