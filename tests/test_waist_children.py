@@ -135,13 +135,16 @@ def test_pll_range_follows_a_fast_rhythm_only():
     assert f0 == pytest.approx(1 / 0.28) and f_max == pytest.approx(1 / 0.21)
 
 
-def test_pll_range_option_locks_on_a_toddler(toddler):
-    """W117: a 3.6 Hz toddler is past the 3.2 Hz clamp; the rhythm-relative range finds its steps."""
+def test_pll_range_locks_on_a_toddler_by_default(toddler):
+    """W117: a 3.6 Hz toddler is past the 3.2 Hz clamp; the rhythm-relative range (the default, also in the
+    waist-pll pipeline) finds its steps."""
     from pdrlearn.steps import PLLStepDetector
 
     rec = {fm: step_metrics(PLLStepDetector(f_max_hz=fm).detect(toddler), toddler)["step_recall"]
            for fm in (3.2, None)}
     assert rec[None] >= 0.95 and rec[3.2] < 0.9, rec
+    assert PLLStepDetector().f_max_hz is None
+    assert track_waist(toddler, pipeline="waist-pll").summary(toddler)["step_recall"] >= 0.95
 
 
 def test_dimensionless_line_is_todays_at_the_reference_leg_and_scales_the_frequency():
