@@ -48,13 +48,18 @@ def span(s: str) -> range:
     return range(lo, hi + 1)
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--kids", default="1000-1039")
-    ap.add_argument("--adults", default="1040-1059")
+def cohort_args(doc: str, kids: str = "1000-1039", adults: str = "1040-1059") -> argparse.Namespace:
+    """The command line of the children's waist experiments: simulated children / adults and the real recordings."""
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
+    ap.add_argument("--kids", default=kids)
+    ap.add_argument("--adults", default=adults)
     ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
     ap.add_argument("--shared", type=Path, default=Path("/work/shared/data"))
-    args = ap.parse_args()
+    return ap.parse_args()
+
+
+def main() -> None:
+    args = cohort_args(__doc__)
     logging.disable(logging.WARNING)
     lines = ["# W113 shortest step (experiments/waist_kid_steps.py)", "",
              "| group | W16 recall | W16 F1 | W113 recall | W113 F1 |", "|---|---|---|---|---|"]

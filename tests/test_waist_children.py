@@ -125,3 +125,54 @@ def test_a_toddlers_uncalibrated_track_has_no_walk_ratio_warning(toddler):
     r = track_waist(toddler, pipeline="waist-pendulum")
     assert r.info["walk_ratio"] is not None
     assert not any("decision W100" in w or "W116" in w for w in r.info["warnings"])
+
+
+def test_pll_range_follows_a_fast_rhythm_only():
+    """W117: 2.4 Hz and slower (and no rhythm) keep steps decision 6's 1.8 / 3.2 Hz; faster free-runs at the rhythm,
+    clamped at 1 / 0.75 of it."""
+    assert K.pll_range(0.5) == K.pll_range(1 / 2.4) == K.pll_range(float("nan")) == (1.8, 3.2)
+    f0, f_max = K.pll_range(0.28)
+    assert f0 == pytest.approx(1 / 0.28) and f_max == pytest.approx(1 / 0.21)
+
+
+def test_pll_range_locks_on_a_toddler_by_default(toddler):
+    """W117: a 3.6 Hz toddler is past the 3.2 Hz clamp; the rhythm-relative range (the default, also in the
+    waist-pll pipeline) finds its steps."""
+    from pdrlearn.steps import PLLStepDetector
+
+    rec = {fm: step_metrics(PLLStepDetector(f_max_hz=fm).detect(toddler), toddler)["step_recall"]
+           for fm in (3.2, None)}
+    assert rec[None] >= 0.95 and rec[3.2] < 0.9, rec
+    assert PLLStepDetector().f_max_hz is None
+    assert track_waist(toddler, pipeline="waist-pll").summary(toddler)["step_recall"] >= 0.95
+
+
+def test_dimensionless_line_is_todays_at_the_reference_leg_and_scales_the_frequency():
+    """W118: the line read at f sqrt(L / L0); L0 = 0.53 x 1.70 m (a 1.70 m adult without a leg length: today's)."""
+    from pdrlearn.waist.params import SL_LEG_REF_M, WaistParams, line_leg_m
+    from pdrlearn.waist.steplength import frequency_lengths
+
+    assert line_leg_m({}, DEFAULT_HEIGHT_M) == pytest.approx(SL_LEG_REF_M)
+    assert line_leg_m({"leg_length_m": 0.45}, DEFAULT_HEIGHT_M) == 0.45
+    line = dict(a_walk=0.25 * 0.95, b_walk=0.25 * 0.95 * 1.8 - 0.415 * 0.95, a_run=0.19, b_run=0.0)
+    today, child = WaistParams(**line), WaistParams(**line, sl_leg_m=0.45)
+    f = np.array([1.6, 2.0, 2.6, 3.3])
+    assert np.array_equal(frequency_lengths(f, WaistParams(**line, sl_leg_m=SL_LEG_REF_M)), frequency_lengths(f, today))
+    s = np.sqrt(0.45 / SL_LEG_REF_M)
+    running = np.zeros(f.size, dtype=bool)
+    assert np.allclose(frequency_lengths(f, child, running=running), frequency_lengths(f * s, today, running=running))
+    # the 2.2 Hz cap is a dimensionless one: a 3.0 Hz child step is below it (3.0 x 0.707 = 2.12 Hz)
+    assert frequency_lengths(np.array([3.0]), child, running=running[:1])[0] < frequency_lengths(
+        np.array([3.1]), child, running=running[:1])[0]
+
+
+def test_offset_only_calibration_fits_the_dimensionless_line():
+    """W118: the calibration fit sums the walk as the tracker will, at the scaled (and capped) frequency."""
+    from pdrlearn.waist.params import WaistParams
+    from pdrlearn.waist.steplength import CalibrationWalk, fit_frequency, frequency_lengths
+
+    p = WaistParams(a_walk=0.24, b_walk=0.0, sl_leg_m=0.45)
+    w = CalibrationWalk(distance_m=20.0, f_hz=np.full(50, 3.0), g=np.zeros(50))
+    a, b, _ = fit_frequency([w], p)
+    q = WaistParams(a_walk=a, b_walk=b, sl_leg_m=0.45)
+    assert frequency_lengths(w.f_hz, q, running=np.zeros(50, dtype=bool)).sum() == pytest.approx(20.0)

@@ -168,6 +168,42 @@ def shortest_step_s(period_s: float) -> float:
     return min(SHORTEST_STEP_S, SHORTEST_STEP_FRAC * period_s) if np.isfinite(period_s) else SHORTEST_STEP_S
 
 
+#: steps decision 6: the PLL's free-running frequency and upper clamp (Hz), today's range at an adult's rhythm
+PLL_F0_HZ = 1.8
+PLL_F_MAX_HZ = 3.2
+
+
+def pll_range(period_s: float) -> tuple[float, float]:
+    """Decision W117: the PLL's free-running frequency and upper clamp (Hz) for a session whose step period is
+    ``period_s`` (:func:`step_period_s`): when the rhythm f_r = 1 / period is faster than :data:`SHORTEST_STEP_FRAC`
+    x :data:`PLL_F_MAX_HZ` (2.4 Hz: the clamp leaves less than W113's 1 / 0.75 headroom) the loop free-runs at f_r,
+    clamped at f_r / :data:`SHORTEST_STEP_FRAC`; otherwise (and without a period) steps decision 6's 1.8 / 3.2 Hz."""
+    if not np.isfinite(period_s) or period_s <= 0.0:
+        return PLL_F0_HZ, PLL_F_MAX_HZ
+    f_r = 1.0 / period_s
+    if f_r <= SHORTEST_STEP_FRAC * PLL_F_MAX_HZ:
+        return PLL_F0_HZ, PLL_F_MAX_HZ
+    return f_r, f_r / SHORTEST_STEP_FRAC
+
+
+def accel_step_period_s(acc: np.ndarray, fs: float, *, gate_var: float, gate_window_s: float,
+                        cutoff_hz: float = 2.5, fir_order_s: float = 0.3) -> float:
+    """W113's :func:`step_period_s` of a raw accelerometer recording (n, 3) for the PLL (decision W117): the vertical
+    acceleration on the mean gravity direction, W113's FIR low-pass (as :func:`ic_offline`), inside the PLL's own
+    activity gate (variance over ``gate_window_s`` centred > ``gate_var``)."""
+    a = np.asarray(acc, dtype=np.float64)
+    g = a.mean(axis=0)
+    if a.shape[0] < 3 or not np.linalg.norm(g) > 0.0:
+        return float("nan")
+    v = a @ (g / np.linalg.norm(g))
+    v = v - v.mean()
+    w = max(1, int(round(gate_window_s * fs)))
+    kern = np.ones(w) / w
+    var = np.convolve(v * v, kern, mode="same") - np.convolve(v, kern, mode="same") ** 2
+    vf = fir_zero_lag(v, fir_taps(cutoff_hz, fs, int(round(fir_order_s * fs))))
+    return step_period_s(vf, fs, var > gate_var)
+
+
 def relative_min_gap(ts: np.ndarray, fs: float, max_step_s: float = 1.5) -> int:
     """Decision W113 on contacts already found (sample indices ``ts``, increasing): the shortest step in samples
     from the median spacing of the consecutive ones at most ``max_step_s`` apart (W16's when there are fewer than

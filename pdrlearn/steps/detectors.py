@@ -24,6 +24,7 @@ from pdrlearn.kernels.contact import (
     FORCE_ON_FRAC,
     PEAK_FRAC,
 )
+from pdrlearn.kernels.waist import PLL_F0_HZ, accel_step_period_s, pll_range
 from pdrlearn.plugins import Registry
 from pdrlearn.signal.conditioning import G, calibrate_standstill
 from pdrlearn.signal.filters import CausalLowpass, lowpass_delay_s, magnitude
@@ -364,13 +365,13 @@ class PelvicGyroStepDetector(StepDetector):
 
 # ---------------------------------------------------------------------------------------------------
 class _PLLProcessor:
-    def __init__(self, det: PLLStepDetector, fs: float):
+    def __init__(self, det: PLLStepDetector, fs: float, period_s: float = float("nan")):
         self.det = det
         self.grav = _GravityTracker(fs, det.gravity_cutoff_hz)
         self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=2)
         self.delay = lowpass_delay_s(_cutoff(det.cutoff_hz, fs), fs, order=2) if det.refine_frac > 0 else 0.0
         self.state = PLLState()
-        self.params = det.loop_params()
+        self.params = det.loop_params(period_s)
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
         up, gnorm = self.grav.push(v)
@@ -403,6 +404,11 @@ class PLLStepDetector(StepDetector):
     daily-activity walking of the Test11 recordings has a std of 0.5-0.7 m/s^2 in places, which decision
     6's 0.5 m^2/s^4 dropped (decision 18).
 
+    Frequency range (steps decision 6): free-running ``f0_hz``, clamped to ``f_min_hz``-``f_max_hz``;
+    ``f_max_hz=None`` (the default, decision W117, docs/decisions/waist.md): offline, a session whose step rhythm (W113's
+    autocorrelation period) is faster than 2.4 Hz free-runs at that rhythm, clamped at 1 / 0.75 of it (a child at
+    3.3-3.8 Hz); slower sessions and the streaming detector keep ``f0_hz`` / 3.2 Hz.
+
     Loop gains (decision): natural frequency ``loop_hz`` and damping ``damping`` of the linearised loop,
     ``kp = 2 zeta wn / Kd``, ``ki = wn^2 / Kd`` with the phase-detector gain ``Kd = 1/sqrt(2)`` of a
     unit-RMS sine input.
@@ -414,7 +420,7 @@ class PLLStepDetector(StepDetector):
     extra_columns = ("step_freq_hz",)
 
     def __init__(self, *, f0_hz: float = 1.8,  # seed 000 Sec. II-C, seed 001 Sec. 2.2.2
-                 loop_hz: float = 0.5, damping: float = 0.707, f_min_hz: float = 0.8, f_max_hz: float = 3.2,
+                 loop_hz: float = 0.5, damping: float = 0.707, f_min_hz: float = 0.8, f_max_hz: float | None = None,  # W117
                  cutoff_hz: float = GATE_CUTOFF_HZ, agc_tau_s: float = 1.0, gravity_cutoff_hz: float = 0.3,
                  gate_window_s: float = 2.0,  # seed 001 Sec. 2.2.2 uses 4 s; decision: 2 s
                  gate_var: float = 0.25,  # seed 001: 1.5 m^2/s^4 for a pocket; decision 18: decision W4's
@@ -422,11 +428,18 @@ class PLLStepDetector(StepDetector):
                  refine_frac: float = 0.25, placement: str = "waist"):
         self._store(locals())
 
-    def loop_params(self) -> PLLParams:
+    def loop_params(self, period_s: float = float("nan")) -> PLLParams:
+        """The loop's parameters; with ``f_max_hz=None`` (decision W117) its free-running frequency and upper clamp
+        from the session's step period ``period_s`` (:func:`pdrlearn.kernels.waist.pll_range`; NaN: ``f0_hz`` and
+        3.2 Hz)."""
         kd = 1.0 / math.sqrt(2.0)
         wn = 2 * math.pi * self.loop_hz
-        return PLLParams(f0_hz=self.f0_hz, kp=2 * self.damping * wn / kd, ki=wn * wn / kd,
-                         f_min_hz=self.f_min_hz, f_max_hz=self.f_max_hz, agc_tau_s=self.agc_tau_s,
+        f0, f_max = self.f0_hz, self.f_max_hz
+        if f_max is None:
+            f0_r, f_max = pll_range(period_s)
+            f0 = f0 if f0_r == PLL_F0_HZ else f0_r
+        return PLLParams(f0_hz=f0, kp=2 * self.damping * wn / kd, ki=wn * wn / kd,
+                         f_min_hz=self.f_min_hz, f_max_hz=f_max, agc_tau_s=self.agc_tau_s,
                          gate_window_s=self.gate_window_s, gate_var=self.gate_var,
                          refine_frac=self.refine_frac)
 
@@ -436,10 +449,14 @@ class PLLStepDetector(StepDetector):
             raise DataError(f"pll: placement '{self.placement}' must be 'waist' or 'foot'")
         acc = session.require(name, purpose="the PLL step detector (vertical acceleration)")
         check_stream(acc, session)
-        return acc.t, acc.values, {}
+        if self.f_max_hz is not None or acc.t.shape[0] < 3:
+            return acc.t, acc.values, {}
+        fs = 1.0 / float(np.median(np.diff(acc.t)))  # decision W117: the session's step rhythm sets the range
+        return acc.t, acc.values, {"period_s": accel_step_period_s(acc.values, fs, gate_var=self.gate_var,
+                                                                   gate_window_s=self.gate_window_s)}
 
-    def _make_processor(self, fs: float, **context):
-        return _PLLProcessor(self, fs)
+    def _make_processor(self, fs: float, period_s: float = float("nan"), **context):
+        return _PLLProcessor(self, fs, period_s)
 
 
 def _check_detector(name: str, cls) -> type[StepDetector]:

@@ -36,6 +36,10 @@ TAU_K = 0.0403
 STEP_PER_HEIGHT_AT_F0 = 0.415
 F0_HZ = 1.8  # seed 000 sec. II-C: free-running walking frequency 1.8 Hz
 SLOPE_PER_HEIGHT = 0.25
+# Decision W118: the frequency line is read at the frequency a leg of this length would have at the same
+# dimensionless frequency f sqrt(L / g) (Hof 1996, Gait & Posture 4:222-223): the default height's leg, so a 1.70 m
+# adult without a leg length keeps W6's line exactly
+SL_LEG_REF_M = LEG_PER_HEIGHT * DEFAULT_HEIGHT_M
 RUN_STEP_PER_HEIGHT_AT_3HZ = 0.65
 RUN_SLOPE_PER_HEIGHT = 0.20
 
@@ -51,6 +55,8 @@ class WaistParams:
     turning classifier on |MRZ| (rad/s); walk_threshold_mps2 : motion gate; source : "defaults" or
     "calibrated"; pipeline : the pipeline the step length was calibrated for; options : pipeline options
     (``realtime``, ``heading``, ``integrate_stops`` ..., see :data:`pdrlearn.track.waist.OPTION_DEFAULTS`);
+    sl_leg_m : the leg length L (m) of the frequency line's dimensionless frequency (decision W118: the line is read
+    at f sqrt(L / :data:`SL_LEG_REF_M`); NaN: at f, W6's line);
     rate_hz : the waist accelerometer's rate (Hz) of the walks the step length was calibrated on (decision W87;
     NaN when not recorded: defaults, or a file written before W87); k_shrinkage : the calibrated K's standard
     error and what shrinking it toward :data:`DEFAULT_K` gives (decision
@@ -73,7 +79,14 @@ class WaistParams:
     options: dict | None = None
     k_shrinkage: dict | None = None
     rate_hz: float = float("nan")
+    sl_leg_m: float = float("nan")
     notes: list[str] = field(default_factory=list)
+
+    def frequency_scale(self) -> float:
+        """Decision W118: sqrt(``sl_leg_m`` / :data:`SL_LEG_REF_M`), the factor from a step frequency to the frequency
+        the frequency line is read at (1: today's line, also when ``sl_leg_m`` is not set)."""
+        leg = self.sl_leg_m
+        return float(np.sqrt(leg / SL_LEG_REF_M)) if leg is not None and np.isfinite(leg) and leg > 0 else 1.0
 
     def to_dict(self) -> dict:
         d = asdict(self)
@@ -193,6 +206,13 @@ def subject_height(meta: dict | None, *, infer: bool = False) -> tuple[float, st
     return DEFAULT_HEIGHT_M, (f"meta.json gives no subject height: assumed {DEFAULT_HEIGHT_M} m, though its {key} "
                               f"{leg:g} m implies about {implied:.2f} m ({key} / {LEG_PER_HEIGHT}, decision W115); the "
                               "uncalibrated step length scales with the height: give meta.json height_m")
+
+
+def line_leg_m(meta: dict | None, height: float) -> float:
+    """Decision W118: the leg length L (m) of the frequency line's dimensionless frequency: meta.json's
+    ``leg_length_m``, else :data:`LEG_PER_HEIGHT` x ``height`` (not the sensor height: the pendulum's L, W10)."""
+    leg = _meta_number(meta or {}, "leg_length_m")
+    return leg if leg is not None else LEG_PER_HEIGHT * height
 
 
 def default_params(session: Session, *, infer_height: bool = False) -> tuple[WaistParams, list[str]]:

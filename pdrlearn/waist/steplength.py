@@ -49,8 +49,9 @@ def frequency_lengths(f_hz: np.ndarray, p: WaistParams, *, running: np.ndarray |
     """Piecewise-linear step length (m) from step frequency (seed 000 sec. II-D): the walking line
     below :data:`RUN_SPLIT_HZ` (or where ``running`` is False), the running line above. Each line is
     evaluated at most at the upper end of its linear range, :data:`WALK_MAX_HZ` / :data:`RUN_MAX_HZ`
-    (decision W37)."""
-    f = np.asarray(f_hz, dtype=np.float64)
+    (decision W37). The frequency is first scaled by :meth:`WaistParams.frequency_scale` (decision W118: a child's
+    step at the same dimensionless frequency as an adult's reads as the adult's)."""
+    f = np.asarray(f_hz, dtype=np.float64) * p.frequency_scale()  # decision W118: the dimensionless frequency
     run = f >= RUN_SPLIT_HZ if running is None else np.asarray(running, dtype=bool)
     sl = np.where(run, K.frequency_length(np.minimum(f, RUN_MAX_HZ), p.a_run, p.b_run),
                   K.frequency_length(np.minimum(f, WALK_MAX_HZ), p.a_walk, p.b_walk))
@@ -78,17 +79,17 @@ class CalibrationWalk:
         return np.ones(n) if self.c is None else np.asarray(self.c, dtype=np.float64)
 
 
-def _walk_sums(walks: list[CalibrationWalk], x: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _walk_sums(walks: list[CalibrationWalk], x: str, scale: float = 1.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Per walk with steps: ``sum(c x)``, ``sum(c)`` and the distance, for ``x`` = ``"f_hz"`` or ``"g"``
-    (non-finite features count as 0, as the tracker's lengths do)."""
+    (non-finite features count as 0, as the tracker's lengths do); the frequencies times ``scale`` (W118)."""
     rows = []
     for w in walks:
         if not len(w.f_hz):
             continue
         c = w.factors()
         v = np.nan_to_num(np.asarray(getattr(w, x), dtype=np.float64), nan=0.0)
-        if x == "f_hz":  # the walking line is evaluated at most at WALK_MAX_HZ by the tracker (W37)
-            v = np.minimum(v, WALK_MAX_HZ)
+        if x == "f_hz":  # the walking line is evaluated at most at WALK_MAX_HZ by the tracker (W37), at W118's f
+            v = np.minimum(v * scale, WALK_MAX_HZ)
         rows.append((float(np.sum(c * v)), float(np.sum(c)), float(w.distance_m)))
     if not rows:
         raise DataError("calibration: no steps detected in the calibration walks; check the recordings")
@@ -105,7 +106,7 @@ def fit_frequency(walks: list[CalibrationWalk], p: WaistParams) -> tuple[float, 
     spanning at least :data:`MIN_SPREAD_HZ` the line is the least-squares fit; otherwise the slope ``a``
     is kept and only the offset ``b`` is fitted (decision W8), exactly reproducing the walks' total.
     """
-    sf, sc, d = _walk_sums(walks, "f_hz")
+    sf, sc, d = _walk_sums(walks, "f_hz", p.frequency_scale())  # W118: the line's own (dimensionless) frequency
     ok = sc > 0
     sf, sc, d = sf[ok], sc[ok], d[ok]
     if not sc.size:
