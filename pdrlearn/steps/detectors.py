@@ -405,9 +405,9 @@ class PLLStepDetector(StepDetector):
     6's 0.5 m^2/s^4 dropped (decision 18).
 
     Frequency range (steps decision 6): free-running ``f0_hz``, clamped to ``f_min_hz``-``f_max_hz``;
-    ``f_max_hz=None`` (the default, decision W117, docs/decisions/waist.md): offline, a session whose step rhythm (W113's
-    autocorrelation period) is faster than 2.4 Hz free-runs at that rhythm, clamped at 1 / 0.75 of it (a child at
-    3.3-3.8 Hz); slower sessions and the streaming detector keep ``f0_hz`` / 3.2 Hz.
+    ``f_max_hz=None`` (the default, decision W117, docs/decisions/waist.md): offline, a session whose step rhythm
+    (W113's autocorrelation period) is faster than 2.4 Hz free-runs at that rhythm, clamped at 1 / 0.75 of it (a
+    child at 3.3-3.8 Hz); slower sessions and the streaming detector keep ``f0_hz`` / 3.2 Hz.
 
     Loop gains (decision): natural frequency ``loop_hz`` and damping ``damping`` of the linearised loop,
     ``kp = 2 zeta wn / Kd``, ``ki = wn^2 / Kd`` with the phase-detector gain ``Kd = 1/sqrt(2)`` of a
@@ -420,7 +420,8 @@ class PLLStepDetector(StepDetector):
     extra_columns = ("step_freq_hz",)
 
     def __init__(self, *, f0_hz: float = 1.8,  # seed 000 Sec. II-C, seed 001 Sec. 2.2.2
-                 loop_hz: float = 0.5, damping: float = 0.707, f_min_hz: float = 0.8, f_max_hz: float | None = None,  # W117
+                 loop_hz: float = 0.5, damping: float = 0.707, f_min_hz: float = 0.8,
+                 f_max_hz: float | None = None,  # decision W117: None = from the session's rhythm
                  cutoff_hz: float = GATE_CUTOFF_HZ, agc_tau_s: float = 1.0, gravity_cutoff_hz: float = 0.3,
                  gate_window_s: float = 2.0,  # seed 001 Sec. 2.2.2 uses 4 s; decision: 2 s
                  gate_var: float = 0.25,  # seed 001: 1.5 m^2/s^4 for a pocket; decision 18: decision W4's
