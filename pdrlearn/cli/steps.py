@@ -211,7 +211,9 @@ def read_detections(path: Path, *, unit: str | None = None, per_stride: bool = T
             raise DataError(f"{path}: " + (f"the unit column holds {', '.join(units)}; score one unit's rows"
                                            if units else "no unit column") + "; pass --unit foot or --unit waist")
         unit = units[0]
-    if unit not in ("foot", "waist"):
+    from pdrlearn.steps.base import STEP_UNITS
+
+    if unit not in STEP_UNITS:  # decision B168's units
         raise DataError(f"{path}: unit '{unit}' is not foot or waist; pass --unit foot or --unit waist")
     for col in ("event_s", "start_s", "end_s"):
         if col in table and not pd.api.types.is_numeric_dtype(table[col]):

@@ -49,7 +49,7 @@ from pdrlearn.steps._kernels import (
     pll_kernel,
     trailing_window_std,
 )
-from pdrlearn.steps.base import StepDetector, check_stream, stream_on
+from pdrlearn.steps.base import STEP_UNITS, StepDetector, check_stream, stream_on
 from pdrlearn.steps.waist_ic import WaistICStepDetector
 
 log = logging.getLogger(__name__)
@@ -467,7 +467,7 @@ def _check_detector(name: str, cls) -> type[StepDetector]:
     if cls.name != name:
         raise DataError(f"step detector '{name}': the class's name attribute is {cls.name!r}; set "
                         f"name = {name!r} in {cls.__name__} (its tables and the CLI name it so)")
-    if cls.unit not in ("foot", "waist"):
+    if cls.unit not in STEP_UNITS:  # decision B168's units
         raise DataError(f"step detector '{name}': unit {cls.unit!r} is not 'foot' or 'waist'; set the class "
                         "attribute unit (it chooses the reference the steps are scored against)")
     return cls
