@@ -924,28 +924,53 @@ def turning_step_factor(dpsi_rad: np.ndarray) -> np.ndarray:
     return np.cos(d)
 
 
+def local_medians(values: np.ndarray, use: np.ndarray, closes: np.ndarray) -> np.ndarray:
+    """Per row of a steps table: W18's local median of ``values`` around the row's step, the median of the medians
+    of up to three values of the steps on each side inside its walking sequence (at least ``RHYTHM_MIN_STEPS - 1``
+    on a side; the row's own value not included); NaN where no side has enough. Shared by W111 (step durations:
+    the local period) and W119 (step vaults). ``use``: rows that are steps (not a W27 fragment, not a
+    sequence-closing contact); ``closes``: rows that end a walking sequence (no next contact)."""
+    v = np.asarray(values, dtype=np.float64)
+    use, closes = np.asarray(use, dtype=bool), np.asarray(closes, dtype=bool)
+    out = np.full(v.size, np.nan)
+    seq = np.concatenate([[0], np.cumsum(closes)[:-1]]) if v.size else np.zeros(0, int)
+    for sid in np.unique(seq[use]):
+        rows = np.flatnonzero(use & (seq == sid))
+        c = np.concatenate([[0.0], np.cumsum(v[rows])])  # consecutive differences are the values, in order
+        for j, r in enumerate(rows):
+            side = [x for x in (_local_period(c, j, -1, np.inf), _local_period(c, j + 1, +1, np.inf))
+                    if np.isfinite(x)]
+            if side:
+                out[r] = float(np.median(side))
+    return out
+
+
 def pause_step_factor(duration_s: np.ndarray, use: np.ndarray, closes: np.ndarray) -> np.ndarray:
     """Share of a step's pendulum length kept when the step spans a pause (decision W111): a step longer than
     :data:`RHYTHM_GAP` local periods -- an interval W18 should have filled with a missed step and could not --
-    keeps one period's length, ``period / duration``; 1 elsewhere. The local period is W18's: the median of the
-    medians of up to three step durations on each side inside the walking sequence (at least
-    ``RHYTHM_MIN_STEPS - 1`` on a side).
+    keeps one period's length, ``period / duration``; 1 elsewhere. The local period is W18's:
+    :func:`local_medians` of the step durations.
 
     ``duration_s``: IC to next IC (s) of each row; ``use``: rows that are steps with a length (not a W27 fragment,
     not a sequence-closing contact); ``closes``: rows that end a walking sequence (no next contact)."""
     dur = np.asarray(duration_s, dtype=np.float64)
-    use, closes = np.asarray(use, dtype=bool), np.asarray(closes, dtype=bool)
-    out = np.ones(dur.size)
-    seq = np.concatenate([[0], np.cumsum(closes)[:-1]]) if dur.size else np.zeros(0, int)
-    for sid in np.unique(seq[use]):
-        rows = np.flatnonzero(use & (seq == sid))
-        c = np.concatenate([[0.0], np.cumsum(dur[rows])])  # the sequence's contacts, one step apart
-        for j, r in enumerate(rows):
-            per = [x for x in (_local_period(c, j, -1, np.inf), _local_period(c, j + 1, +1, np.inf))
-                   if np.isfinite(x)]
-            if per and dur[r] > RHYTHM_GAP * float(np.median(per)):
-                out[r] = float(np.median(per)) / dur[r]
-    return out
+    per = local_medians(dur, use, closes)
+    long = np.asarray(use, dtype=bool) & np.isfinite(per) & (dur > RHYTHM_GAP * np.nan_to_num(per, nan=np.inf))
+    return np.where(long, per / np.where(long, dur, 1.0), 1.0)
+
+
+#: W119: a step under this share of its neighbours' vault is under half their length (pendulum h ~ s^2 / (8 L),
+#: seed 003 eq. 2, Zijlstra & Hof 2003; simulator S29): W27's "half a step is no step", in vault terms
+LOW_VAULT_RATIO = 0.25
+
+
+def low_vault_mask(h_m: np.ndarray, use: np.ndarray, closes: np.ndarray) -> np.ndarray:
+    """Rows whose step vaults the pelvis by less than :data:`LOW_VAULT_RATIO` of its local vault
+    (:func:`local_medians` of ``h_m``, the steps' vertical excursions): a contact that starts no pendulum vault is
+    a weight shift in place, no step (decision W119). Rows without a local vault are never flagged."""
+    h = np.asarray(h_m, dtype=np.float64)
+    local = local_medians(h, use, closes)
+    return np.asarray(use, dtype=bool) & np.isfinite(local) & (h < LOW_VAULT_RATIO * np.nan_to_num(local))
 
 
 def frequency_length(f_hz: np.ndarray, a: float, b: float) -> np.ndarray:

@@ -58,6 +58,7 @@ from pdrlearn.waist.plausibility import (
     walk_ratio_message,
 )
 from pdrlearn.waist.posture import tilt_gate, transfer_veto
+from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
 
 log = logging.getLogger(__name__)
@@ -361,7 +362,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
-                   "sit_veto": False, "pause_steps": False}
+                   "sit_veto": False, "pause_steps": False, "vault_veto": False}
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
 
@@ -382,7 +383,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
                 relative_gate: bool | None = None, stairs_length: bool | None = None, stairs_climb: bool | None = None,
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
-                sit_veto: bool | str | None = None, pause_steps: bool | None = None) -> TrackResult:
+                sit_veto: bool | str | None = None, pause_steps: bool | None = None,
+                vault_veto: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -433,6 +435,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     pause_steps : pendulum, offline detector (the realtime one ignores it: it looks three steps ahead): a step
         longer than 1.5 local periods spans a pause (the stop before a turn on the spot, the restart after it) and
         keeps one period's length (decision W111); default False
+    vault_veto : pendulum, offline detector (the realtime one ignores it: it looks three steps ahead): drop a contact
+        whose step vaults the pelvis by less than a quarter of its neighbours' (a weight shift while standing, no
+        step; decision W119, :func:`pdrlearn.waist.posture.vault_veto`); default False
 
     The altitude (trajectory ``z``, steps ``dz_m``) is the waist barometer's, relative to the start (decision
     W89); without a barometer it stays 0 with one warning (W90).
@@ -451,7 +456,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "merge_fragments": merge_fragments, "length_smoothing": length_smoothing,
              "relative_gate": relative_gate, "stairs_length": stairs_length, "stairs_climb": stairs_climb,
              "slow_turn_rps": slow_turn_rps,
-             "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps}
+             "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
+             "vault_veto": vault_veto}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -465,6 +471,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                         "(decision W56); drop realtime or set length_smoothing to none")
     if o["sit_veto"] not in SIT_VETO_VALUES:
         raise DataError(f"sit_veto {o['sit_veto']!r} is not one of false, true, \"rhythm\" (decisions W104, W109); "
+                        "fix the option or the PARAMS.json \"options\"")
+    if o["vault_veto"] not in (False, True):
+        raise DataError(f"vault_veto {o['vault_veto']!r} is not one of false, true (decision W119); "
                         "fix the option or the PARAMS.json \"options\"")
     if p.source == "calibrated" and p.pipeline not in (None, pipeline):
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
@@ -496,6 +505,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept
         steps = transfer_veto(steps, imu, keep_rhythm=o["sit_veto"] == "rhythm")
         n_vetoed = steps.attrs["n_vetoed"]
+    n_unvaulted = 0
+    if o["vault_veto"] and pipeline == "waist-pendulum" and not realtime:  # W119: no vault, no step
+        steps = drop_unvaulted(steps, imu)
+        n_unvaulted = steps.attrs["n_unvaulted"]
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
@@ -549,6 +562,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "walk_ratio": ratio,
         "n_tilted_contacts": n_tilted,
         "n_vetoed_contacts": n_vetoed,
+        "n_unvaulted_contacts": n_unvaulted,
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)

@@ -12,6 +12,10 @@ tilt from the walking upright exceeds :data:`TRANSFER_PEAK_DEG`: a brief transfe
 
 Decision W109: ``keep_rhythm`` spares the contacts in that window that alternate left/right with a neighbour of their
 walking sequence (W20's sides): a transfer or a bend is sagittal and shifts no weight sideways, a step does.
+
+Decision W119: :func:`vault_veto` drops a contact whose step does not vault the pelvis (a weight shift while standing:
+a pendulum step raises the pelvis, h ~ s^2 / (8 L), seed 003 eq. 2); not the trunk's posture, but the same
+mechanism of dropping contacts.
 """
 
 from __future__ import annotations
@@ -22,6 +26,7 @@ import pandas as pd
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU
 from pdrlearn.waist.plausibility import contact_lateral_velocity
+from pdrlearn.waist.steplength import pendulum_h
 
 #: A contact whose trunk direction is further than this from the session's walking upright is no step (deg; W102).
 MAX_TILT_DEG = 40.0
@@ -77,7 +82,7 @@ def flexion_events(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) -> l
             for a, b in zip(edges[::2], edges[1::2], strict=True)]
 
 
-def _drop_contacts(steps: pd.DataFrame, keep: np.ndarray, count: str) -> pd.DataFrame:
+def drop_contacts(steps: pd.DataFrame, keep: np.ndarray, count: str) -> pd.DataFrame:
     """``steps`` without the contacts not in ``keep``; a kept step whose next contact is dropped ends its walking
     sequence (``end_s`` = its start, no ``has_next``, confidence 0.5, as :func:`pdrlearn.kernels.waist.contact_rows`
     closes a sequence). ``attrs[count]`` counts the dropped."""
@@ -120,7 +125,7 @@ def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = Fal
     if keep_rhythm and veto.any():
         side = K.step_sides(contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, e), has_next)
         veto &= ~alternating_pairs(side, has_next)
-    return _drop_contacts(steps, ~veto, "n_vetoed")
+    return drop_contacts(steps, ~veto, "n_vetoed")
 
 
 def tilt_gate(steps: pd.DataFrame, imu: WaistIMU, max_tilt_deg: float = MAX_TILT_DEG) -> pd.DataFrame:
@@ -133,4 +138,30 @@ def tilt_gate(steps: pd.DataFrame, imu: WaistIMU, max_tilt_deg: float = MAX_TILT
         out.attrs["n_tilted"] = 0
         return out
     tilt = contact_tilt_deg(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool))
-    return _drop_contacts(steps, tilt <= max_tilt_deg, "n_tilted")
+    return drop_contacts(steps, tilt <= max_tilt_deg, "n_tilted")
+
+
+def vault_veto(steps: pd.DataFrame, imu: WaistIMU) -> pd.DataFrame:
+    """``steps`` without the contacts whose step (IC to next IC, :func:`~pdrlearn.waist.steplength.pendulum_h`, W10)
+    vaults the pelvis by less than a quarter of its neighbours' (:func:`pdrlearn.kernels.waist.low_vault_mask`:
+    under half their step length by the pendulum relation; decision W119). W27's fragments and their owners are not
+    judged and not neighbours (their vault is a split step's); sequence-closing contacts are not judged. The step
+    before a dropped contact ends its sequence (:func:`drop_contacts`). ``attrs["n_unvaulted"]`` counts the
+    dropped."""
+    if steps.empty:
+        out = steps.copy()
+        out.attrs["n_unvaulted"] = 0
+        return out
+    fs = imu.fs
+    has_next = steps["has_next"].to_numpy(bool)
+    start, end = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    split = np.zeros(len(steps), dtype=bool)
+    for a, b in K.fragment_windows(start, end, has_next).values():
+        split[a:b + 1] = True
+    idx = np.clip(np.round((steps["event_s"].to_numpy(float) - imu.t[0]) * fs).astype(int), 0, len(imu.t) - 1)
+    fc = np.round((steps["fc_s"].fillna(-1).to_numpy(float) - imu.t[0]) * fs).astype(int)
+    use = has_next & ~split
+    h = np.zeros(len(steps))
+    for i in np.flatnonzero(use):
+        h[i] = pendulum_h(imu.acc_v, fs, idx[i], fc[i], idx[i + 1])
+    return drop_contacts(steps, ~K.low_vault_mask(h, use, ~has_next), "n_unvaulted")
