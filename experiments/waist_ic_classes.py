@@ -39,7 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.io import read_session
-from pdrlearn.steps.evaluate import in_intervals, match_events
+from pdrlearn.steps.evaluate import match_events
 from pdrlearn.track.waist import track_waist
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import waist_imu
@@ -93,15 +93,27 @@ def classify(session, steps, **track_kw) -> dict:
     return r
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def cli(doc: str) -> Path:
+    """``[--external DIR]`` of this script and experiments/waist_vault_veto.py; the run's warnings silenced."""
+    ap = argparse.ArgumentParser(description=doc.split("\n")[0])
     ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
-    args = ap.parse_args()
+    external = ap.parse_args().external
     warnings.filterwarnings("ignore")
     logging.disable(logging.WARNING)
+    return external
+
+
+def class_counts(r: dict) -> dict[str, int]:
+    """``{"FP <class>": n, ..., "FN <class>": n}`` of one :func:`classify` result."""
+    return ({f"FP {c}": sum(x["cls"] == c for x in r["fp"]) for c in FP_CLASSES}
+            | {f"FN {c}": sum(x["cls"] == c for x in r["fn"]) for c in FN_CLASSES})
+
+
+def main() -> None:
+    external = cli(__doc__)
     res, tot = {}, {"tp": 0, "det": 0, "ref": 0}
     for sub in C.SUBJECTS:
-        s = read_session(args.external / f"mobgap_{sub}_Test11_Trial1")
+        s = read_session(external / f"mobgap_{sub}_Test11_Trial1")
         steps = track_waist(s, pipeline="waist-pendulum").steps
         res[sub] = r = classify(s, steps)
         m = step_metrics(steps, s)
@@ -114,8 +126,7 @@ def main() -> None:
     print("|" + "---|" * (4 + len(cols)))
     total = dict.fromkeys(cols, 0)
     for sub, r in res.items():
-        n = {f"FP {c}": sum(x["cls"] == c for x in r["fp"]) for c in FP_CLASSES}
-        n |= {f"FN {c}": sum(x["cls"] == c for x in r["fn"]) for c in FN_CLASSES}
+        n = class_counts(r)
         for c in cols:
             total[c] += n[c]
         print(f"| {sub} | {C.f1(r['tp'], r['det'], r['ref']):.3f} ({r['tp']}/{r['det']}/{r['ref']}) | "

@@ -18,12 +18,9 @@ Writes experiments/results/waist_vault_veto.md.
 
 from __future__ import annotations
 
-import argparse
 import contextlib
 import io
-import logging
 import sys
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -66,11 +63,7 @@ def counts(steps, session) -> tuple[int, int, int, float]:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
-    args = ap.parse_args()
-    warnings.filterwarnings("ignore")
-    logging.disable(logging.WARNING)
+    external = W.cli(__doc__)
     ok = {}
     print("## (a) simulated daily activities, users 1300-1349, waist-pendulum, off -> vault_veto\n")
     print("| bounce | F1 off (TP/det/ref) | F1 on (TP/det/ref) | recall off -> on |")
@@ -91,7 +84,7 @@ def main() -> None:
     print("|---|---|---|---|---|")
     pool = {v: [0, 0, 0] for v in (False, True)}
     ok_b, ok_c = True, True
-    for d in sorted(args.external.glob("mobgap_*_Test*_Trial*")):
+    for d in sorted(external.glob("mobgap_*_Test*_Trial*")):
         s = read_session(d)
         res = {v: track_waist(s, pipeline="waist-pendulum", vault_veto=v) for v in (False, True)}
         if "step_f1" not in step_metrics(res[False].steps, s):  # no timed reference contacts (HA002 Test5 Trial2)
@@ -116,12 +109,9 @@ def main() -> None:
     print(f"\nW119: {'ADOPT' if all(ok.values()) else 'not adopted'}\n")
     print("## For information: the Test11 error classes with vault_veto (experiments/waist_ic_classes.py)\n")
     for sub in W.C.SUBJECTS:
-        s = read_session(args.external / f"mobgap_{sub}_Test11_Trial1")
+        s = read_session(external / f"mobgap_{sub}_Test11_Trial1")
         r = W.classify(s, track_waist(s, pipeline="waist-pendulum", vault_veto=True).steps)
-        n = {c: sum(x["cls"] == c for x in r["fp"]) for c in W.FP_CLASSES}
-        m = {c: sum(x["cls"] == c for x in r["fn"]) for c in W.FN_CLASSES}
-        print(f"{sub}: FP " + ", ".join(f"{k} {v}" for k, v in n.items() if v)
-              + "; FN " + ", ".join(f"{k} {v}" for k, v in m.items() if v))
+        print(f"{sub}: " + ", ".join(f"{k} {v}" for k, v in W.class_counts(r).items() if v))
 
 
 if __name__ == "__main__":
