@@ -43,10 +43,10 @@ def sim_bouts(session, gap_s: float = BOUT_GAP_S) -> list[tuple[float, float]]:
     return [(ic[a], ic[b]) for a, b in zip(np.r_[0, cut + 1], np.r_[cut, ic.size - 1], strict=True) if b > a]
 
 
-def sim_daily(pause: bool) -> pd.DataFrame:
+def sim_daily(pause: bool | str, users=USERS) -> pd.DataFrame:
     """Rule (a): per bout of each user's daily-activity route, the calibrated pendulum's error (%)."""
     rows = []
-    for u in USERS:
+    for u in users:
         prof = UserProfile.from_seed(u)
         cal = simulate_path(parse_route("straight:20"), prof, rate_hz=100, seed=u + 5000)
         base, _ = resolve_params(cal, None)
@@ -62,7 +62,7 @@ def sim_daily(pause: bool) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def real(ext: Path, pause: bool) -> tuple[pd.DataFrame, pd.DataFrame]:
+def real(ext: Path, pause: bool | str) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Rules (b), (c): experiments/waist.py's calibrated and default rows of the offline pendulum."""
     bouts: list = []
     df = W.real(ext, W.external_runs(ext), configs=[("waist-pendulum", "waist-pendulum", {"pause_steps": pause})],
