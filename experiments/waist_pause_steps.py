@@ -62,6 +62,13 @@ def sim_daily(pause: bool | str, users=USERS) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def print_users_better(off: pd.DataFrame, on: pd.DataFrame) -> None:
+    """The line of how many simulated users' median |bout error| (:func:`sim_daily`) fell / rose, off -> on."""
+    per_user = off.assign(on=on.err_pct.abs(), off=lambda x: x.err_pct.abs()).groupby("user")[["off", "on"]].median()
+    print(f"users whose median |bout error| fell / rose: {(per_user.on < per_user.off).sum()} / "
+          f"{(per_user.on > per_user.off).sum()} of {len(per_user)}")
+
+
 def real(ext: Path, pause: bool | str) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Rules (b), (c): experiments/waist.py's calibrated and default rows of the offline pendulum."""
     bouts: list = []
@@ -100,10 +107,7 @@ def main() -> None:
         print("  (b) Test11 median per bout vs Length / vs strides: " + ", ".join(
             f"{k} {v.a:.3f} / {v.s:.3f} %" for k, v in t11.iterrows()), flush=True)
     off, on = res[False], res[True]
-    per_user = off["users_better"].assign(on=on["users_better"].err_pct.abs(), off=lambda x: x.err_pct.abs()
-                                          ).groupby("user")[["off", "on"]].median()
-    print(f"users whose median |bout error| fell / rose: {(per_user.on < per_user.off).sum()} / "
-          f"{(per_user.on > per_user.off).sum()} of {len(per_user)}")
+    print_users_better(off["users_better"], on["users_better"])
     rules = {"(a) simulated daily activities falls >= 1.0 point": on["sim_daily"] <= off["sim_daily"] - 1.0,
              "(b) no Test11 subject's median rises > 0.5 point": bool(
                  ((on["t11"] - off["t11"]) <= 0.5).to_numpy().all()),

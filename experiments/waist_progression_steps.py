@@ -57,10 +57,7 @@ def main() -> None:
     args = ap.parse_args()
     logging.disable(logging.WARNING)
     off, on = (measure(args.external, v, args.sim_users) for v in (False, CANDIDATE))
-    per_user = off["daily"].assign(on=on["daily"].err_pct.abs(), off=lambda x: x.err_pct.abs()
-                                   ).groupby("user")[["off", "on"]].median()
-    print(f"users whose median |bout error| fell / rose: {(per_user.on < per_user.off).sum()} / "
-          f"{(per_user.on > per_user.off).sum()} of {len(per_user)}")
+    P.print_users_better(off["daily"], on["daily"])
     rules = {"(a) simulated daily activities falls >= 0.5 point": on["sim_daily"] <= off["sim_daily"] - 0.5,
              "(b) no Test11 subject's median (vs Length, vs strides) rises > 1.0 point": bool(
                  ((on["t11"] - off["t11"]) <= 1.0).to_numpy().all()),
