@@ -229,9 +229,24 @@ def _smoothed_g(steps: pd.DataFrame, g: np.ndarray, use: np.ndarray, win: dict[i
     return out
 
 
+def _still_displacements(imu: WaistIMU, idx: np.ndarray, use: np.ndarray,
+                         win: dict[int, tuple[int, int]]) -> np.ndarray:
+    """Decision W122: per step row (``use``; a W27 owner over its whole window) the unit's horizontal travel from
+    its contact to the next when it stands still in between (:func:`~pdrlearn.signal.conditioning.standstill_mask`
+    with its defaults, :func:`~pdrlearn.waist._kernels.still_displacement`); NaN elsewhere."""
+    from pdrlearn.signal.conditioning import standstill_mask
+
+    still = standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)
+    out = np.full(len(idx), np.nan)
+    for i in np.flatnonzero(use):
+        a, b = win.get(i, (i, i))
+        out[i] = K.still_displacement(imu.acc_h, still, imu.fs, int(idx[a]), int(idx[min(b + 1, len(idx) - 1)]))
+    return out
+
+
 def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: str, thr: float, *,
                   turn_factor: bool = False, merge_fragments: bool = False,
-                  length_smoothing: str = "none", pause_steps: bool = False) -> pd.DataFrame:
+                  length_smoothing: str = "none", pause_steps: bool | str = False) -> pd.DataFrame:
     """Steps table with ``length_m`` (0 for sequence-closing contacts), ``frequency_hz``, ``dyaw_rad``
     (vertical-gyro rotation during the step) and, for the pendulum, ``h_m`` (vertical excursion) and
     ``merged`` (True: a fragment whose length its neighbour carries).
@@ -240,7 +255,9 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
     neighbour, whose h and rotation are taken over both (decision W27). ``length_smoothing`` (pendulum): mobgap's
     smoothing of the per-step ``g = 2 sqrt(2 L h - h^2)`` per walking sequence (decision W56), kept in ``g_m``;
     the length is ``K g_m + F``. ``pause_steps`` (pendulum): a step longer than 1.5 local periods keeps one period's
-    length, ``x period / duration`` (decision W111), kept in ``pause_factor`` for the calibration (W21)."""
+    length, ``x period / duration`` (decision W111); ``"progression"``: a step during which the unit stands still
+    keeps at most the trunk's horizontal travel over it (decision W122); the factor is kept in ``pause_factor`` for
+    the calibration (W21)."""
     n, fs = len(steps), imu.fs
     idx = np.clip(np.round((steps["event_s"].to_numpy(float) - imu.t[0]) * fs).astype(int), 0, len(imu.t) - 1)
     has_next = steps["has_next"].to_numpy(bool)
@@ -268,7 +285,11 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
         sl = K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m) if length_smoothing == "none" else p.k * g + p.f_m
         lengths = np.where(use, np.maximum(sl, 0.0), 0.0)
         steps = steps.assign(h_m=h, g_m=g, merged=merged)
-        if pause_steps:  # W111: the owner of a W27 window spans the whole window
+        if pause_steps == "progression":  # W122: the trunk's own travel over a step with a standstill in it
+            factor = K.progression_factor(_still_displacements(imu, idx, use, win), lengths)
+            lengths = lengths * factor
+            steps = steps.assign(pause_factor=factor)
+        elif pause_steps:  # W111: the owner of a W27 window spans the whole window
             span = dur.copy()
             for i, (a, b) in win.items():
                 span[i] = end[b] - steps["start_s"].to_numpy(float)[a]
@@ -365,6 +386,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "sit_veto": False, "pause_steps": False, "vault_veto": False}
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
+#: the values of the ``pause_steps`` option: off, W111's one period, W122's trunk travel over a standstill
+PAUSE_STEPS_VALUES = (False, True, "progression")
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -383,7 +406,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
                 relative_gate: bool | None = None, stairs_length: bool | None = None, stairs_climb: bool | None = None,
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
-                sit_veto: bool | str | None = None, pause_steps: bool | None = None,
+                sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
                 vault_veto: bool | None = None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -434,7 +457,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         sequence (decision W109); ``False`` (default): no veto
     pause_steps : pendulum, offline detector (the realtime one ignores it: it looks three steps ahead): a step
         longer than 1.5 local periods spans a pause (the stop before a turn on the spot, the restart after it) and
-        keeps one period's length (decision W111); default False
+        keeps one period's length (decision W111); ``"progression"``: a step during which the unit stands still
+        (``standstill_mask``) keeps at most the trunk's horizontal travel over it, integrated from zero velocity in
+        the standstill (decision W122); default False
     vault_veto : pendulum, offline detector (the realtime one ignores it: it looks three steps ahead): drop a contact
         whose step vaults the pelvis by less than a quarter of its neighbours' (a weight shift while standing, no
         step; decision W119, :func:`pdrlearn.waist.posture.vault_veto`); default False
@@ -475,6 +500,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["vault_veto"] not in (False, True):
         raise DataError(f"vault_veto {o['vault_veto']!r} is not one of false, true (decision W119); "
                         "fix the option or the PARAMS.json \"options\"")
+    if o["pause_steps"] not in PAUSE_STEPS_VALUES:
+        raise DataError(f"pause_steps {o['pause_steps']!r} is not one of false, true, \"progression\" (decisions "
+                        "W111, W122); fix the option or the PARAMS.json \"options\"")
     if p.source == "calibrated" and p.pipeline not in (None, pipeline):
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
@@ -514,7 +542,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = cut_steps_at_gaps(steps, gaps)
     steps = _step_lengths(steps, imu, p, pipeline, thr, turn_factor=bool(o["turn_factor"]),
                           merge_fragments=bool(o["merge_fragments"]), length_smoothing=smoothing,
-                          pause_steps=bool(o["pause_steps"]) and not realtime)
+                          pause_steps=o["pause_steps"] if not realtime else False)
     stairs = _stairs_steps(session, steps, bool(o["stairs_climb"]))
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
         steps = steps.assign(length_m=np.where(stairs, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
