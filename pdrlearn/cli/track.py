@@ -322,6 +322,12 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     waist_asked = o.get("detector_unit") == "waist" or o.get("length_model") is not None  # E84, E85
     if pipeline == "auto" and waist_asked:
         pipeline = "waist-pendulum"  # a lower-back detector or step-length model: the user means the lower back
+    if waist_asked and not session.has("wAccelerometer"):
+        asked = (f"--detector {o['detector']} detects lower-back steps" if o.get("detector_unit") == "waist" else
+                 f"--length-model {o['length_model']} sets the lower-back step length")
+        raise DataError(f"track: {asked}, but {session.where} has no lower-back unit (wAccelerometer.csv); choose a "
+                        "foot detector (accel, accel-force or a plug-in with unit 'foot'), or a session with a waist "
+                        "unit")
     if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts
                                or o.get("detector") is not None):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot

@@ -29,7 +29,7 @@ SPAN_MARGIN_S = 2.0
 
 def check_unit(unit, where: str) -> str:
     """Decision B168: ``unit`` is one of :data:`STEP_UNITS` (exact spelling), else one line naming it."""
-    if unit is None:  # decision E86: a detector class declares its unit
+    if unit is None:  # decision steps 40: a detector class declares its unit
         raise DataError(f"{where}: declares no unit; set the class attribute unit = 'foot' (one event per stride "
                         "of the instrumented foot) or unit = 'waist' (every initial contact of both feet)")
     if not isinstance(unit, str) or unit not in STEP_UNITS:
@@ -95,6 +95,7 @@ class OnlineStepDetector:
     def __init__(self, detector: StepDetector, fs: float, **context):
         if not (np.isfinite(fs) and fs > 0):
             raise DataError(f"{detector.name}: sampling rate {fs!r} Hz is not a positive number")
+        check_unit(detector.unit, f"detector {detector.name}")  # decision steps 40: before any sample
         self.detector = detector
         self.fs = float(fs)
         self._last_t = -np.inf
@@ -139,7 +140,7 @@ class StepDetector(Settings):
     """
 
     name = "base"
-    #: "foot" or "waist": no default (decision E86) - a waist detector that inherited "foot" was scored against
+    #: "foot" or "waist": no default (decision steps 40) - a waist detector that inherited "foot" was scored against
     #: one foot's strides
     unit: str | None = None
     input_columns: tuple[str, ...] = ()

@@ -45,6 +45,8 @@ class StepLengthModel(Settings):
 
     name = "base"
     uses_leg_length = True
+    #: settings for a model whose defaults cannot run (weinberg's gain): the contract test and examples use them
+    example_settings: dict = {}
 
     def predict(self, steps: pd.DataFrame, signals, profile: WaistParams) -> np.ndarray:
         raise NotImplementedError
@@ -193,6 +195,7 @@ class WeinbergLength(StepLengthModel):
 
     name = "weinberg"
     uses_leg_length = False
+    example_settings = {"k": 0.45}
 
     def __init__(self, *, k: float | None = None):
         self._store(locals())
