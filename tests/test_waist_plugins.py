@@ -205,3 +205,56 @@ def test_track_cli_waist_detector_and_length_model(tmp_path: Path, capsys):
     assert "--length-model sets the lower-back pipelines' step length" in capsys.readouterr().err
     assert main(["track", sess, "--pipeline", "waist-pll", "--detector", "accel", "--out", str(tmp_path / "d")]) == 2
     assert "--detector accel detects the foot's strides" in capsys.readouterr().err
+
+
+MY_PLUGIN = '''
+import numpy as np
+
+
+def half(steps, signals, profile):
+    return np.full(len(steps), 0.5)
+
+
+def logreg(task, unit, *, seed=0):
+    from sklearn.linear_model import LogisticRegression
+    from sklearn.pipeline import Pipeline
+
+    from pdrlearn.features import make_features
+
+    return Pipeline([("features", make_features(task, unit, "svm")), ("clf", LogisticRegression())])
+'''
+
+
+def test_installed_length_models_and_methods_reach_the_cli(tmp_path):
+    from tests.test_plugins import _cli, _dist
+
+    env = _dist(tmp_path, """
+        [pdrlearn.step_lengths]
+        half = my_waist_plugin:half
+        frequency = my_waist_plugin:half
+        [pdrlearn.methods]
+        logreg = my_waist_plugin:logreg
+    """)
+    (tmp_path / "my_waist_plugin.py").write_text(MY_PLUGIN)
+    r = _cli(["track", str(REAL / "mobgap_HA001_Test5_Trial1"), "--length-model", "half", "--out",
+              str(tmp_path / "t"), "--json"], env)
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert out["info"]["methods"]["length"] == "half"
+    taken = [ln for ln in r.stderr.splitlines() if "plug-in 'frequency'" in ln]  # no built-in is replaced
+    assert len(taken) == 1 and "taken by the built-in step-length model" in taken[0]
+    r = _cli(["train", str(tmp_path), "--methods", "logreg,nosuch", "--out", str(tmp_path / "m")], env)
+    assert r.returncode == 2 and "unknown method nosuch; choose from" in r.stderr and "logreg" in r.stderr
+
+
+def test_the_docs_weinberg_plugin_runs_and_equals_the_builtin():
+    """docs/extending.md's plug-in example, executed as printed: the same lengths as the built-in ``weinberg``."""
+    text = (Path(__file__).resolve().parents[1] / "docs" / "extending.md").read_text()
+    block = next(b for b in re.findall(r"```python\n(.*?)```", text, re.S) if "class MyWeinberg" in b)
+    try:
+        exec(compile(block, "docs/extending.md", "exec"), {"__name__": "docs_extending"})
+        w = _walk()
+        mine = get_step_length("my-weinberg:k=0.5").predict(w["steps"], w["imu"], w["profile"])
+        np.testing.assert_allclose(mine, WeinbergLength(k=0.5).predict(w["steps"], w["imu"], w["profile"]))
+    finally:
+        STEP_LENGTHS._items.pop("my-weinberg", None)
