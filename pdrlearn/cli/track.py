@@ -66,6 +66,13 @@ TOE_OFF_OPT = typer.Option(False, "--toe-off", help="plasys, offline: add the to
                            "stance_time_s, swing_time_s, stance_pct to steps.csv (decision L73: an option, "
                            "not the default - its toe-off runs ~21 ms early against mocap, see "
                            "docs/localization.md).")
+DETECTOR_OPT = typer.Option(None, "--detector", help="The steps from this step detector (a built-in or a registered "
+                            "/ installed plug-in, docs/extending.md): a foot detector gives plasys its strides "
+                            "(decision L149), a waist one (unit 'waist') gives the lower-back pipeline its contacts "
+                            "(decision E85). Default: the pipeline's own.")
+LENGTH_MODEL_OPT = typer.Option(None, "--length-model", help="Lower-back pipelines: the step-length model (pendulum, "
+                                "frequency, weinberg:k=GAIN or a plug-in; NAME:key=value,... sets its settings; "
+                                "decision E84). Default: the pipeline's own.")
 CONTACTS_OPT = typer.Option(False, "--contacts", help="plasys --streaming: each stride's initial contact "
                             "(force onset, else the accelerometer impact) and so stride_time_s, cadence_spm, "
                             "speed_mps (decisions E49-E51; `pdrlearn run --contacts` gives the same).")
@@ -115,13 +122,8 @@ def track(
     reference_point: str = REFERENCE_POINT_OPT,
     toe_off: bool = TOE_OFF_OPT,
     contacts: bool = CONTACTS_OPT,
-    detector: str = typer.Option(None, "--detector", help="The steps from this step detector (a built-in or a "
-                                 "registered / installed plug-in, docs/extending.md): a foot detector gives "
-                                 "plasys its strides (decision L149), a waist one (unit 'waist') gives the "
-                                 "lower-back pipeline its contacts (decision E85). Default: the pipeline's own."),
-    length_model: str = typer.Option(None, "--length-model", help="Lower-back pipelines: the step-length model "
-                                     "(pendulum, frequency, weinberg:k=GAIN or a plug-in; NAME:key=value,... sets "
-                                     "its settings; decision E84). Default: the pipeline's own."),
+    detector: str = DETECTOR_OPT,
+    length_model: str = LENGTH_MODEL_OPT,
     dpi: int = DPI_OPT,
     common_span: bool = COMMON_SPAN_OPT,
     units: str = UNITS_OPT,
