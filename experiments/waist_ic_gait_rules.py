@@ -45,10 +45,10 @@ from pdrlearn.steps.evaluate import in_intervals, reference_events, score_events
 from pdrlearn.track.base import TrackResult
 from pdrlearn.track.evaluate import evaluate_track
 from pdrlearn.track.waist import MAX_STEP_S, _step_lengths, track_waist
-from pdrlearn.waist.lengths import PendulumLength
 from pdrlearn.waist import gait_rules as G
 from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
+from pdrlearn.waist.lengths import PendulumLength
 from pdrlearn.waist.params import resolve_params
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -184,7 +184,7 @@ for _name in BUILTIN_METHODS:
 def register_method(name: str, factory, *, replace: bool = False):
     """Make ``factory(task, unit, *, seed=0) -> an unfitted classifier`` (``fit(X, y)`` / ``predict_proba(X)`` on
     step-window arrays, string class labels; e.g. a Pipeline of ``pdrlearn.features.make_features(task, unit,
-    "svm")`` and your classifier) the training method ``name``: ``pdrlearn train --methods name`` trains it per
+    "svm")`` and your classifier) the training method ``name``: ``pdrlearn train --methods NAME`` trains it per
     unit (and its fused soft vote), cross-validated as the built-ins; ``evaluate`` and ``track --model`` use it;
     ``export`` refuses it (the runtime has no recipe for it). A built-in name is refused unless ``replace=True``
     (decision E81)."""
