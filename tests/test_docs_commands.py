@@ -278,6 +278,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
+    from pdrlearn.waist.lengths import get_step_length
 
     def settings(kind):
         return lambda v: check_settings(**{kind: [s.strip() for s in v.split(",")]})
@@ -311,6 +312,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "units"): parse_units,  # decision B127
         ("export", "length_bounds"): two_numbers,
         ("export", "methods"): _one_of(METHODS, listed=True),
+        ("track", "length_model"): get_step_length,  # decision E84: NAME[:key=value,...]
         ("run", "rules"): _one_of(RULES),
         ("run", "units"): _one_of(BODY_UNITS, listed=True),
         ("train", "boundaries"): _one_of(BOUNDARIES),
