@@ -43,8 +43,9 @@ def main(bundle: str, session_dir: str, passes: int = 5) -> None:
           f"CPU time p50 {np.percentile(cpu, 50):.3f} ms, min-of-passes p50 {np.median(fastest):.3f} ms "
           f"({len(s.steps)} steps x {passes})")
     y, o, n = push_latencies(bundle, s, repeat=passes)
-    print(f"{pdrlearn.__file__}: push yielding a step p50 {np.percentile(y, 50):.3f} ms, p95 {np.percentile(y, 95):.3f} "
-          f"ms, p99 {np.percentile(y, 99):.3f} ms ({n} steps x {passes}); other pushes mean {np.mean(o) * 1e3:.1f} us, "
+    print(f"{pdrlearn.__file__}: push yielding a step p50 {np.percentile(y, 50):.3f} ms, "
+          f"p95 {np.percentile(y, 95):.3f} ms, p99 {np.percentile(y, 99):.3f} ms ({n} steps x {passes}); "
+          f"other pushes mean {np.mean(o) * 1e3:.1f} us, "
           f"p95 {np.percentile(o, 95) * 1e3:.1f} us")
 
 
