@@ -5,7 +5,8 @@ The thesis uses the barometer "in differential mode": the altitude is the change
 reference point, not an absolute height, because the sea-level pressure drifts with the weather by more than
 four storeys over a month (thesis ch.4.3.1.4, Figure 44, Table 18). :func:`relative_altitude` is that
 differential altitude, from the international barometric formula (:func:`pressure_hpa`, the formula the
-simulator writes ``wBarometer`` with, docs/simulator.md).
+simulator writes ``wBarometer`` with, docs/simulator.md). :func:`fuse_altitude` fuses it with a foot track's
+strides (decision L154, an option).
 """
 
 from __future__ import annotations
