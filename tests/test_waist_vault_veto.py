@@ -135,3 +135,17 @@ def test_the_measured_real_row_ha002_test11():
     m0, m1 = step_metrics(off.steps, s), step_metrics(on.steps, s)
     assert (m0["n_detected"], m1["n_detected"], m1["n_reference"]) == (42, 40, 46)
     assert round(m0["step_f1"], 4) == 0.8182 and round(m1["step_f1"], 4) == 0.8372
+
+
+def test_the_measured_real_rows_of_w127():
+    """W127's (b) rows: HA002 Test11 keeps 5 of W119's 6 dropped contacts (their steps turn the pelvis 15.4-36.5
+    deg), F1 0.8182 as off; HA001 Test11 drops 6 (W119: 10), F1 0.9449 -> 0.9280 (60/64 -> 58/62 of 63)."""
+    s = read_session(external_session("mobgap_HA002_Test11_Trial1"))
+    on = track_waist(s, pipeline="waist-pendulum", vault_veto="turns")
+    assert on.info["n_unvaulted_contacts"] == 1 and on.info["options"]["vault_veto"] == "turns"
+    assert round(step_metrics(on.steps, s)["step_f1"], 4) == 0.8182
+    s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
+    on = track_waist(s, pipeline="waist-pendulum", vault_veto="turns")
+    m = step_metrics(on.steps, s)
+    assert on.info["n_unvaulted_contacts"] == 6
+    assert (m["n_detected"], m["n_reference"], round(m["step_f1"], 4)) == (62, 63, 0.9280)
