@@ -412,11 +412,22 @@ class UserModel:
         tasks: Sequence[str] | None = None,
         method: str | None = None,
         unit: str | None = None,
+        windows: str | None = None,
+        warn_rate: bool = True,
     ) -> pd.DataFrame:
         """Classify every step of ``steps`` (default ``session.steps``).
 
+        ``windows`` (decision C51): ``"track"`` (the default when ``steps`` is given, e.g. a detector's table)
+        classifies each step on the window ``pdrlearn track --method M3`` classifies it on
+        (:func:`pdrlearn.track.plasys.model_windows`: the rest-to-rest stride the step makes, re-cut on the
+        streaming segmenter's stride), so the classes equal track's; ``"given"`` (the default for the session's
+        labelled steps, the windows the model was trained on) classifies on the steps' own ``start_s``/``end_s``.
+        With ``"track"`` the table also has the ``window_start_s``/``window_end_s`` classified.
+        ``warn_rate``: log decision C18's line when a unit runs at another rate than the model was trained at
+        (decision C52; ``track`` passes False and gives the line in its own warnings).
+
         Returns a DataFrame (one row per step, same index as ``steps``) with, per trained task, the class
-        column (``terrain``, ``direction``, ``length_class``), the probabilities ``p_<task>_<class>`` and
+        column (``terrain``, ``direction``, ``length_class``; ``str``), the probabilities ``p_<task>_<class>`` and
         ``method_<task>`` (``"<method>/<unit>"``). By default each task uses the model's chosen method, or,
         when the session lacks one of its units, the best cross-validated method it can run. A task no
         model can run on the session (e.g. length without force sensors) gets ``None`` classes, NaN
@@ -425,12 +436,27 @@ class UserModel:
         """
         from pdrlearn.features import TASK_COLUMNS, step_windows
 
+        mode = windows or ("given" if steps is None else "track")
+        if mode not in PREDICT_WINDOWS:
+            raise DataError(f"predict_steps: windows={windows!r}; choose one of {', '.join(PREDICT_WINDOWS)}")
         steps = session.steps if steps is None else steps
-        windows = step_windows(session, steps, n_samples=self.n_samples, boundaries=self.boundaries)
+        cut = steps
+        if mode == "track" and steps is not None and {"start_s", "end_s"} <= set(steps.columns):
+            from pdrlearn.track.plasys import model_windows
+
+            cut = model_windows(session, steps).set_axis(steps.index)  # decision C51
+            odd = {k: cut.attrs.get(k, 0) for k in ("own_bounds", "several_strides")}
+            if any(odd.values()):
+                log.info("%s: predict_steps: %d step(s) are no stride between two rests (classified on their own "
+                         "bounds), %d span several strides (classified on their whole span; track splits them)",
+                         session.where, odd["own_bounds"], odd["several_strides"])
+        windows = step_windows(session, cut, n_samples=self.n_samples, boundaries=self.boundaries)
         out = pd.DataFrame(index=steps.index if steps is not None else None)
         for col in ("start_s", "end_s"):
             if col in steps:
                 out[col] = steps[col].to_numpy()
+        if cut is not steps:
+            out["window_start_s"], out["window_end_s"] = cut["start_s"].to_numpy(), cut["end_s"].to_numpy()
         gap_unclassified: dict[tuple, list[str]] = {}  # (lost units, n steps) -> tasks (one line each, B34)
         for task in tasks or list(self.tasks):
             if task not in self.tasks:
@@ -457,7 +483,8 @@ class UserModel:
                                     len(rows), exc)
                     continue
                 col = out.columns.get_loc(TASK_COLUMNS[task])
-                out.iloc[rows, col] = np.asarray(tm.classes, dtype=object)[np.argmax(proba, axis=1)]
+                # plain str classes (decision C53: a model's classes may be numpy strings)
+                out.iloc[rows, col] = np.asarray([str(c) for c in tm.classes], dtype=object)[np.argmax(proba, axis=1)]
                 for j, c in enumerate(tm.classes):
                     out.iloc[rows, out.columns.get_loc(f"p_{task}_{c}")] = proba[:, j]
                 out.iloc[rows, out.columns.get_loc(f"method_{task}")] = f"{m}/{u}"
@@ -469,6 +496,11 @@ class UserModel:
             log.warning("%s: %d step(s) overlapping a sensor gap lost the %s unit%s; no trained %s model runs "
                         "without %s, so they are left unclassified", session.where, n, " and ".join(lost),
                         "s" if len(lost) > 1 else "", "/".join(done), "them" if len(lost) > 1 else "it")
+        off = rate_mismatch(self, session, out)  # decision C52: the line track and evaluate give (C18)
+        if off and warn_rate:
+            from pdrlearn.kernels.distance import classifier_rate_warning
+
+            log.warning("%s: %s", session.where, classifier_rate_warning(off))
         return out
 
     def domain_report(self, pred: pd.DataFrame, *, warn_at: float | None = None) -> dict | None:
@@ -493,6 +525,37 @@ class UserModel:
         """Whether the model stores training ranges (decision C16; models saved before it do not)."""
         return any(has_ranges(est) for tm in self.tasks.values() for per in tm.models.values()
                    for est in per.values())
+
+
+#: ``UserModel.predict_steps(windows=...)``: track's windows of a detected table, or the steps' own (decision C51)
+PREDICT_WINDOWS = ("track", "given")
+#: the units whose sensors a classifier of ``method_<task> = "<method>/<unit>"`` reads
+_UNIT_OF = {"foot": ("foot",), "waist": ("waist",), "fused": ("foot", "waist"), "combined": ("foot", "waist")}
+_UNIT_ACC = {"foot": "fAccelerometer", "waist": "wAccelerometer"}
+
+
+def rate_mismatch(model, session, pred: pd.DataFrame | None = None) -> dict | None:
+    """Decisions C18 / C52: unit -> ``{"trained_hz", "session_hz"}`` of the units whose accelerometer runs at
+    another rate than the model's classifiers were trained at (tolerance of
+    :func:`~pdrlearn.kernels.distance.rate_differs`); with a :meth:`UserModel.predict_steps` table ``pred`` only
+    the units its ``method_<task>`` columns used, else both. None: none differ, or a model without rates. One
+    mechanism for ``predict_steps``, ``track`` and ``evaluate``."""
+    from pdrlearn.kernels.distance import rate_differs
+
+    rates = getattr(model, "sampling_rate_hz", None) or {}
+    if not rates:
+        return None
+    used = set(_UNIT_ACC) if pred is None else {
+        u for c in pred.columns if c.startswith("method_")
+        for v in pred[c].dropna().astype(str).unique() if "/" in v for u in _UNIT_OF.get(v.split("/")[1], ())}
+    off = {}
+    for unit in sorted(used):
+        name = _UNIT_ACC[unit]
+        if rates.get(name) and name in session.streams:
+            fs = float(session.streams[name].rate_hz)
+            if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
+                off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
+    return off or None
 
 
 def _gap_groups(windows):

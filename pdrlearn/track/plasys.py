@@ -52,7 +52,6 @@ from pdrlearn.kernels.distance import (
     calibrated_stride_sd,
     classifier_rate_warning,
     level_dz,
-    rate_differs,
 )
 from pdrlearn.kernels.window import (
     GROUP_STREAMS,
@@ -258,6 +257,33 @@ def classification_windows(session: Session, strides: pd.DataFrame) -> pd.DataFr
     return out
 
 
+def model_windows(session: Session, steps: pd.DataFrame) -> pd.DataFrame:
+    """Decision C51: the window a trained model classifies each row of a detected ``steps`` table on, as
+    ``track --method M3`` does: the row made a rest-to-rest stride of the foot unit (the stance of the force
+    sensors, else of the accelerometer + gyroscope, on :class:`~pdrlearn.displace.FootDisplacement`'s grid,
+    :func:`~pdrlearn.displace.foot.rest_to_rest`), then re-cut on the streaming segmenter's stride that covers
+    it (:func:`classification_windows`, decision L38). A detector's swing or contact-to-contact window is not
+    the rest-to-rest window a model is trained on (scenario D: 63 of 68 strides 'up' on the detector's own
+    bounds). One row per row of ``steps`` (``start_s``/``end_s``, s); a row in no stride keeps its own bounds,
+    a row spanning several strides (missed steps, which ``track`` splits) gets their whole span; both are
+    counted in ``attrs`` (``own_bounds``, ``several_strides``). Without the foot unit: the rows' own bounds."""
+    out = steps[["start_s", "end_s"]].astype(float).reset_index(drop=True)
+    own, several = 0, 0
+    if len(out) and session.has("fAccelerometer", "fGyroscope"):
+        foot = unit_data(session, "foot", purpose="the model's step windows")
+        stance = force_stance(session, foot.t, foot.gyr)  # as M3: the force sensors' stance when recorded
+        if stance is None:
+            stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
+        s0, s1, rows = FootDisplacement().stride_bounds(foot, out, stance=stance)
+        by = pd.DataFrame({"start_s": s0, "end_s": s1, "row": rows}).groupby("row")
+        lo, hi = by["start_s"].min(), by["end_s"].max()
+        out.loc[lo.index, "start_s"], out.loc[hi.index, "end_s"] = lo.to_numpy(), hi.to_numpy()
+        own, several = len(out) - len(lo), int((by.size() > 1).sum())
+    win = classification_windows(session, out)
+    win.attrs.update(own_bounds=own, several_strides=several)
+    return win
+
+
 def classes_and_bounds(model, session: Session, steps: pd.DataFrame) -> tuple[pd.DataFrame, object]:
     """M3's step classes and the user's stride-length class bounds, from a trained model or, with
     ``model="oracle"``, from the session's own labels and ``meta.json`` (one place for the offline and the
@@ -295,7 +321,11 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
         from pdrlearn.classify import load_model
 
         model = load_model(model)
-    pred = model.predict_steps(session, steps).reset_index(drop=True)
+    from pdrlearn.classify import UserModel
+
+    # decision C51: the strides are cut already; C18's rate line is the tracker's own warning (rate_check)
+    pred = (model.predict_steps(session, steps, windows="given", warn_rate=False) if isinstance(model, UserModel)
+            else model.predict_steps(session, steps)).reset_index(drop=True)
     if len(pred) != len(steps):
         raise ModelError(f"model predicted {len(pred)} rows for {len(steps)} strides")
     bounds = model_length_bounds(model)
@@ -324,33 +354,21 @@ def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: flo
     return report
 
 
-#: the units whose sensors a classifier of ``method_<task> = "<method>/<unit>"`` reads
-_UNIT_OF = {"foot": ("foot",), "waist": ("waist",), "fused": ("foot", "waist"), "combined": ("foot", "waist")}
-_UNIT_ACC = {"foot": "fAccelerometer", "waist": "wAccelerometer"}
-
-
 def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[str]) -> dict | None:
     """Decision C18: one warning line when a unit whose classifiers classified the strides runs at a rate
-    other than the one the model was trained at (the distance calibration's rate check and tolerance,
-    :func:`~pdrlearn.kernels.distance.rate_differs`): the step windows then hold other signals (a 20 Hz
-    simulator model on a 100 Hz real foot classified 28 of 32 level strides 'up'). Returns unit ->
+    other than the one the model was trained at (:func:`pdrlearn.classify.training.rate_mismatch`, shared with
+    ``UserModel.predict_steps`` and ``evaluate``, decision C52): the step windows then hold other signals (a
+    20 Hz simulator model on a 100 Hz real foot classified 28 of 32 level strides 'up'). Returns unit ->
     ``{"trained_hz", "session_hz"}`` of the units that differ (None: none, or oracle labels / a model
     without rates)."""
-    rates = getattr(model, "sampling_rate_hz", None) or {}
-    if isinstance(model, str | Path) or not rates:
+    if isinstance(model, str | Path):
         return None
-    used = {u for c in classes.columns if c.startswith("method_")
-            for v in classes[c].dropna().astype(str).unique() if "/" in v for u in _UNIT_OF.get(v.split("/")[1], ())}
-    off = {}
-    for unit in sorted(used):
-        name = _UNIT_ACC[unit]
-        if name in rates and name in session.streams and rates[name]:
-            fs = float(session.streams[name].rate_hz)
-            if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
-                off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
+    from pdrlearn.classify.training import rate_mismatch
+
+    off = rate_mismatch(model, session, classes)
     if off:
         warnings.append(classifier_rate_warning(off, resample_hint=True))
-    return off or None
+    return off
 
 
 def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
