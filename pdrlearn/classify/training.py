@@ -721,7 +721,8 @@ def _check_choice(name: str, values: Sequence[str], allowed: Sequence[str]) -> l
     bad = [v for v in values if v not in allowed]
     if bad or not values:
         raise DataError(
-            f"--{name}s: unknown {name} {', '.join(bad) or '(none given)'}; choose from {', '.join(allowed)}"
+            # decision C53: the parameter and the CLI flag, so the line fits train_user and `pdrlearn train`
+            f"{name}s (--{name}s): unknown {name} {', '.join(bad) or '(none given)'}; choose from {', '.join(allowed)}"
         )
     return values
 
@@ -737,7 +738,7 @@ def check_settings(
     """Validate training settings before any data is read; returns the task, method and unit lists.
 
     ``None`` means all of :data:`TASKS` / :data:`DEFAULT_METHODS` / :data:`UNITS`; an empty list is an error.
-    Raises :class:`DataError` naming the option (``--tasks`` ...) and the allowed values.
+    Raises :class:`DataError` naming the parameter and its CLI flag (``tasks (--tasks)`` ...) and the allowed values.
     """
     out = [
         _check_choice(name, (DEFAULT_METHODS if name == "method" else all_) if values is None else values, all_)
@@ -751,11 +752,12 @@ def check_settings(
 
 
 def check_length_units(units: Sequence[str]) -> list[str]:
-    """The length task's own units (decision C38), checked as ``--units`` is; the error names ``--length-units``."""
+    """The length task's own units (decision C38), checked as ``units`` is; the error names ``length_units
+    (--length-units)``."""
     try:
         return check_settings(units=units)[2]
     except DataError as exc:
-        raise DataError(str(exc).replace("--units:", "--length-units:", 1)) from None
+        raise DataError(str(exc).replace("units (--units):", "length_units (--length-units):", 1)) from None
 
 
 def train_task(
@@ -950,6 +952,13 @@ def length_class_bounds(sessions) -> list[float] | None:
     return [float(lo), float(hi)] if 0 < lo < hi else None
 
 
+#: decision C53: train_user's warning when the labels allow no classifier and the model holds only the user's
+#: distance calibration (decision C17)
+NO_CLASSIFIER_LINE = ("no classifier trained (the labels allow none); the model holds the distance calibration: "
+                      "tracking with it (`pdrlearn track SESSION --model DIR`, model=) applies it, the class rules "
+                      "as without a model")
+
+
 def train_user(
     sessions,
     *,
@@ -997,7 +1006,9 @@ def train_user(
         (:func:`pdrlearn.features.windows.rest_boundaries`). Stored in ``settings``; prediction and
         evaluation cut windows the same way (decision C13).
     strict : raise on a task without labels / with a missing class. Default: strict when ``tasks`` is
-        given explicitly; otherwise such tasks are skipped and listed in ``UserModel.skipped``.
+        given explicitly; otherwise such tasks are skipped, listed in ``UserModel.skipped`` and logged (one
+        warning each, decision C53; with no task left the model holds only the distance calibration, one more
+        warning, or :class:`DataError` when there is none either).
     distance_calibration : estimate the user's distance gain from the sessions' labelled stride lengths
         (:func:`pdrlearn.displace.calibrate_distance`, docs/decisions/localization.md L26), stored in
         ``data_summary["distance_calibration"]`` and used by PLASYS M3 with this model.
@@ -1061,7 +1072,7 @@ def train_user(
             if strict:
                 raise
             skipped.append(str(exc))
-            log.info("skipped %s", exc)
+            log.warning("train: skipped %s", exc)  # decision C53: the API says it as the CLI did
             continue
         groups = np.asarray(users, dtype=object)[data.session] if n_users >= 2 else None  # decision C29
         own = task == "length" and length_units is not None  # decision C38
@@ -1081,6 +1092,8 @@ def train_user(
                     "calibrates its step length with 'pdrlearn calibrate DIR --distance METERS', or with the "
                     "reference walking bouts of bouts.csv)")
         raise DataError("train: nothing to train; " + " | ".join(skipped) + f" | {why}")
+    if not out:  # decision C53 (C17 kept): a calibration-only model is a warning, not an error
+        log.warning("train: %s", NO_CLASSIFIER_LINE)
     rates: dict[str, float] = {}
     for s in sessions:
         for name, st in s.streams.items():

@@ -110,9 +110,13 @@ METHODS: dict[str, dict] = {
 }
 
 
+#: decision C53: what to pass for the step classes, as the parameter and the CLI flag (the line fits both)
+MODEL_NEEDED = ("{what}: pass model= a trained UserModel or its directory (CLI --model DIR; `pdrlearn train`) or "
+                "model='oracle' (--model oracle) for labelled sessions")
 NO_MODEL_WARNING = ("no model: the M3 engine (ZUPT/Kalman strides) without the class rules (terrain filter, "
-                    "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass --model "
-                    "DIR (`pdrlearn train`) or --model oracle (labelled sessions) for M3")
+                    "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass model= a "
+                    "trained model (CLI --model DIR; `pdrlearn train`) or model='oracle' (--model oracle, labelled "
+                    "sessions) for M3")
 
 
 def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3,
@@ -675,11 +679,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     no_classes = False
     if method == "AUTO":  # decision L36: M3 with a model; without one the M3 engine, its class rules off
         method, no_classes = ("M3", False) if model is not None else (("M2", True) if streaming else ("M3", True))
-        asked = [n for n, v in (("--rules", rules), ("--min-confidence", min_confidence),
-                                ("--length-bounds", bounds)) if v is not None]
+        asked = [n for n, v in (("rules (--rules)", rules), ("min_confidence (--min-confidence)", min_confidence),
+                                ("bounds (--length-bounds)", bounds)) if v is not None]
         if no_classes and asked:  # they would be ignored: no classes, no rules
-            raise ModelError(f"plasys: {', '.join(asked)} set the class rules, which need the step classes: pass "
-                             "a trained model (--model DIR, `pdrlearn train`) or --model oracle")
+            raise ModelError(MODEL_NEEDED.format(
+                what=f"plasys: {', '.join(asked)} set the class rules, which need the step classes"))
     if method not in METHODS:
         raise DataError(f"plasys: method '{method}' is not one of auto, M1, M2, M3")
     if down_mode not in SK.DOWN_MODES:  # decision L51: offline and streamed alike
@@ -780,8 +784,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         work, alignment = _align(session, warnings)
     if cfg["rules"]:
         if model is None:
-            raise ModelError("M3 needs the step classes: pass a trained model directory (--model DIR, see "
-                             "`pdrlearn train`) or --model oracle for labelled sessions; M1/M2 need no model")
+            raise ModelError(MODEL_NEEDED.format(what="M3 needs the step classes") + "; M1/M2 need no model")
         if isinstance(model, str | Path) and str(model) != "oracle":
             from pdrlearn.classify import load_model
 
