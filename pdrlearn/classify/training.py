@@ -1072,7 +1072,6 @@ def train_user(
             if strict:
                 raise
             skipped.append(str(exc))
-            log.warning("train: skipped %s", exc)  # decision C53: the API says it as the CLI did
             continue
         groups = np.asarray(users, dtype=object)[data.session] if n_users >= 2 else None  # decision C29
         own = task == "length" and length_units is not None  # decision C38
@@ -1092,6 +1091,8 @@ def train_user(
                     "calibrates its step length with 'pdrlearn calibrate DIR --distance METERS', or with the "
                     "reference walking bouts of bouts.csv)")
         raise DataError("train: nothing to train; " + " | ".join(skipped) + f" | {why}")
+    for line in skipped:  # decision C53: the API says what the CLI printed (after the error above, which lists them)
+        log.warning("train: skipped %s", line)
     if not out:  # decision C53 (C17 kept): a calibration-only model is a warning, not an error
         log.warning("train: %s", NO_CLASSIFIER_LINE)
     rates: dict[str, float] = {}
