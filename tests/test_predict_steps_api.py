@@ -1,6 +1,7 @@
-"""Decisions C51-C53: the notebook-API trial (session 24) - ``predict_steps`` on a detector's table classifies as
-``track`` does (C51), says a rate mismatch as ``track`` does (C52), ``train_user`` says what it skipped and the
-API's errors name the parameter beside the CLI flag (C53). Simulated users 1750-1769."""
+"""Decisions C51-C53, B177, B178 (notebook-API trial, session 24): ``predict_steps`` on a detector's table
+classifies as ``track`` does (C51) and says a rate mismatch as ``track`` does (C52); ``train_user`` says what it
+skipped (C53); the API's errors name the parameter beside the CLI flag (B177); classes are plain str (B178).
+Simulated users 1750-1755."""
 
 from __future__ import annotations
 
@@ -48,7 +49,7 @@ def test_predict_steps_on_a_detected_table_equals_track(model, scen_d, detector)
         np.testing.assert_array_equal(pred[c].to_numpy(), res.steps[c].to_numpy(), err_msg=c)
     np.testing.assert_allclose(pred["window_start_s"], res.steps["window_start_s"])
     assert _terrain_accuracy(scen_d, table, pred) >= 0.9
-    assert all(type(v) is str for c in ("terrain", "direction", "length_class") for v in pred[c])  # C53: not np.str_
+    assert all(type(v) is str for c in ("terrain", "direction", "length_class") for v in pred[c])  # B178: not np.str_
 
 
 def test_track_default_strides_are_predict_steps_classes(model, scen_d):
@@ -110,7 +111,7 @@ def test_cli_train_says_each_skip_once(real_dir, tmp_path, capsys):
 
 
 def test_api_errors_name_the_parameter_and_the_flag(scen_d):
-    """C53: train_user(methods=["svn"]) said "--methods: unknown method svn"; M3 without a model "pass --model DIR"."""
+    """B177: train_user(methods=["svn"]) said "--methods: unknown method svn"; M3 without a model "pass --model DIR"."""
     with pytest.raises(DataError, match=r"^methods \(--methods\): unknown method svn"):
         train_user([scen_d], methods=["svn"])
     with pytest.raises(ModelError, match=r"pass model= a trained UserModel .*\(CLI --model DIR"):

@@ -483,7 +483,7 @@ class UserModel:
                                     len(rows), exc)
                     continue
                 col = out.columns.get_loc(TASK_COLUMNS[task])
-                # plain str classes (decision C53: a model's classes may be numpy strings)
+                # plain str classes (decision B178: a model's classes may be numpy strings)
                 out.iloc[rows, col] = np.asarray([str(c) for c in tm.classes], dtype=object)[np.argmax(proba, axis=1)]
                 for j, c in enumerate(tm.classes):
                     out.iloc[rows, out.columns.get_loc(f"p_{task}_{c}")] = proba[:, j]
@@ -721,7 +721,7 @@ def _check_choice(name: str, values: Sequence[str], allowed: Sequence[str]) -> l
     bad = [v for v in values if v not in allowed]
     if bad or not values:
         raise DataError(
-            # decision C53: the parameter and the CLI flag, so the line fits train_user and `pdrlearn train`
+            # decision B177: the parameter and the CLI flag, so the line fits train_user and `pdrlearn train`
             f"{name}s (--{name}s): unknown {name} {', '.join(bad) or '(none given)'}; choose from {', '.join(allowed)}"
         )
     return values

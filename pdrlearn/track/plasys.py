@@ -110,7 +110,7 @@ METHODS: dict[str, dict] = {
 }
 
 
-#: decision C53: what to pass for the step classes, as the parameter and the CLI flag (the line fits both)
+#: decision B177: what to pass for the step classes, as the parameter and the CLI flag (the line fits both)
 MODEL_NEEDED = ("{what}: pass model= a trained UserModel or its directory (CLI --model DIR; `pdrlearn train`) or "
                 "model='oracle' (--model oracle) for labelled sessions")
 NO_MODEL_WARNING = ("no model: the M3 engine (ZUPT/Kalman strides) without the class rules (terrain filter, "
