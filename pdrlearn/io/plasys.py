@@ -42,6 +42,7 @@ from pdrlearn.io.validate import (
     slow_seconds_message,
     time_unit_candidates,
 )
+from pdrlearn.kernels.clock import stamp_jitter_s
 
 log = logging.getLogger(__name__)
 
@@ -460,6 +461,31 @@ def _check_declared_rate(streams: dict[str, Stream], rate_hz: float, meta_path: 
         log.warning("%s: rate_hz %g contradicts the timestamps (%s); the timestamps are used: correct rate_hz, or "
                     "the timestamps if they are the wrong ones", meta_path, rate_hz,
                     ", ".join(f"{n} {r:.4g} Hz" for n, r in off.items()))
+
+
+#: decision B182: timestamps jittering by more than this fraction of the period (SD about a uniform clock,
+#: :func:`pdrlearn.kernels.clock.stamp_jitter_s`; uniform +-0.35 periods) are warned once per session
+WARN_STAMP_JITTER = 0.2
+
+
+def _warn_jitter(streams: dict[str, Stream], folder: Path) -> None:
+    """Decision B182: one warning naming the jittered accelerometers and gyroscopes (B33) whose stamps jitter by
+    more than :data:`WARN_STAMP_JITTER` of the period: receive-time stamps (a BLE link, a phone app). Their rate is
+    the sample count over the span and only intervals over the jitter's reach count as dropped samples."""
+    bad = {}
+    for name, s in streams.items():
+        if s.kind in ("accelerometer", "gyroscope") and len(s) >= 10 and s.jittered:
+            j = stamp_jitter_s(s.t) / s.period_s
+            if j > WARN_STAMP_JITTER:
+                bad[name] = (j, s)
+    if bad:
+        j, s = max(bad.values(), key=lambda v: v[0])
+        log.warning("%s: %s timestamps jitter by up to %.0f %% of the sample period (SD about a uniform clock; "
+                    "receive-time stamps of a Bluetooth link or a phone app?): the rate is the sample count over the "
+                    "span (%s) and only an interval over %.1f periods counts as dropped samples (decision B182); "
+                    "stamp the samples on the sensor's own clock if it has one", folder, ", ".join(bad), 100 * j,
+                    ", ".join(f"{n} {v[1].rate_hz:.4g} Hz" for n, v in bad.items()),
+                    s._gap_limit() / s.period_s)
 
 
 #: decision B33: put a jittered accelerometer/gyroscope on a uniform clock when read. Off: its adoption rule
@@ -1009,6 +1035,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     # decision B72: before a gap warning about a cut file; B81: "common" cuts the session instead of refusing
     t_uncut = min((float(s.t[0]) for s in streams.values() if len(s)), default=None)  # B81: before any cut
     cut = cut_to_common_span(streams, folder) if spans == "common" else check_stream_spans(streams, folder, mode=spans)
+    _warn_jitter(streams, folder)  # decision B182
     if RESAMPLE_JITTER if uniform_clock is None else uniform_clock:
         _uniform_clocks(streams, folder)
     if bridge_drops is not False:
