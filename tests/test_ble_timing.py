@@ -1,0 +1,103 @@
+"""Session 24's BLE trial: receive-time jitter read as 138 Hz (B182), a loss warning quoting 1 % for 5 % dropped
+(B183), one `run` line per gap (B184), one tie among jittered stamps refusing the session (B185)."""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdrlearn.cli.gaplines import GapLines
+from pdrlearn.errors import DataError
+from pdrlearn.io import read_session
+from pdrlearn.io.session import Stream
+
+
+def _receive_stamps(n=6000, hz=104.0, amp_ms=12.0, seed=0, keep=None):
+    """Sensor times at ``hz`` with +-``amp_ms`` receive jitter, sorted (the values keep their order)."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(n) / hz
+    if keep is not None:
+        t = t[keep]
+    return np.sort(t + rng.uniform(-amp_ms, amp_ms, t.size) * 1e-3)
+
+
+@pytest.mark.parametrize("hz,amp", [(104.0, 12.0), (100.0, 12.0), (52.0, 12.0)])
+def test_sorted_receive_stamps_keep_their_rate_and_have_no_gaps(hz, amp):
+    s = Stream("fAccelerometer", _receive_stamps(hz=hz, amp_ms=amp), np.zeros((6000, 3)))
+    assert s.rate_hz == pytest.approx(hz, rel=0.003)  # 104 Hz +-12 ms read 138.2 Hz (median / B33's mean)
+    assert s.gaps() == []  # read 1735 "intervals of dropped samples"
+
+
+def test_a_burst_lost_from_jittered_stamps_is_a_gap_and_does_not_bias_the_rate():
+    keep = np.ones(6000, bool)
+    keep[3000:3030] = False  # 30 samples lost in one BLE burst
+    s = Stream("fAccelerometer", _receive_stamps(keep=keep), np.zeros((5970, 3)))
+    gaps = s.gaps()
+    assert len(gaps) == 1 and gaps[0].duration_s == pytest.approx(31 / 104.0, abs=0.025)
+    assert s.rate_hz == pytest.approx(104.0, rel=0.003)
+
+
+def _session(tmp_path, t_ms, name="s"):
+    d = tmp_path / name
+    d.mkdir()
+    rng = np.random.default_rng(3)
+    for n in ("fAccelerometer", "fGyroscope"):
+        v = rng.normal(0, 0.1, (t_ms.size, 3)) + ([0.0, 9.81, 0.0] if n == "fAccelerometer" else 0.0)
+        pd.DataFrame({"timestamp": t_ms, "x": v[:, 0], "y": v[:, 1], "z": v[:, 2]}).to_csv(d / f"{n}.csv",
+                                                                                            index=False)
+    (d / "meta.json").write_text('{"frames": {"foot": {"x": "forward", "y": "up", "z": "right"}}}')
+    return d
+
+
+def test_jittered_stamps_are_warned_and_read_at_their_rate_a_clean_clock_is_not(tmp_path, caplog):
+    with caplog.at_level(logging.WARNING, logger="pdrlearn"):
+        read_session(_session(tmp_path, np.arange(3000) * 10.0, "clean"))
+    assert "B182" not in caplog.text
+    d = _session(tmp_path, np.round(_receive_stamps() * 1e3, 3))
+    with caplog.at_level(logging.WARNING, logger="pdrlearn"):
+        s = read_session(d)
+    text = caplog.text
+    assert "jitter by up to" in text and "decision B182" in text and "interval(s) of dropped samples" not in text
+    assert s["fAccelerometer"].rate_hz == pytest.approx(104.0, rel=0.003)
+
+
+def test_the_loss_warning_quotes_the_fraction_dropped(tmp_path, caplog):
+    t = np.arange(6000) * 10.0
+    keep = np.ones(t.size, bool)
+    for s0 in range(200, 5800, 200):  # 28 bursts of 10 samples: 4.7 % of the samples
+        keep[s0:s0 + 10] = False
+    with caplog.at_level(logging.WARNING, logger="pdrlearn"):
+        read_session(_session(tmp_path, t[keep]))
+    assert "4.7 % of the foot's samples dropped in them: about -9.3 % distance" in caplog.text  # said "1 %"
+
+
+def test_an_isolated_tie_of_jittered_stamps_is_restamped(tmp_path, caplog):
+    t = np.round(_receive_stamps(n=3000, hz=100.0, amp_ms=15.0) * 1e3, 3)
+    t[1500] = t[1499]  # one tie, as 1 us rounding made in the trial's +-15 ms copy
+    t[1501] = max(t[1501], t[1500] + 0.5)
+    with caplog.at_level(logging.WARNING, logger="pdrlearn"):
+        s = read_session(_session(tmp_path, t))  # refused the session ("1 duplicate timestamp(s)")
+    assert len(s["fAccelerometer"]) == 3000 and "decision B185" in caplog.text
+    d = _session(tmp_path, np.arange(3000) * 10.0, "dup")  # a repeated packet (same values) is still refused
+    for n in ("fAccelerometer", "fGyroscope"):
+        df = pd.read_csv(d / f"{n}.csv")
+        pd.concat([df.iloc[:1000], df.iloc[999:]]).to_csv(d / f"{n}.csv", index=False)
+    with pytest.raises(DataError, match="1 duplicate timestamp"):
+        read_session(d)
+
+
+
+
+def test_run_prints_the_first_gap_lines_and_one_summary(caplog):
+    tracker_log = logging.getLogger("pdrlearn.runtime.tracker")
+    with caplog.at_level(logging.WARNING, logger="pdrlearn"), GapLines("sess"):
+        for i in range(10):
+            tracker_log.warning("bundle b: fAccelerometer: no samples for 0.30 s (%d-%d s); bridged (decision E30)",
+                                i, i)
+        tracker_log.warning("bundle b: something else")
+    lines = [r.getMessage() for r in caplog.records]
+    assert sum("decision E30)" in m for m in lines) == 3 and "something else" in caplog.text
+    assert "sess: 10 gaps in all (7 more not printed, 2.10 s without samples" in caplog.text
