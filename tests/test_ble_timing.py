@@ -101,3 +101,52 @@ def test_run_prints_the_first_gap_lines_and_one_summary(caplog):
     lines = [r.getMessage() for r in caplog.records]
     assert sum("decision E30)" in m for m in lines) == 3 and "something else" in caplog.text
     assert "sess: 10 gaps in all (7 more not printed, 2.10 s without samples" in caplog.text
+
+
+# -- B186: batched receive stamps ------------------------------------------------------------------------------
+def _batched(n=4000, hz=104.0, k=4, lose=(), seed=5):
+    """Sample times at ``hz`` sent ``k`` per notification, each stamped with its receive time (5-15 ms late,
+    in order); the notifications in ``lose`` never arrive. Returns (true times kept, stamps)."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(n) / hz
+    pk = np.arange(n) // k
+    rx = np.maximum.accumulate(t[k - 1::k] + rng.uniform(0.005, 0.015, n // k))
+    keep = ~np.isin(pk, lose)
+    return t[keep], rx[pk][keep]
+
+
+def test_retimed_spreads_batches_and_counts_lost_notifications():
+    from pdrlearn.kernels.clock import batch_size, retimed
+
+    true, stamps = _batched(lose=(100, 101, 400, 700))
+    assert batch_size(stamps) == 4
+    new, info = retimed(stamps, 104.0)
+    assert info["lost"] == 16 and info["samples_per_stamp"] == 4.0
+    d = np.diff(new - true)  # every sample one period after the last, across the lost notifications too
+    assert np.abs(d).max() < 1e-9 and abs(float(np.median(new - true))) < 0.02
+
+
+def _export(tmp_path, stamps):
+    rng = np.random.default_rng(1)
+    n = stamps.size
+    csv = tmp_path / "pod.csv"
+    pd.DataFrame({"time_ms": np.round(stamps * 1e3, 3), "acc_x_g": rng.normal(0, 0.05, n), "acc_y_g": 1.0 +
+                  rng.normal(0, 0.05, n), "acc_z_g": rng.normal(0, 0.05, n), "gyr_x_dps": rng.normal(0, 2, n),
+                  "gyr_y_dps": rng.normal(0, 2, n), "gyr_z_dps": rng.normal(0, 2, n)}).to_csv(csv, index=False)
+    return csv
+
+
+def test_import_retime_keeps_every_batched_sample_and_the_refusal_names_it(tmp_path, capsys):
+    from pdrlearn.cli import main
+
+    _, stamps = _batched(lose=(300,))
+    args = ["import", str(_export(tmp_path, stamps)), "--unit", "foot", "--out", str(tmp_path / "s")]
+    assert main(args) != 0
+    err = capsys.readouterr().err
+    assert "groups of 4 on one timestamp" in err and "--retime HZ" in err  # said "drop the duplicated rows"
+    assert main([*args, "--retime", "100"]) != 0  # the stamps hold 104 Hz
+    assert "--retime 104?" in capsys.readouterr().err
+    assert main([*args, "--retime", "104"]) == 0
+    assert "re-timed at 104 Hz from 999 stamps" in capsys.readouterr().err
+    a = read_session(tmp_path / "s")["fAccelerometer"]
+    assert len(a) == stamps.size and a.rate_hz == pytest.approx(104.0, rel=1e-6) and len(a.gaps()) == 1

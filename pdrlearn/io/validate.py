@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.clock import batch_size
 from pdrlearn.kernels.units import (  # noqa: F401 - re-exported: the checks live in the numpy-only kernel (B119)
     GRAVITY_FACTOR_MAX,
     GRAVITY_HINT,
@@ -170,6 +171,14 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
         if in_memory:
             raise DataError(f"{where}: {dup.size} duplicate timestamp(s) (first at index {dup[0] + 1}); drop the "
                             "duplicated samples (keep = np.unique(t, return_index=True)[1])")
+        k = batch_size(t)  # decision B186: regular groups on one stamp are batched samples, not repeated rows
+        if k > 1:
+            raise DataError(
+                f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}): the rows come in "
+                f"groups of {k} on one timestamp (a Bluetooth notification's samples on its receive time?); re-time "
+                f"them at the sensor's output rate with `pdrlearn import EXPORT --retime HZ` (decision B186) rather "
+                f"than dropping {k - 1} of every {k}"
+            )
         raise DataError(
             f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}); {duplicate_fix}"
         )

@@ -79,3 +79,47 @@ def counted_period_s(t: np.ndarray) -> float:
             break
         p = q
     return p
+
+
+#: decision B186: ``import --retime HZ`` refuses stamps whose own rate (samples, lost ones counted, over their span)
+#: differs from HZ by more than this fraction (every stride would scale by it)
+RETIME_RATE_TOL = 0.01
+
+
+def batches(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The runs of equal timestamps of ``t``: (index of each run's first sample, its length)."""
+    first = np.flatnonzero(np.r_[True, np.diff(t) != 0])
+    return first, np.diff(np.r_[first, t.size])
+
+
+def batch_size(t: np.ndarray) -> int:
+    """Decision B186: the number of samples that share one timestamp when they come in regular groups (a Bluetooth
+    notification of 4 samples on its receive time): the commonest run length of equal stamps, when it is over 1
+    and at least 80 % of the samples lie in runs of it; else 1."""
+    if t.size < 8:
+        return 1
+    _, m = batches(t)
+    k = int(np.bincount(m).argmax())
+    return k if k > 1 and m[m == k].sum() >= 0.8 * t.size else 1
+
+
+def retimed(t: np.ndarray, hz: float) -> tuple[np.ndarray, dict]:
+    """Decision B186: samples re-timed at a nominal output rate ``hz`` (s in, s out), anchored to their stamps.
+    Runs of equal stamps (a notification's samples on its receive time) are spread one period apart; a stamp
+    advance over the samples it brings by more than max(1.5, 4 SDs of that excess) periods counts the samples
+    lost before it (round); each run's last sample lies at its stamp on the median (the receive latency is not
+    known). Returns the new stamps (strictly increasing) and ``{"rate_hz", "lost", "stamps", "samples_per_stamp",
+    "stamp_rate_hz"}``, ``stamp_rate_hz`` being the samples (lost ones counted) over the stamps' span."""
+    p = 1.0 / hz
+    first, m = batches(t)
+    stamps = t[first]
+    excess = np.diff(stamps) / p - m[1:]  # periods the stamp moved beyond the samples it brought
+    sd = 1.4826 * float(np.median(np.abs(excess - np.median(excess)))) if excess.size else 0.0
+    lost = np.where(excess > max(1.5, 4.0 * sd), np.rint(excess), 0.0).astype(np.int64)
+    slot0 = np.r_[0, np.cumsum(m[:-1] + lost)]  # the slot of each run's first sample
+    slot = np.repeat(slot0, m) + (np.arange(t.size) - np.repeat(first, m))
+    t0 = float(np.median(stamps - (slot0 + m - 1) * p))
+    span = float(stamps[-1] - stamps[0])
+    rate = float((slot0[-1] + m[-1] - 1 - (m[0] - 1)) / span) if span > 0 else float("nan")
+    return t0 + slot * p, {"rate_hz": float(hz), "lost": int(lost.sum()), "stamps": int(first.size),
+                           "samples_per_stamp": float(np.median(m)), "stamp_rate_hz": rate}
