@@ -150,3 +150,30 @@ def test_import_retime_keeps_every_batched_sample_and_the_refusal_names_it(tmp_p
     assert "re-timed at 104 Hz from 999 stamps" in capsys.readouterr().err
     a = read_session(tmp_path / "s")["fAccelerometer"]
     assert len(a) == stamps.size and a.rate_hz == pytest.approx(104.0, rel=1e-6) and len(a.gaps()) == 1
+
+
+# -- L160: the height of a stride across dropped samples -------------------------------------------------------
+def test_strides_across_dropped_samples_take_their_neighbours_height(caplog):
+    from pdrlearn.sim.simulate import simulate
+    from pdrlearn.track.plasys import track_plasys
+
+    sim = simulate("walk", 1781, rate_hz=100.0, seed=1781, length_m=40.0)  # a flat walk
+    keep = np.ones(len(sim["fAccelerometer"]), bool)
+    for s0 in range(300, keep.size - 100, 170):  # a burst of 20 samples (0.2 s) lost every 1.7 s
+        keep[s0:s0 + 20] = False
+    for n in ("fAccelerometer", "fGyroscope"):
+        s = sim.streams[n]
+        sim.streams[n] = Stream(n, s.t[keep], s.values[keep])
+    with caplog.at_level(logging.WARNING, logger="pdrlearn"):
+        r = track_plasys(sim)
+    assert float(r.trajectory["z"].iloc[-1]) == 0.0  # was +2.98 m: every stride across a burst climbed
+    assert "across dropped foot samples" in " ".join(r.info["warnings"])
+
+
+def test_neighbour_heights():
+    from pdrlearn.track.gaps import neighbour_heights
+
+    dz = np.array([0.3, 5.0, 0.1, 9.0, 0.2, 7.0])
+    across = np.array([False, True, False, True, False, True])
+    skip = np.array([False, False, False, False, True, False])
+    assert np.allclose(neighbour_heights(dz, across, skip), [0.3, 0.2, 0.1, 0.1, 0.2, 0.1])
