@@ -389,6 +389,14 @@ def run(
                 # decision E45: the session has a waist unit --units foot leaves out; not "no waist unit"
                 line = "waist unit not used (--units foot): " + NO_WAIST_HEADING.removeprefix("no waist unit: ")
             logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
+        if "waist" in tracker.units:  # decision W125: W105's check on the waist gyroscope the heading turns by
+            from pdrlearn.waist.plausibility import waist_bias_line
+
+            line = waist_bias_line(session)
+            if line:
+                import logging
+
+                logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
         for chunk in replay_chunks({n: (st.t, st.values) for n, st in session.streams.items()}, chunk_s):
             t0 = time.perf_counter()
             new = tracker.push(chunk)

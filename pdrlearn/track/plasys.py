@@ -79,6 +79,7 @@ from pdrlearn.track.gaps import (
     overlaps_gaps,
 )
 from pdrlearn.track.geodetic import geodetic_track
+from pdrlearn.waist.plausibility import waist_bias_line
 
 log = logging.getLogger(__name__)
 
@@ -839,6 +840,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         # decision L98: without a magnetometer the waist heading starts at initial_heading, as the docstring says
         wh = WaistHeading(hard_iron_ut=hard_iron, initial_heading=initial_heading).fit_session(work)
         warnings += wh.warnings_
+        bias_line = waist_bias_line(work)  # decision W125: W105's check on the waist unit this heading turns by
+        warnings += [bias_line] if bias_line else []
         head = _stride_heading(wh, strides)
         if hsrc == "fused":
             head = fuse_by_segment(fd.foot_heading(0.0) + lateral, head, strides["start_s"].to_numpy(float),

@@ -1,0 +1,49 @@
+"""Decision W125: W105's waist-gyroscope bias check also runs where the waist unit heads a two-unit track
+(``track``'s PLASYS path and ``run``), naming ``--units foot``; the clean session stays quiet."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from pdrlearn.io.session import Stream
+from pdrlearn.sim import UserProfile, simulate_path
+from pdrlearn.sim.route import parse_route
+from pdrlearn.track.plasys import track_plasys
+from pdrlearn.waist.plausibility import waist_bias_line
+
+
+@pytest.fixture(scope="module")
+def walk():
+    return simulate_path(parse_route("stand:3, straight:10, turn:90, straight:5"), UserProfile.from_seed(1790),
+                         speed="normal", rate_hz=100.0, seed=0, name="w125", scenario="route")
+
+
+def _biased(session, rps: float):
+    s = session.copy()
+    g = s.streams["wGyroscope"]
+    up = s.frames["waist"].matrix()[2]  # the sensor axes' share of the body's up
+    s.streams["wGyroscope"] = Stream(g.name, g.t, g.values + rps * np.asarray(up))
+    return s
+
+
+def _w105(r) -> list[str]:
+    return [w for w in r.info["warnings"] if "decision W105" in w]
+
+
+def test_the_two_unit_track_warns_of_a_biased_waist_gyroscope(walk):
+    clean = track_plasys(walk, method="M2")
+    biased = track_plasys(_biased(walk, 0.03), method="M2")
+    assert not _w105(clean)
+    (line,) = _w105(biased)
+    assert "+0.029" in line and "--units foot" in line and "decision W125" in line
+    assert len(biased.steps) == len(clean.steps)
+
+
+def test_the_shared_check_reads_the_vertical_rate_in_any_mounting(walk):
+    assert waist_bias_line(walk) is None
+    assert "-0.02" in waist_bias_line(_biased(walk, -0.02))
+    foot_only = walk.copy()
+    for n in ("wAccelerometer", "wGyroscope"):
+        foot_only.streams.pop(n, None)
+    assert waist_bias_line(foot_only) is None
