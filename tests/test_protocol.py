@@ -86,3 +86,35 @@ def test_empty_stream():
 def test_degenerate_sets_never_crash(chunk):
     _, stats = parse_protocol(chunk)
     assert stats.measurements == 0
+
+
+def _capture_at(rate_hz: float) -> str:
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    s = simulate_path(parse_route("straight:25"), UserProfile.from_seed(1795), speed="normal", rate_hz=rate_hz,
+                      seed=0, name="e90", scenario="route")
+    return "".join(format_protocol(s, decimals=4))
+
+
+@pytest.mark.parametrize("pod_hz, read_hz, warns", [(20.0, 20.0, False), (50.0, 50.0, False), (50.0, 20.0, True),
+                                                     (10.0, 20.0, True)])
+def test_a_capture_read_at_a_wrong_rate_has_a_non_human_stride_rhythm(pod_hz, read_hz, warns):
+    """Decision E90: the foot's stride rhythm at the assumed --protocol-rate outside L95's walking range warns,
+    naming --protocol-rate and the rate that would make it a walk."""
+    from pdrlearn.io.protocol import protocol_rate_line
+
+    session, _ = parse_protocol(_capture_at(pod_hz), rate_hz=read_hz)
+    line = protocol_rate_line(session.streams, read_hz, "cap")
+    assert (line is not None) == warns
+    if warns:
+        assert f"--protocol-rate {read_hz:g} Hz" in line and "--protocol-rate HZ" in line and "decision E90" in line
+        suggested = float(line.split("at about ")[1].split(" Hz")[0])
+        assert 0.7 * pod_hz < suggested < 1.4 * pod_hz
+
+
+def test_run_refuses_a_protocol_rate_without_a_capture(tmp_path, synthetic_bundle):
+    from pdrlearn.cli import main
+
+    assert main(["run", str(synthetic_bundle), str(tmp_path), "--protocol-rate", "52"]) == 2
+    assert main(["run", str(synthetic_bundle), "--protocol", "-", "--protocol-rate", "0"]) == 2

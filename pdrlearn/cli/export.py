@@ -228,6 +228,10 @@ def run(
                              "summary.json (the files and columns of `pdrlearn track`)."),
     protocol: str = typer.Option(None, "--protocol", help="Bluetooth text-protocol capture to read instead "
                                  "of a session ('-' = stdin)."),
+    protocol_rate: float = typer.Option(None, "--protocol-rate", metavar="HZ", help="Sampling rate of the "
+                                        "--protocol capture's sets (the protocol carries no time, decision D5; default: "
+                                        "the bundle's, the thesis unit's 20 Hz); a foot rhythm outside the walking range "
+                                        "at it is warned about (decision E90)."),
     chunk_s: float = typer.Option(1.0, help="Replay chunk length (s)."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
@@ -288,6 +292,11 @@ def run(
 
     if protocol is not None and session_dir is not None:
         raise DataError(f"run: give a SESSION_DIR ({session_dir}) or --protocol {protocol}, not both")
+    if protocol_rate is not None and protocol is None:
+        raise DataError(f"run: --protocol-rate {protocol_rate:g} is the rate of a --protocol capture; a session folder "
+                        "has timestamps (drop --protocol-rate, or give --protocol FILE)")
+    if protocol_rate is not None and not (0 < protocol_rate < float("inf")):
+        raise DataError(f"--protocol-rate {protocol_rate}: give the capture's sampling rate in Hz (> 0, e.g. 52)")
     if not (chunk_s > 0 and chunk_s < float("inf")):
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
@@ -318,7 +327,7 @@ def run(
     if protocol is not None:
         from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
 
-        parser = BluetoothParser(rate_hz=bundle.rate_hz)
+        parser = BluetoothParser(rate_hz=bundle.rate_hz if protocol_rate is None else protocol_rate)  # E90
         use, _ = _units_for(bundle, units, None, f"protocol {protocol}")
         need = [s for s in bundle.sensors_of(use)[0] if not s.startswith("f")]
         if need:
@@ -345,7 +354,14 @@ def run(
             steps += tracker.push(parser.close())
             steps += tracker.flush()
         source = f"protocol {protocol}"
-        protocol_stats = parser.stats.to_dict()
+        protocol_stats = {**parser.stats.to_dict(), "rate_hz": parser.rate_hz}
+        from pdrlearn.io.protocol import protocol_rate_line
+
+        rate_line = protocol_rate_line(parser.streams(), parser.rate_hz, f"protocol {protocol}")  # decision E90
+        if rate_line:
+            import logging
+
+            logging.getLogger("pdrlearn.cli").warning("%s", rate_line)
         if parser.stats.corrupted:
             import logging  # printed as one "warning:" line by the CLI, like every warning (decision B13)
 

@@ -25,6 +25,9 @@ from pdrlearn.io.sensors import PROTOCOL_TYPES, SENSORS
 from pdrlearn.io.session import Session, Stream
 
 FIRMWARE_RATE_HZ = 20.0  # thesis ch.4.2.3: sampling period 50 ms
+#: decision E90: the lags (s) searched for the foot's stride period in a capture (a stride from 480 down to 30
+#: steps/min: wider than L95's walking range on both sides, so that a capture read at a wrong rate is still timed)
+STRIDE_LAGS_S = (0.25, 4.0)
 _SPLIT = re.compile(r"[\s,;]+")
 
 
@@ -164,3 +167,30 @@ def format_protocol(session: Session, *, decimals: int = 6) -> Iterator[str]:
             vals = " ".join(f"{v:.{decimals}f}" for v in session.streams[nm].values[i])
             parts.append(f"${inv[nm]} {vals}")
         yield "%" + "".join(parts) + "\n"
+
+
+def protocol_rate_line(streams: dict[str, Stream], rate_hz: float, where: str) -> str | None:
+    """Decision E90: the warning line when the foot's stride rhythm in a capture stamped at ``rate_hz`` (the protocol
+    carries no time, D5; ``streams``: :meth:`BluetoothParser.streams`) lies outside L95's walking range: the pod samples at another rate. The rhythm is the first
+    dominant autocorrelation peak of the foot gyroscope's magnitude (W113's estimator, Moe-Nilssen & Helbostad 2004,
+    over :data:`STRIDE_LAGS_S`); the rate that would put it at the middle of the range is named. None when the rhythm
+    is inside the range or not found (under 10 s of gyroscope, no rhythmic motion)."""
+    from pdrlearn.kernels.waist import step_period_s
+    from pdrlearn.track.gait import CADENCE_RANGE_SPM
+
+    g = streams.get("fGyroscope")
+    if g is None or len(g.t) < 10 * rate_hz:
+        return None
+    stride_s = step_period_s(np.linalg.norm(g.values, axis=1), rate_hz, lags_s=STRIDE_LAGS_S)
+    if not np.isfinite(stride_s):
+        return None
+    cadence = 120.0 / stride_s  # steps/min: a stride is two steps
+    lo, hi = CADENCE_RANGE_SPM
+    if lo <= cadence <= hi:
+        return None
+    mid = float(np.sqrt(lo * hi))  # the range's geometric middle: the rate error is a factor
+    return (f"{where}: at --protocol-rate {rate_hz:g} Hz the foot's strides take {stride_s:.2f} s ({cadence:.0f} "
+            f"steps/min), outside the walking range {lo:.0f}-{hi:.0f} steps/min (decision L95): the distance, "
+            "speeds and floors are wrong if the pod samples at another rate (the protocol carries no time, D5); give "
+            f"its rate with --protocol-rate HZ (this rhythm is {mid:.0f} steps/min at about {rate_hz * mid / cadence:.0f} "
+            "Hz; decision E90)")
