@@ -361,12 +361,46 @@ def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]
         from pdrlearn.steps.align import align_units, apply_alignment
 
         offset, drift = align_units(session)
-        return apply_alignment(session, offset, drift), {"offset_s": float(offset), "drift": float(drift)}
+        aligned = apply_alignment(session, offset, drift)
+        info = {"offset_s": float(offset), "drift": float(drift)}
+        from pdrlearn.io.plasys import cut_to_common_span
+
+        # decision L162: the moved waist clock may leave the units apart (B83): the time both cover is kept
+        cut = cut_to_common_span(aligned.streams, session.folder or Path(session.name))
+        if cut is not None:
+            info["common_span_s"] = [float(cut[0]), float(cut[1])]
+            warnings.append(f"--align-units moved the waist clock by {-offset:+.2f} s (drift {drift * 1e6:+.0f} ppm); "
+                            f"tracked {cut[0]:.2f}-{cut[1]:.2f} s, where both units have data: dropped {cut[2]} "
+                            "(decision L162)")
+        return aligned, info
     except (ImportError, AttributeError):
         warnings.append("pdrlearn.steps.align_units not available: unit clocks not aligned")
     except DataError as exc:
         warnings.append(f"unit clocks not aligned ({exc})")
     return session, None
+
+
+#: decision L161: a foot-to-waist clock offset (s) over this warns on an unaligned two-unit track (a priori: under
+#: half the step period of the slowest validated walk, 70 steps/min, L95 -- :func:`align_units` cannot tell offsets
+#: a whole step apart -- and 5x the -0.04 s the simulated clean sessions read)
+UNIT_OFFSET_WARN_S = 0.2
+
+
+def unit_offset_line(session: Session) -> str | None:
+    """Decision L161: the warning line when :func:`pdrlearn.steps.align_units` finds the waist unit's steps over
+    :data:`UNIT_OFFSET_WARN_S` from the foot's; None when under it or when the steps do not align (too few)."""
+    from pdrlearn.steps.align import align_units
+
+    try:
+        offset, drift = align_units(session)
+    except DataError:
+        return None
+    if abs(offset) <= UNIT_OFFSET_WARN_S:
+        return None
+    return (f"the waist unit's steps fall {offset:+.2f} s from the foot unit's (drift {drift * 1e6:+.0f} ppm; over "
+            f"{UNIT_OFFSET_WARN_S:g} s warns, decision L161): the unit clocks are offset (a unit switched on later that "
+            "counts from 0, or a drifting clock), and the waist heading is read at the foot's strides; align them with "
+            "`pdrlearn track --align-units` (an offset a whole step period apart is not seen)")
 
 
 def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, tau_s: float = 60.0) -> np.ndarray:
@@ -759,7 +793,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     untrained: list[str] = []  # decision C17: the tasks a model does not classify fall back to the no-model rules
     has_waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
     work, alignment = session, None
-    if align and cfg["rules"] and has_waist:
+    if align and has_waist:  # decision L162: any method the waist heads (L13 had M3 only)
         work, alignment = _align(session, warnings)
     if cfg["rules"]:
         if model is None:
@@ -842,6 +876,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         warnings += wh.warnings_
         bias_line = waist_bias_line(work)  # decision W125: W105's check on the waist unit this heading turns by
         warnings += [bias_line] if bias_line else []
+        if alignment is None:  # decision L161: the units' clocks checked when they were not aligned
+            offset_line = unit_offset_line(session)
+            warnings += [offset_line] if offset_line else []
         head = _stride_heading(wh, strides)
         if hsrc == "fused":
             head = fuse_by_segment(fd.foot_heading(0.0) + lateral, head, strides["start_s"].to_numpy(float),
