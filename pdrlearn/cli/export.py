@@ -229,9 +229,9 @@ def run(
     protocol: str = typer.Option(None, "--protocol", help="Bluetooth text-protocol capture to read instead "
                                  "of a session ('-' = stdin)."),
     protocol_rate: float = typer.Option(None, "--protocol-rate", metavar="HZ", help="Sampling rate of the "
-                                        "--protocol capture's sets (the protocol carries no time, decision D5; default: "
-                                        "the bundle's, the thesis unit's 20 Hz); a foot rhythm outside the walking range "
-                                        "at it is warned about (decision E90)."),
+                                        "--protocol capture's sets (the protocol carries no time, decision D5; "
+                                        "default: the bundle's, the thesis unit's 20 Hz); a foot rhythm outside the "
+                                        "walking range at it is warned about (decision E90)."),
     chunk_s: float = typer.Option(1.0, help="Replay chunk length (s)."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),

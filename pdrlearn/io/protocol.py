@@ -170,11 +170,12 @@ def format_protocol(session: Session, *, decimals: int = 6) -> Iterator[str]:
 
 
 def protocol_rate_line(streams: dict[str, Stream], rate_hz: float, where: str) -> str | None:
-    """Decision E90: the warning line when the foot's stride rhythm in a capture stamped at ``rate_hz`` (the protocol
-    carries no time, D5; ``streams``: :meth:`BluetoothParser.streams`) lies outside L95's walking range: the pod samples at another rate. The rhythm is the first
-    dominant autocorrelation peak of the foot gyroscope's magnitude (W113's estimator, Moe-Nilssen & Helbostad 2004,
-    over :data:`STRIDE_LAGS_S`); the rate that would put it at the middle of the range is named. None when the rhythm
-    is inside the range or not found (under 10 s of gyroscope, no rhythmic motion)."""
+    """Decision E90: the warning line when the foot's stride rhythm in a capture stamped at ``rate_hz`` (the
+    protocol carries no time, D5; ``streams``: :meth:`BluetoothParser.streams`) lies outside L95's walking range:
+    the pod samples at another rate. The rhythm is the first dominant autocorrelation peak of the foot gyroscope's
+    magnitude (W113's estimator, Moe-Nilssen & Helbostad 2004, over :data:`STRIDE_LAGS_S`); the rate that would put
+    it at the middle of the range is named. None when the rhythm is inside the range or not found (under 10 s of
+    gyroscope, no rhythmic motion)."""
     from pdrlearn.kernels.waist import step_period_s
     from pdrlearn.track.gait import CADENCE_RANGE_SPM
 
@@ -192,5 +193,5 @@ def protocol_rate_line(streams: dict[str, Stream], rate_hz: float, where: str) -
     return (f"{where}: at --protocol-rate {rate_hz:g} Hz the foot's strides take {stride_s:.2f} s ({cadence:.0f} "
             f"steps/min), outside the walking range {lo:.0f}-{hi:.0f} steps/min (decision L95): the distance, "
             "speeds and floors are wrong if the pod samples at another rate (the protocol carries no time, D5); give "
-            f"its rate with --protocol-rate HZ (this rhythm is {mid:.0f} steps/min at about {rate_hz * mid / cadence:.0f} "
-            "Hz; decision E90)")
+            f"its rate with --protocol-rate HZ (this rhythm is {mid:.0f} steps/min at about "
+            f"{rate_hz * mid / cadence:.0f} Hz; decision E90)")

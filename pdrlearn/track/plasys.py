@@ -398,9 +398,9 @@ def unit_offset_line(session: Session) -> str | None:
     if abs(offset) <= UNIT_OFFSET_WARN_S:
         return None
     return (f"the waist unit's steps fall {offset:+.2f} s from the foot unit's (drift {drift * 1e6:+.0f} ppm; over "
-            f"{UNIT_OFFSET_WARN_S:g} s warns, decision L161): the unit clocks are offset (a unit switched on later that "
-            "counts from 0, or a drifting clock), and the waist heading is read at the foot's strides; align them with "
-            "`pdrlearn track --align-units` (an offset a whole step period apart is not seen)")
+            f"{UNIT_OFFSET_WARN_S:g} s warns, decision L161): the unit clocks are offset (a unit switched on later "
+            "that counts from 0, or a drifting clock), and the waist heading is read at the foot's strides; align "
+            "them with `pdrlearn track --align-units` (an offset a whole step period apart is not seen)")
 
 
 def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, tau_s: float = 60.0) -> np.ndarray:

@@ -196,8 +196,8 @@ def waist_bias_line(session: Session) -> str | None:
     low-passed accelerometer's up direction, as the waist heading's complementary filter turns by it (thesis
     ch.7.1); None without a waist unit, without a standstill, or under :data:`STILL_YAW_RATE_WARN_RPS`."""
     from pdrlearn.errors import MissingSensorError
-    from pdrlearn.orient import unit_data
     from pdrlearn.orient import _kernels as OK
+    from pdrlearn.orient import unit_data
     from pdrlearn.signal import lowpass
 
     if not session.has("wAccelerometer", "wGyroscope"):
