@@ -79,7 +79,7 @@ from pdrlearn.track.gaps import (
     overlaps_gaps,
 )
 from pdrlearn.track.geodetic import geodetic_track
-from pdrlearn.waist.plausibility import waist_bias_line
+from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_rest_bias
 
 log = logging.getLogger(__name__)
 
@@ -380,6 +380,9 @@ def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]
     return session, None
 
 
+#: decision W126: when W125 warns, the two-unit waist heading removes the vertical-rate bias read at the waist's
+#: standstills (``track_plasys(waist_bias=...)``; the default is what W126's rule decided)
+WAIST_BIAS_AT_REST = False
 #: decision L161: a foot-to-waist clock offset (s) over this warns on an unaligned two-unit track (a priori: under
 #: half the step period of the slowest validated walk, 70 steps/min, L95 -- :func:`align_units` cannot tell offsets
 #: a whole step apart -- and 5x the -0.04 s the simulated clean sessions read)
@@ -613,7 +616,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
                  waist_bridge: bool | None = None, warn_out_of_domain: float | None = None, toe_off: bool = False,
-                 hard_iron_fit: bool | None = None, contacts: bool = False, **opts) -> TrackResult:
+                 hard_iron_fit: bool | None = None, contacts: bool = False, waist_bias: bool | None = None,
+                 **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -674,6 +678,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     hard_iron_fit : heading "fused": fit the waist magnetometer's horizontal hard-iron offset on the walk when
         it turns enough (decision L84, :func:`fit_waist_hard_iron`; None = :data:`HARD_IRON_FIT`); the fit
         is in ``info["hard_iron"]``
+    waist_bias : heading "waist"/"fused": when W125's bias warning fires, remove the waist gyroscope's vertical-rate
+        bias read at its standstills (decision W126; None = :data:`WAIST_BIAS_AT_REST`)
     contacts : streaming: give each stride its initial contact (``event_s``: the force sensors' stance onset, else
         the accelerometer impact, decisions E49/E50) and so ``stride_time_s``, ``cadence_spm``, ``speed_mps``
         and the summary's stride medians (E51; an option: E50's adoption rule was not met). Offline strides always
@@ -872,10 +878,13 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             hard_iron, hard_iron_info = fit_waist_hard_iron(work, strides, fd.foot_heading(0.0) + lateral,
                                                             keep=~in_gap)
         # decision L98: without a magnetometer the waist heading starts at initial_heading, as the docstring says
-        wh = WaistHeading(hard_iron_ut=hard_iron, initial_heading=initial_heading).fit_session(work)
-        warnings += wh.warnings_
-        bias_line = waist_bias_line(work)  # decision W125: W105's check on the waist unit this heading turns by
+        rest = waist_rest_bias(work)  # decision W125: W105's check on the waist unit this heading turns by
+        bias_line = None if rest is None else still_yaw_rate_message(rest[0], TWO_UNIT_FIX)
         warnings += [bias_line] if bias_line else []
+        yaw_bias = rest[1] if bias_line and (WAIST_BIAS_AT_REST if waist_bias is None else waist_bias) else None
+        wh = WaistHeading(hard_iron_ut=hard_iron, initial_heading=initial_heading,
+                          yaw_bias=yaw_bias).fit_session(work)  # decision W126
+        warnings += wh.warnings_
         if alignment is None:  # decision L161: the units' clocks checked when they were not aligned
             offset_line = unit_offset_line(session)
             warnings += [offset_line] if offset_line else []
