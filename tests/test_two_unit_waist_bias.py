@@ -47,3 +47,22 @@ def test_the_shared_check_reads_the_vertical_rate_in_any_mounting(walk):
     for n in ("wAccelerometer", "wGyroscope"):
         foot_only.streams.pop(n, None)
     assert waist_bias_line(foot_only) is None
+
+
+def test_the_rest_bias_removal_is_an_option_off_by_default(walk):
+    """Decision W126 (not adopted): ``waist_bias=True`` removes the vertical-rate bias read at the waist's rests
+    from the fused heading; the default leaves the heading as it was; a clean session is unchanged either way."""
+    from pdrlearn.track.plasys import WAIST_BIAS_AT_REST
+
+    assert WAIST_BIAS_AT_REST is False
+    clean = track_plasys(walk, method="M2")
+    clean_on = track_plasys(walk, method="M2", waist_bias=True)
+    np.testing.assert_allclose(clean_on.steps["heading_rad"], clean.steps["heading_rad"])
+    off = track_plasys(_biased(walk, 0.05), method="M2")
+    on = track_plasys(_biased(walk, 0.05), method="M2", waist_bias=True)
+    truth = clean.steps["heading_rad"].to_numpy()
+
+    def spread(r):
+        return float(np.max(np.abs(np.angle(np.exp(1j * (r.steps["heading_rad"].to_numpy() - truth))))))
+
+    assert spread(on) < 0.5 * spread(off)

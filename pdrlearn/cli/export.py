@@ -296,7 +296,7 @@ def run(
         raise DataError(f"run: --protocol-rate {protocol_rate:g} is the rate of a --protocol capture; a session folder "
                         "has timestamps (drop --protocol-rate, or give --protocol FILE)")
     if protocol_rate is not None and not (0 < protocol_rate < float("inf")):
-        raise DataError(f"--protocol-rate {protocol_rate}: give the capture's sampling rate in Hz (> 0, e.g. 52)")
+        raise DataError(f"--protocol-rate {protocol_rate:g}: give the capture's sampling rate in Hz (> 0, e.g. 52)")
     if not (chunk_s > 0 and chunk_s < float("inf")):
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
@@ -368,6 +368,14 @@ def run(
             logging.getLogger(__name__).warning(
                 "%s: %d corrupted line(s) skipped (e.g. %r) of %d set(s) read", protocol,
                 parser.stats.corrupted, parser.stats.examples[0], parser.stats.sets)
+        if parser.stats.lost:  # decision E91: only numbered sets show a loss
+            import logging
+
+            logging.getLogger(__name__).warning(
+                "%s: %d set(s) lost (%.1f %% of %d; the sets' sequence numbers skip them, decision E91): the clock "
+                "leaves their time empty, as a recording's gap", protocol, parser.stats.lost,
+                100.0 * parser.stats.lost / (parser.stats.lost + parser.stats.sets),
+                parser.stats.sets + parser.stats.lost)
     else:
         if session_dir is None:
             raise DataError("run: give a SESSION_DIR or --protocol FILE")
