@@ -1,5 +1,6 @@
 """Decision W126's measurement: the default two-unit track (method auto, fused heading) with and without the
-waist gyroscope bias read at rest removed, on clean and BLE-biased simulated 400 m walks (IMU only, as the session-24 BLE trial).
+waist gyroscope bias read at rest removed, on clean and BLE-biased simulated 400 m walks (IMU only, as the
+session-24 BLE trial).
 
     PYTHONPATH=. python experiments/waist_rest_bias_w126.py --users 1790-1809
 """
