@@ -66,3 +66,10 @@ def test_the_rest_bias_removal_is_an_option_off_by_default(walk):
         return float(np.max(np.abs(np.angle(np.exp(1j * (r.steps["heading_rad"].to_numpy() - truth))))))
 
     assert spread(on) < 0.5 * spread(off)
+
+
+def test_the_streamed_two_unit_track_warns_too(walk):
+    """`track --streaming` heads the strides by the waist gyroscope as `run` does: the same W125 line."""
+    assert not _w105(track_plasys(walk, method="M2", streaming=True))
+    (line,) = _w105(track_plasys(_biased(walk, 0.03), method="M2", streaming=True))
+    assert "--units foot" in line

@@ -79,7 +79,7 @@ from pdrlearn.track.gaps import (
     overlaps_gaps,
 )
 from pdrlearn.track.geodetic import geodetic_track
-from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_rest_bias
+from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_bias_line, waist_rest_bias
 
 log = logging.getLogger(__name__)
 
@@ -1149,6 +1149,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                        + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"))
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(no_waist_heading(session))
+    elif heading in ("auto", "waist-gyro"):  # decision W125: the waist gyroscope heads the strides, as `run`'s
+        bias_line = waist_bias_line(session)
+        warnings += [bias_line] if bias_line else []
     classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
     model_bounds, domain, off_rate = None, None, None
     if method == "M3":
