@@ -73,3 +73,15 @@ def test_the_streamed_two_unit_track_warns_too(walk):
     assert not _w105(track_plasys(walk, method="M2", streaming=True))
     (line,) = _w105(track_plasys(_biased(walk, 0.03), method="M2", streaming=True))
     assert "--units foot" in line
+
+
+def test_run_warns_of_a_biased_waist_gyroscope(walk, tmp_path, synthetic_bundle, capsys):
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+
+    for name, session, warned in (("clean", walk, False), ("biased", _biased(walk, 0.03), True)):
+        folder = write_session(session, tmp_path / name)
+        capsys.readouterr()
+        assert main(["run", str(synthetic_bundle.path), str(folder)]) == 0
+        err = capsys.readouterr().err
+        assert ("decision W105" in err and "--units foot" in err) == warned, err
