@@ -52,7 +52,6 @@ from pdrlearn.kernels.distance import (
     calibrated_stride_sd,
     classifier_rate_warning,
     level_dz,
-    rate_differs,
 )
 from pdrlearn.kernels.window import (
     GROUP_STREAMS,
@@ -64,6 +63,7 @@ from pdrlearn.kernels.window import (
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
 from pdrlearn.signal import lowpass
+from pdrlearn.track.altitude import apply_altitude, check_altitude, set_strides_dz
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
 from pdrlearn.track.gait import add_gait_columns, streamed_gait_columns, stride_rows, turn_rows
@@ -112,9 +112,13 @@ METHODS: dict[str, dict] = {
 }
 
 
+#: decision B177: what to pass for the step classes, as the parameter and the CLI flag (the line fits both)
+MODEL_NEEDED = ("{what}: pass model= a trained UserModel or its directory (CLI --model DIR; `pdrlearn train`) or "
+                "model='oracle' (--model oracle) for labelled sessions")
 NO_MODEL_WARNING = ("no model: the M3 engine (ZUPT/Kalman strides) without the class rules (terrain filter, "
-                    "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass --model "
-                    "DIR (`pdrlearn train`) or --model oracle (labelled sessions) for M3")
+                    "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass model= a "
+                    "trained model (CLI --model DIR; `pdrlearn train`) or model='oracle' (--model oracle, labelled "
+                    "sessions) for M3")
 
 
 def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3,
@@ -259,6 +263,33 @@ def classification_windows(session: Session, strides: pd.DataFrame) -> pd.DataFr
     return out
 
 
+def model_windows(session: Session, steps: pd.DataFrame) -> pd.DataFrame:
+    """Decision C51: the window a trained model classifies each row of a detected ``steps`` table on, as
+    ``track --method M3`` does: the row made a rest-to-rest stride of the foot unit (the stance of the force
+    sensors, else of the accelerometer + gyroscope, on :class:`~pdrlearn.displace.FootDisplacement`'s grid,
+    :func:`~pdrlearn.displace.foot.rest_to_rest`), then re-cut on the streaming segmenter's stride that covers
+    it (:func:`classification_windows`, decision L38). A detector's swing or contact-to-contact window is not
+    the rest-to-rest window a model is trained on (scenario D: 63 of 68 strides 'up' on the detector's own
+    bounds). One row per row of ``steps`` (``start_s``/``end_s``, s); a row in no stride keeps its own bounds,
+    a row spanning several strides (missed steps, which ``track`` splits) gets their whole span; both are
+    counted in ``attrs`` (``own_bounds``, ``several_strides``). Without the foot unit: the rows' own bounds."""
+    out = steps[["start_s", "end_s"]].astype(float).reset_index(drop=True)
+    own, several = 0, 0
+    if len(out) and session.has("fAccelerometer", "fGyroscope"):
+        foot = unit_data(session, "foot", purpose="the model's step windows")
+        stance = force_stance(session, foot.t, foot.gyr)  # as M3: the force sensors' stance when recorded
+        if stance is None:
+            stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
+        s0, s1, rows = FootDisplacement().stride_bounds(foot, out, stance=stance)
+        by = pd.DataFrame({"start_s": s0, "end_s": s1, "row": rows}).groupby("row")
+        lo, hi = by["start_s"].min(), by["end_s"].max()
+        out.loc[lo.index, "start_s"], out.loc[hi.index, "end_s"] = lo.to_numpy(), hi.to_numpy()
+        own, several = len(out) - len(lo), int((by.size() > 1).sum())
+    win = classification_windows(session, out)
+    win.attrs.update(own_bounds=own, several_strides=several)
+    return win
+
+
 def classes_and_bounds(model, session: Session, steps: pd.DataFrame) -> tuple[pd.DataFrame, object]:
     """M3's step classes and the user's stride-length class bounds, from a trained model or, with
     ``model="oracle"``, from the session's own labels and ``meta.json`` (one place for the offline and the
@@ -296,7 +327,11 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
         from pdrlearn.classify import load_model
 
         model = load_model(model)
-    pred = model.predict_steps(session, steps).reset_index(drop=True)
+    from pdrlearn.classify import UserModel
+
+    # decision C51: the strides are cut already; C18's rate line is the tracker's own warning (rate_check)
+    pred = (model.predict_steps(session, steps, windows="given", warn_rate=False) if isinstance(model, UserModel)
+            else model.predict_steps(session, steps)).reset_index(drop=True)
     if len(pred) != len(steps):
         raise ModelError(f"model predicted {len(pred)} rows for {len(steps)} strides")
     bounds = model_length_bounds(model)
@@ -325,33 +360,21 @@ def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: flo
     return report
 
 
-#: the units whose sensors a classifier of ``method_<task> = "<method>/<unit>"`` reads
-_UNIT_OF = {"foot": ("foot",), "waist": ("waist",), "fused": ("foot", "waist"), "combined": ("foot", "waist")}
-_UNIT_ACC = {"foot": "fAccelerometer", "waist": "wAccelerometer"}
-
-
 def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[str]) -> dict | None:
     """Decision C18: one warning line when a unit whose classifiers classified the strides runs at a rate
-    other than the one the model was trained at (the distance calibration's rate check and tolerance,
-    :func:`~pdrlearn.kernels.distance.rate_differs`): the step windows then hold other signals (a 20 Hz
-    simulator model on a 100 Hz real foot classified 28 of 32 level strides 'up'). Returns unit ->
+    other than the one the model was trained at (:func:`pdrlearn.classify.training.rate_mismatch`, shared with
+    ``UserModel.predict_steps`` and ``evaluate``, decision C52): the step windows then hold other signals (a
+    20 Hz simulator model on a 100 Hz real foot classified 28 of 32 level strides 'up'). Returns unit ->
     ``{"trained_hz", "session_hz"}`` of the units that differ (None: none, or oracle labels / a model
     without rates)."""
-    rates = getattr(model, "sampling_rate_hz", None) or {}
-    if isinstance(model, str | Path) or not rates:
+    if isinstance(model, str | Path):
         return None
-    used = {u for c in classes.columns if c.startswith("method_")
-            for v in classes[c].dropna().astype(str).unique() if "/" in v for u in _UNIT_OF.get(v.split("/")[1], ())}
-    off = {}
-    for unit in sorted(used):
-        name = _UNIT_ACC[unit]
-        if name in rates and name in session.streams and rates[name]:
-            fs = float(session.streams[name].rate_hz)
-            if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
-                off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
+    from pdrlearn.classify.training import rate_mismatch
+
+    off = rate_mismatch(model, session, classes)
     if off:
         warnings.append(classifier_rate_warning(off, resample_hint=True))
-    return off or None
+    return off
 
 
 def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
@@ -616,7 +639,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
                  waist_bridge: bool | None = None, warn_out_of_domain: float | None = None, toe_off: bool = False,
-                 hard_iron_fit: bool | None = None, contacts: bool = False, waist_bias: bool | None = None,
+                 hard_iron_fit: bool | None = None, contacts: bool = False, altitude: str | None = None,
+                 waist_bias: bool | None = None,
                  **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
@@ -684,6 +708,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         the accelerometer impact, decisions E49/E50) and so ``stride_time_s``, ``cadence_spm``, ``speed_mps``
         and the summary's stride medians (E51; an option: E50's adoption rule was not met). Offline strides always
         have their detector's contacts
+    altitude : "foot" (default, None) - the strides' own height (L39 / the terrain classes) - or "fused": fused with
+        the session's waist barometer (decision L154, :func:`pdrlearn.kernels.barometer.fuse_altitude`; an option,
+        its adoption rule was not met), offline and streamed; ``info["altitude_source"]`` says which
 
     Any other keyword argument raises ``TypeError`` naming the closest valid one (decision L43). Warnings go
     to ``info["warnings"]`` and to the ``logging`` logger ``pdrlearn.track`` (not Python's ``warnings``).
@@ -693,16 +720,17 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if opts:  # decision L43: a misspelled option is an error, as in the waist pipelines (it was ignored)
         check_keywords("plasys", opts, keyword_names(track_plasys))
     check_warn_at(warn_out_of_domain)
+    altitude = check_altitude(altitude)  # decision L154
     _check_steps_arg(steps)  # decision B173 (a bad value was a pandas traceback), L149 (own strides accepted)
     method = str(method).upper()
     no_classes = False
     if method == "AUTO":  # decision L36: M3 with a model; without one the M3 engine, its class rules off
         method, no_classes = ("M3", False) if model is not None else (("M2", True) if streaming else ("M3", True))
-        asked = [n for n, v in (("--rules", rules), ("--min-confidence", min_confidence),
-                                ("--length-bounds", bounds)) if v is not None]
+        asked = [n for n, v in (("rules (--rules)", rules), ("min_confidence (--min-confidence)", min_confidence),
+                                ("bounds (--length-bounds)", bounds)) if v is not None]
         if no_classes and asked:  # they would be ignored: no classes, no rules
-            raise ModelError(f"plasys: {', '.join(asked)} set the class rules, which need the step classes: pass "
-                             "a trained model (--model DIR, `pdrlearn train`) or --model oracle")
+            raise ModelError(MODEL_NEEDED.format(
+                what=f"plasys: {', '.join(asked)} set the class rules, which need the step classes"))
     if method not in METHODS:
         raise DataError(f"plasys: method '{method}' is not one of auto, M1, M2, M3")
     if down_mode not in SK.DOWN_MODES:  # decision L51: offline and streamed alike
@@ -729,6 +757,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             log.warning("%s: %s", session.where, NO_MODEL_WARNING)
             if msg:
                 log.warning("%s: %s", session.where, msg)
+        apply_altitude(res, session, altitude)  # decision L154
         return res
     cfg = {**METHODS[method], "rules": False} if no_classes else METHODS[method]
     warnings: list[str] = [NO_MODEL_WARNING] if no_classes else []
@@ -803,8 +832,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         work, alignment = _align(session, warnings)
     if cfg["rules"]:
         if model is None:
-            raise ModelError("M3 needs the step classes: pass a trained model directory (--model DIR, see "
-                             "`pdrlearn train`) or --model oracle for labelled sessions; M1/M2 need no model")
+            raise ModelError(MODEL_NEEDED.format(what="M3 needs the step classes") + "; M1/M2 need no model")
         if isinstance(model, str | Path) and str(model) != "oracle":
             from pdrlearn.classify import load_model
 
@@ -991,7 +1019,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.where, w)
-    return TrackResult(steps=table, trajectory=traj, info=info)
+    res = TrackResult(steps=table, trajectory=traj, info=info)
+    apply_altitude(res, session, altitude)  # decision L154
+    return res
 
 
 def fuse_by_segment(relative: np.ndarray, absolute: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
@@ -1044,11 +1074,7 @@ def bridge_foot_yaw(fd: FootDisplacement, foot_gaps: dict, stream=None) -> None:
 def _level_without_classes(res: TrackResult) -> None:
     """Decision L39 on a streamed track without classes: the level strides' ``dz_m`` set to 0 and the
     trajectory's height re-accumulated (one trajectory row per stride after the start row)."""
-    dz = level_dz(res.steps["dz_m"].to_numpy(float)) if len(res.steps) else np.zeros(0)
-    res.steps["dz_m"] = dz
-    if len(res.trajectory) == len(dz) + 1:
-        z0 = float(res.trajectory["z"].iloc[0])
-        res.trajectory["z"] = z0 + np.concatenate([[0.0], np.cumsum(dz)])
+    set_strides_dz(res, level_dz(res.steps["dz_m"].to_numpy(float)) if len(res.steps) else np.zeros(0))
 
 
 def _one_row_per_gap(table: pd.DataFrame, traj: pd.DataFrame, in_gap: np.ndarray,
