@@ -468,8 +468,8 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         # taken off), so an offset it had on a clock shared with the session is gone
         err(f"note: the session was not imported, so its clock's origin is unknown: the added unit starts at 0 ms "
             f"({_origin_text(t['origin_s'])} on the export's clock taken off), as the session's files do; if both were "
-            "on one clock with another origin, import both units (clocks up to 2 s apart: pdrlearn.steps.align_units "
-            "and apply_alignment in Python; `pdrlearn track` has no option for it, decision L48)")
+            "on one clock with another origin, import both units (clocks up to 2 s apart: `pdrlearn track "
+            "--align-units`, decision L162)")
     for sensor, r in record["streams"].items():
         conv = "" if r["factor"] == 1.0 else f", x {r['factor']:.6g} to {session.streams[sensor].spec.unit}"
         dropped = record["dropped_rows"].get(sensor)

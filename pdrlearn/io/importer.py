@@ -1053,7 +1053,7 @@ def merge_span_warning(base: Session, add: Session) -> str | None:
     """The ``--merge`` warning when ``add``'s time span (s, on the session's clock) and ``base``'s overlap by
     less than :data:`MERGE_MIN_OVERLAP` of the longer span (decision D12, second amendment); else ``None``.
     A warning, not a refusal: two units' clocks can legitimately differ (:func:`pdrlearn.steps.align_units`
-    estimates an offset of up to ``max_offset_s``, 2 s by default; the CLI has no option for it, decision L48)."""
+    estimates an offset of up to ``max_offset_s``, 2 s by default; ``pdrlearn track --align-units``, decision L162)."""
     sa, sb = _span(add), _span(base)
     if sa is None or sb is None:
         return None
@@ -1065,8 +1065,7 @@ def merge_span_warning(base: Session, add: Session) -> str | None:
     return (f"the added {unit} unit spans {sa[0]:.1f}-{sa[1]:.1f} s ({sa[1] - sa[0]:.1f} s) but the session's "
             f"{', '.join(sorted(base.streams))} span {sb[0]:.1f}-{sb[1]:.1f} s ({sb[1] - sb[0]:.1f} s): they overlap "
             f"{overlap:.1f} s, under half of the longer (decision D12); check that both exports record the same "
-            "walk (clocks up to 2 s apart: pdrlearn.steps.align_units and apply_alignment in Python; `pdrlearn track` "
-            "has no option for it, decision L48)")
+            "walk (clocks up to 2 s apart: `pdrlearn track --align-units`, decision L162)")
 
 
 def merge_offset_note(base: Session, add: Session) -> str | None:
@@ -1082,7 +1081,10 @@ def merge_offset_note(base: Session, add: Session) -> str | None:
     lo, hi = max(sa[0], sb[0]), min(sa[1], sb[1])
     return (f"the added {unit} unit covers {sa[0]:.2f}-{sa[1]:.2f} s, the session's other files {sb[0]:.2f}-"
             f"{sb[1]:.2f} s (started {sa[0] - sb[0]:+.2f} s, stopped {sa[1] - sb[1]:+.2f} s apart); track the "
-            f"{lo:.2f}-{hi:.2f} s both cover with `pdrlearn track --common-span` (decision B83)")
+            f"{lo:.2f}-{hi:.2f} s both cover with `pdrlearn track --common-span` (decision B83); if each unit's clock "
+            "counted from its own power-on, the import made both start at 0 and the difference in their stops may be "
+            "a power-on offset --common-span keeps: `pdrlearn track --align-units` estimates an offset under a step "
+            "period (decision L162)")
 
 
 def _shifted_table(path: Path, origin_s: float) -> pd.DataFrame:

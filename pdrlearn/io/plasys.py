@@ -867,15 +867,32 @@ def units_apart(streams: dict[str, Stream]) -> list[str] | None:
     """Decision B83: ``["foot", "waist"]`` when the session holds both units and one starts or stops more than
     :data:`SPAN_TOLERANCE_S` apart from the other (two devices switched on a few seconds apart: a method that
     needs one unit to cover the other refuses it, B21); else None."""
+    ends = unit_ends(streams)
+    if len(ends) < 2:
+        return None
+    (f0, f1), (w0, w1) = ends["foot"], ends["waist"]
+    return ["foot", "waist"] if max(abs(f0 - w0), abs(f1 - w1)) > SPAN_TOLERANCE_S else None
+
+
+def unit_ends(streams: dict[str, Stream]) -> dict[str, tuple[float, float]]:
+    """Each unit's (first, last) sample time (s) over its streams of at least 2 samples (decisions B83, L162)."""
     ends = {}
     for unit in ("foot", "waist"):
         ts = [s for n, s in streams.items() if SENSORS[n].placement == unit and len(s) >= 2]
         if ts:
             ends[unit] = (min(float(s.t[0]) for s in ts), max(float(s.t[-1]) for s in ts))
-    if len(ends) < 2:
-        return None
+    return ends
+
+
+def apart_phrase(streams: dict[str, Stream]) -> str:
+    """Decision L162: what a B83 cut does to two units' clocks - the waist unit's start and stop against the foot's,
+    and that no offset is applied (each unit keeps its own clock)."""
+    ends = unit_ends(streams)
     (f0, f1), (w0, w1) = ends["foot"], ends["waist"]
-    return ["foot", "waist"] if max(abs(f0 - w0), abs(f1 - w1)) > SPAN_TOLERANCE_S else None
+    return (f"the waist unit started {w0 - f0:+.2f} s and stopped {w1 - f1:+.2f} s from the foot unit; the cut applies "
+            "no clock offset (0.00 s): each unit keeps its own clock, so a unit switched on later that counts from 0 "
+            "stays that far off - `pdrlearn track --align-units` estimates an offset under a step period from the "
+            "steps both units see (decision L162)")
 
 
 def cut_to_common_span(streams: dict[str, Stream], folder: Path) -> tuple[float, float, str] | None:
@@ -892,7 +909,7 @@ def cut_to_common_span(streams: dict[str, Stream], folder: Path) -> tuple[float,
     why = ("the time every file of the unit(s) cut short covers (B72)" if check_stream_spans(
         {n: s for n, s in streams.items() if SENSORS[n].placement in units}, folder, mode="common") is not None
         else "the time both units have data: they started or stopped over "
-             f"{SPAN_TOLERANCE_S:g} s apart (decision B83)")
+             f"{SPAN_TOLERANCE_S:g} s apart (decision B83); " + apart_phrase(streams))
     if t1 - t0 < SPAN_TOLERANCE_S:
         raise DataError(f"{folder}: the {' and '.join(units)} files cover under {SPAN_TOLERANCE_S:g} s in common "
                         f"({t0:.2f}-{t1:.2f} s), nothing to track; --common-span cannot cut them to it -- restore the "

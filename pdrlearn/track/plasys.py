@@ -81,6 +81,7 @@ from pdrlearn.track.gaps import (
     overlaps_gaps,
 )
 from pdrlearn.track.geodetic import geodetic_track
+from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_bias_line, waist_rest_bias
 
 log = logging.getLogger(__name__)
 
@@ -385,12 +386,49 @@ def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]
         from pdrlearn.steps.align import align_units, apply_alignment
 
         offset, drift = align_units(session)
-        return apply_alignment(session, offset, drift), {"offset_s": float(offset), "drift": float(drift)}
+        aligned = apply_alignment(session, offset, drift)
+        info = {"offset_s": float(offset), "drift": float(drift)}
+        from pdrlearn.io.plasys import cut_to_common_span
+
+        # decision L162: the moved waist clock may leave the units apart (B83): the time both cover is kept
+        cut = cut_to_common_span(aligned.streams, session.folder or Path(session.name))
+        if cut is not None:
+            info["common_span_s"] = [float(cut[0]), float(cut[1])]
+            warnings.append(f"--align-units moved the waist clock by {-offset:+.2f} s (drift {drift * 1e6:+.0f} ppm); "
+                            f"tracked {cut[0]:.2f}-{cut[1]:.2f} s, where both units have data: dropped {cut[2]} "
+                            "(decision L162)")
+        return aligned, info
     except (ImportError, AttributeError):
         warnings.append("pdrlearn.steps.align_units not available: unit clocks not aligned")
     except DataError as exc:
         warnings.append(f"unit clocks not aligned ({exc})")
     return session, None
+
+
+#: decision W126: when W125 warns, the two-unit waist heading removes the vertical-rate bias read at the waist's
+#: standstills (``track_plasys(waist_bias=...)``; the default is what W126's rule decided)
+WAIST_BIAS_AT_REST = False
+#: decision L161: a foot-to-waist clock offset (s) over this warns on an unaligned two-unit track (a priori: under
+#: half the step period of the slowest validated walk, 70 steps/min, L95 -- :func:`align_units` cannot tell offsets
+#: a whole step apart -- and 5x the -0.04 s the simulated clean sessions read)
+UNIT_OFFSET_WARN_S = 0.2
+
+
+def unit_offset_line(session: Session) -> str | None:
+    """Decision L161: the warning line when :func:`pdrlearn.steps.align_units` finds the waist unit's steps over
+    :data:`UNIT_OFFSET_WARN_S` from the foot's; None when under it or when the steps do not align (too few)."""
+    from pdrlearn.steps.align import align_units
+
+    try:
+        offset, drift = align_units(session)
+    except DataError:
+        return None
+    if abs(offset) <= UNIT_OFFSET_WARN_S:
+        return None
+    return (f"the waist unit's steps fall {offset:+.2f} s from the foot unit's (drift {drift * 1e6:+.0f} ppm; over "
+            f"{UNIT_OFFSET_WARN_S:g} s warns, decision L161): the unit clocks are offset (a unit switched on later "
+            "that counts from 0, or a drifting clock), and the waist heading is read at the foot's strides; align "
+            "them with `pdrlearn track --align-units` (an offset a whole step period apart is not seen)")
 
 
 def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, tau_s: float = 60.0) -> np.ndarray:
@@ -609,6 +647,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
                  waist_bridge: bool | None = None, warn_out_of_domain: float | None = None, toe_off: bool = False,
                  hard_iron_fit: bool | None = None, contacts: bool = False, altitude: str | None = None,
+                 waist_bias: bool | None = None,
                  **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
@@ -670,6 +709,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     hard_iron_fit : heading "fused": fit the waist magnetometer's horizontal hard-iron offset on the walk when
         it turns enough (decision L84, :func:`fit_waist_hard_iron`; None = :data:`HARD_IRON_FIT`); the fit
         is in ``info["hard_iron"]``
+    waist_bias : heading "waist"/"fused": when W125's bias warning fires, remove the waist gyroscope's vertical-rate
+        bias read at its standstills (decision W126; None = :data:`WAIST_BIAS_AT_REST`)
     contacts : streaming: give each stride its initial contact (``event_s``: the force sensors' stance onset, else
         the accelerometer impact, decisions E49/E50) and so ``stride_time_s``, ``cadence_spm``, ``speed_mps``
         and the summary's stride medians (E51; an option: E50's adoption rule was not met). Offline strides always
@@ -802,7 +843,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     untrained: list[str] = []  # decision C17: the tasks a model does not classify fall back to the no-model rules
     has_waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
     work, alignment = session, None
-    if align and cfg["rules"] and has_waist:
+    if align and has_waist:  # decision L162: any method the waist heads (L13 had M3 only)
         work, alignment = _align(session, warnings)
     if cfg["rules"]:
         if model is None:
@@ -880,8 +921,16 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             hard_iron, hard_iron_info = fit_waist_hard_iron(work, strides, fd.foot_heading(0.0) + lateral,
                                                             keep=~in_gap)
         # decision L98: without a magnetometer the waist heading starts at initial_heading, as the docstring says
-        wh = WaistHeading(hard_iron_ut=hard_iron, initial_heading=initial_heading).fit_session(work)
+        rest = waist_rest_bias(work)  # decision W125: W105's check on the waist unit this heading turns by
+        bias_line = None if rest is None else still_yaw_rate_message(rest[0], TWO_UNIT_FIX)
+        warnings += [bias_line] if bias_line else []
+        yaw_bias = rest[1] if bias_line and (WAIST_BIAS_AT_REST if waist_bias is None else waist_bias) else None
+        wh = WaistHeading(hard_iron_ut=hard_iron, initial_heading=initial_heading,
+                          yaw_bias=yaw_bias).fit_session(work)  # decision W126
         warnings += wh.warnings_
+        if alignment is None:  # decision L161: the units' clocks checked when they were not aligned
+            offset_line = unit_offset_line(session)
+            warnings += [offset_line] if offset_line else []
         head = _stride_heading(wh, strides)
         if hsrc == "fused":
             head = fuse_by_segment(fd.foot_heading(0.0) + lateral, head, strides["start_s"].to_numpy(float),
@@ -1141,6 +1190,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                        + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"))
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(no_waist_heading(session))
+    elif heading in ("auto", "waist-gyro"):  # decision W125: the waist gyroscope heads the strides, as `run`'s
+        bias_line = waist_bias_line(session)
+        warnings += [bias_line] if bias_line else []
     classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
     model_bounds, domain, off_rate = None, None, None
     if method == "M3":
