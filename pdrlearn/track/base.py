@@ -149,7 +149,8 @@ def get_pipeline(name: str) -> Pipeline:
     - ``"plasys"`` (foot unit, + waist): PLASYS M1/M2/M3 (thesis ch.7). Keyword arguments: ``method``
       (``"auto"`` default as ``pdrlearn track``: M3 with ``model``, else the M3 engine without class rules;
       ``"M1"``, ``"M2"``, ``"M3"``), ``model`` (model directory, loaded model or ``"oracle"``), ``start``
-      ((lat, lon)), ``params`` (FootDisplacement settings), ``steps`` (a string: ``"detector"``, ``"stance"`` or
+      ((lat, lon[, alt]), as ``--start``: decision L157), ``params`` (FootDisplacement settings), ``steps`` (a
+      string: ``"detector"``, ``"stance"`` or
       ``"labels"``, the session's steps table), ``heading``, ``initial_heading``,
       ``bounds``, ``bounds_scale``, ``down_mode``, ``min_confidence``, ``align``, ``rules`` (``"bayes"`` /
       ``"thesis"``), ``fused_tau_s``, ``streaming``, ``distance_gain``, ``calibration``, ``gap_yaw``, ``waist_gap_yaw``,
