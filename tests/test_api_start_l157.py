@@ -8,7 +8,6 @@ A new-user trial (session 24, notebook API) found plasys taking ``initial_headin
 
 from __future__ import annotations
 
-import logging
 import math
 
 import numpy as np
@@ -22,7 +21,6 @@ from pdrlearn.track.geodetic import parse_start
 
 @pytest.fixture(scope="module")
 def level(gaitmap_level_left):
-    logging.getLogger("pdrlearn").setLevel(logging.ERROR)
     return read_session(gaitmap_level_left)
 
 

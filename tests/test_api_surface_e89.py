@@ -6,7 +6,6 @@ errors for a non-path folder and a misspelled detector setting, a short ``Sessio
 
 from __future__ import annotations
 
-import logging
 import subprocess
 import sys
 from pathlib import Path
@@ -44,7 +43,6 @@ def test_path_figures_are_exported_and_a_track_plots_itself(gaitmap_level_left, 
     import pdrlearn.track as track
 
     assert {"path_figure", "plot_paths"} <= set(track.__all__)
-    logging.getLogger("pdrlearn").setLevel(logging.ERROR)
     s = read_session(gaitmap_level_left)
     r = get_pipeline("plasys")(s)
     fig = r.plot(s, out=tmp_path / "path.png")
@@ -78,7 +76,6 @@ def test_session_repr_is_short(gaitmap_level_left):
 def test_summary_refuses_another_session(gaitmap_level_left):
     from pdrlearn.sim import simulate
 
-    logging.getLogger("pdrlearn").setLevel(logging.ERROR)
     s = read_session(gaitmap_level_left)
     r = get_pipeline("plasys")(s)
     assert r.summary(s)["session"] == "gaitmap_level_left"

@@ -4,7 +4,6 @@ that consumes chunks of samples, both running the same pure kernel so that their
 
 from __future__ import annotations
 
-import functools
 import inspect
 import logging
 from typing import Any, Protocol
@@ -141,24 +140,16 @@ class StepDetector:
     input_columns: tuple[str, ...] = ()
     extra_columns: tuple[str, ...] = ()
 
-    def __init_subclass__(cls, **kwargs) -> None:
-        """Decision B180: a detector's ``__init__`` given an unknown setting raises the ``TypeError`` that names
-        the closest one (``AccelStepDetector(thresh=1)`` -> did you mean 'threshold'?), as the pipelines do
-        (:func:`pdrlearn.errors.check_keyword_names`, decision L43); an ``__init__`` with ``**kwargs`` is left as
-        it is."""
-        super().__init_subclass__(**kwargs)
-        init = cls.__dict__.get("__init__")
-        if init is None or any(p.kind == p.VAR_KEYWORD for p in inspect.signature(init).parameters.values()):
-            return
-        names = [p.name for p in list(inspect.signature(init).parameters.values())[1:]
-                 if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)]
-
-        @functools.wraps(init)
-        def checked(self, *args, **kw):
-            check_keyword_names(cls.__name__, kw, names)
-            init(self, *args, **kw)
-
-        cls.__init__ = checked
+    def __new__(cls, *args, **kwargs):
+        """Decision B180: a detector given an unknown setting raises the ``TypeError`` that names the closest one
+        (``AccelStepDetector(thresh=1)`` -> did you mean 'threshold'?), as the pipelines do
+        (:func:`pdrlearn.errors.check_keyword_names`, decision L43), before ``__init__`` runs; an ``__init__``
+        with ``**kwargs`` is left to itself."""
+        params = list(inspect.signature(cls.__init__).parameters.values())[1:]
+        if not any(p.kind == p.VAR_KEYWORD for p in params):
+            check_keyword_names(cls.__name__, kwargs,
+                                [p.name for p in params if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)])
+        return super().__new__(cls)
 
     # -- parameters ------------------------------------------------------------------------------
     @classmethod
