@@ -12,8 +12,9 @@ Prints the code location, then p50/p99 (ms) of ``Tracker.process_step`` over the
 steps and the p50 of its CPU time (5 passes, buffers pre-filled without trimming, as
 tests/benchmarks/test_bench_runtime.py), and the median over the steps of each step's fastest pass
 ("min-of-passes p50"): the figure least moved by other processes on a loaded machine (decision E13).
-Then decision E15's latency: p50/p99 of the push that completes a step with the session pushed sample
-by sample (``native_chunks``), and the mean cost of the other pushes.
+Then decision E15's latency: p50/p95/p99 of the push that completes a step with the session pushed sample
+by sample (``native_chunks``), and the mean and p95 cost of the other pushes (E83: a step computed ahead moves
+its cost to the push before).
 """
 
 from __future__ import annotations
@@ -43,7 +44,9 @@ def main(bundle: str, session_dir: str, passes: int = 5) -> None:
           f"({len(s.steps)} steps x {passes})")
     y, o, n = push_latencies(bundle, s, repeat=passes)
     print(f"{pdrlearn.__file__}: push yielding a step p50 {np.percentile(y, 50):.3f} ms, "
-          f"p99 {np.percentile(y, 99):.3f} ms ({n} steps x {passes}); other pushes mean {np.mean(o) * 1e3:.1f} us")
+          f"p95 {np.percentile(y, 95):.3f} ms, p99 {np.percentile(y, 99):.3f} ms ({n} steps x {passes}); "
+          f"other pushes mean {np.mean(o) * 1e3:.1f} us, "
+          f"p95 {np.percentile(o, 95) * 1e3:.1f} us")
 
 
 if __name__ == "__main__":

@@ -10,12 +10,15 @@ up-and-down part twice, ``level`` = ``stand:10, straight:30, turn:180, straight:
 * the per-stride height ratio of each track's steps.csv (``dz_m`` / the true change of the simulator's
   ``foot_trajectory.csv`` z between the stride's start and end) over the strides whose true change is over 0.1 m
   up / down, pooled over the users (median); the level walk's streamed distance (summary) with each kernel;
+* ``--truth`` (decision L152's rule): no offline ``track``; each level walk's ``run`` lengths against the truth (the
+  simulator's foot displacement over each tracked stride), pooled and per walk, and the stairs against the truth;
 * rule (e): ``track --streaming`` (M2) of the real gaitmap stair recordings with ``stride_upsample`` 1 and 5:
   the strides' heights must be equal bit for bit (204.8 Hz), hence the floor counts.
 
 Usage::
 
     OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/stream_stair_fine.py --users 680-699 --work /tmp/s23st
+    OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/stream_stair_fine.py --users 1400-1415 --work W --truth
 """
 
 from __future__ import annotations
@@ -57,6 +60,36 @@ def stride_ratios(session: Path, out: Path) -> tuple[np.ndarray, np.ndarray]:
 
 def distance(out: Path) -> float:
     return float(json.loads((out / "summary.json").read_text())["distance_m"])
+
+
+def level_lengths(session: Path, out: Path) -> tuple[float, float]:
+    """Decision L152: (sum of steps.csv ``length_m``, sum of the true stride lengths: the horizontal displacement of
+    the simulator's ``foot_trajectory.csv`` between each tracked stride's start and end)."""
+    ft = pd.read_csv(session / "foot_trajectory.csv")
+    tt = ft["t_ms"].to_numpy(float) / 1000.0
+    st = pd.read_csv(out / "steps.csv")
+    a, b = st["start_s"].to_numpy(float), st["end_s"].to_numpy(float)
+    dx, dy = (np.interp(b, tt, ft[c].to_numpy(float)) - np.interp(a, tt, ft[c].to_numpy(float)) for c in ("x", "y"))
+    return float(st["length_m"].sum()), float(np.hypot(dx, dy).sum())
+
+
+def l152_checks(pooled: dict, walks: list[tuple[tuple[float, float], tuple[float, float]]]) -> None:
+    """Decision L152's rule (a)-(c), printed: ``walks`` = per level walk ((run1 length, truth), (run5 length,
+    truth)); ``pooled`` = the per-stride height ratios."""
+    d1, d5 = sum(w[0][0] for w in walks), sum(w[1][0] for w in walks)
+    e1 = np.array([100 * (w[0][0] / w[0][1] - 1) for w in walks])
+    e5 = np.array([100 * (w[1][0] / w[1][1] - 1) for w in walks])
+    worse = np.abs(e5) - np.abs(e1)
+    change = 100 * (d5 / d1 - 1)
+    print(f"L152 (a) pooled level distance change {change:+.3f} % (|.| < 0.1: {abs(change) < 0.1}); pooled error vs "
+          f"truth run1 {100 * (d1 / sum(w[0][1] for w in walks) - 1):+.3f} %, run5 "
+          f"{100 * (d5 / sum(w[1][1] for w in walks) - 1):+.3f} %")
+    print(f"L152 (b) per-walk error vs truth, |e5| - |e1| points: max {worse.max():+.3f}, min {worse.min():+.3f}, "
+          f"mean {worse.mean():+.3f} (all <= 0.3: {bool((worse <= 0.3).all())}); mean |e1| {np.abs(e1).mean():.3f}, "
+          f"mean |e5| {np.abs(e5).mean():.3f}")
+    med = [float(np.median(np.concatenate(v))) for v in pooled["run5"]]
+    print(f"L152 (c) run5 pooled median height ratio up {med[0]:.4f} down {med[1]:.4f} "
+          f"(within 1 % of 1: {all(abs(m - 1) <= 0.01 for m in med)})")
 
 
 def fine_bundle(w: Path) -> Path:
@@ -103,10 +136,12 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--users", default="680-699")
     ap.add_argument("--work", type=Path, required=True)
+    ap.add_argument("--truth", action="store_true", help="decision L152's rule: run1 / run5 against the simulated "
+                    "truth (no offline track)")
     a = ap.parse_args()
     lo, hi = (int(v) for v in a.users.split("-"))
-    pooled: dict[str, list] = {m: [[], []] for m in ("track", "run1", "run5")}
-    level = []
+    pooled: dict[str, list] = {m: [[], []] for m in (("run1", "run5") if a.truth else ("track", "run1", "run5"))}
+    level, walks = [], []
     for u in range(lo, hi + 1):
         w = a.work / f"u{u}"
         b5 = fine_bundle(w)
@@ -124,18 +159,23 @@ def main() -> None:
             pooled[mode][1].append(down)
         d1, d5 = distance(w / "run1_level"), distance(w / "run5_level")
         level.append((d1, d5))
+        walks.append(tuple(level_lengths(w / "level", w / f"{m}_level") for m in ("run1", "run5")))
+        (l1, tr1), (l5, tr5) = walks[-1]
         print(f"u{u}: " + "; ".join(f"{m} up {np.median(pooled[m][0][-1]):.4f} down {np.median(pooled[m][1][-1]):.4f}"
                                     for m in pooled)
-              + f"; level run distance {d1:.3f} -> {d5:.3f} m ({100 * (d5 / d1 - 1):+.3f} %)", flush=True)
+              + f"; level run distance {d1:.3f} -> {d5:.3f} m ({100 * (d5 / d1 - 1):+.3f} %); error vs truth "
+              f"{100 * (l1 / tr1 - 1):+.3f} -> {100 * (l5 / tr5 - 1):+.3f} %", flush=True)
     med = {m: [float(np.median(np.concatenate(v))) for v in pooled[m]] for m in pooled}
     n = {m: [len(np.concatenate(v)) for v in pooled[m]] for m in pooled}
     for m in pooled:
         print(f"pooled {m}: up {med[m][0]:.4f} (n={n[m][0]}) down {med[m][1]:.4f} (n={n[m][1]})")
-    for m in ("run1", "run5"):
+    for m in ("run1", "run5") if "track" in pooled else ():
         print(f"(a) {m} - track: up {med[m][0] - med['track'][0]:+.4f}, down {med[m][1] - med['track'][1]:+.4f}")
     ch = np.array([100 * (d5 / d1 - 1) for d1, d5 in level])
     print(f"(b) level walk distance change %: max |.| {np.abs(ch).max():.3f}, mean {ch.mean():+.3f}, "
           f"total {100 * (sum(d5 for _, d5 in level) / sum(d1 for d1, _ in level) - 1):+.3f}")
+    if a.truth:
+        l152_checks(pooled, walks)
     real_check(a.work)
 
 

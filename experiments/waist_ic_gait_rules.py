@@ -48,6 +48,7 @@ from pdrlearn.track.waist import MAX_STEP_S, _step_lengths, track_waist
 from pdrlearn.waist import gait_rules as G
 from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
+from pdrlearn.waist.lengths import PendulumLength
 from pdrlearn.waist.params import resolve_params
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -157,7 +158,8 @@ def with_rules(session, off: TrackResult) -> TrackResult:
     kept = G.keep_contacts(st, keep, max_step_s=MAX_STEP_S)
     p, _ = resolve_params(session, None)
     thr = p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None else WALK_THRESHOLD_MPS2
-    kept = _step_lengths(kept, waist_imu(session), p, "waist-pendulum", thr, turn_factor=True, merge_fragments=True)
+    kept = _step_lengths(kept, waist_imu(session), p, PendulumLength(merge_fragments=True), thr,  # E84
+                         turn_factor=True)
     return TrackResult(kept, off.trajectory, off.info)
 
 

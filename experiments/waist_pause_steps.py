@@ -43,10 +43,10 @@ def sim_bouts(session, gap_s: float = BOUT_GAP_S) -> list[tuple[float, float]]:
     return [(ic[a], ic[b]) for a, b in zip(np.r_[0, cut + 1], np.r_[cut, ic.size - 1], strict=True) if b > a]
 
 
-def sim_daily(pause: bool) -> pd.DataFrame:
+def sim_daily(pause: bool | str, users=USERS) -> pd.DataFrame:
     """Rule (a): per bout of each user's daily-activity route, the calibrated pendulum's error (%)."""
     rows = []
-    for u in USERS:
+    for u in users:
         prof = UserProfile.from_seed(u)
         cal = simulate_path(parse_route("straight:20"), prof, rate_hz=100, seed=u + 5000)
         base, _ = resolve_params(cal, None)
@@ -62,7 +62,14 @@ def sim_daily(pause: bool) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def real(ext: Path, pause: bool) -> tuple[pd.DataFrame, pd.DataFrame]:
+def print_users_better(off: pd.DataFrame, on: pd.DataFrame) -> None:
+    """The line of how many simulated users' median |bout error| (:func:`sim_daily`) fell / rose, off -> on."""
+    per_user = off.assign(on=on.err_pct.abs(), off=lambda x: x.err_pct.abs()).groupby("user")[["off", "on"]].median()
+    print(f"users whose median |bout error| fell / rose: {(per_user.on < per_user.off).sum()} / "
+          f"{(per_user.on > per_user.off).sum()} of {len(per_user)}")
+
+
+def real(ext: Path, pause: bool | str) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Rules (b), (c): experiments/waist.py's calibrated and default rows of the offline pendulum."""
     bouts: list = []
     df = W.real(ext, W.external_runs(ext), configs=[("waist-pendulum", "waist-pendulum", {"pause_steps": pause})],
@@ -100,10 +107,7 @@ def main() -> None:
         print("  (b) Test11 median per bout vs Length / vs strides: " + ", ".join(
             f"{k} {v.a:.3f} / {v.s:.3f} %" for k, v in t11.iterrows()), flush=True)
     off, on = res[False], res[True]
-    per_user = off["users_better"].assign(on=on["users_better"].err_pct.abs(), off=lambda x: x.err_pct.abs()
-                                          ).groupby("user")[["off", "on"]].median()
-    print(f"users whose median |bout error| fell / rose: {(per_user.on < per_user.off).sum()} / "
-          f"{(per_user.on > per_user.off).sum()} of {len(per_user)}")
+    print_users_better(off["users_better"], on["users_better"])
     rules = {"(a) simulated daily activities falls >= 1.0 point": on["sim_daily"] <= off["sim_daily"] - 1.0,
              "(b) no Test11 subject's median rises > 0.5 point": bool(
                  ((on["t11"] - off["t11"]) <= 0.5).to_numpy().all()),

@@ -125,3 +125,25 @@ class Registry(MutableMapping):
 
 def _describe(obj: Any) -> str:
     return f"{getattr(obj, '__module__', '?')}.{getattr(obj, '__qualname__', type(obj).__name__)}"
+
+
+def parse_spec(spec: Any, kind: str) -> tuple[str, dict]:
+    """``"name"`` or ``"name:key=value,key=value"`` (the CLI's form of a plug-in with settings) -> ``(name,
+    settings)``; values are numbers, true/false/none or text. One line naming the form for anything else."""
+    if not isinstance(spec, str) or not spec.strip():
+        raise DataError(f"{kind} {spec!r}: give a registered name, optionally with settings: NAME:key=value,...")
+    name, _, rest = spec.strip().partition(":")
+    out: dict[str, Any] = {}
+    for item in filter(None, (s.strip() for s in rest.split(","))):
+        key, eq, value = (s.strip() for s in item.partition("="))
+        if not eq or not key:
+            raise DataError(f"{kind} '{spec}': setting '{item}' is not key=value; write NAME:key=value,...")
+        low = value.lower()
+        if low in ("true", "false", "none"):
+            out[key] = {"true": True, "false": False, "none": None}[low]
+            continue
+        try:
+            out[key] = int(value) if value.lstrip("+-").isdigit() else float(value)
+        except ValueError:
+            out[key] = value
+    return name.strip(), out

@@ -273,11 +273,13 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES
     from pdrlearn.sim.route import parse_route
     from pdrlearn.steps.detectors import DETECTORS
+    from pdrlearn.track.altitude import ALTITUDES
     from pdrlearn.track.base import PIPELINES
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
+    from pdrlearn.waist.lengths import get_step_length
 
     def settings(kind):
         return lambda v: check_settings(**{kind: [s.strip() for s in v.split(",")]})
@@ -307,10 +309,12 @@ def _validators() -> dict[tuple[str, str], object]:
         ("run", "start"): lambda v: parse_start(v, altitude=True),
         ("track", "length_bounds"): two_numbers,
         ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72
+        ("track", "altitude"): _one_of(ALTITUDES),  # decision L154
         ("track", "window"): parse_window,  # decision L105
         ("track", "units"): parse_units,  # decision B127
         ("export", "length_bounds"): two_numbers,
         ("export", "methods"): _one_of(METHODS, listed=True),
+        ("track", "length_model"): get_step_length,  # decision E84: NAME[:key=value,...]
         ("run", "rules"): _one_of(RULES),
         ("run", "units"): _one_of(BODY_UNITS, listed=True),
         ("train", "boundaries"): _one_of(BOUNDARIES),
@@ -332,7 +336,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("columns", "table"): _one_of(list(COLUMN_TABLES)),  # cohort C35
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window",
-                "units"):  # C12, L108, B127
+                "units", "altitude"):  # C12, L108, B127, L154
         v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):
         v[(cmd, "tasks")] = settings("tasks")
@@ -577,6 +581,7 @@ STALE = [
     ("pdrlearn calibrate DIR --pipeline plasys --out P.json", "not one of"),
     ("pdrlearn info DIR --json --force", "no such option"),
     ("pdrlearn track --gnss/--fix", "no such option"),
+    ("pdrlearn track DIR --altitude baro --out OUT", "not one of"),  # decision L154
     ("pdrlearn track --align", "no such option"),  # named by the --merge warning until decision L48
     ("pdrlearn info DIR DIR2", "arguments"),
     ("pdrlearn trak DIR --out OUT", "no such command"),

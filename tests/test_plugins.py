@@ -211,4 +211,4 @@ def test_track_cli_detector_option(gyro_rise, gaitmap_level_left, tmp_path, caps
                  "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["info"]["steps_source"] == "gyro-rise"
     assert main(["track", str(gaitmap_level_left), "--detector", "pll", "--out", str(tmp_path / "u")]) == 2
-    assert "detects lower-back steps" in capsys.readouterr().err
+    assert "detects lower-back steps, but " in capsys.readouterr().err  # E85: a waist detector, no waist unit

@@ -77,6 +77,7 @@ def test_events_off_the_session_clock_are_refused(foot):
 
     class Indices(StepDetector):
         name = "indices"
+        unit = "foot"
         input_columns = ("ax", "ay", "az")
 
         def _inputs(self, session):

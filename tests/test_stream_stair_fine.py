@@ -1,7 +1,8 @@
 """Decision L141 (L132's candidate): the stride kernel's displacement on a per-stride 5x block-mean histospline below
 50 Hz (``stride_upsample`` 5): the numpy spline keeps the block means and equals the offline (scipy) one, the
 streamed stair strides climb as high as offline's, the live Tracker equals ``track --streaming`` with it however the
-samples are pushed, and data at 50 Hz or more are left bit for bit."""
+samples are pushed, and data at 50 Hz or more are left bit for bit; equal blocks take one cached linear map (E83)
+and a live step on it is computed one push ahead (E83)."""
 
 from __future__ import annotations
 
@@ -107,27 +108,35 @@ def test_a_bad_stride_upsample_is_one_clear_line():
     assert SK.stride_upsample({}) == SK.STRIDE_UPSAMPLE_DEFAULT
 
 
-def test_the_live_tracker_equals_track_streaming_with_the_fine_kernel(stairs, tmp_path):
+@pytest.fixture(scope="module")
+def fine_dirs(tmp_path_factory):
+    """A foot-only terrain model of user 611 and its bundle exported with ``stride_upsample`` 5."""
+    from pdrlearn.classify import train_user
+    from pdrlearn.export.from_model import export_model
+    from pdrlearn.sim import simulate
+
+    root = tmp_path_factory.mktemp("fine")
+    model = train_user([simulate("terrain", user_seed=611, speed="normal")], tasks=["terrain"], methods=["svm"],
+                       units=["foot"], cv=2)
+    model.save(root / "model")
+    export_model(root / "model", root / "fine", displacement=FINE)
+    return root
+
+
+def test_the_live_tracker_equals_track_streaming_with_the_fine_kernel(stairs, fine_dirs):
     """L141 (L132's rule c): a bundle exported with ``stride_upsample`` 5 tracks as ``track --streaming`` with it,
     pushed sample by sample, in 0.5 s and in 3 s chunks (the step waits for the spline's 0.5 s of padding); and
     its heights differ from the native kernel's (the option is on)."""
-    from pdrlearn.classify import train_user
-    from pdrlearn.export.from_model import export_model
     from pdrlearn.runtime.tracker import Tracker
-    from pdrlearn.sim import simulate
     from pdrlearn.track.plasys import track_plasys
     from tests.runtime_helpers import per_timestamp, replay
 
-    model = train_user([simulate("terrain", user_seed=611, speed="normal")], tasks=["terrain"], methods=["svm"],
-                       units=["foot"], cv=2)
-    model.save(tmp_path / "model")
-    export_model(tmp_path / "model", tmp_path / "fine", displacement=FINE)
-    kw = dict(method="M3", model=str(tmp_path / "model"), streaming=True, heading="foot", rules="thesis")
+    kw = dict(method="M3", model=str(fine_dirs / "model"), streaming=True, heading="foot", rules="thesis")
     ref = track_plasys(stairs, params=FINE, **kw).trajectory[["x", "y", "z"]].to_numpy()[1:]
     native = track_plasys(stairs, **kw).trajectory[["x", "y", "z"]].to_numpy()[1:]
     assert np.abs(ref[:, 2] - native[:, 2]).max() > 0.05
     for chunk in ("sample", 0.5, 3.0):
-        tracker = Tracker(tmp_path / "fine", heading_source="foot", rules="thesis")
+        tracker = Tracker(fine_dirs / "fine", heading_source="foot", rules="thesis")
         if chunk == "sample":
             steps = [s for push in per_timestamp(stairs) for s in tracker.push(push)] + tracker.flush()
         else:
@@ -135,6 +144,37 @@ def test_the_live_tracker_equals_track_streaming_with_the_fine_kernel(stairs, tm
         live = np.array([[s.x, s.y, s.z] for s in steps])
         assert live.shape == ref.shape, chunk
         assert np.abs(live - ref).max() < 1e-6, chunk
+
+
+def test_the_fine_step_is_computed_one_push_ahead_and_equal(stairs, fine_dirs):
+    """E83: pushed sample by sample, a step on the fine kernel is computed at the end of the push before the one that
+    returns it (its samples are all buffered then: it waits FINE_AHEAD_S past its padding), so that push does only
+    its heading and position; the same pushes return the same steps, bit for bit, as ``speculative=False``."""
+    from tests.benchmarks.test_bench_runtime import native_chunks
+    from tests.test_runtime_latency_e24 import _assert_same
+
+    tr = _assert_same(native_chunks(stairs), fine_dirs / "fine", 0.9, heading_source="foot", rules="thesis")
+    assert tr.ahead + tr.at_step <= 1.1 * tr.n_steps  # few wasted computations
+
+
+def test_equal_blocks_take_the_cached_linear_map_and_equal_scipys():
+    """E83: on equal blocks (a fixed-rate clock, wherever it starts) the spline is one cached matrix, (n k, n), the
+    same for every start time and block width; its values are the offline (scipy) ones and those of the general
+    fit on a clock with jitter just over UNIFORM_REL."""
+    rng = np.random.default_rng(3)
+    H.uniform_operator.cache_clear()
+    for n in (3, 7, 44):
+        x = rng.normal(0.0, 5.0, (n, 6))
+        for t in (np.arange(n) * 0.05, 731.4 + np.arange(n) * 0.025):
+            tf, xf = H.upsample_block_means(t, x, 5)
+            tr, xr = K.upsample_block_means(t, x, 5)
+            np.testing.assert_array_equal(tf, tr)
+            np.testing.assert_allclose(xf, xr, atol=1e-9 * np.abs(xr).max())
+        t = np.arange(n) * 0.05
+        t[-1] += 0.05 * 1e-6  # not equal blocks: the general fit
+        np.testing.assert_allclose(H.upsample_block_means(t, x, 5)[1], xf, atol=1e-4 * np.abs(xf).max())
+    info = H.uniform_operator.cache_info()
+    assert (info.misses, info.hits) == (3, 3)  # one map per n, whatever the block width and start
 
 
 def test_track_names_the_params_file_of_a_bad_stride_upsample(tmp_path, capsys):

@@ -1,6 +1,8 @@
 """A step that spans a pause keeps one local period's length (decision W111, ``pause_steps``): the kernel on
 hand-made step durations, the option end to end on a simulated turn on the spot (calibration sums what the
-tracker sums, W21; the realtime detector ignores it)."""
+tracker sums, W21; the realtime detector ignores it). Decision W122, ``pause_steps="progression"``: a step with a
+standstill in it keeps at most the trunk's horizontal travel over it (the kernels by hand, the option end to end);
+W123: an unknown value is refused."""
 
 from __future__ import annotations
 
@@ -76,3 +78,73 @@ def test_option_end_to_end_on_a_turn_on_the_spot(turn_walk):
     # the realtime detector does not look ahead: the option changes nothing there
     rt = track_waist(turn_walk, pipeline="waist-pendulum", realtime=True, pause_steps=True).steps
     assert "pause_factor" not in rt
+
+
+# decision W122: pause_steps="progression" -- a step with a standstill keeps at most the trunk's travel over it
+
+
+def test_still_displacement_integrates_from_zero_velocity_in_the_standstill():
+    fs = 100.0
+    # 0.5 s braking from 1 m/s along x (-2 m/s^2), 0.3 s still, 0.5 s speeding up to 1 m/s along y (+2 m/s^2):
+    # 0.25 m along x, then 0.25 m along y -> |d| = 0.25 sqrt(2)
+    a = np.zeros((131, 2))
+    a[:50, 0], a[81:, 1] = -2.0, 2.0
+    still = np.zeros(131, bool)
+    still[52:79] = True
+    assert K.still_displacement(a, still, fs, 0, 130) == pytest.approx(0.25 * np.sqrt(2), rel=0.03)
+    # only speeding up after the standstill: 0.5 a t^2 = 0.25 m
+    assert K.still_displacement(a, still, fs, 52, 130) == pytest.approx(0.25, rel=0.03)
+    # the zero velocity is the middle of the LONGEST still run: a one-sample "still" while moving is not it
+    # (taken as zero there, the velocity before and after it would be off by 0.6 m/s: 0.58 m)
+    one = still.copy()
+    one[20] = True
+    assert K.still_displacement(a, one, fs, 0, 130) == pytest.approx(0.25 * np.sqrt(2), rel=0.03)
+    # no still sample in the step: no displacement (the walker never stopped)
+    assert np.isnan(K.still_displacement(a, still, fs, 0, 40))
+
+
+def test_progression_factor_caps_at_one_and_leaves_steps_without_a_standstill():
+    out = K.progression_factor([0.1, 0.9, np.nan, 0.1], [0.5, 0.5, 0.5, 0.0])
+    np.testing.assert_allclose(out, [0.2, 1.0, 1.0, 1.0])
+
+
+def test_progression_option_end_to_end_on_a_turn_on_the_spot(turn_walk):
+    from pdrlearn.signal.conditioning import standstill_mask
+    from pdrlearn.track.waist import track_waist
+    from pdrlearn.waist.ahrs import waist_imu
+
+    off = track_waist(turn_walk, pipeline="waist-pendulum").steps
+    on = track_waist(turn_walk, pipeline="waist-pendulum", pause_steps="progression").steps
+    np.testing.assert_array_equal(on["event_s"], off["event_s"])  # only the lengths change
+    f = on["pause_factor"].to_numpy(float)
+    np.testing.assert_allclose(on["length_m"], off["length_m"] * f, rtol=1e-12)
+    # exactly the steps with a standstill in them are shortened
+    imu = waist_imu(turn_walk)
+    still = standstill_mask(imu.acc_nav, imu.gyr_nav, imu.fs)
+    t = imu.t
+    has_still = np.array([bool(r.has_next) and still[(t >= r.start_s) & (t <= r.end_s)].any()
+                          for r in on.itertuples()])
+    assert has_still.any() and (f[has_still] < 1).all() and (f[~has_still] == 1).all()
+    # and they come nearer the unit's own travel (the simulated waist path from contact to contact)
+    tr = turn_walk.trajectory
+
+    def travel(a, b):
+        seg = tr[(tr["t"] >= a) & (tr["t"] <= b)]
+        return float(np.hypot(seg["x"].iloc[-1] - seg["x"].iloc[0], seg["y"].iloc[-1] - seg["y"].iloc[0]))
+
+    # (the stop before the turn 0.07 m, the restart 0.40 m: W111's one period gives 0.25 / 0.27 m, off 0.63 / 0.60 m)
+    true = np.array([travel(r.start_s, r.end_s) for r in on[has_still].itertuples()])
+    np.testing.assert_allclose(on["length_m"].to_numpy(float)[has_still], true, atol=0.05)
+    assert (np.abs(off["length_m"].to_numpy(float)[has_still] - true) > 0.1).all()
+    # the realtime detector keeps it off (as W111)
+    rt = track_waist(turn_walk, pipeline="waist-pendulum", realtime=True, pause_steps="progression").steps
+    assert "pause_factor" not in rt
+
+
+def test_an_unknown_pause_steps_value_is_refused_in_one_line(turn_walk):
+    from pdrlearn.errors import DataError
+    from pdrlearn.track.waist import track_waist
+
+    with pytest.raises(DataError, match=r"pause_steps 'Progression' is not one of false, true, \"progression\"") as e:
+        track_waist(turn_walk, pipeline="waist-pendulum", pause_steps="Progression")
+    assert "\n" not in str(e.value) and "W122" in str(e.value)

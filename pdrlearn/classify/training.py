@@ -34,11 +34,13 @@ from pdrlearn.classify.fusion import (
 from pdrlearn.classify.nn import NNClassifier
 from pdrlearn.classify.svm import SVMClassifier
 from pdrlearn.errors import DataError, MissingSensorError, PdrlearnError
+from pdrlearn.plugins import Registry
 
 log = logging.getLogger(__name__)
 
 TASKS = ("terrain", "direction", "length")
-METHODS = ("heuristic", "fusion", "dtw", "svm", "nn", "ensemble")
+#: the built-in classifier methods (the thesis' five and the opt-in ensemble, C14); :data:`METHODS` adds plug-ins
+BUILTIN_METHODS = ("heuristic", "fusion", "dtw", "svm", "nn", "ensemble")
 #: Methods trained when none are named: the thesis' five; ``ensemble`` (not thesis) is opt-in.
 DEFAULT_METHODS = ("heuristic", "fusion", "dtw", "svm", "nn")
 #: Members of the per-unit ``ensemble`` method, an equal-weight soft vote (decision C14).
@@ -114,6 +116,19 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
         if mod is None:
             raise MissingSensorError("heuristic classifiers (pdrlearn.classify.heuristic) are not available")
         return mod.make_heuristic(task, "both" if method == "fusion" else unit)
+    if unit == "fused" and method not in BUILTIN_METHODS:  # decision E86: a plug-in's soft vote of its two units
+        members = [(u, make_estimator(task, method, u, seed=seed), slice(None)) for u in ("foot", "waist")]
+        return UnitFusionClassifier(members, weights=None if weights is None else list(weights), random_state=seed)
+    if method not in BUILTIN_METHODS or method not in METHODS.builtin:  # decision E86: a registered plug-in
+        try:
+            factory = METHODS[method]
+        except KeyError:
+            raise METHODS.unknown(method) from None
+        est = factory(task, unit, seed=seed)
+        if not (hasattr(est, "fit") and hasattr(est, "predict_proba")):
+            raise DataError(f"classifier method '{method}': its factory returned {type(est).__name__}, which has no "
+                            "fit / predict_proba; return an unfitted scikit-learn classifier (docs/extending.md)")
+        return est
     if unit == "fused":
         if method == "heuristic":
             raise DataError("heuristic has no fused unit; use method 'fusion' (heuristic fusion)")
@@ -138,7 +153,42 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
                 ("clf", DTWClassifier(n_references=THESIS_REFERENCES_PER_CLASS[task], random_state=seed)),
             ]
         )
-    raise DataError(f"unknown method '{method}'; choose from {', '.join(METHODS)}")
+    raise METHODS.unknown(method)
+
+
+def _builtin_method(name: str):
+    def factory(task: str, unit: str, *, seed: int = 0):
+        return make_estimator(task, name, unit, seed=seed)
+
+    factory.__qualname__ = f"builtin_method[{name}]"
+    return factory
+
+
+def _check_method(name: str, factory):
+    """A plug-in method is a function ``factory(task, unit, *, seed) -> unfitted classifier`` (decision E86)."""
+    if not callable(factory):
+        raise DataError(f"classifier method '{name}': {factory!r} is not a function factory(task, unit, *, seed) "
+                        "-> an unfitted scikit-learn classifier (docs/extending.md)")
+    if name in UNITS or "," in name or "/" in name:
+        raise DataError(f"classifier method '{name}': the name must not be a unit nor hold ',' or '/'")
+    return factory
+
+
+#: method name -> estimator factory ``factory(task, unit, *, seed)`` (decision E86): the built-ins and those added by
+#: :func:`register_method` or installed (entry point group ``pdrlearn.methods``); ``pdrlearn train --methods``
+METHODS = Registry("classifier method", "pdrlearn.methods", adapt=_check_method, helper="register_method")
+for _name in BUILTIN_METHODS:
+    METHODS.register(_name, _builtin_method(_name))
+
+
+def register_method(name: str, factory, *, replace: bool = False):
+    """Make ``factory(task, unit, *, seed=0) -> an unfitted classifier`` (``fit(X, y)`` / ``predict_proba(X)`` on
+    step-window arrays, string class labels; e.g. a Pipeline of ``pdrlearn.features.make_features(task, unit,
+    "svm")`` and your classifier) the training method ``name``: ``pdrlearn train --methods NAME`` trains it per
+    unit (and its fused soft vote), cross-validated as the built-ins; ``evaluate`` and ``track --model`` use it;
+    ``export`` refuses it (the runtime has no recipe for it). A built-in name is refused unless ``replace=True``
+    (decision E81)."""
+    return METHODS.register(name, factory, replace=replace)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -318,7 +368,8 @@ def best_pair(ranking: list[tuple[str, str]]) -> tuple[str, str] | None:
 
 
 def _score_key(metrics: dict, method: str, unit: str = "fused") -> tuple:
-    return (-(metrics["balanced_accuracy"] or 0.0), -(metrics["accuracy"] or 0.0), PREFERENCE.index(method),
+    pref = PREFERENCE.index(method) if method in PREFERENCE else len(PREFERENCE)  # a plug-in ties last (E86)
+    return (-(metrics["balanced_accuracy"] or 0.0), -(metrics["accuracy"] or 0.0), pref,
             UNIT_PREFERENCE.index(unit) if unit in UNIT_PREFERENCE else len(UNIT_PREFERENCE))
 
 
@@ -1065,6 +1116,8 @@ def train_user(
 __all__ = [
     "TASKS",
     "METHODS",
+    "BUILTIN_METHODS",
+    "register_method",
     "DEFAULT_METHODS",
     "UNITS",
     "TWO_UNIT",

@@ -66,9 +66,20 @@ TOE_OFF_OPT = typer.Option(False, "--toe-off", help="plasys, offline: add the to
                            "stance_time_s, swing_time_s, stance_pct to steps.csv (decision L73: an option, "
                            "not the default - its toe-off runs ~21 ms early against mocap, see "
                            "docs/localization.md).")
+DETECTOR_OPT = typer.Option(None, "--detector", help="The steps from this step detector (a built-in or a registered "
+                            "/ installed plug-in, docs/extending.md): a foot detector gives plasys its strides "
+                            "(decision L149), a waist one (unit 'waist') gives the lower-back pipeline its contacts "
+                            "(decision E85). Default: the pipeline's own.")
+LENGTH_MODEL_OPT = typer.Option(None, "--length-model", help="Lower-back pipelines: the step-length model (pendulum, "
+                                "frequency, weinberg:k=GAIN or a plug-in; NAME:key=value,... sets its settings; "
+                                "decision E84). Default: the pipeline's own.")
 CONTACTS_OPT = typer.Option(False, "--contacts", help="plasys --streaming: each stride's initial contact "
                             "(force onset, else the accelerometer impact) and so stride_time_s, cadence_spm, "
                             "speed_mps (decisions E49-E51; `pdrlearn run --contacts` gives the same).")
+ALTITUDE_OPT = typer.Option(None, "--altitude", help="plasys: the altitude from the foot's strides alone (foot, "
+                            "the default) or fused with the session's waist barometer (fused: slopes and hills "
+                            "read; an option, decision L154 - the barometer's wander moves a level walk by up to "
+                            "~0.4 m and a stair climb by a few cm; docs/localization.md).")
 DPI_OPT = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP)
 COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a unit is over 1 s shorter than the "
                                "unit's others (cut short, refused by B72): track only the time all of them cover, "
@@ -115,9 +126,9 @@ def track(
     reference_point: str = REFERENCE_POINT_OPT,
     toe_off: bool = TOE_OFF_OPT,
     contacts: bool = CONTACTS_OPT,
-    detector: str = typer.Option(None, "--detector", help="plasys: the foot strides from this step detector "
-                                 "(accel, accel-force or a registered / installed plug-in, docs/extending.md; "
-                                 "decision L149). Default: the method's own detector."),
+    detector: str = DETECTOR_OPT,
+    length_model: str = LENGTH_MODEL_OPT,
+    altitude: str = ALTITUDE_OPT,
     dpi: int = DPI_OPT,
     common_span: bool = COMMON_SPAN_OPT,
     units: str = UNITS_OPT,
@@ -172,7 +183,8 @@ def track(
                               contacts=contacts, dpi=dpi, initial_heading=initial_heading,
                               common_span=common_span, units=units, window=window, resample=resample,
                               no_resample=no_resample, bout_break_s=bout_break_s,
-                              bout_min_strides=bout_min_strides, storey_height=storey_height, detector=detector)
+                              bout_min_strides=bout_min_strides, storey_height=storey_height, detector=detector,
+                              length_model=length_model, altitude=altitude)
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
@@ -202,7 +214,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    common_span: bool = False, window: str | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
-                   detector: str | None = None) -> dict:
+                   detector: str | None = None, length_model: str | None = None,
+                   altitude: str | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -243,16 +256,36 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         from pdrlearn.kernels.stride import stride_upsample
 
         stride_upsample(par, str(params))
-    if detector is not None:  # decision L149: an unknown or waist detector fails once, before any session
+    detector_unit = None
+    if detector is not None:  # decisions L149, E85: an unknown detector fails once, before any session
         from pdrlearn.steps import get_detector
 
-        if get_detector(detector).unit != "foot":
+        detector_unit = get_detector(detector).unit
+        if detector_unit == "foot" and pipeline not in ("auto", "plasys"):
+            raise DataError(f"track: --detector {detector} detects the foot's strides; --pipeline {pipeline} "
+                            "integrates lower-back steps: choose a detector with unit 'waist' (pll, waist-ic, "
+                            "pelvic-gyro or a plug-in), or --pipeline plasys")
+        if detector_unit == "waist" and pipeline == "plasys":
             raise DataError(f"track: --detector {detector} detects lower-back steps; the plasys pipeline integrates "
                             "the foot's strides: choose a foot detector (accel, accel-force or a plug-in with "
-                            "unit 'foot')")
+                            "unit 'foot'), or a lower-back --pipeline")
+        if detector_unit == "waist" and realtime:
+            raise DataError(f"track: --detector {detector}: --realtime chooses the pipeline's own causal contact "
+                            "detector (decision W31); drop one of them")
         if streaming:
             raise DataError("track: --detector chooses the offline strides; the --streaming kernel segments its "
                             "own - drop one of them")
+    if length_model is not None:  # decision E84: an unknown model or setting fails once, before any session
+        from pdrlearn.waist.lengths import get_step_length
+
+        get_step_length(length_model)
+        if pipeline == "plasys":
+            raise DataError("track: --length-model sets the lower-back pipelines' step length; plasys takes its "
+                            "stride length from the foot: drop --length-model or choose a lower-back --pipeline")
+    if altitude is not None:  # decision L154: an unknown source is one line before any session
+        from pdrlearn.track.altitude import check_altitude
+
+        check_altitude(altitude)
     if length_bounds is not None:
         try:
             bounds = [float(v) for v in length_bounds.split(",")]
@@ -269,7 +302,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
-            "detector": detector}
+            "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
+            "altitude": altitude}
 
 
 def read_params(params: Path):
@@ -298,8 +332,17 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse")
     content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
+    waist_asked = o.get("detector_unit") == "waist" or o.get("length_model") is not None  # E84, E85
+    if pipeline == "auto" and waist_asked:
+        pipeline = "waist-pendulum"  # a lower-back detector or step-length model: the user means the lower back
+    if waist_asked and not session.has("wAccelerometer"):
+        asked = (f"--detector {o['detector']} detects lower-back steps" if o.get("detector_unit") == "waist" else
+                 f"--length-model {o['length_model']} sets the lower-back step length")
+        raise DataError(f"track: {asked}, but {session.where} has no lower-back unit (wAccelerometer.csv); choose a "
+                        "foot detector (accel, accel-force or a plug-in with unit 'foot'), or a session with a waist "
+                        "unit")
     if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts
-                               or o.get("detector") is not None):
+                               or o.get("detector") is not None or o.get("altitude") is not None):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
     check_tracked_span(session, tracked_unit(pipeline))  # decision B126: the tracked unit covers the walk
@@ -319,7 +362,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                                                "--length-bounds": o["length_bounds_given"],
                                                "--streaming": streaming, "--toe-off": toe_off,
                                                "--contacts": contacts,
-                                               "--detector": o.get("detector") is not None},
+                                               "--detector": o.get("detector_unit") == "foot",
+                                               "--altitude": o.get("altitude") is not None},
                             gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"])
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
@@ -337,6 +381,11 @@ def track_session(session_dir: Path, settings: dict) -> dict:
           "params": par if pipeline == "plasys" or par is None else str(params)}
     if o["realtime"]:
         kw["realtime"] = True
+    if pipeline != "plasys":  # decisions E84, E85: the lower-back pipelines' detector and step-length model
+        if o.get("detector") is not None:
+            kw["detector"] = o["detector"]
+        if o.get("length_model") is not None:
+            kw["length_model"] = o["length_model"]
     heading0 = o.get("initial_heading_rad")
     if heading0 is not None:  # decision L98: every pipeline's API takes it (ENU rad)
         kw["initial_heading"] = heading0
@@ -356,8 +405,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                 raise DataError("track: --toe-off needs the offline tracker's initial contacts; the --streaming "
                                 "kernel (and `pdrlearn run`) has none - drop --streaming or --toe-off")
             kw["toe_off"] = True
-        for k in ("rules", "min_confidence", "warn_out_of_domain", "bounds"):
-            if o[k] is not None:
+        for k in ("rules", "min_confidence", "warn_out_of_domain", "bounds", "altitude"):
+            if o.get(k) is not None:
                 kw[k] = o[k]
     result = fn(session, **kw)
     aided = gnss is not None or fixes is not None
@@ -482,7 +531,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
 
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
 _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming",
-                   "--toe-off", "--contacts", "--detector")
+                   "--toe-off", "--contacts", "--detector", "--altitude")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
 

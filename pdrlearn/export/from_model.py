@@ -210,6 +210,11 @@ def _nn_module(clf):
     return MLP().eval()
 
 
+def _builtin_of(tm, known) -> str:
+    """The built-in methods a task model holds, for an error line (decision E86)."""
+    return ",".join(m for m in tm.models if m in known) or "nn"
+
+
 def _foot_only(tm, chosen, methods, allowed=lambda p: True):
     """Decision E26: the foot model of a task's bundle entry: the chosen one when it reads the foot only, else
     the best-ranked foot model (of ``methods`` when given, of those ``allowed``); None when there is none."""
@@ -290,11 +295,15 @@ def export_model(
         any model is a :class:`ModelError`.
     """
     from pdrlearn.classify.model_dir import load_model, read_manifest
-    from pdrlearn.classify.training import best_pair
+    from pdrlearn.classify.training import BUILTIN_METHODS, METHODS, best_pair
     from pdrlearn.features import CHANNELS
     from pdrlearn.features.transformers import SIGNALS
 
-    known = ("heuristic", "fusion", "dtw", "svm", "nn", "ensemble")  # issue 5 methods + opt-in C14
+    known = BUILTIN_METHODS  # issue 5 methods + opt-in C14
+    plug = [m for m in methods or [] if m not in known and m in METHODS]
+    if plug:  # decision E86: the runtime has a recipe for the built-in estimators only
+        raise ModelError(f"--methods {', '.join(plug)}: a plug-in classifier method (pdrlearn.methods), which the "
+                         f"runtime bundle cannot carry; export built-in methods ({', '.join(known)})")
     bad = [m for m in methods or [] if m not in known]
     if bad:
         raise ModelError(f"unknown method(s) {', '.join(bad)}; choose from {', '.join(known)}")
@@ -331,6 +340,10 @@ def export_model(
             wanted = [(m, u) for m in methods for u in tm.models.get(m, {}) if allowed((m, u))]
         else:
             wanted = [chosen] if chosen else []
+            if chosen and chosen[0] in METHODS and chosen[0] not in known:  # decision E86
+                raise ModelError(f"{model_dir}: task {task}'s chosen model {chosen[0]}/{chosen[1]} is a plug-in "
+                                 "classifier method, which the runtime bundle cannot carry; export built-in "
+                                 f"methods with --methods (e.g. --methods {_builtin_of(tm, known)})")
         # decision E26: the model `pdrlearn track` (UserModel.predict_steps) classifies a session without the
         # waist unit with: the chosen one when it reads the foot only, else the best-ranked foot model (of the
         # methods asked for, as the chosen one)

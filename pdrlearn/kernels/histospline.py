@@ -1,4 +1,4 @@
-"""Block-mean-preserving spline (histospline) of block-averaged samples, numpy only (decisions L24, L141).
+"""Block-mean-preserving spline (histospline) of block-averaged samples, numpy only (decisions L24, L141, E83).
 
 The PLASYS firmware sends the mean of consecutive samples (thesis ch.4: 20 Hz), each stamped at its period's
 centre. An interpolating spline of odd degree through the running integral at the block edges, differentiated,
@@ -15,10 +15,15 @@ Units: whatever the samples carry; times in s.
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 #: decision L24: the spline's degree (an odd degree <= 5 is taken by inputs of fewer than 6 blocks)
 DEGREE = 5
+#: decision E83: blocks whose widths differ from their mean by at most this fraction of it are one uniform grid
+#: (a fixed-rate clock: the simulator's and the firmware's 50 ms), whose spline is one cached linear map
+UNIFORM_REL = 1e-9
 
 
 def block_edges(t: np.ndarray) -> np.ndarray:
@@ -96,19 +101,42 @@ def _collocation(knots: np.ndarray, k: int, s: np.ndarray, derivative: bool = Fa
     return out
 
 
+@lru_cache(maxsize=64)
+def uniform_operator(n: int, k: int, degree: int = DEGREE) -> np.ndarray:
+    """Decision E83: the (n k, n) matrix that takes ``n`` block means on a grid of equal blocks to the spline's
+    values at the centres of ``k`` equal parts of each block (:func:`upsample_block_means`). On equal widths h the
+    running integral is h times the cumulative sum and the derivative 1/h times the derivative in block units,
+    so the map does not depend on h or on where the grid starts: fitted once per (n, k) on the unit grid,
+    read-only, then one matrix product per call instead of two Cox-de Boor evaluations and a solve."""
+    edges = np.arange(n + 1, dtype=float)
+    deg = spline_degree(n + 1, degree)
+    knots = not_a_knot(edges, deg)
+    cumsum = np.tril(np.ones((n + 1, n)), -1)  # the running integral at each edge of unit blocks
+    s = (edges[:-1, None] + ((np.arange(k) + 0.5) / k)[None, :]).ravel()
+    op = _collocation(knots, deg, s, derivative=True) @ np.linalg.solve(_collocation(knots, deg, edges), cumsum)
+    op.flags.writeable = False
+    return op
+
+
 def upsample_block_means(t: np.ndarray, x: np.ndarray, k: int, *, degree: int = DEGREE
                          ) -> tuple[np.ndarray, np.ndarray]:
     """Block means ``x`` (n >= 2, c) at the block centres ``t`` (n,) s upsampled ``k`` times: the derivative of the
     interpolating spline of the running integral at the centres of ``k`` equal parts of each block (decision L24;
     the same values as the offline :func:`pdrlearn.displace._kernels.upsample_block_means` to rounding). Returns
-    ``(t_fine (n k,), x_fine (n k, c))``; the spline's average over each block is that block's sample."""
+    ``(t_fine (n k,), x_fine (n k, c))``; the spline's average over each block is that block's sample. Equal
+    blocks (within :data:`UNIFORM_REL`) take the cached :func:`uniform_operator` (decision E83)."""
     t = np.asarray(t, dtype=float)
     x = np.asarray(x, dtype=float)
     edges = block_edges(t)
+    w = np.diff(edges)
+    frac = (np.arange(k) + 0.5) / k
+    t_fine = (edges[:-1, None] + w[:, None] * frac[None, :]).ravel()
+    mean_w = float(w.mean())
+    if float(np.abs(w - mean_w).max()) <= UNIFORM_REL * mean_w:
+        op = uniform_operator(len(t), int(k), int(degree))
+        return t_fine, (op @ x.reshape(len(t), -1)).reshape((len(t_fine),) + x.shape[1:])
     integral = running_integral(edges, x)
     deg = spline_degree(len(edges), degree)
     knots = not_a_knot(edges, deg)
     coef = np.linalg.solve(_collocation(knots, deg, edges), integral.reshape(len(edges), -1))
-    frac = (np.arange(k) + 0.5) / k
-    t_fine = (edges[:-1, None] + np.diff(edges)[:, None] * frac[None, :]).ravel()
     return t_fine, (_collocation(knots, deg, t_fine, derivative=True) @ coef).reshape((len(t_fine),) + x.shape[1:])

@@ -450,6 +450,9 @@ STRIDE_UPSAMPLE_DEFAULT = 1
 STRIDE_UPSAMPLE_OPTION = 5
 FINE_BELOW_HZ = 50.0
 FINE_PAD_S = 0.5
+#: decision E83: a live step on the fine kernel waits this much past its padding (one 20 Hz sample), so its samples
+#: are all buffered one push before the push that returns it, which then finds it computed (E24)
+FINE_AHEAD_S = 0.05
 
 
 def stride_upsample(params: Mapping | None, where: str = "params") -> int:

@@ -973,6 +973,40 @@ def low_vault_mask(h_m: np.ndarray, use: np.ndarray, closes: np.ndarray) -> np.n
     return np.asarray(use, dtype=bool) & np.isfinite(local) & (h < LOW_VAULT_RATIO * np.nan_to_num(local))
 
 
+def still_displacement(acc_h: np.ndarray, still: np.ndarray, fs: float, i0: int, i1: int) -> float:
+    """Horizontal displacement (m) of the unit between samples ``i0`` and ``i1`` when the unit stands still
+    somewhere in between (decision W122); NaN when no sample of ``still`` lies in ``[i0, i1]``.
+
+    The velocity is zero in the middle of the longest still run (the zero-velocity update of foot-mounted
+    dead reckoning, thesis ch.3, moved to the trunk: a standing walker's pelvis does not travel); from there the
+    horizontal acceleration ``acc_h`` (n, 2; navigation frame, m/s^2) is integrated forward and backward to the
+    velocity (trapezoid) and the velocity over ``[i0, i1]`` to the displacement, whose length is returned.
+    """
+    m = np.asarray(still[i0:i1 + 1], dtype=bool)
+    if not m.any():
+        return float("nan")
+    a = np.asarray(acc_h[i0:i1 + 1], dtype=np.float64)
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], m.astype(np.int8), [0]])))
+    starts, ends = edges[::2], edges[1::2]  # runs [start, end)
+    j = int(np.argmax(ends - starts))
+    k0 = (int(starts[j]) + int(ends[j]) - 1) // 2
+    dv = 0.5 * (a[1:] + a[:-1]) / fs  # velocity change from sample k to k + 1
+    cum = np.concatenate([np.zeros((1, a.shape[1])), np.cumsum(dv, axis=0)])
+    v = cum - cum[k0]  # zero at k0, integrated both ways
+    d = 0.5 * (v[1:] + v[:-1]).sum(axis=0) / fs
+    return float(np.hypot(d[0], d[1]))
+
+
+def progression_factor(displacement_m: np.ndarray, length_m: np.ndarray) -> np.ndarray:
+    """Share of a step's length kept when the unit stood still during the step (decision W122): the trunk's
+    own horizontal travel over it (:func:`still_displacement`) over the step length, at most 1; 1 for a step
+    without a still sample (NaN displacement) or without a length."""
+    d = np.asarray(displacement_m, dtype=np.float64)
+    ln = np.asarray(length_m, dtype=np.float64)
+    ok = np.isfinite(d) & (ln > 0)
+    return np.where(ok, np.minimum(1.0, np.where(ok, d, 0.0) / np.where(ok, ln, 1.0)), 1.0)
+
+
 def frequency_length(f_hz: np.ndarray, a: float, b: float) -> np.ndarray:
     """Step length linear in step frequency (seed 001 eq. 23; seed 000 sec. II-D): ``SL = a f - b``."""
     return a * np.asarray(f_hz, dtype=np.float64) - b

@@ -31,6 +31,7 @@ from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.stride import (
     DOWN_MODES,
+    FINE_AHEAD_S,
     FINE_PAD_S,
     GAP_YAW_MAX_S,
     HEADING_SOURCES,
@@ -506,8 +507,8 @@ class Tracker(FixInput):
         self._fine = fine_spec(self.params, self._stream, self.forward, rest_search_s=self.rest_search_s,
                                heading=self.heading_mode,
                                where=f"bundle {self.bundle.path} (the \"displacement\" entry of its manifest.json)")
-        if self._fine is not None:
-            self._lookahead_s = max(self._lookahead_s, FINE_PAD_S)
+        if self._fine is not None:  # decision E83: one sample more, so the push before computes the step ahead
+            self._lookahead_s = max(self._lookahead_s, FINE_PAD_S + FINE_AHEAD_S)
         #: the user's distance calibration carried by the bundle (decision E14; absent = gain 1), resolved
         #: against the pushed foot rate at the first step (the rate check of ``pdrlearn track``, L26)
         self._calibration = calibration_record(self.params)
@@ -1387,8 +1388,10 @@ class Tracker(FixInput):
     def _speculate(self) -> None:
         """Decision E24: at the end of a push that completed no step, compute the step the next push is
         likely to complete (:meth:`StanceSegmenter.closing_stride`), when every stream already has a sample
-        past what that step reads (then the next push reads the same samples), unless it is computed already."""
-        cand = self.segmenter.closing_stride()
+        past what that step reads (then the next push reads the same samples), unless it is computed already.
+        Decision E83: a detected step still waiting (the fine kernel's padding, L141) comes first: the next push
+        can complete no other, and its samples are all in one push before it is due (``FINE_AHEAD_S``)."""
+        cand = self._pending[0] if self._pending and self._fine is not None else self.segmenter.closing_stride()
         if cand is None:
             self._spec = None
             return

@@ -4,15 +4,15 @@ that consumes chunks of samples, both running the same pure kernel so that their
 
 from __future__ import annotations
 
-import inspect
 import logging
 from typing import Any, Protocol
 
 import numpy as np
 import pandas as pd
 
-from pdrlearn.errors import DataError, check_keyword_names
+from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session, Stream, session_entry
+from pdrlearn.settings import Settings
 from pdrlearn.signal.filters import interp_rows
 from pdrlearn.steps._kernels import Event
 
@@ -29,6 +29,9 @@ SPAN_MARGIN_S = 2.0
 
 def check_unit(unit, where: str) -> str:
     """Decision B168: ``unit`` is one of :data:`STEP_UNITS` (exact spelling), else one line naming it."""
+    if unit is None:  # decision steps 40: a detector class declares its unit
+        raise DataError(f"{where}: declares no unit; set the class attribute unit = 'foot' (one event per stride "
+                        "of the instrumented foot) or unit = 'waist' (every initial contact of both feet)")
     if not isinstance(unit, str) or unit not in STEP_UNITS:
         raise DataError(f"{where}: unit {unit!r} is not a steps-table unit; use one of {', '.join(STEP_UNITS)} "
                         "(lower case: 'foot' scores against the foot's strides, 'waist' against both feet's "
@@ -92,6 +95,7 @@ class OnlineStepDetector:
     def __init__(self, detector: StepDetector, fs: float, **context):
         if not (np.isfinite(fs) and fs > 0):
             raise DataError(f"{detector.name}: sampling rate {fs!r} Hz is not a positive number")
+        check_unit(detector.unit, f"detector {detector.name}")  # decision steps 40: before any sample
         self.detector = detector
         self.fs = float(fs)
         self._last_t = -np.inf
@@ -123,7 +127,7 @@ class OnlineStepDetector:
         return self.detector._frame(self._proc.flush())
 
 
-class StepDetector:
+class StepDetector(Settings):
     """Base class: subclasses set ``name``, ``unit`` ("foot": one event per stride of the instrumented foot;
     "waist": every step), ``input_columns``, ``extra_columns`` and implement the two hooks
     ``_inputs(session) -> (t, values, context)`` (the samples, times in s, and keyword context for the processor)
@@ -136,77 +140,11 @@ class StepDetector:
     """
 
     name = "base"
-    unit = "foot"
+    #: "foot" or "waist": no default (decision steps 40) - a waist detector that inherited "foot" was scored against
+    #: one foot's strides
+    unit: str | None = None
     input_columns: tuple[str, ...] = ()
     extra_columns: tuple[str, ...] = ()
-
-    def __new__(cls, *args, **kwargs):
-        """Decision B180: a detector given an unknown setting raises the ``TypeError`` that names the closest one
-        (``AccelStepDetector(thresh=1)`` -> did you mean 'threshold'?), as the pipelines do
-        (:func:`pdrlearn.errors.check_keyword_names`, decision L43), before ``__init__`` runs; an ``__init__``
-        with ``**kwargs`` is left to itself."""
-        params = list(inspect.signature(cls.__init__).parameters.values())[1:]
-        if not any(p.kind == p.VAR_KEYWORD for p in params):
-            check_keyword_names(cls.__name__, kwargs,
-                                [p.name for p in params if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)])
-        return super().__new__(cls)
-
-    # -- parameters ------------------------------------------------------------------------------
-    @classmethod
-    def _param_names(cls) -> list[str]:
-        sig = inspect.signature(cls.__init__)
-        return [p.name for p in sig.parameters.values() if p.kind == p.KEYWORD_ONLY]
-
-    def _store(self, values: dict) -> None:
-        """Keep every keyword-only ``__init__`` argument as an attribute (called with ``locals()``)."""
-        self._check_params({k: values[k] for k in self._param_names()})
-        for k in self._param_names():
-            setattr(self, k, values[k])
-
-    def _check_params(self, params: dict) -> None:
-        """Every numeric setting (thresholds, windows and durations in s, frequencies in Hz, orders,
-        fractions, weights) is a finite number >= 0 (decision C21): a negative threshold or window was
-        accepted silently. Checked at construction and by :meth:`set_params`."""
-        for k, v in params.items():
-            values = v if isinstance(v, tuple | list) else (v,)
-            for x in values:
-                if isinstance(x, bool) or not isinstance(x, int | float | np.integer | np.floating):
-                    continue
-                if not np.isfinite(x) or x < 0:
-                    raise DataError(f"{type(self).__name__}: {k}={v!r} is not allowed; settings are finite numbers "
-                                    f">= 0 (the default is {self._defaults()[k]!r})")
-
-    @classmethod
-    def _defaults(cls) -> dict:
-        sig = inspect.signature(cls.__init__)
-        return {p.name: p.default for p in sig.parameters.values() if p.kind == p.KEYWORD_ONLY}
-
-    def get_params(self, deep: bool = True) -> dict:
-        return {k: getattr(self, k) for k in self._param_names()}
-
-    def set_params(self, **params) -> StepDetector:
-        for k in params:
-            if k not in self._param_names():
-                raise DataError(f"{self.name}: unknown parameter '{k}'; "
-                                f"valid: {', '.join(self._param_names())}")
-        self._check_params(params)
-        for k, v in params.items():
-            setattr(self, k, v)
-        return self
-
-    def __repr__(self) -> str:
-        """Only the settings that differ from the defaults, as scikit-learn prints estimators."""
-        defaults = self._defaults()
-
-        def changed(k, v) -> bool:
-            d = defaults.get(k, inspect.Parameter.empty)
-            try:
-                return not (v is d or (type(v) is type(d) and bool(v == d)))
-            except (TypeError, ValueError):  # arrays: ambiguous truth value
-                return True
-
-        params = {k: v for k, v in self.get_params().items() if changed(k, v)}
-        return f"{type(self).__name__}({', '.join(f'{k}={v!r}' for k, v in params.items())})"
 
     # -- running ---------------------------------------------------------------------------------
     def _frame(self, events: list[Event]) -> pd.DataFrame:

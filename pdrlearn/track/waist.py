@@ -46,6 +46,13 @@ from pdrlearn.waist.heading import (
     untracked_turn,
     untracked_turn_message,
 )
+from pdrlearn.waist.lengths import (
+    StepLengthModel,
+    check_lengths,
+    get_step_length,
+    step_frequency,
+    walking_sequences,
+)
 from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params, subject_height
 from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
@@ -60,7 +67,6 @@ from pdrlearn.waist.plausibility import (
 )
 from pdrlearn.waist.posture import tilt_gate, transfer_veto
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
-from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
 
 log = logging.getLogger(__name__)
 
@@ -69,15 +75,7 @@ MAX_STEP_S = 1.5  # contacts further apart end a walking sequence (slow gait: st
 
 def _sequences(steps: pd.DataFrame) -> list[np.ndarray]:
     """Row indices of each walking sequence: consecutive rows with a next contact plus the closing row."""
-    seqs, cur = [], []
-    for i, hn in enumerate(steps["has_next"].to_numpy(bool)):
-        cur.append(i)
-        if not hn:
-            seqs.append(np.array(cur))
-            cur = []
-    if cur:
-        seqs.append(np.array(cur))
-    return seqs
+    return walking_sequences(steps["has_next"].to_numpy(bool))
 
 
 def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine_ic: bool = True,
@@ -197,72 +195,27 @@ def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
     return out
 
 
-def _smoothed_g(steps: pd.DataFrame, g: np.ndarray, use: np.ndarray, win: dict[int, tuple[int, int]],
-                mode: str) -> np.ndarray:
-    """``g`` of the rows ``use`` smoothed per walking sequence by
-    :func:`~pdrlearn.waist._kernels.smooth_step_lengths` (decision W56); a W27 owner spans its merged rows."""
-    out = g.copy()
-    t0, t1 = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
-    for seq in _sequences(steps):
-        rows = seq[use[seq]]
-        if not rows.size:
-            continue
-        a = np.array([t0[win[i][0]] if i in win else t0[i] for i in rows])
-        b = np.array([t1[win[i][1]] if i in win else t1[i] for i in rows])
-        out[rows] = K.smooth_step_lengths(a, b, g[rows], mode)
-    return out
-
-
-def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: str, thr: float, *,
-                  turn_factor: bool = False, merge_fragments: bool = False,
-                  length_smoothing: str = "none", pause_steps: bool = False) -> pd.DataFrame:
-    """Steps table with ``length_m`` (0 for sequence-closing contacts), ``frequency_hz``, ``dyaw_rad``
-    (vertical-gyro rotation during the step) and, for the pendulum, ``h_m`` (vertical excursion) and
-    ``merged`` (True: a fragment whose length its neighbour carries).
-    ``turn_factor`` scales each length by :func:`~pdrlearn.waist._kernels.turning_step_factor` (W19);
-    ``merge_fragments`` (pendulum): a step shorter than half its sequence's median step is merged with a
-    neighbour, whose h and rotation are taken over both (decision W27). ``length_smoothing`` (pendulum): mobgap's
-    smoothing of the per-step ``g = 2 sqrt(2 L h - h^2)`` per walking sequence (decision W56), kept in ``g_m``;
-    the length is ``K g_m + F``. ``pause_steps`` (pendulum): a step longer than 1.5 local periods keeps one period's
-    length, ``x period / duration`` (decision W111), kept in ``pause_factor`` for the calibration (W21)."""
-    n, fs = len(steps), imu.fs
-    idx = np.clip(np.round((steps["event_s"].to_numpy(float) - imu.t[0]) * fs).astype(int), 0, len(imu.t) - 1)
+def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: StepLengthModel, thr: float, *,
+                  turn_factor: bool = False) -> pd.DataFrame:
+    """Steps table with ``length_m`` from the step-length ``model`` (decision E84; 0 for sequence-closing
+    contacts, plus the model's own columns: the pendulum's ``h_m``, ``g_m``, ``merged``, ``pause_factor``),
+    ``frequency_hz`` and ``dyaw_rad`` (vertical-gyro rotation during the step). ``thr``: the motion gate the steps
+    were found with (``steps.attrs["walk_threshold_mps2"]``, the frequency model's running state).
+    ``turn_factor`` scales each length by :func:`~pdrlearn.waist._kernels.turning_step_factor` (W19); a W27
+    fragment window of the pendulum gives its owner the rotation of the whole merged step."""
+    n = len(steps)
     has_next = steps["has_next"].to_numpy(bool)
-    dur = (steps["end_s"] - steps["start_s"]).to_numpy(float)
-    freq = np.where(has_next & (dur > 0), 1.0 / np.where(dur > 0, dur, 1.0), np.nan)
+    freq = step_frequency(steps)
     ev = steps["event_s"].to_numpy(float)
     end = steps["end_s"].to_numpy(float)
-    win: dict[int, tuple[int, int]] = {}
-    if pipeline == "waist-pendulum":
-        fc_idx = np.round((steps["fc_s"].fillna(-1).to_numpy(float) - imu.t[0]) * fs).astype(int)
-        if merge_fragments:
-            win = fragment_windows(steps["start_s"].to_numpy(float), end, has_next)
-        merged = fragment_mask(n, win)
-        h = np.zeros(n)
-        for i in np.flatnonzero(has_next & ~merged):
-            if i in win:  # W27: the whole step a spurious contact had split
-                h[i] = K.vertical_excursion(imu.acc_v, fs, idx[win[i][0]], idx[win[i][1] + 1])
-            else:
-                h[i] = pendulum_h(imu.acc_v, fs, idx[i], fc_idx[i], idx[i + 1])
-        use = has_next & ~merged
-        g = np.where(use, K.pendulum_length(h, p.leg_m), 0.0)  # K = 1, F = 0
-        if length_smoothing != "none":  # W56; equivariant to K g + F, so calibration sums g_m (W21)
-            g = _smoothed_g(steps, g, use, win, length_smoothing)
-        # a negative F (W22) must not turn a step with a tiny excursion into a backward one
-        sl = K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m) if length_smoothing == "none" else p.k * g + p.f_m
-        lengths = np.where(use, np.maximum(sl, 0.0), 0.0)
-        steps = steps.assign(h_m=h, g_m=g, merged=merged)
-        if pause_steps:  # W111: the owner of a W27 window spans the whole window
-            span = dur.copy()
-            for i, (a, b) in win.items():
-                span[i] = end[b] - steps["start_s"].to_numpy(float)[a]
-            factor = K.pause_step_factor(span, use, ~has_next)
-            lengths = lengths * factor
-            steps = steps.assign(pause_factor=factor)
-    else:
-        sigma = K.rolling_std(imu.acc_v, fs, causal=False)
-        running = K.motion_state(sigma[idx], walk_threshold=thr) == 2
-        lengths = np.where(has_next, frequency_lengths(np.nan_to_num(freq, nan=0.0), p, running=running), 0.0)
+    steps = steps.copy()
+    steps.attrs["walk_threshold_mps2"] = float(thr)
+    out = model.transform(steps, imu, p)
+    if not isinstance(out, pd.DataFrame) or len(out) != n or "length_m" not in out:
+        raise DataError(f"step-length model {model.name}: transform must return the steps table with length_m "
+                        "(one row per step); implement predict only (docs/extending.md)")
+    lengths = check_lengths(out["length_m"], out, model.name)
+    win: dict[int, tuple[int, int]] = out.attrs.get("fragment_windows") or {}
     dyaw = np.where(has_next, K.integrate_rate(imu.t, imu.w_z - p.gyro_bias_rps, ev, end), 0.0)
     for i, (a, b) in win.items():  # W27: the owner's turn factor over the merged step; the fragment keeps
         total = float(np.sum(dyaw[a:b + 1]))  # none, so that the column sums to the walk's turn
@@ -270,7 +223,7 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, pipeline: 
         dyaw[i] = total
     if turn_factor:
         lengths = lengths * K.turning_step_factor(dyaw)
-    return steps.assign(length_m=lengths, frequency_hz=freq, dyaw_rad=dyaw)
+    return out.assign(length_m=lengths, frequency_hz=freq, dyaw_rad=dyaw)
 
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
@@ -349,6 +302,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "sit_veto": False, "pause_steps": False, "vault_veto": False}
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
+#: the values of the ``pause_steps`` option: off, W111's one period, W122's trunk travel over a standstill
+PAUSE_STEPS_VALUES = (False, True, "progression")
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -367,8 +322,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
                 relative_gate: bool | None = None, stairs_length: bool | None = None, stairs_climb: bool | None = None,
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
-                sit_veto: bool | str | None = None, pause_steps: bool | None = None,
-                vault_veto: bool | None = None) -> TrackResult:
+                sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
+                vault_veto: bool | None = None, detector=None, length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -418,10 +373,21 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         sequence (decision W109); ``False`` (default): no veto
     pause_steps : pendulum, offline detector (the realtime one ignores it: it looks three steps ahead): a step
         longer than 1.5 local periods spans a pause (the stop before a turn on the spot, the restart after it) and
-        keeps one period's length (decision W111); default False
+        keeps one period's length (decision W111); ``"progression"``: a step during which the unit stands still
+        (``standstill_mask``) keeps at most the trunk's horizontal travel over it, integrated from zero velocity in
+        the standstill (decision W122); default False
     vault_veto : pendulum, offline detector (the realtime one ignores it: it looks three steps ahead): drop a contact
         whose step vaults the pelvis by less than a quarter of its neighbours' (a weight shift while standing, no
         step; decision W119, :func:`pdrlearn.waist.posture.vault_veto`); default False
+
+    detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
+        name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
+        ``event_s`` are used as they are (no motion gate, no IC refinement); offline only (not with ``realtime``)
+    length_model : the step length from this model instead of the pipeline's (decision E84): a registered name
+        (``pdrlearn.waist.lengths.STEP_LENGTHS``: ``pendulum``, ``frequency``, ``weinberg`` and plug-ins), a
+        ``"name:key=value"`` string or a :class:`~pdrlearn.waist.lengths.StepLengthModel`; None: ``pendulum``
+        (waist-pendulum) or ``frequency`` (waist-pll). A model given by name takes the options named like its
+        settings (``merge_fragments``, ``length_smoothing``, ``pause_steps``)
 
     The altitude (trajectory ``z``, steps ``dz_m``) is the waist barometer's, relative to the start (decision
     W89); without a barometer it stays 0 with one warning (W90).
@@ -432,8 +398,12 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if pipeline not in ("waist-pll", "waist-pendulum"):
         raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     p, warnings = resolve_params(session, params)
-    if pipeline == "waist-pll":  # its frequency step-length model has no leg length (W62)
+    by_name = not isinstance(length_model, StepLengthModel)
+    model = get_step_length(length_model if length_model is not None else
+                            ("pendulum" if pipeline == "waist-pendulum" else "frequency"))  # E84
+    if not model.uses_leg_length:  # e.g. the frequency model (waist-pll's) has no leg length (W62)
         warnings = [w for w in warnings if not w.startswith(NO_SENSOR_HEIGHT)]
+    det = None if detector is None else waist_detector(detector, realtime)  # E85
     given = {"realtime": realtime, "heading": heading, "refine_ic": refine_ic,
              "initial_heading": initial_heading, "resolve_signs": resolve_signs,
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
@@ -450,6 +420,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if smoothing not in K.LENGTH_SMOOTHING_MODES:
         raise DataError(f"length_smoothing '{smoothing}' is not one of {', '.join(K.LENGTH_SMOOTHING_MODES)} "
                         "(decision W56); fix the option or the PARAMS.json \"options\"")
+    if by_name:  # E84: a model named by the pipeline or the user takes the options named like its settings
+        model.set_params(**{k: v for k, v in {"merge_fragments": bool(o["merge_fragments"]),
+                                               "length_smoothing": smoothing,
+                                               "pause_steps": o["pause_steps"] if not realtime else False}.items()
+                            if k in model.get_params()})
     if smoothing != "none" and realtime:
         raise DataError(f"length_smoothing '{smoothing}' looks up to 1 s ahead and the realtime detector does not "
                         "(decision W56); drop realtime or set length_smoothing to none")
@@ -459,6 +434,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["vault_veto"] not in (False, True):
         raise DataError(f"vault_veto {o['vault_veto']!r} is not one of false, true (decision W119); "
                         "fix the option or the PARAMS.json \"options\"")
+    if o["pause_steps"] not in PAUSE_STEPS_VALUES:
+        raise DataError(f"pause_steps {o['pause_steps']!r} is not one of false, true, \"progression\" (decisions "
+                        "W111, W122); fix the option or the PARAMS.json \"options\"")
     if p.source == "calibrated" and p.pipeline not in (None, pipeline):
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
@@ -471,7 +449,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     # the W4 gate's threshold and signal (offline: centred); W76's relative gate (not realtime); steps 35
     thr, sigma, gate_source = gate_threshold(imu, p.walk_threshold_mps2,
                                              relative=bool(o["relative_gate"]) and not realtime)
-    if pipeline == "waist-pendulum":
+    if det is not None:  # E85: a waist detector's contacts, as they are
+        steps = detector_steps(det, session, imu)
+        method = heading or ("gyro" if pipeline == "waist-pendulum" else "ahe")
+    elif pipeline == "waist-pendulum":
         det = InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
                                      rhythm=bool(o["rhythm"])).detect(imu)
         steps = det.steps_
@@ -496,9 +477,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
-    steps = _step_lengths(steps, imu, p, pipeline, thr, turn_factor=bool(o["turn_factor"]),
-                          merge_fragments=bool(o["merge_fragments"]), length_smoothing=smoothing,
-                          pause_steps=bool(o["pause_steps"]) and not realtime)
+    steps = _step_lengths(steps, imu, p, model, thr, turn_factor=bool(o["turn_factor"]))
     stairs = _stairs_steps(session, steps, bool(o["stairs_climb"]))
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
         steps = steps.assign(length_m=np.where(stairs, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
@@ -528,7 +507,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if ratio_line:
         warnings.append(ratio_line)
     n = len(steps)
-    length_model = "pendulum" if pipeline == "waist-pendulum" else "frequency"
+    length_model = model.name
     info = {
         "pipeline": pipeline,
         "method": f"{steps.attrs.get('detector', '')}/{length_model}/{method}",
@@ -551,6 +530,35 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]), z)
+
+
+def waist_detector(detector, realtime: bool):
+    """Decision E85: the :class:`~pdrlearn.steps.StepDetector` a waist pipeline takes its contacts from - a
+    registered name or an instance whose declared unit is ``"waist"``; one line otherwise."""
+    from pdrlearn.steps import StepDetector, get_detector
+
+    det = get_detector(detector) if isinstance(detector, str) else detector
+    if not isinstance(det, StepDetector):
+        raise DataError(f"detector {detector!r}: pass a registered step detector's name or a StepDetector instance "
+                        "(docs/extending.md)")
+    if det.unit != "waist":
+        raise DataError(f"detector {det.name} declares unit {det.unit!r}; a lower-back pipeline integrates every "
+                        "step of both feet: choose a detector with unit 'waist' (pll, waist-ic, pelvic-gyro or a "
+                        "plug-in), or track a foot session with the plasys pipeline")
+    if realtime:
+        raise DataError(f"detector {det.name}: realtime chooses the pipeline's own causal contact detector "
+                        "(decision W31); drop realtime or the detector")
+    return det
+
+
+def detector_steps(det, session: Session, imu: WaistIMU) -> pd.DataFrame:
+    """Decision E85: the waist steps table (``has_next``; ``fc_s`` NaN: the pendulum reads IC to IC, W10) of a
+    detector's contacts on the AHRS's samples (the nearest sample of each
+    ``event_s``; contacts further apart than :data:`MAX_STEP_S` end a sequence)."""
+    table = det.detect(session)
+    ev = np.sort(table["event_s"].to_numpy(float)) if len(table) else np.zeros(0)
+    idx = np.unique(np.clip(np.round((ev - imu.t[0]) * imu.fs).astype(int), 0, len(imu.t) - 1))
+    return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector=det.name)
 
 
 def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool,

@@ -1,0 +1,298 @@
+"""Waist step-length models: the built-ins of the two waist pipelines (``pendulum``, seed 003 sec. 3.2;
+``frequency``, seed 000 sec. II-D), ``weinberg`` (Weinberg 2002) and plug-ins (decision E84, docs/extending.md).
+
+The contract (:class:`StepLengthModel`): ``predict(steps, signals, profile)`` returns one length (m) per row of a
+waist steps table; ``steps`` has ``start_s`` (this initial contact), ``end_s`` (the next one), ``event_s`` and
+``has_next`` (False: the contact closes a walking sequence and carries no length), ``signals`` is the
+:class:`pdrlearn.waist.ahrs.WaistIMU` (navigation-frame lower-back signals, ``t`` in s), ``profile`` the
+:class:`pdrlearn.waist.params.WaistParams` (leg length, calibrated gains). A plain function with that signature
+registers as a model too. The pipeline checks the lengths (one per row, finite, >= 0) and sets 0 on closing rows.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+from pdrlearn.plugins import Registry
+from pdrlearn.settings import Settings
+from pdrlearn.waist import _kernels as K
+from pdrlearn.waist.params import WaistParams
+from pdrlearn.waist.steplength import fragment_mask, fragment_windows, frequency_lengths, pendulum_h
+
+#: the steps-table columns every length model may read
+LENGTH_INPUT_COLUMNS = ("start_s", "end_s", "event_s", "has_next")
+
+
+def step_frequency(steps: pd.DataFrame) -> np.ndarray:
+    """Step frequency (Hz) of each row with a next contact, 1 / (end_s - start_s); NaN on closing rows."""
+    has_next = steps["has_next"].to_numpy(bool)
+    dur = (steps["end_s"] - steps["start_s"]).to_numpy(float)
+    return np.where(has_next & (dur > 0), 1.0 / np.where(dur > 0, dur, 1.0), np.nan)
+
+
+def sample_index(steps: pd.DataFrame, signals, column: str = "event_s") -> np.ndarray:
+    """The signals' sample index of each row's ``column`` time (clipped to the recording)."""
+    t = steps[column].to_numpy(float)
+    return np.clip(np.round((t - signals.t[0]) * signals.fs).astype(int), 0, len(signals.t) - 1)
+
+
+class StepLengthModel(Settings):
+    """Base class of a waist step-length model: set ``name`` (the registered name), keyword-only settings in
+    ``__init__`` (``self._store(locals())``), and implement :meth:`predict`. ``uses_leg_length``: the model reads
+    ``profile.leg_m`` (False: the pipeline drops the "no sensor height" warning)."""
+
+    name = "base"
+    uses_leg_length = True
+    #: settings for a model whose defaults cannot run (weinberg's gain): the contract test and examples use them
+    example_settings: dict = {}
+
+    def predict(self, steps: pd.DataFrame, signals, profile: WaistParams) -> np.ndarray:
+        raise NotImplementedError
+
+    def transform(self, steps: pd.DataFrame, signals, profile: WaistParams) -> pd.DataFrame:
+        """``steps`` with ``length_m`` (checked by :func:`check_lengths`; 0 on closing rows). Built-ins also add
+        their own columns (``h_m``, ``g_m``, ``merged`` ...)."""
+        check_steps(steps, self.name)
+        lengths = check_lengths(self.predict(steps, signals, profile), steps, self.name)
+        return steps.assign(length_m=lengths)
+
+
+def check_steps(steps, name: str) -> None:
+    """One line when the steps table lacks a column a length model reads (decision E84)."""
+    missing = [c for c in LENGTH_INPUT_COLUMNS if not isinstance(steps, pd.DataFrame) or c not in steps]
+    if missing:
+        raise DataError(f"step-length model {name}: the steps table lacks {', '.join(missing)}; pass a waist steps "
+                        "table (pdrlearn.waist.events.steps_from_events, or track_waist(...).steps)")
+
+
+def check_lengths(lengths, steps: pd.DataFrame, name: str) -> np.ndarray:
+    """Decision E84: a model's lengths are one finite number >= 0 (m) per row; closing rows are set to 0."""
+    try:
+        v = np.asarray(lengths, dtype=float)
+    except (TypeError, ValueError):
+        raise DataError(f"step-length model {name}: predict returned {type(lengths).__name__}, not numbers; return "
+                        "one length in m per steps row") from None
+    if v.shape != (len(steps),):
+        raise DataError(f"step-length model {name}: predict returned shape {v.shape} for {len(steps)} steps; return "
+                        "one length in m per steps row")
+    has_next = steps["has_next"].to_numpy(bool)
+    v = np.where(has_next, v, 0.0)
+    bad = ~np.isfinite(v) | (v < 0)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise DataError(f"step-length model {name}: {int(bad.sum())} of {len(v)} lengths are negative or not finite "
+                        f"(first: {v[i]!r} m at {steps['start_s'].iloc[i]:g} s); return lengths in m, >= 0")
+    return v
+
+
+class PendulumLength(StepLengthModel):
+    """``K 2 sqrt(2 L h - h^2) + F`` (seed 003 eq. 1; ``h`` the vertical excursion IC to next IC, decision W10),
+    K, F and L from the profile; the waist-pendulum pipeline's model. Settings (the pipeline's options of the same
+    name): ``merge_fragments`` (decision W27), ``length_smoothing`` (W56), ``pause_steps`` (W111; ``"progression"``:
+    W122)."""
+
+    name = "pendulum"
+
+    def __init__(self, *, merge_fragments: bool = True, length_smoothing: str = "none",
+                 pause_steps: bool | str = False):
+        self._store(locals())
+
+    def predict(self, steps, signals, profile):
+        return self.transform(steps, signals, profile)["length_m"].to_numpy(float)
+
+    def transform(self, steps, signals, profile):
+        check_steps(steps, self.name)
+        mode = str(self.length_smoothing)
+        if mode not in K.LENGTH_SMOOTHING_MODES:
+            raise DataError(f"length_smoothing '{mode}' is not one of {', '.join(K.LENGTH_SMOOTHING_MODES)} "
+                            "(decision W56); fix the option or the PARAMS.json \"options\"")
+        n, fs, p = len(steps), signals.fs, profile
+        idx = sample_index(steps, signals)
+        has_next = steps["has_next"].to_numpy(bool)
+        start, end = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+        fc = steps["fc_s"].fillna(-1) if "fc_s" in steps else pd.Series(np.full(n, -1.0))
+        fc_idx = np.round((fc.to_numpy(float) - signals.t[0]) * fs).astype(int)
+        win = fragment_windows(start, end, has_next) if self.merge_fragments else {}
+        merged = fragment_mask(n, win)
+        h = np.zeros(n)
+        for i in np.flatnonzero(has_next & ~merged):
+            if i in win:  # W27: the whole step a spurious contact had split
+                h[i] = K.vertical_excursion(signals.acc_v, fs, idx[win[i][0]], idx[win[i][1] + 1])
+            else:
+                h[i] = pendulum_h(signals.acc_v, fs, idx[i], fc_idx[i], idx[i + 1])
+        use = has_next & ~merged
+        g = np.where(use, K.pendulum_length(h, p.leg_m), 0.0)  # K = 1, F = 0
+        if mode != "none":  # W56; equivariant to K g + F, so calibration sums g_m (W21)
+            g = _smoothed_g(steps, g, use, win, mode)
+        # a negative F (W22) must not turn a step with a tiny excursion into a backward one
+        sl = K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m) if mode == "none" else p.k * g + p.f_m
+        lengths = np.where(use, np.maximum(sl, 0.0), 0.0)
+        out = steps.assign(h_m=h, g_m=g, merged=merged)
+        if self.pause_steps == "progression":  # W122: the trunk's own travel over a step with a standstill in it
+            factor = K.progression_factor(_still_displacements(signals, idx, use, win), lengths)
+            lengths = lengths * factor
+            out = out.assign(pause_factor=factor)
+        elif self.pause_steps:  # W111: the owner of a W27 window spans the whole window
+            span = end - start
+            for i, (a, b) in win.items():
+                span[i] = end[b] - start[a]
+            factor = K.pause_step_factor(span, use, ~has_next)
+            lengths = lengths * factor
+            out = out.assign(pause_factor=factor)
+        out = out.assign(length_m=lengths)
+        out.attrs["fragment_windows"] = win  # W27: the pipeline gives each owner the turn of its merged step
+        return out
+
+
+def _still_displacements(signals, idx: np.ndarray, use: np.ndarray,
+                         win: dict[int, tuple[int, int]]) -> np.ndarray:
+    """Decision W122: per step row (``use``; a W27 owner over its whole window) the unit's horizontal travel from
+    its contact to the next when it stands still in between (:func:`~pdrlearn.signal.conditioning.standstill_mask`
+    with its defaults, :func:`~pdrlearn.waist._kernels.still_displacement`); NaN elsewhere."""
+    from pdrlearn.signal.conditioning import standstill_mask
+
+    still = standstill_mask(signals.acc_nav, signals.gyr_nav, signals.fs)
+    out = np.full(len(idx), np.nan)
+    for i in np.flatnonzero(use):
+        a, b = win.get(i, (i, i))
+        stop = int(idx[min(b + 1, len(idx) - 1)])
+        out[i] = K.still_displacement(signals.acc_h, still, signals.fs, int(idx[a]), stop)
+    return out
+
+
+def walking_sequences(has_next: np.ndarray) -> list[np.ndarray]:
+    """Row indices of each walking sequence: consecutive rows with a next contact plus the closing row."""
+    ends = np.flatnonzero(~np.asarray(has_next, dtype=bool))
+    bounds = np.concatenate([[0], ends + 1, [len(has_next)]])
+    return [np.arange(a, b) for a, b in zip(bounds[:-1], bounds[1:], strict=True) if b > a]
+
+
+def _smoothed_g(steps: pd.DataFrame, g: np.ndarray, use: np.ndarray, win: dict[int, tuple[int, int]],
+                mode: str) -> np.ndarray:
+    """``g`` of the rows ``use`` smoothed per walking sequence by
+    :func:`~pdrlearn.waist._kernels.smooth_step_lengths` (decision W56); a W27 owner spans its merged rows."""
+    out = g.copy()
+    t0, t1 = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    for seq in walking_sequences(steps["has_next"].to_numpy(bool)):
+        rows = seq[use[seq]]
+        if not rows.size:
+            continue
+        a = np.array([t0[win[i][0]] if i in win else t0[i] for i in rows])
+        b = np.array([t1[win[i][1]] if i in win else t1[i] for i in rows])
+        out[rows] = K.smooth_step_lengths(a, b, g[rows], mode)
+    return out
+
+
+class FrequencyLength(StepLengthModel):
+    """``a f - b``, piecewise linear in the step frequency f (seed 000 sec. II-D, seed 001 eq. 23; decisions W37,
+    W118), the lines from the profile; the running line where the 2 s SD of the vertical acceleration reaches the
+    running level (at or above the motion gate ``steps.attrs["walk_threshold_mps2"]``, default W4's 0.5). The
+    waist-pll pipeline's model."""
+
+    name = "frequency"
+    uses_leg_length = False
+
+    def __init__(self):
+        self._store(locals())
+
+    def predict(self, steps, signals, profile):
+        from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
+
+        check_steps(steps, self.name)
+        thr = float(steps.attrs.get("walk_threshold_mps2", WALK_THRESHOLD_MPS2))
+        sigma = K.rolling_std(signals.acc_v, signals.fs, causal=False)
+        running = K.motion_state(sigma[sample_index(steps, signals)], walk_threshold=thr) == 2
+        freq = step_frequency(steps)
+        return np.where(steps["has_next"].to_numpy(bool),
+                        frequency_lengths(np.nan_to_num(freq, nan=0.0), profile, running=running), 0.0)
+
+
+class WeinbergLength(StepLengthModel):
+    """``k (a_max - a_min)^(1/4)`` (Weinberg 2002, Analog Devices AN-602, cited by seed 000 as ref. [18]): the
+    fourth root of the range of the vertical acceleration (m/s^2, ``signals.acc_v``) over the step, IC to next IC
+    (as ``experiments/waist_steplength_loso.py`` measured it, docs/waist.md). ``k`` (m per (m/s^2)^(1/4)) is the
+    user's gain, which Weinberg fits on a walk of known length: no default (decision E84)."""
+
+    name = "weinberg"
+    uses_leg_length = False
+    example_settings = {"k": 0.45}
+
+    def __init__(self, *, k: float | None = None):
+        self._store(locals())
+
+    def predict(self, steps, signals, profile):
+        if self.k is None:
+            raise DataError("step-length model weinberg: set its gain k (m per (m/s^2)^(1/4), fitted per user on a "
+                            "walk of known length, Weinberg 2002), e.g. --length-model weinberg:k=0.45 or "
+                            "WeinbergLength(k=0.45)")
+        check_steps(steps, self.name)
+        idx = sample_index(steps, signals)
+        has_next = steps["has_next"].to_numpy(bool)
+        out = np.zeros(len(steps))
+        for i in np.flatnonzero(has_next[:-1]):
+            a = signals.acc_v[idx[i]:idx[i + 1] + 1]
+            out[i] = self.k * float(a.max() - a.min()) ** 0.25  # Weinberg 2002 (AN-602)
+        return out
+
+
+class _FunctionLength(StepLengthModel):
+    """A registered function ``fn(steps, signals, profile) -> lengths`` as a model without settings."""
+
+    fn = None
+
+    def __init__(self):
+        self._store(locals())
+
+    def predict(self, steps, signals, profile):
+        check_steps(steps, self.name)
+        return type(self).fn(steps, signals, profile)
+
+
+def _check_length_model(name: str, obj):
+    """A plug-in is a :class:`StepLengthModel` subclass named as registered, or a function (wrapped)."""
+    if isinstance(obj, type) and issubclass(obj, StepLengthModel):
+        if obj.name != name:
+            raise DataError(f"step-length model '{name}': the class's name attribute is {obj.name!r}; set "
+                            f"name = {name!r} in {obj.__name__}")
+        return obj
+    if callable(obj) and not isinstance(obj, type):
+        return type(f"FunctionLength[{name}]", (_FunctionLength,),
+                    {"name": name, "fn": staticmethod(obj), "__module__": getattr(obj, "__module__", "?")})
+    raise DataError(f"step-length model '{name}': {obj!r} is neither a StepLengthModel subclass nor a function "
+                    "fn(steps, signals, profile) -> lengths (docs/extending.md)")
+
+
+#: name -> step-length model class (decision E84): the built-ins below, those added by
+#: :func:`register_step_length` and installed plug-ins (entry point group ``pdrlearn.step_lengths``)
+STEP_LENGTHS = Registry("step-length model", "pdrlearn.step_lengths", adapt=_check_length_model,
+                        helper="register_step_length")
+for _cls in (PendulumLength, FrequencyLength, WeinbergLength):
+    STEP_LENGTHS.register(_cls.name, _cls)
+
+
+def register_step_length(name: str, model, *, replace: bool = False):
+    """Make ``model`` (a :class:`StepLengthModel` subclass, or a function ``fn(steps, signals, profile) ->
+    lengths``) the step-length model ``name`` of the waist pipelines (``track_waist(..., length_model=name)``,
+    ``pdrlearn track --length-model NAME``). A built-in name is refused unless ``replace=True`` (decision E81)."""
+    return STEP_LENGTHS.register(name, model, replace=replace)
+
+
+def get_step_length(spec, **params) -> StepLengthModel:
+    """A model from its registered name (with ``params``), a ``"name:key=value,..."`` string (the CLI's form) or a
+    :class:`StepLengthModel` instance (returned as it is)."""
+    if isinstance(spec, StepLengthModel):
+        return spec
+    from pdrlearn.plugins import parse_spec
+
+    name, given = parse_spec(spec, "step-length model")
+    try:
+        cls = STEP_LENGTHS[name]
+    except KeyError:
+        raise STEP_LENGTHS.unknown(name) from None
+    try:
+        return cls(**{**given, **params})
+    except TypeError as exc:
+        raise DataError(f"step-length model {name}: {exc}; its settings are "
+                        f"{', '.join(cls._param_names()) or 'none'}") from None

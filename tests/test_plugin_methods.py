@@ -1,0 +1,72 @@
+"""Decision E86: classifier methods are a registry (``pdrlearn.classify.training.METHODS``, entry point group
+``pdrlearn.methods``): a registered method trains, is cross-validated and evaluated as the built-ins, and export
+refuses it in one line (the runtime bundle has no recipe for it)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from sklearn.linear_model import LogisticRegression
+from sklearn.pipeline import Pipeline
+
+from pdrlearn.classify import load_model, train_user
+from pdrlearn.classify.training import METHODS, check_settings, register_method
+from pdrlearn.errors import DataError, ModelError
+from pdrlearn.export.from_model import export_model
+from pdrlearn.features import make_features
+from tests.runtime_helpers import synthetic_session
+
+
+def logreg(task, unit, *, seed=0):
+    """A user's method: the SVM's features and a logistic regression."""
+    return Pipeline([("features", make_features(task, unit, "svm")),
+                     ("clf", LogisticRegression(max_iter=500, random_state=seed))])
+
+
+@pytest.fixture()
+def registered():
+    register_method("logreg", logreg)
+    yield "logreg"
+    del METHODS["logreg"]
+
+
+def test_builtins_are_refused_and_plugins_reach_the_settings(registered):
+    with pytest.raises(DataError, match=r"'svm' is a built-in classifier method; register_method\('svm', ..., "
+                                        r"replace=True\)"):
+        register_method("svm", logreg)
+    with pytest.raises(DataError, match="not a function factory"):
+        register_method("x", 3)
+    assert check_settings(methods=["logreg", "nn"])[1] == ["logreg", "nn"]
+    with pytest.raises(DataError, match="unknown method nosuch; choose from .*logreg"):
+        check_settings(methods=["nosuch"])
+
+
+def test_a_registered_method_trains_evaluates_and_export_refuses_it(registered, tmp_path):
+    train = synthetic_session(60, seed=0)
+    model = train_user([train], tasks=["terrain"], methods=["logreg", "nn"], units=["foot", "waist", "fused"],
+                       cv=2, seed=0, distance_calibration=False)
+    tm = model.tasks["terrain"]
+    assert {"foot", "waist", "fused"} <= set(tm.models["logreg"]) and "logreg" in tm.cv
+    assert tm.cv["logreg"]["foot"]["balanced_accuracy"] > 0.5
+    tm.chosen = ("logreg", "fused")
+    model.save(tmp_path / "m")
+    test = synthetic_session(30, seed=3)
+    pred = load_model(tmp_path / "m").predict_steps(test)
+    assert len(pred) and set(np.unique(pred["terrain"])) <= {"flat", "up", "down"}
+    with pytest.raises(ModelError, match="chosen model logreg/fused is a plug-in classifier method, which the runtime "
+                                         "bundle cannot carry; export built-in methods with --methods"):
+        export_model(tmp_path / "m", tmp_path / "b")
+    with pytest.raises(ModelError, match="--methods logreg: a plug-in classifier method"):
+        export_model(tmp_path / "m", tmp_path / "b", methods=["logreg"])
+    export_model(tmp_path / "m", tmp_path / "b", methods=["nn"])  # the built-in beside it still exports
+    assert (tmp_path / "b" / "manifest.json").is_file()
+
+
+def test_a_factory_that_returns_no_classifier_is_one_line(registered):
+    register_method("broken", lambda task, unit, *, seed=0: "not an estimator")
+    try:
+        with pytest.raises(DataError, match="factory returned str, which has no fit / predict_proba"):
+            train_user([synthetic_session(30, seed=0)], tasks=["terrain"], methods=["broken"], units=["foot"], cv=2,
+                       distance_calibration=False)
+    finally:
+        del METHODS["broken"]
