@@ -93,14 +93,17 @@ def classify(session, steps, **track_kw) -> dict:
     return r
 
 
-def cli(doc: str) -> Path:
-    """``[--external DIR]`` of this script and experiments/waist_vault_veto.py; the run's warnings silenced."""
+def cli(doc: str, decisions: tuple[str, ...] = ()) -> argparse.Namespace:
+    """``[--external DIR]`` of this script and experiments/waist_vault_veto.py (with ``decisions``, also
+    ``[--decision D]``, default the first); the run's warnings silenced."""
     ap = argparse.ArgumentParser(description=doc.split("\n")[0])
     ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
-    external = ap.parse_args().external
+    if decisions:
+        ap.add_argument("--decision", choices=decisions, default=decisions[0])
+    args = ap.parse_args()
     warnings.filterwarnings("ignore")
     logging.disable(logging.WARNING)
-    return external
+    return args
 
 
 def class_counts(r: dict) -> dict[str, int]:
@@ -110,7 +113,7 @@ def class_counts(r: dict) -> dict[str, int]:
 
 
 def main() -> None:
-    external = cli(__doc__)
+    external = cli(__doc__).external
     res, tot = {}, {"tp": 0, "det": 0, "ref": 0}
     for sub in C.SUBJECTS:
         s = read_session(external / f"mobgap_{sub}_Test11_Trial1")

@@ -1,7 +1,7 @@
 """Decision W119: a contact whose step does not vault the pelvis is no step (option ``vault_veto`` of the offline
-``waist-pendulum``; measured, not adopted as the default): the kernel on hand-made vaults, the veto on a hand-made
-vertical acceleration, the option end to end (realtime and waist-pll ignore it; an unknown value refused), and the
-measured real HA002 Test11 row."""
+``waist-pendulum``; measured, not adopted as the default); W127: ``vault_veto="turns"`` spares a turning step. The
+kernel on hand-made vaults, the veto on a hand-made vertical acceleration and yaw rate, the option end to end
+(realtime and waist-pll ignore it; an unknown value refused), and the measured real HA002 Test11 row."""
 
 from __future__ import annotations
 
@@ -51,15 +51,20 @@ def test_other_sequences_and_unused_rows_are_not_neighbours():
     assert not _mask([0.04, 0.0, 0.04, 0.04, 0.04], use=[True, False, True, True, True]).any()
 
 
-def _vault_imu(amplitudes: np.ndarray, step_s: float = 0.5) -> tuple[WaistIMU, np.ndarray]:
+def _vault_imu(amplitudes: np.ndarray, step_s: float = 0.5,
+               turns_deg: np.ndarray | None = None) -> tuple[WaistIMU, np.ndarray]:
     """A vertical acceleration of one cosine per step (contacts every ``step_s``): step k vaults the pelvis by
-    2 A_k / w^2 (peak to peak), w = 2 pi / step_s."""
+    2 A_k / w^2 (peak to peak), w = 2 pi / step_s; step k turns the pelvis by ``turns_deg[k]`` at a constant
+    vertical rate."""
     n = int(round(step_s * FS))
     t = np.arange(0.0, (amplitudes.size + 1) * step_s, 1.0 / FS)
     k = np.minimum((np.arange(t.size) // n), amplitudes.size - 1)
     acc_v = amplitudes[k] * np.cos(2.0 * np.pi * (t - k * step_s) / step_s)
     z = np.zeros(t.size)
-    imu = WaistIMU(t=t, fs=FS, acc_nav=np.zeros((t.size, 3)), gyr_nav=np.zeros((t.size, 3)), yaw=z, acc_v=acc_v,
+    gyr = np.zeros((t.size, 3))
+    if turns_deg is not None:
+        gyr[:, 2] = np.radians(np.asarray(turns_deg, float))[k] / step_s
+    imu = WaistIMU(t=t, fs=FS, acc_nav=np.zeros((t.size, 3)), gyr_nav=gyr, yaw=z, acc_v=acc_v,
                    acc_h=np.zeros((t.size, 2)), acc_ap=z, acc_ml=z, up_body=None)
     return imu, np.arange(0, amplitudes.size * n + 1, n)
 
@@ -83,6 +88,26 @@ def test_the_contact_that_starts_no_vault_is_dropped_and_the_step_before_ends_it
     assert vault_veto(steps_from_events(imu.t, ic), imu).attrs["n_unvaulted"] == 0
 
 
+def test_w127_spares_a_contact_whose_step_turns_the_pelvis_more_than_15_deg():
+    w2 = (2.0 * np.pi / 0.5) ** 2
+    a = np.full(12, 0.03 * w2 / 2.0)
+    a[6] *= 0.2  # step 6 vaults a fifth of its neighbours': W119 drops its contact (3.0 s)
+    for turn, dropped in ((22.5, 0), (-30.0, 0), (14.0, 1), (-14.0, 1), (0.0, 1)):
+        turns = np.zeros(12)
+        turns[6] = turn  # the first step of a quarter turn in two (22.5 deg), or a straight step's pelvic swing
+        turns[5] = turns[7] = 40.0  # the neighbours' turns do not spare step 6: its own step is judged
+        imu, ic = _vault_imu(a, turns_deg=turns)
+        steps = steps_from_events(imu.t, ic)
+        assert vault_veto(steps, imu).attrs["n_unvaulted"] == 1  # W119 alone does not look at the gyroscope
+        assert vault_veto(steps, imu, spare_turns=True).attrs["n_unvaulted"] == dropped, turn
+    # the gyroscope bias is taken off before the turn is measured: 0.6 rad/s of bias over a straight step
+    imu, ic = _vault_imu(a, turns_deg=np.full(12, np.degrees(0.6 * 0.5)))
+    steps = steps_from_events(imu.t, ic)
+    assert vault_veto(steps, imu, spare_turns=True).attrs["n_unvaulted"] == 0
+    assert vault_veto(steps, imu, spare_turns=True, gyro_bias_rps=0.6).attrs["n_unvaulted"] == 1
+    assert K.turning_step_mask(np.radians([15.0, 15.01, -15.01])).tolist() == [False, True, True]
+
+
 @pytest.fixture(scope="module")
 def walk():
     return simulate_path([Stand(3.0), Straight(8.0), Stand(3.0)], UserProfile.from_seed(541), rate_hz=100, seed=541)
@@ -90,12 +115,16 @@ def walk():
 
 def test_realtime_and_the_pll_ignore_the_option_and_an_unknown_value_is_refused(walk):
     for kw in ({"pipeline": "waist-pendulum", "realtime": True}, {"pipeline": "waist-pll"}):
-        off, on = track_waist(walk, **kw), track_waist(walk, vault_veto=True, **kw)
-        np.testing.assert_array_equal(off.steps["event_s"], on.steps["event_s"])
-        assert on.info["n_unvaulted_contacts"] == 0 and on.info["options"]["vault_veto"] is True
-    with pytest.raises(DataError, match=r"vault_veto 'yes' is not one of false, true \(decision W119\)") as e:
-        track_waist(walk, pipeline="waist-pendulum", vault_veto="yes")
-    assert "\n" not in str(e.value)
+        off = track_waist(walk, **kw)
+        for value in (True, "turns"):  # W119, W127
+            on = track_waist(walk, vault_veto=value, **kw)
+            np.testing.assert_array_equal(off.steps["event_s"], on.steps["event_s"])
+            assert on.info["n_unvaulted_contacts"] == 0 and on.info["options"]["vault_veto"] == value
+    for bad in ("yes", "Turns", 2):
+        with pytest.raises(DataError, match=r"vault_veto .* is not one of false, true, \"turns\" \(decisions W119, "
+                                            r"W127\)") as e:
+            track_waist(walk, pipeline="waist-pendulum", vault_veto=bad)
+        assert "\n" not in str(e.value)
 
 
 def test_the_measured_real_row_ha002_test11():
@@ -106,3 +135,17 @@ def test_the_measured_real_row_ha002_test11():
     m0, m1 = step_metrics(off.steps, s), step_metrics(on.steps, s)
     assert (m0["n_detected"], m1["n_detected"], m1["n_reference"]) == (42, 40, 46)
     assert round(m0["step_f1"], 4) == 0.8182 and round(m1["step_f1"], 4) == 0.8372
+
+
+def test_the_measured_real_rows_of_w127():
+    """W127's (b) rows: HA002 Test11 keeps 5 of W119's 6 dropped contacts (their steps turn the pelvis 15.4-36.5
+    deg), F1 0.8182 as off; HA001 Test11 drops 6 (W119: 10), F1 0.9449 -> 0.9280 (60/64 -> 58/62 of 63)."""
+    s = read_session(external_session("mobgap_HA002_Test11_Trial1"))
+    on = track_waist(s, pipeline="waist-pendulum", vault_veto="turns")
+    assert on.info["n_unvaulted_contacts"] == 1 and on.info["options"]["vault_veto"] == "turns"
+    assert round(step_metrics(on.steps, s)["step_f1"], 4) == 0.8182
+    s = read_session(external_session("mobgap_HA001_Test11_Trial1"))
+    on = track_waist(s, pipeline="waist-pendulum", vault_veto="turns")
+    m = step_metrics(on.steps, s)
+    assert on.info["n_unvaulted_contacts"] == 6
+    assert (m["n_detected"], m["n_reference"], round(m["step_f1"], 4)) == (62, 63, 0.9280)

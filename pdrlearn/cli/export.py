@@ -27,6 +27,7 @@ from pdrlearn.cli.common import (
     start_option,
     storey_height_option,
 )
+from pdrlearn.cli.gaplines import GapLines
 
 
 def export(
@@ -389,13 +390,14 @@ def run(
                 # decision E45: the session has a waist unit --units foot leaves out; not "no waist unit"
                 line = "waist unit not used (--units foot): " + NO_WAIST_HEADING.removeprefix("no waist unit: ")
             logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
-        for chunk in replay_chunks({n: (st.t, st.values) for n, st in session.streams.items()}, chunk_s):
-            t0 = time.perf_counter()
-            new = tracker.push(chunk)
-            if new:
-                lat.append((time.perf_counter() - t0) / len(new))
-            steps += new
-        steps += tracker.flush()
+        with GapLines(session.name):  # decision B184: the first gap lines, then one summary line
+            for chunk in replay_chunks({n: (st.t, st.values) for n, st in session.streams.items()}, chunk_s):
+                t0 = time.perf_counter()
+                new = tracker.push(chunk)
+                if new:
+                    lat.append((time.perf_counter() - t0) / len(new))
+                steps += new
+            steps += tracker.flush()
         _warn_short_streams(session, tracker, steps)
         source = f"session {session.name}"
     result = _result(steps, start_ll, start_alt)

@@ -973,6 +973,22 @@ def low_vault_mask(h_m: np.ndarray, use: np.ndarray, closes: np.ndarray) -> np.n
     return np.asarray(use, dtype=bool) & np.isfinite(local) & (h < LOW_VAULT_RATIO * np.nan_to_num(local))
 
 
+#: W127: a step whose pelvis turns by more than this (deg, IC to next IC) is a turning step, which W119's veto
+#: spares. The geometric middle, a factor 1.5 from each, of the largest turn of a straight step -- the pelvis's
+#: whole transverse rotation, 2 x 4-5 deg (Perry & Burnfield, Gait Analysis, 2010; simulator 3-5 deg amplitude,
+#: ``UserProfile.pelvis_rotation_deg``) = 10 deg -- and the smallest turn of a step of a quarter turn on the spot
+#: (simulator S9: feet turned at most 60 deg a step, the pelvis at their mean: 90 deg in two steps turns it
+#: 22.5, 45, 22.5 deg): sqrt(10 x 22.5) = 15 deg. Not from a recording.
+TURN_STEP_DEG = 15.0
+
+
+def turning_step_mask(dyaw_rad: np.ndarray) -> np.ndarray:
+    """Rows whose step turns the pelvis (``dyaw_rad``: the vertical rate integrated from the step's IC to the next)
+    by more than :data:`TURN_STEP_DEG` either way: a turn on the spot vaults little, like a weight shift, and is a
+    step (decision W127)."""
+    return np.abs(np.asarray(dyaw_rad, dtype=np.float64)) > np.radians(TURN_STEP_DEG)
+
+
 def still_displacement(acc_h: np.ndarray, still: np.ndarray, fs: float, i0: int, i1: int) -> float:
     """Horizontal displacement (m) of the unit between samples ``i0`` and ``i1`` when the unit stands still
     somewhere in between (decision W122); NaN when no sample of ``still`` lies in ``[i0, i1]``.

@@ -191,18 +191,13 @@ def get_pipeline(name: str) -> Pipeline:
       climb above the barometer's still noise, z only on stairs), ``slow_turn_rps`` (decision W82, off),
       ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104, off:
       no contact around a sit-to-stand's trunk-flexion peak; ``"rhythm"``: W109, sparing left/right step pairs),
-<<<<<<< HEAD
       ``pause_steps`` (decision W111, off: a step over 1.5 local periods keeps one period's length;
       ``"progression"``: W122, a step with a standstill in it keeps at most the trunk's travel over it),
-      ``vault_veto`` (decision W119, off: no contact whose step vaults the pelvis under a quarter of its neighbours')
-      (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and unused. With ``wBarometer`` the
-      track's altitude is the barometer's (W89); without, one warning (W90).
-=======
-      ``pause_steps`` (decision W111, off: a step over 1.5 local periods keeps one period's length),
+      ``vault_veto`` (decision W119, off: no contact whose step vaults the pelvis under a quarter of its neighbours';
+      ``"turns"``: W127, sparing a step that turns the pelvis by more than 15 deg),
       ``detector`` (decision E85: a waist step detector's contacts), ``length_model`` (decision E84: a registered
       step-length model, docs/extending.md) (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and
       unused. With ``wBarometer`` the track's altitude is the barometer's (W89); without, one warning (W90).
->>>>>>> e-plugin-waist
 
     An unknown keyword raises ``TypeError`` naming the closest valid one (decision L43); an unknown
     ``name`` raises :class:`~pdrlearn.errors.DataError` listing the pipelines. Warnings (e.g. "no model")

@@ -52,7 +52,6 @@ from pdrlearn.kernels.distance import (
     calibrated_stride_sd,
     classifier_rate_warning,
     level_dz,
-    rate_differs,
 )
 from pdrlearn.kernels.window import (
     GROUP_STREAMS,
@@ -70,12 +69,14 @@ from pdrlearn.track.evaluate import match_by_overlap
 from pdrlearn.track.gait import add_gait_columns, streamed_gait_columns, stride_rows, turn_rows
 from pdrlearn.track.gaps import (
     FOOT_IMU,
+    MIN_GAP_S,
     drop_steps_across_gaps,
     gap_heading_clause,
     gap_rows,
     gap_warnings,
     long_gaps,
     longest_gap_in,
+    neighbour_heights,
     overlaps_any,
     overlaps_gaps,
 )
@@ -112,9 +113,13 @@ METHODS: dict[str, dict] = {
 }
 
 
+#: decision B177: what to pass for the step classes, as the parameter and the CLI flag (the line fits both)
+MODEL_NEEDED = ("{what}: pass model= a trained UserModel or its directory (CLI --model DIR; `pdrlearn train`) or "
+                "model='oracle' (--model oracle) for labelled sessions")
 NO_MODEL_WARNING = ("no model: the M3 engine (ZUPT/Kalman strides) without the class rules (terrain filter, "
-                    "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass --model "
-                    "DIR (`pdrlearn train`) or --model oracle (labelled sessions) for M3")
+                    "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass model= a "
+                    "trained model (CLI --model DIR; `pdrlearn train`) or model='oracle' (--model oracle, labelled "
+                    "sessions) for M3")
 
 
 def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3,
@@ -259,6 +264,33 @@ def classification_windows(session: Session, strides: pd.DataFrame) -> pd.DataFr
     return out
 
 
+def model_windows(session: Session, steps: pd.DataFrame) -> pd.DataFrame:
+    """Decision C51: the window a trained model classifies each row of a detected ``steps`` table on, as
+    ``track --method M3`` does: the row made a rest-to-rest stride of the foot unit (the stance of the force
+    sensors, else of the accelerometer + gyroscope, on :class:`~pdrlearn.displace.FootDisplacement`'s grid,
+    :func:`~pdrlearn.displace.foot.rest_to_rest`), then re-cut on the streaming segmenter's stride that covers
+    it (:func:`classification_windows`, decision L38). A detector's swing or contact-to-contact window is not
+    the rest-to-rest window a model is trained on (scenario D: 63 of 68 strides 'up' on the detector's own
+    bounds). One row per row of ``steps`` (``start_s``/``end_s``, s); a row in no stride keeps its own bounds,
+    a row spanning several strides (missed steps, which ``track`` splits) gets their whole span; both are
+    counted in ``attrs`` (``own_bounds``, ``several_strides``). Without the foot unit: the rows' own bounds."""
+    out = steps[["start_s", "end_s"]].astype(float).reset_index(drop=True)
+    own, several = 0, 0
+    if len(out) and session.has("fAccelerometer", "fGyroscope"):
+        foot = unit_data(session, "foot", purpose="the model's step windows")
+        stance = force_stance(session, foot.t, foot.gyr)  # as M3: the force sensors' stance when recorded
+        if stance is None:
+            stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
+        s0, s1, rows = FootDisplacement().stride_bounds(foot, out, stance=stance)
+        by = pd.DataFrame({"start_s": s0, "end_s": s1, "row": rows}).groupby("row")
+        lo, hi = by["start_s"].min(), by["end_s"].max()
+        out.loc[lo.index, "start_s"], out.loc[hi.index, "end_s"] = lo.to_numpy(), hi.to_numpy()
+        own, several = len(out) - len(lo), int((by.size() > 1).sum())
+    win = classification_windows(session, out)
+    win.attrs.update(own_bounds=own, several_strides=several)
+    return win
+
+
 def classes_and_bounds(model, session: Session, steps: pd.DataFrame) -> tuple[pd.DataFrame, object]:
     """M3's step classes and the user's stride-length class bounds, from a trained model or, with
     ``model="oracle"``, from the session's own labels and ``meta.json`` (one place for the offline and the
@@ -296,7 +328,11 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
         from pdrlearn.classify import load_model
 
         model = load_model(model)
-    pred = model.predict_steps(session, steps).reset_index(drop=True)
+    from pdrlearn.classify import UserModel
+
+    # decision C51: the strides are cut already; C18's rate line is the tracker's own warning (rate_check)
+    pred = (model.predict_steps(session, steps, windows="given", warn_rate=False) if isinstance(model, UserModel)
+            else model.predict_steps(session, steps)).reset_index(drop=True)
     if len(pred) != len(steps):
         raise ModelError(f"model predicted {len(pred)} rows for {len(steps)} strides")
     bounds = model_length_bounds(model)
@@ -325,33 +361,21 @@ def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: flo
     return report
 
 
-#: the units whose sensors a classifier of ``method_<task> = "<method>/<unit>"`` reads
-_UNIT_OF = {"foot": ("foot",), "waist": ("waist",), "fused": ("foot", "waist"), "combined": ("foot", "waist")}
-_UNIT_ACC = {"foot": "fAccelerometer", "waist": "wAccelerometer"}
-
-
 def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[str]) -> dict | None:
     """Decision C18: one warning line when a unit whose classifiers classified the strides runs at a rate
-    other than the one the model was trained at (the distance calibration's rate check and tolerance,
-    :func:`~pdrlearn.kernels.distance.rate_differs`): the step windows then hold other signals (a 20 Hz
-    simulator model on a 100 Hz real foot classified 28 of 32 level strides 'up'). Returns unit ->
+    other than the one the model was trained at (:func:`pdrlearn.classify.training.rate_mismatch`, shared with
+    ``UserModel.predict_steps`` and ``evaluate``, decision C52): the step windows then hold other signals (a
+    20 Hz simulator model on a 100 Hz real foot classified 28 of 32 level strides 'up'). Returns unit ->
     ``{"trained_hz", "session_hz"}`` of the units that differ (None: none, or oracle labels / a model
     without rates)."""
-    rates = getattr(model, "sampling_rate_hz", None) or {}
-    if isinstance(model, str | Path) or not rates:
+    if isinstance(model, str | Path):
         return None
-    used = {u for c in classes.columns if c.startswith("method_")
-            for v in classes[c].dropna().astype(str).unique() if "/" in v for u in _UNIT_OF.get(v.split("/")[1], ())}
-    off = {}
-    for unit in sorted(used):
-        name = _UNIT_ACC[unit]
-        if name in rates and name in session.streams and rates[name]:
-            fs = float(session.streams[name].rate_hz)
-            if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
-                off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
+    from pdrlearn.classify.training import rate_mismatch
+
+    off = rate_mismatch(model, session, classes)
     if off:
         warnings.append(classifier_rate_warning(off, resample_hint=True))
-    return off or None
+    return off
 
 
 def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
@@ -551,6 +575,11 @@ def split_events(strides: pd.DataFrame, rows: np.ndarray, t: np.ndarray, stance:
     return np.where(split, land, ev)
 
 
+#: decision L160: a stride across dropped foot samples (an interval up to 1 s, not a B11 gap) takes its neighbours'
+#: height change (the BLE trial's 5 % burst loss: a flat 400 m walk +7.96 m, all from those strides)
+GAP_STRIDE_HEIGHT = True
+
+
 def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.ndarray,
                      warnings: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Decision L94: a stride faster than any human moves 0 m (a gap), with one warning line for the session,
@@ -668,11 +697,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     no_classes = False
     if method == "AUTO":  # decision L36: M3 with a model; without one the M3 engine, its class rules off
         method, no_classes = ("M3", False) if model is not None else (("M2", True) if streaming else ("M3", True))
-        asked = [n for n, v in (("--rules", rules), ("--min-confidence", min_confidence),
-                                ("--length-bounds", bounds)) if v is not None]
+        asked = [n for n, v in (("rules (--rules)", rules), ("min_confidence (--min-confidence)", min_confidence),
+                                ("bounds (--length-bounds)", bounds)) if v is not None]
         if no_classes and asked:  # they would be ignored: no classes, no rules
-            raise ModelError(f"plasys: {', '.join(asked)} set the class rules, which need the step classes: pass "
-                             "a trained model (--model DIR, `pdrlearn train`) or --model oracle")
+            raise ModelError(MODEL_NEEDED.format(
+                what=f"plasys: {', '.join(asked)} set the class rules, which need the step classes"))
     if method not in METHODS:
         raise DataError(f"plasys: method '{method}' is not one of auto, M1, M2, M3")
     if down_mode not in SK.DOWN_MODES:  # decision L51: offline and streamed alike
@@ -762,6 +791,14 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     warnings += fd_warnings
     if not len(strides):
         raise DataError(f"session '{session.name}': no stride between two rests of the foot unit")
+    if GAP_STRIDE_HEIGHT:  # decision L160: a stride across dropped samples takes its neighbours' height change
+        across = overlaps_gaps(strides, long_gaps(session, FOOT_IMU, min_gap_s=0.0, max_gap_s=MIN_GAP_S)) & ~in_gap
+        if across.any():
+            disp = disp.copy()
+            disp[:, 2] = neighbour_heights(disp[:, 2], across, in_gap)
+            warnings.append(f"{int(across.sum())} stride(s) across dropped foot samples: each takes the height "
+                            "change of its neighbours, as the fixed-interval integration loses part of its swing "
+                            "(decision L160)")
 
     classes = pd.DataFrame(index=range(len(strides)), columns=["terrain", "direction", "length_class"],
                            dtype=object)
@@ -774,8 +811,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         work, alignment = _align(session, warnings)
     if cfg["rules"]:
         if model is None:
-            raise ModelError("M3 needs the step classes: pass a trained model directory (--model DIR, see "
-                             "`pdrlearn train`) or --model oracle for labelled sessions; M1/M2 need no model")
+            raise ModelError(MODEL_NEEDED.format(what="M3 needs the step classes") + "; M1/M2 need no model")
         if isinstance(model, str | Path) and str(model) != "oracle":
             from pdrlearn.classify import load_model
 

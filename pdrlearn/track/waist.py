@@ -304,6 +304,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
 SIT_VETO_VALUES = (False, True, "rhythm")
 #: the values of the ``pause_steps`` option: off, W111's one period, W122's trunk travel over a standstill
 PAUSE_STEPS_VALUES = (False, True, "progression")
+#: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
+VAULT_VETO_VALUES = (False, True, "turns")
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -323,7 +325,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 relative_gate: bool | None = None, stairs_length: bool | None = None, stairs_climb: bool | None = None,
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
-                vault_veto: bool | None = None, detector=None, length_model=None) -> TrackResult:
+                vault_veto: bool | str | None = None, detector=None, length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -378,7 +380,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         the standstill (decision W122); default False
     vault_veto : pendulum, offline detector (the realtime one ignores it: it looks three steps ahead): drop a contact
         whose step vaults the pelvis by less than a quarter of its neighbours' (a weight shift while standing, no
-        step; decision W119, :func:`pdrlearn.waist.posture.vault_veto`); default False
+        step; decision W119, :func:`pdrlearn.waist.posture.vault_veto`); ``"turns"``: the same, sparing a contact whose
+        step turns the pelvis by more than 15 deg (a turn on the spot vaults little; decision W127); default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -431,9 +434,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["sit_veto"] not in SIT_VETO_VALUES:
         raise DataError(f"sit_veto {o['sit_veto']!r} is not one of false, true, \"rhythm\" (decisions W104, W109); "
                         "fix the option or the PARAMS.json \"options\"")
-    if o["vault_veto"] not in (False, True):
-        raise DataError(f"vault_veto {o['vault_veto']!r} is not one of false, true (decision W119); "
-                        "fix the option or the PARAMS.json \"options\"")
+    if o["vault_veto"] not in VAULT_VETO_VALUES:
+        raise DataError(f"vault_veto {o['vault_veto']!r} is not one of false, true, \"turns\" (decisions W119, "
+                        "W127); fix the option or the PARAMS.json \"options\"")
     if o["pause_steps"] not in PAUSE_STEPS_VALUES:
         raise DataError(f"pause_steps {o['pause_steps']!r} is not one of false, true, \"progression\" (decisions "
                         "W111, W122); fix the option or the PARAMS.json \"options\"")
@@ -472,7 +475,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         n_vetoed = steps.attrs["n_vetoed"]
     n_unvaulted = 0
     if o["vault_veto"] and pipeline == "waist-pendulum" and not realtime:  # W119: no vault, no step
-        steps = drop_unvaulted(steps, imu)
+        steps = drop_unvaulted(steps, imu, spare_turns=o["vault_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps)
         n_unvaulted = steps.attrs["n_unvaulted"]
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))

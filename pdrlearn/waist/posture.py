@@ -15,7 +15,8 @@ walking sequence (W20's sides): a transfer or a bend is sagittal and shifts no w
 
 Decision W119: :func:`vault_veto` drops a contact whose step does not vault the pelvis (a weight shift while standing:
 a pendulum step raises the pelvis, h ~ s^2 / (8 L), seed 003 eq. 2); not the trunk's posture, but the same
-mechanism of dropping contacts.
+mechanism of dropping contacts. Decision W127: with ``spare_turns`` it keeps a contact whose step turns the pelvis
+(a turn on the spot vaults little, like a weight shift).
 """
 
 from __future__ import annotations
@@ -141,13 +142,18 @@ def tilt_gate(steps: pd.DataFrame, imu: WaistIMU, max_tilt_deg: float = MAX_TILT
     return drop_contacts(steps, tilt <= max_tilt_deg, "n_tilted")
 
 
-def vault_veto(steps: pd.DataFrame, imu: WaistIMU) -> pd.DataFrame:
+def vault_veto(steps: pd.DataFrame, imu: WaistIMU, *, spare_turns: bool = False,
+               gyro_bias_rps: float = 0.0) -> pd.DataFrame:
     """``steps`` without the contacts whose step (IC to next IC, :func:`~pdrlearn.waist.steplength.pendulum_h`, W10)
     vaults the pelvis by less than a quarter of its neighbours' (:func:`pdrlearn.kernels.waist.low_vault_mask`:
     under half their step length by the pendulum relation; decision W119). W27's fragments and their owners are not
     judged and not neighbours (their vault is a split step's); sequence-closing contacts are not judged. The step
     before a dropped contact ends its sequence (:func:`drop_contacts`). ``attrs["n_unvaulted"]`` counts the
-    dropped."""
+    dropped.
+
+    ``spare_turns`` (decision W127): a contact whose step turns the pelvis by more than
+    :data:`~pdrlearn.kernels.waist.TURN_STEP_DEG` (the vertical rate less ``gyro_bias_rps``, integrated from the IC
+    to the next: :func:`~pdrlearn.kernels.waist.turning_step_mask`) is kept: a turn on the spot vaults little."""
     if steps.empty:
         out = steps.copy()
         out.attrs["n_unvaulted"] = 0
@@ -158,10 +164,16 @@ def vault_veto(steps: pd.DataFrame, imu: WaistIMU) -> pd.DataFrame:
     split = np.zeros(len(steps), dtype=bool)
     for a, b in K.fragment_windows(start, end, has_next).values():
         split[a:b + 1] = True
-    idx = np.clip(np.round((steps["event_s"].to_numpy(float) - imu.t[0]) * fs).astype(int), 0, len(imu.t) - 1)
+    ev = steps["event_s"].to_numpy(float)
+    idx = np.clip(np.round((ev - imu.t[0]) * fs).astype(int), 0, len(imu.t) - 1)
     fc = np.round((steps["fc_s"].fillna(-1).to_numpy(float) - imu.t[0]) * fs).astype(int)
     use = has_next & ~split
     h = np.zeros(len(steps))
     for i in np.flatnonzero(use):
         h[i] = pendulum_h(imu.acc_v, fs, idx[i], fc[i], idx[i + 1])
-    return drop_contacts(steps, ~K.low_vault_mask(h, use, ~has_next), "n_unvaulted")
+    drop = K.low_vault_mask(h, use, ~has_next)
+    if spare_turns and drop.any():  # W127: the pelvis's turn over the step, IC to the next IC
+        nxt = np.append(ev[1:], ev[-1])
+        drop &= ~K.turning_step_mask(np.where(has_next, K.integrate_rate(imu.t, imu.w_z - gyro_bias_rps, ev, nxt),
+                                              0.0))
+    return drop_contacts(steps, ~drop, "n_unvaulted")
