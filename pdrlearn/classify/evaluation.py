@@ -443,17 +443,12 @@ def markdown_tables(result: dict) -> str:
 
 def plot_confusions(task: str, task_result: dict, out: Path) -> Path:
     """One confusion-matrix panel per method x unit of a task (rows = true, columns = predicted)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from pdrlearn.plots import save_atomic, text_colour_on
+    from pdrlearn.plots import new_figure, save_atomic, text_colour_on
 
     pairs = [(m, u) for m, d in task_result["methods"].items() for u in d["units"]]
     ncol = min(4, max(1, len(pairs)))
     nrow = int(np.ceil(len(pairs) / ncol))
-    fig, axes = plt.subplots(nrow, ncol, figsize=(3.2 * ncol, 3.0 * nrow), squeeze=False)
+    fig, axes = new_figure(nrow, ncol, figsize=(3.2 * ncol, 3.0 * nrow), squeeze=False)
     classes = task_result["classes"]
     for ax in axes.ravel()[len(pairs) :]:
         ax.axis("off")

@@ -991,6 +991,17 @@ def _not_labels(path: Path, table: pd.DataFrame, folder: Path) -> bool:
     return False
 
 
+def folder_arg(folder, caller: str) -> Path:
+    """Decision B179: a session folder argument as a Path; anything but a str / os.PathLike (``read_session(42)``
+    was a bare ``TypeError`` from pathlib) is one :class:`~pdrlearn.errors.NotASessionError` line."""
+    if not isinstance(folder, str | os.PathLike):
+        from pdrlearn.errors import NotASessionError
+
+        raise NotASessionError(f"{caller}({folder!r}): expected a session folder, a str or pathlib.Path "
+                               f"(got {type(folder).__name__})")
+    return Path(folder)
+
+
 def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None,
                  bridge_drops: bool | None = None, streamed: bool = False, spans: str = "refuse") -> Session:
     """Read a PLASYS session folder. ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
@@ -1010,7 +1021,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         A missing folder, no sensor file, a malformed CSV, non-numeric/NaN values, unsorted or duplicate
         timestamps, implausible units, an empty file or a broken ``meta.json`` (one-line message).
     """
-    folder = Path(folder)
+    folder = folder_arg(folder, "read_session")  # decision B179
     if not folder.exists():
         raise DataError(f"{folder}: session folder not found; pass a folder with fAccelerometer.csv etc.")
     if not folder.is_dir():
@@ -1199,7 +1210,7 @@ def write_session(session: Session, folder: str | os.PathLike, *, overwrite: boo
     Values are written with full float64 precision (``repr``), so reading back reproduces them exactly;
     timestamps are written in ms rounded to 1 ps.
     """
-    folder = Path(folder)
+    folder = folder_arg(folder, "write_session")  # decision B179
     if folder.exists() and not overwrite:
         if any(folder.iterdir()):
             raise DataError(f"{folder}: already exists and is not empty; choose another --out or remove it")

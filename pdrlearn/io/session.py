@@ -101,6 +101,11 @@ class Stream:
     def unit(self) -> str:
         return self.spec.unit
 
+    def __repr__(self) -> str:
+        """Decision B181: one line (samples, rate, duration, unit), not the arrays."""
+        return (f"Stream({self.name!r}, {len(self)} samples, {self.rate_hz:.4g} Hz, {self.duration_s:.2f} s, "
+                f"{self.spec.unit})")
+
     def __len__(self) -> int:
         return int(self.t.shape[0])
 
@@ -248,6 +253,18 @@ class Session:
     #: decision B113: the recording's :meth:`content_id` when this session is its copy resampled to a model's
     #: rate (``pdrlearn evaluate --resample``): the held-out check (B87) still knows the recording
     _source_id: str | None = field(default=None, repr=False, compare=False)
+
+    def __repr__(self) -> str:
+        """Decision B181: a short description (streams with rate and unit, duration, labels), not the arrays
+        and meta.json a notebook cell printed before (~10 kB per session)."""
+        streams = ", ".join(f"{n} {s.rate_hz:.4g} Hz {s.spec.unit}" for n, s in self.streams.items())
+        parts = [repr(self.name)] + ([f"folder={str(self.folder)!r}"] if self.folder is not None else [])
+        parts.append(f"{self.duration_s:.2f} s" if self.streams else "no streams")
+        parts += [f"streams: {streams}"] if streams else []
+        parts += [f"steps: {len(self.steps)} rows"] if self.steps is not None else []
+        parts += [f"trajectory: {len(self.trajectory)} rows"] if self.trajectory is not None else []
+        parts += [f"extras: {', '.join(self.extras)}"] if self.extras else []
+        return f"Session({'; '.join(parts)})"
 
     # -- access -----------------------------------------------------------------------------------
     def __getitem__(self, name: str) -> Stream:

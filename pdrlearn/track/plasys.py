@@ -80,7 +80,7 @@ from pdrlearn.track.gaps import (
     overlaps_any,
     overlaps_gaps,
 )
-from pdrlearn.track.geodetic import geodetic_track
+from pdrlearn.track.geodetic import geodetic_track, heading_in_radians, start_coordinate
 from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_bias_line, waist_rest_bias
 
 log = logging.getLogger(__name__)
@@ -658,7 +658,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         from the force sensors or the inertial detector) with the class rules off, and a warning (streaming:
         M2's kernel)
     model : M3 classes source: a model directory / loaded model, or ``"oracle"`` (the session's labels)
-    start : (lat, lon) degrees -> ``lat``/``lon`` columns via thesis eq. 56/57
+    start : (lat, lon) or (lat, lon, alt) in degrees (alt in m; or the CLI's ``"LAT,LON[,ALT]"``) -> ``lat``/
+        ``lon`` columns via thesis eq. 56/57, ``z`` from ``alt``; out of range: one error line (decision L157)
     params : optional dict overriding :class:`FootDisplacement` settings
     steps : "detector" (pdrlearn.steps detectors), "stance" (stance segmentation), "labels", or your own
         strides (decision L149): a foot detector's registered name (:func:`pdrlearn.steps.register_detector`),
@@ -667,7 +668,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     heading : "waist" | "foot" | "fused" (default per method; "foot" when there is no waist unit).
         "fused": the foot's stride-by-stride yaw aligned to the waist heading by an offset averaged over
         +-``fused_tau_s`` s (decision L17)
-    initial_heading : ENU heading (rad) at the start when the heading is relative (foot, or no magnetometer)
+    initial_heading : ENU heading (rad, |value| <= 2 pi, else refused as degrees: decision L158) at the start
+        when the heading is relative (foot, or no magnetometer)
     bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
         (the foot unit measures strides = two steps, see docs/decisions/localization.md)
     down_mode : "norm3" (thesis eq. 61, the norm moves x/y), "projected" (decision L51: the norm's horizontal
@@ -726,6 +728,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
     if opts:  # decision L43: a misspelled option is an error, as in the waist pipelines (it was ignored)
         check_keywords("plasys", opts, keyword_names(track_plasys))
+    raw_start = start
+    start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
+    initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
     check_warn_at(warn_out_of_domain)
     altitude = check_altitude(altitude)  # decision L154
     _check_steps_arg(steps)  # decision B173 (a bad value was a pandas traceback), L149 (own strides accepted)
@@ -746,7 +751,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if not (isinstance(steps, str) and steps == "detector") or align:
             raise DataError("plasys streaming=True: steps and align are not streamable; leave them at their "
                             "defaults")
-        res = track_streaming(session, method=method, model=model, start=start, params=params,
+        res = track_streaming(session, method=method, model=model, start=raw_start, params=params,
                               heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
                               bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
                               calibration=calibration, rules=rules, min_confidence=min_confidence,
@@ -996,9 +1001,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     xyz[1:, 1] = np.cumsum(length * np.sin(head))
     xyz[1:, 2] = np.cumsum(dz)
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
-                         "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2]})
+                         "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2] + start_alt})  # L157: z from alt
     if start is not None:
-        ll = geodetic_track(tuple(start), length, head)
+        ll = geodetic_track(start, length, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     # decision L65: a negative length only with a backward class (else |length| along heading + pi, same path)
     rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object))
@@ -1158,6 +1163,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     by the waist's turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest
     after it); False: 0 (L90).
     """
+    start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
+    initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
     if method not in ("M2", "M3"):
         raise DataError(f"plasys streaming: method '{method}' is not streamable; use M2 or M3")
     if heading not in SK.HEADING_SOURCES:
@@ -1329,9 +1336,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["unit"] = "foot"
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
-                         "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2]})
+                         "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2] + start_alt})  # L157: z from alt
     if start is not None:
-        ll = geodetic_track(tuple(start), length, head)
+        ll = geodetic_track(start, length, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     if posture.any():  # decision B131: no row for them, as the runtime emits none (they moved 0 m)
         table, traj, in_gap = (table[~posture].reset_index(drop=True),
