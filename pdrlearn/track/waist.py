@@ -57,6 +57,8 @@ from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
     PLAUSIBILITY_MIN_PAIRS,
     contact_alternation,
+    contact_lateral_velocity,
+    contact_sides,
     not_alternating_message,
     step_counts,
     still_yaw_rate,
@@ -514,8 +516,13 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     note = relative_heading_note(start, o["initial_heading"], "wMagneticField" in session)
     if note:
         warnings.append(note)
-    alternation, pairs = contact_alternation(imu.t, imu.acc_ml, imu.fs, steps["event_s"].to_numpy(float),
-                                             steps["has_next"].to_numpy(bool))  # decision W98
+    ev = steps["event_s"].to_numpy(float)
+    v_at = contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, ev)  # W20's cue, read once for W98 and W129
+    alternation, pairs = contact_alternation(imu.t, imu.acc_ml, imu.fs, ev, steps["has_next"].to_numpy(bool),
+                                             v_at=v_at)  # decision W98
+    # decision W129: each contact's side; realtime: empty (W20's velocity is zero-phase over the whole recording)
+    steps = steps.assign(side=np.full(len(steps), "", dtype=object) if realtime
+                         else contact_sides(imu.t, imu.acc_ml, imu.fs, ev, v_at=v_at))
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
         warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
