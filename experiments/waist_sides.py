@@ -55,7 +55,7 @@ def main() -> None:
     args = ap.parse_args()
     logging.disable(logging.WARNING)
     first, last = (int(x) for x in args.users.split("-"))
-    real = sorted(args.external.glob("mobgap_*"))
+    real = sorted(p for p in args.external.glob("mobgap_*") if (p / "ics.csv").is_file())  # with reference ICs
     if not real:
         raise SystemExit(f"{args.external}: no mobgap sessions; run `pdrlearn fetch mobgap --out {args.external}`")
     lines = ["# Lower-back step side (W129) against the reference foot", "",
@@ -66,7 +66,7 @@ def main() -> None:
         reals = [(p.name, side_counts(read_session(p), pipeline)) for p in real]
         for name, c in reals:
             lines.append(row(f"{name.removeprefix('mobgap_')}, {pipeline}", [c]))
-        lines.append(row(f"**mobgap, all 9, {pipeline}**", [c for _, c in reals]))
+        lines.append(row(f"**mobgap, all {len(reals)}, {pipeline}**", [c for _, c in reals]))
         lines.append(row(f"**simulated users {first}-{last}, {pipeline}**", [side_counts(s, pipeline) for s in sims]))
     text = "\n".join(lines) + "\n"
     print(text)
