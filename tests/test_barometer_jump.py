@@ -56,7 +56,8 @@ def test_a_waist_track_does_not_read_an_impossible_barometer(stairs):
     res = get_pipeline("waist-pendulum")(_padded(s))
     lines = [w for w in res.info["warnings"] if "B188" in w]
     assert len(lines) == 1 and "wBarometer.csv is not used" in lines[0] and "826.75" in lines[0]
-    assert "padtype" in lines[0] and "delete wBarometer.csv" in lines[0]
+    assert "padtype" in lines[0] and "delete wBarometer.csv" in lines[0] and "z stays 0" in lines[0]
+    assert "2.4 hPa/s" in lines[0]
     assert not any(w.startswith("no barometer") for w in res.info["warnings"])  # one line, not two
     assert np.all(res.trajectory["z"].to_numpy() == 0.0) and not res.steps["stairs"].any()
     ev = evaluate_track(res, _padded(s))
@@ -69,4 +70,4 @@ def test_a_foot_track_does_not_compare_with_an_impossible_barometer(stairs):
     summary = track_summary(track_plasys(s), s)
     assert "barometer_altitude_change_m" not in summary
     lines = [w for w in summary["info"]["warnings"] if "B188" in w]
-    assert len(lines) == 1 and "wBarometer.csv is not used" in lines[0]
+    assert len(lines) == 1 and "wBarometer.csv is not used" in lines[0] and "not compared with it (L145)" in lines[0]

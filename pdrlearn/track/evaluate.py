@@ -569,10 +569,10 @@ def _barometer(result: TrackResult, session: Session, out: dict) -> None:
     out["barometer_unused"] = bool(foot and session.has("wBarometer") and len(session["wBarometer"]))
     if out["barometer_unused"]:  # decision L145: the barometer's altitude change over the track, to compare
         from pdrlearn.kernels.barometer import relative_altitude
-        from pdrlearn.track.barometer import usable_barometer
+        from pdrlearn.track.barometer import FOOT_EFFECT, usable_barometer
 
         lines: list[str] = []
-        b = usable_barometer(session, lines)  # decision B188: an impossible pressure change is not compared
+        b = usable_barometer(session, lines, FOOT_EFFECT)  # decision B188: an impossible pressure is not compared
         if b is None:
             out["barometer_implausible"] = lines[0]
             return

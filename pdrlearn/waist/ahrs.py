@@ -83,8 +83,9 @@ def no_gyroscope_message(session: Session, purpose: str) -> str:
     it, and the accelerometer-only step detector that works (no distance, bouts or heading: W130 keeps refusing)."""
     folder = str(session.folder) if session.folder is not None else "DIR"
     return (f"{session.where}: no wGyroscope.csv, needed by {purpose}: the waist attitude (which way is up and "
-            "forward) and the heading come from the gyroscope, in both lower-back pipelines (waist-pendulum, waist-pll; "
-            f"decision W130); with the accelerometer alone only the contacts can be found: 'pdrlearn steps {folder} "
+            "forward) and the heading come from the gyroscope, in both lower-back pipelines (waist-pendulum, "
+            "waist-pll; decision W130); with the accelerometer alone only the contacts can be found: "
+            f"'pdrlearn steps {folder} "
             "--detector pll --out steps.csv' (no distance, bouts or heading); or record the gyroscope too")
 
 
