@@ -53,7 +53,8 @@ SESSIONS: tuple[Column, ...] = (
     ("altitude_change_ref_m", "m", "number", "reference z change"),
     ("altitude_ref_source", _ID, "text", "where altitude_change_ref_m comes from"),
     ("altitude_error_pct", "%", "number", "altitude change error against the reference"),
-    ("barometer_unused", _ID, "true/false", "the session has wBarometer.csv that a foot track does not read (L127)"),
+    ("barometer_unused", _ID, "true/false", "the session has wBarometer.csv that a foot track does not read (L127; "
+     "false with --altitude fused, L154)"),
     ("barometer_altitude_change_m", "m", "number", "foot tracks with wBarometer.csv: the barometer's altitude change "
                                                    "over the track (L145)"),
     ("barometer_disagree_limit_m", "m", "number", "how far altitude_change_m may differ from it before a warning "

@@ -273,6 +273,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES
     from pdrlearn.sim.route import parse_route
     from pdrlearn.steps.detectors import DETECTORS
+    from pdrlearn.track.altitude import ALTITUDES
     from pdrlearn.track.base import PIPELINES
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
@@ -308,6 +309,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("run", "start"): lambda v: parse_start(v, altitude=True),
         ("track", "length_bounds"): two_numbers,
         ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72
+        ("track", "altitude"): _one_of(ALTITUDES),  # decision L154
         ("track", "window"): parse_window,  # decision L105
         ("track", "units"): parse_units,  # decision B127
         ("export", "length_bounds"): two_numbers,
@@ -334,7 +336,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("columns", "table"): _one_of(list(COLUMN_TABLES)),  # cohort C35
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window",
-                "units"):  # C12, L108, B127
+                "units", "altitude"):  # C12, L108, B127, L154
         v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):
         v[(cmd, "tasks")] = settings("tasks")
@@ -579,6 +581,7 @@ STALE = [
     ("pdrlearn calibrate DIR --pipeline plasys --out P.json", "not one of"),
     ("pdrlearn info DIR --json --force", "no such option"),
     ("pdrlearn track --gnss/--fix", "no such option"),
+    ("pdrlearn track DIR --altitude baro --out OUT", "not one of"),  # decision L154
     ("pdrlearn track --align", "no such option"),  # named by the --merge warning until decision L48
     ("pdrlearn info DIR DIR2", "arguments"),
     ("pdrlearn trak DIR --out OUT", "no such command"),

@@ -64,3 +64,99 @@ def test_a_level_walk_with_a_barometer_does_not_warn():
     s = _summary("straight:30", 1063, streaming=True)
     assert s["barometer_unused"] and abs(s["barometer_altitude_change_m"]) < 0.5
     assert not [w for w in s["info"]["warnings"] if "barometer's" in w]
+
+
+def _strides(n: int, t0: float = 2.0, period: float = 1.1) -> tuple[np.ndarray, np.ndarray]:
+    start = t0 + period * np.arange(n)
+    return start, start + period
+
+
+def _baro(t: np.ndarray, h: np.ndarray) -> np.ndarray:
+    from pdrlearn.kernels.barometer import pressure_hpa
+
+    return pressure_hpa(75.0 + h, 1013.25)
+
+
+def test_fused_altitude_kernel_follows_a_slope_not_a_transient_and_keeps_stairs():
+    from pdrlearn.kernels.barometer import fuse_altitude
+
+    t = np.arange(0.0, 80.0, 0.04)  # a 25 Hz barometer
+    s0, s1 = _strides(60)
+    climb = 0.065 * np.clip((t - s0[10]) / 1.1, 0, 40)  # 40 level strides of a 5 % slope: +2.6 m
+    fused = fuse_altitude(np.zeros(60), s0, s1, t, _baro(t, climb))
+    assert fused.sum() == pytest.approx(2.6, abs=0.15)  # the foot alone (L39): 0
+    jump = np.where(t > 30.0, -2.0, 0.0)  # W108's pressure transient on a level floor, held to the end
+    assert abs(fuse_altitude(np.zeros(60), s0, s1, t, _baro(t, jump)).sum()) < 0.3
+    fast = 0.3 * np.sign(np.sin(2 * np.pi * t / 2.0))  # a wander faster than a stride: not a climb
+    assert np.abs(np.cumsum(fuse_altitude(np.zeros(60), s0, s1, t, _baro(t, fast)))).max() < 0.2
+    stairs = np.r_[np.zeros(10), np.full(20, 0.34), np.zeros(30)]  # 6.8 m of stairs, the barometer agreeing
+    true = np.interp(t, np.r_[s0[0], s1], np.r_[0.0, np.cumsum(stairs)])
+    assert fuse_altitude(stairs, s0, s1, t, _baro(t, true)).sum() == pytest.approx(6.8, abs=0.02)
+    assert fuse_altitude(np.zeros(0), s0[:0], s1[:0], t, _baro(t, true)).shape == (0,)
+
+
+def test_fused_altitude_on_a_real_level_barometer():
+    from pathlib import Path
+
+    from pdrlearn.io import read_session
+    from pdrlearn.kernels.barometer import fuse_altitude, relative_altitude
+
+    d = Path(__file__).resolve().parents[1] / "datasets" / "external" / "mobgap_HA001_Test5_Trial1"
+    if not (d / "wBarometer.csv").exists():
+        pytest.skip("datasets/external/mobgap_HA001_Test5_Trial1 absent (pdrlearn fetch mobgap)")
+    b = read_session(d)["wBarometer"]
+    s0, s1 = _strides(4, 5.0, 1.2)  # the reference's level walk, 5.0-9.9 s (W108)
+    assert relative_altitude(b.t, b.values[:, 0], [s0[0], s1[-1]])[1] > 0.3  # the barometer's own wander
+    assert abs(fuse_altitude(np.zeros(4), s0, s1, b.t, b.values[:, 0]).sum()) < 0.1  # measured (L154 (d)) 0.037
+
+
+def test_fused_altitude_is_an_option_of_the_foot_pipeline(caplog):
+    from pdrlearn.track import altitude
+
+    assert altitude.DEFAULT_ALTITUDE == "foot"  # L154: the adoption rule was not met
+    route = "straight:3, slope:40:5, straight:3"  # +2 m, most strides under L39's 0.10 m
+    for streaming in (False, True):
+        foot = _summary(route, 1062, streaming=streaming)
+        with caplog.at_level(logging.WARNING):
+            caplog.clear()
+            s = _summary(route, 1062, altitude="fused", streaming=streaming)
+        assert s["altitude_change_m"] == pytest.approx(2.0, abs=0.25)
+        assert s["info"]["altitude_source"] == "fused" and not s["barometer_unused"]
+        assert s["info"]["foot_altitude_change_m"] == pytest.approx(foot["altitude_change_m"])
+        assert "disagrees with the waist barometer's" not in caplog.text  # L145 agrees with the fused altitude
+        assert foot["info"]["altitude_source"] == "foot" and foot["altitude_change_m"] < 1.1  # the default: foot
+        assert [w for w in foot["info"]["warnings"] if "`--altitude fused` (L154)" in w]  # and L145 still warns
+
+
+def test_fused_altitude_without_a_barometer_and_unknown_values():
+    from pdrlearn.errors import DataError
+
+    s = simulate_path(parse_route("straight:10"), UserProfile.from_seed(1063), seed=1063)
+    with pytest.raises(DataError, match="altitude 'baro' is not one of foot, fused"):
+        track_plasys(s, altitude="baro")
+    del s.streams["wBarometer"]
+    r = track_plasys(s, altitude="fused")
+    assert r.info["altitude_source"] == "foot"
+    assert [w for w in r.info["warnings"] if "needs the waist barometer (wBarometer.csv)" in w]
+
+
+def test_track_cli_altitude_option(tmp_path):
+    import json
+
+    from typer.testing import CliRunner
+
+    from pdrlearn.cli import app
+    from pdrlearn.io import write_session
+
+    write_session(simulate_path(parse_route("straight:3, slope:30:6, straight:3"), UserProfile.from_seed(1064),
+                                seed=1064), tmp_path / "ramp")
+    r = CliRunner().invoke(app, ["track", str(tmp_path / "ramp"), "--altitude", "fused", "--out", str(tmp_path / "f")])
+    assert r.exit_code == 0, r.output
+    summ = json.loads((tmp_path / "f" / "summary.json").read_text())
+    assert summ["altitude_change_m"] == pytest.approx(1.8, abs=0.25) and summ["info"]["altitude_source"] == "fused"
+    r = CliRunner().invoke(app, ["track", str(tmp_path / "ramp"), "--altitude", "baro", "--out", str(tmp_path / "g")])
+    assert r.exit_code != 0 and "altitude 'baro' is not one of foot, fused" in str(r.exception)
+    assert "\n" not in str(r.exception) and not (tmp_path / "g").exists()  # one line, before any tracking
+    r = CliRunner().invoke(app, ["track", str(tmp_path / "ramp"), "--pipeline", "waist-pendulum", "--altitude",
+                                 "fused", "--out", str(tmp_path / "h")])
+    assert r.exit_code != 0 and "--altitude" in r.output + str(r.exception)

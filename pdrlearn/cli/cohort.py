@@ -650,6 +650,7 @@ def track_all(
     reference_point: str = _track.REFERENCE_POINT_OPT,
     toe_off: bool = _track.TOE_OFF_OPT,
     contacts: bool = _track.CONTACTS_OPT,
+    altitude: str = _track.ALTITUDE_OPT,
     dpi: int = _track.DPI_OPT,
     common_span: bool = _track.COMMON_SPAN_OPT,
     units: str = _track.UNITS_OPT,
@@ -735,7 +736,8 @@ def track_all(
                               toe_off=toe_off, contacts=contacts, dpi=dpi, common_span=common_span,
                               initial_heading=initial_heading, window=window, resample=resample,
                               no_resample=no_resample, units=units, bout_break_s=bout_break_s,
-                              bout_min_strides=bout_min_strides, storey_height=storey_height)
+                              bout_min_strides=bout_min_strides, storey_height=storey_height,
+                              altitude=altitude)
     if params is not None and params_dir is not None:  # decision C26: which file would a session use?
         raise DataError("track-all: give --params FILE (one file for every session) or --params-dir DIR (one "
                         "SUBJECT.json per subject), not both")

@@ -76,6 +76,10 @@ LENGTH_MODEL_OPT = typer.Option(None, "--length-model", help="Lower-back pipelin
 CONTACTS_OPT = typer.Option(False, "--contacts", help="plasys --streaming: each stride's initial contact "
                             "(force onset, else the accelerometer impact) and so stride_time_s, cadence_spm, "
                             "speed_mps (decisions E49-E51; `pdrlearn run --contacts` gives the same).")
+ALTITUDE_OPT = typer.Option(None, "--altitude", help="plasys: the altitude from the foot's strides alone (foot, "
+                            "the default) or fused with the session's waist barometer (fused: slopes and hills "
+                            "read; an option, decision L154 - the barometer's wander moves a level walk by up to "
+                            "~0.4 m and a stair climb by a few cm; docs/localization.md).")
 DPI_OPT = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP)
 COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a unit is over 1 s shorter than the "
                                "unit's others (cut short, refused by B72): track only the time all of them cover, "
@@ -124,6 +128,7 @@ def track(
     contacts: bool = CONTACTS_OPT,
     detector: str = DETECTOR_OPT,
     length_model: str = LENGTH_MODEL_OPT,
+    altitude: str = ALTITUDE_OPT,
     dpi: int = DPI_OPT,
     common_span: bool = COMMON_SPAN_OPT,
     units: str = UNITS_OPT,
@@ -179,7 +184,7 @@ def track(
                               common_span=common_span, units=units, window=window, resample=resample,
                               no_resample=no_resample, bout_break_s=bout_break_s,
                               bout_min_strides=bout_min_strides, storey_height=storey_height, detector=detector,
-                              length_model=length_model)
+                              length_model=length_model, altitude=altitude)
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
@@ -209,7 +214,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    common_span: bool = False, window: str | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
-                   detector: str | None = None, length_model: str | None = None) -> dict:
+                   detector: str | None = None, length_model: str | None = None,
+                   altitude: str | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -276,6 +282,10 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         if pipeline == "plasys":
             raise DataError("track: --length-model sets the lower-back pipelines' step length; plasys takes its "
                             "stride length from the foot: drop --length-model or choose a lower-back --pipeline")
+    if altitude is not None:  # decision L154: an unknown source is one line before any session
+        from pdrlearn.track.altitude import check_altitude
+
+        check_altitude(altitude)
     if length_bounds is not None:
         try:
             bounds = [float(v) for v in length_bounds.split(",")]
@@ -292,7 +302,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
-            "detector": detector, "detector_unit": detector_unit, "length_model": length_model}
+            "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
+            "altitude": altitude}
 
 
 def read_params(params: Path):
@@ -331,7 +342,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                         "foot detector (accel, accel-force or a plug-in with unit 'foot'), or a session with a waist "
                         "unit")
     if pipeline == "auto" and (method.lower() != "auto" or model is not None or streaming or toe_off or contacts
-                               or o.get("detector") is not None):
+                               or o.get("detector") is not None or o.get("altitude") is not None):
         pipeline = "plasys"  # --method / --model / --streaming are PLASYS options: the user means the foot
     pipeline = resolve_pipeline(pipeline, session)
     check_tracked_span(session, tracked_unit(pipeline))  # decision B126: the tracked unit covers the walk
@@ -351,7 +362,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                                                "--length-bounds": o["length_bounds_given"],
                                                "--streaming": streaming, "--toe-off": toe_off,
                                                "--contacts": contacts,
-                                               "--detector": o.get("detector_unit") == "foot"},
+                                               "--detector": o.get("detector_unit") == "foot",
+                                               "--altitude": o.get("altitude") is not None},
                             gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"])
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
@@ -393,8 +405,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                 raise DataError("track: --toe-off needs the offline tracker's initial contacts; the --streaming "
                                 "kernel (and `pdrlearn run`) has none - drop --streaming or --toe-off")
             kw["toe_off"] = True
-        for k in ("rules", "min_confidence", "warn_out_of_domain", "bounds"):
-            if o[k] is not None:
+        for k in ("rules", "min_confidence", "warn_out_of_domain", "bounds", "altitude"):
+            if o.get(k) is not None:
                 kw[k] = o[k]
     result = fn(session, **kw)
     aided = gnss is not None or fixes is not None
@@ -519,7 +531,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
 
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
 _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming",
-                   "--toe-off", "--contacts", "--detector")
+                   "--toe-off", "--contacts", "--detector", "--altitude")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
 

@@ -5,7 +5,8 @@ The thesis uses the barometer "in differential mode": the altitude is the change
 reference point, not an absolute height, because the sea-level pressure drifts with the weather by more than
 four storeys over a month (thesis ch.4.3.1.4, Figure 44, Table 18). :func:`relative_altitude` is that
 differential altitude, from the international barometric formula (:func:`pressure_hpa`, the formula the
-simulator writes ``wBarometer`` with, docs/simulator.md).
+simulator writes ``wBarometer`` with, docs/simulator.md). :func:`fuse_altitude` fuses it with a foot track's
+strides (decision L154, an option).
 """
 
 from __future__ import annotations
@@ -139,3 +140,72 @@ def climb_mask(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray, noi
         if s[a] != 0 and s[a] * (end_h[b - 1] - start_h[a]) >= need:
             out[a:b] = True
     return out
+
+
+
+#: decision L154: the fused altitude's model of the barometer's wander, a first-order Gauss-Markov error of this SD
+#: (m; W108: the real belt barometer wanders ~0.3 m on level walks, its still-period SD 0.06-0.65 m) and
+BARO_WANDER_SD_M = 0.3
+#: this correlation time (s): a change that outlasts it is a climb, a shorter one the barometer's wander
+BARO_WANDER_TAU_S = 10.0
+#: decision L154: the white noise of the 1 s-averaged altitude (m): one BMP280 sample's 0.13 m (0.0157 hPa, thesis
+#: Table 18; W89), not reduced by the averaging (conservative)
+BARO_NOISE_M = 0.13
+#: decision L154: the foot's per-stride height error (m, 1 SD) on a stride that keeps its height (stairs; L39's
+#: measured stair error, |error| mean 0.05 m over 3.8 m of ~24 strides: ~0.01 m per stride) and on a stride the
+#: rules call level (|dz| under L39's 0.10 m), whose missed height is also the slope state's:
+FOOT_STRIDE_SD_M = 0.01
+#: the height a level stride misses on a slope (m per stride) changes by this much per stride (1 SD): a slope of
+#: up to ~7 % (0.10 m per 1.4 m stride, which L39 reads level) is reached within ~5 strides
+SLOPE_STEP_SD_M = 0.02
+#: decision L154: a barometer change this many SDs away from the filter's prediction within one stride is a pressure
+#: transient (W108: 1.98 m in 2.4 s on a level floor, HA002 Test11), not a climb the foot missed: the barometer is
+#: re-referenced by it (the thesis' differential mode from a new reference point, ch.4.3.1.4) and the height kept
+BARO_JUMP_SDS = 4.0
+
+
+def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t: np.ndarray,
+                  baro_hpa: np.ndarray, *, level_dz_m: float = 0.10) -> np.ndarray:
+    """Decision L154: the strides' height changes ``dz`` (m, after L39 / the class rules) fused with a barometer
+    ``(baro_t, baro_hpa)`` (s, hPa) by a Kalman filter over the strides (causal: each stride's height uses the
+    barometer up to its end; ``start_s`` / ``end_s`` the strides' times on the barometer's clock).
+
+    State: the height h, the slope s (the height a level stride misses) and the barometer's error w (measured:
+    b = h + w + noise). A stride moves h by its dz (+ s when |dz| < ``level_dz_m``: a stride the rules call
+    level) with the foot's error :data:`FOOT_STRIDE_SD_M`; s is a random walk of :data:`SLOPE_STEP_SD_M` per level
+    stride; h does not move between strides; w is a first-order Gauss-Markov process (:data:`BARO_WANDER_SD_M`,
+    :data:`BARO_WANDER_TAU_S`), so a barometer change that outlasts the wander's time becomes a slope and a short
+    one does not. The measurement is :func:`relative_altitude` (W89's 1 s mean; the thesis' "differential mode",
+    ch.4.3.1.4) at each stride's end, with :data:`BARO_NOISE_M`; a measurement :data:`BARO_JUMP_SDS` SDs from its
+    prediction moves the barometer's reference, not the height. Returns the fused per-stride height changes
+    (their sum is the fused altitude change); non-finite dz count as 0."""
+    d = np.nan_to_num(np.asarray(dz, dtype=float).ravel())
+    t0, t1 = np.asarray(start_s, dtype=float).ravel(), np.asarray(end_s, dtype=float).ravel()
+    if not len(d):
+        return d
+    b = relative_altitude(baro_t, baro_hpa, np.concatenate([[t0[0]], t1]))
+    level = np.abs(d) < level_dz_m
+    x, p = np.zeros(3), np.diag([0.0, 0.0, BARO_WANDER_SD_M ** 2])  # h = 0 and no slope at the start, w its prior
+    obs = np.array([1.0, 0.0, 1.0])
+    h = np.zeros(len(d) + 1)
+
+    ref = 0.0  # the barometer's reference, moved by each transient
+
+    def update(x, p, z, ref):
+        s = obs @ p @ obs + BARO_NOISE_M ** 2
+        if abs(z - ref - obs @ x) > BARO_JUMP_SDS * np.sqrt(s):
+            return x, p, z - obs @ x
+        k = p @ obs / s
+        return x + k * (z - ref - obs @ x), p - np.outer(k, obs @ p), ref
+
+    x, p, ref = update(x, p, b[0], ref)
+    t_prev = t0[0]
+    for i in range(len(d)):
+        a = np.exp(-max(float(t1[i] - t_prev), 0.0) / BARO_WANDER_TAU_S)  # the wander decorrelates
+        f = np.array([[1.0, float(level[i]), 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, a]])
+        x = f @ x + np.array([d[i], 0.0, 0.0])
+        p = f @ p @ f.T + np.diag([FOOT_STRIDE_SD_M ** 2, SLOPE_STEP_SD_M ** 2 * level[i],
+                                   BARO_WANDER_SD_M ** 2 * (1.0 - a * a)])
+        x, p, ref = update(x, p, b[i + 1], ref)
+        h[i + 1], t_prev = x[0], t1[i]
+    return np.diff(h)

@@ -155,7 +155,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``"thesis"``), ``fused_tau_s``, ``streaming``, ``distance_gain``, ``calibration``, ``gap_yaw``, ``waist_gap_yaw``,
       ``waist_bridge`` (decisions L91 / L99: streamed on by default), ``warn_out_of_domain``, ``toe_off``
       (decision L73: the toe-off / stance / swing columns, offline), ``hard_iron_fit`` (decision L84),
-      ``contacts`` (decisions E49-E51: with ``streaming``, each stride's initial contact and stride time).
+      ``contacts`` (decisions E49-E51: with ``streaming``, each stride's initial contact and stride time),
+      ``altitude`` (decision L154: ``"foot"``, the default, or ``"fused"`` with the waist barometer; an option).
     - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
       step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``

@@ -563,11 +563,13 @@ def _waist_references(result: TrackResult, session: Session, out: dict) -> None:
 
 def _barometer(result: TrackResult, session: Session, out: dict) -> None:
     """Decision L127: ``barometer_unused`` - the session has a waist barometer (wBarometer.csv with samples) and
-    the track is of foot strides, whose altitude is the foot's own (only lower-back tracks read the barometer)."""
+    the track is of foot strides, whose altitude is the foot's own (lower-back tracks read the barometer, and so
+    does a foot track with ``altitude="fused"``, decision L154)."""
     steps = result.steps
     foot = bool(len(steps)) and "unit" in steps and bool((steps["unit"].astype(str) == "foot").all())
-    out["barometer_unused"] = bool(foot and session.has("wBarometer") and len(session["wBarometer"]))
-    if out["barometer_unused"]:  # decision L145: the barometer's altitude change over the track, to compare
+    baro = bool(foot and session.has("wBarometer") and len(session["wBarometer"]))
+    out["barometer_unused"] = baro and (result.info or {}).get("altitude_source") != "fused"
+    if baro:  # decision L145: the barometer's altitude change over the track, to compare
         from pdrlearn.kernels.barometer import relative_altitude
         from pdrlearn.track.barometer import FOOT_EFFECT, usable_barometer
 
@@ -592,9 +594,9 @@ BAROMETER_DRIFT_M_PER_H = 2.5
 
 def barometer_warning(summary: dict) -> str | None:
     """Decision L145: one line when a foot track's ``altitude_change_m`` and the session's waist barometer
-    (``barometer_altitude_change_m``, recorded but not read by the foot pipeline) differ by more than
-    ``barometer_disagree_limit_m`` (:data:`BAROMETER_DISAGREE_M` + the weather's drift over the track), with
-    the height L39 set to 0 (``info.altitude_check.level_zeroed_m``) when known; None otherwise."""
+    (``barometer_altitude_change_m``, recorded; read by the foot pipeline only with ``altitude="fused"``, L154)
+    differ by more than ``barometer_disagree_limit_m`` (:data:`BAROMETER_DISAGREE_M` + the weather's drift over the
+    track), with the height L39 set to 0 (``info.altitude_check.level_zeroed_m``) when known; None otherwise."""
     baro, foot = summary.get("barometer_altitude_change_m"), summary.get("altitude_change_m")
     limit = summary.get("barometer_disagree_limit_m", BAROMETER_DISAGREE_M)
     if baro is None or foot is None or not abs(float(foot) - float(baro)) > float(limit):
@@ -604,11 +606,13 @@ def barometer_warning(summary: dict) -> str | None:
     why = ("" if zeroed is None else
            f"; L39 set {check.get('level_zeroed_strides', 0)} strides under 0.10 m of height change to level, "
            f"{float(zeroed):+.2f} m in all (a slope under ~7 % reads level on the foot)")
+    fused = not summary.get("barometer_unused", True)  # decision L154: the barometer was fused into the altitude
     return (f"foot altitude change {float(foot):+.2f} m disagrees with the waist barometer's {float(baro):+.2f} m "
-            f"(wBarometer.csv, not read by foot tracks) by {abs(float(foot) - float(baro)):.2f} m (more than "
-            f"{float(limit):.2f} m){why}; "
+            f"(wBarometer.csv, {'fused with the strides by L154' if fused else 'not read by foot tracks'}) by "
+            f"{abs(float(foot) - float(baro)):.2f} m (more than {float(limit):.2f} m){why}; "
             "the foot's height is integrated stride by stride and misses slopes and hills (L144): for altitude on "
-            "slopes, hills and ramps track the lower back, `--pipeline waist-pendulum`")
+            "slopes, hills and ramps " + ("" if fused else "fuse the barometer, `--altitude fused` (L154), or ")
+            + "track the lower back, `--pipeline waist-pendulum`")
 
 
 def _leg_length(result: TrackResult, session: Session, out: dict) -> None:

@@ -64,6 +64,7 @@ from pdrlearn.kernels.window import (
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
 from pdrlearn.signal import lowpass
+from pdrlearn.track.altitude import apply_altitude, check_altitude, set_strides_dz
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
 from pdrlearn.track.gait import add_gait_columns, streamed_gait_columns, stride_rows, turn_rows
@@ -578,7 +579,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
                  waist_bridge: bool | None = None, warn_out_of_domain: float | None = None, toe_off: bool = False,
-                 hard_iron_fit: bool | None = None, contacts: bool = False, **opts) -> TrackResult:
+                 hard_iron_fit: bool | None = None, contacts: bool = False, altitude: str | None = None,
+                 **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -643,6 +645,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         the accelerometer impact, decisions E49/E50) and so ``stride_time_s``, ``cadence_spm``, ``speed_mps``
         and the summary's stride medians (E51; an option: E50's adoption rule was not met). Offline strides always
         have their detector's contacts
+    altitude : "foot" (default, None) - the strides' own height (L39 / the terrain classes) - or "fused": fused with
+        the session's waist barometer (decision L154, :func:`pdrlearn.kernels.barometer.fuse_altitude`; an option,
+        its adoption rule was not met), offline and streamed; ``info["altitude_source"]`` says which
 
     Any other keyword argument raises ``TypeError`` naming the closest valid one (decision L43). Warnings go
     to ``info["warnings"]`` and to the ``logging`` logger ``pdrlearn.track`` (not Python's ``warnings``).
@@ -652,6 +657,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if opts:  # decision L43: a misspelled option is an error, as in the waist pipelines (it was ignored)
         check_keywords("plasys", opts, keyword_names(track_plasys))
     check_warn_at(warn_out_of_domain)
+    altitude = check_altitude(altitude)  # decision L154
     _check_steps_arg(steps)  # decision B173 (a bad value was a pandas traceback), L149 (own strides accepted)
     method = str(method).upper()
     no_classes = False
@@ -688,6 +694,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             log.warning("%s: %s", session.where, NO_MODEL_WARNING)
             if msg:
                 log.warning("%s: %s", session.where, msg)
+        apply_altitude(res, session, altitude)  # decision L154
         return res
     cfg = {**METHODS[method], "rules": False} if no_classes else METHODS[method]
     warnings: list[str] = [NO_MODEL_WARNING] if no_classes else []
@@ -942,7 +949,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.where, w)
-    return TrackResult(steps=table, trajectory=traj, info=info)
+    res = TrackResult(steps=table, trajectory=traj, info=info)
+    apply_altitude(res, session, altitude)  # decision L154
+    return res
 
 
 def fuse_by_segment(relative: np.ndarray, absolute: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
@@ -995,11 +1004,7 @@ def bridge_foot_yaw(fd: FootDisplacement, foot_gaps: dict, stream=None) -> None:
 def _level_without_classes(res: TrackResult) -> None:
     """Decision L39 on a streamed track without classes: the level strides' ``dz_m`` set to 0 and the
     trajectory's height re-accumulated (one trajectory row per stride after the start row)."""
-    dz = level_dz(res.steps["dz_m"].to_numpy(float)) if len(res.steps) else np.zeros(0)
-    res.steps["dz_m"] = dz
-    if len(res.trajectory) == len(dz) + 1:
-        z0 = float(res.trajectory["z"].iloc[0])
-        res.trajectory["z"] = z0 + np.concatenate([[0.0], np.cumsum(dz)])
+    set_strides_dz(res, level_dz(res.steps["dz_m"].to_numpy(float)) if len(res.steps) else np.zeros(0))
 
 
 def _one_row_per_gap(table: pd.DataFrame, traj: pd.DataFrame, in_gap: np.ndarray,

@@ -1,0 +1,61 @@
+"""Decision L154: where a foot track's altitude comes from - the foot's strides alone (``"foot"``, the default:
+L39's level rule or the terrain classes) or the strides fused with the session's waist barometer (``"fused"``,
+:func:`pdrlearn.kernels.barometer.fuse_altitude`, an option: L154's adoption rule was not met)."""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+
+log = logging.getLogger("pdrlearn.track")
+
+#: decision L154: the altitude sources of the foot pipeline, and the default (not adopted: the foot's own)
+ALTITUDES = ("foot", "fused")
+DEFAULT_ALTITUDE = "foot"
+
+
+def check_altitude(altitude: str | None) -> str:
+    """``altitude`` (None = :data:`DEFAULT_ALTITUDE`) checked: an unknown value is one line naming the valid ones."""
+    value = DEFAULT_ALTITUDE if altitude is None else altitude
+    if value not in ALTITUDES:
+        raise DataError(f"plasys: altitude '{altitude}' is not one of {', '.join(ALTITUDES)} (foot: the strides' "
+                        "own height; fused: with the waist barometer, decision L154)")
+    return value
+
+
+def set_strides_dz(result, dz: np.ndarray) -> None:
+    """The strides' ``dz_m`` replaced by ``dz`` and the trajectory's height re-accumulated from its first row (one
+    trajectory row per stride after the start row; a trajectory of another length keeps its z)."""
+    result.steps["dz_m"] = dz
+    if len(result.trajectory) == len(dz) + 1:
+        z0 = float(result.trajectory["z"].iloc[0])
+        result.trajectory["z"] = z0 + np.concatenate([[0.0], np.cumsum(dz)])
+
+
+def apply_altitude(result, session, altitude: str) -> None:
+    """Decision L154: with ``altitude="fused"`` and a waist barometer in ``session`` (wBarometer with samples), the
+    strides' heights become the fused ones and ``info["altitude_source"]`` says so, with the foot's own altitude
+    change in ``info["foot_altitude_change_m"]``; without a barometer one warning says the foot's altitude is
+    kept. ``"foot"``: ``info["altitude_source"] = "foot"``."""
+    result.info["altitude_source"] = "foot"
+    steps = result.steps
+    if altitude != "fused" or not len(steps):
+        return
+    if not (session.has("wBarometer") and len(session["wBarometer"])):
+        msg = ("altitude \"fused\" needs the waist barometer (wBarometer.csv), which this session lacks: the altitude "
+               "is the foot's own (L39 / the terrain classes)")
+        result.info.setdefault("warnings", []).append(msg)
+        log.warning("%s: %s", session.where, msg)
+        return
+    from pdrlearn.kernels.barometer import fuse_altitude
+
+    b = session["wBarometer"]
+    foot = np.nan_to_num(steps["dz_m"].to_numpy(float))
+    fused = fuse_altitude(foot, steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), b.t,
+                          b.values[:, 0])
+    set_strides_dz(result, fused)
+    result.info["altitude_source"] = "fused"
+    result.info["foot_altitude_change_m"] = float(foot.sum())
