@@ -71,3 +71,13 @@ def test_a_foot_track_does_not_compare_with_an_impossible_barometer(stairs):
     assert "barometer_altitude_change_m" not in summary
     lines = [w for w in summary["info"]["warnings"] if "B188" in w]
     assert len(lines) == 1 and "wBarometer.csv is not used" in lines[0] and "not compared with it (L145)" in lines[0]
+
+
+def test_a_fused_foot_altitude_keeps_the_foots_own_with_an_impossible_barometer(stairs):
+    s = _padded(stairs)
+    res = track_plasys(s, altitude="fused")
+    assert res.info["altitude_source"] == "foot"  # L154 not applied to the artefact
+    assert np.allclose(res.steps["dz_m"], track_plasys(s).steps["dz_m"])
+    summary = track_summary(res, s)
+    lines = [w for w in summary["info"]["warnings"] if "B188" in w]
+    assert len(lines) == 1 and "not fused with it (L154)" in lines[0]

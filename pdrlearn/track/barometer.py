@@ -1,5 +1,5 @@
-"""The waist barometer a track may read (decision B188): one check shared by the lower-back altitude (W89, W91) and
-the foot track's comparison with the unused barometer (L145)."""
+"""The waist barometer a track may read (decision B188): one check shared by the lower-back altitude (W89, W91), the
+foot track's comparison with the barometer (L145) and its fused altitude (L154)."""
 
 from __future__ import annotations
 
@@ -15,6 +15,7 @@ from pdrlearn.kernels.barometer import (
 #: what an unread barometer means for a lower-back track (W89) and for a foot track (L145)
 WAIST_EFFECT = "z stays 0 with no floors counted"
 FOOT_EFFECT = "the foot altitude is not compared with it (L145)"
+FUSED_EFFECT = "the altitude is the foot's own, not fused with it (L154)"
 
 
 def implausible_barometer_message(found: tuple[float, float, float, float, float],

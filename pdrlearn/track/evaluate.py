@@ -575,8 +575,9 @@ def _barometer(result: TrackResult, session: Session, out: dict) -> None:
 
         lines: list[str] = []
         b = usable_barometer(session, lines, FOOT_EFFECT)  # decision B188: an impossible pressure is not compared
-        if b is None:
-            out["barometer_implausible"] = lines[0]
+        if b is None:  # one line per track: L154's fusion may have said it already
+            if not any("decision B188" in w for w in (result.info or {}).get("warnings", [])):
+                out["barometer_implausible"] = lines[0]
             return
         span = [float(steps["start_s"].min()), float(steps["end_s"].max())]
         out["barometer_altitude_change_m"] = float(relative_altitude(b.t, b.values[:, 0], span)[1])
