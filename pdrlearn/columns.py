@@ -1,5 +1,6 @@
 """Cohort decision C35: the data dictionary of track-all's tables - every column of sessions.csv, groups.csv,
-subjects.csv and each session's bouts.csv with its unit, type and meaning. The one source of ``pdrlearn columns``
+subjects.csv, each session's bouts.csv and a lower-back session's steps.csv (W129) with its unit, type and meaning.
+The one source of ``pdrlearn columns``
 and docs/columns.md (written from it: ``pdrlearn columns > docs/columns.md``); a test tracks a batch and checks that
 every column written is here. Meanings follow docs/localization.md's table of summary.json keys (decisions L103, L104).
 """
@@ -197,9 +198,39 @@ BOUTS: tuple[Column, ...] = (
     ("altitude_change_m", "m", "number", "z change over the bout"),
 )
 
+#: a lower-back track's steps.csv (``TrackResult.steps`` of waist-pendulum / waist-pll), one row per contact of either
+#: foot; a foot track's steps.csv (strides of one foot) has other columns
+WAIST_STEPS: tuple[Column, ...] = (
+    ("start_s", "s", "number", "the contact (initial contact), on the session's clock"),
+    ("end_s", "s", "number", "the next contact of the walking sequence; = start_s when the contact closes it"),
+    ("event_s", "s", "number", "the contact (= start_s)"),
+    ("unit", _ID, "text", "the unit tracked: waist"),
+    ("confidence", "fraction", "number", "1 for a step to a next contact, 0.5 for a sequence-closing contact"),
+    ("fc_s", "s", "number", "the final contact after it (waist-pendulum); empty for the PLL's steps"),
+    ("has_next", _ID, "true/false", "a next contact follows within 1.5 s: the row is a step with a length"),
+    ("h_m", "m", "number", "waist-pendulum: the pelvis's vertical excursion during the step (seed 003)"),
+    ("g_m", "m", "number", "waist-pendulum: the pendulum chord 2 sqrt(2 L h - h^2) before K and F"),
+    ("merged", _ID, "true/false", "waist-pendulum: a fragment whose length its neighbour carries (W27)"),
+    ("pause_factor", "fraction", "number", "option pause_steps only: the factor the step's length was scaled by "
+                                           "(W111, W122)"),
+    ("length_m", "m", "number", "step length (0 for a sequence-closing contact)"),
+    ("frequency_hz", "Hz", "number", "1 / the step's duration"),
+    ("dyaw_rad", "rad", "number", "vertical-gyro rotation during the step"),
+    ("heading_rad", "rad", "number", "the step's heading (ENU, counter-clockwise from east)"),
+    ("turning", _ID, "integer", "gyro heading: 1 = a turning stride (seed 003's classifier), else 0"),
+    ("mean_rate_rps", "rad/s", "number", "the stride's mean vertical rate (MRZ, seed 003 sec. 3.3)"),
+    ("stairs", _ID, "true/false", "the barometric altitude changes by 0.1 m/s or more around the step (W91)"),
+    ("side", _ID, "text", "left / right foot of the contact, empty when undecided: the pelvis's lateral velocity at "
+                          "it (W20, W129; 99 % agree with INDIP's foot where decided); empty with --realtime"),
+    ("dz_m", "m", "number", "barometric altitude change over the step (W89; 0 without a usable barometer)"),
+)
+
 #: every table of the dictionary, in the order shown
 TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
-                                         "bouts.csv": BOUTS}
+                                         "bouts.csv": BOUTS, "steps.csv": WAIST_STEPS}
+#: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
+NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
+                      "track's steps.csv (strides of the tracked foot) has other columns."}
 
 
 def expanded(table: str) -> dict[str, Column]:
@@ -224,7 +255,8 @@ def markdown(tables: list[str] | None = None) -> str:
              f"for each of {', '.join(GROUP_METRICS)}. Empty cell = not measured for that session (a failed "
              "session, another pipeline, no reference).", ""]
     for name in tables or list(TABLES):
-        lines += [f"## {name}", "", "| column | unit | type | meaning |", "|---|---|---|---|"]
+        lines += [f"## {name}", ""] + ([NOTES[name], ""] if name in NOTES else [])
+        lines += ["| column | unit | type | meaning |", "|---|---|---|---|"]
         lines += [f"| `{c}` | {u} | {t} | {m} |" for c, u, t, m in TABLES[name]]
         lines.append("")
     return "\n".join(lines)

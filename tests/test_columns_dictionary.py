@@ -49,6 +49,10 @@ def test_every_column_written_is_in_the_dictionary(batch):
                "subjects.csv": list(pd.read_csv(batch / "subjects.csv").columns),
                "bouts.csv": sorted({c for p in batch.rglob("bouts.csv") for c in pd.read_csv(p).columns})}
     assert len(list(batch.rglob("bouts.csv"))) == 4
+    waist = [p for p in batch.rglob("steps.csv") if "b" in p.relative_to(batch).parts[:1]]  # site b: lower back
+    assert len(waist) == 2
+    written["steps.csv"] = sorted({c for p in waist for c in pd.read_csv(p).columns})
+    assert "side" in written["steps.csv"]  # decision W129
     for table, cols in written.items():
         assert undocumented(table, cols) == [], table
     for table, cols in (("sessions.csv", SESSION_COLUMNS), ("bouts.csv", BOUT_COLUMNS),

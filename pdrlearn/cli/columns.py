@@ -6,13 +6,13 @@ import typer
 
 
 def columns(
-    table: str = typer.Argument(None, help="One table: sessions.csv, groups.csv, subjects.csv or bouts.csv "
-                                "(default: all)."),
+    table: str = typer.Argument(None, help="One table: sessions.csv, groups.csv, subjects.csv, bouts.csv or "
+                                "steps.csv (lower back) (default: all)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object: table -> list of {column, unit, "
                                  "type, meaning}."),
 ) -> None:
-    """Print every column of track-all's sessions.csv, groups.csv, subjects.csv and bouts.csv with its unit, type
-    and meaning, as Markdown (docs/columns.md is this output).
+    """Print every column of track-all's sessions.csv, groups.csv, subjects.csv, bouts.csv and a lower-back
+    steps.csv with its unit, type and meaning, as Markdown (docs/columns.md is this output).
 
     Examples:
 

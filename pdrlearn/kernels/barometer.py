@@ -41,18 +41,62 @@ def relative_altitude(t: np.ndarray, p_hpa: np.ndarray, at: np.ndarray,
     with :func:`altitude_m` and interpolated (held beyond the stream's ends). Thesis ch.4.3.1.4: the
     differential of the pressure from a reference point. Non-finite samples are skipped; with none finite
     the altitude is 0 throughout."""
-    t, p = np.asarray(t, dtype=float).ravel(), np.asarray(p_hpa, dtype=float).ravel()
     at = np.asarray(at, dtype=float).ravel()
-    ok = np.isfinite(t) & np.isfinite(p)
-    t, p = t[ok], p[ok]
+    t, h = _smoothed_altitude(t, p_hpa, smooth_s)
     if not len(t) or not len(at):
         return np.zeros(len(at))
+    h = np.interp(at, t, h)
+    return h - h[0]
+
+
+def _smoothed_altitude(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(t, h)``: the finite samples' times and the altitude (m, :func:`altitude_m`) of their pressure averaged
+    over a centred ``smooth_s`` window (fewer samples at the ends; W89's smoothing)."""
+    t, p = np.asarray(t, dtype=float).ravel(), np.asarray(p_hpa, dtype=float).ravel()
+    ok = np.isfinite(t) & np.isfinite(p)
+    t, p = t[ok], p[ok]
+    if not len(t):
+        return t, p
     cs = np.concatenate([[0.0], np.cumsum(p)])
     lo = np.searchsorted(t, t - 0.5 * smooth_s, side="left")
     hi = np.searchsorted(t, t + 0.5 * smooth_s, side="right")
-    mean = (cs[hi] - cs[lo]) / (hi - lo)
-    h = np.interp(at, t, altitude_m(mean))
-    return h - h[0]
+    return t, altitude_m((cs[hi] - cs[lo]) / (hi - lo))
+
+
+#: decision B188: the fastest a wearer travels vertically (m/s): the fastest passenger elevators run 18-21 m/s
+#: (Shanghai Tower 18 m/s, CTF Finance Centre Guangzhou 21 m/s); near sea level ~2.4 hPa/s (0.12 hPa per m)
+MAX_VERTICAL_SPEED_MPS = 20.0
+
+
+def implausible_pressure(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float = ALTITUDE_SMOOTH_S,
+                         max_speed_mps: float = MAX_VERTICAL_SPEED_MPS
+                         ) -> tuple[float, float, float, float, float] | None:
+    """Decision B188: ``(speed, t_a, p_a, t_b, p_b)`` when the barometer's altitude (its pressure averaged over
+    ``smooth_s`` as :func:`relative_altitude` reads it) changes faster than ``max_speed_mps`` between samples
+    ``smooth_s`` apart (the averaging keeps the sensor's noise, 0.13 m a sample (W89), far under it): ``speed`` the
+    largest such rate (m/s) and the largest sample-to-sample pressure jump around it, from ``p_a`` (hPa) at ``t_a``
+    to ``p_b`` at ``t_b`` (s); None when the barometer is plausible (or has under two finite samples)."""
+    t_s, h = _smoothed_altitude(t, p_hpa, smooth_s)
+    if len(t_s) < 2:
+        return None
+    j = np.searchsorted(t_s, t_s + smooth_s, side="left")
+    i = np.flatnonzero(j < len(t_s))
+    if not i.size:  # a stream shorter than smooth_s: its two ends
+        i, j = np.array([0]), np.array([len(t_s) - 1])
+    else:
+        j = j[i]
+    speed = np.abs(h[j] - h[i]) / np.maximum(t_s[j] - t_s[i], 1e-9)
+    k = int(np.argmax(speed))
+    if not speed[k] > max_speed_mps:
+        return None
+    tt = np.asarray(t, dtype=float).ravel()
+    pp = np.asarray(p_hpa, dtype=float).ravel()
+    ok = np.isfinite(tt) & np.isfinite(pp)
+    tt, pp = tt[ok], pp[ok]
+    a, b = np.searchsorted(tt, [t_s[i[k]] - smooth_s, t_s[j[k]] + smooth_s])
+    a, b = max(0, int(a) - 1), min(len(tt), int(b) + 1)
+    m = a + int(np.argmax(np.abs(np.diff(pp[a:b]))))
+    return float(speed[k]), float(tt[m]), float(pp[m]), float(tt[m + 1]), float(pp[m + 1])
 
 
 #: decision W108: the least barometric height of a climb, half of L64's 3 m storey (a flight between two landings)

@@ -51,8 +51,15 @@ def apply_altitude(result, session, altitude: str) -> None:
         log.warning("%s: %s", session.where, msg)
         return
     from pdrlearn.kernels.barometer import fuse_altitude
+    from pdrlearn.track.barometer import FUSED_EFFECT, usable_barometer
 
-    b = session["wBarometer"]
+    lines: list[str] = []
+    b = usable_barometer(session, lines, FUSED_EFFECT)  # decision B188: an impossible pressure is not fused
+    if b is None:
+        result.info.setdefault("warnings", []).extend(lines)
+        for line in lines:
+            log.warning("%s: %s", session.where, line)
+        return
     foot = np.nan_to_num(steps["dz_m"].to_numpy(float))
     fused = fuse_altitude(foot, steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), b.t,
                           b.values[:, 0])

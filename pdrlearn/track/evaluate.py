@@ -571,8 +571,14 @@ def _barometer(result: TrackResult, session: Session, out: dict) -> None:
     out["barometer_unused"] = baro and (result.info or {}).get("altitude_source") != "fused"
     if baro:  # decision L145: the barometer's altitude change over the track, to compare
         from pdrlearn.kernels.barometer import relative_altitude
+        from pdrlearn.track.barometer import FOOT_EFFECT, usable_barometer
 
-        b = session["wBarometer"]
+        lines: list[str] = []
+        b = usable_barometer(session, lines, FOOT_EFFECT)  # decision B188: an impossible pressure is not compared
+        if b is None:  # one line per track: L154's fusion may have said it already
+            if not any("decision B188" in w for w in (result.info or {}).get("warnings", [])):
+                out["barometer_implausible"] = lines[0]
+            return
         span = [float(steps["start_s"].min()), float(steps["end_s"].max())]
         out["barometer_altitude_change_m"] = float(relative_altitude(b.t, b.values[:, 0], span)[1])
         out["barometer_disagree_limit_m"] = BAROMETER_DISAGREE_M + BAROMETER_DRIFT_M_PER_H * (span[1] - span[0]) / 3600
@@ -625,13 +631,13 @@ METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _
 
 def summary_warnings(summary: dict) -> list[str]:
     """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range,
-    decision L113's withheld stride-time CV, decision L116's whole-sample rounding of the CV and decision L145's
-    foot altitude against the unused barometer."""
+    decision L113's withheld stride-time CV, decision L116's whole-sample rounding of the CV, decision L145's
+    foot altitude against the unused barometer and decision B188's implausible barometer."""
     from pdrlearn.track.clinical import resolution_warning, stride_cv_warning
     from pdrlearn.track.gait import gait_range_warning
 
     return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary),
-                        barometer_warning(summary)) if w]
+                        barometer_warning(summary), summary.get("barometer_implausible")) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,

@@ -23,6 +23,7 @@ import pandas as pd
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
 from pdrlearn.steps import PLLStepDetector
+from pdrlearn.track.barometer import usable_barometer
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
@@ -58,6 +59,8 @@ from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
     PLAUSIBILITY_MIN_PAIRS,
     contact_alternation,
+    contact_lateral_velocity,
+    contact_sides,
     not_alternating_message,
     step_counts,
     still_yaw_rate,
@@ -148,29 +151,31 @@ STAIRS_RATE_WINDOW_S = 2.0
 STAIR_TREAD_M = 0.30
 
 
-def _altitude(session: Session, t: np.ndarray, warnings: list[str]) -> np.ndarray | None:
-    """Decision W89: the altitude (m, relative to ``t[0]``) at the times ``t`` from the waist barometer
-    (:func:`pdrlearn.kernels.barometer.relative_altitude`); None, with :data:`NO_BAROMETER` added to
-    ``warnings`` (W90), when the session has none."""
+def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str]) -> np.ndarray | None:
+    """Decision W89: the altitude (m, relative to ``t[0]``) at the times ``t`` from the waist barometer ``baro``
+    (:func:`pdrlearn.track.barometer.usable_barometer`; :func:`pdrlearn.kernels.barometer.relative_altitude`); None
+    when it is None, with :data:`NO_BAROMETER` added to ``warnings`` (W90) when the session has none (an implausible
+    one has B188's line already)."""
     from pdrlearn.kernels.barometer import relative_altitude
 
-    if not session.has("wBarometer") or not len(session["wBarometer"]):
-        warnings.append(NO_BAROMETER)
+    if baro is None:
+        if not session.has("wBarometer") or not len(session["wBarometer"]):
+            warnings.append(NO_BAROMETER)
         return None
-    b = session["wBarometer"]
-    return relative_altitude(b.t, b.values[:, 0], t)
+    return relative_altitude(baro.t, baro.values[:, 0], t)
 
 
-def _stairs_steps(session: Session, steps: pd.DataFrame, climb: bool) -> np.ndarray:
+def _stairs_steps(baro, steps: pd.DataFrame, climb: bool) -> np.ndarray:
     """Decision W91: the steps proposed as on stairs - the barometric altitude changes by :data:`STAIRS_RATE_MPS`
-    or more over :data:`STAIRS_RATE_WINDOW_S` centred on the step's middle (all False without a barometer).
+    or more over :data:`STAIRS_RATE_WINDOW_S` centred on the step's middle (all False without a usable barometer
+    ``baro``, B188).
     ``climb`` (decision W108): only the proposed steps of a climb higher than the barometer's own still-period
     noise allows (:func:`pdrlearn.kernels.barometer.climb_mask`)."""
     from pdrlearn.kernels.barometer import climb_mask, relative_altitude, still_altitude_sd
 
-    if not session.has("wBarometer") or not len(steps):
+    if baro is None or not len(steps):
         return np.zeros(len(steps), dtype=bool)
-    b = session["wBarometer"]
+    b = baro
     t0, t1 = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
     mid = 0.5 * (t0 + t1)
     half = 0.5 * STAIRS_RATE_WINDOW_S
@@ -481,14 +486,15 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
     steps = _step_lengths(steps, imu, p, model, thr, turn_factor=bool(o["turn_factor"]))
-    stairs = _stairs_steps(session, steps, bool(o["stairs_climb"]))
+    baro = usable_barometer(session, warnings)  # decision B188: an impossible pressure change is not read
+    stairs = _stairs_steps(baro, steps, bool(o["stairs_climb"]))
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
         steps = steps.assign(length_m=np.where(stairs, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
                                                steps["length_m"].to_numpy(float)))
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
     steps = steps.assign(stairs=stairs)
-    z = _altitude(session, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float)]), warnings)
+    z = _altitude(session, baro, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float)]), warnings)
     if z is not None and bool(o["stairs_climb"]):  # W108: a step off stairs is on a level floor
         z = np.concatenate([[0.0], np.cumsum(np.where(stairs, np.diff(z), 0.0))])
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
@@ -501,8 +507,13 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     note = relative_heading_note(start, o["initial_heading"], "wMagneticField" in session)
     if note:
         warnings.append(note)
-    alternation, pairs = contact_alternation(imu.t, imu.acc_ml, imu.fs, steps["event_s"].to_numpy(float),
-                                             steps["has_next"].to_numpy(bool))  # decision W98
+    ev = steps["event_s"].to_numpy(float)
+    v_at = contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, ev)  # W20's cue, read once for W98 and W129
+    alternation, pairs = contact_alternation(imu.t, imu.acc_ml, imu.fs, ev, steps["has_next"].to_numpy(bool),
+                                             v_at=v_at)  # decision W98
+    # decision W129: each contact's side; realtime: empty (W20's velocity is zero-phase over the whole recording)
+    steps = steps.assign(side=np.full(len(steps), "", dtype=object) if realtime
+                         else contact_sides(imu.t, imu.acc_ml, imu.fs, ev, v_at=v_at))
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
         warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
                                                 step_counts(session, steps["event_s"].to_numpy(float))))

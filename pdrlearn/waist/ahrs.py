@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, MissingSensorError
 from pdrlearn.io import Session
 from pdrlearn.orient._kernels import madgwick_imu
 from pdrlearn.signal import gravity_rotation, interp_rows
@@ -78,6 +78,17 @@ def _where(session: Session, stream: str) -> str:
     return f"session '{session.name}': {stream}"
 
 
+def no_gyroscope_message(session: Session, purpose: str) -> str:
+    """Decisions W130, B189: the one line for a lower-back session with an accelerometer and no gyroscope - what needs
+    it, and the accelerometer-only step detector that works (no distance, bouts or heading: W130 keeps refusing)."""
+    folder = str(session.folder) if session.folder is not None else "DIR"
+    return (f"{session.where}: no wGyroscope.csv, needed by {purpose}: the waist attitude (which way is up and "
+            "forward) and the heading come from the gyroscope, in both lower-back pipelines (waist-pendulum, "
+            "waist-pll; decision W130); with the accelerometer alone only the contacts can be found: "
+            f"'pdrlearn steps {folder} "
+            "--detector pll --out steps.csv' (no distance, bouts or heading); or record the gyroscope too")
+
+
 def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tuple[np.ndarray, np.ndarray,
                                                                                       np.ndarray]:
     """Waist accelerometer and gyroscope on the accelerometer's timestamps, in the body frame FLU.
@@ -95,6 +106,8 @@ def body_data(session: Session, *, purpose: str = "waist dead reckoning") -> tup
     Raises :class:`MissingSensorError` without them and :class:`DataError` for an undeclared frame,
     NaN values or a recording shorter than 2 s.
     """
+    if session.has(ACC) and not session.has(GYR):  # decisions W130, B189: say what works without one
+        raise MissingSensorError(no_gyroscope_message(session, purpose))
     session.require(ACC, GYR, purpose=purpose)
     session.require_cover(ACC, GYR)  # interpolated onto the accelerometer's clock: no made-up rates at the ends
     frame = session.require_frame("waist")

@@ -62,13 +62,14 @@ def alternation_index(v_at: np.ndarray, has_next: np.ndarray) -> tuple[float | N
 
 
 def contact_alternation(t: np.ndarray, acc_ml: np.ndarray, fs: float, event_s: np.ndarray,
-                        has_next: np.ndarray) -> tuple[float | None, int]:
+                        has_next: np.ndarray, v_at: np.ndarray | None = None) -> tuple[float | None, int]:
     """:func:`alternation_index` of the contacts at ``event_s`` (s, on the sample times ``t``), with W20's
-    :func:`~pdrlearn.waist._kernels.lateral_velocity` of the medio-lateral acceleration ``acc_ml``."""
+    :func:`~pdrlearn.waist._kernels.lateral_velocity` of the medio-lateral acceleration ``acc_ml`` (``v_at``: its
+    values at the contacts when already read, :func:`contact_lateral_velocity`)."""
     ev = np.asarray(event_s, dtype=np.float64)
     if ev.size < 2:
         return None, 0
-    return alternation_index(contact_lateral_velocity(t, acc_ml, fs, ev), has_next)
+    return alternation_index(contact_lateral_velocity(t, acc_ml, fs, ev) if v_at is None else v_at, has_next)
 
 
 def contact_lateral_velocity(t: np.ndarray, acc_ml: np.ndarray, fs: float, event_s: np.ndarray) -> np.ndarray:
@@ -76,6 +77,25 @@ def contact_lateral_velocity(t: np.ndarray, acc_ml: np.ndarray, fs: float, event
     ``event_s`` (s, on the sample times ``t``; shared by W98's index and W109's rhythm test)."""
     idx = np.clip(np.searchsorted(t, np.asarray(event_s, dtype=np.float64)), 0, len(t) - 1)
     return K.lateral_velocity(acc_ml, fs)[idx]
+
+
+#: decision W129: the side labels of :func:`contact_sides` for W20's +1 / -1 / 0 (undecided)
+SIDE_LABELS = {1: "left", -1: "right", 0: ""}
+
+
+def contact_sides(t: np.ndarray, acc_ml: np.ndarray, fs: float, event_s: np.ndarray,
+                  v_at: np.ndarray | None = None) -> np.ndarray:
+    """Decision W129: ``"left"`` / ``"right"`` / ``""`` (undecided) for each contact at ``event_s`` (s), from W20's
+    :func:`~pdrlearn.waist._kernels.step_sides` of the pelvis's lateral velocity at it (``v_at``, else
+    :func:`contact_lateral_velocity`; ``acc_ml`` left +), decided against the median over these contacts. A priori sign
+    (W129): at a foot's initial contact the pelvis moves towards that foot (it sways over the stance foot), so
+    v > 0 is the left foot."""
+    ev = np.asarray(event_s, dtype=np.float64)
+    if ev.size == 0:
+        return np.zeros(0, dtype=object)
+    v = contact_lateral_velocity(t, acc_ml, fs, ev) if v_at is None else np.asarray(v_at, dtype=np.float64)
+    side = K.step_sides(v, np.ones(ev.size, dtype=bool))
+    return np.array([SIDE_LABELS[int(s)] for s in side], dtype=object)
 
 
 #: decision W99: the waist IC count of a calibration walk and the pelvic-gyro detector's disagree when they differ
