@@ -58,7 +58,7 @@ def test_bouts_of_a_known_walk_and_their_totals(walk, tracks, pipeline):
     assert b["n_steps"].sum() == s["n_steps_both_feet"]
     assert b["distance_m"].sum() == pytest.approx(s["distance_m"], abs=1e-9)
     assert b["n_turns"].sum() == s["turn_count"] and len(b) == s["n_walking_bouts"] == s["n_bouts"]
-    assert s["bout_definition"] == {"break_s": 1.0, "min_strides": 0}  # the API's summary = track's (C14)
+    assert s["bout_definition"] == {"break_s": 1.0, "min_strides": 0, "gap": "rhythm"}  # the API's summary = track's (C14)
     assert track_summary(r, walk, pipeline=pipeline, bouts=BoutRule(break_s=6))["n_bouts"] == 1
     assert b["altitude_change_m"].sum() == pytest.approx(r.steps["dz_m"].sum(), abs=1e-9)
 
@@ -91,14 +91,15 @@ def test_track_and_track_all_write_bouts_csv_and_record_the_definition(walk, tmp
     assert main(["track", str(root / "g" / "s1"), "--out", str(tmp_path / "t")]) == 0
     b = pd.read_csv(tmp_path / "t" / "bouts.csv")
     summary = json.loads((tmp_path / "t" / "summary.json").read_text())
-    assert len(b) == summary["n_bouts"] == 4 and summary["bout_definition"] == {"break_s": 1.0, "min_strides": 0}
+    assert len(b) == summary["n_bouts"] == 4 and summary["bout_definition"] == {"break_s": 1.0, "min_strides": 0,
+                                                                "gap": "rhythm"}
     assert "bouts.csv" in capsys.readouterr().out
     assert main(["track-all", str(root), "--out", str(tmp_path / "a"), "--bout-break-s", "3",
                  "--bout-min-strides", "3"]) == 0
     run = json.loads((tmp_path / "a" / "run.json").read_text())
     assert run["options"]["bout_break_s"] == 3.0 and run["options"]["bout_min_strides"] == 3
     one = json.loads((tmp_path / "a" / "g" / "s1" / "summary.json").read_text())
-    assert one["bout_definition"] == {"break_s": 3.0, "min_strides": 3} and one["n_bouts"] == 2
+    assert one["bout_definition"] == {"break_s": 3.0, "min_strides": 3, "gap": "rhythm"} and one["n_bouts"] == 2
     assert len(pd.read_csv(tmp_path / "a" / "g" / "s1" / "bouts.csv")) == 2
     assert pd.read_csv(tmp_path / "a" / "sessions.csv")["n_bouts"].tolist() == [2]
     capsys.readouterr()
