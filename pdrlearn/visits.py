@@ -82,9 +82,10 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
     batch's ``--bout-rule`` / ``--bout-break-s`` / ``--bout-min-strides``); ``gait_speed_mps`` = bouts_distance_m /
     walking_time_s (empty without walking time) and ``cadence_spm``: bouts.csv's cadence definition
     (:func:`pdrlearn.track.bouts.cadence_spm`, decision L164) of the bouts pooled - their steps between first and
-    last contact (sessions.csv's ``bouts_n_step_intervals``) over their contact spans (``bouts_contact_span_s``). Sessions naming no subject are in no row (sessions.csv has them). Visits are named as changes.csv
-    names them (:func:`canonical_visits` with ``visit_map``, C28, C29; decision C40: ``BL`` and ``Baseline`` of one
-    subject had been two rows)."""
+    last contact (sessions.csv's ``bouts_n_step_intervals``) over their contact spans (``bouts_contact_span_s``).
+    Sessions naming no subject are in no row (sessions.csv has them). Visits are named as changes.csv names them
+    (:func:`canonical_visits` with ``visit_map``, C28, C29; decision C40: ``BL`` and ``Baseline`` of one subject had
+    been two rows)."""
     import numpy as np
     import pandas as pd
 

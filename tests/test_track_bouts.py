@@ -60,7 +60,7 @@ def test_bouts_of_a_known_walk_and_their_totals(walk, tracks, pipeline):
     assert b["n_steps"].sum() == s["n_steps_both_feet"]
     assert b["distance_m"].sum() == pytest.approx(s["distance_m"], abs=1e-9)
     assert b["n_turns"].sum() == s["turn_count"] and len(b) == s["n_walking_bouts"] == s["n_bouts"]
-    assert s["bout_definition"] == {"break_s": 1.0, "min_strides": 0, "gap": "rhythm"}  # the API's summary = track's (C14)
+    assert s["bout_definition"] == {"break_s": 1.0, "min_strides": 0, "gap": "rhythm"}  # the API = track (C14)
     assert track_summary(r, walk, pipeline=pipeline, bouts=BoutRule(break_s=6))["n_bouts"] == 1
     assert b["altitude_change_m"].sum() == pytest.approx(r.steps["dz_m"].sum(), abs=1e-9)
 
@@ -185,3 +185,12 @@ def test_the_console_counts_the_bouts_of_bouts_csv(walk, tmp_path, capsys):
     assert summary["n_walking_bouts"] == 4 and summary["n_bouts"] == 3
     assert "3 walking bout(s)" in capsys.readouterr().out
     assert len(pd.read_csv(tmp_path / "t" / "bouts.csv")) == 3
+
+
+def test_a_bad_bout_rule_is_one_line_before_any_work(walk, tmp_path, capsys):
+    """Decision B187: an unknown --bout-rule is one line naming the choices, before any folder is made."""
+    write_session(walk, tmp_path / "s")
+    assert main(["track", str(tmp_path / "s"), "--out", str(tmp_path / "bad"), "--bout-rule", "mobilise"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--bout-rule mobilise: give one of pdrlearn, mobgap" in err[0]
+    assert not (tmp_path / "bad").exists()

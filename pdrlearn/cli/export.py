@@ -248,7 +248,7 @@ def run(
                               "foot = a two-unit bundle on a foot-only session or a failed waist (decision E26)."),
     start: str = typer.Option(None, "--start", help=START_HELP),
     storey_height: float = storey_height_option(),
-    bout_rule_name: str = _track.BOUT_RULE_OPT,
+    bout_rule: str = _track.BOUT_RULE_OPT,
     bout_break_s: float = _track.BOUT_BREAK_OPT,
     bout_min_strides: int = _track.BOUT_MIN_STRIDES_OPT,
     initial_heading: float = typer.Option(None, "--initial-heading", metavar="DEG",
@@ -293,9 +293,10 @@ def run(
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
     heading0 = initial_heading_option(initial_heading)  # decision L98, as `pdrlearn track`
-    from pdrlearn.track.bouts import bout_rule, detected_bouts, session_key
+    from pdrlearn.track.bouts import bout_rule as read_bout_rule
+    from pdrlearn.track.bouts import detected_bouts, session_key
 
-    bouts = bout_rule(bout_break_s, bout_min_strides, bout_rule_name)  # decisions L124, L130, L163: as `pdrlearn track`, before any work
+    bouts = read_bout_rule(bout_break_s, bout_min_strides, bout_rule)  # L124, L130, L163: as `track`, before any work
     if dpi is not None and out is None:  # decision L70: it would be ignored
         raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
                         "FOLDER or drop --dpi")
