@@ -118,9 +118,12 @@ def bout_ranges(steps: pd.DataFrame, rule: BoutRule | None = None) -> list[tuple
 
 def session_key(session) -> dict:
     """Decision L165: bouts.csv's key columns of a :class:`~pdrlearn.io.Session` - its name and meta.json's subject
-    (:func:`pdrlearn.cohort.meta_user`, as track-all's ``subject``; None when meta.json names none)."""
+    (:func:`pdrlearn.cohort.meta_user`, as track-all's ``subject``; None when meta.json names none). ``session``
+    None (``run --protocol``: a live stream, no session folder): both None."""
     from pdrlearn.cohort import meta_user
 
+    if session is None:
+        return {"session": None, "subject": None}
     return {"session": session.name, "subject": meta_user(session.meta or {})}
 
 
