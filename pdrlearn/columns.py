@@ -8,6 +8,7 @@ every column written is here. Meanings follow docs/localization.md's table of su
 from __future__ import annotations
 
 from pdrlearn.cohort import GROUP_METRICS
+from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG
 
 #: (column, unit, type, meaning); ``{measure}`` in a name stands for each of :data:`GROUP_METRICS`
 Column = tuple[str, str, str, str]
@@ -65,6 +66,8 @@ SESSIONS: tuple[Column, ...] = (
     ("bouts_time_s", "s", "number", "bouts.csv's durations summed (C25)"),
     ("bouts_n_steps", "count", "integer", "bouts.csv's steps summed (C25)"),
     ("bouts_n_strides", "count", "integer", "bouts.csv's strides summed (C25)"),
+    ("bouts_contact_span_s", "s", "number", "bouts.csv's contact_span_s summed (L164)"),
+    ("bouts_n_step_intervals", "count", "integer", "bouts.csv's n_step_intervals summed (L164)"),
     ("bout_distance_m", "m", "number", "lower back: tracked distance inside the reference walking bouts"),
     ("bout_reference_m", "m", "number", "lower back: reference distance of those bouts"),
     ("bout_distance_error_median_pct", "%", "number", "lower back: median per-bout distance error"),
@@ -143,7 +146,7 @@ SESSIONS: tuple[Column, ...] = (
     ("terrain_agreement", "fraction", "number", "matched strides whose terrain class is the label's (L53)"),
     ("timing_resolution_s", "s", "number", "one sample period of the stream the contacts come from (L116)"),
     ("turn_angle_mae_deg", "deg", "number", "mean absolute error of the reference turns' angles (L42)"),
-    ("turn_count", "count", "integer", "turns of about 90 deg or more (L104)"),
+    ("turn_count", "count", "integer", f"turns of >= {TURN_COUNT_MIN_DEG:g} deg (L104)"),
     ("turn_count_min_deg", "deg", "number", "the smallest turn turn_count counts"),
     ("turn_sign_agreement", "fraction", "number", "reference turns whose tracked turn has the same sign (L42)"),
     ("walking_speed_mps", "m/s", "number", "distance / walking time without the pauses (L110)"),
@@ -180,21 +183,33 @@ SUBJECTS: tuple[Column, ...] = (
     ("n_strides", "count", "integer", "bouts' strides summed"),
     ("bouts_distance_m", "m", "number", "the walking bouts' distance summed (bouts.csv)"),
     ("gait_speed_mps", "m/s", "number", "bouts distance / walking time (pooled, not a mean of bouts)"),
-    ("cadence_spm", "steps/min", "number", "60 x steps / walking time"),
+    ("cadence_spm", "steps/min", "number", "60 x the bouts' steps between first and last contact / their contact "
+                                           "spans (bouts.csv's cadence, pooled; L164)"),
 )
 
 BOUTS: tuple[Column, ...] = (
-    ("bout", "index", "integer", "the bout's number in the session, from 0"),
-    ("start_s", "s", "number", "start, on the session's clock"),
-    ("end_s", "s", "number", "end, on the session's clock"),
-    ("duration_s", "s", "number", "end_s - start_s"),
+    ("path", _ID, "text", "track-all's OUT/bouts.csv only: the session's path, sessions.csv's key (L165)"),
+    ("visit", _ID, "text", "track-all's OUT/bouts.csv only: meta.json visit (L165)"),
+    ("session", _ID, "text", "the session's name (meta.json's session, else the folder; L165)"),
+    ("subject", _ID, "text", "meta.json subject (or user); empty when not given (L165)"),
+    ("bout", "index", "integer", "the bout's number in the session, from 1"),
+    ("start_s", "s", "number", "start (first step's start), on the session's clock"),
+    ("end_s", "s", "number", "end (last step's end), on the session's clock"),
+    ("duration_s", "s", "number", "end_s - start_s: the slower first and last steps included"),
     ("n_steps", "count", "integer", "steps of both feet in the bout (L103; on a foot track an estimate from the "
                                     "tracked foot's strides)"),
-    ("n_strides", "count", "integer", "strides of the tracked foot (foot tracks); empty on the lower back"),
+    ("n_strides", "count", "integer", "foot: strides of the tracked foot; lower back: n_steps - 2 (strides "
+                                      "contact k to k + 2, as mobgap forms them)"),
     ("distance_m", "m", "number", "tracked distance in the bout"),
     ("speed_m_s", "m/s", "number", "distance_m / duration_s"),
-    ("cadence_spm", "steps/min", "number", "60 x n_steps / duration_s"),
-    ("n_turns", "count", "integer", "turns of about 90 deg or more in the bout (L104)"),
+    ("stride_length_m", "m", "number", "mean stride length: foot distance_m / n_strides; lower back 2 x "
+                                       "distance_m / (n_steps - 1), 2 x the mean step (L166)"),
+    ("contact_span_s", "s", "number", "first initial contact to the last (L164)"),
+    ("n_step_intervals", "count", "integer", "steps between those contacts: contacts - 1 (foot: 2 per stride; L164)"),
+    ("cadence_spm", "steps/min", "number", "60 x n_step_intervals / contact_span_s (L164)"),
+    ("longest_contact_gap_s", "s", "number", "longest time between two consecutive contacts in the bout; may "
+                                             "exceed --bout-break-s under --bout-rule pdrlearn (L163)"),
+    ("n_turns", "count", "integer", f"turns of >= {TURN_COUNT_MIN_DEG:g} deg in the bout (L104)"),
     ("altitude_change_m", "m", "number", "z change over the bout"),
 )
 

@@ -79,13 +79,17 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
     sessions counted (``; ``-separated, relative to ROOT); ``distance_m``: the tracks' distances summed;
     ``n_bouts``, ``walking_time_s``, ``n_steps``, ``n_strides``, ``bouts_distance_m``: the detected walking bouts'
     count, summed durations, steps (of both feet, L103), strides and distance (bouts.csv of each session, under the
-    batch's ``--bout-break-s`` / ``--bout-min-strides``); ``gait_speed_mps`` = bouts_distance_m / walking_time_s and
-    ``cadence_spm`` = 60 n_steps / walking_time_s: the bouts pooled, each weighed by its duration (empty without
-    walking time). Sessions naming no subject are in no row (sessions.csv has them). Visits are named as changes.csv
-    names them (:func:`canonical_visits` with ``visit_map``, C28, C29; decision C40: ``BL`` and ``Baseline`` of one
-    subject had been two rows)."""
+    batch's ``--bout-rule`` / ``--bout-break-s`` / ``--bout-min-strides``); ``gait_speed_mps`` = bouts_distance_m /
+    walking_time_s (empty without walking time) and ``cadence_spm``: bouts.csv's cadence definition
+    (:func:`pdrlearn.track.bouts.cadence_spm`, decision L164) of the bouts pooled - their steps between first and
+    last contact (sessions.csv's ``bouts_n_step_intervals``) over their contact spans (``bouts_contact_span_s``).
+    Sessions naming no subject are in no row (sessions.csv has them). Visits are named as changes.csv names them
+    (:func:`canonical_visits` with ``visit_map``, C28, C29; decision C40: ``BL`` and ``Baseline`` of one subject had
+    been two rows)."""
     import numpy as np
     import pandas as pd
+
+    from pdrlearn.track.bouts import cadence_spm
 
     if "subject" not in sessions or not sessions["subject"].notna().any():
         return None
@@ -115,7 +119,8 @@ def subject_totals(sessions, visit_map: dict[str, str] | None = None):
                    "n_steps": total("bouts_n_steps"), "n_strides": total("bouts_n_strides"),
                    "bouts_distance_m": total("bouts_distance_m")}
             row["gait_speed_mps"] = row["bouts_distance_m"] / t if t > 0 else np.nan
-            row["cadence_spm"] = 60.0 * row["n_steps"] / t if t > 0 else np.nan
+            span = total("bouts_contact_span_s")  # decision L164: bouts.csv's cadence, the bouts pooled
+            row["cadence_spm"] = cadence_spm(total("bouts_n_step_intervals"), span) if span > 0 else np.nan
             rows.append(row)
     out = pd.DataFrame(rows, columns=list(SUBJECT_COLUMNS))
     for c in ("n_tracked", "n_failed", "n_bouts", "n_steps", "n_strides"):

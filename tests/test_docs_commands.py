@@ -275,6 +275,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.steps.detectors import DETECTORS
     from pdrlearn.track.altitude import ALTITUDES
     from pdrlearn.track.base import PIPELINES
+    from pdrlearn.track.bouts import BOUT_PRESETS
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
     from pdrlearn.track.units import parse_units
@@ -311,6 +312,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72
         ("track", "altitude"): _one_of(ALTITUDES),  # decision L154
         ("track", "window"): parse_window,  # decision L105
+        **{(c, "bout_rule"): _one_of(BOUT_PRESETS, case=False) for c in ("track", "track-all", "run")},  # decision L163
         ("track", "units"): parse_units,  # decision B127
         ("export", "length_bounds"): two_numbers,
         ("export", "methods"): _one_of(METHODS, listed=True),

@@ -173,7 +173,8 @@ def test_run_takes_track_bout_options_and_detects_the_bouts_once(root, walk, tmp
     assert main(["run", str(root / "bundle"), str(walk), "--bout-break-s", "3", "--bout-min-strides", "1000",
                  "--out", str(tmp_path / "r")]) == 0
     summary = json.loads((tmp_path / "r" / "summary.json").read_text())
-    assert summary["bout_definition"] == {"break_s": 3.0, "min_strides": 1000} and summary["n_bouts"] == 0
+    assert summary["bout_definition"] == {"break_s": 3.0, "min_strides": 1000, "gap": "rhythm"}
+    assert summary["n_bouts"] == 0
     assert len(pd.read_csv(tmp_path / "r" / "bouts.csv")) == 0
     rec = json.loads((tmp_path / "r" / "run.json").read_text())["options"]
     assert rec["bout_break_s"] == 3.0 and rec["bout_min_strides"] == 1000

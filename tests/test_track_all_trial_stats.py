@@ -398,7 +398,9 @@ def test_subjects_csv_totals_each_subject_and_visit_from_the_bouts(site_tree, tm
     assert row["walking_time_s"] == pytest.approx(bouts["duration_s"].sum(), rel=1e-9)
     assert (row["n_steps"], row["n_strides"]) == (bouts["n_steps"].sum(), bouts["n_strides"].sum())
     assert row["gait_speed_mps"] == pytest.approx(bouts["distance_m"].sum() / bouts["duration_s"].sum(), rel=1e-9)
-    assert row["cadence_spm"] == pytest.approx(60 * bouts["n_steps"].sum() / bouts["duration_s"].sum(), rel=1e-9)
+    # decision L164 / cohort C45: bouts.csv's cadence (steps between first and last contact over that span), pooled
+    assert row["cadence_spm"] == pytest.approx(60 * bouts["n_step_intervals"].sum() / bouts["contact_span_s"].sum(),
+                                               rel=1e-9)
     assert subjects.iloc[4].isna()[["distance_m", "walking_time_s", "gait_speed_mps"]].all()  # nothing tracked
     # cohort C42: the report shows the table (subjects.csv's numbers, rounded as the report rounds)
     assert main(["report", str(tmp_path / "o"), "--out", str(tmp_path / "rep")]) == 0

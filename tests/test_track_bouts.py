@@ -15,7 +15,7 @@ from pdrlearn.io import write_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.base import get_pipeline
-from pdrlearn.track.bouts import BOUT_COLUMNS, BoutRule, detected_bouts
+from pdrlearn.track.bouts import BOUT_COLUMNS, BoutRule, bout_rule, detected_bouts
 from pdrlearn.track.evaluate import track_summary
 from tests.conftest import REAL
 
@@ -51,6 +51,8 @@ def test_bouts_of_a_known_walk_and_their_totals(walk, tracks, pipeline):
         if pipeline == "plasys":  # the tracked foot's strides are the true right-foot strides of the bout
             assert row.n_strides == len(inside) and row.n_steps == 2 * len(inside)
             assert 90 <= row.cadence_spm <= 130  # the simulated walker: ~1.05 s strides
+        # L166: a real mean stride length (2 x the mean step on the lower back, not distance / n_strides)
+        assert row.stride_length_m == pytest.approx(true_d / len(inside), rel=tol + 0.05)
     assert list(b["n_turns"]) == [0, 0, 1, 0]
     assert (b["duration_s"] > 0).all() and np.allclose(b["speed_m_s"], b["distance_m"] / b["duration_s"])
     # the table's totals are the track's (every row lies in a bout under the default definition)
@@ -58,7 +60,7 @@ def test_bouts_of_a_known_walk_and_their_totals(walk, tracks, pipeline):
     assert b["n_steps"].sum() == s["n_steps_both_feet"]
     assert b["distance_m"].sum() == pytest.approx(s["distance_m"], abs=1e-9)
     assert b["n_turns"].sum() == s["turn_count"] and len(b) == s["n_walking_bouts"] == s["n_bouts"]
-    assert s["bout_definition"] == {"break_s": 1.0, "min_strides": 0}  # the API's summary = track's (C14)
+    assert s["bout_definition"] == {"break_s": 1.0, "min_strides": 0, "gap": "rhythm"}  # the API = track (C14)
     assert track_summary(r, walk, pipeline=pipeline, bouts=BoutRule(break_s=6))["n_bouts"] == 1
     assert b["altitude_change_m"].sum() == pytest.approx(r.steps["dz_m"].sum(), abs=1e-9)
 
@@ -91,14 +93,15 @@ def test_track_and_track_all_write_bouts_csv_and_record_the_definition(walk, tmp
     assert main(["track", str(root / "g" / "s1"), "--out", str(tmp_path / "t")]) == 0
     b = pd.read_csv(tmp_path / "t" / "bouts.csv")
     summary = json.loads((tmp_path / "t" / "summary.json").read_text())
-    assert len(b) == summary["n_bouts"] == 4 and summary["bout_definition"] == {"break_s": 1.0, "min_strides": 0}
+    assert len(b) == summary["n_bouts"] == 4
+    assert summary["bout_definition"] == {"break_s": 1.0, "min_strides": 0, "gap": "rhythm"}
     assert "bouts.csv" in capsys.readouterr().out
     assert main(["track-all", str(root), "--out", str(tmp_path / "a"), "--bout-break-s", "3",
                  "--bout-min-strides", "3"]) == 0
     run = json.loads((tmp_path / "a" / "run.json").read_text())
     assert run["options"]["bout_break_s"] == 3.0 and run["options"]["bout_min_strides"] == 3
     one = json.loads((tmp_path / "a" / "g" / "s1" / "summary.json").read_text())
-    assert one["bout_definition"] == {"break_s": 3.0, "min_strides": 3} and one["n_bouts"] == 2
+    assert one["bout_definition"] == {"break_s": 3.0, "min_strides": 3, "gap": "rhythm"} and one["n_bouts"] == 2
     assert len(pd.read_csv(tmp_path / "a" / "g" / "s1" / "bouts.csv")) == 2
     assert pd.read_csv(tmp_path / "a" / "sessions.csv")["n_bouts"].tolist() == [2]
     capsys.readouterr()
@@ -139,3 +142,55 @@ def test_track_detects_the_bouts_once_and_track_all_takes_storey_height(walk, tm
     assert main(["track-all", str(root), "--out", str(tmp_path / "a"), "--storey-height", "2.5"]) == 0
     assert pd.read_csv(tmp_path / "a" / "sessions.csv")["storey_height_m"].tolist() == [2.5]
     assert json.loads((tmp_path / "a" / "run.json").read_text())["options"]["storey_height"] == 2.5
+
+
+def _lower_back_walk(gap_s: float, turn_deg: float) -> pd.DataFrame:
+    """A lower-back steps.csv: 12 contacts 0.55 s apart, a contact-free gap of ``gap_s`` with a turn of
+    ``turn_deg`` across it, 12 more contacts; 0.6 m steps, the last row of each walk the 0 m closing contact."""
+    t = np.r_[np.arange(12) * 0.55, 11 * 0.55 + gap_s + np.arange(12) * 0.55]
+    heading = np.where(np.arange(24) < 12, 0.0, np.radians(turn_deg))
+    end = np.r_[t[1:], t[-1] + 0.55]
+    length = np.full(24, 0.6)
+    length[[11, 23]] = 0.0
+    return pd.DataFrame({"start_s": t, "end_s": end, "event_s": t, "length_m": length, "heading_rad": heading,
+                         "unit": "waist"})
+
+
+def test_the_mobgap_rule_splits_at_a_contact_gap_over_3_s():
+    """Decision L163 (Mobilise-D trial, session 24): `--bout-break-s 3 --bout-min-strides 4` merged bouts across
+    4.9-6.5 s without a contact (the break counted beyond the step rhythm, a turn's angle / 20 deg/s allowed first);
+    `--bout-rule mobgap` is mobgap's literal rule, and every row says its longest contact gap."""
+    steps = _lower_back_walk(gap_s=4.0, turn_deg=60)
+    near = detected_bouts(steps, bout_rule(3, 4))  # 4.0 - 0.55 - 60 / 20 = 0.45 s: no break beyond the rhythm
+    assert len(near) == 1 and near["longest_contact_gap_s"].iloc[0] == pytest.approx(4.0)
+    literal = detected_bouts(steps, bout_rule(preset="mobgap"))
+    assert bout_rule(preset="mobgap") == BoutRule(break_s=3.0, min_strides=4, gap="contact")
+    assert len(literal) == 2 and list(literal["longest_contact_gap_s"]) == pytest.approx([0.55, 0.55])
+    assert list(literal["cadence_spm"]) == pytest.approx([60 / 0.55] * 2)  # each walk's own rhythm
+    assert near["cadence_spm"].iloc[0] < 0.8 * literal["cadence_spm"].iloc[0]  # the merged bout: 21 % low
+    assert list(literal["stride_length_m"]) == pytest.approx([1.2, 1.2])
+    assert len(detected_bouts(_lower_back_walk(gap_s=2.9, turn_deg=0), bout_rule(preset="mobgap"))) == 1
+    assert len(detected_bouts(steps, bout_rule(5, preset="mobgap"))) == 1  # the options override the preset
+    with pytest.raises(DataError, match="--bout-rule nope: give one of pdrlearn, mobgap"):
+        bout_rule(preset="nope")
+
+
+def test_the_console_counts_the_bouts_of_bouts_csv(walk, tmp_path, capsys):
+    """Decision L165 (Mobilise-D trial, session 24): the console's "N walking bout(s)" was L104's count whatever
+    the bout options; it is bouts.csv's rows."""
+    write_session(walk, tmp_path / "s")
+    assert main(["track", str(tmp_path / "s"), "--out", str(tmp_path / "t"), "--bout-break-s", "3",
+                 "--bout-rule", "pdrlearn"]) == 0
+    summary = json.loads((tmp_path / "t" / "summary.json").read_text())
+    assert summary["n_walking_bouts"] == 4 and summary["n_bouts"] == 3
+    assert "3 walking bout(s)" in capsys.readouterr().out
+    assert len(pd.read_csv(tmp_path / "t" / "bouts.csv")) == 3
+
+
+def test_a_bad_bout_rule_is_one_line_before_any_work(walk, tmp_path, capsys):
+    """Decision B187: an unknown --bout-rule is one line naming the choices, before any folder is made."""
+    write_session(walk, tmp_path / "s")
+    assert main(["track", str(tmp_path / "s"), "--out", str(tmp_path / "bad"), "--bout-rule", "mobilise"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--bout-rule mobilise: give one of pdrlearn, mobgap" in err[0]
+    assert not (tmp_path / "bad").exists()

@@ -622,6 +622,28 @@ def subject_params(params_dir: Path, rels: list[str], subjects: list[str | None]
     return [params_dir / f"{s}.json" for s in subjects]
 
 
+#: decision L165: track-all's OUT/bouts.csv - every tracked session's bouts.csv, keyed by sessions.csv's path
+COMBINED_BOUT_KEYS = ("path", "visit")
+
+
+def combined_bouts(out: Path, rows: list[dict]) -> pd.DataFrame:
+    """Decision L165: the tracked sessions' bouts.csv (``out/<path>/bouts.csv``) stacked in sessions.csv's order,
+    each row led by its session's ``path`` (sessions.csv's key) and ``visit``; bouts.csv's own ``session`` and
+    ``subject`` follow."""
+    import pandas as pd
+
+    from pdrlearn.track.bouts import BOUT_COLUMNS
+
+    cols = [*COMBINED_BOUT_KEYS, *BOUT_COLUMNS]
+    parts = []
+    for row in rows:
+        if row["status"] == "ok" and (out / row["path"] / "bouts.csv").is_file():
+            b = pd.read_csv(out / row["path"] / "bouts.csv", dtype={"session": str, "subject": str})
+            if len(b):
+                parts.append(b.assign(path=row["path"], visit=row.get("visit")))
+    return pd.concat(parts, ignore_index=True)[cols] if parts else pd.DataFrame(columns=cols)
+
+
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
     tmp = path.with_name(f".{path.name}.tmp")
     df.to_csv(tmp, index=False)  # full precision: groups.csv = a groupby of sessions.csv as read back
@@ -655,6 +677,7 @@ def track_all(
     common_span: bool = _track.COMMON_SPAN_OPT,
     units: str = _track.UNITS_OPT,
     window: str = _track.WINDOW_OPT,
+    bout_rule: str = _track.BOUT_RULE_OPT,
     bout_break_s: float = _track.BOUT_BREAK_OPT,
     bout_min_strides: int = _track.BOUT_MIN_STRIDES_OPT,
     resample: bool = _track.RESAMPLE_OPT,
@@ -737,7 +760,7 @@ def track_all(
                               initial_heading=initial_heading, window=window, resample=resample,
                               no_resample=no_resample, units=units, bout_break_s=bout_break_s,
                               bout_min_strides=bout_min_strides, storey_height=storey_height,
-                              altitude=altitude)
+                              altitude=altitude, bout_rule=bout_rule)
     if params is not None and params_dir is not None:  # decision C26: which file would a session use?
         raise DataError("track-all: give --params FILE (one file for every session) or --params-dir DIR (one "
                         "SUBJECT.json per subject), not both")
@@ -804,6 +827,7 @@ def track_all(
         _write_csv_atomic(groups, tmp / "groups.csv")
         if subjects is not None:
             _write_csv_atomic(subjects, tmp / "subjects.csv")
+        _write_csv_atomic(combined_bouts(tmp, rows), tmp / "bouts.csv")  # decision L165: every session's bouts
         if changes is not None:  # decisions C22, C23
             _write_csv_atomic(changes, tmp / "changes.csv")
             _write_csv_atomic(summary, tmp / "changes_summary.csv")
@@ -822,7 +846,7 @@ def track_all(
     else:
         typer.echo(f"track-all: {len(results) - len(failed)}/{len(results)} sessions tracked"
                    + (f" ({len(reused)} reused from an earlier run, --resume)" if resume else "") + f"; wrote {out}/"
-                   "<session>/, sessions.csv, groups.csv, " + ("" if subjects is None else "subjects.csv, ")
+                   "<session>/, sessions.csv, groups.csv, bouts.csv, " + ("" if subjects is None else "subjects.csv, ")
                    + ("" if changes is None else
                                                                "changes.csv, changes_summary.csv, ") + "run.json")
         print(groups_text(groups).to_markdown(index=False))

@@ -451,11 +451,13 @@ def count_phrase(summary: dict) -> str:
 
 def walk_line(summary: dict) -> str | None:
     """Decision L104: ``track``'s line of the walk's pauses, bouts, turns and stride-time variability; None when
-    the summary has none of them."""
+    the summary has none of them. The bouts counted are bouts.csv's rows (``n_bouts``, under the bout options;
+    decision L165: one source), else L104's ``n_walking_bouts``."""
     if summary.get("n_walking_bouts") is None:
         return None
     n, cv = summary.get("n_pauses", 0), summary.get("stride_time_cv_pct")
-    return (f"{summary['n_walking_bouts']} walking bout(s), {n} pause(s) of >= 1 s"
+    n_bouts = summary.get("n_bouts", summary["n_walking_bouts"])
+    return (f"{n_bouts} walking bout(s), {n} pause(s) of >= 1 s"
             + (f" ({summary['pause_time_s']:.1f} s in all)" if n else "")
             + f", {summary.get('turn_count', 0)} turn(s) of >= {summary.get('turn_count_min_deg', 80):g} deg"
             + (f", stride-time CV {cv:.1f} % ({summary.get('n_cv_strides')} steady strides)" if cv is not None

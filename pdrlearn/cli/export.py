@@ -253,6 +253,7 @@ def run(
                               "foot = a two-unit bundle on a foot-only session or a failed waist (decision E26)."),
     start: str = typer.Option(None, "--start", help=START_HELP),
     storey_height: float = storey_height_option(),
+    bout_rule: str = _track.BOUT_RULE_OPT,
     bout_break_s: float = _track.BOUT_BREAK_OPT,
     bout_min_strides: int = _track.BOUT_MIN_STRIDES_OPT,
     initial_heading: float = typer.Option(None, "--initial-heading", metavar="DEG",
@@ -302,9 +303,10 @@ def run(
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
     heading0 = initial_heading_option(initial_heading)  # decision L98, as `pdrlearn track`
-    from pdrlearn.track.bouts import bout_rule, detected_bouts
+    from pdrlearn.track.bouts import bout_rule as read_bout_rule
+    from pdrlearn.track.bouts import detected_bouts, session_key
 
-    bouts = bout_rule(bout_break_s, bout_min_strides)  # decisions L124, L130: as `pdrlearn track`, before any work
+    bouts = read_bout_rule(bout_break_s, bout_min_strides, bout_rule)  # L124, L130, L163: as `track`, before any work
     if dpi is not None and out is None:  # decision L70: it would be ignored
         raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
                         "FOLDER or drop --dpi")
@@ -440,7 +442,7 @@ def run(
     if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
         result.info["initial_heading_rad"] = heading0
     result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
-    table = detected_bouts(result.steps, bouts)  # decision E73: bouts.csv and n_bouts from one detection
+    table = detected_bouts(result.steps, bouts, **session_key(session))  # E73: bouts.csv and n_bouts at once
     summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats
@@ -497,7 +499,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.runtime.waist import WAIST_SENSORS, WaistTracker, load_waist_bundle
     from pdrlearn.signal import interp_rows
     from pdrlearn.track.base import TrackResult
-    from pdrlearn.track.bouts import detected_bouts
+    from pdrlearn.track.bouts import detected_bouts, session_key
     from pdrlearn.track.evaluate import evaluate_track
 
     bundle = load_waist_bundle(bundle_dir)  # verified before any output
@@ -545,7 +547,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.track.position_sigma import add_position_sigma
 
     add_position_sigma(result, session, "waist")  # decision L128, as track's lower-back pipelines
-    table = detected_bouts(result.steps, bouts)  # decisions L124, E73: bouts.csv and n_bouts from one detection
+    table = detected_bouts(result.steps, bouts, **session_key(session))  # L124, E73: one detection (L165: key)
     summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table,
                                                                        storey_height_m=storey_height_m),
                "session": session.name,

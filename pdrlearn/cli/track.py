@@ -93,9 +93,15 @@ UNITS_OPT = typer.Option(None, "--units", help="Body units to track with: foot (
                          "`pdrlearn run --units foot`), waist, or foot,waist (default: every unit the session has; "
                          "decision B127), e.g. to keep the foot outcome of a session whose waist unit stopped early.")
 INITIAL_HEADING_OPT = typer.Option(None, "--initial-heading", metavar="DEG", help=INITIAL_HEADING_HELP)
+BOUT_RULE_OPT = typer.Option(None, "--bout-rule", help="Walking bouts (OUT/bouts.csv, decision L163): pdrlearn "
+                              "(default: a pause of --bout-break-s beyond the walker's rhythm, a turn across it "
+                              "taking its time first) or mobgap (Mobilise-D's rule as mobgap implements it: a new "
+                              "bout when two contacts are more than 3 s apart, at least 4 strides; --bout-break-s "
+                              "and --bout-min-strides override its numbers).")
 BOUT_BREAK_OPT = typer.Option(None, "--bout-break-s", help="Walking bouts (OUT/bouts.csv, decision L124): a pause "
-                               "of at least S seconds beyond the walker's rhythm ends a bout. Default 1 (L104); "
-                               "Mobilise-D's break: 3.")
+                               "of at least S seconds beyond the walker's rhythm ends a bout (with --bout-rule "
+                               "mobgap: a contact gap over S s). Default 1 (L104); 3 with --bout-rule mobgap. "
+                               "Not mobgap's rule by itself: see --bout-rule.")
 BOUT_MIN_STRIDES_OPT = typer.Option(None, "--bout-min-strides", help="Walking bouts (OUT/bouts.csv, decision "
                                     "L124): a bout needs at least N strides, shorter ones are left out of the "
                                     "table. Default 0 (every bout); mobgap's Mobilise-D rule: 4.")
@@ -137,6 +143,7 @@ def track(
     align_units: bool = ALIGN_UNITS_OPT,
     units: str = UNITS_OPT,
     window: str = WINDOW_OPT,
+    bout_rule: str = BOUT_RULE_OPT,
     bout_break_s: float = BOUT_BREAK_OPT,
     bout_min_strides: int = BOUT_MIN_STRIDES_OPT,
     resample: bool = RESAMPLE_OPT,
@@ -188,7 +195,8 @@ def track(
                               common_span=common_span, units=units, window=window, resample=resample,
                               no_resample=no_resample, bout_break_s=bout_break_s,
                               bout_min_strides=bout_min_strides, storey_height=storey_height, detector=detector,
-                              length_model=length_model, altitude=altitude, align_units=align_units)
+                              length_model=length_model, altitude=altitude, align_units=align_units,
+                              bout_rule=bout_rule)
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
@@ -219,19 +227,20 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
                    detector: str | None = None, length_model: str | None = None,
-                   altitude: str | None = None, align_units: bool = False) -> dict:
+                   altitude: str | None = None, align_units: bool = False,
+                   bout_rule: str | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
     (``track-all --jobs``). What depends on the session (a window inside its recording, L105; a relative
     heading for ``--initial-heading``, L98) is checked per session in :func:`track_session` (decision L108)."""
     from pdrlearn.io.resample import resample_mode
-    from pdrlearn.track.bouts import bout_rule
+    from pdrlearn.track.bouts import bout_rule as read_bout_rule
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.window import parse_window
 
     rate_mode = resample_mode(resample, no_resample)  # decision B113
-    bouts = bout_rule(bout_break_s, bout_min_strides)  # decision L124: checked before any session
+    bouts = read_bout_rule(bout_break_s, bout_min_strides, bout_rule)  # L124, L163: checked before any session
     if rate_mode != "native" and model is None:
         raise DataError(f"track: {'--resample' if resample else '--no-resample'} compares the session's rate with "
                         "the model's: pass --model DIR, or drop it (without a model nothing depends on the rate)")
@@ -443,9 +452,10 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         drop_position_sigma(result)
     elif win is not None:  # L128: a window's uncertainty grows from its own first position
         add_position_sigma(result, tracked_session)
-    from pdrlearn.track.bouts import detected_bouts
+    from pdrlearn.track.bouts import detected_bouts, session_key
 
-    bouts = detected_bouts(result.steps, o.get("bouts"))  # decision L124: OUT/bouts.csv, the detected walking bouts
+    # decision L124: OUT/bouts.csv, the detected walking bouts; L165: keyed by the session and its subject
+    bouts = detected_bouts(result.steps, o.get("bouts"), **session_key(session))
     # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition (E73: of the table
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,

@@ -1,16 +1,18 @@
 """The detected walking bouts of a track, one row each (decision L124, docs/decisions/localization.md): what
 ``track`` writes as ``OUT/bouts.csv`` for the foot and the lower-back pipelines alike.
 
-A bout is L104's walking bout (:mod:`pdrlearn.track.clinical`): the rows of ``steps.csv`` between two pauses,
-a pause being a row-to-row interval at least ``break_s`` longer than the walk's median interval (the walker's
-own rhythm; a turn across the interval takes its time first, L119). ``break_s`` defaults to L104's
-:data:`~pdrlearn.track.clinical.PAUSE_MIN_S` (1 s), so the default table has ``n_walking_bouts`` rows. A bout
-with fewer than ``min_strides`` strides is left out of the table (its steps stay in the track's totals);
-default 0 (every bout, as L104 counts them). Mobilise-D's walking-bout rules as mobgap 1.2.0 implements them
-(``WbAssembly``: ``MaxBreakCriteria(max_break_s=3)``, ``NStridesCriteria(min_strides=4)``; decision W-gait
-rules in docs/decisions/waist.md, cited from mobgap's ``wba`` source - no seed paper holds them) are close to
-``break_s=3, min_strides=4``: mobgap's break is the time from one stride's end to the next one's start, ours the
-interval beyond the walker's rhythm, which is the same standing time when the rhythm's own stance is short.
+By default (gap ``rhythm``) a bout is L104's walking bout (:mod:`pdrlearn.track.clinical`): the rows of
+``steps.csv`` between two pauses, a pause being a row-to-row interval at least ``break_s`` longer than the walk's
+median interval (the walker's own rhythm; a turn across the interval takes its time first, L119). ``break_s``
+defaults to L104's :data:`~pdrlearn.track.clinical.PAUSE_MIN_S` (1 s), so the default table has
+``n_walking_bouts`` rows. A bout with fewer than ``min_strides`` strides is left out of the table (its steps stay
+in the track's totals); default 0 (every bout, as L104 counts them).
+
+Decision L163: that rhythm rule with ``break_s=3`` is NOT mobgap's rule - its effective break is the median step
+interval plus 3 s plus angle / 20 deg/s for a turn across the gap, so a Mobilise-D trial found bouts spanning
+4.9-6.5 s without a contact. ``--bout-rule mobgap`` (:data:`BOUT_PRESETS`) is the literal rule: gap ``contact``, a
+new bout when two consecutive initial contacts are more than 3 s apart, at least 4 strides. Every row says its
+``longest_contact_gap_s``, so a bout spanning a longer gap than the break is visible under either rule.
 """
 
 from __future__ import annotations
@@ -23,19 +25,32 @@ import pandas as pd
 from pdrlearn.errors import DataError
 from pdrlearn.track.clinical import PAUSE_MIN_S, TURN_COUNT_MIN_DEG, bout_rows, turn_rows
 
-#: bouts.csv's columns, in order (docs/localization.md)
-BOUT_COLUMNS = ("bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides", "distance_m", "speed_m_s",
-                "cadence_spm", "n_turns", "altitude_change_m")
+#: bouts.csv's columns, in order (docs/columns.md; decision L165: ``session`` / ``subject`` first, the join key)
+BOUT_COLUMNS = ("session", "subject", "bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides", "distance_m",
+                "speed_m_s", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
+                "longest_contact_gap_s", "n_turns", "altitude_change_m")
+
+#: decision L163: the ways a bout ends - ``rhythm`` (L104/L119: a row-to-row interval at least ``break_s`` beyond
+#: the walk's median interval, a turn across it taking its time first) or ``contact`` (mobgap's literal rule: two
+#: consecutive initial contacts more than ``break_s`` apart)
+GAP_KINDS = ("rhythm", "contact")
+#: decision L163: ``--bout-rule`` presets. ``mobgap``: Mobilise-D's walking-bout rule as mobgap 1.2.0 implements it
+#: (``mobgap.wba.WbAssembly`` with ``MaxBreakCriteria(max_break_s=3)`` and ``NStridesCriteria(min_strides=4)``; the
+#: Mobilise-D consensus of Kluge et al. 2021, PLoS ONE 16(8) e0256541, which mobgap's WBA docs cite - no seed paper
+#: holds it): a new bout when the contact gap exceeds 3 s, at least 4 strides
+BOUT_PRESETS = {"pdrlearn": {"gap": "rhythm", "break_s": PAUSE_MIN_S, "min_strides": 0},
+                "mobgap": {"gap": "contact", "break_s": 3.0, "min_strides": 4}}
 
 
 @dataclass(frozen=True)
 class BoutRule:
-    """Decision L124: the walking-bout definition. ``break_s``: a pause of at least this (s, beyond the walk's
-    rhythm) ends a bout (L104's 1 s by default); ``min_strides``: a bout needs at least this many strides (0:
-    every bout)."""
+    """Decisions L124, L163: the walking-bout definition. ``break_s``: a break of at least this (s) ends a bout
+    (L104's 1 s by default); ``min_strides``: a bout needs at least this many strides (0: every bout); ``gap``: how
+    the break is measured (:data:`GAP_KINDS`: beyond the walker's rhythm, or the raw contact-to-contact gap)."""
 
     break_s: float = PAUSE_MIN_S
     min_strides: int = 0
+    gap: str = "rhythm"
 
     def __post_init__(self):
         if not (np.isfinite(self.break_s) and self.break_s > 0):
@@ -44,36 +59,95 @@ class BoutRule:
         if self.min_strides < 0:
             raise DataError(f"--bout-min-strides {self.min_strides}: give 0 (every bout, the default) or more, "
                             "e.g. 4 (mobgap's Mobilise-D rule)")
+        if self.gap not in GAP_KINDS:
+            raise DataError(f"bout rule gap {self.gap!r}: give one of {', '.join(GAP_KINDS)}")
 
     def record(self) -> dict:
         """The definition as summary.json's ``bout_definition``."""
         return asdict(self)
 
 
-def bout_rule(break_s: float | None = None, min_strides: int | None = None) -> BoutRule:
-    """The rule of ``--bout-break-s`` / ``--bout-min-strides`` (None: the default), checked once before any
-    tracking (decision L124; ``track``, ``track-all`` and ``run`` read the options with this, decision L130)."""
-    return BoutRule(**{k: v for k, v in (("break_s", break_s), ("min_strides", min_strides)) if v is not None})
+def bout_rule(break_s: float | None = None, min_strides: int | None = None, preset: str | None = None) -> BoutRule:
+    """The rule of ``--bout-rule`` / ``--bout-break-s`` / ``--bout-min-strides`` (None: the preset's value, the
+    preset ``pdrlearn`` by default; decision L163), checked once before any tracking (decision L124; ``track``,
+    ``track-all`` and ``run`` read the options with this, decision L130)."""
+    name = (preset or "pdrlearn").strip().lower()
+    if name not in BOUT_PRESETS:
+        raise DataError(f"--bout-rule {preset}: give one of {', '.join(BOUT_PRESETS)} (mobgap: Mobilise-D's rule, "
+                        "a new bout when two contacts are more than 3 s apart, at least 4 strides)")
+    given = {k: v for k, v in (("break_s", break_s), ("min_strides", min_strides)) if v is not None}
+    return BoutRule(**{**BOUT_PRESETS[name], **given})
 
 
 def _is_foot(steps: pd.DataFrame) -> bool:
     return "unit" in steps and len(steps) > 0 and bool((steps["unit"].astype(str) == "foot").all())
 
 
-def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None) -> pd.DataFrame:
+def cadence_spm(n_step_intervals: float, span_s: float) -> float:
+    """Decision L164: THE cadence of pdrlearn's bout tables - steps per minute over the contact span: the
+    ``n_step_intervals`` steps between a bout's first and last initial contact (contacts - 1; 2 per stride of a
+    tracked foot, L66) in the ``span_s`` seconds between them; NaN without a span. bouts.csv's ``cadence_spm`` and
+    subjects.csv's pooled one (:func:`pdrlearn.visits.subject_totals`) both are this."""
+    return 60.0 * n_step_intervals / span_s if span_s > 0 else np.nan
+
+
+def _contact_times(st: pd.DataFrame) -> np.ndarray:
+    """Each row's initial contact (``event_s``, else ``start_s``), rows in time order."""
+    t = st["start_s"].to_numpy(float)
+    if "event_s" not in st:
+        return t
+    ic = st["event_s"].to_numpy(float)
+    return np.where(np.isfinite(ic), ic, t)
+
+
+def _contact_bouts(st: pd.DataFrame, break_s: float) -> list[tuple[int, int]]:
+    """Decision L163's ``contact`` gap: the rows between two consecutive contacts more than ``break_s`` apart."""
+    if not len(st):
+        return []
+    cuts = [0, *(np.flatnonzero(np.diff(_contact_times(st)) > break_s) + 1).tolist(), len(st)]
+    return list(zip(cuts[:-1], cuts[1:], strict=True))
+
+
+def bout_ranges(steps: pd.DataFrame, rule: BoutRule | None = None) -> list[tuple[int, int]]:
+    """The walking bouts of ``steps`` (sorted by ``start_s``) under ``rule`` as ``(first, last + 1)`` row ranges,
+    short ones included (:func:`detected_bouts` leaves those under ``min_strides`` out)."""
+    rule = rule or BoutRule()
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    return _contact_bouts(st, rule.break_s) if rule.gap == "contact" else bout_rows(st, min_s=rule.break_s)
+
+
+def session_key(session) -> dict:
+    """Decision L165: bouts.csv's key columns of a :class:`~pdrlearn.io.Session` - its name and meta.json's subject
+    (:func:`pdrlearn.cohort.meta_user`, as track-all's ``subject``; None when meta.json names none). ``session``
+    None (``run --protocol``: a live stream, no session folder): both None."""
+    from pdrlearn.cohort import meta_user
+
+    if session is None:
+        return {"session": None, "subject": None}
+    return {"session": session.name, "subject": meta_user(session.meta or {})}
+
+
+def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session: str | None = None,
+                   subject: str | None = None) -> pd.DataFrame:
     """One row per detected walking bout of a track's step table (:data:`BOUT_COLUMNS`, module docstring).
 
-    ``n_steps``: steps of both feet, as summary.json's ``n_steps_both_feet`` (decision L103: a foot track's
-    2 per stride of the tracked foot, an estimate; a lower-back track's detected steps); ``n_strides``: a foot
-    track's strides (rows that are no foot-data gap, L67), a lower-back track's strides from contact k to
-    k + 2 as mobgap forms them (its rows are its contacts, the last one a 0 m row: ``n_steps`` - 2);
-    ``distance_m``: the rows' summed |length_m| (the track's
-    ``distance_m`` sums the same); ``start_s`` / ``end_s``: the first row's start and the last row's end,
-    ``duration_s`` their difference; ``speed_m_s`` = distance / duration; ``cadence_spm``: steps per minute between
-    the bout's first and last initial contact (``event_s``; 2 steps per stride of a tracked foot, L66; NaN with
-    fewer than 2 contacts); ``n_turns``: the track's turns of at least ``turn_count_min_deg`` (L104) whose first turning
-    interval ends in the bout (a turn after a pause counts in the bout it starts); ``altitude_change_m``: the
-    rows' summed ``dz_m`` (NaN without that column)."""
+    ``session`` / ``subject``: the session's name and meta.json's subject, repeated on every row (decision L165,
+    empty when not given); ``n_steps``: steps of both feet, as summary.json's ``n_steps_both_feet`` (decision L103:
+    a foot track's 2 per stride of the tracked foot, an estimate; a lower-back track's detected steps);
+    ``n_strides``: a foot track's strides (rows that are no foot-data gap, L67), a lower-back track's strides from
+    contact k to k + 2 as mobgap forms them (its rows are its contacts, the last one a 0 m row: ``n_steps`` - 2);
+    ``distance_m``: the rows' summed |length_m| (the track's ``distance_m`` sums the same); ``start_s`` /
+    ``end_s``: the first row's start and the last row's end, ``duration_s`` their difference (the bout's first and
+    last steps included: slower than its middle); ``speed_m_s`` = distance / duration; ``stride_length_m``
+    (decision L166): the mean stride length, a foot track's distance / strides, a lower-back track's 2 x the mean
+    step length over its ``n_steps`` - 1 steps (the last row is the 0 m closing contact); ``contact_span_s``: from
+    the bout's first initial contact (``event_s``) to its last; ``n_step_intervals``: the steps between them
+    (contacts - 1; 2 per stride of a tracked foot, L66); ``cadence_spm``: :func:`cadence_spm` of those two (NaN
+    with fewer than 2 contacts); ``longest_contact_gap_s`` (decision L163): the longest time between two
+    consecutive contacts in the bout - under the ``rhythm`` rule it may exceed ``break_s`` (a turn or the rhythm
+    took the rest), this column says so; ``n_turns``: the track's turns of at least ``turn_count_min_deg`` (L104)
+    whose first turning interval ends in the bout (a turn after a pause counts in the bout it starts);
+    ``altitude_change_m``: the rows' summed ``dz_m`` (NaN without that column)."""
     rule = rule or BoutRule()
     out = pd.DataFrame(columns=list(BOUT_COLUMNS))
     if not len(steps) or "start_s" not in steps:
@@ -87,7 +161,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None) -> pd.Data
     angles, first = turn_rows(st)
     turn_row = first[np.abs(angles) >= TURN_COUNT_MIN_DEG]
     rows = []
-    for a, b in bout_rows(st, min_s=rule.break_s):
+    for a, b in bout_ranges(st, rule):
         n_strides = int((~gap[a:b]).sum()) if foot else max(b - a - 2, 0)
         if n_strides < rule.min_strides:
             continue
@@ -97,26 +171,34 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None) -> pd.Data
         dist = float(length[a:b].sum())
         c = ic[a:b][np.isfinite(ic[a:b])]
         span = float(c[-1] - c[0]) if len(c) >= 2 else 0.0
-        cadence = 60.0 * (2 if foot else 1) * (len(c) - 1) / span if span > 0 else np.nan
-        rows.append({"bout": len(rows) + 1, "start_s": t0, "end_s": t1, "duration_s": dur, "n_steps": n_steps,
-                     "n_strides": n_strides, "distance_m": dist,
+        intervals = (2 if foot else 1) * max(len(c) - 1, 0)
+        n_len = n_strides if foot else n_steps - 1  # L166: a foot row is a stride; a lower-back row a step
+        rows.append({"session": session, "subject": subject, "bout": len(rows) + 1, "start_s": t0, "end_s": t1,
+                     "duration_s": dur, "n_steps": n_steps, "n_strides": n_strides, "distance_m": dist,
                      "speed_m_s": dist / dur if dur > 0 else np.nan,
-                     "cadence_spm": cadence,
+                     "stride_length_m": (1 if foot else 2) * dist / n_len if n_len > 0 else np.nan,
+                     "contact_span_s": span, "n_step_intervals": intervals,
+                     "cadence_spm": cadence_spm(intervals, span),
+                     "longest_contact_gap_s": float(np.diff(c).max()) if len(c) >= 2 else np.nan,
                      "n_turns": int(((turn_row >= a) & (turn_row < b)).sum()),
                      "altitude_change_m": float(dz[a:b].sum())})
     return pd.DataFrame(rows, columns=list(BOUT_COLUMNS)) if rows else out
 
 
 #: a track's walking-bout totals (cohort C25): sessions.csv's columns, summed per subject in subjects.csv
-BOUT_TOTALS = ("bouts_distance_m", "bouts_time_s", "bouts_n_steps", "bouts_n_strides")
+BOUT_TOTALS = ("bouts_distance_m", "bouts_time_s", "bouts_n_steps", "bouts_n_strides", "bouts_contact_span_s",
+               "bouts_n_step_intervals")
 
 
 def bout_totals(table: pd.DataFrame) -> dict:
     """The totals of :func:`detected_bouts`'s ``table`` (cohort C25): ``bouts_distance_m`` (summed ``distance_m``),
     ``bouts_time_s`` (summed ``duration_s``: the walking time in bouts), ``bouts_n_steps`` and ``bouts_n_strides``
-    (summed counts); zeros for a track without bouts."""
+    (summed counts), ``bouts_contact_span_s`` and ``bouts_n_step_intervals`` (summed: the pooled cadence's terms,
+    decision L164); zeros for a track without bouts."""
     return {"bouts_distance_m": float(table["distance_m"].sum()), "bouts_time_s": float(table["duration_s"].sum()),
-            "bouts_n_steps": int(table["n_steps"].sum()), "bouts_n_strides": int(table["n_strides"].sum())}
+            "bouts_n_steps": int(table["n_steps"].sum()), "bouts_n_strides": int(table["n_strides"].sum()),
+            "bouts_contact_span_s": float(table["contact_span_s"].sum()),
+            "bouts_n_step_intervals": int(table["n_step_intervals"].sum())}
 
 
 def bouts_summary(steps: pd.DataFrame, rule: BoutRule | None = None, table: pd.DataFrame | None = None) -> dict:
