@@ -87,6 +87,27 @@ def check_lengths(lengths, steps: pd.DataFrame, name: str) -> np.ndarray:
     return v
 
 
+#: the values of the pendulum's ``pause_steps``: off, W111's one period, W122's trunk travel over a standstill
+PAUSE_STEPS_VALUES = (False, True, "progression")
+
+
+def check_pause_steps(value):
+    """``value`` if it is one of :data:`PAUSE_STEPS_VALUES`, else one line naming them (decisions W111, W122)."""
+    if value not in PAUSE_STEPS_VALUES:
+        raise DataError(f"pause_steps {value!r} is not one of false, true, \"progression\" (decisions W111, W122); "
+                        "fix the option, the PARAMS.json \"options\" or the model's setting")
+    return value
+
+
+def check_length_smoothing(mode) -> str:
+    """``mode`` as text if it is one of the W56 smoothing modes, else one line naming them."""
+    mode = str(mode)
+    if mode not in K.LENGTH_SMOOTHING_MODES:
+        raise DataError(f"length_smoothing '{mode}' is not one of {', '.join(K.LENGTH_SMOOTHING_MODES)} "
+                        "(decision W56); fix the option, the PARAMS.json \"options\" or the model's setting")
+    return mode
+
+
 class PendulumLength(StepLengthModel):
     """``K 2 sqrt(2 L h - h^2) + F`` (seed 003 eq. 1; ``h`` the vertical excursion IC to next IC, decision W10),
     K, F and L from the profile; the waist-pendulum pipeline's model. Settings (the pipeline's options of the same
@@ -99,15 +120,20 @@ class PendulumLength(StepLengthModel):
                  pause_steps: bool | str = False):
         self._store(locals())
 
+    def _check_params(self, params: dict) -> None:
+        """The numbers (C21) and the text settings' values: a misspelt ``pause_steps`` ran W111 silently."""
+        super()._check_params(params)
+        if "length_smoothing" in params:
+            check_length_smoothing(params["length_smoothing"])
+        if "pause_steps" in params:
+            check_pause_steps(params["pause_steps"])
+
     def predict(self, steps, signals, profile):
         return self.transform(steps, signals, profile)["length_m"].to_numpy(float)
 
     def transform(self, steps, signals, profile):
         check_steps(steps, self.name)
-        mode = str(self.length_smoothing)
-        if mode not in K.LENGTH_SMOOTHING_MODES:
-            raise DataError(f"length_smoothing '{mode}' is not one of {', '.join(K.LENGTH_SMOOTHING_MODES)} "
-                            "(decision W56); fix the option or the PARAMS.json \"options\"")
+        mode = check_length_smoothing(self.length_smoothing)
         n, fs, p = len(steps), signals.fs, profile
         idx = sample_index(steps, signals)
         has_next = steps["has_next"].to_numpy(bool)
