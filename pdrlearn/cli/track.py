@@ -285,7 +285,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     if altitude is not None:  # decision L154: an unknown source is one line before any session
         from pdrlearn.track.altitude import check_altitude
 
-        check_altitude(altitude)
+        if check_altitude(altitude) == "fused" and "waist" not in (parse_units(units) or ("waist",)):
+            raise DataError(f"track: --altitude fused reads the waist barometer (wBarometer.csv), which --units "
+                            f"{units} leaves out: add waist to --units (--units foot,waist) or drop --altitude")
     if length_bounds is not None:
         try:
             bounds = [float(v) for v in length_bounds.split(",")]
