@@ -205,6 +205,12 @@ def test_track_cli_waist_detector_and_length_model(tmp_path: Path, capsys):
     assert "--length-model sets the lower-back pipelines' step length" in capsys.readouterr().err
     assert main(["track", sess, "--pipeline", "waist-pll", "--detector", "accel", "--out", str(tmp_path / "d")]) == 2
     assert "--detector accel detects the foot's strides" in capsys.readouterr().err
+    # review s24 (B191): a pipeline chosen by --detector / --length-model is named as such, not as "got --pipeline"
+    assert main(["track", sess, "--detector", "pelvic-gyro", "--altitude", "fused", "--out", str(tmp_path / "e")]) == 2
+    err = capsys.readouterr().err
+    assert "plasys pipeline only (--detector pelvic-gyro chose --pipeline waist-pendulum" in err
+    assert main(["track", sess, "--pipeline", "waist-pll", "--altitude", "fused", "--out", str(tmp_path / "f")]) == 2
+    assert "(got --pipeline waist-pll, a lower-back pipeline" in capsys.readouterr().err
 
 
 MY_PLUGIN = '''
