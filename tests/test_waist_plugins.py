@@ -281,6 +281,10 @@ def test_a_spec_keeps_its_own_settings_and_text_settings_are_checked():
         get_step_length("pendulum:pause_steps=progresion")
     with pytest.raises(DataError, match="length_smoothing 'nosuch' is not one of"):
         PendulumLength(length_smoothing="nosuch")
+    with pytest.raises(DataError, match="merge_fragments='no' is not true or false"):
+        get_step_length("pendulum:merge_fragments=no")  # text, which was truthy: fragments merged
+    with pytest.raises(DataError, match="weinberg: k='abc' is not a number"):
+        get_step_length("weinberg:k=abc")  # a TypeError traceback at the first step
     with pytest.raises(DataError, match="pendulum: pause_steps 'progression' looks three steps ahead"):
         f(s, length_model=PendulumLength(pause_steps="progression"), realtime=True)
     with pytest.raises(DataError, match="pendulum: length_smoothing 'mobgap' looks up to 1 s ahead"):

@@ -123,6 +123,9 @@ class PendulumLength(StepLengthModel):
     def _check_params(self, params: dict) -> None:
         """The numbers (C21) and the text settings' values: a misspelt ``pause_steps`` ran W111 silently."""
         super()._check_params(params)
+        if "merge_fragments" in params and params["merge_fragments"] not in (True, False):
+            raise DataError(f"step-length model pendulum: merge_fragments={params['merge_fragments']!r} is not true or "
+                            "false (decision W27); write pendulum:merge_fragments=false")
         if "length_smoothing" in params:
             check_length_smoothing(params["length_smoothing"])
         if "pause_steps" in params:
@@ -247,6 +250,14 @@ class WeinbergLength(StepLengthModel):
 
     def __init__(self, *, k: float | None = None):
         self._store(locals())
+
+    def _check_params(self, params: dict) -> None:
+        """C21's check, and ``k`` a number: ``weinberg:k=abc`` was a TypeError traceback at the first step."""
+        super()._check_params(params)
+        k = params.get("k")
+        if k is not None and (isinstance(k, bool) or not isinstance(k, int | float | np.integer | np.floating)):
+            raise DataError(f"step-length model weinberg: k={k!r} is not a number; give the gain in m per "
+                            "(m/s^2)^(1/4), e.g. --length-model weinberg:k=0.45")
 
     def predict(self, steps, signals, profile):
         if self.k is None:
