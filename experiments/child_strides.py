@@ -39,7 +39,7 @@ def score(s, floor: float, cli: bool = True) -> dict:
     if cli and len(table):
         table = one_per_stride(table, s)[0]
     sc = score_steps(table, s)
-    return {"count": sc["count"], "reference": sc["reference_count"], "tp": sc["true_positives"], "f1": sc["f1"]}
+    return {"count": sc["scored_count"], "reference": sc["reference_count"], "tp": sc["true_positives"], "f1": sc["f1"]}
 
 
 def rows(kind: str, sessions, cli: bool = True) -> list[dict]:

@@ -39,7 +39,7 @@ def counts(ev_s: np.ndarray, session) -> tuple[int, int, int]:
     from pdrlearn.steps.evaluate import score_steps
 
     s = score_steps(pd.DataFrame({"event_s": np.sort(ev_s), "unit": "waist"}), session)
-    return s["true_positives"], s["count"], s["reference_count"]
+    return s["true_positives"], s["scored_count"], s["reference_count"]
 
 
 def f1(c) -> float:

@@ -63,7 +63,7 @@ def simulated(users: int) -> pd.DataFrame:
                 for name in DETECTORS:
                     sc = score_steps(get_detector(name).detect(s), s)
                     rows.append({"scenario": scenario, "speed": speed, "user": user, "detector": name,
-                                 "count": sc["count"], "reference_count": sc["reference_count"],
+                                 "count": sc["scored_count"], "reference_count": sc["reference_count"],
                                  "tp": sc["true_positives"], "timing_error_s": sc["timing_error_mean_s"]})
     return pd.DataFrame(rows)
 

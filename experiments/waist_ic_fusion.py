@@ -89,7 +89,7 @@ class Rec:
             s = score_events(ev, self.ref)
         else:
             s = score_steps(pd.DataFrame({"event_s": ev, "unit": "waist"}), self.session)
-        return s["true_positives"], s["count"], s["reference_count"]
+        return s["true_positives"], s["scored_count"], s["reference_count"]
 
 
 def lateral_extrema(imu, prominence: float) -> np.ndarray:

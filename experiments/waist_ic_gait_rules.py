@@ -188,7 +188,7 @@ def counts(ev: np.ndarray, session, ref=None) -> tuple[int, int, int]:
         s = score_events(ev, ref)
     else:
         s = score_steps(pd.DataFrame({"event_s": ev, "unit": "waist"}), session)
-    return s["true_positives"], s["count"], s["reference_count"]
+    return s["true_positives"], s["scored_count"], s["reference_count"]
 
 
 def cell(c) -> str:

@@ -75,7 +75,7 @@ def contacts(imu, candidate: bool) -> np.ndarray:
 
 def real_counts(session, ev: np.ndarray) -> tuple[int, int, int]:
     s = score_steps(pd.DataFrame({"event_s": ev, "unit": "waist"}), session)
-    return s["true_positives"], s["count"], s["reference_count"]
+    return s["true_positives"], s["scored_count"], s["reference_count"]
 
 
 def f1(c) -> float:

@@ -127,7 +127,7 @@ def score_real(rec: W.Rec, keep_t: np.ndarray) -> tuple[int, int, int, list[floa
     (half) session of ``rec``."""
     steps = pd.DataFrame({"event_s": np.sort(np.asarray(keep_t, float)), "unit": "waist"})
     sc = score_steps(steps, rec.session, unit="waist")
-    return sc["true_positives"], sc["count"], sc["reference_count"], []
+    return sc["true_positives"], sc["scored_count"], sc["reference_count"], []
 
 
 def train(recs: list[W.Rec], own: str | None, factor: float):

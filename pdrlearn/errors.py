@@ -69,6 +69,25 @@ class NotASessionError(DataError, TypeError):
     """A public entry point was given something other than a session (decision B51): a dict, a DataFrame ..."""
 
 
+def check_keyword_names(owner: str, given, valid) -> None:
+    """Raise ``TypeError`` (as Python does for an unknown keyword) when ``given`` holds a name that is not in
+    ``valid``, naming it, the closest valid name (``difflib``) and every valid one: the pipelines' keywords
+    (decision L43) and the step detectors' settings (decision B180) share it. ``owner`` starts the line."""
+    import difflib
+
+    valid = list(valid)
+    unknown = [k for k in given if k not in valid]
+    if not unknown:
+        return
+    parts = []
+    for k in unknown:
+        close = difflib.get_close_matches(str(k), valid, n=1)
+        parts.append(f"{k!r}" + (f" (did you mean {close[0]!r}?)" if close else ""))
+    word = "argument" if len(unknown) == 1 else "arguments"
+    raise TypeError(f"{owner}: unexpected keyword {word} {', '.join(parts)}; its keyword arguments "
+                    f"are {', '.join(valid)}")
+
+
 def shell_quote(arg: object) -> str:
     """``arg`` (a path, a column list ...) as it must be typed in a shell command that a message prints as
     advice (``pdrlearn info 'Sitzungen/Messung 5'``), so that the printed command can be copied as it is:

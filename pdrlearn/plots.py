@@ -1,4 +1,4 @@
-"""Matplotlib figures (Agg backend): sessions with step labels."""
+"""Matplotlib figures: sessions with step labels, and :func:`new_figure`, how every pdrlearn figure is made."""
 
 from __future__ import annotations
 
@@ -29,16 +29,26 @@ DPI_RANGE = (20, 600)
 _TERRAIN_COLOURS = {"flat": "#9ecae1", "up": "#a1d99b", "down": "#fdae6b"}
 
 
-def _figure(nrows: int, height: float = 2.0):
-    import matplotlib
+def new_figure(nrows: int = 1, ncols: int = 1, *, figsize=None, layout=None, **subplots):
+    """Decision E88: ``(figure, axes)`` of a new figure drawn with matplotlib's object API (a
+    ``matplotlib.figure.Figure`` on its own Agg canvas), as ``pyplot.subplots`` gives them (``subplots``: its
+    ``sharex``, ``squeeze``, ``height_ratios`` ...), without ``matplotlib.use`` or pyplot: the user's backend (a
+    notebook's inline one) is left as it was, and the figure is in no pyplot list (nothing to close)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg")
+    fig = Figure(figsize=figsize, layout=layout)
+    FigureCanvasAgg(fig)
+    return fig, fig.subplots(nrows, ncols, **subplots)
+
+
+def _figure(nrows: int, height: float = 2.0):
     import matplotlib.pyplot as plt
 
     # constrained layout: the title and a figure legend take the room they need above the panels (a fixed
     # top margin left a blank band over 8 panels and drew the legend over the title, decision L57)
-    fig, axes = plt.subplots(nrows, 1, figsize=(11, height * nrows + 0.6), sharex=True, squeeze=False,
-                             layout="constrained")
+    fig, axes = new_figure(nrows, 1, figsize=(11, height * nrows + 0.6), sharex=True, squeeze=False,
+                           layout="constrained")
     return plt, fig, axes[:, 0]
 
 
@@ -54,14 +64,15 @@ def save_atomic(fig, path: Path, metadata: dict[str, str] | None = None, *, dpi:
         fmt = "png"
     if fmt != "png" and metadata:  # PDF/SVG take only their standard keys (decision L70)
         metadata = {"Creator": PLOT_CREATOR} if metadata == dict([PLOT_MARK]) else None
-    import matplotlib.pyplot as plt
-
     try:
         with atomic_file(path, suffix="." + fmt) as tmp:
             fig.savefig(tmp, format=fmt, dpi=DEFAULT_DPI if dpi is None else float(dpi), bbox_inches="tight",
                         metadata=metadata)
     finally:  # decision B151: closed even when saving fails (a full disk leaked one figure per session)
-        plt.close(fig)
+        if getattr(fig.canvas, "manager", None) is not None:  # a pyplot figure (E88: ours are in no pyplot list)
+            import matplotlib.pyplot as plt
+
+            plt.close(fig)
 
 
 def is_plot_figure(path: Path) -> bool:
@@ -144,7 +155,9 @@ def steps_in_window(steps, lo: float, hi: float):
 
 def session_figure(session: Session, *, start: float | None = None, end: float | None = None, steps=None,
                    steps_what: str | None = None):
-    """The figure of :func:`plot_session` (not saved): ``(pyplot, figure)``.
+    """The figure of :func:`plot_session` (not saved): ``(pyplot, figure)``, a figure of :func:`new_figure`
+    (decision E88: the backend left alone; ``pyplot.close`` of it is a no-op, the first item is kept for callers
+    that close it).
 
     ``steps``: a table with ``start_s``, ``end_s`` (s, the session's clock) and optionally ``terrain`` to
     shade instead of the session's labelled steps, ``steps_what`` what they are ("detected stride(s) (accel)");
@@ -159,6 +172,8 @@ def session_figure(session: Session, *, start: float | None = None, end: float |
         steps, steps_what = session.steps, "labelled step(s)"
     steps_what = steps_what or "step(s)"
     shown, cut = steps_in_window(steps, lo, hi)
+    from matplotlib.patches import Rectangle
+
     plt, fig, axes = _figure(len(names))
     for ax, name in zip(axes, names, strict=True):
         s = session.streams[name].slice(lo, hi + 1e-9)
@@ -176,7 +191,7 @@ def session_figure(session: Session, *, start: float | None = None, end: float |
     axes[-1].set_xlim(start, end)  # decision L70: the window exactly (shared by every panel)
     axes[-1].set_xlabel("time since session start [s]")
     if shown is not None and "terrain" in shown and shown["terrain"].isin(list(_TERRAIN_COLOURS)).any():
-        handles = [plt.Rectangle((0, 0), 1, 1, color=c, alpha=0.5) for c in _TERRAIN_COLOURS.values()]
+        handles = [Rectangle((0, 0), 1, 1, color=c, alpha=0.5) for c in _TERRAIN_COLOURS.values()]
         fig.legend(handles, list(_TERRAIN_COLOURS), loc="outside lower center", ncol=3, fontsize=8,
                    title=steps_what.replace("(s)", "s"), title_fontsize=8)
     whole = start <= 0 and end >= session.t_end - t0

@@ -10,13 +10,24 @@ import inspect
 
 import numpy as np
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, check_keyword_names
 
 
 class Settings:
     """Mixin: settings are the keyword-only ``__init__`` arguments, stored as attributes."""
 
     name = "base"
+
+    def __new__(cls, *args, **kwargs):
+        """Decision B180: an unknown setting raises the ``TypeError`` that names the closest one
+        (``AccelStepDetector(thresh=1)`` -> did you mean 'threshold'?), as the pipelines do
+        (:func:`pdrlearn.errors.check_keyword_names`, decision L43), before ``__init__`` runs; an ``__init__``
+        with ``**kwargs`` is left to itself."""
+        params = list(inspect.signature(cls.__init__).parameters.values())[1:]
+        if not any(p.kind == p.VAR_KEYWORD for p in params):
+            check_keyword_names(cls.__name__, kwargs,
+                                [p.name for p in params if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)])
+        return super().__new__(cls)
 
     @classmethod
     def _param_names(cls) -> list[str]:

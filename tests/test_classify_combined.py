@@ -173,5 +173,5 @@ def test_length_units_choose_the_length_task_among_soft_votes(tmp_path):
     assert load_model(tmp_path / "u").tasks["length"].chosen == ("svm", "fused")
     default = train_user(s, tasks=["length"], methods=["svm"], cv=2)
     assert default.tasks["length"].chosen == ("svm", "combined") and default.settings["length_units"] is None
-    with pytest.raises(DataError, match="^--length-units: unknown unit hand"):
+    with pytest.raises(DataError, match=r"^length_units \(--length-units\): unknown unit hand"):
         train_user(s, tasks=["length"], methods=["svm"], cv=2, length_units=["hand"])

@@ -87,7 +87,7 @@ def test_train_save_load_identical_predictions(trained):
     model, path = trained
     test = labelled_session(9, 6)
     loaded = load_model(path)
-    a, b = model.predict_steps(test, test.steps), loaded.predict_steps(test, test.steps)
+    a, b = (m.predict_steps(test, test.steps, windows="given") for m in (model, loaded))  # labelled (C51)
     pd.testing.assert_frame_equal(a, b)
     assert {"terrain", "direction", "length_class", "p_terrain_up", "method_terrain"} <= set(a.columns)
     np.testing.assert_allclose(a[[f"p_terrain_{c}" for c in ("flat", "up", "down")]].sum(axis=1), 1.0)
@@ -217,7 +217,7 @@ def test_rest_boundaries_setting_is_saved_and_used_for_prediction(tmp_path):
     assert loaded.boundaries == "rest"
     late = s.steps.copy()
     late[["start_s", "end_s"]] += 0.2  # boundaries in the swing, the rests 0.1-0.2 s earlier
-    df = loaded.predict_steps(s, late)
+    df = loaded.predict_steps(s, late, windows="given")
     est = m.tasks["terrain"].models["svm"]["foot"]
     expect = est.predict(step_windows(s, late, n_samples=m.n_samples, boundaries="rest").X)
     assert df["terrain"].tolist() == list(expect)

@@ -185,7 +185,7 @@ def test_train_all_length_units_reach_the_bundle(tmp_path, capsys):
     rc = main(["train-all", str(tmp_path / "cohort"), "--out", str(tmp_path / "bad"), "--serial",
                "--length-units", "foot,hand"])
     err = capsys.readouterr().err.strip()
-    assert rc == 2 and err.startswith("error: --length-units: unknown unit hand") and "\n" not in err
+    assert rc == 2 and err.startswith("error: length_units (--length-units): unknown unit hand") and "\n" not in err
     assert not (tmp_path / "bad").exists()
     rc = main(["train-all", str(tmp_path / "cohort"), "--out", str(tmp_path / "m"), "--serial", "--tasks", "length",
                "--methods", "svm", "--cv", "3", "--length-units", "foot,waist,fused", "--json"])

@@ -65,7 +65,7 @@ def test_every_classifier_keeps_the_range_of_its_own_inputs(model, method):
 @pytest.mark.parametrize("method", METHODS)
 def test_same_kind_of_steps_do_not_warn(model, method):
     test = labelled_session(9, 12)
-    pred = model.predict_steps(test, test.steps, method=method, unit="foot")
+    pred = model.predict_steps(test, test.steps, method=method, unit="foot", windows="given")
     rep = model.domain_report(pred, warn_at=FRACTION_THRESHOLD)
     assert rep["out_of_domain_fraction"] < FRACTION_THRESHOLD, rep
     assert warning_line(rep) is None
@@ -74,7 +74,7 @@ def test_same_kind_of_steps_do_not_warn(model, method):
 @pytest.mark.parametrize("method", METHODS)
 def test_larger_steps_than_trained_warn(model, method):
     test = _scaled(labelled_session(9, 12), 4.0)
-    pred = model.predict_steps(test, test.steps, method=method, unit="foot")
+    pred = model.predict_steps(test, test.steps, method=method, unit="foot", windows="given")
     assert (pred["ood_terrain"] > STEP_THRESHOLD).mean() > 0.9
     assert not model.domain_report(pred)["warn"]  # the warning is opt-in (decision C16)
     rep = model.domain_report(pred, warn_at=FRACTION_THRESHOLD)

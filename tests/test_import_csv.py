@@ -363,5 +363,4 @@ def test_merge_warns_once_when_the_units_time_spans_hardly_overlap(sim, tmp_path
     span = sim.streams["fAccelerometer"].t[-1] - sim.streams["fAccelerometer"].t[0]
     assert f"the session's fAccelerometer, fForceA, fForceB, fGyroscope span 0.0-{span:.1f} s" in warn[0], warn
     assert "the added waist unit spans 0.0-" in warn[0] and "under half of the longer" in warn[0]
-    assert "align_units" in warn[0] and str(tmp_path / "short") in warn[0]
-    assert "track --align" not in warn[0]  # decision L48: no such option (the hint named one)
+    assert "`pdrlearn track --align-units`" in warn[0] and str(tmp_path / "short") in warn[0]  # decision L162

@@ -81,7 +81,7 @@ def test_gaitmap_events_scored_by_the_steps_scorer(peers):
     ref = pd.DataFrame({"start_s": [1.0, 3.0, 5.0, 7.0], "end_s": [3.0, 5.0, 7.0, 9.0], "ic_s": [2.5, 4.5, 6.6, 8.5],
                         "pre_ic_s": [0.5, 2.5, 4.5, 6.6]})
     sc = score_steps(peers.gaitmap_events(mv, fs=100.0), Session("hand_foot", {}, steps=ref))
-    assert (sc["true_positives"], sc["reference_count"], sc["count"]) == (4, 5, 4)
+    assert (sc["true_positives"], sc["reference_count"], sc["scored_count"]) == (4, 5, 4)
     assert sc["timing_error_mean_s"] == pytest.approx(-0.025)
 
 

@@ -86,3 +86,67 @@ def test_empty_stream():
 def test_degenerate_sets_never_crash(chunk):
     _, stats = parse_protocol(chunk)
     assert stats.measurements == 0
+
+
+def _capture_at(rate_hz: float) -> str:
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    s = simulate_path(parse_route("straight:25"), UserProfile.from_seed(1795), speed="normal", rate_hz=rate_hz,
+                      seed=0, name="e90", scenario="route")
+    return "".join(format_protocol(s, decimals=4))
+
+
+@pytest.mark.parametrize("pod_hz, read_hz, warns", [(20.0, 20.0, False), (50.0, 50.0, False), (50.0, 20.0, True),
+                                                     (10.0, 20.0, True)])
+def test_a_capture_read_at_a_wrong_rate_has_a_non_human_stride_rhythm(pod_hz, read_hz, warns):
+    """Decision E90: the foot's stride rhythm at the assumed --protocol-rate outside L95's walking range warns,
+    naming --protocol-rate and the rate that would make it a walk."""
+    from pdrlearn.io.protocol import protocol_rate_line
+
+    session, _ = parse_protocol(_capture_at(pod_hz), rate_hz=read_hz)
+    line = protocol_rate_line(session.streams, read_hz, "cap")
+    assert (line is not None) == warns
+    if warns:
+        assert f"--protocol-rate {read_hz:g} Hz" in line and "--protocol-rate HZ" in line and "decision E90" in line
+        suggested = float(line.split("at about ")[1].split(" Hz")[0])
+        assert 0.7 * pod_hz < suggested < 1.4 * pod_hz
+
+
+def test_run_refuses_a_protocol_rate_without_a_capture(tmp_path, synthetic_bundle, capsys):
+    from pdrlearn.cli import main
+
+    assert main(["run", str(synthetic_bundle.path), str(tmp_path), "--protocol-rate", "52"]) == 2
+    assert "--protocol-rate 52 is the rate of a --protocol capture" in capsys.readouterr().err
+    assert main(["run", str(synthetic_bundle.path), "--protocol", "-", "--protocol-rate", "0"]) == 2
+    assert "--protocol-rate 0: give the capture's sampling rate in Hz" in capsys.readouterr().err
+
+
+def test_numbered_sets_show_lost_and_repeated_packets():
+    """Decision E91: ``%#N`` numbers a set; a jump counts the sets lost and leaves their time empty, a repeated
+    number is skipped, a 16-bit counter wraps; text before the first ``$`` was always ignored, so the numbered
+    capture reads the same values."""
+    text = ("%#65534$1 0 9.8 0\n%#65535$1 1 9.8 0\n%#2$1 2 9.8 0\n%#2$1 2 9.8 0\n%#3$1 3 9.8 0\n")
+    session, stats = parse_protocol(text)
+    assert stats.numbered == 5 and stats.lost == 2 and stats.corrupted == 1 and stats.sets == 5
+    np.testing.assert_allclose(session["fAccelerometer"].t, [0.0, 0.05, 0.2, 0.25])
+    np.testing.assert_allclose(session["fAccelerometer"].values[:, 0], [0, 1, 2, 3])
+    s = make_session(n=30)
+    numbered = list(format_protocol(s, decimals=9, numbered=True))
+    assert numbered[3].startswith("%#3$")
+    kept = numbered[:10] + numbered[13:]  # three packets lost
+    parsed, stats = parse_protocol("".join(kept))
+    assert stats.lost == 3 and stats.corrupted == 0
+    np.testing.assert_allclose(parsed["fAccelerometer"].t, np.delete(np.arange(30) / 20.0, [10, 11, 12]))
+    plain, plain_stats = parse_protocol("".join(format_protocol(s, decimals=9)))
+    assert plain_stats.lost == 0 and plain_stats.numbered == 0  # without numbers a loss cannot be seen (D5)
+
+
+def test_run_warns_of_lost_numbered_sets(tmp_path, synthetic_bundle, capsys):
+    from pdrlearn.cli import main
+
+    s = make_session(n=60)
+    lines = list(format_protocol(s, numbered=True))
+    (tmp_path / "cap.txt").write_text("".join(lines[:20] + lines[26:]))
+    main(["run", str(synthetic_bundle.path), "--protocol", str(tmp_path / "cap.txt")])
+    assert "6 set(s) lost (10.0 % of 60" in capsys.readouterr().err

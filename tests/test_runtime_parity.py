@@ -57,7 +57,7 @@ def test_every_exported_method_and_unit_matches_predict_steps(trained):
     for task, tm in model.tasks.items():
         for method, per in tm.models.items():
             for unit in per:
-                ref = model.predict_steps(s, s.steps, tasks=[task], method=method, unit=unit)
+                ref = model.predict_steps(s, s.steps, tasks=[task], method=method, unit=unit, windows="given")
                 clf = TaskClassifier(bundle, task, ctx, method=method, unit=unit)
                 classes, proba = clf.predict(W)
                 want = ref[[f"p_{task}_{c}" for c in clf.classes]].to_numpy()

@@ -88,6 +88,24 @@ def test_cli_steps_json_metrics(real_dir, capsys, tmp_path):
     assert len(table) == res["count"]
 
 
+def test_steps_json_is_score_steps_dict(real_dir, capsys):
+    """Decision steps 41: ``score_steps(...)["count"]`` was the scored detections (30 on gaitmap_level_left) where
+    ``pdrlearn steps --json``'s ``count`` is every detection (32); now both are every detection, the metrics'
+    count is ``scored_count``, and the JSON is score_steps' dict with the same keys and values."""
+    from pdrlearn.steps import one_per_stride
+
+    s = read_session(real_dir / "gaitmap_level_left")
+    table, _ = one_per_stride(AccelStepDetector().detect(s), s)  # what the CLI scores (decision steps 34)
+    api = score_steps(table, s)
+    assert main(["steps", str(real_dir / "gaitmap_level_left"), "--detector", "accel", "--json"]) == 0
+    cli = json.loads(capsys.readouterr().out)
+    assert api["count"] == cli["count"] == len(table) > api["scored_count"] == cli["scored_count"]
+    assert api["count"] == api["scored_count"] + api["outside_labels"]
+    assert set(api) <= set(cli) and "timing_error_abs_mean_s" in cli
+    for k, v in api.items():
+        assert cli[k] == pytest.approx(v, nan_ok=True) if isinstance(v, float) else cli[k] == v, k
+
+
 def test_cli_steps_on_written_labelled_session(tmp_path, capsys):
     # a hand-labelled session written in the PLASYS format: the CLI must score the waist detector on ics.csv
     from tests.test_steps import waist_session

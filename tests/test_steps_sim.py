@@ -94,7 +94,7 @@ def test_pelvic_turn_highpass_keeps_steps_in_sharp_turns():
         for user in (1, 2, 3, 4):
             s = _sim("B", user, "fast")
             sc = score_steps(get_detector("pelvic-gyro", turn_cutoff_hz=cut).detect(s), s)
-            d += abs(sc["count"] - sc["reference_count"])
+            d += abs(sc["scored_count"] - sc["reference_count"])
             r += sc["reference_count"]
         err[cut] = 100.0 * d / r
     assert err[0.6] <= 2.0, err

@@ -174,7 +174,7 @@ def test_train_length_units(tmp_path, capsys):
     write_session(simulate("length", user_seed=3), data)
     rc = main(["train", str(data), "--out", str(tmp_path / "bad"), "--length-units", "foot,hand"])
     err = capsys.readouterr().err.strip()
-    assert rc == 2 and err.startswith("error: --length-units: unknown unit hand") and "\n" not in err
+    assert rc == 2 and err.startswith("error: length_units (--length-units): unknown unit hand") and "\n" not in err
     assert not (tmp_path / "bad").exists()
     rc = main(["train", str(data), "--out", str(tmp_path / "m"), "--tasks", "length", "--methods", "svm", "--cv", "3",
                "--length-units", "foot,waist,fused", "--json"])

@@ -35,7 +35,7 @@ def test_context_errors_are_those_of_score_steps(subject):
     ev = np.sort(get_detector("waist-ic").detect(s)["event_s"].to_numpy(float))
     r = analyse(s, ev)
     sc = score_steps(pd.DataFrame({"event_s": ev, "unit": "waist"}), s)
-    assert (r["tp"], r["det"], r["ref"]) == (sc["true_positives"], sc["count"], sc["reference_count"])
+    assert (r["tp"], r["det"], r["ref"]) == (sc["true_positives"], sc["scored_count"], sc["reference_count"])
     assert len(r["fn"]) == r["ref"] - r["tp"] and len(r["fp"]) == r["det"] - r["tp"]
     assert np.all(np.abs(r["dt"]) <= 0.25 + 1e-9)
     # a missed contact is a bout start or end only where it is among its bout's first / last two contacts

@@ -70,7 +70,7 @@ def test_loss_diagnosis_partitions_the_errors_of_score_steps():
     ev = np.sort(get_detector("waist-ic").detect(s)["event_s"].to_numpy(float))
     r = analyse(s, ev)
     sc = score_steps(pd.DataFrame({"event_s": ev, "unit": "waist"}), s)
-    assert (r["tp"], r["det"], r["ref"]) == (sc["true_positives"], sc["count"], sc["reference_count"])
+    assert (r["tp"], r["det"], r["ref"]) == (sc["true_positives"], sc["scored_count"], sc["reference_count"])
     df = r["rows"]
     fn = df[(df["kind"] == "ref") & (df["cause"] != "tp")]
     assert len(fn) == r["ref"] - r["tp"] and set(fn["cause"]) <= {"gate", "picker", "timing"}

@@ -238,17 +238,12 @@ def plot_aided(result: TrackResult, out, *, truth: pd.DataFrame | None = None, t
                dpi: float | None = None) -> Path:
     """Overlay PDR-only path, fixes and fused path (and the truth when given); PNG, atomic save (``dpi``:
     :func:`pdrlearn.plots.save_atomic`)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from pdrlearn.plots import save_atomic
+    from pdrlearn.plots import new_figure, save_atomic
 
     tr = result.trajectory
     if "x_pdr" not in tr:
         raise DataError("plot_aided: the track has no x_pdr/y_pdr columns; pass the result of aid_track")
-    fig, ax = plt.subplots(figsize=(7.5, 7.5))
+    fig, ax = new_figure(figsize=(7.5, 7.5))  # decision E88: the user's backend left alone
     if truth is not None:
         ax.plot(truth["x"], truth["y"], color="0.3", lw=1.2, ls="--", label="truth")
     ax.plot(tr["x_pdr"], tr["y_pdr"], color="tab:blue", lw=1.0, label="PDR only")

@@ -330,8 +330,9 @@ def _held_out_checks(model, sessions, out: dict, ids: list[str] | None = None) -
     trained at (decision C18's line, as ``pdrlearn track`` gives it). Decision B87: a session is a training
     session when its :meth:`~pdrlearn.io.session.Session.content_id` (``ids``) is among the manifest's
     ``training_data.session_ids``; a model trained before B87 has none, and its ``sessions`` names are matched."""
+    from pdrlearn.classify.training import rate_mismatch
     from pdrlearn.io.resample import log_grouped
-    from pdrlearn.kernels.distance import classifier_rate_warning, rate_differs
+    from pdrlearn.kernels.distance import classifier_rate_warning
 
     summary = model.data_summary or {}
     trained_ids = summary.get("session_ids")
@@ -347,18 +348,12 @@ def _held_out_checks(model, sessions, out: dict, ids: list[str] | None = None) -
         names = ", ".join(s.where for s in seen[:3]) + (f" and {len(seen) - 3} more" if len(seen) > 3 else "")
         log.warning("evaluate: %d of %d session(s) were used to train the model (%s; %s): the "
                     "accuracy on them is not held-out", len(seen), len(sessions), names, how)
-    rates = getattr(model, "sampling_rate_hz", None) or {}
     out["rate_mismatch"] = {}
     # decision B113 amended (review): the sessions scored resampled (--resample), sensor -> from_hz / to_hz
     out["resampled"] = {s.name: s.meta["resampled"] for s in sessions if s.meta.get("resampled")}
     lines: dict[str, list[str]] = {}
     for s in sessions:
-        off = {}
-        for unit, name in (("foot", "fAccelerometer"), ("waist", "wAccelerometer")):
-            if rates.get(name) and name in s.streams:
-                fs = float(s.streams[name].rate_hz)
-                if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
-                    off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
+        off = rate_mismatch(model, s)  # decision C52: one mechanism with track and predict_steps
         if off:
             out["rate_mismatch"][s.name] = off
             lines.setdefault(classifier_rate_warning(off, resample_hint=True), []).append(s.where)
@@ -448,17 +443,12 @@ def markdown_tables(result: dict) -> str:
 
 def plot_confusions(task: str, task_result: dict, out: Path) -> Path:
     """One confusion-matrix panel per method x unit of a task (rows = true, columns = predicted)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from pdrlearn.plots import save_atomic, text_colour_on
+    from pdrlearn.plots import new_figure, save_atomic, text_colour_on
 
     pairs = [(m, u) for m, d in task_result["methods"].items() for u in d["units"]]
     ncol = min(4, max(1, len(pairs)))
     nrow = int(np.ceil(len(pairs) / ncol))
-    fig, axes = plt.subplots(nrow, ncol, figsize=(3.2 * ncol, 3.0 * nrow), squeeze=False)
+    fig, axes = new_figure(nrow, ncol, figsize=(3.2 * ncol, 3.0 * nrow), squeeze=False)
     classes = task_result["classes"]
     for ax in axes.ravel()[len(pairs) :]:
         ax.axis("off")

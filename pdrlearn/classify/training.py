@@ -463,11 +463,22 @@ class UserModel:
         tasks: Sequence[str] | None = None,
         method: str | None = None,
         unit: str | None = None,
+        windows: str | None = None,
+        warn_rate: bool = True,
     ) -> pd.DataFrame:
         """Classify every step of ``steps`` (default ``session.steps``).
 
+        ``windows`` (decision C51): ``"track"`` (the default when ``steps`` is given, e.g. a detector's table)
+        classifies each step on the window ``pdrlearn track --method M3`` classifies it on
+        (:func:`pdrlearn.track.plasys.model_windows`: the rest-to-rest stride the step makes, re-cut on the
+        streaming segmenter's stride), so the classes equal track's; ``"given"`` (the default for the session's
+        labelled steps, the windows the model was trained on) classifies on the steps' own ``start_s``/``end_s``.
+        With ``"track"`` the table also has the ``window_start_s``/``window_end_s`` classified.
+        ``warn_rate``: log decision C18's line when a unit runs at another rate than the model was trained at
+        (decision C52; ``track`` passes False and gives the line in its own warnings).
+
         Returns a DataFrame (one row per step, same index as ``steps``) with, per trained task, the class
-        column (``terrain``, ``direction``, ``length_class``), the probabilities ``p_<task>_<class>`` and
+        column (``terrain``, ``direction``, ``length_class``; ``str``), the probabilities ``p_<task>_<class>`` and
         ``method_<task>`` (``"<method>/<unit>"``). By default each task uses the model's chosen method, or,
         when the session lacks one of its units, the best cross-validated method it can run. A task no
         model can run on the session (e.g. length without force sensors) gets ``None`` classes, NaN
@@ -476,12 +487,27 @@ class UserModel:
         """
         from pdrlearn.features import TASK_COLUMNS, step_windows
 
+        mode = windows or ("given" if steps is None else "track")
+        if mode not in PREDICT_WINDOWS:
+            raise DataError(f"predict_steps: windows={windows!r}; choose one of {', '.join(PREDICT_WINDOWS)}")
         steps = session.steps if steps is None else steps
-        windows = step_windows(session, steps, n_samples=self.n_samples, boundaries=self.boundaries)
+        cut = steps
+        if mode == "track" and steps is not None and {"start_s", "end_s"} <= set(steps.columns):
+            from pdrlearn.track.plasys import model_windows
+
+            cut = model_windows(session, steps).set_axis(steps.index)  # decision C51
+            odd = {k: cut.attrs.get(k, 0) for k in ("own_bounds", "several_strides")}
+            if any(odd.values()):
+                log.info("%s: predict_steps: %d step(s) are no stride between two rests (classified on their own "
+                         "bounds), %d span several strides (classified on their whole span; track splits them)",
+                         session.where, odd["own_bounds"], odd["several_strides"])
+        windows = step_windows(session, cut, n_samples=self.n_samples, boundaries=self.boundaries)
         out = pd.DataFrame(index=steps.index if steps is not None else None)
         for col in ("start_s", "end_s"):
             if col in steps:
                 out[col] = steps[col].to_numpy()
+        if cut is not steps:
+            out["window_start_s"], out["window_end_s"] = cut["start_s"].to_numpy(), cut["end_s"].to_numpy()
         gap_unclassified: dict[tuple, list[str]] = {}  # (lost units, n steps) -> tasks (one line each, B34)
         for task in tasks or list(self.tasks):
             if task not in self.tasks:
@@ -508,7 +534,8 @@ class UserModel:
                                     len(rows), exc)
                     continue
                 col = out.columns.get_loc(TASK_COLUMNS[task])
-                out.iloc[rows, col] = np.asarray(tm.classes, dtype=object)[np.argmax(proba, axis=1)]
+                # plain str classes (decision B178: a model's classes may be numpy strings)
+                out.iloc[rows, col] = np.asarray([str(c) for c in tm.classes], dtype=object)[np.argmax(proba, axis=1)]
                 for j, c in enumerate(tm.classes):
                     out.iloc[rows, out.columns.get_loc(f"p_{task}_{c}")] = proba[:, j]
                 out.iloc[rows, out.columns.get_loc(f"method_{task}")] = f"{m}/{u}"
@@ -520,6 +547,11 @@ class UserModel:
             log.warning("%s: %d step(s) overlapping a sensor gap lost the %s unit%s; no trained %s model runs "
                         "without %s, so they are left unclassified", session.where, n, " and ".join(lost),
                         "s" if len(lost) > 1 else "", "/".join(done), "them" if len(lost) > 1 else "it")
+        off = rate_mismatch(self, session, out)  # decision C52: the line track and evaluate give (C18)
+        if off and warn_rate:
+            from pdrlearn.kernels.distance import classifier_rate_warning
+
+            log.warning("%s: %s", session.where, classifier_rate_warning(off))
         return out
 
     def domain_report(self, pred: pd.DataFrame, *, warn_at: float | None = None) -> dict | None:
@@ -544,6 +576,37 @@ class UserModel:
         """Whether the model stores training ranges (decision C16; models saved before it do not)."""
         return any(has_ranges(est) for tm in self.tasks.values() for per in tm.models.values()
                    for est in per.values())
+
+
+#: ``UserModel.predict_steps(windows=...)``: track's windows of a detected table, or the steps' own (decision C51)
+PREDICT_WINDOWS = ("track", "given")
+#: the units whose sensors a classifier of ``method_<task> = "<method>/<unit>"`` reads
+_UNIT_OF = {"foot": ("foot",), "waist": ("waist",), "fused": ("foot", "waist"), "combined": ("foot", "waist")}
+_UNIT_ACC = {"foot": "fAccelerometer", "waist": "wAccelerometer"}
+
+
+def rate_mismatch(model, session, pred: pd.DataFrame | None = None) -> dict | None:
+    """Decisions C18 / C52: unit -> ``{"trained_hz", "session_hz"}`` of the units whose accelerometer runs at
+    another rate than the model's classifiers were trained at (tolerance of
+    :func:`~pdrlearn.kernels.distance.rate_differs`); with a :meth:`UserModel.predict_steps` table ``pred`` only
+    the units its ``method_<task>`` columns used, else both. None: none differ, or a model without rates. One
+    mechanism for ``predict_steps``, ``track`` and ``evaluate``."""
+    from pdrlearn.kernels.distance import rate_differs
+
+    rates = getattr(model, "sampling_rate_hz", None) or {}
+    if not rates:
+        return None
+    used = set(_UNIT_ACC) if pred is None else {
+        u for c in pred.columns if c.startswith("method_")
+        for v in pred[c].dropna().astype(str).unique() if "/" in v for u in _UNIT_OF.get(v.split("/")[1], ())}
+    off = {}
+    for unit in sorted(used):
+        name = _UNIT_ACC[unit]
+        if rates.get(name) and name in session.streams:
+            fs = float(session.streams[name].rate_hz)
+            if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
+                off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
+    return off or None
 
 
 def _gap_groups(windows):
@@ -709,7 +772,8 @@ def _check_choice(name: str, values: Sequence[str], allowed: Sequence[str]) -> l
     bad = [v for v in values if v not in allowed]
     if bad or not values:
         raise DataError(
-            f"--{name}s: unknown {name} {', '.join(bad) or '(none given)'}; choose from {', '.join(allowed)}"
+            # decision B177: the parameter and the CLI flag, so the line fits train_user and `pdrlearn train`
+            f"{name}s (--{name}s): unknown {name} {', '.join(bad) or '(none given)'}; choose from {', '.join(allowed)}"
         )
     return values
 
@@ -725,7 +789,7 @@ def check_settings(
     """Validate training settings before any data is read; returns the task, method and unit lists.
 
     ``None`` means all of :data:`TASKS` / :data:`DEFAULT_METHODS` / :data:`UNITS`; an empty list is an error.
-    Raises :class:`DataError` naming the option (``--tasks`` ...) and the allowed values.
+    Raises :class:`DataError` naming the parameter and its CLI flag (``tasks (--tasks)`` ...) and the allowed values.
     """
     out = [
         _check_choice(name, (DEFAULT_METHODS if name == "method" else all_) if values is None else values, all_)
@@ -739,11 +803,12 @@ def check_settings(
 
 
 def check_length_units(units: Sequence[str]) -> list[str]:
-    """The length task's own units (decision C38), checked as ``--units`` is; the error names ``--length-units``."""
+    """The length task's own units (decision C38), checked as ``units`` is; the error names ``length_units
+    (--length-units)``."""
     try:
         return check_settings(units=units)[2]
     except DataError as exc:
-        raise DataError(str(exc).replace("--units:", "--length-units:", 1)) from None
+        raise DataError(str(exc).replace("units (--units):", "length_units (--length-units):", 1)) from None
 
 
 def train_task(
@@ -938,6 +1003,13 @@ def length_class_bounds(sessions) -> list[float] | None:
     return [float(lo), float(hi)] if 0 < lo < hi else None
 
 
+#: decision C53: train_user's warning when the labels allow no classifier and the model holds only the user's
+#: distance calibration (decision C17)
+NO_CLASSIFIER_LINE = ("no classifier trained (the labels allow none); the model holds the distance calibration: "
+                      "tracking with it (`pdrlearn track SESSION --model DIR`, model=) applies it, the class rules "
+                      "as without a model")
+
+
 def train_user(
     sessions,
     *,
@@ -985,7 +1057,9 @@ def train_user(
         (:func:`pdrlearn.features.windows.rest_boundaries`). Stored in ``settings``; prediction and
         evaluation cut windows the same way (decision C13).
     strict : raise on a task without labels / with a missing class. Default: strict when ``tasks`` is
-        given explicitly; otherwise such tasks are skipped and listed in ``UserModel.skipped``.
+        given explicitly; otherwise such tasks are skipped, listed in ``UserModel.skipped`` and logged (one
+        warning each, decision C53; with no task left the model holds only the distance calibration, one more
+        warning, or :class:`DataError` when there is none either).
     distance_calibration : estimate the user's distance gain from the sessions' labelled stride lengths
         (:func:`pdrlearn.displace.calibrate_distance`, docs/decisions/localization.md L26), stored in
         ``data_summary["distance_calibration"]`` and used by PLASYS M3 with this model.
@@ -1049,7 +1123,6 @@ def train_user(
             if strict:
                 raise
             skipped.append(str(exc))
-            log.info("skipped %s", exc)
             continue
         groups = np.asarray(users, dtype=object)[data.session] if n_users >= 2 else None  # decision C29
         own = task == "length" and length_units is not None  # decision C38
@@ -1069,6 +1142,10 @@ def train_user(
                     "calibrates its step length with 'pdrlearn calibrate DIR --distance METERS', or with the "
                     "reference walking bouts of bouts.csv)")
         raise DataError("train: nothing to train; " + " | ".join(skipped) + f" | {why}")
+    for line in skipped:  # decision C53: the API says what the CLI printed (after the error above, which lists them)
+        log.warning("train: skipped %s", line)
+    if not out:  # decision C53 (C17 kept): a calibration-only model is a warning, not an error
+        log.warning("train: %s", NO_CLASSIFIER_LINE)
     rates: dict[str, float] = {}
     for s in sessions:
         for name, st in s.streams.items():

@@ -27,6 +27,7 @@ from pdrlearn.cli.common import (
     start_option,
     storey_height_option,
 )
+from pdrlearn.cli.gaplines import GapLines
 
 
 def export(
@@ -228,6 +229,10 @@ def run(
                              "summary.json (the files and columns of `pdrlearn track`)."),
     protocol: str = typer.Option(None, "--protocol", help="Bluetooth text-protocol capture to read instead "
                                  "of a session ('-' = stdin)."),
+    protocol_rate: float = typer.Option(None, "--protocol-rate", metavar="HZ", help="Sampling rate of the "
+                                        "--protocol capture's sets (the protocol carries no time, decision D5; "
+                                        "default: the bundle's, the thesis unit's 20 Hz); a foot rhythm outside the "
+                                        "walking range at it is warned about (decision E90)."),
     chunk_s: float = typer.Option(1.0, help="Replay chunk length (s)."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
@@ -288,6 +293,11 @@ def run(
 
     if protocol is not None and session_dir is not None:
         raise DataError(f"run: give a SESSION_DIR ({session_dir}) or --protocol {protocol}, not both")
+    if protocol_rate is not None and protocol is None:
+        raise DataError(f"run: --protocol-rate {protocol_rate:g} is the rate of a --protocol capture; a session folder "
+                        "has timestamps (drop --protocol-rate, or give --protocol FILE)")
+    if protocol_rate is not None and not (0 < protocol_rate < float("inf")):
+        raise DataError(f"--protocol-rate {protocol_rate:g}: give the capture's sampling rate in Hz (> 0, e.g. 52)")
     if not (chunk_s > 0 and chunk_s < float("inf")):
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
@@ -318,7 +328,7 @@ def run(
     if protocol is not None:
         from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
 
-        parser = BluetoothParser(rate_hz=bundle.rate_hz)
+        parser = BluetoothParser(rate_hz=bundle.rate_hz if protocol_rate is None else protocol_rate)  # E90
         use, _ = _units_for(bundle, units, None, f"protocol {protocol}")
         need = [s for s in bundle.sensors_of(use)[0] if not s.startswith("f")]
         if need:
@@ -345,13 +355,28 @@ def run(
             steps += tracker.push(parser.close())
             steps += tracker.flush()
         source = f"protocol {protocol}"
-        protocol_stats = parser.stats.to_dict()
+        protocol_stats = {**parser.stats.to_dict(), "rate_hz": parser.rate_hz}
+        from pdrlearn.io.protocol import protocol_rate_line
+
+        rate_line = protocol_rate_line(parser.streams(), parser.rate_hz, f"protocol {protocol}")  # decision E90
+        if rate_line:
+            import logging
+
+            logging.getLogger("pdrlearn.cli").warning("%s", rate_line)
         if parser.stats.corrupted:
             import logging  # printed as one "warning:" line by the CLI, like every warning (decision B13)
 
             logging.getLogger(__name__).warning(
                 "%s: %d corrupted line(s) skipped (e.g. %r) of %d set(s) read", protocol,
                 parser.stats.corrupted, parser.stats.examples[0], parser.stats.sets)
+        if parser.stats.lost:  # decision E91: only numbered sets show a loss
+            import logging
+
+            logging.getLogger(__name__).warning(
+                "%s: %d set(s) lost (%.1f %% of %d; the sets' sequence numbers skip them, decision E91): the clock "
+                "leaves their time empty, as a recording's gap", protocol, parser.stats.lost,
+                100.0 * parser.stats.lost / (parser.stats.lost + parser.stats.sets),
+                parser.stats.sets + parser.stats.lost)
     else:
         if session_dir is None:
             raise DataError("run: give a SESSION_DIR or --protocol FILE")
@@ -389,13 +414,22 @@ def run(
                 # decision E45: the session has a waist unit --units foot leaves out; not "no waist unit"
                 line = "waist unit not used (--units foot): " + NO_WAIST_HEADING.removeprefix("no waist unit: ")
             logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
-        for chunk in replay_chunks({n: (st.t, st.values) for n, st in session.streams.items()}, chunk_s):
-            t0 = time.perf_counter()
-            new = tracker.push(chunk)
-            if new:
-                lat.append((time.perf_counter() - t0) / len(new))
-            steps += new
-        steps += tracker.flush()
+        if "waist" in tracker.units:  # decision W125: W105's check on the waist gyroscope the heading turns by
+            from pdrlearn.waist.plausibility import waist_bias_line
+
+            line = waist_bias_line(session)
+            if line:
+                import logging
+
+                logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
+        with GapLines(session.name):  # decision B184: the first gap lines, then one summary line
+            for chunk in replay_chunks({n: (st.t, st.values) for n, st in session.streams.items()}, chunk_s):
+                t0 = time.perf_counter()
+                new = tracker.push(chunk)
+                if new:
+                    lat.append((time.perf_counter() - t0) / len(new))
+                steps += new
+            steps += tracker.flush()
         _warn_short_streams(session, tracker, steps)
         source = f"session {session.name}"
     result = _result(steps, start_ll, start_alt)

@@ -115,6 +115,9 @@ def import_command(
     drop_duplicate_timestamps: bool = typer.Option(False, "--drop-duplicate-timestamps", help="Keep the first of "
                                                    "rows with the same timestamp (a phone app's batched samples; "
                                                    "refused otherwise, B150)."),
+    retime: float = typer.Option(None, "--retime", help="The sensor's output rate in Hz: re-time the samples at it, "
+                                 "anchored to their stamps (a Bluetooth IMU's notifications carry several samples on "
+                                 "one receive time; lost notifications are counted; B186)."),
     add_gravity: Path = typer.Option(None, "--add-gravity", help="A gravity file of the same recording (Sensor "
                                      "Logger's Gravity.csv) added to the --acc columns sample by sample, for an "
                                      "accelerometer written without gravity (iOS Sensor Logger's Accelerometer.csv; "
@@ -243,7 +246,7 @@ def import_command(
               name=name or (None if merge else out.name),
               subject_height_m=subject_height if subject_height is not None else m.get("height_m"),
               rate_hz=rate, time_format=time_format, time_zone=time_zone, skip_rows=skip_rows,
-              drop_duplicate_timestamps=drop_duplicate_timestamps, add_gravity=add_gravity)
+              drop_duplicate_timestamps=drop_duplicate_timestamps, add_gravity=add_gravity, retime_hz=retime)
     if split_at_clock_reset:
         parts = import_csv_parts(csv, **kw)
         if len(parts) > 1:
@@ -465,8 +468,8 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         # taken off), so an offset it had on a clock shared with the session is gone
         err(f"note: the session was not imported, so its clock's origin is unknown: the added unit starts at 0 ms "
             f"({_origin_text(t['origin_s'])} on the export's clock taken off), as the session's files do; if both were "
-            "on one clock with another origin, import both units (clocks up to 2 s apart: pdrlearn.steps.align_units "
-            "and apply_alignment in Python; `pdrlearn track` has no option for it, decision L48)")
+            "on one clock with another origin, import both units (clocks up to 2 s apart: `pdrlearn track "
+            "--align-units`, decision L162)")
     for sensor, r in record["streams"].items():
         conv = "" if r["factor"] == 1.0 else f", x {r['factor']:.6g} to {session.streams[sensor].spec.unit}"
         dropped = record["dropped_rows"].get(sensor)
@@ -476,6 +479,7 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         err(f"{sensor}: {cols} ({r['columns_source']}) in {r['unit']} ({r['unit_source']}{conv}), "
             f"{r['samples']} samples at {r['rate_hz']:g} Hz" + (f", {dropped} empty rows skipped" if dropped else "")
             + (f", {dups} rows repeating a timestamp dropped (--drop-duplicate-timestamps)" if dups else "")
+            + (_retimed_text(record["retimed"][sensor]) if sensor in record.get("retimed", {}) else "")
             + (f", plus the gravity of {r['gravity_added']} (--add-gravity)" if r.get("gravity_added") else ""))
         if r.get("gravity_added") and len(neg) < 3:  # decisions B166, B146: Core Motion's sign
             fix = shell_quote("--acc=" + ",".join(f"-{c}" for c in r["columns"]))
@@ -522,3 +526,10 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
 
 def register(app: typer.Typer) -> None:
     app.command("import")(import_command)
+
+
+def _retimed_text(r: dict) -> str:
+    """Decision B186: what ``--retime`` did to a stream, for the import summary."""
+    lost = f", {r['lost']} samples counted as lost between them" if r["lost"] else ""
+    return (f", re-timed at {r['rate_hz']:g} Hz from {r['stamps']} stamps ({r['samples_per_stamp']:g} samples per "
+            f"stamp on the median{lost}; the stamps hold {r['stamp_rate_hz']:.5g} Hz, --retime)")

@@ -14,11 +14,6 @@ from pdrlearn.errors import DataError
 #: neighbour's detection; a stray one is the detector's usual error (real MS patient: 2 of 74, a simulated
 #: 3-year-old at 230 steps/min: 1 of 26), the trial's merged children 15 of 22 and 25 of 26
 MERGED_WARN_FRAC = 0.1
-_METRICS = ("scored_count", "reference_count", "precision", "recall", "f1", "count_error_pct",
-            "timing_error_mean_s", "timing_error_sd_s", "true_positives", "false_positives",
-            "false_negatives", "outside_labels", "unscored_untimed", "unscored_same_foot_gap",
-            "f1_same_foot_gaps_scored", "total_count", "tolerance_s", "reference",
-            "ground_truth")
 
 
 def steps(
@@ -107,10 +102,8 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where,
                                                    spanned_warning(len(table), spanned, detector))
     score = score_steps(table, session, tolerance_s=tolerance, unit=unit)
-    if score is not None:
-        result.update({k: score[k] for k in _METRICS})
-        if score.get("one_foot"):  # decision W96
-            result["one_foot"] = score["one_foot"]
+    if score is not None:  # decision steps 41: score_steps' own dict, keys and meanings (one_foot: W96)
+        result.update(score)
     if out is not None:
         with atomic_file(out) as tmp:
             table.to_csv(tmp, index=False)

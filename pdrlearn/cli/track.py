@@ -85,6 +85,9 @@ COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a 
                                "unit's others (cut short, refused by B72): track only the time all of them cover, "
                                "every file and label table cut to it, with one warning naming the seconds dropped "
                                "from each file (decision B81).")
+ALIGN_UNITS_OPT = typer.Option(False, "--align-units", help="plasys, offline, foot + waist: move the waist unit's "
+                               "clock onto the foot's by the steps both detect (offset and drift, "
+                               "pdrlearn.steps.align_units; an offset under a step period; decision L162).")
 RESAMPLE_OPT, NO_RESAMPLE_OPT = resample_options("tracked", "with --model: ")
 UNITS_OPT = typer.Option(None, "--units", help="Body units to track with: foot (the waist files left out, as "
                          "`pdrlearn run --units foot`), waist, or foot,waist (default: every unit the session has; "
@@ -131,6 +134,7 @@ def track(
     altitude: str = ALTITUDE_OPT,
     dpi: int = DPI_OPT,
     common_span: bool = COMMON_SPAN_OPT,
+    align_units: bool = ALIGN_UNITS_OPT,
     units: str = UNITS_OPT,
     window: str = WINDOW_OPT,
     bout_break_s: float = BOUT_BREAK_OPT,
@@ -184,7 +188,7 @@ def track(
                               common_span=common_span, units=units, window=window, resample=resample,
                               no_resample=no_resample, bout_break_s=bout_break_s,
                               bout_min_strides=bout_min_strides, storey_height=storey_height, detector=detector,
-                              length_model=length_model, altitude=altitude)
+                              length_model=length_model, altitude=altitude, align_units=align_units)
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
@@ -215,7 +219,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
                    detector: str | None = None, length_model: str | None = None,
-                   altitude: str | None = None) -> dict:
+                   altitude: str | None = None, align_units: bool = False) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -305,7 +309,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
-            "altitude": altitude}
+            "altitude": altitude, "align_units": align_units}
 
 
 def read_params(params: Path):
@@ -368,7 +372,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                                                "--streaming": streaming, "--toe-off": toe_off,
                                                "--contacts": contacts,
                                                "--detector": o.get("detector_unit") == "foot",
-                                               "--altitude": o.get("altitude") is not None},
+                                               "--altitude": o.get("altitude") is not None,
+                                               "--align-units": bool(o.get("align_units"))},
                             gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"],
                             chosen_by=chosen_by)
     if pipeline == "plasys" and isinstance(par, dict):
@@ -406,6 +411,11 @@ def track_session(session_dir: Path, settings: dict) -> dict:
             kw["contacts"] = True
         if o.get("detector") is not None:  # decision L149
             kw["steps"] = o["detector"]
+        if o.get("align_units"):  # decision L162
+            if streaming:
+                raise DataError("track: --align-units moves the waist clock by the steps of the whole recording; the "
+                                "--streaming kernel cannot - drop --streaming or --align-units")
+            kw["align"] = True
         if toe_off:  # decision L73
             if streaming:
                 raise DataError("track: --toe-off needs the offline tracker's initial contacts; the --streaming "
@@ -537,7 +547,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
 
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
 _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming",
-                   "--toe-off", "--contacts", "--detector", "--altitude")
+                   "--toe-off", "--contacts", "--detector", "--altitude", "--align-units")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
 

@@ -202,11 +202,7 @@ def train(
         c.print(f"  {chosen_reason(tm)}", markup=False)
         for s in grouped_skips(tm.skipped):
             c.print(f"  skipped {s}", markup=False)
-    for s in model.skipped:
-        c.print(f"skipped {s}", markup=False)
-    if not model.tasks:  # decision C17
-        c.print("no classifier trained (the labels allow none); the model holds the distance calibration: "
-                "`pdrlearn track SESSION --model DIR` applies it, the class rules as without a model", markup=False)
+    # decision C53: the skipped tasks and "no classifier trained" (C17) are train_user's warnings, logged once
     cal = summary["distance_calibration"]
     if cal is None:
         c.print("distance calibration: off (--no-distance-calibration)")

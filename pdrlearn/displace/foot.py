@@ -279,6 +279,28 @@ class FootDisplacement:
             raise DataError(f"FootDisplacement: accel_scale_error {accel_scale_error!r} must be >= 0 (e.g. 0.01)")
         self.accel_scale_error = float(accel_scale_error)
 
+    def _grid(self, unit: UnitData) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, int]:
+        """``(t, acc, gyr, fs, k)``: the integration grid, the unit's samples upsampled ``k`` times below 50 Hz."""
+        fs0 = unit.fs
+        k = self.upsample if self.upsample is not None else (5 if fs0 < 50.0 else 1)
+        if k <= 1:
+            return unit.t, unit.acc, unit.gyr, fs0, 1
+        both = np.hstack([unit.acc, unit.gyr])
+        t, both = (K.upsample_runs(unit.t, both, k, 1.0 / fs0) if self.upsample_runs  # decision L87
+                   else K.upsample_block_means(unit.t, both, k))
+        return t, both[:, :3], both[:, 3:], fs0 * k, k
+
+    def stride_bounds(self, unit: UnitData, steps: pd.DataFrame, *,
+                      stance: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Decision C51: the rest-to-rest bounds :meth:`estimate` gives the rows of ``steps`` (the same grid and
+        :func:`rest_to_rest`), without integrating: ``(start_s, end_s, rows)`` for every (stride, input row)
+        pair, so a row a detector repeated maps to its stride too; rows in no stride are absent."""
+        t, _, _, _, k = self._grid(unit)
+        i0, i1, rows = rest_to_rest(t, np.repeat(np.asarray(stance, dtype=bool), k),
+                                    steps["start_s"].to_numpy(dtype=float), steps["end_s"].to_numpy(dtype=float),
+                                    max_rest_s=self.max_rest_s, all_rows=True)
+        return t[i0], t[i1], rows
+
     def estimate(self, unit: UnitData, steps: pd.DataFrame, *,
                  stance: np.ndarray | None = None) -> FootDisplacement:
         """Estimate the displacement of each row (``start_s``, ``end_s``) of ``steps``.
@@ -293,14 +315,7 @@ class FootDisplacement:
                    else np.asarray(stance, dtype=bool))
         self.stance_source_ = "inertial" if stance is None else "given"
         zupt0 = K.erode_runs(stance0, self.zupt_erode, max_cut=int(round(self.zupt_erode_max_s * fs0)))
-        k = self.upsample if self.upsample is not None else (5 if fs0 < 50.0 else 1)
-        t, acc, gyr, fs = unit.t, unit.acc, unit.gyr, fs0
-        if k > 1:
-            both = np.hstack([unit.acc, unit.gyr])
-            t, both = (K.upsample_runs(unit.t, both, k, 1.0 / fs0) if self.upsample_runs  # decision L87
-                       else K.upsample_block_means(unit.t, both, k))
-            acc, gyr = both[:, :3], both[:, 3:]
-            fs = fs0 * k
+        t, acc, gyr, fs, k = self._grid(unit)
         self.t_ = t
         self.stance_ = np.repeat(stance0, k)
         zupt_stance = np.repeat(zupt0, k)

@@ -45,6 +45,7 @@ from pdrlearn.io.validate import (
     slow_seconds_rate,
     time_unit_candidates,
 )
+from pdrlearn.kernels.clock import RETIME_RATE_TOL, retimed
 from pdrlearn.kernels.frames import axes_dict
 
 log = logging.getLogger(__name__)
@@ -599,7 +600,8 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
                subject_height_m: float | None = None, rate_hz: float | None = None,
                time_format: str | None = None, time_zone: str | None = None,
                skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
-               add_gravity: str | os.PathLike | None = None) -> tuple[Session, dict]:
+               add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None
+               ) -> tuple[Session, dict]:
     """Read a one-CSV lab export into a session of one unit.
 
     Parameters
@@ -622,6 +624,9 @@ def import_csv(path: str | os.PathLike, *, unit: str = "foot", columns: dict[str
     add_gravity : a gravity file of the same recording (Sensor Logger's ``Gravity.csv``), added sample by sample
         to the accelerometer columns, which hold acceleration without gravity (decision B166): its columns of the
         same names, read with the same time column and units, interpolated onto the accelerometer's times
+    retime_hz : the sensor's output rate (Hz): the samples are re-timed at it, anchored to their stamps
+        (:func:`pdrlearn.kernels.clock.retimed`, decision B186: a Bluetooth IMU's notifications carry several samples
+        on one receive time); counted in ``record["retimed"]``
     units : kind -> unit of its values (``acc``: ``m/s2`` | ``g``; ``gyro``: ``rad/s`` | ``deg/s``; ``mag``:
         ``uT`` | ``nT`` | ``gauss``; ``baro``: ``hPa`` | ``Pa`` | ``kPa``); default: the header's hint, else SI
     frame : the unit's axis frame (:func:`parse_frame` input or :class:`AxisFrame`), written to ``frames``
@@ -660,11 +665,21 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                   subject_height_m: float | None = None, rate_hz: float | None = None,
                   time_format: str | None = None, time_zone: str | None = None,
                   skip_rows: int | None = None, drop_duplicate_timestamps: bool = False,
-                  add_gravity: str | os.PathLike | None = None) -> list[tuple[Session, dict]]:
+                  add_gravity: str | os.PathLike | None = None, retime_hz: float | None = None
+                  ) -> list[tuple[Session, dict]]:
     """:func:`import_csv`'s body: the whole export (``split`` False; a clock reset is refused) or one part per
     recording between its clock resets (decision B80)."""
     path = Path(path)
     where = str(path)
+    if retime_hz is not None:  # decision B186
+        if not (isinstance(retime_hz, int | float) and math.isfinite(retime_hz) and 0 < retime_hz <= 10000):
+            raise DataError(f"import: --retime {retime_hz!r} is not a sampling rate in Hz (the sensor's output rate, "
+                            "e.g. 104)")
+        if drop_duplicate_timestamps or rate_hz is not None:
+            raise DataError("import: --retime places every sample at the sensor's rate by its stamps; leave out "
+                            + ("--drop-duplicate-timestamps, which would drop the samples it spreads" if
+                               drop_duplicate_timestamps else "--rate (a column of sample numbers needs no re-timing)")
+                            + " (decision B186)")
     if unit not in PLACEMENTS:
         raise DataError(f"import: unit {unit!r} is not one of {', '.join(PLACEMENTS)}")
     df = read_table(path)  # B24: ';' / tab separators and decimal commas, as every session file
@@ -859,6 +874,8 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
                     record.setdefault("duplicate_rows", {})[sensor] = int(again.size)
             u, factor, u_src = _resolve_unit(kind, units.get(kind), cols, where, row_units)
             t = t_all[keep]
+            if retime_hz is not None:  # decision B186: batched receive stamps spread at the sensor's rate
+                t = _retimed(t, float(retime_hz), where, time_column, record, sensor)
             check_timestamps(t, f"{where} ({time_column})", reset_fix=fix or None,
                              lines=np.flatnonzero(keep) + first_line,  # B80: the file's lines, in any part
                              duplicate_fix="drop the duplicated rows, or pass --drop-duplicate-timestamps to keep "
@@ -956,6 +973,23 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
     return parts
 
 
+def _retimed(t: np.ndarray, hz: float, where: str, time_column: str, record: dict, sensor: str) -> np.ndarray:
+    """Decision B186: ``t`` (s) re-timed at ``hz`` (:func:`pdrlearn.kernels.clock.retimed`), its summary kept in
+    ``record["retimed"][sensor]``; refused when the stamps' own rate differs from ``hz`` by more than
+    :data:`~pdrlearn.kernels.clock.RETIME_RATE_TOL` (every stride would scale by the difference)."""
+    if t.size > 1 and not (np.diff(t) >= 0).all():
+        return t  # not sorted: check_timestamps names the line
+    new, info = retimed(t, hz)
+    if abs(info["stamp_rate_hz"] / hz - 1.0) > RETIME_RATE_TOL:
+        raise DataError(f"{where} ({time_column}): --retime {hz:g} Hz, but the stamps hold {info['stamp_rate_hz']:.4g} "
+                        f"samples a second over their span ({info['lost']} counted as lost): give the sensor's "
+                        f"output rate (--retime {info['stamp_rate_hz']:.4g}?), or check the stamps' unit (decision "
+                        "B186)")
+    record.setdefault("retimed", {})[sensor] = {k: round(v, 4) if isinstance(v, float) else v
+                                                for k, v in info.items()}
+    return new
+
+
 def _gravity_at(path: Path, t: np.ndarray, cols: list[str], time_column: str, time_unit: str | None, acc_unit: str,
                 unit: str, origin_s: float, drop_duplicate_timestamps: bool = False) -> np.ndarray:
     """Decision B166: the gravity file ``path`` (columns ``cols``, read as :func:`import_csv` reads an
@@ -1019,7 +1053,7 @@ def merge_span_warning(base: Session, add: Session) -> str | None:
     """The ``--merge`` warning when ``add``'s time span (s, on the session's clock) and ``base``'s overlap by
     less than :data:`MERGE_MIN_OVERLAP` of the longer span (decision D12, second amendment); else ``None``.
     A warning, not a refusal: two units' clocks can legitimately differ (:func:`pdrlearn.steps.align_units`
-    estimates an offset of up to ``max_offset_s``, 2 s by default; the CLI has no option for it, decision L48)."""
+    estimates an offset of up to ``max_offset_s``, 2 s by default; ``pdrlearn track --align-units``, decision L162)."""
     sa, sb = _span(add), _span(base)
     if sa is None or sb is None:
         return None
@@ -1031,8 +1065,7 @@ def merge_span_warning(base: Session, add: Session) -> str | None:
     return (f"the added {unit} unit spans {sa[0]:.1f}-{sa[1]:.1f} s ({sa[1] - sa[0]:.1f} s) but the session's "
             f"{', '.join(sorted(base.streams))} span {sb[0]:.1f}-{sb[1]:.1f} s ({sb[1] - sb[0]:.1f} s): they overlap "
             f"{overlap:.1f} s, under half of the longer (decision D12); check that both exports record the same "
-            "walk (clocks up to 2 s apart: pdrlearn.steps.align_units and apply_alignment in Python; `pdrlearn track` "
-            "has no option for it, decision L48)")
+            "walk (clocks up to 2 s apart: `pdrlearn track --align-units`, decision L162)")
 
 
 def merge_offset_note(base: Session, add: Session) -> str | None:
@@ -1048,7 +1081,10 @@ def merge_offset_note(base: Session, add: Session) -> str | None:
     lo, hi = max(sa[0], sb[0]), min(sa[1], sb[1])
     return (f"the added {unit} unit covers {sa[0]:.2f}-{sa[1]:.2f} s, the session's other files {sb[0]:.2f}-"
             f"{sb[1]:.2f} s (started {sa[0] - sb[0]:+.2f} s, stopped {sa[1] - sb[1]:+.2f} s apart); track the "
-            f"{lo:.2f}-{hi:.2f} s both cover with `pdrlearn track --common-span` (decision B83)")
+            f"{lo:.2f}-{hi:.2f} s both cover with `pdrlearn track --common-span` (decision B83); if each unit's clock "
+            "counted from its own power-on, the import made both start at 0 and the difference in their stops may be "
+            "a power-on offset --common-span keeps: `pdrlearn track --align-units` estimates an offset under a step "
+            "period (decision L162)")
 
 
 def _shifted_table(path: Path, origin_s: float) -> pd.DataFrame:

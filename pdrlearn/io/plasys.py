@@ -29,6 +29,7 @@ from pdrlearn.io.frames import frames_from_meta
 from pdrlearn.io.sensors import SENSORS, UNIT_IMU, VALUE_UNITS
 from pdrlearn.io.session import MAX_BRIDGED_S, STEP_COLUMNS, Session, Stream
 from pdrlearn.io.validate import (
+    TIE_ROWS,
     check_columns,
     check_label_times,
     check_numeric,
@@ -38,10 +39,12 @@ from pdrlearn.io.validate import (
     check_units,
     ends_mid_line,
     implausible_rhythm,
+    restamp_isolated_ties,
     sample_numbers,
     slow_seconds_message,
     time_unit_candidates,
 )
+from pdrlearn.kernels.clock import stamp_jitter_s
 
 log = logging.getLogger(__name__)
 
@@ -357,6 +360,11 @@ def _refuse_datetimes(col: pd.Series, path: Path) -> None:
 def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: float, check_unit: bool,
                value_unit: tuple[float, str | None] = (1.0, None)) -> Stream:
     t = arr[:, 0] * time_scale
+    t, moved = restamp_isolated_ties(t, arr[:, 1:])  # decision B185
+    if moved:
+        log.warning("%s: %d timestamp(s) equal to the previous row's, with other values (jittered stamps rounded?): "
+                    "each moved halfway to the next row's (decision B185); more than one in %d rows is refused",
+                    path, moved, TIE_ROWS)
     check_timestamps(t, str(path))
     check_rate(t, str(path))
     factor, declared = value_unit
@@ -462,6 +470,31 @@ def _check_declared_rate(streams: dict[str, Stream], rate_hz: float, meta_path: 
                     ", ".join(f"{n} {r:.4g} Hz" for n, r in off.items()))
 
 
+#: decision B182: timestamps jittering by more than this fraction of the period (SD about a uniform clock,
+#: :func:`pdrlearn.kernels.clock.stamp_jitter_s`; uniform +-0.35 periods) are warned once per session
+WARN_STAMP_JITTER = 0.2
+
+
+def _warn_jitter(streams: dict[str, Stream], folder: Path) -> None:
+    """Decision B182: one warning naming the jittered accelerometers and gyroscopes (B33) whose stamps jitter by
+    more than :data:`WARN_STAMP_JITTER` of the period: receive-time stamps (a BLE link, a phone app). Their rate is
+    the sample count over the span and only intervals over the jitter's reach count as dropped samples."""
+    bad = {}
+    for name, s in streams.items():
+        if s.kind in ("accelerometer", "gyroscope") and len(s) >= 10 and s.jittered:
+            j = stamp_jitter_s(s.t) / s.period_s
+            if j > WARN_STAMP_JITTER:
+                bad[name] = (j, s)
+    if bad:
+        j, s = max(bad.values(), key=lambda v: v[0])
+        log.warning("%s: %s timestamps jitter by up to %.0f %% of the sample period (SD about a uniform clock; "
+                    "receive-time stamps of a Bluetooth link or a phone app?): the rate is the sample count over the "
+                    "span (%s) and only an interval over %.1f periods counts as dropped samples (decision B182); "
+                    "stamp the samples on the sensor's own clock if it has one", folder, ", ".join(bad), 100 * j,
+                    ", ".join(f"{n} {v[1].rate_hz:.4g} Hz" for n, v in bad.items()),
+                    s._gap_limit() / s.period_s)
+
+
 #: decision B33: put a jittered accelerometer/gyroscope on a uniform clock when read. Off: its adoption rule
 #: failed (experiments/results/jitter.md); ``read_session(..., uniform_clock=True)`` asks for it
 RESAMPLE_JITTER = False
@@ -486,6 +519,9 @@ def _uniform_clocks(streams: dict[str, Stream], folder: Path) -> None:
 #: Off: its adoption rule failed at 20 Hz (experiments/results/drops_31-36.md); ``read_session(...,
 #: bridge_drops=True)`` asks for it. Off or on, the intervals left as they are get one warning per session
 BRIDGE_DROPS = False
+#: decision B183: the offline distance lost per fraction of the foot's samples dropped in short intervals (B64's
+#: users 1-3: 1 % -> -1.1..-3.2 %, 3 % -> -4.5..-8.8 %; the BLE trial's 5 % in bursts: -8.5..-12 %)
+DROP_DISTANCE_FACTOR = 2.0
 #: decision B149: where dropped samples come from, for every drop warning: a sensor's radio link, or a phone app
 #: (which logs from a shared, loaded CPU and drops or batches samples: session 22's phone trial, 1 % drops)
 DROPS_CAUSE = "check the Bluetooth link, or a phone app's sampling (its rate setting, the phone's load)"
@@ -516,7 +552,7 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, stream
     as the pipelines integrate with a fixed sample interval and each such interval shortens its stride.
     ``streamed``: the caller integrates on the timestamps (``pdrlearn run``, ``track --streaming``); the
     warning says what that does with them instead (:data:`STREAMED_DROPS`, decision L77)."""
-    done, left = [], []
+    done, left, lost = [], [], {}
     for name, s in list(streams.items()):
         gaps = s.gaps()
         if not gaps:
@@ -531,6 +567,8 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, stream
                  and (not bridge or g.duration_s > MAX_BRIDGED_S * (1.0 + 1e-9))]
         if short:
             left.append((name, len(short), max(g.duration_s for g in short)))
+            miss = sum(max(round(g.duration_s / s.period_s) - 1, 1) for g in short)  # B183: samples in them
+            lost[name] = miss / (len(s) + miss)
     if done:
         log.info("%s: dropped samples bridged by linear interpolation (decision B64): %s", folder,
                  ", ".join(f"{n} {k} interval(s), {m} sample(s)" for n, k, m in done))
@@ -549,12 +587,15 @@ def _bridge_drops(streams: dict[str, Stream], folder: Path, bridge: bool, stream
             log.warning(WAIST_DROPS, folder, ", ".join(n for n, _, _ in left), count,
                         what.removesuffix(", not bridged"), max(m for _, _, m in left))
             return
+        frac = max(f for n, f in lost.items() if n in SENSORS and SENSORS[n].placement == "foot")
         log.warning("%s: %s have %s interval(s) of dropped samples %s (longest %.3f s): the offline methods "
-                    "integrate with a fixed sample interval, so each shortens the stride it falls in (1 %% of the "
-                    "samples dropped: about -2.5 %% distance, decision B64); `track --streaming` integrates on "
+                    "integrate with a fixed sample interval, so each shortens the stride it falls in (%.2g %% of the "
+                    "foot's samples dropped in them: about %+.2g %% distance, %g x the fraction, decisions B64, "
+                    "B183); `track --streaming` integrates on "
                     "the timestamps, as does the offline foot with a --params file holding {\"timestamps\": true} "
                     "(decision L83/B65, not the default) - or %s and re-record", folder,
-                    ", ".join(n for n, _, _ in left), count, what, max(m for _, _, m in left), DROPS_CAUSE)
+                    ", ".join(n for n, _, _ in left), count, what, max(m for _, _, m in left), 100 * frac,
+                    -100 * DROP_DISTANCE_FACTOR * frac, DROP_DISTANCE_FACTOR, DROPS_CAUSE)
 
 
 #: decision B64's warning when only waist streams drop samples: the waist pipelines interpolate them onto a
@@ -826,15 +867,32 @@ def units_apart(streams: dict[str, Stream]) -> list[str] | None:
     """Decision B83: ``["foot", "waist"]`` when the session holds both units and one starts or stops more than
     :data:`SPAN_TOLERANCE_S` apart from the other (two devices switched on a few seconds apart: a method that
     needs one unit to cover the other refuses it, B21); else None."""
+    ends = unit_ends(streams)
+    if len(ends) < 2:
+        return None
+    (f0, f1), (w0, w1) = ends["foot"], ends["waist"]
+    return ["foot", "waist"] if max(abs(f0 - w0), abs(f1 - w1)) > SPAN_TOLERANCE_S else None
+
+
+def unit_ends(streams: dict[str, Stream]) -> dict[str, tuple[float, float]]:
+    """Each unit's (first, last) sample time (s) over its streams of at least 2 samples (decisions B83, L162)."""
     ends = {}
     for unit in ("foot", "waist"):
         ts = [s for n, s in streams.items() if SENSORS[n].placement == unit and len(s) >= 2]
         if ts:
             ends[unit] = (min(float(s.t[0]) for s in ts), max(float(s.t[-1]) for s in ts))
-    if len(ends) < 2:
-        return None
+    return ends
+
+
+def apart_phrase(streams: dict[str, Stream]) -> str:
+    """Decision L162: what a B83 cut does to two units' clocks - the waist unit's start and stop against the foot's,
+    and that no offset is applied (each unit keeps its own clock)."""
+    ends = unit_ends(streams)
     (f0, f1), (w0, w1) = ends["foot"], ends["waist"]
-    return ["foot", "waist"] if max(abs(f0 - w0), abs(f1 - w1)) > SPAN_TOLERANCE_S else None
+    return (f"the waist unit started {w0 - f0:+.2f} s and stopped {w1 - f1:+.2f} s from the foot unit; the cut applies "
+            "no clock offset (0.00 s): each unit keeps its own clock, so a unit switched on later that counts from 0 "
+            "stays that far off - `pdrlearn track --align-units` estimates an offset under a step period from the "
+            "steps both units see (decision L162)")
 
 
 def cut_to_common_span(streams: dict[str, Stream], folder: Path) -> tuple[float, float, str] | None:
@@ -851,7 +909,7 @@ def cut_to_common_span(streams: dict[str, Stream], folder: Path) -> tuple[float,
     why = ("the time every file of the unit(s) cut short covers (B72)" if check_stream_spans(
         {n: s for n, s in streams.items() if SENSORS[n].placement in units}, folder, mode="common") is not None
         else "the time both units have data: they started or stopped over "
-             f"{SPAN_TOLERANCE_S:g} s apart (decision B83)")
+             f"{SPAN_TOLERANCE_S:g} s apart (decision B83); " + apart_phrase(streams))
     if t1 - t0 < SPAN_TOLERANCE_S:
         raise DataError(f"{folder}: the {' and '.join(units)} files cover under {SPAN_TOLERANCE_S:g} s in common "
                         f"({t0:.2f}-{t1:.2f} s), nothing to track; --common-span cannot cut them to it -- restore the "
@@ -933,6 +991,17 @@ def _not_labels(path: Path, table: pd.DataFrame, folder: Path) -> bool:
     return False
 
 
+def folder_arg(folder, caller: str) -> Path:
+    """Decision B179: a session folder argument as a Path; anything but a str / os.PathLike (``read_session(42)``
+    was a bare ``TypeError`` from pathlib) is one :class:`~pdrlearn.errors.NotASessionError` line."""
+    if not isinstance(folder, str | os.PathLike):
+        from pdrlearn.errors import NotASessionError
+
+        raise NotASessionError(f"{caller}({folder!r}): expected a session folder, a str or pathlib.Path "
+                               f"(got {type(folder).__name__})")
+    return Path(folder)
+
+
 def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform_clock: bool | None = None,
                  bridge_drops: bool | None = None, streamed: bool = False, spans: str = "refuse") -> Session:
     """Read a PLASYS session folder. ``uniform_clock``: interpolate jittered accelerometers and gyroscopes onto a
@@ -952,7 +1021,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         A missing folder, no sensor file, a malformed CSV, non-numeric/NaN values, unsorted or duplicate
         timestamps, implausible units, an empty file or a broken ``meta.json`` (one-line message).
     """
-    folder = Path(folder)
+    folder = folder_arg(folder, "read_session")  # decision B179
     if not folder.exists():
         raise DataError(f"{folder}: session folder not found; pass a folder with fAccelerometer.csv etc.")
     if not folder.is_dir():
@@ -1009,6 +1078,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     # decision B72: before a gap warning about a cut file; B81: "common" cuts the session instead of refusing
     t_uncut = min((float(s.t[0]) for s in streams.values() if len(s)), default=None)  # B81: before any cut
     cut = cut_to_common_span(streams, folder) if spans == "common" else check_stream_spans(streams, folder, mode=spans)
+    _warn_jitter(streams, folder)  # decision B182
     if RESAMPLE_JITTER if uniform_clock is None else uniform_clock:
         _uniform_clocks(streams, folder)
     if bridge_drops is not False:
@@ -1140,7 +1210,7 @@ def write_session(session: Session, folder: str | os.PathLike, *, overwrite: boo
     Values are written with full float64 precision (``repr``), so reading back reproduces them exactly;
     timestamps are written in ms rounded to 1 ps.
     """
-    folder = Path(folder)
+    folder = folder_arg(folder, "write_session")  # decision B179
     if folder.exists() and not overwrite:
         if any(folder.iterdir()):
             raise DataError(f"{folder}: already exists and is not empty; choose another --out or remove it")

@@ -6,7 +6,11 @@ Each sampling period (50 ms, 20 Hz) the foot unit sends one *set*::
 
 ``%`` starts a set, ``$`` starts a measurement, the digit is the sensor type (Table 10: 1 accelerometer,
 2 gyroscope, 3 force A, 4 force B) and the numbers are separated by blanks or commas (force: ``x`` only).
-The protocol carries no timestamp: set *k* is stamped ``t0 + k / rate_hz``.
+The protocol carries no timestamp: set *k* is stamped ``t0 + k / rate_hz``. A lost set (a Bluetooth packet
+that never arrived) cannot be seen and shifts every later sample one period early (decision E91), unless the set
+carries the optional sequence number of decision E91, ``%#N$1 ...``: text between ``%`` and the first ``$`` was
+always ignored, so old parsers read such a capture unchanged; here ``N`` (counting sets, wrapping at
+:data:`SEQ_MODULUS`) stamps the set and a jump counts the sets lost in :attr:`ProtocolStats.lost`.
 
 Corrupted measurements (unknown type, wrong number of values, non-numeric text) are skipped and counted
 in :attr:`BluetoothParser.stats`; the set still advances the clock, so a corrupted set leaves a gap
@@ -25,7 +29,13 @@ from pdrlearn.io.sensors import PROTOCOL_TYPES, SENSORS
 from pdrlearn.io.session import Session, Stream
 
 FIRMWARE_RATE_HZ = 20.0  # thesis ch.4.2.3: sampling period 50 ms
+#: decision E90: the lags (s) searched for the foot's stride period in a capture (a stride from 480 down to 30
+#: steps/min: wider than L95's walking range on both sides, so that a capture read at a wrong rate is still timed)
+STRIDE_LAGS_S = (0.25, 4.0)
 _SPLIT = re.compile(r"[\s,;]+")
+#: decision E91: a set's optional sequence number, ``#N`` after its ``%``; a 16-bit counter wraps at this
+_SEQ = re.compile(r"\s*#(\d+)")
+SEQ_MODULUS = 65536
 
 
 @dataclass
@@ -34,9 +44,13 @@ class ProtocolStats:
     measurements: int = 0
     corrupted: int = 0
     examples: list[str] = field(default_factory=list)
+    #: decision E91: sets with a sequence number, and the sets their jumps say were lost
+    numbered: int = 0
+    lost: int = 0
 
     def to_dict(self) -> dict:
-        return {"sets": self.sets, "measurements": self.measurements, "corrupted": self.corrupted}
+        return {"sets": self.sets, "measurements": self.measurements, "corrupted": self.corrupted,
+                "numbered": self.numbered, "lost": self.lost}
 
 
 @dataclass
@@ -65,11 +79,39 @@ class BluetoothParser:
         self._buf = ""
         self._started = False
         self._data: dict[str, tuple[list[float], list[tuple[float, ...]]]] = {}
+        self._k = -1  # the clock index of the last set (sets + lost - 1)
+        self._seq: int | None = None  # the last sequence number read (decision E91)
 
     # -- parsing ----------------------------------------------------------------------------------
+    def _next_index(self, body: str) -> int | None:
+        """Decision E91: the clock index of a set: the next one, or, with a sequence number, the next plus the sets
+        its jump skipped (counted lost); None for a repeated number (a packet received twice: skipped, counted
+        corrupted); a number that jumps backwards (a restart) is counted corrupted and the set taken as the next."""
+        m = _SEQ.match(body)
+        step = 1
+        if m is not None:
+            n = int(m.group(1))
+            self.stats.numbered += 1
+            if self._seq is not None:
+                d = (n - self._seq) % SEQ_MODULUS
+                if d == 0:
+                    self._corrupt(m.group(0))
+                    return None
+                if d < SEQ_MODULUS // 2:
+                    step = d
+                    self.stats.lost += d - 1
+                else:
+                    self._corrupt(m.group(0))
+            self._seq = n
+        self._k += step
+        return self._k
+
     def _parse_set(self, body: str) -> list[Measurement]:
-        t = self.t0 + self.stats.sets / self.rate_hz
+        k = self._next_index(body)
         self.stats.sets += 1
+        if k is None:  # decision E91: a repeated set
+            return []
+        t = self.t0 + k / self.rate_hz
         out = []
         for part in body.split("$")[1:] if "$" in body else ([body] if body.strip() else []):
             tokens = [tok for tok in _SPLIT.split(part.strip()) if tok]
@@ -150,10 +192,11 @@ def parse_protocol(text: str | Iterable[str], **kwargs) -> tuple[Session, Protoc
     return parser.to_session(), parser.stats
 
 
-def format_protocol(session: Session, *, decimals: int = 6) -> Iterator[str]:
+def format_protocol(session: Session, *, decimals: int = 6, numbered: bool = False) -> Iterator[str]:
     """Render a session's foot streams as protocol sets (one line per set), the inverse of the parser.
 
-    Streams are aligned by sample index; all foot streams must have the same length.
+    Streams are aligned by sample index; all foot streams must have the same length. ``numbered``: each set
+    carries its sequence number (``%#N``, decision E91).
     """
     names = [n for n in PROTOCOL_TYPES.values() if n in session.streams]
     inv = {v: k for k, v in PROTOCOL_TYPES.items()}
@@ -163,4 +206,32 @@ def format_protocol(session: Session, *, decimals: int = 6) -> Iterator[str]:
         for nm in names:
             vals = " ".join(f"{v:.{decimals}f}" for v in session.streams[nm].values[i])
             parts.append(f"${inv[nm]} {vals}")
-        yield "%" + "".join(parts) + "\n"
+        yield "%" + (f"#{i % SEQ_MODULUS}" if numbered else "") + "".join(parts) + "\n"
+
+
+def protocol_rate_line(streams: dict[str, Stream], rate_hz: float, where: str) -> str | None:
+    """Decision E90: the warning line when the foot's stride rhythm in a capture stamped at ``rate_hz`` (the
+    protocol carries no time, D5; ``streams``: :meth:`BluetoothParser.streams`) lies outside L95's walking range:
+    the pod samples at another rate. The rhythm is the first dominant autocorrelation peak of the foot gyroscope's
+    magnitude (W113's estimator, Moe-Nilssen & Helbostad 2004, over :data:`STRIDE_LAGS_S`); the rate that would put
+    it at the middle of the range is named. None when the rhythm is inside the range or not found (under 10 s of
+    gyroscope, no rhythmic motion)."""
+    from pdrlearn.kernels.waist import step_period_s
+    from pdrlearn.track.gait import CADENCE_RANGE_SPM
+
+    g = streams.get("fGyroscope")
+    if g is None or len(g.t) < 10 * rate_hz:
+        return None
+    stride_s = step_period_s(np.linalg.norm(g.values, axis=1), rate_hz, lags_s=STRIDE_LAGS_S)
+    if not np.isfinite(stride_s):
+        return None
+    cadence = 120.0 / stride_s  # steps/min: a stride is two steps
+    lo, hi = CADENCE_RANGE_SPM
+    if lo <= cadence <= hi:
+        return None
+    mid = float(np.sqrt(lo * hi))  # the range's geometric middle: the rate error is a factor
+    return (f"{where}: at --protocol-rate {rate_hz:g} Hz the foot's strides take {stride_s:.2f} s ({cadence:.0f} "
+            f"steps/min), outside the walking range {lo:.0f}-{hi:.0f} steps/min (decision L95): the distance, "
+            "speeds and floors are wrong if the pod samples at another rate (the protocol carries no time, D5); give "
+            f"its rate with --protocol-rate HZ (this rhythm is {mid:.0f} steps/min at about "
+            f"{rate_hz * mid / cadence:.0f} Hz; decision E90)")

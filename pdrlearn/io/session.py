@@ -22,7 +22,7 @@ import pandas as pd
 from pdrlearn.errors import DataError, MissingSensorError, NotASessionError
 from pdrlearn.io.frames import THESIS_FOOT_FRAME, THESIS_WAIST_FRAME, AxisFrame
 from pdrlearn.io.sensors import SENSORS, UNIT_IMU, SensorSpec
-from pdrlearn.kernels.clock import MAX_JITTER, nominal_period_s
+from pdrlearn.kernels.clock import MAX_JITTER, jitter_gap_limit_s, nominal_period_s, stamp_jitter_s
 
 #: The thesis mounting of each unit: the example of the missing-frame error (:meth:`Session.require_frame`).
 EXAMPLE_FRAMES: dict[str, AxisFrame] = {"foot": THESIS_FOOT_FRAME, "waist": THESIS_WAIST_FRAME}
@@ -101,6 +101,11 @@ class Stream:
     def unit(self) -> str:
         return self.spec.unit
 
+    def __repr__(self) -> str:
+        """Decision B181: one line (samples, rate, duration, unit), not the arrays."""
+        return (f"Stream({self.name!r}, {len(self)} samples, {self.rate_hz:.4g} Hz, {self.duration_s:.2f} s, "
+                f"{self.spec.unit})")
+
     def __len__(self) -> int:
         return int(self.t.shape[0])
 
@@ -134,7 +139,7 @@ class Stream:
         (decision B33: the pipelines integrate with ``dt = 1 / rate``, so samples taken at irregular true times
         are put where that assumes them). No sample is made up inside an interval longer than two periods:
         such gaps stay gaps (B11); a shorter one is bridged, as jitter cannot be told from one dropped sample.
-        The period is :attr:`period_s` (for a jittered stream the mean of the intervals up to two medians)."""
+        The period is :attr:`period_s` (for a jittered stream the sample count over the span, B182)."""
         d = np.diff(self.t)
         p = self.period_s
         n = int(np.floor((self.t[-1] - self.t[0]) / p + 1e-9)) + 1
@@ -160,7 +165,8 @@ class Stream:
         p = self.period_s
         limit = factor * p
         if self.jittered:  # B33: +-4 ms at 100 Hz puts 7 % of the intervals over 1.5 periods, no sample missing
-            limit = max(limit, p * (1.0 + 4.0 * self.jitter))
+            # B182: sorted receive stamps (+-12 ms at 104 Hz) make intervals up to 3.3 periods
+            limit = max(limit, p * (1.0 + 4.0 * self.jitter), jitter_gap_limit_s(p, stamp_jitter_s(self.t)))
         return limit
 
     def gaps(self, factor: float = 1.5) -> list[Gap]:
@@ -247,6 +253,18 @@ class Session:
     #: decision B113: the recording's :meth:`content_id` when this session is its copy resampled to a model's
     #: rate (``pdrlearn evaluate --resample``): the held-out check (B87) still knows the recording
     _source_id: str | None = field(default=None, repr=False, compare=False)
+
+    def __repr__(self) -> str:
+        """Decision B181: a short description (streams with rate and unit, duration, labels), not the arrays
+        and meta.json a notebook cell printed before (~10 kB per session)."""
+        streams = ", ".join(f"{n} {s.rate_hz:.4g} Hz {s.spec.unit}" for n, s in self.streams.items())
+        parts = [repr(self.name)] + ([f"folder={str(self.folder)!r}"] if self.folder is not None else [])
+        parts.append(f"{self.duration_s:.2f} s" if self.streams else "no streams")
+        parts += [f"streams: {streams}"] if streams else []
+        parts += [f"steps: {len(self.steps)} rows"] if self.steps is not None else []
+        parts += [f"trajectory: {len(self.trajectory)} rows"] if self.trajectory is not None else []
+        parts += [f"extras: {', '.join(self.extras)}"] if self.extras else []
+        return f"Session({'; '.join(parts)})"
 
     # -- access -----------------------------------------------------------------------------------
     def __getitem__(self, name: str) -> Stream:

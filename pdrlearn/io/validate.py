@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.clock import batch_size
 from pdrlearn.kernels.units import (  # noqa: F401 - re-exported: the checks live in the numpy-only kernel (B119)
     GRAVITY_FACTOR_MAX,
     GRAVITY_HINT,
@@ -125,6 +126,29 @@ def clock_reset_message(t: np.ndarray, reset: np.ndarray, where: str, at: str, f
             f"{fix} (decision B73)")
 
 
+#: decision B185: at most one tie per this many rows is restamped (:func:`restamp_isolated_ties`); more are refused
+TIE_ROWS = 1000
+
+
+def restamp_isolated_ties(t: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, int]:
+    """Decision B185: a few isolated ties of jittered receive stamps rounded to 1 ms (+-15 ms at 100 Hz: one in
+    9680 rows) refused the whole session. A tie of two rows whose values differ (not a repeated packet), with
+    strictly increasing stamps on both sides, at most one per :data:`TIE_ROWS` rows, gets the later row's stamp moved
+    halfway to the next row's (no sample is lost: the offline methods integrate with a fixed interval). Returns the
+    new stamps and how many moved; ``(t, 0)`` (unchanged, refused by :func:`check_timestamps`) otherwise."""
+    d = np.diff(t)
+    dup = np.flatnonzero(d == 0)
+    if not dup.size or dup.size > max(1, t.size // TIE_ROWS) or dup[-1] + 2 >= t.size:
+        return t, 0
+    if (np.diff(dup) < 2).any() or not (d[dup + 1] > 0).all():  # runs of ties, or stamps not increasing after
+        return t, 0
+    if (values[dup] == values[dup + 1]).all(axis=1).any():  # a repeated packet: refused as a duplicate
+        return t, 0
+    t = t.copy()
+    t[dup + 1] = 0.5 * (t[dup] + t[dup + 2])
+    return t, int(dup.size)
+
+
 def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, reset_fix: str | None = None,
                      lines: np.ndarray | None = None, duplicate_fix: str = "drop the duplicated rows") -> None:
     """Timestamps must be strictly increasing (no duplicates, sorted). ``in_memory``: ``t`` is a
@@ -147,6 +171,14 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
         if in_memory:
             raise DataError(f"{where}: {dup.size} duplicate timestamp(s) (first at index {dup[0] + 1}); drop the "
                             "duplicated samples (keep = np.unique(t, return_index=True)[1])")
+        k = batch_size(t)  # decision B186: regular groups on one stamp are batched samples, not repeated rows
+        if k > 1:
+            raise DataError(
+                f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}): the rows come in "
+                f"groups of {k} on one timestamp (a Bluetooth notification's samples on its receive time?); re-time "
+                f"them at the sensor's output rate with `pdrlearn import EXPORT --retime HZ` (decision B186) rather "
+                f"than dropping {k - 1} of every {k}"
+            )
         raise DataError(
             f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}); {duplicate_fix}"
         )

@@ -137,16 +137,18 @@ SHORTEST_STEP_FRAC = 0.75
 STEP_PERIOD_LAGS_S = (0.15, 1.5)
 
 
-def step_period_s(vf: np.ndarray, fs: float, gate: np.ndarray | None = None) -> float:
+def step_period_s(vf: np.ndarray, fs: float, gate: np.ndarray | None = None,
+                  lags_s: tuple[float, float] = STEP_PERIOD_LAGS_S) -> float:
     """The step period (s) of a recording's filtered vertical acceleration ``vf`` (decision W113): the lag of the
     first dominant peak of its autocorrelation inside the motion ``gate`` (Moe-Nilssen & Helbostad 2004, J Biomech
     37:121-126: the first dominant peak of the vertical trunk acceleration's autocorrelation is the step, the second
     the stride), "dominant" = a local maximum at least half the largest one in :data:`STEP_PERIOD_LAGS_S`; NaN
-    when there is none (no rhythmic motion)."""
+    when there is none (no rhythmic motion). ``lags_s``: the lags searched (decision E90 reads a foot's stride
+    with longer ones)."""
     x = np.asarray(vf, dtype=np.float64)
     if gate is not None:
         x = np.where(np.asarray(gate, dtype=bool), x, 0.0)
-    lo, hi = (int(round(s * fs)) for s in STEP_PERIOD_LAGS_S)
+    lo, hi = (int(round(s * fs)) for s in lags_s)
     if x.size <= hi + 2 or not np.any(x):
         return float("nan")
     x = x - np.mean(x[x != 0.0])

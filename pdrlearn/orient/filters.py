@@ -84,6 +84,8 @@ class WaistHeading:
     initial_heading : ENU heading (rad) at the start when there is no magnetometer
     hard_iron_ut : (3,) offset (uT, body FLU) subtracted from the magnetometer before the compass, e.g. the
         fit of :func:`pdrlearn.track.plasys.fit_waist_hard_iron` (decision L84); None = none
+    yaw_bias : (k, 2) (time s, vertical-rate bias rad/s) subtracted from the vertical rate, linearly interpolated
+        in time and held beyond its ends (decision W126: read at rest); None = none
 
     Attributes
     ----------
@@ -93,7 +95,7 @@ class WaistHeading:
 
     def __init__(self, *, phi: float = 0.92, phi_rate_hz: float = 20.0, threshold: float = 0.035,
                  gravity_cutoff_hz: float = 1.0, use_magnetometer: bool = True, initial_heading: float = 0.0,
-                 hard_iron_ut=None):
+                 hard_iron_ut=None, yaw_bias=None):
         self.phi = phi  # thesis ch.7.1
         self.phi_rate_hz = phi_rate_hz  # thesis ch.7.1: 20 Hz samples
         self.threshold = threshold  # thesis ch.7.1: 0.035 rad
@@ -101,6 +103,7 @@ class WaistHeading:
         self.use_magnetometer = use_magnetometer
         self.initial_heading = initial_heading
         self.hard_iron_ut = hard_iron_ut
+        self.yaw_bias = yaw_bias
 
     def estimate(self, t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, mag: np.ndarray | None = None,
                  *, fs: float | None = None) -> WaistHeading:
@@ -113,6 +116,9 @@ class WaistHeading:
         cutoff = min(self.gravity_cutoff_hz, 0.4 * fs)
         grav = lowpass(acc, cutoff, fs)
         rate = K.yaw_rate(grav, gyr)
+        if self.yaw_bias is not None and len(self.yaw_bias):  # decision W126
+            b = np.asarray(self.yaw_bias, dtype=float)
+            rate = rate - np.interp(t, b[:, 0], b[:, 1])
         self.warnings_: list[str] = []
         if mag is not None and self.use_magnetometer:
             if self.hard_iron_ut is not None:  # decision L84

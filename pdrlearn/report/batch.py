@@ -159,20 +159,18 @@ def plot_batch(sessions: pd.DataFrame, path: Path, *, dpi: float | None = None) 
     its group, a failed session named on the axis with "failed" and no bar; saved at ``path``. False (no
     figure) when no session has either value."""
     import matplotlib
+    from matplotlib.patches import Rectangle
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from pdrlearn.plots import save_atomic
+    from pdrlearn.plots import new_figure, save_atomic
 
     metrics = [(c, label) for c, label in (("distance_m", "distance (m)"), ("gait_speed_mps", "gait speed (m/s)"))
                if c in sessions and pd.to_numeric(sessions[c], errors="coerce").notna().any()]
     if not metrics:
         return False
     groups = list(dict.fromkeys(sessions["group"].astype(str)))
-    colours = {g: plt.get_cmap("tab10")(i % 10) for i, g in enumerate(groups)}
+    colours = {g: matplotlib.colormaps["tab10"](i % 10) for i, g in enumerate(groups)}
     y = np.arange(len(sessions))
-    fig, axes = plt.subplots(1, len(metrics), figsize=(4.5 * len(metrics) + 2, 0.32 * len(sessions) + 1.6),
+    fig, axes = new_figure(1, len(metrics), figsize=(4.5 * len(metrics) + 2, 0.32 * len(sessions) + 1.6),
                              sharey=True, squeeze=False)
     labels = [f"{p} (failed)" if s != "ok" else str(p) for p, s in zip(sessions["path"], sessions["status"],
                                                                          strict=True)]
@@ -183,7 +181,7 @@ def plot_batch(sessions: pd.DataFrame, path: Path, *, dpi: float | None = None) 
         ax.grid(axis="x", alpha=0.3)
     axes[0][0].set_yticks(y, labels, fontsize=8)
     axes[0][0].invert_yaxis()
-    handles = [plt.Rectangle((0, 0), 1, 1, color=colours[g]) for g in groups]
+    handles = [Rectangle((0, 0), 1, 1, color=colours[g]) for g in groups]
     fig.legend(handles, groups, title="group", loc="upper right", fontsize=8)
     fig.suptitle("track-all: per session")
     save_atomic(fig, Path(path), dpi=dpi)

@@ -27,6 +27,7 @@ from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisEr
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
+from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.stride import (
     DOWN_MODES,
@@ -227,7 +228,9 @@ class Step:
 
     def to_dict(self) -> dict:
         """The step as one row of a steps table: the classes under their steps.csv columns (``terrain``,
-        ``direction``, ``length_class``; decision B142: ``length`` before), ``p_<task>_<class>``, the numbers."""
+        ``direction``, ``length_class``; decision B142: ``length`` before), ``p_<task>_<class>``, the numbers;
+        ``heading_rad`` wrapped to [-pi, pi) as steps.csv has it (decision E87; the attribute
+        :attr:`heading_rad` stays unwrapped, the heading the track integrates)."""
         return {
             "start_s": self.start_s,
             "end_s": self.end_s,
@@ -236,7 +239,7 @@ class Step:
             **{f"p_{t}_{c}": v for t, p in self.proba.items() for c, v in p.items()},
             "length_m": self.length_m,
             "dz_m": self.dz_m,
-            "heading_rad": self.heading_rad,
+            "heading_rad": float(wrap_angle(self.heading_rad)),  # decision E87: as steps.csv (E43)
             "x": self.x,
             "y": self.y,
             "z": self.z,
@@ -246,6 +249,27 @@ class Step:
             "impossible": self.impossible,  # decision L97
             "gap_s": self.gap_s,  # decision E37: pdrlearn run's steps.csv
         }
+
+
+def enu_start(start, start_enu_m) -> np.ndarray:
+    """Decision L159: the tracker's start position, ``start_enu_m=(x, y, z)`` in ENU metres (the keyword named for
+    its meaning; ``start=`` is the older name of the same, kept). Both, or not three numbers, is one
+    :class:`DataError` line: a geodetic ``(lat, lon)`` is not a position here (``pdrlearn run --start`` and the
+    pipelines' ``start=`` take it)."""
+    if start is not None and start_enu_m is not None:
+        raise DataError("Tracker: give start_enu_m=(x, y, z) (ENU metres) once; start= is its older name")
+    given, name = (start_enu_m, "start_enu_m") if start_enu_m is not None else (start, "start")
+    if given is None:
+        return np.zeros(3)
+    try:
+        xyz = np.array([float(v) for v in given])
+    except (TypeError, ValueError):
+        xyz = np.zeros(0)
+    if xyz.shape != (3,) or not np.isfinite(xyz).all():
+        raise DataError(f"Tracker: {name}={given!r} is the start position (x, y, z) in ENU metres (east, north, up "
+                        "from your origin), three finite numbers, e.g. start_enu_m=(0.0, 0.0, 12.5); a (lat, lon) "
+                        "start is for pdrlearn run --start and the pipelines' start=")
+    return xyz
 
 
 def calibration_record(displacement: dict) -> dict | None:
@@ -316,7 +340,9 @@ class Tracker(FixInput):
     frames : placement -> declared axis frame of the incoming data (default: the bundle's).
     tasks : tasks to classify (default: every task in the bundle).
     methods : task -> ``"method/unit"`` to use instead of the bundle's chosen one.
-    start : initial ENU position (m) and ``heading_rad`` override.
+    start_enu_m : initial position ``(x, y, z)`` in ENU metres (east, north, up; default the origin), and
+        ``heading_rad`` the initial heading override. ``start`` is its older name (decision L159: a geodetic
+        (lat, lon) is not taken here; a wrong length or both keywords is one error line).
     buffer_s : seconds of samples kept per sensor (bounded state).
     heading_source : "auto" | "foot" | "waist-gyro" (default: the bundle's ``displacement``).
     rules, min_confidence : the class rules, "bayes" or "thesis", and the probability a class needs before
@@ -387,7 +413,7 @@ class Tracker(FixInput):
         frames: dict | None = None,
         tasks=None,
         methods: dict[str, str] | None = None,
-        start=(0.0, 0.0, 0.0),
+        start=None,
         heading_rad: float | None = None,
         buffer_s: float = 8.0,
         heading_source: str | None = None,
@@ -408,7 +434,9 @@ class Tracker(FixInput):
         check_input: bool = True,
         resume: dict | None = None,
         max_gap_s: float = MAX_GAP_S,
+        start_enu_m=None,
     ):
+        start_xyz = enu_start(start, start_enu_m)  # decision L159
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
         sensors = None if sensors is None else [str(n) for n in sensors]
@@ -516,7 +544,7 @@ class Tracker(FixInput):
         #: one-sample foot feeds of the current push, ``(name, t, values)``: fed to ``_foot`` at the end of a
         #: push that completes no step, else at the next push (decision E21), or before a step needs them
         self._foot_q: list[tuple[str, float, list[float]]] = []
-        self.position = np.asarray(start, dtype=float).reshape(3).copy()
+        self.position = start_xyz
         self._init_fixes(self.position[:2])  # decisions D19-D21: add_fix
         self.heading = float(self.params.get("initial_heading_rad", 0.0) if heading_rad is None else heading_rad)
         self._pending: list[tuple[float, float]] = []  # detected steps waiting for every sensor's data

@@ -105,6 +105,7 @@ def score_events(detected_times, reference_times, *, tolerance_s: float = DEFAUL
     err = d[i_d] - r[i_r]
     return {
         "count": int(d.size),
+        "scored_count": int(d.size),  # every detection given is scored here (score_steps: inside the labels)
         "reference_count": int(r.size),
         "true_positives": tp,
         "false_positives": fp,
@@ -340,6 +341,10 @@ def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = D
     detection per same-foot gap of the reference (:func:`same_foot_gap_mask`, ``unscored_same_foot_gap``,
     decision 20; ``f1_same_foot_gaps_scored`` is the F1 with them counted as false positives).
 
+    Decision steps 41: ``count`` is every detection of ``steps`` (``total_count``, its old alias), the key
+    ``pdrlearn steps --json`` gives (that JSON is this dict plus session, detector, unit); the metrics and
+    ``count_error_pct`` use the detections scored, ``scored_count`` (``count`` before decision steps 41).
+
     ``steps`` is scored as given. ``pdrlearn steps`` and ``pdrlearn score-steps`` first reduce a foot table to
     one row per rest-to-rest stride (:func:`pdrlearn.steps.one_per_stride`, decision steps 34/39): call it
     before this to get their numbers for a detector that fires more than once per stride.
@@ -360,15 +365,17 @@ def score_steps(steps: pd.DataFrame, session: Session, *, tolerance_s: float = D
     if ref.one_foot is not None:  # decision W96: the other foot's steps match nothing and are no error
         out.update(precision=float("nan"), f1=float("nan"), count_error_pct=float("nan"), one_foot=ref.one_foot)
     out["tolerance_s"] = float(tolerance_s)
+    # decision steps 41: "count" is every detection of the table, as in `pdrlearn steps --json` (the same dict);
+    # the metrics (precision, count_error_pct ...) use the detections scored, "scored_count"
     out["scored_count"] = out["count"]
+    out["count"] = out["total_count"] = int(ev.size)
     out["outside_labels"] = int((~inside).sum())
     out["unscored_untimed"] = int(untimed.sum())
     out["unscored_same_foot_gap"] = int(lost.sum())
     # the F1 with those detections counted as false positives (they lie > tolerance from every contact)
-    n = out["count"] + int(lost.sum()) + out["reference_count"]
+    n = out["scored_count"] + int(lost.sum()) + out["reference_count"]
     out["f1_same_foot_gaps_scored"] = (float(2 * out["true_positives"] / n) if n and ref.one_foot is None
                                        else float("nan"))
-    out["total_count"] = int(ev.size)
     out["reference"] = ref.description
     out["ground_truth"] = ref.ground_truth
     if not ref.ground_truth:

@@ -10,8 +10,12 @@ Warnings (no model, gaps, fallbacks) are ``logging`` records of the ``pdrlearn``
 ``warnings``, and are also returned in ``result.info["warnings"]``. Silence them with
 ``logging.getLogger("pdrlearn").setLevel(logging.ERROR)``; capture them with a handler on that logger (or
 pytest's ``caplog``). ``warnings.filterwarnings`` / ``catch_warnings`` do not see them.
+
+Figures (decision E89): ``result.plot(session)`` draws one track; :func:`plot_paths` (saved) and
+:func:`path_figure` (a figure) draw several, with the session's ground truth.
 """
 
 from pdrlearn.track.base import PIPELINES, TrackResult, get_pipeline, register_pipeline
+from pdrlearn.track.plots import path_figure, plot_paths
 
-__all__ = ["PIPELINES", "TrackResult", "get_pipeline", "register_pipeline"]
+__all__ = ["PIPELINES", "TrackResult", "get_pipeline", "path_figure", "plot_paths", "register_pipeline"]

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import difflib
 import functools
 import inspect
 from collections.abc import Callable, Iterable, Mapping
@@ -10,7 +9,7 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, check_keyword_names
 from pdrlearn.io.session import session_entry
 from pdrlearn.plugins import Registry
 
@@ -36,11 +35,14 @@ class TrackResult:
         every registered pipeline adds ``pos_sigma_m``, the 1-sigma radius of the horizontal position (m,
         decision L128, :mod:`pdrlearn.track.position_sigma`).
     info : pipeline name, method, parameters used, warnings (e.g. "no model: M3 unavailable").
+    tracked : ``(name, folder)`` of the session a registered pipeline tracked (decision B181; None: not known),
+        which :meth:`summary` checks.
     """
 
     steps: pd.DataFrame
     trajectory: pd.DataFrame
     info: dict = field(default_factory=dict)
+    tracked: tuple[str, str | None] | None = field(default=None, repr=False, compare=False)
 
     @property
     def distance_m(self) -> float:
@@ -50,10 +52,40 @@ class TrackResult:
         """The dict ``pdrlearn track`` writes as ``summary.json`` for this track of ``session``: distance,
         errors against the session's ground truth (``distance_error_pct``, ...), gait speed and cadence
         (``gait_speed_mps``, ``median_cadence_spm``), ``session``, ``input_dir``, ``pipeline``, ``info``
-        (:func:`pdrlearn.track.evaluate.track_summary`; decision C14)."""
+        (:func:`pdrlearn.track.evaluate.track_summary`; decision C14). A ``session`` other than the one tracked
+        (another name or folder) is one :class:`DataError` line (decision B181: it was scored silently)."""
         from pdrlearn.track.evaluate import track_summary
 
+        given = session_identity(session)
+        if self.tracked is not None and given is not None and given != self.tracked:
+            raise DataError(f"summary: this track is of session {self.tracked[0]!r} ({self.tracked[1] or 'in memory'})"
+                            f", not of {given[0]!r} ({given[1] or 'in memory'}); pass the session you tracked")
         return track_summary(self, session, pipeline=pipeline)
+
+    def plot(self, session=None, *, out=None, title: str = "", dpi: float | None = None):
+        """Decision E89: the plan view of this track (``path.png`` of ``pdrlearn track``; with ``session``, its
+        ground truth too), a ``matplotlib.figure.Figure`` (shown by a notebook cell; the matplotlib backend left
+        as it was, E88); ``out``: also saved there (.png / .pdf / .svg, ``dpi``). Several tracks in one
+        figure: :func:`pdrlearn.track.plot_paths` / :func:`pdrlearn.track.path_figure`."""
+        from pdrlearn.plots import save_atomic
+        from pdrlearn.track.plots import path_figure
+
+        label = f"{self.info.get('pipeline', 'track')} {self.info.get('method', '') or ''}".strip()
+        _, fig = path_figure({label: self}, session=session, title=title)
+        if out is not None:
+            save_atomic(fig, out, dpi=dpi)
+        return fig
+
+
+def session_identity(session) -> tuple[str, str | None] | None:
+    """``(name, resolved folder or None)`` of a session (decision B181), None for anything else."""
+    import os
+
+    name = getattr(session, "name", None)
+    if not isinstance(name, str):
+        return None
+    folder = getattr(session, "folder", None)
+    return name, (os.path.realpath(folder) if folder is not None else None)
 
 
 Pipeline = Callable[..., TrackResult]
@@ -72,6 +104,7 @@ def _wrap(name: str, fn: Pipeline) -> Pipeline:
 
         result = fn(session, *args, **kwargs)
         add_position_sigma(result, session)  # decision L128: every pipeline's track gets pos_sigma_m
+        result.tracked = session_identity(session)  # decision B181: summary() checks the session it is given
         return result
 
     return session_entry(with_sigma, caller=f"pipeline '{name}'")
@@ -116,18 +149,9 @@ def keyword_names(fn: Callable, *, exclude: Iterable[str] = ()) -> list[str]:
 
 def check_keywords(pipeline: str, given: Mapping | Iterable[str], valid: Iterable[str]) -> None:
     """Raise ``TypeError`` (as Python does for an unknown keyword) when ``given`` holds a name that is not in
-    ``valid``, naming it, the closest valid name (``difflib``) and every valid one (decision L43)."""
-    valid = list(valid)
-    unknown = [k for k in given if k not in valid]
-    if not unknown:
-        return
-    parts = []
-    for k in unknown:
-        close = difflib.get_close_matches(str(k), valid, n=1)
-        parts.append(f"{k!r}" + (f" (did you mean {close[0]!r}?)" if close else ""))
-    word = "argument" if len(unknown) == 1 else "arguments"
-    raise TypeError(f"{pipeline} pipeline: unexpected keyword {word} {', '.join(parts)}; its keyword arguments "
-                    f"are {', '.join(valid)}")
+    ``valid``, naming it, the closest valid name (``difflib``) and every valid one (decision L43;
+    :func:`pdrlearn.errors.check_keyword_names`, shared with the step detectors)."""
+    check_keyword_names(f"{pipeline} pipeline", given, valid)
 
 
 def resolve_pipeline(name: str, session) -> str:
@@ -149,14 +173,16 @@ def get_pipeline(name: str) -> Pipeline:
     - ``"plasys"`` (foot unit, + waist): PLASYS M1/M2/M3 (thesis ch.7). Keyword arguments: ``method``
       (``"auto"`` default as ``pdrlearn track``: M3 with ``model``, else the M3 engine without class rules;
       ``"M1"``, ``"M2"``, ``"M3"``), ``model`` (model directory, loaded model or ``"oracle"``), ``start``
-      ((lat, lon)), ``params`` (FootDisplacement settings), ``steps`` (a string: ``"detector"``, ``"stance"`` or
+      ((lat, lon[, alt]), as ``--start``: decision L157), ``params`` (FootDisplacement settings), ``steps`` (a
+      string: ``"detector"``, ``"stance"`` or
       ``"labels"``, the session's steps table), ``heading``, ``initial_heading``,
       ``bounds``, ``bounds_scale``, ``down_mode``, ``min_confidence``, ``align``, ``rules`` (``"bayes"`` /
       ``"thesis"``), ``fused_tau_s``, ``streaming``, ``distance_gain``, ``calibration``, ``gap_yaw``, ``waist_gap_yaw``,
       ``waist_bridge`` (decisions L91 / L99: streamed on by default), ``warn_out_of_domain``, ``toe_off``
       (decision L73: the toe-off / stance / swing columns, offline), ``hard_iron_fit`` (decision L84),
       ``contacts`` (decisions E49-E51: with ``streaming``, each stride's initial contact and stride time),
-      ``altitude`` (decision L154: ``"foot"``, the default, or ``"fused"`` with the waist barometer; an option).
+      ``altitude`` (decision L154: ``"foot"``, the default, or ``"fused"`` with the waist barometer; an option),
+      ``waist_bias`` (decision W126: remove the waist gyroscope bias read at rest; off by default).
     - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
       step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``

@@ -37,15 +37,17 @@ def gap_heading_clause(foot_gaps: dict[str, list[tuple[float, float]]], how: str
             "none": "; the turn inside them is unknown (taken as 0, L90): the heading after them is uncertain"}[how]
 
 
-def long_gaps(session: Session, names: tuple[str, ...], *, min_gap_s: float = MIN_GAP_S
-              ) -> dict[str, list[tuple[float, float]]]:
-    """Stream name -> ``[(start_s, end_s), ...]`` of its gaps longer than ``min_gap_s`` (s)."""
+def long_gaps(session: Session, names: tuple[str, ...], *, min_gap_s: float = MIN_GAP_S,
+              max_gap_s: float = np.inf) -> dict[str, list[tuple[float, float]]]:
+    """Stream name -> ``[(start_s, end_s), ...]`` of its gaps longer than ``min_gap_s`` (s) and at most
+    ``max_gap_s`` (s; decision L160 asks for the short ones)."""
     out = {}
     for name in names:
         s = session.streams.get(name)
         if s is None:
             continue
-        g = [(gap.start_s, gap.start_s + gap.duration_s) for gap in s.gaps() if gap.duration_s > min_gap_s]
+        g = [(gap.start_s, gap.start_s + gap.duration_s) for gap in s.gaps()
+             if min_gap_s < gap.duration_s <= max_gap_s]
         if g:
             out[name] = g
     return out
@@ -111,3 +113,16 @@ def gap_rows(steps: pd.DataFrame, gaps: dict[str, list[tuple[float, float]]]) ->
     dur = longest_gap_in(a, b, gaps)
     k = np.flatnonzero((b > a) & (dur > 0))
     return pd.DataFrame({"start_s": a[k], "end_s": b[k], "gap_s": dur[k], "before": k + 1})
+
+
+def neighbour_heights(dz: np.ndarray, across: np.ndarray, skip: np.ndarray) -> np.ndarray:
+    """Decision L160: ``dz`` with each ``across`` stride's value replaced by the mean of the nearest strides before
+    and after it that are neither ``across`` nor ``skip`` (one of them at an end; 0 when there is none). A new
+    array."""
+    out = np.array(dz, dtype=np.float64)
+    good = np.flatnonzero(~across & ~skip)
+    for i in np.flatnonzero(across):
+        k = np.searchsorted(good, i)
+        near = [out[good[j]] for j in (k - 1, k) if 0 <= j < good.size]
+        out[i] = float(np.mean(near)) if near else 0.0
+    return out

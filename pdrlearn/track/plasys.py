@@ -52,7 +52,6 @@ from pdrlearn.kernels.distance import (
     calibrated_stride_sd,
     classifier_rate_warning,
     level_dz,
-    rate_differs,
 )
 from pdrlearn.kernels.window import (
     GROUP_STREAMS,
@@ -70,16 +69,19 @@ from pdrlearn.track.evaluate import match_by_overlap
 from pdrlearn.track.gait import add_gait_columns, streamed_gait_columns, stride_rows, turn_rows
 from pdrlearn.track.gaps import (
     FOOT_IMU,
+    MIN_GAP_S,
     drop_steps_across_gaps,
     gap_heading_clause,
     gap_rows,
     gap_warnings,
     long_gaps,
     longest_gap_in,
+    neighbour_heights,
     overlaps_any,
     overlaps_gaps,
 )
-from pdrlearn.track.geodetic import geodetic_track
+from pdrlearn.track.geodetic import geodetic_track, heading_in_radians, start_coordinate
+from pdrlearn.waist.plausibility import TWO_UNIT_FIX, still_yaw_rate_message, waist_bias_line, waist_rest_bias
 
 log = logging.getLogger(__name__)
 
@@ -112,9 +114,13 @@ METHODS: dict[str, dict] = {
 }
 
 
+#: decision B177: what to pass for the step classes, as the parameter and the CLI flag (the line fits both)
+MODEL_NEEDED = ("{what}: pass model= a trained UserModel or its directory (CLI --model DIR; `pdrlearn train`) or "
+                "model='oracle' (--model oracle) for labelled sessions")
 NO_MODEL_WARNING = ("no model: the M3 engine (ZUPT/Kalman strides) without the class rules (terrain filter, "
-                    "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass --model "
-                    "DIR (`pdrlearn train`) or --model oracle (labelled sessions) for M3")
+                    "sign, length bounds; a stride under 0.10 m of height change is level, L39); pass model= a "
+                    "trained model (CLI --model DIR; `pdrlearn train`) or model='oracle' (--model oracle, labelled "
+                    "sessions) for M3")
 
 
 def stance_strides(t: np.ndarray, stance: np.ndarray, *, max_rest_s: float = 0.3,
@@ -259,6 +265,33 @@ def classification_windows(session: Session, strides: pd.DataFrame) -> pd.DataFr
     return out
 
 
+def model_windows(session: Session, steps: pd.DataFrame) -> pd.DataFrame:
+    """Decision C51: the window a trained model classifies each row of a detected ``steps`` table on, as
+    ``track --method M3`` does: the row made a rest-to-rest stride of the foot unit (the stance of the force
+    sensors, else of the accelerometer + gyroscope, on :class:`~pdrlearn.displace.FootDisplacement`'s grid,
+    :func:`~pdrlearn.displace.foot.rest_to_rest`), then re-cut on the streaming segmenter's stride that covers
+    it (:func:`classification_windows`, decision L38). A detector's swing or contact-to-contact window is not
+    the rest-to-rest window a model is trained on (scenario D: 63 of 68 strides 'up' on the detector's own
+    bounds). One row per row of ``steps`` (``start_s``/``end_s``, s); a row in no stride keeps its own bounds,
+    a row spanning several strides (missed steps, which ``track`` splits) gets their whole span; both are
+    counted in ``attrs`` (``own_bounds``, ``several_strides``). Without the foot unit: the rows' own bounds."""
+    out = steps[["start_s", "end_s"]].astype(float).reset_index(drop=True)
+    own, several = 0, 0
+    if len(out) and session.has("fAccelerometer", "fGyroscope"):
+        foot = unit_data(session, "foot", purpose="the model's step windows")
+        stance = force_stance(session, foot.t, foot.gyr)  # as M3: the force sensors' stance when recorded
+        if stance is None:
+            stance = inertial_stance(foot.acc, foot.gyr, foot.fs)
+        s0, s1, rows = FootDisplacement().stride_bounds(foot, out, stance=stance)
+        by = pd.DataFrame({"start_s": s0, "end_s": s1, "row": rows}).groupby("row")
+        lo, hi = by["start_s"].min(), by["end_s"].max()
+        out.loc[lo.index, "start_s"], out.loc[hi.index, "end_s"] = lo.to_numpy(), hi.to_numpy()
+        own, several = len(out) - len(lo), int((by.size() > 1).sum())
+    win = classification_windows(session, out)
+    win.attrs.update(own_bounds=own, several_strides=several)
+    return win
+
+
 def classes_and_bounds(model, session: Session, steps: pd.DataFrame) -> tuple[pd.DataFrame, object]:
     """M3's step classes and the user's stride-length class bounds, from a trained model or, with
     ``model="oracle"``, from the session's own labels and ``meta.json`` (one place for the offline and the
@@ -296,7 +329,11 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
         from pdrlearn.classify import load_model
 
         model = load_model(model)
-    pred = model.predict_steps(session, steps).reset_index(drop=True)
+    from pdrlearn.classify import UserModel
+
+    # decision C51: the strides are cut already; C18's rate line is the tracker's own warning (rate_check)
+    pred = (model.predict_steps(session, steps, windows="given", warn_rate=False) if isinstance(model, UserModel)
+            else model.predict_steps(session, steps)).reset_index(drop=True)
     if len(pred) != len(steps):
         raise ModelError(f"model predicted {len(pred)} rows for {len(steps)} strides")
     bounds = model_length_bounds(model)
@@ -325,33 +362,21 @@ def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: flo
     return report
 
 
-#: the units whose sensors a classifier of ``method_<task> = "<method>/<unit>"`` reads
-_UNIT_OF = {"foot": ("foot",), "waist": ("waist",), "fused": ("foot", "waist"), "combined": ("foot", "waist")}
-_UNIT_ACC = {"foot": "fAccelerometer", "waist": "wAccelerometer"}
-
-
 def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[str]) -> dict | None:
     """Decision C18: one warning line when a unit whose classifiers classified the strides runs at a rate
-    other than the one the model was trained at (the distance calibration's rate check and tolerance,
-    :func:`~pdrlearn.kernels.distance.rate_differs`): the step windows then hold other signals (a 20 Hz
-    simulator model on a 100 Hz real foot classified 28 of 32 level strides 'up'). Returns unit ->
+    other than the one the model was trained at (:func:`pdrlearn.classify.training.rate_mismatch`, shared with
+    ``UserModel.predict_steps`` and ``evaluate``, decision C52): the step windows then hold other signals (a
+    20 Hz simulator model on a 100 Hz real foot classified 28 of 32 level strides 'up'). Returns unit ->
     ``{"trained_hz", "session_hz"}`` of the units that differ (None: none, or oracle labels / a model
     without rates)."""
-    rates = getattr(model, "sampling_rate_hz", None) or {}
-    if isinstance(model, str | Path) or not rates:
+    if isinstance(model, str | Path):
         return None
-    used = {u for c in classes.columns if c.startswith("method_")
-            for v in classes[c].dropna().astype(str).unique() if "/" in v for u in _UNIT_OF.get(v.split("/")[1], ())}
-    off = {}
-    for unit in sorted(used):
-        name = _UNIT_ACC[unit]
-        if name in rates and name in session.streams and rates[name]:
-            fs = float(session.streams[name].rate_hz)
-            if np.isfinite(fs) and rate_differs(float(rates[name]), fs):
-                off[unit] = {"trained_hz": float(rates[name]), "session_hz": fs}
+    from pdrlearn.classify.training import rate_mismatch
+
+    off = rate_mismatch(model, session, classes)
     if off:
         warnings.append(classifier_rate_warning(off, resample_hint=True))
-    return off or None
+    return off
 
 
 def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
@@ -361,12 +386,49 @@ def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]
         from pdrlearn.steps.align import align_units, apply_alignment
 
         offset, drift = align_units(session)
-        return apply_alignment(session, offset, drift), {"offset_s": float(offset), "drift": float(drift)}
+        aligned = apply_alignment(session, offset, drift)
+        info = {"offset_s": float(offset), "drift": float(drift)}
+        from pdrlearn.io.plasys import cut_to_common_span
+
+        # decision L162: the moved waist clock may leave the units apart (B83): the time both cover is kept
+        cut = cut_to_common_span(aligned.streams, session.folder or Path(session.name))
+        if cut is not None:
+            info["common_span_s"] = [float(cut[0]), float(cut[1])]
+            warnings.append(f"--align-units moved the waist clock by {-offset:+.2f} s (drift {drift * 1e6:+.0f} ppm); "
+                            f"tracked {cut[0]:.2f}-{cut[1]:.2f} s, where both units have data: dropped {cut[2]} "
+                            "(decision L162)")
+        return aligned, info
     except (ImportError, AttributeError):
         warnings.append("pdrlearn.steps.align_units not available: unit clocks not aligned")
     except DataError as exc:
         warnings.append(f"unit clocks not aligned ({exc})")
     return session, None
+
+
+#: decision W126: when W125 warns, the two-unit waist heading removes the vertical-rate bias read at the waist's
+#: standstills (``track_plasys(waist_bias=...)``; the default is what W126's rule decided)
+WAIST_BIAS_AT_REST = False
+#: decision L161: a foot-to-waist clock offset (s) over this warns on an unaligned two-unit track (a priori: under
+#: half the step period of the slowest validated walk, 70 steps/min, L95 -- :func:`align_units` cannot tell offsets
+#: a whole step apart -- and 5x the -0.04 s the simulated clean sessions read)
+UNIT_OFFSET_WARN_S = 0.2
+
+
+def unit_offset_line(session: Session) -> str | None:
+    """Decision L161: the warning line when :func:`pdrlearn.steps.align_units` finds the waist unit's steps over
+    :data:`UNIT_OFFSET_WARN_S` from the foot's; None when under it or when the steps do not align (too few)."""
+    from pdrlearn.steps.align import align_units
+
+    try:
+        offset, drift = align_units(session)
+    except DataError:
+        return None
+    if abs(offset) <= UNIT_OFFSET_WARN_S:
+        return None
+    return (f"the waist unit's steps fall {offset:+.2f} s from the foot unit's (drift {drift * 1e6:+.0f} ppm; over "
+            f"{UNIT_OFFSET_WARN_S:g} s warns, decision L161): the unit clocks are offset (a unit switched on later "
+            "that counts from 0, or a drifting clock), and the waist heading is read at the foot's strides; align "
+            "them with `pdrlearn track --align-units` (an offset a whole step period apart is not seen)")
 
 
 def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, tau_s: float = 60.0) -> np.ndarray:
@@ -551,6 +613,11 @@ def split_events(strides: pd.DataFrame, rows: np.ndarray, t: np.ndarray, stance:
     return np.where(split, land, ev)
 
 
+#: decision L160: a stride across dropped foot samples (an interval up to 1 s, not a B11 gap) takes its neighbours'
+#: height change (the BLE trial's 5 % burst loss: a flat 400 m walk +7.96 m, all from those strides)
+GAP_STRIDE_HEIGHT = True
+
+
 def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.ndarray,
                      warnings: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Decision L94: a stride faster than any human moves 0 m (a gap), with one warning line for the session,
@@ -580,6 +647,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
                  waist_bridge: bool | None = None, warn_out_of_domain: float | None = None, toe_off: bool = False,
                  hard_iron_fit: bool | None = None, contacts: bool = False, altitude: str | None = None,
+                 waist_bias: bool | None = None,
                  **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
@@ -590,7 +658,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         from the force sensors or the inertial detector) with the class rules off, and a warning (streaming:
         M2's kernel)
     model : M3 classes source: a model directory / loaded model, or ``"oracle"`` (the session's labels)
-    start : (lat, lon) degrees -> ``lat``/``lon`` columns via thesis eq. 56/57
+    start : (lat, lon) or (lat, lon, alt) in degrees (alt in m; or the CLI's ``"LAT,LON[,ALT]"``) -> ``lat``/
+        ``lon`` columns via thesis eq. 56/57, ``z`` from ``alt``; out of range: one error line (decision L157)
     params : optional dict overriding :class:`FootDisplacement` settings
     steps : "detector" (pdrlearn.steps detectors), "stance" (stance segmentation), "labels", or your own
         strides (decision L149): a foot detector's registered name (:func:`pdrlearn.steps.register_detector`),
@@ -599,7 +668,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     heading : "waist" | "foot" | "fused" (default per method; "foot" when there is no waist unit).
         "fused": the foot's stride-by-stride yaw aligned to the waist heading by an offset averaged over
         +-``fused_tau_s`` s (decision L17)
-    initial_heading : ENU heading (rad) at the start when the heading is relative (foot, or no magnetometer)
+    initial_heading : ENU heading (rad, |value| <= 2 pi, else refused as degrees: decision L158) at the start
+        when the heading is relative (foot, or no magnetometer)
     bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
         (the foot unit measures strides = two steps, see docs/decisions/localization.md)
     down_mode : "norm3" (thesis eq. 61, the norm moves x/y), "projected" (decision L51: the norm's horizontal
@@ -641,6 +711,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     hard_iron_fit : heading "fused": fit the waist magnetometer's horizontal hard-iron offset on the walk when
         it turns enough (decision L84, :func:`fit_waist_hard_iron`; None = :data:`HARD_IRON_FIT`); the fit
         is in ``info["hard_iron"]``
+    waist_bias : heading "waist"/"fused": when W125's bias warning fires, remove the waist gyroscope's vertical-rate
+        bias read at its standstills (decision W126; None = :data:`WAIST_BIAS_AT_REST`)
     contacts : streaming: give each stride its initial contact (``event_s``: the force sensors' stance onset, else
         the accelerometer impact, decisions E49/E50) and so ``stride_time_s``, ``cadence_spm``, ``speed_mps``
         and the summary's stride medians (E51; an option: E50's adoption rule was not met). Offline strides always
@@ -656,6 +728,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
     if opts:  # decision L43: a misspelled option is an error, as in the waist pipelines (it was ignored)
         check_keywords("plasys", opts, keyword_names(track_plasys))
+    raw_start = start
+    start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
+    initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
     check_warn_at(warn_out_of_domain)
     altitude = check_altitude(altitude)  # decision L154
     _check_steps_arg(steps)  # decision B173 (a bad value was a pandas traceback), L149 (own strides accepted)
@@ -663,11 +738,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     no_classes = False
     if method == "AUTO":  # decision L36: M3 with a model; without one the M3 engine, its class rules off
         method, no_classes = ("M3", False) if model is not None else (("M2", True) if streaming else ("M3", True))
-        asked = [n for n, v in (("--rules", rules), ("--min-confidence", min_confidence),
-                                ("--length-bounds", bounds)) if v is not None]
+        asked = [n for n, v in (("rules (--rules)", rules), ("min_confidence (--min-confidence)", min_confidence),
+                                ("bounds (--length-bounds)", bounds)) if v is not None]
         if no_classes and asked:  # they would be ignored: no classes, no rules
-            raise ModelError(f"plasys: {', '.join(asked)} set the class rules, which need the step classes: pass "
-                             "a trained model (--model DIR, `pdrlearn train`) or --model oracle")
+            raise ModelError(MODEL_NEEDED.format(
+                what=f"plasys: {', '.join(asked)} set the class rules, which need the step classes"))
     if method not in METHODS:
         raise DataError(f"plasys: method '{method}' is not one of auto, M1, M2, M3")
     if down_mode not in SK.DOWN_MODES:  # decision L51: offline and streamed alike
@@ -676,7 +751,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if not (isinstance(steps, str) and steps == "detector") or align:
             raise DataError("plasys streaming=True: steps and align are not streamable; leave them at their "
                             "defaults")
-        res = track_streaming(session, method=method, model=model, start=start, params=params,
+        res = track_streaming(session, method=method, model=model, start=raw_start, params=params,
                               heading=heading or "auto", initial_heading=initial_heading, bounds=bounds,
                               bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
                               calibration=calibration, rules=rules, min_confidence=min_confidence,
@@ -757,6 +832,14 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     warnings += fd_warnings
     if not len(strides):
         raise DataError(f"session '{session.name}': no stride between two rests of the foot unit")
+    if GAP_STRIDE_HEIGHT:  # decision L160: a stride across dropped samples takes its neighbours' height change
+        across = overlaps_gaps(strides, long_gaps(session, FOOT_IMU, min_gap_s=0.0, max_gap_s=MIN_GAP_S)) & ~in_gap
+        if across.any():
+            disp = disp.copy()
+            disp[:, 2] = neighbour_heights(disp[:, 2], across, in_gap)
+            warnings.append(f"{int(across.sum())} stride(s) across dropped foot samples: each takes the height "
+                            "change of its neighbours, as the fixed-interval integration loses part of its swing "
+                            "(decision L160)")
 
     classes = pd.DataFrame(index=range(len(strides)), columns=["terrain", "direction", "length_class"],
                            dtype=object)
@@ -765,12 +848,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     untrained: list[str] = []  # decision C17: the tasks a model does not classify fall back to the no-model rules
     has_waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
     work, alignment = session, None
-    if align and cfg["rules"] and has_waist:
+    if align and has_waist:  # decision L162: any method the waist heads (L13 had M3 only)
         work, alignment = _align(session, warnings)
     if cfg["rules"]:
         if model is None:
-            raise ModelError("M3 needs the step classes: pass a trained model directory (--model DIR, see "
-                             "`pdrlearn train`) or --model oracle for labelled sessions; M1/M2 need no model")
+            raise ModelError(MODEL_NEEDED.format(what="M3 needs the step classes") + "; M1/M2 need no model")
         if isinstance(model, str | Path) and str(model) != "oracle":
             from pdrlearn.classify import load_model
 
@@ -844,8 +926,16 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             hard_iron, hard_iron_info = fit_waist_hard_iron(work, strides, fd.foot_heading(0.0) + lateral,
                                                             keep=~in_gap)
         # decision L98: without a magnetometer the waist heading starts at initial_heading, as the docstring says
-        wh = WaistHeading(hard_iron_ut=hard_iron, initial_heading=initial_heading).fit_session(work)
+        rest = waist_rest_bias(work)  # decision W125: W105's check on the waist unit this heading turns by
+        bias_line = None if rest is None else still_yaw_rate_message(rest[0], TWO_UNIT_FIX)
+        warnings += [bias_line] if bias_line else []
+        yaw_bias = rest[1] if bias_line and (WAIST_BIAS_AT_REST if waist_bias is None else waist_bias) else None
+        wh = WaistHeading(hard_iron_ut=hard_iron, initial_heading=initial_heading,
+                          yaw_bias=yaw_bias).fit_session(work)  # decision W126
         warnings += wh.warnings_
+        if alignment is None:  # decision L161: the units' clocks checked when they were not aligned
+            offset_line = unit_offset_line(session)
+            warnings += [offset_line] if offset_line else []
         head = _stride_heading(wh, strides)
         if hsrc == "fused":
             head = fuse_by_segment(fd.foot_heading(0.0) + lateral, head, strides["start_s"].to_numpy(float),
@@ -911,9 +1001,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     xyz[1:, 1] = np.cumsum(length * np.sin(head))
     xyz[1:, 2] = np.cumsum(dz)
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
-                         "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2]})
+                         "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2] + start_alt})  # L157: z from alt
     if start is not None:
-        ll = geodetic_track(tuple(start), length, head)
+        ll = geodetic_track(start, length, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     # decision L65: a negative length only with a backward class (else |length| along heading + pi, same path)
     rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object))
@@ -1073,6 +1163,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     by the waist's turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest
     after it); False: 0 (L90).
     """
+    start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
+    initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
     if method not in ("M2", "M3"):
         raise DataError(f"plasys streaming: method '{method}' is not streamable; use M2 or M3")
     if heading not in SK.HEADING_SOURCES:
@@ -1105,6 +1197,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                        + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"))
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(no_waist_heading(session))
+    elif heading in ("auto", "waist-gyro"):  # decision W125: the waist gyroscope heads the strides, as `run`'s
+        bias_line = waist_bias_line(session)
+        warnings += [bias_line] if bias_line else []
     classes = pd.DataFrame(index=range(len(table)), columns=["terrain", "direction", "length_class"], dtype=object)
     model_bounds, domain, off_rate = None, None, None
     if method == "M3":
@@ -1241,9 +1336,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["unit"] = "foot"
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
-                         "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2]})
+                         "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2] + start_alt})  # L157: z from alt
     if start is not None:
-        ll = geodetic_track(tuple(start), length, head)
+        ll = geodetic_track(start, length, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
     if posture.any():  # decision B131: no row for them, as the runtime emits none (they moved 0 m)
         table, traj, in_gap = (table[~posture].reset_index(drop=True),

@@ -1,4 +1,4 @@
-"""Figures of tracked paths (Agg backend)."""
+"""Figures of tracked paths (drawn without touching the matplotlib backend, decision E88)."""
 
 from __future__ import annotations
 
@@ -37,11 +37,12 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
 
 def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None, title: str = ""):
     """The figure of :func:`plot_paths` (not saved): ``(pyplot, figure)``; its axes: the plan view, then the
-    altitude panel when there is one."""
-    import matplotlib
-
-    matplotlib.use("Agg")
+    altitude panel when there is one. The figure is a :func:`pdrlearn.plots.new_figure` (decision E88: the
+    matplotlib backend, e.g. a notebook's, is left as it was; the figure shows itself in a notebook cell)."""
     import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle
+
+    from pdrlearn.plots import new_figure
 
     t0, first, first_info = None, None, {}
     lines = []  # (label, t, x, y, z, style)
@@ -71,16 +72,16 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
         lines.append((label, gt, gx, gy, gz, {"ls": "--", "lw": 1.0, "color": "k"}))
     climbs = any(len(z) and np.nanmax(z) - np.nanmin(z) >= ALTITUDE_PANEL_M for *_, z, _ in lines)
     if climbs:
-        fig, (ax, az) = plt.subplots(2, 1, figsize=(7, 8.6), height_ratios=(3, 1.1), layout="constrained")
+        fig, (ax, az) = new_figure(2, 1, figsize=(7, 8.6), height_ratios=(3, 1.1), layout="constrained")
     else:
-        fig, ax = plt.subplots(figsize=(7, 6), layout="constrained")
+        fig, ax = new_figure(figsize=(7, 6), layout="constrained")
     for label, _, x, y, _, style in lines:
         ax.plot(x, y, label=label, **style)
     for r in paths.values():  # decision L128: the 2-sigma circle of the position uncertainty at the track's end
         tr = r.trajectory
         if "pos_sigma_m" in tr and len(tr) and float(tr["pos_sigma_m"].iloc[-1]) > 0:
             radius = 2.0 * float(tr["pos_sigma_m"].iloc[-1])
-            ax.add_patch(plt.Circle((float(tr["x"].iloc[-1]), float(tr["y"].iloc[-1])), radius, alpha=0.15,
+            ax.add_patch(Circle((float(tr["x"].iloc[-1]), float(tr["y"].iloc[-1])), radius, alpha=0.15,
                                     label=f"end position, 2-sigma radius {radius:.1f} m (model, not a guarantee)"))
     ax.set_aspect("equal", adjustable="datalim")
     if absolute:

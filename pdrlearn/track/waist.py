@@ -26,6 +26,7 @@ from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.gait import waist_step_times
 from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
+from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.events import (
@@ -94,40 +95,22 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine
     return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector="pll+ic" if refine_ic else "pll")
 
 
-def heading_in_radians(value: float, name: str) -> float:
-    """Decision W81: a start heading given to the Python API is in radians; a magnitude above 2 pi is a value in
-    degrees (the CLI's ``--initial-heading DEG``) and is one error line naming the unit, not a silent 90 rad."""
-    import math
-
-    v = float(value)
-    if not math.isfinite(v) or abs(v) > 2 * math.pi:
-        raise DataError(f"{name}={value!r}: the heading is in radians (ENU, counter-clockwise from east; "
-                        f"|value| <= 2 pi); for degrees pass math.radians({value!r}) (the CLI's --initial-heading "
-                        "takes degrees)")
-    return v
-
-
-def _start(start, initial_heading: float) -> tuple[float, float, float, tuple[float, float] | None]:
-    """``(x0, y0, heading0, latlon)`` from ``start``: None, a dict ``x``/``y``/``heading_rad`` (m, rad)
-    or a ``(lat, lon)`` pair in degrees (the ``pdrlearn track --start`` form). Headings are checked to be radians
+def _start(start, initial_heading: float) -> tuple[float, float, float, tuple[float, float] | None, float]:
+    """``(x0, y0, heading0, latlon, alt)`` from ``start``: None, a dict ``x``/``y``/``heading_rad`` (m, rad)
+    or ``(lat, lon[, alt])`` in degrees (alt in m; the ``pdrlearn track --start`` form, one check for both:
+    :func:`~pdrlearn.track.geodetic.start_coordinate`, decision L157). Headings are checked to be radians
     (:func:`heading_in_radians`, decision W81)."""
     initial_heading = heading_in_radians(initial_heading, "initial_heading")
     if isinstance(start, dict) and isinstance(start.get("heading_rad"), int | float):
         start = {**start, "heading_rad": heading_in_radians(start["heading_rad"], "start heading_rad")}
-    if start is None:
-        return 0.0, 0.0, initial_heading, None
     if isinstance(start, dict):
         try:
             return (float(start.get("x", 0.0)), float(start.get("y", 0.0)),
-                    float(start.get("heading_rad", initial_heading)), None)
+                    float(start.get("heading_rad", initial_heading)), None, 0.0)
         except (TypeError, ValueError):
             raise DataError(f"start {start!r}: x, y, heading_rad must be numbers") from None
-    if isinstance(start, list | tuple) and len(start) == 2:
-        try:
-            return 0.0, 0.0, initial_heading, (float(start[0]), float(start[1]))
-        except (TypeError, ValueError):
-            pass
-    raise DataError(f"start {start!r}: pass (lat, lon) in degrees or a dict with x, y (m) and heading_rad")
+    latlon, alt = start_coordinate(start)
+    return 0.0, 0.0, initial_heading, latlon, alt
 
 
 def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: float,
@@ -137,13 +120,14 @@ def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: 
     (m) at ``t0`` and at each step's end (decision W89; None: 0 throughout), each step's ``dz_m`` its change."""
     from pdrlearn.track.geodetic import geodetic_track
 
-    x0, y0, h0, latlon = _start(start, initial_heading)
+    x0, y0, h0, latlon, alt = _start(start, initial_heading)
     out = steps.copy()
     lengths = out["length_m"].to_numpy(float)
     head = np.angle(np.exp(1j * (out["heading_rad"].to_numpy(float) + h0)))
     out["heading_rad"] = head
     z = np.zeros(len(out) + 1) if z is None else np.asarray(z, dtype=float)
     out["dz_m"] = np.diff(z)
+    z = z + alt  # decision L157: start=(lat, lon, alt) starts z at alt, as --start LAT,LON,ALT
     traj = pd.DataFrame({"t": np.concatenate([[t0], out["end_s"].to_numpy(float)]),
                          "x": x0 + np.concatenate([[0.0], np.cumsum(lengths * np.cos(head))]),
                          "y": y0 + np.concatenate([[0.0], np.cumsum(lengths * np.sin(head))]),

@@ -77,7 +77,7 @@ def step_metrics(steps: pd.DataFrame, session: Session, *, tolerance_s: float = 
     out.update(step_f1=sc["f1"], step_precision=sc["precision"], step_recall=sc["recall"],
                ic_timing_mean_ms=1e3 * sc["timing_error_mean_s"],
                ic_timing_sd_ms=1e3 * sc["timing_error_sd_s"],
-               n_detected=sc["count"], n_reference=sc["reference_count"],
+               n_detected=sc["scored_count"], n_reference=sc["reference_count"],
                n_unscored=sc["unscored_untimed"] + sc["unscored_same_foot_gap"],
                step_f1_same_foot_gaps_scored=sc["f1_same_foot_gaps_scored"])
     second = session.extras.get("ics_stereophoto")

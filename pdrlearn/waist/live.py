@@ -176,7 +176,7 @@ class WaistTracker(WaistStream):
         if isinstance(start, list | tuple):
             raise DataError("WaistTracker: start=(lat, lon) is not supported live; pass {'x': m, 'y': m, "
                             "'heading_rad': rad} and convert the positions yourself")
-        x0, y0, h0, _ = _start(start, float(o["initial_heading"]))
+        x0, y0, h0, _, _ = _start(start, float(o["initial_heading"]))
         rot, self._declared, self._declared_origin = _declared_frame(frame, meta)
         if rot is not None and self._declared is None:  # a matrix (an AxisFrame gets B108's check)
             from pdrlearn.kernels.frames import mirrored_line

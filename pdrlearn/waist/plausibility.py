@@ -177,19 +177,58 @@ STILL_YAW_RATE_WARN_RPS = 0.015
 
 
 def still_yaw_rate(t: np.ndarray, acc_nav: np.ndarray, gyr_nav: np.ndarray, fs: float,
-                   bias_rps: float = 0.0) -> tuple[float, float, float] | None:
-    """``(rate, t0, t1)``: the mean vertical angular rate (rad/s, ``gyr_nav[:, 2]`` less the calibrated
-    ``bias_rps``) over the first standstill of :data:`STILL_S` (``standstill_mask``), and its times; None when
-    the unit never stands still that long (decision W105)."""
-    lo, hi = STILL_S
-    for a, b in runs(standstill_mask(acc_nav, gyr_nav, fs)):
-        if t[b - 1] - t[a] >= lo - 1.5 / fs:
-            stop = a + int(np.searchsorted(t[a:b], t[a] + hi, side="right"))
-            return float(np.mean(gyr_nav[a:stop, 2])) - bias_rps, float(t[a]), float(t[stop - 1])
+                   bias_rps: float = 0.0, *, vertical: np.ndarray | None = None) -> tuple[float, float, float] | None:
+    """``(rate, t0, t1)``: the mean vertical angular rate (rad/s, ``gyr_nav[:, 2]``, or ``vertical`` when given,
+    less the calibrated ``bias_rps``) over the first standstill of :data:`STILL_S` (``standstill_mask``: magnitudes,
+    so any frame), and its times; None when the unit never stands still that long (decision W105)."""
+    up = gyr_nav[:, 2] if vertical is None else np.asarray(vertical, dtype=float)
+    for a, stop in still_periods(t, acc_nav, gyr_nav, fs):
+        return float(np.mean(up[a:stop])) - bias_rps, float(t[a]), float(t[stop - 1])
     return None
 
 
-def still_yaw_rate_message(found: tuple[float, float, float] | None) -> str | None:
+def still_periods(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, fs: float):
+    """W105's still periods: ``(start, stop)`` sample indices (stop exclusive) of each standstill of at least
+    ``STILL_S[0]`` s (``standstill_mask``), cut to its first ``STILL_S[1]`` s, in time order."""
+    lo, hi = STILL_S
+    for a, b in runs(standstill_mask(acc, gyr, fs)):
+        if t[b - 1] - t[a] >= lo - 1.5 / fs:
+            yield a, a + int(np.searchsorted(t[a:b], t[a] + hi, side="right"))
+
+
+def waist_bias_line(session: Session) -> str | None:
+    """Decision W125: W105's warning line for a session's waist unit as the two-unit tracks read it (``track``'s
+    PLASYS path, ``run``): :func:`waist_rest_bias`'s first standstill; None without a waist unit, without a
+    standstill, or under :data:`STILL_YAW_RATE_WARN_RPS`."""
+    found = waist_rest_bias(session)
+    return None if found is None else still_yaw_rate_message(found[0], TWO_UNIT_FIX)
+
+
+def waist_rest_bias(session: Session) -> tuple[tuple[float, float, float] | None, np.ndarray] | None:
+    """Decisions W125/W126: the waist unit's vertical rate at rest as the two-unit heading reads it: the waist
+    gyroscope (body FLU, ``orient.unit_data``) on the low-passed accelerometer's up direction, as the waist
+    heading's complementary filter turns by it (thesis ch.7.1). Returns ``(first, rests)``: W105's
+    :func:`still_yaw_rate` over the first standstill (or None), and ``rests`` (k, 2) = (mid time s, mean rate rad/s)
+    of every standstill of at least ``STILL_S[0]`` (its first ``STILL_S[1]`` s; W126's drifting-bias profile); None
+    without a readable waist unit."""
+    from pdrlearn.errors import MissingSensorError
+    from pdrlearn.orient import _kernels as OK
+    from pdrlearn.orient import unit_data
+    from pdrlearn.signal import lowpass
+
+    if not session.has("wAccelerometer", "wGyroscope"):
+        return None
+    try:
+        u = unit_data(session, "waist", purpose="waist gyroscope bias check")
+    except (MissingSensorError, DataError):  # the heading that needs the unit says why it cannot read it
+        return None
+    up = OK.yaw_rate(lowpass(u.acc, min(1.0, 0.4 * u.fs), u.fs), u.gyr)  # as WaistHeading.estimate (thesis ch.7.1)
+    rests = [(0.5 * (u.t[a] + u.t[stop - 1]), float(np.mean(up[a:stop])))
+             for a, stop in still_periods(u.t, u.acc, u.gyr, u.fs)]
+    return still_yaw_rate(u.t, u.acc, u.gyr, u.fs, vertical=up), np.array(rests, dtype=float).reshape(-1, 2)
+
+
+def still_yaw_rate_message(found: tuple[float, float, float] | None, fix: str | None = None) -> str | None:
     """Decision W105's one warning line when the rate at rest exceeds :data:`STILL_YAW_RATE_WARN_RPS`."""
     if found is None or abs(found[0]) <= STILL_YAW_RATE_WARN_RPS:
         return None
@@ -198,5 +237,11 @@ def still_yaw_rate_message(found: tuple[float, float, float] | None) -> str | No
     return (f"the waist gyroscope reads {rate:+.4f} rad/s ({deg:+.2f} deg/s) about the vertical while the unit stands "
             f"still ({t0:.1f}-{t1:.1f} s; over {STILL_YAW_RATE_WARN_RPS:g} warns, decision W105): a gyroscope bias, "
             f"which turns the path by {abs(deg) * 60:.0f} deg a minute; a phone app's uncalibrated gyroscope "
-            "(Android's 'gyroscope uncalibrated') has one: export the calibrated gyroscope; for another IMU, "
-            "calibrate the bias on a walk with whole turns ('pdrlearn calibrate DIR --turns N')")
+            "(Android's 'gyroscope uncalibrated') has one: export the calibrated gyroscope; "
+            + (fix or "for another IMU, calibrate the bias on a walk with whole turns ('pdrlearn calibrate DIR "
+               "--turns N')"))
+
+
+#: W125: the way out the two-unit tracks name (the foot's ZUPT-corrected yaw does not read the waist gyroscope)
+TWO_UNIT_FIX = ("the two-unit track heads by the waist unit: track the foot unit's own yaw with --units foot, or "
+                "re-record after the waist unit's gyroscope offset is calibrated (decision W125)")

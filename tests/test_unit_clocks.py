@@ -1,0 +1,69 @@
+"""Decisions L161/L162: the two-unit track warns when the foot and waist clocks are offset, `track --align-units`
+aligns them, and `--common-span` says the offset it applies (trial `ble`, session 24, finding 6)."""
+
+from __future__ import annotations
+
+import json
+import logging
+
+import pytest
+
+from pdrlearn.cli import main
+from pdrlearn.io import write_session
+from pdrlearn.io.session import Stream
+from pdrlearn.sim import simulate
+from pdrlearn.track.plasys import track_plasys
+
+
+def _shifted(session, dt: float, cut_s: float = 0.0):
+    """The waist clock read ``dt`` s later; ``cut_s``: the waist's first seconds dropped and its clock re-zeroed
+    (a pod switched on later that counts from 0)."""
+    s = session.copy()
+    for n, st in list(s.streams.items()):
+        if st.placement == "waist":
+            keep = st.t >= st.t[0] + cut_s
+            s.streams[n] = Stream(n, st.t[keep] - cut_s + dt, st.values[keep])
+    return s
+
+
+@pytest.fixture(scope="module")
+def walk():
+    logging.disable(logging.WARNING)
+    try:
+        return simulate("walk", 1796, length_m=40, rate_hz=50.0)
+    finally:
+        logging.disable(logging.NOTSET)
+
+
+def _l161(r) -> list[str]:
+    return [w for w in r.info["warnings"] if "decision L161" in w]
+
+
+def test_an_unaligned_two_unit_track_warns_of_offset_clocks_and_align_removes_it(walk):
+    assert not _l161(track_plasys(walk, method="M2"))
+    off = _shifted(walk, 0.3)
+    (line,) = _l161(track_plasys(off, method="M2"))
+    assert "--align-units" in line and "+0.2" in line
+    aligned = track_plasys(off, method="M2", align=True)  # L162: any method with a waist unit, not M3 only
+    assert not _l161(aligned)
+    assert aligned.info["unit_alignment"]["offset_s"] == pytest.approx(0.25, abs=0.05)
+
+
+def test_track_align_units_on_the_cli(walk, tmp_path, capsys):
+    folder = write_session(_shifted(walk, 0.3), tmp_path / "S")
+    assert main(["track", str(folder), "--align-units", "--out", str(tmp_path / "a")]) == 0
+    info = json.loads((tmp_path / "a" / "summary.json").read_text())["info"]
+    assert info["unit_alignment"]["offset_s"] == pytest.approx(0.25, abs=0.05)
+    assert "decision L161" not in capsys.readouterr().err
+    assert main(["track", str(folder), "--align-units", "--streaming", "--out", str(tmp_path / "b")]) == 2
+    assert "--align-units" in capsys.readouterr().err
+    assert main(["track", str(folder), "--align-units", "--pipeline", "waist-pendulum",
+                 "--out", str(tmp_path / "c")]) == 2
+
+
+def test_common_span_says_it_applies_no_clock_offset(walk, tmp_path, capsys):
+    folder = write_session(_shifted(walk, 0.0, cut_s=2.0), tmp_path / "S")  # the waist switched on 2 s later
+    assert main(["track", str(folder), "--common-span", "--out", str(tmp_path / "a")]) == 0
+    err = capsys.readouterr().err
+    assert "the waist unit started +0.00 s and stopped -2.00 s from the foot unit" in err
+    assert "applies no clock offset (0.00 s)" in err and "--align-units" in err
