@@ -302,7 +302,7 @@ def _validators() -> dict[tuple[str, str], object]:
     v = {
         ("steps", "detector"): _one_of(["auto", *DETECTORS]),
         ("track", "pipeline"): _one_of(["auto", *PIPELINES]),
-        ("track", "detector"): _one_of([n for n in DETECTORS if DETECTORS[n].unit == "foot"]),  # decision L149
+        ("track", "detector"): _one_of(list(DETECTORS)),  # decisions L149 (foot), E85 (waist: the lower back)
         ("score-steps", "unit"): _one_of(["foot", "waist"]),  # decision steps 39
         ("track", "method"): _one_of(["auto", *PLASYS_METHODS], case=False),
         ("track", "rules"): _one_of(RULES),
@@ -606,6 +606,7 @@ def test_the_checker_catches_stale_commands(text, why):
 @pytest.mark.parametrize("text", [
     "pdrlearn steps DIR --detector {auto,accel,accel-force,pelvic-gyro,pll,waist-ic} --out steps.csv --json",
     "pdrlearn track DIR --method M3 --model MODEL_DIR|oracle --start LAT,LON --out OUT --json -v",
+    "pdrlearn track DIR --detector pelvic-gyro --length-model weinberg:k=0.45 --out OUT",  # E85 (review s24)
     "pdrlearn simulate --scenario D --user-seed 1 --out walks/D",
     "pdrlearn train a b c --out models/u1 --tasks terrain --methods heuristic,dtw,svm,nn,ensemble --cv 5",
     "pdrlearn run BUNDLE --protocol - --out OUT",

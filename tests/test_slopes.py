@@ -160,3 +160,8 @@ def test_track_cli_altitude_option(tmp_path):
     r = CliRunner().invoke(app, ["track", str(tmp_path / "ramp"), "--pipeline", "waist-pendulum", "--altitude",
                                  "fused", "--out", str(tmp_path / "h")])
     assert r.exit_code != 0 and "--altitude" in r.output + str(r.exception)
+    # review s24: --units foot left the barometer out and the warning said the session lacked it
+    r = CliRunner().invoke(app, ["track", str(tmp_path / "ramp"), "--altitude", "fused", "--units", "foot",
+                                 "--out", str(tmp_path / "i")])
+    assert r.exit_code != 0 and "--altitude fused reads the waist barometer (wBarometer.csv), which --units foot " \
+        "leaves out" in str(r.exception) and not (tmp_path / "i").exists()

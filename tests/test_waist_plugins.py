@@ -205,6 +205,12 @@ def test_track_cli_waist_detector_and_length_model(tmp_path: Path, capsys):
     assert "--length-model sets the lower-back pipelines' step length" in capsys.readouterr().err
     assert main(["track", sess, "--pipeline", "waist-pll", "--detector", "accel", "--out", str(tmp_path / "d")]) == 2
     assert "--detector accel detects the foot's strides" in capsys.readouterr().err
+    # review s24 (B191): a pipeline chosen by --detector / --length-model is named as such, not as "got --pipeline"
+    assert main(["track", sess, "--detector", "pelvic-gyro", "--altitude", "fused", "--out", str(tmp_path / "e")]) == 2
+    err = capsys.readouterr().err
+    assert "plasys pipeline only (--detector pelvic-gyro chose --pipeline waist-pendulum" in err
+    assert main(["track", sess, "--pipeline", "waist-pll", "--altitude", "fused", "--out", str(tmp_path / "f")]) == 2
+    assert "(got --pipeline waist-pll, a lower-back pipeline" in capsys.readouterr().err
 
 
 MY_PLUGIN = '''
@@ -258,3 +264,28 @@ def test_the_docs_weinberg_plugin_runs_and_equals_the_builtin():
         np.testing.assert_allclose(mine, WeinbergLength(k=0.5).predict(w["steps"], w["imu"], w["profile"]))
     finally:
         STEP_LENGTHS._items.pop("my-weinberg", None)
+
+
+def test_a_spec_keeps_its_own_settings_and_text_settings_are_checked():
+    """Review s24: ``pendulum:merge_fragments=false`` was overwritten by the pipeline option's default, a misspelt
+    ``pause_steps`` ran W111 silently, and an instance's look-ahead settings ran under realtime."""
+    s = _walk()["session"]
+    f = get_pipeline("waist-pendulum")
+    spec = f(s, length_model="pendulum:merge_fragments=false")
+    inst = f(s, length_model=PendulumLength(merge_fragments=False))
+    assert not spec.steps["merged"].any() and f(s).steps["merged"].any()
+    pd.testing.assert_frame_equal(spec.steps, inst.steps)
+    assert "pause_factor" in f(s, length_model="pendulum:pause_steps=progression").steps
+    assert "pause_factor" not in f(s, length_model="pendulum", pause_steps=False).steps
+    with pytest.raises(DataError, match=r"pause_steps 'progresion' is not one of false, true, \"progression\""):
+        get_step_length("pendulum:pause_steps=progresion")
+    with pytest.raises(DataError, match="length_smoothing 'nosuch' is not one of"):
+        PendulumLength(length_smoothing="nosuch")
+    with pytest.raises(DataError, match="merge_fragments='no' is not true or false"):
+        get_step_length("pendulum:merge_fragments=no")  # text, which was truthy: fragments merged
+    with pytest.raises(DataError, match="weinberg: k='abc' is not a number"):
+        get_step_length("weinberg:k=abc")  # a TypeError traceback at the first step
+    with pytest.raises(DataError, match="pendulum: pause_steps 'progression' looks three steps ahead"):
+        f(s, length_model=PendulumLength(pause_steps="progression"), realtime=True)
+    with pytest.raises(DataError, match="pendulum: length_smoothing 'mobgap' looks up to 1 s ahead"):
+        f(s, length_model="pendulum:length_smoothing=mobgap", realtime=True)

@@ -298,7 +298,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     if altitude is not None:  # decision L154: an unknown source is one line before any session
         from pdrlearn.track.altitude import check_altitude
 
-        check_altitude(altitude)
+        if check_altitude(altitude) == "fused" and "waist" not in (parse_units(units) or ("waist",)):
+            raise DataError(f"track: --altitude fused reads the waist barometer (wBarometer.csv), which --units "
+                            f"{units} leaves out: add waist to --units (--units foot,waist) or drop --altitude")
     if length_bounds is not None:
         try:
             bounds = [float(v) for v in length_bounds.split(",")]
@@ -346,8 +348,11 @@ def track_session(session_dir: Path, settings: dict) -> dict:
     content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
     waist_asked = o.get("detector_unit") == "waist" or o.get("length_model") is not None  # E84, E85
+    chosen_by = None  # the option that chose the pipeline, for the lines that name it
     if pipeline == "auto" and waist_asked:
         pipeline = "waist-pendulum"  # a lower-back detector or step-length model: the user means the lower back
+        chosen_by = (f"--detector {o['detector']}" if o.get("detector_unit") == "waist" else
+                     f"--length-model {o['length_model']}")
     if waist_asked and not session.has("wAccelerometer"):
         asked = (f"--detector {o['detector']} detects lower-back steps" if o.get("detector_unit") == "waist" else
                  f"--length-model {o['length_model']} sets the lower-back step length")
@@ -378,7 +383,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                                                "--detector": o.get("detector_unit") == "foot",
                                                "--altitude": o.get("altitude") is not None,
                                                "--align-units": bool(o.get("align_units"))},
-                            gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"])
+                            gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"],
+                            chosen_by=chosen_by)
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
     if o.get("resample", "native") != "native":  # decision B113: the session at the model's rate, or refused
@@ -557,16 +563,18 @@ _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
 
 
 def _refuse_ignored_options(pipeline: str, method: str, given: dict[str, bool], *, gnss, gnss_period, fixes,
-                            fix_period) -> None:
+                            fix_period, chosen_by: str | None = None) -> None:
     """One error line for an option the chosen pipeline (or PLASYS method, or missing companion option)
     would ignore (decision B27): `track --pipeline waist-pendulum --method M3 --model X` tracked without
-    the model and exited 0."""
+    the model and exited 0. ``chosen_by``: the option that chose the pipeline when no --pipeline was given
+    (decision B191)."""
     asked = [o for o in _PLASYS_OPTIONS if given.get(o)]
     if pipeline != "plasys" and asked:
         one = len(asked) == 1
         it = "it" if one else "them"
-        raise DataError(f"{', '.join(asked)} appl{'ies' if one else 'y'} to the plasys pipeline only (got --pipeline "
-                        f"{pipeline}, a lower-back pipeline without step classes, which ignores {it}); drop {it}, "
+        got = f"got --pipeline {pipeline}" if chosen_by is None else f"{chosen_by} chose --pipeline {pipeline}"
+        raise DataError(f"{', '.join(asked)} appl{'ies' if one else 'y'} to the plasys pipeline only ({got}, "
+                        f"a lower-back pipeline without step classes, which ignores {it}); drop {it}, "
                         "or track the foot unit with --pipeline plasys")
     m = method.upper()
     asked = [o for o in _M3_OPTIONS if given.get(o)]

@@ -48,8 +48,11 @@ from pdrlearn.waist.heading import (
     untracked_turn_message,
 )
 from pdrlearn.waist.lengths import (
+    PAUSE_STEPS_VALUES,  # noqa: F401  (the pause_steps option's values, here since W122)
     StepLengthModel,
+    check_length_smoothing,
     check_lengths,
+    check_pause_steps,
     get_step_length,
     step_frequency,
     walking_sequences,
@@ -307,8 +310,6 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "sit_veto": False, "pause_steps": False, "vault_veto": False}
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
-#: the values of the ``pause_steps`` option: off, W111's one period, W122's trunk travel over a standstill
-PAUSE_STEPS_VALUES = (False, True, "progression")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 
@@ -406,9 +407,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if pipeline not in ("waist-pll", "waist-pendulum"):
         raise DataError(f"unknown waist pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     p, warnings = resolve_params(session, params)
-    by_name = not isinstance(length_model, StepLengthModel)
-    model = get_step_length(length_model if length_model is not None else
-                            ("pendulum" if pipeline == "waist-pendulum" else "frequency"))  # E84
+    spec = length_model if length_model is not None else ("pendulum" if pipeline == "waist-pendulum" else
+                                                          "frequency")
+    model = get_step_length(spec)  # E84
     if not model.uses_leg_length:  # e.g. the frequency model (waist-pll's) has no leg length (W62)
         warnings = [w for w in warnings if not w.startswith(NO_SENSOR_HEIGHT)]
     det = None if detector is None else waist_detector(detector, realtime)  # E85
@@ -424,27 +425,20 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
     integrate_stops = bool(o["integrate_stops"])
-    smoothing = str(o["length_smoothing"])
-    if smoothing not in K.LENGTH_SMOOTHING_MODES:
-        raise DataError(f"length_smoothing '{smoothing}' is not one of {', '.join(K.LENGTH_SMOOTHING_MODES)} "
-                        "(decision W56); fix the option or the PARAMS.json \"options\"")
-    if by_name:  # E84: a model named by the pipeline or the user takes the options named like its settings
-        model.set_params(**{k: v for k, v in {"merge_fragments": bool(o["merge_fragments"]),
-                                               "length_smoothing": smoothing,
-                                               "pause_steps": o["pause_steps"] if not realtime else False}.items()
-                            if k in model.get_params()})
-    if smoothing != "none" and realtime:
-        raise DataError(f"length_smoothing '{smoothing}' looks up to 1 s ahead and the realtime detector does not "
-                        "(decision W56); drop realtime or set length_smoothing to none")
+    smoothing = check_length_smoothing(o["length_smoothing"])  # W56
     if o["sit_veto"] not in SIT_VETO_VALUES:
         raise DataError(f"sit_veto {o['sit_veto']!r} is not one of false, true, \"rhythm\" (decisions W104, W109); "
                         "fix the option or the PARAMS.json \"options\"")
     if o["vault_veto"] not in VAULT_VETO_VALUES:
         raise DataError(f"vault_veto {o['vault_veto']!r} is not one of false, true, \"turns\" (decisions W119, "
                         "W127); fix the option or the PARAMS.json \"options\"")
-    if o["pause_steps"] not in PAUSE_STEPS_VALUES:
-        raise DataError(f"pause_steps {o['pause_steps']!r} is not one of false, true, \"progression\" (decisions "
-                        "W111, W122); fix the option or the PARAMS.json \"options\"")
+    check_pause_steps(o["pause_steps"])  # W111, W122
+    if smoothing != "none" and realtime:
+        raise DataError(f"length_smoothing '{smoothing}' looks up to 1 s ahead and the realtime detector does not "
+                        "(decision W56); drop realtime or set length_smoothing to none")
+    _configure_model(model, None if isinstance(spec, StepLengthModel) else spec, realtime, {
+        "merge_fragments": bool(o["merge_fragments"]), "length_smoothing": smoothing,
+        "pause_steps": o["pause_steps"] if not realtime else False})
     if p.source == "calibrated" and p.pipeline not in (None, pipeline):
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
@@ -544,6 +538,29 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]), z)
+
+
+def _configure_model(model: StepLengthModel, spec, realtime: bool, options: dict) -> None:
+    """Decision E84: a model named by the pipeline or the user (``spec``: its name or ``"name:key=value,..."``;
+    None for an instance, which keeps its own settings) takes the pipeline's options named like its settings,
+    except those the spec sets itself (``--length-model pendulum:merge_fragments=false`` was overwritten by the
+    option's default). The realtime detector refuses a setting that looks ahead (W56's smoothing, W111 / W122's
+    pause steps; the options are ignored or refused there already)."""
+    from pdrlearn.plugins import parse_spec
+
+    own = parse_spec(spec, "step-length model")[1] if isinstance(spec, str) else {}
+    if spec is not None:
+        model.set_params(**{k: v for k, v in options.items() if k in model.get_params() and k not in own})
+    if not realtime:
+        return
+    mine = model.get_params()
+    if str(mine.get("length_smoothing", "none")) != "none":
+        raise DataError(f"step-length model {model.name}: length_smoothing '{mine['length_smoothing']}' looks up to "
+                        "1 s ahead and the realtime detector does not (decision W56); drop realtime or the setting")
+    if mine.get("pause_steps"):
+        raise DataError(f"step-length model {model.name}: pause_steps {mine['pause_steps']!r} looks three steps "
+                        "ahead and the realtime detector does not (decisions W111, W122); drop realtime or the "
+                        "setting")
 
 
 def waist_detector(detector, realtime: bool):

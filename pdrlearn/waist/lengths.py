@@ -87,6 +87,27 @@ def check_lengths(lengths, steps: pd.DataFrame, name: str) -> np.ndarray:
     return v
 
 
+#: the values of the pendulum's ``pause_steps``: off, W111's one period, W122's trunk travel over a standstill
+PAUSE_STEPS_VALUES = (False, True, "progression")
+
+
+def check_pause_steps(value):
+    """``value`` if it is one of :data:`PAUSE_STEPS_VALUES`, else one line naming them (decisions W111, W122)."""
+    if value not in PAUSE_STEPS_VALUES:
+        raise DataError(f"pause_steps {value!r} is not one of false, true, \"progression\" (decisions W111, W122); "
+                        "fix the option, the PARAMS.json \"options\" or the model's setting")
+    return value
+
+
+def check_length_smoothing(mode) -> str:
+    """``mode`` as text if it is one of the W56 smoothing modes, else one line naming them."""
+    mode = str(mode)
+    if mode not in K.LENGTH_SMOOTHING_MODES:
+        raise DataError(f"length_smoothing '{mode}' is not one of {', '.join(K.LENGTH_SMOOTHING_MODES)} "
+                        "(decision W56); fix the option, the PARAMS.json \"options\" or the model's setting")
+    return mode
+
+
 class PendulumLength(StepLengthModel):
     """``K 2 sqrt(2 L h - h^2) + F`` (seed 003 eq. 1; ``h`` the vertical excursion IC to next IC, decision W10),
     K, F and L from the profile; the waist-pendulum pipeline's model. Settings (the pipeline's options of the same
@@ -99,15 +120,23 @@ class PendulumLength(StepLengthModel):
                  pause_steps: bool | str = False):
         self._store(locals())
 
+    def _check_params(self, params: dict) -> None:
+        """The numbers (C21) and the text settings' values: a misspelt ``pause_steps`` ran W111 silently."""
+        super()._check_params(params)
+        if "merge_fragments" in params and params["merge_fragments"] not in (True, False):
+            raise DataError(f"step-length model pendulum: merge_fragments={params['merge_fragments']!r} is not true or "
+                            "false (decision W27); write pendulum:merge_fragments=false")
+        if "length_smoothing" in params:
+            check_length_smoothing(params["length_smoothing"])
+        if "pause_steps" in params:
+            check_pause_steps(params["pause_steps"])
+
     def predict(self, steps, signals, profile):
         return self.transform(steps, signals, profile)["length_m"].to_numpy(float)
 
     def transform(self, steps, signals, profile):
         check_steps(steps, self.name)
-        mode = str(self.length_smoothing)
-        if mode not in K.LENGTH_SMOOTHING_MODES:
-            raise DataError(f"length_smoothing '{mode}' is not one of {', '.join(K.LENGTH_SMOOTHING_MODES)} "
-                            "(decision W56); fix the option or the PARAMS.json \"options\"")
+        mode = check_length_smoothing(self.length_smoothing)
         n, fs, p = len(steps), signals.fs, profile
         idx = sample_index(steps, signals)
         has_next = steps["has_next"].to_numpy(bool)
@@ -221,6 +250,14 @@ class WeinbergLength(StepLengthModel):
 
     def __init__(self, *, k: float | None = None):
         self._store(locals())
+
+    def _check_params(self, params: dict) -> None:
+        """C21's check, and ``k`` a number: ``weinberg:k=abc`` was a TypeError traceback at the first step."""
+        super()._check_params(params)
+        k = params.get("k")
+        if k is not None and (isinstance(k, bool) or not isinstance(k, int | float | np.integer | np.floating)):
+            raise DataError(f"step-length model weinberg: k={k!r} is not a number; give the gain in m per "
+                            "(m/s^2)^(1/4), e.g. --length-model weinberg:k=0.45")
 
     def predict(self, steps, signals, profile):
         if self.k is None:
