@@ -150,3 +150,17 @@ def test_run_warns_of_lost_numbered_sets(tmp_path, synthetic_bundle, capsys):
     (tmp_path / "cap.txt").write_text("".join(lines[:20] + lines[26:]))
     main(["run", str(synthetic_bundle.path), "--protocol", str(tmp_path / "cap.txt")])
     assert "6 set(s) lost (10.0 % of 60" in capsys.readouterr().err
+
+
+def test_run_refuses_an_empty_or_all_corrupted_capture(tmp_path, synthetic_bundle, capsys):
+    """Decision B193: an empty capture (or one with no whole set) had tracked "0 steps, 0.00 m", exit 0."""
+    from pdrlearn.cli import main
+
+    for name, text in (("empty.txt", ""), ("garbage.txt", "%$\n%%%\n")):
+        cap = tmp_path / name
+        cap.write_text(text)
+        out = tmp_path / ("out_" + name)
+        assert main(["run", str(synthetic_bundle.path), "--protocol", str(cap), "--out", str(out)]) == 2
+        err = capsys.readouterr().err
+        assert f"protocol {cap}: no measurement sets" in err and "decision" not in err.split("error:")[0]
+        assert not out.exists()

@@ -67,3 +67,14 @@ def test_common_span_says_it_applies_no_clock_offset(walk, tmp_path, capsys):
     err = capsys.readouterr().err
     assert "the waist unit started +0.00 s and stopped -2.00 s from the foot unit" in err
     assert "applies no clock offset (0.00 s)" in err and "--align-units" in err
+
+
+def test_align_units_without_a_waist_unit_is_one_line(walk, tmp_path, capsys):
+    """Decision B192: --align-units on a foot-only session (or with --units foot) had been ignored silently."""
+    folder = write_session(walk, tmp_path / "S")
+    for extra in (["--units", "foot"],):
+        assert main(["track", str(folder), "--align-units", *extra, "--out", str(tmp_path / "a")]) == 2
+        err = capsys.readouterr().err
+        assert "--align-units moves the waist unit's clock" in err and "drop --align-units" in err
+        assert len(err.strip().splitlines()) == 1 and not (tmp_path / "a").exists()
+

@@ -356,6 +356,10 @@ def run(
                 steps += new
             steps += tracker.push(parser.close())
             steps += tracker.flush()
+        if not parser.stats.measurements:  # decision B193: an empty capture had tracked "0 steps, 0.00 m", exit 0
+            raise DataError(f"protocol {protocol}: no measurement sets ('$1 ax ay az$2 gx gy gz...' lines, thesis "
+                            f"ch.4.2.3; {parser.stats.corrupted} corrupted line(s)) in the capture; check the file or "
+                            "the serial port it was read from")
         source = f"protocol {protocol}"
         protocol_stats = {**parser.stats.to_dict(), "rate_hz": parser.rate_hz}
         from pdrlearn.io.protocol import protocol_rate_line

@@ -421,6 +421,10 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         if o.get("detector") is not None:  # decision L149
             kw["steps"] = o["detector"]
         if o.get("align_units"):  # decision L162
+            if not session.has("wAccelerometer", "wGyroscope"):  # decision B192: it had been ignored silently
+                raise DataError("track: --align-units moves the waist unit's clock onto the foot's, but "
+                                f"{session.where} has no waist unit (wAccelerometer.csv + wGyroscope.csv) or --units "
+                                "leaves it out; drop --align-units")
             if streaming:
                 raise DataError("track: --align-units moves the waist clock by the steps of the whole recording; the "
                                 "--streaming kernel cannot - drop --streaming or --align-units")
