@@ -152,7 +152,8 @@ class Stream:
 
     @property
     def rate_hz(self) -> float:
-        """Native rate (Hz) from the median sample interval."""
+        """Native rate (Hz): 1 / :attr:`period_s` (decision B182: the sample count over the span on a jittered
+        clock)."""
         p = self.period_s
         return float(1.0 / p) if p > 0 else float("nan")
 

@@ -452,7 +452,7 @@ class PLLStepDetector(StepDetector):
         check_stream(acc, session)
         if self.f_max_hz is not None or acc.t.shape[0] < 3:
             return acc.t, acc.values, {}
-        fs = 1.0 / float(np.median(np.diff(acc.t)))  # decision W117: the session's step rhythm sets the range
+        fs = acc.rate_hz  # decision W117: the session's step rhythm sets the range (B182's jitter-proof rate)
         return acc.t, acc.values, {"period_s": accel_step_period_s(acc.values, fs, gate_var=self.gate_var,
                                                                    gate_window_s=self.gate_window_s)}
 
