@@ -46,7 +46,8 @@ def test_cohort_user_without_test_folder_is_told_how(tmp_path):
 def test_protocol_with_a_waist_bundle_says_how_to_make_a_foot_one(tmp_path, capsys, monkeypatch):
     """Since decision E26 the waist bundle replays the protocol with the foot unit alone (a warning); asking
     for both units is the error, which names the option."""
-    monkeypatch.setattr(sys, "stdin", io.StringIO(""))
+    still = "%$1 0 9.81 0$2 0 0 0\n" * 40  # 2 s of a foot at rest (an empty capture is refused since B193)
+    monkeypatch.setattr(sys, "stdin", io.StringIO(still))
     assert main(["run", str(BUNDLE), "--protocol", "-", "--out", str(tmp_path / "o")]) == 0
     assert "has no waist unit" in capsys.readouterr().err
     monkeypatch.setattr(sys, "stdin", io.StringIO(""))
