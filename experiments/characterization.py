@@ -174,6 +174,9 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
             f"{n_test} test steps (thesis {THESIS_SIZES[task][0]} + {THESIS_SIZES[task][1]} / "
             f"{THESIS_SIZES[task][2]})",
             "",
+            "Our heuristic / fusion rows use the thesis' rule tables and weights with cut points learned per user "
+            "(the default `thresholds=\"joint\"`, features decision 8); the thesis rows use its printed cut points.",
+            "",
             "| " + " | ".join(head) + " |",
             "|" + "---|" * len(head),
         ]

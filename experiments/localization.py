@@ -269,7 +269,7 @@ def run_orientation_scenarios(users: int) -> list[str]:
     lines = ["### Tables 36-39: orientation scenarios (about 6 m each), waist vs foot", "",
              "Heading change from the first to the last stride, wrapped to [-pi, pi) as the thesis reports it "
              "(D: three right turns = 1.57 rad); error = |estimated - true change| in % of pi (the thesis does "
-             "not define the base; pi keeps B, whose true change is ~0, finite). 5 users x 3 speeds; M2 strides.", "",
+             "not define the base; pi keeps B, whose true change is ~0, finite). " f"{users} user{'s' if users != 1 else ''} x 3 speeds (slow, normal, fast); M2 strides.", "",
              "| scenario | unit | mean change rad (thesis) | SD (thesis) | mean error % (thesis) |", "|---|---|---|---|---|"]
     for name, segs in orientation_scenarios().items():
         res = {"waist": [], "foot": []}

@@ -962,7 +962,7 @@ def pause_step_factor(duration_s: np.ndarray, use: np.ndarray, closes: np.ndarra
 
 
 #: W119: a step under this share of its neighbours' vault is under half their length (pendulum h ~ s^2 / (8 L),
-#: seed 003 eq. 2, Zijlstra & Hof 2003; simulator S29): W27's "half a step is no step", in vault terms
+#: seed 003 eq. 1, Zijlstra & Hof 2003; simulator S29): W27's "half a step is no step", in vault terms
 LOW_VAULT_RATIO = 0.25
 
 

@@ -474,7 +474,7 @@ def _bouts(steps: list[Footstep], ev: Events) -> list[tuple[int, int]]:
 
 def pendulum_rise(step_m: np.ndarray, leg_m: float) -> np.ndarray:
     """Rise (m) of an inverted pendulum of length ``leg_m`` vaulting over a step ``step_m`` (m):
-    ``h = L - sqrt(L^2 - (s/2)^2)`` (seed 003 eq. 2 solved for h; Zijlstra & Hof 2003)."""
+    ``h = L - sqrt(L^2 - (s/2)^2)`` (seed 003 eq. 1 solved for h; Zijlstra & Hof 2003)."""
     half = np.minimum(0.5 * np.abs(np.asarray(step_m, float)), 0.999 * leg_m)
     return leg_m - np.sqrt(leg_m**2 - half**2)
 

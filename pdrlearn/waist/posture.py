@@ -14,7 +14,7 @@ Decision W109: ``keep_rhythm`` spares the contacts in that window that alternate
 walking sequence (W20's sides): a transfer or a bend is sagittal and shifts no weight sideways, a step does.
 
 Decision W119: :func:`vault_veto` drops a contact whose step does not vault the pelvis (a weight shift while standing:
-a pendulum step raises the pelvis, h ~ s^2 / (8 L), seed 003 eq. 2); not the trunk's posture, but the same
+a pendulum step raises the pelvis, h ~ s^2 / (8 L), seed 003 eq. 1); not the trunk's posture, but the same
 mechanism of dropping contacts. Decision W127: with ``spare_turns`` it keeps a contact whose step turns the pelvis
 (a turn on the spot vaults little, like a weight shift).
 """
