@@ -122,6 +122,10 @@ class InitialContactDetector:
     min_step_s : the shortest step (s) of every variant (W16: 0.3); ``None`` (default, decision W113) = relative to
         the recording's own step rhythm (0.75 of its step period, at most 0.3 s), so a child's 3-4 Hz steps are
         found; W31's repeat check and seed 003's causal variant take it from their contacts' spacing
+    contact_shift : offline (and realtime with ``delay_s``), with ``rhythm`` and ``alternate``: after the sequence rules
+        every kept contact (W18 / W28 additions too) is judged once more by W23's weight-shift test, with the side
+        read at the initial contact as W129 reads it; a contact where the pelvis turns (decision 29's 0.45 rad/s) is
+        not judged (decision W131; ``False`` by default: see W131 for its measurement)
 
     Attributes
     ----------
@@ -140,8 +144,9 @@ class InitialContactDetector:
                  delay_s: float | None = K.DECISION_DELAY_S,
                  hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S,
                  turn_gate_rps: float | None = None, turn_shift_rps: float | None = None,
-                 min_step_s: float | None = None):
+                 min_step_s: float | None = None, contact_shift: bool = False):
         self.realtime = realtime
+        self.contact_shift = contact_shift
         self.min_step_s = min_step_s
         self.turn_shift_rps = turn_shift_rps
         self.turn_gate_rps = turn_gate_rps
@@ -165,7 +170,8 @@ class InitialContactDetector:
         """The keywords of :func:`pdrlearn.kernels.waist.contacts_offline` (the lean runtime's detector, W92)."""
         return {k: getattr(self, k) for k in ("walk_threshold", "cutoff_hz", "fir_order_s", "ap_cutoff_hz", "rhythm",
                                               "max_step_s", "alternate", "weight_shift", "end_steps",
-                                              "ap_above_mean", "turn_gate_rps", "turn_shift_rps", "min_step_s")}
+                                              "ap_above_mean", "turn_gate_rps", "turn_shift_rps", "min_step_s",
+                                              "contact_shift")}
 
     def _offline(self, imu: WaistIMU) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The offline detector's contacts (zero-lag filters, sequence rules) on ``imu``."""
