@@ -8,8 +8,8 @@ the rule written before its run -- W119's three parts (experiments/waist_vault_v
     in-bout `step_f1` (`step_metrics`), per recording and pooled;
 (c) the real Test5 straight walks: `step_f1` per recording.
 The contacts are `waist-pendulum`'s detector as `track_waist` builds it (its gate threshold and longest step), with
-`contact_shift` off or on; off, they are asserted equal to `track_waist`'s own (uncalibrated: the contacts do not
-depend on the step-length parameters).
+`contact_shift` off or on; the one `track_waist` runs by default (off when measured, on since W131 was adopted) is
+asserted equal to `track_waist`'s own (uncalibrated: the contacts do not depend on the step-length parameters).
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/waist_ic_contact_shift.py [--external datasets/external]
 Writes experiments/results/waist_ic_contact_shift.md.
@@ -44,7 +44,7 @@ def detector_steps(session, on: bool) -> pd.DataFrame:
     imu = waist_imu(session)
     thr, _, _ = gate_threshold(imu, p.walk_threshold_mps2)
     steps = InitialContactDetector(walk_threshold=thr, max_step_s=MAX_STEP_S, contact_shift=on).detect(imu).steps_
-    if not on:  # the baseline is the pipeline's own
+    if on == InitialContactDetector().contact_shift:  # the default is the pipeline's own
         ref = track_waist(session, pipeline="waist-pendulum").steps["event_s"].to_numpy(float)
         assert np.array_equal(ref, steps["event_s"].to_numpy(float)), "detector contacts differ from track_waist's"
     return steps

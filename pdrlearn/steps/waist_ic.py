@@ -156,7 +156,8 @@ class WaistICStepDetector(StepDetector):
         thr = next((x for x in (walk_threshold, self.walk_threshold) if x is not None), WALK_THRESHOLD_MPS2)
         return InitialContactDetector(walk_threshold=thr, max_step_s=self.max_step_s,
                                       rhythm=self.rhythm, alternate=self.alternate, weight_shift=self.weight_shift,
-                                      end_steps=self.end_steps, learned=self.learned, min_step_s=self.min_step_s)
+                                      end_steps=self.end_steps, learned=self.learned, min_step_s=self.min_step_s,
+                                      contact_shift=self.delay_s is None)  # W131: offline only
 
     def _inputs(self, session: Session):
         from pdrlearn.track.gaps import long_gaps
