@@ -22,6 +22,7 @@ from __future__ import annotations
 import contextlib
 import io
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -46,16 +47,20 @@ MAX_RECALL_DROP = 0.005
 MAX_ROW_DROP = 0.01
 
 
-def simulated(bounce: str, value, users: range) -> dict[bool, dict]:
-    """Pooled TP / detections / true contacts over ``users``, without (False) and with (True) the option set to
-    ``value``."""
+def vault_steps(value) -> Callable:
+    """``steps_of(session, on)``: the `waist-pendulum` steps without (False) or with (True) ``vault_veto=value``."""
+    return lambda s, on: track_waist(s, pipeline="waist-pendulum", vault_veto=value if on else False).steps
+
+
+def simulated(bounce: str, steps_of: Callable, users: range) -> dict[bool, dict]:
+    """Pooled TP / detections / true contacts over ``users``, without (False) and with (True) the candidate
+    (``steps_of(session, on)``, the steps table)."""
     tot = {v: {"tp": 0, "det": 0, "ref": 0} for v in (False, True)}
     for u in users:
         s = simulate_path(parse_route(ROUTE), UserProfile.from_seed(u), rate_hz=100, seed=u, bounce=bounce)
         truth = np.sort(s.extras["ics"]["ic_s"].to_numpy(float))
         for v in (False, True):
-            ev = np.sort(track_waist(s, pipeline="waist-pendulum", vault_veto=value if v else False)
-                         .steps["event_s"].to_numpy(float))
+            ev = np.sort(steps_of(s, v)["event_s"].to_numpy(float))
             sc = score_events(ev, truth, tolerance_s=0.25)
             for k, x in (("tp", sc["true_positives"]), ("det", sc["count"]), ("ref", sc["reference_count"])):
                 tot[v][k] += int(x)
@@ -69,7 +74,13 @@ def counts(steps, session) -> tuple[int, int, int, float]:
 
 def main(external: Path, decision: str) -> None:
     value, users, _ = RUNS[decision]
-    name = f"vault_veto={value!r}"
+    measure(external, decision, f"vault_veto={value!r}", vault_steps(value), users)
+
+
+def measure(external: Path, decision: str, name: str, steps_of: Callable, users: range) -> None:
+    """The W119 rule's three parts (a)-(c) and the verdict, printed, for the candidate ``steps_of(session, on)``
+    (the `waist-pendulum` steps table without / with it) called ``name``; shared by W119, W127 and W131
+    (experiments/waist_ic_contact_shift.py)."""
     ok = {}
     print(f"# {decision}: {name}\n")
     print(f"## (a) simulated daily activities, users {users.start}-{users.stop - 1}, waist-pendulum, off -> {name}\n")
@@ -77,7 +88,7 @@ def main(external: Path, decision: str) -> None:
     print("|---|---|---|---|")
     ok_a = True
     for bounce in ("constant", "pendulum"):
-        t = simulated(bounce, value, users)
+        t = simulated(bounce, steps_of, users)
         f = {v: W.C.f1(t[v]["tp"], t[v]["det"], t[v]["ref"]) for v in t}
         r = {v: t[v]["tp"] / t[v]["ref"] for v in t}
         ok_a &= f[True] >= f[False] - 1e-12 and r[False] - r[True] <= MAX_RECALL_DROP + 1e-12
@@ -93,10 +104,10 @@ def main(external: Path, decision: str) -> None:
     ok_b, ok_c = True, True
     for d in sorted(external.glob("mobgap_*_Test*_Trial*")):
         s = read_session(d)
-        res = {v: track_waist(s, pipeline="waist-pendulum", vault_veto=value if v else False) for v in (False, True)}
-        if "step_f1" not in step_metrics(res[False].steps, s):  # no timed reference contacts (HA002 Test5 Trial2)
+        res = {v: steps_of(s, v) for v in (False, True)}
+        if "step_f1" not in step_metrics(res[False], s):  # no timed reference contacts (HA002 Test5 Trial2)
             continue
-        c = {v: counts(res[v].steps, s) for v in res}
+        c = {v: counts(res[v], s) for v in res}
         diff = c[True][3] - c[False][3]
         if "_Test11_" in d.name:
             ok_b &= diff >= -MAX_ROW_DROP
@@ -105,7 +116,7 @@ def main(external: Path, decision: str) -> None:
         else:
             ok_c &= diff >= -1e-12
         print(f"| {d.name} | " + " | ".join(f"{c[v][3]:.4f} ({c[v][0]}/{c[v][1]}/{c[v][2]})" for v in c)
-              + f" | {diff:+.4f} | {res[True].info['n_unvaulted_contacts']} |")
+              + f" | {diff:+.4f} | {len(res[False]) - len(res[True])} |")
     pf = {v: W.C.f1(*pool[v]) for v in pool}
     ok_b &= pf[True] > pf[False]
     ok["b"], ok["c"] = ok_b, ok_c
@@ -117,7 +128,7 @@ def main(external: Path, decision: str) -> None:
     print(f"## For information: the Test11 error classes with {name} (experiments/waist_ic_classes.py)\n")
     for sub in W.C.SUBJECTS:
         s = read_session(external / f"mobgap_{sub}_Test11_Trial1")
-        r = W.classify(s, track_waist(s, pipeline="waist-pendulum", vault_veto=value).steps)
+        r = W.classify(s, steps_of(s, True))
         print(f"{sub}: " + ", ".join(f"{k} {v}" for k, v in W.class_counts(r).items() if v))
 
 

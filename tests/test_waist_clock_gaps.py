@@ -113,7 +113,8 @@ def test_a_long_pause_changes_no_step_outside_it(name):
     cols = ["start_s", "length_m"]  # the last one before the pause closes the walking sequence (B11)
     np.testing.assert_allclose(pre_g[cols].to_numpy()[:-1], pre_c[cols].to_numpy()[:-1], atol=5e-3)
     post = got[got.start_s > 27.0].iloc[:-1]  # the last contact closes the walk (length 0)
-    assert len(post) >= 4
+    # Trial2: 3 since W131 dropped the weight shift at 10.41 s, 1.8 s after the walk's last INDIP contact (8.61 s)
+    assert len(post) >= 3
     for a, length in zip(post.start_s - 20.0, post.length_m, strict=True):
         ref = clean[np.isclose(clean.start_s, a, atol=1e-6)]
         assert len(ref) == 1 and abs(float(ref.length_m.iloc[0]) - length) < 5e-3, (a, length)

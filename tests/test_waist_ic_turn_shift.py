@@ -49,9 +49,10 @@ def test_turn_shift_option_is_off_by_default_and_adds_turning_contacts():
     from pdrlearn.waist.events import InitialContactDetector
 
     imu = waist_imu(read_session(external_session("mobgap_HA002_Test11_Trial1")))
-    base = imu.t[InitialContactDetector().detect(imu).ic_]
-    assert np.array_equal(base, imu.t[InitialContactDetector(turn_shift_rps=None).detect(imu).ic_])
-    cand = imu.t[InitialContactDetector(turn_shift_rps=0.45).detect(imu).ic_]
+    before = {"contact_shift": False}  # decision 29 was measured with the detector before W131
+    base = imu.t[InitialContactDetector(**before).detect(imu).ic_]
+    assert np.array_equal(base, imu.t[InitialContactDetector(turn_shift_rps=None, **before).detect(imu).ic_])
+    cand = imu.t[InitialContactDetector(turn_shift_rps=0.45, **before).detect(imu).ic_]
     added = np.setdiff1d(np.round(cand, 2), np.round(base, 2))
     assert set(np.round(base, 2)) <= set(np.round(cand, 2))  # only W23 drops are undone
     # decision 29's measurement: 6 contacts added, among them 26.95 s (INDIP contact 26.75 s, in a turn)
@@ -67,8 +68,9 @@ def test_loss_diagnosis_partitions_the_errors_of_score_steps():
     from pdrlearn.steps.evaluate import score_steps
 
     s = read_session(external_session("mobgap_HA002_Test11_Trial1"))
-    ev = np.sort(get_detector("waist-ic").detect(s)["event_s"].to_numpy(float))
-    r = analyse(s, ev)
+    before = {"contact_shift": False}  # decision 29's table was printed with the detector before W131
+    ev = np.sort(get_detector("waist-ic", **before).detect(s)["event_s"].to_numpy(float))
+    r = analyse(s, ev, before)
     sc = score_steps(pd.DataFrame({"event_s": ev, "unit": "waist"}), s)
     assert (r["tp"], r["det"], r["ref"]) == (sc["true_positives"], sc["scored_count"], sc["reference_count"])
     df = r["rows"]

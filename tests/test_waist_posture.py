@@ -188,10 +188,11 @@ def test_the_rhythm_veto_keeps_the_real_steps_w104_dropped_after_standing_up():
     d = external_session("mobgap_HA001_Test11_Trial1")
     s = read_session(d)
     ic = pd.read_csv(d / "ics.csv")["ic_ms"].to_numpy(float) / 1000.0
-    e0 = track_waist(s, pipeline="waist-pendulum").steps["event_s"].to_numpy(float)
+    kw = {"pipeline": "waist-pendulum", "contact_shift": False}  # W109 measured the detector before W131
+    e0 = track_waist(s, **kw).steps["event_s"].to_numpy(float)
 
     def dropped(value):
-        e1 = track_waist(s, pipeline="waist-pendulum", sit_veto=value).steps["event_s"].to_numpy(float)
+        e1 = track_waist(s, sit_veto=value, **kw).steps["event_s"].to_numpy(float)
         gone = np.array([e for e in e0 if np.abs(e1 - e).min() > 1e-9])
         return gone, int(sum(np.abs(ic - g).min() <= 0.25 for g in gone))
 

@@ -221,7 +221,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
                search_s: float = 0.25, fc_search_s: float = 0.25, min_peak_mps2: float = 0.1,
                rhythm: bool = False, max_step_s: float = 1.5, acc_ml: np.ndarray | None = None,
                unshifted: bool = True, end_steps: bool = False, ap_above_mean: bool = False,
-               turning: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+               turning: np.ndarray | None = None, contact_shift: bool = False,
+               spinning: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
 
     The vertical acceleration is low-passed with a zero-lag FIR (seed 003: order 30, 2.5 Hz, here the
@@ -251,6 +252,9 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         gate's window (``GATE_WINDOW_S``, centred), when the search window holds one (decision W29)
     turning : (n,) bool, samples where the pelvis turns; maxima there are exempt from ``unshifted``
         (decision 29 of docs/decisions/steps.md; ``None`` = none exempt)
+    contact_shift : with ``acc_ml`` and ``rhythm``, judge every kept contact once more by W23's test with the side
+        read at the initial contact (:func:`unshifted_contacts`, decision W131); contacts flagged in ``spinning``
+        (n,) bool, samples where the pelvis turns, are not judged
 
     Returns
     -------
@@ -281,7 +285,25 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     ws = max(1, int(round(search_s * fs)))
     level = ap_mean_level(ap, fs) if ap_above_mean else None
     ic = np.array([_nearest_local_max_before(ap, p, max(0, p - ws), level=level) for p in peaks], dtype=int)
+    if contact_shift and rhythm and acc_ml is not None and peaks.size:  # W131: W23 at the contact, every contact
+        keep = unshifted_contacts(peaks, vf[peaks], lateral_velocity(acc_ml, fs)[ic], fs, max_step_s=max_step_s,
+                                  exempt=None if spinning is None else np.asarray(spinning, dtype=bool)[ic])
+        peaks, ic = peaks[keep], ic[keep]
     return ic, fc_after(ap, peaks, fs, fc_search_s), peaks
+
+
+def unshifted_contacts(vmax: np.ndarray, height: np.ndarray, v_at_ic: np.ndarray, fs: float, *,
+                       max_step_s: float = 1.5, exempt: np.ndarray | None = None) -> np.ndarray:
+    """Decision W131: the mask of the kept contacts (their vertical maxima ``vmax``, sample indices, increasing, and
+    filtered ``height``) that pass W23's weight-shift test (:func:`drop_unshifted`, unchanged) with the side read at
+    the initial contact, as W129 reads it: :func:`step_sides` of the pelvis's lateral velocity there (``v_at_ic``),
+    against its median over these contacts. Every contact is judged (W18 fills and W28 end steps too), except
+    those flagged in ``exempt`` (the pelvis turns: decision 29's test). A weak bounce at a contact where the pelvis
+    moves to neither side is a weight shift of standing, no step."""
+    n = np.asarray(vmax).shape[0]
+    every = np.ones(n, dtype=bool)
+    side = step_sides(v_at_ic, every)
+    return drop_unshifted(vmax, height, every, every, side, fs, max_step_s=max_step_s, exempt=exempt)
 
 
 def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, w_z: np.ndarray, fs: float, *,
@@ -289,8 +311,8 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                      ap_cutoff_hz: float = 20.0, rhythm: bool = True, max_step_s: float = 1.5,
                      alternate: bool = True, weight_shift: bool = True, end_steps: bool = True,
                      ap_above_mean: bool = False, turn_gate_rps: float | None = None,
-                     turn_shift_rps: float | None = None, min_step_s: float | None = None
-                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                     turn_shift_rps: float | None = None, min_step_s: float | None = None,
+                     contact_shift: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The offline IC detector's rule contacts on navigation-frame arrays (the body of
     :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
     the AP acceleration low-passed at ``min(ap_cutoff_hz, 0.4 fs)`` (zero-phase third-order Butterworth, as
@@ -298,12 +320,13 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
     AP acceleration the learned stage reads)."""
     gate = motion_gate(acc_v, w_z, fs, walk_threshold=walk_threshold, causal=False, turn_gate_rps=turn_gate_rps)
     ap = dsp.lowpass(acc_ap, min(ap_cutoff_hz, 0.4 * fs), fs)
-    turning = (None if turn_shift_rps is None  # decision 29: W23 suspended while the pelvis turns
-               else np.abs(rolling_mean(w_z, fs, causal=False)) >= turn_shift_rps)
+    yaw_rate = np.abs(rolling_mean(w_z, fs, causal=False)) if (turn_shift_rps is not None or contact_shift) else None
+    turning = None if turn_shift_rps is None else yaw_rate >= turn_shift_rps  # decision 29: W23 off in turns
     ic, fc, vmax = ic_offline(acc_v, ap, fs, gate=gate, cutoff_hz=cutoff_hz, fir_order_s=fir_order_s, rhythm=rhythm,
                               max_step_s=max_step_s, acc_ml=acc_ml if alternate else None, unshifted=weight_shift,
                               end_steps=end_steps, ap_above_mean=ap_above_mean, turning=turning,
-                              min_step_s=min_step_s)
+                              min_step_s=min_step_s, contact_shift=contact_shift,
+                              spinning=None if yaw_rate is None else yaw_rate >= CONTACT_SHIFT_TURN_RPS)
     return ic, fc, vmax, ap
 
 
@@ -330,6 +353,9 @@ RHYTHM_GAP = 1.5  # an interval over this many local periods should hold a misse
 SIDE_BAND_HZ = (0.3, 3.0)  # W20: holds the stride frequency of walking (0.5-1.7 Hz), drops turns/drift
 SIDE_MIN_FRAC = 1.0 / 3.0  # W20: a side is decided when |v_ml| >= 1/3 of its median at the steps
 PRUNE_HEIGHT_FRAC = 0.5  # W20: of a same-side pair only a maximum under half the other's height goes
+#: W131: a contact where the pelvis's centred 2 s mean yaw rate reaches this (rad/s) is not judged by W23 at the
+#: contact -- decision 29's turning test (docs/decisions/steps.md), decision 28's turning component of W7's mixture
+CONTACT_SHIFT_TURN_RPS = 0.45
 
 
 def lateral_velocity(acc_ml: np.ndarray, fs: float, *, band_hz: tuple[float, float] = SIDE_BAND_HZ

@@ -126,6 +126,8 @@ class WaistICStepDetector(StepDetector):
     hop_s, history_s : decision interval and history of the realtime variant (s; W31: 0.25, 10)
     min_step_s : the shortest step (s; W16's 0.3); ``None`` (default, decision W113): relative to the session's own
         step rhythm, 0.75 of its step period and at most 0.3 s (a child's 3-4 Hz steps)
+    contact_shift : offline (``delay_s=None``): every kept contact judged once more by W23's weight-shift test with the
+        side read at the contact, turns spared (decision W131, default on; ignored with ``delay_s``, W133)
 
     Online (decision 17): input columns are the waist accelerometer (m/s^2) and gyroscope (rad/s) in the
     body frame FLU at ``fs`` Hz (``online(fs, rotation=R)`` maps sensor-frame samples with the session's
@@ -145,7 +147,8 @@ class WaistICStepDetector(StepDetector):
                  learned: bool | str = False,
                  ahrs_gain: float = 0.033,  # W5: Madgwick 2010 / `ahrs` IMU default (waist.ahrs.MADGWICK_GAIN)
                  delay_s: float | None = None, hop_s: float = 0.25, history_s: float = 10.0,  # W31
-                 min_step_s: float | None = None):  # W16 / W113: None = relative to the session's step rhythm
+                 min_step_s: float | None = None,  # W16 / W113: None = relative to the session's step rhythm
+                 contact_shift: bool = True):  # W131 (offline only, W133)
         self._store(locals())
 
     def ic_detector(self, walk_threshold: float | None = None):
@@ -156,7 +159,8 @@ class WaistICStepDetector(StepDetector):
         thr = next((x for x in (walk_threshold, self.walk_threshold) if x is not None), WALK_THRESHOLD_MPS2)
         return InitialContactDetector(walk_threshold=thr, max_step_s=self.max_step_s,
                                       rhythm=self.rhythm, alternate=self.alternate, weight_shift=self.weight_shift,
-                                      end_steps=self.end_steps, learned=self.learned, min_step_s=self.min_step_s)
+                                      end_steps=self.end_steps, learned=self.learned, min_step_s=self.min_step_s,
+                                      contact_shift=self.contact_shift and self.delay_s is None)  # W131, W133
 
     def _inputs(self, session: Session):
         from pdrlearn.track.gaps import long_gaps

@@ -196,6 +196,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``"progression"``: W122, a step with a standstill in it keeps at most the trunk's travel over it),
       ``vault_veto`` (decision W119, off: no contact whose step vaults the pelvis under a quarter of its neighbours';
       ``"turns"``: W127, sparing a step that turns the pelvis by more than 15 deg),
+      ``contact_shift`` (decision W131, on: every kept contact judged once more by W23's weight-shift test with the
+      side read at the contact, turns spared; offline only),
       ``detector`` (decision E85: a waist step detector's contacts), ``length_model`` (decision E84: a registered
       step-length model, docs/extending.md) (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and
       unused. With ``wBarometer`` the track's altitude is the barometer's (W89); without, one warning (W90).

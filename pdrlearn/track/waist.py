@@ -307,7 +307,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
-                   "sit_veto": False, "pause_steps": False, "vault_veto": False}
+                   "sit_veto": False, "pause_steps": False, "vault_veto": False, "contact_shift": True}
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
@@ -331,7 +331,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 relative_gate: bool | None = None, stairs_length: bool | None = None, stairs_climb: bool | None = None,
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
-                vault_veto: bool | str | None = None, detector=None, length_model=None) -> TrackResult:
+                vault_veto: bool | str | None = None, contact_shift: bool | None = None, detector=None,
+                length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -388,6 +389,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         whose step vaults the pelvis by less than a quarter of its neighbours' (a weight shift while standing, no
         step; decision W119, :func:`pdrlearn.waist.posture.vault_veto`); ``"turns"``: the same, sparing a contact whose
         step turns the pelvis by more than 15 deg (a turn on the spot vaults little; decision W127); default False
+    contact_shift : pendulum, offline detector: every kept contact judged once more by W23's weight-shift test with the
+        side read at the contact, turns spared (decision W131, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
+        ``contact_shift``); default True, ``False`` restores the detector before W131
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -420,7 +424,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "relative_gate": relative_gate, "stairs_length": stairs_length, "stairs_climb": stairs_climb,
              "slow_turn_rps": slow_turn_rps,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
-             "vault_veto": vault_veto}
+             "vault_veto": vault_veto, "contact_shift": contact_shift}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -456,7 +460,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         method = heading or ("gyro" if pipeline == "waist-pendulum" else "ahe")
     elif pipeline == "waist-pendulum":
         det = InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
-                                     rhythm=bool(o["rhythm"])).detect(imu)
+                                     rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"])).detect(imu)
         steps = det.steps_
         method = heading or "gyro"
     else:

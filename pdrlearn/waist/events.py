@@ -122,6 +122,11 @@ class InitialContactDetector:
     min_step_s : the shortest step (s) of every variant (W16: 0.3); ``None`` (default, decision W113) = relative to
         the recording's own step rhythm (0.75 of its step period, at most 0.3 s), so a child's 3-4 Hz steps are
         found; W31's repeat check and seed 003's causal variant take it from their contacts' spacing
+    contact_shift : offline, with ``rhythm`` and ``alternate``: after the sequence rules every kept contact (W18 / W28
+        additions too) is judged once more by W23's weight-shift test, with the side read at the initial contact as
+        W129 reads it; a contact where the pelvis turns (decision 29's 0.45 rad/s) is not judged (decision W131,
+        adopted: on by default). The realtime detector and the W33 learned stage ignore it (measured offline only;
+        the learned stage's trees were trained on the rule outcomes without it)
 
     Attributes
     ----------
@@ -140,8 +145,9 @@ class InitialContactDetector:
                  delay_s: float | None = K.DECISION_DELAY_S,
                  hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S,
                  turn_gate_rps: float | None = None, turn_shift_rps: float | None = None,
-                 min_step_s: float | None = None):
+                 min_step_s: float | None = None, contact_shift: bool = True):
         self.realtime = realtime
+        self.contact_shift = contact_shift
         self.min_step_s = min_step_s
         self.turn_shift_rps = turn_shift_rps
         self.turn_gate_rps = turn_gate_rps
@@ -162,10 +168,12 @@ class InitialContactDetector:
         self.max_step_s = max_step_s
 
     def rule_settings(self) -> dict:
-        """The keywords of :func:`pdrlearn.kernels.waist.contacts_offline` (the lean runtime's detector, W92)."""
-        return {k: getattr(self, k) for k in ("walk_threshold", "cutoff_hz", "fir_order_s", "ap_cutoff_hz", "rhythm",
-                                              "max_step_s", "alternate", "weight_shift", "end_steps",
-                                              "ap_above_mean", "turn_gate_rps", "turn_shift_rps", "min_step_s")}
+        """The keywords of :func:`pdrlearn.kernels.waist.contacts_offline` (the lean runtime's detector, W92); W131's
+        ``contact_shift`` only offline and without the learned stage."""
+        kw = {k: getattr(self, k) for k in ("walk_threshold", "cutoff_hz", "fir_order_s", "ap_cutoff_hz", "rhythm",
+                                            "max_step_s", "alternate", "weight_shift", "end_steps",
+                                            "ap_above_mean", "turn_gate_rps", "turn_shift_rps", "min_step_s")}
+        return kw | {"contact_shift": bool(self.contact_shift and not self.realtime and not self.learned)}
 
     def _offline(self, imu: WaistIMU) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The offline detector's contacts (zero-lag filters, sequence rules) on ``imu``."""
@@ -231,7 +239,8 @@ def refine_to_contacts(imu: WaistIMU, idx: np.ndarray, *, walk_threshold: float 
     (decision W20, :func:`pdrlearn.waist._kernels.prune_same_side`): of two consecutive events on the same
     side closer than 1.5 local step periods, the one whose filtered vertical acceleration is under half
     the other's is dropped (a phase-locked peak inside a slow step, where no contact is)."""
-    det = InitialContactDetector(walk_threshold=walk_threshold, rhythm=rhythm, alternate=alternate).detect(imu)
+    det = InitialContactDetector(walk_threshold=walk_threshold, rhythm=rhythm, alternate=alternate,
+                                 contact_shift=False).detect(imu)  # W131 measured on waist-pendulum only
     idx = np.asarray(idx, dtype=int)
     if det.anchor_.size == 0 or idx.size == 0:
         return np.unique(idx)
