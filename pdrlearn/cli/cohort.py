@@ -407,13 +407,9 @@ def _session_row(rel: str, group: str, r: JobResult, given: str | None = None) -
     row["warnings"] = WARNINGS_SEP.join(warned) if warned else None
     if not r.ok:
         return row
-    summary = r.value["summary"]
-    for k, v in summary.items():
-        if k == "final_position" and isinstance(v, dict):
-            row.update({f"final_{a}_m": v.get(a) for a in ("x", "y", "z")})
-        elif v is None or isinstance(v, str | int | float | bool):
-            row[k] = v
-    row["method"] = summary.get("info", {}).get("method")
+    from pdrlearn.tables import summary_row
+
+    row.update(summary_row(r.value["summary"]))  # decision E97: the flattening summary_frame shares
     row["input_dir"] = rel  # decision C18: relative to ROOT (summary.json keeps the resolved folder, C13)
     row["content_id"] = r.value.get("content_id")  # decision C20: B87's fingerprint of the sensor data
     row.update(r.value.get("bout_totals", {}))  # cohort C25: the walking bouts' totals (bouts.csv summed)
