@@ -330,6 +330,8 @@ RHYTHM_GAP = 1.5  # an interval over this many local periods should hold a misse
 SIDE_BAND_HZ = (0.3, 3.0)  # W20: holds the stride frequency of walking (0.5-1.7 Hz), drops turns/drift
 SIDE_MIN_FRAC = 1.0 / 3.0  # W20: a side is decided when |v_ml| >= 1/3 of its median at the steps
 PRUNE_HEIGHT_FRAC = 0.5  # W20: of a same-side pair only a maximum under half the other's height goes
+#: decision W129: the side labels for W20's +1 / -1 / 0 (undecided); a priori, v > 0 (towards the left) = left foot
+SIDE_LABELS = {1: "left", -1: "right", 0: ""}
 
 
 def lateral_velocity(acc_ml: np.ndarray, fs: float, *, band_hz: tuple[float, float] = SIDE_BAND_HZ
