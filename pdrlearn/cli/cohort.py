@@ -628,16 +628,16 @@ def combined_bouts(out: Path, rows: list[dict]) -> pd.DataFrame:
     ``subject`` follow."""
     import pandas as pd
 
-    from pdrlearn.track.bouts import BOUT_COLUMNS
+    from pdrlearn.track.bouts import BOUT_COLUMNS, csv_table, current_names
 
     cols = [*COMBINED_BOUT_KEYS, *BOUT_COLUMNS]
     parts = []
     for row in rows:
         if row["status"] == "ok" and (out / row["path"] / "bouts.csv").is_file():
-            b = pd.read_csv(out / row["path"] / "bouts.csv", dtype={"session": str, "subject": str})
+            b = current_names(pd.read_csv(out / row["path"] / "bouts.csv", dtype={"session": str, "subject": str}))
             if len(b):
                 parts.append(b.assign(path=row["path"], visit=row.get("visit")))
-    return pd.concat(parts, ignore_index=True)[cols] if parts else pd.DataFrame(columns=cols)
+    return csv_table(pd.concat(parts, ignore_index=True)[cols] if parts else pd.DataFrame(columns=cols))  # E98
 
 
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:
