@@ -4,7 +4,8 @@ See README.md for usage and ../DESIGN.md-derived architecture notes in docs/.
 
 The subpackages (``pdrlearn.io``, ``pdrlearn.track``, ...) are attributes imported on first use (decision E89,
 PEP 562): ``import pdrlearn`` then ``pdrlearn.io.read_session(...)`` works and ``import pdrlearn`` stays as
-fast as before (it imports none of them).
+fast as before (it imports none of them). The entry points a notebook reaches for first are top-level names,
+imported on first use too (decision E96): ``from pdrlearn import read_session, simulate, get_pipeline, load_model``.
 """
 
 from importlib.metadata import PackageNotFoundError, version
@@ -22,21 +23,40 @@ from pdrlearn.errors import (  # noqa: E402
     PdrlearnError,
 )
 
-__all__ = ["__version__", "PdrlearnError", "DataError", "MissingSensorError", "ModelError", "NotASessionError"]
+#: decision E96: the top-level entry points (name -> the module defining it), imported on first access like the
+#: subpackages; ``pdrlearn.track`` itself is the tracking subpackage, whose entry point is ``get_pipeline``
+_ENTRY_POINTS = {
+    "read_session": "pdrlearn.io", "write_session": "pdrlearn.io", "Session": "pdrlearn.io",
+    "simulate": "pdrlearn.sim",
+    "get_detector": "pdrlearn.steps", "score_steps": "pdrlearn.steps",
+    "train_user": "pdrlearn.classify", "load_model": "pdrlearn.classify", "evaluate_model": "pdrlearn.classify",
+    "get_pipeline": "pdrlearn.track", "TrackResult": "pdrlearn.track",
+    "load_bundle": "pdrlearn.runtime", "Tracker": "pdrlearn.runtime",
+    "to_dataframe": "pdrlearn.tables",
+}
+
+__all__ = ["__version__", "PdrlearnError", "DataError", "MissingSensorError", "ModelError", "NotASessionError",
+           *_ENTRY_POINTS]
 
 #: decision E89: the subpackages and modules ``pdrlearn.<name>`` imports on first access (not the CLI's)
 _SUBMODULES = ("aid", "atomic", "classify", "cohort", "columns", "displace", "export", "features", "io", "kernels",
-              "orient", "plots", "plugins", "report", "runtime", "signal", "sim", "steps", "track", "visits", "waist")
+              "orient", "plots", "plugins", "report", "runtime", "signal", "sim", "steps", "tables", "track", "visits",
+              "waist")
 
 
 def __getattr__(name: str):
-    """PEP 562: ``pdrlearn.io`` etc. import their module on first access (decision E89)."""
-    if name in _SUBMODULES:
+    """PEP 562: ``pdrlearn.io`` etc. import their module on first access (decision E89), and so do the top-level
+    entry points (``pdrlearn.read_session``, decision E96)."""
+    if name in _SUBMODULES or name in _ENTRY_POINTS:
         import importlib
 
-        return importlib.import_module(f"{__name__}.{name}")
+        if name in _SUBMODULES:
+            return importlib.import_module(f"{__name__}.{name}")
+        value = getattr(importlib.import_module(_ENTRY_POINTS[name]), name)
+        globals()[name] = value  # the next access is a plain attribute
+        return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def __dir__() -> list[str]:
-    return sorted({*globals(), *_SUBMODULES})
+    return sorted({*globals(), *_SUBMODULES, *_ENTRY_POINTS})

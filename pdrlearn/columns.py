@@ -201,7 +201,7 @@ BOUTS: tuple[Column, ...] = (
     ("n_strides", "count", "integer", "foot: strides of the tracked foot; lower back: n_steps - 2 (strides "
                                       "contact k to k + 2, as mobgap forms them)"),
     ("distance_m", "m", "number", "tracked distance in the bout"),
-    ("speed_m_s", "m/s", "number", "distance_m / duration_s"),
+    ("speed_mps", "m/s", "number", "distance_m / duration_s (speed_m_s before E98)"),
     ("stride_length_m", "m", "number", "mean stride length: foot distance_m / n_strides; lower back 2 x "
                                        "distance_m / (n_steps - 1), 2 x the mean step (L166)"),
     ("contact_span_s", "s", "number", "first initial contact to the last (L164)"),
@@ -211,6 +211,7 @@ BOUTS: tuple[Column, ...] = (
                                              "exceed --bout-break-s under --bout-rule pdrlearn (L163)"),
     ("n_turns", "count", "integer", f"turns of >= {TURN_COUNT_MIN_DEG:g} deg in the bout (L104)"),
     ("altitude_change_m", "m", "number", "z change over the bout"),
+    ("speed_m_s", "m/s", "number", "deprecated (E98): speed_mps under its old name, kept last until a later release"),
 )
 
 #: a lower-back track's steps.csv (``TrackResult.steps`` of waist-pendulum / waist-pll), one row per contact of either

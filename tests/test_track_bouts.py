@@ -54,7 +54,7 @@ def test_bouts_of_a_known_walk_and_their_totals(walk, tracks, pipeline):
         # L166: a real mean stride length (2 x the mean step on the lower back, not distance / n_strides)
         assert row.stride_length_m == pytest.approx(true_d / len(inside), rel=tol + 0.05)
     assert list(b["n_turns"]) == [0, 0, 1, 0]
-    assert (b["duration_s"] > 0).all() and np.allclose(b["speed_m_s"], b["distance_m"] / b["duration_s"])
+    assert (b["duration_s"] > 0).all() and np.allclose(b["speed_mps"], b["distance_m"] / b["duration_s"])
     # the table's totals are the track's (every row lies in a bout under the default definition)
     s = track_summary(r, walk, pipeline=pipeline)
     assert b["n_steps"].sum() == s["n_steps_both_feet"]
@@ -122,7 +122,7 @@ def test_scoring_against_reference_bouts_is_unaffected(tmp_path):
     keys = ("bouts", "bout_distance_m", "bout_reference_m", "distance_error_pct", "step_f1", "n_walking_bouts")
     assert outs[0]["bouts"] and all(outs[0][k] == outs[1][k] for k in keys)
     assert outs[1]["n_bouts"] < outs[0]["n_bouts"] == outs[0]["n_walking_bouts"]
-    assert list(pd.read_csv(tmp_path / "d" / "bouts.csv").columns) == list(BOUT_COLUMNS)
+    assert list(pd.read_csv(tmp_path / "d" / "bouts.csv").columns) == [*BOUT_COLUMNS, "speed_m_s"]  # E98
 
 
 def test_track_detects_the_bouts_once_and_track_all_takes_storey_height(walk, tmp_path, monkeypatch):
@@ -194,3 +194,26 @@ def test_a_bad_bout_rule_is_one_line_before_any_work(walk, tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--bout-rule mobilise: give one of pdrlearn, mobgap" in err[0]
     assert not (tmp_path / "bad").exists()
+
+
+def test_speed_is_mps_and_the_old_name_stays_readable_with_a_warning(tracks, tmp_path):
+    """Decision E98 (docs/decisions/export.md): speeds are ``_mps`` everywhere; bouts' ``speed_m_s`` is renamed
+    ``speed_mps``, the old name answered with a FutureWarning in Python and kept as bouts.csv's last column."""
+    import warnings
+
+    from pdrlearn.track.bouts import csv_table, current_names
+
+    b = detected_bouts(tracks["plasys"].steps)
+    assert "speed_mps" in b.columns and "speed_m_s" not in b.columns
+    with pytest.warns(FutureWarning, match=r"^bouts column 'speed_m_s' is now 'speed_mps' \(decision E98"):
+        old = b["speed_m_s"]
+    assert old.equals(b["speed_mps"])
+    with pytest.warns(FutureWarning):
+        assert b.speed_m_s.equals(b["speed_mps"]) and b[["bout", "speed_m_s"]].shape == (len(b), 2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the current names and slices never warn
+        assert b[b["bout"] > 1]["speed_mps"].equals(b["speed_mps"].iloc[1:])
+    written = csv_table(b)
+    assert list(written.columns) == [*BOUT_COLUMNS, "speed_m_s"] and written["speed_m_s"].equals(b["speed_mps"])
+    legacy = pd.DataFrame(b).rename(columns={"speed_mps": "speed_m_s"})  # an older run's bouts.csv (--resume)
+    assert list(current_names(legacy).columns) == list(BOUT_COLUMNS)

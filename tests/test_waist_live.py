@@ -192,8 +192,8 @@ def test_inputs_checked_in_one_line():
         tr.push([0.02], np.full((1, 3), np.nan), np.zeros((1, 3)))
     with pytest.raises(DataError, match=r"^WaistTracker: frame= .up-right-forward.: write e.g. x=forward,y=up,z=right"):
         WaistTracker(100.0, frame="up-right-forward")
-    with pytest.raises(DataError, match="not supported live"):
-        WaistTracker(100.0, frame="x=up,y=right,z=forward", start=(52.0, 13.0))
+    with pytest.raises(DataError, match=r"^start=\(200.0, 13.0\): latitude must be in \[-90, 90\]"):  # W137, L157
+        WaistTracker(100.0, frame="x=up,y=right,z=forward", start=(200.0, 13.0))
     with pytest.raises(DataError, match="W56"):
         WaistTracker(100.0, frame="x=up,y=right,z=forward", params={"options": {"length_smoothing": "mobgap"}})
     with pytest.raises(DataError, match="sampling rate"):

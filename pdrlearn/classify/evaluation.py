@@ -399,13 +399,19 @@ def _gap_text(session, gap_steps: dict) -> str:
     return f"longest {best[0]:.1f} s at {best[1]:.1f} s in {best[2]}"
 
 
+def table_pairs(task_result: dict) -> list[tuple[str, str]]:
+    """The (method, unit) rows of a task's result in the order of thesis Tables 27/28/33 (``ROW_ORDER``), then any
+    others in training order; shared by :func:`results_table` and :func:`pdrlearn.tables.evaluation_frame`."""
+    methods = task_result["methods"]
+    pairs = [p for p in ROW_ORDER if p[0] in methods and p[1] in methods[p[0]]["units"]]
+    return pairs + [(m, u) for m, d in methods.items() for u in d["units"] if (m, u) not in pairs]
+
+
 def results_table(task_result: dict) -> list[list[str]]:
     """Rows ``[method, unit, per-class %..., all %, ms]`` in the order of thesis Tables 27/28/33."""
     rows = []
     methods = task_result["methods"]
-    pairs = [p for p in ROW_ORDER if p[0] in methods and p[1] in methods[p[0]]["units"]]
-    pairs += [(m, u) for m, d in methods.items() for u in d["units"] if (m, u) not in pairs]
-    for m, u in pairs:
+    for m, u in table_pairs(task_result):
         r = methods[m]["units"][u]
         pc = [("-" if r["per_class"][c] is None else f"{100 * r['per_class'][c]:.1f}") for c in task_result["classes"]]
         lat = r.get("latency_ms")

@@ -407,13 +407,9 @@ def _session_row(rel: str, group: str, r: JobResult, given: str | None = None) -
     row["warnings"] = WARNINGS_SEP.join(warned) if warned else None
     if not r.ok:
         return row
-    summary = r.value["summary"]
-    for k, v in summary.items():
-        if k == "final_position" and isinstance(v, dict):
-            row.update({f"final_{a}_m": v.get(a) for a in ("x", "y", "z")})
-        elif v is None or isinstance(v, str | int | float | bool):
-            row[k] = v
-    row["method"] = summary.get("info", {}).get("method")
+    from pdrlearn.tables import summary_row
+
+    row.update(summary_row(r.value["summary"]))  # decision E97: the flattening summary_frame shares
     row["input_dir"] = rel  # decision C18: relative to ROOT (summary.json keeps the resolved folder, C13)
     row["content_id"] = r.value.get("content_id")  # decision C20: B87's fingerprint of the sensor data
     row.update(r.value.get("bout_totals", {}))  # cohort C25: the walking bouts' totals (bouts.csv summed)
@@ -632,16 +628,16 @@ def combined_bouts(out: Path, rows: list[dict]) -> pd.DataFrame:
     ``subject`` follow."""
     import pandas as pd
 
-    from pdrlearn.track.bouts import BOUT_COLUMNS
+    from pdrlearn.track.bouts import BOUT_COLUMNS, csv_table, current_names
 
     cols = [*COMBINED_BOUT_KEYS, *BOUT_COLUMNS]
     parts = []
     for row in rows:
         if row["status"] == "ok" and (out / row["path"] / "bouts.csv").is_file():
-            b = pd.read_csv(out / row["path"] / "bouts.csv", dtype={"session": str, "subject": str})
+            b = current_names(pd.read_csv(out / row["path"] / "bouts.csv", dtype={"session": str, "subject": str}))
             if len(b):
                 parts.append(b.assign(path=row["path"], visit=row.get("visit")))
-    return pd.concat(parts, ignore_index=True)[cols] if parts else pd.DataFrame(columns=cols)
+    return csv_table(pd.concat(parts, ignore_index=True)[cols] if parts else pd.DataFrame(columns=cols))  # E98
 
 
 def _write_csv_atomic(df: pd.DataFrame, path: Path) -> None:

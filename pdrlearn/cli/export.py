@@ -668,13 +668,14 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
 
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.provenance import write_run_json
+    from pdrlearn.track.bouts import csv_table
     from pdrlearn.track.plots import plot_paths
 
     was = existed(out)
     with atomic_directory(out) as tmp:
         result.steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
         result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format="%.10g")
-        bouts.to_csv(tmp / "bouts.csv", index=False, float_format="%.10g")  # L124, as track
+        csv_table(bouts).to_csv(tmp / "bouts.csv", index=False, float_format="%.10g")  # L124, as track (E98)
         plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run", dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
         write_run_json(tmp, record)

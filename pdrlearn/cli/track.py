@@ -496,6 +496,7 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     """Write :func:`track_session`'s track into the existing folder ``dest`` (the caller's temporary folder):
     ``trajectory.csv``, ``steps.csv``, ``bouts.csv`` (decision L124), ``path.png`` (``aided.png`` with fixes) and
     ``summary.json``; return the summary and whether the track was aided."""
+    from pdrlearn.track.bouts import csv_table
     from pdrlearn.track.plots import plot_paths
 
     session, result, summary, pipeline, aided, dpi = (tracked[k] for k in ("session", "result", "summary",
@@ -513,7 +514,7 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
                    title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
     _write_csv(traj, dest / "trajectory.csv")
     _write_csv(result.steps, dest / "steps.csv")
-    _write_csv(tracked["bouts"], dest / "bouts.csv")  # decision L124
+    _write_csv(csv_table(tracked["bouts"]), dest / "bouts.csv")  # decision L124 (E98: the old speed_m_s last)
     plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
     (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")

@@ -27,6 +27,7 @@ Modules
 - :mod:`~pdrlearn.kernels.strapdown` - the stride strapdown's core: padded batches, quaternion propagation (E72).
 - :mod:`~pdrlearn.kernels.handedness` - D11's mirrored-pair test of a foot unit, offline and live (B129).
 - :mod:`~pdrlearn.kernels.histospline` - L24's block-mean histospline without scipy (the stride kernel's, L141).
+- :mod:`~pdrlearn.kernels.geodetic` - thesis eq. 56/57 one step at a time (offline lat/lon and the live trackers, W137).
 
 This ``__init__`` imports nothing (importing a submodule never loads the others).
 """

@@ -356,6 +356,8 @@ PRUNE_HEIGHT_FRAC = 0.5  # W20: of a same-side pair only a maximum under half th
 #: W131: a contact where the pelvis's centred 2 s mean yaw rate reaches this (rad/s) is not judged by W23 at the
 #: contact -- decision 29's turning test (docs/decisions/steps.md), decision 28's turning component of W7's mixture
 CONTACT_SHIFT_TURN_RPS = 0.45
+#: decision W129: the side labels for W20's +1 / -1 / 0 (undecided); a priori, v > 0 (towards the left) = left foot
+SIDE_LABELS = {1: "left", -1: "right", 0: ""}
 
 
 def lateral_velocity(acc_ml: np.ndarray, fs: float, *, band_hz: tuple[float, float] = SIDE_BAND_HZ

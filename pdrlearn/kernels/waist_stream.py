@@ -119,7 +119,8 @@ class RealtimeContacts:
         self.b0 = 0  # absolute index of the first buffered sample
         self.buf: dict[str, np.ndarray] = {}
         self.n = 0
-        self.decided: list[tuple[int, float, float]] = []  # (ic index, ic time, fc time) not yet reported
+        #: (ic index, ic time, fc time, W138's lateral velocity at the ic) not yet reported
+        self.decided: list[tuple[int, float, float, float]] = []
 
     # -- AHRS ------------------------------------------------------------------------------------
     def _nav(self, t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, first: bool) -> None:
@@ -158,15 +159,19 @@ class RealtimeContacts:
 
     def _decide(self, end: bool) -> None:
         t = self.buf["t"]
-        for i, f, _, _ in self.decider.decide_until(self.n, self._detect, end=end):
-            self.decided.append((i, float(t[i - self.b0]), float(t[f - self.b0])))
+        v_ml: dict[int, np.ndarray] = {}  # decision time -> W20's lateral velocity of that decision's window
+        for i, f, _, tt in self.decider.decide_until(self.n, self._detect, end=end):
+            lo = max(self.b0, tt - self.decider.span)
+            if tt not in v_ml:  # decision W138: on the samples the contact was decided on only ([T - span, T))
+                v_ml[tt] = K.lateral_velocity(self.buf["acc_ml"][lo - self.b0:tt - self.b0], self.fs)
+            self.decided.append((i, float(t[i - self.b0]), float(t[f - self.b0]), float(v_ml[tt][i - lo])))
 
     def _report(self, final: bool) -> list:
         out = []
         done = self.decider.done
         t_done = self.buf["t"][done - self.b0] if self.buf and done >= self.b0 else -np.inf
         while self.decided:
-            i, ti, tf = self.decided[0]
+            i, ti, tf, v_ml = self.decided[0]
             if len(self.decided) < 2 and not final and not t_done - ti > self.max_step_s:
                 break  # a next contact within max_step_s may still be decided
             ts = np.array([p[1] for p in self.decided[:2]])
@@ -175,7 +180,7 @@ class RealtimeContacts:
                 cut_contacts_at_gaps(ts, end, has_next, self.gaps)  # as cut_steps_at_gaps
             if keep[0]:  # (a contact inside a recording gap is dropped, B11)
                 end0 = ti if spans[0] else float(end[0])
-                out.append((ti, ti, end0, float(conf[0]), {"fc_s": tf}))
+                out.append((ti, ti, end0, float(conf[0]), {"fc_s": tf, "v_ml_mps": v_ml}))
             self.decided.pop(0)
         return out
 

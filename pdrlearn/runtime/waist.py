@@ -44,9 +44,13 @@ class LiveStep:
 
     ``t`` the initial contact (s, the pushed clock); ``end_s`` the next contact of the walking sequence
     (``== t`` for a contact that closes one: ``length_m`` 0); ``length_m`` (m) and ``heading_rad`` (ENU, rad,
-    start heading added) of the step; ``x``, ``y`` (m) the position at ``end_s``; ``side`` is ``None`` (the
-    detector's left/right guess, W20, is internal); ``merged``: a W27 fragment whose length its neighbour carries;
-    ``turning``: the stride's straight (0) / turning (1) class (seed 003 sec. 3.3)."""
+    start heading added) of the step; ``x``, ``y`` (m) the position at ``end_s``; ``side``: None, or with the option
+    ``sides=True`` of :class:`pdrlearn.waist.WaistTracker` the foot of the contact, ``"left"`` / ``"right"`` / ``""``
+    (undecided), from W20's lateral velocity on the samples the contact was decided on (decision W138: an option,
+    not adopted as the default; 93 % the simulated foot where decided, the offline side 98 %); ``merged``: a W27
+    fragment whose length its neighbour carries; ``turning``: the stride's straight (0) / turning (1) class (seed 003
+    sec. 3.3); ``lat``, ``lon`` (degrees): the position at ``end_s`` when the tracker was given a geodetic start
+    (decision W137), else None."""
 
     t: float
     end_s: float
@@ -58,6 +62,8 @@ class LiveStep:
     merged: bool = False
     turning: int = 0
     side: str | None = None
+    lat: float | None = None
+    lon: float | None = None
 
 
 class WaistStream(FixInput):
@@ -69,12 +75,15 @@ class WaistStream(FixInput):
     :class:`~pdrlearn.waist.params.WaistParams`, or the bundle's); ``options``: the resolved pipeline options
     (``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``slow_turn_rps``, ``initial_heading``);
     ``rotation``: the sensor -> body FLU matrix (None: the subclass's ``_frame`` finds one); ``start``: ``(x0, y0,
-    h0)`` (m, m, rad ENU); ``warnings``: the lines so far (logged here)."""
+    h0)`` (m, m, rad ENU); ``latlon``: the start's ``(lat, lon)`` in degrees, checked (decision W137: each step's
+    ``lat``/``lon``), or None; ``sides``: W138's causal side of each contact (an option); ``warnings``: the lines so
+    far (logged here)."""
 
     _name = "WaistTracker"
 
     def __init__(self, fs: float, *, params, options: dict, walk_threshold: float, rotation, start: tuple,
-                 warnings: list[str], keep_steps: int | None = None, check_input: bool = True):
+                 warnings: list[str], keep_steps: int | None = None, check_input: bool = True,
+                 latlon: tuple[float, float] | None = None, sides: bool = False):
         from collections import deque
 
         from pdrlearn.kernels.waist import TurnPrior
@@ -89,6 +98,12 @@ class WaistStream(FixInput):
         self._sx = self._sy = 0.0  # running sums of the displacements (as track_waist's cumsum)
         self.position = (x0, y0)
         self.heading = float(self._h0)
+        # decision W137: the geodetic position (rad) of the last reported (x, y), moved step by step (eq. 56/57)
+        self._ll = None if latlon is None else (math.radians(latlon[0]), math.radians(latlon[1]))
+        self._xy_reported = (x0, y0)
+        # decision W138: |lateral velocity| at the last decided contacts, the scale a side is decided against
+        self._side_scale: deque[float] = deque(maxlen=FRAGMENT_CONTEXT_STEPS)
+        self._sides = bool(sides)
         self._init_fixes((x0, y0))  # decisions D19-D21: add_fix
         #: decision B119: the units of the first seconds (None: checked, or ``check_input=False``); B120: frozen
         self._guard = UnitGuard(WAIST_SENSORS, self._name) if check_input else None
@@ -149,11 +164,12 @@ class WaistStream(FixInput):
     def state_size(self) -> int:
         """Numbers the tracker holds to process what comes (not :attr:`steps`): its sample buffer and pending rows,
         the held samples of W65 and the W31 detector's window; bounded over any stream length (decision W64)."""
-        n = 4 * self._bt.size + 5 * len(self._rows) + len(self._absorbed) + len(self._span_start)
+        n = 4 * self._bt.size + 6 * len(self._rows) + len(self._absorbed) + len(self._span_start)
+        n += len(self._side_scale)  # W138: at most FRAGMENT_CONTEXT_STEPS
         n += self._held_size()
         p = self._proc
         if p is not None:
-            n += sum(np.size(v) for v in p.buf.values()) + 3 * len(p.decided) + sum(np.size(r[1]) for r in p.raw)
+            n += sum(np.size(v) for v in p.buf.values()) + 4 * len(p.decided) + sum(np.size(r[1]) for r in p.raw)
             n += p.bridge.tail_v.size + p.bridge.tail_t.size + 2 * sum(len(g) for g in p.gaps.values())
         return int(n)
 
@@ -280,7 +296,7 @@ class WaistStream(FixInput):
             prev = self._rows.get(k - 1)
             seq = k if prev is None or not prev["has_next"] else prev["seq"]
             self._rows[k] = {"t": float(ev), "end": float(end), "has_next": bool(end > ev), "seq": seq,
-                             "fc": float(extra.get("fc_s", np.nan))}
+                             "fc": float(extra.get("fc_s", np.nan)), "side": self._side(extra.get("v_ml_mps"))}
             self._n_rows += 1
         if self._proc is not None and len(self._proc.gaps.get("online stream", ())) > self._n_gaps:
             self._gap_warnings()
@@ -294,6 +310,19 @@ class WaistStream(FixInput):
         if self._proc is not None:
             self._trim()
         return out
+
+    def _side(self, v: float | None) -> str | None:
+        """Decision W138: a decided contact's side from W20's lateral velocity ``v`` (m/s) at it, read on the samples it
+        was decided on (:class:`~pdrlearn.kernels.waist_stream.RealtimeContacts`), against the median |v| of the
+        contacts decided so far (this one included; the last FRAGMENT_CONTEXT_STEPS): W129's labels."""
+        from pdrlearn.kernels.waist import SIDE_LABELS, step_sides
+
+        if v is None or not self._sides:
+            return None
+        self._side_scale.append(abs(float(v)))
+        scale = np.asarray(self._side_scale)
+        side = step_sides(np.concatenate([[float(v)], scale]), np.r_[False, np.ones(scale.size, dtype=bool)])[0]
+        return SIDE_LABELS[int(side)]
 
     def _gap_warnings(self) -> None:
         from pdrlearn.kernels.gaps import gap_warnings
@@ -425,8 +454,16 @@ class WaistStream(FixInput):
         fused = self._fuse_step(row["t"], row["end"], length, enu)  # decisions D19-D21
         if fused is not None:
             x, y = fused
+        lat = lon = None
+        if self._ll is not None:  # decision W137: the reported displacement, thesis eq. 56/57
+            from pdrlearn.kernels.geodetic import step_destination
+
+            dx, dy = float(x) - self._xy_reported[0], float(y) - self._xy_reported[1]
+            self._ll = step_destination(*self._ll, math.hypot(dx, dy), math.atan2(dy, dx))
+            lat, lon = math.degrees(self._ll[0]), math.degrees(self._ll[1])
+        self._xy_reported = (float(x), float(y))
         step = LiveStep(t=row["t"], end_s=row["end"], length_m=length, heading_rad=enu, x=float(x), y=float(y),
-                        has_next=row["has_next"], merged=merged, turning=turning)
+                        has_next=row["has_next"], merged=merged, turning=turning, side=row["side"], lat=lat, lon=lon)
         self.steps.append(step)
         return step
 

@@ -17,6 +17,7 @@ new bout when two consecutive initial contacts are more than 3 s apart, at least
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -27,8 +28,56 @@ from pdrlearn.track.clinical import PAUSE_MIN_S, TURN_COUNT_MIN_DEG, bout_rows, 
 
 #: bouts.csv's columns, in order (docs/columns.md; decision L165: ``session`` / ``subject`` first, the join key)
 BOUT_COLUMNS = ("session", "subject", "bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides", "distance_m",
-                "speed_m_s", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
+                "speed_mps", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
                 "longest_contact_gap_s", "n_turns", "altitude_change_m")
+
+#: decision E98: bouts.csv's renamed columns, old name -> new (speeds are ``_mps`` as everywhere else). The old name
+#: stays readable: a :class:`BoutsTable` answers it with a FutureWarning, and the CSVs keep it as a last column
+#: (:func:`csv_table`) until a later release drops it
+RENAMED_BOUT_COLUMNS = {"speed_m_s": "speed_mps"}
+
+
+def _renamed(key, columns):
+    """Decision E98: ``key`` with a renamed column's old name replaced by the new one (one FutureWarning each)."""
+    if isinstance(key, str) and key in RENAMED_BOUT_COLUMNS and key not in columns:
+        new = RENAMED_BOUT_COLUMNS[key]
+        warnings.warn(f"bouts column '{key}' is now '{new}' (decision E98: speeds are _mps); '{key}' will be removed",
+                      FutureWarning, stacklevel=3)
+        return new
+    if isinstance(key, list):
+        return [_renamed(k, columns) for k in key]
+    return key
+
+
+class BoutsTable(pd.DataFrame):
+    """:func:`detected_bouts`'s table: a DataFrame whose renamed columns (decision E98, :data:`RENAMED_BOUT_COLUMNS`)
+    are still readable under their old names, ``table["speed_m_s"]`` or ``table.speed_m_s``, with a FutureWarning."""
+
+    @property
+    def _constructor(self):
+        return BoutsTable
+
+    def __getitem__(self, key):
+        return super().__getitem__(_renamed(key, self.columns))
+
+    def __getattr__(self, name: str):
+        if name in RENAMED_BOUT_COLUMNS:
+            return self[name]
+        return super().__getattr__(name)
+
+
+def csv_table(table: pd.DataFrame) -> pd.DataFrame:
+    """Decision E98: the table as bouts.csv writes it - :data:`BOUT_COLUMNS`, then each renamed column's old name
+    (the same values; deprecated, kept so that scripts reading it keep working until a later release)."""
+    out = pd.DataFrame(table)
+    return out.assign(**{old: out[new] for old, new in RENAMED_BOUT_COLUMNS.items()})
+
+
+def current_names(table: pd.DataFrame) -> pd.DataFrame:
+    """Decision E98: a bouts.csv read back (an older run's, for ``track-all --resume``) with the current names."""
+    old = {o: n for o, n in RENAMED_BOUT_COLUMNS.items() if o in table.columns and n not in table.columns}
+    return table.rename(columns=old)
+
 
 #: decision L163: the ways a bout ends - ``rhythm`` (L104/L119: a row-to-row interval at least ``break_s`` beyond
 #: the walk's median interval, a turn across it taking its time first) or ``contact`` (mobgap's literal rule: two
@@ -136,20 +185,20 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     a foot track's 2 per stride of the tracked foot, an estimate; a lower-back track's detected steps);
     ``n_strides``: a foot track's strides (rows that are no foot-data gap, L67), a lower-back track's strides from
     contact k to k + 2 as mobgap forms them (its rows are its contacts, the last one a 0 m row: ``n_steps`` - 2);
-    ``distance_m``: the rows' summed |length_m| (the track's ``distance_m`` sums the same); ``start_s`` /
-    ``end_s``: the first row's start and the last row's end, ``duration_s`` their difference (the bout's first and
-    last steps included: slower than its middle); ``speed_m_s`` = distance / duration; ``stride_length_m``
-    (decision L166): the mean stride length, a foot track's distance / strides, a lower-back track's 2 x the mean
-    step length over its ``n_steps`` - 1 steps (the last row is the 0 m closing contact); ``contact_span_s``: from
-    the bout's first initial contact (``event_s``) to its last; ``n_step_intervals``: the steps between them
-    (contacts - 1; 2 per stride of a tracked foot, L66); ``cadence_spm``: :func:`cadence_spm` of those two (NaN
-    with fewer than 2 contacts); ``longest_contact_gap_s`` (decision L163): the longest time between two
-    consecutive contacts in the bout - under the ``rhythm`` rule it may exceed ``break_s`` (a turn or the rhythm
+    ``distance_m``: the rows' summed |length_m| (the track's ``distance_m`` sums the same); ``start_s`` / ``end_s``:
+    the first row's start and the last row's end, ``duration_s`` their difference (the bout's first and last steps
+    included: slower than its middle); ``speed_mps`` = distance / duration (``speed_m_s`` before E98);
+    ``stride_length_m`` (decision L166): the mean stride length, a foot track's distance / strides, a lower-back
+    track's 2 x the mean step length over its ``n_steps`` - 1 steps (the last row is the 0 m closing contact);
+    ``contact_span_s``: from the bout's first initial contact (``event_s``) to its last; ``n_step_intervals``: the
+    steps between them (contacts - 1; 2 per stride of a tracked foot, L66); ``cadence_spm``: :func:`cadence_spm` of
+    those two (NaN with fewer than 2 contacts); ``longest_contact_gap_s`` (decision L163): the longest time between
+    two consecutive contacts in the bout - under the ``rhythm`` rule it may exceed ``break_s`` (a turn or the rhythm
     took the rest), this column says so; ``n_turns``: the track's turns of at least ``turn_count_min_deg`` (L104)
     whose first turning interval ends in the bout (a turn after a pause counts in the bout it starts);
     ``altitude_change_m``: the rows' summed ``dz_m`` (NaN without that column)."""
     rule = rule or BoutRule()
-    out = pd.DataFrame(columns=list(BOUT_COLUMNS))
+    out = BoutsTable(columns=list(BOUT_COLUMNS))
     if not len(steps) or "start_s" not in steps:
         return out
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
@@ -175,14 +224,14 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
         n_len = n_strides if foot else n_steps - 1  # L166: a foot row is a stride; a lower-back row a step
         rows.append({"session": session, "subject": subject, "bout": len(rows) + 1, "start_s": t0, "end_s": t1,
                      "duration_s": dur, "n_steps": n_steps, "n_strides": n_strides, "distance_m": dist,
-                     "speed_m_s": dist / dur if dur > 0 else np.nan,
+                     "speed_mps": dist / dur if dur > 0 else np.nan,
                      "stride_length_m": (1 if foot else 2) * dist / n_len if n_len > 0 else np.nan,
                      "contact_span_s": span, "n_step_intervals": intervals,
                      "cadence_spm": cadence_spm(intervals, span),
                      "longest_contact_gap_s": float(np.diff(c).max()) if len(c) >= 2 else np.nan,
                      "n_turns": int(((turn_row >= a) & (turn_row < b)).sum()),
                      "altitude_change_m": float(dz[a:b].sum())})
-    return pd.DataFrame(rows, columns=list(BOUT_COLUMNS)) if rows else out
+    return BoutsTable(rows, columns=list(BOUT_COLUMNS)) if rows else out
 
 
 #: a track's walking-bout totals (cohort C25): sessions.csv's columns, summed per subject in subjects.csv

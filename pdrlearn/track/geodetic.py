@@ -5,8 +5,10 @@ from __future__ import annotations
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.geodetic import EARTH_RADIUS_KM, destination, step_destination
 
-EARTH_RADIUS_KM = 6371.0  # thesis ch.7.2.1 (R = 6371 km)
+__all__ = ["EARTH_RADIUS_KM", "destination", "geodetic_track", "heading_in_radians", "parse_start", "start_coordinate",
+           "step_destination"]
 
 
 def _checked(lat: float, lon: float, alt: float, shown: str) -> tuple[float, float, float]:
@@ -76,20 +78,6 @@ def heading_in_radians(value: float, name: str) -> float:
     return v
 
 
-def destination(lat_rad: float, lon_rad: float, azimuth_rad: float,
-                distance_km: float) -> tuple[float, float]:
-    """New latitude/longitude (rad) after ``distance_km`` along ``azimuth_rad`` (clockwise from north).
-
-    Thesis eq. 56/57 on a sphere of radius 6371 km.
-    """
-    delta = distance_km / EARTH_RADIUS_KM  # angular distance d / R
-    lat2 = np.arcsin(np.sin(lat_rad) * np.cos(delta)
-                     + np.cos(lat_rad) * np.sin(delta) * np.cos(azimuth_rad))  # thesis eq. 56
-    lon2 = lon_rad + np.arctan2(np.sin(azimuth_rad) * np.sin(delta) * np.cos(lat_rad),
-                                np.cos(delta) - np.sin(lat_rad) * np.sin(lat2))  # thesis eq. 57
-    return float(lat2), float((lon2 + np.pi) % (2 * np.pi) - np.pi)
-
-
 def geodetic_track(start: tuple[float, float], length_m: np.ndarray, heading_rad: np.ndarray) -> np.ndarray:
     """Latitude/longitude (degrees, (n + 1, 2)) after each step from a start coordinate (degrees).
 
@@ -100,7 +88,6 @@ def geodetic_track(start: tuple[float, float], length_m: np.ndarray, heading_rad
     out = np.empty((len(length_m) + 1, 2))
     out[0] = start
     for k, (d, h) in enumerate(zip(np.asarray(length_m, float), np.asarray(heading_rad, float), strict=True)):
-        az = np.pi / 2 - h + (np.pi if d < 0 else 0.0)
-        lat, lon = destination(lat, lon, az, abs(d) / 1000.0)
+        lat, lon = step_destination(lat, lon, d, h)  # thesis eq. 56/57, the live trackers' step too (W137)
         out[k + 1] = np.degrees(lat), np.degrees(lon)
     return out

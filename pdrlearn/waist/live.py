@@ -136,17 +136,24 @@ class WaistTracker(WaistStream):
     frame : the unit's axes (an :class:`~pdrlearn.io.frames.AxisFrame`, ``{"x": "up", "y": "right", "z":
         "forward"}``, ``"x=up,y=right,z=forward"`` or a 3x3 sensor -> body FLU matrix); None: ``meta``'s, else
         inferred from the first walking (W65)
-    start : ``{"x": m, "y": m, "heading_rad": rad}`` (ENU) or None (origin); ``(lat, lon)`` is not supported live
+    start : ``{"x": m, "y": m, "heading_rad": rad}`` (ENU), or the pipelines' ``(lat, lon)`` / ``(lat, lon, alt)`` in
+        degrees (alt in m; ``"LAT,LON[,ALT]"`` too; checked as ``--start``, decision L157): each step then has ``lat``,
+        ``lon`` (decision W137; the altitude is kept as :attr:`start_altitude_m`, not tracked), or None (origin)
     initial_heading : the direction the walker sets off in, radians ENU (counter-clockwise from east; 0 = east, the
         default); a magnitude above 2 pi (degrees, as the CLI's ``--initial-heading``) is refused (decision W81)
     integrate_stops, turn_factor, rhythm, merge_fragments, slow_turn_rps : as :func:`pdrlearn.track.waist.
         track_waist` (None: ``params.options``, else its defaults)
     keep_steps : how many reported steps :attr:`steps` keeps (None: all)
     check_input : check the units of the first seconds (decision B119) -- False only for data already checked
+    sides : give each step its foot (``LiveStep.side``: "left" / "right" / "" undecided) from W20's lateral velocity
+        on the samples the contact was decided on (decision W138, causal). An option, not the default: on simulated
+        users 2270-2289 it is the simulated foot for 93.3 % of the decided contacts where the offline track's
+        ``side`` is 98.2 %, short of the 97 % W138 set before measuring (False: ``side`` is None)
 
     Attributes
     ----------
-    position : (x, y) m after the last reported step; heading : its heading (rad, ENU); steps : reported
+    position : (x, y) m after the last reported step; heading : its heading (rad, ENU); start_altitude_m : the
+    geodetic start's altitude (m; 0.0 without one); steps : reported
     :class:`LiveStep` s; warnings : what ``track`` would warn about (defaults, gaps, an inferred frame);
     params : the resolved :class:`~pdrlearn.waist.params.WaistParams`; options : the resolved options
     """
@@ -155,7 +162,7 @@ class WaistTracker(WaistStream):
                  height_m: float | None = None, frame=None, start=None, initial_heading: float | None = None,
                  integrate_stops: bool | None = None, turn_factor: bool | None = None, rhythm: bool | None = None,
                  merge_fragments: bool | None = None, slow_turn_rps: float | None = None,
-                 keep_steps: int | None = None, check_input: bool = True):
+                 keep_steps: int | None = None, check_input: bool = True, sides: bool = False):
         from pdrlearn.io.session import Session
         from pdrlearn.track.waist import _start
         from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
@@ -173,10 +180,7 @@ class WaistTracker(WaistStream):
         o = live_options(p, warnings, initial_heading=initial_heading, integrate_stops=integrate_stops,
                          turn_factor=turn_factor, rhythm=rhythm, merge_fragments=merge_fragments,
                          slow_turn_rps=slow_turn_rps)
-        if isinstance(start, list | tuple):
-            raise DataError("WaistTracker: start=(lat, lon) is not supported live; pass {'x': m, 'y': m, "
-                            "'heading_rad': rad} and convert the positions yourself")
-        x0, y0, h0, _, _ = _start(start, float(o["initial_heading"]))
+        x0, y0, h0, latlon, self.start_altitude_m = _start(start, float(o["initial_heading"]))  # W137, L157
         rot, self._declared, self._declared_origin = _declared_frame(frame, meta)
         if rot is not None and self._declared is None:  # a matrix (an AxisFrame gets B108's check)
             from pdrlearn.kernels.frames import mirrored_line
@@ -188,7 +192,8 @@ class WaistTracker(WaistStream):
         self._held = _HeldSamples(trim=True)  # W65: raw samples held until the frame is inferred
         super().__init__(fs, params=p, options=o, rotation=rot, start=(x0, y0, h0), warnings=warnings,
                          walk_threshold=p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None
-                         else WALK_THRESHOLD_MPS2, keep_steps=keep_steps, check_input=check_input)
+                         else WALK_THRESHOLD_MPS2, keep_steps=keep_steps, check_input=check_input, latlon=latlon,
+                         sides=sides)
 
     # -- W65: the frame ---------------------------------------------------------------------------------
     def _hold(self, t: np.ndarray, v: np.ndarray):

@@ -79,8 +79,9 @@ def contact_lateral_velocity(t: np.ndarray, acc_ml: np.ndarray, fs: float, event
     return K.lateral_velocity(acc_ml, fs)[idx]
 
 
-#: decision W129: the side labels of :func:`contact_sides` for W20's +1 / -1 / 0 (undecided)
-SIDE_LABELS = {1: "left", -1: "right", 0: ""}
+#: decision W129: the side labels of :func:`contact_sides` for W20's +1 / -1 / 0 (undecided; shared with the live
+#: trackers' W138 side)
+SIDE_LABELS = K.SIDE_LABELS
 
 
 def contact_sides(t: np.ndarray, acc_ml: np.ndarray, fs: float, event_s: np.ndarray,
