@@ -61,7 +61,7 @@ def run(session, arm: str | None):
     try:
         return track_plasys(session, streaming=True, method="M2")
     finally:
-        KG.DROP_NEIGHBOUR = True
+        KG.DROP_NEIGHBOUR = False  # the default (L167 not adopted)
 
 
 def main() -> None:

@@ -68,9 +68,11 @@ def neighbour_heights(dz: np.ndarray, across: np.ndarray, skip: np.ndarray) -> n
     return out
 
 
-#: decision L167: a streamed stride across dropped foot samples (over the gap clock's 0.25 s, at most B11's 1 s)
-#: takes the length and height change of the stride before it (False: its own, integrated on the gap clock, E36)
-DROP_NEIGHBOUR = True
+#: decision L167 (an option, not adopted: users 2210-2249 kept the distance under burst loss, the altitude against the
+#: clean copy did not improve at 3 and 5 %): True makes a streamed stride across dropped foot samples (over the gap
+#: clock's 0.25 s, at most B11's 1 s) take the length and height change of the stride before it; False (default): its
+#: own, integrated on the gap clock (E36)
+DROP_NEIGHBOUR = False
 #: decision L167: the most strides one across dropped samples stands for (a stance lost in the burst joins two)
 DROP_SPAN_MAX = 2.0
 

@@ -1467,7 +1467,7 @@ class Tracker(FixInput):
             lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
             if self._mirror is not None:
                 self._mirror_stride(t0, t1)
-        if bridged:  # decision L167 (track --streaming's): the length and height of the clean stride before it
+        if bridged:  # decision L167 (an option; track --streaming's): the length and height of the clean stride before
             disp = np.array(drop_stride_disp(disp, t1 - t0, self._drop_ref))
             if KG.DROP_NEIGHBOUR and self._drop_ref is not None and not self._drop_warned:
                 self._drop_warned = True

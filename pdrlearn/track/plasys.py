@@ -1163,7 +1163,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     turn in the gap before it (:func:`~pdrlearn.kernels.stride.stride_gap_yaw`). ``waist_bridge`` (decision L99,
     as the runtime's; L91's mechanism): a stride headed by the waist gyroscope across a foot-IMU gap over 1 s turns
     by the waist's turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest
-    after it); False: 0 (L90).
+    after it); False: 0 (L90). ``kernels.gaps.DROP_NEIGHBOUR = True`` (decision L167, an option, as the runtime's): a
+    stride across dropped foot samples over 0.25 s (under 1 s) takes the length (scaled by the durations) and height
+    change of the clean stride before it.
     """
     start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
     initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
@@ -1254,8 +1256,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     in_gap = overlaps_gaps(table, foot_gaps)  # decision E30: these strides move 0 m, turn 0, no classes
     imu_gaps = {k: v for k, v in foot_gaps.items() if k in FOOT_IMU}
     imu_gap = overlaps_gaps(table, imu_gaps)  # decisions L90 / L91: the foot's yaw is lost over these strides
-    # decision L167: a stride across dropped samples over the gap clock's limit takes the length and height of the
-    # stride before it (ref: that stride's displacement and duration), as the runtime's bridged stride
+    # decision L167 (an option, DROP_NEIGHBOUR): a stride across dropped samples over the gap clock's limit takes the
+    # length and height of the stride before it (ref: that stride's displacement and duration), as the runtime's
     across, ref = drop_strides(session, table, in_gap, min_gap_s=BRIDGE_GAP_S), None
     for i, (t0, t1) in enumerate(strides):
         prev = float(strides[i - 1, 1]) if i else None
