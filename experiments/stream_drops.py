@@ -22,6 +22,7 @@ import numpy as np
 import pandas as pd
 
 import pdrlearn.kernels.gaps as KG
+from experiments.position_sigma import users
 from pdrlearn.io import Stream
 from pdrlearn.sim.simulate import simulate
 from pdrlearn.track.evaluate import evaluate_track
@@ -69,9 +70,8 @@ def main() -> None:
     p.add_argument("--users", default="2210-2249")
     a = p.parse_args()
     logging.getLogger("pdrlearn").setLevel(logging.ERROR)
-    lo, _, hi = a.users.partition("-")
     rows, same = [], 0
-    for u in range(int(lo), int(hi or lo) + 1):
+    for u in users(a.users):
         clean = walk(u)
         c = {arm: run(clean, arm) for arm in ARMS}
         same += int(c["before"].steps.equals(c["L167"].steps) and c["before"].trajectory.equals(c["L167"].trajectory))
