@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 #: Gaps longer than this (s) are reported and end a walking sequence: the shortest steps last ~0.4 s
@@ -51,3 +53,42 @@ def cut_contacts_at_gaps(start_s: np.ndarray, end_s: np.ndarray, has_next: np.nd
     nxt = np.append(st[1:], np.inf)
     spans = ((st[:, None] < iv[None, :, 1]) & (np.maximum(en, nxt)[:, None] > iv[None, :, 0])).any(axis=1)
     return keep, spans & np.asarray(has_next, dtype=bool)[keep]
+
+
+def neighbour_heights(dz: np.ndarray, across: np.ndarray, skip: np.ndarray) -> np.ndarray:
+    """Decision L160: ``dz`` with each ``across`` stride's value replaced by the mean of the nearest strides before
+    and after it that are neither ``across`` nor ``skip`` (one of them at an end; 0 when there is none). A new
+    array. The streamed form (L167, one stride at a time) is :func:`drop_stride_disp`."""
+    out = np.array(dz, dtype=np.float64)
+    good = np.flatnonzero(~across & ~skip)
+    for i in np.flatnonzero(across):
+        k = np.searchsorted(good, i)
+        near = [out[good[j]] for j in (k - 1, k) if 0 <= j < good.size]
+        out[i] = float(np.mean(near)) if near else 0.0
+    return out
+
+
+#: decision L167 (an option, not adopted: users 2210-2249 kept the distance under burst loss, the altitude against the
+#: clean copy did not improve at 3 and 5 %): True makes a streamed stride across dropped foot samples (over the gap
+#: clock's 0.25 s, at most B11's 1 s) take the length and height change of the stride before it; False (default): its
+#: own, integrated on the gap clock (E36)
+DROP_NEIGHBOUR = False
+#: decision L167: the most strides one across dropped samples stands for (a stance lost in the burst joins two)
+DROP_SPAN_MAX = 2.0
+
+
+def drop_stride_disp(disp, duration_s: float, ref) -> tuple[float, float, float]:
+    """Decision L167 (L160's rule streamed: only the neighbour before is known when a stride ends): the step-frame
+    displacement ``(dx, dy, dz)`` (m) of a stride of ``duration_s`` (s) across dropped foot samples. ``ref``:
+    ``((dx, dy, dz), duration_s)`` of the nearest stride before it that crossed no drop, or None (then ``disp``
+    itself). Its own direction, ``ref``'s horizontal length x the ratio of the durations (at most
+    :data:`DROP_SPAN_MAX`), ``ref``'s height change."""
+    dx, dy, dz = (float(v) for v in disp)
+    if ref is None or not DROP_NEIGHBOUR:
+        return dx, dy, dz
+    (rx, ry, rz), rdur = ref
+    length = math.hypot(float(rx), float(ry)) * min(float(duration_s) / float(rdur), DROP_SPAN_MAX)
+    own = math.hypot(dx, dy)
+    if own > 0.0:
+        return dx * length / own, dy * length / own, float(rz)
+    return length, 0.0, float(rz)

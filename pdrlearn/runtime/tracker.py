@@ -24,11 +24,13 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
+from pdrlearn.kernels import gaps as KG
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
 from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
+from pdrlearn.kernels.gaps import drop_stride_disp
 from pdrlearn.kernels.stride import (
     DOWN_MODES,
     FINE_AHEAD_S,
@@ -391,6 +393,8 @@ class Tracker(FixInput):
     speculative = False
     _pushed_gaps: list | None = None  # decision E30 (a bare Tracker.__new__ has none)
     _foot_gaps: list | tuple = ()
+    _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
+    _drop_warned = False
     #: decision E46: the long foot gaps (start, end) not yet behind the last emitted stride, the pending gap row
     #: ([start, gap_s] or None), the end / reported heading / position of the last emitted stride
     _row_gaps: list | tuple = ()
@@ -589,6 +593,8 @@ class Tracker(FixInput):
         self._pushed_gaps: list | None = None
         self._gap_marks: list[list] = []
         self._foot_gaps: list[tuple[float, float, bool, bool]] = []  # (start, end, long, a foot IMU stream's)
+        self._drop_ref: tuple | None = None  # decision L167: (displacement, duration) of the last clean stride
+        self._drop_warned = False
         self._held: set[str] = set()
         self._held_s = float(self.params.get("max_wait_s", 2.0))  # a held value older than this is warned about
         #: decision B141: a push whose timestamps jump further ahead than this (s) is refused (a clock glitch)
@@ -1461,6 +1467,14 @@ class Tracker(FixInput):
             lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
             if self._mirror is not None:
                 self._mirror_stride(t0, t1)
+        if bridged:  # decision L167 (an option; track --streaming's): the length and height of the clean stride before
+            disp = np.array(drop_stride_disp(disp, t1 - t0, self._drop_ref))
+            if KG.DROP_NEIGHBOUR and self._drop_ref is not None and not self._drop_warned:
+                self._drop_warned = True
+                self._warn("strides across dropped foot samples over 0.25 s take the length and height change of the "
+                           "stride before each (decision L167)")
+        else:
+            self._drop_ref = (disp.copy(), t1 - t0)
         turn = dyaw  # decision E51: the stride's own turn, before the pivot between strides
         if pause_gap:  # decisions L90 / L91 (track --streaming's): no foot pivot over a foot gap; the waist's turn
             if self._bridged():

@@ -11,7 +11,14 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.io.session import Session
-from pdrlearn.kernels.gaps import MIN_GAP_S, gap_lines, gap_warnings, grouped_gaps  # noqa: F401  (W92)
+from pdrlearn.kernels.gaps import (  # noqa: F401  (W92; L160 / L167: the drop strides' rules)
+    MIN_GAP_S,
+    drop_stride_disp,
+    gap_lines,
+    gap_warnings,
+    grouped_gaps,
+    neighbour_heights,
+)
 
 #: the foot streams whose gaps lose the foot's turn (decisions L90 / L91): the gyroscope, and the accelerometer
 #: whose clock the offline foot integrates the gyroscope on
@@ -115,14 +122,18 @@ def gap_rows(steps: pd.DataFrame, gaps: dict[str, list[tuple[float, float]]]) ->
     return pd.DataFrame({"start_s": a[k], "end_s": b[k], "gap_s": dur[k], "before": k + 1})
 
 
-def neighbour_heights(dz: np.ndarray, across: np.ndarray, skip: np.ndarray) -> np.ndarray:
-    """Decision L160: ``dz`` with each ``across`` stride's value replaced by the mean of the nearest strides before
-    and after it that are neither ``across`` nor ``skip`` (one of them at an end; 0 when there is none). A new
-    array."""
-    out = np.array(dz, dtype=np.float64)
-    good = np.flatnonzero(~across & ~skip)
-    for i in np.flatnonzero(across):
-        k = np.searchsorted(good, i)
-        near = [out[good[j]] for j in (k - 1, k) if 0 <= j < good.size]
-        out[i] = float(np.mean(near)) if near else 0.0
-    return out
+def drop_strides(session: Session, strides: pd.DataFrame, skip: np.ndarray, *, min_gap_s: float = 0.0) -> np.ndarray:
+    """Decisions L160 / L167: (n_rows,) bool, the strides of ``strides`` (``start_s``..``end_s``) overlapping an
+    interval of dropped foot-IMU samples longer than ``min_gap_s`` (s) and at most B11's :data:`MIN_GAP_S`, except
+    the ``skip`` ones (a stride across a B11 gap, which moves 0 m)."""
+    return overlaps_gaps(strides, long_gaps(session, FOOT_IMU, min_gap_s=min_gap_s, max_gap_s=MIN_GAP_S)) & ~skip
+
+
+def drop_stride_warning(n: int, streamed: bool = False) -> str:
+    """One line for the ``n`` strides across dropped foot samples: what offline (decision L160) or a streamed path
+    (L167) gives them instead of their own integration."""
+    if streamed:
+        return (f"{n} stride(s) across dropped foot samples over 0.25 s: each takes the length and height change of "
+                "the stride before it, as the gap clock loses part of its swing (decision L167)")
+    return (f"{n} stride(s) across dropped foot samples: each takes the height change of its neighbours, as the "
+            "fixed-interval integration loses part of its swing (decision L160)")

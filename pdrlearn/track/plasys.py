@@ -42,6 +42,7 @@ from pdrlearn.displace import (
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
+from pdrlearn.kernels import gaps as KG
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
@@ -54,6 +55,7 @@ from pdrlearn.kernels.distance import (
     level_dz,
 )
 from pdrlearn.kernels.window import (
+    BRIDGE_GAP_S,
     GROUP_STREAMS,
     TASK_COLUMNS,
     available_groups,
@@ -69,8 +71,10 @@ from pdrlearn.track.evaluate import match_by_overlap
 from pdrlearn.track.gait import add_gait_columns, streamed_gait_columns, stride_rows, turn_rows
 from pdrlearn.track.gaps import (
     FOOT_IMU,
-    MIN_GAP_S,
     drop_steps_across_gaps,
+    drop_stride_disp,
+    drop_stride_warning,
+    drop_strides,
     gap_heading_clause,
     gap_rows,
     gap_warnings,
@@ -833,13 +837,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if not len(strides):
         raise DataError(f"session '{session.name}': no stride between two rests of the foot unit")
     if GAP_STRIDE_HEIGHT:  # decision L160: a stride across dropped samples takes its neighbours' height change
-        across = overlaps_gaps(strides, long_gaps(session, FOOT_IMU, min_gap_s=0.0, max_gap_s=MIN_GAP_S)) & ~in_gap
+        across = drop_strides(session, strides, in_gap)
         if across.any():
             disp = disp.copy()
             disp[:, 2] = neighbour_heights(disp[:, 2], across, in_gap)
-            warnings.append(f"{int(across.sum())} stride(s) across dropped foot samples: each takes the height "
-                            "change of its neighbours, as the fixed-interval integration loses part of its swing "
-                            "(decision L160)")
+            warnings.append(drop_stride_warning(int(across.sum())))
 
     classes = pd.DataFrame(index=range(len(strides)), columns=["terrain", "direction", "length_class"],
                            dtype=object)
@@ -1161,7 +1163,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     turn in the gap before it (:func:`~pdrlearn.kernels.stride.stride_gap_yaw`). ``waist_bridge`` (decision L99,
     as the runtime's; L91's mechanism): a stride headed by the waist gyroscope across a foot-IMU gap over 1 s turns
     by the waist's turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest
-    after it); False: 0 (L90).
+    after it); False: 0 (L90). ``kernels.gaps.DROP_NEIGHBOUR = True`` (decision L167, an option, as the runtime's): a
+    stride across dropped foot samples over 0.25 s (under 1 s) takes the length (scaled by the durations) and height
+    change of the clean stride before it.
     """
     start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
     initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
@@ -1252,6 +1256,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     in_gap = overlaps_gaps(table, foot_gaps)  # decision E30: these strides move 0 m, turn 0, no classes
     imu_gaps = {k: v for k, v in foot_gaps.items() if k in FOOT_IMU}
     imu_gap = overlaps_gaps(table, imu_gaps)  # decisions L90 / L91: the foot's yaw is lost over these strides
+    # decision L167 (an option, DROP_NEIGHBOUR): a stride across dropped samples over the gap clock's limit takes the
+    # length and height of the stride before it (ref: that stride's displacement and duration), as the runtime's
+    across, ref = drop_strides(session, table, in_gap, min_gap_s=BRIDGE_GAP_S), None
     for i, (t0, t1) in enumerate(strides):
         prev = float(strides[i - 1, 1]) if i else None
         if in_gap[i]:  # decision L91: the waist's turn from the previous stride's end, else 0 (L90)
@@ -1268,6 +1275,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             posture[i] = True
             continue
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1), fine=fine)
+        if across[i]:
+            disp[i] = drop_stride_disp(disp[i], float(t1 - t0), ref)
+        else:
+            ref = (disp[i].copy(), float(t1 - t0))
         turn[i] = dyaw[i]  # decision E51: the stride's own turn (the runtime's), before the pivot below
         a, b = np.searchsorted(fa_t, t0, side="left"), np.searchsorted(fa_t, t1, side="right")
         if contacts:  # decisions E49-E51 (an option): the runtime's initial contact
@@ -1284,6 +1295,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         elif i:  # decisions L31 / L61: the heading unit's turn between strides (the runtime's call)
             dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0),
                                          foot=gap_yaw, waist=waist_gap_yaw)
+    if KG.DROP_NEIGHBOUR and (across & ~posture).any():
+        warnings.append(drop_stride_warning(int((across & ~posture).sum()), streamed=True))
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
     rule_classes = _confident(classes, gate) if method == "M3" else classes  # decision L18 / L40
     length, dz = SK.apply_stride_rules(disp, *(rule_classes[c].to_numpy(dtype=object)
