@@ -147,3 +147,29 @@ def parse_spec(spec: Any, kind: str) -> tuple[str, dict]:
         except ValueError:
             out[key] = value
     return name.strip(), out
+
+
+def from_spec(registry: Registry, spec: Any, **params) -> Any:
+    """The entry of ``registry`` that ``spec`` names, built with its settings: ``"name"`` or
+    ``"name:key=value,..."`` (:func:`parse_spec`, the CLI's form; ``params``: keyword settings from Python, which
+    win). A setting the spec names that the entry does not take is one :class:`DataError` line naming the closest
+    and every valid one (decision E94; shared by the step detectors and the waist step-length models, E84), before
+    anything is built; a wrong Python keyword in ``params`` stays the ``TypeError`` Python raises (B180)."""
+    import difflib
+    import inspect
+
+    name, given = parse_spec(spec, registry.kind)
+    try:
+        cls = registry[name]
+    except KeyError:
+        raise registry.unknown(name) from None
+    names = getattr(cls, "_param_names", None)
+    takes_any = any(p.kind == p.VAR_KEYWORD for p in inspect.signature(cls).parameters.values())
+    valid = list(names()) if callable(names) else None
+    unknown = [k for k in given if valid is not None and not takes_any and k not in valid]
+    if unknown:
+        close = [difflib.get_close_matches(k, valid, n=1) for k in unknown]
+        said = ", ".join(f"'{k}'" + (f" (did you mean '{c[0]}'?)" if c else "") for k, c in zip(unknown, close))
+        raise DataError(f"{registry.kind} '{spec}': {name} has no setting {said}; its settings are "
+                        f"{', '.join(valid) or 'none'} (write {name}:key=value,...)")
+    return cls(**{**given, **params})

@@ -186,6 +186,13 @@ def _detect_strides(session: Session, kind: str, steps, t: np.ndarray, stance: n
     return stance_strides(t, stance)
 
 
+def _detector_name(steps: str) -> str:
+    """The detector name of ``steps="NAME"`` or ``"NAME:key=value,..."`` (decision E94, the CLI's form)."""
+    from pdrlearn.plugins import parse_spec
+
+    return parse_spec(steps, "step detector")[0] if ":" in steps else steps
+
+
 def _check_steps_arg(steps) -> None:
     """Decisions B173 / L149: ``steps`` is a mode string, a registered foot detector's name, a
     :class:`~pdrlearn.steps.StepDetector` or a steps table; anything else is one :class:`DataError` line."""
@@ -193,7 +200,7 @@ def _check_steps_arg(steps) -> None:
 
     if isinstance(steps, (pd.DataFrame, steps_mod.StepDetector)):
         return
-    if isinstance(steps, str) and (steps in STEP_SOURCES or steps in steps_mod.DETECTORS):
+    if isinstance(steps, str) and (steps in STEP_SOURCES or _detector_name(steps) in steps_mod.DETECTORS):
         return
     what = repr(steps) if isinstance(steps, str) else f"a {type(steps).__name__}"
     raise DataError(f"plasys: steps={what} is not {', '.join(STEP_SOURCES)}, a foot detector's name "
@@ -208,9 +215,9 @@ def _custom_strides(session: Session, steps) -> pd.DataFrame | None:
     import pdrlearn.steps as steps_mod
 
     if isinstance(steps, str):
-        if steps in ("detector", "stance", "labels") or steps not in steps_mod.DETECTORS:
+        if steps in ("detector", "stance", "labels") or _detector_name(steps) not in steps_mod.DETECTORS:
             return None
-        steps = steps_mod.get_detector(steps)
+        steps = steps_mod.get_detector(steps)  # decision E94: "NAME:key=value,..." sets its settings
     if isinstance(steps, steps_mod.StepDetector):
         if steps.unit != "foot":
             raise DataError(f"plasys: steps={steps!r} is a {steps.unit} detector; the plasys pipeline integrates "
