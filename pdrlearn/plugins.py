@@ -168,8 +168,11 @@ def from_spec(registry: Registry, spec: Any, **params) -> Any:
     valid = list(names()) if callable(names) else None
     unknown = [k for k in given if valid is not None and not takes_any and k not in valid]
     if unknown:
-        close = [difflib.get_close_matches(k, valid, n=1) for k in unknown]
-        said = ", ".join(f"'{k}'" + (f" (did you mean '{c[0]}'?)" if c else "") for k, c in zip(unknown, close))
+        def named(k: str) -> str:
+            close = difflib.get_close_matches(k, valid, n=1)
+            return f"'{k}'" + (f" (did you mean '{close[0]}'?)" if close else "")
+
+        said = ", ".join(named(k) for k in unknown)
         raise DataError(f"{registry.kind} '{spec}': {name} has no setting {said}; its settings are "
                         f"{', '.join(valid) or 'none'} (write {name}:key=value,...)")
     return cls(**{**given, **params})
