@@ -386,9 +386,10 @@ def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[st
     return off
 
 
-def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
+def align_clocks(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
     """Waist streams moved onto the foot clock with the steps detected by both units (thesis ch.7.2.2:
-    the gyroscope-detected steps align the units); the session unchanged when that fails."""
+    the gyroscope-detected steps align the units); the session unchanged when that fails. ``track --align-units``
+    (L162) and ``run --align-units`` (L170) share it."""
     try:
         from pdrlearn.steps.align import align_units, apply_alignment
 
@@ -421,9 +422,10 @@ WAIST_BIAS_AT_REST = False
 UNIT_OFFSET_WARN_S = 0.2
 
 
-def unit_offset_line(session: Session) -> str | None:
+def unit_offset_line(session: Session, command: str = "pdrlearn track") -> str | None:
     """Decision L161: the warning line when :func:`pdrlearn.steps.align_units` finds the waist unit's steps over
-    :data:`UNIT_OFFSET_WARN_S` from the foot's; None when under it or when the steps do not align (too few)."""
+    :data:`UNIT_OFFSET_WARN_S` from the foot's; None when under it or when the steps do not align (too few).
+    ``command``: the one whose ``--align-units`` the line names (``pdrlearn run``, decision L170)."""
     from pdrlearn.steps.align import align_units
 
     try:
@@ -435,7 +437,7 @@ def unit_offset_line(session: Session) -> str | None:
     return (f"the waist unit's steps fall {offset:+.2f} s from the foot unit's (drift {drift * 1e6:+.0f} ppm; over "
             f"{UNIT_OFFSET_WARN_S:g} s warns, decision L161): the unit clocks are offset (a unit switched on later "
             "that counts from 0, or a drifting clock), and the waist heading is read at the foot's strides; align "
-            "them with `pdrlearn track --align-units` (an offset a whole step period apart is not seen)")
+            f"them with `{command} --align-units` (an offset a whole step period apart is not seen)")
 
 
 def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, tau_s: float = 60.0) -> np.ndarray:
@@ -856,7 +858,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     has_waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
     work, alignment = session, None
     if align and has_waist:  # decision L162: any method the waist heads (L13 had M3 only)
-        work, alignment = _align(session, warnings)
+        work, alignment = align_clocks(session, warnings)
     if cfg["rules"]:
         if model is None:
             raise ModelError(MODEL_NEEDED.format(what="M3 needs the step classes") + "; M1/M2 need no model")
