@@ -35,6 +35,16 @@ def test_an_unknown_setting_is_one_line_naming_the_valid_ones(get, spec, valid):
     assert valid in msg.split("its settings are ")[1].split(" (")[0].split(", ")
 
 
+@pytest.mark.parametrize("spec, said", [("pll:loop_hz=1.0zz", "loop_hz='1.0zz' is not a number"),
+                                         ("accel:rests_only=no", "rests_only='no' is not true or false"),
+                                         ("accel:order=2.5", "order=2.5 is not a whole number")])
+def test_a_text_value_for_a_number_or_flag_is_one_line(spec, said):
+    """It had been stored as text: ``rests_only='no'`` is truthy, ``loop_hz='1.0zz'`` a TypeError in the detection."""
+    with pytest.raises(DataError, match=said):
+        get_detector(spec)
+    assert get_detector("pll:f_max_hz=none,placement=waist").get_params()["f_max_hz"] is None  # None, text: taken
+
+
 def test_steps_cli_detector_settings_reach_the_detector(capsys):
     assert main(["steps", str(WAIST), "--detector", "pll:loop_hz=1.0", "--json"]) == 0
     got = json.loads(capsys.readouterr().out)
