@@ -426,16 +426,16 @@ def run(
         from pdrlearn.io import read_session
 
         session = read_session(session_dir, streamed=True)  # decision L77: its drops warning
+        rates = {n: st.rate_hz for n, st in session.streams.items()}
         where = f"session '{session.name}'"
         use, said = _units_for(bundle, units, set(session.streams), where)
-        session, alignment = _unit_clocks(session, use, align_units)  # decisions L161, L170: as track's
-        rates = {n: st.rate_hz for n, st in session.streams.items()}
         required, optional = bundle.sensors_of(use)
         rates = {n: r for n, r in rates.items() if n[0] in {u[0] for u in use}}  # a foot-only replay: no waist
         bundle.check_streams(rates if no_resample else {n: float("nan") for n in rates}, where=where, units=use)
         from pdrlearn.track.plasys import require_stride_cover
 
         require_stride_cover(session, [*required, *optional])  # decision B21
+        session, alignment = _unit_clocks(session, use, align_units)  # decisions L161, L170: as track's, once checked
         # gaps: the runtime warns once per gap and moves a stride across a foot gap over 1 s 0 m (decision E30)
         # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
         # the runtime resamples at these rates and announces it in one line; a stream behind the others
