@@ -147,3 +147,61 @@ def parse_spec(spec: Any, kind: str) -> tuple[str, dict]:
         except ValueError:
             out[key] = value
     return name.strip(), out
+
+
+def from_spec(registry: Registry, spec: Any, **params) -> Any:
+    """The entry of ``registry`` that ``spec`` names, built with its settings: ``"name"`` or
+    ``"name:key=value,..."`` (:func:`parse_spec`, the CLI's form; ``params``: keyword settings from Python, which
+    win). A setting the spec names that the entry does not take is one :class:`DataError` line naming the closest
+    and every valid one (decision E94; shared by the step detectors and the waist step-length models, E84), before
+    anything is built; a wrong Python keyword in ``params`` stays the ``TypeError`` Python raises (B180)."""
+    import difflib
+    import inspect
+
+    name, given = parse_spec(spec, registry.kind)
+    try:
+        cls = registry[name]
+    except KeyError:
+        raise registry.unknown(name) from None
+    names = getattr(cls, "_param_names", None)
+    takes_any = any(p.kind == p.VAR_KEYWORD for p in inspect.signature(cls).parameters.values())
+    valid = list(names()) if callable(names) else None
+    unknown = [k for k in given if valid is not None and not takes_any and k not in valid]
+    if unknown:
+        def named(k: str) -> str:
+            close = difflib.get_close_matches(k, valid, n=1)
+            return f"'{k}'" + (f" (did you mean '{close[0]}'?)" if close else "")
+
+        said = ", ".join(named(k) for k in unknown)
+        raise DataError(f"{registry.kind} '{spec}': {name} has no setting {said}; its settings are "
+                        f"{', '.join(valid) or 'none'} (write {name}:key=value,...)")
+    for k, v in given.items():
+        _check_spec_value(registry.kind, spec, name, cls, k, v)
+    return cls(**{**given, **params})
+
+
+#: a spec value's Python type -> the annotation words that take it (an int is a float too)
+_TAKEN_BY = {bool: ("bool",), type(None): ("None",), int: ("int", "float"), float: ("float",), str: ("str",)}
+
+
+def _check_spec_value(kind: str, spec: str, name: str, cls, key: str, value) -> None:
+    """Decision E94: a spec's text value for a setting annotated as a number or a flag (``pll:loop_hz=abc``,
+    ``accel:rests_only=no``) is one line; it had been stored as text (truthy, or a TypeError inside the
+    detection). Settings without a plain annotation (``tuple[...]``, none) are left to the class."""
+    import inspect
+
+    try:
+        param = inspect.signature(cls).parameters.get(key)
+    except (TypeError, ValueError):
+        return
+    if param is None or param.annotation is inspect.Parameter.empty:
+        return
+    a = param.annotation
+    text = a if isinstance(a, str) else getattr(a, "__name__", None) or str(a)
+    words = {w.strip() for w in text.split("|")}
+    if any(not w.isidentifier() for w in words) or set(_TAKEN_BY[type(value)]) & words:
+        return
+    what = ("true or false" if words - {"None"} == {"bool"} else "a whole number" if words - {"None"} == {"int"}
+            else "a number" if words - {"None"} <= {"int", "float"} else f"a {' or '.join(sorted(words))}")
+    default = param.default if param.default is not inspect.Parameter.empty else None
+    raise DataError(f"{kind} '{spec}': {name}: {key}={value!r} is not {what} (its default: {default!r})")

@@ -268,11 +268,12 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.io.sensors import PLACEMENTS
     from pdrlearn.kernels.bayes import RULES
     from pdrlearn.kernels.window import BOUNDARIES
+    from pdrlearn.plugins import parse_spec
     from pdrlearn.runtime.bundle import UNITS as BODY_UNITS
     from pdrlearn.sim import SCENARIOS, SPEEDS
     from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES
     from pdrlearn.sim.route import parse_route
-    from pdrlearn.steps.detectors import DETECTORS
+    from pdrlearn.steps.detectors import DETECTORS, get_detector
     from pdrlearn.track.altitude import ALTITUDES
     from pdrlearn.track.base import PIPELINES
     from pdrlearn.track.bouts import BOUT_PRESETS
@@ -299,10 +300,18 @@ def _validators() -> dict[tuple[str, str], object]:
     # pdrlearn/waist/calibration.py calibrate_waist: the two pipelines calibrate fits (checked there by name)
     calibrated = ("waist-pendulum", "waist-pll")
     assert set(calibrated) <= set(PIPELINES)
+    def detector(choices):  # decision E94: NAME[:key=value,...], the name one of the choices, the settings its own
+        def check(v: str) -> None:
+            _one_of(choices)(parse_spec(v, "step detector")[0])
+            if v != "auto":
+                get_detector(v)
+
+        return check
+
     v = {
-        ("steps", "detector"): _one_of(["auto", *DETECTORS]),
+        ("steps", "detector"): detector(["auto", *DETECTORS]),
         ("track", "pipeline"): _one_of(["auto", *PIPELINES]),
-        ("track", "detector"): _one_of(list(DETECTORS)),  # decisions L149 (foot), E85 (waist: the lower back)
+        ("track", "detector"): detector(list(DETECTORS)),  # decisions L149 (foot), E85 (waist: the lower back)
         ("score-steps", "unit"): _one_of(["foot", "waist"]),  # decision steps 39
         ("track", "method"): _one_of(["auto", *PLASYS_METHODS], case=False),
         ("track", "rules"): _one_of(RULES),
@@ -338,7 +347,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("columns", "table"): _one_of(list(COLUMN_TABLES)),  # cohort C35
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window",
-                "units", "altitude"):  # C12, L108, B127, L154
+                "units", "altitude", "detector", "length_model"):  # C12, L108, B127, L154, E93
         v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):
         v[(cmd, "tasks")] = settings("tasks")
@@ -558,6 +567,7 @@ def test_every_choice_option_is_checked():
 STALE = [
     ("pdrlearn steps DIR --detecter accel", "no such option"),
     ("pdrlearn steps DIR --detector acel", "not one of"),
+    ("pdrlearn steps DIR --detector pll:lop_hz=1", "did you mean 'loop_hz'?"),  # decision E94
     ("pdrlearn steps DIR --detector {auto,accel,pll,waist_ic}", "not one of"),
     ("pdrlearn track DIR --method M4 --out OUT", "not one of"),
     ("pdrlearn track DIR --pipeline waist-pendulm --out OUT", "not one of"),

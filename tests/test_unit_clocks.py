@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import logging
+from pathlib import Path
 
 import pytest
 
@@ -78,3 +79,42 @@ def test_align_units_without_a_waist_unit_is_one_line(walk, tmp_path, capsys):
         assert "--align-units moves the waist unit's clock" in err and "drop --align-units" in err
         assert len(err.strip().splitlines()) == 1 and not (tmp_path / "a").exists()
 
+
+
+RUN_BUNDLE = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"  # foot + waist units
+
+
+def test_run_warns_of_offset_clocks_and_align_units_aligns_them(walk, tmp_path, capsys):
+    """Decision L170: `run` (the replay of a two-unit session) checks the units' clocks as `track` does (L161's
+    function and threshold) and takes --align-units (L162's alignment) - it had tracked a +0.3 s waist clock
+    without a word."""
+    clean, off = write_session(walk, tmp_path / "C"), write_session(_shifted(walk, 0.3), tmp_path / "S")
+    final, warned = {}, {}
+    for name, folder, extra in (("clean", clean, []), ("off", off, []), ("aligned", off, ["--align-units"])):
+        assert main(["run", str(RUN_BUNDLE), str(folder), *extra, "--json"]) == 0
+        got = capsys.readouterr()
+        final[name] = json.loads(got.out)
+        warned[name] = [w for w in got.err.splitlines() if "decision L161" in w]
+    assert not warned["clean"] and not warned["aligned"]
+    (line,) = warned["off"]
+    assert "+0.2" in line and "`pdrlearn run --align-units`" in line
+    assert final["aligned"]["info"]["unit_alignment"]["offset_s"] == pytest.approx(0.25, abs=0.05)
+    assert "unit_alignment" not in final["off"]["info"]
+
+    def moved(a, b):  # the end of the track, horizontal, between two replays
+        return ((a["final_position"]["x"] - b["final_position"]["x"]) ** 2
+                + (a["final_position"]["y"] - b["final_position"]["y"]) ** 2) ** 0.5
+
+    assert moved(final["aligned"], final["clean"]) < 0.5 * moved(final["off"], final["clean"])
+
+
+def test_run_align_units_without_a_second_clock_is_one_line(walk, tmp_path, capsys):
+    folder = write_session(walk, tmp_path / "S")
+    capture = tmp_path / "c.txt"
+    capture.write_text("$1 0 0 0$2 0 0 0\n")
+    for args, said in (([str(folder), "--units", "foot"], "or --units leaves it out; drop --align-units"),
+                       (["--protocol", str(capture)], "carries the foot unit only (one clock): drop --align-units")):
+        assert main(["run", str(RUN_BUNDLE), *args, "--align-units", "--out", str(tmp_path / "o")]) == 2
+        err = capsys.readouterr().err.strip()
+        assert len(err.splitlines()) == 1 and said in err, err
+        assert not (tmp_path / "o").exists()

@@ -668,9 +668,12 @@ def track_all(
     reference_point: str = _track.REFERENCE_POINT_OPT,
     toe_off: bool = _track.TOE_OFF_OPT,
     contacts: bool = _track.CONTACTS_OPT,
+    detector: str = _track.DETECTOR_OPT,
+    length_model: str = _track.LENGTH_MODEL_OPT,
     altitude: str = _track.ALTITUDE_OPT,
     dpi: int = _track.DPI_OPT,
     common_span: bool = _track.COMMON_SPAN_OPT,
+    align_units: bool = _track.ALIGN_UNITS_OPT,
     units: str = _track.UNITS_OPT,
     window: str = _track.WINDOW_OPT,
     bout_rule: str = _track.BOUT_RULE_OPT,
@@ -739,7 +742,7 @@ def track_all(
     # before any name is defined in this function
     arguments = dict(locals())
     from pdrlearn.cli.provenance import given_options, write_run_json
-    from pdrlearn.cli.track import track_settings
+    from pdrlearn.cli.track import settings_of
 
     options = given_options(arguments, leave_out=("root", "out", "force", "as_json"))
     from pdrlearn.visits import read_visit_map
@@ -748,15 +751,7 @@ def track_all(
     if vmap is not None:
         options["visit_map"] = {"file": str(visit_map), "visits": vmap}  # its content, for run.json (C18)
 
-    settings = track_settings(pipeline=pipeline, method=method, model=model, rules=rules,
-                              min_confidence=min_confidence, length_bounds=length_bounds,
-                              warn_out_of_domain=warn_out_of_domain, start=start, params=params,
-                              streaming=streaming, realtime=realtime, reference_point=reference_point,
-                              toe_off=toe_off, contacts=contacts, dpi=dpi, common_span=common_span,
-                              initial_heading=initial_heading, window=window, resample=resample,
-                              no_resample=no_resample, units=units, bout_break_s=bout_break_s,
-                              bout_min_strides=bout_min_strides, storey_height=storey_height,
-                              altitude=altitude, bout_rule=bout_rule)
+    settings = settings_of(arguments)  # decision E93: every tracking option it declares, as `track` passes them
     if params is not None and params_dir is not None:  # decision C26: which file would a session use?
         raise DataError("track-all: give --params FILE (one file for every session) or --params-dir DIR (one "
                         "SUBJECT.json per subject), not both")

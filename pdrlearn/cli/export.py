@@ -222,6 +222,34 @@ def _units_for(bundle, units: str | None, have: set[str] | None, where: str):
     return check_units(bundle, ("foot",)), True
 
 
+def _unit_clocks(session, units, align: bool):
+    """Decisions L161, L170: a replay with the foot and the waist unit checks their clocks as ``track`` does (the
+    same function, :func:`pdrlearn.track.plasys.unit_offset_line`, on the whole recording: the replay has it) and
+    warns when the units' steps are over 0.2 s apart, naming ``run --align-units``; with ``align`` the waist clock
+    is moved onto the foot's first (:func:`pdrlearn.track.plasys.align_clocks`, L162's). Returns the session to
+    replay and the alignment applied (``{"offset_s", "drift", ...}``; None without ``align`` or when it failed)."""
+    import logging
+
+    from pdrlearn.errors import DataError
+    from pdrlearn.track.plasys import align_clocks, unit_offset_line
+
+    two = "waist" in units and session.has("fAccelerometer", "wAccelerometer", "wGyroscope")
+    if align and not two:  # decision B192's line, as track's
+        raise DataError(f"run: --align-units moves the waist unit's clock onto the foot's, but {session.where} has no "
+                        "waist unit (wAccelerometer.csv + wGyroscope.csv) or --units leaves it out; drop --align-units")
+    if not two:
+        return session, None
+    lines: list[str] = []
+    if align:
+        session, alignment = align_clocks(session, lines)
+    else:
+        alignment, line = None, unit_offset_line(session, "pdrlearn run")
+        lines += [line] if line else []
+    for line in lines:
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
+    return session, alignment
+
+
 def run(
     bundle_dir: Path = typer.Argument(..., help="Bundle folder written by 'pdrlearn export'."),
     session_dir: Path = typer.Argument(None, help="PLASYS session folder to replay (omit with --protocol)."),
@@ -267,6 +295,10 @@ def run(
     contacts: bool = typer.Option(False, "--contacts", help="Each stride's initial contact (force onset, else the "
                                   "accelerometer impact) and so stride_time_s, cadence_spm, speed_mps and the "
                                   "summary's stride medians (decisions E49-E51; as `track --streaming --contacts`)."),
+    align_units: bool = typer.Option(False, "--align-units", help="A foot + waist session: move the waist unit's "
+                                     "clock onto the foot's by the steps both detect, before the replay (offset and "
+                                     "drift over the whole recording, as `track --align-units`; decision L170). "
+                                     "Without it, the units' steps over 0.2 s apart are warned about (L161)."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -318,7 +350,8 @@ def run(
         given = [o for o, v in (("--protocol", protocol), ("--units", units), ("--method", method),
                                 ("--rules", rules), ("--min-confidence", min_confidence), ("--start", start))
                  if v is not None] + [o for o, v in (("--contacts", contacts), ("--resample", resample),
-                                                     ("--no-resample", no_resample)) if v]
+                                                     ("--no-resample", no_resample), ("--align-units", align_units))
+                                      if v]
         if given:
             raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only bundle "
                             "(give SESSION_DIR, and --initial-heading / --chunk-s / --out / --json)")
@@ -327,6 +360,10 @@ def run(
     bundle = load_bundle(bundle_dir)  # verified before any output
     methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
+    if protocol is not None and align_units:  # decision L170
+        raise DataError(f"run: --align-units moves the waist unit's clock onto the foot's; the --protocol capture "
+                        f"{protocol} carries the foot unit only (one clock): drop --align-units")
+    alignment = None  # decision L170: the clock offset and drift --align-units applied
     if protocol is not None:
         from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
 
@@ -398,6 +435,7 @@ def run(
         from pdrlearn.track.plasys import require_stride_cover
 
         require_stride_cover(session, [*required, *optional])  # decision B21
+        session, alignment = _unit_clocks(session, use, align_units)  # decisions L161, L170: as track's, once checked
         # gaps: the runtime warns once per gap and moves a stride across a foot gap over 1 s 0 m (decision E30)
         # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
         # the runtime resamples at these rates and announces it in one line; a stream behind the others
@@ -445,6 +483,8 @@ def run(
     add_position_sigma(result, session, "plasys-streaming" if "waist" in tracker.units else "plasys-foot-streaming")
     if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
         result.info["initial_heading_rad"] = heading0
+    if align_units:  # decision L170: as track's info (L162); None when the steps did not align (warned)
+        result.info["unit_alignment"] = alignment
     result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
     table = detected_bouts(result.steps, bouts, **session_key(session))  # E73: bouts.csv and n_bouts at once
     summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)

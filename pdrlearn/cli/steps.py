@@ -22,7 +22,8 @@ def steps(
                                  help="accel | accel-force (foot strides) | pelvic-gyro | pll | waist-ic (waist "
                                  "steps); auto = accel with a foot unit, else waist-ic (the waist-pendulum "
                                  "pipeline's initial contacts; pll without a waist gyroscope); or a registered or "
-                                 "installed plug-in detector (docs/extending.md)."),
+                                 "installed plug-in detector (docs/extending.md); NAME:key=value,... sets its "
+                                 "settings, e.g. pll:loop_hz=1.5 (decision E94)."),
     out: Path = typer.Option(None, "--out", "-o", help="Write the steps table to this CSV (times in s)."),
     tolerance: float = typer.Option(0.25, "--tolerance", help="Event matching tolerance in seconds."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -42,6 +43,8 @@ def steps(
         pdrlearn steps datasets/real/mobgap_HA001_Test11_Trial1 --detector waist-ic
 
         pdrlearn steps out/sim/D_u1 --detector accel-force --out out/A_steps.csv
+
+        pdrlearn steps datasets/real/mobgap_HA001_Test5_Trial1 --detector pll:loop_hz=1.5   # a detector setting
     """
     from pdrlearn.io import read_session
     from pdrlearn.steps import get_detector

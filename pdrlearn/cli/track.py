@@ -69,7 +69,8 @@ TOE_OFF_OPT = typer.Option(False, "--toe-off", help="plasys, offline: add the to
 DETECTOR_OPT = typer.Option(None, "--detector", help="The steps from this step detector (a built-in or a registered "
                             "/ installed plug-in, docs/extending.md): a foot detector gives plasys its strides "
                             "(decision L149), a waist one (unit 'waist') gives the lower-back pipeline its contacts "
-                            "(decision E85). Default: the pipeline's own.")
+                            "(decision E85); NAME:key=value,... sets its settings, e.g. pll:loop_hz=1.5 (decision "
+                            "E94, as --length-model). Default: the pipeline's own.")
 LENGTH_MODEL_OPT = typer.Option(None, "--length-model", help="Lower-back pipelines: the step-length model (pendulum, "
                                 "frequency, weinberg:k=GAIN or a plug-in; NAME:key=value,... sets its settings; "
                                 "decision E84). Default: the pipeline's own.")
@@ -186,17 +187,7 @@ def track(
 
     options = given_options(arguments, leave_out=("session_dir", "out", "force", "as_json"))  # for OUT/run.json
     out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes))
-    settings = track_settings(pipeline=pipeline, method=method, model=model, rules=rules,
-                              min_confidence=min_confidence, length_bounds=length_bounds,
-                              warn_out_of_domain=warn_out_of_domain, start=start, params=params, gnss=gnss,
-                              gnss_period=gnss_period, fixes=fixes, fix_period=fix_period, streaming=streaming,
-                              realtime=realtime, reference_point=reference_point, toe_off=toe_off,
-                              contacts=contacts, dpi=dpi, initial_heading=initial_heading,
-                              common_span=common_span, units=units, window=window, resample=resample,
-                              no_resample=no_resample, bout_break_s=bout_break_s,
-                              bout_min_strides=bout_min_strides, storey_height=storey_height, detector=detector,
-                              length_model=length_model, altitude=altitude, align_units=align_units,
-                              bout_rule=bout_rule)
+    settings = settings_of(arguments)  # decision E93: every tracking option, as track-all passes them
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
     tracked = track_session(session_dir, settings)  # bad input fails here, before any folder is made
@@ -214,6 +205,24 @@ def track(
         print_json(summary)
         return
     _print_summary(summary, out, aided)
+
+
+#: decision E93: ``track``'s options that ``track-all`` does not take, and why (tests/test_track_all_options_e93.py
+#: checks that every other option of ``track`` is one of ``track-all``, declared by the same object)
+NOT_IN_TRACK_ALL = {
+    "--gnss": "a per-recording fix file", "--gnss-period": "thins --gnss", "--fixes": "a per-recording fix file",
+    "--fix-period": "thins --fixes",
+}
+
+
+def settings_of(arguments: dict) -> dict:
+    """:func:`track_settings` of a command's options as given (``dict(locals())`` of ``track`` / ``track-all``):
+    every keyword of it that the command has, so that an option one command declares cannot be left out of its
+    call (decision E93: ``track-all`` had dropped --detector, --length-model and --align-units)."""
+    import inspect
+
+    names = inspect.signature(track_settings).parameters
+    return track_settings(**{k: v for k, v in arguments.items() if k in names})
 
 
 def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str | None = None,
@@ -288,6 +297,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         if streaming:
             raise DataError("track: --detector chooses the offline strides; the --streaming kernel segments its "
                             "own - drop one of them")
+    if align_units and streaming:  # decision L162 (E93: once, before a batch's first session)
+        raise DataError("track: --align-units moves the waist clock by the steps of the whole recording; the "
+                        "--streaming kernel cannot - drop --streaming or --align-units")
     if length_model is not None:  # decision E84: an unknown model or setting fails once, before any session
         from pdrlearn.waist.lengths import get_step_length
 
@@ -425,10 +437,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                 raise DataError("track: --align-units moves the waist unit's clock onto the foot's, but "
                                 f"{session.where} has no waist unit (wAccelerometer.csv + wGyroscope.csv) or --units "
                                 "leaves it out; drop --align-units")
-            if streaming:
-                raise DataError("track: --align-units moves the waist clock by the steps of the whole recording; the "
-                                "--streaming kernel cannot - drop --streaming or --align-units")
-            kw["align"] = True
+            kw["align"] = True  # with --streaming refused by track_settings, before any session
         if toe_off:  # decision L73
             if streaming:
                 raise DataError("track: --toe-off needs the offline tracker's initial contacts; the --streaming "

@@ -190,6 +190,13 @@ def _detect_strides(session: Session, kind: str, steps, t: np.ndarray, stance: n
     return stance_strides(t, stance)
 
 
+def _detector_name(steps: str) -> str:
+    """The detector name of ``steps="NAME"`` or ``"NAME:key=value,..."`` (decision E94, the CLI's form)."""
+    from pdrlearn.plugins import parse_spec
+
+    return parse_spec(steps, "step detector")[0] if ":" in steps else steps
+
+
 def _check_steps_arg(steps) -> None:
     """Decisions B173 / L149: ``steps`` is a mode string, a registered foot detector's name, a
     :class:`~pdrlearn.steps.StepDetector` or a steps table; anything else is one :class:`DataError` line."""
@@ -197,7 +204,7 @@ def _check_steps_arg(steps) -> None:
 
     if isinstance(steps, (pd.DataFrame, steps_mod.StepDetector)):
         return
-    if isinstance(steps, str) and (steps in STEP_SOURCES or steps in steps_mod.DETECTORS):
+    if isinstance(steps, str) and (steps in STEP_SOURCES or _detector_name(steps) in steps_mod.DETECTORS):
         return
     what = repr(steps) if isinstance(steps, str) else f"a {type(steps).__name__}"
     raise DataError(f"plasys: steps={what} is not {', '.join(STEP_SOURCES)}, a foot detector's name "
@@ -212,9 +219,9 @@ def _custom_strides(session: Session, steps) -> pd.DataFrame | None:
     import pdrlearn.steps as steps_mod
 
     if isinstance(steps, str):
-        if steps in ("detector", "stance", "labels") or steps not in steps_mod.DETECTORS:
+        if steps in ("detector", "stance", "labels") or _detector_name(steps) not in steps_mod.DETECTORS:
             return None
-        steps = steps_mod.get_detector(steps)
+        steps = steps_mod.get_detector(steps)  # decision E94: "NAME:key=value,..." sets its settings
     if isinstance(steps, steps_mod.StepDetector):
         if steps.unit != "foot":
             raise DataError(f"plasys: steps={steps!r} is a {steps.unit} detector; the plasys pipeline integrates "
@@ -383,9 +390,10 @@ def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[st
     return off
 
 
-def _align(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
+def align_clocks(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
     """Waist streams moved onto the foot clock with the steps detected by both units (thesis ch.7.2.2:
-    the gyroscope-detected steps align the units); the session unchanged when that fails."""
+    the gyroscope-detected steps align the units); the session unchanged when that fails. ``track --align-units``
+    (L162) and ``run --align-units`` (L170) share it."""
     try:
         from pdrlearn.steps.align import align_units, apply_alignment
 
@@ -418,9 +426,10 @@ WAIST_BIAS_AT_REST = False
 UNIT_OFFSET_WARN_S = 0.2
 
 
-def unit_offset_line(session: Session) -> str | None:
+def unit_offset_line(session: Session, command: str = "pdrlearn track") -> str | None:
     """Decision L161: the warning line when :func:`pdrlearn.steps.align_units` finds the waist unit's steps over
-    :data:`UNIT_OFFSET_WARN_S` from the foot's; None when under it or when the steps do not align (too few)."""
+    :data:`UNIT_OFFSET_WARN_S` from the foot's; None when under it or when the steps do not align (too few).
+    ``command``: the one whose ``--align-units`` the line names (``pdrlearn run``, decision L170)."""
     from pdrlearn.steps.align import align_units
 
     try:
@@ -432,7 +441,7 @@ def unit_offset_line(session: Session) -> str | None:
     return (f"the waist unit's steps fall {offset:+.2f} s from the foot unit's (drift {drift * 1e6:+.0f} ppm; over "
             f"{UNIT_OFFSET_WARN_S:g} s warns, decision L161): the unit clocks are offset (a unit switched on later "
             "that counts from 0, or a drifting clock), and the waist heading is read at the foot's strides; align "
-            "them with `pdrlearn track --align-units` (an offset a whole step period apart is not seen)")
+            f"them with `{command} --align-units` (an offset a whole step period apart is not seen)")
 
 
 def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, tau_s: float = 60.0) -> np.ndarray:
@@ -851,7 +860,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     has_waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")
     work, alignment = session, None
     if align and has_waist:  # decision L162: any method the waist heads (L13 had M3 only)
-        work, alignment = _align(session, warnings)
+        work, alignment = align_clocks(session, warnings)
     if cfg["rules"]:
         if model is None:
             raise ModelError(MODEL_NEEDED.format(what="M3 needs the step classes") + "; M1/M2 need no model")

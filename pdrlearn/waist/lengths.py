@@ -321,15 +321,11 @@ def get_step_length(spec, **params) -> StepLengthModel:
     :class:`StepLengthModel` instance (returned as it is)."""
     if isinstance(spec, StepLengthModel):
         return spec
-    from pdrlearn.plugins import parse_spec
+    from pdrlearn.plugins import from_spec, parse_spec
 
-    name, given = parse_spec(spec, "step-length model")
     try:
-        cls = STEP_LENGTHS[name]
-    except KeyError:
-        raise STEP_LENGTHS.unknown(name) from None
-    try:
-        return cls(**{**given, **params})
+        return from_spec(STEP_LENGTHS, spec, **params)  # decision E94: the detectors' --detector NAME:key=value too
     except TypeError as exc:
+        name = parse_spec(spec, "step-length model")[0]
         raise DataError(f"step-length model {name}: {exc}; its settings are "
-                        f"{', '.join(cls._param_names()) or 'none'}") from None
+                        f"{', '.join(STEP_LENGTHS[name]._param_names()) or 'none'}") from None
