@@ -511,7 +511,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
         warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
-    ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, subject_height(session.meta)[0])  # W100, W116
+    ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, subject_height(session.meta)[0],  # W100, W116
+                                    pendulum=lambda: _pendulum_steps(imu, p, thr, o))  # W139
     if ratio_line:
         warnings.append(ratio_line)
     n = len(steps)
@@ -593,13 +594,35 @@ def detector_steps(det, session: Session, imu: WaistIMU) -> pd.DataFrame:
 
 
 def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool,
-                height_m: float) -> tuple[float | None, str | None]:
+                height_m: float, pendulum=None) -> tuple[float | None, str | None]:
     """Decision W100: the walk ratio of an offline, uncalibrated ``waist-pendulum`` track (None otherwise) and its
-    warning line (None inside the healthy band of a walker ``height_m`` tall, W116, or with too few steps)."""
-    if pipeline != "waist-pendulum" or realtime or p.source != "defaults" or not len(steps):
+    warning line (None inside the healthy band of a walker ``height_m`` tall, W116, or with too few steps).
+    Decision W139: an offline, uncalibrated ``waist-pll`` track is judged on the steps ``pendulum()`` returns (the
+    pendulum model's reading of the same session, :func:`_pendulum_steps`); ``walk_ratio`` is then theirs."""
+    if realtime or p.source != "defaults" or not len(steps):
+        return None, None
+    pll_length = None
+    if pipeline == "waist-pll" and pendulum is not None:
+        own = steps["length_m"].to_numpy(float)[waist_step_times(steps)[0] > 0]
+        pll_length = float(np.median(np.abs(own))) if own.size else None
+        steps = pendulum()
+    elif pipeline != "waist-pendulum":
         return None, None
     ratio, n, length, cadence = walk_ratio(steps["length_m"].to_numpy(float), waist_step_times(steps)[0])
-    return ratio, walk_ratio_message(ratio, n, length, cadence, height_m)
+    return ratio, walk_ratio_message(ratio, n, length, cadence, height_m, pll_length=pll_length)
+
+
+def _pendulum_steps(imu: WaistIMU, p: WaistParams, thr: float, o: dict) -> pd.DataFrame:
+    """Decision W139: the steps ``waist-pendulum`` would read from ``imu`` with the parameters ``p`` (its offline
+    contact detector and the pendulum step length, seed 003 eq. 1) under the track's options ``o`` and motion gate
+    ``thr``; the vetoes and gap cuts of a pendulum track are not applied (a plausibility reading, not a track)."""
+    det = InitialContactDetector(realtime=False, walk_threshold=thr, max_step_s=MAX_STEP_S,
+                                 rhythm=bool(o["rhythm"])).detect(imu)
+    model = get_step_length("pendulum")
+    _configure_model(model, "pendulum", False, {"merge_fragments": bool(o["merge_fragments"]),
+                                                "length_smoothing": check_length_smoothing(o["length_smoothing"]),
+                                                "pause_steps": o["pause_steps"]})
+    return _step_lengths(det.steps_, imu, p, model, thr)
 
 
 RELATIVE_HEADING = "waist heading relative to the start"

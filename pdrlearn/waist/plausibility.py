@@ -166,12 +166,19 @@ def walk_ratio(length_m: np.ndarray, step_s: np.ndarray) -> tuple[float | None, 
     return length / cadence, n, length, cadence
 
 
+#: decision W139: what the walk ratio of a ``waist-pll`` track is read from, and why
+PLL_WALK_RATIO_BASIS = ("waist-pll's step length is a line in its step frequency, so its own walk ratio always looks "
+                        "healthy; judged on the pendulum model's reading of the same session (decision W139; "
+                        "simulated short-step walks read +72 to +260 % long on waist-pll): ")
+
+
 def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None,
-                       height_m: float = WALK_RATIO_HEIGHT_M) -> str | None:
+                       height_m: float = WALK_RATIO_HEIGHT_M, *, pll_length: float | None = None) -> str | None:
     """Decision W100's one warning line for an uncalibrated waist track whose walk ratio lies outside
     :data:`WALK_RATIO_BAND` over at least :data:`PLAUSIBILITY_MIN_PAIRS` steps; None when it is inside or not
     judged. Decision W116: the band is that of a walker ``height_m`` tall (:func:`walk_ratio_scale`: a child's healthy
-    walk ratio is smaller)."""
+    walk ratio is smaller). Decision W139: ``pll_length`` (m), the median step of a ``waist-pll`` track whose
+    ``ratio``, ``length`` and ``cadence`` are the pendulum model's reading of the same session; the line says so."""
     c = walk_ratio_scale(height_m)
     lo, hi, healthy = c * WALK_RATIO_BAND[0], c * WALK_RATIO_BAND[1], c * WALK_RATIO_HEALTHY
     if ratio is None or n < PLAUSIBILITY_MIN_PAIRS or lo <= ratio <= hi:
@@ -180,7 +187,10 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
             "waist step length is not validated and reads long (simulated festinating walks: +20 to +174 % distance)"
             if ratio < lo else
             "far over healthy gait's: the uncalibrated step length is implausibly long for this cadence")
-    return (f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
+    if pll_length is not None:  # W139
+        what = (f"{what}; waist-pll reads a median step of {pll_length:.2f} m, the pendulum {length:.2f} m")
+    return (("" if pll_length is None else PLL_WALK_RATIO_BASIS) +
+            f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
             f"{n} steps; healthy gait ~{healthy:.4f} at {height_m:.2f} m tall, outside {lo:.4f}-{hi:.4f} warns, "
             f"decision W100, scaled to the stature by W116) is {what}; the distance, speed and step lengths need a "
             "calibration on this walker's own walk of known length (a 10 m walk test, or this recording if you know "
