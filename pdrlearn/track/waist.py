@@ -61,9 +61,11 @@ from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params,
 from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
     PLAUSIBILITY_MIN_PAIRS,
+    calibration_gait_message,
     contact_alternation,
     contact_lateral_velocity,
     contact_sides,
+    median_cadence,
     not_alternating_message,
     step_counts,
     still_yaw_rate,
@@ -515,6 +517,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                     pendulum=lambda: _pendulum_steps(imu, p, thr, o))  # W139
     if ratio_line:
         warnings.append(ratio_line)
+    if p.source == "calibrated":  # decision W140: the calibration's gait against this walk's
+        gait_line = calibration_gait_message(p.gait, *median_cadence(steps["frequency_hz"].to_numpy(float)),
+                                             p.pipeline or pipeline)
+        if gait_line:
+            warnings.append(gait_line)
     n = len(steps)
     length_model = model.name
     info = {
