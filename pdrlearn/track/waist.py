@@ -309,7 +309,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
-                   "sit_veto": False, "pause_steps": False, "vault_veto": False}
+                   "sit_veto": False, "pause_steps": False, "vault_veto": False, "gait_check": False}
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
@@ -333,7 +333,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 relative_gate: bool | None = None, stairs_length: bool | None = None, stairs_climb: bool | None = None,
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
-                vault_veto: bool | str | None = None, detector=None, length_model=None) -> TrackResult:
+                vault_veto: bool | str | None = None, gait_check: bool | None = None, detector=None,
+                length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -390,6 +391,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         whose step vaults the pelvis by less than a quarter of its neighbours' (a weight shift while standing, no
         step; decision W119, :func:`pdrlearn.waist.posture.vault_veto`); ``"turns"``: the same, sparing a contact whose
         step turns the pelvis by more than 15 deg (a turn on the spot vaults little; decision W127); default False
+    gait_check : with calibrated params that record their walks' gait: one warning line when this walk's median
+        cadence is outside x0.75-x1.33 of the calibration's (decision W140: an option, its adoption rule was not met;
+        ``info["calibration_cadence_ratio"]`` carries the ratio either way); default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -422,7 +426,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "relative_gate": relative_gate, "stairs_length": stairs_length, "stairs_climb": stairs_climb,
              "slow_turn_rps": slow_turn_rps,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
-             "vault_veto": vault_veto}
+             "vault_veto": vault_veto, "gait_check": gait_check}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -517,11 +521,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                                     pendulum=lambda: _pendulum_steps(imu, p, thr, o))  # W139
     if ratio_line:
         warnings.append(ratio_line)
-    if p.source == "calibrated":  # decision W140: the calibration's gait against this walk's
-        gait_line = calibration_gait_message(p.gait, *median_cadence(steps["frequency_hz"].to_numpy(float)),
-                                             p.pipeline or pipeline)
-        if gait_line:
-            warnings.append(gait_line)
+    cadence_ratio, gait_line = _calibration_gait(steps, p, pipeline)  # decision W140
+    if gait_line and bool(o["gait_check"]):  # W140's line: an option (its adoption rule was not met)
+        warnings.append(gait_line)
     n = len(steps)
     length_model = model.name
     info = {
@@ -539,6 +541,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "alternation_index": alternation,
         "alternation_pairs": pairs,
         "walk_ratio": ratio,
+        "calibration_cadence_ratio": cadence_ratio,
         "n_tilted_contacts": n_tilted,
         "n_vetoed_contacts": n_vetoed,
         "n_unvaulted_contacts": n_unvaulted,
@@ -617,6 +620,16 @@ def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bo
         return None, None
     ratio, n, length, cadence = walk_ratio(steps["length_m"].to_numpy(float), waist_step_times(steps)[0])
     return ratio, walk_ratio_message(ratio, n, length, cadence, height_m, pll_length=pll_length)
+
+
+def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str) -> tuple[float | None, str | None]:
+    """Decision W140: ``(ratio, line)``, this track's median cadence over its calibration walks' (None: not calibrated,
+    a params file without ``gait``, or fewer than ten steps) and W140's warning line (None inside its band)."""
+    ref = (p.gait or {}).get("median_cadence_spm") if p.source == "calibrated" else None
+    cadence, n = median_cadence(steps["frequency_hz"].to_numpy(float))
+    if not ref or cadence is None or n < PLAUSIBILITY_MIN_PAIRS:
+        return None, None
+    return cadence / float(ref), calibration_gait_message(p.gait, cadence, n, p.pipeline or pipeline)
 
 
 def _pendulum_steps(imu: WaistIMU, p: WaistParams, thr: float, o: dict) -> pd.DataFrame:
