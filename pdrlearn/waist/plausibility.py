@@ -169,7 +169,7 @@ def walk_ratio(length_m: np.ndarray, step_s: np.ndarray) -> tuple[float | None, 
 #: decision W139: what the walk ratio of a ``waist-pll`` track is read from, and why
 PLL_WALK_RATIO_BASIS = ("waist-pll's step length is a line in its step frequency, so its own walk ratio always looks "
                         "healthy; judged on the pendulum model's reading of the same session (decision W139; "
-                        "simulated short-step walks read +72 to +260 % long on waist-pll): ")
+                        "simulated short-step walks read +51 to +574 % long on waist-pll): ")
 
 
 def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None,
