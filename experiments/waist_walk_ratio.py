@@ -11,6 +11,8 @@ Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/waist_walk_ratio.py [-
      [--external datasets/external] [--shared /work/shared/data] [--kids 1000-1039] [--out FILE]
 W116 (the band relative to stature): --users 1040-1059 --kids 1000-1039
      --out experiments/results/waist_walk_ratio_w116.md
+W139 (uncalibrated waist-pll judged on the pendulum's reading of the session): --pipeline waist-pll
+     --users 2300-2339 --out experiments/results/waist_walk_ratio_w139.md (the errors are waist-pll's)
 Writes experiments/results/waist_walk_ratio.md.
 """
 
@@ -32,8 +34,8 @@ TRUE_M = 14.0
 SHORT = ((0.15, 0.4), (0.1, 0.5), (0.2, 0.45), (0.2, 0.5), (0.25, 0.6), (0.3, 0.75), (0.3, 1.0), (0.4, 0.8))
 
 
-def judge(session, true_m: float | None = None) -> dict:
-    r = track_waist(session, pipeline="waist-pendulum")
+def judge(session, true_m: float | None = None, pipeline: str = "waist-pendulum") -> dict:
+    r = track_waist(session, pipeline=pipeline)
     wr = r.info["walk_ratio"]
     d = float(r.steps["length_m"].abs().sum())
     warned = any("decision W100" in w for w in r.info["warnings"])
@@ -49,6 +51,8 @@ def main() -> None:
     ap.add_argument("--shared", type=Path, default=Path("/work/shared/data"))
     ap.add_argument("--kids", default=None, help="W116: also these simulated children (experiments/kid_profiles.py, "
                     "scenario A normal, 100 Hz), e.g. 1000-1039; none by default")
+    ap.add_argument("--pipeline", default="waist-pendulum", choices=("waist-pendulum", "waist-pll"),
+                    help="the pipeline tracked (W139: waist-pll, judged on the pendulum's reading)")
     ap.add_argument("--out", type=Path, default=ROOT / "experiments" / "results" / "waist_walk_ratio.md")
     args = ap.parse_args()
     logging.disable(logging.WARNING)
@@ -56,7 +60,7 @@ def main() -> None:
     rows = []
 
     def add(group, name, s, true_m=None):
-        rows.append({"group": group, "session": name, **judge(s, true_m)})
+        rows.append({"group": group, "session": name, **judge(s, true_m, args.pipeline)})
         print(rows[-1], flush=True)
 
     for base in (args.external, args.shared):
@@ -78,7 +82,7 @@ def main() -> None:
         k0, k1 = (int(x) for x in args.kids.split("-"))
         for u in range(k0, k1 + 1):
             add("d children", f"user {u} age {child_age(u, k0)} A normal", walk(child(u, child_age(u, k0))))
-    out = ["# W100 walk ratio (experiments/waist_walk_ratio.py)", "",
+    out = [f"# W100 walk ratio, {args.pipeline} (experiments/waist_walk_ratio.py)", "",
            "| group | session | steps | distance m | error % | WR | warned |", "|---|---|---|---|---|---|---|"]
     out += [f"| {r['group']} | {r['session']} | {r['steps']} | {r['dist_m']} | {r['err_pct']} | {r['WR']} | "
             f"{r['warned']} |" for r in rows]

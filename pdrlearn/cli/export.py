@@ -527,6 +527,24 @@ def _run_json(arguments: dict, wall0: float, cpu0: float):
     return record
 
 
+def _calibration_gait_warning(params, steps, warnings: list[str], where: str) -> None:
+    """Decisions W140, W141, as ``track``: with the option ``gait_check`` in the calibration's PARAMS.json, a bundle
+    calibrated on walks of another cadence than this run's steps warns (one line, logged and appended to
+    ``warnings``); a bundle without the calibration's ``gait`` is not judged."""
+    import logging
+
+    from pdrlearn.waist.lengths import step_frequency
+    from pdrlearn.waist.plausibility import calibration_gait_message, median_cadence
+
+    if getattr(params, "source", None) != "calibrated" or not getattr(params, "gait_check", False) or not len(steps):
+        return
+    line = calibration_gait_message(getattr(params, "gait", None), *median_cadence(step_frequency(steps)),
+                                    getattr(params, "pipeline", None) or "waist-pendulum")
+    if line:
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", where, line)
+        warnings.append(line)
+
+
 def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chunk_s: float, as_json: bool,
                heading0: float | None, dpi: int | None, record, bouts=None, storey_height_m: float = 3.0) -> None:
     """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
@@ -588,6 +606,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     traj["z"] = 0.0
     result = TrackResult(steps=df, trajectory=traj, info={"pipeline": "runtime-waist",
                                                           "warnings": list(tracker.warnings)})
+    _calibration_gait_warning(bundle.params, df, result.info["warnings"], session.name)  # decision W140
     from pdrlearn.track.position_sigma import add_position_sigma
 
     add_position_sigma(result, session, "waist")  # decision L128, as track's lower-back pipelines

@@ -518,7 +518,8 @@ def load_waist_bundle(path: str | Path, *, verify: bool = True) -> WaistBundle:
     frame = (m.get("frames") or {}).get("waist_matrix")
     rot = None if frame is None else np.asarray(frame, dtype=float).reshape(3, 3)
     params = SimpleNamespace(**{k: p.get(k) for k in (*PARAM_KEYS, "turn_gmm", "walk_threshold_mps2", "rate_hz",
-                                                      "source", "pipeline")})
+                                                      "source", "pipeline", "gait")},  # gait: W140
+                             gait_check=bool((p.get("options") or {}).get("gait_check", False)))  # W141
     return WaistBundle(path, m, params, dict(m["options"]), rot)
 
 

@@ -61,9 +61,11 @@ from pdrlearn.waist.params import NO_SENSOR_HEIGHT, WaistParams, resolve_params,
 from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
     PLAUSIBILITY_MIN_PAIRS,
+    calibration_gait_message,
     contact_alternation,
     contact_lateral_velocity,
     contact_sides,
+    median_cadence,
     not_alternating_message,
     step_counts,
     still_yaw_rate,
@@ -307,7 +309,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
-                   "sit_veto": False, "pause_steps": False, "vault_veto": False, "contact_shift": True}
+                   "sit_veto": False, "pause_steps": False, "vault_veto": False, "contact_shift": True,
+                   "gait_check": False}
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
@@ -331,7 +334,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 relative_gate: bool | None = None, stairs_length: bool | None = None, stairs_climb: bool | None = None,
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
-                vault_veto: bool | str | None = None, contact_shift: bool | None = None, detector=None,
+                vault_veto: bool | str | None = None, contact_shift: bool | None = None,
+                gait_check: bool | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -392,6 +396,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     contact_shift : pendulum, offline detector: every kept contact judged once more by W23's weight-shift test with the
         side read at the contact, turns spared (decision W131, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
         ``contact_shift``); default True, ``False`` restores the detector before W131
+    gait_check : with calibrated params that record their walks' gait: one warning line when this walk's median
+        cadence is outside x0.75-x1.33 of the calibration's (decision W140: an option, its adoption rule was not met;
+        ``info["calibration_cadence_ratio"]`` carries the ratio either way); default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -424,7 +431,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "relative_gate": relative_gate, "stairs_length": stairs_length, "stairs_climb": stairs_climb,
              "slow_turn_rps": slow_turn_rps,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
-             "vault_veto": vault_veto, "contact_shift": contact_shift}
+             "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -515,9 +522,13 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if not realtime and alternation is not None and pairs >= PLAUSIBILITY_MIN_PAIRS and alternation < ALTERNATION_MIN:
         warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
-    ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, subject_height(session.meta)[0])  # W100, W116
+    ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, subject_height(session.meta)[0],  # W100, W116
+                                    pendulum=lambda: _pendulum_steps(imu, p, thr, o))  # W139
     if ratio_line:
         warnings.append(ratio_line)
+    cadence_ratio, gait_line = _calibration_gait(steps, p, pipeline)  # decision W140
+    if gait_line and bool(o["gait_check"]):  # W140's line: an option (its adoption rule was not met)
+        warnings.append(gait_line)
     n = len(steps)
     length_model = model.name
     info = {
@@ -535,6 +546,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "alternation_index": alternation,
         "alternation_pairs": pairs,
         "walk_ratio": ratio,
+        "calibration_cadence_ratio": cadence_ratio,
         "n_tilted_contacts": n_tilted,
         "n_vetoed_contacts": n_vetoed,
         "n_unvaulted_contacts": n_unvaulted,
@@ -597,13 +609,45 @@ def detector_steps(det, session: Session, imu: WaistIMU) -> pd.DataFrame:
 
 
 def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool,
-                height_m: float) -> tuple[float | None, str | None]:
+                height_m: float, pendulum=None) -> tuple[float | None, str | None]:
     """Decision W100: the walk ratio of an offline, uncalibrated ``waist-pendulum`` track (None otherwise) and its
-    warning line (None inside the healthy band of a walker ``height_m`` tall, W116, or with too few steps)."""
-    if pipeline != "waist-pendulum" or realtime or p.source != "defaults" or not len(steps):
+    warning line (None inside the healthy band of a walker ``height_m`` tall, W116, or with too few steps).
+    Decision W139: an offline, uncalibrated ``waist-pll`` track is judged on the steps ``pendulum()`` returns (the
+    pendulum model's reading of the same session, :func:`_pendulum_steps`); ``walk_ratio`` is then theirs."""
+    if realtime or p.source != "defaults" or not len(steps):
+        return None, None
+    pll_length = None
+    if pipeline == "waist-pll" and pendulum is not None:
+        own = steps["length_m"].to_numpy(float)[waist_step_times(steps)[0] > 0]
+        pll_length = float(np.median(np.abs(own))) if own.size else None
+        steps = pendulum()
+    elif pipeline != "waist-pendulum":
         return None, None
     ratio, n, length, cadence = walk_ratio(steps["length_m"].to_numpy(float), waist_step_times(steps)[0])
-    return ratio, walk_ratio_message(ratio, n, length, cadence, height_m)
+    return ratio, walk_ratio_message(ratio, n, length, cadence, height_m, pll_length=pll_length)
+
+
+def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str) -> tuple[float | None, str | None]:
+    """Decision W140: ``(ratio, line)``, this track's median cadence over its calibration walks' (None: not calibrated,
+    a params file without ``gait``, or fewer than ten steps) and W140's warning line (None inside its band)."""
+    ref = (p.gait or {}).get("median_cadence_spm") if p.source == "calibrated" else None
+    cadence, n = median_cadence(steps["frequency_hz"].to_numpy(float))
+    if not ref or cadence is None or n < PLAUSIBILITY_MIN_PAIRS:
+        return None, None
+    return cadence / float(ref), calibration_gait_message(p.gait, cadence, n, p.pipeline or pipeline)
+
+
+def _pendulum_steps(imu: WaistIMU, p: WaistParams, thr: float, o: dict) -> pd.DataFrame:
+    """Decision W139: the steps ``waist-pendulum`` would read from ``imu`` with the parameters ``p`` (its offline
+    contact detector and the pendulum step length, seed 003 eq. 1) under the track's options ``o`` and motion gate
+    ``thr``; the vetoes and gap cuts of a pendulum track are not applied (a plausibility reading, not a track)."""
+    det = InitialContactDetector(realtime=False, walk_threshold=thr, max_step_s=MAX_STEP_S,
+                                 rhythm=bool(o["rhythm"])).detect(imu)
+    model = get_step_length("pendulum")
+    _configure_model(model, "pendulum", False, {"merge_fragments": bool(o["merge_fragments"]),
+                                                "length_smoothing": check_length_smoothing(o["length_smoothing"]),
+                                                "pause_steps": o["pause_steps"]})
+    return _step_lengths(det.steps_, imu, p, model, thr)
 
 
 RELATIVE_HEADING = "waist heading relative to the start"

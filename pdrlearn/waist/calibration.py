@@ -19,6 +19,7 @@ from pdrlearn.waist.plausibility import (  # noqa: F401  (W99 moved to plausibil
     STEP_COUNT_DISAGREE,
     STEP_COUNT_MARGIN_S,
     STEP_COUNT_MIN,
+    calibration_gait,
     step_counts,
     steps_missed,
 )
@@ -332,6 +333,8 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
                                         or [float("nan")])), 4)
     total = sum(w.distance_m for w in walks)
     n_steps = sum(len(w.f_hz) for w in walks)
+    # decision W140: the gait the step length is calibrated on (a track of another cadence warns)
+    out.gait = calibration_gait(np.concatenate([w.f_hz for w in walks]) if walks else np.zeros(0), total)
     if pipeline not in ("waist-pendulum", "waist-pll"):
         raise DataError(f"calibrate: unknown pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     implausible = check_gain(walks, pipeline, base)  # decision W39

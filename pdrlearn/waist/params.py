@@ -60,8 +60,9 @@ class WaistParams:
     rate_hz : the waist accelerometer's rate (Hz) of the walks the step length was calibrated on (decision W87;
     NaN when not recorded: defaults, or a file written before W87); k_shrinkage : the calibrated K's standard
     error and what shrinking it toward :data:`DEFAULT_K` gives (decision
-    W48: ``k_cal``, ``se``, ``n_strides``, ``k0``, ``tau``, ``k_shrunk``, ``k``, ``applied``); notes : how each value
-    was obtained.
+    W48: ``k_cal``, ``se``, ``n_strides``, ``k0``, ``tau``, ``k_shrunk``, ``k``, ``applied``); gait : the calibration
+    walks' ``median_cadence_spm``, ``step_length_m``, ``speed_mps`` and ``n_steps`` (decision W140; None: defaults, or
+    a file written before W140); notes : how each value was obtained.
     """
 
     leg_m: float = float("nan")
@@ -78,6 +79,7 @@ class WaistParams:
     pipeline: str | None = None
     options: dict | None = None
     k_shrinkage: dict | None = None
+    gait: dict | None = None
     rate_hz: float = float("nan")
     sl_leg_m: float = float("nan")
     notes: list[str] = field(default_factory=list)
@@ -107,8 +109,8 @@ class WaistParams:
         for k, v in d.items():
             if k not in names:
                 continue
-            if k in ("turn_gmm", "notes", "source", "pipeline", "options", "k_shrinkage"):
-                if k in ("turn_gmm", "options", "k_shrinkage") and v is not None and not isinstance(v, dict):
+            if k in ("turn_gmm", "notes", "source", "pipeline", "options", "k_shrinkage", "gait"):
+                if k in ("turn_gmm", "options", "k_shrinkage", "gait") and v is not None and not isinstance(v, dict):
                     raise DataError(f"{where}: {k} must be a JSON object")
                 kw[k] = v
                 continue

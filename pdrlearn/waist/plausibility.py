@@ -167,12 +167,19 @@ def walk_ratio(length_m: np.ndarray, step_s: np.ndarray) -> tuple[float | None, 
     return length / cadence, n, length, cadence
 
 
+#: decision W139: what the walk ratio of a ``waist-pll`` track is read from, and why
+PLL_WALK_RATIO_BASIS = ("waist-pll's step length is a line in its step frequency, so its own walk ratio always looks "
+                        "healthy; judged on the pendulum model's reading of the same session (decision W139; "
+                        "simulated short-step walks read +51 to +574 % long on waist-pll): ")
+
+
 def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None,
-                       height_m: float = WALK_RATIO_HEIGHT_M) -> str | None:
+                       height_m: float = WALK_RATIO_HEIGHT_M, *, pll_length: float | None = None) -> str | None:
     """Decision W100's one warning line for an uncalibrated waist track whose walk ratio lies outside
     :data:`WALK_RATIO_BAND` over at least :data:`PLAUSIBILITY_MIN_PAIRS` steps; None when it is inside or not
     judged. Decision W116: the band is that of a walker ``height_m`` tall (:func:`walk_ratio_scale`: a child's healthy
-    walk ratio is smaller)."""
+    walk ratio is smaller). Decision W139: ``pll_length`` (m), the median step of a ``waist-pll`` track whose
+    ``ratio``, ``length`` and ``cadence`` are the pendulum model's reading of the same session; the line says so."""
     c = walk_ratio_scale(height_m)
     lo, hi, healthy = c * WALK_RATIO_BAND[0], c * WALK_RATIO_BAND[1], c * WALK_RATIO_HEALTHY
     if ratio is None or n < PLAUSIBILITY_MIN_PAIRS or lo <= ratio <= hi:
@@ -181,12 +188,66 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
             "waist step length is not validated and reads long (simulated festinating walks: +20 to +174 % distance)"
             if ratio < lo else
             "far over healthy gait's: the uncalibrated step length is implausibly long for this cadence")
-    return (f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
+    if pll_length is not None:  # W139
+        what = (f"{what}; waist-pll reads a median step of {pll_length:.2f} m, the pendulum {length:.2f} m")
+    return (("" if pll_length is None else PLL_WALK_RATIO_BASIS) +
+            f"walk ratio {ratio:.4f} m per step/min (median step {length:.2f} m at {cadence:.0f} steps/min over "
             f"{n} steps; healthy gait ~{healthy:.4f} at {height_m:.2f} m tall, outside {lo:.4f}-{hi:.4f} warns, "
             f"decision W100, scaled to the stature by W116) is {what}; the distance, speed and step lengths need a "
             "calibration on this walker's own walk of known length (a 10 m walk test, or this recording if you know "
             "the distance walked): 'pdrlearn calibrate DIR --distance M --out PARAMS.json', then track with "
             "--params PARAMS.json")
+
+
+#: decision W140: a calibrated track whose median cadence is outside this factor of its calibration walks' warns
+#: (a priori: 4/3 either way, beyond one walker's own slow-to-fast cadence range, the simulator's 1/1.2-1/0.86 of
+#: normal, and inside a change of gait such as a 150 steps/min shuffle against a 100-118 steps/min walk)
+CALIBRATION_CADENCE_BAND = (0.75, 4.0 / 3.0)
+
+
+def median_cadence(frequency_hz: np.ndarray) -> tuple[float | None, int]:
+    """Decision W140: ``(cadence, n)``, the median cadence (steps/min, 60 x the step frequency) over the ``n`` steps
+    with a finite positive ``frequency_hz`` (Hz: the steps table's, ``1 / (end_s - start_s)``); None without any."""
+    f = np.asarray(frequency_hz, dtype=np.float64)
+    f = f[np.isfinite(f) & (f > 0)]
+    return (60.0 * float(np.median(f)) if f.size else None), int(f.size)
+
+
+def calibration_gait(frequency_hz: np.ndarray, distance_m: float) -> dict | None:
+    """Decision W140: the gait of the calibration walks whose counted steps have the step frequencies
+    ``frequency_hz`` (Hz) and cover ``distance_m`` (the known lengths summed): ``median_cadence_spm``,
+    ``step_length_m`` (the known distance over the counted steps), ``speed_mps`` (the distance over the steps'
+    summed durations ``1 / f``) and ``n_steps``; None without a step."""
+    f = np.asarray(frequency_hz, dtype=np.float64)
+    f = f[np.isfinite(f) & (f > 0)]
+    if not f.size:
+        return None
+    return {"median_cadence_spm": round(60.0 * float(np.median(f)), 2),
+            "step_length_m": round(float(distance_m) / f.size, 4),
+            "speed_mps": round(float(distance_m) / float(np.sum(1.0 / f)), 4), "n_steps": int(f.size)}
+
+
+def calibration_gait_message(gait: dict | None, cadence: float | None, n: int, pipeline: str) -> str | None:
+    """Decision W140's one warning line when a track calibrated on walks of ``gait`` (:func:`calibration_gait`;
+    None: a params file written before W140, not judged) has a median ``cadence`` (steps/min, over ``n`` >=
+    :data:`PLAUSIBILITY_MIN_PAIRS` steps) outside :data:`CALIBRATION_CADENCE_BAND` times the calibration's."""
+    ref = (gait or {}).get("median_cadence_spm")
+    if ref is None or cadence is None or n < PLAUSIBILITY_MIN_PAIRS or not ref > 0:
+        return None
+    ratio = cadence / float(ref)
+    lo, hi = CALIBRATION_CADENCE_BAND
+    if lo <= ratio <= hi:
+        return None
+    length, speed = gait.get("step_length_m"), gait.get("speed_mps")
+    how = "".join([f", step {float(length):.2f} m" if length is not None else "",
+                   f", {float(speed):.2f} m/s" if speed is not None else ""])
+    return (f"this walk's median cadence {cadence:.0f} steps/min ({n} steps) is {ratio:.2f}x that of the walks the "
+            f"{pipeline} parameters were calibrated on ({float(ref):.0f} steps/min{how}; outside x{lo:g}-x{hi:.2f} "
+            "warns, decision W140): a calibration holds for the gait it was made on, and on a different gait "
+            "(shuffling against normal walking, before against after a treatment) the calibrated step length is "
+            "biased (a shuffle's calibration read normal walking -25 % on waist-pendulum, -85 % on waist-pll); "
+            "calibrate on a walk of this gait ('pdrlearn calibrate DIR --distance M --out PARAMS.json') before "
+            "comparing distances or speeds")
 
 
 #: W105: the still period read: the first standstill of at least 2 s (thesis ch.7.2's setup standstill, as

@@ -1,0 +1,126 @@
+"""Session 25's trial `clinic` (findings 1 and 2).
+
+1. Uncalibrated `waist-pll` read a short fast-cadence shuffle +260 % long with no plausibility line: its step length
+   is a line in the step frequency, so its own walk ratio always looks healthy. It is now judged by W100's walk
+   ratio of the pendulum's reading of the same session (decision W139).
+2. A calibration made on one gait (a shuffle) applied to another (normal walking) read -25 % / -85 % with no
+   warning. `calibrate` now records its walks' gait, a track reports its cadence over the calibration's, and with the
+   option ``gait_check`` warns when it is far (decision W140: an option, its adoption rule was not met; `run`: W141);
+   a params file written before W140 is read as before."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
+from pdrlearn.track.waist import track_waist
+from pdrlearn.waist.calibration import calibrate
+from pdrlearn.waist.params import load_params
+from pdrlearn.waist.plausibility import (
+    CALIBRATION_CADENCE_BAND,
+    WALK_RATIO_BAND,
+    calibration_gait,
+    calibration_gait_message,
+    median_cadence,
+)
+
+ROUTE = [Stand(3), Straight(14), Stand(3)]
+
+
+def _walk(user: int, seed: int, shuffle: bool = False, route=ROUTE):
+    """User ``user`` walking normally, or the trial's shuffle (0.25 m every 0.4 s), with the pendulum bounce."""
+    u = UserProfile.from_seed(user)
+    if shuffle:
+        u = dataclasses.replace(u, step_length_m=0.25, step_time_s=0.4)
+    return simulate_path(route, u, speed="normal", rate_hz=100, seed=seed, bounce="pendulum")
+
+
+def _lines(r, decision: str) -> list[str]:
+    return [w for w in r.info["warnings"] if f"decision {decision}" in w]
+
+
+def test_an_uncalibrated_pll_shuffle_is_judged_on_the_pendulum_walk_ratio():
+    """W139: the trial's pd10-like shuffle reads far too long on waist-pll, whose own walk ratio looks healthy."""
+    s = _walk(2500, 2500, shuffle=True)
+    r = track_waist(s, pipeline="waist-pll")
+    assert r.steps["length_m"].sum() > 1.5 * 14.0  # the error the line is about
+    own = r.steps["length_m"].median() / (60.0 * r.steps["frequency_hz"].median())
+    assert WALK_RATIO_BAND[0] < own  # pll's own ratio would not warn: why W139 reads the pendulum's
+    assert r.info["walk_ratio"] < WALK_RATIO_BAND[0]
+    (line,) = _lines(r, "W100")
+    assert "decision W139" in line and "waist-pll reads a median step" in line
+    assert "pdrlearn calibrate DIR --distance M" in line
+
+
+def test_a_normal_pll_walk_and_a_calibrated_pll_shuffle_are_not_warned():
+    r = track_waist(_walk(2500, 2500), pipeline="waist-pll")
+    assert WALK_RATIO_BAND[0] < r.info["walk_ratio"] < WALK_RATIO_BAND[1] and not _lines(r, "W100")
+    params = calibrate([_walk(2500, 7, shuffle=True)], "waist-pll", distances=[14.0])
+    cal = track_waist(_walk(2500, 2500, shuffle=True), pipeline="waist-pll", params=params)
+    assert cal.info["walk_ratio"] is None and not _lines(cal, "W100") and not _lines(cal, "W140")
+
+
+def test_calibration_gait_and_its_message():
+    f = [2.0, 2.5, 2.5, float("nan"), 0.0]
+    assert median_cadence(f) == (150.0, 3)
+    gait = calibration_gait(f, 3.0)
+    assert gait == {"median_cadence_spm": 150.0, "step_length_m": 1.0, "speed_mps": round(3.0 / 1.3, 4), "n_steps": 3}
+    assert calibration_gait([], 1.0) is None
+    lo, hi = CALIBRATION_CADENCE_BAND
+    assert calibration_gait_message(gait, 150.0 * lo * 1.01, 30, "waist-pll") is None
+    assert calibration_gait_message(gait, 150.0 * hi * 0.99, 30, "waist-pll") is None
+    assert calibration_gait_message(gait, 100.0, 9, "waist-pll") is None  # too few steps
+    assert calibration_gait_message(None, 100.0, 30, "waist-pll") is None  # a file from before W140
+    line = calibration_gait_message(gait, 100.0, 30, "waist-pendulum")
+    assert "0.67x" in line and "150 steps/min" in line and "pdrlearn calibrate" in line
+
+
+def test_a_shuffle_calibration_on_normal_walking_warns_with_gait_check_and_old_files_read_as_before(tmp_path):
+    """W140: the trial's OFF -> ON case reports its cadence ratio and, with ``gait_check``, warns; the same-gait
+    track does not warn; a params file without "gait" loads and is not judged."""
+    params = calibrate([_walk(2511, 3, shuffle=True, route=[Stand(3), Straight(10), Stand(3)])], "waist-pendulum",
+                       distances=[10.0])
+    assert abs(params.gait["median_cadence_spm"] - 150.0) < 8.0 and abs(params.gait["step_length_m"] - 0.25) < 0.03
+    path = params.save(tmp_path / "c.json")
+    assert json.loads(path.read_text())["gait"]["n_steps"] == params.gait["n_steps"]
+    on = track_waist(_walk(2511, 1), pipeline="waist-pendulum", params=str(path))
+    assert on.steps["length_m"].sum() < 0.9 * 14.0  # the bias the line is about
+    assert on.info["calibration_cadence_ratio"] < CALIBRATION_CADENCE_BAND[0] and not _lines(on, "W140")
+    checked = track_waist(_walk(2511, 1), pipeline="waist-pendulum", params=str(path), gait_check=True)
+    (line,) = _lines(checked, "W140")
+    assert f"calibrated on ({params.gait['median_cadence_spm']:.0f} steps/min" in line
+    params.options = {"gait_check": True}  # the option in PARAMS.json, as `track --params` reads it
+    assert _lines(track_waist(_walk(2511, 1), pipeline="waist-pendulum", params=params), "W140") == [line]
+    same = track_waist(_walk(2511, 4, shuffle=True), pipeline="waist-pendulum", params=params)
+    assert not _lines(same, "W140") and 0.9 < same.info["calibration_cadence_ratio"] < 1.1
+    old = json.loads(path.read_text())
+    del old["gait"]
+    (tmp_path / "old.json").write_text(json.dumps(old))
+    assert load_params(tmp_path / "old.json").gait is None
+    legacy = track_waist(_walk(2511, 1), pipeline="waist-pendulum", params=str(tmp_path / "old.json"),
+                         gait_check=True)
+    assert not _lines(legacy, "W140") and legacy.info["calibration_cadence_ratio"] is None
+
+
+def test_run_of_a_waist_bundle_calibrated_on_a_shuffle_warns_on_normal_walking(tmp_path, capsys):
+    """W141: the bundle's params carry the calibration's gait and its options; with ``gait_check`` the run of a
+    normal walk says so, without it it does not."""
+    from pdrlearn.cli import main
+    from pdrlearn.export.waist import export_waist
+    from pdrlearn.io import write_session
+
+    params = calibrate([_walk(2511, 3, shuffle=True, route=[Stand(3), Straight(10), Stand(3)])], "waist-pendulum",
+                       distances=[10.0])
+    params.save(tmp_path / "plain.json")
+    params.options = {"gait_check": True}
+    params.save(tmp_path / "c.json")
+    s = _walk(2511, 1)
+    frame = ",".join(f"{k}={v}" for k, v in s.require_frame("waist").to_dict().items())
+    walk = write_session(s, tmp_path / "walk")
+    for name, warned in (("c", True), ("plain", False)):
+        export_waist(tmp_path / f"{name}.json", tmp_path / f"wb_{name}", frame=frame)
+        assert main(["run", str(tmp_path / f"wb_{name}"), str(walk), "--out", str(tmp_path / f"r_{name}"),
+                     "--json"]) == 0
+        summary = json.loads(capsys.readouterr().out)
+        assert bool([w for w in summary["info"]["warnings"] if "decision W140" in w]) is warned
