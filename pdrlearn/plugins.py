@@ -133,11 +133,15 @@ def parse_spec(spec: Any, kind: str) -> tuple[str, dict]:
     if not isinstance(spec, str) or not spec.strip():
         raise DataError(f"{kind} {spec!r}: give a registered name, optionally with settings: NAME:key=value,...")
     name, _, rest = spec.strip().partition(":")
+    if not name.strip():  # decision B200
+        raise DataError(f"{kind} '{spec}': no name before ':'; write NAME:key=value,...")
     out: dict[str, Any] = {}
     for item in filter(None, (s.strip() for s in rest.split(","))):
         key, eq, value = (s.strip() for s in item.partition("="))
         if not eq or not key:
             raise DataError(f"{kind} '{spec}': setting '{item}' is not key=value; write NAME:key=value,...")
+        if key in out:  # decision B200: the second value had silently won
+            raise DataError(f"{kind} '{spec}': setting '{key}' is given twice; give it once")
         low = value.lower()
         if low in ("true", "false", "none"):
             out[key] = {"true": True, "false": False, "none": None}[low]

@@ -72,3 +72,13 @@ def test_cli_bad_detector_setting_is_one_line_exit_2(command, tmp_path, capsys):
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "did you mean 'loop_hz'?" in err and "its settings are" in err
     assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("spec, said", [("pll:loop_hz=1,loop_hz=2", "setting 'loop_hz' is given twice"),
+                                        (":loop_hz=1", "no name before ':'")])
+def test_a_repeated_setting_or_no_name_is_one_line(spec, said):
+    """Decision B200: the second of two values had silently won; ':x=1' had read as an unknown detector ''."""
+    with pytest.raises(DataError, match=said):
+        get_detector(spec)
+    with pytest.raises(DataError, match=said.replace("loop_hz", "k")):
+        get_step_length(spec.replace("pll", "weinberg").replace("loop_hz", "k"))

@@ -93,3 +93,26 @@ def test_the_runtime_takes_the_stride_before_as_track_streaming(root, monkeypatc
     assert any("decision L167" in w for w in tr.warnings)
     assert any("decision L167" in w for w in res.info["warnings"])
     assert np.abs(default - got).max() > 0.1  # the option moves the strides across the bursts
+
+
+def test_drop_neighbour_is_a_keyword_of_the_streamed_paths(root):
+    """Decision E101: L167's option is the ``drop_neighbour`` keyword of ``track_plasys(streaming=True)`` and the
+    runtime ``Tracker`` (the module flag stays its default, False), so one call can ask for it; offline it is
+    refused (L160 applies there)."""
+    from pdrlearn.errors import DataError
+
+    sim = pytest.importorskip("pdrlearn.sim")
+    s = _bursts(sim.simulate("D", 1), 200, 47, 7)
+    for n in [n for n in s.streams if n.startswith("w")]:
+        del s.streams[n]
+    assert KG.DROP_NEIGHBOUR is False
+    res = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True, drop_neighbour=True)
+    tr = Tracker(root / "bundle", units=("foot",), drop_neighbour=True)
+    got = np.array([[st.x, st.y, st.z] for st in _replay(tr, s)])
+    assert np.abs(got - res.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
+    assert any("decision L167" in w for w in tr.warnings) and any("decision L167" in w for w in res.info["warnings"])
+    off = get_pipeline("plasys")(s, method="M3", model=str(root / "model"), streaming=True)
+    assert not any("decision L167" in w for w in off.info["warnings"])
+    assert drop_stride_disp((0.4, 0.1, 0.7), 1.0, ((1.3, 0.0, -0.02), 1.0), True)[2] == -0.02
+    with pytest.raises(DataError, match="streamed strides' option"):
+        get_pipeline("plasys")(s, method="M2", drop_neighbour=True)

@@ -124,3 +124,45 @@ def test_run_of_a_waist_bundle_calibrated_on_a_shuffle_warns_on_normal_walking(t
                      "--json"]) == 0
         summary = json.loads(capsys.readouterr().out)
         assert bool([w for w in summary["info"]["warnings"] if "decision W140" in w]) is warned
+
+
+def test_a_malformed_gait_record_or_a_quoted_flag_option_is_one_line(tmp_path):
+    """Decisions B198 / B199: a "gait" with a text or negative number had been a ValueError traceback or a negative
+    calibration_cadence_ratio; "contact_shift": "no" / "gait_check": "false" had been read as true."""
+    import pytest
+
+    from pdrlearn.errors import DataError
+
+    base = json.loads(calibrate([_walk(2512, 3)], "waist-pendulum", distances=[14.0]).save(tmp_path / "c.json")
+                      .read_text())
+    for gait, said in [({"median_cadence_spm": "abc"}, "median_cadence_spm='abc'"),
+                       ({"median_cadence_spm": -5}, "median_cadence_spm=-5"),
+                       ({"median_cadence_spm": 100, "step_length_m": "x"}, "step_length_m='x'")]:
+        (tmp_path / "g.json").write_text(json.dumps({**base, "gait": gait}))
+        with pytest.raises(DataError, match=f"g.json: gait {said} is not a positive number"):
+            load_params(tmp_path / "g.json")
+    (tmp_path / "o.json").write_text(json.dumps({**base, "options": {"contact_shift": "no", "gait_check": "false"}}))
+    with pytest.raises(DataError, match="contact_shift='no', gait_check='false' is not true or false"):
+        track_waist(_walk(2512, 1), pipeline="waist-pendulum", params=str(tmp_path / "o.json"))
+    (tmp_path / "o.json").write_text(json.dumps({**base, "options": {"contact_shift": False, "gait_check": True}}))
+    assert track_waist(_walk(2512, 1), pipeline="waist-pendulum", params=str(tmp_path / "o.json")).info["options"][
+        "contact_shift"] is False
+
+
+def test_the_pll_walk_ratio_reads_the_pendulum_under_the_tracks_contact_shift(monkeypatch):
+    """Decision E102: W139's pendulum reading of a waist-pll session uses the track's ``contact_shift`` (W131), as
+    its docstring says ("under the track's options"); it had always used the detector's default."""
+    import pdrlearn.track.waist as TW
+
+    seen = []
+    real = TW.InitialContactDetector
+
+    def spy(**kw):
+        seen.append(kw.get("contact_shift", "default"))
+        return real(**kw)
+
+    monkeypatch.setattr(TW, "InitialContactDetector", spy)
+    s = _walk(2513, 2513, shuffle=True)
+    track_waist(s, pipeline="waist-pll", contact_shift=False)
+    track_waist(s, pipeline="waist-pll")
+    assert seen == [False, True]

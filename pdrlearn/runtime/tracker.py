@@ -379,6 +379,9 @@ class Tracker(FixInput):
         turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest after it)
         when the waist heads the strides (decision L99, the default; L91's mechanism; ``pdrlearn track
         --streaming``'s ``waist_bridge``); False: it keeps the heading (E30, L90).
+    drop_neighbour : a stride across dropped foot samples over 0.25 s (under 1 s) takes the length (scaled by the
+        durations) and height change of the clean stride before it (decision L167, an option; E101: a keyword, as
+        ``track_plasys(streaming=True, drop_neighbour=...)``); None: ``pdrlearn.kernels.gaps.DROP_NEIGHBOUR`` (False).
     max_gap_s : a push whose timestamps jump further ahead than this (s; default 60) of a stream's last sample is
         refused in one line, the tracker unchanged (decision B141: a clock glitch accepted as a gap would refuse
         every later sample); ``math.inf`` accepts any gap.
@@ -395,6 +398,7 @@ class Tracker(FixInput):
     _foot_gaps: list | tuple = ()
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
     _drop_warned = False
+    drop_neighbour: bool | None = None  # decision E101 (a bare Tracker.__new__: kernels.gaps.DROP_NEIGHBOUR)
     #: decision E46: the long foot gaps (start, end) not yet behind the last emitted stride, the pending gap row
     #: ([start, gap_s] or None), the end / reported heading / position of the last emitted stride
     _row_gaps: list | tuple = ()
@@ -436,6 +440,7 @@ class Tracker(FixInput):
         waist_bridge: bool = True,
         contacts: bool = False,
         check_input: bool = True,
+        drop_neighbour: bool | None = None,
         resume: dict | None = None,
         max_gap_s: float = MAX_GAP_S,
         start_enu_m=None,
@@ -595,6 +600,7 @@ class Tracker(FixInput):
         self._foot_gaps: list[tuple[float, float, bool, bool]] = []  # (start, end, long, a foot IMU stream's)
         self._drop_ref: tuple | None = None  # decision L167: (displacement, duration) of the last clean stride
         self._drop_warned = False
+        self.drop_neighbour = bool(KG.DROP_NEIGHBOUR if drop_neighbour is None else drop_neighbour)  # E101
         self._held: set[str] = set()
         self._held_s = float(self.params.get("max_wait_s", 2.0))  # a held value older than this is warned about
         #: decision B141: a push whose timestamps jump further ahead than this (s) is refused (a clock glitch)
@@ -1468,8 +1474,9 @@ class Tracker(FixInput):
             if self._mirror is not None:
                 self._mirror_stride(t0, t1)
         if bridged:  # decision L167 (an option; track --streaming's): the length and height of the clean stride before
-            disp = np.array(drop_stride_disp(disp, t1 - t0, self._drop_ref))
-            if KG.DROP_NEIGHBOUR and self._drop_ref is not None and not self._drop_warned:
+            on = KG.DROP_NEIGHBOUR if self.drop_neighbour is None else self.drop_neighbour  # E101
+            disp = np.array(drop_stride_disp(disp, t1 - t0, self._drop_ref, on))
+            if on and self._drop_ref is not None and not self._drop_warned:
                 self._drop_warned = True
                 self._warn("strides across dropped foot samples over 0.25 s take the length and height change of the "
                            "stride before each (decision L167)")

@@ -660,6 +660,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
                  waist_bridge: bool | None = None, warn_out_of_domain: float | None = None, toe_off: bool = False,
                  hard_iron_fit: bool | None = None, contacts: bool = False, altitude: str | None = None,
+                 drop_neighbour: bool | None = None,
                  waist_bias: bool | None = None,
                  **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
@@ -713,6 +714,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         stride across it, from the foot's rest before the gap to its rest after it, and the pause before the next;
         decision L99, the streamed default). None (default): True streamed, False offline; False, or no waist
         gyroscope: 0 (L90: the foot's interpolated gyroscope is never integrated there)
+    drop_neighbour : streaming: a stride across dropped foot samples over 0.25 s takes the length and height change
+        of the clean stride before it (decision L167, an option; E101: None = ``kernels.gaps.DROP_NEIGHBOUR``, False);
+        offline such strides take their neighbours' height change (L160) and True is refused
     calibration : M3 with a trained model: use the model's distance calibration (L26): its gain (unless
         ``distance_gain`` is given) and, for the bayes rules, its measured stride-length sd in place of the
         3 % default. False: neither
@@ -760,6 +764,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         raise DataError(f"plasys: method '{method}' is not one of auto, M1, M2, M3")
     if down_mode not in SK.DOWN_MODES:  # decision L51: offline and streamed alike
         raise DataError(f"plasys: down_mode '{down_mode}' is not one of {', '.join(SK.DOWN_MODES)}")
+    if drop_neighbour and not streaming:  # decision E101
+        raise DataError("plasys drop_neighbour=True is the streamed strides' option (decision L167); offline, strides "
+                        "across dropped samples take their neighbours' height change (L160): add streaming=True or "
+                        "drop drop_neighbour")
     if streaming:
         if not (isinstance(steps, str) and steps == "detector") or align:
             raise DataError("plasys streaming=True: steps and align are not streamable; leave them at their "
@@ -769,6 +777,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                               bounds_scale=bounds_scale, down_mode=down_mode, distance_gain=distance_gain,
                               calibration=calibration, rules=rules, min_confidence=min_confidence,
                               warn_out_of_domain=warn_out_of_domain, contacts=contacts,
+                              drop_neighbour=drop_neighbour,  # decision E101
                               **({} if waist_bridge is None else {"waist_bridge": bool(waist_bridge)}),
                               **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}),
                               **({} if waist_gap_yaw is None else {"waist_gap_yaw": bool(waist_gap_yaw)}))
@@ -1148,7 +1157,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = True,
                     waist_gap_yaw: bool = True, waist_bridge: bool = True, rules: str | None = None,
                     min_confidence: float | None = None,
-                    warn_out_of_domain: float | None = None, contacts: bool = False) -> TrackResult:
+                    warn_out_of_domain: float | None = None, contacts: bool = False,
+                    drop_neighbour: bool | None = None) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -1172,9 +1182,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     turn in the gap before it (:func:`~pdrlearn.kernels.stride.stride_gap_yaw`). ``waist_bridge`` (decision L99,
     as the runtime's; L91's mechanism): a stride headed by the waist gyroscope across a foot-IMU gap over 1 s turns
     by the waist's turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest
-    after it); False: 0 (L90). ``kernels.gaps.DROP_NEIGHBOUR = True`` (decision L167, an option, as the runtime's): a
-    stride across dropped foot samples over 0.25 s (under 1 s) takes the length (scaled by the durations) and height
-    change of the clean stride before it.
+    after it); False: 0 (L90). ``drop_neighbour=True`` (decision L167, an option, as the runtime ``Tracker``'s;
+    E101: a keyword, None: ``kernels.gaps.DROP_NEIGHBOUR``, False): a stride across dropped foot samples over 0.25 s
+    (under 1 s) takes the length (scaled by the durations) and height change of the clean stride before it.
     """
     start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
     initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
@@ -1268,6 +1278,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     # decision L167 (an option, DROP_NEIGHBOUR): a stride across dropped samples over the gap clock's limit takes the
     # length and height of the stride before it (ref: that stride's displacement and duration), as the runtime's
     across, ref = drop_strides(session, table, in_gap, min_gap_s=BRIDGE_GAP_S), None
+    neighbour = bool(KG.DROP_NEIGHBOUR if drop_neighbour is None else drop_neighbour)  # decision E101
     for i, (t0, t1) in enumerate(strides):
         prev = float(strides[i - 1, 1]) if i else None
         if in_gap[i]:  # decision L91: the waist's turn from the previous stride's end, else 0 (L90)
@@ -1285,7 +1296,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             continue
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1), fine=fine)
         if across[i]:
-            disp[i] = drop_stride_disp(disp[i], float(t1 - t0), ref)
+            disp[i] = drop_stride_disp(disp[i], float(t1 - t0), ref, neighbour)
         else:
             ref = (disp[i].copy(), float(t1 - t0))
         turn[i] = dyaw[i]  # decision E51: the stride's own turn (the runtime's), before the pivot below
@@ -1304,7 +1315,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         elif i:  # decisions L31 / L61: the heading unit's turn between strides (the runtime's call)
             dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0),
                                          foot=gap_yaw, waist=waist_gap_yaw)
-    if KG.DROP_NEIGHBOUR and (across & ~posture).any():
+    if neighbour and (across & ~posture).any():
         warnings.append(drop_stride_warning(int((across & ~posture).sum()), streamed=True))
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
     rule_classes = _confident(classes, gate) if method == "M3" else classes  # decision L18 / L40

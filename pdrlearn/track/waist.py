@@ -311,6 +311,10 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "sit_veto": False, "pause_steps": False, "vault_veto": False, "contact_shift": True,
                    "gait_check": False}
+#: decision B199: the options that are true or false (``sit_veto``, ``pause_steps``, ``vault_veto`` take more values,
+#: checked by their own lines)
+FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
+                     if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto"))
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
@@ -323,7 +327,13 @@ def resolve_options(p: WaistParams, given: dict) -> dict:
     unknown = sorted(set(p.options or {}) - set(OPTION_DEFAULTS))
     if unknown:
         raise DataError(f"params options: unknown {', '.join(unknown)}; use some of {', '.join(OPTION_DEFAULTS)}")
-    return {k: (v if v is not None else (p.options or {}).get(k, OPTION_DEFAULTS[k])) for k, v in given.items()}
+    o = {k: (v if v is not None else (p.options or {}).get(k, OPTION_DEFAULTS[k])) for k, v in given.items()}
+    bad = [f"{k}={o[k]!r}" for k in FLAG_OPTIONS if k in o and not (isinstance(o[k], bool | np.bool_) or
+                                                                     (type(o[k]) is int and o[k] in (0, 1)))]
+    if bad:  # decision B199: "false" in a PARAMS.json had been read as true
+        raise DataError(f"params options: {', '.join(bad)} is not true or false; fix the option or the PARAMS.json "
+                        "\"options\" (JSON true / false, no quotes)")
+    return o
 
 
 def track_waist(session: Session, *, pipeline: str, params=None, start=None, realtime: bool | None = None,
@@ -641,8 +651,8 @@ def _pendulum_steps(imu: WaistIMU, p: WaistParams, thr: float, o: dict) -> pd.Da
     """Decision W139: the steps ``waist-pendulum`` would read from ``imu`` with the parameters ``p`` (its offline
     contact detector and the pendulum step length, seed 003 eq. 1) under the track's options ``o`` and motion gate
     ``thr``; the vetoes and gap cuts of a pendulum track are not applied (a plausibility reading, not a track)."""
-    det = InitialContactDetector(realtime=False, walk_threshold=thr, max_step_s=MAX_STEP_S,
-                                 rhythm=bool(o["rhythm"])).detect(imu)
+    det = InitialContactDetector(realtime=False, walk_threshold=thr, max_step_s=MAX_STEP_S, rhythm=bool(o["rhythm"]),
+                                 contact_shift=bool(o["contact_shift"])).detect(imu)  # E102: the track's W131 option
     model = get_step_length("pendulum")
     _configure_model(model, "pendulum", False, {"merge_fragments": bool(o["merge_fragments"]),
                                                 "length_smoothing": check_length_smoothing(o["length_smoothing"]),

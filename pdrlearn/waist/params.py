@@ -112,6 +112,8 @@ class WaistParams:
             if k in ("turn_gmm", "notes", "source", "pipeline", "options", "k_shrinkage", "gait"):
                 if k in ("turn_gmm", "options", "k_shrinkage", "gait") and v is not None and not isinstance(v, dict):
                     raise DataError(f"{where}: {k} must be a JSON object")
+                if k == "gait" and v is not None:
+                    _check_gait(v, where)  # decision B198
                 kw[k] = v
                 continue
             if v is None:
@@ -133,6 +135,22 @@ class WaistParams:
         tmp.write_text(json.dumps(d, indent=2) + "\n")
         os.replace(tmp, path)
         return path
+
+
+#: decision W140's ``gait`` record: its numbers (positive, or null when not recorded)
+GAIT_KEYS = ("median_cadence_spm", "step_length_m", "speed_mps", "n_steps")
+
+
+def _check_gait(gait: dict, where: str) -> None:
+    """Decision B198: a ``gait`` record (W140) whose numbers are not positive numbers (null: not recorded) is one line;
+    its cadence is divided by and its step and speed printed in W140's warning (a text had been a traceback, a
+    negative cadence a negative ``calibration_cadence_ratio``)."""
+    bad = [f"{k}={gait[k]!r}" for k in GAIT_KEYS if gait.get(k) is not None
+           and (isinstance(gait[k], bool) or not isinstance(gait[k], int | float) or not np.isfinite(gait[k])
+                or gait[k] <= 0)]
+    if bad:
+        raise DataError(f"{where}: gait {', '.join(bad)} is not a positive number (decision W140's record of the "
+                        "calibration walks); fix it, set \"gait\" to null, or re-run 'pdrlearn calibrate'")
 
 
 def load_params(params) -> WaistParams | None:
