@@ -116,3 +116,27 @@ def test_drop_neighbour_is_a_keyword_of_the_streamed_paths(root):
     assert drop_stride_disp((0.4, 0.1, 0.7), 1.0, ((1.3, 0.0, -0.02), 1.0), True)[2] == -0.02
     with pytest.raises(DataError, match="streamed strides' option"):
         get_pipeline("plasys")(s, method="M2", drop_neighbour=True)
+
+
+def test_track_streaming_and_run_take_drop_neighbour(root, tmp_path, capsys):
+    """Decision E101: ``track --streaming --drop-neighbour`` and ``run --drop-neighbour`` apply L167 (its line in
+    summary.json's warnings); ``track --drop-neighbour`` without --streaming is one line, exit 2."""
+    import json
+
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+
+    sim = pytest.importorskip("pdrlearn.sim")
+    s = _bursts(sim.simulate("D", 1), 200, 47, 7)
+    for n in [n for n in s.streams if n.startswith("w")]:
+        del s.streams[n]
+    write_session(s, tmp_path / "s")
+    assert main(["track", str(tmp_path / "s"), "--drop-neighbour", "--out", str(tmp_path / "o0")]) == 2
+    assert "--drop-neighbour is for the --streaming strides" in capsys.readouterr().err
+    out = tmp_path / "t"
+    assert main(["track", str(tmp_path / "s"), "--streaming", "--method", "M2", "--drop-neighbour", "--out",
+                 str(out)]) == 0
+    assert any("decision L167" in w for w in json.loads((out / "summary.json").read_text())["info"]["warnings"])
+    capsys.readouterr()
+    assert main(["run", str(root / "bundle"), str(tmp_path / "s"), "--drop-neighbour", "--out", str(tmp_path / "r")]) == 0
+    assert "decision L167" in capsys.readouterr().err  # run logs the runtime's lines

@@ -668,6 +668,7 @@ def track_all(
     reference_point: str = _track.REFERENCE_POINT_OPT,
     toe_off: bool = _track.TOE_OFF_OPT,
     contacts: bool = _track.CONTACTS_OPT,
+    drop_neighbour: bool = _track.DROP_NEIGHBOUR_OPT,
     detector: str = _track.DETECTOR_OPT,
     length_model: str = _track.LENGTH_MODEL_OPT,
     altitude: str = _track.ALTITUDE_OPT,

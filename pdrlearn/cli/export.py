@@ -295,6 +295,10 @@ def run(
     contacts: bool = typer.Option(False, "--contacts", help="Each stride's initial contact (force onset, else the "
                                   "accelerometer impact) and so stride_time_s, cadence_spm, speed_mps and the "
                                   "summary's stride medians (decisions E49-E51; as `track --streaming --contacts`)."),
+    drop_neighbour: bool = typer.Option(False, "--drop-neighbour", help="A stride across dropped foot samples over "
+                                        "0.25 s (under 1 s) takes the length and height change of the stride before "
+                                        "it (decision L167, not the default; E101; as `track --streaming "
+                                        "--drop-neighbour`)."),
     align_units: bool = typer.Option(False, "--align-units", help="A foot + waist session: move the waist unit's "
                                      "clock onto the foot's by the steps both detect, before the replay (offset and "
                                      "drift over the whole recording, as `track --align-units`; decision L170). "
@@ -350,7 +354,8 @@ def run(
         given = [o for o, v in (("--protocol", protocol), ("--units", units), ("--method", method),
                                 ("--rules", rules), ("--min-confidence", min_confidence), ("--start", start))
                  if v is not None] + [o for o, v in (("--contacts", contacts), ("--resample", resample),
-                                                     ("--no-resample", no_resample), ("--align-units", align_units))
+                                                     ("--no-resample", no_resample), ("--align-units", align_units),
+                                                     ("--drop-neighbour", drop_neighbour))
                                       if v]
         if given:
             raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only bundle "
@@ -376,7 +381,7 @@ def run(
         tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
                           resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           units=use, start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0,
-                          methods=methods)
+                          methods=methods, drop_neighbour=drop_neighbour)  # E101
         if protocol == "-":
             stream = sys.stdin
         else:
@@ -445,7 +450,8 @@ def run(
                           input_rates_hz=rates, units=use, sensors=[n for n, st in session.streams.items() if len(st)],
                           start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0, methods=methods,
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)},
-                          max_gap_s=math.inf)  # B141: a recording's gaps are its own (its clock checked: B73)
+                          max_gap_s=math.inf,  # B141: a recording's gaps are its own (its clock checked: B73)
+                          drop_neighbour=drop_neighbour)  # E101
         dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
         if tracker.heading_source == "auto" and not said and (dropped or not (
                 session.has("wAccelerometer", "wGyroscope") and "waist" in tracker.forward)):  # as track says (B17)

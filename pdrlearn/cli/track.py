@@ -77,6 +77,11 @@ LENGTH_MODEL_OPT = typer.Option(None, "--length-model", help="Lower-back pipelin
 CONTACTS_OPT = typer.Option(False, "--contacts", help="plasys --streaming: each stride's initial contact "
                             "(force onset, else the accelerometer impact) and so stride_time_s, cadence_spm, "
                             "speed_mps (decisions E49-E51; `pdrlearn run --contacts` gives the same).")
+DROP_NEIGHBOUR_OPT = typer.Option(False, "--drop-neighbour", help="plasys --streaming: a stride across dropped foot "
+                                  "samples over 0.25 s (under 1 s) takes the length and height change of the stride "
+                                  "before it (decision L167, measured and not the default: it kept the distance "
+                                  "under burst loss, not the altitude; E101; `pdrlearn run --drop-neighbour` gives "
+                                  "the same).")
 ALTITUDE_OPT = typer.Option(None, "--altitude", help="plasys: the altitude from the foot's strides alone (foot, "
                             "the default) or fused with the session's waist barometer (fused: slopes and hills "
                             "read; an option, decision L154 - the barometer's wander moves a level walk by up to "
@@ -136,6 +141,7 @@ def track(
     reference_point: str = REFERENCE_POINT_OPT,
     toe_off: bool = TOE_OFF_OPT,
     contacts: bool = CONTACTS_OPT,
+    drop_neighbour: bool = DROP_NEIGHBOUR_OPT,
     detector: str = DETECTOR_OPT,
     length_model: str = LENGTH_MODEL_OPT,
     altitude: str = ALTITUDE_OPT,
@@ -231,7 +237,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    gnss: Path | None = None, gnss_period: float | None = None, fixes: Path | None = None,
                    fix_period: float | None = None, streaming: bool = False, realtime: bool = False,
                    reference_point: str | None = None, toe_off: bool = False, contacts: bool = False,
-                   dpi: int | None = None, initial_heading: float | None = None,
+                   drop_neighbour: bool = False, dpi: int | None = None, initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
@@ -326,7 +332,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "warn_out_of_domain": warn_out_of_domain, "start_ll": start_ll, "start_alt": start_alt,
             "params": params, "par": par, "gnss": gnss, "gnss_period": gnss_period, "fixes": fixes,
             "fix_period": fix_period, "streaming": streaming, "realtime": realtime,
-            "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts, "dpi": dpi,
+            "reference_point": reference_point, "toe_off": toe_off, "contacts": contacts,
+            "drop_neighbour": drop_neighbour, "dpi": dpi,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
@@ -392,6 +399,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                                                "--length-bounds": o["length_bounds_given"],
                                                "--streaming": streaming, "--toe-off": toe_off,
                                                "--contacts": contacts,
+                                               "--drop-neighbour": bool(o.get("drop_neighbour")),
                                                "--detector": o.get("detector_unit") == "foot",
                                                "--altitude": o.get("altitude") is not None,
                                                "--align-units": bool(o.get("align_units"))},
@@ -430,6 +438,12 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                 raise DataError("track: --contacts gives the --streaming kernel initial contacts; offline track "
                                 "has its detector's contacts already - add --streaming or drop --contacts")
             kw["contacts"] = True
+        if o.get("drop_neighbour"):  # decisions L167, E101
+            if not streaming:
+                raise DataError("track: --drop-neighbour is for the --streaming strides (decision L167); offline, "
+                                "strides across dropped samples take their neighbours' height change (L160) - add "
+                                "--streaming or drop --drop-neighbour")
+            kw["drop_neighbour"] = True
         if o.get("detector") is not None:  # decision L149
             kw["steps"] = o["detector"]
         if o.get("align_units"):  # decision L162
@@ -571,7 +585,7 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
 
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
 _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming",
-                   "--toe-off", "--contacts", "--detector", "--altitude", "--align-units")
+                   "--toe-off", "--contacts", "--drop-neighbour", "--detector", "--altitude", "--align-units")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
 
