@@ -138,5 +138,6 @@ def test_track_streaming_and_run_take_drop_neighbour(root, tmp_path, capsys):
                  str(out)]) == 0
     assert any("decision L167" in w for w in json.loads((out / "summary.json").read_text())["info"]["warnings"])
     capsys.readouterr()
-    assert main(["run", str(root / "bundle"), str(tmp_path / "s"), "--drop-neighbour", "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", str(root / "bundle"), str(tmp_path / "s"), "--drop-neighbour", "--out",
+                 str(tmp_path / "r")]) == 0
     assert "decision L167" in capsys.readouterr().err  # run logs the runtime's lines
