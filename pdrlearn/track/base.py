@@ -181,6 +181,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``waist_bridge`` (decisions L91 / L99: streamed on by default), ``warn_out_of_domain``, ``toe_off``
       (decision L73: the toe-off / stance / swing columns, offline), ``hard_iron_fit`` (decision L84),
       ``contacts`` (decisions E49-E51: with ``streaming``, each stride's initial contact and stride time),
+      ``drop_neighbour`` (decisions L167, E101: with ``streaming``, a stride across dropped foot samples takes the
+      length and height change of the stride before it; off by default),
       ``altitude`` (decision L154: ``"foot"``, the default, or ``"fused"`` with the waist barometer; an option),
       ``waist_bias`` (decision W126: remove the waist gyroscope bias read at rest; off by default).
     - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
