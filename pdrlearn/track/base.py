@@ -193,7 +193,9 @@ def get_pipeline(name: str) -> Pipeline:
       ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104, off:
       no contact around a sit-to-stand's trunk-flexion peak; ``"rhythm"``: W109, sparing left/right step pairs),
       ``pause_steps`` (decision W111, off: a step over 1.5 local periods keeps one period's length;
-      ``"progression"``: W122, a step with a standstill in it keeps at most the trunk's travel over it),
+      ``"progression"``: W122, a step with a standstill in it keeps at most the trunk's travel over it;
+      ``"standing"``, the offline default since W134: W122 only for a still run of half a local step period, not a
+      walk's first or last step),
       ``vault_veto`` (decision W119, off: no contact whose step vaults the pelvis under a quarter of its neighbours';
       ``"turns"``: W127, sparing a step that turns the pelvis by more than 15 deg),
       ``detector`` (decision E85: a waist step detector's contacts), ``length_model`` (decision E84: a registered
