@@ -259,3 +259,31 @@ def test_standing_is_the_offline_pendulum_default_and_calibration_sums_with_it(t
         12.0, rel=2e-3)
     # realtime: the default does not look ahead there (no refusal, no factor)
     assert "pause_factor" not in track_waist(turn_walk, pipeline="waist-pendulum", realtime=True).steps
+
+
+def test_samples_made_up_inside_a_gap_are_no_stand():
+    """W136: a 0.5 s gap of dropped samples in a real straight walk is bridged by a line (W34), which reads as a
+    standstill of over half a step; W134 shortened the step across it (the walk 20 % short at this gap position,
+    tests/test_waist_clock_gaps.py's mean -9.1 % instead of -5.2 %). The made-up samples are no stand."""
+    from pdrlearn.io import read_session
+    from pdrlearn.io.session import Stream
+    from pdrlearn.track.waist import track_waist
+    from pdrlearn.waist.ahrs import bridged_samples, waist_imu
+    from tests.conftest import external_session
+
+    s = read_session(external_session("mobgap_HA001_Test5_Trial1"))
+    b = s.extras["bouts"].iloc[0]
+    t0 = float(np.linspace(b.start_s + 0.5, b.end_s - 1.0, 8)[2])
+    g = s.copy()
+    for k, st in g.streams.items():
+        keep = (st.t < t0) | (st.t >= t0 + 0.5)
+        g.streams[k] = Stream(k, st.t[keep], st.values[keep])
+    imu = waist_imu(g)
+    made_up = bridged_samples(g, imu.t)
+    assert imu.bridged is not None and np.array_equal(imu.bridged, made_up)
+    assert 45 <= made_up.sum() <= 50 and (imu.t[made_up] > t0 - 0.02).all() and (imu.t[made_up] < t0 + 0.5).all()
+    assert not bridged_samples(s, waist_imu(s).t).any()  # a recording without gaps: nothing made up
+    on = track_waist(g, pipeline="waist-pendulum").steps
+    off = track_waist(g, pipeline="waist-pendulum", pause_steps=False).steps
+    assert (on["pause_factor"] == 1.0).all()
+    np.testing.assert_allclose(on["length_m"], off["length_m"], rtol=1e-12)

@@ -195,6 +195,9 @@ def _still_displacements(signals, idx: np.ndarray, use: np.ndarray,
     from pdrlearn.signal.conditioning import standstill_mask
 
     still = standstill_mask(signals.acc_nav, signals.gyr_nav, signals.fs)
+    bridged = getattr(signals, "bridged", None)
+    if bridged is not None:  # W136: samples made up inside a gap of dropped samples (W34) are no standstill
+        still = still & ~bridged
     out, run_s = np.full(len(idx), np.nan), np.full(len(idx), np.nan)
     for i in np.flatnonzero(use):
         a, b = win.get(i, (i, i))
