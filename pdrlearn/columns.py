@@ -227,8 +227,8 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("h_m", "m", "number", "waist-pendulum: the pelvis's vertical excursion during the step (seed 003)"),
     ("g_m", "m", "number", "waist-pendulum: the pendulum chord 2 sqrt(2 L h - h^2) before K and F"),
     ("merged", _ID, "true/false", "waist-pendulum: a fragment whose length its neighbour carries (W27)"),
-    ("pause_factor", "fraction", "number", "option pause_steps only: the factor the step's length was scaled by "
-                                           "(W111, W122)"),
+    ("pause_factor", "fraction", "number", "offline waist-pendulum (pause_steps, default since W134): the factor "
+                                           "the step's length was scaled by (W111, W122, W134)"),
     ("length_m", "m", "number", "step length (0 for a sequence-closing contact)"),
     ("frequency_hz", "Hz", "number", "1 / the step's duration"),
     ("dyaw_rad", "rad", "number", "vertical-gyro rotation during the step"),
