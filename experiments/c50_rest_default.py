@@ -48,15 +48,16 @@ def user_rows(user: int, rate: float) -> list[dict]:
     return rows
 
 
-def summary(df: pd.DataFrame) -> pd.DataFrame:
-    g = df.groupby(["rate_hz", "boundaries", "task"])[["correct_detected", "n_detected", "correct_labelled",
-                                                       "n_labelled"]].sum()
-    allt = df.groupby(["rate_hz", "boundaries"])[list(g.columns)].sum()
+def summary(df: pd.DataFrame, variant: str = "boundaries") -> pd.DataFrame:
+    """Pooled detected-stride and labelled-boundary accuracy per rate, ``variant`` column and task (and all)."""
+    g = df.groupby(["rate_hz", variant, "task"])[["correct_detected", "n_detected", "correct_labelled",
+                                                  "n_labelled"]].sum()
+    allt = df.groupby(["rate_hz", variant])[list(g.columns)].sum()
     allt["task"] = "all"
     g = pd.concat([g.reset_index(), allt.reset_index()], ignore_index=True)
     g["acc_detected"] = (g["correct_detected"] / g["n_detected"]).round(4)
     g["acc_labelled"] = (g["correct_labelled"] / g["n_labelled"]).round(4)
-    return g.sort_values(["rate_hz", "task", "boundaries"])
+    return g.sort_values(["rate_hz", "task", variant])
 
 
 def main() -> None:
