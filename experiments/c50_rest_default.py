@@ -36,15 +36,21 @@ def user_rows(user: int, rate: float) -> list[dict]:
         model = train_user(calib, boundaries=boundaries)
         secs = time.perf_counter() - t0
         for walk, session in zip(WALKS, walks, strict=True):
-            out = evaluate_model(model, [session], latency=False)
-            for task, r in out["tasks"].items():
-                det = r["detected"] or {}
-                rows.append({"user": user, "rate_hz": rate, "boundaries": boundaries, "walk": walk, "task": task,
-                             "chosen": f"{r['chosen']['method']}/{r['chosen']['unit']}",
-                             "n_labelled": r["n_steps"], "correct_labelled": round(r["accuracy"] * r["n_steps"]),
-                             "n_detected": det.get("n_steps", 0),
-                             "correct_detected": round(det.get("accuracy", 0.0) * det.get("n_steps", 0)),
-                             "train_s": round(secs, 1)})
+            rows += task_rows(evaluate_model(model, [session], latency=False), user=user, rate_hz=rate,
+                              boundaries=boundaries, walk=walk, train_s=round(secs, 1))
+    return rows
+
+
+def task_rows(out: dict, **keys) -> list[dict]:
+    """One row per task of an `evaluate_model` result: the chosen model's correct / scored steps on the labelled
+    boundaries and on the detected strides (C49), with ``keys`` (user, variant, walk, ...)."""
+    rows = []
+    for task, r in out["tasks"].items():
+        det = r["detected"] or {}
+        rows.append({**keys, "task": task, "chosen": f"{r['chosen']['method']}/{r['chosen']['unit']}",
+                     "n_labelled": r["n_steps"], "correct_labelled": round(r["accuracy"] * r["n_steps"]),
+                     "n_detected": det.get("n_steps", 0),
+                     "correct_detected": round(det.get("accuracy", 0.0) * det.get("n_steps", 0))})
     return rows
 
 

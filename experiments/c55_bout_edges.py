@@ -27,7 +27,7 @@ from pdrlearn.track.evaluate import evaluate_track
 from pdrlearn.track.plasys import track_plasys
 
 sys.path.insert(0, str(Path(__file__).parent))
-from c50_rest_default import summary  # noqa: E402  (the same pooling as C50)
+from c50_rest_default import summary, task_rows  # noqa: E402  (the same rows and pooling as C50)
 
 CALIBRATION = ("terrain", "direction", "length")
 RATE_HZ = 20.0
@@ -42,14 +42,8 @@ def user_rows(user: int) -> tuple[list[dict], list[dict]]:
         detected.RUNTIME_BOUT_EDGES = on
         model = train_user(calib)
         for walk, session in tests.items():
-            out = evaluate_model(model, [session], latency=False)
-            for task, r in out["tasks"].items():
-                det = r["detected"] or {}
-                rows.append({"user": user, "rate_hz": RATE_HZ, "edges": variant, "walk": walk, "task": task,
-                             "chosen": f"{r['chosen']['method']}/{r['chosen']['unit']}",
-                             "n_labelled": r["n_steps"], "correct_labelled": round(r["accuracy"] * r["n_steps"]),
-                             "n_detected": det.get("n_steps", 0),
-                             "correct_detected": round(det.get("accuracy", 0.0) * det.get("n_steps", 0))})
+            rows += task_rows(evaluate_model(model, [session], latency=False), user=user, rate_hz=RATE_HZ,
+                              edges=variant, walk=walk)
         ev = evaluate_track(track_plasys(tests["D"], method="M3", model=model), tests["D"])
         dist.append({"user": user, "edges": variant, "distance_error_pct": ev["distance_error_pct"]})
     return rows, dist
