@@ -220,6 +220,7 @@ def session_windows(sessions, *, n_samples: int, boundaries: str = "given", purp
     """Step windows of every labelled step of every session (one :class:`StepWindows` per session);
     ``boundaries`` as :func:`pdrlearn.features.step_windows` (``"rest"``: rest-to-rest windows);
     ``purpose`` ("train" | "evaluate") words the error for a session without labelled steps."""
+    from pdrlearn.classify import detected
     from pdrlearn.classify.labels import clean_steps, misaligned_text
     from pdrlearn.features import step_windows
 
@@ -232,6 +233,8 @@ def session_windows(sessions, *, n_samples: int, boundaries: str = "given", purp
                    "`pdrlearn track SESSION --model MODEL`")
             raise DataError(f"{where}: no labelled steps (steps.csv); {fix}")
         steps = clean_steps(s, s.steps)  # labels any case, each step once (decisions C32, C33)
+        if purpose == "train" and boundaries == "given" and detected.RUNTIME_BOUT_EDGES:
+            steps = detected.runtime_bout_edges(s, steps)  # bout edges as the runtime cuts them (C55)
         shifted = misaligned_text(s, steps, boundaries)  # labels off the foot's rest periods (C37)
         try:
             w = step_windows(s, steps, n_samples=n_samples, boundaries=boundaries)
