@@ -1003,6 +1003,58 @@ def length_class_bounds(sessions) -> list[float] | None:
     return [float(lo), float(hi)] if 0 < lo < hi else None
 
 
+def session_rates(sessions) -> dict[str, dict[str, float]]:
+    """Sensor -> {session name -> its recorded rate (Hz, 3 decimals)} over ``sessions``."""
+    out: dict[str, dict[str, float]] = {}
+    for s in sessions:
+        for name, st in s.streams.items():
+            if len(st) > 1 and np.isfinite(float(st.rate_hz)):
+                out.setdefault(name, {})[s.where] = round(float(st.rate_hz), 3)
+    return out
+
+
+def mixed_rates(recorded: dict[str, dict[str, float]]) -> dict[str, dict[float, list[str]]]:
+    """The sensors of :func:`session_rates` whose rates differ between sessions (beyond the tolerance of
+    :func:`~pdrlearn.kernels.distance.rate_differs`): sensor -> {rate -> sessions}."""
+    from pdrlearn.kernels.distance import rate_differs
+
+    out = {}
+    for name, by in recorded.items():
+        lo, hi = min(by.values()), max(by.values())
+        if rate_differs(lo, hi):
+            groups: dict[float, list[str]] = {}
+            for where, r in by.items():
+                groups.setdefault(r, []).append(where)
+            out[name] = dict(sorted(groups.items()))
+    return out
+
+
+def one_rate(sessions, recorded: dict[str, dict[str, float]], resample_hz: float | None) -> list:
+    """Decision C56: the sessions at one rate per sensor. ``resample_hz``: every stream resampled to it (one
+    warning naming the recorded rates when they differ); None: sessions at different rates are a one-line
+    :class:`DataError` (B197) naming the rates, the sessions and ``--resample HZ`` (a model holds one rate per
+    sensor: its manifest, the rate warnings of track / evaluate and the distance calibration all read it)."""
+    mixed = mixed_rates(recorded)
+    if resample_hz is None:
+        if mixed:
+            name, groups = next(iter(mixed.items()))
+            said = "; ".join(f"{r:g} Hz: {w[0]}{f' and {len(w) - 1} more' if len(w) > 1 else ''}"
+                             for r, w in groups.items())
+            raise DataError(f"train: the sessions were recorded at different rates ({name} {said}); a model is "
+                            f"trained at one rate: pass --resample HZ (e.g. --resample {max(groups):g}) to resample "
+                            "every session to it, or train the rates apart")
+        return list(sessions)
+    if not (np.isfinite(resample_hz) and resample_hz > 0):
+        raise DataError(f"train: --resample {resample_hz}; give a rate in Hz above 0, e.g. --resample 100")
+    from pdrlearn.io.resample import resample_session
+
+    if mixed:
+        name, groups = next(iter(mixed.items()))
+        log.warning("train: the sessions were recorded at %s Hz (%s); every stream resampled to %g Hz",
+                    " / ".join(f"{r:g}" for r in groups), name, resample_hz)
+    return [resample_session(s, dict.fromkeys(s.streams, float(resample_hz))) for s in sessions]
+
+
 #: decision C53: train_user's warning when the labels allow no classifier and the model holds only the user's
 #: distance calibration (decision C17)
 NO_CLASSIFIER_LINE = ("no classifier trained (the labels allow none); the model holds the distance calibration: "
@@ -1026,6 +1078,7 @@ def train_user(
     advance: Callable[[int], None] = lambda n=1: None,
     cv_groups: str = "steps",
     length_units: Sequence[str] | None = None,
+    resample_hz: float | None = None,
 ) -> UserModel:
     """Train a user's step classifiers from labelled sessions.
 
@@ -1060,6 +1113,10 @@ def train_user(
         given explicitly; otherwise such tasks are skipped, listed in ``UserModel.skipped`` and logged (one
         warning each, decision C53; with no task left the model holds only the distance calibration, one more
         warning, or :class:`DataError` when there is none either).
+    resample_hz : resample every stream of every session to this rate (Hz) first, by the runtime's resampler
+        (:func:`pdrlearn.io.resample.resample_session`); needed when the sessions were recorded at different rates
+        (decision C56: without it that is a one-line :class:`DataError`, B197). The recorded rates are kept in
+        ``data_summary["recorded_rates_hz"]``.
     distance_calibration : estimate the user's distance gain from the sessions' labelled stride lengths
         (:func:`pdrlearn.displace.calibrate_distance`, docs/decisions/localization.md L26), stored in
         ``data_summary["distance_calibration"]`` and used by PLASYS M3 with this model.
@@ -1090,6 +1147,8 @@ def train_user(
     if cv_groups not in CV_GROUPS:
         raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
     ids = [s.content_id() for s in sessions]  # decision B87: before anything reads the streams
+    recorded = session_rates(sessions)
+    sessions = one_rate(sessions, recorded, resample_hz)  # decision C56
     windows = session_windows(sessions, n_samples=n_samples, boundaries=boundaries)
     users = [session_user(s) for s in sessions]
     named = sorted({u for u in users if u is not None})  # the users the sessions name (decision C35)
@@ -1152,6 +1211,9 @@ def train_user(
             rates.setdefault(name, round(float(st.rate_hz), 3))
     summary = {"sessions": [s.name for s in sessions], "session_ids": ids, "n_sessions": len(sessions), "steps": {},
                "users": named}  # every user the sessions name (decision C35)
+    if resample_hz is not None:  # decision C56: the rates the sessions were recorded at, before resampling
+        summary["recorded_rates_hz"] = {n: sorted(set(v.values())) for n, v in recorded.items()}
+        summary["resampled_hz"] = float(resample_hz)
     bounds = length_class_bounds(sessions)
     if bounds is not None:
         summary["length_bounds_m"] = bounds

@@ -99,6 +99,12 @@ def train(
         "streamed stride kernel (L41; track --streaming and the runtime apply it). Turn off for a model pooled over "
         "several users or devices: a pooled gain corrects no one's sensor.",
     ),
+    resample: float = typer.Option(
+        None, "--resample", metavar="HZ",
+        help="Resample every session to HZ before training (the runtime's resampler). Needed when the sessions "
+        "were recorded at different rates: a model is trained at one rate (decision C56); the recorded rates "
+        "are kept in the manifest.",
+    ),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -141,7 +147,7 @@ def train(
         model = train_user(
             sessions, tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, user=user,
             boundaries=boundaries, advance=advance, distance_calibration=distance_calibration,
-            cv_groups=cv_groups, length_units=l_list,
+            cv_groups=cv_groups, length_units=l_list, resample_hz=resample,
         )
     seconds = time.perf_counter() - t0
     model.save(out)
