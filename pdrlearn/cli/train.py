@@ -224,8 +224,9 @@ def train(
 
 
 #: how the train table's spread columns are computed (decision C41), printed under each table
-SPREAD_NOTE = ("all, balanced: pooled over the steps; folds: mean±sd of the folds' accuracies; 95 % CI: "
-               "t-interval of that mean over the folds (optimistic: folds share training steps; decision C41)")
+SPREAD_NOTE = ("all, balanced: pooled over the steps; folds: mean±sd of the folds' accuracies; 95 % CI: exact "
+               "binomial (Clopper-Pearson) interval of 'all' over the pooled steps (optimistic: steps of one walk "
+               "are not independent; decisions C41, C58)")
 
 
 def cv_title(r: dict) -> str:
