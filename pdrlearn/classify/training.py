@@ -680,6 +680,17 @@ def _oof_proba(est, X, y, folds, classes) -> np.ndarray:
     return P
 
 
+def fold_fitted_vote(probas: list[np.ndarray], y_idx: np.ndarray, folds) -> np.ndarray:
+    """Decision C57: the soft vote of out-of-fold probabilities ``probas`` with weights chosen without the
+    scored fold: each fold's steps are voted with :func:`best_weights` of the other folds' steps, so a held-out
+    user (session) takes no part in choosing the weights it is scored with."""
+    P = np.zeros_like(probas[0])
+    for tr, te in folds:
+        w = best_weights([p[tr] for p in probas], y_idx[tr])
+        P[te] = soft_vote([p[te] for p in probas], w)
+    return P
+
+
 CV_GROUPS = ("steps", "user")  # train's --cv-groups (decision C29)
 
 
@@ -895,7 +906,10 @@ def train_task(
                 est = make_estimator(data.task, method, unit, seed=seed)
                 est.fit(X, y)  # the final model first: fails fast on missing sensors
                 template = make_estimator(data.task, method, unit, seed=seed)
-                if method == "svm":  # C picked once by the final model's inner CV (decision C5)
+                # C picked once by the final model's inner CV (decision C5) with folds of steps; with folds of
+                # whole users / sessions each outer training fold picks its own C (nested, decision C57), so the
+                # held-out group takes no part in choosing it
+                if method == "svm" and not cv_users[unit]:
                     template.set_params(clf__C=est[-1].C_)
                 P = _oof_proba(template, X, y, folds, classes)
             except MissingSensorError as exc:
@@ -932,7 +946,8 @@ def train_task(
         # docs/decisions/classifiers.md), then the fused CV score of that soft vote
         yi = np.array([list(classes).index(v) for v in y])
         w = best_weights([oof["foot"], oof["waist"]], yi)
-        P = soft_vote([oof["foot"], oof["waist"]], w)
+        P = (fold_fitted_vote([oof["foot"], oof["waist"]], yi, folds) if cv_users["fused"]
+             else soft_vote([oof["foot"], oof["waist"]], w))  # decision C57: nested with folds of groups
         template = make_estimator(data.task, method, "fused", seed=seed, weights=w)
         fitted = [tm.models[method][u] for u in ("foot", "waist")]
         if subsets["foot"][0].sum() != mask.sum() or subsets["waist"][0].sum() != mask.sum():
