@@ -140,3 +140,25 @@ def test_fold_fitted_vote_scores_each_fold_with_weights_of_the_other_folds():
     for tr, te in folds:
         w = best_weights([p[tr] for p in probas], y[tr])
         assert np.allclose(P[te], soft_vote([p[te] for p in probas], w))
+
+
+def test_session_folds_never_split_a_session(caplog):
+    """Decision C59: --cv-groups session holds out whole sessions (the steps of one walk stay on one side); the
+    record says how many sessions and which one each fold held out; one session falls back, said."""
+    from pdrlearn.cli.train import cv_title, louo_line
+
+    walks = [simulate("terrain", user_seed=2451, seed=s) for s in (0, 1, 2)]
+    kw = dict(tasks=["terrain"], methods=["svm"], units=["waist"], cv=5, distance_calibration=False)
+    m = train_user(walks, cv_groups="session", **kw)
+    r = m.tasks["terrain"].cv["svm"]["waist"]
+    names = [w.name for w in walks]
+    assert (r["n_folds"], r["cv_sessions"], r["cv_users"]) == (3, 3, 0)
+    assert sorted(r["folds"]["sessions"]) == sorted(names) and "users" not in r["folds"]
+    sizes = {w.name: len(w.steps) for w in walks}
+    assert r["folds"]["n_steps"] == [sizes[s] for s in r["folds"]["sessions"]]  # each fold: one whole session
+    assert (m.settings["cv_groups"], m.settings["cv_sessions"]) == ("session", 3)
+    assert cv_title(r) == "leave-one-session-out CV accuracy (3 sessions)"
+    assert louo_line(r).startswith(f"chosen model per held-out session: {r['folds']['sessions'][0]} ")
+    with caplog.at_level(logging.WARNING):
+        one = train_user(walks[:1], cv_groups="session", **kw)
+    assert one.tasks["terrain"].cv["svm"]["waist"]["cv_sessions"] == 0 and "one session" in caplog.text

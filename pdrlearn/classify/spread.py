@@ -45,7 +45,7 @@ def t_interval(values: Sequence[float], level: float = 0.95) -> tuple[float, flo
 
 
 def fold_spread(y_true: np.ndarray, y_pred: np.ndarray, folds: Sequence[tuple[np.ndarray, np.ndarray]],
-                groups: np.ndarray | None = None) -> dict:
+                groups: np.ndarray | None = None, kind: str = "user") -> dict:
     """Per-fold scores of out-of-fold predictions ``y_pred`` (one per step, as the pooled CV score uses them).
 
     Returns ``{"accuracy": [...], "balanced_accuracy": [...], "n_steps": [...], "mean", "sd", "ci95": [lo, hi],
@@ -54,7 +54,8 @@ def fold_spread(y_true: np.ndarray, y_pred: np.ndarray, folds: Sequence[tuple[np
     the t-intervals over the folds (C41); a fold's balanced accuracy is the mean recall
     over the classes present in its test steps. ``groups`` (the user of each step, folds of whole users): each
     fold's held-out users as ``users`` (one name per fold with leave-one-user-out: the fold's score is that
-    user's, decision C43). ``sd`` / ``ci95`` are None with fewer than two folds."""
+    user's, decision C43; ``kind="session"``: ``sessions``, decision C59). ``sd`` / ``ci95`` are None with fewer
+    than two folds."""
     y_true, y_pred = np.asarray(y_true).astype(str), np.asarray(y_pred).astype(str)
     acc, bal, n = [], [], []
     for _, te in folds:
@@ -71,8 +72,9 @@ def fold_spread(y_true: np.ndarray, y_pred: np.ndarray, folds: Sequence[tuple[np
     correct = int(sum(round(a * m) for a, m in zip(acc, n, strict=True)))
     cp = clopper_pearson(correct, int(sum(n)))  # decision C58: the pooled counts, not the folds' means
     out["ci95"] = None if cp is None else [cp[0], cp[1]]
-    if groups is not None:
-        out["users"] = [", ".join(sorted({str(g) for g in np.asarray(groups)[te]})) for _, te in folds]
+    if groups is not None:  # decision C59: ``sessions`` when the folds hold out whole sessions
+        key = "users" if kind == "user" else "sessions"
+        out[key] = [", ".join(sorted({str(g) for g in np.asarray(groups)[te]})) for _, te in folds]
     return out
 
 

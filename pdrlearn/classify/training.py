@@ -691,7 +691,7 @@ def fold_fitted_vote(probas: list[np.ndarray], y_idx: np.ndarray, folds) -> np.n
     return P
 
 
-CV_GROUPS = ("steps", "user")  # train's --cv-groups (decision C29)
+CV_GROUPS = ("steps", "user", "session")  # train's --cv-groups (decisions C29, C59)
 
 
 #: the model's user when no session names one in meta.json ``user`` / ``subject`` and ``--user`` is not given
@@ -719,12 +719,13 @@ def _one_user(session) -> str | None:
 
 
 def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | None = None,
-           notes: list[str] | None = None) -> tuple[list, int]:
+           notes: list[str] | None = None, kind: str = "user") -> tuple[list, int]:
     """Stratified, shuffled folds; fewer than ``cv`` when the smallest class has fewer steps. With ``groups``
     (the user of each step, decision C29) and at least two users: folds of whole users (leave-one-user-out when
     there are at most ``cv`` users), unless a training fold would then lack a class (stratified, one line).
     Returns the folds and the number of users they hold out (0: stratified over steps). ``notes``: collect the
-    warning lines there (the caller logs each once, decision C36) instead of logging them."""
+    warning lines there (the caller logs each once, decision C36) instead of logging them. ``kind``: what a group
+    is, ``"user"`` or ``"session"`` (decision C59), for the warning."""
     say = notes.append if notes is not None else log.warning
     if groups is not None and len(np.unique(groups)) >= 2:
         n_users = len(np.unique(groups))
@@ -736,21 +737,23 @@ def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | No
         lack = [str(c) for c in np.unique(y) if c not in set(y[tr])]
         out_users = ", ".join(sorted({str(u) for u in groups[te]}))
         only = ", ".join(sorted({str(u) for u in groups[np.isin(y, lack)]}))
-        say(f"task {task}: CV by user not possible: holding out {out_users} leaves no {', '.join(lack)} step to "
-            f"train on (only {only} walked it); stratified folds over steps instead")
+        say(f"task {task}: CV by {kind} not possible: holding out {out_users} leaves no {', '.join(lack)} step to "
+            f"train on (only {only} {'walked' if kind == 'user' else 'has'} it); stratified folds over steps instead")
     n_splits = int(min(cv, min(np.sum(y == c) for c in np.unique(y))))
     if n_splits < cv:
         say(f"task {task}: {n_splits}-fold CV instead of {cv} (smallest class has {n_splits} steps)")
     return list(StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y)), 0
 
 
-def _cv_entry(y, y_pred, classes, folds, cv_users: int, groups=None, **extra) -> dict:
+def _cv_entry(y, y_pred, classes, folds, cv_users: int, groups=None, kind: str = "user", **extra) -> dict:
     """One method x unit's CV record: the pooled out-of-fold metrics (:func:`class_metrics`), the folds'
-    spread (decision C41), ``n_folds``, ``cv_users`` (decision C29) and ``extra``."""
+    spread (decision C41), ``n_folds``, ``cv_users`` (decision C29; with folds of whole sessions, ``kind``
+    ``"session"``, 0 and ``cv_sessions`` the number of sessions, decision C59) and ``extra``."""
     from pdrlearn.classify.spread import fold_spread
 
-    return dict(class_metrics(y, y_pred, classes), folds=fold_spread(y, y_pred, folds, groups),
-                n_folds=len(folds), cv_users=cv_users, **extra)
+    by = {"cv_users": cv_users} if kind == "user" else {"cv_users": 0, "cv_sessions": cv_users}
+    return dict(class_metrics(y, y_pred, classes), folds=fold_spread(y, y_pred, folds, groups, kind=kind),
+                n_folds=len(folds), **by, **extra)
 
 
 def _split_units(units: Sequence[str]) -> tuple[list[str], bool, bool]:
@@ -832,10 +835,12 @@ def train_task(
     advance: Callable[[int], None] = lambda n=1: None,
     soft_vote_methods: Sequence[str] | None = None,
     groups: np.ndarray | None = None,
+    group_kind: str = "user",
 ) -> TaskModel:
     """Cross-validate and fit every method x unit of one task (see :func:`train_user`). ``soft_vote_methods``: the
     methods whose ``fused`` soft vote is trained when ``units`` has it (None: every method). ``groups``: the user
-    of every step; folds then hold out whole users when there are two or more (decision C29)."""
+    of every step; folds then hold out whole users when there are two or more (decision C29); ``group_kind``
+    ``"session"``: ``groups`` name each step's session, folds hold out whole sessions (decision C59)."""
     from pdrlearn.features import TASK_CLASSES
 
     classes = np.asarray(TASK_CLASSES[data.task])
@@ -856,7 +861,8 @@ def train_task(
             subsets[unit] = f"steps with the {unit} unit: {exc}"
             continue
         folds, cv_users[unit] = _folds(data.y[mask], cv, seed, data.task,
-                                       None if groups is None else groups[mask], notes=notes)
+                                       None if groups is None else groups[mask], notes=notes,
+                                       kind=group_kind)
         if cv_users[unit]:  # folds of whole users: each fold names the users it held out (decision C43)
             fold_groups[unit] = groups[mask]
         subsets[unit] = (mask, folds)
@@ -895,7 +901,7 @@ def train_task(
                                         n_features_in=X.shape[1], random_state=seed)
                 tm.models.setdefault(method, {})[unit] = est
                 tm.cv.setdefault(method, {})[unit] = _cv_entry(
-                    y, classes[P.argmax(1)], classes, folds, cv_users[unit], fold_groups.get(unit),
+                    y, classes[P.argmax(1)], classes, folds, cv_users[unit], fold_groups.get(unit), group_kind,
                     cv_seconds=time.perf_counter() - t0)
                 oof_by[(method, unit)] = P
                 if mask.all():
@@ -926,7 +932,7 @@ def train_task(
             oof_by[(method, unit)] = P
             tm.models.setdefault(method, {})[unit] = est
             tm.cv.setdefault(method, {})[unit] = _cv_entry(
-                y, classes[P.argmax(1)], classes, folds, cv_users[unit], fold_groups.get(unit),
+                y, classes[P.argmax(1)], classes, folds, cv_users[unit], fold_groups.get(unit), group_kind,
                 cv_seconds=time.perf_counter() - t0)
             advance(1)
         if not want_fused or method in ("fusion", "heuristic") or (
@@ -957,7 +963,7 @@ def train_task(
         )
         tm.fusion_weights[method] = [float(v) for v in w]
         tm.cv[method]["fused"] = _cv_entry(
-            y, classes[P.argmax(1)], classes, folds, cv_users["fused"], fold_groups.get("fused"),
+            y, classes[P.argmax(1)], classes, folds, cv_users["fused"], fold_groups.get("fused"), group_kind,
             weights={"foot": float(w[0]), "waist": float(w[1])}, cv_seconds=time.perf_counter() - t0)
         advance(1)
     # decision C16: every leaf model keeps the range of its own inputs over its training steps (units first,
@@ -1178,7 +1184,15 @@ def train_user(
             if n_users < 2:  # decision C35: say the fallback, the header alone read "10-fold CV"
                 log.warning("train: --cv-groups user: every session is of one user (%s); stratified folds over "
                             "steps instead (folds of whole users need two or more)", named[0])
-    elif len(named) > 1:  # decision C35: pooled users, folds of steps score on users the models were fitted on
+    elif cv_groups == "session":  # decision C59: folds of whole sessions (the steps of one walk stay together)
+        users = [s.name for s in sessions]
+        if len(set(users)) < len(users):
+            users = [s.where for s in sessions]
+        n_users = len(sessions)
+        if n_users < 2:
+            log.warning("train: --cv-groups session: one session; stratified folds over steps instead (folds of "
+                        "whole sessions need two or more)")
+    if cv_groups != "user" and len(named) > 1:  # decision C35: pooled users; folds score on users fitted on
         cal = ("; the distance calibration pools their strides into one gain (--no-distance-calibration for a "
                "pooled model)" if distance_calibration else "")
         log.warning("train: the sessions come from %d users (%s): the CV folds mix their steps, so a model is "
@@ -1201,7 +1215,8 @@ def train_user(
         groups = np.asarray(users, dtype=object)[data.session] if n_users >= 2 else None  # decision C29
         own = task == "length" and length_units is not None  # decision C38
         out[task] = train_task(data, methods=methods, units=length_units if own else units, cv=cv, seed=seed,
-                               advance=advance, soft_vote_methods=None if own else voted, groups=groups)
+                               advance=advance, soft_vote_methods=None if own else voted, groups=groups,
+                               group_kind="session" if cv_groups == "session" else "user")
     calibration = None
     if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
         from pdrlearn.displace.calibration import calibrate_distance
@@ -1251,7 +1266,9 @@ def train_user(
         settings={
             "cv": cv,
             "cv_groups": cv_groups,
-            "cv_users": n_users,  # users in the training data when grouped by user (decision C29)
+            # users in the training data when grouped by user (decision C29); sessions when by session (C59)
+            "cv_users": n_users if cv_groups == "user" else 0,
+            **({"cv_sessions": n_users} if cv_groups == "session" else {}),
             "seed": seed,
             "methods": list(methods),
             "units": list(units),

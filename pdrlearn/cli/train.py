@@ -81,7 +81,8 @@ def train(
         help="How the CV folds are drawn: 'steps' (stratified folds of the pooled steps) or 'user' (when the "
         "sessions come from two or more users, named by meta.json 'user' or 'subject': folds of whole users, "
         "leave-one-user-out with at most --cv users, so the choice scores models on users they were not fitted "
-        "on; one user: as 'steps'; decision C29).",
+        "on; one user: as 'steps'; decision C29) or 'session' (folds of whole sessions: the steps of one walk "
+        "stay on one side, so a model is scored on walks it was not fitted on; decision C59).",
     ),
     seed: int = typer.Option(0, help="Seed of folds, DTW references and network initialisation."),
     user: str = typer.Option(None, help="User name stored in the manifest (default: the sessions' meta.json 'user' or "
@@ -161,6 +162,7 @@ def train(
         "seconds": round(seconds, 2),
         "cv_groups": model.settings["cv_groups"],
         "cv_users": model.settings["cv_users"],
+        "cv_sessions": model.settings.get("cv_sessions", 0),  # decision C59
         "skipped": model.skipped,
         "distance_calibration": model.data_summary.get("distance_calibration"),
         "tasks": {
@@ -230,25 +232,33 @@ SPREAD_NOTE = ("all, balanced: pooled over the steps; folds: mean±sd of the fol
 
 
 def cv_title(r: dict) -> str:
-    """The CV part of a task's title line (decisions C29, C43): ``10-fold CV accuracy``, ``leave-one-user-out CV
-    accuracy (3 users)`` or ``5-fold CV accuracy (folds of whole users, 12 users)``."""
-    n, users = r["n_folds"], r.get("cv_users") or 0
-    if users and n == users:
-        return f"leave-one-user-out CV accuracy ({users} users)"
-    if users:
-        return f"{n}-fold CV accuracy (folds of whole users, {users} users)"
+    """The CV part of a task's title line (decisions C29, C43, C59): ``10-fold CV accuracy``, ``leave-one-user-out
+    CV accuracy (3 users)``, ``5-fold CV accuracy (folds of whole users, 12 users)`` or the same of sessions."""
+    n, kind, groups = r["n_folds"], *_grouped(r)
+    if groups and n == groups:
+        return f"leave-one-{kind}-out CV accuracy ({groups} {kind}s)"
+    if groups:
+        return f"{n}-fold CV accuracy (folds of whole {kind}s, {groups} {kind}s)"
     return f"{n}-fold CV accuracy"
 
 
+def _grouped(r: dict) -> tuple[str, int]:
+    """What a CV record's folds hold out whole (``"user"``, ``"session"``, decision C59) and how many there are
+    (0: folds of steps)."""
+    return ("session", r["cv_sessions"]) if r.get("cv_sessions") else ("user", r.get("cv_users") or 0)
+
+
 def louo_line(r: dict) -> str | None:
-    """The chosen model's accuracy on each held-out user of a leave-one-user-out CV (decision C43), e.g.
-    ``chosen model per held-out user: user:u1 93.0 %, user:u2 97.5 %``; None for folds of steps."""
+    """The chosen model's accuracy on each held-out user (session) of a leave-one-user-out CV (decisions C43,
+    C59), e.g. ``chosen model per held-out user: user:u1 93.0 %, user:u2 97.5 %``; None for folds of steps."""
     f = r.get("folds") or {}
-    if not f.get("users"):
+    kind, groups = _grouped(r)
+    who_list = f.get(f"{kind}s")
+    if not who_list:
         return None
-    what = "user" if r["n_folds"] == r.get("cv_users") else "fold of users"
+    what = kind if r["n_folds"] == groups else f"fold of {kind}s"
     return f"chosen model per held-out {what}: " + ", ".join(
-        f"{who} {100 * a:.1f} % ({n} steps)" for who, a, n in zip(f["users"], f["accuracy"], f["n_steps"], strict=True))
+        f"{who} {100 * a:.1f} % ({n} steps)" for who, a, n in zip(who_list, f["accuracy"], f["n_steps"], strict=True))
 
 
 def chosen_reason(tm) -> str:
