@@ -329,7 +329,13 @@ def evaluate(
         pdrlearn evaluate out/models/u1 out/sim/u1_test --predictions-out out/eval_u1_steps.csv
     """
     from pdrlearn.classify import evaluate_model, load_model
-    from pdrlearn.classify.evaluation import evaluation_stages, headline, results_table, write_predictions
+    from pdrlearn.classify.evaluation import (
+        evaluation_stages,
+        headline,
+        results_head,
+        results_table,
+        write_predictions,
+    )
     from pdrlearn.cli.common import out_file
     from pdrlearn.io.resample import at_model_rate, log_grouped, resample_mode
 
@@ -395,7 +401,7 @@ def evaluate(
         c.print(f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
                 f"{headline(r)}", markup=False)
         tab = Table()
-        for col in ("method", "unit", *[f"{k} %" for k in r["classes"]], "all %", "ms/step"):
+        for col in results_head(r):  # decision C60: with balanced %
             tab.add_column(col)
         for row in results_table(r):
             tab.add_row(*row)
