@@ -29,6 +29,9 @@ def test_the_warning_fires_over_a_quarter_of_the_distance_only():
     assert SIGMA_SHARE_WARN == 0.25
     assert position_sigma_warning(_summary(400.0, 50.0)) is None
     assert position_sigma_warning(_summary(400.0, 50.01)) is not None
+    # the streamed foot-only model is known to be too large (L150, uncalibrated): its radius is no evidence
+    assert position_sigma_warning(_summary(100.0, 40.0, "plasys-foot-streaming")) is None
+    assert position_sigma_warning(_summary(100.0, 40.0, "plasys-foot")) is not None
     # no sigma (an aided track), no distance, NaN: nothing to say
     for s in (_summary(400.0, None), _summary(None, 50.0), _summary(0.0, 5.0), _summary(400.0, float("nan"))):
         assert position_sigma_warning(s) is None
