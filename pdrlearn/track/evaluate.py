@@ -682,13 +682,15 @@ METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _
 def summary_warnings(summary: dict) -> list[str]:
     """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range,
     decision L113's withheld stride-time CV, decision L116's whole-sample rounding of the CV, decision L145's
-    foot altitude against the unused barometer and decision B188's implausible barometer."""
+    foot altitude against the unused barometer, decision B188's implausible barometer and decision L175's position
+    uncertainty against the distance walked."""
     from pdrlearn.track.clinical import resolution_warning, stride_cv_warning
     from pdrlearn.track.gait import gait_range_warning
+    from pdrlearn.track.position_sigma import position_sigma_warning
 
     return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary),
-                        barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"))
-            if w]
+                        barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
+                        position_sigma_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,
