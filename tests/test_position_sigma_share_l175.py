@@ -32,20 +32,24 @@ def test_the_warning_fires_over_a_quarter_of_the_distance_only():
     # the streamed foot-only model is known to be too large (L150, uncalibrated): its radius is no evidence
     assert position_sigma_warning(_summary(100.0, 40.0, "plasys-foot-streaming")) is None
     assert position_sigma_warning(_summary(100.0, 40.0, "plasys-foot")) is not None
+    # a short walk's radius is the constant point term, not drift: a 10 m lower-back walk test does not warn
+    assert position_sigma_warning(_summary(10.0, 3.3, "waist")) is None
+    assert position_sigma_warning(_summary(99.0, 40.0, "waist")) is None
+    assert position_sigma_warning(_summary(100.0, 40.0, "waist")) is not None
     # no sigma (an aided track), no distance, NaN: nothing to say
     for s in (_summary(400.0, None), _summary(None, 50.0), _summary(0.0, 5.0), _summary(400.0, float("nan"))):
         assert position_sigma_warning(s) is None
 
 
 def test_track_warns_in_its_summary_when_the_radius_outgrows_the_walk(tmp_path, monkeypatch):
-    """The same short simulated walk: with the shipped parameters no L175 line; with a heading random walk a
+    """The same simulated 120 m walk (L175 needs 100 m): with the shipped parameters no L175 line; with a heading random walk a
     hundred times the fused one's the 2-sigma radius outgrows the walk and summary.json's warnings carry the line."""
     from pdrlearn.cli import main
     from pdrlearn.io import write_session
     from pdrlearn.sim import UserProfile, simulate_path
     from pdrlearn.sim.route import parse_route
 
-    s = simulate_path(parse_route("straight:12, turn:90, straight:8, turn:-90, straight:10"),
+    s = simulate_path(parse_route("straight:50, turn:90, straight:30, turn:-90, straight:40"),
                       UserProfile.from_seed(2431), speed="normal", rate_hz=20.0, seed=2431, name="share")
     write_session(s, tmp_path / "walk")
 

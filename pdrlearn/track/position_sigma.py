@@ -115,16 +115,21 @@ SIGMA_SHARE_WARN = 0.25
 #: decision L175: regimes whose radius is known to be too large (L150/L151: uncalibrated, 100 % of the strides within
 #: 2 sigma), on which the warning would be false
 SIGMA_TOO_LARGE = frozenset({"plasys-foot-streaming"})
+#: decision L175 (amended by the lead, twenty-fifth session): the line speaks of heading drift over a long walk; on
+#: a short walk the radius is the models' constant point term (3.1 m for the lower back, L128), not drift, and a
+#: 10 m walk test (a clinician's trial) would be told its position is unusable. 100 m: about 80 s of walking, ten
+#: times a 10 m walk test and three times the distance below which that point term alone exceeds the share
+SIGMA_WARN_MIN_DISTANCE_M = 100.0
 
 
 def position_sigma_warning(summary: dict) -> str | None:
     """Decision L175: one line when twice ``final_position_sigma_m`` (path.png's circle) exceeds
-    :data:`SIGMA_SHARE_WARN` of ``distance_m``; None otherwise (no sigma, no distance, within, or a model of
-    :data:`SIGMA_TOO_LARGE`)."""
+    :data:`SIGMA_SHARE_WARN` of ``distance_m``; None otherwise (no sigma, no distance, a walk under
+    :data:`SIGMA_WARN_MIN_DISTANCE_M`, within, or a model of :data:`SIGMA_TOO_LARGE`)."""
     sigma, dist = summary.get("final_position_sigma_m"), summary.get("distance_m")
     if sigma is None or dist is None or not (np.isfinite(sigma) and np.isfinite(dist) and dist > 0):
         return None
-    if not 2.0 * float(sigma) > SIGMA_SHARE_WARN * float(dist):
+    if float(dist) < SIGMA_WARN_MIN_DISTANCE_M or not 2.0 * float(sigma) > SIGMA_SHARE_WARN * float(dist):
         return None
     model = (summary.get("info") or {}).get("position_sigma", {}).get("model", "?")
     if model in SIGMA_TOO_LARGE:
