@@ -36,27 +36,34 @@ def user_rows(user: int, rate: float) -> list[dict]:
         model = train_user(calib, boundaries=boundaries)
         secs = time.perf_counter() - t0
         for walk, session in zip(WALKS, walks, strict=True):
-            out = evaluate_model(model, [session], latency=False)
-            for task, r in out["tasks"].items():
-                det = r["detected"] or {}
-                rows.append({"user": user, "rate_hz": rate, "boundaries": boundaries, "walk": walk, "task": task,
-                             "chosen": f"{r['chosen']['method']}/{r['chosen']['unit']}",
-                             "n_labelled": r["n_steps"], "correct_labelled": round(r["accuracy"] * r["n_steps"]),
-                             "n_detected": det.get("n_steps", 0),
-                             "correct_detected": round(det.get("accuracy", 0.0) * det.get("n_steps", 0)),
-                             "train_s": round(secs, 1)})
+            rows += task_rows(evaluate_model(model, [session], latency=False), user=user, rate_hz=rate,
+                              boundaries=boundaries, walk=walk, train_s=round(secs, 1))
     return rows
 
 
-def summary(df: pd.DataFrame) -> pd.DataFrame:
-    g = df.groupby(["rate_hz", "boundaries", "task"])[["correct_detected", "n_detected", "correct_labelled",
-                                                       "n_labelled"]].sum()
-    allt = df.groupby(["rate_hz", "boundaries"])[list(g.columns)].sum()
+def task_rows(out: dict, **keys) -> list[dict]:
+    """One row per task of an `evaluate_model` result: the chosen model's correct / scored steps on the labelled
+    boundaries and on the detected strides (C49), with ``keys`` (user, variant, walk, ...)."""
+    rows = []
+    for task, r in out["tasks"].items():
+        det = r["detected"] or {}
+        rows.append({**keys, "task": task, "chosen": f"{r['chosen']['method']}/{r['chosen']['unit']}",
+                     "n_labelled": r["n_steps"], "correct_labelled": round(r["accuracy"] * r["n_steps"]),
+                     "n_detected": det.get("n_steps", 0),
+                     "correct_detected": round(det.get("accuracy", 0.0) * det.get("n_steps", 0))})
+    return rows
+
+
+def summary(df: pd.DataFrame, variant: str = "boundaries") -> pd.DataFrame:
+    """Pooled detected-stride and labelled-boundary accuracy per rate, ``variant`` column and task (and all)."""
+    g = df.groupby(["rate_hz", variant, "task"])[["correct_detected", "n_detected", "correct_labelled",
+                                                  "n_labelled"]].sum()
+    allt = df.groupby(["rate_hz", variant])[list(g.columns)].sum()
     allt["task"] = "all"
     g = pd.concat([g.reset_index(), allt.reset_index()], ignore_index=True)
     g["acc_detected"] = (g["correct_detected"] / g["n_detected"]).round(4)
     g["acc_labelled"] = (g["correct_labelled"] / g["n_labelled"]).round(4)
-    return g.sort_values(["rate_hz", "task", "boundaries"])
+    return g.sort_values(["rate_hz", "task", variant])
 
 
 def main() -> None:

@@ -153,7 +153,9 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
             res = evaluate_model(model, test, latency_steps=20)
             results[task].append(res)
             cv_results[task].append(tm)
-            chosen[task].append((tm.chosen, res["tasks"][task]["accuracy"], res["tasks"][task]["n_steps"], tm.n_steps))
+            det = res["tasks"][task].get("detected") or {}  # C49: what track --model and the runtime get (C54)
+            chosen[task].append((tm.chosen, res["tasks"][task]["accuracy"], res["tasks"][task]["n_steps"], tm.n_steps,
+                                 det.get("accuracy", float("nan")), det.get("n_steps", 0)))
             for m, d in res["tasks"][task]["methods"].items():
                 for u, r in d["units"].items():
                     latency[task].setdefault((m, u), []).append(r["latency_ms"])
@@ -207,8 +209,15 @@ def simulated_study(users: list[int], train_walks: int, test_walks: int, cv: int
                         "latency_ms": round(lat, 4),
                     }
                 )
-        ch = [f"u{u}: {c[0][0]}/{c[0][1]} {100 * c[1]:.1f} %" for u, c in zip(users, chosen[task], strict=True)]
-        lines += ["", f"Chosen method per user (test accuracy): {'; '.join(ch)}"]
+        ch = [f"u{u}: {c[0][0]}/{c[0][1]} {100 * c[1]:.1f} % (detected strides {100 * c[4]:.1f} %)"
+              for u, c in zip(users, chosen[task], strict=True)]
+        n_det = sum(c[5] for c in chosen[task])
+        det_all = sum(c[4] * c[5] for c in chosen[task] if c[5]) / n_det if n_det else float("nan")
+        lab_all = sum(c[1] * c[2] for c in chosen[task]) / n_test if n_test else float("nan")
+        lines += ["", f"Chosen method per user (test accuracy on the labelled boundaries; in brackets on the strides "
+                  f"track/run detect, decision C54): {'; '.join(ch)}",
+                  "", f"Chosen models pooled: {100 * lab_all:.1f} % of {n_test} steps on the labelled boundaries, "
+                  f"{100 * det_all:.1f} % of {n_det} on the strides track/run detect (what their users get)."]
         md.append("\n".join(lines))
     md.append(soft_vote_vs_combined(results, cv_results))
     return md, rows, timing

@@ -60,10 +60,13 @@ REGIME = {"offline": "plasys-fused", "foot": "plasys-foot", "streaming": "plasys
           "foot-streaming": "plasys-foot-streaming", "waist": "waist"}
 
 
-def track_user(u: int, work: Path, variant: str) -> tuple[Path, Path]:
-    sim, out = work / f"s{u}", work / (f"t{u}" + ("" if variant == "offline" else f"_{variant}"))
+def track_user(u: int, work: Path, variant: str, rate: float | None = None) -> tuple[Path, Path]:
+    """Simulate user ``u`` (at ``rate`` Hz, default the simulator's; decision L173) and track it."""
+    tag = "" if rate is None else f"_{rate:g}hz"
+    sim, out = work / f"s{u}{tag}", work / (f"t{u}{tag}" + ("" if variant == "offline" else f"_{variant}"))
     if not sim.exists():
-        cli("simulate", "--route", ROUTE, "--user-seed", str(u), "--seed", str(u), "--out", str(sim))
+        cli("simulate", "--route", ROUTE, "--user-seed", str(u), "--seed", str(u), "--out", str(sim),
+            *(() if rate is None else ("--rate", f"{rate:g}")))
     if not out.exists():
         cli("track", str(sim), "--out", str(out), *VARIANTS[variant])
     return sim, out
@@ -96,7 +99,7 @@ def fit(args) -> None:
     covariance, every stride of every user pooled (log-parameters, Nelder-Mead)."""
     data = []
     for u in users(args.users):
-        sim, out = track_user(u, args.work, args.variant)
+        sim, out = track_user(u, args.work, args.variant, args.rate)
         steps = pd.read_csv(out / "steps.csv")
         tr, e = errors(sim, out)
         t0 = float(pd.read_csv(out / "trajectory.csv")["t"].iloc[0])
@@ -150,7 +153,7 @@ def real_track(folder: Path, work: Path) -> tuple[Path, Path]:
 def evaluate(args) -> None:
     inside, n, final_in, final = 0, 0, 0, []
     runs = ([real_track(Path(f), args.work) for f in args.real.split(",")] if args.real
-            else [track_user(u, args.work, args.variant) for u in users(args.users)])
+            else [track_user(u, args.work, args.variant, args.rate) for u in users(args.users)])
     for sim, out in runs:
         u = sim.name
         tr, e = errors(sim, out, rotate=bool(args.real))
@@ -179,6 +182,8 @@ def main() -> None:
     ap.add_argument("--variant", choices=tuple(VARIANTS), default="offline")
     ap.add_argument("--recompute", action="store_true", help="evaluate: pos_sigma_m from steps.csv with the "
                     "current SIGMA_PARAMS of the variant's regime instead of the stored trajectory.csv's")
+    ap.add_argument("--rate", type=float, default=None, help="simulate at this sample rate (Hz; default the "
+                    "simulator's): L173 compares the coverage at 20 and 100 Hz")
     args = ap.parse_args()
     args.work.mkdir(parents=True, exist_ok=True)
     (fit if args.mode == "fit" else evaluate)(args)

@@ -94,11 +94,16 @@ def main(argv: list[str] | None = None) -> None:
                 print(f"  {task}: {r['n_steps']} steps, {r['chosen']} {100 * r['accuracy']:.1f} % "
                       f"(balanced {100 * r['balanced_accuracy']:.1f} %, per class "
                       + ", ".join(f"{c} {100 * v:.1f}" for c, v in r["per_class"].items())
-                      + f"), {r['foot_only']} {100 * r['foot_only_accuracy']:.1f} %")
+                      + f"), {r['foot_only']} {100 * r['foot_only_accuracy']:.1f} %; on the strides track/run "
+                      f"detect {pct(r['detected_accuracy'])} (C54)")
                 print("    every svm/nn model: " + ", ".join(f"{k} {100 * v:.1f}" for k, v in r["models"].items()))
         print(f"bundle written to {a.out}")
     finally:
         shutil.rmtree(work, ignore_errors=True)
+
+
+def pct(x) -> str:
+    return "n/a" if x is None else f"{100 * x:.1f} %"
 
 
 def held_out_summary(ev: dict, manifest: dict, seeds: list[int]) -> dict:
@@ -112,6 +117,7 @@ def held_out_summary(ev: dict, manifest: dict, seeds: list[int]) -> dict:
         out["tasks"][task] = {
             "chosen": f"{ch['method']}/{ch['unit']}", "n_steps": r["n_steps"], "accuracy": r["accuracy"],
             "balanced_accuracy": r["balanced_accuracy"], "per_class": r["per_class"],
+            "detected_accuracy": (r.get("detected") or {}).get("accuracy"),  # what track/run get (C49, C54)
             "foot_only": f"{fm}/foot", "foot_only_accuracy": r["methods"][fm]["units"]["foot"]["accuracy"],
             "models": {f"{m}/{u}": r["methods"][m]["units"][u]["accuracy"] for m in ("svm", "nn")
                        if m in r["methods"] for u in ("foot", "combined")

@@ -27,9 +27,9 @@ USERS = range(1350, 1400)
 CANDIDATE = "progression"
 
 
-def measure(ext: Path, value: bool | str, sim_users: int) -> dict:
-    """The numbers W122's rule reads, for ``pause_steps=value``."""
-    d = P.sim_daily(value, users=USERS)
+def measure(ext: Path, value: bool | str, sim_users: int, users=USERS) -> dict:
+    """The numbers W122's rule (and W134's, the same rule) reads, for ``pause_steps=value`` on simulated ``users``."""
+    d = P.sim_daily(value, users=users)
     b, pool = P.real(ext, value)
     t11 = b[b.test.str.startswith("Test11") & (b.params == "calibrated")].assign(
         a=lambda x: x.error_pct.abs(), s=lambda x: x.error_strides_pct.abs())
@@ -41,7 +41,7 @@ def measure(ext: Path, value: bool | str, sim_users: int) -> dict:
          "t5_cal": float(t5["calibrated"]), "t5_def": float(t5["defaults"]),
          "pooled_L": float(t11p.bout_err_median_pct), "pooled_s": float(t11p.bout_err_strides_median_pct),
          "ad": float(sim.dist_err_abs_median_pct.iloc[0])}
-    print(f"pause_steps={value!r}: (a) simulated daily activities users {USERS.start}-{USERS.stop - 1}, {len(d)} "
+    print(f"pause_steps={value!r}: (a) simulated daily activities users {users.start}-{users.stop - 1}, {len(d)} "
           f"bouts: median |bout error| {r['sim_daily']:.3f} %; Test5 calibrated {r['t5_cal']:.3f} %, uncalibrated "
           f"{r['t5_def']:.3f} %; Test11 pooled vs Length / strides {r['pooled_L']:.3f} / {r['pooled_s']:.3f} %; "
           f"A-D users 1-{sim_users} {r['ad']:.3f} % (information)", flush=True)
@@ -50,13 +50,8 @@ def measure(ext: Path, value: bool | str, sim_users: int) -> dict:
     return r
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--external", type=Path, default=P.ROOT / "datasets" / "external")
-    ap.add_argument("--sim-users", type=int, default=3)
-    args = ap.parse_args()
-    logging.disable(logging.WARNING)
-    off, on = (measure(args.external, v, args.sim_users) for v in (False, CANDIDATE))
+def judge(off: dict, on: dict, decision: str) -> bool:
+    """Print each part of W122's rule (W134 reuses it) for ``on`` against ``off`` and the verdict; True if adopted."""
     P.print_users_better(off["daily"], on["daily"])
     rules = {"(a) simulated daily activities falls >= 0.5 point": on["sim_daily"] <= off["sim_daily"] - 0.5,
              "(b) no Test11 subject's median (vs Length, vs strides) rises > 1.0 point": bool(
@@ -67,7 +62,18 @@ def main() -> None:
              and on["pooled_L"] <= off["pooled_L"]}
     for k, v in rules.items():
         print(f"{k}: {'holds' if v else 'FAILS'}")
-    print("W122: " + ("ADOPTED (all hold)" if all(rules.values()) else "not adopted (a rule fails)"))
+    print(f"{decision}: " + ("ADOPTED (all hold)" if all(rules.values()) else "not adopted (a rule fails)"), flush=True)
+    return all(rules.values())
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--external", type=Path, default=P.ROOT / "datasets" / "external")
+    ap.add_argument("--sim-users", type=int, default=3)
+    args = ap.parse_args()
+    logging.disable(logging.WARNING)
+    off, on = (measure(args.external, v, args.sim_users) for v in (False, CANDIDATE))
+    judge(off, on, "W122")
 
 
 if __name__ == "__main__":

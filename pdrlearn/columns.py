@@ -60,8 +60,16 @@ SESSIONS: tuple[Column, ...] = (
                                                    "over the track (L145)"),
     ("barometer_disagree_limit_m", "m", "number", "how far altitude_change_m may differ from it before a warning "
                                                   "(L145)"),
-    ("ascent_m", "m", "number", "cumulative climb (foot: strides' dz; lower back: barometric z, 0.5 m band; L146)"),
-    ("descent_m", "m", "number", "cumulative descent, >= 0 (ascent_m - descent_m = altitude_change_m; L146)"),
+    ("barometer_climb_change_m", "m", "number", "foot tracks with wBarometer.csv: the barometer's climbs, its change "
+                                                "without slow drift, which L145's warning compares (L172)"),
+    ("barometer_drift_m", "m", "number", "foot tracks with wBarometer.csv: the barometer's slow drift (the weather) "
+                                         "over the track, recorded minus climbs (L172)"),
+    ("ascent_m", "m", "number", "cumulative climb (foot: strides' dz; barometric z - lower back, --altitude fused: "
+                                "0.5 m crossed within 60 s, the weather's drift dropped; L146, L172)"),
+    ("descent_m", "m", "number", "cumulative descent, >= 0 (ascent_m - descent_m = altitude_change_m; barometric z: "
+                                 "minus altitude_drift_m; L146, L172)"),
+    ("altitude_drift_m", "m", "number", "barometric z (lower back, --altitude fused): the slow change that "
+                                        "ascent_m / descent_m and the floors leave out (L172)"),
     ("bouts_distance_m", "m", "number", "bouts.csv's distance summed (C25)"),
     ("bouts_time_s", "s", "number", "bouts.csv's durations summed (C25)"),
     ("bouts_n_steps", "count", "integer", "bouts.csv's steps summed (C25)"),
@@ -227,8 +235,8 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("h_m", "m", "number", "waist-pendulum: the pelvis's vertical excursion during the step (seed 003)"),
     ("g_m", "m", "number", "waist-pendulum: the pendulum chord 2 sqrt(2 L h - h^2) before K and F"),
     ("merged", _ID, "true/false", "waist-pendulum: a fragment whose length its neighbour carries (W27)"),
-    ("pause_factor", "fraction", "number", "option pause_steps only: the factor the step's length was scaled by "
-                                           "(W111, W122)"),
+    ("pause_factor", "fraction", "number", "offline waist-pendulum (pause_steps, default since W134): the factor "
+                                           "the step's length was scaled by (W111, W122, W134)"),
     ("length_m", "m", "number", "step length (0 for a sequence-closing contact)"),
     ("frequency_hz", "Hz", "number", "1 / the step's duration"),
     ("dyaw_rad", "rad", "number", "vertical-gyro rotation during the step"),

@@ -27,6 +27,16 @@ DEFAULT_DPI = 110
 DPI_RANGE = (20, 600)
 
 _TERRAIN_COLOURS = {"flat": "#9ecae1", "up": "#a1d99b", "down": "#fdae6b"}
+#: decision E99: a ``plot`` window longer than this (s) is drawn for display: each stream's min/max envelope over
+#: :data:`ENVELOPE_COLUMNS` time columns instead of every sample, and runs of steps of one colour (each starting
+#: within :data:`SPAN_JOIN_S` of the last one's end: a walk's strides follow each other) shaded as one span; and a
+#: one-line note suggests ``--start/--end``. At 10 min a 20 Hz stream has 12 000 samples and a walk ~500 strides,
+#: more than the figure's ~1200 pixel columns: the strides' shading merges into solid bands either way
+LONG_WINDOW_S = 600.0
+#: decision E99: the envelope's time columns (plot's figure is 11 in wide: 1210 px at the default 110 dpi)
+ENVELOPE_COLUMNS = 2000
+#: decision E99: the largest pause (s) between two steps shaded as one span in a long window
+SPAN_JOIN_S = 1.0
 
 
 def new_figure(nrows: int = 1, ncols: int = 1, *, figsize=None, layout=None, **subplots):
@@ -142,6 +152,33 @@ def plot_session(session: Session, out: Path, *, start: float | None = None, end
     return Path(out)
 
 
+def envelope(t: np.ndarray, y: np.ndarray, n_cols: int = ENVELOPE_COLUMNS) -> tuple[np.ndarray, np.ndarray]:
+    """Decision E99: the min/max envelope of ``y`` (samples at sorted times ``t``) over ``n_cols`` equal time
+    columns: per non-empty column its centre twice, with the column's minimum then its maximum (NaN ignored;
+    a column of NaN only gives NaN). Every peak and trough of the signal stays on the figure."""
+    t, y = np.asarray(t, float), np.asarray(y, float)
+    if len(t) <= 2 * n_cols or not (t[-1] > t[0]):
+        return t, y
+    col = np.minimum(((t - t[0]) / (t[-1] - t[0]) * n_cols).astype(np.int64), n_cols - 1)
+    starts = np.flatnonzero(np.diff(np.concatenate([[-1], col])))
+    with np.errstate(invalid="ignore"):
+        lo, hi = np.fmin.reduceat(y, starts), np.fmax.reduceat(y, starts)
+    centre = t[0] + (col[starts] + 0.5) * (t[-1] - t[0]) / n_cols
+    return np.repeat(centre, 2), np.column_stack([lo, hi]).ravel()
+
+
+def joined_spans(starts: np.ndarray, ends: np.ndarray, keys: list) -> list[tuple[float, float, object]]:
+    """Decision E99: ``(start, end, key)`` of each run of consecutive steps with the same ``key`` (terrain)
+    where each starts within :data:`SPAN_JOIN_S` of the previous one's end."""
+    out: list[list] = []
+    for a, b, k in zip(starts, ends, keys, strict=True):
+        if out and out[-1][2] == k and a - out[-1][1] <= SPAN_JOIN_S:
+            out[-1][1] = max(out[-1][1], b)
+        else:
+            out.append([a, b, k])
+    return [tuple(x) for x in out]
+
+
 def steps_in_window(steps, lo: float, hi: float):
     """The rows of a steps table (``start_s``, ``end_s`` on the session's clock) that overlap ``[lo, hi]``
     (s), and how many of them the window cuts (start before ``lo`` or end after ``hi``)."""
@@ -174,20 +211,35 @@ def session_figure(session: Session, *, start: float | None = None, end: float |
     shown, cut = steps_in_window(steps, lo, hi)
     from matplotlib.patches import Rectangle
 
+    long = end - start > LONG_WINDOW_S  # decision E99: drawn for display, with a note
+    if long:
+        import logging
+
+        logging.getLogger("pdrlearn.plots").warning(
+            "%s: the window is %.0f s long (over %.0f s): each stream is drawn as its min/max envelope and the "
+            "steps as joined spans, so single steps cannot be told apart; pick a stretch with --start/--end (e.g. "
+            "--start %.0f --end %.0f) to see them (decision E99)", session.name, end - start, LONG_WINDOW_S, start,
+            start + 120.0)
+    spans = []
+    if shown is not None:
+        for i, row in enumerate(shown.itertuples()):
+            terrain = getattr(row, "terrain", None)
+            colour = _TERRAIN_COLOURS.get(terrain if isinstance(terrain, str) else None,
+                                          "#dddddd" if (i % 2 and not long) else "#f0f0f0")
+            # decision L70: clipped to the window (a stride it cuts widened the axis before)
+            spans.append((max(row.start_s, lo) - t0, min(row.end_s, hi) - t0, colour))
+        if long:
+            spans = joined_spans(*(np.array([x[j] for x in spans]) for j in (0, 1)), [x[2] for x in spans])
     plt, fig, axes = _figure(len(names))
     for ax, name in zip(axes, names, strict=True):
         s = session.streams[name].slice(lo, hi + 1e-9)
         for j, col in enumerate(s.spec.columns):
-            ax.plot(s.t - t0, s.values[:, j], lw=0.8, label=col)
+            ax.plot(*(envelope(s.t - t0, s.values[:, j]) if long else (s.t - t0, s.values[:, j])), lw=0.8,
+                    label=col)
         ax.set_ylabel(f"{name}\n[{s.unit}]", fontsize=8)
         ax.legend(loc="upper right", fontsize=7, ncol=3)
-        if shown is not None:
-            for i, row in enumerate(shown.itertuples()):
-                terrain = getattr(row, "terrain", None)
-                colour = _TERRAIN_COLOURS.get(terrain if isinstance(terrain, str) else None,
-                                              "#dddddd" if i % 2 else "#f0f0f0")
-                # decision L70: clipped to the window (a stride it cuts widened the axis before)
-                ax.axvspan(max(row.start_s, lo) - t0, min(row.end_s, hi) - t0, color=colour, alpha=0.35, lw=0)
+        for a, b, colour in spans:
+            ax.axvspan(a, b, color=colour, alpha=0.35, lw=0)
     axes[-1].set_xlim(start, end)  # decision L70: the window exactly (shared by every panel)
     axes[-1].set_xlabel("time since session start [s]")
     if shown is not None and "terrain" in shown and shown["terrain"].isin(list(_TERRAIN_COLOURS)).any():

@@ -55,7 +55,13 @@ def test_evaluation_frame_has_a_row_per_task_method_unit_with_per_class_accuracy
     assert [f"accuracy_{c}" for c in r["classes"]] == list(df.columns[len(EVALUATION_COLUMNS):])
     table = results_table(r)  # report.md's rows: the same order and numbers
     assert df[["method", "unit"]].values.tolist() == [row[:2] for row in table]
-    np.testing.assert_allclose(100 * df["accuracy"], [float(row[-2]) for row in table], atol=0.051)
+    np.testing.assert_allclose(100 * df["accuracy"], [float(row[-3]) for row in table], atol=0.051)
+    # decision C60: the table's balanced column, what train ranks by
+    np.testing.assert_allclose(100 * df["balanced_accuracy"], [float(row[-2]) for row in table], atol=0.051)
+    from pdrlearn.classify.evaluation import markdown_tables, results_head
+
+    assert results_head(r)[-3:] == ["all %", "balanced %", "ms/step"] and "| all % | balanced % |" in markdown_tables(
+        evaluated)
     first = df.iloc[0]
     unit = r["methods"][first["method"]]["units"][first["unit"]]
     assert first["accuracy_flat"] == unit["per_class"]["flat"] and first["n_steps"] == unit["n_steps"]

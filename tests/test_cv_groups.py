@@ -99,3 +99,66 @@ def test_cli_rejects_an_unknown_grouping(tmp_path, capsys):
     code = main(["train", str(tmp_path), "--out", str(tmp_path / "m"), "--cv-groups", "subject"])
     assert code != 0
     assert "--cv-groups 'subject'; choose one of steps, user" in capsys.readouterr().err
+
+
+def test_user_folds_choose_c_and_fused_weights_inside_each_training_fold(two_users, monkeypatch):
+    """Decision C57: with folds of whole users the SVM's C is chosen by each outer training fold's inner CV (the
+    template keeps C="cv"), and the fused weights of a fold come from the other folds' steps; with folds of
+    steps C5 holds (one C, fixed in the template)."""
+    from pdrlearn.classify import training
+
+    seen_c, votes = [], []
+    real_oof, real_vote = training._oof_proba, training.fold_fitted_vote
+
+    def spy_oof(est, X, y, folds, classes):
+        seen_c.append(est.get_params().get("clf__C"))
+        return real_oof(est, X, y, folds, classes)
+
+    def spy_vote(probas, y_idx, folds):
+        votes.append(len(folds))
+        return real_vote(probas, y_idx, folds)
+
+    monkeypatch.setattr(training, "_oof_proba", spy_oof)
+    monkeypatch.setattr(training, "fold_fitted_vote", spy_vote)
+    kw = dict(tasks=["terrain"], methods=["svm"], units=["foot", "waist", "fused"], cv=3, distance_calibration=False)
+    train_user(two_users, cv_groups="user", **kw)
+    assert seen_c == ["cv", "cv"] and votes == [2]
+    seen_c.clear()
+    train_user(two_users, **kw)
+    assert all(isinstance(c, float) for c in seen_c) and votes == [2]
+
+
+def test_fold_fitted_vote_scores_each_fold_with_weights_of_the_other_folds():
+    from pdrlearn.classify.fusion import best_weights, soft_vote
+    from pdrlearn.classify.training import fold_fitted_vote
+
+    rng = np.random.default_rng(2450)
+    y = rng.integers(0, 3, 60)
+    probas = [rng.dirichlet(np.ones(3), 60) for _ in range(2)]
+    folds = [(np.arange(30, 60), np.arange(30)), (np.arange(30), np.arange(30, 60))]
+    P = fold_fitted_vote(probas, y, folds)
+    for tr, te in folds:
+        w = best_weights([p[tr] for p in probas], y[tr])
+        assert np.allclose(P[te], soft_vote([p[te] for p in probas], w))
+
+
+def test_session_folds_never_split_a_session(caplog):
+    """Decision C59: --cv-groups session holds out whole sessions (the steps of one walk stay on one side); the
+    record says how many sessions and which one each fold held out; one session falls back, said."""
+    from pdrlearn.cli.train import cv_title, louo_line
+
+    walks = [simulate("terrain", user_seed=2451, seed=s) for s in (0, 1, 2)]
+    kw = dict(tasks=["terrain"], methods=["svm"], units=["waist"], cv=5, distance_calibration=False)
+    m = train_user(walks, cv_groups="session", **kw)
+    r = m.tasks["terrain"].cv["svm"]["waist"]
+    names = [w.name for w in walks]
+    assert (r["n_folds"], r["cv_sessions"], r["cv_users"]) == (3, 3, 0)
+    assert sorted(r["folds"]["sessions"]) == sorted(names) and "users" not in r["folds"]
+    sizes = {w.name: len(w.steps) for w in walks}
+    assert r["folds"]["n_steps"] == [sizes[s] for s in r["folds"]["sessions"]]  # each fold: one whole session
+    assert (m.settings["cv_groups"], m.settings["cv_sessions"]) == ("session", 3)
+    assert cv_title(r) == "leave-one-session-out CV accuracy (3 sessions)"
+    assert louo_line(r).startswith(f"chosen model per held-out session: {r['folds']['sessions'][0]} ")
+    with caplog.at_level(logging.WARNING):
+        one = train_user(walks[:1], cv_groups="session", **kw)
+    assert one.tasks["terrain"].cv["svm"]["waist"]["cv_sessions"] == 0 and "one session" in caplog.text

@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.classify.evaluation import PREDICTION_COLUMNS, evaluate_model, write_predictions
-from pdrlearn.classify.spread import fold_spread, spread_text, t_interval
+from pdrlearn.classify.spread import clopper_pearson, fold_spread, spread_text, t_interval
 from pdrlearn.classify.training import _cv_entry, _folds, train_user
 from pdrlearn.cli.common import file_kind, out_file
 from pdrlearn.cli.train import cv_title, louo_line
@@ -24,6 +24,18 @@ def test_t_interval_over_folds_by_hand():
     assert t_interval([0.7]) is None  # one fold: no interval
 
 
+def test_clopper_pearson_by_hand_and_all_folds_perfect():
+    # k = n: the lower end solves p^n = 0.025 (Clopper & Pearson 1934), 224/224 -> 0.025^(1/224) = 98.37 %
+    lo, hi = clopper_pearson(224, 224)
+    assert lo == pytest.approx(0.025 ** (1 / 224), abs=1e-9) and hi == 1.0
+    assert clopper_pearson(0, 10) == pytest.approx((0.0, 1 - 0.025 ** (1 / 10)))
+    assert clopper_pearson(0, 0) is None
+    y = np.array(["a", "b"] * 112)
+    folds = [(np.setdiff1d(np.arange(224), te), te) for te in np.array_split(np.arange(224), 10)]
+    s = fold_spread(y, y, folds)
+    assert spread_text(s) == ("100±0", "98.4-100")  # was "100-100", the t-interval of ten perfect folds
+
+
 def test_fold_spread_scores_each_fold_and_names_the_held_out_users():
     y = np.array(["a", "a", "b", "b", "a", "b"])
     p = np.array(["a", "b", "b", "b", "a", "a"])
@@ -31,8 +43,10 @@ def test_fold_spread_scores_each_fold_and_names_the_held_out_users():
     s = fold_spread(y, p, folds, groups=np.array(["u1"] * 3 + ["u2"] * 3))
     assert s["accuracy"] == pytest.approx([2 / 3, 2 / 3]) and s["n_steps"] == [3, 3]
     assert s["balanced_accuracy"] == pytest.approx([0.75, 0.75])  # per fold: mean recall of its classes
-    assert s["sd"] == 0.0 and s["users"] == ["u1", "u2"] and s["interval"] == "t over folds"
-    assert spread_text(s) == ("66.7±0", "66.7-66.7")
+    assert s["sd"] == 0.0 and s["users"] == ["u1", "u2"] and s["t_ci95"] == pytest.approx([2 / 3, 2 / 3])
+    # decision C58: the table's interval is the exact binomial one of 4 of 6 pooled steps, not the folds' point
+    assert s["interval"] == "Clopper-Pearson over the pooled steps"
+    assert spread_text(s) == ("66.7±0", "22.3-95.7")
     e = _cv_entry(y, p, ["a", "b"], folds, 2, np.array(["u1"] * 3 + ["u2"] * 3))
     assert e["n_folds"] == 2 and e["folds"]["users"] == ["u1", "u2"] and e["accuracy"] == pytest.approx(4 / 6)
     assert cv_title(e) == "leave-one-user-out CV accuracy (2 users)"

@@ -88,3 +88,21 @@ def test_the_waist_distance_row_names_total_and_median(demo):
     assert "total / median per bout" in label and "INDIP Length" in label
     assert value == "+17.31 % / 11.78 %"
     assert demo.waist_distance_row({}) is None
+
+
+def _task(acc, n, det):
+    return {"chosen": {"method": "nn", "unit": "combined"}, "accuracy": acc, "n_steps": n, "detected": det}
+
+
+def test_the_summary_prints_the_detected_figure_first_and_names_it(demo):
+    """Decision C54 (trial mlres, session 25): the demo printed only the labelled-boundary accuracy (100 %),
+    while `track --model` and the runtime get the one on the strides they detect (C49)."""
+    ev = {"tasks": {"terrain": _task(1.0, 224, {"accuracy": 0.955, "n_steps": 222}),
+                    "length": _task(1.0, 224, None)}}  # no foot gyroscope: no detected figure
+    rows = demo.accuracy_rows(ev)
+    assert rows[0] == ("terrain accuracy, held-out (nn/combined), on the strides track/run detect (what their "
+                       "users get)", "95.5 % of 222 steps")
+    assert rows[1] == ("terrain accuracy, held-out (nn/combined), on the labelled step boundaries",
+                       "100.0 % of 224 steps")
+    assert rows[2:] == [("length accuracy, held-out (nn/combined), on the labelled step boundaries",
+                         "100.0 % of 224 steps")]

@@ -110,7 +110,10 @@ def test_a_climb_bridges_a_landing_and_counts_by_the_band():
     assert count_floors_by_climb([]) == (0, 0, 0)
 
 
-def test_foot_tracks_count_per_climb_and_waist_tracks_by_altitude():
+def test_foot_and_waist_tracks_count_per_climb():
+    """Decisions L127, L172: foot strides and lower-back steps alike count per climb from their own dz, so the 2 m
+    the z drifts between the climbs moves no count; a lower-back step is half a stride, so its climb bridges 8
+    steps (L127's 4 strides), a foot climb 4 strides."""
     dz = np.concatenate([_stairs_dz(1), np.zeros(40), _stairs_dz(-1)])  # level strides between the climbs
     z = np.concatenate([[0.0], np.cumsum(dz)]) - np.linspace(0.0, 2.0, len(dz) + 1)  # the z drifts 2 m down
     steps = pd.DataFrame({"start_s": np.arange(len(dz), dtype=float), "end_s": np.arange(1, len(dz) + 1, dtype=float),
@@ -119,9 +122,42 @@ def test_foot_tracks_count_per_climb_and_waist_tracks_by_altitude():
     out = evaluate_track(TrackResult(steps=steps, trajectory=traj, info={}), storey_height_m=2.89)
     assert (out["floors_up"], out["floors_down"], out["storey_height_m"]) == (1, 1, 2.89)
     waist = evaluate_track(TrackResult(steps=steps.assign(unit="waist"), trajectory=traj, info={}))
-    assert (waist["floors_up"], waist["floors_down"]) == count_floors(z)[:2]
+    assert (waist["floors_up"], waist["floors_down"]) == (1, 1)
+    assert count_floors(z)[:2] != (1, 1)  # L64's bands on the drifting z miss the way down
+    half = _stairs_dz(0.5)  # 1.53 m, a U-turn on a landing of 6 steps, 1.53 m: one storey on the lower back
+    dz2 = np.concatenate([half, np.zeros(6), half])
+    st2 = pd.DataFrame({"start_s": np.arange(len(dz2), dtype=float), "end_s": np.arange(1, len(dz2) + 1.0),
+                        "length_m": 0.7, "heading_rad": 0.0, "dz_m": dz2})
+    tr2 = pd.DataFrame({"t": np.arange(len(dz2) + 1, dtype=float), "x": 0.0, "y": 0.0,
+                        "z": np.concatenate([[0.0], np.cumsum(dz2)])})
+    assert evaluate_track(TrackResult(steps=st2.assign(unit="waist"), trajectory=tr2, info={}))["floors_up"] == 1
+    assert evaluate_track(TrackResult(steps=st2.assign(unit="foot"), trajectory=tr2, info={}))["floors_up"] == 0
     with pytest.raises(ValueError, match="storey height"):
         evaluate_track(TrackResult(steps=steps, trajectory=traj, info={}), storey_height_m=0.0)
+
+
+def test_a_flat_lower_back_walk_with_the_weather_drift_counts_no_floor_and_no_ascent():
+    """Decision L172 (trial "longhaul", finding 1): 73 min of level walking whose barometer drifts 4.67 m (the
+    simulator's 0.3 hPa/h, the weather's) counted floors_up 1 and ascent 4.67 m on the lower back; now no floor, no
+    ascent, the drift is ``altitude_drift_m`` and one warning names it; a storey of 18 stair steps still counts."""
+    from pdrlearn.track.evaluate import drift_warning
+
+    t = np.arange(0.0, 73 * 60.0, 0.5)  # a step every 0.5 s
+    z = 4.67 * t / t[-1]
+    steps = pd.DataFrame({"start_s": t[:-1], "end_s": t[1:], "length_m": 0.7, "heading_rad": 0.0,
+                          "dz_m": np.diff(z), "unit": "waist"})
+    flat = evaluate_track(TrackResult(steps=steps, trajectory=pd.DataFrame({"t": t, "x": 0.0, "y": 0.0, "z": z}),
+                                      info={}))
+    assert (flat["floors_up"], flat["floors_down"]) == (0, 0)
+    assert flat["ascent_m"] < 0.5 and flat["descent_m"] == 0.0
+    assert flat["altitude_drift_m"] == pytest.approx(4.67, abs=0.5)
+    assert "drifted +4.67 m slowly" in drift_warning(flat)
+    climb = np.clip((t - 1000.0) / 9.0, 0.0, 1.0) * 3.06  # 18 stair steps of 0.17 m in 9 s
+    steps2 = steps.assign(dz_m=np.diff(z + climb))
+    up = evaluate_track(TrackResult(steps=steps2, trajectory=pd.DataFrame({"t": t, "x": 0.0, "y": 0.0, "z": z + climb}),
+                                    info={}))
+    assert (up["floors_up"], up["floors_down"]) == (1, 0)
+    assert up["ascent_m"] == pytest.approx(3.06, abs=0.5) and up["altitude_drift_m"] == pytest.approx(4.67, abs=0.5)
 
 
 def test_loops_of_floors_count_exactly_offline_and_streamed_and_say_the_barometer_is_unused(tmp_path, capsys):

@@ -34,6 +34,33 @@ def test_ascent_descent_hysteresis():
     assert ascent_descent([1.0]) == (0.0, 0.0)
 
 
+def test_ascent_within_a_minute_drops_a_slow_drift():
+    """Decision L172: with times and a window the band must be crossed within CLIMB_WINDOW_S; the weather's
+    0.04 m per minute is dropped, a climb of 1 m in 10 s is kept; without the window the drift is an ascent."""
+    from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, CLIMB_WINDOW_S
+
+    t = np.arange(0.0, 3600.0, 1.0)
+    z = 0.04 * t / 60.0 + np.clip((t - 1800.0) / 10.0, 0.0, 1.0)  # 2.4 m of drift, 1 m climbed in 10 s
+    up, down = ascent_descent(z, ASCENT_BAND_BARO_M, t, CLIMB_WINDOW_S)
+    assert up == pytest.approx(1.0, abs=0.1) and down == 0.0
+    assert ascent_descent(z, ASCENT_BAND_BARO_M)[0] == pytest.approx(3.4, abs=0.01)  # L146 alone: drift counted
+    assert ascent_descent(-z, ASCENT_BAND_BARO_M, t, CLIMB_WINDOW_S) == pytest.approx((0.0, up))
+
+
+def test_the_barometer_warning_does_not_blame_the_foot_for_a_slow_drift():
+    """Decision L172 (trial "longhaul", finding 3): a flat foot track (0 m) against a barometer that drifted
+    +4.69 m slowly is no disagreement; a slow drift next to a real one is named, with what fused would do."""
+    from pdrlearn.track.evaluate import barometer_warning
+
+    s = {"altitude_change_m": 0.0, "barometer_altitude_change_m": 4.69, "barometer_climb_change_m": 0.0,
+         "barometer_disagree_limit_m": 0.6, "barometer_unused": True}
+    assert barometer_warning(s) is None
+    line = barometer_warning({**s, "barometer_climb_change_m": 2.0})
+    assert "+2.00 m (+4.69 m recorded, of which +2.69 m slow drift" in line and "--altitude fused" in line
+    fused = {**s, "altitude_change_m": 4.70, "altitude_drift_m": 4.70, "barometer_unused": False}
+    assert barometer_warning(fused) is None  # a fused track is compared by its climbs too
+
+
 def test_the_sustained_slope_candidate_is_an_option_off_by_default():
     dz = np.r_[np.full(3, 0.02), np.full(30, 0.07), np.full(30, -0.065), np.full(5, 0.05)]
     assert distance.SUSTAINED_SLOPE is False  # L144: not adopted

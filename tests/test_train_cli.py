@@ -195,11 +195,12 @@ def test_train_table_fold_spread_and_evaluate_predictions_out(sim_dirs, tmp_path
     assert rc == 0, out.err
     row = next(line for line in out.out.splitlines() if "│ heuristic " in line)  # not cut to "heurist…"
     assert "±" in row and "foot" in row
-    assert "95 % CI: t-interval of that mean over the folds" in out.out
+    assert "95 % CI: exact binomial (Clopper-Pearson) interval" in out.out.replace("\n", " ")
     rc = main(["train", str(train / "terrain_0"), "--out", str(model), "--tasks", "terrain", "--units", "foot",
                "--methods", "svm", "--cv", "3", "--no-distance-calibration", "--json", "--force"])
     folds = json.loads(capsys.readouterr().out)["tasks"]["terrain"]["cv_folds"]["svm"]["foot"]
-    assert len(folds["accuracy"]) == 3 and folds["interval"] == "t over folds" and len(folds["ci95"]) == 2
+    assert len(folds["accuracy"]) == 3 and folds["interval"] == "Clopper-Pearson over the pooled steps"
+    assert len(folds["ci95"]) == len(folds["t_ci95"]) == 2
     pred = tmp_path / "pred.csv"
     rc = main(["evaluate", str(model), str(test / "terrain_7"), "--predictions-out", str(pred), "--json"])
     out = capsys.readouterr()

@@ -68,6 +68,7 @@ def test_real_merged_fragments_carry_no_length_and_calibration_stays_self_consis
     s = read_session(d)
     base, _ = resolve_params(s, None)
     base.f_m = 0.05  # a double-stance term, so that a fragment counted by the calibration would show
+    base.options = {"pause_steps": False}  # W136: a stand step's capped length sums only within 0.2 % (not W27's)
     p = calibrate([s], "waist-pendulum", distances=[150.0], params=base)
     st = get_pipeline("waist-pendulum")(s, params=p).steps
     off = get_pipeline("waist-pendulum")(s, params=p, merge_fragments=False).steps

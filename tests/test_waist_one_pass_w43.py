@@ -50,3 +50,23 @@ def test_harmonic_directions_on_the_sequence_slice_equal_the_whole_recording(imu
             ref[k] = K.stride_ellipse_direction(imu.t, imu.acc_h, imu.acc_v, t0, t2)
     np.testing.assert_array_equal(raw, ref)
     assert np.isfinite(raw).sum() > 0.8 * len(raw)
+
+
+@pytest.mark.parametrize("method, kernel", [("ahe", "tip_to_tail_direction"), ("ellipse", "ellipse_direction"),
+                                            ("ellipse-stride", "stride_ellipse_direction")])
+def test_each_harmonic_kernel_reads_its_window_only(imu, method, kernel, monkeypatch):
+    """E100: a long unbroken walk made `track --pipeline waist-pll` superlinear (each step's kernel masked the
+    whole walking sequence: 1 / 5 / 20 km took 3.2 / 7.05 / 37.6 s in trial "longhaul"); now each call gets the
+    samples of its own window (a stride: two steps of 0.55 s, at most ~1.1 s of samples plus the end samples),
+    and the directions are the same numbers (the test above)."""
+    seen = []
+    real = getattr(K, kernel)
+
+    def spy(t, *args, **kw):
+        seen.append(len(t))
+        return real(t, *args, **kw)
+
+    monkeypatch.setattr(K, kernel, spy)
+    ev = _events(imu, 30.5, 52.0)
+    harmonic_directions(imu, ev, method=method)
+    assert seen and max(seen) <= int(np.ceil(2 * 0.55 * imu.fs)) + 2  # the sequence is ~21.5 s of samples

@@ -2,7 +2,8 @@
 hand-made step durations, the option end to end on a simulated turn on the spot (calibration sums what the
 tracker sums, W21; the realtime detector ignores it). Decision W122, ``pause_steps="progression"``: a step with a
 standstill in it keeps at most the trunk's horizontal travel over it (the kernels by hand, the option end to end);
-W123: an unknown value is refused."""
+W123: an unknown value is refused. Decision W134, ``pause_steps="standing"``: W122 only for a still run of half a
+local step period inside a walk (not its first or last step); W135: the refusal names it."""
 
 from __future__ import annotations
 
@@ -60,7 +61,7 @@ def test_option_end_to_end_on_a_turn_on_the_spot(turn_walk):
     from pdrlearn.waist.calibration import calibrate
     from pdrlearn.waist.params import resolve_params
 
-    off = track_waist(turn_walk, pipeline="waist-pendulum").steps
+    off = track_waist(turn_walk, pipeline="waist-pendulum", pause_steps=False).steps
     on = track_waist(turn_walk, pipeline="waist-pendulum", pause_steps=True).steps
     np.testing.assert_array_equal(on["event_s"], off["event_s"])  # only the lengths change
     f = on["pause_factor"].to_numpy(float)
@@ -113,7 +114,7 @@ def test_progression_option_end_to_end_on_a_turn_on_the_spot(turn_walk):
     from pdrlearn.track.waist import track_waist
     from pdrlearn.waist.ahrs import waist_imu
 
-    off = track_waist(turn_walk, pipeline="waist-pendulum").steps
+    off = track_waist(turn_walk, pipeline="waist-pendulum", pause_steps=False).steps
     on = track_waist(turn_walk, pipeline="waist-pendulum", pause_steps="progression").steps
     np.testing.assert_array_equal(on["event_s"], off["event_s"])  # only the lengths change
     f = on["pause_factor"].to_numpy(float)
@@ -148,3 +149,141 @@ def test_an_unknown_pause_steps_value_is_refused_in_one_line(turn_walk):
     with pytest.raises(DataError, match=r"pause_steps 'Progression' is not one of false, true, \"progression\"") as e:
         track_waist(turn_walk, pipeline="waist-pendulum", pause_steps="Progression")
     assert "\n" not in str(e.value) and "W122" in str(e.value)
+
+
+# decision W134: pause_steps="standing" -- W122's trunk travel only for a stand of half a local period inside a walk
+
+
+def _standing(run_s, durations, use=None, closes=None):
+    d = np.asarray(durations, dtype=float)
+    use = np.ones(d.size, bool) if use is None else np.asarray(use, bool)
+    closes = np.zeros(d.size, bool) if closes is None else np.asarray(closes, bool)
+    return K.standing_step_mask(np.asarray(run_s, dtype=float), d, use, closes)
+
+
+def test_longest_still_run_is_in_sample_indices_of_the_whole_signal():
+    still = np.zeros(50, bool)
+    still[12:15] = still[20:30] = still[40:45] = True
+    assert K.longest_still_run(still, 10, 49) == (20, 30)
+    assert K.longest_still_run(still, 25, 49) == (25, 30)  # clipped to the step: 5 samples, the first of equals
+    assert K.longest_still_run(still, 0, 11) is None
+
+
+def test_a_stand_is_half_a_local_period_of_stillness_inside_the_walk():
+    n = np.nan
+    # period 0.5 s everywhere; still runs 0.25 s (half: a stand), 0.24 s (a slow phase), none
+    run = [n, n, n, 0.25, n, 0.24, n, n, n]
+    np.testing.assert_array_equal(_standing(run, [0.5] * 9), [0, 0, 0, 1, 0, 0, 0, 0, 0])
+    # the walk's first and last steps are never a stand, however long their stillness (quiet standing next to them)
+    run = [2.0, n, n, n, n, n, n, n, 2.0]
+    assert not _standing(run, [0.6] * 9).any()
+    # the last step with a length, not the closing contact, is the walk's last step
+    run = [n, n, n, n, n, n, n, 2.0, n]
+    closes = [False] * 8 + [True]
+    use = [True] * 8 + [False]
+    assert not _standing(run, [0.6] * 8 + [0.0], use, closes).any()
+    # without a local period (one step on a side) nothing is a stand
+    assert not _standing([n, 2.0, n], [0.6, 0.6, 0.6]).any()
+
+
+def test_the_half_period_is_the_local_one():
+    # a stand of 0.4 s among 1.0 s steps (elderly, slow) is under half a period; among 0.5 s steps it is one
+    run = [np.nan] * 3 + [0.4] + [np.nan] * 3
+    assert not _standing(run, [1.0] * 7).any()
+    assert _standing(run, [0.5] * 7)[3]
+
+
+def test_standing_option_end_to_end_keeps_the_walk_edges_and_shortens_the_stand(turn_walk):
+    from pdrlearn.track.waist import track_waist
+
+    off = track_waist(turn_walk, pipeline="waist-pendulum", pause_steps=False).steps
+    prog = track_waist(turn_walk, pipeline="waist-pendulum", pause_steps="progression").steps
+    on = track_waist(turn_walk, pipeline="waist-pendulum", pause_steps="standing").steps
+    np.testing.assert_array_equal(on["event_s"], off["event_s"])  # only the lengths change
+    f, fp = on["pause_factor"].to_numpy(float), prog["pause_factor"].to_numpy(float)
+    # each step it shortens, it shortens as W122 does; it shortens some (the stop before the turn on the spot)
+    np.testing.assert_allclose(f[f < 1], fp[f < 1], rtol=1e-12)
+    assert (f < 1).any()
+    # and never a walk's first or last step
+    has = on["has_next"].to_numpy(bool)
+    use = has & ~on["merged"].to_numpy(bool)
+    seq = np.concatenate([[0], np.cumsum(~has)[:-1]])
+    for sid in np.unique(seq[use]):
+        rows = np.flatnonzero(use & (seq == sid))
+        assert f[rows[0]] == 1.0 and f[rows[-1]] == 1.0
+    rt = track_waist(turn_walk, pipeline="waist-pendulum", realtime=True, pause_steps="standing").steps
+    assert "pause_factor" not in rt
+
+
+def test_a_real_walks_slow_second_step_is_no_stand():
+    """W122 shortened MS001 Test5 Trial1's second step (6.76-7.39 s, inside the reference bout) to 0.11 of its
+    length: a 0.05 s still run next to gait initiation. W134 leaves it (and every step of the walk) whole."""
+    from pdrlearn.io import read_session
+    from pdrlearn.track.waist import track_waist
+    from tests.conftest import external_session
+
+    s = read_session(external_session("mobgap_MS001_Test5_Trial1"))
+    prog = track_waist(s, pipeline="waist-pendulum", pause_steps="progression").steps
+    on = track_waist(s, pipeline="waist-pendulum", pause_steps="standing").steps
+    second = (prog["start_s"] > 6.7) & (prog["start_s"] < 6.8)
+    assert second.sum() == 1 and float(prog.loc[second, "pause_factor"].iloc[0]) < 0.2
+    assert (on["pause_factor"] == 1.0).all()
+
+
+def test_an_unknown_pause_steps_value_names_standing(turn_walk):
+    from pdrlearn.errors import DataError
+    from pdrlearn.track.waist import track_waist
+
+    with pytest.raises(DataError, match=r"not one of false, true, \"progression\", \"standing\" \(decisions W111, "
+                       r"W122, W134\)") as e:
+        track_waist(turn_walk, pipeline="waist-pendulum", pause_steps="Standing")
+    assert "\n" not in str(e.value)
+
+
+def test_standing_is_the_offline_pendulum_default_and_calibration_sums_with_it(turn_walk):
+    """W134's rule held (experiments/results/waist_standing_steps.txt): the offline pendulum's default; calibrated
+    with the defaults, tracking the calibration walk sums to its distance (W21)."""
+    from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist
+    from pdrlearn.waist.calibration import calibrate
+
+    assert OPTION_DEFAULTS["pause_steps"] == "standing"
+    default = track_waist(turn_walk, pipeline="waist-pendulum").steps
+    on = track_waist(turn_walk, pipeline="waist-pendulum", pause_steps="standing").steps
+    pd_testing = pytest.importorskip("pandas").testing
+    pd_testing.assert_frame_equal(default, on)
+    assert (default["pause_factor"] < 1).any()
+    p = calibrate([turn_walk], "waist-pendulum", distances=[12.0])
+    # within 0.2 %, not exactly: a stand step keeps min(length, trunk travel), and calibration holds the factor the
+    # starting K gives (W122); calibrated without the factor (pause_steps false) the walk sums 11.23 m (6 % short)
+    assert track_waist(turn_walk, pipeline="waist-pendulum", params=p).steps["length_m"].sum() == pytest.approx(
+        12.0, rel=2e-3)
+    # realtime: the default does not look ahead there (no refusal, no factor)
+    assert "pause_factor" not in track_waist(turn_walk, pipeline="waist-pendulum", realtime=True).steps
+
+
+def test_samples_made_up_inside_a_gap_are_no_stand():
+    """W136: a 0.5 s gap of dropped samples in a real straight walk is bridged by a line (W34), which reads as a
+    standstill of over half a step; W134 shortened the step across it (the walk 20 % short at this gap position,
+    tests/test_waist_clock_gaps.py's mean -9.1 % instead of -5.2 %). The made-up samples are no stand."""
+    from pdrlearn.io import read_session
+    from pdrlearn.io.session import Stream
+    from pdrlearn.track.waist import track_waist
+    from pdrlearn.waist.ahrs import bridged_samples, waist_imu
+    from tests.conftest import external_session
+
+    s = read_session(external_session("mobgap_HA001_Test5_Trial1"))
+    b = s.extras["bouts"].iloc[0]
+    t0 = float(np.linspace(b.start_s + 0.5, b.end_s - 1.0, 8)[2])
+    g = s.copy()
+    for k, st in g.streams.items():
+        keep = (st.t < t0) | (st.t >= t0 + 0.5)
+        g.streams[k] = Stream(k, st.t[keep], st.values[keep])
+    imu = waist_imu(g)
+    made_up = bridged_samples(g, imu.t)
+    assert imu.bridged is not None and np.array_equal(imu.bridged, made_up)
+    assert 45 <= made_up.sum() <= 50 and (imu.t[made_up] > t0 - 0.02).all() and (imu.t[made_up] < t0 + 0.5).all()
+    assert not bridged_samples(s, waist_imu(s).t).any()  # a recording without gaps: nothing made up
+    on = track_waist(g, pipeline="waist-pendulum").steps
+    off = track_waist(g, pipeline="waist-pendulum", pause_steps=False).steps
+    assert (on["pause_factor"] == 1.0).all()
+    np.testing.assert_allclose(on["length_m"], off["length_m"], rtol=1e-12)

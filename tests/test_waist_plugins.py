@@ -272,7 +272,7 @@ def test_a_spec_keeps_its_own_settings_and_text_settings_are_checked():
     s = _walk()["session"]
     f = get_pipeline("waist-pendulum")
     spec = f(s, length_model="pendulum:merge_fragments=false")
-    inst = f(s, length_model=PendulumLength(merge_fragments=False))
+    inst = f(s, length_model=PendulumLength(merge_fragments=False, pause_steps="standing"))  # offline default: W134
     assert not spec.steps["merged"].any() and f(s).steps["merged"].any()
     pd.testing.assert_frame_equal(spec.steps, inst.steps)
     assert "pause_factor" in f(s, length_model="pendulum:pause_steps=progression").steps

@@ -39,6 +39,38 @@ def detected_strides(session) -> pd.DataFrame | None:
     return pd.DataFrame({"start_s": seg[:, 0], "end_s": seg[:, 1]}) if len(seg) else None
 
 
+#: Decision C55: a labelled step opens (closes) a walking bout when it is the first (last) step or its start
+#: lies more than this (s) after the previous step's end (its end this much before the next one's start)
+BOUT_GAP_S = 0.05
+
+#: Decision C55 (adopted by its rule): train with the bout edges cut as the runtime cuts them
+RUNTIME_BOUT_EDGES = True
+
+
+def runtime_bout_edges(session, steps: pd.DataFrame) -> pd.DataFrame:
+    """Decision C55: ``steps`` (labelled, ``start_s``/``end_s`` s) with the start of each step that opens a
+    walking bout and the end of each that closes one moved to the bounds of the runtime segmenter's stride
+    covering it (:func:`pdrlearn.track.plasys.classification_windows`, IoU >= its ``WINDOW_MIN_IOU``). The
+    segmenter opens a stride after a standstill ``stance_half_s`` before the rest ends, ~0.1 s earlier than a
+    label placed as a steady stride's start, and a model trained only on the labels' bout starts called them
+    ``backward`` (trial mlres). Boundaries inside a bout stay the labels'; without a foot gyroscope, unchanged."""
+    from pdrlearn.track.plasys import classification_windows
+
+    if len(steps) == 0 or session.streams.get("fGyroscope") is None:
+        return steps
+    order = np.argsort(steps["start_s"].to_numpy(float), kind="stable")
+    start, end = steps["start_s"].to_numpy(float)[order], steps["end_s"].to_numpy(float)[order]
+    opens = np.r_[True, start[1:] > end[:-1] + BOUT_GAP_S]
+    closes = np.r_[start[1:] > end[:-1] + BOUT_GAP_S, True]
+    win = classification_windows(session, pd.DataFrame({"start_s": start, "end_s": end}))
+    new_start = np.where(opens, win["start_s"].to_numpy(float), start)
+    new_end = np.where(closes, win["end_s"].to_numpy(float), end)
+    out = steps.copy()
+    out.iloc[order, out.columns.get_loc("start_s")] = new_start
+    out.iloc[order, out.columns.get_loc("end_s")] = new_end
+    return out
+
+
 class DetectedPredictions:
     """Per session, the model's classes of the detected strides, computed once and shared by the tasks."""
 

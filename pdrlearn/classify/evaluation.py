@@ -407,15 +407,23 @@ def table_pairs(task_result: dict) -> list[tuple[str, str]]:
     return pairs + [(m, u) for m, d in methods.items() for u in d["units"] if (m, u) not in pairs]
 
 
+def results_head(task_result: dict) -> list[str]:
+    """The column names of :func:`results_table`'s rows (evaluate's table and report.md)."""
+    return ["method", "unit", *[f"{c} %" for c in task_result["classes"]], "all %", "balanced %", "ms/step"]
+
+
 def results_table(task_result: dict) -> list[list[str]]:
-    """Rows ``[method, unit, per-class %..., all %, ms]`` in the order of thesis Tables 27/28/33."""
+    """Rows ``[method, unit, per-class %..., all %, balanced %, ms]`` in the order of thesis Tables 27/28/33;
+    ``balanced %`` (decision C60) is the mean of the class recalls, what ``train`` ranks the models by (C36)."""
     rows = []
     methods = task_result["methods"]
     for m, u in table_pairs(task_result):
         r = methods[m]["units"][u]
         pc = [("-" if r["per_class"][c] is None else f"{100 * r['per_class'][c]:.1f}") for c in task_result["classes"]]
         lat = r.get("latency_ms")
-        rows.append([m, u, *pc, f"{100 * r['accuracy']:.1f}", "-" if lat is None else f"{lat:.3f}"])
+        bal = r.get("balanced_accuracy")
+        rows.append([m, u, *pc, f"{100 * r['accuracy']:.1f}", "-" if bal is None else f"{100 * bal:.1f}",
+                     "-" if lat is None else f"{lat:.3f}"])
     return rows
 
 
@@ -434,7 +442,7 @@ def markdown_tables(result: dict) -> str:
     """All tasks' result tables as Markdown."""
     parts = []
     for task, r in result["tasks"].items():
-        head = ["method", "unit", *[f"{c} %" for c in r["classes"]], "all %", "ms/step"]
+        head = results_head(r)
         lines = [
             f"### {task} ({r['n_steps']} steps; chosen {r['chosen']['method']}/{r['chosen']['unit']}: "
             f"{headline(r)})",  # decision C49

@@ -220,6 +220,7 @@ def session_windows(sessions, *, n_samples: int, boundaries: str = "given", purp
     """Step windows of every labelled step of every session (one :class:`StepWindows` per session);
     ``boundaries`` as :func:`pdrlearn.features.step_windows` (``"rest"``: rest-to-rest windows);
     ``purpose`` ("train" | "evaluate") words the error for a session without labelled steps."""
+    from pdrlearn.classify import detected
     from pdrlearn.classify.labels import clean_steps, misaligned_text
     from pdrlearn.features import step_windows
 
@@ -232,6 +233,8 @@ def session_windows(sessions, *, n_samples: int, boundaries: str = "given", purp
                    "`pdrlearn track SESSION --model MODEL`")
             raise DataError(f"{where}: no labelled steps (steps.csv); {fix}")
         steps = clean_steps(s, s.steps)  # labels any case, each step once (decisions C32, C33)
+        if purpose == "train" and boundaries == "given" and detected.RUNTIME_BOUT_EDGES:
+            steps = detected.runtime_bout_edges(s, steps)  # bout edges as the runtime cuts them (C55)
         shifted = misaligned_text(s, steps, boundaries)  # labels off the foot's rest periods (C37)
         try:
             w = step_windows(s, steps, n_samples=n_samples, boundaries=boundaries)
@@ -680,7 +683,18 @@ def _oof_proba(est, X, y, folds, classes) -> np.ndarray:
     return P
 
 
-CV_GROUPS = ("steps", "user")  # train's --cv-groups (decision C29)
+def fold_fitted_vote(probas: list[np.ndarray], y_idx: np.ndarray, folds) -> np.ndarray:
+    """Decision C57: the soft vote of out-of-fold probabilities ``probas`` with weights chosen without the
+    scored fold: each fold's steps are voted with :func:`best_weights` of the other folds' steps, so a held-out
+    user (session) takes no part in choosing the weights it is scored with."""
+    P = np.zeros_like(probas[0])
+    for tr, te in folds:
+        w = best_weights([p[tr] for p in probas], y_idx[tr])
+        P[te] = soft_vote([p[te] for p in probas], w)
+    return P
+
+
+CV_GROUPS = ("steps", "user", "session")  # train's --cv-groups (decisions C29, C59)
 
 
 #: the model's user when no session names one in meta.json ``user`` / ``subject`` and ``--user`` is not given
@@ -708,12 +722,13 @@ def _one_user(session) -> str | None:
 
 
 def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | None = None,
-           notes: list[str] | None = None) -> tuple[list, int]:
+           notes: list[str] | None = None, kind: str = "user") -> tuple[list, int]:
     """Stratified, shuffled folds; fewer than ``cv`` when the smallest class has fewer steps. With ``groups``
     (the user of each step, decision C29) and at least two users: folds of whole users (leave-one-user-out when
     there are at most ``cv`` users), unless a training fold would then lack a class (stratified, one line).
     Returns the folds and the number of users they hold out (0: stratified over steps). ``notes``: collect the
-    warning lines there (the caller logs each once, decision C36) instead of logging them."""
+    warning lines there (the caller logs each once, decision C36) instead of logging them. ``kind``: what a group
+    is, ``"user"`` or ``"session"`` (decision C59), for the warning."""
     say = notes.append if notes is not None else log.warning
     if groups is not None and len(np.unique(groups)) >= 2:
         n_users = len(np.unique(groups))
@@ -725,21 +740,23 @@ def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | No
         lack = [str(c) for c in np.unique(y) if c not in set(y[tr])]
         out_users = ", ".join(sorted({str(u) for u in groups[te]}))
         only = ", ".join(sorted({str(u) for u in groups[np.isin(y, lack)]}))
-        say(f"task {task}: CV by user not possible: holding out {out_users} leaves no {', '.join(lack)} step to "
-            f"train on (only {only} walked it); stratified folds over steps instead")
+        say(f"task {task}: CV by {kind} not possible: holding out {out_users} leaves no {', '.join(lack)} step to "
+            f"train on (only {only} {'walked' if kind == 'user' else 'has'} it); stratified folds over steps instead")
     n_splits = int(min(cv, min(np.sum(y == c) for c in np.unique(y))))
     if n_splits < cv:
         say(f"task {task}: {n_splits}-fold CV instead of {cv} (smallest class has {n_splits} steps)")
     return list(StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y)), 0
 
 
-def _cv_entry(y, y_pred, classes, folds, cv_users: int, groups=None, **extra) -> dict:
+def _cv_entry(y, y_pred, classes, folds, cv_users: int, groups=None, kind: str = "user", **extra) -> dict:
     """One method x unit's CV record: the pooled out-of-fold metrics (:func:`class_metrics`), the folds'
-    spread (decision C41), ``n_folds``, ``cv_users`` (decision C29) and ``extra``."""
+    spread (decision C41), ``n_folds``, ``cv_users`` (decision C29; with folds of whole sessions, ``kind``
+    ``"session"``, 0 and ``cv_sessions`` the number of sessions, decision C59) and ``extra``."""
     from pdrlearn.classify.spread import fold_spread
 
-    return dict(class_metrics(y, y_pred, classes), folds=fold_spread(y, y_pred, folds, groups),
-                n_folds=len(folds), cv_users=cv_users, **extra)
+    by = {"cv_users": cv_users} if kind == "user" else {"cv_users": 0, "cv_sessions": cv_users}
+    return dict(class_metrics(y, y_pred, classes), folds=fold_spread(y, y_pred, folds, groups, kind=kind),
+                n_folds=len(folds), **by, **extra)
 
 
 def _split_units(units: Sequence[str]) -> tuple[list[str], bool, bool]:
@@ -821,10 +838,12 @@ def train_task(
     advance: Callable[[int], None] = lambda n=1: None,
     soft_vote_methods: Sequence[str] | None = None,
     groups: np.ndarray | None = None,
+    group_kind: str = "user",
 ) -> TaskModel:
     """Cross-validate and fit every method x unit of one task (see :func:`train_user`). ``soft_vote_methods``: the
     methods whose ``fused`` soft vote is trained when ``units`` has it (None: every method). ``groups``: the user
-    of every step; folds then hold out whole users when there are two or more (decision C29)."""
+    of every step; folds then hold out whole users when there are two or more (decision C29); ``group_kind``
+    ``"session"``: ``groups`` name each step's session, folds hold out whole sessions (decision C59)."""
     from pdrlearn.features import TASK_CLASSES
 
     classes = np.asarray(TASK_CLASSES[data.task])
@@ -845,7 +864,8 @@ def train_task(
             subsets[unit] = f"steps with the {unit} unit: {exc}"
             continue
         folds, cv_users[unit] = _folds(data.y[mask], cv, seed, data.task,
-                                       None if groups is None else groups[mask], notes=notes)
+                                       None if groups is None else groups[mask], notes=notes,
+                                       kind=group_kind)
         if cv_users[unit]:  # folds of whole users: each fold names the users it held out (decision C43)
             fold_groups[unit] = groups[mask]
         subsets[unit] = (mask, folds)
@@ -884,7 +904,7 @@ def train_task(
                                         n_features_in=X.shape[1], random_state=seed)
                 tm.models.setdefault(method, {})[unit] = est
                 tm.cv.setdefault(method, {})[unit] = _cv_entry(
-                    y, classes[P.argmax(1)], classes, folds, cv_users[unit], fold_groups.get(unit),
+                    y, classes[P.argmax(1)], classes, folds, cv_users[unit], fold_groups.get(unit), group_kind,
                     cv_seconds=time.perf_counter() - t0)
                 oof_by[(method, unit)] = P
                 if mask.all():
@@ -895,7 +915,10 @@ def train_task(
                 est = make_estimator(data.task, method, unit, seed=seed)
                 est.fit(X, y)  # the final model first: fails fast on missing sensors
                 template = make_estimator(data.task, method, unit, seed=seed)
-                if method == "svm":  # C picked once by the final model's inner CV (decision C5)
+                # C picked once by the final model's inner CV (decision C5) with folds of steps; with folds of
+                # whole users / sessions each outer training fold picks its own C (nested, decision C57), so the
+                # held-out group takes no part in choosing it
+                if method == "svm" and not cv_users[unit]:
                     template.set_params(clf__C=est[-1].C_)
                 P = _oof_proba(template, X, y, folds, classes)
             except MissingSensorError as exc:
@@ -912,7 +935,7 @@ def train_task(
             oof_by[(method, unit)] = P
             tm.models.setdefault(method, {})[unit] = est
             tm.cv.setdefault(method, {})[unit] = _cv_entry(
-                y, classes[P.argmax(1)], classes, folds, cv_users[unit], fold_groups.get(unit),
+                y, classes[P.argmax(1)], classes, folds, cv_users[unit], fold_groups.get(unit), group_kind,
                 cv_seconds=time.perf_counter() - t0)
             advance(1)
         if not want_fused or method in ("fusion", "heuristic") or (
@@ -932,7 +955,8 @@ def train_task(
         # docs/decisions/classifiers.md), then the fused CV score of that soft vote
         yi = np.array([list(classes).index(v) for v in y])
         w = best_weights([oof["foot"], oof["waist"]], yi)
-        P = soft_vote([oof["foot"], oof["waist"]], w)
+        P = (fold_fitted_vote([oof["foot"], oof["waist"]], yi, folds) if cv_users["fused"]
+             else soft_vote([oof["foot"], oof["waist"]], w))  # decision C57: nested with folds of groups
         template = make_estimator(data.task, method, "fused", seed=seed, weights=w)
         fitted = [tm.models[method][u] for u in ("foot", "waist")]
         if subsets["foot"][0].sum() != mask.sum() or subsets["waist"][0].sum() != mask.sum():
@@ -942,7 +966,7 @@ def train_task(
         )
         tm.fusion_weights[method] = [float(v) for v in w]
         tm.cv[method]["fused"] = _cv_entry(
-            y, classes[P.argmax(1)], classes, folds, cv_users["fused"], fold_groups.get("fused"),
+            y, classes[P.argmax(1)], classes, folds, cv_users["fused"], fold_groups.get("fused"), group_kind,
             weights={"foot": float(w[0]), "waist": float(w[1])}, cv_seconds=time.perf_counter() - t0)
         advance(1)
     # decision C16: every leaf model keeps the range of its own inputs over its training steps (units first,
@@ -1003,6 +1027,58 @@ def length_class_bounds(sessions) -> list[float] | None:
     return [float(lo), float(hi)] if 0 < lo < hi else None
 
 
+def session_rates(sessions) -> dict[str, dict[str, float]]:
+    """Sensor -> {session name -> its recorded rate (Hz, 3 decimals)} over ``sessions``."""
+    out: dict[str, dict[str, float]] = {}
+    for s in sessions:
+        for name, st in s.streams.items():
+            if len(st) > 1 and np.isfinite(float(st.rate_hz)):
+                out.setdefault(name, {})[s.where] = round(float(st.rate_hz), 3)
+    return out
+
+
+def mixed_rates(recorded: dict[str, dict[str, float]]) -> dict[str, dict[float, list[str]]]:
+    """The sensors of :func:`session_rates` whose rates differ between sessions (beyond the tolerance of
+    :func:`~pdrlearn.kernels.distance.rate_differs`): sensor -> {rate -> sessions}."""
+    from pdrlearn.kernels.distance import rate_differs
+
+    out = {}
+    for name, by in recorded.items():
+        lo, hi = min(by.values()), max(by.values())
+        if rate_differs(lo, hi):
+            groups: dict[float, list[str]] = {}
+            for where, r in by.items():
+                groups.setdefault(r, []).append(where)
+            out[name] = dict(sorted(groups.items()))
+    return out
+
+
+def one_rate(sessions, recorded: dict[str, dict[str, float]], resample_hz: float | None) -> list:
+    """Decision C56: the sessions at one rate per sensor. ``resample_hz``: every stream resampled to it (one
+    warning naming the recorded rates when they differ); None: sessions at different rates are a one-line
+    :class:`DataError` (B197) naming the rates, the sessions and ``--resample HZ`` (a model holds one rate per
+    sensor: its manifest, the rate warnings of track / evaluate and the distance calibration all read it)."""
+    mixed = mixed_rates(recorded)
+    if resample_hz is None:
+        if mixed:
+            name, groups = next(iter(mixed.items()))
+            said = "; ".join(f"{r:g} Hz: {w[0]}{f' and {len(w) - 1} more' if len(w) > 1 else ''}"
+                             for r, w in groups.items())
+            raise DataError(f"train: the sessions were recorded at different rates ({name} {said}); a model is "
+                            f"trained at one rate: pass --resample HZ (e.g. --resample {max(groups):g}) to resample "
+                            "every session to it, or train the rates apart")
+        return list(sessions)
+    if not (np.isfinite(resample_hz) and resample_hz > 0):
+        raise DataError(f"train: --resample {resample_hz}; give a rate in Hz above 0, e.g. --resample 100")
+    from pdrlearn.io.resample import resample_session
+
+    if mixed:
+        name, groups = next(iter(mixed.items()))
+        log.warning("train: the sessions were recorded at %s Hz (%s); every stream resampled to %g Hz",
+                    " / ".join(f"{r:g}" for r in groups), name, resample_hz)
+    return [resample_session(s, dict.fromkeys(s.streams, float(resample_hz))) for s in sessions]
+
+
 #: decision C53: train_user's warning when the labels allow no classifier and the model holds only the user's
 #: distance calibration (decision C17)
 NO_CLASSIFIER_LINE = ("no classifier trained (the labels allow none); the model holds the distance calibration: "
@@ -1026,6 +1102,7 @@ def train_user(
     advance: Callable[[int], None] = lambda n=1: None,
     cv_groups: str = "steps",
     length_units: Sequence[str] | None = None,
+    resample_hz: float | None = None,
 ) -> UserModel:
     """Train a user's step classifiers from labelled sessions.
 
@@ -1060,6 +1137,10 @@ def train_user(
         given explicitly; otherwise such tasks are skipped, listed in ``UserModel.skipped`` and logged (one
         warning each, decision C53; with no task left the model holds only the distance calibration, one more
         warning, or :class:`DataError` when there is none either).
+    resample_hz : resample every stream of every session to this rate (Hz) first, by the runtime's resampler
+        (:func:`pdrlearn.io.resample.resample_session`); needed when the sessions were recorded at different rates
+        (decision C56: without it that is a one-line :class:`DataError`, B197). The recorded rates are kept in
+        ``data_summary["recorded_rates_hz"]``.
     distance_calibration : estimate the user's distance gain from the sessions' labelled stride lengths
         (:func:`pdrlearn.displace.calibrate_distance`, docs/decisions/localization.md L26), stored in
         ``data_summary["distance_calibration"]`` and used by PLASYS M3 with this model.
@@ -1090,6 +1171,8 @@ def train_user(
     if cv_groups not in CV_GROUPS:
         raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
     ids = [s.content_id() for s in sessions]  # decision B87: before anything reads the streams
+    recorded = session_rates(sessions)
+    sessions = one_rate(sessions, recorded, resample_hz)  # decision C56
     windows = session_windows(sessions, n_samples=n_samples, boundaries=boundaries)
     users = [session_user(s) for s in sessions]
     named = sorted({u for u in users if u is not None})  # the users the sessions name (decision C35)
@@ -1104,7 +1187,15 @@ def train_user(
             if n_users < 2:  # decision C35: say the fallback, the header alone read "10-fold CV"
                 log.warning("train: --cv-groups user: every session is of one user (%s); stratified folds over "
                             "steps instead (folds of whole users need two or more)", named[0])
-    elif len(named) > 1:  # decision C35: pooled users, folds of steps score on users the models were fitted on
+    elif cv_groups == "session":  # decision C59: folds of whole sessions (the steps of one walk stay together)
+        users = [s.name for s in sessions]
+        if len(set(users)) < len(users):
+            users = [s.where for s in sessions]
+        n_users = len(sessions)
+        if n_users < 2:
+            log.warning("train: --cv-groups session: one session; stratified folds over steps instead (folds of "
+                        "whole sessions need two or more)")
+    if cv_groups != "user" and len(named) > 1:  # decision C35: pooled users; folds score on users fitted on
         cal = ("; the distance calibration pools their strides into one gain (--no-distance-calibration for a "
                "pooled model)" if distance_calibration else "")
         log.warning("train: the sessions come from %d users (%s): the CV folds mix their steps, so a model is "
@@ -1127,7 +1218,8 @@ def train_user(
         groups = np.asarray(users, dtype=object)[data.session] if n_users >= 2 else None  # decision C29
         own = task == "length" and length_units is not None  # decision C38
         out[task] = train_task(data, methods=methods, units=length_units if own else units, cv=cv, seed=seed,
-                               advance=advance, soft_vote_methods=None if own else voted, groups=groups)
+                               advance=advance, soft_vote_methods=None if own else voted, groups=groups,
+                               group_kind="session" if cv_groups == "session" else "user")
     calibration = None
     if distance_calibration:  # per-user distance gain from the labelled stride lengths (localization L26)
         from pdrlearn.displace.calibration import calibrate_distance
@@ -1152,6 +1244,9 @@ def train_user(
             rates.setdefault(name, round(float(st.rate_hz), 3))
     summary = {"sessions": [s.name for s in sessions], "session_ids": ids, "n_sessions": len(sessions), "steps": {},
                "users": named}  # every user the sessions name (decision C35)
+    if resample_hz is not None:  # decision C56: the rates the sessions were recorded at, before resampling
+        summary["recorded_rates_hz"] = {n: sorted(set(v.values())) for n, v in recorded.items()}
+        summary["resampled_hz"] = float(resample_hz)
     bounds = length_class_bounds(sessions)
     if bounds is not None:
         summary["length_bounds_m"] = bounds
@@ -1174,7 +1269,9 @@ def train_user(
         settings={
             "cv": cv,
             "cv_groups": cv_groups,
-            "cv_users": n_users,  # users in the training data when grouped by user (decision C29)
+            # users in the training data when grouped by user (decision C29); sessions when by session (C59)
+            "cv_users": n_users if cv_groups == "user" else 0,
+            **({"cv_sessions": n_users} if cv_groups == "session" else {}),
             "seed": seed,
             "methods": list(methods),
             "units": list(units),

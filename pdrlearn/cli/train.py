@@ -81,7 +81,8 @@ def train(
         help="How the CV folds are drawn: 'steps' (stratified folds of the pooled steps) or 'user' (when the "
         "sessions come from two or more users, named by meta.json 'user' or 'subject': folds of whole users, "
         "leave-one-user-out with at most --cv users, so the choice scores models on users they were not fitted "
-        "on; one user: as 'steps'; decision C29).",
+        "on; one user: as 'steps'; decision C29) or 'session' (folds of whole sessions: the steps of one walk "
+        "stay on one side, so a model is scored on walks it was not fitted on; decision C59).",
     ),
     seed: int = typer.Option(0, help="Seed of folds, DTW references and network initialisation."),
     user: str = typer.Option(None, help="User name stored in the manifest (default: the sessions' meta.json 'user' or "
@@ -98,6 +99,12 @@ def train(
         "labelled sessions, once with the offline engine (decision L26; M3 applies it) and once with the "
         "streamed stride kernel (L41; track --streaming and the runtime apply it). Turn off for a model pooled over "
         "several users or devices: a pooled gain corrects no one's sensor.",
+    ),
+    resample: float = typer.Option(
+        None, "--resample", metavar="HZ",
+        help="Resample every session to HZ before training (the runtime's resampler). Needed when the sessions "
+        "were recorded at different rates: a model is trained at one rate (decision C56); the recorded rates "
+        "are kept in the manifest.",
     ),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
@@ -141,7 +148,7 @@ def train(
         model = train_user(
             sessions, tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, user=user,
             boundaries=boundaries, advance=advance, distance_calibration=distance_calibration,
-            cv_groups=cv_groups, length_units=l_list,
+            cv_groups=cv_groups, length_units=l_list, resample_hz=resample,
         )
     seconds = time.perf_counter() - t0
     model.save(out)
@@ -155,6 +162,7 @@ def train(
         "seconds": round(seconds, 2),
         "cv_groups": model.settings["cv_groups"],
         "cv_users": model.settings["cv_users"],
+        "cv_sessions": model.settings.get("cv_sessions", 0),  # decision C59
         "skipped": model.skipped,
         "distance_calibration": model.data_summary.get("distance_calibration"),
         "tasks": {
@@ -218,30 +226,39 @@ def train(
 
 
 #: how the train table's spread columns are computed (decision C41), printed under each table
-SPREAD_NOTE = ("all, balanced: pooled over the steps; folds: mean±sd of the folds' accuracies; 95 % CI: "
-               "t-interval of that mean over the folds (optimistic: folds share training steps; decision C41)")
+SPREAD_NOTE = ("all, balanced: pooled over the steps; folds: mean±sd of the folds' accuracies; 95 % CI: exact "
+               "binomial (Clopper-Pearson) interval of 'all' over the pooled steps (optimistic: steps of one walk "
+               "are not independent; decisions C41, C58)")
 
 
 def cv_title(r: dict) -> str:
-    """The CV part of a task's title line (decisions C29, C43): ``10-fold CV accuracy``, ``leave-one-user-out CV
-    accuracy (3 users)`` or ``5-fold CV accuracy (folds of whole users, 12 users)``."""
-    n, users = r["n_folds"], r.get("cv_users") or 0
-    if users and n == users:
-        return f"leave-one-user-out CV accuracy ({users} users)"
-    if users:
-        return f"{n}-fold CV accuracy (folds of whole users, {users} users)"
+    """The CV part of a task's title line (decisions C29, C43, C59): ``10-fold CV accuracy``, ``leave-one-user-out
+    CV accuracy (3 users)``, ``5-fold CV accuracy (folds of whole users, 12 users)`` or the same of sessions."""
+    n, kind, groups = r["n_folds"], *_grouped(r)
+    if groups and n == groups:
+        return f"leave-one-{kind}-out CV accuracy ({groups} {kind}s)"
+    if groups:
+        return f"{n}-fold CV accuracy (folds of whole {kind}s, {groups} {kind}s)"
     return f"{n}-fold CV accuracy"
 
 
+def _grouped(r: dict) -> tuple[str, int]:
+    """What a CV record's folds hold out whole (``"user"``, ``"session"``, decision C59) and how many there are
+    (0: folds of steps)."""
+    return ("session", r["cv_sessions"]) if r.get("cv_sessions") else ("user", r.get("cv_users") or 0)
+
+
 def louo_line(r: dict) -> str | None:
-    """The chosen model's accuracy on each held-out user of a leave-one-user-out CV (decision C43), e.g.
-    ``chosen model per held-out user: user:u1 93.0 %, user:u2 97.5 %``; None for folds of steps."""
+    """The chosen model's accuracy on each held-out user (session) of a leave-one-user-out CV (decisions C43,
+    C59), e.g. ``chosen model per held-out user: user:u1 93.0 %, user:u2 97.5 %``; None for folds of steps."""
     f = r.get("folds") or {}
-    if not f.get("users"):
+    kind, groups = _grouped(r)
+    who_list = f.get(f"{kind}s")
+    if not who_list:
         return None
-    what = "user" if r["n_folds"] == r.get("cv_users") else "fold of users"
+    what = kind if r["n_folds"] == groups else f"fold of {kind}s"
     return f"chosen model per held-out {what}: " + ", ".join(
-        f"{who} {100 * a:.1f} % ({n} steps)" for who, a, n in zip(f["users"], f["accuracy"], f["n_steps"], strict=True))
+        f"{who} {100 * a:.1f} % ({n} steps)" for who, a, n in zip(who_list, f["accuracy"], f["n_steps"], strict=True))
 
 
 def chosen_reason(tm) -> str:
@@ -312,7 +329,13 @@ def evaluate(
         pdrlearn evaluate out/models/u1 out/sim/u1_test --predictions-out out/eval_u1_steps.csv
     """
     from pdrlearn.classify import evaluate_model, load_model
-    from pdrlearn.classify.evaluation import evaluation_stages, headline, results_table, write_predictions
+    from pdrlearn.classify.evaluation import (
+        evaluation_stages,
+        headline,
+        results_head,
+        results_table,
+        write_predictions,
+    )
     from pdrlearn.cli.common import out_file
     from pdrlearn.io.resample import at_model_rate, log_grouped, resample_mode
 
@@ -378,7 +401,7 @@ def evaluate(
         c.print(f"{task}: {r['n_steps']} steps - chosen {r['chosen']['method']}/{r['chosen']['unit']} "
                 f"{headline(r)}", markup=False)
         tab = Table()
-        for col in ("method", "unit", *[f"{k} %" for k in r["classes"]], "all %", "ms/step"):
+        for col in results_head(r):  # decision C60: with balanced %
             tab.add_column(col)
         for row in results_table(r):
             tab.add_row(*row)

@@ -152,6 +152,7 @@ def _streaming_track(s, params):
 def _estimate(sessions, track, params, kernel_kw) -> dict:
     """Track each labelled session with ``track``, keep the level, forward, straight strides matched to a
     flat forward label (IoU >= 0.5) and apply :func:`distance_gain` to all of them together."""
+    from pdrlearn.io.resample import recorded_rate
     from pdrlearn.track.evaluate import match_by_overlap
 
     raw_all, ref_all, used, skipped, rates = [], [], [], [], []
@@ -177,13 +178,18 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
         raw_all.append(st["raw_length_m"].to_numpy(float)[mask])
         ref_all.append(lab["length_m"].to_numpy(float)[ri][mask])
         used.append(s.name)
-        rates.append(float(s.streams["fAccelerometer"].rate_hz))
+        rates.append(recorded_rate(s, "fAccelerometer"))  # decision C56: judged at the recording's rate (E22)
     raw = np.concatenate(raw_all) if raw_all else np.zeros(0)
     ref = np.concatenate(ref_all) if ref_all else np.zeros(0)
     out = distance_gain(raw, ref, **kernel_kw)
-    if rates and (max(rates) - min(rates)) > RATE_TOLERANCE * max(rates):
-        out.update(gain=1.0, weight=0.0, reason=f"calibration sessions at different foot rates {sorted(set(rates))} Hz")
-    out.update(rate_hz=float(np.median(rates)) if rates else None, sessions_used=used, sessions_skipped=skipped)
+    rec = [r for r, _ in rates]
+    rate_hz = float(np.median([to or r for r, to in rates])) if rates else None
+    if rec and (max(rec) - min(rec)) > RATE_TOLERANCE * max(rec):
+        # decision C56: no rate of its own (not the median of the sessions' rates, a rate none was recorded at)
+        out.update(gain=1.0, weight=0.0, reason="calibration sessions recorded at different foot rates "
+                   f"{' / '.join(f'{r:g}' for r in sorted({round(r, 3) for r in rec}))} Hz")
+        rate_hz = None
+    out.update(rate_hz=rate_hz, sessions_used=used, sessions_skipped=skipped)
     return out
 
 

@@ -103,25 +103,43 @@ def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str |
 ASCENT_BAND_BARO_M = 0.5
 
 
-def ascent_descent(z: np.ndarray, band_m: float = 0.0) -> tuple[float, float]:
+#: Decision L172: a barometric altitude change counts towards the ascent / descent only when it crosses
+#: :data:`ASCENT_BAND_BARO_M` within this many seconds (a storey is climbed in well under a minute); 0.5 m per
+#: minute is a 0.6 % slope at 1.4 m/s and 12x the weather's 0.3 hPa/h drift (~0.04 m per minute, decision S4)
+CLIMB_WINDOW_S = 60.0
+
+
+def ascent_descent(z: np.ndarray, band_m: float = 0.0, t: np.ndarray | None = None,
+                   window_s: float | None = None) -> tuple[float, float]:
     """Decision L146: the cumulative ascent and descent (m, both >= 0) of the altitudes ``z`` (walking order):
     a change counts once z has moved at least ``band_m`` from the last counted level (a hysteresis; 0 = every
     rise and every drop), and the last level's difference to the final z is counted at the end, so ascent -
-    descent is the net change exactly. Non-finite values are skipped."""
+    descent is the net change exactly. Non-finite values are skipped.
+
+    Decision L172: with the times ``t`` (s) and ``window_s`` the band must be crossed within ``window_s``: where
+    z has not moved ``band_m`` from the last counted level after ``window_s``, that level follows z (it becomes
+    z as it was ``window_s`` earlier), so a slow drift (the weather's pressure trend) is dropped, and nothing is
+    counted at the end; ascent - descent is then the net change without the drift."""
     z = np.asarray(z, dtype=float).ravel()
-    z = z[np.isfinite(z)]
+    keep = np.isfinite(z)
+    z = z[keep]
     if len(z) < 2:
         return 0.0, 0.0
     if band_m <= 0:
         d = np.diff(z)
         return float(d[d > 0].sum()) + 0.0, float(-d[d < 0].sum()) + 0.0
+    bounded = t is not None and window_s is not None
+    tt = np.asarray(t, dtype=float).ravel()[keep] if bounded else np.zeros(len(z))
     up = down = 0.0
-    ref = float(z[0])
-    for v in (*z[1:], None):
-        last = v is None
-        v = float(z[-1]) if last else float(v)
+    ref, r = float(z[0]), 0  # the last counted level and its sample
+    for i in range(1, len(z) + (0 if bounded else 1)):
+        last = i == len(z)
+        v = float(z[-1]) if last else float(z[i])
         if v - ref >= (0.0 if last else band_m):
-            up, ref = up + v - ref, v
+            up, ref, r = up + v - ref, v, i
         elif ref - v >= (0.0 if last else band_m):
-            down, ref = down + ref - v, v
+            down, ref, r = down + ref - v, v, i
+        elif bounded and tt[i] - tt[r] > window_s:  # decision L172: not crossed within the window: follow z
+            r = int(np.searchsorted(tt, tt[i] - window_s))
+            ref = float(z[r])
     return up, down

@@ -1019,6 +1019,18 @@ def turning_step_mask(dyaw_rad: np.ndarray) -> np.ndarray:
     return np.abs(np.asarray(dyaw_rad, dtype=np.float64)) > np.radians(TURN_STEP_DEG)
 
 
+def longest_still_run(still: np.ndarray, i0: int, i1: int) -> tuple[int, int] | None:
+    """The longest run ``[start, end)`` (sample indices of ``still``) of consecutive still samples inside
+    ``[i0, i1]``, the first of equal ones; None when none is still (decisions W122, W134)."""
+    m = np.asarray(still[i0:i1 + 1], dtype=bool)
+    if not m.any():
+        return None
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], m.astype(np.int8), [0]])))
+    starts, ends = edges[::2], edges[1::2]  # runs [start, end)
+    j = int(np.argmax(ends - starts))
+    return i0 + int(starts[j]), i0 + int(ends[j])
+
+
 def still_displacement(acc_h: np.ndarray, still: np.ndarray, fs: float, i0: int, i1: int) -> float:
     """Horizontal displacement (m) of the unit between samples ``i0`` and ``i1`` when the unit stands still
     somewhere in between (decision W122); NaN when no sample of ``still`` lies in ``[i0, i1]``.
@@ -1028,14 +1040,11 @@ def still_displacement(acc_h: np.ndarray, still: np.ndarray, fs: float, i0: int,
     horizontal acceleration ``acc_h`` (n, 2; navigation frame, m/s^2) is integrated forward and backward to the
     velocity (trapezoid) and the velocity over ``[i0, i1]`` to the displacement, whose length is returned.
     """
-    m = np.asarray(still[i0:i1 + 1], dtype=bool)
-    if not m.any():
+    run = longest_still_run(still, i0, i1)
+    if run is None:
         return float("nan")
     a = np.asarray(acc_h[i0:i1 + 1], dtype=np.float64)
-    edges = np.flatnonzero(np.diff(np.concatenate([[0], m.astype(np.int8), [0]])))
-    starts, ends = edges[::2], edges[1::2]  # runs [start, end)
-    j = int(np.argmax(ends - starts))
-    k0 = (int(starts[j]) + int(ends[j]) - 1) // 2
+    k0 = (run[0] + run[1] - 1) // 2 - i0
     dv = 0.5 * (a[1:] + a[:-1]) / fs  # velocity change from sample k to k + 1
     cum = np.concatenate([np.zeros((1, a.shape[1])), np.cumsum(dv, axis=0)])
     v = cum - cum[k0]  # zero at k0, integrated both ways
@@ -1051,6 +1060,32 @@ def progression_factor(displacement_m: np.ndarray, length_m: np.ndarray) -> np.n
     ln = np.asarray(length_m, dtype=np.float64)
     ok = np.isfinite(d) & (ln > 0)
     return np.where(ok, np.minimum(1.0, np.where(ok, d, 0.0) / np.where(ok, ln, 1.0)), 1.0)
+
+
+#: W134: a step whose longest still run lasts at least this share of its local step period holds a stand. While
+#: walking the pelvis is slowest in double support, about 10 % of the gait cycle twice per cycle (Perry & Burnfield,
+#: Gait Analysis, 2010), a fifth of a step (a quarter when slow); half a step is more than twice that. Not fitted.
+STANDING_SHARE = 0.5
+
+
+def standing_step_mask(still_run_s: np.ndarray, duration_s: np.ndarray, use: np.ndarray,
+                       closes: np.ndarray) -> np.ndarray:
+    """Rows whose step holds a stand, not a slow phase of walking (decision W134): the step's longest still run
+    (``still_run_s``, s; NaN without a still sample) lasts at least :data:`STANDING_SHARE` of its local step period
+    (W18's :func:`local_medians` of ``duration_s``), and the step is neither the first nor the last row of
+    ``use`` in its walking sequence (a walk's first / last step starts from / ends in quiet standing, which the
+    still window runs into while the pelvis still travels). Rows without a local period are never flagged.
+    ``use``, ``closes``: as :func:`local_medians`."""
+    run = np.asarray(still_run_s, dtype=np.float64)
+    use, closes = np.asarray(use, dtype=bool), np.asarray(closes, dtype=bool)
+    per = local_medians(duration_s, use, closes)
+    inner = np.zeros(run.size, dtype=bool)
+    seq = np.concatenate([[0], np.cumsum(closes)[:-1]]) if run.size else np.zeros(0, int)
+    for sid in np.unique(seq[use]):
+        rows = np.flatnonzero(use & (seq == sid))
+        inner[rows[1:-1]] = True
+    ok = inner & np.isfinite(per) & np.isfinite(run)
+    return ok & (np.where(ok, run, 0.0) >= STANDING_SHARE * np.where(ok, per, np.inf))
 
 
 def frequency_length(f_hz: np.ndarray, a: float, b: float) -> np.ndarray:

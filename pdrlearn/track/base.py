@@ -195,7 +195,9 @@ def get_pipeline(name: str) -> Pipeline:
       ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104, off:
       no contact around a sit-to-stand's trunk-flexion peak; ``"rhythm"``: W109, sparing left/right step pairs),
       ``pause_steps`` (decision W111, off: a step over 1.5 local periods keeps one period's length;
-      ``"progression"``: W122, a step with a standstill in it keeps at most the trunk's travel over it),
+      ``"progression"``: W122, a step with a standstill in it keeps at most the trunk's travel over it;
+      ``"standing"``, the offline default since W134: W122 only for a still run of half a local step period, not a
+      walk's first or last step),
       ``vault_veto`` (decision W119, off: no contact whose step vaults the pelvis under a quarter of its neighbours';
       ``"turns"``: W127, sparing a step that turns the pelvis by more than 15 deg),
       ``contact_shift`` (decision W131, on: every kept contact judged once more by W23's weight-shift test with the

@@ -203,22 +203,29 @@ def count_floors_by_climb(dz, storey_height_m: float = STOREY_HEIGHT_M, band: fl
 FLOOR_COUNT = "climb"
 
 
-def _floors(z, out: dict, suffix: str = "", dz=None) -> None:
-    """The floor keys (decisions L64, L127) in storeys of ``out["storey_height_m"]``: per climb from the strides'
-    ``dz`` when given (foot strides and FLOOR_COUNT "climb"), else from the altitude ``z``."""
+def _floors(z, out: dict, suffix: str = "", dz=None, bridge: int = CLIMB_BRIDGE_STRIDES) -> None:
+    """The floor keys (decisions L64, L127) in storeys of ``out["storey_height_m"]``: per climb from the steps'
+    ``dz`` when given (FLOOR_COUNT "climb"; ``bridge`` steps between two stair steps of a climb), else from the
+    altitude ``z``."""
     h = out.get("storey_height_m", STOREY_HEIGHT_M)
-    up, down, net = count_floors_by_climb(dz, h) if dz is not None else count_floors(z, h)
+    up, down, net = count_floors_by_climb(dz, h, bridge=bridge) if dz is not None else count_floors(z, h)
     out[f"floors_up{suffix}"], out[f"floors_down{suffix}"], out[f"storeys_changed{suffix}"] = up, down, net
 
 
-def _foot_dz(steps: pd.DataFrame):
-    """The strides' height changes a floor count per climb reads (decision L127): a foot track's ``dz_m``; None
-    for a lower-back track (its z is the barometer's, L64's count) or FLOOR_COUNT "altitude"."""
+#: decision L172: a lower-back step is half a stride, so a climb bridges twice L127's strides in steps
+STEPS_PER_STRIDE = {"foot": 1, "waist": 2}
+
+
+def _climb_dz(steps: pd.DataFrame):
+    """The steps' height changes and the bridge (in steps) a floor count per climb reads (decisions L127, L172):
+    a foot track's strides' ``dz_m`` and a lower-back track's steps' (their barometric change, W89), so a slow
+    drift of the barometer joins no climb; None for steps of mixed units or FLOOR_COUNT "altitude"."""
     if FLOOR_COUNT != "climb" or not len(steps) or "dz_m" not in steps:
-        return None
-    if "unit" in steps and not bool((steps["unit"].astype(str) == "foot").all()):
-        return None
-    return steps["dz_m"].to_numpy(float)
+        return None, CLIMB_BRIDGE_STRIDES
+    units = set(steps["unit"].astype(str)) if "unit" in steps else {"foot"}
+    if len(units) != 1 or next(iter(units)) not in STEPS_PER_STRIDE:
+        return None, CLIMB_BRIDGE_STRIDES
+    return steps["dz_m"].to_numpy(float), CLIMB_BRIDGE_STRIDES * STEPS_PER_STRIDE[next(iter(units))]
 
 
 def floors_phrase(summary: dict) -> str:
@@ -302,20 +309,28 @@ def _basic(result: TrackResult, out: dict) -> None:
     out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
-    _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out, dz=_foot_dz(result.steps))
+    dz, bridge = _climb_dz(result.steps)
+    _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out, dz=dz, bridge=bridge)
     _ascent(result, out)
 
 
 def _ascent(result: TrackResult, out: dict) -> None:
     """Decision L146: ``ascent_m`` / ``descent_m``, the cumulative climb and descent of the track's z (a hill
-    walked up and down has both, its ``altitude_change_m`` ~0); a lower-back track's barometric z within the
-    hysteresis band ``ASCENT_BAND_BARO_M``, a foot track's strides as they are."""
-    from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, ascent_descent
+    walked up and down has both, its ``altitude_change_m`` ~0); a foot track's strides as they are, a barometric z
+    (a lower-back track, or a foot track with ``altitude="fused"``, L154) within the hysteresis band
+    ``ASCENT_BAND_BARO_M`` crossed within ``CLIMB_WINDOW_S`` (decision L172: the weather's slow drift is dropped),
+    and ``altitude_drift_m``, the barometric change so dropped (altitude_change_m minus ascent plus descent)."""
+    from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, CLIMB_WINDOW_S, ascent_descent
 
     tr, steps = result.trajectory, result.steps
     z = tr["z"].to_numpy(float) if len(tr) and "z" in tr else np.zeros(0)
     foot = bool(len(steps)) and "unit" in steps and bool((steps["unit"].astype(str) == "foot").all())
-    out["ascent_m"], out["descent_m"] = ascent_descent(z, 0.0 if foot or not len(steps) else ASCENT_BAND_BARO_M)
+    barometric = bool(len(steps)) and (not foot or (result.info or {}).get("altitude_source") == "fused")
+    if not barometric or "t" not in tr:
+        out["ascent_m"], out["descent_m"] = ascent_descent(z, 0.0 if foot or not len(steps) else ASCENT_BAND_BARO_M)
+        return
+    out["ascent_m"], out["descent_m"] = ascent_descent(z, ASCENT_BAND_BARO_M, tr["t"].to_numpy(float), CLIMB_WINDOW_S)
+    out["altitude_drift_m"] = float(out.get("altitude_change_m", 0.0) - out["ascent_m"] + out["descent_m"])
 
 
 def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[float | None, str]:
@@ -579,8 +594,14 @@ def _barometer(result: TrackResult, session: Session, out: dict) -> None:
             if not any("decision B188" in w for w in (result.info or {}).get("warnings", [])):
                 out["barometer_implausible"] = lines[0]
             return
+        from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, CLIMB_WINDOW_S, ascent_descent
+
         span = [float(steps["start_s"].min()), float(steps["end_s"].max())]
         out["barometer_altitude_change_m"] = float(relative_altitude(b.t, b.values[:, 0], span)[1])
+        at = np.unique(np.concatenate([span[:1], steps["end_s"].to_numpy(float)]))  # the strides' ends, in order
+        up, down = ascent_descent(relative_altitude(b.t, b.values[:, 0], at), ASCENT_BAND_BARO_M, at, CLIMB_WINDOW_S)
+        out["barometer_climb_change_m"] = float(up - down)  # decision L172: without the weather's slow drift
+        out["barometer_drift_m"] = out["barometer_altitude_change_m"] - out["barometer_climb_change_m"]
         out["barometer_disagree_limit_m"] = BAROMETER_DISAGREE_M + BAROMETER_DRIFT_M_PER_H * (span[1] - span[0]) / 3600
 
 
@@ -597,8 +618,15 @@ def barometer_warning(summary: dict) -> str | None:
     """Decision L145: one line when a foot track's ``altitude_change_m`` and the session's waist barometer
     (``barometer_altitude_change_m``, recorded; read by the foot pipeline only with ``altitude="fused"``, L154)
     differ by more than ``barometer_disagree_limit_m`` (:data:`BAROMETER_DISAGREE_M` + the weather's drift over the
-    track), with the height L39 set to 0 (``info.altitude_check.level_zeroed_m``) when known; None otherwise."""
-    baro, foot = summary.get("barometer_altitude_change_m"), summary.get("altitude_change_m")
+    track), with the height L39 set to 0 (``info.altitude_check.level_zeroed_m``) when known; None otherwise.
+    Decision L172: the barometer's change compared is its climbs' (``barometer_climb_change_m``, changes of 0.5 m
+    within a minute), so the weather's slow drift does not blame the foot; a drift is named in the line; a fused
+    track's own altitude is compared by its climbs too (``altitude_change_m`` - ``altitude_drift_m``)."""
+    raw = summary.get("barometer_altitude_change_m")
+    baro = summary.get("barometer_climb_change_m", raw)
+    foot = summary.get("altitude_change_m")
+    if foot is not None and summary.get("altitude_drift_m") is not None:  # fused (L154): its climbs too, L172
+        foot = float(foot) - float(summary["altitude_drift_m"])
     limit = summary.get("barometer_disagree_limit_m", BAROMETER_DISAGREE_M)
     if baro is None or foot is None or not abs(float(foot) - float(baro)) > float(limit):
         return None
@@ -607,13 +635,35 @@ def barometer_warning(summary: dict) -> str | None:
     why = ("" if zeroed is None else
            f"; L39 set {check.get('level_zeroed_strides', 0)} strides under 0.10 m of height change to level, "
            f"{float(zeroed):+.2f} m in all (a slope under ~7 % reads level on the foot)")
+    drift = float(raw) - float(baro)
+    drifted = (f" ({float(raw):+.2f} m recorded, of which {drift:+.2f} m slow drift, L172: the weather, which "
+               "`--altitude fused` adds to altitude_change_m)" if abs(drift) > BAROMETER_DISAGREE_M else "")
     fused = not summary.get("barometer_unused", True)  # decision L154: the barometer was fused into the altitude
-    return (f"foot altitude change {float(foot):+.2f} m disagrees with the waist barometer's {float(baro):+.2f} m "
-            f"(wBarometer.csv, {'fused with the strides by L154' if fused else 'not read by foot tracks'}) by "
+    return (f"foot altitude change {float(foot):+.2f} m disagrees with the waist barometer's {float(baro):+.2f} m"
+            f"{drifted} (wBarometer.csv, {'fused with the strides by L154' if fused else 'not read by foot tracks'})"
+            " by "
             f"{abs(float(foot) - float(baro)):.2f} m (more than {float(limit):.2f} m){why}; "
             "the foot's height is integrated stride by stride and misses slopes and hills (L144): for altitude on "
             "slopes, hills and ramps " + ("" if fused else "fuse the barometer, `--altitude fused` (L154), or ")
             + "track the lower back, `--pipeline waist-pendulum`")
+
+
+#: decision L172: a barometric track's altitude change that its climbs do not explain by more than this (m; twice
+#: L146's band, so more than the band's uncounted remainder at the end) is named as the weather's slow drift
+ALTITUDE_DRIFT_WARN_M = 1.0
+
+
+def drift_warning(summary: dict) -> str | None:
+    """Decision L172: one line when a barometric altitude (a lower-back track, or ``altitude="fused"``) changed by
+    more than :data:`ALTITUDE_DRIFT_WARN_M` slowly (``altitude_drift_m``): ``altitude_change_m`` includes it, the
+    floors and ``ascent_m`` / ``descent_m`` do not."""
+    drift = summary.get("altitude_drift_m")
+    if drift is None or not abs(float(drift)) > ALTITUDE_DRIFT_WARN_M:
+        return None
+    return (f"the barometric altitude drifted {float(drift):+.2f} m slowly (less than "
+            f"0.5 m per minute: the weather's pressure trend, L172): altitude_change_m "
+            f"{float(summary.get('altitude_change_m', 0.0)):+.2f} m includes it; the floors and ascent_m / descent_m "
+            "count only climbs")
 
 
 def _leg_length(result: TrackResult, session: Session, out: dict) -> None:
@@ -632,12 +682,15 @@ METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _
 def summary_warnings(summary: dict) -> list[str]:
     """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range,
     decision L113's withheld stride-time CV, decision L116's whole-sample rounding of the CV, decision L145's
-    foot altitude against the unused barometer and decision B188's implausible barometer."""
+    foot altitude against the unused barometer, decision B188's implausible barometer and decision L175's position
+    uncertainty against the distance walked."""
     from pdrlearn.track.clinical import resolution_warning, stride_cv_warning
     from pdrlearn.track.gait import gait_range_warning
+    from pdrlearn.track.position_sigma import position_sigma_warning
 
     return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary),
-                        barometer_warning(summary), summary.get("barometer_implausible")) if w]
+                        barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
+                        position_sigma_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,

@@ -28,7 +28,8 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     ``initial_heading`` says otherwise; :func:`heading_is_absolute`), the ground truth is also rotated to set
     off in that track's direction (:func:`initial_bearing`); the legend says so, and the axes are ``x`` (heading
     0 at the start) / ``y`` instead of east / north (L55). A track with ``pos_sigma_m`` gets a shaded circle of
-    twice its last value about its end (decision L128).
+    twice its last value about its end (decision L128); the view covers the paths, and the circle only when it is
+    no wider than them (otherwise it is clipped and its legend says so, decision L175).
     """
     _, fig = path_figure(paths, session=session, title=title)
     save_atomic(fig, Path(out), dpi=dpi)
@@ -77,12 +78,19 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
         fig, ax = new_figure(figsize=(7, 6), layout="constrained")
     for label, _, x, y, _, style in lines:
         ax.plot(x, y, label=label, **style)
+    box = path_box([(x, y) for _, _, x, y, _, _ in lines])
     for r in paths.values():  # decision L128: the 2-sigma circle of the position uncertainty at the track's end
         tr = r.trajectory
         if "pos_sigma_m" in tr and len(tr) and float(tr["pos_sigma_m"].iloc[-1]) > 0:
             radius = 2.0 * float(tr["pos_sigma_m"].iloc[-1])
-            ax.add_patch(Circle((float(tr["x"].iloc[-1]), float(tr["y"].iloc[-1])), radius, alpha=0.15,
-                                    label=f"end position, 2-sigma radius {radius:.1f} m (model, not a guarantee)"))
+            end = (float(tr["x"].iloc[-1]), float(tr["y"].iloc[-1]))
+            # decision L175: a circle wider than the paths is drawn without widening the view (add_artist does
+            # not update the data limits): clipped by the axes, so a long track is not a dot inside it
+            shown = box is None or radius <= max(box[1] - box[0], box[3] - box[2])
+            circle = Circle(end, radius, alpha=0.15, label=(
+                f"end position, 2-sigma radius {radius:.1f} m (model, not a guarantee"
+                + (")" if shown else "; wider than the paths: clipped, L175)")))
+            ax.add_patch(circle) if shown else ax.add_artist(circle)
     ax.set_aspect("equal", adjustable="datalim")
     if absolute:
         ax.set_xlabel("east [m]")
@@ -101,6 +109,18 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
         az.grid(alpha=0.3)
         az.set_title("height over time", fontsize=9)
     return plt, fig
+
+
+def path_box(paths: list[tuple[np.ndarray, np.ndarray]]) -> tuple[float, float, float, float] | None:
+    """``(xmin, xmax, ymin, ymax)`` of the finite points of ``paths`` (``(x, y)`` arrays); None when there are
+    none. Decision L175: path.png's plan view covers the paths, so that a 2-sigma circle far wider than a long
+    track does not shrink the track to a dot."""
+    x = np.concatenate([np.asarray(p[0], float) for p in paths]) if paths else np.zeros(0)
+    y = np.concatenate([np.asarray(p[1], float) for p in paths]) if paths else np.zeros(0)
+    ok = np.isfinite(x) & np.isfinite(y)
+    if not ok.any():
+        return None
+    return float(x[ok].min()), float(x[ok].max()), float(y[ok].min()), float(y[ok].max())
 
 
 def initial_bearing(x: np.ndarray, y: np.ndarray, *, min_dist_m: float = 2.0) -> float | None:

@@ -104,3 +104,38 @@ def drop_position_sigma(result) -> None:
     """An aided track (GNSS, fixes) is outside the model: no ``pos_sigma_m``."""
     result.trajectory = result.trajectory.drop(columns=["pos_sigma_m"], errors="ignore")
     result.info.pop("position_sigma", None)
+
+
+#: decision L175: a track warns when its final 2-sigma radius exceeds this share of the distance walked. Fixed a
+#: priori, not fitted: foot-mounted PDR is judged in % of the distance travelled, and a working foot track ends
+#: within a few % of it (this project's offline plasys: 124 m after 5 km, 2.5 %, trial "longhaul"); a 2-sigma
+#: circle a quarter of the walk wide says the end could be anywhere across a quarter of the route - ten times
+#: a working track's error, a position no longer fit to be read off a map
+SIGMA_SHARE_WARN = 0.25
+#: decision L175: regimes whose radius is known to be too large (L150/L151: uncalibrated, 100 % of the strides within
+#: 2 sigma), on which the warning would be false
+SIGMA_TOO_LARGE = frozenset({"plasys-foot-streaming"})
+#: decision L175 (amended by the lead, twenty-fifth session): the line speaks of heading drift over a long walk; on
+#: a short walk the radius is the models' constant point term (3.1 m for the lower back, L128), not drift, and a
+#: 10 m walk test (a clinician's trial) would be told its position is unusable. 100 m: about 80 s of walking, ten
+#: times a 10 m walk test and three times the distance below which that point term alone exceeds the share
+SIGMA_WARN_MIN_DISTANCE_M = 100.0
+
+
+def position_sigma_warning(summary: dict) -> str | None:
+    """Decision L175: one line when twice ``final_position_sigma_m`` (path.png's circle) exceeds
+    :data:`SIGMA_SHARE_WARN` of ``distance_m``; None otherwise (no sigma, no distance, a walk under
+    :data:`SIGMA_WARN_MIN_DISTANCE_M`, within, or a model of :data:`SIGMA_TOO_LARGE`)."""
+    sigma, dist = summary.get("final_position_sigma_m"), summary.get("distance_m")
+    if sigma is None or dist is None or not (np.isfinite(sigma) and np.isfinite(dist) and dist > 0):
+        return None
+    if float(dist) < SIGMA_WARN_MIN_DISTANCE_M or not 2.0 * float(sigma) > SIGMA_SHARE_WARN * float(dist):
+        return None
+    model = (summary.get("info") or {}).get("position_sigma", {}).get("model", "?")
+    if model in SIGMA_TOO_LARGE:
+        return None
+    return (f"the end position's 2-sigma radius {2 * float(sigma):.0f} m is {200 * float(sigma) / float(dist):.0f} % "
+            f"of the {float(dist):.0f} m walked (model {model}; over {100 * SIGMA_SHARE_WARN:.0f} % warns, decision "
+            "L175): the position is not usable (a gyroscope-only heading drifts over a long walk; distance, steps "
+            "and gait are not affected); for a position, track offline with a foot and a waist unit (the waist "
+            "compass, `plasys-fused`) or give position fixes (`track --fixes` / `--gnss`)")

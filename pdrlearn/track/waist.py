@@ -309,8 +309,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
-                   "sit_veto": False, "pause_steps": False, "vault_veto": False, "contact_shift": True,
-                   "gait_check": False}
+                   "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
+                   "gait_check": False}  # pause_steps: W134
 #: decision B199: the options that are true or false (``sit_veto``, ``pause_steps``, ``vault_veto`` take more values,
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
@@ -398,7 +398,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         longer than 1.5 local periods spans a pause (the stop before a turn on the spot, the restart after it) and
         keeps one period's length (decision W111); ``"progression"``: a step during which the unit stands still
         (``standstill_mask``) keeps at most the trunk's horizontal travel over it, integrated from zero velocity in
-        the standstill (decision W122); default False
+        the standstill (decision W122); ``"standing"`` (default, decision W134): W122's travel only for a step whose
+        longest still run lasts half its local step period and that is neither the first nor the last of its walk;
+        False: off
     vault_veto : pendulum, offline detector (the realtime one ignores it: it looks three steps ahead): drop a contact
         whose step vaults the pelvis by less than a quarter of its neighbours' (a weight shift while standing, no
         step; decision W119, :func:`pdrlearn.waist.posture.vault_veto`); ``"turns"``: the same, sparing a contact whose
@@ -453,7 +455,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["vault_veto"] not in VAULT_VETO_VALUES:
         raise DataError(f"vault_veto {o['vault_veto']!r} is not one of false, true, \"turns\" (decisions W119, "
                         "W127); fix the option or the PARAMS.json \"options\"")
-    check_pause_steps(o["pause_steps"])  # W111, W122
+    check_pause_steps(o["pause_steps"])  # W111, W122, W134
     if smoothing != "none" and realtime:
         raise DataError(f"length_smoothing '{smoothing}' looks up to 1 s ahead and the realtime detector does not "
                         "(decision W56); drop realtime or set length_smoothing to none")

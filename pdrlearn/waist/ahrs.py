@@ -49,6 +49,8 @@ class WaistIMU:
         (antero-posterior forward +, medio-lateral left +) (m/s^2)
     up_body : (n, 3) the AHRS's up direction (unit vector) in the body frame FLU, i.e. the attitude's tilt
         (decision W102's trunk-tilt gate); None when the data came without it
+    bridged : (n,) bool, samples made up inside a gap of dropped samples (W34's line or B11's rest), which are no
+        evidence that the unit stood still (decision W136); None when not known (all recorded)
     """
 
     t: np.ndarray
@@ -61,6 +63,7 @@ class WaistIMU:
     acc_ap: np.ndarray
     acc_ml: np.ndarray
     up_body: np.ndarray | None = None
+    bridged: np.ndarray | None = None
 
     @property
     def w_z(self) -> np.ndarray:
@@ -156,7 +159,22 @@ def waist_imu(session: Session, *, gain: float = MADGWICK_GAIN, init_s: float = 
     init_s : the initial attitude is the gravity direction averaged over the first ``init_s`` seconds
     """
     t, acc, gyr = body_data(session)
-    return imu_from_body(t, acc, gyr, gain=gain, init_s=init_s)
+    imu = imu_from_body(t, acc, gyr, gain=gain, init_s=init_s)
+    imu.bridged = bridged_samples(session, t)
+    return imu
+
+
+def bridged_samples(session: Session, t: np.ndarray) -> np.ndarray:
+    """Samples of the clock ``t`` (as :func:`body_data` returns it) strictly inside an interval of dropped
+    accelerometer or gyroscope samples (:meth:`Stream.gaps`; the recorded samples at its edges excluded): what
+    :func:`body_data` made up there (decision W34's line, B11's rest) is no measurement (decision W136)."""
+    out = np.zeros(len(t), dtype=bool)
+    for name in (ACC, GYR):
+        s = session[name]
+        half = 0.5 / s.rate_hz
+        for g in s.gaps():
+            out |= (t > g.start_s + half) & (t < g.start_s + g.duration_s - half)
+    return out
 
 
 def imu_from_body(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, *, fs: float | None = None,

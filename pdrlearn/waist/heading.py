@@ -51,17 +51,25 @@ def harmonic_directions(imu: WaistIMU, events: np.ndarray, *, method: str = "ahe
     # samples from this slice as from the recording (sorted clock), without a pass over all of it (W43)
     i0, i1 = np.searchsorted(imu.t, ev.min(), "left"), np.searchsorted(imu.t, ev.max(), "right")
     t, a_h, a_v = imu.t[i0:i1], imu.acc_h[i0:i1], imu.acc_v[i0:i1]
+    # decision E100: each kernel gets only its window's samples [a, b] (the same samples its mask selects from
+    # the sequence, sorted clock), so a long unbroken walk costs O(steps log n), not O(steps x n)
+    lo, hi = np.searchsorted(t, ev, "left"), np.searchsorted(t, ev, "right")
+
+    def window(a: int, b: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return t[lo[a]:hi[b]], a_h[lo[a]:hi[b]], a_v[lo[a]:hi[b]]
+
     for k in range(n):
         if method == "ellipse":
-            raw[k] = K.ellipse_direction(t, a_h, a_v, ev[k], ev[k + 1])
+            raw[k] = K.ellipse_direction(*window(k, k + 1), ev[k], ev[k + 1])
             continue
         if k == 0 and n < 2:
             continue
-        t0, t1, t2 = (ev[0], ev[1], ev[2]) if k == 0 else (ev[k - 1], ev[k], ev[k + 1])
+        a, b = (0, 2) if k == 0 else (k - 1, k + 1)
+        t0, t1, t2 = ev[a], ev[a + 1], ev[b]
         if method == "ahe":
-            raw[k] = K.tip_to_tail_direction(t, a_h, a_v, t0, t1, t2)
+            raw[k] = K.tip_to_tail_direction(*window(a, b), t0, t1, t2)
         else:
-            raw[k] = K.stride_ellipse_direction(t, a_h, a_v, t0, t2)
+            raw[k] = K.stride_ellipse_direction(*window(a, b), t0, t2)
     return raw
 
 

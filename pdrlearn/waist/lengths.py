@@ -87,14 +87,16 @@ def check_lengths(lengths, steps: pd.DataFrame, name: str) -> np.ndarray:
     return v
 
 
-#: the values of the pendulum's ``pause_steps``: off, W111's one period, W122's trunk travel over a standstill
-PAUSE_STEPS_VALUES = (False, True, "progression")
+#: the values of the pendulum's ``pause_steps``: off, W111's one period, W122's trunk travel over a standstill,
+#: W134's the same only over a stand of half a local period inside a walk
+PAUSE_STEPS_VALUES = (False, True, "progression", "standing")
 
 
 def check_pause_steps(value):
     """``value`` if it is one of :data:`PAUSE_STEPS_VALUES`, else one line naming them (decisions W111, W122)."""
     if value not in PAUSE_STEPS_VALUES:
-        raise DataError(f"pause_steps {value!r} is not one of false, true, \"progression\" (decisions W111, W122); "
+        raise DataError(f"pause_steps {value!r} is not one of false, true, \"progression\", \"standing\" (decisions "
+                        "W111, W122, W134); "
                         "fix the option, the PARAMS.json \"options\" or the model's setting")
     return value
 
@@ -112,7 +114,7 @@ class PendulumLength(StepLengthModel):
     """``K 2 sqrt(2 L h - h^2) + F`` (seed 003 eq. 1; ``h`` the vertical excursion IC to next IC, decision W10),
     K, F and L from the profile; the waist-pendulum pipeline's model. Settings (the pipeline's options of the same
     name): ``merge_fragments`` (decision W27), ``length_smoothing`` (W56), ``pause_steps`` (W111; ``"progression"``:
-    W122)."""
+    W122; ``"standing"``: W134)."""
 
     name = "pendulum"
 
@@ -159,15 +161,16 @@ class PendulumLength(StepLengthModel):
         sl = K.pendulum_length(h, p.leg_m, k=p.k, f=p.f_m) if mode == "none" else p.k * g + p.f_m
         lengths = np.where(use, np.maximum(sl, 0.0), 0.0)
         out = steps.assign(h_m=h, g_m=g, merged=merged)
-        if self.pause_steps == "progression":  # W122: the trunk's own travel over a step with a standstill in it
-            factor = K.progression_factor(_still_displacements(signals, idx, use, win), lengths)
+        if self.pause_steps in ("progression", "standing"):  # W122: the trunk's travel over a step with a standstill
+            disp, run_s = _still_displacements(signals, idx, use, win)
+            if self.pause_steps == "standing":  # W134: only a stand of half a local period, not at a walk's edges
+                stand = K.standing_step_mask(run_s, _spans(start, end, win), use, ~has_next)
+                disp = np.where(stand, disp, np.nan)
+            factor = K.progression_factor(disp, lengths)
             lengths = lengths * factor
             out = out.assign(pause_factor=factor)
         elif self.pause_steps:  # W111: the owner of a W27 window spans the whole window
-            span = end - start
-            for i, (a, b) in win.items():
-                span[i] = end[b] - start[a]
-            factor = K.pause_step_factor(span, use, ~has_next)
+            factor = K.pause_step_factor(_spans(start, end, win), use, ~has_next)
             lengths = lengths * factor
             out = out.assign(pause_factor=factor)
         out = out.assign(length_m=lengths)
@@ -175,20 +178,35 @@ class PendulumLength(StepLengthModel):
         return out
 
 
+def _spans(start: np.ndarray, end: np.ndarray, win: dict[int, tuple[int, int]]) -> np.ndarray:
+    """Each row's step duration (s), IC to next IC; a W27 owner spans its whole window (W111, W134)."""
+    span = end - start
+    for i, (a, b) in win.items():
+        span[i] = end[b] - start[a]
+    return span
+
+
 def _still_displacements(signals, idx: np.ndarray, use: np.ndarray,
-                         win: dict[int, tuple[int, int]]) -> np.ndarray:
+                         win: dict[int, tuple[int, int]]) -> tuple[np.ndarray, np.ndarray]:
     """Decision W122: per step row (``use``; a W27 owner over its whole window) the unit's horizontal travel from
     its contact to the next when it stands still in between (:func:`~pdrlearn.signal.conditioning.standstill_mask`
-    with its defaults, :func:`~pdrlearn.waist._kernels.still_displacement`); NaN elsewhere."""
+    with its defaults, :func:`~pdrlearn.waist._kernels.still_displacement`), and (W134) the duration (s) of the
+    step's longest still run (:func:`~pdrlearn.waist._kernels.longest_still_run`); NaN elsewhere."""
     from pdrlearn.signal.conditioning import standstill_mask
 
     still = standstill_mask(signals.acc_nav, signals.gyr_nav, signals.fs)
-    out = np.full(len(idx), np.nan)
+    bridged = getattr(signals, "bridged", None)
+    if bridged is not None:  # W136: samples made up inside a gap of dropped samples (W34) are no standstill
+        still = still & ~bridged
+    out, run_s = np.full(len(idx), np.nan), np.full(len(idx), np.nan)
     for i in np.flatnonzero(use):
         a, b = win.get(i, (i, i))
         stop = int(idx[min(b + 1, len(idx) - 1)])
         out[i] = K.still_displacement(signals.acc_h, still, signals.fs, int(idx[a]), stop)
-    return out
+        run = K.longest_still_run(still, int(idx[a]), stop)
+        if run is not None:
+            run_s[i] = (run[1] - run[0]) / signals.fs
+    return out, run_s
 
 
 def walking_sequences(has_next: np.ndarray) -> list[np.ndarray]:
