@@ -43,7 +43,8 @@ def test_the_warning_fires_over_a_quarter_of_the_distance_only():
 
 def test_track_warns_in_its_summary_when_the_radius_outgrows_the_walk(tmp_path, monkeypatch):
     """The same simulated 120 m walk (L175 needs 100 m): with the shipped parameters no L175 line; with a heading
-    random walk a hundred times the fused one's the 2-sigma radius outgrows the walk and summary.json's warnings carry the line."""
+    random walk a hundred times the fused one's the 2-sigma radius outgrows the walk and summary.json's warnings
+    carry the line."""
     from pdrlearn.cli import main
     from pdrlearn.io import write_session
     from pdrlearn.sim import UserProfile, simulate_path
