@@ -75,7 +75,7 @@ def test_waist_summary_from_the_step_times():
     g = gait_summary(t)
     assert all(g[k] == v for k, v in waist_gait_summary(t).items())  # the waist rule, for a waist table
     assert g["median_step_time_s"] == pytest.approx(0.5)
-    assert g["median_cadence_spm"] == pytest.approx(120.0 / 1.05)  # L176: two steps per median stride
+    assert g["median_cadence_spm"] == pytest.approx(120.0)
     assert g["median_speed_mps"] == pytest.approx(1.2)
     assert g["n_stride_times"] == 3 + 1  # contacts k -> k + 2 inside each sequence (W47)
     assert g["median_stride_time_s"] == pytest.approx(1.05)
@@ -91,20 +91,21 @@ def test_waist_summary_from_the_step_times():
     assert gm["n_stride_times"] == 3 and gm["gait_speed_mps"] == pytest.approx(g["gait_speed_mps"])
 
 
-def test_median_cadence_of_an_asymmetric_gait_is_the_strides_one_for_foot_and_waist():
-    # L176: a hemiparetic walk's steps alternate 0.4 / 0.8 s (bimodal): the median of 60 / step time lands on
-    # one mode (150 or 75 steps/min) or between them; the strides are all 1.2 s, 100 steps/min, as L164's bouts say
+def test_median_cadence_of_an_asymmetric_gait_from_the_strides_option():
+    # L176 (an option, not adopted): a hemiparetic walk's steps alternate 0.4 / 0.8 s (bimodal): 60 / step time
+    # has its median on one mode (150 or 75 steps/min) or between them; the strides are all 1.2 s, 100 steps/min, as L164's bouts say
     from pdrlearn.track.bouts import cadence_spm
 
     st = np.cumsum([0.0, 0.4, 0.8, 0.4, 0.8, 0.4, 0.8, 0.4, 0.8, 0.4, 0.8])
     waist = pd.DataFrame({"start_s": st, "end_s": np.append(st[1:], st[-1]), "length_m": 0.5, "unit": "waist",
                           "has_next": [True] * (len(st) - 1) + [False]})
-    g = gait_summary(waist)
+    g = gait_summary(waist, cadence_from="strides")
     true = cadence_spm(len(st) - 1, st[-1] - st[0])
     assert true == pytest.approx(100.0) and g["median_cadence_spm"] == pytest.approx(true)
+    assert gait_summary(waist)["median_cadence_spm"] == pytest.approx(112.5)  # the default: W70's step-time median
     # the foot's summary: the same function of its median stride time (strides of 1.1 and 1.3 s, median 1.2 s)
     t = _foot_table().assign(stride_time_s=[np.nan, 1.1, 1.3, 1.1, 1.3, 1.1, 1.3, np.nan])
-    assert gait_summary(t)["median_cadence_spm"] == pytest.approx(100.0)
+    assert gait_summary(t, cadence_from="strides")["median_cadence_spm"] == pytest.approx(100.0)
 
 
 @pytest.mark.skipif(not (REAL / "mobgap_HA001_Test5_Trial1").exists(), reason="bundled recording missing")

@@ -226,10 +226,11 @@ def waist_step_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.nd
     return np.where(ok, dt, np.nan), has_next, touched
 
 
-def waist_gait_summary(steps: pd.DataFrame) -> dict:
+def waist_gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict:
     """Decision W70: the gait summary of a waist steps table (one row per initial contact, ``start_s`` this
     contact, ``end_s`` the next, ``has_next``): step time ``end_s - start_s`` of a contact with a next one (at
-    most half of :data:`MAX_STRIDE_S`), ``median_cadence_spm`` = :func:`median_cadence` of the stride times (L176),
+    most half of :data:`MAX_STRIDE_S`), ``median_cadence_spm`` = median of 60 / step time (``cadence_from``
+    ``"strides"``: :func:`median_cadence` of the stride times, decision L176's candidate, not adopted),
     ``median_speed_mps`` = median of ``length_m`` / step time, ``median_stride_time_s`` from contact k to
     k + 2 inside a walking sequence (the same foot's next contact, W47), the straight steps those with
     ``turning`` 0 (the pipeline's turn flag; every step when the table has none). A W27 fragment (``merged``)
@@ -247,7 +248,8 @@ def waist_gait_summary(steps: pd.DataFrame) -> dict:
     stride = st[k2] - st[k0] if len(k0) else np.zeros(0)
     stride = stride[(stride > 0) & (stride <= MAX_STRIDE_S + 1e-9)]
     out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": _median(stride),
-                 "median_cadence_spm": median_cadence(_median(stride), _median(cadence)),
+                 "median_cadence_spm": (median_cadence(_median(stride), _median(cadence)) if cadence_from == "strides"
+                                        else _median(cadence)),  # L176's candidate: an option, not adopted
                  "median_speed_mps": _median(speed),
                  "median_step_time_s": _median(step)}
     straight = (steps["turning"].to_numpy(float) == 0) if "turning" in steps else np.ones(len(st), bool)
@@ -270,7 +272,7 @@ def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     return out
 
 
-def gait_summary(steps: pd.DataFrame) -> dict:
+def gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict:
     """Medians over the strides that have them: ``median_stride_time_s``, ``median_cadence_spm``,
     ``median_speed_mps`` and ``n_stride_times`` (how many strides have a stride time); decision L79 adds
     ``walking_time_s``, ``gait_speed_mps`` (distance / walking time: the clinical walking speed),
@@ -280,21 +282,25 @@ def gait_summary(steps: pd.DataFrame) -> dict:
     table (every row ``unit`` waist, with ``has_next``) gets :func:`waist_gait_summary` (W70); a foot table without
     gait columns (``--streaming``, ``pdrlearn run`` before E51) :func:`streamed_gait_summary` (E48: walking time
     and gait speed only). Every table gets the same keys, None and 0 where it cannot give them, so every
-    summary has them (``run``'s summary carries every key of ``track``'s, B14)."""
+    summary has them (``run``'s summary carries every key of ``track``'s, B14). ``cadence_from="strides"``: decision
+    L176's candidate, ``median_cadence_spm`` = 120 / the median stride time for foot and waist alike (not adopted:
+    it moved symmetric waist walks' cadence by up to 2.35 steps/min, over its 1.0 rule)."""
     out: dict = {k: (0 if k.startswith("n_") else None) for k in SUMMARY_KEYS}
     if not len(steps):
         return out
     if "stride_time_s" not in steps:
         if "has_next" in steps and "unit" in steps and (steps["unit"] == "waist").all():
-            out.update(waist_gait_summary(steps))
+            out.update(waist_gait_summary(steps, cadence_from))
         elif "unit" in steps and (steps["unit"] == "foot").all() and {"start_s", "end_s", "length_m"} <= set(steps):
             out.update(streamed_gait_summary(steps))
         return out
     st = steps["stride_time_s"].to_numpy(float)
     out["n_stride_times"] = int(np.isfinite(st).sum())
-    for key, col in (("median_stride_time_s", "stride_time_s"), ("median_speed_mps", "speed_mps")):
+    for key, col in (("median_stride_time_s", "stride_time_s"), ("median_cadence_spm", "cadence_spm"),
+                     ("median_speed_mps", "speed_mps")):
         out[key] = _median(steps[col].to_numpy(float))
-    out["median_cadence_spm"] = median_cadence(out["median_stride_time_s"], None)  # decision L176
+    if cadence_from == "strides":  # decision L176's candidate (an option: it failed its rule)
+        out["median_cadence_spm"] = median_cadence(out["median_stride_time_s"], None)
     valid = stride_rows(steps)  # decisions L67, L97
     turn = np.abs(steps["turn_angle_rad"].to_numpy(float))
     _speed_fields(out, steps, steps["length_m"].to_numpy(float), valid, steps["speed_mps"].to_numpy(float),
