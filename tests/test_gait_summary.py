@@ -93,7 +93,7 @@ def test_waist_summary_from_the_step_times():
 
 def test_median_cadence_of_an_asymmetric_gait_from_the_strides_option():
     # L176 (an option, not adopted): a hemiparetic walk's steps alternate 0.4 / 0.8 s (bimodal): 60 / step time
-    # has its median on one mode (150 or 75 steps/min) or between them; the strides are all 1.2 s, 100 steps/min, as L164's bouts say
+    # has its median on one mode (150 or 75 steps/min) or between them; the strides are all 1.2 s
     from pdrlearn.track.bouts import cadence_spm
 
     st = np.cumsum([0.0, 0.4, 0.8, 0.4, 0.8, 0.4, 0.8, 0.4, 0.8, 0.4, 0.8])
