@@ -91,6 +91,23 @@ def test_waist_summary_from_the_step_times():
     assert gm["n_stride_times"] == 3 and gm["gait_speed_mps"] == pytest.approx(g["gait_speed_mps"])
 
 
+def test_median_cadence_of_an_asymmetric_gait_from_the_strides_option():
+    # L176 (an option, not adopted): a hemiparetic walk's steps alternate 0.4 / 0.8 s (bimodal): 60 / step time
+    # has its median on one mode (150 or 75 steps/min) or between them; the strides are all 1.2 s
+    from pdrlearn.track.bouts import cadence_spm
+
+    st = np.cumsum([0.0, 0.4, 0.8, 0.4, 0.8, 0.4, 0.8, 0.4, 0.8, 0.4, 0.8])
+    waist = pd.DataFrame({"start_s": st, "end_s": np.append(st[1:], st[-1]), "length_m": 0.5, "unit": "waist",
+                          "has_next": [True] * (len(st) - 1) + [False]})
+    g = gait_summary(waist, cadence_from="strides")
+    true = cadence_spm(len(st) - 1, st[-1] - st[0])
+    assert true == pytest.approx(100.0) and g["median_cadence_spm"] == pytest.approx(true)
+    assert gait_summary(waist)["median_cadence_spm"] == pytest.approx(112.5)  # the default: W70's step-time median
+    # the foot's summary: the same function of its median stride time (strides of 1.1 and 1.3 s, median 1.2 s)
+    t = _foot_table().assign(stride_time_s=[np.nan, 1.1, 1.3, 1.1, 1.3, 1.1, 1.3, np.nan])
+    assert gait_summary(t, cadence_from="strides")["median_cadence_spm"] == pytest.approx(100.0)
+
+
 @pytest.mark.skipif(not (REAL / "mobgap_HA001_Test5_Trial1").exists(), reason="bundled recording missing")
 def test_waist_track_has_cadence_speed_and_the_error_scope(tmp_path, capsys):
     """Trial findings 3 and 5 on the real lower-back recording: cadence and speed are there, and the

@@ -139,14 +139,19 @@ def test_the_veto_removes_the_contacts_of_a_simulated_sit_to_stand():
     assert inside(off) > 0 and off.info["n_vetoed_contacts"] == 0
     assert inside(on) == 0 and on.info["n_vetoed_contacts"] == inside(off)
     assert len(on.steps) == len(off.steps) - inside(off)
+    # W146: with the veto off, one line names those contacts and the option; none with it on
+    hint = [w for w in off.info["warnings"] if "W146" in w]
+    assert len(hint) == 1 and hint[0].startswith(f"{inside(off)} contact(s) lie at a trunk flexion over 25 deg")
+    assert '"sit_veto": "rhythm"' in hint[0] and not [w for w in on.info["warnings"] if "W146" in w]
 
 
 def test_the_veto_changes_no_step_of_an_upright_walk():
     s = simulate_path([Stand(3.0), Straight(14.0), Stand(3.0)], UserProfile.from_seed(541), speed="normal",
                       rate_hz=100, seed=541)
-    on = track_waist(s, pipeline="waist-pendulum", sit_veto=True)
-    pd.testing.assert_frame_equal(on.steps, track_waist(s, pipeline="waist-pendulum").steps)
+    on, off = track_waist(s, pipeline="waist-pendulum", sit_veto=True), track_waist(s, pipeline="waist-pendulum")
+    pd.testing.assert_frame_equal(on.steps, off.steps)
     assert on.info["n_vetoed_contacts"] == 0
+    assert not [w for w in off.info["warnings"] if "W146" in w]  # no flexion, no W146 line
 
 
 def test_alternating_pairs_are_consecutive_contacts_of_a_sequence_on_decided_opposite_sides():

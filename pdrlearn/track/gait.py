@@ -198,6 +198,18 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
     out["median_speed_straight_mps"] = _median(sp)
 
 
+def median_cadence(median_stride_s: float | None, fallback_spm: float | None) -> float | None:
+    """Decision L176: a summary's ``median_cadence_spm`` - L164's formula (:func:`pdrlearn.track.bouts.cadence_spm`)
+    on the two steps of the median stride, 120 / ``median_stride_s``: a stride holds one step of each foot, so its
+    time stays unimodal on an asymmetric gait where the step times are bimodal and their median falls between the
+    modes. ``fallback_spm`` (the waist's step-time median) without a stride time."""
+    from pdrlearn.track.bouts import cadence_spm
+
+    if median_stride_s is None or not np.isfinite(median_stride_s) or median_stride_s <= 0:
+        return fallback_spm
+    return float(cadence_spm(2, median_stride_s))
+
+
 def waist_step_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(step_s, has_next, touched)`` (B,) of a waist steps table (:func:`waist_gait_summary`'s rule): each
     contact's step time to the next one (NaN without a next contact, longer than half :data:`MAX_STRIDE_S`, or
@@ -214,10 +226,11 @@ def waist_step_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.nd
     return np.where(ok, dt, np.nan), has_next, touched
 
 
-def waist_gait_summary(steps: pd.DataFrame) -> dict:
+def waist_gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict:
     """Decision W70: the gait summary of a waist steps table (one row per initial contact, ``start_s`` this
     contact, ``end_s`` the next, ``has_next``): step time ``end_s - start_s`` of a contact with a next one (at
-    most half of :data:`MAX_STRIDE_S`), ``median_cadence_spm`` = median of 60 / step time,
+    most half of :data:`MAX_STRIDE_S`), ``median_cadence_spm`` = median of 60 / step time (``cadence_from``
+    ``"strides"``: :func:`median_cadence` of the stride times, decision L176's candidate, not adopted),
     ``median_speed_mps`` = median of ``length_m`` / step time, ``median_stride_time_s`` from contact k to
     k + 2 inside a walking sequence (the same foot's next contact, W47), the straight steps those with
     ``turning`` 0 (the pipeline's turn flag; every step when the table has none). A W27 fragment (``merged``)
@@ -235,7 +248,9 @@ def waist_gait_summary(steps: pd.DataFrame) -> dict:
     stride = st[k2] - st[k0] if len(k0) else np.zeros(0)
     stride = stride[(stride > 0) & (stride <= MAX_STRIDE_S + 1e-9)]
     out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": _median(stride),
-                 "median_cadence_spm": _median(cadence), "median_speed_mps": _median(speed),
+                 "median_cadence_spm": (median_cadence(_median(stride), _median(cadence)) if cadence_from == "strides"
+                                        else _median(cadence)),  # L176's candidate: an option, not adopted
+                 "median_speed_mps": _median(speed),
                  "median_step_time_s": _median(step)}
     straight = (steps["turning"].to_numpy(float) == 0) if "turning" in steps else np.ones(len(st), bool)
     _speed_fields(out, steps, length, has_next, speed, straight)
@@ -257,7 +272,7 @@ def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     return out
 
 
-def gait_summary(steps: pd.DataFrame) -> dict:
+def gait_summary(steps: pd.DataFrame, cadence_from: str = "steps") -> dict:
     """Medians over the strides that have them: ``median_stride_time_s``, ``median_cadence_spm``,
     ``median_speed_mps`` and ``n_stride_times`` (how many strides have a stride time); decision L79 adds
     ``walking_time_s``, ``gait_speed_mps`` (distance / walking time: the clinical walking speed),
@@ -267,13 +282,15 @@ def gait_summary(steps: pd.DataFrame) -> dict:
     table (every row ``unit`` waist, with ``has_next``) gets :func:`waist_gait_summary` (W70); a foot table without
     gait columns (``--streaming``, ``pdrlearn run`` before E51) :func:`streamed_gait_summary` (E48: walking time
     and gait speed only). Every table gets the same keys, None and 0 where it cannot give them, so every
-    summary has them (``run``'s summary carries every key of ``track``'s, B14)."""
+    summary has them (``run``'s summary carries every key of ``track``'s, B14). ``cadence_from="strides"``: decision
+    L176's candidate, ``median_cadence_spm`` = 120 / the median stride time for foot and waist alike (not adopted:
+    it moved symmetric waist walks' cadence by up to 2.35 steps/min, over its 1.0 rule)."""
     out: dict = {k: (0 if k.startswith("n_") else None) for k in SUMMARY_KEYS}
     if not len(steps):
         return out
     if "stride_time_s" not in steps:
         if "has_next" in steps and "unit" in steps and (steps["unit"] == "waist").all():
-            out.update(waist_gait_summary(steps))
+            out.update(waist_gait_summary(steps, cadence_from))
         elif "unit" in steps and (steps["unit"] == "foot").all() and {"start_s", "end_s", "length_m"} <= set(steps):
             out.update(streamed_gait_summary(steps))
         return out
@@ -282,6 +299,8 @@ def gait_summary(steps: pd.DataFrame) -> dict:
     for key, col in (("median_stride_time_s", "stride_time_s"), ("median_cadence_spm", "cadence_spm"),
                      ("median_speed_mps", "speed_mps")):
         out[key] = _median(steps[col].to_numpy(float))
+    if cadence_from == "strides":  # decision L176's candidate (an option: it failed its rule)
+        out["median_cadence_spm"] = median_cadence(out["median_stride_time_s"], None)
     valid = stride_rows(steps)  # decisions L67, L97
     turn = np.abs(steps["turn_angle_rad"].to_numpy(float))
     _speed_fields(out, steps, steps["length_m"].to_numpy(float), valid, steps["speed_mps"].to_numpy(float),
@@ -352,7 +371,9 @@ def gait_range_warning(summary: dict) -> str | None:
     neither figure); decision L148: the ranges scaled to the summary's ``leg_length_m`` (:func:`gait_ranges`, a
     child's walk is no run). Adds the out-of-domain fraction of a model's classes when the summary has one (C16).
     Decision L123: with at least :data:`MIN_STRAIGHT_FOR_RANGE` straight strides their median speed
-    (``median_speed_straight_mps``) is judged instead, so turning on the spot does not read as a slow walk."""
+    (``median_speed_straight_mps``) is judged instead, so turning on the spot does not read as a slow walk.
+    Decision W144: a cadence above the range at a speed inside it or below is named short fast steps (festination)
+    or running; "looks like running" needs the speed above the range (or a cadence unknown)."""
     cad = summary.get("median_cadence_spm")
     speed, what_speed = summary.get("median_speed_mps"), "speed"
     straight = summary.get("median_speed_straight_mps")
@@ -379,8 +400,11 @@ def gait_range_warning(summary: dict) -> str | None:
                       f"{cad_range[0]:.0f}-{cad_range[1]:.0f} steps/min and {speed_range[0]:.2f}-{speed_range[1]:.2f} "
                       f"m/s (scaled to a {reference_leg_m():.2f} m adult leg by dynamic similarity, Hof 1996; "
                       "decision L148)")
-    what = ("this looks like running, and running is not supported: " if fast
-            else "this is slower than the walking the pipelines were validated on: ")
+    # decision W144: a fast cadence at a walking speed or slower is short fast steps (festination), not a run
+    running = speed is not None and speed > speed_range[1]
+    what = ("this looks like running, and running is not supported: " if fast and (running or cad is None)
+            else "short fast steps (a festinating or shuffling gait) or running, neither of which is supported: "
+            if fast else "this is slower than the walking the pipelines were validated on: ")
     ood = summary.get("out_of_domain_fraction")
     extra = (f"; {100 * float(ood):.0f} % of the strides lie outside the model's training range" if ood is not None
              else "")

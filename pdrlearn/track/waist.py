@@ -73,7 +73,7 @@ from pdrlearn.waist.plausibility import (
     walk_ratio,
     walk_ratio_message,
 )
-from pdrlearn.waist.posture import tilt_gate, transfer_veto
+from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 
 log = logging.getLogger(__name__)
@@ -495,6 +495,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept
         steps = transfer_veto(steps, imu, keep_rhythm=o["sit_veto"] == "rhythm")
         n_vetoed = steps.attrs["n_vetoed"]
+    else:  # W146: name the contacts W104's veto would drop (a TUG's chair rises), and the option
+        warnings.extend(sit_veto_hint(transfer_veto(steps, imu).attrs["n_vetoed"]))
     n_unvaulted = 0
     if o["vault_veto"] and pipeline == "waist-pendulum" and not realtime:  # W119: no vault, no step
         steps = drop_unvaulted(steps, imu, spare_turns=o["vault_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps)

@@ -129,6 +129,18 @@ def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = Fal
     return drop_contacts(steps, ~veto, "n_vetoed")
 
 
+def sit_veto_hint(n_flexed: int) -> list[str]:
+    """Decision W146: one line when ``n_flexed`` contacts (those :func:`transfer_veto` would drop) lie at a
+    trunk-flexion event while the veto is off (a chair rise reads as a 0 m step and splits a TUG into bouts with
+    its seated time as pauses); none without such contacts."""
+    if not n_flexed:
+        return []
+    return [f"{n_flexed} contact(s) lie at a trunk flexion over {TRANSFER_PEAK_DEG:g} deg (a sit-to-stand or a bend): "
+            "a chair rise reads as a 0 m step and splits the walk into bouts with the seated time as pauses (a TUG); "
+            "to drop them put \"options\": {\"sit_veto\": \"rhythm\"} in the --params JSON (decisions W104, "
+            "W109, W146)"]
+
+
 def tilt_gate(steps: pd.DataFrame, imu: WaistIMU, max_tilt_deg: float = MAX_TILT_DEG) -> pd.DataFrame:
     """``steps`` (one row per contact, :func:`pdrlearn.waist.events.steps_from_events`' columns) without the
     contacts whose trunk tilt (:func:`contact_tilt_deg`) exceeds ``max_tilt_deg``; a kept step whose next contact
