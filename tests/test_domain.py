@@ -11,13 +11,17 @@ import pytest
 
 from pdrlearn.classify import evaluate_model, load_model, train_user
 from pdrlearn.classify.domain import (
+    DEFAULT_WARN_SHARE,
     FRACTION_THRESHOLD,
     NO_RANGES_NOTE,
     STEP_THRESHOLD,
     FeatureRange,
     _leaves,
     has_ranges,
+    domain_report,
+    session_warning_line,
     step_score,
+    summarize,
     warning_line,
 )
 from pdrlearn.io import Stream
@@ -82,6 +86,35 @@ def test_larger_steps_than_trained_warn(model, method):
     line = warning_line(rep)
     assert "\n" not in line and f"{method}/foot" in line and "pdrlearn train" in line
     assert line.startswith(f"{rep['tasks']['terrain']['n_out']} of 36 steps (")
+
+
+def test_more_than_half_out_warns_once_by_default(model):
+    """Decision C61: without --warn-out-of-domain, `track`'s domain check (shared by the offline and the
+    streaming track) appends one short line when more than half the strides are out, naming the option; with
+    the option, C16's detailed line alone (unchanged); in range, nothing."""
+    from pdrlearn.track.plasys import domain_check
+
+    far = _scaled(labelled_session(9, 12), 4.0)
+    pred = model.predict_steps(far, far.steps, method="svm", unit="foot", windows="given")
+    said: list[str] = []
+    assert domain_check(model, pred, said)["out_of_domain_fraction"] > DEFAULT_WARN_SHARE
+    assert len(said) == 1 and "\n" not in said[0] and "--warn-out-of-domain" in said[0], said
+    assert "classes" in said[0] and "unreliable" in said[0] and "pdrlearn train" in said[0]
+    detail: list[str] = []
+    domain_check(model, pred, detail, FRACTION_THRESHOLD)
+    assert detail == [warning_line(model.domain_report(pred, warn_at=FRACTION_THRESHOLD), what="strides")]
+    near = labelled_session(9, 12)
+    quiet: list[str] = []
+    domain_check(model, model.predict_steps(near, near.steps, method="svm", unit="foot", windows="given"), quiet)
+    assert quiet == []
+
+
+def test_default_line_needs_more_than_half():
+    """C61's share is strict: half the strides out is not enough, two of three is."""
+    half = domain_report({"terrain": summarize(np.array([0.0, 1.0]), ["", "acc"], "svm/foot")})
+    most = domain_report({"terrain": summarize(np.array([0.0, 1.0, 2.0]), ["", "acc", "acc"], "svm/foot")})
+    assert session_warning_line(half) is None
+    assert session_warning_line(most).startswith("2 of 3 strides (67 %) lie outside the model's training range")
 
 
 def test_round_trip_keeps_the_ranges(model, tmp_path):
@@ -157,7 +190,9 @@ def test_simulated_model_on_the_real_level_walk(gaitmap_level_left, tmp_path, ca
     base = ["track", str(gaitmap_level_left), "--model", str(tmp_path / "u1")]
     assert cli([*base, "--out", str(tmp_path / "t")]) == 0
     out, err = capsys.readouterr()
-    assert "training range" not in err and "% of the strides outside the model's training range" in out
+    assert "% of the strides outside the model's training range" in out
+    default = [ln for ln in err.splitlines() if "training range" in ln]  # decision C61: one line without the option
+    assert len(default) == 1 and "--warn-out-of-domain" in default[0] and "unreliable" in default[0], err
     summary = json.loads((tmp_path / "t" / "summary.json").read_text())
     assert summary["out_of_domain_fraction"] >= FRACTION_THRESHOLD
     assert summary["info"]["out_of_domain"]["tasks"]["terrain"]["unit"].endswith("/foot")
@@ -165,6 +200,7 @@ def test_simulated_model_on_the_real_level_walk(gaitmap_level_left, tmp_path, ca
     err = capsys.readouterr().err
     lines = [ln for ln in err.splitlines() if "training range" in ln]
     assert len(lines) == 1 and "terrain classifier" in lines[0] and "pdrlearn train" in lines[0], err
+    assert lines[0] != default[0]  # the option's detailed line (C16) replaces C61's short one
     assert cli([*base, "--warn-out-of-domain", "1.5", "--out", str(tmp_path / "x")]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--warn-out-of-domain 1.5" in err

@@ -11,7 +11,8 @@ excess beyond a feature's range, in units of that range's width::
 
 and a composite model (fused units, ensemble) takes the largest score of its members. A step is out of
 domain when ``d > STEP_THRESHOLD``. The fraction of such steps is always reported
-(``out_of_domain_fraction``); the one-line warning is opt-in (``warn_at``, CLI ``--warn-out-of-domain``):
+(``out_of_domain_fraction``); the detailed one-line warning is opt-in (``warn_at``, CLI ``--warn-out-of-domain``;
+without it ``track`` says one short line when more than half the strides are out, decision C61):
 with the tested ``FRACTION_THRESHOLD`` it fired on every real gaitmap walk but also on held-out simulated
 users walking faster than their calibration, above the 1-in-20 false-alarm rule (decision C16).
 ``training_range_`` is pickled with the model (joblib), so a model directory keeps it; models saved
@@ -37,6 +38,10 @@ STEP_THRESHOLD = 0.5
 #: The tested share of out-of-domain steps for the opt-in warning (C16; fixed before measuring, not
 #: adopted as a default: 7 of 36 held-out simulated sessions would warn).
 FRACTION_THRESHOLD = 0.25
+#: Share of a session's checked strides outside the training range above which ``track --model`` and
+#: ``track --streaming`` print one warning line without ``--warn-out-of-domain`` (decision C61: a share set by the
+#: lead, not measured; C16's per-stride detail line stays opt-in).
+DEFAULT_WARN_SHARE = 0.5
 #: Fix named in the warning.
 FIX = "train a per-user model on this user's labelled sessions: pdrlearn train SESSION_DIR... --out MODEL_DIR"
 
@@ -228,10 +233,29 @@ def warning_line(report: dict, *, what: str = "steps") -> str | None:
             f"session and its classes are unreliable here; {FIX}")
 
 
+def session_warning_line(report: dict | None, *, what: str = "strides") -> str | None:
+    """Decision C61: the line ``track`` prints for a session's report: C16's detailed line when the opt-in
+    ``warn_at`` is reached, else, when more than :data:`DEFAULT_WARN_SHARE` of the checked strides of a task lie
+    outside the training range, one short line saying what it means for the classes and naming
+    ``--warn-out-of-domain`` for the detail; else None."""
+    line = warning_line(report, what=what)
+    if line or not report or report.get("out_of_domain_fraction") is None:
+        return line
+    tasks = {t: s for t, s in report["tasks"].items() if s.get("fraction") is not None}
+    t, s = max(tasks.items(), key=lambda kv: kv[1]["fraction"])
+    if s["fraction"] <= DEFAULT_WARN_SHARE:
+        return None
+    return (f"{s['n_out']} of {s['n_steps']} {what} ({100 * s['fraction']:.0f} %) lie outside the model's training "
+            f"range ({t} classifier): the model never saw strides like these, so its terrain / direction / length "
+            f"classes (and the heights and lengths they set) are unreliable for this session "
+            f"(--warn-out-of-domain 0.25 details the classifier and the feature most often off); {FIX}")
+
+
 NO_RANGES_NOTE = ("the model stores no training ranges (trained before pdrlearn checked them): data unlike its "
                   "training data are not detected; retrain it to enable the check")
 
 
 __all__ = ["QUANTILES", "STEP_THRESHOLD", "FRACTION_THRESHOLD", "FeatureRange", "model_inputs", "fit_range",
            "attach_ranges", "has_ranges", "step_score", "check_warn_at", "summarize", "domain_report", "warning_line",
+           "session_warning_line", "DEFAULT_WARN_SHARE",
            "NO_RANGES_NOTE"]

@@ -357,17 +357,18 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
 
 def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: float | None = None) -> dict | None:
     """Decision C16: how many strides lie outside the trained model's training range (the range of each
-    classifier's own inputs); one warning line appended when the fraction reaches ``warn_at`` (opt-in).
+    classifier's own inputs); one warning line appended when the fraction reaches ``warn_at`` (opt-in) or, without
+    it, when more than half the strides are out (decision C61, :func:`~pdrlearn.classify.domain.session_warning_line`).
     ``None`` for oracle labels; for a model saved before C16 a note (no check)."""
     if model is None or isinstance(model, str | Path) or not hasattr(model, "domain_report") or not model.tasks:
         return None  # C17: a model without a classifier (level walks only) classifies nothing to check
-    from pdrlearn.classify.domain import NO_RANGES_NOTE, warning_line
+    from pdrlearn.classify.domain import NO_RANGES_NOTE, session_warning_line
 
     if not model.has_domain:
         log.info(NO_RANGES_NOTE)
         return {"out_of_domain_fraction": None, "note": NO_RANGES_NOTE}
     report = model.domain_report(classes, warn_at=warn_at)
-    line = warning_line(report, what="strides")
+    line = session_warning_line(report, what="strides")
     if line:
         warnings.append(line)
     return report
