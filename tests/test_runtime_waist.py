@@ -173,6 +173,54 @@ def test_bad_input_is_one_line(sim, tmp_path, capsys):
         WaistTracker(nof)
 
 
+def test_a_geodetic_start_gives_the_live_trackers_lat_lon(sim):
+    """Decision W147: ``start_latlon=`` of the runtime tracker is the live tracker's geodetic ``start`` (W137)."""
+    s = sim["session"]
+    start = (41.178, -8.608, 12.5)
+    chunks = list(np.random.default_rng(11).integers(1, 300, 2000))
+    out = push_waist(tr := WaistTracker(sim["bundle"], fs=100.0, start_latlon=start), s, chunks)
+    live = push_waist(LiveWaistTracker(100.0, params=str(sim["cal"]), meta=s.meta, frame=s.require_frame("waist"),
+                                       start=start), s, [len(s["wAccelerometer"].t)])
+    assert len(out) == len(live) > 20 and tr.start_altitude_m == 12.5
+    ll = np.array([[o.lat, o.lon] for o in out])
+    np.testing.assert_allclose(ll, [[o.lat, o.lon] for o in live], atol=1e-9, rtol=0)
+    assert abs(ll[-1, 0] - start[0]) > 1e-5  # it moved
+    text = push_waist(WaistTracker(sim["bundle"], fs=100.0, start_latlon="41.178,-8.608"), s, chunks)
+    assert [[o.lat, o.lon] for o in text] == ll.tolist()
+    plain = push_waist(WaistTracker(sim["bundle"], fs=100.0), s, chunks)
+    assert {o.lat for o in plain} == {None} and [o.x for o in plain] == [o.x for o in out]
+
+
+@pytest.mark.parametrize("start, match", [
+    ((41.1, 200.0), r"^WaistTracker: start_latlon=\(41.1, 200.0\): latitude must be in \[-90, 90\]"),
+    ((41.1,), r"^WaistTracker: start_latlon=\(41.1,\): pass \(lat, lon\) or \(lat, lon, alt\)"),
+    ("41.1;x", r"^WaistTracker: --start '41.1;x': expected LAT,LON\[,ALT\]"),
+])
+def test_a_bad_geodetic_start_is_one_line(sim, start, match):
+    with pytest.raises(DataError, match=match) as exc:
+        WaistTracker(sim["bundle"], fs=100.0, start_latlon=start)
+    assert "\n" not in str(exc.value)
+
+
+def test_run_of_a_waist_bundle_takes_start(sim, tmp_path, capsys):
+    """Decision W147: ``run WAIST_BUNDLE --start LAT,LON,ALT`` (refused before) gives track's lat/lon and z."""
+    import pandas as pd
+
+    walk = write_session(sim["session"], tmp_path / "walk")
+    assert main(["run", str(sim["bundle"]), str(walk), "--start", "41.178,-8.608,12.5", "--out",
+                 str(tmp_path / "r"), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    ref = track_waist(sim["session"], pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]),
+                      start=(41.178, -8.608, 12.5)).trajectory
+    got = pd.read_csv(tmp_path / "r" / "trajectory.csv")
+    assert len(got) == len(ref) > 20
+    # trajectory.csv keeps 10 significant digits (%.10g: 8 decimals of a latitude, ~0.5 mm)
+    np.testing.assert_allclose(got[["lat", "lon"]].to_numpy(), ref[["lat", "lon"]].to_numpy(), atol=6e-9, rtol=0)
+    assert (got["z"] == 12.5).all() and summary["final_position"]["z"] == 12.5
+    assert summary["final_position"]["lat"] == pytest.approx(ref["lat"].iloc[-1], abs=1e-9)
+    _one_line(capsys, ["run", str(sim["bundle"]), str(walk), "--start", "41.1,200"], "--start '41.1,200': latitude")
+
+
 def test_a_bundle_applied_at_another_rate_warns_naming_calibrate(sim):
     tr = WaistTracker(sim["bundle"], fs=25.0)  # decision W87, as track warns
     assert any("calibrated at 100 Hz, applied to a 25 Hz recording" in w and "pdrlearn calibrate" in w

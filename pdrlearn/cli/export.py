@@ -352,16 +352,16 @@ def run(
 
     if bundle_kind(bundle_dir) == WAIST_SCHEMA_NAME:  # decision E57: a waist-only bundle
         given = [o for o, v in (("--protocol", protocol), ("--units", units), ("--method", method),
-                                ("--rules", rules), ("--min-confidence", min_confidence), ("--start", start))
+                                ("--rules", rules), ("--min-confidence", min_confidence))
                  if v is not None] + [o for o, v in (("--contacts", contacts), ("--resample", resample),
                                                      ("--no-resample", no_resample), ("--align-units", align_units),
                                                      ("--drop-neighbour", drop_neighbour))
                                       if v]
         if given:
             raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only bundle "
-                            "(give SESSION_DIR, and --initial-heading / --chunk-s / --out / --json)")
+                            "(give SESSION_DIR, and --start / --initial-heading / --chunk-s / --out / --json)")
         return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi, record, bouts,
-                          storey_height)  # decision L142: as the foot bundle's run
+                          storey_height, start_ll, start_alt)  # decision L142: as the foot bundle's run; W147
     bundle = load_bundle(bundle_dir)  # verified before any output
     methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
@@ -552,13 +552,15 @@ def _calibration_gait_warning(params, steps, warnings: list[str], where: str) ->
 
 
 def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chunk_s: float, as_json: bool,
-               heading0: float | None, dpi: int | None, record, bouts=None, storey_height_m: float = 3.0) -> None:
+               heading0: float | None, dpi: int | None, record, bouts=None, storey_height_m: float = 3.0,
+               start_ll=None, start_alt: float = 0.0) -> None:
     """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
     pushed in ``chunk_s`` slices through :class:`pdrlearn.runtime.WaistTracker` (the gyroscope read at the
     accelerometer's times, as ``track``'s ``body_data``). The frame is the session's declared one (warned when the
     bundle records another), else the bundle's, else inferred from the data (D8). Writes and prints what ``run``
     does for a foot bundle, with ``track``'s waist step columns; the floor counts in storeys of ``storey_height_m``
-    (``--storey-height``, decision L142: it had been left at 3 m)."""
+    (``--storey-height``, decision L142: it had been left at 3 m). ``--start LAT,LON[,ALT]`` (``start_ll``,
+    ``start_alt``): the tracker's lat/lon of each step (decision W147) and z at ALT, as the foot bundle's run."""
     import numpy as np
     import pandas as pd
 
@@ -592,7 +594,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                 session.name, declared.to_dict(), bundle.manifest["frames"].get("waist"))
     elif bundle.rotation is None:
         frame = session.require_frame("waist").matrix()  # inferred from the data (D8, with its warning)
-    tracker = WaistTracker(bundle, fs=a.rate_hz, heading_rad=heading0 or 0.0, frame=frame)
+    tracker = WaistTracker(bundle, fs=a.rate_hz, heading_rad=heading0 or 0.0, frame=frame,
+                           start_latlon=None if start_ll is None else (*start_ll, start_alt))  # decision W147
     steps, lat = [], []
     k = np.floor((a.t - a.t[0]) / chunk_s).astype(np.int64)  # decision E28's chunks, counted from the first sample
     for c in np.unique(k):
@@ -609,7 +612,10 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                         "turning": s.turning} for s in steps], columns=cols)
     traj = pd.DataFrame({"t": [float(a.t[0])] + [s.end_s for s in steps],
                          "x": [0.0] + [s.x for s in steps], "y": [0.0] + [s.y for s in steps]})
-    traj["z"] = 0.0
+    traj["z"] = float(start_alt)  # decision L56: z starts at --start's ALT (no barometer live)
+    if start_ll is not None:  # decision W147: the live tracker's lat/lon of each step
+        traj["lat"] = [start_ll[0]] + [s.lat for s in steps]
+        traj["lon"] = [start_ll[1]] + [s.lon for s in steps]
     result = TrackResult(steps=df, trajectory=traj, info={"pipeline": "runtime-waist",
                                                           "warnings": list(tracker.warnings)})
     _calibration_gait_warning(bundle.params, df, result.info["warnings"], session.name)  # decision W140
@@ -621,7 +627,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                                                                        storey_height_m=storey_height_m),
                "session": session.name,
                "pipeline": "runtime", "bundle_kind": "waist", "info": result.info,
-               "final_position": {"x": tracker.position[0], "y": tracker.position[1], "z": 0.0},
+               "final_position": {"x": tracker.position[0], "y": tracker.position[1], "z": float(start_alt),
+                                  **({} if start_ll is None else {k: float(traj[k].iloc[-1]) for k in ("lat", "lon")})},
                "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
                                        "p99": float(np.percentile(lat, 99) * 1e3) if lat else None}}
     if out is not None:

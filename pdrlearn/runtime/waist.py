@@ -539,6 +539,10 @@ class WaistTracker(WaistStream):
         by more than 10 % warns (decision W87)
     start : ``(x, y)`` or ``(x, y, z)`` (m, ENU; z is not tracked); heading_rad : the direction set off in (rad, ENU,
         0 = east; W81: a value over 2 pi, degrees, is refused)
+    start_latlon : the geodetic start ``(lat, lon)`` / ``(lat, lon, alt)`` / ``"LAT,LON[,ALT]"`` in degrees (alt in
+        m), checked as ``pdrlearn run --start`` and :class:`pdrlearn.waist.WaistTracker`'s ``start`` (decisions L157,
+        W147): each step then has ``lat``, ``lon`` (W137's eq. 56/57 step; alt kept as :attr:`start_altitude_m`, not
+        tracked); None: no lat/lon. A keyword of its own: ``start=(x, y)`` stays ENU metres (as L159's ``Tracker``)
     frame : the unit's axes, ``"x=up,y=right,z=forward"`` (as ``export --frame``) or a 3x3 sensor -> body FLU
         rotation (decision W95: orthonormal; mirrored: warned), when the bundle has none (or to override it)
     keep_steps : how many reported steps :attr:`steps` keeps (None: all)
@@ -547,8 +551,9 @@ class WaistTracker(WaistStream):
     """
 
     def __init__(self, bundle, *, fs: float | None = None, start=(0.0, 0.0), heading_rad: float = 0.0,
-                 frame=None, keep_steps: int | None = None, check_input: bool = True):
+                 frame=None, keep_steps: int | None = None, check_input: bool = True, start_latlon=None):
         from pdrlearn.kernels.frames import frame_rotation, mirrored_line
+        from pdrlearn.kernels.geodetic import start_coordinate
         from pdrlearn.kernels.waist import rate_mismatch_line
 
         b = bundle if isinstance(bundle, WaistBundle) else load_waist_bundle(bundle)
@@ -570,6 +575,10 @@ class WaistTracker(WaistStream):
         if not abs(h0) <= 2 * math.pi:  # decision W81
             raise DataError(f"WaistTracker: heading_rad={h0!r} is not radians (|value| <= 2 pi); convert degrees "
                             "with math.radians")
+        try:  # decision W147: L157's one check, as the live tracker's start and run --start
+            latlon, self.start_altitude_m = start_coordinate(start_latlon, "start_latlon")
+        except DataError as exc:
+            raise DataError(f"WaistTracker: {exc}") from None
         warnings = list(b.manifest.get("warnings") or [])
         line = mirrored_line(rot, "WaistTracker: frame=" if frame is not None else f"waist bundle {b.path}")
         if line:
@@ -581,4 +590,4 @@ class WaistTracker(WaistStream):
         thr = b.params.walk_threshold_mps2
         super().__init__(fs, params=b.params, options=b.options, rotation=rot, start=(x0, y0, h0),
                          warnings=warnings, walk_threshold=thr if thr is not None else b.manifest["walk_threshold"],
-                         keep_steps=keep_steps, check_input=check_input)
+                         keep_steps=keep_steps, check_input=check_input, latlon=latlon)
