@@ -459,9 +459,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if smoothing != "none" and realtime:
         raise DataError(f"length_smoothing '{smoothing}' looks up to 1 s ahead and the realtime detector does not "
                         "(decision W56); drop realtime or set length_smoothing to none")
-    _configure_model(model, None if isinstance(spec, StepLengthModel) else spec, realtime, {
-        "merge_fragments": bool(o["merge_fragments"]), "length_smoothing": smoothing,
-        "pause_steps": o["pause_steps"] if not realtime else False})
+    _configure_model(model, None if isinstance(spec, StepLengthModel) else spec, realtime,
+                     _model_options(o, realtime))
     if p.source == "calibrated" and p.pipeline not in (None, pipeline):
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the {pipeline} step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline " + pipeline + "')")
@@ -478,8 +477,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps = detector_steps(det, session, imu)
         method = heading or ("gyro" if pipeline == "waist-pendulum" else "ahe")
     elif pipeline == "waist-pendulum":
-        det = InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
-                                     rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"])).detect(imu)
+        det = _contact_detector(o, thr, realtime).detect(imu)
         steps = det.steps_
         method = heading or "gyro"
     else:
@@ -651,16 +649,28 @@ def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str) -> tup
     return cadence / float(ref), calibration_gait_message(p.gait, cadence, n, p.pipeline or pipeline)
 
 
+def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDetector:
+    """The waist-pendulum pipeline's contact detector under the track's options ``o`` and motion-gate threshold
+    ``thr`` (one construction for the track and W139's pendulum reading, so an option cannot be left out: E102)."""
+    return InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
+                                  rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"]))
+
+
+def _model_options(o: dict, realtime: bool) -> dict:
+    """The step-length model's options from the track's options ``o`` (W111 / W122 / W134's ``pause_steps`` off
+    in realtime, W56's smoothing checked)."""
+    return {"merge_fragments": bool(o["merge_fragments"]),
+            "length_smoothing": check_length_smoothing(o["length_smoothing"]),
+            "pause_steps": o["pause_steps"] if not realtime else False}
+
+
 def _pendulum_steps(imu: WaistIMU, p: WaistParams, thr: float, o: dict) -> pd.DataFrame:
     """Decision W139: the steps ``waist-pendulum`` would read from ``imu`` with the parameters ``p`` (its offline
     contact detector and the pendulum step length, seed 003 eq. 1) under the track's options ``o`` and motion gate
     ``thr``; the vetoes and gap cuts of a pendulum track are not applied (a plausibility reading, not a track)."""
-    det = InitialContactDetector(realtime=False, walk_threshold=thr, max_step_s=MAX_STEP_S, rhythm=bool(o["rhythm"]),
-                                 contact_shift=bool(o["contact_shift"])).detect(imu)  # E102: the track's W131 option
+    det = _contact_detector(o, thr, False).detect(imu)  # E102: the track's options, W131's among them
     model = get_step_length("pendulum")
-    _configure_model(model, "pendulum", False, {"merge_fragments": bool(o["merge_fragments"]),
-                                                "length_smoothing": check_length_smoothing(o["length_smoothing"]),
-                                                "pause_steps": o["pause_steps"]})
+    _configure_model(model, "pendulum", False, _model_options(o, False))
     return _step_lengths(det.steps_, imu, p, model, thr)
 
 
