@@ -954,6 +954,26 @@ def turning_step_factor(dpsi_rad: np.ndarray) -> np.ndarray:
     return np.cos(d)
 
 
+#: decision W150 (candidate, option ``pivot_steps``): a step whose net pelvis rotation reaches this (deg) is a pivot
+#: step -- a walked step of 0.6 m turning 45 deg lies on a 0.76 m radius, past a corner walked without pivoting
+PIVOT_MIN_DEG = 45.0
+#: decision W150: the radius (m) the pelvis circles the stance foot on in a pivot step: a 45 deg step moves it 0.15 m,
+#: a 90 deg one 0.28 m, the 0.1-0.2 m a step of a turn on the spot moves the body (S41)
+PIVOT_RADIUS_M = 0.2
+
+
+def pivot_step_factor(lengths: np.ndarray, dpsi_rad: np.ndarray, *, min_deg: float = PIVOT_MIN_DEG,
+                      radius_m: float = PIVOT_RADIUS_M) -> np.ndarray:
+    """Decision W150: the share of each step's length kept when a step turning the pelvis by ``|dpsi_rad|`` >=
+    ``min_deg`` keeps at most the chord of its turn on ``radius_m``, ``2 r sin(|dpsi| / 2)`` (plane geometry); 1 for
+    the other steps and for a length already under the chord (or 0)."""
+    length = np.asarray(lengths, dtype=np.float64)
+    d = np.abs(np.asarray(dpsi_rad, dtype=np.float64))
+    chord = 2.0 * radius_m * np.sin(0.5 * np.minimum(d, np.pi))
+    pivot = (d >= np.radians(min_deg)) & (length > chord)
+    return np.where(pivot, chord / np.where(pivot, length, 1.0), 1.0)
+
+
 def local_medians(values: np.ndarray, use: np.ndarray, closes: np.ndarray) -> np.ndarray:
     """Per row of a steps table: W18's local median of ``values`` around the row's step, the median of the medians
     of up to three values of the steps on each side inside its walking sequence (at least ``RHYTHM_MIN_STEPS - 1``

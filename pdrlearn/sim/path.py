@@ -1,9 +1,9 @@
 """Walking paths as segments, and the planner that turns them into footprints of both feet.
 
 A path is a list of segments (:class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`,
-:class:`Turn`, :class:`Pivot`, :class:`Stand`, :class:`Sit`). :func:`plan_footsteps` walks them with a user's step length and returns
-one :class:`Footstep` per foot placement (heel position, heading, kind), alternating feet. Walking bouts
-start and end with both feet side by side (gait initiation and a closing step).
+:class:`Turn`, :class:`Pivot`, :class:`Stand`, :class:`Sit`). :func:`plan_footsteps` walks them with a user's step
+length and returns one :class:`Footstep` per foot placement (heel position, heading, kind), alternating feet.
+Walking bouts start and end with both feet side by side (gait initiation and a closing step).
 """
 
 from __future__ import annotations

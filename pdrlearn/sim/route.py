@@ -11,7 +11,7 @@
 | ``slope:M:PCT[:GAIT]`` | walk M metres (horizontal) on a ramp of PCT percent (< 0 downhill; decision S37) |
 | ``backward:N`` | N backward steps |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
-| ``pivot:DEG[:N[:STEP_M]]`` | turn DEG degrees on the spot without stopping, in N steps (default one per 45 deg) each moving the body STEP_M m (default 0.15; decision S41) |
+| ``pivot:DEG[:N[:STEP_M]]`` | turn DEG degrees on the spot inside the walk, N steps of STEP_M m (S41) |
 | ``stand:S`` | stand still S seconds |
 | ``sit:S`` | sit down on a chair, stay seated S seconds, stand up (no steps; decision S36) |
 
