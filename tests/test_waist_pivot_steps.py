@@ -46,15 +46,12 @@ def pivot_walk():
 
 @pytest.mark.parametrize("pipeline", ["waist-pendulum", "waist-pll"])
 def test_option_caps_the_pivot_steps_of_a_turn_on_the_spot(pivot_walk, pipeline):
-    from pdrlearn.track.evaluate import evaluate_track
-    from pdrlearn.track.waist import track_waist
-
-    # calibrated on the user's own straight walk (experiments/waist.py's protocol; no pivot step in it)
     from pdrlearn.sim import simulate
+    from pdrlearn.track.evaluate import evaluate_track, path_length
+    from pdrlearn.track.waist import track_waist
     from pdrlearn.waist.calibration import calibrate
 
-    from pdrlearn.track.evaluate import path_length
-
+    # calibrated on the user's own straight walk (experiments/waist.py's protocol; no pivot step in it)
     cal = simulate("walk", 2760, "normal", rate_hz=100.0, seed=1, length_m=20.0)
     ics, tr = cal.extras["ics"]["ic_s"].to_numpy(float), cal.trajectory
     walked = path_length(tr[(tr["t"] >= ics.min()) & (tr["t"] <= ics.max())])  # first to last heel strike (W21)
