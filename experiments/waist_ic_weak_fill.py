@@ -19,6 +19,8 @@ every miss of the default the first reason it cannot be recovered, in this order
   sequence is too short for a local period);
 - other: the candidate adds it but the contact is not matched (dropped later, or matched to another contact).
 
+Each miss also shows the kept maxima around it (time, W20 side; "same-side pair": both decided and equal).
+
 Measurement (`--measure`; W148's rule, written and committed before this was run): off -> on,
 (a) simulated daily activities (W111's route, W119's simulation: experiments/waist_vault_veto.py), fresh users
     2700-2759, 100 Hz, seed = user, constant and `bounce="pendulum"` bounce, pooled `score_events` (0.25 s);
@@ -93,18 +95,29 @@ def candidates(session) -> dict:
     return {"t": imu.t[cand], "ic": imu.t[ic], "h": vf[cand], "side": side, "kept": np.isin(cand, det.anchor_)}
 
 
+def neighbours(t: float, c: dict) -> list[int]:
+    """The kept maxima just before and just after time ``t`` (s), each within ``MAX_STEP_S``."""
+    kept = np.flatnonzero(c["kept"])
+    before = kept[(c["t"][kept] < t) & (c["t"][kept] >= t - MAX_STEP_S)]
+    after = kept[(c["t"][kept] > t) & (c["t"][kept] <= t + MAX_STEP_S)]
+    return [j for j in (before[-1:], after[:1]) for j in j]
+
+
+def same_side_pair(t: float, c: dict) -> bool:
+    """Whether the kept maxima around ``t`` (s) are a pair on one decided side (W20's alternation broken there)."""
+    nb = neighbours(t, c)
+    return len(nb) == 2 and c["side"][nb[0]] != 0 and c["side"][nb[0]] == c["side"][nb[1]]
+
+
 def reason(t: float, c: dict, recovered: bool) -> tuple[str, str]:
     """The first reason of :data:`REASONS` for the miss at ``t`` (s) and a short description of its candidate."""
     if recovered:
         return "recovered", ""
     free = np.flatnonzero(~c["kept"] & (np.abs(c["ic"] - t) <= TOL))
     if free.size == 0:
-        return "no maximum", ""
+        return "no maximum", ", ".join(f"kept {c['t'][j]:.2f} side {c['side'][j]:+d}" for j in neighbours(t, c))
     i = free[np.argmin(np.abs(c["ic"][free] - t))]
-    kept = np.flatnonzero(c["kept"])
-    before = kept[(c["t"][kept] < c["t"][i]) & (c["t"][kept] >= c["t"][i] - MAX_STEP_S)]
-    after = kept[(c["t"][kept] > c["t"][i]) & (c["t"][kept] <= c["t"][i] + MAX_STEP_S)]
-    nb = [j for j in (before[-1:], after[:1]) for j in j]
+    nb = neighbours(c["t"][i], c)
     desc = (f"max {c['t'][i]:.2f} s (IC {c['ic'][i] - t:+.2f} s) h {c['h'][i]:.3f} side {c['side'][i]:+d}; "
             + ", ".join(f"kept {c['t'][j]:.2f} side {c['side'][j]:+d}" for j in nb))
     if c["side"][i] == 0:
@@ -118,7 +131,7 @@ def diagnostic(external: Path) -> None:
     print("## W149: weak_fill (W148's candidate) on the Test11 misses of waist-pendulum\n")
     tot = {r: 0 for r in REASONS}
     pool = {v: [0, 0, 0] for v in (False, True)}
-    new_fp, lost_tp = 0, 0
+    new_fp, lost_tp, no_max_pairs = 0, 0, 0
     lines = []
     for sub in W.C.SUBJECTS:
         s = read_session(external / f"mobgap_{sub}_Test11_Trial1")
@@ -140,6 +153,9 @@ def diagnostic(external: Path) -> None:
                                                         if round(x["t"], 6) not in fp_off):
                 why = "other"  # the candidate added a contact near it that is not matched to it
             tot[why] += 1
+            if why == "no maximum" and same_side_pair(row["t"], c):
+                no_max_pairs += 1
+                desc += " (same-side pair)"
             lines.append(f"  FN {row['t']:7.2f} {row['cls']:<8} {why:<11} {desc}")
         for row in r[True]["fp"]:
             if round(row["t"], 6) not in fp_off:
@@ -155,7 +171,8 @@ def diagnostic(external: Path) -> None:
     print("\n| misses | " + " | ".join(REASONS) + " |")
     print("|---|" + "---|" * len(REASONS))
     print(f"| {sum(tot.values())} | " + " | ".join(str(tot[k]) for k in REASONS) + " |")
-    print(f"\nnew false contacts: {new_fp}; hits lost: {lost_tp}")
+    print(f"\nnew false contacts: {new_fp}; hits lost: {lost_tp}; misses with no maximum between a same-side pair "
+          f"of kept maxima (a fill without a vertical maximum could reach them): {no_max_pairs}")
     f = {v: W.C.f1(*pool[v]) for v in pool}
     print(f"pooled Test11 F1 {f[False]:.4f} ({'/'.join(map(str, pool[False]))}) -> {f[True]:.4f} "
           f"({'/'.join(map(str, pool[True]))})")
