@@ -413,7 +413,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         ``info["calibration_cadence_ratio"]`` carries the ratio either way); default False
     weak_fill : pendulum, offline detector: a weak step on the decided alternating side where the alternation and the
         local rhythm ask for one (decision W148, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
-        ``weak_fill``); default False
+        ``weak_fill``; measured and not adopted); default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its

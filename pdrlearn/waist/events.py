@@ -130,8 +130,8 @@ class InitialContactDetector:
     weak_fill : offline, with ``rhythm`` and ``alternate``: a weak step (any positive vertical maximum) on the decided
         alternating side where the alternation and the local rhythm ask for one -- between two kept contacts of the
         same side, one local period (+-35 %, W18) from each, and beyond a sequence end where W28 finds no
-        full-height step, one local period away (decision W148; off by default). The realtime detector
-        and the learned stage ignore it (measured offline only)
+        full-height step, one local period away (decision W148; measured, not adopted: off by default). The realtime
+        detector and the learned stage ignore it (measured offline only)
 
     Attributes
     ----------
