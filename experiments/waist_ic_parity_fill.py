@@ -13,7 +13,8 @@ against the nearest INDIP contact (and, for comparison only, that of the midpoin
 then every same-side pair of kept vertical maxima (consecutive, one decided W20 side, at most 1.5 s apart) with its
 gap in local periods, whether the candidate places a contact in it, and what the reference holds between the pair's
 contacts: a miss of the default (the pattern W149 found), a reference contact already matched, or none (a contact
-placed there is a false one: the candidate's risk).
+placed there is a false one: the candidate's risk); and the Test11 walking bouts (experiments/waist.py's protocol)
+whose tracked distance the candidate changes.
 
 Measurement (`--measure`; W152's rule, written and committed before this was run): W148's four parts
 (experiments/waist_ic_weak_fill.py `measure`) for `parity_fill`, fresh simulated users 2880-2939.
@@ -33,6 +34,7 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 from pdrlearn.io import read_session
 from pdrlearn.track.waist import MAX_STEP_S
@@ -40,6 +42,7 @@ from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.evaluate import step_metrics
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import waist as WX  # noqa: E402  experiments/waist.py: the external protocol (bouts)
 import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py
 import waist_ic_weak_fill as WF  # noqa: E402  experiments/waist_ic_weak_fill.py: W148's read-out and rule
 
@@ -75,6 +78,24 @@ def pairs(c: dict, added: np.ndarray) -> list[dict]:
         out.append({"a": a, "b": b, "ta": c["t"][sel[k]], "tb": c["t"][sel[k + 1]],
                     "ratio": (t[k + 1] - t[k]) / per, "placed": inside[0] if inside.size else None})
     return out
+
+
+def changed_bouts(external: Path) -> None:
+    """The Test11 reference bouts whose tracked distance the candidate changes (experiments/waist.py's protocol,
+    calibrated and defaults): W152's (d) read per bout."""
+    configs = [("off", "waist-pendulum", {}), ("on", "waist-pendulum", {OPTION: True})]
+    bouts: list = []
+    WX.real(external, [r for r in WX.external_runs(external) if "_Test11_" in r[1]], configs, bouts)
+    b = pd.DataFrame(bouts)
+    k = ["subject", "params", "start_s", "end_s"]
+    cols = ["reference_m", "tracked_m", "error_pct", "n_steps"]
+    j = pd.merge(b[b.pipeline == "off"][k + cols], b[b.pipeline == "on"][k + cols[1:]], on=k,
+                 suffixes=("", "_on"))
+    print("\n## Test11 bouts whose tracked distance changes (calibrated and defaults)\n")
+    print(j[(j.tracked_m - j.tracked_m_on).abs() > 1e-9].to_markdown(index=False, floatfmt=".4g"))
+    for params, g in j.groupby("params"):
+        print(f"\n{params}: {len(g)} bouts, median |error| {g.error_pct.abs().median():.4g} -> "
+              f"{g.error_pct_on.abs().median():.4g} %")
 
 
 def diagnostic(external: Path) -> None:
@@ -148,6 +169,7 @@ def diagnostic(external: Path) -> None:
               f"midpoint of the neighbours: median |e| {np.nanmedian(np.abs(mid_errs)):.3f}")
     print(f"pooled Test11 F1 {f[False]:.4f} ({'/'.join(map(str, pool[False]))}) -> {f[True]:.4f} "
           f"({'/'.join(map(str, pool[True]))})")
+    changed_bouts(external)
 
 
 if __name__ == "__main__":
