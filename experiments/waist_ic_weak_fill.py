@@ -70,9 +70,10 @@ MAX_SIM_DROP = 0.002  # (a) pooled simulated F1 (each bounce) lower by at most t
 MAX_BOUT_WORSE = 0.5  # (d) pooled bout distance-error median (percentage points) worse by at most this
 
 
-def steps_of(session, on: bool) -> pd.DataFrame:
-    """`waist-pendulum`'s steps (uncalibrated) without / with ``weak_fill`` (W148)."""
-    return track_waist(session, pipeline="waist-pendulum", weak_fill=on).steps
+def steps_of(session, on: bool, option: str = "weak_fill") -> pd.DataFrame:
+    """`waist-pendulum`'s steps (uncalibrated) without / with ``option`` (W148's ``weak_fill``; W152's
+    ``parity_fill``)."""
+    return track_waist(session, pipeline="waist-pendulum", **{option: on}).steps
 
 
 def candidates(session) -> dict:
@@ -92,7 +93,9 @@ def candidates(session) -> dict:
     side = K.step_sides(K.lateral_velocity(imu.acc_ml, fs)[cand], strong)
     ws = int(round(0.25 * fs))
     ic = np.array([K._nearest_local_max_before(ap, c, max(0, c - ws)) for c in cand], dtype=int)
-    return {"t": imu.t[cand], "ic": imu.t[ic], "h": vf[cand], "side": side, "kept": np.isin(cand, det.anchor_)}
+    vl = K.lateral_velocity(imu.acc_ml, fs)
+    return {"t": imu.t[cand], "ic": imu.t[ic], "h": vf[cand], "side": side, "kept": np.isin(cand, det.anchor_),
+            "idx": cand, "vl": vl, "scale": K.side_scale(vl[cand], strong), "fs": fs, "time": imu.t}
 
 
 def neighbours(t: float, c: dict) -> list[int]:
@@ -178,25 +181,30 @@ def diagnostic(external: Path) -> None:
           f"({'/'.join(map(str, pool[True]))})")
 
 
-def bout_medians(external: Path) -> pd.DataFrame:
-    """(d): experiments/waist.py's pooled rows of `waist-pendulum` without / with ``weak_fill``."""
+def bout_medians(external: Path, option: str = "weak_fill") -> pd.DataFrame:
+    """(d): experiments/waist.py's pooled rows of `waist-pendulum` without / with ``option``."""
     configs = [("waist-pendulum", "waist-pendulum", {}),
-               ("waist-pendulum weak_fill", "waist-pendulum", {"weak_fill": True})]
+               (f"waist-pendulum {option}", "waist-pendulum", {option: True})]
     bouts: list = []
     df = WX.real(external, WX.external_runs(external), configs, bouts)
     pool = WX.pooled(df, pd.DataFrame(bouts))
     return pool[["test", "pipeline", "params", "step_f1", "bout_err_median_pct"]]
 
 
-def measure(external: Path) -> None:
+def measure(external: Path, decision: str = "W148", option: str = "weak_fill", users: range = USERS) -> None:
+    """The rule of W148 (and W152, the same four parts for ``parity_fill``): (a)-(d) and the verdict, printed."""
     ok = {}
-    print(f"# W148: weak_fill, off -> on (rule committed before this run)\n\n## (a) simulated daily activities, users "
-          f"{USERS.start}-{USERS.stop - 1}\n")
+
+    def steps(session, on: bool) -> pd.DataFrame:
+        return steps_of(session, on, option)
+
+    print(f"# {decision}: {option}, off -> on (rule committed before this run)\n\n## (a) simulated daily activities, "
+          f"users {users.start}-{users.stop - 1}\n")
     print("| bounce | F1 off (TP/det/ref) | F1 on (TP/det/ref) | change |")
     print("|---|---|---|---|")
     ok["a"] = True
     for bounce in ("constant", "pendulum"):
-        t = V.simulated(bounce, steps_of, USERS)
+        t = V.simulated(bounce, steps, users)
         f = {v: W.C.f1(t[v]["tp"], t[v]["det"], t[v]["ref"]) for v in t}
         ok["a"] &= f[True] >= f[False] - MAX_SIM_DROP
         print(f"| {bounce} | " + " | ".join(f"{f[v]:.4f} ({t[v]['tp']}/{t[v]['det']}/{t[v]['ref']})" for v in t)
@@ -209,7 +217,7 @@ def measure(external: Path) -> None:
     ok["b"], ok["c"] = True, True
     for d in sorted(external.glob("mobgap_*_Test*_Trial*")):
         s = read_session(d)
-        res = {v: steps_of(s, v) for v in (False, True)}
+        res = {v: steps(s, v) for v in (False, True)}
         if "step_f1" not in step_metrics(res[False], s):  # no timed reference contacts
             continue
         c = {v: V.counts(res[v], s) for v in res}
@@ -229,15 +237,15 @@ def measure(external: Path) -> None:
     print(f"(b) {'met' if ok['b'] else 'NOT met'} (pooled up by >= {MIN_POOLED_GAIN}, no recording down by > "
           f"{MAX_ROW_DROP}); (c) {'met' if ok['c'] else 'NOT met'} (no Test5 recording lower)\n")
     print("## (d) pooled bout distance-error medians (experiments/waist.py's external protocol)\n")
-    t = bout_medians(external)
+    t = bout_medians(external, option)
     print(t.to_markdown(index=False, floatfmt=".4g"))
     ok["d"] = True
     for _, g in t.groupby(["test", "params"]):
         off = float(g[g.pipeline == "waist-pendulum"]["bout_err_median_pct"].iloc[0])
-        on = float(g[g.pipeline == "waist-pendulum weak_fill"]["bout_err_median_pct"].iloc[0])
+        on = float(g[g.pipeline == f"waist-pendulum {option}"]["bout_err_median_pct"].iloc[0])
         ok["d"] &= on - off <= MAX_BOUT_WORSE
     print(f"\n(d) {'met' if ok['d'] else 'NOT met'} (each pooled median at most {MAX_BOUT_WORSE} points worse)")
-    print(f"\nW148: {'ADOPT' if all(ok.values()) else 'not adopted'}")
+    print(f"\n{decision}: {'ADOPT' if all(ok.values()) else 'not adopted'}")
 
 
 if __name__ == "__main__":

@@ -222,7 +222,7 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
                rhythm: bool = False, max_step_s: float = 1.5, acc_ml: np.ndarray | None = None,
                unshifted: bool = True, end_steps: bool = False, ap_above_mean: bool = False,
                turning: np.ndarray | None = None, contact_shift: bool = False,
-               spinning: np.ndarray | None = None, weak_fill: bool = False
+               spinning: np.ndarray | None = None, weak_fill: bool = False, parity: bool = False
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
 
@@ -258,6 +258,9 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         (n,) bool, samples where the pelvis turns, are not judged
     weak_fill : with ``acc_ml`` and ``rhythm``, weak steps where the alternation and the local rhythm ask for one
         (``rhythm_complete(weak_fill=True)``, decision W148; off by default)
+    parity : with ``acc_ml`` and ``rhythm``, after the sequence rules a contact without a vertical maximum between
+        two kept maxima of one decided side about two local periods apart (:func:`parity_fill`, decision W152; off
+        by default)
 
     Returns
     -------
@@ -275,13 +278,17 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         strong = vf[cand] >= min_peak_mps2
         if gate is not None:
             strong &= np.asarray(gate, dtype=bool)[cand]
-        side = None if acc_ml is None else step_sides(lateral_velocity(acc_ml, fs)[cand], strong)
+        vl = None if acc_ml is None else lateral_velocity(acc_ml, fs)
+        side = None if vl is None else step_sides(vl[cand], strong)
         keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2, at=peak_positions(vf, cand),
                                min_step_s=min_step_s, max_step_s=max_step_s, side=side,
                                unshifted=unshifted, end_steps=end_steps,
                                turning=None if turning is None else np.asarray(turning, dtype=bool)[cand],
                                weak_fill=weak_fill)
         peaks = cand[keep]
+        if parity and side is not None:  # W152: the missing opposite step of a same-side pair, without a maximum
+            peaks = np.union1d(peaks, parity_fill(cand, keep, side, vl, side_scale(vl[cand], strong), fs,
+                                                  max_step_s=max_step_s))
     else:
         peaks = dsp.find_peaks(vf, height=min_peak_mps2, distance=dist)
         if gate is not None:
@@ -316,7 +323,7 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                      alternate: bool = True, weight_shift: bool = True, end_steps: bool = True,
                      ap_above_mean: bool = False, turn_gate_rps: float | None = None,
                      turn_shift_rps: float | None = None, min_step_s: float | None = None,
-                     contact_shift: bool = False, weak_fill: bool = False
+                     contact_shift: bool = False, weak_fill: bool = False, parity_fill: bool = False
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The offline IC detector's rule contacts on navigation-frame arrays (the body of
     :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
@@ -332,7 +339,7 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                               end_steps=end_steps, ap_above_mean=ap_above_mean, turning=turning,
                               min_step_s=min_step_s, contact_shift=contact_shift,
                               spinning=None if yaw_rate is None else yaw_rate >= CONTACT_SHIFT_TURN_RPS,
-                              weak_fill=weak_fill)
+                              weak_fill=weak_fill, parity=parity_fill)
     return ic, fc, vmax, ap
 
 
@@ -396,11 +403,18 @@ def step_sides(v_at: np.ndarray, accepted: np.ndarray, *, min_frac: float = SIDE
     the ``accepted`` steps (the signal's own scale). Which sign is the left foot depends on the mounting
     and does not matter: only equal vs opposite sides are used."""
     v = np.asarray(v_at, dtype=np.float64)
-    acc = np.asarray(accepted, dtype=bool)
-    scale = float(np.median(np.abs(v[acc]))) if acc.any() else 0.0
-    if not np.isfinite(scale) or scale <= 0.0:
+    scale = side_scale(v, accepted)
+    if scale <= 0.0:
         return np.zeros(v.shape[0], dtype=np.int8)
     return np.where(np.abs(v) >= min_frac * scale, np.sign(v), 0.0).astype(np.int8)
+
+
+def side_scale(v_at: np.ndarray, accepted: np.ndarray) -> float:
+    """W20's scale of the lateral velocity: its median ``|v|`` at the ``accepted`` steps (0 when there is none)."""
+    v = np.asarray(v_at, dtype=np.float64)
+    acc = np.asarray(accepted, dtype=bool)
+    scale = float(np.median(np.abs(v[acc]))) if acc.any() else 0.0
+    return scale if np.isfinite(scale) and scale > 0.0 else 0.0
 
 
 def _max_gap(max_step_s: float, fs: float) -> int:
@@ -560,6 +574,44 @@ def _weak_candidate(cand: np.ndarray, h: np.ndarray, keep: np.ndarray, sd: np.nd
     return max(idx, key=lambda i: h[i]) if idx else None
 
 
+def _same_side_pairs(cand: np.ndarray, keep: np.ndarray, sd: np.ndarray, max_gap: int, tol: float):
+    """Decisions W148 / W152: each pair of consecutive kept candidates (``cand`` sample positions, ``keep`` mask) on
+    one decided side ``sd`` at most ``max_gap`` samples apart (W20: the alternation is broken, one opposite step is
+    missing), with the local period ``per`` around it (W18: the median of the pair's outer periods) and the window
+    ``(lo, hi)`` (samples) of a step one period (``+- tol`` periods) after the first AND one before the second.
+    Yields ``(side, per, lo, hi)``; a pair without a local period or with an empty window is skipped."""
+    sel = np.flatnonzero(keep)
+    t = cand[sel].astype(np.float64)
+    for k in range(sel.size - 1):
+        s_k = int(sd[sel[k]])
+        if s_k == 0 or int(sd[sel[k + 1]]) != s_k or t[k + 1] - t[k] > max_gap:
+            continue
+        p = [_local_period(t, k, -1, max_gap), _local_period(t, k + 1, +1, max_gap)]
+        if not np.isfinite(p).any():
+            continue
+        per = float(np.nanmedian(p))
+        a1, a2 = t[k] + per, t[k + 1] - per  # the predicted times; W18's +-tol around both
+        lo, hi = max(a1, a2) - tol * per, min(a1, a2) + tol * per
+        if lo <= hi:
+            yield s_k, per, lo, hi
+
+
+def _weak_candidate(cand: np.ndarray, h: np.ndarray, keep: np.ndarray, sd: np.ndarray, want: int,
+                    anchors: list[float], per: float, tol: float) -> int | None:
+    """Decision W148: the highest positive (W18's interior floor) candidate not in ``keep`` whose decided side is
+    ``want`` and which lies within ``tol`` local periods ``per`` of every predicted time in ``anchors`` (samples)."""
+    lo, hi = max(anchors) - tol * per, min(anchors) + tol * per
+    return _weak_in(cand, h, keep, sd, want, lo, hi)
+
+
+def _weak_in(cand: np.ndarray, h: np.ndarray, keep: np.ndarray, sd: np.ndarray, want: int, lo: float,
+             hi: float) -> int | None:
+    """The highest positive candidate not in ``keep`` on decided side ``want`` with position in ``[lo, hi]``."""
+    idx = [i for i in range(np.searchsorted(cand, lo), np.searchsorted(cand, hi, side="right"))
+           if not keep[i] and h[i] > 0.0 and int(sd[i]) == want]
+    return max(idx, key=lambda i: h[i]) if idx else None
+
+
 def fill_weak_alternating(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, side: np.ndarray, fs: float, *,
                           max_step_s: float = 1.5, tol: float = RHYTHM_TOL) -> np.ndarray:
     """Decision W148 inside a sequence: two consecutive kept maxima on the same decided side (W20: the alternation
@@ -573,21 +625,38 @@ def fill_weak_alternating(cand: np.ndarray, height: np.ndarray, keep: np.ndarray
     sd = np.asarray(side)
     keep = np.asarray(keep, dtype=bool)
     out = keep.copy()
-    sel = np.flatnonzero(keep)
-    t = cand[sel].astype(np.float64)
-    max_gap = _max_gap(max_step_s, fs)
-    for k in range(sel.size - 1):
-        s_k = int(sd[sel[k]])
-        if s_k == 0 or int(sd[sel[k + 1]]) != s_k or t[k + 1] - t[k] > max_gap:
-            continue
-        p = [_local_period(t, k, -1, max_gap), _local_period(t, k + 1, +1, max_gap)]
-        if not np.isfinite(p).any():
-            continue
-        per = float(np.nanmedian(p))
-        i = _weak_candidate(cand, h, keep, sd, -s_k, [t[k] + per, t[k + 1] - per], per, tol)
+    for s_k, _per, lo, hi in _same_side_pairs(cand, keep, sd, _max_gap(max_step_s, fs), tol):
+        i = _weak_in(cand, h, keep, sd, -s_k, lo, hi)
         if i is not None:
             out[i] = True
     return out
+
+
+def parity_fill(cand: np.ndarray, keep: np.ndarray, side: np.ndarray, v_lat: np.ndarray, scale: float, fs: float, *,
+                max_step_s: float = 1.5, tol: float = RHYTHM_TOL, min_frac: float = SIDE_MIN_FRAC) -> np.ndarray:
+    """Decision W152: a contact WITHOUT a vertical maximum for a same-side pair of kept maxima (W148's pairs and
+    window, :func:`_same_side_pairs`: one local period +-``tol`` after the first and before the second, so only a
+    pair about two local periods apart has one). Where the weak bounce of the missing step merged into its
+    neighbours' (W149: 15 of the 23 real Test11 misses have no vertical maximum of their own), the lateral sway
+    still shows the step: W20 reads a step's side from the pelvis's lateral velocity ``v_lat`` (per sample) at its
+    vertical maximum, so the missing opposite step is placed at the sample of the window where the velocity points
+    most to the opposite side, provided it is decided there (``|v| >= min_frac`` x W20's ``scale``,
+    :func:`side_scale`). Returns the sample positions of the placed vertical-maximum anchors (int, increasing);
+    their initial contacts are found as every contact's (W3)."""
+    cand = np.asarray(cand, dtype=np.int64)
+    v = np.asarray(v_lat, dtype=np.float64)
+    out = []
+    if scale <= 0.0:
+        return np.zeros(0, dtype=np.int64)
+    for s_k, _per, lo, hi in _same_side_pairs(cand, np.asarray(keep, dtype=bool), np.asarray(side),
+                                              _max_gap(max_step_s, fs), tol):
+        a, b = max(0, int(np.ceil(lo))), min(v.size - 1, int(np.floor(hi)))
+        if b < a:
+            continue
+        x = a + int(np.argmax(-s_k * v[a:b + 1]))  # the opposite side's sway extreme (W20's sign convention)
+        if -s_k * v[x] >= min_frac * scale:  # decided on the opposite side (W20's 1/3 of the median)
+            out.append(x)
+    return np.asarray(sorted(set(out)), dtype=np.int64)
 
 
 def ap_mean_level(ap: np.ndarray, fs: float, *, window_s: float = GATE_WINDOW_S) -> np.ndarray:

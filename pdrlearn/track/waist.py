@@ -317,7 +317,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "weak_fill": False,
-                   "pivot_steps": False}  # pause_steps: W134; pivot_steps: W150
+                   "pivot_steps": False, "parity_fill": False}  # pause_steps: W134, pivot_steps: W150, parity: W152
 #: decision B199: the options that are true or false (``sit_veto``, ``pause_steps``, ``vault_veto`` take more values,
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
@@ -353,7 +353,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
                 gait_check: bool | None = None, weak_fill: bool | None = None, pivot_steps: bool | None = None,
-                detector=None,
+                parity_fill: bool | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -425,6 +425,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     pivot_steps : a step whose pelvis turns 45 deg or more from its contact to the next keeps at most the chord of its
         turn on a 0.2 m radius, after ``turn_factor`` (decision W150's candidate, both pipelines, offline and realtime;
         steps column ``pivot_factor``; measured and not adopted); default False
+    parity_fill : pendulum, offline detector: a contact without a vertical maximum between two kept contacts of one
+        decided side about two local periods apart (decision W152, ``InitialContactDetector``'s ``parity_fill``);
+        default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -458,7 +461,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "slow_turn_rps": slow_turn_rps,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check,
-             "weak_fill": weak_fill, "pivot_steps": pivot_steps}
+             "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -670,7 +673,7 @@ def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDete
     ``thr`` (one construction for the track and W139's pendulum reading, so an option cannot be left out: E102)."""
     return InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
                                   rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"]),
-                                  weak_fill=bool(o["weak_fill"]))
+                                  weak_fill=bool(o["weak_fill"]), parity_fill=bool(o["parity_fill"]))
 
 
 def _model_options(o: dict, realtime: bool) -> dict:
