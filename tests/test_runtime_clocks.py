@@ -68,7 +68,7 @@ def test_the_numpy_lowpass_is_the_causal_lowpass(order):
                                                                     abs=1e-12)
 
 
-@pytest.mark.parametrize("chunk_s", [0.02, 0.7])
+@pytest.mark.parametrize("chunk_s", [0.02, 0.7, 2.0])  # 2 s: the first push holds 100 foot samples
 def test_the_live_tracker_checks_the_clocks_as_run_does(walk, chunk_s):
     """Clean: quiet, and at flush the estimate is the offline one on the same samples (align_units, L161/L170);
     waist clock +0.3 s: one L161 line naming waist_clock_offset_s, the final estimate again the offline one;

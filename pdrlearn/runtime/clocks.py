@@ -10,8 +10,8 @@ stride on the events so far and at ``flush`` on all of them, where it is the off
 Differences from the offline check, by construction: the detectors' rate is the median interval of a stream's
 first :data:`RATE_PROBE_SAMPLES` samples (offline: of the whole recording; equal for regular sampling), the PLL
 keeps its adult range (offline, W117 reads the whole recording's rhythm and widens it above 2.4 steps/s), and the
-force sensors are used when both were pushed before the foot accelerometer's first :data:`RATE_PROBE_SAMPLES`
-samples were processed.
+force sensors are used when both were pushed by the push that brought the foot accelerometer's first
+:data:`RATE_PROBE_SAMPLES` samples.
 """
 
 from __future__ import annotations
@@ -80,11 +80,12 @@ class ClockCheck:
     """L161's clock offset of the foot and waist units from pushed samples (decision L177).
 
     ``feed(name, t, values)`` with the raw pushed samples of ``fAccelerometer``, ``fForceA``, ``fForceB`` and
-    ``wAccelerometer`` (others ignored); ``check()`` returns L161's warning line the first time the estimate is over
-    :data:`UNIT_OFFSET_WARN_S` (None otherwise; ``final=True`` at the end of the stream: all events, as the offline
-    check). :attr:`estimate` is ``align_events``' last dict (``offset_s``, ``drift``, ``matched``, ...), or None
-    before there are 3 events of each unit. ``remedy``: the fix the line names, from the estimated offset. State:
-    the detectors' (bounded) and the event times (about two floats a second of walking)."""
+    ``wAccelerometer`` (others ignored), then ``check()`` once per push: it runs the foot detector and returns L161's
+    warning line the first time the estimate is over :data:`UNIT_OFFSET_WARN_S` (None otherwise; ``final=True`` at
+    the end of the stream: all events, as the offline check). :attr:`estimate` is ``align_events``' last dict
+    (``offset_s``, ``drift``, ``matched``, ...), or None before there are 3 events of each unit. ``remedy``: the fix
+    the line names, from the estimated offset. State: the detectors' (bounded) and the event times (about two floats
+    a second of walking)."""
 
     def __init__(self, remedy=None):
         self.remedy = remedy
@@ -106,8 +107,6 @@ class ClockCheck:
         held.add(t, v)
         if name == "wAccelerometer" and held.n >= BLOCK_SAMPLES:
             self._run_waist(held.take())
-        elif name == "fAccelerometer" or name in FORCE_SENSORS:
-            self._run_foot(final=False)
 
     def check(self, final: bool = False) -> str | None:
         """The warning line, once: when a new estimate (every CHECK_EVERY_STRIDES foot strides, and at the end)
@@ -121,8 +120,10 @@ class ClockCheck:
                 elif self._waist is not None:
                     self._waist_events += [e[0] for e in self._waist.flush()]
             self._run_foot(final=True)
-        elif len(self._foot_events) < self._checked_at + CHECK_EVERY_STRIDES:
-            return None
+        else:  # the foot samples after the whole push was fed (its force samples too: the detector is chosen once)
+            self._run_foot(final=False)
+            if len(self._foot_events) < self._checked_at + CHECK_EVERY_STRIDES:
+                return None
         self._checked_at = len(self._foot_events)
         try:
             self.estimate = align_events(self._foot_events, self._waist_events)
