@@ -17,6 +17,15 @@ import numpy as np
 
 
 # -- FIR design ---------------------------------------------------------------------------------------
+def magnitude(v: np.ndarray) -> np.ndarray:
+    """Euclidean norm of each row of ``v`` ((n, k) -> (n,)); a 1-D input is returned as ``|v|``
+    (:func:`pdrlearn.signal.magnitude`, re-exported there)."""
+    a = np.asarray(v, dtype=np.float64)
+    if a.ndim == 1:
+        return np.abs(a)
+    return np.sqrt(np.einsum("ij,ij->i", a, a))
+
+
 def firwin_lowpass(numtaps: int, cutoff_hz: float, fs: float) -> np.ndarray:
     """Hamming-windowed sinc low-pass of ``numtaps`` taps, unit gain at 0 Hz: ``scipy.signal.firwin(numtaps,
     cutoff_hz, fs=fs)`` (window method; Oppenheim & Schafer, Discrete-Time Signal Processing, sec. 7.5)."""

@@ -71,6 +71,8 @@ from pdrlearn.kernels.window import (
 )
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
+from pdrlearn.runtime.clocks import SENSORS as CLOCK_SENSORS
+from pdrlearn.runtime.clocks import ClockCheck, offset_remedy, waist_on_foot_clock
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenWatch, MirrorWatch, UnitGuard
 from pdrlearn.runtime.resample import InputStage, stopped_message
@@ -388,6 +390,13 @@ class Tracker(FixInput):
     resume : a :meth:`restart_state` of another tracker (decision L134): go on where it stood (its position and
         heading, the stride in progress measured whole from the samples it buffered); ``start`` and
         ``heading_rad`` are then not used. The steps those samples complete come out with the first push.
+    clock_check : with the foot and the waist unit, estimate their clock offset from the pushed samples as ``pdrlearn
+        track`` / ``run`` do (decisions L161, L170, L177: the same detectors and estimate, numpy only) and warn once
+        when it is over 0.2 s, at every 20th foot stride and at :meth:`flush`; :attr:`clock_offset` holds the last
+        estimate (at ``flush``: the offline check's on the same samples). False: no check.
+    waist_clock_offset_s : a known offset of the waist clock (s, ``t_waist = t_foot + offset``, the sign L161's line
+        and ``track --align-units`` give): every pushed waist sample is moved to ``t - offset`` before anything
+        else (decision L177: the live form of ``--align-units``; 0: none).
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -444,8 +453,16 @@ class Tracker(FixInput):
         resume: dict | None = None,
         max_gap_s: float = MAX_GAP_S,
         start_enu_m=None,
+        clock_check: bool = True,
+        waist_clock_offset_s: float = 0.0,
     ):
         start_xyz = enu_start(start, start_enu_m)  # decision L159
+        if not isinstance(clock_check, bool | np.bool_):  # decision L177: flags and a number of seconds
+            raise DataError(f"clock_check={clock_check!r} must be True or False")
+        if (isinstance(waist_clock_offset_s, bool) or not isinstance(waist_clock_offset_s, int | float | np.number)
+                or not math.isfinite(waist_clock_offset_s)):
+            raise DataError(f"waist_clock_offset_s={waist_clock_offset_s!r} must be the waist clock's offset in "
+                            "seconds (a finite number; 0 for none)")
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
         sensors = None if sensors is None else [str(n) for n in sensors]
@@ -616,10 +633,35 @@ class Tracker(FixInput):
         #: ``check_input=False``)
         self._mirror = (MirrorWatch() if check_input and {"fAccelerometer", "fGyroscope"} <= set(self.used_sensors)
                         else None)
+        #: decision L177: the live two-unit clock check (None: off, or the waist unit not followed) and the known
+        #: waist clock offset moved off every pushed waist sample
+        if waist_clock_offset_s and "waist" not in self.units:
+            raise DataError(f"waist_clock_offset_s={waist_clock_offset_s!r}: the tracker follows "
+                            f"{'+'.join(self.units)} only, so there is no waist clock to move; drop it")
+        self.waist_clock_offset_s = float(waist_clock_offset_s)
+        self._clock = ClockCheck(offset_remedy) if clock_check and "waist" in self.units else None
         #: decision L134: a restart state's position, heading and samples (the steps they complete come out with
         #: the next push's or flush's)
         self._carry = resume_state(self, resume) if resume is not None else []
 
+
+    @property
+    def clock_offset(self) -> dict | None:
+        """Decision L177: the last estimate of the foot-to-waist clock offset (``align_events``' dict: ``offset_s``,
+        ``drift``, ``matched``, ``foot_events``, ``residual_sd_s``), None before one (or without the check)."""
+        return None if self._clock is None else self._clock.estimate
+
+    def _check_clocks(self, checked: dict, fast: dict | None) -> None:
+        """Decision L177: the check's sensors' pushed samples to :class:`ClockCheck`, and its line once."""
+        clock = self._clock
+        for name in CLOCK_SENSORS:
+            if name in checked:
+                clock.feed(name, *checked[name])
+            elif fast and name in fast:
+                clock.feed(name, np.array([fast[name][0]]), np.array([fast[name][1]]))
+        line = clock.check()
+        if line:
+            self._warn(line)
 
     def restart_state(self) -> dict:
         """What a new tracker needs to go on where this one stands (decision L134): ``Tracker(bundle,
@@ -826,6 +868,8 @@ class Tracker(FixInput):
                 ts.append(mm.t)
                 vs.append(mm.values)
             samples = grouped
+        if self.waist_clock_offset_s:  # decision L177: the waist samples on the foot clock, before anything else
+            samples = waist_on_foot_clock(samples, self.waist_clock_offset_s)
         fast = self._check_push(samples)  # decision E29: every sensor checked before any state changes
         if fast is None:  # decision E40: no sample at all, nothing to do
             return []
@@ -837,6 +881,8 @@ class Tracker(FixInput):
             arrays = {n: checked[n] if n in checked else (np.array([fast[n][0]]), np.array([fast[n][1]]))
                       for n in guard.wanted() if n in checked or n in fast}
             guard.take(arrays, guard.check(arrays))
+        if self._clock is not None:  # decision L177: the raw pushed samples, as the offline check reads a recording
+            self._check_clocks(checked, fast)
         if self._foot_q:  # the foot samples of a push that completed a step (decision E21)
             self._feed_foot()
         samples = self.inputs.push(samples)  # the same dict when every stream is at the bundle's rate (E22)
@@ -1083,6 +1129,10 @@ class Tracker(FixInput):
         guard, self._guard = self._guard, None  # checked once: a refusal here does not repeat on every flush
         if guard is not None:  # decision B119: a stream shorter than GUARD_S, checked on what it has
             guard.finish()
+        if self._clock is not None:  # decision L177: all the events, as the offline check on the recording
+            line = self._clock.check(final=True)
+            if line:
+                self._warn(line)
         for name, (t, v) in self.inputs.flush().items():
             self._append(name, t, v)
         self._detect()

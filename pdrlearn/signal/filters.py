@@ -9,15 +9,8 @@ import numpy as np
 from scipy import signal as _sig
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.dsp import magnitude  # noqa: F401 (numpy-only, shared with the detectors' kernels, L177)
 from pdrlearn.kernels.rotation import gravity_rotation  # noqa: F401 (numpy-only, shared with the runtime)
-
-
-def magnitude(v: np.ndarray) -> np.ndarray:
-    """Euclidean norm of each row of ``v`` ((n, k) -> (n,)); a 1-D input is returned as ``|v|``."""
-    a = np.asarray(v, dtype=np.float64)
-    if a.ndim == 1:
-        return np.abs(a)
-    return np.sqrt(np.einsum("ij,ij->i", a, a))
 
 
 def butter_sos(cutoff_hz: float, fs: float, *, order: int = 3, btype: str = "low") -> np.ndarray:

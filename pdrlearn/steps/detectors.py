@@ -9,13 +9,11 @@ thesis' 20 Hz (docs/decisions/steps.md). Detectors run at the session's native r
 from __future__ import annotations
 
 import logging
-import math
 
 import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
-from pdrlearn.kernels import contact as _contact
 from pdrlearn.kernels.contact import (
     EVENT_CUTOFF_HZ,
     FORCE_AMP,
@@ -24,31 +22,30 @@ from pdrlearn.kernels.contact import (
     FORCE_ON_FRAC,
     PEAK_FRAC,
 )
-from pdrlearn.kernels.waist import PLL_F0_HZ, accel_step_period_s, pll_range
-from pdrlearn.plugins import Registry
-from pdrlearn.signal.conditioning import G, calibrate_standstill
-from pdrlearn.signal.filters import CausalLowpass, lowpass_delay_s, magnitude
-from pdrlearn.steps._kernels import (
-    BurstParams,
-    BurstState,
-    ForceParams,
-    ForceState,
+from pdrlearn.kernels.step_events import (  # decision L177: the online processors, numpy only given a low-pass
+    MIN_STILL_SAMPLES,  # noqa: F401 (re-exported)
+    MIN_STILL_WINDOW_SAMPLES,  # noqa: F401
+    MIN_STRIDE_S,
+    AccelProcessor,
+    ForceProcessor,
     GateState,
+    GravityTracker,
     PelvicParams,
     PelvicState,
     PLLParams,
-    PLLState,
-    burst_flush,
-    burst_kernel,
-    force_kernel,
+    PLLProcessor,
     motion_gate_flush,
     motion_gate_kernel,
     pelvic_flush,
     pelvic_kernel,
-    pll_flush,
-    pll_kernel,
-    trailing_window_std,
+    pll_params,
 )
+from pdrlearn.kernels.step_events import cutoff_below as _cutoff
+from pdrlearn.kernels.step_events import shift_events as _shift
+from pdrlearn.kernels.waist import accel_step_period_s
+from pdrlearn.plugins import Registry
+from pdrlearn.signal.conditioning import G, calibrate_standstill
+from pdrlearn.signal.filters import CausalLowpass, lowpass_delay_s
 from pdrlearn.steps.base import STEP_UNITS, StepDetector, check_stream, stream_on
 from pdrlearn.steps.waist_ic import WaistICStepDetector
 
@@ -57,81 +54,6 @@ log = logging.getLogger(__name__)
 THESIS_RATE_HZ = 20.0  # thesis ch.4.3: both BSUs sample at 20 Hz
 GATE_CUTOFF_HZ = 5.0  # the PLL's input low-pass, on which the waist motion gate was measured (decision 18);
 # seed 001 Sec. 2.2.2 uses a Chebyshev IIR at 15 Hz: why ours differs in decision 24
-
-
-def _cutoff(cutoff_hz: float, fs: float) -> float:
-    """Keep a low-pass cutoff below 0.45 fs so that every detector also runs on low-rate streams."""
-    return min(cutoff_hz, 0.45 * fs)
-
-
-def _subsample(det: StepDetector) -> bool:
-    """Steps decision 32: the detector's ``subsample``, or the module default when None."""
-    return bool(_contact.SUBSAMPLE if det.subsample is None else det.subsample)
-
-
-def _shift(events: list, delay: float) -> list:
-    """Move event times back by the causal filter's group delay (start/end windows unchanged)."""
-    if not delay:
-        return events
-    return [(e[0] - delay, e[1], e[2], e[3], e[4]) for e in events]
-
-
-class _GravityTracker:
-    """Causal gravity direction from a slow low-pass of the accelerometer (works in any sensor frame)."""
-
-    def __init__(self, fs: float, cutoff_hz: float):
-        self.lp = CausalLowpass(_cutoff(cutoff_hz, fs), fs, order=2)
-
-    def push(self, acc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        g = self.lp.push(acc)
-        n = magnitude(g)
-        n = np.where(n > 1e-6, n, 1.0)
-        return g / n[:, None], n
-
-
-# ---------------------------------------------------------------------------------------------------
-#: a still period that ends a swing needs at least this many samples, whatever min_still_s gives: at
-#: 20 Hz one quiet sample in the middle of a slow swing split strides in two (docs/decisions/steps.md)
-MIN_STILL_SAMPLES = 2
-#: a standard deviation over fewer than 3 samples is no estimate (decision 14)
-MIN_STILL_WINDOW_SAMPLES = 3
-#: steps decision 37: detections closer than this (s) are one stride of the foot; 0.6 s (decision 3) merged the
-#: strides of children at 200+ steps/min (experiments/results/child_strides.md)
-MIN_STRIDE_S = 0.4
-
-
-class _AccelProcessor:
-    def __init__(self, det: AccelStepDetector, fs: float):
-        self.det = det
-        self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
-        self.lp_event = CausalLowpass(_cutoff(det.event_cutoff_hz, fs), fs, order=2)
-        self.delay = lowpass_delay_s(_cutoff(det.event_cutoff_hz, fs), fs, order=2)
-        self.w = max(MIN_STILL_WINDOW_SAMPLES, int(round(det.still_window_s * fs)))
-        self.tail: np.ndarray | None = None
-        self.state = BurstState()
-        # still samples for a quiet time of q seconds: the window's first w - 1 samples are quiet too
-        def need(q: float) -> int:
-            return max(MIN_STILL_SAMPLES, int(round(q * fs)) - (self.w - 1))
-        self.params = BurstParams(
-            amp=det.threshold, min_still_n=need(det.min_quiet_s),
-            min_dur_s=det.min_swing_s, max_dur_s=det.max_swing_s, min_stride_s=det.min_stride_s,
-            rest=det.gravity, peak_frac=det.peak_frac, max_still_n=need(det.max_quiet_s),
-            quiet_frac=det.quiet_frac, history=4, window_n=self.w, cap_n=int(round(0.6 * fs)),
-            quiet_rank=det.quiet_rank, rests_only=det.rests_only, subsample=_subsample(det))
-        self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
-
-    def process(self, t: np.ndarray, v: np.ndarray) -> list:
-        m = magnitude(v)
-        a = self.lp.push(m)
-        if self.tail is None:
-            self.tail = np.full(self.w - 1, m[0])
-        mean, std, self.tail = trailing_window_std(m, self.tail, self.w)
-        still = (std < self.det.still_std) & (np.abs(mean - self.det.gravity) < self.det.still_level_tol)
-        ev, self.state = burst_kernel(t, a, still, self.state, self.params, e=self.lp_event.push(m))
-        return _shift(ev, self.delay)
-
-    def flush(self) -> list:
-        return _shift(burst_flush(self.state), self.delay)
 
 
 class AccelStepDetector(StepDetector):
@@ -194,28 +116,10 @@ class AccelStepDetector(StepDetector):
         return acc.t, acc.values, {}
 
     def _make_processor(self, fs: float, **context):
-        return _AccelProcessor(self, fs)
+        return AccelProcessor(self, fs, CausalLowpass, lowpass_delay_s)
 
 
 # ---------------------------------------------------------------------------------------------------
-class _ForceProcessor:
-    def __init__(self, det: AccelForceStepDetector, fs: float):
-        self.det = det
-        self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
-        self.state = ForceState()
-        self.params = ForceParams(amp=det.threshold, on_frac=det.force_on_frac, off_frac=det.force_off_frac,
-                                  min_swing_s=det.min_swing_s, subsample=_subsample(det))
-
-    def process(self, t: np.ndarray, v: np.ndarray) -> list:
-        a = self.lp.push(magnitude(v[:, :3]))
-        f = v[:, 3] + v[:, 4]
-        ev, self.state = force_kernel(t, a, f, self.state, self.params)
-        return ev
-
-    def flush(self) -> list:
-        return []
-
-
 class AccelForceStepDetector(StepDetector):
     """Foot accelerometer + heel/toe force sensors, thesis ch.5.2 (Fig. 51).
 
@@ -257,7 +161,7 @@ class AccelForceStepDetector(StepDetector):
         return acc.t, np.column_stack([acc.values, fa[:, 0], fb[:, 0]]), {}
 
     def _make_processor(self, fs: float, **context):
-        return _ForceProcessor(self, fs)
+        return ForceProcessor(self, fs, CausalLowpass)
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -265,7 +169,7 @@ class _PelvicProcessor:
     def __init__(self, det: PelvicGyroStepDetector, fs: float, gyro_bias=None):
         self.det = det
         self.bias = np.zeros(3) if gyro_bias is None else np.asarray(gyro_bias, dtype=float).reshape(3)
-        self.grav = _GravityTracker(fs, det.gravity_cutoff_hz)
+        self.grav = GravityTracker(fs, det.gravity_cutoff_hz, CausalLowpass)
         self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
         self.hp = CausalLowpass(det.turn_cutoff_hz, fs, order=2) if det.turn_cutoff_hz > 0 else None
         self.delay = lowpass_delay_s(_cutoff(det.cutoff_hz, fs), fs, order=det.order)
@@ -364,25 +268,6 @@ class PelvicGyroStepDetector(StepDetector):
 
 
 # ---------------------------------------------------------------------------------------------------
-class _PLLProcessor:
-    def __init__(self, det: PLLStepDetector, fs: float, period_s: float = float("nan")):
-        self.det = det
-        self.grav = _GravityTracker(fs, det.gravity_cutoff_hz)
-        self.lp = CausalLowpass(_cutoff(det.cutoff_hz, fs), fs, order=2)
-        self.delay = lowpass_delay_s(_cutoff(det.cutoff_hz, fs), fs, order=2) if det.refine_frac > 0 else 0.0
-        self.state = PLLState()
-        self.params = det.loop_params(period_s)
-
-    def process(self, t: np.ndarray, v: np.ndarray) -> list:
-        up, gnorm = self.grav.push(v)
-        vert = self.lp.push(np.einsum("ij,ij->i", v, up) - gnorm)
-        ev, self.state = pll_kernel(t, vert, self.state, self.params)
-        return _shift(ev, self.delay)
-
-    def flush(self) -> list:
-        return _shift(pll_flush(self.state, self.params), self.delay)
-
-
 class PLLStepDetector(StepDetector):
     """Phase-locked-loop step detector on the vertical acceleration (seed 000 Sec. II-C; seed 001 Sec. 2.2.2).
 
@@ -431,18 +316,9 @@ class PLLStepDetector(StepDetector):
 
     def loop_params(self, period_s: float = float("nan")) -> PLLParams:
         """The loop's parameters; with ``f_max_hz=None`` (decision W117) its free-running frequency and upper clamp
-        from the session's step period ``period_s`` (:func:`pdrlearn.kernels.waist.pll_range`; NaN: ``f0_hz`` and
-        3.2 Hz)."""
-        kd = 1.0 / math.sqrt(2.0)
-        wn = 2 * math.pi * self.loop_hz
-        f0, f_max = self.f0_hz, self.f_max_hz
-        if f_max is None:
-            f0_r, f_max = pll_range(period_s)
-            f0 = f0 if f0_r == PLL_F0_HZ else f0_r
-        return PLLParams(f0_hz=f0, kp=2 * self.damping * wn / kd, ki=wn * wn / kd,
-                         f_min_hz=self.f_min_hz, f_max_hz=f_max, agc_tau_s=self.agc_tau_s,
-                         gate_window_s=self.gate_window_s, gate_var=self.gate_var,
-                         refine_frac=self.refine_frac)
+        from the session's step period ``period_s`` (:func:`pdrlearn.kernels.step_events.pll_params`, shared with
+        the lean runtime's clock check, decision L177)."""
+        return pll_params(self, period_s)
 
     def _inputs(self, session: Session):
         name = {"waist": "wAccelerometer", "foot": "fAccelerometer"}.get(self.placement)
@@ -457,7 +333,7 @@ class PLLStepDetector(StepDetector):
                                                                    gate_window_s=self.gate_window_s)}
 
     def _make_processor(self, fs: float, period_s: float = float("nan"), **context):
-        return _PLLProcessor(self, fs, period_s)
+        return PLLProcessor(self, fs, period_s, CausalLowpass, lowpass_delay_s)
 
 
 def _check_detector(name: str, cls) -> type[StepDetector]:

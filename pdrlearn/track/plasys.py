@@ -421,28 +421,21 @@ def align_clocks(session: Session, warnings: list[str]) -> tuple[Session, dict |
 #: decision W126: when W125 warns, the two-unit waist heading removes the vertical-rate bias read at the waist's
 #: standstills (``track_plasys(waist_bias=...)``; the default is what W126's rule decided)
 WAIST_BIAS_AT_REST = False
-#: decision L161: a foot-to-waist clock offset (s) over this warns on an unaligned two-unit track (a priori: under
-#: half the step period of the slowest validated walk, 70 steps/min, L95 -- :func:`align_units` cannot tell offsets
-#: a whole step apart -- and 5x the -0.04 s the simulated clean sessions read)
-UNIT_OFFSET_WARN_S = 0.2
+from pdrlearn.kernels.align import UNIT_OFFSET_WARN_S  # noqa: E402, F401 (decision L161; shared with the runtime, L177)
 
 
 def unit_offset_line(session: Session, command: str = "pdrlearn track") -> str | None:
     """Decision L161: the warning line when :func:`pdrlearn.steps.align_units` finds the waist unit's steps over
     :data:`UNIT_OFFSET_WARN_S` from the foot's; None when under it or when the steps do not align (too few).
     ``command``: the one whose ``--align-units`` the line names (``pdrlearn run``, decision L170)."""
+    from pdrlearn.kernels.align import unit_offset_message
     from pdrlearn.steps.align import align_units
 
     try:
         offset, drift = align_units(session)
     except DataError:
         return None
-    if abs(offset) <= UNIT_OFFSET_WARN_S:
-        return None
-    return (f"the waist unit's steps fall {offset:+.2f} s from the foot unit's (drift {drift * 1e6:+.0f} ppm; over "
-            f"{UNIT_OFFSET_WARN_S:g} s warns, decision L161): the unit clocks are offset (a unit switched on later "
-            "that counts from 0, or a drifting clock), and the waist heading is read at the foot's strides; align "
-            f"them with `{command} --align-units` (an offset a whole step period apart is not seen)")
+    return unit_offset_message(offset, drift, command)
 
 
 def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, tau_s: float = 60.0) -> np.ndarray:

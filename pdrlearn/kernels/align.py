@@ -1,0 +1,94 @@
+"""Clock alignment of the foot and waist units from their step events, numpy only (thesis ch.7: the units are
+aligned with the gyroscope step detector): :func:`align_events` (``pdrlearn.steps.align_units``' estimate) and
+L161's warning line, shared by ``track``, ``run`` (L170) and the lean runtime's :class:`~pdrlearn.runtime.Tracker`
+(decision L177).
+
+Model: at one physical instant the waist clock reads ``t_w = t_f + offset_s + drift * t_f`` where
+``t_f`` is the foot clock (the foot clock is the reference: labels and foot steps are kept on it).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+
+#: decision L161: a foot-to-waist clock offset (s) over this warns on an unaligned two-unit track (a priori: under
+#: half the step period of the slowest validated walk, 70 steps/min, L95 -- :func:`align_events` cannot tell offsets
+#: a whole step apart -- and 5x the -0.04 s the simulated clean sessions read)
+UNIT_OFFSET_WARN_S = 0.2
+
+
+def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: float = 0.005,
+                 tolerance_s: float = 0.12, fit_drift: bool = True, min_span_s: float = 60.0) -> dict:
+    """Estimate ``offset_s`` (and ``drift``) so that ``foot + offset + drift * foot`` meets waist events.
+
+    Every foot stride event should coincide with one waist step event (the waist sees both feet), so the
+    offset that matches the most foot events within ``tolerance_s`` wins (grid of ``step_s`` over
+    +-``max_offset_s``; among offsets within 10 % of the best count, the local optimum closest to 0,
+    because the units are roughly synchronised). The matched pairs are then
+    fitted by least squares, ``t_w - t_f = offset + drift * t_f`` (drift only when they span at least
+    ``min_span_s`` seconds, else the median offset and ``drift = 0``).
+
+    Limitation (docs/decisions/steps.md): a walk's step events are periodic, so offsets that differ by
+    one step period (~0.5 s) match almost as well; bout starts and ends break the tie only when the
+    waist and the foot see them differently. The estimate is reliable for offsets below half a step
+    period and for changes of the offset (relative alignment).
+
+    Returns
+    -------
+    dict with ``offset_s``, ``drift`` (s/s), ``matched`` (pairs), ``foot_events``, ``residual_sd_s``.
+    """
+    f = np.sort(np.asarray(foot_times, dtype=float))
+    w = np.sort(np.asarray(waist_times, dtype=float))
+    if f.size < 3 or w.size < 3:
+        raise DataError(f"align_units: need at least 3 foot and 3 waist step events (got {f.size} and "
+                        f"{w.size}); record a longer walk")
+    grid = np.arange(-max_offset_s, max_offset_s + step_s / 2, step_s)
+    shifted = f[None, :] + grid[:, None]  # (n_grid, n_foot)
+    idx = np.clip(np.searchsorted(w, shifted), 1, w.size - 1)
+    dist = np.minimum(np.abs(w[idx] - shifted), np.abs(w[idx - 1] - shifted))
+    ok = dist <= tolerance_s
+    counts = ok.sum(axis=1)
+    mean_d = np.where(counts > 0, np.where(ok, dist, 0).sum(axis=1) / np.maximum(counts, 1), np.inf)
+    # most matches wins; ties -> the smallest |offset| (the units are roughly synchronised: the phone
+    # timestamps both streams), then the smallest mean distance
+    best_count = counts.max()
+    cand = np.flatnonzero(counts >= best_count - max(1, int(0.1 * f.size)))
+    # keep the local optimum (smallest mean distance) of each run of adjacent candidates
+    groups = np.split(cand, np.flatnonzero(np.diff(cand) > 1) + 1)
+    heads = [g[np.argmin(mean_d[g])] for g in groups]
+    o = float(grid[min(heads, key=lambda i: abs(grid[i]))])
+    # least-squares refinement over the matched pairs (two passes to settle the matching)
+    drift = 0.0
+    pairs_f = pairs_w = np.zeros(0)
+    for _ in range(2):
+        pred = f + o + drift * f
+        j = np.clip(np.searchsorted(w, pred), 1, w.size - 1)
+        jj = np.where(np.abs(w[j] - pred) < np.abs(w[j - 1] - pred), j, j - 1)
+        m = np.abs(w[jj] - pred) <= tolerance_s
+        pairs_f, pairs_w = f[m], w[jj[m]]
+        if pairs_f.size < 2:
+            break
+        d = pairs_w - pairs_f
+        if fit_drift and pairs_f.size >= 5 and np.ptp(pairs_f) >= min_span_s:
+            drift, o = (float(v) for v in np.polyfit(pairs_f, d, 1))
+        else:
+            o, drift = float(np.median(d)), 0.0
+    resid = (pairs_w - pairs_f) - (o + drift * pairs_f) if pairs_f.size else np.zeros(0)
+    return {"offset_s": o, "drift": drift, "matched": int(pairs_f.size), "foot_events": int(f.size),
+            "residual_sd_s": float(resid.std()) if resid.size > 1 else float("nan")}
+
+
+def unit_offset_message(offset_s: float, drift: float, command: str = "pdrlearn track",
+                        remedy: str | None = None) -> str | None:
+    """Decision L161: the warning line for an estimated offset (s) and drift (s/s) over :data:`UNIT_OFFSET_WARN_S`,
+    else None. ``command``: the one whose ``--align-units`` the line names (``pdrlearn run``, decision L170);
+    ``remedy``: another fix to name instead (the live Tracker's keyword, decision L177)."""
+    if abs(offset_s) <= UNIT_OFFSET_WARN_S:
+        return None
+    fix = remedy if remedy is not None else f"`{command} --align-units`"
+    return (f"the waist unit's steps fall {offset_s:+.2f} s from the foot unit's (drift {drift * 1e6:+.0f} ppm; over "
+            f"{UNIT_OFFSET_WARN_S:g} s warns, decision L161): the unit clocks are offset (a unit switched on later "
+            "that counts from 0, or a drifting clock), and the waist heading is read at the foot's strides; align "
+            f"them with {fix} (an offset a whole step period apart is not seen)")

@@ -1,0 +1,218 @@
+"""The live two-unit clock check (decision L177): L161's estimate of the foot-to-waist clock offset, as ``pdrlearn
+track`` and ``pdrlearn run`` (L170) compute it on a recording, from the samples pushed to a
+:class:`~pdrlearn.runtime.Tracker`, numpy only.
+
+The same detectors (the foot accelerometer detector, thesis ch.5.1, or with both force sensors the accelerometer +
+force detector, ch.5.2; the waist PLL, seed 000 Sec. II-C) run on the pushed samples through their shared online
+processors (:mod:`pdrlearn.kernels.step_events`, with the numpy low-pass), and the same estimate
+(:func:`pdrlearn.kernels.align.align_events`) reads their events: at every :data:`CHECK_EVERY_STRIDES`-th foot
+stride on the events so far and at ``flush`` on all of them, where it is the offline check's on the same samples.
+Differences from the offline check, by construction: the detectors' rate is the median interval of a stream's
+first :data:`RATE_PROBE_SAMPLES` samples (offline: of the whole recording; equal for regular sampling), the PLL
+keeps its adult range (offline, W117 reads the whole recording's rhythm and widens it above 2.4 steps/s), and the
+force sensors are used when both were pushed by the push that brought the foot accelerometer's first
+:data:`RATE_PROBE_SAMPLES` samples.
+"""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.kernels.align import UNIT_OFFSET_WARN_S, align_events, unit_offset_message
+from pdrlearn.kernels.contact import (
+    EVENT_CUTOFF_HZ,
+    FORCE_AMP,
+    FORCE_MIN_SWING_S,
+    FORCE_OFF_FRAC,
+    FORCE_ON_FRAC,
+    PEAK_FRAC,
+)
+from pdrlearn.kernels.step_events import MIN_STRIDE_S, AccelProcessor, ForceProcessor, PLLProcessor
+from pdrlearn.kernels.waist import PLL_F0_HZ
+
+#: the default settings of ``pdrlearn.steps``' AccelStepDetector, AccelForceStepDetector and PLLStepDetector,
+#: which ``align_units`` runs (thesis ch.5.1 / 5.2, seeds 000/001; steps decisions 6, 14, 16, 18, 37, W117;
+#: ``tests/test_runtime_clocks.py`` pins them to the detectors' own defaults)
+ACCEL = {"cutoff_hz": 3.0, "order": 3, "threshold": 1.7, "still_window_s": 0.08, "still_std": 0.6,
+         "still_level_tol": 1.2, "min_quiet_s": 0.1, "max_quiet_s": 0.2, "quiet_frac": 0.5, "quiet_rank": 2,
+         "rests_only": True, "min_swing_s": 0.2, "max_swing_s": 2.5, "min_stride_s": MIN_STRIDE_S,
+         "peak_frac": PEAK_FRAC, "event_cutoff_hz": EVENT_CUTOFF_HZ, "gravity": 9.80665, "subsample": None}
+FORCE = {"cutoff_hz": 3.0, "order": 3, "threshold": FORCE_AMP, "force_on_frac": FORCE_ON_FRAC,
+         "force_off_frac": FORCE_OFF_FRAC, "min_swing_s": FORCE_MIN_SWING_S, "subsample": None}
+PLL = {"f0_hz": PLL_F0_HZ, "loop_hz": 0.5, "damping": 0.707, "f_min_hz": 0.8, "f_max_hz": None, "cutoff_hz": 5.0,
+       "agc_tau_s": 1.0, "gravity_cutoff_hz": 0.3, "gate_window_s": 2.0, "gate_var": 0.25, "refine_frac": 0.25,
+       "placement": "waist"}
+#: a stream's detector rate is the median interval of its first this many samples (offline: of the whole stream)
+RATE_PROBE_SAMPLES = 64
+#: decision L177 (L170's sketch): the offset is estimated again every this many foot strides (about 30 s of walking
+#: at the first, enough for L161's median offset) and at ``flush``
+CHECK_EVERY_STRIDES = 20
+#: samples of a stream held before they are run through its detector (one call per block, not per sample)
+BLOCK_SAMPLES = 64
+FORCE_SENSORS = ("fForceA", "fForceB")
+SENSORS = ("fAccelerometer", *FORCE_SENSORS, "wAccelerometer")
+
+
+class _Held:
+    """Pushed samples of one stream not yet run through its detector."""
+
+    def __init__(self):
+        self.t: list[np.ndarray] = []
+        self.v: list[np.ndarray] = []
+        self.n = 0
+
+    def add(self, t: np.ndarray, v: np.ndarray) -> None:
+        self.t.append(np.asarray(t, dtype=np.float64).reshape(-1))
+        self.v.append(np.asarray(v, dtype=np.float64).reshape(len(self.t[-1]), -1))
+        self.n += len(self.t[-1])
+
+    def take(self) -> tuple[np.ndarray, np.ndarray]:
+        t, v = np.concatenate(self.t), np.concatenate(self.v)
+        self.t, self.v, self.n = [], [], 0
+        return t, v
+
+
+class ClockCheck:
+    """L161's clock offset of the foot and waist units from pushed samples (decision L177).
+
+    ``feed(name, t, values)`` with the raw pushed samples of ``fAccelerometer``, ``fForceA``, ``fForceB`` and
+    ``wAccelerometer`` (others ignored), then ``check()`` once per push: it runs the foot detector and returns L161's
+    warning line the first time the estimate is over :data:`UNIT_OFFSET_WARN_S` (None otherwise; ``final=True`` at
+    the end of the stream: all events, as the offline check). :attr:`estimate` is ``align_events``' last dict
+    (``offset_s``, ``drift``, ``matched``, ...), or None before there are 3 events of each unit. ``remedy``: the fix
+    the line names, from the estimated offset. State: the detectors' (bounded) and the event times (about two floats
+    a second of walking)."""
+
+    def __init__(self, remedy=None):
+        self.remedy = remedy
+        self._held = {n: _Held() for n in SENSORS}
+        self._force_t: dict[str, np.ndarray] = {}
+        self._force_v: dict[str, np.ndarray] = {}
+        self._foot = self._waist = None
+        self._with_force: bool | None = None
+        self._foot_events: list[float] = []
+        self._waist_events: list[float] = []
+        self._checked_at = 0
+        self.estimate: dict | None = None
+        self.warned = False
+
+    def feed(self, name: str, t, v) -> None:
+        held = self._held.get(name)
+        if held is None:
+            return
+        held.add(t, v)
+        if name == "wAccelerometer" and held.n >= BLOCK_SAMPLES:
+            self._run_waist(held.take())
+
+    def check(self, final: bool = False) -> str | None:
+        """The warning line, once: when a new estimate (every CHECK_EVERY_STRIDES foot strides, and at the end)
+        is over the threshold. The estimate at the end is made after a warning too (:attr:`estimate`)."""
+        if self.warned and not final:
+            return None
+        if final:
+            for name in ("wAccelerometer",):
+                if self._held[name].n:
+                    self._run_waist(self._held[name].take(), final=True)
+                elif self._waist is not None:
+                    self._waist_events += [e[0] for e in self._waist.flush()]
+            self._run_foot(final=True)
+        else:  # the foot samples after the whole push was fed (its force samples too: the detector is chosen once)
+            self._run_foot(final=False)
+            if len(self._foot_events) < self._checked_at + CHECK_EVERY_STRIDES:
+                return None
+        self._checked_at = len(self._foot_events)
+        try:
+            self.estimate = align_events(self._foot_events, self._waist_events)
+        except DataError:  # fewer than 3 events of a unit: no estimate yet
+            return None
+        off = self.estimate["offset_s"]
+        fix = None if self.remedy is None else self.remedy(off)
+        line = unit_offset_message(off, self.estimate["drift"], remedy=fix)
+        if line is None or self.warned:
+            return None
+        self.warned = True
+        return line
+
+    # -- the detectors --------------------------------------------------------------------------------------
+    @staticmethod
+    def _rate(t: np.ndarray) -> float:
+        return 1.0 / float(np.median(np.diff(t[:RATE_PROBE_SAMPLES])))
+
+    def _run_waist(self, tv: tuple[np.ndarray, np.ndarray], final: bool = False) -> None:
+        t, v = tv
+        if self._waist is None:
+            if t.size < 2:
+                if not final:  # too few to read a rate: held for the next push
+                    self._held["wAccelerometer"].add(t, v)
+                return
+            self._waist = PLLProcessor(SimpleNamespace(**PLL), self._rate(t))
+        self._waist_events += [e[0] for e in self._waist.process(t, v)]
+        if final:
+            self._waist_events += [e[0] for e in self._waist.flush()]
+
+    def _run_foot(self, final: bool) -> None:
+        acc = self._held["fAccelerometer"]
+        if self._foot is None:
+            if acc.n < min(RATE_PROBE_SAMPLES, BLOCK_SAMPLES) and not final:
+                return
+            if acc.n < 2:
+                return
+            self._with_force = all(self._held[n].n or n in self._force_t for n in FORCE_SENSORS)
+        if acc.n < BLOCK_SAMPLES and not final:
+            return
+        for n in FORCE_SENSORS:  # the force samples so far, held as one array (np.interp reads them at acc times)
+            h = self._held[n]
+            if h.n:
+                t, v = h.take()
+                self._force_t[n] = np.concatenate([self._force_t[n], t]) if n in self._force_t else t
+                self._force_v[n] = np.concatenate([self._force_v[n], v[:, 0]]) if n in self._force_v else v[:, 0]
+        t, v = acc.take() if acc.n else (np.zeros(0), np.zeros((0, 3)))
+        if self._with_force and t.size:
+            if not final:  # acc samples past the forces' last one wait for them (interpolated as offline)
+                cut = min(float(self._force_t[n][-1]) for n in FORCE_SENSORS)
+                k = int(np.searchsorted(t, cut, side="right"))
+                if k < t.size:
+                    self._held["fAccelerometer"].add(t[k:], v[k:])
+                t, v = t[:k], v[:k]
+            f = [np.interp(t, self._force_t[n], self._force_v[n]) for n in FORCE_SENSORS]
+            v = np.column_stack([v[:, :3], *f])
+            for n in FORCE_SENSORS:  # keep the force samples from the last one at or before the last acc time
+                if t.size:
+                    j = max(int(np.searchsorted(self._force_t[n], t[-1], side="right")) - 1, 0)
+                    self._force_t[n], self._force_v[n] = self._force_t[n][j:], self._force_v[n][j:]
+        if self._foot is None and t.size >= 2:
+            det = ForceProcessor(SimpleNamespace(**FORCE), self._rate(t)) if self._with_force else \
+                AccelProcessor(SimpleNamespace(**ACCEL), self._rate(t))
+            self._foot = det
+        if self._foot is None:
+            return
+        if t.size:
+            self._foot_events += [e[0] for e in self._foot.process(t, v)]
+        if final:
+            self._foot_events += [e[0] for e in self._foot.flush()]
+
+
+def waist_on_foot_clock(samples: dict, offset_s: float) -> dict:
+    """Decision L177: ``samples`` (sensor -> ``(t, values)``) with the waist sensors' times moved to ``t - offset_s``
+    (L161's model, no drift); anything that is no (t, values) pair is passed on for the push's checks to name."""
+    out = dict(samples)
+    for name, tv in samples.items():
+        if str(name).startswith("w") and isinstance(tv, tuple | list) and len(tv) == 2:
+            try:
+                t = np.asarray(tv[0], dtype=np.float64) - offset_s
+            except (TypeError, ValueError):
+                continue
+            out[name] = (t, tv[1])
+    return out
+
+
+def offset_remedy(offset_s: float) -> str:
+    """What L177's line tells a live tracker to do: a new tracker with the waist clock moved by the estimate."""
+    return f"a new Tracker(..., waist_clock_offset_s={offset_s:.3f})" if math.isfinite(offset_s) else "Tracker(...)"
+
+
+__all__ = ["ClockCheck", "UNIT_OFFSET_WARN_S", "offset_remedy", "waist_on_foot_clock"]
