@@ -87,6 +87,10 @@ def simulate_cmd(
         0.0, "--step-time-asymmetry", help="Hemiparetic gait: each step onto the left foot lasts 1 + this times "
         "the step onto the right (symmetry ratio - 1, Patterson et al. 2010), e.g. 0.39; the cadence stays the "
         "user's; 0 (default) to below 1 (decision S35)."),
+    step_length_asymmetry: float = typer.Option(
+        0.0, "--step-length-asymmetry", help="Asymmetric steps (after a stroke, with a prosthesis): each step onto "
+        "the left foot is 1 + this times as long as the step onto the right, e.g. 0.1; the stride length stays the "
+        "user's; ics.csv gets each step's length; 0 (default) to below 1 (decision S42)."),
     height: float | None = typer.Option(
         None, "--height", help=f"The user at this stature (m, {HEIGHT_RANGE_M[0]:g}-{HEIGHT_RANGE_M[1]:g}, e.g. 0.95 "
         "for a 3-year-old): foot, waist-unit height, swing, pelvis bounce and sway scaled by stature, step length "
@@ -122,6 +126,7 @@ def simulate_cmd(
     from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path
     from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES, STEP_TIME_ASYMMETRY_MAX
     from pdrlearn.sim.route import parse_route
+    from pdrlearn.sim.simulate import STEP_LENGTH_ASYMMETRY_MAX
 
     if (scenario is None) == (route is None):
         raise DataError("simulate: give either --scenario NAME or --route 'straight:10, up:12, ...' (one of them)")
@@ -147,6 +152,9 @@ def simulate_cmd(
     if not (math.isfinite(step_time_asymmetry) and 0.0 <= step_time_asymmetry < STEP_TIME_ASYMMETRY_MAX):  # S35
         raise DataError(f"--step-time-asymmetry {step_time_asymmetry:g}: give 0 (symmetric) to below "
                         f"{STEP_TIME_ASYMMETRY_MAX:g} (0.39 = the left foot's steps 39 % longer than the right's)")
+    if not (math.isfinite(step_length_asymmetry) and 0.0 <= step_length_asymmetry < STEP_LENGTH_ASYMMETRY_MAX):
+        raise DataError(f"--step-length-asymmetry {step_length_asymmetry:g}: give 0 (symmetric) to below "  # S42
+                        f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer than the right's)")
     user = scaled_user(UserProfile.from_seed(user_seed), height, leg_length)  # decision S38
     custom = _custom_gait(user, speed, step_length, step_time, route)  # decision S30
     if out.exists() and (not out.is_dir() or any(out.iterdir())):
@@ -164,6 +172,7 @@ def simulate_cmd(
         mag_disturbance_ut=mag_disturbance,
         waist_mount_deg=mount,
         step_time_asymmetry=step_time_asymmetry,
+        step_length_asymmetry=step_length_asymmetry,
     )
     label = scenario or "route"
     with progress(f"simulating {label}", total=2, enabled=not as_json) as advance:

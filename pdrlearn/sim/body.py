@@ -30,7 +30,7 @@ from pdrlearn.sim.kernels import (
     smoothstep,
 )
 from pdrlearn.sim.path import Footstep
-from pdrlearn.sim.user import GAIT_FACTORS, UserProfile
+from pdrlearn.sim.user import AFFECTED_FOOT, GAIT_FACTORS, UserProfile, asymmetry_factor  # noqa: F401 (S35 name)
 
 
 @dataclass(frozen=True)
@@ -106,9 +106,6 @@ SHOD = True  # the foot rolls over the front of the shoe's sole, beyond the toes
 STAIR_TOE_CLEARANCE = 2.0  # toe clearance over a stair nosing / the user's level toe clearance (S24)
 
 
-#: decision S35: the leg whose steps are slow in an asymmetric gait (``step_time_asymmetry``); the foot unit is on the
-#: right foot, so its strides span one slow and one normal step
-AFFECTED_FOOT = "left"
 #: decision S35: ``step_time_asymmetry`` must be below this: at 1 (symmetry ratio 2) the affected leg's stance is
 #: (1/2 + 2 s - 1) / (2 (1 - s)) = 0.97-1.34 x its swing for the users' stance fractions s 0.62-0.68; beyond, its
 #: swing outlasts its stance (a hop over the sound leg, not a walk)
@@ -116,15 +113,10 @@ STEP_TIME_ASYMMETRY_MAX = 1.0
 
 
 def step_time_factor(foot: str, asymmetry: float) -> float:
-    """Decision S35: the factor on the step time of a step landing on ``foot`` for a step-time asymmetry ``a``.
-
-    Asymmetry is the symmetry ratio minus 1, the ratio being affected / unaffected step time (Patterson et al.
-    2010, Gait Posture 31:241-246, recommend the ratio for post-stroke gait): a = 0.39 makes each step onto the
-    affected foot (:data:`AFFECTED_FOOT`) 1.39 x the step onto the other. The two factors 2 r / (1 + r) and
-    2 / (1 + r) (r = 1 + a) average 1, so the stride time, cadence and speed stay the user's; a = 0 gives 1.0
-    exactly (default sessions bit for bit)."""
-    r = 1.0 + asymmetry
-    return 2.0 * r / (1.0 + r) if foot == AFFECTED_FOOT else 2.0 / (1.0 + r)
+    """Decision S35: the factor on the step time of a step landing on ``foot`` for a step-time asymmetry ``a``
+    (:func:`pdrlearn.sim.user.asymmetry_factor`, shared with S42's step lengths): a = 0.39 makes each step onto the
+    affected foot (:data:`AFFECTED_FOOT`) 1.39 x the step onto the other, the stride time unchanged."""
+    return asymmetry_factor(foot, asymmetry)
 
 
 @dataclass
@@ -479,12 +471,9 @@ def pendulum_rise(step_m: np.ndarray, leg_m: float) -> np.ndarray:
     return leg_m - np.sqrt(leg_m**2 - half**2)
 
 
-def pendulum_bounce(steps: list[Footstep], ev: Events, initial: dict, user: UserProfile) -> np.ndarray:
-    """Peak-to-peak pelvis bounce (m) of each step (decision S29): ``pelvis_bounce_m x h(s_k) / h(s_user)``, with
-    ``h`` :func:`pendulum_rise` of the user's leg, ``s_k`` the step's heel-to-heel distance along the landing
-    foot's heading and ``s_user`` the comfortable step of the user's stature, 0.415 x height (the mean that
-    :meth:`UserProfile.from_seed` draws around): a comfortable step keeps the user's bounce, and a profile whose
-    ``step_length_m`` was shortened (a slow patient) bounces as its steps, not as its stature."""
+def step_lengths(steps: list[Footstep], initial: dict) -> np.ndarray:
+    """Length (m) of each footstep: the heel-to-heel distance from the other foot's heel to the landing heel along
+    the landing foot's heading (decisions S29, S42; ``abs``: a backward step is as long as its forward twin)."""
     last = {f: np.asarray(h, float) for f, (h, _) in initial.items()}
     s = np.zeros(len(steps))
     for k, st in enumerate(steps):
@@ -492,6 +481,16 @@ def pendulum_bounce(steps: list[Footstep], ev: Events, initial: dict, user: User
         d = np.asarray(st.heel, float)[:2] - last[other][:2]
         s[k] = abs(d[0] * np.cos(st.yaw) + d[1] * np.sin(st.yaw))
         last[st.foot] = np.asarray(st.heel, float)
+    return s
+
+
+def pendulum_bounce(steps: list[Footstep], ev: Events, initial: dict, user: UserProfile) -> np.ndarray:
+    """Peak-to-peak pelvis bounce (m) of each step (decision S29): ``pelvis_bounce_m x h(s_k) / h(s_user)``, with
+    ``h`` :func:`pendulum_rise` of the user's leg, ``s_k`` the step's heel-to-heel distance along the landing
+    foot's heading and ``s_user`` the comfortable step of the user's stature, 0.415 x height (the mean that
+    :meth:`UserProfile.from_seed` draws around): a comfortable step keeps the user's bounce, and a profile whose
+    ``step_length_m`` was shortened (a slow patient) bounces as its steps, not as its stature."""
+    s = step_lengths(steps, initial)
     ref = float(pendulum_rise(np.array([COMFORTABLE_STEP_PER_HEIGHT * user.height_m]), user.leg_length_m)[0])
     return user.pelvis_bounce_m * pendulum_rise(s, user.leg_length_m) / max(ref, 1e-9)
 

@@ -29,6 +29,7 @@ from pdrlearn.sim.body import (
     pelvis_pose,
     realistic_pelvis,
     schedule,
+    step_lengths,
 )
 from pdrlearn.sim.kernels import (
     angular_rate_body,
@@ -46,6 +47,9 @@ log = logging.getLogger(__name__)
 INTERNAL_RATE_HZ = 100.0  # sensor output data rate (thesis ch.4.2.1.1-2)
 OVERSAMPLE = 5  # pose grid at 500 Hz, averaged to the 100 Hz samples
 STAND_MARGIN_S = 0.2  # added to the standstills so that they last at least ``stand_s`` in every sensor
+#: decision S42: ``step_length_asymmetry`` must be below this (symmetry ratio 2, as S35's step times): beyond, the
+#: short step is less than a third of the stride (2 / (1 + r) < 2 / 3)
+STEP_LENGTH_ASYMMETRY_MAX = 1.0
 TERRAIN_DZ_M = 0.08  # |height change| of a stride above which it is a stair stride (about half a rise)
 
 #: Realism knobs of :func:`simulate` / :func:`simulate_path` and their defaults.
@@ -74,9 +78,11 @@ KNOBS: dict[str, object] = {
     "rocker": "hermite",  # "smooth": a heel rocker that comes to rest gradually, no second |acc| peak (S31)
     # hemiparetic gait: the steps onto the left foot are 1 + this times the right foot's, same cadence (S35)
     "step_time_asymmetry": 0.0,
+    # step-length asymmetry: the steps onto the left foot are 1 + this times the right's, same stride length (S42)
+    "step_length_asymmetry": 0.0,
 }
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
-META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_time_asymmetry")
+META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_time_asymmetry", "step_length_asymmetry")
 
 
 NON_NEGATIVE_KNOBS = (
@@ -133,6 +139,9 @@ def _check_knobs(knobs: dict) -> dict:
     if not 0 <= out["step_time_asymmetry"] < STEP_TIME_ASYMMETRY_MAX:  # decision S35
         raise DataError(f"simulate: step_time_asymmetry={out['step_time_asymmetry']!r} must be >= 0 and < "
                         f"{STEP_TIME_ASYMMETRY_MAX:g} (0.39 = the left foot's steps 39 % longer than the right's)")
+    if not 0 <= out["step_length_asymmetry"] < STEP_LENGTH_ASYMMETRY_MAX:  # decision S42
+        raise DataError(f"simulate: step_length_asymmetry={out['step_length_asymmetry']!r} must be >= 0 and < "
+                        f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer)")
     return out
 
 
@@ -274,6 +283,7 @@ def simulate_path(
         heading0_rad=math.radians(float(opt["heading0_deg"])),
         irregular_rate=float(opt["irregular_rate"]),
         variability=float(opt["variability"]),
+        step_length_asymmetry=float(opt["step_length_asymmetry"]),
     )
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
     if not steps and 2 * stand + end_pause < 1.0:
@@ -409,6 +419,8 @@ def simulate_path(
     )
     foot_traj.attrs["time_columns"] = ["t_s"]
     ics = pd.DataFrame({"ic_s": ev.ic, "foot": [s.foot for s in steps], "kind": [s.kind for s in steps]})
+    if opt["step_length_asymmetry"]:  # decision S42: the per-step lengths (steps.csv's strides sum two of them)
+        ics["step_length_m"] = step_lengths(steps, initial)
     ics.attrs["time_columns"] = ["ic_s"]
     strides = _stride_table(steps, ev, initial, user, r_sensor)
     extras = {"ics": ics, "foot_trajectory": foot_traj}
