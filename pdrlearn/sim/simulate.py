@@ -39,7 +39,7 @@ from pdrlearn.sim.kernels import (
 )
 from pdrlearn.sim.path import Footstep, Segment, plan_footsteps
 from pdrlearn.sim.scenarios import SCENARIOS
-from pdrlearn.sim.transfer import transfer_motion, transfer_starts, transfer_table
+from pdrlearn.sim.transfer import session_sit_starts, session_sits, transfer_motion, transfer_starts, transfer_table
 from pdrlearn.sim.user import SPEEDS, UserProfile
 
 log = logging.getLogger(__name__)
@@ -80,9 +80,13 @@ KNOBS: dict[str, object] = {
     "step_time_asymmetry": 0.0,
     # step-length asymmetry: the steps onto the left foot are 1 + this times the right's, same stride length (S42)
     "step_length_asymmetry": 0.0,
+    # the session starts seated this long (s), then stands up; and / or ends seated after sitting down (S43)
+    "sit_start_s": 0.0,
+    "sit_end_s": 0.0,
 }
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
-META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_time_asymmetry", "step_length_asymmetry")
+META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_time_asymmetry", "step_length_asymmetry",
+                      "sit_start_s", "sit_end_s")
 
 
 NON_NEGATIVE_KNOBS = (
@@ -93,6 +97,8 @@ NON_NEGATIVE_KNOBS = (
     "mag_disturbance_ut",
     "length_m",
     "baro_drift_hpa_per_h",
+    "sit_start_s",
+    "sit_end_s",
 )
 
 
@@ -286,12 +292,21 @@ def simulate_path(
         step_length_asymmetry=float(opt["step_length_asymmetry"]),
     )
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
-    if not steps and 2 * stand + end_pause < 1.0:
+    # decision S43: seated at the start (then a stand-up before the standstill) and / or at the end (own stream)
+    sit0, sit1 = ((None, None) if not (opt["sit_start_s"] or opt["sit_end_s"]) else session_sits(
+        float(opt["sit_start_s"]), float(opt["sit_end_s"]), _rng(user.seed, int(seed), scenario, speed, "sit")))
+    lead = float(opt["sit_start_s"]) + sit0.up_s if sit0 else 0.0
+    if not steps and 2 * stand + end_pause + lead + float(opt["sit_end_s"]) < 1.0:
         raise DataError("simulate: nothing to simulate (no steps and stand_s < 1 s); add segments or stand longer")
-    ev = schedule(steps, user, speed=speed, rng=rng, stand_s=stand, variability=float(opt["variability"]),
+    ev = schedule(steps, user, speed=speed, rng=rng, stand_s=lead + stand, variability=float(opt["variability"]),
                   rocker=str(opt["rocker"]), step_time_asymmetry=float(opt["step_time_asymmetry"]))
-    total_s = (max(ev.end_s, stand) if steps else stand) + end_pause + stand
-    sit_starts = transfer_starts(transfers, ev.rest, stand)  # decision S36
+    total_s = (max(ev.end_s, lead + stand) if steps else lead + stand) + end_pause + stand
+    sit_starts = transfer_starts(transfers, ev.rest, lead + stand)  # decision S36
+    if sit0 or sit1:  # decision S43
+        ends = session_sit_starts(sit0, sit1, total_s)
+        transfers = [*([sit0] if sit0 else []), *transfers, *([sit1] if sit1 else [])]
+        sit_starts = np.concatenate([ends[:1] if sit0 else [], sit_starts, ends[-1:] if sit1 else []])
+        total_s += sit1.down_s + float(opt["sit_end_s"]) if sit1 else 0.0
     k_fine = OVERSAMPLE * k_out
     fine_rate = INTERNAL_RATE_HZ * OVERSAMPLE
     n_out = int(math.floor(total_s * rate_hz)) + 1
@@ -426,6 +441,9 @@ def simulate_path(
     extras = {"ics": ics, "foot_trajectory": foot_traj}
     if transfers:  # decision S36: only sessions with a sit have the table (default label files unchanged)
         extras["transfers"] = pd.DataFrame(transfer_table(transfers, sit_starts))
+        if sit0 or sit1:  # decision S43: the seated start / end clipped to the recording
+            tcols = ["start_s", "seated_s", "rise_s", "end_s"]
+            extras["transfers"][tcols] = extras["transfers"][tcols].clip(0.0, float(t_out[-1]))
         extras["transfers"].attrs["time_columns"] = ["start_s", "seated_s", "rise_s", "end_s"]
 
     meta = {
