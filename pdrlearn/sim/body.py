@@ -288,6 +288,11 @@ def foot_pose(
     for k in np.flatnonzero([s.foot == foot for s in steps]):
         st = steps[k]
         h_b, y_b = st.heel, st.yaw
+        if n and ev.rest[k] < t[0]:  # decision S44: a step before this part of the grid only moves the foot
+            h_a, y_a = np.asarray(h_b, float), y_b
+            continue
+        if n and ev.ho[k] > t[-1]:  # ... and none after it is reached (the foot stays at h_a: the fill below)
+            break
         i_ho, i_to, i_ic, i_ff = np.searchsorted(t, [ev.ho[k], ev.to[k], ev.ic[k], ev.rest[k]])
         heel[pos:i_ho], yaw[pos:i_ho], theta[pos:i_ho] = h_a, y_a, 0.0
         # forefoot (or heel) rocker: heel-off -> toe-off, pivot fixed on footprint A
@@ -436,22 +441,35 @@ def realistic_pelvis(user: UserProfile) -> PelvisParams:
     return PelvisParams(round(roll, 4), round(phase, 3), round(acc, 4), round(acc / omega**2, 6))
 
 
-def trunk_vibration(t: np.ndarray, rng: np.random.Generator, target_sd: tuple[float, ...]) -> np.ndarray:
-    """Band-limited random displacements/angles (n, k) whose 2nd (displacements, first 3 columns) or 1st
-    (angles, last 3) time derivative has the standard deviation ``target_sd``; computed at 100 Hz and
-    interpolated to ``t``."""
+def trunk_vibration_source(t0: float, t1: float, rng: np.random.Generator,
+                           target_sd: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray] | None:
+    """The 100 Hz samples (times, values (m, k)) of :func:`trunk_vibration` over ``t0``..``t1``, None for a span too
+    short to filter (decision S44: drawn once, interpolated to any part of the time grid)."""
     from scipy.signal import butter, sosfiltfilt
 
-    t_c = np.arange(t[0], t[-1] + 0.01, 0.01)
-    k = len(target_sd)
+    t_c = np.arange(t0, t1 + 0.01, 0.01)
     if t_c.size < 50:
-        return np.zeros((t.size, k))
+        return None
     sos = butter(2, TRUNK_BAND_HZ, btype="bandpass", fs=100.0, output="sos")
-    x = sosfiltfilt(sos, rng.normal(0.0, 1.0, (t_c.size, k)), axis=0)
-    out = np.empty((t.size, k))
+    x = sosfiltfilt(sos, rng.normal(0.0, 1.0, (t_c.size, len(target_sd))), axis=0)
     for j, sd in enumerate(target_sd):
         d = np.diff(x[:, j], n=2 if j < 3 else 1) / 0.01 ** (2 if j < 3 else 1)
-        out[:, j] = np.interp(t, t_c, x[:, j] * sd / max(float(d.std()), 1e-12))
+        x[:, j] = x[:, j] * sd / max(float(d.std()), 1e-12)
+    return t_c, x
+
+
+def trunk_vibration(t: np.ndarray, rng: np.random.Generator, target_sd: tuple[float, ...],
+                    source: tuple[np.ndarray, np.ndarray] | None | bool = False) -> np.ndarray:
+    """Band-limited random displacements/angles (n, k) whose 2nd (displacements, first 3 columns) or 1st
+    (angles, last 3) time derivative has the standard deviation ``target_sd``; computed at 100 Hz and
+    interpolated to ``t`` (from ``source``, :func:`trunk_vibration_source`, when given)."""
+    if source is False:
+        source = trunk_vibration_source(float(t[0]), float(t[-1]), rng, target_sd)
+    out = np.zeros((t.size, len(target_sd)))
+    if source is not None:
+        t_c, x = source
+        for j in range(len(target_sd)):
+            out[:, j] = np.interp(t, t_c, x[:, j])
     return out
 
 
@@ -506,6 +524,8 @@ def pelvis_pose(
     pelvis: PelvisParams | None = None,
     bounce_mode: str = "constant",
     transfer_offsets: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+    span: tuple[float, float] | None = None,
+    vibration_source: tuple[np.ndarray, np.ndarray] | None | bool = False,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pelvis reference point (n, 3) at the waist-unit height, orientation (n, 3, 3) and base heading (n,).
 
@@ -514,7 +534,12 @@ def pelvis_pose(
 
     ``pelvis``: None = the model's sway and obliquity; :func:`realistic_pelvis` = decision S27's.
     ``bounce_mode``: ``"constant"`` = the user's ``pelvis_bounce_m`` on every step; ``"pendulum"`` = scaled per
-    step by the inverted pendulum's rise for the step's length (decision S29, :func:`pendulum_bounce`)."""
+    step by the inverted pendulum's rise for the step's length (decision S29, :func:`pendulum_bounce`).
+
+    Decision S44, evaluation in parts: ``span`` = (first, last) time of the whole grid that ``t`` is a part of, and
+    ``vibration_source`` = :func:`trunk_vibration_source` over that span (drawn once): every value at a time is then
+    the one the whole grid gets there."""
+    t_first, t_last = (float(t[0]), float(t[-1])) if span is None else span
     bounce_amp = (pendulum_bounce(steps, ev, initial, user) if bounce_mode == "pendulum"
                   else None)
     feet = {f: (np.asarray(h, float), y) for f, (h, y) in initial.items()}
@@ -524,7 +549,7 @@ def pelvis_pose(
         yaws = [y for _, y in feet.values()]
         return (*(0.5 * (c[0] + c[1])), 0.5 * (yaws[0] + yaws[1]))
 
-    knots = [(float(t[0]), *config())]
+    knots = [(t_first, *config())]
     for k, st in enumerate(steps):
         if ev.bout_start[k]:
             knots.append((float(ev.ho[k]), *config()))
@@ -533,7 +558,7 @@ def pelvis_pose(
         last_of_bout = k == len(steps) - 1 or ev.bout_start[k + 1]
         if last_of_bout:
             knots.append((float(ev.ff[k] + 0.1), *config()))
-    knots.append((float(t[-1]), *config()))
+    knots.append((t_last, *config()))
     kept = [knots[0]]
     for kt in knots[1:]:
         if kt[0] > kept[-1][0] + 1e-6:
@@ -602,7 +627,9 @@ def pelvis_pose(
 
     # trunk vibration: band-limited random motion while walking (fwd, left, up in m; yaw, pitch, roll in rad)
     if rng is not None and trunk_noise > 0:
-        vib = env[:, None] * trunk_noise * trunk_vibration(t, rng, TRUNK_ACC_SD + TRUNK_RATE_SD)
+        if vibration_source is False:
+            vibration_source = trunk_vibration_source(t_first, t_last, rng, TRUNK_ACC_SD + TRUNK_RATE_SD)
+        vib = env[:, None] * trunk_noise * trunk_vibration(t, rng, TRUNK_ACC_SD + TRUNK_RATE_SD, vibration_source)
     else:
         vib = np.zeros((t.size, 6))
     ca, sa = np.cos(heading), np.sin(heading)

@@ -23,6 +23,8 @@ from pdrlearn.sim.body import (
     PELVIS_MODES,
     ROCKER_MODES,
     STEP_TIME_ASYMMETRY_MAX,
+    TRUNK_ACC_SD,
+    TRUNK_RATE_SD,
     Events,
     foot_loads,
     foot_pose,
@@ -30,6 +32,7 @@ from pdrlearn.sim.body import (
     realistic_pelvis,
     schedule,
     step_lengths,
+    trunk_vibration_source,
 )
 from pdrlearn.sim.kernels import (
     angular_rate_body,
@@ -46,6 +49,8 @@ log = logging.getLogger(__name__)
 
 INTERNAL_RATE_HZ = 100.0  # sensor output data rate (thesis ch.4.2.1.1-2)
 OVERSAMPLE = 5  # pose grid at 500 Hz, averaged to the 100 Hz samples
+#: decision S44: the 500 Hz poses are built in parts of this many samples (~2 min; a part's poses ~60 MB at most)
+FINE_CHUNK = 60_000
 STAND_MARGIN_S = 0.2  # added to the standstills so that they last at least ``stand_s`` in every sensor
 #: decision S42: ``step_length_asymmetry`` must be below this (symmetry ratio 2, as S35's step times): beyond, the
 #: short step is less than a third of the stride (2 / (1 + r) < 2 / 3)
@@ -318,10 +323,12 @@ def simulate_path(
     # -- foot unit (right foot) --
     # per-user mount: from beside the heel to the instep (decisions S19)
     r_sensor = np.array([user.foot_sensor_x_frac * user.foot_length_m, 0.0, user.foot_sensor_height_m])
-    heel, R_f = foot_pose(t, "right", steps, ev, initial, user, vibration=1.0 if noise else 0.0)
-    p_f = heel + R_f @ r_sensor
-    f_body = block_mean(specific_force_body(p_f, R_f, dt), OVERSAMPLE)
-    w_body = block_mean(angular_rate_body(R_f, dt), OVERSAMPLE)
+
+    def foot_unit(tt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        heel, rot = foot_pose(tt, "right", steps, ev, initial, user, vibration=1.0 if noise else 0.0)
+        return heel + rot @ r_sensor, rot
+
+    f_body, w_body, pf100, Rf100 = _unit_motion(t, foot_unit, dt)  # decision S44: in parts of the 500 Hz grid
     # mounting: the user's few-degree misalignment, optionally on top of a deliberate toes-down tilt
     # (an instep mount like the real gaitmap stair recordings is pitched ~50 deg)
     mis_f = _misalignment([0.0, float(opt["foot_mount_pitch_deg"]), 0.0]) @ _misalignment(user.foot_misalignment_deg)
@@ -344,21 +351,29 @@ def simulate_path(
     r_waist = np.array([0.12, 0.0, 0.0])
     trunk = float(opt["variability"]) if noise else 0.0  # exact physics (noise=False): no trunk vibration
     pelvis = realistic_pelvis(user) if opt["pelvis"] == "realistic" else None
-    p_pel, R_p, _ = pelvis_pose(
-        t,
-        steps,
-        ev,
-        initial,
-        user,
-        rng=_rng(user.seed, int(seed), scenario, speed, "trunk"),
-        trunk_noise=trunk,
-        pelvis=pelvis,
-        bounce_mode=str(opt["bounce"]),
-        transfer_offsets=transfer_motion(t, transfers, sit_starts) if transfers else None,
-    )
-    p_w = p_pel + R_p @ r_waist
-    fw_body = block_mean(specific_force_body(p_w, R_p, dt), OVERSAMPLE)
-    ww_body = block_mean(angular_rate_body(R_p, dt), OVERSAMPLE)
+    trunk_rng = _rng(user.seed, int(seed), scenario, speed, "trunk")
+    span = (float(t[0]), float(t[-1]))
+    # decision S44: the trunk vibration is drawn once over the whole grid, then each part interpolates it
+    vib_source = (trunk_vibration_source(*span, trunk_rng, TRUNK_ACC_SD + TRUNK_RATE_SD) if trunk > 0 else None)
+
+    def waist_unit(tt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        p_pel, rot, _ = pelvis_pose(
+            tt,
+            steps,
+            ev,
+            initial,
+            user,
+            rng=trunk_rng,
+            trunk_noise=trunk,
+            pelvis=pelvis,
+            bounce_mode=str(opt["bounce"]),
+            transfer_offsets=transfer_motion(tt, transfers, sit_starts) if transfers else None,
+            span=span,
+            vibration_source=vib_source,
+        )
+        return p_pel + rot @ r_waist, rot
+
+    fw_body, ww_body, p_w100, R_p100 = _unit_motion(t, waist_unit, dt)  # decision S44
     mis_w = _misalignment(list(opt["waist_mount_deg"])) @ _misalignment(user.waist_misalignment_deg)  # S34
     waist_mis_deg = (user.waist_misalignment_deg if not any(opt["waist_mount_deg"]) else
                      [round(float(v), 9) for v in np.degrees(Rotation.from_matrix(mis_w).as_rotvec())])
@@ -367,8 +382,6 @@ def simulate_path(
         _to_sensor(fw_body, waist_m, mis_w), sn.WAIST_ACC, s_rng, noise=noise, device_rng=unit("wAccelerometer")
     )
     gyr_w, e_gw = sn.imu_readout(_to_sensor(ww_body, waist_m, mis_w), sn.WAIST_GYR, s_rng, noise=noise)
-    p_w100 = p_w[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
-    R_p100 = R_p[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
     b_enu = earth_field_enu(
         float(opt["mag_field_ut"]), float(opt["mag_inclination_deg"]), float(opt["mag_declination_deg"])
     )
@@ -416,8 +429,6 @@ def simulate_path(
     trajectory = pd.DataFrame(
         {"t": t_out, "x": pw_out[:, 0], "y": pw_out[:, 1], "z": pw_out[:, 2], "heading_rad": heading_out}
     )
-    pf100 = p_f[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
-    Rf100 = R_f[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
     q = Rotation.from_matrix(Rf100[k_out // 2 :: k_out][:n_out]).as_quat()  # x, y, z, w
     pf_out = pf100[k_out // 2 :: k_out][:n_out]
     foot_traj = pd.DataFrame(
@@ -496,6 +507,28 @@ def simulate_path(
         meta=meta,
         frames=frames,
     )
+
+
+def _unit_motion(t: np.ndarray, pose, dt: float, chunk: int | None = None) -> tuple[np.ndarray, ...]:
+    """Decision S44: a unit's 100 Hz specific force and angular rate (block means of the 500 Hz ones), and its
+    position and orientation at the middle of each 100 Hz block, from ``pose(times) -> (positions (n, 3),
+    rotations (n, 3, 3))`` evaluated on parts of :data:`FINE_CHUNK` samples of the 500 Hz grid ``t`` (one more
+    sample on each inner side for the differences), so that the grid's poses are never all held at once. Every value
+    is the one the whole grid gives: the kernels are pointwise but for the differences, whose edge samples are
+    dropped (``tests/test_sim_memory.py``)."""
+    n, size = t.size, (chunk or FINE_CHUNK) // OVERSAMPLE * OVERSAMPLE
+    parts: list[list[np.ndarray]] = [[], [], [], []]
+    for a in range(0, n, size):
+        b = min(a + size, n)
+        lo, hi = max(a - 1, 0), min(b + 1, n)
+        pos, rot = pose(t[lo:hi])
+        keep = slice(a - lo, a - lo + b - a)
+        mid = slice(a - lo + OVERSAMPLE // 2, a - lo + b - a, OVERSAMPLE)
+        parts[0].append(block_mean(specific_force_body(pos, rot, dt)[keep], OVERSAMPLE))
+        parts[1].append(block_mean(angular_rate_body(rot, dt)[keep], OVERSAMPLE))
+        parts[2].append(pos[mid].copy())
+        parts[3].append(rot[mid].copy())
+    return tuple(np.concatenate(p) for p in parts)
 
 
 def _yaw_of(R: np.ndarray) -> np.ndarray:
