@@ -237,6 +237,8 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("merged", _ID, "true/false", "waist-pendulum: a fragment whose length its neighbour carries (W27)"),
     ("pause_factor", "fraction", "number", "offline waist-pendulum (pause_steps, default since W134): the factor "
                                            "the step's length was scaled by (W111, W122, W134)"),
+    ("pivot_factor", "fraction", "number", "waist, option pivot_steps (W150): the share of the step's length kept by "
+                                           "the pivot cap (1 unless the pelvis turned 45 deg or more in the step)"),
     ("length_m", "m", "number", "step length (0 for a sequence-closing contact)"),
     ("frequency_hz", "Hz", "number", "1 / the step's duration"),
     ("dyaw_rad", "rad", "number", "vertical-gyro rotation during the step"),

@@ -222,7 +222,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
                rhythm: bool = False, max_step_s: float = 1.5, acc_ml: np.ndarray | None = None,
                unshifted: bool = True, end_steps: bool = False, ap_above_mean: bool = False,
                turning: np.ndarray | None = None, contact_shift: bool = False,
-               spinning: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+               spinning: np.ndarray | None = None, weak_fill: bool = False
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
 
     The vertical acceleration is low-passed with a zero-lag FIR (seed 003: order 30, 2.5 Hz, here the
@@ -255,6 +256,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     contact_shift : with ``acc_ml`` and ``rhythm``, judge every kept contact once more by W23's test with the side
         read at the initial contact (:func:`unshifted_contacts`, decision W131); contacts flagged in ``spinning``
         (n,) bool, samples where the pelvis turns, are not judged
+    weak_fill : with ``acc_ml`` and ``rhythm``, weak steps where the alternation and the local rhythm ask for one
+        (``rhythm_complete(weak_fill=True)``, decision W148; off by default)
 
     Returns
     -------
@@ -276,7 +279,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         keep = rhythm_complete(cand, vf[cand], strong, fs, min_peak=min_peak_mps2, at=peak_positions(vf, cand),
                                min_step_s=min_step_s, max_step_s=max_step_s, side=side,
                                unshifted=unshifted, end_steps=end_steps,
-                               turning=None if turning is None else np.asarray(turning, dtype=bool)[cand])
+                               turning=None if turning is None else np.asarray(turning, dtype=bool)[cand],
+                               weak_fill=weak_fill)
         peaks = cand[keep]
     else:
         peaks = dsp.find_peaks(vf, height=min_peak_mps2, distance=dist)
@@ -312,7 +316,8 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                      alternate: bool = True, weight_shift: bool = True, end_steps: bool = True,
                      ap_above_mean: bool = False, turn_gate_rps: float | None = None,
                      turn_shift_rps: float | None = None, min_step_s: float | None = None,
-                     contact_shift: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                     contact_shift: bool = False, weak_fill: bool = False
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The offline IC detector's rule contacts on navigation-frame arrays (the body of
     :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
     the AP acceleration low-passed at ``min(ap_cutoff_hz, 0.4 fs)`` (zero-phase third-order Butterworth, as
@@ -326,7 +331,8 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                               max_step_s=max_step_s, acc_ml=acc_ml if alternate else None, unshifted=weight_shift,
                               end_steps=end_steps, ap_above_mean=ap_above_mean, turning=turning,
                               min_step_s=min_step_s, contact_shift=contact_shift,
-                              spinning=None if yaw_rate is None else yaw_rate >= CONTACT_SHIFT_TURN_RPS)
+                              spinning=None if yaw_rate is None else yaw_rate >= CONTACT_SHIFT_TURN_RPS,
+                              weak_fill=weak_fill)
     return ic, fc, vmax, ap
 
 
@@ -501,7 +507,8 @@ def drop_unshifted(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, accep
 
 
 def extend_alternating(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, side: np.ndarray, fs: float, *,
-                       min_peak: float, max_step_s: float = 1.5, tol: float = RHYTHM_TOL) -> np.ndarray:
+                       min_peak: float, max_step_s: float = 1.5, tol: float = RHYTHM_TOL,
+                       weak: bool = False) -> np.ndarray:
     """One step of gait initiation / termination beyond each end of a walking sequence (decision W28).
 
     W18 extends a sequence by one step at its own rhythm (one local period +- ``tol``). The first and
@@ -510,7 +517,9 @@ def extend_alternating(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, s
     ``RHYTHM_MIN_STEPS`` kept maxima whose end contact has a decided side, the nearest candidate of full
     height (``>= min_peak``) on the decided *opposite* side between ``1 - tol`` local periods and
     ``max_step_s`` (the longest step inside a sequence, W16) from the end is added. One step per end and
-    one pass: it does not chain. Returns the new mask."""
+    one pass: it does not chain. With ``weak`` (decision W148), an end where no such candidate lies takes the
+    highest positive candidate on the opposite side one local period (``+- tol``) beyond it instead (the height
+    floor W18's interior fills use; the rhythm replaces the height as the evidence). Returns the new mask."""
     cand = np.asarray(cand, dtype=np.int64)
     h = np.asarray(height, dtype=np.float64)
     sd = np.asarray(side)
@@ -534,6 +543,50 @@ def extend_alternating(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, s
                    if not out[i] and h[i] >= min_peak and int(sd[i]) == -s_end]
             if idx:
                 out[min(idx, key=lambda i: abs(cand[i] - t[end]))] = True
+            elif weak:  # W148: no full-height step: a weak one on the alternating side, at the local rhythm
+                i = _weak_candidate(cand, h, out, sd, -s_end, [t[end] + direction * per], per, tol)
+                if i is not None:
+                    out[i] = True
+    return out
+
+
+def _weak_candidate(cand: np.ndarray, h: np.ndarray, keep: np.ndarray, sd: np.ndarray, want: int,
+                    anchors: list[float], per: float, tol: float) -> int | None:
+    """Decision W148: the highest positive (W18's interior floor) candidate not in ``keep`` whose decided side is
+    ``want`` and which lies within ``tol`` local periods ``per`` of every predicted time in ``anchors`` (samples)."""
+    lo, hi = max(anchors) - tol * per, min(anchors) + tol * per
+    idx = [i for i in range(np.searchsorted(cand, lo), np.searchsorted(cand, hi, side="right"))
+           if not keep[i] and h[i] > 0.0 and int(sd[i]) == want]
+    return max(idx, key=lambda i: h[i]) if idx else None
+
+
+def fill_weak_alternating(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, side: np.ndarray, fs: float, *,
+                          max_step_s: float = 1.5, tol: float = RHYTHM_TOL) -> np.ndarray:
+    """Decision W148 inside a sequence: two consecutive kept maxima on the same decided side (W20: the alternation
+    is broken, one opposite step is missing between them) get the highest positive candidate on the decided
+    opposite side that lies one local period (``+- tol``, W18) after the first AND one before the second. W18
+    fills such a gap only when it exceeds 1.5 local periods (and then near its centre); here the alternation and
+    the rhythm are the evidence, so a weak bounce (a turning or transfer step) is enough. One pass over the kept
+    pairs; a pair with no such candidate is left alone (W20's pruning has judged it). Returns the new mask."""
+    cand = np.asarray(cand, dtype=np.int64)
+    h = np.asarray(height, dtype=np.float64)
+    sd = np.asarray(side)
+    keep = np.asarray(keep, dtype=bool)
+    out = keep.copy()
+    sel = np.flatnonzero(keep)
+    t = cand[sel].astype(np.float64)
+    max_gap = _max_gap(max_step_s, fs)
+    for k in range(sel.size - 1):
+        s_k = int(sd[sel[k]])
+        if s_k == 0 or int(sd[sel[k + 1]]) != s_k or t[k + 1] - t[k] > max_gap:
+            continue
+        p = [_local_period(t, k, -1, max_gap), _local_period(t, k + 1, +1, max_gap)]
+        if not np.isfinite(p).any():
+            continue
+        per = float(np.nanmedian(p))
+        i = _weak_candidate(cand, h, keep, sd, -s_k, [t[k] + per, t[k + 1] - per], per, tol)
+        if i is not None:
+            out[i] = True
     return out
 
 
@@ -549,7 +602,7 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
                     min_peak: float, min_step_s: float = 0.3, max_step_s: float = 1.5,
                     tol: float = RHYTHM_TOL, side: np.ndarray | None = None, unshifted: bool = True,
                     end_steps: bool = False, turning: np.ndarray | None = None,
-                    at: np.ndarray | None = None) -> np.ndarray:
+                    at: np.ndarray | None = None, weak_fill: bool = False) -> np.ndarray:
     """Complete walking sequences of accepted vertical maxima with the gait rhythm (decision W18).
 
     Steps come at a regular period: (1) inside a sequence, a gap of ``m + 1`` local periods
@@ -567,6 +620,9 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     W23), an accepted maximum with an undecided side and under half its neighbours' height is dropped
     (:func:`drop_unshifted`). With ``side`` and ``end_steps`` (decision W28) each sequence end then gets
     one more step of gait initiation / termination on the alternating side (:func:`extend_alternating`).
+    With ``side`` and ``weak_fill`` (decision W148, off by default) a same-side pair of kept maxima gets a weak
+    opposite-side step at the local rhythm between them (:func:`fill_weak_alternating`, after W23) and an end
+    where W28 finds no full-height step a weak one at the local rhythm (``extend_alternating(weak=True)``).
     The shortest step is ``round(min_step_s * fs)`` samples, the candidates' own spacing (W28: a float
     ``min_step_s * fs`` just over it dropped maxima exactly that far apart).
 
@@ -635,8 +691,11 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     if side is not None and unshifted:  # W23: no weight shift and a weak bounce: no step
         keep = drop_unshifted(cand, h, keep, np.asarray(accepted, dtype=bool), sd, fs, max_step_s=max_step_s,
                               exempt=turning)
+    if side is not None and weak_fill:  # W148: a weak step where the alternation and the rhythm ask for one
+        keep = fill_weak_alternating(cand, h, keep, sd, fs, max_step_s=max_step_s, tol=tol)
     if side is not None and end_steps:  # W28: initiation / termination step on the alternating side
-        keep = extend_alternating(cand, h, keep, sd, fs, min_peak=min_peak, max_step_s=max_step_s, tol=tol)
+        keep = extend_alternating(cand, h, keep, sd, fs, min_peak=min_peak, max_step_s=max_step_s, tol=tol,
+                                  weak=weak_fill)
     # the completed set must still respect the shortest step: drop the lower of two too-close maxima
     sel = np.flatnonzero(keep)
     for a, b in zip(sel[:-1], sel[1:], strict=True):
@@ -952,6 +1011,26 @@ def turning_step_factor(dpsi_rad: np.ndarray) -> np.ndarray:
     spot)."""
     d = np.minimum(np.abs(np.asarray(dpsi_rad, dtype=np.float64)), 0.5 * np.pi)
     return np.cos(d)
+
+
+#: decision W150 (candidate, option ``pivot_steps``): a step whose net pelvis rotation reaches this (deg) is a pivot
+#: step -- a walked step of 0.6 m turning 45 deg lies on a 0.76 m radius, past a corner walked without pivoting
+PIVOT_MIN_DEG = 45.0
+#: decision W150: the radius (m) the pelvis circles the stance foot on in a pivot step: a 45 deg step moves it 0.15 m,
+#: a 90 deg one 0.28 m, the 0.1-0.2 m a step of a turn on the spot moves the body (S41)
+PIVOT_RADIUS_M = 0.2
+
+
+def pivot_step_factor(lengths: np.ndarray, dpsi_rad: np.ndarray, *, min_deg: float = PIVOT_MIN_DEG,
+                      radius_m: float = PIVOT_RADIUS_M) -> np.ndarray:
+    """Decision W150: the share of each step's length kept when a step turning the pelvis by ``|dpsi_rad|`` >=
+    ``min_deg`` keeps at most the chord of its turn on ``radius_m``, ``2 r sin(|dpsi| / 2)`` (plane geometry); 1 for
+    the other steps and for a length already under the chord (or 0)."""
+    length = np.asarray(lengths, dtype=np.float64)
+    d = np.abs(np.asarray(dpsi_rad, dtype=np.float64))
+    chord = 2.0 * radius_m * np.sin(0.5 * np.minimum(d, np.pi))
+    pivot = (d >= np.radians(min_deg)) & (length > chord)
+    return np.where(pivot, chord / np.where(pivot, length, 1.0), 1.0)
 
 
 def local_medians(values: np.ndarray, use: np.ndarray, closes: np.ndarray) -> np.ndarray:

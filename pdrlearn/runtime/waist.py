@@ -73,7 +73,8 @@ class WaistStream(FixInput):
 
     ``params``: an object with ``leg_m``, ``k``, ``f_m``, ``gyro_bias_rps``, ``turn_gmm`` (the resolved
     :class:`~pdrlearn.waist.params.WaistParams`, or the bundle's); ``options``: the resolved pipeline options
-    (``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``slow_turn_rps``, ``initial_heading``);
+    (``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``slow_turn_rps``, ``initial_heading``,
+    ``pivot_steps``: W150);
     ``rotation``: the sensor -> body FLU matrix (None: the subclass's ``_frame`` finds one); ``start``: ``(x0, y0,
     h0)`` (m, m, rad ENU); ``latlon``: the start's ``(lat, lon)`` in degrees, checked (decision W137: each step's
     ``lat``/``lon``), or None; ``sides``: W138's causal side of each contact (an option); ``warnings``: the lines so
@@ -439,6 +440,8 @@ class WaistStream(FixInput):
                 length = max(float(K.pendulum_length(np.array([h_m]), p.leg_m, k=p.k, f=p.f_m)[0]), 0.0)
                 if o["turn_factor"]:
                     length *= float(K.turning_step_factor(np.array([dyaw]))[0])
+                if o.get("pivot_steps"):  # W150 (a bundle exported before it has no such option: off)
+                    length *= float(K.pivot_step_factor(np.array([length]), np.array([dyaw]))[0])
             head = h
             self._check_untracked(row, h)
         else:  # a contact closing its sequence: no displacement, the sequence's last heading

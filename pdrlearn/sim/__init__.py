@@ -6,7 +6,19 @@ Entry points: :func:`simulate` (thesis scenarios and calibration exercises), :fu
 See docs/simulator.md.
 """
 
-from pdrlearn.sim.path import Backward, Curve, Footstep, Sit, Slope, Stairs, Stand, Straight, Turn, plan_footsteps
+from pdrlearn.sim.path import (
+    Backward,
+    Curve,
+    Footstep,
+    Pivot,
+    Sit,
+    Slope,
+    Stairs,
+    Stand,
+    Straight,
+    Turn,
+    plan_footsteps,
+)
 from pdrlearn.sim.scenarios import SCENARIOS
 from pdrlearn.sim.simulate import KNOBS, simulate, simulate_path
 from pdrlearn.sim.user import GAITS, SPEEDS, UserProfile
@@ -25,6 +37,7 @@ __all__ = [
     "Slope",
     "Backward",
     "Turn",
+    "Pivot",
     "Sit",
     "Stand",
     "Footstep",

@@ -1,9 +1,9 @@
 """Walking paths as segments, and the planner that turns them into footprints of both feet.
 
 A path is a list of segments (:class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`,
-:class:`Turn`, :class:`Stand`, :class:`Sit`). :func:`plan_footsteps` walks them with a user's step length and returns
-one :class:`Footstep` per foot placement (heel position, heading, kind), alternating feet. Walking bouts
-start and end with both feet side by side (gait initiation and a closing step).
+:class:`Turn`, :class:`Pivot`, :class:`Stand`, :class:`Sit`). :func:`plan_footsteps` walks them with a user's step
+length and returns one :class:`Footstep` per foot placement (heel position, heading, kind), alternating feet.
+Walking bouts start and end with both feet side by side (gait initiation and a closing step).
 """
 
 from __future__ import annotations
@@ -70,8 +70,25 @@ class Turn:
     angle_rad: float
 
 
+@dataclass(frozen=True)
+class Pivot:
+    """Turn ``angle_rad`` (> 0 = left) on the spot without stopping (decision S41): ``n_steps`` short steps inside
+    the walk (no closing step, no pause; 0 = one step per :data:`PIVOT_STEP_RAD`), each moving the body centre
+    ``step_m`` along its new heading. A real walker turning in place between two walks (HA001 Test11's turns)."""
+
+    angle_rad: float
+    n_steps: int = 0
+    step_m: float = 0.15
+
+
 IRREGULAR_SHORTENING = 0.4  # an irregular step lands this fraction of a step short
 MAX_TURN_STEP_RAD = math.pi / 3  # largest heading change of one stepping-turn step
+#: decision S41: the heading change of one step of a :class:`Pivot` when its step count is not given: the real
+#: turns on the spot of HA001 Test11 turn the pelvis 30-45 deg per step (experiments/waist_turn_spot.py)
+PIVOT_STEP_RAD = math.pi / 4
+#: decision S41: the largest body-centre displacement of one pivot step (m): a turn on the spot moves the body
+#: 0.1-0.2 m per step; beyond this it is a curve (``Curve``)
+PIVOT_MAX_STEP_M = 0.3
 #: decision S37: the steepest ramp walked with level steps (30 %, 17 deg; steeper streets are climbed otherwise)
 MAX_SLOPE_GRADE = 0.30
 
@@ -90,7 +107,7 @@ class Sit:
     duration_s: float
 
 
-Segment = Straight | Curve | Stairs | Slope | Backward | Turn | Stand | Sit
+Segment = Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | Stand | Sit
 
 
 @dataclass
@@ -285,6 +302,24 @@ class _Walker:
             self.step(self.c, self.z, psi0 + k * seg.angle_rad / n, "turn", foot=foot)
         self.close(pause=0.3)
 
+    def pivot(self, seg: Pivot) -> None:
+        """Decision S41: the turn's steps continue the walk's alternation (a walk-through turn, no stop); each
+        moves the body centre ``step_m`` along the heading it turns to."""
+        self._change_direction("forward")
+        if not (math.isfinite(seg.angle_rad) and seg.angle_rad != 0):
+            raise DataError(f"{seg}: a pivot needs a finite, non-zero angle")
+        if not (math.isfinite(seg.step_m) and 0 <= seg.step_m <= PIVOT_MAX_STEP_M):
+            raise DataError(f"{seg}: step_m must be 0-{PIVOT_MAX_STEP_M:g} m (a longer turning step is a Curve)")
+        n = int(seg.n_steps) or max(1, math.ceil(abs(seg.angle_rad) / PIVOT_STEP_RAD - 1e-9))
+        if n < 1 or abs(seg.angle_rad) / n > MAX_TURN_STEP_RAD + 1e-9:
+            raise DataError(f"{seg}: n_steps must be >= 1 and turn at most {math.degrees(MAX_TURN_STEP_RAD):.0f} "
+                            "deg per step")
+        psi0, c = self.psi, self.c.copy()
+        for k in range(1, n + 1):
+            psi = psi0 + k * seg.angle_rad / n
+            c = c + seg.step_m * _ahead(psi)
+            self.step(c, self.z, psi, "turn")
+
     def stand(self, seg: Stand) -> None:
         self.close(pause=max(0.0, float(seg.duration_s)))
 
@@ -310,6 +345,8 @@ def path_length(segments: list[Segment], user: UserProfile | None = None) -> flo
             total += seg.n * seg.run_m
         elif isinstance(seg, Slope):
             total += seg.length_m
+        elif isinstance(seg, Pivot):
+            total += (int(seg.n_steps) or max(1, math.ceil(abs(seg.angle_rad) / PIVOT_STEP_RAD - 1e-9))) * seg.step_m
         elif isinstance(seg, Backward) and user is not None:
             total += seg.n_steps * 0.55 * user.step_length_m
     return total
@@ -347,6 +384,7 @@ def plan_footsteps(
         Slope: w.slope,
         Backward: w.backward,
         Turn: w.turn,
+        Pivot: w.pivot,
         Stand: w.stand,
         Sit: w.sit,
     }
@@ -357,7 +395,7 @@ def plan_footsteps(
             handlers[type(seg)](seg)
         except KeyError:
             raise DataError(
-                f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Slope, Backward, Turn, Stand, Sit"
+                f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Slope, Backward, Turn, Pivot, Stand, Sit"
             ) from None
     w.close()
     return w.steps, initial, w.pending_pause, w.transfers

@@ -11,6 +11,7 @@
 | ``slope:M:PCT[:GAIT]`` | walk M metres (horizontal) on a ramp of PCT percent (< 0 downhill; decision S37) |
 | ``backward:N`` | N backward steps |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
+| ``pivot:DEG[:N[:STEP_M]]`` | turn DEG degrees on the spot inside the walk, N steps of STEP_M m (S41) |
 | ``stand:S`` | stand still S seconds |
 | ``sit:S`` | sit down on a chair, stay seated S seconds, stand up (no steps; decision S36) |
 
@@ -22,10 +23,10 @@ from __future__ import annotations
 import math
 
 from pdrlearn.errors import DataError
-from pdrlearn.sim.path import Backward, Curve, Segment, Sit, Slope, Stairs, Stand, Straight, Turn
+from pdrlearn.sim.path import Backward, Curve, Pivot, Segment, Sit, Slope, Stairs, Stand, Straight, Turn
 from pdrlearn.sim.user import GAITS
 
-ROUTE_KINDS = ("straight", "curve", "slope", "up", "down", "backward", "turn", "stand", "sit")
+ROUTE_KINDS = ("straight", "curve", "slope", "up", "down", "backward", "turn", "pivot", "stand", "sit")
 _USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curve:90:2'"
 
 
@@ -93,6 +94,14 @@ def parse_route(spec: str) -> list[Segment]:
             if angle == 0:
                 raise DataError(f"--route item {item!r}: a turn needs a non-zero angle")
             segments.append(Turn(math.radians(angle)))
+        elif kind == "pivot":  # decision S41
+            _arity(item, parts, (1, 2, 3))
+            angle = _number(item, parts[1], positive=False)
+            if angle == 0:
+                raise DataError(f"--route item {item!r}: a pivot needs a non-zero angle")
+            n = int(_number(item, parts[2], integer=True)) if len(parts) > 2 else 0
+            step = _number(item, parts[3], positive=False) if len(parts) > 3 else 0.15
+            segments.append(Pivot(math.radians(angle), n_steps=n, step_m=step))
         elif kind == "sit":
             _arity(item, parts, (1,))
             segments.append(Sit(_number(item, parts[1])))

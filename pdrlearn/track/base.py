@@ -202,8 +202,12 @@ def get_pipeline(name: str) -> Pipeline:
       ``"turns"``: W127, sparing a step that turns the pelvis by more than 15 deg),
       ``contact_shift`` (decision W131, on: every kept contact judged once more by W23's weight-shift test with the
       side read at the contact, turns spared; offline only),
+      ``weak_fill`` (decision W148, off: a weak step on the decided alternating side where the alternation and the
+      local rhythm ask for one; offline only),
       ``gait_check`` (decision W140, off: with calibrated params, warn when the walk's median cadence is outside
       x0.75-x1.33 of the calibration walks'),
+      ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its
+      turn on a 0.2 m radius; both pipelines),
       ``detector`` (decision E85: a waist step detector's contacts), ``length_model`` (decision E84: a registered
       step-length model, docs/extending.md) (:func:`pdrlearn.track.waist.track_waist`); ``model`` is accepted and
       unused. With ``wBarometer`` the track's altitude is the barometer's (W89); without, one warning (W90).

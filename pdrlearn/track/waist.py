@@ -206,13 +206,15 @@ def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
 
 
 def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: StepLengthModel, thr: float, *,
-                  turn_factor: bool = False) -> pd.DataFrame:
+                  turn_factor: bool = False, pivot_steps: bool = False) -> pd.DataFrame:
     """Steps table with ``length_m`` from the step-length ``model`` (decision E84; 0 for sequence-closing
     contacts, plus the model's own columns: the pendulum's ``h_m``, ``g_m``, ``merged``, ``pause_factor``),
     ``frequency_hz`` and ``dyaw_rad`` (vertical-gyro rotation during the step). ``thr``: the motion gate the steps
     were found with (``steps.attrs["walk_threshold_mps2"]``, the frequency model's running state).
     ``turn_factor`` scales each length by :func:`~pdrlearn.waist._kernels.turning_step_factor` (W19); a W27
-    fragment window of the pendulum gives its owner the rotation of the whole merged step."""
+    fragment window of the pendulum gives its owner the rotation of the whole merged step. ``pivot_steps`` (decision
+    W150's candidate) then keeps a step turning 45 deg or more at most the chord of its turn
+    (:func:`~pdrlearn.waist._kernels.pivot_step_factor`; column ``pivot_factor``)."""
     n = len(steps)
     has_next = steps["has_next"].to_numpy(bool)
     freq = step_frequency(steps)
@@ -233,6 +235,10 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
         dyaw[i] = total
     if turn_factor:
         lengths = lengths * K.turning_step_factor(dyaw)
+    if pivot_steps:  # W150: a pivot step keeps at most the chord of its turn (after W19)
+        factor = K.pivot_step_factor(lengths, dyaw)
+        lengths = lengths * factor
+        out = out.assign(pivot_factor=factor)
     return out.assign(length_m=lengths, frequency_hz=freq, dyaw_rad=dyaw)
 
 
@@ -310,7 +316,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
-                   "gait_check": False}  # pause_steps: W134
+                   "gait_check": False, "weak_fill": False,
+                   "pivot_steps": False}  # pause_steps: W134; pivot_steps: W150
 #: decision B199: the options that are true or false (``sit_veto``, ``pause_steps``, ``vault_veto`` take more values,
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
@@ -345,7 +352,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
-                gait_check: bool | None = None, detector=None,
+                gait_check: bool | None = None, weak_fill: bool | None = None, pivot_steps: bool | None = None,
+                detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -411,6 +419,12 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     gait_check : with calibrated params that record their walks' gait: one warning line when this walk's median
         cadence is outside x0.75-x1.33 of the calibration's (decision W140: an option, its adoption rule was not met;
         ``info["calibration_cadence_ratio"]`` carries the ratio either way); default False
+    weak_fill : pendulum, offline detector: a weak step on the decided alternating side where the alternation and the
+        local rhythm ask for one (decision W148, :class:`~pdrlearn.waist.events.InitialContactDetector`'s
+        ``weak_fill``; measured and not adopted); default False
+    pivot_steps : a step whose pelvis turns 45 deg or more from its contact to the next keeps at most the chord of its
+        turn on a 0.2 m radius, after ``turn_factor`` (decision W150's candidate, both pipelines, offline and realtime;
+        steps column ``pivot_factor``; measured and not adopted); default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -443,7 +457,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "relative_gate": relative_gate, "stairs_length": stairs_length, "stairs_climb": stairs_climb,
              "slow_turn_rps": slow_turn_rps,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
-             "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check}
+             "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check,
+             "weak_fill": weak_fill, "pivot_steps": pivot_steps}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -502,7 +517,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     gaps = long_gaps(session, ("wAccelerometer", "wGyroscope"))  # decision B11
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
-    steps = _step_lengths(steps, imu, p, model, thr, turn_factor=bool(o["turn_factor"]))
+    steps = _step_lengths(steps, imu, p, model, thr, turn_factor=bool(o["turn_factor"]),
+                          pivot_steps=bool(o["pivot_steps"]))
     baro = usable_barometer(session, warnings)  # decision B188: an impossible pressure change is not read
     stairs = _stairs_steps(baro, steps, bool(o["stairs_climb"]))
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
@@ -653,7 +669,8 @@ def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDete
     """The waist-pendulum pipeline's contact detector under the track's options ``o`` and motion-gate threshold
     ``thr`` (one construction for the track and W139's pendulum reading, so an option cannot be left out: E102)."""
     return InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
-                                  rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"]))
+                                  rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"]),
+                                  weak_fill=bool(o["weak_fill"]))
 
 
 def _model_options(o: dict, realtime: bool) -> dict:

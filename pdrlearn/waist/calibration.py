@@ -25,11 +25,13 @@ from pdrlearn.waist.plausibility import (  # noqa: F401  (W99 moved to plausibil
 )
 from pdrlearn.waist.steplength import (
     MIN_GAIN_STRIDES,
+    PIVOT_FIT_ITERATIONS,
     CalibrationWalk,
     fit_frequency,
     fit_pendulum,
-    frequency_lengths,
     gain_standard_error,
+    model_lengths,
+    with_pivot_factors,
 )
 
 log = logging.getLogger(__name__)
@@ -81,6 +83,9 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     c = np.ones(len(st))
     if res.info.get("options", {}).get("turn_factor") and "dyaw_rad" in st:  # the same model as tracking (W19)
         c = K.turning_step_factor(st["dyaw_rad"].to_numpy(float))
+    # W150: a pivot step keeps the chord of its turn; its factor depends on K, so the walk carries the rotations and
+    # calibrate() refits with the factors of the fitted parameters (W21: the tracker's sum)
+    dpsi = st["dyaw_rad"].to_numpy(float) if "pivot_factor" in st else None
     if "pause_factor" in st:  # W111: a pause keeps one period's length, in calibration as in tracking (W21)
         c = c * st["pause_factor"].to_numpy(float)
     if "merged" in st:  # W27: a fragment merged into its neighbour carries no length (nor an F term)
@@ -92,6 +97,7 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     if span_s is not None:  # W61: the measured stretch only
         keep = span_mask(session, st, span_s)
         st, g, c, f = st[keep], g[keep], c[keep], f[keep]
+        dpsi = None if dpsi is None else dpsi[keep]
         if not len(st):
             raise DataError(f"calibrate: no detected step of {session.name} lies inside --start/--end "
                             f"({span_s[0]}-{span_s[1]} s from its start; the recording covers "
@@ -103,7 +109,7 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
         t0 = session.t_start
         span = (f"{session.name}: contacts {st['start_s'].min() - t0:.1f}-{st['end_s'].max() - t0:.1f} s from the "
                 "recording's start" if len(st) else session.name)
-        return [CalibrationWalk(float(distance_m), f, g, span, c)]
+        return [CalibrationWalk(float(distance_m), f, g, span, c, dpsi)]
     bouts = reference_bouts(session)
     if bouts is None:
         raise DataError(f"session '{session.name}' has no bouts.csv with reference lengths; "
@@ -112,8 +118,31 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     for b in bouts.itertuples():
         m = steps_in_interval(st, b.start_s, b.end_s)
         if m.any():
-            walks.append(CalibrationWalk(float(b.length_m), f[m], g[m], f"{session.name}@{b.start_s:.1f}s", c[m]))
+            walks.append(CalibrationWalk(float(b.length_m), f[m], g[m], f"{session.name}@{b.start_s:.1f}s", c[m],
+                                         None if dpsi is None else dpsi[m]))
     return walks
+
+
+def _fit_with_pivots(walks: list[CalibrationWalk], pipeline: str, base: WaistParams, out: WaistParams
+                     ) -> tuple[list[CalibrationWalk], str]:
+    """Fit ``out``'s step-length parameters (``K``, ``F`` or ``a``, ``b``) on ``walks`` and return the walks with the
+    pivot factors of the fitted parameters and the fit's note. Without W150's ``dpsi`` one fit; with it, refit with
+    the factors of the last fit until they no longer change (at most :data:`PIVOT_FIT_ITERATIONS`), so the tracker's
+    sum over a calibration walk is its distance (W21)."""
+    fit = fit_pendulum if pipeline == "waist-pendulum" else fit_frequency
+    keys = ("k", "f_m") if pipeline == "waist-pendulum" else ("a_walk", "b_walk")
+    cur = with_pivot_factors(walks, pipeline, base)
+    prev = None
+    for _ in range(PIVOT_FIT_ITERATIONS if any(w.dpsi is not None for w in walks) else 1):
+        vals = fit(cur, base)
+        for k, v in zip(keys, vals[:2], strict=True):
+            setattr(out, k, v)
+        cur = with_pivot_factors(walks, pipeline, out)
+        # a capped step's factor follows the fitted gain, so the refits converge (geometrically) rather than repeat
+        if prev is not None and np.allclose(vals[:2], prev, rtol=1e-13, atol=1e-13):
+            break
+        prev = vals[:2]
+    return cur, vals[2]
 
 
 MIN_STRIDES_GMM = 20  # strides needed to fit the straight/turning mixture (decision W14)
@@ -148,14 +177,8 @@ PLAUSIBLE_GAIN = (0.6, 1.8)
 
 def default_lengths(walk: CalibrationWalk, pipeline: str, base: WaistParams) -> float:
     """The distance the uncalibrated model ``base`` gives the steps of ``walk``, as the tracker sums it."""
-    c = walk.factors()
-    if pipeline == "waist-pendulum":
-        per = np.maximum(base.k * np.nan_to_num(np.asarray(walk.g, dtype=float), nan=0.0)
-                         + (base.f_m if np.isfinite(base.f_m) else 0.0), 0.0)
-    else:
-        per = frequency_lengths(np.nan_to_num(np.asarray(walk.f_hz, dtype=float), nan=0.0), base,
-                                running=np.zeros(len(walk.f_hz), dtype=bool))
-    return float(np.sum(c * per))
+    walk = with_pivot_factors([walk], pipeline, base)[0]  # W150
+    return float(np.sum(walk.factors() * model_lengths(walk, pipeline, base)))
 
 
 def check_gain(walks: list[CalibrationWalk], pipeline: str, base: WaistParams) -> list[str]:
@@ -339,11 +362,13 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         raise DataError(f"calibrate: unknown pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     implausible = check_gain(walks, pipeline, base)  # decision W39
     shrunk = None
+    fitted = _fit_with_pivots(walks, pipeline, base, out)  # W150: the walks with the fitted pivot factors
     if pipeline == "waist-pendulum":
-        out.k, out.f_m, how = fit_pendulum(walks, base)
-        out.k, out.k_shrinkage, shrunk = shrink_pendulum_gain(walks, out.k, out.f_m, how, shrink=shrink, tau=tau_k)
+        how = fitted[1]
+        out.k, out.k_shrinkage, shrunk = shrink_pendulum_gain(fitted[0], out.k, out.f_m, how, shrink=shrink,
+                                                              tau=tau_k)
     else:
-        out.a_walk, out.b_walk, how = fit_frequency(walks, base)
+        how = fitted[1]
     for n in implausible + notes_count:
         log.warning("calibrate: %s", n)
     if distances is not None:  # decision W21: the known length must span the counted steps

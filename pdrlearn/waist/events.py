@@ -127,6 +127,11 @@ class InitialContactDetector:
         W129 reads it; a contact where the pelvis turns (decision 29's 0.45 rad/s) is not judged (decision W131,
         adopted: on by default). The realtime detector and the W33 learned stage ignore it (measured offline only;
         the learned stage's trees were trained on the rule outcomes without it)
+    weak_fill : offline, with ``rhythm`` and ``alternate``: a weak step (any positive vertical maximum) on the decided
+        alternating side where the alternation and the local rhythm ask for one -- between two kept contacts of the
+        same side, one local period (+-35 %, W18) from each, and beyond a sequence end where W28 finds no
+        full-height step, one local period away (decision W148; measured, not adopted: off by default). The realtime
+        detector and the learned stage ignore it (measured offline only)
 
     Attributes
     ----------
@@ -145,8 +150,9 @@ class InitialContactDetector:
                  delay_s: float | None = K.DECISION_DELAY_S,
                  hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S,
                  turn_gate_rps: float | None = None, turn_shift_rps: float | None = None,
-                 min_step_s: float | None = None, contact_shift: bool = True):
+                 min_step_s: float | None = None, contact_shift: bool = True, weak_fill: bool = False):
         self.realtime = realtime
+        self.weak_fill = weak_fill
         self.contact_shift = contact_shift
         self.min_step_s = min_step_s
         self.turn_shift_rps = turn_shift_rps
@@ -169,11 +175,13 @@ class InitialContactDetector:
 
     def rule_settings(self) -> dict:
         """The keywords of :func:`pdrlearn.kernels.waist.contacts_offline` (the lean runtime's detector, W92); W131's
-        ``contact_shift`` only offline and without the learned stage."""
+        ``contact_shift`` and W148's ``weak_fill`` only offline and without the learned stage."""
         kw = {k: getattr(self, k) for k in ("walk_threshold", "cutoff_hz", "fir_order_s", "ap_cutoff_hz", "rhythm",
                                             "max_step_s", "alternate", "weight_shift", "end_steps",
                                             "ap_above_mean", "turn_gate_rps", "turn_shift_rps", "min_step_s")}
-        return kw | {"contact_shift": bool(self.contact_shift and not self.realtime and not self.learned)}
+        offline = not self.realtime and not self.learned
+        return kw | {"contact_shift": bool(self.contact_shift and offline),
+                     "weak_fill": bool(self.weak_fill and offline)}
 
     def _offline(self, imu: WaistIMU) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The offline detector's contacts (zero-lag filters, sequence rules) on ``imu``."""

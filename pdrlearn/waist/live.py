@@ -74,7 +74,7 @@ def live_options(p, warnings: list[str], **given) -> dict:
 
     given = {"realtime": True, "heading": "gyro", "refine_ic": None, "initial_heading": None, "resolve_signs": None,
              "integrate_stops": None, "turn_factor": None, "rhythm": None, "merge_fragments": None,
-             "length_smoothing": None, "slow_turn_rps": None, **given}
+             "length_smoothing": None, "slow_turn_rps": None, "pivot_steps": None, **given}
     o = resolve_options(p, given)
     if o["length_smoothing"] != "none":
         raise DataError(f"length_smoothing '{o['length_smoothing']}' looks up to 1 s ahead and the live tracker "
@@ -141,8 +141,8 @@ class WaistTracker(WaistStream):
         ``lon`` (decision W137; the altitude is kept as :attr:`start_altitude_m`, not tracked), or None (origin)
     initial_heading : the direction the walker sets off in, radians ENU (counter-clockwise from east; 0 = east, the
         default); a magnitude above 2 pi (degrees, as the CLI's ``--initial-heading``) is refused (decision W81)
-    integrate_stops, turn_factor, rhythm, merge_fragments, slow_turn_rps : as :func:`pdrlearn.track.waist.
-        track_waist` (None: ``params.options``, else its defaults)
+    integrate_stops, turn_factor, rhythm, merge_fragments, slow_turn_rps, pivot_steps : as
+        :func:`pdrlearn.track.waist.track_waist` (None: ``params.options``, else its defaults; ``pivot_steps``: W150)
     keep_steps : how many reported steps :attr:`steps` keeps (None: all)
     check_input : check the units of the first seconds (decision B119) -- False only for data already checked
     sides : give each step its foot (``LiveStep.side``: "left" / "right" / "" undecided) from W20's lateral velocity
@@ -162,7 +162,8 @@ class WaistTracker(WaistStream):
                  height_m: float | None = None, frame=None, start=None, initial_heading: float | None = None,
                  integrate_stops: bool | None = None, turn_factor: bool | None = None, rhythm: bool | None = None,
                  merge_fragments: bool | None = None, slow_turn_rps: float | None = None,
-                 keep_steps: int | None = None, check_input: bool = True, sides: bool = False):
+                 keep_steps: int | None = None, check_input: bool = True, sides: bool = False,
+                 pivot_steps: bool | None = None):
         from pdrlearn.io.session import Session
         from pdrlearn.track.waist import _start
         from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
@@ -179,7 +180,7 @@ class WaistTracker(WaistStream):
         p, warnings = resolve_params(Session(name="live", meta=meta), params)
         o = live_options(p, warnings, initial_heading=initial_heading, integrate_stops=integrate_stops,
                          turn_factor=turn_factor, rhythm=rhythm, merge_fragments=merge_fragments,
-                         slow_turn_rps=slow_turn_rps)
+                         slow_turn_rps=slow_turn_rps, pivot_steps=pivot_steps)
         x0, y0, h0, latlon, self.start_altitude_m = _start(start, float(o["initial_heading"]))  # W137, L157
         rot, self._declared, self._declared_origin = _declared_frame(frame, meta)
         if rot is not None and self._declared is None:  # a matrix (an AxisFrame gets B108's check)

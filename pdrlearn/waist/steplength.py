@@ -65,7 +65,9 @@ class CalibrationWalk:
     ``f_hz`` step frequencies (frequency model); ``g`` = ``2 sqrt(2 L h - h^2)`` per step (pendulum);
     ``c`` = the factor the tracker multiplies each step's length by (the turning-step factor of W19; ones
     when ``None``). The fits below solve the walk's distance as the tracker sums it (decision W21):
-    ``D = sum(c (a f - b))`` and ``D = sum(c (K g + F))``.
+    ``D = sum(c (a f - b))`` and ``D = sum(c (K g + F))``. ``dpsi`` (decision W150, option ``pivot_steps``): each
+    step's net rotation (rad); its pivot factor depends on the fitted length, so :func:`with_pivot_factors` gives
+    the walk whose ``c`` includes it for given parameters (None: the option is off).
     """
 
     distance_m: float
@@ -73,10 +75,42 @@ class CalibrationWalk:
     g: np.ndarray
     name: str = ""
     c: np.ndarray | None = None
+    dpsi: np.ndarray | None = None
 
     def factors(self) -> np.ndarray:
         n = len(self.f_hz)
         return np.ones(n) if self.c is None else np.asarray(self.c, dtype=np.float64)
+
+
+def model_lengths(walk: CalibrationWalk, pipeline: str, p: WaistParams) -> np.ndarray:
+    """Each step's length under the parameters ``p`` before the tracker's factors ``c`` (``K g + F`` >= 0 for the
+    pendulum, non-finite ``g`` as 0; the walking line for the frequency model, as the tracker's walking steps)."""
+    if pipeline == "waist-pendulum":
+        return np.maximum(p.k * np.nan_to_num(np.asarray(walk.g, dtype=float), nan=0.0)
+                          + (p.f_m if np.isfinite(p.f_m) else 0.0), 0.0)
+    return frequency_lengths(np.nan_to_num(np.asarray(walk.f_hz, dtype=float), nan=0.0), p,
+                             running=np.zeros(len(walk.f_hz), dtype=bool))
+
+
+def with_pivot_factors(walks: list[CalibrationWalk], pipeline: str, p: WaistParams) -> list[CalibrationWalk]:
+    """Decision W150: the walks with each ``c`` times the pivot factor its steps get under the parameters ``p``
+    (:func:`~pdrlearn.waist._kernels.pivot_step_factor` of the ``c``-scaled lengths, as the tracker applies it after
+    W19); walks without ``dpsi`` as they are."""
+    from dataclasses import replace
+
+    out = []
+    for w in walks:
+        if w.dpsi is None:
+            out.append(w)
+            continue
+        c = w.factors()
+        out.append(replace(w, c=c * K.pivot_step_factor(c * model_lengths(w, pipeline, p), w.dpsi), dpsi=None))
+    return out
+
+
+#: decision W150: the most refits of the pivot factors (each fit moves fewer steps across their chord; a
+#: calibration walk with pivot steps converges in a few)
+PIVOT_FIT_ITERATIONS = 50
 
 
 def _walk_sums(walks: list[CalibrationWalk], x: str, scale: float = 1.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
