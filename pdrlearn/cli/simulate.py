@@ -23,6 +23,8 @@ HEIGHT_RANGE_M, LEG_PER_HEIGHT_RANGE = (0.7, 2.2), (0.35, 0.6)
 MAG_DISTURBANCE_MAX_UT = 90.0
 #: decision S34: the body axes `--waist-mount AXIS:DEG` turns the waist unit about (forward, left, up)
 MOUNT_AXES = {"x": 0, "y": 1, "z": 2}
+#: decision S43: `simulate --sit-start/--sit-end` (s seated at the start / end of the session): up to an hour
+SIT_MAX_S = 3600.0
 
 
 def simulate_cmd(
@@ -87,6 +89,17 @@ def simulate_cmd(
         0.0, "--step-time-asymmetry", help="Hemiparetic gait: each step onto the left foot lasts 1 + this times "
         "the step onto the right (symmetry ratio - 1, Patterson et al. 2010), e.g. 0.39; the cadence stays the "
         "user's; 0 (default) to below 1 (decision S35)."),
+    step_length_asymmetry: float = typer.Option(
+        0.0, "--step-length-asymmetry", help="Asymmetric steps (after a stroke, with a prosthesis): each step onto "
+        "the left foot is 1 + this times as long as the step onto the right, e.g. 0.1; the stride length stays the "
+        "user's; ics.csv gets each step's length; 0 (default) to below 1 (decision S42)."),
+    sit_start: float = typer.Option(
+        0.0, "--sit-start", help=f"Start the session seated this long (s, 0-{SIT_MAX_S:g}; trunk leaning forward "
+        "10-25 deg, feet flat), then stand up (a sit-to-stand) before the standstill and the walk; transfers.csv "
+        "has the stand-up (decision S43)."),
+    sit_end: float = typer.Option(
+        0.0, "--sit-end", help=f"End the session by sitting down after the last standstill and staying seated "
+        f"this long (s, 0-{SIT_MAX_S:g}; decision S43)."),
     height: float | None = typer.Option(
         None, "--height", help=f"The user at this stature (m, {HEIGHT_RANGE_M[0]:g}-{HEIGHT_RANGE_M[1]:g}, e.g. 0.95 "
         "for a 3-year-old): foot, waist-unit height, swing, pelvis bounce and sway scaled by stature, step length "
@@ -122,6 +135,7 @@ def simulate_cmd(
     from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path
     from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES, STEP_TIME_ASYMMETRY_MAX
     from pdrlearn.sim.route import parse_route
+    from pdrlearn.sim.simulate import STEP_LENGTH_ASYMMETRY_MAX
 
     if (scenario is None) == (route is None):
         raise DataError("simulate: give either --scenario NAME or --route 'straight:10, up:12, ...' (one of them)")
@@ -147,6 +161,12 @@ def simulate_cmd(
     if not (math.isfinite(step_time_asymmetry) and 0.0 <= step_time_asymmetry < STEP_TIME_ASYMMETRY_MAX):  # S35
         raise DataError(f"--step-time-asymmetry {step_time_asymmetry:g}: give 0 (symmetric) to below "
                         f"{STEP_TIME_ASYMMETRY_MAX:g} (0.39 = the left foot's steps 39 % longer than the right's)")
+    if not (math.isfinite(step_length_asymmetry) and 0.0 <= step_length_asymmetry < STEP_LENGTH_ASYMMETRY_MAX):
+        raise DataError(f"--step-length-asymmetry {step_length_asymmetry:g}: give 0 (symmetric) to below "  # S42
+                        f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer than the right's)")
+    for name, v in (("--sit-start", sit_start), ("--sit-end", sit_end)):  # decision S43
+        if not (math.isfinite(v) and 0.0 <= v <= SIT_MAX_S):
+            raise DataError(f"{name} {v:g}: give the seated time in seconds, 0 (none) to {SIT_MAX_S:g}")
     user = scaled_user(UserProfile.from_seed(user_seed), height, leg_length)  # decision S38
     custom = _custom_gait(user, speed, step_length, step_time, route)  # decision S30
     if out.exists() and (not out.is_dir() or any(out.iterdir())):
@@ -164,6 +184,9 @@ def simulate_cmd(
         mag_disturbance_ut=mag_disturbance,
         waist_mount_deg=mount,
         step_time_asymmetry=step_time_asymmetry,
+        step_length_asymmetry=step_length_asymmetry,
+        sit_start_s=sit_start,
+        sit_end_s=sit_end,
     )
     label = scenario or "route"
     with progress(f"simulating {label}", total=2, enabled=not as_json) as advance:

@@ -30,7 +30,7 @@ from pdrlearn.sim.kernels import (
     smoothstep,
 )
 from pdrlearn.sim.path import Footstep
-from pdrlearn.sim.user import GAIT_FACTORS, UserProfile
+from pdrlearn.sim.user import AFFECTED_FOOT, GAIT_FACTORS, UserProfile, asymmetry_factor  # noqa: F401 (S35 name)
 
 
 @dataclass(frozen=True)
@@ -106,9 +106,6 @@ SHOD = True  # the foot rolls over the front of the shoe's sole, beyond the toes
 STAIR_TOE_CLEARANCE = 2.0  # toe clearance over a stair nosing / the user's level toe clearance (S24)
 
 
-#: decision S35: the leg whose steps are slow in an asymmetric gait (``step_time_asymmetry``); the foot unit is on the
-#: right foot, so its strides span one slow and one normal step
-AFFECTED_FOOT = "left"
 #: decision S35: ``step_time_asymmetry`` must be below this: at 1 (symmetry ratio 2) the affected leg's stance is
 #: (1/2 + 2 s - 1) / (2 (1 - s)) = 0.97-1.34 x its swing for the users' stance fractions s 0.62-0.68; beyond, its
 #: swing outlasts its stance (a hop over the sound leg, not a walk)
@@ -116,15 +113,10 @@ STEP_TIME_ASYMMETRY_MAX = 1.0
 
 
 def step_time_factor(foot: str, asymmetry: float) -> float:
-    """Decision S35: the factor on the step time of a step landing on ``foot`` for a step-time asymmetry ``a``.
-
-    Asymmetry is the symmetry ratio minus 1, the ratio being affected / unaffected step time (Patterson et al.
-    2010, Gait Posture 31:241-246, recommend the ratio for post-stroke gait): a = 0.39 makes each step onto the
-    affected foot (:data:`AFFECTED_FOOT`) 1.39 x the step onto the other. The two factors 2 r / (1 + r) and
-    2 / (1 + r) (r = 1 + a) average 1, so the stride time, cadence and speed stay the user's; a = 0 gives 1.0
-    exactly (default sessions bit for bit)."""
-    r = 1.0 + asymmetry
-    return 2.0 * r / (1.0 + r) if foot == AFFECTED_FOOT else 2.0 / (1.0 + r)
+    """Decision S35: the factor on the step time of a step landing on ``foot`` for a step-time asymmetry ``a``
+    (:func:`pdrlearn.sim.user.asymmetry_factor`, shared with S42's step lengths): a = 0.39 makes each step onto the
+    affected foot (:data:`AFFECTED_FOOT`) 1.39 x the step onto the other, the stride time unchanged."""
+    return asymmetry_factor(foot, asymmetry)
 
 
 @dataclass
@@ -296,6 +288,11 @@ def foot_pose(
     for k in np.flatnonzero([s.foot == foot for s in steps]):
         st = steps[k]
         h_b, y_b = st.heel, st.yaw
+        if n and ev.rest[k] < t[0]:  # decision S44: a step before this part of the grid only moves the foot
+            h_a, y_a = np.asarray(h_b, float), y_b
+            continue
+        if n and ev.ho[k] > t[-1]:  # ... and none after it is reached (the foot stays at h_a: the fill below)
+            break
         i_ho, i_to, i_ic, i_ff = np.searchsorted(t, [ev.ho[k], ev.to[k], ev.ic[k], ev.rest[k]])
         heel[pos:i_ho], yaw[pos:i_ho], theta[pos:i_ho] = h_a, y_a, 0.0
         # forefoot (or heel) rocker: heel-off -> toe-off, pivot fixed on footprint A
@@ -444,22 +441,35 @@ def realistic_pelvis(user: UserProfile) -> PelvisParams:
     return PelvisParams(round(roll, 4), round(phase, 3), round(acc, 4), round(acc / omega**2, 6))
 
 
-def trunk_vibration(t: np.ndarray, rng: np.random.Generator, target_sd: tuple[float, ...]) -> np.ndarray:
-    """Band-limited random displacements/angles (n, k) whose 2nd (displacements, first 3 columns) or 1st
-    (angles, last 3) time derivative has the standard deviation ``target_sd``; computed at 100 Hz and
-    interpolated to ``t``."""
+def trunk_vibration_source(t0: float, t1: float, rng: np.random.Generator,
+                           target_sd: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray] | None:
+    """The 100 Hz samples (times, values (m, k)) of :func:`trunk_vibration` over ``t0``..``t1``, None for a span too
+    short to filter (decision S44: drawn once, interpolated to any part of the time grid)."""
     from scipy.signal import butter, sosfiltfilt
 
-    t_c = np.arange(t[0], t[-1] + 0.01, 0.01)
-    k = len(target_sd)
+    t_c = np.arange(t0, t1 + 0.01, 0.01)
     if t_c.size < 50:
-        return np.zeros((t.size, k))
+        return None
     sos = butter(2, TRUNK_BAND_HZ, btype="bandpass", fs=100.0, output="sos")
-    x = sosfiltfilt(sos, rng.normal(0.0, 1.0, (t_c.size, k)), axis=0)
-    out = np.empty((t.size, k))
+    x = sosfiltfilt(sos, rng.normal(0.0, 1.0, (t_c.size, len(target_sd))), axis=0)
     for j, sd in enumerate(target_sd):
         d = np.diff(x[:, j], n=2 if j < 3 else 1) / 0.01 ** (2 if j < 3 else 1)
-        out[:, j] = np.interp(t, t_c, x[:, j] * sd / max(float(d.std()), 1e-12))
+        x[:, j] = x[:, j] * sd / max(float(d.std()), 1e-12)
+    return t_c, x
+
+
+def trunk_vibration(t: np.ndarray, rng: np.random.Generator, target_sd: tuple[float, ...],
+                    source: tuple[np.ndarray, np.ndarray] | None | bool = False) -> np.ndarray:
+    """Band-limited random displacements/angles (n, k) whose 2nd (displacements, first 3 columns) or 1st
+    (angles, last 3) time derivative has the standard deviation ``target_sd``; computed at 100 Hz and
+    interpolated to ``t`` (from ``source``, :func:`trunk_vibration_source`, when given)."""
+    if source is False:
+        source = trunk_vibration_source(float(t[0]), float(t[-1]), rng, target_sd)
+    out = np.zeros((t.size, len(target_sd)))
+    if source is not None:
+        t_c, x = source
+        for j in range(len(target_sd)):
+            out[:, j] = np.interp(t, t_c, x[:, j])
     return out
 
 
@@ -479,12 +489,9 @@ def pendulum_rise(step_m: np.ndarray, leg_m: float) -> np.ndarray:
     return leg_m - np.sqrt(leg_m**2 - half**2)
 
 
-def pendulum_bounce(steps: list[Footstep], ev: Events, initial: dict, user: UserProfile) -> np.ndarray:
-    """Peak-to-peak pelvis bounce (m) of each step (decision S29): ``pelvis_bounce_m x h(s_k) / h(s_user)``, with
-    ``h`` :func:`pendulum_rise` of the user's leg, ``s_k`` the step's heel-to-heel distance along the landing
-    foot's heading and ``s_user`` the comfortable step of the user's stature, 0.415 x height (the mean that
-    :meth:`UserProfile.from_seed` draws around): a comfortable step keeps the user's bounce, and a profile whose
-    ``step_length_m`` was shortened (a slow patient) bounces as its steps, not as its stature."""
+def step_lengths(steps: list[Footstep], initial: dict) -> np.ndarray:
+    """Length (m) of each footstep: the heel-to-heel distance from the other foot's heel to the landing heel along
+    the landing foot's heading (decisions S29, S42; ``abs``: a backward step is as long as its forward twin)."""
     last = {f: np.asarray(h, float) for f, (h, _) in initial.items()}
     s = np.zeros(len(steps))
     for k, st in enumerate(steps):
@@ -492,6 +499,16 @@ def pendulum_bounce(steps: list[Footstep], ev: Events, initial: dict, user: User
         d = np.asarray(st.heel, float)[:2] - last[other][:2]
         s[k] = abs(d[0] * np.cos(st.yaw) + d[1] * np.sin(st.yaw))
         last[st.foot] = np.asarray(st.heel, float)
+    return s
+
+
+def pendulum_bounce(steps: list[Footstep], ev: Events, initial: dict, user: UserProfile) -> np.ndarray:
+    """Peak-to-peak pelvis bounce (m) of each step (decision S29): ``pelvis_bounce_m x h(s_k) / h(s_user)``, with
+    ``h`` :func:`pendulum_rise` of the user's leg, ``s_k`` the step's heel-to-heel distance along the landing
+    foot's heading and ``s_user`` the comfortable step of the user's stature, 0.415 x height (the mean that
+    :meth:`UserProfile.from_seed` draws around): a comfortable step keeps the user's bounce, and a profile whose
+    ``step_length_m`` was shortened (a slow patient) bounces as its steps, not as its stature."""
+    s = step_lengths(steps, initial)
     ref = float(pendulum_rise(np.array([COMFORTABLE_STEP_PER_HEIGHT * user.height_m]), user.leg_length_m)[0])
     return user.pelvis_bounce_m * pendulum_rise(s, user.leg_length_m) / max(ref, 1e-9)
 
@@ -507,6 +524,8 @@ def pelvis_pose(
     pelvis: PelvisParams | None = None,
     bounce_mode: str = "constant",
     transfer_offsets: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+    span: tuple[float, float] | None = None,
+    vibration_source: tuple[np.ndarray, np.ndarray] | None | bool = False,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pelvis reference point (n, 3) at the waist-unit height, orientation (n, 3, 3) and base heading (n,).
 
@@ -515,7 +534,12 @@ def pelvis_pose(
 
     ``pelvis``: None = the model's sway and obliquity; :func:`realistic_pelvis` = decision S27's.
     ``bounce_mode``: ``"constant"`` = the user's ``pelvis_bounce_m`` on every step; ``"pendulum"`` = scaled per
-    step by the inverted pendulum's rise for the step's length (decision S29, :func:`pendulum_bounce`)."""
+    step by the inverted pendulum's rise for the step's length (decision S29, :func:`pendulum_bounce`).
+
+    Decision S44, evaluation in parts: ``span`` = (first, last) time of the whole grid that ``t`` is a part of, and
+    ``vibration_source`` = :func:`trunk_vibration_source` over that span (drawn once): every value at a time is then
+    the one the whole grid gets there."""
+    t_first, t_last = (float(t[0]), float(t[-1])) if span is None else span
     bounce_amp = (pendulum_bounce(steps, ev, initial, user) if bounce_mode == "pendulum"
                   else None)
     feet = {f: (np.asarray(h, float), y) for f, (h, y) in initial.items()}
@@ -525,7 +549,7 @@ def pelvis_pose(
         yaws = [y for _, y in feet.values()]
         return (*(0.5 * (c[0] + c[1])), 0.5 * (yaws[0] + yaws[1]))
 
-    knots = [(float(t[0]), *config())]
+    knots = [(t_first, *config())]
     for k, st in enumerate(steps):
         if ev.bout_start[k]:
             knots.append((float(ev.ho[k]), *config()))
@@ -534,7 +558,7 @@ def pelvis_pose(
         last_of_bout = k == len(steps) - 1 or ev.bout_start[k + 1]
         if last_of_bout:
             knots.append((float(ev.ff[k] + 0.1), *config()))
-    knots.append((float(t[-1]), *config()))
+    knots.append((t_last, *config()))
     kept = [knots[0]]
     for kt in knots[1:]:
         if kt[0] > kept[-1][0] + 1e-6:
@@ -603,7 +627,9 @@ def pelvis_pose(
 
     # trunk vibration: band-limited random motion while walking (fwd, left, up in m; yaw, pitch, roll in rad)
     if rng is not None and trunk_noise > 0:
-        vib = env[:, None] * trunk_noise * trunk_vibration(t, rng, TRUNK_ACC_SD + TRUNK_RATE_SD)
+        if vibration_source is False:
+            vibration_source = trunk_vibration_source(t_first, t_last, rng, TRUNK_ACC_SD + TRUNK_RATE_SD)
+        vib = env[:, None] * trunk_noise * trunk_vibration(t, rng, TRUNK_ACC_SD + TRUNK_RATE_SD, vibration_source)
     else:
         vib = np.zeros((t.size, 6))
     ca, sa = np.cos(heading), np.sin(heading)

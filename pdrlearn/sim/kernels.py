@@ -9,6 +9,8 @@ from __future__ import annotations
 import numpy as np
 
 STANDARD_GRAVITY = 9.80665  # m/s^2 (thesis ch.4.2.1.1)
+#: decision S44: rows per block of :func:`angular_rate_body` (65536 x 9 float64 = 4.7 MB of relative rotations)
+RATE_CHUNK = 1 << 16
 
 
 # -- rotations ------------------------------------------------------------------------------------
@@ -214,8 +216,11 @@ def angular_rate_body(rot: np.ndarray, dt: float) -> np.ndarray:
     The rate over each interval is the rotation vector of ``R[i]^T R[i+1]`` divided by ``dt``; a sample's
     rate is the mean of its two adjacent intervals.
     """
-    rel = np.einsum("nji,njk->nik", rot[:-1], rot[1:])
-    w = rotvec(rel) / dt  # (n-1, 3)
+    n = rot.shape[0]
+    w = np.empty((max(n - 1, 0), 3))  # (n-1, 3)
+    for a in range(0, n - 1, RATE_CHUNK):  # decision S44: in blocks, so the (n, 3, 3) products are never all held
+        b = min(a + RATE_CHUNK, n - 1)
+        w[a:b] = rotvec(np.einsum("nji,njk->nik", rot[a:b], rot[a + 1 : b + 1])) / dt
     out = np.zeros((rot.shape[0], 3))
     out[1:-1] = 0.5 * (w[:-1] + w[1:])
     out[0], out[-1] = w[0], w[-1]

@@ -15,7 +15,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.sim.transfer import SIT_MARGIN_S, Transfer, draw_transfer
-from pdrlearn.sim.user import GAITS, UserProfile
+from pdrlearn.sim.user import GAITS, UserProfile, asymmetry_factor
 
 
 # -- segments --------------------------------------------------------------------------------------
@@ -144,8 +144,10 @@ class _Walker:
         heading0: float,
         irregular_rate: float,
         variability: float,
+        length_asymmetry: float = 0.0,
     ):
         self.user, self.speed, self.rng = user, speed, rng
+        self.length_asymmetry = length_asymmetry
         self.c = np.zeros(2)
         self.z = 0.0
         self.psi = heading0
@@ -214,14 +216,22 @@ class _Walker:
             self.direction = direction
 
     # -- segments ---------------------------------------------------------------------------------
-    def _progress(self, length: float, nominal: float) -> tuple[np.ndarray, np.ndarray]:
+    def _progress(self, length: float, nominal: float, asymmetric: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """Arc positions of the steps along a segment and which of them are irregular.
 
         An irregular step (stumble, hesitation) lands 40 % of a step short; the next step makes up for it.
+        ``asymmetric``: the steps onto each foot get :func:`asymmetry_factor` of the walker's length asymmetry
+        (decision S42), scaled so that the segment keeps its length.
         """
         n = max(1, int(round(length / nominal)))
         base = length / n
         s = base * np.arange(1, n + 1, dtype=float)
+        if asymmetric and self.length_asymmetry:  # decision S42 (skipped at 0: default sessions bit for bit)
+            first = self._next_foot()
+            other = "left" if first == "right" else "right"
+            inc = np.array([asymmetry_factor(first if j % 2 == 0 else other, self.length_asymmetry)
+                            for j in range(n)])
+            s = np.cumsum(inc) * (length / inc.sum())
         s[:-1] += self.rng.normal(0.0, self.var * base, n - 1)
         irregular = np.zeros(n, dtype=bool)
         if self.irregular_rate > 0:
@@ -232,7 +242,8 @@ class _Walker:
     def straight(self, seg: Straight) -> None:
         self._change_direction("forward")
         c0, u = self.c.copy(), _ahead(self.psi)
-        for s, irr in zip(*self._progress(seg.length_m, self.user.step_length(self.speed, seg.gait)), strict=True):
+        for s, irr in zip(*self._progress(seg.length_m, self.user.step_length(self.speed, seg.gait),
+                                            True), strict=True):
             self.step(c0 + s * u, self.z, self.psi, "walk", gait=seg.gait, irregular=bool(irr))
 
     def curve(self, seg: Curve) -> None:
@@ -243,7 +254,7 @@ class _Walker:
         r, psi0 = seg.radius_m, self.psi
         centre = self.c + sigma * r * _normal(psi0)
         for s, irr in zip(
-            *self._progress(abs(seg.angle_rad) * r, self.user.step_length(self.speed, seg.gait)), strict=True
+            *self._progress(abs(seg.angle_rad) * r, self.user.step_length(self.speed, seg.gait), True), strict=True
         ):
             psi = psi0 + sigma * s / r
             self.step(centre - sigma * r * _normal(psi), self.z, psi, "walk", gait=seg.gait, irregular=bool(irr))
@@ -267,7 +278,8 @@ class _Walker:
         if not (math.isfinite(seg.grade) and abs(seg.grade) <= MAX_SLOPE_GRADE):
             raise DataError(f"{seg}: grade must be finite and within +-{MAX_SLOPE_GRADE:g} (rise / run)")
         c0, z0, u = self.c.copy(), self.z, _ahead(self.psi)
-        for s, irr in zip(*self._progress(seg.length_m, self.user.step_length(self.speed, seg.gait)), strict=True):
+        for s, irr in zip(*self._progress(seg.length_m, self.user.step_length(self.speed, seg.gait),
+                                            True), strict=True):
             self.step(c0 + s * u, z0 + seg.grade * s, self.psi, "walk", gait=seg.gait, irregular=bool(irr))
 
     def backward(self, seg: Backward) -> None:
@@ -349,8 +361,12 @@ def plan_footsteps(
     heading0_rad: float = 0.0,
     irregular_rate: float = 0.0,
     variability: float = 1.0,
+    step_length_asymmetry: float = 0.0,
 ) -> tuple[list[Footstep], dict, float, list[Transfer]]:
     """Footprints of both feet along ``segments``.
+
+    ``step_length_asymmetry``: on level, curved and sloped walking the steps onto the left foot are 1 + this times
+    the steps onto the right, the segment's length and number of steps unchanged (decision S42).
 
     Returns
     -------
@@ -359,7 +375,7 @@ def plan_footsteps(
     end_pause_s : standing (or sitting) time requested after the last step (trailing :class:`Stand` / :class:`Sit`)
     transfers : the sit-down / stand-up episodes of :class:`Sit` segments (:mod:`pdrlearn.sim.transfer`)
     """
-    w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability)
+    w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability, step_length_asymmetry)
     initial = {f: (h.copy(), y) for f, (h, y) in w.feet.items()}
     handlers = {
         Straight: w.straight,

@@ -23,12 +23,16 @@ from pdrlearn.sim.body import (
     PELVIS_MODES,
     ROCKER_MODES,
     STEP_TIME_ASYMMETRY_MAX,
+    TRUNK_ACC_SD,
+    TRUNK_RATE_SD,
     Events,
     foot_loads,
     foot_pose,
     pelvis_pose,
     realistic_pelvis,
     schedule,
+    step_lengths,
+    trunk_vibration_source,
 )
 from pdrlearn.sim.kernels import (
     angular_rate_body,
@@ -38,14 +42,19 @@ from pdrlearn.sim.kernels import (
 )
 from pdrlearn.sim.path import Footstep, Segment, plan_footsteps
 from pdrlearn.sim.scenarios import SCENARIOS
-from pdrlearn.sim.transfer import transfer_motion, transfer_starts, transfer_table
+from pdrlearn.sim.transfer import session_sit_starts, session_sits, transfer_motion, transfer_starts, transfer_table
 from pdrlearn.sim.user import SPEEDS, UserProfile
 
 log = logging.getLogger(__name__)
 
 INTERNAL_RATE_HZ = 100.0  # sensor output data rate (thesis ch.4.2.1.1-2)
 OVERSAMPLE = 5  # pose grid at 500 Hz, averaged to the 100 Hz samples
+#: decision S44: the 500 Hz poses are built in parts of this many samples (~2 min; a part's poses ~60 MB at most)
+FINE_CHUNK = 60_000
 STAND_MARGIN_S = 0.2  # added to the standstills so that they last at least ``stand_s`` in every sensor
+#: decision S42: ``step_length_asymmetry`` must be below this (symmetry ratio 2, as S35's step times): beyond, the
+#: short step is less than a third of the stride (2 / (1 + r) < 2 / 3)
+STEP_LENGTH_ASYMMETRY_MAX = 1.0
 TERRAIN_DZ_M = 0.08  # |height change| of a stride above which it is a stair stride (about half a rise)
 
 #: Realism knobs of :func:`simulate` / :func:`simulate_path` and their defaults.
@@ -74,9 +83,15 @@ KNOBS: dict[str, object] = {
     "rocker": "hermite",  # "smooth": a heel rocker that comes to rest gradually, no second |acc| peak (S31)
     # hemiparetic gait: the steps onto the left foot are 1 + this times the right foot's, same cadence (S35)
     "step_time_asymmetry": 0.0,
+    # step-length asymmetry: the steps onto the left foot are 1 + this times the right's, same stride length (S42)
+    "step_length_asymmetry": 0.0,
+    # the session starts seated this long (s), then stands up; and / or ends seated after sitting down (S43)
+    "sit_start_s": 0.0,
+    "sit_end_s": 0.0,
 }
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
-META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_time_asymmetry")
+META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_time_asymmetry", "step_length_asymmetry",
+                      "sit_start_s", "sit_end_s")
 
 
 NON_NEGATIVE_KNOBS = (
@@ -87,6 +102,8 @@ NON_NEGATIVE_KNOBS = (
     "mag_disturbance_ut",
     "length_m",
     "baro_drift_hpa_per_h",
+    "sit_start_s",
+    "sit_end_s",
 )
 
 
@@ -133,6 +150,9 @@ def _check_knobs(knobs: dict) -> dict:
     if not 0 <= out["step_time_asymmetry"] < STEP_TIME_ASYMMETRY_MAX:  # decision S35
         raise DataError(f"simulate: step_time_asymmetry={out['step_time_asymmetry']!r} must be >= 0 and < "
                         f"{STEP_TIME_ASYMMETRY_MAX:g} (0.39 = the left foot's steps 39 % longer than the right's)")
+    if not 0 <= out["step_length_asymmetry"] < STEP_LENGTH_ASYMMETRY_MAX:  # decision S42
+        raise DataError(f"simulate: step_length_asymmetry={out['step_length_asymmetry']!r} must be >= 0 and < "
+                        f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer)")
     return out
 
 
@@ -274,14 +294,24 @@ def simulate_path(
         heading0_rad=math.radians(float(opt["heading0_deg"])),
         irregular_rate=float(opt["irregular_rate"]),
         variability=float(opt["variability"]),
+        step_length_asymmetry=float(opt["step_length_asymmetry"]),
     )
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
-    if not steps and 2 * stand + end_pause < 1.0:
+    # decision S43: seated at the start (then a stand-up before the standstill) and / or at the end (own stream)
+    sit0, sit1 = ((None, None) if not (opt["sit_start_s"] or opt["sit_end_s"]) else session_sits(
+        float(opt["sit_start_s"]), float(opt["sit_end_s"]), _rng(user.seed, int(seed), scenario, speed, "sit")))
+    lead = float(opt["sit_start_s"]) + sit0.up_s if sit0 else 0.0
+    if not steps and 2 * stand + end_pause + lead + float(opt["sit_end_s"]) < 1.0:
         raise DataError("simulate: nothing to simulate (no steps and stand_s < 1 s); add segments or stand longer")
-    ev = schedule(steps, user, speed=speed, rng=rng, stand_s=stand, variability=float(opt["variability"]),
+    ev = schedule(steps, user, speed=speed, rng=rng, stand_s=lead + stand, variability=float(opt["variability"]),
                   rocker=str(opt["rocker"]), step_time_asymmetry=float(opt["step_time_asymmetry"]))
-    total_s = (max(ev.end_s, stand) if steps else stand) + end_pause + stand
-    sit_starts = transfer_starts(transfers, ev.rest, stand)  # decision S36
+    total_s = (max(ev.end_s, lead + stand) if steps else lead + stand) + end_pause + stand
+    sit_starts = transfer_starts(transfers, ev.rest, lead + stand)  # decision S36
+    if sit0 or sit1:  # decision S43
+        ends = session_sit_starts(sit0, sit1, total_s)
+        transfers = [*([sit0] if sit0 else []), *transfers, *([sit1] if sit1 else [])]
+        sit_starts = np.concatenate([ends[:1] if sit0 else [], sit_starts, ends[-1:] if sit1 else []])
+        total_s += sit1.down_s + float(opt["sit_end_s"]) if sit1 else 0.0
     k_fine = OVERSAMPLE * k_out
     fine_rate = INTERNAL_RATE_HZ * OVERSAMPLE
     n_out = int(math.floor(total_s * rate_hz)) + 1
@@ -293,10 +323,12 @@ def simulate_path(
     # -- foot unit (right foot) --
     # per-user mount: from beside the heel to the instep (decisions S19)
     r_sensor = np.array([user.foot_sensor_x_frac * user.foot_length_m, 0.0, user.foot_sensor_height_m])
-    heel, R_f = foot_pose(t, "right", steps, ev, initial, user, vibration=1.0 if noise else 0.0)
-    p_f = heel + R_f @ r_sensor
-    f_body = block_mean(specific_force_body(p_f, R_f, dt), OVERSAMPLE)
-    w_body = block_mean(angular_rate_body(R_f, dt), OVERSAMPLE)
+
+    def foot_unit(tt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        heel, rot = foot_pose(tt, "right", steps, ev, initial, user, vibration=1.0 if noise else 0.0)
+        return heel + rot @ r_sensor, rot
+
+    f_body, w_body, pf100, Rf100 = _unit_motion(t, foot_unit, dt)  # decision S44: in parts of the 500 Hz grid
     # mounting: the user's few-degree misalignment, optionally on top of a deliberate toes-down tilt
     # (an instep mount like the real gaitmap stair recordings is pitched ~50 deg)
     mis_f = _misalignment([0.0, float(opt["foot_mount_pitch_deg"]), 0.0]) @ _misalignment(user.foot_misalignment_deg)
@@ -319,21 +351,29 @@ def simulate_path(
     r_waist = np.array([0.12, 0.0, 0.0])
     trunk = float(opt["variability"]) if noise else 0.0  # exact physics (noise=False): no trunk vibration
     pelvis = realistic_pelvis(user) if opt["pelvis"] == "realistic" else None
-    p_pel, R_p, _ = pelvis_pose(
-        t,
-        steps,
-        ev,
-        initial,
-        user,
-        rng=_rng(user.seed, int(seed), scenario, speed, "trunk"),
-        trunk_noise=trunk,
-        pelvis=pelvis,
-        bounce_mode=str(opt["bounce"]),
-        transfer_offsets=transfer_motion(t, transfers, sit_starts) if transfers else None,
-    )
-    p_w = p_pel + R_p @ r_waist
-    fw_body = block_mean(specific_force_body(p_w, R_p, dt), OVERSAMPLE)
-    ww_body = block_mean(angular_rate_body(R_p, dt), OVERSAMPLE)
+    trunk_rng = _rng(user.seed, int(seed), scenario, speed, "trunk")
+    span = (float(t[0]), float(t[-1]))
+    # decision S44: the trunk vibration is drawn once over the whole grid, then each part interpolates it
+    vib_source = (trunk_vibration_source(*span, trunk_rng, TRUNK_ACC_SD + TRUNK_RATE_SD) if trunk > 0 else None)
+
+    def waist_unit(tt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        p_pel, rot, _ = pelvis_pose(
+            tt,
+            steps,
+            ev,
+            initial,
+            user,
+            rng=trunk_rng,
+            trunk_noise=trunk,
+            pelvis=pelvis,
+            bounce_mode=str(opt["bounce"]),
+            transfer_offsets=transfer_motion(tt, transfers, sit_starts) if transfers else None,
+            span=span,
+            vibration_source=vib_source,
+        )
+        return p_pel + rot @ r_waist, rot
+
+    fw_body, ww_body, p_w100, R_p100 = _unit_motion(t, waist_unit, dt)  # decision S44
     mis_w = _misalignment(list(opt["waist_mount_deg"])) @ _misalignment(user.waist_misalignment_deg)  # S34
     waist_mis_deg = (user.waist_misalignment_deg if not any(opt["waist_mount_deg"]) else
                      [round(float(v), 9) for v in np.degrees(Rotation.from_matrix(mis_w).as_rotvec())])
@@ -342,8 +382,6 @@ def simulate_path(
         _to_sensor(fw_body, waist_m, mis_w), sn.WAIST_ACC, s_rng, noise=noise, device_rng=unit("wAccelerometer")
     )
     gyr_w, e_gw = sn.imu_readout(_to_sensor(ww_body, waist_m, mis_w), sn.WAIST_GYR, s_rng, noise=noise)
-    p_w100 = p_w[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
-    R_p100 = R_p[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
     b_enu = earth_field_enu(
         float(opt["mag_field_ut"]), float(opt["mag_inclination_deg"]), float(opt["mag_declination_deg"])
     )
@@ -391,8 +429,6 @@ def simulate_path(
     trajectory = pd.DataFrame(
         {"t": t_out, "x": pw_out[:, 0], "y": pw_out[:, 1], "z": pw_out[:, 2], "heading_rad": heading_out}
     )
-    pf100 = p_f[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
-    Rf100 = R_f[OVERSAMPLE // 2 :: OVERSAMPLE][: len(t100)]
     q = Rotation.from_matrix(Rf100[k_out // 2 :: k_out][:n_out]).as_quat()  # x, y, z, w
     pf_out = pf100[k_out // 2 :: k_out][:n_out]
     foot_traj = pd.DataFrame(
@@ -409,11 +445,16 @@ def simulate_path(
     )
     foot_traj.attrs["time_columns"] = ["t_s"]
     ics = pd.DataFrame({"ic_s": ev.ic, "foot": [s.foot for s in steps], "kind": [s.kind for s in steps]})
+    if opt["step_length_asymmetry"]:  # decision S42: the per-step lengths (steps.csv's strides sum two of them)
+        ics["step_length_m"] = step_lengths(steps, initial)
     ics.attrs["time_columns"] = ["ic_s"]
     strides = _stride_table(steps, ev, initial, user, r_sensor)
     extras = {"ics": ics, "foot_trajectory": foot_traj}
     if transfers:  # decision S36: only sessions with a sit have the table (default label files unchanged)
         extras["transfers"] = pd.DataFrame(transfer_table(transfers, sit_starts))
+        if sit0 or sit1:  # decision S43: the seated start / end clipped to the recording
+            tcols = ["start_s", "seated_s", "rise_s", "end_s"]
+            extras["transfers"][tcols] = extras["transfers"][tcols].clip(0.0, float(t_out[-1]))
         extras["transfers"].attrs["time_columns"] = ["start_s", "seated_s", "rise_s", "end_s"]
 
     meta = {
@@ -466,6 +507,28 @@ def simulate_path(
         meta=meta,
         frames=frames,
     )
+
+
+def _unit_motion(t: np.ndarray, pose, dt: float, chunk: int | None = None) -> tuple[np.ndarray, ...]:
+    """Decision S44: a unit's 100 Hz specific force and angular rate (block means of the 500 Hz ones), and its
+    position and orientation at the middle of each 100 Hz block, from ``pose(times) -> (positions (n, 3),
+    rotations (n, 3, 3))`` evaluated on parts of :data:`FINE_CHUNK` samples of the 500 Hz grid ``t`` (one more
+    sample on each inner side for the differences), so that the grid's poses are never all held at once. Every value
+    is the one the whole grid gives: the kernels are pointwise but for the differences, whose edge samples are
+    dropped (``tests/test_sim_memory.py``)."""
+    n, size = t.size, (chunk or FINE_CHUNK) // OVERSAMPLE * OVERSAMPLE
+    parts: list[list[np.ndarray]] = [[], [], [], []]
+    for a in range(0, n, size):
+        b = min(a + size, n)
+        lo, hi = max(a - 1, 0), min(b + 1, n)
+        pos, rot = pose(t[lo:hi])
+        keep = slice(a - lo, a - lo + b - a)
+        mid = slice(a - lo + OVERSAMPLE // 2, a - lo + b - a, OVERSAMPLE)
+        parts[0].append(block_mean(specific_force_body(pos, rot, dt)[keep], OVERSAMPLE))
+        parts[1].append(block_mean(angular_rate_body(rot, dt)[keep], OVERSAMPLE))
+        parts[2].append(pos[mid].copy())
+        parts[3].append(rot[mid].copy())
+    return tuple(np.concatenate(p) for p in parts)
 
 
 def _yaw_of(R: np.ndarray) -> np.ndarray:

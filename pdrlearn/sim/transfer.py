@@ -20,7 +20,7 @@ the texts in this session. The pelvis drop is the difference between standing hi
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -33,6 +33,12 @@ BACK_M = (0.10, 0.20)  # pelvis moving backward onto the seat (assumption)
 RECLINE_DEG = (3.0, 10.0)  # seated posterior tilt of the waist unit (assumption)
 SIT_MARGIN_S = 0.5  # standing still before sitting down and after standing up
 LOWER_DELAY = 0.2  # fraction of the sit-down before the pelvis starts to lower (trunk leans first)
+#: decision S43: the seated trunk of a session that starts or ends seated leans forward by this much (deg; the session
+#: 26 brief's 10-25 deg, e.g. sitting at a desk; an assumption like S36's recline, not from a seed)
+SEATED_FLEXION_DEG = (10.0, 25.0)
+#: decision S43: a session that starts seated has been seated this long before its first sample (s), so that the
+#: recording starts with the pelvis at rest
+SEATED_BEFORE_S = 1.0
 
 
 @dataclass(frozen=True)
@@ -123,3 +129,25 @@ def transfer_table(transfers: list[Transfer], starts: np.ndarray) -> list[dict]:
             "drop_m": round(tr.drop_m, 6),
         })
     return rows
+
+
+def session_sits(sit_start_s: float, sit_end_s: float, rng: np.random.Generator) -> tuple[Transfer | None, ...]:
+    """Decision S43: the transfers of a session that starts seated ``sit_start_s`` seconds (then stands up) and / or
+    ends seated ``sit_end_s`` seconds (after sitting down); None for a zero time. Drawn as :func:`draw_transfer`'s,
+    except the seated posture: a forward lean of :data:`SEATED_FLEXION_DEG` (a negative ``recline_rad``). The first
+    is seated from :data:`SEATED_BEFORE_S` before the recording (``seat_s`` counts it); the last stays seated past
+    the recording's end (its stand-up is never reached). Place them with :func:`session_sit_starts`."""
+    out = []
+    for seat in (sit_start_s, sit_end_s):
+        if seat > 0:
+            tr = draw_transfer(0, 0.0, float(seat) + SEATED_BEFORE_S, rng)
+            out.append(replace(tr, recline_rad=-math.radians(float(rng.uniform(*SEATED_FLEXION_DEG)))))
+        else:
+            out.append(None)
+    return tuple(out)
+
+
+def session_sit_starts(first: Transfer | None, last: Transfer | None, end_s: float) -> list[float]:
+    """Start times (s) of :func:`session_sits`' transfers: the first sits down before the recording so that it rises
+    at ``seat_s - SEATED_BEFORE_S``; the last starts sitting down at ``end_s`` (the end of the last standstill)."""
+    return ([-first.down_s - SEATED_BEFORE_S] if first else []) + ([end_s] if last else [])

@@ -18,6 +18,20 @@ SPEED_FACTORS = {"slow": (0.85, 1.20), "normal": (1.0, 1.0), "fast": (1.12, 0.86
 # Deliberately short/long steps of the length exercise (thesis ch.6.3) -> (length factor, duration factor).
 GAIT_FACTORS = {"short": (0.55, 0.95), "normal": (1.0, 1.0), "long": (1.3, 1.08)}
 
+#: decisions S35, S42: the leg of an asymmetric gait; the steps onto it are 1 + a times the steps onto the other (the
+#: foot unit is on the right foot, so each of its strides spans one step onto each foot)
+AFFECTED_FOOT = "left"
+
+
+def asymmetry_factor(foot: str, asymmetry: float) -> float:
+    """Decisions S35 (step time) and S42 (step length): the factor on a step landing on ``foot`` for an asymmetry
+    ``a`` = symmetry ratio - 1, the ratio being the step onto :data:`AFFECTED_FOOT` / the step onto the other
+    (Patterson et al. 2010, Gait Posture 31:241-246, recommend the ratio for post-stroke gait). The two factors
+    2 r / (1 + r) and 2 / (1 + r) (r = 1 + a) average 1, so a stride (one step onto each foot) keeps the user's
+    length and time; a = 0 gives 1.0 exactly."""
+    r = 1.0 + asymmetry
+    return 2.0 * r / (1.0 + r) if foot == AFFECTED_FOOT else 2.0 / (1.0 + r)
+
 
 # Foot-unit mounts (decisions S19): from a lateral mount below the ankle (gaitmap level recordings,
 # "lateral shoe sensor": ~25-30 % of the foot length from the heel, 3-4 cm up) to the instep (PLASYS-style
