@@ -1,0 +1,50 @@
+"""Trial 26 "building" (decisions L180-L182): a lift or escalator ride the foot cannot see is warned about,
+streamed and offline tracks count the same corners, and a disturbed compass is warned about."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.sim import UserProfile, simulate_path
+from pdrlearn.sim.route import parse_route
+from pdrlearn.track.evaluate import barometer_warning, summary_warnings, track_summary
+from pdrlearn.track.plasys import track_plasys
+
+_CLIMB_LINE = "although the net changes agree"
+
+
+def _ride(session, segments) -> None:
+    """Add height ramps (t0, t1, metres) to the session's waist barometer in place, by the barometric formula
+    (as the trial's inject.py did: an escalator ride while the feet stand)."""
+    b = session["wBarometer"]
+    dh = sum(np.clip((b.t - t0) / (t1 - t0), 0.0, 1.0) * h for t0, t1, h in segments)
+    b.values[:, 0] *= (1 - 2.25577e-5 * dh) ** 5.25588  # the international barometric formula
+
+
+def test_an_escalator_ride_up_and_back_down_warns_on_the_foot():
+    """Decision L180 (trial finding 3): the barometer climbs 6 m and descends 6 m during two stands; the net
+    agrees (0 m) but the foot's ascent misses the climb: one line naming lifts and escalators. Without the ride,
+    no line."""
+    route = "straight:10, stand:40, straight:10, stand:40, straight:10"
+    s = simulate_path(parse_route(route), UserProfile.from_seed(2971), seed=2971)
+    level = track_summary(track_plasys(s), s)
+    assert not [w for w in summary_warnings(level) if "barometer" in w]
+    _ride(s, [(20.0, 44.0, 6.0), (70.0, 94.0, -6.0)])
+    for streaming in (False, True):
+        m = track_summary(track_plasys(s, streaming=streaming), s)
+        assert m["barometer_ascent_m"] > 5.0 and m["barometer_descent_m"] > 5.0 and m["ascent_m"] < 0.5
+        assert abs(m["barometer_climb_change_m"] - m["altitude_change_m"]) < m["barometer_disagree_limit_m"]
+        lines = [w for w in summary_warnings(m) if _CLIMB_LINE in w]
+        assert len(lines) == 1 and "lift or escalator" in lines[0] and "--pipeline waist-pendulum" in lines[0]
+
+
+def test_the_climb_comparison_is_one_sided_and_names_rides_in_the_net_line():
+    """Decision L180: a barometer that climbs less than the foot (L172 drops a band's remainder) is no climb line;
+    the net line (L145) names a ride as the likely cause indoors too."""
+    s = {"altitude_change_m": 0.0, "barometer_altitude_change_m": 0.0, "barometer_climb_change_m": 0.0,
+         "barometer_disagree_limit_m": 0.55, "barometer_unused": True, "ascent_m": 5.6, "descent_m": 5.6,
+         "barometer_ascent_m": 5.2, "barometer_descent_m": 5.2}
+    assert barometer_warning(s) is None
+    assert _CLIMB_LINE in barometer_warning({**s, "barometer_ascent_m": 6.2, "barometer_descent_m": 6.2})
+    net = barometer_warning({**s, "barometer_climb_change_m": 3.0, "barometer_altitude_change_m": 3.0})
+    assert "disagrees with the waist barometer's +3.00 m" in net and "lift or escalator" in net
