@@ -48,3 +48,32 @@ def test_the_climb_comparison_is_one_sided_and_names_rides_in_the_net_line():
     assert _CLIMB_LINE in barometer_warning({**s, "barometer_ascent_m": 6.2, "barometer_descent_m": 6.2})
     net = barometer_warning({**s, "barometer_climb_change_m": 3.0, "barometer_altitude_change_m": 3.0})
     assert "disagrees with the waist barometer's +3.00 m" in net and "lift or escalator" in net
+
+
+def test_a_corner_spread_over_three_streamed_rows_is_one_turn():
+    """Decision L181 (trial finding 8): the trial's streamed corner -10 / -74 / -6 deg over three rows 1.15 s
+    apart is one turn of -90 deg (L104's rate alone took the middle row, 74 deg); a straight row after it adds
+    nothing, and an opposite edge is not taken."""
+    import pandas as pd
+
+    from pdrlearn.track.clinical import turns
+
+    dh = np.r_[0.0, 0.0, 0.5, -10.0, -74.0, -6.0, 0.2, 0.0, 0.0, 3.0, -74.0, 0.0]
+    rows = pd.DataFrame({"start_s": 1.15 * np.arange(len(dh)), "heading_rad": np.radians(np.cumsum(dh)),
+                         "unit": "lower_back"})
+    assert np.round(turns(rows, edges=False)).tolist() == [-74.0, -74.0]
+    assert np.round(turns(rows)).tolist() == [-90.0, -74.0]
+
+
+def test_streamed_and_offline_corners_count_the_same():
+    """Decision L181: four corridor corners (`curve:-90:1`) are four turns offline and streamed (user 2970's
+    streamed track read 4 of 8 before)."""
+    from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG, turns
+
+    route = ", ".join(["straight:15, curve:-90:1"] * 4)
+    s = simulate_path(parse_route(route), UserProfile.from_seed(2970), seed=2970)
+    for streaming in (False, True):
+        m = track_summary(track_plasys(s, streaming=streaming), s)
+        assert m["turn_count"] == 4
+    streamed = track_plasys(s, streaming=True).steps
+    assert (np.abs(turns(streamed, edges=False)) >= TURN_COUNT_MIN_DEG).sum() < 4  # L104's rate alone
