@@ -77,3 +77,33 @@ def test_streamed_and_offline_corners_count_the_same():
         assert m["turn_count"] == 4
     streamed = track_plasys(s, streaming=True).steps
     assert (np.abs(turns(streamed, edges=False)) >= TURN_COUNT_MIN_DEG).sum() < 4  # L104's rate alone
+
+
+def test_compass_disagreement_fits_a_hard_iron_offset_and_sees_a_changing_field():
+    """Decision L182: a compass of the Earth field plus a hard-iron offset and a constant heading offset agrees
+    with the gyroscope heading (angles ~0, L84's model); a field turned 40 deg along half the walk does not."""
+    from pdrlearn.orient._kernels import compass_disagreement
+
+    psi = np.radians(np.repeat([0.0, -90.0, -180.0, -270.0], 15))  # a corridor's four legs
+    h, c, b = 22.0, 0.4, np.array([3.0, -2.0])  # field (uT), heading offset (rad), hard iron (uT)
+    mf, ml = h * np.sin(psi + c) + b[0], h * np.cos(psi + c) + b[1]
+    ang, field = compass_disagreement(mf, ml, psi)
+    assert field == np.float64(field) and abs(field - h) < 1e-6 and np.abs(ang).max() < 1e-6
+    turned = psi + c + np.where(np.arange(len(psi)) % 2 == 0, np.radians(40.0), 0.0)  # a disturbance, every other
+    ang, _ = compass_disagreement(h * np.sin(turned) + b[0], h * np.cos(turned) + b[1], psi)
+    assert np.degrees(np.median(np.abs(ang))) > 15.0
+
+
+def test_a_disturbed_compass_warns_on_the_offline_foot_track():
+    """Decision L182 (trial finding 9): `--mag-disturbance 30` on corridor corners warns offline, naming
+    `--streaming`; the default 3 uT does not; the streamed track reads no compass and has no check."""
+    from pdrlearn.track.plasys import COMPASS_DISAGREE_DEG
+
+    route = parse_route(", ".join(["straight:15, curve:-90:1"] * 4))
+    for ut, warns in ((3.0, False), (30.0, True)):
+        s = simulate_path(route, UserProfile.from_seed(2972), seed=2972, mag_disturbance_ut=ut)
+        r = track_plasys(s)
+        lines = [w for w in r.info["warnings"] if "decision L182" in w]
+        assert (r.info["compass_check"]["median_deg"] > COMPASS_DISAGREE_DEG) == warns
+        assert len(lines) == int(warns) and all("--streaming" in w and "--units foot" in w for w in lines)
+    assert track_plasys(s, streaming=True).info.get("compass_check") is None
