@@ -62,6 +62,10 @@ SESSIONS: tuple[Column, ...] = (
                                                   "(L145)"),
     ("barometer_climb_change_m", "m", "number", "foot tracks with wBarometer.csv: the barometer's climbs, its change "
                                                 "without slow drift, which L145's warning compares (L172)"),
+    ("barometer_ascent_m", "m", "number", "foot tracks with wBarometer.csv: the barometer's ascent (0.5 m crossed "
+                                          "within 60 s, L172), compared with ascent_m (L180)"),
+    ("barometer_descent_m", "m", "number", "foot tracks with wBarometer.csv: the barometer's descent, compared with "
+                                           "descent_m (L180)"),
     ("barometer_drift_m", "m", "number", "foot tracks with wBarometer.csv: the barometer's slow drift (the weather) "
                                          "over the track, recorded minus climbs (L172)"),
     ("ascent_m", "m", "number", "cumulative climb (foot: strides' dz; barometric z - lower back, --altitude fused: "

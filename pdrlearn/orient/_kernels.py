@@ -90,6 +90,25 @@ def fit_horizontal_hard_iron(m_fwd: np.ndarray, m_left: np.ndarray, psi: np.ndar
     return coef[2:4].copy(), float(np.hypot(coef[0], coef[1])), resultant
 
 
+def compass_disagreement(m_fwd: np.ndarray, m_left: np.ndarray, psi: np.ndarray) -> tuple[np.ndarray, float]:
+    """Decision L182: how far the compass disagrees with a gyroscope-integrated heading ``psi`` (rad, relative),
+    beyond a hard-iron offset and a constant heading offset: :func:`fit_horizontal_hard_iron`'s model fitted, the
+    angle (rad) between each sample's level field less the fitted offset and the model's field at its ``psi``.
+    A field of the Earth plus a hard-iron offset (any mounting yaw) fits it up to noise; a field that changes
+    along the walk (steel, an indoor disturbance) or a heading that drifts away from the compass does not.
+
+    Returns (angles (n,) wrapped rad, fitted horizontal field ``H``)."""
+    psi = np.asarray(psi, dtype=float)
+    b, field, _ = fit_horizontal_hard_iron(m_fwd, m_left, psi)
+    s, c = np.sin(psi), np.cos(psi)
+    X = np.vstack([np.column_stack([s, c]), np.column_stack([c, -s])])
+    y = np.concatenate([np.asarray(m_fwd, dtype=float) - b[0], np.asarray(m_left, dtype=float) - b[1]])
+    a, bb = np.linalg.lstsq(X, y, rcond=None)[0] if psi.size else (0.0, 0.0)
+    pf, pl = a * s + bb * c, a * c - bb * s  # the model's level field at each heading
+    mf, ml = y[: psi.size], y[psi.size:]
+    return wrap_angle(np.arctan2(ml, mf) - np.arctan2(pl, pf)), field
+
+
 def yaw_rate(acc: np.ndarray, gyr: np.ndarray) -> np.ndarray:
     """Rate of turn about the vertical (rad/s, CCW positive): gyroscope projected on the up direction."""
     acc = np.atleast_2d(acc)

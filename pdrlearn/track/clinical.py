@@ -16,7 +16,8 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
 * **walking bout**: the walk between pauses: ``n_walking_bouts`` = ``n_pauses`` + 1 (0 without a row).
 * **turn**: a run of consecutive rows whose heading changes at :data:`TURN_RATE_MIN_DPS` deg/s or more from
   one row to the next (heading change / time between the rows' starts; one slower row between two such rows
-  belongs to the turn), its angle the summed (signed) change;
+  belongs to the turn), its angle the summed (signed) change, with the change of the row just before and just
+  after the run when it turns the same way and belongs to no other turn (decision L181: a corner's edge strides);
   ``turn_count`` counts the turns of at least :data:`TURN_COUNT_MIN_DEG` degrees (turnarounds, corners); a gentle
   curve (below 15 deg/s, e.g. a 5 m radius at 1.2 m/s) or a pause is no turn; an interval holding a pause and a
   heading change of :data:`PAUSE_MAX_TURN_DEG` or more turns (L119: the turn took the time beside the
@@ -55,6 +56,9 @@ PAUSE_MAX_TURN_DEG = 30.0
 TURN_ON_SPOT_MIN_DPS = 20.0
 #: a row turns when its heading changes at this rate (deg/s) or more from the previous row
 TURN_RATE_MIN_DPS = 15.0
+#: decision L181: a turn also sums the same-way heading change of the row just before and just after it (a streamed
+#: corner spread over three rows, -10 / -74 / -6 deg, read 74 deg without it); False = L104's turning rows alone
+TURN_EDGES = True
 #: ``turn_count`` counts turns of at least this angle (deg)
 TURN_COUNT_MIN_DEG = 80.0
 #: ``stride_time_cv_pct`` needs at least this many straight strides with a stride time
@@ -149,14 +153,17 @@ def _heading(steps: pd.DataFrame) -> np.ndarray:
     return np.unwrap(steps["heading_rad"].to_numpy(float))
 
 
-def turns(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS) -> np.ndarray:
+def turns(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS, edges: bool = TURN_EDGES) -> np.ndarray:
     """(T,) the signed angles (deg, left positive) of the walk's turns (module docstring), any size."""
-    return turn_rows(steps, min_rate_dps=min_rate_dps)[0]
+    return turn_rows(steps, min_rate_dps=min_rate_dps, edges=edges)[0]
 
 
-def turn_rows(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS) -> tuple[np.ndarray, np.ndarray]:
+def turn_rows(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
+              edges: bool = TURN_EDGES) -> tuple[np.ndarray, np.ndarray]:
     """:func:`turns`'s angles (T,) and, for each turn, the row (index in ``start_s`` order) that ends its first
-    turning interval - the row a per-bout table (decision L124) counts the turn in."""
+    turning interval - the row a per-bout table (decision L124) counts the turn in. ``edges`` (decision L181): a
+    turn's angle also sums the interval just before and just after its turning intervals when that interval is
+    valid, turns the same way and belongs to no other turn."""
     if len(steps) < 2 or "heading_rad" not in steps:
         return np.zeros(0), np.zeros(0, dtype=int)
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
@@ -170,18 +177,24 @@ def turn_rows(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS) -
         turning |= _intervals(st)[1] & (np.abs(dh) >= PAUSE_MAX_TURN_DEG)
     # one row under the rate between two turning rows (a turn's slower step) does not split the turn
     turning[1:-1] |= turning[:-2] & turning[2:] & ok[1:-2] & ok[2:-1] & ok[3:] & np.isfinite(dh[1:-1])
-    out, first, cur = [], [], None
-    for i, on in enumerate(turning):
-        if on:
-            if cur is None:
-                first.append(i + 1)
-            cur = dh[i] if cur is None else cur + dh[i]
-        elif cur is not None:
-            out.append(cur)
-            cur = None
-    if cur is not None:
-        out.append(cur)
-    return np.asarray(out, dtype=float), np.asarray(first, dtype=int)
+    runs, a = [], None  # the turns' intervals [a, b) in dh
+    for i, on in enumerate(np.r_[turning, False]):
+        if on and a is None:
+            a = i
+        elif not on and a is not None:
+            runs.append((a, i))
+            a = None
+    free = ok[:-1] & ok[1:] & np.isfinite(dh) & ~turning  # decision L181: an interval a turn may take in
+    out = []
+    for a, b in runs:
+        angle = float(dh[a:b].sum())
+        if edges:
+            for j in (a - 1, b):
+                if 0 <= j < len(dh) and free[j] and dh[j] * angle > 0:
+                    angle += float(dh[j])
+                    free[j] = False  # one turn's edge only
+        out.append(angle)
+    return np.asarray(out, dtype=float), np.asarray([a + 1 for a, _ in runs], dtype=int)
 
 
 def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:

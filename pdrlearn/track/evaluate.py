@@ -601,6 +601,7 @@ def _barometer(result: TrackResult, session: Session, out: dict) -> None:
         at = np.unique(np.concatenate([span[:1], steps["end_s"].to_numpy(float)]))  # the strides' ends, in order
         up, down = ascent_descent(relative_altitude(b.t, b.values[:, 0], at), ASCENT_BAND_BARO_M, at, CLIMB_WINDOW_S)
         out["barometer_climb_change_m"] = float(up - down)  # decision L172: without the weather's slow drift
+        out["barometer_ascent_m"], out["barometer_descent_m"] = float(up), float(down)  # decision L180: the climbs
         out["barometer_drift_m"] = out["barometer_altitude_change_m"] - out["barometer_climb_change_m"]
         out["barometer_disagree_limit_m"] = BAROMETER_DISAGREE_M + BAROMETER_DRIFT_M_PER_H * (span[1] - span[0]) / 3600
 
@@ -614,6 +615,21 @@ BAROMETER_DISAGREE_M = 0.5
 BAROMETER_DRIFT_M_PER_H = 2.5
 
 
+#: decision L180: what the foot cannot see, named in L145's line: a ride (lift, escalator; no strides while the
+#: height changes, the likely cause indoors) and slopes / hills (L144, outdoors)
+_FOOT_BLIND = ("the foot's height is integrated stride by stride: it misses a lift or escalator ride (the likely "
+               "cause indoors: the height changes while the feet stand) and slopes and hills (L144)")
+
+
+def _climb_miss(summary: dict) -> tuple[str, float] | None:
+    """Decision L180: the barometer's ascent or descent (``barometer_ascent_m`` / ``barometer_descent_m``, L172's
+    climbs of 0.5 m within a minute) that the track's own (``ascent_m`` / ``descent_m``) misses by the most, as
+    (``"ascent"`` or ``"descent"``, metres missed); None without them."""
+    misses = [(k, float(summary[f"barometer_{k}_m"]) - float(summary[f"{k}_m"])) for k in ("ascent", "descent")
+              if summary.get(f"barometer_{k}_m") is not None and summary.get(f"{k}_m") is not None]
+    return max(misses, key=lambda m: m[1]) if misses else None
+
+
 def barometer_warning(summary: dict) -> str | None:
     """Decision L145: one line when a foot track's ``altitude_change_m`` and the session's waist barometer
     (``barometer_altitude_change_m``, recorded; read by the foot pipeline only with ``altitude="fused"``, L154)
@@ -621,15 +637,33 @@ def barometer_warning(summary: dict) -> str | None:
     track), with the height L39 set to 0 (``info.altitude_check.level_zeroed_m``) when known; None otherwise.
     Decision L172: the barometer's change compared is its climbs' (``barometer_climb_change_m``, changes of 0.5 m
     within a minute), so the weather's slow drift does not blame the foot; a drift is named in the line; a fused
-    track's own altitude is compared by its climbs too (``altitude_change_m`` - ``altitude_drift_m``)."""
+    track's own altitude is compared by its climbs too (``altitude_change_m`` - ``altitude_drift_m``).
+    Decision L180: when the net changes agree, the climbs are compared: the barometer's ascent (descent) that the
+    track's ``ascent_m`` (``descent_m``) misses by more than the same limit (a lift or escalator ride up and back
+    down, a hill up and down) is one line too; both lines name a lift or escalator as the likely cause indoors."""
     raw = summary.get("barometer_altitude_change_m")
     baro = summary.get("barometer_climb_change_m", raw)
     foot = summary.get("altitude_change_m")
     if foot is not None and summary.get("altitude_drift_m") is not None:  # fused (L154): its climbs too, L172
         foot = float(foot) - float(summary["altitude_drift_m"])
     limit = summary.get("barometer_disagree_limit_m", BAROMETER_DISAGREE_M)
-    if baro is None or foot is None or not abs(float(foot) - float(baro)) > float(limit):
+    if baro is None or foot is None:
         return None
+    fused = not summary.get("barometer_unused", True)  # decision L154: the barometer was fused into the altitude
+    source = f"(wBarometer.csv, {'fused with the strides by L154' if fused else 'not read by foot tracks'})"
+    advice = ("; for floors by lift or escalator track the lower back, `--pipeline waist-pendulum`; for altitude on "
+              "slopes, hills and ramps " + ("" if fused else "fuse the barometer, `--altitude fused` (L154), or ")
+              + "track the lower back")
+    if not abs(float(foot) - float(baro)) > float(limit):
+        miss = _climb_miss(summary)  # decision L180: the net agrees; did the foot miss a climb and its return?
+        if miss is None or not miss[1] > float(limit):
+            return None
+        kind, missed = miss
+        return (f"the waist barometer {source} climbed {float(summary['barometer_ascent_m']):.2f} m and descended "
+                f"{float(summary['barometer_descent_m']):.2f} m (0.5 m within a minute, L172), the track "
+                f"{float(summary['ascent_m']):.2f} m and {float(summary['descent_m']):.2f} m: its {kind} misses "
+                f"{missed:.2f} m (more than {float(limit):.2f} m) although the net changes agree "
+                f"({float(foot):+.2f} m against {float(baro):+.2f} m; L180); {_FOOT_BLIND}{advice}")
     check = (summary.get("info") or {}).get("altitude_check") or {}
     zeroed = check.get("level_zeroed_m")
     why = ("" if zeroed is None else
@@ -638,14 +672,9 @@ def barometer_warning(summary: dict) -> str | None:
     drift = float(raw) - float(baro)
     drifted = (f" ({float(raw):+.2f} m recorded, of which {drift:+.2f} m slow drift, L172: the weather, which "
                "`--altitude fused` adds to altitude_change_m)" if abs(drift) > BAROMETER_DISAGREE_M else "")
-    fused = not summary.get("barometer_unused", True)  # decision L154: the barometer was fused into the altitude
     return (f"foot altitude change {float(foot):+.2f} m disagrees with the waist barometer's {float(baro):+.2f} m"
-            f"{drifted} (wBarometer.csv, {'fused with the strides by L154' if fused else 'not read by foot tracks'})"
-            " by "
-            f"{abs(float(foot) - float(baro)):.2f} m (more than {float(limit):.2f} m){why}; "
-            "the foot's height is integrated stride by stride and misses slopes and hills (L144): for altitude on "
-            "slopes, hills and ramps " + ("" if fused else "fuse the barometer, `--altitude fused` (L154), or ")
-            + "track the lower back, `--pipeline waist-pendulum`")
+            f"{drifted} {source} by {abs(float(foot) - float(baro)):.2f} m (more than {float(limit):.2f} m){why}; "
+            f"{_FOOT_BLIND}{advice}")
 
 
 #: decision L172: a barometric track's altitude change that its climbs do not explain by more than this (m; twice

@@ -68,7 +68,7 @@ from pdrlearn.signal import lowpass
 from pdrlearn.track.altitude import apply_altitude, check_altitude, set_strides_dz
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
-from pdrlearn.track.gait import add_gait_columns, streamed_gait_columns, stride_rows, turn_rows
+from pdrlearn.track.gait import STRAIGHT_MAX_RAD, add_gait_columns, streamed_gait_columns, stride_rows, turn_rows
 from pdrlearn.track.gaps import (
     FOOT_IMU,
     drop_steps_across_gaps,
@@ -463,17 +463,14 @@ HARD_IRON_MAX_RESULTANT = 0.5
 HARD_IRON_MIN_STRIDES = 8
 
 
-def fit_waist_hard_iron(session: Session, strides: pd.DataFrame, psi: np.ndarray,
-                        keep: np.ndarray | None = None) -> tuple[np.ndarray | None, dict]:
-    """The waist magnetometer's horizontal hard-iron offset (uT, body FLU, z = 0) fitted on the walk itself
-    (decision L84): per kept stride the mean level-forward / level-left field (thesis eq. 33/34) over its
-    window against the foot's relative heading ``psi`` (rad), :func:`~pdrlearn.orient._kernels.
-    fit_horizontal_hard_iron`. None (with the reason in the dict) when the session has no waist magnetometer,
-    the walk turns too little (resultant length of ``psi`` > :data:`HARD_IRON_MAX_RESULTANT`), has fewer than
-    :data:`HARD_IRON_MIN_STRIDES` strides, or the fitted offset exceeds the fitted horizontal field."""
+def stride_level_field(session: Session, strides: pd.DataFrame,
+                       keep: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """Per kept stride the waist magnetometer's mean level-forward / level-left field (uT, thesis eq. 33/34) over
+    the stride's window, and the kept mask (strides with samples and ``keep``); None without a waist magnetometer
+    (decisions L84, L182)."""
     u = unit_data(session, "waist", purpose="waist heading")
     if u.mag is None:
-        return None, {"applied": False, "reason": "no waist magnetometer"}
+        return None
     _, fwd, left = level_axes(lowpass(u.acc, min(1.0, 0.4 * u.fs), u.fs))
     m_f, m_l = np.einsum("ij,ij->i", u.mag, fwd), np.einsum("ij,ij->i", u.mag, left)
     s = strides["start_s"].to_numpy(float)
@@ -482,7 +479,21 @@ def fit_waist_hard_iron(session: Session, strides: pd.DataFrame, psi: np.ndarray
     ok = (hi > lo) & (np.ones(len(s), bool) if keep is None else np.asarray(keep, bool))
     cf, cl = np.concatenate([[0.0], np.cumsum(m_f)]), np.concatenate([[0.0], np.cumsum(m_l)])
     n = np.maximum(hi - lo, 1)
-    mf_i, ml_i = ((cf[hi] - cf[lo]) / n)[ok], ((cl[hi] - cl[lo]) / n)[ok]
+    return ((cf[hi] - cf[lo]) / n)[ok], ((cl[hi] - cl[lo]) / n)[ok], ok
+
+
+def fit_waist_hard_iron(session: Session, strides: pd.DataFrame, psi: np.ndarray,
+                        keep: np.ndarray | None = None) -> tuple[np.ndarray | None, dict]:
+    """The waist magnetometer's horizontal hard-iron offset (uT, body FLU, z = 0) fitted on the walk itself
+    (decision L84): per kept stride the mean level-forward / level-left field (thesis eq. 33/34) over its
+    window against the foot's relative heading ``psi`` (rad), :func:`~pdrlearn.orient._kernels.
+    fit_horizontal_hard_iron`. None (with the reason in the dict) when the session has no waist magnetometer,
+    the walk turns too little (resultant length of ``psi`` > :data:`HARD_IRON_MAX_RESULTANT`), has fewer than
+    :data:`HARD_IRON_MIN_STRIDES` strides, or the fitted offset exceeds the fitted horizontal field."""
+    level = stride_level_field(session, strides, keep)
+    if level is None:
+        return None, {"applied": False, "reason": "no waist magnetometer"}
+    mf_i, ml_i, ok = level
     psi_i = np.asarray(psi, dtype=float)[ok]
     out = {"applied": False, "n_strides": int(ok.sum())}
     if ok.sum() < HARD_IRON_MIN_STRIDES:
@@ -494,6 +505,35 @@ def fit_waist_hard_iron(session: Session, strides: pd.DataFrame, psi: np.ndarray
     if float(np.hypot(*b)) > field:
         return None, {**out, "reason": "fitted offset larger than the fitted field"}
     return np.array([b[0], b[1], 0.0]), {**out, "applied": True}
+
+
+#: decision L182: the median angle (deg) between the waist compass and the foot's gyroscope heading, beyond L84's
+#: hard-iron model, above which an offline track that reads the compass warns: 20 deg moves a track sideways by a
+#: third of the distance, 2x the medians of default (3 uT, S33) simulated sessions (up to 9.1 deg)
+COMPASS_DISAGREE_DEG = 20.0
+
+
+def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
+                  keep: np.ndarray) -> tuple[str | None, dict | None]:
+    """Decision L182: (a warning line or None, ``info.compass_check``) for a track whose heading reads the waist
+    compass: the median |angle| (:func:`~pdrlearn.orient._kernels.compass_disagreement`) of the ``keep`` strides
+    (straight, outside foot gaps) against the foot's relative heading ``psi`` (rad), with at least
+    :data:`HARD_IRON_MIN_STRIDES` of them; (None, None) without a waist magnetometer or enough strides."""
+    from pdrlearn.orient._kernels import compass_disagreement
+
+    level = stride_level_field(session, strides, keep)
+    if level is None or int(level[2].sum()) < HARD_IRON_MIN_STRIDES:
+        return None, None
+    mf, ml, ok = level
+    angle = float(np.degrees(np.median(np.abs(compass_disagreement(mf, ml, np.asarray(psi, float)[ok])[0]))))
+    info = {"median_deg": angle, "n_strides": int(ok.sum()), "limit_deg": COMPASS_DISAGREE_DEG}
+    if not angle > COMPASS_DISAGREE_DEG:
+        return None, info
+    return (f"the waist compass disagrees with the foot's gyroscope heading by a median {angle:.1f} deg over "
+            f"{int(ok.sum())} straight strides, more than a hard-iron offset explains (over "
+            f"{COMPASS_DISAGREE_DEG:g} deg warns, decision L182): a magnetic disturbance (steel, a building's "
+            "structure) turns this offline track, whose heading follows the compass (L17); track with `--streaming` "
+            "(the waist gyroscope's heading) or `--units foot` (the foot's own)"), info
 
 
 # decision L18: DEFAULT_MODEL_RULES ("bayes") and DEFAULT_MIN_CONFIDENCE (0.95), the default rule with a model's
@@ -928,7 +968,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
     bridge_foot_yaw(fd, foot_gaps, (lambda n: (work.streams[n].t, work.streams[n].values)) if bridged else None)
     hsrc = heading or cfg["heading"]
-    hard_iron_info = None
+    hard_iron_info, compass_info = None, None
     if hsrc in ("waist", "fused") and not has_waist:
         warnings.append(no_waist_heading(session))
         hsrc = "foot"
@@ -951,6 +991,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             offset_line = unit_offset_line(session)
             warnings += [offset_line] if offset_line else []
         head = _stride_heading(wh, strides)
+        compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
+            work, strides, fd.foot_heading(0.0) + lateral, ~in_gap & (np.abs(fd.yaw_change_) < STRAIGHT_MAX_RAD))
+        warnings += [compass_line] if compass_line else []
         if hsrc == "fused":
             head = fuse_by_segment(fd.foot_heading(0.0) + lateral, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s)
@@ -1029,6 +1072,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     info = {"pipeline": "plasys", "method": "M3 engine, no classes" if no_classes else method,
             "heading_source": hsrc, "stance_source": stance_source,
             "hard_iron": hard_iron_info,  # decision L84 (None: the fit was not asked)
+            "compass_check": compass_info,  # decision L182 (None: no compass heading, or too few strides)
             "steps_source": source,
             "classes_source": ("oracle" if oracle else ("model" if cfg["rules"] else None)),
             # decision L38: strides classified on the streaming segmenter's window / on their own bounds
