@@ -24,6 +24,13 @@ made worse; ``--runtime N``: ``pdrlearn run`` with a bundle exported per mode fo
         --down-mode norm3,projected --model-cache CACHE --sim-cache SIMS --runtime 3
     PYTHONPATH=$PWD python experiments/stairs_down.py --first-user 1 --users 5 --scenarios A,B,C,D \
         --down-mode norm3,projected --model-cache CACHE --sim-cache SIMS
+
+Decision L178 (session 26; users 2940-2969, quick models; stair routes R1,R2,R3,D34,F2 and the level route LV)::
+
+    PYTHONPATH=$PWD python experiments/stairs_down.py --first-user 2940 --users 30 --quick \
+        --routes R1,R2,R3,D34,F2,LV --down-mode norm3,projected --model-cache CACHE --sim-cache SIMS --runtime 3
+    PYTHONPATH=$PWD python experiments/stairs_down.py --first-user 1 --users 5 --quick --scenarios A,B,C,D \
+        --down-mode norm3,projected --model-cache CACHE --sim-cache SIMS
 """
 
 from __future__ import annotations
@@ -56,7 +63,15 @@ ROUTES = {
     "R1": "straight:5, down:17, straight:5, turn:90, down:17, straight:3",  # two flights at right angles
     "R2": "straight:4, down:12, straight:2, down:12, straight:4",  # two flights in one direction
     "R3": "straight:3, up:12, turn:90, straight:3, down:12, straight:3",  # up, then down at right angles
+    # decision L178 (session 26 trial `building`, finding 1): the trial's descent and its two storeys up and down
+    "D34": "straight:4, down:34, straight:4",
+    "F2": "straight:10, up:17, turn:180, up:17, turn:180, straight:10, turn:180, down:17, turn:180, down:17, "
+          "straight:5",
+    # decision L178: a level walk (no stair), straight, a right-angle turn, a curve and a U-turn
+    "LV": "straight:10, turn:90, straight:10, curve:-90:1, straight:10, turn:180, straight:10",
 }
+#: decision L178: the level routes, judged walk by walk and kept out of the stair walks' pooled medians
+LEVEL_ROUTES = ("LV",)
 #: decision L63: a walk is "worse" with a candidate when an error rises by more than this
 WORSE_BY = {"final_position_error_m": 0.02, "final_position_error_3d_m": 0.02, "abs_distance_error_pct": 0.05}
 
@@ -105,33 +120,34 @@ def _row(res, s, ev) -> dict:
 
 
 def runtime_run(model, session_dir: Path, bundle_dir: Path, down_mode: str) -> dict:
-    """``pdrlearn run BUNDLE SESSION --json`` (in-process) with a bundle exported with ``down_mode``."""
-    import contextlib
-    import io
+    """``pdrlearn run BUNDLE SESSION --json`` (in-process, the CLI's defaults) with a bundle exported with
+    ``down_mode``."""
     import json
 
-    from pdrlearn.cli.export import run as cli_run
+    from typer.testing import CliRunner
+
+    from pdrlearn.cli import app
     from pdrlearn.export import export_model
 
     if not bundle_dir.exists():
         export_model(None, bundle_dir, model=model, displacement={"down_mode": down_mode})
-    buf = io.StringIO()
-    with contextlib.redirect_stdout(buf):
-        cli_run(bundle_dir=bundle_dir, session_dir=session_dir, out=None, protocol=None, chunk_s=1.0, force=False,
-                as_json=True, resample=False, no_resample=False, rules=None, min_confidence=None, units=None,
-                start=None)
-    return json.loads(buf.getvalue())
+    r = CliRunner().invoke(app, ["run", str(bundle_dir), str(session_dir), "--json"])
+    if r.exit_code != 0:
+        raise RuntimeError(f"pdrlearn run {bundle_dir} {session_dir}: exit {r.exit_code}: {r.output[-500:]}")
+    out = r.stdout
+    return json.loads(out[out.index("{"):])
 
 
 def run(users: list[int], scenarios: list[str] | None, cache: Path | None, sim_cache: Path | None,
-        down_mode: str = "norm3", routes: list[str] | None = None, runtime_users: int = 0) -> pd.DataFrame:
+        down_mode: str = "norm3", routes: list[str] | None = None, runtime_users: int = 0,
+        quick: bool = False) -> pd.DataFrame:
     from pdrlearn.sim import simulate
 
     sim = partial(simulate, device_errors=True)  # decision S22, as experiments/localization.py
     modes = down_mode.split(",")
     rows = []
     for k, user in enumerate(users):
-        model, _ = train_model(sim, user, False, cache, ("slow", "normal", "fast"))
+        model, _ = train_model(sim, user, quick, cache, ("slow", "normal", "fast"))
         if scenarios:
             walks = {s: _cached(sim_cache, f"{s}_u{user}", partial(sim, s, user_seed=user, speed="normal"))
                      for s in scenarios}
@@ -168,8 +184,11 @@ def compare(df: pd.DataFrame, base: str, cand: str) -> str:
     b = df[df["mode"] == cand].set_index(key)
     lines = [f"| run | error | median {base} | median {cand} | walks worse (> tolerance) | walks |",
              "|---|---|---|---|---|---|"]
+    stairs = ~a.index.get_level_values("scenario").isin(LEVEL_ROUTES)  # decision L178: stair walks pooled
+    if not stairs.all():
+        lines.insert(0, f"stair walks (routes other than {', '.join(LEVEL_ROUTES)}):")
     for r in dict.fromkeys(df["run"]):
-        ia = a.xs(r, level="run")
+        ia = a[stairs].xs(r, level="run")
         ib = b.xs(r, level="run").loc[ia.index]
         for col, tol in WORSE_BY.items():
             worse = int(((ib[col] - ia[col]) > tol).sum())
@@ -181,6 +200,15 @@ def compare(df: pd.DataFrame, base: str, cand: str) -> str:
             gap = float(np.hypot(rr["x"] - st["x"], rr["y"] - st["y"]).max())
             lines.append(f"{mode}: run vs streaming=True, largest final position difference {gap:.2e} m "
                          f"({len(rr)} walks)")
+    if df["scenario"].nunique() > 1:  # decision L178: per route too
+        lines += ["", "| route | run | error | median " + base + " | median " + cand + " | walks worse | walks |",
+                  "|---|---|---|---|---|---|---|"]
+        for (scen, r), ia in a.groupby(level=["scenario", "run"], sort=False):
+            ib = b.loc[ia.index]
+            for col, tol in WORSE_BY.items():
+                worse = int(((ib[col] - ia[col]) > tol).sum())
+                lines.append(f"| {scen} | {r} | {col} | {ia[col].median():.4f} | {ib[col].median():.4f} | {worse} "
+                             f"| {len(ia)} |")
     return "\n".join(lines)
 
 
@@ -211,11 +239,13 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--runtime", type=int, default=0, help="also `pdrlearn run` the first N users' walks (needs "
                    "--sim-cache; decision L63)")
     p.add_argument("--csv", type=Path, default=None)
+    p.add_argument("--quick", action="store_true", help="train SVM only with 3-fold CV (experiments/localization.py's "
+                   "--quick; decision L178)")
     a = p.parse_args(argv)
     logging.basicConfig(level=logging.ERROR)
     users = list(range(a.first_user, a.first_user + a.users))
     df = run(users, [s for s in a.scenarios.split(",") if s], a.model_cache, a.sim_cache, a.down_mode,
-             [r for r in a.routes.split(",") if r], a.runtime)
+             [r for r in a.routes.split(",") if r], a.runtime, a.quick)
     if a.csv is not None:
         df.to_csv(a.csv, index=False)
     for mode in a.down_mode.split(","):

@@ -114,7 +114,8 @@ SESSIONS: tuple[Column, ...] = (
     ("leg_length_source", _ID, "text", "the meta.json key leg_length_m came from (L148)"),
     ("length_class_agreement", "fraction", "number", "matched strides whose length class is the label's (L53)"),
     ("longest_pause_s", "s", "number", "the longest pause (L104)"),
-    ("median_speed_straight_mps", "m/s", "number", "median speed of the strides turning under 15 deg"),
+    ("median_speed_straight_mps", "m/s", "number", "median speed of the level strides turning under 15 deg "
+                                              "(stair strides left out, L179)"),
     ("median_stance_pct", "%", "number", "--toe-off only: median stance share of the stride (L73)"),
     ("median_stance_time_s", "s", "number", "--toe-off only: median stance time"),
     ("median_step_time_s", "s", "number", "lower back: median contact to the next of either foot; empty on a foot "
@@ -128,7 +129,8 @@ SESSIONS: tuple[Column, ...] = (
     ("n_reference_strides", "count", "integer", "reference strides stride_length_mae_m compares"),
     ("n_stance_times", "count", "integer", "--toe-off only: strides with a stance time"),
     ("n_stereo_matched", "count", "integer", "lower back: contacts matched with both feet"),
-    ("n_straight_strides", "count", "integer", "strides turning under 15 deg"),
+    ("n_stair_strides", "count", "integer", "strides climbing or descending 0.10 m or more (L179)"),
+    ("n_straight_strides", "count", "integer", "level strides turning under 15 deg (L179)"),
     ("n_stride_times", "count", "integer", "strides with a stride time"),
     ("n_turns", "count", "integer", "reference turns compared (turns.csv only, L42)"),
     ("n_turns_signed", "count", "integer", "reference turns of 45 deg or more whose sign is compared (L42)"),

@@ -80,7 +80,8 @@ def test_stride_rules_kernel():
     disp = np.array([[0.6, 0.8, 0.3], [-0.3, 0.4, -0.2], [1.2, 0.0, 0.0], [0.5, 0.0, 0.1]])
     bounds = {"short": (0.0, 0.6), "normal": (0.6, 0.9), "long": (0.92, 20.0)}
     length, dz = SK.apply_stride_rules(disp, ["up", "down", "flat", None], ["forward", None, "backward", None],
-                                       ["long", "normal", "normal", None], bounds=bounds)
+                                       ["long", "normal", "normal", None], bounds=bounds, down_mode="norm3")
+    # (down_mode "norm3": the thesis' placement of the norm; the default "projected" since L178)
     # up: horizontal 1.0 inside long; down: 3-axis norm 0.539 (eq. 61) with the estimate's sign, clamped up
     # to normal's 0.6; backward prevails over the estimate and 1.2 is clamped to normal's 0.9; no class: raw
     np.testing.assert_allclose(length, [1.0, -0.6, -0.9, 0.5])

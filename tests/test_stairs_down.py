@@ -1,7 +1,7 @@
 """Decision L51: ``down_mode="projected"`` moves a stride classed down by the horizontal part of the thesis'
 3-axis norm (eq. 61), offline (StepRules, the array kernel), streamed and in the runtime's one-stride kernel.
-Not adopted as the default (its adoption rule failed on the final position error, see L51): the default
-``"norm3"`` still moves x/y by the norm."""
+Not adopted as the default by L51 and L63; the default since decision L178 (``"norm3"``, the thesis' placement of
+the norm, stays an option)."""
 
 from __future__ import annotations
 
@@ -27,7 +27,8 @@ def test_step_rules_place_a_down_stride_by_its_horizontal_length(mode):
     assert out["length_m"].iloc[0] == pytest.approx(0.56)
     assert out["dz_m"].iloc[0] == pytest.approx(-0.34)
     assert np.hypot(out["length_m"].iloc[0], out["dz_m"].iloc[0]) == pytest.approx(NORM)  # the path length
-    assert StepRules(mode=mode).apply(DOWN, classes)["length_m"].iloc[0] == pytest.approx(NORM)  # default: thesis
+    assert StepRules(mode=mode).apply(DOWN, classes)["length_m"].iloc[0] == pytest.approx(0.56)  # default (L178)
+    assert StepRules(mode=mode, down_mode="norm3").apply(DOWN, classes)["length_m"].iloc[0] == pytest.approx(NORM)
 
 
 def test_the_clamp_acts_on_the_path_length_then_the_stride_is_projected():
@@ -44,7 +45,8 @@ def test_kernels_offline_and_one_stride_agree_on_a_down_stride():
     one, dz1 = SK.stride_rules_one(0.56, 0.0, -0.34, "down", "forward", None, down_mode="projected")
     assert one == pytest.approx(0.56) and dz1 == -0.34
     assert isinstance(one, float)  # the runtime's kernel stays on Python floats (decision E17)
-    assert SK.stride_rules_one(0.56, 0.0, -0.34, "down", None, None)[0] == pytest.approx(NORM)  # default
+    assert SK.stride_rules_one(0.56, 0.0, -0.34, "down", None, None)[0] == pytest.approx(0.56)  # default (L178)
+    assert SK.stride_rules_one(0.56, 0.0, -0.34, "down", None, None, down_mode="norm3")[0] == pytest.approx(NORM)
 
 
 def test_horizontal_part_never_takes_a_negative_root():
@@ -70,7 +72,7 @@ def stairs_down():
 @pytest.mark.parametrize("streaming", [False, True])
 def test_tracked_down_strides_move_their_true_horizontal_length(stairs_down, streaming):
     """With the oracle's classes, the strides labelled down move x/y by about their labelled horizontal length
-    under "projected" (the default, the norm, is ~0.09 m long per stride on this walk)."""
+    under "projected" (the default since L178; "norm3", the norm, is ~0.09 m long per stride on this walk)."""
     from pdrlearn.track.evaluate import match_by_overlap
     from pdrlearn.track.plasys import track_plasys
 
@@ -84,7 +86,8 @@ def test_tracked_down_strides_move_their_true_horizontal_length(stairs_down, str
 
     kw = dict(method="M3", model="oracle", streaming=streaming)
     projected = down_error(track_plasys(stairs_down, down_mode="projected", **kw))
-    norm = down_error(track_plasys(stairs_down, **kw))
+    norm = down_error(track_plasys(stairs_down, down_mode="norm3", **kw))
+    assert down_error(track_plasys(stairs_down, **kw)) == projected  # the default since L178
     assert projected < 0.03 < norm
     with pytest.raises(DataError, match="down_mode"):
         track_plasys(stairs_down, down_mode="diagonal", **kw)
@@ -107,24 +110,25 @@ def test_offline_and_streamed_tracks_share_one_reference_altitude(stairs_down):
 
 
 def test_every_path_defaults_to_the_same_down_mode():
-    """Decision L63 (not adopted): offline (StepRules, the kernels, ``track_plasys``), streamed
-    (``track_streaming``) and the runtime (the bundle export's ``displacement``) keep one default, the thesis'
-    "norm3"."""
+    """Decisions L63, L178: offline (StepRules, the kernels, ``track_plasys``), streamed (``track_streaming``) and
+    the runtime (the bundle export's ``displacement``) keep one default, since L178 "projected" (the thesis' eq. 61
+    norm is the path length, its horizontal part moves x/y; before: "norm3")."""
     import inspect
 
     from pdrlearn.runtime import tracker as RT
     from pdrlearn.track.plasys import track_plasys, track_streaming
 
     defaults = {"StepRules": StepRules().down_mode, "runtime bundle": RT.DEFAULT_DISPLACEMENT["down_mode"]}
-    for fn in (track_plasys, track_streaming, SK.apply_stride_rules, SK.stride_rules_one, SK.horizontal_part):
+    for fn in (track_plasys, track_streaming, SK.apply_stride_rules, SK.stride_rules_one, SK.horizontal_part,
+               SK.terrain_distance):
         defaults[fn.__name__] = inspect.signature(fn).parameters["down_mode"].default
-    assert set(defaults.values()) == {"norm3"}, defaults
+    assert set(defaults.values()) == {"projected"} == {SK.DEFAULT_DOWN_MODE}, defaults
 
 
 def test_runtime_bundle_moves_down_strides_like_the_streamed_track(stairs_down, tmp_path):
-    """Decisions L51, L63: a bundle exported by default moves a stride classed down by the thesis' norm, as
-    ``track_plasys(streaming=True)`` does by default, and so does a bundle without the key; a bundle exported
-    with ``down_mode="projected"`` moves it by the norm's horizontal part, as the streamed track with that
+    """Decisions L51, L63, L178: a bundle exported by default moves a stride classed down by the horizontal part
+    of the thesis' norm, as ``track_plasys(streaming=True)`` does by default, and so does a bundle without the key;
+    a bundle exported with ``down_mode="norm3"`` moves it by the norm itself, as the streamed track with that
     option."""
     import json
     import shutil
@@ -141,7 +145,7 @@ def test_runtime_bundle_moves_down_strides_like_the_streamed_track(stairs_down, 
                        units=["foot"], cv=2)
     model.save(tmp_path / "model")
     export_model(tmp_path / "model", tmp_path / "bundle")
-    export_model(tmp_path / "model", tmp_path / "projected", displacement={"down_mode": "projected"})
+    export_model(tmp_path / "model", tmp_path / "norm3", displacement={"down_mode": "norm3"})
 
     def xyz(bundle):
         tracker = Tracker(bundle, heading_source="foot", rules="thesis")  # every class applies (no 0.95 gate)
@@ -150,11 +154,11 @@ def test_runtime_bundle_moves_down_strides_like_the_streamed_track(stairs_down, 
     kw = dict(method="M3", model=str(tmp_path / "model"), streaming=True, heading="foot", rules="thesis")
     streamed = track_plasys(stairs_down, **kw)
     assert (streamed.steps["terrain"] == "down").sum() >= 2
-    norm = xyz(tmp_path / "bundle")
-    assert np.abs(norm - streamed.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
-    projected = xyz(tmp_path / "projected")
-    ref = track_plasys(stairs_down, down_mode="projected", **kw).trajectory[["x", "y", "z"]].to_numpy()[1:]
-    assert np.abs(projected - ref).max() < 1e-3
+    projected = xyz(tmp_path / "bundle")
+    assert np.abs(projected - streamed.trajectory[["x", "y", "z"]].to_numpy()[1:]).max() < 1e-3
+    norm = xyz(tmp_path / "norm3")
+    ref = track_plasys(stairs_down, down_mode="norm3", **kw).trajectory[["x", "y", "z"]].to_numpy()[1:]
+    assert np.abs(norm - ref).max() < 1e-3
     # the norm walks further in the plan than its horizontal part
     assert np.hypot(*norm[-1, :2]) > np.hypot(*projected[-1, :2]) + 0.05
     old = tmp_path / "old"
@@ -163,4 +167,4 @@ def test_runtime_bundle_moves_down_strides_like_the_streamed_track(stairs_down, 
     del m["displacement"]["down_mode"]
     (old / "manifest.json").write_text(json.dumps(m))
     (old / MANIFEST_SHA).write_text(f"{sha256_file(old / 'manifest.json')}  manifest.json\n")
-    np.testing.assert_allclose(xyz(old), norm, atol=1e-9)
+    np.testing.assert_allclose(xyz(old), projected, atol=1e-9)

@@ -23,6 +23,7 @@ from pdrlearn.kernels.strapdown import (
     stride_quaternions,  # noqa: F401
 )
 from pdrlearn.kernels.stride import (  # noqa: F401 (numpy-only rules, shared with the runtime)
+    DEFAULT_DOWN_MODE,
     DOWN_MODES,
     altitude_change,
     apply_direction,

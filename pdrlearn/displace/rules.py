@@ -67,8 +67,9 @@ class StepRules:
     bounds : length class -> (min, max) in metres of the unit the displacement is measured for (a
         foot-unit stride); default: the thesis step bounds scaled by ``bounds_scale``
     bounds_scale : factor applied to the default bounds (2.0 turns thesis step bounds into stride bounds)
-    down_mode : ``"norm3"`` (thesis eq. 61), ``"projected"`` (decision L51: the norm's horizontal part moves
-        x/y) or ``"horizontal"`` for descending stairs
+    down_mode : ``"projected"`` (the default since decision L178; L51: the thesis' eq. 61 norm is the path
+        length, its horizontal part moves x/y), ``"norm3"`` (thesis eq. 61, the norm itself moves x/y) or
+        ``"horizontal"`` for descending stairs
     clamp, sign, altitude : switch each rule on/off (for ablations)
     mode : ``"thesis"`` (the class prevails: sign flip, hard clamp, altitude from the terrain class) or
         ``"bayes"`` (docs/decisions/localization.md L14): the length is the posterior mean given the
@@ -80,7 +81,7 @@ class StepRules:
     """
 
     def __init__(self, *, bounds: dict[str, tuple[float, float]] | None = None, bounds_scale: float = 1.0,
-                 down_mode: str = "norm3", clamp: bool = True, sign: bool = True, altitude: bool = True,
+                 down_mode: str = K.DEFAULT_DOWN_MODE, clamp: bool = True, sign: bool = True, altitude: bool = True,
                  mode: str = "thesis", sigma_rel: float = KB.SIGMA_REL, sigma_min: float = KB.SIGMA_MIN,
                  dz_min: float = KB.DZ_MIN):
         if down_mode not in K.DOWN_MODES:
@@ -106,9 +107,9 @@ class StepRules:
 
     def apply(self, disp: np.ndarray, classes: pd.DataFrame) -> pd.DataFrame:
         """Per-stride ``length_m`` (signed; what moves x/y) and ``dz_m`` from displacements (B, 3) and classes.
-        A stride classed down gets the thesis' 3-axis norm (``down_mode="norm3"``, the default: the norm moves
-        x/y), its horizontal part (``"projected"``, decision L51: the path length is ``hypot(length_m, dz_m)``)
-        or the horizontal distance (``"horizontal"``).
+        A stride classed down gets the horizontal part of the thesis' 3-axis norm (``"projected"``, the default
+        since decision L178; L51: the path length is ``hypot(length_m, dz_m)``), the norm itself (``"norm3"``:
+        the norm moves x/y) or the horizontal distance (``"horizontal"``).
 
         ``classes`` has ``terrain``, ``direction``, ``length_class``; a missing value means "no rule":
         horizontal distance and the estimated vertical change / the sign of the estimate / no clamp.

@@ -594,7 +594,12 @@ def headed_by_foot(levelled: Levelled, heading_source: str) -> bool:
 
 
 # -- rules (thesis ch.7.2.2) --------------------------------------------------------------------------
-def terrain_distance(disp: np.ndarray, terrain: np.ndarray, *, down_mode: str = "norm3") -> np.ndarray:
+#: decision L178: every path's default down-stride rule - the thesis' 3-axis norm (eq. 61) is the stride's path
+#: length and its horizontal part moves x/y (L51's "projected"); "norm3" places the norm itself horizontally
+DEFAULT_DOWN_MODE = "projected"
+
+
+def terrain_distance(disp: np.ndarray, terrain: np.ndarray, *, down_mode: str = DEFAULT_DOWN_MODE) -> np.ndarray:
     """Unsigned distance (m) of each stride from its displacement (B, 3) according to its terrain class.
 
     flat/up: the displacement along the direction of travel (horizontal, the thesis' "x-axis" filter);
@@ -613,8 +618,8 @@ def terrain_distance(disp: np.ndarray, terrain: np.ndarray, *, down_mode: str = 
 DOWN_MODES = ("norm3", "projected", "horizontal")
 
 
-def horizontal_part(length, dz, terrain, *, down_mode: str = "norm3"):
-    """Decision L51 (an option, ``down_mode="projected"``): the signed horizontal length that moves x/y. A
+def horizontal_part(length, dz, terrain, *, down_mode: str = DEFAULT_DOWN_MODE):
+    """Decision L51 (``down_mode="projected"``, the default since L178): the signed horizontal length that moves x/y. A
     stride classed down has the thesis' 3-axis norm (eq. 61) as its path length ``length``; its horizontal part
     is sign(length) * sqrt(max(length^2 - dz^2, 0)), ``dz`` the altitude change the rules give the stride.
     Other modes and other strides: ``length`` as it is. Arrays or Python floats (the runtime, decision E17)."""
@@ -671,7 +676,7 @@ def _known(x: np.ndarray) -> np.ndarray:
 
 def apply_stride_rules(disp: np.ndarray, terrain=None, direction=None, length_class=None, *,
                        bounds: Mapping[str, tuple[float, float]] | None = None,
-                       down_mode: str = "norm3", rules: str = "thesis", length_proba=None,
+                       down_mode: str = DEFAULT_DOWN_MODE, rules: str = "thesis", length_proba=None,
                        sigma_rel: float = B.SIGMA_REL, sigma_min: float = B.SIGMA_MIN, dz_min: float = B.DZ_MIN
                        ) -> tuple[np.ndarray, np.ndarray]:
     """The M3 rules (thesis ch.7.2.2) on displacements ``disp (B, 3)``: signed length and altitude change.
@@ -705,7 +710,8 @@ def apply_stride_rules(disp: np.ndarray, terrain=None, direction=None, length_cl
 
 
 def stride_rules_one(dx: float, dy: float, dz: float, terrain=None, direction=None, length_class=None, *,
-                     bounds: Mapping[str, tuple[float, float]] | None = None, down_mode: str = "norm3",
+                     bounds: Mapping[str, tuple[float, float]] | None = None,
+                     down_mode: str = DEFAULT_DOWN_MODE,
                      rules: str = "thesis", length_proba: Mapping[str, float] | None = None,
                      sigma_rel: float = B.SIGMA_REL, sigma_min: float = B.SIGMA_MIN, dz_min: float = B.DZ_MIN
                      ) -> tuple[float, float]:

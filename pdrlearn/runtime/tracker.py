@@ -32,6 +32,7 @@ from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.gaps import drop_stride_disp
 from pdrlearn.kernels.stride import (
+    DEFAULT_DOWN_MODE,
     DOWN_MODES,
     FINE_AHEAD_S,
     FINE_PAD_S,
@@ -118,7 +119,9 @@ _FOOT_IMU = frozenset(("fAccelerometer", "fGyroscope"))
 DEFAULT_DISPLACEMENT = {
     "unit": "foot stride",
     "length_bounds_m": None,
-    "down_mode": "norm3",  # thesis eq. 61: 3-axis norm on descending stairs ("projected": its horizontal part, L51)
+    # decision L178: the thesis' eq. 61 norm is a down stride's path length, its horizontal part moves x/y ("norm3":
+    # the norm itself, the thesis' placement)
+    "down_mode": DEFAULT_DOWN_MODE,
     "stance_gyro_rad_s": 0.8,  # decision E7: stance = foot rate below this for >= min_stance_s
     "min_stance_s": 0.1,
     "stance_half_s": 0.3,
@@ -515,7 +518,7 @@ class Tracker(FixInput):
         self._fallback_bounds = pre_l59_fallback(self.params)
         self.bounds = (None if b is None or self._fallback_bounds
                        else {str(k): (float(v[0]), float(v[1])) for k, v in b.items()})
-        self._down_mode = str(self.params.get("down_mode", "norm3"))
+        self._down_mode = str(self.params.get("down_mode", DEFAULT_DOWN_MODE))
         if self._down_mode not in DOWN_MODES:  # decision L51: "projected" is an option
             raise DataError(f"bundle {self.bundle.path}: displacement down_mode {self._down_mode!r} is not one of "
                             f"{', '.join(DOWN_MODES)}; fix the \"displacement\" entry of its manifest.json")

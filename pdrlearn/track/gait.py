@@ -174,14 +174,27 @@ def _median(v) -> float | None:
 SUMMARY_KEYS = ("n_stride_times", "median_stride_time_s", "median_cadence_spm", "median_speed_mps",
                 "median_step_time_s", "walking_time_s", "gait_speed_mps", "median_speed_straight_mps",
                 "n_straight_strides", "n_stance_times", "median_stance_time_s", "median_swing_time_s",
-                "median_stance_pct", "walking_time_no_pauses_s", "walking_speed_mps")
+                "median_stance_pct", "walking_time_no_pauses_s", "walking_speed_mps", "n_stair_strides")
+
+
+def stair_rows(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L179: the rows that climb or descend a stair, |``dz_m``| >= ``LEVEL_DZ_M`` (0.10 m, half a stair
+    rise: L39's level rule, as the simulator's terrain label, decision S3); all False without ``dz_m``."""
+    from pdrlearn.kernels.distance import LEVEL_DZ_M
+
+    if "dz_m" not in steps:
+        return np.zeros(len(steps), bool)
+    dz = np.abs(pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float))
+    return np.nan_to_num(dz, nan=0.0) >= LEVEL_DZ_M
 
 
 def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight) -> None:
     """``walking_time_s``, ``gait_speed_mps`` (the rows' |length| summed over ``valid`` rows / walking time),
     ``walking_time_no_pauses_s`` and ``walking_speed_mps`` (the same distance / the walking time outside the
     pauses of :func:`pdrlearn.track.clinical.pause_spans`, decision L110), ``median_speed_straight_mps``
-    (median ``speed`` where ``straight``) and ``n_straight_strides``."""
+    (median ``speed`` where ``straight``) and ``n_straight_strides``; decision L179: ``n_stair_strides``, the valid
+    rows whose |``dz_m``| reaches :data:`pdrlearn.kernels.distance.LEVEL_DZ_M` (none without the column); they are
+    never straight (a stair stride's horizontal speed is no walking speed)."""
     from pdrlearn.track.clinical import pause_spans
 
     pieces = walking_pieces(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), valid)
@@ -193,7 +206,9 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
         moving = float(wt - sum(max(0.0, min(b, p1) - max(a, p0)) for a, b in pieces for p0, p1 in pause_spans(steps)))
         out["walking_time_no_pauses_s"] = moving
         out["walking_speed_mps"] = dist / moving if moving > 0 else None
-    sp = np.where(np.asarray(straight, dtype=bool), np.asarray(speed, dtype=float), np.nan)
+    stair = stair_rows(steps) & np.asarray(valid, dtype=bool)  # decision L179
+    out["n_stair_strides"] = int(stair.sum())
+    sp = np.where(np.asarray(straight, dtype=bool) & ~stair, np.asarray(speed, dtype=float), np.nan)
     out["n_straight_strides"] = int(np.isfinite(sp).sum())
     out["median_speed_straight_mps"] = _median(sp)
 
@@ -372,6 +387,8 @@ def gait_range_warning(summary: dict) -> str | None:
     child's walk is no run). Adds the out-of-domain fraction of a model's classes when the summary has one (C16).
     Decision L123: with at least :data:`MIN_STRAIGHT_FOR_RANGE` straight strides their median speed
     (``median_speed_straight_mps``) is judged instead, so turning on the spot does not read as a slow walk.
+    Decision L179: stair strides are not straight (:func:`_speed_fields`); with fewer straight strides than that and
+    at least as many stair strides (``n_stair_strides``) no speed is judged, only the cadence.
     Decision W144: a cadence above the range at a speed inside it or below is named short fast steps (festination)
     or running; "looks like running" needs the speed above the range (or a cadence unknown)."""
     cad = summary.get("median_cadence_spm")
@@ -380,7 +397,11 @@ def gait_range_warning(summary: dict) -> str | None:
     if straight is not None and np.isfinite(straight) and (summary.get("n_straight_strides") or 0) >= \
             MIN_STRAIGHT_FOR_RANGE:
         speed, what_speed = straight, "straight-walking speed"
-    if speed is None:
+    elif (summary.get("n_stair_strides") or 0) >= MIN_STRAIGHT_FOR_RANGE:
+        # decision L179: too few level straight strides on a walk of stairs: its speeds are the stairs' and the
+        # landings' turns, slow horizontally by nature; the cadence alone is judged
+        speed = None
+    elif speed is None:
         speed = summary.get("gait_speed_mps")
     cad = float(cad) if cad is not None and np.isfinite(cad) else None
     speed = float(speed) if speed is not None and np.isfinite(speed) else None

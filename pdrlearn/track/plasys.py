@@ -688,7 +688,7 @@ def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.
 @register_pipeline("plasys")
 def track_plasys(session: Session, *, method: str = "auto", model=None, start=None, params=None,
                  steps: str = "detector", heading: str | None = None, initial_heading: float = 0.0,
-                 bounds=None, bounds_scale: float = 2.0, down_mode: str = "norm3",
+                 bounds=None, bounds_scale: float = 2.0, down_mode: str = SK.DEFAULT_DOWN_MODE,
                  min_confidence: float | None = None, align: bool = False, rules: str | None = None,
                  fused_tau_s: float = 60.0, streaming: bool = False, distance_gain: float | None = None,
                  calibration: bool = True, gap_yaw: bool | None = None, waist_gap_yaw: bool | None = None,
@@ -720,8 +720,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         when the heading is relative (foot, or no magnetometer)
     bounds : length-class bounds (m) overriding the model's; default thesis step bounds x ``bounds_scale``
         (the foot unit measures strides = two steps, see docs/decisions/localization.md)
-    down_mode : "norm3" (thesis eq. 61, the norm moves x/y), "projected" (decision L51: the norm's horizontal
-        part sqrt(L^2 - dz^2) moves x/y) or "horizontal" for descending stairs
+    down_mode : "projected" (the default since decision L178; L51: the thesis' eq. 61 norm L is the path length,
+        its horizontal part sqrt(L^2 - dz^2) moves x/y), "norm3" (thesis eq. 61, the norm moves x/y) or
+        "horizontal" for descending stairs
     rules : "thesis" (the classes prevail, ch.7.2.2) or "bayes" (class probabilities weighed against the
         estimate's uncertainty, docs/decisions/localization.md L14). Default None: "bayes" with a model's
         classes, "thesis" with ``model="oracle"`` labels (decision L18), streaming too (L40, L41)
@@ -1191,7 +1192,7 @@ def _one_row_per_gap(table: pd.DataFrame, traj: pd.DataFrame, in_gap: np.ndarray
 
 def track_streaming(session: Session, *, method: str = "M3", model=None, start=None, params=None,
                     heading: str = "auto", initial_heading: float = 0.0, bounds=None, bounds_scale: float = 2.0,
-                    down_mode: str = "norm3", rest_search_s: float = 0.3, step_heading: str = "pca",
+                    down_mode: str = SK.DEFAULT_DOWN_MODE, rest_search_s: float = 0.3, step_heading: str = "pca",
                     distance_gain: float | None = None, calibration: bool = True, gap_yaw: bool = True,
                     waist_gap_yaw: bool = True, waist_bridge: bool = True, rules: str | None = None,
                     min_confidence: float | None = None,
