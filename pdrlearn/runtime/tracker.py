@@ -71,6 +71,7 @@ from pdrlearn.kernels.window import (
 )
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
+from pdrlearn.runtime.domain import DomainLog
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenWatch, MirrorWatch, UnitGuard
 from pdrlearn.runtime.resample import InputStage, stopped_message
@@ -388,6 +389,12 @@ class Tracker(FixInput):
     resume : a :meth:`restart_state` of another tracker (decision L134): go on where it stood (its position and
         heading, the stride in progress measured whole from the samples it buffered); ``start`` and
         ``heading_rad`` are then not used. The steps those samples complete come out with the first push.
+    check_domain : score each classified stride against the training ranges the bundle's models carry (decision
+        E105; ``pdrlearn export`` stores them since): :meth:`domain_report` is ``pdrlearn track --model``'s report
+        (C16), and :meth:`flush` warns C61's one line when more than half a task's strides lie outside. Off by
+        default (the per-model features cost time at each step); ``pdrlearn run`` turns it on. A bundle without
+        ranges checks nothing (no line, no error). ``warn_out_of_domain`` (a fraction, as ``track``'s option,
+        turns the check on): C16's detailed line from that fraction instead.
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -444,8 +451,17 @@ class Tracker(FixInput):
         resume: dict | None = None,
         max_gap_s: float = MAX_GAP_S,
         start_enu_m=None,
+        check_domain: bool = False,
+        warn_out_of_domain: float | None = None,
     ):
         start_xyz = enu_start(start, start_enu_m)  # decision L159
+        from pdrlearn.classify.domain import check_warn_at
+
+        check_warn_at(warn_out_of_domain)  # decision C16's option, as track's
+        #: decision E105: the strides' out-of-domain scores (None: not checked, the default)
+        self._domain = DomainLog() if check_domain or warn_out_of_domain is not None else None
+        self._warn_ood = warn_out_of_domain
+        self._domain_said = False
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
         sensors = None if sensors is None else [str(n) for n in sensors]
@@ -1090,6 +1106,7 @@ class Tracker(FixInput):
         self._trim()
         self.height_checks()  # decision E47: the end of a recording
         self._warn_unused_fixes()  # decision D21
+        self._warn_out_of_domain()  # decision E105
         if self._carry:  # decision L134
             steps, self._carry = [*self._carry, *steps], []
         return steps
@@ -1430,8 +1447,9 @@ class Tracker(FixInput):
         probabilities, displacement (step frame) and heading change."""
         W, lev = self._window(t0, t1)
         classes, proba = self._classify_step(W)
+        ood = DomainLog.score(self.classifiers, W) if self._domain is not None else None  # decision E105
         disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1, fine=self._fine)
-        return lev, classes, proba, disp, dyaw
+        return lev, classes, proba, disp, dyaw, ood
 
     def process_step(self, t0: float, t1: float) -> Step:
         """Classify, measure and place the step ``[t0, t1]`` (s) from the buffered samples."""
@@ -1470,7 +1488,9 @@ class Tracker(FixInput):
                                  rest_search_s=self.rest_search_s, heading=self.heading_mode, bridge_gaps=True)
             disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1, fine=self._fine)
         else:
-            lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
+            lev, classes, proba, disp, dyaw, ood = spec[2] if spec is not None else self._step_core(t0, t1)
+            if self._domain is not None:  # decision E105: a classified stride's scores
+                self._domain.add(ood, self.classifiers)
             if self._mirror is not None:
                 self._mirror_stride(t0, t1)
         if bridged:  # decision L167 (an option; track --streaming's): the length and height of the clean stride before
@@ -1565,6 +1585,24 @@ class Tracker(FixInput):
             self._mirror = None
         if msg:
             self._warn(msg)
+
+    def domain_report(self) -> dict | None:
+        """Decision E105: the out-of-domain report of the strides classified so far (``pdrlearn track --model``'s,
+        C16: ``out_of_domain_fraction``, per task the strides outside the training range, ``warn`` at
+        ``warn_out_of_domain``); None when the tracker does not check (``check_domain`` off), the bundle holds no
+        training ranges (exported before E105) or no stride was checked."""
+        return None if self._domain is None else self._domain.report(self._warn_ood)
+
+    def _warn_out_of_domain(self) -> None:
+        """Decision E105: C61's one line (C16's with ``warn_out_of_domain``) at the end of a recording, once."""
+        if self._domain is None or self._domain_said:
+            return
+        from pdrlearn.classify.domain import session_warning_line
+
+        line = session_warning_line(self.domain_report(), what="strides")
+        if line:
+            self._domain_said = True
+            self._warn(line)
 
     def _warn(self, msg: str) -> None:
         """One warning line: kept in ``warnings`` and logged."""
