@@ -417,6 +417,9 @@ class Tracker(FixInput):
     _held_s = math.inf  # decision E31: set per tracker in __init__
     _checked: dict = {}  # noqa: RUF012 - replaced per push, never mutated in place
     _guard = None  # decision B119 (a bare Tracker.__new__ checks nothing)
+    _domain: DomainLog | None = None  # decision E105 (a bare Tracker.__new__ scores nothing)
+    _warn_ood: float | None = None
+    _domain_said = False
     #: decision L134: a resumed tracker's last measured stride end (s; strides found again up to it are dropped)
     _resume_end: float | None = None
     _carry: list | tuple = ()
