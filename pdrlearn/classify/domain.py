@@ -161,17 +161,30 @@ def step_score(est, X: np.ndarray) -> tuple[np.ndarray, list[str]] | None:
     ``est`` (composite: the largest over its members) and the feature that set it. None when a leaf has
     no range (a model saved before C16) or its inputs cannot be computed on ``X``."""
     X = np.asarray(X, dtype=float)
-    d = np.zeros(len(X))
-    worst = np.full(len(X), "", dtype=object)
-    for leaf, Xl in _leaves(est, X):
-        r = getattr(leaf, "training_range_", None)
-        if r is None:
-            return None
+
+    def inputs(leaf, Xl):
         try:
-            F, _ = model_inputs(leaf, Xl)
+            return model_inputs(leaf, Xl)[0]
         except (MissingSensorError, DataError, ValueError):
             return None
-        if F.shape[1] != len(r.lo):
+
+    return combine_scores(((getattr(leaf, "training_range_", None), lambda leaf=leaf, Xl=Xl: inputs(leaf, Xl))
+                           for leaf, Xl in _leaves(est, X)), len(X))
+
+
+def combine_scores(leaves, n: int) -> tuple[np.ndarray, list[str]] | None:
+    """The score ``d`` (module doc) of ``n`` steps over a model's leaves, given as ``(FeatureRange or None, inputs)``
+    pairs (``inputs()``: the leaf's ``(n, features)`` inputs, or None when they cannot be computed): the largest
+    excess over the leaves and the feature that set it; None when a leaf has no range or no inputs of the range's
+    width. One mechanism for the trained model (:func:`step_score`) and the exported bundle
+    (:mod:`pdrlearn.runtime.domain`, decision E105)."""
+    d = np.zeros(n)
+    worst = np.full(n, "", dtype=object)
+    for r, inputs in leaves:
+        if r is None:
+            return None
+        F = inputs()
+        if F is None or F.ndim != 2 or F.shape[1] != len(r.lo):
             return None
         ex = r.excess(F)
         du = ex.max(axis=1)
@@ -256,6 +269,6 @@ NO_RANGES_NOTE = ("the model stores no training ranges (trained before pdrlearn 
 
 
 __all__ = ["QUANTILES", "STEP_THRESHOLD", "FRACTION_THRESHOLD", "FeatureRange", "model_inputs", "fit_range",
-           "attach_ranges", "has_ranges", "step_score", "check_warn_at", "summarize", "domain_report", "warning_line",
-           "session_warning_line", "DEFAULT_WARN_SHARE",
+           "attach_ranges", "has_ranges", "step_score", "combine_scores", "check_warn_at", "summarize", "domain_report",
+           "warning_line", "session_warning_line", "DEFAULT_WARN_SHARE",
            "NO_RANGES_NOTE"]

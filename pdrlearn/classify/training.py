@@ -802,6 +802,7 @@ def check_settings(
     units: Sequence[str] | None = None,
     cv: int = 10,
     seed: int = 0,
+    resample_hz: float | None = None,
 ) -> tuple[list[str], list[str], list[str]]:
     """Validate training settings before any data is read; returns the task, method and unit lists.
 
@@ -816,7 +817,15 @@ def check_settings(
         raise DataError(f"train: --cv {cv}; cross-validation needs at least 2 folds")
     if not 0 <= seed < 2**32:
         raise DataError(f"train: --seed {seed}; use an integer from 0 to 2**32 - 1")
+    check_resample_hz(resample_hz)
     return out[0], out[1], out[2]
+
+
+def check_resample_hz(resample_hz: float | None) -> None:
+    """Decision C56: ``resample_hz`` (``--resample HZ``) is None or a rate in Hz above 0; ``train`` and
+    ``train-all`` check it before any data is read (decision C62), ``train_user`` again."""
+    if resample_hz is not None and not (np.isfinite(resample_hz) and resample_hz > 0):
+        raise DataError(f"train: --resample {resample_hz}; give a rate in Hz above 0, e.g. --resample 100")
 
 
 def check_length_units(units: Sequence[str]) -> list[str]:
@@ -1068,8 +1077,7 @@ def one_rate(sessions, recorded: dict[str, dict[str, float]], resample_hz: float
                             f"trained at one rate: pass --resample HZ (e.g. --resample {max(groups):g}) to resample "
                             "every session to it, or train the rates apart")
         return list(sessions)
-    if not (np.isfinite(resample_hz) and resample_hz > 0):
-        raise DataError(f"train: --resample {resample_hz}; give a rate in Hz above 0, e.g. --resample 100")
+    check_resample_hz(resample_hz)
     from pdrlearn.io.resample import resample_session
 
     if mixed:

@@ -29,6 +29,7 @@ from pdrlearn.cli.common import (
     split_choices,
     split_length_units,
     storey_height_option,
+    train_resample_option,
 )
 from pdrlearn.cohort import (
     JobResult,
@@ -88,14 +89,28 @@ def _train_job(args: dict) -> dict:
     sessions, skipped = _read_sessions(Path(args["user_dir"]), "train", args.get("skip_bad", False))
     model = train_user(sessions, tasks=args["tasks"], methods=args["methods"], units=args["units"],
                        cv=args["cv"], seed=args["seed"], user=Path(args["user_dir"]).name,
-                       length_units=args.get("length_units"))  # decision C40
+                       length_units=args.get("length_units"),  # decision C40
+                       resample_hz=args.get("resample_hz"))  # decisions C56, C62: train's refusal and resampler
     model.save(Path(args["out"]))
-    row = {"sessions": len(sessions), **skipped, "skipped_tasks": len(model.skipped)}
+    row = {"sessions": len(sessions), **skipped, **trained_rate(model), "skipped_tasks": len(model.skipped)}
     for t, tm in model.tasks.items():
         m, u = tm.chosen
         row[f"{t}_method"] = f"{m}/{u}"
         row[f"{t}_cv_accuracy"] = tm.cv[m][u]["accuracy"]
         row[f"{t}_n_steps"] = tm.n_steps
+    return row
+
+
+def trained_rate(model) -> dict:
+    """Decision C62: the rate a user's model was trained at, for the per-user summary row: ``rate_hz`` (the foot
+    accelerometer's, else the waist's: every stream's with ``--resample HZ``) and, with ``--resample``, the rates the
+    sessions were recorded at (``recorded_hz``, e.g. ``"20 / 100"``; the manifest keeps them per sensor, C56)."""
+    rates = model.sampling_rate_hz or {}
+    rate = next((rates[n] for n in ("fAccelerometer", "wAccelerometer") if rates.get(n)), None)
+    row = {"rate_hz": None if rate is None else float(rate)}
+    recorded = model.data_summary.get("recorded_rates_hz")
+    if recorded is not None:
+        row["recorded_hz"] = " / ".join(f"{r:g}" for r in sorted({r for v in recorded.values() for r in v}))
     return row
 
 
@@ -263,6 +278,7 @@ def train_all(
     methods: str = typer.Option(None, help="Comma list of heuristic,fusion,dtw,svm,nn (default: all)."),
     units: str = typer.Option(None, help="Comma list of foot,waist,fused,combined (default: all)."),
     length_units: str = typer.Option(None, "--length-units", help=LENGTH_UNITS_HELP),  # decision C40
+    resample: float = train_resample_option(),  # decision C62: train's option and check
     cv: int = typer.Option(10, help="Cross-validation folds per user."),
     seed: int = typer.Option(0, help="Seed (identical results serial or distributed)."),
     skip_bad: bool = typer.Option(False, "--skip-bad-sessions", help=SKIP_BAD_HELP),
@@ -282,13 +298,15 @@ def train_all(
 
         pdrlearn train-all cohort/ --out models/ --cv 5
 
+        pdrlearn train-all cohort/ --out models/ --resample 100   # users recorded at mixed rates (C56, C62)
+
         pdrlearn train-all cohort/ --out models/ --scheduler tcp://10.0.0.5:8786
     """
     from pdrlearn.classify.training import check_settings
 
     t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
     # bad settings fail here, once, before a cluster is started and before anything is written
-    check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
+    check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed, resample_hz=resample)  # C62
     l_list = split_length_units(length_units)  # decision C40: as train's, before anything starts
     _check_workers(workers)
     _check_outside_cohort(out, cohort_dir)
@@ -301,7 +319,7 @@ def train_all(
     with refused_output(out), atomic_directory(out) as tmp:  # decision B151
         items = [(u.name, {"user_dir": str(u), "out": str(tmp / u.name), "tasks": t_list,
                            "methods": m_list, "units": u_list, "length_units": l_list, "cv": cv, "seed": seed,
-                           "skip_bad": skip_bad})
+                           "skip_bad": skip_bad, "resample_hz": resample})
                  for u in users]
         results = _run(_train_job, items, scheduler, serial, workers, as_json, "train")
         _check_any_ok(results)

@@ -86,6 +86,18 @@ def resample_options(verb: str, when: str = "") -> tuple:
                 "refuse a session recorded at another rate than the model's (decision B113).")))
 
 
+def train_resample_option():
+    """Decision C56: the ``--resample HZ`` of ``train`` and ``train-all`` (decision C62: one option, one check:
+    ``classify.training.check_resample_hz`` before any data is read, ``one_rate``'s refusal of mixed rates)."""
+    import typer
+
+    return typer.Option(
+        None, "--resample", metavar="HZ",
+        help="Resample every session to HZ before training (the runtime's resampler). Needed when the sessions "
+        "were recorded at different rates: a model is trained at one rate (decision C56); the recorded rates "
+        "are kept in the manifest.")
+
+
 FORCE_HELP = "Replace an existing output of this command (atomically: the old one stays until the new one is complete)."
 
 

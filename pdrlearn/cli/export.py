@@ -299,6 +299,9 @@ def run(
                                         "0.25 s (under 1 s) takes the length and height change of the stride before "
                                         "it (decision L167, not the default; E101; as `track --streaming "
                                         "--drop-neighbour`)."),
+    warn_out_of_domain: float = _track.warn_ood_option(
+        "A bundle exported since decision E105 (it stores the training ranges; an older one checks nothing): ",
+        "bundle's model"),
     align_units: bool = typer.Option(False, "--align-units", help="A foot + waist session: move the waist unit's "
                                      "clock onto the foot's by the steps both detect, before the replay (offset and "
                                      "drift over the whole recording, as `track --align-units`; decision L170). "
@@ -355,6 +358,7 @@ def run(
                                 ("--rules", rules), ("--min-confidence", min_confidence))
                  if v is not None] + [o for o, v in (("--contacts", contacts), ("--resample", resample),
                                                      ("--no-resample", no_resample), ("--align-units", align_units),
+                                                     ("--warn-out-of-domain", warn_out_of_domain is not None),
                                                      ("--drop-neighbour", drop_neighbour))
                                       if v]
         if given:
@@ -381,7 +385,8 @@ def run(
         tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
                           resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                           units=use, start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0,
-                          methods=methods, drop_neighbour=drop_neighbour)  # E101
+                          methods=methods, drop_neighbour=drop_neighbour,  # E101
+                          check_domain=True, warn_out_of_domain=warn_out_of_domain)  # decision E105
         if protocol == "-":
             stream = sys.stdin
         else:
@@ -452,7 +457,8 @@ def run(
                           start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0, methods=methods,
                           stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)},
                           max_gap_s=math.inf,  # B141: a recording's gaps are its own (its clock checked: B73)
-                          drop_neighbour=drop_neighbour)  # E101
+                          drop_neighbour=drop_neighbour,  # E101
+                          check_domain=True, warn_out_of_domain=warn_out_of_domain)  # decision E105
         dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
         if tracker.heading_source == "auto" and not said and (dropped or not (
                 session.has("wAccelerometer", "wGyroscope") and "waist" in tracker.forward)):  # as track says (B17)
@@ -493,6 +499,7 @@ def run(
     if align_units:  # decision L170: as track's info (L162); None when the steps did not align (warned)
         result.info["unit_alignment"] = alignment
     result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
+    result.info["out_of_domain"] = tracker.domain_report()  # decision E105: track's C16 report (flush warned C61's)
     table = detected_bouts(result.steps, bouts, **session_key(session))  # E73: bouts.csv and n_bouts at once
     summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
@@ -686,14 +693,15 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
     ``source``, ``methods``, ``classes`` and latency."""
     import numpy as np
 
-    from pdrlearn.track.evaluate import evaluate_track
+    from pdrlearn.track.evaluate import domain_fraction, evaluate_track
 
     counts = {t: {} for t in tracker.classifiers}
     for st in steps:
         for t, c in st.classes.items():
             counts[t][c] = counts[t].get(c, 0) + 1
     out = {"source": source, **evaluate_track(result, session, bouts=bouts, bout_table=bout_table,
-                                              storey_height_m=storey_height_m)}
+                                              storey_height_m=storey_height_m),
+           **domain_fraction(result)}  # decision E105: as track's summary (C16)
     # lat/lon with --start, as track's summary (without it track has none: no NaN keys either)
     geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon") and np.isfinite(v)}
     out["final_position"] = {**dict(zip("xyz", (float(v) for v in tracker.position), strict=True)), **geo}

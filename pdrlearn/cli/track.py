@@ -47,11 +47,16 @@ MIN_CONFIDENCE_OPT = typer.Option(None, "--min-confidence", min=0.0, max=1.0,
                                   "class reaches this (default 0.95; 0 = always, as the thesis).")
 LENGTH_BOUNDS_OPT = typer.Option(None, "--length-bounds", help="M3 stride-length class edges "
                                  "SHORT_MAX,NORMAL_MAX in m (default: the model's, else thesis x 2).")
-WARN_OOD_OPT = typer.Option(None, "--warn-out-of-domain", help="With --model: warn (one line, naming the "
-                            "classifier and the feature most often off) when at least this fraction of the strides "
-                            "lie outside the model's training range, e.g. 0.25 (without it: a short line only when "
-                            "more than half are, decision C61; the fraction is always in summary.json as "
-                            "out_of_domain_fraction, decision C16).")
+def warn_ood_option(when: str = "With --model: ", model: str = "model"):
+    """C16's ``--warn-out-of-domain`` of ``track`` (``track-all``) and ``run`` (decision E105), one text."""
+    return typer.Option(None, "--warn-out-of-domain", help=f"{when}warn (one line, naming the classifier and the "
+                        "feature most often off) when at least this fraction of the strides lie outside the "
+                        f"{model}'s training range, e.g. 0.25 (without it: a short line only when more than half are, "
+                        "decision C61; the fraction is always in summary.json as out_of_domain_fraction, decision "
+                        "C16).")
+
+
+WARN_OOD_OPT = warn_ood_option()
 START_OPT = typer.Option(None, "--start", help=START_HELP)
 PARAMS_OPT = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline.")
 STREAMING_OPT = typer.Option(False, "--streaming", help="plasys M2/M3 with the stride-local kernel of "

@@ -23,6 +23,7 @@ from pdrlearn.cli.common import (
     resample_options,
     split_choices,
     split_length_units,
+    train_resample_option,
 )
 from pdrlearn.errors import DataError, shell_quote
 
@@ -100,12 +101,7 @@ def train(
         "streamed stride kernel (L41; track --streaming and the runtime apply it). Turn off for a model pooled over "
         "several users or devices: a pooled gain corrects no one's sensor.",
     ),
-    resample: float = typer.Option(
-        None, "--resample", metavar="HZ",
-        help="Resample every session to HZ before training (the runtime's resampler). Needed when the sessions "
-        "were recorded at different rates: a model is trained at one rate (decision C56); the recorded rates "
-        "are kept in the manifest.",
-    ),
+    resample: float = train_resample_option(),  # decisions C56, C62: train-all's too
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary object."),
 ) -> None:
@@ -137,7 +133,8 @@ def train(
     if cv_groups not in CV_GROUPS:
         raise DataError(f"train: --cv-groups {cv_groups!r}; choose one of {', '.join(CV_GROUPS)}")
     t_list, m_list, u_list = split_choices(tasks=tasks, methods=methods, units=units)
-    t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed)
+    t_all, m_all, u_all = check_settings(tasks=t_list, methods=m_list, units=u_list, cv=cv, seed=seed,
+                                         resample_hz=resample)  # C62: before any data is read
     l_list = split_length_units(length_units)  # decision C38: checked before any data is read
     out_folder(out, "model", force=force, inputs=tuple(data_dirs))
     was = existed(out)

@@ -115,12 +115,7 @@ class _Collector:
         self.json: dict = {}
 
     def entry(self, est, stem: str) -> dict:
-        from sklearn.pipeline import Pipeline
-
-        from pdrlearn.classify.dtw import DTWClassifier
         from pdrlearn.classify.fusion import UnitFusionClassifier
-        from pdrlearn.classify.nn import NNClassifier
-        from pdrlearn.classify.svm import SVMClassifier
 
         _check_exportable(est, stem)  # decision E79
         if type(est) is UnitFusionClassifier:
@@ -131,6 +126,20 @@ class _Collector:
                 "members": members,
                 "classes": [str(c) for c in est.classes_],
             }
+        out = self._leaf(est, stem)
+        rng = getattr(est, "training_range_", None)  # decision C16's range of the leaf's own inputs
+        if rng is not None:  # decision E105: the runtime's out-of-domain check (C61's line from `pdrlearn run`)
+            out["training_range"] = rng.to_dict()
+        return out
+
+    def _leaf(self, est, stem: str) -> dict:
+        """The entry of a leaf model (rule table, DTW pipeline, SVM / NN pipeline) without its training range."""
+        from sklearn.pipeline import Pipeline
+
+        from pdrlearn.classify.dtw import DTWClassifier
+        from pdrlearn.classify.nn import NNClassifier
+        from pdrlearn.classify.svm import SVMClassifier
+
         if hasattr(est, "stages_") and hasattr(est, "feature_names_"):  # heuristic rule tables
             rel = f"params/{stem}.json"
             self.json[rel] = {

@@ -56,7 +56,8 @@ def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: 
     tracker = Tracker(bundle, frames=session_frames(meta, bundle, asked or bundle.body_units, f"session {session_dir}"),
                       units=asked, sensors=have, methods=methods,
                       input_rates_hz={n: _rate_hz(t) for n, (t, _) in streams.items()},
-                      stream_ends_s={n: float(t[-1]) for n, (t, _) in streams.items() if len(t)})
+                      stream_ends_s={n: float(t[-1]) for n, (t, _) in streams.items() if len(t)},
+                      check_domain=True)  # decision E105: C61's out-of-domain line, as pdrlearn run
     if asked is None and tracker.units != bundle.body_units:  # decision E26, as pdrlearn run says it
         logging.getLogger("pdrlearn.runtime").warning(
             "session %s has no waist unit the bundle also uses: the foot unit only (--units foot chooses this "

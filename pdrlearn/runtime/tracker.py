@@ -74,6 +74,7 @@ from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 from pdrlearn.runtime.clocks import SENSORS as CLOCK_SENSORS
 from pdrlearn.runtime.clocks import ClockCheck, offset_remedy, waist_on_foot_clock
+from pdrlearn.runtime.domain import DomainLog
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenWatch, MirrorWatch, UnitGuard
 from pdrlearn.runtime.resample import InputStage, stopped_message
@@ -400,6 +401,12 @@ class Tracker(FixInput):
     waist_clock_offset_s : a known offset of the waist clock (s, ``t_waist = t_foot + offset``, the sign L161's line
         and ``track --align-units`` give): every pushed waist sample is moved to ``t - offset`` before anything
         else (decision L177: the live form of ``--align-units``; 0: none).
+    check_domain : score each classified stride against the training ranges the bundle's models carry (decision
+        E105; ``pdrlearn export`` stores them since): :meth:`domain_report` is ``pdrlearn track --model``'s report
+        (C16), and :meth:`flush` warns C61's one line when more than half a task's strides lie outside. Off by
+        default (the per-model features cost time at each step); ``pdrlearn run`` turns it on. A bundle without
+        ranges checks nothing (no line, no error). ``warn_out_of_domain`` (a fraction, as ``track``'s option,
+        turns the check on): C16's detailed line from that fraction instead.
     """
 
     _foot_q: list | tuple = ()  # set per tracker in __init__ (a bare Tracker.__new__ has no queued feeds)
@@ -422,6 +429,9 @@ class Tracker(FixInput):
     _held_s = math.inf  # decision E31: set per tracker in __init__
     _checked: dict = {}  # noqa: RUF012 - replaced per push, never mutated in place
     _guard = None  # decision B119 (a bare Tracker.__new__ checks nothing)
+    _domain: DomainLog | None = None  # decision E105 (a bare Tracker.__new__ scores nothing)
+    _warn_ood: float | None = None
+    _domain_said = False
     #: decision L134: a resumed tracker's last measured stride end (s; strides found again up to it are dropped)
     _resume_end: float | None = None
     _carry: list | tuple = ()
@@ -458,6 +468,8 @@ class Tracker(FixInput):
         start_enu_m=None,
         clock_check: bool = True,
         waist_clock_offset_s: float = 0.0,
+        check_domain: bool = False,
+        warn_out_of_domain: float | None = None,
     ):
         start_xyz = enu_start(start, start_enu_m)  # decision L159
         if not isinstance(clock_check, bool | np.bool_):  # decision L177: flags and a number of seconds
@@ -466,6 +478,13 @@ class Tracker(FixInput):
                 or not math.isfinite(waist_clock_offset_s)):
             raise DataError(f"waist_clock_offset_s={waist_clock_offset_s!r} must be the waist clock's offset in "
                             "seconds (a finite number; 0 for none)")
+        from pdrlearn.classify.domain import check_warn_at
+
+        check_warn_at(warn_out_of_domain)  # decision C16's option, as track's
+        #: decision E105: the strides' out-of-domain scores (None: not checked, the default)
+        self._domain = DomainLog() if check_domain or warn_out_of_domain is not None else None
+        self._warn_ood = warn_out_of_domain
+        self._domain_said = False
         self.bundle = bundle if isinstance(bundle, Bundle) else load_bundle(bundle)
         m = self.bundle.manifest
         sensors = None if sensors is None else [str(n) for n in sensors]
@@ -1143,6 +1162,7 @@ class Tracker(FixInput):
         self._trim()
         self.height_checks()  # decision E47: the end of a recording
         self._warn_unused_fixes()  # decision D21
+        self._warn_out_of_domain()  # decision E105
         if self._carry:  # decision L134
             steps, self._carry = [*self._carry, *steps], []
         return steps
@@ -1483,8 +1503,9 @@ class Tracker(FixInput):
         probabilities, displacement (step frame) and heading change."""
         W, lev = self._window(t0, t1)
         classes, proba = self._classify_step(W)
+        ood = DomainLog.score(self.classifiers, W) if self._domain is not None else None  # decision E105
         disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1, fine=self._fine)
-        return lev, classes, proba, disp, dyaw
+        return lev, classes, proba, disp, dyaw, ood
 
     def process_step(self, t0: float, t1: float) -> Step:
         """Classify, measure and place the step ``[t0, t1]`` (s) from the buffered samples."""
@@ -1523,7 +1544,9 @@ class Tracker(FixInput):
                                  rest_search_s=self.rest_search_s, heading=self.heading_mode, bridge_gaps=True)
             disp, dyaw = stride_motion(lev, self.heading_source, t0=t0, t1=t1, fine=self._fine)
         else:
-            lev, classes, proba, disp, dyaw = spec[2] if spec is not None else self._step_core(t0, t1)
+            lev, classes, proba, disp, dyaw, ood = spec[2] if spec is not None else self._step_core(t0, t1)
+            if self._domain is not None:  # decision E105: a classified stride's scores
+                self._domain.add(ood, self.classifiers)
             if self._mirror is not None:
                 self._mirror_stride(t0, t1)
         if bridged:  # decision L167 (an option; track --streaming's): the length and height of the clean stride before
@@ -1618,6 +1641,24 @@ class Tracker(FixInput):
             self._mirror = None
         if msg:
             self._warn(msg)
+
+    def domain_report(self) -> dict | None:
+        """Decision E105: the out-of-domain report of the strides classified so far (``pdrlearn track --model``'s,
+        C16: ``out_of_domain_fraction``, per task the strides outside the training range, ``warn`` at
+        ``warn_out_of_domain``); None when the tracker does not check (``check_domain`` off), the bundle holds no
+        training ranges (exported before E105) or no stride was checked."""
+        return None if self._domain is None else self._domain.report(self._warn_ood)
+
+    def _warn_out_of_domain(self) -> None:
+        """Decision E105: C61's one line (C16's with ``warn_out_of_domain``) at the end of a recording, once."""
+        if self._domain is None or self._domain_said:
+            return
+        from pdrlearn.classify.domain import session_warning_line
+
+        line = session_warning_line(self.domain_report(), what="strides")
+        if line:
+            self._domain_said = True
+            self._warn(line)
 
     def _warn(self, msg: str) -> None:
         """One warning line: kept in ``warnings`` and logged."""

@@ -755,6 +755,13 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
     return out
 
 
+def domain_fraction(result: TrackResult) -> dict:
+    """Decision C16: ``{"out_of_domain_fraction": share of the strides outside the model's training range}`` of a
+    track whose ``info["out_of_domain"]`` holds a report (``track --model``; ``run``, decision E105), else ``{}``."""
+    dom = result.info.get("out_of_domain")
+    return {"out_of_domain_fraction": dom.get("out_of_domain_fraction")} if isinstance(dom, dict) else {}
+
+
 def track_summary(result: TrackResult, session: Session, *, pipeline: str | None = None, bouts=None,
                   bout_table=None, storey_height_m: float = STOREY_HEIGHT_M) -> dict:
     """The summary of a track, exactly as ``pdrlearn track`` writes it to ``summary.json`` (strict JSON:
@@ -796,9 +803,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     if mirrored:
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, mirrored)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), mirrored]
-    dom = result.info.get("out_of_domain")
-    if isinstance(dom, dict):  # decision C16: share of strides outside the model's training range
-        summary["out_of_domain_fraction"] = dom.get("out_of_domain_fraction")
+    summary.update(domain_fraction(result))  # decision C16
     placement = None
     if result.info.get("pipeline") == "plasys":  # decision B134: a foot unit that never swings is not on the foot
         from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats
