@@ -19,7 +19,6 @@ acceleration, the M3 rules, heading from the integrated vertical rate), so that
 
 from __future__ import annotations
 
-import inspect
 import logging
 from pathlib import Path
 
@@ -39,6 +38,7 @@ from pdrlearn.displace import (
     stance_runs,
     streaming_calibration,
 )
+from pdrlearn.displace.foot import check_settings as check_foot_settings
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
@@ -824,12 +824,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if not len(strides):
         raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?")
     fd_kw = {k: cfg[k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
-    allowed = set(inspect.signature(FootDisplacement).parameters)
-    unknown = sorted(set(params or {}) - allowed)
-    if unknown:
-        raise DataError(f"plasys: unknown parameter(s) {', '.join(unknown)} in params; the plasys pipeline "
-                        f"takes FootDisplacement settings: {', '.join(sorted(allowed))}")
-    fd_kw.update(params or {})
+    fd_kw.update(check_foot_settings(params, "plasys params"))  # decisions B206 / B207
     fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)
     fd_warnings = list(fd.warnings_)
     raw_disp = disp = fd.disp_
