@@ -746,6 +746,12 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
     if opts:  # decision L43: a misspelled option is an error, as in the waist pipelines (it was ignored)
         check_keywords("plasys", opts, keyword_names(track_plasys))
+    if not (model is None or isinstance(model, str | Path) or hasattr(model, "predict_steps")):
+        raise TypeError(f"plasys: model={model!r:.40} is not a model: pass a trained model directory (str or Path), "
+                        "a model from pdrlearn.classify.load_model, 'oracle' (the session's labels) or None (decision "
+                        "B208)")
+    if params is not None and not isinstance(params, dict):  # decision B207, streamed too
+        check_foot_settings(params, "plasys params")
     raw_start = start
     start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
     initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
