@@ -310,8 +310,22 @@ def classes_and_bounds(model, session: Session, steps: pd.DataFrame) -> tuple[pd
     if isinstance(model, str) and model == "oracle":
         bounds = next((session.meta[k] for k in ("length_class_bounds_m", "length_bounds_m")
                        if session.meta.get(k) is not None), None)
-        return oracle_classes(session, steps), bounds
+        classes = oracle_classes(session, steps)
+        classes.attrs["label_warnings"] = oracle_label_warnings(session)
+        return classes, bounds
     return _model_classes(model, session, steps)
+
+
+def oracle_label_warnings(session: Session) -> list[str]:
+    """Decision B209: ``evaluate``'s line (C33) for each task whose labels in the session's steps.csv are not all
+    classes, for ``model="oracle"``, whose strides take those labels as their classes (every terrain 'lava' had
+    tracked without a word, no stride up or down)."""
+    from pdrlearn.classify.labels import label_warnings
+
+    if session.steps is None:
+        return []
+    return [f"{ln}; model='oracle' takes the labels as the strides' classes, so those strides get no class rule: "
+            "fix the labels" for ln in label_warnings(session, session.steps, "steps.csv")]
 
 
 def oracle_classes(session: Session, steps: pd.DataFrame) -> pd.DataFrame:
@@ -883,6 +897,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         # decision L38: a model classifies each stride on the window the streaming path (and its training) cuts
         windows = None if is_oracle else classification_windows(work, strides)
         classes, model_bounds = classes_and_bounds(model, work, strides if windows is None else windows)
+        warnings += classes.attrs.get("label_warnings", [])  # decision B209
         domain = domain_check(model, classes, warnings, warn_out_of_domain)
         off_rate = rate_check(model, work, classes, warnings)  # decision C18
         if not is_oracle:
@@ -1235,6 +1250,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
 
             model = load_model(model)
         classes, model_bounds = classes_and_bounds(model, session, table)
+        warnings += classes.attrs.get("label_warnings", [])  # decision B209
         domain = domain_check(model, classes, warnings, warn_out_of_domain)  # decision C16
         untrained = [] if isinstance(model, str) and model == "oracle" else untrained_tasks(classes)
         if untrained:  # C17's line, with what the streamed rules do instead (they keep the raw height change)
