@@ -211,3 +211,33 @@ def test_train_records_the_cv_grouping_the_folds_used(base, tmp_path, capsys):
         "steps", "session", {"terrain": "steps"}, 0)
     settings = json.loads((out / "manifest.json").read_text())["settings"]
     assert (settings["cv_groups"], settings["cv_groups_asked"]) == ("steps", "session")
+
+
+def test_a_waist_bundle_from_another_version_loads_with_b137s_warning(tmp_path, caplog):
+    """B211: the waist bundle had loaded another version without a word (the foot bundle says B137's line)."""
+    import shutil
+
+    from pdrlearn import __version__
+    from pdrlearn.export.waist import export_waist
+    from pdrlearn.runtime import load_waist_bundle
+    from pdrlearn.runtime.bundle import MANIFEST_SHA, sha256_file
+    from pdrlearn.sim import simulate
+    from pdrlearn.waist.calibration import calibrate
+
+    s = simulate("A", 2801, rate_hz=100.0)
+    calibrate([s], "waist-pendulum", distances=[20.0]).save(tmp_path / "cal.json")
+    frame = ",".join(f"{k}={v}" for k, v in s.require_frame("waist").to_dict().items())
+    export_waist(tmp_path / "cal.json", tmp_path / "wb", frame=frame)
+    with caplog.at_level(logging.WARNING, logger="pdrlearn"):
+        load_waist_bundle(tmp_path / "wb")
+    assert "exported by pdrlearn" not in caplog.text
+    b = shutil.copytree(tmp_path / "wb", tmp_path / "old")
+    m = json.loads((b / "manifest.json").read_text())
+    m["package_version"] = "9.9.0"
+    (b / "manifest.json").write_text(json.dumps(m))
+    (b / MANIFEST_SHA).write_text(f"{sha256_file(b / 'manifest.json')}  manifest.json\n")
+    with caplog.at_level(logging.WARNING, logger="pdrlearn"):
+        load_waist_bundle(b)
+    lines = [r.getMessage() for r in caplog.records if "exported by pdrlearn" in r.getMessage()]
+    assert len(lines) == 1 and lines[0].startswith(f"bundle {b}: exported by pdrlearn 9.9.0, this runtime is "
+                                                   f"pdrlearn {__version__}; it loads"), lines
