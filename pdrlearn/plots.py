@@ -134,11 +134,14 @@ def check_window(start: float | None, end: float | None, duration_s: float, wher
     hi = duration_s if end is None else float(end)
     if not (np.isfinite(lo) and np.isfinite(hi)):
         raise DataError(f"{where}: --start {lo:g} / --end {hi:g} must be finite seconds")
+    reversed_ = f"{where}: --end {hi:g} s is not after --start {lo:g} s; swap or fix them"
+    if start is not None and end is not None and hi <= lo:  # decision B210: both given, reversed is said first
+        raise DataError(reversed_)  # (start 100, end 50 had been "outside the session")
     if lo >= duration_s or hi <= 0:
         raise DataError(f"{where}: --start {lo:g} s .. --end {hi:g} s is outside the session "
                         f"(0 to {duration_s:.1f} s); pick a window inside it")
     if hi <= lo:
-        raise DataError(f"{where}: --end {hi:g} s is not after --start {lo:g} s; swap or fix them")
+        raise DataError(reversed_)
     return lo, hi
 
 

@@ -15,6 +15,7 @@ from collections.abc import Callable, MutableMapping
 from typing import Any
 
 from pdrlearn.errors import DataError
+from pdrlearn.settings import annotation_words, fits_words, words_what
 
 log = logging.getLogger(__name__)
 
@@ -184,10 +185,6 @@ def from_spec(registry: Registry, spec: Any, **params) -> Any:
     return cls(**{**given, **params})
 
 
-#: a spec value's Python type -> the annotation words that take it (an int is a float too)
-_TAKEN_BY = {bool: ("bool",), type(None): ("None",), int: ("int", "float"), float: ("float",), str: ("str",)}
-
-
 def _check_spec_value(kind: str, spec: str, name: str, cls, key: str, value) -> None:
     """Decision E94: a spec's text value for a setting annotated as a number or a flag (``pll:loop_hz=abc``,
     ``accel:rests_only=no``) is one line; it had been stored as text (truthy, or a TypeError inside the
@@ -198,14 +195,9 @@ def _check_spec_value(kind: str, spec: str, name: str, cls, key: str, value) -> 
         param = inspect.signature(cls).parameters.get(key)
     except (TypeError, ValueError):
         return
-    if param is None or param.annotation is inspect.Parameter.empty:
+    words = None if param is None else annotation_words(param.annotation)
+    if words is None or fits_words(value, words):
         return
-    a = param.annotation
-    text = a if isinstance(a, str) else getattr(a, "__name__", None) or str(a)
-    words = {w.strip() for w in text.split("|")}
-    if any(not w.isidentifier() for w in words) or set(_TAKEN_BY[type(value)]) & words:
-        return
-    what = ("true or false" if words - {"None"} == {"bool"} else "a whole number" if words - {"None"} == {"int"}
-            else "a number" if words - {"None"} <= {"int", "float"} else f"a {' or '.join(sorted(words))}")
+    what = words_what(words)
     default = param.default if param.default is not inspect.Parameter.empty else None
     raise DataError(f"{kind} '{spec}': {name}: {key}={value!r} is not {what} (its default: {default!r})")

@@ -84,3 +84,94 @@ class Settings:
 
         params = {k: v for k, v in self.get_params().items() if changed(k, v)}
         return f"{type(self).__name__}({', '.join(f'{k}={v!r}' for k, v in params.items())})"
+
+
+# ---- decisions E94 / B198 / B199 / B206: one check of a setting's value, shared by the detector specs, the waist
+# PARAMS.json and the foot (plasys) --params
+
+#: a value's Python type -> the annotation words that take it (an int is a float too)
+TAKEN_BY = {bool: ("bool",), type(None): ("None",), int: ("int", "float"), float: ("float",), str: ("str",)}
+
+
+def annotation_words(annotation) -> set[str] | None:
+    """The type names of a signature annotation (``"int | None"`` -> ``{"int", "None"}``); None when it is not a
+    plain union of names (``tuple[...]``, none): such settings are left to their class."""
+    import inspect
+
+    if annotation is inspect.Parameter.empty:
+        return None
+    text = annotation if isinstance(annotation, str) else getattr(annotation, "__name__", None) or str(annotation)
+    words = {w.strip() for w in text.split("|")}
+    return None if any(not w.isidentifier() for w in words) else words
+
+
+def words_what(words: set[str]) -> str:
+    """How an error line names what a setting annotated ``words`` must be (decision E94)."""
+    core = words - {"None"}
+    return ("true or false" if core == {"bool"} else "a whole number" if core == {"int"}
+            else "a number" if core <= {"int", "float"} else f"a {' or '.join(sorted(words))}")
+
+
+def fits_words(value, words: set[str]) -> bool:
+    """Whether ``value``'s type is one the annotation ``words`` takes (an int is a float, a bool is no number)."""
+    return bool(set(TAKEN_BY.get(type(value), ())) & words)
+
+
+class Rule:
+    """What one setting's value must be: ``kind`` "flag" (JSON true / false; ``ints``: 0 / 1 too, B199), "number" or
+    "whole", within ``low`` (``open_low``: excluded) .. ``high``; ``none``: null allowed (decision B206)."""
+
+    def __init__(self, kind: str, *, low: float | None = None, open_low: bool = False, high: float | None = None,
+                 none: bool = False, ints: bool = False):
+        self.kind, self.low, self.open_low, self.high, self.none, self.ints = kind, low, open_low, high, none, ints
+
+    @classmethod
+    def from_annotation(cls, words: set[str], **bounds) -> Rule | None:
+        core = words - {"None"}
+        kind = "flag" if core == {"bool"} else "whole" if core == {"int"} else "number" if core <= {"int", "float"} \
+            else None
+        return None if kind is None else cls(kind, none="None" in words, **bounds)
+
+    def what(self) -> str:
+        if self.kind == "flag":
+            text = "true or false"
+        else:
+            noun = "whole number" if self.kind == "whole" else "number"
+            if self.low == 0 and self.open_low and self.high is None:
+                text = f"a positive {noun}"
+            elif self.low is not None and self.high is not None:
+                text = f"a {noun} from {self.low:g} to {self.high:g}"
+            elif self.low is not None:
+                text = f"a {noun} {'>' if self.open_low else '>='} {self.low:g}"
+            else:
+                text = f"a {noun}"
+        return text + (" or null" if self.none else "")
+
+    def fits(self, v) -> bool:
+        if v is None:
+            return self.none
+        if self.kind == "flag":
+            return isinstance(v, bool | np.bool_) or (self.ints and type(v) is int and v in (0, 1))
+        if isinstance(v, bool) or not isinstance(v, int | float | np.integer | np.floating):
+            return False
+        if self.kind == "whole" and not isinstance(v, int | np.integer):
+            return False
+        if not np.isfinite(v):
+            return False
+        if self.low is not None and (v <= self.low if self.open_low else v < self.low):
+            return False
+        return self.high is None or v <= self.high
+
+
+def broken(values: dict, rules: dict) -> list[tuple[str, object, str]]:
+    """``(key, value, what it must be)`` of every value of ``values`` whose :class:`Rule` in ``rules`` it breaks."""
+    return [(k, values[k], r.what()) for k, r in rules.items() if k in values and not r.fits(values[k])]
+
+
+def broken_line(bad: list[tuple[str, object, str]], prefix: str = "") -> str:
+    """One line for :func:`broken`'s list, the keys grouped by what they must be: ``"a='no', b='x' is not true or
+    false; c=-1 is not a positive number"`` (decisions B198, B199, B206)."""
+    groups: dict[str, list[str]] = {}
+    for k, v, what in bad:
+        groups.setdefault(what, []).append(f"{prefix}{k}={v!r}")
+    return "; ".join(f"{', '.join(keys)} is not {what}" for what, keys in groups.items())

@@ -134,11 +134,17 @@ def import_label_warnings(session, steps: pd.DataFrame, where: str) -> list[str]
     """Decision C46 (``pdrlearn import --steps``): :func:`bad_label_warning`'s line for each task whose labels
     in ``steps`` (the file ``where``) are not all classes, said at import rather than first at ``train``
     (German ``eben`` / ``hoch`` passed import and failed at train)."""
+    return [f"{ln}; rename them in the file and import again to train on them (decision C46)"
+            for ln in label_warnings(session, steps, where)]
+
+
+def label_warnings(session, steps: pd.DataFrame, where: str | None = None) -> list[str]:
+    """:func:`bad_label_warning`'s line of each task whose labels in ``steps`` (normalised first) are not all
+    classes (shared by ``import`` C46 and ``track --model oracle`` B209)."""
     from pdrlearn.features import TASK_COLUMNS
 
     norm = normalise_labels(steps)
-    lines = [bad_label_warning(session, norm, task, where)[1] for task in TASK_COLUMNS]
-    return [f"{ln}; rename them in the file and import again to train on them (decision C46)" for ln in lines if ln]
+    return [ln for ln in (bad_label_warning(session, norm, task, where)[1] for task in TASK_COLUMNS) if ln]
 
 
 def label_offset(session, steps: pd.DataFrame) -> dict | None:

@@ -193,7 +193,71 @@ def read_manifest(path) -> dict:
     for key in ("tasks", "files", "n_samples", "user"):
         if key not in manifest:
             raise ModelError(f"{mf}: missing key '{key}'; retrain the model")
+    problem = manifest_type_problem(manifest)
+    if problem:  # decision B208: a wrong type had been an AttributeError / KeyError traceback
+        raise ModelError(f"{mf}: {problem}; retrain the model (or restore its manifest.json)")
     return manifest
+
+
+def manifest_type_problem(manifest: dict) -> str | None:
+    """Decision B208: what is wrong with the types of a model manifest that has every key, or None: ``files`` an
+    object of checksums, ``n_samples`` a whole number, ``tasks`` an object of tasks each with a ``classes`` list and
+    ``models`` (method -> list of units), and a ``chosen`` (null or method / unit) among those models."""
+    if not isinstance(manifest["files"], dict) or not all(isinstance(v, str) for v in manifest["files"].values()):
+        return f"'files' is {manifest['files']!r:.40}, not an object of file: sha256"
+    n = manifest["n_samples"]
+    if isinstance(n, bool) or not isinstance(n, int) or n < 0:
+        return f"'n_samples' is {n!r:.40}, not a whole number"
+    tasks = manifest["tasks"]
+    if not isinstance(tasks, dict):
+        return f"'tasks' is {tasks!r:.40}, not an object of task: {{classes, models, chosen}}"
+    for name, t in tasks.items():
+        if not isinstance(t, dict) or not isinstance(t.get("classes"), list):
+            return f"task '{name}' is not an object with a 'classes' list"
+        models = t.get("models")
+        if not isinstance(models, dict) or not all(isinstance(u, list) and all(isinstance(x, str) for x in u)
+                                                   for u in models.values()):
+            return f"task '{name}': 'models' is {models!r:.40}, not an object of method: [unit, ...]"
+        chosen = t.get("chosen")
+        if chosen is None:
+            continue
+        if not isinstance(chosen, dict) or chosen.get("method") not in models or \
+                chosen.get("unit") not in models[chosen["method"]]:
+            return (f"task '{name}': chosen {chosen!r:.60} is not one of its models "
+                    f"({', '.join(f'{m}/{u}' for m, us in models.items() for u in us) or 'none'})")
+    return None
+
+
+#: decision B211: the libraries whose versions a model manifest records (``versions``) -> their distribution names
+VERSIONED = {"scikit-learn": "scikit-learn", "torch": "torch", "numpy": "numpy"}
+
+
+def version_warning(path, manifest: dict) -> str | None:
+    """Decision B211 (B137's line for bundles, for model directories): one line when the model was trained by another
+    pdrlearn version or with other library versions than this Python's (``package_version``, ``versions``). It still
+    loads (the schema version is the contract, checked by :func:`read_manifest`)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    from pdrlearn import __version__
+
+    differ = []
+    theirs = manifest.get("package_version")
+    if theirs is not None and str(theirs) != __version__:
+        differ.append(f"pdrlearn {theirs} (this is {__version__})")
+    libs = manifest.get("versions")
+    for name, v in (libs.items() if isinstance(libs, dict) else ()):
+        if name not in VERSIONED or v is None:
+            continue
+        try:
+            here = version(VERSIONED[name])
+        except PackageNotFoundError:
+            here = "not installed"
+        if str(v) != here:
+            differ.append(f"{name} {v} (this is {here})")
+    if not differ:
+        return None
+    return (f"model {path}: trained with {', '.join(differ)}; it loads (same schema version "
+            f"{manifest.get('schema_version')}), but retrain it with these versions if its classes look wrong")
 
 
 def verify_model_dir(path) -> dict:
@@ -224,6 +288,9 @@ def load_model(path):
 
     path = Path(path)
     manifest = verify_model_dir(path)
+    line = version_warning(path, manifest)
+    if line:  # decision B211
+        log.warning(line)
     models: dict[str, object] = {}
     for rel in manifest["files"]:
         f = path / rel

@@ -748,6 +748,20 @@ def _folds(y: np.ndarray, cv: int, seed: int, task: str, groups: np.ndarray | No
     return list(StratifiedKFold(n_splits=n_splits, shuffle=True, random_state=seed).split(np.zeros(len(y)), y)), 0
 
 
+def cv_groups_used(tasks: dict, asked: str) -> tuple[dict[str, str], str]:
+    """Decision B210: the grouping each task's CV folds used - ``asked`` when some method x unit held out whole users
+    / sessions (``cv_users`` / ``cv_sessions`` > 0), ``"steps"`` when it fell back to stratified folds over steps
+    (one line on stderr had been the only record) - and the model's: ``"steps"`` when no task used ``asked``, else
+    ``asked`` (``cv_groups_by_task`` tells a mixed model's tasks apart)."""
+    by_task = {}
+    for name, tm in tasks.items():
+        held = any((r.get("cv_users") or r.get("cv_sessions") or 0) > 0 for per in tm.cv.values() for r in per.values()
+                   if isinstance(r, dict))
+        by_task[name] = asked if asked != "steps" and held else "steps"
+    used = asked if asked != "steps" and any(v == asked for v in by_task.values()) else "steps"
+    return by_task, used
+
+
 def _cv_entry(y, y_pred, classes, folds, cv_users: int, groups=None, kind: str = "user", **extra) -> dict:
     """One method x unit's CV record: the pooled out-of-fold metrics (:func:`class_metrics`), the folds'
     spread (decision C41), ``n_folds``, ``cv_users`` (decision C29; with folds of whole sessions, ``kind``
@@ -1246,6 +1260,7 @@ def train_user(
         log.warning("train: skipped %s", line)
     if not out:  # decision C53 (C17 kept): a calibration-only model is a warning, not an error
         log.warning("train: %s", NO_CLASSIFIER_LINE)
+    by_task, used = cv_groups_used(out, cv_groups)  # decision B210
     rates: dict[str, float] = {}
     for s in sessions:
         for name, st in s.streams.items():
@@ -1276,10 +1291,14 @@ def train_user(
         data_summary=summary,
         settings={
             "cv": cv,
-            "cv_groups": cv_groups,
+            # decision B210: the grouping the folds used ("steps" when every task fell back to stratified folds),
+            # what was asked, and each task's
+            "cv_groups": used,
+            "cv_groups_asked": cv_groups,
+            "cv_groups_by_task": by_task,
             # users in the training data when grouped by user (decision C29); sessions when by session (C59)
-            "cv_users": n_users if cv_groups == "user" else 0,
-            **({"cv_sessions": n_users} if cv_groups == "session" else {}),
+            "cv_users": n_users if cv_groups == "user" and used != "steps" else 0,
+            **({"cv_sessions": n_users if used != "steps" else 0} if cv_groups == "session" else {}),
             "seed": seed,
             "methods": list(methods),
             "units": list(units),

@@ -430,14 +430,15 @@ INITIAL_HEADING_HELP = ("Direction the walker sets off in, DEG degrees in the tr
 
 def initial_heading_option(deg: float | None) -> float | None:
     """``--initial-heading DEG`` of ``track`` / ``run`` (decision L98): ENU degrees (counter-clockwise from east)
-    -> radians, None when not given; a non-finite value is one error line."""
+    -> radians, None when not given; a non-finite value, or one beyond +-360 degrees (the pipelines' 2 pi, W81 / L158,
+    said in the CLI's unit: decision B210), is one error line, the same for both commands."""
     import math
 
     if deg is None:
         return None
-    if not math.isfinite(deg):
-        raise DataError(f"--initial-heading {deg}: give the start direction as a finite number of degrees "
-                        "counter-clockwise from east (0 = east, 90 = north; a compass bearing B is 90 - B)")
+    if not math.isfinite(deg) or abs(deg) > 360:
+        raise DataError(f"--initial-heading {deg:g}: give the start direction as a finite number of degrees from -360 "
+                        "to 360, counter-clockwise from east (0 = east, 90 = north; a compass bearing B is 90 - B)")
     return math.radians(deg)
 
 

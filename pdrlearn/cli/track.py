@@ -350,10 +350,15 @@ def read_params(params: Path):
     """The parsed ``--params`` JSON (a calibration file of ``pdrlearn calibrate`` or plasys settings), read once per
     file; one error line naming the file when it cannot be read."""
     try:
-        return json.loads(Path(params).read_text())
+        par = json.loads(Path(params).read_text())
     except (OSError, json.JSONDecodeError) as exc:
         raise DataError(f"{params}: cannot read the parameters JSON ({type(exc).__name__}); "
                         "pass the file written by `pdrlearn calibrate`") from None
+    if not isinstance(par, dict):  # decision B207: a list had been a TypeError, a string "unknown parameter(s) e, h"
+        raise DataError(f"{params}: parameters must be a JSON object ({{\"key\": value, ...}}), not a JSON "
+                        f"{'list' if isinstance(par, list) else 'string' if isinstance(par, str) else 'value'}; "
+                        "pass the file written by `pdrlearn calibrate`, or foot settings such as {\"rest_s\": 0.05}")
+    return par
 
 
 def track_session(session_dir: Path, settings: dict) -> dict:
@@ -413,6 +418,10 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                             chosen_by=chosen_by)
     if pipeline == "plasys" and isinstance(par, dict):
         _refuse_waist_params(par, params, session)
+        if not streaming:  # decisions B206 / B207: the foot settings' types and ranges, in a line naming the file
+            from pdrlearn.displace.foot import check_settings
+
+            check_settings(par, str(params))
     if o.get("resample", "native") != "native":  # decision B113: the session at the model's rate, or refused
         from pdrlearn.classify import load_model
         from pdrlearn.io.resample import at_model_rate

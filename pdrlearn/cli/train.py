@@ -157,7 +157,9 @@ def train(
         "sessions": len(sessions),
         "boundaries": model.boundaries,
         "seconds": round(seconds, 2),
-        "cv_groups": model.settings["cv_groups"],
+        "cv_groups": model.settings["cv_groups"],  # decision B210: what the folds used; what was asked, per task
+        "cv_groups_asked": model.settings.get("cv_groups_asked", model.settings["cv_groups"]),
+        "cv_groups_by_task": model.settings.get("cv_groups_by_task", {}),
         "cv_users": model.settings["cv_users"],
         "cv_sessions": model.settings.get("cv_sessions", 0),  # decision C59
         "skipped": model.skipped,

@@ -14,6 +14,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
 from pdrlearn.orient import FootAttitude, UnitData
+from pdrlearn.settings import Rule, annotation_words, broken, broken_line
 from pdrlearn.signal import standstill_mask
 from pdrlearn.signal.conditioning import runs
 
@@ -166,6 +167,53 @@ TIMESTAMPS = False
 #: impact; experiments/results/drops_runs_43-54.md)
 UPSAMPLE_RUNS = False
 
+#: decision B206: the ranges of :class:`FootDisplacement`'s numeric settings (their types come from its signature's
+#: annotations: a bool is JSON true / false, an int a whole number); windows and durations in s, rates, noise terms
+SETTING_BOUNDS = {"sw": {"low": 0, "open_low": True}, "r": {"low": 0, "open_low": True},
+                  "max_rest_s": {"low": 0}, "rest_s": {"low": 0, "open_low": True},
+                  "zupt_erode": {"low": 0, "high": 0.5},  # a fraction cut at both ends of a stance run
+                  "zupt_erode_max_s": {"low": 0}, "upsample": {"low": 1}, "max_stride_s": {"low": 0, "open_low": True},
+                  "accel_scale_error": {"low": 0}, "min_rocker_samples": {"low": 1}, "zaru_gyro_rad_s": {"low": 0}}
+
+
+def setting_rules() -> dict[str, Rule]:
+    """Decision B206: a :class:`~pdrlearn.settings.Rule` per true / false or numeric setting of
+    :class:`FootDisplacement`, from its annotations and :data:`SETTING_BOUNDS` (the text settings keep the
+    class's own lines)."""
+    import inspect
+
+    rules = {}
+    for name, p in inspect.signature(FootDisplacement).parameters.items():
+        words = annotation_words(p.annotation)
+        rule = None if words is None else Rule.from_annotation(words, **SETTING_BOUNDS.get(name, {}))
+        if rule is not None:
+            rules[name] = rule
+    return rules
+
+
+def check_settings(params, where: str = "plasys params") -> dict:
+    """Decisions B206 / B207: ``params`` (the foot pipeline's ``--params`` JSON, or keywords of
+    :class:`FootDisplacement`) as a dict, or one :class:`DataError` line naming ``where``: not a JSON object, an unknown
+    key, or a value of the wrong type or range (``"timestamps": "no"`` had been read as true, ``"rest_s": "abc"`` a
+    TypeError, ``"rest_s": -1`` accepted)."""
+    import inspect
+
+    if params is None:
+        return {}
+    if not isinstance(params, dict):
+        raise DataError(f"{where}: parameters must be a JSON object (e.g. {{\"rest_s\": 0.05}}), not "
+                        f"{type(params).__name__} {params!r:.40}")
+    allowed = set(inspect.signature(FootDisplacement).parameters)
+    unknown = sorted(set(params) - allowed, key=str)
+    if unknown:
+        raise DataError(f"{where}: unknown parameter(s) {', '.join(map(str, unknown))}; the plasys pipeline "
+                        f"takes FootDisplacement settings: {', '.join(sorted(allowed))}")
+    bad = broken(params, setting_rules())
+    if bad:
+        raise DataError(f"{where}: {broken_line(bad)}; fix the key(s) (JSON true / false and numbers, no quotes)")
+    return dict(params)
+
+
 class FootDisplacement:
     """Displacement of each stride of the foot unit between two rests.
 
@@ -241,6 +289,7 @@ class FootDisplacement:
                  zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
                  tilt_clock: str = "rotation", timestamps: bool = TIMESTAMPS,
                  upsample_runs: bool = UPSAMPLE_RUNS):
+        check_settings({k: v for k, v in locals().items() if k != "self"}, "FootDisplacement")  # decision B206
         if tilt_clock not in ("time", "rotation"):
             raise DataError(f"FootDisplacement: tilt_clock '{tilt_clock}' is not 'time' or 'rotation'")
         self.tilt_dedrift, self.tilt_clock = bool(tilt_dedrift), tilt_clock

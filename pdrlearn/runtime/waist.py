@@ -502,12 +502,15 @@ def load_waist_bundle(path: str | Path, *, verify: bool = True) -> WaistBundle:
     """Open a waist-only bundle (``pdrlearn export CAL.json --out PATH``), checking its schema, version and
     checksums first (as :func:`pdrlearn.runtime.load_bundle`); a foot-unit bundle or another schema version is one
     line (decision E58)."""
-    from pdrlearn.runtime.bundle import WAIST_SCHEMA_NAME, _fail, read_manifest, verify_files
+    from pdrlearn.runtime.bundle import WAIST_SCHEMA_NAME, _fail, read_manifest, verify_files, version_warning
 
     path = Path(path)
     m = read_manifest(path, schema=WAIST_SCHEMA_NAME)
     if verify:
         verify_files(path, m)
+    line = version_warning(path, m)
+    if line:  # decision B211: B137's line, for the waist bundle too (it had loaded another version silently)
+        log.warning(line)
     rel = m["params"]
     if rel not in m["files"]:
         raise _fail(path, f"manifest.json names params '{rel}', which it does not list; re-export the bundle")

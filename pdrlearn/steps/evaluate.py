@@ -324,6 +324,11 @@ def _table_events(steps, session: Session, unit: str | None) -> tuple[np.ndarray
     ev = pd.to_numeric(steps["event_s"], errors="coerce").to_numpy(float)
     if np.isnan(ev).sum() > steps["event_s"].isna().sum():
         raise DataError("score_steps: column event_s has non-numeric values; give the step times in seconds")
+    if not np.isfinite(ev).all():  # decision B210: a NaN event had been counted but never scored, silently
+        bad = ~np.isfinite(ev)
+        raise DataError(f"score_steps: {int(bad.sum())} of {ev.size} step event(s) have no finite event_s (first: row "
+                        f"{int(np.flatnonzero(bad)[0])}); a detection needs its time in s: drop those rows "
+                        "(steps.dropna(subset=['event_s'])) or give their times")
     if any(len(st) for st in session.streams.values()):  # a labels-only session has no clock span to check
         check_event_span(ev, session.t_start, session.t_end, "score_steps")
     return ev, unit

@@ -19,7 +19,6 @@ acceleration, the M3 rules, heading from the integrated vertical rate), so that
 
 from __future__ import annotations
 
-import inspect
 import logging
 from pathlib import Path
 
@@ -39,6 +38,7 @@ from pdrlearn.displace import (
     stance_runs,
     streaming_calibration,
 )
+from pdrlearn.displace.foot import check_settings as check_foot_settings
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
@@ -310,8 +310,22 @@ def classes_and_bounds(model, session: Session, steps: pd.DataFrame) -> tuple[pd
     if isinstance(model, str) and model == "oracle":
         bounds = next((session.meta[k] for k in ("length_class_bounds_m", "length_bounds_m")
                        if session.meta.get(k) is not None), None)
-        return oracle_classes(session, steps), bounds
+        classes = oracle_classes(session, steps)
+        classes.attrs["label_warnings"] = oracle_label_warnings(session)
+        return classes, bounds
     return _model_classes(model, session, steps)
+
+
+def oracle_label_warnings(session: Session) -> list[str]:
+    """Decision B209: ``evaluate``'s line (C33) for each task whose labels in the session's steps.csv are not all
+    classes, for ``model="oracle"``, whose strides take those labels as their classes (every terrain 'lava' had
+    tracked without a word, no stride up or down)."""
+    from pdrlearn.classify.labels import label_warnings
+
+    if session.steps is None:
+        return []
+    return [f"{ln}; model='oracle' takes the labels as the strides' classes, so those strides get no class rule: "
+            "fix the labels" for ln in label_warnings(session, session.steps, "steps.csv")]
 
 
 def oracle_classes(session: Session, steps: pd.DataFrame) -> pd.DataFrame:
@@ -780,6 +794,12 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
     if opts:  # decision L43: a misspelled option is an error, as in the waist pipelines (it was ignored)
         check_keywords("plasys", opts, keyword_names(track_plasys))
+    if not (model is None or isinstance(model, str | Path) or hasattr(model, "predict_steps")):
+        raise TypeError(f"plasys: model={model!r:.40} is not a model: pass a trained model directory (str or Path), "
+                        "a model from pdrlearn.classify.load_model, 'oracle' (the session's labels) or None (decision "
+                        "B208)")
+    if params is not None and not isinstance(params, dict):  # decision B207, streamed too
+        check_foot_settings(params, "plasys params")
     raw_start = start
     start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
     initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
@@ -858,12 +878,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if not len(strides):
         raise DataError(f"session '{session.name}': no strides detected; is the foot unit moving?")
     fd_kw = {k: cfg[k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
-    allowed = set(inspect.signature(FootDisplacement).parameters)
-    unknown = sorted(set(params or {}) - allowed)
-    if unknown:
-        raise DataError(f"plasys: unknown parameter(s) {', '.join(unknown)} in params; the plasys pipeline "
-                        f"takes FootDisplacement settings: {', '.join(sorted(allowed))}")
-    fd_kw.update(params or {})
+    fd_kw.update(check_foot_settings(params, "plasys params"))  # decisions B206 / B207
     fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)
     fd_warnings = list(fd.warnings_)
     raw_disp = disp = fd.disp_
@@ -916,6 +931,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         # decision L38: a model classifies each stride on the window the streaming path (and its training) cuts
         windows = None if is_oracle else classification_windows(work, strides)
         classes, model_bounds = classes_and_bounds(model, work, strides if windows is None else windows)
+        warnings += classes.attrs.get("label_warnings", [])  # decision B209
         domain = domain_check(model, classes, warnings, warn_out_of_domain)
         off_rate = rate_check(model, work, classes, warnings)  # decision C18
         if not is_oracle:
@@ -1272,6 +1288,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
 
             model = load_model(model)
         classes, model_bounds = classes_and_bounds(model, session, table)
+        warnings += classes.attrs.get("label_warnings", [])  # decision B209
         domain = domain_check(model, classes, warnings, warn_out_of_domain)  # decision C16
         untrained = [] if isinstance(model, str) and model == "oracle" else untrained_tasks(classes)
         if untrained:  # C17's line, with what the streamed rules do instead (they keep the raw height change)

@@ -22,6 +22,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
+from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
@@ -322,6 +323,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto"))
+FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
@@ -335,10 +337,9 @@ def resolve_options(p: WaistParams, given: dict) -> dict:
     if unknown:
         raise DataError(f"params options: unknown {', '.join(unknown)}; use some of {', '.join(OPTION_DEFAULTS)}")
     o = {k: (v if v is not None else (p.options or {}).get(k, OPTION_DEFAULTS[k])) for k, v in given.items()}
-    bad = [f"{k}={o[k]!r}" for k in FLAG_OPTIONS if k in o and not (isinstance(o[k], bool | np.bool_) or
-                                                                     (type(o[k]) is int and o[k] in (0, 1)))]
+    bad = broken(o, FLAG_RULES)
     if bad:  # decision B199: "false" in a PARAMS.json had been read as true
-        raise DataError(f"params options: {', '.join(bad)} is not true or false; fix the option or the PARAMS.json "
+        raise DataError(f"params options: {broken_line(bad)}; fix the option or the PARAMS.json "
                         "\"options\" (JSON true / false, no quotes)")
     return o
 

@@ -15,6 +15,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
+from pdrlearn.settings import Rule, broken, broken_line
 
 SCHEMA = "pdrlearn.waist-params/1"
 DEFAULT_HEIGHT_M = 1.70  # used only when meta.json gives no height (a warning says so)
@@ -42,6 +43,11 @@ SLOPE_PER_HEIGHT = 0.25
 SL_LEG_REF_M = LEG_PER_HEIGHT * DEFAULT_HEIGHT_M
 RUN_STEP_PER_HEIGHT_AT_3HZ = 0.65
 RUN_SLOPE_PER_HEIGHT = 0.20
+
+
+#: decision B210: the parameters that must be positive when given (a negative ``walk_threshold_mps2`` gated
+#: every sample as walking)
+POSITIVE_KEYS = ("walk_threshold_mps2",)
 
 
 @dataclass
@@ -123,6 +129,9 @@ class WaistParams:
                 kw[k] = float(v)
             except (TypeError, ValueError):
                 raise DataError(f"{where}: parameter {k}={v!r} is not a number") from None
+            if k in POSITIVE_KEYS and not kw[k] > 0:  # decision B210: a negative motion gate had been used
+                raise DataError(f"{where}: parameter {k}={v!r} is not a positive number; fix it, set it to null "
+                                "(the default), or re-run 'pdrlearn calibrate'")
         return cls(**kw)
 
     def save(self, path: str | os.PathLike, *, extra: dict | None = None) -> Path:
@@ -139,17 +148,22 @@ class WaistParams:
 
 #: decision W140's ``gait`` record: its numbers (positive, or null when not recorded)
 GAIT_KEYS = ("median_cadence_spm", "step_length_m", "speed_mps", "n_steps")
+#: decision B198: each a positive number, or null when not recorded (B206's shared check)
+GAIT_RULES = {k: Rule("number", low=0, open_low=True, none=True) for k in GAIT_KEYS}
 
 
 def _check_gait(gait: dict, where: str) -> None:
     """Decision B198: a ``gait`` record (W140) whose numbers are not positive numbers (null: not recorded) is one line;
     its cadence is divided by and its step and speed printed in W140's warning (a text had been a traceback, a
     negative cadence a negative ``calibration_cadence_ratio``)."""
-    bad = [f"{k}={gait[k]!r}" for k in GAIT_KEYS if gait.get(k) is not None
-           and (isinstance(gait[k], bool) or not isinstance(gait[k], int | float) or not np.isfinite(gait[k])
-                or gait[k] <= 0)]
+    unknown = sorted(set(gait) - set(GAIT_KEYS))
+    if unknown:  # decision B210: a misspelt key ("cadence_spm") had been ignored
+        raise DataError(f"{where}: gait has no key(s) {', '.join(unknown)}; decision W140's record of the calibration "
+                        f"walks holds {', '.join(GAIT_KEYS)}; fix it, set \"gait\" to null, or re-run 'pdrlearn "
+                        "calibrate'")
+    bad = broken(gait, GAIT_RULES)
     if bad:
-        raise DataError(f"{where}: gait {', '.join(bad)} is not a positive number (decision W140's record of the "
+        raise DataError(f"{where}: gait {broken_line(bad)} (decision W140's record of the "
                         "calibration walks); fix it, set \"gait\" to null, or re-run 'pdrlearn calibrate'")
 
 
