@@ -16,9 +16,11 @@ and to the real-recordings table (``external_waist``), and the foot sessions of 
 --out DIR`` (gaitmap_*) to the real-recordings table (``external_foot``): mocap IC strides for the 4x10 m
 walk, the converter's rest-based segmentation (NOT ground truth) for the stairs
 right foot, the MS patient and the L-shaped walks.
-Count error = sum over sessions of |detected - reference| / sum of reference counts (errors of different
+Count error = sum over sessions of |scored - reference| / sum of reference counts (errors of different
 sessions do not cancel). Foot detectors count strides of the instrumented foot against steps.csv
-(ic); waist detectors count every step against extras['ics'].
+(ic); waist detectors count every step against extras['ics']. In the real-recordings table ``detected`` is
+every detection and ``scored`` the ones inside the labelled bouts/strides that F1 and count error use
+(decision steps 42; ``score_steps``' ``count`` / ``scored_count``, steps 41).
 """
 
 from __future__ import annotations
@@ -79,8 +81,8 @@ def summarise(df: pd.DataFrame) -> pd.DataFrame:
     return out
 
 
-SCORE_KEYS = ("reference_count", "count", "precision", "recall", "f1", "count_error_pct", "timing_error_mean_s",
-              "timing_error_sd_s", "outside_labels")
+SCORE_KEYS = ("reference_count", "count", "scored_count", "precision", "recall", "f1", "count_error_pct",
+              "timing_error_mean_s", "timing_error_sd_s", "outside_labels")
 
 
 def detector_row(s, label: str, d: str, keys: tuple[str, ...] = SCORE_KEYS) -> dict:
@@ -249,15 +251,19 @@ def _md_sim(summary: pd.DataFrame) -> str:
 
 
 def _md_real(df: pd.DataFrame) -> str:
-    lines = ["| session | detector | reference | detected | precision | recall | F1 | count error | timing error (s) |",
-             "|---|---|---|---|---|---|---|---|---|"]
+    # decision steps 42: "detected" is every detection (score_steps' count), "scored" the ones inside the labels
+    # that precision, F1 and the count error use (scored_count, steps 41), so each row can be checked by hand
+    lines = ["| session | detector | reference | detected | scored | precision | recall | F1 | count error "
+             "| timing error (s) |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     for r in df.itertuples():
         if pd.isna(getattr(r, "f1", np.nan)):
-            lines.append(f"| {r.session} | {r.detector} | - | - | - | - | - | - | {r.note} |")
+            lines.append(f"| {r.session} | {r.detector} | - | - | - | - | - | - | - | {r.note} |")
             continue
         timing = "n/a (no ground truth)" if pd.isna(r.timing_error_mean_s) else \
             f"{r.timing_error_mean_s:+.3f} ± {r.timing_error_sd_s:.3f}"
-        lines.append(f"| {r.session} | {r.detector} | {int(r.reference_count)} | {int(r.count)} | {r.precision:.3f} "
+        lines.append(f"| {r.session} | {r.detector} | {int(r.reference_count)} | {int(r.count)} "
+                     f"| {int(r.scored_count)} | {r.precision:.3f} "
                      f"| {r.recall:.3f} | {r.f1:.3f} | {r.count_error_pct:.1f} % | {timing} |")
     return "\n".join(lines)
 
@@ -285,12 +291,16 @@ def main() -> None:
     rl.to_csv(OUT / "step_count_real.csv", index=False)
     md = ["# Step detection: thesis Tables 20-21 and real recordings", "",
           f"Simulated: {args.users} users x scenarios A/B x slow/normal/fast (pdrlearn.sim, 20 Hz). "
-          "Count error = sum |detected - reference| / sum reference. Foot detectors count strides of the "
-          "instrumented foot; waist detectors count every step. Thesis numbers from Tables 20-21 "
+          "Count error = sum |detected - reference| / sum reference (detected = the detections scored, "
+          "scored_count). Foot detectors count strides of the instrumented foot; waist detectors count every "
+          "step. Thesis numbers from Tables 20-21 "
           "(two real pedestrians, 10 walks per speed); the PLL is not in the thesis.", "",
           _md_sim(summary),
           "## Real recordings (tolerance 0.25 s; detections outside the labelled bouts/strides are not scored)",
-          "", "Stairs: the reference is the converter's rest-based segmentation (steps.csv source=detected), "
+          "", "detected = every detection; scored = the detections inside the labelled bouts/strides (less, against "
+          "INDIP contacts, those standing for an untimed contact or a same-foot gap: decisions 19-20); precision, "
+          "F1 and count error = |scored - reference| / reference use the scored ones (decision steps 42).", "",
+          "Stairs: the reference is the converter's rest-based segmentation (steps.csv source=detected), "
           "NOT ground truth; a detection matches a stride when it lies inside the stride's window. "
           "External gaitmap sessions (--external): walk4x10 = mocap IC strides inside the capture volume "
           "(ground truth, scored per chain of labelled strides); stairs right, MS and L-walk = the same kind "

@@ -1,0 +1,49 @@
+"""experiments/step_count.py's real-recordings table (decision steps 42): ``detected`` is every detection,
+``scored`` the detections the precision, F1 and count error use, so each row's count error can be checked by hand
+as |scored - reference| / reference."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SCRIPT = ROOT / "experiments" / "step_count.py"
+WAIST = ROOT / "datasets" / "real" / "mobgap_HA001_Test11_Trial1"
+
+
+@pytest.fixture(scope="module")
+def step_count():
+    spec = importlib.util.spec_from_file_location("pdrlearn_step_count_under_test", SCRIPT)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _cells(line: str) -> list[str]:
+    return [c.strip() for c in line.strip().strip("|").split("|")]
+
+
+@pytest.mark.skipif(not WAIST.exists(), reason="datasets/real not present")
+def test_real_table_count_error_uses_the_scored_column(step_count):
+    from pdrlearn.io import read_session
+
+    s = read_session(WAIST)
+    row = step_count.detector_row(s, WAIST.name, "pelvic-gyro")
+    # the session has detections outside its labelled bouts: the two counts differ (the trial's 187 vs 63)
+    assert row["count"] > row["scored_count"]
+    lines = step_count._md_real(pd.DataFrame([row])).splitlines()
+    head, cells = _cells(lines[0]), _cells(lines[2])
+    got = dict(zip(head, cells, strict=True))
+    assert int(got["detected"]) == row["count"] and int(got["scored"]) == row["scored_count"]
+    ref, scored = int(got["reference"]), int(got["scored"])
+    assert float(got["count error"].rstrip(" %")) == pytest.approx(100 * abs(scored - ref) / ref, abs=0.05)
+
+
+def test_real_table_detector_error_row_keeps_the_columns(step_count):
+    row = {"session": "x", "detector": "accel-force", "note": "DataError: no force"}
+    lines = step_count._md_real(pd.DataFrame([row])).splitlines()
+    assert len(_cells(lines[0])) == len(_cells(lines[2]))
