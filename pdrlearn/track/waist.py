@@ -355,6 +355,9 @@ FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto"))
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
+#: decision W156: ``stairs_length`` - False (no bound), True (W91's proposed steps, W108's under ``stairs_climb``) or
+#: "climbs" (only the steps inside W108's climbs)
+STAIRS_LENGTH_VALUES = (False, True, "climbs")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 
@@ -419,7 +422,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         :func:`~pdrlearn.waist._kernels.relative_walk_threshold`); default True since W76's rule held (False:
         W4's 0.5)
     stairs_length : a step on stairs (the barometric altitude changes by 0.1 m/s or more) is at most the
-        0.30 m tread long (decision W91's candidate; default False)
+        0.30 m tread long (decision W91's candidate; default False); ``"climbs"``: only the steps inside W108's
+        climbs (decision W156's candidate)
     stairs_climb : a step is on stairs (column ``stairs``) only inside a climb of at least 1.5 m and 3 sqrt(2)
         still-period altitude SDs, and the altitude changes only on such steps (decision W108's candidate;
         default False: it failed its rule on one real level recording)
@@ -505,6 +509,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         raise DataError(f"vault_veto {o['vault_veto']!r} is not one of false, true, \"turns\" (decisions W119, "
                         "W127); fix the option or the PARAMS.json \"options\"")
     check_pause_steps(o["pause_steps"])  # W111, W122, W134
+    if o["stairs_length"] not in STAIRS_LENGTH_VALUES:
+        raise DataError(f"stairs_length {o['stairs_length']!r} is not one of false, true, \"climbs\" (decisions W91, "
+                        "W156); fix the option or the PARAMS.json \"options\"")
     if smoothing != "none" and realtime:
         raise DataError(f"length_smoothing '{smoothing}' looks up to 1 s ahead and the realtime detector does not "
                         "(decision W56); drop realtime or set length_smoothing to none")
@@ -561,7 +568,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         if line:
             warnings.append(line)
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
-        steps = steps.assign(length_m=np.where(stairs, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
+        bounded = climbs if o["stairs_length"] == "climbs" else stairs  # W156: only W108's climbs
+        steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
                                                steps["length_m"].to_numpy(float)))
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
