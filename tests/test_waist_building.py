@@ -116,3 +116,20 @@ def test_a_lift_ride_is_the_pause_s_not_the_next_step_s(lift):  # W158
     assert np.abs(bouts["altitude_change_m"]).max() < 0.3
     ev = evaluate_track(res, lift)
     assert (ev["floors_up"], ev["floors_down"]) == (3, 0)  # the ride still changes floors
+
+
+def test_stairs_length_climbs_bounds_only_the_climb_steps(storey):  # W156 (an option; its rule was not met)
+    off = get_pipeline("waist-pendulum")(storey)
+    on = get_pipeline("waist-pendulum")(storey, stairs_length="climbs")
+    changed = on.steps["length_m"].to_numpy() != off.steps["length_m"].to_numpy()
+    assert changed.sum() >= 8 and (on.steps["length_m"].to_numpy()[changed] == 0.30).all()
+    assert changed[on.steps["stairs"].to_numpy(bool)].sum() == changed.sum()  # inside W91's stairs, W108's climbs
+    assert not _has(on, "W155")
+    assert get_pipeline("waist-pendulum")(storey).info["options"]["stairs_length"] is False  # the default
+
+
+def test_an_unknown_stairs_length_is_refused(storey):  # W156
+    from pdrlearn.errors import DataError
+
+    with pytest.raises(DataError, match="stairs_length 'yes'.*climbs"):
+        get_pipeline("waist-pendulum")(storey, stairs_length="yes")

@@ -221,8 +221,9 @@ def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray) -> str | Non
             "horizontally as level steps: the waist step-length models measure the body's step, not the tread, so "
             "the distance reads long on stairs (two storeys up and down, simulated: +64 % waist-pendulum, +90 % "
             f"waist-pll); the option stairs_length bounds a stair step by the {STAIR_TREAD_M:.2f} m tread "
-            f"({capped:.1f} m here; decision W91): \"options\": {{\"stairs_length\": true}} in the PARAMS.json "
-            "(--params) or stairs_length=True (decision W155)")
+            "(decision W91): \"options\": {\"stairs_length\": \"climbs\"} in the PARAMS.json (--params), or "
+            f"stairs_length=\"climbs\", bounds these steps ({capped:.1f} m here; decision W156), true also the "
+            "steps of shorter barometric changes (decision W155)")
 
 
 def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
@@ -352,7 +353,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
 #: decision B199: the options that are true or false (``sit_veto``, ``pause_steps``, ``vault_veto`` take more values,
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
-                     if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto"))
+                     if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length"))
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
 #: decision W156: ``stairs_length`` - False (no bound), True (W91's proposed steps, W108's under ``stairs_climb``) or
