@@ -758,14 +758,17 @@ RELATIVE_HEADING = "waist heading relative to the start"
 
 
 class _NoHeadingNote(logging.Filter):
-    """Drops W83's line from this module's log: a calibration tracks walks for their distance, not their heading."""
+    """Drops W83's line from this module's log: a calibration tracks walks for their distance, not their heading;
+    and W155's, which advises a track's option (a calibration walk's stairs are the calibration's to judge)."""
 
     def filter(self, record: logging.LogRecord) -> bool:
-        return RELATIVE_HEADING not in record.getMessage()
+        msg = record.getMessage()
+        return RELATIVE_HEADING not in msg and "(decision W155)" not in msg
 
 
 def without_heading_note():
-    """Context manager: :func:`track_waist` calls inside it do not log W83's line (``calibrate``'s walks)."""
+    """Context manager: :func:`track_waist` calls inside it do not log W83's or W155's line (``calibrate``'s
+    walks)."""
     from contextlib import contextmanager
 
     @contextmanager
