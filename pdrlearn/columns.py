@@ -225,6 +225,8 @@ BOUTS: tuple[Column, ...] = (
                                              "exceed --bout-break-s under --bout-rule pdrlearn (L163)"),
     ("n_turns", "count", "integer", f"turns of >= {TURN_COUNT_MIN_DEG:g} deg in the bout (L104)"),
     ("altitude_change_m", "m", "number", "z change over the bout"),
+    ("altitude_change_before_m", "m", "number", "lower back: z change while standing before the bout (a lift or "
+                                                "escalator ride; W158), 0 for foot tracks"),
     ("speed_m_s", "m/s", "number", "deprecated (E98): speed_mps under its old name, kept last until a later release"),
 )
 
@@ -255,6 +257,8 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("side", _ID, "text", "left / right foot of the contact, empty when undecided: the pelvis's lateral velocity at "
                           "it (W20, W129; 99 % agree with INDIP's foot where decided); empty with --realtime"),
     ("dz_m", "m", "number", "barometric altitude change over the step (W89; 0 without a usable barometer)"),
+    ("pause_dz_m", "m", "number", "barometric altitude change while standing before the step (a lift ride; W158), "
+                                  "0 inside a walking sequence"),
 )
 
 #: every table of the dictionary, in the order shown

@@ -190,8 +190,9 @@ def get_pipeline(name: str) -> Pipeline:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``
       (waist-pendulum's causal variant), ``heading``, ``refine_ic``, ``initial_heading``, ``resolve_signs``,
       ``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``length_smoothing``, ``relative_gate``,
-      ``stairs_length`` (decision W91, off), ``stairs_climb`` (decision W108, off: stairs only inside a
-      climb above the barometer's still noise, z only on stairs), ``slow_turn_rps`` (decision W82, off),
+      ``stairs_length`` (decision W91, off; ``"climbs"``: W108's climbs only, W156), ``stairs_climb`` (decision
+      W108, off: stairs only inside a climb above the barometer's still noise, z only on stairs), ``slow_turn_rps``
+      (decision W82, off),
       ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104, off:
       no contact around a sit-to-stand's trunk-flexion peak; ``"rhythm"``: W109, sparing left/right step pairs),
       ``pause_steps`` (decision W111, off: a step over 1.5 local periods keeps one period's length;

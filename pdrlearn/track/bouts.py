@@ -29,7 +29,7 @@ from pdrlearn.track.clinical import PAUSE_MIN_S, TURN_COUNT_MIN_DEG, bout_rows, 
 #: bouts.csv's columns, in order (docs/columns.md; decision L165: ``session`` / ``subject`` first, the join key)
 BOUT_COLUMNS = ("session", "subject", "bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides", "distance_m",
                 "speed_mps", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
-                "longest_contact_gap_s", "n_turns", "altitude_change_m")
+                "longest_contact_gap_s", "n_turns", "altitude_change_m", "altitude_change_before_m")
 
 #: decision E98: bouts.csv's renamed columns, old name -> new (speeds are ``_mps`` as everywhere else). The old name
 #: stays readable: a :class:`BoutsTable` answers it with a FutureWarning, and the CSVs keep it as a last column
@@ -196,7 +196,10 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     two consecutive contacts in the bout - under the ``rhythm`` rule it may exceed ``break_s`` (a turn or the rhythm
     took the rest), this column says so; ``n_turns``: the track's turns of at least ``turn_count_min_deg`` (L104)
     whose first turning interval ends in the bout (a turn after a pause counts in the bout it starts);
-    ``altitude_change_m``: the rows' summed ``dz_m`` (NaN without that column)."""
+    ``altitude_change_m``: the rows' summed ``dz_m`` (NaN without that column) and, decision W158, the ``pause_dz_m``
+    of its rows after the first (the standstills inside the bout); ``altitude_change_before_m`` (W158): the first
+    row's ``pause_dz_m``, the altitude change while the unit stood before the bout (a lift or escalator ride; 0
+    without that column), which is no walking bout's."""
     rule = rule or BoutRule()
     out = BoutsTable(columns=list(BOUT_COLUMNS))
     if not len(steps) or "start_s" not in steps:
@@ -207,6 +210,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     length = st["length_m"].abs().to_numpy(float) if "length_m" in st else np.zeros(len(st))
     ic = st["event_s"].to_numpy(float) if "event_s" in st else st["start_s"].to_numpy(float)
     dz = st["dz_m"].to_numpy(float) if "dz_m" in st else np.full(len(st), np.nan)
+    pause_dz = np.nan_to_num(st["pause_dz_m"].to_numpy(float)) if "pause_dz_m" in st else np.zeros(len(st))
     angles, first = turn_rows(st)
     turn_row = first[np.abs(angles) >= TURN_COUNT_MIN_DEG]
     rows = []
@@ -230,7 +234,8 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
                      "cadence_spm": cadence_spm(intervals, span),
                      "longest_contact_gap_s": float(np.diff(c).max()) if len(c) >= 2 else np.nan,
                      "n_turns": int(((turn_row >= a) & (turn_row < b)).sum()),
-                     "altitude_change_m": float(dz[a:b].sum())})
+                     "altitude_change_m": float(dz[a:b].sum() + pause_dz[a + 1:b].sum()),
+                     "altitude_change_before_m": float(pause_dz[a])})
     return BoutsTable(rows, columns=list(BOUT_COLUMNS)) if rows else out
 
 

@@ -225,7 +225,10 @@ def _climb_dz(steps: pd.DataFrame):
     units = set(steps["unit"].astype(str)) if "unit" in steps else {"foot"}
     if len(units) != 1 or next(iter(units)) not in STEPS_PER_STRIDE:
         return None, CLIMB_BRIDGE_STRIDES
-    return steps["dz_m"].to_numpy(float), CLIMB_BRIDGE_STRIDES * STEPS_PER_STRIDE[next(iter(units))]
+    dz = steps["dz_m"].to_numpy(float)
+    if "pause_dz_m" in steps:  # W158: a ride during a standstill (a lift) is a change of floor as a climb is
+        dz = dz + np.nan_to_num(steps["pause_dz_m"].to_numpy(float))
+    return dz, CLIMB_BRIDGE_STRIDES * STEPS_PER_STRIDE[next(iter(units))]
 
 
 def floors_phrase(summary: dict) -> str:

@@ -67,6 +67,8 @@ from pdrlearn.waist.plausibility import (
     contact_lateral_velocity,
     contact_sides,
     median_cadence,
+    micro_bout_message,
+    micro_bouts,
     not_alternating_message,
     step_counts,
     still_yaw_rate,
@@ -120,10 +122,13 @@ def _start(start, initial_heading: float) -> tuple[float, float, float, tuple[fl
 
 
 def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: float,
-            z: np.ndarray | None = None) -> TrackResult:
+            z: np.ndarray | None = None, z_start: np.ndarray | None = None) -> TrackResult:
     """TrackResult from a steps table with ``length_m`` and navigation-frame ``heading_rad``: headings
     rotated by the start heading (ENU), trajectory = cumulative positions (plus lat/lon). ``z``: the altitude
-    (m) at ``t0`` and at each step's end (decision W89; None: 0 throughout), each step's ``dz_m`` its change."""
+    (m) at ``t0`` and at each step's end (decision W89; None: 0 throughout). Decision W158: ``z_start``, the
+    altitude at each step's start (None: the previous end's); a step's ``dz_m`` is the change from its start to its
+    end, ``pause_dz_m`` the change while the unit stood before it (from the previous row's end, or ``t0``, to its
+    start: a lift or escalator ride, 0 inside a walking sequence), so ``dz_m + pause_dz_m`` sum to ``z``."""
     from pdrlearn.track.geodetic import geodetic_track
 
     x0, y0, h0, latlon, alt = _start(start, initial_heading)
@@ -132,7 +137,9 @@ def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: 
     head = np.angle(np.exp(1j * (out["heading_rad"].to_numpy(float) + h0)))
     out["heading_rad"] = head
     z = np.zeros(len(out) + 1) if z is None else np.asarray(z, dtype=float)
-    out["dz_m"] = np.diff(z)
+    zs = z[:-1] if z_start is None else np.asarray(z_start, dtype=float)
+    out["dz_m"] = z[1:] - zs
+    out["pause_dz_m"] = zs - z[:-1]  # W158: the standstill's altitude change before the step, not the step's
     z = z + alt  # decision L157: start=(lat, lon, alt) starts z at alt, as --start LAT,LON,ALT
     traj = pd.DataFrame({"t": np.concatenate([[t0], out["end_s"].to_numpy(float)]),
                          "x": x0 + np.concatenate([[0.0], np.cumsum(lengths * np.cos(head))]),
@@ -193,6 +200,31 @@ def _stairs_steps(baro, steps: pd.DataFrame, climb: bool) -> np.ndarray:
         return proposed
     sd = still_altitude_sd(b.t, b.values[:, 0], float(t0.min()), float(t1.max()))
     return climb_mask(np.where(proposed, np.sign(rise), 0), h[2 * n:3 * n], h[3 * n:], sd)
+
+
+#: decision W155: at least this many steps inside W108's climbs warn that ``stairs_length`` is off (a storey of the
+#: simulator's 0.17 m risers, 3 m, is ~18 steps; W108's shortest climb, 1.5 m, ~9)
+STAIRS_WARN_MIN_STEPS = 8
+
+
+def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray) -> str | None:
+    """Decision W155's one warning line of a track whose steps ``climbs`` (W108's climb mask: steps inside a
+    barometric climb of at least half a storey) are :data:`STAIRS_WARN_MIN_STEPS` or more while the option
+    ``stairs_length`` is off: their lengths ``length_m`` are read as level steps (the trial's two storeys up and down:
+    +64 % distance on waist-pendulum, +90 % on waist-pll, calibrated; +3.9 % with the option). None otherwise."""
+    c = np.asarray(climbs, dtype=bool)
+    n = int(c.sum())
+    if n < STAIRS_WARN_MIN_STEPS:
+        return None
+    read = float(np.abs(np.asarray(length_m, dtype=float)[c]).sum())
+    capped = float(np.minimum(np.abs(np.asarray(length_m, dtype=float)[c]), STAIR_TREAD_M).sum())
+    return (f"{n} steps are on stairs (barometric climbs of 1.5 m or more, decision W108) and read {read:.1f} m "
+            "horizontally as level steps: the waist step-length models measure the body's step, not the tread, so "
+            "the distance reads long on stairs (two storeys up and down, simulated: +64 % waist-pendulum, +90 % "
+            f"waist-pll); the option stairs_length bounds a stair step by the {STAIR_TREAD_M:.2f} m tread "
+            "(decision W91): \"options\": {\"stairs_length\": \"climbs\"} in the PARAMS.json (--params), or "
+            f"stairs_length=\"climbs\", bounds these steps ({capped:.1f} m here; decision W156), true also the "
+            "steps of shorter barometric changes (decision W155)")
 
 
 def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
@@ -322,10 +354,13 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
 #: decision B199: the options that are true or false (``sit_veto``, ``pause_steps``, ``vault_veto`` take more values,
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
-                     if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto"))
+                     if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
+#: decision W156: ``stairs_length`` - False (no bound), True (W91's proposed steps, W108's under ``stairs_climb``) or
+#: "climbs" (only the steps inside W108's climbs)
+STAIRS_LENGTH_VALUES = (False, True, "climbs")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 
@@ -389,7 +424,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         :func:`~pdrlearn.waist._kernels.relative_walk_threshold`); default True since W76's rule held (False:
         W4's 0.5)
     stairs_length : a step on stairs (the barometric altitude changes by 0.1 m/s or more) is at most the
-        0.30 m tread long (decision W91's candidate; default False)
+        0.30 m tread long (decision W91's candidate; default False); ``"climbs"``: only the steps inside W108's
+        climbs (decision W156's candidate)
     stairs_climb : a step is on stairs (column ``stairs``) only inside a climb of at least 1.5 m and 3 sqrt(2)
         still-period altitude SDs, and the altitude changes only on such steps (decision W108's candidate;
         default False: it failed its rule on one real level recording)
@@ -475,6 +511,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         raise DataError(f"vault_veto {o['vault_veto']!r} is not one of false, true, \"turns\" (decisions W119, "
                         "W127); fix the option or the PARAMS.json \"options\"")
     check_pause_steps(o["pause_steps"])  # W111, W122, W134
+    if o["stairs_length"] not in STAIRS_LENGTH_VALUES:
+        raise DataError(f"stairs_length {o['stairs_length']!r} is not one of false, true, \"climbs\" (decisions W91, "
+                        "W156); fix the option or the PARAMS.json \"options\"")
     if smoothing != "none" and realtime:
         raise DataError(f"length_smoothing '{smoothing}' looks up to 1 s ahead and the realtime detector does not "
                         "(decision W56); drop realtime or set length_smoothing to none")
@@ -525,15 +564,25 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                           pivot_steps=bool(o["pivot_steps"]))
     baro = usable_barometer(session, warnings)  # decision B188: an impossible pressure change is not read
     stairs = _stairs_steps(baro, steps, bool(o["stairs_climb"]))
+    climbs = stairs if bool(o["stairs_climb"]) else _stairs_steps(baro, steps, True)  # W108's climbs, for W155
+    if not bool(o["stairs_length"]):  # W155: a counted stair climb read at level-walking step lengths says so
+        line = stairs_length_message(climbs, steps["length_m"].to_numpy(float))
+        if line:
+            warnings.append(line)
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
-        steps = steps.assign(length_m=np.where(stairs, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
+        bounded = climbs if o["stairs_length"] == "climbs" else stairs  # W156: only W108's climbs
+        steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), STAIR_TREAD_M),
                                                steps["length_m"].to_numpy(float)))
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
     steps = steps.assign(stairs=stairs)
-    z = _altitude(session, baro, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float)]), warnings)
-    if z is not None and bool(o["stairs_climb"]):  # W108: a step off stairs is on a level floor
+    n_st = len(steps)
+    zz = _altitude(session, baro, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float),
+                                                  steps["start_s"].to_numpy(float)]), warnings)
+    z, z_start = (None, None) if zz is None else (zz[:n_st + 1], zz[n_st + 1:])
+    if z is not None and bool(o["stairs_climb"]):  # W108: a step off stairs is on a level floor (pauses too)
         z = np.concatenate([[0.0], np.cumsum(np.where(stairs, np.diff(z), 0.0))])
+        z_start = z[:-1]
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
         warnings.append(no_steps_message(thr, sigma, gate_source))
@@ -555,9 +604,14 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         warnings.append(not_alternating_message(alternation, pairs,  # W114: the pelvic gyro's count beside it
                                                 step_counts(session, steps["event_s"].to_numpy(float))))
     ratio, ratio_line = _walk_ratio(steps, p, pipeline, realtime, subject_height(session.meta)[0],  # W100, W116
-                                    pendulum=lambda: _pendulum_steps(imu, p, thr, o))  # W139
+                                    pendulum=lambda: _pendulum_steps(imu, p, thr, o),  # W139
+                                    stairs=lambda st: _stairs_steps(baro, st, bool(o["stairs_climb"])))  # W155
     if ratio_line:
         warnings.append(ratio_line)
+    micro_line = micro_bout_message(*micro_bouts(steps["length_m"].to_numpy(float),  # decision W157
+                                                 steps["has_next"].to_numpy(bool)))
+    if micro_line:
+        warnings.append(micro_line)
     cadence_ratio, gait_line = _calibration_gait(steps, p, pipeline)  # decision W140
     if gait_line and bool(o["gait_check"]):  # W140's line: an option (its adoption rule was not met)
         warnings.append(gait_line)
@@ -585,7 +639,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)
-    return _result(steps, start, initial_heading, info, float(imu.t[0]), z)
+    return _result(steps, start, initial_heading, info, float(imu.t[0]), z, z_start)
 
 
 def _configure_model(model: StepLengthModel, spec, realtime: bool, options: dict) -> None:
@@ -641,21 +695,27 @@ def detector_steps(det, session: Session, imu: WaistIMU) -> pd.DataFrame:
 
 
 def _walk_ratio(steps: pd.DataFrame, p: WaistParams, pipeline: str, realtime: bool,
-                height_m: float, pendulum=None) -> tuple[float | None, str | None]:
+                height_m: float, pendulum=None, stairs=None) -> tuple[float | None, str | None]:
     """Decision W100: the walk ratio of an offline, uncalibrated ``waist-pendulum`` track (None otherwise) and its
     warning line (None inside the healthy band of a walker ``height_m`` tall, W116, or with too few steps).
     Decision W139: an offline, uncalibrated ``waist-pll`` track is judged on the steps ``pendulum()`` returns (the
-    pendulum model's reading of the same session, :func:`_pendulum_steps`); ``walk_ratio`` is then theirs."""
+    pendulum model's reading of the same session, :func:`_pendulum_steps`); ``walk_ratio`` is then theirs.
+    Decision W155: the steps ``stairs(steps)`` marks as on stairs (W91 / W108) are left out: a stair step is no
+    level gait (under ``stairs_length`` its length is the tread's, and read as a shuffle)."""
     if realtime or p.source != "defaults" or not len(steps):
         return None, None
     pll_length = None
     if pipeline == "waist-pll" and pendulum is not None:
-        own = steps["length_m"].to_numpy(float)[waist_step_times(steps)[0] > 0]
+        level = ~stairs(steps) if stairs is not None else np.ones(len(steps), dtype=bool)
+        own = steps["length_m"].to_numpy(float)[(waist_step_times(steps)[0] > 0) & level]
         pll_length = float(np.median(np.abs(own))) if own.size else None
         steps = pendulum()
     elif pipeline != "waist-pendulum":
         return None, None
-    ratio, n, length, cadence = walk_ratio(steps["length_m"].to_numpy(float), waist_step_times(steps)[0])
+    step_s = waist_step_times(steps)[0]
+    if stairs is not None:  # W155: stair steps are not judged (NaN step time: left out of walk_ratio)
+        step_s = np.where(stairs(steps), np.nan, step_s)
+    ratio, n, length, cadence = walk_ratio(steps["length_m"].to_numpy(float), step_s)
     return ratio, walk_ratio_message(ratio, n, length, cadence, height_m, pll_length=pll_length)
 
 
@@ -699,14 +759,17 @@ RELATIVE_HEADING = "waist heading relative to the start"
 
 
 class _NoHeadingNote(logging.Filter):
-    """Drops W83's line from this module's log: a calibration tracks walks for their distance, not their heading."""
+    """Drops W83's line from this module's log: a calibration tracks walks for their distance, not their heading;
+    and W155's, which advises a track's option (a calibration walk's stairs are the calibration's to judge)."""
 
     def filter(self, record: logging.LogRecord) -> bool:
-        return RELATIVE_HEADING not in record.getMessage()
+        msg = record.getMessage()
+        return RELATIVE_HEADING not in msg and "(decision W155)" not in msg
 
 
 def without_heading_note():
-    """Context manager: :func:`track_waist` calls inside it do not log W83's line (``calibrate``'s walks)."""
+    """Context manager: :func:`track_waist` calls inside it do not log W83's or W155's line (``calibrate``'s
+    walks)."""
     from contextlib import contextmanager
 
     @contextmanager

@@ -327,3 +327,42 @@ def still_yaw_rate_message(found: tuple[float, float, float] | None, fix: str | 
 #: W125: the way out the two-unit tracks name (the foot's ZUPT-corrected yaw does not read the waist gyroscope)
 TWO_UNIT_FIX = ("the two-unit track heads by the waist unit: track the foot unit's own yaw with --units foot, or "
                 "re-record after the waist unit's gyroscope offset is calibrated (decision W125)")
+
+
+#: decision W157: a walking sequence of at most this many steps (3 contacts after its first: under two strides of
+#: each foot, Mobilise-D's shortest walking bout - Kluge et al. 2021, not in the seeds) is a start-stop micro-bout,
+#: all gait initiation and termination, outside the steady walking both waist step-length models describe (seed 003
+#: eq. 1's inverted pendulum, seed 000's line in the step frequency)
+MICRO_BOUT_MAX_STEPS = 3
+#: W157: at least this many micro-bouts and this share of the track's distance in them warn (a priori round values:
+#: a queue's shuffle forward is a dozen, a walk with a few stops at doors has a few, carrying a small share)
+MICRO_BOUT_MIN_COUNT = 5
+MICRO_BOUT_MIN_SHARE = 0.5
+
+
+def micro_bouts(length_m: np.ndarray, has_next: np.ndarray) -> tuple[int, int, float, float]:
+    """Decision W157: ``(n_micro, n_sequences, micro_m, total_m)`` of a waist steps table: its walking sequences
+    (consecutive rows with a next contact plus the closing row), those of at most :data:`MICRO_BOUT_MAX_STEPS`
+    steps, and the summed ``|length_m|`` (m) of those and of all rows."""
+    from pdrlearn.waist.lengths import walking_sequences
+
+    length = np.abs(np.nan_to_num(np.asarray(length_m, dtype=np.float64)))
+    hn = np.asarray(has_next, dtype=bool)
+    seqs = walking_sequences(hn)
+    micro = [s for s in seqs if 0 < int(hn[s].sum()) <= MICRO_BOUT_MAX_STEPS]
+    return (len(micro), len(seqs), float(sum(length[s].sum() for s in micro)), float(length.sum()))
+
+
+def micro_bout_message(n_micro: int, n_sequences: int, micro_m: float, total_m: float) -> str | None:
+    """Decision W157's one warning line when at least :data:`MICRO_BOUT_MIN_COUNT` of a waist track's walking
+    sequences are micro-bouts (:func:`micro_bouts`) carrying :data:`MICRO_BOUT_MIN_SHARE` or more of its distance;
+    None otherwise."""
+    if n_micro < MICRO_BOUT_MIN_COUNT or not total_m > 0 or micro_m < MICRO_BOUT_MIN_SHARE * total_m:
+        return None
+    return (f"{n_micro} of the {n_sequences} walking sequences have {MICRO_BOUT_MAX_STEPS} steps or fewer between "
+            f"standstills and carry {micro_m:.1f} of the {total_m:.1f} m ({100 * micro_m / total_m:.0f} %; "
+            f"{MICRO_BOUT_MIN_COUNT} or more carrying half the distance warns, decision W157): start-stop "
+            "shuffling (a queue, a crowded platform) is all gait initiation and termination, outside the steady "
+            "walking the waist step-length models and a calibration describe, and reads long (a simulated queue "
+            "of 0.2 m steps: +97 % waist-pendulum, +326 % waist-pll; calibrated +147 % / +310 %); a foot unit "
+            "measures such steps (plasys pipeline), the waist distance of these sequences is not reliable")
