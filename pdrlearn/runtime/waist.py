@@ -50,7 +50,9 @@ class LiveStep:
     not adopted as the default; 93 % the simulated foot where decided, the offline side 98 %); ``merged``: a W27
     fragment whose length its neighbour carries; ``turning``: the stride's straight (0) / turning (1) class (seed 003
     sec. 3.3); ``lat``, ``lon`` (degrees): the position at ``end_s`` when the tracker was given a geodetic start
-    (decision W137), else None."""
+    (decision W137), else None; ``z`` (m): the barometric altitude at ``end_s`` relative to the track's first sample
+    and ``dz_m`` its change over the step (W89's, ``track_waist``'s ``z`` / ``dz_m``; decision E106) when barometer
+    samples were pushed (:meth:`WaistStream.push_barometer`), else None."""
 
     t: float
     end_s: float
@@ -64,6 +66,8 @@ class LiveStep:
     side: str | None = None
     lat: float | None = None
     lon: float | None = None
+    z: float | None = None
+    dz_m: float | None = None
 
 
 class WaistStream(FixInput):
@@ -145,6 +149,9 @@ class WaistStream(FixInput):
         self._n_gaps = 0
         self._cum_first: float | None = None  # running integral at the first contact (W74)
         self._untracked_warned = False
+        self._alt = None  # decision E106: the barometric altitude (kernels.barometer.LiveAltitude), once pushed
+        self._z_prev = 0.0  # the altitude at the last reported step's end (0 at the track's first sample)
+        self._baro_last = -np.inf
 
     # -- the axis frame (hooks: pdrlearn.waist.WaistTracker infers or checks it, W65 / B108) -------------
     def _frame_pending(self) -> bool:
@@ -168,6 +175,7 @@ class WaistStream(FixInput):
         n = 4 * self._bt.size + 6 * len(self._rows) + len(self._absorbed) + len(self._span_start)
         n += len(self._side_scale)  # W138: at most FRAGMENT_CONTEXT_STEPS
         n += self._held_size()
+        n += 0 if self._alt is None else self._alt.size()  # E106: the barometer samples a pending step reads
         p = self._proc
         if p is not None:
             n += sum(np.size(v) for v in p.buf.values()) + 4 * len(p.decided) + sum(np.size(r[1]) for r in p.raw)
@@ -204,6 +212,8 @@ class WaistStream(FixInput):
             guard.take(arrays, judged)
         if self._fixes.t_start is None:  # aid_track's t_start: the track's first sample (decision D19, amended)
             self._fixes.t_start = float(t[0])
+        if self._alt is not None:  # E106: the altitude is relative to the track's first sample (track_waist's)
+            self._alt.set_origin(self._fixes.t_start)
         self._last_t = float(t[-1])
         for msg in self._frozen.push(pushed):  # decision B120: a frozen sensor, one warning per run
             self.warnings.append(msg)
@@ -215,6 +225,37 @@ class WaistStream(FixInput):
                 return []
             t, v = v_t
         return self._feed(self._proc.process(t, v), final=False)
+
+    def push_barometer(self, t, p_hpa) -> None:
+        """Add waist barometer samples (decision E106): ``t`` (n,) s on the clock of :meth:`push`, increasing strictly
+        across pushes, ``p_hpa`` (n,) pressure in hPa (a non-finite sample is skipped, as offline). Each step then has
+        the barometric altitude ``track_waist`` gives it (W89: ``LiveStep.z`` / ``dz_m``), read on the samples pushed
+        before the step is reported: push each slice of the barometer before the motion samples of the same time
+        for the offline numbers. A barometer whose altitude changes faster than anyone travels (decision B188) is
+        warned about once and read no further. Returns nothing; steps come from :meth:`push` / :meth:`flush`."""
+        from pdrlearn.kernels.barometer import WAIST_EFFECT, LiveAltitude, implausible_barometer_message
+
+        t = np.asarray(t, dtype=np.float64).reshape(-1)
+        p = np.asarray(p_hpa, dtype=np.float64).reshape(-1)
+        if p.shape != t.shape:
+            raise DataError(f"{self._name}.push_barometer: expected {t.size} pressures (hPa) for {t.size} timestamps, "
+                            f"got shape {p.shape}")
+        if not t.size:
+            return
+        if not np.isfinite(t).all():
+            raise DataError(f"{self._name}.push_barometer: NaN or inf timestamps; drop those samples")
+        if t[0] <= self._baro_last or (t.size > 1 and np.any(np.diff(t) <= 0)):
+            raise DataError(f"{self._name}.push_barometer: timestamps must increase strictly across pushes (seconds)")
+        self._baro_last = float(t[-1])
+        if self._alt is None:
+            self._alt = LiveAltitude()
+            if self._fixes.t_start is not None:
+                self._alt.set_origin(self._fixes.t_start)
+        found = self._alt.push(t, p)
+        if found is not None:  # decision B188, as the offline track: one line, the barometer read no further
+            msg = implausible_barometer_message(found, WAIST_EFFECT.replace("stays 0", "stays where it was"))
+            self.warnings.append(msg)
+            log.warning("live waist tracker: %s", msg)
 
     def _unit_check(self, t: np.ndarray) -> None:
         """Decision E29 as the runtime's: the first RATE_PROBE_MIN sample intervals give a rate more than
@@ -289,6 +330,8 @@ class WaistStream(FixInput):
         if drop:
             self._bt, self._bv, self._bw, self._bc = (a[drop:] for a in (self._bt, self._bv, self._bw, self._bc))
             self._b0 += drop
+        if self._alt is not None and self._bt.size:  # E106: a pending step ends after the oldest sample held
+            self._alt.trim(float(self._bt[0]))
 
     # -- contacts -> steps ------------------------------------------------------------------------------
     def _feed(self, contacts: list, *, final: bool) -> list[LiveStep]:
@@ -465,8 +508,14 @@ class WaistStream(FixInput):
             self._ll = step_destination(*self._ll, math.hypot(dx, dy), math.atan2(dy, dx))
             lat, lon = math.degrees(self._ll[0]), math.degrees(self._ll[1])
         self._xy_reported = (float(x), float(y))
+        z = dz = None
+        if self._alt is not None:  # decision E106: W89's altitude at the step's end, as track_waist's z / dz_m
+            z = self._alt.at(row["end"])
+            if z is not None:
+                dz, self._z_prev = z - self._z_prev, z
         step = LiveStep(t=row["t"], end_s=row["end"], length_m=length, heading_rad=enu, x=float(x), y=float(y),
-                        has_next=row["has_next"], merged=merged, turning=turning, side=row["side"], lat=lat, lon=lon)
+                        has_next=row["has_next"], merged=merged, turning=turning, side=row["side"], lat=lat, lon=lon,
+                        z=z, dz_m=dz)
         self.steps.append(step)
         return step
 
