@@ -159,16 +159,11 @@ def _push_with_barometer(tr, s, chunks) -> list:
 
 
 @pytest.mark.parametrize("how", ["one", "random"])
-def test_the_waist_runtime_gives_the_offline_barometric_altitude_and_floors(sim, tmp_path, capsys, how):
+def test_the_waist_runtime_gives_the_offline_barometric_altitude_and_floors(sim, stairs3040, tmp_path, capsys, how):
     """Decision E106: `run WAIST_BUNDLE` of a stairs walk had 0 / 0 floors and z 0 (offline `track` 2 / 1 here) while
     saying the barometer was used; the live trackers now read it (``push_barometer``): each step's z and dz_m equal
     ``track_waist(realtime=True)``'s, and so `run`'s floors, altitude and ascent (the trial's floors2: 2 / 2)."""
-    from pdrlearn.sim import UserProfile
-    from pdrlearn.sim.route import parse_route
-    from pdrlearn.sim.simulate import simulate_path
-
-    stairs = simulate_path(parse_route("straight:5, up:20, turn:180, up:20, straight:8, turn:90, down:20, straight:5"),
-                           UserProfile.from_seed(3040), speed="normal", rate_hz=100.0)
+    stairs = stairs3040
     ref = track_waist(stairs, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
     assert np.ptp(ref.trajectory["z"]) > 5.0
     n = len(stairs["wAccelerometer"].t)
@@ -195,6 +190,59 @@ def test_the_waist_runtime_gives_the_offline_barometric_altitude_and_floors(sim,
         float(ref.trajectory["z"].iloc[-1]), abs=1e-6)
     assert main(["run", str(sim["bundle"]), str(walk)]) == 0
     assert "floors up 2 / down 1" in capsys.readouterr().out  # the console line says it, as track's
+
+
+@pytest.fixture(scope="module")
+def stairs3040():
+    """A fresh simulated stairs route (user 3040: two flights up, one down, U-turn landings) at 100 Hz."""
+    from pdrlearn.sim import UserProfile
+    from pdrlearn.sim.route import parse_route
+    from pdrlearn.sim.simulate import simulate_path
+
+    return simulate_path(parse_route("straight:5, up:20, turn:180, up:20, straight:8, turn:90, down:20, straight:5"),
+                         UserProfile.from_seed(3040), speed="normal", rate_hz=100.0)
+
+
+def test_export_carries_stairs_length_into_the_waist_bundle_and_the_runtime_applies_it(sim, stairs3040, tmp_path,
+                                                                                     capsys):
+    """Decision E107: `export` of a calibration with ``"options": {"stairs_length": true}`` had dropped it (the trial's
+    floors2 ran +60.40 % with or without it); the bundle now carries it and the live trackers apply W91's cap on the
+    live barometric altitude: the steps equal ``track_waist(realtime=True)``'s with the option, and differ without."""
+    cal = json.loads(sim["cal"].read_text())
+    sl = tmp_path / "sl.json"
+    sl.write_text(json.dumps({**cal, "options": {"stairs_length": True}}))
+    export_waist(sl, tmp_path / "wb", frame=_frame_arg(stairs3040))
+    bundle = load_waist_bundle(tmp_path / "wb")
+    assert bundle.options["stairs_length"] is True
+    ref = track_waist(stairs3040, pipeline="waist-pendulum", realtime=True, params=str(sl))
+    plain = track_waist(stairs3040, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+    assert ref.steps["stairs"].sum() > 20 and ref.steps["length_m"].sum() < plain.steps["length_m"].sum() - 5.0
+    out = _push_with_barometer(WaistTracker(bundle, fs=100.0), stairs3040, [100] * 10_000)
+    np.testing.assert_allclose([o.length_m for o in out], ref.steps["length_m"].to_numpy(), atol=1e-9, rtol=0)
+    assert [o.stairs for o in out] == ref.steps["stairs"].tolist()
+    walk = write_session(stairs3040, tmp_path / "stairs")
+    assert main(["run", str(tmp_path / "wb"), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["distance_m"] == pytest.approx(float(ref.steps["length_m"].sum()), abs=1e-6)
+
+
+def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path, capsys):
+    """Decision E107: options of the calibration the live tracker does not apply are named at `export` (and by `run`,
+    from the bundle's warnings); options at their defaults are not."""
+    cal = json.loads(sim["cal"].read_text())
+    p = tmp_path / "p.json"
+    p.write_text(json.dumps({**cal, "options": {"stairs_climb": True, "sit_veto": "rhythm", "pause_steps": "standing",
+                                                "stairs_length": True, "contact_shift": True}}))
+    assert main(["export", str(p), "--out", str(tmp_path / "b"), "--frame", _frame_arg(sim["session"])]) == 0
+    err = [ln for ln in capsys.readouterr().err.splitlines() if "E107" in ln]
+    assert len(err) == 1 and 'stairs_climb=true, sit_veto="rhythm"' in err[0]
+    assert "pause_steps" not in err[0] and "contact_shift" not in err[0] and "stairs_length" not in err[0]
+    walk = write_session(sim["session"], tmp_path / "walk")
+    assert main(["run", str(tmp_path / "b"), str(walk)]) == 0
+    assert sum("E107" in ln for ln in capsys.readouterr().err.splitlines()) == 1
+    p.write_text(json.dumps({**cal, "options": {"stairs_length": True, "pause_steps": "standing"}}))
+    assert main(["export", str(p), "--out", str(tmp_path / "b2"), "--frame", _frame_arg(sim["session"])]) == 0
+    assert "E107" not in capsys.readouterr().err
 
 
 def test_a_waist_run_without_a_barometer_says_so_and_a_live_implausible_one_is_one_warning(sim, tmp_path, capsys):

@@ -186,6 +186,21 @@ def implausible_barometer_message(found: tuple[float, float, float, float, float
             "wBarometer.csv")
 
 
+#: decision W91 (candidate, option ``stairs_length``): a step is on stairs when the barometric altitude changes
+#: by at least this rate (m/s) over :data:`STAIRS_RATE_WINDOW_S` centred on it: half the rate of a 0.17 m riser
+#: (the simulator's stair) climbed at 1.2 steps/s, a slow climb; level walking changes no altitude
+STAIRS_RATE_MPS = 0.1
+STAIRS_RATE_WINDOW_S = 2.0
+#: decision W91: the horizontal length of a step on stairs is at most the tread, "about 30cm" (thesis
+#: ch.7.3.2.1, scenario D's stairs)
+STAIR_TREAD_M = 0.30
+
+
+def stairs_rate_test(rise_m: np.ndarray) -> np.ndarray:
+    """Decision W91: whether a step is proposed as on stairs from ``rise_m``, the altitude change (m) over
+    :data:`STAIRS_RATE_WINDOW_S` centred on the step's middle (its rate at least :data:`STAIRS_RATE_MPS`)."""
+    return np.abs(np.asarray(rise_m, dtype=float)) / STAIRS_RATE_WINDOW_S >= STAIRS_RATE_MPS
+
 #: decision W108: the least barometric height of a climb, half of L64's 3 m storey (a flight between two landings)
 STAIR_CLIMB_MIN_M = 1.5
 #: decision W108: a climb's height is at least this many SDs of a difference of two still-period altitudes

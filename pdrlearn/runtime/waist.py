@@ -52,7 +52,9 @@ class LiveStep:
     sec. 3.3); ``lat``, ``lon`` (degrees): the position at ``end_s`` when the tracker was given a geodetic start
     (decision W137), else None; ``z`` (m): the barometric altitude at ``end_s`` relative to the track's first sample
     and ``dz_m`` its change over the step (W89's, ``track_waist``'s ``z`` / ``dz_m``; decision E106) when barometer
-    samples were pushed (:meth:`WaistStream.push_barometer`), else None."""
+    samples were pushed (:meth:`WaistStream.push_barometer`), else None; ``stairs``: W91's rate test on that altitude
+    (``track_waist``'s ``stairs`` column without ``stairs_climb``; with the option ``stairs_length`` such a step is at
+    most the 0.30 m tread, decision E107), None without a barometer."""
 
     t: float
     end_s: float
@@ -68,6 +70,7 @@ class LiveStep:
     lon: float | None = None
     z: float | None = None
     dz_m: float | None = None
+    stairs: bool | None = None
 
 
 class WaistStream(FixInput):
@@ -256,6 +259,18 @@ class WaistStream(FixInput):
             msg = implausible_barometer_message(found, WAIST_EFFECT.replace("stays 0", "stays where it was"))
             self.warnings.append(msg)
             log.warning("live waist tracker: %s", msg)
+
+    def _on_stairs(self, row: dict) -> bool | None:
+        """Decision W91's test (``track_waist``'s ``_stairs_steps`` without ``stairs_climb``) on the live altitude: the
+        altitude changes by STAIRS_RATE_MPS or more over STAIRS_RATE_WINDOW_S centred on the step's middle; None
+        without a (usable) barometer."""
+        from pdrlearn.kernels.barometer import STAIRS_RATE_WINDOW_S, stairs_rate_test
+
+        if self._alt is None:
+            return None
+        mid, half = 0.5 * (row["t"] + row["end"]), 0.5 * STAIRS_RATE_WINDOW_S
+        a, b = self._alt.at(mid - half), self._alt.at(mid + half)
+        return None if a is None or b is None else bool(stairs_rate_test(b - a))
 
     def _unit_check(self, t: np.ndarray) -> None:
         """Decision E29 as the runtime's: the first RATE_PROBE_MIN sample intervals give a rate more than
@@ -492,6 +507,11 @@ class WaistStream(FixInput):
             if self._h_seq is not None:
                 self._cur_gyro = self._cur_out = self._h_seq
             self._stop_cum = float(np.interp(row["t"], self._bt, self._bc))
+        stairs = self._on_stairs(row)
+        if stairs and o.get("stairs_length"):  # W91's option, as track_waist: at most the tread on stairs (E107)
+            from pdrlearn.kernels.barometer import STAIR_TREAD_M
+
+            length = min(length, STAIR_TREAD_M)
         enu = float(np.angle(np.exp(1j * (head + self._h0))))
         self._sx += length * np.cos(enu)
         self._sy += length * np.sin(enu)
@@ -515,7 +535,7 @@ class WaistStream(FixInput):
                 dz, self._z_prev = z - self._z_prev, z
         step = LiveStep(t=row["t"], end_s=row["end"], length_m=length, heading_rad=enu, x=float(x), y=float(y),
                         has_next=row["has_next"], merged=merged, turning=turning, side=row["side"], lat=lat, lon=lon,
-                        z=z, dz_m=dz)
+                        z=z, dz_m=dz, stairs=stairs)
         self.steps.append(step)
         return step
 
