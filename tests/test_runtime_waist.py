@@ -348,7 +348,10 @@ def test_run_of_a_waist_bundle_takes_start(sim, tmp_path, capsys):
     assert len(got) == len(ref) > 20
     # trajectory.csv keeps 10 significant digits (%.10g: 8 decimals of a latitude, ~0.5 mm)
     np.testing.assert_allclose(got[["lat", "lon"]].to_numpy(), ref[["lat", "lon"]].to_numpy(), atol=6e-9, rtol=0)
-    assert (got["z"] == 12.5).all() and summary["final_position"]["z"] == 12.5
+    # z starts at ALT and follows the barometer as track's (decision E106; it had stayed at ALT): within 1 cm, as a
+    # step reported before the barometer 1 s past its end was pushed reads a shorter window (here 3 of 37, <= 2.7 mm)
+    assert got["z"].iloc[0] == 12.5 and summary["final_position"]["z"] == pytest.approx(ref["z"].iloc[-1], abs=0.01)
+    np.testing.assert_allclose(got["z"].to_numpy(), ref["z"].to_numpy(), atol=0.01, rtol=0)
     assert summary["final_position"]["lat"] == pytest.approx(ref["lat"].iloc[-1], abs=1e-9)
     _one_line(capsys, ["run", str(sim["bundle"]), str(walk), "--start", "41.1,200"], "--start '41.1,200': latitude")
 
