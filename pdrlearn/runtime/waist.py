@@ -609,7 +609,8 @@ class WaistTracker(WaistStream):
     bundle : a :class:`WaistBundle` (or its folder)
     fs : the pushed samples' rate (Hz); None: the bundle's calibration rate. Another rate than the calibration's
         by more than 10 % warns (decision W87)
-    start : ``(x, y)`` or ``(x, y, z)`` (m, ENU; z is not tracked); heading_rad : the direction set off in (rad, ENU,
+    start : ``(x, y)`` or ``(x, y, z)`` (m, ENU; z is not read: a step's ``z`` is the barometric altitude relative
+        to the first sample, with :meth:`push_barometer`, E106); heading_rad : the direction set off in (rad, ENU,
         0 = east; W81: a value over 2 pi, degrees, is refused)
     start_latlon : the geodetic start ``(lat, lon)`` / ``(lat, lon, alt)`` / ``"LAT,LON[,ALT]"`` in degrees (alt in
         m), checked as ``pdrlearn run --start`` and :class:`pdrlearn.waist.WaistTracker`'s ``start`` (decisions L157,
