@@ -137,6 +137,138 @@ def test_run_of_a_waist_bundle_counts_floors_in_the_storey_height_given(sim, tmp
     keys = [k for k in want if k.startswith(("floors_", "storeys_")) and k.endswith("_ref")]
     assert keys and {k: summary[k] for k in keys} == {k: want[k] for k in keys}
     assert want["floors_up_ref"] != evaluate_track(ref, stairs)["floors_up_ref"]  # 1.5 m counts otherwise
+    # decision E106: the tracked storeys too (the runtime had no barometer: 0 / 0 whatever the storey height)
+    tracked = [k for k in want if k.startswith(("floors_", "storeys_")) and not k.endswith("_ref")]
+    assert {k: summary[k] for k in tracked} == {k: want[k] for k in tracked} and want["floors_up"] >= 1
+    assert want["floors_up"] != evaluate_track(ref, stairs)["floors_up"]
+
+
+def _push_with_barometer(tr, s, chunks) -> list:
+    """As ``push_waist``, with each chunk's barometer samples (up to the chunk's last time) pushed before it."""
+    a, g, b = s["wAccelerometer"], s["wGyroscope"], s["wBarometer"]
+    out, i, j = [], 0, 0
+    for c in [*chunks, len(a.t)]:
+        if i >= len(a.t):
+            break
+        k = int(np.searchsorted(b.t, a.t[min(i + c, len(a.t)) - 1], side="right"))
+        tr.push_barometer(b.t[j:k], b.values[j:k, 0])
+        out += tr.push(a.t[i:i + c], a.values[i:i + c], g.values[i:i + c])
+        i, j = i + c, max(j, k)
+    tr.push_barometer(b.t[j:], b.values[j:, 0])
+    return out + tr.flush()
+
+
+@pytest.mark.parametrize("how", ["one", "random"])
+def test_the_waist_runtime_gives_the_offline_barometric_altitude_and_floors(sim, stairs3040, tmp_path, capsys, how):
+    """Decision E106: `run WAIST_BUNDLE` of a stairs walk had 0 / 0 floors and z 0 (offline `track` 2 / 1 here) while
+    saying the barometer was used; the live trackers now read it (``push_barometer``): each step's z and dz_m equal
+    ``track_waist(realtime=True)``'s, and so `run`'s floors, altitude and ascent (the trial's floors2: 2 / 2)."""
+    stairs = stairs3040
+    ref = track_waist(stairs, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+    assert np.ptp(ref.trajectory["z"]) > 5.0
+    n = len(stairs["wAccelerometer"].t)
+    chunks = [1] * n if how == "one" else list(np.random.default_rng(3).integers(1, 300, 2000))
+    for tr in (WaistTracker(load_waist_bundle(sim["bundle"]), fs=100.0),
+               LiveWaistTracker(100.0, params=str(sim["cal"]), meta=stairs.meta, frame=stairs.require_frame("waist"))):
+        out = _push_with_barometer(tr, stairs, chunks)
+        assert len(out) == len(ref.steps)
+        np.testing.assert_allclose([o.z for o in out], ref.trajectory["z"].to_numpy()[1:], atol=1e-6, rtol=0)
+        np.testing.assert_allclose([o.dz_m for o in out], ref.steps["dz_m"].to_numpy(), atol=1e-6, rtol=0)
+        assert tr.state_size() < 40_000  # the held barometer is trimmed with the motion samples (W64)
+    if how == "random":
+        return
+    from pdrlearn.track.evaluate import evaluate_track
+
+    walk = write_session(stairs, tmp_path / "stairs")
+    assert main(["run", str(sim["bundle"]), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    want = evaluate_track(ref, stairs)
+    assert (summary["floors_up"], summary["floors_down"]) == (want["floors_up"], want["floors_down"]) == (2, 1)
+    for k in ("altitude_change_m", "ascent_m", "descent_m"):
+        assert summary[k] == pytest.approx(want[k], abs=1e-6), k
+    assert summary["barometer_unused"] is False and summary["final_position"]["z"] == pytest.approx(
+        float(ref.trajectory["z"].iloc[-1]), abs=1e-6)
+    assert main(["run", str(sim["bundle"]), str(walk)]) == 0
+    assert "floors up 2 / down 1" in capsys.readouterr().out  # the console line says it, as track's
+
+
+@pytest.fixture(scope="module")
+def stairs3040():
+    """A fresh simulated stairs route (user 3040: two flights up, one down, U-turn landings) at 100 Hz."""
+    from pdrlearn.sim import UserProfile
+    from pdrlearn.sim.route import parse_route
+    from pdrlearn.sim.simulate import simulate_path
+
+    return simulate_path(parse_route("straight:5, up:20, turn:180, up:20, straight:8, turn:90, down:20, straight:5"),
+                         UserProfile.from_seed(3040), speed="normal", rate_hz=100.0)
+
+
+def test_export_carries_stairs_length_into_the_waist_bundle_and_the_runtime_applies_it(sim, stairs3040, tmp_path,
+                                                                                     capsys):
+    """Decision E107: `export` of a calibration with ``"options": {"stairs_length": true}`` had dropped it (the trial's
+    floors2 ran +60.40 % with or without it); the bundle now carries it and the live trackers apply W91's cap on the
+    live barometric altitude: the steps equal ``track_waist(realtime=True)``'s with the option, and differ without."""
+    cal = json.loads(sim["cal"].read_text())
+    sl = tmp_path / "sl.json"
+    sl.write_text(json.dumps({**cal, "options": {"stairs_length": True}}))
+    export_waist(sl, tmp_path / "wb", frame=_frame_arg(stairs3040))
+    bundle = load_waist_bundle(tmp_path / "wb")
+    assert bundle.options["stairs_length"] is True
+    ref = track_waist(stairs3040, pipeline="waist-pendulum", realtime=True, params=str(sl))
+    plain = track_waist(stairs3040, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+    assert ref.steps["stairs"].sum() > 20 and ref.steps["length_m"].sum() < plain.steps["length_m"].sum() - 5.0
+    out = _push_with_barometer(WaistTracker(bundle, fs=100.0), stairs3040, [100] * 10_000)
+    np.testing.assert_allclose([o.length_m for o in out], ref.steps["length_m"].to_numpy(), atol=1e-9, rtol=0)
+    assert [o.stairs for o in out] == ref.steps["stairs"].tolist()
+    walk = write_session(stairs3040, tmp_path / "stairs")
+    assert main(["run", str(tmp_path / "wb"), str(walk), "--out", str(tmp_path / "r"), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["distance_m"] == pytest.approx(float(ref.steps["length_m"].sum()), abs=1e-6)
+
+
+def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path, capsys):
+    """Decision E107: options of the calibration the live tracker does not apply are named at `export` (and by `run`,
+    from the bundle's warnings); options at their defaults are not."""
+    cal = json.loads(sim["cal"].read_text())
+    p = tmp_path / "p.json"
+    p.write_text(json.dumps({**cal, "options": {"stairs_climb": True, "sit_veto": "rhythm", "pause_steps": "standing",
+                                                "stairs_length": True, "contact_shift": True}}))
+    assert main(["export", str(p), "--out", str(tmp_path / "b"), "--frame", _frame_arg(sim["session"])]) == 0
+    err = [ln for ln in capsys.readouterr().err.splitlines() if "E107" in ln]
+    assert len(err) == 1 and 'stairs_climb=true, sit_veto="rhythm"' in err[0]
+    assert "pause_steps" not in err[0] and "contact_shift" not in err[0] and "stairs_length" not in err[0]
+    walk = write_session(sim["session"], tmp_path / "walk")
+    assert main(["run", str(tmp_path / "b"), str(walk)]) == 0
+    assert sum("E107" in ln for ln in capsys.readouterr().err.splitlines()) == 1
+    p.write_text(json.dumps({**cal, "options": {"stairs_length": True, "pause_steps": "standing"}}))
+    assert main(["export", str(p), "--out", str(tmp_path / "b2"), "--frame", _frame_arg(sim["session"])]) == 0
+    assert "E107" not in capsys.readouterr().err
+
+
+def test_a_waist_run_without_a_barometer_says_so_and_a_live_implausible_one_is_one_warning(sim, tmp_path, capsys):
+    """Decisions E106, W90, B188: `run` of a session without wBarometer.csv gives W90's line (as `track`); a live
+    barometer that jumps faster than any elevator is warned about once and read no further (z None after it)."""
+    from pdrlearn.track.waist import NO_BAROMETER
+
+    s = copy.deepcopy(sim["session"])
+    s.streams.pop("wBarometer", None)
+    walk = write_session(s, tmp_path / "nobaro")
+    assert main(["run", str(sim["bundle"]), str(walk), "--json"]) == 0
+    cap = capsys.readouterr()
+    assert NO_BAROMETER in cap.err and json.loads(cap.out)["altitude_change_m"] == 0.0
+    tr = WaistTracker(load_waist_bundle(sim["bundle"]), fs=100.0)
+    a, g = sim["session"]["wAccelerometer"], sim["session"]["wGyroscope"]
+    t = np.arange(0.0, a.t[-1], 0.04)
+    p = np.where(t > a.t[-1] / 2, 900.0, 1000.0)  # 100 hPa in one sample: ~900 m
+    tr.push_barometer(t, p)
+    out = tr.push(a.t, a.values, g.values) + tr.flush()
+    assert sum("decision B188" in w for w in tr.warnings) == 1 and out and all(o.z is None for o in out)
+    tr2 = WaistTracker(load_waist_bundle(sim["bundle"]), fs=100.0)
+    tr2.push_barometer([1.0, 2.0], [1000.0, 1000.0])
+    for bad, match in ((([3.0], [1.0, 2.0]), "pressures"), (([2.0], [1000.0]), "increase strictly"),
+                       (([np.nan], [1000.0]), "NaN")):
+        with pytest.raises(DataError, match=match):
+            tr2.push_barometer(*bad)
 
 
 def _one_line(capsys, argv, pattern):
@@ -216,7 +348,10 @@ def test_run_of_a_waist_bundle_takes_start(sim, tmp_path, capsys):
     assert len(got) == len(ref) > 20
     # trajectory.csv keeps 10 significant digits (%.10g: 8 decimals of a latitude, ~0.5 mm)
     np.testing.assert_allclose(got[["lat", "lon"]].to_numpy(), ref[["lat", "lon"]].to_numpy(), atol=6e-9, rtol=0)
-    assert (got["z"] == 12.5).all() and summary["final_position"]["z"] == 12.5
+    # z starts at ALT and follows the barometer as track's (decision E106; it had stayed at ALT): within 1 cm, as a
+    # step reported before the barometer 1 s past its end was pushed reads a shorter window (here 3 of 37, <= 2.7 mm)
+    assert got["z"].iloc[0] == 12.5 and summary["final_position"]["z"] == pytest.approx(ref["z"].iloc[-1], abs=0.01)
+    np.testing.assert_allclose(got["z"].to_numpy(), ref["z"].to_numpy(), atol=0.01, rtol=0)
     assert summary["final_position"]["lat"] == pytest.approx(ref["lat"].iloc[-1], abs=1e-9)
     _one_line(capsys, ["run", str(sim["bundle"]), str(walk), "--start", "41.1,200"], "--start '41.1,200': latitude")
 

@@ -578,7 +578,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.signal import interp_rows
     from pdrlearn.track.base import TrackResult
     from pdrlearn.track.bouts import detected_bouts, session_key
-    from pdrlearn.track.evaluate import evaluate_track
+    from pdrlearn.track.evaluate import evaluate_track, floors_phrase
 
     bundle = load_waist_bundle(bundle_dir)  # verified before any output
     if session_dir is None:
@@ -604,23 +604,46 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
         frame = session.require_frame("waist").matrix()  # inferred from the data (D8, with its warning)
     tracker = WaistTracker(bundle, fs=a.rate_hz, heading_rad=heading0 or 0.0, frame=frame,
                            start_latlon=None if start_ll is None else (*start_ll, start_alt))  # decision W147
+    from pdrlearn.track.barometer import usable_barometer
+    from pdrlearn.track.waist import NO_BAROMETER
+
+    baro_lines: list[str] = []
+    baro = usable_barometer(session, baro_lines)  # decision E106: the offline track's barometer (B188's check)
+    if baro is None and not baro_lines:
+        baro_lines.append(NO_BAROMETER)  # decision W90's line, as track's
+    for line in baro_lines:
+        import logging
+
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
+        tracker.warnings.append(line)
     steps, lat = [], []
     k = np.floor((a.t - a.t[0]) / chunk_s).astype(np.int64)  # decision E28's chunks, counted from the first sample
+    kb = None if baro is None else np.floor((baro.t - a.t[0]) / chunk_s).astype(np.int64)
+    jb = 0  # the barometer samples pushed so far
     for c in np.unique(k):
         i = np.flatnonzero(k == c)
+        if kb is not None:  # E106: the barometer up to the chunk's end, before its motion samples
+            j1 = int(np.searchsorted(kb, c, side="right"))
+            tracker.push_barometer(baro.t[jb:j1], baro.values[jb:j1, 0])
+            jb = max(jb, j1)
         t0 = time.perf_counter()
         new = tracker.push(a.t[i], a.values[i], gyr[i])
         if new:
             lat.append((time.perf_counter() - t0) / len(new))
         steps += new
+    if kb is not None and jb < len(kb):  # the barometer's samples after the motion's last chunk
+        tracker.push_barometer(baro.t[jb:], baro.values[jb:, 0])
     steps += tracker.flush()
-    cols = ["start_s", "end_s", "event_s", "length_m", "heading_rad", "unit", "has_next", "merged", "turning"]
+    cols = ["start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "stairs", "unit", "has_next", "merged",
+            "turning"]
     df = pd.DataFrame([{"start_s": s.t, "end_s": s.end_s, "event_s": s.t, "length_m": s.length_m,
-                        "heading_rad": s.heading_rad, "unit": "waist", "has_next": s.has_next, "merged": s.merged,
-                        "turning": s.turning} for s in steps], columns=cols)
+                        "heading_rad": s.heading_rad, "dz_m": s.dz_m if s.dz_m is not None else 0.0,
+                        "stairs": bool(s.stairs), "unit": "waist",  # E106/E107: W91's test, as track's column
+                        "has_next": s.has_next, "merged": s.merged, "turning": s.turning} for s in steps], columns=cols)
     traj = pd.DataFrame({"t": [float(a.t[0])] + [s.end_s for s in steps],
                          "x": [0.0] + [s.x for s in steps], "y": [0.0] + [s.y for s in steps]})
-    traj["z"] = float(start_alt)  # decision L56: z starts at --start's ALT (no barometer live)
+    # decision L56: z starts at --start's ALT; E106: the barometric altitude of each step (W89), as track's
+    traj["z"] = float(start_alt) + np.concatenate([[0.0], np.cumsum(df["dz_m"].to_numpy(float))])
     if start_ll is not None:  # decision W147: the live tracker's lat/lon of each step
         traj["lat"] = [start_ll[0]] + [s.lat for s in steps]
         traj["lon"] = [start_ll[1]] + [s.lon for s in steps]
@@ -635,7 +658,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                                                                        storey_height_m=storey_height_m),
                "session": session.name,
                "pipeline": "runtime", "bundle_kind": "waist", "info": result.info,
-               "final_position": {"x": tracker.position[0], "y": tracker.position[1], "z": float(start_alt),
+               "final_position": {"x": tracker.position[0], "y": tracker.position[1], "z": float(traj["z"].iloc[-1]),
                                   **({} if start_ll is None else {k: float(traj[k].iloc[-1]) for k in ("lat", "lon")})},
                "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
                                        "p99": float(np.percentile(lat, 99) * 1e3) if lat else None}}
@@ -647,7 +670,9 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     err = summary.get("distance_error_pct")
     typer.echo(f"{summary['source']}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
                + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
-               f"{[round(summary['final_position'][k], 2) for k in 'xyz']}" + (f" -> {out}" if out else ""))
+               f"{[round(summary['final_position'][k], 2) for k in 'xyz']}"
+               + floors_phrase(summary)  # decisions L64, E106: the storeys the barometer climbed, as track's line
+               + (f" -> {out}" if out else ""))
 
 
 def _result(steps, start_ll=None, start_alt: float = 0.0):

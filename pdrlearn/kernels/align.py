@@ -17,6 +17,20 @@ from pdrlearn.errors import DataError
 #: half the step period of the slowest validated walk, 70 steps/min, L95 -- :func:`align_events` cannot tell offsets
 #: a whole step apart -- and 5x the -0.04 s the simulated clean sessions read)
 UNIT_OFFSET_WARN_S = 0.2
+#: decision L183: an estimate is locked on at least this many matched foot events (the least :func:`align_events`'
+#: drift fit reads) ...
+MIN_LOCK_PAIRS = 5
+#: ... whose residual SD (s) is at most this: chance coincidences within the 0.12 s tolerance spread 0.12 / sqrt(3) =
+#: 0.069 s (uniform); walks lock at 0.021-0.037 s (L183); a priori ~0.7 of chance and 1.35x the largest walk's
+LOCK_MAX_RESIDUAL_SD_S = 0.05
+
+
+def offset_locked(estimate: dict) -> bool:
+    """Decision L183: whether :func:`align_events`' ``estimate`` locked the two event trains (enough matched events,
+    matched tighter than chance); an estimate that did not (a queue's start-stop shuffles, 1-2 strides a bout) tells
+    no offset, and L161's check warns nothing on it."""
+    sd = float(estimate.get("residual_sd_s", float("nan")))
+    return int(estimate.get("matched", 0)) >= MIN_LOCK_PAIRS and bool(sd <= LOCK_MAX_RESIDUAL_SD_S)
 
 
 def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: float = 0.005,
@@ -81,11 +95,12 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
 
 
 def unit_offset_message(offset_s: float, drift: float, command: str = "pdrlearn track",
-                        remedy: str | None = None) -> str | None:
+                        remedy: str | None = None, estimate: dict | None = None) -> str | None:
     """Decision L161: the warning line for an estimated offset (s) and drift (s/s) over :data:`UNIT_OFFSET_WARN_S`,
     else None. ``command``: the one whose ``--align-units`` the line names (``pdrlearn run``, decision L170);
-    ``remedy``: another fix to name instead (the live Tracker's keyword, decision L177)."""
-    if abs(offset_s) <= UNIT_OFFSET_WARN_S:
+    ``remedy``: another fix to name instead (the live Tracker's keyword, decision L177); ``estimate``:
+    :func:`align_events`' dict, None when it is not locked (decision L183, :func:`offset_locked`)."""
+    if abs(offset_s) <= UNIT_OFFSET_WARN_S or (estimate is not None and not offset_locked(estimate)):
         return None
     fix = remedy if remedy is not None else f"`{command} --align-units`"
     return (f"the waist unit's steps fall {offset_s:+.2f} s from the foot unit's (drift {drift * 1e6:+.0f} ppm; over "

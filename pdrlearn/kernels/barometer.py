@@ -63,6 +63,71 @@ def _smoothed_altitude(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float) -> tup
     return t, altitude_m((cs[hi] - cs[lo]) / (hi - lo))
 
 
+
+class LiveAltitude:
+    """Decision E106: W89's altitude (:func:`relative_altitude`: the pressure averaged over a centred ``smooth_s``
+    window, :func:`altitude_m`, interpolated) for a live tracker fed barometer samples as they come. ``push(t, p)``
+    holds them; ``at(ts)`` is the altitude at ``ts`` relative to the ``origin_s`` given by :meth:`set_origin` (the
+    track's first sample, as ``track_waist``'s ``imu.t[0]``), read on the samples held then; ``trim(before)`` drops
+    what no later ``at(ts >= before)`` reads. Equal to the offline altitude wherever the samples up to ``ts +
+    smooth_s`` were pushed before ``at(ts)`` (the window's right half; else the window is shorter: causal).
+    :attr:`implausible` is B188's finding (:func:`implausible_pressure` on the held samples) once one was seen, after
+    which ``at`` returns None (the offline track reads no part of such a barometer)."""
+
+    def __init__(self, smooth_s: float = ALTITUDE_SMOOTH_S):
+        self.smooth_s = float(smooth_s)
+        self._t = np.zeros(0)
+        self._p = np.zeros(0)
+        self._origin_s: float | None = None
+        self._ref: float | None = None  # the altitude at the origin, once its window is complete
+        self.implausible: tuple[float, float, float, float, float] | None = None
+
+    def push(self, t: np.ndarray, p_hpa: np.ndarray):
+        """Hold samples ``(t, p_hpa)`` (s increasing past the held ones, hPa); B188's finding when they make the
+        held barometer implausible (the first time), else None."""
+        self._t = np.concatenate([self._t, np.asarray(t, dtype=float).ravel()])
+        self._p = np.concatenate([self._p, np.asarray(p_hpa, dtype=float).ravel()])
+        if self.implausible is None:
+            found = implausible_pressure(self._t, self._p, self.smooth_s)
+            if found is not None:
+                self.implausible = found
+                return found
+        return None
+
+    def set_origin(self, t0: float) -> None:
+        """The time the altitude is relative to (once)."""
+        if self._origin_s is None:
+            self._origin_s = float(t0)
+
+    def _h(self, at: np.ndarray) -> np.ndarray | None:
+        t, h = _smoothed_altitude(self._t, self._p, self.smooth_s)
+        return np.interp(at, t, h) if len(t) else None
+
+    def at(self, ts: float) -> float | None:
+        """The altitude (m) at ``ts`` relative to the origin; None without a usable sample or origin."""
+        if self.implausible is not None or self._origin_s is None:
+            return None
+        h = self._h(np.array([self._origin_s, float(ts)]))
+        if h is None:
+            return None
+        ref = self._ref if self._ref is not None else float(h[0])
+        if self._ref is None and self._t[-1] >= self._origin_s + self.smooth_s:
+            self._ref = ref  # its window is complete: the offline value, kept when older samples are trimmed
+        return float(h[1] - ref)
+
+    def trim(self, before: float) -> None:
+        """Drop the samples no ``at(ts)`` with ``ts >= before`` reads (kept while the origin's altitude is open)."""
+        if self._ref is None or not self._t.size:
+            return
+        drop = int(np.searchsorted(self._t, float(before) - 2.0 * self.smooth_s))
+        drop = min(drop, self._t.size - 2)  # the last two samples stay: interpolation past the end holds
+        if drop > 0:
+            self._t, self._p = self._t[drop:], self._p[drop:]
+
+    def size(self) -> int:
+        return int(self._t.size + self._p.size)
+
+
 #: decision B188: the fastest a wearer travels vertically (m/s): the fastest passenger elevators run 18-21 m/s
 #: (Shanghai Tower 18 m/s, CTF Finance Centre Guangzhou 21 m/s); near sea level ~2.4 hPa/s (0.12 hPa per m)
 MAX_VERTICAL_SPEED_MPS = 20.0
@@ -98,6 +163,43 @@ def implausible_pressure(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float = ALT
     m = a + int(np.argmax(np.abs(np.diff(pp[a:b]))))
     return float(speed[k]), float(tt[m]), float(pp[m]), float(tt[m + 1]), float(pp[m + 1])
 
+
+#: what an unread barometer means for a lower-back track (W89) and for a foot track (L145)
+WAIST_EFFECT = "z stays 0 with no floors counted"
+FOOT_EFFECT = "the foot altitude is not compared with it (L145)"
+FUSED_EFFECT = "the altitude is the foot's own, not fused with it (L154)"
+
+
+def implausible_barometer_message(found: tuple[float, float, float, float, float],
+                                  effect: str = WAIST_EFFECT) -> str:
+    """Decision B188's one line: the file, the jump and its time, and the fix (the caller's log line names the
+    session folder)."""
+    speed, t_a, p_a, t_b, p_b = found
+    # the barometric formula's slope at sea level, |dp/dh| = P0 C E (pressure_hpa's derivative at h = 0)
+    hpa_per_s = MAX_VERTICAL_SPEED_MPS * STANDARD_P0_HPA * BARO_C_PER_M * BARO_EXPONENT
+    return (f"wBarometer.csv is not used: its pressure goes from {p_a:.2f} to {p_b:.2f} hPa between "
+            f"{t_a:.3f} and {t_b:.3f} s, an altitude change of {speed:.0f} m/s - faster than any person travels "
+            f"vertically (the fastest elevators, {MAX_VERTICAL_SPEED_MPS:g} m/s ~ {hpa_per_s:.1f} hPa/s; decision "
+            "B188), so it "
+            f"is an artefact (a resampling filter's zero padding, a glitch), and {effect}; fix the file (resample "
+            "without zero padding, e.g. scipy resample_poly(..., padtype='line'), or drop the bad samples) or delete "
+            "wBarometer.csv")
+
+
+#: decision W91 (candidate, option ``stairs_length``): a step is on stairs when the barometric altitude changes
+#: by at least this rate (m/s) over :data:`STAIRS_RATE_WINDOW_S` centred on it: half the rate of a 0.17 m riser
+#: (the simulator's stair) climbed at 1.2 steps/s, a slow climb; level walking changes no altitude
+STAIRS_RATE_MPS = 0.1
+STAIRS_RATE_WINDOW_S = 2.0
+#: decision W91: the horizontal length of a step on stairs is at most the tread, "about 30cm" (thesis
+#: ch.7.3.2.1, scenario D's stairs)
+STAIR_TREAD_M = 0.30
+
+
+def stairs_rate_test(rise_m: np.ndarray) -> np.ndarray:
+    """Decision W91: whether a step is proposed as on stairs from ``rise_m``, the altitude change (m) over
+    :data:`STAIRS_RATE_WINDOW_S` centred on the step's middle (its rate at least :data:`STAIRS_RATE_MPS`)."""
+    return np.abs(np.asarray(rise_m, dtype=float)) / STAIRS_RATE_WINDOW_S >= STAIRS_RATE_MPS
 
 #: decision W108: the least barometric height of a climb, half of L64's 3 m storey (a flight between two landings)
 STAIR_CLIMB_MIN_M = 1.5

@@ -131,7 +131,7 @@ class ClockCheck:
             return None
         off = self.estimate["offset_s"]
         fix = None if self.remedy is None else self.remedy(off)
-        line = unit_offset_message(off, self.estimate["drift"], remedy=fix)
+        line = unit_offset_message(off, self.estimate["drift"], remedy=fix, estimate=self.estimate)  # L183
         if line is None or self.warned:
             return None
         self.warned = True

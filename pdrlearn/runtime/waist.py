@@ -50,7 +50,11 @@ class LiveStep:
     not adopted as the default; 93 % the simulated foot where decided, the offline side 98 %); ``merged``: a W27
     fragment whose length its neighbour carries; ``turning``: the stride's straight (0) / turning (1) class (seed 003
     sec. 3.3); ``lat``, ``lon`` (degrees): the position at ``end_s`` when the tracker was given a geodetic start
-    (decision W137), else None."""
+    (decision W137), else None; ``z`` (m): the barometric altitude at ``end_s`` relative to the track's first sample
+    and ``dz_m`` its change over the step (W89's, ``track_waist``'s ``z`` / ``dz_m``; decision E106) when barometer
+    samples were pushed (:meth:`WaistStream.push_barometer`), else None; ``stairs``: W91's rate test on that altitude
+    (``track_waist``'s ``stairs`` column without ``stairs_climb``; with the option ``stairs_length`` such a step is at
+    most the 0.30 m tread, decision E107), None without a barometer."""
 
     t: float
     end_s: float
@@ -64,6 +68,9 @@ class LiveStep:
     side: str | None = None
     lat: float | None = None
     lon: float | None = None
+    z: float | None = None
+    dz_m: float | None = None
+    stairs: bool | None = None
 
 
 class WaistStream(FixInput):
@@ -145,6 +152,9 @@ class WaistStream(FixInput):
         self._n_gaps = 0
         self._cum_first: float | None = None  # running integral at the first contact (W74)
         self._untracked_warned = False
+        self._alt = None  # decision E106: the barometric altitude (kernels.barometer.LiveAltitude), once pushed
+        self._z_prev = 0.0  # the altitude at the last reported step's end (0 at the track's first sample)
+        self._baro_last = -np.inf
 
     # -- the axis frame (hooks: pdrlearn.waist.WaistTracker infers or checks it, W65 / B108) -------------
     def _frame_pending(self) -> bool:
@@ -168,6 +178,7 @@ class WaistStream(FixInput):
         n = 4 * self._bt.size + 6 * len(self._rows) + len(self._absorbed) + len(self._span_start)
         n += len(self._side_scale)  # W138: at most FRAGMENT_CONTEXT_STEPS
         n += self._held_size()
+        n += 0 if self._alt is None else self._alt.size()  # E106: the barometer samples a pending step reads
         p = self._proc
         if p is not None:
             n += sum(np.size(v) for v in p.buf.values()) + 4 * len(p.decided) + sum(np.size(r[1]) for r in p.raw)
@@ -204,6 +215,8 @@ class WaistStream(FixInput):
             guard.take(arrays, judged)
         if self._fixes.t_start is None:  # aid_track's t_start: the track's first sample (decision D19, amended)
             self._fixes.t_start = float(t[0])
+        if self._alt is not None:  # E106: the altitude is relative to the track's first sample (track_waist's)
+            self._alt.set_origin(self._fixes.t_start)
         self._last_t = float(t[-1])
         for msg in self._frozen.push(pushed):  # decision B120: a frozen sensor, one warning per run
             self.warnings.append(msg)
@@ -215,6 +228,49 @@ class WaistStream(FixInput):
                 return []
             t, v = v_t
         return self._feed(self._proc.process(t, v), final=False)
+
+    def push_barometer(self, t, p_hpa) -> None:
+        """Add waist barometer samples (decision E106): ``t`` (n,) s on the clock of :meth:`push`, increasing strictly
+        across pushes, ``p_hpa`` (n,) pressure in hPa (a non-finite sample is skipped, as offline). Each step then has
+        the barometric altitude ``track_waist`` gives it (W89: ``LiveStep.z`` / ``dz_m``), read on the samples pushed
+        before the step is reported: push each slice of the barometer before the motion samples of the same time
+        for the offline numbers. A barometer whose altitude changes faster than anyone travels (decision B188) is
+        warned about once and read no further. Returns nothing; steps come from :meth:`push` / :meth:`flush`."""
+        from pdrlearn.kernels.barometer import WAIST_EFFECT, LiveAltitude, implausible_barometer_message
+
+        t = np.asarray(t, dtype=np.float64).reshape(-1)
+        p = np.asarray(p_hpa, dtype=np.float64).reshape(-1)
+        if p.shape != t.shape:
+            raise DataError(f"{self._name}.push_barometer: expected {t.size} pressures (hPa) for {t.size} timestamps, "
+                            f"got shape {p.shape}")
+        if not t.size:
+            return
+        if not np.isfinite(t).all():
+            raise DataError(f"{self._name}.push_barometer: NaN or inf timestamps; drop those samples")
+        if t[0] <= self._baro_last or (t.size > 1 and np.any(np.diff(t) <= 0)):
+            raise DataError(f"{self._name}.push_barometer: timestamps must increase strictly across pushes (seconds)")
+        self._baro_last = float(t[-1])
+        if self._alt is None:
+            self._alt = LiveAltitude()
+            if self._fixes.t_start is not None:
+                self._alt.set_origin(self._fixes.t_start)
+        found = self._alt.push(t, p)
+        if found is not None:  # decision B188, as the offline track: one line, the barometer read no further
+            msg = implausible_barometer_message(found, WAIST_EFFECT.replace("stays 0", "stays where it was"))
+            self.warnings.append(msg)
+            log.warning("live waist tracker: %s", msg)
+
+    def _on_stairs(self, row: dict) -> bool | None:
+        """Decision W91's test (``track_waist``'s ``_stairs_steps`` without ``stairs_climb``) on the live altitude: the
+        altitude changes by STAIRS_RATE_MPS or more over STAIRS_RATE_WINDOW_S centred on the step's middle; None
+        without a (usable) barometer."""
+        from pdrlearn.kernels.barometer import STAIRS_RATE_WINDOW_S, stairs_rate_test
+
+        if self._alt is None:
+            return None
+        mid, half = 0.5 * (row["t"] + row["end"]), 0.5 * STAIRS_RATE_WINDOW_S
+        a, b = self._alt.at(mid - half), self._alt.at(mid + half)
+        return None if a is None or b is None else bool(stairs_rate_test(b - a))
 
     def _unit_check(self, t: np.ndarray) -> None:
         """Decision E29 as the runtime's: the first RATE_PROBE_MIN sample intervals give a rate more than
@@ -289,6 +345,8 @@ class WaistStream(FixInput):
         if drop:
             self._bt, self._bv, self._bw, self._bc = (a[drop:] for a in (self._bt, self._bv, self._bw, self._bc))
             self._b0 += drop
+        if self._alt is not None and self._bt.size:  # E106: a pending step ends after the oldest sample held
+            self._alt.trim(float(self._bt[0]))
 
     # -- contacts -> steps ------------------------------------------------------------------------------
     def _feed(self, contacts: list, *, final: bool) -> list[LiveStep]:
@@ -449,6 +507,11 @@ class WaistStream(FixInput):
             if self._h_seq is not None:
                 self._cur_gyro = self._cur_out = self._h_seq
             self._stop_cum = float(np.interp(row["t"], self._bt, self._bc))
+        stairs = self._on_stairs(row)
+        if stairs and o.get("stairs_length"):  # W91's option, as track_waist: at most the tread on stairs (E107)
+            from pdrlearn.kernels.barometer import STAIR_TREAD_M
+
+            length = min(length, STAIR_TREAD_M)
         enu = float(np.angle(np.exp(1j * (head + self._h0))))
         self._sx += length * np.cos(enu)
         self._sy += length * np.sin(enu)
@@ -465,8 +528,14 @@ class WaistStream(FixInput):
             self._ll = step_destination(*self._ll, math.hypot(dx, dy), math.atan2(dy, dx))
             lat, lon = math.degrees(self._ll[0]), math.degrees(self._ll[1])
         self._xy_reported = (float(x), float(y))
+        z = dz = None
+        if self._alt is not None:  # decision E106: W89's altitude at the step's end, as track_waist's z / dz_m
+            z = self._alt.at(row["end"])
+            if z is not None:
+                dz, self._z_prev = z - self._z_prev, z
         step = LiveStep(t=row["t"], end_s=row["end"], length_m=length, heading_rad=enu, x=float(x), y=float(y),
-                        has_next=row["has_next"], merged=merged, turning=turning, side=row["side"], lat=lat, lon=lon)
+                        has_next=row["has_next"], merged=merged, turning=turning, side=row["side"], lat=lat, lon=lon,
+                        z=z, dz_m=dz, stairs=stairs)
         self.steps.append(step)
         return step
 
@@ -543,7 +612,8 @@ class WaistTracker(WaistStream):
     bundle : a :class:`WaistBundle` (or its folder)
     fs : the pushed samples' rate (Hz); None: the bundle's calibration rate. Another rate than the calibration's
         by more than 10 % warns (decision W87)
-    start : ``(x, y)`` or ``(x, y, z)`` (m, ENU; z is not tracked); heading_rad : the direction set off in (rad, ENU,
+    start : ``(x, y)`` or ``(x, y, z)`` (m, ENU; z is not read: a step's ``z`` is the barometric altitude relative
+        to the first sample, with :meth:`push_barometer`, E106); heading_rad : the direction set off in (rad, ENU,
         0 = east; W81: a value over 2 pi, degrees, is refused)
     start_latlon : the geodetic start ``(lat, lon)`` / ``(lat, lon, alt)`` / ``"LAT,LON[,ALT]"`` in degrees (alt in
         m), checked as ``pdrlearn run --start`` and :class:`pdrlearn.waist.WaistTracker`'s ``start`` (decisions L157,

@@ -21,12 +21,21 @@ log = logging.getLogger(__name__)
 def align_units(session: Session, *, foot_detector=None, waist_detector=None, max_offset_s: float = 2.0,
                 tolerance_s: float = 0.12, fit_drift: bool = True,
                 min_span_s: float = 60.0) -> tuple[float, float]:
+    """``(offset_s, drift)`` of :func:`align_estimate` (its other keys: ``matched``, ``residual_sd_s``, ...)."""
+    res = align_estimate(session, foot_detector=foot_detector, waist_detector=waist_detector,
+                         max_offset_s=max_offset_s, tolerance_s=tolerance_s, fit_drift=fit_drift, min_span_s=min_span_s)
+    return res["offset_s"], res["drift"]
+
+
+def align_estimate(session: Session, *, foot_detector=None, waist_detector=None, max_offset_s: float = 2.0,
+                   tolerance_s: float = 0.12, fit_drift: bool = True, min_span_s: float = 60.0) -> dict:
     """Estimate the clock offset and drift between the foot and waist units of ``session``.
 
     Foot events: the accelerometer + force detector when force sensors are present, else the
     accelerometer detector; waist events: the PLL detector (both replaceable). Returns
-    ``(offset_s, drift)`` with ``t_waist = t_foot + offset_s + drift * t_foot`` (the simulator's
-    convention); details are logged; the session is left untouched.
+    :func:`~pdrlearn.kernels.align.align_events`' dict (``offset_s``, ``drift`` with ``t_waist = t_foot + offset_s +
+    drift * t_foot``, the simulator's convention; ``matched``, ``residual_sd_s``: decision L183's lock test);
+    details are logged; the session is left untouched.
     """
     from pdrlearn.steps.detectors import AccelForceStepDetector, AccelStepDetector, PLLStepDetector
 
@@ -39,7 +48,7 @@ def align_units(session: Session, *, foot_detector=None, waist_detector=None, ma
     res = align_events(fe, we, max_offset_s=max_offset_s, tolerance_s=tolerance_s, fit_drift=fit_drift,
                        min_span_s=min_span_s)
     log.info("%s alignment: %s", session.name, res)
-    return res["offset_s"], res["drift"]
+    return res
 
 
 def apply_alignment(session: Session, offset_s: float, drift: float = 0.0) -> Session:

@@ -443,13 +443,13 @@ def unit_offset_line(session: Session, command: str = "pdrlearn track") -> str |
     :data:`UNIT_OFFSET_WARN_S` from the foot's; None when under it or when the steps do not align (too few).
     ``command``: the one whose ``--align-units`` the line names (``pdrlearn run``, decision L170)."""
     from pdrlearn.kernels.align import unit_offset_message
-    from pdrlearn.steps.align import align_units
+    from pdrlearn.steps.align import align_estimate
 
     try:
-        offset, drift = align_units(session)
+        est = align_estimate(session)
     except DataError:
         return None
-    return unit_offset_message(offset, drift, command)
+    return unit_offset_message(est["offset_s"], est["drift"], command, estimate=est)  # L183: locked estimates only
 
 
 def fuse_heading(relative: np.ndarray, absolute: np.ndarray, t: np.ndarray, *, tau_s: float = 60.0) -> np.ndarray:

@@ -22,6 +22,12 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
+from pdrlearn.kernels.barometer import (  # decision W91's constants and test, shared with the live trackers (E107)
+    STAIR_TREAD_M,
+    STAIRS_RATE_MPS,  # noqa: F401 (re-exported)
+    STAIRS_RATE_WINDOW_S,
+    stairs_rate_test,
+)
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
@@ -154,14 +160,6 @@ def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: 
 #: decision W90: the one line of a lower-back track without a barometer
 NO_BAROMETER = ("no barometer (wBarometer.csv): a lower-back track has no altitude - z stays 0 and no floors "
                 "are counted, also on stairs")
-#: decision W91 (candidate, option ``stairs_length``): a step is on stairs when the barometric altitude changes
-#: by at least this rate (m/s) over :data:`STAIRS_RATE_WINDOW_S` centred on it: half the rate of a 0.17 m riser
-#: (the simulator's stair) climbed at 1.2 steps/s, a slow climb; level walking changes no altitude
-STAIRS_RATE_MPS = 0.1
-STAIRS_RATE_WINDOW_S = 2.0
-#: decision W91: the horizontal length of a step on stairs is at most the tread, "about 30cm" (thesis
-#: ch.7.3.2.1, scenario D's stairs)
-STAIR_TREAD_M = 0.30
 
 
 def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str]) -> np.ndarray | None:
@@ -195,7 +193,7 @@ def _stairs_steps(baro, steps: pd.DataFrame, climb: bool) -> np.ndarray:
     n = len(mid)
     h = relative_altitude(b.t, b.values[:, 0], np.concatenate([mid - half, mid + half, t0, t1]))
     rise = h[n:2 * n] - h[:n]
-    proposed = np.abs(rise) / STAIRS_RATE_WINDOW_S >= STAIRS_RATE_MPS
+    proposed = stairs_rate_test(rise)
     if not climb:
         return proposed
     sd = still_altitude_sd(b.t, b.values[:, 0], float(t0.min()), float(t1.max()))

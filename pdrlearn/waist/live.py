@@ -74,7 +74,8 @@ def live_options(p, warnings: list[str], **given) -> dict:
 
     given = {"realtime": True, "heading": "gyro", "refine_ic": None, "initial_heading": None, "resolve_signs": None,
              "integrate_stops": None, "turn_factor": None, "rhythm": None, "merge_fragments": None,
-             "length_smoothing": None, "slow_turn_rps": None, "pivot_steps": None, **given}
+             "length_smoothing": None, "slow_turn_rps": None, "pivot_steps": None, "stairs_length": None,
+             **given}
     o = resolve_options(p, given)
     if o["length_smoothing"] != "none":
         raise DataError(f"length_smoothing '{o['length_smoothing']}' looks up to 1 s ahead and the live tracker "
@@ -82,12 +83,41 @@ def live_options(p, warnings: list[str], **given) -> dict:
     if p.source == "calibrated" and p.pipeline not in (None, "waist-pendulum"):
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the waist-pendulum step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline waist-pendulum')")
+    line = unapplied_options_line(p)  # decision E107: no option of the PARAMS.json dropped without a word
+    if line:
+        warnings.append(line)
     asked = (p.options or {}).get("heading")
     if asked not in (None, "gyro"):  # decision W82: no silent override of the PARAMS.json heading
         warnings.append(f"the PARAMS.json option heading '{asked}' is not available live: the live tracker uses "
                         "the gyro heading, which drops gentle curves unless the option slow_turn_rps is set "
                         "(0.035, decision W82)")
     return o
+
+
+#: decision E107: the PARAMS.json options the live waist-pendulum tracker does not apply (the offline detector's
+#: W111/W122/W134, W119/W127, W131, W151, W152 look ahead; W102/W104's trunk posture, W108's climbs read the
+#: whole recording); ``heading`` has W82's own line and ``length_smoothing`` is refused (W56). The rest are applied
+#: (``stairs_length`` since E107) or do not concern the live tracker (``realtime``; ``refine_ic`` and
+#: ``resolve_signs`` are waist-pll / harmonic-heading options; ``relative_gate`` off is the live fixed gate).
+LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "pause_steps", "vault_veto", "contact_shift",
+                          "weak_fill", "parity_fill")
+
+
+def unapplied_options_line(p) -> str | None:
+    """Decision E107: the line naming the options of ``p`` (its PARAMS.json ``"options"``) set away from their defaults
+    that the live tracker does not apply (:data:`LIVE_UNAPPLIED_OPTIONS`), else None."""
+    from pdrlearn.track.waist import OPTION_DEFAULTS
+
+    given = p.options or {}
+    unapplied = [k for k in LIVE_UNAPPLIED_OPTIONS if k in given and given[k] is not None
+                 and given[k] != OPTION_DEFAULTS[k]]
+    if not unapplied:
+        return None
+    named = ", ".join(f"{k}={json.dumps(given[k])}" for k in unapplied)
+    return (f"the PARAMS.json option{'s' if len(unapplied) > 1 else ''} {named} "
+            f"{'are' if len(unapplied) > 1 else 'is'} not applied by the live waist tracker (decision E107): it "
+            f"tracks as with {'their defaults' if len(unapplied) > 1 else 'its default'}; offline `pdrlearn track "
+            f"--params` applies {'them' if len(unapplied) > 1 else 'it'}")
 
 
 class _HeldSamples:
