@@ -245,6 +245,22 @@ def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path,
     assert "E107" not in capsys.readouterr().err
 
 
+def test_stairs_length_climbs_is_named_as_not_applied_live_and_the_runtime_keeps_the_default(sim, stairs3040,
+                                                                                              tmp_path, capsys):
+    """Decisions W156 / E107: ``stairs_length: "climbs"`` bounds only the steps inside W108's climbs, which need the
+    whole recording; `export` names it as not applied live, and the live tracker tracks as with the default (no
+    bound), not as with ``true``."""
+    cal = json.loads(sim["cal"].read_text())
+    p = tmp_path / "climbs.json"
+    p.write_text(json.dumps({**cal, "options": {"stairs_length": "climbs"}}))
+    assert main(["export", str(p), "--out", str(tmp_path / "wb"), "--frame", _frame_arg(stairs3040)]) == 0
+    err = [ln for ln in capsys.readouterr().err.splitlines() if "E107" in ln]
+    assert len(err) == 1 and 'stairs_length="climbs"' in err[0]
+    plain = track_waist(stairs3040, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
+    out = _push_with_barometer(WaistTracker(load_waist_bundle(tmp_path / "wb"), fs=100.0), stairs3040, [100] * 10_000)
+    np.testing.assert_allclose([o.length_m for o in out], plain.steps["length_m"].to_numpy(), atol=1e-9, rtol=0)
+
+
 def test_a_waist_run_without_a_barometer_says_so_and_a_live_implausible_one_is_one_warning(sim, tmp_path, capsys):
     """Decisions E106, W90, B188: `run` of a session without wBarometer.csv gives W90's line (as `track`); a live
     barometer that jumps faster than any elevator is warned about once and read no further (z None after it)."""

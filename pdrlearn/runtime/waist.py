@@ -508,7 +508,9 @@ class WaistStream(FixInput):
                 self._cur_gyro = self._cur_out = self._h_seq
             self._stop_cum = float(np.interp(row["t"], self._bt, self._bc))
         stairs = self._on_stairs(row)
-        if stairs and o.get("stairs_length"):  # W91's option, as track_waist: at most the tread on stairs (E107)
+        # W91's option, as track_waist: at most the tread on stairs (E107); W156's "climbs" needs the whole
+        # recording's climbs and is named as not applied live (unapplied_options_line)
+        if stairs and o.get("stairs_length") and o.get("stairs_length") != "climbs":
             from pdrlearn.kernels.barometer import STAIR_TREAD_M
 
             length = min(length, STAIR_TREAD_M)

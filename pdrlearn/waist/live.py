@@ -111,6 +111,8 @@ def unapplied_options_line(p) -> str | None:
     given = p.options or {}
     unapplied = [k for k in LIVE_UNAPPLIED_OPTIONS if k in given and given[k] is not None
                  and given[k] != OPTION_DEFAULTS[k]]
+    if given.get("stairs_length") == "climbs":  # W156's value reads the whole recording's climbs (W108)
+        unapplied.append("stairs_length")
     if not unapplied:
         return None
     named = ", ".join(f"{k}={json.dumps(given[k])}" for k in unapplied)
