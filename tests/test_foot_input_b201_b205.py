@@ -93,6 +93,8 @@ def test_gravity_removed_rest_reading_kernel_b202():
     assert rest_without_gravity(1.15, 0.341) == pytest.approx(0.341)  # g band: 0.34 g at rest
     assert rest_without_gravity(11.2, 9.84) is None and rest_without_gravity(1.1, 0.99) is None  # with gravity
     assert rest_without_gravity(6.0, 4.9) is None  # B97's x0.5 mis-scale keeps B97's "divide by 0.5"
+    assert rest_without_gravity(3.0, 0.03) == pytest.approx(0.03)  # a walk with long pauses, gravity removed
+    assert rest_without_gravity(0.0, 0.0) is None  # zeros: B123
 
 
 def _frozen(df):
@@ -153,10 +155,10 @@ def test_a_label_table_cut_mid_row_is_refused_b205(walk, tmp_path, capsys, table
         pytest.skip(f"the simulated walk has no {table}.csv")
     text = f.read_text()
     lines = text.splitlines()
-    f.write_text("\n".join(lines[:3]) + "\n" + lines[3].split(",")[0][:6])  # stops inside row 3's first cell
+    f.write_text("\n".join(lines[:3]) + "\n" + lines[3].split(",")[0][:6])  # line 4 stops inside its first cell
     assert main(["steps", str(d)]) == 2
     err = capsys.readouterr().err.strip()
-    assert err.count("\n") == 0 and err.startswith(f"error: {f}: last line incomplete (line 5 stops mid-row, no "
+    assert err.count("\n") == 0 and err.startswith(f"error: {f}: last line incomplete (line 4 stops mid-row, no "
                                                    "line break at the end): file truncated? (it has no ")
     f.write_text("\n".join(lines))  # complete, only the last line break missing: read as before
     assert main(["info", str(d)]) == 0

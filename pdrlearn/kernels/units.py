@@ -191,8 +191,9 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
 
 #: decision B202: the most an accelerometer reads at rest, in g, when its gravity has been removed. The rest reading is
 #: B78's quietest windows' median |acc| (:func:`quiet_acc_norm`), in g in the unit the whole file's median |acc| fits
-#: (D4's bands: 4-25 m/s^2, or 0.5-2 read as g). Correct units read 0.967-1.008 g at their foot-flats (B133, 11 real
-#: feet) and -3.4 .. +4.6 % off 1 g in their quietest windows (B97); a x0.5 mis-scale (B97's message) reads 0.5 g.
+#: (D4's m/s^2 band 4-25; otherwise read as g, the larger reading). Correct units read 0.967-1.008 g at their
+#: foot-flats (B133, 11 real feet) and -3.4 .. +4.6 % off 1 g in their quietest windows (B97); a x0.5 mis-scale
+#: (B97's message) reads 0.5 g.
 #: The trial `fuzz` copies with each axis's median subtracted read 0.079 g (sim D foot), 0.043 g (gaitmap foot) and
 #: 0.035 g as m/s^2 (mobgap lower back; 0.34 if its 1.15 median were g), their mean vectors 0.35-0.58 of the median
 #: |acc| (above B30's 0.2). 0.4 g lies between 0.35 and 0.5, and 4 m/s^2 is the floor of D4's m/s^2 band.
@@ -201,21 +202,19 @@ REST_G_MIN = 0.4
 
 def rest_without_gravity(whole: float, quiet: float) -> float | None:
     """Decision B202: the rest reading in g (``quiet``, :func:`quiet_acc_norm`, over gravity in the unit the whole
-    file's median |acc| ``whole`` fits: m/s^2 in 4-25, g in 0.5-2) when it is under :data:`REST_G_MIN`: at rest an
-    accelerometer reads gravity, so this one's has been removed. None otherwise (a plausible rest, or a file whose
-    median fits neither unit: D4's other messages)."""
-    if 4.0 <= whole <= 25.0:
-        rest = quiet / STANDARD_GRAVITY
-    elif 0.5 <= whole <= 2.0:
-        rest = quiet
-    else:
-        return None
+    file's median |acc| ``whole`` fits: m/s^2 in 4-25; otherwise read as g, the larger of the two readings: a walk
+    with long pauses has its whole median under 4 once gravity is removed) when it is under :data:`REST_G_MIN`: at
+    rest an accelerometer reads gravity, so this one's has been removed. None otherwise, and for a file of zeros
+    (B123's line)."""
+    if not whole > 0:
+        return None  # all zeros: B123's line
+    rest = quiet / STANDARD_GRAVITY if 4.0 <= whole <= 25.0 else quiet  # else the larger reading (as g)
     return rest if rest < REST_G_MIN else None
 
 
 def gravity_absent_message(where: str, whole: float, quiet: float, rest_g: float) -> str:
     """Decision B202's one line (B30's fix: what to export)."""
-    as_g = "" if 4.0 <= whole <= 25.0 else f" (read as g; as m/s^2 {quiet / STANDARD_GRAVITY:.3f} g)"
+    as_g = "" if 4.0 <= whole <= 25.0 else f" (read as g; as m/s^2 {quiet / STANDARD_GRAVITY:.4f} g)"
     return (f"{where}: the accelerometer reads ~0 g at rest: {rest_g:.3f} g{as_g} in its quietest windows against a "
             f"median |acc| of {whole:.3g} over the file, where a still accelerometer reads 1 g: gravity removed "
             "(linear / free acceleration)? pdrlearn needs the specific force: record raw acceleration, gravity "
