@@ -29,6 +29,11 @@ class VerticalAxisError(DataError):
     or, after steps whose frame was fine, a posture (kneeling, crawling: decision B131)."""
 
 
+class GravityRemovedError(DataError):
+    """An accelerometer without gravity (decisions B30, B202): the fix is the raw recording, not another unit, so
+    a reader that converted a declared unit does not ask whether that unit is right."""
+
+
 class MissingSensorError(DataError):
     """A method needs a sensor stream that the session does not have."""
 

@@ -34,14 +34,15 @@ def info(
     s = read_session(session_dir, bridge_drops=False, spans="warn")
     summary = s.summary()
     summary["frame_checks"] = s.frame_checks()  # warnings are logged (stderr) once, by the checks themselves
-    from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats
+    from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats, foot_scale_warning
 
     summary["foot_rests"] = foot_rest_stats(s)  # decisions B133 (rest |acc| in g, a display), B134
-    placement = foot_placement_warning(summary["foot_rests"], s.where)
-    if placement:
-        import logging
+    for line in (foot_placement_warning(summary["foot_rests"], s.where),
+                 foot_scale_warning(summary["foot_rests"], s.where)):  # decision B201: a rest |acc| off 1 g
+        if line:
+            import logging
 
-        logging.getLogger("pdrlearn.info").warning("%s", placement)
+            logging.getLogger("pdrlearn.info").warning("%s", line)
     # decision B64: what the other commands do with the short intervals of dropped samples
     summary["dropped_samples_bridged"] = {
         n: sum(g.duration_s <= MAX_BRIDGED_S * (1.0 + 1e-9) for g in st.gaps()) if BRIDGE_DROPS else 0

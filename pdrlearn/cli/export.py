@@ -445,6 +445,8 @@ def run(
         from pdrlearn.track.plasys import require_stride_cover
 
         require_stride_cover(session, [*required, *optional])  # decision B21
+        if "foot" in use:
+            _foot_checks(session)  # decisions B201, B203, as `track`
         session, alignment = _unit_clocks(session, use, align_units)  # decisions L161, L170: as track's, once checked
         # gaps: the runtime warns once per gap and moves a stride across a foot gap over 1 s 0 m (decision E30)
         # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
@@ -520,6 +522,22 @@ def run(
                    + (f" -> {out}" if out else ""))
         if summary.get("gait_speed_mps") is not None:  # decisions E48 / E51: track's L79 line, what run can give
             typer.echo(gait_line(summary))
+
+
+def _foot_checks(session) -> None:
+    """Decisions B203 (refused: force sensors that step beside a foot IMU that never moves) and B201 (warned: the
+    foot accelerometer's rest |acc| off 1 g), as ``track`` does, before the replay."""
+    from pdrlearn.errors import DataError
+    from pdrlearn.track.foot_rest import foot_rest_stats, foot_scale_warning, frozen_foot_imu
+
+    frozen = frozen_foot_imu(session)
+    if frozen:
+        raise DataError(frozen)
+    line = foot_scale_warning(foot_rest_stats(session), session.where)
+    if line:
+        import logging
+
+        logging.getLogger("pdrlearn.cli").warning("%s", line)
 
 
 def _run_json(arguments: dict, wall0: float, cpu0: float):

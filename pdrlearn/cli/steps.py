@@ -77,8 +77,26 @@ def steps(
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, no_walking_message(exc.walk_s, "0 steps"))
         table = pd.DataFrame({"start_s": [], "end_s": [], "event_s": [], "unit": pd.Series(dtype="string"),
                               "confidence": []})
+    if det.unit == "foot":
+        foot_checks(session, table, det.name)
     report(session, table, name=det.name, unit=det.unit, tolerance=tolerance, out=out, was=was, as_json=as_json,
            detector=det)
+
+
+def foot_checks(session, table, name: str) -> None:
+    """Decisions B201, B203: a foot detector's warnings from the foot unit's rests: the accelerometer's scale
+    off 1 g, and no stride found on a foot that walks (or a frozen IMU beside force sensors that step)."""
+    import logging
+
+    from pdrlearn.track.foot_rest import foot_rest_stats, foot_scale_warning, frozen_foot_imu, no_strides_warning
+
+    stats = foot_rest_stats(session)
+    lines = [foot_scale_warning(stats, session.where)]
+    if not len(table):
+        lines.append(frozen_foot_imu(session) or no_strides_warning(stats, session.where, name))
+    for line in lines:
+        if line:
+            logging.getLogger("pdrlearn.cli").warning("%s", line)
 
 
 def report(session, table, *, name: str, unit: str, tolerance: float, out: Path | None = None, was: bool = False,
@@ -226,7 +244,9 @@ def auto_detector(session):
     """The detector of ``--detector auto``: a foot unit's strides, else the lower back's steps (decision 17);
     also ``pdrlearn plot --steps detected`` (decision L70)."""
     from pdrlearn.steps import get_detector
+    from pdrlearn.track.base import warn_foot_unit_ignored
 
+    warn_foot_unit_ignored(session, "detecting the waist's steps")  # decision B204
     return get_detector("accel" if session.has("fAccelerometer") or not session.has("wAccelerometer")
                         else "waist-ic" if session.has("wGyroscope") else "pll")
 

@@ -23,7 +23,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.atomic import atomic_directory
-from pdrlearn.errors import DataError, shell_quote
+from pdrlearn.errors import DataError, GravityRemovedError, shell_quote
 from pdrlearn.io.clocks import apply_offsets, one_unit_counting, unit_clocks, unit_groups
 from pdrlearn.io.frames import frames_from_meta
 from pdrlearn.io.sensors import SENSORS, UNIT_IMU, VALUE_UNITS
@@ -32,6 +32,7 @@ from pdrlearn.io.validate import (
     TIE_ROWS,
     check_columns,
     check_label_times,
+    check_last_row,
     check_numeric,
     check_rate,
     check_timestamps,
@@ -373,7 +374,7 @@ def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: 
         try:
             check_units(SENSORS[name], values, str(path), t=t)
         except DataError as exc:
-            if declared is None:
+            if declared is None or isinstance(exc, GravityRemovedError):  # B202: not a question of the unit
                 raise
             raise DataError(f"{exc} (the values were converted from {declared!r}, the unit meta.json declares for "
                             "them: is that unit right?)") from None
@@ -657,7 +658,9 @@ def _s_to_ms(df: pd.DataFrame) -> pd.DataFrame:
 
 
 def _read_steps(path: Path) -> pd.DataFrame:
-    df = _ms_to_s(read_table(path), str(path))
+    raw = read_table(path)
+    check_last_row(raw, path, str(path))  # decision B205: a label table cut mid-row
+    df = _ms_to_s(raw, str(path))
     check_columns(df, STEP_COLUMNS, f"{path} (times in ms: start_ms,end_ms)")
     se = check_numeric(df, STEP_COLUMNS, str(path))
     bad = np.flatnonzero(se[:, 1] < se[:, 0])
@@ -676,6 +679,7 @@ def _read_steps(path: Path) -> pd.DataFrame:
 
 def _read_trajectory(path: Path, scale: float) -> pd.DataFrame:
     df = read_table(path)
+    check_last_row(df, path, str(path))  # decision B205
     check_columns(df, ("timestamp", "x", "y", "z"), str(path))
     arr = check_numeric(df, ("timestamp", "x", "y", "z"), str(path))
     check_timestamps(arr[:, 0] * scale, str(path))
@@ -1103,6 +1107,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
         if _not_labels(p, table, folder):  # decision B74: a copy of a sensor file, or a sensor stream
             continue
         check_label_table(table, p.stem, str(p))
+        check_last_row(table, p, str(p))  # decision B205
         extras[p.stem] = _ms_to_s(table, str(p))
     if spans == "common" and cut is not None:  # decision B81: the labels describe the walk that is kept
         t0, t1, dropped, why = cut

@@ -67,15 +67,35 @@ def check_numeric(df: pd.DataFrame, columns: tuple[str, ...], where: str, *, cut
         if cut_mid_line and rows[-1] == len(df) - 1:  # decision B128: a copy cut mid-line, not a bad value
             others = f" (and {len(rows) - 1} other row(s) with bad values, first at line {rows[0] + 2})" \
                 if len(rows) > 1 else ""
-            raise DataError(
-                f"{where}: last line incomplete (line {len(df) + 1} stops mid-row, no line break at the end): file "
-                f"truncated?{others} -- restore the whole file from the recording (deleting the line leaves a file "
-                "cut short, decision B72)")
+            raise DataError(truncated_line_message(where, len(df) + 1, others))
         raise DataError(
             f"{where}: {len(rows)} row(s) with non-numeric, NaN or infinite values (first at line {rows[0] + 2}); "
             "remove or repair those rows"
         )
     return arr
+
+
+def truncated_line_message(where: str, line: int, others: str = "", what: str = "the recording") -> str:
+    """Decision B128's one line for a file whose last line ``line`` stops mid-row (B205: label tables too,
+    ``what`` naming where to restore it from)."""
+    return (f"{where}: last line incomplete (line {line} stops mid-row, no line break at the end): file "
+            f"truncated?{others} -- restore the whole file from {what} (deleting the line leaves a file "
+            "cut short, decision B72)")
+
+
+def check_last_row(df: pd.DataFrame, path, where: str) -> None:
+    """Decision B205: a label table (steps.csv, trajectory.csv, ics.csv ...) cut mid-row. Its cut cells parse (a
+    time cut to ``6`` is a number), so B128's bad-value test does not see it: a file without a line break at the
+    end (:func:`ends_mid_line`) whose last row lacks a cell that every other row has (the fields after the cut) is
+    refused with B128's line. A last row complete in its fields (cut inside its last cell) is not detected."""
+    if len(df) < 2 or not ends_mid_line(path):
+        return
+    last, rest = df.iloc[-1], df.iloc[:-1]
+    lost = [str(c) for c in df.columns if pd.isna(last[c]) and rest[c].notna().all()]
+    if lost:
+        raise DataError(truncated_line_message(
+            where, len(df) + 1, f" (it has no {', '.join(lost[:3])}{' ...' if len(lost) > 3 else ''}, which every "
+            "other row has; decision B205)", what="where the labels were made"))
 
 
 def ends_mid_line(path) -> bool:

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, GravityRemovedError
 
 if TYPE_CHECKING:
     from pdrlearn.io.sensors import SensorSpec
@@ -134,10 +134,13 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
         med = quiet_acc_norm(values, t)  # B78: judged where the unit rests (|acc| ~ g), e.g. a running foot
         # B97: ~1 g at rest (quiet windows: a foot's foot-flat) or on the whole file's median (a waist that walks
         # without a pause: its quiet windows sit on the bounce's peaks, 11.7 m/s^2 for a +-2 m/s^2 sine)
+        absent = rest_without_gravity(whole, med)  # decision B202: ~0 g at rest, before the g and scale readings
+        if absent is not None:
+            raise GravityRemovedError(gravity_absent_message(where, whole, med, absent))
         at_g = t is None or gravity_scale(med) is None or gravity_scale(whole) is None
         if 4.0 <= whole <= 25.0 and (at_g or not 4.0 <= med <= 25.0):
             return  # plausible on the whole file (before B78) and ~1 g at rest (B97; a quiet median off any scale
-            # of g, gravity removed, is B30's / B36's)
+            # of g, gravity removed, is B30's / B202's, above)
         if 0.5 <= whole <= 2.0 or 0.5 <= med <= 2.0:  # the whole file's figure when it tells (as before B78)
             raise DataError(
                 f"{where}: median |acc| is {whole if 0.5 <= whole <= 2.0 else med:.2f}, which looks like units of g; "
@@ -184,6 +187,38 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
             raise DataError(f"{where}: median pressure {med:.1f} looks like kPa; multiply by 10 to get hPa")
         if not 300 <= med <= 1100:
             raise DataError(f"{where}: median pressure {med:.1f} hPa is outside 300-1100 hPa (thesis Table 17)")
+
+
+#: decision B202: the most an accelerometer reads at rest, in g, when its gravity has been removed. The rest reading is
+#: B78's quietest windows' median |acc| (:func:`quiet_acc_norm`), in g in the unit the whole file's median |acc| fits
+#: (D4's m/s^2 band 4-25; otherwise read as g, the larger reading). Correct units read 0.967-1.008 g at their
+#: foot-flats (B133, 11 real feet) and -3.4 .. +4.6 % off 1 g in their quietest windows (B97); a x0.5 mis-scale
+#: (B97's message) reads 0.5 g.
+#: The trial `fuzz` copies with each axis's median subtracted read 0.079 g (sim D foot), 0.043 g (gaitmap foot) and
+#: 0.035 g as m/s^2 (mobgap lower back; 0.34 if its 1.15 median were g), their mean vectors 0.35-0.58 of the median
+#: |acc| (above B30's 0.2). 0.4 g lies between 0.35 and 0.5, and 4 m/s^2 is the floor of D4's m/s^2 band.
+REST_G_MIN = 0.4
+
+
+def rest_without_gravity(whole: float, quiet: float) -> float | None:
+    """Decision B202: the rest reading in g (``quiet``, :func:`quiet_acc_norm`, over gravity in the unit the whole
+    file's median |acc| ``whole`` fits: m/s^2 in 4-25; otherwise read as g, the larger of the two readings: a walk
+    with long pauses has its whole median under 4 once gravity is removed) when it is under :data:`REST_G_MIN`: at
+    rest an accelerometer reads gravity, so this one's has been removed. None otherwise, and for a file of zeros
+    (B123's line)."""
+    if not whole > 0:
+        return None  # all zeros: B123's line
+    rest = quiet / STANDARD_GRAVITY if 4.0 <= whole <= 25.0 else quiet  # else the larger reading (as g)
+    return rest if rest < REST_G_MIN else None
+
+
+def gravity_absent_message(where: str, whole: float, quiet: float, rest_g: float) -> str:
+    """Decision B202's one line (B30's fix: what to export)."""
+    as_g = "" if 4.0 <= whole <= 25.0 else f" (read as g; as m/s^2 {quiet / STANDARD_GRAVITY:.4f} g)"
+    return (f"{where}: the accelerometer reads ~0 g at rest: {rest_g:.3f} g{as_g} in its quietest windows against a "
+            f"median |acc| of {whole:.3g} over the file, where a still accelerometer reads 1 g: gravity removed "
+            "(linear / free acceleration)? pdrlearn needs the specific force: record raw acceleration, gravity "
+            f"included ({GRAVITY_HINT}), or check that these columns are an accelerometer (decision B202)")
 
 
 #: largest ratio |mean acceleration vector| / median |acc| of an accelerometer file whose gravity has been removed
@@ -279,7 +314,7 @@ def check_gravity(values: np.ndarray, where: str, t: np.ndarray | None = None) -
     warning naming the time (decision B105, :func:`orientation_change`)."""
     removed = gravity_removed(values, where, t)
     if removed is not None:
-        raise DataError(gravity_removed_message(where, *removed))
+        raise GravityRemovedError(gravity_removed_message(where, *removed))
 
 
 #: B91: the percentile of |gyro| (rad/s) that tells a swinging foot from a waist

@@ -162,7 +162,32 @@ def resolve_pipeline(name: str, session) -> str:
         return name
     if session.has("fAccelerometer") or not session.has("wAccelerometer"):
         return "plasys"
+    warn_foot_unit_ignored(session, "tracking the waist")  # decision B204
     return "waist-pendulum"
+
+
+def foot_unit_ignored(session, doing: str) -> str | None:
+    """Decision B204: the line when a session has foot files but no fAccelerometer.csv, so that the choice
+    between the units (``auto``) leaves the foot unit out and does ``doing`` with the waist; None otherwise."""
+    if session.has("fAccelerometer") or not session.has("wAccelerometer"):
+        return None
+    foot = [n for n, st in session.streams.items() if n.startswith("f") and len(st)]
+    if not foot:
+        return None
+    from pdrlearn.io.sensors import SENSORS
+
+    files = ", ".join(SENSORS[n].filename for n in foot)
+    return (f"fAccelerometer.csv missing: foot unit ignored, {doing} (the foot unit's {files} are not used "
+            "without it; restore fAccelerometer.csv to track the foot, or remove the foot files; decision B204)")
+
+
+def warn_foot_unit_ignored(session, doing: str) -> None:
+    """Decision B204: log :func:`foot_unit_ignored`'s line (a warning: ``track-all`` lists it with the session)."""
+    line = foot_unit_ignored(session, doing)
+    if line:
+        import logging
+
+        logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
 
 
 def get_pipeline(name: str) -> Pipeline:

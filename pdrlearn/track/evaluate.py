@@ -807,17 +807,20 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, mirrored)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), mirrored]
     summary.update(domain_fraction(result))  # decision C16
-    placement = None
+    placement = scale = None
     if result.info.get("pipeline") == "plasys":  # decision B134: a foot unit that never swings is not on the foot
-        from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats
+        from pdrlearn.track.foot_rest import foot_placement_warning, foot_rest_stats, foot_scale_warning
 
-        placement = foot_placement_warning(foot_rest_stats(session), session.where)
+        stats = foot_rest_stats(session)
+        placement = foot_placement_warning(stats, session.where)
+        scale = foot_scale_warning(stats, "")  # decision B201: the foot accelerometer's rest |acc| off 1 g
     lines = summary_warnings(summary)
     if placement:  # its cadence is not a foot's: B134's line replaces L95's "looks like running" guess
         from pdrlearn.track.gait import gait_range_warning
 
         lines = [ln for ln in lines if ln != gait_range_warning(summary)] + [placement]
-    for line in lines:  # decisions L95 (running / very slow walking), L113 (CV withheld), B134
+    lines += [scale] if scale else []
+    for line in lines:  # decisions L95 (running / very slow walking), L113 (CV withheld), B134, B201
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
     aid = summary["info"].get("aid")

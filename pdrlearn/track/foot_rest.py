@@ -8,6 +8,11 @@
   (its |acc| varies, B37) but never swings (B91's 99th percentile of |gyro| under ``FOOT_NO_SWING``) is not on
   the foot (waist, pocket): its "rests" are not foot-flats and its ZUPT track is meaningless (trial `placement`
   finding 4: 8.99 m for 89.5 m, warned only as running).
+- B201: a foot accelerometer whose rest |acc| is more than :data:`REST_SCALE_TOL` off 1 g is warned about (its
+  distances scale with it; the trial `fuzz`'s x0.8-x1.3 copies), and a foot detector that finds no stride on a
+  foot that walks and swings says so instead of scoring 0 silently.
+- B203: force sensors that load and unload beside a foot IMU that never moves (frozen, disconnected) is refused:
+  every stride would integrate to 0 m.
 """
 
 from __future__ import annotations
@@ -21,6 +26,16 @@ from pdrlearn.signal import interp_rows
 
 #: fewer rest samples than this: no figure (nothing to judge)
 MIN_REST_SAMPLES = 20
+#: decision B201: a foot accelerometer whose rest |acc| (:func:`foot_rest_stats`) is more than this fraction off 1 g is
+#: warned about. Correctly scaled feet read 0.967-1.008 g at their detected foot-flats (B133: 11 real gaitmap feet;
+#: -3.3 % at most) and 0.990-1.012 g on 20 simulated walks (B133); lower-back units read 0.96-1.01 g in their quietest
+#: windows (B97: -3.4 .. +1.2 % on the 23 real recordings). 7 % is twice the widest deviation of a correctly scaled
+#: foot (3.3 %), so a 10 % mis-scale (the trial's x0.9 / x1.1: -10 % / +10 % distance) is warned about on every foot
+#: read within 3 % of 1 g. A warning, not a refusal: B97 refuses outside x0.67-x1.5 only, because hand-made feet with
+#: very short foot-flats read 1.30 g in their quietest windows, and the foot-flats are the ZUPT's own guess
+REST_SCALE_TOL = 0.07
+#: decision B203: force sensors that load this many times or more beside a foot IMU that does not move is a frozen IMU
+FORCE_STEPS_MIN = 3
 
 
 def foot_rest_stats(session) -> dict | None:
@@ -42,6 +57,70 @@ def foot_rest_stats(session) -> dict | None:
     return {"rest_acc_g": float(np.median(norm[ok]) / STANDARD_GRAVITY) if ok.sum() >= MIN_REST_SAMPLES else None,
             "rest_fraction": float(rest.mean()), "swing_rad_s": swing_rate(gyr_s.values),
             "walking": bool(np.nanstd(norm) > WALKING_ACC_STD)}
+
+
+def foot_scale_warning(stats: dict | None, where: str) -> str | None:
+    """Decision B201: one line when the foot accelerometer's rest |acc| is more than :data:`REST_SCALE_TOL` off 1 g
+    on a foot that walks and swings like a foot (B134's unit that never swings has other rests); ``where`` leads it
+    (``""``: the caller's logger adds it)."""
+    g = (stats or {}).get("rest_acc_g")
+    if g is None or not stats["walking"] or not stats["swing_rad_s"] >= FOOT_NO_SWING or abs(g - 1.0) <= REST_SCALE_TOL:
+        return None
+    return ((f"{where}: " if where else "") + f"fAccelerometer.csv reads {g:.3f} g at the foot's rests (its detected "
+            "foot-flats, "
+            f"{100 * stats['rest_fraction']:.0f} % of the samples), {100 * (g - 1):+.1f} % off the 1 g a still "
+            f"accelerometer reads (correctly scaled feet: 0.967-1.008 g, decision B133): its scale is wrong, so "
+            f"distances come out about {100 * abs(g - 1):.0f} % {'long' if g > 1 else 'short'} and the step detector's "
+            f"thresholds may miss strides; calibrate the accelerometer (scale), or divide its values by {g:.3f} "
+            "(decision B201)")
+
+
+def foot_motion(session) -> tuple[float, float] | None:
+    """(sd of |acc| in m/s^2, B91's swing statistic in rad/s) of the foot IMU; None without both its files."""
+    acc_n, gyr_n = UNIT_IMU["foot"]
+    if not session.has(acc_n, gyr_n) or len(session.streams[acc_n]) < 4 or len(session.streams[gyr_n]) < 4:
+        return None
+    norm = np.linalg.norm(np.asarray(session.streams[acc_n].values, dtype=float), axis=1)
+    return float(np.nanstd(norm)), swing_rate(session.streams[gyr_n].values)
+
+
+def frozen_foot_imu(session) -> str | None:
+    """Decision B203: the refusal when the force sensors (fForceA / fForceB) load and unload at least
+    :data:`FORCE_STEPS_MIN` times while the foot IMU does not move (sd of |acc| at most B37's
+    :data:`WALKING_ACC_STD`, B91's swing statistic under :data:`FOOT_NO_SWING`): a frozen or disconnected IMU, whose
+    strides (found by the force sensors) would all integrate to 0 m. None otherwise (a subject standing still
+    loads the force sensors once)."""
+    from pdrlearn.displace.foot import force_stance
+
+    motion = foot_motion(session)
+    if motion is None or motion[0] > WALKING_ACC_STD or motion[1] >= FOOT_NO_SWING:
+        return None
+    acc = session.streams[UNIT_IMU["foot"][0]]
+    loaded = force_stance(session, acc.t)
+    if loaded is None:
+        return None
+    n = int(np.count_nonzero(loaded[1:] & ~loaded[:-1]))
+    if n < FORCE_STEPS_MIN:
+        return None
+    names = ", ".join(f"{k}.csv" for k in ("fForceA", "fForceB") if session.has(k))
+    return (f"{session.where}: no strides detected; is the foot unit moving? The force sensors ({names}) load "
+            f"{n} times, but the foot IMU (fAccelerometer.csv, fGyroscope.csv) does not move (|acc| sd "
+            f"{motion[0]:.2g} m/s^2, |gyro| at most {np.degrees(motion[1]):.0f} deg/s; a walking foot swings over "
+            f"{np.degrees(FOOT_NO_SWING):.0f} deg/s): a frozen or disconnected IMU, so every stride would integrate to "
+            "0 m; check the IMU and its link, and re-record (decision B203)")
+
+
+def no_strides_warning(stats: dict | None, where: str, detector: str) -> str | None:
+    """Decision B201: the line when ``detector`` found no stride on a foot that walks and swings like a foot."""
+    if not stats or not stats["walking"] or not stats["swing_rad_s"] >= FOOT_NO_SWING:
+        return None
+    g = stats.get("rest_acc_g")
+    return (f"{where}: {detector} found no strides, but the foot unit walks (it swings up to "
+            f"{np.degrees(stats['swing_rad_s']):.0f} deg/s): its thresholds did not fire"
+            + (f" (the accelerometer reads {g:.3f} g at rest: check its scale, decision B201)" if g is not None
+               and abs(g - 1.0) > REST_SCALE_TOL else "")
+            + "; try --detector accel-force with force sensors, or `pdrlearn track`, which segments the strides at "
+            "the foot's rests (decision B201)")
 
 
 def foot_placement_warning(stats: dict | None, where: str) -> str | None:

@@ -817,6 +817,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                 what=f"plasys: {', '.join(asked)} set the class rules, which need the step classes"))
     if method not in METHODS:
         raise DataError(f"plasys: method '{method}' is not one of auto, M1, M2, M3")
+    from pdrlearn.track.foot_rest import frozen_foot_imu
+
+    frozen = frozen_foot_imu(session)  # decision B203: force sensors that step beside a foot IMU that never moves
+    if frozen:
+        raise DataError(frozen)
     if down_mode not in SK.DOWN_MODES:  # decision L51: offline and streamed alike
         raise DataError(f"plasys: down_mode '{down_mode}' is not one of {', '.join(SK.DOWN_MODES)}")
     if drop_neighbour and not streaming:  # decision E101
