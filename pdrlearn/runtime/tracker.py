@@ -660,7 +660,9 @@ class Tracker(FixInput):
             raise DataError(f"waist_clock_offset_s={waist_clock_offset_s!r}: the tracker follows "
                             f"{'+'.join(self.units)} only, so there is no waist clock to move; drop it")
         self.waist_clock_offset_s = float(waist_clock_offset_s)
-        self._clock = ClockCheck(offset_remedy) if clock_check and "waist" in self.units else None
+        # the check reads the moved samples: the offset to name is the one given plus the one still seen
+        self._clock = (ClockCheck(lambda off, given=self.waist_clock_offset_s: offset_remedy(given + off))
+                       if clock_check and "waist" in self.units else None)
         #: decision L134: a restart state's position, heading and samples (the steps they complete come out with
         #: the next push's or flush's)
         self._carry = resume_state(self, resume) if resume is not None else []
