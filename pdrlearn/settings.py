@@ -143,6 +143,8 @@ class Rule:
                 text = f"a {noun} from {self.low:g} to {self.high:g}"
             elif self.low is not None:
                 text = f"a {noun} {'>' if self.open_low else '>='} {self.low:g}"
+            elif self.high is not None:  # an upper bound alone had been said "a number"
+                text = f"a {noun} <= {self.high:g}"
             else:
                 text = f"a {noun}"
         return text + (" or null" if self.none else "")

@@ -241,3 +241,15 @@ def test_a_waist_bundle_from_another_version_loads_with_b137s_warning(tmp_path, 
     lines = [r.getMessage() for r in caplog.records if "exported by pdrlearn" in r.getMessage()]
     assert len(lines) == 1 and lines[0].startswith(f"bundle {b}: exported by pdrlearn 9.9.0, this runtime is "
                                                    f"pdrlearn {__version__}; it loads"), lines
+
+
+@pytest.mark.parametrize(("kw", "what"), [
+    ({"low": 0, "open_low": True}, "a positive number"), ({"low": 0, "high": 0.5}, "a number from 0 to 0.5"),
+    ({"low": 1}, "a number >= 1"), ({"high": 2}, "a number <= 2"), ({}, "a number")])
+def test_a_rule_says_its_bounds(kw, what):
+    """Decision B206's shared Rule names every bound it checks (an upper bound alone had been "a number")."""
+    from pdrlearn.settings import Rule
+
+    r = Rule("number", **kw)
+    assert r.what() == what
+    assert r.fits(3) == ("high" not in kw)  # the line is given exactly when the value breaks the rule

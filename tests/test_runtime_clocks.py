@@ -91,6 +91,33 @@ def test_the_live_tracker_checks_the_clocks_as_run_does(walk, chunk_s):
     assert tuple(quiet.position) == tuple(off.position)  # the check changes no step
 
 
+def test_the_line_names_the_whole_offset_when_one_was_given(walk):
+    """A waist clock 0.6 s late and 0.3 s of it given: the check sees the 0.3 s left (about 0.25, as above) and
+    names the offset that fixes it, the given one plus the one seen (not the rest alone)."""
+    tr, (line,) = _run(_shifted(walk, 0.6), 0.7, waist_clock_offset_s=0.3)
+    named = float(line.split("waist_clock_offset_s=")[1].split(")")[0])
+    assert named == pytest.approx(0.3 + tr.clock_offset["offset_s"], abs=0.02)
+    assert named == pytest.approx(0.55, abs=0.05)
+
+
+def test_the_check_holds_one_block_after_its_line(walk):
+    """After the line the foot samples still go through the detector (not held to the flush: bounded state)."""
+    from pdrlearn.runtime.clocks import BLOCK_SAMPLES
+
+    tr = Tracker(load_bundle(BUNDLE))
+    s = _shifted(walk, 0.3)
+    held, warned_at = [], None
+    for i, push in enumerate(replay_chunks({n: (st.t, st.values) for n, st in s.streams.items() if len(st)}, 0.5)):
+        tr.push(push)
+        if tr._clock.warned:
+            warned_at = i if warned_at is None else warned_at
+            held.append(tr._clock._held["fAccelerometer"].n)
+    assert warned_at is not None and len(held) >= 10  # the line came while walking, pushes followed
+    assert max(held) < BLOCK_SAMPLES + 0.5 * 50 + 1  # a block and one push at 50 Hz at the most
+    tr.flush()
+    assert tr.clock_offset["offset_s"] == pytest.approx(align_units(s)[0], abs=1e-9)  # the end as before
+
+
 def test_a_foot_only_tracker_has_no_clock_check(walk):
     tr, lines = _run(walk, 0.5, units=("foot",))
     assert not lines and tr.clock_offset is None

@@ -78,6 +78,12 @@ DROP_NEIGHBOUR = False
 DROP_SPAN_MAX = 2.0
 
 
+def drop_neighbour_on(neighbour: bool | None) -> bool:
+    """Decision E101: whether L167's rule applies for a caller's ``drop_neighbour`` keyword (None:
+    :data:`DROP_NEIGHBOUR`, read at call time)."""
+    return bool(DROP_NEIGHBOUR if neighbour is None else neighbour)
+
+
 def drop_stride_disp(disp, duration_s: float, ref, neighbour: bool | None = None) -> tuple[float, float, float]:
     """Decision L167 (L160's rule streamed: only the neighbour before is known when a stride ends): the step-frame
     displacement ``(dx, dy, dz)`` (m) of a stride of ``duration_s`` (s) across dropped foot samples. ``ref``:
@@ -86,7 +92,7 @@ def drop_stride_disp(disp, duration_s: float, ref, neighbour: bool | None = None
     :data:`DROP_SPAN_MAX`), ``ref``'s height change. ``neighbour``: whether L167's rule applies (decision E101: the
     callers' ``drop_neighbour`` keyword; None: :data:`DROP_NEIGHBOUR`); False: ``disp`` itself."""
     dx, dy, dz = (float(v) for v in disp)
-    if ref is None or not (DROP_NEIGHBOUR if neighbour is None else neighbour):
+    if ref is None or not drop_neighbour_on(neighbour):
         return dx, dy, dz
     (rx, ry, rz), rdur = ref
     length = math.hypot(float(rx), float(ry)) * min(float(duration_s) / float(rdur), DROP_SPAN_MAX)

@@ -564,16 +564,6 @@ def extend_alternating(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, s
     return out
 
 
-def _weak_candidate(cand: np.ndarray, h: np.ndarray, keep: np.ndarray, sd: np.ndarray, want: int,
-                    anchors: list[float], per: float, tol: float) -> int | None:
-    """Decision W148: the highest positive (W18's interior floor) candidate not in ``keep`` whose decided side is
-    ``want`` and which lies within ``tol`` local periods ``per`` of every predicted time in ``anchors`` (samples)."""
-    lo, hi = max(anchors) - tol * per, min(anchors) + tol * per
-    idx = [i for i in range(np.searchsorted(cand, lo), np.searchsorted(cand, hi, side="right"))
-           if not keep[i] and h[i] > 0.0 and int(sd[i]) == want]
-    return max(idx, key=lambda i: h[i]) if idx else None
-
-
 def _same_side_pairs(cand: np.ndarray, keep: np.ndarray, sd: np.ndarray, max_gap: int, tol: float):
     """Decisions W148 / W152: each pair of consecutive kept candidates (``cand`` sample positions, ``keep`` mask) on
     one decided side ``sd`` at most ``max_gap`` samples apart (W20: the alternation is broken, one opposite step is

@@ -111,8 +111,6 @@ class ClockCheck:
     def check(self, final: bool = False) -> str | None:
         """The warning line, once: when a new estimate (every CHECK_EVERY_STRIDES foot strides, and at the end)
         is over the threshold. The estimate at the end is made after a warning too (:attr:`estimate`)."""
-        if self.warned and not final:
-            return None
         if final:
             for name in ("wAccelerometer",):
                 if self._held[name].n:
@@ -121,8 +119,8 @@ class ClockCheck:
                     self._waist_events += [e[0] for e in self._waist.flush()]
             self._run_foot(final=True)
         else:  # the foot samples after the whole push was fed (its force samples too: the detector is chosen once)
-            self._run_foot(final=False)
-            if len(self._foot_events) < self._checked_at + CHECK_EVERY_STRIDES:
+            self._run_foot(final=False)  # after the line too: the held samples stay one block (the state bounded)
+            if self.warned or len(self._foot_events) < self._checked_at + CHECK_EVERY_STRIDES:
                 return None
         self._checked_at = len(self._foot_events)
         try:

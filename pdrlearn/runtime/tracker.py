@@ -24,13 +24,12 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
-from pdrlearn.kernels import gaps as KG
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
 from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
-from pdrlearn.kernels.gaps import drop_stride_disp
+from pdrlearn.kernels.gaps import drop_neighbour_on, drop_stride_disp
 from pdrlearn.kernels.stride import (
     DEFAULT_DOWN_MODE,
     DOWN_MODES,
@@ -639,7 +638,7 @@ class Tracker(FixInput):
         self._foot_gaps: list[tuple[float, float, bool, bool]] = []  # (start, end, long, a foot IMU stream's)
         self._drop_ref: tuple | None = None  # decision L167: (displacement, duration) of the last clean stride
         self._drop_warned = False
-        self.drop_neighbour = bool(KG.DROP_NEIGHBOUR if drop_neighbour is None else drop_neighbour)  # E101
+        self.drop_neighbour = drop_neighbour_on(drop_neighbour)  # decision E101
         self._held: set[str] = set()
         self._held_s = float(self.params.get("max_wait_s", 2.0))  # a held value older than this is warned about
         #: decision B141: a push whose timestamps jump further ahead than this (s) is refused (a clock glitch)
@@ -661,7 +660,9 @@ class Tracker(FixInput):
             raise DataError(f"waist_clock_offset_s={waist_clock_offset_s!r}: the tracker follows "
                             f"{'+'.join(self.units)} only, so there is no waist clock to move; drop it")
         self.waist_clock_offset_s = float(waist_clock_offset_s)
-        self._clock = ClockCheck(offset_remedy) if clock_check and "waist" in self.units else None
+        # the check reads the moved samples: the offset to name is the one given plus the one still seen
+        self._clock = (ClockCheck(lambda off, given=self.waist_clock_offset_s: offset_remedy(given + off))
+                       if clock_check and "waist" in self.units else None)
         #: decision L134: a restart state's position, heading and samples (the steps they complete come out with
         #: the next push's or flush's)
         self._carry = resume_state(self, resume) if resume is not None else []
@@ -1550,7 +1551,7 @@ class Tracker(FixInput):
             if self._mirror is not None:
                 self._mirror_stride(t0, t1)
         if bridged:  # decision L167 (an option; track --streaming's): the length and height of the clean stride before
-            on = KG.DROP_NEIGHBOUR if self.drop_neighbour is None else self.drop_neighbour  # E101
+            on = drop_neighbour_on(self.drop_neighbour)  # decision E101 (a bare Tracker.__new__: None)
             disp = np.array(drop_stride_disp(disp, t1 - t0, self._drop_ref, on))
             if on and self._drop_ref is not None and not self._drop_warned:
                 self._drop_warned = True

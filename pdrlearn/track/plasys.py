@@ -1339,7 +1339,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     # decision L167 (an option, DROP_NEIGHBOUR): a stride across dropped samples over the gap clock's limit takes the
     # length and height of the stride before it (ref: that stride's displacement and duration), as the runtime's
     across, ref = drop_strides(session, table, in_gap, min_gap_s=BRIDGE_GAP_S), None
-    neighbour = bool(KG.DROP_NEIGHBOUR if drop_neighbour is None else drop_neighbour)  # decision E101
+    neighbour = KG.drop_neighbour_on(drop_neighbour)  # decision E101
     for i, (t0, t1) in enumerate(strides):
         prev = float(strides[i - 1, 1]) if i else None
         if in_gap[i]:  # decision L91: the waist's turn from the previous stride's end, else 0 (L90)

@@ -362,13 +362,9 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
         raise DataError(f"calibrate: unknown pipeline '{pipeline}'; choose waist-pll or waist-pendulum")
     implausible = check_gain(walks, pipeline, base)  # decision W39
     shrunk = None
-    fitted = _fit_with_pivots(walks, pipeline, base, out)  # W150: the walks with the fitted pivot factors
+    fitted, how = _fit_with_pivots(walks, pipeline, base, out)  # W150: the walks with the fitted pivot factors
     if pipeline == "waist-pendulum":
-        how = fitted[1]
-        out.k, out.k_shrinkage, shrunk = shrink_pendulum_gain(fitted[0], out.k, out.f_m, how, shrink=shrink,
-                                                              tau=tau_k)
-    else:
-        how = fitted[1]
+        out.k, out.k_shrinkage, shrunk = shrink_pendulum_gain(fitted, out.k, out.f_m, how, shrink=shrink, tau=tau_k)
     for n in implausible + notes_count:
         log.warning("calibrate: %s", n)
     if distances is not None:  # decision W21: the known length must span the counted steps
