@@ -107,3 +107,17 @@ def unit_offset_message(offset_s: float, drift: float, command: str = "pdrlearn 
             f"{UNIT_OFFSET_WARN_S:g} s warns, decision L161): the unit clocks are offset (a unit switched on later "
             "that counts from 0, or a drifting clock), and the waist heading is read at the foot's strides; align "
             f"them with {fix} (an offset a whole step period apart is not seen)")
+
+
+def unlocked_message(estimate: dict, option: str = "--align-units") -> str | None:
+    """Decision L186: the line ``option`` (``track`` / ``run --align-units``) says when it keeps the clocks because
+    :func:`align_events`' ``estimate`` did not lock (:func:`offset_locked`, L183: a start-stop queue's shuffles read
+    an offset there is not); None when it locked."""
+    if offset_locked(estimate):
+        return None
+    return (f"{option} kept the unit clocks: the step events did not lock (L183: {int(estimate.get('matched', 0))} "
+            f"of {int(estimate.get('foot_events', 0))} foot events matched, scatter "
+            f"{float(estimate.get('residual_sd_s', float('nan'))):.3f} s; locked: >= {MIN_LOCK_PAIRS} within "
+            f"{LOCK_MAX_RESIDUAL_SD_S:g} s), so the {float(estimate.get('offset_s', float('nan'))):+.2f} s read is no "
+            "offset; if you know the waist clock's offset, give it by hand (Tracker(..., waist_clock_offset_s=...), or "
+            "subtract it from the waist files' time column), else drop --align-units (decision L186)")

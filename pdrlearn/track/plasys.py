@@ -408,11 +408,18 @@ def rate_check(model, session: Session, classes: pd.DataFrame, warnings: list[st
 def align_clocks(session: Session, warnings: list[str]) -> tuple[Session, dict | None]:
     """Waist streams moved onto the foot clock with the steps detected by both units (thesis ch.7.2.2:
     the gyroscope-detected steps align the units); the session unchanged when that fails. ``track --align-units``
-    (L162) and ``run --align-units`` (L170) share it."""
+    (L162) and ``run --align-units`` (L170) share it. Decision L186: an estimate that did not lock (L183's
+    :func:`~pdrlearn.kernels.align.offset_locked`) is not applied: the session unchanged and one line why."""
     try:
-        from pdrlearn.steps.align import align_units, apply_alignment
+        from pdrlearn.kernels.align import unlocked_message
+        from pdrlearn.steps.align import align_estimate, apply_alignment
 
-        offset, drift = align_units(session)
+        est = align_estimate(session)
+        line = unlocked_message(est)
+        if line is not None:  # decision L186: an unlocked estimate tells no offset (L183)
+            warnings.append(line)
+            return session, None
+        offset, drift = est["offset_s"], est["drift"]
         aligned = apply_alignment(session, offset, drift)
         info = {"offset_s": float(offset), "drift": float(drift)}
         from pdrlearn.io.plasys import cut_to_common_span
