@@ -420,3 +420,32 @@ def test_the_runtime_waist_tracker_gives_w138s_sides_and_their_agreement_with_th
     assert both >= 70 and agree / both >= 0.95, (both, agree)
     with pytest.raises(DataError, match=r"^WaistTracker: sides='yes' must be True or False$"):
         WaistTracker(bundle, fs=a.rate_hz, sides="yes")
+
+
+def test_run_of_a_waist_bundle_writes_the_side_column_with_sides(sim, tmp_path, capsys):
+    """Decision E110: `run WAIST_BUNDLE --sides` writes E103's causal side of each step to steps.csv under the
+    offline lower-back track's name and values (``side``: left / right / empty); without it no column (as before);
+    a foot-unit bundle refuses --sides in one line."""
+    import pandas as pd
+
+    walk = write_session(sim["session"], tmp_path / "walk")
+    assert main(["run", str(sim["bundle"]), str(walk), "--sides", "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", str(sim["bundle"]), str(walk), "--out", str(tmp_path / "p")]) == 0
+    assert main(["track", str(walk), "--pipeline", "waist-pendulum", "--params", str(sim["cal"]),
+                 "--out", str(tmp_path / "t")]) == 0
+    capsys.readouterr()
+    got, plain, offline = (pd.read_csv(tmp_path / n / "steps.csv") for n in ("r", "p", "t"))
+    assert "side" not in plain.columns and "side" in offline.columns
+    for t in (got, offline):  # after stairs, as the offline track writes it
+        assert list(t.columns)[list(t.columns).index("stairs") + 1] == "side"
+    s = sim["session"]
+    live = push_waist(WaistTracker(load_waist_bundle(sim["bundle"]), fs=100.0, sides=True), s, [100] * 10**4)
+    assert got["side"].fillna("").tolist() == [o.side for o in live]
+    assert set(got["side"].dropna()) == {"left", "right"} == set(offline["side"].dropna())
+    assert got["side"].notna().sum() > 0.8 * len(got)
+    pd.testing.assert_frame_equal(got.drop(columns="side"), plain)  # the option adds the column only
+    assert main(["run", str(ROOT / "models" / "plasys-sim-default"), str(walk), "--sides",
+                 "--out", str(tmp_path / "f")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--sides" in err[0] and "foot-unit bundle" in err[0] and "drop --sides" in err[0]
+    assert not (tmp_path / "f" / "steps.csv").exists()

@@ -306,6 +306,10 @@ def run(
                                      "clock onto the foot's by the steps both detect, before the replay (offset and "
                                      "drift over the whole recording, as `track --align-units`; decision L170). "
                                      "Without it, the units' steps over 0.2 s apart are warned about (L161)."),
+    sides: bool = typer.Option(False, "--sides", help="A waist-only bundle: each step's foot, steps.csv column "
+                               "side (left / right, empty when undecided) as `track --pipeline waist-pendulum` "
+                               "names it, from the streamed contacts (W138's causal side, not the offline W129 "
+                               "one: 79 of 80 agree where both decide on HA001, E103; decision E110)."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -322,6 +326,8 @@ def run(
         pdrlearn run out/bundle/u1 out/sim/D_u1 --initial-heading 90 --out out/run_north   # sets off north
 
         pdrlearn run out/bundle_u1_all out/sim/D_u1 --method svm --out out/run_svm   # an exported non-chosen method
+
+        pdrlearn run out/wbundle out/sim/B_u2 --sides --out out/run_sides   # a waist bundle: each step's foot
     """
     # decision L122: every option as given (defaults included) and the start, for OUT/run.json, as track's
     record = _run_json(dict(locals()), time.perf_counter(), time.process_time())
@@ -363,9 +369,13 @@ def run(
                                       if v]
         if given:
             raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only bundle "
-                            "(give SESSION_DIR, and --start / --initial-heading / --chunk-s / --out / --json)")
+                            "(give SESSION_DIR, and --start / --initial-heading / --chunk-s / --sides / --out / "
+                            "--json)")
         return _run_waist(bundle_dir, session_dir, out, chunk_s, as_json, heading0, dpi, record, bouts,
-                          storey_height, start_ll, start_alt)  # decision L142: as the foot bundle's run; W147
+                          storey_height, start_ll, start_alt, sides=sides)  # decision L142: as the foot bundle's run
+    if sides:  # decision E110: W138's side is the lower-back contact's; a foot bundle tracks one foot's strides
+        raise DataError(f"run: --sides gives a waist-only bundle's steps their foot; {bundle_dir} is a foot-unit "
+                        "bundle, whose steps are the strides of the one foot it tracks: drop --sides")
     bundle = load_bundle(bundle_dir)  # verified before any output
     methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
@@ -579,14 +589,16 @@ def _calibration_gait_warning(params, steps, warnings: list[str], where: str) ->
 
 def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chunk_s: float, as_json: bool,
                heading0: float | None, dpi: int | None, record, bouts=None, storey_height_m: float = 3.0,
-               start_ll=None, start_alt: float = 0.0) -> None:
+               start_ll=None, start_alt: float = 0.0, sides: bool = False) -> None:
     """``pdrlearn run WAIST_BUNDLE SESSION`` (decision E57): the session's lower-back accelerometer and gyroscope
     pushed in ``chunk_s`` slices through :class:`pdrlearn.runtime.WaistTracker` (the gyroscope read at the
     accelerometer's times, as ``track``'s ``body_data``). The frame is the session's declared one (warned when the
     bundle records another), else the bundle's, else inferred from the data (D8). Writes and prints what ``run``
     does for a foot bundle, with ``track``'s waist step columns; the floor counts in storeys of ``storey_height_m``
     (``--storey-height``, decision L142: it had been left at 3 m). ``--start LAT,LON[,ALT]`` (``start_ll``,
-    ``start_alt``): the tracker's lat/lon of each step (decision W147) and z at ALT, as the foot bundle's run."""
+    ``start_alt``): the tracker's lat/lon of each step (decision W147) and z at ALT, as the foot bundle's run.
+    ``sides`` (``--sides``, decision E110): the runtime's causal side of each step (E103) in steps.csv's ``side``
+    column, the offline lower-back track's name and values (``left`` / ``right`` / empty when undecided)."""
     import numpy as np
     import pandas as pd
 
@@ -620,7 +632,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                 session.name, declared.to_dict(), bundle.manifest["frames"].get("waist"))
     elif bundle.rotation is None:
         frame = session.require_frame("waist").matrix()  # inferred from the data (D8, with its warning)
-    tracker = WaistTracker(bundle, fs=a.rate_hz, heading_rad=heading0 or 0.0, frame=frame,
+    tracker = WaistTracker(bundle, fs=a.rate_hz, heading_rad=heading0 or 0.0, frame=frame, sides=bool(sides),  # E110
                            start_latlon=None if start_ll is None else (*start_ll, start_alt))  # decision W147
     from pdrlearn.track.barometer import usable_barometer
     from pdrlearn.track.waist import NO_BAROMETER
@@ -658,6 +670,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                         "heading_rad": s.heading_rad, "dz_m": s.dz_m if s.dz_m is not None else 0.0,
                         "stairs": bool(s.stairs), "unit": "waist",  # E106/E107: W91's test, as track's column
                         "has_next": s.has_next, "merged": s.merged, "turning": s.turning} for s in steps], columns=cols)
+    if sides:  # decision E110: after stairs, as the offline track's columns (W129); "" = undecided, as offline
+        df.insert(cols.index("stairs") + 1, "side", pd.Series([s.side or "" for s in steps], dtype=object))
     traj = pd.DataFrame({"t": [float(a.t[0])] + [s.end_s for s in steps],
                          "x": [0.0] + [s.x for s in steps], "y": [0.0] + [s.y for s in steps]})
     # decision L56: z starts at --start's ALT; E106: the barometric altitude of each step (W89), as track's
