@@ -255,7 +255,8 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("mean_rate_rps", "rad/s", "number", "the stride's mean vertical rate (MRZ, seed 003 sec. 3.3)"),
     ("stairs", _ID, "true/false", "the barometric altitude changes by 0.1 m/s or more around the step (W91)"),
     ("side", _ID, "text", "left / right foot of the contact, empty when undecided: the pelvis's lateral velocity at "
-                          "it (W20, W129; 99 % agree with INDIP's foot where decided); empty with --realtime"),
+                          "it (W20, W129; 99 % agree with INDIP's foot where decided); empty with --realtime; "
+                          "`run WAIST_BUNDLE --sides`: the streamed contact's causal side (W138, E103, E110)"),
     ("dz_m", "m", "number", "barometric altitude change over the step (W89; 0 without a usable barometer)"),
     ("pause_dz_m", "m", "number", "barometric altitude change while standing before the step (a lift ride; W158), "
                                   "0 inside a walking sequence"),
