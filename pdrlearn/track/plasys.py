@@ -625,9 +625,9 @@ def split_events(strides: pd.DataFrame, rows: np.ndarray, t: np.ndarray, stance:
 #: height change (the BLE trial's 5 % burst loss: a flat 400 m walk +7.96 m, all from those strides)
 GAP_STRIDE_HEIGHT = True
 
-#: Decision L184 (candidate, measured by its rule): offline M3 gives L39's level rule to the strides whose terrain
-#: class the confidence gate (L18) dropped, instead of their raw integrated height
-GATED_LEVEL_DZ = False
+#: Decision L184 (adopted by its rule, experiments/gated_level_dz.py): offline M3 gives L39's level rule to the
+#: strides whose terrain class the confidence gate (L18) dropped, instead of their raw integrated height
+GATED_LEVEL_DZ = True
 
 
 def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.ndarray,
