@@ -59,8 +59,8 @@ def test_resample_trains_every_user_at_one_rate_and_says_it(cohort, tmp_path, ca
 
 
 def test_bad_resample_is_one_line_before_any_user(cohort, tmp_path, capsys):
-    for bad in ("0", "-5", "nan"):
+    for bad in ("0", "-5", "nan", "5", "1e6"):  # decision B212: 20-1000 Hz
         rc = main(["train-all", str(cohort), "--out", str(tmp_path / "m"), "--resample", bad, *ARGS])
         err = capsys.readouterr().err.strip()
-        assert rc == 2 and err.startswith("error: train: --resample") and "above 0" in err and "\n" not in err
+        assert rc == 2 and err.startswith("error: train: --resample") and "from 20 Hz" in err and "\n" not in err
         assert not (tmp_path / "m").exists()

@@ -54,4 +54,4 @@ def test_cli_train_refuses_mixed_rates_and_resample_must_be_positive(tmp_path, m
     err = capsys.readouterr().err
     assert "--resample HZ" in err and "Traceback" not in err
     assert main([*args, "--resample", "0"]) != 0
-    assert "above 0" in capsys.readouterr().err
+    assert "from 20 Hz" in capsys.readouterr().err

@@ -835,11 +835,27 @@ def check_settings(
     return out[0], out[1], out[2]
 
 
+#: decision B212: the fastest rate ``--resample HZ`` trains at (Hz): a ms clock's whole steps reach 1000 Hz
+#: (B161's ``IMU_MS_MAX_HZ`` less its 10 % tolerance), above every IMU the project reads (PLASYS 20 Hz, thesis
+#: ch.4.2.3; real 100 and 204.8 Hz; phones up to 500 Hz); ``--resample 1e6`` grew to 18.8 GB before it was killed
+TRAIN_RESAMPLE_MAX_HZ = 1000.0
+
+
 def check_resample_hz(resample_hz: float | None) -> None:
-    """Decision C56: ``resample_hz`` (``--resample HZ``) is None or a rate in Hz above 0; ``train`` and
-    ``train-all`` check it before any data is read (decision C62), ``train_user`` again."""
-    if resample_hz is not None and not (np.isfinite(resample_hz) and resample_hz > 0):
-        raise DataError(f"train: --resample {resample_hz}; give a rate in Hz above 0, e.g. --resample 100")
+    """Decisions C56, B212: ``resample_hz`` (``--resample HZ``) is None or a rate from the 20 Hz the step detectors
+    are validated at (:data:`~pdrlearn.io.plasys.MIN_VALIDATED_RATE_HZ`, decision B23, thesis ch.4.2.3) to
+    :data:`TRAIN_RESAMPLE_MAX_HZ`; ``train`` and ``train-all`` check it before any data is read (decision C62),
+    ``train_user`` again."""
+    from pdrlearn.io.plasys import MIN_VALIDATED_RATE_HZ
+
+    if resample_hz is None:
+        return
+    ok = isinstance(resample_hz, (int, float, np.number)) and not isinstance(resample_hz, bool)
+    if not (ok and np.isfinite(resample_hz) and MIN_VALIDATED_RATE_HZ <= resample_hz <= TRAIN_RESAMPLE_MAX_HZ):
+        shown = f"{resample_hz:g}" if ok else repr(resample_hz)
+        raise DataError(f"train: --resample {shown}; give a rate from {MIN_VALIDATED_RATE_HZ:g} Hz (the "
+                        f"slowest the step detectors are validated at, decision B23) to {TRAIN_RESAMPLE_MAX_HZ:g} Hz, "
+                        "e.g. --resample 100")
 
 
 def check_length_units(units: Sequence[str]) -> list[str]:

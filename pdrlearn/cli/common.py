@@ -95,7 +95,8 @@ def train_resample_option():
         None, "--resample", metavar="HZ",
         help="Resample every session to HZ before training (the runtime's resampler). Needed when the sessions "
         "were recorded at different rates: a model is trained at one rate (decision C56); the recorded rates "
-        "are kept in the manifest.")
+        "are kept in the manifest. HZ from 20 (the slowest rate the step detectors are validated at) to 1000 "
+        "(decision B212).")
 
 
 FORCE_HELP = "Replace an existing output of this command (atomically: the old one stays until the new one is complete)."

@@ -109,6 +109,13 @@ def level_dz(dz: np.ndarray, *, level_dz_m: float = LEVEL_DZ_M, slope: bool | No
     return np.where(level, 0.0, dz)
 
 
+def unclassed_level_dz(dz: np.ndarray, classed: np.ndarray) -> np.ndarray:
+    """Decision L184: :func:`level_dz` (L39) on the strides without a terrain class (``classed`` False, e.g. the
+    confidence gate of L18 dropped it); the classed strides keep the height their class rule gave. A new array."""
+    dz = np.asarray(dz, dtype=np.float64)
+    return np.where(np.asarray(classed, dtype=bool), dz, level_dz(dz))
+
+
 def apply_level_gain(disp: np.ndarray, gain: float, *, level_dz_m: float = LEVEL_DZ_M) -> np.ndarray:
     """Displacements ``disp (B, 3)`` (or one ``(3,)``) m with the horizontal part of the level strides
     (|dz| < ``level_dz_m``) multiplied by ``gain``; stair strides keep theirs (L26). A new array."""

@@ -53,6 +53,7 @@ from pdrlearn.kernels.distance import (
     calibrated_stride_sd,
     classifier_rate_warning,
     level_dz,
+    unclassed_level_dz,
 )
 from pdrlearn.kernels.window import (
     BRIDGE_GAP_S,
@@ -685,6 +686,10 @@ def split_events(strides: pd.DataFrame, rows: np.ndarray, t: np.ndarray, stance:
 #: height change (the BLE trial's 5 % burst loss: a flat 400 m walk +7.96 m, all from those strides)
 GAP_STRIDE_HEIGHT = True
 
+#: Decision L184 (adopted by its rule, experiments/gated_level_dz.py): offline M3 gives L39's level rule to the
+#: strides whose terrain class the confidence gate (L18) dropped, instead of their raw integrated height
+GATED_LEVEL_DZ = True
+
 
 def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.ndarray,
                      warnings: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -982,6 +987,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     raw_dz = dz
     if no_classes or "terrain" in untrained:  # decision L39 (C17: also a model without terrain classes)
         dz = level_dz(dz)
+    elif cfg["rules"] and GATED_LEVEL_DZ:  # decision L184: a stride whose class the gate dropped is level by L39
+        dz = unclassed_level_dz(dz, [isinstance(t, str) for t in rule_classes["terrain"]])
     length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
     length, dz, impossible = _drop_impossible(length, dz, strides["start_s"].to_numpy(float),
                                               strides["end_s"].to_numpy(float), warnings)  # decision L94
