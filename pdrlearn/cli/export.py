@@ -664,10 +664,11 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     if kb is not None and jb < len(kb):  # the barometer's samples after the motion's last chunk
         tracker.push_barometer(baro.t[jb:], baro.values[jb:, 0])
     steps += tracker.flush()
-    cols = ["start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "stairs", "unit", "has_next", "merged",
-            "turning"]
+    cols = ["start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "pause_dz_m", "stairs", "unit",
+            "has_next", "merged", "turning"]
     df = pd.DataFrame([{"start_s": s.t, "end_s": s.end_s, "event_s": s.t, "length_m": s.length_m,
                         "heading_rad": s.heading_rad, "dz_m": s.dz_m if s.dz_m is not None else 0.0,
+                        "pause_dz_m": s.pause_dz_m if s.pause_dz_m is not None else 0.0,  # W158, as track's
                         "stairs": bool(s.stairs), "unit": "waist",  # E106/E107: W91's test, as track's column
                         "has_next": s.has_next, "merged": s.merged, "turning": s.turning} for s in steps], columns=cols)
     if sides:  # decision E110: after stairs, as the offline track's columns (W129); "" = undecided, as offline
@@ -675,7 +676,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     traj = pd.DataFrame({"t": [float(a.t[0])] + [s.end_s for s in steps],
                          "x": [0.0] + [s.x for s in steps], "y": [0.0] + [s.y for s in steps]})
     # decision L56: z starts at --start's ALT; E106: the barometric altitude of each step (W89), as track's
-    traj["z"] = float(start_alt) + np.concatenate([[0.0], np.cumsum(df["dz_m"].to_numpy(float))])
+    traj["z"] = float(start_alt) + np.concatenate([[0.0], np.cumsum(df["dz_m"].to_numpy(float)
+                                                                     + df["pause_dz_m"].to_numpy(float))])
     if start_ll is not None:  # decision W147: the live tracker's lat/lon of each step
         traj["lat"] = [start_ll[0]] + [s.lat for s in steps]
         traj["lon"] = [start_ll[1]] + [s.lon for s in steps]

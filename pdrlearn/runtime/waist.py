@@ -51,8 +51,9 @@ class LiveStep:
     fragment whose length its neighbour carries; ``turning``: the stride's straight (0) / turning (1) class (seed 003
     sec. 3.3); ``lat``, ``lon`` (degrees): the position at ``end_s`` when the tracker was given a geodetic start
     (decision W137), else None; ``z`` (m): the barometric altitude at ``end_s`` relative to the track's first sample
-    and ``dz_m`` its change over the step (W89's, ``track_waist``'s ``z`` / ``dz_m``; decision E106) when barometer
-    samples were pushed (:meth:`WaistStream.push_barometer`), else None; ``stairs``: W91's rate test on that altitude
+    and ``dz_m`` its change over the step, ``pause_dz_m`` the change while standing before it (W89's,
+    ``track_waist``'s ``z`` / ``dz_m`` / ``pause_dz_m``; decisions E106, W158) when barometer samples were pushed
+    (:meth:`WaistStream.push_barometer`), else None; ``stairs``: W91's rate test on that altitude
     (``track_waist``'s ``stairs`` column without ``stairs_climb``; with the option ``stairs_length`` such a step is at
     most the 0.30 m tread, decision E107), None without a barometer."""
 
@@ -71,6 +72,7 @@ class LiveStep:
     z: float | None = None
     dz_m: float | None = None
     stairs: bool | None = None
+    pause_dz_m: float | None = None
 
 
 class WaistStream(FixInput):
@@ -530,14 +532,17 @@ class WaistStream(FixInput):
             self._ll = step_destination(*self._ll, math.hypot(dx, dy), math.atan2(dy, dx))
             lat, lon = math.degrees(self._ll[0]), math.degrees(self._ll[1])
         self._xy_reported = (float(x), float(y))
-        z = dz = None
+        z = dz = pause_dz = None
         if self._alt is not None:  # decision E106: W89's altitude at the step's end, as track_waist's z / dz_m
             z = self._alt.at(row["end"])
             if z is not None:
-                dz, self._z_prev = z - self._z_prev, z
+                # decision W158, as track_waist: dz_m from the step's start, pause_dz_m the standstill before it
+                zs = self._alt.at(row["t"])
+                zs = z if zs is None else zs
+                dz, pause_dz, self._z_prev = z - zs, zs - self._z_prev, z
         step = LiveStep(t=row["t"], end_s=row["end"], length_m=length, heading_rad=enu, x=float(x), y=float(y),
                         has_next=row["has_next"], merged=merged, turning=turning, side=row["side"], lat=lat, lon=lon,
-                        z=z, dz_m=dz, stairs=stairs)
+                        z=z, dz_m=dz, pause_dz_m=pause_dz, stairs=stairs)
         self.steps.append(step)
         return step
 
