@@ -220,7 +220,8 @@ def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray) -> str | Non
             "horizontally as level steps: the waist step-length models measure the body's step, not the tread, so "
             "these steps read long (two storeys up and down, calibrated, simulated: +64 % waist-pendulum, +90 % "
             "waist-pll; an uncalibrated track whose level steps read short may still read short in total: "
-            f"calibrate first, pdrlearn calibrate); the option stairs_length bounds a stair step by the {STAIR_TREAD_M:.2f} m tread "
+            "calibrate first, pdrlearn calibrate); the option stairs_length bounds a stair step by the "
+            f"{STAIR_TREAD_M:.2f} m tread "
             "(decision W91): \"options\": {\"stairs_length\": \"climbs\"} in the PARAMS.json (--params), or "
             f"stairs_length=\"climbs\", bounds these steps ({capped:.1f} m here; decision W156), true also the "
             "steps of shorter barometric changes (decision W155)")
