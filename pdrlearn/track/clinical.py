@@ -25,8 +25,8 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   it (the stride's displacement direction of a turn on the spot is short and noisy), else ``heading_rad``.
 * **stride-time variability** (foot tracks): ``stride_time_cv_pct`` = 100 x SD / mean (SD with n - 1) of the
   stride times (initial contact to initial contact, L66) of the steady straight strides: a level (|``dz_m``|
-  under 0.10 m, L179) forward (``direction`` not backward, where a model gave it) stride turning under 15 deg (L79, L188)
-  with a stride time, not next to a pause, whose previous and next strides are such strides too
+  under 0.10 m, L179) forward (``direction`` not backward, where a model gave it) stride turning under 15 deg
+  (L79, L188) with a stride time, not next to a pause, whose previous and next strides are such strides too
   (the strides into and out of a turn or a stop slow down; a stride time across a short stop is no rhythm);
   None with fewer than :data:`CV_MIN_STRIDES` of them. None on the lower back: its contacts scatter (on
   simulated straight walks whose true CV is 1.7-2.1 % it gave 6.2-9.7 %).
