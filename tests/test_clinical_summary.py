@@ -359,3 +359,34 @@ def test_step_time_asymmetry_report_says_what_it_can():
     big = step_time_asymmetry_report(waist(0.45, 0.75))  # SI 50 %
     assert big["step_time_asymmetry_pct"] == pytest.approx(50.0) and big["n_step_times"] == 12
     assert "over-reads" in big["reason"]
+
+
+def test_stride_time_cv_keeps_level_forward_strides_only():
+    """Decision L188: stair strides (|dz_m| >= 0.10 m, L179) and backward strides are no steady walker's rhythm."""
+    n = 30
+    table = _foot_table(np.arange(n) * 1.2)
+    table["stride_time_s"] = 1.2 + 0.02 * np.sin(np.arange(n))
+    table["dz_m"] = np.r_[np.zeros(12), np.full(10, 0.17), np.zeros(8)]
+    table["direction"] = np.r_[np.full(26, "forward"), np.full(4, "backward")]
+    table.loc[12:21, "stride_time_s"] = 0.85  # stairs
+    table.loc[26, "stride_time_s"] = 2.0  # the stride into backward steps
+    c = clinical_summary(table)
+    # steady: rows 1-10 (row 11's next is a stair) and 23-24 (22 follows a stair, 25 precedes a backward stride)
+    steady = table["stride_time_s"].to_numpy()[np.r_[1:11, 23:25]]
+    assert c["n_cv_strides"] == 12
+    assert c["stride_time_cv_pct"] == pytest.approx(100 * steady.std(ddof=1) / steady.mean())
+    assert c["stride_time_cv_pct"] < 2.0
+    # without the columns (a table of a track without a model, or an older one) every stride stays level forward
+    assert clinical_summary(table.drop(columns=["dz_m", "direction"]))["n_cv_strides"] == n - 2
+
+
+def test_readme_route_gives_no_pooled_stride_time_cv(tmp_path, capsys):
+    """Decision L188, the session-26 trial's S2: the README route (5 level strides, two flights, a turn, backward
+    steps) read a CV of 25.9 % pooling stairs, level and the backward stride; too few steady level strides now."""
+    route = "straight:5, up:17, turn:180, down:17, backward:3"
+    assert main(["simulate", "--route", route, "--user-seed", "1", "--out", str(tmp_path / "floors")]) == 0
+    assert main(["track", str(tmp_path / "floors"), "--out", str(tmp_path / "out")]) == 0
+    out = capsys.readouterr().out
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["stride_time_cv_pct"] is None and summary["n_cv_strides"] < 10, summary
+    assert "no stride-time CV (" in out and "steady level forward strides, 10 needed)" in out

@@ -247,6 +247,11 @@ def evaluate_model(
             confusion=m["confusion"],
             chosen={"method": chosen[0], "unit": chosen[1]},
         )
+        # decision C64: a class the test data never hold is not scored by the accuracy (nor its balanced mean)
+        res["absent_classes"] = absent_classes(classes, np.concatenate(y_true))
+        line = absent_warning(task, res["absent_classes"])
+        if line:
+            log.warning(line)
         # decision C49: what the user gets - the same model on the strides the runtime / track detect
         res["detected"] = detected_score(task, classes, data, windows, sess_rows, detected)
         line = drop_warning(task, m["accuracy"], res["detected"], model.boundaries)
@@ -269,6 +274,23 @@ def evaluate_model(
         write_report(out, Path(report_dir))
         advance(1)
     return out
+
+
+def absent_classes(classes, y_true) -> list[str]:
+    """Decision C64: the task's ``classes`` (in order) of which ``y_true`` (the scored steps' labels) holds none."""
+    seen = set(np.asarray(y_true).astype(str))
+    return [str(c) for c in classes if str(c) not in seen]
+
+
+def absent_warning(task: str, absent: list[str]) -> str | None:
+    """Decision C64: one line naming the classes of ``task`` the test data hold no step of (their recall is
+    unmeasured: the accuracy and the balanced accuracy then score the other classes only); None when none is."""
+    if not absent:
+        return None
+    names = " or ".join(f"'{c}'" for c in absent)
+    hint = f", e.g. `pdrlearn simulate --scenario {task}`" if task in ("terrain", "direction", "length") else ""
+    return (f"{task}: the test data hold no {names} step; its accuracy says nothing about them (add a labelled "
+            f"session with such steps{hint}; decision C64)")
 
 
 #: the first columns of ``evaluate --predictions-out`` (decision C42); ``p_<class>`` columns follow

@@ -11,6 +11,7 @@ from pdrlearn.atomic import expect_unchanged
 from pdrlearn.cohort import is_session_dir as is_session_folder
 from pdrlearn.cohort import session_files
 from pdrlearn.errors import DataError, output_error
+from pdrlearn.track.clinical import CV_MIN_STRIDES
 
 
 def json_default(o):
@@ -476,7 +477,9 @@ def walk_line(summary: dict) -> str | None:
             + f", {summary.get('turn_count', 0)} turn(s) of >= {summary.get('turn_count_min_deg', 80):g} deg"
             + (f", stride-time CV {cv:.1f} % ({summary.get('n_cv_strides')} steady strides)" if cv is not None
                else ", stride-time CV withheld (contact timing unreliable, see the warning)"
-               if summary.get("stride_time_cv_withheld") else ""))
+               if summary.get("stride_time_cv_withheld")
+               else f", no stride-time CV ({summary.get('n_cv_strides', 0)} steady level forward strides, "
+                    f"{CV_MIN_STRIDES} needed)" if summary.get("n_stride_times") else ""))  # decision L188
 
 
 def gait_line(summary: dict) -> str:

@@ -24,8 +24,9 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   standing). The heading of a foot row is the foot's own yaw, summed over ``turn_angle_rad`` where every row has
   it (the stride's displacement direction of a turn on the spot is short and noisy), else ``heading_rad``.
 * **stride-time variability** (foot tracks): ``stride_time_cv_pct`` = 100 x SD / mean (SD with n - 1) of the
-  stride times (initial contact to initial contact, L66) of the steady straight strides: a stride turning under
-  15 deg (L79) with a stride time, not next to a pause, whose previous and next strides are such strides too
+  stride times (initial contact to initial contact, L66) of the steady straight strides: a level (|``dz_m``|
+  under 0.10 m, L179) forward (``direction`` not backward, where a model gave it) stride turning under 15 deg
+  (L79, L188) with a stride time, not next to a pause, whose previous and next strides are such strides too
   (the strides into and out of a turn or a stop slow down; a stride time across a short stop is no rhythm);
   None with fewer than :data:`CV_MIN_STRIDES` of them. None on the lower back: its contacts scatter (on
   simulated straight walks whose true CV is 1.7-2.1 % it gave 6.2-9.7 %).
@@ -197,6 +198,20 @@ def turn_rows(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
     return np.asarray(out, dtype=float), np.asarray([a + 1 for a, _ in runs], dtype=int)
 
 
+def _level_forward(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L188: the rows that walk level and forward: |``dz_m``| under ``LEVEL_DZ_M`` (0.10 m, L179's
+    :func:`pdrlearn.track.gait.stair_rows`) and ``direction`` not backward (a row without a class, a track
+    without a model, counts as forward). A stair
+    stride or a backward stride has its own rhythm (the trial route's level ~1.0 s, stairs down 0.85 s, the first
+    backward stride 2.0 s), so pooling them is no steady walker's variability."""
+    from pdrlearn.track.gait import stair_rows
+
+    ok = ~stair_rows(steps)
+    if "direction" in steps:
+        ok &= (steps["direction"].astype(str) != "backward").to_numpy()  # empty without a model: not backward
+    return ok
+
+
 def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
     """The stride times (s) of a foot table's steady straight strides (module docstring) and the same strides'
     swing-onset intervals (``start_s`` to the previous row's, s; decision L113); none for a lower-back table (its
@@ -208,7 +223,7 @@ def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]
         s = st["stride_time_s"].to_numpy(float)
         turn = st["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in st else np.zeros(len(s))
         with np.errstate(invalid="ignore"):
-            ok = np.isfinite(s) & (np.abs(turn) < STRAIGHT_MAX_RAD) & _valid(st)
+            ok = np.isfinite(s) & (np.abs(turn) < STRAIGHT_MAX_RAD) & _valid(st) & _level_forward(st)
         if len(st) > 1:  # a stride time across a pause (IC to IC over a short stop, L80) is no stride's rhythm
             _, is_pause = _intervals(st.reset_index(drop=True))
             ok &= ~np.concatenate([[False], is_pause]) & ~np.concatenate([is_pause, [False]])
