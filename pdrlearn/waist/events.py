@@ -257,7 +257,7 @@ def refine_to_contacts(imu: WaistIMU, idx: np.ndarray, *, walk_threshold: float 
     side closer than 1.5 local step periods, the one whose filtered vertical acceleration is under half
     the other's is dropped (a phase-locked peak inside a slow step, where no contact is)."""
     det = InitialContactDetector(walk_threshold=walk_threshold, rhythm=rhythm, alternate=alternate,
-                                 contact_shift=False).detect(imu)  # W131 measured on waist-pendulum only
+                                 contact_shift=False, parity_fill=False).detect(imu)  # W131, W159: waist-pendulum only
     idx = np.asarray(idx, dtype=int)
     if det.anchor_.size == 0 or idx.size == 0:
         return np.unique(idx)
