@@ -160,8 +160,7 @@ class WaistICStepDetector(StepDetector):
         return InitialContactDetector(walk_threshold=thr, max_step_s=self.max_step_s,
                                       rhythm=self.rhythm, alternate=self.alternate, weight_shift=self.weight_shift,
                                       end_steps=self.end_steps, learned=self.learned, min_step_s=self.min_step_s,
-                                      contact_shift=self.contact_shift and self.delay_s is None,  # W131, W133
-                                      parity_fill=False)  # W159 measured on the waist-pendulum track only
+                                      contact_shift=self.contact_shift and self.delay_s is None)  # W131, W133
 
     def _inputs(self, session: Session):
         from pdrlearn.track.gaps import long_gaps

@@ -348,9 +348,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "weak_fill": False,
-                   "pivot_steps": False, "parity_fill": "within"}  # pause_steps: W134, pivot_steps: W150
-#: parity_fill: W152's candidate, W159's "within" adopted (offline detector only; realtime and the learned stage
-#: ignore it)
+                   "pivot_steps": False, "parity_fill": False}  # pause_steps: W134, pivot_steps: W150, parity: W152
 #: decision B199: the options that are true or false (``sit_veto``, ``pause_steps``, ``vault_veto`` take more values,
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
@@ -467,8 +465,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps column ``pivot_factor``; measured and not adopted); default False
     parity_fill : pendulum, offline detector: a contact without a vertical maximum between two kept contacts of one
         decided side about two local periods apart (decision W152, ``InitialContactDetector``'s ``parity_fill``);
-        ``"within"``: only where it lies inside one walking sequence of the other contacts (decision W159, adopted);
-        default ``"within"``; False restores the detector before W159
+        ``"within"``: only where it lies inside one walking sequence of the other contacts (decision W159's
+        candidate); default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its

@@ -134,9 +134,9 @@ class InitialContactDetector:
         detector and the learned stage ignore it (measured offline only)
     parity_fill : offline, with ``rhythm`` and ``alternate``: a contact without a vertical maximum between two kept
         contacts of the same decided side about two local periods apart, at the opposite side's lateral-sway extreme
-        one local period (+-35 %) from each (decision W152, not adopted); ``"within"`` (the default, decision W159,
-        adopted): only where it lies inside one walking sequence of the other contacts; False: none. The realtime
-        detector and the learned stage ignore it (measured offline only)
+        one local period (+-35 %) from each (decision W152; off by default); ``"within"``: only where it lies inside
+        one walking sequence of the other contacts (decision W159). The realtime detector and the learned stage
+        ignore it (measured offline only)
 
     Attributes
     ----------
@@ -156,7 +156,7 @@ class InitialContactDetector:
                  hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S,
                  turn_gate_rps: float | None = None, turn_shift_rps: float | None = None,
                  min_step_s: float | None = None, contact_shift: bool = True, weak_fill: bool = False,
-                 parity_fill: bool | str = "within"):
+                 parity_fill: bool | str = False):
         self.realtime = realtime
         self.parity_fill = parity_fill
         self.weak_fill = weak_fill
@@ -257,7 +257,7 @@ def refine_to_contacts(imu: WaistIMU, idx: np.ndarray, *, walk_threshold: float 
     side closer than 1.5 local step periods, the one whose filtered vertical acceleration is under half
     the other's is dropped (a phase-locked peak inside a slow step, where no contact is)."""
     det = InitialContactDetector(walk_threshold=walk_threshold, rhythm=rhythm, alternate=alternate,
-                                 contact_shift=False, parity_fill=False).detect(imu)  # W131, W159: waist-pendulum only
+                                 contact_shift=False).detect(imu)  # W131 measured on waist-pendulum only
     idx = np.asarray(idx, dtype=int)
     if det.anchor_.size == 0 or idx.size == 0:
         return np.unique(idx)
