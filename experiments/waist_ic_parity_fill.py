@@ -17,10 +17,12 @@ placed there is a false one: the candidate's risk); and the Test11 walking bouts
 whose tracked distance the candidate changes.
 
 Measurement (`--measure`; W152's rule, written and committed before this was run): W148's four parts
-(experiments/waist_ic_weak_fill.py `measure`) for `parity_fill`, fresh simulated users 2880-2939.
+(experiments/waist_ic_weak_fill.py `measure`) for `parity_fill`, fresh simulated users 2880-2939; with `--within`
+W159's, the same four parts for `parity_fill="within"` (only inside a walking sequence), fresh users 3100-3159.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/waist_ic_parity_fill.py [--external datasets/external]
-[--measure]. Writes experiments/results/waist_ic_parity_fill.md (diagnostic) or waist_ic_parity_fill_rule.md.
+[--measure [--within]]. Writes experiments/results/waist_ic_parity_fill.md (diagnostic), waist_ic_parity_fill_rule.md
+or waist_ic_parity_within_rule.md.
 """
 
 from __future__ import annotations
@@ -48,6 +50,7 @@ import waist_ic_weak_fill as WF  # noqa: E402  experiments/waist_ic_weak_fill.py
 
 ROOT = Path(__file__).resolve().parents[1]
 USERS = range(2880, 2940)  # fresh for W152 (the lead's 2880-2939)
+WITHIN_USERS = range(3100, 3160)  # fresh for W159 (the lead's 3100-3159)
 OPTION = "parity_fill"
 TOL = W.C.TOL
 
@@ -176,15 +179,19 @@ if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--external", type=Path, default=ROOT / "datasets" / "external")
     ap.add_argument("--measure", action="store_true", help="W152's adoption measurement")
+    ap.add_argument("--within", action="store_true", help="with --measure: W159's, parity_fill=\"within\"")
     args = ap.parse_args()
     warnings.filterwarnings("ignore")
     logging.disable(logging.WARNING)
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
-        if args.measure:
+        if args.measure and args.within:
+            WF.measure(args.external, decision="W159", option=OPTION, users=WITHIN_USERS, value="within")
+        elif args.measure:
             WF.measure(args.external, decision="W152", option=OPTION, users=USERS)
         else:
             diagnostic(args.external)
-    name = "waist_ic_parity_fill_rule.md" if args.measure else "waist_ic_parity_fill.md"
+    name = ("waist_ic_parity_within_rule.md" if args.within else "waist_ic_parity_fill_rule.md") if args.measure \
+        else "waist_ic_parity_fill.md"
     (ROOT / "experiments" / "results" / name).write_text(buf.getvalue())
     print(buf.getvalue(), end="")

@@ -70,10 +70,10 @@ MAX_SIM_DROP = 0.002  # (a) pooled simulated F1 (each bounce) lower by at most t
 MAX_BOUT_WORSE = 0.5  # (d) pooled bout distance-error median (percentage points) worse by at most this
 
 
-def steps_of(session, on: bool, option: str = "weak_fill") -> pd.DataFrame:
+def steps_of(session, on: bool, option: str = "weak_fill", value=True) -> pd.DataFrame:
     """`waist-pendulum`'s steps (uncalibrated) without / with ``option`` (W148's ``weak_fill``; W152's
-    ``parity_fill``)."""
-    return track_waist(session, pipeline="waist-pendulum", **{option: on}).steps
+    ``parity_fill``) set to ``value`` (W159: ``parity_fill="within"``)."""
+    return track_waist(session, pipeline="waist-pendulum", **{option: value if on else False}).steps
 
 
 def candidates(session) -> dict:
@@ -181,25 +181,27 @@ def diagnostic(external: Path) -> None:
           f"({'/'.join(map(str, pool[True]))})")
 
 
-def bout_medians(external: Path, option: str = "weak_fill") -> pd.DataFrame:
-    """(d): experiments/waist.py's pooled rows of `waist-pendulum` without / with ``option``."""
-    configs = [("waist-pendulum", "waist-pendulum", {}),
-               (f"waist-pendulum {option}", "waist-pendulum", {option: True})]
+def bout_medians(external: Path, option: str = "weak_fill", value=True) -> pd.DataFrame:
+    """(d): experiments/waist.py's pooled rows of `waist-pendulum` without / with ``option`` (set to ``value``)."""
+    configs = [("waist-pendulum", "waist-pendulum", {option: False}),
+               (f"waist-pendulum {option}", "waist-pendulum", {option: value})]
     bouts: list = []
     df = WX.real(external, WX.external_runs(external), configs, bouts)
     pool = WX.pooled(df, pd.DataFrame(bouts))
     return pool[["test", "pipeline", "params", "step_f1", "bout_err_median_pct"]]
 
 
-def measure(external: Path, decision: str = "W148", option: str = "weak_fill", users: range = USERS) -> None:
-    """The rule of W148 (and W152, the same four parts for ``parity_fill``): (a)-(d) and the verdict, printed."""
+def measure(external: Path, decision: str = "W148", option: str = "weak_fill", users: range = USERS,
+            value=True) -> None:
+    """The rule of W148 (and W152 / W159, the same four parts for ``parity_fill`` true / "within"): (a)-(d) and the
+    verdict, printed."""
     ok = {}
 
     def steps(session, on: bool) -> pd.DataFrame:
-        return steps_of(session, on, option)
+        return steps_of(session, on, option, value)
 
-    print(f"# {decision}: {option}, off -> on (rule committed before this run)\n\n## (a) simulated daily activities, "
-          f"users {users.start}-{users.stop - 1}\n")
+    print(f"# {decision}: {option}, off -> {value!r} (rule committed before this run)\n\n"
+          f"## (a) simulated daily activities, users {users.start}-{users.stop - 1}\n")
     print("| bounce | F1 off (TP/det/ref) | F1 on (TP/det/ref) | change |")
     print("|---|---|---|---|")
     ok["a"] = True
@@ -237,7 +239,7 @@ def measure(external: Path, decision: str = "W148", option: str = "weak_fill", u
     print(f"(b) {'met' if ok['b'] else 'NOT met'} (pooled up by >= {MIN_POOLED_GAIN}, no recording down by > "
           f"{MAX_ROW_DROP}); (c) {'met' if ok['c'] else 'NOT met'} (no Test5 recording lower)\n")
     print("## (d) pooled bout distance-error medians (experiments/waist.py's external protocol)\n")
-    t = bout_medians(external, option)
+    t = bout_medians(external, option, value)
     print(t.to_markdown(index=False, floatfmt=".4g"))
     ok["d"] = True
     for _, g in t.groupby(["test", "params"]):

@@ -222,7 +222,7 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
                rhythm: bool = False, max_step_s: float = 1.5, acc_ml: np.ndarray | None = None,
                unshifted: bool = True, end_steps: bool = False, ap_above_mean: bool = False,
                turning: np.ndarray | None = None, contact_shift: bool = False,
-               spinning: np.ndarray | None = None, weak_fill: bool = False, parity: bool = False
+               spinning: np.ndarray | None = None, weak_fill: bool = False, parity: bool | str = False
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial / final contacts from waist acceleration, offline (seed 003 sec. 3.1).
 
@@ -260,7 +260,8 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
         (``rhythm_complete(weak_fill=True)``, decision W148; off by default)
     parity : with ``acc_ml`` and ``rhythm``, after the sequence rules a contact without a vertical maximum between
         two kept maxima of one decided side about two local periods apart (:func:`parity_fill`, decision W152; off
-        by default)
+        by default); ``"within"``: such a contact only where it lies inside one walking sequence of the contacts
+        without it (:func:`inside_sequences`, decision W159)
 
     Returns
     -------
@@ -287,8 +288,9 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
                                weak_fill=weak_fill)
         peaks = cand[keep]
         if parity and side is not None:  # W152: the missing opposite step of a same-side pair, without a maximum
-            peaks = np.union1d(peaks, parity_fill(cand, keep, side, vl, side_scale(vl[cand], strong), fs,
-                                                  max_step_s=max_step_s))
+            added = parity_fill(cand, keep, side, vl, side_scale(vl[cand], strong), fs, max_step_s=max_step_s)
+            added = np.setdiff1d(added, peaks)
+            peaks = np.union1d(peaks, added)
     else:
         peaks = dsp.find_peaks(vf, height=min_peak_mps2, distance=dist)
         if gate is not None:
@@ -299,6 +301,9 @@ def ic_offline(acc_v: np.ndarray, acc_ap: np.ndarray, fs: float, *, gate: np.nda
     if contact_shift and rhythm and acc_ml is not None and peaks.size:  # W131: W23 at the contact, every contact
         keep = unshifted_contacts(peaks, vf[peaks], lateral_velocity(acc_ml, fs)[ic], fs, max_step_s=max_step_s,
                                   exempt=None if spinning is None else np.asarray(spinning, dtype=bool)[ic])
+        peaks, ic = peaks[keep], ic[keep]
+    if parity == "within" and rhythm and acc_ml is not None and peaks.size:  # W159: no contact across a break
+        keep = inside_sequences(ic, np.isin(peaks, added), _max_gap(max_step_s, fs))
         peaks, ic = peaks[keep], ic[keep]
     return ic, fc_after(ap, peaks, fs, fc_search_s), peaks
 
@@ -323,7 +328,7 @@ def contacts_offline(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, 
                      alternate: bool = True, weight_shift: bool = True, end_steps: bool = True,
                      ap_above_mean: bool = False, turn_gate_rps: float | None = None,
                      turn_shift_rps: float | None = None, min_step_s: float | None = None,
-                     contact_shift: bool = False, weak_fill: bool = False, parity_fill: bool = False
+                     contact_shift: bool = False, weak_fill: bool = False, parity_fill: bool | str = False
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The offline IC detector's rule contacts on navigation-frame arrays (the body of
     :meth:`pdrlearn.waist.events.InitialContactDetector._offline`, without the W33 learned stage): the motion gate,
@@ -647,6 +652,21 @@ def parity_fill(cand: np.ndarray, keep: np.ndarray, side: np.ndarray, v_lat: np.
         if -s_k * v[x] >= min_frac * scale:  # decided on the opposite side (W20's 1/3 of the median)
             out.append(x)
     return np.asarray(sorted(set(out)), dtype=np.int64)
+
+
+def inside_sequences(ic: np.ndarray, added: np.ndarray, max_gap: int) -> np.ndarray:
+    """Decision W159: the mask of the contacts (initial contacts ``ic``, sample indices, increasing) that keeps every
+    contact not flagged in ``added`` and an ``added`` one only where the unflagged contacts have one before it and one
+    after it at most ``max_gap`` samples apart (W16's longest step in whole samples, W32): it lies inside one walking
+    sequence as :func:`contact_rows` splits them, so it splits a step and never joins two sequences or extends one."""
+    ic = np.asarray(ic, dtype=np.int64)
+    added = np.asarray(added, dtype=bool)
+    base = ic[~added]
+    keep = ~added
+    for i in np.flatnonzero(added):
+        j = np.searchsorted(base, ic[i])  # base[j - 1] < ic[i] <= base[j]
+        keep[i] = 0 < j < base.size and base[j - 1] < ic[i] < base[j] and base[j] - base[j - 1] <= max_gap
+    return keep
 
 
 def ap_mean_level(ap: np.ndarray, fs: float, *, window_s: float = GATE_WINDOW_S) -> np.ndarray:

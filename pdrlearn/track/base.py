@@ -231,7 +231,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``weak_fill`` (decision W148, off: a weak step on the decided alternating side where the alternation and the
       local rhythm ask for one; offline only),
       ``parity_fill`` (decision W152, off: a contact without a vertical maximum between two kept contacts of one
-      decided side about two local periods apart, at the opposite side's lateral-sway extreme; offline only),
+      decided side about two local periods apart, at the opposite side's lateral-sway extreme; ``"within"``: only
+      inside one walking sequence of the other contacts, decision W159; offline only),
       ``gait_check`` (decision W140, off: with calibrated params, warn when the walk's median cadence is outside
       x0.75-x1.33 of the calibration walks'),
       ``pivot_steps`` (decision W150, off: a step whose pelvis turns 45 deg or more keeps at most the chord of its

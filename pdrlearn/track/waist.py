@@ -354,13 +354,16 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
 #: decision B199: the options that are true or false (``sit_veto``, ``pause_steps``, ``vault_veto`` take more values,
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
-                     if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length"))
+                     if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
+                                                          "parity_fill"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
 SIT_VETO_VALUES = (False, True, "rhythm")
 #: decision W156: ``stairs_length`` - False (no bound), True (W91's proposed steps, W108's under ``stairs_climb``) or
 #: "climbs" (only the steps inside W108's climbs)
 STAIRS_LENGTH_VALUES = (False, True, "climbs")
+#: decision W159: ``parity_fill`` - False, True (W152's contacts) or "within" (only inside a walking sequence)
+PARITY_FILL_VALUES = (False, True, "within")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 
@@ -389,7 +392,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
                 gait_check: bool | None = None, weak_fill: bool | None = None, pivot_steps: bool | None = None,
-                parity_fill: bool | None = None, detector=None,
+                parity_fill: bool | str | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -464,7 +467,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps column ``pivot_factor``; measured and not adopted); default False
     parity_fill : pendulum, offline detector: a contact without a vertical maximum between two kept contacts of one
         decided side about two local periods apart (decision W152, ``InitialContactDetector``'s ``parity_fill``);
-        default False
+        ``"within"``: only where it lies inside one walking sequence of the other contacts (decision W159's
+        candidate); default False
 
     detector : the contacts from this step detector instead of the pipeline's own (decision E85): a registered
         name (``pdrlearn.steps.DETECTORS``) or a :class:`~pdrlearn.steps.StepDetector` with ``unit = "waist"``; its
@@ -514,6 +518,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["stairs_length"] not in STAIRS_LENGTH_VALUES:
         raise DataError(f"stairs_length {o['stairs_length']!r} is not one of false, true, \"climbs\" (decisions W91, "
                         "W156); fix the option or the PARAMS.json \"options\"")
+    if o["parity_fill"] not in PARITY_FILL_VALUES:
+        raise DataError(f"parity_fill {o['parity_fill']!r} is not one of false, true, \"within\" (decisions W152, "
+                        "W159); fix the option or the PARAMS.json \"options\"")
     if smoothing != "none" and realtime:
         raise DataError(f"length_smoothing '{smoothing}' looks up to 1 s ahead and the realtime detector does not "
                         "(decision W56); drop realtime or set length_smoothing to none")
@@ -734,7 +741,8 @@ def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDete
     ``thr`` (one construction for the track and W139's pendulum reading, so an option cannot be left out: E102)."""
     return InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
                                   rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"]),
-                                  weak_fill=bool(o["weak_fill"]), parity_fill=bool(o["parity_fill"]))
+                                  weak_fill=bool(o["weak_fill"]),
+                                  parity_fill="within" if o["parity_fill"] == "within" else bool(o["parity_fill"]))
 
 
 def _model_options(o: dict, realtime: bool) -> dict:

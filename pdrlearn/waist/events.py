@@ -134,8 +134,9 @@ class InitialContactDetector:
         detector and the learned stage ignore it (measured offline only)
     parity_fill : offline, with ``rhythm`` and ``alternate``: a contact without a vertical maximum between two kept
         contacts of the same decided side about two local periods apart, at the opposite side's lateral-sway extreme
-        one local period (+-35 %) from each (decision W152; off by default). The realtime detector and the learned
-        stage ignore it (measured offline only)
+        one local period (+-35 %) from each (decision W152; off by default); ``"within"``: only where it lies inside
+        one walking sequence of the other contacts (decision W159). The realtime detector and the learned stage
+        ignore it (measured offline only)
 
     Attributes
     ----------
@@ -155,7 +156,7 @@ class InitialContactDetector:
                  hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S,
                  turn_gate_rps: float | None = None, turn_shift_rps: float | None = None,
                  min_step_s: float | None = None, contact_shift: bool = True, weak_fill: bool = False,
-                 parity_fill: bool = False):
+                 parity_fill: bool | str = False):
         self.realtime = realtime
         self.parity_fill = parity_fill
         self.weak_fill = weak_fill
@@ -189,7 +190,7 @@ class InitialContactDetector:
         offline = not self.realtime and not self.learned
         return kw | {"contact_shift": bool(self.contact_shift and offline),
                      "weak_fill": bool(self.weak_fill and offline),
-                     "parity_fill": bool(self.parity_fill and offline)}
+                     "parity_fill": self.parity_fill if offline and self.parity_fill else False}
 
     def _offline(self, imu: WaistIMU) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The offline detector's contacts (zero-lag filters, sequence rules) on ``imu``."""
