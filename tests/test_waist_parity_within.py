@@ -48,7 +48,7 @@ def test_the_value_is_offline_only_and_others_are_refused(tmp_path):
     assert InitialContactDetector(parity_fill="within").rule_settings()["parity_fill"] == "within"
     assert InitialContactDetector(parity_fill="within", realtime=True).rule_settings()["parity_fill"] is False
     assert InitialContactDetector(parity_fill="within", learned=True).rule_settings()["parity_fill"] is False
-    assert OPTION_DEFAULTS["parity_fill"] is False and InitialContactDetector().parity_fill is False  # W160: pending
+    assert OPTION_DEFAULTS["parity_fill"] == "within" == InitialContactDetector().parity_fill  # W160: adopted
     s = read_session(external_session("mobgap_HA002_Test5_Trial1"))
     with pytest.raises(DataError, match="parity_fill 'inside'.*within"):
         track_waist(s, pipeline="waist-pendulum", parity_fill="inside")

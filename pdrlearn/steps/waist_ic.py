@@ -148,7 +148,8 @@ class WaistICStepDetector(StepDetector):
                  ahrs_gain: float = 0.033,  # W5: Madgwick 2010 / `ahrs` IMU default (waist.ahrs.MADGWICK_GAIN)
                  delay_s: float | None = None, hop_s: float = 0.25, history_s: float = 10.0,  # W31
                  min_step_s: float | None = None,  # W16 / W113: None = relative to the session's step rhythm
-                 contact_shift: bool = True):  # W131 (offline only, W133)
+                 contact_shift: bool = True,  # W131 (offline only, W133)
+                 parity_fill: bool | str = "within"):  # W152 / W159 (offline only), as the track's
         self._store(locals())
 
     def ic_detector(self, walk_threshold: float | None = None):
@@ -160,7 +161,8 @@ class WaistICStepDetector(StepDetector):
         return InitialContactDetector(walk_threshold=thr, max_step_s=self.max_step_s,
                                       rhythm=self.rhythm, alternate=self.alternate, weight_shift=self.weight_shift,
                                       end_steps=self.end_steps, learned=self.learned, min_step_s=self.min_step_s,
-                                      contact_shift=self.contact_shift and self.delay_s is None)  # W131, W133
+                                      contact_shift=self.contact_shift and self.delay_s is None,  # W131, W133
+                                      parity_fill=self.parity_fill if self.delay_s is None else False)  # W159
 
     def _inputs(self, session: Session):
         from pdrlearn.track.gaps import long_gaps

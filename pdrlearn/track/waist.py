@@ -350,7 +350,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "weak_fill": False,
-                   "pivot_steps": False, "parity_fill": False}  # pause_steps: W134, pivot_steps: W150, parity: W152
+                   "pivot_steps": False, "parity_fill": "within"}  # pause_steps: W134, pivot_steps: W150, parity: W152
 #: decision B199: the options that are true or false (``sit_veto``, ``pause_steps``, ``vault_veto`` take more values,
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()

@@ -156,7 +156,7 @@ class InitialContactDetector:
                  hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S,
                  turn_gate_rps: float | None = None, turn_shift_rps: float | None = None,
                  min_step_s: float | None = None, contact_shift: bool = True, weak_fill: bool = False,
-                 parity_fill: bool | str = False):
+                 parity_fill: bool | str = "within"):  # W159/W160: adopted by its rule
         self.realtime = realtime
         self.parity_fill = parity_fill
         self.weak_fill = weak_fill
@@ -257,7 +257,8 @@ def refine_to_contacts(imu: WaistIMU, idx: np.ndarray, *, walk_threshold: float 
     side closer than 1.5 local step periods, the one whose filtered vertical acceleration is under half
     the other's is dropped (a phase-locked peak inside a slow step, where no contact is)."""
     det = InitialContactDetector(walk_threshold=walk_threshold, rhythm=rhythm, alternate=alternate,
-                                 contact_shift=False).detect(imu)  # W131 measured on waist-pendulum only
+                                 contact_shift=False, parity_fill=False).detect(imu)  # W131 / W159 measured on
+    # waist-pendulum only
     idx = np.asarray(idx, dtype=int)
     if det.anchor_.size == 0 or idx.size == 0:
         return np.unique(idx)
