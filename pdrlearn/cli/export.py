@@ -327,7 +327,7 @@ def run(
 
         pdrlearn run out/bundle_u1_all out/sim/D_u1 --method svm --out out/run_svm   # an exported non-chosen method
 
-        pdrlearn run out/wbundle out/sim/B_u2 --sides --out out/run_sides   # a waist bundle: each step's foot
+        pdrlearn run wbundle out/sim/D_u1 --sides --out out/run_sides   # a waist bundle: each step's foot
     """
     # decision L122: every option as given (defaults included) and the start, for OUT/run.json, as track's
     record = _run_json(dict(locals()), time.perf_counter(), time.process_time())
