@@ -15,6 +15,7 @@ heading            A-HE tip-to-tail (or ellipse closed     vertical gyro, integr
 
 from __future__ import annotations
 
+import json
 import logging
 
 import numpy as np
@@ -366,6 +367,10 @@ STAIRS_LENGTH_VALUES = (False, True, "climbs")
 PARITY_FILL_VALUES = (False, True, "within")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
+#: the options with more than two values and the decisions that define them (one refusal line for each)
+CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109"), "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
+                  "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
+                  "parity_fill": (PARITY_FILL_VALUES, "W152, W159")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -508,19 +513,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
     integrate_stops = bool(o["integrate_stops"])
     smoothing = check_length_smoothing(o["length_smoothing"])  # W56
-    if o["sit_veto"] not in SIT_VETO_VALUES:
-        raise DataError(f"sit_veto {o['sit_veto']!r} is not one of false, true, \"rhythm\" (decisions W104, W109); "
-                        "fix the option or the PARAMS.json \"options\"")
-    if o["vault_veto"] not in VAULT_VETO_VALUES:
-        raise DataError(f"vault_veto {o['vault_veto']!r} is not one of false, true, \"turns\" (decisions W119, "
-                        "W127); fix the option or the PARAMS.json \"options\"")
+    for key, (values, decisions) in CHOICE_OPTIONS.items():  # one line per option with more than two values
+        if o[key] not in values:
+            raise DataError(f"{key} {o[key]!r} is not one of {', '.join(json.dumps(v) for v in values)} (decisions "
+                            f"{decisions}); fix the option or the PARAMS.json \"options\"")
     check_pause_steps(o["pause_steps"])  # W111, W122, W134
-    if o["stairs_length"] not in STAIRS_LENGTH_VALUES:
-        raise DataError(f"stairs_length {o['stairs_length']!r} is not one of false, true, \"climbs\" (decisions W91, "
-                        "W156); fix the option or the PARAMS.json \"options\"")
-    if o["parity_fill"] not in PARITY_FILL_VALUES:
-        raise DataError(f"parity_fill {o['parity_fill']!r} is not one of false, true, \"within\" (decisions W152, "
-                        "W159); fix the option or the PARAMS.json \"options\"")
     if smoothing != "none" and realtime:
         raise DataError(f"length_smoothing '{smoothing}' looks up to 1 s ahead and the realtime detector does not "
                         "(decision W56); drop realtime or set length_smoothing to none")
