@@ -68,7 +68,7 @@ def test_loss_diagnosis_partitions_the_errors_of_score_steps():
     from pdrlearn.steps.evaluate import score_steps
 
     s = read_session(external_session("mobgap_HA002_Test11_Trial1"))
-    before = {"contact_shift": False}  # decision 29's table was printed with the detector before W131
+    before = {"contact_shift": False, "parity_fill": False}  # decision 29's table: the detector before W131, W160
     ev = np.sort(get_detector("waist-ic", **before).detect(s)["event_s"].to_numpy(float))
     r = analyse(s, ev, before)
     sc = score_steps(pd.DataFrame({"event_s": ev, "unit": "waist"}), s)

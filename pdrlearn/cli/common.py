@@ -11,7 +11,6 @@ from pdrlearn.atomic import expect_unchanged
 from pdrlearn.cohort import is_session_dir as is_session_folder
 from pdrlearn.cohort import session_files
 from pdrlearn.errors import DataError, output_error
-from pdrlearn.track.clinical import CV_MIN_STRIDES
 
 
 def json_default(o):
@@ -470,6 +469,8 @@ def walk_line(summary: dict) -> str | None:
     decision L165: one source), else L104's ``n_walking_bouts``."""
     if summary.get("n_walking_bouts") is None:
         return None
+    from pdrlearn.track.clinical import CV_MIN_STRIDES  # here: the CLI's import loads no numpy (C14)
+
     n, cv = summary.get("n_pauses", 0), summary.get("stride_time_cv_pct")
     n_bouts = summary.get("n_bouts", summary["n_walking_bouts"])
     return (f"{n_bouts} walking bout(s), {n} pause(s) of >= 1 s"
