@@ -13,6 +13,9 @@ W151's "a weight shift, not a vault"): a shuffle / weight shift lifts the trunk 
 cue is small. Printed: the cue's median for the steps whose reference (:mod:`waist_turn_spot`'s, INDIP feet) is
 under 0.2 m and for the rest, and recall / precision / the picked steps' excess of ``cue < c`` for c in 0.5, 0.6,
 0.7, 0.8, and the probability that a short step's cue is below another's, pooled and per subject.
+A second look, added after the first printed no separation (decision W161): the same ratio of the velocities'
+oscillation over the step (``ap_ratio(..., velocity=True)``, the brief's "acceleration / velocity"), printed after
+the acceleration form.
 
 Run: PYTHONPATH=. .venv/bin/python experiments/waist_ap_cue.py [--external datasets/external]
 """
@@ -40,22 +43,30 @@ CONFIDENT_TURN_DEG = 15.0
 CONFIDENT_MIN_STEPS = 5
 
 
-def ap_ratio(acc_ap: np.ndarray, acc_v: np.ndarray, i0: int, i1: int) -> float:
-    """RMS of the forward over RMS of the vertical trunk acceleration about their means over samples i0..i1."""
+def _rms_about_mean(x: np.ndarray) -> float:
+    return float(np.sqrt(np.mean((x - x.mean()) ** 2)))
+
+
+def ap_ratio(acc_ap: np.ndarray, acc_v: np.ndarray, i0: int, i1: int, *, velocity: bool = False) -> float:
+    """RMS of the forward over RMS of the vertical trunk acceleration about their means over samples i0..i1; with
+    ``velocity`` of the velocities' oscillation instead (each acceleration less its mean over the step, summed:
+    the velocity change from the step's mean velocity, which returns to its start at the step's end)."""
     a, v = acc_ap[i0:i1 + 1], acc_v[i0:i1 + 1]
     if len(a) < 3:
         return float("nan")
-    sv = float(np.sqrt(np.mean((v - v.mean()) ** 2)))
-    return float(np.sqrt(np.mean((a - a.mean()) ** 2))) / sv if sv > 0 else float("nan")
+    if velocity:  # the sample interval cancels in the ratio
+        a, v = np.cumsum(a - a.mean()), np.cumsum(v - v.mean())
+    sv = _rms_about_mean(v)
+    return _rms_about_mean(a) / sv if sv > 0 else float("nan")
 
 
-def cue_table(steps: pd.DataFrame, session) -> pd.DataFrame:
+def cue_table(steps: pd.DataFrame, session, *, velocity: bool = False) -> pd.DataFrame:
     """Per steps row: ``r``, the confident-walking mask and the self-normalised ``cue`` (module docstring)."""
     imu = waist_imu(session)
     idx_s, idx_e = sample_index(steps, imu, "start_s"), sample_index(steps, imu, "end_s")
     has_next = steps["has_next"].to_numpy(bool)
     length = steps["length_m"].abs().to_numpy(float)
-    r = np.array([ap_ratio(imu.acc_ap, imu.acc_v, a, b) if h else np.nan
+    r = np.array([ap_ratio(imu.acc_ap, imu.acc_v, a, b, velocity=velocity) if h else np.nan
                   for a, b, h in zip(idx_s, idx_e, has_next, strict=True)])
     conf = np.zeros(len(steps), bool)
     turn = np.degrees(np.abs(steps["dyaw_rad"].to_numpy(float)))
@@ -95,14 +106,12 @@ def separation(tab: pd.DataFrame) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def main() -> None:
-    external, runs = W.test11_cli()
+def report(tracks: list, velocity: bool) -> None:
+    """Print the cue's separation (module docstring) for one form of the ratio."""
+    print(f"\n=== the {'velocity (second look)' if velocity else 'acceleration'} form of r ===")
     tabs = []
-    for cal, name in runs:
-        steps, s = BP.track(external, cal, name)
-        subj = name.split("_")[1]
-        t = TS.step_table(steps, s, subj)
-        c = cue_table(steps, s)
+    for subj, steps, s, t in tracks:
+        c = cue_table(steps, s, velocity=velocity)
         print(f"{subj}: {int(c.confident.sum())} confident walking steps of {int(np.isfinite(c.r).sum())}, "
               f"median r {np.nanmedian(c.r[c.confident]):.3f}")
         tabs.append(t.merge(c, on="start_s", how="left"))
@@ -123,6 +132,17 @@ def main() -> None:
     print("\nthe short steps:")
     print(r[short][["subject", "start_s", "dur_s", "tracked_m", "ref_m", "net_deg", "r", "cue"]].round(3)
           .to_string(index=False))
+
+
+def main() -> None:
+    external, runs = W.test11_cli()
+    tracks = []
+    for cal, name in runs:
+        steps, s = BP.track(external, cal, name)
+        subj = name.split("_")[1]
+        tracks.append((subj, steps, s, TS.step_table(steps, s, subj)))
+    for velocity in (False, True):
+        report(tracks, velocity)
 
 
 if __name__ == "__main__":
