@@ -140,28 +140,45 @@ def walking_time(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRIDE_
     return float(sum(t1 - t0 for t0, t1 in pieces)) if pieces else None
 
 
-def walking_pieces(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRIDE_S) -> list[tuple[float, float]]:
-    """The walking time's pieces ``(t0, t1)`` (s; :func:`walking_time`'s rule), in time order."""
+def walking_pieces(start_s, end_s, valid=None, *, max_break_s: float = MAX_STRIDE_S,
+                   heading_rad=None) -> list[tuple[float, float]]:
+    """The walking time's pieces ``(t0, t1)`` (s; :func:`walking_time`'s rule), in time order. With ``heading_rad``
+    (each row's unwrapped heading), decision L194: a break (a gap over ``max_break_s``, or an invalid row) across
+    which the heading turns by :data:`~pdrlearn.track.clinical.PAUSE_MAX_TURN_DEG` or more is a turn, not a stop,
+    when it is no longer than ``max_break_s`` plus the turn's time at
+    :data:`~pdrlearn.track.clinical.TURN_ON_SPOT_MIN_DPS` (L119's rule for pauses): its time is walking."""
     st, en = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
     ok = np.isfinite(st) & np.isfinite(en) & (en > st)
     if valid is not None:
         ok &= np.asarray(valid, dtype=bool)
-    pieces, t0, t1 = [], None, None
+    h = None if heading_rad is None else np.asarray(heading_rad, dtype=float)
+    pieces, t0, t1, last, broken = [], None, None, None, False
     for i in range(len(st)):
         if not ok[i]:  # an invalid row between two rows ends the piece (its time is not known to be walking)
-            if t0 is not None and np.isfinite(en[i]) and en[i] > st[i]:
-                pieces.append((t0, t1))
-                t0, t1 = None, None
+            broken |= t0 is not None and bool(np.isfinite(en[i]) and en[i] > st[i])
             continue
-        if t0 is not None and st[i] - t1 > max_break_s + 1e-9:
+        if t0 is not None and (broken or st[i] - t1 > max_break_s + 1e-9) \
+                and not _turn_bridges(h, last, i, st[i] - t1, max_break_s):
             pieces.append((t0, t1))
             t0 = None
+        broken = False
         if t0 is None:
-            t0 = st[i]
-        t1 = max(en[i], t1) if t1 is not None else en[i]
+            t0, t1 = st[i], en[i]
+        t1 = max(en[i], t1)
+        last = i
     if t0 is not None:
         pieces.append((t0, t1))
     return [(float(a), float(b)) for a, b in pieces]
+
+
+def _turn_bridges(h, last: int | None, i: int, gap_s: float, max_break_s: float) -> bool:
+    """Decision L194: whether the break between rows ``last`` and ``i`` (``gap_s`` s) is a turn's time (L119)."""
+    from pdrlearn.track.clinical import PAUSE_MAX_TURN_DEG, TURN_ON_SPOT_MIN_DPS
+
+    if h is None or last is None or not (np.isfinite(h[last]) and np.isfinite(h[i])):
+        return False
+    turn_deg = abs(float(np.degrees(h[i] - h[last])))
+    return turn_deg >= PAUSE_MAX_TURN_DEG and gap_s <= max_break_s + turn_deg / TURN_ON_SPOT_MIN_DPS + 1e-9
 
 
 def _median(v) -> float | None:
@@ -195,9 +212,12 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
     (median ``speed`` where ``straight``) and ``n_straight_strides``; decision L179: ``n_stair_strides``, the valid
     rows whose |``dz_m``| reaches :data:`pdrlearn.kernels.distance.LEVEL_DZ_M` (none without the column); they are
     never straight (a stair stride's horizontal speed is no walking speed)."""
-    from pdrlearn.track.clinical import pause_spans
+    from pdrlearn.track.clinical import _heading, pause_spans
 
-    pieces = walking_pieces(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), valid)
+    # decision L194: a turn across a break is walking (L119); the rows in time order, as the pause rule takes them
+    heading = _heading(steps) if "heading_rad" in steps and steps["start_s"].is_monotonic_increasing else None
+    pieces = walking_pieces(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float), valid,
+                            heading_rad=heading)
     wt = float(sum(t1 - t0 for t0, t1 in pieces)) if pieces else None
     dist = float(np.nansum(np.abs(np.asarray(length, dtype=float))[np.asarray(valid, dtype=bool)]))
     out["walking_time_s"] = wt
