@@ -426,7 +426,8 @@ def plan_footsteps(
     initial : foot -> (heel position, yaw) before the first step
     end_pause_s : standing (or sitting) time requested after the last step (trailing :class:`Stand` / :class:`Sit`)
     transfers : the episodes inside the pauses: sit-down / stand-up of :class:`Sit` segments
-        (:mod:`pdrlearn.sim.transfer`) and the rides of :class:`Lift` / :class:`Escalator` ones (:mod:`pdrlearn.sim.ride`)
+        (:mod:`pdrlearn.sim.transfer`) and the rides of :class:`Lift` / :class:`Escalator` ones
+        (:mod:`pdrlearn.sim.ride`)
     """
     w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability, step_length_asymmetry)
     initial = {f: (h.copy(), y) for f, (h, y) in w.feet.items()}

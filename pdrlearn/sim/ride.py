@@ -91,7 +91,8 @@ def check_rise(kind: str, rise_m: float, what: str) -> None:
     :data:`LIFT_MAX_RISE_M` (lift) or :data:`ESCALATOR_MIN_RISE_M`-:data:`ESCALATOR_MAX_RISE_M` (escalator)."""
     low, top = (0.0, LIFT_MAX_RISE_M) if kind == "lift" else (ESCALATOR_MIN_RISE_M, ESCALATOR_MAX_RISE_M)
     if not (isinstance(rise_m, int | float) and math.isfinite(rise_m) and rise_m != 0 and low <= abs(rise_m) <= top):
-        raise DataError(f"{what}: a {kind} ride's rise must be a non-zero number of metres up to {top:g}"
+        ride = "a lift" if kind == "lift" else "an escalator"
+        raise DataError(f"{what}: {ride} ride's rise must be a non-zero number of metres up to {top:g}"
                         + (f", at least {low:g}" if low else "") + f" (+H up, -H down), not {rise_m!r}")
 
 
@@ -184,7 +185,8 @@ def ride_offset(t: np.ndarray, rides: list[Ride], starts: np.ndarray, *, sway: b
 
 
 def ride_table(rides: list[Ride], starts: np.ndarray) -> list[dict]:
-    """Rows of the ``rides`` label table: start and end of the motion (s), kind, ENU displacement, speed, acceleration."""
+    """Rows of the ``rides`` label table: start and end of the motion (s), kind, ENU displacement (m), speed,
+    peak acceleration."""
     rows = []
     for ride, t0 in zip(rides, starts, strict=True):
         d = ride.displacement
