@@ -191,3 +191,37 @@ def test_cli_writes_the_rides(tmp_path, capsys):
     lift = rides.iloc[0]
     assert z[t > lift.end_s + 0.5][0] - z[t < lift.start_s - 0.5][-1] == pytest.approx(9.0, abs=0.1)
     assert abs(z[-1] - z[0]) < 0.1  # up 9 m by lift, down 9 m by escalator
+
+
+def test_rides_warn_on_the_foot_and_the_waist_counts_them():
+    """Decisions L192 / L193 / S47 on simulated rides (user 3354, seed = user, offline, no model): a lift up gives
+    L145's net line, an escalator up and back down L180's climb line (the foot's height integrates strides only); the
+    waist-pendulum track's barometric altitude follows the lift (within 0.3 m) and counts its three storeys; the
+    foot's horizontal error on an escalator ride is the ride's horizontal travel (dead reckoning cannot see it);
+    the altitude reference of a ride session is the trajectory's (S47), not the strides' 0."""
+    from pdrlearn.track.evaluate import barometer_warning, track_summary
+    from pdrlearn.track.plasys import track_plasys
+    from pdrlearn.track.waist import track_waist
+
+    user = UserProfile.from_seed(3354)
+    lift = simulate_path(parse_route("straight:10, lift:+9, straight:10"), user, seed=3354, scenario="route")
+    foot = track_summary(track_plasys(lift), lift)
+    assert "disagrees with the waist barometer" in barometer_warning(foot)
+    assert foot["altitude_change_ref_m"] == pytest.approx(9.0, abs=0.2)
+    assert foot["altitude_ref_source"].startswith("trajectory.csv")
+    waist = track_summary(track_waist(lift, pipeline="waist-pendulum"), lift, pipeline="waist-pendulum")
+    print(f"lift: foot altitude {foot['altitude_change_m']:+.2f} m, waist {waist['altitude_change_m']:+.2f} m "
+          f"(truth {waist['altitude_change_ref_m']:+.2f}), waist floors up {waist['floors_up']} "
+          f"(reference {waist['floors_up_ref']})")
+    assert waist["altitude_change_m"] == pytest.approx(waist["altitude_change_ref_m"], abs=0.3)
+    assert waist["floors_up"] == 3 == waist["floors_up_ref"]
+    esc = simulate_path(parse_route("straight:10, escalator:+6, straight:5, turn:180, escalator:-6, straight:10"),
+                        user, seed=3354, scenario="route")
+    m = track_summary(track_plasys(esc), esc)
+    line = barometer_warning(m)
+    assert "L180" in line and "misses" in line and "although the net changes agree" in line
+    up = simulate_path(parse_route("straight:10, escalator:+6, straight:10"), user, seed=3354, scenario="route")
+    m = track_summary(track_plasys(up), up)
+    travel = float(np.hypot(up.extras["rides"]["dx_m"].iloc[0], up.extras["rides"]["dy_m"].iloc[0]))
+    print(f"escalator +6 m: foot horizontal error {m['final_position_error_m']:.2f} m, ride travel {travel:.2f} m")
+    assert m["final_position_error_m"] == pytest.approx(travel, abs=1.5)
