@@ -225,3 +225,18 @@ def test_rides_warn_on_the_foot_and_the_waist_counts_them():
     travel = float(np.hypot(up.extras["rides"]["dx_m"].iloc[0], up.extras["rides"]["dy_m"].iloc[0]))
     print(f"escalator +6 m: foot horizontal error {m['final_position_error_m']:.2f} m, ride travel {travel:.2f} m")
     assert m["final_position_error_m"] == pytest.approx(travel, abs=1.5)
+
+
+@pytest.mark.parametrize("item", ["lift:0", "escalator:90", "trolley:x"])
+def test_bad_cli_route_items_are_one_line(tmp_path, capsys, item):
+    out = tmp_path / "bad"
+    assert main(["simulate", "--route", f"straight:3, {item}", "--user-seed", "3355", "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error: --route item") and item in err and "\n" not in err and "Traceback" not in err
+    assert not out.exists()
+
+
+def test_cli_help_names_the_ride_items(capsys):
+    assert main(["simulate", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.replace("\u2502", " ").split())
+    assert "'lift:+9'" in text and "'escalator:+6'" in text and "'trolley:20'" in text and "escalator:-9" in text

@@ -132,6 +132,9 @@ def simulate_cmd(
 
         pdrlearn simulate --route "stand:2, straight:20, stand:2" --height 0.95 --leg-length 0.45 \\
             --step-length 0.36 --step-time 0.3 --user-seed 1 --rate 100 --out out/sim/age3   # a 3-year-old
+
+        pdrlearn simulate --route "straight:5, lift:+9, trolley:10, escalator:-9, straight:5" --user-seed 2 \\
+            --out out/sim/mall_u2   # a lift up three storeys, a trolley pushed, an escalator down (S45, S46)
     """
     from pdrlearn.io import write_session
     from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path
