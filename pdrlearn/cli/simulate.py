@@ -39,7 +39,9 @@ def simulate_cmd(
         None,
         "--route",
         help="Your own path instead of a scenario, e.g. 'straight:10, up:12, turn:180, down:12, "
-        "backward:3, stand:2, curve:90:2' (degrees; docs/simulator.md).",
+        "backward:3, stand:2, curve:90:2' (degrees; docs/simulator.md). Rides without steps: 'lift:+9' / "
+        "'lift:-9' (a lift, metres up / down), 'escalator:+6' (30 deg, 0.5 m/s, straight ahead; 1-60 m); "
+        "'trolley:20' walks 20 m pushing a trolley (decisions S45, S46).",
     ),
     user_seed: int = typer.Option(..., "--user-seed", "-u", help="Selects the simulated user (>= 0)."),
     out: Path = typer.Option(..., "--out", "-o", help="Session folder to create (must not exist or be empty)."),
@@ -130,6 +132,9 @@ def simulate_cmd(
 
         pdrlearn simulate --route "stand:2, straight:20, stand:2" --height 0.95 --leg-length 0.45 \\
             --step-length 0.36 --step-time 0.3 --user-seed 1 --rate 100 --out out/sim/age3   # a 3-year-old
+
+        pdrlearn simulate --route "straight:5, lift:+9, trolley:10, escalator:-9, straight:5" --user-seed 2 \\
+            --out out/sim/mall_u2   # a lift up three storeys, a trolley pushed, an escalator down (S45, S46)
     """
     from pdrlearn.io import write_session
     from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path

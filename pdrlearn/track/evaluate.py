@@ -336,6 +336,18 @@ def _ascent(result: TrackResult, out: dict) -> None:
     out["altitude_drift_m"] = float(out.get("altitude_change_m", 0.0) - out["ascent_m"] + out["descent_m"])
 
 
+def _walked_heights(session: Session) -> pd.DataFrame | None:
+    """The labelled strides when their ``height_m`` is the whole height change: every row has one and the session
+    has no ride (decision S47: a lift or escalator's height is in ``rides.csv`` and the trajectory, not the strides)."""
+    st = session.steps
+    rides = session.extras.get("rides")
+    if rides is not None and len(rides):
+        return None
+    if st is not None and len(st) and "height_m" in st and st["height_m"].notna().all():
+        return st
+    return None
+
+
 def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[float | None, str]:
     """The reference altitude change (m) of a walk and its source. A ``steps.csv`` whose rows all have a
     ``height_m`` gives their sum (the floor-level change of the labelled strides, as ``distance_ref_m`` sums
@@ -343,9 +355,10 @@ def reference_altitude_change(session: Session, t0: float, t1: float) -> tuple[f
     the same for every tracker of the session; else the ground-truth trajectory's z from ``t0`` to ``t1``
     (the track's first and last time). Before, the trajectory was always read at the track's own times, so
     ``track`` and ``run`` (whose first stride starts 0.02 s apart) differed by the body's sway (3.0514 vs
-    3.0494 m on one walk)."""
-    st = session.steps
-    if st is not None and len(st) and "height_m" in st and st["height_m"].notna().all():
+    3.0494 m on one walk). Decision S47: a session with rides (``rides.csv``: a lift or an escalator carried the
+    walker, whose strides' ``height_m`` are the walked ones) takes the trajectory."""
+    st = _walked_heights(session)
+    if st is not None:
         h = st["height_m"].astype(float)
         if "foot" in st and st["foot"].nunique() >= 2:
             return float(h.groupby(st["foot"]).sum().mean()), "steps.csv height_m (mean of the feet's sums)"
@@ -361,8 +374,8 @@ def reference_altitude_track(session: Session, t0: float, t1: float) -> np.ndarr
     """The reference altitudes of a walk in walking order (decision L64), from the source of
     :func:`reference_altitude_change`: the running sum of one foot's labelled ``height_m`` (the first foot
     named) or the ground-truth trajectory's z from ``t0`` to ``t1``; None without either."""
-    st = session.steps
-    if st is not None and len(st) and "height_m" in st and st["height_m"].notna().all():
+    st = _walked_heights(session)
+    if st is not None:
         if "foot" in st and st["foot"].nunique() >= 2:
             st = st[st["foot"] == st["foot"].iloc[0]]
         if "start_s" in st:
