@@ -23,6 +23,10 @@ HEIGHT_RANGE_M, LEG_PER_HEIGHT_RANGE = (0.7, 2.2), (0.35, 0.6)
 MAG_DISTURBANCE_MAX_UT = 90.0
 #: decision S34: the body axes `--waist-mount AXIS:DEG` turns the waist unit about (forward, left, up)
 MOUNT_AXES = {"x": 0, "y": 1, "z": 2}
+#: decision S48: a custom step faster than this (m/s) is warned: the simulator has no running gait (no flight
+#: phase; walking stance, bounce and rockers), so it is fast walking at a running speed. 2.0 m/s is about the
+#: preferred walk-to-run transition speed of adults (Hreljac 1993: 2.07 m/s; not a seed)
+RUNNING_SPEED_MPS = 2.0
 #: decision S43: `simulate --sit-start/--sit-end` (s seated at the start / end of the session): up to an hour
 SIT_MAX_S = 3600.0
 
@@ -307,6 +311,16 @@ def _custom_gait(user, speed: str, step_length: float | None, step_time: float |
         if v is not None and not (math.isfinite(v) and lo <= v <= hi):
             raise DataError(f"simulate: {name} {v:g}: give {lo:g}-{hi:g} {unit}")
     f_len, f_time = SPEED_FACTORS[speed]
+    walked = dataclasses.replace(user, **{k: v for k, v in (("step_length_m", step_length and step_length / f_len),
+                                                            ("step_time_s", step_time and step_time / f_time)) if v})
+    mps = walked.step_length(speed) / walked.step_time(speed)
+    if mps > RUNNING_SPEED_MPS:  # decision S48
+        import logging
+
+        logging.getLogger("pdrlearn.sim").warning(
+            "simulate: steps of %.2f m/s: the simulator has no running gait (no flight phase; walking stance, "
+            "bounce and foot roll), so this session is fast walking at a running speed and cadence, not running "
+            "(decision S48)", mps)
     changes = {}
     if step_length is not None:
         changes["step_length_m"] = step_length / f_len
