@@ -358,8 +358,9 @@ FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
                                                           "parity_fill"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
-#: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
-SIT_VETO_VALUES = (False, True, "rhythm")
+#: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
+#: sparing also an undecided contact between two same-side contacts of its sequence
+SIT_VETO_VALUES = (False, True, "rhythm", "alternation")
 #: decision W156: ``stairs_length`` - False (no bound), True (W91's proposed steps, W108's under ``stairs_climb``) or
 #: "climbs" (only the steps inside W108's climbs)
 STAIRS_LENGTH_VALUES = (False, True, "climbs")
@@ -368,7 +369,7 @@ PARITY_FILL_VALUES = (False, True, "within")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 #: the options with more than two values and the decisions that define them (one refusal line for each)
-CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109"), "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
+CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180"), "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
                   "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
                   "parity_fill": (PARITY_FILL_VALUES, "W152, W159")}
 
@@ -446,7 +447,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     sit_veto : ``True``: drop the contacts within 1 s of a trunk-flexion peak of more than 25 deg from the walking
         upright (a sit-to-stand or bend event; decision W104, :func:`pdrlearn.waist.posture.transfer_veto`);
         ``"rhythm"``: the same, sparing the contacts that alternate left/right with a neighbour of their walking
-        sequence (decision W109); ``False`` (default): no veto
+        sequence (decision W109); ``"alternation"``: as ``"rhythm"``, sparing also an undecided contact (no W20 side)
+        between two same-side contacts of its sequence (decision W180); ``False`` (default): no veto
     pause_steps : pendulum, offline detector (the realtime one ignores it: it looks three steps ahead): a step
         longer than 1.5 local periods spans a pause (the stop before a turn on the spot, the restart after it) and
         keeps one period's length (decision W111); ``"progression"``: a step during which the unit stands still
@@ -552,8 +554,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps = tilt_gate(steps, imu, float(o["max_tilt_deg"]))
         n_tilted = steps.attrs["n_tilted"]
     n_vetoed = 0
-    if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept
-        steps = transfer_veto(steps, imu, keep_rhythm=o["sit_veto"] == "rhythm")
+    if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept;
+        # W180: and an undecided contact inside an alternating sequence
+        steps = transfer_veto(steps, imu, keep_rhythm=o["sit_veto"] in ("rhythm", "alternation"),
+                              keep_between=o["sit_veto"] == "alternation")
         n_vetoed = steps.attrs["n_vetoed"]
     else:  # W146: name the contacts W104's veto would drop (a TUG's chair rises), and the option
         warnings.extend(sit_veto_hint(transfer_veto(steps, imu).attrs["n_vetoed"]))
