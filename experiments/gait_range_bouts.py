@@ -37,7 +37,7 @@ ROUTE = ("stand:3, straight:6, turn:180, straight:4, stand:4, straight:3, turn:-
          "straight:4, turn:-135, straight:4, stand:3")
 SPEEDS = ("slow", "normal", "fast")
 MARKS = {"L195": "decision L195)", "L196": "decision L196)", "W177": "at a running cadence",
-         "W178": "running, or short fast steps", "L95": "(decision L95)"}
+         "W178": "running, or short fast steps (a festinating", "L95": "(decision L95)"}
 
 
 def marks(summary: dict) -> dict:
