@@ -204,6 +204,30 @@ def swing_pitch_extremes(gyr: np.ndarray, fs: float, i0: np.ndarray, i1: np.ndar
     return down, up
 
 
+def foot_push_off(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """Start and end time (s) and swing-pitch asymmetry (toes-down minus toes-up over their sum, D9's measure of
+    :func:`infer_foot_frame`, here per stride) of each rest-to-rest stride of the session's foot unit, about the
+    left axis of its declared frame (decision W173: a forward stride pushes off toes-down, a backward one does not);
+    None without a foot unit or a declared foot frame (an inferred one assumes forward walking)."""
+    from pdrlearn.displace.foot import inertial_stance
+    from pdrlearn.signal.filters import interp_rows
+
+    acc_n, gyr_n = UNIT_STREAMS["foot"]
+    frame = session.frames.get("foot")
+    if frame is None or acc_n not in session.streams or gyr_n not in session.streams:
+        return None
+    acc_s, gyr_s = session.streams[acc_n], session.streams[gyr_n]
+    if len(acc_s) < 8 or len(gyr_s) < 2 or not np.isfinite(acc_s.rate_hz):
+        return None
+    acc, gyr, fs = acc_s.values, interp_rows(acc_s.t, gyr_s.t, gyr_s.values), float(acc_s.rate_hz)
+    if not (np.isfinite(acc).all() and np.isfinite(gyr).all()):
+        return None
+    i0, i1 = rest_to_rest(inertial_stance(acc, gyr, fs), fs)
+    down, toes_up = swing_pitch_extremes(gyr, fs, i0, i1, _unit(frame.matrix()[1]))
+    asym = (down - toes_up) / np.maximum(down + toes_up, 1e-9)
+    return acc_s.t[i0], acc_s.t[i1], asym
+
+
 def infer_foot_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFrame:
     """Frame of a foot unit from its specific force (m/s^2) and angular rate (rad/s) on one clock (fs Hz).
 
@@ -359,6 +383,25 @@ def _walking_mean(acc: np.ndarray, fs: float, *, window_s: float = 4.0, walk_std
     return sums / count if count else acc.mean(axis=0)
 
 
+def phase_margin(zc: complex) -> tuple[float, float]:
+    """The lead (deg) of a horizontal direction's acceleration over the vertical one at step frequency, from their
+    cross-spectrum ``zc`` (horizontal x conj(vertical)), and its margin (deg) from W2's boundary: positive when
+    the lead lies within +-90 deg of 45 deg (forward, decision W2), negative outside; one rule, shared by the
+    frame inference (W65) and the waist track's backward check (decision W173)."""
+    lead = float(np.degrees(np.angle(zc)))
+    return lead, 90.0 - abs(((lead - 45.0 + 180.0) % 360.0) - 180.0)
+
+
+def trunk_forward_margin(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, fs: float) -> float | None:
+    """W2's margin (deg, :func:`phase_margin`) of the unit's forward axis over a stretch of lower-back data
+    (vertical, forward and left acceleration, m/s^2, at ``fs`` Hz), from the same summed step-frequency
+    cross-spectra as :func:`infer_waist_frame` (decision W173); None when no 4 s window of it walks."""
+    _, z, walk_s, _ = _step_spectra(np.asarray(acc_v, float), np.column_stack([acc_ap, acc_ml]).astype(float), fs)
+    if walk_s <= 0 or abs(z[0]) < 1e-12:
+        return None
+    return phase_margin(complex(z[0]))[1]
+
+
 def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFrame:
     """Frame of a waist (lower-back, belt) unit from its specific force (m/s^2) on one clock (fs Hz).
 
@@ -403,8 +446,7 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
                                   f"{MIN_AP_POWER_RATIO:g}): forward and lateral are ambiguous")
     ap = B @ vecs[:, 1]
     zc = complex(vecs[:, 1] @ z)
-    lead = float(np.degrees(np.angle(zc)))
-    margin = 90.0 - abs(((lead - 45.0 + 180.0) % 360.0) - 180.0)
+    lead, margin = phase_margin(zc)
     if abs(margin) < MIN_PHASE_MARGIN_DEG:
         raise FrameInferenceError(f"the forward/vertical phase at step frequency ({lead:.0f} deg) does not tell "
                                   "forward from backward")

@@ -38,6 +38,7 @@ from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
+from pdrlearn.waist.backward import backward_warnings
 from pdrlearn.waist.events import (
     InitialContactDetector,
     gate_threshold,
@@ -580,6 +581,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
     steps = steps.assign(stairs=stairs)
+    warnings.extend(backward_warnings(steps, imu, session))  # decision W173: backward steps are counted forward
     n_st = len(steps)
     zz = _altitude(session, baro, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float),
                                                   steps["start_s"].to_numpy(float)]), warnings)
