@@ -1,13 +1,13 @@
 """Decision W173: how often the backward-steps line fires. Fresh simulated users 3400-3429 on forward-only walks
 (thesis scenarios A-D, W111's daily-activity route) must give none; backward routes (backward only, and forward /
 backward / forward) must give one per backward stretch; the real lower-back recordings (mobgap, datasets/real and
-datasets/external) none. Both waist pipelines; the simulated sessions also without their foot unit (the trunk cue
-alone). Prints counts; decision W173 records them.
+datasets/external) none. Both waist pipelines; the simulated sessions also without their foot unit. Prints counts;
+decision W173 records them. ``--seed N``: the walks' seed (default 1).
 ``--w174``: decision W174's check, the same users' seated-start / seated-end routes (the trial's TUG, the
 daily-activity route) and stair routes (scenario D, one storey up), waist-pendulum with defaults: the summary's
 altitude_change_m and ascent_m, and the same without W174 (its transfer_dz_m put back into z).
 
-    PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/waist_backward.py [--w174]
+    PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/waist_backward.py [--seed N | --w174]
 """
 
 from __future__ import annotations
@@ -46,13 +46,13 @@ def lines(session, pipeline: str) -> int:
     return sum("decision W173" in w for w in get_pipeline(pipeline)(session).info["warnings"])
 
 
-def main() -> None:
+def main(seed: int = 1) -> None:
     logging.disable(logging.WARNING)
     forward = {(p, u): [0, 0] for p in PIPELINES for u in ("both", "waist")}
     back = {(k, p, u): [0, 0] for k in BACKWARD for p in PIPELINES for u in ("both", "waist")}
     for user in USERS:
-        sessions = [simulate(sc, user, rate_hz=20.0, seed=1) for sc in "ABCD"]
-        sessions.append(simulate_path(parse_route(DAILY), UserProfile.from_seed(user), rate_hz=20.0, seed=1,
+        sessions = [simulate(sc, user, rate_hz=20.0, seed=seed) for sc in "ABCD"]
+        sessions.append(simulate_path(parse_route(DAILY), UserProfile.from_seed(user), rate_hz=20.0, seed=seed,
                                       scenario="route"))
         for s in sessions:
             for units, ss in (("both", s), ("waist", waist_only(s))):
@@ -61,7 +61,8 @@ def main() -> None:
                     c[0] += 1
                     c[1] += lines(ss, p) > 0
         for k, route in BACKWARD.items():
-            s = simulate_path(parse_route(route), UserProfile.from_seed(user), rate_hz=20.0, seed=1, scenario="route")
+            s = simulate_path(parse_route(route), UserProfile.from_seed(user), rate_hz=20.0, seed=seed,
+                              scenario="route")
             for units, ss in (("both", s), ("waist", waist_only(s))):
                 for p in PIPELINES:
                     c = back[(k, p, units)]
@@ -109,10 +110,14 @@ def w174() -> None:
         print(f"{k}, users {USERS.start}-{USERS.stop - 1}: max |altitude_change_m| {np.abs(a[:, 0]).max():.3f} "
               f"(without W174 {np.abs(a[:, 2]).max():.3f}), max ascent_m {a[:, 1].max():.3f} (without "
               f"{a[:, 3].max():.3f}); median altitude_change_m {np.median(a[:, 0]):.3f} (without "
-              f"{np.median(a[:, 2]):.3f}), median ascent_m {np.median(a[:, 1]):.3f} (without {np.median(a[:, 3]):.3f}); "
+              f"{np.median(a[:, 2]):.3f}), median ascent_m {np.median(a[:, 1]):.3f} (without "
+              f"{np.median(a[:, 3]):.3f}); "
               f"max |change - without| {np.abs(a[:, 0] - a[:, 2]).max():.3f}, max |ascent - without| "
               f"{np.abs(a[:, 1] - a[:, 3]).max():.3f}")
 
 
 if __name__ == "__main__":
-    w174() if "--w174" in sys.argv[1:] else main()
+    if "--w174" in sys.argv[1:]:
+        w174()
+    else:  # --seed N: the walks' seed (1 by default; W173's check after its revision also ran seed 2)
+        main(int(sys.argv[sys.argv.index("--seed") + 1]) if "--seed" in sys.argv else 1)

@@ -383,25 +383,6 @@ def _walking_mean(acc: np.ndarray, fs: float, *, window_s: float = 4.0, walk_std
     return sums / count if count else acc.mean(axis=0)
 
 
-def phase_margin(zc: complex) -> tuple[float, float]:
-    """The lead (deg) of a horizontal direction's acceleration over the vertical one at step frequency, from their
-    cross-spectrum ``zc`` (horizontal x conj(vertical)), and its margin (deg) from W2's boundary: positive when
-    the lead lies within +-90 deg of 45 deg (forward, decision W2), negative outside; one rule, shared by the
-    frame inference (W65) and the waist track's backward check (decision W173)."""
-    lead = float(np.degrees(np.angle(zc)))
-    return lead, 90.0 - abs(((lead - 45.0 + 180.0) % 360.0) - 180.0)
-
-
-def trunk_forward_margin(acc_v: np.ndarray, acc_ap: np.ndarray, acc_ml: np.ndarray, fs: float) -> float | None:
-    """W2's margin (deg, :func:`phase_margin`) of the unit's forward axis over a stretch of lower-back data
-    (vertical, forward and left acceleration, m/s^2, at ``fs`` Hz), from the same summed step-frequency
-    cross-spectra as :func:`infer_waist_frame` (decision W173); None when no 4 s window of it walks."""
-    _, z, walk_s, _ = _step_spectra(np.asarray(acc_v, float), np.column_stack([acc_ap, acc_ml]).astype(float), fs)
-    if walk_s <= 0 or abs(z[0]) < 1e-12:
-        return None
-    return phase_margin(complex(z[0]))[1]
-
-
 def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFrame:
     """Frame of a waist (lower-back, belt) unit from its specific force (m/s^2) on one clock (fs Hz).
 
@@ -446,7 +427,8 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float) -> InferredFr
                                   f"{MIN_AP_POWER_RATIO:g}): forward and lateral are ambiguous")
     ap = B @ vecs[:, 1]
     zc = complex(vecs[:, 1] @ z)
-    lead, margin = phase_margin(zc)
+    lead = float(np.degrees(np.angle(zc)))
+    margin = 90.0 - abs(((lead - 45.0 + 180.0) % 360.0) - 180.0)
     if abs(margin) < MIN_PHASE_MARGIN_DEG:
         raise FrameInferenceError(f"the forward/vertical phase at step frequency ({lead:.0f} deg) does not tell "
                                   "forward from backward")

@@ -24,12 +24,12 @@ import pandas as pd
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
 from pdrlearn.kernels.barometer import (  # decision W91's constants and test, shared with the live trackers (E107)
+    ALTITUDE_SMOOTH_S,
     STAIR_TREAD_M,
     STAIRS_RATE_MPS,  # noqa: F401 (re-exported)
     STAIRS_RATE_WINDOW_S,
     stairs_rate_test,
 )
-from pdrlearn.kernels.barometer import ALTITUDE_SMOOTH_S
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track.barometer import usable_barometer
@@ -588,7 +588,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
     steps = steps.assign(stairs=stairs)
-    warnings.extend(backward_warnings(steps, imu, session))  # decision W173: backward steps are counted forward
+    warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
     n_st = len(steps)
     held = transfer_windows(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool),
                             0.5 * ALTITUDE_SMOOTH_S)  # decision W174: a transfer's height change is the transfer's
