@@ -39,7 +39,7 @@ def test_a_stair_climb_keeps_its_altitude_with_no_transfer():
     res = track_waist(s, pipeline="waist-pendulum")
     ev = evaluate_track(res, s)
     assert ev["altitude_change_m"] == pytest.approx(ev["altitude_change_ref_m"], abs=0.3)
-    assert ev["ascent_m"] > 2.5
+    assert ev["ascent_m"] > 2.0  # the storey is climbed (ascent reads the climbs within L172's band)
     assert np.all(res.steps["transfer_dz_m"] == 0.0)
 
 
