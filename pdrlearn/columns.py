@@ -272,6 +272,9 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("dz_m", "m", "number", "barometric altitude change over the step (W89; 0 without a usable barometer)"),
     ("pause_dz_m", "m", "number", "barometric altitude change while standing before the step (a lift ride; W158), "
                                   "0 inside a walking sequence"),
+    ("transfer_dz_m", "m", "number", "barometric altitude change inside a sit-to-stand or stand-to-sit (a trunk "
+                                     "flexion over 25 deg, W104) since the previous row: the transfer's, not in "
+                                     "z, ascent or floors (W174)"),
 )
 
 #: every table of the dictionary, in the order shown

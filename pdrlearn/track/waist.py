@@ -24,6 +24,7 @@ import pandas as pd
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
 from pdrlearn.kernels.barometer import (  # decision W91's constants and test, shared with the live trackers (E107)
+    ALTITUDE_SMOOTH_S,
     STAIR_TREAD_M,
     STAIRS_RATE_MPS,  # noqa: F401 (re-exported)
     STAIRS_RATE_WINDOW_S,
@@ -38,6 +39,7 @@ from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
+from pdrlearn.waist.backward import backward_warnings
 from pdrlearn.waist.events import (
     InitialContactDetector,
     gate_threshold,
@@ -83,7 +85,7 @@ from pdrlearn.waist.plausibility import (
     walk_ratio,
     walk_ratio_message,
 )
-from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto
+from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 
 log = logging.getLogger(__name__)
@@ -129,13 +131,16 @@ def _start(start, initial_heading: float) -> tuple[float, float, float, tuple[fl
 
 
 def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: float,
-            z: np.ndarray | None = None, z_start: np.ndarray | None = None) -> TrackResult:
+            z: np.ndarray | None = None, z_start: np.ndarray | None = None,
+            z_raw: np.ndarray | None = None) -> TrackResult:
     """TrackResult from a steps table with ``length_m`` and navigation-frame ``heading_rad``: headings
     rotated by the start heading (ENU), trajectory = cumulative positions (plus lat/lon). ``z``: the altitude
     (m) at ``t0`` and at each step's end (decision W89; None: 0 throughout). Decision W158: ``z_start``, the
     altitude at each step's start (None: the previous end's); a step's ``dz_m`` is the change from its start to its
     end, ``pause_dz_m`` the change while the unit stood before it (from the previous row's end, or ``t0``, to its
-    start: a lift or escalator ride, 0 inside a walking sequence), so ``dz_m + pause_dz_m`` sum to ``z``."""
+    start: a lift or escalator ride, 0 inside a walking sequence), so ``dz_m + pause_dz_m`` sum to ``z``. Decision
+    W174: ``z_raw``, the barometric altitude at ``t0`` and each step's end without W174's transfer windows held (None:
+    ``z``); ``transfer_dz_m`` is each row's change inside them, so ``dz_m + pause_dz_m + transfer_dz_m`` sum to it."""
     from pdrlearn.track.geodetic import geodetic_track
 
     x0, y0, h0, latlon, alt = _start(start, initial_heading)
@@ -147,6 +152,7 @@ def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: 
     zs = z[:-1] if z_start is None else np.asarray(z_start, dtype=float)
     out["dz_m"] = z[1:] - zs
     out["pause_dz_m"] = zs - z[:-1]  # W158: the standstill's altitude change before the step, not the step's
+    out["transfer_dz_m"] = np.zeros(len(out)) if z_raw is None else np.diff(z_raw) - np.diff(z)  # W174
     z = z + alt  # decision L157: start=(lat, lon, alt) starts z at alt, as --start LAT,LON,ALT
     traj = pd.DataFrame({"t": np.concatenate([[t0], out["end_s"].to_numpy(float)]),
                          "x": x0 + np.concatenate([[0.0], np.cumsum(lengths * np.cos(head))]),
@@ -163,18 +169,20 @@ NO_BAROMETER = ("no barometer (wBarometer.csv): a lower-back track has no altitu
                 "are counted, also on stairs")
 
 
-def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str]) -> np.ndarray | None:
+def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str], held=()
+              ) -> tuple[np.ndarray, np.ndarray] | None:
     """Decision W89: the altitude (m, relative to ``t[0]``) at the times ``t`` from the waist barometer ``baro``
-    (:func:`pdrlearn.track.barometer.usable_barometer`; :func:`pdrlearn.kernels.barometer.relative_altitude`); None
-    when it is None, with :data:`NO_BAROMETER` added to ``warnings`` (W90) when the session has none (an implausible
-    one has B188's line already)."""
-    from pdrlearn.kernels.barometer import relative_altitude
+    (:func:`pdrlearn.track.barometer.usable_barometer`; :func:`pdrlearn.kernels.barometer.relative_altitude`), held
+    through the ``held`` windows (decision W174's transfers), and the raw one: ``(held, raw)``; None when ``baro`` is
+    None, with :data:`NO_BAROMETER` added to ``warnings`` (W90) when the session has none (an implausible one has
+    B188's line already)."""
+    from pdrlearn.kernels.barometer import held_altitude
 
     if baro is None:
         if not session.has("wBarometer") or not len(session["wBarometer"]):
             warnings.append(NO_BAROMETER)
         return None
-    return relative_altitude(baro.t, baro.values[:, 0], t)
+    return held_altitude(baro.t, baro.values[:, 0], t, held)
 
 
 def _stairs_steps(baro, steps: pd.DataFrame, climb: bool) -> np.ndarray:
@@ -584,13 +592,16 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
     steps = steps.assign(stairs=stairs)
+    warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
     n_st = len(steps)
+    held = transfer_windows(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool),
+                            0.5 * ALTITUDE_SMOOTH_S)  # decision W174: a transfer's height change is the transfer's
     zz = _altitude(session, baro, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float),
-                                                  steps["start_s"].to_numpy(float)]), warnings)
-    z, z_start = (None, None) if zz is None else (zz[:n_st + 1], zz[n_st + 1:])
+                                                  steps["start_s"].to_numpy(float)]), warnings, held)
+    z, z_start, z_raw = (None, None, None) if zz is None else (zz[0][:n_st + 1], zz[0][n_st + 1:], zz[1][:n_st + 1])
     if z is not None and bool(o["stairs_climb"]):  # W108: a step off stairs is on a level floor (pauses too)
         z = np.concatenate([[0.0], np.cumsum(np.where(stairs, np.diff(z), 0.0))])
-        z_start = z[:-1]
+        z_start, z_raw = z[:-1], None  # W174's transfer_dz_m: 0 (every change off the stairs is left out here)
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
         warnings.append(no_steps_message(thr, sigma, gate_source))
@@ -647,7 +658,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)
-    return _result(steps, start, initial_heading, info, float(imu.t[0]), z, z_start)
+    return _result(steps, start, initial_heading, info, float(imu.t[0]), z, z_start, z_raw)
 
 
 def _configure_model(model: StepLengthModel, spec, realtime: bool, options: dict) -> None:

@@ -86,6 +86,16 @@ def flexion_events(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) -> l
             for a, b in zip(edges[::2], edges[1::2], strict=True)]
 
 
+def transfer_windows(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray, pad_s: float = 0.0
+                     ) -> list[tuple[float, float]]:
+    """Decision W174: the time span (s) of each trunk-flexion event (:func:`flexion_events`): from
+    :data:`TRANSFER_HALF_S` before its peak (or its start, if earlier) to :data:`TRANSFER_HALF_S` after it (or its
+    end, if later), each edge widened by ``pad_s``: the sit-to-stand's (stand-to-sit's) movement, whose change of
+    height is the transfer's, not a climb."""
+    return [(min(a, peak - TRANSFER_HALF_S) - pad_s, max(b, peak + TRANSFER_HALF_S) + pad_s)
+            for a, peak, b in flexion_events(imu, event_s, walking)]
+
+
 def drop_contacts(steps: pd.DataFrame, keep: np.ndarray, count: str) -> pd.DataFrame:
     """``steps`` without the contacts not in ``keep``; a kept step whose next contact is dropped ends its walking
     sequence (``end_s`` = its start, no ``has_next``, confidence 0.5, as :func:`pdrlearn.kernels.waist.contact_rows`
