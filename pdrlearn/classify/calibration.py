@@ -77,21 +77,28 @@ def calibrated_proba(scores: np.ndarray, temperature: float) -> np.ndarray:
 
 
 def expected_calibration_error(proba: np.ndarray, y_idx: np.ndarray, n_bins: int = 10) -> float:
-    """Expected calibration error (Guo et al. 2017, "On calibration of modern neural networks", eq. 3): the
-    steps binned by their top probability into ``n_bins`` equal-width bins over [0, 1]; the step-weighted mean of
-    |accuracy - mean confidence| per bin. ``nan`` for no steps."""
+    """Expected calibration error (Guo et al. 2017, "On calibration of modern neural networks", eq. 3) of class
+    probabilities ``(n, k)`` against true class indices: :func:`confidence_ece` of the top probability and
+    whether the argmax is right."""
     proba = np.asarray(proba, dtype=float)
-    y_idx = np.asarray(y_idx, dtype=int)
     if len(proba) == 0:
         return float("nan")
-    conf = proba.max(axis=1)
-    right = (proba.argmax(axis=1) == y_idx).astype(float)
-    b = np.minimum((conf * n_bins).astype(int), n_bins - 1)  # bins (i/n, (i+1)/n]; conf 1.0 in the last
+    return confidence_ece(proba.max(axis=1), proba.argmax(axis=1) == np.asarray(y_idx, dtype=int), n_bins)
+
+
+def confidence_ece(conf: np.ndarray, right: np.ndarray, n_bins: int = 10) -> float:
+    """Guo et al. 2017 eq. 3: the steps binned by confidence into ``n_bins`` equal-width bins over [0, 1]; the
+    step-weighted mean of |accuracy - mean confidence| per bin. ``nan`` for no steps."""
+    conf = np.asarray(conf, dtype=float)
+    right = np.asarray(right, dtype=float)
+    if len(conf) == 0:
+        return float("nan")
+    b = np.minimum((conf * n_bins).astype(int), n_bins - 1)  # bins [i/n, (i+1)/n); conf 1.0 in the last
     total = 0.0
     for k in np.unique(b):
         m = b == k
         total += m.sum() * abs(right[m].mean() - conf[m].mean())
-    return float(total / len(proba))
+    return float(total / len(conf))
 
 
 def cv_scores(
