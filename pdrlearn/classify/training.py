@@ -60,7 +60,7 @@ PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic", "ensemble")
 
 #: How the trained DTW models' softmin temperature is fitted (``DTWClassifier(calibration=...)``): ``"gap"``
 #: (decision C4) or ``"cv"`` (decision C67, an inner cross-validation on the training steps; adoption rule C67).
-DTW_CALIBRATION = "gap"
+DTW_CALIBRATION = "cv"
 
 #: Step signals compared by DTW per task and unit: terrain foot accelerometer + gyroscope / waist
 #: accelerometer (thesis ch. 6.1.2.2); direction foot / waist forward acceleration (thesis ch. 6.2.2.2);
