@@ -28,12 +28,18 @@ def test_unclassed_level_dz_levels_only_the_unclassed_strides():
 
 @pytest.fixture(scope="module")
 def soft_terrain_case():
-    """User 5's DTW terrain model (probabilities below the gate) and scenario D at fast speed, as the trial's."""
+    """User 5's DTW terrain model (probabilities below the gate) and scenario D at fast speed, as the trial's: DTW
+    with C4's gap temperature, as in session 26 (C67's calibrated temperature passes more strides through the gate)."""
+    import pdrlearn.classify.training as training
     from pdrlearn.classify import train_user
 
     sim = partial(simulate, device_errors=True)  # as experiments/localization.py
-    model = train_user([sim("terrain", user_seed=5, speed="normal")], tasks=["terrain"], methods=["dtw"],
-                       units=["foot"], cv=2, distance_calibration=False)
+    kept, training.DTW_CALIBRATION = training.DTW_CALIBRATION, "gap"
+    try:
+        model = train_user([sim("terrain", user_seed=5, speed="normal")], tasks=["terrain"], methods=["dtw"],
+                           units=["foot"], cv=2, distance_calibration=False)
+    finally:
+        training.DTW_CALIBRATION = kept
     return model, sim("D", user_seed=5, speed="fast")
 
 

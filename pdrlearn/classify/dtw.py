@@ -152,7 +152,12 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
     prune : use LB_Keogh class pruning in :meth:`predict` (same result, fewer DTW computations; off by
         default: with 108 references of 40 samples the numpy bound costs as much as it saves, see
         docs/decisions/classifiers.md).
-    random_state : seed of the reference subset choice.
+    random_state : seed of the reference subset choice (and of the calibration's inner folds).
+    calibration : how :meth:`predict_proba`'s softmin temperature is fitted: ``"gap"`` (decision C4: the median
+        leave-one-out gap between the references' own-class and nearest other-class mean distance; soft, not a
+        probability) or ``"cv"`` (decision C67: the temperature minimising the cross-entropy of the training
+        steps' held-out mean distances in an inner cross-validation, :mod:`pdrlearn.classify.calibration`).
+        Either way :meth:`predict` is the same (a positive temperature keeps the argmin).
 
     Attributes
     ----------
@@ -169,15 +174,17 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
         standardize: bool = True,
         prune: bool = False,
         random_state: int | None = 0,
+        calibration: str = "gap",
     ):
         self.n_references = n_references
         self.window = window
         self.standardize = standardize
         self.prune = prune
         self.random_state = random_state
+        self.calibration = calibration
 
     # -- helpers ---------------------------------------------------------------------------------
-    def _validate(self, X, *, reset: bool) -> np.ndarray:
+    def _validate(self, X, *, reset: bool, series: bool = True) -> np.ndarray:
         if reset:
             X = validate_data(self, X, reset=True, allow_nd=True, dtype=np.float64)
         else:
@@ -186,7 +193,7 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
             raise DataError(
                 f"DTWClassifier: X must be (steps, channels, samples) or (steps, samples), got shape {X.shape}"
             )
-        return as_series(X)
+        return as_series(X) if series else X
 
     def _window_samples(self, n_samples: int) -> int | None:
         if self.window is None:
@@ -198,8 +205,11 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
 
     # -- protocol --------------------------------------------------------------------------------
     def fit(self, X, y):
-        """Store up to ``n_references`` standardized reference steps per class."""
-        S = self._validate(X, reset=True)
+        """Store up to ``n_references`` standardized reference steps per class; fit the softmin temperature."""
+        if self.calibration not in ("gap", "cv"):
+            raise DataError(f"DTWClassifier: calibration must be 'gap' or 'cv', got {self.calibration!r}")
+        X = self._validate(X, reset=True, series=False)
+        S = as_series(X)
         y = column_or_1d(y, warn=True)
         check_classification_targets(y)
         if len(y) != len(S):
@@ -225,7 +235,23 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
         self.window_samples_ = self._window_samples(S.shape[1])
         self.envelope_ = envelope(self.references_, window=self.window_samples_)
         self.temperature_ = self._fit_temperature()
+        if self.calibration == "cv":
+            self.temperature_ = self._cv_temperature(X, yi)
         return self
+
+    def _cv_temperature(self, X: np.ndarray, yi: np.ndarray) -> float:
+        """Decision C67: the temperature fitted on the training steps' held-out mean distances (inner
+        cross-validation, :func:`pdrlearn.classify.calibration.cv_scores`); C4's gap temperature is the search's
+        scale and stays when a class has too few steps to hold one out."""
+        from sklearn.base import clone
+
+        from pdrlearn.classify.calibration import cv_scores, fit_temperature
+
+        held = cv_scores(lambda: clone(self).set_params(calibration="gap"), X, yi,
+                         lambda est, Xp: -est.mean_distances(Xp), random_state=self.random_state)
+        if held is None:
+            return self.temperature_
+        return fit_temperature(*held, scale=self.temperature_)
 
     def _fit_temperature(self) -> float:
         """Softmin temperature: median gap between a reference's own-class and nearest other-class mean

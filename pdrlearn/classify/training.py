@@ -58,6 +58,10 @@ MIN_STEPS_PER_CLASS = 5
 #: Tie-break order when two fused methods score alike (the thesis' best first, Tables 27, 28, 33).
 PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic", "ensemble")
 
+#: How the trained DTW models' softmin temperature is fitted (``DTWClassifier(calibration=...)``): ``"gap"``
+#: (decision C4) or ``"cv"`` (decision C67, an inner cross-validation on the training steps; adoption rule C67).
+DTW_CALIBRATION = "cv"
+
 #: Step signals compared by DTW per task and unit: terrain foot accelerometer + gyroscope / waist
 #: accelerometer (thesis ch. 6.1.2.2); direction foot / waist forward acceleration (thesis ch. 6.2.2.2);
 #: length foot acceleration + force / pelvic rotation (thesis ch. 6.3.2.2, sensors of Tables 29-31).
@@ -151,7 +155,8 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
         return Pipeline(
             [
                 ("signals", FunctionTransformer(select_signals, kw_args={"names": DTW_SIGNALS[task][unit]})),
-                ("clf", DTWClassifier(n_references=THESIS_REFERENCES_PER_CLASS[task], random_state=seed)),
+                ("clf", DTWClassifier(n_references=THESIS_REFERENCES_PER_CLASS[task], random_state=seed,
+                                      calibration=DTW_CALIBRATION)),
             ]
         )
     raise METHODS.unknown(method)
