@@ -24,9 +24,15 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
+from pdrlearn.kernels import distance as _distance
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
-from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
+from pdrlearn.kernels.distance import (
+    applicable_calibration,
+    apply_level_gain_one,
+    calibrated_stride_sd,
+    unclassed_level_dz_one,
+)
 from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.gaps import drop_neighbour_on, drop_stride_disp
@@ -1578,15 +1584,19 @@ class Tracker(FixInput):
         if self.distance_gain != 1.0:  # decision L26 / E14, as pdrlearn track
             dx, dy, dz = apply_level_gain_one(dx, dy, dz, self.distance_gain)
         if self.rules == "thesis" and self.min_confidence <= 0:
-            length, dz = stride_rules_one(dx, dy, dz, classes.get("terrain"), classes.get("direction"),
+            terrain = classes.get("terrain")
+            length, dz = stride_rules_one(dx, dy, dz, terrain, classes.get("direction"),
                                           classes.get("length"), bounds=self.bounds, down_mode=self._down_mode)
         else:  # decision L40: the gate (L18) and the bayes rule (L14) of pdrlearn track, one stride at a time
             g, get, pget = self.min_confidence, classes.get, proba.get
+            terrain = confident_one(get("terrain"), pget("terrain"), g)
             length, dz = stride_rules_one(
-                dx, dy, dz, confident_one(get("terrain"), pget("terrain"), g),
+                dx, dy, dz, terrain,
                 confident_one(get("direction"), pget("direction"), g), confident_one(get("length"), pget("length"), g),
                 bounds=self.bounds, down_mode=self._down_mode, rules=self.rules, length_proba=pget("length"),
                 sigma_rel=self._sigma_rel)
+        if terrain is None and _distance.STREAMED_GATED_LEVEL_DZ and "terrain" in self.classifiers:
+            dz = unclassed_level_dz_one(dz, False)  # decision L189 (offline's L184): no terrain class, L39's rule
         impossible = impossible_stride_one(length, dz, t1 - t0)
         if impossible:  # decision L94: never summed, as pdrlearn track
             self._warn(impossible_stride_warning(1, t0, t1, length, dz))
