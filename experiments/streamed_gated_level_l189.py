@@ -88,8 +88,9 @@ def measure(user: int, scenarios: tuple[str, ...], group: str, loc, work: Path) 
 def real_rows() -> list[dict]:
     rows = []
     for name in REAL:
-        d = ROOT / "datasets" / "real" / name
-        if not d.exists():
+        d = next((ROOT / "datasets" / k / name for k in ("real", "external")
+                  if (ROOT / "datasets" / k / name).exists()), None)
+        if d is None:
             continue
         for flag in (False, True):
             KD.STREAMED_GATED_LEVEL_DZ = flag
