@@ -76,9 +76,11 @@ def frozen_foot_evidence(acc: np.ndarray, gyr: np.ndarray, forces: list[np.ndarr
     return n, sd, swing
 
 
-def frozen_foot_reason(names: str, n: int, sd: float, swing: float) -> str:
-    """The middle of B203's line: what the force sensors ``names`` and the foot IMU did (shared with B213's)."""
-    return (f"The force sensors ({names}) load {n} times, but the foot IMU (fAccelerometer.csv, fGyroscope.csv) does "
+def frozen_foot_reason(names: str, n: int, sd: float, swing: float, *,
+                       imu: str = "fAccelerometer.csv, fGyroscope.csv") -> str:
+    """The middle of B203's line: what the force sensors ``names`` and the foot IMU (``imu``) did (shared with
+    B213's)."""
+    return (f"The force sensors ({names}) load {n} times, but the foot IMU ({imu}) does "
             f"not move (|acc| sd {sd:.2g} m/s^2, |gyro| at most {np.degrees(swing):.0f} deg/s; a walking foot swings "
             f"over {np.degrees(FOOT_NO_SWING):.0f} deg/s): a frozen or disconnected IMU, so every stride would "
             "integrate to 0 m")
