@@ -22,8 +22,8 @@ FORCE_LOAD_LEVEL = 0.2
 #: the percentile of a force sensor's samples that is its load reference (``displace.foot.force_stance``)
 FORCE_REF_PERCENTILE = 95
 #: decision B213: the live check judges consecutive blocks of this much stream time (s) from the first foot
-#: accelerometer sample: the slowest simulated walk loads a foot every ~1.3 s, so a block holds >= 7 loads of a
-#: walk (B203 needs 3), and a standing subject's one load stays one
+#: accelerometer sample: simulated scenario A (users 1-3, slow / normal) loads the foot once per 1.66-2.00 s with its
+#: standing ends, so a walking block holds ~5 loads (B203 needs 3), and a standing subject's one load stays one
 LIVE_BLOCK_S = 10.0
 
 
