@@ -27,8 +27,9 @@ SLOPE_DZ_M = 0.04
 SLOPE_RUN_STRIDES = 6
 #: Decision L144: whether L39's level rule and L127's floor count keep a sustained slope (the measured candidate)
 SUSTAINED_SLOPE = False
-#: Decision L189: ``track --streaming`` and the runtime give L184's level rule (:func:`unclassed_level_dz`) to an M3
-#: stride whose terrain class the confidence gate (L18) dropped, as offline M3 does (``plasys.GATED_LEVEL_DZ``)
+#: Decision L189 (an option, measured and not adopted by its rule (d): one real level walk ended 0.061 m higher):
+#: ``track --streaming`` and the runtime give L184's level rule (:func:`unclassed_level_dz`) to an M3 stride whose
+#: terrain class the confidence gate (L18) dropped, as offline M3 does (``plasys.GATED_LEVEL_DZ``)
 STREAMED_GATED_LEVEL_DZ = False
 
 
