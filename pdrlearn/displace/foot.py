@@ -13,6 +13,7 @@ from pdrlearn.displace import _kernels as K
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import stride as SK
+from pdrlearn.kernels.frozen_foot import FORCE_LOAD_LEVEL
 from pdrlearn.orient import FootAttitude, UnitData
 from pdrlearn.settings import Rule, annotation_words, broken, broken_line
 from pdrlearn.signal import standstill_mask
@@ -21,7 +22,7 @@ from pdrlearn.signal.conditioning import runs
 log = logging.getLogger(__name__)
 
 
-def force_stance(session: Session, t: np.ndarray, gyr: np.ndarray | None = None, *, level: float = 0.2,
+def force_stance(session: Session, t: np.ndarray, gyr: np.ndarray | None = None, *, level: float = FORCE_LOAD_LEVEL,
                  gyr_tol: float = 0.4, window_s: float = 0.1) -> np.ndarray | None:
     """Zero-velocity samples from the force sensors: the foot is loaded (heel fForceA or toe fForceB above
     ``level`` x its own 95th percentile; N or normalised units) and, when ``gyr`` (n, 3) is given, not

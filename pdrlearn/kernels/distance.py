@@ -27,6 +27,10 @@ SLOPE_DZ_M = 0.04
 SLOPE_RUN_STRIDES = 6
 #: Decision L144: whether L39's level rule and L127's floor count keep a sustained slope (the measured candidate)
 SUSTAINED_SLOPE = False
+#: Decision L189 (an option, measured and not adopted by its rule (d): one real level walk ended 0.061 m higher):
+#: ``track --streaming`` and the runtime give L184's level rule (:func:`unclassed_level_dz`) to an M3 stride whose
+#: terrain class the confidence gate (L18) dropped, as offline M3 does (``plasys.GATED_LEVEL_DZ``)
+STREAMED_GATED_LEVEL_DZ = False
 
 
 def rate_differs(trained_hz: float, fs_hz: float, *, tolerance: float = RATE_TOLERANCE) -> bool:
@@ -114,6 +118,13 @@ def unclassed_level_dz(dz: np.ndarray, classed: np.ndarray) -> np.ndarray:
     confidence gate of L18 dropped it); the classed strides keep the height their class rule gave. A new array."""
     dz = np.asarray(dz, dtype=np.float64)
     return np.where(np.asarray(classed, dtype=bool), dz, level_dz(dz))
+
+
+def unclassed_level_dz_one(dz: float, classed: bool) -> float:
+    """Decision L189: :func:`unclassed_level_dz` of one stride (the runtime's call, one stride at a time): the
+    same function on a 1-element array, so the same threshold; L144's sustained slope (off by default) needs a run of
+    strides, which one stride never is."""
+    return float(unclassed_level_dz(np.array([dz], dtype=np.float64), np.array([classed]))[0])
 
 
 def apply_level_gain(disp: np.ndarray, gain: float, *, level_dz_m: float = LEVEL_DZ_M) -> np.ndarray:

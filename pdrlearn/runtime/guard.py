@@ -7,7 +7,8 @@ not (a foot accelerometer in g: 9.15 m for 89.75 m, no word). :class:`UnitGuard`
 :data:`GUARD_S` seconds of each accelerometer and gyroscope stream the tracker uses and runs the same checks on
 them, once per stream, before the push that completes them is taken (a refused push changes nothing, E29);
 the foot and waist gyroscopes together are checked for B91's swapped units. :class:`FrozenWatch` follows each
-3-axis stream for runs of bit-identical samples (:data:`pdrlearn.kernels.units.FROZEN_S`).
+3-axis stream for runs of bit-identical samples (:data:`pdrlearn.kernels.units.FROZEN_S`); :class:`FrozenFootWatch`
+judges B203's frozen foot IMU beside stepping force sensors on blocks of stream time (decision B213).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import math
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.frozen_foot import LIVE_BLOCK_S, force_reference, frozen_foot_evidence, frozen_foot_reason
 from pdrlearn.kernels.handedness import MIN_SEGMENTS, mirror_log_ratios, mirrored, mirrored_pair_line
 from pdrlearn.kernels.units import (
     FROZEN_PARTNER,
@@ -272,6 +274,126 @@ class FrozenWatch:
             if msg:
                 out.append(msg)
         return out
+
+
+#: decision B213: the streams :class:`FrozenFootWatch` reads (the foot IMU and its force sensors)
+FOOT_WATCHED = ("fAccelerometer", "fGyroscope", "fForceA", "fForceB")
+_FORCES = ("fForceA", "fForceB")
+
+
+class FrozenFootWatch:
+    """Decision B213: B203's test (:func:`~pdrlearn.kernels.frozen_foot.frozen_foot_evidence`, offline's) on
+    consecutive blocks of :data:`~pdrlearn.kernels.frozen_foot.LIVE_BLOCK_S` of stream time from the first foot
+    accelerometer sample: one warning, for the first block in which the force sensors load 3 times or more while
+    the foot IMU does not move (from the start, or after it stopped moving mid-walk). A block is judged once every
+    watched stream pushed so far has a sample at or after its end (or one stream is a whole block past it: a stalled
+    stream does not hold the samples), so the verdict does not depend on how the samples were cut into pushes; its
+    force reference is the largest 95th percentile of the blocks so far (an unloaded foot's noise is no load once
+    the foot has stood). Memory: the samples of the open blocks only; none after the warning."""
+
+    def __init__(self, block_s: float = LIVE_BLOCK_S):
+        self.block_s = float(block_s)
+        self.start: float | None = None  # the first foot accelerometer time (block 0 starts there)
+        self.k = 0  # the open block
+        self.items: dict[str, list] = {n: [] for n in FOOT_WATCHED}  # (t, values) arrays or one (t, list) sample
+        self.last: dict[str, float] = {}  # each stream's latest time
+        self.refs: dict[str, float] = {}  # decision B213: each force sensor's largest block reference so far
+        self.done = False
+
+    def push(self, arrays: dict, fast: dict | None = None) -> str | None:
+        """One push (``arrays`` name -> ``(t, values)``, ``fast`` name -> one ``(t, values)`` sample on Python
+        floats, as :meth:`FrozenWatch.push`); the warning line when a block closed by it is frozen."""
+        if self.done:
+            return None
+        fast = fast or {}
+        newest = -math.inf
+        for name in FOOT_WATCHED:
+            f = fast.get(name)
+            if f is not None:
+                self.items[name].append(f)
+                self.last[name] = f[0]
+                newest = max(newest, f[0])
+            elif name in arrays:
+                t, v = arrays[name]
+                if len(t):
+                    self.items[name].append((t, v))
+                    self.last[name] = float(t[-1])
+                    newest = max(newest, float(t[-1]))
+        if self.start is None:
+            first = self.items["fAccelerometer"][:1]
+            if not first:
+                return None
+            t = first[0][0]
+            self.start = float(t if isinstance(t, float) else t[0])
+        if newest < self.start + (self.k + 1) * self.block_s:  # the common case: no block ends in this push
+            return None
+        return self._close(final=False)
+
+    def flush(self) -> str | None:
+        """The end of the stream: the open block judged on what it holds."""
+        return None if self.done or self.start is None else self._close(final=True)
+
+    def _close(self, *, final: bool) -> str | None:
+        while True:
+            begin = self.start + self.k * self.block_s
+            end = begin + self.block_s
+            seen = [self.last[n] for n in FOOT_WATCHED if n in self.last]
+            if not final and not (min(seen) >= end or max(seen) >= end + self.block_s):
+                return None
+            block = {n: self._take(n, end) for n in FOOT_WATCHED}
+            self.k += 1
+            msg = self._judge(block, begin, min(end, max(seen)))
+            if msg is not None:
+                self.done, self.items = True, {n: [] for n in FOOT_WATCHED}
+                return msg
+            if final and not any(self.items.values()):
+                return None
+
+    def _take(self, name: str, end: float) -> tuple[np.ndarray, np.ndarray]:
+        """The samples of ``name`` before ``end`` (removed from the watch) as ``(t, values)`` arrays."""
+        ts, vs, keep, one_t, one_v = [], [], [], [], []
+        for item in self.items[name]:
+            t, v = item
+            if isinstance(t, float):  # the one-sample path's (t, list of floats)
+                if t < end:
+                    one_t.append(t)
+                    one_v.append(v)
+                else:
+                    keep.append(item)
+                continue
+            if one_t:
+                ts.append(np.array(one_t))
+                vs.append(np.array(one_v, dtype=float).reshape(len(one_t), -1))
+                one_t, one_v = [], []
+            n = int(np.searchsorted(t, end, side="left"))
+            if n:
+                ts.append(np.asarray(t[:n], dtype=float))
+                vs.append(np.asarray(v[:n], dtype=float).reshape(n, -1))
+            if n < len(t):
+                keep.append((t[n:], v[n:]))
+        if one_t:
+            ts.append(np.array(one_t))
+            vs.append(np.array(one_v, dtype=float).reshape(len(one_t), -1))
+        self.items[name] = keep
+        if not ts:
+            return np.zeros(0), np.zeros((0, 1))
+        return np.concatenate(ts), np.concatenate(vs)
+
+    def _judge(self, block: dict, begin: float, end: float) -> str | None:
+        """B203's test on the samples of the block from ``begin`` to ``end`` s; the warning line or None."""
+        (ta, acc), (_, gyr) = block["fAccelerometer"], block["fGyroscope"]
+        names = [n for n in _FORCES if len(block[n][0]) >= 2]
+        if len(ta) < 4 or not names:
+            return None
+        forces = [np.interp(ta, block[n][0], block[n][1][:, 0]) for n in names]
+        for n, f in zip(names, forces, strict=True):
+            self.refs[n] = max(self.refs.get(n, -math.inf), force_reference(f))
+        found = frozen_foot_evidence(acc, gyr, forces, [self.refs[n] for n in names])
+        if found is None:
+            return None
+        return (f"the foot IMU did not move from {begin:.1f} to {end:.1f} s: "
+                + frozen_foot_reason(", ".join(names), *found, imu="fAccelerometer, fGyroscope")
+                + "; its strides from then on move 0 m or are not found: check the IMU and its link (decision B213)")
 
 
 class MirrorWatch:

@@ -24,9 +24,15 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
+from pdrlearn.kernels import distance as _distance
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
-from pdrlearn.kernels.distance import applicable_calibration, apply_level_gain_one, calibrated_stride_sd
+from pdrlearn.kernels.distance import (
+    applicable_calibration,
+    apply_level_gain_one,
+    calibrated_stride_sd,
+    unclassed_level_dz_one,
+)
 from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.gaps import drop_neighbour_on, drop_stride_disp
@@ -75,7 +81,7 @@ from pdrlearn.runtime.clocks import SENSORS as CLOCK_SENSORS
 from pdrlearn.runtime.clocks import ClockCheck, offset_remedy, waist_on_foot_clock
 from pdrlearn.runtime.domain import DomainLog
 from pdrlearn.runtime.fixes import FixInput
-from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenWatch, MirrorWatch, UnitGuard
+from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenFootWatch, FrozenWatch, MirrorWatch, UnitGuard
 from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.restart import drop_measured, restart_state
 from pdrlearn.runtime.restart import resume as resume_state
@@ -429,6 +435,7 @@ class Tracker(FixInput):
     _checked: dict = {}  # noqa: RUF012 - replaced per push, never mutated in place
     _guard = None  # decision B119 (a bare Tracker.__new__ checks nothing)
     _domain: DomainLog | None = None  # decision E105 (a bare Tracker.__new__ scores nothing)
+    _frozen_foot: FrozenFootWatch | None = None  # decision B213 (a bare Tracker.__new__ watches nothing)
     _warn_ood: float | None = None
     _domain_said = False
     #: decision L134: a resumed tracker's last measured stride end (s; strides found again up to it are dropped)
@@ -650,6 +657,10 @@ class Tracker(FixInput):
         #: checked, or ``check_input=False``); decision B120: frozen sensors
         self._guard = UnitGuard(self.used_sensors) if check_input else None
         self._frozen = FrozenWatch()
+        #: decision B213: B203's frozen foot IMU beside stepping force sensors, judged live (None: decided, no foot IMU
+        #: or force sensor, or ``check_input=False``)
+        self._frozen_foot = (FrozenFootWatch() if check_input and {"fAccelerometer", "fGyroscope"} <= set(
+            self.used_sensors) and {"fForceA", "fForceB"} & set(self.used_sensors) else None)
         #: decision B129: D11's mirrored-pair test on the first foot strides (None: decided, no foot IMU, or
         #: ``check_input=False``)
         self._mirror = (MirrorWatch() if check_input and {"fAccelerometer", "fGyroscope"} <= set(self.used_sensors)
@@ -936,6 +947,8 @@ class Tracker(FixInput):
                 self._append(name, t, v)
         for msg in self._frozen.push(checked, fast):  # decision B120: a frozen sensor, one warning per run
             self._warn(msg)
+        if self._frozen_foot is not None:  # decision B213: B203's frozen foot IMU, live
+            self._frozen_foot_said(self._frozen_foot.push(checked, fast))
         if self._pushed_gaps:
             self._note_gaps()
         self._detect()
@@ -1160,6 +1173,8 @@ class Tracker(FixInput):
                 self._warn(line)
         for name, (t, v) in self.inputs.flush().items():
             self._append(name, t, v)
+        if self._frozen_foot is not None:  # decision B213: the last block, on what it holds
+            self._frozen_foot_said(self._frozen_foot.flush())
         self._detect()
         steps = self._process_ready(force=True)
         self._trim()
@@ -1580,15 +1595,19 @@ class Tracker(FixInput):
         if self.distance_gain != 1.0:  # decision L26 / E14, as pdrlearn track
             dx, dy, dz = apply_level_gain_one(dx, dy, dz, self.distance_gain)
         if self.rules == "thesis" and self.min_confidence <= 0:
-            length, dz = stride_rules_one(dx, dy, dz, classes.get("terrain"), classes.get("direction"),
+            terrain = classes.get("terrain")
+            length, dz = stride_rules_one(dx, dy, dz, terrain, classes.get("direction"),
                                           classes.get("length"), bounds=self.bounds, down_mode=self._down_mode)
         else:  # decision L40: the gate (L18) and the bayes rule (L14) of pdrlearn track, one stride at a time
             g, get, pget = self.min_confidence, classes.get, proba.get
+            terrain = confident_one(get("terrain"), pget("terrain"), g)
             length, dz = stride_rules_one(
-                dx, dy, dz, confident_one(get("terrain"), pget("terrain"), g),
+                dx, dy, dz, terrain,
                 confident_one(get("direction"), pget("direction"), g), confident_one(get("length"), pget("length"), g),
                 bounds=self.bounds, down_mode=self._down_mode, rules=self.rules, length_proba=pget("length"),
                 sigma_rel=self._sigma_rel)
+        if terrain is None and _distance.STREAMED_GATED_LEVEL_DZ and "terrain" in self.classifiers:
+            dz = unclassed_level_dz_one(dz, False)  # decision L189 (offline's L184): no terrain class, L39's rule
         impossible = impossible_stride_one(length, dz, t1 - t0)
         if impossible:  # decision L94: never summed, as pdrlearn track
             self._warn(impossible_stride_warning(1, t0, t1, length, dz))
@@ -1662,6 +1681,12 @@ class Tracker(FixInput):
         if line:
             self._domain_said = True
             self._warn(line)
+
+    def _frozen_foot_said(self, msg: str | None) -> None:
+        """Decision B213: the watch's one line, after which it is dropped (bounded memory)."""
+        if msg:
+            self._frozen_foot = None
+            self._warn(msg)
 
     def _warn(self, msg: str) -> None:
         """One warning line: kept in ``warnings`` and logged."""

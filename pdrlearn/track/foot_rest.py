@@ -21,6 +21,12 @@ import numpy as np
 
 from pdrlearn.displace.foot import inertial_stance
 from pdrlearn.io.sensors import UNIT_IMU
+from pdrlearn.kernels.frozen_foot import (
+    foot_imu_motion,
+    foot_still,
+    frozen_foot_evidence,
+    frozen_foot_reason,
+)
 from pdrlearn.kernels.units import FOOT_NO_SWING, STANDARD_GRAVITY, WALKING_ACC_STD, swing_rate
 from pdrlearn.signal import interp_rows
 
@@ -34,8 +40,6 @@ MIN_REST_SAMPLES = 20
 #: read within 3 % of 1 g. A warning, not a refusal: B97 refuses outside x0.67-x1.5 only, because hand-made feet with
 #: very short foot-flats read 1.30 g in their quietest windows, and the foot-flats are the ZUPT's own guess
 REST_SCALE_TOL = 0.07
-#: decision B203: force sensors that load this many times or more beside a foot IMU that does not move is a frozen IMU
-FORCE_STEPS_MIN = 3
 
 
 def foot_rest_stats(session) -> dict | None:
@@ -80,34 +84,33 @@ def foot_motion(session) -> tuple[float, float] | None:
     acc_n, gyr_n = UNIT_IMU["foot"]
     if not session.has(acc_n, gyr_n) or len(session.streams[acc_n]) < 4 or len(session.streams[gyr_n]) < 4:
         return None
-    norm = np.linalg.norm(np.asarray(session.streams[acc_n].values, dtype=float), axis=1)
-    return float(np.nanstd(norm)), swing_rate(session.streams[gyr_n].values)
+    return foot_imu_motion(session.streams[acc_n].values, session.streams[gyr_n].values)
 
 
 def frozen_foot_imu(session) -> str | None:
     """Decision B203: the refusal when the force sensors (fForceA / fForceB) load and unload at least
-    :data:`FORCE_STEPS_MIN` times while the foot IMU does not move (sd of |acc| at most B37's
-    :data:`WALKING_ACC_STD`, B91's swing statistic under :data:`FOOT_NO_SWING`): a frozen or disconnected IMU, whose
-    strides (found by the force sensors) would all integrate to 0 m. None otherwise (a subject standing still
-    loads the force sensors once)."""
-    from pdrlearn.displace.foot import force_stance
-
+    :data:`~pdrlearn.kernels.frozen_foot.FORCE_STEPS_MIN` times while the foot IMU does not move (sd of |acc| at
+    most B37's :data:`WALKING_ACC_STD`, B91's swing statistic under :data:`FOOT_NO_SWING`): a frozen or disconnected
+    IMU, whose strides (found by the force sensors) would all integrate to 0 m. None otherwise (a subject standing still
+    loads the force sensors once). The test is :func:`pdrlearn.kernels.frozen_foot.frozen_foot_evidence`, the live
+    ``Tracker``'s too (decision B213)."""
     motion = foot_motion(session)
-    if motion is None or motion[0] > WALKING_ACC_STD or motion[1] >= FOOT_NO_SWING:
+    if motion is None or not foot_still(*motion):
         return None
-    acc = session.streams[UNIT_IMU["foot"][0]]
-    loaded = force_stance(session, acc.t)
-    if loaded is None:
+    names = [n for n in ("fForceA", "fForceB") if n in session.streams and len(session.streams[n]) >= 2]
+    if not names:
         return None
-    n = int(np.count_nonzero(loaded[1:] & ~loaded[:-1]))
-    if n < FORCE_STEPS_MIN:
+    acc_n, gyr_n = UNIT_IMU["foot"]
+    acc = session.streams[acc_n]
+    session.require_cover(acc_n, *names)  # B21: the force sensors read on the accelerometer's clock
+    forces = [np.interp(acc.t, session.streams[n].t, session.streams[n].values[:, 0]) for n in names]
+    found = frozen_foot_evidence(acc.values, session.streams[gyr_n].values, forces)
+    if found is None:
         return None
-    names = ", ".join(f"{k}.csv" for k in ("fForceA", "fForceB") if session.has(k))
-    return (f"{session.where}: no strides detected; is the foot unit moving? The force sensors ({names}) load "
-            f"{n} times, but the foot IMU (fAccelerometer.csv, fGyroscope.csv) does not move (|acc| sd "
-            f"{motion[0]:.2g} m/s^2, |gyro| at most {np.degrees(motion[1]):.0f} deg/s; a walking foot swings over "
-            f"{np.degrees(FOOT_NO_SWING):.0f} deg/s): a frozen or disconnected IMU, so every stride would integrate to "
-            "0 m; check the IMU and its link, and re-record (decision B203)")
+    n, sd, swing = found
+    return (f"{session.where}: no strides detected; is the foot unit moving? "
+            + frozen_foot_reason(", ".join(f"{k}.csv" for k in names), n, sd, swing)
+            + "; check the IMU and its link, and re-record (decision B203)")
 
 
 def no_strides_warning(stats: dict | None, where: str, detector: str) -> str | None:

@@ -42,6 +42,7 @@ from pdrlearn.displace.foot import check_settings as check_foot_settings
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
+from pdrlearn.kernels import distance as KD
 from pdrlearn.kernels import gaps as KG
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.altitude_check import integrated_altitude_check, terrain_dz_check
@@ -1422,6 +1423,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                        sigma_rel=sigma_rel)
     place += [SK.reversed_by_rules(bool(f), float(d[0]), float(L))  # decision L37
               for f, d, L in zip(foot_headed, disp, length, strict=True)]
+    if method == "M3" and KD.STREAMED_GATED_LEVEL_DZ and "terrain" not in untrained and "terrain" in rule_classes:
+        # decision L189 (offline's L184, the same function): a stride whose terrain class the gate dropped is level
+        dz = unclassed_level_dz(dz, [isinstance(t, str) for t in rule_classes["terrain"]])
     length, dz, impossible = _drop_impossible(length, dz, strides[:, 0], strides[:, 1], warnings)  # L94, as run
     if posture.any():  # decision B131: the runtime's one warning; the strides are dropped below
         warnings.append(posture_warning(int(posture.sum()), float(strides[posture][0, 0]),

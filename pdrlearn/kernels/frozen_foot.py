@@ -1,0 +1,86 @@
+"""A foot IMU that never moves beside force sensors that step (decisions B203, B213 in docs/decisions/bad-input.md).
+
+B203 (offline, ``pdrlearn.track.foot_rest.frozen_foot_imu``): the force sensors (fForceA / fForceB) load
+:data:`FORCE_STEPS_MIN` times or more while the foot IMU does not move (sd of |acc| at most B37's
+:data:`~pdrlearn.kernels.units.WALKING_ACC_STD`, B91's swing statistic under
+:data:`~pdrlearn.kernels.units.FOOT_NO_SWING`): a frozen or disconnected IMU, every stride of which would integrate to
+0 m. :func:`frozen_foot_evidence` is that test on arrays, shared by the offline check (the whole session) and the
+live ``Tracker`` (:class:`pdrlearn.runtime.guard.FrozenFootWatch`, B213: blocks of :data:`LIVE_BLOCK_S` of stream
+time). numpy only (runtime boundary).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pdrlearn.kernels.units import FOOT_NO_SWING, WALKING_ACC_STD, swing_rate
+
+#: decision B203: force sensors that load this many times or more beside a foot IMU that does not move is a frozen IMU
+FORCE_STEPS_MIN = 3
+#: the force sensors load above this fraction of their own 95th percentile (``displace.foot.force_stance``'s level)
+FORCE_LOAD_LEVEL = 0.2
+#: the percentile of a force sensor's samples that is its load reference (``displace.foot.force_stance``)
+FORCE_REF_PERCENTILE = 95
+#: decision B213: the live check judges consecutive blocks of this much stream time (s) from the first foot
+#: accelerometer sample: simulated scenario A (users 1-3, slow / normal) loads the foot once per 1.66-2.00 s with its
+#: standing ends, so a walking block holds ~5 loads (B203 needs 3), and a standing subject's one load stays one
+LIVE_BLOCK_S = 10.0
+
+
+def foot_imu_motion(acc: np.ndarray, gyr: np.ndarray) -> tuple[float, float]:
+    """(sd of |acc| in m/s^2, B91's swing statistic in rad/s) of foot accelerometer ``acc`` (n, 3) and gyroscope
+    ``gyr`` (m, 3) samples (B203's two figures)."""
+    norm = np.linalg.norm(np.asarray(acc, dtype=float), axis=1)
+    return float(np.nanstd(norm)), swing_rate(gyr)
+
+
+def foot_still(sd: float, swing: float) -> bool:
+    """Decision B203: the foot IMU does not move - its |acc| sd is at most B37's :data:`WALKING_ACC_STD` and B91's
+    swing statistic under :data:`FOOT_NO_SWING` (a NaN figure does not count as movement, as before)."""
+    return not (sd > WALKING_ACC_STD or swing >= FOOT_NO_SWING)
+
+
+def force_reference(force: np.ndarray) -> float:
+    """A force sensor's load reference: the :data:`FORCE_REF_PERCENTILE` th percentile of its samples."""
+    return float(np.percentile(np.asarray(force, dtype=float), FORCE_REF_PERCENTILE))
+
+
+def load_onsets(forces: list[np.ndarray], refs: list[float]) -> int | None:
+    """How many times the foot is loaded (either sensor above :data:`FORCE_LOAD_LEVEL` x its reference) after
+    being unloaded, over ``forces`` (each (n,) on one common clock) with references ``refs``; None when a reference
+    is not a positive finite number (no usable force sensor, as ``force_stance``)."""
+    if not forces:
+        return None
+    loaded = np.zeros(len(forces[0]), dtype=bool)
+    for f, ref in zip(forces, refs, strict=True):
+        if not np.isfinite(ref) or ref <= 0:
+            return None
+        loaded |= np.asarray(f, dtype=float) > FORCE_LOAD_LEVEL * ref
+    return int(np.count_nonzero(loaded[1:] & ~loaded[:-1]))
+
+
+def frozen_foot_evidence(acc: np.ndarray, gyr: np.ndarray, forces: list[np.ndarray],
+                         refs: list[float] | None = None) -> tuple[int, float, float] | None:
+    """Decision B203's test: ``(loads, sd of |acc|, swing)`` when the foot IMU (``acc`` (n, 3), ``gyr`` (m, 3)) does
+    not move and the force sensors ``forces`` (each (n,), on the accelerometer's clock) load
+    :data:`FORCE_STEPS_MIN` times or more; None otherwise. ``refs``: the sensors' load references (default: each
+    one's own :func:`force_reference`)."""
+    if len(acc) < 4 or len(gyr) < 4 or not forces:
+        return None
+    sd, swing = foot_imu_motion(acc, gyr)
+    if not foot_still(sd, swing):
+        return None
+    n = load_onsets(forces, [force_reference(f) for f in forces] if refs is None else refs)
+    if n is None or n < FORCE_STEPS_MIN:
+        return None
+    return n, sd, swing
+
+
+def frozen_foot_reason(names: str, n: int, sd: float, swing: float, *,
+                       imu: str = "fAccelerometer.csv, fGyroscope.csv") -> str:
+    """The middle of B203's line: what the force sensors ``names`` and the foot IMU (``imu``) did (shared with
+    B213's)."""
+    return (f"The force sensors ({names}) load {n} times, but the foot IMU ({imu}) does "
+            f"not move (|acc| sd {sd:.2g} m/s^2, |gyro| at most {np.degrees(swing):.0f} deg/s; a walking foot swings "
+            f"over {np.degrees(FOOT_NO_SWING):.0f} deg/s): a frozen or disconnected IMU, so every stride would "
+            "integrate to 0 m")
