@@ -352,6 +352,9 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "weak_fill": False,
                    "pivot_steps": False, "parity_fill": "within"}  # pause_steps: W134, pivot_steps: W150, parity: W152
+#: decision W165: the ``pause_steps`` value the realtime detector and the live trackers apply too -- W134's test
+#: (a stand of half the local period, not a walk's edge) is decided once the three steps after it are known
+CAUSAL_PAUSE_STEPS = "standing"
 #: decision B199: the options that are true or false (``sit_veto``, ``pause_steps``, ``vault_veto`` take more values,
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
@@ -447,7 +450,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         upright (a sit-to-stand or bend event; decision W104, :func:`pdrlearn.waist.posture.transfer_veto`);
         ``"rhythm"``: the same, sparing the contacts that alternate left/right with a neighbour of their walking
         sequence (decision W109); ``False`` (default): no veto
-    pause_steps : pendulum, offline detector (the realtime one ignores it: it looks three steps ahead): a step
+    pause_steps : pendulum (the realtime detector applies only ``"standing"``, decision W165; it ignores the other
+        values): a step
         longer than 1.5 local periods spans a pause (the stop before a turn on the spot, the restart after it) and
         keeps one period's length (decision W111); ``"progression"``: a step during which the unit stands still
         (``standstill_mask``) keeps at most the trunk's horizontal travel over it, integrated from zero velocity in
@@ -663,10 +667,10 @@ def _configure_model(model: StepLengthModel, spec, realtime: bool, options: dict
     if str(mine.get("length_smoothing", "none")) != "none":
         raise DataError(f"step-length model {model.name}: length_smoothing '{mine['length_smoothing']}' looks up to "
                         "1 s ahead and the realtime detector does not (decision W56); drop realtime or the setting")
-    if mine.get("pause_steps"):
+    if mine.get("pause_steps") and mine.get("pause_steps") != CAUSAL_PAUSE_STEPS:  # W165: "standing" is causal
         raise DataError(f"step-length model {model.name}: pause_steps {mine['pause_steps']!r} looks three steps "
-                        "ahead and the realtime detector does not (decisions W111, W122); drop realtime or the "
-                        "setting")
+                        "ahead and the realtime detector does not apply it (decisions W111, W122; W165: only "
+                        "\"standing\" is); drop realtime or the setting")
 
 
 def waist_detector(detector, realtime: bool):
@@ -743,11 +747,11 @@ def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDete
 
 
 def _model_options(o: dict, realtime: bool) -> dict:
-    """The step-length model's options from the track's options ``o`` (W111 / W122 / W134's ``pause_steps`` off
-    in realtime, W56's smoothing checked)."""
+    """The step-length model's options from the track's options ``o`` (W111 / W122's ``pause_steps`` off in
+    realtime; W134's ``"standing"`` applied there too, decision W165; W56's smoothing checked)."""
     return {"merge_fragments": bool(o["merge_fragments"]),
             "length_smoothing": check_length_smoothing(o["length_smoothing"]),
-            "pause_steps": o["pause_steps"] if not realtime else False}
+            "pause_steps": o["pause_steps"] if not realtime or o["pause_steps"] == CAUSAL_PAUSE_STEPS else False}
 
 
 def _pendulum_steps(imu: WaistIMU, p: WaistParams, thr: float, o: dict) -> pd.DataFrame:
