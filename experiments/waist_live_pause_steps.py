@@ -9,7 +9,11 @@ by the rule written before the run (docs/decisions/waist.md W165):
 (c) real Test5: the pooled F1 and bout medians (calibrated and defaults) unchanged.
 (d) (a test, not this script) the live ``WaistTracker`` equals the realtime replay on HA001 Test11.
 
+Decision W166 runs the same rule for W131's ``contact_shift`` inside W31's decision window (``--option
+contact_shift``: false against true, both with the realtime default of W165).
+
 Run: OMP_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python experiments/waist_live_pause_steps.py [--external DIR]
+[--option contact_shift]
 """
 
 from __future__ import annotations
@@ -36,20 +40,21 @@ from pdrlearn.waist.evaluate import steps_in_interval  # noqa: E402
 from pdrlearn.waist.params import resolve_params  # noqa: E402
 
 USERS = range(3260, 3300)
-CANDIDATE = "standing"
+#: option -> (decision, value before, candidate)
+CANDIDATES = {"pause_steps": ("W165", False, "standing"), "contact_shift": ("W166", False, True)}
 
 
-def simulated(value, users=USERS) -> tuple[dict, pd.DataFrame]:
+def simulated(opt: dict, users=USERS) -> tuple[dict, pd.DataFrame]:
     """Rule (a): pooled contact counts and the per-bout errors of the calibrated realtime pendulum."""
     rows, tp, det, ref = [], 0, 0, 0
     for u in users:
         prof = UserProfile.from_seed(u)
         cal = simulate_path(parse_route("straight:20"), prof, rate_hz=100, seed=u + 5000)
         base, _ = resolve_params(cal, None)
-        base.options = {"pause_steps": value, "realtime": True}
+        base.options = {**opt, "realtime": True}
         params = calibrate([cal], "waist-pendulum", distances=[W.walked_between_contacts(cal)], params=base)
         s = simulate_path(parse_route(P.ROUTE), prof, rate_hz=100, seed=u)
-        st = track_waist(s, pipeline="waist-pendulum", params=params, realtime=True, pause_steps=value).steps
+        st = track_waist(s, pipeline="waist-pendulum", params=params, realtime=True, **opt).steps
         sc = score_events(st["event_s"].to_numpy(float), s.extras["ics"]["ic_s"].to_numpy(float), tolerance_s=0.25)
         tp, det, ref = tp + sc["true_positives"], det + sc["count"], ref + sc["reference_count"]
         tr = s.trajectory
@@ -62,10 +67,10 @@ def simulated(value, users=USERS) -> tuple[dict, pd.DataFrame]:
             "median": float(d.err_pct.abs().median()), "bouts": len(d)}, d
 
 
-def real(ext: Path, value) -> pd.DataFrame:
+def real(ext: Path, opt: dict) -> pd.DataFrame:
     """Rules (b), (c): experiments/waist.py's pooled realtime rows (calibrated and defaults)."""
     bouts: list = []
-    cfg = [("waist-pendulum realtime", "waist-pendulum", {"realtime": True, "pause_steps": value})]
+    cfg = [("waist-pendulum realtime", "waist-pendulum", {"realtime": True, **opt})]
     df = W.real(ext, W.external_runs(ext), configs=cfg, bouts=bouts)
     return W.pooled(df, pd.DataFrame(bouts)).set_index(["test", "params"])
 
@@ -73,20 +78,22 @@ def real(ext: Path, value) -> pd.DataFrame:
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--external", type=Path, default=P.ROOT / "datasets" / "external")
+    ap.add_argument("--option", choices=sorted(CANDIDATES), default="pause_steps")
     args = ap.parse_args()
+    decision, before, candidate = CANDIDATES[args.option]
     logging.disable(logging.WARNING)
     res = {}
-    for value in (False, CANDIDATE):
-        sim, d = simulated(value)
-        pool = real(args.external, value)
+    for value in (before, candidate):
+        sim, d = simulated({args.option: value})
+        pool = real(args.external, {args.option: value})
         res[value] = (sim, d, pool)
-        print(f"pause_steps={value!r} realtime: (a) users {USERS.start}-{USERS.stop - 1}: pooled F1 {sim['f1']:.4f} "
+        print(f"{args.option}={value!r} realtime: (a) users {USERS.start}-{USERS.stop - 1}: pooled F1 {sim['f1']:.4f} "
               f"({sim['tp']}/{sim['det']}/{sim['ref']}), median |bout error| {sim['median']:.3f} % over "
               f"{sim['bouts']} bouts", flush=True)
         for (test, params), r in pool.iterrows():
             print(f"  {test} {params}: pooled F1 {r.step_f1:.4f}, bout median vs Length {r.bout_err_median_pct:.3f} "
                   f"%, vs strides {r.bout_err_strides_median_pct:.3f} % ({r.bouts} bouts)", flush=True)
-    (s0, d0, p0), (s1, d1, p1) = res[False], res[CANDIDATE]
+    (s0, d0, p0), (s1, d1, p1) = res[before], res[candidate]
     P.print_users_better(d0, d1)
     cols = ["step_f1", "bout_err_median_pct", "bout_err_strides_median_pct"]
     t11 = [k for k in p0.index if k[0] == "Test11"]
@@ -101,7 +108,7 @@ def main() -> None:
                                    for k in t5 for c in cols)}
     for k, v in rules.items():
         print(f"{k}: {'holds' if v else 'FAILS'}")
-    print("W165: " + ("ADOPT (all hold)" if all(rules.values()) else "NOT adopted (a rule fails)"), flush=True)
+    print(f"{decision}: " + ("ADOPT (all hold)" if all(rules.values()) else "NOT adopted (a rule fails)"), flush=True)
 
 
 if __name__ == "__main__":

@@ -188,7 +188,7 @@ class InitialContactDetector:
                                             "max_step_s", "alternate", "weight_shift", "end_steps",
                                             "ap_above_mean", "turn_gate_rps", "turn_shift_rps", "min_step_s")}
         offline = not self.realtime and not self.learned
-        return kw | {"contact_shift": bool(self.contact_shift and offline),
+        return kw | {"contact_shift": bool(self.contact_shift and not self.learned),  # realtime too: W166
                      "weak_fill": bool(self.weak_fill and offline),
                      "parity_fill": self.parity_fill if offline and self.parity_fill else False}
 
