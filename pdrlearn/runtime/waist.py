@@ -185,7 +185,8 @@ class WaistStream(FixInput):
     def state_size(self) -> int:
         """Numbers the tracker holds to process what comes (not :attr:`steps`): its sample buffer and pending rows,
         the held samples of W65 and the W31 detector's window; bounded over any stream length (decision W64)."""
-        n = 4 * self._bt.size + 6 * len(self._rows) + self._ba.size + self._bg.size + len(self._absorbed) + len(self._span_start)
+        n = 4 * self._bt.size + 6 * len(self._rows) + len(self._absorbed) + len(self._span_start)
+        n += self._ba.size + self._bg.size  # W165
         n += len(self._side_scale)  # W138: at most FRAGMENT_CONTEXT_STEPS
         n += self._held_size()
         n += 0 if self._alt is None else self._alt.size()  # E106: the barometer samples a pending step reads
@@ -317,7 +318,7 @@ class WaistStream(FixInput):
         # the waist-ic detector's defaults (W31), as ``track --pipeline waist-pendulum --realtime`` runs it
         rules = rule_contacts({"walk_threshold": self._thr, "max_step_s": self._max_step_s,
                                "rhythm": bool(self.options["rhythm"]),  # W166: W131 inside W31's window
-                               "contact_shift": bool(self.options.get("contact_shift", False))})
+                               "contact_shift": bool(self.options.get("realtime_contact_shift", False))})
         self._proc = RealtimeContacts(self.fs, rules, rotation=self._rot, max_step_s=self._max_step_s,
                                       on_nav=self._add)
 

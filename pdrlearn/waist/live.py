@@ -75,7 +75,7 @@ def live_options(p, warnings: list[str], **given) -> dict:
     given = {"realtime": True, "heading": "gyro", "refine_ic": None, "initial_heading": None, "resolve_signs": None,
              "integrate_stops": None, "turn_factor": None, "rhythm": None, "merge_fragments": None,
              "length_smoothing": None, "slow_turn_rps": None, "pivot_steps": None, "stairs_length": None,
-             "pause_steps": None, "contact_shift": None, **given}
+             "pause_steps": None, "realtime_contact_shift": None, **given}
     o = resolve_options(p, given)
     if o["pause_steps"] != CAUSAL_PAUSE_STEPS:  # W165: the live trackers apply W134's value, or none
         o["pause_steps"] = False
@@ -97,11 +97,13 @@ def live_options(p, warnings: list[str], **given) -> dict:
 
 
 #: decision E107: the PARAMS.json options the live waist-pendulum tracker does not apply (the offline detector's
-#: W119/W127, W151, W152 look ahead (W131's ``contact_shift`` runs inside W31's window, W166); ``pause_steps`` W111 / W122 too, but W134's "standing" is applied, W165; W102/W104's trunk posture, W108's climbs read the
-#: whole recording); ``heading`` has W82's own line and ``length_smoothing`` is refused (W56). The rest are applied
-#: (``stairs_length`` since E107) or do not concern the live tracker (``realtime``; ``refine_ic`` and
+#: W119/W127, W131, W151, W152 look ahead -- W131 runs inside W31's window with ``realtime_contact_shift``, W166;
+#: ``pause_steps`` W111 / W122 too, but W134's "standing" is applied, W165; W102/W104's trunk posture, W108's climbs
+#: read the whole recording); ``heading`` has W82's own line and ``length_smoothing`` is refused (W56). The rest are
+#: applied (``stairs_length`` since E107) or do not concern the live tracker (``realtime``; ``refine_ic`` and
 #: ``resolve_signs`` are waist-pll / harmonic-heading options; ``relative_gate`` off is the live fixed gate).
-LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_veto", "weak_fill", "parity_fill")
+LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_veto", "contact_shift", "weak_fill",
+                          "parity_fill")
 
 
 def unapplied_options_line(p) -> str | None:
