@@ -43,6 +43,10 @@ EXPECTED_NOTES = [
       "warning: gaitmap_level_left: no waist unit"),
      "gaitmap_level_left is a foot-only recording (one foot IMU, no force sensors, no waist unit, no length "
      "classes), so the tracker falls back as documented and says so"),
+    ("calibrate: waist pendulum on a straight walk",
+     ("warning: calibrate: calibrated on 8 steps (< 20)",),
+     "the demo calibrates on one 5 m walk (8 steps) to show calibration in seconds; decision W169 warns that so "
+     "short a walk's gain varies from walk to walk (use 20 steps or more for your own users)"),
 ]
 notes: list[tuple[str, str, list[str]]] = []  # (label, why, the expected lines it printed)
 

@@ -7,7 +7,11 @@ Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/waist_sit.py
      ... experiments/waist_sit.py where  # after the measurement: where the vetoed real contacts lie (no tuning)
      ... experiments/waist_sit.py rhythm # decision W109 (a)-(c): users 910-949 and the real recordings,
                                            sit_veto="rhythm" against no veto; Test11 contacts outside the bouts
-Output: experiments/results/waist_sit_count.txt, waist_sit_veto.txt, waist_sit_real.txt, waist_sit_rhythm.txt
+     ... experiments/waist_sit.py today  # decision W179: W109's (c) re-measured on today's defaults
+     ... experiments/waist_sit.py alternation  # decision W180's rule (W181): users 3460-3499 and the real
+                                                 recordings, sit_veto="alternation" against no veto
+Output: experiments/results/waist_sit_count.txt, waist_sit_veto.txt, waist_sit_real.txt, waist_sit_rhythm.txt,
+        waist_sit_today.txt, waist_sit_alternation.txt
 """
 import logging
 import sys
@@ -100,9 +104,12 @@ def walks(users: range, sit_veto) -> bool:
     return all(v == 0 for v in lost.values())
 
 
-def real(sit_veto=True) -> bool:
+def real(sit_veto=True, *, strict: bool = False) -> bool:
     """W104 (c) / W109 (c): experiments/waist.py's `real()` and `pooled()` on the mobgap recordings, without and
-    with ``sit_veto``; True when no row's step_f1 and no pipeline's pooled Test11 step_f1 drops."""
+    with ``sit_veto``; True when no row's step_f1 and no pipeline's pooled Test11 step_f1 drops. The pooled bout
+    distance-error medians are printed too. ``strict`` (W180 (c)): also every Test5 row's step_f1 unchanged, each
+    pipeline's pooled Test11 step_f1 higher, and no pooled bout_err_median_pct (Test5, Test11, calibrated and
+    defaults) higher."""
     from pathlib import Path
 
     import pandas as pd
@@ -130,18 +137,31 @@ def real(sit_veto=True) -> bool:
         lower = int((cmp["diff"] < -1e-9).sum())
         ok &= lower == 0
         print(f"rows with a lower step_f1: {lower} of {len(cmp)}")
+        if strict:
+            t5 = cmp[cmp.index.get_level_values("test").str.startswith("Test5")]
+            moved = int((t5["diff"].abs() > 1e-9).sum())
+            ok &= moved == 0
+            print(f"Test5 rows with a changed step_f1: {moved} of {len(t5)}")
     pool = W.pooled(df, pd.DataFrame(bouts))
     print("\npooled:")
     print(pool[[c for c in pool.columns if c in ("pipeline", "params", "test", "kind", "step_f1", "tp",
-                                                  "n_detected", "n_reference")]].round(4).to_string(index=False))
+                                                  "n_detected", "n_reference", "bouts",
+                                                  "bout_err_median_pct", "bout_err_strides_median_pct")]]
+          .round(4).to_string(index=False))
     kind = "kind" if "kind" in pool else "test"
     t11 = pool[pool[kind] == "Test11"]
     for base, _ in bases:
         for params, g in t11[t11.pipeline.isin([base, base + " +veto"])].groupby("params"):
             f0 = float(g.loc[g.pipeline == base, "step_f1"].iloc[0])
             f1 = float(g.loc[g.pipeline == base + " +veto", "step_f1"].iloc[0])
-            ok &= f1 >= f0 - 1e-9
+            ok &= f1 > f0 + 1e-9 if strict else f1 >= f0 - 1e-9
             print(f"pooled Test11 {base} ({params}): step_f1 {f0:.4f} -> {f1:.4f}")
+        for (test, params), g in pool[pool.pipeline.isin([base, base + " +veto"])].groupby([kind, "params"]):
+            m0 = float(g.loc[g.pipeline == base, "bout_err_median_pct"].iloc[0])
+            m1 = float(g.loc[g.pipeline == base + " +veto", "bout_err_median_pct"].iloc[0])
+            if strict:
+                ok &= m1 <= m0 + 1e-9
+            print(f"pooled {test} {base} ({params}): bout_err_median_pct {m0:.3f} -> {m1:.3f}")
     print(f"(c) {'met' if ok else 'NOT met'}")
     return ok
 
@@ -203,6 +223,35 @@ def rhythm() -> None:
     outside()
 
 
+def today() -> None:
+    """Decision W179: W109's `sit_veto="rhythm"` re-measured on today's defaults (W131, W160 ...), the real
+    recordings only (no behaviour change); with W180's stricter (c) printed as well."""
+    real("rhythm", strict=True)
+
+
+def alternation() -> None:
+    """Decision W180's rule, measured once (W181): (a), (b) on fresh users 3460-3499, (c) on the real recordings,
+    sit_veto="alternation" against no veto; then the Test11 contacts outside the reference bouts (information)."""
+    users = range(3460, 3500)
+    m0: dict = {}
+    m1: dict = {}
+    print("(a) without the veto")
+    before = count(users, m0)
+    print('(a) with sit_veto="alternation"')
+    after = count(users, m1, sit_veto="alternation")
+    ok_a = True
+    for p in PIPELINES:
+        removed = 100.0 * (before[p] - after[p]) / max(before[p], 1)
+        ok_a &= removed >= 80.0
+        print(f"(a) {p}: in-transfer contacts {before[p]} -> {after[p]}, removed {removed:.1f} % "
+              f"({'met' if removed >= 80.0 else 'NOT met'}: >= 80 %); true contacts matched {m0[p]} -> {m1[p]}")
+    ok_b = walks(users, "alternation")
+    ok_c = real("alternation", strict=True)
+    print(f"W180: (a) {'met' if ok_a else 'NOT met'}, (b) {'met' if ok_b else 'NOT met'}, "
+          f"(c) {'met' if ok_c else 'NOT met'} -> {'ADOPT' if ok_a and ok_b and ok_c else 'not adopted'}")
+    outside((False, "rhythm", "alternation"))
+
+
 def where() -> None:
     """The contacts `sit_veto` drops on the real Test11 recordings (defaults): inside / outside the reference walking
     bouts (bouts.csv level wb) and within 0.25 s of a reference IC (ics.csv)."""
@@ -235,3 +284,7 @@ elif sys.argv[1:] == ["where"]:
     where()
 elif sys.argv[1:] == ["rhythm"]:
     rhythm()
+elif sys.argv[1:] == ["today"]:
+    today()
+elif sys.argv[1:] == ["alternation"]:
+    alternation()

@@ -94,7 +94,7 @@ def test_calibrate_with_a_wrong_distance_warns(caplog):
     s = read_session(EXT / "mobgap_HA002_Test5_Trial1")
     with caplog.at_level(logging.WARNING, logger="pdrlearn"):
         p = calibrate([s], "waist-pendulum", distances=[20.0])
-    warn = [r.getMessage() for r in caplog.records if r.levelno == logging.WARNING]
-    assert p.k == pytest.approx(4.15, abs=0.01)
+    warn = [r.getMessage() for r in caplog.records if r.levelno == logging.WARNING and "W169" not in r.getMessage()]
+    assert p.k == pytest.approx(4.15, abs=0.01)  # (W169's short-walk warning, a 5 m walk, is counted apart)
     assert len(warn) == 1 and "mobgap_HA002_Test5_Trial1" in warn[0] and "--distance" in warn[0]
     assert any("decision W39" in n for n in p.notes)

@@ -58,6 +58,22 @@ def _loss_and_grads(x, y, w1, b1, w2, b2):
                   g2.t().mm(a), g2.sum([0], keepdim=True).view(b2.shape))
 
 
+def linear_init(n_in: int, n_out: int, generator):
+    """Initial ``(weight (n_out, n_in), bias (n_out,))`` of a linear layer drawn from ``generator`` (a
+    ``torch.Generator``): ``torch.nn.Linear``'s own initialisation (Kaiming-uniform weight with a = sqrt(5),
+    bias uniform in +-1/sqrt(n_in)), in its order, so a generator seeded like the global one gives the same
+    numbers as ``torch.nn.Linear`` after ``torch.manual_seed`` (decision C65)."""
+    import math
+
+    import torch
+
+    weight, bias = torch.empty(n_out, n_in), torch.empty(n_out)
+    torch.nn.init.kaiming_uniform_(weight, a=math.sqrt(5), generator=generator)
+    bound = 1 / math.sqrt(n_in) if n_in > 0 else 0.0
+    torch.nn.init.uniform_(bias, -bound, bound, generator=generator)
+    return weight, bias
+
+
 def train_mlp(
     X: np.ndarray,
     y: np.ndarray,
@@ -82,49 +98,46 @@ def train_mlp(
     threads = torch.get_num_threads()
     torch.set_num_threads(1)  # tiny networks: thread start-up costs more than it saves
     try:
-        with torch.random.fork_rng(devices=[]):
-            torch.manual_seed(seed)
-            net = torch.nn.Sequential(  # built for its (seeded) initialisation; the loop calls its ops directly
-                torch.nn.Linear(X.shape[1], hidden), torch.nn.Tanh(), torch.nn.Linear(hidden, n_classes)
-            )
-            # the 4 tensors live in one flat buffer (views of ``theta``), so Adam updates all of them
-            # with one call per operation; elementwise float ops do not depend on where an element sits
-            # in memory: same numbers as the per-tensor update (decision C8 in docs/decisions/cohort.md)
-            theta = torch.cat([p.detach().reshape(-1) for p in net.parameters()])
-            params, offset = [], 0
-            for p in net.parameters():
-                params.append(theta[offset:offset + p.numel()].view(p.shape))
-                offset += p.numel()
-            w1, bias1, w2, bias2 = params
-            # Adam (Kingma & Ba 2015, default betas) written out: torch.optim's first use imports
-            # torch._dynamo (~5 s), which would dominate the training of these tiny networks
-            m1, m2 = torch.zeros_like(theta), torch.zeros_like(theta)
-            beta1, beta2, eps = 0.9, 0.999, 1e-8
-            xt, yt = torch.as_tensor(X, dtype=torch.float32), torch.as_tensor(y, dtype=torch.long)
-            has_val = X_val is not None and len(X_val) > 0
-            if has_val:
-                xv, yv = torch.as_tensor(X_val, dtype=torch.float32), torch.as_tensor(y_val, dtype=torch.long)
-            best, best_epoch, best_state, stale = np.inf, 0, None, 0
-            with torch.no_grad():
-                for epoch in range(1, max_epochs + 1):
-                    loss, grads = _loss_and_grads(xt, yt, w1, bias1, w2, bias2)
-                    c1, c2 = 1 - beta1**epoch, 1 - beta2**epoch
-                    g = torch.cat([gi.view(-1) for gi in grads])
-                    g = g + weight_decay * theta
-                    m1.mul_(beta1).add_(g, alpha=1 - beta1)
-                    m2.mul_(beta2).addcmul_(g, g, value=1 - beta2)
-                    theta.sub_(lr * (m1 / c1) / ((m2 / c2).sqrt() + eps))
-                    monitor = (float(F.cross_entropy(F.linear(torch.tanh(F.linear(xv, w1, bias1)), w2, bias2), yv))
-                               if has_val else float(loss))
-                    if monitor < best - 1e-6:
-                        best, best_epoch, stale = monitor, epoch, 0
-                        best_state = theta.clone()
-                    else:
-                        stale += 1
-                        if stale >= patience:
-                            break
-            flat = best_state if best_state is not None else theta
-            params = [t.view(p.shape) for t, p in zip(flat.split([p.numel() for p in params]), params, strict=True)]
+        # decision C65: the initial weights come from the estimator's own generator, never torch's global
+        # one, so a network depends on data + parameters only (not on what ran before, nor on a thread
+        # training beside it); same numbers as the global generator seeded with ``seed`` gave
+        generator = torch.Generator().manual_seed(seed)
+        init = [*linear_init(X.shape[1], hidden, generator), *linear_init(hidden, n_classes, generator)]
+        # the 4 tensors live in one flat buffer (views of ``theta``), so Adam updates all of them
+        # with one call per operation; elementwise float ops do not depend on where an element sits
+        # in memory: same numbers as the per-tensor update (decision C8 in docs/decisions/cohort.md)
+        theta = torch.cat([p.reshape(-1) for p in init])
+        params = [t.view(p.shape) for t, p in zip(theta.split([p.numel() for p in init]), init, strict=True)]
+        w1, bias1, w2, bias2 = params
+        # Adam (Kingma & Ba 2015, default betas) written out: torch.optim's first use imports
+        # torch._dynamo (~5 s), which would dominate the training of these tiny networks
+        m1, m2 = torch.zeros_like(theta), torch.zeros_like(theta)
+        beta1, beta2, eps = 0.9, 0.999, 1e-8
+        xt, yt = torch.as_tensor(X, dtype=torch.float32), torch.as_tensor(y, dtype=torch.long)
+        has_val = X_val is not None and len(X_val) > 0
+        if has_val:
+            xv, yv = torch.as_tensor(X_val, dtype=torch.float32), torch.as_tensor(y_val, dtype=torch.long)
+        best, best_epoch, best_state, stale = np.inf, 0, None, 0
+        with torch.no_grad():
+            for epoch in range(1, max_epochs + 1):
+                loss, grads = _loss_and_grads(xt, yt, w1, bias1, w2, bias2)
+                c1, c2 = 1 - beta1**epoch, 1 - beta2**epoch
+                g = torch.cat([gi.view(-1) for gi in grads])
+                g = g + weight_decay * theta
+                m1.mul_(beta1).add_(g, alpha=1 - beta1)
+                m2.mul_(beta2).addcmul_(g, g, value=1 - beta2)
+                theta.sub_(lr * (m1 / c1) / ((m2 / c2).sqrt() + eps))
+                monitor = (float(F.cross_entropy(F.linear(torch.tanh(F.linear(xv, w1, bias1)), w2, bias2), yv))
+                           if has_val else float(loss))
+                if monitor < best - 1e-6:
+                    best, best_epoch, stale = monitor, epoch, 0
+                    best_state = theta.clone()
+                else:
+                    stale += 1
+                    if stale >= patience:
+                        break
+        flat = best_state if best_state is not None else theta
+        params = [t.view(p.shape) for t, p in zip(flat.split([p.numel() for p in params]), params, strict=True)]
     finally:
         torch.set_num_threads(threads)
     W1, b1, W2, b2 = (p.numpy().astype(np.float64) for p in params)

@@ -154,6 +154,8 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
         in docs/decisions/classifiers.md).
     class_weight : ``"balanced"`` (each binary SVC balances its positive class against the rest), ``None``,
         or a dict label -> weight applied as per-step weights.
+    random_state : seed of the inner folds of ``C="cv"`` and of every binary SVC (decisions C65, C66: each
+        draws from its own generator, never numpy's global one; ``None`` is scikit-learn's global generator).
 
     Attributes
     ----------
@@ -169,12 +171,14 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
         C_grid: tuple[float, ...] = (0.3, 1.0, 3.0, 10.0),
         coef0: float = 1.0,
         class_weight: str | dict | None = "balanced",
+        random_state: int | None = 0,
     ):
         self.task = task
         self.C = C
         self.C_grid = C_grid
         self.coef0 = coef0
         self.class_weight = class_weight
+        self.random_state = random_state
 
     def fit(self, X, y):
         refuse_step_windows(self, X, "svm")
@@ -193,7 +197,10 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
         for c in self.classes_:  # one model per class, also for 2 classes (symmetric scores)
             kw = kernel_for(self.task, c)
             self.kernels_[str(c)] = kw
-            svc = SVC(C=self.C_, coef0=self.coef0, gamma="scale", class_weight=binary_weight, **kw)
+            # decision C65: SVC draws a libsvm seed from random_state when fitting; None would draw it from
+            # numpy's global generator (fitting would change what runs after it)
+            svc = SVC(C=self.C_, coef0=self.coef0, gamma="scale", class_weight=binary_weight,
+                      random_state=self.random_state, **kw)
             model = clone(make_pipeline(StandardScaler(), svc))
             model.fit(X, (y == c).astype(int), svc__sample_weight=sample_weight)
             self.estimators_.append(model)
@@ -216,6 +223,7 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
 
     def __setstate__(self, state):
         super().__setstate__(state)
+        self.__dict__.setdefault("random_state", 0)  # models saved before C65: their folds used seed 0
         if "decision_params_" in self.__dict__ and "decision_stack_" not in self.__dict__:
             self.decision_stack_ = stack_decisions(self.decision_params_)  # models saved before the stack
 
@@ -227,14 +235,16 @@ class SVMClassifier(ClassifierMixin, BaseEstimator):
         counts = np.unique(y, return_counts=True)[1]
         if counts.min() < 3 or not self.C_grid:
             return 1.0
-        folds = list(StratifiedKFold(3, shuffle=True, random_state=0).split(X, y))
+        # decision C66: the inner folds follow random_state (fixed at 0 before; 0 is the default)
+        folds = list(StratifiedKFold(3, shuffle=True, random_state=self.random_state).split(X, y))
         best_c, best_acc = 1.0, -1.0
         for c in sorted(self.C_grid):
             acc = 0.0
             for tr, te in folds:
                 if len(np.unique(y[tr])) < 2:
                     continue
-                m = SVMClassifier(task=self.task, C=float(c), coef0=self.coef0, class_weight=self.class_weight)
+                m = SVMClassifier(task=self.task, C=float(c), coef0=self.coef0, class_weight=self.class_weight,
+                                  random_state=self.random_state)
                 acc += float(np.sum(m.fit(X[tr], y[tr]).predict(X[te]) == y[te]))
             if acc > best_acc:
                 best_c, best_acc = float(c), acc

@@ -135,7 +135,8 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
         members = [(u, make_estimator(task, method, u, seed=seed), slice(None)) for u in ("foot", "waist")]
         return UnitFusionClassifier(members, weights=None if weights is None else list(weights), random_state=seed)
     if method == "svm":
-        return Pipeline([("features", make_features(task, unit, "svm")), ("clf", SVMClassifier(task=task))])
+        return Pipeline([("features", make_features(task, unit, "svm")),
+                         ("clf", SVMClassifier(task=task, random_state=seed))])
     if method == "ensemble":  # equal-weight soft vote of the unit's learned classifiers (decision C14)
         members = [(m, make_estimator(task, m, unit, seed=seed), slice(None)) for m in ENSEMBLE_MEMBERS]
         return UnitFusionClassifier(members, weights=[1.0] * len(members), random_state=seed)

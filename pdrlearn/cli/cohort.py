@@ -693,6 +693,7 @@ def track_all(
     dpi: int = _track.DPI_OPT,
     common_span: bool = _track.COMMON_SPAN_OPT,
     align_units: bool = _track.ALIGN_UNITS_OPT,
+    clock_offset: float = _track.CLOCK_OFFSET_OPT,
     units: str = _track.UNITS_OPT,
     window: str = _track.WINDOW_OPT,
     bout_rule: str = _track.BOUT_RULE_OPT,

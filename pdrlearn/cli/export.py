@@ -222,28 +222,33 @@ def _units_for(bundle, units: str | None, have: set[str] | None, where: str):
     return check_units(bundle, ("foot",)), True
 
 
-def _unit_clocks(session, units, align: bool):
+def _unit_clocks(session, units, align: bool, offset_s: float | None = None):
     """Decisions L161, L170: a replay with the foot and the waist unit checks their clocks as ``track`` does (the
     same function, :func:`pdrlearn.track.plasys.unit_offset_line`, on the whole recording: the replay has it) and
     warns when the units' steps are over 0.2 s apart, naming ``run --align-units``; with ``align`` the waist clock
-    is moved onto the foot's first (:func:`pdrlearn.track.plasys.align_clocks`, L162's). Returns the session to
-    replay and the alignment applied (``{"offset_s", "drift", ...}``; None without ``align`` or when it failed)."""
+    is moved onto the foot's first (:func:`pdrlearn.track.plasys.align_clocks`, L162's); with ``offset_s`` (``run
+    --clock-offset``, decision E111) by that offset, as ``track --clock-offset``, and the clocks then checked. Returns
+    the session to replay and the alignment applied (``{"offset_s", "drift", "source", ...}``; None without ``align``
+    or ``offset_s``, or when the estimate failed)."""
     import logging
 
-    from pdrlearn.errors import DataError
-    from pdrlearn.track.plasys import align_clocks, unit_offset_line
+    from pdrlearn.cli.track import no_waist_for_clock
+    from pdrlearn.track.plasys import align_clocks, move_waist_clock, unit_offset_line
 
     two = "waist" in units and session.has("fAccelerometer", "wAccelerometer", "wGyroscope")
-    if align and not two:  # decision B192's line, as track's
-        raise DataError(f"run: --align-units moves the waist unit's clock onto the foot's, but {session.where} has no "
-                        "waist unit (wAccelerometer.csv + wGyroscope.csv) or --units leaves it out; drop --align-units")
+    for option, asked in (("--align-units", align), ("--clock-offset", offset_s is not None)):
+        if asked and not two:  # decision B192's line, as track's (E112: also --clock-offset's)
+            raise no_waist_for_clock("run", option, session.where)
     if not two:
         return session, None
     lines: list[str] = []
     if align:
         session, alignment = align_clocks(session, lines)
     else:
-        alignment, line = None, unit_offset_line(session, "pdrlearn run")
+        alignment = None
+        if offset_s is not None:  # decision E111: moved by hand, then checked as the recording is (L161)
+            session, alignment = move_waist_clock(session, offset_s, 0.0, lines, source="given")
+        line = unit_offset_line(session, "pdrlearn run")
         lines += [line] if line else []
     for line in lines:
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
@@ -306,6 +311,7 @@ def run(
                                      "clock onto the foot's by the steps both detect, before the replay (offset and "
                                      "drift over the whole recording, as `track --align-units`; decision L170). "
                                      "Without it, the units' steps over 0.2 s apart are warned about (L161)."),
+    clock_offset: float = _track.CLOCK_OFFSET_OPT,
     sides: bool = typer.Option(False, "--sides", help="A waist-only bundle: each step's foot, steps.csv column "
                                "side (left / right, empty when undecided) as `track --pipeline waist-pendulum` "
                                "names it, from the streamed contacts (W138's causal side, not the offline W129 "
@@ -324,6 +330,8 @@ def run(
         pdrlearn run out/bundle/u1 out/sim/D_u1 --start 41.178,-8.608,12.5 --out out/run_geo
 
         pdrlearn run out/bundle/u1 out/sim/D_u1 --initial-heading 90 --out out/run_north   # sets off north
+
+        pdrlearn run out/bundle/u1 out/sim/D_u1 --clock-offset 0.3 --out out/run_clock   # waist clock 0.3 s late
 
         pdrlearn run out/bundle_u1_all out/sim/D_u1 --method svm --out out/run_svm   # an exported non-chosen method
 
@@ -348,8 +356,9 @@ def run(
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
     start_ll, start_alt = start_option(start)  # decision L56, as `pdrlearn track`
     heading0 = initial_heading_option(initial_heading)  # decision L98, as `pdrlearn track`
+    clock_offset = _track.clock_offset_value(clock_offset, align_units, "run")  # decision E112, as `track`
     from pdrlearn.track.bouts import bout_rule as read_bout_rule
-    from pdrlearn.track.bouts import detected_bouts, session_key
+    from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
 
     bouts = read_bout_rule(bout_break_s, bout_min_strides, bout_rule)  # L124, L130, L163: as `track`, before any work
     if dpi is not None and out is None:  # decision L70: it would be ignored
@@ -364,6 +373,7 @@ def run(
                                 ("--rules", rules), ("--min-confidence", min_confidence))
                  if v is not None] + [o for o, v in (("--contacts", contacts), ("--resample", resample),
                                                      ("--no-resample", no_resample), ("--align-units", align_units),
+                                                     ("--clock-offset", clock_offset is not None),
                                                      ("--warn-out-of-domain", warn_out_of_domain is not None),
                                                      ("--drop-neighbour", drop_neighbour))
                                       if v]
@@ -379,9 +389,10 @@ def run(
     bundle = load_bundle(bundle_dir)  # verified before any output
     methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
     steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
-    if protocol is not None and align_units:  # decision L170
-        raise DataError(f"run: --align-units moves the waist unit's clock onto the foot's; the --protocol capture "
-                        f"{protocol} carries the foot unit only (one clock): drop --align-units")
+    for option, asked in (("--align-units", align_units), ("--clock-offset", clock_offset is not None)):
+        if protocol is not None and asked:  # decisions L170, E112
+            raise DataError(f"run: {option} moves the waist unit's clock onto the foot's; the --protocol capture "
+                            f"{protocol} carries the foot unit only (one clock): drop {option}")
     alignment = None  # decision L170: the clock offset and drift --align-units applied
     if protocol is not None:
         from pdrlearn.io import THESIS_FOOT_FRAME, BluetoothParser
@@ -457,7 +468,8 @@ def run(
         require_stride_cover(session, [*required, *optional])  # decision B21
         if "foot" in use:
             _foot_checks(session)  # decisions B201, B203, as `track`
-        session, alignment = _unit_clocks(session, use, align_units)  # decisions L161, L170: as track's, once checked
+        # decisions L161, L170, E111: as track's, once checked
+        session, alignment = _unit_clocks(session, use, align_units, clock_offset)
         # gaps: the runtime warns once per gap and moves a stride across a foot gap over 1 s 0 m (decision E30)
         # the session's rates (median interval, the rates check_streams judged) and where each stream ends:
         # the runtime resamples at these rates and announces it in one line; a stream behind the others
@@ -508,11 +520,12 @@ def run(
     add_position_sigma(result, session, "plasys-streaming" if "waist" in tracker.units else "plasys-foot-streaming")
     if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
         result.info["initial_heading_rad"] = heading0
-    if align_units:  # decision L170: as track's info (L162); None when the steps did not align (warned)
+    if align_units or clock_offset is not None:  # L170, E111: as track's info (L162); None: the steps did not align
         result.info["unit_alignment"] = alignment
     result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
     result.info["out_of_domain"] = tracker.domain_report()  # decision E105: track's C16 report (flush warned C61's)
-    table = detected_bouts(result.steps, bouts, **session_key(session))  # E73: bouts.csv and n_bouts at once
+    # E73: bouts.csv and n_bouts at once; L195: each bout's walking range scaled to the walker's leg
+    table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
     summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats
@@ -607,7 +620,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.runtime.waist import WAIST_SENSORS, WaistTracker, load_waist_bundle
     from pdrlearn.signal import interp_rows
     from pdrlearn.track.base import TrackResult
-    from pdrlearn.track.bouts import detected_bouts, session_key
+    from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
     from pdrlearn.track.evaluate import evaluate_track, floors_phrase
 
     bundle = load_waist_bundle(bundle_dir)  # verified before any output
@@ -687,7 +700,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.track.position_sigma import add_position_sigma
 
     add_position_sigma(result, session, "waist")  # decision L128, as track's lower-back pipelines
-    table = detected_bouts(result.steps, bouts, **session_key(session))  # L124, E73: one detection (L165: key)
+    # L124, E73: one detection (L165: key; L195: the leg-scaled range)
+    table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
     summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table,
                                                                        storey_height_m=storey_height_m),
                "session": session.name,
@@ -696,6 +710,9 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                                   **({} if start_ll is None else {k: float(traj[k].iloc[-1]) for k in ("lat", "lon")})},
                "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
                                        "p99": float(np.percentile(lat, 99) * 1e3) if lat else None}}
+    from pdrlearn.track.evaluate import add_gait_range_flag
+
+    add_gait_range_flag(summary)  # decision L195: the flag as track's summary has it (this path warns no L95 line)
     if out is not None:
         _write(out, result, summary, session, summary["source"], dpi=dpi, record=record(), bouts=table)
     if as_json:
@@ -778,6 +795,9 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
     out["rate_hz"] = tracked_rate_hz(session, "runtime") if session is not None else None  # as track's (C19)
     out["pdrlearn_version"] = __version__  # decision C18
     out["info"] = result.info
+    from pdrlearn.track.evaluate import add_gait_range_flag
+
+    add_gait_range_flag(out)  # decision L195, as track's summary
     if session is not None:  # decisions L95 / L113, as track's summary: gait range, withheld stride-time CV
         import logging
 

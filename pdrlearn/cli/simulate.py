@@ -23,6 +23,10 @@ HEIGHT_RANGE_M, LEG_PER_HEIGHT_RANGE = (0.7, 2.2), (0.35, 0.6)
 MAG_DISTURBANCE_MAX_UT = 90.0
 #: decision S34: the body axes `--waist-mount AXIS:DEG` turns the waist unit about (forward, left, up)
 MOUNT_AXES = {"x": 0, "y": 1, "z": 2}
+#: decision S48: a custom step faster than this (m/s) is warned: the simulator has no running gait (no flight
+#: phase; walking stance, bounce and rockers), so it is fast walking at a running speed. 2.0 m/s is about the
+#: preferred walk-to-run transition speed of adults (Hreljac 1993: 2.07 m/s; not a seed)
+RUNNING_SPEED_MPS = 2.0
 #: decision S43: `simulate --sit-start/--sit-end` (s seated at the start / end of the session): up to an hour
 SIT_MAX_S = 3600.0
 
@@ -39,7 +43,9 @@ def simulate_cmd(
         None,
         "--route",
         help="Your own path instead of a scenario, e.g. 'straight:10, up:12, turn:180, down:12, "
-        "backward:3, stand:2, curve:90:2' (degrees; docs/simulator.md).",
+        "backward:3, stand:2, curve:90:2' (degrees; docs/simulator.md). Rides without steps: 'lift:+9' / "
+        "'lift:-9' (a lift, metres up / down), 'escalator:+6' (30 deg, 0.5 m/s, straight ahead; 1-60 m); "
+        "'trolley:20' walks 20 m pushing a trolley (decisions S45, S46).",
     ),
     user_seed: int = typer.Option(..., "--user-seed", "-u", help="Selects the simulated user (>= 0)."),
     out: Path = typer.Option(..., "--out", "-o", help="Session folder to create (must not exist or be empty)."),
@@ -130,6 +136,9 @@ def simulate_cmd(
 
         pdrlearn simulate --route "stand:2, straight:20, stand:2" --height 0.95 --leg-length 0.45 \\
             --step-length 0.36 --step-time 0.3 --user-seed 1 --rate 100 --out out/sim/age3   # a 3-year-old
+
+        pdrlearn simulate --route "straight:5, lift:+9, trolley:10, escalator:-9, straight:5" --user-seed 2 \\
+            --out out/sim/mall_u2   # a lift up three storeys, a trolley pushed, an escalator down (S45, S46)
     """
     from pdrlearn.io import write_session
     from pdrlearn.sim import SCENARIOS, SPEEDS, UserProfile, simulate, simulate_path
@@ -302,6 +311,16 @@ def _custom_gait(user, speed: str, step_length: float | None, step_time: float |
         if v is not None and not (math.isfinite(v) and lo <= v <= hi):
             raise DataError(f"simulate: {name} {v:g}: give {lo:g}-{hi:g} {unit}")
     f_len, f_time = SPEED_FACTORS[speed]
+    walked = dataclasses.replace(user, **{k: v for k, v in (("step_length_m", step_length and step_length / f_len),
+                                                            ("step_time_s", step_time and step_time / f_time)) if v})
+    mps = walked.step_length(speed) / walked.step_time(speed)
+    if mps > RUNNING_SPEED_MPS:  # decision S48
+        import logging
+
+        logging.getLogger("pdrlearn.sim").warning(
+            "simulate: steps of %.2f m/s: the simulator has no running gait (no flight phase; walking stance, "
+            "bounce and foot roll), so this session is fast walking at a running speed and cadence, not running "
+            "(decision S48)", mps)
     changes = {}
     if step_length is not None:
         changes["step_length_m"] = step_length / f_len

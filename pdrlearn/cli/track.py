@@ -100,7 +100,35 @@ COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a 
 ALIGN_UNITS_OPT = typer.Option(False, "--align-units", help="plasys, offline, foot + waist: move the waist unit's "
                                "clock onto the foot's by the steps both detect (offset and drift, "
                                "pdrlearn.steps.align_units; an offset under a step period; decision L162).")
+CLOCK_OFFSET_OPT = typer.Option(None, "--clock-offset", metavar="SECONDS", help="plasys, foot + waist: the waist "
+                                "unit's clock offset, known by hand (t_waist = t_foot + SECONDS: 0.3 when the waist "
+                                "clock reads 0.3 s late), removed before tracking, offline or streamed; instead of "
+                                "--align-units' estimate; recorded as info.unit_alignment in summary.json "
+                                "(decisions E111, E112).")
 RESAMPLE_OPT, NO_RESAMPLE_OPT = resample_options("tracked", "with --model: ")
+
+
+def clock_offset_value(clock_offset: float | None, align_units: bool, command: str) -> float | None:
+    """``--clock-offset`` checked (decision E112): a finite number of seconds, not with ``--align-units`` (which
+    estimates the offset the option gives); one line naming the fix otherwise."""
+    import math
+
+    if clock_offset is None:
+        return None
+    if not math.isfinite(clock_offset):
+        raise DataError(f"{command}: --clock-offset {clock_offset}: give the waist unit's clock offset in seconds, a "
+                        "finite number (t_waist = t_foot + SECONDS), e.g. --clock-offset 0.3")
+    if align_units:
+        raise DataError(f"{command}: --clock-offset {clock_offset:g} gives the waist clock's offset and "
+                        "--align-units estimates it from the steps: drop one of them")
+    return float(clock_offset)
+
+
+def no_waist_for_clock(command: str, option: str, where: str) -> DataError:
+    """Decision B192's line (E112: also for ``--clock-offset``): the option moves the waist clock of a session
+    without a waist unit, or whose waist unit ``--units`` leaves out."""
+    return DataError(f"{command}: {option} moves the waist unit's clock onto the foot's, but {where} has no waist "
+                     f"unit (wAccelerometer.csv + wGyroscope.csv) or --units leaves it out; drop {option}")
 UNITS_OPT = typer.Option(None, "--units", help="Body units to track with: foot (the waist files left out, as "
                          "`pdrlearn run --units foot`), waist, or foot,waist (default: every unit the session has; "
                          "decision B127), e.g. to keep the foot outcome of a session whose waist unit stopped early.")
@@ -154,6 +182,7 @@ def track(
     dpi: int = DPI_OPT,
     common_span: bool = COMMON_SPAN_OPT,
     align_units: bool = ALIGN_UNITS_OPT,
+    clock_offset: float = CLOCK_OFFSET_OPT,
     units: str = UNITS_OPT,
     window: str = WINDOW_OPT,
     bout_rule: str = BOUT_RULE_OPT,
@@ -187,6 +216,8 @@ def track(
         pdrlearn track datasets/real/mobgap_HA001_Test5_Trial1 --pipeline waist-pendulum --realtime --out out/W
 
         pdrlearn track out/sim/A_u1 --window 5,15 --out out/A_middle   # the steps between 5 s and 15 s
+
+        pdrlearn track out/sim/D_u1 --clock-offset 0.3 --out out/D_clock   # its waist clock known to read 0.3 s late
 
     Many sessions at once: pdrlearn track-all ROOT --out OUTDIR (docs/cohort.md).
     """
@@ -249,7 +280,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    bout_min_strides: int | None = None, storey_height: float = 3.0,
                    detector: str | None = None, length_model: str | None = None,
                    altitude: str | None = None, align_units: bool = False,
-                   bout_rule: str | None = None) -> dict:
+                   bout_rule: str | None = None, clock_offset: float | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -309,6 +340,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         if streaming:
             raise DataError("track: --detector chooses the offline strides; the --streaming kernel segments its "
                             "own - drop one of them")
+    clock_offset_s = clock_offset_value(clock_offset, align_units, "track")  # decision E112: before any session
     if align_units and streaming:  # decision L162 (E93: once, before a batch's first session)
         raise DataError("track: --align-units moves the waist clock by the steps of the whole recording; the "
                         "--streaming kernel cannot - drop --streaming or --align-units")
@@ -343,7 +375,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "resample": rate_mode,
             "units": parse_units(units), "bouts": bouts, "storey_height_m": storey_height,
             "detector": detector, "detector_unit": detector_unit, "length_model": length_model,
-            "altitude": altitude, "align_units": align_units}
+            "altitude": altitude, "align_units": align_units, "clock_offset_s": clock_offset_s}
 
 
 def read_params(params: Path):
@@ -413,7 +445,8 @@ def track_session(session_dir: Path, settings: dict) -> dict:
                                                "--drop-neighbour": bool(o.get("drop_neighbour")),
                                                "--detector": o.get("detector_unit") == "foot",
                                                "--altitude": o.get("altitude") is not None,
-                                               "--align-units": bool(o.get("align_units"))},
+                                               "--align-units": bool(o.get("align_units")),
+                                               "--clock-offset": o.get("clock_offset_s") is not None},
                             gnss=gnss, gnss_period=o["gnss_period"], fixes=fixes, fix_period=o["fix_period"],
                             chosen_by=chosen_by)
     if pipeline == "plasys" and isinstance(par, dict):
@@ -422,6 +455,13 @@ def track_session(session_dir: Path, settings: dict) -> dict:
             from pdrlearn.displace.foot import check_settings
 
             check_settings(par, str(params))
+    given_clock, clock_lines = None, []
+    if o.get("clock_offset_s") is not None:  # decision E111: the waist clock moved by hand, before anything reads it
+        if not session.has("wAccelerometer", "wGyroscope"):
+            raise no_waist_for_clock("track", "--clock-offset", session.where)
+        from pdrlearn.track.plasys import move_waist_clock
+
+        session, given_clock = move_waist_clock(session, o["clock_offset_s"], 0.0, clock_lines, source="given")
     if o.get("resample", "native") != "native":  # decision B113: the session at the model's rate, or refused
         from pdrlearn.classify import load_model
         from pdrlearn.io.resample import at_model_rate
@@ -463,9 +503,7 @@ def track_session(session_dir: Path, settings: dict) -> dict:
             kw["steps"] = o["detector"]
         if o.get("align_units"):  # decision L162
             if not session.has("wAccelerometer", "wGyroscope"):  # decision B192: it had been ignored silently
-                raise DataError("track: --align-units moves the waist unit's clock onto the foot's, but "
-                                f"{session.where} has no waist unit (wAccelerometer.csv + wGyroscope.csv) or --units "
-                                "leaves it out; drop --align-units")
+                raise no_waist_for_clock("track", "--align-units", session.where)
             kw["align"] = True  # with --streaming refused by track_settings, before any session
         if toe_off:  # decision L73
             if streaming:
@@ -476,6 +514,13 @@ def track_session(session_dir: Path, settings: dict) -> dict:
             if o.get(k) is not None:
                 kw[k] = o[k]
     result = fn(session, **kw)
+    if given_clock is not None:  # decision E111: recorded as --align-units' estimate is (L162)
+        import logging
+
+        result.info["unit_alignment"] = given_clock
+        result.info["warnings"] = [*clock_lines, *result.info.get("warnings", [])]
+        for line in clock_lines:
+            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
     aided = gnss is not None or fixes is not None
     if heading0 is not None:
         _check_relative_heading(result, session, heading0)
@@ -500,10 +545,10 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         drop_position_sigma(result)
     elif win is not None:  # L128: a window's uncertainty grows from its own first position
         add_position_sigma(result, tracked_session)
-    from pdrlearn.track.bouts import detected_bouts, session_key
+    from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
 
     # decision L124: OUT/bouts.csv, the detected walking bouts; L165: keyed by the session and its subject
-    bouts = detected_bouts(result.steps, o.get("bouts"), **session_key(session))
+    bouts = detected_bouts(result.steps, o.get("bouts"), **session_key(session), leg_m=session_leg_m(session))
     # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition (E73: of the table
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,
@@ -600,7 +645,8 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
 
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
 _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--streaming",
-                   "--toe-off", "--contacts", "--drop-neighbour", "--detector", "--altitude", "--align-units")
+                   "--toe-off", "--contacts", "--drop-neighbour", "--detector", "--altitude", "--align-units",
+                   "--clock-offset")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
 _M3_OPTIONS = ("--model", "--rules", "--min-confidence", "--length-bounds")
 

@@ -49,6 +49,28 @@ def relative_altitude(t: np.ndarray, p_hpa: np.ndarray, at: np.ndarray,
     return h - h[0]
 
 
+def held_altitude(t: np.ndarray, p_hpa: np.ndarray, at: np.ndarray, windows,
+                  smooth_s: float = ALTITUDE_SMOOTH_S) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`relative_altitude` at the times ``at``, and the same with the change inside each ``(a, b)`` window
+    (s) taken out: the altitude held through it (decision W174: a sit-to-stand's rise is the transfer's, not a
+    climb). Overlapping windows are merged. Returns ``(held, raw)``, both relative to ``at[0]``."""
+    at = np.asarray(at, dtype=float).ravel()
+    n = len(at)
+    merged: list[list[float]] = []
+    for a, b in sorted((float(a), float(b)) for a, b in windows):
+        if merged and a <= merged[-1][1]:
+            merged[-1][1] = max(merged[-1][1], b)
+        else:
+            merged.append([a, b])
+    w = np.asarray(merged, dtype=float).reshape(-1, 2)
+    h = relative_altitude(t, p_hpa, np.concatenate([at, *(np.clip(at, a, b) for a, b in w), w[:, 0]]), smooth_s)
+    raw = h[:n]
+    held = raw.copy()
+    for k in range(len(w)):  # less the change from the window's start to min(time, its end), after its start
+        held -= h[n * (k + 1):n * (k + 2)] - h[n * (len(w) + 1) + k]
+    return (held - held[0] if n else held), raw
+
+
 def _smoothed_altitude(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float) -> tuple[np.ndarray, np.ndarray]:
     """``(t, h)``: the finite samples' times and the altitude (m, :func:`altitude_m`) of their pressure averaged
     over a centred ``smooth_s`` window (fewer samples at the ends; W89's smoothing)."""

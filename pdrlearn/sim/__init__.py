@@ -2,20 +2,24 @@
 
 Entry points: :func:`simulate` (thesis scenarios and calibration exercises), :func:`simulate_path`
 (your own path of :class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`, :class:`Turn`,
-:class:`Stand` segments) and :class:`UserProfile` (anthropometry, gait, mounting, sensor errors).
+:class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley` segments) and :class:`UserProfile`
+(anthropometry, gait, mounting, sensor errors).
 See docs/simulator.md.
 """
 
 from pdrlearn.sim.path import (
     Backward,
     Curve,
+    Escalator,
     Footstep,
+    Lift,
     Pivot,
     Sit,
     Slope,
     Stairs,
     Stand,
     Straight,
+    Trolley,
     Turn,
     plan_footsteps,
 )
@@ -40,6 +44,9 @@ __all__ = [
     "Pivot",
     "Sit",
     "Stand",
+    "Lift",
+    "Escalator",
+    "Trolley",
     "Footstep",
     "plan_footsteps",
 ]

@@ -411,6 +411,10 @@ COMFORTABLE_STEP_PER_HEIGHT = 0.415  # step length / stature at a comfortable sp
 REALISTIC_ROLL_DEG = (0.4, 2.0)  # roll amplitude toward the stance side
 REALISTIC_ROLL_PHASE_DEG = (-45.0, 45.0)  # roll phase ahead of the sway acceleration
 REALISTIC_SWAY_ACC_MPS2 = (0.4, 0.9)  # lateral sway acceleration amplitude
+#: decision S46: pushing a trolley (hands on the handle, no arm swing), the pelvic rotation about the vertical and the
+#: trunk's yaw vibration are this fraction of the free walk's (an assumption, not from a seed: the arms no longer
+#: swing to balance the pelvis's rotation and the handle holds the trunk's heading)
+PUSHING_ROTATION_GAIN = 0.5
 
 
 @dataclass(frozen=True)
@@ -605,6 +609,11 @@ def pelvis_pose(
     # single support, so the yaw rate peaks near initial contact as on the real lower back (S17)
     yaw_ph = skewed_phase(ph, shift=PELVIS_YAW_LEAD_STEP, skew=PELVIS_YAW_SKEW, centre=0.1)
     yaw_osc = env * np.radians(user.pelvis_rotation_deg) * np.cos(np.pi * yaw_ph)
+    pushing = [st.pushing for st in steps]
+    rot_gain = (np.interp(t, ev.ic, np.where(pushing, PUSHING_ROTATION_GAIN, 1.0)) if any(pushing)
+                else None)  # decision S46 (None: sessions without a trolley bit for bit)
+    if rot_gain is not None:
+        yaw_osc = yaw_osc * rot_gain
     if pelvis is None:
         roll = -env * PELVIS_ROLL_GAIN * np.radians(user.pelvis_obliquity_deg) * np.sin(np.pi * ph)
     else:  # S27: the unit leans toward the stance side (right stance: ph in (0, 1), roll > 0 = right side down)
@@ -630,6 +639,8 @@ def pelvis_pose(
         if vibration_source is False:
             vibration_source = trunk_vibration_source(t_first, t_last, rng, TRUNK_ACC_SD + TRUNK_RATE_SD)
         vib = env[:, None] * trunk_noise * trunk_vibration(t, rng, TRUNK_ACC_SD + TRUNK_RATE_SD, vibration_source)
+        if rot_gain is not None:  # decision S46
+            vib[:, 3] *= rot_gain
     else:
         vib = np.zeros((t.size, 6))
     ca, sa = np.cos(heading), np.sin(heading)

@@ -1,7 +1,8 @@
 """Walking paths as segments, and the planner that turns them into footprints of both feet.
 
 A path is a list of segments (:class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`,
-:class:`Turn`, :class:`Pivot`, :class:`Stand`, :class:`Sit`). :func:`plan_footsteps` walks them with a user's step
+:class:`Turn`, :class:`Pivot`, :class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`).
+:func:`plan_footsteps` walks them with a user's step
 length and returns one :class:`Footstep` per foot placement (heel position, heading, kind), alternating feet.
 Walking bouts start and end with both feet side by side (gait initiation and a closing step).
 """
@@ -14,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.sim.ride import RIDE_MARGIN_S, Ride, check_rise, draw_ride
 from pdrlearn.sim.transfer import SIT_MARGIN_S, Transfer, draw_transfer
 from pdrlearn.sim.user import GAITS, UserProfile, asymmetry_factor
 
@@ -107,7 +109,32 @@ class Sit:
     duration_s: float
 
 
-Segment = Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | Stand | Sit
+@dataclass(frozen=True)
+class Lift:
+    """Stand in a lift that rides ``rise_m`` metres (> 0 up, < 0 down) without a step (decision S45,
+    :mod:`pdrlearn.sim.ride`)."""
+
+    rise_m: float
+
+
+@dataclass(frozen=True)
+class Escalator:
+    """Stand on an escalator that rises ``rise_m`` metres (> 0 up, < 0 down) on a 30 deg incline straight ahead:
+    horizontal and vertical travel without a step (decision S45, :mod:`pdrlearn.sim.ride`)."""
+
+    rise_m: float
+
+
+@dataclass(frozen=True)
+class Trolley:
+    """Walk ``length_m`` metres straight ahead pushing a trolley (decision S46): the hands on the handle damp the
+    pelvic rotation (:data:`pdrlearn.sim.body.PUSHING_ROTATION_GAIN`); the steps are level walking steps."""
+
+    length_m: float
+    gait: str = "normal"
+
+
+Segment = Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | Stand | Sit | Lift | Escalator | Trolley
 
 
 @dataclass
@@ -122,6 +149,7 @@ class Footstep:
     direction: str = "forward"
     pause_before_s: float = 0.0
     irregular: bool = False
+    pushing: bool = False  # decision S46: a step of a Trolley walk (hands on a trolley's handle)
 
 
 def _normal(psi: float) -> np.ndarray:
@@ -159,7 +187,8 @@ class _Walker:
         self.last_moved: str | None = None
         self.pending_pause = 0.0
         self.direction = "forward"
-        self.transfers: list[Transfer] = []
+        self.transfers: list[Transfer | Ride] = []
+        self.pushing = False
 
     def _heel(self, c: np.ndarray, z: float, psi: float, foot: str) -> np.ndarray:
         side = 1.0 if foot == "left" else -1.0
@@ -190,7 +219,8 @@ class _Walker:
         if not self.together or kind != "close":
             # lateral placement variability
             heel[:2] += self.rng.normal(0.0, 0.01 * self.var / 0.03) * _normal(psi)
-        self.steps.append(Footstep(foot, heel, float(psi), kind, gait, direction, self.pending_pause, irregular))
+        self.steps.append(Footstep(foot, heel, float(psi), kind, gait, direction, self.pending_pause, irregular,
+                                   self.pushing))
         self.pending_pause = 0.0
         self.feet[foot] = (heel, psi)
         self.last_moved = foot
@@ -270,6 +300,15 @@ class _Walker:
                 c0 + j * seg.run_m * u, z0 + sign * j * seg.rise_m, self.psi, "stairs_up" if seg.up else "stairs_down"
             )
 
+    def trolley(self, seg: Trolley) -> None:
+        """Decision S46: a straight walk whose steps are flagged as pushing (the body model damps the pelvic
+        rotation); the closing step that ends the segment's bout, if any, is not."""
+        self.pushing = True
+        try:
+            self.straight(Straight(seg.length_m, seg.gait))
+        finally:
+            self.pushing = False
+
     def slope(self, seg: Slope) -> None:
         """Decision S37: level-walking steps whose footprints follow the ramp's height; the swing takes the
         geometric branch of the height change (toe-led rise or straight-line drop, :mod:`pdrlearn.sim.body`)
@@ -333,11 +372,24 @@ class _Walker:
         self.pending_pause += SIT_MARGIN_S + tr.total_s + SIT_MARGIN_S
 
 
+    def ride(self, seg: Lift | Escalator) -> None:
+        """Decision S45: feet together, then a :class:`Ride` inside the pause before the next step; the planner's
+        positions stay on the floor walked (the ride's displacement is added to the poses, ``ride.ride_offset``)."""
+        kind = "lift" if isinstance(seg, Lift) else "escalator"
+        check_rise(kind, seg.rise_m, str(seg))
+        self.close()
+        ride = draw_ride(len(self.steps), kind, float(seg.rise_m), self.psi, self.rng,
+                         delay_s=self.pending_pause + RIDE_MARGIN_S)
+        self.transfers.append(ride)
+        self.pending_pause += RIDE_MARGIN_S + ride.duration_s + RIDE_MARGIN_S
+
+
 def path_length(segments: list[Segment], user: UserProfile | None = None) -> float:
-    """Horizontal length (m) of the centre line of ``segments`` (backward steps at 0.55 step length)."""
+    """Horizontal length (m) of the centre line of ``segments`` (backward steps at 0.55 step length); walked only:
+    an escalator's horizontal travel is not counted (decision S45)."""
     total = 0.0
     for seg in segments:
-        if isinstance(seg, Straight):
+        if isinstance(seg, Straight | Trolley):
             total += seg.length_m
         elif isinstance(seg, Curve):
             total += abs(seg.angle_rad) * seg.radius_m
@@ -362,7 +414,7 @@ def plan_footsteps(
     irregular_rate: float = 0.0,
     variability: float = 1.0,
     step_length_asymmetry: float = 0.0,
-) -> tuple[list[Footstep], dict, float, list[Transfer]]:
+) -> tuple[list[Footstep], dict, float, list[Transfer | Ride]]:
     """Footprints of both feet along ``segments``.
 
     ``step_length_asymmetry``: on level, curved and sloped walking the steps onto the left foot are 1 + this times
@@ -373,7 +425,9 @@ def plan_footsteps(
     steps : the footprints in temporal order (alternating feet within a bout)
     initial : foot -> (heel position, yaw) before the first step
     end_pause_s : standing (or sitting) time requested after the last step (trailing :class:`Stand` / :class:`Sit`)
-    transfers : the sit-down / stand-up episodes of :class:`Sit` segments (:mod:`pdrlearn.sim.transfer`)
+    transfers : the episodes inside the pauses: sit-down / stand-up of :class:`Sit` segments
+        (:mod:`pdrlearn.sim.transfer`) and the rides of :class:`Lift` / :class:`Escalator` ones
+        (:mod:`pdrlearn.sim.ride`)
     """
     w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability, step_length_asymmetry)
     initial = {f: (h.copy(), y) for f, (h, y) in w.feet.items()}
@@ -387,15 +441,19 @@ def plan_footsteps(
         Pivot: w.pivot,
         Stand: w.stand,
         Sit: w.sit,
+        Lift: w.ride,
+        Escalator: w.ride,
+        Trolley: w.trolley,
     }
     for seg in segments:
-        if isinstance(seg, Straight | Curve | Slope) and seg.gait not in GAITS:
+        if isinstance(seg, Straight | Curve | Slope | Trolley) and seg.gait not in GAITS:
             raise DataError(f"{seg}: gait must be one of {', '.join(GAITS)}")
         try:
             handlers[type(seg)](seg)
         except KeyError:
             raise DataError(
-                f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Slope, Backward, Turn, Pivot, Stand, Sit"
+                f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Slope, Backward, Turn, Pivot, Stand, Sit, "
+                "Lift, Escalator, Trolley"
             ) from None
     w.close()
     return w.steps, initial, w.pending_pause, w.transfers

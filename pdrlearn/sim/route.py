@@ -14,6 +14,9 @@
 | ``pivot:DEG[:N[:STEP_M]]`` | turn DEG degrees on the spot inside the walk, N steps of STEP_M m (S41) |
 | ``stand:S`` | stand still S seconds |
 | ``sit:S`` | sit down on a chair, stay seated S seconds, stand up (no steps; decision S36) |
+| ``lift:H`` | stand in a lift riding H metres (+H up, -H down; no steps; decision S45) |
+| ``escalator:H`` | stand on a 30 deg escalator rising H metres straight ahead (+H up, -H down; 1-60; S45) |
+| ``trolley:M[:GAIT]`` | walk M metres straight ahead pushing a trolley (damped pelvic rotation; decision S46) |
 
 Angles are in degrees here (the Python segments take radians).
 """
@@ -23,10 +26,26 @@ from __future__ import annotations
 import math
 
 from pdrlearn.errors import DataError
-from pdrlearn.sim.path import Backward, Curve, Pivot, Segment, Sit, Slope, Stairs, Stand, Straight, Turn
+from pdrlearn.sim.path import (
+    Backward,
+    Curve,
+    Escalator,
+    Lift,
+    Pivot,
+    Segment,
+    Sit,
+    Slope,
+    Stairs,
+    Stand,
+    Straight,
+    Trolley,
+    Turn,
+)
+from pdrlearn.sim.ride import check_rise
 from pdrlearn.sim.user import GAITS
 
-ROUTE_KINDS = ("straight", "curve", "slope", "up", "down", "backward", "turn", "pivot", "stand", "sit")
+ROUTE_KINDS = ("straight", "curve", "slope", "up", "down", "backward", "turn", "pivot", "stand", "sit", "lift",
+               "escalator", "trolley")
 _USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curve:90:2'"
 
 
@@ -68,9 +87,15 @@ def parse_route(spec: str) -> list[Segment]:
         kind = parts[0].lower()
         if kind not in ROUTE_KINDS:
             raise DataError(f"--route item {item!r}: unknown kind {parts[0]!r}; use one of {', '.join(ROUTE_KINDS)}")
-        if kind == "straight":
+        if kind in ("straight", "trolley"):  # trolley: decision S46
             _arity(item, parts, (1, 2))
-            segments.append(Straight(_number(item, parts[1]), gait=_gait(item, parts, 2)))
+            walk = Straight if kind == "straight" else Trolley
+            segments.append(walk(_number(item, parts[1]), gait=_gait(item, parts, 2)))
+        elif kind in ("lift", "escalator"):  # decision S45: the planner's limits, named after the item
+            _arity(item, parts, (1,))
+            rise = _number(item, parts[1], positive=False)
+            check_rise(kind, rise, f"--route item {item!r}")
+            segments.append((Lift if kind == "lift" else Escalator)(rise))
         elif kind == "curve":
             _arity(item, parts, (2, 3))
             angle = _number(item, parts[1], positive=False)

@@ -41,6 +41,7 @@ from pdrlearn.sim.kernels import (
     specific_force_body,
 )
 from pdrlearn.sim.path import Footstep, Segment, plan_footsteps
+from pdrlearn.sim.ride import Ride, ride_offset, ride_table
 from pdrlearn.sim.scenarios import SCENARIOS
 from pdrlearn.sim.transfer import session_sit_starts, session_sits, transfer_motion, transfer_starts, transfer_table
 from pdrlearn.sim.user import SPEEDS, UserProfile
@@ -296,6 +297,8 @@ def simulate_path(
         variability=float(opt["variability"]),
         step_length_asymmetry=float(opt["step_length_asymmetry"]),
     )
+    rides = [e for e in transfers if isinstance(e, Ride)]  # decision S45: lifts and escalators
+    transfers = [e for e in transfers if not isinstance(e, Ride)]
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
     # decision S43: seated at the start (then a stand-up before the standstill) and / or at the end (own stream)
     sit0, sit1 = ((None, None) if not (opt["sit_start_s"] or opt["sit_end_s"]) else session_sits(
@@ -307,6 +310,7 @@ def simulate_path(
                   rocker=str(opt["rocker"]), step_time_asymmetry=float(opt["step_time_asymmetry"]))
     total_s = (max(ev.end_s, lead + stand) if steps else lead + stand) + end_pause + stand
     sit_starts = transfer_starts(transfers, ev.rest, lead + stand)  # decision S36
+    ride_starts = transfer_starts(rides, ev.rest, lead + stand)  # decision S45: as a transfer's
     if sit0 or sit1:  # decision S43
         ends = session_sit_starts(sit0, sit1, total_s)
         transfers = [*([sit0] if sit0 else []), *transfers, *([sit1] if sit1 else [])]
@@ -326,6 +330,8 @@ def simulate_path(
 
     def foot_unit(tt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         heel, rot = foot_pose(tt, "right", steps, ev, initial, user, vibration=1.0 if noise else 0.0)
+        if rides:  # decision S45: the ride carries the standing walker
+            return heel + rot @ r_sensor + ride_offset(tt, rides, ride_starts), rot
         return heel + rot @ r_sensor, rot
 
     f_body, w_body, pf100, Rf100 = _unit_motion(t, foot_unit, dt)  # decision S44: in parts of the 500 Hz grid
@@ -371,6 +377,8 @@ def simulate_path(
             span=span,
             vibration_source=vib_source,
         )
+        if rides:  # decision S45: the ride, and the standing passenger's small sway (with the trunk's vibration)
+            return p_pel + rot @ r_waist + ride_offset(tt, rides, ride_starts, sway=trunk > 0), rot
         return p_pel + rot @ r_waist, rot
 
     fw_body, ww_body, p_w100, R_p100 = _unit_motion(t, waist_unit, dt)  # decision S44
@@ -456,6 +464,9 @@ def simulate_path(
             tcols = ["start_s", "seated_s", "rise_s", "end_s"]
             extras["transfers"][tcols] = extras["transfers"][tcols].clip(0.0, float(t_out[-1]))
         extras["transfers"].attrs["time_columns"] = ["start_s", "seated_s", "rise_s", "end_s"]
+    if rides:  # decision S45: only sessions with a lift or an escalator have the table
+        extras["rides"] = pd.DataFrame(ride_table(rides, ride_starts))
+        extras["rides"].attrs["time_columns"] = ["start_s", "end_s"]
 
     meta = {
         "session": name,

@@ -413,31 +413,50 @@ def align_clocks(session: Session, warnings: list[str]) -> tuple[Session, dict |
     :func:`~pdrlearn.kernels.align.offset_locked`) is not applied: the session unchanged and one line why."""
     try:
         from pdrlearn.kernels.align import unlocked_message
-        from pdrlearn.steps.align import align_estimate, apply_alignment
+        from pdrlearn.steps.align import align_estimate
 
         est = align_estimate(session)
         line = unlocked_message(est)
         if line is not None:  # decision L186: an unlocked estimate tells no offset (L183)
             warnings.append(line)
             return session, None
-        offset, drift = est["offset_s"], est["drift"]
-        aligned = apply_alignment(session, offset, drift)
-        info = {"offset_s": float(offset), "drift": float(drift)}
-        from pdrlearn.io.plasys import cut_to_common_span
-
-        # decision L162: the moved waist clock may leave the units apart (B83): the time both cover is kept
-        cut = cut_to_common_span(aligned.streams, session.folder or Path(session.name))
-        if cut is not None:
-            info["common_span_s"] = [float(cut[0]), float(cut[1])]
-            warnings.append(f"--align-units moved the waist clock by {-offset:+.2f} s (drift {drift * 1e6:+.0f} ppm); "
-                            f"tracked {cut[0]:.2f}-{cut[1]:.2f} s, where both units have data: dropped {cut[2]} "
-                            "(decision L162)")
-        return aligned, info
+        return move_waist_clock(session, est["offset_s"], est["drift"], warnings, source="estimated",
+                                ref_s=est["ref_s"])  # decision L198: the offset holds at ref_s
     except (ImportError, AttributeError):
         warnings.append("pdrlearn.steps.align_units not available: unit clocks not aligned")
     except DataError as exc:
         warnings.append(f"unit clocks not aligned ({exc})")
     return session, None
+
+
+#: the option that moved the waist clock, by ``source`` of :func:`move_waist_clock` (the lines name it)
+CLOCK_OPTIONS = {"estimated": "--align-units", "given": "--clock-offset"}
+
+
+def move_waist_clock(session: Session, offset_s: float, drift: float, warnings: list[str], *,
+                     source: str, ref_s: float | None = None) -> tuple[Session, dict]:
+    """The waist streams moved onto the foot clock, ``t_foot = ref_s + (t_waist - offset_s - ref_s) / (1 + drift)``
+    (:func:`pdrlearn.steps.align.apply_alignment`; ``offset_s`` is the offset at foot-clock time ``ref_s``, decision
+    L198; None: 0, a given drift-free offset), and what was applied: ``{"offset_s", "drift", "source"}`` (+ ``ref_s``
+    when given: an estimate's)
+    (``source`` ``"estimated"``: ``--align-units``' estimate, L162; ``"given"``: ``--clock-offset``, E111), with
+    ``common_span_s`` when the moved clock left the units apart and the time both cover was kept (B83's cut,
+    one line in ``warnings`` naming the option)."""
+    from pdrlearn.io.plasys import cut_to_common_span
+    from pdrlearn.steps.align import apply_alignment
+
+    aligned = apply_alignment(session, offset_s, drift, 0.0 if ref_s is None else ref_s)
+    info = {"offset_s": float(offset_s), "drift": float(drift), "source": source}
+    if ref_s is not None:  # decision L198: the foot-clock time the estimated offset holds at
+        info["ref_s"] = float(ref_s)
+    # decision L162: the moved waist clock may leave the units apart (B83): the time both cover is kept
+    cut = cut_to_common_span(aligned.streams, session.folder or Path(session.name))
+    if cut is not None:
+        info["common_span_s"] = [float(cut[0]), float(cut[1])]
+        warnings.append(f"{CLOCK_OPTIONS[source]} moved the waist clock by {-offset_s:+.2f} s (drift "
+                        f"{drift * 1e6:+.0f} ppm); tracked {cut[0]:.2f}-{cut[1]:.2f} s, where both units have data: "
+                        f"dropped {cut[2]} (decision L162)")
+    return aligned, info
 
 
 #: decision W126: when W125 warns, the two-unit waist heading removes the vertical-rate bias read at the waist's

@@ -24,6 +24,7 @@ import pandas as pd
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
 from pdrlearn.kernels.barometer import (  # decision W91's constants and test, shared with the live trackers (E107)
+    ALTITUDE_SMOOTH_S,
     STAIR_TREAD_M,
     STAIRS_RATE_MPS,  # noqa: F401 (re-exported)
     STAIRS_RATE_WINDOW_S,
@@ -38,6 +39,7 @@ from pdrlearn.track.gaps import cut_steps_at_gaps, gap_warnings, long_gaps
 from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
+from pdrlearn.waist.backward import backward_warnings
 from pdrlearn.waist.events import (
     InitialContactDetector,
     gate_threshold,
@@ -83,7 +85,7 @@ from pdrlearn.waist.plausibility import (
     walk_ratio,
     walk_ratio_message,
 )
-from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto
+from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 
 log = logging.getLogger(__name__)
@@ -129,13 +131,16 @@ def _start(start, initial_heading: float) -> tuple[float, float, float, tuple[fl
 
 
 def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: float,
-            z: np.ndarray | None = None, z_start: np.ndarray | None = None) -> TrackResult:
+            z: np.ndarray | None = None, z_start: np.ndarray | None = None,
+            z_raw: np.ndarray | None = None) -> TrackResult:
     """TrackResult from a steps table with ``length_m`` and navigation-frame ``heading_rad``: headings
     rotated by the start heading (ENU), trajectory = cumulative positions (plus lat/lon). ``z``: the altitude
     (m) at ``t0`` and at each step's end (decision W89; None: 0 throughout). Decision W158: ``z_start``, the
     altitude at each step's start (None: the previous end's); a step's ``dz_m`` is the change from its start to its
     end, ``pause_dz_m`` the change while the unit stood before it (from the previous row's end, or ``t0``, to its
-    start: a lift or escalator ride, 0 inside a walking sequence), so ``dz_m + pause_dz_m`` sum to ``z``."""
+    start: a lift or escalator ride, 0 inside a walking sequence), so ``dz_m + pause_dz_m`` sum to ``z``. Decision
+    W174: ``z_raw``, the barometric altitude at ``t0`` and each step's end without W174's transfer windows held (None:
+    ``z``); ``transfer_dz_m`` is each row's change inside them, so ``dz_m + pause_dz_m + transfer_dz_m`` sum to it."""
     from pdrlearn.track.geodetic import geodetic_track
 
     x0, y0, h0, latlon, alt = _start(start, initial_heading)
@@ -147,6 +152,7 @@ def _result(steps: pd.DataFrame, start, initial_heading: float, info: dict, t0: 
     zs = z[:-1] if z_start is None else np.asarray(z_start, dtype=float)
     out["dz_m"] = z[1:] - zs
     out["pause_dz_m"] = zs - z[:-1]  # W158: the standstill's altitude change before the step, not the step's
+    out["transfer_dz_m"] = np.zeros(len(out)) if z_raw is None else np.diff(z_raw) - np.diff(z)  # W174
     z = z + alt  # decision L157: start=(lat, lon, alt) starts z at alt, as --start LAT,LON,ALT
     traj = pd.DataFrame({"t": np.concatenate([[t0], out["end_s"].to_numpy(float)]),
                          "x": x0 + np.concatenate([[0.0], np.cumsum(lengths * np.cos(head))]),
@@ -163,18 +169,20 @@ NO_BAROMETER = ("no barometer (wBarometer.csv): a lower-back track has no altitu
                 "are counted, also on stairs")
 
 
-def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str]) -> np.ndarray | None:
+def _altitude(session: Session, baro, t: np.ndarray, warnings: list[str], held=()
+              ) -> tuple[np.ndarray, np.ndarray] | None:
     """Decision W89: the altitude (m, relative to ``t[0]``) at the times ``t`` from the waist barometer ``baro``
-    (:func:`pdrlearn.track.barometer.usable_barometer`; :func:`pdrlearn.kernels.barometer.relative_altitude`); None
-    when it is None, with :data:`NO_BAROMETER` added to ``warnings`` (W90) when the session has none (an implausible
-    one has B188's line already)."""
-    from pdrlearn.kernels.barometer import relative_altitude
+    (:func:`pdrlearn.track.barometer.usable_barometer`; :func:`pdrlearn.kernels.barometer.relative_altitude`), held
+    through the ``held`` windows (decision W174's transfers), and the raw one: ``(held, raw)``; None when ``baro`` is
+    None, with :data:`NO_BAROMETER` added to ``warnings`` (W90) when the session has none (an implausible one has
+    B188's line already)."""
+    from pdrlearn.kernels.barometer import held_altitude
 
     if baro is None:
         if not session.has("wBarometer") or not len(session["wBarometer"]):
             warnings.append(NO_BAROMETER)
         return None
-    return relative_altitude(baro.t, baro.values[:, 0], t)
+    return held_altitude(baro.t, baro.values[:, 0], t, held)
 
 
 def _stairs_steps(baro, steps: pd.DataFrame, climb: bool) -> np.ndarray:
@@ -362,8 +370,9 @@ FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
                                                           "parity_fill"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
-#: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs
-SIT_VETO_VALUES = (False, True, "rhythm")
+#: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
+#: sparing also an undecided contact between two same-side contacts of its sequence
+SIT_VETO_VALUES = (False, True, "rhythm", "alternation")
 #: decision W156: ``stairs_length`` - False (no bound), True (W91's proposed steps, W108's under ``stairs_climb``) or
 #: "climbs" (only the steps inside W108's climbs)
 STAIRS_LENGTH_VALUES = (False, True, "climbs")
@@ -372,7 +381,7 @@ PARITY_FILL_VALUES = (False, True, "within")
 #: the values of the ``vault_veto`` option: off, W119's veto, W127's veto sparing turning steps
 VAULT_VETO_VALUES = (False, True, "turns")
 #: the options with more than two values and the decisions that define them (one refusal line for each)
-CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109"), "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
+CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180"), "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
                   "stairs_length": (STAIRS_LENGTH_VALUES, "W91, W156"),
                   "parity_fill": (PARITY_FILL_VALUES, "W152, W159")}
 
@@ -450,7 +459,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     sit_veto : ``True``: drop the contacts within 1 s of a trunk-flexion peak of more than 25 deg from the walking
         upright (a sit-to-stand or bend event; decision W104, :func:`pdrlearn.waist.posture.transfer_veto`);
         ``"rhythm"``: the same, sparing the contacts that alternate left/right with a neighbour of their walking
-        sequence (decision W109); ``False`` (default): no veto
+        sequence (decision W109); ``"alternation"``: as ``"rhythm"``, sparing also an undecided contact (no W20 side)
+        between two same-side contacts of its sequence (decision W180); ``False`` (default): no veto
     realtime_contact_shift : pendulum, realtime: W131's ``contact_shift`` inside each W31 decision window too (no added
         latency; decision W166: measured, not adopted -- Test11's pooled calibrated bout median vs the strides rose
         13.280 -> 13.556 %); default False. The live trackers read it from the PARAMS.json / bundle options
@@ -561,8 +571,10 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         steps = tilt_gate(steps, imu, float(o["max_tilt_deg"]))
         n_tilted = steps.attrs["n_tilted"]
     n_vetoed = 0
-    if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept
-        steps = transfer_veto(steps, imu, keep_rhythm=o["sit_veto"] == "rhythm")
+    if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept;
+        # W180: and an undecided contact inside an alternating sequence
+        steps = transfer_veto(steps, imu, keep_rhythm=o["sit_veto"] in ("rhythm", "alternation"),
+                              keep_between=o["sit_veto"] == "alternation")
         n_vetoed = steps.attrs["n_vetoed"]
     else:  # W146: name the contacts W104's veto would drop (a TUG's chair rises), and the option
         warnings.extend(sit_veto_hint(transfer_veto(steps, imu).attrs["n_vetoed"]))
@@ -589,13 +601,16 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0))
     steps = steps.assign(stairs=stairs)
+    warnings.extend(backward_warnings(steps, session))  # decision W173: backward steps are counted forward
     n_st = len(steps)
+    held = transfer_windows(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool),
+                            0.5 * ALTITUDE_SMOOTH_S)  # decision W174: a transfer's height change is the transfer's
     zz = _altitude(session, baro, np.concatenate([[imu.t[0]], steps["end_s"].to_numpy(float),
-                                                  steps["start_s"].to_numpy(float)]), warnings)
-    z, z_start = (None, None) if zz is None else (zz[:n_st + 1], zz[n_st + 1:])
+                                                  steps["start_s"].to_numpy(float)]), warnings, held)
+    z, z_start, z_raw = (None, None, None) if zz is None else (zz[0][:n_st + 1], zz[0][n_st + 1:], zz[1][:n_st + 1])
     if z is not None and bool(o["stairs_climb"]):  # W108: a step off stairs is on a level floor (pauses too)
         z = np.concatenate([[0.0], np.cumsum(np.where(stairs, np.diff(z), 0.0))])
-        z_start = z[:-1]
+        z_start, z_raw = z[:-1], None  # W174's transfer_dz_m: 0 (every change off the stairs is left out here)
     untracked = _untracked_turn_warning(steps, imu, p, method, integrate_stops, warnings)
     if not steps["has_next"].to_numpy(bool).any():  # decision W76: never 0 steps without a word
         warnings.append(no_steps_message(thr, sigma, gate_source))
@@ -652,7 +667,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)
-    return _result(steps, start, initial_heading, info, float(imu.t[0]), z, z_start)
+    return _result(steps, start, initial_heading, info, float(imu.t[0]), z, z_start, z_raw)
 
 
 def _configure_model(model: StepLengthModel, spec, realtime: bool, options: dict) -> None:

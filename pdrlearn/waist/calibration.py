@@ -284,6 +284,9 @@ def shrink_pendulum_gain(walks: list[CalibrationWalk], k_cal: float, f_m: float,
     return float(k_cal), rec, f"K {k_cal:.4f}{sd} as calibrated, not shrunk toward K0 = {DEFAULT_K:.4f}: {why}"
 
 
+#: decision W169: fewer calibration steps than this and ``calibrate`` warns that the gain varies from walk to walk
+MIN_CALIBRATION_STEPS = 20
+
 #: the note of :func:`~pdrlearn.waist.params.default_params` each pipeline's fit replaces (a regex from the start)
 _FITTED_NOTE = {"waist-pendulum": r"K = ", "waist-pll": r"height \S+ m -> SL = "}
 
@@ -374,6 +377,13 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
                      f"{total:.2f} m: {how}")
     if shrunk is not None:
         out.notes.append(shrunk)
+    if n_steps < MIN_CALIBRATION_STEPS:  # decision W169: a short walk's gain varies from walk to walk
+        short = (f"calibrated on {n_steps} steps (< {MIN_CALIBRATION_STEPS}): a gain from so short a walk varies "
+                 "from walk to walk by more than the defaults' error on straight walks (decision W169: HA001's two "
+                 "8-step Test5 walks give K 1.2194 and 1.1326); calibrate on 20 steps or more (several walks), or "
+                 "use --shrink")
+        log.warning("calibrate: %s", short)
+        out.notes.append(short)
     for n in notes_gap:
         log.info("calibrate: %s", n)
     out.notes += notes_gap + implausible + notes_count

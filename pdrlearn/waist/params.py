@@ -255,7 +255,7 @@ def default_params(session: Session, *, infer_height: bool = False) -> tuple[Wai
     W115, an option: :func:`subject_height`)."""
     meta = session.meta or {}
     warnings = ["no per-user calibration: step length from meta.json defaults "
-                "(run 'pdrlearn calibrate' on a walk of known length)"]
+                "(run 'pdrlearn calibrate' on walks of known length, 20 steps or more: decision W169)"]
     notes = []
     height, line = subject_height(meta, infer=infer_height)  # W115: the warning names the height the leg implies
     if line:

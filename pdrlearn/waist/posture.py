@@ -13,6 +13,9 @@ tilt from the walking upright exceeds :data:`TRANSFER_PEAK_DEG`: a brief transfe
 Decision W109: ``keep_rhythm`` spares the contacts in that window that alternate left/right with a neighbour of their
 walking sequence (W20's sides): a transfer or a bend is sagittal and shifts no weight sideways, a step does.
 
+Decision W180: ``keep_between`` also spares an undecided contact (no W20 side) between two contacts of its walking
+sequence on the same decided side: in ... L ? L ... the undecided one is the right foot of an alternating sequence.
+
 Decision W119: :func:`vault_veto` drops a contact whose step does not vault the pelvis (a weight shift while standing:
 a pendulum step raises the pelvis, h ~ s^2 / (8 L), seed 003 eq. 1); not the trunk's posture, but the same
 mechanism of dropping contacts. Decision W127: with ``spare_turns`` it keeps a contact whose step turns the pelvis
@@ -83,6 +86,16 @@ def flexion_events(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray) -> l
             for a, b in zip(edges[::2], edges[1::2], strict=True)]
 
 
+def transfer_windows(imu: WaistIMU, event_s: np.ndarray, walking: np.ndarray, pad_s: float = 0.0
+                     ) -> list[tuple[float, float]]:
+    """Decision W174: the time span (s) of each trunk-flexion event (:func:`flexion_events`): from
+    :data:`TRANSFER_HALF_S` before its peak (or its start, if earlier) to :data:`TRANSFER_HALF_S` after it (or its
+    end, if later), each edge widened by ``pad_s``: the sit-to-stand's (stand-to-sit's) movement, whose change of
+    height is the transfer's, not a climb."""
+    return [(min(a, peak - TRANSFER_HALF_S) - pad_s, max(b, peak + TRANSFER_HALF_S) + pad_s)
+            for a, peak, b in flexion_events(imu, event_s, walking)]
+
+
 def drop_contacts(steps: pd.DataFrame, keep: np.ndarray, count: str) -> pd.DataFrame:
     """``steps`` without the contacts not in ``keep``; a kept step whose next contact is dropped ends its walking
     sequence (``end_s`` = its start, no ``has_next``, confidence 0.5, as :func:`pdrlearn.kernels.waist.contact_rows`
@@ -109,11 +122,26 @@ def alternating_pairs(side: np.ndarray, has_next: np.ndarray) -> np.ndarray:
     return np.append(pair, False) | np.insert(pair, 0, False)
 
 
-def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = False) -> pd.DataFrame:
+def undecided_between(side: np.ndarray, has_next: np.ndarray) -> np.ndarray:
+    """Per contact: True when its side is undecided (0) and its two neighbours are consecutive contacts of its
+    walking sequence (``has_next`` of the one before and of itself) on the same decided side: in ... L ? L ... the
+    undecided contact is the other foot of an alternating sequence (decision W180)."""
+    side = np.asarray(side, dtype=int)
+    hn = np.asarray(has_next, dtype=bool)
+    out = np.zeros(side.size, dtype=bool)
+    if side.size >= 3:
+        out[1:-1] = (side[1:-1] == 0) & hn[:-2] & hn[1:-1] & (side[:-2] != 0) & (side[:-2] == side[2:])
+    return out
+
+
+def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = False,
+                  keep_between: bool = False) -> pd.DataFrame:
     """``steps`` without the contacts inside a trunk-flexion event (:func:`flexion_events`) or within
     :data:`TRANSFER_HALF_S` of its peak (decision W104); with ``keep_rhythm`` (decision W109) the contacts of
     that window that form a left/right pair with a neighbour (:func:`alternating_pairs`, W20's sides of the pelvis's
-    lateral velocity at the contacts) are kept. ``attrs["n_vetoed"]`` counts the dropped."""
+    lateral velocity at the contacts) are kept; with ``keep_between`` as well (decision W180) so are the undecided
+    contacts between two same-side neighbours of their sequence (:func:`undecided_between`).
+    ``attrs["n_vetoed"]`` counts the dropped."""
     if steps.empty:
         out = steps.copy()
         out.attrs["n_vetoed"] = 0
@@ -123,9 +151,12 @@ def transfer_veto(steps: pd.DataFrame, imu: WaistIMU, *, keep_rhythm: bool = Fal
     veto = np.zeros(e.size, dtype=bool)
     for a, peak, b in flexion_events(imu, e, has_next):
         veto |= ((e >= a) & (e <= b)) | (np.abs(e - peak) <= TRANSFER_HALF_S)
-    if keep_rhythm and veto.any():
+    if (keep_rhythm or keep_between) and veto.any():
         side = K.step_sides(contact_lateral_velocity(imu.t, imu.acc_ml, imu.fs, e), has_next)
-        veto &= ~alternating_pairs(side, has_next)
+        if keep_rhythm:
+            veto &= ~alternating_pairs(side, has_next)
+        if keep_between:
+            veto &= ~undecided_between(side, has_next)
     return drop_contacts(steps, ~veto, "n_vetoed")
 
 

@@ -1,0 +1,66 @@
+"""Decision W173: a stretch of backward-looking steps on the lower back is warned (the waist pipelines count every
+step as forward distance), by the foot unit's push-off per stride (D9's swing-pitch asymmetry)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from pdrlearn.sim import UserProfile, simulate_path
+from pdrlearn.sim.route import parse_route
+from pdrlearn.track.waist import track_waist
+from pdrlearn.waist.backward import MIN_BACKWARD_STEPS, backward_runs
+
+
+def _lines(res) -> list[str]:
+    return [w for w in res.info["warnings"] if "decision W173" in w]
+
+
+def _sim(route: str, user: int, seed: int = 0):
+    return simulate_path(parse_route(route), UserProfile.from_seed(user), rate_hz=20.0, seed=seed, scenario="route")
+
+
+@pytest.mark.parametrize("pipeline", ["waist-pendulum", "waist-pll"])
+def test_backward_walking_on_the_lower_back_is_warned(pipeline):
+    """The trial's backward walk (user 11): tracked forward (+5.7 m for -3.8 m), now with one line."""
+    res = track_waist(_sim("stand:3, backward:10, stand:3", 11), pipeline=pipeline)
+    lines = _lines(res)
+    assert len(lines) == 1, res.info["warnings"]
+    assert "look backward (the foot unit pitches toes-up more than toes-down" in lines[0]
+    assert "count every step as forward distance" in lines[0]
+    assert res.trajectory["x"].iloc[-1] > 0  # the steps themselves are unchanged (their sign is W175's question)
+
+
+def test_forward_backward_forward_warns_for_the_backward_stretch_only():
+    s = _sim("straight:10, backward:10, straight:6", 14, seed=3)
+    back = s.steps[s.steps["direction"] == "backward"]  # the simulated strides of the backward stretch
+    lines = _lines(track_waist(s, pipeline="waist-pendulum"))
+    assert len(lines) == 1, lines
+    n, span = lines[0].split(" steps at ")[0], lines[0].split(" steps at ")[1].split(" s look")[0]
+    t0, t1 = (float(x) for x in span.split("-"))
+    assert int(n) >= MIN_BACKWARD_STEPS
+    # the line's span lies in the simulated backward stretch (+- a step), away from the forward walking
+    assert back["start_s"].min() - 0.8 <= t0 and t1 <= back["end_s"].max() + 0.8
+
+
+def test_a_forward_walk_gives_no_backward_line_with_or_without_the_foot_unit():
+    s = _sim("stand:3, straight:20, turn:90, straight:5, stand:3", 3401)
+    waist = dataclasses.replace(s, streams={k: v for k, v in s.streams.items() if k.startswith("w")},
+                                frames={"waist": s.frames["waist"]})
+    for ss in (s, waist):
+        assert not _lines(track_waist(ss, pipeline="waist-pendulum"))
+
+
+def test_backward_runs_need_four_steps_inside_one_sequence():
+    has_next = np.array([True] * 9 + [False] + [True] * 5 + [False])
+    back = np.zeros(16, dtype=bool)
+    back[1:4] = True  # three: a stumble
+    assert backward_runs(back, has_next) == []
+    back[4] = True
+    back[10:16] = True
+    assert backward_runs(back, has_next) == [(1, 4), (10, 15)]
+    back[10:16] = False
+    back[8:12] = True  # two steps each side of a sequence break: no run
+    assert backward_runs(back, has_next) == [(1, 4)]
