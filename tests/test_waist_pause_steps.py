@@ -211,8 +211,14 @@ def test_standing_option_end_to_end_keeps_the_walk_edges_and_shortens_the_stand(
     for sid in np.unique(seq[use]):
         rows = np.flatnonzero(use & (seq == sid))
         assert f[rows[0]] == 1.0 and f[rows[-1]] == 1.0
+    # W165: the realtime detector applies it too (its own contacts), never to a walk's edge either
     rt = track_waist(turn_walk, pipeline="waist-pendulum", realtime=True, pause_steps="standing").steps
-    assert "pause_factor" not in rt
+    fr, has = rt["pause_factor"].to_numpy(), rt["has_next"].to_numpy(bool)
+    use = has & ~rt["merged"].to_numpy(bool)
+    seq = np.concatenate([[0], np.cumsum(~has)[:-1]])
+    for sid in np.unique(seq[use]):
+        rows = np.flatnonzero(use & (seq == sid))
+        assert fr[rows[0]] == 1.0 and fr[rows[-1]] == 1.0
 
 
 def test_a_real_walks_slow_second_step_is_no_stand():
@@ -257,8 +263,10 @@ def test_standing_is_the_offline_pendulum_default_and_calibration_sums_with_it(t
     # starting K gives (W122); calibrated without the factor (pause_steps false) the walk sums 11.23 m (6 % short)
     assert track_waist(turn_walk, pipeline="waist-pendulum", params=p).steps["length_m"].sum() == pytest.approx(
         12.0, rel=2e-3)
-    # realtime: the default does not look ahead there (no refusal, no factor)
-    assert "pause_factor" not in track_waist(turn_walk, pipeline="waist-pendulum", realtime=True).steps
+    # realtime: the default since W165 too; pause_steps false gives the realtime track before it (no factor)
+    assert "pause_factor" in track_waist(turn_walk, pipeline="waist-pendulum", realtime=True).steps
+    assert "pause_factor" not in track_waist(turn_walk, pipeline="waist-pendulum", realtime=True,
+                                             pause_steps=False).steps
 
 
 def test_samples_made_up_inside_a_gap_are_no_stand():

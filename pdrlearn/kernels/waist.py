@@ -1177,6 +1177,31 @@ def turning_step_mask(dyaw_rad: np.ndarray) -> np.ndarray:
     return np.abs(np.asarray(dyaw_rad, dtype=np.float64)) > np.radians(TURN_STEP_DEG)
 
 
+def still_samples(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: float = 0.25, acc_tol: float = 0.3,
+                  gyr_tol: float = 0.25) -> np.ndarray:
+    """Samples where the unit is still (:func:`pdrlearn.signal.standstill_mask`'s test, numpy only, which that
+    function calls after checking its input): over a centred window of ``window_s`` s the standard deviation of
+    the acceleration magnitude is under ``acc_tol`` (m/s^2) and the mean gyroscope magnitude under ``gyr_tol``
+    (rad/s) -- thesis ch.3's stance tests on magnitudes, so any frame of the same samples gives the same mask.
+    The live waist trackers run it on their buffered window (decision W165)."""
+    w = max(1, int(round(window_s * fs)))
+    am = dsp.magnitude(acc)
+    mean = dsp.uniform_filter1d(am, w)
+    var = np.maximum(dsp.uniform_filter1d(am * am, w) - mean * mean, 0.0)
+    gm = dsp.uniform_filter1d(dsp.magnitude(gyr), w)
+    return (np.sqrt(var) < acc_tol) & (gm < gyr_tol)
+
+
+def step_still_travel(acc_h: np.ndarray, still: np.ndarray, fs: float, i0: int, i1: int) -> tuple[float, float]:
+    """Decision W122 / W134 for one step from sample ``i0`` to ``i1``: the trunk's horizontal travel
+    (:func:`still_displacement`, NaN without a still sample) and the duration (s) of its longest still run
+    (:func:`longest_still_run`, NaN without one). Shared by the offline pendulum model and the live trackers (W165)."""
+    run = longest_still_run(still, i0, i1)
+    if run is None:
+        return float("nan"), float("nan")
+    return still_displacement(acc_h, still, fs, i0, i1), (run[1] - run[0]) / fs
+
+
 def longest_still_run(still: np.ndarray, i0: int, i1: int) -> tuple[int, int] | None:
     """The longest run ``[start, end)`` (sample indices of ``still``) of consecutive still samples inside
     ``[i0, i1]``, the first of equal ones; None when none is still (decisions W122, W134)."""

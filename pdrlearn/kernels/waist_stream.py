@@ -51,6 +51,8 @@ class Bridge:
         self.v_last: np.ndarray | None = None
         self.tail_t = np.zeros(0)
         self.tail_v = np.zeros((0, 6))
+        #: the intervals ``(t_a, t_b)`` whose samples were made up (W136 / W165: no standstill); a reader trims it
+        self.filled: list[tuple[float, float]] = []
 
     def __call__(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         p = 1.0 / self.fs
@@ -79,6 +81,7 @@ class Bridge:
                 fill = (1.0 - w) * vv[i] + w * vv[i + 1]
             ts.append(ti)
             vs.append(fill)
+            self.filled.append((float(tt[i]), float(tt[i + 1])))
             if d[i] > MIN_GAP_S:  # decision B11: the walking sequence ends at it
                 self.gaps.setdefault("online stream", []).append((float(tt[i]), float(tt[i + 1])))
             a = i + 1
@@ -98,7 +101,8 @@ class RealtimeContacts:
     ``offline(window, fs)``: the offline detector on a window of navigation-frame arrays (``t``, ``acc_nav``,
     ``gyr_nav``, ``yaw``, ``acc_v``, ``acc_ap``, ``acc_ml``) -> ``(ic, fc, anchor)`` window indices
     (:func:`rule_contacts` with the pipeline's defaults, or the ``waist-ic`` detector's); ``on_nav(t, acc_v,
-    w_z)``: called with each stretch of navigation-frame samples as the AHRS makes them (the live trackers)."""
+    w_z, acc_nav, gyr_nav)``: called with each stretch of navigation-frame samples as the AHRS makes them (the live
+    trackers)."""
 
     def __init__(self, fs: float, offline, *, rotation=None, gaps=None, gain: float = MADGWICK_GAIN,
                  delay_s: float = K.DECISION_DELAY_S, hop_s: float = K.DECISION_HOP_S,
@@ -149,7 +153,7 @@ class RealtimeContacts:
         self.buf = {k: np.concatenate([self.buf[k], v]) if self.buf else v for k, v in new.items()}
         self.n += len(t)
         if self.on_nav is not None:
-            self.on_nav(t, new["acc_v"], gyr_nav[:, 2])
+            self.on_nav(t, new["acc_v"], gyr_nav[:, 2], acc_nav, gyr_nav)
 
     # -- decisions -------------------------------------------------------------------------------
     def _detect(self, lo: int, hi: int):

@@ -29,6 +29,9 @@ log = logging.getLogger(__name__)
 FRAGMENT_CONTEXT_STEPS = 100
 #: W64: a step is reported once this many later contacts of its walking sequence are decided (or it ended)
 LOOKAHEAD_ROWS = 2
+#: decision W165: with W134's ``pause_steps="standing"`` a step is reported once one more contact is decided: W18's
+#: local period (``kernels.waist.local_medians``) reads up to three steps on each side of the step
+PAUSE_LOOKAHEAD_ROWS = LOOKAHEAD_ROWS + 1
 #: rows before the reported one that its heading window reads: W82's slow-turn window reads 3 strides back, and the
 #: window's first step has no step before it for its stride rate (W24), so one more
 HEADING_LOOKBACK_ROWS = 4
@@ -154,6 +157,11 @@ class WaistStream(FixInput):
         self._n_gaps = 0
         self._cum_first: float | None = None  # running integral at the first contact (W74)
         self._untracked_warned = False
+        # decision W165: W134's stand steps (the option's value "standing"; a bundle exported before has none: off)
+        self._pause = options.get("pause_steps") == "standing"
+        self._wait = PAUSE_LOOKAHEAD_ROWS if self._pause else LOOKAHEAD_ROWS
+        self._ba = np.zeros((0, 3))  # with it: navigation-frame specific force (m/s^2) and rate (rad/s)
+        self._bg = np.zeros((0, 3))
         self._alt = None  # decision E106: the barometric altitude (kernels.barometer.LiveAltitude), once pushed
         self._z_prev = 0.0  # the altitude at the last reported step's end (0 at the track's first sample)
         self._baro_last = -np.inf
@@ -178,6 +186,7 @@ class WaistStream(FixInput):
         """Numbers the tracker holds to process what comes (not :attr:`steps`): its sample buffer and pending rows,
         the held samples of W65 and the W31 detector's window; bounded over any stream length (decision W64)."""
         n = 4 * self._bt.size + 6 * len(self._rows) + len(self._absorbed) + len(self._span_start)
+        n += self._ba.size + self._bg.size  # W165
         n += len(self._side_scale)  # W138: at most FRAGMENT_CONTEXT_STEPS
         n += self._held_size()
         n += 0 if self._alt is None else self._alt.size()  # E106: the barometer samples a pending step reads
@@ -185,6 +194,7 @@ class WaistStream(FixInput):
         if p is not None:
             n += sum(np.size(v) for v in p.buf.values()) + 4 * len(p.decided) + sum(np.size(r[1]) for r in p.raw)
             n += p.bridge.tail_v.size + p.bridge.tail_t.size + 2 * sum(len(g) for g in p.gaps.values())
+            n += 2 * len(p.bridge.filled)
         return int(n)
 
     # -- input -------------------------------------------------------------------------------------------
@@ -307,12 +317,14 @@ class WaistStream(FixInput):
 
         # the waist-ic detector's defaults (W31), as ``track --pipeline waist-pendulum --realtime`` runs it
         rules = rule_contacts({"walk_threshold": self._thr, "max_step_s": self._max_step_s,
-                               "rhythm": bool(self.options["rhythm"])})
+                               "rhythm": bool(self.options["rhythm"]),  # W166: W131 inside W31's window
+                               "contact_shift": bool(self.options.get("realtime_contact_shift", False))})
         self._proc = RealtimeContacts(self.fs, rules, rotation=self._rot, max_step_s=self._max_step_s,
                                       on_nav=self._add)
 
     # -- the navigation-frame samples -------------------------------------------------------------------
-    def _add(self, t: np.ndarray, acc_v: np.ndarray, w_z: np.ndarray) -> None:
+    def _add(self, t: np.ndarray, acc_v: np.ndarray, w_z: np.ndarray, acc_nav: np.ndarray,
+             gyr_nav: np.ndarray) -> None:
         w = w_z - self.params.gyro_bias_rps
         if self._w_last is None:  # rate_integral: 0 at the first sample, trapezoids in order (as one cumsum)
             inc = 0.5 * (w[1:] + w[:-1]) * np.diff(t)
@@ -325,6 +337,9 @@ class WaistStream(FixInput):
         self._bv = np.concatenate([self._bv, acc_v])
         self._bw = np.concatenate([self._bw, w_z])
         self._bc = np.concatenate([self._bc, c])
+        if self._pause:  # W165: what W134's still test and the trunk's travel read
+            self._ba = np.concatenate([self._ba, acc_nav])
+            self._bg = np.concatenate([self._bg, gyr_nav])
 
     def _idx(self, ts: float) -> int:
         """Buffer index of the sample at time ``ts`` (a contact is a sample)."""
@@ -346,7 +361,12 @@ class WaistStream(FixInput):
         drop = max(0, min(lows) - 2)
         if drop:
             self._bt, self._bv, self._bw, self._bc = (a[drop:] for a in (self._bt, self._bv, self._bw, self._bc))
+            if self._pause:
+                self._ba, self._bg = self._ba[drop:], self._bg[drop:]
             self._b0 += drop
+        filled = self._proc.bridge.filled
+        while filled and self._bt.size and filled[0][1] < self._bt[0]:  # W165: gaps before the buffer
+            filled.pop(0)
         if self._alt is not None and self._bt.size:  # E106: a pending step ends after the oldest sample held
             self._alt.trim(float(self._bt[0]))
 
@@ -418,7 +438,7 @@ class WaistStream(FixInput):
         """W64: row ``k`` is final once its walking sequence has ended or the rows to its horizon are known."""
         if final:
             return True
-        hz = self._horizon(k)
+        hz = k + self._wait  # W64's horizon; one row more with W134's stand steps (W165)
         for j in range(k, min(hz, self._n_rows - 1) + 1):
             if not self._rows[j]["has_next"]:
                 return True  # the sequence is complete
@@ -435,6 +455,46 @@ class WaistStream(FixInput):
             if not self._rows[j]["has_next"]:
                 break
         return ids
+
+    def _stand_factor(self, k: int, a: int, b: int, length: float) -> float:
+        """Decision W165: W134's factor of row ``k`` (its step from row ``a``'s contact to row ``b``'s end, W27) as the
+        offline pendulum model computes it (``PendulumLength(pause_steps="standing")``: the kernels
+        ``still_samples``, ``step_still_travel``, ``standing_step_mask``, ``progression_factor``), on the rows of its
+        walking sequence known now (up to PAUSE_LOOKAHEAD_ROWS after it, or the sequence's end: the three steps
+        W18's local period reads) and the buffered samples of the step; 1 where the step holds no stand."""
+        from pdrlearn.kernels import waist as K
+
+        if not length > 0:
+            return 1.0
+        s = self._rows[k]["seq"]
+        ids = []
+        for j in range(max(s, k - FRAGMENT_CONTEXT_STEPS, min(self._rows)), min(k + self._wait + 1, self._n_rows)):
+            ids.append(j)
+            if not self._rows[j]["has_next"]:
+                break
+        t0 = np.array([self._rows[j]["t"] for j in ids])
+        t1 = np.array([self._rows[j]["end"] for j in ids])
+        hn = np.array([self._rows[j]["has_next"] for j in ids])
+        win = K.fragment_windows(t0, t1, hn) if self.options["merge_fragments"] else {}
+        use, span = hn.copy(), t1 - t0
+        for ow, (x, y) in win.items():  # as the model's fragment_mask and _spans
+            use[x:y + 1] = False
+            use[ow], span[ow] = True, t1[y] - t0[x]
+        jk = k - ids[0]
+        use[jk], span[jk] = True, self._rows[b]["end"] - self._rows[a]["t"]  # this step, as reported (W64)
+        i0, i1 = self._idx(self._rows[a]["t"]), self._idx(self._rows[b]["end"])
+        w = max(1, int(round(0.25 * self.fs)))  # standstill_mask's window, whole on both sides of the step
+        lo, hi = max(i0 - w, 0), min(i1 + w + 1, self._bt.size)
+        still = K.still_samples(self._ba[lo:hi], self._bg[lo:hi], self.fs)
+        half = 0.5 / self.fs
+        for ga, gb in self._proc.bridge.filled:  # W136: samples made up inside a gap are no standstill
+            still &= ~((self._bt[lo:hi] > ga + half) & (self._bt[lo:hi] < gb - half))
+        disp, run_s = K.step_still_travel(self._ba[lo:hi, :2], still, self.fs, i0 - lo, i1 - lo)
+        runs = np.full(len(ids), np.nan)
+        runs[jk] = run_s
+        if not K.standing_step_mask(runs, span, use, ~hn)[jk]:
+            return 1.0
+        return float(K.progression_factor(np.array([disp]), np.array([length]))[0])
 
     def _report(self, k: int) -> LiveStep:
         from pdrlearn.kernels import waist as K
@@ -498,6 +558,8 @@ class WaistStream(FixInput):
                 dyaw = sum(float(np.interp(self._rows[j]["end"], self._bt, self._bc)
                                  - np.interp(self._rows[j]["t"], self._bt, self._bc)) for j in range(a, b + 1))
                 length = max(float(K.pendulum_length(np.array([h_m]), p.leg_m, k=p.k, f=p.f_m)[0]), 0.0)
+                if self._pause:  # W134 / W165: a stand inside a walk keeps the trunk's travel (the model's factor)
+                    length *= self._stand_factor(k, a, b, length)
                 if o["turn_factor"]:
                     length *= float(K.turning_step_factor(np.array([dyaw]))[0])
                 if o.get("pivot_steps"):  # W150 (a bundle exported before it has no such option: off)

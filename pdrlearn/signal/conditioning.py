@@ -6,12 +6,11 @@ import logging
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.ndimage import uniform_filter1d
 
 from pdrlearn.errors import DataError, MissingSensorError
 from pdrlearn.io.sensors import UNIT_IMU
 from pdrlearn.io.session import Session, Stream
-from pdrlearn.signal.filters import interp_rows, magnitude, uniform_grid
+from pdrlearn.signal.filters import interp_rows, uniform_grid
 
 log = logging.getLogger(__name__)
 
@@ -63,12 +62,9 @@ def standstill_mask(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
         return np.zeros(0, dtype=bool)
     _check_finite(acc, "standstill_mask accelerometer")
     _check_finite(gyr, "standstill_mask gyroscope")
-    w = max(1, int(round(window_s * fs)))
-    am = magnitude(acc)
-    mean = uniform_filter1d(am, w, mode="nearest")
-    var = np.maximum(uniform_filter1d(am * am, w, mode="nearest") - mean * mean, 0.0)
-    gm = uniform_filter1d(magnitude(gyr), w, mode="nearest")
-    return (np.sqrt(var) < acc_tol) & (gm < gyr_tol)
+    from pdrlearn.kernels.waist import still_samples
+
+    return still_samples(acc, gyr, fs, window_s=window_s, acc_tol=acc_tol, gyr_tol=gyr_tol)  # numpy (W165)
 
 
 def runs(mask: np.ndarray) -> list[tuple[int, int]]:

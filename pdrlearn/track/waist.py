@@ -359,7 +359,11 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "sit_veto": False, "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "weak_fill": False,
-                   "pivot_steps": False, "parity_fill": "within"}  # pause_steps: W134, pivot_steps: W150, parity: W152
+                   "pivot_steps": False, "parity_fill": "within",  # pause_steps: W134, pivot_steps: W150, parity: W152
+                   "realtime_contact_shift": False}  # W166: measured, not adopted
+#: decision W165: the ``pause_steps`` value the realtime detector and the live trackers apply too -- W134's test
+#: (a stand of half the local period, not a walk's edge) is decided once the three steps after it are known
+CAUSAL_PAUSE_STEPS = "standing"
 #: decision B199: the options that are true or false (``sit_veto``, ``pause_steps``, ``vault_veto`` take more values,
 #: checked by their own lines)
 FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
@@ -406,7 +410,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
                 gait_check: bool | None = None, weak_fill: bool | None = None, pivot_steps: bool | None = None,
-                parity_fill: bool | str | None = None, detector=None,
+                parity_fill: bool | str | None = None, realtime_contact_shift: bool | None = None, detector=None,
                 length_model=None) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
@@ -457,7 +461,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         ``"rhythm"``: the same, sparing the contacts that alternate left/right with a neighbour of their walking
         sequence (decision W109); ``"alternation"``: as ``"rhythm"``, sparing also an undecided contact (no W20 side)
         between two same-side contacts of its sequence (decision W180); ``False`` (default): no veto
-    pause_steps : pendulum, offline detector (the realtime one ignores it: it looks three steps ahead): a step
+    realtime_contact_shift : pendulum, realtime: W131's ``contact_shift`` inside each W31 decision window too (no added
+        latency; decision W166: measured, not adopted -- Test11's pooled calibrated bout median vs the strides rose
+        13.280 -> 13.556 %); default False. The live trackers read it from the PARAMS.json / bundle options
+    pause_steps : pendulum (the realtime detector applies only ``"standing"``, decision W165; it ignores the other
+        values): a step
         longer than 1.5 local periods spans a pause (the stop before a turn on the spot, the restart after it) and
         keeps one period's length (decision W111); ``"progression"``: a step during which the unit stands still
         (``standstill_mask``) keeps at most the trunk's horizontal travel over it, integrated from zero velocity in
@@ -517,7 +525,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "slow_turn_rps": slow_turn_rps,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check,
-             "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill}
+             "weak_fill": weak_fill, "pivot_steps": pivot_steps, "parity_fill": parity_fill,
+             "realtime_contact_shift": realtime_contact_shift}
     o = resolve_options(p, given)
     realtime, heading, refine_ic = bool(o["realtime"]), o["heading"], bool(o["refine_ic"])
     initial_heading, resolve_signs = float(o["initial_heading"]), bool(o["resolve_signs"])
@@ -678,10 +687,10 @@ def _configure_model(model: StepLengthModel, spec, realtime: bool, options: dict
     if str(mine.get("length_smoothing", "none")) != "none":
         raise DataError(f"step-length model {model.name}: length_smoothing '{mine['length_smoothing']}' looks up to "
                         "1 s ahead and the realtime detector does not (decision W56); drop realtime or the setting")
-    if mine.get("pause_steps"):
+    if mine.get("pause_steps") and mine.get("pause_steps") != CAUSAL_PAUSE_STEPS:  # W165: "standing" is causal
         raise DataError(f"step-length model {model.name}: pause_steps {mine['pause_steps']!r} looks three steps "
-                        "ahead and the realtime detector does not (decisions W111, W122); drop realtime or the "
-                        "setting")
+                        "ahead and the realtime detector does not apply it (decisions W111, W122; W165: only "
+                        "\"standing\" is); drop realtime or the setting")
 
 
 def waist_detector(detector, realtime: bool):
@@ -753,16 +762,17 @@ def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDete
     ``thr`` (one construction for the track and W139's pendulum reading, so an option cannot be left out: E102)."""
     return InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
                                   rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"]),
+                                  realtime_shift=bool(o["realtime_contact_shift"]),  # W166: an option
                                   weak_fill=bool(o["weak_fill"]),
                                   parity_fill="within" if o["parity_fill"] == "within" else bool(o["parity_fill"]))
 
 
 def _model_options(o: dict, realtime: bool) -> dict:
-    """The step-length model's options from the track's options ``o`` (W111 / W122 / W134's ``pause_steps`` off
-    in realtime, W56's smoothing checked)."""
+    """The step-length model's options from the track's options ``o`` (W111 / W122's ``pause_steps`` off in
+    realtime; W134's ``"standing"`` applied there too, decision W165; W56's smoothing checked)."""
     return {"merge_fragments": bool(o["merge_fragments"]),
             "length_smoothing": check_length_smoothing(o["length_smoothing"]),
-            "pause_steps": o["pause_steps"] if not realtime else False}
+            "pause_steps": o["pause_steps"] if not realtime or o["pause_steps"] == CAUSAL_PAUSE_STEPS else False}
 
 
 def _pendulum_steps(imu: WaistIMU, p: WaistParams, thr: float, o: dict) -> pd.DataFrame:

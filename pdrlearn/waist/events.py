@@ -127,6 +127,9 @@ class InitialContactDetector:
         W129 reads it; a contact where the pelvis turns (decision 29's 0.45 rad/s) is not judged (decision W131,
         adopted: on by default). The realtime detector and the W33 learned stage ignore it (measured offline only;
         the learned stage's trees were trained on the rule outcomes without it)
+    realtime_shift : realtime (W31's ``delay_s``): ``contact_shift`` applied inside each decision window too (decision
+        W166: measured, not adopted -- Test11's pooled calibrated bout median vs the strides rose 13.280 -> 13.556 %;
+        default False)
     weak_fill : offline, with ``rhythm`` and ``alternate``: a weak step (any positive vertical maximum) on the decided
         alternating side where the alternation and the local rhythm ask for one -- between two kept contacts of the
         same side, one local period (+-35 %, W18) from each, and beyond a sequence end where W28 finds no
@@ -156,8 +159,9 @@ class InitialContactDetector:
                  hop_s: float = K.DECISION_HOP_S, history_s: float = K.DECISION_HISTORY_S,
                  turn_gate_rps: float | None = None, turn_shift_rps: float | None = None,
                  min_step_s: float | None = None, contact_shift: bool = True, weak_fill: bool = False,
-                 parity_fill: bool | str = "within"):  # W159/W160: adopted by its rule
+                 parity_fill: bool | str = "within", realtime_shift: bool = False):  # W159/W160: adopted by its rule
         self.realtime = realtime
+        self.realtime_shift = realtime_shift
         self.parity_fill = parity_fill
         self.weak_fill = weak_fill
         self.contact_shift = contact_shift
@@ -183,12 +187,13 @@ class InitialContactDetector:
     def rule_settings(self) -> dict:
         """The keywords of :func:`pdrlearn.kernels.waist.contacts_offline` (the lean runtime's detector, W92); W131's
         ``contact_shift``, W148's ``weak_fill`` and W152's ``parity_fill`` only offline and without the learned
-        stage."""
+        stage; ``contact_shift`` in realtime (W31's window) too with ``realtime_shift`` (decision W166, an option)."""
         kw = {k: getattr(self, k) for k in ("walk_threshold", "cutoff_hz", "fir_order_s", "ap_cutoff_hz", "rhythm",
                                             "max_step_s", "alternate", "weight_shift", "end_steps",
                                             "ap_above_mean", "turn_gate_rps", "turn_shift_rps", "min_step_s")}
         offline = not self.realtime and not self.learned
-        return kw | {"contact_shift": bool(self.contact_shift and offline),
+        shift = self.contact_shift and not self.learned and (not self.realtime or self.realtime_shift)  # W166
+        return kw | {"contact_shift": bool(shift),
                      "weak_fill": bool(self.weak_fill and offline),
                      "parity_fill": self.parity_fill if offline and self.parity_fill else False}
 

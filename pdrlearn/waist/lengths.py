@@ -202,10 +202,7 @@ def _still_displacements(signals, idx: np.ndarray, use: np.ndarray,
     for i in np.flatnonzero(use):
         a, b = win.get(i, (i, i))
         stop = int(idx[min(b + 1, len(idx) - 1)])
-        out[i] = K.still_displacement(signals.acc_h, still, signals.fs, int(idx[a]), stop)
-        run = K.longest_still_run(still, int(idx[a]), stop)
-        if run is not None:
-            run_s[i] = (run[1] - run[0]) / signals.fs
+        out[i], run_s[i] = K.step_still_travel(signals.acc_h, still, signals.fs, int(idx[a]), stop)
     return out, run_s
 
 

@@ -70,13 +70,15 @@ def live_options(p, warnings: list[str], **given) -> dict:
     else the pipeline defaults: ``track_waist``'s :func:`~pdrlearn.track.waist.resolve_options`), with the lines
     about what the live tracker cannot do added to ``warnings``; shared by :class:`WaistTracker` and ``pdrlearn
     export CAL.json`` (the waist bundle's options, decision E57)."""
-    from pdrlearn.track.waist import resolve_options
+    from pdrlearn.track.waist import CAUSAL_PAUSE_STEPS, resolve_options
 
     given = {"realtime": True, "heading": "gyro", "refine_ic": None, "initial_heading": None, "resolve_signs": None,
              "integrate_stops": None, "turn_factor": None, "rhythm": None, "merge_fragments": None,
              "length_smoothing": None, "slow_turn_rps": None, "pivot_steps": None, "stairs_length": None,
-             **given}
+             "pause_steps": None, "realtime_contact_shift": None, **given}
     o = resolve_options(p, given)
+    if o["pause_steps"] != CAUSAL_PAUSE_STEPS:  # W165: the live trackers apply W134's value, or none
+        o["pause_steps"] = False
     if o["length_smoothing"] != "none":
         raise DataError(f"length_smoothing '{o['length_smoothing']}' looks up to 1 s ahead and the live tracker "
                         "does not (decision W56); set the PARAMS.json option length_smoothing to none")
@@ -95,12 +97,13 @@ def live_options(p, warnings: list[str], **given) -> dict:
 
 
 #: decision E107: the PARAMS.json options the live waist-pendulum tracker does not apply (the offline detector's
-#: W111/W122/W134, W119/W127, W131, W151, W152 look ahead; W102/W104's trunk posture, W108's climbs read the
-#: whole recording); ``heading`` has W82's own line and ``length_smoothing`` is refused (W56). The rest are applied
-#: (``stairs_length`` since E107) or do not concern the live tracker (``realtime``; ``refine_ic`` and
+#: W119/W127, W131, W151, W152 look ahead -- W131 runs inside W31's window with ``realtime_contact_shift``, W166;
+#: ``pause_steps`` W111 / W122 too, but W134's "standing" is applied, W165; W102/W104's trunk posture, W108's climbs
+#: read the whole recording); ``heading`` has W82's own line and ``length_smoothing`` is refused (W56). The rest are
+#: applied (``stairs_length`` since E107) or do not concern the live tracker (``realtime``; ``refine_ic`` and
 #: ``resolve_signs`` are waist-pll / harmonic-heading options; ``relative_gate`` off is the live fixed gate).
-LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "pause_steps", "vault_veto", "contact_shift",
-                          "weak_fill", "parity_fill")
+LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_veto", "contact_shift", "weak_fill",
+                          "parity_fill")
 
 
 def unapplied_options_line(p) -> str | None:
@@ -113,6 +116,8 @@ def unapplied_options_line(p) -> str | None:
                  and given[k] != OPTION_DEFAULTS[k]]
     if given.get("stairs_length") == "climbs":  # W156's value reads the whole recording's climbs (W108)
         unapplied.append("stairs_length")
+    if given.get("pause_steps") in (True, "progression"):  # W165: live applies "standing" (W134) and false only
+        unapplied.append("pause_steps")
     if not unapplied:
         return None
     named = ", ".join(f"{k}={json.dumps(given[k])}" for k in unapplied)
@@ -175,6 +180,10 @@ class WaistTracker(WaistStream):
         default); a magnitude above 2 pi (degrees, as the CLI's ``--initial-heading``) is refused (decision W81)
     integrate_stops, turn_factor, rhythm, merge_fragments, slow_turn_rps, pivot_steps : as
         :func:`pdrlearn.track.waist.track_waist` (None: ``params.options``, else its defaults; ``pivot_steps``: W150)
+    pause_steps : W134's ``"standing"`` (a step holding a stand of half its local period inside a walk keeps the
+        trunk's travel; decision W165: decided once the third contact after the step is, at most
+        :data:`~pdrlearn.runtime.waist.PAUSE_LOOKAHEAD_ROWS` rows, one contact later than without it) or False (None:
+        ``params.options``, else the pipeline's default); the look-ahead values True / "progression" are not applied
     keep_steps : how many reported steps :attr:`steps` keeps (None: all)
     check_input : check the units of the first seconds (decision B119) -- False only for data already checked
     sides : give each step its foot (``LiveStep.side``: "left" / "right" / "" undecided) from W20's lateral velocity
@@ -195,7 +204,7 @@ class WaistTracker(WaistStream):
                  integrate_stops: bool | None = None, turn_factor: bool | None = None, rhythm: bool | None = None,
                  merge_fragments: bool | None = None, slow_turn_rps: float | None = None,
                  keep_steps: int | None = None, check_input: bool = True, sides: bool = False,
-                 pivot_steps: bool | None = None):
+                 pivot_steps: bool | None = None, pause_steps: bool | str | None = None):
         from pdrlearn.io.session import Session
         from pdrlearn.track.waist import _start
         from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
@@ -212,7 +221,7 @@ class WaistTracker(WaistStream):
         p, warnings = resolve_params(Session(name="live", meta=meta), params)
         o = live_options(p, warnings, initial_heading=initial_heading, integrate_stops=integrate_stops,
                          turn_factor=turn_factor, rhythm=rhythm, merge_fragments=merge_fragments,
-                         slow_turn_rps=slow_turn_rps, pivot_steps=pivot_steps)
+                         slow_turn_rps=slow_turn_rps, pivot_steps=pivot_steps, pause_steps=pause_steps)
         x0, y0, h0, latlon, self.start_altitude_m = _start(start, float(o["initial_heading"]))  # W137, L157
         rot, self._declared, self._declared_origin = _declared_frame(frame, meta)
         if rot is not None and self._declared is None:  # a matrix (an AxisFrame gets B108's check)
