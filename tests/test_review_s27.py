@@ -36,3 +36,14 @@ def test_a_ride_rise_may_be_a_numpy_number(rise):
 def test_a_bad_ride_rise_is_still_refused(rise):
     with pytest.raises(DataError, match="rise must be"):
         check_rise("escalator" if rise == 0.5 else "lift", rise, "Lift")
+
+
+def test_the_unlocked_clock_line_names_the_option_that_gives_the_offset():
+    """E111 added ``--clock-offset`` because L186's line tells the user to give the offset by hand; the line named
+    only the Python keyword and editing the files."""
+    from pdrlearn.kernels.align import unlocked_message
+
+    line = unlocked_message({"offset_s": -0.226, "drift": 1.3e-3, "matched": 15, "foot_events": 18,
+                             "residual_sd_s": 0.064}, "--align-units")
+    assert "--clock-offset SECONDS instead of --align-units" in line and "waist_clock_offset_s" in line
+    assert "by hand" in line and "decision L186" in line and "\n" not in line
