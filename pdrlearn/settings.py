@@ -13,6 +13,13 @@ import numpy as np
 from pdrlearn.errors import DataError, check_keyword_names
 
 
+def is_number(v) -> bool:
+    """Whether ``v`` is a real number: a Python or numpy int or float, not a bool (a flag is no number). The one
+    test of the settings' checks (C21, B206) and of the values session 27's checks read (L95 / L195's gait figures,
+    S45's ride rise), so a numpy scalar counts as the number it is."""
+    return not isinstance(v, bool) and isinstance(v, int | float | np.integer | np.floating)
+
+
 class Settings:
     """Mixin: settings are the keyword-only ``__init__`` arguments, stored as attributes."""
 
@@ -47,7 +54,7 @@ class Settings:
         for k, v in params.items():
             values = v if isinstance(v, tuple | list) else (v,)
             for x in values:
-                if isinstance(x, bool) or not isinstance(x, int | float | np.integer | np.floating):
+                if not is_number(x):
                     continue
                 if not np.isfinite(x) or x < 0:
                     raise DataError(f"{type(self).__name__}: {k}={v!r} is not allowed; settings are finite numbers "
@@ -154,7 +161,7 @@ class Rule:
             return self.none
         if self.kind == "flag":
             return isinstance(v, bool | np.bool_) or (self.ints and type(v) is int and v in (0, 1))
-        if isinstance(v, bool) or not isinstance(v, int | float | np.integer | np.floating):
+        if not is_number(v):
             return False
         if self.kind == "whole" and not isinstance(v, int | np.integer):
             return False

@@ -127,5 +127,6 @@ def unlocked_message(estimate: dict, option: str = "--align-units") -> str | Non
             f"of {int(estimate.get('foot_events', 0))} foot events matched, scatter "
             f"{float(estimate.get('residual_sd_s', float('nan'))):.3f} s; locked: >= {MIN_LOCK_PAIRS} within "
             f"{LOCK_MAX_RESIDUAL_SD_S:g} s), so the {float(estimate.get('offset_s', float('nan'))):+.2f} s read is no "
-            "offset; if you know the waist clock's offset, give it by hand (Tracker(..., waist_clock_offset_s=...), or "
-            "subtract it from the waist files' time column), else drop --align-units (decision L186)")
+            "offset; if you know the waist clock's offset, give it by hand (--clock-offset SECONDS instead of "
+            f"{option}, decision E111; Tracker(..., waist_clock_offset_s=...) in Python), else drop --align-units "
+            "(decision L186)")

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.settings import is_number
 
 #: standing still before a ride starts (doors closing, stepping on and settling) and after it ends (s)
 RIDE_MARGIN_S = 1.0
@@ -90,7 +91,7 @@ def check_rise(kind: str, rise_m: float, what: str) -> None:
     """One :class:`DataError` line naming ``what`` when ``rise_m`` is not a ride's rise: non-zero, finite, at most
     :data:`LIFT_MAX_RISE_M` (lift) or :data:`ESCALATOR_MIN_RISE_M`-:data:`ESCALATOR_MAX_RISE_M` (escalator)."""
     low, top = (0.0, LIFT_MAX_RISE_M) if kind == "lift" else (ESCALATOR_MIN_RISE_M, ESCALATOR_MAX_RISE_M)
-    if not (isinstance(rise_m, int | float) and math.isfinite(rise_m) and rise_m != 0 and low <= abs(rise_m) <= top):
+    if not (is_number(rise_m) and math.isfinite(rise_m) and rise_m != 0 and low <= abs(rise_m) <= top):
         ride = "a lift" if kind == "lift" else "an escalator"
         raise DataError(f"{what}: {ride} ride's rise must be a non-zero number of metres up to {top:g}"
                         + (f", at least {low:g}" if low else "") + f" (+H up, -H down), not {rise_m!r}")

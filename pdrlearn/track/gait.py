@@ -410,7 +410,10 @@ BOUT_RANGE_MIN_STRIDES = MIN_STRAIGHT_FOR_RANGE
 
 
 def _finite(v) -> float | None:
-    return float(v) if isinstance(v, int | float) and not isinstance(v, bool) and np.isfinite(v) else None
+    """``v`` as a float when it is a finite number (numpy scalars too, as L95's check read them before), else None."""
+    from pdrlearn.settings import is_number
+
+    return float(v) if is_number(v) and np.isfinite(v) else None
 
 
 def _leg(summary: dict) -> float | None:
