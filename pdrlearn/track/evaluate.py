@@ -312,7 +312,7 @@ def _basic(result: TrackResult, out: dict) -> None:
 
     out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
     out.update(turn_summary(turn_table(result.steps)))  # decision L200: each turn's duration, angle, peak rate
-    out.update(transfer_summary(result.info.get("transfers"), result.steps))  # decision W182: the lower back's chair transfers
+    out.update(transfer_summary(result.info.get("transfers"), result.steps))  # decision W183: chair transfers, TUG
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
     dz, bridge = _climb_dz(result.steps)

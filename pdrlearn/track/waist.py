@@ -84,8 +84,8 @@ from pdrlearn.waist.plausibility import (
     walk_ratio_message,
 )
 from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto
-from pdrlearn.waist.transfers import chair_transfers
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
+from pdrlearn.waist.transfers import chair_transfers
 
 log = logging.getLogger(__name__)
 

@@ -14,7 +14,8 @@ whole movement and classed by the pelvis's height change over it:
   by as much a ``stand-to-sit``; less is a bend (picking something up, leaning forward) and no transfer;
 * **TUG time** (W183): ``tug_time_s`` is the first sit-to-stand's start to the last stand-to-sit's end, only when
   the session starts and ends seated: no step starts before that sit-to-stand's start or after that stand-to-sit's
-  end (a contact inside a transfer may: W146), and no transfer lies between them (else None: the test was not recorded from seat to seat).
+  end (a contact inside a transfer may: W146), and no transfer lies between them (else None: the test was not
+  recorded from seat to seat).
 
 Not from a seed: the clinical TUG runs from rising off the chair to sitting back on it (Podsiadlo & Richardson 1991,
 J Am Geriatr Soc 39:142-148, as recalled), and the thresholds are this module's choices (W182), set before
