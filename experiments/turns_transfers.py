@@ -36,7 +36,7 @@ USERS = range(3530, 3560)
 ROUTES = (("straight:3, turn:180, straight:3", 5.0, 5.0),
           ("straight:8, pivot:180, straight:8", 5.0, 5.0),
           ("straight:5, turn:90, straight:5, sit:8, straight:3", 0.0, 0.0))
-TRACKS = {"plasys": lambda s: track_plasys(s), "plasys-stream": lambda s: track_streaming(s),
+TRACKS = {"plasys": lambda s: track_plasys(s), "plasys-stream": lambda s: track_streaming(s, method="M2"),
           "waist-pendulum": lambda s: track_waist(s, pipeline="waist-pendulum"),
           "waist-pll": lambda s: track_waist(s, pipeline="waist-pll")}
 
