@@ -83,7 +83,8 @@ def sim() -> None:
                 e = (r.start_s - ta, r.end_s - tb, r.duration_s - (tb - ta), r.angle_deg - ang)
                 turn_err[name].append(e)
                 line.append(f"  {name}: {len(tt)} turn(s); nearest {r.start_s:.2f}-{r.end_s:.2f} s "
-                            f"({r.duration_s:.2f} s) {r.angle_deg:+.1f} deg, peak {r.peak_rate_dps:.0f} deg/s; errors start {e[0]:+.2f} end "
+                            f"({r.duration_s:.2f} s) {r.angle_deg:+.1f} deg, peak {r.peak_rate_dps:.0f} deg/s; "
+                            f"errors start {e[0]:+.2f} end "
                             f"{e[1]:+.2f} duration {e[2]:+.2f} s angle {e[3]:+.1f} deg")
             if name not in tr_err:
                 continue

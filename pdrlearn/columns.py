@@ -165,7 +165,7 @@ SESSIONS: tuple[Column, ...] = (
      f"turns of >= {TURN_COUNT_MIN_DEG:g} deg, with their same-direction edge rows (L104, L181)"),
     ("turn_count_min_deg", "deg", "number", "the smallest turn turn_count counts"),
     ("median_turn_duration_s", "s", "number", "median duration of turns.csv's turns (L200); empty without a turn"),
-    ("median_turn_angle_deg", "deg", "number", "median |angle| of turns.csv's turns (L200)"),
+    ("median_turn_angle_deg", "deg", "number", "median absolute angle of turns.csv's turns (L200)"),
     ("median_turn_peak_rate_dps", "deg/s", "number", "median peak turning rate of turns.csv's turns (L200)"),
     ("turn_time_s", "s", "number", "turns.csv's durations summed (L200)"),
     ("n_sit_to_stand", "count", "integer", "lower back: sit-to-stand transfers (transfers.csv, W182); empty on a foot "
