@@ -14,8 +14,16 @@ from pdrlearn.columns import TRANSFERS, undocumented
 from pdrlearn.io import write_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.waist.transfers import (MOVING_DPS, SIT_TO_STAND, STAND_TO_SIT, TRANSFER_COLUMNS,
-                                      TRANSFER_SUMMARY_KEYS, height_change_m, movement_bounds, transfer_summary)
+from pdrlearn.waist.transfers import (
+    MOVING_DPS,
+    SIT_TO_STAND,
+    STAND_TO_SIT,
+    TRANSFER_COLUMNS,
+    TRANSFER_SUMMARY_KEYS,
+    height_change_m,
+    movement_bounds,
+    transfer_summary,
+)
 
 
 def test_bounds_are_where_the_trunk_stops_moving():

@@ -14,8 +14,7 @@ from pdrlearn.columns import TURNS, undocumented
 from pdrlearn.io import write_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.track.clinical import (TURN_SUMMARY_KEYS, TURN_TABLE_COLUMNS, turn_rows, turn_summary, turn_table,
-                                     turns)
+from pdrlearn.track.clinical import TURN_SUMMARY_KEYS, TURN_TABLE_COLUMNS, turn_rows, turn_summary, turn_table, turns
 
 
 def _table(dh_deg, dt=1.0):
@@ -89,3 +88,16 @@ def test_track_writes_turns_and_foot_has_no_transfers(tug, tmp_path, capsys):
     assert main(["track", str(tug), "--pipeline", "plasys", "--streaming", "--out", str(streamed)]) == 0
     st = pd.read_csv(streamed / "turns.csv")
     assert len(st) == 1 and st["angle_deg"].iloc[0] == pytest.approx(180.0, abs=5.0)
+
+
+def test_run_writes_turns_csv_as_track_streaming(tug, tmp_path):
+    """L202: ``pdrlearn run`` (the streamed bundle) writes track's turns.csv beside bouts.csv."""
+    from tests.test_run_gait_summary import BUNDLE
+
+    assert main(["run", str(BUNDLE), str(tug), "--out", str(tmp_path / "r")]) == 0
+    tt = pd.read_csv(tmp_path / "r" / "turns.csv")
+    assert [c[0] for c in TURNS] == list(tt.columns)
+    assert len(tt) == 1 and tt["angle_deg"].iloc[0] == pytest.approx(180.0, abs=5.0)
+    summary = json.loads((tmp_path / "r" / "summary.json").read_text())
+    assert summary["median_turn_duration_s"] == pytest.approx(tt["duration_s"].iloc[0])
+    assert not (tmp_path / "r" / "transfers.csv").exists()
