@@ -95,7 +95,8 @@ def test_waist_track_writes_the_two_transfers_and_the_tug_time(tug, tmp_path, ca
         (tmp_path / "p.json").write_text('{"options": {"sit_veto": "rhythm"}}')
         args += ["--params", str(tmp_path / "p.json")]
     assert main(args) == 0
-    assert "transfers.csv" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "transfers.csv" in printed and "1 sit-to-stand, 1 stand-to-sit (transfers.csv), TUG time" in printed
     tr = pd.read_csv(out / "transfers.csv")
     assert list(tr.columns) == list(TRANSFER_COLUMNS) == [c[0] for c in TRANSFERS]
     assert undocumented("transfers.csv", tr.columns) == []

@@ -22,6 +22,7 @@ from pdrlearn.cli.common import (
     resample_options,
     start_option,
     storey_height_option,
+    transfer_line,
     walk_line,
 )
 from pdrlearn.errors import DataError
@@ -654,6 +655,9 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
         walk = walk_line(summary)  # decision L104
         if walk:
             typer.echo(walk)
+        timed = transfer_line(summary)  # decisions L200, W183
+        if timed:
+            typer.echo(timed)
     typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, "
                f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}path.png, "
                f"{'aided.png, ' if aided else ''}summary.json, run.json")
