@@ -110,6 +110,9 @@ SESSIONS: tuple[Column, ...] = (
     ("ic_timing_sd_ms", "ms", "number", "lower back: SD of that error"),
     ("ic_timing_stereo_mean_ms", "ms", "number", "lower back: mean contact time error, both feet matched"),
     ("ic_timing_stereo_sd_ms", "ms", "number", "lower back: SD of that error"),
+    ("gait_out_of_range", _ID, "true/false", "L95's walking-range warning fired: the session's median cadence or "
+                                             "speed outside the (leg-scaled) range, or a bout of 5+ strides above "
+                                             "it (L195)"),
     ("leg_length_m", "m", "number", "the walker's leg length from meta.json, by which L95's range is scaled (L148)"),
     ("leg_length_source", _ID, "text", "the meta.json key leg_length_m came from (L148)"),
     ("length_class_agreement", "fraction", "number", "matched strides whose length class is the label's (L53)"),
@@ -122,6 +125,7 @@ SESSIONS: tuple[Column, ...] = (
                                           "track"),
     ("median_swing_time_s", "s", "number", "--toe-off only: median swing time"),
     ("n_bouts", "count", "integer", "rows of bouts.csv (L124)"),
+    ("n_bouts_out_of_range", "count", "integer", "bouts of bouts.csv whose gait_out_of_range is true (L195)"),
     ("n_cv_strides", "count", "integer", "steady straight level forward strides stride_time_cv_pct is computed over"),
     ("n_detected", "count", "integer", "lower back: detected contacts scored"),
     ("n_pauses", "count", "integer", "stands of about 1 s or more inside the walk (L104)"),
@@ -158,6 +162,9 @@ SESSIONS: tuple[Column, ...] = (
     ("stride_length_matched", "count", "integer", "foot: tracked strides matched to labelled ones"),
     ("stride_time_cv_pct", "%", "number", "foot: 100 x SD / mean of steady level forward strides' times (L104, L188)"),
     ("stride_time_cv_withheld", _ID, "text", "why the CV was withheld (L113, an option); empty otherwise"),
+    ("stride_time_cv_within_bouts_pct", "%", "number", "foot: when the CV pools walking bouts of different rhythm "
+                                                       "(L196), the CV of the strides about their own bout's mean; "
+                                                       "empty otherwise"),
     ("terrain_agreement", "fraction", "number", "matched strides whose terrain class is the label's (L53)"),
     ("timing_resolution_s", "s", "number", "one sample period of the stream the contacts come from (L116)"),
     ("turn_angle_mae_deg", "deg", "number", "mean absolute error of the reference turns' angles (L42)"),
@@ -240,6 +247,9 @@ BOUTS: tuple[Column, ...] = (
     ("altitude_change_m", "m", "number", "z change over the bout"),
     ("altitude_change_before_m", "m", "number", "lower back: z change while standing before the bout (a lift or "
                                                 "escalator ride; W158), 0 for foot tracks"),
+    ("gait_out_of_range", _ID, "true/false", "the bout's cadence_spm or speed_mps is above L95's walking range "
+                                             "(leg-scaled, L148; bouts of 5+ strides; L195): running or short fast "
+                                             "steps"),
     ("speed_m_s", "m/s", "number", "deprecated (E98): speed_mps under its old name, kept last until a later release"),
 )
 

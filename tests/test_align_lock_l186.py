@@ -40,7 +40,8 @@ def test_align_units_keeps_the_clocks_of_a_queue_and_says_why(queue, tmp_path, c
     from pdrlearn.io import read_session
 
     est = align_estimate(read_session(queue))
-    assert not offset_locked(est) and abs(est["offset_s"]) > 0.2  # what --align-units had applied
+    # what --align-units had applied: -0.21 s at the clock's 0, -0.17 s at ref_s (L198; clean walks read -0.02 to -0.05)
+    assert not offset_locked(est) and abs(est["offset_s"]) > 0.1
     outs = {}
     with caplog.at_level(logging.WARNING):
         for name, cmd in (("plain", ["track", str(queue)]), ("aligned", ["track", str(queue), "--align-units"]),

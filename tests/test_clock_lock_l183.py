@@ -54,7 +54,10 @@ def queue(tmp_path_factory):
 
 def test_a_queue_of_shuffles_is_not_told_its_clocks_are_offset(queue, capsys):
     est = align_estimate(queue)
-    assert unit_offset_message(est["offset_s"], est["drift"]) is not None  # L161 alone had warned
+    # L161 alone had warned (-0.214 s: its drift fit read at the clock's 0, as before L198); at ref_s the chance
+    # matches still read no clean offset (clean walks: -0.02 to -0.05 s), and the lock test (L183) is what rejects them
+    assert unit_offset_message(est["offset_s"] - est["drift"] * est["ref_s"], est["drift"]) is not None
+    assert abs(est["offset_s"]) > 0.1
     assert not offset_locked(est) and unit_offset_line(queue) is None
     tr = Tracker(load_bundle(ROOT / "models" / "plasys-sim-default"))  # the live check (L177) shares the test
     for push in replay_chunks({n: (st.t, st.values) for n, st in queue.streams.items() if len(st)}, 1.0):

@@ -286,7 +286,10 @@ def test_align_events_recovers_offset_and_drift():
     foot = steps[::2] + rng.normal(0, 0.01, 100)
     waist = steps + 0.17 + 3e-4 * steps + rng.normal(0, 0.01, 200)
     res = align_events(foot, waist)
-    assert res["offset_s"] == pytest.approx(0.17, abs=0.01)
+    # decision L198: the offset at ref_s (inside the recording), the simulated 0.17 s being the clock's t = 0 value
+    assert steps[0] < res["ref_s"] < steps[-1]
+    assert res["offset_s"] == pytest.approx(0.17 + 3e-4 * res["ref_s"], abs=0.01)
+    assert res["offset_s"] - res["drift"] * res["ref_s"] == pytest.approx(0.17, abs=0.01)
     assert res["drift"] == pytest.approx(3e-4, abs=1e-4)
     # documented limitation: offsets one step period apart are near-equivalent, the one nearest 0 wins
     res = align_events(foot, steps + 0.55 + 0.17, fit_drift=False)

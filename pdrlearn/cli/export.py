@@ -358,7 +358,7 @@ def run(
     heading0 = initial_heading_option(initial_heading)  # decision L98, as `pdrlearn track`
     clock_offset = _track.clock_offset_value(clock_offset, align_units, "run")  # decision E112, as `track`
     from pdrlearn.track.bouts import bout_rule as read_bout_rule
-    from pdrlearn.track.bouts import detected_bouts, session_key
+    from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
 
     bouts = read_bout_rule(bout_break_s, bout_min_strides, bout_rule)  # L124, L130, L163: as `track`, before any work
     if dpi is not None and out is None:  # decision L70: it would be ignored
@@ -524,7 +524,8 @@ def run(
         result.info["unit_alignment"] = alignment
     result.info.update(tracker.height_checks())  # decision E47: track's L69 / C28 checks (warned by flush)
     result.info["out_of_domain"] = tracker.domain_report()  # decision E105: track's C16 report (flush warned C61's)
-    table = detected_bouts(result.steps, bouts, **session_key(session))  # E73: bouts.csv and n_bouts at once
+    # E73: bouts.csv and n_bouts at once; L195: each bout's walking range scaled to the walker's leg
+    table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
     summary = _summary(steps, tracker, lat, source, result, session, storey_height, bouts, table)
     if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
         summary["protocol"] = protocol_stats
@@ -619,7 +620,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.runtime.waist import WAIST_SENSORS, WaistTracker, load_waist_bundle
     from pdrlearn.signal import interp_rows
     from pdrlearn.track.base import TrackResult
-    from pdrlearn.track.bouts import detected_bouts, session_key
+    from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
     from pdrlearn.track.evaluate import evaluate_track, floors_phrase
 
     bundle = load_waist_bundle(bundle_dir)  # verified before any output
@@ -699,7 +700,8 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
     from pdrlearn.track.position_sigma import add_position_sigma
 
     add_position_sigma(result, session, "waist")  # decision L128, as track's lower-back pipelines
-    table = detected_bouts(result.steps, bouts, **session_key(session))  # L124, E73: one detection (L165: key)
+    # L124, E73: one detection (L165: key; L195: the leg-scaled range)
+    table = detected_bouts(result.steps, bouts, **session_key(session), leg_m=session_leg_m(session))
     summary = {"source": f"session {session.name}", **evaluate_track(result, session, bouts=bouts, bout_table=table,
                                                                        storey_height_m=storey_height_m),
                "session": session.name,
@@ -708,6 +710,9 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                                   **({} if start_ll is None else {k: float(traj[k].iloc[-1]) for k in ("lat", "lon")})},
                "latency_ms_per_step": {"p50": float(np.percentile(lat, 50) * 1e3) if lat else None,
                                        "p99": float(np.percentile(lat, 99) * 1e3) if lat else None}}
+    from pdrlearn.track.evaluate import add_gait_range_flag
+
+    add_gait_range_flag(summary)  # decision L195: the flag as track's summary has it (this path warns no L95 line)
     if out is not None:
         _write(out, result, summary, session, summary["source"], dpi=dpi, record=record(), bouts=table)
     if as_json:
@@ -790,6 +795,9 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
     out["rate_hz"] = tracked_rate_hz(session, "runtime") if session is not None else None  # as track's (C19)
     out["pdrlearn_version"] = __version__  # decision C18
     out["info"] = result.info
+    from pdrlearn.track.evaluate import add_gait_range_flag
+
+    add_gait_range_flag(out)  # decision L195, as track's summary
     if session is not None:  # decisions L95 / L113, as track's summary: gait range, withheld stride-time CV
         import logging
 

@@ -546,10 +546,10 @@ def track_session(session_dir: Path, settings: dict) -> dict:
         drop_position_sigma(result)
     elif win is not None:  # L128: a window's uncertainty grows from its own first position
         add_position_sigma(result, tracked_session)
-    from pdrlearn.track.bouts import detected_bouts, session_key
+    from pdrlearn.track.bouts import detected_bouts, session_key, session_leg_m
 
     # decision L124: OUT/bouts.csv, the detected walking bouts; L165: keyed by the session and its subject
-    bouts = detected_bouts(result.steps, o.get("bouts"), **session_key(session))
+    bouts = detected_bouts(result.steps, o.get("bouts"), **session_key(session), leg_m=session_leg_m(session))
     # C13, C14: the API's TrackResult.summary; L124: n_bouts under the given bout definition (E73: of the table
     # above, detected once); L64, L127: storeys
     summary = track_summary(result, tracked_session, pipeline=pipeline, bouts=o.get("bouts"), bout_table=bouts,

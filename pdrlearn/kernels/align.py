@@ -3,8 +3,10 @@ aligned with the gyroscope step detector): :func:`align_events` (``pdrlearn.step
 L161's warning line, shared by ``track``, ``run`` (L170) and the lean runtime's :class:`~pdrlearn.runtime.Tracker`
 (decision L177).
 
-Model: at one physical instant the waist clock reads ``t_w = t_f + offset_s + drift * t_f`` where
-``t_f`` is the foot clock (the foot clock is the reference: labels and foot steps are kept on it).
+Model: at one physical instant the waist clock reads ``t_w = t_f + offset_s + drift * (t_f - ref_s)`` where
+``t_f`` is the foot clock (the foot clock is the reference: labels and foot steps are kept on it) and ``ref_s`` a
+foot-clock time inside the recording (decision L198: the matched foot events' mean, so ``offset_s`` is the offset
+over the recording whatever the clock's origin, uptime or epoch; ``ref_s = 0`` is the simulator's convention).
 """
 
 from __future__ import annotations
@@ -35,14 +37,18 @@ def offset_locked(estimate: dict) -> bool:
 
 def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: float = 0.005,
                  tolerance_s: float = 0.12, fit_drift: bool = True, min_span_s: float = 60.0) -> dict:
-    """Estimate ``offset_s`` (and ``drift``) so that ``foot + offset + drift * foot`` meets waist events.
+    """Estimate ``offset_s`` (and ``drift``) so that ``foot + offset + drift * (foot - ref_s)`` meets waist events.
 
     Every foot stride event should coincide with one waist step event (the waist sees both feet), so the
     offset that matches the most foot events within ``tolerance_s`` wins (grid of ``step_s`` over
     +-``max_offset_s``; among offsets within 10 % of the best count, the local optimum closest to 0,
     because the units are roughly synchronised). The matched pairs are then
-    fitted by least squares, ``t_w - t_f = offset + drift * t_f`` (drift only when they span at least
-    ``min_span_s`` seconds, else the median offset and ``drift = 0``).
+    fitted by least squares, ``t_w - t_f = offset + drift * (t_f - ref_s)`` (drift only when they span at least
+    ``min_span_s`` seconds, else the median offset and ``drift = 0``). Decision L198: ``ref_s`` is the matched
+    foot events' mean, so ``offset_s`` is the least-squares offset over the recording (the mean ``t_w - t_f``)
+    and does not depend on where the clocks start (a drift fitted on absolute times extrapolated its noise to
+    t = 0: +184649 s on an epoch-ms clock); a constant shift by ``offset_s`` (``waist_clock_offset_s``,
+    ``--clock-offset``) is the best drift-free alignment.
 
     Limitation (docs/decisions/steps.md): a walk's step events are periodic, so offsets that differ by
     one step period (~0.5 s) match almost as well; bout starts and ends break the tie only when the
@@ -51,7 +57,8 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
 
     Returns
     -------
-    dict with ``offset_s``, ``drift`` (s/s), ``matched`` (pairs), ``foot_events``, ``residual_sd_s``.
+    dict with ``offset_s`` (at ``ref_s``), ``drift`` (s/s), ``ref_s`` (foot clock, s), ``matched`` (pairs),
+    ``foot_events``, ``residual_sd_s``.
     """
     f = np.sort(np.asarray(foot_times, dtype=float))
     w = np.sort(np.asarray(waist_times, dtype=float))
@@ -74,10 +81,10 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
     heads = [g[np.argmin(mean_d[g])] for g in groups]
     o = float(grid[min(heads, key=lambda i: abs(grid[i]))])
     # least-squares refinement over the matched pairs (two passes to settle the matching)
-    drift = 0.0
+    drift, ref = 0.0, float(f[0])
     pairs_f = pairs_w = np.zeros(0)
     for _ in range(2):
-        pred = f + o + drift * f
+        pred = f + o + drift * (f - ref)
         j = np.clip(np.searchsorted(w, pred), 1, w.size - 1)
         jj = np.where(np.abs(w[j] - pred) < np.abs(w[j - 1] - pred), j, j - 1)
         m = np.abs(w[jj] - pred) <= tolerance_s
@@ -85,12 +92,13 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
         if pairs_f.size < 2:
             break
         d = pairs_w - pairs_f
+        ref = float(pairs_f.mean())  # decision L198: the fit's origin inside the recording, not the clock's 0
         if fit_drift and pairs_f.size >= 5 and np.ptp(pairs_f) >= min_span_s:
-            drift, o = (float(v) for v in np.polyfit(pairs_f, d, 1))
+            drift, o = (float(v) for v in np.polyfit(pairs_f - ref, d, 1))
         else:
             o, drift = float(np.median(d)), 0.0
-    resid = (pairs_w - pairs_f) - (o + drift * pairs_f) if pairs_f.size else np.zeros(0)
-    return {"offset_s": o, "drift": drift, "matched": int(pairs_f.size), "foot_events": int(f.size),
+    resid = (pairs_w - pairs_f) - (o + drift * (pairs_f - ref)) if pairs_f.size else np.zeros(0)
+    return {"offset_s": o, "drift": drift, "ref_s": ref, "matched": int(pairs_f.size), "foot_events": int(f.size),
             "residual_sd_s": float(resid.std()) if resid.size > 1 else float("nan")}
 
 

@@ -671,7 +671,9 @@ class Tracker(FixInput):
     @property
     def clock_offset(self) -> dict | None:
         """Decision L177: the last estimate of the foot-to-waist clock offset (``align_events``' dict: ``offset_s``,
-        ``drift``, ``matched``, ``foot_events``, ``residual_sd_s``), None before one (or without the check)."""
+        ``drift``, ``ref_s``, ``matched``, ``foot_events``, ``residual_sd_s``), None before one (or without the check).
+        ``offset_s`` is the offset at foot-clock time ``ref_s``, inside the recording (decision L198): the constant
+        ``waist_clock_offset_s`` that aligns it, whatever the clocks' origin."""
         return None if self._clock is None else self._clock.estimate
 
     def _check_clocks(self, checked: dict, fast: dict | None) -> None:

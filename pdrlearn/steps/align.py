@@ -1,8 +1,9 @@
 """Clock alignment of the foot and waist units from their step events (thesis ch.7: the units are
 aligned with the gyroscope step detector; here any waist detector).
 
-Model: at one physical instant the waist clock reads ``t_w = t_f + offset_s + drift * t_f`` where
-``t_f`` is the foot clock (the foot clock is the reference: labels and foot steps are kept on it).
+Model: at one physical instant the waist clock reads ``t_w = t_f + offset_s + drift * (t_f - ref_s)`` where
+``t_f`` is the foot clock (the foot clock is the reference: labels and foot steps are kept on it) and ``ref_s`` the
+estimate's reference time inside the recording (decision L198; 0 is the simulator's convention).
 """
 
 from __future__ import annotations
@@ -21,7 +22,8 @@ log = logging.getLogger(__name__)
 def align_units(session: Session, *, foot_detector=None, waist_detector=None, max_offset_s: float = 2.0,
                 tolerance_s: float = 0.12, fit_drift: bool = True,
                 min_span_s: float = 60.0) -> tuple[float, float]:
-    """``(offset_s, drift)`` of :func:`align_estimate` (its other keys: ``matched``, ``residual_sd_s``, ...)."""
+    """``(offset_s, drift)`` of :func:`align_estimate` (its other keys: ``ref_s``, the time ``offset_s`` holds at,
+    decision L198; ``matched``, ``residual_sd_s``, ...)."""
     res = align_estimate(session, foot_detector=foot_detector, waist_detector=waist_detector,
                          max_offset_s=max_offset_s, tolerance_s=tolerance_s, fit_drift=fit_drift, min_span_s=min_span_s)
     return res["offset_s"], res["drift"]
@@ -33,8 +35,8 @@ def align_estimate(session: Session, *, foot_detector=None, waist_detector=None,
 
     Foot events: the accelerometer + force detector when force sensors are present, else the
     accelerometer detector; waist events: the PLL detector (both replaceable). Returns
-    :func:`~pdrlearn.kernels.align.align_events`' dict (``offset_s``, ``drift`` with ``t_waist = t_foot + offset_s +
-    drift * t_foot``, the simulator's convention; ``matched``, ``residual_sd_s``: decision L183's lock test);
+    :func:`~pdrlearn.kernels.align.align_events`' dict (``offset_s``, ``drift``, ``ref_s`` with ``t_waist = t_foot +
+    offset_s + drift * (t_foot - ref_s)``, decision L198; ``matched``, ``residual_sd_s``: decision L183's lock test);
     details are logged; the session is left untouched.
     """
     from pdrlearn.steps.detectors import AccelForceStepDetector, AccelStepDetector, PLLStepDetector
@@ -51,14 +53,16 @@ def align_estimate(session: Session, *, foot_detector=None, waist_detector=None,
     return res
 
 
-def apply_alignment(session: Session, offset_s: float, drift: float = 0.0) -> Session:
+def apply_alignment(session: Session, offset_s: float, drift: float = 0.0, ref_s: float = 0.0) -> Session:
     """Copy of ``session`` with the waist streams moved onto the foot clock:
-    ``t_foot = (t_waist - offset_s) / (1 + drift)``. Labels are left as they are (foot clock)."""
+    ``t_foot = ref_s + (t_waist - offset_s - ref_s) / (1 + drift)`` (the model above solved for ``t_foot``; give
+    :func:`align_estimate`'s ``ref_s`` with its ``offset_s`` and ``drift``, decision L198). Labels are left as they
+    are (foot clock)."""
     out = session.copy()
-    if not np.isfinite(offset_s) or not np.isfinite(drift) or abs(drift) > 0.1:
-        raise DataError(f"apply_alignment: implausible offset {offset_s} s / drift {drift}; "
+    if not np.isfinite(offset_s) or not np.isfinite(drift) or not np.isfinite(ref_s) or abs(drift) > 0.1:
+        raise DataError(f"apply_alignment: implausible offset {offset_s} s / drift {drift} / reference {ref_s} s; "
                         "re-run align_units")
     for s in out.streams.values():
         if s.placement == "waist":
-            s.t = (s.t - offset_s) / (1.0 + drift)
+            s.t = ref_s + (s.t - offset_s - ref_s) / (1.0 + drift)
     return out

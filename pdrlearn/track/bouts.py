@@ -29,7 +29,8 @@ from pdrlearn.track.clinical import PAUSE_MIN_S, TURN_COUNT_MIN_DEG, bout_rows, 
 #: bouts.csv's columns, in order (docs/columns.md; decision L165: ``session`` / ``subject`` first, the join key)
 BOUT_COLUMNS = ("session", "subject", "bout", "start_s", "end_s", "duration_s", "n_steps", "n_strides", "distance_m",
                 "speed_mps", "stride_length_m", "contact_span_s", "n_step_intervals", "cadence_spm",
-                "longest_contact_gap_s", "n_turns", "altitude_change_m", "altitude_change_before_m")
+                "longest_contact_gap_s", "n_turns", "altitude_change_m", "altitude_change_before_m",
+                "gait_out_of_range")
 
 #: decision E98: bouts.csv's renamed columns, old name -> new (speeds are ``_mps`` as everywhere else). The old name
 #: stays readable: a :class:`BoutsTable` answers it with a FutureWarning, and the CSVs keep it as a last column
@@ -176,8 +177,16 @@ def session_key(session) -> dict:
     return {"session": session.name, "subject": meta_user(session.meta or {})}
 
 
+def session_leg_m(session) -> float | None:
+    """Decision L195: the walker's leg length (m) from the session's meta.json (:func:`pdrlearn.track.gait.leg_length`,
+    L148), by which each bout's walking range is scaled; None without a body measure (or without a session)."""
+    from pdrlearn.track.gait import leg_length
+
+    return None if session is None else leg_length(session.meta).get("leg_length_m")
+
+
 def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session: str | None = None,
-                   subject: str | None = None) -> pd.DataFrame:
+                   subject: str | None = None, leg_m: float | None = None) -> pd.DataFrame:
     """One row per detected walking bout of a track's step table (:data:`BOUT_COLUMNS`, module docstring).
 
     ``session`` / ``subject``: the session's name and meta.json's subject, repeated on every row (decision L165,
@@ -199,7 +208,11 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     ``altitude_change_m``: the rows' summed ``dz_m`` (NaN without that column) and, decision W158, the ``pause_dz_m``
     of its rows after the first (the standstills inside the bout); ``altitude_change_before_m`` (W158): the first
     row's ``pause_dz_m``, the altitude change while the unit stood before the bout (a lift or escalator ride; 0
-    without that column), which is no walking bout's."""
+    without that column), which is no walking bout's; ``gait_out_of_range`` (decision L195): the bout's own
+    cadence or speed is above L95's walking range for a leg of ``leg_m`` (m, L148; None = the adult range), judged
+    on bouts of at least 5 strides (:func:`pdrlearn.track.gait.bout_range_flags`)."""
+    from pdrlearn.track.gait import bout_range_flags
+
     rule = rule or BoutRule()
     out = BoutsTable(columns=list(BOUT_COLUMNS))
     if not len(steps) or "start_s" not in steps:
@@ -236,7 +249,11 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
                      "n_turns": int(((turn_row >= a) & (turn_row < b)).sum()),
                      "altitude_change_m": float(dz[a:b].sum() + pause_dz[a + 1:b].sum()),
                      "altitude_change_before_m": float(pause_dz[a])})
-    return BoutsTable(rows, columns=list(BOUT_COLUMNS)) if rows else out
+    if not rows:
+        return out
+    table = BoutsTable(rows, columns=list(BOUT_COLUMNS))
+    table["gait_out_of_range"] = bout_range_flags(table, leg_m)  # decision L195
+    return table
 
 
 #: a track's walking-bout totals (cohort C25): sessions.csv's columns, summed per subject in subjects.csv
@@ -255,11 +272,19 @@ def bout_totals(table: pd.DataFrame) -> dict:
             "bouts_n_step_intervals": int(table["n_step_intervals"].sum())}
 
 
-def bouts_summary(steps: pd.DataFrame, rule: BoutRule | None = None, table: pd.DataFrame | None = None) -> dict:
+def bouts_summary(steps: pd.DataFrame, rule: BoutRule | None = None, table: pd.DataFrame | None = None, *,
+                  leg_m: float | None = None) -> dict:
     """summary.json's keys (decision L124): ``n_bouts`` (the rows :func:`detected_bouts` gives) and
-    ``bout_definition``. ``table``: :func:`detected_bouts`'s table of ``steps`` under ``rule`` when the caller has
-    it already (``track`` and ``run`` write it as bouts.csv; decision E73: the bouts are detected once)."""
+    ``bout_definition``; decision L195: ``n_bouts_out_of_range`` and ``bouts_out_of_range`` (bout, start_s, end_s,
+    cadence_spm, speed_mps of each bout whose ``gait_out_of_range`` is true). ``table``: :func:`detected_bouts`'s
+    table of ``steps`` under ``rule`` when the caller has it already (``track`` and ``run`` write it as bouts.csv;
+    decision E73: the bouts are detected once); ``leg_m`` scales the range when the table is detected here."""
     rule = rule or BoutRule()
     if table is None:
-        table = detected_bouts(steps, rule)
-    return {"n_bouts": int(len(table)), "bout_definition": rule.record()}
+        table = detected_bouts(steps, rule, leg_m=leg_m)
+    flagged = (table[table["gait_out_of_range"].eq(True)] if "gait_out_of_range" in table and len(table)
+               else table.iloc[0:0])
+    keys = ("bout", "start_s", "end_s", "cadence_spm", "speed_mps")
+    return {"n_bouts": int(len(table)), "bout_definition": rule.record(), "n_bouts_out_of_range": int(len(flagged)),
+            "bouts_out_of_range": [{k: (int(r[k]) if k == "bout" else float(r[k])) for k in keys}
+                                   for _, r in flagged.iterrows()]}

@@ -82,9 +82,18 @@ QUANTISATION_WARN_PCT = 10.0
 #: decision L116: the summary's ``contact_timing`` values
 WHOLE_SAMPLES, BETWEEN_SAMPLES = "whole samples", "between samples"
 
+#: decision L196: a walking bout's own stride-time CV needs at least this many of the CV's steady strides in it
+#: (L123's minimum of strides for a figure)
+CV_BOUT_MIN_STRIDES = 5
+#: decision L196: the pooled CV is named as pooling bouts of different rhythm when it exceeds the within-bout CV
+#: by this factor (a priori: pooled^2 = within^2 + between^2, so the bouts' differences then carry more than three
+#: quarters of the variance); the session-27 trial's walk / run / walk: 16.4 % pooled, ~2 % in each part
+CV_POOLED_FACTOR = 2.0
+
 #: the keys :func:`clinical_summary` gives every summary (None / 0 when the table cannot give them)
 CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts", "turn_count",
-                 "turn_count_min_deg", "stride_time_cv_pct", "n_cv_strides", "stride_time_cv_withheld")
+                 "turn_count_min_deg", "stride_time_cv_pct", "n_cv_strides", "stride_time_cv_withheld",
+                 "stride_time_cv_within_bouts_pct", "stride_time_cv_bouts")
 
 
 def _valid(steps: pd.DataFrame) -> np.ndarray:
@@ -284,27 +293,60 @@ def _level_forward(steps: pd.DataFrame) -> np.ndarray:
     return ok
 
 
-def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
-    """The stride times (s) of a foot table's steady straight strides (module docstring) and the same strides'
-    swing-onset intervals (``start_s`` to the previous row's, s; decision L113); none for a lower-back table (its
-    contact timing scatters too much for a variability, decision L104)."""
+def _steady_rows(steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
+    """A foot table in ``start_s`` order and its steady straight level forward strides with a stride time (module
+    docstring, L104 / L188), the strides the stride-time CV is taken over; no row for a table without stride times
+    (a lower-back table: its contact timing scatters too much for a variability, decision L104)."""
     from pdrlearn.track.gait import STRAIGHT_MAX_RAD
 
-    if "stride_time_s" in steps:
-        st = steps.sort_values("start_s", kind="stable")
-        s = st["stride_time_s"].to_numpy(float)
-        turn = st["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in st else np.zeros(len(s))
-        with np.errstate(invalid="ignore"):
-            ok = np.isfinite(s) & (np.abs(turn) < STRAIGHT_MAX_RAD) & _valid(st) & _level_forward(st)
-        if len(st) > 1:  # a stride time across a pause (IC to IC over a short stop, L80) is no stride's rhythm
-            _, is_pause = _intervals(st.reset_index(drop=True))
-            ok &= ~np.concatenate([[False], is_pause]) & ~np.concatenate([is_pause, [False]])
-        # steady: the strides before and after are straight strides with a stride time too (no turn, start
-        # or stop next to it: the strides around a turn or a stop slow down)
-        steady = ok & np.concatenate([[False], ok[:-1]]) & np.concatenate([ok[1:], [False]])
-        onset = np.diff(st["start_s"].to_numpy(float), prepend=np.nan)
-        return s[steady], onset[steady]
-    return np.zeros(0), np.zeros(0)
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    if "stride_time_s" not in steps:
+        return st, np.zeros(len(st), bool)
+    s = st["stride_time_s"].to_numpy(float)
+    turn = st["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in st else np.zeros(len(s))
+    with np.errstate(invalid="ignore"):
+        ok = np.isfinite(s) & (np.abs(turn) < STRAIGHT_MAX_RAD) & _valid(st) & _level_forward(st)
+    if len(st) > 1:  # a stride time across a pause (IC to IC over a short stop, L80) is no stride's rhythm
+        _, is_pause = _intervals(st)
+        ok &= ~np.concatenate([[False], is_pause]) & ~np.concatenate([is_pause, [False]])
+    # steady: the strides before and after are straight strides with a stride time too (no turn, start
+    # or stop next to it: the strides around a turn or a stop slow down)
+    return st, ok & np.concatenate([[False], ok[:-1]]) & np.concatenate([ok[1:], [False]])
+
+
+def _straight_stride_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
+    """The stride times (s) of a foot table's steady straight strides (:func:`_steady_rows`) and the same strides'
+    swing-onset intervals (``start_s`` to the previous row's, s; decision L113); none for a lower-back table."""
+    st, steady = _steady_rows(steps)
+    if "stride_time_s" not in st:
+        return np.zeros(0), np.zeros(0)
+    onset = np.diff(st["start_s"].to_numpy(float), prepend=np.nan)
+    return st["stride_time_s"].to_numpy(float)[steady], onset[steady]
+
+
+def pooled_cv(steps: pd.DataFrame, cv_pct: float) -> dict | None:
+    """Decision L196: whether the stride-time CV ``cv_pct`` of ``steps`` (over :func:`_steady_rows`' strides) pools
+    walking bouts of different rhythm. Per L104 bout (:func:`bout_rows`, bouts.csv's under the default definition)
+    holding at least :data:`CV_BOUT_MIN_STRIDES` of those strides: its median stride time and own CV; the
+    within-bout CV = 100 x sqrt(sum of (t / its bout's mean - 1)^2 / (n - bouts)) over them. With two or more such
+    bouts and ``cv_pct`` above :data:`CV_POOLED_FACTOR` x the within-bout CV: ``{"within_bouts_cv_pct", "bouts":
+    [{"bout", "start_s", "n_strides", "median_stride_time_s", "cv_pct"}, ...]}``; None otherwise."""
+    st, steady = _steady_rows(steps)
+    if not steady.any():
+        return None
+    s = st["stride_time_s"].to_numpy(float)
+    groups = [(i + 1, a, s[a:b][steady[a:b]]) for i, (a, b) in enumerate(bout_rows(st))]
+    groups = [(i, a, t) for i, a, t in groups if len(t) >= CV_BOUT_MIN_STRIDES and t.mean() > 0]
+    if len(groups) < 2:
+        return None
+    dev = np.concatenate([t / t.mean() - 1.0 for _, _, t in groups])
+    within = float(100.0 * np.sqrt(np.sum(dev ** 2) / (len(dev) - len(groups))))
+    if not cv_pct > CV_POOLED_FACTOR * within:
+        return None
+    return {"within_bouts_cv_pct": within,
+            "bouts": [{"bout": i, "start_s": float(st["start_s"].iloc[a]), "n_strides": int(len(t)),
+                       "median_stride_time_s": float(np.median(t)),
+                       "cv_pct": float(100.0 * t.std(ddof=1) / t.mean())} for i, a, t in groups]}
 
 
 def contact_scatter_s(stride_s: np.ndarray, onset_s: np.ndarray) -> float:
@@ -401,7 +443,8 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     limit = CONTACT_SCATTER_MAX_S if contact_scatter_max_s is None else float(contact_scatter_max_s)
     out: dict = {"n_pauses": 0, "pause_time_s": 0.0, "longest_pause_s": None, "n_walking_bouts": 0,
                  "turn_count": 0, "turn_count_min_deg": TURN_COUNT_MIN_DEG, "stride_time_cv_pct": None,
-                 "n_cv_strides": 0, "stride_time_cv_withheld": None}
+                 "n_cv_strides": 0, "stride_time_cv_withheld": None, "stride_time_cv_within_bouts_pct": None,
+                 "stride_time_cv_bouts": []}
     if not len(steps) or "start_s" not in steps:
         return out
     p = pauses(steps)
@@ -420,6 +463,10 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
                 "contact_scatter_s": scatter}
         else:
             out["stride_time_cv_pct"] = cv
+            pooled = pooled_cv(steps, cv)  # decision L196: a CV over bouts of different rhythm
+            if pooled:
+                out["stride_time_cv_within_bouts_pct"] = pooled["within_bouts_cv_pct"]
+                out["stride_time_cv_bouts"] = pooled["bouts"]
     return out
 
 
@@ -470,6 +517,27 @@ def resolution_warning(summary: dict) -> str | None:
             f"{math.sqrt(max(cv * cv - q * q, 0.0)):.2f} %) and the median cadence moves in steps of "
             f"~{cadence_step_spm(dt, stride):.1f} steps/min (decision L116); compare such values only between "
             f"sessions of the same rate, or record at 100 Hz")
+
+
+#: decision L196: the pooled-CV line lists at most this many bouts
+POOLED_CV_LISTED = 6
+
+
+def pooled_cv_warning(summary: dict) -> str | None:
+    """Decision L196: one line when the summary's stride-time CV pools walking bouts of different rhythm
+    (``stride_time_cv_within_bouts_pct`` and ``stride_time_cv_bouts``, :func:`pooled_cv`); None otherwise. The CV
+    itself is printed as before."""
+    within, bouts = summary.get("stride_time_cv_within_bouts_pct"), summary.get("stride_time_cv_bouts") or []
+    cv = summary.get("stride_time_cv_pct")
+    if within is None or not bouts or cv is None:
+        return None
+    listed = "; ".join(f"bout {b['bout']} from {b['start_s']:.1f} s: median stride {b['median_stride_time_s']:.2f} s, "
+                       f"CV {b['cv_pct']:.1f} % over {b['n_strides']}" for b in bouts[:POOLED_CV_LISTED])
+    more = f"; {len(bouts) - POOLED_CV_LISTED} more" if len(bouts) > POOLED_CV_LISTED else ""
+    return (f"stride-time CV {cv:.1f} % pools walking bouts of different rhythm: within the bouts it is "
+            f"{within:.1f} % ({listed}{more}), so the session's CV measures the change of pace "
+            "between bouts, not the stride-to-stride variability; take a bout's own CV with 'pdrlearn track DIR "
+            "--window START,END' (bouts.csv gives the spans; decision L196)")
 
 
 def stride_cv_warning(summary: dict) -> str | None:

@@ -727,16 +727,29 @@ METRICS = [_basic, _ground_truth, _altitude, _stride_lengths, _foot_stride_f1, _
            _class_agreement, _barometer, _leg_length]
 
 
+def add_gait_range_flag(summary: dict) -> dict:
+    """Decision L195: ``gait_out_of_range`` (bool) - L95's session line fires (:func:`pdrlearn.track.gait.
+    session_range_side`: above or below the walking range) or some bout lies above it (``n_bouts_out_of_range``);
+    the machine-readable form of those warnings (sessions.csv, bouts.csv per bout). Set in place; returned."""
+    from pdrlearn.track.gait import session_range_side
+
+    summary["gait_out_of_range"] = bool(session_range_side(summary) is not None
+                                        or (summary.get("n_bouts_out_of_range") or 0) > 0)
+    return summary
+
+
 def summary_warnings(summary: dict) -> list[str]:
-    """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range,
-    decision L113's withheld stride-time CV, decision L116's whole-sample rounding of the CV, decision L145's
+    """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range and
+    L195's bouts above it, decision L113's withheld stride-time CV, decision L196's CV pooled over bouts of
+    different rhythm, decision L116's whole-sample rounding of the CV, decision L145's
     foot altitude against the unused barometer, decision B188's implausible barometer and decision L175's position
     uncertainty against the distance walked."""
-    from pdrlearn.track.clinical import resolution_warning, stride_cv_warning
-    from pdrlearn.track.gait import gait_range_warning
+    from pdrlearn.track.clinical import pooled_cv_warning, resolution_warning, stride_cv_warning
+    from pdrlearn.track.gait import bout_range_warning, gait_range_warning
     from pdrlearn.track.position_sigma import position_sigma_warning
 
-    return [w for w in (gait_range_warning(summary), stride_cv_warning(summary), resolution_warning(summary),
+    return [w for w in (gait_range_warning(summary), bout_range_warning(summary), stride_cv_warning(summary),
+                        pooled_cv_warning(summary), resolution_warning(summary),
                         barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
                         position_sigma_warning(summary)) if w]
 
@@ -766,7 +779,8 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
             fn(result, out)
         elif session is not None:
             fn(result, session, out)
-    out.update(bouts_summary(result.steps, bouts, bout_table))  # decision L124: bouts.csv's rows and their definition
+    # decision L124: bouts.csv's rows and their definition; L195: the bouts above the (leg-scaled) walking range
+    out.update(bouts_summary(result.steps, bouts, bout_table, leg_m=out.get("leg_length_m")))
     if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: position uncertainty
         sigma = result.trajectory["pos_sigma_m"].to_numpy(float)
         out["final_position_sigma_m"] = float(sigma[-1])
@@ -830,6 +844,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         stats = foot_rest_stats(session)
         placement = foot_placement_warning(stats, session.where)
         scale = foot_scale_warning(stats, "")  # decision B201: the foot accelerometer's rest |acc| off 1 g
+    add_gait_range_flag(summary)  # decision L195
     lines = summary_warnings(summary)
     if placement:  # its cadence is not a foot's: B134's line replaces L95's "looks like running" guess
         from pdrlearn.track.gait import gait_range_warning

@@ -400,18 +400,75 @@ def gait_ranges(leg_m: float | None) -> tuple[tuple[float, float], tuple[float, 
     return ((CADENCE_RANGE_SPM[0] * k, CADENCE_RANGE_SPM[1] * k), (SPEED_RANGE_MPS[0] / k, SPEED_RANGE_MPS[1] / k))
 
 
-def gait_range_warning(summary: dict) -> str | None:
-    """Decision L95: one line when the summary's median cadence or speed (``median_speed_mps``, else
-    ``gait_speed_mps``) lies outside :data:`CADENCE_RANGE_SPM` / :data:`SPEED_RANGE_MPS`; None inside (or with
-    neither figure); decision L148: the ranges scaled to the summary's ``leg_length_m`` (:func:`gait_ranges`, a
-    child's walk is no run). Adds the out-of-domain fraction of a model's classes when the summary has one (C16).
-    Decision L123: with at least :data:`MIN_STRAIGHT_FOR_RANGE` straight strides their median speed
-    (``median_speed_straight_mps``) is judged instead, so turning on the spot does not read as a slow walk.
-    Decision L179: stair strides are not straight (:func:`_speed_fields`); with fewer straight strides than that and
-    at least as many stair strides (``n_stair_strides``) no speed is judged, only the cadence.
-    Decision W144: a cadence above the range at a speed inside it or below is named short fast steps (festination)
-    or running; "looks like running" needs the speed above the range (or a cadence unknown)."""
-    cad = summary.get("median_cadence_spm")
+#: decision W178: a cadence above L95's range at a judged speed of at least this (m/s, the adult L95 scale; scaled
+#: with the leg as the speed range, L148) names running first: at 160 steps/min it is a 0.56 m step, no shuffle (the
+#: simulated festinating walks of W100 read 0.6-0.7 m/s on the uncalibrated waist), while the uncalibrated waist reads
+#: fast-cadence walks short (the session-27 trial: 1.95 m/s at 200 steps/min for a true 3.33 m/s)
+RUNNING_FIRST_SPEED_MPS = 1.5
+#: decision L195: a bout is judged for L95's range with at least this many strides (L123's minimum for a speed)
+BOUT_RANGE_MIN_STRIDES = MIN_STRAIGHT_FOR_RANGE
+
+
+def _finite(v) -> float | None:
+    return float(v) if isinstance(v, int | float) and not isinstance(v, bool) and np.isfinite(v) else None
+
+
+def _leg(summary: dict) -> float | None:
+    leg = _finite(summary.get("leg_length_m"))
+    return leg if leg is not None and leg > 0 else None
+
+
+def range_side(cad: float | None, speed: float | None, leg_m: float | None) -> str | None:
+    """Decisions L95 / L148: ``"fast"`` when the cadence (steps/min) or the speed (m/s) is above the leg-scaled
+    walking range (:func:`gait_ranges`), ``"slow"`` when one is below it (and none above), None inside it or with
+    neither figure. The one test of the range for the session (:func:`gait_range_warning`) and each bout
+    (:func:`bout_range_flags`, decision L195)."""
+    cad_range, speed_range = gait_ranges(leg_m)
+    if (cad is not None and cad > cad_range[1]) or (speed is not None and speed > speed_range[1]):
+        return "fast"
+    if (cad is not None and cad < cad_range[0]) or (speed is not None and speed < speed_range[0]):
+        return "slow"
+    return None
+
+
+#: decisions W144, W178, L197: the fast gaits' names, in L95's session line and in L195's bout line
+FAST_GAITS = {"running": ("this looks like running, and running is not supported: ", "looks like running"),
+              "running_first": ("running, or short fast steps (a festinating or shuffling gait), neither of which is "
+                                "supported: ", "running, or short fast steps"),
+              "short_fast": ("short fast steps (a festinating or shuffling gait) or running, neither of which is "
+                             "supported: ", "short fast steps or running")}
+
+
+def fast_gait(cad: float | None, speed: float | None, leg_m: float | None, other_speed: float | None = None) -> str:
+    """The :data:`FAST_GAITS` key of a gait above L95's range. Decision W144: "looks like running" needs the speed
+    above the range (or no cadence); a fast cadence at a walking speed is short fast steps or running. Decision
+    L197: with no speed judged (a walk of stairs or slopes, L179), ``other_speed`` (the gait speed) above the range
+    says running. Decision W178: a fast cadence at :data:`RUNNING_FIRST_SPEED_MPS` or more (leg-scaled) names
+    running first."""
+    _, speed_range = gait_ranges(leg_m)
+    k = speed_range[1] / SPEED_RANGE_MPS[1]  # L148's speed scale of this leg
+    if (speed is not None and speed > speed_range[1]) or cad is None or \
+            (speed is None and other_speed is not None and other_speed > speed_range[1]):  # W144, L197
+        return "running"
+    if speed is not None and speed >= RUNNING_FIRST_SPEED_MPS * k:  # decision W178
+        return "running_first"
+    return "short_fast"
+
+
+def _validated(summary: dict, leg: float | None) -> str:
+    cad_range, speed_range = gait_ranges(leg)  # decision L148
+    text = (f"the pipelines are validated on walking at {CADENCE_RANGE_SPM[0]:.0f}-{CADENCE_RANGE_SPM[1]:.0f} "
+            f"steps/min and {SPEED_RANGE_MPS[0]:g}-{SPEED_RANGE_MPS[1]:g} m/s (decision L95)")
+    if leg is not None:
+        text += (f", for the {leg:.2f} m leg of {summary.get('leg_length_source') or 'meta.json'} "
+                 f"{cad_range[0]:.0f}-{cad_range[1]:.0f} steps/min and {speed_range[0]:.2f}-{speed_range[1]:.2f} "
+                 f"m/s (scaled to a {reference_leg_m():.2f} m adult leg by dynamic similarity, Hof 1996; "
+                 "decision L148)")
+    return text
+
+
+def _judged(summary: dict) -> tuple[float | None, float | None, str]:
+    """L95's figures of a summary: the median cadence and the judged speed with its name (L123, L179)."""
     speed, what_speed = summary.get("median_speed_mps"), "speed"
     straight = summary.get("median_speed_straight_mps")
     if straight is not None and np.isfinite(straight) and (summary.get("n_straight_strides") or 0) >= \
@@ -423,37 +480,89 @@ def gait_range_warning(summary: dict) -> str | None:
         speed = None
     elif speed is None:
         speed = summary.get("gait_speed_mps")
-    cad = float(cad) if cad is not None and np.isfinite(cad) else None
-    speed = float(speed) if speed is not None and np.isfinite(speed) else None
+    return _finite(summary.get("median_cadence_spm")), _finite(speed), what_speed
+
+
+def session_range_side(summary: dict) -> str | None:
+    """Decision L95: :func:`range_side` of the summary's own figures (the session line's verdict)."""
+    cad, speed, _ = _judged(summary)
+    return range_side(cad, speed, _leg(summary))
+
+
+def gait_range_warning(summary: dict) -> str | None:
+    """Decision L95: one line when the summary's median cadence or speed (``median_speed_mps``, else
+    ``gait_speed_mps``) lies outside :data:`CADENCE_RANGE_SPM` / :data:`SPEED_RANGE_MPS`; None inside (or with
+    neither figure); decision L148: the ranges scaled to the summary's ``leg_length_m`` (:func:`gait_ranges`, a
+    child's walk is no run). Adds the out-of-domain fraction of a model's classes when the summary has one (C16).
+    Decision L123: with at least :data:`MIN_STRAIGHT_FOR_RANGE` straight strides their median speed
+    (``median_speed_straight_mps``) is judged instead, so turning on the spot does not read as a slow walk.
+    Decision L179: stair strides are not straight (:func:`_speed_fields`); with fewer straight strides than that and
+    at least as many stair strides (``n_stair_strides``) no speed is judged, only the cadence.
+    Decision W144: a cadence above the range at a speed inside it or below is named short fast steps (festination)
+    or running; "looks like running" needs the speed above the range (or a cadence unknown)."""
+    cad, speed, what_speed = _judged(summary)
     figs = ", ".join([*([f"median cadence {cad:.0f} steps/min"] if cad is not None else []),
                       *([f"{what_speed} {speed:.2f} m/s"] if speed is not None else [])])
-    leg = summary.get("leg_length_m")
-    leg = float(leg) if isinstance(leg, int | float) and np.isfinite(leg) and leg > 0 else None
-    cad_range, speed_range = gait_ranges(leg)  # decision L148
-    fast = (cad is not None and cad > cad_range[1]) or (speed is not None and speed > speed_range[1])
-    slow = (cad is not None and cad < cad_range[0]) or (speed is not None and speed < speed_range[0])
-    if not (fast or slow):
+    leg = _leg(summary)
+    side = range_side(cad, speed, leg)  # decision L148: the leg-scaled ranges
+    if side is None:
         return None
-    validated = (f"the pipelines are validated on walking at {CADENCE_RANGE_SPM[0]:.0f}-{CADENCE_RANGE_SPM[1]:.0f} "
-                 f"steps/min and {SPEED_RANGE_MPS[0]:g}-{SPEED_RANGE_MPS[1]:g} m/s (decision L95)")
-    if leg is not None:
-        validated += (f", for the {leg:.2f} m leg of {summary.get('leg_length_source') or 'meta.json'} "
-                      f"{cad_range[0]:.0f}-{cad_range[1]:.0f} steps/min and {speed_range[0]:.2f}-{speed_range[1]:.2f} "
-                      f"m/s (scaled to a {reference_leg_m():.2f} m adult leg by dynamic similarity, Hof 1996; "
-                      "decision L148)")
-    # decision W144: a fast cadence at a walking speed or slower is short fast steps (festination), not a run
-    running = speed is not None and speed > speed_range[1]
-    what = ("this looks like running, and running is not supported: " if fast and (running or cad is None)
-            else "short fast steps (a festinating or shuffling gait) or running, neither of which is supported: "
-            if fast else "this is slower than the walking the pipelines were validated on: ")
+    cad_range, speed_range = gait_ranges(leg)
+    slow = (cad is not None and cad < cad_range[0]) or (speed is not None and speed < speed_range[0])
+    validated = _validated(summary, leg)
+    # decisions W144, W178, L197: which fast gait to name first
+    gait_speed = _finite(summary.get("gait_speed_mps"))
+    what = (FAST_GAITS[fast_gait(cad, speed, leg, gait_speed)][0] if side == "fast"
+            else "this is slower than the walking the pipelines were validated on: ")
+    if side == "fast" and speed is None and cad is not None and gait_speed is not None and \
+            gait_speed > speed_range[1]:  # decision L197: the figure that names it running
+        figs += f", gait speed {gait_speed:.2f} m/s"
     ood = summary.get("out_of_domain_fraction")
     extra = (f"; {100 * float(ood):.0f} % of the strides lie outside the model's training range" if ood is not None
              else "")
     info = summary.get("info") or {}
-    if slow and str(info.get("pipeline") or "").startswith("waist") and info.get("params_source") == "defaults":
+    if slow and str(info.get("pipeline") or "").startswith("waist") and \
+            info.get("params_source") == "defaults":
         # decision W77: an uncalibrated waist's step length at slow cadence is the default model's guess
         extra += ("; the waist step length is uncalibrated and the default model is not validated at slow "
                   "cadence: the distance and speed depend on a calibration on this walker's own walk of known "
                   "length ('pdrlearn calibrate DIR --distance M', e.g. a 10 m walk test)")
     return (f"{figs}: {what}{validated}; the distance, the terrain / length classes and the floors are not "
             f"reliable{extra}")
+
+
+def bout_range_flags(table, leg_m: float | None) -> np.ndarray:
+    """Decision L195: (bouts,) bool, the bouts of a bouts.csv table (:func:`pdrlearn.track.bouts.detected_bouts`)
+    whose own ``cadence_spm`` or ``speed_mps`` is above L95's walking range (:func:`range_side`, leg-scaled by L148),
+    judged on bouts of at least :data:`BOUT_RANGE_MIN_STRIDES` strides. Only the fast side: a bout's speed is
+    distance / duration with its slower first and last steps and its turns in it (biased low), so a slow bout is
+    left to the session's L95 / L123 check on straight strides."""
+    if not len(table):
+        return np.zeros(0, bool)
+    n = table["n_strides"].to_numpy(float)
+    return np.array([ni >= BOUT_RANGE_MIN_STRIDES and range_side(_finite(c), _finite(v), leg_m) == "fast"
+                     for ni, c, v in zip(n, table["cadence_spm"], table["speed_mps"], strict=True)], dtype=bool)
+
+
+def bout_range_warning(summary: dict) -> str | None:
+    """Decision L195: one line naming the bouts (``bouts_out_of_range``: bouts.csv's number, span, cadence and
+    speed) above L95's walking range when the session's own L95 line does not already say the session is fast;
+    None otherwise."""
+    bouts = summary.get("bouts_out_of_range") or []
+    if not bouts or session_range_side(summary) == "fast":
+        return None
+    leg = _leg(summary)
+    parts = []
+    for b in bouts:
+        cad, speed = _finite(b.get("cadence_spm")), _finite(b.get("speed_mps"))
+        figs = ", ".join([*([f"cadence {cad:.0f} steps/min"] if cad is not None else []),
+                          *([f"speed {speed:.2f} m/s"] if speed is not None else [])])
+        what = FAST_GAITS[fast_gait(cad, speed, leg)][1]
+        parts.append(f"bout {b['bout']} ({b['start_s']:.1f}-{b['end_s']:.1f} s, {figs}: {what})")
+    cad, _, _ = _judged(summary)
+    whole = f" (the session's median cadence {cad:.0f} steps/min is inside it)" if cad is not None else ""
+    return (f"{len(bouts)} of {summary.get('n_bouts', len(bouts))} walking bout(s) lie above the walking range"
+            f"{whole}: {'; '.join(parts)}; neither running nor short fast steps is supported: "
+            f"{_validated(summary, leg)}; in those bouts the distance, the terrain / length classes and the floors "
+            "are not reliable, and the session's medians mix both gaits (bouts.csv gait_out_of_range; decision "
+            "L195)")

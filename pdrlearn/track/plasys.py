@@ -420,7 +420,8 @@ def align_clocks(session: Session, warnings: list[str]) -> tuple[Session, dict |
         if line is not None:  # decision L186: an unlocked estimate tells no offset (L183)
             warnings.append(line)
             return session, None
-        return move_waist_clock(session, est["offset_s"], est["drift"], warnings, source="estimated")
+        return move_waist_clock(session, est["offset_s"], est["drift"], warnings, source="estimated",
+                                ref_s=est["ref_s"])  # decision L198: the offset holds at ref_s
     except (ImportError, AttributeError):
         warnings.append("pdrlearn.steps.align_units not available: unit clocks not aligned")
     except DataError as exc:
@@ -433,17 +434,21 @@ CLOCK_OPTIONS = {"estimated": "--align-units", "given": "--clock-offset"}
 
 
 def move_waist_clock(session: Session, offset_s: float, drift: float, warnings: list[str], *,
-                     source: str) -> tuple[Session, dict]:
-    """The waist streams moved onto the foot clock, ``t_foot = (t_waist - offset_s) / (1 + drift)``
-    (:func:`pdrlearn.steps.align.apply_alignment`), and what was applied: ``{"offset_s", "drift", "source"}``
+                     source: str, ref_s: float | None = None) -> tuple[Session, dict]:
+    """The waist streams moved onto the foot clock, ``t_foot = ref_s + (t_waist - offset_s - ref_s) / (1 + drift)``
+    (:func:`pdrlearn.steps.align.apply_alignment`; ``offset_s`` is the offset at foot-clock time ``ref_s``, decision
+    L198; None: 0, a given drift-free offset), and what was applied: ``{"offset_s", "drift", "source"}`` (+ ``ref_s``
+    when given: an estimate's)
     (``source`` ``"estimated"``: ``--align-units``' estimate, L162; ``"given"``: ``--clock-offset``, E111), with
     ``common_span_s`` when the moved clock left the units apart and the time both cover was kept (B83's cut,
     one line in ``warnings`` naming the option)."""
     from pdrlearn.io.plasys import cut_to_common_span
     from pdrlearn.steps.align import apply_alignment
 
-    aligned = apply_alignment(session, offset_s, drift)
+    aligned = apply_alignment(session, offset_s, drift, 0.0 if ref_s is None else ref_s)
     info = {"offset_s": float(offset_s), "drift": float(drift), "source": source}
+    if ref_s is not None:  # decision L198: the foot-clock time the estimated offset holds at
+        info["ref_s"] = float(ref_s)
     # decision L162: the moved waist clock may leave the units apart (B83): the time both cover is kept
     cut = cut_to_common_span(aligned.streams, session.folder or Path(session.name))
     if cut is not None:

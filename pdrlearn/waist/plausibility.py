@@ -173,6 +173,22 @@ PLL_WALK_RATIO_BASIS = ("waist-pll's step length is a line in its step frequency
                         "simulated short-step walks read +51 to +574 % long on waist-pll): ")
 
 
+def running_cadence(length: float | None, cadence: float | None, height_m: float = WALK_RATIO_HEIGHT_M) -> bool:
+    """Decision W177: whether an uncalibrated waist track's median step ``length`` (m) at its median ``cadence``
+    (steps/min) is a fast gait W178 names running first - the cadence above L95's range and the speed length x
+    cadence / 60 at least :data:`pdrlearn.track.gait.RUNNING_FIRST_SPEED_MPS`, both scaled to the leg of a walker
+    ``height_m`` tall (L148, W116's stature) - where a low walk ratio comes from the pendulum model's short reading
+    of long steps, not from short steps."""
+    from pdrlearn.track.gait import fast_gait, range_side
+    from pdrlearn.waist.params import LEG_PER_HEIGHT
+
+    if length is None or cadence is None:
+        return False
+    leg = LEG_PER_HEIGHT * height_m
+    speed = length * cadence / 60.0
+    return range_side(cadence, None, leg) == "fast" and fast_gait(cadence, speed, leg) != "short_fast"
+
+
 def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadence: float | None,
                        height_m: float = WALK_RATIO_HEIGHT_M, *, pll_length: float | None = None) -> str | None:
     """Decision W100's one warning line for an uncalibrated waist track whose walk ratio lies outside
@@ -188,6 +204,12 @@ def walk_ratio_message(ratio: float | None, n: int, length: float | None, cadenc
             "waist step length is not validated and reads long (simulated festinating walks: +20 to +174 % distance)"
             if ratio < lo else
             "far over healthy gait's: the uncalibrated step length is implausibly long for this cadence")
+    if ratio < lo and running_cadence(length, cadence, height_m):  # decision W177
+        what = ("far under healthy gait's at a running cadence and an uncalibrated speed of "
+                f"{length * cadence / 60.0:.2f} m/s: this looks like running, or short fast steps; the waist step "
+                "model is validated on walking only, and on fast walking at running cadence it read the steps "
+                "short, not long (simulated 167-200 steps/min: -41.7 to -47.6 % distance), so the distance is "
+                "probably too short")
     if pll_length is not None:  # W139
         what = (f"{what}; waist-pll reads a median step of {pll_length:.2f} m, the pendulum {length:.2f} m")
     return (("" if pll_length is None else PLL_WALK_RATIO_BASIS) +
