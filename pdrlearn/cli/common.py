@@ -483,7 +483,6 @@ def walk_line(summary: dict) -> str | None:
                     f"{CV_MIN_STRIDES} needed)" if summary.get("n_stride_times") else ""))  # decision L188
 
 
-<<<<<<< HEAD
 def transfer_line(summary: dict) -> str | None:
     """Decisions L200, W183: ``track``'s line of the turns' median duration and, on the lower back, the chair
     transfers and the TUG time; None when the summary has neither a timed turn nor a transfer."""
@@ -496,7 +495,8 @@ def transfer_line(summary: dict) -> str | None:
         if summary.get("tug_time_s") is not None:
             parts.append(f"TUG time {summary['tug_time_s']:.2f} s (rise to sit)")
     return ", ".join(parts) if parts else None
-=======
+
+
 def _few_straight(summary: dict) -> str:
     """Decision L197: the straight strides' count when it is under L123's minimum for a speed (5): a median of
     one or two strides (a partial start stride) stands for no walk; said, not hidden (the summary keeps it)."""
@@ -506,7 +506,6 @@ def _few_straight(summary: dict) -> str:
     if n is None or n >= MIN_STRAIGHT_FOR_RANGE:
         return ""
     return f" (over {n} stride{'s' if n != 1 else ''} only, under the {MIN_STRAIGHT_FOR_RANGE} L95 judges; L197)"
->>>>>>> main
 
 
 def gait_line(summary: dict) -> str:
