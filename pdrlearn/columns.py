@@ -171,6 +171,17 @@ SESSIONS: tuple[Column, ...] = (
     ("turn_count", "count", "integer",
      f"turns of >= {TURN_COUNT_MIN_DEG:g} deg, with their same-direction edge rows (L104, L181)"),
     ("turn_count_min_deg", "deg", "number", "the smallest turn turn_count counts"),
+    ("median_turn_duration_s", "s", "number", "median duration of turns.csv's turns (L200); empty without a turn"),
+    ("median_turn_angle_deg", "deg", "number", "median absolute angle of turns.csv's turns (L200)"),
+    ("median_turn_peak_rate_dps", "deg/s", "number", "median peak turning rate of turns.csv's turns (L200)"),
+    ("turn_time_s", "s", "number", "turns.csv's durations summed (L200)"),
+    ("n_sit_to_stand", "count", "integer", "lower back: sit-to-stand transfers (transfers.csv, W182); empty on a foot "
+                                           "track (a foot unit does not see the trunk)"),
+    ("n_stand_to_sit", "count", "integer", "lower back: stand-to-sit transfers (W182); empty on a foot track"),
+    ("median_sit_to_stand_s", "s", "number", "lower back: median sit-to-stand duration (W182)"),
+    ("median_stand_to_sit_s", "s", "number", "lower back: median stand-to-sit duration (W182)"),
+    ("tug_time_s", "s", "number", "lower back, a session that starts and ends seated (one rise before the first "
+                                  "step, one sit after the last): the rise's start to the sit's end (W183)"),
     ("turn_sign_agreement", "fraction", "number", "reference turns whose tracked turn has the same sign (L42)"),
     ("walking_speed_mps", "m/s", "number", "distance / walking time without the pauses (L110)"),
     ("walking_time_no_pauses_s", "s", "number", "walking time without the pauses inside it (L110)"),
@@ -242,6 +253,31 @@ BOUTS: tuple[Column, ...] = (
     ("speed_m_s", "m/s", "number", "deprecated (E98): speed_mps under its old name, kept last until a later release"),
 )
 
+#: decision L200: a track's turns.csv, one row per turn of at least turn_count_min_deg (foot and lower back)
+TURNS: tuple[Column, ...] = (
+    ("turn", "index", "integer", "the turn's number in the session, from 1"),
+    ("start_s", "s", "number", "the start of the first row whose heading change the turn sums (a foot row: the rest "
+                               "before its stride; a lower-back row: its contact), on the session's clock"),
+    ("end_s", "s", "number", "the end of the last such row"),
+    ("duration_s", "s", "number", "end_s - start_s"),
+    ("angle_deg", "deg", "number", "signed heading change, + = left (counter-clockwise), as turn_count's (L104, L181)"),
+    ("peak_rate_dps", "deg/s", "number", "largest |heading change| / time between two of its rows' starts"),
+    ("n_rows", "count", "integer", "rows of steps.csv the turn spans"),
+    ("bout", "index", "integer", "the bouts.csv bout holding the turn; empty outside every bout"),
+)
+
+#: decision W182: a lower-back track's transfers.csv (a foot track writes none)
+TRANSFERS: tuple[Column, ...] = (
+    ("transfer", "index", "integer", "the transfer's number in the session, from 1"),
+    ("kind", _ID, "text", "sit-to-stand (the pelvis rises 0.20 m or more) or stand-to-sit (it lowers as much)"),
+    ("start_s", "s", "number", "the trunk starts to flex (its tilt rate reaches 10 deg/s), on the session's clock"),
+    ("end_s", "s", "number", "the trunk is still again after straightening"),
+    ("duration_s", "s", "number", "end_s - start_s"),
+    ("peak_s", "s", "number", "the trunk's largest tilt from the walking upright"),
+    ("peak_tilt_deg", "deg", "number", "that tilt (W104's flexion events exceed 25 deg)"),
+    ("height_change_m", "m", "number", "the pelvis's height change from start_s to end_s (+ up)"),
+)
+
 #: a lower-back track's steps.csv (``TrackResult.steps`` of waist-pendulum / waist-pll), one row per contact of either
 #: foot; a foot track's steps.csv (strides of one foot) has other columns
 WAIST_STEPS: tuple[Column, ...] = (
@@ -279,7 +315,8 @@ WAIST_STEPS: tuple[Column, ...] = (
 
 #: every table of the dictionary, in the order shown
 TABLES: dict[str, tuple[Column, ...]] = {"sessions.csv": SESSIONS, "groups.csv": GROUPS, "subjects.csv": SUBJECTS,
-                                         "bouts.csv": BOUTS, "steps.csv": WAIST_STEPS}
+                                         "bouts.csv": BOUTS, "turns.csv": TURNS, "transfers.csv": TRANSFERS,
+                                         "steps.csv": WAIST_STEPS}
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
 NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row per contact of either foot. A foot "
                       "track's steps.csv (strides of the tracked foot) has other columns."}

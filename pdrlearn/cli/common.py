@@ -483,6 +483,20 @@ def walk_line(summary: dict) -> str | None:
                     f"{CV_MIN_STRIDES} needed)" if summary.get("n_stride_times") else ""))  # decision L188
 
 
+def transfer_line(summary: dict) -> str | None:
+    """Decisions L200, W183: ``track``'s line of the turns' median duration and, on the lower back, the chair
+    transfers and the TUG time; None when the summary has neither a timed turn nor a transfer."""
+    parts = []
+    if summary.get("median_turn_duration_s") is not None:
+        parts.append(f"median turn {summary['median_turn_duration_s']:.2f} s (turns.csv)")
+    rise, sit = summary.get("n_sit_to_stand"), summary.get("n_stand_to_sit")
+    if rise or sit:
+        parts.append(f"{rise} sit-to-stand, {sit} stand-to-sit (transfers.csv)")
+        if summary.get("tug_time_s") is not None:
+            parts.append(f"TUG time {summary['tug_time_s']:.2f} s (rise to sit)")
+    return ", ".join(parts) if parts else None
+
+
 def _few_straight(summary: dict) -> str:
     """Decision L197: the straight strides' count when it is under L123's minimum for a speed (5): a median of
     one or two strides (a partial start stride) stands for no walk; said, not hidden (the summary keeps it)."""

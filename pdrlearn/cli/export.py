@@ -258,8 +258,8 @@ def _unit_clocks(session, units, align: bool, offset_s: float | None = None):
 def run(
     bundle_dir: Path = typer.Argument(..., help="Bundle folder written by 'pdrlearn export'."),
     session_dir: Path = typer.Argument(None, help="PLASYS session folder to replay (omit with --protocol)."),
-    out: Path = typer.Option(None, "--out", "-o", help="Folder for steps.csv, trajectory.csv, bouts.csv, path.png, "
-                             "summary.json (the files and columns of `pdrlearn track`)."),
+    out: Path = typer.Option(None, "--out", "-o", help="Folder for steps.csv, trajectory.csv, bouts.csv, turns.csv, "
+                             "path.png, summary.json (the files and columns of `pdrlearn track`)."),
     protocol: str = typer.Option(None, "--protocol", help="Bluetooth text-protocol capture to read instead "
                                  "of a session ('-' = stdin)."),
     protocol_rate: float = typer.Option(None, "--protocol-rate", metavar="HZ", help="Sampling rate of the "
@@ -820,14 +820,15 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
            record: dict, bouts) -> None:
-    """steps.csv, trajectory.csv, bouts.csv (L124), path.png, summary.json and run.json (``record``, decision
-    L122) as ``track`` writes them (same names, columns, number format, ``track``'s figure), atomically: all six
-    or none, and ``--force`` keeps the old run until then. ``session``: the replayed session (its ground truth
-    in path.png; None for a capture)."""
+    """steps.csv, trajectory.csv, bouts.csv (L124), turns.csv (L200), path.png, summary.json and run.json
+    (``record``, decision L122) as ``track`` writes them (same names, columns, number format, ``track``'s figure),
+    atomically: all seven or none, and ``--force`` keeps the old run until then. ``session``: the replayed session
+    (its ground truth in path.png; None for a capture)."""
     import json
 
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.cli.provenance import write_run_json
+    from pdrlearn.cli.track import clinical_tables
     from pdrlearn.track.bouts import csv_table
     from pdrlearn.track.plots import plot_paths
 
@@ -836,6 +837,8 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
         result.steps.to_csv(tmp / "steps.csv", index=False, float_format="%.10g")
         result.trajectory.to_csv(tmp / "trajectory.csv", index=False, float_format="%.10g")
         csv_table(bouts).to_csv(tmp / "bouts.csv", index=False, float_format="%.10g")  # L124, as track (E98)
+        for name, table in clinical_tables(result, bouts).items():  # L200, L202: turns.csv, as track
+            table.to_csv(tmp / name, index=False, float_format="%.10g")
         plot_paths({"runtime": result}, tmp / "path.png", session=session, title=f"{source}: pdrlearn run", dpi=dpi)
         (tmp / "summary.json").write_text(json.dumps(json_safe(summary), indent=2) + "\n")
         write_run_json(tmp, record)

@@ -22,6 +22,7 @@ from pdrlearn.cli.common import (
     resample_options,
     start_option,
     storey_height_option,
+    transfer_line,
     walk_line,
 )
 from pdrlearn.errors import DataError
@@ -575,6 +576,21 @@ def _check_relative_heading(result, session, heading0: float) -> None:
     result.info["initial_heading_rad"] = heading0
 
 
+def clinical_tables(result, bouts) -> dict:
+    """The per-event tables a track writes beside bouts.csv: ``turns.csv`` (decision L200: each turn of at least
+    ``turn_count_min_deg``, any pipeline) and, on the lower back, ``transfers.csv`` (decision W182: each
+    sit-to-stand / stand-to-sit; a foot track has none: a foot unit does not see the trunk)."""
+    import pandas as pd
+
+    from pdrlearn.track.clinical import turn_table
+    from pdrlearn.waist.transfers import TRANSFER_COLUMNS
+
+    out = {"turns.csv": turn_table(result.steps, bouts)}
+    if result.info.get("transfers") is not None:
+        out["transfers.csv"] = pd.DataFrame(result.info["transfers"], columns=list(TRANSFER_COLUMNS))
+    return out
+
+
 def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     """Write :func:`track_session`'s track into the existing folder ``dest`` (the caller's temporary folder):
     ``trajectory.csv``, ``steps.csv``, ``bouts.csv`` (decision L124), ``path.png`` (``aided.png`` with fixes) and
@@ -598,6 +614,8 @@ def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
     _write_csv(traj, dest / "trajectory.csv")
     _write_csv(result.steps, dest / "steps.csv")
     _write_csv(csv_table(tracked["bouts"]), dest / "bouts.csv")  # decision L124 (E98: the old speed_m_s last)
+    for name, table in clinical_tables(result, tracked["bouts"]).items():  # decisions L200, W182
+        _write_csv(table, dest / name)
     plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
     (dest / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
@@ -637,7 +655,11 @@ def _print_summary(summary: dict, out: Path, aided: bool) -> None:
         walk = walk_line(summary)  # decision L104
         if walk:
             typer.echo(walk)
-    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, path.png, "
+        timed = transfer_line(summary)  # decisions L200, W183
+        if timed:
+            typer.echo(timed)
+    typer.echo(f"wrote {out}/trajectory.csv, steps.csv, bouts.csv, turns.csv, "
+               f"{'transfers.csv, ' if summary.get('n_sit_to_stand') is not None else ''}path.png, "
                f"{'aided.png, ' if aided else ''}summary.json, run.json")
 
 

@@ -174,8 +174,18 @@ def turn_rows(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
     turning interval - the row a per-bout table (decision L124) counts the turn in. ``edges`` (decision L181): a
     turn's angle also sums the interval just before and just after its turning intervals when that interval is
     valid, turns the same way and belongs to no other turn."""
+    spans = _turn_spans(steps, min_rate_dps=min_rate_dps, edges=edges)[1]
+    return (np.asarray([s[0] for s in spans], dtype=float),
+            np.asarray([s[1] + 1 for s in spans], dtype=int))
+
+
+def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS, edges: bool = TURN_EDGES
+                ) -> tuple[pd.DataFrame, list[tuple[float, int, int, int, int]]]:
+    """The table in ``start_s`` order and each turn's ``(angle deg, a, b, first, last)``: its turning intervals
+    ``[a, b)`` of the row-to-row heading changes (interval i runs from row i to row i + 1) and ``[first, last)``
+    the intervals summed into its angle (``a``/``b`` widened by L181's edges)."""
     if len(steps) < 2 or "heading_rad" not in steps:
-        return np.zeros(0), np.zeros(0, dtype=int)
+        return steps, []
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     h = np.degrees(_heading(st))
     t = st["start_s"].to_numpy(float)
@@ -198,13 +208,75 @@ def turn_rows(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
     out = []
     for a, b in runs:
         angle = float(dh[a:b].sum())
+        first, last = a, b
         if edges:
             for j in (a - 1, b):
                 if 0 <= j < len(dh) and free[j] and dh[j] * angle > 0:
                     angle += float(dh[j])
                     free[j] = False  # one turn's edge only
-        out.append(angle)
-    return np.asarray(out, dtype=float), np.asarray([a + 1 for a, _ in runs], dtype=int)
+                    first, last = min(first, j), max(last, j + 1)
+        out.append((angle, a, b, first, last))
+    return st, out
+
+
+#: turns.csv's columns (decision L200), in order
+TURN_TABLE_COLUMNS = ("turn", "start_s", "end_s", "duration_s", "angle_deg", "peak_rate_dps", "n_rows", "bout")
+
+
+def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
+               min_deg: float = TURN_COUNT_MIN_DEG) -> pd.DataFrame:
+    """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
+    tracked step table: ``start_s`` / ``end_s`` the start of the first and the end of the last row whose heading
+    change the turn's angle sums (a row's ``end_s``; the next row's ``start_s`` where it has none), ``duration_s``
+    their difference, ``angle_deg`` the signed angle (left +), ``peak_rate_dps`` the largest |heading change| /
+    time between the starts of two of its rows (the rate :data:`TURN_RATE_MIN_DPS` is judged on), ``n_rows`` the
+    rows it spans and ``bout`` the number of the ``bouts`` row (bouts.csv, L124) whose span holds the turn's first
+    turning row (empty outside every bout, or without ``bouts``). The times are the rows' times: a foot row's
+    ``start_s`` is the rest before its stride, a lower-back row's its initial contact."""
+    st, spans = _turn_spans(steps)
+    rows = []
+    if spans:
+        t = st["start_s"].to_numpy(float)
+        end = st["end_s"].to_numpy(float) if "end_s" in st else np.full(len(st), np.nan)
+        h = np.degrees(_heading(st))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            rate = np.abs(np.diff(h)) / np.diff(t)
+        b_lo, b_hi, b_no = (np.zeros(0),) * 3
+        if bouts is not None and len(bouts):
+            b_lo, b_hi = bouts["start_s"].to_numpy(float), bouts["end_s"].to_numpy(float)
+            b_no = bouts["bout"].to_numpy()
+        for angle, a, b, first, last in spans:
+            if abs(angle) < min_deg:
+                continue
+            # interval i turns between row i and row i + 1: the change shows in row i + 1 (a foot row's own turn)
+            t0 = float(t[first + 1])
+            t1 = float(end[last]) if np.isfinite(end[last]) and end[last] > t[last] else float(
+                t[min(last + 1, len(t) - 1)])
+            r = rate[a:b][np.isfinite(rate[a:b])]
+            tf = t[a + 1]
+            inside = np.flatnonzero((b_lo <= tf) & (tf <= b_hi))
+            rows.append({"turn": len(rows) + 1, "start_s": t0, "end_s": t1, "duration_s": t1 - t0,
+                         "angle_deg": angle, "peak_rate_dps": float(r.max()) if r.size else np.nan,
+                         "n_rows": int(last - first), "bout": int(b_no[inside[0]]) if inside.size else pd.NA})
+    out = pd.DataFrame(rows, columns=list(TURN_TABLE_COLUMNS))
+    out["bout"] = out["bout"].astype("Int64")
+    return out
+
+
+def turn_summary(table: pd.DataFrame) -> dict:
+    """Decision L200: the summary keys of a :func:`turn_table`: ``median_turn_duration_s``,
+    ``median_turn_angle_deg`` (of |angle|), ``median_turn_peak_rate_dps``, ``turn_time_s`` (their durations
+    summed); None without a turn."""
+    if not len(table):
+        return dict.fromkeys(TURN_SUMMARY_KEYS)
+    return {"median_turn_duration_s": float(table["duration_s"].median()),
+            "median_turn_angle_deg": float(table["angle_deg"].abs().median()),
+            "median_turn_peak_rate_dps": float(table["peak_rate_dps"].median()),
+            "turn_time_s": float(table["duration_s"].sum())}
+
+
+#: decision L200: :func:`turn_summary`'s keys
+TURN_SUMMARY_KEYS = ("median_turn_duration_s", "median_turn_angle_deg", "median_turn_peak_rate_dps", "turn_time_s")
 
 
 def _level_forward(steps: pd.DataFrame) -> np.ndarray:

@@ -307,9 +307,12 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.track.gait import gait_summary
 
     out.update(gait_summary(result.steps))
-    from pdrlearn.track.clinical import clinical_summary
+    from pdrlearn.track.clinical import clinical_summary, turn_summary, turn_table
+    from pdrlearn.waist.transfers import transfer_summary
 
     out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
+    out.update(turn_summary(turn_table(result.steps)))  # decision L200: each turn's duration, angle, peak rate
+    out.update(transfer_summary(result.info.get("transfers"), result.steps))  # decision W183: chair transfers, TUG
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
     dz, bridge = _climb_dz(result.steps)
@@ -851,6 +854,7 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     for line in lines:  # decisions L95 (running / very slow walking), L113 (CV withheld), B134, B201
         logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
         summary["info"]["warnings"] = [*summary["info"].get("warnings", []), line]
+    summary["info"].pop("transfers", None)  # decision W182: the rows are transfers.csv's, not the summary's
     aid = summary["info"].get("aid")
     if isinstance(aid, dict) and "fix_table" in aid:  # every fix's row is for aided.png, not the summary
         summary["info"]["aid"] = {k: v for k, v in aid.items() if k != "fix_table"}

@@ -87,6 +87,7 @@ from pdrlearn.waist.plausibility import (
 )
 from pdrlearn.waist.posture import sit_veto_hint, tilt_gate, transfer_veto, transfer_windows
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
+from pdrlearn.waist.transfers import chair_transfers
 
 log = logging.getLogger(__name__)
 
@@ -570,6 +571,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
         steps = tilt_gate(steps, imu, float(o["max_tilt_deg"]))
         n_tilted = steps.attrs["n_tilted"]
+    transfers = chair_transfers(imu, steps)  # decision W182: each sit-to-stand / stand-to-sit (W104's events)
     n_vetoed = 0
     if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept;
         # W180: and an undecided contact inside an alternating sequence
@@ -664,6 +666,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         "n_tilted_contacts": n_tilted,
         "n_vetoed_contacts": n_vetoed,
         "n_unvaulted_contacts": n_unvaulted,
+        "transfers": transfers.to_dict("records"),  # decision W182: transfers.csv (not written to summary.json)
     }
     for w in warnings:
         log.warning("%s: %s", session.where, w)

@@ -114,6 +114,8 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
         traj = traj.iloc[[max(int(np.searchsorted(t, t0, side="right")) - 1, 0)]].reset_index(drop=True) \
             if len(traj) else traj
     info = {**result.info, "window": {"start_s": t0 - t_rec, "end_s": t1 - t_rec}}
+    if info.get("transfers") is not None:  # decision W182: the chair transfers inside the window
+        info["transfers"] = [r for r in info["transfers"] if r["start_s"] >= t0 and r["end_s"] <= t1]
     if warnings:
         info["warnings"] = [*result.info.get("warnings", []), *warnings]
     gt = session.trajectory

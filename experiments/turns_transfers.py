@@ -1,0 +1,172 @@
+"""Decisions L200-L202 / W182-W183 (session 27): turns.csv's turn timing and angle, transfers.csv's chair transfers and
+``tug_time_s`` against simulated truth and the mobgap reference turns. Measured once, no tuning.
+
+Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/turns_transfers.py sim    # users 3530-3559
+     ... experiments/turns_transfers.py real   # datasets/real + datasets/external mobgap Test11 turns.csv
+Output: experiments/results/turns_transfers_sim.txt, turns_transfers_real.txt (the printed lines)
+
+Simulated truth. A turn: the route's one turn; its truth start / end are where the waist unit's true heading
+(trajectory.csv ``heading_rad``, unwrapped, a 1 s moving mean: one stride's pelvis rotation averaged out) has gone
+5 % / 95 % of the way from its value at the start to its value at the end; the truth angle is that change. The
+detected turn is the turns.csv row nearest in time (midpoints). A transfer: transfers.csv (S36 / S43), a stand-to-sit
+from ``start`` to ``seated``, a sit-to-stand from ``rise`` to ``end``; the detected one of the same kind that overlaps
+it. TUG truth: the first rise to the last seated time of a session that starts and ends seated.
+"""
+import logging
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.io import read_session
+from pdrlearn.sim import UserProfile, simulate_path
+from pdrlearn.sim.route import parse_route
+from pdrlearn.track.bouts import detected_bouts
+from pdrlearn.track.clinical import turn_table
+from pdrlearn.track.plasys import track_plasys, track_streaming
+from pdrlearn.track.waist import track_waist
+from pdrlearn.waist.transfers import SIT_TO_STAND, STAND_TO_SIT, transfer_summary
+
+logging.disable(logging.WARNING)
+
+USERS = range(3530, 3560)
+#: (route, sit_start_s, sit_end_s) by user % 3: a TUG with a 180 deg turn on the spot, a walk with a 180 deg pivot,
+#: a 90 deg turn with a chair sit inside the route
+ROUTES = (("straight:3, turn:180, straight:3", 5.0, 5.0),
+          ("straight:8, pivot:180, straight:8", 5.0, 5.0),
+          ("straight:5, turn:90, straight:5, sit:8, straight:3", 0.0, 0.0))
+TRACKS = {"plasys": lambda s: track_plasys(s), "plasys-stream": lambda s: track_streaming(s, method="M2"),
+          "waist-pendulum": lambda s: track_waist(s, pipeline="waist-pendulum"),
+          "waist-pll": lambda s: track_waist(s, pipeline="waist-pll")}
+
+
+def true_turn(session) -> tuple[float, float, float]:
+    tr = session.trajectory
+    t = tr["t"].to_numpy(float)
+    h = np.degrees(np.unwrap(tr["heading_rad"].to_numpy(float)))
+    w = max(int(round(1.0 / np.median(np.diff(t)))), 1)
+    hs = np.convolve(np.pad(h, (w // 2, w - 1 - w // 2), mode="edge"), np.ones(w) / w, mode="valid")
+    h0, h1 = hs[0], hs[-1]
+    frac = (hs - h0) / (h1 - h0)
+    return float(t[np.argmax(frac >= 0.05)]), float(t[np.argmax(frac >= 0.95)]), float(h1 - h0)
+
+
+def med(x) -> str:
+    x = np.asarray([v for v in x if np.isfinite(v)], float)
+    return f"{np.median(x):+.2f}" if x.size else "n/a"
+
+
+def sim() -> None:
+    turn_err = {k: [] for k in TRACKS}
+    tr_err = {k: {SIT_TO_STAND: [], STAND_TO_SIT: []} for k in ("waist-pendulum", "waist-pll")}
+    tr_count = {k: [0, 0, 0] for k in tr_err}  # truth, matched, detected
+    tug = {k: [] for k in tr_err}
+    for u in USERS:
+        route, s0, s1 = ROUTES[u % 3]
+        speed = "slow" if (u // 3) % 2 else "normal"
+        s = simulate_path(parse_route(route), UserProfile.from_seed(u), speed=speed, seed=u, sit_start_s=s0,
+                          sit_end_s=s1)
+        ta, tb, ang = true_turn(s)
+        truth_tr = s.extras["transfers"]
+        line = [f"user {u} {speed} [{route}] sit {s0:g}/{s1:g}: truth turn {ta:.2f}-{tb:.2f} s "
+                f"({tb - ta:.2f} s) {ang:+.1f} deg"]
+        for name, fn in TRACKS.items():
+            res = fn(s)
+            tt = turn_table(res.steps, detected_bouts(res.steps))
+            if not len(tt):
+                line.append(f"  {name}: no turn")
+                turn_err[name].append((np.nan,) * 4)
+            else:
+                mid = 0.5 * (tt["start_s"] + tt["end_s"]).to_numpy(float)
+                r = tt.iloc[int(np.argmin(np.abs(mid - 0.5 * (ta + tb))))]
+                e = (r.start_s - ta, r.end_s - tb, r.duration_s - (tb - ta), r.angle_deg - ang)
+                turn_err[name].append(e)
+                line.append(f"  {name}: {len(tt)} turn(s); nearest {r.start_s:.2f}-{r.end_s:.2f} s "
+                            f"({r.duration_s:.2f} s) {r.angle_deg:+.1f} deg, peak {r.peak_rate_dps:.0f} deg/s; "
+                            f"errors start {e[0]:+.2f} end "
+                            f"{e[1]:+.2f} duration {e[2]:+.2f} s angle {e[3]:+.1f} deg")
+            if name not in tr_err:
+                continue
+            det = pd.DataFrame(res.info["transfers"])
+            truth_rows = []
+            for row in truth_tr.itertuples():
+                if row.seated_s > row.start_s:  # a sit-down inside the recording
+                    truth_rows.append((STAND_TO_SIT, row.start_s, row.seated_s))
+                if row.end_s > row.rise_s:  # a stand-up inside the recording
+                    truth_rows.append((SIT_TO_STAND, row.rise_s, row.end_s))
+            tr_count[name][0] += len(truth_rows)
+            tr_count[name][2] += len(det)
+            parts = []
+            for kind, a, b in truth_rows:
+                m = det[(det["kind"] == kind) & (det["start_s"] <= b) & (det["end_s"] >= a)] if len(det) else det
+                if len(m):
+                    d = m.iloc[0]
+                    tr_err[name][kind].append((d.start_s - a, d.end_s - b, d.duration_s - (b - a)))
+                    tr_count[name][1] += 1
+                    parts.append(f"{kind} {a:.2f}-{b:.2f} vs {d.start_s:.2f}-{d.end_s:.2f} "
+                                 f"({d.height_change_m:+.2f} m)")
+                else:
+                    parts.append(f"{kind} {a:.2f}-{b:.2f} missed")
+            summ = transfer_summary(res.info["transfers"], res.steps)
+            t_tug = None
+            if s0 > 0 and s1 > 0:
+                t_tug = float(truth_tr["seated_s"].iloc[-1] - truth_tr["rise_s"].iloc[0])
+                if summ["tug_time_s"] is not None:
+                    tug[name].append(summ["tug_time_s"] - t_tug)
+                else:
+                    tug[name].append(np.nan)
+            line.append(f"    transfers: {len(det)} detected; " + "; ".join(parts)
+                        + f"; tug_time_s {summ['tug_time_s']} (truth {t_tug})")
+        print("\n".join(line), flush=True)
+    print("\nTURNS (median signed error, median |error|; over the users with a turn detected):")
+    for name, e in turn_err.items():
+        a = np.array(e, float)
+        n = int(np.isfinite(a[:, 0]).sum())
+        print(f"{name}: {n}/{len(a)} turns found; start {med(a[:, 0])} s (|.| {med(np.abs(a[:, 0]))}), end "
+              f"{med(a[:, 1])} s (|.| {med(np.abs(a[:, 1]))}), duration {med(a[:, 2])} s (|.| {med(np.abs(a[:, 2]))}),"
+              f" angle {med(a[:, 3])} deg (|.| {med(np.abs(a[:, 3]))})")
+    print("TRANSFERS (median signed error, median |error|):")
+    for name, per in tr_err.items():
+        print(f"{name}: truth {tr_count[name][0]}, matched {tr_count[name][1]}, detected {tr_count[name][2]}")
+        for kind, e in per.items():
+            a = np.array(e, float).reshape(-1, 3)
+            print(f"  {kind}: n {len(a)}; start {med(a[:, 0])} s (|.| {med(np.abs(a[:, 0]))}), end {med(a[:, 1])} s "
+                  f"(|.| {med(np.abs(a[:, 1]))}), duration {med(a[:, 2])} s (|.| {med(np.abs(a[:, 2]))})")
+        g = np.array(tug[name], float)
+        print(f"  tug_time_s: given {int(np.isfinite(g).sum())}/{len(g)} seated-start-and-end sessions; error "
+              f"{med(g)} s (|.| {med(np.abs(g))})")
+
+
+def real() -> None:
+    folders = [Path("datasets/real") / n for n in ("mobgap_HA001_Test11_Trial1",)]
+    folders += [Path("datasets/external") / n for n in ("mobgap_HA002_Test11_Trial1", "mobgap_MS001_Test11_Trial1")]
+    for f in folders:
+        s = read_session(f)
+        ref = s.extras["turns"]
+        big = ref[ref["angle_deg"].abs() >= 80]
+        for name in ("waist-pendulum", "waist-pll"):
+            res = track_waist(s, pipeline=name)
+            tt = turn_table(res.steps, detected_bouts(res.steps))
+            err, found = [], 0
+            for r in big.itertuples():
+                m = tt[(tt["start_s"] <= r.end_s) & (tt["end_s"] >= r.start_s)] if len(tt) else tt
+                if not len(m):
+                    continue
+                found += 1
+                d = m.iloc[int(np.argmax(m["angle_deg"].abs().to_numpy()))]
+                err.append((d.duration_s - (r.end_s - r.start_s), abs(d.angle_deg) - abs(r.angle_deg),
+                            float(np.sign(d.angle_deg) == np.sign(r.angle_deg)), d.start_s - r.start_s,
+                            d.end_s - r.end_s))
+            a = np.array(err, float).reshape(-1, 5)
+            print(f"{f.name} {name}: reference turns >= 80 deg {len(big)} (of {len(ref)}), detected turns {len(tt)}, "
+                  f"overlapping {found}; duration error median {med(a[:, 0])} s (|.| {med(np.abs(a[:, 0]))}), "
+                  f"start {med(a[:, 3])} s, end {med(a[:, 4])} s, |angle| error median {med(a[:, 1])} deg "
+                  f"(|.| {med(np.abs(a[:, 1]))}), sign agreement {np.mean(a[:, 2]) if len(a) else float('nan'):.2f}; "
+                  f"transfers detected {len(res.info['transfers'])} "
+                  f"({', '.join(t['kind'] + ' ' + format(t['start_s'], '.1f') for t in res.info['transfers'])})",
+                  flush=True)
+
+
+if __name__ == "__main__":
+    {"sim": sim, "real": real}[sys.argv[1]]()

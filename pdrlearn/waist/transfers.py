@@ -1,0 +1,135 @@
+"""Chair transfers of the lower-back unit: each sit-to-stand and stand-to-sit, and a Timed-Up-and-Go time
+(decisions W182, W183, docs/decisions/waist.md).
+
+The transfers are W104's trunk-flexion events (:func:`pdrlearn.waist.posture.flexion_events`: a run of samples whose
+trunk tilts more than 25 deg from the session's walking upright) - no second detector. Each event is widened to the
+whole movement and classed by the pelvis's height change over it:
+
+* **bounds** (W182): from the event's tilt peak, backward and forward for as long as the trunk's tilt still moves
+  toward the peak at :data:`MOVING_DPS` deg/s or more (the tilt's rate over :data:`RATE_WINDOW_S`): the trunk is at
+  rest, seated or standing, before and after a transfer;
+* **kind** (W182): the pelvis's height change from the movement's start to its end, the vertical acceleration
+  (gravity removed, the AHRS's) integrated twice with the velocity made zero at both bounds (the trunk rests there;
+  a constant acceleration error is removed with it): up by :data:`HEIGHT_MIN_M` or more is a ``sit-to-stand``, down
+  by as much a ``stand-to-sit``; less is a bend (picking something up, leaning forward) and no transfer;
+* **TUG time** (W183): ``tug_time_s`` is the first sit-to-stand's start to the last stand-to-sit's end, only when
+  the session starts and ends seated: no step starts before that sit-to-stand's start or after that stand-to-sit's
+  end (a contact inside a transfer may: W146), and no transfer lies between them (else None: the test was not
+  recorded from seat to seat).
+
+Not from a seed: the clinical TUG runs from rising off the chair to sitting back on it (Podsiadlo & Richardson 1991,
+J Am Geriatr Soc 39:142-148, as recalled), and the thresholds are this module's choices (W182), set before
+measuring. A foot unit sees no trunk: a foot track has no transfers (the summary keys are None).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.waist.ahrs import WaistIMU
+from pdrlearn.waist.posture import flexion_events
+
+#: decision W182: the trunk still moves while its tilt changes this fast (deg/s) toward the flexion peak; a
+#: transfer's trunk flexes 30-45 deg in about a second (30-45 deg/s on average), standing or seated it rests
+MOVING_DPS = 10.0
+#: decision W182: the tilt's rate is the mean over this window (s), so that a walking step's rocking of a few degrees
+#: does not extend a transfer
+RATE_WINDOW_S = 0.25
+#: decision W182: a rise or a sit moves the pelvis by this much (m) or more; standing hip height (~0.9 m) less a
+#: chair seat (~0.45 m) is ~0.45 m, half of a low 0.40 m is taken; a bend moves it less
+HEIGHT_MIN_M = 0.20
+SIT_TO_STAND, STAND_TO_SIT = "sit-to-stand", "stand-to-sit"
+#: transfers.csv's columns (decision W182), in order
+TRANSFER_COLUMNS = ("transfer", "kind", "start_s", "end_s", "duration_s", "peak_s", "peak_tilt_deg",
+                    "height_change_m")
+#: decision W183: the summary keys of :func:`transfer_summary`
+TRANSFER_SUMMARY_KEYS = ("n_sit_to_stand", "n_stand_to_sit", "median_sit_to_stand_s", "median_stand_to_sit_s",
+                         "tug_time_s")
+
+
+def _tilt_deg(imu: WaistIMU, up: np.ndarray) -> np.ndarray:
+    u = imu.up_body / np.linalg.norm(imu.up_body, axis=1, keepdims=True)
+    return np.degrees(np.arccos(np.clip(u @ up, -1.0, 1.0)))
+
+
+def movement_bounds(t: np.ndarray, tilt: np.ndarray, peak: int, fs: float) -> tuple[int, int]:
+    """Sample indices ``(start, end)`` of the movement around the tilt peak ``peak`` (decision W182): backward from
+    the peak past the samples near it where the tilt's rate (mean over :data:`RATE_WINDOW_S`) is under
+    :data:`MOVING_DPS` (at most :data:`RATE_WINDOW_S` of them: the top of the flexion), then past those where the
+    trunk flexes at :data:`MOVING_DPS` or more; the first sample after them is the start. Forward alike with the
+    trunk straightening (the rate at or under -:data:`MOVING_DPS`)."""
+    w = max(int(round(RATE_WINDOW_S * fs)), 1)
+    rate = np.convolve(np.gradient(tilt, t), np.ones(w) / w, mode="same")
+    a = peak
+    while a > 0 and peak - a < w and rate[a - 1] < MOVING_DPS:  # the top of the flexion
+        a -= 1
+    while a > 0 and rate[a - 1] >= MOVING_DPS:
+        a -= 1
+    b = peak
+    while b < len(t) - 1 and b - peak < w and rate[b + 1] > -MOVING_DPS:
+        b += 1
+    while b < len(t) - 1 and rate[b + 1] <= -MOVING_DPS:
+        b += 1
+    return a, b
+
+
+def height_change_m(t: np.ndarray, acc_v: np.ndarray, a: int, b: int) -> float:
+    """The pelvis's height change (m) from sample ``a`` to ``b``: ``acc_v`` (m/s^2, up +) integrated to a velocity
+    (trapezoids), less the line that makes it zero at both ends (the trunk rests there), integrated again
+    (decision W182)."""
+    if b - a < 2:
+        return 0.0
+    tt, acc = t[a:b + 1], acc_v[a:b + 1]
+    v = np.concatenate([[0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * np.diff(tt))])
+    v = v - v[-1] * (tt - tt[0]) / (tt[-1] - tt[0])
+    return float(np.sum(0.5 * (v[1:] + v[:-1]) * np.diff(tt)))
+
+
+def chair_transfers(imu: WaistIMU, steps: pd.DataFrame) -> pd.DataFrame:
+    """Decision W182: transfers.csv's rows (:data:`TRANSFER_COLUMNS`) of a lower-back track: each W104 flexion
+    event of ``steps``' contacts (``event_s``, ``has_next``) widened to its movement (:func:`movement_bounds`) and
+    classed by :func:`height_change_m`; bends (less than :data:`HEIGHT_MIN_M`) are left out."""
+    rows: list[dict] = []
+    if imu.up_body is not None and len(steps) and "event_s" in steps:
+        ev = steps["event_s"].to_numpy(float)
+        walking = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(ev), bool)
+        events = flexion_events(imu, ev, walking)
+        if events:
+            from pdrlearn.waist.posture import _contact_directions
+
+            tilt = _tilt_deg(imu, _contact_directions(imu, ev, walking)[1])
+            for _, t_peak, _ in events:
+                peak = int(np.clip(np.searchsorted(imu.t, t_peak), 0, len(imu.t) - 1))
+                a, b = movement_bounds(imu.t, tilt, peak, imu.fs)
+                dz = height_change_m(imu.t, imu.acc_v, a, b)
+                if abs(dz) < HEIGHT_MIN_M:
+                    continue
+                t0, t1 = float(imu.t[a]), float(imu.t[b])
+                if rows and t0 < rows[-1]["end_s"]:  # one movement seen as two flexion runs: keep the first
+                    continue
+                rows.append({"transfer": len(rows) + 1, "kind": SIT_TO_STAND if dz > 0 else STAND_TO_SIT,
+                             "start_s": t0, "end_s": t1, "duration_s": t1 - t0, "peak_s": float(t_peak),
+                             "peak_tilt_deg": float(tilt[peak]), "height_change_m": dz})
+    return pd.DataFrame(rows, columns=list(TRANSFER_COLUMNS))
+
+
+def transfer_summary(transfers, steps: pd.DataFrame | None = None) -> dict:
+    """Decision W183: :data:`TRANSFER_SUMMARY_KEYS` of a transfers table (a DataFrame or its records; None = a
+    track without a trunk unit: every key None). ``tug_time_s`` (module docstring) needs ``steps`` (the contacts'
+    ``start_s``); without them it is judged on the transfers alone (a sit-to-stand first and a stand-to-sit
+    last)."""
+    if transfers is None:
+        return dict.fromkeys(TRANSFER_SUMMARY_KEYS)
+    tr = pd.DataFrame(list(transfers) if not isinstance(transfers, pd.DataFrame) else transfers,
+                      columns=list(TRANSFER_COLUMNS))
+    rise, sit = tr[tr["kind"] == SIT_TO_STAND], tr[tr["kind"] == STAND_TO_SIT]
+    out = {"n_sit_to_stand": int(len(rise)), "n_stand_to_sit": int(len(sit)),
+           "median_sit_to_stand_s": float(rise["duration_s"].median()) if len(rise) else None,
+           "median_stand_to_sit_s": float(sit["duration_s"].median()) if len(sit) else None, "tug_time_s": None}
+    if len(tr) >= 2 and tr["kind"].iloc[0] == SIT_TO_STAND and tr["kind"].iloc[-1] == STAND_TO_SIT:
+        t0, t1 = float(tr["start_s"].iloc[0]), float(tr["end_s"].iloc[-1])
+        contacts = np.zeros(0) if steps is None or not len(steps) else steps["start_s"].to_numpy(float)
+        if len(tr) == 2 and not ((contacts < t0).any() or (contacts > t1).any()):
+            out["tug_time_s"] = t1 - t0
+    return out
