@@ -85,3 +85,10 @@ def test_waist_dtw_above_chance_on_fresh_users(monkeypatch):
         mean = _balanced(*map(np.array, scores[(task, "mean")]))
         assert spread >= chance + 0.10, (task, spread)
         assert spread >= mean + 0.20, (task, mean, spread)  # C69: the thesis' rule on the pooled classes
+
+
+def test_sklearn_contract_with_the_spread_rule():
+    from sklearn.utils.estimator_checks import check_estimator
+
+    results = check_estimator(DTWClassifier(n_references=8, rule="spread"), on_fail=None)
+    assert not [(r["check_name"], str(r["exception"])[:120]) for r in results if r["status"] == "failed"]
