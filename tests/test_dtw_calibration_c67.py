@@ -102,8 +102,10 @@ def test_sklearn_contract_with_cv_calibration():
     assert not [(r["check_name"], str(r["exception"])[:120]) for r in results if r["status"] == "failed"]
 
 
-def test_exported_calibrated_dtw_gives_the_same_probabilities(tmp_path, monkeypatch):
-    """C68: the bundle's temperature is the calibrated one; the runtime equals predict_steps."""
+@pytest.mark.parametrize("rule", ["mean", "spread"])
+def test_exported_calibrated_dtw_gives_the_same_probabilities(tmp_path, monkeypatch, rule):
+    """C68: the bundle's temperature is the calibrated one; the runtime equals predict_steps. C70: with the spread
+    rule the bundle carries the class offsets (absent with the thesis' rule, as before)."""
     from pdrlearn.classify import load_model, train_user
     from pdrlearn.export.from_model import export_model
     from pdrlearn.features import TASK_COLUMNS, step_windows
@@ -112,6 +114,7 @@ def test_exported_calibrated_dtw_gives_the_same_probabilities(tmp_path, monkeypa
     from tests.runtime_helpers import _with_bounds, synthetic_session
 
     monkeypatch.setattr(training, "DTW_CALIBRATION", "cv")
+    monkeypatch.setattr(training, "DTW_RULE", rule)
     train = synthetic_session(90, seed=0)
     _with_bounds(train_user([train], cv=2, seed=0, units=["foot", "waist", "fused"], methods=["dtw"],
                             tasks=["terrain"])).save(tmp_path / "model")
@@ -125,7 +128,9 @@ def test_exported_calibrated_dtw_gives_the_same_probabilities(tmp_path, monkeypa
     for unit in ("foot", "waist"):
         clf = model.tasks["terrain"].models["dtw"][unit].steps[-1][1]
         assert clf.calibration == "cv"
-        assert bundle.tasks["terrain"]["methods"]["dtw"][unit]["temperature"] == clf.temperature_
+        entry = bundle.tasks["terrain"]["methods"]["dtw"][unit]
+        assert entry["temperature"] == clf.temperature_
+        assert ("class_offset" in entry) == (rule == "spread") and clf.rule == rule
     for unit in ("foot", "waist", "fused"):
         ref = model.predict_steps(test, test.steps, tasks=["terrain"], method="dtw", unit=unit, windows="given")
         classes, proba = TaskClassifier(bundle, "terrain", ctx, method="dtw", unit=unit).predict(W)

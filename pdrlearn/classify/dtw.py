@@ -115,24 +115,46 @@ def pruned_nearest_class(
     n_classes: int,
     *,
     window: int | None,
+    offset: np.ndarray | None = None,
 ) -> tuple[int, int]:
     """Class index with the lowest mean DTW distance, skipping classes pruned by their lower bounds.
 
     Classes are visited in order of their mean lower bound ``lb`` (``(n_refs,)``, from :func:`lb_keogh`);
     a class whose mean bound is not below the best exact mean so far cannot win and is skipped (the mean
-    of lower bounds bounds the mean distance). Returns ``(class, n_dtw_computed)``.
+    of lower bounds bounds the mean distance). ``offset`` (``(n_classes,)``, default 0) is subtracted from
+    every class's mean (bound and exact alike, so the pruning stays exact; decision C70).
+    Returns ``(class, n_dtw_computed)``.
     """
-    lb_mean = np.array([lb[ref_labels == k].mean() for k in range(n_classes)])
+    off = np.zeros(n_classes) if offset is None else np.asarray(offset, dtype=float)
+    lb_mean = np.array([lb[ref_labels == k].mean() for k in range(n_classes)]) - off
     best_k, best_d, computed = -1, math.inf, 0
     for k in np.argsort(lb_mean):
         if lb_mean[k] >= best_d:
             break  # every remaining class has an even larger bound
         members = refs[ref_labels == k]
-        d = float(dtw_block(query[None], members, window=window).mean())
+        d = float(dtw_block(query[None], members, window=window).mean()) - off[k]
         computed += len(members)
         if d < best_d:
             best_k, best_d = int(k), d
     return best_k, computed
+
+
+def class_spread_offsets(refs: np.ndarray, ref_labels: np.ndarray, n_classes: int, *,
+                         window: int | None) -> np.ndarray:
+    """Half the mean DTW distance between two different references of each class: ``(n_classes,)``.
+
+    Subtracted from a query's mean distance to the class (decision C70), the score is the one-sample energy
+    distance ``E d(q, R) - E d(R, R') / 2`` (Szekely & Rizzo 2013, eq. 2.1 for one point): a class's own spread no
+    longer adds to every query's distance to it, so a compact class does not draw the queries of a spread-out one.
+    A class with one reference gets 0.
+    """
+    out = np.zeros(n_classes)
+    for k in range(n_classes):
+        R = refs[ref_labels == k]
+        if len(R) > 1:
+            D = dtw_block(R, R, window=window)
+            out[k] = 0.5 * float(D[~np.eye(len(R), dtype=bool)].mean())
+    return out
 
 
 # --------------------------------------------------------------------------------------------------
@@ -158,11 +180,15 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
         probability) or ``"cv"`` (decision C67: the temperature minimising the cross-entropy of the training
         steps' held-out mean distances in an inner cross-validation, :mod:`pdrlearn.classify.calibration`).
         Either way :meth:`predict` is the same (a positive temperature keeps the argmin).
+    rule : ``"mean"`` (thesis ch. 6.1.2.2: the class of lowest mean distance) or ``"spread"`` (decision C70: the
+        mean distance minus half the class's mean distance between its own references,
+        :func:`class_spread_offsets`).
 
     Attributes
     ----------
     classes_ : class labels; references_ : ``(m, samples, channels)`` reference steps (standardized);
-    reference_labels_ : ``(m,)`` class indices; temperature_ : softmin temperature (distance units) for
+    reference_labels_ : ``(m,)`` class indices; class_offset_ : ``(n_classes,)`` subtracted from the class mean
+    distances (0 with ``rule="mean"``); temperature_ : softmin temperature (distance units) for
     :meth:`predict_proba`; channel_mean_, channel_std_ : ``(channels,)``.
     """
 
@@ -175,6 +201,7 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
         prune: bool = False,
         random_state: int | None = 0,
         calibration: str = "gap",
+        rule: str = "mean",
     ):
         self.n_references = n_references
         self.window = window
@@ -182,6 +209,7 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
         self.prune = prune
         self.random_state = random_state
         self.calibration = calibration
+        self.rule = rule
 
     # -- helpers ---------------------------------------------------------------------------------
     def _validate(self, X, *, reset: bool, series: bool = True) -> np.ndarray:
@@ -200,6 +228,10 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
             return None
         return max(1, int(round(float(self.window) * n_samples)))
 
+    def _offset(self) -> np.ndarray | float:
+        """The fitted class offsets (decision C70); a model fitted before they existed has none (0)."""
+        return getattr(self, "class_offset_", 0.0)
+
     def _scale(self, S: np.ndarray) -> np.ndarray:
         return np.ascontiguousarray((S - self.channel_mean_) / self.channel_std_)
 
@@ -208,6 +240,8 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
         """Store up to ``n_references`` standardized reference steps per class; fit the softmin temperature."""
         if self.calibration not in ("gap", "cv"):
             raise DataError(f"DTWClassifier: calibration must be 'gap' or 'cv', got {self.calibration!r}")
+        if self.rule not in ("mean", "spread"):
+            raise DataError(f"DTWClassifier: rule must be 'mean' or 'spread', got {self.rule!r}")
         X = self._validate(X, reset=True, series=False)
         S = as_series(X)
         y = column_or_1d(y, warn=True)
@@ -234,6 +268,9 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
         self.reference_labels_ = yi[keep]
         self.window_samples_ = self._window_samples(S.shape[1])
         self.envelope_ = envelope(self.references_, window=self.window_samples_)
+        self.class_offset_ = (class_spread_offsets(self.references_, self.reference_labels_, len(self.classes_),
+                                                   window=self.window_samples_)
+                              if self.rule == "spread" else np.zeros(len(self.classes_)))
         self.temperature_ = self._fit_temperature()
         if self.calibration == "cv":
             self.temperature_ = self._cv_temperature(X, yi)
@@ -265,7 +302,7 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
         ks = range(len(self.classes_))
         sums = np.stack([np.nansum(D[:, lab == k], axis=1) for k in ks], axis=1)
         counts = np.stack([np.sum(np.isfinite(D[:, lab == k]), axis=1) for k in ks], axis=1)
-        means = np.where(counts > 0, sums / np.maximum(counts, 1), np.nanmax(D))
+        means = np.where(counts > 0, sums / np.maximum(counts, 1), np.nanmax(D)) - self.class_offset_  # C70
         own = means[np.arange(len(R)), lab]
         means[np.arange(len(R)), lab] = np.inf
         gap = np.abs(means.min(axis=1) - own)
@@ -273,11 +310,12 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
         return t if np.isfinite(t) and t > 1e-12 else 1.0
 
     def mean_distances(self, X) -> np.ndarray:
-        """Mean DTW distance of each step to each class's references: ``(n, n_classes)``."""
+        """Mean DTW distance of each step to each class's references, minus :attr:`class_offset_` (0 unless
+        ``rule="spread"``, decision C70): ``(n, n_classes)``, the scores :meth:`predict` takes the lowest of."""
         check_fitted_fast(self, "references_")
         S = self._scale(self._validate(X, reset=False))
         D = dtw_block(S, self.references_, window=self.window_samples_)
-        return class_mean_distances(D, self.reference_labels_, len(self.classes_))
+        return class_mean_distances(D, self.reference_labels_, len(self.classes_)) - self._offset()
 
     def predict_proba(self, X) -> np.ndarray:
         """Softmin of the class mean distances (temperature :attr:`temperature_`)."""
@@ -302,6 +340,7 @@ class DTWClassifier(ClassifierMixin, BaseEstimator):
                 self.reference_labels_,
                 len(self.classes_),
                 window=self.window_samples_,
+                offset=self._offset(),
             )
             computed += c
         if len(S):

@@ -62,6 +62,10 @@ PREFERENCE = ("nn", "svm", "fusion", "dtw", "heuristic", "ensemble")
 #: (decision C4) or ``"cv"`` (decision C67, an inner cross-validation on the training steps; adoption rule C67).
 DTW_CALIBRATION = "cv"
 
+#: The trained DTW models' decision rule (``DTWClassifier(rule=...)``): ``"mean"`` (thesis ch. 6.1.2.2, the class of
+#: lowest mean distance) or ``"spread"`` (decision C70: minus half the class's own mean reference distance).
+DTW_RULE = "mean"
+
 #: Step signals compared by DTW per task and unit: terrain foot accelerometer + gyroscope / waist
 #: accelerometer (thesis ch. 6.1.2.2); direction foot / waist forward acceleration (thesis ch. 6.2.2.2);
 #: length foot acceleration + force / pelvic rotation (thesis ch. 6.3.2.2, sensors of Tables 29-31).
@@ -156,7 +160,7 @@ def make_estimator(task: str, method: str, unit: str, *, seed: int = 0, weights:
             [
                 ("signals", FunctionTransformer(select_signals, kw_args={"names": DTW_SIGNALS[task][unit]})),
                 ("clf", DTWClassifier(n_references=THESIS_REFERENCES_PER_CLASS[task], random_state=seed,
-                                      calibration=DTW_CALIBRATION)),
+                                      calibration=DTW_CALIBRATION, rule=DTW_RULE)),
             ]
         )
     raise METHODS.unknown(method)

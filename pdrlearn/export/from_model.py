@@ -175,6 +175,8 @@ class _Collector:
                 "temperature": float(clf.temperature_),
                 "classes": classes,
                 "n_references": int(len(clf.references_)),
+                # decision C70: subtracted from the class mean distances (written only when a rule sets it)
+                **({"class_offset": [float(v) for v in clf._offset()]} if np.any(clf._offset()) else {}),
             }
         recipe = feature_recipe(first)
         n_features = int(clf.n_features_in_)

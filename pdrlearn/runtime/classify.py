@@ -4,7 +4,7 @@ A task's manifest entry names its ``classes`` (the output order), the ``chosen``
 ``methods[method][unit]`` model entries:
 
 * ``{"type": "onnx", "file", "features": recipe, "outputs": {"proba": ...}, "classes", ...}``
-* ``{"type": "dtw", "file": npz, "signals": [...], "window", "temperature", "classes"}``
+* ``{"type": "dtw", "file": npz, "signals": [...], "window", "temperature", "classes"}`` (+ ``"class_offset"``, C70)
 * ``{"type": "fusion", "weights": [...], "members": {unit: entry}, "classes"}``
 
 Class = argmax of the probabilities aligned to the task's classes, as on the training side
@@ -50,6 +50,7 @@ class RuntimeModel:
             self.mean, self.std = z["channel_mean"], z["channel_std"]
             self.window = None if entry.get("window") is None else int(entry["window"])
             self.temperature = float(entry["temperature"])
+            self.offset = np.asarray(entry.get("class_offset", 0.0), dtype=float)  # decision C70 (absent: 0)
         elif self.type == "heuristic":
             spec = bundle.json(entry["file"], keys=HEURISTIC_KEYS)
             self.recipe = [["rule", n] for n in spec["feature_names"]]
@@ -88,7 +89,7 @@ class RuntimeModel:
             for i, q in enumerate(S):
                 d = dtw_to_refs(q, self.refs, self.window)
                 out[i] = [d[self.ref_labels == k].mean() for k in range(n_cls)]
-            return softmax(-out / self.temperature)
+            return softmax(-(out - self.offset) / self.temperature)
         if self.type == "heuristic":
             return heuristic_proba(self, W, cache)
         probas = [align(m.proba(W, cache), m.classes, self.classes) for m in self.members]
