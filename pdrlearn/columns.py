@@ -291,8 +291,9 @@ WAIST_STEPS: tuple[Column, ...] = (
     ("h_m", "m", "number", "waist-pendulum: the pelvis's vertical excursion during the step (seed 003)"),
     ("g_m", "m", "number", "waist-pendulum: the pendulum chord 2 sqrt(2 L h - h^2) before K and F"),
     ("merged", _ID, "true/false", "waist-pendulum: a fragment whose length its neighbour carries (W27)"),
-    ("pause_factor", "fraction", "number", "offline waist-pendulum (pause_steps, default since W134): the factor "
-                                           "the step's length was scaled by (W111, W122, W134)"),
+    ("pause_factor", "fraction", "number", "waist-pendulum, offline and realtime (pause_steps, default since W134, "
+                                           "realtime W165): the factor the step's length was scaled by (W111, W122, "
+                                           "W134)"),
     ("pivot_factor", "fraction", "number", "waist, option pivot_steps (W150): the share of the step's length kept by "
                                            "the pivot cap (1 unless the pelvis turned 45 deg or more in the step)"),
     ("length_m", "m", "number", "step length (0 for a sequence-closing contact)"),
