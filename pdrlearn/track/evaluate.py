@@ -285,8 +285,8 @@ def backward_strides(steps: pd.DataFrame) -> int | None:
     """Decision L203: ``n_backward_strides``, the foot track's strides whose ``raw_length_m`` is negative (the
     stride's displacement points backward along the foot's forward axis: backward travel), with or without a model
     (a model-free track leaves ``direction`` empty and its ``length_m`` positive, L65); the 0 m rows of a foot gap
-    (``gap_s`` > 0, L67) and ``impossible`` strides (L97) left out, as :func:`median_stride_length`. None for a lower-back
-    track (no raw length per step) or a table without ``raw_length_m``."""
+    (``gap_s`` > 0, L67) and ``impossible`` strides (L97) left out, as :func:`median_stride_length`. None for a
+    lower-back track (no raw length per step) or a table without ``raw_length_m``."""
     units = set(steps["unit"].astype(str)) if len(steps) and "unit" in steps else set()
     if units != {"foot"} or "raw_length_m" not in steps:
         return None
