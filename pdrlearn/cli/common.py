@@ -508,10 +508,14 @@ def _few_straight(summary: dict) -> str:
     return f" (over {n} stride{'s' if n != 1 else ''} only, under the {MIN_STRAIGHT_FOR_RANGE} L95 judges; L197)"
 
 
-def gait_line(summary: dict) -> str:
+def gait_line(summary: dict, streamed: bool | None = None) -> str:
     """The console's gait line of ``track`` and ``run`` (decisions L79, W70, E48, E51): gait speed, distance and
     walking time (and the speed outside the pauses, L110), the straight strides' speed and the cadence when the
-    summary has them."""
+    summary has them. Decision L204: a streamed track (``streamed``; default: the summary's ``info.streaming``, as
+    `track --streaming` writes it) without a cadence says why - its strides have no initial contact without
+    ``--contacts`` (E48, E51)."""
+    if streamed is None:
+        streamed = bool((summary.get("info") or {}).get("streaming"))
     straight = summary.get("median_speed_straight_mps")
     cad = summary.get("median_cadence_spm")
     moving, wt = summary.get("walking_time_no_pauses_s"), summary["walking_time_s"]
@@ -522,4 +526,7 @@ def gait_line(summary: dict) -> str:
                if moving is not None and summary.get("walking_speed_mps") is not None and moving < wt - 1e-9
                else "") + ")"
             + (f", straight strides {straight:.2f} m/s{_few_straight(summary)}" if straight is not None else "")
-            + (f", cadence {cad:.1f} steps/min" if cad is not None else ""))
+            + (f", cadence {cad:.1f} steps/min" if cad is not None else "")
+            # decision L204: the streamed strides' cadence needs their initial contacts (E51's option)
+            + ("; no cadence or stride time: the streamed strides have no initial contact without --contacts "
+               "(decisions E51, L204)" if cad is None and streamed else ""))

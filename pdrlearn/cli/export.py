@@ -544,7 +544,7 @@ def run(
                    + floors_phrase(summary)
                    + (f" -> {out}" if out else ""))
         if summary.get("gait_speed_mps") is not None:  # decisions E48 / E51: track's L79 line, what run can give
-            typer.echo(gait_line(summary))
+            typer.echo(gait_line(summary, streamed=True))  # decision L204: no cadence without --contacts
 
 
 def _foot_checks(session) -> None:

@@ -121,7 +121,13 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
         import logging
 
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where,
-                                                   spanned_warning(len(table), spanned, detector))
+                                                   spanned_warning(len(table), spanned, detector,
+                                                                   session.has("fForceA", "fForceB")))
+    range_line = cadence_range_warning(table, session.meta, unit)  # decision steps 44
+    if range_line:
+        import logging
+
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, range_line)
     score = score_steps(table, session, tolerance_s=tolerance, unit=unit)
     if score is not None:  # decision steps 41: score_steps' own dict, keys and meanings (one_foot: W96)
         result.update(score)
@@ -159,17 +165,51 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
         typer.echo(str(out))
 
 
-def spanned_warning(count: int, spanned: int, det) -> str:
+def spanned_warning(count: int, spanned: int, det, has_force: bool = False) -> str:
     """Decision steps 38: the line when ``spanned`` more rest-to-rest strides of the foot lie inside the ``count``
     detections (one detection across several strides: strides merged, e.g. a child's shorter than the detector's
-    shortest stride, or too weak a swing between two); ``det``: the detector (its ``min_stride_s`` when it has one)."""
+    shortest stride, or too weak a swing between two); ``det``: the detector (its ``min_stride_s`` when it has one).
+    Decision steps 43: the rest-to-rest count is what a track from the foot IMU alone gives; with force sensors
+    (``has_force``) `track` takes its strides from them, so the line names the foot-IMU-only track instead."""
     shortest = getattr(det, "min_stride_s", None)
     why = (f"strides shorter than the detector's {shortest:g} s shortest stride, or swings below its threshold"
            if shortest is not None else "swings below the detector's threshold")
-    return (f"the {count} detected strides cover {count + spanned} rest-to-rest strides of the foot: {spanned} "
-            f"stride(s) merged into their neighbours ({why}); "
-            "`pdrlearn track DIR` splits them at the rests (decision L96) and counts "
-            f"{count + spanned} (decision steps 38)")
+    head = (f"the {count} detected strides cover {count + spanned} rest-to-rest strides of the foot: {spanned} "
+            f"stride(s) merged into their neighbours ({why}); ")
+    if has_force:  # decision steps 43: `track DIR` counts this session's force-sensor contacts, not the rests
+        return head + ("a track from the foot IMU alone (`pdrlearn track DIR --method M1`) splits them at the rests "
+                       f"(decision L96) and counts {count + spanned}; `pdrlearn track DIR` takes this session's "
+                       "strides from its force sensors instead (decisions steps 38, steps 43)")
+    return head + ("`pdrlearn track DIR` splits them at the rests (decision L96) and counts "
+                   f"{count + spanned} (decision steps 38)")
+
+
+def cadence_range_warning(table, meta: dict | None, unit: str) -> str | None:
+    """Decision steps 44: L95's walking-range line (:func:`pdrlearn.track.gait.gait_range_warning`, leg-scaled by
+    L148) on the cadence of the detections ``table`` (``event_s``, s): a foot table's strides give 120 / their
+    median stride time (L176's formula), a waist table's steps 60 / their median step time; intervals longer than
+    :data:`pdrlearn.kernels.contact.MAX_STRIDE_S` (half of it for a step) are pauses, not strides. Only the cadence
+    is judged (no speed without a track); None inside the range or with fewer than L123's minimum intervals."""
+    import numpy as np
+
+    from pdrlearn.kernels.contact import MAX_STRIDE_S
+    from pdrlearn.track.gait import MIN_STRAIGHT_FOR_RANGE, gait_range_warning, leg_length, median_cadence
+
+    if "event_s" not in table or len(table) < 2:
+        return None
+    t = np.sort(table["event_s"].to_numpy(float))
+    t = t[np.isfinite(t)]
+    dt = np.diff(t)
+    per_stride = 1 if unit == "foot" else 2  # a foot table's interval is a stride, a waist table's a step
+    dt = dt[(dt > 0) & (dt <= MAX_STRIDE_S / per_stride + 1e-9)]
+    if len(dt) < MIN_STRAIGHT_FOR_RANGE:  # L123's minimum count for a judged median
+        return None
+    cad = median_cadence(float(np.median(dt)) * per_stride, None)  # L176: 120 / the median stride time
+    line = gait_range_warning({"median_cadence_spm": cad, **leg_length(meta)})
+    if line is None:
+        return None
+    return (f"the detected {'strides' if unit == 'foot' else 'steps'}: {line}; the step detectors are validated in "
+            "that range too (decision steps 44)")
 
 
 def score_steps_command(

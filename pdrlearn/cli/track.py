@@ -61,7 +61,9 @@ WARN_OOD_OPT = warn_ood_option()
 START_OPT = typer.Option(None, "--start", help=START_HELP)
 PARAMS_OPT = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline.")
 STREAMING_OPT = typer.Option(False, "--streaming", help="plasys M2/M3 with the stride-local kernel of "
-                             "the streaming runtime: the trajectory `pdrlearn run` reproduces to 1 mm.")
+                             "the streaming runtime: the trajectory `pdrlearn run` reproduces to 1 mm. Its strides "
+                             "have no initial contact, so no stride time or cadence (summary median_cadence_spm None), "
+                             "unless --contacts (decisions E51, L204).")
 REALTIME_OPT = typer.Option(False, "--realtime", help="waist-pendulum: the causal initial-contact "
                             "detector (each contact decided < 2 s after it, decision W31) instead of the "
                             "zero-lag offline one; = \"options\": {\"realtime\": true} in --params.")

@@ -281,6 +281,22 @@ def median_stride_length(steps: pd.DataFrame) -> float | None:
     return float(length.median()) if len(length) else None
 
 
+def backward_strides(steps: pd.DataFrame) -> int | None:
+    """Decision L203: ``n_backward_strides``, the foot track's strides whose ``raw_length_m`` is negative (the
+    stride's displacement points backward along the foot's forward axis: backward travel), with or without a model
+    (a model-free track leaves ``direction`` empty and its ``length_m`` positive, L65); the 0 m rows of a foot gap
+    (``gap_s`` > 0, L67) and ``impossible`` strides (L97) left out, as :func:`median_stride_length`. None for a
+    lower-back track (no raw length per step) or a table without ``raw_length_m``."""
+    units = set(steps["unit"].astype(str)) if len(steps) and "unit" in steps else set()
+    if units != {"foot"} or "raw_length_m" not in steps:
+        return None
+    raw = steps["raw_length_m"].to_numpy(float)
+    keep = ~(steps["gap_s"].to_numpy(float) > 0) if "gap_s" in steps else np.ones(len(steps), bool)
+    if "impossible" in steps:
+        keep &= ~steps["impossible"].eq(True).to_numpy(bool)
+    return int(((raw < 0) & keep).sum())
+
+
 def tracked_rate_hz(session: Session, pipeline: str | None) -> float | None:
     """Decision C19: the sampling rate (Hz) of the tracked unit's accelerometer (the lower back's for the waist
     pipelines, else the foot's): contact times, and so stride times and cadence, are resolved to one sample."""
@@ -297,6 +313,7 @@ def _basic(result: TrackResult, out: dict) -> None:
     out["n_steps"] = int(len(result.steps))
     out.update(step_counts(result.steps))  # decision L103: what n_steps counts, and the steps of both feet
     out["median_stride_length_m"] = median_stride_length(result.steps)  # decision C19: as in sessions.csv
+    out["n_backward_strides"] = backward_strides(result.steps)  # decision L203: model-free backward travel
     last = tr.iloc[-1] if len(tr) else None
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
     if last is not None and "lat" in tr:

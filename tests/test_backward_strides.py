@@ -1,0 +1,46 @@
+"""Decision L203 (session 27 rehab trial, finding 7): a model-free foot track counts its backward strides in the
+summary (``n_backward_strides``: strides whose raw length is negative), without changing the distance."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from pdrlearn.cli import main
+
+
+def _track(tmp_path, capsys, route: str | None, seed: int, scenario: str | None = None) -> dict:
+    sim = tmp_path / f"sim_{seed}"
+    args = ["--route", route] if route else ["--scenario", scenario]
+    assert main(["simulate", *args, "--user-seed", str(seed), "--out", str(sim)]) == 0
+    capsys.readouterr()
+    assert main(["track", str(sim), "--out", str(tmp_path / f"tr_{seed}"), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    saved = json.loads((tmp_path / f"tr_{seed}" / "summary.json").read_text())
+    assert saved["n_backward_strides"] == out["n_backward_strides"]
+    meta = json.loads((sim / "meta.json").read_text())
+    return out | {"_truth_m": meta["distance_m"]}
+
+
+@pytest.mark.parametrize(("route", "seed", "backward"), [("stand:3, backward:10, stand:3", 11, 6),
+                                                          ("stand:3, straight:10, backward:5, straight:6, stand:3",
+                                                           14, 3)])
+def test_model_free_track_counts_backward_strides(tmp_path, capsys, route, seed, backward):
+    """The simulated truth's backward strides (6 of 6; 3 of 15) are counted, with no model."""
+    d = _track(tmp_path, capsys, route, seed)
+    assert d["n_backward_strides"] == backward, d
+    assert abs(d["distance_m"] - d["_truth_m"]) < 0.1 * d["_truth_m"]  # distances as before (L65's |length|)
+
+
+def test_forward_walk_has_no_backward_stride(tmp_path, capsys):
+    d = _track(tmp_path, capsys, None, 3560, scenario="D")  # stairs and turns, all forward
+    assert d["n_backward_strides"] == 0
+
+
+def test_lower_back_track_has_none(tmp_path, capsys):
+    sim = tmp_path / "w"
+    assert main(["simulate", "--scenario", "A", "--user-seed", "3561", "--out", str(sim)]) == 0
+    capsys.readouterr()
+    assert main(["track", str(sim), "--pipeline", "waist-pendulum", "--out", str(tmp_path / "tw"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["n_backward_strides"] is None
