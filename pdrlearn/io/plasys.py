@@ -46,6 +46,7 @@ from pdrlearn.io.validate import (
     time_unit_candidates,
 )
 from pdrlearn.kernels.clock import stamp_jitter_s
+from pdrlearn.textfile import decode, read_text
 
 log = logging.getLogger(__name__)
 
@@ -194,7 +195,10 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = ()) -> p
         df = pd.read_csv(path, dtype=dict.fromkeys(text_columns, str) or None, **dialect)
     except pd.errors.EmptyDataError:
         raise DataError(f"{path}: file is empty (not even a header line); re-export or remove it") from None
-    except (pd.errors.ParserError, UnicodeDecodeError) as exc:
+    except UnicodeDecodeError:
+        decode(path, path.read_bytes())  # decision B221: raises the one line naming the first byte not UTF-8
+        raise DataError(f"{path}: not UTF-8 text; save it as UTF-8 (decision B221)") from None
+    except pd.errors.ParserError as exc:
         first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise DataError(f"{path}: not a valid CSV ({first}); fix or re-export the file") from None
     df.columns = [str(c).strip() for c in df.columns]
@@ -1034,7 +1038,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     meta_path = folder / "meta.json"
     if meta_path.exists():
         try:
-            meta = json.loads(meta_path.read_text())
+            meta = json.loads(read_text(meta_path))
         except json.JSONDecodeError as exc:
             raise DataError(f"{meta_path}: invalid JSON (line {exc.lineno}); fix or delete the file") from None
         if not isinstance(meta, dict):

@@ -110,8 +110,10 @@ def run_visit_map(folder: Path) -> dict[str, str] | None:
     changes to be changes.csv's; None without one."""
     import json
 
+    from pdrlearn.textfile import read_text
+
     try:
-        vm = json.loads((Path(folder) / "run.json").read_text()).get("options", {}).get("visit_map")
+        vm = json.loads(read_text(Path(folder) / "run.json")).get("options", {}).get("visit_map")
     except (OSError, ValueError, AttributeError):
         return None
     return vm.get("visits") if isinstance(vm, dict) else None

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError
+from pdrlearn.textfile import read_text
 
 log = logging.getLogger(__name__)
 
@@ -60,7 +61,7 @@ def read_meta(folder: Path) -> dict:
     if not path.is_file():
         return {}
     try:
-        meta = json.loads(path.read_text())
+        meta = json.loads(read_text(path))
     except (ValueError, UnicodeDecodeError) as exc:
         raise DataError(f"{path}: not valid JSON ({str(exc).splitlines()[0]}); fix it or remove it") from None
     if not isinstance(meta, dict):

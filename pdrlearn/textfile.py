@@ -1,0 +1,45 @@
+"""Reading the text files pdrlearn reads - meta.json, bundle manifests, parameter files, CSV headers - as UTF-8
+whatever the locale (decision B221), with the standard library alone (the lean runtime imports it).
+
+``open()`` and ``Path.read_text()`` without ``encoding=`` decode with the locale's encoding: under ``LC_ALL=C`` a
+UTF-8 ``meta.json`` holding "Düsseldorf" raised a ``UnicodeDecodeError`` traceback, and on Windows (cp1252) it
+would be read as mojibake without a word. Here every file is UTF-8; a byte order mark (Windows Notepad's "UTF-8
+with BOM") is accepted (``utf-8-sig``), and a file that is not UTF-8 is refused in one line naming it and the fix.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from pdrlearn.errors import DataError
+
+#: the codec of every text file pdrlearn reads: UTF-8, a leading byte order mark accepted (decision B221)
+ENCODING = "utf-8-sig"
+
+
+def not_utf8_message(path, data: bytes, exc: UnicodeDecodeError) -> str:
+    """Decision B221's one line for a file that is not UTF-8: where the first bad byte is, and the fix."""
+    line = data.count(b"\n", 0, exc.start) + 1
+    return (f"{path}: not UTF-8 text (byte 0x{data[exc.start]:02x} on line {line} is not UTF-8: saved as "
+            "Latin-1, Windows-1252 or UTF-16?); save it as UTF-8 (decision B221)")
+
+
+def decode(path, data: bytes) -> str:
+    """``data`` (the bytes of ``path``) as text: UTF-8 with an optional BOM, else decision B221's one line."""
+    try:
+        return data.decode(ENCODING)
+    except UnicodeDecodeError as exc:
+        raise DataError(not_utf8_message(path, data, exc)) from None
+
+
+def read_text(path) -> str:
+    """The text of the file ``path``: UTF-8 (a BOM accepted) under any locale, else one line (decision B221)."""
+    return decode(path, Path(path).read_bytes())
+
+
+def read_json(path):
+    """The JSON value of ``path`` read as :func:`read_text` reads it. Invalid JSON raises ``ValueError``
+    (``json.JSONDecodeError``) for the caller's own message; a file that is not UTF-8 raises :class:`DataError`
+    (decision B221), which callers re-raise before their JSON message."""
+    return json.loads(read_text(path))
