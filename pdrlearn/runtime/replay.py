@@ -81,18 +81,56 @@ def _time_scale(meta: dict, where: Path) -> float:
     return TIME_SCALES[word]
 
 
+#: a PLASYS sensor file's value columns by their number (thesis ch.4.3.3: ``timestamp,x,y,z``; force and barometer
+#: files ``timestamp,x``)
+VALUE_COLUMNS = {1: ("x",), 3: ("x", "y", "z")}
+
+
+def header_names(head: str) -> list[str]:
+    """The column names of a comma-separated header line as every reader matches them: surrounding spaces
+    dropped, case folded (decision B222: ``TIMESTAMP,X`` is ``timestamp,x`` for the full reader, this one and
+    ``pdrlearn import`` alike)."""
+    return [c.strip().lower() for c in head.split(",")]
+
+
+def duplicate_message(path, names, header: str) -> str | None:
+    """Decision B223's line for a header naming a column twice (a merged export's ``timestamp,x,x,y,z``), which a
+    reader would otherwise resolve by taking one of them; ``None`` when every name is once. Names compare as
+    :func:`header_names` folds them."""
+    seen = [str(n).strip().lower() for n in names]
+    dup = next((n for i, n in enumerate(seen) if n in seen[:i]), None)
+    if dup is None:
+        return None
+    return (f"{path}: column {dup!r} appears {seen.count(dup)} times in the header ({header.strip()}); keep one "
+            f"column of each name (rename or delete the others; decision B223)")
+
+
 def _read_csv(path: Path, n_values: int, scale: float) -> tuple[np.ndarray, np.ndarray]:
-    head = path.open().readline().strip().lower()
-    if not head.startswith("timestamp,"):
+    """One sensor file's ``(t_s, values)``, its columns taken by name in any order (decision B222: a file written
+    ``timestamp,z,x,y`` had been read by position, its z as x, and tracked 38.7 m of an 89.9 m walk)."""
+    lines = read_text(path).splitlines()  # decision B221: UTF-8 (a BOM accepted), else one line
+    head = lines[0] if lines else ""
+    names, want = header_names(head), ("timestamp", *VALUE_COLUMNS[n_values])
+    dup = duplicate_message(path, names, head)
+    if dup:
+        raise DataError(dup)
+    if "timestamp" not in names:
         raise DataError(f"{path}: the first line is {head[:40]!r}, not the header 'timestamp,x,...' of a PLASYS "
                         f"sensor file; {FULL_READER}")
+    if sorted(names) != sorted(want):
+        raise DataError(f"{path}: columns {','.join(names)}, expected {','.join(want)} (in any order); {FULL_READER}")
+    rows = [line for line in lines[1:] if line.strip()]
+    if not rows:
+        raise DataError(f"{path}: no data rows under the header; re-record the file or remove it")
     try:
-        a = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2, dtype=np.float64)
+        a = np.loadtxt(rows, delimiter=",", ndmin=2, dtype=np.float64)
     except ValueError as exc:
         raise DataError(f"{path}: {str(exc).splitlines()[0]} (the lean reader reads plain comma-separated numbers); "
                         f"{FULL_READER}") from None
-    if a.shape[1] != 1 + n_values:
-        raise DataError(f"{path}: {a.shape[1]} columns, expected timestamp and {n_values} value(s); {FULL_READER}")
+    if a.shape[1] != len(names):
+        raise DataError(f"{path}: {a.shape[1]} values per row under a header of {len(names)} columns (decimal "
+                        f"commas in a comma-separated file?); {FULL_READER}")
+    a = a[:, [names.index(c) for c in want]]  # decision B222: by name, as the full reader
     return a[:, 0] * scale, a[:, 1:]
 
 
