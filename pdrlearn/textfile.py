@@ -43,3 +43,22 @@ def read_json(path):
     (``json.JSONDecodeError``) for the caller's own message; a file that is not UTF-8 raises :class:`DataError`
     (decision B221), which callers re-raise before their JSON message."""
     return json.loads(read_text(path))
+
+
+def header_names(head: str) -> list[str]:
+    """The column names of a comma-separated header line as every reader matches them: surrounding spaces
+    dropped, case folded (decision B222: ``TIMESTAMP,X`` is ``timestamp,x`` for the full reader, this one and
+    ``pdrlearn import`` alike)."""
+    return [c.strip().lower() for c in head.split(",")]
+
+
+def duplicate_message(path, names, header: str) -> str | None:
+    """Decision B223's line for a header naming a column twice (a merged export's ``timestamp,x,x,y,z``), which a
+    reader would otherwise resolve by taking one of them; ``None`` when every name is once. Names compare as
+    :func:`header_names` folds them."""
+    seen = [str(n).strip().lower() for n in names]
+    dup = next((n for i, n in enumerate(seen) if n in seen[:i]), None)
+    if dup is None:
+        return None
+    return (f"{path}: column {dup!r} appears {seen.count(dup)} times in the header ({header.strip()}); keep one "
+            f"column of each name (rename or delete the others; decision B223)")

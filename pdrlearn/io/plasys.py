@@ -46,7 +46,7 @@ from pdrlearn.io.validate import (
     time_unit_candidates,
 )
 from pdrlearn.kernels.clock import stamp_jitter_s
-from pdrlearn.textfile import decode, read_text
+from pdrlearn.textfile import decode, duplicate_message, read_text
 
 log = logging.getLogger(__name__)
 
@@ -212,6 +212,24 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = ()) -> p
     return df
 
 
+def session_table(path: str | os.PathLike) -> pd.DataFrame:
+    """:func:`read_table` for a session folder's files (sensor files, steps.csv, trajectory.csv, label tables):
+    column names matched in any case (decision B222: ``TIMESTAMP,X,Y,Z`` and ``START_MS`` are read as the
+    lower-case names, as the lean runtime and ``pdrlearn import`` read them), and a name given twice refused in
+    one line (decision B223: ``timestamp,x,x,y,z`` had silently used the first ``x``)."""
+    df = read_table(path)
+    names = [str(c) for c in df.columns]
+    if any(re.fullmatch(r"(.+)\.\d+", c) and re.fullmatch(r"(.+)\.\d+", c)[1] in names for c in names):
+        # pandas renamed a repeated name (x, x.1): the header as written says which
+        raw = pd.read_csv(path, header=None, nrows=1, dtype=str, keep_default_na=False, **_csv_dialect(Path(path)))
+        names = [str(c).strip() for c in raw.iloc[0]]
+    dup = duplicate_message(path, names, ",".join(names))
+    if dup:
+        raise DataError(dup)
+    df.columns = [c.lower() for c in df.columns]
+    return df
+
+
 #: a number written with a decimal comma (or an integer): what a text column of a ';' / tab file must hold
 #: throughout to be read as numbers (decision B24)
 _DECIMAL_COMMA = r"[+-]?(?:\d+(?:,\d*)?|,\d+)(?:[eE][+-]?\d+)?"
@@ -332,7 +350,7 @@ def _read_raw(path: str | os.PathLike, name: str | None = None) -> tuple[str, np
     spec = SENSORS[name]
     if not path.is_file():
         raise DataError(f"{path}: file not found")
-    df = read_table(path)
+    df = session_table(path)  # decisions B222, B223
     check_columns(df, ("timestamp", *spec.columns), str(path))
     _refuse_datetimes(df["timestamp"], path)
     return name, check_numeric(df, ("timestamp", *spec.columns), str(path), cut_mid_line=ends_mid_line(path))
@@ -662,10 +680,10 @@ def _s_to_ms(df: pd.DataFrame) -> pd.DataFrame:
 
 
 def _read_steps(path: Path) -> pd.DataFrame:
-    raw = read_table(path)
+    raw = session_table(path)  # decisions B222, B223
     check_last_row(raw, path, str(path))  # decision B205: a label table cut mid-row
+    check_columns(raw, tuple(c[:-2] + "_ms" for c in STEP_COLUMNS), f"{path} (times in ms)")  # as written (B222)
     df = _ms_to_s(raw, str(path))
-    check_columns(df, STEP_COLUMNS, f"{path} (times in ms: start_ms,end_ms)")
     se = check_numeric(df, STEP_COLUMNS, str(path))
     bad = np.flatnonzero(se[:, 1] < se[:, 0])
     if bad.size:
@@ -682,7 +700,7 @@ def _read_steps(path: Path) -> pd.DataFrame:
 
 
 def _read_trajectory(path: Path, scale: float) -> pd.DataFrame:
-    df = read_table(path)
+    df = session_table(path)  # decisions B222, B223
     check_last_row(df, path, str(path))  # decision B205
     check_columns(df, ("timestamp", "x", "y", "z"), str(path))
     arr = check_numeric(df, ("timestamp", "x", "y", "z"), str(path))
@@ -1107,7 +1125,7 @@ def read_session(folder: str | os.PathLike, *, check_units: bool = True, uniform
     for p in sorted(folder.glob("*.csv")):
         if p.stem in SENSORS or p.stem in LABEL_FILES:
             continue
-        table = read_table(p)
+        table = session_table(p)  # decisions B222, B223
         if _not_labels(p, table, folder):  # decision B74: a copy of a sensor file, or a sensor stream
             continue
         check_label_table(table, p.stem, str(p))

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError
-from pdrlearn.textfile import read_text
+from pdrlearn.textfile import duplicate_message, header_names, read_text
 
 log = logging.getLogger(__name__)
 
@@ -84,25 +84,6 @@ def _time_scale(meta: dict, where: Path) -> float:
 #: a PLASYS sensor file's value columns by their number (thesis ch.4.3.3: ``timestamp,x,y,z``; force and barometer
 #: files ``timestamp,x``)
 VALUE_COLUMNS = {1: ("x",), 3: ("x", "y", "z")}
-
-
-def header_names(head: str) -> list[str]:
-    """The column names of a comma-separated header line as every reader matches them: surrounding spaces
-    dropped, case folded (decision B222: ``TIMESTAMP,X`` is ``timestamp,x`` for the full reader, this one and
-    ``pdrlearn import`` alike)."""
-    return [c.strip().lower() for c in head.split(",")]
-
-
-def duplicate_message(path, names, header: str) -> str | None:
-    """Decision B223's line for a header naming a column twice (a merged export's ``timestamp,x,x,y,z``), which a
-    reader would otherwise resolve by taking one of them; ``None`` when every name is once. Names compare as
-    :func:`header_names` folds them."""
-    seen = [str(n).strip().lower() for n in names]
-    dup = next((n for i, n in enumerate(seen) if n in seen[:i]), None)
-    if dup is None:
-        return None
-    return (f"{path}: column {dup!r} appears {seen.count(dup)} times in the header ({header.strip()}); keep one "
-            f"column of each name (rename or delete the others; decision B223)")
 
 
 def _read_csv(path: Path, n_values: int, scale: float) -> tuple[np.ndarray, np.ndarray]:
