@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, shell_quote
 
 #: the codec of every text file pdrlearn reads: UTF-8, a leading byte order mark accepted (decision B221)
 ENCODING = "utf-8-sig"
@@ -62,3 +62,15 @@ def duplicate_message(path, names, header: str) -> str | None:
         return None
     return (f"{path}: column {dup!r} appears {seen.count(dup)} times in the header ({header.strip()}); keep one "
             f"column of each name (rename or delete the others; decision B223)")
+
+
+def gzip_hint(folder, stems) -> str:
+    """Decision B224: "; ..." saying that ``folder`` holds sensor files gzip-compressed (``fAccelerometer.csv.gz``),
+    which a session reader does not open, and what to do; "" when it holds none of ``stems``."""
+    found = sorted(p.name for p in Path(folder).glob("*.csv.gz") if p.name[:-len(".csv.gz")] in stems)
+    if not found:
+        return ""
+    names = ", ".join(found[:3]) + (f" and {len(found) - 3} more" if len(found) > 3 else "")
+    return (f"; {names} {'is' if len(found) == 1 else 'are'} gzip-compressed, and a session folder's files are "
+            f"read as plain CSV: decompress them (gunzip {shell_quote(str(Path(folder)))}/*.csv.gz); `pdrlearn "
+            "import FILE.csv.gz` reads a compressed one-CSV lab export (decision B224)")

@@ -46,7 +46,7 @@ from pdrlearn.io.validate import (
     time_unit_candidates,
 )
 from pdrlearn.kernels.clock import stamp_jitter_s
-from pdrlearn.textfile import decode, duplicate_message, read_text
+from pdrlearn.textfile import decode, duplicate_message, gzip_hint, read_text
 
 log = logging.getLogger(__name__)
 
@@ -788,6 +788,9 @@ def export_import_hint(folder: Path) -> str:
     exports in ``folder`` into a session (paths quoted, B92), or "" when it holds none. Two or more exports:
     the file whose name says foot (UNIT_NAME_WORDS) is imported as the foot unit, the one that says waist with
     ``--unit waist --merge``; names that say neither are listed with both commands left to the user."""
+    gz = gzip_hint(folder, SENSORS)  # decision B224
+    if gz:
+        return gz
     exports = sorted((p for p in folder.glob("*.csv") if _looks_like_export(p)),
                      key=lambda p: (-p.stat().st_size, p.name))  # the largest first
     if not exports:

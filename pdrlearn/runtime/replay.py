@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, MissingSensorError
-from pdrlearn.textfile import duplicate_message, header_names, read_text
+from pdrlearn.textfile import duplicate_message, gzip_hint, header_names, read_text
 
 log = logging.getLogger(__name__)
 
@@ -137,7 +137,8 @@ def read_streams(folder, bundle) -> tuple[dict, dict]:
         width = 1 if name.startswith(("fForce", "wBarometer")) else 3
         streams[name] = _read_csv(path, width, scale)
     if not streams:
-        raise MissingSensorError(f"{folder}: no sensor file the bundle reads ({', '.join([*required, *optional])})")
+        raise MissingSensorError(f"{folder}: no sensor file the bundle reads ({', '.join([*required, *optional])})"
+                                 f"{gzip_hint(folder, [*required, *optional])}")
     return streams, meta
 
 
