@@ -201,7 +201,13 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = ()) -> p
     except pd.errors.ParserError as exc:
         first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise DataError(f"{path}: not a valid CSV ({first}); fix or re-export the file") from None
+    if not isinstance(df.index, pd.RangeIndex):  # pandas took the extra leading fields of each row as an index
+        raise DataError(f"{path}: rows have more fields than the header's {len(df.columns)} names "
+                        f"({','.join(str(c).strip() for c in df.columns)}): decimal commas in a comma-separated file, "
+                        "or a comma ending each row? quote the decimal-comma values or separate the fields with ';', "
+                        "and remove commas at the ends of rows (decision B225)")
     df.columns = [str(c).strip() for c in df.columns]
+    _refuse_us_thousands(df, path, comma=dialect.get("decimal") == ",")
 
     def text() -> pd.DataFrame:  # the cells as written, for decision B112 (read only when a column may need it)
         raw = pd.read_csv(path, dtype=str, **dialect)
@@ -228,6 +234,28 @@ def session_table(path: str | os.PathLike) -> pd.DataFrame:
         raise DataError(dup)
     df.columns = [c.lower() for c in df.columns]
     return df
+
+
+#: decision B225: a number whose commas group thousands as US spreadsheets write them (``1,000``, ``12,345.5``)
+_US_GROUPED = r"[+-]?\d{1,3}(?:,\d{3})+(?:\.\d*)?"
+
+
+def _refuse_us_thousands(df: pd.DataFrame, path: Path, *, comma: bool) -> None:
+    """Decision B225: in a file whose numbers have decimal points (a column read as numbers with fractions), a
+    text column whose values with a comma all group thousands (``"1,000"``, US Excel's ``#,##0``) is refused in
+    one line naming it: B24 would read ``1,000`` as a decimal comma (1.0), and the advice was to sort the file."""
+    if comma or not any(df[c].dtype.kind == "f" and (df[c].dropna() % 1 != 0).any() for c in df.columns):
+        return
+    for c in df.columns:
+        if df[c].dtype.kind in "biufc":
+            continue
+        cells = df[c].dropna().astype(str).str.strip()
+        grouped = cells[cells.str.contains(",", regex=False)]
+        if len(grouped) and grouped.str.fullmatch(_US_GROUPED).all():
+            line = int(np.flatnonzero(cells.index == grouped.index[0])[0]) + 2
+            raise DataError(f"{path}: column {str(c).strip()} holds {grouped.iloc[0]!r} (line {line}) beside decimal "
+                            "points in other columns: a comma grouping thousands (US spreadsheet format #,##0)? "
+                            "save the column as plain numbers without thousands separators (decision B225)")
 
 
 #: a number written with a decimal comma (or an integer): what a text column of a ';' / tab file must hold
