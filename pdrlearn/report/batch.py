@@ -160,6 +160,9 @@ def plot_batch(sessions: pd.DataFrame, path: Path, *, dpi: float | None = None) 
     """A figure of each tracked session's distance (m) and gait speed (m/s), one bar per session coloured by
     its group, a failed session named on the axis with "failed" and no bar; saved at ``path``. False (no
     figure) when no session has either value."""
+    from pdrlearn.mplconfig import ensure_config_dir
+
+    ensure_config_dir()  # decision B226: no matplotlib noise when the home folder cannot be written
     import matplotlib
     from matplotlib.patches import Rectangle
 
