@@ -201,9 +201,12 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = ()) -> p
     except pd.errors.ParserError as exc:
         first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise DataError(f"{path}: not a valid CSV ({first}); fix or re-export the file") from None
-    if not isinstance(df.index, pd.RangeIndex):  # pandas took the extra leading fields of each row as an index
+    names = [str(c).strip() for c in df.columns]
+    if not df.index.equals(pd.RangeIndex(len(df))) and len(names) > 1 and not names[0].startswith("#"):
+        # pandas took the extra fields of each row as an index (a one-name header, a comment line above the real
+        # header, is left to the column checks, which name it)
         raise DataError(f"{path}: rows have more fields than the header's {len(df.columns)} names "
-                        f"({','.join(str(c).strip() for c in df.columns)}): decimal commas in a comma-separated file, "
+                        f"({','.join(names)}): decimal commas in a comma-separated file, "
                         "or a comma ending each row? quote the decimal-comma values or separate the fields with ';', "
                         "and remove commas at the ends of rows (decision B225)")
     df.columns = [str(c).strip() for c in df.columns]
@@ -232,6 +235,7 @@ def session_table(path: str | os.PathLike) -> pd.DataFrame:
     dup = duplicate_message(path, names, ",".join(names))
     if dup:
         raise DataError(dup)
+    df.attrs["header"] = [str(c) for c in df.columns]  # as written, for the messages (check_columns)
     df.columns = [c.lower() for c in df.columns]
     return df
 
