@@ -62,6 +62,8 @@ def read_meta(folder: Path) -> dict:
         return {}
     try:
         meta = json.loads(read_text(path))
+    except DataError:  # decision B221: not UTF-8, its own line
+        raise
     except (ValueError, UnicodeDecodeError) as exc:
         raise DataError(f"{path}: not valid JSON ({str(exc).splitlines()[0]}); fix it or remove it") from None
     if not isinstance(meta, dict):
@@ -111,7 +113,9 @@ def _read_csv(path: Path, n_values: int, scale: float) -> tuple[np.ndarray, np.n
     if a.shape[1] != len(names):
         raise DataError(f"{path}: {a.shape[1]} values per row under a header of {len(names)} columns (decimal "
                         f"commas in a comma-separated file?); {FULL_READER}")
-    a = a[:, [names.index(c) for c in want]]  # decision B222: by name, as the full reader
+    order = [names.index(c) for c in want]
+    if order != list(range(len(want))):  # decision B222: by name, as the full reader (C order kept, as loadtxt's)
+        a = np.ascontiguousarray(a[:, order])
     return a[:, 0] * scale, a[:, 1:]
 
 
