@@ -2,8 +2,9 @@
 
 :func:`replay_chunks` cuts recorded streams into pushes (decision E28; ``pdrlearn run`` and the lean command
 ``python -m pdrlearn.runtime`` use it). :func:`read_streams` reads the sensor files of a PLASYS session folder
-(``<sensor>.csv``: ``timestamp,x,y,z``, thesis ch.4.3.3; timestamps in ms unless ``meta.json`` declares
-``units.timestamp`` s, us or ns, decision D1) without pandas. It reads sessions as ``pdrlearn simulate``,
+(``<sensor>.csv``: ``timestamp,x,y,z``, thesis ch.4.3.3, the columns found by name in any order and case, decision
+B222; UTF-8, decision B221; timestamps in ms unless ``meta.json`` declares ``units.timestamp`` s, us or ns, decision
+D1) without pandas. It reads sessions as ``pdrlearn simulate``,
 ``import-csv`` and ``write_session`` write them; it repairs nothing: a file the full reader would have to fix
 (decimal commas, a sample-counter clock, per-unit clocks, other value units) is refused in one line that
 names the full install's ``pdrlearn run``.
